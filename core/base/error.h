@@ -1,0 +1,59 @@
+#pragma once
+// The engine's error types. Every check in the engine throws one of these with a message that names
+// the function and the bad value ("UWorld::SpawnActor(): class 'AFoo' is not registered"); the Python
+// layer maps each type to one Python exception class in a single place.
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace sp {
+
+class Error : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// A value of the wrong type or out of range.
+class InvalidArgument : public Error {
+public:
+    using Error::Error;
+};
+
+// An unknown class, property, function, asset or name.
+class NotFound : public Error {
+public:
+    using Error::Error;
+};
+
+// A handle whose object was destroyed.
+class StaleObject : public Error {
+public:
+    using Error::Error;
+};
+
+// A call that is not allowed in the engine's current state (outside a frame, moving a static body, ...).
+class InvalidState : public Error {
+public:
+    using Error::Error;
+};
+
+namespace detail {
+template <typename... Args> std::string concat(const Args&... args) {
+    std::ostringstream out;
+    (out << ... << args);
+    return out.str();
+}
+} // namespace detail
+
+// Throws E with the streamed message: SP_THROW(NotFound, "UWorld::SpawnActor(): class '", name, "' ...").
+#define SP_THROW(Type, ...) throw ::sp::Type(::sp::detail::concat(__VA_ARGS__))
+
+// Checks a condition and throws E with the message when it does not hold.
+#define SP_CHECK(cond, Type, ...)                                                                            \
+    do {                                                                                                     \
+        if (!(cond))                                                                                         \
+            SP_THROW(Type, __VA_ARGS__);                                                                     \
+    } while (false)
+
+} // namespace sp
