@@ -1,0 +1,120 @@
+#pragma once
+// A rigid-body physics world on Bullet. It owns every body; callers hold BodyIds. All quantities are
+// SI (metres, kilograms, seconds), right-handed with Z up; Bullet types never appear here.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "core/physics/body_desc.h"
+#include "core/physics/body_id.h"
+#include "core/physics/mobility.h"
+#include "core/physics/ray_hit.h"
+#include "core/physics/world_settings.h"
+
+namespace sp::physics {
+
+// A set of rigid bodies advanced together in fixed substeps. Every call that takes a BodyId throws
+// sp::StaleObject when the body was removed or never existed. Not thread-safe; one thread at a time.
+class PhysicsWorld {
+public:
+    using Settings = WorldSettings;
+
+    // Creates an empty world; throws sp::InvalidArgument for a non-finite gravity, a time step that is
+    // not > 0 or a solver iteration count below 1.
+    explicit PhysicsWorld(const Settings& settings = Settings());
+    ~PhysicsWorld();
+    PhysicsWorld(const PhysicsWorld&) = delete;
+    PhysicsWorld& operator=(const PhysicsWorld&) = delete;
+
+    // --- Simulation ---
+
+    // Advances time by dt seconds (>= 0): adds dt to an accumulator and runs as many whole fixed
+    // substeps as it holds (up to a 1e-9 relative rounding allowance), keeping the remainder for the
+    // next call. Returns the number of substeps run. Forces applied since the last substep act during
+    // every substep of this call and are cleared once at least one substep ran.
+    int step(double dt);
+    // Substeps run since construction.
+    uint64_t substepCount() const;
+    // Simulated time in seconds: substepCount() * fixedTimeStep.
+    double simulatedTime() const;
+    const Settings& settings() const;
+    // Gravity acceleration in m/s^2; applies to every simulated body from the next substep.
+    void setGravity(const Eigen::Vector3d& gravity);
+    Eigen::Vector3d getGravity() const;
+
+    // --- Bodies ---
+
+    // Creates a body; throws sp::InvalidArgument naming the bad field of desc.
+    BodyId addBody(const BodyDesc& desc);
+    // Destroys the body and wakes the bodies touching it; its id (and every copy) becomes stale.
+    void removeBody(BodyId id);
+    // True while id names a body of this world.
+    bool isValid(BodyId id) const;
+    // Number of bodies in the world.
+    size_t bodyCount() const;
+    // Ids of all bodies, in slot order.
+    std::vector<BodyId> bodies() const;
+
+    // Pose of the body's local frame (its centre of mass) in the world.
+    Eigen::Isometry3d getPose(BodyId id) const;
+    // Teleports a Movable body (keeps its velocities) and wakes it and the bodies touching it; throws
+    // sp::InvalidState for a Static body.
+    void setPose(BodyId id, const Eigen::Isometry3d& pose);
+
+    // Velocity in m/s of the centre of mass (zero for static bodies).
+    Eigen::Vector3d getLinearVelocity(BodyId id) const;
+    // Angular velocity in rad/s, world axes.
+    Eigen::Vector3d getAngularVelocity(BodyId id) const;
+    // The setters and appliers below need a simulated body and throw sp::InvalidState otherwise; all
+    // of them wake the body.
+    void setLinearVelocity(BodyId id, const Eigen::Vector3d& velocity);
+    void setAngularVelocity(BodyId id, const Eigen::Vector3d& velocity);
+    // Adds a force in newtons at the centre of mass for the next step() call.
+    void applyForce(BodyId id, const Eigen::Vector3d& force);
+    // Adds a force in newtons at a world point for the next step() call (it also adds a torque).
+    void applyForce(BodyId id, const Eigen::Vector3d& force, const Eigen::Vector3d& worldPoint);
+    // Adds a torque in N*m (world axes) for the next step() call.
+    void applyTorque(BodyId id, const Eigen::Vector3d& torque);
+    // Changes the velocity at once by impulse / mass (impulse in N*s at the centre of mass).
+    void applyImpulse(BodyId id, const Eigen::Vector3d& impulse);
+    // Applies an impulse in N*s at a world point, changing linear and angular velocity at once.
+    void applyImpulse(BodyId id, const Eigen::Vector3d& impulse, const Eigen::Vector3d& worldPoint);
+
+    // --- Body properties (same meaning and limits as the BodyDesc fields) ---
+
+    Mobility getMobility(BodyId id) const;
+    void setMobility(BodyId id, Mobility mobility);
+    bool isSimulatingPhysics(BodyId id) const;
+    void setSimulatePhysics(BodyId id, bool simulate);
+    double getMass(BodyId id) const;
+    void setMass(BodyId id, double mass);
+    double getFriction(BodyId id) const;
+    void setFriction(BodyId id, double friction);
+    double getRestitution(BodyId id) const;
+    void setRestitution(BodyId id, double restitution);
+    double getLinearDamping(BodyId id) const;
+    void setLinearDamping(BodyId id, double damping);
+    double getAngularDamping(BodyId id) const;
+    void setAngularDamping(BodyId id, double damping);
+    uint64_t getTag(BodyId id) const;
+    void setTag(BodyId id, uint64_t tag);
+    // False while the body sleeps (Bullet deactivation); static bodies always report false.
+    bool isAwake(BodyId id) const;
+
+    // --- Queries ---
+
+    // The closest body hit by the segment from -> to, if any. A zero-length segment hits nothing.
+    std::optional<RayHit> raycast(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
+    // Every hit along the segment, closest first (a triangle mesh may report one hit per triangle).
+    std::vector<RayHit> raycastAll(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace sp::physics
