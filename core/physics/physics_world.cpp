@@ -36,7 +36,8 @@ void checkPose(const char* function, const Eigen::Isometry3d& pose) {
     checkVector(function, "pose translation", pose.translation());
     const Eigen::Matrix3d r = pose.linear();
     // Bullet stores a rotation; anything else (scale, shear) would be silently dropped.
-    SP_CHECK(r.allFinite() && (r * r.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-6 &&
+    SP_CHECK(r.allFinite() &&
+                 (r * r.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-6 &&
                  r.determinant() > 0.0,
              InvalidArgument, function, ": pose rotation is not a rotation matrix (orthonormal, det +1)");
 }
@@ -77,8 +78,8 @@ struct PhysicsWorld::Impl {
         btRigidBody* body = record.body.get();
         if (inWorld)
             world->removeRigidBody(body);
-        int flags = body->getCollisionFlags() & ~(btCollisionObject::CF_STATIC_OBJECT |
-                                                  btCollisionObject::CF_KINEMATIC_OBJECT);
+        int flags = body->getCollisionFlags() &
+                    ~(btCollisionObject::CF_STATIC_OBJECT | btCollisionObject::CF_KINEMATIC_OBJECT);
         if (record.isSimulated()) {
             btVector3 inertia(0, 0, 0);
             record.shape.shape->calculateLocalInertia(record.mass, inertia);
@@ -150,16 +151,16 @@ PhysicsWorld::PhysicsWorld(const Settings& settings) : impl_(std::make_unique<Im
     checkVector("PhysicsWorld::PhysicsWorld()", "gravity", settings.gravity);
     SP_CHECK(std::isfinite(settings.fixedTimeStep) && settings.fixedTimeStep > 0.0, InvalidArgument,
              "PhysicsWorld::PhysicsWorld(): fixedTimeStep ", settings.fixedTimeStep, " must be > 0");
-    SP_CHECK(settings.solverIterations >= 1, InvalidArgument, "PhysicsWorld::PhysicsWorld(): solverIterations ",
-             settings.solverIterations, " must be >= 1");
+    SP_CHECK(settings.solverIterations >= 1, InvalidArgument,
+             "PhysicsWorld::PhysicsWorld(): solverIterations ", settings.solverIterations, " must be >= 1");
     Impl& w = *impl_;
     w.settings = settings;
     w.configuration = std::make_unique<btDefaultCollisionConfiguration>();
     w.dispatcher = std::make_unique<btCollisionDispatcher>(w.configuration.get());
     w.broadphase = std::make_unique<btDbvtBroadphase>();
     w.solver = std::make_unique<btSequentialImpulseConstraintSolver>();
-    w.world = std::make_unique<btDiscreteDynamicsWorld>(w.dispatcher.get(), w.broadphase.get(), w.solver.get(),
-                                                        w.configuration.get());
+    w.world = std::make_unique<btDiscreteDynamicsWorld>(w.dispatcher.get(), w.broadphase.get(),
+                                                        w.solver.get(), w.configuration.get());
     w.world->setGravity(toBullet(settings.gravity));
     w.world->getSolverInfo().m_numIterations = settings.solverIterations;
 }
@@ -176,8 +177,8 @@ int PhysicsWorld::step(double dt) {
     // The allowance makes four 1/240 s substeps fit in a 1/60 s frame although 1/60 / (1/240) may round
     // to 3.999...; without it a frame would now and then run one substep short.
     const double count = std::floor((w.accumulator + dt) / h * (1.0 + 1e-9));
-    SP_CHECK(count <= double(INT_MAX), InvalidArgument, "PhysicsWorld::step(): dt ", dt, " would need ", count,
-             " substeps of ", h, " s");
+    SP_CHECK(count <= double(INT_MAX), InvalidArgument, "PhysicsWorld::step(): dt ", dt, " would need ",
+             count, " substeps of ", h, " s");
     w.accumulator = std::max(0.0, w.accumulator + dt - count * h);
     const int n = int(count);
     for (int i = 0; i < n; ++i) {
@@ -203,11 +204,17 @@ int PhysicsWorld::step(double dt) {
     return n;
 }
 
-uint64_t PhysicsWorld::substepCount() const { return impl_->substeps; }
+uint64_t PhysicsWorld::substepCount() const {
+    return impl_->substeps;
+}
 
-double PhysicsWorld::simulatedTime() const { return double(impl_->substeps) * impl_->settings.fixedTimeStep; }
+double PhysicsWorld::simulatedTime() const {
+    return double(impl_->substeps) * impl_->settings.fixedTimeStep;
+}
 
-const PhysicsWorld::Settings& PhysicsWorld::settings() const { return impl_->settings; }
+const PhysicsWorld::Settings& PhysicsWorld::settings() const {
+    return impl_->settings;
+}
 
 void PhysicsWorld::setGravity(const Eigen::Vector3d& gravity) {
     checkVector("PhysicsWorld::setGravity()", "gravity", gravity);
@@ -216,7 +223,9 @@ void PhysicsWorld::setGravity(const Eigen::Vector3d& gravity) {
     impl_->bodies.forEach([](BodyId, BodyRecord& record) { record.body->activate(); });
 }
 
-Eigen::Vector3d PhysicsWorld::getGravity() const { return impl_->settings.gravity; }
+Eigen::Vector3d PhysicsWorld::getGravity() const {
+    return impl_->settings.gravity;
+}
 
 // --- Bodies ---
 
@@ -242,7 +251,8 @@ BodyId PhysicsWorld::addBody(const BodyDesc& desc) {
     record.tag = desc.tag;
     record.mobility = desc.mobility;
     record.simulate = desc.simulatePhysics;
-    record.mass = desc.mobility == Mobility::Movable ? desc.mass : 0.0;
+    // A static body keeps a valid mass for when it is made Movable later.
+    record.mass = std::isfinite(desc.mass) && desc.mass >= 0.0 ? desc.mass : 0.0;
 
     btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, record.shape.shape.get());
     info.m_startWorldTransform = toBullet(desc.pose);
@@ -268,9 +278,13 @@ void PhysicsWorld::removeBody(BodyId id) {
     w.bodies.erase(id);
 }
 
-bool PhysicsWorld::isValid(BodyId id) const { return impl_->bodies.find(id) != nullptr; }
+bool PhysicsWorld::isValid(BodyId id) const {
+    return impl_->bodies.find(id) != nullptr;
+}
 
-size_t PhysicsWorld::bodyCount() const { return impl_->bodies.size(); }
+size_t PhysicsWorld::bodyCount() const {
+    return impl_->bodies.size();
+}
 
 std::vector<BodyId> PhysicsWorld::bodies() const {
     std::vector<BodyId> ids;
@@ -355,7 +369,8 @@ void PhysicsWorld::applyImpulse(BodyId id, const Eigen::Vector3d& impulse) {
     record.body->activate(true);
 }
 
-void PhysicsWorld::applyImpulse(BodyId id, const Eigen::Vector3d& impulse, const Eigen::Vector3d& worldPoint) {
+void PhysicsWorld::applyImpulse(BodyId id, const Eigen::Vector3d& impulse,
+                                const Eigen::Vector3d& worldPoint) {
     constexpr const char* fn = "PhysicsWorld::applyImpulse()";
     BodyRecord& record = impl_->simulated(id, fn);
     checkVector(fn, "impulse", impulse);
@@ -413,7 +428,9 @@ void PhysicsWorld::setSimulatePhysics(BodyId id, bool simulate) {
     }
 }
 
-double PhysicsWorld::getMass(BodyId id) const { return impl_->bodies.get(id, "PhysicsWorld::getMass()").mass; }
+double PhysicsWorld::getMass(BodyId id) const {
+    return impl_->bodies.get(id, "PhysicsWorld::getMass()").mass;
+}
 
 void PhysicsWorld::setMass(BodyId id, double mass) {
     constexpr const char* fn = "PhysicsWorld::setMass()";
@@ -479,9 +496,13 @@ void PhysicsWorld::setAngularDamping(BodyId id, double damping) {
     record.body->setDamping(record.body->getLinearDamping(), damping);
 }
 
-uint64_t PhysicsWorld::getTag(BodyId id) const { return impl_->bodies.get(id, "PhysicsWorld::getTag()").tag; }
+uint64_t PhysicsWorld::getTag(BodyId id) const {
+    return impl_->bodies.get(id, "PhysicsWorld::getTag()").tag;
+}
 
-void PhysicsWorld::setTag(BodyId id, uint64_t tag) { impl_->bodies.get(id, "PhysicsWorld::setTag()").tag = tag; }
+void PhysicsWorld::setTag(BodyId id, uint64_t tag) {
+    impl_->bodies.get(id, "PhysicsWorld::setTag()").tag = tag;
+}
 
 bool PhysicsWorld::isAwake(BodyId id) const {
     const BodyRecord& record = impl_->bodies.get(id, "PhysicsWorld::isAwake()");
@@ -515,11 +536,19 @@ std::vector<RayHit> PhysicsWorld::raycastAll(const Eigen::Vector3d& from, const 
     for (int i = 0; i < result.m_collisionObjects.size(); ++i)
         hits.push_back(impl_->makeHit(result.m_collisionObjects[i], result.m_hitPointWorld[i],
                                       result.m_hitNormalWorld[i], result.m_hitFractions[i]));
-    // Bullet reports hits in broadphase order; sort them along the ray, ties by slot for stability.
+    // Bullet reports hits in broadphase order, and one per triangle for planes and meshes: sort them
+    // along the ray (ties by slot, for stability) and keep each body's closest hit.
     std::sort(hits.begin(), hits.end(), [](const RayHit& a, const RayHit& b) {
         return a.fraction != b.fraction ? a.fraction < b.fraction : a.body.index < b.body.index;
     });
-    return hits;
+    std::vector<RayHit> closest;
+    std::vector<uint32_t> seenIndices;
+    for (const RayHit& hit : hits)
+        if (std::find(seenIndices.begin(), seenIndices.end(), hit.body.index) == seenIndices.end()) {
+            seenIndices.push_back(hit.body.index);
+            closest.push_back(hit);
+        }
+    return closest;
 }
 
 } // namespace sp::physics

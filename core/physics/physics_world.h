@@ -20,7 +20,7 @@ namespace sp::physics {
 // A set of rigid bodies advanced together in fixed substeps. Every call that takes a BodyId throws
 // sp::StaleObject when the body was removed or never existed. Not thread-safe; one thread at a time.
 class PhysicsWorld {
-public:
+  public:
     using Settings = WorldSettings;
 
     // Creates an empty world; throws sp::InvalidArgument for a non-finite gravity, a time step that is
@@ -109,10 +109,10 @@ public:
 
     // The closest body hit by the segment from -> to, if any. A zero-length segment hits nothing.
     std::optional<RayHit> raycast(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
-    // Every hit along the segment, closest first (a triangle mesh may report one hit per triangle).
+    // Every body hit by the segment, each at its closest hit, closest first.
     std::vector<RayHit> raycastAll(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

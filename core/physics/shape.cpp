@@ -19,7 +19,9 @@ std::ostream& operator<<(std::ostream& out, const Vec& vec) {
     return out << '(' << vec.v.x() << ", " << vec.v.y() << ", " << vec.v.z() << ')';
 }
 
-bool isPositive(double value) { return std::isfinite(value) && value > 0.0; }
+bool isPositive(double value) {
+    return std::isfinite(value) && value > 0.0;
+}
 
 void checkPoints(const char* function, const char* what, const std::vector<Eigen::Vector3d>& points) {
     for (size_t i = 0; i < points.size(); ++i)
@@ -124,8 +126,8 @@ Shape Shape::convexHull(std::vector<Eigen::Vector3d> points) {
 }
 
 Shape Shape::triangleMesh(std::vector<Eigen::Vector3d> vertices, std::vector<uint32_t> indices) {
-    SP_CHECK(!indices.empty() && indices.size() % 3 == 0, InvalidArgument, "Shape::triangleMesh(): ",
-             indices.size(), " indices given; need a nonzero multiple of 3");
+    SP_CHECK(!indices.empty() && indices.size() % 3 == 0, InvalidArgument,
+             "Shape::triangleMesh(): ", indices.size(), " indices given; need a nonzero multiple of 3");
     checkPoints("Shape::triangleMesh()", "vertex", vertices);
     for (size_t i = 0; i < indices.size(); ++i)
         SP_CHECK(indices[i] < vertices.size(), InvalidArgument, "Shape::triangleMesh(): index ", i, " is ",
@@ -143,7 +145,8 @@ Shape Shape::scaled(const Eigen::Vector3d& scale) const {
     // Bullet's sphere, capsule and cylinder keep one radius, so their cross-section must stay round.
     if (type_ == ShapeType::Sphere)
         SP_CHECK(combined.x() == combined.y() && combined.y() == combined.z(), InvalidArgument,
-                 "Shape::scaled(): scale ", Vec{combined}, " is not uniform; a sphere takes a uniform scale only");
+                 "Shape::scaled(): scale ", Vec{combined},
+                 " is not uniform; a sphere takes a uniform scale only");
     if (type_ == ShapeType::Capsule || type_ == ShapeType::Cylinder)
         SP_CHECK(combined.x() == combined.y(), InvalidArgument, "Shape::scaled(): scale ", Vec{combined},
                  " has x != y; a ", type_, " along Z needs the same scale on x and y");
@@ -152,8 +155,12 @@ Shape Shape::scaled(const Eigen::Vector3d& scale) const {
     return result;
 }
 
-const std::vector<Eigen::Vector3d>& Shape::points() const { return points_ ? *points_ : kNoPoints; }
+const std::vector<Eigen::Vector3d>& Shape::points() const {
+    return points_ ? *points_ : kNoPoints;
+}
 
-const std::vector<uint32_t>& Shape::indices() const { return indices_ ? *indices_ : kNoIndices; }
+const std::vector<uint32_t>& Shape::indices() const {
+    return indices_ ? *indices_ : kNoIndices;
+}
 
 } // namespace sp::physics

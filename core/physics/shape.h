@@ -21,7 +21,7 @@ std::ostream& operator<<(std::ostream& out, ShapeType type);
 // Capsules and cylinders run along local Z. Planes and triangle meshes cannot be simulated (they may
 // be static, or movable without simulation).
 class Shape {
-public:
+  public:
     // A box with the given half extents in metres (each > 0).
     static Shape box(const Eigen::Vector3d& halfExtents);
     // A sphere of the given radius in metres (> 0).
@@ -62,7 +62,7 @@ public:
     // Mesh indices; empty for other shapes.
     const std::vector<uint32_t>& indices() const;
 
-private:
+  private:
     explicit Shape(ShapeType type) : type_(type) {}
 
     ShapeType type_;

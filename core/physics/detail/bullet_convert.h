@@ -7,9 +7,13 @@
 
 namespace sp::physics::detail {
 
-inline btVector3 toBullet(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.z()); }
+inline btVector3 toBullet(const Eigen::Vector3d& v) {
+    return btVector3(v.x(), v.y(), v.z());
+}
 
-inline Eigen::Vector3d toEigen(const btVector3& v) { return Eigen::Vector3d(v.x(), v.y(), v.z()); }
+inline Eigen::Vector3d toEigen(const btVector3& v) {
+    return Eigen::Vector3d(v.x(), v.y(), v.z());
+}
 
 inline btTransform toBullet(const Eigen::Isometry3d& pose) {
     const Eigen::Quaterniond q(pose.linear());

@@ -22,7 +22,9 @@ namespace {
 // shrunk by it, so it only rounds edges; it is reduced for small shapes so that it never dominates them.
 constexpr btScalar kMaxMargin = 0.04;
 
-btScalar marginFor(double smallestHalfSize) { return std::min(kMaxMargin, btScalar(0.2 * smallestHalfSize)); }
+btScalar marginFor(double smallestHalfSize) {
+    return std::min(kMaxMargin, btScalar(0.2 * smallestHalfSize));
+}
 
 BuiltShape buildConvexHull(const Shape& shape) {
     std::vector<btScalar> coords;

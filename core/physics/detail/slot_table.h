@@ -13,12 +13,13 @@
 namespace sp::physics::detail {
 
 template <typename T> class SlotTable {
-public:
+  public:
     // Stores value in a free slot (the most recently freed one first) and returns its id.
     BodyId insert(T value) {
         uint32_t index;
         if (free_.empty()) {
-            SP_CHECK(slots_.size() < BodyId::kInvalidIndex, InvalidState, "SlotTable::insert(): table is full");
+            SP_CHECK(slots_.size() < BodyId::kInvalidIndex, InvalidState,
+                     "SlotTable::insert(): table is full");
             index = uint32_t(slots_.size());
             slots_.emplace_back();
         } else {
@@ -77,7 +78,7 @@ public:
                 f(BodyId{i, slots_[i].generation}, std::as_const(*slots_[i].value));
     }
 
-private:
+  private:
     struct Slot {
         std::optional<T> value;
         uint32_t generation = 0;
