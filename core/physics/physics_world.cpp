@@ -10,6 +10,7 @@
 #include "core/base/error.h"
 #include "core/physics/detail/body_record.h"
 #include "core/physics/detail/bullet_convert.h"
+#include "core/physics/detail/format.h"
 #include "core/physics/detail/slot_table.h"
 
 namespace sp::physics {
@@ -20,13 +21,7 @@ using detail::toEigen;
 
 namespace {
 
-// Formats a vector as "(x, y, z)" for error messages.
-struct Vec {
-    const Eigen::Vector3d& v;
-};
-std::ostream& operator<<(std::ostream& out, const Vec& vec) {
-    return out << '(' << vec.v.x() << ", " << vec.v.y() << ", " << vec.v.z() << ')';
-}
+using detail::Vec;
 
 void checkVector(const char* function, const char* name, const Eigen::Vector3d& v) {
     SP_CHECK(v.allFinite(), InvalidArgument, function, ": ", name, ' ', Vec{v}, " is not finite");
@@ -138,8 +133,9 @@ struct PhysicsWorld::Impl {
     RayHit makeHit(const btCollisionObject* object, const btVector3& point, const btVector3& normal,
                    double fraction) const {
         RayHit hit;
+        // Every body in the Bullet world is live in the table: removeBody takes it out of both.
         hit.body = bodies.idAt(uint32_t(object->getUserIndex()));
-        hit.tag = bodies.get(hit.body, "PhysicsWorld::raycast()").tag;
+        hit.tag = bodies.find(hit.body)->tag;
         hit.point = toEigen(point);
         hit.normal = toEigen(normal).normalized();
         hit.fraction = fraction;

@@ -87,20 +87,30 @@ class PhysicsWorld {
     // --- Body properties (same meaning and limits as the BodyDesc fields) ---
 
     Mobility getMobility(BodyId id) const;
+    // Makes the body Static or Movable, keeping its pose; a Static body loses its velocities.
     void setMobility(BodyId id, Mobility mobility);
+    // True for a Movable body with simulatePhysics set (a dynamic body).
     bool isSimulatingPhysics(BodyId id) const;
+    // Switches a Movable body between dynamic and kinematic; for a Static body the flag is only stored.
     void setSimulatePhysics(BodyId id, bool simulate);
+    // Mass in kg, kept (and returned) even while the body is static or kinematic.
     double getMass(BodyId id) const;
+    // Sets the mass (>= 0, > 0 while simulated); the inertia follows, assuming uniform density.
     void setMass(BodyId id, double mass);
     double getFriction(BodyId id) const;
+    // Sets the friction coefficient (>= 0).
     void setFriction(BodyId id, double friction);
     double getRestitution(BodyId id) const;
+    // Sets the restitution, in [0, 1].
     void setRestitution(BodyId id, double restitution);
     double getLinearDamping(BodyId id) const;
+    // Sets the fraction of linear velocity lost per second, in [0, 1].
     void setLinearDamping(BodyId id, double damping);
     double getAngularDamping(BodyId id) const;
+    // Sets the fraction of angular velocity lost per second, in [0, 1].
     void setAngularDamping(BodyId id, double damping);
     uint64_t getTag(BodyId id) const;
+    // Sets the value reported in RayHit::tag for this body.
     void setTag(BodyId id, uint64_t tag);
     // False while the body sleeps (Bullet deactivation); static bodies always report false.
     bool isAwake(BodyId id) const;

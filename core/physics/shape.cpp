@@ -6,18 +6,13 @@
 #include <Eigen/Eigenvalues>
 
 #include "core/base/error.h"
+#include "core/physics/detail/format.h"
 
 namespace sp::physics {
 
 namespace {
 
-// Formats a vector as "(x, y, z)" for error messages.
-struct Vec {
-    const Eigen::Vector3d& v;
-};
-std::ostream& operator<<(std::ostream& out, const Vec& vec) {
-    return out << '(' << vec.v.x() << ", " << vec.v.y() << ", " << vec.v.z() << ')';
-}
+using detail::Vec;
 
 bool isPositive(double value) {
     return std::isfinite(value) && value > 0.0;

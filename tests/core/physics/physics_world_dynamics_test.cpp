@@ -88,6 +88,22 @@ TEST(PhysicsDynamicsTest, BodiesLandOnAStaticTriangleMesh) {
     EXPECT_NEAR(world.getPose(hull).translation().z(), 0.7, kRestTolerance);
 }
 
+TEST(PhysicsDynamicsTest, ScaleIsBakedIntoHullsAndPlanes) {
+    PhysicsWorld world;
+    // The plane z = 0.5, scaled by 2 along Z, is the plane z = 1.
+    BodyDesc floor;
+    floor.shape = Shape::plane({0, 0, 1}, 0.5).scaled({3, 3, 2});
+    floor.mobility = Mobility::Static;
+    world.addBody(floor);
+    const Shape cube = Shape::convexHull(
+        {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}});
+    const BodyId flat = world.addBody(dynamicBody(cube.scaled({0.5, 0.5, 0.1}), 0, 0, 2));
+    const BodyId ball = world.addBody(dynamicBody(Shape::sphere(0.1).scaled({2, 2, 2}), 3, 0, 2));
+    run(world, 3.0);
+    EXPECT_NEAR(world.getPose(flat).translation().z(), 1.1, kRestTolerance);
+    EXPECT_NEAR(world.getPose(ball).translation().z(), 1.2, kRestTolerance);
+}
+
 // Highest point of the sphere's centre after its first bounce.
 double reboundHeight(double restitution) {
     PhysicsWorld world;
