@@ -1,0 +1,49 @@
+#pragma once
+// Camera intrinsics/settings and the GL matrices derived from them. Pure logic, no GL.
+//
+// Convention: world is right-handed, Z up, metres. The camera looks along its local +X, +Y is left and
+// +Z is up (ROS REP-103 body frame); `pose` maps camera to world. Depth is the distance along +X.
+
+#include <string>
+
+#include <Eigen/Geometry>
+
+namespace sp::render {
+
+enum class ToneMap { Aces, Reinhard, Linear };
+
+// Settings of one camera; validate() throws sp::InvalidArgument naming the bad field.
+struct CameraParams {
+    int width = 640;                  // pixels
+    int height = 480;                 // pixels
+    double hfovDeg = 90.0;            // horizontal field of view, degrees, in (0, 180)
+    double nearClip = 0.05;           // metres, > 0
+    double farClip = 1000.0;          // metres, > nearClip
+    float exposure = 1.0f;            // linear multiplier applied to hdr_color before the tone curve
+    ToneMap toneMap = ToneMap::Aces;  // tone curve for final_color
+    bool shadows = true;              // render shadow maps for shadow-casting lights
+    int shadowResolution = 1024;      // shadow map size in texels, in [16, 8192]
+
+    void validate(const char* function) const;
+};
+
+std::string toneMapName(ToneMap toneMap);
+
+// A camera pose plus its settings.
+struct Camera {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // camera-to-world
+    CameraParams params;
+
+    // World-to-GL-eye matrix (GL eye looks along -Z with +Y up).
+    Eigen::Matrix4d viewMatrix() const;
+    // GL clip-space projection. flipY renders image row 0 at the bottom of the framebuffer, so that
+    // glReadPixels returns the top image row first.
+    Eigen::Matrix4d projectionMatrix(bool flipY) const;
+    // Focal lengths in pixels (fx from the horizontal FOV, square pixels).
+    double focalLengthPixels() const;
+    // Projects a world point to continuous pixel coordinates (u right, v down, pixel centres at +0.5)
+    // and returns its depth along the optical axis.
+    Eigen::Vector3d project(const Eigen::Vector3d& world) const;
+};
+
+} // namespace sp::render

@@ -1,0 +1,28 @@
+#pragma once
+// Analytic lights. Units are "physical-ish" linear radiometry: a directional light's intensity is the
+// irradiance it delivers at normal incidence (W/m^2, or lux with photometric exposure); a point or spot
+// light's intensity is its radiant intensity (W/sr, or candela), giving irradiance intensity / d^2.
+// A white Lambertian surface facing a directional light of intensity pi therefore has radiance 1.
+
+#include <Eigen/Core>
+
+namespace sp::render {
+
+enum class LightType { Directional, Point, Spot };
+
+struct Light {
+    LightType type = LightType::Directional;
+    Eigen::Vector3f color{1.0f, 1.0f, 1.0f};   // linear RGB tint
+    float intensity = 3.14159265f;             // see the header comment for units
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();       // world, point and spot
+    Eigen::Vector3d direction{0.0, 0.0, -1.0};                 // world, direction light travels (dir, spot)
+    float range = 0.0f;              // metres; 0 = unbounded; otherwise a smooth window to 0 at range
+    float innerConeDeg = 30.0f;      // spot: full intensity inside this half-angle
+    float outerConeDeg = 45.0f;      // spot: zero outside this half-angle
+    bool castShadows = true;         // directional and spot lights; point lights never cast shadows
+
+    // Throws sp::InvalidArgument naming the bad field.
+    void validate(const char* function) const;
+};
+
+} // namespace sp::render

@@ -1,0 +1,102 @@
+#include "core/render/mesh_data.h"
+
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "core/base/error.h"
+
+namespace sp::render {
+
+MeshData MeshData::fromArrays(std::span<const float> positions, std::span<const float> normals,
+                              std::span<const float> uvs, std::span<const std::uint32_t> indices,
+                              std::span<const std::uint32_t> submeshOffsets) {
+    constexpr const char* fn = "MeshData::fromArrays";
+    SP_CHECK(positions.size() % 3 == 0, InvalidArgument, fn, "(): positions must have shape (N,3), got ",
+             positions.size(), " floats");
+    const std::size_t n = positions.size() / 3;
+    SP_CHECK(normals.empty() || normals.size() == n * 3, InvalidArgument, fn,
+             "(): normals must be empty or have shape (", n, ",3), got ", normals.size(), " floats");
+    SP_CHECK(uvs.empty() || uvs.size() == n * 2, InvalidArgument, fn, "(): uvs must be empty or have shape (", n,
+             ",2), got ", uvs.size(), " floats");
+    MeshData mesh;
+    mesh.positions.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+        mesh.positions[i] = {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]};
+    if (!normals.empty()) {
+        mesh.normals.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+            mesh.normals[i] = {normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]};
+    }
+    if (!uvs.empty()) {
+        mesh.uvs.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+            mesh.uvs[i] = {uvs[2 * i], uvs[2 * i + 1]};
+    }
+    mesh.indices.assign(indices.begin(), indices.end());
+    for (std::size_t s = 0; s < submeshOffsets.size(); ++s) {
+        const std::uint32_t first = submeshOffsets[s];
+        const std::uint32_t end =
+            s + 1 < submeshOffsets.size() ? submeshOffsets[s + 1] : static_cast<std::uint32_t>(indices.size());
+        SP_CHECK(first <= end, InvalidArgument, fn, "(): submeshOffsets must be increasing, got ", first,
+                 " before ", end);
+        mesh.submeshes.push_back({first, end - first});
+    }
+    mesh.validate(fn);
+    return mesh;
+}
+
+void MeshData::validate(const char* function) {
+    const std::size_t n = positions.size();
+    SP_CHECK(n > 0, InvalidArgument, function, "(): mesh '", name, "' has no vertices");
+    SP_CHECK(!indices.empty() && indices.size() % 3 == 0, InvalidArgument, function, "(): mesh '", name,
+             "' needs a non-empty triangle list (indices divisible by 3), got ", indices.size(), " indices");
+    for (std::size_t i = 0; i < indices.size(); ++i)
+        SP_CHECK(indices[i] < n, InvalidArgument, function, "(): mesh '", name, "' index[", i, "] = ", indices[i],
+                 " is out of range for ", n, " vertices");
+    for (std::size_t i = 0; i < n; ++i)
+        SP_CHECK(positions[i].allFinite(), InvalidArgument, function, "(): mesh '", name, "' position[", i,
+                 "] is not finite");
+    SP_CHECK(normals.empty() || normals.size() == n, InvalidArgument, function, "(): mesh '", name, "' has ",
+             normals.size(), " normals for ", n, " vertices");
+    SP_CHECK(uvs.empty() || uvs.size() == n, InvalidArgument, function, "(): mesh '", name, "' has ", uvs.size(),
+             " uvs for ", n, " vertices");
+    if (submeshes.empty())
+        submeshes.push_back({0, static_cast<std::uint32_t>(indices.size())});
+    for (std::size_t s = 0; s < submeshes.size(); ++s) {
+        const Submesh& sub = submeshes[s];
+        SP_CHECK(sub.indexCount % 3 == 0 && sub.firstIndex % 3 == 0 &&
+                     std::size_t(sub.firstIndex) + sub.indexCount <= indices.size(),
+                 InvalidArgument, function, "(): mesh '", name, "' submesh ", s, " [", sub.firstIndex, ", +",
+                 sub.indexCount, ") must cover whole triangles within ", indices.size(), " indices");
+    }
+    if (uvs.empty())
+        uvs.assign(n, Eigen::Vector2f::Zero());
+    if (normals.empty()) {
+        normals.assign(n, Eigen::Vector3f::Zero());
+        for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+            const Eigen::Vector3f& a = positions[indices[t]];
+            // Unnormalized cross product weights each face by its area.
+            Eigen::Vector3f faceNormal = (positions[indices[t + 1]] - a).cross(positions[indices[t + 2]] - a);
+            for (int k = 0; k < 3; ++k)
+                normals[indices[t + k]] += faceNormal;
+        }
+    }
+    for (Eigen::Vector3f& normal : normals) {
+        const float length = normal.norm();
+        normal = length > 0.0f && std::isfinite(length) ? Eigen::Vector3f(normal / length) : Eigen::Vector3f::UnitZ();
+    }
+}
+
+void MeshData::bounds(Eigen::Vector3f& min, Eigen::Vector3f& max) const {
+    min = max = Eigen::Vector3f::Zero();
+    if (positions.empty())
+        return;
+    min = max = positions[0];
+    for (const Eigen::Vector3f& p : positions) {
+        min = min.cwiseMin(p);
+        max = max.cwiseMax(p);
+    }
+}
+
+} // namespace sp::render

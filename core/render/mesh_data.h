@@ -1,0 +1,44 @@
+#pragma once
+// CPU-side triangle mesh: positions, normals, uvs, indices and submeshes (one material slot each).
+// Pure logic, no GL.
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace sp::render {
+
+// A contiguous range of `indices` drawn with one material slot.
+struct Submesh {
+    std::uint32_t firstIndex = 0;
+    std::uint32_t indexCount = 0;
+};
+
+struct MeshData {
+    std::vector<Eigen::Vector3f> positions;   // metres, mesh-local
+    std::vector<Eigen::Vector3f> normals;     // unit; empty = computed (area-weighted smooth normals)
+    std::vector<Eigen::Vector2f> uvs;         // empty = all zero
+    std::vector<std::uint32_t> indices;       // triangle list, 3 per triangle
+    std::vector<Submesh> submeshes;           // empty = one submesh covering all indices
+    std::string name;
+
+    // Builds a mesh from flat arrays: positions float32 (N,3), normals float32 (N,3) or empty,
+    // uvs float32 (N,2) or empty, indices uint32 (M*3,), submeshOffsets uint32 (S,) = first index of
+    // each submesh (empty = one submesh). Validates and fills defaults (see validate()).
+    static MeshData fromArrays(std::span<const float> positions, std::span<const float> normals,
+                               std::span<const float> uvs, std::span<const std::uint32_t> indices,
+                               std::span<const std::uint32_t> submeshOffsets = {});
+
+    // Checks consistency and fills defaults (normals, uvs, one submesh). Throws sp::InvalidArgument
+    // "<function>(): <what is wrong>".
+    void validate(const char* function);
+
+    std::size_t submeshCount() const { return submeshes.size(); }
+    // Axis-aligned bounds in mesh-local coordinates (zero when empty).
+    void bounds(Eigen::Vector3f& min, Eigen::Vector3f& max) const;
+};
+
+} // namespace sp::render

@@ -1,0 +1,138 @@
+#include "core/render/mesh_import.h"
+
+#include <assimp/GltfMaterial.h>
+#include <assimp/Importer.hpp>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "core/base/error.h"
+#include "core/base/log.h"
+
+namespace sp::render {
+namespace {
+
+std::optional<TextureImage> readTexture(const aiScene* scene, const aiMaterial* material, aiTextureType type,
+                                        unsigned index, const std::filesystem::path& directory) {
+    aiString path;
+    if (material->GetTexture(type, index, &path) != AI_SUCCESS)
+        return std::nullopt;
+    const std::string name = path.C_Str();
+    try {
+        if (const aiTexture* embedded = scene->GetEmbeddedTexture(path.C_Str())) {
+            if (embedded->mHeight == 0)  // compressed (PNG/JPG bytes)
+                return TextureImage::decode(reinterpret_cast<const std::uint8_t*>(embedded->pcData),
+                                            embedded->mWidth, name);
+            std::vector<std::uint8_t> rgba;
+            for (unsigned i = 0; i < embedded->mWidth * embedded->mHeight; ++i) {
+                const aiTexel& t = embedded->pcData[i];
+                rgba.insert(rgba.end(), {t.r, t.g, t.b, t.a});
+            }
+            return TextureImage::fromPixels(int(embedded->mWidth), int(embedded->mHeight), std::move(rgba));
+        }
+        return TextureImage::load((directory / name).string());
+    } catch (const Error& error) {
+        // Assets with broken texture references are common; the material keeps its factors.
+        SP_LOG("importMesh(): skipping texture '", name, "': ", error.what());
+        return std::nullopt;
+    }
+}
+
+ImportedMaterial readMaterial(const aiScene* scene, const aiMaterial* source, const std::filesystem::path& dir) {
+    ImportedMaterial out;
+    out.name = source->GetName().C_Str();
+    aiColor4D color;
+    if (source->Get(AI_MATKEY_BASE_COLOR, color) == AI_SUCCESS ||
+        source->Get(AI_MATKEY_COLOR_DIFFUSE, color) == AI_SUCCESS)
+        out.material.baseColor = {color.r, color.g, color.b, color.a};
+    float value = 0.0f;
+    if (source->Get(AI_MATKEY_METALLIC_FACTOR, value) == AI_SUCCESS)
+        out.material.metallic = std::clamp(value, 0.0f, 1.0f);
+    if (source->Get(AI_MATKEY_ROUGHNESS_FACTOR, value) == AI_SUCCESS)
+        out.material.roughness = std::clamp(value, 0.0f, 1.0f);
+    else if (source->Get(AI_MATKEY_SHININESS, value) == AI_SUCCESS && value > 0.0f)
+        out.material.roughness = std::clamp(std::sqrt(2.0f / (value + 2.0f)), 0.0f, 1.0f);  // Phong -> GGX
+    aiColor3D emissive;
+    if (source->Get(AI_MATKEY_COLOR_EMISSIVE, emissive) == AI_SUCCESS)
+        out.material.emissive = {emissive.r, emissive.g, emissive.b};
+    out.material.baseColor = out.material.baseColor.cwiseMax(0.0f);
+    out.material.emissive = out.material.emissive.cwiseMax(0.0f);
+
+    out.baseColorTexture = readTexture(scene, source, aiTextureType_BASE_COLOR, 0, dir);
+    if (!out.baseColorTexture)
+        out.baseColorTexture = readTexture(scene, source, aiTextureType_DIFFUSE, 0, dir);
+    out.roughnessMetallicTexture = readTexture(scene, source, AI_MATKEY_GLTF_PBRMETALLICROUGHNESS_METALLICROUGHNESS_TEXTURE, dir);
+    out.normalTexture = readTexture(scene, source, aiTextureType_NORMALS, 0, dir);
+    return out;
+}
+
+} // namespace
+
+ImportedMesh importMesh(const std::string& path) {
+    SP_CHECK(std::filesystem::is_regular_file(path), NotFound, "importMesh(): no such file '", path, "'");
+    Assimp::Importer importer;
+    // Baking node transforms also joins meshes that share a material: one submesh per material group.
+    const aiScene* scene = importer.ReadFile(
+        path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
+                  aiProcess_PreTransformVertices | aiProcess_FlipUVs | aiProcess_SortByPType);
+    SP_CHECK(scene != nullptr && !(scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE), InvalidArgument,
+             "importMesh(): cannot read '", path, "': ", importer.GetErrorString());
+
+    ImportedMesh out;
+    out.mesh.name = std::filesystem::path(path).stem().string();
+    const std::filesystem::path directory = std::filesystem::path(path).parent_path();
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+        const aiMesh* mesh = scene->mMeshes[m];
+        if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
+            continue;  // points and lines have no surface to render
+        const auto base = static_cast<std::uint32_t>(out.mesh.positions.size());
+        for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+            const aiVector3D& p = mesh->mVertices[v];
+            out.mesh.positions.push_back({p.x, p.y, p.z});
+            const aiVector3D n = mesh->HasNormals() ? mesh->mNormals[v] : aiVector3D(0, 0, 1);
+            out.mesh.normals.push_back({n.x, n.y, n.z});
+            const aiVector3D uv = mesh->HasTextureCoords(0) ? mesh->mTextureCoords[0][v] : aiVector3D(0, 0, 0);
+            out.mesh.uvs.push_back({uv.x, uv.y});
+        }
+        Submesh submesh{static_cast<std::uint32_t>(out.mesh.indices.size()), 0};
+        for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+            const aiFace& face = mesh->mFaces[f];
+            if (face.mNumIndices != 3)
+                continue;
+            for (unsigned k = 0; k < 3; ++k)
+                out.mesh.indices.push_back(base + face.mIndices[k]);
+            submesh.indexCount += 3;
+        }
+        if (submesh.indexCount == 0)
+            continue;
+        out.mesh.submeshes.push_back(submesh);
+        out.materials.push_back(mesh->mMaterialIndex < scene->mNumMaterials
+                                    ? readMaterial(scene, scene->mMaterials[mesh->mMaterialIndex], directory)
+                                    : ImportedMaterial{});
+    }
+    SP_CHECK(!out.mesh.submeshes.empty(), InvalidArgument, "importMesh(): '", path, "' contains no triangles");
+    out.mesh.validate("importMesh");
+    return out;
+}
+
+ImportedMeshIds addToScene(Scene& scene, const ImportedMesh& imported) {
+    ImportedMeshIds ids;
+    ids.mesh = scene.addMesh(imported.mesh);
+    for (const ImportedMaterial& source : imported.materials) {
+        Material material = source.material;
+        if (source.baseColorTexture)
+            material.baseColorTexture = scene.addTexture(*source.baseColorTexture, TextureEncoding::Srgb);
+        if (source.roughnessMetallicTexture)
+            material.roughnessMetallicTexture = scene.addTexture(*source.roughnessMetallicTexture, TextureEncoding::Linear);
+        if (source.normalTexture)
+            material.normalTexture = scene.addTexture(*source.normalTexture, TextureEncoding::Linear);
+        ids.materials.push_back(scene.addMaterial(material));
+    }
+    return ids;
+}
+
+} // namespace sp::render

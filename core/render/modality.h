@@ -1,0 +1,99 @@
+#pragma once
+// The camera sensor's ground-truth modalities: names, dtypes and shapes, sets of them, and which render
+// passes a set needs. Pure logic, no GL.
+//
+// | modality             | dtype, shape        | meaning                                                 |
+// |----------------------|---------------------|---------------------------------------------------------|
+// | final_color          | uint8 (H,W,4)       | tone-mapped sRGB, alpha 255                             |
+// | hdr_color            | float16 (H,W,4)     | linear HDR radiance before exposure and tone mapping    |
+// | depth                | float32 (H,W)       | metres along the optical axis (camera +X); 0 background |
+// | position             | float32 (H,W,3)     | world space; 0 background                               |
+// | normal               | float32 (H,W,3)     | world space, unit, facing the camera; 0 background      |
+// | object_ids           | uint32 (H,W)        | caller's per-slot id; 0 background                      |
+// | material_ids         | uint32 (H,W)        | Material::id (default handle index + 1); 0 background   |
+// | base_color           | float16 (H,W,3)     | linear base colour                                      |
+// | roughness, metallic, material_ao | float16 (H,W) | PBR inputs                                    |
+// | diffuse_illumination | float16 (H,W,3)     | radiance of a white Lambertian surface at the pixel     |
+// | diffuse_only         | float16 (H,W,3)     | base_color * (1 - metallic) * diffuse_illumination      |
+// | specular_residual    | float16 (H,W,3)     | hdr_color.rgb - diffuse_only (specular, emission, sky)  |
+
+#include <bitset>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace sp::render {
+
+enum class Modality : std::uint8_t {
+    FinalColor,
+    HdrColor,
+    Depth,
+    Position,
+    Normal,
+    ObjectIds,
+    MaterialIds,
+    BaseColor,
+    Roughness,
+    Metallic,
+    MaterialAo,
+    DiffuseIllumination,
+    DiffuseOnly,
+    SpecularResidual,
+};
+inline constexpr std::size_t kModalityCount = 14;
+
+enum class DType : std::uint8_t { UInt8, UInt32, Float16, Float32 };
+
+// Static description of one modality.
+struct ModalityInfo {
+    Modality modality;
+    std::string_view name;   // snake_case, as in the design's table
+    DType dtype;
+    int channels;            // 1 means shape (H,W); otherwise (H,W,channels)
+};
+
+const ModalityInfo& modalityInfo(Modality modality);
+std::string_view modalityName(Modality modality);
+std::size_t dtypeSize(DType dtype);
+std::string_view dtypeName(DType dtype);
+// Bytes of one (height, width) image of the modality, tightly packed, row 0 = top row.
+std::size_t modalityByteSize(Modality modality, int width, int height);
+// Throws sp::NotFound "modalityFromName(): unknown modality 'x' (known: ...)".
+Modality modalityFromName(std::string_view name);
+
+// The render passes a modality set needs; only these run.
+struct PassSet {
+    bool shadow = false;     // shadow maps (only when lighting runs and the camera enables shadows)
+    bool gbuffer = false;    // geometry + material attributes + ids
+    bool lighting = false;   // HDR shading and the intrinsic decomposition
+    bool tonemap = false;    // exposure, tone curve, sRGB encoding
+};
+
+class ModalitySet {
+public:
+    ModalitySet() = default;
+    ModalitySet(std::initializer_list<Modality> modalities);
+    static ModalitySet all();
+    // Throws sp::NotFound for an unknown name.
+    static ModalitySet fromNames(const std::vector<std::string>& names);
+
+    ModalitySet& add(Modality modality);
+    ModalitySet& remove(Modality modality);
+    bool contains(Modality modality) const { return bits_.test(static_cast<std::size_t>(modality)); }
+    bool empty() const { return bits_.none(); }
+    std::size_t size() const { return bits_.count(); }
+    // In enum order.
+    std::vector<Modality> list() const;
+    std::vector<std::string> names() const;
+    // Passes needed to produce every modality in the set (shadow decided by the caller's camera).
+    PassSet requiredPasses(bool shadowsEnabled) const;
+
+    bool operator==(const ModalitySet&) const = default;
+
+private:
+    std::bitset<kModalityCount> bits_;
+};
+
+} // namespace sp::render

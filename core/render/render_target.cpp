@@ -1,0 +1,182 @@
+#include "core/render/render_target.h"
+
+#include <epoxy/gl.h>
+
+#include <cstring>
+
+#include "core/base/error.h"
+#include "core/render/framebuffers.h"
+#include "core/render/renderer.h"
+#include "core/render/shaders.h"
+
+namespace sp::render {
+namespace {
+
+// Where each modality is read from: framebuffer, attachment, and the glReadPixels format/type.
+struct ReadSource {
+    enum Fbo { GBuffer, Lighting, Tonemap } fbo;
+    int attachment;
+    GLenum format;
+    GLenum type;
+};
+
+ReadSource readSource(Modality modality) {
+    using namespace shaders;
+    switch (modality) {
+    case Modality::FinalColor: return {ReadSource::Tonemap, 0, GL_RGBA, GL_UNSIGNED_BYTE};
+    case Modality::HdrColor: return {ReadSource::Lighting, LHdr, GL_RGBA, GL_HALF_FLOAT};
+    case Modality::DiffuseIllumination: return {ReadSource::Lighting, LDiffuseIllumination, GL_RGB, GL_HALF_FLOAT};
+    case Modality::DiffuseOnly: return {ReadSource::Lighting, LDiffuseOnly, GL_RGB, GL_HALF_FLOAT};
+    case Modality::SpecularResidual: return {ReadSource::Lighting, LSpecularResidual, GL_RGB, GL_HALF_FLOAT};
+    case Modality::Depth: return {ReadSource::GBuffer, GDepth, GL_RED, GL_FLOAT};
+    case Modality::Position: return {ReadSource::GBuffer, GPosition, GL_RGB, GL_FLOAT};
+    case Modality::Normal: return {ReadSource::GBuffer, GNormal, GL_RGB, GL_FLOAT};
+    case Modality::ObjectIds: return {ReadSource::GBuffer, GIds, GL_RED_INTEGER, GL_UNSIGNED_INT};
+    case Modality::MaterialIds: return {ReadSource::GBuffer, GIds, GL_GREEN_INTEGER, GL_UNSIGNED_INT};
+    case Modality::BaseColor: return {ReadSource::GBuffer, GBaseColor, GL_RGB, GL_HALF_FLOAT};
+    case Modality::Roughness: return {ReadSource::GBuffer, GParams, GL_RED, GL_HALF_FLOAT};
+    case Modality::Metallic: return {ReadSource::GBuffer, GParams, GL_GREEN, GL_HALF_FLOAT};
+    case Modality::MaterialAo: return {ReadSource::GBuffer, GParams, GL_BLUE, GL_HALF_FLOAT};
+    }
+    SP_THROW(InvalidArgument, "readSource(): bad modality ", int(modality));
+}
+
+} // namespace
+
+RenderTarget::RenderTarget(Renderer& renderer, ModalitySet modalities, int latency)
+    : renderer_(renderer), latency_(latency), framebuffers_(std::make_unique<Framebuffers>()) {
+    SP_CHECK(latency >= 0 && latency <= kMaxLatency, InvalidArgument,
+             "RenderTarget::RenderTarget(): latency must be 0, 1 or 2 frames, got ", latency);
+    setModalities(modalities);
+    slots_.resize(static_cast<std::size_t>(latency) + 1);
+}
+
+RenderTarget::~RenderTarget() {
+    for (Slot& slot : slots_) {
+        dropFence(slot);
+        glDeleteBuffers(GLsizei(slot.buffers.size()), slot.buffers.data());
+    }
+}
+
+void RenderTarget::setModalities(ModalitySet modalities) {
+    SP_CHECK(!modalities.empty(), InvalidArgument, "RenderTarget::setModalities(): the modality set is empty");
+    modalities_ = modalities;
+}
+
+void RenderTarget::dropFence(Slot& slot) {
+    if (slot.fence != nullptr)
+        glDeleteSync(static_cast<GLsync>(slot.fence));
+    slot.fence = nullptr;
+    slot.pending = false;
+}
+
+std::uint64_t RenderTarget::submit(const Scene& scene, const Camera& camera) {
+    camera.params.validate("RenderTarget::submit");
+    const PassSet passes = modalities_.requiredPasses(camera.params.shadows);
+    renderer_.render(scene, camera, passes, *framebuffers_);
+
+    const std::uint64_t frameNumber = ++submitted_;
+    Slot& slot = slots_[frameNumber % slots_.size()];
+    dropFence(slot);  // an unread frame N + 1 submits old is dropped
+    slot.frameNumber = frameNumber;
+    slot.width = camera.params.width;
+    slot.height = camera.params.height;
+    slot.modalities = modalities_;
+    const Framebuffers& fb = *framebuffers_;
+    for (Modality modality : modalities_.list()) {
+        const auto m = static_cast<std::size_t>(modality);
+        const std::size_t bytes = modalityByteSize(modality, slot.width, slot.height);
+        if (slot.buffers[m] == 0)
+            glCreateBuffers(1, &slot.buffers[m]);
+        if (slot.capacity[m] != bytes) {
+            glNamedBufferData(slot.buffers[m], GLsizeiptr(bytes), nullptr, GL_STREAM_READ);
+            slot.capacity[m] = bytes;
+        }
+        const ReadSource source = readSource(modality);
+        const GLuint fbo = source.fbo == ReadSource::GBuffer    ? fb.gbufferFbo
+                           : source.fbo == ReadSource::Lighting ? fb.lightingFbo
+                                                                : fb.tonemapFbo;
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+        glReadBuffer(GL_COLOR_ATTACHMENT0 + source.attachment);
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, slot.buffers[m]);
+        glReadPixels(0, 0, slot.width, slot.height, source.format, source.type, nullptr);
+        renderer_.countReadback();
+    }
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    slot.fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    glFlush();
+    slot.pending = true;
+    const GLenum error = glGetError();
+    SP_CHECK(error == GL_NO_ERROR, InvalidState, "RenderTarget::submit(): GL error 0x", std::hex, error,
+             " while rendering frame ", std::dec, frameNumber);
+    return frameNumber;
+}
+
+RenderTarget::Slot* RenderTarget::dueSlot() {
+    if (submitted_ <= std::uint64_t(latency_))
+        return nullptr;  // priming
+    const std::uint64_t due = submitted_ - std::uint64_t(latency_);
+    Slot& slot = slots_[due % slots_.size()];
+    if (!slot.pending || slot.frameNumber != due)
+        return nullptr;  // already read
+    const GLenum status = glClientWaitSync(static_cast<GLsync>(slot.fence), GL_SYNC_FLUSH_COMMANDS_BIT,
+                                           GLuint64(60) * 1000 * 1000 * 1000);
+    SP_CHECK(status == GL_ALREADY_SIGNALED || status == GL_CONDITION_SATISFIED, InvalidState,
+             "RenderTarget::read(): frame ", due, " did not finish within 60 s (status 0x", std::hex, status, ")");
+    return &slot;
+}
+
+void RenderTarget::copyOut(Slot& slot, Modality modality, void* destination) {
+    const auto m = static_cast<std::size_t>(modality);
+    const std::size_t bytes = modalityByteSize(modality, slot.width, slot.height);
+    const void* mapped = glMapNamedBufferRange(slot.buffers[m], 0, GLsizeiptr(bytes), GL_MAP_READ_BIT);
+    SP_CHECK(mapped != nullptr, InvalidState, "RenderTarget::read(): cannot map the ", modalityName(modality),
+             " readback buffer");
+    std::memcpy(destination, mapped, bytes);
+    glUnmapNamedBuffer(slot.buffers[m]);
+}
+
+std::optional<std::uint64_t> RenderTarget::read(Frame& frame) {
+    Slot* slot = dueSlot();
+    if (slot == nullptr)
+        return std::nullopt;
+    frame.clear();
+    frame.frameNumber = slot->frameNumber;
+    frame.width = slot->width;
+    frame.height = slot->height;
+    for (Modality modality : slot->modalities.list())
+        copyOut(*slot, modality, frame.prepare(modality, slot->width, slot->height).bytes.data());
+    dropFence(*slot);
+    return frame.frameNumber;
+}
+
+std::optional<std::uint64_t> RenderTarget::read(std::span<const OutputView> views) {
+    // Validate against the frame that would be read before waiting or writing anything.
+    if (submitted_ > std::uint64_t(latency_)) {
+        const Slot& due = slots_[(submitted_ - latency_) % slots_.size()];
+        for (const OutputView& view : views) {
+            SP_CHECK(due.modalities.contains(view.modality), InvalidArgument, "RenderTarget::read(): frame ",
+                     due.frameNumber, " was not rendered with modality '", modalityName(view.modality), "'");
+            const std::size_t expected = modalityByteSize(view.modality, due.width, due.height);
+            SP_CHECK(view.data != nullptr && view.size == expected, InvalidArgument, "RenderTarget::read(): the view for '",
+                     modalityName(view.modality), "' has ", view.size, " bytes, expected ", expected, " (",
+                     due.height, "x", due.width, "x", modalityInfo(view.modality).channels, " ",
+                     dtypeName(modalityInfo(view.modality).dtype), ")");
+        }
+    }
+    Slot* slot = dueSlot();
+    if (slot == nullptr)
+        return std::nullopt;
+    for (const OutputView& view : views)
+        copyOut(*slot, view.modality, view.data);
+    const std::uint64_t number = slot->frameNumber;
+    dropFence(*slot);
+    return number;
+}
+
+std::optional<std::uint64_t> RenderTarget::render(const Scene& scene, const Camera& camera, Frame& frame) {
+    submit(scene, camera);
+    return read(frame);
+}
+
+} // namespace sp::render

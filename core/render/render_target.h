@@ -1,0 +1,82 @@
+#pragma once
+// A camera's render target with asynchronous readback: a ring of latency + 1 slots, each holding one
+// pixel-buffer object per modality and a fence.
+//
+// Latency semantics (frames are numbered 1, 2, ... by submit()):
+//   - latency 0: read() after submit() number k returns frame k (rendered and read in the same call);
+//   - latency N: read() after submit() number k returns frame k - N, so the GPU has N frames of slack;
+//   - priming: while k <= N there is no frame k - N, and read() returns std::nullopt without touching
+//     the outputs; a frame is returned at most once (a second read() before the next submit() returns
+//     std::nullopt); a frame never read is dropped when its slot is reused N + 1 submits later.
+// Each slot remembers the size and modalities it was rendered with, so camera size or modality changes
+// take effect from the next submit while earlier frames are still read back as they were rendered.
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "core/render/camera.h"
+#include "core/render/image_buffer.h"
+#include "core/render/modality.h"
+#include "core/render/scene.h"
+
+namespace sp::render {
+
+class Framebuffers;
+class Renderer;
+
+class RenderTarget {
+public:
+    static constexpr int kMaxLatency = 2;
+
+    // Throws sp::InvalidArgument for a latency outside [0, 2] or an empty modality set.
+    RenderTarget(Renderer& renderer, ModalitySet modalities, int latency = 0);
+    ~RenderTarget();
+    RenderTarget(const RenderTarget&) = delete;
+    RenderTarget& operator=(const RenderTarget&) = delete;
+
+    // Renders the passes the modalities need and queues their readback; returns the frame number.
+    std::uint64_t submit(const Scene& scene, const Camera& camera);
+    // Reads the frame due (see the header comment) into `frame`, allocating one buffer per modality;
+    // returns its frame number, or std::nullopt while priming or when it was already read.
+    std::optional<std::uint64_t> read(Frame& frame);
+    // Same, into caller memory: one view per modality to read (a subset of the frame's modalities), each
+    // exactly modalityByteSize() bytes. Throws sp::InvalidArgument for a wrong size or a modality the
+    // frame was not rendered with, before anything is written.
+    std::optional<std::uint64_t> read(std::span<const OutputView> views);
+    // submit() then read(frame).
+    std::optional<std::uint64_t> render(const Scene& scene, const Camera& camera, Frame& frame);
+
+    void setModalities(ModalitySet modalities);
+    const ModalitySet& modalities() const { return modalities_; }
+    int latency() const { return latency_; }
+    std::uint64_t submittedFrames() const { return submitted_; }
+
+private:
+    struct Slot {
+        std::uint64_t frameNumber = 0;
+        bool pending = false;
+        int width = 0;
+        int height = 0;
+        ModalitySet modalities;
+        void* fence = nullptr;
+        std::array<unsigned, kModalityCount> buffers{};
+        std::array<std::size_t, kModalityCount> capacity{};
+    };
+    // The slot holding the frame due for reading, or null.
+    Slot* dueSlot();
+    void copyOut(Slot& slot, Modality modality, void* destination);
+    void dropFence(Slot& slot);
+
+    Renderer& renderer_;
+    ModalitySet modalities_;
+    int latency_;
+    std::uint64_t submitted_ = 0;
+    std::vector<Slot> slots_;
+    std::unique_ptr<Framebuffers> framebuffers_;
+};
+
+} // namespace sp::render

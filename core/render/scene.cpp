@@ -1,0 +1,173 @@
+#include "core/render/scene.h"
+
+#include <atomic>
+
+#include "core/base/error.h"
+
+namespace sp::render {
+namespace {
+std::atomic<std::uint64_t> gNextSceneUid{1};
+}
+
+Scene::Scene() : uid_(gNextSceneUid++) {}
+
+MeshId Scene::addMesh(MeshData mesh) {
+    mesh.validate("Scene::addMesh");
+    MeshEntry entry{std::move(mesh), nextRevision_++, {}, {}};
+    entry.data.bounds(entry.min, entry.max);
+    return meshes_.insert(std::move(entry));
+}
+
+void Scene::updateMesh(MeshId id, MeshData mesh) {
+    MeshEntry& entry = meshes_.get(id, "Scene::updateMesh");
+    mesh.validate("Scene::updateMesh");
+    instances_.forEach([&](InstanceId instanceId, const Instance& instance) {
+        SP_CHECK(instance.mesh != id || mesh.submeshCount() == entry.data.submeshCount(), InvalidArgument,
+                 "Scene::updateMesh(): ", id, " has ", entry.data.submeshCount(), " submeshes used by ", instanceId,
+                 "; the new mesh has ", mesh.submeshCount());
+    });
+    entry.data = std::move(mesh);
+    entry.revision = nextRevision_++;
+    entry.data.bounds(entry.min, entry.max);
+}
+
+void Scene::removeMesh(MeshId id) {
+    meshes_.get(id, "Scene::removeMesh");
+    instances_.forEach([&](InstanceId instanceId, const Instance& instance) {
+        SP_CHECK(instance.mesh != id, InvalidState, "Scene::removeMesh(): ", id, " is used by ", instanceId);
+    });
+    meshes_.remove(id, "Scene::removeMesh");
+}
+
+const MeshData& Scene::mesh(MeshId id) const { return meshes_.get(id, "Scene::mesh").data; }
+std::uint64_t Scene::meshRevision(MeshId id) const { return meshes_.get(id, "Scene::meshRevision").revision; }
+
+TextureId Scene::addTexture(TextureImage image, TextureEncoding encoding) {
+    SP_CHECK(image.width > 0 && image.height > 0 && image.rgba.size() == std::size_t(image.width) * image.height * 4,
+             InvalidArgument, "Scene::addTexture(): image '", image.source, "' is not ", image.width, "x",
+             image.height, " RGBA8");
+    return textures_.insert({std::move(image), encoding});
+}
+
+void Scene::removeTexture(TextureId id) {
+    textures_.get(id, "Scene::removeTexture");
+    materials_.forEach([&](MaterialId materialId, const Material& m) {
+        SP_CHECK(m.baseColorTexture != id && m.roughnessMetallicTexture != id && m.normalTexture != id, InvalidState,
+                 "Scene::removeTexture(): ", id, " is used by ", materialId);
+    });
+    textures_.remove(id, "Scene::removeTexture");
+}
+
+const TextureImage& Scene::texture(TextureId id) const { return textures_.get(id, "Scene::texture").image; }
+TextureEncoding Scene::textureEncoding(TextureId id) const {
+    return textures_.get(id, "Scene::textureEncoding").encoding;
+}
+
+void Scene::checkMaterialTextures(const Material& material, const char* function) const {
+    for (const auto& texture : {material.baseColorTexture, material.roughnessMetallicTexture, material.normalTexture})
+        if (texture)
+            textures_.get(*texture, function);
+}
+
+MaterialId Scene::addMaterial(const Material& material) {
+    material.validate("Scene::addMaterial");
+    checkMaterialTextures(material, "Scene::addMaterial");
+    return materials_.insert(material);
+}
+
+void Scene::setMaterial(MaterialId id, const Material& material) {
+    Material& slot = materials_.get(id, "Scene::setMaterial");
+    material.validate("Scene::setMaterial");
+    checkMaterialTextures(material, "Scene::setMaterial");
+    slot = material;
+}
+
+void Scene::removeMaterial(MaterialId id) {
+    materials_.get(id, "Scene::removeMaterial");
+    instances_.forEach([&](InstanceId instanceId, const Instance& instance) {
+        for (MaterialId used : instance.materials)
+            SP_CHECK(used != id, InvalidState, "Scene::removeMaterial(): ", id, " is used by ", instanceId);
+    });
+    materials_.remove(id, "Scene::removeMaterial");
+}
+
+const Material& Scene::material(MaterialId id) const { return materials_.get(id, "Scene::material"); }
+
+std::uint32_t Scene::materialIdValue(MaterialId id) const {
+    const Material& m = materials_.get(id, "Scene::materialIdValue");
+    return m.id != 0 ? m.id : id.index + 1;
+}
+
+LightId Scene::addLight(const Light& light) {
+    light.validate("Scene::addLight");
+    SP_CHECK(lights_.size() < kMaxLights, InvalidState, "Scene::addLight(): the scene already has ", kMaxLights,
+             " lights (the maximum)");
+    return lights_.insert(light);
+}
+
+void Scene::setLight(LightId id, const Light& light) {
+    Light& slot = lights_.get(id, "Scene::setLight");
+    light.validate("Scene::setLight");
+    slot = light;
+}
+
+void Scene::removeLight(LightId id) { lights_.remove(id, "Scene::removeLight"); }
+const Light& Scene::light(LightId id) const { return lights_.get(id, "Scene::light"); }
+
+void Scene::checkInstance(const Instance& instance, const char* function) const {
+    const MeshData& mesh = meshes_.get(instance.mesh, function).data;
+    SP_CHECK(instance.materials.size() == mesh.submeshCount(), InvalidArgument, function, "(): ", instance.mesh,
+             " has ", mesh.submeshCount(), " submesh slot(s) but ", instance.materials.size(), " material(s) were given");
+    SP_CHECK(instance.objectIds.size() == mesh.submeshCount(), InvalidArgument, function, "(): ", instance.mesh,
+             " has ", mesh.submeshCount(), " submesh slot(s) but ", instance.objectIds.size(),
+             " object id(s) were given");
+    for (MaterialId material : instance.materials)
+        materials_.get(material, function);
+    for (std::size_t i = 0; i < instance.objectIds.size(); ++i)
+        SP_CHECK(instance.objectIds[i] != 0, InvalidArgument, function, "(): objectIds[", i,
+                 "] is 0, which is reserved for the background");
+    SP_CHECK(instance.transform.matrix().allFinite(), InvalidArgument, function, "(): transform is not finite");
+}
+
+InstanceId Scene::addInstance(const Instance& instance) {
+    checkInstance(instance, "Scene::addInstance");
+    return instances_.insert(instance);
+}
+
+void Scene::setInstance(InstanceId id, const Instance& instance) {
+    Instance& slot = instances_.get(id, "Scene::setInstance");
+    checkInstance(instance, "Scene::setInstance");
+    slot = instance;
+}
+
+void Scene::setTransform(InstanceId id, const Eigen::Affine3d& transform) {
+    Instance& slot = instances_.get(id, "Scene::setTransform");
+    SP_CHECK(transform.matrix().allFinite(), InvalidArgument, "Scene::setTransform(): transform is not finite");
+    slot.transform = transform;
+}
+
+void Scene::removeInstance(InstanceId id) { instances_.remove(id, "Scene::removeInstance"); }
+const Instance& Scene::instance(InstanceId id) const { return instances_.get(id, "Scene::instance"); }
+
+void Scene::bounds(Eigen::Vector3d& centre, double& radius) const {
+    Eigen::AlignedBox3d box;
+    instances_.forEach([&](InstanceId, const Instance& instance) {
+        if (!instance.visible)
+            return;
+        const MeshEntry& entry = meshes_.get(instance.mesh, "Scene::bounds");
+        for (int corner = 0; corner < 8; ++corner) {
+            Eigen::Vector3d local((corner & 1) ? entry.max.x() : entry.min.x(), (corner & 2) ? entry.max.y() : entry.min.y(),
+                                  (corner & 4) ? entry.max.z() : entry.min.z());
+            box.extend(instance.transform * local);
+        }
+    });
+    if (box.isEmpty()) {
+        centre.setZero();
+        radius = 0.0;
+        return;
+    }
+    centre = box.center();
+    radius = 0.5 * box.diagonal().norm();
+}
+
+} // namespace sp::render

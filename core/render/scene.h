@@ -1,0 +1,118 @@
+#pragma once
+// The renderer's world: meshes, textures, materials, lights, instances and the environment, addressed
+// by generation-checked handles. Pure CPU data, no GL: the Renderer mirrors it on the GPU lazily,
+// re-uploading a mesh or texture only when its revision changed.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "core/render/handles.h"
+#include "core/render/light.h"
+#include "core/render/material.h"
+#include "core/render/mesh_data.h"
+#include "core/render/slot_map.h"
+#include "core/render/texture_image.h"
+
+namespace sp::render {
+
+// How texels are stored: colour textures are sRGB-encoded, data textures (normal, roughness) linear.
+enum class TextureEncoding { Srgb, Linear };
+
+// A placed mesh: one material and one object id per submesh slot.
+struct Instance {
+    MeshId mesh;
+    std::vector<MaterialId> materials;      // one per submesh of `mesh`
+    std::vector<std::uint32_t> objectIds;   // one per submesh; written to object_ids; must be != 0
+    Eigen::Affine3d transform = Eigen::Affine3d::Identity();  // mesh-to-world (may scale)
+    bool visible = true;
+    bool castShadows = true;
+};
+
+// Light that does not come from analytic lights: a uniform sky.
+struct Environment {
+    Eigen::Vector3f ambient{0.03f, 0.03f, 0.03f};      // uniform sky radiance lighting every surface
+    Eigen::Vector3f background{0.0f, 0.0f, 0.0f};     // hdr_color of pixels that hit no geometry
+};
+
+class Scene {
+public:
+    static constexpr std::size_t kMaxLights = 16;
+
+    Scene();
+
+    // Meshes. updateMesh keeps the handle and bumps the revision (the GPU copy is re-uploaded).
+    MeshId addMesh(MeshData mesh);
+    void updateMesh(MeshId id, MeshData mesh);
+    void removeMesh(MeshId id);  // sp::InvalidState while an instance uses it
+    const MeshData& mesh(MeshId id) const;
+    std::uint64_t meshRevision(MeshId id) const;
+
+    // Textures (for Material's texture slots).
+    TextureId addTexture(TextureImage image, TextureEncoding encoding = TextureEncoding::Srgb);
+    void removeTexture(TextureId id);  // sp::InvalidState while a material uses it
+    const TextureImage& texture(TextureId id) const;
+    TextureEncoding textureEncoding(TextureId id) const;
+
+    MaterialId addMaterial(const Material& material);
+    void setMaterial(MaterialId id, const Material& material);
+    void removeMaterial(MaterialId id);  // sp::InvalidState while an instance uses it
+    const Material& material(MaterialId id) const;
+    // The value written to material_ids for this material.
+    std::uint32_t materialIdValue(MaterialId id) const;
+
+    LightId addLight(const Light& light);  // sp::InvalidState beyond kMaxLights
+    void setLight(LightId id, const Light& light);
+    void removeLight(LightId id);
+    const Light& light(LightId id) const;
+
+    InstanceId addInstance(const Instance& instance);
+    void setInstance(InstanceId id, const Instance& instance);
+    void setTransform(InstanceId id, const Eigen::Affine3d& transform);
+    void removeInstance(InstanceId id);
+    const Instance& instance(InstanceId id) const;
+
+    void setEnvironment(const Environment& environment) { environment_ = environment; }
+    const Environment& environment() const { return environment_; }
+
+    std::size_t meshCount() const { return meshes_.size(); }
+    std::size_t textureCount() const { return textures_.size(); }
+    std::size_t materialCount() const { return materials_.size(); }
+    std::size_t lightCount() const { return lights_.size(); }
+    std::size_t instanceCount() const { return instances_.size(); }
+
+    // Process-unique identity of this scene (keys the renderer's GPU caches).
+    std::uint64_t uid() const { return uid_; }
+
+    template <typename Fn> void forEachInstance(Fn&& fn) const { instances_.forEach(fn); }
+    template <typename Fn> void forEachLight(Fn&& fn) const { lights_.forEach(fn); }
+
+    // World-space bounding sphere of all visible instances (centre, radius); radius 0 when empty.
+    void bounds(Eigen::Vector3d& centre, double& radius) const;
+
+private:
+    struct MeshEntry {
+        MeshData data;
+        std::uint64_t revision = 0;
+        Eigen::Vector3f min, max;
+    };
+    struct TextureEntry {
+        TextureImage image;
+        TextureEncoding encoding;
+    };
+    void checkInstance(const Instance& instance, const char* function) const;
+    void checkMaterialTextures(const Material& material, const char* function) const;
+
+    SlotMap<MeshEntry, MeshId> meshes_;
+    SlotMap<TextureEntry, TextureId> textures_;
+    SlotMap<Material, MaterialId> materials_;
+    SlotMap<Light, LightId> lights_;
+    SlotMap<Instance, InstanceId> instances_;
+    Environment environment_;
+    std::uint64_t uid_;
+    std::uint64_t nextRevision_ = 1;
+};
+
+} // namespace sp::render

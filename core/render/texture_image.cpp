@@ -1,0 +1,64 @@
+#include "core/render/texture_image.h"
+
+#include <filesystem>
+
+#define STB_IMAGE_IMPLEMENTATION
+#define STB_IMAGE_STATIC
+#define STBI_ONLY_PNG
+#define STBI_ONLY_JPEG
+#define STBI_FAILURE_USERMSG
+#include <stb_image.h>
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_STATIC
+#include <stb_image_write.h>
+
+#include "core/base/error.h"
+
+namespace sp::render {
+
+TextureImage TextureImage::load(const std::string& path) {
+    SP_CHECK(std::filesystem::is_regular_file(path), NotFound, "TextureImage::load(): no such file '", path, "'");
+    int width = 0, height = 0, channels = 0;
+    stbi_uc* pixels = stbi_load(path.c_str(), &width, &height, &channels, 4);
+    SP_CHECK(pixels != nullptr, InvalidArgument, "TextureImage::load(): cannot decode '", path, "': ",
+             stbi_failure_reason());
+    TextureImage image;
+    image.width = width;
+    image.height = height;
+    image.rgba.assign(pixels, pixels + std::size_t(width) * height * 4);
+    image.source = path;
+    stbi_image_free(pixels);
+    return image;
+}
+
+TextureImage TextureImage::decode(const std::uint8_t* bytes, std::size_t size, const std::string& source) {
+    int width = 0, height = 0, channels = 0;
+    stbi_uc* pixels = stbi_load_from_memory(bytes, static_cast<int>(size), &width, &height, &channels, 4);
+    SP_CHECK(pixels != nullptr, InvalidArgument, "TextureImage::decode(): cannot decode '", source, "': ",
+             stbi_failure_reason());
+    TextureImage image;
+    image.width = width;
+    image.height = height;
+    image.rgba.assign(pixels, pixels + std::size_t(width) * height * 4);
+    image.source = source;
+    stbi_image_free(pixels);
+    return image;
+}
+
+TextureImage TextureImage::fromPixels(int width, int height, std::vector<std::uint8_t> rgba) {
+    SP_CHECK(width > 0 && height > 0 && rgba.size() == std::size_t(width) * height * 4, InvalidArgument,
+             "TextureImage::fromPixels(): expected ", width, "x", height, "x4 bytes, got ", rgba.size());
+    TextureImage image;
+    image.width = width;
+    image.height = height;
+    image.rgba = std::move(rgba);
+    image.source = "<memory>";
+    return image;
+}
+
+void writePng(const std::string& path, int width, int height, int channels, const std::uint8_t* pixels) {
+    SP_CHECK(stbi_write_png(path.c_str(), width, height, channels, pixels, width * channels) != 0, InvalidState,
+             "writePng(): cannot write '", path, "'");
+}
+
+} // namespace sp::render

@@ -1,0 +1,28 @@
+#pragma once
+// An 8-bit RGBA image in CPU memory, decoded from PNG/JPG with stb_image. Pure logic, no GL.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sp::render {
+
+struct TextureImage {
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> rgba;  // uint8 (height, width, 4), row 0 = top row
+    std::string source;              // file path or "<memory>"
+
+    // Throws sp::NotFound naming the path when the file is missing, sp::InvalidArgument when it cannot
+    // be decoded.
+    static TextureImage load(const std::string& path);
+    // Decodes an encoded PNG/JPG held in memory; throws sp::InvalidArgument when it cannot be decoded.
+    static TextureImage decode(const std::uint8_t* bytes, std::size_t size, const std::string& source);
+    // Wraps raw pixels uint8 (height, width, 4); throws sp::InvalidArgument on a size mismatch.
+    static TextureImage fromPixels(int width, int height, std::vector<std::uint8_t> rgba);
+};
+
+// Writes uint8 (height, width, channels) pixels as PNG; throws sp::InvalidState when writing fails.
+void writePng(const std::string& path, int width, int height, int channels, const std::uint8_t* pixels);
+
+} // namespace sp::render

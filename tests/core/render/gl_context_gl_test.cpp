@@ -1,0 +1,45 @@
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "core/base/error.h"
+#include "core/render/gl_context.h"
+
+namespace sp::render {
+namespace {
+
+TEST(GlContextGlTest, ReportsAnOpenGl45CoreContext) {
+    GlContext context;
+    const ContextReport& report = context.report();
+    EXPECT_TRUE(report.kind == "device" || report.kind == "surfaceless") << report.kind;
+    EXPECT_FALSE(report.renderer.empty());
+    EXPECT_FALSE(report.vendor.empty());
+    EXPECT_NE(report.version.find("4."), std::string::npos) << report.version;
+    if (report.kind == "surfaceless") {
+        EXPECT_EQ(report.deviceIndex, -1);
+    }
+}
+
+TEST(GlContextGlTest, SurfacelessCanBeForced) {
+    GlContextOptions options;
+    options.device = "surfaceless";
+    GlContext context(options);
+    EXPECT_EQ(context.report().kind, "surfaceless");
+}
+
+TEST(GlContextGlTest, BadDeviceChoiceIsInvalidArgument) {
+    GlContextOptions options;
+    options.device = "gpu0";
+    try {
+        GlContext context(options);
+        FAIL();
+    } catch (const InvalidArgument& e) {
+        EXPECT_NE(std::string(e.what()).find("SPEAR_EGL_DEVICE must be 'auto', 'surfaceless' or a device index, got 'gpu0'"),
+                  std::string::npos);
+    }
+    options.device = "999";
+    EXPECT_THROW(GlContext context(options), InvalidArgument);
+}
+
+} // namespace
+} // namespace sp::render

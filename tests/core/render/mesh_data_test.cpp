@@ -1,0 +1,53 @@
+#include <gtest/gtest.h>
+
+#include "core/base/error.h"
+#include "core/render/mesh_data.h"
+#include "core/render/primitives.h"
+
+namespace sp::render {
+namespace {
+
+TEST(MeshDataTest, FromArraysFillsDefaults) {
+    const float positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+    const std::uint32_t indices[] = {0, 1, 2, 1, 3, 2};
+    const std::uint32_t offsets[] = {0, 3};
+    MeshData mesh = MeshData::fromArrays(positions, {}, {}, indices, offsets);
+    ASSERT_EQ(mesh.submeshCount(), 2u);
+    EXPECT_EQ(mesh.submeshes[1].firstIndex, 3u);
+    EXPECT_EQ(mesh.submeshes[1].indexCount, 3u);
+    ASSERT_EQ(mesh.normals.size(), 4u);
+    EXPECT_TRUE(mesh.normals[0].isApprox(Eigen::Vector3f::UnitZ()));
+    EXPECT_EQ(mesh.uvs.size(), 4u);
+}
+
+TEST(MeshDataTest, BadIndexIsRejectedWithItsPosition) {
+    const float positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const std::uint32_t indices[] = {0, 1, 7};
+    try {
+        MeshData::fromArrays(positions, {}, {}, indices);
+        FAIL();
+    } catch (const InvalidArgument& e) {
+        EXPECT_STREQ(e.what(), "MeshData::fromArrays(): mesh '' index[2] = 7 is out of range for 3 vertices");
+    }
+    const float oddPositions[] = {0, 0};
+    EXPECT_THROW(MeshData::fromArrays(oddPositions, {}, {}, indices), InvalidArgument);
+}
+
+TEST(MeshDataTest, PrimitivesAreClosedAndUnit) {
+    for (const MeshData& mesh : {primitives::box({1, 2, 3}), primitives::sphere(0.5f), primitives::plane(2, 2),
+                                 primitives::cylinder(0.5f, 1.0f)}) {
+        EXPECT_EQ(mesh.submeshCount(), 1u) << mesh.name;
+        for (const Eigen::Vector3f& n : mesh.normals)
+            EXPECT_NEAR(n.norm(), 1.0f, 1e-5f) << mesh.name;
+        Eigen::Vector3f min, max;
+        mesh.bounds(min, max);
+        EXPECT_TRUE((min + max).isZero(1e-5f)) << mesh.name;
+    }
+    Eigen::Vector3f min, max;
+    primitives::box({1, 2, 3}).bounds(min, max);
+    EXPECT_TRUE(max.isApprox(Eigen::Vector3f(0.5f, 1.0f, 1.5f)));
+    EXPECT_THROW(primitives::sphere(-1.0f), InvalidArgument);
+}
+
+} // namespace
+} // namespace sp::render
