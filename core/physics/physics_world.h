@@ -117,7 +117,8 @@ class PhysicsWorld {
 
     // --- Queries ---
 
-    // The closest body hit by the segment from -> to, if any. A zero-length segment hits nothing.
+    // The closest body hit by the segment from -> to, if any. A zero-length segment hits nothing, and a
+    // segment that starts inside a convex shape does not hit that shape.
     std::optional<RayHit> raycast(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
     // Every body hit by the segment, each at its closest hit, closest first.
     std::vector<RayHit> raycastAll(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;

@@ -39,6 +39,21 @@ TEST(PhysicsDynamicsTest, SphereComesToRestAtItsRadius) {
     EXPECT_NEAR(world.getPose(sphere).translation().z(), 0.25, kRestTolerance);
 }
 
+TEST(PhysicsDynamicsTest, AStackOfBoxesStands) {
+    PhysicsWorld world;
+    addFloor(world);
+    std::vector<BodyId> boxes;
+    for (int i = 0; i < 4; ++i)
+        boxes.push_back(
+            world.addBody(dynamicBody(Shape::box({0.5, 0.5, 0.5}), 0, 0, 0.5 + 1.0 * i + 0.01 * i)));
+    run(world, 4.0);
+    for (int i = 0; i < 4; ++i) {
+        const Eigen::Vector3d p = world.getPose(boxes[size_t(i)]).translation();
+        EXPECT_NEAR(p.z(), 0.5 + i, 2 * kRestTolerance) << "box " << i;
+        EXPECT_LT(p.head<2>().norm(), 1e-2) << "box " << i; // settles with a millimetre or two of drift
+    }
+}
+
 TEST(PhysicsDynamicsTest, ScaledAndRoundShapesRestAtTheirScaledSize) {
     PhysicsWorld world;
     addFloor(world);

@@ -90,6 +90,31 @@ TEST_F(RaycastTest, AllHitsComeSortedAlongTheRay) {
     EXPECT_NEAR(hits[2].fraction, 10.0 / 11.0, 1e-9);
 }
 
+TEST_F(RaycastTest, UsesTheBodyRotation) {
+    // Turned 90 degrees about X, the box's local y half extent (0.2) lies along world Z.
+    BodyDesc desc;
+    desc.shape = Shape::box({1.0, 0.2, 0.5});
+    desc.pose = at(0, 10, 2);
+    desc.pose.rotate(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()));
+    const BodyId turned = world.addBody(desc);
+    std::optional<RayHit> hit = world.raycast({0.9, 10, 10}, {0.9, 10, 0});
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->body, turned);
+    EXPECT_NEAR(hit->point.z(), 2.2, 1e-9);
+    EXPECT_TRUE(hit->normal.isApprox(Eigen::Vector3d::UnitZ(), 1e-9));
+    hit = world.raycast({0, -5, 2}, {0, 20, 2}); // the box at y = 0 is in the way
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->body, box);
+    hit = world.raycast({0, 0, 2}, {0, 20, 2}); // starting inside a body, the ray does not hit it
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->body, turned);
+    hit = world.raycast({0, 5, 2}, {0, 20, 2});
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->body, turned);
+    EXPECT_NEAR(hit->point.y(), 9.5, 1e-9);
+    EXPECT_TRUE(hit->normal.isApprox(-Eigen::Vector3d::UnitY(), 1e-9));
+}
+
 TEST(RaycastMeshTest, HitsATriangleMeshFromEitherSide) {
     PhysicsWorld world;
     BodyDesc desc;
