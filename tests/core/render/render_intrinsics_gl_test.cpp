@@ -1,0 +1,135 @@
+// The intrinsic decomposition: diffuse_illumination is the radiance of a white Lambertian surface,
+// diffuse_only = base_color * (1 - metallic) * diffuse_illumination, and
+// hdr_color.rgb = diffuse_only + specular_residual, per pixel, within float16 rounding.
+
+#include "core/render/image_buffer.h"
+#include "gl_fixture.h"
+#include "test_scenes.h"
+
+namespace sp::render::test {
+namespace {
+
+using RenderIntrinsicsGlTest = GlTest;
+
+TEST_F(RenderIntrinsicsGlTest, IdentitiesHoldPerPixel) {
+    Scene scene;
+    buildShapesScene(scene);
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = Eigen::Vector3d(1, 1, 3);
+    spot.direction = Eigen::Vector3d(-0.3, -0.3, -1);
+    spot.intensity = 8.0f;
+    scene.addLight(spot);
+    Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 48, 40);
+    RenderTarget target(renderer(), ModalitySet::all(), 0);
+    Frame frame;
+    target.render(scene, camera, frame);
+    const ImageBuffer& hdr = frame.get(Modality::HdrColor);
+    const ImageBuffer& base = frame.get(Modality::BaseColor);
+    const ImageBuffer& metallic = frame.get(Modality::Metallic);
+    const ImageBuffer& illumination = frame.get(Modality::DiffuseIllumination);
+    const ImageBuffer& diffuse = frame.get(Modality::DiffuseOnly);
+    const ImageBuffer& residual = frame.get(Modality::SpecularResidual);
+    const ImageBuffer& ids = frame.get(Modality::ObjectIds);
+    int background = 0, metalPixels = 0;
+    for (int y = 0; y < 40; ++y)
+        for (int x = 0; x < 48; ++x) {
+            const float oneMinusMetal = 1.0f - metallic.at(x, y);
+            metalPixels += oneMinusMetal < 0.5f;
+            for (int c = 0; c < 3; ++c) {
+                // Recomputed from the stored float16 inputs, as the shader does.
+                const float expectedDiffuse = base.at(x, y, c) * oneMinusMetal * illumination.at(x, y, c);
+                ASSERT_NEAR(diffuse.at(x, y, c), expectedDiffuse, std::abs(expectedDiffuse) * 1e-3f + 1e-6f)
+                    << "diffuse_only at " << x << "," << y << " c" << c;
+                const float h = hdr.at(x, y, c), d = diffuse.at(x, y, c), r = residual.at(x, y, c);
+                ASSERT_NEAR(h, d + r, 1e-3f * (std::abs(h) + std::abs(d) + std::abs(r)) + 1e-6f)
+                    << "hdr = diffuse_only + specular_residual at " << x << "," << y << " c" << c;
+                ASSERT_GE(illumination.at(x, y, c), 0.0f);
+            }
+            if (ids.uintAt(x, y) == 0) {
+                ++background;
+                EXPECT_EQ(illumination.at(x, y, 0), 0.0f);
+                EXPECT_NEAR(residual.at(x, y, 2), scene.environment().background.z(), 1e-3f);
+            }
+        }
+    EXPECT_GT(background, 0);
+    EXPECT_GT(metalPixels, 0);  // the gold sphere is in view: its diffuse part is zero
+}
+
+TEST_F(RenderIntrinsicsGlTest, WhiteLambertianUnderANormalSunHasUnitIllumination) {
+    // A directional light of intensity pi at normal incidence gives a white Lambertian radiance of 1,
+    // whatever the surface's own colour.
+    Scene scene;
+    scene.setEnvironment({{0, 0, 0}, {0, 0, 0}});
+    Material halfGrey = makeMaterial({0.5f, 0.25f, 1.0f}, 1.0f, 0.0f);
+    scene.addInstance({scene.addMesh(primitives::plane(50, 50)), {scene.addMaterial(halfGrey)}, {1}});
+    Light sun;
+    sun.direction = Eigen::Vector3d(0, 0, -1);
+    sun.intensity = float(M_PI);
+    sun.castShadows = false;
+    scene.addLight(sun);
+    Camera camera = cameraLookingAt({0, 0, 5}, {0.01, 0, 0}, 16, 16, 40.0);
+    RenderTarget target(renderer(), {Modality::DiffuseIllumination, Modality::DiffuseOnly}, 0);
+    Frame frame;
+    target.render(scene, camera, frame);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) {
+            for (int c = 0; c < 3; ++c)
+                ASSERT_NEAR(frame.get(Modality::DiffuseIllumination).at(x, y, c), 1.0f, 1e-3f);
+            ASSERT_NEAR(frame.get(Modality::DiffuseOnly).at(x, y, 0), 0.5f, 1e-3f);
+            ASSERT_NEAR(frame.get(Modality::DiffuseOnly).at(x, y, 1), 0.25f, 1e-3f);
+        }
+}
+
+TEST_F(RenderIntrinsicsGlTest, MaterialModalitiesAreTheMaterialInputs) {
+    Scene scene;
+    Material m = makeMaterial({0.2f, 0.4f, 0.6f}, 0.35f, 0.75f);
+    m.ambientOcclusion = 0.5f;
+    scene.addInstance({scene.addMesh(primitives::plane(50, 50)), {scene.addMaterial(m)}, {1}});
+    Camera camera = cameraLookingAt({0, 0, 5}, {0.01, 0, 0}, 8, 8, 40.0);
+    RenderTarget target(renderer(),
+                        {Modality::BaseColor, Modality::Roughness, Modality::Metallic, Modality::MaterialAo}, 0);
+    Frame frame;
+    target.render(scene, camera, frame);
+    EXPECT_NEAR(frame.get(Modality::BaseColor).at(3, 3, 0), 0.2f, 1e-3f);
+    EXPECT_NEAR(frame.get(Modality::BaseColor).at(3, 3, 2), 0.6f, 1e-3f);
+    EXPECT_NEAR(frame.get(Modality::Roughness).at(3, 3), 0.35f, 1e-3f);
+    EXPECT_NEAR(frame.get(Modality::Metallic).at(3, 3), 0.75f, 1e-3f);
+    EXPECT_NEAR(frame.get(Modality::MaterialAo).at(3, 3), 0.5f, 1e-3f);
+}
+
+TEST_F(RenderIntrinsicsGlTest, BaseColorTextureUsesTopLeftUvOrigin) {
+    // An 8x8 sRGB texture with four coloured quadrants; uv (0, 0) is the image's top-left texel.
+    std::vector<std::uint8_t> rgba(8 * 8 * 4);
+    const std::uint8_t colors[4][3] = {{255, 0, 0}, {0, 255, 0}, {0, 0, 255}, {188, 188, 188}};
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+            const int quadrant = (y / 4) * 2 + x / 4;
+            for (int c = 0; c < 3; ++c)
+                rgba[(y * 8 + x) * 4 + c] = colors[quadrant][c];
+            rgba[(y * 8 + x) * 4 + 3] = 255;
+        }
+    Scene scene;
+    Material textured;
+    textured.baseColor = {1, 1, 1, 1};
+    textured.baseColorTexture = scene.addTexture(TextureImage::fromPixels(8, 8, rgba));
+    scene.addInstance({scene.addMesh(primitives::plane(2, 2)), {scene.addMaterial(textured)}, {1}});
+    Camera camera = cameraLookingAt({0, 0, 3}, {0.001, 0, 0}, 64, 64, 60.0);
+    RenderTarget target(renderer(), {Modality::BaseColor}, 0);
+    Frame frame;
+    target.render(scene, camera, frame);
+    // The plane primitive maps uv (u, v) to (-1 + 2u, -1 + 2v, 0).
+    const Eigen::Vector2d uvs[4] = {{0.25, 0.25}, {0.75, 0.25}, {0.25, 0.75}, {0.75, 0.75}};
+    for (int q = 0; q < 4; ++q) {
+        const Eigen::Vector3d pixel = camera.project({-1 + 2 * uvs[q].x(), -1 + 2 * uvs[q].y(), 0});
+        for (int c = 0; c < 3; ++c) {
+            const float srgb = colors[q][c] / 255.0f;
+            const float linear = srgb <= 0.04045f ? srgb / 12.92f : std::pow((srgb + 0.055f) / 1.055f, 2.4f);
+            EXPECT_NEAR(frame.get(Modality::BaseColor).at(int(pixel.x()), int(pixel.y()), c), linear, 0.01f)
+                << "quadrant " << q << " channel " << c;
+        }
+    }
+}
+
+} // namespace
+} // namespace sp::render::test

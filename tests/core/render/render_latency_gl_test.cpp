@@ -1,0 +1,147 @@
+// Latency 0, 1, 2: read() returns the frame submitted `latency` submits earlier, nothing while priming,
+// each frame once; reads into caller memory check sizes before writing.
+
+#include <cstring>
+
+#include "core/render/image_buffer.h"
+#include "gl_fixture.h"
+#include "test_scenes.h"
+
+namespace sp::render::test {
+namespace {
+
+class RenderLatencyGlTest : public GlTest, public ::testing::WithParamInterface<int> {
+protected:
+    void SetUp() override {
+        mesh_ = scene_.addMesh(primitives::box({6, 6, 6}));
+        material_ = scene_.addMaterial(Material{});
+        instance_ = scene_.addInstance({mesh_, {material_}, {1}});
+        camera_ = cameraLookingAt({-6, 0, 0}, {0, 0, 0}, 8, 8);
+    }
+    // Frame k shows the box with object id 1000 + k.
+    std::uint64_t submitFrame(RenderTarget& target, std::uint64_t k) {
+        scene_.setInstance(instance_, {mesh_, {material_}, {std::uint32_t(1000 + k)}});
+        return target.submit(scene_, camera_);
+    }
+    Scene scene_;
+    MeshId mesh_;
+    MaterialId material_;
+    InstanceId instance_;
+    Camera camera_;
+};
+
+TEST_P(RenderLatencyGlTest, ReadReturnsTheFrameLatencySubmitsEarlier) {
+    const int latency = GetParam();
+    RenderTarget target(renderer(), {Modality::ObjectIds, Modality::Depth}, latency);
+    Frame frame;
+    for (std::uint64_t k = 1; k <= 6; ++k) {
+        ASSERT_EQ(submitFrame(target, k), k);
+        std::optional<std::uint64_t> got = target.read(frame);
+        if (k <= std::uint64_t(latency)) {
+            EXPECT_FALSE(got.has_value()) << "priming: no frame " << int(k) - latency;
+            continue;
+        }
+        ASSERT_TRUE(got.has_value());
+        EXPECT_EQ(*got, k - latency);
+        EXPECT_EQ(frame.frameNumber, k - latency);
+        EXPECT_EQ(frame.get(Modality::ObjectIds).uintAt(4, 4), 1000 + k - latency);
+        EXPECT_FALSE(target.read(frame).has_value()) << "a frame is read once";
+    }
+}
+
+TEST_P(RenderLatencyGlTest, UnreadFramesAreDroppedNotQueued) {
+    const int latency = GetParam();
+    RenderTarget target(renderer(), {Modality::ObjectIds}, latency);
+    for (std::uint64_t k = 1; k <= 5; ++k)
+        submitFrame(target, k);
+    Frame frame;
+    ASSERT_EQ(target.read(frame), 5u - latency);
+    EXPECT_EQ(frame.get(Modality::ObjectIds).uintAt(4, 4), 1000 + 5 - latency);
+}
+
+TEST_P(RenderLatencyGlTest, ReadsIntoCallerMemory) {
+    const int latency = GetParam();
+    RenderTarget target(renderer(), {Modality::ObjectIds, Modality::FinalColor}, latency);
+    std::vector<std::uint32_t> ids(8 * 8, 0xdeadbeef);
+    std::vector<std::uint8_t> color(8 * 8 * 4);
+    const OutputView views[] = {{Modality::ObjectIds, ids.data(), ids.size() * 4},
+                                {Modality::FinalColor, color.data(), color.size()}};
+    for (std::uint64_t k = 1; k <= std::uint64_t(latency) + 1; ++k) {
+        submitFrame(target, k);
+        std::optional<std::uint64_t> got = target.read(views);
+        if (k <= std::uint64_t(latency)) {
+            EXPECT_FALSE(got.has_value());
+            EXPECT_EQ(ids[0], 0xdeadbeef) << "priming leaves caller memory untouched";
+        } else {
+            EXPECT_EQ(got, 1u);
+            EXPECT_EQ(ids[4 * 8 + 4], 1001u);
+            EXPECT_EQ(ids[0], 1001u);  // the box fills the view
+            EXPECT_EQ(color[3], 255);
+        }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Latency, RenderLatencyGlTest, ::testing::Values(0, 1, 2));
+
+using RenderTargetGlTest = RenderLatencyGlTest;
+
+TEST_F(RenderTargetGlTest, CallerMemoryOfTheWrongSizeIsRejectedBeforeWriting) {
+    RenderTarget target(renderer(), {Modality::Depth}, 0);
+    submitFrame(target, 1);
+    std::vector<float> depth(10, -1.0f);
+    const OutputView tooSmall[] = {{Modality::Depth, depth.data(), depth.size() * 4}};
+    try {
+        target.read(tooSmall);
+        FAIL();
+    } catch (const InvalidArgument& e) {
+        EXPECT_STREQ(e.what(),
+                     "RenderTarget::read(): the view for 'depth' has 40 bytes, expected 256 (8x8x1 float32)");
+    }
+    EXPECT_EQ(depth[0], -1.0f);
+    const OutputView notRendered[] = {{Modality::Normal, depth.data(), depth.size() * 4}};
+    EXPECT_THROW(target.read(notRendered), InvalidArgument);
+    // The frame is still there for a correct read.
+    std::vector<float> full(64);
+    const OutputView good[] = {{Modality::Depth, full.data(), full.size() * 4}};
+    EXPECT_EQ(target.read(good), 1u);
+    EXPECT_NEAR(full[4 * 8 + 4], 3.0f, 1e-4f);  // camera 6 m from the centre of a 6 m box
+}
+
+TEST_F(RenderTargetGlTest, FramesKeepTheSizeTheyWereRenderedWith) {
+    RenderTarget target(renderer(), {Modality::Depth}, 1);
+    submitFrame(target, 1);
+    camera_.params.width = 4;
+    camera_.params.height = 2;
+    submitFrame(target, 2);
+    Frame frame;
+    ASSERT_EQ(target.read(frame), 1u);
+    EXPECT_EQ(frame.get(Modality::Depth).width, 8);
+    submitFrame(target, 3);
+    ASSERT_EQ(target.read(frame), 2u);
+    EXPECT_EQ(frame.get(Modality::Depth).width, 4);
+    EXPECT_EQ(frame.get(Modality::Depth).height, 2);
+}
+
+TEST_F(RenderTargetGlTest, BadLatencyIsRejected) {
+    try {
+        RenderTarget target(renderer(), {Modality::Depth}, 3);
+        FAIL();
+    } catch (const InvalidArgument& e) {
+        EXPECT_STREQ(e.what(), "RenderTarget::RenderTarget(): latency must be 0, 1 or 2 frames, got 3");
+    }
+    EXPECT_THROW(RenderTarget(renderer(), ModalitySet(), 0), InvalidArgument);
+}
+
+TEST_F(RenderTargetGlTest, RemovedMeshOrMaterialCannotReachTheGpu) {
+    RenderTarget target(renderer(), {Modality::ObjectIds}, 0);
+    Frame frame;
+    target.render(scene_, camera_, frame);
+    scene_.removeInstance(instance_);
+    scene_.removeMesh(mesh_);
+    EXPECT_THROW(scene_.addInstance({mesh_, {material_}, {1}}), StaleObject);
+    target.render(scene_, camera_, frame);
+    EXPECT_EQ(frame.get(Modality::ObjectIds).uintAt(4, 4), 0u);
+}
+
+} // namespace
+} // namespace sp::render::test
