@@ -46,8 +46,8 @@ template <typename... Args> std::string concat(const Args&... args) {
 }
 } // namespace detail
 
-// Throws E with the streamed message: SP_THROW(NotFound, "UWorld::SpawnActor(): class '", name, "' ...").
-#define SP_THROW(Type, ...) throw ::sp::Type(::sp::detail::concat(__VA_ARGS__))
+// Throws Type (spelled as visible at the call site) with the streamed message: SP_THROW(NotFound, "UWorld::SpawnActor(): class '", name, "' ...").
+#define SP_THROW(Type, ...) throw Type(::sp::detail::concat(__VA_ARGS__))
 
 // Checks a condition and throws E with the message when it does not hold.
 #define SP_CHECK(cond, Type, ...)                                                                            \

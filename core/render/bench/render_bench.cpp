@@ -1,1 +1,126 @@
-int main() { return 0; }
+// spear_render_bench: ms/frame of submit + read at 256x256 and 1920x1080, for final_color only and for
+// every modality, per latency mode, on a ground plane with N boxes, a shadowed sun and a spot light.
+//
+//   spear_render_bench [--boxes N] [--frames F] [--png DIR]
+//
+// --png writes the 256x256 and 1920x1080 final_color images of the scene, to look at.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "core/render/gl_context.h"
+#include "core/render/image_buffer.h"
+#include "core/render/primitives.h"
+#include "core/render/render_target.h"
+#include "core/render/renderer.h"
+#include "core/render/scene.h"
+#include "core/render/texture_image.h"
+
+namespace {
+
+using namespace sp::render;
+
+void buildScene(Scene& scene, int boxes) {
+    MeshId ground = scene.addMesh(primitives::plane(40, 40));
+    MeshId box = scene.addMesh(primitives::box({0.6f, 0.6f, 0.6f}));
+    Material groundMaterial;
+    groundMaterial.baseColor = {0.55f, 0.55f, 0.5f, 1.0f};
+    groundMaterial.roughness = 0.9f;
+    scene.addInstance({ground, {scene.addMaterial(groundMaterial)}, {1}});
+    const int side = std::max(1, int(std::ceil(std::sqrt(double(boxes)))));
+    for (int i = 0; i < boxes; ++i) {
+        Material m;
+        m.baseColor = {0.2f + 0.6f * float((i * 37) % 11) / 10.0f, 0.2f + 0.6f * float((i * 17) % 7) / 6.0f,
+                       0.2f + 0.6f * float((i * 53) % 5) / 4.0f, 1.0f};
+        m.roughness = 0.2f + 0.7f * float(i % 4) / 3.0f;
+        m.metallic = i % 5 == 0 ? 1.0f : 0.0f;
+        Instance instance{box, {scene.addMaterial(m)}, {std::uint32_t(2 + i)}};
+        instance.transform = Eigen::Translation3d(1.2 * (i % side) - 0.6 * side, 1.2 * (i / side) - 0.6 * side,
+                                                  0.3 + 0.4 * (i % 3)) *
+                             Eigen::AngleAxisd(0.3 * i, Eigen::Vector3d::UnitZ());
+        scene.addInstance(instance);
+    }
+    Light sun;
+    sun.direction = Eigen::Vector3d(-0.5, -0.3, -1.0);
+    sun.intensity = 3.0f;
+    scene.addLight(sun);
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = Eigen::Vector3d(0, 0, 6);
+    spot.direction = Eigen::Vector3d(0.2, 0.1, -1);
+    spot.intensity = 30.0f;
+    scene.addLight(spot);
+    scene.setEnvironment({{0.1f, 0.12f, 0.15f}, {0.3f, 0.35f, 0.45f}});
+}
+
+Camera makeCamera(int width, int height, int boxes) {
+    const double extent = 0.6 * std::ceil(std::sqrt(double(boxes))) + 2.0;
+    Camera camera;
+    const Eigen::Vector3d position(-1.4 * extent, -1.1 * extent, 0.9 * extent);
+    const Eigen::Vector3d x = (Eigen::Vector3d(0, 0, 0) - position).normalized();
+    const Eigen::Vector3d y = Eigen::Vector3d::UnitZ().cross(x).normalized();
+    camera.pose.linear() << x, y, x.cross(y);
+    camera.pose.translation() = position;
+    camera.params.width = width;
+    camera.params.height = height;
+    camera.params.hfovDeg = 60.0;
+    camera.params.shadowResolution = 2048;
+    return camera;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    int boxes = 64, frames = 10;
+    std::string pngDir;
+    for (int i = 1; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--boxes") && i + 1 < argc)
+            boxes = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--frames") && i + 1 < argc)
+            frames = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--png") && i + 1 < argc)
+            pngDir = argv[++i];
+        else {
+            std::fprintf(stderr, "usage: %s [--boxes N] [--frames F] [--png DIR]\n", argv[0]);
+            return 2;
+        }
+    }
+    GlContext context;
+    Renderer renderer(context);
+    Scene scene;
+    buildScene(scene, boxes);
+    std::printf("device: %s (%s), %d boxes, shadows 2048, %d timed frames after 3 warm-up frames\n",
+                context.report().renderer.c_str(), context.report().kind.c_str(), boxes, frames);
+    std::printf("%-10s %-12s %-8s %10s\n", "size", "modalities", "latency", "ms/frame");
+    const std::pair<int, int> sizes[] = {{256, 256}, {1920, 1080}};
+    for (auto [width, height] : sizes) {
+        Camera camera = makeCamera(width, height, boxes);
+        for (bool all : {false, true}) {
+            for (int latency = 0; latency <= RenderTarget::kMaxLatency; ++latency) {
+                RenderTarget target(renderer, all ? ModalitySet::all() : ModalitySet{Modality::FinalColor}, latency);
+                Frame frame;
+                for (int i = 0; i < 3; ++i)
+                    target.render(scene, camera, frame);
+                const auto start = std::chrono::steady_clock::now();
+                for (int i = 0; i < frames; ++i)
+                    target.render(scene, camera, frame);
+                const double ms =
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / frames;
+                std::printf("%4dx%-5d %-12s %-8d %10.2f\n", width, height, all ? "all (14)" : "final_color", latency,
+                            ms);
+                std::fflush(stdout);
+                if (!pngDir.empty() && !all && latency == 0) {
+                    const ImageBuffer& color = frame.get(Modality::FinalColor);
+                    writePng(pngDir + "/bench_" + std::to_string(width) + "x" + std::to_string(height) + ".png",
+                             width, height, 4, reinterpret_cast<const std::uint8_t*>(color.bytes.data()));
+                }
+            }
+        }
+    }
+    return 0;
+}

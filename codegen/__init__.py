@@ -1,0 +1,1 @@
+"""spear's binding generator: reflected C++ headers -> one IR -> registry, pybind11, stubs, RPC proxies."""

@@ -1,0 +1,70 @@
+"""Command line: python3 -m codegen generate|check|list-outputs|dump-ir ..."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+from codegen import emit
+from codegen.errors import GeneratorError
+from codegen.scanner import ScanOptions, scan
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="python3 -m codegen", description=__doc__)
+    p.add_argument("command", choices=["generate", "check", "list-outputs", "dump-ir"])
+    p.add_argument("--module", required=True, help="module name, e.g. engine")
+    p.add_argument("--root", type=Path, required=True, help="project root; header paths are relative to it")
+    p.add_argument("--out", type=Path, required=True, help="output root (generated/)")
+    p.add_argument("--include-dir", type=Path, action="append", default=[], help="extra include directory")
+    p.add_argument("--define", action="append", default=[], help="extra preprocessor definition")
+    p.add_argument("--stamp", type=Path, help="file to touch after a successful generate (for build systems)")
+    p.add_argument("headers", nargs="+", type=Path)
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    root = args.root.resolve()
+    headers = [h if h.is_absolute() else root / h for h in args.headers]
+    if args.command == "list-outputs":
+        # Output names depend only on the header list, so a build system can know them before parsing.
+        from codegen.model import Module
+
+        module = Module(name=args.module, headers=tuple(sorted(h.resolve().relative_to(root).as_posix() for h in headers)))
+        print("\n".join(str(args.out / f) for f in emit.OutputLayout(args.module).files(module)))
+        return 0
+    for h in headers:
+        if not h.is_file():
+            print(f"{h}: error: header not found", file=sys.stderr)
+            return 1
+    started = time.perf_counter()
+    try:
+        module = scan(args.module, headers, ScanOptions(root=root, include_dirs=tuple(args.include_dir),
+                                                        defines=tuple(args.define)))
+    except GeneratorError as e:
+        print(e, file=sys.stderr)
+        return 1
+    if args.command == "dump-ir":
+        sys.stdout.write(module.to_json())
+        return 0
+    outputs = emit.render(module)
+    if args.command == "check":
+        stale = emit.check(outputs, args.out)
+        if stale:
+            print("generated files are stale (run the build or `python3 -m codegen generate`):", file=sys.stderr)
+            for rel in stale:
+                print(f"  {args.out / rel}", file=sys.stderr)
+            return 1
+        print(f"codegen: {len(outputs)} generated files of module '{args.module}' are up to date")
+        return 0
+    changed = emit.write(outputs, args.out)
+    elapsed = time.perf_counter() - started
+    print(f"codegen: module '{args.module}': {len(module.classes)} classes, {len(module.enums)} enums, "
+          f"{len(changed)} of {len(outputs)} files changed ({elapsed:.2f} s)")
+    if args.stamp:
+        args.stamp.parent.mkdir(parents=True, exist_ok=True)
+        args.stamp.write_text("")
+    return 0

@@ -1,0 +1,174 @@
+"""Every name, spelling and type mapping the templates need, computed from the IR.
+
+Templates hold loops and holes only; anything that needs a decision is a function here.
+"""
+
+from __future__ import annotations
+
+import re
+
+from codegen.model import Class, Function, Module, Param, TypeRef
+
+
+# -- Python spellings ------------------------------------------------------------------------------
+
+def py_type(t: TypeRef, *, nullable_objects: bool = True) -> str:
+    """The Python annotation for a type, as used in stubs, proxies and runtime type strings."""
+    if t.kind == "void":
+        return "None"
+    if t.kind in ("bool", "int", "float", "str"):
+        return t.kind
+    if t.kind in ("enum", "struct"):
+        return t.name
+    if t.kind == "object":
+        return f"{t.name} | None" if nullable_objects else t.name
+    if t.kind == "class":
+        return f"type[{t.name}] | str"
+    if t.kind == "list":
+        return f"list[{py_type(t.args[0], nullable_objects=False)}]"
+    if t.kind == "dict":
+        return f"dict[str, {py_type(t.args[0], nullable_objects=False)}]"
+    if t.kind == "array":
+        return f"NDArray[np.{t.name}]"
+    raise ValueError(f"unknown type kind {t.kind}")
+
+
+def param_py_type(p: Param) -> str:
+    """Object parameters are required unless their default is nullptr."""
+    nullable = p.default_cpp == "nullptr"
+    if p.type.kind in ("object", "class"):
+        base = py_type(p.type, nullable_objects=False)
+        return f"{base} | None" if nullable else base
+    return py_type(p.type)
+
+
+def return_py_type(f: Function, typevar: str | None = None) -> str:
+    """The result annotation; with DeterminesOutputType the class part becomes the type variable."""
+    t = f.returns
+    outs = out_params(f)
+    if outs:
+        return result_tuple_name(f)
+    if typevar is not None:
+        if t.kind == "list":
+            return f"list[{typevar}]"
+        if t.kind == "dict":
+            return f"dict[str, {typevar}]"
+        return typevar if f.not_null else f"{typevar} | None"
+    if t.kind == "object" and f.not_null:
+        return t.name
+    return py_type(t)
+
+
+def result_tuple_name(f: Function) -> str:
+    return f"{f.name}Result"
+
+
+def out_params(f: Function) -> list[Param]:
+    return [p for p in f.params if p.is_out]
+
+
+def in_params(f: Function) -> list[Param]:
+    return [p for p in f.params if not p.is_out]
+
+
+_NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?[fFlLuU]*$")
+
+
+def py_default(p: Param, enums: set[str]) -> str | None:
+    """A Python expression for a C++ default, or None when it has no faithful Python spelling."""
+    text = p.default_cpp
+    if text is None:
+        return None
+    if text in ("true", "false"):
+        return "True" if text == "true" else "False"
+    if text == "nullptr":
+        return "None"
+    if _NUMBER.match(text):
+        number = text.rstrip("fFlLuU")
+        if p.type.kind == "float" and not any(c in number for c in ".eE"):
+            number += ".0"
+        return number
+    if text.startswith('"') and text.endswith('"') and "\\" not in text:
+        return text
+    if text in ("{}", "{ }"):
+        return {"list": "[]", "dict": "{}", "str": '""'}.get(p.type.kind)
+    scope, sep, member = text.rpartition("::")
+    if sep and scope in enums and member.isidentifier():
+        return f"{scope}.{member}"
+    m = re.match(r"^(\w+)\s*[({]\s*(.*?)\s*[)}]$", text)
+    if m and p.type.kind == "struct" and m.group(1) == p.type.name:
+        args = [a.strip() for a in m.group(2).split(",")] if m.group(2) else []
+        if all(_NUMBER.match(a) for a in args):
+            return f"{p.type.name}({', '.join(a.rstrip('fFlLuU') for a in args)})"
+    return None
+
+
+# -- C++ spellings ---------------------------------------------------------------------------------
+
+def cpp_string(text: str) -> str:
+    """A C++ string literal."""
+    escaped = text.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n")
+    return f'"{escaped}"'
+
+
+def cpp_default_value(p: Param) -> str:
+    """The default as an expression of the parameter's value type."""
+    assert p.default_cpp is not None
+    if p.default_cpp.startswith("{"):
+        return f"{p.type.cpp}{p.default_cpp}"
+    return f"{p.type.cpp}({p.default_cpp})"
+
+
+def header_stem(header: str) -> str:
+    """core/world/actor.h -> core_world_actor"""
+    return re.sub(r"[^A-Za-z0-9]", "_", header.rsplit(".", 1)[0])
+
+
+def registry_file(header: str) -> str:
+    return f"{header_stem(header)}.gen.cpp"
+
+
+def classes_by_header(module: Module) -> dict[str, list[Class]]:
+    result: dict[str, list[Class]] = {h: [] for h in module.headers}
+    for c in module.classes:
+        result[c.header].append(c)
+    return result
+
+
+def topo_classes(module: Module) -> list[Class]:
+    """Classes with every parent before its children (pybind11 needs bases registered first), and every
+    struct after the structs its fields hold (Python dataclass defaults refer to them)."""
+    by_name = {c.name: c for c in module.classes}
+    ordered: list[Class] = []
+    seen: set[str] = set()
+
+    def visit(c: Class) -> None:
+        if c.name in seen:
+            return
+        seen.add(c.name)
+        if c.parent in by_name:
+            visit(by_name[c.parent])
+        for p in c.properties:
+            if c.kind == "struct" and p.type.kind == "struct" and p.type.name in by_name:
+                visit(by_name[p.type.name])
+        ordered.append(c)
+
+    for c in module.classes:
+        visit(c)
+    return ordered
+
+
+def doc_lines(doc: str) -> list[str]:
+    return doc.splitlines() if doc else []
+
+
+def py_docstring(doc: str, indent: str) -> str:
+    """A triple-quoted docstring, or an empty string when there is no doc."""
+    if not doc:
+        return ""
+    body = doc.replace("\\", "\\\\").replace('"""', '\\"\\"\\"')
+    lines = body.splitlines()
+    if len(lines) == 1:
+        return f'{indent}"""{lines[0]}"""'
+    inner = "\n".join(f"{indent}{line}" if line else "" for line in lines[1:])
+    return f'{indent}"""{lines[0]}\n{inner}\n{indent}"""'

@@ -1,0 +1,153 @@
+"""Views of the IR for the Python templates (api.py, api.pyi, rpc.py)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from codegen import naming
+from codegen.model import Class, Function, Module, Property, TypeRef
+
+
+def _typevar(base: str) -> str:
+    return f"_{base}T"
+
+
+def _field_default(p: Property, enums: dict[str, str], default_cpp: str | None) -> str:
+    """A dataclass default for a struct field: the C++ initializer if it has a Python spelling, else zero."""
+    from codegen.model import Param
+
+    t = p.type
+    if default_cpp is not None:
+        text = default_cpp
+        if t.kind == "struct" and text.startswith("{"):
+            text = t.name + text
+        value = naming.py_default(Param(p.name, t, "", text), set(enums))
+        if value is not None:
+            return f"field(default_factory=lambda: {value})" if t.kind == "struct" else value
+    zero = {"bool": "False", "int": "0", "float": "0.0", "str": '""'}
+    if t.kind in zero:
+        return zero[t.kind]
+    if t.kind == "enum":
+        return f"{t.name}.{enums[t.name]}"
+    if t.kind == "struct":
+        return f"field(default_factory={t.name})"
+    if t.kind == "list":
+        return "field(default_factory=list)"
+    if t.kind == "dict":
+        return "field(default_factory=dict)"
+    raise ValueError(f"struct field {p.name} of kind {t.kind} has no Python default")
+
+
+def _function_view(c: Class, f: Function, enums: set[str]) -> dict[str, Any]:
+    ins = naming.in_params(f)
+    params = []
+    for p in ins:
+        default = naming.py_default(p, enums)
+        params.append({
+            "name": p.name,
+            "type": naming.param_py_type(p),
+            "stub_default": (" = " + default) if default is not None else (" = ..." if p.default_cpp else ""),
+            "proxy_default": " = _DEFAULT" if p.default_cpp is not None else "",
+        })
+    outs = naming.out_params(f)
+    result_fields = []
+    if outs:
+        if f.returns.kind != "void":
+            result_fields.append({"name": "ReturnValue", "type": naming.py_type(f.returns)})
+        result_fields += [{"name": p.name, "type": naming.py_type(p.type)} for p in outs]
+    overloads = []
+    if f.determines_output_type:
+        target = next(p for p in f.params if p.name == f.determines_output_type)
+        base = target.type.name
+        tv = _typevar(base)
+        inner = f.returns.args[0] if f.returns.kind in ("list", "dict") else f.returns
+        for uclass_type, ret in ((f"type[{tv}]", naming.return_py_type(f, tv)),
+                                 ("str", naming.return_py_type(f, inner.name))):
+            overloads.append({
+                "params": [dict(p, type=uclass_type) if p["name"] == target.name else p for p in params],
+                "returns": ret,
+            })
+    returns = f"{c.name}.{naming.result_tuple_name(f)}" if outs else naming.return_py_type(f)
+    return {
+        "name": f.name,
+        "doc": naming.py_docstring(f.doc, " " * 8),
+        "params": params,
+        "returns": returns,
+        "result_name": naming.result_tuple_name(f),
+        "result_fields": result_fields,
+        "overloads": overloads,
+        "is_static": f.is_static,
+        "type_string": returns if not outs else "dict",
+        "arg_names": [p.name for p in ins],
+    }
+
+
+def _property_view(p: Property) -> dict[str, Any]:
+    return {
+        "name": p.name,
+        "type": naming.py_type(p.type),
+        "read_only": p.read_only,
+        "doc": naming.py_docstring(p.doc, " " * 8),
+    }
+
+
+def typevars(module: Module) -> list[dict[str, str]]:
+    bases = sorted({
+        next(p for p in f.params if p.name == f.determines_output_type).type.name
+        for c in module.classes for f in c.functions if f.determines_output_type
+    })
+    return [{"name": _typevar(b), "bound": b} for b in bases]
+
+
+def module_view(module: Module) -> dict[str, Any]:
+    enums = {e.name: e.entries[0].name for e in module.enums}
+    structs = []
+    objects = []
+    for c in naming.topo_classes(module):
+        if c.kind == "struct":
+            structs.append({
+                "name": c.name,
+                "doc": naming.py_docstring(c.doc, "    "),
+                "fields": [
+                    {"name": p.name, "type": naming.py_type(p.type),
+                     "default": _field_default(p, enums, p.default_cpp)}
+                    for p in c.properties
+                ],
+            })
+        else:
+            objects.append({
+                "name": c.name,
+                "parent": c.parent or "_SpObject",
+                "rpc_parent": c.parent or "_ObjectProxy",
+                "doc": naming.py_docstring(c.doc, "    "),
+                "properties": [_property_view(p) for p in c.properties],
+                "functions": [_function_view(c, f, set(enums)) for f in c.functions],
+            })
+    enum_views = [
+        {
+            "name": e.name,
+            "doc": naming.py_docstring(e.doc, "    "),
+            "entries": [{"name": x.name, "value": x.value, "doc": naming.py_docstring(x.doc, "    ")}
+                        for x in e.entries],
+        }
+        for e in module.enums
+    ]
+    names = sorted([e.name for e in module.enums] + [c.name for c in module.classes])
+    return {
+        "structs": structs,
+        "objects": objects,
+        "enums": enum_views,
+        "typevars": typevars(module),
+        "all_names": names,
+        "api_hash": _api_hash(module),
+    }
+
+
+def _api_hash(module: Module) -> str:
+    import hashlib
+
+    return hashlib.sha256(module.to_json().encode()).hexdigest()[:16]
+
+
+def struct_field_type(t: TypeRef) -> str:
+    return naming.py_type(t)

@@ -1,0 +1,80 @@
+#include "core/pybind/bridge.h"
+
+#include <cstring>
+
+namespace sp::pybind {
+
+namespace {
+reflect::DType dtypeOf(const py::array& array, std::string_view context) {
+    const py::dtype dt = array.dtype();
+    const char kind = dt.kind();
+    const auto size = dt.itemsize();
+    using reflect::DType;
+    if (kind == 'b')
+        return DType::Bool;
+    if (kind == 'u')
+        return size == 1 ? DType::UInt8 : size == 2 ? DType::UInt16 : size == 4 ? DType::UInt32 : DType::UInt64;
+    if (kind == 'i')
+        return size == 1 ? DType::Int8 : size == 2 ? DType::Int16 : size == 4 ? DType::Int32 : DType::Int64;
+    if (kind == 'f' && size != 16)
+        return size == 2 ? DType::Float16 : size == 4 ? DType::Float32 : DType::Float64;
+    SP_THROW(InvalidArgument, context, ": unsupported array dtype '", dt.attr("name").cast<std::string>(), "'");
+}
+} // namespace
+
+reflect::ArrayValue arrayFromNumpy(const py::array& array, reflect::DType dtype, std::string_view context) {
+    const reflect::DType actual = dtypeOf(array, context);
+    SP_CHECK(actual == dtype, InvalidArgument, context, " must have dtype ", reflect::dtypeName(dtype), ", got ",
+             reflect::dtypeName(actual));
+    // Non-contiguous inputs (slices, transposes) are copied once into C order.
+    py::array contiguous = py::array::ensure(array, py::array::c_style);
+    reflect::ArrayValue value;
+    value.dtype = dtype;
+    for (py::ssize_t i = 0; i < contiguous.ndim(); ++i)
+        value.shape.push_back(contiguous.shape(i));
+    value.data = contiguous.mutable_data();
+    // The numpy array owns the bytes; release it under the GIL whenever the last C++ user lets go.
+    auto* keepAlive = new py::object(std::move(contiguous));
+    value.owner = std::shared_ptr<void>(keepAlive, [](void* p) {
+        py::gil_scoped_acquire gil;
+        delete static_cast<py::object*>(p);
+    });
+    return value;
+}
+
+py::array arrayToNumpy(const reflect::ArrayValue& value) {
+    static const char* const kFormats[] = {"?", "u1", "i1", "u2", "i2", "u4", "i4", "u8", "i8", "f2", "f4", "f8"};
+    py::dtype dt(kFormats[size_t(value.dtype)]);
+    std::vector<py::ssize_t> shape(value.shape.begin(), value.shape.end());
+    if (!value.data) // an empty result still has the right dtype
+        return py::array(dt, std::vector<py::ssize_t>(shape.empty() ? 1 : shape.size(), 0));
+    auto* owner = new std::shared_ptr<void>(value.owner);
+    py::capsule capsule(owner, [](void* p) { delete static_cast<std::shared_ptr<void>*>(p); });
+    return py::array(dt, shape, value.data, capsule);
+}
+
+py::object apiAttribute(const char* module, const char* name) {
+    return py::module_::import(module).attr(name);
+}
+
+} // namespace sp::pybind
+
+namespace pybind11::detail {
+
+bool type_caster<sp::pybind::ClassArg>::load(handle src, bool) {
+    if (src.is_none()) {
+        value.name.clear();
+        return true;
+    }
+    if (PyUnicode_Check(src.ptr())) {
+        value.name = src.cast<std::string>();
+        return !value.name.empty();
+    }
+    if (PyType_Check(src.ptr()) && hasattr(src, "__sp_class__")) {
+        value.name = src.attr("__sp_class__").cast<std::string>();
+        return true;
+    }
+    return false;
+}
+
+} // namespace pybind11::detail

@@ -1,0 +1,143 @@
+#include "core/pybind/dynamic_access.h"
+
+#include <pybind11/stl.h>
+
+#include "core/base/error.h"
+#include "core/pybind/object_ref.h"
+#include "core/pybind/value_convert.h"
+#include "core/reflect/registry.h"
+
+namespace sp::pybind {
+
+namespace py = ::pybind11;
+using reflect::Value;
+
+namespace {
+reflect::ObjectBase& resolveArgument(py::handle object, std::string_view context) {
+    SP_CHECK(py::hasattr(object, "_sp_handle"), InvalidArgument, context, ": expected an engine object, got '",
+             std::string(py::str(object.get_type().attr("__name__"))), "'");
+    auto handle = object.attr("_sp_handle").cast<std::pair<uint32_t, uint32_t>>();
+    reflect::ObjectBase& resolved = reflect::ObjectTable::resolve({handle.first, handle.second}, context);
+    checkAccess(resolved, context);
+    return resolved;
+}
+
+std::vector<std::string> splitPath(const std::string& path) {
+    std::vector<std::string> parts;
+    size_t start = 0;
+    while (true) {
+        size_t dot = path.find('.', start);
+        parts.push_back(path.substr(start, dot - start));
+        if (dot == std::string::npos)
+            return parts;
+        start = dot + 1;
+    }
+}
+
+const reflect::PropertyInfo& findProperty(const reflect::TypeInfo& type, const std::string& name,
+                                          std::string_view context) {
+    const reflect::PropertyInfo* property = type.findProperty(name);
+    SP_CHECK(property, NotFound, context, ": class '", type.name, "' has no property '", name, "'");
+    return *property;
+}
+
+// Walks "Field.SubField" inside a struct value; returns the innermost value and its declared type.
+std::pair<Value*, std::string> walk(Value& root, std::string type, const std::vector<std::string>& parts,
+                                    std::string_view context) {
+    Value* current = &root;
+    for (size_t i = 1; i < parts.size(); ++i) {
+        const reflect::TypeInfo* info = reflect::Registry::get().findType(type);
+        SP_CHECK(info && info->kind == reflect::TypeInfo::Kind::Struct && current->is<Value::Dict>(), NotFound,
+                 context, ": '", parts[i - 1], "' is not a struct, so it has no field '", parts[i], "'");
+        const reflect::PropertyInfo& field = findProperty(*info, parts[i], context);
+        current = &current->as<Value::Dict>()[parts[i]];
+        type = field.type;
+    }
+    return {current, type};
+}
+} // namespace
+
+void bindDynamicAccess(py::module_& m, const char* apiModule) {
+    m.def(
+        "call_function",
+        [apiModule](py::handle uobject, const std::string& function, py::dict args) -> py::object {
+            const std::string context = "call_function('" + function + "')";
+            reflect::ObjectBase& object = resolveArgument(uobject, context);
+            const reflect::TypeInfo& type = object.GetClass();
+            const reflect::FunctionInfo* info = type.findFunction(function);
+            SP_CHECK(info, NotFound, context, ": class '", type.name, "' has no function '", function, "'");
+            reflect::CallArgs callArgs;
+            for (auto [key, value] : args)
+                callArgs.emplace(key.cast<std::string>(), toValue(value, context));
+            Value result = info->invoke(&object, callArgs);
+            bool hasOut = false;
+            for (const auto& param : info->params)
+                hasOut = hasOut || param.isOut;
+            if (!hasOut)
+                return fromValue(result, info->returnType, apiModule);
+            py::dict outputs;
+            for (const auto& [key, item] : result.as<Value::Dict>()) {
+                std::string itemType;
+                for (const auto& param : info->params)
+                    if (param.name == key)
+                        itemType = param.type;
+                outputs[py::str(key)] = fromValue(item, itemType, apiModule);
+            }
+            return std::move(outputs);
+        },
+        py::kw_only(), py::arg("uobject"), py::arg("function"), py::arg("args") = py::dict(),
+        "Calls a reflected function by name; out-parameters come back in a dict beside 'ReturnValue'.");
+
+    m.def(
+        "get_property",
+        [apiModule](py::handle uobject, const std::string& path) -> py::object {
+            const std::string context = "get_property('" + path + "')";
+            reflect::ObjectBase& object = resolveArgument(uobject, context);
+            auto parts = splitPath(path);
+            const reflect::PropertyInfo& property = findProperty(object.GetClass(), parts[0], context);
+            Value value = property.get(&object);
+            auto [leaf, type] = walk(value, property.type, parts, context);
+            return fromValue(*leaf, type, apiModule);
+        },
+        py::kw_only(), py::arg("uobject"), py::arg("path"),
+        "Reads a reflected property by name or path ('RelativeLocation.Z').");
+
+    m.def(
+        "set_property",
+        [](py::handle uobject, const std::string& path, py::handle value) {
+            const std::string context = "set_property('" + path + "')";
+            reflect::ObjectBase& object = resolveArgument(uobject, context);
+            auto parts = splitPath(path);
+            const reflect::PropertyInfo& property = findProperty(object.GetClass(), parts[0], context);
+            SP_CHECK(property.set, InvalidArgument, context, ": property '", property.name, "' of class '",
+                     object.GetClass().name, "' is read-only");
+            Value whole = property.get(&object);
+            auto [leaf, type] = walk(whole, property.type, parts, context);
+            *leaf = toValue(value, context);
+            property.set(&object, whole);
+        },
+        py::kw_only(), py::arg("uobject"), py::arg("path"), py::arg("value"),
+        "Writes a reflected property by name or path ('RelativeLocation.Z').");
+
+    m.def(
+        "get_class_names", [] {
+            std::vector<std::string> names;
+            for (const reflect::TypeInfo* type : reflect::Registry::get().types())
+                names.push_back(type->name);
+            return names;
+        },
+        "Names of every registered class and struct, sorted.");
+
+    m.def(
+        "get_derived_class_names",
+        [](const std::string& uclass) {
+            const reflect::TypeInfo& base = reflect::Registry::get().getClass(uclass, "get_derived_class_names()");
+            std::vector<std::string> names;
+            for (const reflect::TypeInfo* type : reflect::Registry::get().derivedClasses(base))
+                names.push_back(type->name);
+            return names;
+        },
+        py::kw_only(), py::arg("uclass"), "Names of uclass and every class derived from it, sorted.");
+}
+
+} // namespace sp::pybind

@@ -1,0 +1,154 @@
+#include "core/pybind/value_convert.h"
+
+#include <pybind11/numpy.h>
+
+#include "core/base/error.h"
+#include "core/pybind/bridge.h"
+#include "core/pybind/object_ref.h"
+#include "core/reflect/registry.h"
+
+namespace sp::pybind {
+
+using reflect::Value;
+
+reflect::Value toValue(py::handle object, std::string_view context) {
+    if (object.is_none())
+        return Value();
+    if (PyBool_Check(object.ptr()))
+        return Value(object.cast<bool>());
+    if (PyLong_Check(object.ptr()))
+        return Value(object.cast<int64_t>());
+    if (PyFloat_Check(object.ptr()))
+        return Value(object.cast<double>());
+    if (PyUnicode_Check(object.ptr()))
+        return Value(object.cast<std::string>());
+    if (py::isinstance<py::array>(object)) {
+        py::array array = py::reinterpret_borrow<py::array>(object);
+        // The dtype check happens where the registry knows the expected element type.
+        static const char* const kNames[] = {"bool",  "uint8", "int8",  "uint16",  "int16",   "uint32",
+                                             "int32", "uint64", "int64", "float16", "float32", "float64"};
+        for (size_t i = 0; i < std::size(kNames); ++i)
+            if (array.dtype().equal(py::dtype(std::string(kNames[i]))))
+                return Value(arrayFromNumpy(array, reflect::DType(i), context));
+        SP_THROW(InvalidArgument, context, ": unsupported array dtype ", array.dtype().attr("name").cast<std::string>());
+    }
+    if (py::hasattr(object, "_sp_handle")) {
+        auto handle = object.attr("_sp_handle").cast<std::pair<uint32_t, uint32_t>>();
+        return Value(reflect::ObjectHandle{handle.first, handle.second});
+    }
+    if (PyType_Check(object.ptr()) && py::hasattr(object, "__sp_class__"))
+        return Value(reflect::ClassName{object.attr("__sp_class__").cast<std::string>()});
+    if (py::hasattr(object, "__dataclass_fields__") && py::hasattr(object, "__sp_class__")) {
+        Value::Dict fields;
+        for (auto name : object.attr("__dataclass_fields__")) {
+            std::string key = name.cast<std::string>();
+            fields.emplace(key, toValue(object.attr(name), context));
+        }
+        return Value(std::move(fields));
+    }
+    if (PyList_Check(object.ptr()) || PyTuple_Check(object.ptr())) {
+        Value::List items;
+        for (auto item : object)
+            items.push_back(toValue(item, context));
+        return Value(std::move(items));
+    }
+    if (PyDict_Check(object.ptr())) {
+        Value::Dict items;
+        for (auto [key, item] : py::reinterpret_borrow<py::dict>(object)) {
+            SP_CHECK(PyUnicode_Check(key.ptr()), InvalidArgument, context, ": dict keys must be str");
+            items.emplace(key.cast<std::string>(), toValue(item, context));
+        }
+        return Value(std::move(items));
+    }
+    SP_THROW(InvalidArgument, context, ": cannot pass a value of type '",
+             std::string(py::str(object.get_type().attr("__name__"))), "'");
+}
+
+namespace {
+std::string_view trim(std::string_view s) {
+    while (!s.empty() && s.front() == ' ')
+        s.remove_prefix(1);
+    while (!s.empty() && s.back() == ' ')
+        s.remove_suffix(1);
+    return s;
+}
+
+bool unwrap(std::string_view& type, std::string_view prefix) {
+    if (type.starts_with(prefix) && type.ends_with("]")) {
+        type = type.substr(prefix.size(), type.size() - prefix.size() - 1);
+        return true;
+    }
+    return false;
+}
+
+// Untyped fallback, for values whose declared type is not recorded (e.g. a dynamic call's ReturnValue).
+py::object generic(const Value& value, const char* apiModule) {
+    return std::visit(
+        [&](const auto& v) -> py::object {
+            using T = std::decay_t<decltype(v)>;
+            if constexpr (std::is_same_v<T, std::monostate>)
+                return py::none();
+            else if constexpr (std::is_same_v<T, reflect::ObjectHandle>)
+                return wrapObject(reflect::ObjectTable::find(v));
+            else if constexpr (std::is_same_v<T, reflect::ClassName>)
+                return pythonClassOf(reflect::Registry::get().getClass(v.name, "fromValue()"));
+            else if constexpr (std::is_same_v<T, reflect::ArrayValue>)
+                return arrayToNumpy(v);
+            else if constexpr (std::is_same_v<T, Value::List>) {
+                py::list list;
+                for (const auto& item : v)
+                    list.append(generic(item, apiModule));
+                return list;
+            } else if constexpr (std::is_same_v<T, Value::Dict>) {
+                py::dict dict;
+                for (const auto& [key, item] : v)
+                    dict[py::str(key)] = generic(item, apiModule);
+                return dict;
+            } else
+                return py::cast(v);
+        },
+        value.storage());
+}
+} // namespace
+
+py::object fromValue(const Value& value, std::string_view type, const char* apiModule) {
+    type = trim(type);
+    if (type.ends_with("| None"))
+        type = trim(type.substr(0, type.size() - 6));
+    if (value.isNone())
+        return py::none();
+    if (const auto* handle = value.tryAs<reflect::ObjectHandle>())
+        return wrapObject(reflect::ObjectTable::find(*handle));
+    if (const auto* list = value.tryAs<Value::List>(); list && unwrap(type, "list[")) {
+        py::list result;
+        for (const auto& item : *list)
+            result.append(fromValue(item, type, apiModule));
+        return result;
+    }
+    if (const auto* dict = value.tryAs<Value::Dict>(); dict && unwrap(type, "dict[str, ")) {
+        py::dict result;
+        for (const auto& [key, item] : *dict)
+            result[py::str(key)] = fromValue(item, type, apiModule);
+        return result;
+    }
+    const reflect::Registry& registry = reflect::Registry::get();
+    std::string name(type);
+    if (const auto* fields = value.tryAs<Value::Dict>()) {
+        const reflect::TypeInfo* info = registry.findType(name);
+        if (info && info->kind == reflect::TypeInfo::Kind::Struct) {
+            py::dict kwargs;
+            for (const auto& [key, item] : *fields) {
+                const reflect::PropertyInfo* property = info->findProperty(key);
+                kwargs[py::str(key)] = fromValue(item, property ? property->type : "", apiModule);
+            }
+            return apiAttribute(apiModule, info->name.c_str())(**kwargs);
+        }
+    }
+    if (const auto* number = value.tryAs<int64_t>()) {
+        if (registry.findEnum(name))
+            return apiAttribute(apiModule, name.c_str())(*number);
+    }
+    return generic(value, apiModule);
+}
+
+} // namespace sp::pybind

@@ -1,0 +1,23 @@
+#pragma once
+// Conversion between Python objects and registry Values, for the dynamic API (call_function,
+// get_property, set_property by name) that works beside the typed one through the same registry.
+
+#include <pybind11/pybind11.h>
+
+#include <string_view>
+
+#include "core/reflect/value.h"
+
+namespace sp::pybind {
+
+namespace py = ::pybind11;
+
+// None, bool, int (and IntEnum), float, str, list/tuple, dict, numpy arrays, the generated struct
+// dataclasses, engine objects and classes (anything with __sp_class__).
+reflect::Value toValue(py::handle object, std::string_view context);
+
+// `type` is the Python spelling the registry records for the value ("FVector", "list[AActor]",
+// "AActor | None"); it decides which struct, enum or object class to build.
+py::object fromValue(const reflect::Value& value, std::string_view type, const char* apiModule);
+
+} // namespace sp::pybind

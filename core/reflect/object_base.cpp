@@ -1,0 +1,104 @@
+#include "core/reflect/object_base.h"
+
+#include <mutex>
+#include <vector>
+
+#include "core/base/error.h"
+#include "core/reflect/type_info.h"
+
+namespace sp::reflect {
+
+namespace {
+struct Slot {
+    ObjectBase* object = nullptr;
+    uint32_t generation = 0;
+    std::string lastDebugName; // of the object that last lived here, for stale-handle messages
+};
+
+struct Table {
+    std::mutex mutex;
+    std::vector<Slot> slots{Slot{}}; // slot 0 is the null handle
+    std::vector<uint32_t> freeSlots;
+    size_t live = 0;
+};
+
+Table& table() {
+    static Table instance;
+    return instance;
+}
+} // namespace
+
+ObjectBase::ObjectBase() : handle_(ObjectTable::insert(this)) {}
+
+ObjectBase::~ObjectBase() { ObjectTable::erase(handle_); }
+
+std::string ObjectBase::GetDebugName() const { return GetClass().name; }
+
+bool ObjectBase::IsA(const TypeInfo& type) const { return GetClass().isChildOf(type); }
+
+ObjectHandle ObjectTable::insert(ObjectBase* object) {
+    Table& t = table();
+    std::lock_guard lock(t.mutex);
+    uint32_t index;
+    if (!t.freeSlots.empty()) {
+        index = t.freeSlots.back();
+        t.freeSlots.pop_back();
+    } else {
+        index = uint32_t(t.slots.size());
+        t.slots.emplace_back();
+    }
+    Slot& slot = t.slots[index];
+    slot.object = object;
+    slot.lastDebugName.clear();
+    ++t.live;
+    return {index, slot.generation};
+}
+
+void ObjectTable::rememberName(const ObjectBase& object) {
+    std::string name = object.GetDebugName();
+    Table& t = table();
+    std::lock_guard lock(t.mutex);
+    t.slots[object.GetHandle().index].lastDebugName = std::move(name);
+}
+
+void ObjectTable::erase(ObjectHandle handle) {
+    Table& t = table();
+    std::lock_guard lock(t.mutex);
+    Slot& slot = t.slots[handle.index];
+    slot.object = nullptr;
+    ++slot.generation;
+    t.freeSlots.push_back(handle.index);
+    --t.live;
+}
+
+ObjectBase* ObjectTable::find(ObjectHandle handle) {
+    Table& t = table();
+    std::lock_guard lock(t.mutex);
+    if (handle.index == 0 || handle.index >= t.slots.size())
+        return nullptr;
+    const Slot& slot = t.slots[handle.index];
+    return slot.generation == handle.generation ? slot.object : nullptr;
+}
+
+ObjectBase& ObjectTable::resolve(ObjectHandle handle, std::string_view context) {
+    SP_CHECK(!handle.isNull(), InvalidArgument, context, ": the object is None");
+    if (ObjectBase* object = find(handle))
+        return *object;
+    Table& t = table();
+    std::string name;
+    {
+        std::lock_guard lock(t.mutex);
+        if (handle.index < t.slots.size())
+            name = t.slots[handle.index].lastDebugName;
+    }
+    SP_THROW(StaleObject, context, ": ", name.empty() ? std::string("object") : name, " (handle ",
+             toString(handle), ") was destroyed");
+}
+
+size_t ObjectTable::liveCount() {
+    Table& t = table();
+    std::lock_guard lock(t.mutex);
+    return t.live;
+}
+
+} // namespace sp::reflect

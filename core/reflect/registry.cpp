@@ -1,0 +1,63 @@
+#include "core/reflect/registry.h"
+
+#include "core/base/error.h"
+
+namespace sp::reflect {
+
+Registry& Registry::get() {
+    static Registry registry;
+    return registry;
+}
+
+void Registry::add(const TypeInfo& type) {
+    auto [it, inserted] = types_.emplace(type.name, &type);
+    SP_CHECK(inserted || it->second == &type, InvalidArgument, "Registry::add(): two different types are named '",
+             type.name, "'");
+}
+
+void Registry::add(const EnumInfo& info) {
+    auto [it, inserted] = enums_.emplace(info.name, &info);
+    SP_CHECK(inserted || it->second == &info, InvalidArgument, "Registry::add(): two different enums are named '",
+             info.name, "'");
+}
+
+const TypeInfo* Registry::findType(std::string_view name) const {
+    auto it = types_.find(name);
+    return it == types_.end() ? nullptr : it->second;
+}
+
+const EnumInfo* Registry::findEnum(std::string_view name) const {
+    auto it = enums_.find(name);
+    return it == enums_.end() ? nullptr : it->second;
+}
+
+const TypeInfo& Registry::getClass(std::string_view name, std::string_view context) const {
+    const TypeInfo* type = findType(name);
+    SP_CHECK(type && type->kind == TypeInfo::Kind::Class, NotFound, context, ": class '", name,
+             "' is not registered");
+    return *type;
+}
+
+std::vector<const TypeInfo*> Registry::types() const {
+    std::vector<const TypeInfo*> result;
+    for (const auto& [name, type] : types_)
+        result.push_back(type);
+    return result;
+}
+
+std::vector<const EnumInfo*> Registry::enums() const {
+    std::vector<const EnumInfo*> result;
+    for (const auto& [name, info] : enums_)
+        result.push_back(info);
+    return result;
+}
+
+std::vector<const TypeInfo*> Registry::derivedClasses(const TypeInfo& base) const {
+    std::vector<const TypeInfo*> result;
+    for (const auto& [name, type] : types_)
+        if (type->isChildOf(base))
+            result.push_back(type);
+    return result;
+}
+
+} // namespace sp::reflect

@@ -1,0 +1,37 @@
+#pragma once
+// The registry: every reflected type by name. Generated code calls add() from one registration function
+// per generated module (no static initialisers, which a static library would silently drop), and the
+// engine calls those functions once at start-up.
+
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/reflect/type_info.h"
+
+namespace sp::reflect {
+
+class Registry {
+public:
+    static Registry& get();
+
+    // Adding the same TypeInfo twice is a no-op; two different types with one name is an error.
+    void add(const TypeInfo& type);
+    void add(const EnumInfo& info);
+
+    const TypeInfo* findType(std::string_view name) const;
+    const EnumInfo* findEnum(std::string_view name) const;
+    // Throws NotFound: "<context>: class 'AFoo' is not registered".
+    const TypeInfo& getClass(std::string_view name, std::string_view context) const;
+
+    std::vector<const TypeInfo*> types() const; // sorted by name
+    std::vector<const EnumInfo*> enums() const;
+    std::vector<const TypeInfo*> derivedClasses(const TypeInfo& base) const; // includes base, sorted
+
+private:
+    std::map<std::string, const TypeInfo*, std::less<>> types_;
+    std::map<std::string, const EnumInfo*, std::less<>> enums_;
+};
+
+} // namespace sp::reflect

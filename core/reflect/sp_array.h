@@ -1,0 +1,114 @@
+#pragma once
+// SpArray<T>: a named, typed n-dimensional array that crosses the Python boundary as a numpy array
+// without copying where it can (in-process it views the numpy buffer; results become numpy arrays that
+// own the C++ storage). The API follows the SPEAR paper's Fig. 8: getView(), setDataSource(), getPtr().
+
+#include <cstdint>
+#include <cstring>
+#include <initializer_list>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/base/error.h"
+#include "core/reflect/value.h"
+
+namespace sp::reflect {
+
+// IEEE half-precision storage (C++20 has no float16 type); arithmetic happens in numpy or GLSL.
+struct Half {
+    uint16_t bits = 0;
+};
+
+template <typename T> struct DTypeOf;
+template <> struct DTypeOf<bool> { static constexpr DType value = DType::Bool; };
+template <> struct DTypeOf<uint8_t> { static constexpr DType value = DType::UInt8; };
+template <> struct DTypeOf<int8_t> { static constexpr DType value = DType::Int8; };
+template <> struct DTypeOf<uint16_t> { static constexpr DType value = DType::UInt16; };
+template <> struct DTypeOf<int16_t> { static constexpr DType value = DType::Int16; };
+template <> struct DTypeOf<uint32_t> { static constexpr DType value = DType::UInt32; };
+template <> struct DTypeOf<int32_t> { static constexpr DType value = DType::Int32; };
+template <> struct DTypeOf<uint64_t> { static constexpr DType value = DType::UInt64; };
+template <> struct DTypeOf<int64_t> { static constexpr DType value = DType::Int64; };
+template <> struct DTypeOf<Half> { static constexpr DType value = DType::Float16; };
+template <> struct DTypeOf<float> { static constexpr DType value = DType::Float32; };
+template <> struct DTypeOf<double> { static constexpr DType value = DType::Float64; };
+
+// The untyped part, so that lists of arrays of different element types can be packed together.
+class SpArrayBase {
+public:
+    explicit SpArrayBase(std::string name, DType dtype) : name_(std::move(name)) { value_.dtype = dtype; }
+    virtual ~SpArrayBase() = default;
+
+    const std::string& getName() const { return name_; }
+    DType getDType() const { return value_.dtype; }
+    const std::vector<int64_t>& getShape() const { return value_.shape; }
+    int64_t getSize() const { return value_.data ? value_.elementCount() : 0; }
+    SpArrayBase* getPtr() { return this; }
+
+    const ArrayValue& value() const { return value_; }
+    // Adopts `value` (sharing its storage). Throws InvalidArgument when the dtype differs.
+    void assign(ArrayValue value, std::string_view context) {
+        SP_CHECK(value.dtype == value_.dtype, InvalidArgument, context, ": array '", name_, "' must have dtype ",
+                 dtypeName(value_.dtype), ", got ", dtypeName(value.dtype));
+        value_ = std::move(value);
+    }
+
+protected:
+    std::string name_;
+    ArrayValue value_;
+};
+
+template <typename T> class SpArray : public SpArrayBase {
+public:
+    using ElementType = T;
+
+    explicit SpArray(std::string name = "") : SpArrayBase(std::move(name), DTypeOf<T>::value) {}
+
+    std::span<T> getView() const { return {static_cast<T*>(value_.data), size_t(getSize())}; }
+    T* data() const { return static_cast<T*>(value_.data); }
+
+    // Takes ownership of `data`. `shape` may contain one -1, which is inferred; the default is 1-D.
+    void setDataSource(std::vector<T> data, std::vector<int64_t> shape = {-1}) {
+        auto storage = std::make_shared<std::vector<T>>(std::move(data));
+        value_.shape = resolveShape(std::move(shape), int64_t(storage->size()));
+        value_.data = storage->data();
+        value_.owner = std::move(storage);
+    }
+    void setDataSource(std::initializer_list<T> data) { setDataSource(std::vector<T>(data)); }
+
+    // Allocates zeroed storage of the given shape.
+    void resize(std::vector<int64_t> shape) {
+        int64_t count = 1;
+        for (int64_t extent : shape)
+            count *= extent;
+        setDataSource(std::vector<T>(size_t(count)), std::move(shape));
+    }
+
+private:
+    std::vector<int64_t> resolveShape(std::vector<int64_t> shape, int64_t count) const {
+        int64_t known = 1;
+        int wildcard = -1;
+        for (size_t i = 0; i < shape.size(); ++i) {
+            if (shape[i] == -1) {
+                SP_CHECK(wildcard < 0, InvalidArgument, "SpArray::setDataSource(): array '", name_,
+                         "' has more than one -1 in its shape");
+                wildcard = int(i);
+            } else {
+                known *= shape[i];
+            }
+        }
+        if (wildcard >= 0) {
+            SP_CHECK(known > 0 && count % known == 0, InvalidArgument, "SpArray::setDataSource(): array '", name_,
+                     "' has ", count, " elements, which do not fit the shape");
+            shape[size_t(wildcard)] = count / known;
+            known = count;
+        }
+        SP_CHECK(known == count, InvalidArgument, "SpArray::setDataSource(): array '", name_, "' has ", count,
+                 " elements but its shape holds ", known);
+        return shape;
+    }
+};
+
+} // namespace sp::reflect

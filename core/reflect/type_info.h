@@ -1,0 +1,82 @@
+#pragma once
+// Runtime descriptions of reflected types, filled in by generated code (*.gen.cpp). One TypeInfo per
+// reflected class or struct (its properties, functions, parent and factory) and one EnumInfo per enum.
+// Invokers are plain function pointers over Values so that the dynamic Python path and the RPC server
+// share one dispatch mechanism.
+
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "core/reflect/value.h"
+
+namespace sp::reflect {
+
+class ObjectBase;
+
+using CallArgs = Value::Dict;
+
+struct ParamInfo {
+    std::string name;
+    std::string type; // Python spelling, for messages and introspection: "float", "list[AActor]"
+    bool hasDefault = false;
+    bool isOut = false; // non-const lvalue reference: returned with the result, not passed in
+};
+
+struct PropertyInfo {
+    std::string name;
+    std::string type;
+    std::string doc;
+    bool readOnly = false;
+    // `self` points to the declaring class's ObjectBase (classes) or to the struct itself (structs).
+    Value (*get)(const void* self) = nullptr;
+    void (*set)(void* self, const Value& value) = nullptr;
+};
+
+struct FunctionInfo {
+    std::string name;
+    std::string doc;
+    std::string returnType; // Python spelling; "None" for void
+    std::vector<ParamInfo> params;
+    bool isStatic = false;
+    bool isConst = false;
+    // Converts `args` (by parameter name) to C++ values, calls, and returns the result: the return value,
+    // or, when the function has out-parameters, a dict with "ReturnValue" and one entry per out-parameter.
+    Value (*invoke)(void* self, const CallArgs& args) = nullptr;
+};
+
+class TypeInfo {
+public:
+    enum class Kind { Class, Struct };
+
+    std::string name;
+    std::string doc;
+    Kind kind = Kind::Class;
+    const TypeInfo* parent = nullptr;
+    bool isAbstract = false;
+    std::vector<PropertyInfo> properties; // declared by this type only; see findProperty
+    std::vector<FunctionInfo> functions;
+    ObjectBase* (*create)() = nullptr; // classes that can be instantiated; owned by the caller
+
+    bool isChildOf(const TypeInfo& other) const; // true for the type itself
+    const PropertyInfo* findProperty(std::string_view propertyName) const; // searches the parent chain
+    const FunctionInfo* findFunction(std::string_view functionName) const;
+    std::vector<const PropertyInfo*> allProperties() const; // parents first
+    std::vector<const FunctionInfo*> allFunctions() const;
+};
+
+struct EnumInfo {
+    std::string name;
+    std::string doc;
+    std::vector<std::pair<std::string, int64_t>> entries;
+
+    bool contains(int64_t value) const;
+    std::string_view nameOf(int64_t value) const; // empty when not an entry
+};
+
+// Declared here, specialised by generated code for each reflected enum. (An enum cannot carry a
+// generated member the way SP_GENERATED_BODY gives classes StaticClass(), so this is the hook.)
+template <typename E> const EnumInfo& StaticEnum();
+
+} // namespace sp::reflect

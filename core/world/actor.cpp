@@ -1,0 +1,175 @@
+#include "core/world/actor.h"
+
+#include <algorithm>
+
+#include "core/base/error.h"
+#include "core/world/primitive_component.h"
+
+AActor::AActor() = default;
+
+AActor::~AActor() {
+    // Children first, so that no component outlives the one it is attached to during teardown.
+    RootComponent = nullptr;
+    while (!components_.empty()) {
+        sp::reflect::ObjectTable::rememberName(*components_.back());
+        components_.pop_back();
+    }
+}
+
+void AActor::adoptComponent(std::unique_ptr<UActorComponent> component, std::string name) {
+    for (const auto& existing : components_)
+        SP_CHECK(existing->GetName() != name, sp::InvalidArgument, "AActor.CreateComponent(): ", GetDebugName(),
+                 " already has a component named '", name, "'");
+    component->InitObject(std::move(name), GetWorld());
+    component->SetOwner(this);
+    if (auto* scene = dynamic_cast<USceneComponent*>(component.get())) {
+        if (!RootComponent)
+            RootComponent = scene;
+        else
+            scene->AttachToComponent(RootComponent, false);
+    }
+    UActorComponent* raw = component.get();
+    components_.push_back(std::move(component));
+    if (begunPlay_)
+        raw->BeginPlay();
+}
+
+UActorComponent* AActor::CreateComponent(const UClass& type, std::string name) {
+    SP_CHECK(type.isChildOf(UActorComponent::StaticClass()) && type.create, sp::InvalidArgument,
+             "AActor.CreateComponent(): class '", type.name, "' is not a component class that can be created");
+    std::unique_ptr<UActorComponent> component(static_cast<UActorComponent*>(type.create()));
+    UActorComponent* raw = component.get();
+    adoptComponent(std::move(component), std::move(name));
+    return raw;
+}
+
+void AActor::DestroyComponent(UActorComponent* component) {
+    auto it = std::find_if(components_.begin(), components_.end(),
+                           [&](const auto& owned) { return owned.get() == component; });
+    SP_CHECK(it != components_.end(), sp::InvalidArgument, "AActor.DestroyComponent(): ",
+             component->GetDebugName(), " is not a component of ", GetDebugName());
+    SP_CHECK(component != RootComponent, sp::InvalidArgument, "AActor.DestroyComponent(): ",
+             component->GetDebugName(), " is the root component of ", GetDebugName());
+    if (begunPlay_)
+        component->EndPlay();
+    sp::reflect::ObjectTable::rememberName(*component);
+    components_.erase(it);
+}
+
+void AActor::SetWorldForComponents() {
+    for (const auto& component : components_)
+        component->InitObject(component->GetName(), GetWorld());
+}
+
+void AActor::SetRootComponent(USceneComponent* NewRootComponent) {
+    SP_CHECK(NewRootComponent && NewRootComponent->GetOwner() == this, sp::InvalidArgument,
+             "AActor.SetRootComponent(): the new root must be a component of ", GetDebugName());
+    NewRootComponent->DetachFromComponent(true);
+    if (RootComponent && RootComponent != NewRootComponent)
+        RootComponent->AttachToComponent(NewRootComponent, true);
+    RootComponent = NewRootComponent;
+}
+
+FVector AActor::GetActorLocation() const { return RootComponent ? RootComponent->GetComponentLocation() : FVector{}; }
+
+bool AActor::SetActorLocation(const FVector& NewLocation) {
+    if (!RootComponent)
+        return false;
+    RootComponent->SetWorldLocation(NewLocation);
+    return true;
+}
+
+FRotator AActor::GetActorRotation() const {
+    return RootComponent ? RootComponent->GetComponentRotation() : FRotator{};
+}
+
+bool AActor::SetActorRotation(const FRotator& NewRotation) {
+    if (!RootComponent)
+        return false;
+    RootComponent->SetWorldRotation(NewRotation);
+    return true;
+}
+
+bool AActor::K2_SetActorLocationAndRotation(const FVector& NewLocation, const FRotator& NewRotation, bool, bool) {
+    if (!RootComponent)
+        return false;
+    FTransform world = RootComponent->GetComponentTransform();
+    world.Translation = NewLocation;
+    world.Rotation = FQuat::fromEigen(NewRotation.toQuaternion());
+    RootComponent->SetWorldTransform(world);
+    return true;
+}
+
+FVector AActor::GetActorScale3D() const {
+    return RootComponent ? RootComponent->GetComponentScale() : FVector{1.0, 1.0, 1.0};
+}
+
+void AActor::SetActorScale3D(const FVector& NewScale3D) {
+    if (!RootComponent)
+        return;
+    FTransform world = RootComponent->GetComponentTransform();
+    world.Scale3D = NewScale3D;
+    RootComponent->SetWorldTransform(world);
+}
+
+FTransform AActor::GetActorTransform() const {
+    return RootComponent ? RootComponent->GetComponentTransform() : FTransform{};
+}
+
+bool AActor::SetActorTransform(const FTransform& NewTransform) {
+    if (!RootComponent)
+        return false;
+    RootComponent->SetWorldTransform(NewTransform);
+    return true;
+}
+
+FVector AActor::GetActorForwardVector() const {
+    return RootComponent ? RootComponent->GetForwardVector() : FVector{1.0, 0.0, 0.0};
+}
+
+void AActor::GetActorBounds(bool /*bOnlyCollidingComponents*/, FVector& Origin, FVector& BoxExtent) const {
+    // Collision is not modelled separately from geometry yet, so both modes use every primitive.
+    Eigen::AlignedBox3d bounds;
+    for (const auto& component : components_)
+        if (const auto* primitive = dynamic_cast<const UPrimitiveComponent*>(component.get()))
+            bounds.extend(primitive->GetWorldBounds());
+    Origin = bounds.isEmpty() ? GetActorLocation() : FVector::fromEigen(bounds.center());
+    BoxExtent = bounds.isEmpty() ? FVector{} : FVector::fromEigen(bounds.sizes() / 2.0);
+}
+
+bool AActor::ActorHasTag(const std::string& Tag) const {
+    return std::find(Tags.begin(), Tags.end(), Tag) != Tags.end();
+}
+
+std::vector<UActorComponent*> AActor::K2_GetComponents() const {
+    std::vector<UActorComponent*> result;
+    for (const auto& component : components_)
+        result.push_back(component.get());
+    return result;
+}
+
+UActorComponent* AActor::GetComponentByClass(TSubclassOf<UActorComponent> ComponentClass) const {
+    SP_CHECK(ComponentClass, sp::InvalidArgument, "AActor.GetComponentByClass(): ComponentClass is None");
+    for (const auto& component : components_)
+        if (component->IsA(*ComponentClass.Get()))
+            return component.get();
+    return nullptr;
+}
+
+void AActor::BeginPlay() {
+    begunPlay_ = true;
+    for (const auto& component : components_)
+        component->BeginPlay();
+}
+
+void AActor::Tick(double deltaSeconds) {
+    for (const auto& component : components_)
+        if (component->bTickEnabled)
+            component->TickComponent(deltaSeconds);
+}
+
+void AActor::EndPlay() {
+    for (const auto& component : components_)
+        component->EndPlay();
+    begunPlay_ = false;
+}

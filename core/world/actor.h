@@ -1,0 +1,115 @@
+#pragma once
+// AActor: an object placed in a world, made of components. Its transform is its root component's.
+
+#include <memory>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "core/reflect/class_ref.h"
+#include "core/world/actor_component.h"
+#include "core/world/scene_component.h"
+
+/// An object that can be placed in a world.
+SPCLASS()
+class AActor : public UObject {
+    SP_GENERATED_BODY()
+public:
+    AActor();
+    ~AActor() override;
+
+    /// Tags for finding this actor.
+    SPPROPERTY()
+    std::vector<std::string> Tags;
+
+    /// The component that defines the actor's transform.
+    SPPROPERTY(ReadOnly)
+    USceneComponent* RootComponent = nullptr;
+
+    /// Makes NewRootComponent (one of this actor's components) the root.
+    SPFUNCTION()
+    void SetRootComponent(USceneComponent* NewRootComponent);
+
+    /// Returns the world-space location of the root component.
+    SPFUNCTION()
+    FVector GetActorLocation() const;
+
+    /// Moves the actor; returns true when it moved.
+    SPFUNCTION()
+    bool SetActorLocation(const FVector& NewLocation);
+
+    /// Returns the world-space rotation of the root component.
+    SPFUNCTION()
+    FRotator GetActorRotation() const;
+
+    /// Rotates the actor; returns true when it rotated.
+    SPFUNCTION()
+    bool SetActorRotation(const FRotator& NewRotation);
+
+    /// Moves and rotates the actor (bSweep is accepted for UE compatibility; sweeps are not supported).
+    SPFUNCTION()
+    bool K2_SetActorLocationAndRotation(const FVector& NewLocation, const FRotator& NewRotation,
+                                        bool bSweep = false, bool bTeleport = true);
+
+    /// Returns the world-space scale of the root component.
+    SPFUNCTION()
+    FVector GetActorScale3D() const;
+
+    /// Sets the world-space scale of the root component.
+    SPFUNCTION()
+    void SetActorScale3D(const FVector& NewScale3D);
+
+    /// Returns the world-space transform of the root component.
+    SPFUNCTION()
+    FTransform GetActorTransform() const;
+
+    /// Sets the world-space transform of the root component.
+    SPFUNCTION()
+    bool SetActorTransform(const FTransform& NewTransform);
+
+    /// Returns the unit vector along the actor's X axis.
+    SPFUNCTION()
+    FVector GetActorForwardVector() const;
+
+    /// Returns the world-space bounds of the actor's primitives as centre Origin and half size BoxExtent.
+    SPFUNCTION()
+    void GetActorBounds(bool bOnlyCollidingComponents, FVector& Origin, FVector& BoxExtent) const;
+
+    /// Returns true when Tags contains Tag.
+    SPFUNCTION()
+    bool ActorHasTag(const std::string& Tag) const;
+
+    /// Returns all components of this actor, in creation order.
+    SPFUNCTION()
+    std::vector<UActorComponent*> K2_GetComponents() const;
+
+    /// Returns the first component of class ComponentClass (or a subclass), or None.
+    SPFUNCTION(DeterminesOutputType = ComponentClass)
+    UActorComponent* GetComponentByClass(TSubclassOf<UActorComponent> ComponentClass) const;
+
+    // Creates a component owned by this actor. The first scene component becomes the root; later ones
+    // are attached to the root. Use in constructors (like UE's CreateDefaultSubobject) or at run time.
+    template <typename T> T* CreateDefaultSubobject(std::string name) {
+        static_assert(std::is_base_of_v<UActorComponent, T>);
+        auto component = std::make_unique<T>();
+        T* raw = component.get();
+        adoptComponent(std::move(component), std::move(name));
+        return raw;
+    }
+    UActorComponent* CreateComponent(const UClass& type, std::string name);
+    void DestroyComponent(UActorComponent* component);
+    const std::vector<std::unique_ptr<UActorComponent>>& GetComponentList() const { return components_; }
+
+    // Engine hooks.
+    virtual void BeginPlay();
+    virtual void Tick(double deltaSeconds);
+    virtual void EndPlay();
+    bool HasBegunPlay() const { return begunPlay_; }
+    void SetWorldForComponents();
+
+private:
+    void adoptComponent(std::unique_ptr<UActorComponent> component, std::string name);
+
+    std::vector<std::unique_ptr<UActorComponent>> components_;
+    bool begunPlay_ = false;
+};

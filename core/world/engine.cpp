@@ -1,0 +1,81 @@
+#include "core/world/engine.h"
+
+#include "core/base/error.h"
+
+namespace sp::world {
+
+Engine::Engine() : Engine(Settings{}) {}
+
+Engine::Engine(Settings settings) : settings_(settings) {
+    SP_CHECK(settings_.fixedDeltaSeconds > 0.0, InvalidArgument, "Engine(): fixedDeltaSeconds must be > 0, got ",
+             settings_.fixedDeltaSeconds);
+    registerEngineTypes();
+    gameWorld_ = std::make_unique<UWorld>();
+    gameWorld_->SetEngine(this);
+}
+
+Engine::~Engine() = default;
+
+std::string_view Engine::toString(FrameState state) {
+    switch (state) {
+    case FrameState::Idle:
+        return "idle";
+    case FrameState::BeginFrame:
+        return "inside begin_frame";
+    case FrameState::FrameExecuted:
+        return "between begin_frame and end_frame";
+    case FrameState::EndFrame:
+        return "inside end_frame";
+    }
+    return "unknown";
+}
+
+void Engine::expectState(FrameState expected, std::string_view function) const {
+    SP_CHECK(state_ == expected, InvalidState, function, ": the engine is ", toString(state_), ", expected ",
+             toString(expected));
+}
+
+void Engine::beginFrame() {
+    SP_CHECK(state_ != FrameState::FrameExecuted, InvalidState,
+             "begin_frame(): the previous frame has not been closed; use 'with instance.end_frame():' first");
+    expectState(FrameState::Idle, "begin_frame()");
+    state_ = FrameState::BeginFrame;
+}
+
+void Engine::executeFrame() {
+    expectState(FrameState::BeginFrame, "execute_frame()");
+    state_ = FrameState::FrameExecuted;
+    ++frameCount_;
+    gameWorld_->Tick(settings_.fixedDeltaSeconds);
+}
+
+void Engine::beginEndFrame() {
+    SP_CHECK(state_ != FrameState::Idle, InvalidState,
+             "end_frame(): no frame has run; use 'with instance.begin_frame():' first");
+    expectState(FrameState::FrameExecuted, "end_frame()");
+    state_ = FrameState::EndFrame;
+}
+
+void Engine::endFrame() {
+    expectState(FrameState::EndFrame, "end_frame()");
+    state_ = FrameState::Idle;
+}
+
+void Engine::abortFrame() {
+    if (state_ == FrameState::BeginFrame) {
+        try {
+            executeFrame();
+        } catch (...) {
+            // The frame is over either way; the user's original error is what gets reported.
+        }
+    }
+    state_ = FrameState::Idle;
+}
+
+void Engine::checkInFrame(std::string_view context) const {
+    SP_CHECK(IsInFrame(), InvalidState, context,
+             ": called outside a frame; engine objects are used inside 'with instance.begin_frame():' or "
+             "'with instance.end_frame():'");
+}
+
+} // namespace sp::world

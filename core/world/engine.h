@@ -1,0 +1,68 @@
+#pragma once
+// Engine: owns the worlds and runs the frame loop that SPEAR's programming model is built on:
+//
+//   begin_frame block   -> user work at the start of a frame
+//   executeFrame()      -> the engine ticks every actor (then physics and rendering) once, fixed step
+//   end_frame block     -> user work reading results of the same frame
+//
+// Calls on engine objects are only valid inside the two blocks; the binding layers check that through
+// checkInFrame(), so the rule is the same in-process and over RPC.
+
+#include <cstdint>
+#include <memory>
+#include <string_view>
+
+#include "core/world/world.h"
+
+namespace sp::world {
+
+// Registers every reflected engine type with the registry; idempotent.
+void registerEngineTypes();
+
+class Engine {
+public:
+    enum class FrameState { Idle, BeginFrame, FrameExecuted, EndFrame };
+
+    struct Settings {
+        double fixedDeltaSeconds = 1.0 / 60.0;
+    };
+
+    Engine();
+    explicit Engine(Settings settings);
+    ~Engine();
+    Engine(const Engine&) = delete;
+    Engine& operator=(const Engine&) = delete;
+
+    UWorld& GetGameWorld() { return *gameWorld_; }
+    const Settings& GetSettings() const { return settings_; }
+
+    // Idle -> BeginFrame. Throws InvalidState if a frame is already open.
+    void beginFrame();
+    // BeginFrame -> FrameExecuted: ticks the world once. If the tick throws, the frame still ends
+    // (state FrameExecuted) so that the engine stays usable, and the error propagates.
+    void executeFrame();
+    // FrameExecuted -> EndFrame.
+    void beginEndFrame();
+    // EndFrame -> Idle.
+    void endFrame();
+    // Ends whatever frame is open (used when a user's block raised): runs the tick if it has not run.
+    void abortFrame();
+
+    FrameState GetFrameState() const { return state_; }
+    bool IsInFrame() const { return state_ == FrameState::BeginFrame || state_ == FrameState::EndFrame; }
+    // Throws InvalidState: "<context>: called outside a frame; use 'with instance.begin_frame():' ...".
+    void checkInFrame(std::string_view context) const;
+    int64_t GetFrameCount() const { return frameCount_; }
+
+    static std::string_view toString(FrameState state);
+
+private:
+    void expectState(FrameState expected, std::string_view function) const;
+
+    Settings settings_;
+    std::unique_ptr<UWorld> gameWorld_;
+    FrameState state_ = FrameState::Idle;
+    int64_t frameCount_ = 0;
+};
+
+} // namespace sp::world

@@ -1,0 +1,131 @@
+#include "core/world/scene_component.h"
+
+#include <algorithm>
+
+#include "core/base/error.h"
+#include "core/world/actor.h"
+
+USceneComponent::~USceneComponent() {
+    // Children of a destroyed component stay where they are in the world.
+    for (USceneComponent* child : std::vector<USceneComponent*>(children_))
+        child->DetachFromComponent(true);
+    if (parent_)
+        std::erase(parent_->children_, this);
+}
+
+void USceneComponent::checkMovable(const char* function) const {
+    const AActor* owner = GetOwner();
+    SP_CHECK(Mobility != EComponentMobility::Static || !owner || !owner->HasBegunPlay(), sp::InvalidState,
+             "USceneComponent.", function, "(): ", GetDebugName(),
+             " is static; set its Mobility to Movable before moving it");
+}
+
+void USceneComponent::SetRelativeLocation(const FVector& NewLocation) {
+    checkMovable("SetRelativeLocation");
+    RelativeLocation = NewLocation;
+}
+
+void USceneComponent::SetRelativeRotation(const FRotator& NewRotation) {
+    checkMovable("SetRelativeRotation");
+    RelativeRotation = NewRotation;
+}
+
+void USceneComponent::SetRelativeScale3D(const FVector& NewScale3D) {
+    checkMovable("SetRelativeScale3D");
+    RelativeScale3D = NewScale3D;
+}
+
+void USceneComponent::SetRelativeTransform(const FTransform& NewTransform) {
+    checkMovable("SetRelativeTransform");
+    RelativeLocation = NewTransform.Translation;
+    RelativeRotation = FRotator::fromQuaternion(NewTransform.Rotation.toEigen());
+    RelativeScale3D = NewTransform.Scale3D;
+}
+
+FTransform USceneComponent::GetRelativeTransform() const {
+    return {RelativeLocation, FQuat::fromEigen(RelativeRotation.toQuaternion()), RelativeScale3D};
+}
+
+FTransform USceneComponent::GetComponentTransform() const {
+    FTransform transform = GetRelativeTransform();
+    return parent_ ? transform.composedWith(parent_->GetComponentTransform()) : transform;
+}
+
+FVector USceneComponent::GetComponentLocation() const { return GetComponentTransform().Translation; }
+
+FRotator USceneComponent::GetComponentRotation() const {
+    return FRotator::fromQuaternion(GetComponentTransform().Rotation.toEigen());
+}
+
+FVector USceneComponent::GetComponentScale() const { return GetComponentTransform().Scale3D; }
+
+void USceneComponent::SetWorldTransform(const FTransform& NewTransform) {
+    SetRelativeTransform(parent_ ? NewTransform.relativeTo(parent_->GetComponentTransform()) : NewTransform);
+}
+
+void USceneComponent::SetWorldLocation(const FVector& NewLocation) {
+    FTransform world = GetComponentTransform();
+    world.Translation = NewLocation;
+    SetWorldTransform(world);
+}
+
+void USceneComponent::SetWorldRotation(const FRotator& NewRotation) {
+    FTransform world = GetComponentTransform();
+    world.Rotation = FQuat::fromEigen(NewRotation.toQuaternion());
+    SetWorldTransform(world);
+}
+
+FVector USceneComponent::GetForwardVector() const {
+    return FVector::fromEigen(GetComponentTransform().Rotation.toEigen() * Eigen::Vector3d::UnitX());
+}
+
+FVector USceneComponent::GetRightVector() const {
+    return FVector::fromEigen(GetComponentTransform().Rotation.toEigen() * Eigen::Vector3d::UnitY());
+}
+
+FVector USceneComponent::GetUpVector() const {
+    return FVector::fromEigen(GetComponentTransform().Rotation.toEigen() * Eigen::Vector3d::UnitZ());
+}
+
+void USceneComponent::AttachToComponent(USceneComponent* Parent, bool bKeepWorldTransform) {
+    SP_CHECK(Parent, sp::InvalidArgument, "USceneComponent.AttachToComponent(): Parent is None");
+    for (const USceneComponent* p = Parent; p; p = p->parent_)
+        SP_CHECK(p != this, sp::InvalidArgument, "USceneComponent.AttachToComponent(): attaching ", GetDebugName(),
+                 " to ", Parent->GetDebugName(), " would make a cycle");
+    const FTransform world = GetComponentTransform();
+    if (parent_)
+        std::erase(parent_->children_, this);
+    parent_ = Parent;
+    Parent->children_.push_back(this);
+    if (bKeepWorldTransform) {
+        const FTransform relative = world.relativeTo(Parent->GetComponentTransform());
+        RelativeLocation = relative.Translation;
+        RelativeRotation = FRotator::fromQuaternion(relative.Rotation.toEigen());
+        RelativeScale3D = relative.Scale3D;
+    }
+}
+
+void USceneComponent::DetachFromComponent(bool bKeepWorldTransform) {
+    if (!parent_)
+        return;
+    const FTransform world = GetComponentTransform();
+    std::erase(parent_->children_, this);
+    parent_ = nullptr;
+    if (bKeepWorldTransform) {
+        RelativeLocation = world.Translation;
+        RelativeRotation = FRotator::fromQuaternion(world.Rotation.toEigen());
+        RelativeScale3D = world.Scale3D;
+    }
+}
+
+std::vector<USceneComponent*> USceneComponent::GetChildrenComponents(bool bIncludeAllDescendants) const {
+    std::vector<USceneComponent*> result;
+    for (USceneComponent* child : children_) {
+        result.push_back(child);
+        if (bIncludeAllDescendants) {
+            auto descendants = child->GetChildrenComponents(true);
+            result.insert(result.end(), descendants.begin(), descendants.end());
+        }
+    }
+    return result;
+}

@@ -1,0 +1,51 @@
+#include "core/world/static_mesh_component.h"
+
+#include <array>
+#include <string_view>
+
+#include "core/base/error.h"
+
+namespace {
+// Built-in shapes, unit sized like UE's BasicShapes but in metres, centred on the origin.
+struct BasicShape {
+    std::string_view name;
+    Eigen::Vector3d halfExtent;
+};
+constexpr std::string_view kBasicShapesPrefix = "/Engine/BasicShapes/";
+const std::array<BasicShape, 4> kBasicShapes{{{"Cube", {0.5, 0.5, 0.5}},
+                                              {"Sphere", {0.5, 0.5, 0.5}},
+                                              {"Cylinder", {0.5, 0.5, 0.5}},
+                                              {"Plane", {0.5, 0.5, 0.0}}}};
+
+const BasicShape* findBasicShape(std::string_view mesh) {
+    if (!mesh.starts_with(kBasicShapesPrefix))
+        return nullptr;
+    mesh.remove_prefix(kBasicShapesPrefix.size());
+    for (const auto& shape : kBasicShapes)
+        if (shape.name == mesh)
+            return &shape;
+    return nullptr;
+}
+} // namespace
+
+bool UStaticMeshComponent::SetStaticMesh(const std::string& NewMesh) {
+    if (!NewMesh.empty() && !findBasicShape(NewMesh))
+        return false;
+    StaticMesh = NewMesh;
+    return true;
+}
+
+void UStaticMeshComponent::SetMaterial(int ElementIndex, const std::string& Material) {
+    SP_CHECK(ElementIndex >= 0 && ElementIndex < 256, sp::InvalidArgument,
+             "UStaticMeshComponent.SetMaterial(): ElementIndex ", ElementIndex, " is out of range [0, 256)");
+    if (Materials.size() <= size_t(ElementIndex))
+        Materials.resize(size_t(ElementIndex) + 1);
+    Materials[size_t(ElementIndex)] = Material;
+}
+
+Eigen::AlignedBox3d UStaticMeshComponent::GetLocalBounds() const {
+    const BasicShape* shape = findBasicShape(StaticMesh);
+    if (!shape)
+        return {};
+    return {-shape->halfExtent, shape->halfExtent};
+}

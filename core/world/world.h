@@ -1,0 +1,106 @@
+#pragma once
+// UWorld: owns the actors of one world and offers SPEAR's world services (spawn, destroy, find by name,
+// tag or class, components by name or class). Service functions keep SPEAR's snake_case names and, like
+// every reflected function, take keyword arguments in Python.
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/reflect/class_ref.h"
+#include "core/world/actor.h"
+
+namespace sp::world {
+class Engine;
+}
+
+/// A world: the actors that exist together, and the services to create and find them.
+SPCLASS()
+class UWorld : public UObject {
+    SP_GENERATED_BODY()
+public:
+    UWorld();
+    ~UWorld() override;
+
+    /// Spawns an actor of class uclass at location and rotation; name must be unique in the world (empty: generated).
+    SPFUNCTION(DeterminesOutputType = uclass, NotNull)
+    AActor* spawn_actor(TSubclassOf<AActor> uclass, const FVector& location = FVector(),
+                        const FRotator& rotation = FRotator(), const std::string& name = "",
+                        const std::vector<std::string>& tags = {});
+
+    /// Destroys actor and its components; its handles become invalid.
+    SPFUNCTION()
+    void destroy_actor(AActor* actor);
+
+    /// Returns the actor called name, or None.
+    SPFUNCTION()
+    AActor* find_actor_by_name(const std::string& name) const;
+
+    /// Returns every actor that has tag, in spawn order.
+    SPFUNCTION()
+    std::vector<AActor*> find_actors_by_tag(const std::string& tag) const;
+
+    /// Returns the first actor of class uclass or a subclass of it, or None.
+    SPFUNCTION(DeterminesOutputType = uclass)
+    AActor* find_actor_by_class(TSubclassOf<AActor> uclass) const;
+
+    /// Returns every actor of class uclass or a subclass of it, in spawn order.
+    SPFUNCTION(DeterminesOutputType = uclass)
+    std::vector<AActor*> find_actors_by_class(TSubclassOf<AActor> uclass) const;
+
+    /// Returns every actor of class uclass or a subclass of it, by name.
+    SPFUNCTION(DeterminesOutputType = uclass)
+    std::map<std::string, AActor*> find_actors_by_class_as_dict(TSubclassOf<AActor> uclass) const;
+
+    /// Returns every actor in the world, in spawn order.
+    SPFUNCTION()
+    std::vector<AActor*> find_actors() const;
+
+    /// Returns the component of actor called component_name, or None.
+    SPFUNCTION()
+    UActorComponent* get_component_by_name(AActor* actor, const std::string& component_name) const;
+
+    /// Returns the components of actor of class uclass or a subclass of it.
+    SPFUNCTION(DeterminesOutputType = uclass)
+    std::vector<UActorComponent*> get_components_by_class(AActor* actor, TSubclassOf<UActorComponent> uclass) const;
+
+    /// Returns the components of actor of class uclass or a subclass of it, by name.
+    SPFUNCTION(DeterminesOutputType = uclass)
+    std::map<std::string, UActorComponent*> get_components_by_class_as_dict(
+        AActor* actor, TSubclassOf<UActorComponent> uclass) const;
+
+    /// Returns the class default object of uclass: an instance outside the world holding the class defaults.
+    SPFUNCTION(DeterminesOutputType = uclass, NotNull)
+    UObject* get_default_object(TSubclassOf<UObject> uclass);
+
+    /// Returns the number of actors in the world.
+    SPFUNCTION()
+    int get_actor_count() const { return int(actors_.size()); }
+
+    /// Returns the simulated time of this world in seconds.
+    SPFUNCTION()
+    double get_time_seconds() const { return timeSeconds_; }
+
+    /// Returns the number of frames this world has ticked.
+    SPFUNCTION()
+    int64_t get_frame_count() const { return frameCount_; }
+
+    // Advances every actor by one fixed step.
+    void Tick(double deltaSeconds);
+
+    void SetEngine(sp::world::Engine* engine) { engine_ = engine; }
+    sp::world::Engine* GetEngine() const { return engine_; }
+
+private:
+    std::string uniqueActorName(const UClass& type) const;
+
+    sp::world::Engine* engine_ = nullptr;
+    std::vector<std::unique_ptr<AActor>> actors_; // spawn order: keeps queries and ticks deterministic
+    std::map<const UClass*, std::unique_ptr<UObject>> defaultObjects_;
+    mutable std::map<std::string, int> nameCounters_; // per name prefix; never reused
+    double timeSeconds_ = 0.0;
+    int64_t frameCount_ = 0;
+    bool ticking_ = false;
+    std::vector<AActor*> pendingDestroy_;
+};

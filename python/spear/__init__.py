@@ -1,0 +1,20 @@
+"""spear: a simulator for embodied-AI and synthetic-data research, typed end to end.
+
+Every engine class, struct and enum is importable from here with its full typed API (generated from
+the engine's reflected C++ headers): spear.AActor, spear.FVector, spear.EComponentMobility, ...
+"""
+
+from spear._engine.api import *  # noqa: F403
+from spear._engine.api import __all__ as _api_all
+from spear.errors import InvalidArgumentError, InvalidStateError, NotFoundError, SpearError, StaleObjectError
+from spear.instance import Instance
+
+__all__ = [
+    *_api_all,
+    "Instance",
+    "SpearError",
+    "InvalidArgumentError",
+    "InvalidStateError",
+    "NotFoundError",
+    "StaleObjectError",
+]

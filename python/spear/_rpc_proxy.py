@@ -1,0 +1,75 @@
+"""Base of the generated RPC proxy classes (spear._engine.rpc).
+
+A proxy holds a handle and the client that owns it; every reflected call becomes one request through
+that client. The client (the transport) implements the RpcClient protocol below.
+"""
+
+from __future__ import annotations
+
+from typing import Any, ClassVar, Protocol
+
+from spear._object import SpObject
+
+
+class _Default:
+    """Marks an argument left at its default: it is not sent, and the server applies the C++ default."""
+
+    _instance: ClassVar[_Default | None] = None
+
+    def __repr__(self) -> str:
+        return "<default>"
+
+
+DEFAULT: Any = _Default()
+
+
+class RpcClient(Protocol):
+    def call(self, handle: tuple[int, int], function: str, args: dict[str, Any], result_type: str) -> Any: ...
+
+    def get_property(self, handle: tuple[int, int], name: str, result_type: str) -> Any: ...
+
+    def set_property(self, handle: tuple[int, int], name: str, value: Any) -> None: ...
+
+
+_PROXIES: dict[str, type[ObjectProxy]] = {}
+
+
+def register_proxy(cls: type[ObjectProxy]) -> None:
+    """Records the proxy class for its engine class name, so that results can be wrapped by class."""
+    _PROXIES[cls.__sp_class__] = cls
+
+
+def proxy_class(class_name: str) -> type[ObjectProxy]:
+    return _PROXIES[class_name]
+
+
+class ObjectProxy(SpObject):
+    """An engine object on the other side of an RPC connection."""
+
+    __slots__ = ("_sp_client", "_sp_handle")
+
+    def __init__(self, client: RpcClient, handle: tuple[int, int]) -> None:
+        self._sp_client = client
+        self._sp_handle = handle
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, ObjectProxy) and other._sp_handle == self._sp_handle
+
+    def __hash__(self) -> int:
+        return hash(self._sp_handle)
+
+    def __repr__(self) -> str:
+        return f"<{type(self).__name__} (remote) {self._sp_handle[0]}:{self._sp_handle[1]}>"
+
+    def _sp_call(self, function: str, args: dict[str, Any], result_type: str, result_tuple: Any = None) -> Any:
+        sent = {name: value for name, value in args.items() if value is not DEFAULT}
+        result = self._sp_client.call(self._sp_handle, function, sent, result_type)
+        if result_tuple is not None:
+            return result_tuple(**result)
+        return result
+
+    def _sp_get(self, name: str, result_type: str) -> Any:
+        return self._sp_client.get_property(self._sp_handle, name, result_type)
+
+    def _sp_set(self, name: str, value: Any) -> None:
+        self._sp_client.set_property(self._sp_handle, name, value)

@@ -1,0 +1,143 @@
+// Mesh import through assimp: OBJ (+MTL), PLY and glTF files written by the test, and the errors.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/base/error.h"
+#include "core/render/image_buffer.h"
+#include "core/render/mesh_import.h"
+#include "gl_fixture.h"
+
+namespace sp::render {
+namespace {
+
+class MeshImportTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = std::filesystem::path(SPEAR_RENDER_TEST_OUTPUT_DIR) / "import" /
+               ::testing::UnitTest::GetInstance()->current_test_info()->name();
+        std::filesystem::create_directories(dir_);
+    }
+    std::string write(const std::string& name, const std::string& text) {
+        const std::filesystem::path path = dir_ / name;
+        std::ofstream(path, std::ios::binary) << text;
+        return path.string();
+    }
+    std::filesystem::path dir_;
+};
+
+// Two quads with two materials: a red one at z = 0 and a metallic grey one at z = 1.
+constexpr const char* kObj = R"(mtllib two.mtl
+v -1 -1 0
+v 1 -1 0
+v 1 1 0
+v -1 1 0
+v -1 -1 1
+v 1 -1 1
+v 1 1 1
+v -1 1 1
+usemtl red
+f 1 2 3 4
+usemtl grey
+f 5 6 7 8
+)";
+constexpr const char* kMtl = R"(newmtl red
+Kd 0.8 0.1 0.1
+Ns 100
+newmtl grey
+Kd 0.5 0.5 0.5
+)";
+
+TEST_F(MeshImportTest, ObjWithTwoMaterialsGivesTwoSubmeshes) {
+    write("two.mtl", kMtl);
+    ImportedMesh imported = importMesh(write("two.obj", kObj));
+    ASSERT_EQ(imported.mesh.submeshCount(), 2u);
+    ASSERT_EQ(imported.materials.size(), 2u);
+    EXPECT_EQ(imported.mesh.indices.size(), 12u);  // quads triangulated
+    std::vector<std::string> names = {imported.materials[0].name, imported.materials[1].name};
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"grey", "red"}));
+    for (const ImportedMaterial& material : imported.materials)
+        if (material.name == "red") {
+            EXPECT_NEAR(material.material.baseColor.x(), 0.8f, 1e-6f);
+            EXPECT_NEAR(material.material.roughness, std::sqrt(2.0f / 102.0f), 1e-5f);
+        }
+}
+
+TEST_F(MeshImportTest, PlyTriangle) {
+    const std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                            "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                            "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    ImportedMesh imported = importMesh(write("tri.ply", ply));
+    EXPECT_EQ(imported.mesh.positions.size(), 3u);
+    EXPECT_EQ(imported.mesh.submeshCount(), 1u);
+    EXPECT_NEAR(std::abs(imported.mesh.normals[0].z()), 1.0f, 1e-5f);
+}
+
+TEST_F(MeshImportTest, GltfWithEmbeddedBufferAndPbrFactors) {
+    // One triangle; buffer = 3 float3 positions + 3 uint16 indices (+2 bytes padding), base64-encoded.
+    const std::string gltf = R"({
+ "asset": {"version": "2.0"},
+ "scene": 0, "scenes": [{"nodes": [0]}],
+ "nodes": [{"mesh": 0, "translation": [0, 0, 2]}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
+ "materials": [{"name": "metal", "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.8, 0.1, 1], "metallicFactor": 1.0, "roughnessFactor": 0.25}}],
+ "buffers": [{"byteLength": 44, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA="}],
+ "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+ "accessors": [
+  {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+  {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]
+})";
+    ImportedMesh imported = importMesh(write("tri.gltf", gltf));
+    ASSERT_EQ(imported.materials.size(), 1u);
+    EXPECT_NEAR(imported.materials[0].material.metallic, 1.0f, 1e-6f);
+    EXPECT_NEAR(imported.materials[0].material.roughness, 0.25f, 1e-6f);
+    EXPECT_NEAR(imported.materials[0].material.baseColor.y(), 0.8f, 1e-6f);
+    for (const Eigen::Vector3f& p : imported.mesh.positions)
+        EXPECT_NEAR(p.z(), 2.0f, 1e-6f);  // the node translation is baked in
+}
+
+TEST_F(MeshImportTest, MissingFileIsNotFoundNamingThePath) {
+    const std::string path = (dir_ / "nope.obj").string();
+    try {
+        importMesh(path);
+        FAIL();
+    } catch (const NotFound& e) {
+        EXPECT_EQ(std::string(e.what()), "importMesh(): no such file '" + path + "'");
+    }
+}
+
+TEST_F(MeshImportTest, CorruptOrUnsupportedIsInvalidArgument) {
+    EXPECT_THROW(importMesh(write("garbage.gltf", "{ this is not json")), InvalidArgument);
+    EXPECT_THROW(importMesh(write("data.unknownext", "\x01\x02\x03 binary junk")), InvalidArgument);
+    EXPECT_THROW(importMesh(write("empty.obj", "# nothing here\n")), InvalidArgument);
+}
+
+class MeshImportGlTest : public test::GlTest {};
+
+TEST_F(MeshImportGlTest, ImportedObjRendersWithPerSlotIds) {
+    const std::filesystem::path dir = std::filesystem::path(SPEAR_RENDER_TEST_OUTPUT_DIR) / "import" / "gl";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "two.mtl") << kMtl;
+    std::ofstream(dir / "two.obj") << kObj;
+    ImportedMesh imported = importMesh((dir / "two.obj").string());
+    Scene scene;
+    ImportedMeshIds ids = addToScene(scene, imported);
+    // Slot ids: 10 for the z = 0 quad's material group, 20 for the other.
+    std::vector<std::uint32_t> slotIds;
+    for (const Submesh& sub : imported.mesh.submeshes)
+        slotIds.push_back(imported.mesh.positions[imported.mesh.indices[sub.firstIndex]].z() < 0.5f ? 10 : 20);
+    scene.addInstance({ids.mesh, ids.materials, slotIds});
+    // Look from below: only the z = 0 quad is visible; from above only the z = 1 quad.
+    RenderTarget target(renderer(), {Modality::ObjectIds}, 0);
+    Frame frame;
+    target.render(scene, lookingAlong({0.01, 0, -3}, {0, 0, 1}, 8, 8, 30.0), frame);
+    EXPECT_EQ(frame.get(Modality::ObjectIds).uintAt(4, 4), 10u);
+    target.render(scene, lookingAlong({0.01, 0, 4}, {0, 0, -1}, 8, 8, 30.0), frame);
+    EXPECT_EQ(frame.get(Modality::ObjectIds).uintAt(4, 4), 20u);
+}
+
+} // namespace
+} // namespace sp::render
