@@ -127,9 +127,10 @@ def _property_view(c: Class, p: Property) -> dict[str, Any]:
     return {
         "name": p.name,
         "name_literal": naming.cpp_string(p.name),
-        "type_literal": naming.cpp_string(naming.py_type(p.type)),
+        "type_literal": naming.cpp_string(naming.property_py_type(p)),
         "doc_literal": naming.cpp_string(p.doc),
         "read_only": _bool(p.read_only),
+        "not_null": p.not_null,
         "setter": p.setter,
         "cpp_type": p.type.cpp,
         "context_literal": naming.cpp_string(f"{c.name}.{p.name}"),

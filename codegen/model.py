@@ -63,6 +63,7 @@ class Property:
     setter: str | None = None  # reflected function that writes it (UE's Setter= specifier)
     specifiers: tuple[tuple[str, str], ...] = ()
     default_cpp: str | None = None  # the member initializer, e.g. "1.0" or "{1.0, 1.0, 1.0}"
+    not_null: bool = False  # an object reference that is never None (set in the constructor)
 
 
 @dataclass(frozen=True)
@@ -128,6 +129,7 @@ def _module_from_dict(d: dict[str, Any]) -> Module:
             Property(
                 name=p["name"], doc=p["doc"], type=_type_from_dict(p["type"]), read_only=p["read_only"],
                 setter=p["setter"], specifiers=_pairs(p["specifiers"]), default_cpp=p["default_cpp"],
+                not_null=p["not_null"],
             )
             for p in c["properties"]
         )

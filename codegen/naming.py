@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import re
 
-from codegen.model import Class, Function, Module, Param, TypeRef
+from codegen.model import Class, Function, Module, Param, Property, TypeRef
 
 
 # -- Python spellings ------------------------------------------------------------------------------
@@ -31,6 +31,10 @@ def py_type(t: TypeRef, *, nullable_objects: bool = True) -> str:
     if t.kind == "array":
         return f"NDArray[np.{t.name}]"
     raise ValueError(f"unknown type kind {t.kind}")
+
+
+def property_py_type(p: Property) -> str:
+    return py_type(p.type, nullable_objects=not p.not_null)
 
 
 def param_py_type(p: Param) -> str:

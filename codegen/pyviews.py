@@ -85,7 +85,7 @@ def _function_view(c: Class, f: Function, enums: set[str]) -> dict[str, Any]:
 def _property_view(p: Property) -> dict[str, Any]:
     return {
         "name": p.name,
-        "type": naming.py_type(p.type),
+        "type": naming.property_py_type(p),
         "read_only": p.read_only,
         "doc": naming.py_docstring(p.doc, " " * 8),
     }

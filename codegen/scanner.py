@@ -301,6 +301,8 @@ class Scanner:
         if _kind(field) != ci.CursorKind.FIELD_DECL:
             raise self._error(field, f"SPPROPERTY() on '{owner}::{field.spelling}', which is not a non-static data member")
         t = field.type
+        if specifiers.has(spec, "NotNull") and t.get_canonical().kind != ci.TypeKind.POINTER:
+            raise self._error(field, f"NotNull on '{owner}::{field.spelling}', which is not an object reference")
         if self._record_kind == "struct" and t.get_canonical().kind == ci.TypeKind.POINTER:
             raise self._error(field, f"struct field '{owner}::{field.spelling}' cannot hold an object reference; "
                               "structs are plain values")
@@ -312,6 +314,7 @@ class Scanner:
             name=field.spelling, doc=clean_doc(field.raw_comment),
             type=self._map(field, t, f"property '{owner}::{field.spelling}'"), read_only=read_only,
             setter=specifiers.lookup(spec, "Setter"), specifiers=spec, default_cpp=self._initializer(field),
+            not_null=specifiers.has(spec, "NotNull"),
         )
 
     def _initializer(self, field: ci.Cursor) -> str | None:

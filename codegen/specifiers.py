@@ -17,7 +17,7 @@ KNOWN: dict[str, frozenset[str]] = {
             "EditAnywhere", "EditDefaultsOnly", "EditInstanceOnly", "VisibleAnywhere", "VisibleDefaultsOnly",
             "VisibleInstanceOnly", "BlueprintReadWrite", "BlueprintReadOnly", "ReadOnly", "Setter", "Getter",
             "Category", "Transient", "DisplayName", "ToolTip", "AllowPrivateAccess", "Units", "ClampMin",
-            "ClampMax",
+            "ClampMax", "NotNull",
         }
     ),
     "function": frozenset(

@@ -39,10 +39,11 @@ reflect::Value toValue(py::handle object, std::string_view context) {
     if (PyType_Check(object.ptr()) && py::hasattr(object, "__sp_class__"))
         return Value(reflect::ClassName{object.attr("__sp_class__").cast<std::string>()});
     if (py::hasattr(object, "__dataclass_fields__") && py::hasattr(object, "__sp_class__")) {
+        static const py::object dataclassFields = py::module_::import("dataclasses").attr("fields");
         Value::Dict fields;
-        for (auto name : object.attr("__dataclass_fields__")) {
-            std::string key = name.cast<std::string>();
-            fields.emplace(key, toValue(object.attr(name), context));
+        for (auto field : dataclassFields(object)) { // excludes the ClassVar __sp_class__
+            py::object name = field.attr("name");
+            fields.emplace(name.cast<std::string>(), toValue(object.attr(name), context));
         }
         return Value(std::move(fields));
     }

@@ -12,6 +12,6 @@ public:
     AStaticMeshActor() { StaticMeshComponent = CreateDefaultSubobject<UStaticMeshComponent>("StaticMeshComponent"); }
 
     /// The mesh component (also the root component).
-    SPPROPERTY(ReadOnly)
+    SPPROPERTY(ReadOnly, NotNull)
     UStaticMeshComponent* StaticMeshComponent = nullptr;
 };

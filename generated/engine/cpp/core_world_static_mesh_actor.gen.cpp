@@ -30,7 +30,7 @@ const sp::reflect::TypeInfo& AStaticMeshActor::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "StaticMeshComponent",
-            "UStaticMeshComponent | None",
+            "UStaticMeshComponent",
             "The mesh component (also the root component).",
             true,
             [](const void* self) -> sp::reflect::Value {

@@ -223,7 +223,10 @@ const Self* object = self.get<Self>(kContext);
             "Tags for finding this actor.");
         cls.def_property_readonly(
             "RootComponent",
-            [](const Ref<Self>& self) { return Bridge<USceneComponent*>::out(self.get<Self>("AActor.RootComponent")->RootComponent); },
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("AActor.RootComponent")->RootComponent;
+                return Bridge<USceneComponent*>::out(value);
+            },
             "The component that defines the actor's transform.");
         cls.def(
             "SetRootComponent",
@@ -406,7 +409,11 @@ const Self* object = self.get<Self>(kContext);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property_readonly(
             "StaticMeshComponent",
-            [](const Ref<Self>& self) { return Bridge<UStaticMeshComponent*>::out(self.get<Self>("AStaticMeshActor.StaticMeshComponent")->StaticMeshComponent); },
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("AStaticMeshActor.StaticMeshComponent")->StaticMeshComponent;
+                sp::reflect::checkNotNull(value, "AStaticMeshActor.StaticMeshComponent");
+                return Bridge<UStaticMeshComponent*>::out(value);
+            },
             "The mesh component (also the root component).");
     }
     {

@@ -199,7 +199,7 @@ class AStaticMeshActor(AActor):
     __sp_class__: ClassVar[str]
 
     @property
-    def StaticMeshComponent(self) -> UStaticMeshComponent | None:
+    def StaticMeshComponent(self) -> UStaticMeshComponent:
         """The mesh component (also the root component)."""
 
 

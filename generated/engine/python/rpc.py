@@ -180,8 +180,8 @@ class AStaticMeshActor(AActor, api.AStaticMeshActor):
     __slots__ = ()
 
     @property
-    def StaticMeshComponent(self) -> UStaticMeshComponent | None:
-        return self._sp_get("StaticMeshComponent", "UStaticMeshComponent | None")  # type: ignore[no-any-return]
+    def StaticMeshComponent(self) -> UStaticMeshComponent:
+        return self._sp_get("StaticMeshComponent", "UStaticMeshComponent")  # type: ignore[no-any-return]
 
 
 _register_proxy(AStaticMeshActor)
