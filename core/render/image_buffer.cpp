@@ -51,6 +51,12 @@ void Frame::clear() {
         image.reset();
 }
 
+void Frame::retain(const ModalitySet& keep) {
+    for (std::size_t i = 0; i < kModalityCount; ++i)
+        if (!keep.contains(static_cast<Modality>(i)))
+            images_[i].reset();
+}
+
 float halfToFloat(std::uint16_t bits) {
     const std::uint32_t sign = (bits & 0x8000u) << 16;
     const std::uint32_t exponent = (bits >> 10) & 0x1f;

@@ -52,6 +52,8 @@ public:
     // Allocates (or reuses) the buffer for a modality at the given size.
     ImageBuffer& prepare(Modality modality, int width, int height);
     void clear();
+    // Drops the buffers of modalities outside `keep` (buffers inside are kept for reuse).
+    void retain(const ModalitySet& keep);
 
 private:
     std::array<std::optional<ImageBuffer>, kModalityCount> images_;

@@ -140,7 +140,7 @@ std::optional<std::uint64_t> RenderTarget::read(Frame& frame) {
     Slot* slot = dueSlot();
     if (slot == nullptr)
         return std::nullopt;
-    frame.clear();
+    frame.retain(slot->modalities);  // reuses buffers across frames of the same size
     frame.frameNumber = slot->frameNumber;
     frame.width = slot->width;
     frame.height = slot->height;

@@ -43,3 +43,18 @@ TEST(GlContextGlTest, BadDeviceChoiceIsInvalidArgument) {
 
 } // namespace
 } // namespace sp::render
+
+namespace sp::render {
+namespace {
+
+TEST(GlContextGlTest, EnvironmentVariableSelectsTheDisplay) {
+    ::setenv("SPEAR_EGL_DEVICE", "surfaceless", 1);
+    GlContext context;
+    EXPECT_EQ(context.report().kind, "surfaceless");
+    ::setenv("SPEAR_EGL_DEVICE", "bogus", 1);
+    EXPECT_THROW(GlContext{}, InvalidArgument);
+    ::unsetenv("SPEAR_EGL_DEVICE");
+}
+
+} // namespace
+} // namespace sp::render

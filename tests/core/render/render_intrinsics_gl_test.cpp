@@ -133,3 +133,50 @@ TEST_F(RenderIntrinsicsGlTest, BaseColorTextureUsesTopLeftUvOrigin) {
 
 } // namespace
 } // namespace sp::render::test
+
+namespace sp::render::test {
+namespace {
+
+TEST_F(RenderIntrinsicsGlTest, PointAndSpotLightsFollowInverseSquareAndCone) {
+    Scene scene;
+    scene.setEnvironment({{0, 0, 0}, {0, 0, 0}});
+    scene.addInstance({scene.addMesh(primitives::plane(100, 100)), {scene.addMaterial(Material{})}, {1}});
+    Light point;
+    point.type = LightType::Point;
+    point.position = Eigen::Vector3d(0, 0, 2);
+    point.intensity = 8.0f;
+    LightId light = scene.addLight(point);
+    Camera camera = cameraLookingAt({0, 0, 10}, {0.001, 0, 0}, 32, 32, 60.0);
+    RenderTarget target(renderer(), {Modality::DiffuseIllumination, Modality::Position}, 0);
+    Frame frame;
+    target.render(scene, camera, frame);
+    // White Lambertian radiance under a point light: I cos(theta) / d^2 / pi, at the pixel's own point.
+    auto expectedAt = [&](int x, int y) {
+        const ImageBuffer& position = frame.get(Modality::Position);
+        const Eigen::Vector3d p(position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2));
+        const Eigen::Vector3d toLight = point.position - p;
+        return float(8.0 * (toLight.z() / toLight.norm()) / toLight.squaredNorm() / M_PI);
+    };
+    const Eigen::Vector3d below = camera.project({0, 0, 0}), offset = camera.project({2, 0, 0});
+    const int bx = int(below.x()), by = int(below.y()), ox = int(offset.x()), oy = int(offset.y());
+    for (auto [x, y] : {std::pair{bx, by}, std::pair{ox, oy}}) {
+        const float expected = expectedAt(x, y);
+        EXPECT_NEAR(frame.get(Modality::DiffuseIllumination).at(x, y), expected, 2e-3f * expected) << x << "," << y;
+    }
+    EXPECT_GT(expectedAt(bx, by), 2.5f * expectedAt(ox, oy));  // the two pixels are far apart
+
+    // A spot pointing down with a 20 degree outer cone: as bright as the point light on its axis, dark
+    // 45 degrees off axis.
+    Light spot = point;
+    spot.type = LightType::Spot;
+    spot.direction = Eigen::Vector3d(0, 0, -1);
+    spot.innerConeDeg = 10.0f;
+    spot.outerConeDeg = 20.0f;
+    scene.setLight(light, spot);
+    target.render(scene, camera, frame);
+    EXPECT_NEAR(frame.get(Modality::DiffuseIllumination).at(bx, by), expectedAt(bx, by), 2e-3f * expectedAt(bx, by));
+    EXPECT_EQ(frame.get(Modality::DiffuseIllumination).at(ox, oy), 0.0f);
+}
+
+} // namespace
+} // namespace sp::render::test
