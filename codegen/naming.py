@@ -12,8 +12,10 @@ from codegen.model import Class, Function, Module, Param, Property, TypeRef
 
 # -- Python spellings ------------------------------------------------------------------------------
 
-def py_type(t: TypeRef, *, nullable_objects: bool = True) -> str:
-    """The Python annotation for a type, as used in stubs, proxies and runtime type strings."""
+def py_type(t: TypeRef, *, nullable_objects: bool = True, result: bool = False) -> str:
+    """The Python annotation for a type, as used in stubs, proxies and runtime type strings.
+
+    Class references are accepted as a class or its name, and returned as the class (or None)."""
     if t.kind == "void":
         return "None"
     if t.kind in ("bool", "int", "float", "str"):
@@ -23,18 +25,18 @@ def py_type(t: TypeRef, *, nullable_objects: bool = True) -> str:
     if t.kind == "object":
         return f"{t.name} | None" if nullable_objects else t.name
     if t.kind == "class":
-        return f"type[{t.name}] | str"
+        return f"type[{t.name}] | None" if result else f"type[{t.name}] | str"
     if t.kind == "list":
-        return f"list[{py_type(t.args[0], nullable_objects=False)}]"
+        return f"list[{py_type(t.args[0], nullable_objects=False, result=result)}]"
     if t.kind == "dict":
-        return f"dict[str, {py_type(t.args[0], nullable_objects=False)}]"
+        return f"dict[str, {py_type(t.args[0], nullable_objects=False, result=result)}]"
     if t.kind == "array":
         return f"NDArray[np.{t.name}]"
     raise ValueError(f"unknown type kind {t.kind}")
 
 
 def property_py_type(p: Property) -> str:
-    return py_type(p.type, nullable_objects=not p.not_null)
+    return py_type(p.type, nullable_objects=not p.not_null, result=True)
 
 
 def param_py_type(p: Param) -> str:
@@ -60,7 +62,7 @@ def return_py_type(f: Function, typevar: str | None = None) -> str:
         return typevar if f.not_null else f"{typevar} | None"
     if t.kind == "object" and f.not_null:
         return t.name
-    return py_type(t)
+    return py_type(t, result=True)
 
 
 def result_tuple_name(f: Function) -> str:
@@ -176,3 +178,25 @@ def py_docstring(doc: str, indent: str) -> str:
         return f'{indent}"""{lines[0]}"""'
     inner = "\n".join(f"{indent}{line}" if line else "" for line in lines[1:])
     return f'{indent}"""{lines[0]}\n{inner}\n{indent}"""'
+
+
+def referenced_names(module: Module) -> set[str]:
+    """Every reflected type name the module's API mentions (parents, parameters, results, fields)."""
+    names: set[str] = set()
+
+    def add(t: TypeRef) -> None:
+        if t.kind in ("enum", "struct", "object", "class"):
+            names.add(t.name)
+        for a in t.args:
+            add(a)
+
+    for c in module.classes:
+        if c.parent:
+            names.add(c.parent)
+        for p in c.properties:
+            add(p.type)
+        for f in c.functions:
+            add(f.returns)
+            for q in f.params:
+                add(q.type)
+    return names

@@ -53,8 +53,8 @@ def _function_view(c: Class, f: Function, enums: set[str]) -> dict[str, Any]:
     result_fields = []
     if outs:
         if f.returns.kind != "void":
-            result_fields.append({"name": "ReturnValue", "type": naming.py_type(f.returns)})
-        result_fields += [{"name": p.name, "type": naming.py_type(p.type)} for p in outs]
+            result_fields.append({"name": "ReturnValue", "type": naming.py_type(f.returns, result=True)})
+        result_fields += [{"name": p.name, "type": naming.py_type(p.type, result=True)} for p in outs]
     overloads = []
     if f.determines_output_type:
         target = next(p for p in f.params if p.name == f.determines_output_type)
@@ -133,7 +133,10 @@ def module_view(module: Module) -> dict[str, Any]:
         for e in module.enums
     ]
     names = sorted([e.name for e in module.enums] + [c.name for c in module.classes])
+    # Types of other modules (a plugin's API mentions AActor, FVector, ...) come from the engine's API.
+    foreign = sorted(naming.referenced_names(module) - set(names)) if module.name != "engine" else []
     return {
+        "foreign_names": foreign,
         "structs": structs,
         "objects": objects,
         "enums": enum_views,

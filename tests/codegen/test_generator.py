@@ -1,0 +1,98 @@
+"""The generator: golden outputs, rejected inputs, determinism, and the committed engine bindings."""
+
+from __future__ import annotations
+
+import difflib
+import os
+import shutil
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from codegen_runner import ROOT, engine_headers, run_codegen, tree  # noqa: E402
+
+from codegen.model import Module  # noqa: E402
+
+CASES = ROOT / "tests/codegen/cases"
+NEGATIVE = ROOT / "tests/codegen/negative"
+
+
+def _diff(expected: bytes, actual: bytes, name: str) -> str:
+    return "".join(difflib.unified_diff(
+        expected.decode().splitlines(keepends=True), actual.decode().splitlines(keepends=True),
+        f"expected/{name}", f"actual/{name}", n=2))
+
+
+@pytest.mark.parametrize("case", sorted(p.name for p in CASES.iterdir() if p.is_dir()))
+def test_golden_case(case: str, tmp_path: Path) -> None:
+    header = f"tests/codegen/cases/{case}/input.h"
+    result = run_codegen("generate", case, tmp_path, [header])
+    assert result.returncode == 0, result.stderr
+    expected_dir = CASES / case / "expected"
+    actual = tree(tmp_path / case)
+    if os.environ.get("SPEAR_UPDATE_GOLDEN") == "1":
+        shutil.rmtree(expected_dir, ignore_errors=True)
+        shutil.copytree(tmp_path / case, expected_dir)
+    expected = tree(expected_dir)
+    assert sorted(actual) == sorted(expected)
+    diffs = [_diff(expected[n], actual[n], n) for n in sorted(actual) if actual[n] != expected[n]]
+    assert not diffs, "generated output differs from the golden files (SPEAR_UPDATE_GOLDEN=1 to accept):\n" + "\n".join(diffs)
+
+
+@pytest.mark.parametrize("header", sorted(p.name for p in NEGATIVE.glob("*.h")))
+def test_rejected_input(header: str, tmp_path: Path) -> None:
+    path = NEGATIVE / header
+    expected = path.read_text().splitlines()[0].removeprefix("// expect: ")
+    result = run_codegen("generate", "negative", tmp_path, [path.relative_to(ROOT).as_posix()])
+    assert result.returncode == 1
+    assert result.stderr.strip().splitlines()[-1] == expected
+    assert not (tmp_path / "negative").exists(), "a rejected input must not leave partial outputs"
+
+
+def test_output_is_byte_identical_across_runs(tmp_path: Path) -> None:
+    first, second = tmp_path / "a", tmp_path / "b"
+    assert run_codegen("generate", "engine", first, engine_headers(), hash_seed="0").returncode == 0
+    assert run_codegen("generate", "engine", second, engine_headers(), hash_seed="12345").returncode == 0
+    assert tree(first) == tree(second)
+
+
+def test_committed_engine_bindings_are_current(tmp_path: Path) -> None:
+    result = run_codegen("check", "engine", ROOT / "generated", engine_headers())
+    assert result.returncode == 0, result.stderr + "\nregenerate with the build and commit generated/"
+
+
+def test_listed_outputs_are_the_generated_files(tmp_path: Path) -> None:
+    listed = run_codegen("list-outputs", "engine", tmp_path, engine_headers())
+    assert listed.returncode == 0
+    assert run_codegen("generate", "engine", tmp_path, engine_headers()).returncode == 0
+    produced = {str(tmp_path / name) for name in tree(tmp_path)}
+    assert set(listed.stdout.split()) == produced
+
+
+def test_every_generated_file_says_do_not_edit() -> None:
+    for path in (ROOT / "generated").rglob("*"):
+        if path.is_file() and path.suffix in (".cpp", ".h", ".py", ".pyi"):
+            assert "DO NOT EDIT" in path.read_text().splitlines()[0], path
+
+
+def test_ir_json_round_trips_and_records_the_facts() -> None:
+    module = Module.from_json((CASES / "all_types/expected/reflection.json").read_text())
+    assert Module.from_json(module.to_json()) == module
+    actor = next(c for c in module.classes if c.name == "AAllTypes")
+    assert actor.parent == "AActor"
+    funcs = {f.name: f for f in actor.functions}
+    assert [(p.name, p.is_out) for p in funcs["Split"].params] == [("Text", False), ("Head", True), ("Rest", True)]
+    assert funcs["Collect"].determines_output_type == "ActorClass"
+    assert funcs["Histogram"].is_static and funcs["Scale"].is_const
+    assert [p.default_cpp for p in funcs["Scale"].params] == [None, "2.0", "EChannel::Red"]
+    assert funcs["Normalise"].params[0].type.kind == "array" and funcs["Normalise"].params[0].type.name == "float32"
+    assert funcs["Self"].not_null
+    props = {p.name: p for p in actor.properties}
+    assert props["Counter"].read_only and props["Speed"].setter == "SetSpeed"
+    assert props["Weights"].type.kind == "dict" and props["Weights"].type.args[0].cpp == "float"
+    sample = next(c for c in module.classes if c.name == "FSample")
+    assert sample.kind == "struct" and [p.default_cpp for p in sample.properties][:2] == ["{1.0, 2.0, 3.0}", "EChannel::Green"]
+    assert "tests/codegen/cases/all_types/input.h" in module.headers
+    assert "/" not in module.headers[0][:1], "IR paths are relative to the project root"
