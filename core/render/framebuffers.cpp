@@ -40,6 +40,8 @@ GLuint makeFramebuffer(const GLuint* textures, int count, GLuint depth, const ch
 Framebuffers::~Framebuffers() { release(); }
 
 void Framebuffers::release() {
+    if (gbufferFbo == 0 && lightingFbo == 0 && tonemapFbo == 0)
+        return;  // nothing allocated: no GL call, so a never-used target needs no context
     glDeleteFramebuffers(1, &gbufferFbo);
     glDeleteTextures(shaders::GBufferTargetCount, gbufferTextures);
     glDeleteRenderbuffers(1, &depthBuffer);

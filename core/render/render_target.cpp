@@ -52,6 +52,8 @@ RenderTarget::RenderTarget(Renderer& renderer, ModalitySet modalities, int laten
 }
 
 RenderTarget::~RenderTarget() {
+    if (submitted_ == 0)
+        return;  // nothing allocated: no GL call
     for (Slot& slot : slots_) {
         dropFence(slot);
         glDeleteBuffers(GLsizei(slot.buffers.size()), slot.buffers.data());

@@ -62,14 +62,17 @@ void main() {
     vec3 n = normalize(vNormal);
     if (dot(n, geometric) < 0.0) n = -n;
     if (uHasNormalTexture) {
-        // Cotangent frame from screen derivatives (no tangent attribute needed).
+        // Cotangent frame (Schueler 2013) from screen derivatives (no tangent attribute needed).
         vec2 duvdx = dFdx(vUv), duvdy = dFdy(vUv);
         vec3 dp2perp = cross(dpdy, n), dp1perp = cross(n, dpdx);
         vec3 t = dp2perp * duvdx.x + dp1perp * duvdy.x;
         vec3 b = dp2perp * duvdx.y + dp1perp * duvdy.y;
-        float scale = inversesqrt(max(max(dot(t, t), dot(b, b)), 1e-20));
+        // t and b are the surface gradients of u and v up to 1 / dot(n, dpdx x dpdy); keep that sign,
+        // which flips with the vertical projection flip and with the side the surface is seen from.
+        float scale = sign(dot(n, cross(dpdx, dpdy))) * inversesqrt(max(max(dot(t, t), dot(b, b)), 1e-20));
         vec3 m = texture(uNormalTexture, vUv).xyz * 2.0 - 1.0;
-        n = normalize(mat3(t * scale, b * scale, n) * m);
+        // Green points up in the image, i.e. towards decreasing v with the top-left uv origin.
+        n = normalize(mat3(t * scale, -b * scale, n) * m);
     }
     vec3 base = uBaseColor.rgb;
     if (uHasBaseColorTexture) base *= texture(uBaseColorTexture, vUv).rgb;

@@ -180,3 +180,65 @@ TEST_F(RenderIntrinsicsGlTest, PointAndSpotLightsFollowInverseSquareAndCone) {
 
 } // namespace
 } // namespace sp::render::test
+
+namespace sp::render::test {
+namespace {
+
+// A texture filled with one RGBA value.
+TextureImage solid(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+    std::vector<std::uint8_t> rgba;
+    for (int i = 0; i < 4 * 4; ++i)
+        rgba.insert(rgba.end(), {r, g, b, 255});
+    return TextureImage::fromPixels(4, 4, rgba);
+}
+
+TEST_F(RenderIntrinsicsGlTest, NormalAndRoughnessMetallicTextures) {
+    Scene scene;
+    Material m;
+    m.roughness = 1.0f;
+    m.metallic = 1.0f;
+    // Tangent-space (0.71, 0, 0.71): tilted 45 degrees towards the texture's +u, which the plane primitive
+    // maps to world +X. glTF layout for roughness (G) and metallic (B).
+    m.normalTexture = scene.addTexture(solid(218, 128, 218), TextureEncoding::Linear);
+    m.roughnessMetallicTexture = scene.addTexture(solid(0, 64, 191), TextureEncoding::Linear);
+    const MaterialId material = scene.addMaterial(m);
+    scene.addInstance({scene.addMesh(primitives::plane(50, 50)), {material}, {1}});
+    Camera camera = cameraLookingAt({0, 0, 5}, {0.01, 0, 0}, 8, 8, 40.0);
+    RenderTarget target(renderer(), {Modality::Normal, Modality::Roughness, Modality::Metallic}, 0);
+    Frame frame;
+    target.render(scene, camera, frame);
+    const ImageBuffer& normal = frame.get(Modality::Normal);
+    EXPECT_NEAR(normal.at(4, 4, 0), 0.707f, 0.02f);
+    EXPECT_NEAR(normal.at(4, 4, 1), 0.0f, 0.02f);
+    EXPECT_NEAR(normal.at(4, 4, 2), 0.707f, 0.02f);
+    EXPECT_NEAR(frame.get(Modality::Roughness).at(4, 4), 64.0f / 255.0f, 2e-3f);
+
+    // Green tilts towards the image's up, i.e. decreasing v, which the plane maps to world -Y.
+    m.normalTexture = scene.addTexture(solid(128, 218, 218), TextureEncoding::Linear);
+    scene.setMaterial(material, m);
+    target.render(scene, camera, frame);
+    EXPECT_NEAR(frame.get(Modality::Normal).at(4, 4, 0), 0.0f, 0.02f);
+    EXPECT_NEAR(frame.get(Modality::Normal).at(4, 4, 1), -0.707f, 0.02f);
+    EXPECT_NEAR(frame.get(Modality::Metallic).at(4, 4), 191.0f / 255.0f, 2e-3f);
+}
+
+TEST_F(RenderIntrinsicsGlTest, UpdatedMeshIsReuploaded) {
+    Scene scene;
+    MeshId mesh = scene.addMesh(primitives::box({1, 1, 1}));
+    scene.addInstance({mesh, {scene.addMaterial(Material{})}, {1}});
+    Camera camera = cameraLookingAt({-5, 0, 0}, {0, 0, 0}, 8, 8, 40.0);
+    RenderTarget target(renderer(), {Modality::Depth}, 0);
+    Frame frame;
+    target.render(scene, camera, frame);
+    EXPECT_NEAR(frame.get(Modality::Depth).at(4, 4), 4.5f, 1e-4f);
+    renderer().resetStats();
+    scene.updateMesh(mesh, primitives::box({3, 3, 3}));
+    target.render(scene, camera, frame);
+    EXPECT_NEAR(frame.get(Modality::Depth).at(4, 4), 3.5f, 1e-4f);
+    EXPECT_EQ(renderer().stats().meshUploads, 1u);
+    target.render(scene, camera, frame);
+    EXPECT_EQ(renderer().stats().meshUploads, 1u);  // unchanged meshes are not uploaded again
+}
+
+} // namespace
+} // namespace sp::render::test
