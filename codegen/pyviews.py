@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 from codegen import naming
@@ -36,6 +37,12 @@ def _field_default(p: Property, enums: dict[str, str], default_cpp: str | None) 
     if t.kind == "dict":
         return "field(default_factory=dict)"
     raise ValueError(f"struct field {p.name} of kind {t.kind} has no Python default")
+
+
+def api_qualified(type_string: str, object_names: set[str]) -> str:
+    """A type spelling with object classes written api.X, for the RPC module, whose own names are proxies."""
+    return re.sub(r"\b[A-Za-z_]\w*\b", lambda m: f"api.{m.group(0)}" if m.group(0) in object_names else m.group(0),
+                  type_string)
 
 
 def _function_view(c: Class, f: Function, enums: set[str]) -> dict[str, Any]:
@@ -103,6 +110,7 @@ def module_view(module: Module) -> dict[str, Any]:
     enums = {e.name: e.entries[0].name for e in module.enums}
     structs = []
     objects = []
+    object_names = {c.name for c in module.classes if c.kind == "class"} | _foreign_objects(module)
     for c in naming.topo_classes(module):
         if c.kind == "struct":
             structs.append({
@@ -123,6 +131,13 @@ def module_view(module: Module) -> dict[str, Any]:
                 "properties": [_property_view(p) for p in c.properties],
                 "functions": [_function_view(c, f, set(enums)) for f in c.functions],
             })
+    for view in objects:
+        for p in view["properties"]:
+            p["rpc_type"] = api_qualified(p["type"], object_names)
+        for f in view["functions"]:
+            f["rpc_returns"] = api_qualified(f["returns"], object_names)
+            for p in f["params"]:
+                p["rpc_type"] = api_qualified(p["type"], object_names)
     enum_views = [
         {
             "name": e.name,
@@ -137,6 +152,8 @@ def module_view(module: Module) -> dict[str, Any]:
     foreign = sorted(naming.referenced_names(module) - set(names)) if module.name != "engine" else []
     return {
         "foreign_names": foreign,
+        "value_names": sorted([e.name for e in module.enums] + [c.name for c in module.classes if c.kind == "struct"]),
+        "foreign_values": [n for n in foreign if n not in object_names],
         "structs": structs,
         "objects": objects,
         "enums": enum_views,
@@ -154,3 +171,20 @@ def _api_hash(module: Module) -> str:
 
 def struct_field_type(t: TypeRef) -> str:
     return naming.py_type(t)
+
+
+def _foreign_objects(module: Module) -> set[str]:
+    """Object classes the module mentions but does not declare (engine classes seen from a plugin)."""
+    names = naming.referenced_names(module) - {c.name for c in module.classes} - {e.name for e in module.enums}
+    structs_and_enums = set()
+    for c in module.classes:
+        for p in c.properties:
+            if p.type.kind in ("struct", "enum"):
+                structs_and_enums.add(p.type.name)
+        for f in c.functions:
+            for t in [f.returns, *(q.type for q in f.params)]:
+                while t.args:
+                    t = t.args[0]
+                if t.kind in ("struct", "enum"):
+                    structs_and_enums.add(t.name)
+    return names - structs_and_enums

@@ -8,7 +8,7 @@ behave the same even where a default has no Python spelling.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -18,7 +18,7 @@ from spear._rpc_proxy import ObjectProxy as _ObjectProxy
 from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
-from .api import *  # noqa: F403  (structs and enums are shared with the in-process API)
+from .api import EComponentMobility, FLinearColor, FQuat, FRotator, FTransform, FVector, FVector2D  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
 
@@ -27,25 +27,13 @@ class UObject(_ObjectProxy, api.UObject):
     __slots__ = ()
 
     def GetName(self) -> str:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetName",
-            {},
-            "str",
-        )
+        return cast("str", self._sp_call("GetName", {}, "str"))
 
     def GetClassName(self) -> str:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetClassName",
-            {},
-            "str",
-        )
+        return cast("str", self._sp_call("GetClassName", {}, "str"))
 
-    def GetWorld(self) -> UWorld | None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetWorld",
-            {},
-            "UWorld | None",
-        )
+    def GetWorld(self) -> api.UWorld | None:
+        return cast("api.UWorld | None", self._sp_call("GetWorld", {}, "UWorld | None"))
 
 
 _register_proxy(UObject)
@@ -56,121 +44,60 @@ class AActor(UObject, api.AActor):
 
     @property
     def Tags(self) -> list[str]:
-        return self._sp_get("Tags", "list[str]")  # type: ignore[no-any-return]
+        return cast("list[str]", self._sp_get("Tags", "list[str]"))
 
     @Tags.setter
     def Tags(self, value: list[str]) -> None:
         self._sp_set("Tags", value)
 
     @property
-    def RootComponent(self) -> USceneComponent | None:
-        return self._sp_get("RootComponent", "USceneComponent | None")  # type: ignore[no-any-return]
+    def RootComponent(self) -> api.USceneComponent | None:
+        return cast("api.USceneComponent | None", self._sp_get("RootComponent", "USceneComponent | None"))
 
-    def SetRootComponent(self, *, NewRootComponent: USceneComponent) -> None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "SetRootComponent",
-            {"NewRootComponent": NewRootComponent},
-            "None",
-        )
+    def SetRootComponent(self, *, NewRootComponent: api.USceneComponent) -> None:
+        self._sp_call("SetRootComponent", {"NewRootComponent": NewRootComponent}, "None")
 
     def GetActorLocation(self) -> FVector:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetActorLocation",
-            {},
-            "FVector",
-        )
+        return cast("FVector", self._sp_call("GetActorLocation", {}, "FVector"))
 
     def SetActorLocation(self, *, NewLocation: FVector) -> bool:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "SetActorLocation",
-            {"NewLocation": NewLocation},
-            "bool",
-        )
+        return cast("bool", self._sp_call("SetActorLocation", {"NewLocation": NewLocation}, "bool"))
 
     def GetActorRotation(self) -> FRotator:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetActorRotation",
-            {},
-            "FRotator",
-        )
+        return cast("FRotator", self._sp_call("GetActorRotation", {}, "FRotator"))
 
     def SetActorRotation(self, *, NewRotation: FRotator) -> bool:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "SetActorRotation",
-            {"NewRotation": NewRotation},
-            "bool",
-        )
+        return cast("bool", self._sp_call("SetActorRotation", {"NewRotation": NewRotation}, "bool"))
 
     def K2_SetActorLocationAndRotation(self, *, NewLocation: FVector, NewRotation: FRotator, bSweep: bool = _DEFAULT, bTeleport: bool = _DEFAULT) -> bool:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "K2_SetActorLocationAndRotation",
-            {"NewLocation": NewLocation, "NewRotation": NewRotation, "bSweep": bSweep, "bTeleport": bTeleport},
-            "bool",
-        )
+        return cast("bool", self._sp_call("K2_SetActorLocationAndRotation", {"NewLocation": NewLocation, "NewRotation": NewRotation, "bSweep": bSweep, "bTeleport": bTeleport}, "bool"))
 
     def GetActorScale3D(self) -> FVector:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetActorScale3D",
-            {},
-            "FVector",
-        )
+        return cast("FVector", self._sp_call("GetActorScale3D", {}, "FVector"))
 
     def SetActorScale3D(self, *, NewScale3D: FVector) -> None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "SetActorScale3D",
-            {"NewScale3D": NewScale3D},
-            "None",
-        )
+        self._sp_call("SetActorScale3D", {"NewScale3D": NewScale3D}, "None")
 
     def GetActorTransform(self) -> FTransform:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetActorTransform",
-            {},
-            "FTransform",
-        )
+        return cast("FTransform", self._sp_call("GetActorTransform", {}, "FTransform"))
 
     def SetActorTransform(self, *, NewTransform: FTransform) -> bool:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "SetActorTransform",
-            {"NewTransform": NewTransform},
-            "bool",
-        )
+        return cast("bool", self._sp_call("SetActorTransform", {"NewTransform": NewTransform}, "bool"))
 
     def GetActorForwardVector(self) -> FVector:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetActorForwardVector",
-            {},
-            "FVector",
-        )
+        return cast("FVector", self._sp_call("GetActorForwardVector", {}, "FVector"))
 
-    def GetActorBounds(self, *, bOnlyCollidingComponents: bool) -> AActor.GetActorBoundsResult:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetActorBounds",
-            {"bOnlyCollidingComponents": bOnlyCollidingComponents},
-            "dict",
-            api.AActor.GetActorBoundsResult,
-        )
+    def GetActorBounds(self, *, bOnlyCollidingComponents: bool) -> api.AActor.GetActorBoundsResult:
+        return cast("api.AActor.GetActorBoundsResult", self._sp_call("GetActorBounds", {"bOnlyCollidingComponents": bOnlyCollidingComponents}, "dict", api.AActor.GetActorBoundsResult))
 
     def ActorHasTag(self, *, Tag: str) -> bool:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "ActorHasTag",
-            {"Tag": Tag},
-            "bool",
-        )
+        return cast("bool", self._sp_call("ActorHasTag", {"Tag": Tag}, "bool"))
 
-    def K2_GetComponents(self) -> list[UActorComponent]:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "K2_GetComponents",
-            {},
-            "list[UActorComponent]",
-        )
+    def K2_GetComponents(self) -> list[api.UActorComponent]:
+        return cast("list[api.UActorComponent]", self._sp_call("K2_GetComponents", {}, "list[UActorComponent]"))
 
-    def GetComponentByClass(self, *, ComponentClass: type[UActorComponent] | str) -> Any:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetComponentByClass",
-            {"ComponentClass": ComponentClass},
-            "UActorComponent | None",
-        )
+    def GetComponentByClass(self, *, ComponentClass: type[api.UActorComponent] | str) -> Any:
+        return self._sp_call("GetComponentByClass", {"ComponentClass": ComponentClass}, "UActorComponent | None")
 
 
 _register_proxy(AActor)
@@ -180,8 +107,8 @@ class AStaticMeshActor(AActor, api.AStaticMeshActor):
     __slots__ = ()
 
     @property
-    def StaticMeshComponent(self) -> UStaticMeshComponent:
-        return self._sp_get("StaticMeshComponent", "UStaticMeshComponent")  # type: ignore[no-any-return]
+    def StaticMeshComponent(self) -> api.UStaticMeshComponent:
+        return cast("api.UStaticMeshComponent", self._sp_get("StaticMeshComponent", "UStaticMeshComponent"))
 
 
 _register_proxy(AStaticMeshActor)
@@ -192,7 +119,7 @@ class UActorComponent(UObject, api.UActorComponent):
 
     @property
     def ComponentTags(self) -> list[str]:
-        return self._sp_get("ComponentTags", "list[str]")  # type: ignore[no-any-return]
+        return cast("list[str]", self._sp_get("ComponentTags", "list[str]"))
 
     @ComponentTags.setter
     def ComponentTags(self, value: list[str]) -> None:
@@ -200,25 +127,17 @@ class UActorComponent(UObject, api.UActorComponent):
 
     @property
     def bTickEnabled(self) -> bool:
-        return self._sp_get("bTickEnabled", "bool")  # type: ignore[no-any-return]
+        return cast("bool", self._sp_get("bTickEnabled", "bool"))
 
     @bTickEnabled.setter
     def bTickEnabled(self, value: bool) -> None:
         self._sp_set("bTickEnabled", value)
 
-    def GetOwner(self) -> AActor | None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetOwner",
-            {},
-            "AActor | None",
-        )
+    def GetOwner(self) -> api.AActor | None:
+        return cast("api.AActor | None", self._sp_call("GetOwner", {}, "AActor | None"))
 
     def ComponentHasTag(self, *, Tag: str) -> bool:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "ComponentHasTag",
-            {"Tag": Tag},
-            "bool",
-        )
+        return cast("bool", self._sp_call("ComponentHasTag", {"Tag": Tag}, "bool"))
 
 
 _register_proxy(UActorComponent)
@@ -229,7 +148,7 @@ class USceneComponent(UActorComponent, api.USceneComponent):
 
     @property
     def RelativeLocation(self) -> FVector:
-        return self._sp_get("RelativeLocation", "FVector")  # type: ignore[no-any-return]
+        return cast("FVector", self._sp_get("RelativeLocation", "FVector"))
 
     @RelativeLocation.setter
     def RelativeLocation(self, value: FVector) -> None:
@@ -237,7 +156,7 @@ class USceneComponent(UActorComponent, api.USceneComponent):
 
     @property
     def RelativeRotation(self) -> FRotator:
-        return self._sp_get("RelativeRotation", "FRotator")  # type: ignore[no-any-return]
+        return cast("FRotator", self._sp_get("RelativeRotation", "FRotator"))
 
     @RelativeRotation.setter
     def RelativeRotation(self, value: FRotator) -> None:
@@ -245,7 +164,7 @@ class USceneComponent(UActorComponent, api.USceneComponent):
 
     @property
     def RelativeScale3D(self) -> FVector:
-        return self._sp_get("RelativeScale3D", "FVector")  # type: ignore[no-any-return]
+        return cast("FVector", self._sp_get("RelativeScale3D", "FVector"))
 
     @RelativeScale3D.setter
     def RelativeScale3D(self, value: FVector) -> None:
@@ -253,7 +172,7 @@ class USceneComponent(UActorComponent, api.USceneComponent):
 
     @property
     def Mobility(self) -> EComponentMobility:
-        return self._sp_get("Mobility", "EComponentMobility")  # type: ignore[no-any-return]
+        return cast("EComponentMobility", self._sp_get("Mobility", "EComponentMobility"))
 
     @Mobility.setter
     def Mobility(self, value: EComponentMobility) -> None:
@@ -261,158 +180,74 @@ class USceneComponent(UActorComponent, api.USceneComponent):
 
     @property
     def bVisible(self) -> bool:
-        return self._sp_get("bVisible", "bool")  # type: ignore[no-any-return]
+        return cast("bool", self._sp_get("bVisible", "bool"))
 
     @bVisible.setter
     def bVisible(self, value: bool) -> None:
         self._sp_set("bVisible", value)
 
     def SetRelativeLocation(self, *, NewLocation: FVector) -> None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "SetRelativeLocation",
-            {"NewLocation": NewLocation},
-            "None",
-        )
+        self._sp_call("SetRelativeLocation", {"NewLocation": NewLocation}, "None")
 
     def SetRelativeRotation(self, *, NewRotation: FRotator) -> None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "SetRelativeRotation",
-            {"NewRotation": NewRotation},
-            "None",
-        )
+        self._sp_call("SetRelativeRotation", {"NewRotation": NewRotation}, "None")
 
     def SetRelativeScale3D(self, *, NewScale3D: FVector) -> None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "SetRelativeScale3D",
-            {"NewScale3D": NewScale3D},
-            "None",
-        )
+        self._sp_call("SetRelativeScale3D", {"NewScale3D": NewScale3D}, "None")
 
     def SetRelativeTransform(self, *, NewTransform: FTransform) -> None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "SetRelativeTransform",
-            {"NewTransform": NewTransform},
-            "None",
-        )
+        self._sp_call("SetRelativeTransform", {"NewTransform": NewTransform}, "None")
 
     def GetRelativeTransform(self) -> FTransform:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetRelativeTransform",
-            {},
-            "FTransform",
-        )
+        return cast("FTransform", self._sp_call("GetRelativeTransform", {}, "FTransform"))
 
     def SetMobility(self, *, NewMobility: EComponentMobility) -> None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "SetMobility",
-            {"NewMobility": NewMobility},
-            "None",
-        )
+        self._sp_call("SetMobility", {"NewMobility": NewMobility}, "None")
 
     def GetComponentTransform(self) -> FTransform:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetComponentTransform",
-            {},
-            "FTransform",
-        )
+        return cast("FTransform", self._sp_call("GetComponentTransform", {}, "FTransform"))
 
     def GetComponentLocation(self) -> FVector:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetComponentLocation",
-            {},
-            "FVector",
-        )
+        return cast("FVector", self._sp_call("GetComponentLocation", {}, "FVector"))
 
     def K2_GetComponentLocation(self) -> FVector:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "K2_GetComponentLocation",
-            {},
-            "FVector",
-        )
+        return cast("FVector", self._sp_call("K2_GetComponentLocation", {}, "FVector"))
 
     def GetComponentRotation(self) -> FRotator:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetComponentRotation",
-            {},
-            "FRotator",
-        )
+        return cast("FRotator", self._sp_call("GetComponentRotation", {}, "FRotator"))
 
     def GetComponentScale(self) -> FVector:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetComponentScale",
-            {},
-            "FVector",
-        )
+        return cast("FVector", self._sp_call("GetComponentScale", {}, "FVector"))
 
     def SetWorldLocation(self, *, NewLocation: FVector) -> None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "SetWorldLocation",
-            {"NewLocation": NewLocation},
-            "None",
-        )
+        self._sp_call("SetWorldLocation", {"NewLocation": NewLocation}, "None")
 
     def SetWorldRotation(self, *, NewRotation: FRotator) -> None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "SetWorldRotation",
-            {"NewRotation": NewRotation},
-            "None",
-        )
+        self._sp_call("SetWorldRotation", {"NewRotation": NewRotation}, "None")
 
     def SetWorldTransform(self, *, NewTransform: FTransform) -> None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "SetWorldTransform",
-            {"NewTransform": NewTransform},
-            "None",
-        )
+        self._sp_call("SetWorldTransform", {"NewTransform": NewTransform}, "None")
 
     def GetForwardVector(self) -> FVector:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetForwardVector",
-            {},
-            "FVector",
-        )
+        return cast("FVector", self._sp_call("GetForwardVector", {}, "FVector"))
 
     def GetRightVector(self) -> FVector:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetRightVector",
-            {},
-            "FVector",
-        )
+        return cast("FVector", self._sp_call("GetRightVector", {}, "FVector"))
 
     def GetUpVector(self) -> FVector:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetUpVector",
-            {},
-            "FVector",
-        )
+        return cast("FVector", self._sp_call("GetUpVector", {}, "FVector"))
 
-    def AttachToComponent(self, *, Parent: USceneComponent, bKeepWorldTransform: bool = _DEFAULT) -> None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "AttachToComponent",
-            {"Parent": Parent, "bKeepWorldTransform": bKeepWorldTransform},
-            "None",
-        )
+    def AttachToComponent(self, *, Parent: api.USceneComponent, bKeepWorldTransform: bool = _DEFAULT) -> None:
+        self._sp_call("AttachToComponent", {"Parent": Parent, "bKeepWorldTransform": bKeepWorldTransform}, "None")
 
     def DetachFromComponent(self, *, bKeepWorldTransform: bool = _DEFAULT) -> None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "DetachFromComponent",
-            {"bKeepWorldTransform": bKeepWorldTransform},
-            "None",
-        )
+        self._sp_call("DetachFromComponent", {"bKeepWorldTransform": bKeepWorldTransform}, "None")
 
-    def GetAttachParent(self) -> USceneComponent | None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetAttachParent",
-            {},
-            "USceneComponent | None",
-        )
+    def GetAttachParent(self) -> api.USceneComponent | None:
+        return cast("api.USceneComponent | None", self._sp_call("GetAttachParent", {}, "USceneComponent | None"))
 
-    def GetChildrenComponents(self, *, bIncludeAllDescendants: bool = _DEFAULT) -> list[USceneComponent]:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetChildrenComponents",
-            {"bIncludeAllDescendants": bIncludeAllDescendants},
-            "list[USceneComponent]",
-        )
+    def GetChildrenComponents(self, *, bIncludeAllDescendants: bool = _DEFAULT) -> list[api.USceneComponent]:
+        return cast("list[api.USceneComponent]", self._sp_call("GetChildrenComponents", {"bIncludeAllDescendants": bIncludeAllDescendants}, "list[USceneComponent]"))
 
 
 _register_proxy(USceneComponent)
@@ -421,13 +256,8 @@ _register_proxy(USceneComponent)
 class UPrimitiveComponent(USceneComponent, api.UPrimitiveComponent):
     __slots__ = ()
 
-    def GetBounds(self) -> UPrimitiveComponent.GetBoundsResult:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "GetBounds",
-            {},
-            "dict",
-            api.UPrimitiveComponent.GetBoundsResult,
-        )
+    def GetBounds(self) -> api.UPrimitiveComponent.GetBoundsResult:
+        return cast("api.UPrimitiveComponent.GetBoundsResult", self._sp_call("GetBounds", {}, "dict", api.UPrimitiveComponent.GetBoundsResult))
 
 
 _register_proxy(UPrimitiveComponent)
@@ -438,7 +268,7 @@ class UStaticMeshComponent(UPrimitiveComponent, api.UStaticMeshComponent):
 
     @property
     def StaticMesh(self) -> str:
-        return self._sp_get("StaticMesh", "str")  # type: ignore[no-any-return]
+        return cast("str", self._sp_get("StaticMesh", "str"))
 
     @StaticMesh.setter
     def StaticMesh(self, value: str) -> None:
@@ -446,25 +276,17 @@ class UStaticMeshComponent(UPrimitiveComponent, api.UStaticMeshComponent):
 
     @property
     def Materials(self) -> list[str]:
-        return self._sp_get("Materials", "list[str]")  # type: ignore[no-any-return]
+        return cast("list[str]", self._sp_get("Materials", "list[str]"))
 
     @Materials.setter
     def Materials(self, value: list[str]) -> None:
         self._sp_set("Materials", value)
 
     def SetStaticMesh(self, *, NewMesh: str) -> bool:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "SetStaticMesh",
-            {"NewMesh": NewMesh},
-            "bool",
-        )
+        return cast("bool", self._sp_call("SetStaticMesh", {"NewMesh": NewMesh}, "bool"))
 
     def SetMaterial(self, *, ElementIndex: int, Material: str) -> None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "SetMaterial",
-            {"ElementIndex": ElementIndex, "Material": Material},
-            "None",
-        )
+        self._sp_call("SetMaterial", {"ElementIndex": ElementIndex, "Material": Material}, "None")
 
 
 _register_proxy(UStaticMeshComponent)
@@ -473,110 +295,50 @@ _register_proxy(UStaticMeshComponent)
 class UWorld(UObject, api.UWorld):
     __slots__ = ()
 
-    def spawn_actor(self, *, uclass: type[AActor] | str, location: FVector = _DEFAULT, rotation: FRotator = _DEFAULT, name: str = _DEFAULT, tags: list[str] = _DEFAULT) -> Any:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "spawn_actor",
-            {"uclass": uclass, "location": location, "rotation": rotation, "name": name, "tags": tags},
-            "AActor",
-        )
+    def spawn_actor(self, *, uclass: type[api.AActor] | str, location: FVector = _DEFAULT, rotation: FRotator = _DEFAULT, name: str = _DEFAULT, tags: list[str] = _DEFAULT) -> Any:
+        return self._sp_call("spawn_actor", {"uclass": uclass, "location": location, "rotation": rotation, "name": name, "tags": tags}, "AActor")
 
-    def destroy_actor(self, *, actor: AActor) -> None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "destroy_actor",
-            {"actor": actor},
-            "None",
-        )
+    def destroy_actor(self, *, actor: api.AActor) -> None:
+        self._sp_call("destroy_actor", {"actor": actor}, "None")
 
-    def find_actor_by_name(self, *, name: str) -> AActor | None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "find_actor_by_name",
-            {"name": name},
-            "AActor | None",
-        )
+    def find_actor_by_name(self, *, name: str) -> api.AActor | None:
+        return cast("api.AActor | None", self._sp_call("find_actor_by_name", {"name": name}, "AActor | None"))
 
-    def find_actors_by_tag(self, *, tag: str) -> list[AActor]:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "find_actors_by_tag",
-            {"tag": tag},
-            "list[AActor]",
-        )
+    def find_actors_by_tag(self, *, tag: str) -> list[api.AActor]:
+        return cast("list[api.AActor]", self._sp_call("find_actors_by_tag", {"tag": tag}, "list[AActor]"))
 
-    def find_actor_by_class(self, *, uclass: type[AActor] | str) -> Any:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "find_actor_by_class",
-            {"uclass": uclass},
-            "AActor | None",
-        )
+    def find_actor_by_class(self, *, uclass: type[api.AActor] | str) -> Any:
+        return self._sp_call("find_actor_by_class", {"uclass": uclass}, "AActor | None")
 
-    def find_actors_by_class(self, *, uclass: type[AActor] | str) -> Any:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "find_actors_by_class",
-            {"uclass": uclass},
-            "list[AActor]",
-        )
+    def find_actors_by_class(self, *, uclass: type[api.AActor] | str) -> Any:
+        return self._sp_call("find_actors_by_class", {"uclass": uclass}, "list[AActor]")
 
-    def find_actors_by_class_as_dict(self, *, uclass: type[AActor] | str) -> Any:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "find_actors_by_class_as_dict",
-            {"uclass": uclass},
-            "dict[str, AActor]",
-        )
+    def find_actors_by_class_as_dict(self, *, uclass: type[api.AActor] | str) -> Any:
+        return self._sp_call("find_actors_by_class_as_dict", {"uclass": uclass}, "dict[str, AActor]")
 
-    def find_actors(self) -> list[AActor]:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "find_actors",
-            {},
-            "list[AActor]",
-        )
+    def find_actors(self) -> list[api.AActor]:
+        return cast("list[api.AActor]", self._sp_call("find_actors", {}, "list[AActor]"))
 
-    def get_component_by_name(self, *, actor: AActor, component_name: str) -> UActorComponent | None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "get_component_by_name",
-            {"actor": actor, "component_name": component_name},
-            "UActorComponent | None",
-        )
+    def get_component_by_name(self, *, actor: api.AActor, component_name: str) -> api.UActorComponent | None:
+        return cast("api.UActorComponent | None", self._sp_call("get_component_by_name", {"actor": actor, "component_name": component_name}, "UActorComponent | None"))
 
-    def get_components_by_class(self, *, actor: AActor, uclass: type[UActorComponent] | str) -> Any:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "get_components_by_class",
-            {"actor": actor, "uclass": uclass},
-            "list[UActorComponent]",
-        )
+    def get_components_by_class(self, *, actor: api.AActor, uclass: type[api.UActorComponent] | str) -> Any:
+        return self._sp_call("get_components_by_class", {"actor": actor, "uclass": uclass}, "list[UActorComponent]")
 
-    def get_components_by_class_as_dict(self, *, actor: AActor, uclass: type[UActorComponent] | str) -> Any:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "get_components_by_class_as_dict",
-            {"actor": actor, "uclass": uclass},
-            "dict[str, UActorComponent]",
-        )
+    def get_components_by_class_as_dict(self, *, actor: api.AActor, uclass: type[api.UActorComponent] | str) -> Any:
+        return self._sp_call("get_components_by_class_as_dict", {"actor": actor, "uclass": uclass}, "dict[str, UActorComponent]")
 
-    def get_default_object(self, *, uclass: type[UObject] | str) -> Any:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "get_default_object",
-            {"uclass": uclass},
-            "UObject",
-        )
+    def get_default_object(self, *, uclass: type[api.UObject] | str) -> Any:
+        return self._sp_call("get_default_object", {"uclass": uclass}, "UObject")
 
     def get_actor_count(self) -> int:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "get_actor_count",
-            {},
-            "int",
-        )
+        return cast("int", self._sp_call("get_actor_count", {}, "int"))
 
     def get_time_seconds(self) -> float:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "get_time_seconds",
-            {},
-            "float",
-        )
+        return cast("float", self._sp_call("get_time_seconds", {}, "float"))
 
     def get_frame_count(self) -> int:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "get_frame_count",
-            {},
-            "int",
-        )
+        return cast("int", self._sp_call("get_frame_count", {}, "int"))
 
 
 _register_proxy(UWorld)

@@ -1,0 +1,48 @@
+"""Positive typing case: what mypy --strict must infer for ordinary use of the typed API."""
+
+from __future__ import annotations
+
+from typing import assert_type
+
+import spear
+from spear._engine import rpc
+from spear._rpc_proxy import RpcClient
+
+
+def world_services(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    assert_type(game, spear.UWorld)
+    with instance.begin_frame():
+        mesh = game.spawn_actor(uclass=spear.AStaticMeshActor, location=spear.FVector(X=1.0))
+        assert_type(mesh, spear.AStaticMeshActor)
+        by_name = game.spawn_actor(uclass="AStaticMeshActor")
+        assert_type(by_name, spear.AActor)
+        assert_type(game.find_actors_by_class(uclass=spear.AStaticMeshActor), list[spear.AStaticMeshActor])
+        assert_type(game.find_actor_by_class(uclass=spear.AStaticMeshActor), spear.AStaticMeshActor | None)
+        assert_type(game.find_actors_by_class_as_dict(uclass=spear.AActor), dict[str, spear.AActor])
+        assert_type(game.get_components_by_class(actor=mesh, uclass=spear.UStaticMeshComponent),
+                    list[spear.UStaticMeshComponent])
+        assert_type(game.find_actor_by_name(name="x"), spear.AActor | None)
+        assert_type(mesh.StaticMeshComponent, spear.UStaticMeshComponent)
+        assert_type(mesh.RootComponent, spear.USceneComponent | None)
+        assert_type(mesh.GetActorLocation(), spear.FVector)
+        assert_type(mesh.GetActorLocation().Z, float)
+        assert_type(mesh.StaticMeshComponent.Mobility, spear.EComponentMobility)
+        assert_type(mesh.Tags, list[str])
+        bounds = mesh.GetActorBounds(bOnlyCollidingComponents=True)
+        assert_type(bounds, spear.AActor.GetActorBoundsResult)
+        assert_type(bounds.BoxExtent, spear.FVector)
+        assert_type(mesh.SetActorLocation(NewLocation=spear.FVector()), bool)
+        mesh.StaticMeshComponent.RelativeLocation = spear.FVector(Z=2.0)
+        mesh.StaticMeshComponent.Mobility = spear.EComponentMobility.Static
+        cdo = game.get_default_object(uclass=spear.AStaticMeshActor)
+        assert_type(cdo, spear.AStaticMeshActor)
+
+
+def either_transport(client: RpcClient, local: spear.AActor) -> None:
+    # The RPC proxy and the in-process object satisfy one typed interface: either can stand for the other.
+    remote: spear.AActor = rpc.AActor(client, (1, 0))
+    for actor in (remote, local):
+        assert_type(actor.GetActorLocation(), spear.FVector)
+    world: spear.UWorld = rpc.UWorld(client, (1, 0))
+    assert_type(world.spawn_actor(uclass=spear.AStaticMeshActor), spear.AStaticMeshActor)
