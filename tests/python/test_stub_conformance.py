@@ -1,0 +1,103 @@
+"""The stubs match the built module (what mypy.stubtest does for pure-Python modules; pybind11 functions
+expose no inspect.signature, so this reads their signature lines instead).
+
+Every class, function, parameter (name, order, keyword-only, default or not) and property in api.pyi
+must exist in the pybind11 module with the same shape, and the reverse, so the stubs never promise
+what the module lacks.
+"""
+
+from __future__ import annotations
+
+import ast
+import re
+from pathlib import Path
+
+import pytest
+
+import spear
+from spear import _inprocess
+from spear._engine import api
+
+STUB = Path(api.__file__).with_suffix(".pyi")
+
+
+def stub_classes() -> dict[str, ast.ClassDef]:
+    tree = ast.parse(STUB.read_text())
+    return {n.name: n for n in tree.body if isinstance(n, ast.ClassDef)}
+
+
+def object_classes() -> list[str]:
+    return [n for n, c in stub_classes().items() if not any(
+        isinstance(d, ast.Name) and d.id == "dataclass" for d in c.decorator_list) and not any(
+        isinstance(b, ast.Attribute) and b.attr == "IntEnum" for b in c.bases)]
+
+
+def stub_signature(fn: ast.FunctionDef) -> list[tuple[str, bool]]:
+    """(name, has_default) of the keyword-only parameters."""
+    args = fn.args
+    return [(a.arg, d is not None) for a, d in zip(args.kwonlyargs, args.kw_defaults)]
+
+
+def native_signature(doc: str, name: str) -> tuple[list[tuple[str, bool]], bool]:
+    """(keyword-only params, whether positional parameters other than self exist) from pybind11's doc line."""
+    line = doc.splitlines()[0]
+    m = re.match(rf"{name}\((.*)\) -> ", line)
+    assert m, line
+    params, depth, current = [], 0, ""
+    for ch in m.group(1):  # split on top-level commas: defaults such as FVector(X=0.0, ...) contain commas
+        depth += ch in "([{" and 1 or 0
+        depth -= ch in ")]}" and 1 or 0
+        if ch == "," and depth == 0:
+            params.append(current.strip())
+            current = ""
+        else:
+            current += ch
+    params.append(current.strip())
+    assert params[0].startswith("self")
+    rest = params[1:]
+    if not rest:
+        return [], False
+    assert rest[0] == "*", f"{name}: parameters are not keyword-only: {line}"
+    return [(p.split(":")[0], "=" in p) for p in rest[1:]], False
+
+
+@pytest.mark.parametrize("name", object_classes())
+def test_class_matches_stub(name: str) -> None:
+    native = getattr(_inprocess.module(), name)
+    cls = stub_classes()[name]
+    assert issubclass(native, getattr(api, name)), "registered as the typed API class"
+    assert native.__sp_class__ == name
+    base = cls.bases[0]
+    if isinstance(base, ast.Name) and base.id != "_SpObject":
+        assert issubclass(native, getattr(_inprocess.module(), base.id))
+    stub_members = set()
+    for node in cls.body:
+        if isinstance(node, ast.FunctionDef):
+            decorators = {d.id if isinstance(d, ast.Name) else getattr(d, "attr", "") for d in node.decorator_list}
+            stub_members.add(node.name)
+            if "property" in decorators:
+                assert isinstance(native.__dict__[node.name], property), node.name
+                has_setter = any(isinstance(n, ast.FunctionDef) and n.name == node.name and any(
+                    isinstance(d, ast.Attribute) and d.attr == "setter" for d in n.decorator_list) for n in cls.body)
+                assert (native.__dict__[node.name].fset is not None) == has_setter, node.name
+            elif "setter" in decorators:
+                continue
+            elif "overload" in decorators:
+                params, _ = native_signature(native.__dict__[node.name].__doc__, node.name)
+                assert [p for p, _ in params] == [p for p, _ in stub_signature(node)], node.name
+            else:
+                assert node.name in native.__dict__, f"{name}.{node.name} is in the stub but not in the module"
+                params, _ = native_signature(native.__dict__[node.name].__doc__, node.name)
+                assert params == stub_signature(node), node.name
+    native_members = {k for k in native.__dict__ if not k.startswith("_")} - {"is_valid"}
+    assert native_members == {m for m in stub_members}, "the module has members the stub lacks, or the reverse"
+
+
+def test_structs_and_enums_are_shared_python_types() -> None:
+    for name, cls in stub_classes().items():
+        runtime = getattr(spear, name)
+        if any(isinstance(d, ast.Name) and d.id == "dataclass" for d in cls.decorator_list):
+            stub_fields = [n.target.id for n in cls.body if isinstance(n, ast.AnnAssign) and isinstance(n.target, ast.Name)
+                           and n.target.id != "__sp_class__"]
+            assert list(runtime.__dataclass_fields__)[1:] == stub_fields or [
+                f for f in runtime.__dataclass_fields__ if f != "__sp_class__"] == stub_fields
