@@ -12,7 +12,9 @@ namespace {
 struct Slot {
     ObjectBase* object = nullptr;
     uint32_t generation = 0;
-    std::string lastDebugName; // of the object that last lived here, for stale-handle messages
+    // The last destroyed occupant, for stale-handle messages (kept when the slot is reused).
+    std::string lastDebugName;
+    uint32_t lastGeneration = UINT32_MAX;
 };
 
 struct Table {
@@ -49,7 +51,6 @@ ObjectHandle ObjectTable::insert(ObjectBase* object) {
     }
     Slot& slot = t.slots[index];
     slot.object = object;
-    slot.lastDebugName.clear();
     ++t.live;
     return {index, slot.generation};
 }
@@ -58,7 +59,9 @@ void ObjectTable::rememberName(const ObjectBase& object) {
     std::string name = object.GetDebugName();
     Table& t = table();
     std::lock_guard lock(t.mutex);
-    t.slots[object.GetHandle().index].lastDebugName = std::move(name);
+    Slot& slot = t.slots[object.GetHandle().index];
+    slot.lastDebugName = std::move(name);
+    slot.lastGeneration = object.GetHandle().generation;
 }
 
 void ObjectTable::erase(ObjectHandle handle) {
@@ -88,7 +91,7 @@ ObjectBase& ObjectTable::resolve(ObjectHandle handle, std::string_view context) 
     std::string name;
     {
         std::lock_guard lock(t.mutex);
-        if (handle.index < t.slots.size())
+        if (handle.index < t.slots.size() && t.slots[handle.index].lastGeneration == handle.generation)
             name = t.slots[handle.index].lastDebugName;
     }
     SP_THROW(StaleObject, context, ": ", name.empty() ? std::string("object") : name, " (handle ",

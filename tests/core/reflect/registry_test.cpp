@@ -1,0 +1,79 @@
+#include <gtest/gtest.h>
+
+#include "core/base/error.h"
+#include "core/reflect/registry.h"
+#include "core/world/engine.h"
+#include "core/world/static_mesh_actor.h"
+
+using namespace sp::reflect;
+
+namespace {
+struct RegistryTest : ::testing::Test {
+    void SetUp() override { sp::world::registerEngineTypes(); }
+    Registry& registry = Registry::get();
+};
+} // namespace
+
+TEST_F(RegistryTest, ClassesKnowTheirHierarchy) {
+    const TypeInfo& mesh = registry.getClass("AStaticMeshActor", "test");
+    EXPECT_EQ(mesh.parent, &AActor::StaticClass());
+    EXPECT_TRUE(mesh.isChildOf(UObject::StaticClass()));
+    EXPECT_FALSE(AActor::StaticClass().isChildOf(mesh));
+    EXPECT_TRUE(UObject::StaticClass().isAbstract);
+    EXPECT_EQ(UObject::StaticClass().create, nullptr);
+    auto derived = registry.derivedClasses(AActor::StaticClass());
+    ASSERT_EQ(derived.size(), 2u);
+    EXPECT_EQ(derived[0]->name, "AActor");
+    EXPECT_EQ(derived[1]->name, "AStaticMeshActor");
+    EXPECT_THROW(registry.getClass("FVector", "test"), sp::NotFound); // a struct is not a class
+    try {
+        registry.getClass("AFoo", "UWorld.spawn_actor()");
+        FAIL();
+    } catch (const sp::NotFound& e) {
+        EXPECT_STREQ(e.what(), "UWorld.spawn_actor(): class 'AFoo' is not registered");
+    }
+}
+
+TEST_F(RegistryTest, InvokersConvertCheckAndReturnOutParameters) {
+    sp::world::Engine engine;
+    UWorld& world = engine.GetGameWorld();
+    const FunctionInfo* spawn = UWorld::StaticClass().findFunction("spawn_actor");
+    ASSERT_NE(spawn, nullptr);
+    EXPECT_EQ(spawn->returnType, "AActor");
+    Value actor = spawn->invoke(&world, {{"uclass", Value(ClassName{"AStaticMeshActor"})},
+                                         {"location", Value(Value::Dict{{"Z", Value(2.0)}})}});
+    ASSERT_TRUE(actor.is<ObjectHandle>());
+    auto* spawned = static_cast<AStaticMeshActor*>(ObjectTable::find(actor.as<ObjectHandle>()));
+    ASSERT_NE(spawned, nullptr);
+    EXPECT_EQ(spawned->GetActorLocation(), (FVector{0, 0, 2}));
+
+    const FunctionInfo* bounds = AActor::StaticClass().findFunction("GetActorBounds");
+    Value out = bounds->invoke(static_cast<ObjectBase*>(spawned), {{"bOnlyCollidingComponents", Value(false)}});
+    ASSERT_TRUE(out.is<Value::Dict>());
+    EXPECT_EQ(out.as<Value::Dict>().count("Origin"), 1u);
+    EXPECT_EQ(out.as<Value::Dict>().count("BoxExtent"), 1u);
+
+    EXPECT_THROW(spawn->invoke(&world, {}), sp::InvalidArgument); // missing uclass
+    try {
+        spawn->invoke(&world, {{"uclass", Value("AActor")}, {"locaton", Value()}});
+        FAIL();
+    } catch (const sp::InvalidArgument& e) {
+        EXPECT_STREQ(e.what(),
+                     "UWorld.spawn_actor(): unexpected argument 'locaton' (parameters: uclass, location, rotation, name, tags)");
+    }
+}
+
+TEST_F(RegistryTest, PropertiesUseSettersAndRejectWrongTypes) {
+    sp::world::Engine engine;
+    AActor* actor = engine.GetGameWorld().spawn_actor(&AStaticMeshActor::StaticClass());
+    auto* root = actor->RootComponent;
+    const PropertyInfo* mobility = root->GetClass().findProperty("Mobility");
+    mobility->set(static_cast<ObjectBase*>(root), Value(int64_t(0)));
+    EXPECT_EQ(root->Mobility, EComponentMobility::Static);
+    const PropertyInfo* location = root->GetClass().findProperty("RelativeLocation");
+    // The Setter runs, so a static component refuses to move through the property too.
+    EXPECT_THROW(location->set(static_cast<ObjectBase*>(root), Value(Value::Dict{{"X", Value(1.0)}})), sp::InvalidState);
+    const PropertyInfo* rootProperty = AActor::StaticClass().findProperty("RootComponent");
+    EXPECT_EQ(rootProperty->set, nullptr);
+    EXPECT_TRUE(rootProperty->readOnly);
+}

@@ -1,0 +1,77 @@
+#include <gtest/gtest.h>
+
+#include "core/base/error.h"
+#include "core/reflect/codec.h"
+#include "core/world/math.h"
+#include "core/world/scene_component.h"
+#include "core/world/engine.h"
+
+using namespace sp::reflect;
+
+TEST(Value, KindsAndRepr) {
+    EXPECT_EQ(Value().kindName(), "None");
+    EXPECT_EQ(Value(int64_t(3)).repr(), "3");
+    EXPECT_EQ(Value("abc").repr(), "'abc'");
+    EXPECT_EQ(Value(Value::Dict{{"X", Value(1.5)}}).repr(), "{'X': 1.5}");
+    EXPECT_EQ(Value(ObjectHandle{5, 2}).repr(), "<object 5:2>");
+}
+
+TEST(Value, ArraysCompareByContent) {
+    auto a = std::make_shared<std::vector<float>>(std::vector<float>{1, 2, 3});
+    auto b = std::make_shared<std::vector<float>>(std::vector<float>{1, 2, 3});
+    ArrayValue x{DType::Float32, {3}, a, a->data()};
+    ArrayValue y{DType::Float32, {3}, b, b->data()};
+    EXPECT_EQ(Value(x), Value(y));
+    (*b)[2] = 4;
+    EXPECT_NE(Value(x), Value(y));
+}
+
+TEST(Codec, ScalarsAreChecked) {
+    EXPECT_EQ(decode<int32_t>(Value(int64_t(-4)), "x"), -4);
+    EXPECT_EQ(decode<double>(Value(int64_t(2)), "x"), 2.0);
+    EXPECT_THROW(decode<uint8_t>(Value(int64_t(300)), "x"), sp::InvalidArgument);
+    try {
+        decode<bool>(Value("yes"), "F(): argument 'b'");
+        FAIL();
+    } catch (const sp::InvalidArgument& e) {
+        EXPECT_STREQ(e.what(), "F(): argument 'b' must be a bool, got str 'yes'");
+    }
+}
+
+TEST(Codec, StructsRoundTripThroughDicts) {
+    sp::world::registerEngineTypes();
+    FTransform t{{1, 2, 3}, {0, 0, 0, 1}, {2, 2, 2}};
+    Value v = encode(t);
+    ASSERT_TRUE(v.is<Value::Dict>());
+    EXPECT_EQ(v.as<Value::Dict>().at("Translation").as<Value::Dict>().at("Y").as<double>(), 2.0);
+    EXPECT_EQ(decode<FTransform>(v, "t"), t);
+    // Missing fields keep their defaults; unknown fields are errors.
+    EXPECT_EQ(decode<FVector>(Value(Value::Dict{{"Z", Value(1.0)}}), "v"), (FVector{0, 0, 1}));
+    EXPECT_THROW(decode<FVector>(Value(Value::Dict{{"W", Value(1.0)}}), "v"), sp::InvalidArgument);
+}
+
+TEST(Codec, EnumsAreValidated) {
+    sp::world::registerEngineTypes();
+    EXPECT_EQ(decode<EComponentMobility>(Value(int64_t(2)), "m"), EComponentMobility::Movable);
+    EXPECT_THROW(decode<EComponentMobility>(Value(int64_t(9)), "m"), sp::InvalidArgument);
+    EXPECT_EQ(StaticEnum<EComponentMobility>().nameOf(0), "Static");
+}
+
+TEST(Codec, ContainersReportTheBadElement) {
+    try {
+        decode<std::vector<std::string>>(Value(Value::List{Value("a"), Value(1.0)}), "tags");
+        FAIL();
+    } catch (const sp::InvalidArgument& e) {
+        EXPECT_STREQ(e.what(), "tags[1] must be a str, got float 1");
+    }
+}
+
+TEST(SpArray, ShapesAndViews) {
+    SpArray<double> a("input");
+    a.setDataSource({1.0, 2.0, 3.0, 4.0, 5.0, 6.0}, {-1, 3});
+    EXPECT_EQ(a.getShape(), (std::vector<int64_t>{2, 3}));
+    EXPECT_EQ(a.getView()[4], 5.0);
+    EXPECT_THROW(a.setDataSource({1.0, 2.0}, {3}), sp::InvalidArgument);
+    SpArray<float> b("b");
+    EXPECT_THROW(b.assign(a.value(), "F()"), sp::InvalidArgument);
+}
