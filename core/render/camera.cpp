@@ -7,14 +7,15 @@
 namespace sp::render {
 
 void CameraParams::validate(const char* function) const {
-    SP_CHECK(width > 0 && width <= 16384, InvalidArgument, function, "(): width must be in [1, 16384], got ", width);
-    SP_CHECK(height > 0 && height <= 16384, InvalidArgument, function, "(): height must be in [1, 16384], got ",
-             height);
+    SP_CHECK(width > 0 && width <= 16384, InvalidArgument, function, "(): width must be in [1, 16384], got ",
+             width);
+    SP_CHECK(height > 0 && height <= 16384, InvalidArgument, function,
+             "(): height must be in [1, 16384], got ", height);
     SP_CHECK(hfovDeg > 0.0 && hfovDeg < 180.0, InvalidArgument, function,
              "(): hfovDeg must be in (0, 180), got ", hfovDeg);
     SP_CHECK(nearClip > 0.0, InvalidArgument, function, "(): nearClip must be > 0, got ", nearClip);
-    SP_CHECK(farClip > nearClip, InvalidArgument, function, "(): farClip must be > nearClip (", nearClip, "), got ",
-             farClip);
+    SP_CHECK(farClip > nearClip, InvalidArgument, function, "(): farClip must be > nearClip (", nearClip,
+             "), got ", farClip);
     SP_CHECK(std::isfinite(exposure) && exposure >= 0.0f, InvalidArgument, function,
              "(): exposure must be finite and >= 0, got ", exposure);
     SP_CHECK(shadowResolution >= 16 && shadowResolution <= 8192, InvalidArgument, function,
@@ -23,9 +24,12 @@ void CameraParams::validate(const char* function) const {
 
 std::string toneMapName(ToneMap toneMap) {
     switch (toneMap) {
-    case ToneMap::Aces: return "aces";
-    case ToneMap::Reinhard: return "reinhard";
-    case ToneMap::Linear: return "linear";
+    case ToneMap::Aces:
+        return "aces";
+    case ToneMap::Reinhard:
+        return "reinhard";
+    case ToneMap::Linear:
+        return "linear";
     }
     return "?";
 }

@@ -37,11 +37,13 @@ GLuint makeFramebuffer(const GLuint* textures, int count, GLuint depth, const ch
 
 } // namespace
 
-Framebuffers::~Framebuffers() { release(); }
+Framebuffers::~Framebuffers() {
+    release();
+}
 
 void Framebuffers::release() {
     if (gbufferFbo == 0 && lightingFbo == 0 && tonemapFbo == 0)
-        return;  // nothing allocated: no GL call, so a never-used target needs no context
+        return; // nothing allocated: no GL call, so a never-used target needs no context
     glDeleteFramebuffers(1, &gbufferFbo);
     glDeleteTextures(shaders::GBufferTargetCount, gbufferTextures);
     glDeleteRenderbuffers(1, &depthBuffer);
@@ -65,8 +67,8 @@ void Framebuffers::ensure(int w, int h, const PassSet& passes) {
     if (passes.gbuffer && gbufferFbo == 0) {
         // Float32 where the modality is float32 (position, normal, depth), float16 for material
         // attributes, and an integer target for the ids (never filtered or blended).
-        const GLenum formats[shaders::GBufferTargetCount] = {GL_RGBA32F, GL_RGBA32F, GL_R32F, GL_RGBA16F,
-                                                              GL_RGBA16F, GL_RGBA16F, GL_RG32UI};
+        const GLenum formats[shaders::GBufferTargetCount] = {GL_RGBA32F, GL_RGBA32F, GL_R32F,  GL_RGBA16F,
+                                                             GL_RGBA16F, GL_RGBA16F, GL_RG32UI};
         for (int i = 0; i < shaders::GBufferTargetCount; ++i)
             gbufferTextures[i] = makeTexture(formats[i], w, h);
         glCreateRenderbuffers(1, &depthBuffer);

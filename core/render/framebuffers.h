@@ -8,7 +8,7 @@
 namespace sp::render {
 
 class Framebuffers {
-public:
+  public:
     Framebuffers() = default;
     ~Framebuffers();
     Framebuffers(const Framebuffers&) = delete;
@@ -27,7 +27,7 @@ public:
     unsigned tonemapFbo = 0;
     unsigned tonemapTexture = 0;
 
-private:
+  private:
     void release();
 };
 

@@ -107,8 +107,12 @@ EGLContext createCoreContext(EGLDisplay display, std::string& whyNot) {
             return EGL_NO_CONTEXT;
         }
     }
-    const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                     EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+    const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                     4,
+                                     EGL_CONTEXT_MINOR_VERSION,
+                                     5,
+                                     EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                     EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                      EGL_NONE};
     EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttribs);
     if (context == EGL_NO_CONTEXT) {
@@ -151,11 +155,13 @@ GlContext::GlContext(const GlContextOptions& options) {
     if (choice != "auto" && choice != "surfaceless") {
         char* end = nullptr;
         long index = std::strtol(choice.c_str(), &end, 10);
-        SP_CHECK(end != choice.c_str() && *end == '\0' && index >= 0, InvalidArgument,
-                 "GlContext::GlContext(): SPEAR_EGL_DEVICE must be 'auto', 'surfaceless' or a device index, got '",
-                 choice, "'");
+        SP_CHECK(
+            end != choice.c_str() && *end == '\0' && index >= 0, InvalidArgument,
+            "GlContext::GlContext(): SPEAR_EGL_DEVICE must be 'auto', 'surfaceless' or a device index, got '",
+            choice, "'");
         SP_CHECK(index < static_cast<long>(devices.size()), InvalidArgument,
-                 "GlContext::GlContext(): SPEAR_EGL_DEVICE=", index, " but EGL lists ", devices.size(), " device(s)");
+                 "GlContext::GlContext(): SPEAR_EGL_DEVICE=", index, " but EGL lists ", devices.size(),
+                 " device(s)");
         forcedIndex = static_cast<int>(index);
     }
 
@@ -166,7 +172,8 @@ GlContext::GlContext(const GlContextOptions& options) {
         EGLDisplay candidate =
             eglExtensions().getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[std::size_t(index)], nullptr);
         std::string whyNot = "eglGetPlatformDisplayEXT failed";
-        EGLContext created = candidate != EGL_NO_DISPLAY ? createCoreContext(candidate, whyNot) : EGL_NO_CONTEXT;
+        EGLContext created =
+            candidate != EGL_NO_DISPLAY ? createCoreContext(candidate, whyNot) : EGL_NO_CONTEXT;
         if (created == EGL_NO_CONTEXT) {
             reasons += " device " + std::to_string(index) + ": " + whyNot + ";";
             return false;
@@ -191,7 +198,8 @@ GlContext::GlContext(const GlContextOptions& options) {
                                                                         EGL_DEFAULT_DISPLAY, nullptr)
                                    : EGL_NO_DISPLAY;
         std::string whyNot = "eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA) failed";
-        EGLContext created = candidate != EGL_NO_DISPLAY ? createCoreContext(candidate, whyNot) : EGL_NO_CONTEXT;
+        EGLContext created =
+            candidate != EGL_NO_DISPLAY ? createCoreContext(candidate, whyNot) : EGL_NO_CONTEXT;
         if (created != EGL_NO_CONTEXT) {
             display = candidate;
             context = created;
@@ -201,8 +209,8 @@ GlContext::GlContext(const GlContextOptions& options) {
         }
     }
     SP_CHECK(context != EGL_NO_CONTEXT, InvalidState,
-             "GlContext::GlContext(): no OpenGL 4.5 core context could be created (SPEAR_EGL_DEVICE='", choice,
-             "'):", reasons);
+             "GlContext::GlContext(): no OpenGL 4.5 core context could be created (SPEAR_EGL_DEVICE='",
+             choice, "'):", reasons);
 
     display_ = display;
     context_ = context;
@@ -214,12 +222,13 @@ GlContext::GlContext(const GlContextOptions& options) {
     if (major * 10 + minor < 45) {
         eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         eglDestroyContext(display_, context_);
-        SP_THROW(InvalidState, "GlContext::GlContext(): need OpenGL 4.5 core, the ", report_.kind, " context is ",
-                 report_.version, " (", report_.renderer, ")");
+        SP_THROW(InvalidState, "GlContext::GlContext(): need OpenGL 4.5 core, the ", report_.kind,
+                 " context is ", report_.version, " (", report_.renderer, ")");
     }
     SP_LOG("render: EGL ", report_.kind,
            report_.deviceIndex >= 0 ? " " + std::to_string(report_.deviceIndex) : std::string(), " of ",
-           report_.deviceCount, " device(s): ", report_.vendor, " | ", report_.renderer, " | ", report_.version);
+           report_.deviceCount, " device(s): ", report_.vendor, " | ", report_.renderer, " | ",
+           report_.version);
 }
 
 GlContext::~GlContext() {

@@ -12,21 +12,21 @@ namespace sp::render {
 
 // Which EGL display the context was created on, and what GL reports about itself.
 struct ContextReport {
-    std::string kind;       // "device" or "surfaceless"
-    int deviceIndex = -1;   // index in eglQueryDevicesEXT's list; -1 for surfaceless
-    int deviceCount = 0;    // devices that eglQueryDevicesEXT listed
-    std::string vendor;     // GL_VENDOR
-    std::string renderer;   // GL_RENDERER
-    std::string version;    // GL_VERSION
+    std::string kind;     // "device" or "surfaceless"
+    int deviceIndex = -1; // index in eglQueryDevicesEXT's list; -1 for surfaceless
+    int deviceCount = 0;  // devices that eglQueryDevicesEXT listed
+    std::string vendor;   // GL_VENDOR
+    std::string renderer; // GL_RENDERER
+    std::string version;  // GL_VERSION
 };
 
 // Options for GlContext::create(); an empty `device` reads SPEAR_EGL_DEVICE, then auto-selects.
 struct GlContextOptions {
-    std::string device;     // "", "auto", "surfaceless" or a device index such as "0"
+    std::string device; // "", "auto", "surfaceless" or a device index such as "0"
 };
 
 class GlContext {
-public:
+  public:
     // Creates the context and makes it current on the calling thread. Throws sp::InvalidState when no
     // OpenGL 4.5 core context can be created, sp::InvalidArgument for a bad SPEAR_EGL_DEVICE value.
     explicit GlContext(const GlContextOptions& options = {});
@@ -39,7 +39,7 @@ public:
 
     const ContextReport& report() const { return report_; }
 
-private:
+  private:
     void* display_ = nullptr;
     void* context_ = nullptr;
     ContextReport report_;

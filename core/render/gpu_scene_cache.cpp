@@ -19,7 +19,7 @@ GpuSceneCache::~GpuSceneCache() {
 }
 
 const GpuMesh& GpuSceneCache::mesh(const Scene& scene, MeshId id) {
-    const MeshData& data = scene.mesh(id);  // throws for a stale id
+    const MeshData& data = scene.mesh(id); // throws for a stale id
     const std::uint64_t revision = scene.meshRevision(id);
     if (id.index >= meshes_.size())
         meshes_.resize(id.index + 1);
@@ -40,14 +40,14 @@ const GpuMesh& GpuSceneCache::mesh(const Scene& scene, MeshId id) {
         }
     }
     // Eigen's fixed-size vectors are packed floats, so the std::vectors upload as flat arrays.
-    glNamedBufferData(gpu.buffers[0], GLsizeiptr(data.positions.size() * sizeof(float) * 3), data.positions.data(),
-                      GL_STATIC_DRAW);
-    glNamedBufferData(gpu.buffers[1], GLsizeiptr(data.normals.size() * sizeof(float) * 3), data.normals.data(),
-                      GL_STATIC_DRAW);
+    glNamedBufferData(gpu.buffers[0], GLsizeiptr(data.positions.size() * sizeof(float) * 3),
+                      data.positions.data(), GL_STATIC_DRAW);
+    glNamedBufferData(gpu.buffers[1], GLsizeiptr(data.normals.size() * sizeof(float) * 3),
+                      data.normals.data(), GL_STATIC_DRAW);
     glNamedBufferData(gpu.buffers[2], GLsizeiptr(data.uvs.size() * sizeof(float) * 2), data.uvs.data(),
                       GL_STATIC_DRAW);
-    glNamedBufferData(gpu.buffers[3], GLsizeiptr(data.indices.size() * sizeof(std::uint32_t)), data.indices.data(),
-                      GL_STATIC_DRAW);
+    glNamedBufferData(gpu.buffers[3], GLsizeiptr(data.indices.size() * sizeof(std::uint32_t)),
+                      data.indices.data(), GL_STATIC_DRAW);
     gpu.generation = id.generation;
     gpu.revision = revision;
     gpu.submeshes = data.submeshes;
@@ -56,7 +56,7 @@ const GpuMesh& GpuSceneCache::mesh(const Scene& scene, MeshId id) {
 }
 
 unsigned GpuSceneCache::texture(const Scene& scene, TextureId id) {
-    const TextureImage& image = scene.texture(id);  // throws for a stale id
+    const TextureImage& image = scene.texture(id); // throws for a stale id
     if (id.index >= textures_.size())
         textures_.resize(id.index + 1);
     GpuTexture& gpu = textures_[id.index];
@@ -72,7 +72,8 @@ unsigned GpuSceneCache::texture(const Scene& scene, TextureId id) {
     glTextureStorage2D(gpu.name, levels, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, image.width, image.height);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     // Row 0 (top) goes to t = 0, so uv (0, 0) is the image's top-left corner (glTF convention).
-    glTextureSubImage2D(gpu.name, 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
+    glTextureSubImage2D(gpu.name, 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE,
+                        image.rgba.data());
     glGenerateTextureMipmap(gpu.name);
     glTextureParameteri(gpu.name, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTextureParameteri(gpu.name, GL_TEXTURE_MAG_FILTER, GL_LINEAR);

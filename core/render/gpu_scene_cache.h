@@ -11,14 +11,14 @@ namespace sp::render {
 
 struct GpuMesh {
     unsigned vao = 0;
-    unsigned buffers[4] = {};   // positions, normals, uvs, indices
+    unsigned buffers[4] = {}; // positions, normals, uvs, indices
     std::uint32_t generation = 0;
     std::uint64_t revision = 0;
     std::vector<Submesh> submeshes;
 };
 
 class GpuSceneCache {
-public:
+  public:
     GpuSceneCache() = default;
     ~GpuSceneCache();
     GpuSceneCache(const GpuSceneCache&) = delete;
@@ -32,13 +32,13 @@ public:
     std::uint64_t meshUploads() const { return meshUploads_; }
     std::uint64_t textureUploads() const { return textureUploads_; }
 
-private:
+  private:
     struct GpuTexture {
         unsigned name = 0;
         std::uint32_t generation = 0;
     };
-    std::vector<GpuMesh> meshes_;        // by MeshId::index
-    std::vector<GpuTexture> textures_;   // by TextureId::index
+    std::vector<GpuMesh> meshes_;      // by MeshId::index
+    std::vector<GpuTexture> textures_; // by TextureId::index
     std::uint64_t meshUploads_ = 0;
     std::uint64_t textureUploads_ = 0;
 };

@@ -9,14 +9,18 @@ namespace sp::render {
 
 float ImageBuffer::at(int x, int y, int c) const {
     SP_CHECK(x >= 0 && x < width && y >= 0 && y < height && c >= 0 && c < channels(), InvalidArgument,
-             "ImageBuffer::at(): (", x, ", ", y, ", ", c, ") is outside ", modalityName(modality), " (", height, ",",
-             width, ",", channels(), ")");
+             "ImageBuffer::at(): (", x, ", ", y, ", ", c, ") is outside ", modalityName(modality), " (",
+             height, ",", width, ",", channels(), ")");
     const std::size_t i = (std::size_t(y) * width + x) * channels() + c;
     switch (dtype()) {
-    case DType::UInt8: return float(std::to_integer<std::uint8_t>(bytes[i]));
-    case DType::UInt32: return float(as<std::uint32_t>()[i]);
-    case DType::Float16: return halfToFloat(as<std::uint16_t>()[i]);
-    case DType::Float32: return as<float>()[i];
+    case DType::UInt8:
+        return float(std::to_integer<std::uint8_t>(bytes[i]));
+    case DType::UInt32:
+        return float(as<std::uint32_t>()[i]);
+    case DType::Float16:
+        return halfToFloat(as<std::uint16_t>()[i]);
+    case DType::Float32:
+        return as<float>()[i];
     }
     return 0.0f;
 }
@@ -31,7 +35,8 @@ std::uint32_t ImageBuffer::uintAt(int x, int y, int c) const {
 
 const ImageBuffer& Frame::get(Modality modality) const {
     const auto& image = images_[static_cast<std::size_t>(modality)];
-    SP_CHECK(image.has_value(), NotFound, "Frame::get(): modality '", modalityName(modality), "' was not rendered");
+    SP_CHECK(image.has_value(), NotFound, "Frame::get(): modality '", modalityName(modality),
+             "' was not rendered");
     return *image;
 }
 
@@ -86,11 +91,11 @@ std::uint16_t floatToHalf(float value) {
         return sign | 0x7e00u;
     if (magnitude >= 65520.0f)
         return sign | 0x7c00u;
-    if (magnitude < std::ldexp(1.0f, -14)) {  // subnormal
+    if (magnitude < std::ldexp(1.0f, -14)) { // subnormal
         return sign | static_cast<std::uint16_t>(std::nearbyint(magnitude * std::ldexp(1.0f, 24)));
     }
     int exponent;
-    const float fraction = std::frexp(magnitude, &exponent);  // magnitude = fraction * 2^exponent, [0.5, 1)
+    const float fraction = std::frexp(magnitude, &exponent); // magnitude = fraction * 2^exponent, [0.5, 1)
     auto mantissa = static_cast<std::uint32_t>(std::nearbyint((fraction * 2.0f - 1.0f) * 1024.0f));
     int biased = exponent - 1 + 15;
     if (mantissa == 1024) {

@@ -18,7 +18,7 @@ struct ImageBuffer {
     Modality modality = Modality::FinalColor;
     int width = 0;
     int height = 0;
-    std::vector<std::byte> bytes;   // (height, width[, channels]) of the modality's dtype
+    std::vector<std::byte> bytes; // (height, width[, channels]) of the modality's dtype
 
     int channels() const { return modalityInfo(modality).channels; }
     DType dtype() const { return modalityInfo(modality).dtype; }
@@ -41,8 +41,8 @@ struct OutputView {
 
 // The outputs of one frame.
 class Frame {
-public:
-    std::uint64_t frameNumber = 0;    // 1 for the first submit of a RenderTarget
+  public:
+    std::uint64_t frameNumber = 0; // 1 for the first submit of a RenderTarget
     int width = 0;
     int height = 0;
 
@@ -55,7 +55,7 @@ public:
     // Drops the buffers of modalities outside `keep` (buffers inside are kept for reuse).
     void retain(const ModalitySet& keep);
 
-private:
+  private:
     std::array<std::optional<ImageBuffer>, kModalityCount> images_;
 };
 

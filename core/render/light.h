@@ -12,14 +12,14 @@ enum class LightType { Directional, Point, Spot };
 
 struct Light {
     LightType type = LightType::Directional;
-    Eigen::Vector3f color{1.0f, 1.0f, 1.0f};   // linear RGB tint
-    float intensity = 3.14159265f;             // see the header comment for units
-    Eigen::Vector3d position = Eigen::Vector3d::Zero();       // world, point and spot
-    Eigen::Vector3d direction{0.0, 0.0, -1.0};                 // world, direction light travels (dir, spot)
-    float range = 0.0f;              // metres; 0 = unbounded; otherwise a smooth window to 0 at range
-    float innerConeDeg = 30.0f;      // spot: full intensity inside this half-angle
-    float outerConeDeg = 45.0f;      // spot: zero outside this half-angle
-    bool castShadows = true;         // directional and spot lights; point lights never cast shadows
+    Eigen::Vector3f color{1.0f, 1.0f, 1.0f};            // linear RGB tint
+    float intensity = 3.14159265f;                      // see the header comment for units
+    Eigen::Vector3d position = Eigen::Vector3d::Zero(); // world, point and spot
+    Eigen::Vector3d direction{0.0, 0.0, -1.0};          // world, direction light travels (dir, spot)
+    float range = 0.0f;         // metres; 0 = unbounded; otherwise a smooth window to 0 at range
+    float innerConeDeg = 30.0f; // spot: full intensity inside this half-angle
+    float outerConeDeg = 45.0f; // spot: zero outside this half-angle
+    bool castShadows = true;    // directional and spot lights; point lights never cast shadows
 
     // Throws sp::InvalidArgument naming the bad field.
     void validate(const char* function) const;

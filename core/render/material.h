@@ -12,14 +12,14 @@ namespace sp::render {
 
 struct Material {
     Eigen::Vector4f baseColor{0.8f, 0.8f, 0.8f, 1.0f};  // linear RGB + alpha (alpha unused: opaque)
-    float roughness = 0.5f;                              // perceptual roughness in [0, 1]
-    float metallic = 0.0f;                               // [0, 1]
-    float ambientOcclusion = 1.0f;                       // [0, 1], scales ambient light only
-    Eigen::Vector3f emissive = Eigen::Vector3f::Zero();  // linear radiance added to hdr_color
-    std::optional<TextureId> baseColorTexture;           // sRGB; multiplies baseColor
-    std::optional<TextureId> roughnessMetallicTexture;   // glTF layout: G = roughness, B = metallic (multiply)
-    std::optional<TextureId> normalTexture;              // tangent-space normal map (OpenGL convention, +Y up)
-    std::uint32_t id = 0;                                // value in material_ids; 0 = handle index + 1
+    float roughness = 0.5f;                             // perceptual roughness in [0, 1]
+    float metallic = 0.0f;                              // [0, 1]
+    float ambientOcclusion = 1.0f;                      // [0, 1], scales ambient light only
+    Eigen::Vector3f emissive = Eigen::Vector3f::Zero(); // linear radiance added to hdr_color
+    std::optional<TextureId> baseColorTexture;          // sRGB; multiplies baseColor
+    std::optional<TextureId> roughnessMetallicTexture;  // glTF layout: G = roughness, B = metallic (multiply)
+    std::optional<TextureId> normalTexture;             // tangent-space normal map (OpenGL convention, +Y up)
+    std::uint32_t id = 0;                               // value in material_ids; 0 = handle index + 1
 
     // Throws sp::InvalidArgument naming the bad field.
     void validate(const char* function) const;

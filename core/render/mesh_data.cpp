@@ -17,8 +17,8 @@ MeshData MeshData::fromArrays(std::span<const float> positions, std::span<const 
     const std::size_t n = positions.size() / 3;
     SP_CHECK(normals.empty() || normals.size() == n * 3, InvalidArgument, fn,
              "(): normals must be empty or have shape (", n, ",3), got ", normals.size(), " floats");
-    SP_CHECK(uvs.empty() || uvs.size() == n * 2, InvalidArgument, fn, "(): uvs must be empty or have shape (", n,
-             ",2), got ", uvs.size(), " floats");
+    SP_CHECK(uvs.empty() || uvs.size() == n * 2, InvalidArgument, fn, "(): uvs must be empty or have shape (",
+             n, ",2), got ", uvs.size(), " floats");
     MeshData mesh;
     mesh.positions.resize(n);
     for (std::size_t i = 0; i < n; ++i)
@@ -36,8 +36,8 @@ MeshData MeshData::fromArrays(std::span<const float> positions, std::span<const 
     mesh.indices.assign(indices.begin(), indices.end());
     for (std::size_t s = 0; s < submeshOffsets.size(); ++s) {
         const std::uint32_t first = submeshOffsets[s];
-        const std::uint32_t end =
-            s + 1 < submeshOffsets.size() ? submeshOffsets[s + 1] : static_cast<std::uint32_t>(indices.size());
+        const std::uint32_t end = s + 1 < submeshOffsets.size() ? submeshOffsets[s + 1]
+                                                                : static_cast<std::uint32_t>(indices.size());
         SP_CHECK(first <= end, InvalidArgument, fn, "(): submeshOffsets must be increasing, got ", first,
                  " before ", end);
         mesh.submeshes.push_back({first, end - first});
@@ -52,15 +52,15 @@ void MeshData::validate(const char* function) {
     SP_CHECK(!indices.empty() && indices.size() % 3 == 0, InvalidArgument, function, "(): mesh '", name,
              "' needs a non-empty triangle list (indices divisible by 3), got ", indices.size(), " indices");
     for (std::size_t i = 0; i < indices.size(); ++i)
-        SP_CHECK(indices[i] < n, InvalidArgument, function, "(): mesh '", name, "' index[", i, "] = ", indices[i],
-                 " is out of range for ", n, " vertices");
+        SP_CHECK(indices[i] < n, InvalidArgument, function, "(): mesh '", name, "' index[", i,
+                 "] = ", indices[i], " is out of range for ", n, " vertices");
     for (std::size_t i = 0; i < n; ++i)
         SP_CHECK(positions[i].allFinite(), InvalidArgument, function, "(): mesh '", name, "' position[", i,
                  "] is not finite");
     SP_CHECK(normals.empty() || normals.size() == n, InvalidArgument, function, "(): mesh '", name, "' has ",
              normals.size(), " normals for ", n, " vertices");
-    SP_CHECK(uvs.empty() || uvs.size() == n, InvalidArgument, function, "(): mesh '", name, "' has ", uvs.size(),
-             " uvs for ", n, " vertices");
+    SP_CHECK(uvs.empty() || uvs.size() == n, InvalidArgument, function, "(): mesh '", name, "' has ",
+             uvs.size(), " uvs for ", n, " vertices");
     if (submeshes.empty())
         submeshes.push_back({0, static_cast<std::uint32_t>(indices.size())});
     for (std::size_t s = 0; s < submeshes.size(); ++s) {
@@ -84,7 +84,8 @@ void MeshData::validate(const char* function) {
     }
     for (Eigen::Vector3f& normal : normals) {
         const float length = normal.norm();
-        normal = length > 0.0f && std::isfinite(length) ? Eigen::Vector3f(normal / length) : Eigen::Vector3f::UnitZ();
+        normal = length > 0.0f && std::isfinite(length) ? Eigen::Vector3f(normal / length)
+                                                        : Eigen::Vector3f::UnitZ();
     }
 }
 

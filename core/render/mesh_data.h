@@ -18,11 +18,11 @@ struct Submesh {
 };
 
 struct MeshData {
-    std::vector<Eigen::Vector3f> positions;   // metres, mesh-local
-    std::vector<Eigen::Vector3f> normals;     // unit; empty = computed (area-weighted smooth normals)
-    std::vector<Eigen::Vector2f> uvs;         // empty = all zero
-    std::vector<std::uint32_t> indices;       // triangle list, 3 per triangle
-    std::vector<Submesh> submeshes;           // empty = one submesh covering all indices
+    std::vector<Eigen::Vector3f> positions; // metres, mesh-local
+    std::vector<Eigen::Vector3f> normals;   // unit; empty = computed (area-weighted smooth normals)
+    std::vector<Eigen::Vector2f> uvs;       // empty = all zero
+    std::vector<std::uint32_t> indices;     // triangle list, 3 per triangle
+    std::vector<Submesh> submeshes;         // empty = one submesh covering all indices
     std::string name;
 
     // Builds a mesh from flat arrays: positions float32 (N,3), normals float32 (N,3) or empty,

@@ -24,7 +24,7 @@ std::optional<TextureImage> readTexture(const aiScene* scene, const aiMaterial* 
     const std::string name = path.C_Str();
     try {
         if (const aiTexture* embedded = scene->GetEmbeddedTexture(path.C_Str())) {
-            if (embedded->mHeight == 0)  // compressed (PNG/JPG bytes)
+            if (embedded->mHeight == 0) // compressed (PNG/JPG bytes)
                 return TextureImage::decode(reinterpret_cast<const std::uint8_t*>(embedded->pcData),
                                             embedded->mWidth, name);
             std::vector<std::uint8_t> rgba;
@@ -42,7 +42,8 @@ std::optional<TextureImage> readTexture(const aiScene* scene, const aiMaterial* 
     }
 }
 
-ImportedMaterial readMaterial(const aiScene* scene, const aiMaterial* source, const std::filesystem::path& dir) {
+ImportedMaterial readMaterial(const aiScene* scene, const aiMaterial* source,
+                              const std::filesystem::path& dir) {
     ImportedMaterial out;
     out.name = source->GetName().C_Str();
     aiColor4D color;
@@ -55,7 +56,7 @@ ImportedMaterial readMaterial(const aiScene* scene, const aiMaterial* source, co
     if (source->Get(AI_MATKEY_ROUGHNESS_FACTOR, value) == AI_SUCCESS)
         out.material.roughness = std::clamp(value, 0.0f, 1.0f);
     else if (source->Get(AI_MATKEY_SHININESS, value) == AI_SUCCESS && value > 0.0f)
-        out.material.roughness = std::clamp(std::sqrt(2.0f / (value + 2.0f)), 0.0f, 1.0f);  // Phong -> GGX
+        out.material.roughness = std::clamp(std::sqrt(2.0f / (value + 2.0f)), 0.0f, 1.0f); // Phong -> GGX
     aiColor3D emissive;
     if (source->Get(AI_MATKEY_COLOR_EMISSIVE, emissive) == AI_SUCCESS)
         out.material.emissive = {emissive.r, emissive.g, emissive.b};
@@ -65,7 +66,8 @@ ImportedMaterial readMaterial(const aiScene* scene, const aiMaterial* source, co
     out.baseColorTexture = readTexture(scene, source, aiTextureType_BASE_COLOR, 0, dir);
     if (!out.baseColorTexture)
         out.baseColorTexture = readTexture(scene, source, aiTextureType_DIFFUSE, 0, dir);
-    out.roughnessMetallicTexture = readTexture(scene, source, AI_MATKEY_GLTF_PBRMETALLICROUGHNESS_METALLICROUGHNESS_TEXTURE, dir);
+    out.roughnessMetallicTexture =
+        readTexture(scene, source, AI_MATKEY_GLTF_PBRMETALLICROUGHNESS_METALLICROUGHNESS_TEXTURE, dir);
     out.normalTexture = readTexture(scene, source, aiTextureType_NORMALS, 0, dir);
     return out;
 }
@@ -88,14 +90,15 @@ ImportedMesh importMesh(const std::string& path) {
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
         const aiMesh* mesh = scene->mMeshes[m];
         if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
-            continue;  // points and lines have no surface to render
+            continue; // points and lines have no surface to render
         const auto base = static_cast<std::uint32_t>(out.mesh.positions.size());
         for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
             const aiVector3D& p = mesh->mVertices[v];
             out.mesh.positions.push_back({p.x, p.y, p.z});
             const aiVector3D n = mesh->HasNormals() ? mesh->mNormals[v] : aiVector3D(0, 0, 1);
             out.mesh.normals.push_back({n.x, n.y, n.z});
-            const aiVector3D uv = mesh->HasTextureCoords(0) ? mesh->mTextureCoords[0][v] : aiVector3D(0, 0, 0);
+            const aiVector3D uv =
+                mesh->HasTextureCoords(0) ? mesh->mTextureCoords[0][v] : aiVector3D(0, 0, 0);
             out.mesh.uvs.push_back({uv.x, uv.y});
         }
         Submesh submesh{static_cast<std::uint32_t>(out.mesh.indices.size()), 0};
@@ -114,7 +117,8 @@ ImportedMesh importMesh(const std::string& path) {
                                     ? readMaterial(scene, scene->mMaterials[mesh->mMaterialIndex], directory)
                                     : ImportedMaterial{});
     }
-    SP_CHECK(!out.mesh.submeshes.empty(), InvalidArgument, "importMesh(): '", path, "' contains no triangles");
+    SP_CHECK(!out.mesh.submeshes.empty(), InvalidArgument, "importMesh(): '", path,
+             "' contains no triangles");
     out.mesh.validate("importMesh");
     return out;
 }
@@ -127,7 +131,8 @@ ImportedMeshIds addToScene(Scene& scene, const ImportedMesh& imported) {
         if (source.baseColorTexture)
             material.baseColorTexture = scene.addTexture(*source.baseColorTexture, TextureEncoding::Srgb);
         if (source.roughnessMetallicTexture)
-            material.roughnessMetallicTexture = scene.addTexture(*source.roughnessMetallicTexture, TextureEncoding::Linear);
+            material.roughnessMetallicTexture =
+                scene.addTexture(*source.roughnessMetallicTexture, TextureEncoding::Linear);
         if (source.normalTexture)
             material.normalTexture = scene.addTexture(*source.normalTexture, TextureEncoding::Linear);
         ids.materials.push_back(scene.addMaterial(material));

@@ -17,7 +17,7 @@ namespace sp::render {
 // One submesh's material as read from the file; textures are decoded but not yet in a Scene.
 struct ImportedMaterial {
     std::string name;
-    Material material;   // texture ids unset
+    Material material; // texture ids unset
     std::optional<TextureImage> baseColorTexture;
     std::optional<TextureImage> roughnessMetallicTexture;
     std::optional<TextureImage> normalTexture;
@@ -25,7 +25,7 @@ struct ImportedMaterial {
 
 struct ImportedMesh {
     MeshData mesh;
-    std::vector<ImportedMaterial> materials;   // one per submesh
+    std::vector<ImportedMaterial> materials; // one per submesh
 };
 
 // Reads a mesh file. Throws sp::NotFound naming the path when it does not exist, sp::InvalidArgument
@@ -35,7 +35,7 @@ ImportedMesh importMesh(const std::string& path);
 // Handles of an imported mesh added to a scene.
 struct ImportedMeshIds {
     MeshId mesh;
-    std::vector<MaterialId> materials;   // one per submesh, ready for Instance::materials
+    std::vector<MaterialId> materials; // one per submesh, ready for Instance::materials
 };
 
 // Adds the mesh, its textures and its materials to `scene`.

@@ -37,32 +37,41 @@ const ModalityInfo& modalityInfo(Modality modality) {
     return kInfos[index];
 }
 
-std::string_view modalityName(Modality modality) { return modalityInfo(modality).name; }
+std::string_view modalityName(Modality modality) {
+    return modalityInfo(modality).name;
+}
 
 std::size_t dtypeSize(DType dtype) {
     switch (dtype) {
-    case DType::UInt8: return 1;
-    case DType::Float16: return 2;
+    case DType::UInt8:
+        return 1;
+    case DType::Float16:
+        return 2;
     case DType::UInt32:
-    case DType::Float32: return 4;
+    case DType::Float32:
+        return 4;
     }
     return 0;
 }
 
 std::string_view dtypeName(DType dtype) {
     switch (dtype) {
-    case DType::UInt8: return "uint8";
-    case DType::UInt32: return "uint32";
-    case DType::Float16: return "float16";
-    case DType::Float32: return "float32";
+    case DType::UInt8:
+        return "uint8";
+    case DType::UInt32:
+        return "uint32";
+    case DType::Float16:
+        return "float16";
+    case DType::Float32:
+        return "float32";
     }
     return "?";
 }
 
 std::size_t modalityByteSize(Modality modality, int width, int height) {
     const ModalityInfo& info = modalityInfo(modality);
-    return static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * static_cast<std::size_t>(info.channels) *
-           dtypeSize(info.dtype);
+    return static_cast<std::size_t>(width) * static_cast<std::size_t>(height) *
+           static_cast<std::size_t>(info.channels) * dtypeSize(info.dtype);
 }
 
 Modality modalityFromName(std::string_view name) {

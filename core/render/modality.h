@@ -49,9 +49,9 @@ enum class DType : std::uint8_t { UInt8, UInt32, Float16, Float32 };
 // Static description of one modality.
 struct ModalityInfo {
     Modality modality;
-    std::string_view name;   // snake_case, as in the design's table
+    std::string_view name; // snake_case, as in the design's table
     DType dtype;
-    int channels;            // 1 means shape (H,W); otherwise (H,W,channels)
+    int channels; // 1 means shape (H,W); otherwise (H,W,channels)
 };
 
 const ModalityInfo& modalityInfo(Modality modality);
@@ -65,14 +65,14 @@ Modality modalityFromName(std::string_view name);
 
 // The render passes a modality set needs; only these run.
 struct PassSet {
-    bool shadow = false;     // shadow maps (only when lighting runs and the camera enables shadows)
-    bool gbuffer = false;    // geometry + material attributes + ids
-    bool lighting = false;   // HDR shading and the intrinsic decomposition
-    bool tonemap = false;    // exposure, tone curve, sRGB encoding
+    bool shadow = false;   // shadow maps (only when lighting runs and the camera enables shadows)
+    bool gbuffer = false;  // geometry + material attributes + ids
+    bool lighting = false; // HDR shading and the intrinsic decomposition
+    bool tonemap = false;  // exposure, tone curve, sRGB encoding
 };
 
 class ModalitySet {
-public:
+  public:
     ModalitySet() = default;
     ModalitySet(std::initializer_list<Modality> modalities);
     static ModalitySet all();
@@ -92,7 +92,7 @@ public:
 
     bool operator==(const ModalitySet&) const = default;
 
-private:
+  private:
     std::bitset<kModalityCount> bits_;
 };
 

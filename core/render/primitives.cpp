@@ -7,8 +7,8 @@
 namespace sp::render::primitives {
 namespace {
 
-void addQuad(MeshData& mesh, const Eigen::Vector3f& corner, const Eigen::Vector3f& du, const Eigen::Vector3f& dv,
-             const Eigen::Vector3f& normal) {
+void addQuad(MeshData& mesh, const Eigen::Vector3f& corner, const Eigen::Vector3f& du,
+             const Eigen::Vector3f& dv, const Eigen::Vector3f& normal) {
     const auto base = static_cast<std::uint32_t>(mesh.positions.size());
     const Eigen::Vector2f uv[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     const Eigen::Vector3f p[4] = {corner, corner + du, corner + du + dv, corner + dv};
@@ -49,10 +49,11 @@ MeshData sphere(float radius, int segments, int rings) {
     MeshData mesh;
     mesh.name = "sphere";
     for (int r = 0; r <= rings; ++r) {
-        const float theta = float(M_PI) * r / rings;  // from +Z down
+        const float theta = float(M_PI) * r / rings; // from +Z down
         for (int s = 0; s <= segments; ++s) {
             const float phi = 2.0f * float(M_PI) * s / segments;
-            Eigen::Vector3f n(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+            Eigen::Vector3f n(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                              std::cos(theta));
             mesh.positions.push_back(radius * n);
             mesh.normals.push_back(n);
             mesh.uvs.push_back({float(s) / segments, float(r) / rings});
@@ -70,23 +71,24 @@ MeshData sphere(float radius, int segments, int rings) {
 }
 
 MeshData plane(float sizeX, float sizeY) {
-    SP_CHECK(sizeX > 0.0f && sizeY > 0.0f, InvalidArgument, "primitives::plane(): sizes must be positive, got ",
-             sizeX, " x ", sizeY);
+    SP_CHECK(sizeX > 0.0f && sizeY > 0.0f, InvalidArgument,
+             "primitives::plane(): sizes must be positive, got ", sizeX, " x ", sizeY);
     MeshData mesh;
     mesh.name = "plane";
-    addQuad(mesh, {-0.5f * sizeX, -0.5f * sizeY, 0.0f}, {sizeX, 0, 0}, {0, sizeY, 0}, Eigen::Vector3f::UnitZ());
+    addQuad(mesh, {-0.5f * sizeX, -0.5f * sizeY, 0.0f}, {sizeX, 0, 0}, {0, sizeY, 0},
+            Eigen::Vector3f::UnitZ());
     mesh.validate("primitives::plane");
     return mesh;
 }
 
 MeshData cylinder(float radius, float height, int segments) {
     SP_CHECK(radius > 0.0f && height > 0.0f && segments >= 3, InvalidArgument,
-             "primitives::cylinder(): need radius > 0, height > 0, segments >= 3, got ", radius, ", ", height, ", ",
-             segments);
+             "primitives::cylinder(): need radius > 0, height > 0, segments >= 3, got ", radius, ", ", height,
+             ", ", segments);
     MeshData mesh;
     mesh.name = "cylinder";
     const float h = 0.5f * height;
-    for (int s = 0; s <= segments; ++s) {  // side: pairs of (bottom, top) vertices
+    for (int s = 0; s <= segments; ++s) { // side: pairs of (bottom, top) vertices
         const float phi = 2.0f * float(M_PI) * s / segments;
         Eigen::Vector3f n(std::cos(phi), std::sin(phi), 0.0f);
         for (float z : {-h, h}) {
@@ -100,7 +102,7 @@ MeshData cylinder(float radius, float height, int segments) {
         for (std::uint32_t i : {a, a + 2, a + 3, a, a + 3, a + 1})
             mesh.indices.push_back(i);
     }
-    for (float side : {-1.0f, 1.0f}) {  // caps: a centre vertex and a ring
+    for (float side : {-1.0f, 1.0f}) { // caps: a centre vertex and a ring
         const auto centre = static_cast<std::uint32_t>(mesh.positions.size());
         const Eigen::Vector3f n(0, 0, side);
         mesh.positions.push_back(Eigen::Vector3f(0, 0, side * h));
@@ -108,7 +110,8 @@ MeshData cylinder(float radius, float height, int segments) {
         mesh.uvs.push_back({0.5f, 0.5f});
         for (int s = 0; s <= segments; ++s) {
             const float phi = 2.0f * float(M_PI) * s / segments;
-            mesh.positions.push_back(Eigen::Vector3f(radius * std::cos(phi), radius * std::sin(phi), side * h));
+            mesh.positions.push_back(
+                Eigen::Vector3f(radius * std::cos(phi), radius * std::sin(phi), side * h));
             mesh.normals.push_back(n);
             mesh.uvs.push_back({0.5f + 0.5f * std::cos(phi), 0.5f + 0.5f * std::sin(phi)});
         }

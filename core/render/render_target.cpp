@@ -23,20 +23,34 @@ struct ReadSource {
 ReadSource readSource(Modality modality) {
     using namespace shaders;
     switch (modality) {
-    case Modality::FinalColor: return {ReadSource::Tonemap, 0, GL_RGBA, GL_UNSIGNED_BYTE};
-    case Modality::HdrColor: return {ReadSource::Lighting, LHdr, GL_RGBA, GL_HALF_FLOAT};
-    case Modality::DiffuseIllumination: return {ReadSource::Lighting, LDiffuseIllumination, GL_RGB, GL_HALF_FLOAT};
-    case Modality::DiffuseOnly: return {ReadSource::Lighting, LDiffuseOnly, GL_RGB, GL_HALF_FLOAT};
-    case Modality::SpecularResidual: return {ReadSource::Lighting, LSpecularResidual, GL_RGB, GL_HALF_FLOAT};
-    case Modality::Depth: return {ReadSource::GBuffer, GDepth, GL_RED, GL_FLOAT};
-    case Modality::Position: return {ReadSource::GBuffer, GPosition, GL_RGB, GL_FLOAT};
-    case Modality::Normal: return {ReadSource::GBuffer, GNormal, GL_RGB, GL_FLOAT};
-    case Modality::ObjectIds: return {ReadSource::GBuffer, GIds, GL_RED_INTEGER, GL_UNSIGNED_INT};
-    case Modality::MaterialIds: return {ReadSource::GBuffer, GIds, GL_GREEN_INTEGER, GL_UNSIGNED_INT};
-    case Modality::BaseColor: return {ReadSource::GBuffer, GBaseColor, GL_RGB, GL_HALF_FLOAT};
-    case Modality::Roughness: return {ReadSource::GBuffer, GParams, GL_RED, GL_HALF_FLOAT};
-    case Modality::Metallic: return {ReadSource::GBuffer, GParams, GL_GREEN, GL_HALF_FLOAT};
-    case Modality::MaterialAo: return {ReadSource::GBuffer, GParams, GL_BLUE, GL_HALF_FLOAT};
+    case Modality::FinalColor:
+        return {ReadSource::Tonemap, 0, GL_RGBA, GL_UNSIGNED_BYTE};
+    case Modality::HdrColor:
+        return {ReadSource::Lighting, LHdr, GL_RGBA, GL_HALF_FLOAT};
+    case Modality::DiffuseIllumination:
+        return {ReadSource::Lighting, LDiffuseIllumination, GL_RGB, GL_HALF_FLOAT};
+    case Modality::DiffuseOnly:
+        return {ReadSource::Lighting, LDiffuseOnly, GL_RGB, GL_HALF_FLOAT};
+    case Modality::SpecularResidual:
+        return {ReadSource::Lighting, LSpecularResidual, GL_RGB, GL_HALF_FLOAT};
+    case Modality::Depth:
+        return {ReadSource::GBuffer, GDepth, GL_RED, GL_FLOAT};
+    case Modality::Position:
+        return {ReadSource::GBuffer, GPosition, GL_RGB, GL_FLOAT};
+    case Modality::Normal:
+        return {ReadSource::GBuffer, GNormal, GL_RGB, GL_FLOAT};
+    case Modality::ObjectIds:
+        return {ReadSource::GBuffer, GIds, GL_RED_INTEGER, GL_UNSIGNED_INT};
+    case Modality::MaterialIds:
+        return {ReadSource::GBuffer, GIds, GL_GREEN_INTEGER, GL_UNSIGNED_INT};
+    case Modality::BaseColor:
+        return {ReadSource::GBuffer, GBaseColor, GL_RGB, GL_HALF_FLOAT};
+    case Modality::Roughness:
+        return {ReadSource::GBuffer, GParams, GL_RED, GL_HALF_FLOAT};
+    case Modality::Metallic:
+        return {ReadSource::GBuffer, GParams, GL_GREEN, GL_HALF_FLOAT};
+    case Modality::MaterialAo:
+        return {ReadSource::GBuffer, GParams, GL_BLUE, GL_HALF_FLOAT};
     }
     SP_THROW(InvalidArgument, "readSource(): bad modality ", int(modality));
 }
@@ -53,7 +67,7 @@ RenderTarget::RenderTarget(Renderer& renderer, ModalitySet modalities, int laten
 
 RenderTarget::~RenderTarget() {
     if (submitted_ == 0)
-        return;  // nothing allocated: no GL call
+        return; // nothing allocated: no GL call
     for (Slot& slot : slots_) {
         dropFence(slot);
         glDeleteBuffers(GLsizei(slot.buffers.size()), slot.buffers.data());
@@ -61,7 +75,8 @@ RenderTarget::~RenderTarget() {
 }
 
 void RenderTarget::setModalities(ModalitySet modalities) {
-    SP_CHECK(!modalities.empty(), InvalidArgument, "RenderTarget::setModalities(): the modality set is empty");
+    SP_CHECK(!modalities.empty(), InvalidArgument,
+             "RenderTarget::setModalities(): the modality set is empty");
     modalities_ = modalities;
 }
 
@@ -79,7 +94,7 @@ std::uint64_t RenderTarget::submit(const Scene& scene, const Camera& camera) {
 
     const std::uint64_t frameNumber = ++submitted_;
     Slot& slot = slots_[frameNumber % slots_.size()];
-    dropFence(slot);  // an unread frame N + 1 submits old is dropped
+    dropFence(slot); // an unread frame N + 1 submits old is dropped
     slot.frameNumber = frameNumber;
     slot.width = camera.params.width;
     slot.height = camera.params.height;
@@ -116,15 +131,16 @@ std::uint64_t RenderTarget::submit(const Scene& scene, const Camera& camera) {
 
 RenderTarget::Slot* RenderTarget::dueSlot() {
     if (submitted_ <= std::uint64_t(latency_))
-        return nullptr;  // priming
+        return nullptr; // priming
     const std::uint64_t due = submitted_ - std::uint64_t(latency_);
     Slot& slot = slots_[due % slots_.size()];
     if (!slot.pending || slot.frameNumber != due)
-        return nullptr;  // already read
+        return nullptr; // already read
     const GLenum status = glClientWaitSync(static_cast<GLsync>(slot.fence), GL_SYNC_FLUSH_COMMANDS_BIT,
                                            GLuint64(60) * 1000 * 1000 * 1000);
     SP_CHECK(status == GL_ALREADY_SIGNALED || status == GL_CONDITION_SATISFIED, InvalidState,
-             "RenderTarget::read(): frame ", due, " did not finish within 60 s (status 0x", std::hex, status, ")");
+             "RenderTarget::read(): frame ", due, " did not finish within 60 s (status 0x", std::hex, status,
+             ")");
     return &slot;
 }
 
@@ -142,7 +158,7 @@ std::optional<std::uint64_t> RenderTarget::read(Frame& frame) {
     Slot* slot = dueSlot();
     if (slot == nullptr)
         return std::nullopt;
-    frame.retain(slot->modalities);  // reuses buffers across frames of the same size
+    frame.retain(slot->modalities); // reuses buffers across frames of the same size
     frame.frameNumber = slot->frameNumber;
     frame.width = slot->width;
     frame.height = slot->height;
@@ -160,10 +176,11 @@ std::optional<std::uint64_t> RenderTarget::read(std::span<const OutputView> view
             SP_CHECK(due.modalities.contains(view.modality), InvalidArgument, "RenderTarget::read(): frame ",
                      due.frameNumber, " was not rendered with modality '", modalityName(view.modality), "'");
             const std::size_t expected = modalityByteSize(view.modality, due.width, due.height);
-            SP_CHECK(view.data != nullptr && view.size == expected, InvalidArgument, "RenderTarget::read(): the view for '",
-                     modalityName(view.modality), "' has ", view.size, " bytes, expected ", expected, " (",
-                     due.height, "x", due.width, "x", modalityInfo(view.modality).channels, " ",
-                     dtypeName(modalityInfo(view.modality).dtype), ")");
+            SP_CHECK(view.data != nullptr && view.size == expected, InvalidArgument,
+                     "RenderTarget::read(): the view for '", modalityName(view.modality), "' has ", view.size,
+                     " bytes, expected ", expected, " (", due.height, "x", due.width, "x",
+                     modalityInfo(view.modality).channels, " ", dtypeName(modalityInfo(view.modality).dtype),
+                     ")");
         }
     }
     Slot* slot = dueSlot();

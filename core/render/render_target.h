@@ -29,7 +29,7 @@ class Framebuffers;
 class Renderer;
 
 class RenderTarget {
-public:
+  public:
     static constexpr int kMaxLatency = 2;
 
     // Throws sp::InvalidArgument for a latency outside [0, 2] or an empty modality set.
@@ -55,7 +55,7 @@ public:
     int latency() const { return latency_; }
     std::uint64_t submittedFrames() const { return submitted_; }
 
-private:
+  private:
     struct Slot {
         std::uint64_t frameNumber = 0;
         bool pending = false;

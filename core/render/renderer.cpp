@@ -16,10 +16,13 @@ namespace sp::render {
 
 Renderer::Renderer(const GlContext& context) : context_(context) {
     context_.makeCurrent();
-    geometry_ = std::make_unique<ShaderProgram>("geometry", shaders::kGeometryVertex, shaders::kGeometryFragment);
+    geometry_ =
+        std::make_unique<ShaderProgram>("geometry", shaders::kGeometryVertex, shaders::kGeometryFragment);
     shadow_ = std::make_unique<ShaderProgram>("shadow", shaders::kShadowVertex, shaders::kShadowFragment);
-    lighting_ = std::make_unique<ShaderProgram>("lighting", shaders::kFullscreenVertex, shaders::kLightingFragment);
-    tonemap_ = std::make_unique<ShaderProgram>("tonemap", shaders::kFullscreenVertex, shaders::kTonemapFragment);
+    lighting_ =
+        std::make_unique<ShaderProgram>("lighting", shaders::kFullscreenVertex, shaders::kLightingFragment);
+    tonemap_ =
+        std::make_unique<ShaderProgram>("tonemap", shaders::kFullscreenVertex, shaders::kTonemapFragment);
     shadowMaps_ = std::make_unique<ShadowMaps>();
     glCreateVertexArrays(1, &emptyVao_);
     // Readbacks of 3-channel and 16-bit images have rows that are not multiples of 4 bytes.
@@ -33,9 +36,15 @@ Renderer::~Renderer() {
     glDeleteVertexArrays(1, &emptyVao_);
 }
 
-const RenderStats& Renderer::stats() const { return stats_; }
-void Renderer::resetStats() { stats_ = RenderStats(); }
-void Renderer::releaseScene(const Scene& scene) { caches_.erase(scene.uid()); }
+const RenderStats& Renderer::stats() const {
+    return stats_;
+}
+void Renderer::resetStats() {
+    stats_ = RenderStats();
+}
+void Renderer::releaseScene(const Scene& scene) {
+    caches_.erase(scene.uid());
+}
 
 GpuSceneCache& Renderer::cacheFor(const Scene& scene) {
     auto& cache = caches_[scene.uid()];
@@ -49,7 +58,7 @@ void Renderer::render(const Scene& scene, const Camera& camera, const PassSet& p
     GpuSceneCache& cache = cacheFor(scene);
     const std::uint64_t meshUploads = cache.meshUploads(), textureUploads = cache.textureUploads();
     fb.ensure(camera.params.width, camera.params.height, passes);
-    glDisable(GL_CULL_FACE);  // two-sided: imported meshes have unreliable winding
+    glDisable(GL_CULL_FACE); // two-sided: imported meshes have unreliable winding
     glDisable(GL_BLEND);
     if (passes.gbuffer)
         geometryPass(scene, camera, cache, fb);
@@ -62,7 +71,8 @@ void Renderer::render(const Scene& scene, const Camera& camera, const PassSet& p
     ++stats_.frames;
 }
 
-void Renderer::geometryPass(const Scene& scene, const Camera& camera, GpuSceneCache& cache, Framebuffers& fb) {
+void Renderer::geometryPass(const Scene& scene, const Camera& camera, GpuSceneCache& cache,
+                            Framebuffers& fb) {
     glBindFramebuffer(GL_FRAMEBUFFER, fb.gbufferFbo);
     glViewport(0, 0, fb.width, fb.height);
     glEnable(GL_DEPTH_TEST);
@@ -103,9 +113,10 @@ void Renderer::geometryPass(const Scene& scene, const Camera& camera, GpuSceneCa
             program.set("uEmissive", material.emissive);
             program.set("uObjectId", instance.objectIds[slot]);
             program.set("uMaterialId", scene.materialIdValue(materialId));
-            const std::optional<TextureId> textures[3] = {material.baseColorTexture, material.roughnessMetallicTexture,
-                                                          material.normalTexture};
-            const char* flags[3] = {"uHasBaseColorTexture", "uHasRoughnessMetallicTexture", "uHasNormalTexture"};
+            const std::optional<TextureId> textures[3] = {
+                material.baseColorTexture, material.roughnessMetallicTexture, material.normalTexture};
+            const char* flags[3] = {"uHasBaseColorTexture", "uHasRoughnessMetallicTexture",
+                                    "uHasNormalTexture"};
             for (int t = 0; t < 3; ++t) {
                 program.set(flags[t], textures[t] ? 1 : 0);
                 glBindTextureUnit(t, textures[t] ? cache.texture(scene, *textures[t]) : 0);
@@ -159,7 +170,8 @@ void Renderer::lightingPass(const Scene& scene, const Camera& camera, bool shado
     glBindFramebuffer(GL_FRAMEBUFFER, fb.lightingFbo);
     glViewport(0, 0, fb.width, fb.height);
     glDisable(GL_DEPTH_TEST);
-    for (int t : {shaders::GPosition, shaders::GNormal, shaders::GBaseColor, shaders::GParams, shaders::GEmissive})
+    for (int t :
+         {shaders::GPosition, shaders::GNormal, shaders::GBaseColor, shaders::GParams, shaders::GEmissive})
         glBindTextureUnit(t, fb.gbufferTextures[t]);
     glBindTextureUnit(7, shadowInfos.empty() ? 0 : shadowMaps_->texture());
     program.use();

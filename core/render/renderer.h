@@ -22,17 +22,17 @@ class ShadowMaps;
 // How often each pass ran (tests use it to check that only the needed passes run).
 struct RenderStats {
     std::uint64_t frames = 0;
-    std::uint64_t shadowPasses = 0;      // one per shadow map rendered
+    std::uint64_t shadowPasses = 0; // one per shadow map rendered
     std::uint64_t gbufferPasses = 0;
     std::uint64_t lightingPasses = 0;
     std::uint64_t tonemapPasses = 0;
-    std::uint64_t readbacks = 0;         // one per modality read back
+    std::uint64_t readbacks = 0; // one per modality read back
     std::uint64_t meshUploads = 0;
     std::uint64_t textureUploads = 0;
 };
 
 class Renderer {
-public:
+  public:
     // Makes `context` current and compiles the programs; throws sp::InvalidState when a shader fails.
     explicit Renderer(const GlContext& context);
     ~Renderer();
@@ -49,7 +49,7 @@ public:
     void render(const Scene& scene, const Camera& camera, const PassSet& passes, Framebuffers& framebuffers);
     void countReadback() { ++stats_.readbacks; }
 
-private:
+  private:
     GpuSceneCache& cacheFor(const Scene& scene);
     void geometryPass(const Scene& scene, const Camera& camera, GpuSceneCache& cache, Framebuffers& fb);
     void lightingPass(const Scene& scene, const Camera& camera, bool shadows, GpuSceneCache& cache,

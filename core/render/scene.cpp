@@ -23,8 +23,8 @@ void Scene::updateMesh(MeshId id, MeshData mesh) {
     mesh.validate("Scene::updateMesh");
     instances_.forEach([&](InstanceId instanceId, const Instance& instance) {
         SP_CHECK(instance.mesh != id || mesh.submeshCount() == entry.data.submeshCount(), InvalidArgument,
-                 "Scene::updateMesh(): ", id, " has ", entry.data.submeshCount(), " submeshes used by ", instanceId,
-                 "; the new mesh has ", mesh.submeshCount());
+                 "Scene::updateMesh(): ", id, " has ", entry.data.submeshCount(), " submeshes used by ",
+                 instanceId, "; the new mesh has ", mesh.submeshCount());
     });
     entry.data = std::move(mesh);
     entry.revision = nextRevision_++;
@@ -39,11 +39,16 @@ void Scene::removeMesh(MeshId id) {
     meshes_.remove(id, "Scene::removeMesh");
 }
 
-const MeshData& Scene::mesh(MeshId id) const { return meshes_.get(id, "Scene::mesh").data; }
-std::uint64_t Scene::meshRevision(MeshId id) const { return meshes_.get(id, "Scene::meshRevision").revision; }
+const MeshData& Scene::mesh(MeshId id) const {
+    return meshes_.get(id, "Scene::mesh").data;
+}
+std::uint64_t Scene::meshRevision(MeshId id) const {
+    return meshes_.get(id, "Scene::meshRevision").revision;
+}
 
 TextureId Scene::addTexture(TextureImage image, TextureEncoding encoding) {
-    SP_CHECK(image.width > 0 && image.height > 0 && image.rgba.size() == std::size_t(image.width) * image.height * 4,
+    SP_CHECK(image.width > 0 && image.height > 0 &&
+                 image.rgba.size() == std::size_t(image.width) * image.height * 4,
              InvalidArgument, "Scene::addTexture(): image '", image.source, "' is not ", image.width, "x",
              image.height, " RGBA8");
     return textures_.insert({std::move(image), encoding});
@@ -52,19 +57,22 @@ TextureId Scene::addTexture(TextureImage image, TextureEncoding encoding) {
 void Scene::removeTexture(TextureId id) {
     textures_.get(id, "Scene::removeTexture");
     materials_.forEach([&](MaterialId materialId, const Material& m) {
-        SP_CHECK(m.baseColorTexture != id && m.roughnessMetallicTexture != id && m.normalTexture != id, InvalidState,
-                 "Scene::removeTexture(): ", id, " is used by ", materialId);
+        SP_CHECK(m.baseColorTexture != id && m.roughnessMetallicTexture != id && m.normalTexture != id,
+                 InvalidState, "Scene::removeTexture(): ", id, " is used by ", materialId);
     });
     textures_.remove(id, "Scene::removeTexture");
 }
 
-const TextureImage& Scene::texture(TextureId id) const { return textures_.get(id, "Scene::texture").image; }
+const TextureImage& Scene::texture(TextureId id) const {
+    return textures_.get(id, "Scene::texture").image;
+}
 TextureEncoding Scene::textureEncoding(TextureId id) const {
     return textures_.get(id, "Scene::textureEncoding").encoding;
 }
 
 void Scene::checkMaterialTextures(const Material& material, const char* function) const {
-    for (const auto& texture : {material.baseColorTexture, material.roughnessMetallicTexture, material.normalTexture})
+    for (const auto& texture :
+         {material.baseColorTexture, material.roughnessMetallicTexture, material.normalTexture})
         if (texture)
             textures_.get(*texture, function);
 }
@@ -91,7 +99,9 @@ void Scene::removeMaterial(MaterialId id) {
     materials_.remove(id, "Scene::removeMaterial");
 }
 
-const Material& Scene::material(MaterialId id) const { return materials_.get(id, "Scene::material"); }
+const Material& Scene::material(MaterialId id) const {
+    return materials_.get(id, "Scene::material");
+}
 
 std::uint32_t Scene::materialIdValue(MaterialId id) const {
     const Material& m = materials_.get(id, "Scene::materialIdValue");
@@ -100,8 +110,8 @@ std::uint32_t Scene::materialIdValue(MaterialId id) const {
 
 LightId Scene::addLight(const Light& light) {
     light.validate("Scene::addLight");
-    SP_CHECK(lights_.size() < kMaxLights, InvalidState, "Scene::addLight(): the scene already has ", kMaxLights,
-             " lights (the maximum)");
+    SP_CHECK(lights_.size() < kMaxLights, InvalidState, "Scene::addLight(): the scene already has ",
+             kMaxLights, " lights (the maximum)");
     return lights_.insert(light);
 }
 
@@ -111,22 +121,28 @@ void Scene::setLight(LightId id, const Light& light) {
     slot = light;
 }
 
-void Scene::removeLight(LightId id) { lights_.remove(id, "Scene::removeLight"); }
-const Light& Scene::light(LightId id) const { return lights_.get(id, "Scene::light"); }
+void Scene::removeLight(LightId id) {
+    lights_.remove(id, "Scene::removeLight");
+}
+const Light& Scene::light(LightId id) const {
+    return lights_.get(id, "Scene::light");
+}
 
 void Scene::checkInstance(const Instance& instance, const char* function) const {
     const MeshData& mesh = meshes_.get(instance.mesh, function).data;
-    SP_CHECK(instance.materials.size() == mesh.submeshCount(), InvalidArgument, function, "(): ", instance.mesh,
-             " has ", mesh.submeshCount(), " submesh slot(s) but ", instance.materials.size(), " material(s) were given");
-    SP_CHECK(instance.objectIds.size() == mesh.submeshCount(), InvalidArgument, function, "(): ", instance.mesh,
-             " has ", mesh.submeshCount(), " submesh slot(s) but ", instance.objectIds.size(),
-             " object id(s) were given");
+    SP_CHECK(instance.materials.size() == mesh.submeshCount(), InvalidArgument, function,
+             "(): ", instance.mesh, " has ", mesh.submeshCount(), " submesh slot(s) but ",
+             instance.materials.size(), " material(s) were given");
+    SP_CHECK(instance.objectIds.size() == mesh.submeshCount(), InvalidArgument, function,
+             "(): ", instance.mesh, " has ", mesh.submeshCount(), " submesh slot(s) but ",
+             instance.objectIds.size(), " object id(s) were given");
     for (MaterialId material : instance.materials)
         materials_.get(material, function);
     for (std::size_t i = 0; i < instance.objectIds.size(); ++i)
         SP_CHECK(instance.objectIds[i] != 0, InvalidArgument, function, "(): objectIds[", i,
                  "] is 0, which is reserved for the background");
-    SP_CHECK(instance.transform.matrix().allFinite(), InvalidArgument, function, "(): transform is not finite");
+    SP_CHECK(instance.transform.matrix().allFinite(), InvalidArgument, function,
+             "(): transform is not finite");
 }
 
 InstanceId Scene::addInstance(const Instance& instance) {
@@ -142,12 +158,17 @@ void Scene::setInstance(InstanceId id, const Instance& instance) {
 
 void Scene::setTransform(InstanceId id, const Eigen::Affine3d& transform) {
     Instance& slot = instances_.get(id, "Scene::setTransform");
-    SP_CHECK(transform.matrix().allFinite(), InvalidArgument, "Scene::setTransform(): transform is not finite");
+    SP_CHECK(transform.matrix().allFinite(), InvalidArgument,
+             "Scene::setTransform(): transform is not finite");
     slot.transform = transform;
 }
 
-void Scene::removeInstance(InstanceId id) { instances_.remove(id, "Scene::removeInstance"); }
-const Instance& Scene::instance(InstanceId id) const { return instances_.get(id, "Scene::instance"); }
+void Scene::removeInstance(InstanceId id) {
+    instances_.remove(id, "Scene::removeInstance");
+}
+const Instance& Scene::instance(InstanceId id) const {
+    return instances_.get(id, "Scene::instance");
+}
 
 void Scene::bounds(Eigen::Vector3d& centre, double& radius) const {
     Eigen::AlignedBox3d box;
@@ -156,7 +177,8 @@ void Scene::bounds(Eigen::Vector3d& centre, double& radius) const {
             return;
         const MeshEntry& entry = meshes_.get(instance.mesh, "Scene::bounds");
         for (int corner = 0; corner < 8; ++corner) {
-            Eigen::Vector3d local((corner & 1) ? entry.max.x() : entry.min.x(), (corner & 2) ? entry.max.y() : entry.min.y(),
+            Eigen::Vector3d local((corner & 1) ? entry.max.x() : entry.min.x(),
+                                  (corner & 2) ? entry.max.y() : entry.min.y(),
                                   (corner & 4) ? entry.max.z() : entry.min.z());
             box.extend(instance.transform * local);
         }

@@ -24,21 +24,21 @@ enum class TextureEncoding { Srgb, Linear };
 // A placed mesh: one material and one object id per submesh slot.
 struct Instance {
     MeshId mesh;
-    std::vector<MaterialId> materials;      // one per submesh of `mesh`
-    std::vector<std::uint32_t> objectIds;   // one per submesh; written to object_ids; must be != 0
-    Eigen::Affine3d transform = Eigen::Affine3d::Identity();  // mesh-to-world (may scale)
+    std::vector<MaterialId> materials;    // one per submesh of `mesh`
+    std::vector<std::uint32_t> objectIds; // one per submesh; written to object_ids; must be != 0
+    Eigen::Affine3d transform = Eigen::Affine3d::Identity(); // mesh-to-world (may scale)
     bool visible = true;
     bool castShadows = true;
 };
 
 // Light that does not come from analytic lights: a uniform sky.
 struct Environment {
-    Eigen::Vector3f ambient{0.03f, 0.03f, 0.03f};      // uniform sky radiance lighting every surface
-    Eigen::Vector3f background{0.0f, 0.0f, 0.0f};     // hdr_color of pixels that hit no geometry
+    Eigen::Vector3f ambient{0.03f, 0.03f, 0.03f}; // uniform sky radiance lighting every surface
+    Eigen::Vector3f background{0.0f, 0.0f, 0.0f}; // hdr_color of pixels that hit no geometry
 };
 
 class Scene {
-public:
+  public:
     static constexpr std::size_t kMaxLights = 16;
 
     Scene();
@@ -46,24 +46,24 @@ public:
     // Meshes. updateMesh keeps the handle and bumps the revision (the GPU copy is re-uploaded).
     MeshId addMesh(MeshData mesh);
     void updateMesh(MeshId id, MeshData mesh);
-    void removeMesh(MeshId id);  // sp::InvalidState while an instance uses it
+    void removeMesh(MeshId id); // sp::InvalidState while an instance uses it
     const MeshData& mesh(MeshId id) const;
     std::uint64_t meshRevision(MeshId id) const;
 
     // Textures (for Material's texture slots).
     TextureId addTexture(TextureImage image, TextureEncoding encoding = TextureEncoding::Srgb);
-    void removeTexture(TextureId id);  // sp::InvalidState while a material uses it
+    void removeTexture(TextureId id); // sp::InvalidState while a material uses it
     const TextureImage& texture(TextureId id) const;
     TextureEncoding textureEncoding(TextureId id) const;
 
     MaterialId addMaterial(const Material& material);
     void setMaterial(MaterialId id, const Material& material);
-    void removeMaterial(MaterialId id);  // sp::InvalidState while an instance uses it
+    void removeMaterial(MaterialId id); // sp::InvalidState while an instance uses it
     const Material& material(MaterialId id) const;
     // The value written to material_ids for this material.
     std::uint32_t materialIdValue(MaterialId id) const;
 
-    LightId addLight(const Light& light);  // sp::InvalidState beyond kMaxLights
+    LightId addLight(const Light& light); // sp::InvalidState beyond kMaxLights
     void setLight(LightId id, const Light& light);
     void removeLight(LightId id);
     const Light& light(LightId id) const;
@@ -92,7 +92,7 @@ public:
     // World-space bounding sphere of all visible instances (centre, radius); radius 0 when empty.
     void bounds(Eigen::Vector3d& centre, double& radius) const;
 
-private:
+  private:
     struct MeshEntry {
         MeshData data;
         std::uint64_t revision = 0;

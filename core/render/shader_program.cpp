@@ -17,7 +17,8 @@ GLuint compile(const std::string& name, GLenum stage, const char* source) {
         char log[4096] = {};
         glGetShaderInfoLog(shader, sizeof log, nullptr, log);
         glDeleteShader(shader);
-        SP_THROW(InvalidState, "ShaderProgram::ShaderProgram(): ", stage == GL_VERTEX_SHADER ? "vertex" : "fragment",
+        SP_THROW(InvalidState,
+                 "ShaderProgram::ShaderProgram(): ", stage == GL_VERTEX_SHADER ? "vertex" : "fragment",
                  " shader of '", name, "' does not compile: ", log);
     }
     return shader;
@@ -51,9 +52,13 @@ ShaderProgram::ShaderProgram(const std::string& name, const char* vertexSource, 
     }
 }
 
-ShaderProgram::~ShaderProgram() { glDeleteProgram(program_); }
+ShaderProgram::~ShaderProgram() {
+    glDeleteProgram(program_);
+}
 
-void ShaderProgram::use() const { glUseProgram(program_); }
+void ShaderProgram::use() const {
+    glUseProgram(program_);
+}
 
 int ShaderProgram::location(const std::string& uniform) {
     auto it = locations_.find(uniform);
@@ -64,9 +69,15 @@ int ShaderProgram::location(const std::string& uniform) {
     return location;
 }
 
-void ShaderProgram::set(const std::string& u, int v) { glProgramUniform1i(program_, location(u), v); }
-void ShaderProgram::set(const std::string& u, unsigned v) { glProgramUniform1ui(program_, location(u), v); }
-void ShaderProgram::set(const std::string& u, float v) { glProgramUniform1f(program_, location(u), v); }
+void ShaderProgram::set(const std::string& u, int v) {
+    glProgramUniform1i(program_, location(u), v);
+}
+void ShaderProgram::set(const std::string& u, unsigned v) {
+    glProgramUniform1ui(program_, location(u), v);
+}
+void ShaderProgram::set(const std::string& u, float v) {
+    glProgramUniform1f(program_, location(u), v);
+}
 void ShaderProgram::set(const std::string& u, const Eigen::Vector2f& v) {
     glProgramUniform2fv(program_, location(u), 1, v.data());
 }

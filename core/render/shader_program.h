@@ -9,7 +9,7 @@
 namespace sp::render {
 
 class ShaderProgram {
-public:
+  public:
     // Compiles and links; throws sp::InvalidState with the compiler log naming `name` on failure.
     ShaderProgram(const std::string& name, const char* vertexSource, const char* fragmentSource);
     ~ShaderProgram();
@@ -30,7 +30,7 @@ public:
     void set(const std::string& uniform, const Eigen::Matrix3f& value);
     void set(const std::string& uniform, const Eigen::Matrix4f& value);
 
-private:
+  private:
     std::string name_;
     unsigned program_ = 0;
     std::unordered_map<std::string, int> locations_;

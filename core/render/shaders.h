@@ -3,8 +3,8 @@
 
 namespace sp::render::shaders {
 
-inline constexpr int kMaxLights = 16;     // must match MAX_LIGHTS in the lighting shader
-inline constexpr int kMaxShadowMaps = 4;  // must match MAX_SHADOWS in the lighting shader
+inline constexpr int kMaxLights = 16;    // must match MAX_LIGHTS in the lighting shader
+inline constexpr int kMaxShadowMaps = 4; // must match MAX_SHADOWS in the lighting shader
 
 // G-buffer attachments (location = index) written by the geometry pass.
 enum GBufferTarget { GPosition, GNormal, GDepth, GBaseColor, GParams, GEmissive, GIds, GBufferTargetCount };

@@ -14,7 +14,8 @@ namespace {
 
 // World -> GL eye for an eye at `eye` looking along unit `forward`.
 Eigen::Matrix4d lookAlong(const Eigen::Vector3d& eye, const Eigen::Vector3d& forward) {
-    const Eigen::Vector3d up = std::abs(forward.z()) < 0.99 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
+    const Eigen::Vector3d up =
+        std::abs(forward.z()) < 0.99 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
     const Eigen::Vector3d right = forward.cross(up).normalized();
     const Eigen::Vector3d trueUp = right.cross(forward);
     Eigen::Matrix4d view = Eigen::Matrix4d::Identity();

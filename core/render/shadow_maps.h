@@ -17,12 +17,12 @@ struct ShadowInfo {
     LightId light;
     int layer = -1;
     Eigen::Matrix4f worldToClip = Eigen::Matrix4f::Identity();
-    float texel = 0.0f;        // world size of a texel (per metre of distance when perspective)
+    float texel = 0.0f; // world size of a texel (per metre of distance when perspective)
     bool perspective = false;
 };
 
 class ShadowMaps {
-public:
+  public:
     ShadowMaps() = default;
     ~ShadowMaps();
     ShadowMaps(const ShadowMaps&) = delete;
@@ -34,7 +34,7 @@ public:
                                    ShaderProgram& depthProgram);
     unsigned texture() const { return texture_; }
 
-private:
+  private:
     void ensure(int resolution);
     unsigned texture_ = 0;
     unsigned fbo_ = 0;

@@ -12,7 +12,7 @@
 namespace sp::render {
 
 template <typename T, typename Id> class SlotMap {
-public:
+  public:
     Id insert(T value) {
         std::uint32_t index;
         if (!free_.empty()) {
@@ -29,7 +29,8 @@ public:
     }
 
     bool contains(Id id) const {
-        return id.index < slots_.size() && slots_[id.index].value && slots_[id.index].generation == id.generation;
+        return id.index < slots_.size() && slots_[id.index].value &&
+               slots_[id.index].generation == id.generation;
     }
 
     // Returns the element or throws sp::StaleObject "<function>(): <id> was removed or never existed".
@@ -60,7 +61,7 @@ public:
                 fn(Id{i, slots_[i].generation}, *slots_[i].value);
     }
 
-private:
+  private:
     struct Slot {
         std::optional<T> value;
         std::uint32_t generation = 1;

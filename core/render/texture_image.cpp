@@ -17,11 +17,12 @@
 namespace sp::render {
 
 TextureImage TextureImage::load(const std::string& path) {
-    SP_CHECK(std::filesystem::is_regular_file(path), NotFound, "TextureImage::load(): no such file '", path, "'");
+    SP_CHECK(std::filesystem::is_regular_file(path), NotFound, "TextureImage::load(): no such file '", path,
+             "'");
     int width = 0, height = 0, channels = 0;
     stbi_uc* pixels = stbi_load(path.c_str(), &width, &height, &channels, 4);
-    SP_CHECK(pixels != nullptr, InvalidArgument, "TextureImage::load(): cannot decode '", path, "': ",
-             stbi_failure_reason());
+    SP_CHECK(pixels != nullptr, InvalidArgument, "TextureImage::load(): cannot decode '", path,
+             "': ", stbi_failure_reason());
     TextureImage image;
     image.width = width;
     image.height = height;
@@ -34,8 +35,8 @@ TextureImage TextureImage::load(const std::string& path) {
 TextureImage TextureImage::decode(const std::uint8_t* bytes, std::size_t size, const std::string& source) {
     int width = 0, height = 0, channels = 0;
     stbi_uc* pixels = stbi_load_from_memory(bytes, static_cast<int>(size), &width, &height, &channels, 4);
-    SP_CHECK(pixels != nullptr, InvalidArgument, "TextureImage::decode(): cannot decode '", source, "': ",
-             stbi_failure_reason());
+    SP_CHECK(pixels != nullptr, InvalidArgument, "TextureImage::decode(): cannot decode '", source,
+             "': ", stbi_failure_reason());
     TextureImage image;
     image.width = width;
     image.height = height;
@@ -57,8 +58,8 @@ TextureImage TextureImage::fromPixels(int width, int height, std::vector<std::ui
 }
 
 void writePng(const std::string& path, int width, int height, int channels, const std::uint8_t* pixels) {
-    SP_CHECK(stbi_write_png(path.c_str(), width, height, channels, pixels, width * channels) != 0, InvalidState,
-             "writePng(): cannot write '", path, "'");
+    SP_CHECK(stbi_write_png(path.c_str(), width, height, channels, pixels, width * channels) != 0,
+             InvalidState, "writePng(): cannot write '", path, "'");
 }
 
 } // namespace sp::render

@@ -10,8 +10,8 @@ namespace sp::render {
 struct TextureImage {
     int width = 0;
     int height = 0;
-    std::vector<std::uint8_t> rgba;  // uint8 (height, width, 4), row 0 = top row
-    std::string source;              // file path or "<memory>"
+    std::vector<std::uint8_t> rgba; // uint8 (height, width, 4), row 0 = top row
+    std::string source;             // file path or "<memory>"
 
     // Throws sp::NotFound naming the path when the file is missing, sp::InvalidArgument when it cannot
     // be decoded.

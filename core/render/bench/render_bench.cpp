@@ -40,8 +40,8 @@ void buildScene(Scene& scene, int boxes) {
         m.roughness = 0.2f + 0.7f * float(i % 4) / 3.0f;
         m.metallic = i % 5 == 0 ? 1.0f : 0.0f;
         Instance instance{box, {scene.addMaterial(m)}, {std::uint32_t(2 + i)}};
-        instance.transform = Eigen::Translation3d(1.2 * (i % side) - 0.6 * side, 1.2 * (i / side) - 0.6 * side,
-                                                  0.3 + 0.4 * (i % 3)) *
+        instance.transform = Eigen::Translation3d(1.2 * (i % side) - 0.6 * side,
+                                                  1.2 * (i / side) - 0.6 * side, 0.3 + 0.4 * (i % 3)) *
                              Eigen::AngleAxisd(0.3 * i, Eigen::Vector3d::UnitZ());
         scene.addInstance(instance);
     }
@@ -102,7 +102,8 @@ int main(int argc, char** argv) {
         Camera camera = makeCamera(width, height, boxes);
         for (bool all : {false, true}) {
             for (int latency = 0; latency <= RenderTarget::kMaxLatency; ++latency) {
-                RenderTarget target(renderer, all ? ModalitySet::all() : ModalitySet{Modality::FinalColor}, latency);
+                RenderTarget target(renderer, all ? ModalitySet::all() : ModalitySet{Modality::FinalColor},
+                                    latency);
                 Frame frame;
                 for (int i = 0; i < 3; ++i)
                     target.render(scene, camera, frame);
@@ -110,13 +111,16 @@ int main(int argc, char** argv) {
                 for (int i = 0; i < frames; ++i)
                     target.render(scene, camera, frame);
                 const double ms =
-                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / frames;
-                std::printf("%4dx%-5d %-12s %-8d %10.2f\n", width, height, all ? "all (14)" : "final_color", latency,
-                            ms);
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                        .count() /
+                    frames;
+                std::printf("%4dx%-5d %-12s %-8d %10.2f\n", width, height, all ? "all (14)" : "final_color",
+                            latency, ms);
                 std::fflush(stdout);
                 if (!pngDir.empty() && !all && latency == 0) {
                     const ImageBuffer& color = frame.get(Modality::FinalColor);
-                    writePng(pngDir + "/bench_" + std::to_string(width) + "x" + std::to_string(height) + ".png",
+                    writePng(pngDir + "/bench_" + std::to_string(width) + "x" + std::to_string(height) +
+                                 ".png",
                              width, height, 4, reinterpret_cast<const std::uint8_t*>(color.bytes.data()));
                 }
             }

@@ -24,9 +24,9 @@ TEST(CameraTest, ValidateNamesTheBadField) {
 }
 
 TEST(CameraTest, ViewMatrixMapsBodyForwardToGlMinusZ) {
-    Camera camera;  // identity pose: looks along world +X, +Y left, +Z up
+    Camera camera; // identity pose: looks along world +X, +Y left, +Z up
     const Eigen::Vector4d eye = camera.viewMatrix() * Eigen::Vector4d(2.0, 1.0, 0.5, 1.0);
-    EXPECT_NEAR(eye.x(), -1.0, 1e-12);  // left in the body frame is -X (left) in GL eye space
+    EXPECT_NEAR(eye.x(), -1.0, 1e-12); // left in the body frame is -X (left) in GL eye space
     EXPECT_NEAR(eye.y(), 0.5, 1e-12);
     EXPECT_NEAR(eye.z(), -2.0, 1e-12);
 }
@@ -43,8 +43,8 @@ TEST(CameraTest, ProjectsPointsToPixels) {
     EXPECT_NEAR(centre.y(), 25.0, 1e-9);
     EXPECT_NEAR(centre.z(), 10.0, 1e-9);
     Eigen::Vector3d leftUp = camera.project({11, 12, 3 + 5});
-    EXPECT_NEAR(leftUp.x(), 0.0, 1e-9);  // 45 degrees left = the left image edge
-    EXPECT_NEAR(leftUp.y(), 0.0, 1e-9);  // fy = fx = 50 px
+    EXPECT_NEAR(leftUp.x(), 0.0, 1e-9); // 45 degrees left = the left image edge
+    EXPECT_NEAR(leftUp.y(), 0.0, 1e-9); // fy = fx = 50 px
     // The GL projection agrees with project() on NDC.
     const Eigen::Vector4d clip =
         camera.projectionMatrix(false) * camera.viewMatrix() * Eigen::Vector4d(11, 12, 8, 1);

@@ -34,7 +34,8 @@ TEST(GlContextGlTest, BadDeviceChoiceIsInvalidArgument) {
         GlContext context(options);
         FAIL();
     } catch (const InvalidArgument& e) {
-        EXPECT_NE(std::string(e.what()).find("SPEAR_EGL_DEVICE must be 'auto', 'surfaceless' or a device index, got 'gpu0'"),
+        EXPECT_NE(std::string(e.what()).find(
+                      "SPEAR_EGL_DEVICE must be 'auto', 'surfaceless' or a device index, got 'gpu0'"),
                   std::string::npos);
     }
     options.device = "999";

@@ -15,7 +15,7 @@
 namespace sp::render::test {
 
 class GlTest : public ::testing::Test {
-protected:
+  protected:
     static void SetUpTestSuite() {
         context_ = std::make_unique<GlContext>();
         renderer_ = std::make_unique<Renderer>(*context_);
@@ -27,11 +27,12 @@ protected:
     Renderer& renderer() { return *renderer_; }
 
     // A camera at `position` looking along world direction `forward` (Z up).
-    static Camera lookingAlong(const Eigen::Vector3d& position, const Eigen::Vector3d& forward, int width, int height,
-                               double hfovDeg = 60.0) {
+    static Camera lookingAlong(const Eigen::Vector3d& position, const Eigen::Vector3d& forward, int width,
+                               int height, double hfovDeg = 60.0) {
         Camera camera;
         const Eigen::Vector3d x = forward.normalized();
-        const Eigen::Vector3d up = std::abs(x.z()) < 0.99 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
+        const Eigen::Vector3d up =
+            std::abs(x.z()) < 0.99 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
         const Eigen::Vector3d y = up.cross(x).normalized();
         const Eigen::Vector3d z = x.cross(y);
         camera.pose.linear() << x, y, z;

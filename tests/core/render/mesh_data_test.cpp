@@ -34,8 +34,8 @@ TEST(MeshDataTest, BadIndexIsRejectedWithItsPosition) {
 }
 
 TEST(MeshDataTest, PrimitivesAreClosedAndUnit) {
-    for (const MeshData& mesh : {primitives::box({1, 2, 3}), primitives::sphere(0.5f), primitives::plane(2, 2),
-                                 primitives::cylinder(0.5f, 1.0f)}) {
+    for (const MeshData& mesh : {primitives::box({1, 2, 3}), primitives::sphere(0.5f),
+                                 primitives::plane(2, 2), primitives::cylinder(0.5f, 1.0f)}) {
         EXPECT_EQ(mesh.submeshCount(), 1u) << mesh.name;
         for (const Eigen::Vector3f& n : mesh.normals)
             EXPECT_NEAR(n.norm(), 1.0f, 1e-5f) << mesh.name;

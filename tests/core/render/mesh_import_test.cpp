@@ -14,7 +14,7 @@ namespace sp::render {
 namespace {
 
 class MeshImportTest : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         dir_ = std::filesystem::path(SPEAR_RENDER_TEST_OUTPUT_DIR) / "import" /
                ::testing::UnitTest::GetInstance()->current_test_info()->name();
@@ -55,7 +55,7 @@ TEST_F(MeshImportTest, ObjWithTwoMaterialsGivesTwoSubmeshes) {
     ImportedMesh imported = importMesh(write("two.obj", kObj));
     ASSERT_EQ(imported.mesh.submeshCount(), 2u);
     ASSERT_EQ(imported.materials.size(), 2u);
-    EXPECT_EQ(imported.mesh.indices.size(), 12u);  // quads triangulated
+    EXPECT_EQ(imported.mesh.indices.size(), 12u); // quads triangulated
     std::vector<std::string> names = {imported.materials[0].name, imported.materials[1].name};
     std::sort(names.begin(), names.end());
     EXPECT_EQ(names, (std::vector<std::string>{"grey", "red"}));
@@ -67,9 +67,10 @@ TEST_F(MeshImportTest, ObjWithTwoMaterialsGivesTwoSubmeshes) {
 }
 
 TEST_F(MeshImportTest, PlyTriangle) {
-    const std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                            "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
-                            "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    const std::string ply =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+        "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
     ImportedMesh imported = importMesh(write("tri.ply", ply));
     EXPECT_EQ(imported.mesh.positions.size(), 3u);
     EXPECT_EQ(imported.mesh.submeshCount(), 1u);
@@ -96,7 +97,7 @@ TEST_F(MeshImportTest, GltfWithEmbeddedBufferAndPbrFactors) {
     EXPECT_NEAR(imported.materials[0].material.roughness, 0.25f, 1e-6f);
     EXPECT_NEAR(imported.materials[0].material.baseColor.y(), 0.8f, 1e-6f);
     for (const Eigen::Vector3f& p : imported.mesh.positions)
-        EXPECT_NEAR(p.z(), 2.0f, 1e-6f);  // the node translation is baked in
+        EXPECT_NEAR(p.z(), 2.0f, 1e-6f); // the node translation is baked in
 }
 
 TEST_F(MeshImportTest, MissingFileIsNotFoundNamingThePath) {
@@ -128,7 +129,8 @@ TEST_F(MeshImportGlTest, ImportedObjRendersWithPerSlotIds) {
     // Slot ids: 10 for the z = 0 quad's material group, 20 for the other.
     std::vector<std::uint32_t> slotIds;
     for (const Submesh& sub : imported.mesh.submeshes)
-        slotIds.push_back(imported.mesh.positions[imported.mesh.indices[sub.firstIndex]].z() < 0.5f ? 10 : 20);
+        slotIds.push_back(imported.mesh.positions[imported.mesh.indices[sub.firstIndex]].z() < 0.5f ? 10
+                                                                                                    : 20);
     scene.addInstance({ids.mesh, ids.materials, slotIds});
     // Look from below: only the z = 0 quad is visible; from above only the z = 1 quad.
     RenderTarget target(renderer(), {Modality::ObjectIds}, 0);

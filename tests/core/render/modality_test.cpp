@@ -27,8 +27,9 @@ TEST(ModalityTest, UnknownNameIsNotFoundWithTheName) {
         modalityFromName("colour");
         FAIL();
     } catch (const NotFound& e) {
-        EXPECT_NE(std::string(e.what()).find("modalityFromName(): unknown modality 'colour' (known: final_color,"),
-                  std::string::npos)
+        EXPECT_NE(
+            std::string(e.what()).find("modalityFromName(): unknown modality 'colour' (known: final_color,"),
+            std::string::npos)
             << e.what();
     }
 }

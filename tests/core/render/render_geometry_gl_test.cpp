@@ -10,14 +10,17 @@ namespace {
 
 using RenderGeometryGlTest = GlTest;
 
-MaterialId grey(Scene& scene) { return scene.addMaterial(Material{}); }
+MaterialId grey(Scene& scene) {
+    return scene.addMaterial(Material{});
+}
 
 TEST_F(RenderGeometryGlTest, DepthOfAFacingPlaneIsItsDistance) {
     Scene scene;
     const double distance = 7.25;
     Instance wall{scene.addMesh(primitives::plane(100, 100)), {grey(scene)}, {5}};
     // The plane faces +Z; turn it to face the camera (-X) and move it along the optical axis.
-    wall.transform = Eigen::Translation3d(distance, 0.3, -0.2) * Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitY());
+    wall.transform =
+        Eigen::Translation3d(distance, 0.3, -0.2) * Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitY());
     scene.addInstance(wall);
     Camera camera = lookingAlong({0, 0, 0}, {1, 0, 0}, 64, 48, 70.0);
     RenderTarget target(renderer(), {Modality::Depth, Modality::Position, Modality::Normal}, 0);
@@ -32,7 +35,8 @@ TEST_F(RenderGeometryGlTest, DepthOfAFacingPlaneIsItsDistance) {
         for (int x = 0; x < 64; ++x) {
             worst = std::max(worst, std::abs(depth.at(x, y) - distance) / distance);
             // Pixel centre ray: +Y is left (u grows right), +Z is up (v grows down).
-            const Eigen::Vector3d expected(distance, -(x + 0.5 - 32.0) * distance / f, -(y + 0.5 - 24.0) * distance / f);
+            const Eigen::Vector3d expected(distance, -(x + 0.5 - 32.0) * distance / f,
+                                           -(y + 0.5 - 24.0) * distance / f);
             for (int c = 0; c < 3; ++c)
                 ASSERT_NEAR(position.at(x, y, c), expected[c], 1e-4 * distance) << x << "," << y << " c" << c;
             ASSERT_NEAR(normal.at(x, y, 0), -1.0f, 1e-5f);
@@ -56,8 +60,8 @@ TEST_F(RenderGeometryGlTest, DepthOfTheGroundSeenFromAPitchedCamera) {
         for (int x = 0; x < 40; ++x) {
             const Eigen::Vector3d body(1.0, -(x + 0.5 - 20.0) / f, -(y + 0.5 - 15.0) / f);
             const Eigen::Vector3d dir = camera.pose.linear() * body;
-            ASSERT_LT(dir.z(), 0.0);  // every pixel sees the ground
-            const double expected = -height / dir.z();  // body.x() == 1, so t is the optical-axis depth
+            ASSERT_LT(dir.z(), 0.0);                   // every pixel sees the ground
+            const double expected = -height / dir.z(); // body.x() == 1, so t is the optical-axis depth
             ASSERT_NEAR(frame.get(Modality::Depth).at(x, y), expected, 1e-4 * expected) << x << "," << y;
             ++checked;
         }
@@ -86,7 +90,8 @@ TEST_F(RenderGeometryGlTest, IdsPerInstanceSlotWithBackgroundZero) {
         scene.addInstance(instance);
     }
     RenderTarget target(renderer(), {Modality::ObjectIds, Modality::MaterialIds}, 0);
-    for (const Eigen::Vector3d& cameraPosition : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(-0.5, 0.3, 0.2)}) {
+    for (const Eigen::Vector3d& cameraPosition :
+         {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(-0.5, 0.3, 0.2)}) {
         Camera camera = lookingAlong(cameraPosition, Eigen::Vector3d(5, 0, 0) - cameraPosition, 96, 72, 75.0);
         Frame frame;
         target.render(scene, camera, frame);
@@ -143,7 +148,7 @@ TEST_F(RenderGeometryGlTest, OnlyRequestedPassesRun) {
     EXPECT_EQ(stats.tonemapPasses, 1u);
     EXPECT_EQ(stats.shadowPasses, 0u);
     EXPECT_EQ(stats.readbacks, 1u);
-    EXPECT_EQ(stats.meshUploads, 0u);  // the box was uploaded by the first target already
+    EXPECT_EQ(stats.meshUploads, 0u); // the box was uploaded by the first target already
 }
 
 } // namespace

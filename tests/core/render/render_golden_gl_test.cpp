@@ -18,7 +18,7 @@ constexpr int kMaxDifference = 48;
 constexpr double kMeanDifference = 0.6;
 
 class RenderGoldenGlTest : public GlTest {
-protected:
+  protected:
     void compareWithGolden(const std::string& name, const ImageBuffer& image) {
         ASSERT_EQ(image.modality, Modality::FinalColor);
         const auto* pixels = reinterpret_cast<const std::uint8_t*>(image.bytes.data());
@@ -85,8 +85,8 @@ TEST_F(RenderGoldenGlTest, ShadowsOffChangesOnlyShadowedPixels) {
         darker += a[i] + 2 < b[i];
         brighter += a[i] > b[i] + 2;
     }
-    EXPECT_GT(darker, 100);   // the shapes cast visible shadows on the ground
-    EXPECT_EQ(brighter, 0);   // shadows only remove light
+    EXPECT_GT(darker, 100); // the shapes cast visible shadows on the ground
+    EXPECT_EQ(brighter, 0); // shadows only remove light
 }
 
 } // namespace

@@ -53,7 +53,7 @@ TEST_F(RenderIntrinsicsGlTest, IdentitiesHoldPerPixel) {
             }
         }
     EXPECT_GT(background, 0);
-    EXPECT_GT(metalPixels, 0);  // the gold sphere is in view: its diffuse part is zero
+    EXPECT_GT(metalPixels, 0); // the gold sphere is in view: its diffuse part is zero
 }
 
 TEST_F(RenderIntrinsicsGlTest, WhiteLambertianUnderANormalSunHasUnitIllumination) {
@@ -87,8 +87,8 @@ TEST_F(RenderIntrinsicsGlTest, MaterialModalitiesAreTheMaterialInputs) {
     m.ambientOcclusion = 0.5f;
     scene.addInstance({scene.addMesh(primitives::plane(50, 50)), {scene.addMaterial(m)}, {1}});
     Camera camera = cameraLookingAt({0, 0, 5}, {0.01, 0, 0}, 8, 8, 40.0);
-    RenderTarget target(renderer(),
-                        {Modality::BaseColor, Modality::Roughness, Modality::Metallic, Modality::MaterialAo}, 0);
+    RenderTarget target(
+        renderer(), {Modality::BaseColor, Modality::Roughness, Modality::Metallic, Modality::MaterialAo}, 0);
     Frame frame;
     target.render(scene, camera, frame);
     EXPECT_NEAR(frame.get(Modality::BaseColor).at(3, 3, 0), 0.2f, 1e-3f);
@@ -161,9 +161,10 @@ TEST_F(RenderIntrinsicsGlTest, PointAndSpotLightsFollowInverseSquareAndCone) {
     const int bx = int(below.x()), by = int(below.y()), ox = int(offset.x()), oy = int(offset.y());
     for (auto [x, y] : {std::pair{bx, by}, std::pair{ox, oy}}) {
         const float expected = expectedAt(x, y);
-        EXPECT_NEAR(frame.get(Modality::DiffuseIllumination).at(x, y), expected, 2e-3f * expected) << x << "," << y;
+        EXPECT_NEAR(frame.get(Modality::DiffuseIllumination).at(x, y), expected, 2e-3f * expected)
+            << x << "," << y;
     }
-    EXPECT_GT(expectedAt(bx, by), 2.5f * expectedAt(ox, oy));  // the two pixels are far apart
+    EXPECT_GT(expectedAt(bx, by), 2.5f * expectedAt(ox, oy)); // the two pixels are far apart
 
     // A spot pointing down with a 20 degree outer cone: as bright as the point light on its axis, dark
     // 45 degrees off axis.
@@ -174,7 +175,8 @@ TEST_F(RenderIntrinsicsGlTest, PointAndSpotLightsFollowInverseSquareAndCone) {
     spot.outerConeDeg = 20.0f;
     scene.setLight(light, spot);
     target.render(scene, camera, frame);
-    EXPECT_NEAR(frame.get(Modality::DiffuseIllumination).at(bx, by), expectedAt(bx, by), 2e-3f * expectedAt(bx, by));
+    EXPECT_NEAR(frame.get(Modality::DiffuseIllumination).at(bx, by), expectedAt(bx, by),
+                2e-3f * expectedAt(bx, by));
     EXPECT_EQ(frame.get(Modality::DiffuseIllumination).at(ox, oy), 0.0f);
 }
 
@@ -237,7 +239,7 @@ TEST_F(RenderIntrinsicsGlTest, UpdatedMeshIsReuploaded) {
     EXPECT_NEAR(frame.get(Modality::Depth).at(4, 4), 3.5f, 1e-4f);
     EXPECT_EQ(renderer().stats().meshUploads, 1u);
     target.render(scene, camera, frame);
-    EXPECT_EQ(renderer().stats().meshUploads, 1u);  // unchanged meshes are not uploaded again
+    EXPECT_EQ(renderer().stats().meshUploads, 1u); // unchanged meshes are not uploaded again
 }
 
 } // namespace

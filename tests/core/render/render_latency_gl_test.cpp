@@ -11,7 +11,7 @@ namespace sp::render::test {
 namespace {
 
 class RenderLatencyGlTest : public GlTest, public ::testing::WithParamInterface<int> {
-protected:
+  protected:
     void SetUp() override {
         mesh_ = scene_.addMesh(primitives::box({6, 6, 6}));
         material_ = scene_.addMaterial(Material{});
@@ -75,7 +75,7 @@ TEST_P(RenderLatencyGlTest, ReadsIntoCallerMemory) {
         } else {
             EXPECT_EQ(got, 1u);
             EXPECT_EQ(ids[4 * 8 + 4], 1001u);
-            EXPECT_EQ(ids[0], 1001u);  // the box fills the view
+            EXPECT_EQ(ids[0], 1001u); // the box fills the view
             EXPECT_EQ(color[3], 255);
         }
     }
@@ -104,7 +104,7 @@ TEST_F(RenderTargetGlTest, CallerMemoryOfTheWrongSizeIsRejectedBeforeWriting) {
     std::vector<float> full(64);
     const OutputView good[] = {{Modality::Depth, full.data(), full.size() * 4}};
     EXPECT_EQ(target.read(good), 1u);
-    EXPECT_NEAR(full[4 * 8 + 4], 3.0f, 1e-4f);  // camera 6 m from the centre of a 6 m box
+    EXPECT_NEAR(full[4 * 8 + 4], 3.0f, 1e-4f); // camera 6 m from the centre of a 6 m box
 }
 
 TEST_F(RenderTargetGlTest, FramesKeepTheSizeTheyWereRenderedWith) {

@@ -38,7 +38,8 @@ TEST(SceneTest, InstancesNeedOneMaterialAndIdPerSlot) {
         scene.addInstance(instance);
         FAIL();
     } catch (const InvalidArgument& e) {
-        EXPECT_STREQ(e.what(), "Scene::addInstance(): objectIds[0] is 0, which is reserved for the background");
+        EXPECT_STREQ(e.what(),
+                     "Scene::addInstance(): objectIds[0] is 0, which is reserved for the background");
     }
     instance.objectIds = {1, 2};
     EXPECT_THROW(scene.addInstance(instance), InvalidArgument);

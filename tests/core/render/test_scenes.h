@@ -7,8 +7,8 @@
 
 namespace sp::render::test {
 
-inline Camera cameraLookingAt(const Eigen::Vector3d& position, const Eigen::Vector3d& target, int width, int height,
-                              double hfovDeg = 60.0) {
+inline Camera cameraLookingAt(const Eigen::Vector3d& position, const Eigen::Vector3d& target, int width,
+                              int height, double hfovDeg = 60.0) {
     Camera camera;
     const Eigen::Vector3d x = (target - position).normalized();
     const Eigen::Vector3d up = std::abs(x.z()) < 0.99 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
@@ -68,7 +68,8 @@ inline void buildSpotScene(Scene& scene) {
     MaterialId green = scene.addMaterial(makeMaterial({0.2f, 0.6f, 0.25f}, 0.4f, 0.0f));
     scene.addInstance({plane, {white}, {1}});
     Instance wall{plane, {white}, {2}};
-    wall.transform = Eigen::Translation3d(-1.5, 0, 1.5) * Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY());
+    wall.transform =
+        Eigen::Translation3d(-1.5, 0, 1.5) * Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY());
     scene.addInstance(wall);
     Instance b{box, {green}, {3}};
     b.transform.translation() = Eigen::Vector3d(0.2, 0.1, 0.6);
