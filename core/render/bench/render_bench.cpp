@@ -1,7 +1,7 @@
 // spear_render_bench: ms/frame of submit + read at 256x256 and 1920x1080, for final_color only and for
 // every modality, per latency mode, on a ground plane with N boxes, a shadowed sun and a spot light.
 //
-//   spear_render_bench [--boxes N] [--frames F] [--png DIR]
+//   spear_render_bench [--boxes N] [--frames F] [--shadows RES] [--png DIR]   (--shadows 0: off)
 //
 // --png writes the 256x256 and 1920x1080 final_color images of the scene, to look at.
 
@@ -58,7 +58,7 @@ void buildScene(Scene& scene, int boxes) {
     scene.setEnvironment({{0.1f, 0.12f, 0.15f}, {0.3f, 0.35f, 0.45f}});
 }
 
-Camera makeCamera(int width, int height, int boxes) {
+Camera makeCamera(int width, int height, int boxes, int shadowResolution) {
     const double extent = 0.6 * std::ceil(std::sqrt(double(boxes))) + 2.0;
     Camera camera;
     const Eigen::Vector3d position(-1.4 * extent, -1.1 * extent, 0.9 * extent);
@@ -69,24 +69,27 @@ Camera makeCamera(int width, int height, int boxes) {
     camera.params.width = width;
     camera.params.height = height;
     camera.params.hfovDeg = 60.0;
-    camera.params.shadowResolution = 2048;
+    camera.params.shadows = shadowResolution > 0;
+    camera.params.shadowResolution = shadowResolution > 0 ? shadowResolution : 1024;
     return camera;
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
-    int boxes = 64, frames = 10;
+    int boxes = 64, frames = 10, shadows = 2048;
     std::string pngDir;
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--boxes") && i + 1 < argc)
             boxes = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--frames") && i + 1 < argc)
             frames = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--shadows") && i + 1 < argc)
+            shadows = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--png") && i + 1 < argc)
             pngDir = argv[++i];
         else {
-            std::fprintf(stderr, "usage: %s [--boxes N] [--frames F] [--png DIR]\n", argv[0]);
+            std::fprintf(stderr, "usage: %s [--boxes N] [--frames F] [--shadows RES] [--png DIR]\n", argv[0]);
             return 2;
         }
     }
@@ -94,12 +97,12 @@ int main(int argc, char** argv) {
     Renderer renderer(context);
     Scene scene;
     buildScene(scene, boxes);
-    std::printf("device: %s (%s), %d boxes, shadows 2048, %d timed frames after 3 warm-up frames\n",
-                context.report().renderer.c_str(), context.report().kind.c_str(), boxes, frames);
+    std::printf("device: %s (%s), %d boxes, shadow maps %d, %d timed frames after 3 warm-up frames\n",
+                context.report().renderer.c_str(), context.report().kind.c_str(), boxes, shadows, frames);
     std::printf("%-10s %-12s %-8s %10s\n", "size", "modalities", "latency", "ms/frame");
     const std::pair<int, int> sizes[] = {{256, 256}, {1920, 1080}};
     for (auto [width, height] : sizes) {
-        Camera camera = makeCamera(width, height, boxes);
+        Camera camera = makeCamera(width, height, boxes, shadows);
         for (bool all : {false, true}) {
             for (int latency = 0; latency <= RenderTarget::kMaxLatency; ++latency) {
                 RenderTarget target(renderer, all ? ModalitySet::all() : ModalitySet{Modality::FinalColor},
