@@ -10,31 +10,31 @@
 namespace sp {
 
 class Error : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
 // A value of the wrong type or out of range.
 class InvalidArgument : public Error {
-public:
+  public:
     using Error::Error;
 };
 
 // An unknown class, property, function, asset or name.
 class NotFound : public Error {
-public:
+  public:
     using Error::Error;
 };
 
 // A handle whose object was destroyed.
 class StaleObject : public Error {
-public:
+  public:
     using Error::Error;
 };
 
 // A call that is not allowed in the engine's current state (outside a frame, moving a static body, ...).
 class InvalidState : public Error {
-public:
+  public:
     using Error::Error;
 };
 
@@ -46,7 +46,8 @@ template <typename... Args> std::string concat(const Args&... args) {
 }
 } // namespace detail
 
-// Throws Type (spelled as visible at the call site) with the streamed message: SP_THROW(NotFound, "UWorld::SpawnActor(): class '", name, "' ...").
+// Throws Type (spelled as visible at the call site) with the streamed message: SP_THROW(NotFound,
+// "UWorld::SpawnActor(): class '", name, "' ...").
 #define SP_THROW(Type, ...) throw Type(::sp::detail::concat(__VA_ARGS__))
 
 // Checks a condition and throws E with the message when it does not hold.

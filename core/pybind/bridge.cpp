@@ -13,19 +13,23 @@ reflect::DType dtypeOf(const py::array& array, std::string_view context) {
     if (kind == 'b')
         return DType::Bool;
     if (kind == 'u')
-        return size == 1 ? DType::UInt8 : size == 2 ? DType::UInt16 : size == 4 ? DType::UInt32 : DType::UInt64;
+        return size == 1   ? DType::UInt8
+               : size == 2 ? DType::UInt16
+               : size == 4 ? DType::UInt32
+                           : DType::UInt64;
     if (kind == 'i')
         return size == 1 ? DType::Int8 : size == 2 ? DType::Int16 : size == 4 ? DType::Int32 : DType::Int64;
     if (kind == 'f' && size != 16)
         return size == 2 ? DType::Float16 : size == 4 ? DType::Float32 : DType::Float64;
-    SP_THROW(InvalidArgument, context, ": unsupported array dtype '", dt.attr("name").cast<std::string>(), "'");
+    SP_THROW(InvalidArgument, context, ": unsupported array dtype '", dt.attr("name").cast<std::string>(),
+             "'");
 }
 } // namespace
 
 reflect::ArrayValue arrayFromNumpy(const py::array& array, reflect::DType dtype, std::string_view context) {
     const reflect::DType actual = dtypeOf(array, context);
-    SP_CHECK(actual == dtype, InvalidArgument, context, " must have dtype ", reflect::dtypeName(dtype), ", got ",
-             reflect::dtypeName(actual));
+    SP_CHECK(actual == dtype, InvalidArgument, context, " must have dtype ", reflect::dtypeName(dtype),
+             ", got ", reflect::dtypeName(actual));
     // Non-contiguous inputs (slices, transposes) are copied once into C order.
     py::array contiguous = py::array::ensure(array, py::array::c_style);
     reflect::ArrayValue value;
@@ -43,7 +47,8 @@ reflect::ArrayValue arrayFromNumpy(const py::array& array, reflect::DType dtype,
 }
 
 py::array arrayToNumpy(const reflect::ArrayValue& value) {
-    static const char* const kFormats[] = {"?", "u1", "i1", "u2", "i2", "u4", "i4", "u8", "i8", "f2", "f4", "f8"};
+    static const char* const kFormats[] = {"?",  "u1", "i1", "u2", "i2", "u4",
+                                           "i4", "u8", "i8", "f2", "f4", "f8"};
     py::dtype dt(kFormats[size_t(value.dtype)]);
     std::vector<py::ssize_t> shape(value.shape.begin(), value.shape.end());
     if (!value.data) // an empty result still has the right dtype

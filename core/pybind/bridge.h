@@ -38,7 +38,9 @@ template <typename T, typename = void> struct Bridge {
 
 template <typename T> struct Bridge<T*, std::enable_if_t<std::is_base_of_v<reflect::ObjectBase, T>>> {
     using Py = Ref<T>*;
-    static T* in(Py value, std::string_view context) { return value ? value->template get<T>(context) : nullptr; }
+    static T* in(Py value, std::string_view context) {
+        return value ? value->template get<T>(context) : nullptr;
+    }
     static py::object out(const T* value) { return wrapObject(value); }
 };
 
@@ -52,8 +54,8 @@ template <typename T> struct Bridge<TSubclassOf<T>> {
     using Py = ClassArg;
     static TSubclassOf<T> in(Py value, std::string_view context) {
         const UClass* type = value.resolve(context);
-        SP_CHECK(!type || type->isChildOf(T::StaticClass()), InvalidArgument, context, ": class '", type->name,
-                 "' does not derive from ", T::StaticClass().name);
+        SP_CHECK(!type || type->isChildOf(T::StaticClass()), InvalidArgument, context, ": class '",
+                 type->name, "' does not derive from ", T::StaticClass().name);
         return TSubclassOf<T>(type);
     }
     static py::object out(const TSubclassOf<T>& value) { return Bridge<const UClass*>::out(value.Get()); }

@@ -14,8 +14,9 @@ using reflect::Value;
 
 namespace {
 reflect::ObjectBase& resolveArgument(py::handle object, std::string_view context) {
-    SP_CHECK(py::hasattr(object, "_sp_handle"), InvalidArgument, context, ": expected an engine object, got '",
-             std::string(py::str(object.get_type().attr("__name__"))), "'");
+    SP_CHECK(py::hasattr(object, "_sp_handle"), InvalidArgument, context,
+             ": expected an engine object, got '", std::string(py::str(object.get_type().attr("__name__"))),
+             "'");
     auto handle = object.attr("_sp_handle").cast<std::pair<uint32_t, uint32_t>>();
     reflect::ObjectBase& resolved = reflect::ObjectTable::resolve({handle.first, handle.second}, context);
     checkAccess(resolved, context);
@@ -47,8 +48,9 @@ std::pair<Value*, std::string> walk(Value& root, std::string type, const std::ve
     Value* current = &root;
     for (size_t i = 1; i < parts.size(); ++i) {
         const reflect::TypeInfo* info = reflect::Registry::get().findType(type);
-        SP_CHECK(info && info->kind == reflect::TypeInfo::Kind::Struct && current->is<Value::Dict>(), NotFound,
-                 context, ": '", parts[i - 1], "' is not a struct, so it has no field '", parts[i], "'");
+        SP_CHECK(info && info->kind == reflect::TypeInfo::Kind::Struct && current->is<Value::Dict>(),
+                 NotFound, context, ": '", parts[i - 1], "' is not a struct, so it has no field '", parts[i],
+                 "'");
         const reflect::PropertyInfo& field = findProperty(*info, parts[i], context);
         current = &current->as<Value::Dict>()[parts[i]];
         type = field.type;
@@ -83,7 +85,7 @@ void bindDynamicAccess(py::module_& m, const char* apiModule) {
                         itemType = param.type;
                 outputs[py::str(key)] = fromValue(item, itemType, apiModule);
             }
-            return std::move(outputs);
+            return outputs;
         },
         py::kw_only(), py::arg("uobject"), py::arg("function"), py::arg("args") = py::dict(),
         "Calls a reflected function by name; out-parameters come back in a dict beside 'ReturnValue'.");
@@ -120,7 +122,8 @@ void bindDynamicAccess(py::module_& m, const char* apiModule) {
         "Writes a reflected property by name or path ('RelativeLocation.Z').");
 
     m.def(
-        "get_class_names", [] {
+        "get_class_names",
+        [] {
             std::vector<std::string> names;
             for (const reflect::TypeInfo* type : reflect::Registry::get().types())
                 names.push_back(type->name);
@@ -131,7 +134,8 @@ void bindDynamicAccess(py::module_& m, const char* apiModule) {
     m.def(
         "get_derived_class_names",
         [](const std::string& uclass) {
-            const reflect::TypeInfo& base = reflect::Registry::get().getClass(uclass, "get_derived_class_names()");
+            const reflect::TypeInfo& base =
+                reflect::Registry::get().getClass(uclass, "get_derived_class_names()");
             std::vector<std::string> names;
             for (const reflect::TypeInfo* type : reflect::Registry::get().derivedClasses(base))
                 names.push_back(type->name);

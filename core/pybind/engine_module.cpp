@@ -32,7 +32,9 @@ PYBIND11_MODULE(_spear_engine, m) {
 
     using sp::world::Engine;
     py::class_<Engine>(m, "Engine", "The engine: its worlds and the frame loop.")
-        .def(py::init([](double fixedDeltaSeconds) { return std::make_unique<Engine>(Engine::Settings{fixedDeltaSeconds}); }),
+        .def(py::init([](double fixedDeltaSeconds) {
+                 return std::make_unique<Engine>(Engine::Settings{fixedDeltaSeconds});
+             }),
              py::kw_only(), py::arg("fixed_delta_seconds") = 1.0 / 60.0)
         .def("get_game_world", [](Engine& e) { return sp::pybind::wrapObject(&e.GetGameWorld()); })
         .def("begin_frame", &Engine::beginFrame)
@@ -40,7 +42,9 @@ PYBIND11_MODULE(_spear_engine, m) {
         .def("begin_end_frame", &Engine::beginEndFrame)
         .def("end_frame", &Engine::endFrame)
         .def("abort_frame", &Engine::abortFrame)
-        .def_property_readonly("frame_state", [](const Engine& e) { return std::string(Engine::toString(e.GetFrameState())); })
+        .def_property_readonly(
+            "frame_state", [](const Engine& e) { return std::string(Engine::toString(e.GetFrameState())); })
         .def_property_readonly("frame_count", &Engine::GetFrameCount)
-        .def_property_readonly("fixed_delta_seconds", [](const Engine& e) { return e.GetSettings().fixedDeltaSeconds; });
+        .def_property_readonly("fixed_delta_seconds",
+                               [](const Engine& e) { return e.GetSettings().fixedDeltaSeconds; });
 }

@@ -25,7 +25,9 @@ const Wrapper* findWrapper(const reflect::TypeInfo& type) {
 }
 } // namespace
 
-void setAccessCheck(AccessCheck check) { gAccessCheck = check; }
+void setAccessCheck(AccessCheck check) {
+    gAccessCheck = check;
+}
 
 void checkAccess(reflect::ObjectBase& object, std::string_view context) {
     if (gAccessCheck)

@@ -32,7 +32,9 @@ struct RefBase {
         checkAccess(object, context);
         return object;
     }
-    template <typename T> T* get(std::string_view context) const { return static_cast<T*>(&resolve(context)); }
+    template <typename T> T* get(std::string_view context) const {
+        return static_cast<T*>(&resolve(context));
+    }
 };
 
 // Specialised by generated code: template <> struct Ref<AActor> : Ref<UObject> { ... };
@@ -61,13 +63,17 @@ template <typename R> void bindObjectBasics(py::class_<R>& cls) {
         return other.attr("_sp_handle").cast<std::pair<uint32_t, uint32_t>>() ==
                std::make_pair(self.handle.index, self.handle.generation);
     });
-    cls.def("__hash__", [](const R& self) { return py::hash(py::make_tuple(self.handle.index, self.handle.generation)); });
+    cls.def("__hash__", [](const R& self) {
+        return py::hash(py::make_tuple(self.handle.index, self.handle.generation));
+    });
     cls.def("__repr__", [](py::handle self) {
         const auto& ref = self.cast<const R&>();
-        return describeHandle(ref.handle, py::str(self.get_type().attr("__name__")).cast<std::string>().c_str());
+        return describeHandle(ref.handle,
+                              py::str(self.get_type().attr("__name__")).cast<std::string>().c_str());
     });
-    cls.def("is_valid", [](const R& self) { return reflect::ObjectTable::find(self.handle) != nullptr; },
-            "True while the object exists; False once it was destroyed.");
+    cls.def(
+        "is_valid", [](const R& self) { return reflect::ObjectTable::find(self.handle) != nullptr; },
+        "True while the object exists; False once it was destroyed.");
 }
 
 } // namespace sp::pybind

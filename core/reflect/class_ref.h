@@ -9,16 +9,17 @@ using UClass = sp::reflect::TypeInfo;
 
 // A class that is T or derives from T (checked when set).
 template <typename T> class TSubclassOf {
-public:
+  public:
     TSubclassOf() = default;
     TSubclassOf(const UClass* type) : type_(type) {
         SP_CHECK(!type || type->isChildOf(T::StaticClass()), sp::InvalidArgument, "TSubclassOf<",
-                 T::StaticClass().name, ">: class '", type->name, "' does not derive from ", T::StaticClass().name);
+                 T::StaticClass().name, ">: class '", type->name, "' does not derive from ",
+                 T::StaticClass().name);
     }
     const UClass* Get() const { return type_; }
     const UClass* operator->() const { return type_; }
     explicit operator bool() const { return type_ != nullptr; }
 
-private:
+  private:
     const UClass* type_ = nullptr;
 };

@@ -23,17 +23,23 @@ namespace sp::reflect {
 
 template <typename T> struct ValueCodec;
 
-template <typename T> Value encode(const T& value) { return ValueCodec<T>::encode(value); }
+template <typename T> Value encode(const T& value) {
+    return ValueCodec<T>::encode(value);
+}
 template <typename T> T decode(const Value& value, std::string_view context) {
     return ValueCodec<T>::decode(value, context);
 }
 
-[[noreturn]] inline void throwTypeMismatch(std::string_view context, std::string_view expected, const Value& got) {
+[[noreturn]] inline void throwTypeMismatch(std::string_view context, std::string_view expected,
+                                           const Value& got) {
     SP_THROW(InvalidArgument, context, " must be ", expected, ", got ", got.kindName(), " ", got.repr());
 }
 
 template <typename T>
-concept ReflectedStruct = requires { T::StaticClass(); } && !std::derived_from<T, ObjectBase>;
+concept ReflectedStruct = requires {
+    T::StaticClass();
+}
+&&!std::derived_from<T, ObjectBase>;
 
 template <> struct ValueCodec<bool> {
     static Value encode(bool v) { return Value(v); }
@@ -45,8 +51,7 @@ template <> struct ValueCodec<bool> {
 };
 
 template <std::integral T>
-    requires(!std::same_as<T, bool>)
-struct ValueCodec<T> {
+requires(!std::same_as<T, bool>) struct ValueCodec<T> {
     static Value encode(T v) { return Value(int64_t(v)); }
     static T decode(const Value& v, std::string_view context) {
         const int64_t* i = v.tryAs<int64_t>();
@@ -56,8 +61,8 @@ struct ValueCodec<T> {
             SP_CHECK(*i >= 0 && uint64_t(*i) <= std::numeric_limits<T>::max(), InvalidArgument, context,
                      " is out of range: ", *i);
         } else {
-            SP_CHECK(*i >= std::numeric_limits<T>::min() && *i <= std::numeric_limits<T>::max(), InvalidArgument,
-                     context, " is out of range: ", *i);
+            SP_CHECK(*i >= std::numeric_limits<T>::min() && *i <= std::numeric_limits<T>::max(),
+                     InvalidArgument, context, " is out of range: ", *i);
         }
         return T(*i);
     }
@@ -84,7 +89,7 @@ template <> struct ValueCodec<std::string> {
 };
 
 template <typename E>
-    requires std::is_enum_v<E>
+requires std::is_enum_v<E>
 struct ValueCodec<E> {
     static Value encode(E v) { return Value(int64_t(v)); }
     static E decode(const Value& v, std::string_view context) {
@@ -120,7 +125,7 @@ template <ReflectedStruct T> struct ValueCodec<T> {
 };
 
 template <typename T>
-    requires std::derived_from<T, ObjectBase>
+requires std::derived_from<T, ObjectBase>
 struct ValueCodec<T*> {
     static Value encode(const T* v) { return v ? Value(v->GetHandle()) : Value(); }
     static T* decode(const Value& v, std::string_view context) {
@@ -153,8 +158,8 @@ template <typename T> struct ValueCodec<TSubclassOf<T>> {
     static Value encode(const TSubclassOf<T>& v) { return ValueCodec<const UClass*>::encode(v.Get()); }
     static TSubclassOf<T> decode(const Value& v, std::string_view context) {
         const UClass* type = ValueCodec<const UClass*>::decode(v, context);
-        SP_CHECK(!type || type->isChildOf(T::StaticClass()), InvalidArgument, context, ": class '", type->name,
-                 "' does not derive from ", T::StaticClass().name);
+        SP_CHECK(!type || type->isChildOf(T::StaticClass()), InvalidArgument, context, ": class '",
+                 type->name, "' does not derive from ", T::StaticClass().name);
         return TSubclassOf<T>(type);
     }
 };

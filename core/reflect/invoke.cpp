@@ -4,7 +4,8 @@
 
 namespace sp::reflect {
 
-void checkArguments(const CallArgs& args, std::initializer_list<const char*> names, std::string_view context) {
+void checkArguments(const CallArgs& args, std::initializer_list<const char*> names,
+                    std::string_view context) {
     for (const auto& [name, value] : args) {
         bool known = false;
         for (const char* expected : names)
@@ -13,8 +14,8 @@ void checkArguments(const CallArgs& args, std::initializer_list<const char*> nam
             std::string list;
             for (const char* expected : names)
                 list += (list.empty() ? "" : ", ") + std::string(expected);
-            SP_THROW(InvalidArgument, context, ": unexpected argument '", name, "' (parameters: ",
-                     list.empty() ? "none" : list, ")");
+            SP_THROW(InvalidArgument, context, ": unexpected argument '", name,
+                     "' (parameters: ", list.empty() ? "none" : list, ")");
         }
     }
 }

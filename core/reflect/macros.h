@@ -24,7 +24,7 @@ class TypeInfo;
 
 // Declarations every reflected class or struct gets; the definitions are generated.
 #define SP_REFLECT_BODY_DECLARATIONS                                                                         \
-public:                                                                                                      \
+  public:                                                                                                    \
     static const ::sp::reflect::TypeInfo& StaticClass();                                                     \
     const ::sp::reflect::TypeInfo& GetClass() const;
 
@@ -40,8 +40,8 @@ public:                                                                         
 #define SPPROPERTY(...) SP_REFLECT_ANNOTATE("property", __VA_ARGS__)
 #define SPFUNCTION(...) SP_REFLECT_ANNOTATE("function", __VA_ARGS__)
 #define SP_GENERATED_BODY()                                                                                  \
-public:                                                                                                      \
-    SP_REFLECT_ANNOTATE("generated_body") static void SpReflectGeneratedBody_();                            \
+  public:                                                                                                    \
+    SP_REFLECT_ANNOTATE("generated_body") static void SpReflectGeneratedBody_();                             \
     SP_REFLECT_BODY_DECLARATIONS
 
 #else

@@ -32,11 +32,17 @@ Table& table() {
 
 ObjectBase::ObjectBase() : handle_(ObjectTable::insert(this)) {}
 
-ObjectBase::~ObjectBase() { ObjectTable::erase(handle_); }
+ObjectBase::~ObjectBase() {
+    ObjectTable::erase(handle_);
+}
 
-std::string ObjectBase::GetDebugName() const { return GetClass().name; }
+std::string ObjectBase::GetDebugName() const {
+    return GetClass().name;
+}
 
-bool ObjectBase::IsA(const TypeInfo& type) const { return GetClass().isChildOf(type); }
+bool ObjectBase::IsA(const TypeInfo& type) const {
+    return GetClass().isChildOf(type);
+}
 
 ObjectHandle ObjectTable::insert(ObjectBase* object) {
     Table& t = table();

@@ -13,7 +13,7 @@ namespace sp::reflect {
 class TypeInfo;
 
 class ObjectBase {
-public:
+  public:
     ObjectBase();
     virtual ~ObjectBase();
     ObjectBase(const ObjectBase&) = delete;
@@ -29,14 +29,14 @@ public:
 
     bool IsA(const TypeInfo& type) const;
 
-private:
+  private:
     ObjectHandle handle_;
 };
 
 // The process-wide table of live objects. Slots are reused with a new generation, so an old handle
 // never resolves to a new object.
 class ObjectTable {
-public:
+  public:
     // nullptr when the handle is null or stale.
     static ObjectBase* find(ObjectHandle handle);
     // Throws StaleObject ("<context>: AActor 'Cube' (object 5:2) was destroyed") or InvalidArgument for null.
@@ -46,7 +46,7 @@ public:
     // objects calls this first, while the object is whole (a destructor can no longer ask it).
     static void rememberName(const ObjectBase& object);
 
-private:
+  private:
     friend class ObjectBase;
     static ObjectHandle insert(ObjectBase* object);
     static void erase(ObjectHandle handle);

@@ -11,14 +11,14 @@ Registry& Registry::get() {
 
 void Registry::add(const TypeInfo& type) {
     auto [it, inserted] = types_.emplace(type.name, &type);
-    SP_CHECK(inserted || it->second == &type, InvalidArgument, "Registry::add(): two different types are named '",
-             type.name, "'");
+    SP_CHECK(inserted || it->second == &type, InvalidArgument,
+             "Registry::add(): two different types are named '", type.name, "'");
 }
 
 void Registry::add(const EnumInfo& info) {
     auto [it, inserted] = enums_.emplace(info.name, &info);
-    SP_CHECK(inserted || it->second == &info, InvalidArgument, "Registry::add(): two different enums are named '",
-             info.name, "'");
+    SP_CHECK(inserted || it->second == &info, InvalidArgument,
+             "Registry::add(): two different enums are named '", info.name, "'");
 }
 
 const TypeInfo* Registry::findType(std::string_view name) const {

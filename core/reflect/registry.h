@@ -13,7 +13,7 @@
 namespace sp::reflect {
 
 class Registry {
-public:
+  public:
     static Registry& get();
 
     // Adding the same TypeInfo twice is a no-op; two different types with one name is an error.
@@ -29,7 +29,7 @@ public:
     std::vector<const EnumInfo*> enums() const;
     std::vector<const TypeInfo*> derivedClasses(const TypeInfo& base) const; // includes base, sorted
 
-private:
+  private:
     std::map<std::string, const TypeInfo*, std::less<>> types_;
     std::map<std::string, const EnumInfo*, std::less<>> enums_;
 };

@@ -37,7 +37,7 @@ template <> struct DTypeOf<double> { static constexpr DType value = DType::Float
 
 // The untyped part, so that lists of arrays of different element types can be packed together.
 class SpArrayBase {
-public:
+  public:
     explicit SpArrayBase(std::string name, DType dtype) : name_(std::move(name)) { value_.dtype = dtype; }
     virtual ~SpArrayBase() = default;
 
@@ -50,18 +50,18 @@ public:
     const ArrayValue& value() const { return value_; }
     // Adopts `value` (sharing its storage). Throws InvalidArgument when the dtype differs.
     void assign(ArrayValue value, std::string_view context) {
-        SP_CHECK(value.dtype == value_.dtype, InvalidArgument, context, ": array '", name_, "' must have dtype ",
-                 dtypeName(value_.dtype), ", got ", dtypeName(value.dtype));
+        SP_CHECK(value.dtype == value_.dtype, InvalidArgument, context, ": array '", name_,
+                 "' must have dtype ", dtypeName(value_.dtype), ", got ", dtypeName(value.dtype));
         value_ = std::move(value);
     }
 
-protected:
+  protected:
     std::string name_;
     ArrayValue value_;
 };
 
 template <typename T> class SpArray : public SpArrayBase {
-public:
+  public:
     using ElementType = T;
 
     explicit SpArray(std::string name = "") : SpArrayBase(std::move(name), DTypeOf<T>::value) {}
@@ -86,7 +86,7 @@ public:
         setDataSource(std::vector<T>(size_t(count)), std::move(shape));
     }
 
-private:
+  private:
     std::vector<int64_t> resolveShape(std::vector<int64_t> shape, int64_t count) const {
         int64_t known = 1;
         int wildcard = -1;
@@ -100,8 +100,8 @@ private:
             }
         }
         if (wildcard >= 0) {
-            SP_CHECK(known > 0 && count % known == 0, InvalidArgument, "SpArray::setDataSource(): array '", name_,
-                     "' has ", count, " elements, which do not fit the shape");
+            SP_CHECK(known > 0 && count % known == 0, InvalidArgument, "SpArray::setDataSource(): array '",
+                     name_, "' has ", count, " elements, which do not fit the shape");
             shape[size_t(wildcard)] = count / known;
             known = count;
         }

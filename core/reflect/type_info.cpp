@@ -28,7 +28,8 @@ const FunctionInfo* TypeInfo::findFunction(std::string_view functionName) const 
 }
 
 namespace {
-template <typename Member, typename Pick> std::vector<const Member*> collect(const TypeInfo* type, Pick pick) {
+template <typename Member, typename Pick>
+std::vector<const Member*> collect(const TypeInfo* type, Pick pick) {
     std::vector<const TypeInfo*> chain;
     for (; type; type = type->parent)
         chain.push_back(type);
@@ -41,15 +42,18 @@ template <typename Member, typename Pick> std::vector<const Member*> collect(con
 } // namespace
 
 std::vector<const PropertyInfo*> TypeInfo::allProperties() const {
-    return collect<PropertyInfo>(this, [](const TypeInfo& t) -> const auto& { return t.properties; });
+    return collect<PropertyInfo>(
+        this, [](const TypeInfo& t) -> const auto& { return t.properties; });
 }
 
 std::vector<const FunctionInfo*> TypeInfo::allFunctions() const {
-    return collect<FunctionInfo>(this, [](const TypeInfo& t) -> const auto& { return t.functions; });
+    return collect<FunctionInfo>(
+        this, [](const TypeInfo& t) -> const auto& { return t.functions; });
 }
 
 bool EnumInfo::contains(int64_t value) const {
-    return std::any_of(entries.begin(), entries.end(), [&](const auto& entry) { return entry.second == value; });
+    return std::any_of(entries.begin(), entries.end(),
+                       [&](const auto& entry) { return entry.second == value; });
 }
 
 std::string_view EnumInfo::nameOf(int64_t value) const {

@@ -47,7 +47,7 @@ struct FunctionInfo {
 };
 
 class TypeInfo {
-public:
+  public:
     enum class Kind { Class, Struct };
 
     std::string name;
@@ -59,7 +59,7 @@ public:
     std::vector<FunctionInfo> functions;
     ObjectBase* (*create)() = nullptr; // classes that can be instantiated; owned by the caller
 
-    bool isChildOf(const TypeInfo& other) const; // true for the type itself
+    bool isChildOf(const TypeInfo& other) const;                           // true for the type itself
     const PropertyInfo* findProperty(std::string_view propertyName) const; // searches the parent chain
     const FunctionInfo* findFunction(std::string_view functionName) const;
     std::vector<const PropertyInfo*> allProperties() const; // parents first

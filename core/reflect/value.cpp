@@ -32,8 +32,12 @@ std::string toString(ObjectHandle handle) {
     return std::to_string(handle.index) + ":" + std::to_string(handle.generation);
 }
 
-std::string_view dtypeName(DType dtype) { return kDTypes[size_t(dtype)].name; }
-size_t dtypeSize(DType dtype) { return kDTypes[size_t(dtype)].size; }
+std::string_view dtypeName(DType dtype) {
+    return kDTypes[size_t(dtype)].name;
+}
+size_t dtypeSize(DType dtype) {
+    return kDTypes[size_t(dtype)].size;
+}
 
 DType dtypeFromName(std::string_view name) {
     for (const auto& desc : kDTypes)
@@ -100,6 +104,8 @@ bool operator==(const ArrayValue& a, const ArrayValue& b) {
     return std::equal(x, x + a.byteSize(), static_cast<const char*>(b.data));
 }
 
-bool operator==(const Value& a, const Value& b) { return a.storage_ == b.storage_; }
+bool operator==(const Value& a, const Value& b) {
+    return a.storage_ == b.storage_;
+}
 
 } // namespace sp::reflect

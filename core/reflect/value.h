@@ -32,7 +32,20 @@ struct ClassName {
 };
 
 // Element types of arrays; the names match numpy's.
-enum class DType : uint8_t { Bool, UInt8, Int8, UInt16, Int16, UInt32, Int32, UInt64, Int64, Float16, Float32, Float64 };
+enum class DType : uint8_t {
+    Bool,
+    UInt8,
+    Int8,
+    UInt16,
+    Int16,
+    UInt32,
+    Int32,
+    UInt64,
+    Int64,
+    Float16,
+    Float32,
+    Float64
+};
 
 std::string_view dtypeName(DType dtype);
 size_t dtypeSize(DType dtype);
@@ -53,11 +66,11 @@ struct ArrayValue {
 };
 
 class Value {
-public:
+  public:
     using List = std::vector<Value>;
     using Dict = std::map<std::string, Value>;
-    using Storage = std::variant<std::monostate, bool, int64_t, double, std::string, ObjectHandle, ClassName, List,
-                                 Dict, ArrayValue>;
+    using Storage = std::variant<std::monostate, bool, int64_t, double, std::string, ObjectHandle, ClassName,
+                                 List, Dict, ArrayValue>;
 
     Value() = default;
     Value(bool v) : storage_(v) {}
@@ -86,7 +99,7 @@ public:
 
     friend bool operator==(const Value& a, const Value& b);
 
-private:
+  private:
     Storage storage_;
 };
 

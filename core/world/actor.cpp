@@ -18,8 +18,8 @@ AActor::~AActor() {
 
 void AActor::adoptComponent(std::unique_ptr<UActorComponent> component, std::string name) {
     for (const auto& existing : components_)
-        SP_CHECK(existing->GetName() != name, sp::InvalidArgument, "AActor.CreateComponent(): ", GetDebugName(),
-                 " already has a component named '", name, "'");
+        SP_CHECK(existing->GetName() != name, sp::InvalidArgument,
+                 "AActor.CreateComponent(): ", GetDebugName(), " already has a component named '", name, "'");
     component->InitObject(std::move(name), GetWorld());
     component->SetOwner(this);
     if (auto* scene = dynamic_cast<USceneComponent*>(component.get())) {
@@ -36,7 +36,8 @@ void AActor::adoptComponent(std::unique_ptr<UActorComponent> component, std::str
 
 UActorComponent* AActor::CreateComponent(const UClass& type, std::string name) {
     SP_CHECK(type.isChildOf(UActorComponent::StaticClass()) && type.create, sp::InvalidArgument,
-             "AActor.CreateComponent(): class '", type.name, "' is not a component class that can be created");
+             "AActor.CreateComponent(): class '", type.name,
+             "' is not a component class that can be created");
     std::unique_ptr<UActorComponent> component(static_cast<UActorComponent*>(type.create()));
     UActorComponent* raw = component.get();
     adoptComponent(std::move(component), std::move(name));
@@ -46,10 +47,12 @@ UActorComponent* AActor::CreateComponent(const UClass& type, std::string name) {
 void AActor::DestroyComponent(UActorComponent* component) {
     auto it = std::find_if(components_.begin(), components_.end(),
                            [&](const auto& owned) { return owned.get() == component; });
-    SP_CHECK(it != components_.end(), sp::InvalidArgument, "AActor.DestroyComponent(): ",
-             component->GetDebugName(), " is not a component of ", GetDebugName());
-    SP_CHECK(component != RootComponent, sp::InvalidArgument, "AActor.DestroyComponent(): ",
-             component->GetDebugName(), " is the root component of ", GetDebugName());
+    SP_CHECK(it != components_.end(), sp::InvalidArgument,
+             "AActor.DestroyComponent(): ", component->GetDebugName(), " is not a component of ",
+             GetDebugName());
+    SP_CHECK(component != RootComponent, sp::InvalidArgument,
+             "AActor.DestroyComponent(): ", component->GetDebugName(), " is the root component of ",
+             GetDebugName());
     if (begunPlay_)
         component->EndPlay();
     sp::reflect::ObjectTable::rememberName(*component);
@@ -70,7 +73,9 @@ void AActor::SetRootComponent(USceneComponent* NewRootComponent) {
     RootComponent = NewRootComponent;
 }
 
-FVector AActor::GetActorLocation() const { return RootComponent ? RootComponent->GetComponentLocation() : FVector{}; }
+FVector AActor::GetActorLocation() const {
+    return RootComponent ? RootComponent->GetComponentLocation() : FVector{};
+}
 
 bool AActor::SetActorLocation(const FVector& NewLocation) {
     if (!RootComponent)
@@ -90,7 +95,8 @@ bool AActor::SetActorRotation(const FRotator& NewRotation) {
     return true;
 }
 
-bool AActor::K2_SetActorLocationAndRotation(const FVector& NewLocation, const FRotator& NewRotation, bool, bool) {
+bool AActor::K2_SetActorLocationAndRotation(const FVector& NewLocation, const FRotator& NewRotation, bool,
+                                            bool) {
     if (!RootComponent)
         return false;
     FTransform world = RootComponent->GetComponentTransform();

@@ -14,7 +14,7 @@
 SPCLASS()
 class AActor : public UObject {
     SP_GENERATED_BODY()
-public:
+  public:
     AActor();
     ~AActor() override;
 
@@ -107,7 +107,7 @@ public:
     bool HasBegunPlay() const { return begunPlay_; }
     void SetWorldForComponents();
 
-private:
+  private:
     void adoptComponent(std::unique_ptr<UActorComponent> component, std::string name);
 
     std::vector<std::unique_ptr<UActorComponent>> components_;

@@ -12,7 +12,7 @@ class AActor;
 SPCLASS(Abstract)
 class UActorComponent : public UObject {
     SP_GENERATED_BODY()
-public:
+  public:
     /// Tags for finding this component.
     SPPROPERTY()
     std::vector<std::string> ComponentTags;
@@ -36,6 +36,6 @@ public:
 
     void SetOwner(AActor* owner) { owner_ = owner; }
 
-private:
+  private:
     AActor* owner_ = nullptr;
 };

@@ -7,8 +7,8 @@ namespace sp::world {
 Engine::Engine() : Engine(Settings{}) {}
 
 Engine::Engine(Settings settings) : settings_(settings) {
-    SP_CHECK(settings_.fixedDeltaSeconds > 0.0, InvalidArgument, "Engine(): fixedDeltaSeconds must be > 0, got ",
-             settings_.fixedDeltaSeconds);
+    SP_CHECK(settings_.fixedDeltaSeconds > 0.0, InvalidArgument,
+             "Engine(): fixedDeltaSeconds must be > 0, got ", settings_.fixedDeltaSeconds);
     registerEngineTypes();
     gameWorld_ = std::make_unique<UWorld>();
     gameWorld_->SetEngine(this);

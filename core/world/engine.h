@@ -20,7 +20,7 @@ namespace sp::world {
 void registerEngineTypes();
 
 class Engine {
-public:
+  public:
     enum class FrameState { Idle, BeginFrame, FrameExecuted, EndFrame };
 
     struct Settings {
@@ -56,7 +56,7 @@ public:
 
     static std::string_view toString(FrameState state);
 
-private:
+  private:
     void expectState(FrameState expected, std::string_view function) const;
 
     Settings settings_;

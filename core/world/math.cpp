@@ -11,7 +11,8 @@ constexpr double kRadToDeg = 180.0 / M_PI;
 Eigen::Quaterniond FRotator::toQuaternion() const {
     using Eigen::AngleAxisd;
     using Eigen::Vector3d;
-    return AngleAxisd(Yaw * kDegToRad, Vector3d::UnitZ()) * AngleAxisd(-Pitch * kDegToRad, Vector3d::UnitY()) *
+    return AngleAxisd(Yaw * kDegToRad, Vector3d::UnitZ()) *
+           AngleAxisd(-Pitch * kDegToRad, Vector3d::UnitY()) *
            AngleAxisd(Roll * kDegToRad, Vector3d::UnitX());
 }
 

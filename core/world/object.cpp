@@ -2,6 +2,10 @@
 
 #include "core/reflect/type_info.h"
 
-std::string UObject::GetClassName() const { return GetClass().name; }
+std::string UObject::GetClassName() const {
+    return GetClass().name;
+}
 
-std::string UObject::GetDebugName() const { return GetClass().name + " '" + name_ + "'"; }
+std::string UObject::GetDebugName() const {
+    return GetClass().name + " '" + name_ + "'";
+}

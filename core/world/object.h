@@ -12,7 +12,7 @@ class UWorld;
 SPCLASS(Abstract)
 class UObject : public sp::reflect::ObjectBase {
     SP_GENERATED_BODY()
-public:
+  public:
     UObject() = default;
     ~UObject() override = default;
 
@@ -36,7 +36,7 @@ public:
         world_ = world;
     }
 
-private:
+  private:
     std::string name_;
     UWorld* world_ = nullptr;
 };

@@ -9,7 +9,7 @@
 SPCLASS(Abstract)
 class UPrimitiveComponent : public USceneComponent {
     SP_GENERATED_BODY()
-public:
+  public:
     /// Returns the world-space axis-aligned bounds as centre Origin and half size BoxExtent.
     SPFUNCTION()
     void GetBounds(FVector& Origin, FVector& BoxExtent) const;

@@ -3,6 +3,8 @@
 
 namespace sp::world {
 
-void registerEngineTypes() { spear_register_engine_types(); }
+void registerEngineTypes() {
+    spear_register_engine_types();
+}
 
 } // namespace sp::world

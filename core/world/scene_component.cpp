@@ -51,13 +51,17 @@ FTransform USceneComponent::GetComponentTransform() const {
     return parent_ ? transform.composedWith(parent_->GetComponentTransform()) : transform;
 }
 
-FVector USceneComponent::GetComponentLocation() const { return GetComponentTransform().Translation; }
+FVector USceneComponent::GetComponentLocation() const {
+    return GetComponentTransform().Translation;
+}
 
 FRotator USceneComponent::GetComponentRotation() const {
     return FRotator::fromQuaternion(GetComponentTransform().Rotation.toEigen());
 }
 
-FVector USceneComponent::GetComponentScale() const { return GetComponentTransform().Scale3D; }
+FVector USceneComponent::GetComponentScale() const {
+    return GetComponentTransform().Scale3D;
+}
 
 void USceneComponent::SetWorldTransform(const FTransform& NewTransform) {
     SetRelativeTransform(parent_ ? NewTransform.relativeTo(parent_->GetComponentTransform()) : NewTransform);
@@ -90,8 +94,8 @@ FVector USceneComponent::GetUpVector() const {
 void USceneComponent::AttachToComponent(USceneComponent* Parent, bool bKeepWorldTransform) {
     SP_CHECK(Parent, sp::InvalidArgument, "USceneComponent.AttachToComponent(): Parent is None");
     for (const USceneComponent* p = Parent; p; p = p->parent_)
-        SP_CHECK(p != this, sp::InvalidArgument, "USceneComponent.AttachToComponent(): attaching ", GetDebugName(),
-                 " to ", Parent->GetDebugName(), " would make a cycle");
+        SP_CHECK(p != this, sp::InvalidArgument, "USceneComponent.AttachToComponent(): attaching ",
+                 GetDebugName(), " to ", Parent->GetDebugName(), " would make a cycle");
     const FTransform world = GetComponentTransform();
     if (parent_)
         std::erase(parent_->children_, this);

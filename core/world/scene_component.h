@@ -23,7 +23,7 @@ enum class EComponentMobility : uint8_t {
 SPCLASS()
 class USceneComponent : public UActorComponent {
     SP_GENERATED_BODY()
-public:
+  public:
     /// Location relative to the attach parent (or the world), in metres.
     SPPROPERTY(Setter = SetRelativeLocation)
     FVector RelativeLocation;
@@ -130,7 +130,7 @@ public:
 
     ~USceneComponent() override;
 
-private:
+  private:
     // Throws InvalidState for a static component that is in play: moving it would desynchronise the
     // renderer and physics, which treat it as fixed.
     void checkMovable(const char* function) const;

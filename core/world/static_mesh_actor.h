@@ -8,8 +8,10 @@
 SPCLASS()
 class AStaticMeshActor : public AActor {
     SP_GENERATED_BODY()
-public:
-    AStaticMeshActor() { StaticMeshComponent = CreateDefaultSubobject<UStaticMeshComponent>("StaticMeshComponent"); }
+  public:
+    AStaticMeshActor() {
+        StaticMeshComponent = CreateDefaultSubobject<UStaticMeshComponent>("StaticMeshComponent");
+    }
 
     /// The mesh component (also the root component).
     SPPROPERTY(ReadOnly, NotNull)

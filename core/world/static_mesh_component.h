@@ -10,8 +10,9 @@
 SPCLASS()
 class UStaticMeshComponent : public UPrimitiveComponent {
     SP_GENERATED_BODY()
-public:
-    /// The mesh asset: a built-in shape ("/Engine/BasicShapes/Cube", "Sphere", "Cylinder", "Plane") or a file.
+  public:
+    /// The mesh asset: a built-in shape ("/Engine/BasicShapes/Cube", "Sphere", "Cylinder", "Plane") or a
+    /// file.
     SPPROPERTY()
     std::string StaticMesh;
 

@@ -4,7 +4,9 @@
 
 #include "core/base/error.h"
 
-UWorld::UWorld() { InitObject("World", this); }
+UWorld::UWorld() {
+    InitObject("World", this);
+}
 
 UWorld::~UWorld() {
     for (auto it = actors_.rbegin(); it != actors_.rend(); ++it) {
@@ -32,8 +34,8 @@ AActor* UWorld::spawn_actor(TSubclassOf<AActor> uclass, const FVector& location,
     const UClass& type = *uclass.Get();
     SP_CHECK(type.create, sp::InvalidArgument, "UWorld.spawn_actor(): class '", type.name,
              "' is abstract and cannot be spawned");
-    SP_CHECK(name.empty() || !find_actor_by_name(name), sp::InvalidArgument, "UWorld.spawn_actor(): name '", name,
-             "' is already used in this world");
+    SP_CHECK(name.empty() || !find_actor_by_name(name), sp::InvalidArgument, "UWorld.spawn_actor(): name '",
+             name, "' is already used in this world");
     std::unique_ptr<AActor> actor(static_cast<AActor*>(type.create()));
     actor->InitObject(name.empty() ? uniqueActorName(type) : name, this);
     actor->SetWorldForComponents();
@@ -50,7 +52,8 @@ AActor* UWorld::spawn_actor(TSubclassOf<AActor> uclass, const FVector& location,
 
 void UWorld::destroy_actor(AActor* actor) {
     SP_CHECK(actor, sp::InvalidArgument, "UWorld.destroy_actor(): actor is None");
-    auto it = std::find_if(actors_.begin(), actors_.end(), [&](const auto& owned) { return owned.get() == actor; });
+    auto it =
+        std::find_if(actors_.begin(), actors_.end(), [&](const auto& owned) { return owned.get() == actor; });
     SP_CHECK(it != actors_.end(), sp::InvalidArgument, "UWorld.destroy_actor(): ", actor->GetDebugName(),
              " is not in this world");
     if (ticking_) { // an actor destroyed during a tick goes away after the tick
@@ -129,8 +132,8 @@ std::vector<UActorComponent*> UWorld::get_components_by_class(AActor* actor,
     return result;
 }
 
-std::map<std::string, UActorComponent*> UWorld::get_components_by_class_as_dict(
-    AActor* actor, TSubclassOf<UActorComponent> uclass) const {
+std::map<std::string, UActorComponent*>
+UWorld::get_components_by_class_as_dict(AActor* actor, TSubclassOf<UActorComponent> uclass) const {
     std::map<std::string, UActorComponent*> result;
     for (UActorComponent* component : get_components_by_class(actor, uclass))
         result.emplace(component->GetName(), component);
@@ -156,7 +159,8 @@ void UWorld::Tick(double deltaSeconds) {
         // Index loop: an actor spawned during the tick is appended and ticks from the next frame.
         const size_t count = actors_.size();
         for (size_t i = 0; i < count; ++i)
-            if (std::find(pendingDestroy_.begin(), pendingDestroy_.end(), actors_[i].get()) == pendingDestroy_.end())
+            if (std::find(pendingDestroy_.begin(), pendingDestroy_.end(), actors_[i].get()) ==
+                pendingDestroy_.end())
                 actors_[i]->Tick(deltaSeconds);
     } catch (...) {
         ticking_ = false;

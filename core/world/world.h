@@ -19,11 +19,12 @@ class Engine;
 SPCLASS()
 class UWorld : public UObject {
     SP_GENERATED_BODY()
-public:
+  public:
     UWorld();
     ~UWorld() override;
 
-    /// Spawns an actor of class uclass at location and rotation; name must be unique in the world (empty: generated).
+    /// Spawns an actor of class uclass at location and rotation; name must be unique in the world (empty:
+    /// generated).
     SPFUNCTION(DeterminesOutputType = uclass, NotNull)
     AActor* spawn_actor(TSubclassOf<AActor> uclass, const FVector& location = FVector(),
                         const FRotator& rotation = FRotator(), const std::string& name = "",
@@ -63,12 +64,13 @@ public:
 
     /// Returns the components of actor of class uclass or a subclass of it.
     SPFUNCTION(DeterminesOutputType = uclass)
-    std::vector<UActorComponent*> get_components_by_class(AActor* actor, TSubclassOf<UActorComponent> uclass) const;
+    std::vector<UActorComponent*> get_components_by_class(AActor* actor,
+                                                          TSubclassOf<UActorComponent> uclass) const;
 
     /// Returns the components of actor of class uclass or a subclass of it, by name.
     SPFUNCTION(DeterminesOutputType = uclass)
-    std::map<std::string, UActorComponent*> get_components_by_class_as_dict(
-        AActor* actor, TSubclassOf<UActorComponent> uclass) const;
+    std::map<std::string, UActorComponent*>
+    get_components_by_class_as_dict(AActor* actor, TSubclassOf<UActorComponent> uclass) const;
 
     /// Returns the class default object of uclass: an instance outside the world holding the class defaults.
     SPFUNCTION(DeterminesOutputType = uclass, NotNull)
@@ -92,7 +94,7 @@ public:
     void SetEngine(sp::world::Engine* engine) { engine_ = engine; }
     sp::world::Engine* GetEngine() const { return engine_; }
 
-private:
+  private:
     std::string uniqueActorName(const UClass& type) const;
 
     sp::world::Engine* engine_ = nullptr;

@@ -31,7 +31,7 @@ const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
         t.properties.push_back({
             "StaticMesh",
             "str",
-            "The mesh asset: a built-in shape (\"/Engine/BasicShapes/Cube\", \"Sphere\", \"Cylinder\", \"Plane\") or a file.",
+            "The mesh asset: a built-in shape (\"/Engine/BasicShapes/Cube\", \"Sphere\", \"Cylinder\", \"Plane\") or a\nfile.",
             false,
             [](const void* self) -> sp::reflect::Value {
                 return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->StaticMesh);

@@ -30,7 +30,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.functions.push_back({
             "spawn_actor",
-            "Spawns an actor of class uclass at location and rotation; name must be unique in the world (empty: generated).",
+            "Spawns an actor of class uclass at location and rotation; name must be unique in the world (empty:\ngenerated).",
             "AActor",
             {
                 {"uclass", "type[AActor] | str", false, false},

@@ -768,7 +768,7 @@ const Self* object = self.get<Self>(kContext);
                 object->StaticMesh = Bridge<std::string>::in(std::move(value), "UStaticMeshComponent.StaticMesh");
                 object->PostPropertyChanged("StaticMesh");
             },
-            "The mesh asset: a built-in shape (\"/Engine/BasicShapes/Cube\", \"Sphere\", \"Cylinder\", \"Plane\") or a file.");
+            "The mesh asset: a built-in shape (\"/Engine/BasicShapes/Cube\", \"Sphere\", \"Cylinder\", \"Plane\") or a\nfile.");
         cls.def_property(
             "Materials",
             [](const Ref<Self>& self) { return Bridge<std::vector<std::string>>::out(self.get<Self>("UStaticMeshComponent.Materials")->Materials); },
@@ -831,7 +831,7 @@ Self* object = self.get<Self>(kContext);
             py::arg("rotation") = static_cast<Bridge<FRotator>::Py>(FRotator(FRotator())),
             py::arg("name") = static_cast<Bridge<std::string>::Py>(std::string("")),
             py::arg("tags") = Bridge<std::vector<std::string>>::Py{},
-            "Spawns an actor of class uclass at location and rotation; name must be unique in the world (empty: generated).");
+            "Spawns an actor of class uclass at location and rotation; name must be unique in the world (empty:\ngenerated).");
         cls.def(
             "destroy_actor",
             [](const Ref<Self>& self, Bridge<AActor*>::Py actor) -> py::object {

@@ -353,7 +353,9 @@ class UStaticMeshComponent(UPrimitiveComponent):
 
     @property
     def StaticMesh(self) -> str:
-        """The mesh asset: a built-in shape ("/Engine/BasicShapes/Cube", "Sphere", "Cylinder", "Plane") or a file."""
+        """The mesh asset: a built-in shape ("/Engine/BasicShapes/Cube", "Sphere", "Cylinder", "Plane") or a
+        file.
+        """
 
     @StaticMesh.setter
     def StaticMesh(self, value: str) -> None: ...

@@ -24,8 +24,8 @@ TEST(ObjectTable, HandlesAreGenerationChecked) {
         ObjectTable::resolve(handle, "AActor.GetName()");
         FAIL();
     } catch (const sp::StaleObject& e) {
-        EXPECT_EQ(std::string(e.what()), "AActor.GetName(): AActor 'First' (handle " + sp::reflect::toString(handle) +
-                                              ") was destroyed");
+        EXPECT_EQ(std::string(e.what()), "AActor.GetName(): AActor 'First' (handle " +
+                                             sp::reflect::toString(handle) + ") was destroyed");
     }
     EXPECT_THROW(ObjectTable::resolve({}, "f"), sp::InvalidArgument);
 }

@@ -48,7 +48,8 @@ TEST_F(RegistryTest, InvokersConvertCheckAndReturnOutParameters) {
     EXPECT_EQ(spawned->GetActorLocation(), (FVector{0, 0, 2}));
 
     const FunctionInfo* bounds = AActor::StaticClass().findFunction("GetActorBounds");
-    Value out = bounds->invoke(static_cast<ObjectBase*>(spawned), {{"bOnlyCollidingComponents", Value(false)}});
+    Value out =
+        bounds->invoke(static_cast<ObjectBase*>(spawned), {{"bOnlyCollidingComponents", Value(false)}});
     ASSERT_TRUE(out.is<Value::Dict>());
     EXPECT_EQ(out.as<Value::Dict>().count("Origin"), 1u);
     EXPECT_EQ(out.as<Value::Dict>().count("BoxExtent"), 1u);
@@ -58,8 +59,8 @@ TEST_F(RegistryTest, InvokersConvertCheckAndReturnOutParameters) {
         spawn->invoke(&world, {{"uclass", Value("AActor")}, {"locaton", Value()}});
         FAIL();
     } catch (const sp::InvalidArgument& e) {
-        EXPECT_STREQ(e.what(),
-                     "UWorld.spawn_actor(): unexpected argument 'locaton' (parameters: uclass, location, rotation, name, tags)");
+        EXPECT_STREQ(e.what(), "UWorld.spawn_actor(): unexpected argument 'locaton' (parameters: uclass, "
+                               "location, rotation, name, tags)");
     }
 }
 
@@ -72,7 +73,8 @@ TEST_F(RegistryTest, PropertiesUseSettersAndRejectWrongTypes) {
     EXPECT_EQ(root->Mobility, EComponentMobility::Static);
     const PropertyInfo* location = root->GetClass().findProperty("RelativeLocation");
     // The Setter runs, so a static component refuses to move through the property too.
-    EXPECT_THROW(location->set(static_cast<ObjectBase*>(root), Value(Value::Dict{{"X", Value(1.0)}})), sp::InvalidState);
+    EXPECT_THROW(location->set(static_cast<ObjectBase*>(root), Value(Value::Dict{{"X", Value(1.0)}})),
+                 sp::InvalidState);
     const PropertyInfo* rootProperty = AActor::StaticClass().findProperty("RootComponent");
     EXPECT_EQ(rootProperty->set, nullptr);
     EXPECT_TRUE(rootProperty->readOnly);

@@ -2,9 +2,9 @@
 
 #include "core/base/error.h"
 #include "core/reflect/codec.h"
+#include "core/world/engine.h"
 #include "core/world/math.h"
 #include "core/world/scene_component.h"
-#include "core/world/engine.h"
 
 using namespace sp::reflect;
 

@@ -18,8 +18,9 @@ TEST(Engine, FrameStateMachine) {
         engine.beginFrame();
         FAIL();
     } catch (const sp::InvalidState& e) {
-        EXPECT_STREQ(e.what(),
-                     "begin_frame(): the previous frame has not been closed; use 'with instance.end_frame():' first");
+        EXPECT_STREQ(
+            e.what(),
+            "begin_frame(): the previous frame has not been closed; use 'with instance.end_frame():' first");
     }
     engine.beginEndFrame();
     EXPECT_TRUE(engine.IsInFrame());

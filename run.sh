@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# The main job on the built-in default scene: installs what is missing, builds, and runs it.
+#   bash run.sh
+source "$(dirname "${BASH_SOURCE[0]}")/scripts/common.sh"
+install_dependencies
+build
+say "run: examples/getting_started.py"
+"$PYTHON" "$ROOT/examples/getting_started.py"

@@ -1,0 +1,34 @@
+# Shared by run.sh and test.sh: install what is missing, then configure and build.
+# Everything uses Debian's /usr/bin/python3, which is the interpreter that sees the apt-installed packages.
+
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+PYTHON=/usr/bin/python3
+BUILD_DIR="${SPEAR_BUILD_DIR:-$ROOT/build}"
+export PYTHONPATH="$ROOT/python${PYTHONPATH:+:$PYTHONPATH}"
+
+say() { printf '\n\033[1m== %s\033[0m\n' "$*"; }
+
+install_dependencies() {
+    local missing=()
+    while read -r pkg; do
+        [[ -z "$pkg" || "$pkg" == \#* ]] && continue
+        dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || missing+=("$pkg")
+    done < "$ROOT/scripts/debian-packages.txt"
+    if ((${#missing[@]} == 0)); then
+        say "dependencies: all $(grep -cv '^#' "$ROOT/scripts/debian-packages.txt") Debian packages present"
+        return
+    fi
+    say "dependencies: installing ${missing[*]}"
+    local sudo=""
+    [[ $(id -u) -ne 0 ]] && sudo="sudo"
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+build() {
+    say "build: configuring and building in $BUILD_DIR"
+    cmake -S "$ROOT" -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPython3_EXECUTABLE="$PYTHON" >/dev/null
+    # Two jobs: the machines this runs on have two cores, and pybind11 translation units are large.
+    cmake --build "$BUILD_DIR" -j "${SPEAR_JOBS:-2}"
+}

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Every test: generator checks, C++ tests (CTest), Python API tests, codegen golden cases and typing
+# cases (pytest, which runs mypy --strict), and a format check.
+#   bash test.sh
+source "$(dirname "${BASH_SOURCE[0]}")/scripts/common.sh"
+install_dependencies
+
+# Before the build, which regenerates generated/: the committed copy must already match the headers.
+say "check: committed generated/ matches the reflected headers"
+mapfile -t headers < <(grep -v '^#' "$ROOT/core/world/reflected_headers.txt")
+(cd "$ROOT" && "$PYTHON" -m codegen check --module engine --root . --out generated \
+    --include-dir /usr/include/eigen3 "${headers[@]}")
+
+build
+
+say "format: clang-format on project C++ sources"
+(cd "$ROOT" && git ls-files 'core/*.cpp' 'core/*.h' 'tests/core/*.cpp' | xargs clang-format --dry-run -Werror)
+
+say "test: C++ (CTest)"
+ctest --test-dir "$BUILD_DIR" --output-on-failure -j 2
+
+say "test: Python API, generator and typing (pytest)"
+cd "$ROOT" && "$PYTHON" -m pytest -q tests
