@@ -9,12 +9,22 @@ UWorld::UWorld() {
 }
 
 UWorld::~UWorld() {
+    // Actors first: their components unregister from the subsystems as they go.
     for (auto it = actors_.rbegin(); it != actors_.rend(); ++it) {
         if ((*it)->HasBegunPlay())
             (*it)->EndPlay();
         sp::reflect::ObjectTable::rememberName(**it);
     }
     actors_.clear();
+    defaultObjects_.clear();
+    while (!subsystems_.empty())
+        subsystems_.pop_back();
+}
+
+void UWorld::addSubsystem(std::type_index type, int tickOrder, std::unique_ptr<sp::world::WorldSubsystem> subsystem) {
+    auto it = std::find_if(subsystems_.begin(), subsystems_.end(),
+                           [&](const SubsystemEntry& entry) { return entry.tickOrder > tickOrder; });
+    subsystems_.insert(it, SubsystemEntry{type, tickOrder, std::move(subsystem)});
 }
 
 std::string UWorld::uniqueActorName(const UClass& type) const {
@@ -169,6 +179,9 @@ void UWorld::Tick(double deltaSeconds) {
     ticking_ = false;
     for (AActor* actor : std::exchange(pendingDestroy_, {}))
         destroy_actor(actor);
+    // Index loop: a subsystem may create another one while ticking.
+    for (size_t i = 0; i < subsystems_.size(); ++i)
+        subsystems_[i].subsystem->Tick(deltaSeconds);
     timeSeconds_ += deltaSeconds;
     ++frameCount_;
 }

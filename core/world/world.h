@@ -8,8 +8,11 @@
 #include <string>
 #include <vector>
 
+#include <typeindex>
+
 #include "core/reflect/class_ref.h"
 #include "core/world/actor.h"
+#include "core/world/world_subsystem.h"
 
 namespace sp::world {
 class Engine;
@@ -91,11 +94,36 @@ class UWorld : public UObject {
     // Advances every actor by one fixed step.
     void Tick(double deltaSeconds);
 
+    // The world's subsystem of type T (constructed as T(UWorld&) on first use).
+    template <typename T> T& GetSubsystem() {
+        for (const auto& entry : subsystems_)
+            if (entry.type == std::type_index(typeid(T)))
+                return static_cast<T&>(*entry.subsystem);
+        auto subsystem = std::make_unique<T>(*this);
+        T& raw = *subsystem;
+        addSubsystem(std::type_index(typeid(T)), T::kTickOrder, std::move(subsystem));
+        return raw;
+    }
+    template <typename T> T* FindSubsystem() const {
+        for (const auto& entry : subsystems_)
+            if (entry.type == std::type_index(typeid(T)))
+                return static_cast<T*>(entry.subsystem.get());
+        return nullptr;
+    }
+
     void SetEngine(sp::world::Engine* engine) { engine_ = engine; }
     sp::world::Engine* GetEngine() const { return engine_; }
 
   private:
+    struct SubsystemEntry {
+        std::type_index type;
+        int tickOrder;
+        std::unique_ptr<sp::world::WorldSubsystem> subsystem;
+    };
+    void addSubsystem(std::type_index type, int tickOrder, std::unique_ptr<sp::world::WorldSubsystem> subsystem);
     std::string uniqueActorName(const UClass& type) const;
+
+    std::vector<SubsystemEntry> subsystems_; // sorted by tick order; destroyed after the actors
 
     sp::world::Engine* engine_ = nullptr;
     std::vector<std::unique_ptr<AActor>> actors_; // spawn order: keeps queries and ticks deterministic

@@ -8,7 +8,7 @@ behave the same even where a default has no Python spelling.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -18,7 +18,8 @@ from spear._rpc_proxy import ObjectProxy as _ObjectProxy
 from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
-from .api import *  # noqa: F403  (structs and enums are shared with the in-process API)
+from .api import EChannel, FSample  # structs and enums are shared with the in-process API
+from spear._engine.api import FVector
 
 _: Any = (np, NDArray)
 
@@ -28,7 +29,7 @@ class AAllTypes(AActor, api.AAllTypes):
 
     @property
     def bFlag(self) -> bool:
-        return self._sp_get("bFlag", "bool")  # type: ignore[no-any-return]
+        return cast("bool", self._sp_get("bFlag", "bool"))
 
     @bFlag.setter
     def bFlag(self, value: bool) -> None:
@@ -36,7 +37,7 @@ class AAllTypes(AActor, api.AAllTypes):
 
     @property
     def Small(self) -> int:
-        return self._sp_get("Small", "int")  # type: ignore[no-any-return]
+        return cast("int", self._sp_get("Small", "int"))
 
     @Small.setter
     def Small(self, value: int) -> None:
@@ -44,7 +45,7 @@ class AAllTypes(AActor, api.AAllTypes):
 
     @property
     def Big(self) -> int:
-        return self._sp_get("Big", "int")  # type: ignore[no-any-return]
+        return cast("int", self._sp_get("Big", "int"))
 
     @Big.setter
     def Big(self, value: int) -> None:
@@ -52,7 +53,7 @@ class AAllTypes(AActor, api.AAllTypes):
 
     @property
     def Ratio(self) -> float:
-        return self._sp_get("Ratio", "float")  # type: ignore[no-any-return]
+        return cast("float", self._sp_get("Ratio", "float"))
 
     @Ratio.setter
     def Ratio(self, value: float) -> None:
@@ -60,23 +61,23 @@ class AAllTypes(AActor, api.AAllTypes):
 
     @property
     def Label(self) -> str:
-        return self._sp_get("Label", "str")  # type: ignore[no-any-return]
+        return cast("str", self._sp_get("Label", "str"))
 
     @Label.setter
     def Label(self, value: str) -> None:
         self._sp_set("Label", value)
 
     @property
-    def Target(self) -> AActor | None:
-        return self._sp_get("Target", "AActor | None")  # type: ignore[no-any-return]
+    def Target(self) -> api.AActor | None:
+        return cast("api.AActor | None", self._sp_get("Target", "AActor | None"))
 
     @Target.setter
-    def Target(self, value: AActor | None) -> None:
+    def Target(self, value: api.AActor | None) -> None:
         self._sp_set("Target", value)
 
     @property
     def Weights(self) -> dict[str, float]:
-        return self._sp_get("Weights", "dict[str, float]")  # type: ignore[no-any-return]
+        return cast("dict[str, float]", self._sp_get("Weights", "dict[str, float]"))
 
     @Weights.setter
     def Weights(self, value: dict[str, float]) -> None:
@@ -84,72 +85,39 @@ class AAllTypes(AActor, api.AAllTypes):
 
     @property
     def Counter(self) -> int:
-        return self._sp_get("Counter", "int")  # type: ignore[no-any-return]
+        return cast("int", self._sp_get("Counter", "int"))
 
     @property
     def Speed(self) -> float:
-        return self._sp_get("Speed", "float")  # type: ignore[no-any-return]
+        return cast("float", self._sp_get("Speed", "float"))
 
     @Speed.setter
     def Speed(self, value: float) -> None:
         self._sp_set("Speed", value)
 
     def SetSpeed(self, *, NewSpeed: float) -> None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "SetSpeed",
-            {"NewSpeed": NewSpeed},
-            "None",
-        )
+        self._sp_call("SetSpeed", {"NewSpeed": NewSpeed}, "None")
 
     def Scale(self, *, Sample: FSample, Factor: float = _DEFAULT, Channel: EChannel = _DEFAULT) -> FSample:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "Scale",
-            {"Sample": Sample, "Factor": Factor, "Channel": Channel},
-            "FSample",
-        )
+        return cast("FSample", self._sp_call("Scale", {"Sample": Sample, "Factor": Factor, "Channel": Channel}, "FSample"))
 
-    def Split(self, *, Text: str) -> AAllTypes.SplitResult:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "Split",
-            {"Text": Text},
-            "dict",
-            api.AAllTypes.SplitResult,
-        )
+    def Split(self, *, Text: str) -> api.AAllTypes.SplitResult:
+        return cast("api.AAllTypes.SplitResult", self._sp_call("Split", {"Text": Text}, "dict", api.AAllTypes.SplitResult))
 
-    def Collect(self, *, ActorClass: type[AActor] | str, Candidates: list[AActor] = _DEFAULT) -> Any:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "Collect",
-            {"ActorClass": ActorClass, "Candidates": Candidates},
-            "list[AActor]",
-        )
+    def Collect(self, *, ActorClass: type[api.AActor] | str, Candidates: list[api.AActor] = _DEFAULT) -> Any:
+        return self._sp_call("Collect", {"ActorClass": ActorClass, "Candidates": Candidates}, "list[AActor]")
 
-    def ClassOf(self, *, Object: UObject | None = _DEFAULT) -> type[UObject] | None:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "ClassOf",
-            {"Object": Object},
-            "type[UObject] | None",
-        )
+    def ClassOf(self, *, Object: api.UObject | None = _DEFAULT) -> type[api.UObject] | None:
+        return cast("type[api.UObject] | None", self._sp_call("ClassOf", {"Object": Object}, "type[UObject] | None"))
 
     def Normalise(self, *, Points: NDArray[np.float32]) -> NDArray[np.float32]:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "Normalise",
-            {"Points": Points},
-            "NDArray[np.float32]",
-        )
+        return cast("NDArray[np.float32]", self._sp_call("Normalise", {"Points": Points}, "NDArray[np.float32]"))
 
     def Histogram(self, *, Bytes: NDArray[np.uint8], Bins: int = _DEFAULT) -> Any:  # static in C++
-        return self._sp_call(  # type: ignore[no-any-return]
-            "Histogram",
-            {"Bytes": Bytes, "Bins": Bins},
-            "dict[str, int]",
-        )
+        return self._sp_call("Histogram", {"Bytes": Bytes, "Bins": Bins}, "dict[str, int]")
 
-    def Self(self) -> AActor:
-        return self._sp_call(  # type: ignore[no-any-return]
-            "Self",
-            {},
-            "AActor",
-        )
+    def Self(self) -> api.AActor:
+        return cast("api.AActor", self._sp_call("Self", {}, "AActor"))
 
 
 _register_proxy(AAllTypes)
