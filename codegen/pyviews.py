@@ -113,12 +113,14 @@ def module_view(module: Module) -> dict[str, Any]:
     object_names = {c.name for c in module.classes if c.kind == "class"} | _foreign_objects(module)
     for c in naming.topo_classes(module):
         if c.kind == "struct":
+            typed_dict = any(k == "TypedDict" for k, _ in c.specifiers)
             structs.append({
                 "name": c.name,
+                "typed_dict": typed_dict,
                 "doc": naming.py_docstring(c.doc, "    "),
                 "fields": [
                     {"name": p.name, "type": naming.py_type(p.type),
-                     "default": _field_default(p, enums, p.default_cpp)}
+                     "default": "" if typed_dict else _field_default(p, enums, p.default_cpp)}
                     for p in c.properties
                 ],
             })

@@ -10,7 +10,9 @@ KNOWN: dict[str, frozenset[str]] = {
     "class": frozenset(
         {"Abstract", "BlueprintType", "Blueprintable", "NotBlueprintable", "Category", "DisplayName", "Config"}
     ),
-    "struct": frozenset({"BlueprintType", "Category", "DisplayName"}),
+    # TypedDict: the struct crosses to Python as a dict typed by a TypedDict (total=False); array fields
+    # that hold no data are left out, so a result can carry just the entries that were produced.
+    "struct": frozenset({"BlueprintType", "Category", "DisplayName", "TypedDict"}),
     "enum": frozenset({"BlueprintType", "Category", "DisplayName"}),
     "property": frozenset(
         {

@@ -43,6 +43,19 @@ struct FSample {
     int32_t Count = 7;
 };
 
+/// Images keyed by name; only the ones produced are present.
+USTRUCT(TypedDict)
+struct FImages {
+    GENERATED_BODY()
+
+    /// Colour, (H, W, 4).
+    UPROPERTY()
+    sp::reflect::SpArray<uint8_t> color;
+    /// Depth in metres, (H, W).
+    UPROPERTY()
+    sp::reflect::SpArray<float> depth;
+};
+
 /// An actor whose API uses every supported type.
 UCLASS()
 class AAllTypes : public AActor {
@@ -103,6 +116,10 @@ public:
     /// Returns a histogram of byte values.
     UFUNCTION()
     static std::map<std::string, int64_t> Histogram(const sp::reflect::SpArray<uint8_t>& Bytes, int Bins = 16);
+
+    /// Renders the requested images.
+    UFUNCTION()
+    FImages Render(const std::vector<std::string>& Names);
 
     /// Never returns None.
     UFUNCTION(NotNull)

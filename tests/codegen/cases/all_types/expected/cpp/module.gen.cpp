@@ -37,21 +37,44 @@ template <> struct type_caster<EChannel> {
     }
 };
 
+template <> struct type_caster<FImages> {
+    PYBIND11_TYPE_CASTER(FImages, const_name("FImages"));
+    // A TypedDict: a plain dict; array fields without data are left out.
+    bool load(handle src, bool) {
+        if (!PyDict_Check(src.ptr()))
+            return false;
+        dict d = reinterpret_borrow<dict>(src);
+        if (d.contains("color"))
+            value.color = Bridge<sp::reflect::SpArray<uint8_t>>::in(d["color"].cast<Bridge<sp::reflect::SpArray<uint8_t>>::Py>(), "FImages.color");
+        if (d.contains("depth"))
+            value.depth = Bridge<sp::reflect::SpArray<float>>::in(d["depth"].cast<Bridge<sp::reflect::SpArray<float>>::Py>(), "FImages.depth");
+        return true;
+    }
+    static handle cast(const FImages& v, return_value_policy, handle) {
+        dict d;
+        if (v.color.value().data)
+            d["color"] = Bridge<sp::reflect::SpArray<uint8_t>>::out(v.color);
+        if (v.depth.value().data)
+            d["depth"] = Bridge<sp::reflect::SpArray<float>>::out(v.depth);
+        return d.release();
+    }
+};
+
 template <> struct type_caster<FSample> {
     PYBIND11_TYPE_CASTER(FSample, const_name("FSample"));
     bool load(handle src, bool) {
         static const object cls = sp::pybind::apiAttribute("spear._all_types.api", "FSample");
         if (!isinstance(src, cls))
             return false;
-        value.Where = src.attr("Where").cast<FVector>();
-        value.Channel = src.attr("Channel").cast<EChannel>();
-        value.Values = src.attr("Values").cast<std::vector<double>>();
-        value.Count = src.attr("Count").cast<int32_t>();
+        value.Where = Bridge<FVector>::in(src.attr("Where").cast<Bridge<FVector>::Py>(), "FSample.Where");
+        value.Channel = Bridge<EChannel>::in(src.attr("Channel").cast<Bridge<EChannel>::Py>(), "FSample.Channel");
+        value.Values = Bridge<std::vector<double>>::in(src.attr("Values").cast<Bridge<std::vector<double>>::Py>(), "FSample.Values");
+        value.Count = Bridge<int32_t>::in(src.attr("Count").cast<Bridge<int32_t>::Py>(), "FSample.Count");
         return true;
     }
     static handle cast(const FSample& v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._all_types.api", "FSample");
-        return cls(v.Where, v.Channel, v.Values, v.Count).release();
+        return cls(Bridge<FVector>::out(v.Where), Bridge<EChannel>::out(v.Channel), Bridge<std::vector<double>>::out(v.Values), Bridge<int32_t>::out(v.Count)).release();
     }
 };
 
@@ -239,6 +262,18 @@ Self* object = self.get<Self>(kContext);
             py::arg("Bytes"),
             py::arg("Bins") = static_cast<Bridge<int32_t>::Py>(int32_t(16)),
             "Returns a histogram of byte values.");
+        cls.def(
+            "Render",
+            [](const Ref<Self>& self, Bridge<std::vector<std::string>>::Py Names) -> py::object {
+                static constexpr const char* kContext = "AAllTypes.Render()";
+Self* object = self.get<Self>(kContext);
+                auto NamesValue = Bridge<std::vector<std::string>>::in(std::move(Names), "AAllTypes.Render(): argument 'Names'");
+                auto result = object->Render(NamesValue);
+                return Bridge<FImages>::out(result);
+            },
+            py::kw_only(),
+            py::arg("Names"),
+            "Renders the requested images.");
         cls.def(
             "Self",
             [](const Ref<Self>& self) -> py::object {

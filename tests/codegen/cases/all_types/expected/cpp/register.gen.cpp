@@ -10,5 +10,6 @@ void spear_register_all_types_types() {
     auto& registry = sp::reflect::Registry::get();
     registry.add(sp::reflect::StaticEnum<EChannel>());
     registry.add(AAllTypes::StaticClass());
+    registry.add(FImages::StaticClass());
     registry.add(FSample::StaticClass());
 }

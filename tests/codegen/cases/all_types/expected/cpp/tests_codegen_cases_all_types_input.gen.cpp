@@ -296,6 +296,23 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             },
         });
         t.functions.push_back({
+            "Render",
+            "Renders the requested images.",
+            "FImages",
+            {
+                {"Names", "list[str]", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "AAllTypes.Render()";
+                sp::reflect::checkArguments(args, {"Names"}, kContext);
+                std::vector<std::string> Names = sp::reflect::decode<std::vector<std::string>>(sp::reflect::requireArgument(args, "Names", kContext), "AAllTypes.Render(): argument 'Names'");
+                auto result = sp::reflect::selfCast<Self>(self)->Render(Names);
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
             "Self",
             "Never returns None.",
             "AActor",
@@ -317,6 +334,52 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
 }
 
 const sp::reflect::TypeInfo& AAllTypes::GetClass() const { return StaticClass(); }
+
+// -- FImages ----------------------------------------------------------------------------------
+
+const sp::reflect::TypeInfo& FImages::StaticClass() {
+    static const sp::reflect::TypeInfo info = [] {
+        using Self = FImages;
+        sp::reflect::TypeInfo t;
+        t.name = "FImages";
+        t.doc = "Images keyed by name; only the ones produced are present.";
+        t.kind = sp::reflect::TypeInfo::Kind::Struct;
+        t.parent = nullptr;
+        t.isAbstract = false;
+        t.properties.push_back({
+            "color",
+            "NDArray[np.uint8]",
+            "Colour, (H, W, 4).",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->color);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->color = sp::reflect::decode<sp::reflect::SpArray<uint8_t>>(value, "FImages.color");
+                sp::reflect::notifyPropertyChanged(object, "color");
+            },
+        });
+        t.properties.push_back({
+            "depth",
+            "NDArray[np.float32]",
+            "Depth in metres, (H, W).",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->depth);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->depth = sp::reflect::decode<sp::reflect::SpArray<float>>(value, "FImages.depth");
+                sp::reflect::notifyPropertyChanged(object, "depth");
+            },
+        });
+        return t;
+    }();
+    return info;
+}
+
+const sp::reflect::TypeInfo& FImages::GetClass() const { return StaticClass(); }
 
 // -- FSample ----------------------------------------------------------------------------------
 

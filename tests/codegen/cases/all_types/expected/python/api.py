@@ -10,7 +10,10 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass, field
-from typing import ClassVar, NamedTuple
+from typing import ClassVar, NamedTuple, TypedDict
+
+import numpy as np
+from numpy.typing import NDArray
 
 from spear._object import SpObject as _SpObject
 from spear._engine.api import AActor, FVector, UObject
@@ -18,6 +21,7 @@ from spear._engine.api import AActor, FVector, UObject
 __all__ = [
     "AAllTypes",
     "EChannel",
+    "FImages",
     "FSample",
 ]
 
@@ -28,6 +32,13 @@ class EChannel(enum.IntEnum):
     Red = 1
     Green = 2
     Blue = 4
+
+
+class FImages(TypedDict, total=False):
+    """Images keyed by name; only the ones produced are present."""
+
+    color: NDArray[np.uint8]
+    depth: NDArray[np.float32]
 
 
 @dataclass

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass, field
-from typing import ClassVar, NamedTuple, TypeVar, overload
+from typing import ClassVar, NamedTuple, TypedDict, TypeVar, overload
 
 import numpy as np
 from numpy.typing import NDArray
@@ -16,6 +16,7 @@ from spear._engine.api import AActor, FVector, UObject
 __all__ = [
     "AAllTypes",
     "EChannel",
+    "FImages",
     "FSample",
 ]
 
@@ -31,6 +32,13 @@ class EChannel(enum.IntEnum):
     """Green."""
     Blue = 4
     """Blue."""
+
+
+class FImages(TypedDict, total=False):
+    """Images keyed by name; only the ones produced are present."""
+
+    color: NDArray[np.uint8]
+    depth: NDArray[np.float32]
 
 
 @dataclass
@@ -138,6 +146,9 @@ class AAllTypes(AActor):
     @staticmethod
     def Histogram(*, Bytes: NDArray[np.uint8], Bins: int = 16) -> dict[str, int]:
         """Returns a histogram of byte values."""
+
+    def Render(self, *, Names: list[str]) -> FImages:
+        """Renders the requested images."""
 
     def Self(self) -> AActor:
         """Never returns None."""

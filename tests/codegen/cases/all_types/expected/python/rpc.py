@@ -18,7 +18,7 @@ from spear._rpc_proxy import ObjectProxy as _ObjectProxy
 from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
-from .api import EChannel, FSample  # structs and enums are shared with the in-process API
+from .api import EChannel, FImages, FSample  # structs and enums are shared with the in-process API
 from spear._engine.api import FVector
 
 _: Any = (np, NDArray)
@@ -115,6 +115,9 @@ class AAllTypes(AActor, api.AAllTypes):
 
     def Histogram(self, *, Bytes: NDArray[np.uint8], Bins: int = _DEFAULT) -> Any:  # static in C++
         return self._sp_call("Histogram", {"Bytes": Bytes, "Bins": Bins}, "dict[str, int]")
+
+    def Render(self, *, Names: list[str]) -> FImages:
+        return cast("FImages", self._sp_call("Render", {"Names": Names}, "FImages"))
 
     def Self(self) -> api.AActor:
         return cast("api.AActor", self._sp_call("Self", {}, "AActor"))
