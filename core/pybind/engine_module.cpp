@@ -7,19 +7,15 @@
 #include "core/pybind/errors.h"
 #include "core/pybind/object_ref.h"
 #include "core/world/engine.h"
+#include "core/world/object_access.h"
 
 namespace py = pybind11;
 
 void spear_bind_engine(py::module_& m);
 
 namespace {
-// Engine objects may only be used inside a frame (the same rule as over RPC). Class default objects
-// live outside any world and are always usable.
 void checkFrame(sp::reflect::ObjectBase& object, std::string_view context) {
-    const auto* uobject = dynamic_cast<const UObject*>(&object);
-    if (!uobject || !uobject->GetWorld() || !uobject->GetWorld()->GetEngine())
-        return;
-    uobject->GetWorld()->GetEngine()->checkInFrame(context);
+    sp::world::checkObjectAccess(object, context);
 }
 } // namespace
 
