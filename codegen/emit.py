@@ -181,7 +181,7 @@ def render(module: Module) -> dict[str, str]:
     env = _env()
     layout = OutputLayout(module.name)
     common = {"banner": BANNER, "module": module.name, "enums_header": layout.enums_header,
-              "register_fn": layout.register_fn}
+              "register_fn": layout.register_fn, "api_hash": pyviews.api_hash(module)}
     enums_by_header: dict[str, list[Enum]] = {h: [] for h in module.headers}
     for e in module.enums:
         enums_by_header[e.header].append(e)
@@ -207,7 +207,7 @@ def render(module: Module) -> dict[str, str]:
     )
     py = pyviews.module_view(module)
     for name in ("__init__.py", "api.py", "api.pyi", "rpc.py"):
-        out[f"{layout.py_dir}/{name}"] = env.get_template(f"{name}.j2").render(**py, **common)
+        out[f"{layout.py_dir}/{name}"] = env.get_template(f"{name}.j2").render(**{**py, **common})
     out[f"{module.name}/reflection.json"] = module.to_json()
     assert sorted(out) == layout.files(module), "OutputLayout.files() is out of date"
     return out

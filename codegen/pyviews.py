@@ -161,11 +161,11 @@ def module_view(module: Module) -> dict[str, Any]:
         "enums": enum_views,
         "typevars": typevars(module),
         "all_names": names,
-        "api_hash": _api_hash(module),
     }
 
 
-def _api_hash(module: Module) -> str:
+def api_hash(module: Module) -> str:
+    """Identifies the generated API: client and server compare it on connect."""
     import hashlib
 
     return hashlib.sha256(module.to_json().encode()).hexdigest()[:16]

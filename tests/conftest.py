@@ -14,12 +14,12 @@ sys.path.insert(0, str(ROOT))  # for `codegen`
 
 import spear  # noqa: E402
 
-# Every API test runs once per transport. The RPC transport joins this list when spear-server exists.
-TRANSPORTS = ["inprocess"]
+# Every API test runs once per transport, with the same assertions.
+TRANSPORTS = ["inprocess", "rpc"]
 
 
 @pytest.fixture(params=TRANSPORTS)
 def instance(request: pytest.FixtureRequest) -> Iterator[spear.Instance]:
-    inst = spear.Instance()
+    inst = spear.Instance() if request.param == "inprocess" else spear.Instance(server="launch")
     yield inst
     inst.close()

@@ -16,3 +16,7 @@ class SpObject(metaclass=abc.ABCMeta):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UObject"
+
+    def is_valid(self) -> bool:
+        """True while the engine object exists; False once it was destroyed."""
+        raise NotImplementedError

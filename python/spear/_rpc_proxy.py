@@ -24,11 +24,14 @@ DEFAULT: Any = _Default()
 
 
 class RpcClient(Protocol):
-    def call(self, handle: tuple[int, int], function: str, args: dict[str, Any], result_type: str) -> Any: ...
+    def call(self, handle: tuple[int, int], function: str, args: dict[str, Any], result_type: str,
+             context: str = "") -> Any: ...
 
-    def get_property(self, handle: tuple[int, int], name: str, result_type: str) -> Any: ...
+    def get_property(self, handle: tuple[int, int], name: str, result_type: str, context: str = "") -> Any: ...
 
-    def set_property(self, handle: tuple[int, int], name: str, value: Any) -> None: ...
+    def set_property(self, handle: tuple[int, int], name: str, value: Any, context: str = "") -> None: ...
+
+    def is_valid(self, handle: tuple[int, int]) -> bool: ...
 
 
 _PROXIES: dict[str, type[ObjectProxy]] = {}
@@ -59,17 +62,28 @@ class ObjectProxy(SpObject):
         return hash(self._sp_handle)
 
     def __repr__(self) -> str:
-        return f"<{type(self).__name__} (remote) {self._sp_handle[0]}:{self._sp_handle[1]}>"
+        state = "" if self.is_valid() else " (destroyed)"
+        return f"<{type(self).__name__}{state} {self._sp_handle[0]}:{self._sp_handle[1]} (remote)>"
 
-    def _sp_call(self, function: str, args: dict[str, Any], result_type: str, result_tuple: Any = None) -> Any:
+    def is_valid(self) -> bool:
+        """True while the engine object exists; False once it was destroyed."""
+        return self._sp_client.is_valid(self._sp_handle)
+
+    # `owner` is the class that declares the member: messages then read as in-process ("AActor.GetName()").
+
+    def _sp_call(self, owner: str, function: str, args: dict[str, Any], result_type: str,
+                 result_tuple: Any = None) -> Any:
         sent = {name: value for name, value in args.items() if value is not DEFAULT}
-        result = self._sp_client.call(self._sp_handle, function, sent, result_type)
+        context = f"{owner}.{function}()"
         if result_tuple is not None:
-            return result_tuple(**result)
-        return result
+            from spear._rpc_types import convert_result_tuple
 
-    def _sp_get(self, name: str, result_type: str) -> Any:
-        return self._sp_client.get_property(self._sp_handle, name, result_type)
+            return convert_result_tuple(self._sp_client.call(self._sp_handle, function, sent, "", context),
+                                        result_tuple, self._sp_client)
+        return self._sp_client.call(self._sp_handle, function, sent, result_type, context)
 
-    def _sp_set(self, name: str, value: Any) -> None:
-        self._sp_client.set_property(self._sp_handle, name, value)
+    def _sp_get(self, owner: str, name: str, result_type: str) -> Any:
+        return self._sp_client.get_property(self._sp_handle, name, result_type, f"{owner}.{name}")
+
+    def _sp_set(self, owner: str, name: str, value: Any) -> None:
+        self._sp_client.set_property(self._sp_handle, name, value, f"{owner}.{name}")

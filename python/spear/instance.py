@@ -1,71 +1,92 @@
 """Instance: one engine and the frame loop around the user's work, as in SPEAR.
 
-    instance = spear.Instance()
+    instance = spear.Instance()                     # the engine in this process
+    instance = spear.Instance(server="launch")      # the engine in its own spear-server process
     game = instance.get_game()
     with instance.begin_frame():
         actor = game.spawn_actor(uclass=spear.AStaticMeshActor)   # typed: AStaticMeshActor
     with instance.end_frame():
         print(actor.GetActorLocation())
 
-Engine objects may only be used inside the two blocks; outside, calls raise InvalidStateError.
+Both transports give the same typed API and the same behaviour. Engine objects may only be used
+inside the two blocks; outside, calls raise InvalidStateError.
 """
 
 from __future__ import annotations
 
 import contextlib
+import os
 from collections.abc import Iterator
-from typing import Any
+from typing import Any, Literal
 
-from spear import _inprocess
+from spear._backends import Backend, InProcessBackend, RpcBackend
 from spear._engine import api
-from spear.errors import InvalidStateError
+from spear.errors import InvalidArgumentError, InvalidStateError
 
 
 class Instance:
-    """A running engine, in this process."""
+    """A running engine.
 
-    def __init__(self, *, fixed_delta_seconds: float = 1.0 / 60.0) -> None:
-        self._engine = _inprocess.new_engine(fixed_delta_seconds)
+    server: None runs the engine in this process; "launch" starts a spear-server process for this
+    instance (stopped by close()); "unix:PATH" or "tcp:HOST:PORT" connects to a running server
+    (token: the server's TCP token).
+    """
+
+    def __init__(self, *, server: str | None = None, token: str | None = None,
+                 fixed_delta_seconds: float = 1.0 / 60.0, mode: Literal["game", "editor"] = "game",
+                 scene: str | os.PathLike[str] | None = None) -> None:
+        # mode="editor": a persistent editor world (get_editor()) and a game world only between its play()
+        # and stop(). scene: a scene file loaded into the editor world, or else into the game world.
+        if mode not in ("game", "editor"):
+            raise InvalidArgumentError(f"Instance(): mode {mode!r} must be 'game' or 'editor'")
+        if server is not None and (mode != "game" or scene is not None):
+            raise InvalidArgumentError("Instance(): mode='editor' and scene= need the in-process engine (server=None)")
+        self._backend: Backend
+        if server is None:
+            scene_path = "" if scene is None else os.fspath(scene)
+            self._backend = InProcessBackend(fixed_delta_seconds, editor=mode == "editor", scene=scene_path)
+        else:
+            self._backend = RpcBackend(server, token, fixed_delta_seconds)
+        self.transport = "inprocess" if server is None else "rpc"
         self._closed = False
 
     # -- worlds --------------------------------------------------------------------------------
 
     def get_game(self) -> api.UWorld:
-        """The game world."""
-        world = self._require_open("get_game").get_game_world()
+        """The game world; in an editor instance, the world that the editor's play() created."""
+        world = self._open("get_game").world("game")
         assert isinstance(world, api.UWorld)
         return world
 
     def get_editor(self) -> api.UWorld:
-        """The editor world; only an editor instance has one."""
-        self._require_open("get_editor")
-        raise InvalidStateError(
-            "get_editor(): this instance runs standalone and has no editor world; start it in editor mode"
-        )
+        """The editor world (save_scene, load_scene, play, stop); only an editor instance has one."""
+        world = self._open("get_editor").world("editor")
+        assert isinstance(world, api.UWorld)
+        return world
 
     # -- frames --------------------------------------------------------------------------------
 
     @contextlib.contextmanager
     def begin_frame(self) -> Iterator[None]:
         """Runs the block at the start of a frame; the engine ticks once when the block ends."""
-        engine = self._require_open("begin_frame")
-        engine.begin_frame()
+        backend = self._open("begin_frame")
+        backend.frame("begin")
         try:
             yield
         except BaseException:
-            engine.abort_frame()  # the frame still ends, so the engine stays usable
+            backend.frame("abort")  # the frame still ends, so the engine stays usable
             raise
-        engine.execute_frame()
+        backend.frame("execute")
 
     @contextlib.contextmanager
     def end_frame(self) -> Iterator[None]:
         """Runs the block at the end of the frame that begin_frame started, reading its results."""
-        engine = self._require_open("end_frame")
-        engine.begin_end_frame()
+        backend = self._open("end_frame")
+        backend.frame("begin_end")
         try:
             yield
         finally:
-            engine.end_frame()
+            backend.frame("end")
 
     def step(self, *, num_frames: int = 1) -> None:
         """Runs num_frames frames with no user work."""
@@ -78,32 +99,29 @@ class Instance:
     @property
     def frame_count(self) -> int:
         """Frames run so far."""
-        return int(self._require_open("frame_count").frame_count)
+        return self._open("frame_count").frame_count()
 
     # -- dynamic access ------------------------------------------------------------------------
 
     def call_function(self, *, uobject: api.UObject, function: str, args: dict[str, Any] | None = None) -> Any:
         """Calls a reflected function by name (the typed call is uobject.Function(...))."""
-        self._require_open("call_function")
-        return _inprocess.module().call_function(uobject=uobject, function=function, args=args or {})
+        return self._open("call_function").call_function(uobject, function, args or {})
 
     def get_property(self, *, uobject: api.UObject, path: str) -> Any:
         """Reads a reflected property by name or dotted path ("RelativeLocation.Z")."""
-        self._require_open("get_property")
-        return _inprocess.module().get_property(uobject=uobject, path=path)
+        return self._open("get_property").get_property(uobject, path)
 
     def set_property(self, *, uobject: api.UObject, path: str, value: Any) -> None:
         """Writes a reflected property by name or dotted path."""
-        self._require_open("set_property")
-        _inprocess.module().set_property(uobject=uobject, path=path, value=value)
+        self._open("set_property").set_property(uobject, path, value)
 
     # -- lifetime ------------------------------------------------------------------------------
 
     def close(self) -> None:
-        """Destroys the engine and every object in it; their handles become stale."""
+        """Destroys the engine (or disconnects, stopping a launched server); handles become stale."""
         if not self._closed:
             self._closed = True
-            del self._engine
+            self._backend.close()
 
     def __enter__(self) -> Instance:
         return self
@@ -111,7 +129,7 @@ class Instance:
     def __exit__(self, *exc: object) -> None:
         self.close()
 
-    def _require_open(self, function: str) -> Any:
+    def _open(self, function: str) -> Backend:
         if self._closed:
             raise InvalidStateError(f"{function}(): the instance is closed")
-        return self._engine
+        return self._backend

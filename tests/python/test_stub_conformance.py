@@ -29,7 +29,8 @@ def stub_classes() -> dict[str, ast.ClassDef]:
 def object_classes() -> list[str]:
     return [n for n, c in stub_classes().items() if not any(
         isinstance(d, ast.Name) and d.id == "dataclass" for d in c.decorator_list) and not any(
-        isinstance(b, ast.Attribute) and b.attr == "IntEnum" for b in c.bases)]
+        isinstance(b, ast.Attribute) and b.attr == "IntEnum" or isinstance(b, ast.Name) and b.id == "TypedDict"
+        for b in c.bases)]
 
 
 def stub_signature(fn: ast.FunctionDef) -> list[tuple[str, bool]]:

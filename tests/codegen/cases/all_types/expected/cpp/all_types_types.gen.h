@@ -11,3 +11,6 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EChannel>();
 
 // Registers every reflected type of the module with sp::reflect::Registry.
 void spear_register_all_types_types();
+
+// The hash of this module's IR; an RPC client built from other stubs is refused on connect.
+const char* spear_register_all_types_types_api_hash();

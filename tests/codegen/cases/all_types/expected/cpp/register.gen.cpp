@@ -13,3 +13,5 @@ void spear_register_all_types_types() {
     registry.add(FImages::StaticClass());
     registry.add(FSample::StaticClass());
 }
+
+const char* spear_register_all_types_types_api_hash() { return "d13fe9ee0eef0194"; }

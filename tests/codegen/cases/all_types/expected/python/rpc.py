@@ -29,98 +29,98 @@ class AAllTypes(AActor, api.AAllTypes):
 
     @property
     def bFlag(self) -> bool:
-        return cast("bool", self._sp_get("bFlag", "bool"))
+        return cast("bool", self._sp_get("AAllTypes", "bFlag", "bool"))
 
     @bFlag.setter
     def bFlag(self, value: bool) -> None:
-        self._sp_set("bFlag", value)
+        self._sp_set("AAllTypes", "bFlag", value)
 
     @property
     def Small(self) -> int:
-        return cast("int", self._sp_get("Small", "int"))
+        return cast("int", self._sp_get("AAllTypes", "Small", "int"))
 
     @Small.setter
     def Small(self, value: int) -> None:
-        self._sp_set("Small", value)
+        self._sp_set("AAllTypes", "Small", value)
 
     @property
     def Big(self) -> int:
-        return cast("int", self._sp_get("Big", "int"))
+        return cast("int", self._sp_get("AAllTypes", "Big", "int"))
 
     @Big.setter
     def Big(self, value: int) -> None:
-        self._sp_set("Big", value)
+        self._sp_set("AAllTypes", "Big", value)
 
     @property
     def Ratio(self) -> float:
-        return cast("float", self._sp_get("Ratio", "float"))
+        return cast("float", self._sp_get("AAllTypes", "Ratio", "float"))
 
     @Ratio.setter
     def Ratio(self, value: float) -> None:
-        self._sp_set("Ratio", value)
+        self._sp_set("AAllTypes", "Ratio", value)
 
     @property
     def Label(self) -> str:
-        return cast("str", self._sp_get("Label", "str"))
+        return cast("str", self._sp_get("AAllTypes", "Label", "str"))
 
     @Label.setter
     def Label(self, value: str) -> None:
-        self._sp_set("Label", value)
+        self._sp_set("AAllTypes", "Label", value)
 
     @property
     def Target(self) -> api.AActor | None:
-        return cast("api.AActor | None", self._sp_get("Target", "AActor | None"))
+        return cast("api.AActor | None", self._sp_get("AAllTypes", "Target", "AActor | None"))
 
     @Target.setter
     def Target(self, value: api.AActor | None) -> None:
-        self._sp_set("Target", value)
+        self._sp_set("AAllTypes", "Target", value)
 
     @property
     def Weights(self) -> dict[str, float]:
-        return cast("dict[str, float]", self._sp_get("Weights", "dict[str, float]"))
+        return cast("dict[str, float]", self._sp_get("AAllTypes", "Weights", "dict[str, float]"))
 
     @Weights.setter
     def Weights(self, value: dict[str, float]) -> None:
-        self._sp_set("Weights", value)
+        self._sp_set("AAllTypes", "Weights", value)
 
     @property
     def Counter(self) -> int:
-        return cast("int", self._sp_get("Counter", "int"))
+        return cast("int", self._sp_get("AAllTypes", "Counter", "int"))
 
     @property
     def Speed(self) -> float:
-        return cast("float", self._sp_get("Speed", "float"))
+        return cast("float", self._sp_get("AAllTypes", "Speed", "float"))
 
     @Speed.setter
     def Speed(self, value: float) -> None:
-        self._sp_set("Speed", value)
+        self._sp_set("AAllTypes", "Speed", value)
 
     def SetSpeed(self, *, NewSpeed: float) -> None:
-        self._sp_call("SetSpeed", {"NewSpeed": NewSpeed}, "None")
+        self._sp_call("AAllTypes", "SetSpeed", {"NewSpeed": NewSpeed}, "None")
 
     def Scale(self, *, Sample: FSample, Factor: float = _DEFAULT, Channel: EChannel = _DEFAULT) -> FSample:
-        return cast("FSample", self._sp_call("Scale", {"Sample": Sample, "Factor": Factor, "Channel": Channel}, "FSample"))
+        return cast("FSample", self._sp_call("AAllTypes", "Scale", {"Sample": Sample, "Factor": Factor, "Channel": Channel}, "FSample"))
 
     def Split(self, *, Text: str) -> api.AAllTypes.SplitResult:
-        return cast("api.AAllTypes.SplitResult", self._sp_call("Split", {"Text": Text}, "dict", api.AAllTypes.SplitResult))
+        return cast("api.AAllTypes.SplitResult", self._sp_call("AAllTypes", "Split", {"Text": Text}, "dict", api.AAllTypes.SplitResult))
 
     def Collect(self, *, ActorClass: type[api.AActor] | str, Candidates: list[api.AActor] = _DEFAULT) -> Any:
-        return self._sp_call("Collect", {"ActorClass": ActorClass, "Candidates": Candidates}, "list[AActor]")
+        return self._sp_call("AAllTypes", "Collect", {"ActorClass": ActorClass, "Candidates": Candidates}, "list[AActor]")
 
     def ClassOf(self, *, Object: api.UObject | None = _DEFAULT) -> type[api.UObject] | None:
-        return cast("type[api.UObject] | None", self._sp_call("ClassOf", {"Object": Object}, "type[UObject] | None"))
+        return cast("type[api.UObject] | None", self._sp_call("AAllTypes", "ClassOf", {"Object": Object}, "type[UObject] | None"))
 
     def Normalise(self, *, Points: NDArray[np.float32]) -> NDArray[np.float32]:
-        return cast("NDArray[np.float32]", self._sp_call("Normalise", {"Points": Points}, "NDArray[np.float32]"))
+        return cast("NDArray[np.float32]", self._sp_call("AAllTypes", "Normalise", {"Points": Points}, "NDArray[np.float32]"))
 
     def Histogram(self, *, Bytes: NDArray[np.uint8], Bins: int = _DEFAULT) -> Any:  # static in C++
-        return self._sp_call("Histogram", {"Bytes": Bytes, "Bins": Bins}, "dict[str, int]")
+        return self._sp_call("AAllTypes", "Histogram", {"Bytes": Bytes, "Bins": Bins}, "dict[str, int]")
 
     def Render(self, *, Names: list[str]) -> FImages:
-        return cast("FImages", self._sp_call("Render", {"Names": Names}, "FImages"))
+        return cast("FImages", self._sp_call("AAllTypes", "Render", {"Names": Names}, "FImages"))
 
     def Self(self) -> api.AActor:
-        return cast("api.AActor", self._sp_call("Self", {}, "AActor"))
+        return cast("api.AActor", self._sp_call("AAllTypes", "Self", {}, "AActor"))
 
 
 _register_proxy(AAllTypes)

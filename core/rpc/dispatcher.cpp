@@ -1,0 +1,229 @@
+#include "core/rpc/dispatcher.h"
+
+#include <unistd.h>
+
+#include "core/base/error.h"
+#include "core/reflect/object_base.h"
+#include "core/reflect/type_info.h"
+#include "core/world/object_access.h"
+
+namespace sp::rpc {
+
+using reflect::Value;
+
+namespace {
+const msgpack::object* field(const msgpack::object& map, std::string_view name) {
+    if (map.type != msgpack::type::MAP)
+        return nullptr;
+    for (uint32_t i = 0; i < map.via.map.size; ++i) {
+        const auto& kv = map.via.map.ptr[i];
+        if (kv.key.type == msgpack::type::STR && std::string_view(kv.key.via.str.ptr, kv.key.via.str.size) == name)
+            return &kv.val;
+    }
+    return nullptr;
+}
+
+const msgpack::object& require(const msgpack::object& map, std::string_view name, std::string_view op) {
+    const msgpack::object* value = field(map, name);
+    SP_CHECK(value, InvalidArgument, op, "(): the request has no '", name, "'");
+    return *value;
+}
+
+std::string requireString(const msgpack::object& map, std::string_view name, std::string_view op) {
+    const msgpack::object& value = require(map, name, op);
+    SP_CHECK(value.type == msgpack::type::STR, InvalidArgument, op, "(): '", name, "' must be a string");
+    return std::string(value.via.str.ptr, value.via.str.size);
+}
+
+reflect::ObjectBase& requireObject(const msgpack::object& request, const std::string& context) {
+    Value handle = unpack(require(request, "object", context), context);
+    SP_CHECK(handle.is<reflect::ObjectHandle>(), InvalidArgument, context, ": 'object' must be an object reference");
+    reflect::ObjectBase& object = reflect::ObjectTable::resolve(handle.as<reflect::ObjectHandle>(), context);
+    world::checkObjectAccess(object, context);
+    return object;
+}
+
+// The Python exception class for an engine error (spear.errors).
+const char* errorType(const std::exception& e) {
+    if (dynamic_cast<const StaleObject*>(&e))
+        return "StaleObjectError";
+    if (dynamic_cast<const NotFound*>(&e))
+        return "NotFoundError";
+    if (dynamic_cast<const InvalidArgument*>(&e))
+        return "InvalidArgumentError";
+    if (dynamic_cast<const InvalidState*>(&e))
+        return "InvalidStateError";
+    return "SpearError";
+}
+
+void packError(msgpack::packer<msgpack::sbuffer>& out, const msgpack::object* id, const char* type,
+               const std::string& message) {
+    out.pack_map(2);
+    out.pack(std::string("id"));
+    if (id)
+        out.pack(*id);
+    else
+        out.pack_nil();
+    out.pack(std::string("error"));
+    out.pack_array(2);
+    out.pack(std::string(type));
+    out.pack(message);
+}
+} // namespace
+
+void Dispatcher::handle(const char* data, size_t size, Session& session, msgpack::sbuffer& reply,
+                        const ArrayToSharedMemory& toShm) {
+    msgpack::packer<msgpack::sbuffer> out(&reply);
+    msgpack::object_handle handle;
+    try {
+        handle = msgpack::unpack(data, size);
+    } catch (const std::exception& e) {
+        // Garbage or a truncated message: say so; a client that never said hello is dropped.
+        packError(out, nullptr, "InvalidArgumentError", std::string("request: malformed message (") + e.what() + ")");
+        session.closeAfterReply = !session.greeted;
+        return;
+    }
+    handleOne(handle.get(), session, out, toShm);
+}
+
+void Dispatcher::handleOne(const msgpack::object& request, Session& session, msgpack::packer<msgpack::sbuffer>& out,
+                           const ArrayToSharedMemory& toShm) {
+    const msgpack::object* id = field(request, "id");
+    try {
+        SP_CHECK(request.type == msgpack::type::MAP, InvalidArgument, "request: expected a map");
+        const std::string op = requireString(request, "op", "request");
+        if (op == "batch") {
+            SP_CHECK(session.greeted, InvalidState, "batch(): say hello first");
+            const msgpack::object& calls = require(request, "calls", "batch");
+            SP_CHECK(calls.type == msgpack::type::ARRAY, InvalidArgument, "batch(): 'calls' must be a list");
+            out.pack_map(2);
+            out.pack(std::string("id"));
+            id ? out.pack(*id) : out.pack_nil();
+            out.pack(std::string("ok"));
+            out.pack_array(calls.via.array.size);
+            for (uint32_t i = 0; i < calls.via.array.size; ++i)
+                handleOne(calls.via.array.ptr[i], session, out, toShm);
+            return;
+        }
+        Value result = execute(op, request, session, toShm, nullptr);
+        out.pack_map(2);
+        out.pack(std::string("id"));
+        id ? out.pack(*id) : out.pack_nil();
+        out.pack(std::string("ok"));
+        pack(out, result, toShm);
+    } catch (const Error& e) {
+        packError(out, id, errorType(e), e.what());
+    } catch (const std::exception& e) {
+        // msgpack type errors and the like: the request was malformed, the engine is fine.
+        packError(out, id, "InvalidArgumentError", std::string("request: malformed message (") + e.what() + ")");
+        session.closeAfterReply = session.closeAfterReply || !session.greeted;
+    }
+}
+
+Value Dispatcher::execute(const std::string& op, const msgpack::object& request, Session& session,
+                          const ArrayToSharedMemory&, msgpack::packer<msgpack::sbuffer>*) {
+    if (op == "hello") {
+        const std::string clientHash = requireString(request, "api_hash", "hello");
+        const msgpack::object* token = field(request, "token");
+        const std::string given =
+            token && token->type == msgpack::type::STR ? std::string(token->via.str.ptr, token->via.str.size) : "";
+        if (!token_.empty() && given != token_) {
+            session.closeAfterReply = true;
+            SP_THROW(InvalidArgument, "hello(): wrong or missing token");
+        }
+        if (clientHash != apiHash_) {
+            session.closeAfterReply = true;
+            SP_THROW(InvalidState, "hello(): the client's API (", clientHash,
+                     ") does not match the server's (", apiHash_,
+                     "); the client's generated stubs come from a different engine build");
+        }
+        session.greeted = true;
+        return Value(Value::Dict{{"api_hash", Value(apiHash_)}, {"pid", Value(int64_t(::getpid()))}});
+    }
+    if (!session.greeted) {
+        session.closeAfterReply = true;
+        SP_THROW(InvalidState, op, "(): say hello first");
+    }
+    if (op == "world") {
+        const std::string kind = requireString(request, "kind", "world");
+        if (kind == "game")
+            return Value(engine_.GetGameWorld().GetHandle());
+        SP_CHECK(kind == "editor", InvalidArgument, "world(): kind must be 'game' or 'editor', got '", kind, "'");
+        SP_THROW(InvalidState, "get_editor(): this instance runs standalone and has no editor world; start it in "
+                               "editor mode");
+    }
+    if (op == "frame") {
+        const std::string action = requireString(request, "action", "frame");
+        if (action == "begin")
+            engine_.beginFrame();
+        else if (action == "execute")
+            engine_.executeFrame();
+        else if (action == "begin_end")
+            engine_.beginEndFrame();
+        else if (action == "end")
+            engine_.endFrame();
+        else if (action == "abort")
+            engine_.abortFrame();
+        else if (action != "state")
+            SP_THROW(InvalidArgument, "frame(): unknown action '", action, "'");
+        return Value(Value::Dict{{"state", Value(std::string(world::Engine::toString(engine_.GetFrameState())))},
+                                 {"frame_count", Value(engine_.GetFrameCount())}});
+    }
+    if (op == "call" || op == "call_typed") {
+        // call_typed (the dynamic API) also returns the declared types, so the client can build
+        // the same Python types the typed proxies do.
+        const std::string function = requireString(request, "function", op);
+        std::string context = "call_function('" + function + "')";
+        // Typed proxies name the member as the in-process bindings do ("AActor.GetName()"), so that
+        // messages are the same on both transports.
+        if (const msgpack::object* given = field(request, "context"); given && given->type == msgpack::type::STR)
+            context = std::string(given->via.str.ptr, given->via.str.size);
+        reflect::ObjectBase& object = requireObject(request, context);
+        const reflect::FunctionInfo* info = object.GetClass().findFunction(function);
+        SP_CHECK(info, NotFound, context, ": class '", object.GetClass().name, "' has no function '", function, "'");
+        Value args = field(request, "args") ? unpack(*field(request, "args"), context) : Value(Value::Dict{});
+        SP_CHECK(args.is<Value::Dict>(), InvalidArgument, context, ": 'args' must be a map");
+        Value result = info->invoke(&object, args.as<Value::Dict>());
+        if (op == "call")
+            return result;
+        Value::Dict outTypes;
+        for (const auto& param : info->params)
+            if (param.isOut)
+                outTypes.emplace(param.name, Value(param.type));
+        return Value(Value::Dict{{"value", std::move(result)},
+                                 {"type", Value(info->returnType)},
+                                 {"out_types", Value(std::move(outTypes))}});
+    }
+    if (op == "get" || op == "get_typed" || op == "set") {
+        const std::string name = requireString(request, "property", op);
+        std::string context = (op == "set" ? "set_property('" : "get_property('") + name + "')";
+        if (const msgpack::object* given = field(request, "context"); given && given->type == msgpack::type::STR)
+            context = std::string(given->via.str.ptr, given->via.str.size);
+        reflect::ObjectBase& object = requireObject(request, context);
+        const reflect::PropertyInfo* property = object.GetClass().findProperty(name);
+        SP_CHECK(property, NotFound, context, ": class '", object.GetClass().name, "' has no property '", name, "'");
+        if (op == "get")
+            return property->get(&object);
+        if (op == "get_typed")
+            return Value(Value::Dict{{"value", property->get(&object)}, {"type", Value(property->type)}});
+        SP_CHECK(property->set, InvalidArgument, context, ": property '", name, "' of class '", object.GetClass().name,
+                 "' is read-only");
+        property->set(&object, unpack(require(request, "value", op), context));
+        return Value();
+    }
+    if (op == "is_valid" || op == "describe") {
+        Value handle = unpack(require(request, "object", op), op);
+        SP_CHECK(handle.is<reflect::ObjectHandle>(), InvalidArgument, op, "(): 'object' must be an object reference");
+        const reflect::ObjectBase* object = reflect::ObjectTable::find(handle.as<reflect::ObjectHandle>());
+        if (op == "is_valid")
+            return Value(object != nullptr);
+        return Value(object ? object->GetDebugName() : std::string());
+    }
+    if (op == "shutdown") {
+        session.shutdownRequested = true;
+        return Value();
+    }
+    SP_THROW(InvalidArgument, "request: unknown op '", op, "'");
+}
+
+} // namespace sp::rpc

@@ -1,0 +1,52 @@
+#pragma once
+// Dispatcher: turns one request into one reply, through the registry's invokers. It knows nothing of
+// sockets, so the protocol can be tested without a connection.
+//
+// Requests are msgpack maps {"id": n, "op": name, ...}; replies are {"id": n, "ok": value} or
+// {"id": n, "error": [type, message]}, where type names a class of spear.errors. Ops:
+//   hello {api_hash, token}       must come first; mismatched API hash or token closes the connection
+//   world {kind}                  "game" (an editor world only exists in editor mode)
+//   frame {action}                begin | execute | begin_end | end | abort
+//   call {object, function, args} invoke a reflected function
+//   get {object, property}, set {object, property, value}
+//   is_valid {object}, describe {object}
+//   batch {calls: [request...]}   many calls in one message; one reply per call, in order
+//   shutdown                      stop the server after replying
+
+#include <msgpack.hpp>
+
+#include <string>
+
+#include "core/rpc/value_msgpack.h"
+#include "core/world/engine.h"
+
+namespace sp::rpc {
+
+struct Session {
+    bool greeted = false;
+    bool closeAfterReply = false;
+    bool shutdownRequested = false;
+};
+
+class Dispatcher {
+public:
+    Dispatcher(world::Engine& engine, std::string apiHash, std::string token)
+        : engine_(engine), apiHash_(std::move(apiHash)), token_(std::move(token)) {}
+
+    // Handles one encoded request and appends the encoded reply to `reply`. Never throws: malformed
+    // input becomes an error reply (and, before a successful hello, closes the session).
+    void handle(const char* data, size_t size, Session& session, msgpack::sbuffer& reply,
+                const ArrayToSharedMemory& toShm);
+
+private:
+    reflect::Value execute(const std::string& op, const msgpack::object& request, Session& session,
+                           const ArrayToSharedMemory& toShm, msgpack::packer<msgpack::sbuffer>* batchOut);
+    void handleOne(const msgpack::object& request, Session& session, msgpack::packer<msgpack::sbuffer>& out,
+                   const ArrayToSharedMemory& toShm);
+
+    world::Engine& engine_;
+    std::string apiHash_;
+    std::string token_;
+};
+
+} // namespace sp::rpc

@@ -1,0 +1,203 @@
+#include "core/rpc/server.h"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+
+#include "core/base/error.h"
+#include "core/base/log.h"
+
+namespace sp::rpc {
+
+namespace {
+std::atomic<int> gWakeFd{-1}; // write end of the self-pipe that stop() pokes
+
+std::string systemError() { return std::strerror(errno); }
+
+bool sendAll(int fd, const char* data, size_t size) {
+    while (size > 0) {
+        const ssize_t sent = ::send(fd, data, size, MSG_NOSIGNAL);
+        if (sent < 0 && errno == EINTR)
+            continue;
+        if (sent <= 0)
+            return false;
+        data += sent;
+        size -= size_t(sent);
+    }
+    return true;
+}
+} // namespace
+
+struct Server::Connection {
+    int fd = -1;
+    std::string inbox;
+    Session session;
+    // Segments holding the arrays of the last reply: the client maps them before it sends anything
+    // else, so they are unlinked when its next request arrives (or when it goes away).
+    std::vector<SharedMemorySegment> replySegments;
+};
+
+Server::Server(world::Engine& engine, ServerOptions options, std::string apiHash)
+    : options_(std::move(options)), dispatcher_(engine, std::move(apiHash), options_.token) {
+    removeOrphanedSegments();
+    if (options_.tcpPort >= 0) {
+        SP_CHECK(!options_.token.empty(), InvalidArgument, "spear-server: TCP needs a token (--token or SPEAR_TOKEN)");
+        listenFd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+        int one = 1;
+        ::setsockopt(listenFd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one));
+        sockaddr_in address{};
+        address.sin_family = AF_INET;
+        address.sin_port = htons(uint16_t(options_.tcpPort));
+        SP_CHECK(::inet_pton(AF_INET, options_.bindAddress.c_str(), &address.sin_addr) == 1, InvalidArgument,
+                 "spear-server: bad bind address '", options_.bindAddress, "'");
+        SP_CHECK(::bind(listenFd_, reinterpret_cast<sockaddr*>(&address), sizeof(address)) == 0, Error,
+                 "spear-server: cannot bind ", options_.bindAddress, ":", options_.tcpPort, ": ", systemError());
+        socklen_t length = sizeof(address);
+        ::getsockname(listenFd_, reinterpret_cast<sockaddr*>(&address), &length);
+        boundPort_ = ntohs(address.sin_port);
+    } else {
+        SP_CHECK(!options_.socketPath.empty() && options_.socketPath.size() < sizeof(sockaddr_un::sun_path),
+                 InvalidArgument, "spear-server: bad socket path '", options_.socketPath, "'");
+        listenFd_ = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+        sockaddr_un address{};
+        address.sun_family = AF_UNIX;
+        std::strncpy(address.sun_path, options_.socketPath.c_str(), sizeof(address.sun_path) - 1);
+        ::unlink(options_.socketPath.c_str());
+        // Owner-only from the moment it exists: no window in which another user could connect.
+        const mode_t previous = ::umask(0077);
+        const int bound = ::bind(listenFd_, reinterpret_cast<sockaddr*>(&address), sizeof(address));
+        ::umask(previous);
+        SP_CHECK(bound == 0, Error, "spear-server: cannot bind '", options_.socketPath, "': ", systemError());
+    }
+    SP_CHECK(::listen(listenFd_, 16) == 0, Error, "spear-server: listen failed: ", systemError());
+}
+
+Server::~Server() {
+    for (auto& connection : connections_)
+        drop(*connection);
+    if (listenFd_ >= 0)
+        ::close(listenFd_);
+    if (options_.tcpPort < 0 && !options_.socketPath.empty())
+        ::unlink(options_.socketPath.c_str());
+}
+
+std::string Server::address() const {
+    if (options_.tcpPort >= 0)
+        return "tcp:" + options_.bindAddress + ":" + std::to_string(boundPort_);
+    return "unix:" + options_.socketPath;
+}
+
+void Server::stop() {
+    const int fd = gWakeFd.load();
+    if (fd >= 0) {
+        const char byte = 1;
+        [[maybe_unused]] ssize_t ignored = ::write(fd, &byte, 1); // async-signal-safe
+    }
+}
+
+void Server::accept() {
+    const int fd = ::accept4(listenFd_, nullptr, nullptr, SOCK_CLOEXEC);
+    if (fd < 0)
+        return;
+    if (options_.tcpPort >= 0) {
+        int one = 1;
+        ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof(one));
+    }
+    auto connection = std::make_unique<Connection>();
+    connection->fd = fd;
+    connections_.push_back(std::move(connection));
+}
+
+void Server::drop(Connection& connection) {
+    for (auto& segment : connection.replySegments)
+        segment.unlink();
+    connection.replySegments.clear();
+    if (connection.fd >= 0)
+        ::close(connection.fd);
+    connection.fd = -1;
+}
+
+bool Server::serve(Connection& connection) {
+    char buffer[65536];
+    const ssize_t received = ::recv(connection.fd, buffer, sizeof(buffer), 0);
+    if (received < 0 && (errno == EINTR || errno == EAGAIN))
+        return true;
+    if (received <= 0)
+        return false; // closed, or killed mid-call
+    connection.inbox.append(buffer, size_t(received));
+    while (connection.inbox.size() >= 4) {
+        uint32_t length = 0;
+        std::memcpy(&length, connection.inbox.data(), 4);
+        if (length > options_.maxMessageBytes) {
+            SP_LOG("spear-server: dropping a client that announced a ", length, "-byte message");
+            return false;
+        }
+        if (connection.inbox.size() < 4 + size_t(length))
+            return true; // the rest is still on its way
+        for (auto& segment : connection.replySegments)
+            segment.unlink();
+        connection.replySegments.clear();
+        msgpack::sbuffer reply;
+        reply.write("\0\0\0\0", 4);
+        auto toShm = [&](const reflect::ArrayValue& array) {
+            SharedMemorySegment segment = SharedMemorySegment::create(array.byteSize());
+            std::memcpy(segment.data(), array.data, array.byteSize());
+            std::string name = segment.name();
+            connection.replySegments.push_back(std::move(segment));
+            return name;
+        };
+        dispatcher_.handle(connection.inbox.data() + 4, length, connection.session, reply, toShm);
+        connection.inbox.erase(0, 4 + size_t(length));
+        const uint32_t replyLength = uint32_t(reply.size() - 4);
+        std::memcpy(reply.data(), &replyLength, 4);
+        if (!sendAll(connection.fd, reply.data(), reply.size()))
+            return false;
+        shutdown_ = shutdown_ || connection.session.shutdownRequested;
+        if (connection.session.closeAfterReply)
+            return false;
+    }
+    return true;
+}
+
+void Server::run() {
+    int pipeFds[2];
+    SP_CHECK(::pipe2(pipeFds, O_CLOEXEC | O_NONBLOCK) == 0, Error, "spear-server: pipe failed: ", systemError());
+    gWakeFd = pipeFds[1];
+    while (!shutdown_) {
+        std::vector<pollfd> fds{{pipeFds[0], POLLIN, 0}, {listenFd_, POLLIN, 0}};
+        for (const auto& connection : connections_)
+            fds.push_back({connection->fd, POLLIN, 0});
+        if (::poll(fds.data(), fds.size(), -1) < 0) {
+            if (errno == EINTR)
+                continue;
+            break;
+        }
+        if (fds[0].revents)
+            break;
+        if (fds[1].revents & POLLIN)
+            accept();
+        for (size_t i = 2; i < fds.size(); ++i) {
+            if (!fds[i].revents)
+                continue;
+            Connection& connection = *connections_[i - 2];
+            if (!serve(connection))
+                drop(connection);
+        }
+        std::erase_if(connections_, [](const auto& connection) { return connection->fd < 0; });
+    }
+    gWakeFd = -1;
+    ::close(pipeFds[0]);
+    ::close(pipeFds[1]);
+}
+
+} // namespace sp::rpc

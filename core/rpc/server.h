@@ -1,0 +1,49 @@
+#pragma once
+// Server: serves one engine to any number of clients over a Unix socket (owner-only permissions) or
+// TCP (loopback unless told otherwise; a token is required). Single-threaded: requests run on the
+// thread that owns the engine, one at a time, in arrival order; a client that sends garbage or
+// disappears mid-call is dropped and the others are served on.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/rpc/dispatcher.h"
+#include "core/rpc/shared_memory.h"
+
+namespace sp::rpc {
+
+struct ServerOptions {
+    std::string socketPath; // Unix socket; used when tcpPort < 0
+    int tcpPort = -1;       // 0 picks a free port
+    std::string bindAddress = "127.0.0.1";
+    std::string token;      // required for TCP
+    size_t maxMessageBytes = size_t(1) << 30;
+};
+
+class Server {
+public:
+    Server(world::Engine& engine, ServerOptions options, std::string apiHash);
+    ~Server();
+
+    // Where clients connect: "unix:/path" or "tcp:127.0.0.1:port".
+    std::string address() const;
+    // Serves until a client asks for shutdown or stop() is called (also from a signal handler).
+    void run();
+    static void stop();
+
+private:
+    struct Connection;
+    void accept();
+    bool serve(Connection& connection); // false: drop the connection
+    void drop(Connection& connection);
+
+    ServerOptions options_;
+    Dispatcher dispatcher_;
+    int listenFd_ = -1;
+    int boundPort_ = -1;
+    std::vector<std::unique_ptr<Connection>> connections_;
+    bool shutdown_ = false;
+};
+
+} // namespace sp::rpc

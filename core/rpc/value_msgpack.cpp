@@ -1,0 +1,171 @@
+#include "core/rpc/value_msgpack.h"
+
+#include <cstring>
+#include <memory>
+
+#include "core/base/error.h"
+#include "core/reflect/object_base.h"
+#include "core/reflect/type_info.h"
+#include "core/rpc/shared_memory.h"
+
+namespace sp::rpc {
+
+using reflect::Value;
+
+namespace {
+void packExt(msgpack::packer<msgpack::sbuffer>& out, ExtType type, const std::string& body) {
+    out.pack_ext(body.size(), type);
+    out.pack_ext_body(body.data(), body.size());
+}
+
+void packArray(msgpack::packer<msgpack::sbuffer>& out, const reflect::ArrayValue& array, const ArrayToSharedMemory& toShm) {
+    msgpack::sbuffer body;
+    msgpack::packer<msgpack::sbuffer> inner(&body);
+    inner.pack_array(3);
+    inner.pack(std::string(reflect::dtypeName(array.dtype)));
+    inner.pack(array.shape);
+    const size_t bytes = array.data ? array.byteSize() : 0;
+    if (bytes >= kSharedMemoryThreshold && toShm) {
+        inner.pack_map(2);
+        inner.pack(std::string("shm"));
+        inner.pack(toShm(array));
+        inner.pack(std::string("size"));
+        inner.pack(uint64_t(bytes));
+    } else {
+        inner.pack_bin(uint32_t(bytes));
+        inner.pack_bin_body(static_cast<const char*>(array.data), uint32_t(bytes));
+    }
+    packExt(out, kExtArray, std::string(body.data(), body.size()));
+}
+
+reflect::ArrayValue unpackArray(const msgpack::object& body, std::string_view context) {
+    msgpack::object_handle handle = msgpack::unpack(body.via.ext.data(), body.via.ext.size);
+    const msgpack::object& parts = handle.get();
+    SP_CHECK(parts.type == msgpack::type::ARRAY && parts.via.array.size == 3, InvalidArgument, context,
+             ": malformed array value");
+    reflect::ArrayValue array;
+    array.dtype = reflect::dtypeFromName(parts.via.array.ptr[0].as<std::string>());
+    array.shape = parts.via.array.ptr[1].as<std::vector<int64_t>>();
+    for (int64_t extent : array.shape)
+        SP_CHECK(extent >= 0, InvalidArgument, context, ": negative array extent ", extent);
+    const size_t expected = array.byteSize();
+    const msgpack::object& payload = parts.via.array.ptr[2];
+    if (payload.type == msgpack::type::BIN) {
+        SP_CHECK(payload.via.bin.size == expected, InvalidArgument, context, ": array holds ", payload.via.bin.size,
+                 " bytes, its shape needs ", expected);
+        auto storage = std::shared_ptr<char[]>(new char[expected == 0 ? 1 : expected]);
+        std::memcpy(storage.get(), payload.via.bin.ptr, expected);
+        array.data = storage.get();
+        array.owner = storage;
+        return array;
+    }
+    SP_CHECK(payload.type == msgpack::type::MAP, InvalidArgument, context, ": malformed array payload");
+    std::string name;
+    uint64_t size = 0;
+    for (uint32_t i = 0; i < payload.via.map.size; ++i) {
+        const auto key = payload.via.map.ptr[i].key.as<std::string>();
+        if (key == "shm")
+            name = payload.via.map.ptr[i].val.as<std::string>();
+        else if (key == "size")
+            size = payload.via.map.ptr[i].val.as<uint64_t>();
+    }
+    SP_CHECK(size == expected, InvalidArgument, context, ": shared-memory array holds ", size, " bytes, its shape needs ",
+             expected);
+    auto segment = std::make_shared<SharedMemorySegment>(SharedMemorySegment::open(name, size));
+    array.data = segment->data();
+    array.owner = segment;
+    return array;
+}
+} // namespace
+
+void pack(msgpack::packer<msgpack::sbuffer>& out, const Value& value, const ArrayToSharedMemory& toShm) {
+    std::visit(
+        [&](const auto& v) {
+            using T = std::decay_t<decltype(v)>;
+            if constexpr (std::is_same_v<T, std::monostate>) {
+                out.pack_nil();
+            } else if constexpr (std::is_same_v<T, double>) {
+                out.pack_double(v); // explicitly: a whole-number double must stay a float on the wire
+            } else if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, int64_t> || std::is_same_v<T, std::string>) {
+                out.pack(v);
+            } else if constexpr (std::is_same_v<T, reflect::ObjectHandle>) {
+                std::string body(8, '\0');
+                std::memcpy(body.data(), &v.index, 4);
+                std::memcpy(body.data() + 4, &v.generation, 4);
+                if (const reflect::ObjectBase* object = reflect::ObjectTable::find(v))
+                    body += object->GetClass().name;
+                packExt(out, kExtObject, body);
+            } else if constexpr (std::is_same_v<T, reflect::ClassName>) {
+                packExt(out, kExtClass, v.name);
+            } else if constexpr (std::is_same_v<T, Value::List>) {
+                out.pack_array(uint32_t(v.size()));
+                for (const auto& item : v)
+                    pack(out, item, toShm);
+            } else if constexpr (std::is_same_v<T, Value::Dict>) {
+                out.pack_map(uint32_t(v.size()));
+                for (const auto& [key, item] : v) {
+                    out.pack(key);
+                    pack(out, item, toShm);
+                }
+            } else if constexpr (std::is_same_v<T, reflect::ArrayValue>) {
+                packArray(out, v, toShm);
+            }
+        },
+        value.storage());
+}
+
+Value unpack(const msgpack::object& in, std::string_view context) {
+    switch (in.type) {
+    case msgpack::type::NIL:
+        return Value();
+    case msgpack::type::BOOLEAN:
+        return Value(in.via.boolean);
+    case msgpack::type::POSITIVE_INTEGER:
+        SP_CHECK(in.via.u64 <= uint64_t(INT64_MAX), InvalidArgument, context, ": integer ", in.via.u64, " is too large");
+        return Value(int64_t(in.via.u64));
+    case msgpack::type::NEGATIVE_INTEGER:
+        return Value(int64_t(in.via.i64));
+    case msgpack::type::FLOAT32:
+    case msgpack::type::FLOAT64:
+        return Value(in.via.f64);
+    case msgpack::type::STR:
+        return Value(std::string(in.via.str.ptr, in.via.str.size));
+    case msgpack::type::ARRAY: {
+        Value::List items;
+        items.reserve(in.via.array.size);
+        for (uint32_t i = 0; i < in.via.array.size; ++i)
+            items.push_back(unpack(in.via.array.ptr[i], context));
+        return Value(std::move(items));
+    }
+    case msgpack::type::MAP: {
+        Value::Dict items;
+        for (uint32_t i = 0; i < in.via.map.size; ++i) {
+            const auto& kv = in.via.map.ptr[i];
+            SP_CHECK(kv.key.type == msgpack::type::STR, InvalidArgument, context, ": map keys must be strings");
+            items.emplace(std::string(kv.key.via.str.ptr, kv.key.via.str.size), unpack(kv.val, context));
+        }
+        return Value(std::move(items));
+    }
+    case msgpack::type::EXT: {
+        const auto type = in.via.ext.type();
+        const char* data = in.via.ext.data();
+        const uint32_t size = in.via.ext.size;
+        if (type == kExtObject) {
+            SP_CHECK(size >= 8, InvalidArgument, context, ": malformed object reference");
+            reflect::ObjectHandle handle;
+            std::memcpy(&handle.index, data, 4);
+            std::memcpy(&handle.generation, data + 4, 4);
+            return Value(handle);
+        }
+        if (type == kExtClass)
+            return Value(reflect::ClassName{std::string(data, size)});
+        if (type == kExtArray)
+            return Value(unpackArray(in, context));
+        SP_THROW(InvalidArgument, context, ": unknown extension type ", int(type));
+    }
+    default:
+        SP_THROW(InvalidArgument, context, ": unsupported msgpack value");
+    }
+}
+
+} // namespace sp::rpc

@@ -1,0 +1,30 @@
+#pragma once
+// Values on the wire, as msgpack. Plain values map to msgpack's own types; three extension types carry
+// what msgpack lacks:
+//   1 object: u32 index, u32 generation (little endian), then the class name (UTF-8)
+//   2 class:  the class name (UTF-8)
+//   3 array:  a msgpack array [dtype, shape, payload], payload either the bytes (bin) or, for large
+//             arrays, a map {"shm": segment name, "size": bytes} naming a shared-memory segment.
+
+#include <msgpack.hpp>
+
+#include <functional>
+#include <string>
+
+#include "core/reflect/value.h"
+
+namespace sp::rpc {
+
+enum ExtType : int8_t { kExtObject = 1, kExtClass = 2, kExtArray = 3 };
+
+// Arrays of at least this many bytes travel through shared memory.
+inline constexpr size_t kSharedMemoryThreshold = 64 * 1024;
+
+// Called for a large array: stores its bytes in a segment and returns the segment name.
+using ArrayToSharedMemory = std::function<std::string(const reflect::ArrayValue&)>;
+
+void pack(msgpack::packer<msgpack::sbuffer>& out, const reflect::Value& value, const ArrayToSharedMemory& toShm);
+// Throws InvalidArgument (with `context`) for anything that is not a valid encoded value.
+reflect::Value unpack(const msgpack::object& in, std::string_view context);
+
+} // namespace sp::rpc

@@ -1,0 +1,136 @@
+"""The two transports behind spear.Instance. Both run the same engine code; they differ only in where
+it runs. Instance talks to either through this small interface."""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any, Protocol
+
+from spear import errors
+
+
+class Backend(Protocol):
+    def world(self, kind: str) -> Any: ...
+
+    def frame(self, action: str) -> None: ...
+
+    def frame_count(self) -> int: ...
+
+    def call_function(self, uobject: Any, function: str, args: dict[str, Any]) -> Any: ...
+
+    def get_property(self, uobject: Any, path: str) -> Any: ...
+
+    def set_property(self, uobject: Any, path: str, value: Any) -> None: ...
+
+    def close(self) -> None: ...
+
+
+class InProcessBackend:
+    """The engine in this process, through the pybind11 module."""
+
+    def __init__(self, fixed_delta_seconds: float, *, editor: bool = False, scene: str = "") -> None:
+        from spear import _inprocess
+
+        self._module = _inprocess.module()
+        self._engine: Any = self._module.Engine(fixed_delta_seconds=fixed_delta_seconds, editor=editor, scene=scene)
+
+    def world(self, kind: str) -> Any:
+        if kind == "editor":
+            world = self._engine.get_editor_world()
+            if world is None:
+                raise errors.InvalidStateError(
+                    "get_editor(): this instance runs standalone and has no editor world; "
+                    "start it with spear.Instance(mode='editor')")
+            return world
+        return self._engine.get_game_world()
+
+    def frame(self, action: str) -> None:
+        getattr(self._engine, {"begin": "begin_frame", "execute": "execute_frame", "begin_end": "begin_end_frame",
+                               "end": "end_frame", "abort": "abort_frame"}[action])()
+
+    def frame_count(self) -> int:
+        return int(self._engine.frame_count)
+
+    def call_function(self, uobject: Any, function: str, args: dict[str, Any]) -> Any:
+        return self._module.call_function(uobject=uobject, function=function, args=args)
+
+    def get_property(self, uobject: Any, path: str) -> Any:
+        return self._module.get_property(uobject=uobject, path=path)
+
+    def set_property(self, uobject: Any, path: str, value: Any) -> None:
+        self._module.set_property(uobject=uobject, path=path, value=value)
+
+    def close(self) -> None:
+        del self._engine
+
+
+class RpcBackend:
+    """An engine in a spear-server process: launched for this instance, or already running."""
+
+    def __init__(self, server: str, token: str | None, fixed_delta_seconds: float) -> None:
+        from spear._engine import rpc  # noqa: F401  (registers the proxy classes)
+        from spear._rpc_client import LaunchedServer, RpcConnection
+
+        self._launched = LaunchedServer(fixed_delta_seconds=fixed_delta_seconds) if server == "launch" else None
+        address = self._launched.address if self._launched else server
+        try:
+            self.connection = RpcConnection(address, token=token)
+        except BaseException:
+            if self._launched:
+                self._launched.close()
+            raise
+        self._frame_count = 0
+
+    def world(self, kind: str) -> Any:
+        from spear._rpc_types import convert
+
+        return convert(self.connection.request("world", kind=kind), "UWorld", self.connection)
+
+    def frame(self, action: str) -> None:
+        state = self.connection.request("frame", action=action)
+        self._frame_count = int(state["frame_count"])
+
+    def frame_count(self) -> int:
+        return int(self.connection.request("frame", action="state")["frame_count"])
+
+    def call_function(self, uobject: Any, function: str, args: dict[str, Any]) -> Any:
+        from spear._rpc_types import convert
+
+        typed = self.connection.request("call_typed", object=uobject, function=function, args=args)
+        if typed["out_types"]:
+            return {k: convert(v, typed["out_types"].get(k, ""), self.connection) for k, v in typed["value"].items()}
+        return convert(typed["value"], typed["type"], self.connection)
+
+    def get_property(self, uobject: Any, path: str) -> Any:
+        from spear._rpc_types import convert
+
+        name, *rest = path.split(".")
+        typed = self.connection.request("get_typed", object=uobject, property=name)
+        value = convert(typed["value"], typed["type"], self.connection)
+        for part in rest:
+            value = _field(value, part, path)
+        return value
+
+    def set_property(self, uobject: Any, path: str, value: Any) -> None:
+        name, *rest = path.split(".")
+        if rest:
+            whole = self.get_property(uobject, name)
+            target = whole
+            for part in rest[:-1]:
+                target = _field(target, part, path)
+            if not dataclasses.is_dataclass(target) or not hasattr(target, rest[-1]):
+                raise errors.NotFoundError(f"set_property('{path}'): '{rest[-1]}' is not a field here")
+            setattr(target, rest[-1], value)
+            value = whole
+        self.connection.request("set", object=uobject, property=name, value=value)
+
+    def close(self) -> None:
+        self.connection.close()
+        if self._launched:
+            self._launched.close()
+
+
+def _field(value: Any, name: str, path: str) -> Any:
+    if not dataclasses.is_dataclass(value) or not hasattr(value, name):
+        raise errors.NotFoundError(f"get_property('{path}'): '{name}' is not a field of {type(value).__name__}")
+    return getattr(value, name)

@@ -1,0 +1,188 @@
+"""The RPC transport: a connection to spear-server, and the server launcher.
+
+One request at a time over a Unix socket (or TCP on loopback with a token), each a length-prefixed
+msgpack frame; replies carry a value or an error that is raised as the same spear.errors class the
+in-process engine raises.
+"""
+
+from __future__ import annotations
+
+import itertools
+import os
+import shutil
+import socket
+import struct
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+from spear import errors
+from spear._object import SpObject
+from spear._rpc_types import convert
+from spear._wire import OutgoingSegments, encode, pack_frame, unpack_body
+
+_ERRORS: dict[str, type[errors.SpearError]] = {
+    "InvalidArgumentError": errors.InvalidArgumentError,
+    "NotFoundError": errors.NotFoundError,
+    "StaleObjectError": errors.StaleObjectError,
+    "InvalidStateError": errors.InvalidStateError,
+    "SpearError": errors.SpearError,
+}
+
+
+class ConnectionLost(errors.SpearError):
+    """The server closed the connection or went away."""
+
+
+class RpcConnection:
+    """A connection to a spear server; implements the RpcClient protocol the generated proxies use."""
+
+    def __init__(self, address: str, *, token: str | None = None, timeout: float | None = None) -> None:
+        from spear._engine import API_HASH
+
+        self.address = address
+        if address.startswith("unix:"):
+            self._socket = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+            self._socket.connect(address[len("unix:"):])
+        elif address.startswith("tcp:"):
+            host, _, port = address[len("tcp:"):].rpartition(":")
+            self._socket = socket.create_connection((host, int(port)))
+            self._socket.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        else:
+            raise errors.InvalidArgumentError(f"Instance(): server address must be 'unix:PATH' or 'tcp:HOST:PORT', "
+                                              f"got {address!r}")
+        self._socket.settimeout(timeout)
+        self._ids = itertools.count(1)
+        hello = self.request("hello", api_hash=API_HASH, token=token or "")
+        self.server_pid = int(hello["pid"])
+
+    # -- requests ------------------------------------------------------------------------------
+
+    def request(self, op: str, **fields: Any) -> Any:
+        segments = OutgoingSegments()
+        try:
+            message = {"id": next(self._ids), "op": op, **{k: encode(v, segments) for k, v in fields.items()}}
+            reply = self._round_trip(pack_frame(message))
+        finally:
+            segments.release()
+        return self._result(reply)
+
+    def batch(self, calls: list[dict[str, Any]]) -> list[Any]:
+        """Sends many requests in one message; returns each result, or the exception it raised."""
+        segments = OutgoingSegments()
+        try:
+            encoded = [{k: encode(v, segments) for k, v in call.items()} for call in calls]
+            reply = self._round_trip(pack_frame({"id": next(self._ids), "op": "batch", "calls": encoded}))
+        finally:
+            segments.release()
+        results = []
+        for item in self._result(reply):
+            try:
+                results.append(self._result(item))
+            except errors.SpearError as error:
+                results.append(error)
+        return results
+
+    def _round_trip(self, frame: bytes) -> Any:
+        try:
+            self._socket.sendall(frame)
+            header = self._receive(4)
+            (length,) = struct.unpack("<I", header)
+            return unpack_body(self._receive(length))
+        except OSError as error:
+            raise ConnectionLost(f"the connection to the spear server at {self.address} was lost: {error}") from None
+
+    def _receive(self, size: int) -> bytes:
+        chunks, remaining = [], size
+        while remaining:
+            chunk = self._socket.recv(min(remaining, 1 << 20))
+            if not chunk:
+                raise ConnectionLost(f"the spear server at {self.address} closed the connection")
+            chunks.append(chunk)
+            remaining -= len(chunk)
+        return b"".join(chunks)
+
+    @staticmethod
+    def _result(reply: dict[str, Any]) -> Any:
+        if "error" in reply:
+            kind, message = reply["error"]
+            raise _ERRORS.get(kind, errors.SpearError)(message)
+        return reply["ok"]
+
+    # -- RpcClient protocol --------------------------------------------------------------------
+
+    def call(self, handle: tuple[int, int], function: str, args: dict[str, Any], result_type: str,
+             context: str = "") -> Any:
+        value = self.request("call", object=_HandleRef(handle), function=function, args=args, context=context)
+        return convert(value, result_type, self)
+
+    def get_property(self, handle: tuple[int, int], name: str, result_type: str, context: str = "") -> Any:
+        value = self.request("get", object=_HandleRef(handle), property=name, context=context)
+        return convert(value, result_type, self)
+
+    def set_property(self, handle: tuple[int, int], name: str, value: Any, context: str = "") -> None:
+        self.request("set", object=_HandleRef(handle), property=name, value=value, context=context)
+
+    def is_valid(self, handle: tuple[int, int]) -> bool:
+        return bool(self.request("is_valid", object=_HandleRef(handle)))
+
+    def close(self) -> None:
+        try:
+            self._socket.close()
+        except OSError:
+            pass
+
+
+class _HandleRef(SpObject):
+    """A bare handle, sent as an object reference."""
+
+    __slots__ = ("_sp_handle",)
+
+    def __init__(self, handle: tuple[int, int]) -> None:
+        self._sp_handle = handle
+
+
+# -- launching a server ------------------------------------------------------------------------
+
+def find_server_binary() -> Path:
+    """SPEAR_SERVER if set, else the binary the build places beside the package."""
+    configured = os.environ.get("SPEAR_SERVER")
+    candidate = Path(configured) if configured else Path(__file__).resolve().parent / "bin" / "spear-server"
+    if not candidate.is_file():
+        raise errors.NotFoundError(f"Instance(): spear-server not found at {candidate}; build the project (bash "
+                                   "run.sh) or set SPEAR_SERVER")
+    return candidate
+
+
+class LaunchedServer:
+    """A spear-server process started for one Instance, on a private Unix socket; stopped by close()."""
+
+    def __init__(self, *, fixed_delta_seconds: float, startup_timeout: float = 30.0) -> None:
+        self._directory = tempfile.mkdtemp(prefix="spear-")  # 0700: only this user reaches the socket
+        socket_path = os.path.join(self._directory, "server.sock")
+        self.process = subprocess.Popen(
+            [str(find_server_binary()), "--socket", socket_path, "--fixed-delta-seconds", repr(fixed_delta_seconds),
+             "--exit-with-parent"],
+            stdout=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True,
+        )
+        deadline = time.monotonic() + startup_timeout
+        assert self.process.stdout is not None
+        line = self.process.stdout.readline()
+        if not line.startswith("spear-server: listening on ") or time.monotonic() > deadline:
+            self.close()
+            raise errors.SpearError(f"Instance(): spear-server did not start (said {line.strip()!r})")
+        self.address = line.strip().removeprefix("spear-server: listening on ")
+
+    def close(self, timeout: float = 10.0) -> None:
+        if self.process.poll() is None:
+            self.process.terminate()
+            try:
+                self.process.wait(timeout)
+            except subprocess.TimeoutExpired:
+                self.process.kill()
+                self.process.wait()
+        if self.process.stdout:
+            self.process.stdout.close()
+        shutil.rmtree(self._directory, ignore_errors=True)

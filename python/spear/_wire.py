@@ -1,0 +1,151 @@
+"""The RPC wire format on the client side: length-prefixed msgpack frames, with extension types for
+object references (1), classes (2) and arrays (3). Arrays of 64 KiB or more travel through POSIX shared
+memory (/dev/shm/spear-<pid>-<n>): the receiver maps the segment and the array views it, no copy.
+See core/rpc/value_msgpack.h for the server side.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+import itertools
+import mmap
+import os
+import struct
+from typing import Any
+
+import msgpack
+import numpy as np
+from numpy.typing import NDArray
+
+from spear._object import SpObject
+
+EXT_OBJECT, EXT_CLASS, EXT_ARRAY = 1, 2, 3
+SHARED_MEMORY_THRESHOLD = 64 * 1024
+_segment_counter = itertools.count()
+
+
+@dataclasses.dataclass(frozen=True)
+class ObjectRef:
+    """An object reference as it arrives, before it becomes a typed proxy."""
+
+    index: int
+    generation: int
+    class_name: str
+
+
+@dataclasses.dataclass(frozen=True)
+class ClassRef:
+    name: str
+
+
+def _segment_path(name: str) -> str:
+    if not name.startswith("/spear-") or "/" in name[1:]:
+        raise ValueError(f"not a spear shared-memory segment name: {name!r}")
+    return "/dev/shm" + name
+
+
+def map_segment(name: str, size: int, *, unlink: bool) -> mmap.mmap:
+    """Maps a segment; with unlink=True its name is removed at once (the mapping stays valid)."""
+    path = _segment_path(name)
+    fd = os.open(path, os.O_RDWR)
+    try:
+        mapping = mmap.mmap(fd, max(size, 1))
+    finally:
+        os.close(fd)
+        if unlink:
+            try:
+                os.unlink(path)
+            except FileNotFoundError:
+                pass
+    return mapping
+
+
+class OutgoingSegments:
+    """Segments this client created for a request's arrays; removed once the reply has arrived."""
+
+    def __init__(self) -> None:
+        self.paths: list[str] = []
+
+    def create(self, data: NDArray[Any]) -> str:
+        name = f"/spear-{os.getpid()}-{next(_segment_counter)}"
+        path = _segment_path(name)
+        fd = os.open(path, os.O_CREAT | os.O_EXCL | os.O_RDWR, 0o600)
+        self.paths.append(path)
+        try:
+            os.ftruncate(fd, max(data.nbytes, 1))
+            with mmap.mmap(fd, max(data.nbytes, 1)) as mapping:
+                np.frombuffer(mapping, dtype=data.dtype, count=data.size).reshape(data.shape)[...] = data
+        finally:
+            os.close(fd)
+        return name
+
+    def release(self) -> None:
+        for path in self.paths:
+            try:
+                os.unlink(path)
+            except FileNotFoundError:
+                pass
+        self.paths.clear()
+
+
+def _encode_array(array: NDArray[Any], segments: OutgoingSegments) -> msgpack.ExtType:
+    array = np.ascontiguousarray(array)
+    dtype = "bool" if array.dtype == np.bool_ else array.dtype.name
+    payload: Any
+    if array.nbytes >= SHARED_MEMORY_THRESHOLD:
+        payload = {"shm": segments.create(array), "size": array.nbytes}
+    else:
+        payload = array.tobytes()
+    return msgpack.ExtType(EXT_ARRAY, msgpack.packb([dtype, list(array.shape), payload], use_bin_type=True))
+
+
+def encode(value: Any, segments: OutgoingSegments) -> Any:
+    """Python value -> msgpack-ready value."""
+    if value is None or isinstance(value, (bool, str, float)):
+        return value
+    if isinstance(value, enum.IntEnum):
+        return int(value)
+    if isinstance(value, int):
+        return value
+    if isinstance(value, SpObject):
+        handle = getattr(value, "_sp_handle", None)
+        if handle is None:
+            raise TypeError(f"{type(value).__name__} is not an engine object of this connection")
+        return msgpack.ExtType(EXT_OBJECT, struct.pack("<II", handle[0], handle[1]))
+    if isinstance(value, type) and hasattr(value, "__sp_class__"):
+        return msgpack.ExtType(EXT_CLASS, value.__sp_class__.encode())
+    if isinstance(value, np.ndarray):
+        return _encode_array(value, segments)
+    if dataclasses.is_dataclass(value) and hasattr(value, "__sp_class__"):
+        return {f.name: encode(getattr(value, f.name), segments) for f in dataclasses.fields(value)}
+    if isinstance(value, (list, tuple)):
+        return [encode(item, segments) for item in value]
+    if isinstance(value, dict):
+        return {str(key): encode(item, segments) for key, item in value.items()}
+    raise TypeError(f"cannot send a value of type '{type(value).__name__}'")
+
+
+def _ext_hook(code: int, data: bytes) -> Any:
+    if code == EXT_OBJECT:
+        index, generation = struct.unpack_from("<II", data)
+        return ObjectRef(index, generation, data[8:].decode())
+    if code == EXT_CLASS:
+        return ClassRef(data.decode())
+    if code == EXT_ARRAY:
+        dtype, shape, payload = msgpack.unpackb(data, raw=False)
+        if isinstance(payload, dict):
+            mapping = map_segment(payload["shm"], payload["size"], unlink=True)
+            count = int(np.prod(shape)) if shape else 1
+            return np.frombuffer(mapping, dtype=np.dtype(dtype), count=count).reshape(shape)
+        return np.frombuffer(payload, dtype=np.dtype(dtype)).reshape(shape).copy()
+    return msgpack.ExtType(code, data)
+
+
+def pack_frame(message: dict[str, Any]) -> bytes:
+    body: bytes = msgpack.packb(message, use_bin_type=True)
+    return struct.pack("<I", len(body)) + body
+
+
+def unpack_body(body: bytes) -> Any:
+    return msgpack.unpackb(body, raw=False, ext_hook=_ext_hook, strict_map_key=False)
