@@ -23,3 +23,16 @@ def instance(request: pytest.FixtureRequest) -> Iterator[spear.Instance]:
     inst = spear.Instance() if request.param == "inprocess" else spear.Instance(server="launch")
     yield inst
     inst.close()
+
+
+@pytest.fixture(autouse=True, scope="session")
+def nothing_left_behind() -> Iterator[None]:
+    """After the whole suite: no spear-server process of ours and no shared-memory segment remain."""
+    import os
+    import subprocess
+
+    yield
+    children = subprocess.run(["pgrep", "-P", str(os.getpid()), "spear-server"], capture_output=True, text=True)
+    assert children.stdout.strip() == "", f"spear-server processes left running: {children.stdout}"
+    leftovers = [n for n in os.listdir("/dev/shm") if n.startswith(f"spear-{os.getpid()}-")]
+    assert not leftovers, f"shared-memory segments left behind: {leftovers}"

@@ -219,6 +219,8 @@ Value Dispatcher::execute(const std::string& op, const msgpack::object& request,
             return Value(object != nullptr);
         return Value(object ? object->GetDebugName() : std::string());
     }
+    if (op == "echo") // returns its value: for diagnostics, and to measure the transport alone
+        return field(request, "value") ? unpack(*field(request, "value"), "echo()") : Value();
     if (op == "shutdown") {
         session.shutdownRequested = true;
         return Value();

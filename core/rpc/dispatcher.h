@@ -11,6 +11,7 @@
 //   get {object, property}, set {object, property, value}
 //   is_valid {object}, describe {object}
 //   batch {calls: [request...]}   many calls in one message; one reply per call, in order
+//   echo {value}                  returns value (diagnostics; measures the transport alone)
 //   shutdown                      stop the server after replying
 
 #include <msgpack.hpp>

@@ -1,0 +1,168 @@
+"""The RPC transport itself: handshake, hostile input, crashes, permissions, shared memory, cleanup."""
+
+from __future__ import annotations
+
+import os
+import socket
+import stat
+import struct
+import subprocess
+import sys
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import spear
+import spear._engine
+from spear._rpc_client import LaunchedServer, RpcConnection, find_server_binary
+
+
+@pytest.fixture
+def server() -> Iterator[LaunchedServer]:
+    launched = LaunchedServer(fixed_delta_seconds=1 / 60)
+    yield launched
+    launched.close()
+
+
+def raw_socket(server: LaunchedServer) -> socket.socket:
+    sock = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    sock.connect(server.address.removeprefix("unix:"))
+    sock.settimeout(10)
+    return sock
+
+
+def still_serves(server: LaunchedServer) -> None:
+    connection = RpcConnection(server.address)
+    assert connection.request("echo", value=[1, "two", 3.0]) == [1, "two", 3.0]
+    connection.close()
+
+
+def test_api_hash_mismatch_is_refused_naming_both(server: LaunchedServer, monkeypatch: pytest.MonkeyPatch) -> None:
+    real = spear._engine.API_HASH
+    monkeypatch.setattr(spear._engine, "API_HASH", "0123456789abcdef")
+    with pytest.raises(spear.InvalidStateError, match=rf"client's API \(0123456789abcdef\) does not match the server's \({real}\)"):
+        RpcConnection(server.address)
+    monkeypatch.undo()
+    still_serves(server)
+
+
+def test_requests_before_hello_are_refused(server: LaunchedServer) -> None:
+    sock = raw_socket(server)
+    import msgpack
+
+    body = msgpack.packb({"id": 1, "op": "world", "kind": "game"})
+    sock.sendall(struct.pack("<I", len(body)) + body)
+    length = struct.unpack("<I", sock.recv(4))[0]
+    reply = msgpack.unpackb(sock.recv(length))
+    assert reply["error"] == ["InvalidStateError", "world(): say hello first"]
+    assert sock.recv(1) == b""  # and the connection is closed
+    still_serves(server)
+
+
+def test_garbage_truncated_and_oversized_messages_leave_the_server_serving(server: LaunchedServer) -> None:
+    garbage = raw_socket(server)
+    garbage.sendall(struct.pack("<I", 5) + b"\xc1\xc1\xc1\xc1\xc1")  # 0xc1 is never valid msgpack
+    length = struct.unpack("<I", garbage.recv(4))[0]
+    assert b"malformed message" in garbage.recv(length)
+    truncated = raw_socket(server)
+    truncated.sendall(struct.pack("<I", 1000) + b"\x81\xa2id")  # promises 1000 bytes, sends 4, then hangs up
+    truncated.close()
+    oversized = raw_socket(server)
+    oversized.sendall(struct.pack("<I", 0xFFFFFFFF))
+    assert oversized.recv(1) == b""  # dropped
+    still_serves(server)
+
+
+def test_a_client_killed_mid_call_does_not_take_the_server_down(server: LaunchedServer) -> None:
+    script = (
+        "import socket, struct, time; s = socket.socket(socket.AF_UNIX); s.connect(%r); "
+        "s.sendall(struct.pack('<I', 500) + b'\\x82'); time.sleep(30)" % server.address.removeprefix("unix:")
+    )
+    victim = subprocess.Popen([sys.executable, "-c", script])
+    time.sleep(0.3)
+    victim.kill()
+    victim.wait()
+    still_serves(server)
+
+
+def test_engine_errors_arrive_with_their_type_and_the_server_survives(server: LaunchedServer) -> None:
+    with spear.Instance(server=server.address) as instance:
+        game = instance.get_game()
+        with instance.begin_frame():
+            with pytest.raises(spear.InvalidArgumentError, match="argument 'location' must be FVector, got str"):
+                instance.call_function(uobject=game, function="spawn_actor",
+                                       args={"uclass": spear.AActor, "location": "here"})
+            with pytest.raises(spear.NotFoundError):
+                instance.call_function(uobject=game, function="no_such_function")
+            actor = game.spawn_actor(uclass=spear.AActor)
+            game.destroy_actor(actor=actor)
+            with pytest.raises(spear.StaleObjectError):
+                actor.GetName()
+        with instance.end_frame():
+            pass
+        with pytest.raises(spear.InvalidStateError, match="outside a frame"):
+            game.get_actor_count()
+    still_serves(server)
+
+
+def test_batches_carry_many_calls_in_one_message(server: LaunchedServer) -> None:
+    connection = RpcConnection(server.address)
+    results = connection.batch([{"op": "echo", "value": i} for i in range(1000)] + [{"op": "nonsense"}])
+    assert results[:1000] == list(range(1000))
+    assert isinstance(results[1000], spear.InvalidArgumentError)
+    connection.close()
+
+
+def test_large_arrays_travel_through_shared_memory_and_are_released(server: LaunchedServer) -> None:
+    connection = RpcConnection(server.address)
+    frame = np.random.default_rng(0).integers(0, 255, size=(1080, 1920, 4), dtype=np.uint8)
+    echoed = connection.request("echo", value=frame)
+    assert echoed.dtype == np.uint8 and echoed.shape == frame.shape
+    assert np.array_equal(echoed, frame)
+    assert not isinstance(echoed.base, bytes)  # a view of the mapped segment, not a copy of a message
+    small = connection.request("echo", value=np.arange(10, dtype=np.float32))
+    assert small.dtype == np.float32 and list(small) == list(range(10))
+    connection.request("echo", value=None)  # the server releases the last reply's segments on the next request
+    assert not [n for n in os.listdir("/dev/shm") if n.startswith(f"spear-{server.process.pid}-")]
+    assert not [n for n in os.listdir("/dev/shm") if n.startswith(f"spear-{os.getpid()}-")]
+    connection.close()
+
+
+def test_unix_socket_is_owner_only(server: LaunchedServer) -> None:
+    path = Path(server.address.removeprefix("unix:"))
+    assert stat.S_IMODE(path.stat().st_mode) & 0o077 == 0
+    assert stat.S_IMODE(path.parent.stat().st_mode) & 0o077 == 0
+
+
+def test_tcp_listens_on_loopback_and_requires_the_token() -> None:
+    binary = str(find_server_binary())
+    refused = subprocess.run([binary, "--port", "0"], capture_output=True, text=True, timeout=30,
+                             env={k: v for k, v in os.environ.items() if k != "SPEAR_TOKEN"})
+    assert refused.returncode == 1 and "TCP needs a token" in refused.stderr
+    process = subprocess.Popen([binary, "--port", "0", "--token", "s3cret", "--exit-with-parent"],
+                               stdout=subprocess.PIPE, text=True)
+    try:
+        assert process.stdout is not None
+        address = process.stdout.readline().strip().removeprefix("spear-server: listening on ")
+        assert address.startswith("tcp:127.0.0.1:")
+        with pytest.raises(spear.InvalidArgumentError, match="wrong or missing token"):
+            RpcConnection(address, token="guess")
+        with spear.Instance(server=address, token="s3cret") as instance:
+            with instance.begin_frame():
+                assert instance.get_game().get_actor_count() == 0
+            with instance.end_frame():
+                pass
+    finally:
+        process.terminate()
+        process.wait(10)
+
+
+def test_closing_an_instance_stops_its_server() -> None:
+    instance = spear.Instance(server="launch")
+    backend = instance._backend
+    process = backend._launched.process  # type: ignore[attr-defined]
+    instance.close()
+    assert process.poll() is not None
