@@ -6,3 +6,5 @@ install_dependencies
 build
 say "run: examples/getting_started.py"
 "$PYTHON" "$ROOT/examples/getting_started.py"
+say "run: examples/render_image.py"
+"$PYTHON" "$ROOT/examples/render_image.py"

@@ -1,0 +1,94 @@
+#include "core/sensors/camera_sensor_component.h"
+
+#include <optional>
+
+#include "core/base/error.h"
+#include "core/render/modality.h"
+#include "core/sensors/render_subsystem.h"
+#include "core/world/actor.h"
+#include "core/world/world.h"
+
+namespace {
+
+sp::sensors::RenderSubsystem& subsystemOf(const UCameraSensorComponent& camera, const char* function) {
+    UWorld* world = camera.GetWorld();
+    SP_CHECK(world, sp::InvalidState, "UCameraSensorComponent.", function, "(): ", camera.GetDebugName(),
+             " is not in a world");
+    return world->GetSubsystem<sp::sensors::RenderSubsystem>();
+}
+
+} // namespace
+
+void UCameraSensorComponent::BeginPlay() {
+    // The world's renderer exists from the first camera on; it starts EGL on the first rendered frame.
+    if (GetWorld())
+        GetWorld()->GetSubsystem<sp::sensors::RenderSubsystem>();
+}
+
+FCameraPixels UCameraSensorComponent::read_pixels() {
+    return subsystemOf(*this, "read_pixels").readPixels(*this);
+}
+
+void UCameraSensorComponent::SetModalityNames(const std::vector<std::string>& Names) {
+    std::vector<ECameraModality> modalities;
+    for (const std::string& name : Names) {
+        std::optional<ECameraModality> found;
+        std::string known;
+        for (std::size_t i = 0; i < sp::render::kModalityCount; ++i) {
+            const std::string_view candidate = sp::render::modalityName(static_cast<sp::render::Modality>(i));
+            if (candidate == name)
+                found = static_cast<ECameraModality>(i);
+            known += (i ? ", " : "") + std::string(candidate);
+        }
+        SP_CHECK(found, sp::InvalidArgument, "UCameraSensorComponent.SetModalityNames(): unknown modality '",
+                 name, "' (valid: ", known, ")");
+        modalities.push_back(*found);
+    }
+    Modalities = std::move(modalities);
+}
+
+std::vector<std::string> UCameraSensorComponent::GetModalityNames() const {
+    std::vector<std::string> names;
+    for (ECameraModality modality : Modalities)
+        names.emplace_back(sp::render::modalityName(static_cast<sp::render::Modality>(modality)));
+    return names;
+}
+
+bool UCameraSensorComponent::GetObjectIdInfo(int64_t ObjectId, AActor*& Actor,
+                                             UPrimitiveComponent*& Component, int32_t& MaterialSlot,
+                                             std::string& MaterialName) const {
+    Actor = nullptr;
+    Component = nullptr;
+    MaterialSlot = -1;
+    MaterialName.clear();
+    if (ObjectId <= 0 || ObjectId > int64_t(UINT32_MAX))
+        return false;
+    auto info = subsystemOf(*this, "GetObjectIdInfo").objectIdInfo(uint32_t(ObjectId));
+    if (!info)
+        return false;
+    auto* component = dynamic_cast<UPrimitiveComponent*>(sp::reflect::ObjectTable::find(info->component));
+    if (!component)
+        return false;
+    Component = component;
+    Actor = component->GetOwner();
+    MaterialSlot = info->slot;
+    MaterialName = info->materialName;
+    return true;
+}
+
+int64_t UCameraSensorComponent::GetObjectId(UPrimitiveComponent* Component, int32_t MaterialSlot) const {
+    SP_CHECK(Component, sp::InvalidArgument, "UCameraSensorComponent.GetObjectId(): Component is None");
+    return subsystemOf(*this, "GetObjectId").objectId(Component->GetHandle(), MaterialSlot);
+}
+
+int64_t UCameraSensorComponent::GetMaterialId(const std::string& Name) const {
+    return subsystemOf(*this, "GetMaterialId").materialId(Name);
+}
+
+FRenderDeviceInfo UCameraSensorComponent::get_render_device_info() {
+    return subsystemOf(*this, "get_render_device_info").deviceInfo();
+}
+
+FRenderStats UCameraSensorComponent::GetRenderStats() const {
+    return subsystemOf(*this, "GetRenderStats").stats();
+}

@@ -1,0 +1,257 @@
+#pragma once
+// UCameraSensorComponent: a scene component that renders ground-truth images of its world. It holds
+// only settings; the world's RenderSubsystem owns the GL context, the render scene and one render
+// target per camera, renders every camera at the end of each frame (after actors and physics), and
+// hands the pixels to read_pixels().
+//
+// Frames and latency: the frame rendered at the end of world frame k is what read_pixels() returns
+// inside `with instance.end_frame():` of frame k when Latency is 0. With Latency N (1 or 2: double or
+// triple buffering) it returns the frame rendered N frames earlier; for the first N frames after the
+// camera starts (or changes Latency) there is none yet and read_pixels() returns an empty dict
+// (priming). GetPixelsFrame() tells which world frame the last read_pixels() result shows.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/reflect/sp_array.h"
+#include "core/world/primitive_component.h"
+
+/// A ground-truth image a camera can render; read_pixels() returns it under its snake_case name.
+SPENUM()
+enum class ECameraModality : uint8_t {
+    /// "final_color": tone-mapped sRGB, uint8 (H, W, 4).
+    FinalColor = 0,
+    /// "hdr_color": linear HDR radiance before exposure and tone mapping, float16 (H, W, 4).
+    HdrColor = 1,
+    /// "depth": metres along the optical axis, 0 for background, float32 (H, W).
+    Depth = 2,
+    /// "position": world-space position in metres, 0 for background, float32 (H, W, 3).
+    Position = 3,
+    /// "normal": world-space unit normal facing the camera, 0 for background, float32 (H, W, 3).
+    Normal = 4,
+    /// "object_ids": one id per (component, material slot), 0 for background, uint32 (H, W).
+    ObjectIds = 5,
+    /// "material_ids": the id of the material, 0 for background, uint32 (H, W).
+    MaterialIds = 6,
+    /// "base_color": linear base colour, float16 (H, W, 3).
+    BaseColor = 7,
+    /// "roughness": perceptual roughness, float16 (H, W).
+    Roughness = 8,
+    /// "metallic": metalness, float16 (H, W).
+    Metallic = 9,
+    /// "material_ao": material ambient occlusion, float16 (H, W).
+    MaterialAo = 10,
+    /// "diffuse_illumination": radiance of a white Lambertian surface at the pixel, float16 (H, W, 3).
+    DiffuseIllumination = 11,
+    /// "diffuse_only": base_color * (1 - metallic) * diffuse_illumination, float16 (H, W, 3).
+    DiffuseOnly = 12,
+    /// "specular_residual": hdr_color.rgb - diffuse_only (specular, emission, sky), float16 (H, W, 3).
+    SpecularResidual = 13,
+};
+
+/// The tone curve that maps exposed HDR radiance to final_color.
+SPENUM()
+enum class ECameraToneCurve : uint8_t {
+    /// The ACES filmic approximation.
+    Aces = 0,
+    /// Reinhard's x / (1 + x).
+    Reinhard = 1,
+    /// Clamped linear.
+    Linear = 2,
+};
+
+/// The images of one frame, keyed by modality name; only the modalities the camera renders are present.
+SPSTRUCT(TypedDict)
+struct FCameraPixels {
+    SP_GENERATED_BODY()
+
+    /// Tone-mapped sRGB, uint8 (H, W, 4).
+    SPPROPERTY()
+    sp::reflect::SpArray<uint8_t> final_color{"final_color"};
+    /// Linear HDR radiance, float16 (H, W, 4).
+    SPPROPERTY()
+    sp::reflect::SpArray<sp::reflect::Half> hdr_color{"hdr_color"};
+    /// Metres along the optical axis, 0 for background, float32 (H, W).
+    SPPROPERTY()
+    sp::reflect::SpArray<float> depth{"depth"};
+    /// World-space position in metres, float32 (H, W, 3).
+    SPPROPERTY()
+    sp::reflect::SpArray<float> position{"position"};
+    /// World-space unit normal, float32 (H, W, 3).
+    SPPROPERTY()
+    sp::reflect::SpArray<float> normal{"normal"};
+    /// Object ids (component, material slot), 0 for background, uint32 (H, W).
+    SPPROPERTY()
+    sp::reflect::SpArray<uint32_t> object_ids{"object_ids"};
+    /// Material ids, 0 for background, uint32 (H, W).
+    SPPROPERTY()
+    sp::reflect::SpArray<uint32_t> material_ids{"material_ids"};
+    /// Linear base colour, float16 (H, W, 3).
+    SPPROPERTY()
+    sp::reflect::SpArray<sp::reflect::Half> base_color{"base_color"};
+    /// Roughness, float16 (H, W).
+    SPPROPERTY()
+    sp::reflect::SpArray<sp::reflect::Half> roughness{"roughness"};
+    /// Metalness, float16 (H, W).
+    SPPROPERTY()
+    sp::reflect::SpArray<sp::reflect::Half> metallic{"metallic"};
+    /// Material ambient occlusion, float16 (H, W).
+    SPPROPERTY()
+    sp::reflect::SpArray<sp::reflect::Half> material_ao{"material_ao"};
+    /// Radiance of a white Lambertian surface, float16 (H, W, 3).
+    SPPROPERTY()
+    sp::reflect::SpArray<sp::reflect::Half> diffuse_illumination{"diffuse_illumination"};
+    /// base_color * (1 - metallic) * diffuse_illumination, float16 (H, W, 3).
+    SPPROPERTY()
+    sp::reflect::SpArray<sp::reflect::Half> diffuse_only{"diffuse_only"};
+    /// hdr_color.rgb - diffuse_only, float16 (H, W, 3).
+    SPPROPERTY()
+    sp::reflect::SpArray<sp::reflect::Half> specular_residual{"specular_residual"};
+};
+
+/// Which EGL device renders this world, and what OpenGL reports about itself.
+SPSTRUCT()
+struct FRenderDeviceInfo {
+    SP_GENERATED_BODY()
+
+    /// "device" (an EGL device, e.g. a GPU) or "surfaceless" (Mesa's software platform).
+    SPPROPERTY()
+    std::string Kind;
+    /// Index in the EGL device list, -1 for surfaceless.
+    SPPROPERTY()
+    int32_t DeviceIndex = -1;
+    /// Number of EGL devices listed.
+    SPPROPERTY()
+    int32_t DeviceCount = 0;
+    /// GL_VENDOR.
+    SPPROPERTY()
+    std::string Vendor;
+    /// GL_RENDERER.
+    SPPROPERTY()
+    std::string Renderer;
+    /// GL_VERSION.
+    SPPROPERTY()
+    std::string Version;
+};
+
+/// How often each render pass ran in this world since its renderer started (all cameras together).
+SPSTRUCT()
+struct FRenderStats {
+    SP_GENERATED_BODY()
+
+    /// Frames rendered (one per camera per world frame).
+    SPPROPERTY()
+    int64_t Frames = 0;
+    /// Shadow maps rendered.
+    SPPROPERTY()
+    int64_t ShadowPasses = 0;
+    /// G-buffer passes.
+    SPPROPERTY()
+    int64_t GBufferPasses = 0;
+    /// Lighting passes.
+    SPPROPERTY()
+    int64_t LightingPasses = 0;
+    /// Tone-mapping passes.
+    SPPROPERTY()
+    int64_t TonemapPasses = 0;
+    /// Images read back (one per modality per frame).
+    SPPROPERTY()
+    int64_t Readbacks = 0;
+};
+
+/// A camera that renders the modalities in Modalities at the end of every frame.
+SPCLASS()
+class UCameraSensorComponent : public USceneComponent {
+    SP_GENERATED_BODY()
+  public:
+    /// Image width in pixels.
+    SPPROPERTY()
+    int32_t Width = 640;
+
+    /// Image height in pixels.
+    SPPROPERTY()
+    int32_t Height = 480;
+
+    /// Horizontal field of view in degrees, in (0, 180); square pixels.
+    SPPROPERTY()
+    double FOV = 90.0;
+
+    /// Near clipping distance in metres (> 0).
+    SPPROPERTY()
+    double NearClip = 0.05;
+
+    /// Far clipping distance in metres (> NearClip).
+    SPPROPERTY()
+    double FarClip = 1000.0;
+
+    /// Linear multiplier of HDR radiance before the tone curve.
+    SPPROPERTY()
+    float Exposure = 1.0f;
+
+    /// The tone curve of final_color.
+    SPPROPERTY()
+    ECameraToneCurve ToneCurve = ECameraToneCurve::Aces;
+
+    /// Whether shadow-casting lights render shadow maps for this camera.
+    SPPROPERTY()
+    bool bShadows = true;
+
+    /// Shadow map size in texels, in [16, 8192].
+    SPPROPERTY()
+    int32_t ShadowResolution = 1024;
+
+    /// The modalities rendered each frame; only the passes they need run.
+    SPPROPERTY()
+    std::vector<ECameraModality> Modalities{ECameraModality::FinalColor};
+
+    /// Frames between rendering and reading: 0 (same frame), 1 or 2 (double or triple buffered).
+    SPPROPERTY()
+    int32_t Latency = 0;
+
+    /// Returns the images of the frame due (see the class notes on latency); an empty dict while priming.
+    SPFUNCTION()
+    FCameraPixels read_pixels();
+
+    /// Returns the world frame shown by the last read_pixels() result, or -1 when it was empty.
+    SPFUNCTION()
+    int64_t GetPixelsFrame() const { return pixelsFrame_; }
+
+    /// Sets Modalities from snake_case names ("final_color", "depth", ...); an unknown name is an error.
+    SPFUNCTION()
+    void SetModalityNames(const std::vector<std::string>& Names);
+
+    /// Returns the snake_case names of Modalities, in the order read_pixels() uses as dict keys.
+    SPFUNCTION()
+    std::vector<std::string> GetModalityNames() const;
+
+    /// Looks up an object id of object_ids: the actor, the component and the material slot and name it
+    /// belongs to; returns False (and None, -1, "") for 0, an unknown id or a destroyed component.
+    SPFUNCTION()
+    bool GetObjectIdInfo(int64_t ObjectId, AActor*& Actor, UPrimitiveComponent*& Component,
+                         int32_t& MaterialSlot, std::string& MaterialName) const;
+
+    /// Returns the object id of one material slot of Component, or 0 when it has not been rendered yet.
+    SPFUNCTION()
+    int64_t GetObjectId(UPrimitiveComponent* Component, int32_t MaterialSlot = 0) const;
+
+    /// Returns the material id that material_ids holds for the material called Name, or 0 when unused.
+    SPFUNCTION()
+    int64_t GetMaterialId(const std::string& Name) const;
+
+    /// Returns which EGL device renders this camera's world (starting the renderer if needed).
+    SPFUNCTION()
+    FRenderDeviceInfo get_render_device_info();
+
+    /// Returns how often each render pass ran in this camera's world.
+    SPFUNCTION()
+    FRenderStats GetRenderStats() const;
+
+    void BeginPlay() override;
+
+    // Set by the RenderSubsystem when read_pixels() reads a frame.
+    void setPixelsFrame(int64_t frame) { pixelsFrame_ = frame; }
+
+  private:
+    int64_t pixelsFrame_ = -1;
+};

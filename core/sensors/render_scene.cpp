@@ -1,0 +1,286 @@
+#include "core/sensors/render_scene.h"
+
+#include <algorithm>
+
+#include "core/base/log.h"
+#include "core/render/mesh_import.h"
+#include "core/render/primitives.h"
+#include "core/sensors/sky_light_component.h"
+#include "core/sensors/spot_light_component.h"
+#include "core/world/light_component.h"
+#include "core/world/static_mesh_component.h"
+#include "core/world/world.h"
+
+namespace sp::sensors {
+namespace {
+
+constexpr std::string_view kBasicShapesPrefix = "/Engine/BasicShapes/";
+
+// The built-in shapes, sized like UStaticMeshComponent's bounds (unit extents, centred).
+std::optional<sp::render::MeshData> basicShape(std::string_view name) {
+    if (!name.starts_with(kBasicShapesPrefix))
+        return std::nullopt;
+    name.remove_prefix(kBasicShapesPrefix.size());
+    if (name == "Cube")
+        return sp::render::primitives::box();
+    if (name == "Sphere")
+        return sp::render::primitives::sphere(0.5f, 48, 24);
+    if (name == "Cylinder")
+        return sp::render::primitives::cylinder(0.5f, 1.0f, 48);
+    if (name == "Plane")
+        return sp::render::primitives::plane();
+    return std::nullopt;
+}
+
+Eigen::Vector3f rgb(const FLinearColor& color) {
+    return {color.R, color.G, color.B};
+}
+
+// Mesh-to-world, scale included (FTransform::toIsometry drops the scale).
+Eigen::Affine3d worldTransform(const USceneComponent& component) {
+    const FTransform transform = component.GetComponentTransform();
+    Eigen::Affine3d result = Eigen::Affine3d::Identity();
+    result.translate(transform.Translation.toEigen());
+    result.rotate(transform.Rotation.toEigen().normalized());
+    result.scale(transform.Scale3D.toEigen());
+    return result;
+}
+
+sp::render::Light toRenderLight(const ULightComponent& component) {
+    sp::render::Light light;
+    light.color = rgb(component.LightColor);
+    light.intensity = component.Intensity;
+    light.castShadows = component.bCastShadows;
+    light.position = component.GetComponentLocation().toEigen();
+    light.direction = component.GetForwardVector().toEigen();
+    if (const auto* spot = dynamic_cast<const USpotLightComponent*>(&component)) {
+        light.type = sp::render::LightType::Spot;
+        light.range = spot->AttenuationRadius;
+        light.innerConeDeg = spot->InnerConeAngle;
+        light.outerConeDeg = spot->OuterConeAngle;
+    } else if (const auto* point = dynamic_cast<const UPointLightComponent*>(&component)) {
+        light.type = sp::render::LightType::Point;
+        light.range = point->AttenuationRadius;
+    } else {
+        light.type = sp::render::LightType::Directional;
+    }
+    return light;
+}
+
+} // namespace
+
+void RenderScene::logOnce(const std::string& key, const std::string& message) {
+    if (logged_.insert(key).second)
+        SP_LOG(message);
+}
+
+void RenderScene::sync(UWorld& world) {
+    // One walk over the world; libraries first, because every mesh slot resolves names against them.
+    std::vector<UStaticMeshComponent*> meshes;
+    std::vector<const ULightComponent*> lights;
+    const USkyLightComponent* sky = nullptr;
+    std::map<std::string, FMaterialDesc> library;
+    for (AActor* actor : world.find_actors()) {
+        if (const auto* materials = dynamic_cast<const AMaterialLibrary*>(actor))
+            for (const auto& [name, desc] : materials->Materials)
+                library.emplace(name, desc); // the first library spawned wins a name clash
+        for (const auto& component : actor->GetComponentList()) {
+            if (auto* mesh = dynamic_cast<UStaticMeshComponent*>(component.get()))
+                meshes.push_back(mesh);
+            else if (const auto* light = dynamic_cast<const ULightComponent*>(component.get()))
+                lights.push_back(light);
+            else if (const auto* skyLight = dynamic_cast<const USkyLightComponent*>(component.get());
+                     skyLight && !sky)
+                sky = skyLight;
+        }
+    }
+
+    std::set<sp::reflect::ObjectHandle> alive;
+    for (UStaticMeshComponent* mesh : meshes) {
+        alive.insert(mesh->GetHandle());
+        syncMesh(*mesh, library);
+    }
+    // Components that are gone: their instance goes, and so do their ids (never reused).
+    for (auto it = instances_.begin(); it != instances_.end();) {
+        if (alive.count(it->first)) {
+            ++it;
+            continue;
+        }
+        if (it->second.instance.isSet())
+            scene_.removeInstance(it->second.instance);
+        for (std::uint32_t id : it->second.ids)
+            idInfo_.erase(id);
+        it = instances_.erase(it);
+    }
+
+    for (sp::render::LightId id : lights_)
+        scene_.removeLight(id);
+    lights_.clear();
+    for (const ULightComponent* light : lights) {
+        if (!light->bVisible)
+            continue;
+        if (lights_.size() == sp::render::Scene::kMaxLights) {
+            logOnce("lights", "RenderSubsystem: more than " + std::to_string(sp::render::Scene::kMaxLights) +
+                                  " lights in the world; the rest are not rendered");
+            break;
+        }
+        sp::render::Light renderLight = toRenderLight(*light);
+        renderLight.validate(("light '" + light->GetDebugName() + "'").c_str());
+        lights_.push_back(scene_.addLight(renderLight));
+    }
+
+    sp::render::Environment environment;
+    if (sky) {
+        environment.ambient = rgb(sky->SkyColor) * sky->Intensity;
+        environment.background = rgb(sky->BackgroundColor);
+    }
+    scene_.setEnvironment(environment);
+}
+
+void RenderScene::syncMesh(UStaticMeshComponent& component,
+                           const std::map<std::string, FMaterialDesc>& library) {
+    InstanceEntry& entry = instances_[component.GetHandle()];
+    const MeshEntry* mesh = component.StaticMesh.empty() ? nullptr : meshFor(component.StaticMesh);
+    if (!mesh) { // no mesh (yet): nothing to draw, but ids already handed out stay
+        if (entry.instance.isSet())
+            scene_.removeInstance(entry.instance);
+        entry.instance = {};
+        return;
+    }
+    const std::size_t slots = scene_.mesh(mesh->mesh).submeshCount();
+    sp::render::Instance instance;
+    instance.mesh = mesh->mesh;
+    instance.transform = worldTransform(component);
+    instance.visible = component.bVisible;
+    for (std::size_t slot = 0; slot < slots; ++slot) {
+        const std::string name =
+            slot < component.Materials.size() ? component.Materials[slot] : std::string();
+        std::string slotName = name;
+        if (name.empty() && slot < mesh->importedMaterials.size()) {
+            instance.materials.push_back(mesh->importedMaterials[slot]);
+            slotName = mesh->importedNames[slot];
+        } else {
+            instance.materials.push_back(materialFor(name, library));
+            if (slotName.empty())
+                slotName = "Default";
+        }
+        if (entry.ids.size() <= slot)
+            entry.ids.push_back(nextObjectId_++);
+        instance.objectIds.push_back(entry.ids[slot]);
+        idInfo_[entry.ids[slot]] = {component.GetHandle(), int(slot), slotName};
+    }
+    if (entry.instance.isSet())
+        scene_.setInstance(entry.instance, instance);
+    else
+        entry.instance = scene_.addInstance(instance);
+}
+
+const RenderScene::MeshEntry* RenderScene::meshFor(const std::string& name) {
+    if (auto it = meshes_.find(name); it != meshes_.end())
+        return &it->second;
+    MeshEntry entry;
+    if (auto shape = basicShape(name)) {
+        entry.mesh = scene_.addMesh(std::move(*shape));
+    } else {
+        try {
+            const sp::render::ImportedMesh imported = sp::render::importMesh(name);
+            const sp::render::ImportedMeshIds ids = sp::render::addToScene(scene_, imported);
+            entry.mesh = ids.mesh;
+            entry.importedMaterials = ids.materials;
+            for (std::size_t i = 0; i < imported.materials.size(); ++i) {
+                const std::string materialName = imported.materials[i].name.empty()
+                                                     ? name + "#" + std::to_string(i)
+                                                     : imported.materials[i].name;
+                entry.importedNames.push_back(materialName);
+                sp::render::Material material = scene_.material(ids.materials[i]);
+                material.id = nextMaterialValue_++;
+                scene_.setMaterial(ids.materials[i], material);
+                materials_.emplace(name + "#" + std::to_string(i),
+                                   MaterialEntry{ids.materials[i], {}, material.id});
+            }
+        } catch (const sp::Error& error) {
+            logOnce("mesh:" + name,
+                    std::string("RenderSubsystem: mesh '") + name + "' is not rendered: " + error.what());
+            return nullptr;
+        }
+    }
+    return &meshes_.emplace(name, std::move(entry)).first->second;
+}
+
+std::optional<sp::render::TextureId> RenderScene::textureFor(const std::string& path,
+                                                             sp::render::TextureEncoding encoding) {
+    if (path.empty())
+        return std::nullopt;
+    if (auto it = textures_.find(path); it != textures_.end())
+        return it->second;
+    try {
+        sp::render::TextureId id = scene_.addTexture(sp::render::TextureImage::load(path), encoding);
+        return textures_.emplace(path, id).first->second;
+    } catch (const sp::Error& error) {
+        logOnce("texture:" + path,
+                std::string("RenderSubsystem: texture '") + path + "' is not used: " + error.what());
+        return std::nullopt;
+    }
+}
+
+sp::render::MaterialId RenderScene::materialFor(const std::string& rawName,
+                                                const std::map<std::string, FMaterialDesc>& library) {
+    const std::string name = rawName.empty() ? "Default" : rawName;
+    FMaterialDesc desc;
+    if (auto it = library.find(name); it != library.end()) {
+        desc = it->second;
+    } else if (const FMaterialDesc* builtin = builtinMaterial(name)) {
+        desc = *builtin;
+    } else {
+        logOnce("material:" + name,
+                "RenderSubsystem: material '" + name +
+                    "' is neither in an AMaterialLibrary nor built in; using the default");
+        desc = *builtinMaterial("Default");
+    }
+    auto it = materials_.find(name);
+    if (it != materials_.end() && it->second.desc == desc)
+        return it->second.id;
+
+    sp::render::Material material;
+    material.baseColor = {desc.BaseColor.R, desc.BaseColor.G, desc.BaseColor.B, 1.0f};
+    material.roughness = desc.Roughness;
+    material.metallic = desc.Metallic;
+    material.ambientOcclusion = desc.AmbientOcclusion;
+    material.emissive = rgb(desc.Emissive);
+    material.baseColorTexture = textureFor(desc.BaseColorTexture, sp::render::TextureEncoding::Srgb);
+    material.roughnessMetallicTexture =
+        textureFor(desc.RoughnessMetallicTexture, sp::render::TextureEncoding::Linear);
+    material.normalTexture = textureFor(desc.NormalTexture, sp::render::TextureEncoding::Linear);
+    material.validate(("material '" + name + "'").c_str());
+    if (it != materials_.end()) { // changed: same handle and material id, new parameters
+        material.id = it->second.value;
+        scene_.setMaterial(it->second.id, material);
+        it->second.desc = desc;
+        return it->second.id;
+    }
+    material.id = nextMaterialValue_++;
+    sp::render::MaterialId id = scene_.addMaterial(material);
+    materials_.emplace(name, MaterialEntry{id, desc, material.id});
+    return id;
+}
+
+std::optional<RenderScene::ObjectIdInfo> RenderScene::objectIdInfo(std::uint32_t id) const {
+    auto it = idInfo_.find(id);
+    if (it == idInfo_.end())
+        return std::nullopt;
+    return it->second;
+}
+
+std::uint32_t RenderScene::objectId(sp::reflect::ObjectHandle component, int slot) const {
+    auto it = instances_.find(component);
+    if (it == instances_.end() || slot < 0 || std::size_t(slot) >= it->second.ids.size())
+        return 0;
+    return it->second.ids[std::size_t(slot)];
+}
+
+std::uint32_t RenderScene::materialId(const std::string& name) const {
+    auto it = materials_.find(name.empty() ? "Default" : name);
+    return it == materials_.end() ? 0 : it->second.value;
+}
+
+} // namespace sp::sensors

@@ -1,0 +1,81 @@
+#pragma once
+// RenderSubsystem: the renderer of one world. It owns one GL context, renderer and render scene, created
+// lazily on the first frame that has a camera (worlds without cameras never touch EGL), and every
+// frame, after the actors and physics have ticked:
+//   1. syncs the render scene with the world: static mesh components (mesh, one material per slot,
+//      world transform, visibility), light components and the sky light;
+//   2. submits one render per camera sensor into that camera's render target (latency ring).
+// read_pixels() then reads the due frame. Object ids are one per (component, material slot), assigned
+// from a counter that never repeats, so they are stable while the component lives and never reused.
+
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/reflect/value.h"
+#include "core/sensors/camera_sensor_component.h"
+#include "core/sensors/material_library.h"
+#include "core/world/world_subsystem.h"
+
+class UWorld;
+class UStaticMeshComponent;
+
+namespace sp::render {
+class GlContext;
+class Renderer;
+class RenderTarget;
+class Scene;
+} // namespace sp::render
+
+namespace sp::sensors {
+
+class RenderScene;
+
+class RenderSubsystem : public sp::world::WorldSubsystem {
+  public:
+    static constexpr int kTickOrder = sp::world::tick_order::kRendering;
+
+    explicit RenderSubsystem(UWorld& world);
+    ~RenderSubsystem() override;
+
+    void Tick(double deltaSeconds) override;
+
+    // The due frame of `camera` (see UCameraSensorComponent); empty while priming or before the first
+    // render. Reading twice returns the same images.
+    FCameraPixels readPixels(UCameraSensorComponent& camera);
+
+    struct ObjectIdInfo {
+        sp::reflect::ObjectHandle component;
+        int slot = -1;
+        std::string materialName;
+    };
+    std::optional<ObjectIdInfo> objectIdInfo(std::uint32_t id) const;
+    std::uint32_t objectId(sp::reflect::ObjectHandle component, int slot) const;
+    std::uint32_t materialId(const std::string& name) const;
+
+    // Starts the GL context and renderer if they are not running yet.
+    FRenderDeviceInfo deviceInfo();
+    FRenderStats stats() const;
+
+  private:
+    struct CameraState;
+    struct PendingFrame;
+
+    void ensureRenderer();
+    CameraState& cameraState(UCameraSensorComponent& camera);
+    void submit(UCameraSensorComponent& camera);
+
+    UWorld& world_;
+    // Destruction order matters: targets and scene GPU data before the renderer, the renderer before
+    // the context (members are destroyed bottom-up, and the destructor releases the targets first).
+    std::unique_ptr<sp::render::GlContext> context_;
+    std::unique_ptr<sp::render::Renderer> renderer_;
+    std::unique_ptr<RenderScene> scene_;
+    std::map<sp::reflect::ObjectHandle, std::unique_ptr<CameraState>> cameras_;
+};
+
+} // namespace sp::sensors
