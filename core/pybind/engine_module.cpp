@@ -28,11 +28,18 @@ PYBIND11_MODULE(_spear_engine, m) {
 
     using sp::world::Engine;
     py::class_<Engine>(m, "Engine", "The engine: its worlds and the frame loop.")
-        .def(py::init([](double fixedDeltaSeconds) {
-                 return std::make_unique<Engine>(Engine::Settings{fixedDeltaSeconds});
+        .def(py::init([](double fixedDeltaSeconds, bool editor, std::string scene) {
+                 return std::make_unique<Engine>(
+                     Engine::Settings{fixedDeltaSeconds, editor, std::move(scene)});
              }),
-             py::kw_only(), py::arg("fixed_delta_seconds") = 1.0 / 60.0)
+             py::kw_only(), py::arg("fixed_delta_seconds") = 1.0 / 60.0, py::arg("editor") = false,
+             py::arg("scene") = "")
         .def("get_game_world", [](Engine& e) { return sp::pybind::wrapObject(&e.GetGameWorld()); })
+        .def("get_editor_world",
+             [](Engine& e) -> py::object {
+                 UWorld* world = e.GetEditorWorld();
+                 return world ? py::object(sp::pybind::wrapObject(world)) : py::none();
+             })
         .def("begin_frame", &Engine::beginFrame)
         .def("execute_frame", &Engine::executeFrame)
         .def("begin_end_frame", &Engine::beginEndFrame)

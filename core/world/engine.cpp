@@ -1,6 +1,7 @@
 #include "core/world/engine.h"
 
 #include "core/base/error.h"
+#include "core/world/scene_io.h"
 
 namespace sp::world {
 
@@ -10,8 +11,44 @@ Engine::Engine(Settings settings) : settings_(settings) {
     SP_CHECK(settings_.fixedDeltaSeconds > 0.0, InvalidArgument,
              "Engine(): fixedDeltaSeconds must be > 0, got ", settings_.fixedDeltaSeconds);
     registerEngineTypes();
-    gameWorld_ = std::make_unique<UWorld>();
-    gameWorld_->SetEngine(this);
+    if (settings_.editor) {
+        editorWorld_ = std::make_unique<UWorld>();
+        editorWorld_->InitObject("EditorWorld", editorWorld_.get());
+        editorWorld_->SetEditorWorld(true);
+        editorWorld_->SetEngine(this);
+    } else {
+        gameWorld_ = std::make_unique<UWorld>();
+        gameWorld_->SetEngine(this);
+    }
+    if (!settings_.scene.empty())
+        (editorWorld_ ? *editorWorld_ : *gameWorld_).load_scene(settings_.scene);
+}
+
+UWorld& Engine::GetGameWorld() {
+    SP_CHECK(
+        gameWorld_, InvalidState,
+        "get_game(): the editor is not playing; call play() on instance.get_editor() inside a frame first");
+    return *gameWorld_;
+}
+
+void Engine::play() {
+    SP_CHECK(editorWorld_, InvalidState,
+             "UWorld.play(): this engine runs standalone and has no editor world");
+    SP_CHECK(!gameWorld_, InvalidState, "UWorld.play(): the editor is already playing; call stop() first");
+    auto game = std::make_unique<UWorld>();
+    game->InitObject("GameWorld", game.get());
+    game->SetEngine(this);
+    // The copy goes through the same reflection code as scene files, so play starts from exactly what
+    // save_scene would write.
+    loadScene(*game, saveScene(*editorWorld_), "UWorld.play(): copying the editor world");
+    gameWorld_ = std::move(game);
+}
+
+void Engine::stop() {
+    SP_CHECK(editorWorld_, InvalidState,
+             "UWorld.stop(): this engine runs standalone and has no editor world");
+    SP_CHECK(gameWorld_, InvalidState, "UWorld.stop(): the editor is not playing");
+    gameWorld_.reset();
 }
 
 Engine::~Engine() = default;
@@ -46,7 +83,8 @@ void Engine::executeFrame() {
     expectState(FrameState::BeginFrame, "execute_frame()");
     state_ = FrameState::FrameExecuted;
     ++frameCount_;
-    gameWorld_->Tick(settings_.fixedDeltaSeconds);
+    if (gameWorld_) // an editor that is not playing only runs the frame protocol
+        gameWorld_->Tick(settings_.fixedDeltaSeconds);
 }
 
 void Engine::beginEndFrame() {

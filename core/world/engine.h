@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <string_view>
 
 #include "core/world/world.h"
@@ -25,6 +26,11 @@ class Engine {
 
     struct Settings {
         double fixedDeltaSeconds = 1.0 / 60.0;
+        // Editor mode: a persistent editor world (never ticked) and, between play() and stop(), a game
+        // world copied from it. Standalone mode: one game world for the engine's lifetime.
+        bool editor = false;
+        // A scene file loaded into the editor world (editor mode) or the game world; empty for none.
+        std::string scene{};
     };
 
     Engine();
@@ -33,7 +39,15 @@ class Engine {
     Engine(const Engine&) = delete;
     Engine& operator=(const Engine&) = delete;
 
-    UWorld& GetGameWorld() { return *gameWorld_; }
+    // The world that plays; throws InvalidState in an editor that is not playing.
+    UWorld& GetGameWorld();
+    // The editor world, or nullptr in a standalone engine.
+    UWorld* GetEditorWorld() { return editorWorld_.get(); }
+    // Editor mode: creates the game world as a reflection copy of the editor world (a scene round trip).
+    void play();
+    // Editor mode: destroys the game world; its objects' handles become stale.
+    void stop();
+    bool IsPlaying() const { return editorWorld_ && gameWorld_; }
     const Settings& GetSettings() const { return settings_; }
 
     // Idle -> BeginFrame. Throws InvalidState if a frame is already open.
@@ -60,6 +74,7 @@ class Engine {
     void expectState(FrameState expected, std::string_view function) const;
 
     Settings settings_;
+    std::unique_ptr<UWorld> editorWorld_;
     std::unique_ptr<UWorld> gameWorld_;
     FrameState state_ = FrameState::Idle;
     int64_t frameCount_ = 0;

@@ -1,5 +1,32 @@
 #include "core/world/primitive_component.h"
 
+#include <numbers>
+
+#include "core/base/error.h"
+#include "core/world/actor.h"
+#include "core/world/physics_subsystem.h"
+#include "core/world/world.h"
+
+namespace {
+constexpr double kDegreesPerRadian = 180.0 / std::numbers::pi;
+
+// The physics subsystem of the component's world; InvalidState when the component is not in play.
+sp::world::PhysicsSubsystem& physicsOf(const UPrimitiveComponent& component, const char* function) {
+    UWorld* world = component.GetWorld();
+    sp::world::PhysicsSubsystem* physics =
+        world ? world->FindSubsystem<sp::world::PhysicsSubsystem>() : nullptr;
+    SP_CHECK(physics && physics->isRegistered(component), sp::InvalidState, "UPrimitiveComponent.", function,
+             "(): ", component.GetDebugName(),
+             " is not in play (its actor has not begun play or has ended it)");
+    return *physics;
+}
+
+bool isInPlay(const UPrimitiveComponent& component) {
+    const AActor* owner = component.GetOwner();
+    return owner && owner->HasBegunPlay() && component.GetWorld();
+}
+} // namespace
+
 Eigen::AlignedBox3d UPrimitiveComponent::GetWorldBounds() const {
     const Eigen::AlignedBox3d local = GetLocalBounds();
     Eigen::AlignedBox3d world;
@@ -17,4 +44,115 @@ void UPrimitiveComponent::GetBounds(FVector& Origin, FVector& BoxExtent) const {
     const Eigen::AlignedBox3d bounds = GetWorldBounds();
     Origin = bounds.isEmpty() ? GetComponentLocation() : FVector::fromEigen(bounds.center());
     BoxExtent = bounds.isEmpty() ? FVector{} : FVector::fromEigen(bounds.sizes() / 2.0);
+}
+
+void UPrimitiveComponent::BeginPlay() {
+    USceneComponent::BeginPlay();
+    if (UWorld* world = GetWorld())
+        world->GetSubsystem<sp::world::PhysicsSubsystem>().registerComponent(*this);
+}
+
+void UPrimitiveComponent::EndPlay() {
+    if (UWorld* world = GetWorld())
+        if (auto* physics = world->FindSubsystem<sp::world::PhysicsSubsystem>())
+            physics->unregisterComponent(*this);
+    USceneComponent::EndPlay();
+}
+
+void UPrimitiveComponent::SetSimulatePhysics(bool bSimulate) {
+    if (bSimulate && isInPlay(*this)) {
+        SP_CHECK(Mobility == EComponentMobility::Movable, sp::InvalidState,
+                 "UPrimitiveComponent.SetSimulatePhysics(): ", GetDebugName(),
+                 " is not Movable; set its Mobility to Movable first");
+        SP_CHECK(MassInKg > 0.0, sp::InvalidState,
+                 "UPrimitiveComponent.SetSimulatePhysics(): ", GetDebugName(), " has mass ", MassInKg,
+                 " kg; set MassInKg > 0 first");
+        const sp::physics::BodyId body =
+            physicsOf(*this, "SetSimulatePhysics").syncComponent(*this, "SetSimulatePhysics");
+        SP_CHECK(body.isSet(), sp::InvalidState, "UPrimitiveComponent.SetSimulatePhysics(): ", GetDebugName(),
+                 " has no collision (no mesh, or CollisionPrimitive is NoCollision)");
+        const ECollisionPrimitive primitive = CollisionPrimitive == ECollisionPrimitive::FromMesh
+                                                  ? GetMeshCollisionPrimitive()
+                                                  : CollisionPrimitive;
+        SP_CHECK(primitive != ECollisionPrimitive::Plane, sp::InvalidState,
+                 "UPrimitiveComponent.SetSimulatePhysics(): ", GetDebugName(),
+                 " collides as a plane, which cannot be simulated; set CollisionPrimitive to Box");
+    }
+    bSimulatePhysics = bSimulate;
+}
+
+bool UPrimitiveComponent::IsSimulatingPhysics() const {
+    if (!isInPlay(*this))
+        return false;
+    auto& physics = physicsOf(*this, "IsSimulatingPhysics");
+    const sp::physics::BodyId body = physics.syncComponent(*this, "IsSimulatingPhysics");
+    return body.isSet() && physics.GetPhysicsWorld().isSimulatingPhysics(body);
+}
+
+void UPrimitiveComponent::SetMassOverrideInKg(double NewMassInKg) {
+    SP_CHECK(std::isfinite(NewMassInKg) && NewMassInKg > 0.0, sp::InvalidArgument,
+             "UPrimitiveComponent.SetMassOverrideInKg(): MassInKg ", NewMassInKg, " must be > 0");
+    MassInKg = NewMassInKg;
+}
+
+void UPrimitiveComponent::AddForce(const FVector& Force, bool bAccelChange) {
+    auto& physics = physicsOf(*this, "AddForce");
+    const sp::physics::BodyId body = physics.requireSimulatedBody(*this, "AddForce");
+    physics.GetPhysicsWorld().applyForce(body, Force.toEigen() * (bAccelChange ? MassInKg : 1.0));
+}
+
+void UPrimitiveComponent::AddTorqueInRadians(const FVector& Torque) {
+    auto& physics = physicsOf(*this, "AddTorqueInRadians");
+    physics.GetPhysicsWorld().applyTorque(physics.requireSimulatedBody(*this, "AddTorqueInRadians"),
+                                          Torque.toEigen());
+}
+
+void UPrimitiveComponent::AddImpulse(const FVector& Impulse, bool bVelChange) {
+    auto& physics = physicsOf(*this, "AddImpulse");
+    const sp::physics::BodyId body = physics.requireSimulatedBody(*this, "AddImpulse");
+    physics.GetPhysicsWorld().applyImpulse(body, Impulse.toEigen() * (bVelChange ? MassInKg : 1.0));
+}
+
+void UPrimitiveComponent::SetPhysicsLinearVelocity(const FVector& NewVel, bool bAddToCurrent) {
+    auto& physics = physicsOf(*this, "SetPhysicsLinearVelocity");
+    const sp::physics::BodyId body = physics.requireSimulatedBody(*this, "SetPhysicsLinearVelocity");
+    auto& world = physics.GetPhysicsWorld();
+    world.setLinearVelocity(
+        body, NewVel.toEigen() + (bAddToCurrent ? world.getLinearVelocity(body) : Eigen::Vector3d::Zero()));
+}
+
+FVector UPrimitiveComponent::GetPhysicsLinearVelocity() const {
+    if (!isInPlay(*this))
+        return {};
+    auto& physics = physicsOf(*this, "GetPhysicsLinearVelocity");
+    const sp::physics::BodyId body = physics.syncComponent(*this, "GetPhysicsLinearVelocity");
+    return body.isSet() ? FVector::fromEigen(physics.GetPhysicsWorld().getLinearVelocity(body)) : FVector{};
+}
+
+void UPrimitiveComponent::SetPhysicsAngularVelocityInDegrees(const FVector& NewAngVel, bool bAddToCurrent) {
+    auto& physics = physicsOf(*this, "SetPhysicsAngularVelocityInDegrees");
+    const sp::physics::BodyId body =
+        physics.requireSimulatedBody(*this, "SetPhysicsAngularVelocityInDegrees");
+    auto& world = physics.GetPhysicsWorld();
+    world.setAngularVelocity(body,
+                             NewAngVel.toEigen() / kDegreesPerRadian +
+                                 (bAddToCurrent ? world.getAngularVelocity(body) : Eigen::Vector3d::Zero()));
+}
+
+FVector UPrimitiveComponent::GetPhysicsAngularVelocityInDegrees() const {
+    if (!isInPlay(*this))
+        return {};
+    auto& physics = physicsOf(*this, "GetPhysicsAngularVelocityInDegrees");
+    const sp::physics::BodyId body = physics.syncComponent(*this, "GetPhysicsAngularVelocityInDegrees");
+    return body.isSet()
+               ? FVector::fromEigen(physics.GetPhysicsWorld().getAngularVelocity(body) * kDegreesPerRadian)
+               : FVector{};
+}
+
+bool UPrimitiveComponent::IsAnyRigidBodyAwake() const {
+    if (!isInPlay(*this))
+        return false;
+    auto& physics = physicsOf(*this, "IsAnyRigidBodyAwake");
+    const sp::physics::BodyId body = physics.syncComponent(*this, "IsAnyRigidBodyAwake");
+    return body.isSet() && physics.GetPhysicsWorld().isAwake(body);
 }

@@ -1,21 +1,124 @@
 #pragma once
-// UPrimitiveComponent: a scene component with geometry (bounds now; rendering and collision build on it).
+// UPrimitiveComponent: a scene component with geometry: bounds, and a rigid body in the world's
+// PhysicsSubsystem while it is in play. The physics properties below are plain data; the subsystem
+// reads them when it synchronises (before each physics step, raycast or physics call), so they may be
+// set through their setters, the registry or a scene file, before or during play.
 
 #include <Eigen/Geometry>
 
 #include "core/world/scene_component.h"
+
+/// Which collision geometry a primitive component gets in the physics world.
+SPENUM()
+enum class ECollisionPrimitive : uint8_t {
+    /// The shape of the mesh: Cube is a box, Sphere a sphere, Cylinder a cylinder, Plane a plane.
+    FromMesh = 0,
+    /// A box filling the mesh bounds.
+    Box = 1,
+    /// A sphere around the mesh bounds (radius: the largest half extent).
+    Sphere = 2,
+    /// A cylinder along local Z around the mesh bounds.
+    Cylinder = 3,
+    /// A two-sided rectangle across the mesh bounds at their centre height; cannot be simulated.
+    Plane = 4,
+    /// No collision: the component has no body, is not simulated and is not hit by traces.
+    NoCollision = 5,
+};
 
 /// A scene component that has geometry.
 SPCLASS(Abstract)
 class UPrimitiveComponent : public USceneComponent {
     SP_GENERATED_BODY()
   public:
+    /// Whether physics moves this component (gravity, forces, contacts); it must be Movable.
+    SPPROPERTY(Setter = SetSimulatePhysics)
+    bool bSimulatePhysics = false;
+
+    /// The collision geometry used by physics and traces.
+    SPPROPERTY()
+    ECollisionPrimitive CollisionPrimitive = ECollisionPrimitive::FromMesh;
+
+    /// Mass in kilograms (> 0 to simulate); inertia follows the collision shape at uniform density.
+    SPPROPERTY(Setter = SetMassOverrideInKg)
+    double MassInKg = 1.0;
+
+    /// Coulomb friction coefficient (>= 0); the two coefficients at a contact are multiplied.
+    SPPROPERTY()
+    double Friction = 0.5;
+
+    /// Bounciness in [0, 1]; the two coefficients at a contact are multiplied.
+    SPPROPERTY()
+    double Restitution = 0.0;
+
+    /// Fraction of linear velocity lost per second, in [0, 1].
+    SPPROPERTY()
+    double LinearDamping = 0.0;
+
+    /// Fraction of angular velocity lost per second, in [0, 1].
+    SPPROPERTY()
+    double AngularDamping = 0.0;
+
     /// Returns the world-space axis-aligned bounds as centre Origin and half size BoxExtent.
     SPFUNCTION()
     void GetBounds(FVector& Origin, FVector& BoxExtent) const;
+
+    /// Turns physics simulation on or off; turning it on needs a Movable component with collision.
+    SPFUNCTION()
+    void SetSimulatePhysics(bool bSimulate);
+
+    /// Returns true while physics moves this component.
+    SPFUNCTION()
+    bool IsSimulatingPhysics() const;
+
+    /// Sets the mass in kilograms (> 0).
+    SPFUNCTION()
+    void SetMassOverrideInKg(double MassInKg);
+
+    /// Returns the mass in kilograms.
+    SPFUNCTION()
+    double GetMass() const { return MassInKg; }
+
+    /// Adds a force in newtons at the centre of mass for the next physics step (an acceleration in m/s^2
+    /// when bAccelChange is true).
+    SPFUNCTION()
+    void AddForce(const FVector& Force, bool bAccelChange = false);
+
+    /// Adds a torque in newton-metres about world axes for the next physics step.
+    SPFUNCTION()
+    void AddTorqueInRadians(const FVector& Torque);
+
+    /// Changes the velocity at once by Impulse / mass (Impulse in N*s; a velocity change in m/s when
+    /// bVelChange is true).
+    SPFUNCTION()
+    void AddImpulse(const FVector& Impulse, bool bVelChange = false);
+
+    /// Sets the linear velocity in m/s (adds it to the current one when bAddToCurrent is true).
+    SPFUNCTION()
+    void SetPhysicsLinearVelocity(const FVector& NewVel, bool bAddToCurrent = false);
+
+    /// Returns the linear velocity in m/s (zero when not simulated).
+    SPFUNCTION()
+    FVector GetPhysicsLinearVelocity() const;
+
+    /// Sets the angular velocity in degrees per second about world axes.
+    SPFUNCTION()
+    void SetPhysicsAngularVelocityInDegrees(const FVector& NewAngVel, bool bAddToCurrent = false);
+
+    /// Returns the angular velocity in degrees per second about world axes (zero when not simulated).
+    SPFUNCTION()
+    FVector GetPhysicsAngularVelocityInDegrees() const;
+
+    /// Returns true while this component's body is awake (false for sleeping or non-simulated ones).
+    SPFUNCTION()
+    bool IsAnyRigidBodyAwake() const;
 
     // Bounds in the component's own space (before its scale); empty when it has no geometry.
     virtual Eigen::AlignedBox3d GetLocalBounds() const { return {}; }
     // World-space bounds of the transformed local box.
     Eigen::AlignedBox3d GetWorldBounds() const;
+    // The primitive that FromMesh resolves to; NoCollision for a component without a known shape.
+    virtual ECollisionPrimitive GetMeshCollisionPrimitive() const { return ECollisionPrimitive::Box; }
+
+    void BeginPlay() override;
+    void EndPlay() override;
 };

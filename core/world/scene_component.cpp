@@ -4,6 +4,7 @@
 
 #include "core/base/error.h"
 #include "core/world/actor.h"
+#include "core/world/world.h"
 
 USceneComponent::~USceneComponent() {
     // Children of a destroyed component stay where they are in the world.
@@ -15,8 +16,10 @@ USceneComponent::~USceneComponent() {
 
 void USceneComponent::checkMovable(const char* function) const {
     const AActor* owner = GetOwner();
-    SP_CHECK(Mobility != EComponentMobility::Static || !owner || !owner->HasBegunPlay(), sp::InvalidState,
-             "USceneComponent.", function, "(): ", GetDebugName(),
+    // Static components are fixed while playing; in the editor world they are being placed.
+    const bool inEditor = GetWorld() && GetWorld()->is_editor_world();
+    SP_CHECK(Mobility != EComponentMobility::Static || !owner || !owner->HasBegunPlay() || inEditor,
+             sp::InvalidState, "USceneComponent.", function, "(): ", GetDebugName(),
              " is static; set its Mobility to Movable before moving it");
 }
 

@@ -10,12 +10,13 @@ namespace {
 struct BasicShape {
     std::string_view name;
     Eigen::Vector3d halfExtent;
+    ECollisionPrimitive collision;
 };
 constexpr std::string_view kBasicShapesPrefix = "/Engine/BasicShapes/";
-const std::array<BasicShape, 4> kBasicShapes{{{"Cube", {0.5, 0.5, 0.5}},
-                                              {"Sphere", {0.5, 0.5, 0.5}},
-                                              {"Cylinder", {0.5, 0.5, 0.5}},
-                                              {"Plane", {0.5, 0.5, 0.0}}}};
+const std::array<BasicShape, 4> kBasicShapes{{{"Cube", {0.5, 0.5, 0.5}, ECollisionPrimitive::Box},
+                                              {"Sphere", {0.5, 0.5, 0.5}, ECollisionPrimitive::Sphere},
+                                              {"Cylinder", {0.5, 0.5, 0.5}, ECollisionPrimitive::Cylinder},
+                                              {"Plane", {0.5, 0.5, 0.0}, ECollisionPrimitive::Plane}}};
 
 const BasicShape* findBasicShape(std::string_view mesh) {
     if (!mesh.starts_with(kBasicShapesPrefix))
@@ -48,4 +49,9 @@ Eigen::AlignedBox3d UStaticMeshComponent::GetLocalBounds() const {
     if (!shape)
         return {};
     return {-shape->halfExtent, shape->halfExtent};
+}
+
+ECollisionPrimitive UStaticMeshComponent::GetMeshCollisionPrimitive() const {
+    const BasicShape* shape = findBasicShape(StaticMesh);
+    return shape ? shape->collision : ECollisionPrimitive::NoCollision;
 }

@@ -29,4 +29,5 @@ class UStaticMeshComponent : public UPrimitiveComponent {
     void SetMaterial(int ElementIndex, const std::string& Material);
 
     Eigen::AlignedBox3d GetLocalBounds() const override;
+    ECollisionPrimitive GetMeshCollisionPrimitive() const override;
 };

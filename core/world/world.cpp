@@ -1,8 +1,13 @@
 #include "core/world/world.h"
 
 #include <algorithm>
+#include <fstream>
 
 #include "core/base/error.h"
+#include "core/world/engine.h"
+#include "core/world/input_component.h"
+#include "core/world/physics_subsystem.h"
+#include "core/world/scene_io.h"
 
 UWorld::UWorld() {
     InitObject("World", this);
@@ -21,7 +26,8 @@ UWorld::~UWorld() {
         subsystems_.pop_back();
 }
 
-void UWorld::addSubsystem(std::type_index type, int tickOrder, std::unique_ptr<sp::world::WorldSubsystem> subsystem) {
+void UWorld::addSubsystem(std::type_index type, int tickOrder,
+                          std::unique_ptr<sp::world::WorldSubsystem> subsystem) {
     auto it = std::find_if(subsystems_.begin(), subsystems_.end(),
                            [&](const SubsystemEntry& entry) { return entry.tickOrder > tickOrder; });
     subsystems_.insert(it, SubsystemEntry{type, tickOrder, std::move(subsystem)});
@@ -58,6 +64,58 @@ AActor* UWorld::spawn_actor(TSubclassOf<AActor> uclass, const FVector& location,
     actors_.push_back(std::move(actor));
     raw->BeginPlay();
     return raw;
+}
+
+std::unique_ptr<AActor> UWorld::NewActorDeferred(const UClass& type, std::string name) {
+    SP_CHECK(type.isChildOf(AActor::StaticClass()) && type.create, sp::InvalidArgument, "UWorld: class '",
+             type.name, "' is not an actor class that can be created");
+    std::unique_ptr<AActor> actor(static_cast<AActor*>(type.create()));
+    actor->InitObject(std::move(name), this);
+    actor->SetWorldForComponents();
+    return actor;
+}
+
+void UWorld::ReplaceActors(std::vector<std::unique_ptr<AActor>> actors) {
+    SP_CHECK(!ticking_, sp::InvalidState, "UWorld: the actors cannot be replaced while the world ticks");
+    for (AActor* actor : find_actors())
+        destroy_actor(actor);
+    for (auto& actor : actors) {
+        AActor* raw = actor.get();
+        actors_.push_back(std::move(actor));
+        raw->BeginPlay();
+    }
+}
+
+void UWorld::load_scene(const std::string& path) {
+    const std::string function = "UWorld.load_scene()";
+    sp::world::loadScene(*this, sp::world::readSceneFile(path, function),
+                         function + ": scene '" + path + "'");
+}
+
+void UWorld::save_scene(const std::string& path) const {
+    const std::string text = sp::world::sceneToString(sp::world::saveScene(*this));
+    std::ofstream out(path, std::ios::binary);
+    SP_CHECK(out, sp::NotFound, "UWorld.save_scene(): cannot write scene file '", path, "'");
+    out << text;
+    SP_CHECK(out.flush(), sp::InvalidState, "UWorld.save_scene(): writing scene file '", path, "' failed");
+}
+
+sp::world::Engine& UWorld::editorEngine(const char* function) const {
+    SP_CHECK(isEditorWorld_ && engine_, sp::InvalidState, "UWorld.", function, "(): ", GetName(),
+             " is not an editor world; only instance.get_editor() can ", function);
+    return *engine_;
+}
+
+void UWorld::play() {
+    editorEngine("play").play();
+}
+
+void UWorld::stop() {
+    editorEngine("stop").stop();
+}
+
+bool UWorld::is_playing() const {
+    return isEditorWorld_ && engine_ && engine_->IsPlaying();
 }
 
 void UWorld::destroy_actor(AActor* actor) {
@@ -161,6 +219,24 @@ UObject* UWorld::get_default_object(TSubclassOf<UObject> uclass) {
         object->InitObject("Default__" + type.name, nullptr);
     }
     return object.get();
+}
+
+bool UWorld::line_trace_single(const FVector& start, const FVector& end, FHitResult& hit, AActor*& actor,
+                               UPrimitiveComponent*& component) {
+    component = GetSubsystem<sp::world::PhysicsSubsystem>().lineTrace(start, end, hit);
+    actor = component ? component->GetOwner() : nullptr;
+    return hit.bBlockingHit;
+}
+
+void UWorld::inject_input_for_actor(AActor* actor, const std::string& input_action_name,
+                                    const FVector& value) {
+    SP_CHECK(actor, sp::InvalidArgument, "UWorld.inject_input_for_actor(): actor is None");
+    SP_CHECK(!input_action_name.empty(), sp::InvalidArgument,
+             "UWorld.inject_input_for_actor(): input_action_name is empty");
+    auto* input = static_cast<UInputComponent*>(actor->GetComponentByClass(&UInputComponent::StaticClass()));
+    SP_CHECK(input, sp::InvalidArgument, "UWorld.inject_input_for_actor(): ", actor->GetDebugName(),
+             " has no UInputComponent to receive action '", input_action_name, "'");
+    input->InjectAction(input_action_name, value);
 }
 
 void UWorld::Tick(double deltaSeconds) {

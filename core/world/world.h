@@ -12,6 +12,8 @@
 
 #include "core/reflect/class_ref.h"
 #include "core/world/actor.h"
+#include "core/world/hit_result.h"
+#include "core/world/primitive_component.h"
 #include "core/world/world_subsystem.h"
 
 namespace sp::world {
@@ -91,6 +93,44 @@ class UWorld : public UObject {
     SPFUNCTION()
     int64_t get_frame_count() const { return frameCount_; }
 
+    /// Traces the segment start -> end against every collision body; returns true on a hit, with the hit,
+    /// and the actor and component that were hit (None when nothing was hit).
+    SPFUNCTION()
+    bool line_trace_single(const FVector& start, const FVector& end, FHitResult& hit, AActor*& actor,
+                           UPrimitiveComponent*& component);
+
+    /// Routes a continuous input action with the given value to actor's UInputComponent for the next tick.
+    SPFUNCTION()
+    void inject_input_for_actor(AActor* actor, const std::string& input_action_name, const FVector& value);
+
+    /// Replaces every actor of this world by those of the scene file at path (see core/world/scene_io.h).
+    SPFUNCTION()
+    void load_scene(const std::string& path);
+
+    /// Writes every actor and component of this world, with every reflected property, to a scene file.
+    SPFUNCTION()
+    void save_scene(const std::string& path) const;
+
+    /// Returns true for the persistent world of an editor instance.
+    SPFUNCTION()
+    bool is_editor_world() const { return isEditorWorld_; }
+
+    /// Returns true for a world that plays (a standalone instance's world, or the editor's play world).
+    SPFUNCTION()
+    bool is_game_world() const { return !isEditorWorld_; }
+
+    /// Editor world only: starts play in a new game world copied from this one (instance.get_game()).
+    SPFUNCTION()
+    void play();
+
+    /// Editor world only: ends play and destroys the game world; its objects' handles become stale.
+    SPFUNCTION()
+    void stop();
+
+    /// Editor world only: returns true while a game world copied from this one is playing.
+    SPFUNCTION()
+    bool is_playing() const;
+
     // Advances every actor by one fixed step.
     void Tick(double deltaSeconds);
 
@@ -111,6 +151,13 @@ class UWorld : public UObject {
         return nullptr;
     }
 
+    // Creates an actor that belongs to this world but is not in it yet (no BeginPlay, not found by queries);
+    // ReplaceActors puts it in. Used to build a whole scene before the world changes.
+    std::unique_ptr<AActor> NewActorDeferred(const UClass& type, std::string name);
+    // Destroys every actor, then adds `actors` (from NewActorDeferred) in order and begins their play.
+    void ReplaceActors(std::vector<std::unique_ptr<AActor>> actors);
+
+    void SetEditorWorld(bool isEditorWorld) { isEditorWorld_ = isEditorWorld; }
     void SetEngine(sp::world::Engine* engine) { engine_ = engine; }
     sp::world::Engine* GetEngine() const { return engine_; }
 
@@ -120,8 +167,10 @@ class UWorld : public UObject {
         int tickOrder;
         std::unique_ptr<sp::world::WorldSubsystem> subsystem;
     };
-    void addSubsystem(std::type_index type, int tickOrder, std::unique_ptr<sp::world::WorldSubsystem> subsystem);
+    void addSubsystem(std::type_index type, int tickOrder,
+                      std::unique_ptr<sp::world::WorldSubsystem> subsystem);
     std::string uniqueActorName(const UClass& type) const;
+    sp::world::Engine& editorEngine(const char* function) const;
 
     std::vector<SubsystemEntry> subsystems_; // sorted by tick order; destroyed after the actors
 
@@ -132,5 +181,6 @@ class UWorld : public UObject {
     double timeSeconds_ = 0.0;
     int64_t frameCount_ = 0;
     bool ticking_ = false;
+    bool isEditorWorld_ = false;
     std::vector<AActor*> pendingDestroy_;
 };

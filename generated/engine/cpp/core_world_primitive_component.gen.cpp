@@ -4,17 +4,43 @@
 #include "core/world/primitive_component.h"
 
 // Every header of the module: types used in signatures must be complete here.
+#include "core/sensors/camera_sensor_actor.h"
+#include "core/sensors/camera_sensor_component.h"
+#include "core/sensors/material_library.h"
+#include "core/sensors/sky_light_component.h"
+#include "core/sensors/spot_light_component.h"
 #include "core/world/actor.h"
 #include "core/world/actor_component.h"
+#include "core/world/hit_result.h"
+#include "core/world/input_component.h"
+#include "core/world/light_actors.h"
+#include "core/world/light_component.h"
 #include "core/world/math.h"
 #include "core/world/object.h"
 #include "core/world/scene_component.h"
+#include "core/world/simple_vehicle.h"
 #include "core/world/static_mesh_actor.h"
 #include "core/world/static_mesh_component.h"
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
+
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECollisionPrimitive>() {
+    static const sp::reflect::EnumInfo info{
+        "ECollisionPrimitive",
+        "Which collision geometry a primitive component gets in the physics world.",
+        {
+            {"FromMesh", 0},
+            {"Box", 1},
+            {"Sphere", 2},
+            {"Cylinder", 3},
+            {"Plane", 4},
+            {"NoCollision", 5},
+        },
+    };
+    return info;
+}
 
 // -- UPrimitiveComponent ----------------------------------------------------------------------------------
 
@@ -27,6 +53,104 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.kind = sp::reflect::TypeInfo::Kind::Class;
         t.parent = &USceneComponent::StaticClass();
         t.isAbstract = true;
+        t.properties.push_back({
+            "bSimulatePhysics",
+            "bool",
+            "Whether physics moves this component (gravity, forces, contacts); it must be Movable.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bSimulatePhysics);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->SetSimulatePhysics(sp::reflect::decode<bool>(value, "UPrimitiveComponent.bSimulatePhysics"));
+                sp::reflect::notifyPropertyChanged(object, "bSimulatePhysics");
+            },
+        });
+        t.properties.push_back({
+            "CollisionPrimitive",
+            "ECollisionPrimitive",
+            "The collision geometry used by physics and traces.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->CollisionPrimitive);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->CollisionPrimitive = sp::reflect::decode<ECollisionPrimitive>(value, "UPrimitiveComponent.CollisionPrimitive");
+                sp::reflect::notifyPropertyChanged(object, "CollisionPrimitive");
+            },
+        });
+        t.properties.push_back({
+            "MassInKg",
+            "float",
+            "Mass in kilograms (> 0 to simulate); inertia follows the collision shape at uniform density.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->MassInKg);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->SetMassOverrideInKg(sp::reflect::decode<double>(value, "UPrimitiveComponent.MassInKg"));
+                sp::reflect::notifyPropertyChanged(object, "MassInKg");
+            },
+        });
+        t.properties.push_back({
+            "Friction",
+            "float",
+            "Coulomb friction coefficient (>= 0); the two coefficients at a contact are multiplied.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Friction);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->Friction = sp::reflect::decode<double>(value, "UPrimitiveComponent.Friction");
+                sp::reflect::notifyPropertyChanged(object, "Friction");
+            },
+        });
+        t.properties.push_back({
+            "Restitution",
+            "float",
+            "Bounciness in [0, 1]; the two coefficients at a contact are multiplied.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Restitution);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->Restitution = sp::reflect::decode<double>(value, "UPrimitiveComponent.Restitution");
+                sp::reflect::notifyPropertyChanged(object, "Restitution");
+            },
+        });
+        t.properties.push_back({
+            "LinearDamping",
+            "float",
+            "Fraction of linear velocity lost per second, in [0, 1].",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->LinearDamping);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->LinearDamping = sp::reflect::decode<double>(value, "UPrimitiveComponent.LinearDamping");
+                sp::reflect::notifyPropertyChanged(object, "LinearDamping");
+            },
+        });
+        t.properties.push_back({
+            "AngularDamping",
+            "float",
+            "Fraction of angular velocity lost per second, in [0, 1].",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->AngularDamping);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->AngularDamping = sp::reflect::decode<double>(value, "UPrimitiveComponent.AngularDamping");
+                sp::reflect::notifyPropertyChanged(object, "AngularDamping");
+            },
+        });
         t.functions.push_back({
             "GetBounds",
             "Returns the world-space axis-aligned bounds as centre Origin and half size BoxExtent.",
@@ -47,6 +171,212 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
                 outputs.emplace("Origin", sp::reflect::encode(Origin));
                 outputs.emplace("BoxExtent", sp::reflect::encode(BoxExtent));
                 return sp::reflect::Value(std::move(outputs));
+            },
+        });
+        t.functions.push_back({
+            "SetSimulatePhysics",
+            "Turns physics simulation on or off; turning it on needs a Movable component with collision.",
+            "None",
+            {
+                {"bSimulate", "bool", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetSimulatePhysics()";
+                sp::reflect::checkArguments(args, {"bSimulate"}, kContext);
+                bool bSimulate = sp::reflect::decode<bool>(sp::reflect::requireArgument(args, "bSimulate", kContext), "UPrimitiveComponent.SetSimulatePhysics(): argument 'bSimulate'");
+                sp::reflect::selfCast<Self>(self)->SetSimulatePhysics(bSimulate);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "IsSimulatingPhysics",
+            "Returns true while physics moves this component.",
+            "bool",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.IsSimulatingPhysics()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->IsSimulatingPhysics();
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "SetMassOverrideInKg",
+            "Sets the mass in kilograms (> 0).",
+            "None",
+            {
+                {"MassInKg", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetMassOverrideInKg()";
+                sp::reflect::checkArguments(args, {"MassInKg"}, kContext);
+                double MassInKg = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "MassInKg", kContext), "UPrimitiveComponent.SetMassOverrideInKg(): argument 'MassInKg'");
+                sp::reflect::selfCast<Self>(self)->SetMassOverrideInKg(MassInKg);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "GetMass",
+            "Returns the mass in kilograms.",
+            "float",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.GetMass()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->GetMass();
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "AddForce",
+            "Adds a force in newtons at the centre of mass for the next physics step (an acceleration in m/s^2\nwhen bAccelChange is true).",
+            "None",
+            {
+                {"Force", "FVector", false, false},
+                {"bAccelChange", "bool", true, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.AddForce()";
+                sp::reflect::checkArguments(args, {"Force", "bAccelChange"}, kContext);
+                FVector Force = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "Force", kContext), "UPrimitiveComponent.AddForce(): argument 'Force'");
+                const sp::reflect::Value* bAccelChangeArg = sp::reflect::findArgument(args, "bAccelChange");
+                bool bAccelChange = bAccelChangeArg ? sp::reflect::decode<bool>(*bAccelChangeArg, "UPrimitiveComponent.AddForce(): argument 'bAccelChange'") : bool(false);
+                sp::reflect::selfCast<Self>(self)->AddForce(Force, bAccelChange);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "AddTorqueInRadians",
+            "Adds a torque in newton-metres about world axes for the next physics step.",
+            "None",
+            {
+                {"Torque", "FVector", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.AddTorqueInRadians()";
+                sp::reflect::checkArguments(args, {"Torque"}, kContext);
+                FVector Torque = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "Torque", kContext), "UPrimitiveComponent.AddTorqueInRadians(): argument 'Torque'");
+                sp::reflect::selfCast<Self>(self)->AddTorqueInRadians(Torque);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "AddImpulse",
+            "Changes the velocity at once by Impulse / mass (Impulse in N*s; a velocity change in m/s when\nbVelChange is true).",
+            "None",
+            {
+                {"Impulse", "FVector", false, false},
+                {"bVelChange", "bool", true, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.AddImpulse()";
+                sp::reflect::checkArguments(args, {"Impulse", "bVelChange"}, kContext);
+                FVector Impulse = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "Impulse", kContext), "UPrimitiveComponent.AddImpulse(): argument 'Impulse'");
+                const sp::reflect::Value* bVelChangeArg = sp::reflect::findArgument(args, "bVelChange");
+                bool bVelChange = bVelChangeArg ? sp::reflect::decode<bool>(*bVelChangeArg, "UPrimitiveComponent.AddImpulse(): argument 'bVelChange'") : bool(false);
+                sp::reflect::selfCast<Self>(self)->AddImpulse(Impulse, bVelChange);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetPhysicsLinearVelocity",
+            "Sets the linear velocity in m/s (adds it to the current one when bAddToCurrent is true).",
+            "None",
+            {
+                {"NewVel", "FVector", false, false},
+                {"bAddToCurrent", "bool", true, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetPhysicsLinearVelocity()";
+                sp::reflect::checkArguments(args, {"NewVel", "bAddToCurrent"}, kContext);
+                FVector NewVel = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "NewVel", kContext), "UPrimitiveComponent.SetPhysicsLinearVelocity(): argument 'NewVel'");
+                const sp::reflect::Value* bAddToCurrentArg = sp::reflect::findArgument(args, "bAddToCurrent");
+                bool bAddToCurrent = bAddToCurrentArg ? sp::reflect::decode<bool>(*bAddToCurrentArg, "UPrimitiveComponent.SetPhysicsLinearVelocity(): argument 'bAddToCurrent'") : bool(false);
+                sp::reflect::selfCast<Self>(self)->SetPhysicsLinearVelocity(NewVel, bAddToCurrent);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "GetPhysicsLinearVelocity",
+            "Returns the linear velocity in m/s (zero when not simulated).",
+            "FVector",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.GetPhysicsLinearVelocity()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->GetPhysicsLinearVelocity();
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "SetPhysicsAngularVelocityInDegrees",
+            "Sets the angular velocity in degrees per second about world axes.",
+            "None",
+            {
+                {"NewAngVel", "FVector", false, false},
+                {"bAddToCurrent", "bool", true, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees()";
+                sp::reflect::checkArguments(args, {"NewAngVel", "bAddToCurrent"}, kContext);
+                FVector NewAngVel = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "NewAngVel", kContext), "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees(): argument 'NewAngVel'");
+                const sp::reflect::Value* bAddToCurrentArg = sp::reflect::findArgument(args, "bAddToCurrent");
+                bool bAddToCurrent = bAddToCurrentArg ? sp::reflect::decode<bool>(*bAddToCurrentArg, "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees(): argument 'bAddToCurrent'") : bool(false);
+                sp::reflect::selfCast<Self>(self)->SetPhysicsAngularVelocityInDegrees(NewAngVel, bAddToCurrent);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "GetPhysicsAngularVelocityInDegrees",
+            "Returns the angular velocity in degrees per second about world axes (zero when not simulated).",
+            "FVector",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.GetPhysicsAngularVelocityInDegrees()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->GetPhysicsAngularVelocityInDegrees();
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "IsAnyRigidBodyAwake",
+            "Returns true while this component's body is awake (false for sleeping or non-simulated ones).",
+            "bool",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.IsAnyRigidBodyAwake()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->IsAnyRigidBodyAwake();
+                return sp::reflect::encode(result);
             },
         });
         return t;

@@ -4,12 +4,22 @@
 #include "core/world/world.h"
 
 // Every header of the module: types used in signatures must be complete here.
+#include "core/sensors/camera_sensor_actor.h"
+#include "core/sensors/camera_sensor_component.h"
+#include "core/sensors/material_library.h"
+#include "core/sensors/sky_light_component.h"
+#include "core/sensors/spot_light_component.h"
 #include "core/world/actor.h"
 #include "core/world/actor_component.h"
+#include "core/world/hit_result.h"
+#include "core/world/input_component.h"
+#include "core/world/light_actors.h"
+#include "core/world/light_component.h"
 #include "core/world/math.h"
 #include "core/world/object.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
+#include "core/world/simple_vehicle.h"
 #include "core/world/static_mesh_actor.h"
 #include "core/world/static_mesh_component.h"
 #include "core/reflect/codec.h"
@@ -292,6 +302,166 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
                 static constexpr const char* kContext = "UWorld.get_frame_count()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->get_frame_count();
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "line_trace_single",
+            "Traces the segment start -> end against every collision body; returns true on a hit, with the hit,\nand the actor and component that were hit (None when nothing was hit).",
+            "line_trace_singleResult",
+            {
+                {"start", "FVector", false, false},
+                {"end", "FVector", false, false},
+                {"hit", "FHitResult", false, true},
+                {"actor", "AActor", false, true},
+                {"component", "UPrimitiveComponent", false, true},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UWorld.line_trace_single()";
+                sp::reflect::checkArguments(args, {"start", "end"}, kContext);
+                FVector start = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "start", kContext), "UWorld.line_trace_single(): argument 'start'");
+                FVector end = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "end", kContext), "UWorld.line_trace_single(): argument 'end'");
+                FHitResult hit{};
+                AActor* actor{};
+                UPrimitiveComponent* component{};
+                auto result = sp::reflect::selfCast<Self>(self)->line_trace_single(start, end, hit, actor, component);
+                sp::reflect::Value::Dict outputs;
+                outputs.emplace("ReturnValue", sp::reflect::encode(result));
+                outputs.emplace("hit", sp::reflect::encode(hit));
+                outputs.emplace("actor", sp::reflect::encode(actor));
+                outputs.emplace("component", sp::reflect::encode(component));
+                return sp::reflect::Value(std::move(outputs));
+            },
+        });
+        t.functions.push_back({
+            "inject_input_for_actor",
+            "Routes a continuous input action with the given value to actor's UInputComponent for the next tick.",
+            "None",
+            {
+                {"actor", "AActor", false, false},
+                {"input_action_name", "str", false, false},
+                {"value", "FVector", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UWorld.inject_input_for_actor()";
+                sp::reflect::checkArguments(args, {"actor", "input_action_name", "value"}, kContext);
+                AActor* actor = sp::reflect::decodeNonNull<AActor*>(sp::reflect::requireArgument(args, "actor", kContext), "UWorld.inject_input_for_actor(): argument 'actor'");
+                std::string input_action_name = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "input_action_name", kContext), "UWorld.inject_input_for_actor(): argument 'input_action_name'");
+                FVector value = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "value", kContext), "UWorld.inject_input_for_actor(): argument 'value'");
+                sp::reflect::selfCast<Self>(self)->inject_input_for_actor(actor, input_action_name, value);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "load_scene",
+            "Replaces every actor of this world by those of the scene file at path (see core/world/scene_io.h).",
+            "None",
+            {
+                {"path", "str", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UWorld.load_scene()";
+                sp::reflect::checkArguments(args, {"path"}, kContext);
+                std::string path = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "path", kContext), "UWorld.load_scene(): argument 'path'");
+                sp::reflect::selfCast<Self>(self)->load_scene(path);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "save_scene",
+            "Writes every actor and component of this world, with every reflected property, to a scene file.",
+            "None",
+            {
+                {"path", "str", false, false},
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UWorld.save_scene()";
+                sp::reflect::checkArguments(args, {"path"}, kContext);
+                std::string path = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "path", kContext), "UWorld.save_scene(): argument 'path'");
+                sp::reflect::selfCast<const Self>(self)->save_scene(path);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "is_editor_world",
+            "Returns true for the persistent world of an editor instance.",
+            "bool",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UWorld.is_editor_world()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->is_editor_world();
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "is_game_world",
+            "Returns true for a world that plays (a standalone instance's world, or the editor's play world).",
+            "bool",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UWorld.is_game_world()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->is_game_world();
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "play",
+            "Editor world only: starts play in a new game world copied from this one (instance.get_game()).",
+            "None",
+            {
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UWorld.play()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                sp::reflect::selfCast<Self>(self)->play();
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "stop",
+            "Editor world only: ends play and destroys the game world; its objects' handles become stale.",
+            "None",
+            {
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UWorld.stop()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                sp::reflect::selfCast<Self>(self)->stop();
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "is_playing",
+            "Editor world only: returns true while a game world copied from this one is playing.",
+            "bool",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UWorld.is_playing()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->is_playing();
                 return sp::reflect::encode(result);
             },
         });

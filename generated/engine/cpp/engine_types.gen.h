@@ -5,9 +5,17 @@
 
 #include "core/reflect/type_info.h"
 
+#include "core/sensors/camera_sensor_component.h"
+#include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
 
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraModality>();
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraToneCurve>();
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECollisionPrimitive>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EComponentMobility>();
 
 // Registers every reflected type of the module with sp::reflect::Registry.
 void spear_register_engine_types();
+
+// The hash of this module's IR; an RPC client built from other stubs is refused on connect.
+const char* spear_register_engine_types_api_hash();

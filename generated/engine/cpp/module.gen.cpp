@@ -9,12 +9,22 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+#include "core/sensors/camera_sensor_actor.h"
+#include "core/sensors/camera_sensor_component.h"
+#include "core/sensors/material_library.h"
+#include "core/sensors/sky_light_component.h"
+#include "core/sensors/spot_light_component.h"
 #include "core/world/actor.h"
 #include "core/world/actor_component.h"
+#include "core/world/hit_result.h"
+#include "core/world/input_component.h"
+#include "core/world/light_actors.h"
+#include "core/world/light_component.h"
 #include "core/world/math.h"
 #include "core/world/object.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
+#include "core/world/simple_vehicle.h"
 #include "core/world/static_mesh_actor.h"
 #include "core/world/static_mesh_component.h"
 #include "core/world/world.h"
@@ -29,7 +39,34 @@ template <> struct Ref<UObject> : RefBase {
 template <> struct Ref<AActor> : Ref<UObject> {
     using Ref<UObject>::Ref;
 };
+template <> struct Ref<ACameraSensorActor> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
+template <> struct Ref<ADirectionalLight> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
+template <> struct Ref<AMaterialLibrary> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
+template <> struct Ref<AMultiViewCameraRig> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
+template <> struct Ref<APointLight> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
+template <> struct Ref<ASimpleVehicle> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
+template <> struct Ref<ASkyLight> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
+template <> struct Ref<ASpotLight> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
 template <> struct Ref<AStaticMeshActor> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
+template <> struct Ref<AStereoCameraRig> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
 template <> struct Ref<UActorComponent> : Ref<UObject> {
@@ -38,8 +75,29 @@ template <> struct Ref<UActorComponent> : Ref<UObject> {
 template <> struct Ref<USceneComponent> : Ref<UActorComponent> {
     using Ref<UActorComponent>::Ref;
 };
+template <> struct Ref<UCameraSensorComponent> : Ref<USceneComponent> {
+    using Ref<USceneComponent>::Ref;
+};
+template <> struct Ref<ULightComponent> : Ref<USceneComponent> {
+    using Ref<USceneComponent>::Ref;
+};
+template <> struct Ref<UDirectionalLightComponent> : Ref<ULightComponent> {
+    using Ref<ULightComponent>::Ref;
+};
+template <> struct Ref<UInputComponent> : Ref<UActorComponent> {
+    using Ref<UActorComponent>::Ref;
+};
+template <> struct Ref<UPointLightComponent> : Ref<ULightComponent> {
+    using Ref<ULightComponent>::Ref;
+};
 template <> struct Ref<UPrimitiveComponent> : Ref<USceneComponent> {
     using Ref<USceneComponent>::Ref;
+};
+template <> struct Ref<USkyLightComponent> : Ref<USceneComponent> {
+    using Ref<USceneComponent>::Ref;
+};
+template <> struct Ref<USpotLightComponent> : Ref<UPointLightComponent> {
+    using Ref<UPointLightComponent>::Ref;
 };
 template <> struct Ref<UStaticMeshComponent> : Ref<UPrimitiveComponent> {
     using Ref<UPrimitiveComponent>::Ref;
@@ -50,6 +108,51 @@ template <> struct Ref<UWorld> : Ref<UObject> {
 } // namespace sp::pybind
 
 namespace pybind11::detail {
+
+template <> struct type_caster<ECameraModality> {
+    PYBIND11_TYPE_CASTER(ECameraModality, const_name("ECameraModality"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ECameraModality");
+        if (!isinstance(src, cls))
+            return false;
+        value = static_cast<ECameraModality>(src.cast<int64_t>());
+        return true;
+    }
+    static handle cast(ECameraModality v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ECameraModality");
+        return cls(static_cast<int64_t>(v)).release();
+    }
+};
+
+template <> struct type_caster<ECameraToneCurve> {
+    PYBIND11_TYPE_CASTER(ECameraToneCurve, const_name("ECameraToneCurve"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ECameraToneCurve");
+        if (!isinstance(src, cls))
+            return false;
+        value = static_cast<ECameraToneCurve>(src.cast<int64_t>());
+        return true;
+    }
+    static handle cast(ECameraToneCurve v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ECameraToneCurve");
+        return cls(static_cast<int64_t>(v)).release();
+    }
+};
+
+template <> struct type_caster<ECollisionPrimitive> {
+    PYBIND11_TYPE_CASTER(ECollisionPrimitive, const_name("ECollisionPrimitive"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ECollisionPrimitive");
+        if (!isinstance(src, cls))
+            return false;
+        value = static_cast<ECollisionPrimitive>(src.cast<int64_t>());
+        return true;
+    }
+    static handle cast(ECollisionPrimitive v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ECollisionPrimitive");
+        return cls(static_cast<int64_t>(v)).release();
+    }
+};
 
 template <> struct type_caster<EComponentMobility> {
     PYBIND11_TYPE_CASTER(EComponentMobility, const_name("EComponentMobility"));
@@ -66,56 +169,74 @@ template <> struct type_caster<EComponentMobility> {
     }
 };
 
-template <> struct type_caster<FLinearColor> {
-    PYBIND11_TYPE_CASTER(FLinearColor, const_name("FLinearColor"));
+template <> struct type_caster<FCameraPixels> {
+    PYBIND11_TYPE_CASTER(FCameraPixels, const_name("FCameraPixels"));
+    // A TypedDict: a plain dict; array fields without data are left out.
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FLinearColor");
-        if (!isinstance(src, cls))
+        if (!PyDict_Check(src.ptr()))
             return false;
-        value.R = src.attr("R").cast<float>();
-        value.G = src.attr("G").cast<float>();
-        value.B = src.attr("B").cast<float>();
-        value.A = src.attr("A").cast<float>();
+        dict d = reinterpret_borrow<dict>(src);
+        if (d.contains("final_color"))
+            value.final_color = Bridge<sp::reflect::SpArray<uint8_t>>::in(d["final_color"].cast<Bridge<sp::reflect::SpArray<uint8_t>>::Py>(), "FCameraPixels.final_color");
+        if (d.contains("hdr_color"))
+            value.hdr_color = Bridge<sp::reflect::SpArray<sp::reflect::Half>>::in(d["hdr_color"].cast<Bridge<sp::reflect::SpArray<sp::reflect::Half>>::Py>(), "FCameraPixels.hdr_color");
+        if (d.contains("depth"))
+            value.depth = Bridge<sp::reflect::SpArray<float>>::in(d["depth"].cast<Bridge<sp::reflect::SpArray<float>>::Py>(), "FCameraPixels.depth");
+        if (d.contains("position"))
+            value.position = Bridge<sp::reflect::SpArray<float>>::in(d["position"].cast<Bridge<sp::reflect::SpArray<float>>::Py>(), "FCameraPixels.position");
+        if (d.contains("normal"))
+            value.normal = Bridge<sp::reflect::SpArray<float>>::in(d["normal"].cast<Bridge<sp::reflect::SpArray<float>>::Py>(), "FCameraPixels.normal");
+        if (d.contains("object_ids"))
+            value.object_ids = Bridge<sp::reflect::SpArray<uint32_t>>::in(d["object_ids"].cast<Bridge<sp::reflect::SpArray<uint32_t>>::Py>(), "FCameraPixels.object_ids");
+        if (d.contains("material_ids"))
+            value.material_ids = Bridge<sp::reflect::SpArray<uint32_t>>::in(d["material_ids"].cast<Bridge<sp::reflect::SpArray<uint32_t>>::Py>(), "FCameraPixels.material_ids");
+        if (d.contains("base_color"))
+            value.base_color = Bridge<sp::reflect::SpArray<sp::reflect::Half>>::in(d["base_color"].cast<Bridge<sp::reflect::SpArray<sp::reflect::Half>>::Py>(), "FCameraPixels.base_color");
+        if (d.contains("roughness"))
+            value.roughness = Bridge<sp::reflect::SpArray<sp::reflect::Half>>::in(d["roughness"].cast<Bridge<sp::reflect::SpArray<sp::reflect::Half>>::Py>(), "FCameraPixels.roughness");
+        if (d.contains("metallic"))
+            value.metallic = Bridge<sp::reflect::SpArray<sp::reflect::Half>>::in(d["metallic"].cast<Bridge<sp::reflect::SpArray<sp::reflect::Half>>::Py>(), "FCameraPixels.metallic");
+        if (d.contains("material_ao"))
+            value.material_ao = Bridge<sp::reflect::SpArray<sp::reflect::Half>>::in(d["material_ao"].cast<Bridge<sp::reflect::SpArray<sp::reflect::Half>>::Py>(), "FCameraPixels.material_ao");
+        if (d.contains("diffuse_illumination"))
+            value.diffuse_illumination = Bridge<sp::reflect::SpArray<sp::reflect::Half>>::in(d["diffuse_illumination"].cast<Bridge<sp::reflect::SpArray<sp::reflect::Half>>::Py>(), "FCameraPixels.diffuse_illumination");
+        if (d.contains("diffuse_only"))
+            value.diffuse_only = Bridge<sp::reflect::SpArray<sp::reflect::Half>>::in(d["diffuse_only"].cast<Bridge<sp::reflect::SpArray<sp::reflect::Half>>::Py>(), "FCameraPixels.diffuse_only");
+        if (d.contains("specular_residual"))
+            value.specular_residual = Bridge<sp::reflect::SpArray<sp::reflect::Half>>::in(d["specular_residual"].cast<Bridge<sp::reflect::SpArray<sp::reflect::Half>>::Py>(), "FCameraPixels.specular_residual");
         return true;
     }
-    static handle cast(const FLinearColor& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FLinearColor");
-        return cls(v.R, v.G, v.B, v.A).release();
-    }
-};
-
-template <> struct type_caster<FQuat> {
-    PYBIND11_TYPE_CASTER(FQuat, const_name("FQuat"));
-    bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FQuat");
-        if (!isinstance(src, cls))
-            return false;
-        value.X = src.attr("X").cast<double>();
-        value.Y = src.attr("Y").cast<double>();
-        value.Z = src.attr("Z").cast<double>();
-        value.W = src.attr("W").cast<double>();
-        return true;
-    }
-    static handle cast(const FQuat& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FQuat");
-        return cls(v.X, v.Y, v.Z, v.W).release();
-    }
-};
-
-template <> struct type_caster<FRotator> {
-    PYBIND11_TYPE_CASTER(FRotator, const_name("FRotator"));
-    bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FRotator");
-        if (!isinstance(src, cls))
-            return false;
-        value.Pitch = src.attr("Pitch").cast<double>();
-        value.Yaw = src.attr("Yaw").cast<double>();
-        value.Roll = src.attr("Roll").cast<double>();
-        return true;
-    }
-    static handle cast(const FRotator& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FRotator");
-        return cls(v.Pitch, v.Yaw, v.Roll).release();
+    static handle cast(const FCameraPixels& v, return_value_policy, handle) {
+        dict d;
+        if (v.final_color.value().data)
+            d["final_color"] = Bridge<sp::reflect::SpArray<uint8_t>>::out(v.final_color);
+        if (v.hdr_color.value().data)
+            d["hdr_color"] = Bridge<sp::reflect::SpArray<sp::reflect::Half>>::out(v.hdr_color);
+        if (v.depth.value().data)
+            d["depth"] = Bridge<sp::reflect::SpArray<float>>::out(v.depth);
+        if (v.position.value().data)
+            d["position"] = Bridge<sp::reflect::SpArray<float>>::out(v.position);
+        if (v.normal.value().data)
+            d["normal"] = Bridge<sp::reflect::SpArray<float>>::out(v.normal);
+        if (v.object_ids.value().data)
+            d["object_ids"] = Bridge<sp::reflect::SpArray<uint32_t>>::out(v.object_ids);
+        if (v.material_ids.value().data)
+            d["material_ids"] = Bridge<sp::reflect::SpArray<uint32_t>>::out(v.material_ids);
+        if (v.base_color.value().data)
+            d["base_color"] = Bridge<sp::reflect::SpArray<sp::reflect::Half>>::out(v.base_color);
+        if (v.roughness.value().data)
+            d["roughness"] = Bridge<sp::reflect::SpArray<sp::reflect::Half>>::out(v.roughness);
+        if (v.metallic.value().data)
+            d["metallic"] = Bridge<sp::reflect::SpArray<sp::reflect::Half>>::out(v.metallic);
+        if (v.material_ao.value().data)
+            d["material_ao"] = Bridge<sp::reflect::SpArray<sp::reflect::Half>>::out(v.material_ao);
+        if (v.diffuse_illumination.value().data)
+            d["diffuse_illumination"] = Bridge<sp::reflect::SpArray<sp::reflect::Half>>::out(v.diffuse_illumination);
+        if (v.diffuse_only.value().data)
+            d["diffuse_only"] = Bridge<sp::reflect::SpArray<sp::reflect::Half>>::out(v.diffuse_only);
+        if (v.specular_residual.value().data)
+            d["specular_residual"] = Bridge<sp::reflect::SpArray<sp::reflect::Half>>::out(v.specular_residual);
+        return d.release();
     }
 };
 
@@ -125,14 +246,152 @@ template <> struct type_caster<FVector> {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FVector");
         if (!isinstance(src, cls))
             return false;
-        value.X = src.attr("X").cast<double>();
-        value.Y = src.attr("Y").cast<double>();
-        value.Z = src.attr("Z").cast<double>();
+        value.X = Bridge<double>::in(src.attr("X").cast<Bridge<double>::Py>(), "FVector.X");
+        value.Y = Bridge<double>::in(src.attr("Y").cast<Bridge<double>::Py>(), "FVector.Y");
+        value.Z = Bridge<double>::in(src.attr("Z").cast<Bridge<double>::Py>(), "FVector.Z");
         return true;
     }
     static handle cast(const FVector& v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FVector");
-        return cls(v.X, v.Y, v.Z).release();
+        return cls(Bridge<double>::out(v.X), Bridge<double>::out(v.Y), Bridge<double>::out(v.Z)).release();
+    }
+};
+
+template <> struct type_caster<FHitResult> {
+    PYBIND11_TYPE_CASTER(FHitResult, const_name("FHitResult"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FHitResult");
+        if (!isinstance(src, cls))
+            return false;
+        value.bBlockingHit = Bridge<bool>::in(src.attr("bBlockingHit").cast<Bridge<bool>::Py>(), "FHitResult.bBlockingHit");
+        value.Location = Bridge<FVector>::in(src.attr("Location").cast<Bridge<FVector>::Py>(), "FHitResult.Location");
+        value.ImpactPoint = Bridge<FVector>::in(src.attr("ImpactPoint").cast<Bridge<FVector>::Py>(), "FHitResult.ImpactPoint");
+        value.ImpactNormal = Bridge<FVector>::in(src.attr("ImpactNormal").cast<Bridge<FVector>::Py>(), "FHitResult.ImpactNormal");
+        value.Normal = Bridge<FVector>::in(src.attr("Normal").cast<Bridge<FVector>::Py>(), "FHitResult.Normal");
+        value.Distance = Bridge<double>::in(src.attr("Distance").cast<Bridge<double>::Py>(), "FHitResult.Distance");
+        value.Time = Bridge<double>::in(src.attr("Time").cast<Bridge<double>::Py>(), "FHitResult.Time");
+        value.TraceStart = Bridge<FVector>::in(src.attr("TraceStart").cast<Bridge<FVector>::Py>(), "FHitResult.TraceStart");
+        value.TraceEnd = Bridge<FVector>::in(src.attr("TraceEnd").cast<Bridge<FVector>::Py>(), "FHitResult.TraceEnd");
+        return true;
+    }
+    static handle cast(const FHitResult& v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FHitResult");
+        return cls(Bridge<bool>::out(v.bBlockingHit), Bridge<FVector>::out(v.Location), Bridge<FVector>::out(v.ImpactPoint), Bridge<FVector>::out(v.ImpactNormal), Bridge<FVector>::out(v.Normal), Bridge<double>::out(v.Distance), Bridge<double>::out(v.Time), Bridge<FVector>::out(v.TraceStart), Bridge<FVector>::out(v.TraceEnd)).release();
+    }
+};
+
+template <> struct type_caster<FLinearColor> {
+    PYBIND11_TYPE_CASTER(FLinearColor, const_name("FLinearColor"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FLinearColor");
+        if (!isinstance(src, cls))
+            return false;
+        value.R = Bridge<float>::in(src.attr("R").cast<Bridge<float>::Py>(), "FLinearColor.R");
+        value.G = Bridge<float>::in(src.attr("G").cast<Bridge<float>::Py>(), "FLinearColor.G");
+        value.B = Bridge<float>::in(src.attr("B").cast<Bridge<float>::Py>(), "FLinearColor.B");
+        value.A = Bridge<float>::in(src.attr("A").cast<Bridge<float>::Py>(), "FLinearColor.A");
+        return true;
+    }
+    static handle cast(const FLinearColor& v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FLinearColor");
+        return cls(Bridge<float>::out(v.R), Bridge<float>::out(v.G), Bridge<float>::out(v.B), Bridge<float>::out(v.A)).release();
+    }
+};
+
+template <> struct type_caster<FMaterialDesc> {
+    PYBIND11_TYPE_CASTER(FMaterialDesc, const_name("FMaterialDesc"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FMaterialDesc");
+        if (!isinstance(src, cls))
+            return false;
+        value.BaseColor = Bridge<FLinearColor>::in(src.attr("BaseColor").cast<Bridge<FLinearColor>::Py>(), "FMaterialDesc.BaseColor");
+        value.Roughness = Bridge<float>::in(src.attr("Roughness").cast<Bridge<float>::Py>(), "FMaterialDesc.Roughness");
+        value.Metallic = Bridge<float>::in(src.attr("Metallic").cast<Bridge<float>::Py>(), "FMaterialDesc.Metallic");
+        value.AmbientOcclusion = Bridge<float>::in(src.attr("AmbientOcclusion").cast<Bridge<float>::Py>(), "FMaterialDesc.AmbientOcclusion");
+        value.Emissive = Bridge<FLinearColor>::in(src.attr("Emissive").cast<Bridge<FLinearColor>::Py>(), "FMaterialDesc.Emissive");
+        value.BaseColorTexture = Bridge<std::string>::in(src.attr("BaseColorTexture").cast<Bridge<std::string>::Py>(), "FMaterialDesc.BaseColorTexture");
+        value.RoughnessMetallicTexture = Bridge<std::string>::in(src.attr("RoughnessMetallicTexture").cast<Bridge<std::string>::Py>(), "FMaterialDesc.RoughnessMetallicTexture");
+        value.NormalTexture = Bridge<std::string>::in(src.attr("NormalTexture").cast<Bridge<std::string>::Py>(), "FMaterialDesc.NormalTexture");
+        return true;
+    }
+    static handle cast(const FMaterialDesc& v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FMaterialDesc");
+        return cls(Bridge<FLinearColor>::out(v.BaseColor), Bridge<float>::out(v.Roughness), Bridge<float>::out(v.Metallic), Bridge<float>::out(v.AmbientOcclusion), Bridge<FLinearColor>::out(v.Emissive), Bridge<std::string>::out(v.BaseColorTexture), Bridge<std::string>::out(v.RoughnessMetallicTexture), Bridge<std::string>::out(v.NormalTexture)).release();
+    }
+};
+
+template <> struct type_caster<FQuat> {
+    PYBIND11_TYPE_CASTER(FQuat, const_name("FQuat"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FQuat");
+        if (!isinstance(src, cls))
+            return false;
+        value.X = Bridge<double>::in(src.attr("X").cast<Bridge<double>::Py>(), "FQuat.X");
+        value.Y = Bridge<double>::in(src.attr("Y").cast<Bridge<double>::Py>(), "FQuat.Y");
+        value.Z = Bridge<double>::in(src.attr("Z").cast<Bridge<double>::Py>(), "FQuat.Z");
+        value.W = Bridge<double>::in(src.attr("W").cast<Bridge<double>::Py>(), "FQuat.W");
+        return true;
+    }
+    static handle cast(const FQuat& v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FQuat");
+        return cls(Bridge<double>::out(v.X), Bridge<double>::out(v.Y), Bridge<double>::out(v.Z), Bridge<double>::out(v.W)).release();
+    }
+};
+
+template <> struct type_caster<FRenderDeviceInfo> {
+    PYBIND11_TYPE_CASTER(FRenderDeviceInfo, const_name("FRenderDeviceInfo"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FRenderDeviceInfo");
+        if (!isinstance(src, cls))
+            return false;
+        value.Kind = Bridge<std::string>::in(src.attr("Kind").cast<Bridge<std::string>::Py>(), "FRenderDeviceInfo.Kind");
+        value.DeviceIndex = Bridge<int32_t>::in(src.attr("DeviceIndex").cast<Bridge<int32_t>::Py>(), "FRenderDeviceInfo.DeviceIndex");
+        value.DeviceCount = Bridge<int32_t>::in(src.attr("DeviceCount").cast<Bridge<int32_t>::Py>(), "FRenderDeviceInfo.DeviceCount");
+        value.Vendor = Bridge<std::string>::in(src.attr("Vendor").cast<Bridge<std::string>::Py>(), "FRenderDeviceInfo.Vendor");
+        value.Renderer = Bridge<std::string>::in(src.attr("Renderer").cast<Bridge<std::string>::Py>(), "FRenderDeviceInfo.Renderer");
+        value.Version = Bridge<std::string>::in(src.attr("Version").cast<Bridge<std::string>::Py>(), "FRenderDeviceInfo.Version");
+        return true;
+    }
+    static handle cast(const FRenderDeviceInfo& v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FRenderDeviceInfo");
+        return cls(Bridge<std::string>::out(v.Kind), Bridge<int32_t>::out(v.DeviceIndex), Bridge<int32_t>::out(v.DeviceCount), Bridge<std::string>::out(v.Vendor), Bridge<std::string>::out(v.Renderer), Bridge<std::string>::out(v.Version)).release();
+    }
+};
+
+template <> struct type_caster<FRenderStats> {
+    PYBIND11_TYPE_CASTER(FRenderStats, const_name("FRenderStats"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FRenderStats");
+        if (!isinstance(src, cls))
+            return false;
+        value.Frames = Bridge<int64_t>::in(src.attr("Frames").cast<Bridge<int64_t>::Py>(), "FRenderStats.Frames");
+        value.ShadowPasses = Bridge<int64_t>::in(src.attr("ShadowPasses").cast<Bridge<int64_t>::Py>(), "FRenderStats.ShadowPasses");
+        value.GBufferPasses = Bridge<int64_t>::in(src.attr("GBufferPasses").cast<Bridge<int64_t>::Py>(), "FRenderStats.GBufferPasses");
+        value.LightingPasses = Bridge<int64_t>::in(src.attr("LightingPasses").cast<Bridge<int64_t>::Py>(), "FRenderStats.LightingPasses");
+        value.TonemapPasses = Bridge<int64_t>::in(src.attr("TonemapPasses").cast<Bridge<int64_t>::Py>(), "FRenderStats.TonemapPasses");
+        value.Readbacks = Bridge<int64_t>::in(src.attr("Readbacks").cast<Bridge<int64_t>::Py>(), "FRenderStats.Readbacks");
+        return true;
+    }
+    static handle cast(const FRenderStats& v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FRenderStats");
+        return cls(Bridge<int64_t>::out(v.Frames), Bridge<int64_t>::out(v.ShadowPasses), Bridge<int64_t>::out(v.GBufferPasses), Bridge<int64_t>::out(v.LightingPasses), Bridge<int64_t>::out(v.TonemapPasses), Bridge<int64_t>::out(v.Readbacks)).release();
+    }
+};
+
+template <> struct type_caster<FRotator> {
+    PYBIND11_TYPE_CASTER(FRotator, const_name("FRotator"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FRotator");
+        if (!isinstance(src, cls))
+            return false;
+        value.Pitch = Bridge<double>::in(src.attr("Pitch").cast<Bridge<double>::Py>(), "FRotator.Pitch");
+        value.Yaw = Bridge<double>::in(src.attr("Yaw").cast<Bridge<double>::Py>(), "FRotator.Yaw");
+        value.Roll = Bridge<double>::in(src.attr("Roll").cast<Bridge<double>::Py>(), "FRotator.Roll");
+        return true;
+    }
+    static handle cast(const FRotator& v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FRotator");
+        return cls(Bridge<double>::out(v.Pitch), Bridge<double>::out(v.Yaw), Bridge<double>::out(v.Roll)).release();
     }
 };
 
@@ -142,14 +401,14 @@ template <> struct type_caster<FTransform> {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FTransform");
         if (!isinstance(src, cls))
             return false;
-        value.Translation = src.attr("Translation").cast<FVector>();
-        value.Rotation = src.attr("Rotation").cast<FQuat>();
-        value.Scale3D = src.attr("Scale3D").cast<FVector>();
+        value.Translation = Bridge<FVector>::in(src.attr("Translation").cast<Bridge<FVector>::Py>(), "FTransform.Translation");
+        value.Rotation = Bridge<FQuat>::in(src.attr("Rotation").cast<Bridge<FQuat>::Py>(), "FTransform.Rotation");
+        value.Scale3D = Bridge<FVector>::in(src.attr("Scale3D").cast<Bridge<FVector>::Py>(), "FTransform.Scale3D");
         return true;
     }
     static handle cast(const FTransform& v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FTransform");
-        return cls(v.Translation, v.Rotation, v.Scale3D).release();
+        return cls(Bridge<FVector>::out(v.Translation), Bridge<FQuat>::out(v.Rotation), Bridge<FVector>::out(v.Scale3D)).release();
     }
 };
 
@@ -159,13 +418,13 @@ template <> struct type_caster<FVector2D> {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FVector2D");
         if (!isinstance(src, cls))
             return false;
-        value.X = src.attr("X").cast<double>();
-        value.Y = src.attr("Y").cast<double>();
+        value.X = Bridge<double>::in(src.attr("X").cast<Bridge<double>::Py>(), "FVector2D.X");
+        value.Y = Bridge<double>::in(src.attr("Y").cast<Bridge<double>::Py>(), "FVector2D.Y");
         return true;
     }
     static handle cast(const FVector2D& v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FVector2D");
-        return cls(v.X, v.Y).release();
+        return cls(Bridge<double>::out(v.X), Bridge<double>::out(v.Y)).release();
     }
 };
 
@@ -403,6 +662,216 @@ const Self* object = self.get<Self>(kContext);
             "Returns the first component of class ComponentClass (or a subclass), or None.");
     }
     {
+        using Self = ACameraSensorActor;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "ACameraSensorActor", "An actor whose root is a camera sensor.");
+        cls.attr("__sp_class__") = "ACameraSensorActor";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "CameraSensor",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("ACameraSensorActor.CameraSensor")->CameraSensor;
+                sp::reflect::checkNotNull(value, "ACameraSensorActor.CameraSensor");
+                return Bridge<UCameraSensorComponent*>::out(value);
+            },
+            "The camera (also the root component); it looks along the actor's forward axis.");
+    }
+    {
+        using Self = ADirectionalLight;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "ADirectionalLight", "An actor with a directional light (the sun) as its root.");
+        cls.attr("__sp_class__") = "ADirectionalLight";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "LightComponent",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("ADirectionalLight.LightComponent")->LightComponent;
+                sp::reflect::checkNotNull(value, "ADirectionalLight.LightComponent");
+                return Bridge<UDirectionalLightComponent*>::out(value);
+            },
+            "The light (also the root component).");
+    }
+    {
+        using Self = AMaterialLibrary;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "AMaterialLibrary", "An actor that defines materials by name for the meshes of its world.");
+        cls.attr("__sp_class__") = "AMaterialLibrary";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "Materials",
+            [](const Ref<Self>& self) { return Bridge<std::map<std::string, FMaterialDesc>>::out(self.get<Self>("AMaterialLibrary.Materials")->Materials); },
+            [](const Ref<Self>& self, Bridge<std::map<std::string, FMaterialDesc>>::Py value) {
+                Self* object = self.get<Self>("AMaterialLibrary.Materials");
+                object->Materials = Bridge<std::map<std::string, FMaterialDesc>>::in(std::move(value), "AMaterialLibrary.Materials");
+                object->PostPropertyChanged("Materials");
+            },
+            "Materials by name; mesh components refer to them in their Materials list.");
+        cls.def(
+            "SetMaterial",
+            [](const Ref<Self>& self, Bridge<std::string>::Py Name, Bridge<FMaterialDesc>::Py Material) -> py::object {
+                static constexpr const char* kContext = "AMaterialLibrary.SetMaterial()";
+Self* object = self.get<Self>(kContext);
+                auto NameValue = Bridge<std::string>::in(std::move(Name), "AMaterialLibrary.SetMaterial(): argument 'Name'");
+                auto MaterialValue = Bridge<FMaterialDesc>::in(std::move(Material), "AMaterialLibrary.SetMaterial(): argument 'Material'");
+                object->SetMaterial(NameValue, MaterialValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("Name"),
+            py::arg("Material"),
+            "Defines (or replaces) the material called Name.");
+        cls.def(
+            "GetMaterial",
+            [](const Ref<Self>& self, Bridge<std::string>::Py Name) -> py::object {
+                static constexpr const char* kContext = "AMaterialLibrary.GetMaterial()";
+const Self* object = self.get<Self>(kContext);
+                auto NameValue = Bridge<std::string>::in(std::move(Name), "AMaterialLibrary.GetMaterial(): argument 'Name'");
+                auto result = object->GetMaterial(NameValue);
+                return Bridge<FMaterialDesc>::out(result);
+            },
+            py::kw_only(),
+            py::arg("Name"),
+            "Returns the material a mesh slot named Name gets: this library's, else the built-in one, else the\ndefault grey one.");
+        cls.def(
+            "GetBuiltinMaterialNames",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "AMaterialLibrary.GetBuiltinMaterialNames()";
+const Self* object = self.get<Self>(kContext);
+                auto result = object->GetBuiltinMaterialNames();
+                return Bridge<std::vector<std::string>>::out(result);
+            },
+            "Returns the names of the built-in materials.");
+    }
+    {
+        using Self = AMultiViewCameraRig;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "AMultiViewCameraRig", "A ring of cameras around the rig's origin in its XY plane, all looking at the origin.");
+        cls.attr("__sp_class__") = "AMultiViewCameraRig";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "Cameras",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("AMultiViewCameraRig.Cameras")->Cameras;
+                return Bridge<std::vector<UCameraSensorComponent*>>::out(value);
+            },
+            "The cameras, counter-clockwise from the rig's -X side (camera 0 looks along +X).");
+        cls.def_property_readonly(
+            "Radius",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("AMultiViewCameraRig.Radius")->Radius;
+                return Bridge<double>::out(value);
+            },
+            "Ring radius in metres.");
+        cls.def(
+            "SetRing",
+            [](const Ref<Self>& self, Bridge<int32_t>::Py NumViews, Bridge<double>::Py NewRadius) -> py::object {
+                static constexpr const char* kContext = "AMultiViewCameraRig.SetRing()";
+Self* object = self.get<Self>(kContext);
+                auto NumViewsValue = Bridge<int32_t>::in(std::move(NumViews), "AMultiViewCameraRig.SetRing(): argument 'NumViews'");
+                auto NewRadiusValue = Bridge<double>::in(std::move(NewRadius), "AMultiViewCameraRig.SetRing(): argument 'NewRadius'");
+                object->SetRing(NumViewsValue, NewRadiusValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NumViews"),
+            py::arg("NewRadius"),
+            "Replaces the cameras by NumViews (in [1, 64]) cameras on a ring of Radius metres (> 0).");
+        cls.def(
+            "ConfigureCameras",
+            [](const Ref<Self>& self, Bridge<int32_t>::Py Width, Bridge<int32_t>::Py Height, Bridge<std::vector<ECameraModality>>::Py Modalities) -> py::object {
+                static constexpr const char* kContext = "AMultiViewCameraRig.ConfigureCameras()";
+Self* object = self.get<Self>(kContext);
+                auto WidthValue = Bridge<int32_t>::in(std::move(Width), "AMultiViewCameraRig.ConfigureCameras(): argument 'Width'");
+                auto HeightValue = Bridge<int32_t>::in(std::move(Height), "AMultiViewCameraRig.ConfigureCameras(): argument 'Height'");
+                auto ModalitiesValue = Bridge<std::vector<ECameraModality>>::in(std::move(Modalities), "AMultiViewCameraRig.ConfigureCameras(): argument 'Modalities'");
+                object->ConfigureCameras(WidthValue, HeightValue, ModalitiesValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("Width"),
+            py::arg("Height"),
+            py::arg("Modalities"),
+            "Sets Width, Height and Modalities of every camera of the ring.");
+    }
+    {
+        using Self = APointLight;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "APointLight", "An actor with a point light as its root.");
+        cls.attr("__sp_class__") = "APointLight";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "LightComponent",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("APointLight.LightComponent")->LightComponent;
+                sp::reflect::checkNotNull(value, "APointLight.LightComponent");
+                return Bridge<UPointLightComponent*>::out(value);
+            },
+            "The light (also the root component).");
+    }
+    {
+        using Self = ASimpleVehicle;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "ASimpleVehicle", "A box-shaped vehicle that drives from the \"Throttle\", \"Steer\" and \"Move\" input actions.");
+        cls.attr("__sp_class__") = "ASimpleVehicle";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "Body",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("ASimpleVehicle.Body")->Body;
+                sp::reflect::checkNotNull(value, "ASimpleVehicle.Body");
+                return Bridge<UStaticMeshComponent*>::out(value);
+            },
+            "The vehicle's body (the root component).");
+        cls.def_property_readonly(
+            "InputComponent",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("ASimpleVehicle.InputComponent")->InputComponent;
+                sp::reflect::checkNotNull(value, "ASimpleVehicle.InputComponent");
+                return Bridge<UInputComponent*>::out(value);
+            },
+            "Receives the injected actions.");
+        cls.def_property(
+            "MaxSpeed",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ASimpleVehicle.MaxSpeed")->MaxSpeed); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("ASimpleVehicle.MaxSpeed");
+                object->MaxSpeed = Bridge<double>::in(std::move(value), "ASimpleVehicle.MaxSpeed");
+                object->PostPropertyChanged("MaxSpeed");
+            },
+            "Speed in metres per second at full throttle.");
+        cls.def_property(
+            "MaxYawRateInDegrees",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ASimpleVehicle.MaxYawRateInDegrees")->MaxYawRateInDegrees); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("ASimpleVehicle.MaxYawRateInDegrees");
+                object->MaxYawRateInDegrees = Bridge<double>::in(std::move(value), "ASimpleVehicle.MaxYawRateInDegrees");
+                object->PostPropertyChanged("MaxYawRateInDegrees");
+            },
+            "Yaw rate in degrees per second at full steering.");
+    }
+    {
+        using Self = ASkyLight;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "ASkyLight", "An actor with the sky light as its root.");
+        cls.attr("__sp_class__") = "ASkyLight";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "SkyLightComponent",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("ASkyLight.SkyLightComponent")->SkyLightComponent;
+                sp::reflect::checkNotNull(value, "ASkyLight.SkyLightComponent");
+                return Bridge<USkyLightComponent*>::out(value);
+            },
+            "The sky light (also the root component).");
+    }
+    {
+        using Self = ASpotLight;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "ASpotLight", "An actor with a spot light as its root.");
+        cls.attr("__sp_class__") = "ASpotLight";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "LightComponent",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("ASpotLight.LightComponent")->LightComponent;
+                sp::reflect::checkNotNull(value, "ASpotLight.LightComponent");
+                return Bridge<USpotLightComponent*>::out(value);
+            },
+            "The light (also the root component); its cone points along the actor's forward axis.");
+    }
+    {
         using Self = AStaticMeshActor;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "AStaticMeshActor", "An actor that shows one static mesh.");
         cls.attr("__sp_class__") = "AStaticMeshActor";
@@ -415,6 +884,49 @@ const Self* object = self.get<Self>(kContext);
                 return Bridge<UStaticMeshComponent*>::out(value);
             },
             "The mesh component (also the root component).");
+    }
+    {
+        using Self = AStereoCameraRig;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "AStereoCameraRig", "Two parallel cameras Baseline metres apart along the rig's Y axis, looking along its forward axis.");
+        cls.attr("__sp_class__") = "AStereoCameraRig";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "Baseline",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AStereoCameraRig.Baseline")->Baseline); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("AStereoCameraRig.Baseline");
+                object->SetBaseline(Bridge<double>::in(std::move(value), "AStereoCameraRig.Baseline"));
+                object->PostPropertyChanged("Baseline");
+            },
+            "Distance between the two optical centres in metres (> 0); the left camera is at +Y.");
+        cls.def_property_readonly(
+            "LeftCamera",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("AStereoCameraRig.LeftCamera")->LeftCamera;
+                sp::reflect::checkNotNull(value, "AStereoCameraRig.LeftCamera");
+                return Bridge<UCameraSensorComponent*>::out(value);
+            },
+            "The left camera (at +Baseline/2 on the rig's Y axis, which points left).");
+        cls.def_property_readonly(
+            "RightCamera",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("AStereoCameraRig.RightCamera")->RightCamera;
+                sp::reflect::checkNotNull(value, "AStereoCameraRig.RightCamera");
+                return Bridge<UCameraSensorComponent*>::out(value);
+            },
+            "The right camera (at -Baseline/2 on the rig's Y axis).");
+        cls.def(
+            "SetBaseline",
+            [](const Ref<Self>& self, Bridge<double>::Py NewBaseline) -> py::object {
+                static constexpr const char* kContext = "AStereoCameraRig.SetBaseline()";
+Self* object = self.get<Self>(kContext);
+                auto NewBaselineValue = Bridge<double>::in(std::move(NewBaseline), "AStereoCameraRig.SetBaseline(): argument 'NewBaseline'");
+                object->SetBaseline(NewBaselineValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewBaseline"),
+            "Sets the baseline in metres (> 0) and moves both cameras.");
     }
     {
         using Self = UActorComponent;
@@ -738,10 +1250,363 @@ const Self* object = self.get<Self>(kContext);
             "Returns the attached children, and their descendants when bIncludeAllDescendants is true.");
     }
     {
+        using Self = UCameraSensorComponent;
+        py::class_<Ref<Self>, Ref<USceneComponent>> cls(m, "UCameraSensorComponent", "A camera that renders the modalities in Modalities at the end of every frame.");
+        cls.attr("__sp_class__") = "UCameraSensorComponent";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "Width",
+            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UCameraSensorComponent.Width")->Width); },
+            [](const Ref<Self>& self, Bridge<int32_t>::Py value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.Width");
+                object->Width = Bridge<int32_t>::in(std::move(value), "UCameraSensorComponent.Width");
+                object->PostPropertyChanged("Width");
+            },
+            "Image width in pixels.");
+        cls.def_property(
+            "Height",
+            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UCameraSensorComponent.Height")->Height); },
+            [](const Ref<Self>& self, Bridge<int32_t>::Py value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.Height");
+                object->Height = Bridge<int32_t>::in(std::move(value), "UCameraSensorComponent.Height");
+                object->PostPropertyChanged("Height");
+            },
+            "Image height in pixels.");
+        cls.def_property(
+            "FOV",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCameraSensorComponent.FOV")->FOV); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.FOV");
+                object->FOV = Bridge<double>::in(std::move(value), "UCameraSensorComponent.FOV");
+                object->PostPropertyChanged("FOV");
+            },
+            "Horizontal field of view in degrees, in (0, 180); square pixels.");
+        cls.def_property(
+            "NearClip",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCameraSensorComponent.NearClip")->NearClip); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.NearClip");
+                object->NearClip = Bridge<double>::in(std::move(value), "UCameraSensorComponent.NearClip");
+                object->PostPropertyChanged("NearClip");
+            },
+            "Near clipping distance in metres (> 0).");
+        cls.def_property(
+            "FarClip",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCameraSensorComponent.FarClip")->FarClip); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.FarClip");
+                object->FarClip = Bridge<double>::in(std::move(value), "UCameraSensorComponent.FarClip");
+                object->PostPropertyChanged("FarClip");
+            },
+            "Far clipping distance in metres (> NearClip).");
+        cls.def_property(
+            "Exposure",
+            [](const Ref<Self>& self) { return Bridge<float>::out(self.get<Self>("UCameraSensorComponent.Exposure")->Exposure); },
+            [](const Ref<Self>& self, Bridge<float>::Py value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.Exposure");
+                object->Exposure = Bridge<float>::in(std::move(value), "UCameraSensorComponent.Exposure");
+                object->PostPropertyChanged("Exposure");
+            },
+            "Linear multiplier of HDR radiance before the tone curve.");
+        cls.def_property(
+            "ToneCurve",
+            [](const Ref<Self>& self) { return Bridge<ECameraToneCurve>::out(self.get<Self>("UCameraSensorComponent.ToneCurve")->ToneCurve); },
+            [](const Ref<Self>& self, Bridge<ECameraToneCurve>::Py value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.ToneCurve");
+                object->ToneCurve = Bridge<ECameraToneCurve>::in(std::move(value), "UCameraSensorComponent.ToneCurve");
+                object->PostPropertyChanged("ToneCurve");
+            },
+            "The tone curve of final_color.");
+        cls.def_property(
+            "bShadows",
+            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UCameraSensorComponent.bShadows")->bShadows); },
+            [](const Ref<Self>& self, Bridge<bool>::Py value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.bShadows");
+                object->bShadows = Bridge<bool>::in(std::move(value), "UCameraSensorComponent.bShadows");
+                object->PostPropertyChanged("bShadows");
+            },
+            "Whether shadow-casting lights render shadow maps for this camera.");
+        cls.def_property(
+            "ShadowResolution",
+            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UCameraSensorComponent.ShadowResolution")->ShadowResolution); },
+            [](const Ref<Self>& self, Bridge<int32_t>::Py value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.ShadowResolution");
+                object->ShadowResolution = Bridge<int32_t>::in(std::move(value), "UCameraSensorComponent.ShadowResolution");
+                object->PostPropertyChanged("ShadowResolution");
+            },
+            "Shadow map size in texels, in [16, 8192].");
+        cls.def_property(
+            "Modalities",
+            [](const Ref<Self>& self) { return Bridge<std::vector<ECameraModality>>::out(self.get<Self>("UCameraSensorComponent.Modalities")->Modalities); },
+            [](const Ref<Self>& self, Bridge<std::vector<ECameraModality>>::Py value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.Modalities");
+                object->Modalities = Bridge<std::vector<ECameraModality>>::in(std::move(value), "UCameraSensorComponent.Modalities");
+                object->PostPropertyChanged("Modalities");
+            },
+            "The modalities rendered each frame; only the passes they need run.");
+        cls.def_property(
+            "Latency",
+            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UCameraSensorComponent.Latency")->Latency); },
+            [](const Ref<Self>& self, Bridge<int32_t>::Py value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.Latency");
+                object->Latency = Bridge<int32_t>::in(std::move(value), "UCameraSensorComponent.Latency");
+                object->PostPropertyChanged("Latency");
+            },
+            "Frames between rendering and reading: 0 (same frame), 1 or 2 (double or triple buffered).");
+        cls.def(
+            "read_pixels",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.read_pixels()";
+Self* object = self.get<Self>(kContext);
+                auto result = object->read_pixels();
+                return Bridge<FCameraPixels>::out(result);
+            },
+            "Returns the images of the frame due (see the class notes on latency); an empty dict while priming.");
+        cls.def(
+            "GetPixelsFrame",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.GetPixelsFrame()";
+const Self* object = self.get<Self>(kContext);
+                auto result = object->GetPixelsFrame();
+                return Bridge<int64_t>::out(result);
+            },
+            "Returns the world frame shown by the last read_pixels() result, or -1 when it was empty.");
+        cls.def(
+            "SetModalityNames",
+            [](const Ref<Self>& self, Bridge<std::vector<std::string>>::Py Names) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetModalityNames()";
+Self* object = self.get<Self>(kContext);
+                auto NamesValue = Bridge<std::vector<std::string>>::in(std::move(Names), "UCameraSensorComponent.SetModalityNames(): argument 'Names'");
+                object->SetModalityNames(NamesValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("Names"),
+            "Sets Modalities from snake_case names (\"final_color\", \"depth\", ...); an unknown name is an error.");
+        cls.def(
+            "GetModalityNames",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.GetModalityNames()";
+const Self* object = self.get<Self>(kContext);
+                auto result = object->GetModalityNames();
+                return Bridge<std::vector<std::string>>::out(result);
+            },
+            "Returns the snake_case names of Modalities, in the order read_pixels() uses as dict keys.");
+        cls.def(
+            "GetObjectIdInfo",
+            [](const Ref<Self>& self, Bridge<int64_t>::Py ObjectId) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.GetObjectIdInfo()";
+const Self* object = self.get<Self>(kContext);
+                auto ObjectIdValue = Bridge<int64_t>::in(std::move(ObjectId), "UCameraSensorComponent.GetObjectIdInfo(): argument 'ObjectId'");
+                AActor* ActorOut{};
+                UPrimitiveComponent* ComponentOut{};
+                int32_t MaterialSlotOut{};
+                std::string MaterialNameOut{};
+                auto result = object->GetObjectIdInfo(ObjectIdValue, ActorOut, ComponentOut, MaterialSlotOut, MaterialNameOut);
+                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "UCameraSensorComponent").attr("GetObjectIdInfoResult");
+                return resultType(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("Actor") = Bridge<AActor*>::out(ActorOut), py::arg("Component") = Bridge<UPrimitiveComponent*>::out(ComponentOut), py::arg("MaterialSlot") = Bridge<int32_t>::out(MaterialSlotOut), py::arg("MaterialName") = Bridge<std::string>::out(MaterialNameOut));
+            },
+            py::kw_only(),
+            py::arg("ObjectId"),
+            "Looks up an object id of object_ids: the actor, the component and the material slot and name it\nbelongs to; returns False (and None, -1, \"\") for 0, an unknown id or a destroyed component.");
+        cls.def(
+            "GetObjectId",
+            [](const Ref<Self>& self, Bridge<UPrimitiveComponent*>::Py Component, Bridge<int32_t>::Py MaterialSlot) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.GetObjectId()";
+const Self* object = self.get<Self>(kContext);
+                auto ComponentValue = Bridge<UPrimitiveComponent*>::in(std::move(Component), "UCameraSensorComponent.GetObjectId(): argument 'Component'");
+                SP_CHECK(ComponentValue, sp::InvalidArgument, "UCameraSensorComponent.GetObjectId(): argument 'Component'", " must not be None");
+                auto MaterialSlotValue = Bridge<int32_t>::in(std::move(MaterialSlot), "UCameraSensorComponent.GetObjectId(): argument 'MaterialSlot'");
+                auto result = object->GetObjectId(ComponentValue, MaterialSlotValue);
+                return Bridge<int64_t>::out(result);
+            },
+            py::kw_only(),
+            py::arg("Component"),
+            py::arg("MaterialSlot") = static_cast<Bridge<int32_t>::Py>(int32_t(0)),
+            "Returns the object id of one material slot of Component, or 0 when it has not been rendered yet.");
+        cls.def(
+            "GetMaterialId",
+            [](const Ref<Self>& self, Bridge<std::string>::Py Name) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.GetMaterialId()";
+const Self* object = self.get<Self>(kContext);
+                auto NameValue = Bridge<std::string>::in(std::move(Name), "UCameraSensorComponent.GetMaterialId(): argument 'Name'");
+                auto result = object->GetMaterialId(NameValue);
+                return Bridge<int64_t>::out(result);
+            },
+            py::kw_only(),
+            py::arg("Name"),
+            "Returns the material id that material_ids holds for the material called Name, or 0 when unused.");
+        cls.def(
+            "get_render_device_info",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.get_render_device_info()";
+Self* object = self.get<Self>(kContext);
+                auto result = object->get_render_device_info();
+                return Bridge<FRenderDeviceInfo>::out(result);
+            },
+            "Returns which EGL device renders this camera's world (starting the renderer if needed).");
+        cls.def(
+            "GetRenderStats",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.GetRenderStats()";
+const Self* object = self.get<Self>(kContext);
+                auto result = object->GetRenderStats();
+                return Bridge<FRenderStats>::out(result);
+            },
+            "Returns how often each render pass ran in this camera's world.");
+    }
+    {
+        using Self = ULightComponent;
+        py::class_<Ref<Self>, Ref<USceneComponent>> cls(m, "ULightComponent", "A scene component that emits light.");
+        cls.attr("__sp_class__") = "ULightComponent";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "Intensity",
+            [](const Ref<Self>& self) { return Bridge<float>::out(self.get<Self>("ULightComponent.Intensity")->Intensity); },
+            [](const Ref<Self>& self, Bridge<float>::Py value) {
+                Self* object = self.get<Self>("ULightComponent.Intensity");
+                object->Intensity = Bridge<float>::in(std::move(value), "ULightComponent.Intensity");
+                object->PostPropertyChanged("Intensity");
+            },
+            "Brightness: lux for directional lights, candela for point lights.");
+        cls.def_property(
+            "LightColor",
+            [](const Ref<Self>& self) { return Bridge<FLinearColor>::out(self.get<Self>("ULightComponent.LightColor")->LightColor); },
+            [](const Ref<Self>& self, Bridge<FLinearColor>::Py value) {
+                Self* object = self.get<Self>("ULightComponent.LightColor");
+                object->LightColor = Bridge<FLinearColor>::in(std::move(value), "ULightComponent.LightColor");
+                object->PostPropertyChanged("LightColor");
+            },
+            "Colour of the emitted light (linear).");
+        cls.def_property(
+            "bCastShadows",
+            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("ULightComponent.bCastShadows")->bCastShadows); },
+            [](const Ref<Self>& self, Bridge<bool>::Py value) {
+                Self* object = self.get<Self>("ULightComponent.bCastShadows");
+                object->bCastShadows = Bridge<bool>::in(std::move(value), "ULightComponent.bCastShadows");
+                object->PostPropertyChanged("bCastShadows");
+            },
+            "Whether this light casts shadows.");
+    }
+    {
+        using Self = UDirectionalLightComponent;
+        py::class_<Ref<Self>, Ref<ULightComponent>> cls(m, "UDirectionalLightComponent", "A light infinitely far away that shines along the component's forward (+X) axis, like the sun.");
+        cls.attr("__sp_class__") = "UDirectionalLightComponent";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+    }
+    {
+        using Self = UInputComponent;
+        py::class_<Ref<Self>, Ref<UActorComponent>> cls(m, "UInputComponent", "A component that receives input actions injected for the actor that owns it.");
+        cls.attr("__sp_class__") = "UInputComponent";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def(
+            "GetActionValue",
+            [](const Ref<Self>& self, Bridge<std::string>::Py ActionName) -> py::object {
+                static constexpr const char* kContext = "UInputComponent.GetActionValue()";
+const Self* object = self.get<Self>(kContext);
+                auto ActionNameValue = Bridge<std::string>::in(std::move(ActionName), "UInputComponent.GetActionValue(): argument 'ActionName'");
+                auto result = object->GetActionValue(ActionNameValue);
+                return Bridge<FVector>::out(result);
+            },
+            py::kw_only(),
+            py::arg("ActionName"),
+            "Returns the value of ActionName injected for the current tick, or zero when it was not injected.");
+        cls.def(
+            "IsActionTriggered",
+            [](const Ref<Self>& self, Bridge<std::string>::Py ActionName) -> py::object {
+                static constexpr const char* kContext = "UInputComponent.IsActionTriggered()";
+const Self* object = self.get<Self>(kContext);
+                auto ActionNameValue = Bridge<std::string>::in(std::move(ActionName), "UInputComponent.IsActionTriggered(): argument 'ActionName'");
+                auto result = object->IsActionTriggered(ActionNameValue);
+                return Bridge<bool>::out(result);
+            },
+            py::kw_only(),
+            py::arg("ActionName"),
+            "Returns true when ActionName was injected for the current tick.");
+    }
+    {
+        using Self = UPointLightComponent;
+        py::class_<Ref<Self>, Ref<ULightComponent>> cls(m, "UPointLightComponent", "A light that shines equally in every direction from the component's location.");
+        cls.attr("__sp_class__") = "UPointLightComponent";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "AttenuationRadius",
+            [](const Ref<Self>& self) { return Bridge<float>::out(self.get<Self>("UPointLightComponent.AttenuationRadius")->AttenuationRadius); },
+            [](const Ref<Self>& self, Bridge<float>::Py value) {
+                Self* object = self.get<Self>("UPointLightComponent.AttenuationRadius");
+                object->AttenuationRadius = Bridge<float>::in(std::move(value), "UPointLightComponent.AttenuationRadius");
+                object->PostPropertyChanged("AttenuationRadius");
+            },
+            "Distance in metres beyond which the light has no effect.");
+    }
+    {
         using Self = UPrimitiveComponent;
         py::class_<Ref<Self>, Ref<USceneComponent>> cls(m, "UPrimitiveComponent", "A scene component that has geometry.");
         cls.attr("__sp_class__") = "UPrimitiveComponent";
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "bSimulatePhysics",
+            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UPrimitiveComponent.bSimulatePhysics")->bSimulatePhysics); },
+            [](const Ref<Self>& self, Bridge<bool>::Py value) {
+                Self* object = self.get<Self>("UPrimitiveComponent.bSimulatePhysics");
+                object->SetSimulatePhysics(Bridge<bool>::in(std::move(value), "UPrimitiveComponent.bSimulatePhysics"));
+                object->PostPropertyChanged("bSimulatePhysics");
+            },
+            "Whether physics moves this component (gravity, forces, contacts); it must be Movable.");
+        cls.def_property(
+            "CollisionPrimitive",
+            [](const Ref<Self>& self) { return Bridge<ECollisionPrimitive>::out(self.get<Self>("UPrimitiveComponent.CollisionPrimitive")->CollisionPrimitive); },
+            [](const Ref<Self>& self, Bridge<ECollisionPrimitive>::Py value) {
+                Self* object = self.get<Self>("UPrimitiveComponent.CollisionPrimitive");
+                object->CollisionPrimitive = Bridge<ECollisionPrimitive>::in(std::move(value), "UPrimitiveComponent.CollisionPrimitive");
+                object->PostPropertyChanged("CollisionPrimitive");
+            },
+            "The collision geometry used by physics and traces.");
+        cls.def_property(
+            "MassInKg",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.MassInKg")->MassInKg); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPrimitiveComponent.MassInKg");
+                object->SetMassOverrideInKg(Bridge<double>::in(std::move(value), "UPrimitiveComponent.MassInKg"));
+                object->PostPropertyChanged("MassInKg");
+            },
+            "Mass in kilograms (> 0 to simulate); inertia follows the collision shape at uniform density.");
+        cls.def_property(
+            "Friction",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.Friction")->Friction); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPrimitiveComponent.Friction");
+                object->Friction = Bridge<double>::in(std::move(value), "UPrimitiveComponent.Friction");
+                object->PostPropertyChanged("Friction");
+            },
+            "Coulomb friction coefficient (>= 0); the two coefficients at a contact are multiplied.");
+        cls.def_property(
+            "Restitution",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.Restitution")->Restitution); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPrimitiveComponent.Restitution");
+                object->Restitution = Bridge<double>::in(std::move(value), "UPrimitiveComponent.Restitution");
+                object->PostPropertyChanged("Restitution");
+            },
+            "Bounciness in [0, 1]; the two coefficients at a contact are multiplied.");
+        cls.def_property(
+            "LinearDamping",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.LinearDamping")->LinearDamping); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPrimitiveComponent.LinearDamping");
+                object->LinearDamping = Bridge<double>::in(std::move(value), "UPrimitiveComponent.LinearDamping");
+                object->PostPropertyChanged("LinearDamping");
+            },
+            "Fraction of linear velocity lost per second, in [0, 1].");
+        cls.def_property(
+            "AngularDamping",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.AngularDamping")->AngularDamping); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPrimitiveComponent.AngularDamping");
+                object->AngularDamping = Bridge<double>::in(std::move(value), "UPrimitiveComponent.AngularDamping");
+                object->PostPropertyChanged("AngularDamping");
+            },
+            "Fraction of angular velocity lost per second, in [0, 1].");
         cls.def(
             "GetBounds",
             [](const Ref<Self>& self) -> py::object {
@@ -754,6 +1619,200 @@ const Self* object = self.get<Self>(kContext);
                 return resultType(py::arg("Origin") = Bridge<FVector>::out(OriginOut), py::arg("BoxExtent") = Bridge<FVector>::out(BoxExtentOut));
             },
             "Returns the world-space axis-aligned bounds as centre Origin and half size BoxExtent.");
+        cls.def(
+            "SetSimulatePhysics",
+            [](const Ref<Self>& self, Bridge<bool>::Py bSimulate) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetSimulatePhysics()";
+Self* object = self.get<Self>(kContext);
+                auto bSimulateValue = Bridge<bool>::in(std::move(bSimulate), "UPrimitiveComponent.SetSimulatePhysics(): argument 'bSimulate'");
+                object->SetSimulatePhysics(bSimulateValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("bSimulate"),
+            "Turns physics simulation on or off; turning it on needs a Movable component with collision.");
+        cls.def(
+            "IsSimulatingPhysics",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.IsSimulatingPhysics()";
+const Self* object = self.get<Self>(kContext);
+                auto result = object->IsSimulatingPhysics();
+                return Bridge<bool>::out(result);
+            },
+            "Returns true while physics moves this component.");
+        cls.def(
+            "SetMassOverrideInKg",
+            [](const Ref<Self>& self, Bridge<double>::Py MassInKg) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetMassOverrideInKg()";
+Self* object = self.get<Self>(kContext);
+                auto MassInKgValue = Bridge<double>::in(std::move(MassInKg), "UPrimitiveComponent.SetMassOverrideInKg(): argument 'MassInKg'");
+                object->SetMassOverrideInKg(MassInKgValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("MassInKg"),
+            "Sets the mass in kilograms (> 0).");
+        cls.def(
+            "GetMass",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.GetMass()";
+const Self* object = self.get<Self>(kContext);
+                auto result = object->GetMass();
+                return Bridge<double>::out(result);
+            },
+            "Returns the mass in kilograms.");
+        cls.def(
+            "AddForce",
+            [](const Ref<Self>& self, Bridge<FVector>::Py Force, Bridge<bool>::Py bAccelChange) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.AddForce()";
+Self* object = self.get<Self>(kContext);
+                auto ForceValue = Bridge<FVector>::in(std::move(Force), "UPrimitiveComponent.AddForce(): argument 'Force'");
+                auto bAccelChangeValue = Bridge<bool>::in(std::move(bAccelChange), "UPrimitiveComponent.AddForce(): argument 'bAccelChange'");
+                object->AddForce(ForceValue, bAccelChangeValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("Force"),
+            py::arg("bAccelChange") = static_cast<Bridge<bool>::Py>(bool(false)),
+            "Adds a force in newtons at the centre of mass for the next physics step (an acceleration in m/s^2\nwhen bAccelChange is true).");
+        cls.def(
+            "AddTorqueInRadians",
+            [](const Ref<Self>& self, Bridge<FVector>::Py Torque) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.AddTorqueInRadians()";
+Self* object = self.get<Self>(kContext);
+                auto TorqueValue = Bridge<FVector>::in(std::move(Torque), "UPrimitiveComponent.AddTorqueInRadians(): argument 'Torque'");
+                object->AddTorqueInRadians(TorqueValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("Torque"),
+            "Adds a torque in newton-metres about world axes for the next physics step.");
+        cls.def(
+            "AddImpulse",
+            [](const Ref<Self>& self, Bridge<FVector>::Py Impulse, Bridge<bool>::Py bVelChange) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.AddImpulse()";
+Self* object = self.get<Self>(kContext);
+                auto ImpulseValue = Bridge<FVector>::in(std::move(Impulse), "UPrimitiveComponent.AddImpulse(): argument 'Impulse'");
+                auto bVelChangeValue = Bridge<bool>::in(std::move(bVelChange), "UPrimitiveComponent.AddImpulse(): argument 'bVelChange'");
+                object->AddImpulse(ImpulseValue, bVelChangeValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("Impulse"),
+            py::arg("bVelChange") = static_cast<Bridge<bool>::Py>(bool(false)),
+            "Changes the velocity at once by Impulse / mass (Impulse in N*s; a velocity change in m/s when\nbVelChange is true).");
+        cls.def(
+            "SetPhysicsLinearVelocity",
+            [](const Ref<Self>& self, Bridge<FVector>::Py NewVel, Bridge<bool>::Py bAddToCurrent) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetPhysicsLinearVelocity()";
+Self* object = self.get<Self>(kContext);
+                auto NewVelValue = Bridge<FVector>::in(std::move(NewVel), "UPrimitiveComponent.SetPhysicsLinearVelocity(): argument 'NewVel'");
+                auto bAddToCurrentValue = Bridge<bool>::in(std::move(bAddToCurrent), "UPrimitiveComponent.SetPhysicsLinearVelocity(): argument 'bAddToCurrent'");
+                object->SetPhysicsLinearVelocity(NewVelValue, bAddToCurrentValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewVel"),
+            py::arg("bAddToCurrent") = static_cast<Bridge<bool>::Py>(bool(false)),
+            "Sets the linear velocity in m/s (adds it to the current one when bAddToCurrent is true).");
+        cls.def(
+            "GetPhysicsLinearVelocity",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.GetPhysicsLinearVelocity()";
+const Self* object = self.get<Self>(kContext);
+                auto result = object->GetPhysicsLinearVelocity();
+                return Bridge<FVector>::out(result);
+            },
+            "Returns the linear velocity in m/s (zero when not simulated).");
+        cls.def(
+            "SetPhysicsAngularVelocityInDegrees",
+            [](const Ref<Self>& self, Bridge<FVector>::Py NewAngVel, Bridge<bool>::Py bAddToCurrent) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees()";
+Self* object = self.get<Self>(kContext);
+                auto NewAngVelValue = Bridge<FVector>::in(std::move(NewAngVel), "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees(): argument 'NewAngVel'");
+                auto bAddToCurrentValue = Bridge<bool>::in(std::move(bAddToCurrent), "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees(): argument 'bAddToCurrent'");
+                object->SetPhysicsAngularVelocityInDegrees(NewAngVelValue, bAddToCurrentValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewAngVel"),
+            py::arg("bAddToCurrent") = static_cast<Bridge<bool>::Py>(bool(false)),
+            "Sets the angular velocity in degrees per second about world axes.");
+        cls.def(
+            "GetPhysicsAngularVelocityInDegrees",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.GetPhysicsAngularVelocityInDegrees()";
+const Self* object = self.get<Self>(kContext);
+                auto result = object->GetPhysicsAngularVelocityInDegrees();
+                return Bridge<FVector>::out(result);
+            },
+            "Returns the angular velocity in degrees per second about world axes (zero when not simulated).");
+        cls.def(
+            "IsAnyRigidBodyAwake",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.IsAnyRigidBodyAwake()";
+const Self* object = self.get<Self>(kContext);
+                auto result = object->IsAnyRigidBodyAwake();
+                return Bridge<bool>::out(result);
+            },
+            "Returns true while this component's body is awake (false for sleeping or non-simulated ones).");
+    }
+    {
+        using Self = USkyLightComponent;
+        py::class_<Ref<Self>, Ref<USceneComponent>> cls(m, "USkyLightComponent", "Uniform sky light: ambient radiance on every surface, and the colour of pixels that hit nothing.");
+        cls.attr("__sp_class__") = "USkyLightComponent";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "SkyColor",
+            [](const Ref<Self>& self) { return Bridge<FLinearColor>::out(self.get<Self>("USkyLightComponent.SkyColor")->SkyColor); },
+            [](const Ref<Self>& self, Bridge<FLinearColor>::Py value) {
+                Self* object = self.get<Self>("USkyLightComponent.SkyColor");
+                object->SkyColor = Bridge<FLinearColor>::in(std::move(value), "USkyLightComponent.SkyColor");
+                object->PostPropertyChanged("SkyColor");
+            },
+            "Linear RGB radiance of the uniform sky, multiplied by Intensity.");
+        cls.def_property(
+            "Intensity",
+            [](const Ref<Self>& self) { return Bridge<float>::out(self.get<Self>("USkyLightComponent.Intensity")->Intensity); },
+            [](const Ref<Self>& self, Bridge<float>::Py value) {
+                Self* object = self.get<Self>("USkyLightComponent.Intensity");
+                object->Intensity = Bridge<float>::in(std::move(value), "USkyLightComponent.Intensity");
+                object->PostPropertyChanged("Intensity");
+            },
+            "Multiplier of SkyColor.");
+        cls.def_property(
+            "BackgroundColor",
+            [](const Ref<Self>& self) { return Bridge<FLinearColor>::out(self.get<Self>("USkyLightComponent.BackgroundColor")->BackgroundColor); },
+            [](const Ref<Self>& self, Bridge<FLinearColor>::Py value) {
+                Self* object = self.get<Self>("USkyLightComponent.BackgroundColor");
+                object->BackgroundColor = Bridge<FLinearColor>::in(std::move(value), "USkyLightComponent.BackgroundColor");
+                object->PostPropertyChanged("BackgroundColor");
+            },
+            "Linear HDR colour of the pixels that hit no geometry.");
+    }
+    {
+        using Self = USpotLightComponent;
+        py::class_<Ref<Self>, Ref<UPointLightComponent>> cls(m, "USpotLightComponent", "A point light restricted to a cone around the component's forward axis.");
+        cls.attr("__sp_class__") = "USpotLightComponent";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "InnerConeAngle",
+            [](const Ref<Self>& self) { return Bridge<float>::out(self.get<Self>("USpotLightComponent.InnerConeAngle")->InnerConeAngle); },
+            [](const Ref<Self>& self, Bridge<float>::Py value) {
+                Self* object = self.get<Self>("USpotLightComponent.InnerConeAngle");
+                object->InnerConeAngle = Bridge<float>::in(std::move(value), "USpotLightComponent.InnerConeAngle");
+                object->PostPropertyChanged("InnerConeAngle");
+            },
+            "Half-angle in degrees inside which the light has full intensity.");
+        cls.def_property(
+            "OuterConeAngle",
+            [](const Ref<Self>& self) { return Bridge<float>::out(self.get<Self>("USpotLightComponent.OuterConeAngle")->OuterConeAngle); },
+            [](const Ref<Self>& self, Bridge<float>::Py value) {
+                Self* object = self.get<Self>("USpotLightComponent.OuterConeAngle");
+                object->OuterConeAngle = Bridge<float>::in(std::move(value), "USpotLightComponent.OuterConeAngle");
+                object->PostPropertyChanged("OuterConeAngle");
+            },
+            "Half-angle in degrees outside which the light is zero (>= InnerConeAngle, < 90).");
     }
     {
         using Self = UStaticMeshComponent;
@@ -1005,5 +2064,109 @@ const Self* object = self.get<Self>(kContext);
                 return Bridge<int64_t>::out(result);
             },
             "Returns the number of frames this world has ticked.");
+        cls.def(
+            "line_trace_single",
+            [](const Ref<Self>& self, Bridge<FVector>::Py start, Bridge<FVector>::Py end) -> py::object {
+                static constexpr const char* kContext = "UWorld.line_trace_single()";
+Self* object = self.get<Self>(kContext);
+                auto startValue = Bridge<FVector>::in(std::move(start), "UWorld.line_trace_single(): argument 'start'");
+                auto endValue = Bridge<FVector>::in(std::move(end), "UWorld.line_trace_single(): argument 'end'");
+                FHitResult hitOut{};
+                AActor* actorOut{};
+                UPrimitiveComponent* componentOut{};
+                auto result = object->line_trace_single(startValue, endValue, hitOut, actorOut, componentOut);
+                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "UWorld").attr("line_trace_singleResult");
+                return resultType(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("hit") = Bridge<FHitResult>::out(hitOut), py::arg("actor") = Bridge<AActor*>::out(actorOut), py::arg("component") = Bridge<UPrimitiveComponent*>::out(componentOut));
+            },
+            py::kw_only(),
+            py::arg("start"),
+            py::arg("end"),
+            "Traces the segment start -> end against every collision body; returns true on a hit, with the hit,\nand the actor and component that were hit (None when nothing was hit).");
+        cls.def(
+            "inject_input_for_actor",
+            [](const Ref<Self>& self, Bridge<AActor*>::Py actor, Bridge<std::string>::Py input_action_name, Bridge<FVector>::Py value) -> py::object {
+                static constexpr const char* kContext = "UWorld.inject_input_for_actor()";
+Self* object = self.get<Self>(kContext);
+                auto actorValue = Bridge<AActor*>::in(std::move(actor), "UWorld.inject_input_for_actor(): argument 'actor'");
+                SP_CHECK(actorValue, sp::InvalidArgument, "UWorld.inject_input_for_actor(): argument 'actor'", " must not be None");
+                auto input_action_nameValue = Bridge<std::string>::in(std::move(input_action_name), "UWorld.inject_input_for_actor(): argument 'input_action_name'");
+                auto valueValue = Bridge<FVector>::in(std::move(value), "UWorld.inject_input_for_actor(): argument 'value'");
+                object->inject_input_for_actor(actorValue, input_action_nameValue, valueValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("actor"),
+            py::arg("input_action_name"),
+            py::arg("value"),
+            "Routes a continuous input action with the given value to actor's UInputComponent for the next tick.");
+        cls.def(
+            "load_scene",
+            [](const Ref<Self>& self, Bridge<std::string>::Py path) -> py::object {
+                static constexpr const char* kContext = "UWorld.load_scene()";
+Self* object = self.get<Self>(kContext);
+                auto pathValue = Bridge<std::string>::in(std::move(path), "UWorld.load_scene(): argument 'path'");
+                object->load_scene(pathValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("path"),
+            "Replaces every actor of this world by those of the scene file at path (see core/world/scene_io.h).");
+        cls.def(
+            "save_scene",
+            [](const Ref<Self>& self, Bridge<std::string>::Py path) -> py::object {
+                static constexpr const char* kContext = "UWorld.save_scene()";
+const Self* object = self.get<Self>(kContext);
+                auto pathValue = Bridge<std::string>::in(std::move(path), "UWorld.save_scene(): argument 'path'");
+                object->save_scene(pathValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("path"),
+            "Writes every actor and component of this world, with every reflected property, to a scene file.");
+        cls.def(
+            "is_editor_world",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UWorld.is_editor_world()";
+const Self* object = self.get<Self>(kContext);
+                auto result = object->is_editor_world();
+                return Bridge<bool>::out(result);
+            },
+            "Returns true for the persistent world of an editor instance.");
+        cls.def(
+            "is_game_world",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UWorld.is_game_world()";
+const Self* object = self.get<Self>(kContext);
+                auto result = object->is_game_world();
+                return Bridge<bool>::out(result);
+            },
+            "Returns true for a world that plays (a standalone instance's world, or the editor's play world).");
+        cls.def(
+            "play",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UWorld.play()";
+Self* object = self.get<Self>(kContext);
+                object->play();
+                return py::none();
+            },
+            "Editor world only: starts play in a new game world copied from this one (instance.get_game()).");
+        cls.def(
+            "stop",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UWorld.stop()";
+Self* object = self.get<Self>(kContext);
+                object->stop();
+                return py::none();
+            },
+            "Editor world only: ends play and destroys the game world; its objects' handles become stale.");
+        cls.def(
+            "is_playing",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UWorld.is_playing()";
+const Self* object = self.get<Self>(kContext);
+                auto result = object->is_playing();
+                return Bridge<bool>::out(result);
+            },
+            "Editor world only: returns true while a game world copied from this one is playing.");
     }
 }

@@ -4,31 +4,67 @@
 #include "core/reflect/registry.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+#include "core/sensors/camera_sensor_actor.h"
+#include "core/sensors/camera_sensor_component.h"
+#include "core/sensors/material_library.h"
+#include "core/sensors/sky_light_component.h"
+#include "core/sensors/spot_light_component.h"
 #include "core/world/actor.h"
 #include "core/world/actor_component.h"
+#include "core/world/hit_result.h"
+#include "core/world/input_component.h"
+#include "core/world/light_actors.h"
+#include "core/world/light_component.h"
 #include "core/world/math.h"
 #include "core/world/object.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
+#include "core/world/simple_vehicle.h"
 #include "core/world/static_mesh_actor.h"
 #include "core/world/static_mesh_component.h"
 #include "core/world/world.h"
 
 void spear_register_engine_types() {
     auto& registry = sp::reflect::Registry::get();
+    registry.add(sp::reflect::StaticEnum<ECameraModality>());
+    registry.add(sp::reflect::StaticEnum<ECameraToneCurve>());
+    registry.add(sp::reflect::StaticEnum<ECollisionPrimitive>());
     registry.add(sp::reflect::StaticEnum<EComponentMobility>());
     registry.add(UObject::StaticClass());
     registry.add(AActor::StaticClass());
+    registry.add(ACameraSensorActor::StaticClass());
+    registry.add(ADirectionalLight::StaticClass());
+    registry.add(AMaterialLibrary::StaticClass());
+    registry.add(AMultiViewCameraRig::StaticClass());
+    registry.add(APointLight::StaticClass());
+    registry.add(ASimpleVehicle::StaticClass());
+    registry.add(ASkyLight::StaticClass());
+    registry.add(ASpotLight::StaticClass());
     registry.add(AStaticMeshActor::StaticClass());
-    registry.add(FLinearColor::StaticClass());
-    registry.add(FQuat::StaticClass());
-    registry.add(FRotator::StaticClass());
+    registry.add(AStereoCameraRig::StaticClass());
+    registry.add(FCameraPixels::StaticClass());
     registry.add(FVector::StaticClass());
+    registry.add(FHitResult::StaticClass());
+    registry.add(FLinearColor::StaticClass());
+    registry.add(FMaterialDesc::StaticClass());
+    registry.add(FQuat::StaticClass());
+    registry.add(FRenderDeviceInfo::StaticClass());
+    registry.add(FRenderStats::StaticClass());
+    registry.add(FRotator::StaticClass());
     registry.add(FTransform::StaticClass());
     registry.add(FVector2D::StaticClass());
     registry.add(UActorComponent::StaticClass());
     registry.add(USceneComponent::StaticClass());
+    registry.add(UCameraSensorComponent::StaticClass());
+    registry.add(ULightComponent::StaticClass());
+    registry.add(UDirectionalLightComponent::StaticClass());
+    registry.add(UInputComponent::StaticClass());
+    registry.add(UPointLightComponent::StaticClass());
     registry.add(UPrimitiveComponent::StaticClass());
+    registry.add(USkyLightComponent::StaticClass());
+    registry.add(USpotLightComponent::StaticClass());
     registry.add(UStaticMeshComponent::StaticClass());
     registry.add(UWorld::StaticClass());
 }
+
+const char* spear_register_engine_types_api_hash() { return "cb82bb979aa3e7e0"; }

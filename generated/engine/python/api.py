@@ -10,27 +10,92 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass, field
-from typing import ClassVar, NamedTuple
+from typing import ClassVar, NamedTuple, TypedDict
+
+import numpy as np
+from numpy.typing import NDArray
 
 from spear._object import SpObject as _SpObject
 
 __all__ = [
     "AActor",
+    "ACameraSensorActor",
+    "ADirectionalLight",
+    "AMaterialLibrary",
+    "AMultiViewCameraRig",
+    "APointLight",
+    "ASimpleVehicle",
+    "ASkyLight",
+    "ASpotLight",
     "AStaticMeshActor",
+    "AStereoCameraRig",
+    "ECameraModality",
+    "ECameraToneCurve",
+    "ECollisionPrimitive",
     "EComponentMobility",
+    "FCameraPixels",
+    "FHitResult",
     "FLinearColor",
+    "FMaterialDesc",
     "FQuat",
+    "FRenderDeviceInfo",
+    "FRenderStats",
     "FRotator",
     "FTransform",
     "FVector",
     "FVector2D",
     "UActorComponent",
+    "UCameraSensorComponent",
+    "UDirectionalLightComponent",
+    "UInputComponent",
+    "ULightComponent",
     "UObject",
+    "UPointLightComponent",
     "UPrimitiveComponent",
     "USceneComponent",
+    "USkyLightComponent",
+    "USpotLightComponent",
     "UStaticMeshComponent",
     "UWorld",
 ]
+
+
+class ECameraModality(enum.IntEnum):
+    """A ground-truth image a camera can render; read_pixels() returns it under its snake_case name."""
+
+    FinalColor = 0
+    HdrColor = 1
+    Depth = 2
+    Position = 3
+    Normal = 4
+    ObjectIds = 5
+    MaterialIds = 6
+    BaseColor = 7
+    Roughness = 8
+    Metallic = 9
+    MaterialAo = 10
+    DiffuseIllumination = 11
+    DiffuseOnly = 12
+    SpecularResidual = 13
+
+
+class ECameraToneCurve(enum.IntEnum):
+    """The tone curve that maps exposed HDR radiance to final_color."""
+
+    Aces = 0
+    Reinhard = 1
+    Linear = 2
+
+
+class ECollisionPrimitive(enum.IntEnum):
+    """Which collision geometry a primitive component gets in the physics world."""
+
+    FromMesh = 0
+    Box = 1
+    Sphere = 2
+    Cylinder = 3
+    Plane = 4
+    NoCollision = 5
 
 
 class EComponentMobility(enum.IntEnum):
@@ -39,6 +104,51 @@ class EComponentMobility(enum.IntEnum):
     Static = 0
     Stationary = 1
     Movable = 2
+
+
+class FCameraPixels(TypedDict, total=False):
+    """The images of one frame, keyed by modality name; only the modalities the camera renders are present."""
+
+    final_color: NDArray[np.uint8]
+    hdr_color: NDArray[np.float16]
+    depth: NDArray[np.float32]
+    position: NDArray[np.float32]
+    normal: NDArray[np.float32]
+    object_ids: NDArray[np.uint32]
+    material_ids: NDArray[np.uint32]
+    base_color: NDArray[np.float16]
+    roughness: NDArray[np.float16]
+    metallic: NDArray[np.float16]
+    material_ao: NDArray[np.float16]
+    diffuse_illumination: NDArray[np.float16]
+    diffuse_only: NDArray[np.float16]
+    specular_residual: NDArray[np.float16]
+
+
+@dataclass
+class FVector:
+    """A vector in 3-D space (metres for positions)."""
+
+    __sp_class__: ClassVar[str] = "FVector"
+    X: float = 0.0
+    Y: float = 0.0
+    Z: float = 0.0
+
+
+@dataclass
+class FHitResult:
+    """The result of a trace: whether it hit, and where."""
+
+    __sp_class__: ClassVar[str] = "FHitResult"
+    bBlockingHit: bool = False
+    Location: FVector = field(default_factory=FVector)
+    ImpactPoint: FVector = field(default_factory=FVector)
+    ImpactNormal: FVector = field(default_factory=FVector)
+    Normal: FVector = field(default_factory=FVector)
+    Distance: float = 0.0
+    Time: float = 1.0
+    TraceStart: FVector = field(default_factory=FVector)
+    TraceEnd: FVector = field(default_factory=FVector)
 
 
 @dataclass
@@ -53,6 +163,21 @@ class FLinearColor:
 
 
 @dataclass
+class FMaterialDesc:
+    """A PBR metallic-roughness material (glTF / UE conventions, linear colours)."""
+
+    __sp_class__: ClassVar[str] = "FMaterialDesc"
+    BaseColor: FLinearColor = field(default_factory=lambda: FLinearColor(0.8, 0.8, 0.8, 1.0))
+    Roughness: float = 0.5
+    Metallic: float = 0.0
+    AmbientOcclusion: float = 1.0
+    Emissive: FLinearColor = field(default_factory=lambda: FLinearColor(0.0, 0.0, 0.0, 1.0))
+    BaseColorTexture: str = ""
+    RoughnessMetallicTexture: str = ""
+    NormalTexture: str = ""
+
+
+@dataclass
 class FQuat:
     """A unit quaternion."""
 
@@ -64,6 +189,32 @@ class FQuat:
 
 
 @dataclass
+class FRenderDeviceInfo:
+    """Which EGL device renders this world, and what OpenGL reports about itself."""
+
+    __sp_class__: ClassVar[str] = "FRenderDeviceInfo"
+    Kind: str = ""
+    DeviceIndex: int = -1
+    DeviceCount: int = 0
+    Vendor: str = ""
+    Renderer: str = ""
+    Version: str = ""
+
+
+@dataclass
+class FRenderStats:
+    """How often each render pass ran in this world since its renderer started (all cameras together)."""
+
+    __sp_class__: ClassVar[str] = "FRenderStats"
+    Frames: int = 0
+    ShadowPasses: int = 0
+    GBufferPasses: int = 0
+    LightingPasses: int = 0
+    TonemapPasses: int = 0
+    Readbacks: int = 0
+
+
+@dataclass
 class FRotator:
     """An orientation as Euler angles in degrees."""
 
@@ -71,16 +222,6 @@ class FRotator:
     Pitch: float = 0.0
     Yaw: float = 0.0
     Roll: float = 0.0
-
-
-@dataclass
-class FVector:
-    """A vector in 3-D space (metres for positions)."""
-
-    __sp_class__: ClassVar[str] = "FVector"
-    X: float = 0.0
-    Y: float = 0.0
-    Z: float = 0.0
 
 
 @dataclass
@@ -120,11 +261,74 @@ class AActor(UObject):
         BoxExtent: FVector
 
 
+class ACameraSensorActor(AActor):
+    """An actor whose root is a camera sensor."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "ACameraSensorActor"
+
+
+class ADirectionalLight(AActor):
+    """An actor with a directional light (the sun) as its root."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "ADirectionalLight"
+
+
+class AMaterialLibrary(AActor):
+    """An actor that defines materials by name for the meshes of its world."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "AMaterialLibrary"
+
+
+class AMultiViewCameraRig(AActor):
+    """A ring of cameras around the rig's origin in its XY plane, all looking at the origin."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "AMultiViewCameraRig"
+
+
+class APointLight(AActor):
+    """An actor with a point light as its root."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "APointLight"
+
+
+class ASimpleVehicle(AActor):
+    """A box-shaped vehicle that drives from the "Throttle", "Steer" and "Move" input actions."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "ASimpleVehicle"
+
+
+class ASkyLight(AActor):
+    """An actor with the sky light as its root."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "ASkyLight"
+
+
+class ASpotLight(AActor):
+    """An actor with a spot light as its root."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "ASpotLight"
+
+
 class AStaticMeshActor(AActor):
     """An actor that shows one static mesh."""
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "AStaticMeshActor"
+
+
+class AStereoCameraRig(AActor):
+    """Two parallel cameras Baseline metres apart along the rig's Y axis, looking along its forward axis."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "AStereoCameraRig"
 
 
 class UActorComponent(UObject):
@@ -141,6 +345,48 @@ class USceneComponent(UActorComponent):
     __sp_class__: ClassVar[str] = "USceneComponent"
 
 
+class UCameraSensorComponent(USceneComponent):
+    """A camera that renders the modalities in Modalities at the end of every frame."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "UCameraSensorComponent"
+
+    class GetObjectIdInfoResult(NamedTuple):
+        ReturnValue: bool
+        Actor: AActor | None
+        Component: UPrimitiveComponent | None
+        MaterialSlot: int
+        MaterialName: str
+
+
+class ULightComponent(USceneComponent):
+    """A scene component that emits light."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "ULightComponent"
+
+
+class UDirectionalLightComponent(ULightComponent):
+    """A light infinitely far away that shines along the component's forward (+X) axis, like the sun."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "UDirectionalLightComponent"
+
+
+class UInputComponent(UActorComponent):
+    """A component that receives input actions injected for the actor that owns it."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "UInputComponent"
+
+
+class UPointLightComponent(ULightComponent):
+    """A light that shines equally in every direction from the component's location."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "UPointLightComponent"
+
+
 class UPrimitiveComponent(USceneComponent):
     """A scene component that has geometry."""
 
@@ -150,6 +396,20 @@ class UPrimitiveComponent(USceneComponent):
     class GetBoundsResult(NamedTuple):
         Origin: FVector
         BoxExtent: FVector
+
+
+class USkyLightComponent(USceneComponent):
+    """Uniform sky light: ambient radiance on every surface, and the colour of pixels that hit nothing."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "USkyLightComponent"
+
+
+class USpotLightComponent(UPointLightComponent):
+    """A point light restricted to a cone around the component's forward axis."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "USpotLightComponent"
 
 
 class UStaticMeshComponent(UPrimitiveComponent):
@@ -164,3 +424,9 @@ class UWorld(UObject):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UWorld"
+
+    class line_trace_singleResult(NamedTuple):
+        ReturnValue: bool
+        hit: FHitResult
+        actor: AActor | None
+        component: UPrimitiveComponent | None

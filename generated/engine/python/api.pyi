@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass, field
-from typing import ClassVar, NamedTuple, TypeVar, overload
+from typing import ClassVar, NamedTuple, TypedDict, TypeVar, overload
 
 import numpy as np
 from numpy.typing import NDArray
@@ -14,18 +14,42 @@ from spear._object import SpObject as _SpObject
 
 __all__ = [
     "AActor",
+    "ACameraSensorActor",
+    "ADirectionalLight",
+    "AMaterialLibrary",
+    "AMultiViewCameraRig",
+    "APointLight",
+    "ASimpleVehicle",
+    "ASkyLight",
+    "ASpotLight",
     "AStaticMeshActor",
+    "AStereoCameraRig",
+    "ECameraModality",
+    "ECameraToneCurve",
+    "ECollisionPrimitive",
     "EComponentMobility",
+    "FCameraPixels",
+    "FHitResult",
     "FLinearColor",
+    "FMaterialDesc",
     "FQuat",
+    "FRenderDeviceInfo",
+    "FRenderStats",
     "FRotator",
     "FTransform",
     "FVector",
     "FVector2D",
     "UActorComponent",
+    "UCameraSensorComponent",
+    "UDirectionalLightComponent",
+    "UInputComponent",
+    "ULightComponent",
     "UObject",
+    "UPointLightComponent",
     "UPrimitiveComponent",
     "USceneComponent",
+    "USkyLightComponent",
+    "USpotLightComponent",
     "UStaticMeshComponent",
     "UWorld",
 ]
@@ -37,6 +61,67 @@ _UActorComponentT = TypeVar("_UActorComponentT", bound="UActorComponent")
 _UObjectT = TypeVar("_UObjectT", bound="UObject")
 
 
+class ECameraModality(enum.IntEnum):
+    """A ground-truth image a camera can render; read_pixels() returns it under its snake_case name."""
+
+    FinalColor = 0
+    """"final_color": tone-mapped sRGB, uint8 (H, W, 4)."""
+    HdrColor = 1
+    """"hdr_color": linear HDR radiance before exposure and tone mapping, float16 (H, W, 4)."""
+    Depth = 2
+    """"depth": metres along the optical axis, 0 for background, float32 (H, W)."""
+    Position = 3
+    """"position": world-space position in metres, 0 for background, float32 (H, W, 3)."""
+    Normal = 4
+    """"normal": world-space unit normal facing the camera, 0 for background, float32 (H, W, 3)."""
+    ObjectIds = 5
+    """"object_ids": one id per (component, material slot), 0 for background, uint32 (H, W)."""
+    MaterialIds = 6
+    """"material_ids": the id of the material, 0 for background, uint32 (H, W)."""
+    BaseColor = 7
+    """"base_color": linear base colour, float16 (H, W, 3)."""
+    Roughness = 8
+    """"roughness": perceptual roughness, float16 (H, W)."""
+    Metallic = 9
+    """"metallic": metalness, float16 (H, W)."""
+    MaterialAo = 10
+    """"material_ao": material ambient occlusion, float16 (H, W)."""
+    DiffuseIllumination = 11
+    """"diffuse_illumination": radiance of a white Lambertian surface at the pixel, float16 (H, W, 3)."""
+    DiffuseOnly = 12
+    """"diffuse_only": base_color * (1 - metallic) * diffuse_illumination, float16 (H, W, 3)."""
+    SpecularResidual = 13
+    """"specular_residual": hdr_color.rgb - diffuse_only (specular, emission, sky), float16 (H, W, 3)."""
+
+
+class ECameraToneCurve(enum.IntEnum):
+    """The tone curve that maps exposed HDR radiance to final_color."""
+
+    Aces = 0
+    """The ACES filmic approximation."""
+    Reinhard = 1
+    """Reinhard's x / (1 + x)."""
+    Linear = 2
+    """Clamped linear."""
+
+
+class ECollisionPrimitive(enum.IntEnum):
+    """Which collision geometry a primitive component gets in the physics world."""
+
+    FromMesh = 0
+    """The shape of the mesh: Cube is a box, Sphere a sphere, Cylinder a cylinder, Plane a plane."""
+    Box = 1
+    """A box filling the mesh bounds."""
+    Sphere = 2
+    """A sphere around the mesh bounds (radius: the largest half extent)."""
+    Cylinder = 3
+    """A cylinder along local Z around the mesh bounds."""
+    Plane = 4
+    """A two-sided rectangle across the mesh bounds at their centre height; cannot be simulated."""
+    NoCollision = 5
+    """No collision: the component has no body, is not simulated and is not hit by traces."""
+
+
 class EComponentMobility(enum.IntEnum):
     """Whether a component may move after it has been placed in a world."""
 
@@ -46,6 +131,51 @@ class EComponentMobility(enum.IntEnum):
     """Does not move but its lighting may change."""
     Movable = 2
     """Free to move."""
+
+
+class FCameraPixels(TypedDict, total=False):
+    """The images of one frame, keyed by modality name; only the modalities the camera renders are present."""
+
+    final_color: NDArray[np.uint8]
+    hdr_color: NDArray[np.float16]
+    depth: NDArray[np.float32]
+    position: NDArray[np.float32]
+    normal: NDArray[np.float32]
+    object_ids: NDArray[np.uint32]
+    material_ids: NDArray[np.uint32]
+    base_color: NDArray[np.float16]
+    roughness: NDArray[np.float16]
+    metallic: NDArray[np.float16]
+    material_ao: NDArray[np.float16]
+    diffuse_illumination: NDArray[np.float16]
+    diffuse_only: NDArray[np.float16]
+    specular_residual: NDArray[np.float16]
+
+
+@dataclass
+class FVector:
+    """A vector in 3-D space (metres for positions)."""
+
+    __sp_class__: ClassVar[str]
+    X: float = 0.0
+    Y: float = 0.0
+    Z: float = 0.0
+
+
+@dataclass
+class FHitResult:
+    """The result of a trace: whether it hit, and where."""
+
+    __sp_class__: ClassVar[str]
+    bBlockingHit: bool = False
+    Location: FVector = field(default_factory=FVector)
+    ImpactPoint: FVector = field(default_factory=FVector)
+    ImpactNormal: FVector = field(default_factory=FVector)
+    Normal: FVector = field(default_factory=FVector)
+    Distance: float = 0.0
+    Time: float = 1.0
+    TraceStart: FVector = field(default_factory=FVector)
+    TraceEnd: FVector = field(default_factory=FVector)
 
 
 @dataclass
@@ -60,6 +190,21 @@ class FLinearColor:
 
 
 @dataclass
+class FMaterialDesc:
+    """A PBR metallic-roughness material (glTF / UE conventions, linear colours)."""
+
+    __sp_class__: ClassVar[str]
+    BaseColor: FLinearColor = field(default_factory=lambda: FLinearColor(0.8, 0.8, 0.8, 1.0))
+    Roughness: float = 0.5
+    Metallic: float = 0.0
+    AmbientOcclusion: float = 1.0
+    Emissive: FLinearColor = field(default_factory=lambda: FLinearColor(0.0, 0.0, 0.0, 1.0))
+    BaseColorTexture: str = ""
+    RoughnessMetallicTexture: str = ""
+    NormalTexture: str = ""
+
+
+@dataclass
 class FQuat:
     """A unit quaternion."""
 
@@ -71,6 +216,32 @@ class FQuat:
 
 
 @dataclass
+class FRenderDeviceInfo:
+    """Which EGL device renders this world, and what OpenGL reports about itself."""
+
+    __sp_class__: ClassVar[str]
+    Kind: str = ""
+    DeviceIndex: int = -1
+    DeviceCount: int = 0
+    Vendor: str = ""
+    Renderer: str = ""
+    Version: str = ""
+
+
+@dataclass
+class FRenderStats:
+    """How often each render pass ran in this world since its renderer started (all cameras together)."""
+
+    __sp_class__: ClassVar[str]
+    Frames: int = 0
+    ShadowPasses: int = 0
+    GBufferPasses: int = 0
+    LightingPasses: int = 0
+    TonemapPasses: int = 0
+    Readbacks: int = 0
+
+
+@dataclass
 class FRotator:
     """An orientation as Euler angles in degrees."""
 
@@ -78,16 +249,6 @@ class FRotator:
     Pitch: float = 0.0
     Yaw: float = 0.0
     Roll: float = 0.0
-
-
-@dataclass
-class FVector:
-    """A vector in 3-D space (metres for positions)."""
-
-    __sp_class__: ClassVar[str]
-    X: float = 0.0
-    Y: float = 0.0
-    Z: float = 0.0
 
 
 @dataclass
@@ -193,6 +354,128 @@ class AActor(UObject):
     def GetComponentByClass(self, *, ComponentClass: str) -> UActorComponent | None: ...
 
 
+class ACameraSensorActor(AActor):
+    """An actor whose root is a camera sensor."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def CameraSensor(self) -> UCameraSensorComponent:
+        """The camera (also the root component); it looks along the actor's forward axis."""
+
+
+class ADirectionalLight(AActor):
+    """An actor with a directional light (the sun) as its root."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def LightComponent(self) -> UDirectionalLightComponent:
+        """The light (also the root component)."""
+
+
+class AMaterialLibrary(AActor):
+    """An actor that defines materials by name for the meshes of its world."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def Materials(self) -> dict[str, FMaterialDesc]:
+        """Materials by name; mesh components refer to them in their Materials list."""
+
+    @Materials.setter
+    def Materials(self, value: dict[str, FMaterialDesc]) -> None: ...
+
+    def SetMaterial(self, *, Name: str, Material: FMaterialDesc) -> None:
+        """Defines (or replaces) the material called Name."""
+
+    def GetMaterial(self, *, Name: str) -> FMaterialDesc:
+        """Returns the material a mesh slot named Name gets: this library's, else the built-in one, else the
+        default grey one.
+        """
+
+    def GetBuiltinMaterialNames(self) -> list[str]:
+        """Returns the names of the built-in materials."""
+
+
+class AMultiViewCameraRig(AActor):
+    """A ring of cameras around the rig's origin in its XY plane, all looking at the origin."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def Cameras(self) -> list[UCameraSensorComponent]:
+        """The cameras, counter-clockwise from the rig's -X side (camera 0 looks along +X)."""
+
+    @property
+    def Radius(self) -> float:
+        """Ring radius in metres."""
+
+    def SetRing(self, *, NumViews: int, NewRadius: float) -> None:
+        """Replaces the cameras by NumViews (in [1, 64]) cameras on a ring of Radius metres (> 0)."""
+
+    def ConfigureCameras(self, *, Width: int, Height: int, Modalities: list[ECameraModality]) -> None:
+        """Sets Width, Height and Modalities of every camera of the ring."""
+
+
+class APointLight(AActor):
+    """An actor with a point light as its root."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def LightComponent(self) -> UPointLightComponent:
+        """The light (also the root component)."""
+
+
+class ASimpleVehicle(AActor):
+    """A box-shaped vehicle that drives from the "Throttle", "Steer" and "Move" input actions."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def Body(self) -> UStaticMeshComponent:
+        """The vehicle's body (the root component)."""
+
+    @property
+    def InputComponent(self) -> UInputComponent:
+        """Receives the injected actions."""
+
+    @property
+    def MaxSpeed(self) -> float:
+        """Speed in metres per second at full throttle."""
+
+    @MaxSpeed.setter
+    def MaxSpeed(self, value: float) -> None: ...
+
+    @property
+    def MaxYawRateInDegrees(self) -> float:
+        """Yaw rate in degrees per second at full steering."""
+
+    @MaxYawRateInDegrees.setter
+    def MaxYawRateInDegrees(self, value: float) -> None: ...
+
+
+class ASkyLight(AActor):
+    """An actor with the sky light as its root."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def SkyLightComponent(self) -> USkyLightComponent:
+        """The sky light (also the root component)."""
+
+
+class ASpotLight(AActor):
+    """An actor with a spot light as its root."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def LightComponent(self) -> USpotLightComponent:
+        """The light (also the root component); its cone points along the actor's forward axis."""
+
+
 class AStaticMeshActor(AActor):
     """An actor that shows one static mesh."""
 
@@ -201,6 +484,30 @@ class AStaticMeshActor(AActor):
     @property
     def StaticMeshComponent(self) -> UStaticMeshComponent:
         """The mesh component (also the root component)."""
+
+
+class AStereoCameraRig(AActor):
+    """Two parallel cameras Baseline metres apart along the rig's Y axis, looking along its forward axis."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def Baseline(self) -> float:
+        """Distance between the two optical centres in metres (> 0); the left camera is at +Y."""
+
+    @Baseline.setter
+    def Baseline(self, value: float) -> None: ...
+
+    @property
+    def LeftCamera(self) -> UCameraSensorComponent:
+        """The left camera (at +Baseline/2 on the rig's Y axis, which points left)."""
+
+    @property
+    def RightCamera(self) -> UCameraSensorComponent:
+        """The right camera (at -Baseline/2 on the rig's Y axis)."""
+
+    def SetBaseline(self, *, NewBaseline: float) -> None:
+        """Sets the baseline in metres (> 0) and moves both cameras."""
 
 
 class UActorComponent(UObject):
@@ -333,10 +640,236 @@ class USceneComponent(UActorComponent):
         """Returns the attached children, and their descendants when bIncludeAllDescendants is true."""
 
 
+class UCameraSensorComponent(USceneComponent):
+    """A camera that renders the modalities in Modalities at the end of every frame."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def Width(self) -> int:
+        """Image width in pixels."""
+
+    @Width.setter
+    def Width(self, value: int) -> None: ...
+
+    @property
+    def Height(self) -> int:
+        """Image height in pixels."""
+
+    @Height.setter
+    def Height(self, value: int) -> None: ...
+
+    @property
+    def FOV(self) -> float:
+        """Horizontal field of view in degrees, in (0, 180); square pixels."""
+
+    @FOV.setter
+    def FOV(self, value: float) -> None: ...
+
+    @property
+    def NearClip(self) -> float:
+        """Near clipping distance in metres (> 0)."""
+
+    @NearClip.setter
+    def NearClip(self, value: float) -> None: ...
+
+    @property
+    def FarClip(self) -> float:
+        """Far clipping distance in metres (> NearClip)."""
+
+    @FarClip.setter
+    def FarClip(self, value: float) -> None: ...
+
+    @property
+    def Exposure(self) -> float:
+        """Linear multiplier of HDR radiance before the tone curve."""
+
+    @Exposure.setter
+    def Exposure(self, value: float) -> None: ...
+
+    @property
+    def ToneCurve(self) -> ECameraToneCurve:
+        """The tone curve of final_color."""
+
+    @ToneCurve.setter
+    def ToneCurve(self, value: ECameraToneCurve) -> None: ...
+
+    @property
+    def bShadows(self) -> bool:
+        """Whether shadow-casting lights render shadow maps for this camera."""
+
+    @bShadows.setter
+    def bShadows(self, value: bool) -> None: ...
+
+    @property
+    def ShadowResolution(self) -> int:
+        """Shadow map size in texels, in [16, 8192]."""
+
+    @ShadowResolution.setter
+    def ShadowResolution(self, value: int) -> None: ...
+
+    @property
+    def Modalities(self) -> list[ECameraModality]:
+        """The modalities rendered each frame; only the passes they need run."""
+
+    @Modalities.setter
+    def Modalities(self, value: list[ECameraModality]) -> None: ...
+
+    @property
+    def Latency(self) -> int:
+        """Frames between rendering and reading: 0 (same frame), 1 or 2 (double or triple buffered)."""
+
+    @Latency.setter
+    def Latency(self, value: int) -> None: ...
+
+    def read_pixels(self) -> FCameraPixels:
+        """Returns the images of the frame due (see the class notes on latency); an empty dict while priming."""
+
+    def GetPixelsFrame(self) -> int:
+        """Returns the world frame shown by the last read_pixels() result, or -1 when it was empty."""
+
+    def SetModalityNames(self, *, Names: list[str]) -> None:
+        """Sets Modalities from snake_case names ("final_color", "depth", ...); an unknown name is an error."""
+
+    def GetModalityNames(self) -> list[str]:
+        """Returns the snake_case names of Modalities, in the order read_pixels() uses as dict keys."""
+
+    class GetObjectIdInfoResult(NamedTuple):
+        ReturnValue: bool
+        Actor: AActor | None
+        Component: UPrimitiveComponent | None
+        MaterialSlot: int
+        MaterialName: str
+
+    def GetObjectIdInfo(self, *, ObjectId: int) -> UCameraSensorComponent.GetObjectIdInfoResult:
+        """Looks up an object id of object_ids: the actor, the component and the material slot and name it
+        belongs to; returns False (and None, -1, "") for 0, an unknown id or a destroyed component.
+        """
+
+    def GetObjectId(self, *, Component: UPrimitiveComponent, MaterialSlot: int = 0) -> int:
+        """Returns the object id of one material slot of Component, or 0 when it has not been rendered yet."""
+
+    def GetMaterialId(self, *, Name: str) -> int:
+        """Returns the material id that material_ids holds for the material called Name, or 0 when unused."""
+
+    def get_render_device_info(self) -> FRenderDeviceInfo:
+        """Returns which EGL device renders this camera's world (starting the renderer if needed)."""
+
+    def GetRenderStats(self) -> FRenderStats:
+        """Returns how often each render pass ran in this camera's world."""
+
+
+class ULightComponent(USceneComponent):
+    """A scene component that emits light."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def Intensity(self) -> float:
+        """Brightness: lux for directional lights, candela for point lights."""
+
+    @Intensity.setter
+    def Intensity(self, value: float) -> None: ...
+
+    @property
+    def LightColor(self) -> FLinearColor:
+        """Colour of the emitted light (linear)."""
+
+    @LightColor.setter
+    def LightColor(self, value: FLinearColor) -> None: ...
+
+    @property
+    def bCastShadows(self) -> bool:
+        """Whether this light casts shadows."""
+
+    @bCastShadows.setter
+    def bCastShadows(self, value: bool) -> None: ...
+
+
+class UDirectionalLightComponent(ULightComponent):
+    """A light infinitely far away that shines along the component's forward (+X) axis, like the sun."""
+
+    __sp_class__: ClassVar[str]
+
+
+class UInputComponent(UActorComponent):
+    """A component that receives input actions injected for the actor that owns it."""
+
+    __sp_class__: ClassVar[str]
+
+    def GetActionValue(self, *, ActionName: str) -> FVector:
+        """Returns the value of ActionName injected for the current tick, or zero when it was not injected."""
+
+    def IsActionTriggered(self, *, ActionName: str) -> bool:
+        """Returns true when ActionName was injected for the current tick."""
+
+
+class UPointLightComponent(ULightComponent):
+    """A light that shines equally in every direction from the component's location."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def AttenuationRadius(self) -> float:
+        """Distance in metres beyond which the light has no effect."""
+
+    @AttenuationRadius.setter
+    def AttenuationRadius(self, value: float) -> None: ...
+
+
 class UPrimitiveComponent(USceneComponent):
     """A scene component that has geometry."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def bSimulatePhysics(self) -> bool:
+        """Whether physics moves this component (gravity, forces, contacts); it must be Movable."""
+
+    @bSimulatePhysics.setter
+    def bSimulatePhysics(self, value: bool) -> None: ...
+
+    @property
+    def CollisionPrimitive(self) -> ECollisionPrimitive:
+        """The collision geometry used by physics and traces."""
+
+    @CollisionPrimitive.setter
+    def CollisionPrimitive(self, value: ECollisionPrimitive) -> None: ...
+
+    @property
+    def MassInKg(self) -> float:
+        """Mass in kilograms (> 0 to simulate); inertia follows the collision shape at uniform density."""
+
+    @MassInKg.setter
+    def MassInKg(self, value: float) -> None: ...
+
+    @property
+    def Friction(self) -> float:
+        """Coulomb friction coefficient (>= 0); the two coefficients at a contact are multiplied."""
+
+    @Friction.setter
+    def Friction(self, value: float) -> None: ...
+
+    @property
+    def Restitution(self) -> float:
+        """Bounciness in [0, 1]; the two coefficients at a contact are multiplied."""
+
+    @Restitution.setter
+    def Restitution(self, value: float) -> None: ...
+
+    @property
+    def LinearDamping(self) -> float:
+        """Fraction of linear velocity lost per second, in [0, 1]."""
+
+    @LinearDamping.setter
+    def LinearDamping(self, value: float) -> None: ...
+
+    @property
+    def AngularDamping(self) -> float:
+        """Fraction of angular velocity lost per second, in [0, 1]."""
+
+    @AngularDamping.setter
+    def AngularDamping(self, value: float) -> None: ...
 
     class GetBoundsResult(NamedTuple):
         Origin: FVector
@@ -344,6 +877,93 @@ class UPrimitiveComponent(USceneComponent):
 
     def GetBounds(self) -> UPrimitiveComponent.GetBoundsResult:
         """Returns the world-space axis-aligned bounds as centre Origin and half size BoxExtent."""
+
+    def SetSimulatePhysics(self, *, bSimulate: bool) -> None:
+        """Turns physics simulation on or off; turning it on needs a Movable component with collision."""
+
+    def IsSimulatingPhysics(self) -> bool:
+        """Returns true while physics moves this component."""
+
+    def SetMassOverrideInKg(self, *, MassInKg: float) -> None:
+        """Sets the mass in kilograms (> 0)."""
+
+    def GetMass(self) -> float:
+        """Returns the mass in kilograms."""
+
+    def AddForce(self, *, Force: FVector, bAccelChange: bool = False) -> None:
+        """Adds a force in newtons at the centre of mass for the next physics step (an acceleration in m/s^2
+        when bAccelChange is true).
+        """
+
+    def AddTorqueInRadians(self, *, Torque: FVector) -> None:
+        """Adds a torque in newton-metres about world axes for the next physics step."""
+
+    def AddImpulse(self, *, Impulse: FVector, bVelChange: bool = False) -> None:
+        """Changes the velocity at once by Impulse / mass (Impulse in N*s; a velocity change in m/s when
+        bVelChange is true).
+        """
+
+    def SetPhysicsLinearVelocity(self, *, NewVel: FVector, bAddToCurrent: bool = False) -> None:
+        """Sets the linear velocity in m/s (adds it to the current one when bAddToCurrent is true)."""
+
+    def GetPhysicsLinearVelocity(self) -> FVector:
+        """Returns the linear velocity in m/s (zero when not simulated)."""
+
+    def SetPhysicsAngularVelocityInDegrees(self, *, NewAngVel: FVector, bAddToCurrent: bool = False) -> None:
+        """Sets the angular velocity in degrees per second about world axes."""
+
+    def GetPhysicsAngularVelocityInDegrees(self) -> FVector:
+        """Returns the angular velocity in degrees per second about world axes (zero when not simulated)."""
+
+    def IsAnyRigidBodyAwake(self) -> bool:
+        """Returns true while this component's body is awake (false for sleeping or non-simulated ones)."""
+
+
+class USkyLightComponent(USceneComponent):
+    """Uniform sky light: ambient radiance on every surface, and the colour of pixels that hit nothing."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def SkyColor(self) -> FLinearColor:
+        """Linear RGB radiance of the uniform sky, multiplied by Intensity."""
+
+    @SkyColor.setter
+    def SkyColor(self, value: FLinearColor) -> None: ...
+
+    @property
+    def Intensity(self) -> float:
+        """Multiplier of SkyColor."""
+
+    @Intensity.setter
+    def Intensity(self, value: float) -> None: ...
+
+    @property
+    def BackgroundColor(self) -> FLinearColor:
+        """Linear HDR colour of the pixels that hit no geometry."""
+
+    @BackgroundColor.setter
+    def BackgroundColor(self, value: FLinearColor) -> None: ...
+
+
+class USpotLightComponent(UPointLightComponent):
+    """A point light restricted to a cone around the component's forward axis."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def InnerConeAngle(self) -> float:
+        """Half-angle in degrees inside which the light has full intensity."""
+
+    @InnerConeAngle.setter
+    def InnerConeAngle(self, value: float) -> None: ...
+
+    @property
+    def OuterConeAngle(self) -> float:
+        """Half-angle in degrees outside which the light is zero (>= InnerConeAngle, < 90)."""
+
+    @OuterConeAngle.setter
+    def OuterConeAngle(self, value: float) -> None: ...
 
 
 class UStaticMeshComponent(UPrimitiveComponent):
@@ -444,3 +1064,38 @@ class UWorld(UObject):
 
     def get_frame_count(self) -> int:
         """Returns the number of frames this world has ticked."""
+
+    class line_trace_singleResult(NamedTuple):
+        ReturnValue: bool
+        hit: FHitResult
+        actor: AActor | None
+        component: UPrimitiveComponent | None
+
+    def line_trace_single(self, *, start: FVector, end: FVector) -> UWorld.line_trace_singleResult:
+        """Traces the segment start -> end against every collision body; returns true on a hit, with the hit,
+        and the actor and component that were hit (None when nothing was hit).
+        """
+
+    def inject_input_for_actor(self, *, actor: AActor, input_action_name: str, value: FVector) -> None:
+        """Routes a continuous input action with the given value to actor's UInputComponent for the next tick."""
+
+    def load_scene(self, *, path: str) -> None:
+        """Replaces every actor of this world by those of the scene file at path (see core/world/scene_io.h)."""
+
+    def save_scene(self, *, path: str) -> None:
+        """Writes every actor and component of this world, with every reflected property, to a scene file."""
+
+    def is_editor_world(self) -> bool:
+        """Returns true for the persistent world of an editor instance."""
+
+    def is_game_world(self) -> bool:
+        """Returns true for a world that plays (a standalone instance's world, or the editor's play world)."""
+
+    def play(self) -> None:
+        """Editor world only: starts play in a new game world copied from this one (instance.get_game())."""
+
+    def stop(self) -> None:
+        """Editor world only: ends play and destroys the game world; its objects' handles become stale."""
+
+    def is_playing(self) -> bool:
+        """Editor world only: returns true while a game world copied from this one is playing."""

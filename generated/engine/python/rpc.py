@@ -18,7 +18,7 @@ from spear._rpc_proxy import ObjectProxy as _ObjectProxy
 from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
-from .api import EComponentMobility, FLinearColor, FQuat, FRotator, FTransform, FVector, FVector2D  # structs and enums are shared with the in-process API
+from .api import ECameraModality, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, FCameraPixels, FHitResult, FLinearColor, FMaterialDesc, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
 
@@ -27,13 +27,13 @@ class UObject(_ObjectProxy, api.UObject):
     __slots__ = ()
 
     def GetName(self) -> str:
-        return cast("str", self._sp_call("GetName", {}, "str"))
+        return cast("str", self._sp_call("UObject", "GetName", {}, "str"))
 
     def GetClassName(self) -> str:
-        return cast("str", self._sp_call("GetClassName", {}, "str"))
+        return cast("str", self._sp_call("UObject", "GetClassName", {}, "str"))
 
     def GetWorld(self) -> api.UWorld | None:
-        return cast("api.UWorld | None", self._sp_call("GetWorld", {}, "UWorld | None"))
+        return cast("api.UWorld | None", self._sp_call("UObject", "GetWorld", {}, "UWorld | None"))
 
 
 _register_proxy(UObject)
@@ -44,63 +44,194 @@ class AActor(UObject, api.AActor):
 
     @property
     def Tags(self) -> list[str]:
-        return cast("list[str]", self._sp_get("Tags", "list[str]"))
+        return cast("list[str]", self._sp_get("AActor", "Tags", "list[str]"))
 
     @Tags.setter
     def Tags(self, value: list[str]) -> None:
-        self._sp_set("Tags", value)
+        self._sp_set("AActor", "Tags", value)
 
     @property
     def RootComponent(self) -> api.USceneComponent | None:
-        return cast("api.USceneComponent | None", self._sp_get("RootComponent", "USceneComponent | None"))
+        return cast("api.USceneComponent | None", self._sp_get("AActor", "RootComponent", "USceneComponent | None"))
 
     def SetRootComponent(self, *, NewRootComponent: api.USceneComponent) -> None:
-        self._sp_call("SetRootComponent", {"NewRootComponent": NewRootComponent}, "None")
+        self._sp_call("AActor", "SetRootComponent", {"NewRootComponent": NewRootComponent}, "None")
 
     def GetActorLocation(self) -> FVector:
-        return cast("FVector", self._sp_call("GetActorLocation", {}, "FVector"))
+        return cast("FVector", self._sp_call("AActor", "GetActorLocation", {}, "FVector"))
 
     def SetActorLocation(self, *, NewLocation: FVector) -> bool:
-        return cast("bool", self._sp_call("SetActorLocation", {"NewLocation": NewLocation}, "bool"))
+        return cast("bool", self._sp_call("AActor", "SetActorLocation", {"NewLocation": NewLocation}, "bool"))
 
     def GetActorRotation(self) -> FRotator:
-        return cast("FRotator", self._sp_call("GetActorRotation", {}, "FRotator"))
+        return cast("FRotator", self._sp_call("AActor", "GetActorRotation", {}, "FRotator"))
 
     def SetActorRotation(self, *, NewRotation: FRotator) -> bool:
-        return cast("bool", self._sp_call("SetActorRotation", {"NewRotation": NewRotation}, "bool"))
+        return cast("bool", self._sp_call("AActor", "SetActorRotation", {"NewRotation": NewRotation}, "bool"))
 
     def K2_SetActorLocationAndRotation(self, *, NewLocation: FVector, NewRotation: FRotator, bSweep: bool = _DEFAULT, bTeleport: bool = _DEFAULT) -> bool:
-        return cast("bool", self._sp_call("K2_SetActorLocationAndRotation", {"NewLocation": NewLocation, "NewRotation": NewRotation, "bSweep": bSweep, "bTeleport": bTeleport}, "bool"))
+        return cast("bool", self._sp_call("AActor", "K2_SetActorLocationAndRotation", {"NewLocation": NewLocation, "NewRotation": NewRotation, "bSweep": bSweep, "bTeleport": bTeleport}, "bool"))
 
     def GetActorScale3D(self) -> FVector:
-        return cast("FVector", self._sp_call("GetActorScale3D", {}, "FVector"))
+        return cast("FVector", self._sp_call("AActor", "GetActorScale3D", {}, "FVector"))
 
     def SetActorScale3D(self, *, NewScale3D: FVector) -> None:
-        self._sp_call("SetActorScale3D", {"NewScale3D": NewScale3D}, "None")
+        self._sp_call("AActor", "SetActorScale3D", {"NewScale3D": NewScale3D}, "None")
 
     def GetActorTransform(self) -> FTransform:
-        return cast("FTransform", self._sp_call("GetActorTransform", {}, "FTransform"))
+        return cast("FTransform", self._sp_call("AActor", "GetActorTransform", {}, "FTransform"))
 
     def SetActorTransform(self, *, NewTransform: FTransform) -> bool:
-        return cast("bool", self._sp_call("SetActorTransform", {"NewTransform": NewTransform}, "bool"))
+        return cast("bool", self._sp_call("AActor", "SetActorTransform", {"NewTransform": NewTransform}, "bool"))
 
     def GetActorForwardVector(self) -> FVector:
-        return cast("FVector", self._sp_call("GetActorForwardVector", {}, "FVector"))
+        return cast("FVector", self._sp_call("AActor", "GetActorForwardVector", {}, "FVector"))
 
     def GetActorBounds(self, *, bOnlyCollidingComponents: bool) -> api.AActor.GetActorBoundsResult:
-        return cast("api.AActor.GetActorBoundsResult", self._sp_call("GetActorBounds", {"bOnlyCollidingComponents": bOnlyCollidingComponents}, "dict", api.AActor.GetActorBoundsResult))
+        return cast("api.AActor.GetActorBoundsResult", self._sp_call("AActor", "GetActorBounds", {"bOnlyCollidingComponents": bOnlyCollidingComponents}, "dict", api.AActor.GetActorBoundsResult))
 
     def ActorHasTag(self, *, Tag: str) -> bool:
-        return cast("bool", self._sp_call("ActorHasTag", {"Tag": Tag}, "bool"))
+        return cast("bool", self._sp_call("AActor", "ActorHasTag", {"Tag": Tag}, "bool"))
 
     def K2_GetComponents(self) -> list[api.UActorComponent]:
-        return cast("list[api.UActorComponent]", self._sp_call("K2_GetComponents", {}, "list[UActorComponent]"))
+        return cast("list[api.UActorComponent]", self._sp_call("AActor", "K2_GetComponents", {}, "list[UActorComponent]"))
 
     def GetComponentByClass(self, *, ComponentClass: type[api.UActorComponent] | str) -> Any:
-        return self._sp_call("GetComponentByClass", {"ComponentClass": ComponentClass}, "UActorComponent | None")
+        return self._sp_call("AActor", "GetComponentByClass", {"ComponentClass": ComponentClass}, "UActorComponent | None")
 
 
 _register_proxy(AActor)
+
+
+class ACameraSensorActor(AActor, api.ACameraSensorActor):
+    __slots__ = ()
+
+    @property
+    def CameraSensor(self) -> api.UCameraSensorComponent:
+        return cast("api.UCameraSensorComponent", self._sp_get("ACameraSensorActor", "CameraSensor", "UCameraSensorComponent"))
+
+
+_register_proxy(ACameraSensorActor)
+
+
+class ADirectionalLight(AActor, api.ADirectionalLight):
+    __slots__ = ()
+
+    @property
+    def LightComponent(self) -> api.UDirectionalLightComponent:
+        return cast("api.UDirectionalLightComponent", self._sp_get("ADirectionalLight", "LightComponent", "UDirectionalLightComponent"))
+
+
+_register_proxy(ADirectionalLight)
+
+
+class AMaterialLibrary(AActor, api.AMaterialLibrary):
+    __slots__ = ()
+
+    @property
+    def Materials(self) -> dict[str, FMaterialDesc]:
+        return cast("dict[str, FMaterialDesc]", self._sp_get("AMaterialLibrary", "Materials", "dict[str, FMaterialDesc]"))
+
+    @Materials.setter
+    def Materials(self, value: dict[str, FMaterialDesc]) -> None:
+        self._sp_set("AMaterialLibrary", "Materials", value)
+
+    def SetMaterial(self, *, Name: str, Material: FMaterialDesc) -> None:
+        self._sp_call("AMaterialLibrary", "SetMaterial", {"Name": Name, "Material": Material}, "None")
+
+    def GetMaterial(self, *, Name: str) -> FMaterialDesc:
+        return cast("FMaterialDesc", self._sp_call("AMaterialLibrary", "GetMaterial", {"Name": Name}, "FMaterialDesc"))
+
+    def GetBuiltinMaterialNames(self) -> list[str]:
+        return cast("list[str]", self._sp_call("AMaterialLibrary", "GetBuiltinMaterialNames", {}, "list[str]"))
+
+
+_register_proxy(AMaterialLibrary)
+
+
+class AMultiViewCameraRig(AActor, api.AMultiViewCameraRig):
+    __slots__ = ()
+
+    @property
+    def Cameras(self) -> list[api.UCameraSensorComponent]:
+        return cast("list[api.UCameraSensorComponent]", self._sp_get("AMultiViewCameraRig", "Cameras", "list[UCameraSensorComponent]"))
+
+    @property
+    def Radius(self) -> float:
+        return cast("float", self._sp_get("AMultiViewCameraRig", "Radius", "float"))
+
+    def SetRing(self, *, NumViews: int, NewRadius: float) -> None:
+        self._sp_call("AMultiViewCameraRig", "SetRing", {"NumViews": NumViews, "NewRadius": NewRadius}, "None")
+
+    def ConfigureCameras(self, *, Width: int, Height: int, Modalities: list[ECameraModality]) -> None:
+        self._sp_call("AMultiViewCameraRig", "ConfigureCameras", {"Width": Width, "Height": Height, "Modalities": Modalities}, "None")
+
+
+_register_proxy(AMultiViewCameraRig)
+
+
+class APointLight(AActor, api.APointLight):
+    __slots__ = ()
+
+    @property
+    def LightComponent(self) -> api.UPointLightComponent:
+        return cast("api.UPointLightComponent", self._sp_get("APointLight", "LightComponent", "UPointLightComponent"))
+
+
+_register_proxy(APointLight)
+
+
+class ASimpleVehicle(AActor, api.ASimpleVehicle):
+    __slots__ = ()
+
+    @property
+    def Body(self) -> api.UStaticMeshComponent:
+        return cast("api.UStaticMeshComponent", self._sp_get("ASimpleVehicle", "Body", "UStaticMeshComponent"))
+
+    @property
+    def InputComponent(self) -> api.UInputComponent:
+        return cast("api.UInputComponent", self._sp_get("ASimpleVehicle", "InputComponent", "UInputComponent"))
+
+    @property
+    def MaxSpeed(self) -> float:
+        return cast("float", self._sp_get("ASimpleVehicle", "MaxSpeed", "float"))
+
+    @MaxSpeed.setter
+    def MaxSpeed(self, value: float) -> None:
+        self._sp_set("ASimpleVehicle", "MaxSpeed", value)
+
+    @property
+    def MaxYawRateInDegrees(self) -> float:
+        return cast("float", self._sp_get("ASimpleVehicle", "MaxYawRateInDegrees", "float"))
+
+    @MaxYawRateInDegrees.setter
+    def MaxYawRateInDegrees(self, value: float) -> None:
+        self._sp_set("ASimpleVehicle", "MaxYawRateInDegrees", value)
+
+
+_register_proxy(ASimpleVehicle)
+
+
+class ASkyLight(AActor, api.ASkyLight):
+    __slots__ = ()
+
+    @property
+    def SkyLightComponent(self) -> api.USkyLightComponent:
+        return cast("api.USkyLightComponent", self._sp_get("ASkyLight", "SkyLightComponent", "USkyLightComponent"))
+
+
+_register_proxy(ASkyLight)
+
+
+class ASpotLight(AActor, api.ASpotLight):
+    __slots__ = ()
+
+    @property
+    def LightComponent(self) -> api.USpotLightComponent:
+        return cast("api.USpotLightComponent", self._sp_get("ASpotLight", "LightComponent", "USpotLightComponent"))
+
+
+_register_proxy(ASpotLight)
 
 
 class AStaticMeshActor(AActor, api.AStaticMeshActor):
@@ -108,10 +239,36 @@ class AStaticMeshActor(AActor, api.AStaticMeshActor):
 
     @property
     def StaticMeshComponent(self) -> api.UStaticMeshComponent:
-        return cast("api.UStaticMeshComponent", self._sp_get("StaticMeshComponent", "UStaticMeshComponent"))
+        return cast("api.UStaticMeshComponent", self._sp_get("AStaticMeshActor", "StaticMeshComponent", "UStaticMeshComponent"))
 
 
 _register_proxy(AStaticMeshActor)
+
+
+class AStereoCameraRig(AActor, api.AStereoCameraRig):
+    __slots__ = ()
+
+    @property
+    def Baseline(self) -> float:
+        return cast("float", self._sp_get("AStereoCameraRig", "Baseline", "float"))
+
+    @Baseline.setter
+    def Baseline(self, value: float) -> None:
+        self._sp_set("AStereoCameraRig", "Baseline", value)
+
+    @property
+    def LeftCamera(self) -> api.UCameraSensorComponent:
+        return cast("api.UCameraSensorComponent", self._sp_get("AStereoCameraRig", "LeftCamera", "UCameraSensorComponent"))
+
+    @property
+    def RightCamera(self) -> api.UCameraSensorComponent:
+        return cast("api.UCameraSensorComponent", self._sp_get("AStereoCameraRig", "RightCamera", "UCameraSensorComponent"))
+
+    def SetBaseline(self, *, NewBaseline: float) -> None:
+        self._sp_call("AStereoCameraRig", "SetBaseline", {"NewBaseline": NewBaseline}, "None")
+
+
+_register_proxy(AStereoCameraRig)
 
 
 class UActorComponent(UObject, api.UActorComponent):
@@ -119,25 +276,25 @@ class UActorComponent(UObject, api.UActorComponent):
 
     @property
     def ComponentTags(self) -> list[str]:
-        return cast("list[str]", self._sp_get("ComponentTags", "list[str]"))
+        return cast("list[str]", self._sp_get("UActorComponent", "ComponentTags", "list[str]"))
 
     @ComponentTags.setter
     def ComponentTags(self, value: list[str]) -> None:
-        self._sp_set("ComponentTags", value)
+        self._sp_set("UActorComponent", "ComponentTags", value)
 
     @property
     def bTickEnabled(self) -> bool:
-        return cast("bool", self._sp_get("bTickEnabled", "bool"))
+        return cast("bool", self._sp_get("UActorComponent", "bTickEnabled", "bool"))
 
     @bTickEnabled.setter
     def bTickEnabled(self, value: bool) -> None:
-        self._sp_set("bTickEnabled", value)
+        self._sp_set("UActorComponent", "bTickEnabled", value)
 
     def GetOwner(self) -> api.AActor | None:
-        return cast("api.AActor | None", self._sp_call("GetOwner", {}, "AActor | None"))
+        return cast("api.AActor | None", self._sp_call("UActorComponent", "GetOwner", {}, "AActor | None"))
 
     def ComponentHasTag(self, *, Tag: str) -> bool:
-        return cast("bool", self._sp_call("ComponentHasTag", {"Tag": Tag}, "bool"))
+        return cast("bool", self._sp_call("UActorComponent", "ComponentHasTag", {"Tag": Tag}, "bool"))
 
 
 _register_proxy(UActorComponent)
@@ -148,119 +305,453 @@ class USceneComponent(UActorComponent, api.USceneComponent):
 
     @property
     def RelativeLocation(self) -> FVector:
-        return cast("FVector", self._sp_get("RelativeLocation", "FVector"))
+        return cast("FVector", self._sp_get("USceneComponent", "RelativeLocation", "FVector"))
 
     @RelativeLocation.setter
     def RelativeLocation(self, value: FVector) -> None:
-        self._sp_set("RelativeLocation", value)
+        self._sp_set("USceneComponent", "RelativeLocation", value)
 
     @property
     def RelativeRotation(self) -> FRotator:
-        return cast("FRotator", self._sp_get("RelativeRotation", "FRotator"))
+        return cast("FRotator", self._sp_get("USceneComponent", "RelativeRotation", "FRotator"))
 
     @RelativeRotation.setter
     def RelativeRotation(self, value: FRotator) -> None:
-        self._sp_set("RelativeRotation", value)
+        self._sp_set("USceneComponent", "RelativeRotation", value)
 
     @property
     def RelativeScale3D(self) -> FVector:
-        return cast("FVector", self._sp_get("RelativeScale3D", "FVector"))
+        return cast("FVector", self._sp_get("USceneComponent", "RelativeScale3D", "FVector"))
 
     @RelativeScale3D.setter
     def RelativeScale3D(self, value: FVector) -> None:
-        self._sp_set("RelativeScale3D", value)
+        self._sp_set("USceneComponent", "RelativeScale3D", value)
 
     @property
     def Mobility(self) -> EComponentMobility:
-        return cast("EComponentMobility", self._sp_get("Mobility", "EComponentMobility"))
+        return cast("EComponentMobility", self._sp_get("USceneComponent", "Mobility", "EComponentMobility"))
 
     @Mobility.setter
     def Mobility(self, value: EComponentMobility) -> None:
-        self._sp_set("Mobility", value)
+        self._sp_set("USceneComponent", "Mobility", value)
 
     @property
     def bVisible(self) -> bool:
-        return cast("bool", self._sp_get("bVisible", "bool"))
+        return cast("bool", self._sp_get("USceneComponent", "bVisible", "bool"))
 
     @bVisible.setter
     def bVisible(self, value: bool) -> None:
-        self._sp_set("bVisible", value)
+        self._sp_set("USceneComponent", "bVisible", value)
 
     def SetRelativeLocation(self, *, NewLocation: FVector) -> None:
-        self._sp_call("SetRelativeLocation", {"NewLocation": NewLocation}, "None")
+        self._sp_call("USceneComponent", "SetRelativeLocation", {"NewLocation": NewLocation}, "None")
 
     def SetRelativeRotation(self, *, NewRotation: FRotator) -> None:
-        self._sp_call("SetRelativeRotation", {"NewRotation": NewRotation}, "None")
+        self._sp_call("USceneComponent", "SetRelativeRotation", {"NewRotation": NewRotation}, "None")
 
     def SetRelativeScale3D(self, *, NewScale3D: FVector) -> None:
-        self._sp_call("SetRelativeScale3D", {"NewScale3D": NewScale3D}, "None")
+        self._sp_call("USceneComponent", "SetRelativeScale3D", {"NewScale3D": NewScale3D}, "None")
 
     def SetRelativeTransform(self, *, NewTransform: FTransform) -> None:
-        self._sp_call("SetRelativeTransform", {"NewTransform": NewTransform}, "None")
+        self._sp_call("USceneComponent", "SetRelativeTransform", {"NewTransform": NewTransform}, "None")
 
     def GetRelativeTransform(self) -> FTransform:
-        return cast("FTransform", self._sp_call("GetRelativeTransform", {}, "FTransform"))
+        return cast("FTransform", self._sp_call("USceneComponent", "GetRelativeTransform", {}, "FTransform"))
 
     def SetMobility(self, *, NewMobility: EComponentMobility) -> None:
-        self._sp_call("SetMobility", {"NewMobility": NewMobility}, "None")
+        self._sp_call("USceneComponent", "SetMobility", {"NewMobility": NewMobility}, "None")
 
     def GetComponentTransform(self) -> FTransform:
-        return cast("FTransform", self._sp_call("GetComponentTransform", {}, "FTransform"))
+        return cast("FTransform", self._sp_call("USceneComponent", "GetComponentTransform", {}, "FTransform"))
 
     def GetComponentLocation(self) -> FVector:
-        return cast("FVector", self._sp_call("GetComponentLocation", {}, "FVector"))
+        return cast("FVector", self._sp_call("USceneComponent", "GetComponentLocation", {}, "FVector"))
 
     def K2_GetComponentLocation(self) -> FVector:
-        return cast("FVector", self._sp_call("K2_GetComponentLocation", {}, "FVector"))
+        return cast("FVector", self._sp_call("USceneComponent", "K2_GetComponentLocation", {}, "FVector"))
 
     def GetComponentRotation(self) -> FRotator:
-        return cast("FRotator", self._sp_call("GetComponentRotation", {}, "FRotator"))
+        return cast("FRotator", self._sp_call("USceneComponent", "GetComponentRotation", {}, "FRotator"))
 
     def GetComponentScale(self) -> FVector:
-        return cast("FVector", self._sp_call("GetComponentScale", {}, "FVector"))
+        return cast("FVector", self._sp_call("USceneComponent", "GetComponentScale", {}, "FVector"))
 
     def SetWorldLocation(self, *, NewLocation: FVector) -> None:
-        self._sp_call("SetWorldLocation", {"NewLocation": NewLocation}, "None")
+        self._sp_call("USceneComponent", "SetWorldLocation", {"NewLocation": NewLocation}, "None")
 
     def SetWorldRotation(self, *, NewRotation: FRotator) -> None:
-        self._sp_call("SetWorldRotation", {"NewRotation": NewRotation}, "None")
+        self._sp_call("USceneComponent", "SetWorldRotation", {"NewRotation": NewRotation}, "None")
 
     def SetWorldTransform(self, *, NewTransform: FTransform) -> None:
-        self._sp_call("SetWorldTransform", {"NewTransform": NewTransform}, "None")
+        self._sp_call("USceneComponent", "SetWorldTransform", {"NewTransform": NewTransform}, "None")
 
     def GetForwardVector(self) -> FVector:
-        return cast("FVector", self._sp_call("GetForwardVector", {}, "FVector"))
+        return cast("FVector", self._sp_call("USceneComponent", "GetForwardVector", {}, "FVector"))
 
     def GetRightVector(self) -> FVector:
-        return cast("FVector", self._sp_call("GetRightVector", {}, "FVector"))
+        return cast("FVector", self._sp_call("USceneComponent", "GetRightVector", {}, "FVector"))
 
     def GetUpVector(self) -> FVector:
-        return cast("FVector", self._sp_call("GetUpVector", {}, "FVector"))
+        return cast("FVector", self._sp_call("USceneComponent", "GetUpVector", {}, "FVector"))
 
     def AttachToComponent(self, *, Parent: api.USceneComponent, bKeepWorldTransform: bool = _DEFAULT) -> None:
-        self._sp_call("AttachToComponent", {"Parent": Parent, "bKeepWorldTransform": bKeepWorldTransform}, "None")
+        self._sp_call("USceneComponent", "AttachToComponent", {"Parent": Parent, "bKeepWorldTransform": bKeepWorldTransform}, "None")
 
     def DetachFromComponent(self, *, bKeepWorldTransform: bool = _DEFAULT) -> None:
-        self._sp_call("DetachFromComponent", {"bKeepWorldTransform": bKeepWorldTransform}, "None")
+        self._sp_call("USceneComponent", "DetachFromComponent", {"bKeepWorldTransform": bKeepWorldTransform}, "None")
 
     def GetAttachParent(self) -> api.USceneComponent | None:
-        return cast("api.USceneComponent | None", self._sp_call("GetAttachParent", {}, "USceneComponent | None"))
+        return cast("api.USceneComponent | None", self._sp_call("USceneComponent", "GetAttachParent", {}, "USceneComponent | None"))
 
     def GetChildrenComponents(self, *, bIncludeAllDescendants: bool = _DEFAULT) -> list[api.USceneComponent]:
-        return cast("list[api.USceneComponent]", self._sp_call("GetChildrenComponents", {"bIncludeAllDescendants": bIncludeAllDescendants}, "list[USceneComponent]"))
+        return cast("list[api.USceneComponent]", self._sp_call("USceneComponent", "GetChildrenComponents", {"bIncludeAllDescendants": bIncludeAllDescendants}, "list[USceneComponent]"))
 
 
 _register_proxy(USceneComponent)
 
 
+class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
+    __slots__ = ()
+
+    @property
+    def Width(self) -> int:
+        return cast("int", self._sp_get("UCameraSensorComponent", "Width", "int"))
+
+    @Width.setter
+    def Width(self, value: int) -> None:
+        self._sp_set("UCameraSensorComponent", "Width", value)
+
+    @property
+    def Height(self) -> int:
+        return cast("int", self._sp_get("UCameraSensorComponent", "Height", "int"))
+
+    @Height.setter
+    def Height(self, value: int) -> None:
+        self._sp_set("UCameraSensorComponent", "Height", value)
+
+    @property
+    def FOV(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "FOV", "float"))
+
+    @FOV.setter
+    def FOV(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "FOV", value)
+
+    @property
+    def NearClip(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "NearClip", "float"))
+
+    @NearClip.setter
+    def NearClip(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "NearClip", value)
+
+    @property
+    def FarClip(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "FarClip", "float"))
+
+    @FarClip.setter
+    def FarClip(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "FarClip", value)
+
+    @property
+    def Exposure(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "Exposure", "float"))
+
+    @Exposure.setter
+    def Exposure(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "Exposure", value)
+
+    @property
+    def ToneCurve(self) -> ECameraToneCurve:
+        return cast("ECameraToneCurve", self._sp_get("UCameraSensorComponent", "ToneCurve", "ECameraToneCurve"))
+
+    @ToneCurve.setter
+    def ToneCurve(self, value: ECameraToneCurve) -> None:
+        self._sp_set("UCameraSensorComponent", "ToneCurve", value)
+
+    @property
+    def bShadows(self) -> bool:
+        return cast("bool", self._sp_get("UCameraSensorComponent", "bShadows", "bool"))
+
+    @bShadows.setter
+    def bShadows(self, value: bool) -> None:
+        self._sp_set("UCameraSensorComponent", "bShadows", value)
+
+    @property
+    def ShadowResolution(self) -> int:
+        return cast("int", self._sp_get("UCameraSensorComponent", "ShadowResolution", "int"))
+
+    @ShadowResolution.setter
+    def ShadowResolution(self, value: int) -> None:
+        self._sp_set("UCameraSensorComponent", "ShadowResolution", value)
+
+    @property
+    def Modalities(self) -> list[ECameraModality]:
+        return cast("list[ECameraModality]", self._sp_get("UCameraSensorComponent", "Modalities", "list[ECameraModality]"))
+
+    @Modalities.setter
+    def Modalities(self, value: list[ECameraModality]) -> None:
+        self._sp_set("UCameraSensorComponent", "Modalities", value)
+
+    @property
+    def Latency(self) -> int:
+        return cast("int", self._sp_get("UCameraSensorComponent", "Latency", "int"))
+
+    @Latency.setter
+    def Latency(self, value: int) -> None:
+        self._sp_set("UCameraSensorComponent", "Latency", value)
+
+    def read_pixels(self) -> FCameraPixels:
+        return cast("FCameraPixels", self._sp_call("UCameraSensorComponent", "read_pixels", {}, "FCameraPixels"))
+
+    def GetPixelsFrame(self) -> int:
+        return cast("int", self._sp_call("UCameraSensorComponent", "GetPixelsFrame", {}, "int"))
+
+    def SetModalityNames(self, *, Names: list[str]) -> None:
+        self._sp_call("UCameraSensorComponent", "SetModalityNames", {"Names": Names}, "None")
+
+    def GetModalityNames(self) -> list[str]:
+        return cast("list[str]", self._sp_call("UCameraSensorComponent", "GetModalityNames", {}, "list[str]"))
+
+    def GetObjectIdInfo(self, *, ObjectId: int) -> api.UCameraSensorComponent.GetObjectIdInfoResult:
+        return cast("api.UCameraSensorComponent.GetObjectIdInfoResult", self._sp_call("UCameraSensorComponent", "GetObjectIdInfo", {"ObjectId": ObjectId}, "dict", api.UCameraSensorComponent.GetObjectIdInfoResult))
+
+    def GetObjectId(self, *, Component: api.UPrimitiveComponent, MaterialSlot: int = _DEFAULT) -> int:
+        return cast("int", self._sp_call("UCameraSensorComponent", "GetObjectId", {"Component": Component, "MaterialSlot": MaterialSlot}, "int"))
+
+    def GetMaterialId(self, *, Name: str) -> int:
+        return cast("int", self._sp_call("UCameraSensorComponent", "GetMaterialId", {"Name": Name}, "int"))
+
+    def get_render_device_info(self) -> FRenderDeviceInfo:
+        return cast("FRenderDeviceInfo", self._sp_call("UCameraSensorComponent", "get_render_device_info", {}, "FRenderDeviceInfo"))
+
+    def GetRenderStats(self) -> FRenderStats:
+        return cast("FRenderStats", self._sp_call("UCameraSensorComponent", "GetRenderStats", {}, "FRenderStats"))
+
+
+_register_proxy(UCameraSensorComponent)
+
+
+class ULightComponent(USceneComponent, api.ULightComponent):
+    __slots__ = ()
+
+    @property
+    def Intensity(self) -> float:
+        return cast("float", self._sp_get("ULightComponent", "Intensity", "float"))
+
+    @Intensity.setter
+    def Intensity(self, value: float) -> None:
+        self._sp_set("ULightComponent", "Intensity", value)
+
+    @property
+    def LightColor(self) -> FLinearColor:
+        return cast("FLinearColor", self._sp_get("ULightComponent", "LightColor", "FLinearColor"))
+
+    @LightColor.setter
+    def LightColor(self, value: FLinearColor) -> None:
+        self._sp_set("ULightComponent", "LightColor", value)
+
+    @property
+    def bCastShadows(self) -> bool:
+        return cast("bool", self._sp_get("ULightComponent", "bCastShadows", "bool"))
+
+    @bCastShadows.setter
+    def bCastShadows(self, value: bool) -> None:
+        self._sp_set("ULightComponent", "bCastShadows", value)
+
+
+_register_proxy(ULightComponent)
+
+
+class UDirectionalLightComponent(ULightComponent, api.UDirectionalLightComponent):
+    __slots__ = ()
+
+
+_register_proxy(UDirectionalLightComponent)
+
+
+class UInputComponent(UActorComponent, api.UInputComponent):
+    __slots__ = ()
+
+    def GetActionValue(self, *, ActionName: str) -> FVector:
+        return cast("FVector", self._sp_call("UInputComponent", "GetActionValue", {"ActionName": ActionName}, "FVector"))
+
+    def IsActionTriggered(self, *, ActionName: str) -> bool:
+        return cast("bool", self._sp_call("UInputComponent", "IsActionTriggered", {"ActionName": ActionName}, "bool"))
+
+
+_register_proxy(UInputComponent)
+
+
+class UPointLightComponent(ULightComponent, api.UPointLightComponent):
+    __slots__ = ()
+
+    @property
+    def AttenuationRadius(self) -> float:
+        return cast("float", self._sp_get("UPointLightComponent", "AttenuationRadius", "float"))
+
+    @AttenuationRadius.setter
+    def AttenuationRadius(self, value: float) -> None:
+        self._sp_set("UPointLightComponent", "AttenuationRadius", value)
+
+
+_register_proxy(UPointLightComponent)
+
+
 class UPrimitiveComponent(USceneComponent, api.UPrimitiveComponent):
     __slots__ = ()
 
+    @property
+    def bSimulatePhysics(self) -> bool:
+        return cast("bool", self._sp_get("UPrimitiveComponent", "bSimulatePhysics", "bool"))
+
+    @bSimulatePhysics.setter
+    def bSimulatePhysics(self, value: bool) -> None:
+        self._sp_set("UPrimitiveComponent", "bSimulatePhysics", value)
+
+    @property
+    def CollisionPrimitive(self) -> ECollisionPrimitive:
+        return cast("ECollisionPrimitive", self._sp_get("UPrimitiveComponent", "CollisionPrimitive", "ECollisionPrimitive"))
+
+    @CollisionPrimitive.setter
+    def CollisionPrimitive(self, value: ECollisionPrimitive) -> None:
+        self._sp_set("UPrimitiveComponent", "CollisionPrimitive", value)
+
+    @property
+    def MassInKg(self) -> float:
+        return cast("float", self._sp_get("UPrimitiveComponent", "MassInKg", "float"))
+
+    @MassInKg.setter
+    def MassInKg(self, value: float) -> None:
+        self._sp_set("UPrimitiveComponent", "MassInKg", value)
+
+    @property
+    def Friction(self) -> float:
+        return cast("float", self._sp_get("UPrimitiveComponent", "Friction", "float"))
+
+    @Friction.setter
+    def Friction(self, value: float) -> None:
+        self._sp_set("UPrimitiveComponent", "Friction", value)
+
+    @property
+    def Restitution(self) -> float:
+        return cast("float", self._sp_get("UPrimitiveComponent", "Restitution", "float"))
+
+    @Restitution.setter
+    def Restitution(self, value: float) -> None:
+        self._sp_set("UPrimitiveComponent", "Restitution", value)
+
+    @property
+    def LinearDamping(self) -> float:
+        return cast("float", self._sp_get("UPrimitiveComponent", "LinearDamping", "float"))
+
+    @LinearDamping.setter
+    def LinearDamping(self, value: float) -> None:
+        self._sp_set("UPrimitiveComponent", "LinearDamping", value)
+
+    @property
+    def AngularDamping(self) -> float:
+        return cast("float", self._sp_get("UPrimitiveComponent", "AngularDamping", "float"))
+
+    @AngularDamping.setter
+    def AngularDamping(self, value: float) -> None:
+        self._sp_set("UPrimitiveComponent", "AngularDamping", value)
+
     def GetBounds(self) -> api.UPrimitiveComponent.GetBoundsResult:
-        return cast("api.UPrimitiveComponent.GetBoundsResult", self._sp_call("GetBounds", {}, "dict", api.UPrimitiveComponent.GetBoundsResult))
+        return cast("api.UPrimitiveComponent.GetBoundsResult", self._sp_call("UPrimitiveComponent", "GetBounds", {}, "dict", api.UPrimitiveComponent.GetBoundsResult))
+
+    def SetSimulatePhysics(self, *, bSimulate: bool) -> None:
+        self._sp_call("UPrimitiveComponent", "SetSimulatePhysics", {"bSimulate": bSimulate}, "None")
+
+    def IsSimulatingPhysics(self) -> bool:
+        return cast("bool", self._sp_call("UPrimitiveComponent", "IsSimulatingPhysics", {}, "bool"))
+
+    def SetMassOverrideInKg(self, *, MassInKg: float) -> None:
+        self._sp_call("UPrimitiveComponent", "SetMassOverrideInKg", {"MassInKg": MassInKg}, "None")
+
+    def GetMass(self) -> float:
+        return cast("float", self._sp_call("UPrimitiveComponent", "GetMass", {}, "float"))
+
+    def AddForce(self, *, Force: FVector, bAccelChange: bool = _DEFAULT) -> None:
+        self._sp_call("UPrimitiveComponent", "AddForce", {"Force": Force, "bAccelChange": bAccelChange}, "None")
+
+    def AddTorqueInRadians(self, *, Torque: FVector) -> None:
+        self._sp_call("UPrimitiveComponent", "AddTorqueInRadians", {"Torque": Torque}, "None")
+
+    def AddImpulse(self, *, Impulse: FVector, bVelChange: bool = _DEFAULT) -> None:
+        self._sp_call("UPrimitiveComponent", "AddImpulse", {"Impulse": Impulse, "bVelChange": bVelChange}, "None")
+
+    def SetPhysicsLinearVelocity(self, *, NewVel: FVector, bAddToCurrent: bool = _DEFAULT) -> None:
+        self._sp_call("UPrimitiveComponent", "SetPhysicsLinearVelocity", {"NewVel": NewVel, "bAddToCurrent": bAddToCurrent}, "None")
+
+    def GetPhysicsLinearVelocity(self) -> FVector:
+        return cast("FVector", self._sp_call("UPrimitiveComponent", "GetPhysicsLinearVelocity", {}, "FVector"))
+
+    def SetPhysicsAngularVelocityInDegrees(self, *, NewAngVel: FVector, bAddToCurrent: bool = _DEFAULT) -> None:
+        self._sp_call("UPrimitiveComponent", "SetPhysicsAngularVelocityInDegrees", {"NewAngVel": NewAngVel, "bAddToCurrent": bAddToCurrent}, "None")
+
+    def GetPhysicsAngularVelocityInDegrees(self) -> FVector:
+        return cast("FVector", self._sp_call("UPrimitiveComponent", "GetPhysicsAngularVelocityInDegrees", {}, "FVector"))
+
+    def IsAnyRigidBodyAwake(self) -> bool:
+        return cast("bool", self._sp_call("UPrimitiveComponent", "IsAnyRigidBodyAwake", {}, "bool"))
 
 
 _register_proxy(UPrimitiveComponent)
+
+
+class USkyLightComponent(USceneComponent, api.USkyLightComponent):
+    __slots__ = ()
+
+    @property
+    def SkyColor(self) -> FLinearColor:
+        return cast("FLinearColor", self._sp_get("USkyLightComponent", "SkyColor", "FLinearColor"))
+
+    @SkyColor.setter
+    def SkyColor(self, value: FLinearColor) -> None:
+        self._sp_set("USkyLightComponent", "SkyColor", value)
+
+    @property
+    def Intensity(self) -> float:
+        return cast("float", self._sp_get("USkyLightComponent", "Intensity", "float"))
+
+    @Intensity.setter
+    def Intensity(self, value: float) -> None:
+        self._sp_set("USkyLightComponent", "Intensity", value)
+
+    @property
+    def BackgroundColor(self) -> FLinearColor:
+        return cast("FLinearColor", self._sp_get("USkyLightComponent", "BackgroundColor", "FLinearColor"))
+
+    @BackgroundColor.setter
+    def BackgroundColor(self, value: FLinearColor) -> None:
+        self._sp_set("USkyLightComponent", "BackgroundColor", value)
+
+
+_register_proxy(USkyLightComponent)
+
+
+class USpotLightComponent(UPointLightComponent, api.USpotLightComponent):
+    __slots__ = ()
+
+    @property
+    def InnerConeAngle(self) -> float:
+        return cast("float", self._sp_get("USpotLightComponent", "InnerConeAngle", "float"))
+
+    @InnerConeAngle.setter
+    def InnerConeAngle(self, value: float) -> None:
+        self._sp_set("USpotLightComponent", "InnerConeAngle", value)
+
+    @property
+    def OuterConeAngle(self) -> float:
+        return cast("float", self._sp_get("USpotLightComponent", "OuterConeAngle", "float"))
+
+    @OuterConeAngle.setter
+    def OuterConeAngle(self, value: float) -> None:
+        self._sp_set("USpotLightComponent", "OuterConeAngle", value)
+
+
+_register_proxy(USpotLightComponent)
 
 
 class UStaticMeshComponent(UPrimitiveComponent, api.UStaticMeshComponent):
@@ -268,25 +759,25 @@ class UStaticMeshComponent(UPrimitiveComponent, api.UStaticMeshComponent):
 
     @property
     def StaticMesh(self) -> str:
-        return cast("str", self._sp_get("StaticMesh", "str"))
+        return cast("str", self._sp_get("UStaticMeshComponent", "StaticMesh", "str"))
 
     @StaticMesh.setter
     def StaticMesh(self, value: str) -> None:
-        self._sp_set("StaticMesh", value)
+        self._sp_set("UStaticMeshComponent", "StaticMesh", value)
 
     @property
     def Materials(self) -> list[str]:
-        return cast("list[str]", self._sp_get("Materials", "list[str]"))
+        return cast("list[str]", self._sp_get("UStaticMeshComponent", "Materials", "list[str]"))
 
     @Materials.setter
     def Materials(self, value: list[str]) -> None:
-        self._sp_set("Materials", value)
+        self._sp_set("UStaticMeshComponent", "Materials", value)
 
     def SetStaticMesh(self, *, NewMesh: str) -> bool:
-        return cast("bool", self._sp_call("SetStaticMesh", {"NewMesh": NewMesh}, "bool"))
+        return cast("bool", self._sp_call("UStaticMeshComponent", "SetStaticMesh", {"NewMesh": NewMesh}, "bool"))
 
     def SetMaterial(self, *, ElementIndex: int, Material: str) -> None:
-        self._sp_call("SetMaterial", {"ElementIndex": ElementIndex, "Material": Material}, "None")
+        self._sp_call("UStaticMeshComponent", "SetMaterial", {"ElementIndex": ElementIndex, "Material": Material}, "None")
 
 
 _register_proxy(UStaticMeshComponent)
@@ -296,49 +787,76 @@ class UWorld(UObject, api.UWorld):
     __slots__ = ()
 
     def spawn_actor(self, *, uclass: type[api.AActor] | str, location: FVector = _DEFAULT, rotation: FRotator = _DEFAULT, name: str = _DEFAULT, tags: list[str] = _DEFAULT) -> Any:
-        return self._sp_call("spawn_actor", {"uclass": uclass, "location": location, "rotation": rotation, "name": name, "tags": tags}, "AActor")
+        return self._sp_call("UWorld", "spawn_actor", {"uclass": uclass, "location": location, "rotation": rotation, "name": name, "tags": tags}, "AActor")
 
     def destroy_actor(self, *, actor: api.AActor) -> None:
-        self._sp_call("destroy_actor", {"actor": actor}, "None")
+        self._sp_call("UWorld", "destroy_actor", {"actor": actor}, "None")
 
     def find_actor_by_name(self, *, name: str) -> api.AActor | None:
-        return cast("api.AActor | None", self._sp_call("find_actor_by_name", {"name": name}, "AActor | None"))
+        return cast("api.AActor | None", self._sp_call("UWorld", "find_actor_by_name", {"name": name}, "AActor | None"))
 
     def find_actors_by_tag(self, *, tag: str) -> list[api.AActor]:
-        return cast("list[api.AActor]", self._sp_call("find_actors_by_tag", {"tag": tag}, "list[AActor]"))
+        return cast("list[api.AActor]", self._sp_call("UWorld", "find_actors_by_tag", {"tag": tag}, "list[AActor]"))
 
     def find_actor_by_class(self, *, uclass: type[api.AActor] | str) -> Any:
-        return self._sp_call("find_actor_by_class", {"uclass": uclass}, "AActor | None")
+        return self._sp_call("UWorld", "find_actor_by_class", {"uclass": uclass}, "AActor | None")
 
     def find_actors_by_class(self, *, uclass: type[api.AActor] | str) -> Any:
-        return self._sp_call("find_actors_by_class", {"uclass": uclass}, "list[AActor]")
+        return self._sp_call("UWorld", "find_actors_by_class", {"uclass": uclass}, "list[AActor]")
 
     def find_actors_by_class_as_dict(self, *, uclass: type[api.AActor] | str) -> Any:
-        return self._sp_call("find_actors_by_class_as_dict", {"uclass": uclass}, "dict[str, AActor]")
+        return self._sp_call("UWorld", "find_actors_by_class_as_dict", {"uclass": uclass}, "dict[str, AActor]")
 
     def find_actors(self) -> list[api.AActor]:
-        return cast("list[api.AActor]", self._sp_call("find_actors", {}, "list[AActor]"))
+        return cast("list[api.AActor]", self._sp_call("UWorld", "find_actors", {}, "list[AActor]"))
 
     def get_component_by_name(self, *, actor: api.AActor, component_name: str) -> api.UActorComponent | None:
-        return cast("api.UActorComponent | None", self._sp_call("get_component_by_name", {"actor": actor, "component_name": component_name}, "UActorComponent | None"))
+        return cast("api.UActorComponent | None", self._sp_call("UWorld", "get_component_by_name", {"actor": actor, "component_name": component_name}, "UActorComponent | None"))
 
     def get_components_by_class(self, *, actor: api.AActor, uclass: type[api.UActorComponent] | str) -> Any:
-        return self._sp_call("get_components_by_class", {"actor": actor, "uclass": uclass}, "list[UActorComponent]")
+        return self._sp_call("UWorld", "get_components_by_class", {"actor": actor, "uclass": uclass}, "list[UActorComponent]")
 
     def get_components_by_class_as_dict(self, *, actor: api.AActor, uclass: type[api.UActorComponent] | str) -> Any:
-        return self._sp_call("get_components_by_class_as_dict", {"actor": actor, "uclass": uclass}, "dict[str, UActorComponent]")
+        return self._sp_call("UWorld", "get_components_by_class_as_dict", {"actor": actor, "uclass": uclass}, "dict[str, UActorComponent]")
 
     def get_default_object(self, *, uclass: type[api.UObject] | str) -> Any:
-        return self._sp_call("get_default_object", {"uclass": uclass}, "UObject")
+        return self._sp_call("UWorld", "get_default_object", {"uclass": uclass}, "UObject")
 
     def get_actor_count(self) -> int:
-        return cast("int", self._sp_call("get_actor_count", {}, "int"))
+        return cast("int", self._sp_call("UWorld", "get_actor_count", {}, "int"))
 
     def get_time_seconds(self) -> float:
-        return cast("float", self._sp_call("get_time_seconds", {}, "float"))
+        return cast("float", self._sp_call("UWorld", "get_time_seconds", {}, "float"))
 
     def get_frame_count(self) -> int:
-        return cast("int", self._sp_call("get_frame_count", {}, "int"))
+        return cast("int", self._sp_call("UWorld", "get_frame_count", {}, "int"))
+
+    def line_trace_single(self, *, start: FVector, end: FVector) -> api.UWorld.line_trace_singleResult:
+        return cast("api.UWorld.line_trace_singleResult", self._sp_call("UWorld", "line_trace_single", {"start": start, "end": end}, "dict", api.UWorld.line_trace_singleResult))
+
+    def inject_input_for_actor(self, *, actor: api.AActor, input_action_name: str, value: FVector) -> None:
+        self._sp_call("UWorld", "inject_input_for_actor", {"actor": actor, "input_action_name": input_action_name, "value": value}, "None")
+
+    def load_scene(self, *, path: str) -> None:
+        self._sp_call("UWorld", "load_scene", {"path": path}, "None")
+
+    def save_scene(self, *, path: str) -> None:
+        self._sp_call("UWorld", "save_scene", {"path": path}, "None")
+
+    def is_editor_world(self) -> bool:
+        return cast("bool", self._sp_call("UWorld", "is_editor_world", {}, "bool"))
+
+    def is_game_world(self) -> bool:
+        return cast("bool", self._sp_call("UWorld", "is_game_world", {}, "bool"))
+
+    def play(self) -> None:
+        self._sp_call("UWorld", "play", {}, "None")
+
+    def stop(self) -> None:
+        self._sp_call("UWorld", "stop", {}, "None")
+
+    def is_playing(self) -> bool:
+        return cast("bool", self._sp_call("UWorld", "is_playing", {}, "bool"))
 
 
 _register_proxy(UWorld)

@@ -1,0 +1,252 @@
+#include "core/world/physics_subsystem.h"
+
+#include <algorithm>
+
+#include "core/base/error.h"
+#include "core/reflect/object_base.h"
+#include "core/world/actor.h"
+#include "core/world/world.h"
+
+namespace sp::world {
+
+namespace {
+
+// Bodies carry their component's object handle as their tag, so a raycast hit maps back to the
+// component through the generation-checked object table (never a raw pointer).
+uint64_t tagOf(const UPrimitiveComponent& component) {
+    const reflect::ObjectHandle handle = component.GetHandle();
+    return (uint64_t(handle.index) << 32) | handle.generation;
+}
+
+UPrimitiveComponent* componentOfTag(uint64_t tag) {
+    const reflect::ObjectHandle handle{uint32_t(tag >> 32), uint32_t(tag & 0xffffffffu)};
+    return dynamic_cast<UPrimitiveComponent*>(reflect::ObjectTable::find(handle));
+}
+
+// Thin shapes (a Plane mesh used as a box, a flat cylinder) get this half thickness instead of zero.
+constexpr double kMinHalfExtent = 1e-3;
+
+physics::Shape makeShape(ECollisionPrimitive primitive, const Eigen::Vector3d& halfExtents,
+                         const Eigen::Vector3d& scale) {
+    const Eigen::Vector3d he = halfExtents.cwiseMax(kMinHalfExtent);
+    switch (primitive) {
+    case ECollisionPrimitive::Sphere:
+        return physics::Shape::sphere(he.maxCoeff()).scaled(scale);
+    case ECollisionPrimitive::Cylinder:
+        return physics::Shape::cylinder(std::max(he.x(), he.y()), he.z()).scaled(scale);
+    case ECollisionPrimitive::Plane: {
+        std::vector<Eigen::Vector3d> vertices{
+            {-he.x(), -he.y(), 0.0}, {he.x(), -he.y(), 0.0}, {he.x(), he.y(), 0.0}, {-he.x(), he.y(), 0.0}};
+        return physics::Shape::triangleMesh(std::move(vertices), {0, 1, 2, 0, 2, 3}).scaled(scale);
+    }
+    default:
+        return physics::Shape::box(he).scaled(scale);
+    }
+}
+
+Eigen::Isometry3d poseOf(const FTransform& transform) {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = transform.Rotation.toEigen().normalized().toRotationMatrix();
+    pose.translation() = transform.Translation.toEigen();
+    return pose;
+}
+
+bool isMovable(const UPrimitiveComponent& component) {
+    return component.Mobility == EComponentMobility::Movable;
+}
+
+// Whether the body should be dynamic. Settings that cannot be simulated (a static component, a plane,
+// no mass) leave the body kinematic here; SetSimulatePhysics() reports them as errors instead.
+bool wantsSimulation(const UPrimitiveComponent& component, ECollisionPrimitive primitive) {
+    return component.bSimulatePhysics && isMovable(component) && primitive != ECollisionPrimitive::Plane &&
+           primitive != ECollisionPrimitive::NoCollision && component.MassInKg > 0.0;
+}
+
+} // namespace
+
+PhysicsSubsystem::PhysicsSubsystem(UWorld& /*world*/) {}
+
+PhysicsSubsystem::~PhysicsSubsystem() = default;
+
+void PhysicsSubsystem::registerComponent(UPrimitiveComponent& component) {
+    if (index_.contains(&component))
+        return;
+    index_.emplace(&component, entries_.size());
+    entries_.push_back(Entry{&component, {}, {}, {}});
+    syncEntry(entries_.back());
+}
+
+void PhysicsSubsystem::unregisterComponent(UPrimitiveComponent& component) {
+    auto it = index_.find(&component);
+    if (it == index_.end())
+        return;
+    const size_t position = it->second;
+    if (entries_[position].body.isSet())
+        physicsWorld_.removeBody(entries_[position].body);
+    entries_.erase(entries_.begin() + std::ptrdiff_t(position));
+    index_.erase(it);
+    for (auto& [key, value] : index_)
+        if (value > position)
+            --value;
+}
+
+bool PhysicsSubsystem::isRegistered(const UPrimitiveComponent& component) const {
+    return index_.contains(&component);
+}
+
+PhysicsSubsystem::Entry& PhysicsSubsystem::entryFor(const UPrimitiveComponent& component,
+                                                    const char* function) {
+    auto it = index_.find(&component);
+    SP_CHECK(it != index_.end(), InvalidState, "UPrimitiveComponent.", function,
+             "(): ", component.GetDebugName(),
+             " is not in play (its actor has not begun play or has ended it)");
+    return entries_[it->second];
+}
+
+physics::BodyId PhysicsSubsystem::syncComponent(const UPrimitiveComponent& component, const char* function) {
+    Entry& entry = entryFor(component, function);
+    syncEntry(entry);
+    return entry.body;
+}
+
+physics::BodyId PhysicsSubsystem::requireSimulatedBody(const UPrimitiveComponent& component,
+                                                       const char* function) {
+    const physics::BodyId body = syncComponent(component, function);
+    SP_CHECK(body.isSet() && physicsWorld_.isSimulatingPhysics(body), InvalidState, "UPrimitiveComponent.",
+             function, "(): ", component.GetDebugName(),
+             " is not simulating physics; call SetSimulatePhysics(bSimulate=True) first");
+    return body;
+}
+
+void PhysicsSubsystem::syncAll() {
+    for (Entry& entry : entries_)
+        syncEntry(entry);
+}
+
+void PhysicsSubsystem::syncEntry(Entry& entry) {
+    const UPrimitiveComponent& component = *entry.component;
+    ShapeKey key;
+    const Eigen::AlignedBox3d bounds = component.GetLocalBounds();
+    key.primitive = component.CollisionPrimitive == ECollisionPrimitive::FromMesh
+                        ? component.GetMeshCollisionPrimitive()
+                        : component.CollisionPrimitive;
+    if (bounds.isEmpty())
+        key.primitive = ECollisionPrimitive::NoCollision;
+    if (key.primitive != ECollisionPrimitive::NoCollision) {
+        key.halfExtents = bounds.sizes() / 2.0;
+        key.scale = component.GetComponentScale().toEigen();
+        key.isStatic = !isMovable(component);
+    }
+    const FTransform transform = component.GetComponentTransform();
+    // A static body is rebuilt rather than moved: only an attach parent moving can move it in play.
+    if (!(key == entry.shape) || (key.isStatic && !(transform == entry.syncedTransform))) {
+        rebuildBody(entry, key);
+        return;
+    }
+    if (!entry.body.isSet())
+        return;
+    syncProperties(entry);
+    if (!(transform == entry.syncedTransform)) {
+        physicsWorld_.setPose(entry.body, poseOf(transform));
+        entry.syncedTransform = transform;
+    }
+}
+
+void PhysicsSubsystem::rebuildBody(Entry& entry, const ShapeKey& key) {
+    const UPrimitiveComponent& component = *entry.component;
+    if (entry.body.isSet())
+        physicsWorld_.removeBody(entry.body);
+    entry.body = {};
+    entry.shape = key;
+    entry.syncedTransform = component.GetComponentTransform();
+    if (key.primitive == ECollisionPrimitive::NoCollision)
+        return;
+    try {
+        physics::BodyDesc desc;
+        desc.shape = makeShape(key.primitive, key.halfExtents, key.scale);
+        desc.pose = poseOf(entry.syncedTransform);
+        desc.mobility = key.isStatic ? physics::Mobility::Static : physics::Mobility::Movable;
+        desc.simulatePhysics = wantsSimulation(component, key.primitive);
+        desc.mass = std::max(component.MassInKg, 0.0);
+        desc.friction = component.Friction;
+        desc.restitution = component.Restitution;
+        desc.linearDamping = component.LinearDamping;
+        desc.angularDamping = component.AngularDamping;
+        desc.tag = tagOf(component);
+        entry.body = physicsWorld_.addBody(desc);
+    } catch (const InvalidArgument& error) {
+        // Forget the shape so that the next sync retries (and reports) once the settings are fixed.
+        entry.shape = ShapeKey{};
+        entry.shape.primitive = ECollisionPrimitive::FromMesh;
+        SP_THROW(InvalidArgument, "physics of ", component.GetDebugName(), ": ", error.what());
+    }
+}
+
+void PhysicsSubsystem::syncProperties(Entry& entry) {
+    const UPrimitiveComponent& component = *entry.component;
+    const physics::BodyId id = entry.body;
+    try {
+        if (!entry.shape.isStatic) {
+            const bool simulate = wantsSimulation(component, entry.shape.primitive);
+            const bool simulating = physicsWorld_.isSimulatingPhysics(id);
+            if (simulating && !simulate)
+                physicsWorld_.setSimulatePhysics(id, false);
+            if (component.MassInKg != physicsWorld_.getMass(id) && component.MassInKg >= 0.0 &&
+                (component.MassInKg > 0.0 || !simulate))
+                physicsWorld_.setMass(id, component.MassInKg);
+            if (simulate && !simulating)
+                physicsWorld_.setSimulatePhysics(id, true);
+            if (component.LinearDamping != physicsWorld_.getLinearDamping(id))
+                physicsWorld_.setLinearDamping(id, component.LinearDamping);
+            if (component.AngularDamping != physicsWorld_.getAngularDamping(id))
+                physicsWorld_.setAngularDamping(id, component.AngularDamping);
+        }
+        if (component.Friction != physicsWorld_.getFriction(id))
+            physicsWorld_.setFriction(id, component.Friction);
+        if (component.Restitution != physicsWorld_.getRestitution(id))
+            physicsWorld_.setRestitution(id, component.Restitution);
+    } catch (const InvalidArgument& error) {
+        SP_THROW(InvalidArgument, "physics of ", component.GetDebugName(), ": ", error.what());
+    }
+}
+
+void PhysicsSubsystem::writeBack() {
+    for (Entry& entry : entries_) {
+        if (!entry.body.isSet() || !physicsWorld_.isSimulatingPhysics(entry.body))
+            continue;
+        const Eigen::Isometry3d pose = physicsWorld_.getPose(entry.body);
+        FTransform transform = entry.component->GetComponentTransform();
+        transform.Translation = FVector::fromEigen(pose.translation());
+        transform.Rotation = FQuat::fromEigen(Eigen::Quaterniond(pose.linear()));
+        entry.component->SetWorldTransform(transform);
+        // What the component now reports (the rotation went through FRotator), so that the next sync
+        // sees no change and leaves the body alone.
+        entry.syncedTransform = entry.component->GetComponentTransform();
+    }
+}
+
+void PhysicsSubsystem::Tick(double deltaSeconds) {
+    syncAll();
+    physicsWorld_.step(deltaSeconds);
+    writeBack();
+}
+
+UPrimitiveComponent* PhysicsSubsystem::lineTrace(const FVector& start, const FVector& end, FHitResult& hit) {
+    syncAll();
+    hit = FHitResult{};
+    hit.TraceStart = start;
+    hit.TraceEnd = end;
+    hit.Location = hit.ImpactPoint = end;
+    hit.Distance = (end.toEigen() - start.toEigen()).norm();
+    const std::optional<physics::RayHit> ray = physicsWorld_.raycast(start.toEigen(), end.toEigen());
+    if (!ray)
+        return nullptr;
+    hit.bBlockingHit = true;
+    hit.Location = hit.ImpactPoint = FVector::fromEigen(ray->point);
+    hit.ImpactNormal = hit.Normal = FVector::fromEigen(ray->normal);
+    hit.Time = ray->fraction;
+    hit.Distance = ray->fraction * (end.toEigen() - start.toEigen()).norm();
+    return componentOfTag(ray->tag);
+}
+
+} // namespace sp::world

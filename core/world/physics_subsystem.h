@@ -1,0 +1,84 @@
+#pragma once
+// PhysicsSubsystem: the world's rigid-body simulation. It owns a sp::physics::PhysicsWorld and one body
+// per primitive component in play that has collision. Components keep their physics settings as plain
+// reflected properties; the subsystem brings the bodies in line with them ("sync") before every step,
+// trace and physics call, so a property written by any path (setter, registry, scene file) takes effect.
+//
+// Per frame (after the actors ticked): sync -> step(dt) in fixed substeps -> write the simulated bodies'
+// poses back into their components. Moving a Movable, non-simulated component moves its (kinematic)
+// body at the next sync; moving a simulated one teleports it.
+
+#include <cstdint>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+#include "core/physics/physics_world.h"
+#include "core/world/hit_result.h"
+#include "core/world/primitive_component.h"
+#include "core/world/world_subsystem.h"
+
+class UPrimitiveComponent;
+class UWorld;
+
+namespace sp::world {
+
+class PhysicsSubsystem : public WorldSubsystem {
+  public:
+    static constexpr int kTickOrder = tick_order::kPhysics;
+
+    explicit PhysicsSubsystem(UWorld& world);
+    ~PhysicsSubsystem() override;
+
+    // Syncs, steps the physics world by deltaSeconds and writes simulated poses back.
+    void Tick(double deltaSeconds) override;
+
+    // Called by components entering and leaving play.
+    void registerComponent(UPrimitiveComponent& component);
+    void unregisterComponent(UPrimitiveComponent& component);
+    bool isRegistered(const UPrimitiveComponent& component) const;
+
+    // Brings every body in line with its component (shape, mobility, material, mass, pose).
+    void syncAll();
+    // Brings one component's body in line and returns it (invalid when the component has no collision).
+    // Throws InvalidState when the component is not in play; `function` names the caller in messages.
+    physics::BodyId syncComponent(const UPrimitiveComponent& component, const char* function);
+    // Like syncComponent, but also requires a simulated body (for forces, impulses, velocities).
+    physics::BodyId requireSimulatedBody(const UPrimitiveComponent& component, const char* function);
+
+    // The closest hit of the segment start -> end, after a sync; fills hit and returns the component hit.
+    UPrimitiveComponent* lineTrace(const FVector& start, const FVector& end, FHitResult& hit);
+
+    physics::PhysicsWorld& GetPhysicsWorld() { return physicsWorld_; }
+    size_t GetBodyCount() const { return physicsWorld_.bodyCount(); }
+
+  private:
+    // What a body was built from: when any of it changes, the body is rebuilt.
+    struct ShapeKey {
+        ECollisionPrimitive primitive = ECollisionPrimitive::NoCollision;
+        Eigen::Vector3d halfExtents = Eigen::Vector3d::Zero();
+        Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+        bool isStatic = false;
+        bool operator==(const ShapeKey&) const = default;
+    };
+    struct Entry {
+        UPrimitiveComponent* component = nullptr;
+        physics::BodyId body;
+        ShapeKey shape;
+        // The component's world transform when the body was last placed or written back; a different
+        // transform at sync means someone moved the component.
+        FTransform syncedTransform;
+    };
+
+    Entry& entryFor(const UPrimitiveComponent& component, const char* function);
+    void syncEntry(Entry& entry);
+    void rebuildBody(Entry& entry, const ShapeKey& key);
+    void syncProperties(Entry& entry);
+    void writeBack();
+
+    physics::PhysicsWorld physicsWorld_;
+    std::vector<Entry> entries_; // registration order: keeps sync (and so the simulation) deterministic
+    std::unordered_map<const UPrimitiveComponent*, size_t> index_;
+};
+
+} // namespace sp::world

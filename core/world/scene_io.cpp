@@ -1,0 +1,378 @@
+#include "core/world/scene_io.h"
+
+#include <fstream>
+#include <map>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "core/base/error.h"
+#include "core/reflect/registry.h"
+#include "core/world/world.h"
+
+namespace sp::world {
+
+namespace {
+
+using reflect::Value;
+using Json = SceneJson;
+
+constexpr std::string_view kFormat = "spear.scene";
+constexpr int kVersion = 1;
+
+// --- property types ---------------------------------------------------------------------------
+// The registry spells property types the way Python does ("float", "list[str]", "AActor | None",
+// "EComponentMobility", "FVector"); these helpers take those spellings apart.
+
+bool stripAffix(std::string_view& type, std::string_view prefix, std::string_view suffix) {
+    if (type.size() < prefix.size() + suffix.size() || !type.starts_with(prefix) || !type.ends_with(suffix))
+        return false;
+    type = type.substr(prefix.size(), type.size() - prefix.size() - suffix.size());
+    return true;
+}
+
+// The name path of an object inside a scene: "Actor" or "Actor.Component".
+std::string objectPath(const reflect::ObjectBase& object) {
+    if (const auto* actor = dynamic_cast<const AActor*>(&object))
+        return actor->GetName();
+    if (const auto* component = dynamic_cast<const UActorComponent*>(&object))
+        if (component->GetOwner())
+            return component->GetOwner()->GetName() + "." + component->GetName();
+    SP_THROW(InvalidArgument, object.GetDebugName(),
+             " is neither an actor nor a component and cannot be saved");
+}
+
+Json toJson(const Value& value, std::string_view type) {
+    if (value.isNone())
+        return nullptr;
+    std::string_view inner = type;
+    if (stripAffix(inner, "", " | None"))
+        return toJson(value, inner);
+    if (stripAffix(inner, "list[", "]")) {
+        Json out = Json::array();
+        for (const Value& item : value.as<Value::List>())
+            out.push_back(toJson(item, inner));
+        return out;
+    }
+    if (stripAffix(inner, "dict[str, ", "]")) {
+        Json out = Json::object();
+        for (const auto& [key, item] : value.as<Value::Dict>())
+            out[key] = toJson(item, inner);
+        return out;
+    }
+    if (const auto* name = value.tryAs<reflect::ClassName>())
+        return name->name;
+    if (const auto* handle = value.tryAs<reflect::ObjectHandle>()) {
+        const reflect::ObjectBase* object = reflect::ObjectTable::find(*handle);
+        SP_CHECK(object, InvalidArgument, "refers to a destroyed object");
+        return objectPath(*object);
+    }
+    if (const reflect::EnumInfo* info = reflect::Registry::get().findEnum(type)) {
+        const std::string_view entry = info->nameOf(value.as<int64_t>());
+        SP_CHECK(!entry.empty(), InvalidArgument, value.as<int64_t>(), " is not a value of ", info->name);
+        return std::string(entry);
+    }
+    if (const reflect::TypeInfo* info = reflect::Registry::get().findType(type);
+        info && info->kind == reflect::TypeInfo::Kind::Struct) {
+        Json out = Json::object();
+        const auto& fields = value.as<Value::Dict>();
+        for (const reflect::PropertyInfo* field : info->allProperties())
+            out[field->name] = toJson(fields.at(field->name), field->type);
+        return out;
+    }
+    return std::visit(
+        [&](const auto& v) -> Json {
+            using V = std::decay_t<decltype(v)>;
+            if constexpr (std::is_same_v<V, bool> || std::is_same_v<V, int64_t> ||
+                          std::is_same_v<V, double> || std::is_same_v<V, std::string>)
+                return v;
+            else
+                SP_THROW(InvalidArgument, "a ", value.kindName(), " (type ", type,
+                         ") cannot be saved in a scene");
+        },
+        value.storage());
+}
+
+std::string jsonKind(const Json& j) {
+    return j.type_name();
+}
+
+// Resolves name paths against the actors being loaded.
+using ActorsByName = std::map<std::string, AActor*, std::less<>>;
+
+reflect::ObjectBase* resolvePath(std::string_view path, const ActorsByName& actors) {
+    const size_t dot = path.find('.');
+    auto it = actors.find(path.substr(0, dot));
+    SP_CHECK(it != actors.end(), InvalidArgument, "no actor '", path.substr(0, dot), "' in the scene");
+    if (dot == std::string_view::npos)
+        return it->second;
+    const std::string_view componentName = path.substr(dot + 1);
+    for (const auto& component : it->second->GetComponentList())
+        if (component->GetName() == componentName)
+            return component.get();
+    SP_THROW(InvalidArgument, "actor '", it->first, "' has no component '", componentName, "'");
+}
+
+Value fromJson(const Json& j, std::string_view type, const ActorsByName& actors) {
+    std::string_view inner = type;
+    if (stripAffix(inner, "", " | None"))
+        return j.is_null() ? Value() : fromJson(j, inner, actors);
+    auto expect = [&](bool ok, std::string_view what) {
+        SP_CHECK(ok, InvalidArgument, "expected ", what, " (", type, "), got ", jsonKind(j), " ", j.dump());
+    };
+    if (stripAffix(inner, "list[", "]")) {
+        expect(j.is_array(), "a list");
+        Value::List out;
+        for (const Json& item : j)
+            out.push_back(fromJson(item, inner, actors));
+        return out;
+    }
+    if (stripAffix(inner, "dict[str, ", "]")) {
+        expect(j.is_object(), "an object");
+        Value::Dict out;
+        for (const auto& [key, item] : j.items())
+            out.emplace(key, fromJson(item, inner, actors));
+        return out;
+    }
+    if (type == "bool") {
+        expect(j.is_boolean(), "a bool");
+        return j.get<bool>();
+    }
+    if (type == "int") {
+        expect(j.is_number_integer(), "an integer");
+        return j.get<int64_t>();
+    }
+    if (type == "float") {
+        expect(j.is_number(), "a number");
+        return j.get<double>();
+    }
+    if (type == "str") {
+        expect(j.is_string(), "a string");
+        return j.get<std::string>();
+    }
+    if (stripAffix(inner, "type[", "]")) {
+        expect(j.is_string(), "a class name");
+        return reflect::ClassName{j.get<std::string>()};
+    }
+    if (const reflect::EnumInfo* info = reflect::Registry::get().findEnum(type)) {
+        expect(j.is_string(), "an entry name");
+        for (const auto& [name, number] : info->entries)
+            if (name == j.get<std::string>())
+                return number;
+        SP_THROW(InvalidArgument, "'", j.get<std::string>(), "' is not an entry of ", info->name);
+    }
+    const reflect::TypeInfo* info = reflect::Registry::get().findType(type);
+    SP_CHECK(info, InvalidArgument, "type '", type, "' cannot be loaded from a scene");
+    if (info->kind == reflect::TypeInfo::Kind::Struct) {
+        expect(j.is_object(), "an object");
+        Value::Dict out;
+        for (const auto& [key, item] : j.items()) {
+            const reflect::PropertyInfo* field = info->findProperty(key);
+            SP_CHECK(field, InvalidArgument, type, " has no field '", key, "'");
+            out.emplace(key, fromJson(item, field->type, actors));
+        }
+        return out;
+    }
+    expect(j.is_string(), "an object path");
+    return resolvePath(j.get<std::string>(), actors)->GetHandle();
+}
+
+// --- saving -----------------------------------------------------------------------------------
+
+Json saveProperties(const reflect::ObjectBase& object, const std::string& where) {
+    Json out = Json::object();
+    for (const reflect::PropertyInfo* property : object.GetClass().allProperties()) {
+        try {
+            out[property->name] = toJson(property->get(&object), property->type);
+        } catch (const Error& error) {
+            SP_THROW(InvalidArgument, where, ": property '", property->name, "': ", error.what());
+        }
+    }
+    return out;
+}
+
+// --- loading ----------------------------------------------------------------------------------
+
+const Json& member(const Json& object, const char* key, const std::string& where) {
+    SP_CHECK(object.is_object(), InvalidArgument, where, ": expected an object, got ", jsonKind(object));
+    auto it = object.find(key);
+    SP_CHECK(it != object.end(), InvalidArgument, where, ": missing '", key, "'");
+    return *it;
+}
+
+std::string stringMember(const Json& object, const char* key, const std::string& where) {
+    const Json& value = member(object, key, where);
+    SP_CHECK(value.is_string() && !value.get<std::string>().empty(), InvalidArgument, where, ": '", key,
+             "' must be a non-empty string, got ", value.dump());
+    return value.get<std::string>();
+}
+
+const reflect::TypeInfo& classMember(const Json& object, const reflect::TypeInfo& base,
+                                     const std::string& where) {
+    const std::string name = stringMember(object, "class", where);
+    const reflect::TypeInfo* type = reflect::Registry::get().findType(name);
+    SP_CHECK(type, InvalidArgument, where, ": class '", name, "' is not registered");
+    SP_CHECK(type->isChildOf(base) && type->create, InvalidArgument, where, ": class '", name, "' is not a ",
+             base.name, " class that can be created");
+    return *type;
+}
+
+void loadProperties(reflect::ObjectBase& object, const Json& properties, const ActorsByName& actors,
+                    const std::string& where) {
+    SP_CHECK(properties.is_object(), InvalidArgument, where, ": 'properties' must be an object, got ",
+             jsonKind(properties));
+    const reflect::TypeInfo& type = object.GetClass();
+    for (const auto& [name, json] : properties.items()) {
+        const reflect::PropertyInfo* property = type.findProperty(name);
+        SP_CHECK(property, InvalidArgument, where, ": ", type.name, " has no property '", name, "'");
+        try {
+            if (property->readOnly) {
+                // Set by construction; a different value means the file does not match the class.
+                const Json actual = toJson(property->get(&object), property->type);
+                SP_CHECK(actual == json, InvalidArgument, "read-only property is ", actual.dump(),
+                         " after construction, not ", json.dump());
+                continue;
+            }
+            property->set(&object, fromJson(json, property->type, actors));
+        } catch (const Error& error) {
+            SP_THROW(InvalidArgument, where, ": property '", name, "': ", error.what());
+        }
+    }
+}
+
+} // namespace
+
+SceneJson saveScene(const UWorld& world) {
+    Json actors = Json::array();
+    for (AActor* actor : world.find_actors()) {
+        const std::string where = "actor '" + actor->GetName() + "'";
+        Json entry = Json::object();
+        entry["name"] = actor->GetName();
+        entry["class"] = actor->GetClass().name;
+        entry["properties"] = saveProperties(*actor, where);
+        Json components = Json::array();
+        for (const auto& component : actor->GetComponentList()) {
+            Json c = Json::object();
+            c["name"] = component->GetName();
+            c["class"] = component->GetClass().name;
+            const auto* scene = dynamic_cast<const USceneComponent*>(component.get());
+            c["attach_parent"] =
+                scene && scene->GetAttachParent() ? Json(scene->GetAttachParent()->GetName()) : Json(nullptr);
+            c["properties"] =
+                saveProperties(*component, where + ": component '" + component->GetName() + "'");
+            components.push_back(std::move(c));
+        }
+        entry["components"] = std::move(components);
+        actors.push_back(std::move(entry));
+    }
+    Json scene = Json::object();
+    scene["format"] = kFormat;
+    scene["version"] = kVersion;
+    scene["actors"] = std::move(actors);
+    return scene;
+}
+
+std::string sceneToString(const SceneJson& scene) {
+    return scene.dump(2) + "\n";
+}
+
+void loadScene(UWorld& world, const SceneJson& scene, std::string_view source) {
+    const std::string root(source);
+    SP_CHECK(scene.is_object(), InvalidArgument, root, ": expected a JSON object, got ", jsonKind(scene));
+    const Json& format = member(scene, "format", root);
+    SP_CHECK(format == kFormat, InvalidArgument, root, ": 'format' must be \"", kFormat, "\", got ",
+             format.dump());
+    const Json& version = member(scene, "version", root);
+    SP_CHECK(version == kVersion, InvalidArgument, root, ": 'version' ", version.dump(),
+             " is not supported (expected ", kVersion, ")");
+    const Json& actorList = member(scene, "actors", root);
+    SP_CHECK(actorList.is_array(), InvalidArgument, root, ": 'actors' must be a list, got ",
+             jsonKind(actorList));
+
+    // 1. Structure: every actor and component, so that references can point anywhere in the scene.
+    std::vector<std::unique_ptr<AActor>> staged;
+    ActorsByName byName;
+    std::vector<std::string> wheres;
+    for (size_t i = 0; i < actorList.size(); ++i) {
+        const Json& entry = actorList[i];
+        std::string where = root + ": actors[" + std::to_string(i) + "]";
+        const std::string name = stringMember(entry, "name", where);
+        where += " '" + name + "'";
+        SP_CHECK(!byName.contains(name), InvalidArgument, where, ": the name is used by another actor");
+        const reflect::TypeInfo& type = classMember(entry, AActor::StaticClass(), where);
+        staged.push_back(world.NewActorDeferred(type, name));
+        AActor& actor = *staged.back();
+        byName.emplace(name, &actor);
+        const Json& components = member(entry, "components", where);
+        SP_CHECK(components.is_array(), InvalidArgument, where, ": 'components' must be a list");
+        for (const Json& c : components) {
+            const std::string componentName = stringMember(c, "name", where + ": component");
+            const std::string cwhere = where + ": component '" + componentName + "'";
+            const reflect::TypeInfo& ctype = classMember(c, UActorComponent::StaticClass(), cwhere);
+            UActorComponent* existing = world.get_component_by_name(&actor, componentName);
+            if (existing)
+                SP_CHECK(&existing->GetClass() == &ctype, InvalidArgument, cwhere, ": class '", ctype.name,
+                         "' differs from the class '", existing->GetClass().name, "' that ", type.name,
+                         " creates");
+            else
+                actor.CreateComponent(ctype, componentName);
+        }
+        // Attachment once all of the actor's components exist (a parent may come after its child).
+        for (const Json& c : components) {
+            const std::string componentName = c["name"].get<std::string>();
+            const std::string cwhere = where + ": component '" + componentName + "'";
+            auto* component =
+                dynamic_cast<USceneComponent*>(world.get_component_by_name(&actor, componentName));
+            const Json& parent = c.contains("attach_parent") ? c["attach_parent"] : Json(nullptr);
+            if (!component) {
+                SP_CHECK(parent.is_null(), InvalidArgument, cwhere,
+                         ": only scene components can be attached");
+                continue;
+            }
+            if (parent.is_null()) {
+                component->DetachFromComponent(false);
+                continue;
+            }
+            SP_CHECK(parent.is_string(), InvalidArgument, cwhere, ": 'attach_parent' must be a name or null");
+            auto* target = dynamic_cast<USceneComponent*>(
+                world.get_component_by_name(&actor, parent.get<std::string>()));
+            SP_CHECK(target, InvalidArgument, cwhere, ": attach_parent '", parent.get<std::string>(),
+                     "' is not a scene component of this actor");
+            if (component->GetAttachParent() != target)
+                component->AttachToComponent(target, false);
+        }
+        wheres.push_back(std::move(where));
+    }
+
+    // 2. Properties, now that every reference target exists.
+    for (size_t i = 0; i < actorList.size(); ++i) {
+        const Json& entry = actorList[i];
+        AActor& actor = *staged[i];
+        if (entry.contains("properties"))
+            loadProperties(actor, entry["properties"], byName, wheres[i]);
+        for (const Json& c : entry["components"]) {
+            const std::string componentName = c["name"].get<std::string>();
+            if (c.contains("properties"))
+                loadProperties(*world.get_component_by_name(&actor, componentName), c["properties"], byName,
+                               wheres[i] + ": component '" + componentName + "'");
+        }
+    }
+
+    // 3. Only now does the world change.
+    world.ReplaceActors(std::move(staged));
+}
+
+SceneJson readSceneFile(const std::string& path, std::string_view function) {
+    std::ifstream in(path, std::ios::binary);
+    SP_CHECK(in, NotFound, function, ": scene file '", path, "' not found");
+    std::stringstream text;
+    text << in.rdbuf();
+    try {
+        return Json::parse(text.str());
+    } catch (const nlohmann::json::parse_error& error) {
+        SP_THROW(InvalidArgument, function, ": scene file '", path, "' is not valid JSON: ", error.what());
+    }
+}
+
+} // namespace sp::world

@@ -1,0 +1,39 @@
+#pragma once
+// Scene files: a world's actors and components written through the reflection registry, so every
+// reflected property of every actor and component round-trips with no per-class code. The format
+// (JSON, 2-space indent, properties in declaration order, parents first):
+//
+//   {"format": "spear.scene", "version": 1, "actors": [
+//     {"name": "Floor", "class": "AStaticMeshActor", "properties": {"Tags": [], ...},
+//      "components": [{"name": "StaticMeshComponent", "class": "UStaticMeshComponent",
+//                      "attach_parent": null, "properties": {"RelativeLocation": {"X": 0, ...}, ...}}]}]}
+//
+// Enums are written by entry name, structs as objects, object references as name paths ("Floor" for an
+// actor, "Floor.StaticMeshComponent" for a component, null for None), classes by name. Read-only
+// properties are written for the reader's benefit and checked, not set, on load (construction gives
+// them their value). Saving what was loaded gives the same bytes.
+
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+class UWorld;
+
+namespace sp::world {
+
+using SceneJson = nlohmann::ordered_json;
+
+// The world's actors as a scene document.
+SceneJson saveScene(const UWorld& world);
+// The scene document as text (what save_scene writes): 2-space indent and a final newline.
+std::string sceneToString(const SceneJson& scene);
+// Replaces the world's actors by those of the scene document. Everything is checked and built before
+// the world is touched, so a bad document leaves the world as it was. `source` names the document in
+// messages ("scene 'x.json'"); errors are sp::InvalidArgument naming the actor, component and property.
+void loadScene(UWorld& world, const SceneJson& scene, std::string_view source);
+// Reads and parses a scene file; sp::NotFound when it does not exist, sp::InvalidArgument when it is
+// not JSON. `function` names the caller in messages.
+SceneJson readSceneFile(const std::string& path, std::string_view function);
+
+} // namespace sp::world

@@ -1,0 +1,34 @@
+#pragma once
+// ASimpleVehicle: a pawn driven by injected input. It moves kinematically in its Tick (no wheels or
+// tyre model): "Throttle" (X in [-1, 1]) drives along its forward axis, "Steer" (X in [-1, 1], positive
+// turns left) yaws it, and "Move" (X forward, Y left, in [-1, 1]) drives it sideways too.
+
+#include "core/world/actor.h"
+#include "core/world/input_component.h"
+#include "core/world/static_mesh_component.h"
+
+/// A box-shaped vehicle that drives from the "Throttle", "Steer" and "Move" input actions.
+SPCLASS()
+class ASimpleVehicle : public AActor {
+    SP_GENERATED_BODY()
+  public:
+    ASimpleVehicle();
+
+    /// The vehicle's body (the root component).
+    SPPROPERTY(ReadOnly, NotNull)
+    UStaticMeshComponent* Body = nullptr;
+
+    /// Receives the injected actions.
+    SPPROPERTY(ReadOnly, NotNull)
+    UInputComponent* InputComponent = nullptr;
+
+    /// Speed in metres per second at full throttle.
+    SPPROPERTY()
+    double MaxSpeed = 2.0;
+
+    /// Yaw rate in degrees per second at full steering.
+    SPPROPERTY()
+    double MaxYawRateInDegrees = 90.0;
+
+    void Tick(double deltaSeconds) override;
+};

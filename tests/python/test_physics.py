@@ -1,0 +1,214 @@
+"""Physics in the world: bodies for primitive components, resting heights, determinism, traces, forces."""
+
+from __future__ import annotations
+
+import pytest
+
+import spear
+
+CUBE = "/Engine/BasicShapes/Cube"
+SPHERE = "/Engine/BasicShapes/Sphere"
+CYLINDER = "/Engine/BasicShapes/Cylinder"
+PLANE = "/Engine/BasicShapes/Plane"
+
+
+def spawn_floor(game: spear.UWorld) -> spear.AStaticMeshActor:
+    """A static 20 m x 20 m slab whose top face is at z = 0."""
+    floor = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Floor", location=spear.FVector(Z=-0.5))
+    mesh = floor.StaticMeshComponent
+    mesh.SetStaticMesh(NewMesh=CUBE)
+    mesh.SetRelativeScale3D(NewScale3D=spear.FVector(20, 20, 1))
+    mesh.SetMobility(NewMobility=spear.EComponentMobility.Static)
+    return floor
+
+
+def spawn_body(game: spear.UWorld, name: str, mesh: str, location: spear.FVector,
+               scale: spear.FVector = spear.FVector(1, 1, 1)) -> spear.AStaticMeshActor:
+    actor = game.spawn_actor(uclass=spear.AStaticMeshActor, name=name, location=location)
+    component = actor.StaticMeshComponent
+    component.SetStaticMesh(NewMesh=mesh)
+    component.SetRelativeScale3D(NewScale3D=scale)
+    component.SetSimulatePhysics(bSimulate=True)
+    return actor
+
+
+def test_bodies_fall_and_rest_on_the_floor_at_their_analytic_height(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        spawn_floor(game)
+        cube = spawn_body(game, "Cube", CUBE, spear.FVector(0, 0, 2))
+        ball = spawn_body(game, "Ball", SPHERE, spear.FVector(3, 0, 3), spear.FVector(0.4, 0.4, 0.4))
+        drum = spawn_body(game, "Drum", CYLINDER, spear.FVector(-3, 0, 1), spear.FVector(1, 1, 2))
+        slab = spawn_body(game, "Slab", CUBE, spear.FVector(0, 4, 1), spear.FVector(2, 1, 0.5))
+        assert cube.StaticMeshComponent.IsSimulatingPhysics()
+    with instance.end_frame():
+        pass
+    instance.step(num_frames=180)  # 3 s
+    with instance.begin_frame():
+        assert cube.GetActorLocation().Z == pytest.approx(0.5, abs=1e-3)
+        assert ball.GetActorLocation().Z == pytest.approx(0.2, abs=1e-3)
+        assert drum.GetActorLocation().Z == pytest.approx(1.0, abs=1e-3)  # half height 0.5 * 2
+        assert slab.GetActorLocation().Z == pytest.approx(0.25, abs=1e-3)
+        assert abs(cube.GetActorLocation().X) < 1e-2  # a flat landing barely slides
+        assert cube.StaticMeshComponent.GetPhysicsLinearVelocity().Z == pytest.approx(0.0, abs=1e-2)
+
+
+def test_free_fall_follows_gravity(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        cube = spawn_body(game, "Cube", CUBE, spear.FVector(0, 0, 100))
+    with instance.end_frame():
+        pass
+    instance.step(num_frames=59)  # 60 frames in all: 1 s
+    with instance.begin_frame():
+        # Semi-implicit Euler in 1/240 s substeps: z = z0 - g dt^2 n(n+1)/2 with n = 240.
+        dt, n = 1.0 / 240.0, 240
+        assert cube.GetActorLocation().Z == pytest.approx(100 - 9.81 * dt * dt * n * (n + 1) / 2, abs=1e-6)
+        assert cube.StaticMeshComponent.GetPhysicsLinearVelocity().Z == pytest.approx(-9.81, abs=1e-6)
+
+
+def run_scripted_scene() -> list[tuple[float, ...]]:
+    """A stack of rotated boxes and balls pushed around; returns every pose after 2 s."""
+    instance = spear.Instance()
+    game = instance.get_game()
+    bodies = []
+    with instance.begin_frame():
+        spawn_floor(game)
+        for i in range(6):
+            actor = spawn_body(game, f"Box{i}", CUBE if i % 2 == 0 else SPHERE,
+                               spear.FVector(0.1 * i, 0.05 * i, 0.6 + 1.1 * i))
+            actor.SetActorRotation(NewRotation=spear.FRotator(Yaw=17.0 * i, Roll=3.0 * i))
+            bodies.append(actor)
+    with instance.end_frame():
+        pass
+    for frame in range(120):
+        with instance.begin_frame():
+            if frame == 30:
+                bodies[2].StaticMeshComponent.AddImpulse(Impulse=spear.FVector(2, -1, 0))
+            if frame < 60:
+                bodies[5].StaticMeshComponent.AddForce(Force=spear.FVector(0, 3, 0))
+        with instance.end_frame():
+            pass
+    with instance.begin_frame():
+        poses = []
+        for actor in bodies:
+            t = actor.GetActorTransform()
+            poses.append((t.Translation.X, t.Translation.Y, t.Translation.Z,
+                          t.Rotation.X, t.Rotation.Y, t.Rotation.Z, t.Rotation.W))
+    instance.close()
+    return poses
+
+
+def test_two_identical_scripts_give_bit_identical_poses() -> None:
+    first = run_scripted_scene()
+    second = run_scripted_scene()
+    assert first == second  # exact float equality, not approx
+    assert len({p[2] for p in first}) > 1  # something actually happened
+
+
+def test_line_trace_hits_the_closest_body(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        floor = spawn_floor(game)
+        box = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Box", location=spear.FVector(2, 0, 1))
+        box.StaticMeshComponent.SetStaticMesh(NewMesh=CUBE)
+        # Traces see bodies right after spawning, without a physics step.
+        result = game.line_trace_single(start=spear.FVector(2, 0, 10), end=spear.FVector(2, 0, -10))
+        assert result.ReturnValue and result.hit.bBlockingHit
+        assert result.actor == box and result.component == box.StaticMeshComponent
+        assert result.hit.Location.Z == pytest.approx(1.5, abs=1e-9)
+        assert result.hit.ImpactNormal.Z == pytest.approx(1.0, abs=1e-9)
+        assert result.hit.Distance == pytest.approx(8.5, abs=1e-9)
+        assert result.hit.Time == pytest.approx(8.5 / 20, abs=1e-9)
+
+        down = game.line_trace_single(start=spear.FVector(-2, 0, 10), end=spear.FVector(-2, 0, -10))
+        assert down.actor == floor and down.hit.Location.Z == pytest.approx(0.0, abs=1e-9)
+
+        miss = game.line_trace_single(start=spear.FVector(0, 0, 10), end=spear.FVector(0, 0, 20))
+        assert not miss.ReturnValue and miss.actor is None and miss.component is None
+        assert miss.hit.Location == spear.FVector(0, 0, 20) and miss.hit.Distance == pytest.approx(10.0)
+
+        # Moving a movable (kinematic) component moves its body; destroying the actor removes it.
+        box.SetActorLocation(NewLocation=spear.FVector(5, 0, 1))
+        moved = game.line_trace_single(start=spear.FVector(5, 0, 10), end=spear.FVector(5, 0, -10))
+        assert moved.actor == box
+        game.destroy_actor(actor=box)
+        gone = game.line_trace_single(start=spear.FVector(5, 0, 10), end=spear.FVector(5, 0, -10))
+        assert gone.actor == floor
+
+
+def test_collision_primitive_overrides_the_mesh_shape(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        ball = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Ball")
+        ball.StaticMeshComponent.SetStaticMesh(NewMesh=SPHERE)
+        corner_start, corner_end = spear.FVector(0.45, 0.45, 10), spear.FVector(0.45, 0.45, -10)
+        assert not game.line_trace_single(start=corner_start, end=corner_end).ReturnValue  # sphere: misses
+        ball.StaticMeshComponent.CollisionPrimitive = spear.ECollisionPrimitive.Box
+        assert game.line_trace_single(start=corner_start, end=corner_end).ReturnValue
+        ball.StaticMeshComponent.CollisionPrimitive = spear.ECollisionPrimitive.NoCollision
+        assert not game.line_trace_single(start=spear.FVector(Z=10), end=spear.FVector(Z=-10)).ReturnValue
+
+
+def test_forces_impulses_and_velocities(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        cube = spawn_body(game, "Cube", CUBE, spear.FVector(0, 0, 50))
+        mesh = cube.StaticMeshComponent
+        mesh.SetMassOverrideInKg(MassInKg=2.0)
+        assert mesh.GetMass() == 2.0 and mesh.MassInKg == 2.0
+        mesh.AddImpulse(Impulse=spear.FVector(4, 0, 0))  # 4 N s / 2 kg = 2 m/s
+        assert mesh.GetPhysicsLinearVelocity().X == pytest.approx(2.0)
+        mesh.AddImpulse(Impulse=spear.FVector(0, 1, 0), bVelChange=True)
+        assert mesh.GetPhysicsLinearVelocity().Y == pytest.approx(1.0)
+        mesh.SetPhysicsLinearVelocity(NewVel=spear.FVector(0, 0, 0))
+        mesh.SetPhysicsAngularVelocityInDegrees(NewAngVel=spear.FVector(0, 0, 90))
+        assert mesh.GetPhysicsAngularVelocityInDegrees().Z == pytest.approx(90.0)
+        mesh.AddForce(Force=spear.FVector(0, 0, 2 * 9.81))  # cancels gravity for this frame
+    with instance.end_frame():
+        assert mesh.GetPhysicsLinearVelocity().Z == pytest.approx(0.0, abs=1e-9)
+        assert cube.GetActorRotation().Yaw == pytest.approx(90.0 / 60.0, abs=1e-6)
+
+
+def test_static_and_non_simulated_components_are_clear_errors(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        floor = spawn_floor(game)
+        mesh = floor.StaticMeshComponent
+        with pytest.raises(spear.InvalidStateError, match=r"USceneComponent.SetRelative\w+\(\): .* is static"):
+            floor.SetActorLocation(NewLocation=spear.FVector(Z=1))
+        with pytest.raises(spear.InvalidStateError, match=r"SetSimulatePhysics\(\): .*'StaticMeshComponent' is not Movable"):
+            mesh.SetSimulatePhysics(bSimulate=True)
+        box = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Box")
+        box.StaticMeshComponent.SetStaticMesh(NewMesh=CUBE)
+        with pytest.raises(spear.InvalidStateError, match=r"UPrimitiveComponent.AddForce\(\): .* is not simulating physics"):
+            box.StaticMeshComponent.AddForce(Force=spear.FVector(1, 0, 0))
+        with pytest.raises(spear.InvalidArgumentError, match=r"SetMassOverrideInKg\(\): MassInKg -1 must be > 0"):
+            box.StaticMeshComponent.SetMassOverrideInKg(MassInKg=-1.0)
+        plane = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Plane")
+        plane.StaticMeshComponent.SetStaticMesh(NewMesh=PLANE)
+        with pytest.raises(spear.InvalidStateError, match="collides as a plane"):
+            plane.StaticMeshComponent.SetSimulatePhysics(bSimulate=True)
+        empty = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Empty")
+        with pytest.raises(spear.InvalidStateError, match="has no collision"):
+            empty.StaticMeshComponent.SetSimulatePhysics(bSimulate=True)
+        assert not empty.StaticMeshComponent.IsSimulatingPhysics()
+
+
+def test_a_simulated_body_stops_when_simulation_is_turned_off(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        cube = spawn_body(game, "Cube", CUBE, spear.FVector(0, 0, 10))
+    with instance.end_frame():
+        pass
+    instance.step(num_frames=10)
+    with instance.begin_frame():
+        cube.StaticMeshComponent.SetSimulatePhysics(bSimulate=False)
+        held = cube.GetActorLocation()
+        assert held.Z < 10
+    with instance.end_frame():
+        pass
+    instance.step(num_frames=10)
+    with instance.begin_frame():
+        assert cube.GetActorLocation() == held
+        assert not cube.StaticMeshComponent.IsSimulatingPhysics()

@@ -1,0 +1,102 @@
+"""Scene files: reflection-serialised worlds, byte-identical round trips, clear errors."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+import spear
+
+ROOT = Path(__file__).resolve().parents[2]
+APARTMENT = ROOT / "assets" / "scenes" / "apartment.json"
+
+
+def test_the_default_scene_loads_and_saves_byte_identical(tmp_path: Path) -> None:
+    instance = spear.Instance(scene=APARTMENT)
+    game = instance.get_game()
+    with instance.begin_frame():
+        assert game.find_actor_by_name(name="Floor") is not None
+        lights = game.find_actors_by_tag(tag="light")
+        assert {type(light).__name__ for light in lights} == {"ADirectionalLight", "APointLight"}
+        sun = game.find_actor_by_class(uclass=spear.ADirectionalLight)
+        assert sun is not None and sun.LightComponent.Intensity == 3.0
+        meshes = game.find_actors_by_class(uclass=spear.AStaticMeshActor)
+        materials = {m for a in meshes for c in game.get_components_by_class(actor=a, uclass=spear.UStaticMeshComponent)
+                     for m in c.Materials}
+        assert len(materials) >= 4
+        legs = game.find_actor_by_name(name="TableLegs")
+        assert legs is not None and len(legs.K2_GetComponents()) == 5  # an empty root and four legs
+        out = tmp_path / "apartment.json"
+        game.save_scene(path=str(out))
+    instance.close()
+    assert out.read_bytes() == APARTMENT.read_bytes()
+
+
+def test_save_load_round_trip_keeps_every_property(instance: spear.Instance, tmp_path: Path) -> None:
+    game = instance.get_game()
+    first, second = tmp_path / "first.json", tmp_path / "second.json"
+    with instance.begin_frame():
+        cube = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Cube", location=spear.FVector(1.25, 2, 3),
+                                rotation=spear.FRotator(Yaw=30.0), tags=["a", "b"])
+        mesh = cube.StaticMeshComponent
+        mesh.SetStaticMesh(NewMesh="/Engine/BasicShapes/Sphere")
+        mesh.SetMaterial(ElementIndex=1, Material="/Game/M_Red")
+        mesh.Friction = 0.8
+        mesh.CollisionPrimitive = spear.ECollisionPrimitive.Box
+        mesh.SetMobility(NewMobility=spear.EComponentMobility.Stationary)
+        car = game.spawn_actor(uclass=spear.ASimpleVehicle, name="Car")
+        car.MaxSpeed = 7.5
+        game.save_scene(path=str(first))
+        game.load_scene(path=str(first))
+        assert not cube.is_valid()  # load replaces the world's actors
+        loaded = game.find_actor_by_name(name="Cube")
+        assert isinstance(loaded, spear.AStaticMeshActor)
+        assert loaded.Tags == ["a", "b"] and loaded.GetActorLocation() == spear.FVector(1.25, 2, 3)
+        lmesh = loaded.StaticMeshComponent
+        assert lmesh.Materials == ["", "/Game/M_Red"] and lmesh.Friction == 0.8
+        assert lmesh.CollisionPrimitive == spear.ECollisionPrimitive.Box
+        assert lmesh.Mobility == spear.EComponentMobility.Stationary
+        loaded_car = game.find_actor_by_name(name="Car")
+        assert isinstance(loaded_car, spear.ASimpleVehicle) and loaded_car.MaxSpeed == 7.5
+        game.save_scene(path=str(second))
+    assert first.read_bytes() == second.read_bytes()
+    doc = json.loads(first.read_text())
+    component = doc["actors"][0]["components"][0]
+    assert component["properties"]["Mobility"] == "Stationary"  # enums by name
+    assert doc["actors"][0]["properties"]["RootComponent"] == "Cube.StaticMeshComponent"  # references by path
+
+
+def test_missing_and_malformed_scenes_are_clear_errors(instance: spear.Instance, tmp_path: Path) -> None:
+    game = instance.get_game()
+    bad_json = tmp_path / "bad.json"
+    bad_json.write_text("{ not json")
+    bad_enum = tmp_path / "bad_enum.json"
+    doc = json.loads(APARTMENT.read_text())
+    doc["actors"][2]["components"][0]["properties"]["Mobility"] = "Sideways"
+    bad_enum.write_text(json.dumps(doc))
+    bad_class = tmp_path / "bad_class.json"
+    bad_class.write_text(json.dumps({"format": "spear.scene", "version": 1,
+                                     "actors": [{"name": "X", "class": "AFoo", "components": []}]}))
+    bad_field = tmp_path / "bad_field.json"
+    bad_field.write_text(json.dumps({"format": "spear.scene", "version": 1, "actors": [
+        {"name": "X", "class": "AActor", "properties": {"Colour": 1}, "components": []}]}))
+    with instance.begin_frame():
+        game.spawn_actor(uclass=spear.AActor, name="Keep")
+        with pytest.raises(spear.NotFoundError, match=r"UWorld.load_scene\(\): scene file '.*nowhere.json' not found"):
+            game.load_scene(path=str(tmp_path / "nowhere.json"))
+        with pytest.raises(spear.InvalidArgumentError, match=r"scene file '.*bad.json' is not valid JSON"):
+            game.load_scene(path=str(bad_json))
+        with pytest.raises(spear.InvalidArgumentError,
+                           match=r"actors\[2\] 'WallNorth': component 'StaticMeshComponent': property 'Mobility': "
+                                 r"'Sideways' is not an entry of EComponentMobility"):
+            game.load_scene(path=str(bad_enum))
+        with pytest.raises(spear.InvalidArgumentError, match=r"actors\[0\] 'X': class 'AFoo' is not registered"):
+            game.load_scene(path=str(bad_class))
+        with pytest.raises(spear.InvalidArgumentError, match=r"actors\[0\] 'X': AActor has no property 'Colour'"):
+            game.load_scene(path=str(bad_field))
+        # A failed load leaves the world as it was.
+        assert [a.GetName() for a in game.find_actors()] == ["Keep"]
+    with pytest.raises(spear.NotFoundError, match="scene file 'missing.json' not found"):
+        spear.Instance(scene="missing.json")
