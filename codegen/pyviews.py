@@ -152,8 +152,13 @@ def module_view(module: Module) -> dict[str, Any]:
     names = sorted([e.name for e in module.enums] + [c.name for c in module.classes])
     # Types of other modules (a plugin's API mentions AActor, FVector, ...) come from the engine's API.
     foreign = sorted(naming.referenced_names(module) - set(names)) if module.name != "engine" else []
+    # A local class whose parent is foreign derives its Async and Send views from the parent's.
+    foreign_parents = {c.parent for c in module.classes if c.kind == "class" and c.parent in foreign}
+    foreign = sorted(set(foreign) | {f"{p}{suffix}" for p in foreign_parents for suffix in ("Async", "Send")})
+    foreign_stub = foreign
     return {
         "foreign_names": foreign,
+        "foreign_stub_names": foreign_stub,
         "value_names": sorted([e.name for e in module.enums] + [c.name for c in module.classes if c.kind == "struct"]),
         "foreign_values": [n for n in foreign if n not in object_names],
         "structs": structs,

@@ -74,6 +74,15 @@ template <typename R> void bindObjectBasics(py::class_<R>& cls) {
     cls.def(
         "is_valid", [](const R& self) { return reflect::ObjectTable::find(self.handle) != nullptr; },
         "True while the object exists; False once it was destroyed.");
+    // In-process, asynchronous calls run at once and return resolved futures (spear.futures).
+    cls.def_property_readonly(
+        "call_async",
+        [](py::object self) { return py::module_::import("spear.futures").attr("ImmediateCaller")(self); },
+        "The same functions, asynchronous: each returns a Future.");
+    cls.def_property_readonly(
+        "send_async",
+        [](py::object self) { return py::module_::import("spear.futures").attr("ImmediateCaller")(self, true); },
+        "The same functions, fire and forget.");
 }
 
 } // namespace sp::pybind

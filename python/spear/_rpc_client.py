@@ -7,7 +7,10 @@ in-process engine raises.
 
 from __future__ import annotations
 
+import contextlib
 import itertools
+import warnings
+from collections.abc import Callable, Iterator
 import os
 import shutil
 import socket
@@ -20,8 +23,9 @@ from typing import Any
 
 from spear import errors
 from spear._object import SpObject
-from spear._rpc_types import convert
+from spear._rpc_types import convert, convert_result_tuple
 from spear._wire import OutgoingSegments, encode, pack_frame, unpack_body
+from spear.futures import Future
 
 _ERRORS: dict[str, type[errors.SpearError]] = {
     "InvalidArgumentError": errors.InvalidArgumentError,
@@ -55,12 +59,48 @@ class RpcConnection:
                                               f"got {address!r}")
         self._socket.settimeout(timeout)
         self._ids = itertools.count(1)
+        self.messages_sent = 0  # round trips so far (batches count once)
+        self._deferring: bool | None = None  # None: calls run now; else queued (True: result discarded)
+        self._queue: list[tuple[dict[str, Any], Future[Any] | None, Callable[[Any], Any]]] = []
         hello = self.request("hello", api_hash=API_HASH, token=token or "")
         self.server_pid = int(hello["pid"])
 
     # -- requests ------------------------------------------------------------------------------
 
+    @contextlib.contextmanager
+    def deferred(self, discard: bool) -> Iterator[None]:
+        previous, self._deferring = self._deferring, discard
+        try:
+            yield
+        finally:
+            self._deferring = previous
+
+    def flush(self) -> None:
+        """Sends every queued call in one message and resolves their futures."""
+        if not self._queue:
+            return
+        queue, self._queue = self._queue, []
+        results = self.batch([call for call, _, _ in queue])
+        for (_, future, convert_result), result in zip(queue, results):
+            if future is None:
+                if isinstance(result, errors.SpearError):
+                    warnings.warn(f"send_async call failed: {result}", RuntimeWarning, stacklevel=2)
+                continue
+            if isinstance(result, errors.SpearError):
+                future._set(error=result)
+            else:
+                try:
+                    future._set(convert_result(result))
+                except Exception as error:  # noqa: BLE001
+                    future._set(error=error)
+
+    def _queue_call(self, call: dict[str, Any], convert_result: Callable[[Any], Any]) -> Any:
+        future: Future[Any] | None = None if self._deferring else Future(self.flush)
+        self._queue.append((call, future, convert_result))
+        return future
+
     def request(self, op: str, **fields: Any) -> Any:
+        self.flush()  # queued calls run first, in the order they were made
         segments = OutgoingSegments()
         try:
             message = {"id": next(self._ids), "op": op, **{k: encode(v, segments) for k, v in fields.items()}}
@@ -71,6 +111,8 @@ class RpcConnection:
 
     def batch(self, calls: list[dict[str, Any]]) -> list[Any]:
         """Sends many requests in one message; returns each result, or the exception it raised."""
+        if self._queue:
+            self.flush()
         segments = OutgoingSegments()
         try:
             encoded = [{k: encode(v, segments) for k, v in call.items()} for call in calls]
@@ -86,6 +128,7 @@ class RpcConnection:
         return results
 
     def _round_trip(self, frame: bytes) -> Any:
+        self.messages_sent += 1
         try:
             self._socket.sendall(frame)
             header = self._receive(4)
@@ -114,9 +157,16 @@ class RpcConnection:
     # -- RpcClient protocol --------------------------------------------------------------------
 
     def call(self, handle: tuple[int, int], function: str, args: dict[str, Any], result_type: str,
-             context: str = "") -> Any:
-        value = self.request("call", object=_HandleRef(handle), function=function, args=args, context=context)
-        return convert(value, result_type, self)
+             context: str = "", result_tuple: Any = None) -> Any:
+        def typed(value: Any) -> Any:
+            if result_tuple is not None:
+                return convert_result_tuple(value, result_tuple, self)
+            return convert(value, result_type, self)
+
+        if self._deferring is not None:
+            call = {"op": "call", "object": _HandleRef(handle), "function": function, "args": args, "context": context}
+            return self._queue_call(call, typed)
+        return typed(self.request("call", object=_HandleRef(handle), function=function, args=args, context=context))
 
     def get_property(self, handle: tuple[int, int], name: str, result_type: str, context: str = "") -> Any:
         value = self.request("get", object=_HandleRef(handle), property=name, context=context)

@@ -25,13 +25,17 @@ DEFAULT: Any = _Default()
 
 class RpcClient(Protocol):
     def call(self, handle: tuple[int, int], function: str, args: dict[str, Any], result_type: str,
-             context: str = "") -> Any: ...
+             context: str = "", result_tuple: Any = None) -> Any: ...
 
     def get_property(self, handle: tuple[int, int], name: str, result_type: str, context: str = "") -> Any: ...
 
     def set_property(self, handle: tuple[int, int], name: str, value: Any, context: str = "") -> None: ...
 
     def is_valid(self, handle: tuple[int, int]) -> bool: ...
+
+    def deferred(self, discard: bool) -> Any:
+        """A context in which calls are queued and return Futures."""
+        ...
 
 
 _PROXIES: dict[str, type[ObjectProxy]] = {}
@@ -69,21 +73,43 @@ class ObjectProxy(SpObject):
         """True while the engine object exists; False once it was destroyed."""
         return self._sp_client.is_valid(self._sp_handle)
 
+    @property
+    def call_async(self) -> Any:
+        """The same functions, queued: each returns a Future resolved when the queue is sent."""
+        return _DeferredCaller(self, discard=False)
+
+    @property
+    def send_async(self) -> Any:
+        """The same functions, queued, results discarded (fire and forget)."""
+        return _DeferredCaller(self, discard=True)
+
     # `owner` is the class that declares the member: messages then read as in-process ("AActor.GetName()").
 
     def _sp_call(self, owner: str, function: str, args: dict[str, Any], result_type: str,
                  result_tuple: Any = None) -> Any:
         sent = {name: value for name, value in args.items() if value is not DEFAULT}
-        context = f"{owner}.{function}()"
-        if result_tuple is not None:
-            from spear._rpc_types import convert_result_tuple
-
-            return convert_result_tuple(self._sp_client.call(self._sp_handle, function, sent, "", context),
-                                        result_tuple, self._sp_client)
-        return self._sp_client.call(self._sp_handle, function, sent, result_type, context)
+        return self._sp_client.call(self._sp_handle, function, sent, result_type, f"{owner}.{function}()", result_tuple)
 
     def _sp_get(self, owner: str, name: str, result_type: str) -> Any:
         return self._sp_client.get_property(self._sp_handle, name, result_type, f"{owner}.{name}")
 
     def _sp_set(self, owner: str, name: str, value: Any) -> None:
         self._sp_client.set_property(self._sp_handle, name, value, f"{owner}.{name}")
+
+
+class _DeferredCaller:
+    __slots__ = ("_proxy", "_discard")
+
+    def __init__(self, proxy: ObjectProxy, discard: bool) -> None:
+        self._proxy = proxy
+        self._discard = discard
+
+    def __getattr__(self, name: str) -> Any:
+        method = getattr(self._proxy, name)
+        client = self._proxy._sp_client
+
+        def call(**kwargs: Any) -> Any:
+            with client.deferred(self._discard):
+                return method(**kwargs)
+
+        return call

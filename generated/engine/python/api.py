@@ -243,11 +243,35 @@ class FVector2D:
     Y: float = 0.0
 
 
+class UObjectAsync:
+    """UObject's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UObjectSend:
+    """UObject's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
 class UObject(_SpObject):
     """The base class of every engine object."""
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UObject"
+
+
+class AActorAsync(UObjectAsync):
+    """AActor's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class AActorSend(UObjectSend):
+    """AActor's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
 
 
 class AActor(UObject):
@@ -261,11 +285,35 @@ class AActor(UObject):
         BoxExtent: FVector
 
 
+class ACameraSensorActorAsync(AActorAsync):
+    """ACameraSensorActor's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class ACameraSensorActorSend(AActorSend):
+    """ACameraSensorActor's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
 class ACameraSensorActor(AActor):
     """An actor whose root is a camera sensor."""
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "ACameraSensorActor"
+
+
+class ADirectionalLightAsync(AActorAsync):
+    """ADirectionalLight's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class ADirectionalLightSend(AActorSend):
+    """ADirectionalLight's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
 
 
 class ADirectionalLight(AActor):
@@ -275,11 +323,35 @@ class ADirectionalLight(AActor):
     __sp_class__: ClassVar[str] = "ADirectionalLight"
 
 
+class AMaterialLibraryAsync(AActorAsync):
+    """AMaterialLibrary's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class AMaterialLibrarySend(AActorSend):
+    """AMaterialLibrary's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
 class AMaterialLibrary(AActor):
     """An actor that defines materials by name for the meshes of its world."""
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "AMaterialLibrary"
+
+
+class AMultiViewCameraRigAsync(AActorAsync):
+    """AMultiViewCameraRig's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class AMultiViewCameraRigSend(AActorSend):
+    """AMultiViewCameraRig's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
 
 
 class AMultiViewCameraRig(AActor):
@@ -289,11 +361,35 @@ class AMultiViewCameraRig(AActor):
     __sp_class__: ClassVar[str] = "AMultiViewCameraRig"
 
 
+class APointLightAsync(AActorAsync):
+    """APointLight's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class APointLightSend(AActorSend):
+    """APointLight's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
 class APointLight(AActor):
     """An actor with a point light as its root."""
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "APointLight"
+
+
+class ASimpleVehicleAsync(AActorAsync):
+    """ASimpleVehicle's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class ASimpleVehicleSend(AActorSend):
+    """ASimpleVehicle's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
 
 
 class ASimpleVehicle(AActor):
@@ -303,11 +399,35 @@ class ASimpleVehicle(AActor):
     __sp_class__: ClassVar[str] = "ASimpleVehicle"
 
 
+class ASkyLightAsync(AActorAsync):
+    """ASkyLight's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class ASkyLightSend(AActorSend):
+    """ASkyLight's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
 class ASkyLight(AActor):
     """An actor with the sky light as its root."""
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "ASkyLight"
+
+
+class ASpotLightAsync(AActorAsync):
+    """ASpotLight's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class ASpotLightSend(AActorSend):
+    """ASpotLight's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
 
 
 class ASpotLight(AActor):
@@ -317,11 +437,35 @@ class ASpotLight(AActor):
     __sp_class__: ClassVar[str] = "ASpotLight"
 
 
+class AStaticMeshActorAsync(AActorAsync):
+    """AStaticMeshActor's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class AStaticMeshActorSend(AActorSend):
+    """AStaticMeshActor's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
 class AStaticMeshActor(AActor):
     """An actor that shows one static mesh."""
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "AStaticMeshActor"
+
+
+class AStereoCameraRigAsync(AActorAsync):
+    """AStereoCameraRig's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class AStereoCameraRigSend(AActorSend):
+    """AStereoCameraRig's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
 
 
 class AStereoCameraRig(AActor):
@@ -331,6 +475,18 @@ class AStereoCameraRig(AActor):
     __sp_class__: ClassVar[str] = "AStereoCameraRig"
 
 
+class UActorComponentAsync(UObjectAsync):
+    """UActorComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UActorComponentSend(UObjectSend):
+    """UActorComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
 class UActorComponent(UObject):
     """A component that adds behaviour to the actor that owns it."""
 
@@ -338,11 +494,35 @@ class UActorComponent(UObject):
     __sp_class__: ClassVar[str] = "UActorComponent"
 
 
+class USceneComponentAsync(UActorComponentAsync):
+    """USceneComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class USceneComponentSend(UActorComponentSend):
+    """USceneComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
 class USceneComponent(UActorComponent):
     """A component with a location, rotation and scale, that can be attached to another one."""
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "USceneComponent"
+
+
+class UCameraSensorComponentAsync(USceneComponentAsync):
+    """UCameraSensorComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UCameraSensorComponentSend(USceneComponentSend):
+    """UCameraSensorComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
 
 
 class UCameraSensorComponent(USceneComponent):
@@ -359,11 +539,35 @@ class UCameraSensorComponent(USceneComponent):
         MaterialName: str
 
 
+class ULightComponentAsync(USceneComponentAsync):
+    """ULightComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class ULightComponentSend(USceneComponentSend):
+    """ULightComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
 class ULightComponent(USceneComponent):
     """A scene component that emits light."""
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "ULightComponent"
+
+
+class UDirectionalLightComponentAsync(ULightComponentAsync):
+    """UDirectionalLightComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UDirectionalLightComponentSend(ULightComponentSend):
+    """UDirectionalLightComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
 
 
 class UDirectionalLightComponent(ULightComponent):
@@ -373,6 +577,18 @@ class UDirectionalLightComponent(ULightComponent):
     __sp_class__: ClassVar[str] = "UDirectionalLightComponent"
 
 
+class UInputComponentAsync(UActorComponentAsync):
+    """UInputComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UInputComponentSend(UActorComponentSend):
+    """UInputComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
 class UInputComponent(UActorComponent):
     """A component that receives input actions injected for the actor that owns it."""
 
@@ -380,11 +596,35 @@ class UInputComponent(UActorComponent):
     __sp_class__: ClassVar[str] = "UInputComponent"
 
 
+class UPointLightComponentAsync(ULightComponentAsync):
+    """UPointLightComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UPointLightComponentSend(ULightComponentSend):
+    """UPointLightComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
 class UPointLightComponent(ULightComponent):
     """A light that shines equally in every direction from the component's location."""
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UPointLightComponent"
+
+
+class UPrimitiveComponentAsync(USceneComponentAsync):
+    """UPrimitiveComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UPrimitiveComponentSend(USceneComponentSend):
+    """UPrimitiveComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
 
 
 class UPrimitiveComponent(USceneComponent):
@@ -398,11 +638,35 @@ class UPrimitiveComponent(USceneComponent):
         BoxExtent: FVector
 
 
+class USkyLightComponentAsync(USceneComponentAsync):
+    """USkyLightComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class USkyLightComponentSend(USceneComponentSend):
+    """USkyLightComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
 class USkyLightComponent(USceneComponent):
     """Uniform sky light: ambient radiance on every surface, and the colour of pixels that hit nothing."""
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "USkyLightComponent"
+
+
+class USpotLightComponentAsync(UPointLightComponentAsync):
+    """USpotLightComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class USpotLightComponentSend(UPointLightComponentSend):
+    """USpotLightComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
 
 
 class USpotLightComponent(UPointLightComponent):
@@ -412,11 +676,35 @@ class USpotLightComponent(UPointLightComponent):
     __sp_class__: ClassVar[str] = "USpotLightComponent"
 
 
+class UStaticMeshComponentAsync(UPrimitiveComponentAsync):
+    """UStaticMeshComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UStaticMeshComponentSend(UPrimitiveComponentSend):
+    """UStaticMeshComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
 class UStaticMeshComponent(UPrimitiveComponent):
     """A component that renders a static mesh."""
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UStaticMeshComponent"
+
+
+class UWorldAsync(UObjectAsync):
+    """UWorld's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UWorldSend(UObjectSend):
+    """UWorld's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
 
 
 class UWorld(UObject):

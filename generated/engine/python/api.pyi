@@ -11,6 +11,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from spear._object import SpObject as _SpObject
+from spear.futures import Future
 
 __all__ = [
     "AActor",
@@ -270,10 +271,38 @@ class FVector2D:
     Y: float = 0.0
 
 
+class UObjectAsync:
+    """UObject's functions, called asynchronously: each returns a Future."""
+
+    def GetName(self) -> Future[str]: ...
+
+    def GetClassName(self) -> Future[str]: ...
+
+    def GetWorld(self) -> Future[UWorld | None]: ...
+
+
+class UObjectSend:
+    """UObject's functions, sent without waiting for a result (fire and forget)."""
+
+    def GetName(self) -> None: ...
+
+    def GetClassName(self) -> None: ...
+
+    def GetWorld(self) -> None: ...
+
+
 class UObject(_SpObject):
     """The base class of every engine object."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UObjectAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UObjectSend:
+        """The same functions, fire and forget."""
 
     def GetName(self) -> str:
         """Returns the object's name, unique among its siblings."""
@@ -285,10 +314,90 @@ class UObject(_SpObject):
         """Returns the world this object lives in, or None for objects outside any world."""
 
 
+class AActorAsync(UObjectAsync):
+    """AActor's functions, called asynchronously: each returns a Future."""
+
+    def SetRootComponent(self, *, NewRootComponent: USceneComponent) -> Future[None]: ...
+
+    def GetActorLocation(self) -> Future[FVector]: ...
+
+    def SetActorLocation(self, *, NewLocation: FVector) -> Future[bool]: ...
+
+    def GetActorRotation(self) -> Future[FRotator]: ...
+
+    def SetActorRotation(self, *, NewRotation: FRotator) -> Future[bool]: ...
+
+    def K2_SetActorLocationAndRotation(self, *, NewLocation: FVector, NewRotation: FRotator, bSweep: bool = False, bTeleport: bool = True) -> Future[bool]: ...
+
+    def GetActorScale3D(self) -> Future[FVector]: ...
+
+    def SetActorScale3D(self, *, NewScale3D: FVector) -> Future[None]: ...
+
+    def GetActorTransform(self) -> Future[FTransform]: ...
+
+    def SetActorTransform(self, *, NewTransform: FTransform) -> Future[bool]: ...
+
+    def GetActorForwardVector(self) -> Future[FVector]: ...
+
+    def GetActorBounds(self, *, bOnlyCollidingComponents: bool) -> Future[AActor.GetActorBoundsResult]: ...
+
+    def ActorHasTag(self, *, Tag: str) -> Future[bool]: ...
+
+    def K2_GetComponents(self) -> Future[list[UActorComponent]]: ...
+
+    @overload
+    def GetComponentByClass(self, *, ComponentClass: type[_UActorComponentT]) -> Future[_UActorComponentT | None]: ...
+
+    @overload
+    def GetComponentByClass(self, *, ComponentClass: str) -> Future[UActorComponent | None]: ...
+
+
+class AActorSend(UObjectSend):
+    """AActor's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetRootComponent(self, *, NewRootComponent: USceneComponent) -> None: ...
+
+    def GetActorLocation(self) -> None: ...
+
+    def SetActorLocation(self, *, NewLocation: FVector) -> None: ...
+
+    def GetActorRotation(self) -> None: ...
+
+    def SetActorRotation(self, *, NewRotation: FRotator) -> None: ...
+
+    def K2_SetActorLocationAndRotation(self, *, NewLocation: FVector, NewRotation: FRotator, bSweep: bool = False, bTeleport: bool = True) -> None: ...
+
+    def GetActorScale3D(self) -> None: ...
+
+    def SetActorScale3D(self, *, NewScale3D: FVector) -> None: ...
+
+    def GetActorTransform(self) -> None: ...
+
+    def SetActorTransform(self, *, NewTransform: FTransform) -> None: ...
+
+    def GetActorForwardVector(self) -> None: ...
+
+    def GetActorBounds(self, *, bOnlyCollidingComponents: bool) -> None: ...
+
+    def ActorHasTag(self, *, Tag: str) -> None: ...
+
+    def K2_GetComponents(self) -> None: ...
+
+    def GetComponentByClass(self, *, ComponentClass: type[UActorComponent] | str) -> None: ...
+
+
 class AActor(UObject):
     """An object that can be placed in a world."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> AActorAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> AActorSend:
+        """The same functions, fire and forget."""
 
     @property
     def Tags(self) -> list[str]:
@@ -354,14 +463,42 @@ class AActor(UObject):
     def GetComponentByClass(self, *, ComponentClass: str) -> UActorComponent | None: ...
 
 
+class ACameraSensorActorAsync(AActorAsync):
+    """ACameraSensorActor's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class ACameraSensorActorSend(AActorSend):
+    """ACameraSensorActor's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
 class ACameraSensorActor(AActor):
     """An actor whose root is a camera sensor."""
 
     __sp_class__: ClassVar[str]
 
     @property
+    def call_async(self) -> ACameraSensorActorAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> ACameraSensorActorSend:
+        """The same functions, fire and forget."""
+
+    @property
     def CameraSensor(self) -> UCameraSensorComponent:
         """The camera (also the root component); it looks along the actor's forward axis."""
+
+
+class ADirectionalLightAsync(AActorAsync):
+    """ADirectionalLight's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class ADirectionalLightSend(AActorSend):
+    """ADirectionalLight's functions, sent without waiting for a result (fire and forget)."""
+    ...
 
 
 class ADirectionalLight(AActor):
@@ -370,14 +507,50 @@ class ADirectionalLight(AActor):
     __sp_class__: ClassVar[str]
 
     @property
+    def call_async(self) -> ADirectionalLightAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> ADirectionalLightSend:
+        """The same functions, fire and forget."""
+
+    @property
     def LightComponent(self) -> UDirectionalLightComponent:
         """The light (also the root component)."""
+
+
+class AMaterialLibraryAsync(AActorAsync):
+    """AMaterialLibrary's functions, called asynchronously: each returns a Future."""
+
+    def SetMaterial(self, *, Name: str, Material: FMaterialDesc) -> Future[None]: ...
+
+    def GetMaterial(self, *, Name: str) -> Future[FMaterialDesc]: ...
+
+    def GetBuiltinMaterialNames(self) -> Future[list[str]]: ...
+
+
+class AMaterialLibrarySend(AActorSend):
+    """AMaterialLibrary's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetMaterial(self, *, Name: str, Material: FMaterialDesc) -> None: ...
+
+    def GetMaterial(self, *, Name: str) -> None: ...
+
+    def GetBuiltinMaterialNames(self) -> None: ...
 
 
 class AMaterialLibrary(AActor):
     """An actor that defines materials by name for the meshes of its world."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> AMaterialLibraryAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> AMaterialLibrarySend:
+        """The same functions, fire and forget."""
 
     @property
     def Materials(self) -> dict[str, FMaterialDesc]:
@@ -398,10 +571,34 @@ class AMaterialLibrary(AActor):
         """Returns the names of the built-in materials."""
 
 
+class AMultiViewCameraRigAsync(AActorAsync):
+    """AMultiViewCameraRig's functions, called asynchronously: each returns a Future."""
+
+    def SetRing(self, *, NumViews: int, NewRadius: float) -> Future[None]: ...
+
+    def ConfigureCameras(self, *, Width: int, Height: int, Modalities: list[ECameraModality]) -> Future[None]: ...
+
+
+class AMultiViewCameraRigSend(AActorSend):
+    """AMultiViewCameraRig's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetRing(self, *, NumViews: int, NewRadius: float) -> None: ...
+
+    def ConfigureCameras(self, *, Width: int, Height: int, Modalities: list[ECameraModality]) -> None: ...
+
+
 class AMultiViewCameraRig(AActor):
     """A ring of cameras around the rig's origin in its XY plane, all looking at the origin."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> AMultiViewCameraRigAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> AMultiViewCameraRigSend:
+        """The same functions, fire and forget."""
 
     @property
     def Cameras(self) -> list[UCameraSensorComponent]:
@@ -418,20 +615,56 @@ class AMultiViewCameraRig(AActor):
         """Sets Width, Height and Modalities of every camera of the ring."""
 
 
+class APointLightAsync(AActorAsync):
+    """APointLight's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class APointLightSend(AActorSend):
+    """APointLight's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
 class APointLight(AActor):
     """An actor with a point light as its root."""
 
     __sp_class__: ClassVar[str]
 
     @property
+    def call_async(self) -> APointLightAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> APointLightSend:
+        """The same functions, fire and forget."""
+
+    @property
     def LightComponent(self) -> UPointLightComponent:
         """The light (also the root component)."""
+
+
+class ASimpleVehicleAsync(AActorAsync):
+    """ASimpleVehicle's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class ASimpleVehicleSend(AActorSend):
+    """ASimpleVehicle's functions, sent without waiting for a result (fire and forget)."""
+    ...
 
 
 class ASimpleVehicle(AActor):
     """A box-shaped vehicle that drives from the "Throttle", "Steer" and "Move" input actions."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> ASimpleVehicleAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> ASimpleVehicleSend:
+        """The same functions, fire and forget."""
 
     @property
     def Body(self) -> UStaticMeshComponent:
@@ -456,14 +689,42 @@ class ASimpleVehicle(AActor):
     def MaxYawRateInDegrees(self, value: float) -> None: ...
 
 
+class ASkyLightAsync(AActorAsync):
+    """ASkyLight's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class ASkyLightSend(AActorSend):
+    """ASkyLight's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
 class ASkyLight(AActor):
     """An actor with the sky light as its root."""
 
     __sp_class__: ClassVar[str]
 
     @property
+    def call_async(self) -> ASkyLightAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> ASkyLightSend:
+        """The same functions, fire and forget."""
+
+    @property
     def SkyLightComponent(self) -> USkyLightComponent:
         """The sky light (also the root component)."""
+
+
+class ASpotLightAsync(AActorAsync):
+    """ASpotLight's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class ASpotLightSend(AActorSend):
+    """ASpotLight's functions, sent without waiting for a result (fire and forget)."""
+    ...
 
 
 class ASpotLight(AActor):
@@ -472,8 +733,26 @@ class ASpotLight(AActor):
     __sp_class__: ClassVar[str]
 
     @property
+    def call_async(self) -> ASpotLightAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> ASpotLightSend:
+        """The same functions, fire and forget."""
+
+    @property
     def LightComponent(self) -> USpotLightComponent:
         """The light (also the root component); its cone points along the actor's forward axis."""
+
+
+class AStaticMeshActorAsync(AActorAsync):
+    """AStaticMeshActor's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class AStaticMeshActorSend(AActorSend):
+    """AStaticMeshActor's functions, sent without waiting for a result (fire and forget)."""
+    ...
 
 
 class AStaticMeshActor(AActor):
@@ -482,14 +761,42 @@ class AStaticMeshActor(AActor):
     __sp_class__: ClassVar[str]
 
     @property
+    def call_async(self) -> AStaticMeshActorAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> AStaticMeshActorSend:
+        """The same functions, fire and forget."""
+
+    @property
     def StaticMeshComponent(self) -> UStaticMeshComponent:
         """The mesh component (also the root component)."""
+
+
+class AStereoCameraRigAsync(AActorAsync):
+    """AStereoCameraRig's functions, called asynchronously: each returns a Future."""
+
+    def SetBaseline(self, *, NewBaseline: float) -> Future[None]: ...
+
+
+class AStereoCameraRigSend(AActorSend):
+    """AStereoCameraRig's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetBaseline(self, *, NewBaseline: float) -> None: ...
 
 
 class AStereoCameraRig(AActor):
     """Two parallel cameras Baseline metres apart along the rig's Y axis, looking along its forward axis."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> AStereoCameraRigAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> AStereoCameraRigSend:
+        """The same functions, fire and forget."""
 
     @property
     def Baseline(self) -> float:
@@ -510,10 +817,34 @@ class AStereoCameraRig(AActor):
         """Sets the baseline in metres (> 0) and moves both cameras."""
 
 
+class UActorComponentAsync(UObjectAsync):
+    """UActorComponent's functions, called asynchronously: each returns a Future."""
+
+    def GetOwner(self) -> Future[AActor | None]: ...
+
+    def ComponentHasTag(self, *, Tag: str) -> Future[bool]: ...
+
+
+class UActorComponentSend(UObjectSend):
+    """UActorComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def GetOwner(self) -> None: ...
+
+    def ComponentHasTag(self, *, Tag: str) -> None: ...
+
+
 class UActorComponent(UObject):
     """A component that adds behaviour to the actor that owns it."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UActorComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UActorComponentSend:
+        """The same functions, fire and forget."""
 
     @property
     def ComponentTags(self) -> list[str]:
@@ -536,10 +867,110 @@ class UActorComponent(UObject):
         """Returns true when ComponentTags contains Tag."""
 
 
+class USceneComponentAsync(UActorComponentAsync):
+    """USceneComponent's functions, called asynchronously: each returns a Future."""
+
+    def SetRelativeLocation(self, *, NewLocation: FVector) -> Future[None]: ...
+
+    def SetRelativeRotation(self, *, NewRotation: FRotator) -> Future[None]: ...
+
+    def SetRelativeScale3D(self, *, NewScale3D: FVector) -> Future[None]: ...
+
+    def SetRelativeTransform(self, *, NewTransform: FTransform) -> Future[None]: ...
+
+    def GetRelativeTransform(self) -> Future[FTransform]: ...
+
+    def SetMobility(self, *, NewMobility: EComponentMobility) -> Future[None]: ...
+
+    def GetComponentTransform(self) -> Future[FTransform]: ...
+
+    def GetComponentLocation(self) -> Future[FVector]: ...
+
+    def K2_GetComponentLocation(self) -> Future[FVector]: ...
+
+    def GetComponentRotation(self) -> Future[FRotator]: ...
+
+    def GetComponentScale(self) -> Future[FVector]: ...
+
+    def SetWorldLocation(self, *, NewLocation: FVector) -> Future[None]: ...
+
+    def SetWorldRotation(self, *, NewRotation: FRotator) -> Future[None]: ...
+
+    def SetWorldTransform(self, *, NewTransform: FTransform) -> Future[None]: ...
+
+    def GetForwardVector(self) -> Future[FVector]: ...
+
+    def GetRightVector(self) -> Future[FVector]: ...
+
+    def GetUpVector(self) -> Future[FVector]: ...
+
+    def AttachToComponent(self, *, Parent: USceneComponent, bKeepWorldTransform: bool = False) -> Future[None]: ...
+
+    def DetachFromComponent(self, *, bKeepWorldTransform: bool = True) -> Future[None]: ...
+
+    def GetAttachParent(self) -> Future[USceneComponent | None]: ...
+
+    def GetChildrenComponents(self, *, bIncludeAllDescendants: bool = False) -> Future[list[USceneComponent]]: ...
+
+
+class USceneComponentSend(UActorComponentSend):
+    """USceneComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetRelativeLocation(self, *, NewLocation: FVector) -> None: ...
+
+    def SetRelativeRotation(self, *, NewRotation: FRotator) -> None: ...
+
+    def SetRelativeScale3D(self, *, NewScale3D: FVector) -> None: ...
+
+    def SetRelativeTransform(self, *, NewTransform: FTransform) -> None: ...
+
+    def GetRelativeTransform(self) -> None: ...
+
+    def SetMobility(self, *, NewMobility: EComponentMobility) -> None: ...
+
+    def GetComponentTransform(self) -> None: ...
+
+    def GetComponentLocation(self) -> None: ...
+
+    def K2_GetComponentLocation(self) -> None: ...
+
+    def GetComponentRotation(self) -> None: ...
+
+    def GetComponentScale(self) -> None: ...
+
+    def SetWorldLocation(self, *, NewLocation: FVector) -> None: ...
+
+    def SetWorldRotation(self, *, NewRotation: FRotator) -> None: ...
+
+    def SetWorldTransform(self, *, NewTransform: FTransform) -> None: ...
+
+    def GetForwardVector(self) -> None: ...
+
+    def GetRightVector(self) -> None: ...
+
+    def GetUpVector(self) -> None: ...
+
+    def AttachToComponent(self, *, Parent: USceneComponent, bKeepWorldTransform: bool = False) -> None: ...
+
+    def DetachFromComponent(self, *, bKeepWorldTransform: bool = True) -> None: ...
+
+    def GetAttachParent(self) -> None: ...
+
+    def GetChildrenComponents(self, *, bIncludeAllDescendants: bool = False) -> None: ...
+
+
 class USceneComponent(UActorComponent):
     """A component with a location, rotation and scale, that can be attached to another one."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> USceneComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> USceneComponentSend:
+        """The same functions, fire and forget."""
 
     @property
     def RelativeLocation(self) -> FVector:
@@ -640,10 +1071,62 @@ class USceneComponent(UActorComponent):
         """Returns the attached children, and their descendants when bIncludeAllDescendants is true."""
 
 
+class UCameraSensorComponentAsync(USceneComponentAsync):
+    """UCameraSensorComponent's functions, called asynchronously: each returns a Future."""
+
+    def read_pixels(self) -> Future[FCameraPixels]: ...
+
+    def GetPixelsFrame(self) -> Future[int]: ...
+
+    def SetModalityNames(self, *, Names: list[str]) -> Future[None]: ...
+
+    def GetModalityNames(self) -> Future[list[str]]: ...
+
+    def GetObjectIdInfo(self, *, ObjectId: int) -> Future[UCameraSensorComponent.GetObjectIdInfoResult]: ...
+
+    def GetObjectId(self, *, Component: UPrimitiveComponent, MaterialSlot: int = 0) -> Future[int]: ...
+
+    def GetMaterialId(self, *, Name: str) -> Future[int]: ...
+
+    def get_render_device_info(self) -> Future[FRenderDeviceInfo]: ...
+
+    def GetRenderStats(self) -> Future[FRenderStats]: ...
+
+
+class UCameraSensorComponentSend(USceneComponentSend):
+    """UCameraSensorComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def read_pixels(self) -> None: ...
+
+    def GetPixelsFrame(self) -> None: ...
+
+    def SetModalityNames(self, *, Names: list[str]) -> None: ...
+
+    def GetModalityNames(self) -> None: ...
+
+    def GetObjectIdInfo(self, *, ObjectId: int) -> None: ...
+
+    def GetObjectId(self, *, Component: UPrimitiveComponent, MaterialSlot: int = 0) -> None: ...
+
+    def GetMaterialId(self, *, Name: str) -> None: ...
+
+    def get_render_device_info(self) -> None: ...
+
+    def GetRenderStats(self) -> None: ...
+
+
 class UCameraSensorComponent(USceneComponent):
     """A camera that renders the modalities in Modalities at the end of every frame."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UCameraSensorComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UCameraSensorComponentSend:
+        """The same functions, fire and forget."""
 
     @property
     def Width(self) -> int:
@@ -759,10 +1242,28 @@ class UCameraSensorComponent(USceneComponent):
         """Returns how often each render pass ran in this camera's world."""
 
 
+class ULightComponentAsync(USceneComponentAsync):
+    """ULightComponent's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class ULightComponentSend(USceneComponentSend):
+    """ULightComponent's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
 class ULightComponent(USceneComponent):
     """A scene component that emits light."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> ULightComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> ULightComponentSend:
+        """The same functions, fire and forget."""
 
     @property
     def Intensity(self) -> float:
@@ -786,16 +1287,58 @@ class ULightComponent(USceneComponent):
     def bCastShadows(self, value: bool) -> None: ...
 
 
+class UDirectionalLightComponentAsync(ULightComponentAsync):
+    """UDirectionalLightComponent's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class UDirectionalLightComponentSend(ULightComponentSend):
+    """UDirectionalLightComponent's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
 class UDirectionalLightComponent(ULightComponent):
     """A light infinitely far away that shines along the component's forward (+X) axis, like the sun."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UDirectionalLightComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UDirectionalLightComponentSend:
+        """The same functions, fire and forget."""
+
+
+class UInputComponentAsync(UActorComponentAsync):
+    """UInputComponent's functions, called asynchronously: each returns a Future."""
+
+    def GetActionValue(self, *, ActionName: str) -> Future[FVector]: ...
+
+    def IsActionTriggered(self, *, ActionName: str) -> Future[bool]: ...
+
+
+class UInputComponentSend(UActorComponentSend):
+    """UInputComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def GetActionValue(self, *, ActionName: str) -> None: ...
+
+    def IsActionTriggered(self, *, ActionName: str) -> None: ...
 
 
 class UInputComponent(UActorComponent):
     """A component that receives input actions injected for the actor that owns it."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UInputComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UInputComponentSend:
+        """The same functions, fire and forget."""
 
     def GetActionValue(self, *, ActionName: str) -> FVector:
         """Returns the value of ActionName injected for the current tick, or zero when it was not injected."""
@@ -804,10 +1347,28 @@ class UInputComponent(UActorComponent):
         """Returns true when ActionName was injected for the current tick."""
 
 
+class UPointLightComponentAsync(ULightComponentAsync):
+    """UPointLightComponent's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class UPointLightComponentSend(ULightComponentSend):
+    """UPointLightComponent's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
 class UPointLightComponent(ULightComponent):
     """A light that shines equally in every direction from the component's location."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UPointLightComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UPointLightComponentSend:
+        """The same functions, fire and forget."""
 
     @property
     def AttenuationRadius(self) -> float:
@@ -817,10 +1378,78 @@ class UPointLightComponent(ULightComponent):
     def AttenuationRadius(self, value: float) -> None: ...
 
 
+class UPrimitiveComponentAsync(USceneComponentAsync):
+    """UPrimitiveComponent's functions, called asynchronously: each returns a Future."""
+
+    def GetBounds(self) -> Future[UPrimitiveComponent.GetBoundsResult]: ...
+
+    def SetSimulatePhysics(self, *, bSimulate: bool) -> Future[None]: ...
+
+    def IsSimulatingPhysics(self) -> Future[bool]: ...
+
+    def SetMassOverrideInKg(self, *, MassInKg: float) -> Future[None]: ...
+
+    def GetMass(self) -> Future[float]: ...
+
+    def AddForce(self, *, Force: FVector, bAccelChange: bool = False) -> Future[None]: ...
+
+    def AddTorqueInRadians(self, *, Torque: FVector) -> Future[None]: ...
+
+    def AddImpulse(self, *, Impulse: FVector, bVelChange: bool = False) -> Future[None]: ...
+
+    def SetPhysicsLinearVelocity(self, *, NewVel: FVector, bAddToCurrent: bool = False) -> Future[None]: ...
+
+    def GetPhysicsLinearVelocity(self) -> Future[FVector]: ...
+
+    def SetPhysicsAngularVelocityInDegrees(self, *, NewAngVel: FVector, bAddToCurrent: bool = False) -> Future[None]: ...
+
+    def GetPhysicsAngularVelocityInDegrees(self) -> Future[FVector]: ...
+
+    def IsAnyRigidBodyAwake(self) -> Future[bool]: ...
+
+
+class UPrimitiveComponentSend(USceneComponentSend):
+    """UPrimitiveComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def GetBounds(self) -> None: ...
+
+    def SetSimulatePhysics(self, *, bSimulate: bool) -> None: ...
+
+    def IsSimulatingPhysics(self) -> None: ...
+
+    def SetMassOverrideInKg(self, *, MassInKg: float) -> None: ...
+
+    def GetMass(self) -> None: ...
+
+    def AddForce(self, *, Force: FVector, bAccelChange: bool = False) -> None: ...
+
+    def AddTorqueInRadians(self, *, Torque: FVector) -> None: ...
+
+    def AddImpulse(self, *, Impulse: FVector, bVelChange: bool = False) -> None: ...
+
+    def SetPhysicsLinearVelocity(self, *, NewVel: FVector, bAddToCurrent: bool = False) -> None: ...
+
+    def GetPhysicsLinearVelocity(self) -> None: ...
+
+    def SetPhysicsAngularVelocityInDegrees(self, *, NewAngVel: FVector, bAddToCurrent: bool = False) -> None: ...
+
+    def GetPhysicsAngularVelocityInDegrees(self) -> None: ...
+
+    def IsAnyRigidBodyAwake(self) -> None: ...
+
+
 class UPrimitiveComponent(USceneComponent):
     """A scene component that has geometry."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UPrimitiveComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UPrimitiveComponentSend:
+        """The same functions, fire and forget."""
 
     @property
     def bSimulatePhysics(self) -> bool:
@@ -919,10 +1548,28 @@ class UPrimitiveComponent(USceneComponent):
         """Returns true while this component's body is awake (false for sleeping or non-simulated ones)."""
 
 
+class USkyLightComponentAsync(USceneComponentAsync):
+    """USkyLightComponent's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class USkyLightComponentSend(USceneComponentSend):
+    """USkyLightComponent's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
 class USkyLightComponent(USceneComponent):
     """Uniform sky light: ambient radiance on every surface, and the colour of pixels that hit nothing."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> USkyLightComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> USkyLightComponentSend:
+        """The same functions, fire and forget."""
 
     @property
     def SkyColor(self) -> FLinearColor:
@@ -946,10 +1593,28 @@ class USkyLightComponent(USceneComponent):
     def BackgroundColor(self, value: FLinearColor) -> None: ...
 
 
+class USpotLightComponentAsync(UPointLightComponentAsync):
+    """USpotLightComponent's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class USpotLightComponentSend(UPointLightComponentSend):
+    """USpotLightComponent's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
 class USpotLightComponent(UPointLightComponent):
     """A point light restricted to a cone around the component's forward axis."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> USpotLightComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> USpotLightComponentSend:
+        """The same functions, fire and forget."""
 
     @property
     def InnerConeAngle(self) -> float:
@@ -966,10 +1631,34 @@ class USpotLightComponent(UPointLightComponent):
     def OuterConeAngle(self, value: float) -> None: ...
 
 
+class UStaticMeshComponentAsync(UPrimitiveComponentAsync):
+    """UStaticMeshComponent's functions, called asynchronously: each returns a Future."""
+
+    def SetStaticMesh(self, *, NewMesh: str) -> Future[bool]: ...
+
+    def SetMaterial(self, *, ElementIndex: int, Material: str) -> Future[None]: ...
+
+
+class UStaticMeshComponentSend(UPrimitiveComponentSend):
+    """UStaticMeshComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetStaticMesh(self, *, NewMesh: str) -> None: ...
+
+    def SetMaterial(self, *, ElementIndex: int, Material: str) -> None: ...
+
+
 class UStaticMeshComponent(UPrimitiveComponent):
     """A component that renders a static mesh."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UStaticMeshComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UStaticMeshComponentSend:
+        """The same functions, fire and forget."""
 
     @property
     def StaticMesh(self) -> str:
@@ -994,10 +1683,150 @@ class UStaticMeshComponent(UPrimitiveComponent):
         """Sets the material of one slot, growing the list as needed."""
 
 
+class UWorldAsync(UObjectAsync):
+    """UWorld's functions, called asynchronously: each returns a Future."""
+
+    @overload
+    def spawn_actor(self, *, uclass: type[_AActorT], location: FVector = FVector(), rotation: FRotator = FRotator(), name: str = "", tags: list[str] = []) -> Future[_AActorT]: ...
+
+    @overload
+    def spawn_actor(self, *, uclass: str, location: FVector = FVector(), rotation: FRotator = FRotator(), name: str = "", tags: list[str] = []) -> Future[AActor]: ...
+
+    def destroy_actor(self, *, actor: AActor) -> Future[None]: ...
+
+    def find_actor_by_name(self, *, name: str) -> Future[AActor | None]: ...
+
+    def find_actors_by_tag(self, *, tag: str) -> Future[list[AActor]]: ...
+
+    @overload
+    def find_actor_by_class(self, *, uclass: type[_AActorT]) -> Future[_AActorT | None]: ...
+
+    @overload
+    def find_actor_by_class(self, *, uclass: str) -> Future[AActor | None]: ...
+
+    @overload
+    def find_actors_by_class(self, *, uclass: type[_AActorT]) -> Future[list[_AActorT]]: ...
+
+    @overload
+    def find_actors_by_class(self, *, uclass: str) -> Future[list[AActor]]: ...
+
+    @overload
+    def find_actors_by_class_as_dict(self, *, uclass: type[_AActorT]) -> Future[dict[str, _AActorT]]: ...
+
+    @overload
+    def find_actors_by_class_as_dict(self, *, uclass: str) -> Future[dict[str, AActor]]: ...
+
+    def find_actors(self) -> Future[list[AActor]]: ...
+
+    def get_component_by_name(self, *, actor: AActor, component_name: str) -> Future[UActorComponent | None]: ...
+
+    @overload
+    def get_components_by_class(self, *, actor: AActor, uclass: type[_UActorComponentT]) -> Future[list[_UActorComponentT]]: ...
+
+    @overload
+    def get_components_by_class(self, *, actor: AActor, uclass: str) -> Future[list[UActorComponent]]: ...
+
+    @overload
+    def get_components_by_class_as_dict(self, *, actor: AActor, uclass: type[_UActorComponentT]) -> Future[dict[str, _UActorComponentT]]: ...
+
+    @overload
+    def get_components_by_class_as_dict(self, *, actor: AActor, uclass: str) -> Future[dict[str, UActorComponent]]: ...
+
+    @overload
+    def get_default_object(self, *, uclass: type[_UObjectT]) -> Future[_UObjectT]: ...
+
+    @overload
+    def get_default_object(self, *, uclass: str) -> Future[UObject]: ...
+
+    def get_actor_count(self) -> Future[int]: ...
+
+    def get_time_seconds(self) -> Future[float]: ...
+
+    def get_frame_count(self) -> Future[int]: ...
+
+    def line_trace_single(self, *, start: FVector, end: FVector) -> Future[UWorld.line_trace_singleResult]: ...
+
+    def inject_input_for_actor(self, *, actor: AActor, input_action_name: str, value: FVector) -> Future[None]: ...
+
+    def load_scene(self, *, path: str) -> Future[None]: ...
+
+    def save_scene(self, *, path: str) -> Future[None]: ...
+
+    def is_editor_world(self) -> Future[bool]: ...
+
+    def is_game_world(self) -> Future[bool]: ...
+
+    def play(self) -> Future[None]: ...
+
+    def stop(self) -> Future[None]: ...
+
+    def is_playing(self) -> Future[bool]: ...
+
+
+class UWorldSend(UObjectSend):
+    """UWorld's functions, sent without waiting for a result (fire and forget)."""
+
+    def spawn_actor(self, *, uclass: type[AActor] | str, location: FVector = FVector(), rotation: FRotator = FRotator(), name: str = "", tags: list[str] = []) -> None: ...
+
+    def destroy_actor(self, *, actor: AActor) -> None: ...
+
+    def find_actor_by_name(self, *, name: str) -> None: ...
+
+    def find_actors_by_tag(self, *, tag: str) -> None: ...
+
+    def find_actor_by_class(self, *, uclass: type[AActor] | str) -> None: ...
+
+    def find_actors_by_class(self, *, uclass: type[AActor] | str) -> None: ...
+
+    def find_actors_by_class_as_dict(self, *, uclass: type[AActor] | str) -> None: ...
+
+    def find_actors(self) -> None: ...
+
+    def get_component_by_name(self, *, actor: AActor, component_name: str) -> None: ...
+
+    def get_components_by_class(self, *, actor: AActor, uclass: type[UActorComponent] | str) -> None: ...
+
+    def get_components_by_class_as_dict(self, *, actor: AActor, uclass: type[UActorComponent] | str) -> None: ...
+
+    def get_default_object(self, *, uclass: type[UObject] | str) -> None: ...
+
+    def get_actor_count(self) -> None: ...
+
+    def get_time_seconds(self) -> None: ...
+
+    def get_frame_count(self) -> None: ...
+
+    def line_trace_single(self, *, start: FVector, end: FVector) -> None: ...
+
+    def inject_input_for_actor(self, *, actor: AActor, input_action_name: str, value: FVector) -> None: ...
+
+    def load_scene(self, *, path: str) -> None: ...
+
+    def save_scene(self, *, path: str) -> None: ...
+
+    def is_editor_world(self) -> None: ...
+
+    def is_game_world(self) -> None: ...
+
+    def play(self) -> None: ...
+
+    def stop(self) -> None: ...
+
+    def is_playing(self) -> None: ...
+
+
 class UWorld(UObject):
     """A world: the actors that exist together, and the services to create and find them."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UWorldAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UWorldSend:
+        """The same functions, fire and forget."""
 
     @overload
     def spawn_actor(self, *, uclass: type[_AActorT], location: FVector = FVector(), rotation: FRotator = FRotator(), name: str = "", tags: list[str] = []) -> _AActorT: ...

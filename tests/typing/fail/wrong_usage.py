@@ -20,3 +20,9 @@ def misuse(instance: spear.Instance) -> None:
     spear.FVector(Q=1.0)  # E: Unexpected keyword argument "Q" for "FVector"  [call-arg]
     game.spawn_actor(uclass=spear.FVector)  # E: Value of type variable "_AActorT" of "spawn_actor" of "UWorld" cannot be "FVector"  [type-var]
     actor.StaticMeshComponent.SetMaterial(ElementIndex=0.5, Material="m")  # E: Argument "ElementIndex" to "SetMaterial" of "UStaticMeshComponent" has incompatible type "float"; expected "int"  [arg-type]
+
+
+def misuse_async(instance: spear.Instance) -> None:
+    actor = instance.get_game().spawn_actor(uclass=spear.AActor)
+    wrong: spear.FVector = actor.call_async.GetActorLocation()  # E: Incompatible types in assignment (expression has type "Future[FVector]", variable has type "FVector")  [assignment]
+    actor.call_async.SetActorLocation(NewLocation=1.0)  # E: Argument "NewLocation" to "SetActorLocation" of "AActorAsync" has incompatible type "float"; expected "FVector"  [arg-type]

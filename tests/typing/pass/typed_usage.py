@@ -7,6 +7,7 @@ from typing import assert_type
 import spear
 from spear._engine import rpc
 from spear._rpc_proxy import RpcClient
+from spear.futures import Future
 
 
 def world_services(instance: spear.Instance) -> None:
@@ -46,3 +47,17 @@ def either_transport(client: RpcClient, local: spear.AActor) -> None:
         assert_type(actor.GetActorLocation(), spear.FVector)
     world: spear.UWorld = rpc.UWorld(client, (1, 0))
     assert_type(world.spawn_actor(uclass=spear.AStaticMeshActor), spear.AStaticMeshActor)
+
+
+def asynchronous(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        actor = game.spawn_actor(uclass=spear.AStaticMeshActor)
+        location = actor.call_async.GetActorLocation()
+        assert_type(location, Future[spear.FVector])
+        spawned = game.call_async.spawn_actor(uclass=spear.AStaticMeshActor)
+        assert_type(spawned, Future[spear.AStaticMeshActor])
+        assert_type(actor.send_async.SetActorLocation(NewLocation=spear.FVector()), None)
+    with instance.end_frame():
+        assert_type(location.get(), spear.FVector)
+        assert_type(actor.call_async.GetActorBounds(bOnlyCollidingComponents=True).get().Origin, spear.FVector)

@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from spear._object import SpObject as _SpObject
-from spear._engine.api import AActor, FVector, UObject
+from spear._engine.api import AActor, AActorAsync, AActorSend, FVector, UObject
 
 __all__ = [
     "AAllTypes",
@@ -50,6 +50,18 @@ class FSample:
     Channel: EChannel = EChannel.Green
     Values: list[float] = field(default_factory=list)
     Count: int = 7
+
+
+class AAllTypesAsync(AActorAsync):
+    """AAllTypes's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class AAllTypesSend(AActorSend):
+    """AAllTypes's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
 
 
 class AAllTypes(AActor):

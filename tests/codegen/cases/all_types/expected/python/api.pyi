@@ -11,7 +11,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from spear._object import SpObject as _SpObject
-from spear._engine.api import AActor, FVector, UObject
+from spear.futures import Future
+from spear._engine.api import AActor, AActorAsync, AActorSend, FVector, UObject
 
 __all__ = [
     "AAllTypes",
@@ -52,10 +53,66 @@ class FSample:
     Count: int = 7
 
 
+class AAllTypesAsync(AActorAsync):
+    """AAllTypes's functions, called asynchronously: each returns a Future."""
+
+    def SetSpeed(self, *, NewSpeed: float) -> Future[None]: ...
+
+    def Scale(self, *, Sample: FSample, Factor: float = 2.0, Channel: EChannel = EChannel.Red) -> Future[FSample]: ...
+
+    def Split(self, *, Text: str) -> Future[AAllTypes.SplitResult]: ...
+
+    @overload
+    def Collect(self, *, ActorClass: type[_AActorT], Candidates: list[AActor] = []) -> Future[list[_AActorT]]: ...
+
+    @overload
+    def Collect(self, *, ActorClass: str, Candidates: list[AActor] = []) -> Future[list[AActor]]: ...
+
+    def ClassOf(self, *, Object: UObject | None = None) -> Future[type[UObject] | None]: ...
+
+    def Normalise(self, *, Points: NDArray[np.float32]) -> Future[NDArray[np.float32]]: ...
+
+    def Histogram(self, *, Bytes: NDArray[np.uint8], Bins: int = 16) -> Future[dict[str, int]]: ...
+
+    def Render(self, *, Names: list[str]) -> Future[FImages]: ...
+
+    def Self(self) -> Future[AActor]: ...
+
+
+class AAllTypesSend(AActorSend):
+    """AAllTypes's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetSpeed(self, *, NewSpeed: float) -> None: ...
+
+    def Scale(self, *, Sample: FSample, Factor: float = 2.0, Channel: EChannel = EChannel.Red) -> None: ...
+
+    def Split(self, *, Text: str) -> None: ...
+
+    def Collect(self, *, ActorClass: type[AActor] | str, Candidates: list[AActor] = []) -> None: ...
+
+    def ClassOf(self, *, Object: UObject | None = None) -> None: ...
+
+    def Normalise(self, *, Points: NDArray[np.float32]) -> None: ...
+
+    def Histogram(self, *, Bytes: NDArray[np.uint8], Bins: int = 16) -> None: ...
+
+    def Render(self, *, Names: list[str]) -> None: ...
+
+    def Self(self) -> None: ...
+
+
 class AAllTypes(AActor):
     """An actor whose API uses every supported type."""
 
     __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> AAllTypesAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> AAllTypesSend:
+        """The same functions, fire and forget."""
 
     @property
     def bFlag(self) -> bool:

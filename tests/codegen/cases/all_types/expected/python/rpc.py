@@ -19,7 +19,7 @@ from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
 from .api import EChannel, FImages, FSample  # structs and enums are shared with the in-process API
-from spear._engine.api import FVector
+from spear._engine.api import AActorAsync, AActorSend, FVector
 
 _: Any = (np, NDArray)
 
