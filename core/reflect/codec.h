@@ -105,8 +105,13 @@ struct ValueCodec<E> {
 template <ReflectedStruct T> struct ValueCodec<T> {
     static Value encode(const T& v) {
         Value::Dict fields;
-        for (const PropertyInfo* property : T::StaticClass().allProperties())
-            fields.emplace(property->name, property->get(&v));
+        for (const PropertyInfo* property : T::StaticClass().allProperties()) {
+            Value field = property->get(&v);
+            // An array field that holds nothing is left out (a TypedDict result has only what was produced).
+            if (const ArrayValue* array = field.tryAs<ArrayValue>(); array && !array->data)
+                continue;
+            fields.emplace(property->name, std::move(field));
+        }
         return Value(std::move(fields));
     }
     static T decode(const Value& v, std::string_view context) {

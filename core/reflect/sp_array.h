@@ -35,6 +35,26 @@ template <> struct DTypeOf<Half> { static constexpr DType value = DType::Float16
 template <> struct DTypeOf<float> { static constexpr DType value = DType::Float32; };
 template <> struct DTypeOf<double> { static constexpr DType value = DType::Float64; };
 
+// Where new array storage comes from. By default the heap; the RPC server installs an allocator for
+// the duration of a request that places arrays straight in shared memory, so that a camera's readback
+// lands in the segment the client maps, with no copy in between.
+using ArrayAllocator = ArrayValue (*)(DType dtype, const std::vector<int64_t>& shape, void* context);
+
+class ArrayAllocatorScope {
+public:
+    ArrayAllocatorScope(ArrayAllocator allocator, void* context);
+    ~ArrayAllocatorScope();
+    ArrayAllocatorScope(const ArrayAllocatorScope&) = delete;
+    ArrayAllocatorScope& operator=(const ArrayAllocatorScope&) = delete;
+
+private:
+    ArrayAllocator previous_;
+    void* previousContext_;
+};
+
+// Zero-initialised storage for an array of this dtype and shape, from the current allocator.
+ArrayValue allocateArray(DType dtype, const std::vector<int64_t>& shape);
+
 // The untyped part, so that lists of arrays of different element types can be packed together.
 class SpArrayBase {
   public:
@@ -78,13 +98,8 @@ template <typename T> class SpArray : public SpArrayBase {
     }
     void setDataSource(std::initializer_list<T> data) { setDataSource(std::vector<T>(data)); }
 
-    // Allocates zeroed storage of the given shape.
-    void resize(std::vector<int64_t> shape) {
-        int64_t count = 1;
-        for (int64_t extent : shape)
-            count *= extent;
-        setDataSource(std::vector<T>(size_t(count)), std::move(shape));
-    }
+    // Allocates zeroed storage of the given shape (from the current ArrayAllocator).
+    void resize(const std::vector<int64_t>& shape) { value_ = allocateArray(DTypeOf<T>::value, shape); }
 
   private:
     std::vector<int64_t> resolveShape(std::vector<int64_t> shape, int64_t count) const {

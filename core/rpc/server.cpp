@@ -1,5 +1,7 @@
 #include "core/rpc/server.h"
 
+#include "core/reflect/sp_array.h"
+
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
@@ -10,6 +12,7 @@
 #include <sys/un.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -44,8 +47,26 @@ struct Server::Connection {
     Session session;
     // Segments holding the arrays of the last reply: the client maps them before it sends anything
     // else, so they are unlinked when its next request arrives (or when it goes away).
-    std::vector<SharedMemorySegment> replySegments;
+    std::vector<std::shared_ptr<SharedMemorySegment>> replySegments;
+    // Segments that arrays were allocated in while the current request ran (see allocateInSegment).
+    std::vector<std::shared_ptr<SharedMemorySegment>> requestSegments;
 };
+
+namespace {
+// The ArrayAllocator installed while a request runs: new arrays (a camera's readback) are placed in a
+// fresh segment, which the reply then names instead of copying the bytes.
+reflect::ArrayValue allocateInSegment(reflect::DType dtype, const std::vector<int64_t>& shape, void* context) {
+    auto& segments = *static_cast<std::vector<std::shared_ptr<SharedMemorySegment>>*>(context);
+    reflect::ArrayValue value;
+    value.dtype = dtype;
+    value.shape = shape;
+    auto segment = std::make_shared<SharedMemorySegment>(SharedMemorySegment::create(value.byteSize()));
+    value.data = segment->data();
+    value.owner = segment;
+    segments.push_back(std::move(segment));
+    return value;
+}
+} // namespace
 
 Server::Server(world::Engine& engine, ServerOptions options, std::string apiHash)
     : options_(std::move(options)), dispatcher_(engine, std::move(apiHash), options_.token) {
@@ -120,7 +141,7 @@ void Server::accept() {
 
 void Server::drop(Connection& connection) {
     for (auto& segment : connection.replySegments)
-        segment.unlink();
+        segment->unlink();
     connection.replySegments.clear();
     if (connection.fd >= 0)
         ::close(connection.fd);
@@ -145,18 +166,32 @@ bool Server::serve(Connection& connection) {
         if (connection.inbox.size() < 4 + size_t(length))
             return true; // the rest is still on its way
         for (auto& segment : connection.replySegments)
-            segment.unlink();
+            segment->unlink();
         connection.replySegments.clear();
         msgpack::sbuffer reply;
         reply.write("\0\0\0\0", 4);
         auto toShm = [&](const reflect::ArrayValue& array) {
-            SharedMemorySegment segment = SharedMemorySegment::create(array.byteSize());
-            std::memcpy(segment.data(), array.data, array.byteSize());
-            std::string name = segment.name();
-            connection.replySegments.push_back(std::move(segment));
-            return name;
+            for (const auto& segment : connection.requestSegments) // already in shared memory: no copy
+                if (segment->data() == array.data && !segment->unlinked()) {
+                    connection.replySegments.push_back(segment);
+                    return segment->name();
+                }
+            auto segment = std::make_shared<SharedMemorySegment>(SharedMemorySegment::create(array.byteSize()));
+            std::memcpy(segment->data(), array.data, array.byteSize());
+            connection.replySegments.push_back(segment);
+            return segment->name();
         };
-        dispatcher_.handle(connection.inbox.data() + 4, length, connection.session, reply, toShm);
+        {
+            reflect::ArrayAllocatorScope allocator(&allocateInSegment, &connection.requestSegments);
+            dispatcher_.handle(connection.inbox.data() + 4, length, connection.session, reply, toShm);
+        }
+        // Arrays allocated in segments but not sent (kept by the engine for later) lose their names now;
+        // their mappings live on with their owners.
+        for (auto& segment : connection.requestSegments)
+            if (std::find(connection.replySegments.begin(), connection.replySegments.end(), segment) ==
+                connection.replySegments.end())
+                segment->unlink();
+        connection.requestSegments.clear();
         connection.inbox.erase(0, 4 + size_t(length));
         const uint32_t replyLength = uint32_t(reply.size() - 4);
         std::memcpy(reply.data(), &replyLength, 4);

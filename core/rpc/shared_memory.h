@@ -26,6 +26,7 @@ public:
     size_t size() const { return size_; }
     // Removes the name; the mapping stays valid until unmapped. Idempotent.
     void unlink();
+    bool unlinked() const { return unlinked_; }
 
 private:
     SharedMemorySegment() = default;

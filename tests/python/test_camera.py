@@ -5,7 +5,6 @@ decomposition, latency, pass selection, lifetime and errors."""
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -14,15 +13,6 @@ import pytest
 import spear
 
 M = spear.ECameraModality
-
-
-@pytest.fixture
-def instance() -> Iterator[spear.Instance]:
-    """In-process only for now: over RPC, read_pixels()'s typed dict carries its absent arrays as empty
-    ones, which the client cannot reshape (the RPC transport is being built beside this)."""
-    inst = spear.Instance()
-    yield inst
-    inst.close()
 
 
 def spawn_wall(game: spear.UWorld, x_front: float, name: str = "Wall", material: str = "White") -> spear.AStaticMeshActor:

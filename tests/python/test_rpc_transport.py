@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import mmap
 import os
 import socket
 import stat
@@ -25,6 +26,14 @@ def server() -> Iterator[LaunchedServer]:
     launched = LaunchedServer(fixed_delta_seconds=1 / 60)
     yield launched
     launched.close()
+
+
+def root_buffer(array: np.ndarray) -> object:
+    """What an array's memory ultimately belongs to."""
+    base: object = array
+    while isinstance(base, np.ndarray) and base.base is not None:
+        base = base.base
+    return base.obj if isinstance(base, memoryview) else base
 
 
 def raw_socket(server: LaunchedServer) -> socket.socket:
@@ -122,7 +131,7 @@ def test_large_arrays_travel_through_shared_memory_and_are_released(server: Laun
     echoed = connection.request("echo", value=frame)
     assert echoed.dtype == np.uint8 and echoed.shape == frame.shape
     assert np.array_equal(echoed, frame)
-    assert not isinstance(echoed.base, bytes)  # a view of the mapped segment, not a copy of a message
+    assert isinstance(root_buffer(echoed), mmap.mmap)  # a view of the mapped segment, not a copy of a message
     small = connection.request("echo", value=np.arange(10, dtype=np.float32))
     assert small.dtype == np.float32 and list(small) == list(range(10))
     connection.request("echo", value=None)  # the server releases the last reply's segments on the next request
@@ -166,3 +175,22 @@ def test_closing_an_instance_stops_its_server() -> None:
     process = backend._launched.process  # type: ignore[attr-defined]
     instance.close()
     assert process.poll() is not None
+
+
+def test_read_pixels_lands_in_the_segment_the_client_maps(server: LaunchedServer) -> None:
+    with spear.Instance(server=server.address) as instance:
+        game = instance.get_game()
+        with instance.begin_frame():
+            camera = game.spawn_actor(uclass=spear.ACameraSensorActor).CameraSensor
+            camera.Width, camera.Height = 320, 240
+            camera.Modalities = [spear.ECameraModality.FinalColor, spear.ECameraModality.Depth]
+        with instance.end_frame():
+            pixels = camera.read_pixels()
+            again = camera.read_pixels()  # cached for this frame: sent again from a fresh segment
+        assert set(pixels) == {"final_color", "depth"}
+        color = pixels["final_color"]
+        assert color.shape == (240, 320, 4) and color.dtype == np.uint8
+        assert isinstance(root_buffer(color), mmap.mmap)  # a view of the mapped segment, not a copy
+        assert np.array_equal(again["depth"], pixels["depth"])
+        instance.get_game()  # any request: the server releases the segments of the last reply
+        assert not [n for n in os.listdir("/dev/shm") if n.startswith(f"spear-{server.process.pid}-")]
