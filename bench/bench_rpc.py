@@ -1,0 +1,156 @@
+"""The RPC transport against its floors, measured in the same run on the same machine.
+
+    PYTHONPATH=python /usr/bin/python3 bench/bench_rpc.py
+
+- an empty call's round trip vs a raw Unix-socket ping-pong of the same message size (a Python echo
+  process with no msgpack and no engine: the least a Python client can pay per round trip);
+- 10,000 calls in one frame, queued with call_async (one message), vs the same calls made one by one;
+- a 1920x1080 RGBA frame from the engine into numpy (read_pixels of a frame already rendered) vs one
+  memcpy of the same bytes;
+- read_pixels throughput (render + transfer) at latency 0, 1, 2.
+"""
+
+from __future__ import annotations
+
+import os
+import socket
+import struct
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "python"))
+
+import spear  # noqa: E402
+from spear._rpc_client import RpcConnection  # noqa: E402
+
+ECHO = """
+import socket, struct, sys
+s = socket.socket(socket.AF_UNIX); s.bind(sys.argv[1]); s.listen(1); print("ready", flush=True)
+c, _ = s.accept()
+while True:
+    h = c.recv(4, socket.MSG_WAITALL)
+    if len(h) < 4: break
+    n = struct.unpack("<I", h)[0]
+    body = c.recv(n, socket.MSG_WAITALL)
+    c.sendall(h + body)
+"""
+
+
+def best(fn, repeat: int = 5) -> float:  # type: ignore[no-untyped-def]
+    times = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+def raw_ping_pong_us(message_bytes: int, rounds: int, directory: str) -> float:
+    path = os.path.join(directory, "echo.sock")
+    echo = subprocess.Popen([sys.executable, "-c", ECHO, path], stdout=subprocess.PIPE, text=True)
+    assert echo.stdout is not None
+    echo.stdout.readline()
+    sock = socket.socket(socket.AF_UNIX)
+    sock.connect(path)
+    frame = struct.pack("<I", message_bytes) + b"x" * message_bytes
+
+    def run() -> None:
+        for _ in range(rounds):
+            sock.sendall(frame)
+            header = sock.recv(4, socket.MSG_WAITALL)
+            sock.recv(struct.unpack("<I", header)[0], socket.MSG_WAITALL)
+
+    seconds = best(run)
+    sock.close()
+    echo.wait(5)
+    return seconds / rounds * 1e6
+
+
+def main() -> None:
+    import tempfile
+
+    rounds = 2000
+    with spear.Instance(server="launch") as instance, tempfile.TemporaryDirectory() as tmp:
+        connection: RpcConnection = instance._backend.connection  # type: ignore[attr-defined]
+        game = instance.get_game()
+        with instance.begin_frame():
+            actor = game.spawn_actor(uclass=spear.AActor, name="A")
+        with instance.end_frame():
+            pass
+
+        # Message sizes, to give the raw ping-pong the same payload.
+        from spear._wire import OutgoingSegments, encode, pack_frame
+        from spear._rpc_client import _HandleRef
+
+        call_frame = pack_frame({"id": 1, "op": "call", "object": encode(_HandleRef((1, 0)), OutgoingSegments()),
+                                 "function": "GetName", "args": {}, "context": "UObject.GetName()"})
+        floor_us = raw_ping_pong_us(len(call_frame) - 4, rounds, tmp)
+        echo_us = best(lambda: [connection.request("echo", value=None) for _ in range(rounds)]) / rounds * 1e6
+        with instance.begin_frame():
+            call_us = best(lambda: [actor.GetName() for _ in range(rounds)]) / rounds * 1e6
+        with instance.end_frame():
+            pass
+        print(f"round trip, {len(call_frame)}-byte request")
+        print(f"  raw Unix-socket ping-pong (floor)   {floor_us:8.1f} us")
+        print(f"  echo op (transport + dispatch)      {echo_us:8.1f} us   {echo_us / floor_us:5.2f}x floor")
+        print(f"  typed call actor.GetName()          {call_us:8.1f} us   {call_us / floor_us:5.2f}x floor")
+
+        n = 10_000
+        with instance.begin_frame():
+            start = time.perf_counter()
+            for i in range(n):
+                actor.ActorHasTag(Tag="t")
+            sync_s = time.perf_counter() - start
+            start = time.perf_counter()
+            futures = [actor.call_async.ActorHasTag(Tag="t") for _ in range(n)]
+            connection.flush()
+            batched_s = time.perf_counter() - start
+        with instance.end_frame():
+            assert not any(f.get() for f in futures)
+        print(f"{n} calls in one frame")
+        print(f"  one by one                          {n / sync_s:8.0f} calls/s")
+        print(f"  call_async, one message             {n / batched_s:8.0f} calls/s   {sync_s / batched_s:5.1f}x faster")
+
+        with instance.begin_frame():
+            camera = game.spawn_actor(uclass=spear.ACameraSensorActor).CameraSensor
+            camera.Width, camera.Height = 1920, 1080
+            camera.Modalities = [spear.ECameraModality.FinalColor]
+            camera.bShadows = False
+        with instance.end_frame():
+            camera.read_pixels()  # the first read performs the GPU readback; later reads of the frame only transfer
+            transfer_s = best(lambda: camera.read_pixels()["final_color"], repeat=20)
+        frame = np.empty((1080, 1920, 4), np.uint8)
+        target = np.empty_like(frame)
+        memcpy_s = best(lambda: np.copyto(target, frame), repeat=20)
+        print("1920x1080 RGBA frame into numpy (8.3 MB)")
+        print(f"  one memcpy (floor)                  {memcpy_s * 1e3:8.2f} ms")
+        print(f"  read_pixels over RPC                {transfer_s * 1e3:8.2f} ms   {transfer_s / memcpy_s:5.2f}x floor")
+
+        print("read_pixels throughput at 256x256, final colour, render + transfer (llvmpipe)")
+        with instance.begin_frame():
+            camera.Width, camera.Height = 256, 256
+        with instance.end_frame():
+            pass
+        for latency in (0, 1, 2):
+            with instance.begin_frame():
+                camera.Latency = latency
+            with instance.end_frame():
+                pass
+            frames = 20
+            start = time.perf_counter()
+            for _ in range(frames):
+                with instance.begin_frame():
+                    pass
+                with instance.end_frame():
+                    camera.read_pixels()
+            per_frame = (time.perf_counter() - start) / frames
+            print(f"  latency {latency}                           {per_frame * 1e3:8.1f} ms/frame  {1 / per_frame:6.1f} fps")
+
+
+if __name__ == "__main__":
+    main()
