@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import sys
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -23,6 +24,22 @@ def instance(request: pytest.FixtureRequest) -> Iterator[spear.Instance]:
     inst = spear.Instance() if request.param == "inprocess" else spear.Instance(server="launch")
     yield inst
     inst.close()
+
+
+@pytest.fixture(params=TRANSPORTS)
+def make_instance(request: pytest.FixtureRequest) -> Iterator[Callable[..., spear.Instance]]:
+    """Instance(**options) on the test's transport (a launched spear-server for "rpc"), closed afterwards."""
+    made: list[spear.Instance] = []
+
+    def make(**options: Any) -> spear.Instance:
+        if request.param == "rpc":
+            options["server"] = "launch"
+        made.append(spear.Instance(**options))
+        return made[-1]
+
+    yield make
+    for inst in made:
+        inst.close()
 
 
 @pytest.fixture(autouse=True, scope="session")

@@ -43,8 +43,9 @@ reflect::ObjectBase& requireObject(const msgpack::object& request, const std::st
     return object;
 }
 
-// The Python exception class for an engine error (spear.errors).
-const char* errorType(const std::exception& e) {
+} // namespace
+
+const char* pythonErrorType(const std::exception& e) {
     if (dynamic_cast<const StaleObject*>(&e))
         return "StaleObjectError";
     if (dynamic_cast<const NotFound*>(&e))
@@ -56,6 +57,7 @@ const char* errorType(const std::exception& e) {
     return "SpearError";
 }
 
+namespace {
 void packError(msgpack::packer<msgpack::sbuffer>& out, const msgpack::object* id, const char* type,
                const std::string& message) {
     out.pack_map(2);
@@ -112,7 +114,7 @@ void Dispatcher::handleOne(const msgpack::object& request, Session& session, msg
         out.pack(std::string("ok"));
         pack(out, result, toShm);
     } catch (const Error& e) {
-        packError(out, id, errorType(e), e.what());
+        packError(out, id, pythonErrorType(e), e.what());
     } catch (const std::exception& e) {
         // msgpack type errors and the like: the request was malformed, the engine is fine.
         packError(out, id, "InvalidArgumentError", std::string("request: malformed message (") + e.what() + ")");
@@ -149,8 +151,10 @@ Value Dispatcher::execute(const std::string& op, const msgpack::object& request,
         if (kind == "game")
             return Value(engine_.GetGameWorld().GetHandle());
         SP_CHECK(kind == "editor", InvalidArgument, "world(): kind must be 'game' or 'editor', got '", kind, "'");
-        SP_THROW(InvalidState, "get_editor(): this instance runs standalone and has no editor world; start it in "
-                               "editor mode");
+        UWorld* editor = engine_.GetEditorWorld();
+        SP_CHECK(editor, InvalidState, "get_editor(): this instance runs standalone and has no editor world; "
+                                       "start it with spear.Instance(mode='editor')");
+        return Value(editor->GetHandle());
     }
     if (op == "frame") {
         const std::string action = requireString(request, "action", "frame");

@@ -2,6 +2,7 @@
 //
 //   spear-server --socket /tmp/spear.sock
 //   spear-server --port 0 --token SECRET [--bind 127.0.0.1]
+//   spear-server --socket /tmp/spear.sock --mode editor --scene assets/scenes/apartment.json
 //
 // Prints "spear-server: listening on <address>" once it accepts connections (clients that launch a
 // server wait for that line), and exits cleanly on SIGTERM, SIGINT or a client's shutdown request.
@@ -22,7 +23,8 @@
 namespace {
 void usage() {
     std::fprintf(stderr, "usage: spear-server (--socket PATH | --port N --token TOKEN [--bind ADDRESS])\n"
-                         "                    [--fixed-delta-seconds S] [--exit-with-parent]\n");
+                         "                    [--mode game|editor] [--scene FILE] [--fixed-delta-seconds S]\n"
+                         "                    [--exit-with-parent]\n");
 }
 } // namespace
 
@@ -44,6 +46,15 @@ int main(int argc, char** argv) {
             options.token = argv[++i];
         else if (arg == "--fixed-delta-seconds" && hasValue)
             settings.fixedDeltaSeconds = std::atof(argv[++i]);
+        else if (arg == "--mode" && hasValue) {
+            const std::string mode = argv[++i];
+            if (mode != "game" && mode != "editor") {
+                std::fprintf(stderr, "spear-server: --mode must be 'game' or 'editor', got '%s'\n", mode.c_str());
+                return 2;
+            }
+            settings.editor = mode == "editor";
+        } else if (arg == "--scene" && hasValue)
+            settings.scene = argv[++i];
         else if (arg == "--exit-with-parent") {
             // A server launched by a client goes away with it, even if the client is killed.
             const pid_t parent = ::getppid();
@@ -70,7 +81,9 @@ int main(int argc, char** argv) {
         std::fflush(stdout);
         server.run();
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "%s\n", e.what());
+        // "<spear.errors class>: message", so that a client that launched this server raises the same
+        // error the in-process engine would.
+        std::fprintf(stderr, "%s: %s\n", sp::rpc::pythonErrorType(e), e.what());
         return 1;
     }
     return 0;

@@ -67,11 +67,15 @@ class InProcessBackend:
 class RpcBackend:
     """An engine in a spear-server process: launched for this instance, or already running."""
 
-    def __init__(self, server: str, token: str | None, fixed_delta_seconds: float) -> None:
+    def __init__(self, server: str, token: str | None, fixed_delta_seconds: float, *, editor: bool = False,
+                 scene: str = "") -> None:
         from spear._engine import rpc  # noqa: F401  (registers the proxy classes)
         from spear._rpc_client import LaunchedServer, RpcConnection
 
-        self._launched = LaunchedServer(fixed_delta_seconds=fixed_delta_seconds) if server == "launch" else None
+        self._launched = (
+            LaunchedServer(fixed_delta_seconds=fixed_delta_seconds, mode="editor" if editor else "game", scene=scene)
+            if server == "launch" else None
+        )
         address = self._launched.address if self._launched else server
         try:
             self.connection = RpcConnection(address, token=token)

@@ -209,20 +209,28 @@ def find_server_binary() -> Path:
 class LaunchedServer:
     """A spear-server process started for one Instance, on a private Unix socket; stopped by close()."""
 
-    def __init__(self, *, fixed_delta_seconds: float, startup_timeout: float = 30.0) -> None:
+    def __init__(self, *, fixed_delta_seconds: float, mode: str = "game", scene: str = "",
+                 startup_timeout: float = 30.0) -> None:
         self._directory = tempfile.mkdtemp(prefix="spear-")  # 0700: only this user reaches the socket
         socket_path = os.path.join(self._directory, "server.sock")
+        extra = ["--scene", scene] if scene else []  # relative to the client's directory, which the server shares
         self.process = subprocess.Popen(
             [str(find_server_binary()), "--socket", socket_path, "--fixed-delta-seconds", repr(fixed_delta_seconds),
-             "--exit-with-parent"],
-            stdout=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True,
+             "--mode", mode, *extra, "--exit-with-parent"],
+            stdout=subprocess.PIPE, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True,
         )
         deadline = time.monotonic() + startup_timeout
         assert self.process.stdout is not None
         line = self.process.stdout.readline()
         if not line.startswith("spear-server: listening on ") or time.monotonic() > deadline:
+            self.process.wait(10)
+            message = self.process.stderr.read().strip() if self.process.stderr else ""
             self.close()
-            raise errors.SpearError(f"Instance(): spear-server did not start (said {line.strip()!r})")
+            # The engine's own message (a missing scene file, say) is the useful part.
+            kind, _, text = message.partition(": ")
+            if kind in _ERRORS:
+                raise _ERRORS[kind](text)
+            raise errors.SpearError(message or f"Instance(): spear-server did not start (said {line.strip()!r})")
         self.address = line.strip().removeprefix("spear-server: listening on ")
 
     def close(self, timeout: float = 10.0) -> None:
@@ -233,6 +241,7 @@ class LaunchedServer:
             except subprocess.TimeoutExpired:
                 self.process.kill()
                 self.process.wait()
-        if self.process.stdout:
-            self.process.stdout.close()
+        for stream in (self.process.stdout, self.process.stderr):
+            if stream:
+                stream.close()
         shutil.rmtree(self._directory, ignore_errors=True)

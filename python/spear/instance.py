@@ -39,14 +39,15 @@ class Instance:
         # and stop(). scene: a scene file loaded into the editor world, or else into the game world.
         if mode not in ("game", "editor"):
             raise InvalidArgumentError(f"Instance(): mode {mode!r} must be 'game' or 'editor'")
-        if server is not None and (mode != "game" or scene is not None):
-            raise InvalidArgumentError("Instance(): mode='editor' and scene= need the in-process engine (server=None)")
+        if server not in (None, "launch") and (mode != "game" or scene is not None):
+            raise InvalidArgumentError("Instance(): mode= and scene= are chosen by the server you connect to; "
+                                       "pass them when starting it (spear-server --mode --scene) or use server='launch'")
+        scene_path = "" if scene is None else os.fspath(scene)
         self._backend: Backend
         if server is None:
-            scene_path = "" if scene is None else os.fspath(scene)
             self._backend = InProcessBackend(fixed_delta_seconds, editor=mode == "editor", scene=scene_path)
         else:
-            self._backend = RpcBackend(server, token, fixed_delta_seconds)
+            self._backend = RpcBackend(server, token, fixed_delta_seconds, editor=mode == "editor", scene=scene_path)
         self.transport = "inprocess" if server is None else "rpc"
         self._closed = False
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -20,8 +21,9 @@ def test_standalone_instance_has_no_editor(instance: spear.Instance) -> None:
             instance.get_game().play()
 
 
-def test_play_copies_the_editor_world_and_stop_destroys_the_copy(tmp_path: Path) -> None:
-    instance = spear.Instance(mode="editor", scene=APARTMENT)
+def test_play_copies_the_editor_world_and_stop_destroys_the_copy(
+        tmp_path: Path, make_instance: Callable[..., spear.Instance]) -> None:
+    instance = make_instance(mode="editor", scene=APARTMENT)
     editor = instance.get_editor()
     with pytest.raises(spear.InvalidStateError, match=r"get_game\(\): the editor is not playing"):
         instance.get_game()

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -13,8 +14,9 @@ ROOT = Path(__file__).resolve().parents[2]
 APARTMENT = ROOT / "assets" / "scenes" / "apartment.json"
 
 
-def test_the_default_scene_loads_and_saves_byte_identical(tmp_path: Path) -> None:
-    instance = spear.Instance(scene=APARTMENT)
+def test_the_default_scene_loads_and_saves_byte_identical(
+        tmp_path: Path, make_instance: Callable[..., spear.Instance]) -> None:
+    instance = make_instance(scene=APARTMENT)
     game = instance.get_game()
     with instance.begin_frame():
         assert game.find_actor_by_name(name="Floor") is not None
@@ -99,4 +101,4 @@ def test_missing_and_malformed_scenes_are_clear_errors(instance: spear.Instance,
         # A failed load leaves the world as it was.
         assert [a.GetName() for a in game.find_actors()] == ["Keep"]
     with pytest.raises(spear.NotFoundError, match="scene file 'missing.json' not found"):
-        spear.Instance(scene="missing.json")
+        spear.Instance(scene="missing.json", server="launch" if instance.transport == "rpc" else None)
