@@ -59,9 +59,13 @@ def return_py_type(f: Function, typevar: str | None = None) -> str:
             return f"list[{typevar}]"
         if t.kind == "dict":
             return f"dict[str, {typevar}]"
+        if t.kind == "class":  # a class result: the class passed, or a class derived from it
+            return f"type[{typevar}]" if f.not_null else f"type[{typevar}] | None"
         return typevar if f.not_null else f"{typevar} | None"
     if t.kind == "object" and f.not_null:
         return t.name
+    if t.kind == "class" and f.not_null:
+        return f"type[{t.name}]"
     return py_type(t, result=True)
 
 

@@ -362,8 +362,9 @@ class Scanner:
             if target is None or target.type.kind != "class":
                 raise self._error(method, f"DeterminesOutputType={determines} on '{fname}' must name a class parameter")
             inner = returns.args[0] if returns.kind in ("list", "dict") else returns
-            if inner.kind != "object":
-                raise self._error(method, f"DeterminesOutputType on '{fname}' needs an object (or list/dict of object) result")
+            if inner.kind not in ("object", "class"):
+                raise self._error(method, f"DeterminesOutputType on '{fname}' needs an object or class (or list/dict "
+                                  "of object) result")
         return Function(
             name=method.spelling, doc=clean_doc(method.raw_comment), returns=returns, params=tuple(params),
             is_static=method.is_static_method(), is_const=method.is_const_method(), specifiers=spec,

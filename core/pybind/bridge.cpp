@@ -58,6 +58,13 @@ py::array arrayToNumpy(const reflect::ArrayValue& value) {
     return py::array(dt, shape, value.data, capsule);
 }
 
+py::object pythonClassFor(const reflect::TypeInfo& type) {
+    if (!type.isDataDefined())
+        return pythonClassOf(type);
+    static const py::object blueprintClass = apiAttribute("spear._blueprint", "blueprint_class");
+    return blueprintClass(type.name, type.nativeClass().name);
+}
+
 py::object apiAttribute(const char* module, const char* name) {
     return py::module_::import(module).attr(name);
 }

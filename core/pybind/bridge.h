@@ -30,6 +30,10 @@ struct ClassArg {
     }
 };
 
+// The Python class that stands for `type`: its registered class, or for a blueprint (a class defined by data,
+// core/world/blueprint.h) a subclass of its native class's API class carrying __sp_class__ = its name.
+py::object pythonClassFor(const reflect::TypeInfo& type);
+
 template <typename T, typename = void> struct Bridge {
     using Py = T;
     static T in(Py value, std::string_view) { return value; }
@@ -47,7 +51,7 @@ template <typename T> struct Bridge<T*, std::enable_if_t<std::is_base_of_v<refle
 template <> struct Bridge<const UClass*> {
     using Py = ClassArg;
     static const UClass* in(Py value, std::string_view context) { return value.resolve(context); }
-    static py::object out(const UClass* value) { return value ? pythonClassOf(*value) : py::none(); }
+    static py::object out(const UClass* value) { return value ? pythonClassFor(*value) : py::none(); }
 };
 
 template <typename T> struct Bridge<TSubclassOf<T>> {

@@ -37,11 +37,18 @@ ObjectBase::~ObjectBase() {
 }
 
 std::string ObjectBase::GetDebugName() const {
-    return GetClass().name;
+    return GetObjectClass().name;
+}
+
+void ObjectBase::SetDataDefinedClass(const TypeInfo& type) {
+    SP_CHECK(type.isDataDefined() && &type.nativeClass() == &GetClass(), InvalidArgument,
+             "ObjectBase::SetDataDefinedClass(): class '", type.name, "' is not a data-defined class over ",
+             GetClass().name);
+    dataDefinedClass_ = &type;
 }
 
 bool ObjectBase::IsA(const TypeInfo& type) const {
-    return GetClass().isChildOf(type);
+    return GetObjectClass().isChildOf(type);
 }
 
 ObjectHandle ObjectTable::insert(ObjectBase* object) {

@@ -22,6 +22,13 @@ class ObjectBase {
     ObjectHandle GetHandle() const { return handle_; }
     // Defined by generated code for every reflected class (declared by SP_GENERATED_BODY()).
     virtual const TypeInfo& GetClass() const = 0;
+    // The class this object reports: the data-defined class (blueprint) it was created as, or GetClass().
+    // Class queries (IsA, class names, scene files) use this; code that needs the generated class (Python
+    // wrappers, RPC proxies) uses GetClass().
+    const TypeInfo& GetObjectClass() const { return dataDefinedClass_ ? *dataDefinedClass_ : GetClass(); }
+    // Makes this object report `type`, a data-defined class whose native class is GetClass(); set once,
+    // right after construction.
+    void SetDataDefinedClass(const TypeInfo& type);
     // Used in messages about this object, and remembered after it is destroyed.
     virtual std::string GetDebugName() const;
     // Called after a property was written through the registry or from Python.
@@ -31,6 +38,7 @@ class ObjectBase {
 
   private:
     ObjectHandle handle_;
+    const TypeInfo* dataDefinedClass_ = nullptr;
 };
 
 // The process-wide table of live objects. Slots are reused with a new generation, so an old handle

@@ -27,6 +27,21 @@ const FunctionInfo* TypeInfo::findFunction(std::string_view functionName) const 
     return nullptr;
 }
 
+const TypeInfo& TypeInfo::nativeClass() const {
+    const TypeInfo* type = this;
+    while (type->isDataDefined() && type->parent)
+        type = type->parent;
+    return *type;
+}
+
+void TypeInfo::initializeObject(ObjectBase& object) const {
+    if (!isDataDefined())
+        return;
+    if (parent)
+        parent->initializeObject(object);
+    initialize(object);
+}
+
 namespace {
 template <typename Member, typename Pick>
 std::vector<const Member*> collect(const TypeInfo* type, Pick pick) {

@@ -4,6 +4,7 @@
 // Invokers are plain function pointers over Values so that the dynamic Python path and the RPC server
 // share one dispatch mechanism.
 
+#include <functional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -58,6 +59,18 @@ class TypeInfo {
     std::vector<PropertyInfo> properties; // declared by this type only; see findProperty
     std::vector<FunctionInfo> functions;
     ObjectBase* (*create)() = nullptr; // classes that can be instantiated; owned by the caller
+    // Set only for a data-defined class (a blueprint, core/world/blueprint.h), which has no generated code:
+    // its objects are created by its native class, report this class (ObjectBase::SetDataDefinedClass), and
+    // get their data-defined defaults from `initialize` once they are placed.
+    std::function<void(ObjectBase&)> initialize;
+
+    bool isDataDefined() const { return bool(initialize); }
+    // The nearest class in the parent chain (this one included) that has generated code.
+    const TypeInfo& nativeClass() const;
+    // True when objects of this class can be created (directly or through the native class).
+    bool canCreate() const { return nativeClass().create != nullptr; }
+    // Runs the `initialize` of every data-defined class in the chain on `object`, outermost parent first.
+    void initializeObject(ObjectBase& object) const;
 
     bool isChildOf(const TypeInfo& other) const;                           // true for the type itself
     const PropertyInfo* findProperty(std::string_view propertyName) const; // searches the parent chain

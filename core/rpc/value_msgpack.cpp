@@ -5,6 +5,7 @@
 
 #include "core/base/error.h"
 #include "core/reflect/object_base.h"
+#include "core/reflect/registry.h"
 #include "core/reflect/type_info.h"
 #include "core/rpc/shared_memory.h"
 
@@ -96,7 +97,11 @@ void pack(msgpack::packer<msgpack::sbuffer>& out, const Value& value, const Arra
                     body += object->GetClass().name;
                 packExt(out, kExtObject, body);
             } else if constexpr (std::is_same_v<T, reflect::ClassName>) {
-                packExt(out, kExtClass, v.name);
+                // A blueprint's class travels with its native class ("BP_Axes\0AActor"), which the client
+                // needs to give it a Python class.
+                const reflect::TypeInfo* type = reflect::Registry::get().findType(v.name);
+                packExt(out, kExtClass,
+                        type && type->isDataDefined() ? v.name + '\0' + type->nativeClass().name : v.name);
             } else if constexpr (std::is_same_v<T, Value::List>) {
                 out.pack_array(uint32_t(v.size()));
                 for (const auto& item : v)
@@ -158,7 +163,7 @@ Value unpack(const msgpack::object& in, std::string_view context) {
             return Value(handle);
         }
         if (type == kExtClass)
-            return Value(reflect::ClassName{std::string(data, size)});
+            return Value(reflect::ClassName{std::string(data, strnlen(data, size))});
         if (type == kExtArray)
             return Value(unpackArray(in, context));
         SP_THROW(InvalidArgument, context, ": unknown extension type ", int(type));

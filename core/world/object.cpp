@@ -3,9 +3,9 @@
 #include "core/reflect/type_info.h"
 
 std::string UObject::GetClassName() const {
-    return GetClass().name;
+    return GetObjectClass().name;
 }
 
 std::string UObject::GetDebugName() const {
-    return GetClass().name + " '" + name_ + "'";
+    return GetObjectClass().name + " '" + name_ + "'";
 }

@@ -20,7 +20,8 @@ class UObject : public sp::reflect::ObjectBase {
     SPFUNCTION()
     std::string GetName() const { return name_; }
 
-    /// Returns the name of the object's most derived class.
+    /// Returns the name of the object's class: its blueprint when it was spawned from one, else its most
+    /// derived native class.
     SPFUNCTION()
     std::string GetClassName() const;
 

@@ -98,8 +98,7 @@ std::string jsonKind(const Json& j) {
     return j.type_name();
 }
 
-// Resolves name paths against the actors being loaded.
-using ActorsByName = std::map<std::string, AActor*, std::less<>>;
+// Resolves name paths against the actors being loaded (ActorsByName).
 
 reflect::ObjectBase* resolvePath(std::string_view path, const ActorsByName& actors) {
     const size_t dot = path.find('.');
@@ -213,13 +212,15 @@ const reflect::TypeInfo& classMember(const Json& object, const reflect::TypeInfo
     const std::string name = stringMember(object, "class", where);
     const reflect::TypeInfo* type = reflect::Registry::get().findType(name);
     SP_CHECK(type, InvalidArgument, where, ": class '", name, "' is not registered");
-    SP_CHECK(type->isChildOf(base) && type->create, InvalidArgument, where, ": class '", name, "' is not a ",
-             base.name, " class that can be created");
+    SP_CHECK(type->isChildOf(base) && type->canCreate(), InvalidArgument, where, ": class '", name,
+             "' is not a ", base.name, " class that can be created");
     return *type;
 }
 
-void loadProperties(reflect::ObjectBase& object, const Json& properties, const ActorsByName& actors,
-                    const std::string& where) {
+} // namespace
+
+void loadObjectProperties(reflect::ObjectBase& object, const Json& properties, const ActorsByName& actors,
+                          const std::string& where) {
     SP_CHECK(properties.is_object(), InvalidArgument, where, ": 'properties' must be an object, got ",
              jsonKind(properties));
     const reflect::TypeInfo& type = object.GetClass();
@@ -241,21 +242,19 @@ void loadProperties(reflect::ObjectBase& object, const Json& properties, const A
     }
 }
 
-} // namespace
-
 SceneJson saveScene(const UWorld& world) {
     Json actors = Json::array();
     for (AActor* actor : world.find_actors()) {
         const std::string where = "actor '" + actor->GetName() + "'";
         Json entry = Json::object();
         entry["name"] = actor->GetName();
-        entry["class"] = actor->GetClass().name;
+        entry["class"] = actor->GetObjectClass().name;
         entry["properties"] = saveProperties(*actor, where);
         Json components = Json::array();
         for (const auto& component : actor->GetComponentList()) {
             Json c = Json::object();
             c["name"] = component->GetName();
-            c["class"] = component->GetClass().name;
+            c["class"] = component->GetObjectClass().name;
             const auto* scene = dynamic_cast<const USceneComponent*>(component.get());
             c["attach_parent"] =
                 scene && scene->GetAttachParent() ? Json(scene->GetAttachParent()->GetName()) : Json(nullptr);
@@ -350,12 +349,12 @@ void loadScene(UWorld& world, const SceneJson& scene, std::string_view source) {
         const Json& entry = actorList[i];
         AActor& actor = *staged[i];
         if (entry.contains("properties"))
-            loadProperties(actor, entry["properties"], byName, wheres[i]);
+            loadObjectProperties(actor, entry["properties"], byName, wheres[i]);
         for (const Json& c : entry["components"]) {
             const std::string componentName = c["name"].get<std::string>();
             if (c.contains("properties"))
-                loadProperties(*world.get_component_by_name(&actor, componentName), c["properties"], byName,
-                               wheres[i] + ": component '" + componentName + "'");
+                loadObjectProperties(*world.get_component_by_name(&actor, componentName), c["properties"],
+                                     byName, wheres[i] + ": component '" + componentName + "'");
         }
     }
 

@@ -13,12 +13,18 @@
 // properties are written for the reader's benefit and checked, not set, on load (construction gives
 // them their value). Saving what was loaded gives the same bytes.
 
+#include <map>
 #include <string>
 #include <string_view>
 
 #include <nlohmann/json.hpp>
 
+class AActor;
 class UWorld;
+
+namespace sp::reflect {
+class ObjectBase;
+}
 
 namespace sp::world {
 
@@ -32,6 +38,13 @@ std::string sceneToString(const SceneJson& scene);
 // the world is touched, so a bad document leaves the world as it was. `source` names the document in
 // messages ("scene 'x.json'"); errors are sp::InvalidArgument naming the actor, component and property.
 void loadScene(UWorld& world, const SceneJson& scene, std::string_view source);
+// Actors by name, for resolving object references ("Actor" or "Actor.Component") in property values.
+using ActorsByName = std::map<std::string, AActor*, std::less<>>;
+// Sets each property of `properties` (a JSON object of name -> value in the scene-file format) on
+// object; read-only properties are checked, not set. Errors are sp::InvalidArgument prefixed by `where`
+// and naming the property. Blueprints (core/world/blueprint.h) share this with scene files.
+void loadObjectProperties(reflect::ObjectBase& object, const SceneJson& properties,
+                          const ActorsByName& actors, const std::string& where);
 // Reads and parses a scene file; sp::NotFound when it does not exist, sp::InvalidArgument when it is
 // not JSON. `function` names the caller in messages.
 SceneJson readSceneFile(const std::string& path, std::string_view function);

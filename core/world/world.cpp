@@ -4,6 +4,8 @@
 #include <fstream>
 
 #include "core/base/error.h"
+#include "core/reflect/registry.h"
+#include "core/world/blueprint.h"
 #include "core/world/engine.h"
 #include "core/world/input_component.h"
 #include "core/world/physics_subsystem.h"
@@ -48,13 +50,11 @@ AActor* UWorld::spawn_actor(TSubclassOf<AActor> uclass, const FVector& location,
                             const std::string& name, const std::vector<std::string>& tags) {
     SP_CHECK(uclass, sp::InvalidArgument, "UWorld.spawn_actor(): uclass is None");
     const UClass& type = *uclass.Get();
-    SP_CHECK(type.create, sp::InvalidArgument, "UWorld.spawn_actor(): class '", type.name,
+    SP_CHECK(type.canCreate(), sp::InvalidArgument, "UWorld.spawn_actor(): class '", type.name,
              "' is abstract and cannot be spawned");
     SP_CHECK(name.empty() || !find_actor_by_name(name), sp::InvalidArgument, "UWorld.spawn_actor(): name '",
              name, "' is already used in this world");
-    std::unique_ptr<AActor> actor(static_cast<AActor*>(type.create()));
-    actor->InitObject(name.empty() ? uniqueActorName(type) : name, this);
-    actor->SetWorldForComponents();
+    std::unique_ptr<AActor> actor = NewActorDeferred(type, name.empty() ? uniqueActorName(type) : name);
     actor->Tags.insert(actor->Tags.end(), tags.begin(), tags.end());
     if (actor->RootComponent) {
         actor->RootComponent->RelativeLocation = location;
@@ -67,12 +67,10 @@ AActor* UWorld::spawn_actor(TSubclassOf<AActor> uclass, const FVector& location,
 }
 
 std::unique_ptr<AActor> UWorld::NewActorDeferred(const UClass& type, std::string name) {
-    SP_CHECK(type.isChildOf(AActor::StaticClass()) && type.create, sp::InvalidArgument, "UWorld: class '",
-             type.name, "' is not an actor class that can be created");
-    std::unique_ptr<AActor> actor(static_cast<AActor*>(type.create()));
-    actor->InitObject(std::move(name), this);
-    actor->SetWorldForComponents();
-    return actor;
+    SP_CHECK(type.isChildOf(AActor::StaticClass()) && type.canCreate(), sp::InvalidArgument,
+             "UWorld: class '", type.name, "' is not an actor class that can be created");
+    return std::unique_ptr<AActor>(
+        static_cast<AActor*>(sp::world::newObject(type, std::move(name), this).release()));
 }
 
 void UWorld::ReplaceActors(std::vector<std::unique_ptr<AActor>> actors) {
@@ -211,14 +209,24 @@ UWorld::get_components_by_class_as_dict(AActor* actor, TSubclassOf<UActorCompone
 UObject* UWorld::get_default_object(TSubclassOf<UObject> uclass) {
     SP_CHECK(uclass, sp::InvalidArgument, "UWorld.get_default_object(): uclass is None");
     const UClass& type = *uclass.Get();
-    SP_CHECK(type.create, sp::InvalidArgument, "UWorld.get_default_object(): class '", type.name,
+    SP_CHECK(type.canCreate(), sp::InvalidArgument, "UWorld.get_default_object(): class '", type.name,
              "' is abstract and has no default object");
     auto& object = defaultObjects_[&type];
-    if (!object) {
-        object.reset(static_cast<UObject*>(type.create()));
-        object->InitObject("Default__" + type.name, nullptr);
-    }
+    if (!object)
+        object = sp::world::newObject(type, "Default__" + type.name, nullptr);
     return object.get();
+}
+
+const UClass* UWorld::load_class(TSubclassOf<UObject> uclass, const std::string& name) {
+    const char* function = "UWorld.load_class()";
+    SP_CHECK(uclass, sp::InvalidArgument, function, ": uclass is None");
+    SP_CHECK(!name.empty(), sp::InvalidArgument, function, ": name is empty");
+    const UClass* type = sp::reflect::Registry::get().findType(name);
+    if (!type || type->kind != UClass::Kind::Class || name.ends_with(".json"))
+        type = &sp::world::loadBlueprint(name, function);
+    SP_CHECK(type->isChildOf(*uclass.Get()), sp::InvalidArgument, function, ": class '", type->name,
+             "' (from '", name, "') does not derive from ", uclass->name);
+    return type;
 }
 
 bool UWorld::line_trace_single(const FVector& start, const FVector& end, FHitResult& hit, AActor*& actor,

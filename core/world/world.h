@@ -77,6 +77,11 @@ class UWorld : public UObject {
     std::map<std::string, UActorComponent*>
     get_components_by_class_as_dict(AActor* actor, TSubclassOf<UActorComponent> uclass) const;
 
+    /// Loads the blueprint asset at path name (a JSON file, see core/world/blueprint.h) once and returns its
+    /// class, named after the file ("BP_Axes"), which must derive from uclass; name may also name a class.
+    SPFUNCTION(DeterminesOutputType = uclass, NotNull)
+    const UClass* load_class(TSubclassOf<UObject> uclass, const std::string& name);
+
     /// Returns the class default object of uclass: an instance outside the world holding the class defaults.
     SPFUNCTION(DeterminesOutputType = uclass, NotNull)
     UObject* get_default_object(TSubclassOf<UObject> uclass);

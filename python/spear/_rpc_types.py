@@ -46,7 +46,12 @@ def convert(value: Any, type_string: str, client: RpcClient) -> Any:
     if isinstance(value, ObjectRef):
         return _proxy(value, client, t if t.isidentifier() else "")
     if isinstance(value, ClassRef):
-        return _api_lookup(value.name) or value.name
+        found = _api_lookup(value.name)
+        if found is None and value.native:
+            from spear._blueprint import blueprint_class
+
+            return blueprint_class(value.name, value.native)
+        return found or value.name
     if t.startswith("list[") and isinstance(value, list):
         inner = t[5:-1]
         return [convert(item, inner, client) for item in value]

@@ -37,6 +37,7 @@ class ObjectRef:
 @dataclasses.dataclass(frozen=True)
 class ClassRef:
     name: str
+    native: str = ""  # for a blueprint (a class defined by data): the native class it is made from
 
 
 def _segment_path(name: str) -> str:
@@ -131,7 +132,8 @@ def _ext_hook(code: int, data: bytes) -> Any:
         index, generation = struct.unpack_from("<II", data)
         return ObjectRef(index, generation, data[8:].decode())
     if code == EXT_CLASS:
-        return ClassRef(data.decode())
+        name, _, native = data.decode().partition("\0")
+        return ClassRef(name, native)
     if code == EXT_ARRAY:
         dtype, shape, payload = msgpack.unpackb(data, raw=False)
         if isinstance(payload, dict):

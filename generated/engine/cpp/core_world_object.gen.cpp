@@ -54,7 +54,7 @@ const sp::reflect::TypeInfo& UObject::StaticClass() {
         });
         t.functions.push_back({
             "GetClassName",
-            "Returns the name of the object's most derived class.",
+            "Returns the name of the object's class: its blueprint when it was spawned from one, else its most\nderived native class.",
             "str",
             {
             },

@@ -243,6 +243,26 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
         });
         t.functions.push_back({
+            "load_class",
+            "Loads the blueprint asset at path name (a JSON file, see core/world/blueprint.h) once and returns its\nclass, named after the file (\"BP_Axes\"), which must derive from uclass; name may also name a class.",
+            "type[UObject]",
+            {
+                {"uclass", "type[UObject] | str", false, false},
+                {"name", "str", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UWorld.load_class()";
+                sp::reflect::checkArguments(args, {"uclass", "name"}, kContext);
+                TSubclassOf<UObject> uclass = sp::reflect::decodeNonNull<TSubclassOf<UObject>>(sp::reflect::requireArgument(args, "uclass", kContext), "UWorld.load_class(): argument 'uclass'");
+                std::string name = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "name", kContext), "UWorld.load_class(): argument 'name'");
+                auto result = sp::reflect::selfCast<Self>(self)->load_class(uclass, name);
+                sp::reflect::checkNotNull(result, kContext);
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
             "get_default_object",
             "Returns the class default object of uclass: an instance outside the world holding the class defaults.",
             "UObject",

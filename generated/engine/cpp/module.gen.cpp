@@ -455,7 +455,7 @@ const Self* object = self.get<Self>(kContext);
                 auto result = object->GetClassName();
                 return Bridge<std::string>::out(result);
             },
-            "Returns the name of the object's most derived class.");
+            "Returns the name of the object's class: its blueprint when it was spawned from one, else its most\nderived native class.");
         cls.def(
             "GetWorld",
             [](const Ref<Self>& self) -> py::object {
@@ -2023,6 +2023,22 @@ const Self* object = self.get<Self>(kContext);
             py::arg("actor"),
             py::arg("uclass"),
             "Returns the components of actor of class uclass or a subclass of it, by name.");
+        cls.def(
+            "load_class",
+            [](const Ref<Self>& self, Bridge<TSubclassOf<UObject>>::Py uclass, Bridge<std::string>::Py name) -> py::object {
+                static constexpr const char* kContext = "UWorld.load_class()";
+Self* object = self.get<Self>(kContext);
+                auto uclassValue = Bridge<TSubclassOf<UObject>>::in(std::move(uclass), "UWorld.load_class(): argument 'uclass'");
+                SP_CHECK(uclassValue, sp::InvalidArgument, "UWorld.load_class(): argument 'uclass'", " must not be None");
+                auto nameValue = Bridge<std::string>::in(std::move(name), "UWorld.load_class(): argument 'name'");
+                auto result = object->load_class(uclassValue, nameValue);
+                sp::reflect::checkNotNull(result, kContext);
+                return Bridge<const UClass*>::out(result);
+            },
+            py::kw_only(),
+            py::arg("uclass"),
+            py::arg("name"),
+            "Loads the blueprint asset at path name (a JSON file, see core/world/blueprint.h) once and returns its\nclass, named after the file (\"BP_Axes\"), which must derive from uclass; name may also name a class.");
         cls.def(
             "get_default_object",
             [](const Ref<Self>& self, Bridge<TSubclassOf<UObject>>::Py uclass) -> py::object {

@@ -308,7 +308,9 @@ class UObject(_SpObject):
         """Returns the object's name, unique among its siblings."""
 
     def GetClassName(self) -> str:
-        """Returns the name of the object's most derived class."""
+        """Returns the name of the object's class: its blueprint when it was spawned from one, else its most
+        derived native class.
+        """
 
     def GetWorld(self) -> UWorld | None:
         """Returns the world this object lives in, or None for objects outside any world."""
@@ -1733,6 +1735,12 @@ class UWorldAsync(UObjectAsync):
     def get_components_by_class_as_dict(self, *, actor: AActor, uclass: str) -> Future[dict[str, UActorComponent]]: ...
 
     @overload
+    def load_class(self, *, uclass: type[_UObjectT], name: str) -> Future[type[_UObjectT]]: ...
+
+    @overload
+    def load_class(self, *, uclass: str, name: str) -> Future[type[UObject]]: ...
+
+    @overload
     def get_default_object(self, *, uclass: type[_UObjectT]) -> Future[_UObjectT]: ...
 
     @overload
@@ -1787,6 +1795,8 @@ class UWorldSend(UObjectSend):
     def get_components_by_class(self, *, actor: AActor, uclass: type[UActorComponent] | str) -> None: ...
 
     def get_components_by_class_as_dict(self, *, actor: AActor, uclass: type[UActorComponent] | str) -> None: ...
+
+    def load_class(self, *, uclass: type[UObject] | str, name: str) -> None: ...
 
     def get_default_object(self, *, uclass: type[UObject] | str) -> None: ...
 
@@ -1878,6 +1888,12 @@ class UWorld(UObject):
 
     @overload
     def get_components_by_class_as_dict(self, *, actor: AActor, uclass: str) -> dict[str, UActorComponent]: ...
+
+    @overload
+    def load_class(self, *, uclass: type[_UObjectT], name: str) -> type[_UObjectT]: ...
+
+    @overload
+    def load_class(self, *, uclass: str, name: str) -> type[UObject]: ...
 
     @overload
     def get_default_object(self, *, uclass: type[_UObjectT]) -> _UObjectT: ...

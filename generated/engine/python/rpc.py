@@ -819,6 +819,9 @@ class UWorld(UObject, api.UWorld):
     def get_components_by_class_as_dict(self, *, actor: api.AActor, uclass: type[api.UActorComponent] | str) -> Any:
         return self._sp_call("UWorld", "get_components_by_class_as_dict", {"actor": actor, "uclass": uclass}, "dict[str, UActorComponent]")
 
+    def load_class(self, *, uclass: type[api.UObject] | str, name: str) -> Any:
+        return self._sp_call("UWorld", "load_class", {"uclass": uclass, "name": name}, "type[UObject]")
+
     def get_default_object(self, *, uclass: type[api.UObject] | str) -> Any:
         return self._sp_call("UWorld", "get_default_object", {"uclass": uclass}, "UObject")
 

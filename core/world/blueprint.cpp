@@ -1,0 +1,203 @@
+#include "core/world/blueprint.h"
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <vector>
+
+#include "core/base/error.h"
+#include "core/reflect/registry.h"
+#include "core/world/actor.h"
+#include "core/world/scene_io.h"
+
+namespace sp::world {
+
+namespace {
+
+using Json = SceneJson;
+
+constexpr std::string_view kFormat = "spear.blueprint";
+constexpr int kVersion = 1;
+
+// A loaded blueprint: its registered class and the document its objects are initialised from. Blueprints
+// live as long as the process, because the registry and objects point at their classes.
+struct Blueprint {
+    reflect::TypeInfo type;
+    Json document;
+};
+
+std::map<std::string, std::unique_ptr<Blueprint>>& blueprints() { // by canonical path
+    static std::map<std::string, std::unique_ptr<Blueprint>> loaded;
+    return loaded;
+}
+
+const Json* optionalMember(const Json& object, const char* key) {
+    auto it = object.find(key);
+    return it == object.end() ? nullptr : &*it;
+}
+
+std::string stringMember(const Json& object, const char* key, const std::string& where) {
+    SP_CHECK(object.is_object(), InvalidArgument, where, ": expected an object, got ", object.type_name());
+    const Json* value = optionalMember(object, key);
+    SP_CHECK(value, InvalidArgument, where, ": missing '", key, "'");
+    SP_CHECK(value->is_string() && !value->get<std::string>().empty(), InvalidArgument, where, ": '", key,
+             "' must be a non-empty string, got ", value->dump());
+    return value->get<std::string>();
+}
+
+UActorComponent* findComponent(AActor& actor, std::string_view name) {
+    for (const auto& component : actor.GetComponentList())
+        if (component->GetName() == name)
+            return component.get();
+    return nullptr;
+}
+
+// Applies the defaults and components of `document` to `object`, a new object of the blueprint's class.
+void applyBlueprint(const Json& document, reflect::ObjectBase& object, const std::string& where) {
+    auto* actor = dynamic_cast<AActor*>(&object);
+    const ActorsByName self = actor ? ActorsByName{{"Self", actor}} : ActorsByName{};
+    const Json* components = optionalMember(document, "components");
+    SP_CHECK(!components || components->is_array(), InvalidArgument, where,
+             ": 'components' must be a list, got ", components->type_name());
+    SP_CHECK(!components || components->empty() || actor, InvalidArgument, where,
+             ": 'components' needs an actor parent class, not ", object.GetClass().name);
+    const std::vector<Json> entries = components ? components->get<std::vector<Json>>() : std::vector<Json>{};
+
+    // 1. Components, so that attachment and references can name any of them.
+    std::vector<std::string> wheres;
+    for (size_t i = 0; i < entries.size(); ++i) {
+        const Json& entry = entries[i];
+        const std::string name =
+            stringMember(entry, "name", where + ": components[" + std::to_string(i) + "]");
+        const std::string cwhere = where + ": component '" + name + "'";
+        UActorComponent* existing = findComponent(*actor, name);
+        const reflect::TypeInfo* type = nullptr;
+        if (optionalMember(entry, "class")) {
+            const std::string className = stringMember(entry, "class", cwhere);
+            type = reflect::Registry::get().findType(className);
+            SP_CHECK(type, InvalidArgument, cwhere, ": class '", className, "' is not registered");
+            SP_CHECK(type->isChildOf(UActorComponent::StaticClass()) && type->create, InvalidArgument, cwhere,
+                     ": class '", className, "' is not a component class that can be created");
+        }
+        if (existing) {
+            SP_CHECK(!type || type == &existing->GetClass(), InvalidArgument, cwhere, ": class '", type->name,
+                     "' differs from the class '", existing->GetClass().name, "' that ",
+                     object.GetClass().name, " creates");
+        } else {
+            SP_CHECK(type, InvalidArgument, cwhere, ": missing 'class' (", object.GetClass().name,
+                     " creates no component '", name, "')");
+            actor->CreateComponent(*type, name);
+        }
+        wheres.push_back(cwhere);
+    }
+    for (size_t i = 0; i < entries.size(); ++i) {
+        const Json& entry = entries[i];
+        UActorComponent* component = findComponent(*actor, entry["name"].get<std::string>());
+        const Json* parent = optionalMember(entry, "attach_parent");
+        if (parent && !parent->is_null()) {
+            SP_CHECK(parent->is_string(), InvalidArgument, wheres[i],
+                     ": 'attach_parent' must be a component name or null, got ", parent->dump());
+            auto* scene = dynamic_cast<USceneComponent*>(component);
+            auto* target = dynamic_cast<USceneComponent*>(findComponent(*actor, parent->get<std::string>()));
+            SP_CHECK(scene, InvalidArgument, wheres[i], ": only scene components can be attached");
+            SP_CHECK(target && target != scene, InvalidArgument, wheres[i], ": attach_parent '",
+                     parent->get<std::string>(), "' is not another scene component of this actor");
+            if (scene->GetAttachParent() != target)
+                scene->AttachToComponent(target, false);
+        }
+    }
+
+    // 2. Properties, now that every component exists.
+    if (const Json* properties = optionalMember(document, "properties"))
+        loadObjectProperties(object, *properties, self, where);
+    for (size_t i = 0; i < entries.size(); ++i)
+        if (const Json* properties = optionalMember(entries[i], "properties"))
+            loadObjectProperties(*findComponent(*actor, entries[i]["name"].get<std::string>()), *properties,
+                                 self, wheres[i]);
+}
+
+Json readBlueprintFile(const std::string& path, const std::string& where) {
+    std::ifstream in(path, std::ios::binary);
+    SP_CHECK(in && !std::filesystem::is_directory(path), NotFound, where, " not found");
+    std::stringstream text;
+    text << in.rdbuf();
+    try {
+        return Json::parse(text.str());
+    } catch (const nlohmann::json::parse_error& error) {
+        SP_THROW(InvalidArgument, where, " is not valid JSON: ", error.what());
+    }
+}
+
+} // namespace
+
+const reflect::TypeInfo& loadBlueprint(const std::string& path, std::string_view function) {
+    const std::string where = std::string(function) + ": blueprint '" + path + "'";
+    std::error_code ignored;
+    std::string key = std::filesystem::weakly_canonical(path, ignored).string();
+    if (key.empty())
+        key = path;
+    if (auto it = blueprints().find(key); it != blueprints().end())
+        return it->second->type;
+
+    Json document = readBlueprintFile(path, where);
+    SP_CHECK(document.is_object(), InvalidArgument, where, ": expected a JSON object, got ",
+             document.type_name());
+    const Json* format = optionalMember(document, "format");
+    SP_CHECK(format && *format == kFormat, InvalidArgument, where, ": 'format' must be \"", kFormat,
+             "\", got ", format ? format->dump() : "nothing");
+    const Json* version = optionalMember(document, "version");
+    SP_CHECK(version && *version == kVersion, InvalidArgument, where, ": 'version' ",
+             version ? version->dump() : "(missing)", " is not supported (expected ", kVersion, ")");
+    const std::string parentName = stringMember(document, "parent", where);
+    const reflect::TypeInfo* parent = reflect::Registry::get().findType(parentName);
+    SP_CHECK(parent && parent->kind == reflect::TypeInfo::Kind::Class, InvalidArgument, where,
+             ": 'parent': class '", parentName, "' is not registered");
+    SP_CHECK(parent->canCreate(), InvalidArgument, where, ": 'parent': class '", parentName,
+             "' is abstract and cannot be a blueprint's parent");
+    const std::string name = std::filesystem::path(path).stem().string();
+    SP_CHECK(!reflect::Registry::get().findType(name), InvalidArgument, where, ": class name '", name,
+             "' is already registered");
+    for (const auto& [field, value] : document.items())
+        SP_CHECK(field == "format" || field == "version" || field == "parent" || field == "doc" ||
+                     field == "properties" || field == "components",
+                 InvalidArgument, where, ": unknown field '", field, "'");
+
+    auto blueprint = std::make_unique<Blueprint>();
+    blueprint->document = std::move(document);
+    reflect::TypeInfo& type = blueprint->type;
+    type.name = name;
+    type.doc = blueprint->document.value("doc", "Blueprint " + name + " (" + path + ").");
+    type.kind = reflect::TypeInfo::Kind::Class;
+    type.parent = parent;
+    const Json& doc = blueprint->document;
+    type.initialize = [&doc, spawnWhere = "blueprint '" + path + "'"](reflect::ObjectBase& object) {
+        applyBlueprint(doc, object, spawnWhere);
+    };
+
+    // Check every field now by building one object (outside any world), so a bad asset never spawns.
+    {
+        std::unique_ptr<UObject> trial = newObject(*parent, "Default__" + name, nullptr);
+        trial->SetDataDefinedClass(type);
+        applyBlueprint(doc, *trial, where);
+        reflect::ObjectTable::rememberName(*trial);
+    }
+
+    reflect::Registry::get().add(type);
+    return blueprints().emplace(key, std::move(blueprint)).first->second->type;
+}
+
+std::unique_ptr<UObject> newObject(const reflect::TypeInfo& type, std::string name, UWorld* world) {
+    const reflect::TypeInfo& native = type.nativeClass();
+    SP_CHECK(native.create, InvalidArgument, "class '", type.name, "' is abstract and cannot be created");
+    std::unique_ptr<UObject> object(static_cast<UObject*>(native.create()));
+    if (&native != &type)
+        object->SetDataDefinedClass(type);
+    object->InitObject(std::move(name), world);
+    if (auto* actor = dynamic_cast<AActor*>(object.get()))
+        actor->SetWorldForComponents();
+    type.initializeObject(*object);
+    return object;
+}
+
+} // namespace sp::world

@@ -1,0 +1,58 @@
+"""Blueprints: classes defined by asset files. Load one with load_class (SPEAR's call), spawn it like a
+native class, and find its instances by class.
+
+    PYTHONPATH=python /usr/bin/python3 examples/blueprints.py
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import spear
+
+BLUEPRINTS = Path(__file__).resolve().parent.parent / "assets" / "blueprints"
+
+
+def main() -> None:
+    instance = spear.Instance()
+    game = instance.get_game()
+
+    with instance.begin_frame():
+        # load_class(uclass=C, name=path) is typed as type[C]: the blueprint's class, a subclass of C.
+        axes_class = game.load_class(uclass=spear.AActor, name=str(BLUEPRINTS / "BP_Axes.json"))
+        crate_class = game.load_class(uclass=spear.AStaticMeshActor, name=str(BLUEPRINTS / "BP_Crate.json"))
+        print(f"loaded {axes_class.__name__} (a {axes_class.__mro__[1].__name__}) and {crate_class.__name__}")
+
+        axes = game.spawn_actor(uclass=axes_class, name="Axes")
+        print(f"{axes.GetName()} is a {axes.GetClassName()} with components "
+              f"{[c.GetName() for c in axes.K2_GetComponents()]}")
+
+        # spawn_actor(uclass=crate_class) is typed AStaticMeshActor: the blueprint's native members are there.
+        crate = game.spawn_actor(uclass=crate_class, location=spear.FVector(X=1.0, Z=2.0), name="Crate")
+        mesh = crate.StaticMeshComponent
+        print(f"{crate.GetName()}: {mesh.MassInKg} kg of {mesh.Materials[0]}, simulating: {mesh.bSimulatePhysics}")
+        # After load_class, the blueprint's name works as uclass= too.
+        game.spawn_actor(uclass="BP_Crate", location=spear.FVector(X=-1.0, Z=2.0), name="Crate2")
+        floor = game.spawn_actor(uclass=spear.AStaticMeshActor, location=spear.FVector(Z=-0.05), name="Floor")
+        floor.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        floor.StaticMeshComponent.RelativeScale3D = spear.FVector(X=10.0, Y=10.0, Z=0.1)
+        floor.StaticMeshComponent.Mobility = spear.EComponentMobility.Static
+
+    with instance.end_frame():
+        pass
+    instance.step(num_frames=120)  # the crates fall onto the floor
+
+    with instance.begin_frame():
+        crates = game.find_actors_by_class(uclass=crate_class)
+        meshes = game.find_actors_by_class(uclass=spear.AStaticMeshActor)
+        print(f"crates: {[c.GetName() for c in crates]}; mesh actors: {[m.GetName() for m in meshes]}")
+        for crate in crates:
+            print(f"{crate.GetName()} came to rest at Z = {crate.GetActorLocation().Z:.3f}")
+    with instance.end_frame():
+        pass
+
+    instance.close()
+
+
+if __name__ == "__main__":
+    main()

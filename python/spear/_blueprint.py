@@ -1,0 +1,27 @@
+"""Python classes for blueprints: engine classes defined by data at run time (core/world/blueprint.h).
+
+A blueprint has no generated Python class, so UWorld.load_class() returns one made here: a subclass of its
+native class's API class (so it types and checks as, e.g., type[AActor]) whose __sp_class__ is the
+blueprint's name, which makes it work as uclass= on both transports. One class per blueprint name.
+"""
+
+from __future__ import annotations
+
+from spear._object import SpObject
+
+_CLASSES: dict[str, type[SpObject]] = {}
+
+
+def blueprint_class(name: str, native: str) -> type[SpObject]:
+    """The Python class of blueprint `name`, whose objects are made by native class `native`."""
+    cls = _CLASSES.get(name)
+    if cls is None:
+        from spear._engine import api
+
+        base = getattr(api, native, None)
+        if not (isinstance(base, type) and issubclass(base, SpObject)):
+            base = api.UObject
+        doc = f"Blueprint {name}: a class defined by data, made from {native}."
+        cls = type(name, (base,), {"__sp_class__": name, "__slots__": (), "__module__": "spear", "__doc__": doc})
+        _CLASSES[name] = cls
+    return cls

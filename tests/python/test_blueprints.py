@@ -1,0 +1,147 @@
+"""Blueprints: classes defined by asset files, loaded with load_class and spawned like native classes."""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+import spear
+
+ROOT = Path(__file__).resolve().parents[2]
+AXES = str(ROOT / "assets" / "blueprints" / "BP_Axes.json")
+CRATE = str(ROOT / "assets" / "blueprints" / "BP_Crate.json")
+
+
+def write(path: Path, document: dict[str, Any]) -> str:
+    path.write_text(json.dumps(document))
+    return str(path)
+
+
+def blueprint(parent: str = "AActor", **fields: Any) -> dict[str, Any]:
+    return {"format": "spear.blueprint", "version": 1, "parent": parent, **fields}
+
+
+def test_load_class_returns_a_class_named_after_the_asset(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        axes = game.load_class(uclass=spear.AActor, name=AXES)
+        assert axes.__name__ == "BP_Axes" and axes.__sp_class__ == "BP_Axes"
+        assert issubclass(axes, spear.AActor)
+        assert game.load_class(uclass=spear.AActor, name=AXES) is axes  # loaded once, same class
+        crate = game.load_class(uclass=spear.AStaticMeshActor, name=CRATE)
+        assert issubclass(crate, spear.AStaticMeshActor)
+        assert game.load_class(uclass=spear.UObject, name="BP_Crate") is crate  # by name once loaded
+        native = game.load_class(uclass=spear.AActor, name="AStaticMeshActor")  # a registered class by name
+        assert issubclass(native, spear.AStaticMeshActor) and native.__sp_class__ == "AStaticMeshActor"
+
+
+def test_spawned_blueprint_has_the_assets_properties_and_components(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        axes_class = game.load_class(uclass=spear.AActor, name=AXES)
+        axes = game.spawn_actor(uclass=axes_class, location=spear.FVector(1.0, 2.0, 3.0), tags=["extra"])
+        assert isinstance(axes, spear.AActor)
+        assert axes.GetClassName() == "BP_Axes" and axes.GetName() == "BP_Axes_0"
+        assert axes.Tags == ["axes", "extra"]  # the blueprint's default, then the spawn's
+        components = {c.GetName(): c for c in axes.K2_GetComponents()}
+        assert list(components) == ["Root", "XAxis", "YAxis", "ZAxis"]
+        assert axes.RootComponent == components["Root"]
+        x = game.get_component_by_name(actor=axes, component_name="XAxis")
+        assert isinstance(x, spear.UStaticMeshComponent)
+        assert x.GetAttachParent() == components["Root"]
+        assert x.StaticMesh == "/Engine/BasicShapes/Cube" and x.Materials == ["/Engine/Materials/Red"]
+        assert x.RelativeScale3D == spear.FVector(1.0, 0.02, 0.02)
+        assert x.GetComponentLocation() == spear.FVector(1.5, 2.0, 3.0)
+        z = components["ZAxis"]
+        assert isinstance(z, spear.UStaticMeshComponent) and z.Materials == ["/Engine/Materials/Blue"]
+
+        crate_class = game.load_class(uclass=spear.AStaticMeshActor, name=CRATE)
+        crate = game.spawn_actor(uclass=crate_class, name="Crate")
+        assert isinstance(crate, spear.AStaticMeshActor) and crate.GetClassName() == "BP_Crate"
+        mesh = crate.StaticMeshComponent
+        assert mesh.bSimulatePhysics and mesh.MassInKg == 12.0 and mesh.Materials == ["/Engine/Materials/Wood"]
+        assert mesh.Mobility == spear.EComponentMobility.Movable
+        by_name = game.spawn_actor(uclass="BP_Crate", name="Crate2")
+        assert by_name.GetClassName() == "BP_Crate"
+
+
+def test_class_queries_see_blueprints_in_the_hierarchy(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        axes_class = game.load_class(uclass=spear.AActor, name=AXES)
+        crate_class = game.load_class(uclass=spear.AActor, name=CRATE)
+        plain = game.spawn_actor(uclass=spear.AActor, name="Plain")
+        mesh = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Mesh")
+        axes = game.spawn_actor(uclass=axes_class, name="Axes")
+        crate = game.spawn_actor(uclass=crate_class, name="Crate")
+        assert game.find_actors_by_class(uclass=axes_class) == [axes]
+        assert game.find_actors_by_class(uclass="BP_Crate") == [crate]
+        assert game.find_actor_by_class(uclass=crate_class) == crate
+        assert game.find_actors_by_class(uclass=spear.AActor) == [plain, mesh, axes, crate]
+        assert game.find_actors_by_class(uclass=spear.AStaticMeshActor) == [mesh, crate]
+        assert game.find_actors_by_class_as_dict(uclass=axes_class) == {"Axes": axes}
+        default = game.get_default_object(uclass=crate_class)
+        assert default.GetClassName() == "BP_Crate" and default.GetName() == "Default__BP_Crate"
+
+
+def test_blueprint_actors_round_trip_through_scene_files(instance: spear.Instance, tmp_path: Path) -> None:
+    game = instance.get_game()
+    path = str(tmp_path / "scene.json")
+    with instance.begin_frame():
+        game.spawn_actor(uclass=game.load_class(uclass=spear.AActor, name=AXES), name="Axes")
+        game.save_scene(path=path)
+        game.load_scene(path=path)
+        axes = game.find_actor_by_name(name="Axes")
+        assert axes is not None and axes.GetClassName() == "BP_Axes"
+        assert [c.GetName() for c in axes.K2_GetComponents()] == ["Root", "XAxis", "YAxis", "ZAxis"]
+    scene = json.loads(Path(path).read_text())
+    assert scene["actors"][0]["class"] == "BP_Axes"
+
+
+def test_load_class_errors_name_the_file_and_the_field(instance: spear.Instance, tmp_path: Path) -> None:
+    game = instance.get_game()
+
+    def fails(error: type[spear.SpearError], message: str, name: str, uclass: type[spear.UObject] = spear.AActor) -> None:
+        with pytest.raises(error, match=re.escape(message)):
+            game.load_class(uclass=uclass, name=name)
+
+    missing = str(tmp_path / "BP_Missing.json")
+    bad_json = tmp_path / "BP_BadJson.json"
+    bad_json.write_text("{ not json")
+    with instance.begin_frame():
+        fails(spear.NotFoundError, f"UWorld.load_class(): blueprint '{missing}' not found", missing)
+        fails(spear.InvalidArgumentError, f"UWorld.load_class(): blueprint '{bad_json}' is not valid JSON", str(bad_json))
+        path = write(tmp_path / "BP_BadParent.json", blueprint("AFoo"))
+        fails(spear.InvalidArgumentError,
+              f"UWorld.load_class(): blueprint '{path}': 'parent': class 'AFoo' is not registered", path)
+        path = write(tmp_path / "BP_BadProperty.json", blueprint(properties={"Colour": 1}))
+        fails(spear.InvalidArgumentError,
+              f"UWorld.load_class(): blueprint '{path}': AActor has no property 'Colour'", path)
+        path = write(tmp_path / "BP_BadValue.json", blueprint(properties={"Tags": 3}))
+        fails(spear.InvalidArgumentError,
+              f"UWorld.load_class(): blueprint '{path}': property 'Tags': expected a list (list[str]), got number 3",
+              path)
+        path = write(tmp_path / "BP_BadComponent.json",
+                     blueprint(components=[{"name": "Thing", "class": "UFooComponent"}]))
+        fails(spear.InvalidArgumentError,
+              f"UWorld.load_class(): blueprint '{path}': component 'Thing': class 'UFooComponent' is not registered",
+              path)
+        path = write(tmp_path / "BP_NoClass.json", blueprint(components=[{"name": "Thing"}]))
+        fails(spear.InvalidArgumentError,
+              f"UWorld.load_class(): blueprint '{path}': component 'Thing': missing 'class' "
+              "(AActor creates no component 'Thing')", path)
+        path = write(tmp_path / "BP_BadComponentProperty.json", blueprint(
+            "AStaticMeshActor", components=[{"name": "StaticMeshComponent", "properties": {"Mass": 1.0}}]))
+        fails(spear.InvalidArgumentError,
+              f"UWorld.load_class(): blueprint '{path}': component 'StaticMeshComponent': "
+              "UStaticMeshComponent has no property 'Mass'", path)
+        fails(spear.InvalidArgumentError,
+              "UWorld.load_class(): class 'BP_Axes' (from '" + AXES + "') does not derive from AStaticMeshActor",
+              AXES, spear.AStaticMeshActor)
+        with pytest.raises(spear.NotFoundError, match=re.escape("class 'BP_Never' is not registered")):
+            game.spawn_actor(uclass="BP_Never")
+        assert game.get_actor_count() == 0  # nothing half-made was left in the world
