@@ -81,7 +81,9 @@ template <typename R> void bindObjectBasics(py::class_<R>& cls) {
         "The same functions, asynchronous: each returns a Future.");
     cls.def_property_readonly(
         "send_async",
-        [](py::object self) { return py::module_::import("spear.futures").attr("ImmediateCaller")(self, true); },
+        [](py::object self) {
+            return py::module_::import("spear.futures").attr("ImmediateCaller")(self, true);
+        },
         "The same functions, fire and forget.");
 }
 

@@ -41,13 +41,13 @@ template <> struct DTypeOf<double> { static constexpr DType value = DType::Float
 using ArrayAllocator = ArrayValue (*)(DType dtype, const std::vector<int64_t>& shape, void* context);
 
 class ArrayAllocatorScope {
-public:
+  public:
     ArrayAllocatorScope(ArrayAllocator allocator, void* context);
     ~ArrayAllocatorScope();
     ArrayAllocatorScope(const ArrayAllocatorScope&) = delete;
     ArrayAllocatorScope& operator=(const ArrayAllocatorScope&) = delete;
 
-private:
+  private:
     ArrayAllocator previous_;
     void* previousContext_;
 };
@@ -70,8 +70,13 @@ class SpArrayBase {
     const ArrayValue& value() const { return value_; }
     // Adopts `value` (sharing its storage). Throws InvalidArgument when the dtype differs.
     void assign(ArrayValue value, std::string_view context) {
-        SP_CHECK(value.dtype == value_.dtype, InvalidArgument, context, ": array '", name_,
-                 "' must have dtype ", dtypeName(value_.dtype), ", got ", dtypeName(value.dtype));
+        if (value.dtype != value_.dtype) {
+            // A parameter's context already names the array; a packed array is named here.
+            const std::string what =
+                name_.empty() ? std::string(context) : detail::concat(context, ": array '", name_, "'");
+            SP_THROW(InvalidArgument, what, " must have dtype ", dtypeName(value_.dtype), ", got ",
+                     dtypeName(value.dtype));
+        }
         value_ = std::move(value);
     }
 

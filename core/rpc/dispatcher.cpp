@@ -17,7 +17,8 @@ const msgpack::object* field(const msgpack::object& map, std::string_view name) 
         return nullptr;
     for (uint32_t i = 0; i < map.via.map.size; ++i) {
         const auto& kv = map.via.map.ptr[i];
-        if (kv.key.type == msgpack::type::STR && std::string_view(kv.key.via.str.ptr, kv.key.via.str.size) == name)
+        if (kv.key.type == msgpack::type::STR &&
+            std::string_view(kv.key.via.str.ptr, kv.key.via.str.size) == name)
             return &kv.val;
     }
     return nullptr;
@@ -37,7 +38,8 @@ std::string requireString(const msgpack::object& map, std::string_view name, std
 
 reflect::ObjectBase& requireObject(const msgpack::object& request, const std::string& context) {
     Value handle = unpack(require(request, "object", context), context);
-    SP_CHECK(handle.is<reflect::ObjectHandle>(), InvalidArgument, context, ": 'object' must be an object reference");
+    SP_CHECK(handle.is<reflect::ObjectHandle>(), InvalidArgument, context,
+             ": 'object' must be an object reference");
     reflect::ObjectBase& object = reflect::ObjectTable::resolve(handle.as<reflect::ObjectHandle>(), context);
     world::checkObjectAccess(object, context);
     return object;
@@ -81,15 +83,16 @@ void Dispatcher::handle(const char* data, size_t size, Session& session, msgpack
         handle = msgpack::unpack(data, size);
     } catch (const std::exception& e) {
         // Garbage or a truncated message: say so; a client that never said hello is dropped.
-        packError(out, nullptr, "InvalidArgumentError", std::string("request: malformed message (") + e.what() + ")");
+        packError(out, nullptr, "InvalidArgumentError",
+                  std::string("request: malformed message (") + e.what() + ")");
         session.closeAfterReply = !session.greeted;
         return;
     }
     handleOne(handle.get(), session, out, toShm);
 }
 
-void Dispatcher::handleOne(const msgpack::object& request, Session& session, msgpack::packer<msgpack::sbuffer>& out,
-                           const ArrayToSharedMemory& toShm) {
+void Dispatcher::handleOne(const msgpack::object& request, Session& session,
+                           msgpack::packer<msgpack::sbuffer>& out, const ArrayToSharedMemory& toShm) {
     const msgpack::object* id = field(request, "id");
     try {
         SP_CHECK(request.type == msgpack::type::MAP, InvalidArgument, "request: expected a map");
@@ -117,7 +120,8 @@ void Dispatcher::handleOne(const msgpack::object& request, Session& session, msg
         packError(out, id, pythonErrorType(e), e.what());
     } catch (const std::exception& e) {
         // msgpack type errors and the like: the request was malformed, the engine is fine.
-        packError(out, id, "InvalidArgumentError", std::string("request: malformed message (") + e.what() + ")");
+        packError(out, id, "InvalidArgumentError",
+                  std::string("request: malformed message (") + e.what() + ")");
         session.closeAfterReply = session.closeAfterReply || !session.greeted;
     }
 }
@@ -127,8 +131,9 @@ Value Dispatcher::execute(const std::string& op, const msgpack::object& request,
     if (op == "hello") {
         const std::string clientHash = requireString(request, "api_hash", "hello");
         const msgpack::object* token = field(request, "token");
-        const std::string given =
-            token && token->type == msgpack::type::STR ? std::string(token->via.str.ptr, token->via.str.size) : "";
+        const std::string given = token && token->type == msgpack::type::STR
+                                      ? std::string(token->via.str.ptr, token->via.str.size)
+                                      : "";
         if (!token_.empty() && given != token_) {
             session.closeAfterReply = true;
             SP_THROW(InvalidArgument, "hello(): wrong or missing token");
@@ -150,10 +155,12 @@ Value Dispatcher::execute(const std::string& op, const msgpack::object& request,
         const std::string kind = requireString(request, "kind", "world");
         if (kind == "game")
             return Value(engine_.GetGameWorld().GetHandle());
-        SP_CHECK(kind == "editor", InvalidArgument, "world(): kind must be 'game' or 'editor', got '", kind, "'");
+        SP_CHECK(kind == "editor", InvalidArgument, "world(): kind must be 'game' or 'editor', got '", kind,
+                 "'");
         UWorld* editor = engine_.GetEditorWorld();
-        SP_CHECK(editor, InvalidState, "get_editor(): this instance runs standalone and has no editor world; "
-                                       "start it with spear.Instance(mode='editor')");
+        SP_CHECK(editor, InvalidState,
+                 "get_editor(): this instance runs standalone and has no editor world; "
+                 "start it with spear.Instance(mode='editor')");
         return Value(editor->GetHandle());
     }
     if (op == "frame") {
@@ -170,8 +177,9 @@ Value Dispatcher::execute(const std::string& op, const msgpack::object& request,
             engine_.abortFrame();
         else if (action != "state")
             SP_THROW(InvalidArgument, "frame(): unknown action '", action, "'");
-        return Value(Value::Dict{{"state", Value(std::string(world::Engine::toString(engine_.GetFrameState())))},
-                                 {"frame_count", Value(engine_.GetFrameCount())}});
+        return Value(
+            Value::Dict{{"state", Value(std::string(world::Engine::toString(engine_.GetFrameState())))},
+                        {"frame_count", Value(engine_.GetFrameCount())}});
     }
     if (op == "call" || op == "call_typed") {
         // call_typed (the dynamic API) also returns the declared types, so the client can build
@@ -180,11 +188,13 @@ Value Dispatcher::execute(const std::string& op, const msgpack::object& request,
         std::string context = "call_function('" + function + "')";
         // Typed proxies name the member as the in-process bindings do ("AActor.GetName()"), so that
         // messages are the same on both transports.
-        if (const msgpack::object* given = field(request, "context"); given && given->type == msgpack::type::STR)
+        if (const msgpack::object* given = field(request, "context");
+            given && given->type == msgpack::type::STR)
             context = std::string(given->via.str.ptr, given->via.str.size);
         reflect::ObjectBase& object = requireObject(request, context);
         const reflect::FunctionInfo* info = object.GetClass().findFunction(function);
-        SP_CHECK(info, NotFound, context, ": class '", object.GetClass().name, "' has no function '", function, "'");
+        SP_CHECK(info, NotFound, context, ": class '", object.GetClass().name, "' has no function '",
+                 function, "'");
         Value args = field(request, "args") ? unpack(*field(request, "args"), context) : Value(Value::Dict{});
         SP_CHECK(args.is<Value::Dict>(), InvalidArgument, context, ": 'args' must be a map");
         Value result = info->invoke(&object, args.as<Value::Dict>());
@@ -201,23 +211,26 @@ Value Dispatcher::execute(const std::string& op, const msgpack::object& request,
     if (op == "get" || op == "get_typed" || op == "set") {
         const std::string name = requireString(request, "property", op);
         std::string context = (op == "set" ? "set_property('" : "get_property('") + name + "')";
-        if (const msgpack::object* given = field(request, "context"); given && given->type == msgpack::type::STR)
+        if (const msgpack::object* given = field(request, "context");
+            given && given->type == msgpack::type::STR)
             context = std::string(given->via.str.ptr, given->via.str.size);
         reflect::ObjectBase& object = requireObject(request, context);
         const reflect::PropertyInfo* property = object.GetClass().findProperty(name);
-        SP_CHECK(property, NotFound, context, ": class '", object.GetClass().name, "' has no property '", name, "'");
+        SP_CHECK(property, NotFound, context, ": class '", object.GetClass().name, "' has no property '",
+                 name, "'");
         if (op == "get")
             return property->get(&object);
         if (op == "get_typed")
             return Value(Value::Dict{{"value", property->get(&object)}, {"type", Value(property->type)}});
-        SP_CHECK(property->set, InvalidArgument, context, ": property '", name, "' of class '", object.GetClass().name,
-                 "' is read-only");
+        SP_CHECK(property->set, InvalidArgument, context, ": property '", name, "' of class '",
+                 object.GetClass().name, "' is read-only");
         property->set(&object, unpack(require(request, "value", op), context));
         return Value();
     }
     if (op == "is_valid" || op == "describe") {
         Value handle = unpack(require(request, "object", op), op);
-        SP_CHECK(handle.is<reflect::ObjectHandle>(), InvalidArgument, op, "(): 'object' must be an object reference");
+        SP_CHECK(handle.is<reflect::ObjectHandle>(), InvalidArgument, op,
+                 "(): 'object' must be an object reference");
         const reflect::ObjectBase* object = reflect::ObjectTable::find(handle.as<reflect::ObjectHandle>());
         if (op == "is_valid")
             return Value(object != nullptr);

@@ -33,7 +33,7 @@ struct Session {
 };
 
 class Dispatcher {
-public:
+  public:
     Dispatcher(world::Engine& engine, std::string apiHash, std::string token)
         : engine_(engine), apiHash_(std::move(apiHash)), token_(std::move(token)) {}
 
@@ -42,7 +42,7 @@ public:
     void handle(const char* data, size_t size, Session& session, msgpack::sbuffer& reply,
                 const ArrayToSharedMemory& toShm);
 
-private:
+  private:
     reflect::Value execute(const std::string& op, const msgpack::object& request, Session& session,
                            const ArrayToSharedMemory& toShm, msgpack::packer<msgpack::sbuffer>* batchOut);
     void handleOne(const msgpack::object& request, Session& session, msgpack::packer<msgpack::sbuffer>& out,

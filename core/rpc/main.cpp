@@ -49,7 +49,8 @@ int main(int argc, char** argv) {
         else if (arg == "--mode" && hasValue) {
             const std::string mode = argv[++i];
             if (mode != "game" && mode != "editor") {
-                std::fprintf(stderr, "spear-server: --mode must be 'game' or 'editor', got '%s'\n", mode.c_str());
+                std::fprintf(stderr, "spear-server: --mode must be 'game' or 'editor', got '%s'\n",
+                             mode.c_str());
                 return 2;
             }
             settings.editor = mode == "editor";
@@ -61,8 +62,7 @@ int main(int argc, char** argv) {
             ::prctl(PR_SET_PDEATHSIG, SIGTERM);
             if (::getppid() != parent)
                 return 0;
-        }
-        else {
+        } else {
             usage();
             return 2;
         }

@@ -25,7 +25,9 @@ namespace sp::rpc {
 namespace {
 std::atomic<int> gWakeFd{-1}; // write end of the self-pipe that stop() pokes
 
-std::string systemError() { return std::strerror(errno); }
+std::string systemError() {
+    return std::strerror(errno);
+}
 
 bool sendAll(int fd, const char* data, size_t size) {
     while (size > 0) {
@@ -55,7 +57,8 @@ struct Server::Connection {
 namespace {
 // The ArrayAllocator installed while a request runs: new arrays (a camera's readback) are placed in a
 // fresh segment, which the reply then names instead of copying the bytes.
-reflect::ArrayValue allocateInSegment(reflect::DType dtype, const std::vector<int64_t>& shape, void* context) {
+reflect::ArrayValue allocateInSegment(reflect::DType dtype, const std::vector<int64_t>& shape,
+                                      void* context) {
     auto& segments = *static_cast<std::vector<std::shared_ptr<SharedMemorySegment>>*>(context);
     reflect::ArrayValue value;
     value.dtype = dtype;
@@ -72,7 +75,8 @@ Server::Server(world::Engine& engine, ServerOptions options, std::string apiHash
     : options_(std::move(options)), dispatcher_(engine, std::move(apiHash), options_.token) {
     removeOrphanedSegments();
     if (options_.tcpPort >= 0) {
-        SP_CHECK(!options_.token.empty(), InvalidArgument, "spear-server: TCP needs a token (--token or SPEAR_TOKEN)");
+        SP_CHECK(!options_.token.empty(), InvalidArgument,
+                 "spear-server: TCP needs a token (--token or SPEAR_TOKEN)");
         listenFd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
         int one = 1;
         ::setsockopt(listenFd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one));
@@ -82,7 +86,8 @@ Server::Server(world::Engine& engine, ServerOptions options, std::string apiHash
         SP_CHECK(::inet_pton(AF_INET, options_.bindAddress.c_str(), &address.sin_addr) == 1, InvalidArgument,
                  "spear-server: bad bind address '", options_.bindAddress, "'");
         SP_CHECK(::bind(listenFd_, reinterpret_cast<sockaddr*>(&address), sizeof(address)) == 0, Error,
-                 "spear-server: cannot bind ", options_.bindAddress, ":", options_.tcpPort, ": ", systemError());
+                 "spear-server: cannot bind ", options_.bindAddress, ":", options_.tcpPort, ": ",
+                 systemError());
         socklen_t length = sizeof(address);
         ::getsockname(listenFd_, reinterpret_cast<sockaddr*>(&address), &length);
         boundPort_ = ntohs(address.sin_port);
@@ -176,7 +181,8 @@ bool Server::serve(Connection& connection) {
                     connection.replySegments.push_back(segment);
                     return segment->name();
                 }
-            auto segment = std::make_shared<SharedMemorySegment>(SharedMemorySegment::create(array.byteSize()));
+            auto segment =
+                std::make_shared<SharedMemorySegment>(SharedMemorySegment::create(array.byteSize()));
             std::memcpy(segment->data(), array.data, array.byteSize());
             connection.replySegments.push_back(segment);
             return segment->name();
@@ -206,7 +212,8 @@ bool Server::serve(Connection& connection) {
 
 void Server::run() {
     int pipeFds[2];
-    SP_CHECK(::pipe2(pipeFds, O_CLOEXEC | O_NONBLOCK) == 0, Error, "spear-server: pipe failed: ", systemError());
+    SP_CHECK(::pipe2(pipeFds, O_CLOEXEC | O_NONBLOCK) == 0, Error,
+             "spear-server: pipe failed: ", systemError());
     gWakeFd = pipeFds[1];
     while (!shutdown_) {
         std::vector<pollfd> fds{{pipeFds[0], POLLIN, 0}, {listenFd_, POLLIN, 0}};

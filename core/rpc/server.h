@@ -17,12 +17,12 @@ struct ServerOptions {
     std::string socketPath; // Unix socket; used when tcpPort < 0
     int tcpPort = -1;       // 0 picks a free port
     std::string bindAddress = "127.0.0.1";
-    std::string token;      // required for TCP
+    std::string token; // required for TCP
     size_t maxMessageBytes = size_t(1) << 30;
 };
 
 class Server {
-public:
+  public:
     Server(world::Engine& engine, ServerOptions options, std::string apiHash);
     ~Server();
 
@@ -32,7 +32,7 @@ public:
     void run();
     static void stop();
 
-private:
+  private:
     struct Connection;
     void accept();
     bool serve(Connection& connection); // false: drop the connection

@@ -17,7 +17,9 @@
 namespace sp::rpc {
 
 namespace {
-std::string systemError() { return std::strerror(errno); }
+std::string systemError() {
+    return std::strerror(errno);
+}
 } // namespace
 
 SharedMemorySegment SharedMemorySegment::create(size_t size) {
@@ -26,12 +28,14 @@ SharedMemorySegment SharedMemorySegment::create(size_t size) {
     segment.name_ = "/spear-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
     segment.size_ = size;
     int fd = ::shm_open(segment.name_.c_str(), O_CREAT | O_EXCL | O_RDWR, 0600);
-    SP_CHECK(fd >= 0, Error, "SharedMemorySegment::create(): shm_open('", segment.name_, "') failed: ", systemError());
+    SP_CHECK(fd >= 0, Error, "SharedMemorySegment::create(): shm_open('", segment.name_,
+             "') failed: ", systemError());
     if (::ftruncate(fd, off_t(size == 0 ? 1 : size)) != 0) {
         const std::string error = systemError();
         ::close(fd);
         ::shm_unlink(segment.name_.c_str());
-        SP_THROW(Error, "SharedMemorySegment::create(): cannot size '", segment.name_, "' to ", size, " bytes: ", error);
+        SP_THROW(Error, "SharedMemorySegment::create(): cannot size '", segment.name_, "' to ", size,
+                 " bytes: ", error);
     }
     segment.data_ = ::mmap(nullptr, size == 0 ? 1 : size, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
     ::close(fd);
@@ -50,11 +54,13 @@ SharedMemorySegment SharedMemorySegment::open(const std::string& name, size_t si
     segment.name_ = name;
     segment.size_ = size;
     int fd = ::shm_open(name.c_str(), O_RDWR, 0);
-    SP_CHECK(fd >= 0, InvalidArgument, "SharedMemorySegment::open(): cannot open '", name, "': ", systemError());
+    SP_CHECK(fd >= 0, InvalidArgument, "SharedMemorySegment::open(): cannot open '", name,
+             "': ", systemError());
     struct stat info {};
     if (::fstat(fd, &info) != 0 || size_t(info.st_size) < size) {
         ::close(fd);
-        SP_THROW(InvalidArgument, "SharedMemorySegment::open(): '", name, "' holds fewer than ", size, " bytes");
+        SP_THROW(InvalidArgument, "SharedMemorySegment::open(): '", name, "' holds fewer than ", size,
+                 " bytes");
     }
     segment.data_ = ::mmap(nullptr, size == 0 ? 1 : size, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
     ::close(fd);
@@ -64,7 +70,9 @@ SharedMemorySegment SharedMemorySegment::open(const std::string& name, size_t si
     return segment;
 }
 
-SharedMemorySegment::SharedMemorySegment(SharedMemorySegment&& other) noexcept { *this = std::move(other); }
+SharedMemorySegment::SharedMemorySegment(SharedMemorySegment&& other) noexcept {
+    *this = std::move(other);
+}
 
 SharedMemorySegment& SharedMemorySegment::operator=(SharedMemorySegment&& other) noexcept {
     if (this != &other) {

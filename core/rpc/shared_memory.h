@@ -9,7 +9,7 @@
 namespace sp::rpc {
 
 class SharedMemorySegment {
-public:
+  public:
     // Creates a new segment of `size` bytes (readable and writable by the owner only).
     static SharedMemorySegment create(size_t size);
     // Maps an existing segment created by the peer.
@@ -28,7 +28,7 @@ public:
     void unlink();
     bool unlinked() const { return unlinked_; }
 
-private:
+  private:
     SharedMemorySegment() = default;
     std::string name_;
     void* data_ = nullptr;

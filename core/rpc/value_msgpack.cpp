@@ -19,7 +19,8 @@ void packExt(msgpack::packer<msgpack::sbuffer>& out, ExtType type, const std::st
     out.pack_ext_body(body.data(), body.size());
 }
 
-void packArray(msgpack::packer<msgpack::sbuffer>& out, const reflect::ArrayValue& array, const ArrayToSharedMemory& toShm) {
+void packArray(msgpack::packer<msgpack::sbuffer>& out, const reflect::ArrayValue& array,
+               const ArrayToSharedMemory& toShm) {
     msgpack::sbuffer body;
     msgpack::packer<msgpack::sbuffer> inner(&body);
     inner.pack_array(3);
@@ -52,8 +53,8 @@ reflect::ArrayValue unpackArray(const msgpack::object& body, std::string_view co
     const size_t expected = array.byteSize();
     const msgpack::object& payload = parts.via.array.ptr[2];
     if (payload.type == msgpack::type::BIN) {
-        SP_CHECK(payload.via.bin.size == expected, InvalidArgument, context, ": array holds ", payload.via.bin.size,
-                 " bytes, its shape needs ", expected);
+        SP_CHECK(payload.via.bin.size == expected, InvalidArgument, context, ": array holds ",
+                 payload.via.bin.size, " bytes, its shape needs ", expected);
         auto storage = std::shared_ptr<char[]>(new char[expected == 0 ? 1 : expected]);
         std::memcpy(storage.get(), payload.via.bin.ptr, expected);
         array.data = storage.get();
@@ -70,8 +71,8 @@ reflect::ArrayValue unpackArray(const msgpack::object& body, std::string_view co
         else if (key == "size")
             size = payload.via.map.ptr[i].val.as<uint64_t>();
     }
-    SP_CHECK(size == expected, InvalidArgument, context, ": shared-memory array holds ", size, " bytes, its shape needs ",
-             expected);
+    SP_CHECK(size == expected, InvalidArgument, context, ": shared-memory array holds ", size,
+             " bytes, its shape needs ", expected);
     auto segment = std::make_shared<SharedMemorySegment>(SharedMemorySegment::open(name, size));
     array.data = segment->data();
     array.owner = segment;
@@ -87,7 +88,8 @@ void pack(msgpack::packer<msgpack::sbuffer>& out, const Value& value, const Arra
                 out.pack_nil();
             } else if constexpr (std::is_same_v<T, double>) {
                 out.pack_double(v); // explicitly: a whole-number double must stay a float on the wire
-            } else if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, int64_t> || std::is_same_v<T, std::string>) {
+            } else if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, int64_t> ||
+                                 std::is_same_v<T, std::string>) {
                 out.pack(v);
             } else if constexpr (std::is_same_v<T, reflect::ObjectHandle>) {
                 std::string body(8, '\0');
@@ -126,7 +128,8 @@ Value unpack(const msgpack::object& in, std::string_view context) {
     case msgpack::type::BOOLEAN:
         return Value(in.via.boolean);
     case msgpack::type::POSITIVE_INTEGER:
-        SP_CHECK(in.via.u64 <= uint64_t(INT64_MAX), InvalidArgument, context, ": integer ", in.via.u64, " is too large");
+        SP_CHECK(in.via.u64 <= uint64_t(INT64_MAX), InvalidArgument, context, ": integer ", in.via.u64,
+                 " is too large");
         return Value(int64_t(in.via.u64));
     case msgpack::type::NEGATIVE_INTEGER:
         return Value(int64_t(in.via.i64));
@@ -146,7 +149,8 @@ Value unpack(const msgpack::object& in, std::string_view context) {
         Value::Dict items;
         for (uint32_t i = 0; i < in.via.map.size; ++i) {
             const auto& kv = in.via.map.ptr[i];
-            SP_CHECK(kv.key.type == msgpack::type::STR, InvalidArgument, context, ": map keys must be strings");
+            SP_CHECK(kv.key.type == msgpack::type::STR, InvalidArgument, context,
+                     ": map keys must be strings");
             items.emplace(std::string(kv.key.via.str.ptr, kv.key.via.str.size), unpack(kv.val, context));
         }
         return Value(std::move(items));

@@ -23,7 +23,8 @@ inline constexpr size_t kSharedMemoryThreshold = 64 * 1024;
 // Called for a large array: stores its bytes in a segment and returns the segment name.
 using ArrayToSharedMemory = std::function<std::string(const reflect::ArrayValue&)>;
 
-void pack(msgpack::packer<msgpack::sbuffer>& out, const reflect::Value& value, const ArrayToSharedMemory& toShm);
+void pack(msgpack::packer<msgpack::sbuffer>& out, const reflect::Value& value,
+          const ArrayToSharedMemory& toShm);
 // Throws InvalidArgument (with `context`) for anything that is not a valid encoded value.
 reflect::Value unpack(const msgpack::object& in, std::string_view context);
 

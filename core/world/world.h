@@ -11,6 +11,7 @@
 #include <typeindex>
 
 #include "core/reflect/class_ref.h"
+#include "core/reflect/sp_array.h"
 #include "core/world/actor.h"
 #include "core/world/hit_result.h"
 #include "core/world/primitive_component.h"
@@ -85,6 +86,15 @@ class UWorld : public UObject {
     /// Returns the class default object of uclass: an instance outside the world holding the class defaults.
     SPFUNCTION(DeterminesOutputType = uclass, NotNull)
     UObject* get_default_object(TSubclassOf<UObject> uclass);
+
+    /// Returns the world-space locations of actors as an (N, 3) float64 array, rows in the order given.
+    SPFUNCTION()
+    sp::reflect::SpArray<double> get_actor_locations(const std::vector<AActor*>& actors) const;
+
+    /// Moves each actor to the matching row of locations, an (N, 3) float64 array (one call for many actors).
+    SPFUNCTION()
+    void set_actor_locations(const std::vector<AActor*>& actors,
+                             const sp::reflect::SpArray<double>& locations);
 
     /// Returns the number of actors in the world.
     SPFUNCTION()

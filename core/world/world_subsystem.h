@@ -9,7 +9,7 @@ class UWorld;
 namespace sp::world {
 
 class WorldSubsystem {
-public:
+  public:
     virtual ~WorldSubsystem() = default;
     // Called once per frame after every actor has ticked.
     virtual void Tick(double /*deltaSeconds*/) {}

@@ -258,3 +258,26 @@ def test_dynamic_access_goes_through_the_registry(instance: spear.Instance) -> N
 def test_editor_world_needs_an_editor_instance(instance: spear.Instance) -> None:
     with pytest.raises(spear.InvalidStateError, match="runs standalone and has no editor world"):
         instance.get_editor()
+
+
+def test_batched_locations_travel_as_numpy_arrays(instance: spear.Instance) -> None:
+    import numpy as np
+
+    game = instance.get_game()
+    with instance.begin_frame():
+        actors = [game.spawn_actor(uclass=spear.AStaticMeshActor, location=spear.FVector(X=float(i))) for i in range(4)]
+        locations = game.get_actor_locations(actors=actors)
+        assert locations.dtype == np.float64 and locations.shape == (4, 3)
+        assert list(locations[:, 0]) == [0.0, 1.0, 2.0, 3.0]
+        targets = np.arange(12, dtype=np.float64).reshape(4, 3)
+        game.set_actor_locations(actors=actors, locations=targets)
+        assert actors[2].GetActorLocation() == spear.FVector(X=6.0, Y=7.0, Z=8.0)
+        assert np.array_equal(game.get_actor_locations(actors=actors), targets)
+        big = [game.spawn_actor(uclass=spear.AStaticMeshActor) for _ in range(3000)]  # > 64 KiB: shared memory
+        moved = np.random.default_rng(1).normal(size=(3000, 3))
+        game.set_actor_locations(actors=big, locations=moved)
+        assert np.array_equal(game.get_actor_locations(actors=big), moved)
+        with pytest.raises(TypeError, match=r"set_actor_locations\(\): argument 'locations' must have dtype float64, got float32"):
+            game.set_actor_locations(actors=actors, locations=targets.astype(np.float32))
+        with pytest.raises(spear.InvalidArgumentError, match=r"locations must have shape \(4, 3\), got \(3,\)"):
+            game.set_actor_locations(actors=actors, locations=np.zeros(3))

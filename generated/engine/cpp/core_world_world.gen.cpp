@@ -281,6 +281,42 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
         });
         t.functions.push_back({
+            "get_actor_locations",
+            "Returns the world-space locations of actors as an (N, 3) float64 array, rows in the order given.",
+            "NDArray[np.float64]",
+            {
+                {"actors", "list[AActor]", false, false},
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UWorld.get_actor_locations()";
+                sp::reflect::checkArguments(args, {"actors"}, kContext);
+                std::vector<AActor*> actors = sp::reflect::decode<std::vector<AActor*>>(sp::reflect::requireArgument(args, "actors", kContext), "UWorld.get_actor_locations(): argument 'actors'");
+                auto result = sp::reflect::selfCast<const Self>(self)->get_actor_locations(actors);
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "set_actor_locations",
+            "Moves each actor to the matching row of locations, an (N, 3) float64 array (one call for many actors).",
+            "None",
+            {
+                {"actors", "list[AActor]", false, false},
+                {"locations", "NDArray[np.float64]", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UWorld.set_actor_locations()";
+                sp::reflect::checkArguments(args, {"actors", "locations"}, kContext);
+                std::vector<AActor*> actors = sp::reflect::decode<std::vector<AActor*>>(sp::reflect::requireArgument(args, "actors", kContext), "UWorld.set_actor_locations(): argument 'actors'");
+                sp::reflect::SpArray<double> locations = sp::reflect::decode<sp::reflect::SpArray<double>>(sp::reflect::requireArgument(args, "locations", kContext), "UWorld.set_actor_locations(): argument 'locations'");
+                sp::reflect::selfCast<Self>(self)->set_actor_locations(actors, locations);
+                return {};
+            },
+        });
+        t.functions.push_back({
             "get_actor_count",
             "Returns the number of actors in the world.",
             "int",

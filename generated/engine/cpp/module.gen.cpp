@@ -2054,6 +2054,32 @@ Self* object = self.get<Self>(kContext);
             py::arg("uclass"),
             "Returns the class default object of uclass: an instance outside the world holding the class defaults.");
         cls.def(
+            "get_actor_locations",
+            [](const Ref<Self>& self, Bridge<std::vector<AActor*>>::Py actors) -> py::object {
+                static constexpr const char* kContext = "UWorld.get_actor_locations()";
+const Self* object = self.get<Self>(kContext);
+                auto actorsValue = Bridge<std::vector<AActor*>>::in(std::move(actors), "UWorld.get_actor_locations(): argument 'actors'");
+                auto result = object->get_actor_locations(actorsValue);
+                return Bridge<sp::reflect::SpArray<double>>::out(result);
+            },
+            py::kw_only(),
+            py::arg("actors"),
+            "Returns the world-space locations of actors as an (N, 3) float64 array, rows in the order given.");
+        cls.def(
+            "set_actor_locations",
+            [](const Ref<Self>& self, Bridge<std::vector<AActor*>>::Py actors, Bridge<sp::reflect::SpArray<double>>::Py locations) -> py::object {
+                static constexpr const char* kContext = "UWorld.set_actor_locations()";
+Self* object = self.get<Self>(kContext);
+                auto actorsValue = Bridge<std::vector<AActor*>>::in(std::move(actors), "UWorld.set_actor_locations(): argument 'actors'");
+                auto locationsValue = Bridge<sp::reflect::SpArray<double>>::in(std::move(locations), "UWorld.set_actor_locations(): argument 'locations'");
+                object->set_actor_locations(actorsValue, locationsValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("actors"),
+            py::arg("locations"),
+            "Moves each actor to the matching row of locations, an (N, 3) float64 array (one call for many actors).");
+        cls.def(
             "get_actor_count",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UWorld.get_actor_count()";

@@ -825,6 +825,12 @@ class UWorld(UObject, api.UWorld):
     def get_default_object(self, *, uclass: type[api.UObject] | str) -> Any:
         return self._sp_call("UWorld", "get_default_object", {"uclass": uclass}, "UObject")
 
+    def get_actor_locations(self, *, actors: list[api.AActor]) -> NDArray[np.float64]:
+        return cast("NDArray[np.float64]", self._sp_call("UWorld", "get_actor_locations", {"actors": actors}, "NDArray[np.float64]"))
+
+    def set_actor_locations(self, *, actors: list[api.AActor], locations: NDArray[np.float64]) -> None:
+        self._sp_call("UWorld", "set_actor_locations", {"actors": actors, "locations": locations}, "None")
+
     def get_actor_count(self) -> int:
         return cast("int", self._sp_call("UWorld", "get_actor_count", {}, "int"))
 
