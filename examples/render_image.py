@@ -1,9 +1,9 @@
-"""Render every camera modality of a small apartment-like room and write one labelled contact sheet.
+"""Render every camera modality of the default apartment scene and write one labelled contact sheet.
 
-The room is built here from basic shapes (floor, walls, a table, boxes, a lamp; several materials and
-lights); pass --scene to render a scene file instead (UWorld.load_scene). A camera renders all 14
-modalities in one frame; each is visualised (ids in random colours, depth and normals mapped, HDR images
-tone-mapped) and tiled into one PNG.
+By default the built-in scene assets/scenes/apartment.json is loaded (UWorld.load_scene); --scene picks
+another scene file, and --room builds a small room from basic shapes here instead. A camera renders all
+14 modalities in one frame; each is visualised (ids in random colours, depth and normals mapped, HDR
+images tone-mapped) and tiled into one PNG.
 
     PYTHONPATH=python /usr/bin/python3 examples/render_image.py [--out out/render_image.png]
 """
@@ -20,6 +20,7 @@ from PIL import Image, ImageDraw  # type: ignore[import]  # Debian ships no Pill
 import spear
 
 WIDTH, HEIGHT = 480, 360
+DEFAULT_SCENE = Path(__file__).resolve().parent.parent / "assets" / "scenes" / "apartment.json"
 
 
 def box(
@@ -151,16 +152,17 @@ def contact_sheet(pixels: spear.FCameraPixels, order: list[str], columns: int = 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
     parser.add_argument("--out", default="out/render_image.png", help="where to write the contact sheet")
-    parser.add_argument("--scene", default=None, help="a scene file to render instead of the built-in room")
+    parser.add_argument("--scene", default=str(DEFAULT_SCENE), help="the scene file to render (default: %(default)s)")
+    parser.add_argument("--room", action="store_true", help="build a room from basic shapes here instead")
     args = parser.parse_args()
 
     instance = spear.Instance()
     game = instance.get_game()
     with instance.begin_frame():
-        if args.scene:
-            game.load_scene(path=args.scene)
-        else:
+        if args.room:
             build_room(game)
+        else:
+            game.load_scene(path=args.scene)
         camera_actor = game.spawn_actor(
             uclass=spear.ACameraSensorActor, name="Camera", location=spear.FVector(-2.6, -1.6, 1.7),
             rotation=spear.FRotator(Pitch=-18.0, Yaw=22.0),

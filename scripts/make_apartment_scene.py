@@ -81,8 +81,22 @@ WOOD, PLASTER, FABRIC, METAL, TILE = (f"/Game/Materials/{m}" for m in
                                       ("M_WoodFloor", "M_Plaster", "M_Fabric", "M_Metal", "M_CeramicTile"))
 
 
+def material(rgb: tuple[float, float, float], roughness: float, metallic: float = 0.0) -> dict[str, Any]:
+    return {"BaseColor": {"R": rgb[0], "G": rgb[1], "B": rgb[2], "A": 1.0}, "Roughness": roughness,
+            "Metallic": metallic}
+
+
 def apartment() -> dict[str, Any]:
+    # The scene carries its own materials: the renderer looks slot names up in an AMaterialLibrary.
+    library = {"name": "Materials", "class": "AMaterialLibrary", "properties": {"Materials": {
+        WOOD: material((0.36, 0.2, 0.09), 0.55),
+        PLASTER: material((0.82, 0.8, 0.76), 0.9),
+        FABRIC: material((0.2, 0.3, 0.45), 0.95),
+        METAL: material((0.75, 0.75, 0.78), 0.3, metallic=1.0),
+        TILE: material((0.55, 0.62, 0.6), 0.25),
+    }}, "components": []}
     actors = [
+        library,
         mesh_actor("Floor", [mesh("Floor", CUBE, WOOD, (0, 0, -T / 2), (W, D, T))], ["structure"]),
         mesh_actor("Ceiling", [mesh("Ceiling", CUBE, PLASTER, (0, 0, H + T / 2), (W, D, T))], ["structure"]),
         mesh_actor("WallNorth", [mesh("W", CUBE, PLASTER, (W / 2 + T / 2, 0, H / 2), (T, D, H))], ["structure"]),

@@ -91,7 +91,7 @@ def test_missing_and_malformed_scenes_are_clear_errors(instance: spear.Instance,
         with pytest.raises(spear.InvalidArgumentError, match=r"scene file '.*bad.json' is not valid JSON"):
             game.load_scene(path=str(bad_json))
         with pytest.raises(spear.InvalidArgumentError,
-                           match=r"actors\[2\] 'WallNorth': component 'StaticMeshComponent': property 'Mobility': "
+                           match=r"actors\[2\] 'Ceiling': component 'StaticMeshComponent': property 'Mobility': "
                                  r"'Sideways' is not an entry of EComponentMobility"):
             game.load_scene(path=str(bad_enum))
         with pytest.raises(spear.InvalidArgumentError, match=r"actors\[0\] 'X': class 'AFoo' is not registered"):
