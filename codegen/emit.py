@@ -11,7 +11,7 @@ from typing import Any
 
 import jinja2
 
-from codegen import naming
+from codegen import naming, specifiers
 from codegen.model import Class, Enum, Function, Module, Param, Property
 
 TEMPLATES = Path(__file__).resolve().parent.parent / "templates"
@@ -151,7 +151,7 @@ def _class_view(c: Class) -> dict[str, Any]:
         "abstract": _bool(c.abstract),
         "create": c.kind == "class" and not c.abstract,
         "is_struct": c.kind == "struct",
-        "typed_dict": any(k == "TypedDict" for k, _ in c.specifiers),
+        "typed_dict": specifiers.has(c.specifiers, "TypedDict"),
         "properties": [_property_view(c, p) for p in c.properties],
         "functions": [_function_view(c, f) for f in c.functions],
         "doc": c.doc,

@@ -5,8 +5,8 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from codegen import naming
-from codegen.model import Class, Function, Module, Property, TypeRef
+from codegen import naming, specifiers
+from codegen.model import Class, Function, Module, Property
 
 
 def _typevar(base: str) -> str:
@@ -113,7 +113,7 @@ def module_view(module: Module) -> dict[str, Any]:
     object_names = {c.name for c in module.classes if c.kind == "class"} | _foreign_objects(module)
     for c in naming.topo_classes(module):
         if c.kind == "struct":
-            typed_dict = any(k == "TypedDict" for k, _ in c.specifiers)
+            typed_dict = specifiers.has(c.specifiers, "TypedDict")
             structs.append({
                 "name": c.name,
                 "typed_dict": typed_dict,
@@ -174,10 +174,6 @@ def api_hash(module: Module) -> str:
     import hashlib
 
     return hashlib.sha256(module.to_json().encode()).hexdigest()[:16]
-
-
-def struct_field_type(t: TypeRef) -> str:
-    return naming.py_type(t)
 
 
 def _foreign_objects(module: Module) -> set[str]:
