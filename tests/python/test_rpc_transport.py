@@ -194,3 +194,27 @@ def test_read_pixels_lands_in_the_segment_the_client_maps(server: LaunchedServer
         assert np.array_equal(again["depth"], pixels["depth"])
         instance.get_game()  # any request: the server releases the segments of the last reply
         assert not [n for n in os.listdir("/dev/shm") if n.startswith(f"spear-{server.process.pid}-")]
+
+
+def test_shared_memory_is_released_when_either_side_dies() -> None:
+    # The server dies (SIGKILL) right after sending an array through shared memory: the client removed
+    # the segment's name as soon as it mapped it, so nothing stays under /dev/shm.
+    launched = LaunchedServer(fixed_delta_seconds=1 / 60)
+    connection = RpcConnection(launched.address)
+    array = connection.request("echo", value=np.ones((512, 512), np.float32))
+    launched.process.kill()
+    launched.process.wait()
+    assert float(array.sum()) == 512 * 512  # the mapping outlives the name and the process
+    assert not [n for n in os.listdir("/dev/shm") if n.startswith(f"spear-{launched.process.pid}-")]
+    connection.close()
+    launched.close()
+    # A client dies holding a request's array in a segment of its own: the next server start sweeps it.
+    script = (
+        "import os, sys, numpy as np; sys.path.insert(0, %r); from spear._wire import OutgoingSegments; "
+        "OutgoingSegments().create(np.ones(100000)); os._exit(0)" % str(Path(spear.__file__).parent.parent)
+    )
+    subprocess.run([sys.executable, "-c", script], check=True)
+    leftovers = [n for n in os.listdir("/dev/shm") if n.startswith("spear-")]
+    assert leftovers, "the dead client's segment should exist before the sweep"
+    LaunchedServer(fixed_delta_seconds=1 / 60).close()  # a server start removes segments of dead processes
+    assert not [n for n in os.listdir("/dev/shm") if n.startswith("spear-") and n in leftovers]
