@@ -110,7 +110,7 @@ void Dispatcher::handleOne(const msgpack::object& request, Session& session,
                 handleOne(calls.via.array.ptr[i], session, out, toShm);
             return;
         }
-        Value result = execute(op, request, session, toShm, nullptr);
+        Value result = execute(op, request, session);
         out.pack_map(2);
         out.pack(std::string("id"));
         id ? out.pack(*id) : out.pack_nil();
@@ -126,8 +126,7 @@ void Dispatcher::handleOne(const msgpack::object& request, Session& session,
     }
 }
 
-Value Dispatcher::execute(const std::string& op, const msgpack::object& request, Session& session,
-                          const ArrayToSharedMemory&, msgpack::packer<msgpack::sbuffer>*) {
+Value Dispatcher::execute(const std::string& op, const msgpack::object& request, Session& session) {
     if (op == "hello") {
         const std::string clientHash = requireString(request, "api_hash", "hello");
         const msgpack::object* token = field(request, "token");

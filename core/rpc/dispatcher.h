@@ -43,8 +43,7 @@ class Dispatcher {
                 const ArrayToSharedMemory& toShm);
 
   private:
-    reflect::Value execute(const std::string& op, const msgpack::object& request, Session& session,
-                           const ArrayToSharedMemory& toShm, msgpack::packer<msgpack::sbuffer>* batchOut);
+    reflect::Value execute(const std::string& op, const msgpack::object& request, Session& session);
     void handleOne(const msgpack::object& request, Session& session, msgpack::packer<msgpack::sbuffer>& out,
                    const ArrayToSharedMemory& toShm);
 
