@@ -5,6 +5,8 @@
 #include "core/base/error.h"
 #include "core/reflect/object_base.h"
 #include "core/world/actor.h"
+#include "core/world/mesh_geometry.h"
+#include "core/world/static_mesh_component.h"
 #include "core/world/world.h"
 
 namespace sp::world {
@@ -27,9 +29,15 @@ UPrimitiveComponent* componentOfTag(uint64_t tag) {
 constexpr double kMinHalfExtent = 1e-3;
 
 physics::Shape makeShape(ECollisionPrimitive primitive, const Eigen::Vector3d& halfExtents,
-                         const Eigen::Vector3d& scale) {
+                         const Eigen::Vector3d& scale, const std::string& mesh) {
     const Eigen::Vector3d he = halfExtents.cwiseMax(kMinHalfExtent);
     switch (primitive) {
+    case ECollisionPrimitive::ConvexHull:
+        return physics::Shape::convexHull(loadMeshGeometry(mesh, "physics")->vertices).scaled(scale);
+    case ECollisionPrimitive::TriangleMesh: {
+        const auto geometry = loadMeshGeometry(mesh, "physics");
+        return physics::Shape::triangleMesh(geometry->vertices, geometry->indices).scaled(scale);
+    }
     case ECollisionPrimitive::Sphere:
         return physics::Shape::sphere(he.maxCoeff()).scaled(scale);
     case ECollisionPrimitive::Cylinder:
@@ -59,7 +67,8 @@ bool isMovable(const UPrimitiveComponent& component) {
 // no mass) leave the body kinematic here; SetSimulatePhysics() reports them as errors instead.
 bool wantsSimulation(const UPrimitiveComponent& component, ECollisionPrimitive primitive) {
     return component.bSimulatePhysics && isMovable(component) && primitive != ECollisionPrimitive::Plane &&
-           primitive != ECollisionPrimitive::NoCollision && component.MassInKg > 0.0;
+           primitive != ECollisionPrimitive::TriangleMesh && primitive != ECollisionPrimitive::NoCollision &&
+           component.MassInKg > 0.0;
 }
 
 } // namespace
@@ -136,6 +145,10 @@ void PhysicsSubsystem::syncEntry(Entry& entry) {
         key.halfExtents = bounds.sizes() / 2.0;
         key.scale = component.GetComponentScale().toEigen();
         key.isStatic = !isMovable(component);
+        if (key.primitive == ECollisionPrimitive::ConvexHull ||
+            key.primitive == ECollisionPrimitive::TriangleMesh)
+            if (const auto* mesh = dynamic_cast<const UStaticMeshComponent*>(&component))
+                key.mesh = mesh->StaticMesh;
     }
     const FTransform transform = component.GetComponentTransform();
     // A static body is rebuilt rather than moved: only an attach parent moving can move it in play.
@@ -163,7 +176,7 @@ void PhysicsSubsystem::rebuildBody(Entry& entry, const ShapeKey& key) {
         return;
     try {
         physics::BodyDesc desc;
-        desc.shape = makeShape(key.primitive, key.halfExtents, key.scale);
+        desc.shape = makeShape(key.primitive, key.halfExtents, key.scale, key.mesh);
         desc.pose = poseOf(entry.syncedTransform);
         desc.mobility = key.isStatic ? physics::Mobility::Static : physics::Mobility::Movable;
         desc.simulatePhysics = wantsSimulation(component, key.primitive);
@@ -174,6 +187,10 @@ void PhysicsSubsystem::rebuildBody(Entry& entry, const ShapeKey& key) {
         desc.angularDamping = component.AngularDamping;
         desc.tag = tagOf(component);
         entry.body = physicsWorld_.addBody(desc);
+    } catch (const NotFound& error) { // a mesh file that is not there: retried and reported each sync
+        entry.shape = ShapeKey{};
+        entry.shape.primitive = ECollisionPrimitive::FromMesh;
+        SP_THROW(NotFound, "physics of ", component.GetDebugName(), ": ", error.what());
     } catch (const InvalidArgument& error) {
         // Forget the shape so that the next sync retries (and reports) once the settings are fixed.
         entry.shape = ShapeKey{};

@@ -59,6 +59,7 @@ class PhysicsSubsystem : public WorldSubsystem {
         Eigen::Vector3d halfExtents = Eigen::Vector3d::Zero();
         Eigen::Vector3d scale = Eigen::Vector3d::Ones();
         bool isStatic = false;
+        std::string mesh; // the mesh file, for ConvexHull and TriangleMesh
         bool operator==(const ShapeKey&) const = default;
     };
     struct Entry {

@@ -11,7 +11,8 @@
 /// Which collision geometry a primitive component gets in the physics world.
 SPENUM()
 enum class ECollisionPrimitive : uint8_t {
-    /// The shape of the mesh: Cube is a box, Sphere a sphere, Cylinder a cylinder, Plane a plane.
+    /// The shape of the mesh: Cube is a box, Sphere a sphere, Cylinder a cylinder, Plane a plane; a mesh
+    /// file is its convex hull when it simulates physics and its triangles otherwise.
     FromMesh = 0,
     /// A box filling the mesh bounds.
     Box = 1,
@@ -23,6 +24,10 @@ enum class ECollisionPrimitive : uint8_t {
     Plane = 4,
     /// No collision: the component has no body, is not simulated and is not hit by traces.
     NoCollision = 5,
+    /// The convex hull of a mesh file's vertices (what a simulated mesh file collides as).
+    ConvexHull = 6,
+    /// The triangles of a mesh file; static or kinematic only (what an unsimulated mesh file collides as).
+    TriangleMesh = 7,
 };
 
 /// A scene component that has geometry.

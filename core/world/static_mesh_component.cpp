@@ -4,6 +4,7 @@
 #include <string_view>
 
 #include "core/base/error.h"
+#include "core/world/mesh_geometry.h"
 
 namespace {
 // Built-in shapes, unit sized like UE's BasicShapes but in metres, centred on the origin.
@@ -30,7 +31,8 @@ const BasicShape* findBasicShape(std::string_view mesh) {
 } // namespace
 
 bool UStaticMeshComponent::SetStaticMesh(const std::string& NewMesh) {
-    if (!NewMesh.empty() && !findBasicShape(NewMesh))
+    if (!NewMesh.empty() && !findBasicShape(NewMesh) &&
+        !(sp::world::isMeshFile(NewMesh) && sp::world::findMeshGeometry(NewMesh)))
         return false;
     StaticMesh = NewMesh;
     return true;
@@ -45,6 +47,10 @@ void UStaticMeshComponent::SetMaterial(int ElementIndex, const std::string& Mate
 }
 
 Eigen::AlignedBox3d UStaticMeshComponent::GetLocalBounds() const {
+    if (sp::world::isMeshFile(StaticMesh)) {
+        const auto geometry = sp::world::findMeshGeometry(StaticMesh);
+        return geometry ? geometry->bounds : Eigen::AlignedBox3d{};
+    }
     const BasicShape* shape = findBasicShape(StaticMesh);
     if (!shape)
         return {};
@@ -52,6 +58,10 @@ Eigen::AlignedBox3d UStaticMeshComponent::GetLocalBounds() const {
 }
 
 ECollisionPrimitive UStaticMeshComponent::GetMeshCollisionPrimitive() const {
+    // A mesh file simulates as its convex hull (Bullet needs a convex shape for a dynamic body) and
+    // otherwise, static or kinematic, collides as its triangles, which also suits flat meshes.
+    if (sp::world::isMeshFile(StaticMesh))
+        return bSimulatePhysics ? ECollisionPrimitive::ConvexHull : ECollisionPrimitive::TriangleMesh;
     const BasicShape* shape = findBasicShape(StaticMesh);
     return shape ? shape->collision : ECollisionPrimitive::NoCollision;
 }

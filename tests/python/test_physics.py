@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 import spear
@@ -212,3 +214,40 @@ def test_a_simulated_body_stops_when_simulation_is_turned_off(instance: spear.In
     with instance.begin_frame():
         assert cube.GetActorLocation() == held
         assert not cube.StaticMeshComponent.IsSimulatingPhysics()
+
+
+def write_obj(path: Path, vertices: list[tuple[float, float, float]], faces: list[tuple[int, ...]]) -> str:
+    lines = [f"v {x} {y} {z}" for x, y, z in vertices] + ["f " + " ".join(str(i + 1) for i in f) for f in faces]
+    path.write_text("\n".join(lines) + "\n")
+    return str(path)
+
+
+def test_mesh_files_collide_as_convex_hulls_when_simulated_and_as_triangles_otherwise(
+        instance: spear.Instance, tmp_path: Path) -> None:
+    # An octahedron (vertices at +-0.3 on each axis) falls onto a static ground made of two triangles.
+    octahedron = write_obj(tmp_path / "octahedron.obj",
+                           [(0.3, 0, 0), (-0.3, 0, 0), (0, 0.3, 0), (0, -0.3, 0), (0, 0, 0.3), (0, 0, -0.3)],
+                           [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)])
+    ground = write_obj(tmp_path / "ground.obj", [(-5, -5, 0), (5, -5, 0), (5, 5, 0), (-5, 5, 0)], [(0, 1, 2), (0, 2, 3)])
+    game = instance.get_game()
+    with instance.begin_frame():
+        floor = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Ground", location=spear.FVector(Z=1.0))
+        assert floor.StaticMeshComponent.SetStaticMesh(NewMesh=ground)
+        floor.StaticMeshComponent.SetMobility(NewMobility=spear.EComponentMobility.Static)
+        body = spawn_body(game, "Octahedron", octahedron, spear.FVector(Z=2.0))
+        extent = body.GetActorBounds(bOnlyCollidingComponents=True).BoxExtent  # from the file's vertices (float32)
+        assert (extent.X, extent.Y, extent.Z) == pytest.approx((0.3, 0.3, 0.3), abs=1e-6)
+        assert not body.StaticMeshComponent.SetStaticMesh(NewMesh=str(tmp_path / "missing.obj"))
+    with instance.end_frame():
+        pass
+    instance.step(num_frames=180)
+    with instance.begin_frame():
+        # Resting on a vertex (a corner is the lowest point however it lands), so between 1 + 0.3/sqrt(3)
+        # (a face down) and 1 + 0.3 (a vertex down); a hull of the mesh, not its bounding box.
+        z = body.GetActorLocation().Z
+        assert 1.0 + 0.3 / 3 ** 0.5 - 2e-3 <= z <= 1.0 + 0.3 + 2e-3
+        assert not body.StaticMeshComponent.IsAnyRigidBodyAwake()
+        hit = game.line_trace_single(start=spear.FVector(3, 3, 5), end=spear.FVector(3, 3, -5))
+        assert hit.ReturnValue and hit.actor == floor and abs(hit.hit.Location.Z - 1.0) < 1e-6
+    with instance.end_frame():
+        pass

@@ -37,6 +37,8 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECollisionPrimi
             {"Cylinder", 3},
             {"Plane", 4},
             {"NoCollision", 5},
+            {"ConvexHull", 6},
+            {"TriangleMesh", 7},
         },
     };
     return info;

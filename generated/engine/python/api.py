@@ -96,6 +96,8 @@ class ECollisionPrimitive(enum.IntEnum):
     Cylinder = 3
     Plane = 4
     NoCollision = 5
+    ConvexHull = 6
+    TriangleMesh = 7
 
 
 class EComponentMobility(enum.IntEnum):

@@ -110,7 +110,9 @@ class ECollisionPrimitive(enum.IntEnum):
     """Which collision geometry a primitive component gets in the physics world."""
 
     FromMesh = 0
-    """The shape of the mesh: Cube is a box, Sphere a sphere, Cylinder a cylinder, Plane a plane."""
+    """The shape of the mesh: Cube is a box, Sphere a sphere, Cylinder a cylinder, Plane a plane; a mesh
+    file is its convex hull when it simulates physics and its triangles otherwise.
+    """
     Box = 1
     """A box filling the mesh bounds."""
     Sphere = 2
@@ -121,6 +123,10 @@ class ECollisionPrimitive(enum.IntEnum):
     """A two-sided rectangle across the mesh bounds at their centre height; cannot be simulated."""
     NoCollision = 5
     """No collision: the component has no body, is not simulated and is not hit by traces."""
+    ConvexHull = 6
+    """The convex hull of a mesh file's vertices (what a simulated mesh file collides as)."""
+    TriangleMesh = 7
+    """The triangles of a mesh file; static or kinematic only (what an unsimulated mesh file collides as)."""
 
 
 class EComponentMobility(enum.IntEnum):
