@@ -9,7 +9,7 @@ install_dependencies
 say "check: committed generated/ matches the reflected headers"
 mapfile -t headers < <(grep -v '^#' "$ROOT/core/world/reflected_headers.txt")
 (cd "$ROOT" && "$PYTHON" -m codegen check --module engine --root . --out generated \
-    --include-dir /usr/include/eigen3 "${headers[@]}")
+    --include-dir /usr/include/eigen3 --blueprint-dir assets/blueprints "${headers[@]}")
 
 build
 

@@ -21,6 +21,7 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--include-dir", type=Path, action="append", default=[], help="extra include directory")
     p.add_argument("--define", action="append", default=[], help="extra preprocessor definition")
     p.add_argument("--stamp", type=Path, help="file to touch after a successful generate (for build systems)")
+    p.add_argument("--blueprint-dir", type=Path, help="blueprint assets (*.json) to emit typed classes for")
     p.add_argument("headers", nargs="+", type=Path)
     return p
 
@@ -44,6 +45,11 @@ def main(argv: list[str] | None = None) -> int:
     try:
         module = scan(args.module, headers, ScanOptions(root=root, include_dirs=tuple(args.include_dir),
                                                         defines=tuple(args.define)))
+        if args.blueprint_dir:
+            from codegen.blueprints import add_blueprints
+
+            directory = args.blueprint_dir if args.blueprint_dir.is_absolute() else root / args.blueprint_dir
+            module = add_blueprints(module, directory, root)
     except GeneratorError as e:
         print(e, file=sys.stderr)
         return 1

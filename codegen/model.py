@@ -97,6 +97,16 @@ class Enum:
 
 
 @dataclass(frozen=True)
+class Blueprint:
+    """A data-defined class: an asset naming a native parent (core/world/blueprint.h)."""
+
+    name: str
+    parent: str
+    doc: str
+    asset: str  # relative to the project root
+
+
+@dataclass(frozen=True)
 class Module:
     """Everything reflected in one set of headers (the engine, or one plugin)."""
 
@@ -105,6 +115,7 @@ class Module:
     classes: tuple[Class, ...] = ()
     enums: tuple[Enum, ...] = ()
     imports: tuple[str, ...] = field(default=())  # modules whose types this one uses (plugins import "engine")
+    blueprints: tuple[Blueprint, ...] = ()
 
     def to_json(self) -> str:
         return json.dumps(dataclasses.asdict(self), indent=1, sort_keys=True) + "\n"
@@ -163,5 +174,6 @@ def _module_from_dict(d: dict[str, Any]) -> Module:
         for e in d["enums"]
     )
     return Module(
-        name=d["name"], headers=tuple(d["headers"]), classes=tuple(classes), enums=enums, imports=tuple(d["imports"])
+        name=d["name"], headers=tuple(d["headers"]), classes=tuple(classes), enums=enums, imports=tuple(d["imports"]),
+        blueprints=tuple(Blueprint(**b) for b in d.get("blueprints", [])),
     )

@@ -149,14 +149,18 @@ def module_view(module: Module) -> dict[str, Any]:
         }
         for e in module.enums
     ]
-    names = sorted([e.name for e in module.enums] + [c.name for c in module.classes])
+    names = sorted([e.name for e in module.enums] + [c.name for c in module.classes] +
+                   [b.name for b in module.blueprints])
     # Types of other modules (a plugin's API mentions AActor, FVector, ...) come from the engine's API.
     foreign = sorted(naming.referenced_names(module) - set(names)) if module.name != "engine" else []
     # A local class whose parent is foreign derives its Async and Send views from the parent's.
     foreign_parents = {c.parent for c in module.classes if c.kind == "class" and c.parent in foreign}
     foreign = sorted(set(foreign) | {f"{p}{suffix}" for p in foreign_parents for suffix in ("Async", "Send")})
     foreign_stub = foreign
+    blueprint_views = [{"name": b.name, "parent": b.parent, "asset": b.asset,
+                        "doc_literal": repr(b.doc), "doc": naming.py_docstring(b.doc, "")} for b in module.blueprints]
     return {
+        "blueprints": blueprint_views,
         "foreign_names": foreign,
         "foreign_stub_names": foreign_stub,
         "value_names": sorted([e.name for e in module.enums] + [c.name for c in module.classes if c.kind == "struct"]),

@@ -76,14 +76,18 @@ namespace pybind11::detail {
 bool type_caster<sp::pybind::ClassArg>::load(handle src, bool) {
     if (src.is_none()) {
         value.name.clear();
+        value.asset.clear();
         return true;
     }
     if (PyUnicode_Check(src.ptr())) {
         value.name = src.cast<std::string>();
+        value.asset.clear();
         return !value.name.empty();
     }
     if (PyType_Check(src.ptr()) && hasattr(src, "__sp_class__")) {
         value.name = src.attr("__sp_class__").cast<std::string>();
+        value.asset =
+            hasattr(src, "__sp_asset__") ? src.attr("__sp_asset__").cast<std::string>() : std::string();
         return true;
     }
     return false;

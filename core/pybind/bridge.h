@@ -24,9 +24,10 @@ namespace sp::pybind {
 // A class argument as Python passes it: a class object carrying __sp_class__, or a class name. The name
 // is resolved by Bridge::in(), where the calling function is known for the error message.
 struct ClassArg {
-    std::string name; // empty for None
+    std::string name;  // empty for None
+    std::string asset; // a generated blueprint class's asset (__sp_asset__), loaded on first use
     const reflect::TypeInfo* resolve(std::string_view context) const {
-        return name.empty() ? nullptr : &reflect::Registry::get().getClass(name, context);
+        return name.empty() ? nullptr : &reflect::Registry::get().getClass(name, context, asset);
     }
 };
 

@@ -38,7 +38,10 @@ reflect::Value toValue(py::handle object, std::string_view context) {
         return Value(reflect::ObjectHandle{handle.first, handle.second});
     }
     if (PyType_Check(object.ptr()) && py::hasattr(object, "__sp_class__"))
-        return Value(reflect::ClassName{object.attr("__sp_class__").cast<std::string>()});
+        return Value(reflect::ClassName{object.attr("__sp_class__").cast<std::string>(),
+                                        py::hasattr(object, "__sp_asset__")
+                                            ? object.attr("__sp_asset__").cast<std::string>()
+                                            : std::string()});
     if (py::hasattr(object, "__dataclass_fields__") && py::hasattr(object, "__sp_class__")) {
         static const py::object dataclassFields = py::module_::import("dataclasses").attr("fields");
         Value::Dict fields;

@@ -152,7 +152,7 @@ template <> struct ValueCodec<const UClass*> {
         if (v.isNone())
             return nullptr;
         if (const ClassName* c = v.tryAs<ClassName>())
-            return &Registry::get().getClass(c->name, context);
+            return &Registry::get().getClass(c->name, context, c->asset);
         if (const std::string* s = v.tryAs<std::string>())
             return &Registry::get().getClass(*s, context);
         throwTypeMismatch(context, "a class", v);

@@ -31,8 +31,15 @@ const EnumInfo* Registry::findEnum(std::string_view name) const {
     return it == enums_.end() ? nullptr : it->second;
 }
 
-const TypeInfo& Registry::getClass(std::string_view name, std::string_view context) const {
+const TypeInfo& Registry::getClass(std::string_view name, std::string_view context,
+                                   const std::string& asset) const {
     const TypeInfo* type = findType(name);
+    if (!type && !asset.empty() && loader_) {
+        const TypeInfo& loaded = loader_(asset, context);
+        SP_CHECK(loaded.name == name, InvalidArgument, context, ": asset '", asset, "' defines class '",
+                 loaded.name, "', not '", name, "'");
+        type = &loaded;
+    }
     SP_CHECK(type && type->kind == TypeInfo::Kind::Class, NotFound, context, ": class '", name,
              "' is not registered");
     return *type;

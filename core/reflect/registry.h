@@ -23,7 +23,13 @@ class Registry {
     const TypeInfo* findType(std::string_view name) const;
     const EnumInfo* findEnum(std::string_view name) const;
     // Throws NotFound: "<context>: class 'AFoo' is not registered".
-    const TypeInfo& getClass(std::string_view name, std::string_view context) const;
+    // With `asset`, a class that is not registered yet is loaded from that file by the class loader
+    // (blueprints: the engine installs sp::world::loadBlueprint).
+    const TypeInfo& getClass(std::string_view name, std::string_view context,
+                             const std::string& asset = "") const;
+
+    using ClassLoader = const TypeInfo& (*)(const std::string& asset, std::string_view context);
+    void setClassLoader(ClassLoader loader) { loader_ = loader; }
 
     std::vector<const TypeInfo*> types() const; // sorted by name
     std::vector<const EnumInfo*> enums() const;
@@ -32,6 +38,7 @@ class Registry {
   private:
     std::map<std::string, const TypeInfo*, std::less<>> types_;
     std::map<std::string, const EnumInfo*, std::less<>> enums_;
+    ClassLoader loader_ = nullptr;
 };
 
 } // namespace sp::reflect

@@ -28,6 +28,7 @@ std::string toString(ObjectHandle handle);
 // A reference to a reflected class by name (UClass* / TSubclassOf<T> across the boundary).
 struct ClassName {
     std::string name;
+    std::string asset = {}; // a blueprint's asset file, loaded when the class is not registered yet
     friend bool operator==(const ClassName&, const ClassName&) = default;
 };
 

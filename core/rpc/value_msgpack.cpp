@@ -166,8 +166,14 @@ Value unpack(const msgpack::object& in, std::string_view context) {
             std::memcpy(&handle.generation, data + 4, 4);
             return Value(handle);
         }
-        if (type == kExtClass)
-            return Value(reflect::ClassName{std::string(data, strnlen(data, size))});
+        if (type == kExtClass) { // "name", "name\0native" (server to client) or "name\0\0asset" (a blueprint)
+            const std::string body(data, size);
+            const size_t first = body.find('\0');
+            const size_t second = first == std::string::npos ? first : body.find('\0', first + 1);
+            return Value(reflect::ClassName{body.substr(0, first), second == std::string::npos
+                                                                       ? std::string()
+                                                                       : body.substr(second + 1)});
+        }
         if (type == kExtArray)
             return Value(unpackArray(in, context));
         SP_THROW(InvalidArgument, context, ": unknown extension type ", int(type));

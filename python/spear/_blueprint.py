@@ -7,9 +7,21 @@ blueprint's name, which makes it work as uclass= on both transports. One class p
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from spear._object import SpObject
 
 _CLASSES: dict[str, type[SpObject]] = {}
+
+
+def declare(name: str, parent: type[SpObject], asset: str, doc: str) -> type[SpObject]:
+    """A blueprint class the generator found an asset for (api.py): typed as its parent's class, and
+    loaded from `asset` (relative to the project root) the first time it is used as uclass=."""
+    path = Path(__file__).resolve().parents[2] / asset
+    cls = type(name, (parent,), {"__sp_class__": name, "__sp_asset__": str(path), "__slots__": (),
+                                 "__module__": "spear", "__doc__": doc})
+    _CLASSES[name] = cls
+    return cls
 
 
 def blueprint_class(name: str, native: str) -> type[SpObject]:

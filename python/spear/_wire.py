@@ -115,7 +115,9 @@ def encode(value: Any, segments: OutgoingSegments) -> Any:
             raise TypeError(f"{type(value).__name__} is not an engine object of this connection")
         return msgpack.ExtType(EXT_OBJECT, struct.pack("<II", handle[0], handle[1]))
     if isinstance(value, type) and hasattr(value, "__sp_class__"):
-        return msgpack.ExtType(EXT_CLASS, value.__sp_class__.encode())
+        asset = getattr(value, "__sp_asset__", "")  # a generated blueprint class: the server loads it if needed
+        body = f"{value.__sp_class__}\0\0{asset}" if asset else value.__sp_class__
+        return msgpack.ExtType(EXT_CLASS, body.encode())
     if isinstance(value, np.ndarray):
         return _encode_array(value, segments)
     if dataclasses.is_dataclass(value) and hasattr(value, "__sp_class__"):

@@ -96,3 +96,23 @@ def test_ir_json_round_trips_and_records_the_facts() -> None:
     assert sample.kind == "struct" and [p.default_cpp for p in sample.properties][:2] == ["{1.0, 2.0, 3.0}", "EChannel::Green"]
     assert "tests/codegen/cases/all_types/input.h" in module.headers
     assert "/" not in module.headers[0][:1], "IR paths are relative to the project root"
+
+
+@pytest.mark.parametrize("case, expected", [
+    ("bad_parent", "tests/codegen/negative_blueprints/bad_parent/BP_Bad.json:4: error: blueprint parent "
+                   "'ANoSuchActor' is not a reflected class of module 'engine'"),
+    ("bad_json", "tests/codegen/negative_blueprints/bad_json/BP_Broken.json:5: error: blueprint is not valid "
+                 "JSON: Expecting ',' delimiter"),
+])
+def test_rejected_blueprint_asset(case: str, expected: str, tmp_path: Path) -> None:
+    import subprocess
+
+    from codegen_runner import EIGEN
+
+    result = subprocess.run(
+        [sys.executable, "-m", "codegen", "generate", "--module", "engine", "--root", str(ROOT), "--out", str(tmp_path),
+         "--include-dir", EIGEN, "--blueprint-dir", f"tests/codegen/negative_blueprints/{case}", *engine_headers()],
+        cwd=ROOT, capture_output=True, text=True, check=False,
+    )
+    assert result.returncode == 1
+    assert result.stderr.strip().splitlines()[-1] == expected

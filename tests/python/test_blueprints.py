@@ -145,3 +145,20 @@ def test_load_class_errors_name_the_file_and_the_field(instance: spear.Instance,
         with pytest.raises(spear.NotFoundError, match=re.escape("class 'BP_Never' is not registered")):
             game.spawn_actor(uclass="BP_Never")
         assert game.get_actor_count() == 0  # nothing half-made was left in the world
+
+
+def test_generated_blueprint_classes_work_without_load_class(instance: spear.Instance) -> None:
+    # The generator typed every asset under assets/blueprints as its parent class; using one as uclass=
+    # loads it on first use, on either transport.
+    game = instance.get_game()
+    with instance.begin_frame():
+        crate = game.spawn_actor(uclass=spear.BP_Crate, location=spear.FVector(Z=2.0))
+        assert isinstance(crate, spear.AStaticMeshActor)
+        assert crate.GetClassName() == "BP_Crate"
+        assert game.find_actors_by_class(uclass=spear.BP_Crate) == [crate]
+        assert game.load_class(uclass=spear.AStaticMeshActor, name="BP_Crate") is spear.BP_Crate
+        axes = game.spawn_actor(uclass=spear.BP_Axes)
+        assert axes.GetClassName() == "BP_Axes" and len(axes.K2_GetComponents()) == 4
+    with instance.end_frame():
+        pass
+    assert spear.BP_Crate.__doc__ and "crate" in spear.BP_Crate.__doc__

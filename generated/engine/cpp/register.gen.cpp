@@ -67,4 +67,4 @@ void spear_register_engine_types() {
     registry.add(UWorld::StaticClass());
 }
 
-const char* spear_register_engine_types_api_hash() { return "83a380eccd8eb7d1"; }
+const char* spear_register_engine_types_api_hash() { return "97089683c47a8185"; }

@@ -25,6 +25,8 @@ __all__ = [
     "ASpotLight",
     "AStaticMeshActor",
     "AStereoCameraRig",
+    "BP_Axes",
+    "BP_Crate",
     "ECameraModality",
     "ECameraToneCurve",
     "ECollisionPrimitive",
@@ -1964,3 +1966,11 @@ class UWorld(UObject):
 
     def is_playing(self) -> bool:
         """Editor world only: returns true while a game world copied from this one is playing."""
+
+
+BP_Axes: type[AActor]
+"""Coordinate axes: three thin 1 m bars along X (red), Y (green) and Z (blue) from the actor's origin."""
+
+
+BP_Crate: type[AStaticMeshActor]
+"""A 0.5 m wooden crate of 12 kg that falls and tumbles under physics."""

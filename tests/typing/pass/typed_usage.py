@@ -61,3 +61,11 @@ def asynchronous(instance: spear.Instance) -> None:
     with instance.end_frame():
         assert_type(location.get(), spear.FVector)
         assert_type(actor.call_async.GetActorBounds(bOnlyCollidingComponents=True).get().Origin, spear.FVector)
+
+
+def blueprints(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    assert_type(spear.BP_Crate, type[spear.AStaticMeshActor])
+    with instance.begin_frame():
+        assert_type(game.spawn_actor(uclass=spear.BP_Crate), spear.AStaticMeshActor)
+        assert_type(game.find_actors_by_class(uclass=spear.BP_Axes), list[spear.AActor])

@@ -14,4 +14,4 @@ void spear_register_all_types_types() {
     registry.add(FSample::StaticClass());
 }
 
-const char* spear_register_all_types_types_api_hash() { return "d13fe9ee0eef0194"; }
+const char* spear_register_all_types_types_api_hash() { return "268716c3357b69ae"; }
