@@ -59,6 +59,7 @@ class TypeInfo {
     std::vector<PropertyInfo> properties; // declared by this type only; see findProperty
     std::vector<FunctionInfo> functions;
     ObjectBase* (*create)() = nullptr; // classes that can be instantiated; owned by the caller
+    std::string asset;                 // a data-defined class: the file it was loaded from
     // Set only for a data-defined class (a blueprint, core/world/blueprint.h), which has no generated code:
     // its objects are created by its native class, report this class (ObjectBase::SetDataDefinedClass), and
     // get their data-defined defaults from `initialize` once they are placed.

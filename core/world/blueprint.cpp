@@ -167,6 +167,7 @@ const reflect::TypeInfo& loadBlueprint(const std::string& path, std::string_view
     blueprint->document = std::move(document);
     reflect::TypeInfo& type = blueprint->type;
     type.name = name;
+    type.asset = key; // scene files name it, so that a scene loads its blueprints itself
     type.doc = blueprint->document.value("doc", "Blueprint " + name + " (" + path + ").");
     type.kind = reflect::TypeInfo::Kind::Class;
     type.parent = parent;

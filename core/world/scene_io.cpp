@@ -9,6 +9,7 @@
 
 #include "core/base/error.h"
 #include "core/reflect/registry.h"
+#include "core/world/blueprint.h"
 #include "core/world/world.h"
 
 namespace sp::world {
@@ -249,6 +250,8 @@ SceneJson saveScene(const UWorld& world) {
         Json entry = Json::object();
         entry["name"] = actor->GetName();
         entry["class"] = actor->GetObjectClass().name;
+        if (actor->GetObjectClass().isDataDefined())
+            entry["blueprint"] = actor->GetObjectClass().asset;
         entry["properties"] = saveProperties(*actor, where);
         Json components = Json::array();
         for (const auto& component : actor->GetComponentList()) {
@@ -299,6 +302,11 @@ void loadScene(UWorld& world, const SceneJson& scene, std::string_view source) {
         const std::string name = stringMember(entry, "name", where);
         where += " '" + name + "'";
         SP_CHECK(!byName.contains(name), InvalidArgument, where, ": the name is used by another actor");
+        // An actor of a blueprint names its asset: loading the scene loads the blueprint if needed.
+        if (const auto blueprint = entry.find("blueprint");
+            blueprint != entry.end() && blueprint->is_string() &&
+            !reflect::Registry::get().findType(stringMember(entry, "class", where)))
+            loadBlueprint(blueprint->get<std::string>(), where);
         const reflect::TypeInfo& type = classMember(entry, AActor::StaticClass(), where);
         staged.push_back(world.NewActorDeferred(type, name));
         AActor& actor = *staged.back();

@@ -162,3 +162,27 @@ def test_generated_blueprint_classes_work_without_load_class(instance: spear.Ins
     with instance.end_frame():
         pass
     assert spear.BP_Crate.__doc__ and "crate" in spear.BP_Crate.__doc__
+
+
+def test_a_scene_with_blueprint_actors_loads_its_blueprints(
+        make_instance: Any, tmp_path: Path) -> None:
+    scene = tmp_path / "crates.json"
+    first = make_instance()
+    game = first.get_game()
+    with first.begin_frame():
+        game.spawn_actor(uclass=spear.BP_Crate, name="Crate")
+        game.save_scene(path=str(scene))
+    with first.end_frame():
+        pass
+    first.close()
+    saved = json.loads(scene.read_text())["actors"][0]
+    assert saved["class"] == "BP_Crate" and saved["blueprint"].endswith("assets/blueprints/BP_Crate.json")
+    # A new engine (over RPC: a new server process, which has never loaded the blueprint).
+    second = make_instance(scene=scene)
+    with second.begin_frame():
+        crate = second.get_game().find_actor_by_name(name="Crate")
+        assert crate is not None and crate.GetClassName() == "BP_Crate"
+        second.get_game().save_scene(path=str(tmp_path / "again.json"))
+    with second.end_frame():
+        pass
+    assert (tmp_path / "again.json").read_text() == scene.read_text()  # load then save: the same bytes
