@@ -83,7 +83,6 @@ class RpcBackend:
             if self._launched:
                 self._launched.close()
             raise
-        self._frame_count = 0
 
     def world(self, kind: str) -> Any:
         from spear._rpc_types import convert
@@ -91,8 +90,7 @@ class RpcBackend:
         return convert(self.connection.request("world", kind=kind), "UWorld", self.connection)
 
     def frame(self, action: str) -> None:
-        state = self.connection.request("frame", action=action)
-        self._frame_count = int(state["frame_count"])
+        self.connection.request("frame", action=action)
 
     def frame_count(self) -> int:
         return int(self.connection.request("frame", action="state")["frame_count"])

@@ -6,15 +6,13 @@ that client. The client (the transport) implements the RpcClient protocol below.
 
 from __future__ import annotations
 
-from typing import Any, ClassVar, Protocol
+from typing import Any, Protocol
 
 from spear._object import SpObject
 
 
 class _Default:
     """Marks an argument left at its default: it is not sent, and the server applies the C++ default."""
-
-    _instance: ClassVar[_Default | None] = None
 
     def __repr__(self) -> str:
         return "<default>"
