@@ -38,6 +38,10 @@ class InvalidState : public Error {
     using Error::Error;
 };
 
+// The spear.errors class that stands for `error` in Python ("NotFoundError", ...; "SpearError" for any
+// other engine error). The in-process bindings and the RPC server both use it, so both raise the same.
+const char* pythonErrorClass(const std::exception& error);
+
 namespace detail {
 template <typename... Args> std::string concat(const Args&... args) {
     std::ostringstream out;

@@ -19,16 +19,8 @@ void registerErrorTranslator() {
         try {
             if (p)
                 std::rethrow_exception(p);
-        } catch (const StaleObject& e) {
-            raise("StaleObjectError", e);
-        } catch (const NotFound& e) {
-            raise("NotFoundError", e);
-        } catch (const InvalidArgument& e) {
-            raise("InvalidArgumentError", e);
-        } catch (const InvalidState& e) {
-            raise("InvalidStateError", e);
         } catch (const Error& e) {
-            raise("SpearError", e);
+            raise(pythonErrorClass(e), e);
         }
     });
 }

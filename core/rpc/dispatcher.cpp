@@ -45,21 +45,6 @@ reflect::ObjectBase& requireObject(const msgpack::object& request, const std::st
     return object;
 }
 
-} // namespace
-
-const char* pythonErrorType(const std::exception& e) {
-    if (dynamic_cast<const StaleObject*>(&e))
-        return "StaleObjectError";
-    if (dynamic_cast<const NotFound*>(&e))
-        return "NotFoundError";
-    if (dynamic_cast<const InvalidArgument*>(&e))
-        return "InvalidArgumentError";
-    if (dynamic_cast<const InvalidState*>(&e))
-        return "InvalidStateError";
-    return "SpearError";
-}
-
-namespace {
 void packError(msgpack::packer<msgpack::sbuffer>& out, const msgpack::object* id, const char* type,
                const std::string& message) {
     out.pack_map(2);
@@ -117,7 +102,7 @@ void Dispatcher::handleOne(const msgpack::object& request, Session& session,
         out.pack(std::string("ok"));
         pack(out, result, toShm);
     } catch (const Error& e) {
-        packError(out, id, pythonErrorType(e), e.what());
+        packError(out, id, pythonErrorClass(e), e.what());
     } catch (const std::exception& e) {
         // msgpack type errors and the like: the request was malformed, the engine is fine.
         packError(out, id, "InvalidArgumentError",

@@ -23,9 +23,6 @@
 
 namespace sp::rpc {
 
-// The spear.errors class name for an engine error ("NotFoundError", ...).
-const char* pythonErrorType(const std::exception& error);
-
 struct Session {
     bool greeted = false;
     bool closeAfterReply = false;

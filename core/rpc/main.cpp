@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
         // "<spear.errors class>: message", so that a client that launched this server raises the same
         // error the in-process engine would.
-        std::fprintf(stderr, "%s: %s\n", sp::rpc::pythonErrorType(e), e.what());
+        std::fprintf(stderr, "%s: %s\n", sp::pythonErrorClass(e), e.what());
         return 1;
     }
     return 0;
