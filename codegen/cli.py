@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import argparse
+import os
+import re
 import sys
 import time
 from pathlib import Path
@@ -22,20 +24,37 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--define", action="append", default=[], help="extra preprocessor definition")
     p.add_argument("--stamp", type=Path, help="file to touch after a successful generate (for build systems)")
     p.add_argument("--blueprint-dir", type=Path, help="blueprint assets (*.json) to emit typed classes for")
+    p.add_argument("--python-out", type=Path,
+                   help="directory of the module's Python package files (default: <out>/<module>/python)")
+    p.add_argument("--package", type=_package_name,
+                   help="the importable Python package of the module's API (default: spear._<module>)")
     p.add_argument("headers", nargs="+", type=Path)
     return p
+
+
+def _package_name(text: str) -> str:
+    if not re.fullmatch(r"[A-Za-z_]\w*(\.[A-Za-z_]\w*)*", text):
+        raise argparse.ArgumentTypeError(f"'{text}' is not a dotted Python package name")
+    return text
+
+
+def _layout(args: argparse.Namespace) -> emit.OutputLayout:
+    # abspath, not resolve(): a package directory reached through a symlink keeps the path it was given.
+    python_out = Path(os.path.abspath(args.python_out)).as_posix() if args.python_out else None
+    return emit.OutputLayout(args.module, package_name=args.package, python_out=python_out)
 
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     root = args.root.resolve()
     headers = [h if h.is_absolute() else root / h for h in args.headers]
+    layout = _layout(args)
     if args.command == "list-outputs":
         # Output names depend only on the header list, so a build system can know them before parsing.
         from codegen.model import Module
 
         module = Module(name=args.module, headers=tuple(sorted(h.resolve().relative_to(root).as_posix() for h in headers)))
-        print("\n".join(str(args.out / f) for f in emit.OutputLayout(args.module).files(module)))
+        print("\n".join(str(args.out / f) for f in layout.files(module)))
         return 0
     for h in headers:
         if not h.is_file():
@@ -56,7 +75,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.command == "dump-ir":
         sys.stdout.write(module.to_json())
         return 0
-    outputs = emit.render(module)
+    outputs = emit.render(module, layout)
     if args.command == "check":
         stale = emit.check(outputs, args.out)
         if stale:

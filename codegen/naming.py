@@ -9,6 +9,10 @@ import re
 
 from codegen.model import Class, Function, Module, Param, Property, TypeRef
 
+# The module every other one builds on: plugins derive from its classes and use its structs and enums.
+ENGINE_MODULE = "engine"
+ENGINE_PACKAGE = "spear._engine"
+
 
 # -- Python spellings ------------------------------------------------------------------------------
 

@@ -40,7 +40,8 @@ def _field_default(p: Property, enums: dict[str, str], default_cpp: str | None) 
 
 
 def api_qualified(type_string: str, object_names: set[str]) -> str:
-    """A type spelling with object classes written api.X, for the RPC module, whose own names are proxies."""
+    """A type spelling with the module's object classes written api.X, for the RPC module, whose own names
+    are proxies. (Other modules' classes keep their names: rpc.py imports them from their API module.)"""
     return re.sub(r"\b[A-Za-z_]\w*\b", lambda m: f"api.{m.group(0)}" if m.group(0) in object_names else m.group(0),
                   type_string)
 
@@ -106,11 +107,27 @@ def typevars(module: Module) -> list[dict[str, str]]:
     return [{"name": _typevar(b), "bound": b} for b in bases]
 
 
+def _proxy_parent(c: Class, foreign: set[str]) -> str:
+    """The base of a class's RPC proxy: its parent's proxy, which for another module's class (a plugin
+    actor's AActor) is imported from that module's rpc.py under a private alias."""
+    if c.parent is None:
+        return "_ObjectProxy"
+    return _proxy_alias(c.parent) if c.parent in foreign else c.parent
+
+
+def _proxy_alias(name: str) -> str:
+    return f"_{name}Proxy"
+
+
 def module_view(module: Module) -> dict[str, Any]:
     enums = {e.name: e.entries[0].name for e in module.enums}
-    structs = []
-    objects = []
-    object_names = {c.name for c in module.classes if c.kind == "class"} | _foreign_objects(module)
+    structs: list[dict[str, Any]] = []
+    objects: list[dict[str, Any]] = []
+    local_objects = {c.name for c in module.classes if c.kind == "class"}
+    names = sorted([e.name for e in module.enums] + [c.name for c in module.classes] +
+                   [b.name for b in module.blueprints])
+    # Types of other modules (a plugin's API mentions AActor, FVector, ...) come from the engine's API.
+    referenced = naming.referenced_names(module) - set(names) if module.name != naming.ENGINE_MODULE else set()
     for c in naming.topo_classes(module):
         if c.kind == "struct":
             typed_dict = specifiers.has(c.specifiers, "TypedDict")
@@ -128,18 +145,18 @@ def module_view(module: Module) -> dict[str, Any]:
             objects.append({
                 "name": c.name,
                 "parent": c.parent or "_SpObject",
-                "rpc_parent": c.parent or "_ObjectProxy",
+                "rpc_parent": _proxy_parent(c, referenced),
                 "doc": naming.py_docstring(c.doc, "    "),
                 "properties": [_property_view(p) for p in c.properties],
                 "functions": [_function_view(c, f, set(enums)) for f in c.functions],
             })
     for view in objects:
         for p in view["properties"]:
-            p["rpc_type"] = api_qualified(p["type"], object_names)
+            p["rpc_type"] = api_qualified(p["type"], local_objects)
         for f in view["functions"]:
-            f["rpc_returns"] = api_qualified(f["returns"], object_names)
-            for p in f["params"]:
-                p["rpc_type"] = api_qualified(p["type"], object_names)
+            f["rpc_returns"] = api_qualified(f["returns"], local_objects)
+            for q in f["params"]:
+                q["rpc_type"] = api_qualified(q["type"], local_objects)
     enum_views = [
         {
             "name": e.name,
@@ -149,22 +166,17 @@ def module_view(module: Module) -> dict[str, Any]:
         }
         for e in module.enums
     ]
-    names = sorted([e.name for e in module.enums] + [c.name for c in module.classes] +
-                   [b.name for b in module.blueprints])
-    # Types of other modules (a plugin's API mentions AActor, FVector, ...) come from the engine's API.
-    foreign = sorted(naming.referenced_names(module) - set(names)) if module.name != "engine" else []
     # A local class whose parent is foreign derives its Async and Send views from the parent's.
-    foreign_parents = {c.parent for c in module.classes if c.kind == "class" and c.parent in foreign}
-    foreign = sorted(set(foreign) | {f"{p}{suffix}" for p in foreign_parents for suffix in ("Async", "Send")})
-    foreign_stub = foreign
+    foreign_parents = sorted({c.parent for c in module.classes if c.parent is not None and c.parent in referenced})
+    foreign = sorted(referenced | {f"{p}{suffix}" for p in foreign_parents for suffix in ("Async", "Send")})
     blueprint_views = [{"name": b.name, "parent": b.parent, "asset": b.asset,
                         "doc_literal": repr(b.doc), "doc": naming.py_docstring(b.doc, "")} for b in module.blueprints]
     return {
         "blueprints": blueprint_views,
         "foreign_names": foreign,
-        "foreign_stub_names": foreign_stub,
         "value_names": sorted([e.name for e in module.enums] + [c.name for c in module.classes if c.kind == "struct"]),
-        "foreign_values": [n for n in foreign if n not in object_names],
+        "foreign_rpc_names": sorted(referenced),
+        "foreign_proxies": [{"name": p, "alias": _proxy_alias(p)} for p in foreign_parents],
         "structs": structs,
         "objects": objects,
         "enums": enum_views,
@@ -179,19 +191,3 @@ def api_hash(module: Module) -> str:
 
     return hashlib.sha256(module.to_json().encode()).hexdigest()[:16]
 
-
-def _foreign_objects(module: Module) -> set[str]:
-    """Object classes the module mentions but does not declare (engine classes seen from a plugin)."""
-    names = naming.referenced_names(module) - {c.name for c in module.classes} - {e.name for e in module.enums}
-    structs_and_enums = set()
-    for c in module.classes:
-        for p in c.properties:
-            if p.type.kind in ("struct", "enum"):
-                structs_and_enums.add(p.type.name)
-        for f in c.functions:
-            for t in [f.returns, *(q.type for q in f.params)]:
-                while t.args:
-                    t = t.args[0]
-                if t.kind in ("struct", "enum"):
-                    structs_and_enums.add(t.name)
-    return names - structs_and_enums

@@ -16,13 +16,14 @@ def engine_headers() -> list[str]:
     return [line for line in lines if line and not line.startswith("#")]
 
 
-def run_codegen(command: str, module: str, out: Path, headers: list[str], hash_seed: str = "0") -> subprocess.CompletedProcess[str]:
+def run_codegen(command: str, module: str, out: Path, headers: list[str], hash_seed: str = "0",
+                extra: list[str] | None = None) -> subprocess.CompletedProcess[str]:
     env = dict(os.environ, PYTHONHASHSEED=hash_seed)
     # The engine module also types the blueprint assets, as the build does.
     blueprints = ["--blueprint-dir", "assets/blueprints"] if module == "engine" else []
     return subprocess.run(
         [sys.executable, "-m", "codegen", command, "--module", module, "--root", str(ROOT), "--out", str(out),
-         "--include-dir", EIGEN, *blueprints, *headers],
+         "--include-dir", EIGEN, *blueprints, *(extra or []), *headers],
         cwd=ROOT, env=env, capture_output=True, text=True, check=False,
     )
 

@@ -14,8 +14,18 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraToneCurv
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECollisionPrimitive>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EComponentMobility>();
 
+// The module's entry points, with C linkage so that a plugin's shared library can be opened with dlopen()
+// and its entry points found with dlsym("spear_register_engine_types"); exported even where the library is built
+// with hidden visibility (as pybind11 modules are).
+extern "C" {
+
 // Registers every reflected type of the module with sp::reflect::Registry.
-void spear_register_engine_types();
+__attribute__((visibility("default"))) void spear_register_engine_types();
+
+// Removes them again, before the library that defines them is unloaded.
+__attribute__((visibility("default"))) void spear_unregister_engine_types();
 
 // The hash of this module's IR; an RPC client built from other stubs is refused on connect.
-const char* spear_register_engine_types_api_hash();
+__attribute__((visibility("default"))) const char* spear_register_engine_types_api_hash();
+
+} // extern "C"

@@ -19,12 +19,13 @@ from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
 from .api import EChannel, FImages, FSample  # structs and enums are shared with the in-process API
-from spear._engine.api import AActorAsync, AActorSend, FVector
+from spear._engine.api import AActor, FVector, UObject
+from spear._engine.rpc import AActor as _AActorProxy
 
 _: Any = (np, NDArray)
 
 
-class AAllTypes(AActor, api.AAllTypes):
+class AAllTypes(_AActorProxy, api.AAllTypes):
     __slots__ = ()
 
     @property
@@ -68,11 +69,11 @@ class AAllTypes(AActor, api.AAllTypes):
         self._sp_set("AAllTypes", "Label", value)
 
     @property
-    def Target(self) -> api.AActor | None:
-        return cast("api.AActor | None", self._sp_get("AAllTypes", "Target", "AActor | None"))
+    def Target(self) -> AActor | None:
+        return cast("AActor | None", self._sp_get("AAllTypes", "Target", "AActor | None"))
 
     @Target.setter
-    def Target(self, value: api.AActor | None) -> None:
+    def Target(self, value: AActor | None) -> None:
         self._sp_set("AAllTypes", "Target", value)
 
     @property
@@ -104,11 +105,11 @@ class AAllTypes(AActor, api.AAllTypes):
     def Split(self, *, Text: str) -> api.AAllTypes.SplitResult:
         return cast("api.AAllTypes.SplitResult", self._sp_call("AAllTypes", "Split", {"Text": Text}, "dict", api.AAllTypes.SplitResult))
 
-    def Collect(self, *, ActorClass: type[api.AActor] | str, Candidates: list[api.AActor] = _DEFAULT) -> Any:
+    def Collect(self, *, ActorClass: type[AActor] | str, Candidates: list[AActor] = _DEFAULT) -> Any:
         return self._sp_call("AAllTypes", "Collect", {"ActorClass": ActorClass, "Candidates": Candidates}, "list[AActor]")
 
-    def ClassOf(self, *, Object: api.UObject | None = _DEFAULT) -> type[api.UObject] | None:
-        return cast("type[api.UObject] | None", self._sp_call("AAllTypes", "ClassOf", {"Object": Object}, "type[UObject] | None"))
+    def ClassOf(self, *, Object: UObject | None = _DEFAULT) -> type[UObject] | None:
+        return cast("type[UObject] | None", self._sp_call("AAllTypes", "ClassOf", {"Object": Object}, "type[UObject] | None"))
 
     def Normalise(self, *, Points: NDArray[np.float32]) -> NDArray[np.float32]:
         return cast("NDArray[np.float32]", self._sp_call("AAllTypes", "Normalise", {"Points": Points}, "NDArray[np.float32]"))
@@ -119,8 +120,8 @@ class AAllTypes(AActor, api.AAllTypes):
     def Render(self, *, Names: list[str]) -> FImages:
         return cast("FImages", self._sp_call("AAllTypes", "Render", {"Names": Names}, "FImages"))
 
-    def Self(self) -> api.AActor:
-        return cast("api.AActor", self._sp_call("AAllTypes", "Self", {}, "AActor"))
+    def Self(self) -> AActor:
+        return cast("AActor", self._sp_call("AAllTypes", "Self", {}, "AActor"))
 
 
 _register_proxy(AAllTypes)
