@@ -188,10 +188,11 @@ class Scanner:
         for kind, _, decl in marked:
             self._reflected[decl.get_usr()] = kind
         wanted = {str(h.resolve()) for h in headers}
+        self._check_unique_names(marked, wanted)
         classes: list[Class] = []
         enums: list[Enum] = []
         for kind, args, decl in marked:
-            if str(Path(decl.location.file.name).resolve()) not in wanted:
+            if not self._is_local(decl, wanted):
                 continue  # reflected in another module (e.g. the engine, seen from a plugin)
             try:
                 spec = specifiers.parse(kind, args)
@@ -208,6 +209,24 @@ class Scanner:
             classes=tuple(sorted(classes, key=lambda c: c.name)),
             enums=tuple(sorted(enums, key=lambda e: e.name)),
         )
+
+    @staticmethod
+    def _is_local(decl: ci.Cursor, wanted: set[str]) -> bool:
+        """Whether the declaration belongs to this module (is in one of its headers)."""
+        return str(Path(decl.location.file.name).resolve()) in wanted
+
+    def _check_unique_names(self, marked: list[tuple[str, str, ci.Cursor]], wanted: set[str]) -> None:
+        """Reflected types are found by their unqualified name (the registry, the Python API), so a module's
+        type may not reuse the name of another reflected type, its own or another module's (a plugin's
+        AActor in its own namespace would shadow the engine's)."""
+        seen: dict[str, ci.Cursor] = {}
+        # Other modules' declarations first, so that a clash is reported at this module's declaration.
+        for _, _, decl in sorted(marked, key=lambda m: self._is_local(m[2], wanted)):
+            other = seen.setdefault(decl.spelling, decl)
+            if other is not decl and self._is_local(decl, wanted):
+                where = self._rel(other.location.file.name)
+                raise self._error(decl, f"'{decl.spelling}' is already the name of a reflected type in {where}; "
+                                  "reflected names are global (rename one)")
 
     def _enum(self, decl: ci.Cursor) -> Enum:
         entries = tuple(
