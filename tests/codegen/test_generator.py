@@ -17,6 +17,8 @@ from codegen.model import Module  # noqa: E402
 
 CASES = ROOT / "tests/codegen/cases"
 NEGATIVE = ROOT / "tests/codegen/negative"
+# Extra generator arguments of a golden case: the plugin case is generated as a plugin package would be.
+CASE_ARGS = {"plugin_actor": ["--package", "plugin_actor"]}
 
 
 def _diff(expected: bytes, actual: bytes, name: str) -> str:
@@ -28,7 +30,7 @@ def _diff(expected: bytes, actual: bytes, name: str) -> str:
 @pytest.mark.parametrize("case", sorted(p.name for p in CASES.iterdir() if p.is_dir()))
 def test_golden_case(case: str, tmp_path: Path) -> None:
     header = f"tests/codegen/cases/{case}/input.h"
-    result = run_codegen("generate", case, tmp_path, [header])
+    result = run_codegen("generate", case, tmp_path, [header], extra=CASE_ARGS.get(case))
     assert result.returncode == 0, result.stderr
     expected_dir = CASES / case / "expected"
     actual = tree(tmp_path / case)
@@ -116,3 +118,64 @@ def test_rejected_blueprint_asset(case: str, expected: str, tmp_path: Path) -> N
     )
     assert result.returncode == 1
     assert result.stderr.strip().splitlines()[-1] == expected
+
+
+PLUGIN_ARGS = ["--package", "plugin_actor"]
+PLUGIN_HEADER = "tests/codegen/cases/plugin_actor/input.h"
+
+
+def _generate_plugin_package(tmp_path: Path) -> Path:
+    """Generates the plugin case as a plugin would: its package in a directory of its own (--python-out)."""
+    packages = tmp_path / "packages"
+    args = [*PLUGIN_ARGS, "--python-out", str(packages / "plugin_actor")]
+    result = run_codegen("generate", "plugin_actor", tmp_path / "generated", [PLUGIN_HEADER], extra=args)
+    assert result.returncode == 0, result.stderr
+    return packages
+
+
+def test_listed_outputs_follow_python_out(tmp_path: Path) -> None:
+    packages = _generate_plugin_package(tmp_path)
+    args = [*PLUGIN_ARGS, "--python-out", str(packages / "plugin_actor")]
+    listed = run_codegen("list-outputs", "plugin_actor", tmp_path / "generated", [PLUGIN_HEADER], extra=args)
+    assert listed.returncode == 0, listed.stderr
+    produced = {str(p) for p in tmp_path.rglob("*") if p.is_file()}
+    assert set(listed.stdout.split()) == produced
+    assert {Path(p).name for p in produced if Path(p).parent == packages / "plugin_actor"} == {
+        "__init__.py", "api.py", "api.pyi", "rpc.py"}
+
+
+def test_plugin_package_derives_from_the_engine_api_and_proxies(tmp_path: Path) -> None:
+    import subprocess
+
+    packages = _generate_plugin_package(tmp_path)
+    # In a fresh interpreter: importing registers proxy classes, which must not leak into this process.
+    script = """
+import plugin_actor, plugin_actor.api as api, plugin_actor.rpc as rpc
+import spear._engine.api as engine_api, spear._engine.rpc as engine_rpc
+assert plugin_actor.MODULE == "plugin_actor"
+assert issubclass(api.APluginActor, engine_api.AActor)
+assert issubclass(api.APluginActorAsync, engine_api.AActorAsync)
+assert issubclass(api.APluginActorSend, engine_api.AActorSend)
+assert issubclass(rpc.APluginActor, engine_rpc.AActor) and issubclass(rpc.APluginActor, api.APluginActor)
+assert issubclass(rpc.APluginChild, rpc.APluginActor) and issubclass(rpc.APluginChild, api.APluginChild)
+"""
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(packages), str(ROOT / "python")]))
+    result = subprocess.run([sys.executable, "-c", script], cwd=tmp_path, env=env, capture_output=True, text=True,
+                            check=False)
+    assert result.returncode == 0, result.stderr
+
+
+def test_plugin_package_passes_mypy_strict(tmp_path: Path) -> None:
+    import subprocess
+
+    pytest.importorskip("mypy")
+    packages = _generate_plugin_package(tmp_path)
+    config = tmp_path / "mypy.ini"
+    # Errors inside the spear package are its own tests' business (tests/typing); here only the plugin's count.
+    config.write_text(f"[mypy]\nstrict = True\nmypy_path = {ROOT / 'python'}\ncache_dir = {tmp_path / 'cache'}\n\n"
+                      "[mypy-spear.*]\nfollow_imports = silent\n\n"
+                      "[mypy-msgpack,spear._spear_engine]\nignore_missing_imports = True\n")
+    result = subprocess.run([sys.executable, "-m", "mypy", "--config-file", str(config), "plugin_actor"],
+                            cwd=packages, capture_output=True, text=True, check=False)
+    assert result.returncode == 0, result.stdout + result.stderr
+
