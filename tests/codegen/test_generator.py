@@ -179,3 +179,41 @@ def test_plugin_package_passes_mypy_strict(tmp_path: Path) -> None:
                             cwd=packages, capture_output=True, text=True, check=False)
     assert result.returncode == 0, result.stdout + result.stderr
 
+
+def test_cmake_module_generates_a_plugin_from_another_project(tmp_path: Path) -> None:
+    """cmake/SpearCodegen.cmake included by a project outside the spear tree, as a plugin would use it."""
+    import subprocess
+
+    cmake = shutil.which("cmake")
+    if cmake is None:
+        pytest.skip("cmake is not installed")
+    from codegen_runner import EIGEN
+
+    plugin = tmp_path / "plugin"
+    (plugin / "include").mkdir(parents=True)
+    shutil.copy(ROOT / PLUGIN_HEADER, plugin / "include/plugin_actor.h")
+    (plugin / "CMakeLists.txt").write_text(f"""
+cmake_minimum_required(VERSION 3.20)
+project(plugin LANGUAGES NONE)
+set(Python3_EXECUTABLE {sys.executable})
+include({ROOT}/cmake/SpearCodegen.cmake)
+spear_generate(MODULE plugin_actor ROOT ${{PROJECT_SOURCE_DIR}} OUT_DIR generated HEADERS include/plugin_actor.h
+               INCLUDE_DIRS {ROOT} {EIGEN} PYTHON_OUT python/plugin_actor PACKAGE plugin_actor
+               OUT_VAR outputs)
+file(WRITE ${{PROJECT_BINARY_DIR}}/outputs.txt "${{outputs}}")
+add_custom_target(everything ALL DEPENDS spear_codegen_plugin_actor)
+""")
+    build = tmp_path / "build"
+    for command in ([cmake, "-S", str(plugin), "-B", str(build)], [cmake, "--build", str(build)]):
+        result = subprocess.run(command, cwd=tmp_path, capture_output=True, text=True, check=False)
+        assert result.returncode == 0, result.stdout + result.stderr
+    listed = set((build / "outputs.txt").read_text().split(";"))
+    produced = {str(p) for p in plugin.rglob("*") if p.is_file() and p.suffix != ".txt" and p.parent.name != "include"}
+    assert listed == produced
+    assert str(plugin / "python/plugin_actor/api.pyi") in listed
+    assert str(plugin / "generated/plugin_actor/cpp/plugin_actor_bindings.gen.h") in listed
+    module_cpp = (plugin / "generated/plugin_actor/cpp/module.gen.cpp").read_text()
+    assert '#include "generated/engine/cpp/engine_bindings.gen.h"' in module_cpp
+    assert '"plugin_actor.api"' in (plugin / "generated/plugin_actor/cpp/plugin_actor_bindings.gen.h").read_text()
+    reflection = Module.from_json((plugin / "generated/plugin_actor/reflection.json").read_text())
+    assert reflection.headers == ("include/plugin_actor.h",), "header paths are relative to ROOT"
