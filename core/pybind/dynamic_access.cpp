@@ -12,7 +12,6 @@ namespace sp::pybind {
 namespace py = ::pybind11;
 using reflect::Value;
 
-namespace {
 reflect::ObjectBase& resolveArgument(py::handle object, std::string_view context) {
     SP_CHECK(py::hasattr(object, "_sp_handle"), InvalidArgument, context,
              ": expected an engine object, got '", std::string(py::str(object.get_type().attr("__name__"))),
@@ -22,6 +21,8 @@ reflect::ObjectBase& resolveArgument(py::handle object, std::string_view context
     checkAccess(resolved, context);
     return resolved;
 }
+
+namespace {
 
 std::vector<std::string> splitPath(const std::string& path) {
     std::vector<std::string> parts;

@@ -4,10 +4,19 @@
 
 #include <pybind11/pybind11.h>
 
+#include <string_view>
+
+#include "core/reflect/object_base.h"
+
+#pragma GCC visibility push(default)
 namespace sp::pybind {
+
+// The engine object behind a Python object (anything with `_sp_handle`), checked alive and usable now.
+reflect::ObjectBase& resolveArgument(pybind11::handle object, std::string_view context);
 
 // Adds call_function, get_property, set_property and the class queries to `m`. `apiModule` names the
 // generated Python module whose structs and enums results are built from.
 void bindDynamicAccess(pybind11::module_& m, const char* apiModule);
 
 } // namespace sp::pybind
+#pragma GCC visibility pop

@@ -3,9 +3,15 @@
 
 #include <pybind11/pybind11.h>
 
+#include <pybind11/stl.h>
+
+#include "core/plugin/plugin_loader.h"
+#include "core/pybind/bridge.h"
 #include "core/pybind/dynamic_access.h"
 #include "core/pybind/errors.h"
 #include "core/pybind/object_ref.h"
+#include "core/pybind/value_convert.h"
+#include "core/spfunc/sp_func_call.h"
 #include "core/world/engine.h"
 #include "core/world/object_access.h"
 
@@ -17,6 +23,30 @@ namespace {
 void checkFrame(sp::reflect::ObjectBase& object, std::string_view context) {
     sp::world::checkObjectAccess(object, context);
 }
+
+// SpFuncs, in-process: arrays pass as views of the numpy buffers and come back as arrays that own the
+// C++ storage; spear._spfunc checks the bundle and handles the JSON of unreal_objs for both transports.
+py::dict callSpFunc(py::handle uobject, const std::string& name, const py::dict& arrays,
+                    std::map<std::string, std::string> unrealObjs, std::string info) {
+    const std::string context = "call_sp_func('" + name + "')";
+    sp::reflect::ObjectBase& object = sp::pybind::resolveArgument(uobject, context);
+    SpFuncDataBundle args;
+    for (auto [key, array] : arrays) {
+        sp::reflect::Value value = sp::pybind::toValue(array, context);
+        args.packed_arrays_.emplace(key.cast<std::string>(), std::move(value.as<sp::reflect::ArrayValue>()));
+    }
+    args.unreal_obj_strings_ = std::move(unrealObjs);
+    args.info_ = std::move(info);
+    SpFuncDataBundle result = sp::spfunc::call(object, name, std::move(args));
+    py::dict resultArrays;
+    for (const auto& [key, array] : result.packed_arrays_)
+        resultArrays[py::str(key)] = sp::pybind::arrayToNumpy(array);
+    py::dict out;
+    out["arrays"] = resultArrays;
+    out["unreal_objs"] = py::cast(result.unreal_obj_strings_);
+    out["info"] = py::str(result.info_);
+    return out;
+}
 } // namespace
 
 PYBIND11_MODULE(_spear_engine, m) {
@@ -25,6 +55,22 @@ PYBIND11_MODULE(_spear_engine, m) {
     sp::pybind::setAccessCheck(&checkFrame);
     spear_bind_engine(m);
     sp::pybind::bindDynamicAccess(m, "spear._engine.api");
+    m.def(
+        "_load_plugin",
+        [](const std::string& path, const std::string& apiHash) {
+            const auto& info = sp::plugin::load(path, apiHash);
+            return py::make_tuple(info.name, info.classes);
+        },
+        py::arg("path"), py::arg("api_hash"), "Loads a plugin library (use Instance.load_plugin()).");
+    m.def("_unload_plugin", &sp::plugin::unload, py::arg("name"),
+          "Unloads a plugin's classes (use Instance.unload_plugin()).");
+    m.def("_call_sp_func", &callSpFunc, "Calls an SpFunc (use obj.call_sp_func()).");
+    m.def(
+        "_get_sp_func_names",
+        [](py::handle uobject) {
+            return sp::spfunc::funcNames(sp::pybind::resolveArgument(uobject, "get_sp_func_names()"));
+        },
+        "The SpFuncs of an object (use obj.get_sp_func_names()).");
 
     using sp::world::Engine;
     py::class_<Engine>(m, "Engine", "The engine: its worlds and the frame loop.")

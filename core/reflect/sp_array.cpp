@@ -18,6 +18,27 @@ ArrayAllocatorScope::~ArrayAllocatorScope() {
     gAllocatorContext = previousContext_;
 }
 
+namespace {
+std::string shapeText(const std::vector<int64_t>& shape) {
+    std::string text = "(";
+    for (size_t i = 0; i < shape.size(); ++i)
+        text += (i ? ", " : "") + (shape[i] < 0 ? std::string("*") : std::to_string(shape[i]));
+    return text + (shape.size() == 1 ? ",)" : ")");
+}
+} // namespace
+
+std::string SpArrayBase::describeShape() const {
+    return value_.data ? shapeText(value_.shape) : std::string("None");
+}
+
+void SpArrayBase::checkShape(std::initializer_list<int64_t> expected, std::string_view what) const {
+    bool ok = value_.data && value_.shape.size() == expected.size();
+    for (size_t i = 0; ok && i < expected.size(); ++i)
+        ok = expected.begin()[i] < 0 || expected.begin()[i] == value_.shape[i];
+    SP_CHECK(ok, InvalidArgument, what, " must have shape ", shapeText(std::vector<int64_t>(expected)),
+             ", got ", describeShape());
+}
+
 ArrayValue allocateArray(DType dtype, const std::vector<int64_t>& shape) {
     for (int64_t extent : shape)
         SP_CHECK(extent >= 0, InvalidArgument, "allocateArray(): negative extent ", extent);

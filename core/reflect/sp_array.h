@@ -66,6 +66,12 @@ class SpArrayBase {
     const std::vector<int64_t>& getShape() const { return value_.shape; }
     int64_t getSize() const { return value_.data ? value_.elementCount() : 0; }
     SpArrayBase* getPtr() { return this; }
+    // "(480, 640, 4)"; "None" before the array has data.
+    std::string describeShape() const;
+    // Throws InvalidArgument "<what> must have shape (*, 3), got (4, 2)" unless the shape matches; -1 in
+    // `expected` matches any extent. `what` names the function and array ("APointFilter.Filter(): array
+    // 'Points'").
+    void checkShape(std::initializer_list<int64_t> expected, std::string_view what) const;
 
     const ArrayValue& value() const { return value_; }
     // Adopts `value` (sharing its storage). Throws InvalidArgument when the dtype differs.

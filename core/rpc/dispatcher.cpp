@@ -3,8 +3,10 @@
 #include <unistd.h>
 
 #include "core/base/error.h"
+#include "core/plugin/plugin_loader.h"
 #include "core/reflect/object_base.h"
 #include "core/reflect/type_info.h"
+#include "core/spfunc/sp_func_call.h"
 #include "core/world/object_access.h"
 
 namespace sp::rpc {
@@ -210,6 +212,39 @@ Value Dispatcher::execute(const std::string& op, const msgpack::object& request,
                  object.GetClass().name, "' is read-only");
         property->set(&object, unpack(require(request, "value", op), context));
         return Value();
+    }
+    if (op == "load_plugin") {
+        const std::string path = requireString(request, "path", op);
+        const msgpack::object* hash = field(request, "api_hash");
+        const auto& info = plugin::load(path, hash && hash->type == msgpack::type::STR
+                                                  ? std::string(hash->via.str.ptr, hash->via.str.size)
+                                                  : "");
+        Value::List classes;
+        for (const std::string& name : info.classes)
+            classes.emplace_back(name);
+        return Value(Value::Dict{{"name", Value(info.name)}, {"classes", Value(std::move(classes))}});
+    }
+    if (op == "unload_plugin") {
+        plugin::unload(requireString(request, "name", op));
+        return Value();
+    }
+    if (op == "sp_func") {
+        const std::string name = requireString(request, "name", op);
+        const std::string context = "call_sp_func('" + name + "')";
+        reflect::ObjectBase& object = requireObject(request, context);
+        Value::Dict bundle;
+        for (const char* key : {"arrays", "unreal_objs", "info"})
+            if (const msgpack::object* given = field(request, key))
+                bundle.emplace(key, unpack(*given, context));
+        return spfunc::toValue(
+            spfunc::call(object, name, spfunc::bundleFromValue(Value(std::move(bundle)), context)));
+    }
+    if (op == "sp_func_names") {
+        reflect::ObjectBase& object = requireObject(request, "get_sp_func_names()");
+        Value::List names;
+        for (std::string& name : spfunc::funcNames(object))
+            names.emplace_back(std::move(name));
+        return Value(std::move(names));
     }
     if (op == "is_valid" || op == "describe") {
         Value handle = unpack(require(request, "object", op), op);

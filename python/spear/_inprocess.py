@@ -10,6 +10,7 @@ import importlib
 from types import ModuleType
 from typing import Any
 
+from spear import _spfunc
 from spear._engine import api
 
 _module: ModuleType | None = None
@@ -19,13 +20,34 @@ def module() -> Any:
     global _module
     if _module is None:
         loaded = importlib.import_module("spear._spear_engine")
-        for name in api.__all__:
-            public = getattr(api, name)
-            native = getattr(loaded, name, None)
-            if native is not None and isinstance(public, type) and hasattr(public, "register"):
-                public.register(native)
+        register_classes(api, loaded)
+        _install_sp_funcs(loaded)
         _module = loaded
     return _module
+
+
+def _install_sp_funcs(loaded: Any) -> None:
+    """SpFuncs on the root pybind11 class: the typed call, the names, and Fig. 8's attribute form."""
+    root = loaded.UObject
+
+    def call_raw(self: Any, name: str, arrays: dict[str, Any], unreal_objs: dict[str, str], info: str,
+                 finish: Any) -> Any:
+        return finish(loaded._call_sp_func(self, name, arrays, unreal_objs, info))
+
+    root._sp_call_sp_func = call_raw
+    root._sp_get_sp_func_names = lambda self: loaded._get_sp_func_names(self)
+    root.call_sp_func = _spfunc.call_sp_func
+    root.get_sp_func_names = _spfunc.get_sp_func_names
+    root.__getattr__ = _spfunc.sp_func_getattr
+
+
+def register_classes(api_module: ModuleType, native_module: Any) -> None:
+    """Makes each pybind11 class of `native_module` a virtual subclass of its class in `api_module`."""
+    for name in api_module.__all__:
+        public = getattr(api_module, name)
+        native = getattr(native_module, name, None)
+        if native is not None and isinstance(public, type) and hasattr(public, "register"):
+            public.register(native)
 
 
 def new_engine(fixed_delta_seconds: float) -> Any:

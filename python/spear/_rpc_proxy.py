@@ -6,8 +6,10 @@ that client. The client (the transport) implements the RpcClient protocol below.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any, Protocol
 
+from spear import _spfunc
 from spear._object import SpObject
 
 
@@ -30,6 +32,11 @@ class RpcClient(Protocol):
     def set_property(self, handle: tuple[int, int], name: str, value: Any, context: str = "") -> None: ...
 
     def is_valid(self, handle: tuple[int, int]) -> bool: ...
+
+    def call_sp_func(self, handle: tuple[int, int], name: str, arrays: dict[str, Any], unreal_objs: dict[str, str],
+                     info: str, finish: Callable[[Any], Any]) -> Any: ...
+
+    def sp_func_names(self, handle: tuple[int, int]) -> list[str]: ...
 
     def deferred(self, discard: bool) -> Any:
         """A context in which calls are queued and return Futures."""
@@ -93,6 +100,18 @@ class ObjectProxy(SpObject):
 
     def _sp_set(self, owner: str, name: str, value: Any) -> None:
         self._sp_client.set_property(self._sp_handle, name, value, f"{owner}.{name}")
+
+    # SpFuncs (spear._spfunc): the typed call, the names, and Fig. 8's attribute form.
+    call_sp_func = _spfunc.call_sp_func
+    get_sp_func_names = _spfunc.get_sp_func_names
+    __getattr__ = _spfunc.sp_func_getattr
+
+    def _sp_call_sp_func(self, name: str, arrays: dict[str, Any], unreal_objs: dict[str, str], info: str,
+                         finish: Callable[[Any], Any]) -> Any:
+        return self._sp_client.call_sp_func(self._sp_handle, name, arrays, unreal_objs, info, finish)
+
+    def _sp_get_sp_func_names(self) -> list[str]:
+        return self._sp_client.sp_func_names(self._sp_handle)
 
 
 class _DeferredCaller:

@@ -9,6 +9,7 @@
 #include "core/sensors/material_library.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
+#include "core/spfunc/sp_func_component.h"
 #include "core/world/actor.h"
 #include "core/world/actor_component.h"
 #include "core/world/hit_result.h"

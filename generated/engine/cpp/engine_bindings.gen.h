@@ -16,6 +16,7 @@
 #include "core/sensors/material_library.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
+#include "core/spfunc/sp_func_component.h"
 #include "core/world/actor.h"
 #include "core/world/actor_component.h"
 #include "core/world/hit_result.h"
@@ -94,6 +95,9 @@ template <> struct Ref<UPrimitiveComponent> : Ref<USceneComponent> {
 };
 template <> struct Ref<USkyLightComponent> : Ref<USceneComponent> {
     using Ref<USceneComponent>::Ref;
+};
+template <> struct Ref<USpFuncComponent> : Ref<UActorComponent> {
+    using Ref<UActorComponent>::Ref;
 };
 template <> struct Ref<USpotLightComponent> : Ref<UPointLightComponent> {
     using Ref<UPointLightComponent>::Ref;

@@ -1372,6 +1372,21 @@ const Self* object = self.get<Self>(kContext);
             "Linear HDR colour of the pixels that hit no geometry.");
     }
     {
+        using Self = USpFuncComponent;
+        py::class_<Ref<Self>, Ref<UActorComponent>> cls(m, "USpFuncComponent", "Holds SpFuncs: named functions over bundles of arrays, registered at run time by C++ code.");
+        cls.attr("__sp_class__") = "USpFuncComponent";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def(
+            "GetFuncNames",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "USpFuncComponent.GetFuncNames()";
+const Self* object = self.get<Self>(kContext);
+                auto result = object->GetFuncNames();
+                return Bridge<std::vector<std::string>>::out(result);
+            },
+            "Returns the names of the SpFuncs registered now, sorted.");
+    }
+    {
         using Self = USpotLightComponent;
         py::class_<Ref<Self>, Ref<UPointLightComponent>> cls(m, "USpotLightComponent", "A point light restricted to a cone around the component's forward axis.");
         cls.attr("__sp_class__") = "USpotLightComponent";

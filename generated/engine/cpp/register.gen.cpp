@@ -9,6 +9,7 @@
 #include "core/sensors/material_library.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
+#include "core/spfunc/sp_func_component.h"
 #include "core/world/actor.h"
 #include "core/world/actor_component.h"
 #include "core/world/hit_result.h"
@@ -62,6 +63,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(UPointLightComponent::StaticClass());
     registry.add(UPrimitiveComponent::StaticClass());
     registry.add(USkyLightComponent::StaticClass());
+    registry.add(USpFuncComponent::StaticClass());
     registry.add(USpotLightComponent::StaticClass());
     registry.add(UStaticMeshComponent::StaticClass());
     registry.add(UWorld::StaticClass());
@@ -73,6 +75,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(UWorld::StaticClass());
     registry.remove(UStaticMeshComponent::StaticClass());
     registry.remove(USpotLightComponent::StaticClass());
+    registry.remove(USpFuncComponent::StaticClass());
     registry.remove(USkyLightComponent::StaticClass());
     registry.remove(UPrimitiveComponent::StaticClass());
     registry.remove(UPointLightComponent::StaticClass());
@@ -111,4 +114,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "97089683c47a8185"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "a3d04fa54950007c"; }

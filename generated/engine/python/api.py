@@ -56,6 +56,7 @@ __all__ = [
     "UPrimitiveComponent",
     "USceneComponent",
     "USkyLightComponent",
+    "USpFuncComponent",
     "USpotLightComponent",
     "UStaticMeshComponent",
     "UWorld",
@@ -659,6 +660,25 @@ class USkyLightComponent(USceneComponent):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "USkyLightComponent"
+
+
+class USpFuncComponentAsync(UActorComponentAsync):
+    """USpFuncComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class USpFuncComponentSend(UActorComponentSend):
+    """USpFuncComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class USpFuncComponent(UActorComponent):
+    """Holds SpFuncs: named functions over bundles of arrays, registered at run time by C++ code."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "USpFuncComponent"
 
 
 class USpotLightComponentAsync(UPointLightComponentAsync):

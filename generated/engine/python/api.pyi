@@ -52,6 +52,7 @@ __all__ = [
     "UPrimitiveComponent",
     "USceneComponent",
     "USkyLightComponent",
+    "USpFuncComponent",
     "USpotLightComponent",
     "UStaticMeshComponent",
     "UWorld",
@@ -1601,6 +1602,35 @@ class USkyLightComponent(USceneComponent):
 
     @BackgroundColor.setter
     def BackgroundColor(self, value: FLinearColor) -> None: ...
+
+
+class USpFuncComponentAsync(UActorComponentAsync):
+    """USpFuncComponent's functions, called asynchronously: each returns a Future."""
+
+    def GetFuncNames(self) -> Future[list[str]]: ...
+
+
+class USpFuncComponentSend(UActorComponentSend):
+    """USpFuncComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def GetFuncNames(self) -> None: ...
+
+
+class USpFuncComponent(UActorComponent):
+    """Holds SpFuncs: named functions over bundles of arrays, registered at run time by C++ code."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> USpFuncComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> USpFuncComponentSend:
+        """The same functions, fire and forget."""
+
+    def GetFuncNames(self) -> list[str]:
+        """Returns the names of the SpFuncs registered now, sorted."""
 
 
 class USpotLightComponentAsync(UPointLightComponentAsync):

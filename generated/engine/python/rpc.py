@@ -731,6 +731,16 @@ class USkyLightComponent(USceneComponent, api.USkyLightComponent):
 _register_proxy(USkyLightComponent)
 
 
+class USpFuncComponent(UActorComponent, api.USpFuncComponent):
+    __slots__ = ()
+
+    def GetFuncNames(self) -> list[str]:
+        return cast("list[str]", self._sp_call("USpFuncComponent", "GetFuncNames", {}, "list[str]"))
+
+
+_register_proxy(USpFuncComponent)
+
+
 class USpotLightComponent(UPointLightComponent, api.USpotLightComponent):
     __slots__ = ()
 

@@ -1,0 +1,110 @@
+#include <gtest/gtest.h>
+
+#include "core/spfunc/sp_func_call.h"
+#include "core/spfunc/spfunc.h"
+#include "core/world/engine.h"
+
+namespace {
+// Fig. 8's SpFunc, registered on a component created at run time.
+SpFuncDataBundle addThree(SpFuncDataBundle& args) {
+    SpArray<double> input("input");
+    SpUtils::moveFromPackedArrays({input.getPtr()}, std::move(args.packed_arrays_));
+    SpArray<double> output("output");
+    std::vector<double> values;
+    for (double v : input.getView())
+        values.push_back(v + 3.0);
+    output.setDataSource(std::move(values), input.getShape());
+    SpFuncDataBundle result;
+    result.packed_arrays_ = SpUtils::moveToPackedArrays({output.getPtr()});
+    result.unreal_obj_strings_ = args.unreal_obj_strings_;
+    result.info_ = "got " + args.info_;
+    return result;
+}
+
+SpPackedArray doubles(std::vector<double> values) {
+    SpArray<double> array("x");
+    array.setDataSource(std::move(values));
+    return array.value();
+}
+
+struct SpFuncTest : ::testing::Test {
+    sp::world::Engine engine;
+    AActor* actor = engine.GetGameWorld().spawn_actor(&AActor::StaticClass());
+    USpFuncComponent* component = SpUtils::createComponent<USpFuncComponent>(actor, "sp_funcs");
+
+    std::string errorOf(const std::function<void()>& f) {
+        try {
+            f();
+        } catch (const sp::Error& e) {
+            return e.what();
+        }
+        return "";
+    }
+};
+} // namespace
+
+TEST_F(SpFuncTest, CallsReachTheActorsComponentAndArraysKeepTheirShape) {
+    component->registerFunc("add_three", &addThree);
+    EXPECT_EQ(sp::spfunc::funcNames(*actor), std::vector<std::string>{"add_three"});
+    SpFuncDataBundle args;
+    args.packed_arrays_["input"] = doubles({1, 2, 3, 4, 5, 6});
+    args.packed_arrays_["input"].shape = {2, 3};
+    args.unreal_obj_strings_["pose"] = R"({"X": 1.0})";
+    args.info_ = "hello";
+    SpFuncDataBundle result = sp::spfunc::call(*actor, "add_three", std::move(args));
+    const SpPackedArray& output = result.packed_arrays_.at("output");
+    EXPECT_EQ(output.shape, (std::vector<int64_t>{2, 3}));
+    EXPECT_EQ(static_cast<const double*>(output.data)[5], 9.0);
+    EXPECT_EQ(result.unreal_obj_strings_.at("pose"), R"({"X": 1.0})");
+    EXPECT_EQ(result.info_, "got hello");
+    // The component answers directly, too.
+    EXPECT_EQ(sp::spfunc::funcNames(*component), std::vector<std::string>{"add_three"});
+}
+
+TEST_F(SpFuncTest, BadArraysNameTheSpFuncAndTheArray) {
+    component->registerFunc("add_three", &addThree);
+    SpFuncDataBundle wrongDtype;
+    SpArray<float> floats("input");
+    floats.setDataSource({1.0f, 2.0f});
+    wrongDtype.packed_arrays_["input"] = floats.value();
+    EXPECT_EQ(errorOf([&] { sp::spfunc::call(*actor, "add_three", wrongDtype); }),
+              "AActor.add_three(): array 'input' must have dtype float64, got float32");
+    SpFuncDataBundle misspelt;
+    misspelt.packed_arrays_["inptu"] = doubles({1});
+    EXPECT_EQ(errorOf([&] { sp::spfunc::call(*actor, "add_three", misspelt); }),
+              "AActor.add_three(): array 'input' was not passed (got 'inptu')");
+}
+
+TEST_F(SpFuncTest, UnknownNamesListWhatThereIsAndUnregisterRemoves) {
+    component->registerFunc("add_three", &addThree);
+    EXPECT_EQ(errorOf([&] { sp::spfunc::call(*actor, "add_tree", {}); }),
+              "AActor.add_tree(): AActor 'Actor_0' has no SpFunc named 'add_tree' (it has 'add_three')");
+    EXPECT_THROW(component->registerFunc("add_three", &addThree), sp::InvalidArgument);
+    component->unregisterFunc("add_three");
+    EXPECT_TRUE(sp::spfunc::funcNames(*actor).empty());
+    EXPECT_THROW(component->unregisterFunc("add_three"), sp::NotFound);
+    EXPECT_THROW(sp::spfunc::call(*actor, "add_three", {}), sp::NotFound);
+}
+
+TEST_F(SpFuncTest, AnSpFuncMayUnregisterItselfWhileItRuns) {
+    component->registerFunc("once", [this](SpFuncDataBundle&) {
+        component->unregisterFunc("once");
+        return SpFuncDataBundle{};
+    });
+    sp::spfunc::call(*actor, "once", {});
+    EXPECT_TRUE(component->GetFuncNames().empty());
+}
+
+TEST_F(SpFuncTest, BundlesRoundTripThroughValues) {
+    SpFuncDataBundle bundle;
+    bundle.packed_arrays_["a"] = doubles({1, 2});
+    bundle.unreal_obj_strings_["o"] = "{}";
+    bundle.info_ = "i";
+    SpFuncDataBundle back = sp::spfunc::bundleFromValue(sp::spfunc::toValue(bundle), "test");
+    EXPECT_EQ(back.packed_arrays_.at("a"), bundle.packed_arrays_.at("a"));
+    EXPECT_EQ(back.unreal_obj_strings_, bundle.unreal_obj_strings_);
+    EXPECT_EQ(back.info_, "i");
+    EXPECT_THROW(
+        sp::spfunc::bundleFromValue(sp::reflect::Value(sp::reflect::Value::Dict{{"arrayz", {}}}), "t"),
+        sp::InvalidArgument);
+}
