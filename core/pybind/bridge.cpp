@@ -69,11 +69,7 @@ py::object apiAttribute(const char* module, const char* name) {
     return py::module_::import(module).attr(name);
 }
 
-} // namespace sp::pybind
-
-namespace pybind11::detail {
-
-bool type_caster<sp::pybind::ClassArg>::load(handle src, bool) {
+bool loadClassArg(py::handle src, ClassArg& value) {
     if (src.is_none()) {
         value.name.clear();
         value.asset.clear();
@@ -84,13 +80,13 @@ bool type_caster<sp::pybind::ClassArg>::load(handle src, bool) {
         value.asset.clear();
         return !value.name.empty();
     }
-    if (PyType_Check(src.ptr()) && hasattr(src, "__sp_class__")) {
+    if (PyType_Check(src.ptr()) && py::hasattr(src, "__sp_class__")) {
         value.name = src.attr("__sp_class__").cast<std::string>();
         value.asset =
-            hasattr(src, "__sp_asset__") ? src.attr("__sp_asset__").cast<std::string>() : std::string();
+            py::hasattr(src, "__sp_asset__") ? src.attr("__sp_asset__").cast<std::string>() : std::string();
         return true;
     }
     return false;
 }
 
-} // namespace pybind11::detail
+} // namespace sp::pybind

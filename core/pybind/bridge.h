@@ -19,6 +19,7 @@
 #include "core/reflect/registry.h"
 #include "core/reflect/sp_array.h"
 
+#pragma GCC visibility push(default)
 namespace sp::pybind {
 
 // A class argument as Python passes it: a class object carrying __sp_class__, or a class name. The name
@@ -113,16 +114,21 @@ template <typename T> struct Bridge<reflect::SpArray<T>> {
     static py::object out(const reflect::SpArray<T>& value) { return arrayToNumpy(value.value()); }
 };
 
+// Fills `value` from None, a class name, or a class carrying __sp_class__; false for anything else.
+// (Defined out of line here, not in the caster: pybind11's namespace is hidden in every shared object.)
+bool loadClassArg(py::handle src, ClassArg& value);
+
 // Looks up a class of the generated API module (structs, enums, result tuples); cached by the caller.
 py::object apiAttribute(const char* module, const char* name);
 
 } // namespace sp::pybind
+#pragma GCC visibility pop
 
 namespace pybind11::detail {
 
 template <> struct type_caster<sp::pybind::ClassArg> {
     PYBIND11_TYPE_CASTER(sp::pybind::ClassArg, const_name("type | str"));
-    bool load(handle src, bool);
+    bool load(handle src, bool) { return sp::pybind::loadClassArg(src, value); }
     static handle cast(const sp::pybind::ClassArg&, return_value_policy, handle) { return none().release(); }
 };
 

@@ -3,8 +3,10 @@
 
 #include <pybind11/pybind11.h>
 
+#pragma GCC visibility push(default)
 namespace sp::pybind {
 
 void registerErrorTranslator();
 
 } // namespace sp::pybind
+#pragma GCC visibility pop

@@ -11,6 +11,10 @@
 #include "core/reflect/object_base.h"
 #include "core/reflect/type_info.h"
 
+// spear_pybind is a shared library used by every pybind11 module (the engine's and each plugin's).
+// pybind11 declares its namespace hidden, which would hide every function taking a pybind11 type, so
+// this API is made visible explicitly.
+#pragma GCC visibility push(default)
 namespace sp::pybind {
 
 namespace py = ::pybind11;
@@ -88,3 +92,4 @@ template <typename R> void bindObjectBasics(py::class_<R>& cls) {
 }
 
 } // namespace sp::pybind
+#pragma GCC visibility pop

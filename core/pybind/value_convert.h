@@ -8,6 +8,7 @@
 
 #include "core/reflect/value.h"
 
+#pragma GCC visibility push(default)
 namespace sp::pybind {
 
 namespace py = ::pybind11;
@@ -21,3 +22,4 @@ reflect::Value toValue(py::handle object, std::string_view context);
 py::object fromValue(const reflect::Value& value, std::string_view type, const char* apiModule);
 
 } // namespace sp::pybind
+#pragma GCC visibility pop

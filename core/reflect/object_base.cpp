@@ -87,6 +87,17 @@ void ObjectTable::erase(ObjectHandle handle) {
     --t.live;
 }
 
+std::vector<ObjectBase*> ObjectTable::liveObjects() {
+    Table& t = table();
+    std::lock_guard lock(t.mutex);
+    std::vector<ObjectBase*> objects;
+    objects.reserve(t.live);
+    for (const Slot& slot : t.slots)
+        if (slot.object)
+            objects.push_back(slot.object);
+    return objects;
+}
+
 ObjectBase* ObjectTable::find(ObjectHandle handle) {
     Table& t = table();
     std::lock_guard lock(t.mutex);

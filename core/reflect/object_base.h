@@ -5,6 +5,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/reflect/value.h"
 
@@ -50,6 +51,8 @@ class ObjectTable {
     // Throws StaleObject ("<context>: AActor 'Cube' (object 5:2) was destroyed") or InvalidArgument for null.
     static ObjectBase& resolve(ObjectHandle handle, std::string_view context);
     static size_t liveCount();
+    // Every live object, in handle order.
+    static std::vector<ObjectBase*> liveObjects();
     // Records the object's debug name for messages about its handle after it is gone. Whoever destroys
     // objects calls this first, while the object is whole (a destructor can no longer ask it).
     static void rememberName(const ObjectBase& object);

@@ -21,6 +21,16 @@ void Registry::add(const EnumInfo& info) {
              "Registry::add(): two different enums are named '", info.name, "'");
 }
 
+void Registry::remove(const TypeInfo& type) {
+    if (auto it = types_.find(type.name); it != types_.end() && it->second == &type)
+        types_.erase(it);
+}
+
+void Registry::remove(const EnumInfo& info) {
+    if (auto it = enums_.find(info.name); it != enums_.end() && it->second == &info)
+        enums_.erase(it);
+}
+
 const TypeInfo* Registry::findType(std::string_view name) const {
     auto it = types_.find(name);
     return it == types_.end() ? nullptr : it->second;

@@ -19,6 +19,9 @@ class Registry {
     // Adding the same TypeInfo twice is a no-op; two different types with one name is an error.
     void add(const TypeInfo& type);
     void add(const EnumInfo& info);
+    // Removes a type that was added (a plugin being unloaded); removing an unknown type is a no-op.
+    void remove(const TypeInfo& type);
+    void remove(const EnumInfo& info);
 
     const TypeInfo* findType(std::string_view name) const;
     const EnumInfo* findEnum(std::string_view name) const;

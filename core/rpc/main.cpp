@@ -3,6 +3,7 @@
 //   spear-server --socket /tmp/spear.sock
 //   spear-server --port 0 --token SECRET [--bind 127.0.0.1]
 //   spear-server --socket /tmp/spear.sock --mode editor --scene assets/scenes/apartment.json
+//   spear-server --socket /tmp/spear.sock --plugin build/python/my_plugin/libmy_plugin.so
 //
 // Prints "spear-server: listening on <address>" once it accepts connections (clients that launch a
 // server wait for that line), and exits cleanly on SIGTERM, SIGINT or a client's shutdown request.
@@ -16,7 +17,10 @@
 #include <cstring>
 #include <string>
 
+#include <vector>
+
 #include "core/base/error.h"
+#include "core/plugin/plugin_loader.h"
 #include "core/rpc/server.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
@@ -24,13 +28,14 @@ namespace {
 void usage() {
     std::fprintf(stderr, "usage: spear-server (--socket PATH | --port N --token TOKEN [--bind ADDRESS])\n"
                          "                    [--mode game|editor] [--scene FILE] [--fixed-delta-seconds S]\n"
-                         "                    [--exit-with-parent]\n");
+                         "                    [--plugin LIBRARY]... [--exit-with-parent]\n");
 }
 } // namespace
 
 int main(int argc, char** argv) {
     sp::rpc::ServerOptions options;
     sp::world::Engine::Settings settings;
+    std::vector<std::string> plugins;
     if (const char* token = std::getenv("SPEAR_TOKEN"))
         options.token = token;
     for (int i = 1; i < argc; ++i) {
@@ -56,6 +61,8 @@ int main(int argc, char** argv) {
             settings.editor = mode == "editor";
         } else if (arg == "--scene" && hasValue)
             settings.scene = argv[++i];
+        else if (arg == "--plugin" && hasValue)
+            plugins.push_back(argv[++i]);
         else if (arg == "--exit-with-parent") {
             // A server launched by a client goes away with it, even if the client is killed.
             const pid_t parent = ::getppid();
@@ -72,6 +79,9 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
+        // Before the engine: its scene may name the plugins' classes.
+        for (const std::string& path : plugins)
+            sp::plugin::load(path);
         sp::world::Engine engine(settings);
         sp::rpc::Server server(engine, options, spear_register_engine_types_api_hash());
         std::signal(SIGTERM, [](int) { sp::rpc::Server::stop(); });

@@ -4,9 +4,11 @@ it runs. Instance talks to either through this small interface."""
 from __future__ import annotations
 
 import dataclasses
+import importlib
 from typing import Any, Protocol
 
 from spear import errors
+from spear._plugins import PluginPackage
 
 
 class Backend(Protocol):
@@ -21,6 +23,10 @@ class Backend(Protocol):
     def get_property(self, uobject: Any, path: str) -> Any: ...
 
     def set_property(self, uobject: Any, path: str, value: Any) -> None: ...
+
+    def load_plugin(self, plugin: PluginPackage) -> list[str]: ...
+
+    def unload_plugin(self, name: str) -> None: ...
 
     def close(self) -> None: ...
 
@@ -59,6 +65,19 @@ class InProcessBackend:
 
     def set_property(self, uobject: Any, path: str, value: Any) -> None:
         self._module.set_property(uobject=uobject, path=path, value=value)
+
+    def load_plugin(self, plugin: PluginPackage) -> list[str]:
+        from spear import _inprocess
+
+        # The bindings first: importing them maps the plugin's library, which the loader then registers.
+        native = importlib.import_module(f"{plugin.name}._{plugin.name}")
+        _inprocess.register_classes(importlib.import_module(f"{plugin.name}.api"), native)
+        _, classes = self._module._load_plugin(str(plugin.library), plugin.api_hash)
+        return list(classes)
+
+    def unload_plugin(self, name: str) -> None:
+        # The classes leave the registry; the bindings' code stays mapped (CPython cannot unload a module).
+        self._module._unload_plugin(name)
 
     def close(self) -> None:
         del self._engine
@@ -125,6 +144,14 @@ class RpcBackend:
             setattr(target, rest[-1], value)
             value = whole
         self.connection.request("set", object=uobject, property=name, value=value)
+
+    def load_plugin(self, plugin: PluginPackage) -> list[str]:
+        importlib.import_module(f"{plugin.name}.rpc")  # registers the plugin's proxy classes
+        reply = self.connection.request("load_plugin", path=str(plugin.library.resolve()), api_hash=plugin.api_hash)
+        return list(reply["classes"])
+
+    def unload_plugin(self, name: str) -> None:
+        self.connection.request("unload_plugin", name=name)
 
     def close(self) -> None:
         self.connection.close()

@@ -17,8 +17,10 @@ from __future__ import annotations
 import contextlib
 import os
 from collections.abc import Iterator
+from types import ModuleType
 from typing import Any, Literal
 
+from spear import _plugins
 from spear._backends import Backend, InProcessBackend, RpcBackend
 from spear._engine import api
 from spear.errors import InvalidArgumentError, InvalidStateError
@@ -115,6 +117,23 @@ class Instance:
     def set_property(self, *, uobject: api.UObject, path: str, value: Any) -> None:
         """Writes a reflected property by name or dotted path."""
         self._open("set_property").set_property(uobject, path, value)
+
+    # -- plugins -------------------------------------------------------------------------------
+
+    def load_plugin(self, plugin: str | os.PathLike[str]) -> ModuleType:
+        """Loads a plugin built by spear_add_plugin(): its classes spawn by uclass= like engine classes.
+
+        plugin: the plugin package's name (on sys.path) or the path of its directory. Returns the package,
+        whose typed API is its `api` module. Loading a loaded plugin again does nothing.
+        """
+        backend = self._open("load_plugin")
+        found = _plugins.find(plugin)
+        backend.load_plugin(found)
+        return found.package
+
+    def unload_plugin(self, name: str) -> None:
+        """Unloads a plugin's classes; refused while objects of them are alive (destroy them first)."""
+        self._open("unload_plugin").unload_plugin(name)
 
     # -- lifetime ------------------------------------------------------------------------------
 

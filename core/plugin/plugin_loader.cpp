@@ -1,0 +1,129 @@
+#include "core/plugin/plugin_loader.h"
+
+#include <dlfcn.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "core/base/error.h"
+#include "core/reflect/object_base.h"
+#include "core/reflect/registry.h"
+
+namespace sp::plugin {
+
+namespace {
+struct Loaded {
+    PluginInfo info;
+    void* library = nullptr;
+    void (*unregister)() = nullptr;
+};
+
+std::map<std::string, Loaded>& plugins() {
+    static std::map<std::string, Loaded> instance;
+    return instance;
+}
+
+// lib<name>.so -> name
+std::string moduleName(const std::string& path) {
+    std::string file = std::filesystem::path(path).filename().string();
+    SP_CHECK(file.starts_with("lib") && file.ends_with(".so") && file.size() > 6, InvalidArgument,
+             "load_plugin(): '", path, "' is not a plugin library (expected lib<name>.so)");
+    return file.substr(3, file.size() - 6);
+}
+
+std::set<std::string> registeredNames() {
+    std::set<std::string> names;
+    for (const reflect::TypeInfo* type : reflect::Registry::get().types())
+        names.insert(type->name);
+    for (const reflect::EnumInfo* info : reflect::Registry::get().enums())
+        names.insert(info->name);
+    return names;
+}
+
+template <typename Fn> Fn symbol(void* library, const std::string& name, const std::string& path) {
+    void* address = dlsym(library, name.c_str());
+    if (!address) {
+        dlclose(library);
+        SP_THROW(InvalidArgument, "load_plugin(): '", path, "' is not a spear plugin (it has no ", name, ")");
+    }
+    return reinterpret_cast<Fn>(address);
+}
+} // namespace
+
+const PluginInfo& load(const std::string& path, const std::string& expectedApiHash) {
+    const std::string name = moduleName(path);
+    if (auto it = plugins().find(name); it != plugins().end()) {
+        SP_CHECK(expectedApiHash.empty() || it->second.info.apiHash == expectedApiHash, InvalidState,
+                 "load_plugin(): plugin '", name, "' is loaded with another API (", it->second.info.apiHash,
+                 ")");
+        return it->second.info;
+    }
+    SP_CHECK(std::filesystem::exists(path), NotFound, "load_plugin(): '", path, "' does not exist");
+    // RTLD_LOCAL: two plugins never resolve each other's symbols; RTLD_NOW: a missing symbol fails here.
+    void* library = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    SP_CHECK(library, InvalidArgument, "load_plugin(): cannot load '", path, "': ", dlerror());
+    const std::string prefix = "spear_register_" + name + "_types";
+    auto registerTypes = symbol<void (*)()>(library, prefix, path);
+    auto apiHash = symbol<const char* (*)()>(library, prefix + "_api_hash", path);
+    auto unregisterTypes = symbol<void (*)()>(library, "spear_unregister_" + name + "_types", path);
+    if (!expectedApiHash.empty() && expectedApiHash != apiHash()) {
+        const std::string actual = apiHash();
+        dlclose(library);
+        SP_THROW(InvalidState, "load_plugin(): '", path, "' was built from other headers (API ", actual,
+                 ") than the Python package that loads it (API ", expectedApiHash, "); rebuild the plugin");
+    }
+    const std::set<std::string> before = registeredNames();
+    try {
+        registerTypes();
+    } catch (...) {
+        unregisterTypes();
+        dlclose(library);
+        throw;
+    }
+    Loaded loaded{{name, path, apiHash(), {}}, library, unregisterTypes};
+    for (const std::string& type : registeredNames())
+        if (!before.count(type))
+            loaded.info.classes.push_back(type);
+    return plugins().emplace(name, std::move(loaded)).first->second.info;
+}
+
+void unload(const std::string& name) {
+    auto it = plugins().find(name);
+    SP_CHECK(it != plugins().end(), NotFound, "unload_plugin(): no plugin named '", name, "' is loaded");
+    std::vector<const reflect::TypeInfo*> own;
+    for (const std::string& type : it->second.info.classes)
+        if (const reflect::TypeInfo* info = reflect::Registry::get().findType(type))
+            own.push_back(info);
+    auto fromPlugin = [&](const reflect::TypeInfo& type) {
+        return std::any_of(own.begin(), own.end(), [&](const auto* o) { return type.isChildOf(*o); });
+    };
+    std::string alive;
+    size_t count = 0;
+    for (const reflect::ObjectBase* object : reflect::ObjectTable::liveObjects()) {
+        if (!fromPlugin(object->GetClass()))
+            continue;
+        if (++count <= 3)
+            alive += (alive.empty() ? "" : ", ") + object->GetDebugName();
+    }
+    SP_CHECK(count == 0, InvalidState, "unload_plugin('", name, "'): ", count,
+             " object(s) of its classes are alive (", alive, count > 3 ? ", ..." : "",
+             "); destroy them first");
+    // Data-defined classes (blueprints) made from the plugin's classes go with them.
+    for (const reflect::TypeInfo* type : reflect::Registry::get().types())
+        if (type->isDataDefined() && fromPlugin(*type))
+            reflect::Registry::get().remove(*type);
+    it->second.unregister();
+    dlclose(it->second.library);
+    plugins().erase(it);
+}
+
+std::vector<PluginInfo> loaded() {
+    std::vector<PluginInfo> result;
+    for (const auto& [name, plugin] : plugins())
+        result.push_back(plugin.info);
+    return result;
+}
+
+} // namespace sp::plugin

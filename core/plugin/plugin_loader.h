@@ -1,0 +1,32 @@
+#pragma once
+// Plugins: shared libraries built by spear_add_plugin() (cmake/spearConfig.cmake) whose reflected classes
+// join the engine's registry at run time. The in-process engine and spear-server load them through this
+// one loader, so both transports see the same classes and the same errors.
+//
+// A plugin library lib<name>.so exports the generated entry points spear_register_<name>_types,
+// spear_unregister_<name>_types and spear_register_<name>_types_api_hash (extern "C").
+
+#include <string>
+#include <vector>
+
+namespace sp::plugin {
+
+struct PluginInfo {
+    std::string name;                 // the module name: lib<name>.so
+    std::string path;                 // as given to load()
+    std::string apiHash;              // of the plugin's generated API
+    std::vector<std::string> classes; // the classes, structs and enums it registered, sorted
+};
+
+// Loads the plugin library at `path` and registers its types. Loading the same plugin again returns the
+// loaded one. With `expectedApiHash`, a library built from other headers than the caller's stubs is
+// refused. Throws NotFound for a missing file, InvalidArgument for a library that is not a plugin.
+const PluginInfo& load(const std::string& path, const std::string& expectedApiHash = "");
+
+// Unregisters the plugin's types and unloads its library. Throws InvalidState while objects of its classes
+// are alive (they would outlive their code), NotFound when no plugin of that name is loaded.
+void unload(const std::string& name);
+
+std::vector<PluginInfo> loaded();
+
+} // namespace sp::plugin
