@@ -146,7 +146,10 @@ class RpcBackend:
         self.connection.request("set", object=uobject, property=name, value=value)
 
     def load_plugin(self, plugin: PluginPackage) -> list[str]:
+        from spear._rpc_types import add_api_module
+
         importlib.import_module(f"{plugin.name}.rpc")  # registers the plugin's proxy classes
+        add_api_module(importlib.import_module(f"{plugin.name}.api"))
         reply = self.connection.request("load_plugin", path=str(plugin.library.resolve()), api_hash=plugin.api_hash)
         return list(reply["classes"])
 

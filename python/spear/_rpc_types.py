@@ -14,11 +14,20 @@ from spear._wire import ClassRef, ObjectRef
 _api_modules: list[Any] = []
 
 
+def add_api_module(module: Any) -> None:
+    """Lets results name the classes, structs and enums of a loaded plugin's API."""
+    _api_lookup("")  # the engine's API is searched first
+    if module not in _api_modules:
+        _api_modules.append(module)
+
+
 def _api_lookup(name: str) -> Any:
     if not _api_modules:
         from spear._engine import api
 
         _api_modules.append(api)
+    if not name:
+        return None
     for module in _api_modules:
         found = getattr(module, name, None)
         if found is not None:
