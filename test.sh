@@ -20,4 +20,6 @@ say "test: C++ (CTest)"
 ctest --test-dir "$BUILD_DIR" --output-on-failure -j 2
 
 say "test: Python API, generator and typing (pytest)"
+# The plugin tests build examples/plugin against this build (find_package(spear) in $BUILD_DIR).
+export SPEAR_BUILD_DIR="$BUILD_DIR"
 cd "$ROOT" && "$PYTHON" -m pytest -q tests

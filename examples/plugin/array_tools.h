@@ -17,6 +17,7 @@ public:
     UPROPERTY(VisibleAnywhere)
     int64_t CallCount = 0;
 
-    UPROPERTY(VisibleAnywhere)
+    /// Holds the SpFuncs (created in the constructor, so never None).
+    UPROPERTY(VisibleAnywhere, NotNull)
     USpFuncComponent* SpFuncComponent = nullptr;
 };

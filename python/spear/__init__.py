@@ -7,11 +7,13 @@ the engine's reflected C++ headers): spear.AActor, spear.FVector, spear.ECompone
 from spear._engine.api import *  # noqa: F403
 from spear._engine.api import __all__ as _api_all
 from spear.errors import InvalidArgumentError, InvalidStateError, NotFoundError, SpearError, StaleObjectError
+from spear._spfunc import SpFuncResult
 from spear.instance import Instance
 
 __all__ = [
     *_api_all,
     "Instance",
+    "SpFuncResult",
     "SpearError",
     "InvalidArgumentError",
     "InvalidStateError",
