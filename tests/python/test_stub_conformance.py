@@ -18,8 +18,10 @@ import pytest
 import spear
 from spear import _inprocess
 from spear._engine import api
+from spear._object import SpObject
 
 STUB = Path(api.__file__).with_suffix(".pyi")
+ROOT_MEMBERS = {k for k in vars(SpObject) if not k.startswith("_")}
 
 
 def stub_classes() -> dict[str, ast.ClassDef]:
@@ -94,9 +96,20 @@ def test_class_matches_stub(name: str) -> None:
                 assert node.name in native.__dict__, f"{name}.{node.name} is in the stub but not in the module"
                 params, _ = native_signature(native.__dict__[node.name].__doc__, node.name)
                 assert params == stub_signature(node), node.name
-    native_members = {k for k in native.__dict__ if not k.startswith("_")} - {"is_valid", "call_async", "send_async"}
+    # The root's own surface (is_valid, call_sp_func, ...) is declared once, in spear._object.SpObject.
+    native_members = {k for k in native.__dict__ if not k.startswith("_")} - ROOT_MEMBERS - {"call_async", "send_async"}
     assert native_members == stub_members - {"call_async", "send_async"}, \
         "the module has members the stub lacks, or the reverse"
+
+
+def test_root_class_implements_what_spobject_declares() -> None:
+    root = _inprocess.module().UObject
+    for member in ROOT_MEMBERS:
+        assert member in root.__dict__, f"UObject lacks SpObject.{member}"
+        declared = getattr(SpObject, member)
+        if inspect.isfunction(root.__dict__[member]):
+            assert list(inspect.signature(root.__dict__[member]).parameters) == \
+                list(inspect.signature(declared).parameters), member
 
 
 def test_structs_and_enums_are_shared_python_types() -> None:
