@@ -47,7 +47,7 @@ def request_bytes(arrays: dict[str, Any]) -> int:
 
 
 def measure(instance: spear.Instance, small: np.ndarray, image: np.ndarray) -> dict[str, float]:
-    from my_plugin.api import AArrayTools, AMyActor
+    from my_plugin.api import AArrayTools, AMyActor, APointFilter
 
     game = instance.get_game()
     rpc = instance.transport == "rpc"
@@ -60,12 +60,17 @@ def measure(instance: spear.Instance, small: np.ndarray, image: np.ndarray) -> d
         results["small typed"] = best_s(lambda: tools.call_sp_func("echo", arrays={"x": small}),
                                         number=500 if rpc else 20_000)
         results["small attribute"] = best_s(lambda: echo(arrays={"x": small}), number=500 if rpc else 20_000)
-        results["small typed SPFUNCTION"] = best_s(lambda: tools.GetActorLocation(), number=500 if rpc else 20_000)
+        points_filter = game.spawn_actor(uclass=APointFilter)
+        point = small.astype(np.float32).reshape(1, 3)
+        center = spear.FVector()
+        results["small typed SPFUNCTION"] = best_s(
+            lambda: points_filter.Filter(Points=point, Center=center, Radius=10.0), number=500 if rpc else 20_000)
         results["large typed"] = best_s(lambda: tools.call_sp_func("echo", arrays={"image": image}),
                                         number=5 if rpc else 2_000)
         back = tools.call_sp_func("echo", arrays={"image": image})["arrays"]["image"]
         assert np.array_equal(back, image)
         game.destroy_actor(actor=tools)
+        game.destroy_actor(actor=points_filter)
         fig8.Terminate()
         game.destroy_actor(actor=fig8)
     with instance.end_frame():
@@ -106,18 +111,18 @@ def main() -> None:
     rows = [
         ("in-process  echo, 3 x float64, call_sp_func", inp["small typed"], pybind_s, "pybind11 call"),
         ("in-process  echo, 3 x float64, attribute form", inp["small attribute"], pybind_s, "pybind11 call"),
-        ("in-process  GetActorLocation() (typed SPFUNCTION)", inp["small typed SPFUNCTION"], pybind_s, "pybind11 call"),
+        ("in-process  Filter(Points=1x3 float32) (typed SPFUNCTION)", inp["small typed SPFUNCTION"], pybind_s, "pybind11 call"),
         ("in-process  echo, 1920x1080x4 uint8", inp["large typed"], memcpy_s, "memcpy"),
         ("RPC         echo, 3 x float64, call_sp_func", rpc["small typed"], socket_s, "socket round trip"),
         ("RPC         echo, 3 x float64, attribute form", rpc["small attribute"], socket_s, "socket round trip"),
-        ("RPC         GetActorLocation() (typed SPFUNCTION)", rpc["small typed SPFUNCTION"], socket_s,
+        ("RPC         Filter(Points=1x3 float32) (typed SPFUNCTION)", rpc["small typed SPFUNCTION"], socket_s,
          "socket round trip"),
         ("RPC         echo, 1920x1080x4 uint8 (shared memory)", rpc["large typed"], memcpy_s, "memcpy"),
     ]
-    print(f"{'call':52} {'time':>11} {'ratio':>8}  floor")
+    print(f"{'call':58} {'time':>11} {'ratio':>8}  floor")
     for name, seconds, base, floor_name in rows:
         shown = f"{seconds * 1e6:8.1f} us" if seconds < 1e-3 else f"{seconds * 1e3:8.2f} ms"
-        print(f"{name:52} {shown:>11} {seconds / base:7.1f}x  {floor_name}")
+        print(f"{name:58} {shown:>11} {seconds / base:7.3g}x  {floor_name}")
 
 
 if __name__ == "__main__":

@@ -4,12 +4,14 @@
 
 namespace sp::pybind {
 
-namespace {
 reflect::DType dtypeOf(const py::array& array, std::string_view context) {
     const py::dtype dt = array.dtype();
     const char kind = dt.kind();
     const auto size = dt.itemsize();
     using reflect::DType;
+    // '>' on this little-endian machine: the bytes would be read wrongly, so refuse rather than guess.
+    SP_CHECK(dt.byteorder() != '>', InvalidArgument, context, ": array has non-native byte order (dtype '",
+             dt.attr("str").cast<std::string>(), "'); convert it with .astype(dtype.newbyteorder('='))");
     if (kind == 'b')
         return DType::Bool;
     if (kind == 'u')
@@ -24,7 +26,6 @@ reflect::DType dtypeOf(const py::array& array, std::string_view context) {
     SP_THROW(InvalidArgument, context, ": unsupported array dtype '", dt.attr("name").cast<std::string>(),
              "'");
 }
-} // namespace
 
 reflect::ArrayValue arrayFromNumpy(const py::array& array, reflect::DType dtype, std::string_view context) {
     const reflect::DType actual = dtypeOf(array, context);
@@ -49,7 +50,15 @@ reflect::ArrayValue arrayFromNumpy(const py::array& array, reflect::DType dtype,
 py::array arrayToNumpy(const reflect::ArrayValue& value) {
     static const char* const kFormats[] = {"?",  "u1", "i1", "u2", "i2", "u4",
                                            "i4", "u8", "i8", "f2", "f4", "f8"};
-    py::dtype dt(kFormats[size_t(value.dtype)]);
+    // Built once: making a numpy dtype from a string costs more than the rest of this function. Never freed,
+    // so that no Python object is released after the interpreter is gone.
+    static py::dtype* const kDTypes = [] {
+        auto* dtypes = new py::dtype[std::size(kFormats)];
+        for (size_t i = 0; i < std::size(kFormats); ++i)
+            dtypes[i] = py::dtype(kFormats[i]);
+        return dtypes;
+    }();
+    const py::dtype& dt = kDTypes[size_t(value.dtype)];
     std::vector<py::ssize_t> shape(value.shape.begin(), value.shape.end());
     if (!value.data) // an empty result still has the right dtype
         return py::array(dt, std::vector<py::ssize_t>(shape.empty() ? 1 : shape.size(), 0));

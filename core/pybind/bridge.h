@@ -100,6 +100,9 @@ template <typename T> struct Bridge<std::map<std::string, T>> {
     }
 };
 
+// The dtype of a numpy array; throws InvalidArgument for dtypes that cannot cross (complex, object, ...).
+reflect::DType dtypeOf(const py::array& array, std::string_view context);
+
 // numpy <-> ArrayValue without copying: the array keeps the numpy buffer alive and vice versa.
 reflect::ArrayValue arrayFromNumpy(const py::array& array, reflect::DType dtype, std::string_view context);
 py::array arrayToNumpy(const reflect::ArrayValue& value);

@@ -24,14 +24,8 @@ reflect::Value toValue(py::handle object, std::string_view context) {
         return Value(object.cast<std::string>());
     if (py::isinstance<py::array>(object)) {
         py::array array = py::reinterpret_borrow<py::array>(object);
-        // The dtype check happens where the registry knows the expected element type.
-        static const char* const kNames[] = {"bool",  "uint8",  "int8",  "uint16",  "int16",   "uint32",
-                                             "int32", "uint64", "int64", "float16", "float32", "float64"};
-        for (size_t i = 0; i < std::size(kNames); ++i)
-            if (array.dtype().equal(py::dtype(std::string(kNames[i]))))
-                return Value(arrayFromNumpy(array, reflect::DType(i), context));
-        SP_THROW(InvalidArgument, context, ": unsupported array dtype ",
-                 array.dtype().attr("name").cast<std::string>());
+        // Any supported dtype; the check against the expected one happens where the registry knows it.
+        return Value(arrayFromNumpy(array, dtypeOf(array, context), context));
     }
     if (py::hasattr(object, "_sp_handle")) {
         auto handle = object.attr("_sp_handle").cast<std::pair<uint32_t, uint32_t>>();

@@ -37,7 +37,8 @@ SharedMemorySegment SharedMemorySegment::create(size_t size) {
         SP_THROW(Error, "SharedMemorySegment::create(): cannot size '", segment.name_, "' to ", size,
                  " bytes: ", error);
     }
-    segment.data_ = ::mmap(nullptr, size == 0 ? 1 : size, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+    segment.data_ =
+        ::mmap(nullptr, size == 0 ? 1 : size, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_POPULATE, fd, 0);
     ::close(fd);
     if (segment.data_ == MAP_FAILED) {
         segment.data_ = nullptr;
@@ -62,7 +63,8 @@ SharedMemorySegment SharedMemorySegment::open(const std::string& name, size_t si
         SP_THROW(InvalidArgument, "SharedMemorySegment::open(): '", name, "' holds fewer than ", size,
                  " bytes");
     }
-    segment.data_ = ::mmap(nullptr, size == 0 ? 1 : size, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+    segment.data_ =
+        ::mmap(nullptr, size == 0 ? 1 : size, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_POPULATE, fd, 0);
     ::close(fd);
     SP_CHECK(segment.data_ != MAP_FAILED, InvalidArgument, "SharedMemorySegment::open(): mmap of '", name,
              "' failed: ", systemError());

@@ -22,6 +22,9 @@ from spear._object import SpObject
 
 EXT_OBJECT, EXT_CLASS, EXT_ARRAY = 1, 2, 3
 SHARED_MEMORY_THRESHOLD = 64 * 1024
+# MAP_POPULATE maps every page in one system call instead of one page fault per 4 KiB page as the copy
+# touches it: for a 1080p RGBA image that is most of the cost of a transfer.
+_MAP_FLAGS = mmap.MAP_SHARED | mmap.MAP_POPULATE
 _segment_counter = itertools.count()
 
 
@@ -51,7 +54,7 @@ def map_segment(name: str, size: int, *, unlink: bool) -> mmap.mmap:
     path = _segment_path(name)
     fd = os.open(path, os.O_RDWR)
     try:
-        mapping = mmap.mmap(fd, max(size, 1))
+        mapping = mmap.mmap(fd, max(size, 1), flags=_MAP_FLAGS)
     finally:
         os.close(fd)
         if unlink:
@@ -75,7 +78,7 @@ class OutgoingSegments:
         self.paths.append(path)
         try:
             os.ftruncate(fd, max(data.nbytes, 1))
-            with mmap.mmap(fd, max(data.nbytes, 1)) as mapping:
+            with mmap.mmap(fd, max(data.nbytes, 1), flags=_MAP_FLAGS) as mapping:
                 np.frombuffer(mapping, dtype=data.dtype, count=data.size).reshape(data.shape)[...] = data
         finally:
             os.close(fd)
