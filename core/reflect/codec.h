@@ -123,7 +123,11 @@ template <ReflectedStruct T> struct ValueCodec<T> {
         for (const auto& [name, field] : *fields) {
             const PropertyInfo* property = type.findProperty(name);
             SP_CHECK(property, InvalidArgument, context, ": ", type.name, " has no field '", name, "'");
-            property->set(&result, field);
+            try {
+                property->set(&result, field);
+            } catch (const InvalidArgument& e) { // the field's own message, after what was being decoded
+                SP_THROW(InvalidArgument, context, ": ", e.what());
+            }
         }
         return result;
     }

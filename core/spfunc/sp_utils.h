@@ -6,6 +6,7 @@
 #include <string>
 #include <type_traits>
 
+#include "core/reflect/codec.h"
 #include "core/reflect/sp_array.h"
 #include "core/spfunc/sp_func_data_bundle.h"
 #include "core/world/actor.h"
@@ -30,4 +31,23 @@ class SpUtils {
     // Packs each array under its name, sharing its storage.
     static std::map<std::string, SpPackedArray>
     moveToPackedArrays(std::initializer_list<SpArrayBase*> arrays);
+
+    // Reads the object `name` of a bundle (JSON, as Python sent it: a spear.FVector arrives as
+    // {"X": .., "Y": .., "Z": ..}) as a T: a reflected struct or enum, a number, a string, or a vector or map
+    // of those. Throws InvalidArgument naming the SpFunc being called and the object.
+    template <typename T> static T getUnrealObj(const SpFuncDataBundle& bundle, const std::string& name) {
+        return sp::reflect::decode<T>(unrealObjValue(bundle, name), unrealObjContext(name));
+    }
+
+    // Stores `value` as the object `name` of a bundle; Python receives it decoded from JSON (structs as
+    // dicts).
+    template <typename T>
+    static void setUnrealObj(SpFuncDataBundle& bundle, const std::string& name, const T& value) {
+        bundle.unreal_obj_strings_[name] = toJsonText(sp::reflect::encode(value));
+    }
+
+  private:
+    static sp::reflect::Value unrealObjValue(const SpFuncDataBundle& bundle, const std::string& name);
+    static std::string unrealObjContext(const std::string& name);
+    static std::string toJsonText(const sp::reflect::Value& value);
 };

@@ -1,12 +1,14 @@
 #pragma once
 // SpFuncs registered in the constructor (no Initialize() step), over arrays of any size: "echo" returns
-// its bundle unchanged (what the benchmarks time), "invert" returns 255 - image for a uint8 image.
+// its bundle unchanged (what the benchmarks time), "invert" returns 255 - image for a uint8 image, and
+// "center_points" takes (N, 3) points and an FVector "origin" object and returns the points relative to it
+// and their centroid as an FVector object.
 
 #include <cstdint>
 
 #include "core/spfunc/spfunc.h"
 
-/// Array utilities as SpFuncs: echo and invert.
+/// Array utilities as SpFuncs: echo, invert and center_points.
 UCLASS()
 class AArrayTools : public AActor {
     GENERATED_BODY()

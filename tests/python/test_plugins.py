@@ -153,6 +153,23 @@ def test_large_arrays_objects_and_info_round_trip(instance: spear.Instance, plug
     assert calls == 2
 
 
+def test_objects_cross_as_json_and_come_back_as_structs_in_cpp(instance: spear.Instance, plugin: Any) -> None:
+    game = instance.get_game()
+    points = np.array([[1.0, 2.0, 3.0], [3.0, 2.0, 1.0]])
+    with frame(instance):
+        tools = game.spawn_actor(uclass=plugin.AArrayTools)
+        result = tools.call_sp_func("center_points", arrays={"points": points},
+                                    unreal_objs={"origin": spear.FVector(1.0, 1.0, 1.0)})
+        with pytest.raises(spear.InvalidArgumentError) as raised:
+            tools.call_sp_func("center_points", arrays={"points": points}, unreal_objs={"origin": {"X": "far"}})
+        assert str(raised.value) == "AArrayTools.center_points(): object 'origin': FVector.X must be a float, got str 'far'"
+        with pytest.raises(spear.InvalidArgumentError) as raised:
+            tools.call_sp_func("center_points", arrays={"points": points})
+        assert str(raised.value) == "AArrayTools.center_points(): object 'origin' was not passed (got no objects)"
+    assert np.array_equal(result["arrays"]["points"], points - 1.0)
+    assert result["unreal_objs"] == {"centroid": {"X": 1.0, "Y": 1.0, "Z": 1.0}}
+
+
 def test_sp_func_calls_can_be_asynchronous(instance: spear.Instance, plugin: Any) -> None:
     game = instance.get_game()
     with frame(instance):

@@ -108,3 +108,28 @@ TEST_F(SpFuncTest, BundlesRoundTripThroughValues) {
         sp::spfunc::bundleFromValue(sp::reflect::Value(sp::reflect::Value::Dict{{"arrayz", {}}}), "t"),
         sp::InvalidArgument);
 }
+
+TEST_F(SpFuncTest, ObjectsAreReadAndWrittenAsReflectedTypes) {
+    SpFuncDataBundle bundle;
+    bundle.unreal_obj_strings_["pose"] = R"({"X": 1, "Y": 2.5, "Z": -3})"; // Python may send 1 for 1.0
+    const FVector pose = SpUtils::getUnrealObj<FVector>(bundle, "pose");
+    EXPECT_EQ(pose.X, 1.0);
+    EXPECT_EQ(pose.Y, 2.5);
+    EXPECT_EQ(pose.Z, -3.0);
+    SpUtils::setUnrealObj(bundle, "out", FVector{1.0, 2.0, 3.0});
+    EXPECT_EQ(bundle.unreal_obj_strings_.at("out"), R"({"X":1.0,"Y":2.0,"Z":3.0})");
+    SpUtils::setUnrealObj(bundle, "names", std::vector<std::string>{"a", "b"});
+    EXPECT_EQ(SpUtils::getUnrealObj<std::vector<std::string>>(bundle, "names"),
+              (std::vector<std::string>{"a", "b"}));
+    EXPECT_EQ(errorOf([&] { SpUtils::getUnrealObj<FVector>(bundle, "nope"); }),
+              "SpUtils::getUnrealObj(): object 'nope' was not passed (got 'names', 'out', 'pose')");
+    bundle.unreal_obj_strings_["bad"] = "{not json";
+    EXPECT_THROW(SpUtils::getUnrealObj<FVector>(bundle, "bad"), sp::InvalidArgument);
+    // Inside an SpFunc, errors name it.
+    component->registerFunc("read", [](SpFuncDataBundle& args) {
+        SpUtils::getUnrealObj<FVector>(args, "origin");
+        return SpFuncDataBundle{};
+    });
+    EXPECT_EQ(errorOf([&] { sp::spfunc::call(*actor, "read", {}); }),
+              "AActor.read(): object 'origin' was not passed (got no objects)");
+}
