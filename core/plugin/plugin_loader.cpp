@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -23,6 +24,30 @@ struct Loaded {
 std::map<std::string, Loaded>& plugins() {
     static std::map<std::string, Loaded> instance;
     return instance;
+}
+
+// A plugin named without a path ("my_plugin"): lib<name>.so in a directory of SPEAR_PLUGIN_PATH, or in the
+// package directory <dir>/<name>/ that spear_add_plugin() makes.
+std::string findByName(const std::string& name) {
+    const char* searchPath = std::getenv("SPEAR_PLUGIN_PATH");
+    std::string dirs = searchPath ? searchPath : "";
+    for (size_t start = 0; start <= dirs.size();) {
+        const size_t end = std::min(dirs.find(':', start), dirs.size());
+        const std::filesystem::path dir = dirs.substr(start, end - start);
+        start = end + 1;
+        if (dir.empty())
+            continue;
+        for (const auto& candidate : {dir / ("lib" + name + ".so"), dir / name / ("lib" + name + ".so")})
+            if (std::filesystem::is_regular_file(candidate))
+                return candidate.string();
+    }
+    SP_THROW(NotFound, "load_plugin(): no plugin named '", name, "' in SPEAR_PLUGIN_PATH (",
+             dirs.empty() ? std::string("unset") : "'" + dirs + "'", "); give the path of its lib", name,
+             ".so, or add the directory that holds it");
+}
+
+bool isBareName(const std::string& text) {
+    return !text.empty() && text.find('/') == std::string::npos && !text.ends_with(".so");
 }
 
 // lib<name>.so -> name
@@ -52,7 +77,8 @@ template <typename Fn> Fn symbol(void* library, const std::string& name, const s
 }
 } // namespace
 
-const PluginInfo& load(const std::string& path, const std::string& expectedApiHash) {
+const PluginInfo& load(const std::string& pathOrName, const std::string& expectedApiHash) {
+    const std::string path = isBareName(pathOrName) ? findByName(pathOrName) : pathOrName;
     const std::string name = moduleName(path);
     if (auto it = plugins().find(name); it != plugins().end()) {
         SP_CHECK(expectedApiHash.empty() || it->second.info.apiHash == expectedApiHash, InvalidState,

@@ -18,10 +18,11 @@ struct PluginInfo {
     std::vector<std::string> classes; // the classes, structs and enums it registered, sorted
 };
 
-// Loads the plugin library at `path` and registers its types. Loading the same plugin again returns the
-// loaded one. With `expectedApiHash`, a library built from other headers than the caller's stubs is
-// refused. Throws NotFound for a missing file, InvalidArgument for a library that is not a plugin.
-const PluginInfo& load(const std::string& path, const std::string& expectedApiHash = "");
+// Loads the plugin library at `pathOrName` and registers its types; a bare name ("my_plugin") is looked up
+// in the directories of SPEAR_PLUGIN_PATH (lib<name>.so there or in <dir>/<name>/). Loading the same plugin
+// again returns the loaded one. With `expectedApiHash`, a library built from other headers than the caller's
+// stubs is refused. Throws NotFound for a missing file, InvalidArgument for a library that is not a plugin.
+const PluginInfo& load(const std::string& pathOrName, const std::string& expectedApiHash = "");
 
 // Unregisters the plugin's types and unloads its library. Throws InvalidState while objects of its classes
 // are alive (they would outlive their code), NotFound when no plugin of that name is loaded.

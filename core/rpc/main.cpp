@@ -3,7 +3,8 @@
 //   spear-server --socket /tmp/spear.sock
 //   spear-server --port 0 --token SECRET [--bind 127.0.0.1]
 //   spear-server --socket /tmp/spear.sock --mode editor --scene assets/scenes/apartment.json
-//   spear-server --socket /tmp/spear.sock --plugin build/python/my_plugin/libmy_plugin.so
+//   spear-server --socket /tmp/spear.sock --plugin build/plugin/python/my_plugin/libmy_plugin.so
+//   SPEAR_PLUGIN_PATH=build/plugin/python spear-server --socket /tmp/spear.sock --plugin my_plugin
 //
 // Prints "spear-server: listening on <address>" once it accepts connections (clients that launch a
 // server wait for that line), and exits cleanly on SIGTERM, SIGINT or a client's shutdown request.
@@ -28,7 +29,7 @@ namespace {
 void usage() {
     std::fprintf(stderr, "usage: spear-server (--socket PATH | --port N --token TOKEN [--bind ADDRESS])\n"
                          "                    [--mode game|editor] [--scene FILE] [--fixed-delta-seconds S]\n"
-                         "                    [--plugin LIBRARY]... [--exit-with-parent]\n");
+                         "                    [--plugin LIBRARY|NAME]... [--exit-with-parent]\n");
 }
 } // namespace
 

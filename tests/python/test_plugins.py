@@ -283,6 +283,29 @@ def test_spear_server_loads_plugins_named_on_its_command_line(plugin_dir: Path, 
     assert "InvalidArgumentError: load_plugin():" in bad.stderr and "is not a spear plugin" in bad.stderr
 
 
+def test_spear_server_finds_plugins_by_name_on_its_search_path(plugin_dir: Path, tmp_path: Path) -> None:
+    from spear._rpc_client import find_server_binary
+
+    socket_path = tmp_path / "spear.sock"
+    env = {**os.environ, "SPEAR_PLUGIN_PATH": f"{tmp_path}:{plugin_dir}"}
+    server = subprocess.Popen([str(find_server_binary()), "--socket", str(socket_path), "--plugin", "my_plugin"],
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    try:
+        assert server.stdout is not None and "listening on" in server.stdout.readline()
+        instance = spear.Instance(server=f"unix:{socket_path}")
+        with frame(instance):
+            assert instance.get_game().spawn_actor(uclass="APointFilter").is_valid()
+        instance.close()
+    finally:
+        server.terminate()
+        server.wait(timeout=10)
+    missing = subprocess.run([str(find_server_binary()), "--socket", str(tmp_path / "m.sock"), "--plugin", "nope"],
+                             capture_output=True, text=True, timeout=30, env=env)
+    assert missing.returncode == 1
+    assert f"NotFoundError: load_plugin(): no plugin named 'nope' in SPEAR_PLUGIN_PATH ('{tmp_path}:{plugin_dir}')" \
+        in missing.stderr
+
+
 @pytest.mark.parametrize("transport", ["inprocess", "rpc"])
 def test_stubs_from_other_headers_are_refused(plugin_dir: Path, tmp_path: Path, transport: str) -> None:
     stale = tmp_path / "my_plugin"
