@@ -105,11 +105,15 @@ void Dispatcher::handleOne(const msgpack::object& request, Session& session,
         pack(out, result, toShm);
     } catch (const Error& e) {
         packError(out, id, pythonErrorClass(e), e.what());
-    } catch (const std::exception& e) {
-        // msgpack type errors and the like: the request was malformed, the engine is fine.
+    } catch (const msgpack::type_error& e) {
+        // A field of the wrong msgpack type: the request was malformed, the engine is fine.
         packError(out, id, "InvalidArgumentError",
                   std::string("request: malformed message (") + e.what() + ")");
         session.closeAfterReply = session.closeAfterReply || !session.greeted;
+    } catch (const std::exception& e) {
+        // Anything else was thrown by engine or plugin code while running a well-formed request: report it
+        // as the in-process engine does (spear.errors.SpearError), naming what failed.
+        packError(out, id, "SpearError", std::string(e.what()));
     }
 }
 

@@ -38,9 +38,19 @@ std::vector<std::string> funcNames(reflect::ObjectBase& object) {
 
 SpFuncDataBundle call(reflect::ObjectBase& object, const std::string& name, SpFuncDataBundle args) {
     const std::string context = object.GetClass().name + "." + name + "()";
-    for (USpFuncComponent* component : components(object))
-        if (component->hasFunc(name))
+    for (USpFuncComponent* component : components(object)) {
+        if (!component->hasFunc(name))
+            continue;
+        try {
             return component->callFunc(name, args, context);
+        } catch (const Error&) {
+            throw;
+        } catch (const std::exception& e) {
+            // Whatever else an SpFunc's code throws (std::out_of_range from a map's at(), ...) becomes an
+            // engine error naming the SpFunc, the same on both transports.
+            SP_THROW(Error, context, ": ", e.what());
+        }
+    }
     std::string known;
     for (const std::string& n : funcNames(object))
         known += (known.empty() ? "'" : ", '") + n + "'";

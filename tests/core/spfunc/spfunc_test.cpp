@@ -133,3 +133,19 @@ TEST_F(SpFuncTest, ObjectsAreReadAndWrittenAsReflectedTypes) {
     EXPECT_EQ(errorOf([&] { sp::spfunc::call(*actor, "read", {}); }),
               "AActor.read(): object 'origin' was not passed (got no objects)");
 }
+
+TEST_F(SpFuncTest, WhatAnSpFuncThrowsBecomesAnEngineErrorNamingIt) {
+    component->registerFunc("throws", [](SpFuncDataBundle& args) {
+        args.packed_arrays_.at("missing"); // std::out_of_range
+        return SpFuncDataBundle{};
+    });
+    try {
+        sp::spfunc::call(*actor, "throws", {});
+        FAIL() << "no exception";
+    } catch (const sp::Error& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("AActor.throws(): ", 0), 0u) << e.what();
+    }
+    // The engine is fine: the next call runs.
+    component->registerFunc("fine", [](SpFuncDataBundle&) { return SpFuncDataBundle{}; });
+    EXPECT_NO_THROW(sp::spfunc::call(*actor, "fine", {}));
+}
