@@ -88,6 +88,13 @@ def sp_func_getattr(self: Any, name: str) -> Any:
     """Attribute fallback: an SpFunc by name, as in Fig. 8 (`my_actor.my_sp_func(arrays=...)`)."""
     if name.startswith("_"):
         raise AttributeError(f"'{type(self).__name__}' object has no attribute '{name}'")
-    if name in self._sp_get_sp_func_names():
+    try:
+        names = self._sp_get_sp_func_names()
+    except errors.SpearError as error:
+        # Attribute lookups must fail with AttributeError (hasattr, getattr with a default); the reason
+        # (outside a frame, a destroyed object) goes in the message.
+        raise AttributeError(f"'{type(self).__name__}' object has no attribute '{name}', and its SpFuncs "
+                             f"cannot be listed now: {error}") from error
+    if name in names:
         return functools.partial(call_sp_func, self, name)
     raise AttributeError(f"'{type(self).__name__}' object has no attribute or SpFunc '{name}'")
