@@ -226,6 +226,21 @@ def test_plugin_classes_spawn_query_and_check_like_engine_classes(instance: spea
         assert isinstance(component, spear.USpFuncComponent) and component.GetOwner() == mine
 
 
+def test_scene_files_hold_plugin_actors(instance: spear.Instance, plugin: Any, tmp_path: Path) -> None:
+    game = instance.get_game()
+    path = tmp_path / "scene.json"
+    with frame(instance):
+        points_filter = game.spawn_actor(uclass=plugin.APointFilter, name="Filter")
+        points_filter.Tags = ["plugin"]
+        game.save_scene(path=str(path))
+        game.destroy_actor(actor=points_filter)
+        game.load_scene(path=str(path))
+        loaded = game.find_actor_by_name(name="Filter")
+        assert isinstance(loaded, plugin.APointFilter)
+        assert loaded.Tags == ["plugin"]
+    assert "APointFilter" in path.read_text()
+
+
 def test_unload_is_refused_while_objects_live_then_classes_go_and_come_back(instance: spear.Instance,
                                                                           plugin_dir: Path) -> None:
     instance.load_plugin(plugin_dir / "my_plugin")
