@@ -1,4 +1,4 @@
-# spear_add_plugin(<name> HEADERS header... [SOURCES source...] [PYTHON_DIR dir])
+# spear_add_plugin(<name> HEADERS header... [SOURCES source...] [INCLUDE_DIRS dir...] [PYTHON_DIR dir])
 #
 # Builds a spear plugin from its reflected headers: the generator runs on HEADERS (and again whenever one
 # changes), and the build produces the Python package <PYTHON_DIR>/<name>/ (default PYTHON_DIR:
@@ -9,7 +9,7 @@
 #   api.py, api.pyi, rpc.py, __init__.py, py.typed   the typed API (mypy reads api.pyi)
 # Put <PYTHON_DIR> on sys.path (and MYPYPATH) and call spear.Instance.load_plugin("<name>").
 function(spear_add_plugin name)
-  cmake_parse_arguments(ARG "" "PYTHON_DIR" "HEADERS;SOURCES" ${ARGN})
+  cmake_parse_arguments(ARG "" "PYTHON_DIR" "HEADERS;SOURCES;INCLUDE_DIRS" ${ARGN})
   if(NOT ARG_HEADERS)
     message(FATAL_ERROR "spear_add_plugin(${name}): HEADERS is required (the plugin's reflected headers)")
   endif()
@@ -28,7 +28,7 @@ function(spear_add_plugin name)
   get_target_property(eigen_includes Eigen3::Eigen INTERFACE_INCLUDE_DIRECTORIES)
   spear_generate(MODULE ${name} ROOT ${CMAKE_CURRENT_SOURCE_DIR} OUT_DIR ${CMAKE_CURRENT_BINARY_DIR}/generated
                  PYTHON_OUT ${package_dir} PACKAGE ${name} HEADERS ${headers}
-                 INCLUDE_DIRS ${SPEAR_SOURCE_DIR} ${eigen_includes} OUT_VAR outputs)
+                 INCLUDE_DIRS ${SPEAR_SOURCE_DIR} ${eigen_includes} ${ARG_INCLUDE_DIRS} OUT_VAR outputs)
   set(registry ${outputs})
   list(FILTER registry INCLUDE REGEX "\\.gen\\.cpp$")
   list(FILTER registry EXCLUDE REGEX "module\\.gen\\.cpp$")
@@ -38,9 +38,11 @@ function(spear_add_plugin name)
   # The plugin itself: its sources and generated registry, over the engine's shared library.
   add_library(${name} SHARED ${ARG_SOURCES} ${registry})
   add_dependencies(${name} spear_codegen_${name})
-  target_include_directories(${name} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR})
+  target_include_directories(${name} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}
+                             ${ARG_INCLUDE_DIRS})
   target_link_libraries(${name} PUBLIC spear::spear_core)
-  set_target_properties(${name} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${package_dir})
+  # $<1:...>: the package directory itself, also with multi-config generators (no per-config subfolder).
+  set_target_properties(${name} PROPERTIES LIBRARY_OUTPUT_DIRECTORY $<1:${package_dir}>)
 
   # Its in-process Python bindings.
   set(SPEAR_PLUGIN_NAME ${name})
@@ -48,6 +50,6 @@ function(spear_add_plugin name)
                  @ONLY)
   pybind11_add_module(_${name} MODULE ${CMAKE_CURRENT_BINARY_DIR}/${name}_module.cpp ${bindings})
   target_link_libraries(_${name} PRIVATE ${name} spear::spear_pybind)
-  set_target_properties(_${name} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${package_dir})
+  set_target_properties(_${name} PROPERTIES LIBRARY_OUTPUT_DIRECTORY $<1:${package_dir}>)
   file(WRITE ${package_dir}/py.typed "")
 endfunction()

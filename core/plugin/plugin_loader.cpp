@@ -26,6 +26,21 @@ std::map<std::string, Loaded>& plugins() {
     return instance;
 }
 
+// Names of every plugin this process has loaded, and the API of the build it loaded.
+std::map<std::string, std::string>& everLoaded() {
+    static std::map<std::string, std::string> instance;
+    return instance;
+}
+
+ReleaseClasses releaseHook = nullptr;
+// The classes of the plugin being unloaded, for the release hook's test (unload is not reentrant).
+std::vector<const reflect::TypeInfo*> unloading;
+
+bool isUnloadingClass(const reflect::TypeInfo& type) {
+    return std::any_of(unloading.begin(), unloading.end(),
+                       [&](const auto* own) { return type.isChildOf(*own); });
+}
+
 // A plugin named without a path ("my_plugin"): lib<name>.so in a directory of SPEAR_PLUGIN_PATH, or in the
 // package directory <dir>/<name>/ that spear_add_plugin() makes.
 std::string findByName(const std::string& name) {
@@ -87,8 +102,11 @@ const PluginInfo& load(const std::string& pathOrName, const std::string& expecte
         return it->second.info;
     }
     SP_CHECK(std::filesystem::exists(path), NotFound, "load_plugin(): '", path, "' does not exist");
-    // RTLD_LOCAL: two plugins never resolve each other's symbols; RTLD_NOW: a missing symbol fails here.
-    void* library = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    // RTLD_LOCAL: two plugins never resolve each other's symbols; RTLD_NOW: a missing symbol fails here;
+    // RTLD_NODELETE: see unload(). An absolute path, so that dlopen() opens the file that was checked
+    // rather than searching the library path for its name.
+    const std::string absolute = std::filesystem::absolute(path).string();
+    void* library = dlopen(absolute.c_str(), RTLD_NOW | RTLD_LOCAL | RTLD_NODELETE);
     SP_CHECK(library, InvalidArgument, "load_plugin(): cannot load '", path, "': ", dlerror());
     const std::string prefix = "spear_register_" + name + "_types";
     auto registerTypes = symbol<void (*)()>(library, prefix, path);
@@ -97,6 +115,12 @@ const PluginInfo& load(const std::string& pathOrName, const std::string& expecte
     if (!expectedApiHash.empty() && expectedApiHash != apiHash()) {
         const std::string actual = apiHash();
         dlclose(library);
+        if (everLoaded().count(name))
+            SP_THROW(InvalidState, "load_plugin(): this process already ran another build of plugin '", name,
+                     "' (API ", actual,
+                     "), whose code stays loaded; restart the process (the spear-server, or "
+                     "Python for an in-process engine) to load the rebuilt one (API ",
+                     expectedApiHash, ")");
         SP_THROW(InvalidState, "load_plugin(): '", path, "' was built from other headers (API ", actual,
                  ") than the Python package that loads it (API ", expectedApiHash, "); rebuild the plugin");
     }
@@ -108,6 +132,7 @@ const PluginInfo& load(const std::string& pathOrName, const std::string& expecte
         dlclose(library);
         throw;
     }
+    everLoaded()[name] = apiHash();
     Loaded loaded{{name, path, apiHash(), {}}, library, unregisterTypes};
     for (const std::string& type : registeredNames())
         if (!before.count(type))
@@ -118,17 +143,16 @@ const PluginInfo& load(const std::string& pathOrName, const std::string& expecte
 void unload(const std::string& name) {
     auto it = plugins().find(name);
     SP_CHECK(it != plugins().end(), NotFound, "unload_plugin(): no plugin named '", name, "' is loaded");
-    std::vector<const reflect::TypeInfo*> own;
+    unloading.clear();
     for (const std::string& type : it->second.info.classes)
         if (const reflect::TypeInfo* info = reflect::Registry::get().findType(type))
-            own.push_back(info);
-    auto fromPlugin = [&](const reflect::TypeInfo& type) {
-        return std::any_of(own.begin(), own.end(), [&](const auto* o) { return type.isChildOf(*o); });
-    };
+            unloading.push_back(info);
+    if (releaseHook)
+        releaseHook(&isUnloadingClass);
     std::string alive;
     size_t count = 0;
     for (const reflect::ObjectBase* object : reflect::ObjectTable::liveObjects()) {
-        if (!fromPlugin(object->GetClass()))
+        if (!isUnloadingClass(object->GetClass()))
             continue;
         if (++count <= 3)
             alive += (alive.empty() ? "" : ", ") + object->GetDebugName();
@@ -138,18 +162,16 @@ void unload(const std::string& name) {
              "); destroy them first");
     // Data-defined classes (blueprints) made from the plugin's classes go with them.
     for (const reflect::TypeInfo* type : reflect::Registry::get().types())
-        if (type->isDataDefined() && fromPlugin(*type))
+        if (type->isDataDefined() && isUnloadingClass(*type))
             reflect::Registry::get().remove(*type);
     it->second.unregister();
-    dlclose(it->second.library);
+    dlclose(it->second.library); // with RTLD_NODELETE, the code stays mapped
     plugins().erase(it);
+    unloading.clear();
 }
 
-std::vector<PluginInfo> loaded() {
-    std::vector<PluginInfo> result;
-    for (const auto& [name, plugin] : plugins())
-        result.push_back(plugin.info);
-    return result;
+void setReleaseHook(ReleaseClasses hook) {
+    releaseHook = hook;
 }
 
 } // namespace sp::plugin

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "core/reflect/type_info.h"
+
 namespace sp::plugin {
 
 struct PluginInfo {
@@ -24,10 +26,15 @@ struct PluginInfo {
 // stubs is refused. Throws NotFound for a missing file, InvalidArgument for a library that is not a plugin.
 const PluginInfo& load(const std::string& pathOrName, const std::string& expectedApiHash = "");
 
-// Unregisters the plugin's types and unloads its library. Throws InvalidState while objects of its classes
-// are alive (they would outlive their code), NotFound when no plugin of that name is loaded.
+// Unregisters the plugin's types, so that its classes can no longer be created or named. Its code stays
+// mapped until the process ends (RTLD_NODELETE: glibc could not unmap a C++ library reliably anyway), so a
+// process loads one build of a plugin; loading a rebuilt one means restarting the process. Throws
+// InvalidState while objects of its classes are alive, NotFound when no plugin of that name is loaded.
 void unload(const std::string& name);
 
-std::vector<PluginInfo> loaded();
+// Called by unload() before it checks for live objects, with a test for "is this class the plugin's":
+// the engine drops what it keeps of those classes itself (the worlds' default objects).
+using ReleaseClasses = void (*)(bool (*isPluginClass)(const reflect::TypeInfo&));
+void setReleaseHook(ReleaseClasses hook);
 
 } // namespace sp::plugin

@@ -9,9 +9,7 @@ reflect::DType dtypeOf(const py::array& array, std::string_view context) {
     const char kind = dt.kind();
     const auto size = dt.itemsize();
     using reflect::DType;
-    // '>' on this little-endian machine: the bytes would be read wrongly, so refuse rather than guess.
-    SP_CHECK(dt.byteorder() != '>', InvalidArgument, context, ": array has non-native byte order (dtype '",
-             dt.attr("str").cast<std::string>(), "'); convert it with .astype(dtype.newbyteorder('='))");
+    // The byte order is not checked here: arrayFromNumpy() converts a non-native array first.
     if (kind == 'b')
         return DType::Bool;
     if (kind == 'u')
@@ -31,8 +29,14 @@ reflect::ArrayValue arrayFromNumpy(const py::array& array, reflect::DType dtype,
     const reflect::DType actual = dtypeOf(array, context);
     SP_CHECK(actual == dtype, InvalidArgument, context, " must have dtype ", reflect::dtypeName(dtype),
              ", got ", reflect::dtypeName(actual));
-    // Non-contiguous inputs (slices, transposes) are copied once into C order.
+    // Copied once, so that C++ sees native, C-ordered, writable elements: non-contiguous inputs (slices,
+    // transposes), big-endian ones (whose bytes C++ would misread) and read-only ones (an SpFunc may write
+    // into its inputs). Over RPC every array is a copy in shared memory anyway.
     py::array contiguous = py::array::ensure(array, py::array::c_style);
+    if (contiguous.dtype().byteorder() == '>')
+        contiguous = contiguous.attr("astype")(contiguous.dtype().attr("newbyteorder")("="));
+    else if (!contiguous.writeable())
+        contiguous = contiguous.attr("copy")();
     reflect::ArrayValue value;
     value.dtype = dtype;
     for (py::ssize_t i = 0; i < contiguous.ndim(); ++i)

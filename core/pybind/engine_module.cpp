@@ -32,8 +32,9 @@ py::dict callSpFunc(py::handle uobject, const std::string& name, const py::dict&
     sp::reflect::ObjectBase& object = sp::pybind::resolveArgument(uobject, context);
     SpFuncDataBundle args;
     for (auto [key, array] : arrays) {
-        sp::reflect::Value value = sp::pybind::toValue(array, context);
-        args.packed_arrays_.emplace(key.cast<std::string>(), std::move(value.as<sp::reflect::ArrayValue>()));
+        const std::string name = key.cast<std::string>();
+        sp::reflect::Value value = sp::pybind::toValue(array, context + ": arrays['" + name + "']");
+        args.packed_arrays_.emplace(name, std::move(value.as<sp::reflect::ArrayValue>()));
     }
     args.unreal_obj_strings_ = std::move(unrealObjs);
     args.info_ = std::move(info);

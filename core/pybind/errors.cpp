@@ -21,6 +21,15 @@ void registerErrorTranslator() {
                 std::rethrow_exception(p);
         } catch (const Error& e) {
             raise(pythonErrorClass(e), e);
+        } catch (const py::error_already_set&) {
+            throw; // a Python error on its way back: pybind11 restores it
+        } catch (const std::bad_alloc&) {
+            throw; // MemoryError
+        } catch (const py::builtin_exception&) {
+            throw; // pybind11's own (cast errors and the like): its translator maps them
+        } catch (const std::exception& e) {
+            // Anything else engine or plugin code throws: SpearError, as the RPC server reports it.
+            raise("SpearError", e);
         }
     });
 }

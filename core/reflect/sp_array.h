@@ -104,7 +104,10 @@ template <typename T> class SpArray : public SpArrayBase {
     void setDataSource(std::vector<T> data, std::vector<int64_t> shape = {-1}) {
         auto storage = std::make_shared<std::vector<T>>(std::move(data));
         value_.shape = resolveShape(std::move(shape), int64_t(storage->size()));
-        value_.data = storage->data();
+        // An empty vector may have no storage at all; a null pointer would read as "no array" (an unset
+        // TypedDict field), so an empty array points at a byte that is never read instead.
+        static char emptyStorage = 0;
+        value_.data = storage->empty() ? static_cast<void*>(&emptyStorage) : storage->data();
         value_.owner = std::move(storage);
     }
     void setDataSource(std::initializer_list<T> data) { setDataSource(std::vector<T>(data)); }

@@ -105,6 +105,10 @@ void Dispatcher::handleOne(const msgpack::object& request, Session& session,
         pack(out, result, toShm);
     } catch (const Error& e) {
         packError(out, id, pythonErrorClass(e), e.what());
+    } catch (const msgpack::unpack_error& e) {
+        packError(out, id, "InvalidArgumentError",
+                  std::string("request: malformed message (") + e.what() + ")");
+        session.closeAfterReply = session.closeAfterReply || !session.greeted;
     } catch (const msgpack::type_error& e) {
         // A field of the wrong msgpack type: the request was malformed, the engine is fine.
         packError(out, id, "InvalidArgumentError",

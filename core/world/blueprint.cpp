@@ -137,8 +137,13 @@ const reflect::TypeInfo& loadBlueprint(const std::string& path, std::string_view
     std::string key = std::filesystem::weakly_canonical(path, ignored).string();
     if (key.empty())
         key = path;
-    if (auto it = blueprints().find(key); it != blueprints().end())
-        return it->second->type;
+    if (auto it = blueprints().find(key); it != blueprints().end()) {
+        // Still registered: the cached class. Gone from the registry (its native class came from a plugin
+        // that was unloaded): load it afresh, which then finds the parent class, or says it is missing.
+        if (reflect::Registry::get().findType(it->second->type.name) == &it->second->type)
+            return it->second->type;
+        blueprints().erase(it);
+    }
 
     Json document = readBlueprintFile(path, where);
     SP_CHECK(document.is_object(), InvalidArgument, where, ": expected a JSON object, got ",

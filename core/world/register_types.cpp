@@ -1,3 +1,5 @@
+#include "core/plugin/plugin_loader.h"
+#include "core/reflect/object_base.h"
 #include "core/reflect/registry.h"
 #include "core/world/blueprint.h"
 #include "core/world/engine.h"
@@ -9,6 +11,16 @@ void registerEngineTypes() {
     spear_register_engine_types();
     // Generated blueprint classes carry their asset, so that they can be used before load_class().
     reflect::Registry::get().setClassLoader(&loadBlueprint);
+    // Default objects live as long as their world; those of an unloading plugin's classes go first.
+    plugin::setReleaseHook([](bool (*isPluginClass)(const reflect::TypeInfo&)) {
+        // The worlds first: releasing destroys objects that a snapshot of the table would still list.
+        std::vector<UWorld*> worlds;
+        for (reflect::ObjectBase* object : reflect::ObjectTable::liveObjects())
+            if (auto* world = dynamic_cast<UWorld*>(object))
+                worlds.push_back(world);
+        for (UWorld* world : worlds)
+            world->ReleaseDefaultObjects(isPluginClass);
+    });
 }
 
 } // namespace sp::world

@@ -217,6 +217,15 @@ UObject* UWorld::get_default_object(TSubclassOf<UObject> uclass) {
     return object.get();
 }
 
+void UWorld::ReleaseDefaultObjects(bool (*test)(const UClass&)) {
+    std::erase_if(defaultObjects_, [&](const auto& entry) {
+        if (!test(*entry.first))
+            return false;
+        sp::reflect::ObjectTable::rememberName(*entry.second);
+        return true;
+    });
+}
+
 const UClass* UWorld::load_class(TSubclassOf<UObject> uclass, const std::string& name) {
     const char* function = "UWorld.load_class()";
     SP_CHECK(uclass, sp::InvalidArgument, function, ": uclass is None");

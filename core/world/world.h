@@ -87,6 +87,9 @@ class UWorld : public UObject {
     SPFUNCTION(DeterminesOutputType = uclass, NotNull)
     UObject* get_default_object(TSubclassOf<UObject> uclass);
 
+    // Destroys the default objects of the classes `test` accepts (a plugin's, before it is unloaded).
+    void ReleaseDefaultObjects(bool (*test)(const UClass&));
+
     /// Returns the world-space locations of actors as an (N, 3) float64 array, rows in the order given.
     SPFUNCTION()
     sp::reflect::SpArray<double> get_actor_locations(const std::vector<AActor*>& actors) const;

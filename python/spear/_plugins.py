@@ -2,7 +2,7 @@
 
 A plugin built by spear_add_plugin(my_plugin ...) is the package <build>/python/my_plugin/ with its typed
 API (api.pyi), its RPC proxies (rpc.py), its pybind11 module (_my_plugin) and its library
-(libmy_plugin.so). Instance.load_plugin() takes the package's name (when it is on sys.path) or its path.
+(libmy_plugin.so). Instance.load_plugin() takes the package's name (when it is on sys.path) or its path (with a "/").
 """
 
 from __future__ import annotations
@@ -29,7 +29,9 @@ def find(plugin: str | os.PathLike[str]) -> PluginPackage:
     """The plugin package named by `plugin`: an importable package name, or the path of its directory."""
     text = os.fspath(plugin)
     path = Path(text)
-    if os.sep in text or path.is_dir():
+    # A bare name is always a package name, even if a folder of that name (the plugin's sources, say) is
+    # in the current directory; write ./my_plugin for that folder.
+    if os.sep in text:
         if not (path / "__init__.py").is_file():
             raise errors.NotFoundError(f"load_plugin(): '{text}' is not a plugin package (no __init__.py); "
                                        "pass the directory spear_add_plugin() made, e.g. build/python/my_plugin")

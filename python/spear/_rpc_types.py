@@ -14,21 +14,23 @@ from spear._wire import ClassRef, ObjectRef
 _api_modules: list[Any] = []
 
 
-def add_api_module(module: Any) -> None:
-    """Lets results name the classes, structs and enums of a loaded plugin's API."""
-    _api_lookup("")  # the engine's API is searched first
-    if module not in _api_modules:
-        _api_modules.append(module)
-
-
-def _api_lookup(name: str) -> Any:
+def _searched_modules() -> list[Any]:
+    """The API modules results are looked up in: the engine's first, then loaded plugins' (add_api_module)."""
     if not _api_modules:
         from spear._engine import api
 
         _api_modules.append(api)
-    if not name:
-        return None
-    for module in _api_modules:
+    return _api_modules
+
+
+def add_api_module(module: Any) -> None:
+    """Lets results name the classes, structs and enums of a loaded plugin's API."""
+    if module not in _searched_modules():
+        _api_modules.append(module)
+
+
+def _api_lookup(name: str) -> Any:
+    for module in _searched_modules():
         found = getattr(module, name, None)
         if found is not None:
             return found

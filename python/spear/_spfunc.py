@@ -49,12 +49,20 @@ def _encode_objects(context: str, unreal_objs: Mapping[str, object] | None) -> d
     return encoded
 
 
+# numpy kinds and sizes that cross (bool, integers, float16/32/64), as in core/reflect/value.h's DType.
+_SUPPORTED = {("b", 1)} | {(k, n) for k in "ui" for n in (1, 2, 4, 8)} | {("f", n) for n in (2, 4, 8)}
+
+
 def _check_arrays(context: str, arrays: Mapping[str, NDArray[Any]] | None) -> dict[str, NDArray[Any]]:
     checked: dict[str, NDArray[Any]] = {}
     for name, array in (arrays or {}).items():
         if not isinstance(array, np.ndarray):
             raise errors.InvalidArgumentError(
                 f"{context}: arrays[{name!r}] must be a numpy array, got {type(array).__name__}")
+        if (array.dtype.kind, array.dtype.itemsize) not in _SUPPORTED:
+            raise errors.InvalidArgumentError(
+                f"{context}: arrays[{name!r}] has dtype {array.dtype}, which cannot cross (use bool, an integer "
+                "or a float dtype)")
         checked[str(name)] = array
     return checked
 

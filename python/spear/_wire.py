@@ -95,6 +95,8 @@ class OutgoingSegments:
 
 def _encode_array(array: NDArray[Any], segments: OutgoingSegments) -> msgpack.ExtType:
     array = np.ascontiguousarray(array)
+    if not array.dtype.isnative:  # the server reads native (little-endian) elements, as in-process C++ does
+        array = array.astype(array.dtype.newbyteorder("="))
     dtype = "bool" if array.dtype == np.bool_ else array.dtype.name
     payload: Any
     if array.nbytes >= SHARED_MEMORY_THRESHOLD:

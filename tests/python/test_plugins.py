@@ -174,6 +174,40 @@ def test_objects_cross_as_json_and_come_back_as_structs_in_cpp(instance: spear.I
     assert result["unreal_objs"] == {"centroid": {"X": 1.0, "Y": 1.0, "Z": 1.0}}
 
 
+def test_empty_arrays_keep_their_dtype_and_shape(instance: spear.Instance, plugin: Any) -> None:
+    game = instance.get_game()
+    with frame(instance):
+        points_filter = game.spawn_actor(uclass=plugin.APointFilter)
+        none_inside = points_filter.Filter(Points=np.full((4, 3), 9.0, dtype=np.float32), Center=spear.FVector(),
+                                           Radius=1.0)
+        tools = game.spawn_actor(uclass=plugin.AArrayTools)
+        centered = tools.call_sp_func("center_points", arrays={"points": np.zeros((0, 3))},
+                                      unreal_objs={"origin": spear.FVector()})
+    assert none_inside["Points"].shape == (0, 3) and none_inside["Points"].dtype == np.float32
+    assert none_inside["Indices"].shape == (0,) and none_inside["Indices"].dtype == np.int64
+    assert centered["arrays"]["points"].shape == (0, 3)
+
+
+def test_arrays_cross_in_any_byte_order_layout_or_writability(instance: spear.Instance, plugin: Any) -> None:
+    game = instance.get_game()
+    points = np.arange(12, dtype=np.float64).reshape(4, 3)
+    read_only = points.copy()
+    read_only.flags.writeable = False
+    variants = {"big-endian": points.astype(">f8"), "transposed": np.ascontiguousarray(points.T).T,
+                "read-only": read_only}
+    with frame(instance):
+        tools = game.spawn_actor(uclass=plugin.AArrayTools)
+        results = {name: tools.call_sp_func("center_points", arrays={"points": array},
+                                            unreal_objs={"origin": spear.FVector(1.0, 1.0, 1.0)})
+                   for name, array in variants.items()}
+        with pytest.raises(spear.InvalidArgumentError) as raised:
+            tools.call_sp_func("echo", arrays={"z": np.zeros(3, dtype=np.complex128)})
+    for name, result in results.items():
+        assert np.array_equal(result["arrays"]["points"], points - 1.0), name
+    assert str(raised.value) == ("AArrayTools.echo(): arrays['z'] has dtype complex128, which cannot cross "
+                                 "(use bool, an integer or a float dtype)")
+
+
 def test_sp_func_calls_can_be_asynchronous(instance: spear.Instance, plugin: Any) -> None:
     game = instance.get_game()
     with frame(instance):
@@ -261,6 +295,29 @@ def test_unload_is_refused_while_objects_live_then_classes_go_and_come_back(inst
     instance.load_plugin("my_plugin")  # by name, now that its directory is on sys.path
     with frame(instance):
         assert game.spawn_actor(uclass="AMyActor").GetName() == "MyActor_0"
+
+
+def test_unload_takes_default_objects_and_blueprints_of_its_classes(instance: spear.Instance, plugin_dir: Path,
+                                                                   tmp_path: Path) -> None:
+    instance.load_plugin(plugin_dir / "my_plugin")
+    game = instance.get_game()
+    blueprint = tmp_path / "BP_MyActor.json"
+    blueprint.write_text('{"format": "spear.blueprint", "version": 1, "parent": "AMyActor", "properties": '
+                         '{"Tags": ["from a blueprint"]}}')
+    with frame(instance):
+        default = game.get_default_object(uclass="AMyActor")
+        uclass = game.load_class(uclass=spear.AActor, name=str(blueprint))
+        spawned = game.spawn_actor(uclass=uclass)
+        assert spawned.Tags == ["from a blueprint"] and spawned.GetClassName() == "BP_MyActor"
+        game.destroy_actor(actor=spawned)
+    instance.unload_plugin("my_plugin")  # the world's default object goes with the plugin
+    with frame(instance):
+        assert not default.is_valid()
+        with pytest.raises(spear.InvalidArgumentError, match="'parent': class 'AMyActor' is not registered"):
+            game.load_class(uclass=spear.AActor, name=str(blueprint))
+    instance.load_plugin(plugin_dir / "my_plugin")
+    with frame(instance):
+        assert game.spawn_actor(uclass=game.load_class(uclass=spear.AActor, name=str(blueprint))).is_valid()
 
 
 def test_loading_something_that_is_not_a_plugin_fails_clearly(instance: spear.Instance, tmp_path: Path) -> None:
