@@ -27,8 +27,8 @@ void checkFrame(sp::reflect::ObjectBase& object, std::string_view context) {
 // SpFuncs, in-process: arrays pass as views of the numpy buffers and come back as arrays that own the
 // C++ storage; spear._spfunc checks the bundle and handles the JSON of unreal_objs for both transports.
 py::dict callSpFunc(py::handle uobject, const std::string& name, const py::dict& arrays,
-                    std::map<std::string, std::string> unrealObjs, std::string info) {
-    const std::string context = "call_sp_func('" + name + "')";
+                    std::map<std::string, std::string> unrealObjs, std::string info,
+                    const std::string& context) {
     sp::reflect::ObjectBase& object = sp::pybind::resolveArgument(uobject, context);
     SpFuncDataBundle args;
     for (auto [key, array] : arrays) {
@@ -68,8 +68,8 @@ PYBIND11_MODULE(_spear_engine, m) {
     m.def("_call_sp_func", &callSpFunc, "Calls an SpFunc (use obj.call_sp_func()).");
     m.def(
         "_get_sp_func_names",
-        [](py::handle uobject) {
-            return sp::spfunc::funcNames(sp::pybind::resolveArgument(uobject, "get_sp_func_names()"));
+        [](py::handle uobject, const std::string& context) {
+            return sp::spfunc::funcNames(sp::pybind::resolveArgument(uobject, context));
         },
         "The SpFuncs of an object (use obj.get_sp_func_names()).");
 

@@ -38,6 +38,15 @@ std::string requireString(const msgpack::object& map, std::string_view name, std
     return std::string(value.via.str.ptr, value.via.str.size);
 }
 
+// The context a client names a request by ("AMyActor.my_sp_func()", as the in-process bindings would),
+// or `fallback`.
+std::string givenContext(const msgpack::object& request, std::string fallback) {
+    const msgpack::object* given = field(request, "context");
+    if (given && given->type == msgpack::type::STR && given->via.str.size > 0)
+        return std::string(given->via.str.ptr, given->via.str.size);
+    return fallback;
+}
+
 reflect::ObjectBase& requireObject(const msgpack::object& request, const std::string& context) {
     Value handle = unpack(require(request, "object", context), context);
     SP_CHECK(handle.is<reflect::ObjectHandle>(), InvalidArgument, context,
@@ -179,12 +188,9 @@ Value Dispatcher::execute(const std::string& op, const msgpack::object& request,
         // call_typed (the dynamic API) also returns the declared types, so the client can build
         // the same Python types the typed proxies do.
         const std::string function = requireString(request, "function", op);
-        std::string context = "call_function('" + function + "')";
         // Typed proxies name the member as the in-process bindings do ("AActor.GetName()"), so that
         // messages are the same on both transports.
-        if (const msgpack::object* given = field(request, "context");
-            given && given->type == msgpack::type::STR)
-            context = std::string(given->via.str.ptr, given->via.str.size);
+        const std::string context = givenContext(request, "call_function('" + function + "')");
         reflect::ObjectBase& object = requireObject(request, context);
         const reflect::FunctionInfo* info = object.GetClass().findFunction(function);
         SP_CHECK(info, NotFound, context, ": class '", object.GetClass().name, "' has no function '",
@@ -204,10 +210,8 @@ Value Dispatcher::execute(const std::string& op, const msgpack::object& request,
     }
     if (op == "get" || op == "get_typed" || op == "set") {
         const std::string name = requireString(request, "property", op);
-        std::string context = (op == "set" ? "set_property('" : "get_property('") + name + "')";
-        if (const msgpack::object* given = field(request, "context");
-            given && given->type == msgpack::type::STR)
-            context = std::string(given->via.str.ptr, given->via.str.size);
+        const std::string context =
+            givenContext(request, (op == "set" ? "set_property('" : "get_property('") + name + "')");
         reflect::ObjectBase& object = requireObject(request, context);
         const reflect::PropertyInfo* property = object.GetClass().findProperty(name);
         SP_CHECK(property, NotFound, context, ": class '", object.GetClass().name, "' has no property '",
@@ -238,7 +242,7 @@ Value Dispatcher::execute(const std::string& op, const msgpack::object& request,
     }
     if (op == "sp_func") {
         const std::string name = requireString(request, "name", op);
-        const std::string context = "call_sp_func('" + name + "')";
+        const std::string context = givenContext(request, "call_sp_func('" + name + "')");
         reflect::ObjectBase& object = requireObject(request, context);
         Value::Dict bundle;
         for (const char* key : {"arrays", "unreal_objs", "info"})
@@ -248,7 +252,7 @@ Value Dispatcher::execute(const std::string& op, const msgpack::object& request,
             spfunc::call(object, name, spfunc::bundleFromValue(Value(std::move(bundle)), context)));
     }
     if (op == "sp_func_names") {
-        reflect::ObjectBase& object = requireObject(request, "get_sp_func_names()");
+        reflect::ObjectBase& object = requireObject(request, givenContext(request, "get_sp_func_names()"));
         Value::List names;
         for (std::string& name : spfunc::funcNames(object))
             names.emplace_back(std::move(name));

@@ -31,11 +31,11 @@ def _install_sp_funcs(loaded: Any) -> None:
     root = loaded.UObject
 
     def call_raw(self: Any, name: str, arrays: dict[str, Any], unreal_objs: dict[str, str], info: str,
-                 finish: Any) -> Any:
-        return finish(loaded._call_sp_func(self, name, arrays, unreal_objs, info))
+                 finish: Any, context: str) -> Any:
+        return finish(loaded._call_sp_func(self, name, arrays, unreal_objs, info, context))
 
     root._sp_call_sp_func = call_raw
-    root._sp_get_sp_func_names = lambda self: loaded._get_sp_func_names(self)
+    root._sp_get_sp_func_names = lambda self, context: loaded._get_sp_func_names(self, context)
     root.call_sp_func = _spfunc.call_sp_func
     root.get_sp_func_names = _spfunc.get_sp_func_names
     root.__getattr__ = _spfunc.sp_func_getattr

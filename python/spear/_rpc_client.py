@@ -179,15 +179,15 @@ class RpcConnection:
         return bool(self.request("is_valid", object=_HandleRef(handle)))
 
     def call_sp_func(self, handle: tuple[int, int], name: str, arrays: dict[str, Any], unreal_objs: dict[str, str],
-                     info: str, finish: Callable[[Any], Any]) -> Any:
+                     info: str, finish: Callable[[Any], Any], context: str = "") -> Any:
         call = {"object": _HandleRef(handle), "name": name, "arrays": arrays, "unreal_objs": unreal_objs,
-                "info": info}
+                "info": info, "context": context}
         if self._deferring is not None:
             return self._queue_call({"op": "sp_func", **call}, finish)
         return finish(self.request("sp_func", **call))
 
-    def sp_func_names(self, handle: tuple[int, int]) -> list[str]:
-        return list(self.request("sp_func_names", object=_HandleRef(handle)))
+    def sp_func_names(self, handle: tuple[int, int], context: str = "") -> list[str]:
+        return list(self.request("sp_func_names", object=_HandleRef(handle), context=context))
 
     def close(self) -> None:
         try:

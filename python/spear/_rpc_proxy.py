@@ -34,9 +34,9 @@ class RpcClient(Protocol):
     def is_valid(self, handle: tuple[int, int]) -> bool: ...
 
     def call_sp_func(self, handle: tuple[int, int], name: str, arrays: dict[str, Any], unreal_objs: dict[str, str],
-                     info: str, finish: Callable[[Any], Any]) -> Any: ...
+                     info: str, finish: Callable[[Any], Any], context: str) -> Any: ...
 
-    def sp_func_names(self, handle: tuple[int, int]) -> list[str]: ...
+    def sp_func_names(self, handle: tuple[int, int], context: str) -> list[str]: ...
 
     def deferred(self, discard: bool) -> Any:
         """A context in which calls are queued and return Futures."""
@@ -107,11 +107,11 @@ class ObjectProxy(SpObject):
     __getattr__ = _spfunc.sp_func_getattr
 
     def _sp_call_sp_func(self, name: str, arrays: dict[str, Any], unreal_objs: dict[str, str], info: str,
-                         finish: Callable[[Any], Any]) -> Any:
-        return self._sp_client.call_sp_func(self._sp_handle, name, arrays, unreal_objs, info, finish)
+                         finish: Callable[[Any], Any], context: str) -> Any:
+        return self._sp_client.call_sp_func(self._sp_handle, name, arrays, unreal_objs, info, finish, context)
 
-    def _sp_get_sp_func_names(self) -> list[str]:
-        return self._sp_client.sp_func_names(self._sp_handle)
+    def _sp_get_sp_func_names(self, context: str) -> list[str]:
+        return self._sp_client.sp_func_names(self._sp_handle, context)
 
 
 class _DeferredCaller:

@@ -75,7 +75,7 @@ def call_sp_func(self: Any, name: str, *, arrays: Mapping[str, NDArray[Any]] | N
         raise errors.InvalidArgumentError(f"{context}: info must be a str, got {type(info).__name__}")
     # The transport calls finish() on the raw bundle: at once, or when a queued call's reply arrives.
     return self._sp_call_sp_func(  # type: ignore[no-any-return]
-        name, _check_arrays(context, arrays), _encode_objects(context, unreal_objs), info, finish_result)
+        name, _check_arrays(context, arrays), _encode_objects(context, unreal_objs), info, finish_result, context)
 
 
 def finish_result(raw: Mapping[str, Any]) -> SpFuncResult:
@@ -89,7 +89,7 @@ def finish_result(raw: Mapping[str, Any]) -> SpFuncResult:
 
 def get_sp_func_names(self: Any) -> list[str]:
     """The names of the SpFuncs this object answers to now, sorted."""
-    return list(self._sp_get_sp_func_names())
+    return list(self._sp_get_sp_func_names(f"{type(self).__name__}.get_sp_func_names()"))
 
 
 def sp_func_getattr(self: Any, name: str) -> Any:
@@ -97,7 +97,7 @@ def sp_func_getattr(self: Any, name: str) -> Any:
     if name.startswith("_"):
         raise AttributeError(f"'{type(self).__name__}' object has no attribute '{name}'")
     try:
-        names = self._sp_get_sp_func_names()
+        names = self._sp_get_sp_func_names(f"{type(self).__name__}.{name}()")
     except errors.SpearError as error:
         # Attribute lookups must fail with AttributeError (hasattr, getattr with a default); the reason
         # (outside a frame, a destroyed object) goes in the message.

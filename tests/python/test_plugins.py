@@ -129,10 +129,13 @@ def test_sp_funcs_follow_the_frame_rule(instance: spear.Instance, plugin: Any) -
     with frame(instance):
         my_actor = game.spawn_actor(uclass=plugin.AMyActor)
         my_actor.Initialize()
-    with pytest.raises(spear.InvalidStateError, match=r"call_sp_func\('my_sp_func'\): .*frame"):
+    with pytest.raises(spear.InvalidStateError, match=r"^AMyActor\.my_sp_func\(\): called outside a frame"):
         my_actor.call_sp_func("my_sp_func", arrays={"input": np.zeros(3)})
+    with pytest.raises(spear.InvalidStateError, match=r"^AMyActor\.get_sp_func_names\(\): called outside a frame"):
+        my_actor.get_sp_func_names()
     # The attribute form fails as attribute lookups must, saying why.
-    with pytest.raises(AttributeError, match="its SpFuncs cannot be listed now: get_sp_func_names.*frame"):
+    with pytest.raises(AttributeError, match=r"its SpFuncs cannot be listed now: AMyActor\.my_sp_func\(\): called "
+                                             "outside a frame"):
         my_actor.my_sp_func(arrays={"input": np.zeros(3)})
     assert not hasattr(my_actor, "my_sp_func")
 
