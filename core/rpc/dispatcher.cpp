@@ -73,23 +73,27 @@ void packError(msgpack::packer<msgpack::sbuffer>& out, const msgpack::object* id
 
 void Dispatcher::handle(const char* data, size_t size, Session& session, msgpack::sbuffer& reply,
                         const ArrayToSharedMemory& toShm) {
-    msgpack::packer<msgpack::sbuffer> out(&reply);
     msgpack::object_handle handle;
     try {
         handle = msgpack::unpack(data, size);
     } catch (const std::exception& e) {
         // Garbage or a truncated message: say so; a client that never said hello is dropped.
+        msgpack::packer<msgpack::sbuffer> out(&reply);
         packError(out, nullptr, "InvalidArgumentError",
                   std::string("request: malformed message (") + e.what() + ")");
         session.closeAfterReply = !session.greeted;
         return;
     }
-    handleOne(handle.get(), session, out, toShm);
+    handleOne(handle.get(), session, reply, toShm);
 }
 
-void Dispatcher::handleOne(const msgpack::object& request, Session& session,
-                           msgpack::packer<msgpack::sbuffer>& out, const ArrayToSharedMemory& toShm) {
+void Dispatcher::handleOne(const msgpack::object& request, Session& session, msgpack::sbuffer& reply,
+                           const ArrayToSharedMemory& toShm) {
     const msgpack::object* id = field(request, "id");
+    // Built aside and appended whole: an error halfway through packing a result (a shared-memory segment
+    // that cannot be made, say) becomes an error reply instead of a truncated one.
+    msgpack::sbuffer built;
+    msgpack::packer<msgpack::sbuffer> out(&built);
     try {
         SP_CHECK(request.type == msgpack::type::MAP, InvalidArgument, "request: expected a map");
         const std::string op = requireString(request, "op", "request");
@@ -103,7 +107,8 @@ void Dispatcher::handleOne(const msgpack::object& request, Session& session,
             out.pack(std::string("ok"));
             out.pack_array(calls.via.array.size);
             for (uint32_t i = 0; i < calls.via.array.size; ++i)
-                handleOne(calls.via.array.ptr[i], session, out, toShm);
+                handleOne(calls.via.array.ptr[i], session, built, toShm);
+            reply.write(built.data(), built.size());
             return;
         }
         Value result = execute(op, request, session);
@@ -112,22 +117,29 @@ void Dispatcher::handleOne(const msgpack::object& request, Session& session,
         id ? out.pack(*id) : out.pack_nil();
         out.pack(std::string("ok"));
         pack(out, result, toShm);
+        reply.write(built.data(), built.size());
+        return;
     } catch (const Error& e) {
+        built.clear();
         packError(out, id, pythonErrorClass(e), e.what());
     } catch (const msgpack::unpack_error& e) {
+        built.clear();
         packError(out, id, "InvalidArgumentError",
                   std::string("request: malformed message (") + e.what() + ")");
         session.closeAfterReply = session.closeAfterReply || !session.greeted;
     } catch (const msgpack::type_error& e) {
         // A field of the wrong msgpack type: the request was malformed, the engine is fine.
+        built.clear();
         packError(out, id, "InvalidArgumentError",
                   std::string("request: malformed message (") + e.what() + ")");
         session.closeAfterReply = session.closeAfterReply || !session.greeted;
     } catch (const std::exception& e) {
         // Anything else was thrown by engine or plugin code while running a well-formed request: report it
         // as the in-process engine does (spear.errors.SpearError), naming what failed.
+        built.clear();
         packError(out, id, "SpearError", std::string(e.what()));
     }
+    reply.write(built.data(), built.size());
 }
 
 Value Dispatcher::execute(const std::string& op, const msgpack::object& request, Session& session) {

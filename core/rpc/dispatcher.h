@@ -41,7 +41,7 @@ class Dispatcher {
 
   private:
     reflect::Value execute(const std::string& op, const msgpack::object& request, Session& session);
-    void handleOne(const msgpack::object& request, Session& session, msgpack::packer<msgpack::sbuffer>& out,
+    void handleOne(const msgpack::object& request, Session& session, msgpack::sbuffer& reply,
                    const ArrayToSharedMemory& toShm);
 
     world::Engine& engine_;
