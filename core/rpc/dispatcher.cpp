@@ -84,7 +84,29 @@ void Dispatcher::handle(const char* data, size_t size, Session& session, msgpack
         session.closeAfterReply = !session.greeted;
         return;
     }
+    if (session.greeted)
+        readReplyBuffers(handle.get(), session);
     handleOne(handle.get(), session, reply, toShm);
+}
+
+void Dispatcher::readReplyBuffers(const msgpack::object& request, Session& session) {
+    if (const msgpack::object* dropped = field(request, "dropped_buffers");
+        dropped && dropped->type == msgpack::type::ARRAY && session.dropReplyBuffer)
+        for (uint32_t i = 0; i < dropped->via.array.size; ++i)
+            if (const msgpack::object& name = dropped->via.array.ptr[i]; name.type == msgpack::type::STR)
+                session.dropReplyBuffer(std::string(name.via.str.ptr, name.via.str.size));
+    if (const msgpack::object* offered = field(request, "reply_buffers");
+        offered && offered->type == msgpack::type::ARRAY && session.offerReplyBuffer)
+        for (uint32_t i = 0; i < offered->via.array.size; ++i) {
+            const msgpack::object& pair = offered->via.array.ptr[i];
+            if (pair.type != msgpack::type::ARRAY || pair.via.array.size != 2 ||
+                pair.via.array.ptr[0].type != msgpack::type::STR ||
+                pair.via.array.ptr[1].type != msgpack::type::POSITIVE_INTEGER)
+                continue; // malformed offers are ignored: the reply then uses the server's own segments
+            const msgpack::object& name = pair.via.array.ptr[0];
+            session.offerReplyBuffer(std::string(name.via.str.ptr, name.via.str.size),
+                                     size_t(pair.via.array.ptr[1].via.u64));
+        }
 }
 
 void Dispatcher::handleOne(const msgpack::object& request, Session& session, msgpack::sbuffer& reply,

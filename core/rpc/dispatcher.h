@@ -13,9 +13,11 @@
 //   batch {calls: [request...]}   many calls in one message; one reply per call, in order
 //   echo {value}                  returns value (diagnostics; measures the transport alone)
 //   shutdown                      stop the server after replying
+// Any request may also carry "reply_buffers" and "dropped_buffers" (see Session).
 
 #include <msgpack.hpp>
 
+#include <functional>
 #include <string>
 
 #include "core/rpc/value_msgpack.h"
@@ -27,6 +29,10 @@ struct Session {
     bool greeted = false;
     bool closeAfterReply = false;
     bool shutdownRequested = false;
+    // A request's "reply_buffers" ([[name, size], ...]) and "dropped_buffers" ([name, ...]): the client's
+    // shared-memory buffers for large reply arrays (core/rpc/reply_buffers.h).
+    std::function<void(const std::string& name, size_t size)> offerReplyBuffer;
+    std::function<void(const std::string& name)> dropReplyBuffer;
 };
 
 class Dispatcher {
@@ -41,6 +47,7 @@ class Dispatcher {
 
   private:
     reflect::Value execute(const std::string& op, const msgpack::object& request, Session& session);
+    static void readReplyBuffers(const msgpack::object& request, Session& session);
     void handleOne(const msgpack::object& request, Session& session, msgpack::sbuffer& reply,
                    const ArrayToSharedMemory& toShm);
 

@@ -1,5 +1,7 @@
 #include "core/rpc/server.h"
 
+#include "core/rpc/reply_buffers.h"
+
 #include "core/reflect/sp_array.h"
 
 #include <arpa/inet.h>
@@ -47,26 +49,39 @@ struct Server::Connection {
     int fd = -1;
     std::string inbox;
     Session session;
-    // Segments holding the arrays of the last reply: the client maps them before it sends anything
-    // else, so they are unlinked when its next request arrives (or when it goes away).
+    // The client's buffers for large reply arrays (core/rpc/reply_buffers.h).
+    std::unique_ptr<ReplyBuffers> replyBuffers = std::make_unique<ReplyBuffers>();
+    // Segments of the server's own holding the arrays of the last reply: the client maps them before it
+    // sends anything else, so they are unlinked when its next request arrives (or when it goes away).
     std::vector<std::shared_ptr<SharedMemorySegment>> replySegments;
-    // Segments that arrays were allocated in while the current request ran (see allocateInSegment).
-    std::vector<std::shared_ptr<SharedMemorySegment>> requestSegments;
+    // Segments that arrays were allocated in while the current request ran (see allocateInSegment), and
+    // whether each is a reply buffer of the client's.
+    std::vector<std::pair<std::shared_ptr<SharedMemorySegment>, bool>> requestSegments;
+
+    // A segment for `bytes` of reply: one of the client's buffers if it offered one that fits, else a
+    // new one of the server's.
+    std::pair<std::shared_ptr<SharedMemorySegment>, bool> replySegment(size_t bytes) {
+        if (auto buffer = replyBuffers->take(bytes))
+            return {std::move(buffer), true};
+        return {std::make_shared<SharedMemorySegment>(SharedMemorySegment::create(bytes)), false};
+    }
 };
 
 namespace {
-// The ArrayAllocator installed while a request runs: new arrays (a camera's readback) are placed in a
-// fresh segment, which the reply then names instead of copying the bytes.
+// The ArrayAllocator installed while a request runs: new arrays (a camera's readback) are placed in
+// shared memory, which the reply then names instead of copying the bytes.
 reflect::ArrayValue allocateInSegment(reflect::DType dtype, const std::vector<int64_t>& shape,
                                       void* context) {
-    auto& segments = *static_cast<std::vector<std::shared_ptr<SharedMemorySegment>>*>(context);
+    auto& connection = *static_cast<Server::Connection*>(context);
     reflect::ArrayValue value;
     value.dtype = dtype;
     value.shape = shape;
-    auto segment = std::make_shared<SharedMemorySegment>(SharedMemorySegment::create(value.byteSize()));
+    auto [segment, clientBuffer] = connection.replySegment(value.byteSize());
+    if (clientBuffer) // a fresh segment is zeroed by the kernel; a reused buffer holds an earlier reply
+        std::memset(segment->data(), 0, value.byteSize());
     value.data = segment->data();
     value.owner = segment;
-    segments.push_back(std::move(segment));
+    connection.requestSegments.emplace_back(std::move(segment), clientBuffer);
     return value;
 }
 } // namespace
@@ -141,6 +156,11 @@ void Server::accept() {
     }
     auto connection = std::make_unique<Connection>();
     connection->fd = fd;
+    ReplyBuffers* buffers = connection->replyBuffers.get();
+    connection->session.offerReplyBuffer = [buffers](const std::string& name, size_t size) {
+        buffers->offer(name, size);
+    };
+    connection->session.dropReplyBuffer = [buffers](const std::string& name) { buffers->forget(name); };
     connections_.push_back(std::move(connection));
 }
 
@@ -148,6 +168,9 @@ void Server::drop(Connection& connection) {
     for (auto& segment : connection.replySegments)
         segment->unlink();
     connection.replySegments.clear();
+    connection.session.offerReplyBuffer = nullptr;
+    connection.session.dropReplyBuffer = nullptr;
+    connection.replyBuffers = std::make_unique<ReplyBuffers>(); // the old one removes the client's names
     if (connection.fd >= 0)
         ::close(connection.fd);
     connection.fd = -1;
@@ -175,29 +198,31 @@ bool Server::serve(Connection& connection) {
         connection.replySegments.clear();
         msgpack::sbuffer reply;
         reply.write("\0\0\0\0", 4);
+        auto send = [&](const std::shared_ptr<SharedMemorySegment>& segment, bool clientBuffer) {
+            if (!clientBuffer)
+                connection.replySegments.push_back(segment);
+            return SharedArray{segment->name(), clientBuffer};
+        };
         auto toShm = [&](const reflect::ArrayValue& array) {
-            for (const auto& segment : connection.requestSegments) // already in shared memory: no copy
-                if (segment->data() == array.data && !segment->unlinked()) {
-                    connection.replySegments.push_back(segment);
-                    return segment->name();
-                }
-            auto segment =
-                std::make_shared<SharedMemorySegment>(SharedMemorySegment::create(array.byteSize()));
+            for (const auto& [segment, clientBuffer] : connection.requestSegments) // already there: no copy
+                if (segment->data() == array.data && (clientBuffer || !segment->unlinked()))
+                    return send(segment, clientBuffer);
+            auto [segment, clientBuffer] = connection.replySegment(array.byteSize());
             std::memcpy(segment->data(), array.data, array.byteSize());
-            connection.replySegments.push_back(segment);
-            return segment->name();
+            return send(segment, clientBuffer);
         };
         {
-            reflect::ArrayAllocatorScope allocator(&allocateInSegment, &connection.requestSegments);
+            reflect::ArrayAllocatorScope allocator(&allocateInSegment, &connection);
             dispatcher_.handle(connection.inbox.data() + 4, length, connection.session, reply, toShm);
         }
-        // Arrays allocated in segments but not sent (kept by the engine for later) lose their names now;
-        // their mappings live on with their owners.
-        for (auto& segment : connection.requestSegments)
-            if (std::find(connection.replySegments.begin(), connection.replySegments.end(), segment) ==
-                connection.replySegments.end())
+        // Arrays allocated in segments of the server's but not sent (kept by the engine for later) lose
+        // their names now; their mappings live on with their owners.
+        for (auto& [segment, clientBuffer] : connection.requestSegments)
+            if (!clientBuffer && std::find(connection.replySegments.begin(), connection.replySegments.end(),
+                                           segment) == connection.replySegments.end())
                 segment->unlink();
         connection.requestSegments.clear();
+        connection.replyBuffers->endRequest();
         connection.inbox.erase(0, 4 + size_t(length));
         const uint32_t replyLength = uint32_t(reply.size() - 4);
         std::memcpy(reply.data(), &replyLength, 4);

@@ -32,8 +32,9 @@ class Server {
     void run();
     static void stop();
 
+    struct Connection; // one client: its socket, session and shared memory (server.cpp)
+
   private:
-    struct Connection;
     void accept();
     bool serve(Connection& connection); // false: drop the connection
     void drop(Connection& connection);

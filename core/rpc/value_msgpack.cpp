@@ -28,9 +28,10 @@ void packArray(msgpack::packer<msgpack::sbuffer>& out, const reflect::ArrayValue
     inner.pack(array.shape);
     const size_t bytes = array.data ? array.byteSize() : 0;
     if (bytes >= kSharedMemoryThreshold && toShm) {
+        const SharedArray shared = toShm(array);
         inner.pack_map(2);
-        inner.pack(std::string("shm"));
-        inner.pack(toShm(array));
+        inner.pack(std::string(shared.clientBuffer ? "buffer" : "shm"));
+        inner.pack(shared.name);
         inner.pack(std::string("size"));
         inner.pack(uint64_t(bytes));
     } else {

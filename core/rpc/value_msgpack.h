@@ -20,8 +20,14 @@ enum ExtType : int8_t { kExtObject = 1, kExtClass = 2, kExtArray = 3 };
 // Arrays of at least this many bytes travel through shared memory.
 inline constexpr size_t kSharedMemoryThreshold = 64 * 1024;
 
-// Called for a large array: stores its bytes in a segment and returns the segment name.
-using ArrayToSharedMemory = std::function<std::string(const reflect::ArrayValue&)>;
+// Where a large array of a reply is: a segment the server made ("shm": the client maps it and removes its
+// name), or one of the client's reply buffers ("buffer": core/rpc/reply_buffers.h).
+struct SharedArray {
+    std::string name;
+    bool clientBuffer = false;
+};
+// Called for a large array: places its bytes in shared memory (unless they are there already).
+using ArrayToSharedMemory = std::function<SharedArray(const reflect::ArrayValue&)>;
 
 void pack(msgpack::packer<msgpack::sbuffer>& out, const reflect::Value& value,
           const ArrayToSharedMemory& toShm);

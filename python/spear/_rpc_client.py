@@ -18,11 +18,13 @@ import struct
 import subprocess
 import tempfile
 import time
+import weakref
 from pathlib import Path
 from typing import Any
 
 from spear import errors
 from spear._object import SpObject
+from spear._reply_buffers import ReplyBuffers
 from spear._rpc_types import convert, convert_result_tuple
 from spear._wire import OutgoingSegments, encode, pack_frame, unpack_body
 from spear.futures import Future
@@ -62,6 +64,9 @@ class RpcConnection:
         self.messages_sent = 0  # round trips so far (batches count once)
         self._deferring: bool | None = None  # None: calls run now; else queued (True: result discarded)
         self._queue: list[tuple[dict[str, Any], Future[Any] | None, Callable[[Any], Any]]] = []
+        self._reply_buffers = ReplyBuffers()
+        # Their names go when the connection is closed, or when it is collected without being closed.
+        self._buffers_cleanup = weakref.finalize(self, self._reply_buffers.close)
         hello = self.request("hello", api_hash=API_HASH, token=token or "")
         self.server_pid = int(hello["pid"])
 
@@ -104,7 +109,7 @@ class RpcConnection:
         segments = OutgoingSegments()
         try:
             message = {"id": next(self._ids), "op": op, **{k: encode(v, segments) for k, v in fields.items()}}
-            reply = self._round_trip(pack_frame(message))
+            reply = self._round_trip(pack_frame(self._offer_buffers(message)))
         finally:
             segments.release()
         return self._result(reply)
@@ -116,7 +121,8 @@ class RpcConnection:
         segments = OutgoingSegments()
         try:
             encoded = [{k: encode(v, segments) for k, v in call.items()} for call in calls]
-            reply = self._round_trip(pack_frame({"id": next(self._ids), "op": "batch", "calls": encoded}))
+            reply = self._round_trip(pack_frame(self._offer_buffers({"id": next(self._ids), "op": "batch",
+                                                                      "calls": encoded})))
         finally:
             segments.release()
         results = []
@@ -127,13 +133,23 @@ class RpcConnection:
                 results.append(error)
         return results
 
+    def _offer_buffers(self, message: dict[str, Any]) -> dict[str, Any]:
+        """Offers the reply buffers no array views, and names those removed (spear._reply_buffers)."""
+        if message["op"] != "hello":
+            offers, dropped = self._reply_buffers.offers(), self._reply_buffers.take_dropped()
+            if offers:
+                message["reply_buffers"] = offers
+            if dropped:
+                message["dropped_buffers"] = dropped
+        return message
+
     def _round_trip(self, frame: bytes) -> Any:
         self.messages_sent += 1
         try:
             self._socket.sendall(frame)
             header = self._receive(4)
             (length,) = struct.unpack("<I", header)
-            return unpack_body(self._receive(length))
+            return unpack_body(self._receive(length), self._reply_buffers)
         except OSError as error:
             raise ConnectionLost(f"the connection to the spear server at {self.address} was lost: {error}") from None
 
@@ -190,6 +206,7 @@ class RpcConnection:
         return list(self.request("sp_func_names", object=_HandleRef(handle), context=context))
 
     def close(self) -> None:
+        self._buffers_cleanup()
         try:
             self._socket.close()
         except OSError:

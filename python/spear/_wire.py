@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import dataclasses
 import enum
+import functools
 import itertools
 import mmap
 import os
@@ -19,6 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from spear._object import SpObject
+from spear._reply_buffers import ReplyBuffers
 
 EXT_OBJECT, EXT_CLASS, EXT_ARRAY = 1, 2, 3
 SHARED_MEMORY_THRESHOLD = 64 * 1024
@@ -134,7 +136,7 @@ def encode(value: Any, segments: OutgoingSegments) -> Any:
     raise TypeError(f"cannot send a value of type '{type(value).__name__}'")
 
 
-def _ext_hook(code: int, data: bytes) -> Any:
+def _ext_hook(code: int, data: bytes, buffers: ReplyBuffers | None = None) -> Any:
     if code == EXT_OBJECT:
         index, generation = struct.unpack_from("<II", data)
         return ObjectRef(index, generation, data[8:].decode())
@@ -143,7 +145,13 @@ def _ext_hook(code: int, data: bytes) -> Any:
         return ClassRef(name, native)
     if code == EXT_ARRAY:
         dtype, shape, payload = msgpack.unpackb(data, raw=False)
+        if isinstance(payload, dict) and "buffer" in payload:
+            if buffers is None:
+                raise ValueError("a reply named a reply buffer, but none was offered")
+            return buffers.receive(payload["buffer"], np.dtype(dtype), shape, payload["size"])
         if isinstance(payload, dict):
+            if buffers is not None:
+                buffers.learn(payload["size"])
             mapping = map_segment(payload["shm"], payload["size"], unlink=True)
             count = int(np.prod(shape)) if shape else 1
             return np.frombuffer(mapping, dtype=np.dtype(dtype), count=count).reshape(shape)
@@ -156,5 +164,7 @@ def pack_frame(message: dict[str, Any]) -> bytes:
     return struct.pack("<I", len(body)) + body
 
 
-def unpack_body(body: bytes) -> Any:
-    return msgpack.unpackb(body, raw=False, ext_hook=_ext_hook, strict_map_key=False)
+def unpack_body(body: bytes, buffers: ReplyBuffers | None = None) -> Any:
+    """A reply; `buffers` are the reply buffers its request offered (spear._reply_buffers)."""
+    hook = _ext_hook if buffers is None else functools.partial(_ext_hook, buffers=buffers)
+    return msgpack.unpackb(body, raw=False, ext_hook=hook, strict_map_key=False)

@@ -136,8 +136,13 @@ def test_large_arrays_travel_through_shared_memory_and_are_released(server: Laun
     assert small.dtype == np.float32 and list(small) == list(range(10))
     connection.request("echo", value=None)  # the server releases the last reply's segments on the next request
     assert not [n for n in os.listdir("/dev/shm") if n.startswith(f"spear-{server.process.pid}-")]
-    assert not [n for n in os.listdir("/dev/shm") if n.startswith(f"spear-{os.getpid()}-")]
+    # The request's segment is gone; what stays is the reply buffer the client keeps for the next large
+    # reply (spear._reply_buffers), until the connection is closed.
+    mine = [n for n in os.listdir("/dev/shm") if n.startswith(f"spear-{os.getpid()}-")]
+    assert mine == [f"spear-{os.getpid()}-r{n.split('-r')[-1]}" for n in mine] and len(mine) == 1
     connection.close()
+    assert not [n for n in os.listdir("/dev/shm") if n.startswith(f"spear-{os.getpid()}-")]
+    assert np.array_equal(echoed, frame)
 
 
 def test_unix_socket_is_owner_only(server: LaunchedServer) -> None:
@@ -218,3 +223,41 @@ def test_shared_memory_is_released_when_either_side_dies() -> None:
     assert leftovers, "the dead client's segment should exist before the sweep"
     LaunchedServer(fixed_delta_seconds=1 / 60).close()  # a server start removes segments of dead processes
     assert not [n for n in os.listdir("/dev/shm") if n.startswith("spear-") and n in leftovers]
+
+
+def test_replies_land_in_reply_buffers_that_never_change_under_the_user() -> None:
+    with spear.Instance(server="launch") as instance:
+        connection = instance._backend.connection  # type: ignore[attr-defined]
+        base = np.arange(1 << 20, dtype=np.uint32)  # 4 MiB: through shared memory both ways
+        first = connection.request("echo", value=base)  # no buffer yet: a segment of the server's
+        held = [connection.request("echo", value=base + i) for i in range(1, 4)]
+        for _ in range(10):  # results dropped at once: the same buffer serves every reply
+            assert connection.request("echo", value=base)[-1] == base[-1]
+        assert np.array_equal(first, base)
+        for i, array in enumerate(held, start=1):  # what the user holds was never written again
+            assert np.array_equal(array, base + i)
+        buffers = connection._reply_buffers._buffers  # noqa: SLF001
+        assert 1 <= len(buffers) <= len(held) + 1  # made on demand, then reused
+        assert sum(b.held for b in buffers.values()) <= len(held)
+        reply = connection.request("echo", value=base)  # in one of the client's own, already mapped buffers
+        assert any(root_buffer(reply) is b.mapping for b in buffers.values())
+        del reply
+        names = [f"spear-{os.getpid()}-r" in n for n in os.listdir("/dev/shm")]
+        assert any(names)
+    # Closing removes the client's buffers; arrays still viewing one keep their mapping.
+    assert not [n for n in os.listdir("/dev/shm") if n.startswith(f"spear-{os.getpid()}-")]
+    assert np.array_equal(held[0], base + 1)
+
+
+def test_a_dead_clients_reply_buffers_are_removed_by_the_server(server: LaunchedServer) -> None:
+    script = (
+        "import os, sys, numpy as np; sys.path.insert(0, %r); from spear._rpc_client import RpcConnection; "
+        "c = RpcConnection(%r); c.request('echo', value=np.ones(1 << 18)); c.request('echo', value=None); "
+        "print(os.getpid(), flush=True); os._exit(0)" % (str(Path(spear.__file__).parent.parent), server.address)
+    )
+    done = subprocess.run([sys.executable, "-c", script], check=True, capture_output=True, text=True)
+    pid = done.stdout.strip()
+    deadline = time.monotonic() + 10
+    while [n for n in os.listdir("/dev/shm") if n.startswith(f"spear-{pid}-")]:
+        assert time.monotonic() < deadline, "the server kept a dead client's reply buffers"
+        time.sleep(0.01)

@@ -1,0 +1,104 @@
+"""Reply buffers: shared-memory segments this client owns and offers the server, request by request, for
+the large arrays of its replies (see core/rpc/reply_buffers.h for the server's side and the reasons).
+
+A buffer is offered only while no numpy array of the client's views it; the array returned for a reply in
+a buffer is a view of the client's own, long-lived mapping, so no page is mapped or faulted anew. After a
+reply that came in a segment of the server's (no offered buffer fitted), a buffer of that size is made for
+the next one, within the limits below.
+"""
+
+from __future__ import annotations
+
+import itertools
+import mmap
+import os
+import weakref
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+MAX_BUFFERS = 8
+MAX_BYTES = 512 << 20
+_counter = itertools.count()
+
+
+@dataclass
+class _Buffer:
+    name: str
+    size: int
+    mapping: mmap.mmap
+    held: bool = False  # a numpy array of the client's views it
+
+
+@dataclass
+class ReplyBuffers:
+    _buffers: dict[str, _Buffer] = field(default_factory=dict)
+    _dropped: list[str] = field(default_factory=list)
+    closed: bool = False
+
+    def offers(self) -> list[list[Any]]:
+        """[[name, size], ...] of the buffers no array views: what the next request offers."""
+        return [[b.name, b.size] for b in self._buffers.values() if not b.held]
+
+    def take_dropped(self) -> list[str]:
+        """Buffers removed since the last request, for the server to let go of."""
+        dropped, self._dropped = self._dropped, []
+        return dropped
+
+    def receive(self, name: str, dtype: np.dtype[Any], shape: list[int], size: int) -> NDArray[Any]:
+        """The reply array the server wrote into buffer `name`, as a view of the client's mapping."""
+        buffer = self._buffers.get(name)
+        if buffer is None or buffer.held or size > buffer.size:
+            raise ValueError(f"the server named reply buffer {name!r}, which this client did not offer")
+        buffer.held = True
+        count = int(np.prod(shape)) if shape else 1
+        root = np.frombuffer(buffer.mapping, dtype=dtype, count=count)
+        # Views keep `root` alive: once it goes, no array of the client's reads the buffer any more.
+        weakref.finalize(root, self._give_back, name)
+        return root.reshape(shape)
+
+    def learn(self, size: int) -> None:
+        """A reply array of `size` bytes came in a segment of the server's: have a buffer for the next one."""
+        if self.closed or any(not b.held and b.size >= size for b in self._buffers.values()):
+            return
+        while self._buffers and (len(self._buffers) >= MAX_BUFFERS or
+                                 sum(b.size for b in self._buffers.values()) + size > MAX_BYTES):
+            free = [b for b in self._buffers.values() if not b.held]
+            if not free:
+                return  # every buffer is in use: the server's segments carry the replies meanwhile
+            self._remove(min(free, key=lambda b: b.size))
+        name = f"/spear-{os.getpid()}-r{next(_counter)}"
+        fd = os.open("/dev/shm" + name, os.O_CREAT | os.O_EXCL | os.O_RDWR, 0o600)
+        try:
+            os.ftruncate(fd, size)
+            mapping = mmap.mmap(fd, size, flags=mmap.MAP_SHARED | mmap.MAP_POPULATE)
+        except OSError:
+            os.unlink("/dev/shm" + name)
+            raise
+        finally:
+            os.close(fd)
+        self._buffers[name] = _Buffer(name, size, mapping)
+
+    def close(self) -> None:
+        """Removes every buffer's name; arrays that view one keep their mapping."""
+        self.closed = True
+        for buffer in list(self._buffers.values()):
+            self._remove(buffer)
+        self._dropped.clear()
+
+    def _give_back(self, name: str) -> None:
+        buffer = self._buffers.get(name)
+        if buffer is not None:
+            buffer.held = False
+
+    def _remove(self, buffer: _Buffer) -> None:
+        del self._buffers[buffer.name]
+        self._dropped.append(buffer.name)
+        try:
+            os.unlink("/dev/shm" + buffer.name)
+        except FileNotFoundError:
+            pass
+        if not buffer.held:
+            buffer.mapping.close()
