@@ -86,6 +86,8 @@ void Dispatcher::handle(const char* data, size_t size, Session& session, msgpack
     }
     if (session.greeted)
         readReplyBuffers(handle.get(), session);
+    OpenedSegments opened;
+    OpenedSegmentsScope scope(opened);
     handleOne(handle.get(), session, reply, toShm);
 }
 
@@ -133,12 +135,26 @@ void Dispatcher::handleOne(const msgpack::object& request, Session& session, msg
             reply.write(built.data(), built.size());
             return;
         }
+        OpenedSegments* opened = OpenedSegmentsScope::current();
+        const size_t openedBefore = opened ? opened->size() : 0;
         Value result = execute(op, request, session);
-        out.pack_map(2);
+        msgpack::sbuffer okBody;
+        msgpack::packer<msgpack::sbuffer> okOut(&okBody);
+        pack(okOut, result, toShm);
+        result = Value(); // the request's values are gone now: what still maps a segment was kept
+        std::vector<std::string> kept;
+        for (size_t i = openedBefore; opened && i < opened->size(); ++i)
+            if (!(*opened)[i].second.expired())
+                kept.push_back((*opened)[i].first);
+        out.pack_map(kept.empty() ? 2 : 3);
         out.pack(std::string("id"));
         id ? out.pack(*id) : out.pack_nil();
         out.pack(std::string("ok"));
-        pack(out, result, toShm);
+        built.write(okBody.data(), okBody.size());
+        if (!kept.empty()) {
+            out.pack(std::string("kept"));
+            out.pack(kept);
+        }
         reply.write(built.data(), built.size());
         return;
     } catch (const Error& e) {

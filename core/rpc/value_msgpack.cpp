@@ -14,6 +14,22 @@ namespace sp::rpc {
 using reflect::Value;
 
 namespace {
+thread_local OpenedSegments* gOpened = nullptr;
+} // namespace
+
+OpenedSegmentsScope::OpenedSegmentsScope(OpenedSegments& list) : previous_(gOpened) {
+    gOpened = &list;
+}
+
+OpenedSegmentsScope::~OpenedSegmentsScope() {
+    gOpened = previous_;
+}
+
+OpenedSegments* OpenedSegmentsScope::current() {
+    return gOpened;
+}
+
+namespace {
 void packExt(msgpack::packer<msgpack::sbuffer>& out, ExtType type, const std::string& body) {
     out.pack_ext(body.size(), type);
     out.pack_ext_body(body.data(), body.size());
@@ -75,6 +91,8 @@ reflect::ArrayValue unpackArray(const msgpack::object& body, std::string_view co
     SP_CHECK(size == expected, InvalidArgument, context, ": shared-memory array holds ", size,
              " bytes, its shape needs ", expected);
     auto segment = std::make_shared<SharedMemorySegment>(SharedMemorySegment::open(name, size));
+    if (OpenedSegments* opened = OpenedSegmentsScope::current())
+        opened->emplace_back(name, segment);
     array.data = segment->data();
     array.owner = segment;
     return array;

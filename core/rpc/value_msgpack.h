@@ -4,12 +4,16 @@
 //   1 object: u32 index, u32 generation (little endian), then the class name (UTF-8)
 //   2 class:  the class name (UTF-8)
 //   3 array:  a msgpack array [dtype, shape, payload], payload either the bytes (bin) or, for large
-//             arrays, a map {"shm": segment name, "size": bytes} naming a shared-memory segment.
+//             arrays, a map {"shm": segment name, "size": bytes} naming a shared-memory segment (in
+//             replies also {"buffer": name, "size": bytes}, one of the client's reply buffers).
 
 #include <msgpack.hpp>
 
 #include <functional>
+#include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/reflect/value.h"
 
@@ -33,5 +37,23 @@ void pack(msgpack::packer<msgpack::sbuffer>& out, const reflect::Value& value,
           const ArrayToSharedMemory& toShm);
 // Throws InvalidArgument (with `context`) for anything that is not a valid encoded value.
 reflect::Value unpack(const msgpack::object& in, std::string_view context);
+
+class SharedMemorySegment;
+// The segments unpack() mapped on this thread while a scope is alive, by name. A segment whose weak
+// pointer has not expired once a request's values are gone is still used by the engine (it kept the
+// array): the reply names it "kept", so that the client does not write into it again.
+using OpenedSegments = std::vector<std::pair<std::string, std::weak_ptr<SharedMemorySegment>>>;
+class OpenedSegmentsScope {
+  public:
+    explicit OpenedSegmentsScope(OpenedSegments& list);
+    ~OpenedSegmentsScope();
+    OpenedSegmentsScope(const OpenedSegmentsScope&) = delete;
+    OpenedSegmentsScope& operator=(const OpenedSegmentsScope&) = delete;
+    // The list of the innermost scope on this thread, or nullptr.
+    static OpenedSegments* current();
+
+  private:
+    OpenedSegments* previous_;
+};
 
 } // namespace sp::rpc

@@ -56,4 +56,17 @@ AArrayTools::AArrayTools() {
         SpUtils::setUnrealObj(out, "centroid", centroid);
         return out;
     });
+
+    // Arrays an SpFunc keeps outlive the call: "store" keeps its arrays, "recall" returns them.
+    SpFuncComponent->registerFunc("store", [this](SpFuncDataBundle& args) -> SpFuncDataBundle {
+        ++CallCount;
+        stored_ = std::move(args.packed_arrays_);
+        return {};
+    });
+    SpFuncComponent->registerFunc("recall", [this](SpFuncDataBundle&) -> SpFuncDataBundle {
+        ++CallCount;
+        SpFuncDataBundle result;
+        result.packed_arrays_ = stored_;
+        return result;
+    });
 }

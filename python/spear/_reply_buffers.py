@@ -1,10 +1,14 @@
-"""Reply buffers: shared-memory segments this client owns and offers the server, request by request, for
-the large arrays of its replies (see core/rpc/reply_buffers.h for the server's side and the reasons).
+"""Reply buffers: shared-memory segments this client owns and keeps, so that large arrays cross in memory
+that is already mapped and faulted in (see core/rpc/reply_buffers.h for the server's side and the reasons).
 
-A buffer is offered only while no numpy array of the client's views it; the array returned for a reply in
-a buffer is a view of the client's own, long-lived mapping, so no page is mapped or faulted anew. After a
-reply that came in a segment of the server's (no offered buffer fitted), a buffer of that size is made for
-the next one, within the limits below.
+- Replies: free buffers are offered with each request; the array returned for a reply in one is a view of
+  the client's own, long-lived mapping. A buffer is offered only while no numpy array of the client's
+  views it.
+- Requests: a large argument is copied into a free buffer instead of a fresh segment. If the engine kept
+  the array (the reply says "kept"), that buffer leaves the pool: the server's mapping is the engine's now.
+
+After an array of a new size went through a fresh segment, a buffer of that size is made for the next
+one, within the limits below.
 """
 
 from __future__ import annotations
@@ -30,6 +34,7 @@ class _Buffer:
     size: int
     mapping: mmap.mmap
     held: bool = False  # a numpy array of the client's views it
+    lent: bool = False  # it carries an argument of the request in flight
 
 
 @dataclass
@@ -40,7 +45,7 @@ class ReplyBuffers:
 
     def offers(self) -> list[list[Any]]:
         """[[name, size], ...] of the buffers no array views: what the next request offers."""
-        return [[b.name, b.size] for b in self._buffers.values() if not b.held]
+        return [[b.name, b.size] for b in self._buffers.values() if not b.held and not b.lent]
 
     def take_dropped(self) -> list[str]:
         """Buffers removed since the last request, for the server to let go of."""
@@ -59,13 +64,33 @@ class ReplyBuffers:
         weakref.finalize(root, self._give_back, name)
         return root.reshape(shape)
 
+    def lend(self, data: NDArray[Any]) -> str | None:
+        """Copies a request argument into a free buffer that fits; its name, or None (no buffer fits)."""
+        fitting = [b for b in self._buffers.values()
+                   if not b.held and not b.lent and data.nbytes <= b.size <= 2 * data.nbytes]
+        if not fitting:
+            return None
+        buffer = min(fitting, key=lambda b: b.size)
+        np.frombuffer(buffer.mapping, dtype=data.dtype, count=data.size).reshape(data.shape)[...] = data
+        buffer.lent = True
+        return buffer.name
+
+    def settle(self, kept: set[str], failed: bool) -> None:
+        """After a reply: lent buffers come back, except those the engine kept (or all, if a call failed
+        and the reply could not say)."""
+        for buffer in [b for b in self._buffers.values() if b.lent]:
+            buffer.lent = False
+            if failed or buffer.name in kept:
+                self._remove(buffer)
+
     def learn(self, size: int) -> None:
         """A reply array of `size` bytes came in a segment of the server's: have a buffer for the next one."""
-        if self.closed or any(not b.held and b.size >= size for b in self._buffers.values()):
+        if self.closed or any(not b.held and not b.lent and size <= b.size <= 2 * size
+                              for b in self._buffers.values()):
             return
         while self._buffers and (len(self._buffers) >= MAX_BUFFERS or
                                  sum(b.size for b in self._buffers.values()) + size > MAX_BYTES):
-            free = [b for b in self._buffers.values() if not b.held]
+            free = [b for b in self._buffers.values() if not b.held and not b.lent]
             if not free:
                 return  # every buffer is in use: the server's segments carry the replies meanwhile
             self._remove(min(free, key=lambda b: b.size))
@@ -101,4 +126,7 @@ class ReplyBuffers:
         except FileNotFoundError:
             pass
         if not buffer.held:
-            buffer.mapping.close()
+            try:
+                buffer.mapping.close()
+            except BufferError:  # a view made while it was lent still exists: it closes with that view
+                pass

@@ -106,25 +106,29 @@ class RpcConnection:
 
     def request(self, op: str, **fields: Any) -> Any:
         self.flush()  # queued calls run first, in the order they were made
-        segments = OutgoingSegments()
+        segments = OutgoingSegments(self._reply_buffers)
+        reply: Any = None
         try:
             message = {"id": next(self._ids), "op": op, **{k: encode(v, segments) for k, v in fields.items()}}
             reply = self._round_trip(pack_frame(self._offer_buffers(message)))
         finally:
             segments.release()
+            self._settle_buffers(reply)
         return self._result(reply)
 
     def batch(self, calls: list[dict[str, Any]]) -> list[Any]:
         """Sends many requests in one message; returns each result, or the exception it raised."""
         if self._queue:
             self.flush()
-        segments = OutgoingSegments()
+        segments = OutgoingSegments(self._reply_buffers)
+        reply: Any = None
         try:
             encoded = [{k: encode(v, segments) for k, v in call.items()} for call in calls]
             reply = self._round_trip(pack_frame(self._offer_buffers({"id": next(self._ids), "op": "batch",
                                                                       "calls": encoded})))
         finally:
             segments.release()
+            self._settle_buffers(reply)
         results = []
         for item in self._result(reply):
             try:
@@ -132,6 +136,15 @@ class RpcConnection:
             except errors.SpearError as error:
                 results.append(error)
         return results
+
+    def _settle_buffers(self, reply: Any) -> None:
+        """Reply buffers that carried arguments come back, unless the engine kept their arrays."""
+        items = [reply] if isinstance(reply, dict) else []
+        if items and isinstance(reply.get("ok"), list):  # a batch: each call's reply says what it kept
+            items += [item for item in reply["ok"] if isinstance(item, dict) and "id" in item]
+        kept = {name for item in items for name in item.get("kept", [])}
+        failed = not items or any("error" in item for item in items)
+        self._reply_buffers.settle(kept, failed)
 
     def _offer_buffers(self, message: dict[str, Any]) -> dict[str, Any]:
         """Offers the reply buffers no array views, and names those removed (spear._reply_buffers)."""

@@ -1,6 +1,7 @@
 """The RPC wire format on the client side: length-prefixed msgpack frames, with extension types for
 object references (1), classes (2) and arrays (3). Arrays of 64 KiB or more travel through POSIX shared
-memory (/dev/shm/spear-<pid>-<n>): the receiver maps the segment and the array views it, no copy.
+memory (/dev/shm/spear-<pid>-<n>): the receiver maps the segment and the array views it, no copy. Where
+it can, the connection's reply buffers (spear._reply_buffers) carry them instead of fresh segments.
 See core/rpc/value_msgpack.h for the server side.
 """
 
@@ -68,12 +69,19 @@ def map_segment(name: str, size: int, *, unlink: bool) -> mmap.mmap:
 
 
 class OutgoingSegments:
-    """Segments this client created for a request's arrays; removed once the reply has arrived."""
+    """Segments this client created for a request's arrays; removed once the reply has arrived. With the
+    connection's reply buffers, an array goes into a free buffer that fits instead, when there is one."""
 
-    def __init__(self) -> None:
+    def __init__(self, buffers: ReplyBuffers | None = None) -> None:
         self.paths: list[str] = []
+        self._buffers = buffers
 
     def create(self, data: NDArray[Any]) -> str:
+        if self._buffers is not None:
+            lent = self._buffers.lend(data)
+            if lent is not None:
+                return lent
+            self._buffers.learn(data.nbytes)  # for the next array of this size
         name = f"/spear-{os.getpid()}-{next(_segment_counter)}"
         path = _segment_path(name)
         fd = os.open(path, os.O_CREAT | os.O_EXCL | os.O_RDWR, 0o600)

@@ -211,6 +211,20 @@ def test_arrays_cross_in_any_byte_order_layout_or_writability(instance: spear.In
                                  "(use bool, an integer or a float dtype)")
 
 
+def test_arrays_an_sp_func_keeps_are_never_overwritten(instance: spear.Instance, plugin: Any) -> None:
+    game = instance.get_game()
+    kept = np.random.default_rng(5).integers(0, 256, size=(512, 512, 4), dtype=np.uint8)  # 1 MiB
+    with frame(instance):
+        tools = game.spawn_actor(uclass=plugin.AArrayTools)
+        tools.call_sp_func("echo", arrays={"image": np.zeros_like(kept)})  # over RPC: makes reusable buffers
+        tools.call_sp_func("store", arrays={"image": kept.copy()})  # ... one of which the engine now keeps
+        for i in range(4):  # arrays of the same size travel afterwards, in the same shared memory if free
+            other = np.full_like(kept, i)
+            assert np.array_equal(tools.call_sp_func("echo", arrays={"image": other})["arrays"]["image"], other)
+        recalled = tools.call_sp_func("recall")["arrays"]["image"]
+    assert np.array_equal(recalled, kept)
+
+
 def test_sp_func_calls_can_be_asynchronous(instance: spear.Instance, plugin: Any) -> None:
     game = instance.get_game()
     with frame(instance):
