@@ -41,10 +41,17 @@ class _Buffer:
 class ReplyBuffers:
     _buffers: dict[str, _Buffer] = field(default_factory=dict)
     _dropped: list[str] = field(default_factory=list)
+    _wanted: set[int] = field(default_factory=set)  # sizes to make buffers of, before the next request
     closed: bool = False
 
     def offers(self) -> list[list[Any]]:
-        """[[name, size], ...] of the buffers no array views: what the next request offers."""
+        """[[name, size], ...] of the buffers no array views: what the request about to be sent offers.
+
+        Buffers learned since the last request are made here, just before the server hears of them, so
+        that a client killed between two requests leaves no name the server does not know to remove."""
+        for size in sorted(self._wanted):
+            self._make(size)
+        self._wanted.clear()
         return [[b.name, b.size] for b in self._buffers.values() if not b.held and not b.lent]
 
     def take_dropped(self) -> list[str]:
@@ -84,7 +91,11 @@ class ReplyBuffers:
                 self._remove(buffer)
 
     def learn(self, size: int) -> None:
-        """A reply array of `size` bytes came in a segment of the server's: have a buffer for the next one."""
+        """An array of `size` bytes went through a fresh segment: have a buffer of that size next time."""
+        if not self.closed:
+            self._wanted.add(size)
+
+    def _make(self, size: int) -> None:
         if self.closed or any(not b.held and not b.lent and size <= b.size <= 2 * size
                               for b in self._buffers.values()):
             return
@@ -112,6 +123,7 @@ class ReplyBuffers:
         for buffer in list(self._buffers.values()):
             self._remove(buffer)
         self._dropped.clear()
+        self._wanted.clear()
 
     def _give_back(self, name: str) -> None:
         buffer = self._buffers.get(name)

@@ -232,7 +232,7 @@ def test_replies_land_in_reply_buffers_that_never_change_under_the_user() -> Non
         first = connection.request("echo", value=base)  # no buffer yet: a segment of the server's
         held = [connection.request("echo", value=base + i) for i in range(1, 4)]
         buffers = connection._reply_buffers._buffers  # noqa: SLF001
-        for _ in range(2):  # warm-up: a buffer for the argument and one for the reply
+        for _ in range(3):  # warm-up: buffers for the argument and the reply, made as they are learned
             connection.request("echo", value=base)
         made = len(buffers)
         for _ in range(10):  # results dropped at once: the same buffers serve every request and reply
