@@ -143,9 +143,11 @@ void Dispatcher::handleOne(const msgpack::object& request, Session& session, msg
         pack(okOut, result, toShm);
         result = Value(); // the request's values are gone now: what still maps a segment was kept
         std::vector<std::string> kept;
-        for (size_t i = openedBefore; opened && i < opened->size(); ++i)
-            if (!(*opened)[i].second.expired())
-                kept.push_back((*opened)[i].first);
+        for (size_t i = openedBefore; opened && i < opened->size(); ++i) {
+            const OpenedSegment& entry = (*opened)[i];
+            if (auto alive = entry.segment.lock(); alive && alive.use_count() - 1 > entry.othersHolding)
+                kept.push_back(entry.name);
+        }
         out.pack_map(kept.empty() ? 2 : 3);
         out.pack(std::string("id"));
         id ? out.pack(*id) : out.pack_nil();
@@ -198,7 +200,9 @@ Value Dispatcher::execute(const std::string& op, const msgpack::object& request,
                      "); the client's generated stubs come from a different engine build");
         }
         session.greeted = true;
-        return Value(Value::Dict{{"api_hash", Value(apiHash_)}, {"pid", Value(int64_t(::getpid()))}});
+        return Value(Value::Dict{{"api_hash", Value(apiHash_)},
+                                 {"pid", Value(int64_t(::getpid()))},
+                                 {"reply_buffers", Value(bool(session.offerReplyBuffer))}});
     }
     if (!session.greeted) {
         session.closeAfterReply = true;

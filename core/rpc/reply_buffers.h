@@ -26,9 +26,13 @@ class ReplyBuffers {
     ReplyBuffers& operator=(const ReplyBuffers&) = delete;
     ~ReplyBuffers(); // removes the names of every buffer offered on the connection
 
+    // The client process; only buffers it named ("/spear-<pid>-r<n>") are accepted.
+    void setOwner(long pid) { prefix_ = "/spear-" + std::to_string(pid) + "-r"; }
     // The client offers `name` for the current request's reply. Maps it the first time; a name that is
-    // not a spear segment, or too small for `size`, is ignored (the reply then uses a segment of its own).
+    // not one of the client's buffers, or too small for `size`, is ignored (the reply then uses a segment
+    // of the server's own). At most kMaxBuffers are mapped at a time.
     void offer(const std::string& name, size_t size);
+    static constexpr size_t kMaxBuffers = 32;
     // An offered buffer of at least `bytes` (at most twice, so a small array does not use a large one),
     // taken for this reply; nullptr when there is none.
     std::shared_ptr<SharedMemorySegment> take(size_t bytes);
@@ -43,6 +47,7 @@ class ReplyBuffers {
         bool offered = false;
     };
     std::map<std::string, Buffer> buffers_;
+    std::string prefix_ = "/spear-?"; // no name matches until setOwner()
 };
 
 } // namespace sp::rpc

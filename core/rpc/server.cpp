@@ -77,8 +77,13 @@ reflect::ArrayValue allocateInSegment(reflect::DType dtype, const std::vector<in
     value.dtype = dtype;
     value.shape = shape;
     auto [segment, clientBuffer] = connection.replySegment(value.byteSize());
-    if (clientBuffer) // a fresh segment is zeroed by the kernel; a reused buffer holds an earlier reply
-        std::memset(segment->data(), 0, value.byteSize());
+    if (clientBuffer) {
+        std::memset(segment->data(), 0, value.byteSize()); // a reused buffer holds an earlier reply
+        // If the engine keeps this array (a camera's frame until the next render), the reply says so.
+        // Owners besides the engine: the connection's ReplyBuffers and requestSegments.
+        if (OpenedSegments* opened = OpenedSegmentsScope::current())
+            opened->push_back({segment->name(), segment, 2});
+    }
     value.data = segment->data();
     value.owner = segment;
     connection.requestSegments.emplace_back(std::move(segment), clientBuffer);
@@ -156,11 +161,20 @@ void Server::accept() {
     }
     auto connection = std::make_unique<Connection>();
     connection->fd = fd;
-    ReplyBuffers* buffers = connection->replyBuffers.get();
-    connection->session.offerReplyBuffer = [buffers](const std::string& name, size_t size) {
-        buffers->offer(name, size);
-    };
-    connection->session.dropReplyBuffer = [buffers](const std::string& name) { buffers->forget(name); };
+    // Reply buffers only on a Unix socket, where the kernel says which process the client is: the server then
+    // accepts only that process's buffers (never another client's segments); over TCP, replies use the
+    // server's own segments.
+    ucred peer{};
+    socklen_t peerLength = sizeof(peer);
+    if (options_.tcpPort < 0 && ::getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &peer, &peerLength) == 0 &&
+        peer.pid > 0) {
+        ReplyBuffers* buffers = connection->replyBuffers.get();
+        buffers->setOwner(peer.pid);
+        connection->session.offerReplyBuffer = [buffers](const std::string& name, size_t size) {
+            buffers->offer(name, size);
+        };
+        connection->session.dropReplyBuffer = [buffers](const std::string& name) { buffers->forget(name); };
+    }
     connections_.push_back(std::move(connection));
 }
 
@@ -170,7 +184,7 @@ void Server::drop(Connection& connection) {
     connection.replySegments.clear();
     connection.session.offerReplyBuffer = nullptr;
     connection.session.dropReplyBuffer = nullptr;
-    connection.replyBuffers = std::make_unique<ReplyBuffers>(); // the old one removes the client's names
+    connection.replyBuffers.reset(); // removes the names of the buffers the client offered
     if (connection.fd >= 0)
         ::close(connection.fd);
     connection.fd = -1;

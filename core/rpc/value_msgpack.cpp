@@ -92,7 +92,7 @@ reflect::ArrayValue unpackArray(const msgpack::object& body, std::string_view co
              " bytes, its shape needs ", expected);
     auto segment = std::make_shared<SharedMemorySegment>(SharedMemorySegment::open(name, size));
     if (OpenedSegments* opened = OpenedSegmentsScope::current())
-        opened->emplace_back(name, segment);
+        opened->push_back({name, segment, 0});
     array.data = segment->data();
     array.owner = segment;
     return array;

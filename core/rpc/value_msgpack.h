@@ -39,10 +39,16 @@ void pack(msgpack::packer<msgpack::sbuffer>& out, const reflect::Value& value,
 reflect::Value unpack(const msgpack::object& in, std::string_view context);
 
 class SharedMemorySegment;
-// The segments unpack() mapped on this thread while a scope is alive, by name. A segment whose weak
-// pointer has not expired once a request's values are gone is still used by the engine (it kept the
-// array): the reply names it "kept", so that the client does not write into it again.
-using OpenedSegments = std::vector<std::pair<std::string, std::weak_ptr<SharedMemorySegment>>>;
+// The client-owned segments a request used, recorded while a scope is alive on this thread: those unpack()
+// mapped for its arguments, and the client's reply buffers the server wrote arrays into. One that is still
+// referenced by more than `othersHolding` owners once the request's values are gone is used by the engine
+// (it kept the array): the reply names it "kept", so that the client never writes into it again.
+struct OpenedSegment {
+    std::string name;
+    std::weak_ptr<SharedMemorySegment> segment;
+    long othersHolding = 0; // owners that are not the engine (the server's own bookkeeping)
+};
+using OpenedSegments = std::vector<OpenedSegment>;
 class OpenedSegmentsScope {
   public:
     explicit OpenedSegmentsScope(OpenedSegments& list);

@@ -42,6 +42,8 @@ class ReplyBuffers:
     _buffers: dict[str, _Buffer] = field(default_factory=dict)
     _dropped: list[str] = field(default_factory=list)
     _wanted: set[int] = field(default_factory=set)  # sizes to make buffers of, before the next request
+    _this_reply: dict[str, NDArray[Any]] = field(default_factory=dict)  # buffers received in the reply being read
+    _offered: set[str] = field(default_factory=set)  # offered with the request in flight
     closed: bool = False
 
     def offers(self) -> list[list[Any]]:
@@ -52,23 +54,31 @@ class ReplyBuffers:
         for size in sorted(self._wanted):
             self._make(size)
         self._wanted.clear()
-        return [[b.name, b.size] for b in self._buffers.values() if not b.held and not b.lent]
+        offered = [b for b in self._buffers.values() if not b.held and not b.lent]
+        self._offered = {b.name for b in offered}
+        return [[b.name, b.size] for b in offered]
 
     def take_dropped(self) -> list[str]:
         """Buffers removed since the last request, for the server to let go of."""
         dropped, self._dropped = self._dropped, []
         return dropped
 
+    def begin_reply(self) -> None:
+        self._this_reply.clear()
+
     def receive(self, name: str, dtype: np.dtype[Any], shape: list[int], size: int) -> NDArray[Any]:
         """The reply array the server wrote into buffer `name`, as a view of the client's mapping."""
-        buffer = self._buffers.get(name)
-        if buffer is None or buffer.held or size > buffer.size:
-            raise ValueError(f"the server named reply buffer {name!r}, which this client did not offer")
-        buffer.held = True
         count = int(np.prod(shape)) if shape else 1
+        if name in self._this_reply:  # the same array twice in one reply
+            return self._this_reply[name].reshape(shape)
+        buffer = self._buffers.get(name)
+        if buffer is None or buffer.held or buffer.lent or count * dtype.itemsize > min(size, buffer.size):
+            raise ValueError(f"the server named reply buffer {name!r}, which this client did not offer")
         root = np.frombuffer(buffer.mapping, dtype=dtype, count=count)
+        buffer.held = True
         # Views keep `root` alive: once it goes, no array of the client's reads the buffer any more.
         weakref.finalize(root, self._give_back, name)
+        self._this_reply[name] = root
         return root.reshape(shape)
 
     def lend(self, data: NDArray[Any]) -> str | None:
@@ -83,12 +93,15 @@ class ReplyBuffers:
         return buffer.name
 
     def settle(self, kept: set[str], failed: bool) -> None:
-        """After a reply: lent buffers come back, except those the engine kept (or all, if a call failed
-        and the reply could not say)."""
-        for buffer in [b for b in self._buffers.values() if b.lent]:
+        """After a reply: buffers the engine kept an array in leave the pool (they are the engine's now),
+        lent ones come back. If a call failed, its reply could not say what was kept: every buffer the
+        request lent or offered leaves."""
+        for buffer in list(self._buffers.values()):
+            involved = buffer.lent or buffer.name in self._offered
             buffer.lent = False
-            if failed or buffer.name in kept:
+            if buffer.name in kept or (failed and involved):
                 self._remove(buffer)
+        self._offered.clear()
 
     def learn(self, size: int) -> None:
         """An array of `size` bytes went through a fresh segment: have a buffer of that size next time."""
@@ -96,6 +109,12 @@ class ReplyBuffers:
             self._wanted.add(size)
 
     def _make(self, size: int) -> None:
+        try:
+            self._create(size)
+        except OSError:
+            pass  # no buffer this time (/dev/shm full, say): the server's own segments carry the arrays
+
+    def _create(self, size: int) -> None:
         if self.closed or any(not b.held and not b.lent and size <= b.size <= 2 * size
                               for b in self._buffers.values()):
             return
@@ -108,7 +127,9 @@ class ReplyBuffers:
         name = f"/spear-{os.getpid()}-r{next(_counter)}"
         fd = os.open("/dev/shm" + name, os.O_CREAT | os.O_EXCL | os.O_RDWR, 0o600)
         try:
-            os.ftruncate(fd, size)
+            # Allocated now, not on first touch: a /dev/shm that fills up later then fails here, in the
+            # client, instead of as SIGBUS in the server writing a reply.
+            os.posix_fallocate(fd, 0, size)
             mapping = mmap.mmap(fd, size, flags=mmap.MAP_SHARED | mmap.MAP_POPULATE)
         except OSError:
             os.unlink("/dev/shm" + name)
@@ -118,7 +139,8 @@ class ReplyBuffers:
         self._buffers[name] = _Buffer(name, size, mapping)
 
     def close(self) -> None:
-        """Removes every buffer's name; arrays that view one keep their mapping."""
+        """Removes every buffer's name, and makes no more (also when the server does not take buffers);
+        arrays that view one keep their mapping."""
         self.closed = True
         for buffer in list(self._buffers.values()):
             self._remove(buffer)

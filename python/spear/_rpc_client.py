@@ -69,6 +69,8 @@ class RpcConnection:
         self._buffers_cleanup = weakref.finalize(self, self._reply_buffers.close)
         hello = self.request("hello", api_hash=API_HASH, token=token or "")
         self.server_pid = int(hello["pid"])
+        if not hello.get("reply_buffers"):  # TCP: the server cannot tell which process offers buffers
+            self._reply_buffers.close()
 
     # -- requests ------------------------------------------------------------------------------
 
@@ -113,7 +115,7 @@ class RpcConnection:
             reply = self._round_trip(pack_frame(self._offer_buffers(message)))
         finally:
             segments.release()
-            self._settle_buffers(reply)
+            self._settle_buffers(reply, batch=False)
         return self._result(reply)
 
     def batch(self, calls: list[dict[str, Any]]) -> list[Any]:
@@ -128,7 +130,7 @@ class RpcConnection:
                                                                       "calls": encoded})))
         finally:
             segments.release()
-            self._settle_buffers(reply)
+            self._settle_buffers(reply, batch=True)
         results = []
         for item in self._result(reply):
             try:
@@ -137,12 +139,16 @@ class RpcConnection:
                 results.append(error)
         return results
 
-    def _settle_buffers(self, reply: Any) -> None:
-        """Reply buffers that carried arguments come back, unless the engine kept their arrays."""
+    def _settle_buffers(self, reply: Any, batch: bool) -> None:
+        """Buffers that carried arguments come back, unless the engine kept their arrays; buffers the engine
+        kept arrays in leave the pool too."""
         items = [reply] if isinstance(reply, dict) else []
-        if items and isinstance(reply.get("ok"), list):  # a batch: each call's reply says what it kept
-            items += [item for item in reply["ok"] if isinstance(item, dict) and "id" in item]
-        kept = {name for item in items for name in item.get("kept", [])}
+        if batch and items and isinstance(reply.get("ok"), list):  # each call's reply says what it kept
+            items += [item for item in reply["ok"] if isinstance(item, dict)]
+        kept: set[str] = set()
+        for item in items:
+            names = item.get("kept", [])
+            kept.update(name for name in (names if isinstance(names, list) else []) if isinstance(name, str))
         failed = not items or any("error" in item for item in items)
         self._reply_buffers.settle(kept, failed)
 
@@ -164,6 +170,8 @@ class RpcConnection:
             (length,) = struct.unpack("<I", header)
             return unpack_body(self._receive(length), self._reply_buffers)
         except OSError as error:
+            # A late reply could still arrive into buffers reused since: the connection is done.
+            self.close()
             raise ConnectionLost(f"the connection to the spear server at {self.address} was lost: {error}") from None
 
     def _receive(self, size: int) -> bytes:

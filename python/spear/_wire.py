@@ -174,5 +174,7 @@ def pack_frame(message: dict[str, Any]) -> bytes:
 
 def unpack_body(body: bytes, buffers: ReplyBuffers | None = None) -> Any:
     """A reply; `buffers` are the reply buffers its request offered (spear._reply_buffers)."""
+    if buffers is not None:
+        buffers.begin_reply()
     hook = _ext_hook if buffers is None else functools.partial(_ext_hook, buffers=buffers)
     return msgpack.unpackb(body, raw=False, ext_hook=hook, strict_map_key=False)

@@ -169,6 +169,10 @@ def test_tcp_listens_on_loopback_and_requires_the_token() -> None:
                 assert instance.get_game().get_actor_count() == 0
             with instance.end_frame():
                 pass
+            # Over TCP the server cannot tell which process offers reply buffers, so none are used.
+            connection = instance._backend.connection  # type: ignore[attr-defined]
+            assert connection._reply_buffers.closed  # noqa: SLF001
+            assert np.array_equal(connection.request("echo", value=np.ones(1 << 17)), np.ones(1 << 17))
     finally:
         process.terminate()
         process.wait(10)
@@ -264,3 +268,47 @@ def test_a_dead_clients_reply_buffers_are_removed_by_the_server(server: Launched
     while [n for n in os.listdir("/dev/shm") if n.startswith(f"spear-{pid}-")]:
         assert time.monotonic() < deadline, "the server kept a dead client's reply buffers"
         time.sleep(0.01)
+
+
+def test_the_server_takes_only_the_clients_own_reply_buffers(server: LaunchedServer) -> None:
+    # A segment named as if another process's buffer: offered, it must be neither written nor removed.
+    foreign = f"/spear-{os.getppid()}-r999"
+    fd = os.open("/dev/shm" + foreign, os.O_CREAT | os.O_EXCL | os.O_RDWR, 0o600)
+    try:
+        os.ftruncate(fd, 1 << 20)
+        connection = RpcConnection(server.address)
+        reply = connection.request("echo", value=np.full(1 << 18, 7, np.float32), reply_buffers=[[foreign, 1 << 20]])
+        assert np.array_equal(reply, np.full(1 << 18, 7, np.float32))
+        connection.close()
+        with mmap.mmap(fd, 1 << 20) as mapping:
+            assert not any(mapping[:])  # untouched
+    finally:
+        os.close(fd)
+        os.unlink("/dev/shm" + foreign)  # still there: the server did not remove it either
+
+
+def test_a_frame_the_engine_keeps_is_never_overwritten_by_later_arguments() -> None:
+    with spear.Instance(server="launch") as instance:
+        connection = instance._backend.connection  # type: ignore[attr-defined]
+        game = instance.get_game()
+        with instance.begin_frame():
+            camera = game.spawn_actor(uclass=spear.ACameraSensorActor).CameraSensor
+            camera.Width, camera.Height = 512, 512  # 1 MiB of RGBA
+            camera.Modalities = [spear.ECameraModality.FinalColor]
+        with instance.end_frame():
+            camera.read_pixels()
+        for _ in range(3):  # frames whose readbacks land in reply buffers once the client has them
+            with instance.begin_frame():
+                pass
+            with instance.end_frame():
+                camera.read_pixels()
+        with instance.begin_frame():
+            pass
+        with instance.end_frame():
+            first = camera.read_pixels()["final_color"]
+            expected = first.copy()
+            del first
+            for value in range(5):  # same-sized arguments, which could reuse a free buffer
+                connection.request("echo", value=np.full((512, 512, 4), value, np.uint8))
+            again = camera.read_pixels()["final_color"]  # the frame the engine kept
+        assert np.array_equal(again, expected)
