@@ -152,6 +152,8 @@ def _function_view(c: Class, f: Function) -> dict[str, Any]:
         "returns_void": f.returns.kind == "void",
         "returns_cpp": f.returns.cpp,
         "not_null": f.not_null,
+        # A struct result may be a complete TypedDict, whose array fields are checked before it leaves.
+        "returns_struct": f.returns.kind == "struct",
         "doc": f.doc,
     }
 
@@ -185,6 +187,7 @@ def _class_view(c: Class) -> dict[str, Any]:
         "create": c.kind == "class" and not c.abstract,
         "is_struct": c.kind == "struct",
         "typed_dict": specifiers.has(c.specifiers, "TypedDict"),
+        "partial": specifiers.has(c.specifiers, "Partial"),
         "properties": [_property_view(c, p) for p in c.properties],
         "functions": [_function_view(c, f) for f in c.functions],
         "doc": c.doc,

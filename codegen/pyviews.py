@@ -134,6 +134,7 @@ def module_view(module: Module) -> dict[str, Any]:
             structs.append({
                 "name": c.name,
                 "typed_dict": typed_dict,
+                "partial": specifiers.has(c.specifiers, "Partial"),
                 "doc": naming.py_docstring(c.doc, "    "),
                 "fields": [
                     {"name": p.name, "type": naming.py_type(p.type),
@@ -157,6 +158,10 @@ def module_view(module: Module) -> dict[str, Any]:
             f["rpc_returns"] = api_qualified(f["returns"], local_objects)
             for q in f["params"]:
                 q["rpc_type"] = api_qualified(q["type"], local_objects)
+            for o in f["overloads"]:
+                o["rpc_returns"] = api_qualified(o["returns"], local_objects)
+                for q in o["params"]:
+                    q["rpc_type"] = api_qualified(q["type"], local_objects)
     enum_views = [
         {
             "name": e.name,
@@ -180,7 +185,7 @@ def module_view(module: Module) -> dict[str, Any]:
         "structs": structs,
         "objects": objects,
         "enums": enum_views,
-        "typevars": typevars(module),
+        "typevars": [dict(t, rpc_bound=api_qualified(t["bound"], local_objects)) for t in typevars(module)],
         "all_names": names,
     }
 

@@ -273,6 +273,8 @@ class Scanner:
                 functions.append(self._function(name, member, mspec))
         self._check_functions(decl, functions)
         self._check_setters(decl, properties, functions)
+        if specifiers.has(spec, "Partial") and not specifiers.has(spec, "TypedDict"):
+            raise self._error(decl, f"SPSTRUCT(Partial) on '{name}' needs TypedDict: SPSTRUCT(TypedDict, Partial)")
         abstract = specifiers.has(spec, "Abstract") or decl.is_abstract_record()
         if not abstract and kind == "class" and not self._default_constructible(decl):
             raise self._error(decl, f"'{name}' needs a public default constructor, or SPCLASS(Abstract)")

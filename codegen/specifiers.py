@@ -10,9 +10,10 @@ KNOWN: dict[str, frozenset[str]] = {
     "class": frozenset(
         {"Abstract", "BlueprintType", "Blueprintable", "NotBlueprintable", "Category", "DisplayName", "Config"}
     ),
-    # TypedDict: the struct crosses to Python as a dict typed by a TypedDict (total=False); array fields
-    # that hold no data are left out, so a result can carry just the entries that were produced.
-    "struct": frozenset({"BlueprintType", "Category", "DisplayName", "TypedDict"}),
+    # TypedDict: the struct crosses to Python as a dict typed by a TypedDict, every field present (an array
+    # field left without data is an error when the struct is returned). TypedDict, Partial: total=False,
+    # and array fields that hold no data are left out, so a result carries just the entries produced.
+    "struct": frozenset({"BlueprintType", "Category", "DisplayName", "TypedDict", "Partial"}),
     "enum": frozenset({"BlueprintType", "Category", "DisplayName"}),
     "property": frozenset(
         {

@@ -102,14 +102,40 @@ struct ValueCodec<E> {
     }
 };
 
+// A complete TypedDict's array field must hold an array when the struct leaves C++: its Python type
+// promises the key. Names the struct and the field (after `context`, the function, when known), since
+// the C++ code that forgot the field is the bug.
+inline void checkFieldSet(const ArrayValue& array, std::string_view structName, std::string_view field,
+                          std::string_view context = {}) {
+    SP_CHECK(array.data, InvalidState, context, context.empty() ? "" : ": ", structName, ".", field,
+             " was not set: every field of a TypedDict result must be set (SPSTRUCT(TypedDict, Partial) "
+             "lets a field be left out)");
+}
+
+// Called by generated code on a function's struct result, so that a forgotten field of a complete
+// TypedDict is reported with the function's name ("AMeasurer.Measure(): FMeasurement.Counts was not
+// set ..."); the struct's encoders check again for structs that leave by other paths.
+template <ReflectedStruct T> void checkResultFields(const T& result, std::string_view context) {
+    const TypeInfo& type = T::StaticClass();
+    if (!type.isCompleteDict)
+        return;
+    for (const PropertyInfo* property : type.allProperties())
+        if (const Value field = property->get(&result); const ArrayValue* array = field.tryAs<ArrayValue>())
+            checkFieldSet(*array, type.name, property->name, context);
+}
+
 template <ReflectedStruct T> struct ValueCodec<T> {
     static Value encode(const T& v) {
+        const TypeInfo& type = T::StaticClass();
         Value::Dict fields;
-        for (const PropertyInfo* property : T::StaticClass().allProperties()) {
+        for (const PropertyInfo* property : type.allProperties()) {
             Value field = property->get(&v);
-            // An array field that holds nothing is left out (a TypedDict result has only what was produced).
-            if (const ArrayValue* array = field.tryAs<ArrayValue>(); array && !array->data)
+            // An array field that holds nothing is left out (a partial TypedDict has only what was produced).
+            if (const ArrayValue* array = field.tryAs<ArrayValue>(); array && !array->data) {
+                if (type.isCompleteDict)
+                    checkFieldSet(*array, type.name, property->name);
                 continue;
+            }
             fields.emplace(property->name, std::move(field));
         }
         return Value(std::move(fields));

@@ -56,6 +56,9 @@ class TypeInfo {
     Kind kind = Kind::Class;
     const TypeInfo* parent = nullptr;
     bool isAbstract = false;
+    // SPSTRUCT(TypedDict) without Partial: every field is always present in Python, so an array field
+    // left without data is an error when the struct is returned (see checkFieldSet in codec.h).
+    bool isCompleteDict = false;
     std::vector<PropertyInfo> properties; // declared by this type only; see findProperty
     std::vector<FunctionInfo> functions;
     ObjectBase* (*create)() = nullptr; // classes that can be instantiated; owned by the caller

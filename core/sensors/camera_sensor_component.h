@@ -62,7 +62,7 @@ enum class ECameraToneCurve : uint8_t {
 };
 
 /// The images of one frame, keyed by modality name; only the modalities the camera renders are present.
-SPSTRUCT(TypedDict)
+SPSTRUCT(TypedDict, Partial)
 struct FCameraPixels {
     SP_GENERATED_BODY()
 

@@ -660,6 +660,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
                 static constexpr const char* kContext = "UCameraSensorComponent.read_pixels()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<Self>(self)->read_pixels();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });
@@ -790,6 +791,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
                 static constexpr const char* kContext = "UCameraSensorComponent.get_render_device_info()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<Self>(self)->get_render_device_info();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });
@@ -805,6 +807,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
                 static constexpr const char* kContext = "UCameraSensorComponent.GetRenderStats()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->GetRenderStats();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });

@@ -86,6 +86,7 @@ const sp::reflect::TypeInfo& AMaterialLibrary::StaticClass() {
                 sp::reflect::checkArguments(args, {"Name"}, kContext);
                 std::string Name = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "Name", kContext), "AMaterialLibrary.GetMaterial(): argument 'Name'");
                 auto result = sp::reflect::selfCast<const Self>(self)->GetMaterial(Name);
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });

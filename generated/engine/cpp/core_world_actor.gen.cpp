@@ -92,6 +92,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
                 static constexpr const char* kContext = "AActor.GetActorLocation()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->GetActorLocation();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });
@@ -124,6 +125,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
                 static constexpr const char* kContext = "AActor.GetActorRotation()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->GetActorRotation();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });
@@ -181,6 +183,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
                 static constexpr const char* kContext = "AActor.GetActorScale3D()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->GetActorScale3D();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });
@@ -213,6 +216,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
                 static constexpr const char* kContext = "AActor.GetActorTransform()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->GetActorTransform();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });
@@ -245,6 +249,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
                 static constexpr const char* kContext = "AActor.GetActorForwardVector()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->GetActorForwardVector();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });

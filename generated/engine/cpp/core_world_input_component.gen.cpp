@@ -53,6 +53,7 @@ const sp::reflect::TypeInfo& UInputComponent::StaticClass() {
                 sp::reflect::checkArguments(args, {"ActionName"}, kContext);
                 std::string ActionName = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "ActionName", kContext), "UInputComponent.GetActionValue(): argument 'ActionName'");
                 auto result = sp::reflect::selfCast<const Self>(self)->GetActionValue(ActionName);
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });

@@ -329,6 +329,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
                 static constexpr const char* kContext = "UPrimitiveComponent.GetPhysicsLinearVelocity()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->GetPhysicsLinearVelocity();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });
@@ -364,6 +365,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
                 static constexpr const char* kContext = "UPrimitiveComponent.GetPhysicsAngularVelocityInDegrees()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->GetPhysicsAngularVelocityInDegrees();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });

@@ -202,6 +202,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
                 static constexpr const char* kContext = "USceneComponent.GetRelativeTransform()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->GetRelativeTransform();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });
@@ -234,6 +235,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
                 static constexpr const char* kContext = "USceneComponent.GetComponentTransform()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->GetComponentTransform();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });
@@ -249,6 +251,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
                 static constexpr const char* kContext = "USceneComponent.GetComponentLocation()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->GetComponentLocation();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });
@@ -264,6 +267,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
                 static constexpr const char* kContext = "USceneComponent.K2_GetComponentLocation()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->K2_GetComponentLocation();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });
@@ -279,6 +283,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
                 static constexpr const char* kContext = "USceneComponent.GetComponentRotation()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->GetComponentRotation();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });
@@ -294,6 +299,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
                 static constexpr const char* kContext = "USceneComponent.GetComponentScale()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->GetComponentScale();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });
@@ -360,6 +366,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
                 static constexpr const char* kContext = "USceneComponent.GetForwardVector()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->GetForwardVector();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });
@@ -375,6 +382,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
                 static constexpr const char* kContext = "USceneComponent.GetRightVector()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->GetRightVector();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });
@@ -390,6 +398,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
                 static constexpr const char* kContext = "USceneComponent.GetUpVector()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->GetUpVector();
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });

@@ -174,7 +174,7 @@ template <> struct type_caster<EComponentMobility> {
 
 template <> struct type_caster<FCameraPixels> {
     PYBIND11_TYPE_CASTER(FCameraPixels, const_name("FCameraPixels"));
-    // A TypedDict: a plain dict; array fields without data are left out.
+    // A partial TypedDict: a plain dict; array fields without data are left out.
     bool load(handle src, bool) {
         if (!PyDict_Check(src.ptr()))
             return false;

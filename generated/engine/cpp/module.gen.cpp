@@ -87,6 +87,7 @@ Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "AActor.GetActorLocation()";
 const Self* object = self.get<Self>(kContext);
                 auto result = object->GetActorLocation();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
             },
             "Returns the world-space location of the root component.");
@@ -108,6 +109,7 @@ Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "AActor.GetActorRotation()";
 const Self* object = self.get<Self>(kContext);
                 auto result = object->GetActorRotation();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FRotator>::out(result);
             },
             "Returns the world-space rotation of the root component.");
@@ -147,6 +149,7 @@ Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "AActor.GetActorScale3D()";
 const Self* object = self.get<Self>(kContext);
                 auto result = object->GetActorScale3D();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
             },
             "Returns the world-space scale of the root component.");
@@ -168,6 +171,7 @@ Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "AActor.GetActorTransform()";
 const Self* object = self.get<Self>(kContext);
                 auto result = object->GetActorTransform();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FTransform>::out(result);
             },
             "Returns the world-space transform of the root component.");
@@ -189,6 +193,7 @@ Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "AActor.GetActorForwardVector()";
 const Self* object = self.get<Self>(kContext);
                 auto result = object->GetActorForwardVector();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
             },
             "Returns the unit vector along the actor's X axis.");
@@ -305,6 +310,7 @@ Self* object = self.get<Self>(kContext);
 const Self* object = self.get<Self>(kContext);
                 auto NameValue = Bridge<std::string>::in(std::move(Name), "AMaterialLibrary.GetMaterial(): argument 'Name'");
                 auto result = object->GetMaterial(NameValue);
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FMaterialDesc>::out(result);
             },
             py::kw_only(),
@@ -658,6 +664,7 @@ Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "USceneComponent.GetRelativeTransform()";
 const Self* object = self.get<Self>(kContext);
                 auto result = object->GetRelativeTransform();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FTransform>::out(result);
             },
             "Returns the transform relative to the attach parent.");
@@ -679,6 +686,7 @@ Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "USceneComponent.GetComponentTransform()";
 const Self* object = self.get<Self>(kContext);
                 auto result = object->GetComponentTransform();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FTransform>::out(result);
             },
             "Returns the world-space transform.");
@@ -688,6 +696,7 @@ const Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "USceneComponent.GetComponentLocation()";
 const Self* object = self.get<Self>(kContext);
                 auto result = object->GetComponentLocation();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
             },
             "Returns the world-space location in metres.");
@@ -697,6 +706,7 @@ const Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "USceneComponent.K2_GetComponentLocation()";
 const Self* object = self.get<Self>(kContext);
                 auto result = object->K2_GetComponentLocation();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
             },
             "Returns the world-space location in metres (the Blueprint name of GetComponentLocation).");
@@ -706,6 +716,7 @@ const Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "USceneComponent.GetComponentRotation()";
 const Self* object = self.get<Self>(kContext);
                 auto result = object->GetComponentRotation();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FRotator>::out(result);
             },
             "Returns the world-space rotation.");
@@ -715,6 +726,7 @@ const Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "USceneComponent.GetComponentScale()";
 const Self* object = self.get<Self>(kContext);
                 auto result = object->GetComponentScale();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
             },
             "Returns the world-space scale.");
@@ -760,6 +772,7 @@ Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "USceneComponent.GetForwardVector()";
 const Self* object = self.get<Self>(kContext);
                 auto result = object->GetForwardVector();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
             },
             "Returns the unit vector along the component's world-space X axis.");
@@ -769,6 +782,7 @@ const Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "USceneComponent.GetRightVector()";
 const Self* object = self.get<Self>(kContext);
                 auto result = object->GetRightVector();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
             },
             "Returns the unit vector along the component's world-space Y axis (left).");
@@ -778,6 +792,7 @@ const Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "USceneComponent.GetUpVector()";
 const Self* object = self.get<Self>(kContext);
                 auto result = object->GetUpVector();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
             },
             "Returns the unit vector along the component's world-space Z axis.");
@@ -940,6 +955,7 @@ const Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "UCameraSensorComponent.read_pixels()";
 Self* object = self.get<Self>(kContext);
                 auto result = object->read_pixels();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FCameraPixels>::out(result);
             },
             "Returns the images of the frame due (see the class notes on latency); an empty dict while priming.");
@@ -1023,6 +1039,7 @@ const Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "UCameraSensorComponent.get_render_device_info()";
 Self* object = self.get<Self>(kContext);
                 auto result = object->get_render_device_info();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FRenderDeviceInfo>::out(result);
             },
             "Returns which EGL device renders this camera's world (starting the renderer if needed).");
@@ -1032,6 +1049,7 @@ Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "UCameraSensorComponent.GetRenderStats()";
 const Self* object = self.get<Self>(kContext);
                 auto result = object->GetRenderStats();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FRenderStats>::out(result);
             },
             "Returns how often each render pass ran in this camera's world.");
@@ -1087,6 +1105,7 @@ const Self* object = self.get<Self>(kContext);
 const Self* object = self.get<Self>(kContext);
                 auto ActionNameValue = Bridge<std::string>::in(std::move(ActionName), "UInputComponent.GetActionValue(): argument 'ActionName'");
                 auto result = object->GetActionValue(ActionNameValue);
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
             },
             py::kw_only(),
@@ -1302,6 +1321,7 @@ Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "UPrimitiveComponent.GetPhysicsLinearVelocity()";
 const Self* object = self.get<Self>(kContext);
                 auto result = object->GetPhysicsLinearVelocity();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
             },
             "Returns the linear velocity in m/s (zero when not simulated).");
@@ -1325,6 +1345,7 @@ Self* object = self.get<Self>(kContext);
                 static constexpr const char* kContext = "UPrimitiveComponent.GetPhysicsAngularVelocityInDegrees()";
 const Self* object = self.get<Self>(kContext);
                 auto result = object->GetPhysicsAngularVelocityInDegrees();
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
             },
             "Returns the angular velocity in degrees per second about world axes (zero when not simulated).");

@@ -114,4 +114,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "a3d04fa54950007c"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "d619e22a13b2951e"; }

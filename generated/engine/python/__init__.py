@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "a3d04fa54950007c"
+API_HASH = "d619e22a13b2951e"

@@ -8,7 +8,7 @@ behave the same even where a default has no Python spelling.
 
 from __future__ import annotations
 
-from typing import Any, cast
+from typing import Any, TypeVar, cast, overload
 
 import numpy as np
 from numpy.typing import NDArray
@@ -21,6 +21,10 @@ from . import api
 from .api import ECameraModality, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, FCameraPixels, FHitResult, FLinearColor, FMaterialDesc, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
+
+_AActorT = TypeVar("_AActorT", bound="api.AActor")
+_UActorComponentT = TypeVar("_UActorComponentT", bound="api.UActorComponent")
+_UObjectT = TypeVar("_UObjectT", bound="api.UObject")
 
 
 class UObject(_ObjectProxy, api.UObject):
@@ -95,6 +99,12 @@ class AActor(UObject, api.AActor):
 
     def K2_GetComponents(self) -> list[api.UActorComponent]:
         return cast("list[api.UActorComponent]", self._sp_call("AActor", "K2_GetComponents", {}, "list[UActorComponent]"))
+
+    @overload
+    def GetComponentByClass(self, *, ComponentClass: type[_UActorComponentT]) -> _UActorComponentT | None: ...
+
+    @overload
+    def GetComponentByClass(self, *, ComponentClass: str) -> api.UActorComponent | None: ...
 
     def GetComponentByClass(self, *, ComponentClass: type[api.UActorComponent] | str) -> Any:
         return self._sp_call("AActor", "GetComponentByClass", {"ComponentClass": ComponentClass}, "UActorComponent | None")
@@ -796,6 +806,12 @@ _register_proxy(UStaticMeshComponent)
 class UWorld(UObject, api.UWorld):
     __slots__ = ()
 
+    @overload
+    def spawn_actor(self, *, uclass: type[_AActorT], location: FVector = ..., rotation: FRotator = ..., name: str = ..., tags: list[str] = ...) -> _AActorT: ...
+
+    @overload
+    def spawn_actor(self, *, uclass: str, location: FVector = ..., rotation: FRotator = ..., name: str = ..., tags: list[str] = ...) -> api.AActor: ...
+
     def spawn_actor(self, *, uclass: type[api.AActor] | str, location: FVector = _DEFAULT, rotation: FRotator = _DEFAULT, name: str = _DEFAULT, tags: list[str] = _DEFAULT) -> Any:
         return self._sp_call("UWorld", "spawn_actor", {"uclass": uclass, "location": location, "rotation": rotation, "name": name, "tags": tags}, "AActor")
 
@@ -808,11 +824,29 @@ class UWorld(UObject, api.UWorld):
     def find_actors_by_tag(self, *, tag: str) -> list[api.AActor]:
         return cast("list[api.AActor]", self._sp_call("UWorld", "find_actors_by_tag", {"tag": tag}, "list[AActor]"))
 
+    @overload
+    def find_actor_by_class(self, *, uclass: type[_AActorT]) -> _AActorT | None: ...
+
+    @overload
+    def find_actor_by_class(self, *, uclass: str) -> api.AActor | None: ...
+
     def find_actor_by_class(self, *, uclass: type[api.AActor] | str) -> Any:
         return self._sp_call("UWorld", "find_actor_by_class", {"uclass": uclass}, "AActor | None")
 
+    @overload
+    def find_actors_by_class(self, *, uclass: type[_AActorT]) -> list[_AActorT]: ...
+
+    @overload
+    def find_actors_by_class(self, *, uclass: str) -> list[api.AActor]: ...
+
     def find_actors_by_class(self, *, uclass: type[api.AActor] | str) -> Any:
         return self._sp_call("UWorld", "find_actors_by_class", {"uclass": uclass}, "list[AActor]")
+
+    @overload
+    def find_actors_by_class_as_dict(self, *, uclass: type[_AActorT]) -> dict[str, _AActorT]: ...
+
+    @overload
+    def find_actors_by_class_as_dict(self, *, uclass: str) -> dict[str, api.AActor]: ...
 
     def find_actors_by_class_as_dict(self, *, uclass: type[api.AActor] | str) -> Any:
         return self._sp_call("UWorld", "find_actors_by_class_as_dict", {"uclass": uclass}, "dict[str, AActor]")
@@ -823,14 +857,38 @@ class UWorld(UObject, api.UWorld):
     def get_component_by_name(self, *, actor: api.AActor, component_name: str) -> api.UActorComponent | None:
         return cast("api.UActorComponent | None", self._sp_call("UWorld", "get_component_by_name", {"actor": actor, "component_name": component_name}, "UActorComponent | None"))
 
+    @overload
+    def get_components_by_class(self, *, actor: api.AActor, uclass: type[_UActorComponentT]) -> list[_UActorComponentT]: ...
+
+    @overload
+    def get_components_by_class(self, *, actor: api.AActor, uclass: str) -> list[api.UActorComponent]: ...
+
     def get_components_by_class(self, *, actor: api.AActor, uclass: type[api.UActorComponent] | str) -> Any:
         return self._sp_call("UWorld", "get_components_by_class", {"actor": actor, "uclass": uclass}, "list[UActorComponent]")
+
+    @overload
+    def get_components_by_class_as_dict(self, *, actor: api.AActor, uclass: type[_UActorComponentT]) -> dict[str, _UActorComponentT]: ...
+
+    @overload
+    def get_components_by_class_as_dict(self, *, actor: api.AActor, uclass: str) -> dict[str, api.UActorComponent]: ...
 
     def get_components_by_class_as_dict(self, *, actor: api.AActor, uclass: type[api.UActorComponent] | str) -> Any:
         return self._sp_call("UWorld", "get_components_by_class_as_dict", {"actor": actor, "uclass": uclass}, "dict[str, UActorComponent]")
 
+    @overload
+    def load_class(self, *, uclass: type[_UObjectT], name: str) -> type[_UObjectT]: ...
+
+    @overload
+    def load_class(self, *, uclass: str, name: str) -> type[api.UObject]: ...
+
     def load_class(self, *, uclass: type[api.UObject] | str, name: str) -> Any:
         return self._sp_call("UWorld", "load_class", {"uclass": uclass, "name": name}, "type[UObject]")
+
+    @overload
+    def get_default_object(self, *, uclass: type[_UObjectT]) -> _UObjectT: ...
+
+    @overload
+    def get_default_object(self, *, uclass: str) -> api.UObject: ...
 
     def get_default_object(self, *, uclass: type[api.UObject] | str) -> Any:
         return self._sp_call("UWorld", "get_default_object", {"uclass": uclass}, "UObject")

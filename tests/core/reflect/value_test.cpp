@@ -75,3 +75,59 @@ TEST(SpArray, ShapesAndViews) {
     SpArray<float> b("b");
     EXPECT_THROW(b.assign(a.value(), "F()"), sp::InvalidArgument);
 }
+
+// A TypedDict struct registered by hand as the generator registers one: complete (every key promised to
+// Python) or partial (SPSTRUCT(TypedDict, Partial)).
+template <bool Complete> struct FArrayResult {
+    SpArray<float> Values;
+
+    static const TypeInfo& StaticClass() {
+        static const TypeInfo info = [] {
+            TypeInfo t;
+            t.name = Complete ? "FCompleteResult" : "FPartialResult";
+            t.kind = TypeInfo::Kind::Struct;
+            t.isCompleteDict = Complete;
+            t.properties.push_back({"Values", "NDArray[np.float32]", "", false, [](const void* self) {
+                                        return encode(static_cast<const FArrayResult*>(self)->Values);
+                                    }});
+            return t;
+        }();
+        return info;
+    }
+};
+
+TEST(Codec, CompleteTypedDictsMustHaveEveryArray) {
+    FArrayResult<true> complete;
+    try {
+        encode(complete);
+        FAIL() << "an unset field of a complete TypedDict must not be left out silently";
+    } catch (const sp::InvalidState& e) {
+        EXPECT_NE(std::string(e.what()).find("FCompleteResult.Values was not set"), std::string::npos)
+            << e.what();
+    }
+    complete.Values.setDataSource(std::vector<float>{1, 2});
+    EXPECT_TRUE(encode(complete).as<Value::Dict>().contains("Values"));
+    // An empty array is set: only an array that was never given data is missing.
+    complete.Values.setDataSource(std::vector<float>{});
+    EXPECT_TRUE(encode(complete).as<Value::Dict>().contains("Values"));
+}
+
+TEST(Codec, ResultChecksNameTheFunction) {
+    FArrayResult<true> complete;
+    try {
+        checkResultFields(complete, "AMeasurer.Measure()");
+        FAIL() << "an unset field of a complete TypedDict result must be reported";
+    } catch (const sp::InvalidState& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("AMeasurer.Measure(): FCompleteResult.Values was not set", 0),
+                  0u)
+            << e.what();
+    }
+    checkResultFields(FArrayResult<false>{}, "AMeasurer.MeasureSome()"); // partial: nothing to check
+}
+
+TEST(Codec, PartialTypedDictsLeaveUnsetArraysOut) {
+    FArrayResult<false> partial;
+    EXPECT_TRUE(encode(partial).as<Value::Dict>().empty());
+    partial.Values.setDataSource(std::vector<float>{1, 2});
+    EXPECT_TRUE(encode(partial).as<Value::Dict>().contains("Values"));
+}

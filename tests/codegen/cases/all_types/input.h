@@ -44,7 +44,7 @@ struct FSample {
 };
 
 /// Images keyed by name; only the ones produced are present.
-USTRUCT(TypedDict)
+USTRUCT(TypedDict, Partial)
 struct FImages {
     GENERATED_BODY()
 
@@ -54,6 +54,19 @@ struct FImages {
     /// Depth in metres, (H, W).
     UPROPERTY()
     sp::reflect::SpArray<float> depth;
+};
+
+/// Measurements of a point cloud; a complete TypedDict: every entry is always produced.
+USTRUCT(TypedDict)
+struct FCloudStats {
+    GENERATED_BODY()
+
+    /// Distance of each point from the origin, (N,).
+    UPROPERTY()
+    sp::reflect::SpArray<float> distances;
+    /// How many points there were.
+    UPROPERTY()
+    int64_t count = 0;
 };
 
 /// An actor whose API uses every supported type.
@@ -120,6 +133,9 @@ public:
     /// Renders the requested images.
     UFUNCTION()
     FImages Render(const std::vector<std::string>& Names);
+    /// Measures a cloud of (N, 3) points.
+    UFUNCTION()
+    FCloudStats Measure(const sp::reflect::SpArray<float>& Points);
 
     /// Never returns None.
     UFUNCTION(NotNull)

@@ -37,9 +37,31 @@ template <> struct type_caster<EChannel> {
     }
 };
 
+template <> struct type_caster<FCloudStats> {
+    PYBIND11_TYPE_CASTER(FCloudStats, const_name("FCloudStats"));
+    // A TypedDict: a plain dict with every field; an array field without data is an error.
+    bool load(handle src, bool) {
+        if (!PyDict_Check(src.ptr()))
+            return false;
+        dict d = reinterpret_borrow<dict>(src);
+        if (d.contains("distances"))
+            value.distances = sp::pybind::Bridge<sp::reflect::SpArray<float>>::in(d["distances"].cast<sp::pybind::Bridge<sp::reflect::SpArray<float>>::Py>(), "FCloudStats.distances");
+        if (d.contains("count"))
+            value.count = sp::pybind::Bridge<int64_t>::in(d["count"].cast<sp::pybind::Bridge<int64_t>::Py>(), "FCloudStats.count");
+        return true;
+    }
+    static handle cast(const FCloudStats& v, return_value_policy, handle) {
+        dict d;
+        sp::reflect::checkFieldSet(v.distances.value(), "FCloudStats", "distances");
+        d["distances"] = sp::pybind::Bridge<sp::reflect::SpArray<float>>::out(v.distances);
+        d["count"] = sp::pybind::Bridge<int64_t>::out(v.count);
+        return d.release();
+    }
+};
+
 template <> struct type_caster<FImages> {
     PYBIND11_TYPE_CASTER(FImages, const_name("FImages"));
-    // A TypedDict: a plain dict; array fields without data are left out.
+    // A partial TypedDict: a plain dict; array fields without data are left out.
     bool load(handle src, bool) {
         if (!PyDict_Check(src.ptr()))
             return false;

@@ -119,6 +119,7 @@ const Self* object = self.get<Self>(kContext);
                 auto FactorValue = Bridge<double>::in(std::move(Factor), "AAllTypes.Scale(): argument 'Factor'");
                 auto ChannelValue = Bridge<EChannel>::in(std::move(Channel), "AAllTypes.Scale(): argument 'Channel'");
                 auto result = object->Scale(SampleValue, FactorValue, ChannelValue);
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FSample>::out(result);
             },
             py::kw_only(),
@@ -201,11 +202,25 @@ Self* object = self.get<Self>(kContext);
 Self* object = self.get<Self>(kContext);
                 auto NamesValue = Bridge<std::vector<std::string>>::in(std::move(Names), "AAllTypes.Render(): argument 'Names'");
                 auto result = object->Render(NamesValue);
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FImages>::out(result);
             },
             py::kw_only(),
             py::arg("Names"),
             "Renders the requested images.");
+        cls.def(
+            "Measure",
+            [](const Ref<Self>& self, Bridge<sp::reflect::SpArray<float>>::Py Points) -> py::object {
+                static constexpr const char* kContext = "AAllTypes.Measure()";
+Self* object = self.get<Self>(kContext);
+                auto PointsValue = Bridge<sp::reflect::SpArray<float>>::in(std::move(Points), "AAllTypes.Measure(): argument 'Points'");
+                auto result = object->Measure(PointsValue);
+                sp::reflect::checkResultFields(result, kContext);
+                return Bridge<FCloudStats>::out(result);
+            },
+            py::kw_only(),
+            py::arg("Points"),
+            "Measures a cloud of (N, 3) points.");
         cls.def(
             "Self",
             [](const Ref<Self>& self) -> py::object {

@@ -10,6 +10,7 @@ extern "C" void spear_register_all_types_types() {
     auto& registry = sp::reflect::Registry::get();
     registry.add(sp::reflect::StaticEnum<EChannel>());
     registry.add(AAllTypes::StaticClass());
+    registry.add(FCloudStats::StaticClass());
     registry.add(FImages::StaticClass());
     registry.add(FSample::StaticClass());
 }
@@ -19,8 +20,9 @@ extern "C" void spear_unregister_all_types_types() {
     auto& registry = sp::reflect::Registry::get();
     registry.remove(FSample::StaticClass());
     registry.remove(FImages::StaticClass());
+    registry.remove(FCloudStats::StaticClass());
     registry.remove(AAllTypes::StaticClass());
     registry.remove(sp::reflect::StaticEnum<EChannel>());
 }
 
-extern "C" const char* spear_register_all_types_types_api_hash() { return "268716c3357b69ae"; }
+extern "C" const char* spear_register_all_types_types_api_hash() { return "e349d0bd951eaeee"; }

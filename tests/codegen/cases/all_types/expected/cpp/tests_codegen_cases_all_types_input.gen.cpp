@@ -192,6 +192,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
                 const sp::reflect::Value* ChannelArg = sp::reflect::findArgument(args, "Channel");
                 EChannel Channel = ChannelArg ? sp::reflect::decode<EChannel>(*ChannelArg, "AAllTypes.Scale(): argument 'Channel'") : EChannel(EChannel::Red);
                 auto result = sp::reflect::selfCast<const Self>(self)->Scale(Sample, Factor, Channel);
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });
@@ -309,6 +310,25 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
                 sp::reflect::checkArguments(args, {"Names"}, kContext);
                 std::vector<std::string> Names = sp::reflect::decode<std::vector<std::string>>(sp::reflect::requireArgument(args, "Names", kContext), "AAllTypes.Render(): argument 'Names'");
                 auto result = sp::reflect::selfCast<Self>(self)->Render(Names);
+                sp::reflect::checkResultFields(result, kContext);
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "Measure",
+            "Measures a cloud of (N, 3) points.",
+            "FCloudStats",
+            {
+                {"Points", "NDArray[np.float32]", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "AAllTypes.Measure()";
+                sp::reflect::checkArguments(args, {"Points"}, kContext);
+                sp::reflect::SpArray<float> Points = sp::reflect::decode<sp::reflect::SpArray<float>>(sp::reflect::requireArgument(args, "Points", kContext), "AAllTypes.Measure(): argument 'Points'");
+                auto result = sp::reflect::selfCast<Self>(self)->Measure(Points);
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });
@@ -334,6 +354,53 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
 }
 
 const sp::reflect::TypeInfo& AAllTypes::GetClass() const { return StaticClass(); }
+
+// -- FCloudStats ----------------------------------------------------------------------------------
+
+const sp::reflect::TypeInfo& FCloudStats::StaticClass() {
+    static const sp::reflect::TypeInfo info = [] {
+        using Self = FCloudStats;
+        sp::reflect::TypeInfo t;
+        t.name = "FCloudStats";
+        t.doc = "Measurements of a point cloud; a complete TypedDict: every entry is always produced.";
+        t.kind = sp::reflect::TypeInfo::Kind::Struct;
+        t.parent = nullptr;
+        t.isAbstract = false;
+        t.isCompleteDict = true;
+        t.properties.push_back({
+            "distances",
+            "NDArray[np.float32]",
+            "Distance of each point from the origin, (N,).",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->distances);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->distances = sp::reflect::decode<sp::reflect::SpArray<float>>(value, "FCloudStats.distances");
+                sp::reflect::notifyPropertyChanged(object, "distances");
+            },
+        });
+        t.properties.push_back({
+            "count",
+            "int",
+            "How many points there were.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->count);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->count = sp::reflect::decode<int64_t>(value, "FCloudStats.count");
+                sp::reflect::notifyPropertyChanged(object, "count");
+            },
+        });
+        return t;
+    }();
+    return info;
+}
+
+const sp::reflect::TypeInfo& FCloudStats::GetClass() const { return StaticClass(); }
 
 // -- FImages ----------------------------------------------------------------------------------
 

@@ -2,4 +2,4 @@
 """Typed API of the 'all_types' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "all_types"
-API_HASH = "268716c3357b69ae"
+API_HASH = "e349d0bd951eaeee"

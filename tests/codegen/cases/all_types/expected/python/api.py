@@ -21,6 +21,7 @@ from spear._engine.api import AActor, AActorAsync, AActorSend, FVector, UObject
 __all__ = [
     "AAllTypes",
     "EChannel",
+    "FCloudStats",
     "FImages",
     "FSample",
 ]
@@ -32,6 +33,13 @@ class EChannel(enum.IntEnum):
     Red = 1
     Green = 2
     Blue = 4
+
+
+class FCloudStats(TypedDict):
+    """Measurements of a point cloud; a complete TypedDict: every entry is always produced."""
+
+    distances: NDArray[np.float32]
+    count: int
 
 
 class FImages(TypedDict, total=False):

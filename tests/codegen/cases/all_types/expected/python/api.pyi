@@ -17,6 +17,7 @@ from spear._engine.api import AActor, AActorAsync, AActorSend, FVector, UObject
 __all__ = [
     "AAllTypes",
     "EChannel",
+    "FCloudStats",
     "FImages",
     "FSample",
 ]
@@ -33,6 +34,13 @@ class EChannel(enum.IntEnum):
     """Green."""
     Blue = 4
     """Blue."""
+
+
+class FCloudStats(TypedDict):
+    """Measurements of a point cloud; a complete TypedDict: every entry is always produced."""
+
+    distances: NDArray[np.float32]
+    count: int
 
 
 class FImages(TypedDict, total=False):
@@ -76,6 +84,8 @@ class AAllTypesAsync(AActorAsync):
 
     def Render(self, *, Names: list[str]) -> Future[FImages]: ...
 
+    def Measure(self, *, Points: NDArray[np.float32]) -> Future[FCloudStats]: ...
+
     def Self(self) -> Future[AActor]: ...
 
 
@@ -97,6 +107,8 @@ class AAllTypesSend(AActorSend):
     def Histogram(self, *, Bytes: NDArray[np.uint8], Bins: int = 16) -> None: ...
 
     def Render(self, *, Names: list[str]) -> None: ...
+
+    def Measure(self, *, Points: NDArray[np.float32]) -> None: ...
 
     def Self(self) -> None: ...
 
@@ -206,6 +218,9 @@ class AAllTypes(AActor):
 
     def Render(self, *, Names: list[str]) -> FImages:
         """Renders the requested images."""
+
+    def Measure(self, *, Points: NDArray[np.float32]) -> FCloudStats:
+        """Measures a cloud of (N, 3) points."""
 
     def Self(self) -> AActor:
         """Never returns None."""

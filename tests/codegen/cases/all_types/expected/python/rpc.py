@@ -8,7 +8,7 @@ behave the same even where a default has no Python spelling.
 
 from __future__ import annotations
 
-from typing import Any, cast
+from typing import Any, TypeVar, cast, overload
 
 import numpy as np
 from numpy.typing import NDArray
@@ -18,11 +18,13 @@ from spear._rpc_proxy import ObjectProxy as _ObjectProxy
 from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
-from .api import EChannel, FImages, FSample  # structs and enums are shared with the in-process API
+from .api import EChannel, FCloudStats, FImages, FSample  # structs and enums are shared with the in-process API
 from spear._engine.api import AActor, FVector, UObject
 from spear._engine.rpc import AActor as _AActorProxy
 
 _: Any = (np, NDArray)
+
+_AActorT = TypeVar("_AActorT", bound="AActor")
 
 
 class AAllTypes(_AActorProxy, api.AAllTypes):
@@ -105,6 +107,12 @@ class AAllTypes(_AActorProxy, api.AAllTypes):
     def Split(self, *, Text: str) -> api.AAllTypes.SplitResult:
         return cast("api.AAllTypes.SplitResult", self._sp_call("AAllTypes", "Split", {"Text": Text}, "dict", api.AAllTypes.SplitResult))
 
+    @overload
+    def Collect(self, *, ActorClass: type[_AActorT], Candidates: list[AActor] = ...) -> list[_AActorT]: ...
+
+    @overload
+    def Collect(self, *, ActorClass: str, Candidates: list[AActor] = ...) -> list[AActor]: ...
+
     def Collect(self, *, ActorClass: type[AActor] | str, Candidates: list[AActor] = _DEFAULT) -> Any:
         return self._sp_call("AAllTypes", "Collect", {"ActorClass": ActorClass, "Candidates": Candidates}, "list[AActor]")
 
@@ -119,6 +127,9 @@ class AAllTypes(_AActorProxy, api.AAllTypes):
 
     def Render(self, *, Names: list[str]) -> FImages:
         return cast("FImages", self._sp_call("AAllTypes", "Render", {"Names": Names}, "FImages"))
+
+    def Measure(self, *, Points: NDArray[np.float32]) -> FCloudStats:
+        return cast("FCloudStats", self._sp_call("AAllTypes", "Measure", {"Points": Points}, "FCloudStats"))
 
     def Self(self) -> AActor:
         return cast("AActor", self._sp_call("AAllTypes", "Self", {}, "AActor"))

@@ -53,6 +53,7 @@ void spear_bind_plugin_actor(py::module_& m) {
 const Self* object = self.get<Self>(kContext);
                 auto DeltaValue = Bridge<FVector>::in(std::move(Delta), "APluginActor.Offset(): argument 'Delta'");
                 auto result = object->Offset(DeltaValue);
+                sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
             },
             py::kw_only(),

@@ -88,6 +88,7 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
                 sp::reflect::checkArguments(args, {"Delta"}, kContext);
                 FVector Delta = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "Delta", kContext), "APluginActor.Offset(): argument 'Delta'");
                 auto result = sp::reflect::selfCast<const Self>(self)->Offset(Delta);
+                sp::reflect::checkResultFields(result, kContext);
                 return sp::reflect::encode(result);
             },
         });
