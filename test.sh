@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Every test: generator checks, C++ tests (CTest), Python API tests, codegen golden cases and typing
-# cases (pytest, which runs mypy --strict), and a format check.
+# cases (pytest, which runs mypy --strict and pyright), and a format check.
 #   bash test.sh
 source "$(dirname "${BASH_SOURCE[0]}")/scripts/common.sh"
 install_dependencies
+install_pyright
 
 # Before the build, which regenerates generated/: the committed copy must already match the headers.
 say "check: committed generated/ matches the reflected headers"

@@ -8,10 +8,15 @@ images tone-mapped) and tiled into one PNG.
     PYTHONPATH=python /usr/bin/python3 examples/render_image.py [--out out/render_image.png]
 """
 
+# Debian 12's Pillow (9.4) has no annotations: strict pyright would flag every use of it.
+# pyright: reportUnknownVariableType=false
+
 from __future__ import annotations
 
 import argparse
+from collections.abc import Mapping
 from pathlib import Path
+from typing import cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -139,10 +144,11 @@ def visualise(name: str, image: NDArray[np.generic]) -> NDArray[np.uint8]:
 def contact_sheet(pixels: spear.FCameraPixels, order: list[str], columns: int = 4) -> Image.Image:
     label_height = 22
     rows = (len(order) + columns - 1) // columns
-    sheet = Image.new("RGB", (columns * WIDTH, rows * (HEIGHT + label_height)), (24, 24, 24))
-    draw = ImageDraw.Draw(sheet)
+    sheet = Image.new("RGB", (columns * WIDTH, rows * (HEIGHT + label_height)), 0x181818)  # packed dark grey
+    draw: ImageDraw.ImageDraw = ImageDraw.Draw(sheet)
+    images: Mapping[str, object] = pixels  # indexed by run-time names below
     for i, name in enumerate(order):
-        image: NDArray[np.generic] = pixels[name]  # type: ignore[literal-required]
+        image = cast("NDArray[np.generic]", images[name])
         x, y = (i % columns) * WIDTH, (i // columns) * (HEIGHT + label_height)
         sheet.paste(Image.fromarray(visualise(name, image)), (x, y + label_height))
         draw.text((x + 6, y + 5), f"{name}  {image.dtype} {image.shape}", fill=(235, 235, 235))
@@ -178,6 +184,7 @@ def main() -> None:
     with instance.end_frame():
         pixels = camera.read_pixels()
         order = camera.GetModalityNames()
+        assert "object_ids" in pixels and "depth" in pixels  # all 14 modalities were asked for
         ids = pixels["object_ids"]
         visible = [int(i) for i in np.unique(ids) if i != 0]
         names = sorted({camera.GetObjectIdInfo(ObjectId=i).Actor.GetName() for i in visible})  # type: ignore[union-attr]

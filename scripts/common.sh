@@ -26,6 +26,22 @@ install_dependencies() {
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 }
 
+# pyright for the typing tests, from the npm registry, pinned by tests/typing/pyright/package-lock.json.
+install_pyright() {
+    local dir="$ROOT/tests/typing/pyright"
+    if ! command -v npm >/dev/null 2>&1; then
+        say "dependencies: installing nodejs and npm (for pyright)"
+        local sudo=""
+        [[ $(id -u) -ne 0 ]] && sudo="sudo"
+        $sudo apt-get update -qq
+        DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends nodejs npm
+    fi
+    if [[ ! -x "$dir/node_modules/.bin/pyright" || "$dir/package-lock.json" -nt "$dir/node_modules/.package-lock.json" ]]; then
+        say "dependencies: pyright (npm ci in tests/typing/pyright)"
+        npm ci --prefix "$dir" --no-audit --no-fund --loglevel=error
+    fi
+}
+
 build() {
     say "build: configuring and building in $BUILD_DIR"
     cmake -S "$ROOT" -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPython3_EXECUTABLE="$PYTHON" >/dev/null

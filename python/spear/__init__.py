@@ -5,13 +5,12 @@ the engine's reflected C++ headers): spear.AActor, spear.FVector, spear.ECompone
 """
 
 from spear._engine.api import *  # noqa: F403
-from spear._engine.api import __all__ as _api_all
+from spear._engine import api as _api
 from spear.errors import InvalidArgumentError, InvalidStateError, NotFoundError, SpearError, StaleObjectError
 from spear._spfunc import SpFuncResult
 from spear.instance import Instance
 
 __all__ = [
-    *_api_all,
     "Instance",
     "SpFuncResult",
     "SpearError",
@@ -20,3 +19,4 @@ __all__ = [
     "NotFoundError",
     "StaleObjectError",
 ]
+__all__ += _api.__all__  # the form type checkers follow (pyright does not expand *_api.__all__)

@@ -23,12 +23,14 @@ def mypy(*targets: str, extra_path: Path | None = None) -> subprocess.CompletedP
     )
 
 
-def pinned_errors(path: Path) -> set[tuple[int, str]]:
-    """(line, message) for every `# E: message` comment in `path`."""
+def pinned_errors(path: Path, marker: str = "E") -> set[tuple[int, str]]:
+    """(line, message) for every `# E: message` comment in `path` (mypy's); `marker="P"` reads the
+    `# P: rule: message` comments pinned for pyright. A line may carry one E and several P pins."""
     expected = set()
     for number, line in enumerate(path.read_text().splitlines(), start=1):
-        if "# E: " in line:
-            expected.add((number, line.split("# E: ", 1)[1].strip()))
+        for pin in line.split("  # ")[1:]:
+            if pin.startswith(f"{marker}: "):
+                expected.add((number, pin[len(marker) + 2:].strip()))
     return expected
 
 

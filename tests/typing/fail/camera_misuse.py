@@ -1,5 +1,8 @@
 """Negative typing case: a misspelled modality is a type error, as a dict key and as an enum member."""
 
+# pyright: standard
+# (negative cases are checked as most pyright and Pylance users run it; strict reports more)
+
 from __future__ import annotations
 
 import spear
@@ -7,7 +10,7 @@ import spear
 
 def misuse(camera: spear.UCameraSensorComponent) -> None:
     px = camera.read_pixels()
-    px["dept"]  # E: TypedDict "FCameraPixels" has no key "dept"  [typeddict-item]
-    camera.Modalities = [spear.ECameraModality.Dept]  # E: "Type[ECameraModality]" has no attribute "Dept"  [attr-defined]
-    camera.Modalities = ["depth"]  # E: List item 0 has incompatible type "str"; expected "ECameraModality"  [list-item]
-    camera.CameraSensor  # E: "UCameraSensorComponent" has no attribute "CameraSensor"  [attr-defined]
+    px["dept"]  # E: TypedDict "FCameraPixels" has no key "dept"  [typeddict-item]  # P: reportGeneralTypeIssues: Could not access item in TypedDict / "dept" is not a defined key in "FCameraPixels"
+    camera.Modalities = [spear.ECameraModality.Dept]  # E: "Type[ECameraModality]" has no attribute "Dept"  [attr-defined]  # P: reportAttributeAccessIssue: Cannot access attribute "Dept" for class "type[ECameraModality]" / Attribute "Dept" is unknown
+    camera.Modalities = ["depth"]  # E: List item 0 has incompatible type "str"; expected "ECameraModality"  [list-item]  # P: reportAttributeAccessIssue: Cannot assign to attribute "Modalities" for class "UCameraSensorComponent" / "Literal['depth']" is not assignable to "ECameraModality"
+    camera.CameraSensor  # E: "UCameraSensorComponent" has no attribute "CameraSensor"  [attr-defined]  # P: reportAttributeAccessIssue: Cannot access attribute "CameraSensor" for class "UCameraSensorComponent" / Attribute "CameraSensor" is unknown

@@ -47,6 +47,10 @@ def either_transport(client: RpcClient, local: spear.AActor) -> None:
         assert_type(actor.GetActorLocation(), spear.FVector)
     world: spear.UWorld = rpc.UWorld(client, (1, 0))
     assert_type(world.spawn_actor(uclass=spear.AStaticMeshActor), spear.AStaticMeshActor)
+    # A proxy held as its own class is as precisely typed as the in-process class.
+    proxy = rpc.UWorld(client, (1, 0))
+    assert_type(proxy.find_actors_by_class(uclass=spear.AStaticMeshActor), list[spear.AStaticMeshActor])
+    assert_type(proxy.spawn_actor(uclass="AStaticMeshActor"), spear.AActor)
 
 
 def asynchronous(instance: spear.Instance) -> None:
