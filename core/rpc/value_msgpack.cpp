@@ -1,5 +1,6 @@
 #include "core/rpc/value_msgpack.h"
 
+#include <cstdint>
 #include <cstring>
 #include <memory>
 
@@ -30,6 +31,17 @@ OpenedSegments* OpenedSegmentsScope::current() {
 }
 
 namespace {
+// Always a msgpack float 64. msgpack-c's pack_double() writes a whole-number double as an integer, so a
+// coordinate of 1.0 would reach Python as the int 1 (and -0.0 as 0): the bytes are written here instead.
+void packFloat64(msgpack::packer<msgpack::sbuffer>& out, double value) {
+    uint64_t bits = 0;
+    std::memcpy(&bits, &value, sizeof bits);
+    char bytes[9] = {char(0xcb)};
+    for (int i = 0; i < 8; ++i)
+        bytes[1 + i] = char(bits >> (56 - 8 * i)); // big-endian, as msgpack stores numbers
+    out.pack_bin_body(bytes, sizeof bytes);        // appends the bytes as they are (no bin header)
+}
+
 void packExt(msgpack::packer<msgpack::sbuffer>& out, ExtType type, const std::string& body) {
     out.pack_ext(body.size(), type);
     out.pack_ext_body(body.data(), body.size());
@@ -106,7 +118,7 @@ void pack(msgpack::packer<msgpack::sbuffer>& out, const Value& value, const Arra
             if constexpr (std::is_same_v<T, std::monostate>) {
                 out.pack_nil();
             } else if constexpr (std::is_same_v<T, double>) {
-                out.pack_double(v); // explicitly: a whole-number double must stay a float on the wire
+                packFloat64(out, v);
             } else if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, int64_t> ||
                                  std::is_same_v<T, std::string>) {
                 out.pack(v);

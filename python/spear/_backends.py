@@ -18,6 +18,8 @@ class Backend(Protocol):
 
     def frame_count(self) -> int: ...
 
+    def frame_state(self) -> str: ...
+
     def call_function(self, uobject: Any, function: str, args: dict[str, Any]) -> Any: ...
 
     def get_property(self, uobject: Any, path: str) -> Any: ...
@@ -56,6 +58,9 @@ class InProcessBackend:
 
     def frame_count(self) -> int:
         return int(self._engine.frame_count)
+
+    def frame_state(self) -> str:
+        return str(self._engine.frame_state)
 
     def call_function(self, uobject: Any, function: str, args: dict[str, Any]) -> Any:
         return self._module.call_function(uobject=uobject, function=function, args=args)
@@ -113,6 +118,9 @@ class RpcBackend:
 
     def frame_count(self) -> int:
         return int(self.connection.request("frame", action="state")["frame_count"])
+
+    def frame_state(self) -> str:
+        return str(self.connection.request("frame", action="state")["state"])
 
     def call_function(self, uobject: Any, function: str, args: dict[str, Any]) -> Any:
         from spear._rpc_types import convert

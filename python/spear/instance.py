@@ -18,12 +18,14 @@ import contextlib
 import os
 from collections.abc import Iterator
 from types import ModuleType
-from typing import Any, Literal
+from typing import Any, Literal, cast
 
 from spear import _plugins
 from spear._backends import Backend, InProcessBackend, RpcBackend
 from spear._engine import api
 from spear.errors import InvalidArgumentError, InvalidStateError
+
+FrameState = Literal["idle", "inside begin_frame", "between begin_frame and end_frame", "inside end_frame"]
 
 
 class Instance:
@@ -103,6 +105,12 @@ class Instance:
     def frame_count(self) -> int:
         """Frames run so far."""
         return self._open("frame_count").frame_count()
+
+    @property
+    def frame_state(self) -> FrameState:
+        """Where the engine is in the frame protocol: "idle", "inside begin_frame", "between begin_frame and
+        end_frame" (a frame ran; end_frame comes next) or "inside end_frame"."""
+        return cast(FrameState, self._open("frame_state").frame_state())
 
     # -- dynamic access ------------------------------------------------------------------------
 

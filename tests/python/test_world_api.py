@@ -106,6 +106,30 @@ def test_exception_in_frame_leaves_engine_usable(instance: spear.Instance) -> No
             pass
 
 
+def test_whole_number_floats_stay_floats(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        actor = game.spawn_actor(uclass=spear.AStaticMeshActor, location=spear.FVector(X=0.0, Y=2.0, Z=1.0))
+        location = actor.GetActorLocation()
+        assert [type(c) for c in (location.X, location.Y, location.Z)] == [float, float, float]
+        assert type(game.get_time_seconds()) is float
+        component = actor.StaticMeshComponent
+        component.RelativeLocation = spear.FVector(X=-0.0, Y=3.0, Z=-4.0)
+        stored = component.RelativeLocation
+        assert stored == spear.FVector(X=0.0, Y=3.0, Z=-4.0) and type(stored.Z) is float
+        assert math.copysign(1.0, stored.X) == -1.0  # the sign of zero survives too
+
+
+def test_frame_state_follows_the_frame_protocol(instance: spear.Instance) -> None:
+    assert instance.frame_state == "idle"
+    with instance.begin_frame():
+        assert instance.frame_state == "inside begin_frame"
+    assert instance.frame_state == "between begin_frame and end_frame"
+    with instance.end_frame():
+        assert instance.frame_state == "inside end_frame"
+    assert instance.frame_state == "idle"
+
+
 def test_frames_advance_time_with_a_fixed_step(instance: spear.Instance) -> None:
     game = instance.get_game()
     instance.step(num_frames=3)
