@@ -1,0 +1,40 @@
+"""Examples run as their docstrings say, on both transports (the plugin and MCP examples have their own
+tests: test_plugins.py, test_mcp_server.py)."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from PIL import Image
+
+ROOT = Path(__file__).resolve().parents[2]
+TRANSPORTS = {"inprocess": [], "rpc": ["--server", "launch"]}
+
+
+def run_example(name: str, *args: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([sys.executable, str(ROOT / "examples" / name), *args], capture_output=True, text=True,
+                          timeout=300, cwd=ROOT, env={**os.environ, "PYTHONPATH": str(ROOT / "python")})
+
+
+@pytest.mark.parametrize("transport", TRANSPORTS)
+def test_import_meshes_drops_and_renders_the_imported_copies(transport: str, tmp_path: Path) -> None:
+    out = tmp_path / "sheet.png"
+    result = run_example("import_meshes.py", "--count", "3", "--out", str(out), *TRANSPORTS[transport])
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert f"imported {tmp_path / 'torus.obj'}: 0.800 x 0.800 x 0.200 m; dropping 3 copies" in result.stdout
+    resting = [line for line in result.stdout.splitlines() if line.startswith("Mesh")]
+    assert len(resting) == 3
+    for line in resting:  # a torus 0.2 m thick lies flat at z = 0.1 or leans on another
+        assert 0.09 <= float(line.split("z = ")[1].split(" m")[0]) <= 0.5, line
+    assert "in view: Floor, Mesh0, Mesh1, Mesh2" in result.stdout
+    assert Image.open(out).size == (960, 360)
+
+
+def test_import_meshes_reports_a_file_it_cannot_read(tmp_path: Path) -> None:
+    result = run_example("import_meshes.py", "--mesh", str(tmp_path / "missing.obj"), "--out", str(tmp_path / "x.png"))
+    assert result.returncode != 0
+    assert f"could not import {tmp_path / 'missing.obj'}" in result.stderr
