@@ -38,7 +38,7 @@ import tempfile
 import traceback
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any, cast
+from typing import Any, TextIO, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -282,9 +282,7 @@ def error_reply(request_id: object, code: int, text: str) -> JsonObject:
     return {"jsonrpc": "2.0", "id": request_id, "error": {"code": code, "message": text}}
 
 
-def serve(session: Session) -> None:
-    # Output the agent's code prints is captured per call; stdout carries protocol messages only.
-    protocol = sys.stdout
+def serve(session: Session, protocol: TextIO) -> None:
     for line in sys.stdin:
         if not line.strip():
             continue
@@ -304,10 +302,16 @@ def main() -> None:
     parser.add_argument("--server", default=None, help="run the engine in a spear-server ('launch' or an address)")
     parser.add_argument("--scene", default=None, help="a scene file to load (default: an empty world)")
     args = parser.parse_args()
+    # The protocol gets its own copy of stdout, and file descriptor 1 becomes stderr: output written to
+    # stdout by anything else (C++ code, a child process) cannot corrupt the message stream. What the
+    # agent's code prints is captured per call and returned as the tool's result.
+    protocol = os.fdopen(os.dup(sys.stdout.fileno()), "w", buffering=1)
+    sys.stdout.flush()
+    os.dup2(sys.stderr.fileno(), sys.stdout.fileno())
     instance = spear.Instance(server=args.server, scene=args.scene)
     print(f"spear MCP server ready ({'in-process' if args.server is None else args.server})", file=sys.stderr)
     try:
-        serve(Session(instance))
+        serve(Session(instance), protocol)
     finally:
         instance.close()
 

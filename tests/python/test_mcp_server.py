@@ -113,6 +113,14 @@ def test_code_runs_in_a_persistent_typed_namespace(client: Client) -> None:
     assert "Cube (AStaticMeshActor)" in text(client.tool("get_status"))
 
 
+def test_output_to_the_stdout_file_descriptor_cannot_corrupt_the_protocol(client: Client) -> None:
+    # os.write(1, ...) bypasses Python's sys.stdout, as C++ code's printf would.
+    result = client.tool("execute_code", code="import os\nos.write(1, b'raw bytes\\n')\nprint('printed')\n")
+    assert not result["isError"], text(result)
+    assert text(result) == "printed\n"
+    assert client.request("ping")["result"] == {}
+
+
 def test_engine_errors_are_reported_and_the_session_goes_on(client: Client) -> None:
     failed = client.tool("execute_code", code=(
         "with instance.begin_frame():\n"
