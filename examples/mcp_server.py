@@ -98,19 +98,24 @@ class Session:
         self.game = instance.get_game()
         self.namespace: dict[str, Any] = {"instance": instance, "game": self.game, "spear": spear, "np": np}
         self.history: list[str] = []  # code that ran, in order: the type checker's context for new code
+        self.mypy_cache = tempfile.TemporaryDirectory(prefix="spear-mcp-mypy-")  # warm after the first check
 
     def check(self, code: str) -> str:
         """mypy --strict on `code` after the preamble and earlier code; errors are reported in `code`'s lines."""
         context = PREAMBLE + "".join(block + "\n" for block in self.history)
         offset = context.count("\n")
+        search_path = os.pathsep.join([str(ROOT / "python"), os.environ.get("PYTHONPATH", "")])
         with tempfile.TemporaryDirectory() as tmp:
             path = Path(tmp) / "agent_code.py"
             path.write_text(context + code + "\n")
+            # spear is found as an installed, typed package (on PYTHONPATH), so only the agent's code is
+            # checked; no configuration file of the user's or the project's applies.
             result = subprocess.run(
-                [sys.executable, "-m", "mypy", "--strict", "--no-error-summary", "--show-error-codes",
-                 "--hide-error-context", "--no-pretty", "--cache-dir", str(ROOT / ".mypy_cache"), str(path)],
+                [sys.executable, "-m", "mypy", "--config-file", os.devnull, "--strict", "--no-error-summary",
+                 "--show-error-codes", "--hide-error-context", "--no-pretty", "--cache-dir", self.mypy_cache.name,
+                 str(path)],
                 capture_output=True, text=True, check=False, cwd=tmp,
-                env={**os.environ, "MYPYPATH": str(ROOT / "python")})
+                env={**os.environ, "PYTHONPATH": search_path})
         errors: list[str] = []
         for line in result.stdout.splitlines():
             m = re.match(r".*agent_code\.py:(\d+): (error|note): (.*)$", line)
