@@ -14,6 +14,7 @@ import itertools
 import mmap
 import os
 import struct
+from collections.abc import Callable
 from typing import Any
 
 import msgpack
@@ -176,5 +177,7 @@ def unpack_body(body: bytes, buffers: ReplyBuffers | None = None) -> Any:
     """A reply; `buffers` are the reply buffers its request offered (spear._reply_buffers)."""
     if buffers is not None:
         buffers.begin_reply()
-    hook = _ext_hook if buffers is None else functools.partial(_ext_hook, buffers=buffers)
+    hook: Callable[[int, bytes], Any] = _ext_hook
+    if buffers is not None:
+        hook = functools.partial(_ext_hook, buffers=buffers)
     return msgpack.unpackb(body, raw=False, ext_hook=hook, strict_map_key=False)
