@@ -17,10 +17,10 @@ import math
 from pathlib import Path
 
 import numpy as np
-from numpy.typing import NDArray
 from PIL import Image  # type: ignore[import]  # Debian ships no Pillow stubs
 
 import spear
+import spear.images
 
 SECONDS = 6  # simulated, at the engine's default 60 frames per second
 
@@ -44,14 +44,6 @@ def write_torus(path: Path, major: float = 0.3, minor: float = 0.1, rings: int =
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text("\n".join(lines) + "\n")
     return path
-
-
-def id_colours(ids: NDArray[np.uint32]) -> NDArray[np.uint8]:
-    h = ids.astype(np.uint64) * np.uint64(2654435761) % np.uint64(2**24)
-    channels = [(h >> np.uint64(s)) & np.uint64(255) for s in (0, 8, 16)]
-    rgb: NDArray[np.uint8] = (np.stack(channels, axis=-1) // 2 + 96).astype(np.uint8)
-    rgb[ids == 0] = 0
-    return rgb
 
 
 def main() -> None:
@@ -122,7 +114,7 @@ def main() -> None:
 
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
-    sheet = np.concatenate([pixels["final_color"][..., :3], id_colours(pixels["object_ids"])], axis=1)
+    sheet = np.concatenate([pixels["final_color"][..., :3], spear.images.id_colours(pixels["object_ids"])], axis=1)
     Image.fromarray(sheet).save(out)
     print(f"wrote {out.resolve()}")
     instance.close()

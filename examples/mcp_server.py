@@ -3,8 +3,9 @@
 Code an agent sends is type-checked with mypy --strict against spear's stubs *before* it runs: a misspelt
 function, a wrong argument type or an unknown modality comes back as the checker's message, with the line
 number in the agent's code, and the engine is never touched. Code that passes runs in one persistent
-namespace (`instance`, `game`, `spear`, `np`, and whatever earlier calls defined, with the types they had),
-so an agent builds a scene step by step. Tools:
+namespace (`instance`, `game`, `spear`, `np`, and whatever earlier calls defined, with the types they had:
+as in a typed module, a name keeps the type it was first given), so an agent builds a scene step by step.
+Tools:
 
 - get_status: the world's frame, time and actors.
 - check_code(code): the type check alone.
@@ -25,6 +26,7 @@ A client registers it as a stdio server, e.g. {"command": "/usr/bin/python3", "a
 
 from __future__ import annotations
 
+import __future__
 import argparse
 import base64
 import contextlib
@@ -45,6 +47,7 @@ from numpy.typing import NDArray
 from PIL import Image  # type: ignore[import]  # Debian ships no Pillow stubs
 
 import spear
+import spear.images
 
 PROTOCOL_VERSIONS = ("2025-06-18", "2025-03-26", "2024-11-05")  # newest first
 ROOT = Path(__file__).resolve().parent.parent
@@ -86,6 +89,10 @@ class ToolError(Exception):
     """A tool call that failed; its message goes back to the agent as an error result."""
 
 
+class InvalidParams(Exception):
+    """A call the tool cannot take (unknown tool, arguments against its schema): a JSON-RPC error -32602."""
+
+
 class TypeCheckFailed(ToolError):
     pass
 
@@ -102,6 +109,11 @@ class Session:
 
     def check(self, code: str) -> str:
         """mypy --strict on `code` after the preamble and earlier code; errors are reported in `code`'s lines."""
+        try:  # a syntax error first, by itself (mypy would stop there, counting lines from the preamble)
+            compile(code, "<agent code>", "exec", flags=__future__.annotations.compiler_flag, dont_inherit=True)
+        except SyntaxError as e:
+            raise TypeCheckFailed(
+                f"type check failed (nothing was run):\nline {e.lineno}: syntax error: {e.msg}") from None
         context = PREAMBLE + "".join(block + "\n" for block in self.history)
         offset = context.count("\n")
         search_path = os.pathsep.join([str(ROOT / "python"), os.environ.get("PYTHONPATH", "")])
@@ -114,30 +126,36 @@ class Session:
                 [sys.executable, "-m", "mypy", "--config-file", os.devnull, "--strict", "--no-error-summary",
                  "--show-error-codes", "--hide-error-context", "--no-pretty", "--cache-dir", self.mypy_cache.name,
                  str(path)],
-                capture_output=True, text=True, check=False, cwd=tmp,
+                capture_output=True, text=True, check=False, cwd=tmp, stdin=subprocess.DEVNULL,
                 env={**os.environ, "PYTHONPATH": search_path})
-        errors: list[str] = []
+        messages: list[str] = []  # errors, with the notes that explain them
         for line in result.stdout.splitlines():
             m = re.match(r".*agent_code\.py:(\d+): (error|note): (.*)$", line)
             if m and int(m.group(1)) > offset:
-                errors.append(f"line {int(m.group(1)) - offset}: {m.group(2)}: {m.group(3)}")
-        if result.returncode not in (0, 1) or (result.returncode == 1 and not errors):
-            raise ToolError(f"the type checker failed: {result.stderr.strip() or result.stdout.strip()}")
+                messages.append(f"line {int(m.group(1)) - offset}: {m.group(2)}: {m.group(3)}")
+        errors = [m for m in messages if ": error: " in m]
         if errors:
-            raise TypeCheckFailed("type check failed (nothing was run):\n" + "\n".join(errors))
+            raise TypeCheckFailed("type check failed (nothing was run):\n" + "\n".join(messages))
+        if result.returncode != 0:  # an error outside the agent's lines: the checker itself failed
+            raise ToolError(f"the type checker failed: {result.stderr.strip() or result.stdout.strip()}")
         return "type check passed"
 
     def execute(self, code: str) -> str:
         self.check(code)
+        # Names the code defines stay in the namespace even if it fails partway, so the checker keeps
+        # seeing it too: later code may use what it defined before the failure.
+        self.history.append(code)
         output = io.StringIO()
+        stdin, sys.stdin = sys.stdin, io.StringIO()  # input() must not read the protocol's messages
         try:
             with contextlib.redirect_stdout(output):
                 exec(compile(code, "<agent code>", "exec"), self.namespace)  # the tool's purpose
-        except Exception as e:  # the agent's code failed: report it; the engine has kept running
+        except (Exception, SystemExit) as e:  # the code failed (or called exit()): the server goes on
             frames = [f for f in traceback.extract_tb(e.__traceback__) if f.filename == "<agent code>"]
             where = f" (line {frames[-1].lineno})" if frames else ""
             raise ToolError(f"{output.getvalue()}{type(e).__name__}{where}: {e}{self.close_open_frame()}") from None
-        self.history.append(code)
+        finally:
+            sys.stdin = stdin
         return (output.getvalue() or "(no output)") + self.close_open_frame()
 
     def close_open_frame(self) -> str:
@@ -158,25 +176,29 @@ class Session:
         return "\n".join(lines)
 
     def render(self, location: list[float], rotation: list[float], width: int, height: int) -> list[JsonObject]:
-        with self.instance.begin_frame():
-            actor = self.game.spawn_actor(uclass=spear.ACameraSensorActor, name="mcp_view_camera",
-                                          location=spear.FVector(*location), rotation=spear.FRotator(*rotation))
-            camera = actor.CameraSensor
-            camera.Width, camera.Height = width, height
-            camera.Modalities = [spear.ECameraModality.FinalColor, spear.ECameraModality.Depth,
-                                 spear.ECameraModality.ObjectIds]
+        self.close_open_frame()
+        actor: spear.ACameraSensorActor | None = None
         try:
+            with self.instance.begin_frame():
+                actor = self.game.spawn_actor(uclass=spear.ACameraSensorActor, location=spear.FVector(*location),
+                                              rotation=spear.FRotator(*rotation))
+                camera = actor.CameraSensor
+                camera.Width, camera.Height = width, height
+                camera.Modalities = [spear.ECameraModality.FinalColor, spear.ECameraModality.Depth,
+                                     spear.ECameraModality.ObjectIds]
             with self.instance.end_frame():
                 pixels = camera.read_pixels()
                 assert "final_color" in pixels and "depth" in pixels and "object_ids" in pixels
                 ids = pixels["object_ids"]
                 names = {int(i): info.Actor.GetName() for i in np.unique(ids) if i != 0
                          for info in [camera.GetObjectIdInfo(ObjectId=int(i))] if info.Actor is not None}
-        finally:
-            with self.instance.begin_frame():
-                self.game.destroy_actor(actor=actor)
-            with self.instance.end_frame():
-                pass
+        finally:  # the camera goes whatever happened, so that the next render_view can make its own
+            self.close_open_frame()
+            if actor is not None:
+                with self.instance.begin_frame():
+                    self.game.destroy_actor(actor=actor)
+                with self.instance.end_frame():
+                    pass
         depth = pixels["depth"]
         visible = sorted(set(names.values()))
         summary = (f"{width}x{height} view from {location} (pitch, yaw, roll {rotation}); depth "
@@ -184,29 +206,14 @@ class Session:
                    f"visible: {', '.join(visible) or 'nothing'}")
         return [{"type": "text", "text": summary},
                 png_content(pixels["final_color"][..., :3]),
-                png_content(depth_image(depth)),
-                png_content(id_image(ids))]
+                png_content(spear.images.depth_grey(depth)),
+                png_content(spear.images.id_colours(ids))]
 
 
 def png_content(rgb: NDArray[np.uint8]) -> JsonObject:
     buffer = io.BytesIO()
     Image.fromarray(np.ascontiguousarray(rgb)).save(buffer, format="PNG")
     return {"type": "image", "data": base64.b64encode(buffer.getvalue()).decode(), "mimeType": "image/png"}
-
-
-def depth_image(depth: NDArray[np.float32]) -> NDArray[np.uint8]:
-    valid = depth > 0
-    far = float(depth.max()) if valid.any() else 1.0
-    grey = np.where(valid, 255.0 * (1.0 - depth / max(far, 1e-6)), 0.0).astype(np.uint8)
-    return np.repeat(grey[..., None], 3, axis=2)
-
-
-def id_image(ids: NDArray[np.uint32]) -> NDArray[np.uint8]:
-    h = ids.astype(np.uint64) * np.uint64(2654435761) % np.uint64(2**24)
-    channels = [(h >> np.uint64(s)) & np.uint64(255) for s in (0, 8, 16)]
-    rgb: NDArray[np.uint8] = np.stack(channels, axis=-1).astype(np.uint8)
-    rgb[ids == 0] = 0
-    return rgb
 
 
 def call_tool(session: Session, name: str, arguments: JsonObject) -> list[JsonObject]:
@@ -216,7 +223,7 @@ def call_tool(session: Session, name: str, arguments: JsonObject) -> list[JsonOb
     def code() -> str:
         value = arguments.get("code")
         if not isinstance(value, str):
-            raise ToolError(f"{name}: argument 'code' must be a string, got {type(value).__name__}")
+            raise InvalidParams(f"{name}: argument 'code' must be a string, got {type(value).__name__}")
         return value
 
     def vector(key: str, default: list[float]) -> list[float]:
@@ -224,13 +231,13 @@ def call_tool(session: Session, name: str, arguments: JsonObject) -> list[JsonOb
         items = cast("list[object]", value) if isinstance(value, list) else []
         numbers = [float(v) for v in items if isinstance(v, int | float) and not isinstance(v, bool)]
         if len(numbers) != 3 or len(items) != 3:
-            raise ToolError(f"render_view: argument '{key}' must be 3 numbers, got {value!r}")
+            raise InvalidParams(f"render_view: argument '{key}' must be 3 numbers, got {value!r}")
         return numbers
 
     def size(key: str, default: int) -> int:
         value: object = arguments.get(key, default)
         if not (isinstance(value, int) and 16 <= value <= 1024):
-            raise ToolError(f"render_view: argument '{key}' must be an integer in 16..1024, got {value!r}")
+            raise InvalidParams(f"render_view: argument '{key}' must be an integer in 16..1024, got {value!r}")
         return value
 
     tools: dict[str, Callable[[], list[JsonObject]]] = {
@@ -242,7 +249,7 @@ def call_tool(session: Session, name: str, arguments: JsonObject) -> list[JsonOb
                                               size("width", 320), size("height", 240)),
     }
     if name not in tools:
-        raise ToolError(f"unknown tool '{name}' (tools: {', '.join(tools)})")
+        raise InvalidParams(f"unknown tool '{name}' (tools: {', '.join(tools)})")
     return tools[name]()
 
 
@@ -275,12 +282,21 @@ def handle(session: Session, message: object) -> JsonObject | None:
             return error_reply(request_id, -32602, "tools/call needs a tool name and an arguments object")
         try:
             content, is_error = call_tool(session, name, cast(JsonObject, tool_arguments)), False
+        except InvalidParams as e:
+            return error_reply(request_id, -32602, str(e))
         except ToolError as e:
             content, is_error = [{"type": "text", "text": str(e)}], True
         except spear.SpearError as e:  # an engine error outside the agent's code (render_view)
             content, is_error = [{"type": "text", "text": f"{type(e).__name__}: {e}"}], True
+        except Exception as e:  # a fault of this server's: reported, and the server goes on
+            log(f"tools/call {name} failed:\n{traceback.format_exc()}")
+            return error_reply(request_id, -32603, f"internal error in {name}: {type(e).__name__}: {e}")
         return {"jsonrpc": "2.0", "id": request_id, "result": {"content": content, "isError": is_error}}
     return error_reply(request_id, -32601, f"method '{method}' is not supported")
+
+
+def log(text: str) -> None:
+    print(text, file=sys.stderr, flush=True)
 
 
 def error_reply(request_id: object, code: int, text: str) -> JsonObject:

@@ -23,6 +23,7 @@ from numpy.typing import NDArray
 from PIL import Image, ImageDraw  # type: ignore[import]  # Debian ships no Pillow stubs
 
 import spear
+import spear.images
 
 WIDTH, HEIGHT = 480, 360
 DEFAULT_SCENE = Path(__file__).resolve().parent.parent / "assets" / "scenes" / "apartment.json"
@@ -96,26 +97,6 @@ def grey(values: NDArray[np.float32], lo: float = 0.0, hi: float = 1.0) -> NDArr
     return np.repeat((x * 255 + 0.5).astype(np.uint8)[..., None], 3, axis=2)
 
 
-def random_colours(ids: NDArray[np.uint32]) -> NDArray[np.uint8]:
-    # A fixed hash of the id, so that the same id has the same colour in every image; 0 stays black.
-    h = ids.astype(np.uint64) * np.uint64(2654435761) % np.uint64(2**32)
-    channels = [(h >> np.uint64(s)) & np.uint64(255) for s in (0, 8, 16)]
-    rgb: NDArray[np.uint8] = (np.stack(channels, axis=-1) // 2 + 96).astype(np.uint8)
-    rgb[ids == 0] = 0
-    return rgb
-
-
-def depth_image(depth: NDArray[np.float32]) -> NDArray[np.uint8]:
-    valid = depth > 0
-    if not valid.any():
-        return grey(depth)
-    lo, hi = float(depth[valid].min()), float(depth[valid].max())
-    near = 1.0 - (depth - lo) / max(hi - lo, 1e-6)  # near is bright
-    image = grey(near)
-    image[~valid] = 0
-    return image
-
-
 def position_image(position: NDArray[np.float32]) -> NDArray[np.uint8]:
     lo, hi = position.reshape(-1, 3).min(axis=0), position.reshape(-1, 3).max(axis=0)
     result: NDArray[np.uint8] = ((position - lo) / np.maximum(hi - lo, 1e-6) * 255).astype(np.uint8)
@@ -128,14 +109,14 @@ def visualise(name: str, image: NDArray[np.generic]) -> NDArray[np.uint8]:
     if name in ("hdr_color", "diffuse_illumination", "diffuse_only", "specular_residual"):
         return tonemap(image.astype(np.float32))
     if name == "depth":
-        return depth_image(image.astype(np.float32))
+        return spear.images.depth_grey(image.astype(np.float32))
     if name == "position":
         return position_image(image.astype(np.float32))
     if name == "normal":
         normal: NDArray[np.uint8] = ((image.astype(np.float32) * 0.5 + 0.5) * 255).clip(0, 255).astype(np.uint8)
         return normal
     if name in ("object_ids", "material_ids"):
-        return random_colours(image.astype(np.uint32))
+        return spear.images.id_colours(image.astype(np.uint32))
     if name == "base_color":
         return srgb(image.astype(np.float32))
     return grey(image.astype(np.float32))  # roughness, metallic, material_ao

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -43,3 +44,12 @@ def build_plugin(source: Path, build_dir: Path) -> Path:
     configure(source, build_dir)
     build(build_dir)
     return build_dir / "python"
+
+
+def build_importable_plugin(source: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """build_plugin() in a fresh temporary directory, with the package directory put on sys.path (as
+    PYTHONPATH would) so that the plugin's typed API imports; returns that directory."""
+    python_dir = build_plugin(source, tmp_path_factory.mktemp(source.name) / "build")
+    if str(python_dir) not in sys.path:
+        sys.path.insert(0, str(python_dir))
+    return python_dir

@@ -31,7 +31,9 @@ class Client:
     def receive(self) -> dict[str, Any]:
         assert self.process.stdout is not None
         line = self.process.stdout.readline()
-        assert line, f"the server closed its output; stderr:\n{self.process.stderr.read() if self.process.stderr else ''}"
+        if not line:
+            stderr = self.process.stderr.read() if self.process.stderr else ""
+            pytest.fail(f"the server closed its output; stderr:\n{stderr}")
         reply: dict[str, Any] = json.loads(line)
         return reply
 
@@ -103,8 +105,10 @@ def test_code_runs_in_a_persistent_typed_namespace(client: Client) -> None:
     assert not first["isError"], text(first)
     assert text(first) == "spawned Cube\n"
     # `cube` is known to the type checker as an AStaticMeshActor from the earlier call.
-    refused = client.tool("check_code", code="cube.StaticMeshComponent.Mobility = 3\n")
-    assert refused["isError"] and 'variable has type "EComponentMobility"' in text(refused)
+    refused = client.tool("check_code", code="\ncube.StaticMeshComponent.Mobility = 3\n")
+    assert refused["isError"]
+    assert ('line 2: error: Incompatible types in assignment (expression has type "int", variable has type '
+            '"EComponentMobility")  [assignment]') in text(refused)
     second = client.tool("execute_code", code=(
         "with instance.begin_frame():\n"
         "    print(cube.GetActorLocation().Z)\n"))  # no end_frame: the server closes the frame
@@ -121,6 +125,27 @@ def test_output_to_the_stdout_file_descriptor_cannot_corrupt_the_protocol(client
     assert client.request("ping")["result"] == {}
 
 
+def test_syntax_errors_name_the_agents_line(client: Client) -> None:
+    result = client.tool("execute_code", code="x = 1\nprint(x +)\n")
+    assert result["isError"] and text(result).startswith("type check failed (nothing was run):\nline 2: syntax error:")
+
+
+def test_code_cannot_stop_the_server_or_read_its_messages(client: Client) -> None:
+    stopped = client.tool("execute_code", code="import sys\nsys.exit(3)\n")
+    assert stopped["isError"] and text(stopped) == "SystemExit (line 2): 3"
+    reading = client.tool("execute_code", code="answer = input()\n")
+    assert reading["isError"] and text(reading).startswith("EOFError (line 1)")
+    assert client.request("ping")["result"] == {}
+
+
+def test_names_from_code_that_failed_partway_stay_known(client: Client) -> None:
+    failed = client.tool("execute_code", code="count = 5\nraise ValueError('late')\n")
+    assert failed["isError"] and text(failed) == "ValueError (line 2): late"
+    later = client.tool("execute_code", code="print(count + 1)\n")
+    assert not later["isError"], text(later)
+    assert text(later) == "6\n"
+
+
 def test_engine_errors_are_reported_and_the_session_goes_on(client: Client) -> None:
     failed = client.tool("execute_code", code=(
         "with instance.begin_frame():\n"
@@ -128,7 +153,7 @@ def test_engine_errors_are_reported_and_the_session_goes_on(client: Client) -> N
     assert failed["isError"]
     assert text(failed) == ("NotFoundError (line 2): UWorld.spawn_actor(): argument 'uclass': "
                             "class 'ANoSuchClass' is not registered")
-    ok = client.tool("execute_code", code="with instance.begin_frame():\n    pass\nwith instance.end_frame():\n    pass\n")
+    ok = client.tool("execute_code", code="instance.step()\n")
     assert not ok["isError"], text(ok)
 
 
@@ -146,7 +171,7 @@ def test_render_view_returns_png_images(client: Client) -> None:
     assert len(images) == 3 and all(c["mimeType"] == "image/png" for c in images)
     assert all(base64.b64decode(c["data"]).startswith(b"\x89PNG\r\n\x1a\n") for c in images)
     assert "64x48" in text(result) and "visible: Box" in text(result)
-    assert "mcp_view_camera" not in text(client.tool("get_status"))  # the temporary camera is gone
+    assert "ACameraSensorActor" not in text(client.tool("get_status"))  # the temporary camera is gone
 
 
 def test_bad_messages_get_protocol_errors(client: Client) -> None:
@@ -155,8 +180,8 @@ def test_bad_messages_get_protocol_errors(client: Client) -> None:
     client.send({"jsonrpc": "2.0", "id": 99, "params": {}})
     assert client.receive()["error"]["code"] == -32600
     assert client.request("no/such/method")["error"]["code"] == -32601
-    unknown = client.tool("no_such_tool")
-    assert unknown["isError"] and "unknown tool 'no_such_tool'" in text(unknown)
-    wrong = client.tool("render_view", width=5)
-    assert wrong["isError"] and "'width' must be an integer in 16..1024, got 5" in text(wrong)
+    unknown = client.request("tools/call", {"name": "no_such_tool", "arguments": {}})["error"]
+    assert unknown["code"] == -32602 and unknown["message"].startswith("unknown tool 'no_such_tool'")
+    wrong = client.request("tools/call", {"name": "render_view", "arguments": {"width": 5}})["error"]
+    assert wrong == {"code": -32602, "message": "render_view: argument 'width' must be an integer in 16..1024, got 5"}
     assert client.request("ping")["result"] == {}

@@ -20,16 +20,13 @@ import pytest
 import spear
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from plugin_build import EXAMPLE, ROOT, build, build_plugin, configure  # noqa: E402
+from plugin_build import EXAMPLE, ROOT, build, build_importable_plugin, configure  # noqa: E402
 
 
 @pytest.fixture(scope="session")
 def plugin_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The example plugin's package directory (<build>/python), built once for the session."""
-    python_dir = build_plugin(EXAMPLE, tmp_path_factory.mktemp("plugin") / "build")
-    if str(python_dir) not in sys.path:
-        sys.path.insert(0, str(python_dir))
-    return python_dir
+    return build_importable_plugin(EXAMPLE, tmp_path_factory)
 
 
 @pytest.fixture

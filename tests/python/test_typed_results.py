@@ -16,7 +16,7 @@ import pytest
 import spear
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from plugin_build import build_plugin  # noqa: E402
+from plugin_build import build_importable_plugin  # noqa: E402
 
 SOURCE = Path(__file__).resolve().parent / "result_plugin"
 SAMPLES = np.array([2.0, 1.0, 2.0, 3.0, 2.0], dtype=np.float32)
@@ -24,10 +24,7 @@ SAMPLES = np.array([2.0, 1.0, 2.0, 3.0, 2.0], dtype=np.float32)
 
 @pytest.fixture(scope="session")
 def result_plugin_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    python_dir = build_plugin(SOURCE, tmp_path_factory.mktemp("result_plugin") / "build")
-    if str(python_dir) not in sys.path:
-        sys.path.insert(0, str(python_dir))
-    return python_dir
+    return build_importable_plugin(SOURCE, tmp_path_factory)
 
 
 @pytest.fixture
@@ -56,6 +53,12 @@ def test_a_forgotten_field_is_reported_and_the_engine_keeps_running(measurer: An
     with pytest.raises(spear.InvalidStateError, match=forgotten):
         measurer.MeasureForgetful(Samples=SAMPLES)
     assert measurer.Measure(Samples=SAMPLES)["Counts"].tolist() == [1, 3, 1]
+
+
+def test_a_complete_typed_dict_property_without_its_arrays_is_reported(measurer: Any) -> None:
+    with pytest.raises(spear.InvalidStateError, match=r"FMeasurement\.Values was not set"):
+        measurer.Unset
+    assert measurer.Measure(Samples=SAMPLES)["Values"].tolist() == [1.0, 2.0, 3.0]
 
 
 def test_generated_stubs_say_which_keys_are_promised(result_plugin_dir: Path) -> None:

@@ -34,6 +34,8 @@ def pyright(*files: str, extra_path: Path | None = None,
             settings = {k: v for k, v in settings.items() if k not in ("include", "exclude")}
             # pyright reads a config's paths relative to the config's folder, and only so.
             settings["extraPaths"] = [os.path.relpath(ROOT / p, tmp) for p in settings.get("extraPaths", [])]
+            if "stubPath" in settings:
+                settings["stubPath"] = os.path.relpath(ROOT / settings["stubPath"], tmp)
             settings["include"] = [os.path.relpath(ROOT / f, tmp) for f in files]
             config = Path(tmp) / "pyrightconfig.json"
             config.write_text(json.dumps(settings))

@@ -39,6 +39,11 @@ SPCLASS()
 class AMeasurer : public AActor {
     SP_GENERATED_BODY()
 public:
+    /// The last complete measurement; never set, so reading it breaks the TypedDict's promise (a
+    /// property, not a function result: the struct's own converters must catch it).
+    SPPROPERTY(ReadOnly)
+    FMeasurement Unset;
+
     /// The distinct values of Samples and their counts.
     SPFUNCTION()
     FMeasurement Measure(const SpArray<float>& Samples);
