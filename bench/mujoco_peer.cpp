@@ -5,11 +5,8 @@
 //
 //   spear_mujoco_peer [--boxes N] [--frames F] [--shadows RES]
 //
-// MuJoCo's renderer needs a compatibility-profile context (fixed-function calls); EGL gives one on the
-// first hardware device or on Mesa's surfaceless platform (llvmpipe) when there is none.
+// The OpenGL context comes from bench/mujoco_egl.h (EGL, compatibility profile, no window).
 
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
 #include <mujoco/mujoco.h>
 
 #include <chrono>
@@ -20,11 +17,12 @@
 #include <string>
 #include <vector>
 
+#include "mujoco_egl.h"
+
 namespace {
 
 [[noreturn]] void fail(const std::string& what) {
-    std::fprintf(stderr, "spear_mujoco_peer: %s\n", what.c_str());
-    std::exit(1);
+    sp::bench::failPeer("spear_mujoco_peer", what);
 }
 
 // Same placement and colours as core/render/bench/render_bench.cpp and bench/bench_camera.py.
@@ -66,57 +64,6 @@ std::string sceneXml(int boxes, int shadows) {
     return xml + "</worldbody></mujoco>";
 }
 
-void makeEglContext() {
-    auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-    auto platformDisplay =
-        reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
-    if (!platformDisplay)
-        fail("EGL has no eglGetPlatformDisplayEXT");
-    EGLDisplay display = EGL_NO_DISPLAY;
-    const char* kind = "surfaceless";
-    EGLDeviceEXT devices[16];
-    EGLint count = 0;
-    if (queryDevices && queryDevices(16, devices, &count)) {
-        auto queryString =
-            reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
-        for (EGLint i = 0; i < count && display == EGL_NO_DISPLAY; ++i) {
-            const char* extensions = queryString ? queryString(devices[i], EGL_EXTENSIONS) : nullptr;
-            if (extensions && std::strstr(extensions, "EGL_MESA_device_software"))
-                continue; // prefer hardware; software is what the surfaceless platform gives anyway
-            display = platformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
-            kind = "device";
-        }
-    }
-    if (display == EGL_NO_DISPLAY)
-        display = platformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-    if (display == EGL_NO_DISPLAY || !eglInitialize(display, nullptr, nullptr))
-        fail("no EGL display");
-    const EGLint configAttributes[] = {EGL_SURFACE_TYPE,
-                                       EGL_PBUFFER_BIT,
-                                       EGL_RENDERABLE_TYPE,
-                                       EGL_OPENGL_BIT,
-                                       EGL_RED_SIZE,
-                                       8,
-                                       EGL_GREEN_SIZE,
-                                       8,
-                                       EGL_BLUE_SIZE,
-                                       8,
-                                       EGL_DEPTH_SIZE,
-                                       24,
-                                       EGL_NONE};
-    EGLConfig config;
-    EGLint configs = 0;
-    eglChooseConfig(display, configAttributes, &config, 1, &configs);
-    if (!eglBindAPI(EGL_OPENGL_API))
-        fail("eglBindAPI(EGL_OPENGL_API) failed");
-    // MuJoCo uses fixed-function OpenGL: ask for a compatibility profile (the default).
-    EGLContext context =
-        eglCreateContext(display, configs ? config : EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, nullptr);
-    if (context == EGL_NO_CONTEXT || !eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
-        fail("cannot create or make current a compatibility-profile OpenGL context on EGL");
-    std::printf("mujoco %s on EGL %s\n", mj_versionString(), kind);
-}
-
 double ms(std::chrono::steady_clock::duration d) {
     return std::chrono::duration<double, std::milli>(d).count();
 }
@@ -135,33 +82,16 @@ int main(int argc, char** argv) {
         else
             fail("usage: spear_mujoco_peer [--boxes N] [--frames F] [--shadows RES]");
     }
-    makeEglContext();
-    char error[1000] = "";
-    mjVFS vfs;
-    mj_defaultVFS(&vfs);
-    const std::string xml = sceneXml(boxes, shadows);
-    if (mj_makeEmptyFileVFS(&vfs, "scene.xml", int(xml.size())))
-        fail("cannot create the in-memory MJCF file");
-    std::memcpy(vfs.filedata[vfs.nfile - 1], xml.data(), xml.size());
-    mjModel* model = mj_loadXML("scene.xml", &vfs, error, sizeof error);
-    if (!model)
-        fail(std::string("mj_loadXML: ") + error);
+    const char* kind = sp::bench::makeMujocoEglContext("spear_mujoco_peer");
+    std::printf("mujoco %s on EGL %s\n", mj_versionString(), kind);
+    mjModel* model = sp::bench::loadMjcfString("spear_mujoco_peer", sceneXml(boxes, shadows));
     mjData* data = mj_makeData(model);
     mj_forward(model, data);
 
-    mjvScene scene;
+    sp::bench::MujocoVisual visual;
+    sp::bench::makeMujocoVisual("spear_mujoco_peer", model, 2000, visual);
     mjvCamera camera;
-    mjvOption option;
-    mjrContext context;
-    mjv_defaultScene(&scene);
     mjv_defaultCamera(&camera);
-    mjv_defaultOption(&option);
-    mjr_defaultContext(&context);
-    mjv_makeScene(model, &scene, 2000);
-    mjr_makeContext(model, &context, mjFONTSCALE_100);
-    mjr_setBuffer(mjFB_OFFSCREEN, &context);
-    if (context.currentBuffer != mjFB_OFFSCREEN)
-        fail("the offscreen buffer is not supported by this OpenGL context");
     camera.type = mjCAMERA_FIXED;
     camera.fixedcamid = 0;
     std::printf("%d boxes, shadow maps %d, no MSAA, %d timed frames after 3 warm-up frames\n", boxes, shadows,
@@ -179,10 +109,10 @@ int main(int argc, char** argv) {
             double update = 0, render = 0;
             for (int frame = 0; frame < frames + 3; ++frame) {
                 const auto t0 = std::chrono::steady_clock::now();
-                mjv_updateScene(model, data, &option, nullptr, &camera, mjCAT_ALL, &scene);
+                mjv_updateScene(model, data, &visual.option, nullptr, &camera, mjCAT_ALL, &visual.scene);
                 const auto t1 = std::chrono::steady_clock::now();
-                mjr_render(viewport, &scene, &context);
-                mjr_readPixels(rgb.data(), withDepth ? depth.data() : nullptr, viewport, &context);
+                mjr_render(viewport, &visual.scene, &visual.context);
+                mjr_readPixels(rgb.data(), withDepth ? depth.data() : nullptr, viewport, &visual.context);
                 const auto t2 = std::chrono::steady_clock::now();
                 if (frame >= 3) {
                     update += ms(t1 - t0);
@@ -193,10 +123,8 @@ int main(int argc, char** argv) {
                         height, withDepth ? "rgb+depth" : "rgb", render / frames, update / frames);
         }
     }
-    mjr_freeContext(&context);
-    mjv_freeScene(&scene);
+    sp::bench::freeMujocoVisual(visual);
     mj_deleteData(data);
     mj_deleteModel(model);
-    mj_deleteVFS(&vfs);
     return 0;
 }
