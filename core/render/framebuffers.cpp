@@ -7,6 +7,23 @@
 namespace sp::render {
 namespace {
 
+GLenum formatOf(Target target, const PassSet& passes) {
+    switch (target) {
+    case Target::Position:
+    case Target::Depth:
+        return target == Target::Depth ? GL_R32F : GL_RGBA32F;
+    case Target::Normal:
+        // float32 when the normal modality is read back; shading alone is content with half floats.
+        return passes.highPrecisionNormal ? GL_RGBA32F : GL_RGBA16F;
+    case Target::Ids:
+        return GL_RG32UI; // never filtered or blended
+    case Target::FinalColor:
+        return GL_RGBA8;
+    default:
+        return GL_RGBA16F;
+    }
+}
+
 GLuint makeTexture(GLenum format, int width, int height) {
     GLuint texture = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &texture);
@@ -18,21 +35,11 @@ GLuint makeTexture(GLenum format, int width, int height) {
     return texture;
 }
 
-GLuint makeFramebuffer(const GLuint* textures, int count, GLuint depth, const char* what) {
-    GLuint fbo = 0;
-    glCreateFramebuffers(1, &fbo);
-    GLenum drawBuffers[8];
-    for (int i = 0; i < count; ++i) {
-        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + i, textures[i], 0);
-        drawBuffers[i] = GL_COLOR_ATTACHMENT0 + i;
-    }
-    glNamedFramebufferDrawBuffers(fbo, count, drawBuffers);
-    if (depth != 0)
-        glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
-    const GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
-    SP_CHECK(status == GL_FRAMEBUFFER_COMPLETE, InvalidState, "Framebuffers::ensure(): the ", what,
-             " framebuffer is incomplete (status 0x", std::hex, status, ")");
-    return fbo;
+int indexIn(TargetMask targets, Target target) {
+    const TargetMask bit = targetBit(target);
+    if ((targets & bit) == 0)
+        return -1;
+    return __builtin_popcount(targets & (bit - 1));
 }
 
 } // namespace
@@ -42,21 +49,38 @@ Framebuffers::~Framebuffers() {
 }
 
 void Framebuffers::release() {
-    if (gbufferFbo == 0 && lightingFbo == 0 && tonemapFbo == 0)
+    if (surfaceFbo == 0 && lightingFbo == 0 && depthBuffer_ == 0)
         return; // nothing allocated: no GL call, so a never-used target needs no context
-    glDeleteFramebuffers(1, &gbufferFbo);
-    glDeleteTextures(shaders::GBufferTargetCount, gbufferTextures);
-    glDeleteRenderbuffers(1, &depthBuffer);
+    glDeleteFramebuffers(1, &surfaceFbo);
     glDeleteFramebuffers(1, &lightingFbo);
-    glDeleteTextures(shaders::LightingTargetCount, lightingTextures);
-    glDeleteFramebuffers(1, &tonemapFbo);
-    glDeleteTextures(1, &tonemapTexture);
-    gbufferFbo = depthBuffer = lightingFbo = tonemapFbo = tonemapTexture = 0;
-    for (unsigned& texture : gbufferTextures)
-        texture = 0;
-    for (unsigned& texture : lightingTextures)
-        texture = 0;
+    glDeleteTextures(GLsizei(textures_.size()), textures_.data());
+    glDeleteRenderbuffers(1, &depthBuffer_);
+    surfaceFbo = lightingFbo = depthBuffer_ = 0;
+    textures_.fill(0);
+    formats_.fill(0);
+    surfaceTargets_ = lightingTargets_ = 0;
     width = height = 0;
+}
+
+unsigned Framebuffers::makeFramebuffer(TargetMask targets, bool depth, const char* what) {
+    GLuint fbo = 0;
+    glCreateFramebuffers(1, &fbo);
+    GLenum drawBuffers[kTargetCount];
+    int count = 0;
+    for (std::size_t t = 0; t < kTargetCount; ++t) {
+        if ((targets & (TargetMask(1) << t)) == 0)
+            continue;
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + count, textures_[t], 0);
+        drawBuffers[count] = GL_COLOR_ATTACHMENT0 + count;
+        ++count;
+    }
+    glNamedFramebufferDrawBuffers(fbo, count, drawBuffers);
+    if (depth)
+        glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depthBuffer_);
+    const GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
+    SP_CHECK(status == GL_FRAMEBUFFER_COMPLETE, InvalidState, "Framebuffers::ensure(): the ", what,
+             " framebuffer is incomplete (status 0x", std::hex, status, ")");
+    return fbo;
 }
 
 void Framebuffers::ensure(int w, int h, const PassSet& passes) {
@@ -64,26 +88,44 @@ void Framebuffers::ensure(int w, int h, const PassSet& passes) {
         release();
     width = w;
     height = h;
-    if (passes.gbuffer && gbufferFbo == 0) {
-        // Float32 where the modality is float32 (position, normal, depth), float16 for material
-        // attributes, and an integer target for the ids (never filtered or blended).
-        const GLenum formats[shaders::GBufferTargetCount] = {GL_RGBA32F, GL_RGBA32F, GL_R32F,  GL_RGBA16F,
-                                                             GL_RGBA16F, GL_RGBA16F, GL_RG32UI};
-        for (int i = 0; i < shaders::GBufferTargetCount; ++i)
-            gbufferTextures[i] = makeTexture(formats[i], w, h);
-        glCreateRenderbuffers(1, &depthBuffer);
-        glNamedRenderbufferStorage(depthBuffer, GL_DEPTH_COMPONENT32F, w, h);
-        gbufferFbo = makeFramebuffer(gbufferTextures, shaders::GBufferTargetCount, depthBuffer, "G-buffer");
+    const TargetMask needed = passes.surfaceTargets | passes.lightingTargets;
+    bool changed = passes.surfaceTargets != surfaceTargets_ || passes.lightingTargets != lightingTargets_;
+    for (std::size_t t = 0; t < kTargetCount; ++t) {
+        if ((needed & (TargetMask(1) << t)) == 0)
+            continue; // kept for when the modalities come back; freed with the size
+        const GLenum format = formatOf(static_cast<Target>(t), passes);
+        if (textures_[t] != 0 && formats_[t] == format)
+            continue;
+        glDeleteTextures(1, &textures_[t]);
+        textures_[t] = makeTexture(format, w, h);
+        formats_[t] = format;
+        changed = true;
     }
-    if (passes.lighting && lightingFbo == 0) {
-        for (unsigned& texture : lightingTextures)
-            texture = makeTexture(GL_RGBA16F, w, h);
-        lightingFbo = makeFramebuffer(lightingTextures, shaders::LightingTargetCount, 0, "lighting");
+    if (passes.gbuffer && depthBuffer_ == 0) {
+        glCreateRenderbuffers(1, &depthBuffer_);
+        glNamedRenderbufferStorage(depthBuffer_, GL_DEPTH_COMPONENT32F, w, h);
+        changed = true;
     }
-    if (passes.tonemap && tonemapFbo == 0) {
-        tonemapTexture = makeTexture(GL_RGBA8, w, h);
-        tonemapFbo = makeFramebuffer(&tonemapTexture, 1, 0, "tone-mapping");
-    }
+    if (!changed)
+        return;
+    glDeleteFramebuffers(1, &surfaceFbo);
+    glDeleteFramebuffers(1, &lightingFbo);
+    surfaceFbo = lightingFbo = 0;
+    surfaceTargets_ = passes.surfaceTargets;
+    lightingTargets_ = passes.lightingTargets;
+    if (surfaceTargets_ != 0)
+        surfaceFbo = makeFramebuffer(surfaceTargets_, true, "surface");
+    if (lightingTargets_ != 0)
+        lightingFbo = makeFramebuffer(lightingTargets_, false, "lighting");
+}
+
+Framebuffers::Attachment Framebuffers::attachment(Target target) const {
+    if (int index = indexIn(surfaceTargets_, target); index >= 0)
+        return {surfaceFbo, index};
+    if (int index = indexIn(lightingTargets_, target); index >= 0)
+        return {lightingFbo, index};
+    SP_THROW(InvalidState, "Framebuffers::attachment(): target ", targetName(target),
+             " was not rendered in the last frame");
 }
 
 } // namespace sp::render

@@ -1,9 +1,12 @@
 #pragma once
-// The off-screen render targets of one RenderTarget: G-buffer, lighting and tone-mapping framebuffers,
-// allocated only for the passes that run. Needs a current context.
+// The off-screen targets of one RenderTarget: one texture per Target a frame writes, a depth buffer, and
+// the framebuffers of the surface and lighting passes, each attaching its targets in Target order.
+// Textures are allocated only for the targets the passes write and kept across frames while the size
+// and format fit. Needs a current context.
+
+#include <array>
 
 #include "core/render/modality.h"
-#include "core/render/shaders.h"
 
 namespace sp::render {
 
@@ -14,21 +17,31 @@ class Framebuffers {
     Framebuffers(const Framebuffers&) = delete;
     Framebuffers& operator=(const Framebuffers&) = delete;
 
-    // (Re)allocates the framebuffers `passes` needs at width x height; keeps what already fits.
+    // (Re)allocates what `passes` writes at width x height; keeps the textures that already fit.
     void ensure(int width, int height, const PassSet& passes);
+    // The texture of a target, 0 when the last ensure() did not ask for it.
+    unsigned texture(Target target) const { return textures_[static_cast<std::size_t>(target)]; }
+    // Where a target can be read: the framebuffer that attaches it and the attachment index.
+    struct Attachment {
+        unsigned fbo = 0;
+        int index = -1;
+    };
+    Attachment attachment(Target target) const;
 
     int width = 0;
     int height = 0;
-    unsigned gbufferFbo = 0;
-    unsigned gbufferTextures[shaders::GBufferTargetCount] = {};
-    unsigned depthBuffer = 0;
+    unsigned surfaceFbo = 0;
     unsigned lightingFbo = 0;
-    unsigned lightingTextures[shaders::LightingTargetCount] = {};
-    unsigned tonemapFbo = 0;
-    unsigned tonemapTexture = 0;
 
   private:
     void release();
+    unsigned makeFramebuffer(TargetMask targets, bool depth, const char* what);
+
+    std::array<unsigned, kTargetCount> textures_{};
+    std::array<unsigned, kTargetCount> formats_{};
+    unsigned depthBuffer_ = 0;
+    TargetMask surfaceTargets_ = 0;
+    TargetMask lightingTargets_ = 0;
 };
 
 } // namespace sp::render

@@ -127,14 +127,77 @@ std::vector<std::string> ModalitySet::names() const {
     return out;
 }
 
+Target targetOf(Modality modality) {
+    switch (modality) {
+    case Modality::FinalColor:
+        return Target::FinalColor;
+    case Modality::HdrColor:
+        return Target::Hdr;
+    case Modality::Depth:
+        return Target::Depth;
+    case Modality::Position:
+        return Target::Position;
+    case Modality::Normal:
+        return Target::Normal;
+    case Modality::ObjectIds:
+    case Modality::MaterialIds:
+        return Target::Ids;
+    case Modality::BaseColor:
+        return Target::BaseColor;
+    case Modality::Roughness:
+    case Modality::Metallic:
+    case Modality::MaterialAo:
+        return Target::Params;
+    case Modality::DiffuseIllumination:
+        return Target::DiffuseIllumination;
+    case Modality::DiffuseOnly:
+        return Target::DiffuseOnly;
+    case Modality::SpecularResidual:
+        return Target::SpecularResidual;
+    }
+    SP_THROW(InvalidArgument, "targetOf(): bad modality value ", int(modality));
+}
+
+std::string_view targetName(Target target) {
+    static constexpr std::array<std::string_view, kTargetCount> kNames{
+        "Position",         "Normal",    "Depth", "BaseColor",           "Params",
+        "Emissive",         "Ids",       "Hdr",   "DiffuseIllumination", "DiffuseOnly",
+        "SpecularResidual", "FinalColor"};
+    const auto index = static_cast<std::size_t>(target);
+    SP_CHECK(index < kTargetCount, InvalidArgument, "targetName(): bad target value ", index);
+    return kNames[index];
+}
+
 PassSet ModalitySet::requiredPasses(bool shadowsEnabled) const {
     PassSet passes;
+    TargetMask requested = 0;
     for (Modality m : list()) {
         passes.gbuffer = true;
         passes.lighting = passes.lighting || needsLighting(m);
         passes.tonemap = passes.tonemap || m == Modality::FinalColor;
+        requested |= targetBit(targetOf(m));
     }
     passes.shadow = passes.lighting && shadowsEnabled;
+    if (!passes.gbuffer)
+        return passes;
+    // Forward when nothing but colour, depth and ids is asked: one pass, no G-buffer round trip.
+    constexpr TargetMask kForwardable = targetBit(Target::FinalColor) | targetBit(Target::Hdr) |
+                                        targetBit(Target::Depth) | targetBit(Target::Ids);
+    constexpr TargetMask kLightingOutputs =
+        targetBit(Target::Hdr) | targetBit(Target::DiffuseIllumination) | targetBit(Target::DiffuseOnly) |
+        targetBit(Target::SpecularResidual) | targetBit(Target::FinalColor);
+    passes.forward = passes.lighting && (requested & ~kForwardable) == 0;
+    if (passes.forward || !passes.lighting) {
+        passes.surfaceTargets = requested;
+    } else {
+        // The G-buffer: what shading reads, plus the geometric and material targets asked for.
+        constexpr TargetMask kShadingInputs = targetBit(Target::Position) | targetBit(Target::Normal) |
+                                              targetBit(Target::BaseColor) | targetBit(Target::Params) |
+                                              targetBit(Target::Emissive);
+        passes.surfaceTargets = kShadingInputs | (requested & ~kLightingOutputs);
+        passes.lightingTargets = requested & kLightingOutputs;
+    }
+    passes.highPrecisionNormal = contains(Modality::Normal);
     return passes;
 }
 

@@ -63,12 +63,47 @@ std::size_t modalityByteSize(Modality modality, int width, int height);
 // Throws sp::NotFound "modalityFromName(): unknown modality 'x' (known: ...)".
 Modality modalityFromName(std::string_view name);
 
-// The render passes a modality set needs; only these run.
+// The colour targets a frame can write, each one texture of the camera's framebuffers.
+enum class Target : std::uint8_t {
+    Position,            // RGBA32F world position, w = 1 on geometry (0 = background)
+    Normal,              // RGBA32F when the normal modality is read, RGBA16F when only shading needs it
+    Depth,               // R32F metres along the optical axis
+    BaseColor,           // RGBA16F
+    Params,              // RGBA16F roughness, metallic, ao
+    Emissive,            // RGBA16F
+    Ids,                 // RG32UI object id, material id
+    Hdr,                 // RGBA16F linear radiance
+    DiffuseIllumination, // RGBA16F
+    DiffuseOnly,         // RGBA16F
+    SpecularResidual,    // RGBA16F
+    FinalColor,          // RGBA8 tone-mapped sRGB
+};
+inline constexpr std::size_t kTargetCount = 12;
+using TargetMask = std::uint32_t;
+inline constexpr TargetMask targetBit(Target target) {
+    return TargetMask(1) << static_cast<unsigned>(target);
+}
+// The target a modality is read from (roughness, metallic and AO share Params; both id kinds share Ids).
+Target targetOf(Modality modality);
+std::string_view targetName(Target target);
+
+// The render passes a modality set needs; only these run. Two ways to produce colour:
+//   - forward: when colour, depth and ids are all that is asked, one surface pass shades every fragment
+//     (lights, shadows, sky, tone curve, sRGB) and writes only the requested targets;
+//   - deferred: when material attributes or the intrinsic images are asked, the surface pass fills a
+//     G-buffer of just the targets needed, and one full-screen lighting pass shades it and writes the
+//     HDR, intrinsic and tone-mapped targets asked for (tone mapping is fused into it).
 struct PassSet {
-    bool shadow = false;   // shadow maps (only when lighting runs and the camera enables shadows)
-    bool gbuffer = false;  // geometry + material attributes + ids
-    bool lighting = false; // HDR shading and the intrinsic decomposition
-    bool tonemap = false;  // exposure, tone curve, sRGB encoding
+    bool shadow = false;            // shadow maps (only when shading runs and the camera enables shadows)
+    bool gbuffer = false;           // the surface pass (geometry rasterisation; forward or G-buffer)
+    bool lighting = false;          // shading: in the surface pass when forward, else a full-screen pass
+    bool tonemap = false;           // exposure, tone curve, sRGB encoding (fused into whichever pass shades)
+    bool forward = false;           // shading happens in the surface pass
+    TargetMask surfaceTargets = 0;  // written by the surface pass, attached in Target order
+    TargetMask lightingTargets = 0; // written by the deferred lighting pass, attached in Target order
+    bool highPrecisionNormal = false; // the normal target holds the float32 normal modality
+
+    bool operator==(const PassSet&) const = default;
 };
 
 class ModalitySet {

@@ -12,47 +12,50 @@
 namespace sp::render {
 namespace {
 
-// Where each modality is read from: framebuffer, attachment, and the glReadPixels format/type.
-struct ReadSource {
-    enum Fbo { GBuffer, Lighting, Tonemap } fbo;
-    int attachment;
+// How each modality is read from its target: the glReadPixels format and type.
+struct ReadFormat {
     GLenum format;
     GLenum type;
 };
 
-ReadSource readSource(Modality modality) {
-    using namespace shaders;
+ReadFormat readFormat(Modality modality) {
     switch (modality) {
     case Modality::FinalColor:
-        return {ReadSource::Tonemap, 0, GL_RGBA, GL_UNSIGNED_BYTE};
+        return {GL_RGBA, GL_UNSIGNED_BYTE};
     case Modality::HdrColor:
-        return {ReadSource::Lighting, LHdr, GL_RGBA, GL_HALF_FLOAT};
+        return {GL_RGBA, GL_HALF_FLOAT};
     case Modality::DiffuseIllumination:
-        return {ReadSource::Lighting, LDiffuseIllumination, GL_RGB, GL_HALF_FLOAT};
     case Modality::DiffuseOnly:
-        return {ReadSource::Lighting, LDiffuseOnly, GL_RGB, GL_HALF_FLOAT};
     case Modality::SpecularResidual:
-        return {ReadSource::Lighting, LSpecularResidual, GL_RGB, GL_HALF_FLOAT};
-    case Modality::Depth:
-        return {ReadSource::GBuffer, GDepth, GL_RED, GL_FLOAT};
-    case Modality::Position:
-        return {ReadSource::GBuffer, GPosition, GL_RGB, GL_FLOAT};
-    case Modality::Normal:
-        return {ReadSource::GBuffer, GNormal, GL_RGB, GL_FLOAT};
-    case Modality::ObjectIds:
-        return {ReadSource::GBuffer, GIds, GL_RED_INTEGER, GL_UNSIGNED_INT};
-    case Modality::MaterialIds:
-        return {ReadSource::GBuffer, GIds, GL_GREEN_INTEGER, GL_UNSIGNED_INT};
     case Modality::BaseColor:
-        return {ReadSource::GBuffer, GBaseColor, GL_RGB, GL_HALF_FLOAT};
+        return {GL_RGB, GL_HALF_FLOAT};
+    case Modality::Depth:
+        return {GL_RED, GL_FLOAT};
+    case Modality::Position:
+    case Modality::Normal:
+        return {GL_RGB, GL_FLOAT};
+    case Modality::ObjectIds:
+        return {GL_RED_INTEGER, GL_UNSIGNED_INT};
+    case Modality::MaterialIds:
+        return {GL_GREEN_INTEGER, GL_UNSIGNED_INT};
     case Modality::Roughness:
-        return {ReadSource::GBuffer, GParams, GL_RED, GL_HALF_FLOAT};
+        return {GL_RED, GL_HALF_FLOAT};
     case Modality::Metallic:
-        return {ReadSource::GBuffer, GParams, GL_GREEN, GL_HALF_FLOAT};
+        return {GL_GREEN, GL_HALF_FLOAT};
     case Modality::MaterialAo:
-        return {ReadSource::GBuffer, GParams, GL_BLUE, GL_HALF_FLOAT};
+        return {GL_BLUE, GL_HALF_FLOAT};
     }
-    SP_THROW(InvalidArgument, "readSource(): bad modality ", int(modality));
+    SP_THROW(InvalidArgument, "readFormat(): bad modality ", int(modality));
+}
+
+// Starts glReadPixels of one modality into the bound pixel-pack buffer (offset 0) or, with none bound,
+// into `destination`.
+void readModality(const Framebuffers& fb, Modality modality, int width, int height, void* destination) {
+    const Framebuffers::Attachment source = fb.attachment(targetOf(modality));
+    const ReadFormat format = readFormat(modality);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, source.fbo);
+    glReadBuffer(GL_COLOR_ATTACHMENT0 + source.index);
+    glReadPixels(0, 0, width, height, format.format, format.type, destination);
 }
 
 } // namespace
@@ -99,27 +102,24 @@ std::uint64_t RenderTarget::submit(const Scene& scene, const Camera& camera) {
     slot.width = camera.params.width;
     slot.height = camera.params.height;
     slot.modalities = modalities_;
-    const Framebuffers& fb = *framebuffers_;
-    for (Modality modality : modalities_.list()) {
-        const auto m = static_cast<std::size_t>(modality);
-        const std::size_t bytes = modalityByteSize(modality, slot.width, slot.height);
-        if (slot.buffers[m] == 0)
-            glCreateBuffers(1, &slot.buffers[m]);
-        if (slot.capacity[m] != bytes) {
-            glNamedBufferData(slot.buffers[m], GLsizeiptr(bytes), nullptr, GL_STREAM_READ);
-            slot.capacity[m] = bytes;
+    // Latency 0 reads straight from the framebuffers into the caller's memory when the frame is read
+    // (and not at all if it never is); a longer ring copies into pixel-buffer objects now, so that the
+    // framebuffers can take the next frames while this one waits.
+    if (latency_ > 0) {
+        for (Modality modality : modalities_.list()) {
+            const auto m = static_cast<std::size_t>(modality);
+            const std::size_t bytes = modalityByteSize(modality, slot.width, slot.height);
+            if (slot.buffers[m] == 0)
+                glCreateBuffers(1, &slot.buffers[m]);
+            if (slot.capacity[m] != bytes) {
+                glNamedBufferData(slot.buffers[m], GLsizeiptr(bytes), nullptr, GL_STREAM_READ);
+                slot.capacity[m] = bytes;
+            }
+            glBindBuffer(GL_PIXEL_PACK_BUFFER, slot.buffers[m]);
+            readModality(*framebuffers_, modality, slot.width, slot.height, nullptr);
         }
-        const ReadSource source = readSource(modality);
-        const GLuint fbo = source.fbo == ReadSource::GBuffer    ? fb.gbufferFbo
-                           : source.fbo == ReadSource::Lighting ? fb.lightingFbo
-                                                                : fb.tonemapFbo;
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
-        glReadBuffer(GL_COLOR_ATTACHMENT0 + source.attachment);
-        glBindBuffer(GL_PIXEL_PACK_BUFFER, slot.buffers[m]);
-        glReadPixels(0, 0, slot.width, slot.height, source.format, source.type, nullptr);
-        renderer_.countReadback();
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     }
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     slot.fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     glFlush();
     slot.pending = true;
@@ -145,6 +145,13 @@ RenderTarget::Slot* RenderTarget::dueSlot() {
 }
 
 void RenderTarget::copyOut(Slot& slot, Modality modality, void* destination) {
+    renderer_.countReadback();
+    renderer_.timers().begin(Pass::Readback);
+    if (latency_ == 0) { // the framebuffers still hold this frame: no staging copy
+        readModality(*framebuffers_, modality, slot.width, slot.height, destination);
+        renderer_.timers().end();
+        return;
+    }
     const auto m = static_cast<std::size_t>(modality);
     const std::size_t bytes = modalityByteSize(modality, slot.width, slot.height);
     const void* mapped = glMapNamedBufferRange(slot.buffers[m], 0, GLsizeiptr(bytes), GL_MAP_READ_BIT);
@@ -152,6 +159,7 @@ void RenderTarget::copyOut(Slot& slot, Modality modality, void* destination) {
              " readback buffer");
     std::memcpy(destination, mapped, bytes);
     glUnmapNamedBuffer(slot.buffers[m]);
+    renderer_.timers().end();
 }
 
 std::optional<std::uint64_t> RenderTarget::read(Frame& frame) {

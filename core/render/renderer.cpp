@@ -2,8 +2,11 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
+#include <vector>
 
 #include "core/base/error.h"
 #include "core/render/framebuffers.h"
@@ -13,18 +16,62 @@
 #include "core/render/shadow_maps.h"
 
 namespace sp::render {
+namespace {
+
+// The tone curve of shaders.cpp's toneMapped(), for the background colour (a clear value, not shaded).
+float toneMapChannel(float hdr, const CameraParams& params) {
+    const double x = std::max(double(hdr), 0.0) * params.exposure;
+    double mapped = x;
+    switch (params.toneMap) {
+    case ToneMap::Aces:
+        mapped = (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14);
+        break;
+    case ToneMap::Reinhard:
+        mapped = x / (1.0 + x);
+        break;
+    case ToneMap::Linear:
+        break;
+    }
+    const double c = std::clamp(mapped, 0.0, 1.0);
+    return float(c < 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055);
+}
+
+void copy3(float (&out)[4], const Eigen::Vector3f& v, float w) {
+    out[0] = v.x();
+    out[1] = v.y();
+    out[2] = v.z();
+    out[3] = w;
+}
+
+// Frustum planes (a, b, c, d with a·x + b·y + c·z + d >= 0 inside) of a world-to-clip matrix.
+std::array<Eigen::Vector4d, 6> frustumPlanes(const Eigen::Matrix4d& viewProjection) {
+    std::array<Eigen::Vector4d, 6> planes;
+    for (int i = 0; i < 3; ++i) {
+        planes[2 * i] = (viewProjection.row(3) + viewProjection.row(i)).transpose();
+        planes[2 * i + 1] = (viewProjection.row(3) - viewProjection.row(i)).transpose();
+    }
+    for (Eigen::Vector4d& plane : planes)
+        plane /= plane.head<3>().norm();
+    return planes;
+}
+
+// One submesh of a visible instance.
+struct Draw {
+    const Instance* instance;
+    std::size_t slot;
+    unsigned features; // shaders::MaterialFeature bits: which program draws it
+    double distance;   // from the eye to the instance's bounding sphere
+};
+
+} // namespace
 
 Renderer::Renderer(const GlContext& context) : context_(context) {
     context_.makeCurrent();
-    geometry_ =
-        std::make_unique<ShaderProgram>("geometry", shaders::kGeometryVertex, shaders::kGeometryFragment);
     shadow_ = std::make_unique<ShaderProgram>("shadow", shaders::kShadowVertex, shaders::kShadowFragment);
-    lighting_ =
-        std::make_unique<ShaderProgram>("lighting", shaders::kFullscreenVertex, shaders::kLightingFragment);
-    tonemap_ =
-        std::make_unique<ShaderProgram>("tonemap", shaders::kFullscreenVertex, shaders::kTonemapFragment);
     shadowMaps_ = std::make_unique<ShadowMaps>();
     glCreateVertexArrays(1, &emptyVao_);
+    glCreateBuffers(1, &frameBlock_);
+    glNamedBufferData(frameBlock_, sizeof(shaders::FrameBlock), nullptr, GL_DYNAMIC_DRAW);
     // Readbacks of 3-channel and 16-bit images have rows that are not multiples of 4 bytes.
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
 }
@@ -34,12 +81,17 @@ Renderer::~Renderer() {
     caches_.clear();
     shadowMaps_.reset();
     glDeleteVertexArrays(1, &emptyVao_);
+    glDeleteBuffers(1, &frameBlock_);
 }
 
 const RenderStats& Renderer::stats() const {
+    timers_.collect();
+    stats_.passTimes = timers_.totals();
     return stats_;
 }
 void Renderer::resetStats() {
+    timers_.collect();
+    timers_.reset();
     stats_ = RenderStats();
 }
 void Renderer::releaseScene(const Scene& scene) {
@@ -53,6 +105,27 @@ GpuSceneCache& Renderer::cacheFor(const Scene& scene) {
     return *cache;
 }
 
+ShaderProgram& Renderer::surfaceProgram(TargetMask targets, bool forward, unsigned materialFeatures,
+                                        const shaders::ShadingLayout& lights) {
+    const std::string key = std::string(forward ? "forward/" : "surface/") + std::to_string(targets) + "/" +
+                            std::to_string(materialFeatures) + (forward ? "/" + lights.key() : std::string());
+    auto& program = programs_[key];
+    if (!program)
+        program = std::make_unique<ShaderProgram>(
+            key, shaders::surfaceVertex(forward, lights).c_str(),
+            shaders::surfaceFragment(targets, forward, materialFeatures, lights).c_str());
+    return *program;
+}
+
+ShaderProgram& Renderer::lightingProgram(TargetMask targets, const shaders::ShadingLayout& lights) {
+    const std::string key = "lighting/" + std::to_string(targets) + "/" + lights.key();
+    auto& program = programs_[key];
+    if (!program)
+        program = std::make_unique<ShaderProgram>(key, shaders::fullscreenVertex().c_str(),
+                                                  shaders::lightingFragment(targets, lights).c_str());
+    return *program;
+}
+
 void Renderer::render(const Scene& scene, const Camera& camera, const PassSet& passes, Framebuffers& fb) {
     camera.params.validate("Renderer::render");
     GpuSceneCache& cache = cacheFor(scene);
@@ -60,140 +133,204 @@ void Renderer::render(const Scene& scene, const Camera& camera, const PassSet& p
     fb.ensure(camera.params.width, camera.params.height, passes);
     glDisable(GL_CULL_FACE); // two-sided: imported meshes have unreliable winding
     glDisable(GL_BLEND);
+
+    std::vector<ShadowInfo> shadowInfos;
+    if (passes.shadow) {
+        timers_.begin(Pass::Shadow);
+        const std::size_t rendered =
+            shadowMaps_->render(scene, camera.params.shadowResolution, cache, *shadow_);
+        timers_.end();
+        stats_.shadowPasses += rendered;
+        stats_.shadowReuses += rendered == 0 && !shadowMaps_->infos().empty() ? 1 : 0;
+        shadowInfos = shadowMaps_->infos();
+    }
+    // The shading programs are specialised for the lights (see shaders.h): type, range, shadow layer.
+    shaders::ShadingLayout lights;
+    if (passes.lighting) {
+        scene.forEachLight([&](LightId, const Light& light) {
+            shaders::LightSlot slot;
+            slot.type = light.type;
+            slot.ranged = light.type != LightType::Directional && light.range > 0.0f;
+            for (const ShadowInfo& info : shadowInfos)
+                if (info.lightOrdinal == int(lights.lights.size()))
+                    slot.shadowLayer = info.layer;
+            lights.lights.push_back(slot);
+        });
+        uploadFrameBlock(scene, camera, shadowInfos);
+    }
     if (passes.gbuffer)
-        geometryPass(scene, camera, cache, fb);
-    if (passes.lighting)
-        lightingPass(scene, camera, passes.shadow, cache, fb);
-    if (passes.tonemap)
-        tonemapPass(camera, fb);
+        surfacePass(scene, camera, passes, lights, cache, fb);
+    if (passes.lighting && !passes.forward)
+        lightingPass(passes, lights, fb);
+    stats_.lightingPasses += passes.lighting ? 1 : 0;
+    stats_.tonemapPasses += passes.tonemap ? 1 : 0;
     stats_.meshUploads += cache.meshUploads() - meshUploads;
     stats_.textureUploads += cache.textureUploads() - textureUploads;
     ++stats_.frames;
+    timers_.collect();
 }
 
-void Renderer::geometryPass(const Scene& scene, const Camera& camera, GpuSceneCache& cache,
-                            Framebuffers& fb) {
-    glBindFramebuffer(GL_FRAMEBUFFER, fb.gbufferFbo);
+void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
+                                const std::vector<ShadowInfo>& shadows) {
+    shaders::FrameBlock block;
+    std::memset(&block, 0, sizeof block);
+    copy3(block.cameraPosition, camera.pose.translation().cast<float>(), 1.0f);
+    copy3(block.ambient, scene.environment().ambient, 0.0f);
+    copy3(block.background, scene.environment().background, 1.0f);
+    block.toneParams[0] = camera.params.exposure;
+    block.toneParams[1] = float(static_cast<int>(camera.params.toneMap));
+    for (int c = 0; c < 3; ++c)
+        block.backgroundFinal[c] = toneMapChannel(scene.environment().background[c], camera.params);
+    block.backgroundFinal[3] = 1.0f;
+    for (const ShadowInfo& info : shadows) {
+        std::memcpy(block.shadowMatrix[info.layer], info.worldToClip.data(), sizeof(float) * 16);
+        block.shadowParams[info.layer][0] = info.texel;
+        block.shadowParams[info.layer][1] = 1.0f / float(camera.params.shadowResolution);
+        block.shadowParams[info.layer][2] = float(camera.params.shadowResolution);
+    }
+    int count = 0;
+    scene.forEachLight([&](LightId, const Light& light) {
+        copy3(block.lightRadiance[count], light.color * light.intensity, 0.0f);
+        copy3(block.lightPosition[count], light.position.cast<float>(), light.range);
+        copy3(block.lightDirection[count], light.direction.normalized().cast<float>(), 0.0f);
+        block.lightCone[count][0] = std::cos(light.innerConeDeg * float(M_PI) / 180.0f);
+        block.lightCone[count][1] = std::cos(light.outerConeDeg * float(M_PI) / 180.0f);
+        ++count;
+    });
+    block.counts[0] = count;
+    glNamedBufferSubData(frameBlock_, 0, sizeof block, &block);
+    glBindBufferBase(GL_UNIFORM_BUFFER, shaders::kFrameBlockBinding, frameBlock_);
+}
+
+void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassSet& passes,
+                           const shaders::ShadingLayout& lights, GpuSceneCache& cache, Framebuffers& fb) {
+    timers_.begin(Pass::Surface);
+    glBindFramebuffer(GL_FRAMEBUFFER, fb.surfaceFbo);
     glViewport(0, 0, fb.width, fb.height);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    const float zero[4] = {0, 0, 0, 0};
-    const GLuint zeroIds[4] = {0, 0, 0, 0};
-    for (int i = 0; i < shaders::GIds; ++i)
-        glClearBufferfv(GL_COLOR, i, zero);
-    glClearBufferuiv(GL_COLOR, shaders::GIds, zeroIds);
+    // Clear values are what a background pixel of each modality reads.
+    const Eigen::Vector3f background = scene.environment().background;
+    int location = 0;
+    for (std::size_t t = 0; t < kTargetCount; ++t) {
+        if ((passes.surfaceTargets & (TargetMask(1) << t)) == 0)
+            continue;
+        const auto target = static_cast<Target>(t);
+        if (target == Target::Ids) {
+            const GLuint zero[4] = {0, 0, 0, 0};
+            glClearBufferuiv(GL_COLOR, location++, zero);
+            continue;
+        }
+        float value[4] = {0, 0, 0, 0};
+        if (target == Target::Hdr) {
+            copy3(value, background, 1.0f);
+        } else if (target == Target::FinalColor) {
+            for (int c = 0; c < 3; ++c)
+                value[c] = toneMapChannel(background[c], camera.params);
+            value[3] = 1.0f;
+        }
+        glClearBufferfv(GL_COLOR, location++, value);
+    }
     glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
 
     // The projection is flipped vertically so that GL's bottom row holds image row 0 and glReadPixels
     // returns the top image row first; depth and ids are unaffected.
     const Eigen::Matrix4d worldToCamera = camera.pose.inverse(Eigen::Isometry).matrix();
     const Eigen::Matrix4d viewProjection = camera.projectionMatrix(true) * camera.viewMatrix();
-    ShaderProgram& program = *geometry_;
-    program.use();
-    program.set("uCameraPosition", Eigen::Vector3f(camera.pose.translation().cast<float>()));
+    const std::array<Eigen::Vector4d, 6> planes = frustumPlanes(viewProjection);
+    const Eigen::Vector3d eye = camera.pose.translation();
+
+    // Cull against the view frustum (bounding spheres); then draw each program's submeshes front to back.
+    std::vector<Draw> draws;
+    std::size_t drawn = 0;
     scene.forEachInstance([&](InstanceId, const Instance& instance) {
         if (!instance.visible)
             return;
-        const GpuMesh& mesh = cache.mesh(scene, instance.mesh);
-        const Eigen::Matrix4d model = instance.transform.matrix();
-        program.set("uModel", Eigen::Matrix4f(model.cast<float>()));
-        program.set("uNormalMatrix",
-                    Eigen::Matrix3f(instance.transform.linear().inverse().transpose().cast<float>()));
-        program.set("uModelToCamera", Eigen::Matrix4f((worldToCamera * model).cast<float>()));
-        program.set("uModelViewProjection", Eigen::Matrix4f((viewProjection * model).cast<float>()));
-        glBindVertexArray(mesh.vao);
-        for (std::size_t slot = 0; slot < mesh.submeshes.size(); ++slot) {
-            const MaterialId materialId = instance.materials[slot];
-            const Material& material = scene.material(materialId);
-            program.set("uBaseColor", material.baseColor);
-            program.set("uRoughness", material.roughness);
-            program.set("uMetallic", material.metallic);
-            program.set("uAo", material.ambientOcclusion);
-            program.set("uEmissive", material.emissive);
-            program.set("uObjectId", instance.objectIds[slot]);
-            program.set("uMaterialId", scene.materialIdValue(materialId));
-            const std::optional<TextureId> textures[3] = {
-                material.baseColorTexture, material.roughnessMetallicTexture, material.normalTexture};
-            const char* flags[3] = {"uHasBaseColorTexture", "uHasRoughnessMetallicTexture",
-                                    "uHasNormalTexture"};
-            for (int t = 0; t < 3; ++t) {
-                program.set(flags[t], textures[t] ? 1 : 0);
-                glBindTextureUnit(t, textures[t] ? cache.texture(scene, *textures[t]) : 0);
+        Eigen::Vector3f min, max;
+        scene.meshBounds(instance.mesh, min, max);
+        const Eigen::Vector3d centre = instance.transform * (0.5 * (min + max)).cast<double>();
+        const double radius =
+            0.5 * (max - min).cast<double>().norm() * instance.transform.linear().colwise().norm().maxCoeff();
+        for (const Eigen::Vector4d& plane : planes) {
+            if (plane.head<3>().dot(centre) + plane.w() < -radius) {
+                ++stats_.culledInstances;
+                return;
             }
-            const Submesh& sub = mesh.submeshes[slot];
-            glDrawElements(GL_TRIANGLES, GLsizei(sub.indexCount), GL_UNSIGNED_INT,
-                           reinterpret_cast<const void*>(std::uintptr_t(sub.firstIndex) * 4));
+        }
+        ++drawn;
+        const double distance = std::max(0.0, (centre - eye).norm() - radius);
+        for (std::size_t slot = 0; slot < instance.materials.size(); ++slot) {
+            const Material& material = scene.material(instance.materials[slot]);
+            const unsigned features =
+                (material.baseColorTexture ? shaders::kBaseColorTexture : 0u) |
+                (material.roughnessMetallicTexture ? shaders::kRoughnessMetallicTexture : 0u) |
+                (material.normalTexture ? shaders::kNormalTexture : 0u);
+            draws.push_back({&instance, slot, features, distance});
         }
     });
+    std::sort(draws.begin(), draws.end(), [](const Draw& a, const Draw& b) {
+        return a.features != b.features ? a.features < b.features : a.distance < b.distance;
+    });
+    stats_.drawnInstances += drawn;
+
+    if (!passes.lighting) // a G-buffer alone still reads the camera position from the frame block
+        uploadFrameBlock(scene, camera, {});
+    if (passes.forward)
+        glBindTextureUnit(shaders::kShadowMapUnit, passes.shadow ? shadowMaps_->texture() : 0);
+    ShaderProgram* program = nullptr;
+    for (const Draw& draw : draws) {
+        if (program == nullptr || draw.features != draws[std::size_t(&draw - draws.data()) - 1].features) {
+            program = &surfaceProgram(passes.surfaceTargets, passes.forward, draw.features, lights);
+            program->use();
+        }
+        const Instance& instance = *draw.instance;
+        const GpuMesh& mesh = cache.mesh(scene, instance.mesh);
+        const Eigen::Matrix4d model = instance.transform.matrix();
+        program->set("uModel", Eigen::Matrix4f(model.cast<float>()));
+        program->set("uNormalMatrix",
+                     Eigen::Matrix3f(instance.transform.linear().inverse().transpose().cast<float>()));
+        program->set("uModelToCamera", Eigen::Matrix4f((worldToCamera * model).cast<float>()));
+        program->set("uModelViewProjection", Eigen::Matrix4f((viewProjection * model).cast<float>()));
+        glBindVertexArray(mesh.vao);
+        const MaterialId materialId = instance.materials[draw.slot];
+        const Material& material = scene.material(materialId);
+        program->set("uBaseColor", material.baseColor);
+        program->set("uRoughness", material.roughness);
+        program->set("uMetallic", material.metallic);
+        program->set("uAo", material.ambientOcclusion);
+        program->set("uEmissive", material.emissive);
+        program->set("uObjectId", instance.objectIds[draw.slot]);
+        program->set("uMaterialId", scene.materialIdValue(materialId));
+        const std::optional<TextureId> textures[3] = {
+            material.baseColorTexture, material.roughnessMetallicTexture, material.normalTexture};
+        for (int t = 0; t < 3; ++t)
+            if (textures[t])
+                glBindTextureUnit(t, cache.texture(scene, *textures[t]));
+        const Submesh& sub = mesh.submeshes[draw.slot];
+        glDrawElements(GL_TRIANGLES, GLsizei(sub.indexCount), GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(std::uintptr_t(sub.firstIndex) * 4));
+    }
     glBindVertexArray(0);
+    timers_.end();
     ++stats_.gbufferPasses;
+    stats_.forwardPasses += passes.forward ? 1 : 0;
 }
 
-void Renderer::lightingPass(const Scene& scene, const Camera& camera, bool shadows, GpuSceneCache& cache,
-                            Framebuffers& fb) {
-    std::vector<ShadowInfo> shadowInfos;
-    if (shadows) {
-        shadowInfos = shadowMaps_->render(scene, camera.params.shadowResolution, cache, *shadow_);
-        stats_.shadowPasses += shadowInfos.size();
-    }
-    ShaderProgram& program = *lighting_;
-    for (const ShadowInfo& info : shadowInfos) {
-        const std::string index = "[" + std::to_string(info.layer) + "]";
-        program.set("uShadowMatrix" + index, info.worldToClip);
-        program.set("uShadowTexel" + index, info.texel);
-        program.set("uShadowPerspective" + index, info.perspective ? 1 : 0);
-    }
-    int count = 0;
-    scene.forEachLight([&](LightId id, const Light& light) {
-        const std::string index = "[" + std::to_string(count) + "]";
-        int layer = -1;
-        for (const ShadowInfo& info : shadowInfos)
-            if (info.light == id)
-                layer = info.layer;
-        program.set("uLightType" + index, static_cast<int>(light.type));
-        program.set("uLightRadiance" + index, Eigen::Vector3f(light.color * light.intensity));
-        program.set("uLightPosition" + index, Eigen::Vector3f(light.position.cast<float>()));
-        program.set("uLightDirection" + index, Eigen::Vector3f(light.direction.normalized().cast<float>()));
-        program.set("uLightRange" + index, light.range);
-        program.set("uLightCone" + index,
-                    Eigen::Vector2f(std::cos(light.innerConeDeg * float(M_PI) / 180.0f),
-                                    std::cos(light.outerConeDeg * float(M_PI) / 180.0f)));
-        program.set("uLightShadow" + index, layer);
-        ++count;
-    });
-    program.set("uLightCount", count);
-    program.set("uCameraPosition", Eigen::Vector3f(camera.pose.translation().cast<float>()));
-    program.set("uAmbient", scene.environment().ambient);
-    program.set("uBackground", scene.environment().background);
-
+void Renderer::lightingPass(const PassSet& passes, const shaders::ShadingLayout& lights, Framebuffers& fb) {
+    timers_.begin(Pass::Lighting);
     glBindFramebuffer(GL_FRAMEBUFFER, fb.lightingFbo);
     glViewport(0, 0, fb.width, fb.height);
     glDisable(GL_DEPTH_TEST);
-    for (int t :
-         {shaders::GPosition, shaders::GNormal, shaders::GBaseColor, shaders::GParams, shaders::GEmissive})
-        glBindTextureUnit(t, fb.gbufferTextures[t]);
-    glBindTextureUnit(7, shadowInfos.empty() ? 0 : shadowMaps_->texture());
-    program.use();
+    // G-buffer samplers sit at the units of their Target index (see kLightingMain).
+    for (Target t : {Target::Position, Target::Normal, Target::BaseColor, Target::Params, Target::Emissive})
+        glBindTextureUnit(static_cast<unsigned>(t), fb.texture(t));
+    glBindTextureUnit(shaders::kShadowMapUnit, passes.shadow ? shadowMaps_->texture() : 0);
+    lightingProgram(passes.lightingTargets, lights).use();
     glBindVertexArray(emptyVao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
-    ++stats_.lightingPasses;
-}
-
-void Renderer::tonemapPass(const Camera& camera, Framebuffers& fb) {
-    glBindFramebuffer(GL_FRAMEBUFFER, fb.tonemapFbo);
-    glViewport(0, 0, fb.width, fb.height);
-    glDisable(GL_DEPTH_TEST);
-    glBindTextureUnit(0, fb.lightingTextures[shaders::LHdr]);
-    ShaderProgram& program = *tonemap_;
-    program.set("uExposure", camera.params.exposure);
-    program.set("uToneMap", static_cast<int>(camera.params.toneMap));
-    program.use();
-    glBindVertexArray(emptyVao_);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindVertexArray(0);
-    ++stats_.tonemapPasses;
+    timers_.end();
 }
 
 } // namespace sp::render

@@ -1,16 +1,23 @@
 #pragma once
 // The GL renderer: owns the shader programs, shadow maps and per-scene GPU caches, and runs the passes
-// a RenderTarget asks for (shadow -> G-buffer -> lighting -> tone mapping). One Renderer per GlContext;
-// destroy it (and its RenderTargets) before the context.
+// a RenderTarget asks for (see PassSet in modality.h): shadow maps (reused while lights and casters do
+// not move, so the views of one frame share them), then either one forward surface pass that shades and
+// tone-maps, or a G-buffer surface pass and one full-screen lighting pass. Instances outside the view
+// are culled and the rest drawn front to back, so hidden fragments fail the early depth test.
+// One Renderer per GlContext; destroy it (and its RenderTargets) before the context.
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <string>
 
 #include "core/render/camera.h"
 #include "core/render/gl_context.h"
 #include "core/render/modality.h"
+#include "core/render/pass_timers.h"
 #include "core/render/scene.h"
+#include "core/render/shaders.h"
 
 namespace sp::render {
 
@@ -18,17 +25,23 @@ class Framebuffers;
 class GpuSceneCache;
 class ShaderProgram;
 class ShadowMaps;
+struct ShadowInfo;
 
-// How often each pass ran (tests use it to check that only the needed passes run).
+// How often each pass ran (tests use it to check that only the needed passes run), and what it cost.
 struct RenderStats {
     std::uint64_t frames = 0;
-    std::uint64_t shadowPasses = 0; // one per shadow map rendered
-    std::uint64_t gbufferPasses = 0;
-    std::uint64_t lightingPasses = 0;
-    std::uint64_t tonemapPasses = 0;
-    std::uint64_t readbacks = 0; // one per modality read back
+    std::uint64_t shadowPasses = 0;   // one per shadow map rendered
+    std::uint64_t shadowReuses = 0;   // frames whose shadow maps were reused unchanged
+    std::uint64_t gbufferPasses = 0;  // surface passes (forward or G-buffer)
+    std::uint64_t forwardPasses = 0;  // surface passes that shaded (no lighting pass)
+    std::uint64_t lightingPasses = 0; // frames that shaded (forward or deferred)
+    std::uint64_t tonemapPasses = 0;  // frames that tone-mapped (fused into whichever pass shaded)
+    std::uint64_t readbacks = 0;      // one per modality read back
     std::uint64_t meshUploads = 0;
     std::uint64_t textureUploads = 0;
+    std::uint64_t drawnInstances = 0;             // instances drawn by surface passes
+    std::uint64_t culledInstances = 0;            // instances outside the view, not drawn
+    std::array<PassTime, kPassCount> passTimes{}; // by Pass
 };
 
 class Renderer {
@@ -48,22 +61,26 @@ class Renderer {
     // Runs the passes into `framebuffers` (used by RenderTarget; see render_target.h for the public way).
     void render(const Scene& scene, const Camera& camera, const PassSet& passes, Framebuffers& framebuffers);
     void countReadback() { ++stats_.readbacks; }
+    PassTimers& timers() { return timers_; }
 
   private:
     GpuSceneCache& cacheFor(const Scene& scene);
-    void geometryPass(const Scene& scene, const Camera& camera, GpuSceneCache& cache, Framebuffers& fb);
-    void lightingPass(const Scene& scene, const Camera& camera, bool shadows, GpuSceneCache& cache,
-                      Framebuffers& fb);
-    void tonemapPass(const Camera& camera, Framebuffers& fb);
+    ShaderProgram& surfaceProgram(TargetMask targets, bool forward, unsigned materialFeatures,
+                                  const shaders::ShadingLayout& lights);
+    ShaderProgram& lightingProgram(TargetMask targets, const shaders::ShadingLayout& lights);
+    void uploadFrameBlock(const Scene& scene, const Camera& camera, const std::vector<ShadowInfo>& shadows);
+    void surfacePass(const Scene& scene, const Camera& camera, const PassSet& passes,
+                     const shaders::ShadingLayout& lights, GpuSceneCache& cache, Framebuffers& fb);
+    void lightingPass(const PassSet& passes, const shaders::ShadingLayout& lights, Framebuffers& fb);
 
     const GlContext& context_;
-    std::unique_ptr<ShaderProgram> geometry_;
+    std::map<std::string, std::unique_ptr<ShaderProgram>> programs_; // by variant key
     std::unique_ptr<ShaderProgram> shadow_;
-    std::unique_ptr<ShaderProgram> lighting_;
-    std::unique_ptr<ShaderProgram> tonemap_;
     std::unique_ptr<ShadowMaps> shadowMaps_;
     std::map<std::uint64_t, std::unique_ptr<GpuSceneCache>> caches_;
+    mutable PassTimers timers_; // stats() collects finished timer queries
     unsigned emptyVao_ = 0;
+    unsigned frameBlock_ = 0;
     mutable RenderStats stats_;
 };
 

@@ -170,6 +170,12 @@ const Instance& Scene::instance(InstanceId id) const {
     return instances_.get(id, "Scene::instance");
 }
 
+void Scene::meshBounds(MeshId id, Eigen::Vector3f& min, Eigen::Vector3f& max) const {
+    const MeshEntry& entry = meshes_.get(id, "Scene::meshBounds");
+    min = entry.min;
+    max = entry.max;
+}
+
 void Scene::bounds(Eigen::Vector3d& centre, double& radius) const {
     Eigen::AlignedBox3d box;
     instances_.forEach([&](InstanceId, const Instance& instance) {

@@ -49,6 +49,8 @@ class Scene {
     void removeMesh(MeshId id); // sp::InvalidState while an instance uses it
     const MeshData& mesh(MeshId id) const;
     std::uint64_t meshRevision(MeshId id) const;
+    // Mesh-space bounding box of a mesh (for culling and shadow fitting).
+    void meshBounds(MeshId id, Eigen::Vector3f& min, Eigen::Vector3f& max) const;
 
     // Textures (for Material's texture slots).
     TextureId addTexture(TextureImage image, TextureEncoding encoding = TextureEncoding::Srgb);

@@ -1,10 +1,186 @@
 #include "core/render/shaders.h"
 
+#include <array>
+
 namespace sp::render::shaders {
+namespace {
+
+// The per-view constants (FrameBlock in shaders.h, std140: every array element is a vec4 or mat4).
+const char* const kFrameBlock = R"glsl(
+#define MAX_LIGHTS 16
+#define MAX_SHADOWS 4
+layout(std140, binding = 0) uniform FrameBlock {
+    vec4 uCameraPosition;
+    vec4 uAmbient;
+    vec4 uBackground;
+    vec4 uToneParams;
+    ivec4 uCounts;
+    vec4 uLightRadiance[MAX_LIGHTS];
+    vec4 uLightPosition[MAX_LIGHTS];
+    vec4 uLightDirection[MAX_LIGHTS];
+    vec4 uLightCone[MAX_LIGHTS];
+    mat4 uShadowMatrix[MAX_SHADOWS];
+    vec4 uShadowParams[MAX_SHADOWS];
+    vec4 uBackgroundFinal;
+};
+)glsl";
+
+// Material inputs of one submesh and the surface they give a fragment: base colour, roughness and
+// metallic (texture x factor) and the shading normal.
+const char* const kMaterialChunk = R"glsl(
+in vec3 vWorldPosition;
+in float vDepth;
+in vec3 vNormal;
+in vec2 vUv;
+uniform vec4 uBaseColor;
+uniform float uRoughness;
+uniform float uMetallic;
+uniform float uAo;
+uniform vec3 uEmissive;
+uniform uint uObjectId;
+uniform uint uMaterialId;
+layout(binding = 0) uniform sampler2D uBaseColorTexture;
+layout(binding = 1) uniform sampler2D uRoughnessMetallicTexture;
+layout(binding = 2) uniform sampler2D uNormalTexture;
+
+void evaluateSurface(out vec3 n, out vec3 base, out float roughness, out float metallic) {
+    // Two-sided shading that does not trust the mesh's winding: the geometric normal is turned towards
+    // the camera and the shading normal follows it.
+    vec3 dpdx = dFdx(vWorldPosition), dpdy = dFdy(vWorldPosition);
+    vec3 geometric = cross(dpdx, dpdy);
+    vec3 toCamera = uCameraPosition.xyz - vWorldPosition;
+    if (dot(geometric, toCamera) < 0.0) geometric = -geometric;
+    n = normalize(vNormal);
+    if (dot(n, geometric) < 0.0) n = -n;
+#ifdef HAS_NORMAL_TEXTURE
+    {
+        // Cotangent frame (Schueler 2013) from screen derivatives (no tangent attribute needed).
+        vec2 duvdx = dFdx(vUv), duvdy = dFdy(vUv);
+        vec3 dp2perp = cross(dpdy, n), dp1perp = cross(n, dpdx);
+        vec3 t = dp2perp * duvdx.x + dp1perp * duvdy.x;
+        vec3 b = dp2perp * duvdx.y + dp1perp * duvdy.y;
+        // t and b are the surface gradients of u and v up to 1 / dot(n, dpdx x dpdy); keep that sign,
+        // which flips with the vertical projection flip and with the side the surface is seen from.
+        float scale = sign(dot(n, cross(dpdx, dpdy))) * inversesqrt(max(max(dot(t, t), dot(b, b)), 1e-20));
+        vec3 m = texture(uNormalTexture, vUv).xyz * 2.0 - 1.0;
+        // Green points up in the image, i.e. towards decreasing v with the top-left uv origin.
+        n = normalize(mat3(t * scale, -b * scale, n) * m);
+    }
+#endif
+    base = uBaseColor.rgb;
+#ifdef HAS_BASE_COLOR_TEXTURE
+    base *= texture(uBaseColorTexture, vUv).rgb;
+#endif
+    roughness = uRoughness;
+    metallic = uMetallic;
+#ifdef HAS_ROUGHNESS_METALLIC_TEXTURE
+    vec4 rm = texture(uRoughnessMetallicTexture, vUv);
+    roughness *= rm.g;
+    metallic *= rm.b;
+#endif
+}
+)glsl";
+
+// Karis 2013 ("Real shading in Unreal Engine 4"): GGX distribution, Smith-Schlick visibility with
+// k = (roughness + 1)^2 / 8, Schlick Fresnel with the spherical Gaussian exponent; the ambient sky term
+// uses Karis' analytic environment BRDF approximation.
+const char* const kShadingChunk = R"glsl(
+const float PI = 3.14159265358979;
+layout(binding = 7) uniform sampler2DArray uShadowMaps; // depths, compared in shadowFactor()
+
+float dGgx(float noh, float a) {
+    float a2 = a * a;
+    float d = noh * noh * (a2 - 1.0) + 1.0;
+    return a2 / (PI * d * d);
+}
+float g1Schlick(float nox, float k) { return nox / (nox * (1.0 - k) + k); }
+vec3 fSchlick(vec3 f0, float voh) {
+    float m = 1.0 - voh, m2 = m * m;
+    return f0 + (1.0 - f0) * (m2 * m2 * m);
+}
+vec3 envBrdfApprox(vec3 f0, float roughness, float nov) {
+    const vec4 c0 = vec4(-1.0, -0.0275, -0.572, 0.022);
+    const vec4 c1 = vec4(1.0, 0.0425, 1.04, -0.04);
+    vec4 r = roughness * c0 + c1;
+    float a004 = min(r.x * r.x, exp2(-9.28 * nov)) * r.x + r.y;
+    vec2 ab = vec2(-1.04, 1.04) * a004 + r.zw;
+    return f0 * ab.x + ab.y;
+}
+// Rounds to float16 so that diffuse_only = albedo * diffuse_illumination holds for the stored values
+// (only the intrinsic images need it; forward colour skips the conversions).
+vec3 toHalf(vec3 v) {
+#ifdef FORWARD
+    return v;
+#endif
+    return vec3(unpackHalf2x16(packHalf2x16(v.xy)), unpackHalf2x16(packHalf2x16(vec2(v.z, 0.0))).x);
+}
+
+// One bilinear percentage-closer tap after a normal offset of 1.5 texels: the four texels around the
+// point are fetched and compared directly (texelFetch needs no filtering or level-of-detail work, which
+// a software rasteriser pays for on every texture() call) and the comparisons blended bilinearly.
+float shadowFactor(const int layer, vec4 clipOfP, vec3 n, float texel) {
+    vec4 clip = clipOfP + uShadowMatrix[layer] * vec4(n * (1.5 * texel), 0.0);
+    vec3 s = clip.xyz / clip.w * 0.5 + 0.5;
+    if (any(lessThan(s, vec3(0.0))) || any(greaterThan(s, vec3(1.0)))) return 1.0;
+    int size = int(uShadowParams[layer].z);
+    vec2 t = s.xy * float(size) - 0.5;
+    vec2 cell = floor(t);
+    vec2 f = t - cell;
+    ivec2 c0 = clamp(ivec2(cell), ivec2(0), ivec2(size - 1));
+    ivec2 c1 = clamp(ivec2(cell) + 1, ivec2(0), ivec2(size - 1));
+    vec4 d = vec4(texelFetch(uShadowMaps, ivec3(c0.x, c0.y, layer), 0).r,
+                  texelFetch(uShadowMaps, ivec3(c1.x, c0.y, layer), 0).r,
+                  texelFetch(uShadowMaps, ivec3(c0.x, c1.y, layer), 0).r,
+                  texelFetch(uShadowMaps, ivec3(c1.x, c1.y, layer), 0).r);
+    vec4 lit = vec4(greaterThanEqual(d, vec4(s.z))); // lit where the point is not behind the map's depth
+    return mix(mix(lit.x, lit.y, f.x), mix(lit.z, lit.w, f.x), f.y);
+}
+
+struct Shaded {
+    vec3 hdr;                 // linear radiance towards the camera
+    vec3 diffuseIllumination; // of a white Lambertian surface, rounded to float16
+    vec3 diffuseOnly;         // base * (1 - metallic) * diffuseIllumination
+};
+
+struct Surface {
+    vec3 p, n, v, f0;
+    float nov, a, k;
+};
+
+// Adds one light of irradiance e (at normal incidence) from direction l: D * G * F / (4 nol nov),
+// times the irradiance e * nol.
+void accumulate(Surface s, vec3 l, vec3 e, float nol, inout vec3 irradiance, inout vec3 specular) {
+    irradiance += e * nol;
+    vec3 h = normalize(s.v + l);
+    float noh = max(dot(s.n, h), 0.0), voh = max(dot(s.v, h), 0.0);
+    specular += dGgx(noh, s.a) * g1Schlick(nol, s.k) * g1Schlick(s.nov, s.k) * fSchlick(s.f0, voh) / (4.0 * s.nov) * e;
+}
+)glsl";
+
+// Exposure, tone curve (ACES: Narkowicz's fit; Reinhard; linear clamp) and the sRGB OETF.
+const char* const kToneChunk = R"glsl(
+vec3 aces(vec3 x) {
+    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+}
+// The sRGB OETF; above the linear segment, 1.055 c^(1/2.4) - 0.055 is fitted with square roots (within
+// 0.25 of one 8-bit step), which cost a software rasteriser far less than pow().
+vec3 srgbEncode(vec3 c) {
+    c = clamp(c, 0.0, 1.0);
+    vec3 s1 = sqrt(c), s2 = sqrt(s1), s3 = sqrt(s2);
+    vec3 curve = 0.662002687 * s1 + 0.684122060 * s2 - 0.323583601 * s3 - 0.0225411470 * c;
+    return mix(c * 12.92, curve, step(vec3(0.0031308), c));
+}
+vec4 toneMapped(vec3 hdr) {
+    vec3 x = max(hdr, 0.0) * uToneParams.x;
+    int curve = int(uToneParams.y);
+    vec3 mapped = curve == 0 ? aces(x) : curve == 1 ? x / (1.0 + x) : clamp(x, 0.0, 1.0);
+    return vec4(srgbEncode(mapped), 1.0);
+}
+)glsl";
 
 // Positions are transformed with matrices composed in double precision on the CPU: uModelToCamera
 // gives camera-relative coordinates, so depth keeps float precision far from the world origin.
-const char* const kGeometryVertex = R"glsl(#version 450 core
+const char* const kSurfaceVertex = R"glsl(
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec2 aUv;
@@ -22,75 +198,207 @@ void main() {
     vNormal = uNormalMatrix * aNormal;
     vUv = aUv;
     gl_Position = uModelViewProjection * vec4(aPosition, 1.0);
+    SHADOW_CLIPS
 }
 )glsl";
 
-const char* const kGeometryFragment = R"glsl(#version 450 core
-in vec3 vWorldPosition;
-in float vDepth;
-in vec3 vNormal;
-in vec2 vUv;
-uniform vec3 uCameraPosition;
-uniform vec4 uBaseColor;
-uniform float uRoughness;
-uniform float uMetallic;
-uniform float uAo;
-uniform vec3 uEmissive;
-uniform uint uObjectId;
-uniform uint uMaterialId;
-uniform bool uHasBaseColorTexture;
-uniform bool uHasRoughnessMetallicTexture;
-uniform bool uHasNormalTexture;
-layout(binding = 0) uniform sampler2D uBaseColorTexture;
-layout(binding = 1) uniform sampler2D uRoughnessMetallicTexture;
-layout(binding = 2) uniform sampler2D uNormalTexture;
-layout(location = 0) out vec4 oPosition;
-layout(location = 1) out vec4 oNormal;
-layout(location = 2) out float oDepth;
-layout(location = 3) out vec4 oBaseColor;
-layout(location = 4) out vec4 oParams;
-layout(location = 5) out vec4 oEmissive;
-layout(location = 6) out uvec2 oIds;
+const char* const kSurfaceMain = R"glsl(
+void main() {
+    vec3 n, base;
+    float roughness, metallic;
+    evaluateSurface(n, base, roughness, metallic);
+#ifdef OUT_Position
+    oPosition = vec4(vWorldPosition, 1.0);
+#endif
+#ifdef OUT_Normal
+    oNormal = vec4(n, 0.0);
+#endif
+#ifdef OUT_Depth
+    oDepth = vDepth;
+#endif
+#ifdef OUT_BaseColor
+    oBaseColor = vec4(base, 1.0);
+#endif
+#ifdef OUT_Params
+    oParams = vec4(roughness, metallic, uAo, 0.0);
+#endif
+#ifdef OUT_Emissive
+    oEmissive = vec4(uEmissive, 0.0);
+#endif
+#ifdef OUT_Ids
+    oIds = uvec2(uObjectId, uMaterialId);
+#endif
+#ifdef FORWARD
+    Shaded s = shade(vWorldPosition, n, base, roughness, metallic, uAo, uEmissive);
+#ifdef OUT_Hdr
+    oHdr = vec4(s.hdr, 1.0);
+#endif
+#ifdef OUT_FinalColor
+    oFinalColor = toneMapped(s.hdr);
+#endif
+#endif
+}
+)glsl";
+
+// One triangle covering the viewport; no vertex buffer.
+const char* const kFullscreenVertex = R"glsl(#version 450 core
+void main() {
+    vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)glsl";
+
+const char* const kLightingMain = R"glsl(
+layout(binding = 0) uniform sampler2D gPosition;
+layout(binding = 1) uniform sampler2D gNormal;
+layout(binding = 3) uniform sampler2D gBaseColor;
+layout(binding = 4) uniform sampler2D gParams;
+layout(binding = 5) uniform sampler2D gEmissive;
 
 void main() {
-    // Two-sided shading that does not trust the mesh's winding: the geometric normal is turned towards
-    // the camera and the shading normal follows it.
-    vec3 dpdx = dFdx(vWorldPosition), dpdy = dFdy(vWorldPosition);
-    vec3 geometric = cross(dpdx, dpdy);
-    vec3 toCamera = uCameraPosition - vWorldPosition;
-    if (dot(geometric, toCamera) < 0.0) geometric = -geometric;
-    vec3 n = normalize(vNormal);
-    if (dot(n, geometric) < 0.0) n = -n;
-    if (uHasNormalTexture) {
-        // Cotangent frame (Schueler 2013) from screen derivatives (no tangent attribute needed).
-        vec2 duvdx = dFdx(vUv), duvdy = dFdy(vUv);
-        vec3 dp2perp = cross(dpdy, n), dp1perp = cross(n, dpdx);
-        vec3 t = dp2perp * duvdx.x + dp1perp * duvdy.x;
-        vec3 b = dp2perp * duvdx.y + dp1perp * duvdy.y;
-        // t and b are the surface gradients of u and v up to 1 / dot(n, dpdx x dpdy); keep that sign,
-        // which flips with the vertical projection flip and with the side the surface is seen from.
-        float scale = sign(dot(n, cross(dpdx, dpdy))) * inversesqrt(max(max(dot(t, t), dot(b, b)), 1e-20));
-        vec3 m = texture(uNormalTexture, vUv).xyz * 2.0 - 1.0;
-        // Green points up in the image, i.e. towards decreasing v with the top-left uv origin.
-        n = normalize(mat3(t * scale, -b * scale, n) * m);
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    vec4 position = texelFetch(gPosition, pixel, 0);
+    Shaded s;
+    if (position.w == 0.0) {
+        s.hdr = uBackground.xyz;
+        s.diffuseIllumination = vec3(0.0);
+        s.diffuseOnly = vec3(0.0);
+    } else {
+        vec4 params = texelFetch(gParams, pixel, 0);
+        s = shade(position.xyz, texelFetch(gNormal, pixel, 0).xyz, texelFetch(gBaseColor, pixel, 0).rgb,
+                  params.x, params.y, params.z, texelFetch(gEmissive, pixel, 0).rgb);
     }
-    vec3 base = uBaseColor.rgb;
-    if (uHasBaseColorTexture) base *= texture(uBaseColorTexture, vUv).rgb;
-    float roughness = uRoughness, metallic = uMetallic;
-    if (uHasRoughnessMetallicTexture) {
-        vec4 rm = texture(uRoughnessMetallicTexture, vUv);
-        roughness *= rm.g;
-        metallic *= rm.b;
-    }
-    oPosition = vec4(vWorldPosition, 1.0);
-    oNormal = vec4(n, 0.0);
-    oDepth = vDepth;
-    oBaseColor = vec4(base, 1.0);
-    oParams = vec4(roughness, metallic, uAo, 0.0);
-    oEmissive = vec4(uEmissive, 0.0);
-    oIds = uvec2(uObjectId, uMaterialId);
+#ifdef OUT_Hdr
+    oHdr = vec4(s.hdr, 1.0);
+#endif
+#ifdef OUT_DiffuseIllumination
+    oDiffuseIllumination = vec4(s.diffuseIllumination, 1.0);
+#endif
+#ifdef OUT_DiffuseOnly
+    oDiffuseOnly = vec4(s.diffuseOnly, 1.0);
+#endif
+#ifdef OUT_SpecularResidual
+    oSpecularResidual = vec4(s.hdr - s.diffuseOnly, 1.0);
+#endif
+#ifdef OUT_FinalColor
+    oFinalColor = position.w == 0.0 ? uBackgroundFinal : toneMapped(s.hdr);
+#endif
 }
 )glsl";
+
+// "#define OUT_<Target>" and "layout(location = k) out <type> o<Target>;" for each target in the mask,
+// at consecutive locations in Target order (the order Framebuffers attaches them in).
+std::string outputs(TargetMask targets) {
+    std::string text;
+    int location = 0;
+    for (std::size_t t = 0; t < kTargetCount; ++t) {
+        if ((targets & (TargetMask(1) << t)) == 0)
+            continue;
+        const auto target = static_cast<Target>(t);
+        const std::string name(targetName(target));
+        const char* type = target == Target::Ids ? "uvec2" : target == Target::Depth ? "float" : "vec4";
+        text += "#define OUT_" + name + "\nlayout(location = " + std::to_string(location++) + ") out " +
+                type + " o" + name + ";\n";
+    }
+    return text;
+}
+
+// The shadow-map layers a layout samples.
+std::vector<int> shadowLayers(const ShadingLayout& lights) {
+    std::vector<int> layers;
+    for (const LightSlot& light : lights.lights)
+        if (light.shadowLayer >= 0)
+            layers.push_back(light.shadowLayer);
+    return layers;
+}
+
+// "out vec4 vShadowClipK;" (or "in") for each layer a forward variant samples: only those are interpolated.
+std::string shadowClipDeclarations(bool forward, const ShadingLayout& lights, const char* direction) {
+    std::string text;
+    if (forward)
+        for (int layer : shadowLayers(lights))
+            text += std::string(direction) + " vec4 vShadowClip" + std::to_string(layer) + ";\n";
+    return text;
+}
+
+// shade(): the shading of one surface point by the layout's lights, unrolled with each light's type,
+// range and shadow layer fixed, and the sky term.
+std::string shadeFunction(const ShadingLayout& layout) {
+    std::string text = R"glsl(
+Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float ao, vec3 emissive) {
+    Surface s;
+    s.p = p;
+    s.n = n;
+    s.v = normalize(uCameraPosition.xyz - p);
+    s.nov = max(dot(n, s.v), 1e-4);
+    s.f0 = mix(vec3(0.04), base, metallic);
+    s.a = max(roughness * roughness, 0.002);
+    s.k = (roughness + 1.0) * (roughness + 1.0) / 8.0;
+    vec3 irradiance = vec3(0.0), specular = vec3(0.0);
+)glsl";
+    for (std::size_t i = 0; i < layout.lights.size(); ++i) {
+        const LightSlot& light = layout.lights[i];
+        const std::string at = "[" + std::to_string(i) + "]";
+        text += "    {\n";
+        if (light.type == LightType::Directional) {
+            text += "        vec3 l = -uLightDirection" + at + ".xyz;\n";
+            text += "        vec3 e = uLightRadiance" + at + ".xyz;\n";
+        } else {
+            text += "        vec3 d = uLightPosition" + at + ".xyz - p;\n";
+            text += "        float dist = length(d);\n";
+            text += "        vec3 l = d / max(dist, 1e-6);\n";
+            text += "        vec3 e = uLightRadiance" + at + ".xyz / max(dist * dist, 1e-4);\n";
+            if (light.ranged) { // windowed inverse square: (1 - (d / range)^4)^2
+                text += "        float r = dist / uLightPosition" + at + ".w;\n";
+                text += "        float w = clamp(1.0 - r * r * r * r, 0.0, 1.0);\n";
+                text += "        e *= w * w;\n";
+            }
+            if (light.type == LightType::Spot) {
+                text += "        vec2 cone = uLightCone" + at + ".xy;\n";
+                text += "        float t = clamp((dot(-l, uLightDirection" + at +
+                        ".xyz) - cone.y) / max(cone.x - cone.y, 1e-4), 0.0, 1.0);\n";
+                text += "        e *= t * t;\n";
+            }
+        }
+        text += "        float nol = dot(n, l);\n        if (nol > 0.0) {\n";
+        if (light.shadowLayer >= 0) {
+            const std::string layer = std::to_string(light.shadowLayer);
+            // A spot light's texel grows with the distance; a directional light's is fixed.
+            const std::string texel = "uShadowParams[" + layer + "].x" +
+                                      (light.type == LightType::Directional ? std::string() : " * dist");
+            // The forward vertex shader interpolates the point's light-clip position (exact: affine for a
+            // directional light, projective for a spot light); the lighting pass computes it.
+            text += "#ifdef FORWARD\n            e *= shadowFactor(" + layer + ", vShadowClip" + layer +
+                    ", n, " + texel + ");\n#else\n            e *= shadowFactor(" + layer +
+                    ", uShadowMatrix[" + layer + "] * vec4(p, 1.0), n, " + texel + ");\n#endif\n";
+        }
+        text += "            accumulate(s, l, e, nol, irradiance, specular);\n        }\n    }\n";
+    }
+    text += R"glsl(    Shaded result;
+    result.diffuseIllumination = toHalf(irradiance / PI + uAmbient.xyz * ao);
+    result.diffuseOnly = base * (1.0 - metallic) * result.diffuseIllumination;
+    result.hdr = result.diffuseOnly + specular + envBrdfApprox(s.f0, roughness, s.nov) * uAmbient.xyz * ao + emissive;
+    return result;
+}
+)glsl";
+    return text;
+}
+
+} // namespace
+
+std::string ShadingLayout::key() const {
+    std::string key;
+    for (const LightSlot& light : lights) {
+        if (!key.empty())
+            key += '.';
+        key += light.type == LightType::Directional ? 'D' : light.type == LightType::Point ? 'P' : 'S';
+        if (light.shadowLayer >= 0)
+            key += std::to_string(light.shadowLayer);
+        if (light.ranged)
+            key += 'r';
+    }
+    return key;
+}
 
 const char* const kShadowVertex = R"glsl(#version 450 core
 layout(location = 0) in vec3 aPosition;
@@ -102,161 +410,49 @@ const char* const kShadowFragment = R"glsl(#version 450 core
 void main() {}
 )glsl";
 
-// One triangle covering the viewport; no vertex buffer.
-const char* const kFullscreenVertex = R"glsl(#version 450 core
-void main() {
-    vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
-    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
-}
-)glsl";
-
-// Deferred shading, Karis 2013 ("Real shading in Unreal Engine 4"): GGX distribution, Smith-Schlick
-// visibility with k = (roughness + 1)^2 / 8, Schlick Fresnel with the spherical Gaussian exponent; the
-// ambient sky term uses Karis' analytic environment BRDF approximation.
-const char* const kLightingFragment = R"glsl(#version 450 core
-#define MAX_LIGHTS 16
-#define MAX_SHADOWS 4
-const float PI = 3.14159265358979;
-layout(binding = 0) uniform sampler2D gPosition;
-layout(binding = 1) uniform sampler2D gNormal;
-layout(binding = 3) uniform sampler2D gBaseColor;
-layout(binding = 4) uniform sampler2D gParams;
-layout(binding = 5) uniform sampler2D gEmissive;
-layout(binding = 7) uniform sampler2DArrayShadow uShadowMaps;
-uniform vec3 uCameraPosition;
-uniform vec3 uAmbient;
-uniform vec3 uBackground;
-uniform int uLightCount;
-uniform int uLightType[MAX_LIGHTS];         // 0 directional, 1 point, 2 spot
-uniform vec3 uLightRadiance[MAX_LIGHTS];    // colour * intensity
-uniform vec3 uLightPosition[MAX_LIGHTS];
-uniform vec3 uLightDirection[MAX_LIGHTS];   // unit, the direction light travels
-uniform float uLightRange[MAX_LIGHTS];      // 0 = unbounded
-uniform vec2 uLightCone[MAX_LIGHTS];        // cos(inner), cos(outer)
-uniform int uLightShadow[MAX_LIGHTS];       // shadow map layer or -1
-uniform mat4 uShadowMatrix[MAX_SHADOWS];    // world -> light clip
-uniform float uShadowTexel[MAX_SHADOWS];    // world size of a texel (per metre of distance if perspective)
-uniform bool uShadowPerspective[MAX_SHADOWS];
-layout(location = 0) out vec4 oHdr;
-layout(location = 1) out vec4 oDiffuseIllumination;
-layout(location = 2) out vec4 oDiffuseOnly;
-layout(location = 3) out vec4 oSpecularResidual;
-
-float dGgx(float noh, float a) {
-    float a2 = a * a;
-    float d = noh * noh * (a2 - 1.0) + 1.0;
-    return a2 / (PI * d * d);
-}
-float g1Schlick(float nox, float k) { return nox / (nox * (1.0 - k) + k); }
-vec3 fSchlick(vec3 f0, float voh) { return f0 + (1.0 - f0) * exp2((-5.55473 * voh - 6.98316) * voh); }
-vec3 envBrdfApprox(vec3 f0, float roughness, float nov) {
-    const vec4 c0 = vec4(-1.0, -0.0275, -0.572, 0.022);
-    const vec4 c1 = vec4(1.0, 0.0425, 1.04, -0.04);
-    vec4 r = roughness * c0 + c1;
-    float a004 = min(r.x * r.x, exp2(-9.28 * nov)) * r.x + r.y;
-    vec2 ab = vec2(-1.04, 1.04) * a004 + r.zw;
-    return f0 * ab.x + ab.y;
-}
-// Rounds to float16 so that diffuse_only = albedo * diffuse_illumination holds for the stored values.
-vec3 toHalf(vec3 v) {
-    return vec3(unpackHalf2x16(packHalf2x16(v.xy)), unpackHalf2x16(packHalf2x16(vec2(v.z, 0.0))).x);
+std::string surfaceVertex(bool forward, const ShadingLayout& lights) {
+    std::string text = "#version 450 core\n";
+    text += kFrameBlock;
+    text += "#define SHADOW_CLIPS";
+    if (forward)
+        for (int layer : shadowLayers(lights))
+            text += " vShadowClip" + std::to_string(layer) + " = uShadowMatrix[" + std::to_string(layer) +
+                    "] * vec4(vWorldPosition, 1.0);";
+    text += "\n" + shadowClipDeclarations(forward, lights, "out");
+    return text + kSurfaceVertex;
 }
 
-float shadowFactor(int layer, vec3 p, vec3 n, float distanceToLight) {
-    float texel = uShadowTexel[layer] * (uShadowPerspective[layer] ? distanceToLight : 1.0);
-    vec4 clip = uShadowMatrix[layer] * vec4(p + n * (1.5 * texel), 1.0);
-    vec3 s = clip.xyz / clip.w * 0.5 + 0.5;
-    if (any(lessThan(s, vec3(0.0))) || any(greaterThan(s, vec3(1.0)))) return 1.0;
-    vec2 step = 1.0 / vec2(textureSize(uShadowMaps, 0).xy);
-    float lit = 0.0;
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx)
-            lit += texture(uShadowMaps, vec4(s.xy + vec2(dx, dy) * step, float(layer), s.z));
-    return lit / 9.0;
-}
-
-void main() {
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
-    vec4 position = texelFetch(gPosition, pixel, 0);
-    if (position.w == 0.0) {
-        oHdr = vec4(uBackground, 1.0);
-        oDiffuseIllumination = vec4(0.0, 0.0, 0.0, 1.0);
-        oDiffuseOnly = vec4(0.0, 0.0, 0.0, 1.0);
-        oSpecularResidual = vec4(uBackground, 1.0);
-        return;
+std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialFeatures,
+                            const ShadingLayout& lights) {
+    std::string text = "#version 450 core\n";
+    // Forward shading is the costly part: depth-test before it, so hidden fragments are never shaded.
+    if (forward)
+        text += "#define FORWARD\nlayout(early_fragment_tests) in;\n";
+    if (materialFeatures & kBaseColorTexture)
+        text += "#define HAS_BASE_COLOR_TEXTURE\n";
+    if (materialFeatures & kRoughnessMetallicTexture)
+        text += "#define HAS_ROUGHNESS_METALLIC_TEXTURE\n";
+    if (materialFeatures & kNormalTexture)
+        text += "#define HAS_NORMAL_TEXTURE\n";
+    text += outputs(targets);
+    text += kFrameBlock;
+    text += shadowClipDeclarations(forward, lights, "in");
+    text += kMaterialChunk;
+    if (forward) {
+        text += kShadingChunk;
+        text += shadeFunction(lights);
+        text += kToneChunk;
     }
-    vec3 p = position.xyz;
-    vec3 n = texelFetch(gNormal, pixel, 0).xyz;
-    vec3 base = texelFetch(gBaseColor, pixel, 0).rgb;
-    vec4 params = texelFetch(gParams, pixel, 0);
-    float roughness = params.x, metallic = params.y, ao = params.z;
-    vec3 emissive = texelFetch(gEmissive, pixel, 0).rgb;
+    return text + kSurfaceMain;
+}
 
-    vec3 v = normalize(uCameraPosition - p);
-    float nov = max(dot(n, v), 1e-4);
-    vec3 f0 = mix(vec3(0.04), base, metallic);
-    float a = max(roughness * roughness, 0.002);
-    float k = (roughness + 1.0) * (roughness + 1.0) / 8.0;
+std::string fullscreenVertex() {
+    return kFullscreenVertex;
+}
 
-    vec3 irradiance = vec3(0.0);
-    vec3 specular = vec3(0.0);
-    for (int i = 0; i < uLightCount; ++i) {
-        vec3 l;
-        vec3 e = uLightRadiance[i];
-        float dist = 1.0;
-        if (uLightType[i] == 0) {
-            l = -uLightDirection[i];
-        } else {
-            vec3 d = uLightPosition[i] - p;
-            dist = length(d);
-            l = d / max(dist, 1e-6);
-            e /= max(dist * dist, 1e-4);
-            if (uLightRange[i] > 0.0) {
-                float w = clamp(1.0 - pow(dist / uLightRange[i], 4.0), 0.0, 1.0);
-                e *= w * w;
-            }
-            if (uLightType[i] == 2) {
-                float cd = dot(-l, uLightDirection[i]);
-                float t = clamp((cd - uLightCone[i].y) / max(uLightCone[i].x - uLightCone[i].y, 1e-4), 0.0, 1.0);
-                e *= t * t;
-            }
-        }
-        float nol = dot(n, l);
-        if (nol <= 0.0) continue;
-        if (uLightShadow[i] >= 0) e *= shadowFactor(uLightShadow[i], p, n, dist);
-        irradiance += e * nol;
-        vec3 h = normalize(v + l);
-        float noh = max(dot(n, h), 0.0), voh = max(dot(v, h), 0.0);
-        // D * G * F / (4 nol nov), times the irradiance e * nol.
-        specular += dGgx(noh, a) * g1Schlick(nol, k) * g1Schlick(nov, k) * fSchlick(f0, voh) / (4.0 * nov) * e;
-    }
-    vec3 diffuseIllumination = toHalf(irradiance / PI + uAmbient * ao);
-    vec3 diffuseOnly = base * (1.0 - metallic) * diffuseIllumination;
-    vec3 hdr = diffuseOnly + specular + envBrdfApprox(f0, roughness, nov) * uAmbient * ao + emissive;
-    oHdr = vec4(hdr, 1.0);
-    oDiffuseIllumination = vec4(diffuseIllumination, 1.0);
-    oDiffuseOnly = vec4(diffuseOnly, 1.0);
-    oSpecularResidual = vec4(hdr - diffuseOnly, 1.0);
+std::string lightingFragment(TargetMask targets, const ShadingLayout& lights) {
+    return "#version 450 core\n" + outputs(targets) + kFrameBlock + kShadingChunk + shadeFunction(lights) +
+           kToneChunk + kLightingMain;
 }
-)glsl";
-
-const char* const kTonemapFragment = R"glsl(#version 450 core
-layout(binding = 0) uniform sampler2D uHdr;
-uniform float uExposure;
-uniform int uToneMap;  // 0 ACES (Narkowicz fit), 1 Reinhard, 2 linear clamp
-layout(location = 0) out vec4 oColor;
-vec3 aces(vec3 x) {
-    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
-}
-vec3 srgbEncode(vec3 c) {
-    c = clamp(c, 0.0, 1.0);
-    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
-}
-void main() {
-    vec3 x = max(texelFetch(uHdr, ivec2(gl_FragCoord.xy), 0).rgb, 0.0) * uExposure;
-    vec3 mapped = uToneMap == 0 ? aces(x) : uToneMap == 1 ? x / (1.0 + x) : clamp(x, 0.0, 1.0);
-    oColor = vec4(srgbEncode(mapped), 1.0);
-}
-)glsl";
 
 } // namespace sp::render::shaders

@@ -1,22 +1,77 @@
 #pragma once
-// GLSL 4.50 sources of the render passes (raw string literals in shaders.cpp).
+// GLSL 4.50 sources of the render passes. The surface and lighting programs are composed per variant
+// from shared chunks (material evaluation, shading, tone curve), with one output per target the variant
+// writes, so that a pass never computes or stores what no requested modality needs.
+//
+// Variants are also specialised for the scene's lights (unrolled, one block per light with its type,
+// shadow layer and range fixed) and for the textures a material has. A GPU skips a branch that no pixel
+// takes; a software rasteriser (Mesa's llvmpipe) runs both sides of every branch under a mask, so a
+// loop over lights or an `if (hasTexture)` costs as if every light and texture were always there.
+
+#include <string>
+#include <vector>
+
+#include "core/render/light.h"
+#include "core/render/modality.h"
 
 namespace sp::render::shaders {
 
-inline constexpr int kMaxLights = 16;    // must match MAX_LIGHTS in the lighting shader
-inline constexpr int kMaxShadowMaps = 4; // must match MAX_SHADOWS in the lighting shader
+inline constexpr int kMaxLights = 16;    // must match MAX_LIGHTS in kFrameBlock
+inline constexpr int kMaxShadowMaps = 4; // must match MAX_SHADOWS in kFrameBlock
 
-// G-buffer attachments (location = index) written by the geometry pass.
-enum GBufferTarget { GPosition, GNormal, GDepth, GBaseColor, GParams, GEmissive, GIds, GBufferTargetCount };
-// Lighting pass outputs.
-enum LightingTarget { LHdr, LDiffuseIllumination, LDiffuseOnly, LSpecularResidual, LightingTargetCount };
+// Texture units the passes sample from.
+inline constexpr int kShadowMapUnit = 7;
+inline constexpr int kFrameBlockBinding = 0;
 
-extern const char* const kGeometryVertex;
-extern const char* const kGeometryFragment;
+// Per-frame constants of one view, shared by every program through one uniform buffer (std140).
+struct FrameBlock {
+    float cameraPosition[4];     // xyz
+    float ambient[4];            // xyz: uniform sky radiance
+    float background[4];         // xyz: hdr_color of background pixels
+    float toneParams[4];         // x = exposure, y = tone curve (0 ACES, 1 Reinhard, 2 linear)
+    int counts[4];               // x = light count (informative: the programs are specialised)
+    float lightRadiance[16][4];  // xyz = colour * intensity
+    float lightPosition[16][4];  // xyz, w = range (0 = unbounded)
+    float lightDirection[16][4]; // xyz unit direction light travels
+    float lightCone[16][4];      // x = cos(inner), y = cos(outer)
+    float shadowMatrix[4][16];   // world -> light clip, column-major
+    float shadowParams[4][4];    // x = world texel size (per metre of distance for a spot light), y = 1 /
+                                 // resolution, z = resolution
+    float backgroundFinal[4];    // rgba: final_color of background pixels (tone-mapped on the CPU side)
+};
+
+// One light of a shading variant.
+struct LightSlot {
+    LightType type = LightType::Directional;
+    int shadowLayer = -1; // layer of the shadow map array, -1 for none
+    bool ranged = false;  // point or spot light with a finite AttenuationRadius
+
+    bool operator==(const LightSlot&) const = default;
+};
+// The lights a shading variant is compiled for, in the scene's light order (FrameBlock's indices).
+struct ShadingLayout {
+    std::vector<LightSlot> lights;
+    // A short text naming the layout, for program caches ("D0.S1r.P").
+    std::string key() const;
+};
+
+// Textures a material samples; each one present is compiled in (see the header comment).
+enum MaterialFeature : unsigned {
+    kBaseColorTexture = 1,
+    kRoughnessMetallicTexture = 2,
+    kNormalTexture = 4,
+};
+
 extern const char* const kShadowVertex;
 extern const char* const kShadowFragment;
-extern const char* const kFullscreenVertex;
-extern const char* const kLightingFragment;
-extern const char* const kTonemapFragment;
+
+// The surface pass: rasterises every visible instance and writes `targets` (a mask of Target bits, in
+// Target order at locations 0, 1, ...); when `forward`, shades each fragment as well (Hdr, FinalColor).
+std::string surfaceVertex(bool forward, const ShadingLayout& lights);
+std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialFeatures,
+                            const ShadingLayout& lights);
+// The deferred lighting pass: a full-screen triangle reading the G-buffer and writing `targets`.
+std::string fullscreenVertex();
+std::string lightingFragment(TargetMask targets, const ShadingLayout& lights);
 
 } // namespace sp::render::shaders

@@ -43,6 +43,28 @@ Eigen::Matrix4d perspective(double halfAngle, double nearClip, double farClip) {
     return p;
 }
 
+// Everything the maps depend on, as numbers: comparing it is far cheaper than rendering the maps.
+std::vector<double> shadowSignature(const Scene& scene, int resolution) {
+    std::vector<double> signature{double(scene.uid()), double(resolution)};
+    // Handles are left out: a world re-adds its lights every frame, so only their values count.
+    scene.forEachLight([&](LightId, const Light& light) {
+        signature.insert(signature.end(),
+                         {double(light.type), light.castShadows ? 1.0 : 0.0, light.position.x(),
+                          light.position.y(), light.position.z(), light.direction.x(), light.direction.y(),
+                          light.direction.z(), light.outerConeDeg});
+    });
+    scene.forEachInstance([&](InstanceId, const Instance& instance) {
+        if (!instance.visible)
+            return; // invisible instances neither cast shadows nor widen the scene's bounds
+        signature.insert(signature.end(),
+                         {double(instance.mesh.index), double(instance.mesh.generation),
+                          double(scene.meshRevision(instance.mesh)), instance.castShadows ? 1.0 : 0.0});
+        const Eigen::Matrix4d& m = instance.transform.matrix();
+        signature.insert(signature.end(), m.data(), m.data() + 16);
+    });
+    return signature;
+}
+
 } // namespace
 
 ShadowMaps::~ShadowMaps() {
@@ -57,27 +79,34 @@ void ShadowMaps::ensure(int resolution) {
     glDeleteTextures(1, &texture_);
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture_);
     glTextureStorage3D(texture_, 1, GL_DEPTH_COMPONENT32F, resolution, resolution, shaders::kMaxShadowMaps);
-    glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    // Read with texelFetch and compared in the shader (see shadowFactor() in shaders.cpp).
+    glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTextureParameteri(texture_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(texture_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(texture_, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    glTextureParameteri(texture_, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    glTextureParameteri(texture_, GL_TEXTURE_COMPARE_MODE, GL_NONE);
     glCreateFramebuffers(1, &fbo_);
     glNamedFramebufferDrawBuffer(fbo_, GL_NONE);
     resolution_ = resolution;
 }
 
-std::vector<ShadowInfo> ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache& cache,
-                                           ShaderProgram& depthProgram) {
-    std::vector<ShadowInfo> infos;
+std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache& cache,
+                               ShaderProgram& depthProgram) {
+    std::vector<double> signature = shadowSignature(scene, resolution);
+    if (texture_ != 0 && signature == signature_)
+        return 0;
+    signature_ = std::move(signature);
+    std::vector<ShadowInfo>& infos = infos_;
+    infos.clear();
     Eigen::Vector3d centre;
     double radius = 0.0;
     scene.bounds(centre, radius);
     if (radius <= 0.0)
-        return infos;
+        return 0;
     int skipped = 0;
-    scene.forEachLight([&](LightId id, const Light& light) {
+    int ordinal = -1;
+    scene.forEachLight([&](LightId, const Light& light) {
+        ++ordinal;
         if (!light.castShadows || light.type == LightType::Point)
             return;
         if (infos.size() >= std::size_t(shaders::kMaxShadowMaps)) {
@@ -85,7 +114,7 @@ std::vector<ShadowInfo> ShadowMaps::render(const Scene& scene, int resolution, G
             return;
         }
         ShadowInfo info;
-        info.light = id;
+        info.lightOrdinal = ordinal;
         info.layer = static_cast<int>(infos.size());
         const Eigen::Vector3d forward = light.direction.normalized();
         Eigen::Matrix4d projection;
@@ -137,7 +166,7 @@ std::vector<ShadowInfo> ShadowMaps::render(const Scene& scene, int resolution, G
                " are rendered without shadows");
         warnedTooMany_ = true;
     }
-    return infos;
+    return infos.size();
 }
 
 } // namespace sp::render

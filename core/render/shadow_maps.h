@@ -14,7 +14,7 @@
 namespace sp::render {
 
 struct ShadowInfo {
-    LightId light;
+    int lightOrdinal = -1; // the light's position in the scene's light order
     int layer = -1;
     Eigen::Matrix4f worldToClip = Eigen::Matrix4f::Identity();
     float texel = 0.0f; // world size of a texel (per metre of distance when perspective)
@@ -28,10 +28,13 @@ class ShadowMaps {
     ShadowMaps(const ShadowMaps&) = delete;
     ShadowMaps& operator=(const ShadowMaps&) = delete;
 
-    // Renders a map for each of the first shaders::kMaxShadowMaps shadow-casting directional or spot
-    // lights (in handle order) and returns where each one is.
-    std::vector<ShadowInfo> render(const Scene& scene, int resolution, GpuSceneCache& cache,
-                                   ShaderProgram& depthProgram);
+    // Brings the maps up to date for `scene`: one for each of the first shaders::kMaxShadowMaps
+    // shadow-casting directional or spot lights (in handle order). Returns how many maps were rendered:
+    // 0 when nothing that shapes them (lights, visible instances and their meshes, the resolution)
+    // changed since the last call, so the views of one frame and still scenes share one render.
+    std::size_t render(const Scene& scene, int resolution, GpuSceneCache& cache, ShaderProgram& depthProgram);
+    // Where each map is, as of the last render().
+    const std::vector<ShadowInfo>& infos() const { return infos_; }
     unsigned texture() const { return texture_; }
 
   private:
@@ -40,6 +43,8 @@ class ShadowMaps {
     unsigned fbo_ = 0;
     int resolution_ = 0;
     bool warnedTooMany_ = false;
+    std::vector<ShadowInfo> infos_;
+    std::vector<double> signature_; // what the maps were rendered from
 };
 
 } // namespace sp::render

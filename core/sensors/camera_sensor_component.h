@@ -135,7 +135,8 @@ struct FRenderDeviceInfo {
     std::string Version;
 };
 
-/// How often each render pass ran in this world since its renderer started (all cameras together).
+/// How often each render pass ran in this world since its renderer started (all cameras together), and
+/// what the passes cost (see core/render/README.md, "Passes and timings").
 SPSTRUCT()
 struct FRenderStats {
     SP_GENERATED_BODY()
@@ -146,18 +147,42 @@ struct FRenderStats {
     /// Shadow maps rendered.
     SPPROPERTY()
     int64_t ShadowPasses = 0;
-    /// G-buffer passes.
+    /// Frames that reused the shadow maps unchanged (nothing that casts or lights moved).
+    SPPROPERTY()
+    int64_t ShadowReuses = 0;
+    /// Surface passes (geometry rasterisation, forward or G-buffer).
     SPPROPERTY()
     int64_t GBufferPasses = 0;
-    /// Lighting passes.
+    /// Surface passes that shaded and tone-mapped in one pass (colour, depth and ids only).
+    SPPROPERTY()
+    int64_t ForwardPasses = 0;
+    /// Frames that shaded (forward or with a deferred lighting pass).
     SPPROPERTY()
     int64_t LightingPasses = 0;
-    /// Tone-mapping passes.
+    /// Frames that tone-mapped (fused into the pass that shaded).
     SPPROPERTY()
     int64_t TonemapPasses = 0;
     /// Images read back (one per modality per frame).
     SPPROPERTY()
     int64_t Readbacks = 0;
+    /// Instances drawn by surface passes.
+    SPPROPERTY()
+    int64_t DrawnInstances = 0;
+    /// Instances outside a camera's view, skipped.
+    SPPROPERTY()
+    int64_t CulledInstances = 0;
+    /// Milliseconds in shadow passes, by GL timer queries (the device's own clock).
+    SPPROPERTY()
+    double ShadowMs = 0.0;
+    /// Milliseconds in surface passes, by GL timer queries.
+    SPPROPERTY()
+    double SurfaceMs = 0.0;
+    /// Milliseconds in deferred lighting passes, by GL timer queries.
+    SPPROPERTY()
+    double LightingMs = 0.0;
+    /// Milliseconds the CPU spent reading images back (waiting for the frame included).
+    SPPROPERTY()
+    double ReadbackMs = 0.0;
 };
 
 /// A camera that renders the modalities in Modalities at the end of every frame.
@@ -243,7 +268,7 @@ class UCameraSensorComponent : public USceneComponent {
     SPFUNCTION()
     FRenderDeviceInfo get_render_device_info();
 
-    /// Returns how often each render pass ran in this camera's world.
+    /// Returns how often each render pass ran in this camera's world, and its timings.
     SPFUNCTION()
     FRenderStats GetRenderStats() const;
 

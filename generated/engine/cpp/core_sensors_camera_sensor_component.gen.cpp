@@ -387,7 +387,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         using Self = FRenderStats;
         sp::reflect::TypeInfo t;
         t.name = "FRenderStats";
-        t.doc = "How often each render pass ran in this world since its renderer started (all cameras together).";
+        t.doc = "How often each render pass ran in this world since its renderer started (all cameras together), and\nwhat the passes cost (see core/render/README.md, \"Passes and timings\").";
         t.kind = sp::reflect::TypeInfo::Kind::Struct;
         t.parent = nullptr;
         t.isAbstract = false;
@@ -420,9 +420,23 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             },
         });
         t.properties.push_back({
+            "ShadowReuses",
+            "int",
+            "Frames that reused the shadow maps unchanged (nothing that casts or lights moved).",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ShadowReuses);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->ShadowReuses = sp::reflect::decode<int64_t>(value, "FRenderStats.ShadowReuses");
+                sp::reflect::notifyPropertyChanged(object, "ShadowReuses");
+            },
+        });
+        t.properties.push_back({
             "GBufferPasses",
             "int",
-            "G-buffer passes.",
+            "Surface passes (geometry rasterisation, forward or G-buffer).",
             false,
             [](const void* self) -> sp::reflect::Value {
                 return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->GBufferPasses);
@@ -434,9 +448,23 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             },
         });
         t.properties.push_back({
+            "ForwardPasses",
+            "int",
+            "Surface passes that shaded and tone-mapped in one pass (colour, depth and ids only).",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ForwardPasses);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->ForwardPasses = sp::reflect::decode<int64_t>(value, "FRenderStats.ForwardPasses");
+                sp::reflect::notifyPropertyChanged(object, "ForwardPasses");
+            },
+        });
+        t.properties.push_back({
             "LightingPasses",
             "int",
-            "Lighting passes.",
+            "Frames that shaded (forward or with a deferred lighting pass).",
             false,
             [](const void* self) -> sp::reflect::Value {
                 return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->LightingPasses);
@@ -450,7 +478,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         t.properties.push_back({
             "TonemapPasses",
             "int",
-            "Tone-mapping passes.",
+            "Frames that tone-mapped (fused into the pass that shaded).",
             false,
             [](const void* self) -> sp::reflect::Value {
                 return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->TonemapPasses);
@@ -473,6 +501,90 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
                 auto* object = sp::reflect::selfCast<Self>(self);
                 object->Readbacks = sp::reflect::decode<int64_t>(value, "FRenderStats.Readbacks");
                 sp::reflect::notifyPropertyChanged(object, "Readbacks");
+            },
+        });
+        t.properties.push_back({
+            "DrawnInstances",
+            "int",
+            "Instances drawn by surface passes.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->DrawnInstances);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->DrawnInstances = sp::reflect::decode<int64_t>(value, "FRenderStats.DrawnInstances");
+                sp::reflect::notifyPropertyChanged(object, "DrawnInstances");
+            },
+        });
+        t.properties.push_back({
+            "CulledInstances",
+            "int",
+            "Instances outside a camera's view, skipped.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->CulledInstances);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->CulledInstances = sp::reflect::decode<int64_t>(value, "FRenderStats.CulledInstances");
+                sp::reflect::notifyPropertyChanged(object, "CulledInstances");
+            },
+        });
+        t.properties.push_back({
+            "ShadowMs",
+            "float",
+            "Milliseconds in shadow passes, by GL timer queries (the device's own clock).",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ShadowMs);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->ShadowMs = sp::reflect::decode<double>(value, "FRenderStats.ShadowMs");
+                sp::reflect::notifyPropertyChanged(object, "ShadowMs");
+            },
+        });
+        t.properties.push_back({
+            "SurfaceMs",
+            "float",
+            "Milliseconds in surface passes, by GL timer queries.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SurfaceMs);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->SurfaceMs = sp::reflect::decode<double>(value, "FRenderStats.SurfaceMs");
+                sp::reflect::notifyPropertyChanged(object, "SurfaceMs");
+            },
+        });
+        t.properties.push_back({
+            "LightingMs",
+            "float",
+            "Milliseconds in deferred lighting passes, by GL timer queries.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->LightingMs);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->LightingMs = sp::reflect::decode<double>(value, "FRenderStats.LightingMs");
+                sp::reflect::notifyPropertyChanged(object, "LightingMs");
+            },
+        });
+        t.properties.push_back({
+            "ReadbackMs",
+            "float",
+            "Milliseconds the CPU spent reading images back (waiting for the frame included).",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ReadbackMs);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->ReadbackMs = sp::reflect::decode<double>(value, "FRenderStats.ReadbackMs");
+                sp::reflect::notifyPropertyChanged(object, "ReadbackMs");
             },
         });
         return t;
@@ -797,7 +909,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.functions.push_back({
             "GetRenderStats",
-            "Returns how often each render pass ran in this camera's world.",
+            "Returns how often each render pass ran in this camera's world, and its timings.",
             "FRenderStats",
             {
             },

@@ -1052,7 +1052,7 @@ const Self* object = self.get<Self>(kContext);
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FRenderStats>::out(result);
             },
-            "Returns how often each render pass ran in this camera's world.");
+            "Returns how often each render pass ran in this camera's world, and its timings.");
     }
     {
         using Self = ULightComponent;

@@ -240,15 +240,25 @@ class FRenderDeviceInfo:
 
 @dataclass
 class FRenderStats:
-    """How often each render pass ran in this world since its renderer started (all cameras together)."""
+    """How often each render pass ran in this world since its renderer started (all cameras together), and
+    what the passes cost (see core/render/README.md, "Passes and timings").
+    """
 
     __sp_class__: ClassVar[str]
     Frames: int = 0
     ShadowPasses: int = 0
+    ShadowReuses: int = 0
     GBufferPasses: int = 0
+    ForwardPasses: int = 0
     LightingPasses: int = 0
     TonemapPasses: int = 0
     Readbacks: int = 0
+    DrawnInstances: int = 0
+    CulledInstances: int = 0
+    ShadowMs: float = 0.0
+    SurfaceMs: float = 0.0
+    LightingMs: float = 0.0
+    ReadbackMs: float = 0.0
 
 
 @dataclass
@@ -1250,7 +1260,7 @@ class UCameraSensorComponent(USceneComponent):
         """Returns which EGL device renders this camera's world (starting the renderer if needed)."""
 
     def GetRenderStats(self) -> FRenderStats:
-        """Returns how often each render pass ran in this camera's world."""
+        """Returns how often each render pass ran in this camera's world, and its timings."""
 
 
 class ULightComponentAsync(USceneComponentAsync):

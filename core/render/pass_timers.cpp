@@ -1,0 +1,62 @@
+#include "core/render/pass_timers.h"
+
+#include <epoxy/gl.h>
+
+namespace sp::render {
+
+PassTimers::~PassTimers() {
+    for (const Pending& pending : pending_)
+        free_.push_back(pending.query);
+    if (!free_.empty())
+        glDeleteQueries(GLsizei(free_.size()), free_.data());
+}
+
+void PassTimers::begin(Pass pass) {
+    GLuint query = 0;
+    if (free_.empty()) {
+        glGenQueries(1, &query);
+    } else {
+        query = free_.back();
+        free_.pop_back();
+    }
+    glBeginQuery(GL_TIME_ELAPSED, query);
+    pending_.push_back({query, pass});
+    open_ = true;
+    openPass_ = pass;
+    start_ = std::chrono::steady_clock::now();
+}
+
+void PassTimers::end() {
+    if (!open_)
+        return;
+    glEndQuery(GL_TIME_ELAPSED);
+    totals_[static_cast<std::size_t>(openPass_)].cpuMs +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+    open_ = false;
+}
+
+void PassTimers::collect() {
+    // Results arrive in submission order, so stop at the first that is not ready.
+    std::size_t done = 0;
+    for (; done < pending_.size(); ++done) {
+        if (open_ && done + 1 == pending_.size())
+            break;
+        GLint available = 0;
+        glGetQueryObjectiv(pending_[done].query, GL_QUERY_RESULT_AVAILABLE, &available);
+        if (!available)
+            break;
+        GLuint64 nanoseconds = 0;
+        glGetQueryObjectui64v(pending_[done].query, GL_QUERY_RESULT, &nanoseconds);
+        PassTime& total = totals_[static_cast<std::size_t>(pending_[done].pass)];
+        total.gpuMs += double(nanoseconds) * 1e-6;
+        ++total.samples;
+        free_.push_back(pending_[done].query);
+    }
+    pending_.erase(pending_.begin(), pending_.begin() + std::ptrdiff_t(done));
+}
+
+void PassTimers::reset() {
+    totals_ = {};
+}
+
+} // namespace sp::render

@@ -1,0 +1,51 @@
+#pragma once
+// Per-pass timings of the renderer: GL timer queries (GL_TIME_ELAPSED) around each pass, collected
+// without stalling once the driver has the result (a frame or more later), plus the CPU time spent
+// issuing the pass. On a GPU the query is the pass's execution time; on Mesa's llvmpipe it is the time
+// the rasteriser threads spent on it. Needs a current context.
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+namespace sp::render {
+
+enum class Pass : std::uint8_t { Shadow, Surface, Lighting, Readback };
+inline constexpr std::size_t kPassCount = 4;
+
+struct PassTime {
+    double gpuMs = 0.0;        // sum of timer-query results collected so far
+    double cpuMs = 0.0;        // sum of the time spent issuing the pass (readback: waiting and copying)
+    std::uint64_t samples = 0; // timer-query results collected
+};
+
+class PassTimers {
+  public:
+    PassTimers() = default;
+    ~PassTimers();
+    PassTimers(const PassTimers&) = delete;
+    PassTimers& operator=(const PassTimers&) = delete;
+
+    // Brackets one pass; passes must not overlap.
+    void begin(Pass pass);
+    void end();
+    // Adds the results of finished queries to the totals (non-blocking).
+    void collect();
+    const std::array<PassTime, kPassCount>& totals() const { return totals_; }
+    void reset();
+
+  private:
+    struct Pending {
+        unsigned query;
+        Pass pass;
+    };
+    std::vector<unsigned> free_;
+    std::vector<Pending> pending_;
+    std::array<PassTime, kPassCount> totals_{};
+    bool open_ = false;
+    Pass openPass_ = Pass::Shadow;
+    std::chrono::steady_clock::time_point start_;
+};
+
+} // namespace sp::render

@@ -1,0 +1,135 @@
+// The throughput paths of the renderer: forward and deferred colour agree, shadow maps are reused while
+// nothing that shapes them changes (and shared by the views of a frame), instances outside the view
+// are culled without changing the image, and latency 0 reads straight from the framebuffers.
+
+#include <algorithm>
+#include <cstdlib>
+
+#include "core/render/image_buffer.h"
+#include "gl_fixture.h"
+#include "test_scenes.h"
+
+namespace sp::render::test {
+namespace {
+
+class RenderPathsGlTest : public GlTest {};
+
+// Largest and mean per-channel difference of two uint8 images.
+std::pair<int, double> difference(const ImageBuffer& a, const ImageBuffer& b) {
+    const auto x = a.as<std::uint8_t>(), y = b.as<std::uint8_t>();
+    int largest = 0;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        const int d = std::abs(int(x[i]) - int(y[i]));
+        largest = std::max(largest, d);
+        sum += d;
+    }
+    return {largest, sum / double(x.size())};
+}
+
+TEST_F(RenderPathsGlTest, ForwardAndDeferredColourAgree) {
+    Scene scene;
+    buildShapesScene(scene);
+    Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 96, 64, 60.0);
+    const PassSet forward = ModalitySet{Modality::FinalColor, Modality::Depth}.requiredPasses(true);
+    const PassSet deferred = ModalitySet{Modality::FinalColor, Modality::Normal}.requiredPasses(true);
+    ASSERT_TRUE(forward.forward);
+    ASSERT_FALSE(deferred.forward);
+
+    renderer().resetStats();
+    RenderTarget forwardTarget(renderer(), {Modality::FinalColor, Modality::HdrColor, Modality::Depth}, 0);
+    RenderTarget deferredTarget(renderer(), {Modality::FinalColor, Modality::HdrColor, Modality::Normal}, 0);
+    Frame a, b;
+    forwardTarget.render(scene, camera, a);
+    deferredTarget.render(scene, camera, b);
+    EXPECT_EQ(renderer().stats().forwardPasses, 1u);
+    EXPECT_EQ(renderer().stats().gbufferPasses, 2u);
+
+    // The same golden thresholds as render_golden_gl_test.cpp: the G-buffer rounds inputs to float16.
+    const auto [largest, mean] = difference(a.get(Modality::FinalColor), b.get(Modality::FinalColor));
+    EXPECT_LE(largest, 48);
+    EXPECT_LE(mean, 0.6);
+    // HDR: float16 both ways; compare relative to the value.
+    const ImageBuffer& ha = a.get(Modality::HdrColor);
+    const ImageBuffer& hb = b.get(Modality::HdrColor);
+    int far = 0;
+    for (int y = 0; y < ha.height; ++y)
+        for (int x = 0; x < ha.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const float u = ha.at(x, y, c), v = hb.at(x, y, c);
+                far += std::abs(u - v) > 0.02f * (std::abs(u) + std::abs(v)) + 1e-3f;
+            }
+    EXPECT_LE(far, ha.width * ha.height * 3 / 100) << "more than 1% of HDR values differ by more than 2%";
+}
+
+TEST_F(RenderPathsGlTest, ShadowMapsAreReusedUntilSomethingMoves) {
+    Scene scene;
+    buildShapesScene(scene);
+    Camera left = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 48, 32, 60.0);
+    Camera right = cameraLookingAt({3.2, -2.1, 2.2}, {0, 0.3, 0.3}, 48, 32, 60.0);
+    RenderTarget a(renderer(), {Modality::FinalColor}, 0), b(renderer(), {Modality::FinalColor}, 0);
+    Frame frame;
+    a.render(scene, left, frame); // whatever earlier tests left in the shadow maps is replaced here
+    renderer().resetStats();
+
+    b.render(scene, right, frame); // a second view of the same frame
+    EXPECT_EQ(renderer().stats().shadowPasses, 0u);
+    EXPECT_EQ(renderer().stats().shadowReuses, 1u);
+
+    Frame before;
+    a.render(scene, left, before);
+    InstanceId moved{};
+    scene.forEachInstance([&](InstanceId id, const Instance&) { moved = id; });
+    Eigen::Affine3d transform = scene.instance(moved).transform;
+    transform.translation().x() += 0.25;
+    scene.setTransform(moved, transform);
+    a.render(scene, left, frame);
+    EXPECT_GE(renderer().stats().shadowPasses, 1u); // an instance moved: the maps are rendered again
+
+    renderer().resetStats();
+    left.params.shadowResolution = 256;
+    a.render(scene, left, frame);
+    EXPECT_GE(renderer().stats().shadowPasses, 1u); // a new resolution too
+}
+
+TEST_F(RenderPathsGlTest, CulledInstancesDoNotChangeTheImage) {
+    Scene scene;
+    buildShapesScene(scene);
+    Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 64, 48, 60.0);
+    camera.params.shadows = false; // a box behind the camera would otherwise shadow the scene
+    RenderTarget target(renderer(), {Modality::FinalColor, Modality::ObjectIds}, 0);
+    Frame before, after;
+    target.render(scene, camera, before);
+    const MaterialId grey = scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f, 0.0f));
+    Instance behind{scene.addMesh(primitives::box()), {grey}, {4242}};
+    behind.transform.translation() = Eigen::Vector3d(8.0, -6.0, 5.0); // behind the camera
+    scene.addInstance(behind);
+    renderer().resetStats();
+    target.render(scene, camera, after);
+    EXPECT_EQ(renderer().stats().culledInstances, 1u);
+    EXPECT_EQ(difference(before.get(Modality::FinalColor), after.get(Modality::FinalColor)).first, 0);
+    const auto ids = after.get(Modality::ObjectIds).as<std::uint32_t>();
+    EXPECT_EQ(std::count(ids.begin(), ids.end(), 4242u), 0);
+}
+
+TEST_F(RenderPathsGlTest, LatencyZeroReadsAFrameOnceAndLatencyOneMatchesIt) {
+    Scene scene;
+    buildShapesScene(scene);
+    Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 40, 30, 60.0);
+    RenderTarget direct(renderer(), {Modality::FinalColor, Modality::Depth}, 0);
+    RenderTarget ring(renderer(), {Modality::FinalColor, Modality::Depth}, 1);
+    Frame a, b;
+    direct.submit(scene, camera);
+    ASSERT_TRUE(direct.read(a).has_value());
+    EXPECT_FALSE(direct.read(a).has_value()); // a frame is returned once
+    ring.submit(scene, camera);
+    EXPECT_FALSE(ring.read(b).has_value()); // priming
+    ring.submit(scene, camera);
+    ASSERT_TRUE(ring.read(b).has_value());
+    EXPECT_EQ(difference(a.get(Modality::FinalColor), b.get(Modality::FinalColor)).first, 0);
+    const auto da = a.get(Modality::Depth).as<float>(), db = b.get(Modality::Depth).as<float>();
+    EXPECT_TRUE(std::equal(da.begin(), da.end(), db.begin()));
+}
+
+} // namespace
+} // namespace sp::render::test
