@@ -41,6 +41,12 @@ reflect::ArrayValue arrayFromNumpy(const py::array& array, reflect::DType dtype,
     value.dtype = dtype;
     for (py::ssize_t i = 0; i < contiguous.ndim(); ++i)
         value.shape.push_back(contiguous.shape(i));
+    // C++ sizes the array from its shape alone: the shape's bytes (checked, never wrapped around) must be
+    // the buffer's.
+    const size_t bytes = reflect::checkedByteSize(dtype, value.shape, context);
+    SP_CHECK(bytes == size_t(contiguous.nbytes()), InvalidArgument, context, ": array of shape ",
+             std::string(py::str(contiguous.attr("shape"))), " holds ", contiguous.nbytes(), " bytes, not ",
+             bytes);
     value.data = contiguous.mutable_data();
     // The numpy array owns the bytes; release it under the GIL whenever the last C++ user lets go.
     auto* keepAlive = new py::object(std::move(contiguous));

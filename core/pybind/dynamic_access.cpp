@@ -69,9 +69,9 @@ void bindDynamicAccess(py::module_& m, const char* apiModule) {
             const reflect::TypeInfo& type = object.GetClass();
             const reflect::FunctionInfo* info = type.findFunction(function);
             SP_CHECK(info, NotFound, context, ": class '", type.name, "' has no function '", function, "'");
-            reflect::CallArgs callArgs;
-            for (auto [key, value] : args)
-                callArgs.emplace(key.cast<std::string>(), toValue(value, context));
+            // Converted as one dict, so that arguments nest as deep as over RPC, where `args` is one value.
+            Value converted = toValue(args, context);
+            reflect::CallArgs& callArgs = converted.as<Value::Dict>();
             Value result = info->invoke(&object, callArgs);
             bool hasOut = false;
             for (const auto& param : info->params)

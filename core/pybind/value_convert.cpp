@@ -11,7 +11,23 @@ namespace sp::pybind {
 
 using reflect::Value;
 
+namespace {
+Value toValueAt(py::handle object, std::string_view context, int depth);
+
+// Lists, tuples, dicts and dataclasses recurse: each level costs a C++ stack frame, and a Python list
+// nested 100,000 deep is a few lines of Python, so the depth is bounded (as over RPC: value_msgpack.cpp).
+void checkDepth(int depth, std::string_view context) {
+    SP_CHECK(depth < reflect::kMaxValueDepth, InvalidArgument, context,
+             ": a value has lists or dicts nested deeper than ", reflect::kMaxValueDepth, " levels");
+}
+} // namespace
+
 reflect::Value toValue(py::handle object, std::string_view context) {
+    return toValueAt(object, context, 0);
+}
+
+namespace {
+Value toValueAt(py::handle object, std::string_view context, int depth) {
     if (object.is_none())
         return Value();
     if (PyBool_Check(object.ptr()))
@@ -37,25 +53,28 @@ reflect::Value toValue(py::handle object, std::string_view context) {
                                             ? object.attr("__sp_asset__").cast<std::string>()
                                             : std::string()});
     if (py::hasattr(object, "__dataclass_fields__") && py::hasattr(object, "__sp_class__")) {
+        checkDepth(depth, context);
         static const py::object dataclassFields = py::module_::import("dataclasses").attr("fields");
         Value::Dict fields;
         for (auto field : dataclassFields(object)) { // excludes the ClassVar __sp_class__
             py::object name = field.attr("name");
-            fields.emplace(name.cast<std::string>(), toValue(object.attr(name), context));
+            fields.emplace(name.cast<std::string>(), toValueAt(object.attr(name), context, depth + 1));
         }
         return Value(std::move(fields));
     }
     if (PyList_Check(object.ptr()) || PyTuple_Check(object.ptr())) {
+        checkDepth(depth, context);
         Value::List items;
         for (auto item : object)
-            items.push_back(toValue(item, context));
+            items.push_back(toValueAt(item, context, depth + 1));
         return Value(std::move(items));
     }
     if (PyDict_Check(object.ptr())) {
+        checkDepth(depth, context);
         Value::Dict items;
         for (auto [key, item] : py::reinterpret_borrow<py::dict>(object)) {
             SP_CHECK(PyUnicode_Check(key.ptr()), InvalidArgument, context, ": dict keys must be str");
-            items.emplace(key.cast<std::string>(), toValue(item, context));
+            items.emplace(key.cast<std::string>(), toValueAt(item, context, depth + 1));
         }
         return Value(std::move(items));
     }
@@ -63,7 +82,6 @@ reflect::Value toValue(py::handle object, std::string_view context) {
              std::string(py::str(object.get_type().attr("__name__"))), "'");
 }
 
-namespace {
 std::string_view trim(std::string_view s) {
     while (!s.empty() && s.front() == ' ')
         s.remove_prefix(1);

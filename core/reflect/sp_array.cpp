@@ -40,8 +40,7 @@ void SpArrayBase::checkShape(std::initializer_list<int64_t> expected, std::strin
 }
 
 ArrayValue allocateArray(DType dtype, const std::vector<int64_t>& shape) {
-    for (int64_t extent : shape)
-        SP_CHECK(extent >= 0, InvalidArgument, "allocateArray(): negative extent ", extent);
+    checkedByteSize(dtype, shape, "allocateArray()"); // before any allocator sizes storage from the shape
     if (gAllocator)
         return gAllocator(dtype, shape, gAllocatorContext);
     ArrayValue value;

@@ -125,7 +125,10 @@ template <typename T> class SpArray : public SpArrayBase {
                          "' has more than one -1 in its shape");
                 wildcard = int(i);
             } else {
-                known *= shape[i];
+                // Checked: a product that wraps around could equal `count` by accident.
+                SP_CHECK(shape[i] >= 0 && !__builtin_mul_overflow(known, shape[i], &known), InvalidArgument,
+                         "SpArray::setDataSource(): array '", name_, "' has an invalid extent ", shape[i],
+                         " in its shape (negative, or too large for ", count, " elements)");
             }
         }
         if (wildcard >= 0) {

@@ -46,11 +46,43 @@ DType dtypeFromName(std::string_view name) {
     SP_THROW(InvalidArgument, "dtypeFromName(): unsupported dtype '", name, "'");
 }
 
-int64_t ArrayValue::elementCount() const {
+namespace {
+std::string shapeText(const std::vector<int64_t>& shape) {
+    std::string text = "(";
+    for (size_t i = 0; i < shape.size(); ++i)
+        text += (i ? ", " : "") + std::to_string(shape[i]);
+    return text + (shape.size() == 1 ? ",)" : ")");
+}
+} // namespace
+
+int64_t checkedElementCount(const std::vector<int64_t>& shape, std::string_view context) {
+    for (int64_t extent : shape)
+        SP_CHECK(extent >= 0, InvalidArgument, context, ": array shape ", shapeText(shape),
+                 " has a negative extent ", extent);
+    // A zero extent makes the array empty whatever the others are (as in numpy).
+    if (std::find(shape.begin(), shape.end(), int64_t(0)) != shape.end())
+        return 0;
     int64_t count = 1;
     for (int64_t extent : shape)
-        count *= extent;
+        SP_CHECK(!__builtin_mul_overflow(count, extent, &count), InvalidArgument, context, ": array shape ",
+                 shapeText(shape), " has more elements than fit in 64 bits");
     return count;
+}
+
+size_t checkedByteSize(DType dtype, const std::vector<int64_t>& shape, std::string_view context) {
+    int64_t bytes = 0;
+    SP_CHECK(!__builtin_mul_overflow(checkedElementCount(shape, context), int64_t(dtypeSize(dtype)), &bytes),
+             InvalidArgument, context, ": array shape ", shapeText(shape), " of ", dtypeName(dtype),
+             " holds more bytes than fit in 64 bits");
+    return size_t(bytes);
+}
+
+int64_t ArrayValue::elementCount() const {
+    return checkedElementCount(shape, "ArrayValue::elementCount()");
+}
+
+size_t ArrayValue::byteSize() const {
+    return checkedByteSize(dtype, shape, "ArrayValue::byteSize()");
 }
 
 std::string_view Value::kindName() const {

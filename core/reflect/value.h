@@ -52,6 +52,17 @@ std::string_view dtypeName(DType dtype);
 size_t dtypeSize(DType dtype);
 DType dtypeFromName(std::string_view name); // throws InvalidArgument for an unknown name
 
+// The number of elements, and of bytes, of an array of this shape. Throws InvalidArgument naming `context`
+// for a negative extent or a size past INT64_MAX: a shape sent by a client, such as
+// (1537228672809129302, 3), would otherwise wrap around to a small product and pass any size check.
+int64_t checkedElementCount(const std::vector<int64_t>& shape, std::string_view context);
+size_t checkedByteSize(DType dtype, const std::vector<int64_t>& shape, std::string_view context);
+
+// How deeply lists and dicts may nest in a Value built from outside (a Python object, a msgpack message).
+// Converting them recurses, so an unbounded depth lets a 20 KB message overflow the stack; no engine type
+// comes near this.
+inline constexpr int kMaxValueDepth = 64;
+
 // A dense, C-ordered n-dimensional array that shares ownership of its bytes.
 struct ArrayValue {
     DType dtype = DType::Float64;
@@ -59,8 +70,9 @@ struct ArrayValue {
     std::shared_ptr<void> owner; // keeps `data` alive
     void* data = nullptr;
 
+    // Both throw InvalidArgument for a shape whose size does not fit (see checkedElementCount).
     int64_t elementCount() const;
-    size_t byteSize() const { return size_t(elementCount()) * dtypeSize(dtype); }
+    size_t byteSize() const;
 
     // Equal when dtype, shape and bytes are equal.
     friend bool operator==(const ArrayValue& a, const ArrayValue& b);

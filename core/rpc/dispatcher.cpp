@@ -6,6 +6,7 @@
 #include "core/plugin/plugin_loader.h"
 #include "core/reflect/object_base.h"
 #include "core/reflect/type_info.h"
+#include "core/rpc/shared_memory.h"
 #include "core/spfunc/sp_func_call.h"
 #include "core/world/object_access.h"
 
@@ -75,12 +76,15 @@ void Dispatcher::handle(const char* data, size_t size, Session& session, msgpack
                         const ArrayToSharedMemory& toShm) {
     msgpack::object_handle handle;
     try {
-        handle = msgpack::unpack(data, size);
+        handle = unpackBounded(data, size);
     } catch (const std::exception& e) {
         // Garbage or a truncated message: say so; a client that never said hello is dropped.
+        std::string what = e.what();
+        if (dynamic_cast<const msgpack::size_overflow*>(&e))
+            what += ": a list, map, string or binary announces more than the message's " +
+                    std::to_string(size) + " bytes can hold";
         msgpack::packer<msgpack::sbuffer> out(&reply);
-        packError(out, nullptr, "InvalidArgumentError",
-                  std::string("request: malformed message (") + e.what() + ")");
+        packError(out, nullptr, "InvalidArgumentError", "request: malformed message (" + what + ")");
         session.closeAfterReply = !session.greeted;
         return;
     }
@@ -111,9 +115,23 @@ void Dispatcher::readReplyBuffers(const msgpack::object& request, Session& sessi
         }
 }
 
+void Dispatcher::endSession(Session& session) {
+    // A client that began a frame and went away (killed, or disconnected) would leave the engine inside the
+    // frame, and every other client refused ("expected idle") for good: its frame ends here, as a frame
+    // whose Python block raised does.
+    if (frameOwner_ == &session && engine_.GetFrameState() != world::Engine::FrameState::Idle)
+        engine_.abortFrame();
+    if (frameOwner_ == &session)
+        frameOwner_ = nullptr;
+}
+
 void Dispatcher::handleOne(const msgpack::object& request, Session& session, msgpack::sbuffer& reply,
-                           const ArrayToSharedMemory& toShm) {
+                           const ArrayToSharedMemory& toShm, bool inBatch) {
     const msgpack::object* id = field(request, "id");
+    // The id is echoed as it came; packing a container recurses, so only a scalar is (a client's ids are
+    // integers).
+    if (id && (id->type == msgpack::type::ARRAY || id->type == msgpack::type::MAP))
+        id = nullptr;
     // Built aside and appended whole: an error halfway through packing a result (a shared-memory segment
     // that cannot be made, say) becomes an error reply instead of a truncated one.
     msgpack::sbuffer built;
@@ -123,6 +141,8 @@ void Dispatcher::handleOne(const msgpack::object& request, Session& session, msg
         const std::string op = requireString(request, "op", "request");
         if (op == "batch") {
             SP_CHECK(session.greeted, InvalidState, "batch(): say hello first");
+            // Each level of batch is a C++ stack frame: nested batches could overflow the stack.
+            SP_CHECK(!inBatch, InvalidArgument, "batch(): a batch may not contain a batch");
             const msgpack::object& calls = require(request, "calls", "batch");
             SP_CHECK(calls.type == msgpack::type::ARRAY, InvalidArgument, "batch(): 'calls' must be a list");
             out.pack_map(2);
@@ -131,16 +151,21 @@ void Dispatcher::handleOne(const msgpack::object& request, Session& session, msg
             out.pack(std::string("ok"));
             out.pack_array(calls.via.array.size);
             for (uint32_t i = 0; i < calls.via.array.size; ++i)
-                handleOne(calls.via.array.ptr[i], session, built, toShm);
+                handleOne(calls.via.array.ptr[i], session, built, toShm, true);
             reply.write(built.data(), built.size());
             return;
         }
         OpenedSegments* opened = OpenedSegmentsScope::current();
         const size_t openedBefore = opened ? opened->size() : 0;
+        const uint64_t faultsBefore = truncationFaults();
         Value result = execute(op, request, session);
         msgpack::sbuffer okBody;
         msgpack::packer<msgpack::sbuffer> okOut(&okBody);
         pack(okOut, result, toShm);
+        // A segment shrank while this request read or wrote it: the server survived (shared_memory.h), but
+        // what it read or wrote there is lost, so the request fails.
+        SP_CHECK(truncationFaults() == faultsBefore, InvalidArgument, givenContext(request, op + "()"),
+                 ": a shared-memory segment was truncated while the server used it; its contents are lost");
         result = Value(); // the request's values are gone now: what still maps a segment was kept
         std::vector<std::string> kept;
         for (size_t i = openedBefore; opened && i < opened->size(); ++i) {
@@ -234,6 +259,9 @@ Value Dispatcher::execute(const std::string& op, const msgpack::object& request,
             engine_.abortFrame();
         else if (action != "state")
             SP_THROW(InvalidArgument, "frame(): unknown action '", action, "'");
+        // The client that last moved a frame owns it until it ends (see endSession).
+        if (action != "state")
+            frameOwner_ = engine_.GetFrameState() == world::Engine::FrameState::Idle ? nullptr : &session;
         return Value(
             Value::Dict{{"state", Value(std::string(world::Engine::toString(engine_.GetFrameState())))},
                         {"frame_count", Value(engine_.GetFrameCount())}});

@@ -44,16 +44,19 @@ class Dispatcher {
     // input becomes an error reply (and, before a successful hello, closes the session).
     void handle(const char* data, size_t size, Session& session, msgpack::sbuffer& reply,
                 const ArrayToSharedMemory& toShm);
+    // The client of `session` is gone: a frame it left open is aborted, so that other clients can go on.
+    void endSession(Session& session);
 
   private:
     reflect::Value execute(const std::string& op, const msgpack::object& request, Session& session);
     static void readReplyBuffers(const msgpack::object& request, Session& session);
     void handleOne(const msgpack::object& request, Session& session, msgpack::sbuffer& reply,
-                   const ArrayToSharedMemory& toShm);
+                   const ArrayToSharedMemory& toShm, bool inBatch = false);
 
     world::Engine& engine_;
     std::string apiHash_;
     std::string token_;
+    const Session* frameOwner_ = nullptr; // the session that last moved the open frame
 };
 
 } // namespace sp::rpc

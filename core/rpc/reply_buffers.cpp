@@ -29,7 +29,9 @@ void ReplyBuffers::offer(const std::string& name, size_t size) {
             return; // not a segment this client can offer: its reply uses the server's own
         }
     }
-    if (it->second.segment->size() >= size)
+    // The segment's size now, by fstat: the client may have shrunk it since it was first offered, and
+    // writing past its end would be SIGBUS.
+    if (it->second.segment->holds(size))
         it->second.offered = true;
 }
 
@@ -41,6 +43,11 @@ std::shared_ptr<SharedMemorySegment> ReplyBuffers::take(size_t bytes) {
         if (buffer.offered && buffer.segment.use_count() == 1 && capacity >= bytes &&
             capacity <= 2 * std::max<size_t>(bytes, 1) && (!best || capacity < best->segment->size()))
             best = &buffer;
+    }
+    // Checked again just before the server writes into it (fstat, see offer()).
+    if (best && !best->segment->holds(bytes)) {
+        best->offered = false;
+        return take(bytes);
     }
     if (!best)
         return nullptr;

@@ -94,6 +94,7 @@ reflect::ArrayValue allocateInSegment(reflect::DType dtype, const std::vector<in
 Server::Server(world::Engine& engine, ServerOptions options, std::string apiHash)
     : options_(std::move(options)), dispatcher_(engine, std::move(apiHash), options_.token) {
     removeOrphanedSegments();
+    guardAgainstTruncation(); // a client shrinking a segment the server maps must not crash it
     if (options_.tcpPort >= 0) {
         SP_CHECK(!options_.token.empty(), InvalidArgument,
                  "spear-server: TCP needs a token (--token or SPEAR_TOKEN)");
@@ -179,6 +180,7 @@ void Server::accept() {
 }
 
 void Server::drop(Connection& connection) {
+    dispatcher_.endSession(connection.session);
     for (auto& segment : connection.replySegments)
         segment->unlink();
     connection.replySegments.clear();

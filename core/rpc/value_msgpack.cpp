@@ -70,16 +70,14 @@ void packArray(msgpack::packer<msgpack::sbuffer>& out, const reflect::ArrayValue
 }
 
 reflect::ArrayValue unpackArray(const msgpack::object& body, std::string_view context) {
-    msgpack::object_handle handle = msgpack::unpack(body.via.ext.data(), body.via.ext.size);
+    msgpack::object_handle handle = unpackBounded(body.via.ext.data(), body.via.ext.size);
     const msgpack::object& parts = handle.get();
     SP_CHECK(parts.type == msgpack::type::ARRAY && parts.via.array.size == 3, InvalidArgument, context,
              ": malformed array value");
     reflect::ArrayValue array;
     array.dtype = reflect::dtypeFromName(parts.via.array.ptr[0].as<std::string>());
     array.shape = parts.via.array.ptr[1].as<std::vector<int64_t>>();
-    for (int64_t extent : array.shape)
-        SP_CHECK(extent >= 0, InvalidArgument, context, ": negative array extent ", extent);
-    const size_t expected = array.byteSize();
+    const size_t expected = reflect::checkedByteSize(array.dtype, array.shape, context);
     const msgpack::object& payload = parts.via.array.ptr[2];
     if (payload.type == msgpack::type::BIN) {
         SP_CHECK(payload.via.bin.size == expected, InvalidArgument, context, ": array holds ",
@@ -102,7 +100,14 @@ reflect::ArrayValue unpackArray(const msgpack::object& body, std::string_view co
     }
     SP_CHECK(size == expected, InvalidArgument, context, ": shared-memory array holds ", size,
              " bytes, its shape needs ", expected);
-    auto segment = std::make_shared<SharedMemorySegment>(SharedMemorySegment::open(name, size));
+    // open() compares `size` with the segment's real size (fstat): the client's word is not enough, since
+    // touching a page past the end of a shrunk segment is a SIGBUS.
+    std::shared_ptr<SharedMemorySegment> segment;
+    try {
+        segment = std::make_shared<SharedMemorySegment>(SharedMemorySegment::open(name, size));
+    } catch (const InvalidArgument& e) {
+        SP_THROW(InvalidArgument, context, ": shared-memory array: ", e.what());
+    }
     if (OpenedSegments* opened = OpenedSegmentsScope::current())
         opened->push_back({name, segment, 0});
     array.data = segment->data();
@@ -152,7 +157,27 @@ void pack(msgpack::packer<msgpack::sbuffer>& out, const Value& value, const Arra
         value.storage());
 }
 
+msgpack::object_handle unpackBounded(const char* data, size_t size) {
+    const msgpack::unpack_limit limit(size, size / 2, size, size, size);
+    return msgpack::unpack(data, size, nullptr, nullptr, limit);
+}
+
+namespace {
+Value unpackAt(const msgpack::object& in, std::string_view context, int depth);
+
+// Lists and dicts recurse: each level costs a C++ stack frame, so the depth is bounded.
+void checkDepth(int depth, std::string_view context) {
+    SP_CHECK(depth < reflect::kMaxValueDepth, InvalidArgument, context,
+             ": a value has lists or dicts nested deeper than ", reflect::kMaxValueDepth, " levels");
+}
+} // namespace
+
 Value unpack(const msgpack::object& in, std::string_view context) {
+    return unpackAt(in, context, 0);
+}
+
+namespace {
+Value unpackAt(const msgpack::object& in, std::string_view context, int depth) {
     switch (in.type) {
     case msgpack::type::NIL:
         return Value();
@@ -170,19 +195,22 @@ Value unpack(const msgpack::object& in, std::string_view context) {
     case msgpack::type::STR:
         return Value(std::string(in.via.str.ptr, in.via.str.size));
     case msgpack::type::ARRAY: {
+        checkDepth(depth, context);
         Value::List items;
         items.reserve(in.via.array.size);
         for (uint32_t i = 0; i < in.via.array.size; ++i)
-            items.push_back(unpack(in.via.array.ptr[i], context));
+            items.push_back(unpackAt(in.via.array.ptr[i], context, depth + 1));
         return Value(std::move(items));
     }
     case msgpack::type::MAP: {
+        checkDepth(depth, context);
         Value::Dict items;
         for (uint32_t i = 0; i < in.via.map.size; ++i) {
             const auto& kv = in.via.map.ptr[i];
             SP_CHECK(kv.key.type == msgpack::type::STR, InvalidArgument, context,
                      ": map keys must be strings");
-            items.emplace(std::string(kv.key.via.str.ptr, kv.key.via.str.size), unpack(kv.val, context));
+            items.emplace(std::string(kv.key.via.str.ptr, kv.key.via.str.size),
+                          unpackAt(kv.val, context, depth + 1));
         }
         return Value(std::move(items));
     }
@@ -213,5 +241,6 @@ Value unpack(const msgpack::object& in, std::string_view context) {
         SP_THROW(InvalidArgument, context, ": unsupported msgpack value");
     }
 }
+} // namespace
 
 } // namespace sp::rpc

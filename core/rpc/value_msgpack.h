@@ -35,8 +35,15 @@ using ArrayToSharedMemory = std::function<SharedArray(const reflect::ArrayValue&
 
 void pack(msgpack::packer<msgpack::sbuffer>& out, const reflect::Value& value,
           const ArrayToSharedMemory& toShm);
-// Throws InvalidArgument (with `context`) for anything that is not a valid encoded value.
+// Throws InvalidArgument (with `context`) for anything that is not a valid encoded value, including lists
+// and dicts nested deeper than reflect::kMaxValueDepth.
 reflect::Value unpack(const msgpack::object& in, std::string_view context);
+
+// msgpack::unpack with every count bounded by the bytes at hand: each element of an array or map takes at
+// least one byte, so a 5-byte array32 header that announces 2^32 elements is refused instead of making
+// msgpack-c allocate 64 GiB of objects for them. (Its parser is iterative, so depth alone cannot overflow
+// the stack; the recursive conversions after it bound depth themselves.)
+msgpack::object_handle unpackBounded(const char* data, size_t size);
 
 class SharedMemorySegment;
 // The client-owned segments a request used, recorded while a scope is alive on this thread: those unpack()

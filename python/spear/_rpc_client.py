@@ -26,7 +26,7 @@ from spear import errors
 from spear._object import SpObject
 from spear._reply_buffers import ReplyBuffers
 from spear._rpc_types import convert, convert_result_tuple
-from spear._wire import OutgoingSegments, encode, pack_frame, unpack_body
+from spear._wire import OutgoingSegments, ValueTooDeep, encode, pack_frame, unpack_body
 from spear.futures import Future
 
 _ERRORS: dict[str, type[errors.SpearError]] = {
@@ -111,7 +111,7 @@ class RpcConnection:
         segments = OutgoingSegments(self._reply_buffers)
         reply: Any = None
         try:
-            message = {"id": next(self._ids), "op": op, **{k: encode(v, segments) for k, v in fields.items()}}
+            message = {"id": next(self._ids), "op": op, **_encode_fields(op, fields, segments)}
             reply = self._round_trip(pack_frame(self._offer_buffers(message)))
         finally:
             segments.release()
@@ -124,17 +124,24 @@ class RpcConnection:
             self.flush()
         segments = OutgoingSegments(self._reply_buffers)
         reply: Any = None
+        refused: dict[int, errors.SpearError] = {}  # calls refused before sending, by position
         try:
-            encoded = [{k: encode(v, segments) for k, v in call.items()} for call in calls]
+            encoded = []
+            for i, call in enumerate(calls):
+                try:
+                    encoded.append(_encode_fields(str(call.get("op", "")), call, segments))
+                except errors.InvalidArgumentError as error:
+                    refused[i] = error
+                    encoded.append({"op": "echo"})  # keeps the positions of the replies
             reply = self._round_trip(pack_frame(self._offer_buffers({"id": next(self._ids), "op": "batch",
                                                                       "calls": encoded})))
         finally:
             segments.release()
             self._settle_buffers(reply, batch=True)
         results = []
-        for item in self._result(reply):
+        for i, item in enumerate(self._result(reply)):
             try:
-                results.append(self._result(item))
+                results.append(refused[i] if i in refused else self._result(item))
             except errors.SpearError as error:
                 results.append(error)
         return results
@@ -232,6 +239,28 @@ class RpcConnection:
             self._socket.close()
         except OSError:
             pass
+
+
+def _encode_fields(op: str, fields: dict[str, Any], segments: OutgoingSegments) -> dict[str, Any]:
+    """A request's fields, encoded; a value nested too deeply is refused naming the function, as the
+    server and the in-process engine name it."""
+    try:
+        return {k: encode(v, segments) for k, v in fields.items()}
+    except ValueTooDeep as error:
+        raise errors.InvalidArgumentError(f"{_context(op, fields)}: {error}") from None
+
+
+def _context(op: str, fields: dict[str, Any]) -> str:
+    """What the server calls a request in its messages (Dispatcher::execute in core/rpc/dispatcher.cpp)."""
+    if fields.get("context"):
+        return str(fields["context"])
+    if op in ("call", "call_typed"):
+        return f"call_function('{fields.get('function')}')"
+    if op in ("get", "get_typed", "set"):
+        return f"{'set' if op == 'set' else 'get'}_property('{fields.get('property')}')"
+    if op == "sp_func":
+        return f"call_sp_func('{fields.get('name')}')"
+    return f"{op}()"
 
 
 class _HandleRef(SpObject):

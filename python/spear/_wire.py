@@ -26,6 +26,9 @@ from spear._reply_buffers import ReplyBuffers
 
 EXT_OBJECT, EXT_CLASS, EXT_ARRAY = 1, 2, 3
 SHARED_MEMORY_THRESHOLD = 64 * 1024
+# Lists and dicts nest at most this deep in a value (kMaxValueDepth in core/reflect/value.h): the server
+# refuses deeper ones, and refusing them here keeps Python's recursion limit out of it.
+MAX_VALUE_DEPTH = 64
 # MAP_POPULATE maps every page in one system call instead of one page fault per 4 KiB page as the copy
 # touches it: for a 1080p RGBA image that is most of the cost of a transfer.
 _MAP_FLAGS = mmap.MAP_SHARED | mmap.MAP_POPULATE
@@ -117,7 +120,11 @@ def _encode_array(array: NDArray[Any], segments: OutgoingSegments) -> msgpack.Ex
     return msgpack.ExtType(EXT_ARRAY, msgpack.packb([dtype, list(array.shape), payload], use_bin_type=True))
 
 
-def encode(value: Any, segments: OutgoingSegments) -> Any:
+class ValueTooDeep(ValueError):
+    """A value nests lists or dicts deeper than MAX_VALUE_DEPTH; the caller names the function."""
+
+
+def encode(value: Any, segments: OutgoingSegments, depth: int = 0) -> Any:
     """Python value -> msgpack-ready value."""
     if value is None or isinstance(value, (bool, str, float)):
         return value
@@ -136,12 +143,15 @@ def encode(value: Any, segments: OutgoingSegments) -> Any:
         return msgpack.ExtType(EXT_CLASS, body.encode())
     if isinstance(value, np.ndarray):
         return _encode_array(value, segments)
-    if dataclasses.is_dataclass(value) and hasattr(value, "__sp_class__"):
-        return {f.name: encode(getattr(value, f.name), segments) for f in dataclasses.fields(value)}
+    is_struct = dataclasses.is_dataclass(value) and hasattr(value, "__sp_class__")
+    if (is_struct or isinstance(value, (list, tuple, dict))) and depth >= MAX_VALUE_DEPTH:
+        raise ValueTooDeep(f"a value has lists or dicts nested deeper than {MAX_VALUE_DEPTH} levels")
+    if is_struct:
+        return {f.name: encode(getattr(value, f.name), segments, depth + 1) for f in dataclasses.fields(value)}
     if isinstance(value, (list, tuple)):
-        return [encode(item, segments) for item in value]
+        return [encode(item, segments, depth + 1) for item in value]
     if isinstance(value, dict):
-        return {str(key): encode(item, segments) for key, item in value.items()}
+        return {str(key): encode(item, segments, depth + 1) for key, item in value.items()}
     raise TypeError(f"cannot send a value of type '{type(value).__name__}'")
 
 

@@ -1,0 +1,65 @@
+#include <gtest/gtest.h>
+
+#include <cstdint>
+
+#include "core/base/error.h"
+#include "core/reflect/sp_array.h"
+
+using namespace sp::reflect;
+
+namespace {
+std::string thrown(const auto& call) {
+    try {
+        call();
+    } catch (const sp::InvalidArgument& e) {
+        return e.what();
+    }
+    return "(nothing thrown)";
+}
+} // namespace
+
+TEST(ArraySize, CountsAndBytes) {
+    EXPECT_EQ(checkedElementCount({2, 3}, "f()"), 6);
+    EXPECT_EQ(checkedElementCount({}, "f()"), 1);
+    EXPECT_EQ(checkedByteSize(DType::Float64, {2, 3}, "f()"), 48u);
+    // Empty whatever the other extents, as in numpy: no product is formed.
+    EXPECT_EQ(checkedByteSize(DType::Float64, {INT64_MAX, INT64_MAX, 0}, "f()"), 0u);
+}
+
+TEST(ArraySize, ProductsThatWouldWrapAroundAreRefused) {
+    // 1537228672809129302 * 3 * 4 bytes is 2^64 + 8: unchecked, this shape "needs" 8 bytes.
+    EXPECT_EQ(thrown([] {
+                  checkedByteSize(DType::Float32, {1537228672809129302, 3}, "echo()");
+              }),
+              "echo(): array shape (1537228672809129302, 3) of float32 holds more bytes than fit in 64 bits");
+    EXPECT_EQ(thrown([] {
+                  checkedElementCount({INT64_MAX, 2}, "f()");
+              }),
+              "f(): array shape (9223372036854775807, 2) has more elements than fit in 64 bits");
+    const ArrayValue value{DType::Float32, {1537228672809129302, 3}, nullptr, nullptr};
+    EXPECT_THROW(value.byteSize(), sp::InvalidArgument);
+    EXPECT_THROW(allocateArray(DType::Float32, {1537228672809129302, 3}), sp::InvalidArgument);
+}
+
+TEST(ArraySize, NegativeExtentsAreRefused) {
+    EXPECT_EQ(thrown([] {
+                  checkedElementCount({2, -1}, "f()");
+              }),
+              "f(): array shape (2, -1) has a negative extent -1");
+    // Negative extents pair up to a positive product: each is checked, not only the product.
+    EXPECT_THROW(checkedElementCount({-2, -3}, "f()"), sp::InvalidArgument);
+}
+
+TEST(ArraySize, SetDataSourceChecksItsShape) {
+    SpArray<float> array("points");
+    // 3 * 6148914691236517206 wraps around to exactly 2, the number of elements given.
+    EXPECT_EQ(
+        thrown([&] {
+            array.setDataSource({1.0f, 2.0f}, {3, 6148914691236517206});
+        }),
+        "SpArray::setDataSource(): array 'points' has an invalid extent 6148914691236517206 in its shape "
+        "(negative, or too large for 2 elements)");
+    EXPECT_THROW(array.setDataSource({1.0f, 2.0f}, {-2, -1}), sp::InvalidArgument);
+    array.setDataSource({1.0f, 2.0f}, {2, 1});
+    EXPECT_EQ(array.getSize(), 2);
+}

@@ -1,0 +1,95 @@
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+
+#include "core/rpc/dispatcher.h"
+
+using sp::rpc::Dispatcher;
+using sp::rpc::Session;
+using sp::world::Engine;
+
+namespace {
+// {"op": op, key: value, ...} with string values.
+std::string request(const std::string& op, const std::map<std::string, std::string>& fields = {}) {
+    msgpack::sbuffer out;
+    msgpack::packer<msgpack::sbuffer> packer(&out);
+    packer.pack_map(uint32_t(fields.size() + 1));
+    packer.pack(std::string("op"));
+    packer.pack(op);
+    for (const auto& [key, value] : fields) {
+        packer.pack(key);
+        packer.pack(value);
+    }
+    return std::string(out.data(), out.size());
+}
+
+// The reply's error message, or "" for a success.
+std::string send(Dispatcher& dispatcher, Session& session, const std::string& message) {
+    msgpack::sbuffer reply;
+    dispatcher.handle(message.data(), message.size(), session, reply, nullptr);
+    msgpack::object_handle handle = msgpack::unpack(reply.data(), reply.size());
+    const msgpack::object& map = handle.get();
+    for (uint32_t i = 0; i < map.via.map.size; ++i)
+        if (map.via.map.ptr[i].key.as<std::string>() == "error")
+            return map.via.map.ptr[i].val.via.array.ptr[1].as<std::string>();
+    return "";
+}
+
+struct Fixture : testing::Test {
+    Engine engine;
+    Dispatcher dispatcher{engine, "hash", ""};
+    Session greeted() {
+        Session session;
+        EXPECT_EQ(send(dispatcher, session, request("hello", {{"api_hash", "hash"}})), "");
+        return session;
+    }
+};
+using DispatcherTest = Fixture;
+} // namespace
+
+TEST_F(DispatcherTest, AFrameLeftOpenByAClientThatWentAwayIsAborted) {
+    Session a = greeted();
+    Session b = greeted();
+    ASSERT_EQ(send(dispatcher, a, request("frame", {{"action", "begin"}})), "");
+    EXPECT_NE(send(dispatcher, b, request("frame", {{"action", "begin"}})).find("expected idle"),
+              std::string::npos);
+    dispatcher.endSession(a); // a was killed mid-frame
+    EXPECT_EQ(engine.GetFrameState(), Engine::FrameState::Idle);
+    for (const char* action : {"begin", "execute", "begin_end", "end"})
+        EXPECT_EQ(send(dispatcher, b, request("frame", {{"action", action}})), "") << action;
+    EXPECT_EQ(engine.GetFrameCount(), 2); // a's frame ended with its tick, then b's
+}
+
+TEST_F(DispatcherTest, OnlyTheFramesOwnerAbortsIt) {
+    Session a = greeted();
+    Session b = greeted();
+    ASSERT_EQ(send(dispatcher, b, request("frame", {{"action", "begin"}})), "");
+    dispatcher.endSession(a); // a never touched the frame
+    EXPECT_EQ(engine.GetFrameState(), Engine::FrameState::BeginFrame);
+}
+
+TEST_F(DispatcherTest, BatchesDoNotNest) {
+    Session a = greeted();
+    // 20,000 nested batches in 340 KB: each was a C++ stack frame before batches were kept flat.
+    std::string message;
+    for (int i = 0; i < 20000; ++i)
+        message += "\x82\xa2op\xa5"
+                   "batch\xa5"
+                   "calls\x91";
+    message += request("echo");
+    msgpack::sbuffer reply;
+    dispatcher.handle(message.data(), message.size(), a, reply, nullptr);
+    // The outer batch answers; the batch inside it is refused.
+    EXPECT_NE(std::string(reply.data(), reply.size()).find("batch(): a batch may not contain a batch"),
+              std::string::npos);
+    EXPECT_EQ(send(dispatcher, a, request("echo")), "");
+}
+
+TEST_F(DispatcherTest, OnlyScalarIdsAreEchoed) {
+    Session a = greeted();
+    // {"id": [[[...]]] 20,000 deep, "op": "echo"}: packing the id back recursed once per level.
+    const std::string message =
+        "\x82\xa2id" + std::string(20000, '\x91') + "\xc0" + request("echo").substr(1);
+    EXPECT_EQ(send(dispatcher, a, message), "");
+}

@@ -1,0 +1,77 @@
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "core/base/error.h"
+#include "core/rpc/value_msgpack.h"
+
+using sp::reflect::Value;
+
+namespace {
+// `depth` msgpack fixarrays of one element, each holding the next, around a nil.
+std::string nestedArrays(int depth) {
+    return std::string(size_t(depth), '\x91') + '\xc0';
+}
+
+std::string unpackError(const std::string& bytes, std::string_view context) {
+    msgpack::object_handle handle = sp::rpc::unpackBounded(bytes.data(), bytes.size());
+    try {
+        sp::rpc::unpack(handle.get(), context);
+    } catch (const sp::InvalidArgument& e) {
+        return e.what();
+    }
+    return "(nothing thrown)";
+}
+
+// An array value (extension 3) of this dtype and shape whose payload holds `bytes` bytes.
+std::string arrayValue(const std::string& dtype, const std::vector<int64_t>& shape, size_t bytes) {
+    msgpack::sbuffer body;
+    msgpack::packer<msgpack::sbuffer> inner(&body);
+    inner.pack_array(3);
+    inner.pack(dtype);
+    inner.pack(shape);
+    inner.pack_bin(uint32_t(bytes));
+    inner.pack_bin_body(std::string(bytes, '\0').data(), uint32_t(bytes));
+    msgpack::sbuffer out;
+    msgpack::packer<msgpack::sbuffer> packer(&out);
+    packer.pack_ext(body.size(), sp::rpc::kExtArray);
+    packer.pack_ext_body(body.data(), body.size());
+    return std::string(out.data(), out.size());
+}
+} // namespace
+
+TEST(ValueMsgpack, NestingIsBoundedInsteadOfOverflowingTheStack) {
+    // 20 KB that used to recurse 20,000 frames deep and crash the server.
+    EXPECT_EQ(unpackError(nestedArrays(20000), "echo()"),
+              "echo(): a value has lists or dicts nested deeper than 64 levels");
+    EXPECT_EQ(unpackError(nestedArrays(sp::reflect::kMaxValueDepth + 1), "f()"),
+              "f(): a value has lists or dicts nested deeper than 64 levels");
+    const std::string deepest = nestedArrays(sp::reflect::kMaxValueDepth);
+    msgpack::object_handle handle = sp::rpc::unpackBounded(deepest.data(), deepest.size());
+    EXPECT_TRUE(sp::rpc::unpack(handle.get(), "f()").is<Value::List>());
+}
+
+TEST(ValueMsgpack, CountsAreBoundedByTheBytesPresent) {
+    // An array32 header announcing 2^32 - 1 elements in a 5-byte message: refused before msgpack-c
+    // allocates an object for each.
+    EXPECT_THROW(sp::rpc::unpackBounded("\xdd\xff\xff\xff\xff", 5), msgpack::size_overflow);
+    EXPECT_THROW(sp::rpc::unpackBounded("\xdf\xff\xff\xff\xff", 5), msgpack::size_overflow);
+    // Within the bound, a short message is only truncated.
+    EXPECT_THROW(sp::rpc::unpackBounded("\x93\x01\x02", 3), msgpack::insufficient_bytes);
+    // The same holds inside an array value's own encoding.
+    const std::string body = "\xdd\xff\xff\xff\xff";
+    std::string ext = std::string("\xc7\x05\x03") + body;
+    msgpack::object_handle handle = sp::rpc::unpackBounded(ext.data(), ext.size());
+    EXPECT_THROW(sp::rpc::unpack(handle.get(), "echo()"), msgpack::size_overflow);
+}
+
+TEST(ValueMsgpack, ArrayShapesAreCheckedWithoutWrappingAround) {
+    // 1537228672809129302 * 3 float32s "need" 8 bytes when the product wraps around.
+    EXPECT_EQ(unpackError(arrayValue("float32", {1537228672809129302, 3}, 8), "echo()"),
+              "echo(): array shape (1537228672809129302, 3) of float32 holds more bytes than fit in 64 bits");
+    EXPECT_EQ(unpackError(arrayValue("float32", {-2, -1}, 8), "echo()"),
+              "echo(): array shape (-2, -1) has a negative extent -2");
+    const std::string good = arrayValue("float32", {2, 1}, 8);
+    msgpack::object_handle handle = sp::rpc::unpackBounded(good.data(), good.size());
+    EXPECT_EQ(sp::rpc::unpack(handle.get(), "f()").as<sp::reflect::ArrayValue>().elementCount(), 2);
+}
