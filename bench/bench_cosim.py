@@ -1,0 +1,125 @@
+"""Table 3 side by side: spear's co-simulation benchmark (examples/cosim_benchmark.py, in-process and over
+RPC) and MuJoCo running the same workload alone (bench/mujoco_cosim_peer.cpp: mj_step + mjr_render +
+mjr_readPixels), one cell after the other in the same run, on the same device.
+
+    PYTHONPATH=python /usr/bin/python3 bench/bench_cosim.py --build-dir build [--frames 1000] [--write]
+
+--write replaces the Table 3 section of BENCHMARKS.md (between its cosim markers) with the results.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import json
+import platform
+import subprocess
+import sys
+from pathlib import Path
+from types import ModuleType
+from typing import Any
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "python"))
+
+import spear  # noqa: E402
+
+BEGIN, END = "<!-- cosim:begin -->", "<!-- cosim:end -->"
+
+
+def load_example() -> ModuleType:
+    spec = importlib.util.spec_from_file_location("cosim_benchmark", ROOT / "examples" / "cosim_benchmark.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module  # dataclasses look their module up while the class is built
+    spec.loader.exec_module(module)
+    return module
+
+
+def mujoco(peer: Path, objects: int, views: int, width: int, height: int, frames: int) -> dict[str, Any]:
+    completed = subprocess.run([str(peer), "--objects", str(objects), "--views", str(views), "--width", str(width),
+                                "--height", str(height), "--frames", str(frames)],
+                               check=True, capture_output=True, text=True)
+    result: dict[str, Any] = json.loads(completed.stdout.strip().splitlines()[-1])
+    return result
+
+
+def spear_cell(example: ModuleType, server: str | None, objects: int, views: int, width: int, height: int,
+               frames: int) -> float:
+    instance = spear.Instance(server=server, fixed_delta_seconds=example.FRAME_DT)
+    try:
+        result = example.run(instance, objects=objects, views=views, width=width, height=height, frames=frames,
+                             physics="bullet", png=None)
+    finally:
+        instance.close()
+    return float(result.ms_per_frame)
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--build-dir", type=Path, default=ROOT / "build")
+    parser.add_argument("--frames", type=int, default=1000)
+    parser.add_argument("--objects", type=int, nargs="+", default=[4, 16, 64])
+    parser.add_argument("--views", type=int, nargs="+", default=[1, 2])
+    parser.add_argument("--no-rpc", action="store_true", help="in-process only")
+    parser.add_argument("--write", action="store_true", help="update the Table 3 section of BENCHMARKS.md")
+    args = parser.parse_args()
+
+    peer = args.build_dir / "bench" / "spear_mujoco_cosim_peer"
+    if not peer.exists():
+        parser.error(f"{peer} is missing: build it with `cmake --build {args.build_dir} --target "
+                     "spear_mujoco_cosim_peer` (needs Debian's libmujoco-dev)")
+    example = load_example()
+    cells = [(n, v, 1920, 1080) for v in args.views for n in args.objects] + [(64, 1, 256, 256)]
+    rows = []
+    device = ""
+    for objects, views, width, height in cells:
+        print(f"cell: N={objects}, {views} view(s), {width}x{height}", file=sys.stderr, flush=True)
+        peer_result = mujoco(peer, objects, views, width, height, args.frames)
+        inprocess = spear_cell(example, None, objects, views, width, height, args.frames)
+        rpc = None if args.no_rpc else spear_cell(example, "launch", objects, views, width, height, args.frames)
+        device = str(peer_result.get("device", ""))
+        rows.append((objects, views, width, height, inprocess, rpc, float(peer_result["ms_per_frame"])))
+
+    paper = example.PAPER_TABLE3
+    lines = [
+        f"| cell | spear in-process ms | spear RPC ms | MuJoCo {rows and 'alone'} ms | spear / MuJoCo | RPC / in-process "
+        "| paper: SPEAR / UnrealCV+ ms |",
+        "|---|---:|---:|---:|---:|---:|---:|",
+    ]
+    for objects, views, width, height, inprocess, rpc, peer_ms in rows:
+        key = (objects, views)
+        reference = (f"{paper['SPEAR'][key]:.1f} / {paper['UnrealCV+'][key]:.1f}"
+                     if width == 1920 and key in paper["SPEAR"] else "-")
+        lines.append(
+            f"| N={objects}, {views} view{'s' if views > 1 else ''}, {width}x{height} | {inprocess:.1f} | "
+            f"{'-' if rpc is None else f'{rpc:.1f}'} | {peer_ms:.1f} | {inprocess / peer_ms:.2f} | "
+            f"{'-' if rpc is None else f'{rpc / inprocess:.2f}'} | {reference} |")
+    command = ("PYTHONPATH=python /usr/bin/python3 bench/bench_cosim.py --build-dir build "
+               f"--frames {args.frames}{' --no-rpc' if args.no_rpc else ''} --write")
+    section = "\n".join([
+        BEGIN,
+        "```bash",
+        command,
+        "```",
+        "",
+        f"Device: {device} ({platform.machine()}, {args.frames} timed frames per cell after 10 warm-up frames; "
+        "MuJoCo renders RGB with its own shadows, no MSAA).",
+        "",
+        *lines,
+        END,
+    ])
+    print(section)
+    if args.write:
+        path = ROOT / "BENCHMARKS.md"
+        text = path.read_text()
+        if BEGIN in text and END in text:
+            text = text[:text.index(BEGIN)] + section + text[text.index(END) + len(END):]
+        else:
+            text = text.rstrip("\n") + "\n\n## Table 3: the co-simulation benchmark beside MuJoCo\n\n" + section + "\n"
+        path.write_text(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
