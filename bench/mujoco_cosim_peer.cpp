@@ -64,6 +64,8 @@ std::string sceneXml(const Options& options) {
     std::snprintf(
         buffer, sizeof buffer,
         "<mujoco model=\"cosim\"><option timestep=\"%.17g\"/>"
+        // Room for every contact of 64 resting objects (the default 100 drops contacts).
+        "<size nconmax=\"2000\" njmax=\"8000\"/>"
         "<visual><quality shadowsize=\"2048\" offsamples=\"0\"/>"
         "<global offwidth=\"%d\" offheight=\"%d\"/>"
         "<headlight ambient=\"0.1 0.12 0.15\" diffuse=\"0 0 0\" specular=\"0 0 0\"/></visual>"

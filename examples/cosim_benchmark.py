@@ -132,7 +132,8 @@ def mjcf(n: int) -> str:
         shape = 'type="box" size="0.15 0.15 0.15"' if i % 2 == 0 else 'type="sphere" size="0.15"'
         bodies.append(f'<body name="object_{i}" pos="{x!r} {y!r} {SIZE / 2 + 0.001!r}"><freejoint/>'
                       f'<geom {shape} mass="1" friction="0.8 0.005 0.0001" rgba="{c.R!r} {c.G!r} {c.B!r} 1"/></body>')
-    return (f'<mujoco model="cosim"><option timestep="{FRAME_DT / 4!r}"/><worldbody>'
+    return (f'<mujoco model="cosim"><option timestep="{FRAME_DT / 4!r}"/>'
+            '<size nconmax="2000" njmax="8000"/><worldbody>'
             '<geom name="ground" type="plane" size="20 20 0.1" rgba="0.55 0.55 0.5 1" friction="0.8 0.005 0.0001"/>'
             + "".join(bodies) + "</worldbody></mujoco>")
 

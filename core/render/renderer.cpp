@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,7 @@ std::array<Eigen::Vector4d, 6> frustumPlanes(const Eigen::Matrix4d& viewProjecti
 // One submesh of a visible instance.
 struct Draw {
     const Instance* instance;
+    MeshId mesh; // the level of detail drawn
     std::size_t slot;
     unsigned features; // shaders::MaterialFeature bits: which program draws it
     double distance;   // from the eye to the instance's bounding sphere
@@ -240,6 +242,7 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
     const Eigen::Matrix4d viewProjection = camera.projectionMatrix(true) * camera.viewMatrix();
     const std::array<Eigen::Vector4d, 6> planes = frustumPlanes(viewProjection);
     const Eigen::Vector3d eye = camera.pose.translation();
+    const double focal = camera.focalLengthPixels();
 
     // Cull against the view frustum (bounding spheres); then draw each program's submeshes front to back.
     std::vector<Draw> draws;
@@ -247,11 +250,9 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
     scene.forEachInstance([&](InstanceId, const Instance& instance) {
         if (!instance.visible)
             return;
-        Eigen::Vector3f min, max;
-        scene.meshBounds(instance.mesh, min, max);
-        const Eigen::Vector3d centre = instance.transform * (0.5 * (min + max)).cast<double>();
-        const double radius =
-            0.5 * (max - min).cast<double>().norm() * instance.transform.linear().colwise().norm().maxCoeff();
+        Eigen::Vector3d centre;
+        double radius = 0.0;
+        scene.boundingSphere(instance, centre, radius);
         for (const Eigen::Vector4d& plane : planes) {
             if (plane.head<3>().dot(centre) + plane.w() < -radius) {
                 ++stats_.culledInstances;
@@ -259,14 +260,20 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
             }
         }
         ++drawn;
-        const double distance = std::max(0.0, (centre - eye).norm() - radius);
+        // Front to back, so hidden fragments fail the early depth test; an instance whose bounds hold the
+        // eye (a floor, a room's walls) goes last: it is behind most of what is in front of the camera.
+        const double centreDistance = (centre - eye).norm();
+        const double distance = centreDistance > radius ? centreDistance - radius
+                                                        : std::numeric_limits<double>::max() / 2 - radius;
+        const double nearest = std::max(centreDistance - radius, camera.params.nearClip);
+        const MeshId mesh = scene.lodFor(instance.mesh, radius * focal / nearest);
         for (std::size_t slot = 0; slot < instance.materials.size(); ++slot) {
             const Material& material = scene.material(instance.materials[slot]);
             const unsigned features =
                 (material.baseColorTexture ? shaders::kBaseColorTexture : 0u) |
                 (material.roughnessMetallicTexture ? shaders::kRoughnessMetallicTexture : 0u) |
                 (material.normalTexture ? shaders::kNormalTexture : 0u);
-            draws.push_back({&instance, slot, features, distance});
+            draws.push_back({&instance, mesh, slot, features, distance});
         }
     });
     std::sort(draws.begin(), draws.end(), [](const Draw& a, const Draw& b) {
@@ -285,7 +292,7 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
             program->use();
         }
         const Instance& instance = *draw.instance;
-        const GpuMesh& mesh = cache.mesh(scene, instance.mesh);
+        const GpuMesh& mesh = cache.mesh(scene, draw.mesh);
         const Eigen::Matrix4d model = instance.transform.matrix();
         program->set("uModel", Eigen::Matrix4f(model.cast<float>()));
         program->set("uNormalMatrix",

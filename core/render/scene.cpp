@@ -1,6 +1,7 @@
 #include "core/render/scene.h"
 
 #include <atomic>
+#include <cmath>
 
 #include "core/base/error.h"
 
@@ -13,7 +14,7 @@ Scene::Scene() : uid_(gNextSceneUid++) {}
 
 MeshId Scene::addMesh(MeshData mesh) {
     mesh.validate("Scene::addMesh");
-    MeshEntry entry{std::move(mesh), nextRevision_++, {}, {}};
+    MeshEntry entry{std::move(mesh), nextRevision_++, {}, {}, {}};
     entry.data.bounds(entry.min, entry.max);
     return meshes_.insert(std::move(entry));
 }
@@ -35,6 +36,11 @@ void Scene::removeMesh(MeshId id) {
     meshes_.get(id, "Scene::removeMesh");
     instances_.forEach([&](InstanceId instanceId, const Instance& instance) {
         SP_CHECK(instance.mesh != id, InvalidState, "Scene::removeMesh(): ", id, " is used by ", instanceId);
+    });
+    meshes_.forEach([&](MeshId owner, const MeshEntry& entry) {
+        for (const MeshLod& lod : entry.lods)
+            SP_CHECK(lod.mesh != id, InvalidState, "Scene::removeMesh(): ", id, " is a level of detail of ",
+                     owner);
     });
     meshes_.remove(id, "Scene::removeMesh");
 }
@@ -174,6 +180,45 @@ void Scene::meshBounds(MeshId id, Eigen::Vector3f& min, Eigen::Vector3f& max) co
     const MeshEntry& entry = meshes_.get(id, "Scene::meshBounds");
     min = entry.min;
     max = entry.max;
+}
+
+void Scene::setMeshLods(MeshId id, std::vector<MeshLod> lods) {
+    MeshEntry& entry = meshes_.get(id, "Scene::setMeshLods");
+    float previous = 0.0f;
+    for (const MeshLod& lod : lods) {
+        const MeshEntry& level = meshes_.get(lod.mesh, "Scene::setMeshLods");
+        SP_CHECK(lod.mesh != id && level.lods.empty(), InvalidArgument, "Scene::setMeshLods(): ", lod.mesh,
+                 " cannot be a level of ", id, " (it is the mesh itself or has levels of its own)");
+        SP_CHECK(level.data.submeshCount() == entry.data.submeshCount(), InvalidArgument,
+                 "Scene::setMeshLods(): level ", lod.mesh, " has ", level.data.submeshCount(), " submeshes, ",
+                 id, " has ", entry.data.submeshCount());
+        SP_CHECK(std::isfinite(lod.relativeError) && lod.relativeError >= previous, InvalidArgument,
+                 "Scene::setMeshLods(): relative errors must be finite and increase, got ", lod.relativeError,
+                 " after ", previous);
+        previous = lod.relativeError;
+    }
+    entry.lods = std::move(lods);
+}
+
+const std::vector<MeshLod>& Scene::meshLods(MeshId id) const {
+    return meshes_.get(id, "Scene::meshLods").lods;
+}
+
+MeshId Scene::lodFor(MeshId id, double radiusInPixels) const {
+    MeshId chosen = id;
+    for (const MeshLod& lod : meshes_.get(id, "Scene::lodFor").lods) {
+        if (double(lod.relativeError) * radiusInPixels > 0.5)
+            break;
+        chosen = lod.mesh;
+    }
+    return chosen;
+}
+
+void Scene::boundingSphere(const Instance& instance, Eigen::Vector3d& centre, double& radius) const {
+    const MeshEntry& entry = meshes_.get(instance.mesh, "Scene::boundingSphere");
+    centre = instance.transform * (0.5 * (entry.min + entry.max)).cast<double>();
+    radius = 0.5 * (entry.max - entry.min).cast<double>().norm() *
+             instance.transform.linear().colwise().norm().maxCoeff();
 }
 
 void Scene::bounds(Eigen::Vector3d& centre, double& radius) const {

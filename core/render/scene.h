@@ -21,6 +21,13 @@ namespace sp::render {
 // How texels are stored: colour textures are sRGB-encoded, data textures (normal, roughness) linear.
 enum class TextureEncoding { Srgb, Linear };
 
+// A coarser version of a mesh, drawn in its place when its geometric error, relative to the mesh's
+// bounding radius, is under half a pixel (or shadow-map texel) where it is drawn.
+struct MeshLod {
+    MeshId mesh;
+    float relativeError = 0.0f; // largest distance from the full mesh, as a fraction of its bounding radius
+};
+
 // A placed mesh: one material and one object id per submesh slot.
 struct Instance {
     MeshId mesh;
@@ -51,6 +58,15 @@ class Scene {
     std::uint64_t meshRevision(MeshId id) const;
     // Mesh-space bounding box of a mesh (for culling and shadow fitting).
     void meshBounds(MeshId id, Eigen::Vector3f& min, Eigen::Vector3f& max) const;
+    // Levels of detail of a mesh, from finer to coarser (increasing relativeError); each has the mesh's
+    // submesh count. A mesh that is some chain's level cannot be removed while that chain names it.
+    void setMeshLods(MeshId id, std::vector<MeshLod> lods);
+    const std::vector<MeshLod>& meshLods(MeshId id) const;
+    // The coarsest level of `id` whose error stays within half a pixel when the mesh's bounding radius
+    // covers `radiusInPixels` pixels (or texels); `id` itself when it has no level that coarse.
+    MeshId lodFor(MeshId id, double radiusInPixels) const;
+    // World-space bounding sphere of an instance (its mesh's box, transformed; scale included).
+    void boundingSphere(const Instance& instance, Eigen::Vector3d& centre, double& radius) const;
 
     // Textures (for Material's texture slots).
     TextureId addTexture(TextureImage image, TextureEncoding encoding = TextureEncoding::Srgb);
@@ -99,6 +115,7 @@ class Scene {
         MeshData data;
         std::uint64_t revision = 0;
         Eigen::Vector3f min, max;
+        std::vector<MeshLod> lods;
     };
     struct TextureEntry {
         TextureImage image;

@@ -151,7 +151,14 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
         scene.forEachInstance([&](InstanceId, const Instance& instance) {
             if (!instance.visible || !instance.castShadows)
                 return;
-            const GpuMesh& mesh = cache.mesh(scene, instance.mesh);
+            // The level of detail whose error stays within half a shadow-map texel.
+            Eigen::Vector3d centre;
+            double radius = 0.0;
+            scene.boundingSphere(instance, centre, radius);
+            const double texel = info.perspective
+                                     ? info.texel * std::max((centre - light.position).norm() - radius, 0.02)
+                                     : double(info.texel);
+            const GpuMesh& mesh = cache.mesh(scene, scene.lodFor(instance.mesh, radius / texel));
             depthProgram.set("uModelLightProjection",
                              Eigen::Matrix4f((lightProjection * instance.transform.matrix()).cast<float>()));
             glBindVertexArray(mesh.vao);

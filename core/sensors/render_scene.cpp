@@ -1,6 +1,7 @@
 #include "core/sensors/render_scene.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/base/log.h"
 #include "core/render/mesh_import.h"
@@ -30,6 +31,24 @@ std::optional<sp::render::MeshData> basicShape(std::string_view name) {
     if (name == "Plane")
         return sp::render::primitives::plane();
     return std::nullopt;
+}
+
+// Coarser versions of the round built-in shapes, with their largest deviation from the round surface
+// relative to the shape's bounding radius (half the diagonal of its unit box): a UV sphere's quads sag by
+// about r sin^2(pi / segments), a cylinder's sides by r (1 - cos(pi / segments)).
+std::vector<std::pair<sp::render::MeshData, float>> basicShapeLods(std::string_view name) {
+    std::vector<std::pair<sp::render::MeshData, float>> lods;
+    const double halfDiagonal = 0.5 * std::sqrt(3.0);
+    for (int segments : {24, 12, 8}) {
+        const double angle = M_PI / segments;
+        if (name == std::string(kBasicShapesPrefix) + "Sphere")
+            lods.emplace_back(sp::render::primitives::sphere(0.5f, segments, segments / 2),
+                              float(0.5 * std::sin(angle) * std::sin(angle) / halfDiagonal));
+        else if (name == std::string(kBasicShapesPrefix) + "Cylinder")
+            lods.emplace_back(sp::render::primitives::cylinder(0.5f, 1.0f, segments),
+                              float(0.5 * (1.0 - std::cos(angle)) / halfDiagonal));
+    }
+    return lods;
 }
 
 Eigen::Vector3f rgb(const FLinearColor& color) {
@@ -181,6 +200,10 @@ const RenderScene::MeshEntry* RenderScene::meshFor(const std::string& name) {
     MeshEntry entry;
     if (auto shape = basicShape(name)) {
         entry.mesh = scene_.addMesh(std::move(*shape));
+        std::vector<sp::render::MeshLod> lods;
+        for (auto& [data, error] : basicShapeLods(name))
+            lods.push_back({scene_.addMesh(std::move(data)), error});
+        scene_.setMeshLods(entry.mesh, std::move(lods));
     } else {
         try {
             const sp::render::ImportedMesh imported = sp::render::importMesh(name);

@@ -92,5 +92,31 @@ TEST(SceneTest, BoundsCoverTransformedInstances) {
     EXPECT_NEAR(radius, std::sqrt(3.0), 1e-9);
 }
 
+TEST(SceneTest, LevelsOfDetailAreChosenByHalfAPixelOfError) {
+    Scene scene;
+    const MeshId fine = scene.addMesh(primitives::sphere(0.5f, 48, 24));
+    const MeshId medium = scene.addMesh(primitives::sphere(0.5f, 24, 12));
+    const MeshId coarse = scene.addMesh(primitives::sphere(0.5f, 12, 6));
+    scene.setMeshLods(fine, {{medium, 0.01f}, {coarse, 0.04f}});
+    EXPECT_EQ(scene.lodFor(fine, 1000.0), fine);  // 10 px of error at medium: too coarse
+    EXPECT_EQ(scene.lodFor(fine, 50.0), medium);  // 0.5 px at medium, 2 px at coarse
+    EXPECT_EQ(scene.lodFor(fine, 12.5), coarse);  // 0.5 px at coarse
+    EXPECT_EQ(scene.lodFor(medium, 1.0), medium); // a level has no levels of its own
+
+    EXPECT_THROW(scene.setMeshLods(fine, {{coarse, 0.04f}, {medium, 0.01f}}), InvalidArgument); // must increase
+    EXPECT_THROW(scene.setMeshLods(fine, {{fine, 0.01f}}), InvalidArgument);
+    EXPECT_THROW(scene.setMeshLods(medium, {{fine, 0.01f}}), InvalidArgument); // fine has levels
+    const MeshId twoSlots = scene.addMesh(primitives::box());
+    MeshData split = primitives::box();
+    split.submeshes = {{0, 18}, {18, 18}};
+    EXPECT_THROW(scene.setMeshLods(twoSlots, {{scene.addMesh(split), 0.1f}}), InvalidArgument);
+    try {
+        scene.removeMesh(coarse);
+        FAIL() << "a level in use was removed";
+    } catch (const InvalidState& error) {
+        EXPECT_NE(std::string(error.what()).find("is a level of detail of"), std::string::npos) << error.what();
+    }
+}
+
 } // namespace
 } // namespace sp::render
