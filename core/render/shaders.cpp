@@ -116,22 +116,20 @@ vec3 toHalf(vec3 v) {
 }
 
 // One bilinear percentage-closer tap after a normal offset of 1.5 texels: the four texels around the
-// point are fetched and compared directly (texelFetch needs no filtering or level-of-detail work, which
-// a software rasteriser pays for on every texture() call) and the comparisons blended bilinearly.
+// point come from one textureGather and are compared here, then blended bilinearly (a software
+// rasteriser pays for filtering and level-of-detail work on every texture() call, and a gather shares
+// the address arithmetic of the four fetches).
 float shadowFactor(const int layer, vec4 clipOfP, vec3 n, float texel) {
     vec4 clip = clipOfP + uShadowMatrix[layer] * vec4(n * (1.5 * texel), 0.0);
     vec3 s = clip.xyz / clip.w * 0.5 + 0.5;
     if (any(lessThan(s, vec3(0.0))) || any(greaterThan(s, vec3(1.0)))) return 1.0;
-    int size = int(uShadowParams[layer].z);
-    vec2 t = s.xy * float(size) - 0.5;
+    float size = uShadowParams[layer].z;
+    vec2 t = s.xy * size - 0.5;
     vec2 cell = floor(t);
     vec2 f = t - cell;
-    ivec2 c0 = clamp(ivec2(cell), ivec2(0), ivec2(size - 1));
-    ivec2 c1 = clamp(ivec2(cell) + 1, ivec2(0), ivec2(size - 1));
-    vec4 d = vec4(texelFetch(uShadowMaps, ivec3(c0.x, c0.y, layer), 0).r,
-                  texelFetch(uShadowMaps, ivec3(c1.x, c0.y, layer), 0).r,
-                  texelFetch(uShadowMaps, ivec3(c0.x, c1.y, layer), 0).r,
-                  texelFetch(uShadowMaps, ivec3(c1.x, c1.y, layer), 0).r);
+    // textureGather returns the 2 x 2 block around the point: (0,1), (1,1), (1,0), (0,0).
+    vec4 g = textureGather(uShadowMaps, vec3((cell + 1.0) / size, float(layer)));
+    vec4 d = vec4(g.w, g.z, g.x, g.y);
     vec4 lit = vec4(greaterThanEqual(d, vec4(s.z))); // lit where the point is not behind the map's depth
     return mix(mix(lit.x, lit.y, f.x), mix(lit.z, lit.w, f.x), f.y);
 }
