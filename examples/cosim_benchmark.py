@@ -92,6 +92,16 @@ def rig_pose(n: int, frame: int) -> tuple[spear.FVector, spear.FRotator, tuple[f
     return spear.FVector(*eye), rotation, right
 
 
+def add_lights(game: spear.UWorld) -> None:
+    """The sun, shining along (-0.5, -0.3, -1) with shadows, and a uniform sky."""
+    sun = game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun", rotation=spear.FRotator(
+        Pitch=-math.degrees(math.atan2(1.0, math.hypot(0.5, 0.3))), Yaw=math.degrees(math.atan2(-0.3, -0.5))))
+    sun.LightComponent.Intensity = 3.0
+    sky = game.spawn_actor(uclass=spear.ASkyLight, name="Sky")
+    sky.SkyLightComponent.SkyColor = spear.FLinearColor(0.1, 0.12, 0.15, 1.0)
+    sky.SkyLightComponent.BackgroundColor = spear.FLinearColor(0.3, 0.35, 0.45, 1.0)
+
+
 def build_scene(game: spear.UWorld, n: int) -> list[spear.UStaticMeshComponent]:
     library = game.spawn_actor(uclass=spear.AMaterialLibrary, name="Materials")
     library.SetMaterial(Name="Ground", Material=spear.FMaterialDesc(
@@ -114,12 +124,7 @@ def build_scene(game: spear.UWorld, n: int) -> list[spear.UStaticMeshComponent]:
         mesh.SetMassOverrideInKg(MassInKg=1.0)
         mesh.SetSimulatePhysics(bSimulate=True)
         bodies.append(mesh)
-    sun = game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun", rotation=spear.FRotator(
-        Pitch=-math.degrees(math.atan2(1.0, math.hypot(0.5, 0.3))), Yaw=math.degrees(math.atan2(-0.3, -0.5))))
-    sun.LightComponent.Intensity = 3.0
-    sky = game.spawn_actor(uclass=spear.ASkyLight, name="Sky")
-    sky.SkyLightComponent.SkyColor = spear.FLinearColor(0.1, 0.12, 0.15, 1.0)
-    sky.SkyLightComponent.BackgroundColor = spear.FLinearColor(0.3, 0.35, 0.45, 1.0)
+    add_lights(game)
     return bodies
 
 
@@ -149,12 +154,7 @@ def build_mujoco_scene(instance: spear.Instance, game: spear.UWorld, n: int) -> 
     # The plugin's classes are typed by its own stubs (examples/mujoco_interop); here they are used by name.
     scene: Any = game.spawn_actor(uclass="AMujocoScene", name="Mujoco")
     scene.LoadMjcfString(Xml=mjcf(n))
-    sun = game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun", rotation=spear.FRotator(
-        Pitch=-math.degrees(math.atan2(1.0, math.hypot(0.5, 0.3))), Yaw=math.degrees(math.atan2(-0.3, -0.5))))
-    sun.LightComponent.Intensity = 3.0
-    sky = game.spawn_actor(uclass=spear.ASkyLight, name="Sky")
-    sky.SkyLightComponent.SkyColor = spear.FLinearColor(0.1, 0.12, 0.15, 1.0)
-    sky.SkyLightComponent.BackgroundColor = spear.FLinearColor(0.3, 0.35, 0.45, 1.0)
+    add_lights(game)
     return scene
 
 

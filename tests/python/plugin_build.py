@@ -3,12 +3,16 @@ the engine's build directory, then spear_add_plugin() (see examples/plugin/CMake
 
 from __future__ import annotations
 
+import contextlib
 import os
 import subprocess
 import sys
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+
+import spear
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "examples/plugin"
@@ -53,3 +57,14 @@ def build_importable_plugin(source: Path, tmp_path_factory: pytest.TempPathFacto
     if str(python_dir) not in sys.path:
         sys.path.insert(0, str(python_dir))
     return python_dir
+
+
+@contextlib.contextmanager
+def whole_frame(instance: spear.Instance) -> Iterator[None]:
+    """A whole frame, for tests that do everything in begin_frame (end_frame runs even after an error)."""
+    try:
+        with instance.begin_frame():
+            yield
+    finally:
+        with instance.end_frame():
+            pass

@@ -22,6 +22,7 @@ import spear
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from plugin_build import ROOT, build_importable_plugin, spear_build_dir  # noqa: E402
+from plugin_build import whole_frame as frame  # noqa: E402
 
 EXAMPLE = ROOT / "examples/mujoco_interop"
 MJCF = EXAMPLE / "falling_shapes.xml"
@@ -51,22 +52,6 @@ def api(instance: spear.Instance, plugin_dir: Path) -> Iterator[Any]:
     import mujoco_interop.api
 
     yield mujoco_interop.api
-
-
-def frame(instance: spear.Instance) -> Any:
-    """A whole frame, for tests that do everything in begin_frame."""
-
-    class Frame:
-        def __enter__(self) -> None:
-            self._begin = instance.begin_frame()
-            self._begin.__enter__()
-
-        def __exit__(self, *exc: Any) -> None:
-            self._begin.__exit__(*exc)
-            with instance.end_frame():
-                pass
-
-    return Frame()
 
 
 def assert_actors_show_mujoco_poses(scene: Any) -> None:

@@ -21,6 +21,7 @@ import spear
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from plugin_build import EXAMPLE, ROOT, build, build_importable_plugin, configure  # noqa: E402
+from plugin_build import whole_frame as frame  # noqa: E402
 
 
 @pytest.fixture(scope="session")
@@ -37,22 +38,6 @@ def plugin(instance: spear.Instance, plugin_dir: Path) -> Iterator[Any]:
 
     assert package.MODULE == "my_plugin"
     yield my_plugin.api
-
-
-def frame(instance: spear.Instance) -> Any:
-    """A whole frame, for tests that do everything in begin_frame."""
-
-    class Frame:
-        def __enter__(self) -> None:
-            self._begin = instance.begin_frame()
-            self._begin.__enter__()
-
-        def __exit__(self, *exc: Any) -> None:
-            self._begin.__exit__(*exc)
-            with instance.end_frame():
-                pass
-
-    return Frame()
 
 
 # -- Fig. 8 ----------------------------------------------------------------------------------------
