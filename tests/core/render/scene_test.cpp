@@ -103,7 +103,8 @@ TEST(SceneTest, LevelsOfDetailAreChosenByHalfAPixelOfError) {
     EXPECT_EQ(scene.lodFor(fine, 12.5), coarse);  // 0.5 px at coarse
     EXPECT_EQ(scene.lodFor(medium, 1.0), medium); // a level has no levels of its own
 
-    EXPECT_THROW(scene.setMeshLods(fine, {{coarse, 0.04f}, {medium, 0.01f}}), InvalidArgument); // must increase
+    EXPECT_THROW(scene.setMeshLods(fine, {{coarse, 0.04f}, {medium, 0.01f}}),
+                 InvalidArgument); // must increase
     EXPECT_THROW(scene.setMeshLods(fine, {{fine, 0.01f}}), InvalidArgument);
     EXPECT_THROW(scene.setMeshLods(medium, {{fine, 0.01f}}), InvalidArgument); // fine has levels
     const MeshId twoSlots = scene.addMesh(primitives::box());
@@ -114,7 +115,8 @@ TEST(SceneTest, LevelsOfDetailAreChosenByHalfAPixelOfError) {
         scene.removeMesh(coarse);
         FAIL() << "a level in use was removed";
     } catch (const InvalidState& error) {
-        EXPECT_NE(std::string(error.what()).find("is a level of detail of"), std::string::npos) << error.what();
+        EXPECT_NE(std::string(error.what()).find("is a level of detail of"), std::string::npos)
+            << error.what();
     }
 }
 
