@@ -191,27 +191,27 @@ class UCameraSensorComponent : public USceneComponent {
     SP_GENERATED_BODY()
   public:
     /// Image width in pixels.
-    SPPROPERTY()
+    SPPROPERTY(Setter = SetWidth)
     int32_t Width = 640;
 
     /// Image height in pixels.
-    SPPROPERTY()
+    SPPROPERTY(Setter = SetHeight)
     int32_t Height = 480;
 
     /// Horizontal field of view in degrees, in (0, 180); square pixels.
-    SPPROPERTY()
+    SPPROPERTY(Setter = SetFOV)
     double FOV = 90.0;
 
     /// Near clipping distance in metres (> 0).
-    SPPROPERTY()
+    SPPROPERTY(Setter = SetNearClip)
     double NearClip = 0.05;
 
     /// Far clipping distance in metres (> NearClip).
-    SPPROPERTY()
+    SPPROPERTY(Setter = SetFarClip)
     double FarClip = 1000.0;
 
     /// Linear multiplier of HDR radiance before the tone curve.
-    SPPROPERTY()
+    SPPROPERTY(Setter = SetExposure)
     float Exposure = 1.0f;
 
     /// The tone curve of final_color.
@@ -223,7 +223,7 @@ class UCameraSensorComponent : public USceneComponent {
     bool bShadows = true;
 
     /// Shadow map size in texels, in [16, 8192].
-    SPPROPERTY()
+    SPPROPERTY(Setter = SetShadowResolution)
     int32_t ShadowResolution = 1024;
 
     /// The modalities rendered each frame; only the passes they need run.
@@ -231,8 +231,36 @@ class UCameraSensorComponent : public USceneComponent {
     std::vector<ECameraModality> Modalities{ECameraModality::FinalColor};
 
     /// Frames between rendering and reading: 0 (same frame), 1 or 2 (double or triple buffered).
-    SPPROPERTY()
+    SPPROPERTY(Setter = SetLatency)
     int32_t Latency = 0;
+
+    // Settings are checked when they are set, on either transport, so that a bad value is refused with
+    // the property's name and range instead of failing every later frame.
+
+    /// Sets Width in pixels, in [1, 16384].
+    SPFUNCTION()
+    void SetWidth(int32_t NewWidth);
+    /// Sets Height in pixels, in [1, 16384].
+    SPFUNCTION()
+    void SetHeight(int32_t NewHeight);
+    /// Sets the horizontal field of view in degrees, in (0, 180).
+    SPFUNCTION()
+    void SetFOV(double NewFOV);
+    /// Sets NearClip in metres (> 0 and finite).
+    SPFUNCTION()
+    void SetNearClip(double NewNearClip);
+    /// Sets FarClip in metres (> 0 and finite; it must exceed NearClip when the camera renders).
+    SPFUNCTION()
+    void SetFarClip(double NewFarClip);
+    /// Sets Exposure (> 0 and finite).
+    SPFUNCTION()
+    void SetExposure(float NewExposure);
+    /// Sets ShadowResolution in texels, in [16, 8192].
+    SPFUNCTION()
+    void SetShadowResolution(int32_t NewShadowResolution);
+    /// Sets Latency: 0, 1 or 2 frames.
+    SPFUNCTION()
+    void SetLatency(int32_t NewLatency);
 
     /// Returns the images of the frame due (see the class notes on latency); an empty dict while priming.
     SPFUNCTION()

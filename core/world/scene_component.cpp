@@ -1,6 +1,9 @@
 #include "core/world/scene_component.h"
 
 #include <algorithm>
+#include <cmath>
+#include <initializer_list>
+#include <string>
 
 #include "core/base/error.h"
 #include "core/world/actor.h"
@@ -23,22 +26,59 @@ void USceneComponent::checkMovable(const char* function) const {
              " is static; set its Mobility to Movable before moving it");
 }
 
+namespace {
+
+// A transform is checked when it is set, so that a NaN or a zero scale is refused by the call that
+// brings it instead of breaking physics and rendering on every later frame.
+void checkFinite(const char* function, const char* what, std::initializer_list<double> values,
+                 const std::string& text) {
+    for (double value : values)
+        SP_CHECK(std::isfinite(value), sp::InvalidArgument, "USceneComponent.", function, "(): ", what,
+                 " must be finite, got ", text);
+}
+
+void checkScale(const char* function, const FVector& scale) {
+    const std::string text =
+        "(" + std::to_string(scale.X) + ", " + std::to_string(scale.Y) + ", " + std::to_string(scale.Z) + ")";
+    checkFinite(function, "the scale", {scale.X, scale.Y, scale.Z}, text);
+    SP_CHECK(scale.X != 0.0 && scale.Y != 0.0 && scale.Z != 0.0, sp::InvalidArgument, "USceneComponent.",
+             function, "(): the scale must have no zero component, got ", text);
+}
+
+std::string describe(const FVector& v) {
+    return "(" + std::to_string(v.X) + ", " + std::to_string(v.Y) + ", " + std::to_string(v.Z) + ")";
+}
+
+} // namespace
+
 void USceneComponent::SetRelativeLocation(const FVector& NewLocation) {
+    checkFinite("SetRelativeLocation", "the location", {NewLocation.X, NewLocation.Y, NewLocation.Z},
+                describe(NewLocation));
     checkMovable("SetRelativeLocation");
     RelativeLocation = NewLocation;
 }
 
 void USceneComponent::SetRelativeRotation(const FRotator& NewRotation) {
+    checkFinite("SetRelativeRotation", "the rotation", {NewRotation.Pitch, NewRotation.Yaw, NewRotation.Roll},
+                "(Pitch " + std::to_string(NewRotation.Pitch) + ", Yaw " + std::to_string(NewRotation.Yaw) +
+                    ", Roll " + std::to_string(NewRotation.Roll) + ")");
     checkMovable("SetRelativeRotation");
     RelativeRotation = NewRotation;
 }
 
 void USceneComponent::SetRelativeScale3D(const FVector& NewScale3D) {
+    checkScale("SetRelativeScale3D", NewScale3D);
     checkMovable("SetRelativeScale3D");
     RelativeScale3D = NewScale3D;
 }
 
 void USceneComponent::SetRelativeTransform(const FTransform& NewTransform) {
+    const FVector& t = NewTransform.Translation;
+    const FQuat& q = NewTransform.Rotation;
+    checkFinite("SetRelativeTransform", "the location", {t.X, t.Y, t.Z}, describe(t));
+    checkFinite("SetRelativeTransform", "the rotation", {q.X, q.Y, q.Z, q.W},
+                "a quaternion with a NaN or inf");
+    checkScale("SetRelativeTransform", NewTransform.Scale3D);
     checkMovable("SetRelativeTransform");
     RelativeLocation = NewTransform.Translation;
     RelativeRotation = FRotator::fromQuaternion(NewTransform.Rotation.toEigen());

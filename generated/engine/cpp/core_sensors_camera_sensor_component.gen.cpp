@@ -616,7 +616,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             [](void* self, const sp::reflect::Value& value) {
                 auto* object = sp::reflect::selfCast<Self>(self);
-                object->Width = sp::reflect::decode<int32_t>(value, "UCameraSensorComponent.Width");
+                object->SetWidth(sp::reflect::decode<int32_t>(value, "UCameraSensorComponent.Width"));
                 sp::reflect::notifyPropertyChanged(object, "Width");
             },
         });
@@ -630,7 +630,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             [](void* self, const sp::reflect::Value& value) {
                 auto* object = sp::reflect::selfCast<Self>(self);
-                object->Height = sp::reflect::decode<int32_t>(value, "UCameraSensorComponent.Height");
+                object->SetHeight(sp::reflect::decode<int32_t>(value, "UCameraSensorComponent.Height"));
                 sp::reflect::notifyPropertyChanged(object, "Height");
             },
         });
@@ -644,7 +644,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             [](void* self, const sp::reflect::Value& value) {
                 auto* object = sp::reflect::selfCast<Self>(self);
-                object->FOV = sp::reflect::decode<double>(value, "UCameraSensorComponent.FOV");
+                object->SetFOV(sp::reflect::decode<double>(value, "UCameraSensorComponent.FOV"));
                 sp::reflect::notifyPropertyChanged(object, "FOV");
             },
         });
@@ -658,7 +658,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             [](void* self, const sp::reflect::Value& value) {
                 auto* object = sp::reflect::selfCast<Self>(self);
-                object->NearClip = sp::reflect::decode<double>(value, "UCameraSensorComponent.NearClip");
+                object->SetNearClip(sp::reflect::decode<double>(value, "UCameraSensorComponent.NearClip"));
                 sp::reflect::notifyPropertyChanged(object, "NearClip");
             },
         });
@@ -672,7 +672,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             [](void* self, const sp::reflect::Value& value) {
                 auto* object = sp::reflect::selfCast<Self>(self);
-                object->FarClip = sp::reflect::decode<double>(value, "UCameraSensorComponent.FarClip");
+                object->SetFarClip(sp::reflect::decode<double>(value, "UCameraSensorComponent.FarClip"));
                 sp::reflect::notifyPropertyChanged(object, "FarClip");
             },
         });
@@ -686,7 +686,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             [](void* self, const sp::reflect::Value& value) {
                 auto* object = sp::reflect::selfCast<Self>(self);
-                object->Exposure = sp::reflect::decode<float>(value, "UCameraSensorComponent.Exposure");
+                object->SetExposure(sp::reflect::decode<float>(value, "UCameraSensorComponent.Exposure"));
                 sp::reflect::notifyPropertyChanged(object, "Exposure");
             },
         });
@@ -728,7 +728,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             [](void* self, const sp::reflect::Value& value) {
                 auto* object = sp::reflect::selfCast<Self>(self);
-                object->ShadowResolution = sp::reflect::decode<int32_t>(value, "UCameraSensorComponent.ShadowResolution");
+                object->SetShadowResolution(sp::reflect::decode<int32_t>(value, "UCameraSensorComponent.ShadowResolution"));
                 sp::reflect::notifyPropertyChanged(object, "ShadowResolution");
             },
         });
@@ -756,8 +756,144 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             [](void* self, const sp::reflect::Value& value) {
                 auto* object = sp::reflect::selfCast<Self>(self);
-                object->Latency = sp::reflect::decode<int32_t>(value, "UCameraSensorComponent.Latency");
+                object->SetLatency(sp::reflect::decode<int32_t>(value, "UCameraSensorComponent.Latency"));
                 sp::reflect::notifyPropertyChanged(object, "Latency");
+            },
+        });
+        t.functions.push_back({
+            "SetWidth",
+            "Sets Width in pixels, in [1, 16384].",
+            "None",
+            {
+                {"NewWidth", "int", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetWidth()";
+                sp::reflect::checkArguments(args, {"NewWidth"}, kContext);
+                int32_t NewWidth = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "NewWidth", kContext), "UCameraSensorComponent.SetWidth(): argument 'NewWidth'");
+                sp::reflect::selfCast<Self>(self)->SetWidth(NewWidth);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetHeight",
+            "Sets Height in pixels, in [1, 16384].",
+            "None",
+            {
+                {"NewHeight", "int", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetHeight()";
+                sp::reflect::checkArguments(args, {"NewHeight"}, kContext);
+                int32_t NewHeight = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "NewHeight", kContext), "UCameraSensorComponent.SetHeight(): argument 'NewHeight'");
+                sp::reflect::selfCast<Self>(self)->SetHeight(NewHeight);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetFOV",
+            "Sets the horizontal field of view in degrees, in (0, 180).",
+            "None",
+            {
+                {"NewFOV", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetFOV()";
+                sp::reflect::checkArguments(args, {"NewFOV"}, kContext);
+                double NewFOV = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewFOV", kContext), "UCameraSensorComponent.SetFOV(): argument 'NewFOV'");
+                sp::reflect::selfCast<Self>(self)->SetFOV(NewFOV);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetNearClip",
+            "Sets NearClip in metres (> 0 and finite).",
+            "None",
+            {
+                {"NewNearClip", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetNearClip()";
+                sp::reflect::checkArguments(args, {"NewNearClip"}, kContext);
+                double NewNearClip = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewNearClip", kContext), "UCameraSensorComponent.SetNearClip(): argument 'NewNearClip'");
+                sp::reflect::selfCast<Self>(self)->SetNearClip(NewNearClip);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetFarClip",
+            "Sets FarClip in metres (> 0 and finite; it must exceed NearClip when the camera renders).",
+            "None",
+            {
+                {"NewFarClip", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetFarClip()";
+                sp::reflect::checkArguments(args, {"NewFarClip"}, kContext);
+                double NewFarClip = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewFarClip", kContext), "UCameraSensorComponent.SetFarClip(): argument 'NewFarClip'");
+                sp::reflect::selfCast<Self>(self)->SetFarClip(NewFarClip);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetExposure",
+            "Sets Exposure (> 0 and finite).",
+            "None",
+            {
+                {"NewExposure", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetExposure()";
+                sp::reflect::checkArguments(args, {"NewExposure"}, kContext);
+                float NewExposure = sp::reflect::decode<float>(sp::reflect::requireArgument(args, "NewExposure", kContext), "UCameraSensorComponent.SetExposure(): argument 'NewExposure'");
+                sp::reflect::selfCast<Self>(self)->SetExposure(NewExposure);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetShadowResolution",
+            "Sets ShadowResolution in texels, in [16, 8192].",
+            "None",
+            {
+                {"NewShadowResolution", "int", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetShadowResolution()";
+                sp::reflect::checkArguments(args, {"NewShadowResolution"}, kContext);
+                int32_t NewShadowResolution = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "NewShadowResolution", kContext), "UCameraSensorComponent.SetShadowResolution(): argument 'NewShadowResolution'");
+                sp::reflect::selfCast<Self>(self)->SetShadowResolution(NewShadowResolution);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetLatency",
+            "Sets Latency: 0, 1 or 2 frames.",
+            "None",
+            {
+                {"NewLatency", "int", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetLatency()";
+                sp::reflect::checkArguments(args, {"NewLatency"}, kContext);
+                int32_t NewLatency = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "NewLatency", kContext), "UCameraSensorComponent.SetLatency(): argument 'NewLatency'");
+                sp::reflect::selfCast<Self>(self)->SetLatency(NewLatency);
+                return {};
             },
         });
         t.functions.push_back({

@@ -855,7 +855,7 @@ const Self* object = self.get<Self>(kContext);
             [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UCameraSensorComponent.Width")->Width); },
             [](const Ref<Self>& self, Bridge<int32_t>::Py value) {
                 Self* object = self.get<Self>("UCameraSensorComponent.Width");
-                object->Width = Bridge<int32_t>::in(std::move(value), "UCameraSensorComponent.Width");
+                object->SetWidth(Bridge<int32_t>::in(std::move(value), "UCameraSensorComponent.Width"));
                 object->PostPropertyChanged("Width");
             },
             "Image width in pixels.");
@@ -864,7 +864,7 @@ const Self* object = self.get<Self>(kContext);
             [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UCameraSensorComponent.Height")->Height); },
             [](const Ref<Self>& self, Bridge<int32_t>::Py value) {
                 Self* object = self.get<Self>("UCameraSensorComponent.Height");
-                object->Height = Bridge<int32_t>::in(std::move(value), "UCameraSensorComponent.Height");
+                object->SetHeight(Bridge<int32_t>::in(std::move(value), "UCameraSensorComponent.Height"));
                 object->PostPropertyChanged("Height");
             },
             "Image height in pixels.");
@@ -873,7 +873,7 @@ const Self* object = self.get<Self>(kContext);
             [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCameraSensorComponent.FOV")->FOV); },
             [](const Ref<Self>& self, Bridge<double>::Py value) {
                 Self* object = self.get<Self>("UCameraSensorComponent.FOV");
-                object->FOV = Bridge<double>::in(std::move(value), "UCameraSensorComponent.FOV");
+                object->SetFOV(Bridge<double>::in(std::move(value), "UCameraSensorComponent.FOV"));
                 object->PostPropertyChanged("FOV");
             },
             "Horizontal field of view in degrees, in (0, 180); square pixels.");
@@ -882,7 +882,7 @@ const Self* object = self.get<Self>(kContext);
             [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCameraSensorComponent.NearClip")->NearClip); },
             [](const Ref<Self>& self, Bridge<double>::Py value) {
                 Self* object = self.get<Self>("UCameraSensorComponent.NearClip");
-                object->NearClip = Bridge<double>::in(std::move(value), "UCameraSensorComponent.NearClip");
+                object->SetNearClip(Bridge<double>::in(std::move(value), "UCameraSensorComponent.NearClip"));
                 object->PostPropertyChanged("NearClip");
             },
             "Near clipping distance in metres (> 0).");
@@ -891,7 +891,7 @@ const Self* object = self.get<Self>(kContext);
             [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCameraSensorComponent.FarClip")->FarClip); },
             [](const Ref<Self>& self, Bridge<double>::Py value) {
                 Self* object = self.get<Self>("UCameraSensorComponent.FarClip");
-                object->FarClip = Bridge<double>::in(std::move(value), "UCameraSensorComponent.FarClip");
+                object->SetFarClip(Bridge<double>::in(std::move(value), "UCameraSensorComponent.FarClip"));
                 object->PostPropertyChanged("FarClip");
             },
             "Far clipping distance in metres (> NearClip).");
@@ -900,7 +900,7 @@ const Self* object = self.get<Self>(kContext);
             [](const Ref<Self>& self) { return Bridge<float>::out(self.get<Self>("UCameraSensorComponent.Exposure")->Exposure); },
             [](const Ref<Self>& self, Bridge<float>::Py value) {
                 Self* object = self.get<Self>("UCameraSensorComponent.Exposure");
-                object->Exposure = Bridge<float>::in(std::move(value), "UCameraSensorComponent.Exposure");
+                object->SetExposure(Bridge<float>::in(std::move(value), "UCameraSensorComponent.Exposure"));
                 object->PostPropertyChanged("Exposure");
             },
             "Linear multiplier of HDR radiance before the tone curve.");
@@ -927,7 +927,7 @@ const Self* object = self.get<Self>(kContext);
             [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UCameraSensorComponent.ShadowResolution")->ShadowResolution); },
             [](const Ref<Self>& self, Bridge<int32_t>::Py value) {
                 Self* object = self.get<Self>("UCameraSensorComponent.ShadowResolution");
-                object->ShadowResolution = Bridge<int32_t>::in(std::move(value), "UCameraSensorComponent.ShadowResolution");
+                object->SetShadowResolution(Bridge<int32_t>::in(std::move(value), "UCameraSensorComponent.ShadowResolution"));
                 object->PostPropertyChanged("ShadowResolution");
             },
             "Shadow map size in texels, in [16, 8192].");
@@ -945,10 +945,106 @@ const Self* object = self.get<Self>(kContext);
             [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UCameraSensorComponent.Latency")->Latency); },
             [](const Ref<Self>& self, Bridge<int32_t>::Py value) {
                 Self* object = self.get<Self>("UCameraSensorComponent.Latency");
-                object->Latency = Bridge<int32_t>::in(std::move(value), "UCameraSensorComponent.Latency");
+                object->SetLatency(Bridge<int32_t>::in(std::move(value), "UCameraSensorComponent.Latency"));
                 object->PostPropertyChanged("Latency");
             },
             "Frames between rendering and reading: 0 (same frame), 1 or 2 (double or triple buffered).");
+        cls.def(
+            "SetWidth",
+            [](const Ref<Self>& self, Bridge<int32_t>::Py NewWidth) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetWidth()";
+Self* object = self.get<Self>(kContext);
+                auto NewWidthValue = Bridge<int32_t>::in(std::move(NewWidth), "UCameraSensorComponent.SetWidth(): argument 'NewWidth'");
+                object->SetWidth(NewWidthValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewWidth"),
+            "Sets Width in pixels, in [1, 16384].");
+        cls.def(
+            "SetHeight",
+            [](const Ref<Self>& self, Bridge<int32_t>::Py NewHeight) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetHeight()";
+Self* object = self.get<Self>(kContext);
+                auto NewHeightValue = Bridge<int32_t>::in(std::move(NewHeight), "UCameraSensorComponent.SetHeight(): argument 'NewHeight'");
+                object->SetHeight(NewHeightValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewHeight"),
+            "Sets Height in pixels, in [1, 16384].");
+        cls.def(
+            "SetFOV",
+            [](const Ref<Self>& self, Bridge<double>::Py NewFOV) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetFOV()";
+Self* object = self.get<Self>(kContext);
+                auto NewFOVValue = Bridge<double>::in(std::move(NewFOV), "UCameraSensorComponent.SetFOV(): argument 'NewFOV'");
+                object->SetFOV(NewFOVValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewFOV"),
+            "Sets the horizontal field of view in degrees, in (0, 180).");
+        cls.def(
+            "SetNearClip",
+            [](const Ref<Self>& self, Bridge<double>::Py NewNearClip) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetNearClip()";
+Self* object = self.get<Self>(kContext);
+                auto NewNearClipValue = Bridge<double>::in(std::move(NewNearClip), "UCameraSensorComponent.SetNearClip(): argument 'NewNearClip'");
+                object->SetNearClip(NewNearClipValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewNearClip"),
+            "Sets NearClip in metres (> 0 and finite).");
+        cls.def(
+            "SetFarClip",
+            [](const Ref<Self>& self, Bridge<double>::Py NewFarClip) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetFarClip()";
+Self* object = self.get<Self>(kContext);
+                auto NewFarClipValue = Bridge<double>::in(std::move(NewFarClip), "UCameraSensorComponent.SetFarClip(): argument 'NewFarClip'");
+                object->SetFarClip(NewFarClipValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewFarClip"),
+            "Sets FarClip in metres (> 0 and finite; it must exceed NearClip when the camera renders).");
+        cls.def(
+            "SetExposure",
+            [](const Ref<Self>& self, Bridge<float>::Py NewExposure) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetExposure()";
+Self* object = self.get<Self>(kContext);
+                auto NewExposureValue = Bridge<float>::in(std::move(NewExposure), "UCameraSensorComponent.SetExposure(): argument 'NewExposure'");
+                object->SetExposure(NewExposureValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewExposure"),
+            "Sets Exposure (> 0 and finite).");
+        cls.def(
+            "SetShadowResolution",
+            [](const Ref<Self>& self, Bridge<int32_t>::Py NewShadowResolution) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetShadowResolution()";
+Self* object = self.get<Self>(kContext);
+                auto NewShadowResolutionValue = Bridge<int32_t>::in(std::move(NewShadowResolution), "UCameraSensorComponent.SetShadowResolution(): argument 'NewShadowResolution'");
+                object->SetShadowResolution(NewShadowResolutionValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewShadowResolution"),
+            "Sets ShadowResolution in texels, in [16, 8192].");
+        cls.def(
+            "SetLatency",
+            [](const Ref<Self>& self, Bridge<int32_t>::Py NewLatency) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetLatency()";
+Self* object = self.get<Self>(kContext);
+                auto NewLatencyValue = Bridge<int32_t>::in(std::move(NewLatency), "UCameraSensorComponent.SetLatency(): argument 'NewLatency'");
+                object->SetLatency(NewLatencyValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewLatency"),
+            "Sets Latency: 0, 1 or 2 frames.");
         cls.def(
             "read_pixels",
             [](const Ref<Self>& self) -> py::object {

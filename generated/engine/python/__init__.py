@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "41a6d81e7896d9c3"
+API_HASH = "46276befd9bd0248"

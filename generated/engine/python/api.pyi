@@ -1095,6 +1095,22 @@ class USceneComponent(UActorComponent):
 class UCameraSensorComponentAsync(USceneComponentAsync):
     """UCameraSensorComponent's functions, called asynchronously: each returns a Future."""
 
+    def SetWidth(self, *, NewWidth: int) -> Future[None]: ...
+
+    def SetHeight(self, *, NewHeight: int) -> Future[None]: ...
+
+    def SetFOV(self, *, NewFOV: float) -> Future[None]: ...
+
+    def SetNearClip(self, *, NewNearClip: float) -> Future[None]: ...
+
+    def SetFarClip(self, *, NewFarClip: float) -> Future[None]: ...
+
+    def SetExposure(self, *, NewExposure: float) -> Future[None]: ...
+
+    def SetShadowResolution(self, *, NewShadowResolution: int) -> Future[None]: ...
+
+    def SetLatency(self, *, NewLatency: int) -> Future[None]: ...
+
     def read_pixels(self) -> Future[FCameraPixels]: ...
 
     def GetPixelsFrame(self) -> Future[int]: ...
@@ -1116,6 +1132,22 @@ class UCameraSensorComponentAsync(USceneComponentAsync):
 
 class UCameraSensorComponentSend(USceneComponentSend):
     """UCameraSensorComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetWidth(self, *, NewWidth: int) -> None: ...
+
+    def SetHeight(self, *, NewHeight: int) -> None: ...
+
+    def SetFOV(self, *, NewFOV: float) -> None: ...
+
+    def SetNearClip(self, *, NewNearClip: float) -> None: ...
+
+    def SetFarClip(self, *, NewFarClip: float) -> None: ...
+
+    def SetExposure(self, *, NewExposure: float) -> None: ...
+
+    def SetShadowResolution(self, *, NewShadowResolution: int) -> None: ...
+
+    def SetLatency(self, *, NewLatency: int) -> None: ...
 
     def read_pixels(self) -> None: ...
 
@@ -1225,6 +1257,30 @@ class UCameraSensorComponent(USceneComponent):
 
     @Latency.setter
     def Latency(self, value: int) -> None: ...
+
+    def SetWidth(self, *, NewWidth: int) -> None:
+        """Sets Width in pixels, in [1, 16384]."""
+
+    def SetHeight(self, *, NewHeight: int) -> None:
+        """Sets Height in pixels, in [1, 16384]."""
+
+    def SetFOV(self, *, NewFOV: float) -> None:
+        """Sets the horizontal field of view in degrees, in (0, 180)."""
+
+    def SetNearClip(self, *, NewNearClip: float) -> None:
+        """Sets NearClip in metres (> 0 and finite)."""
+
+    def SetFarClip(self, *, NewFarClip: float) -> None:
+        """Sets FarClip in metres (> 0 and finite; it must exceed NearClip when the camera renders)."""
+
+    def SetExposure(self, *, NewExposure: float) -> None:
+        """Sets Exposure (> 0 and finite)."""
+
+    def SetShadowResolution(self, *, NewShadowResolution: int) -> None:
+        """Sets ShadowResolution in texels, in [16, 8192]."""
+
+    def SetLatency(self, *, NewLatency: int) -> None:
+        """Sets Latency: 0, 1 or 2 frames."""
 
     def read_pixels(self) -> FCameraPixels:
         """Returns the images of the frame due (see the class notes on latency); an empty dict while priming."""

@@ -511,6 +511,30 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
     def Latency(self, value: int) -> None:
         self._sp_set("UCameraSensorComponent", "Latency", value)
 
+    def SetWidth(self, *, NewWidth: int) -> None:
+        self._sp_call("UCameraSensorComponent", "SetWidth", {"NewWidth": NewWidth}, "None")
+
+    def SetHeight(self, *, NewHeight: int) -> None:
+        self._sp_call("UCameraSensorComponent", "SetHeight", {"NewHeight": NewHeight}, "None")
+
+    def SetFOV(self, *, NewFOV: float) -> None:
+        self._sp_call("UCameraSensorComponent", "SetFOV", {"NewFOV": NewFOV}, "None")
+
+    def SetNearClip(self, *, NewNearClip: float) -> None:
+        self._sp_call("UCameraSensorComponent", "SetNearClip", {"NewNearClip": NewNearClip}, "None")
+
+    def SetFarClip(self, *, NewFarClip: float) -> None:
+        self._sp_call("UCameraSensorComponent", "SetFarClip", {"NewFarClip": NewFarClip}, "None")
+
+    def SetExposure(self, *, NewExposure: float) -> None:
+        self._sp_call("UCameraSensorComponent", "SetExposure", {"NewExposure": NewExposure}, "None")
+
+    def SetShadowResolution(self, *, NewShadowResolution: int) -> None:
+        self._sp_call("UCameraSensorComponent", "SetShadowResolution", {"NewShadowResolution": NewShadowResolution}, "None")
+
+    def SetLatency(self, *, NewLatency: int) -> None:
+        self._sp_call("UCameraSensorComponent", "SetLatency", {"NewLatency": NewLatency}, "None")
+
     def read_pixels(self) -> FCameraPixels:
         return cast("FCameraPixels", self._sp_call("UCameraSensorComponent", "read_pixels", {}, "FCameraPixels"))
 

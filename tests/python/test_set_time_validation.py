@@ -1,0 +1,82 @@
+"""Bad values are refused when they are set, on both transports, naming the property and its range; the
+engine keeps running and the old value stays (before, they were accepted and failed every later frame)."""
+
+from __future__ import annotations
+
+import math
+import re
+from typing import Any
+
+import pytest
+
+import spear
+
+CAMERA_CASES = [
+    ("Width", 100000, 640, "UCameraSensorComponent.Width must be in [1, 16384], got 100000"),
+    ("Width", -5, 640, "UCameraSensorComponent.Width must be in [1, 16384], got -5"),
+    ("Height", 0, 480, "UCameraSensorComponent.Height must be in [1, 16384], got 0"),
+    ("FOV", 180.0, 90.0, "UCameraSensorComponent.FOV must be in (0, 180) degrees, got 180"),
+    ("NearClip", 0.0, 0.05, "UCameraSensorComponent.NearClip must be > 0 and finite, got 0"),
+    ("FarClip", math.inf, 1000.0, "UCameraSensorComponent.FarClip must be > 0 and finite, got inf"),
+    ("Exposure", math.nan, 1.0, "UCameraSensorComponent.Exposure must be > 0 and finite, got nan"),
+    ("ShadowResolution", 8, 1024, "UCameraSensorComponent.ShadowResolution must be in [16, 8192], got 8"),
+    ("Latency", 3, 0, "UCameraSensorComponent.Latency must be 0, 1 or 2, got 3"),
+]
+
+
+@pytest.mark.parametrize("name, value, default, message", CAMERA_CASES, ids=[f"{c[0]}={c[1]}" for c in CAMERA_CASES])
+def test_camera_settings_are_checked_when_set(instance: spear.Instance, name: str, value: Any, default: Any,
+                                              message: str) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera").CameraSensor
+        camera.Width, camera.Height = 32, 24
+        with pytest.raises(spear.InvalidArgumentError, match=re.escape(message)):
+            setattr(camera, name, value)
+        expected = 32 if name == "Width" else 24 if name == "Height" else default
+        assert getattr(camera, name) == expected
+    with instance.end_frame():
+        assert "final_color" in camera.read_pixels()  # the camera still renders
+
+
+def test_valid_camera_settings_are_taken(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera").CameraSensor
+        camera.Width, camera.Height, camera.FOV, camera.Latency, camera.ShadowResolution = 16, 8, 179.5, 2, 16
+        assert (camera.Width, camera.Height, camera.FOV, camera.Latency, camera.ShadowResolution) == (16, 8, 179.5, 2, 16)
+    with instance.end_frame():
+        pass
+
+
+@pytest.mark.parametrize("call, message", [
+    ("location", "USceneComponent.SetRelativeTransform(): the location must be finite, got (nan, 0.000000, 0.000000)"),
+    ("relative", "USceneComponent.SetRelativeLocation(): the location must be finite, got (inf, 0.000000, 0.000000)"),
+    ("rotation", "USceneComponent.SetRelativeRotation(): the rotation must be finite"),
+    ("scale", "USceneComponent.SetRelativeTransform(): the scale must have no zero component, got (0.000000, 1.000000, 1.000000)"),
+])
+def test_transforms_are_checked_when_set(instance: spear.Instance, call: str, message: str) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        box = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Box", location=spear.FVector(1.0, 2.0, 3.0))
+        mesh = box.StaticMeshComponent
+        mesh.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        mesh.SetSimulatePhysics(bSimulate=True)
+        with pytest.raises(spear.InvalidArgumentError, match=re.escape(message)):
+            if call == "location":
+                box.SetActorLocation(NewLocation=spear.FVector(math.nan, 0.0, 0.0))
+            elif call == "relative":
+                mesh.SetRelativeLocation(NewLocation=spear.FVector(math.inf, 0.0, 0.0))
+            elif call == "rotation":
+                mesh.RelativeRotation = spear.FRotator(Pitch=math.nan, Yaw=0.0, Roll=0.0)
+            else:
+                box.SetActorScale3D(NewScale3D=spear.FVector(0.0, 1.0, 1.0))
+        assert box.GetActorLocation() == spear.FVector(1.0, 2.0, 3.0)
+    with instance.end_frame():
+        pass
+    instance.step(num_frames=2)  # physics keeps stepping with the old, valid transform
+    with instance.begin_frame():
+        location = box.GetActorLocation()
+        assert all(math.isfinite(c) for c in (location.X, location.Y, location.Z))
+    with instance.end_frame():
+        pass
