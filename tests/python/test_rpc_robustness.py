@@ -300,3 +300,54 @@ def test_a_frame_left_open_by_a_client_that_hung_up_is_aborted(server: LaunchedS
         reply = client_b.request({"id": 2, "op": "frame", "action": action})
         assert "ok" in reply, reply
     assert reply["ok"]["state"] == "idle"
+
+
+# -- clients that do not read --------------------------------------------------------------------------
+
+def frames(count: int, value: str) -> bytes:
+    """`count` echo requests, ids 0..count-1, as one stream of frames."""
+    bodies = (msgpack.packb({"id": i, "op": "echo", "value": value}) for i in range(count))
+    return b"".join(struct.pack("<I", len(body)) + body for body in bodies)
+
+
+def complete_a_frame(client: RawClient) -> int:
+    for action in ("begin", "execute", "begin_end", "end"):
+        reply = client.request({"id": 1, "op": "frame", "action": action})
+        assert "ok" in reply, reply
+    assert reply["ok"]["state"] == "idle"
+    return int(reply["ok"]["frame_count"])
+
+
+def test_a_client_that_never_reads_its_replies_cannot_stop_the_server(server: LaunchedServer) -> None:
+    # The server sent each reply with a blocking send(): once a client that never reads had filled its
+    # socket's buffers, the server waited in send() for good, and every other client with it (here: the
+    # sends below, and client B, time out instead of completing).
+    value = "x" * (32 << 10)
+    slow = RawClient(server)
+    slow.sock.sendall(frames(100, value))  # 3 MiB of replies, more than the socket holds: some wait queued
+    other = RawClient(server)
+    first = complete_a_frame(other)
+    assert complete_a_frame(other) == first + 1
+    # Replies that waited are delivered whole and in order once the client reads.
+    for i in range(100):
+        (length,) = struct.unpack("<I", slow._receive(4))  # noqa: SLF001
+        assert msgpack.unpackb(slow._receive(length), raw=False) == {"id": i, "ok": value}  # noqa: SLF001
+
+    # A client that holds a frame open and never reads: past the queue's bound it is dropped, and its frame
+    # aborted, so that the others go on.
+    hog = RawClient(server)
+    assert "ok" in hog.request({"id": 1, "op": "frame", "action": "begin"})
+    try:
+        hog.sock.sendall(frames(4000, value))  # 128 MiB of replies: past 64 MiB and 256 replies
+    except (BrokenPipeError, ConnectionResetError):
+        pass  # dropped before it had sent them all
+    received = 0
+    try:
+        while chunk := hog.sock.recv(1 << 20):
+            received += len(chunk)
+    except ConnectionResetError:
+        pass
+    assert received < 4000 * len(value)  # it was cut off, not served to the end
+    assert complete_a_frame(other) == first + 3  # the hog's frame was aborted (one tick), then B's own
+    assert server.process.poll() is None
+    still_serves(server)
