@@ -1,9 +1,9 @@
 #include "core/world/world.h"
 
 #include <algorithm>
-#include <fstream>
 
 #include "core/base/error.h"
+#include "core/base/regular_file.h"
 #include "core/reflect/registry.h"
 #include "core/world/blueprint.h"
 #include "core/world/engine.h"
@@ -92,10 +92,7 @@ void UWorld::load_scene(const std::string& path) {
 
 void UWorld::save_scene(const std::string& path) const {
     const std::string text = sp::world::sceneToString(sp::world::saveScene(*this));
-    std::ofstream out(path, std::ios::binary);
-    SP_CHECK(out, sp::NotFound, "UWorld.save_scene(): cannot write scene file '", path, "'");
-    out << text;
-    SP_CHECK(out.flush(), sp::InvalidState, "UWorld.save_scene(): writing scene file '", path, "' failed");
+    sp::writeRegularFile(path, text, "UWorld.save_scene()", "scene file"); // never a FIFO or a device
 }
 
 sp::world::Engine& UWorld::editorEngine(const char* function) const {

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import json
+import os
+import re
 from collections.abc import Callable
 from pathlib import Path
 
@@ -102,3 +104,36 @@ def test_missing_and_malformed_scenes_are_clear_errors(instance: spear.Instance,
         assert [a.GetName() for a in game.find_actors()] == ["Keep"]
     with pytest.raises(spear.NotFoundError, match="scene file 'missing.json' not found"):
         spear.Instance(scene="missing.json", server="launch" if instance.transport == "rpc" else None)
+
+
+def test_a_fifo_or_a_device_named_as_a_file_is_refused_at_once(instance: spear.Instance, tmp_path: Path) -> None:
+    # A FIFO no one writes blocked the engine in open() for good (over RPC: every client of the server), and
+    # /dev/zero was read until memory ran out. Only regular files are read or written.
+    fifo = tmp_path / "BP_Fifo.json"
+    os.mkfifo(fifo)
+    not_regular = "is not a regular file (a FIFO, device or socket)"
+    game = instance.get_game()
+    with instance.begin_frame():
+        kept = game.spawn_actor(uclass=spear.AActor, name="Kept")
+        for path in (str(fifo), "/dev/zero"):
+            with pytest.raises(spear.InvalidArgumentError,
+                               match=re.escape(f"UWorld.load_scene(): scene file '{path}' {not_regular}")):
+                game.load_scene(path=path)
+            with pytest.raises(spear.InvalidArgumentError,
+                               match=re.escape(f"UWorld.load_class(): blueprint '{path}' {not_regular}")):
+                game.load_class(uclass=spear.AActor, name=path)
+        with pytest.raises(spear.InvalidArgumentError,  # writing: a FIFO with no reader blocked the open
+                           match=re.escape(f"UWorld.save_scene(): scene file '{fifo}' {not_regular}")):
+            game.save_scene(path=str(fifo))
+        with pytest.raises(spear.InvalidArgumentError,
+                           match=re.escape(f"UWorld.save_scene(): scene file '/dev/null' {not_regular}")):
+            game.save_scene(path="/dev/null")
+        assert [a.GetName() for a in game.find_actors()] == ["Kept"] and kept.is_valid()
+    with instance.end_frame():
+        pass
+    with instance.begin_frame():  # the engine works on
+        game.spawn_actor(uclass=spear.AActor, name="Next")
+        game.save_scene(path=str(tmp_path / "after.json"))
+    with instance.end_frame():
+        assert game.get_actor_count() == 2
+
