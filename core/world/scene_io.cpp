@@ -365,8 +365,13 @@ void loadScene(UWorld& world, const SceneJson& scene, std::string_view source) {
         }
     }
 
-    // 3. Only now does the world change.
-    world.ReplaceActors(std::move(staged));
+    // 3. Only now does the world change, once every actor has begun play (ReplaceActors: one that fails
+    // to, as one whose physics settings Bullet refuses, leaves the world as it was).
+    try {
+        world.ReplaceActors(std::move(staged));
+    } catch (const Error&) {
+        rethrowWithPrefix(root + ": ");
+    }
 }
 
 SceneJson readSceneFile(const std::string& path, std::string_view function) {

@@ -75,13 +75,24 @@ std::unique_ptr<AActor> UWorld::NewActorDeferred(const UClass& type, std::string
 
 void UWorld::ReplaceActors(std::vector<std::unique_ptr<AActor>> actors) {
     SP_CHECK(!ticking_, sp::InvalidState, "UWorld: the actors cannot be replaced while the world ticks");
+    // The incoming actors begin play while the old ones are still here: beginning play checks what
+    // construction and property values could not (physics settings Bullet refuses, a plugin component's
+    // own checks), and a scene that fails there must leave the world as it was. Those that began end play
+    // again, and the old actors are only destroyed once every new one has begun.
+    size_t begun = 0;
+    try {
+        for (; begun < actors.size(); ++begun)
+            actors[begun]->BeginPlay();
+    } catch (...) {
+        for (size_t i = std::min(begun + 1, actors.size()); i-- > 0;)
+            if (actors[i]->HasBegunPlay())
+                actors[i]->EndPlay();
+        sp::rethrowWithPrefix("actor '" + actors[begun]->GetName() + "': ");
+    }
     for (AActor* actor : find_actors())
         destroy_actor(actor);
-    for (auto& actor : actors) {
-        AActor* raw = actor.get();
+    for (auto& actor : actors)
         actors_.push_back(std::move(actor));
-        raw->BeginPlay();
-    }
 }
 
 void UWorld::load_scene(const std::string& path) {
