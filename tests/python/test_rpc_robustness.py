@@ -351,3 +351,50 @@ def test_a_client_that_never_reads_its_replies_cannot_stop_the_server(server: La
     assert complete_a_frame(other) == first + 3  # the hog's frame was aborted (one tick), then B's own
     assert server.process.poll() is None
     still_serves(server)
+
+
+# -- shared memory after a crash ---------------------------------------------------------------------
+
+def spear_segments(*pids: int) -> list[str]:
+    return [n for n in os.listdir("/dev/shm") if any(n.startswith(f"spear-{pid}-") for pid in pids)]
+
+
+@pytest.mark.parametrize("next_client", ["inprocess", "rpc"])
+def test_segments_of_a_client_and_server_killed_together_go_when_the_next_client_starts(next_client: str) -> None:
+    # Both sides SIGKILLed in the middle of 1080p reads leave the segments in flight, and the client's reply
+    # buffers, under /dev/shm: only a server start removed them. Now any client start does too: here one that
+    # connects to a server started before the crash (which therefore swept nothing), or an in-process one.
+    survivor = LaunchedServer(fixed_delta_seconds=1 / 60)
+    doomed = LaunchedServer(fixed_delta_seconds=1 / 60)
+    script = (
+        "import sys, numpy as np; sys.path.insert(0, %r); from spear._rpc_client import RpcConnection\n"
+        "connection = RpcConnection(%r)\n"
+        "frame = np.ones((1080, 1920, 4), np.uint8)\n"
+        "for i in range(1 << 30):\n"
+        "    connection.request('echo', value=frame)\n"
+        "    if i == 3:\n"
+        "        print('reading', flush=True)\n" % (str(Path(spear.__file__).parent.parent), doomed.address)
+    )
+    client = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
+    try:
+        assert client.stdout is not None and client.stdout.readline() == "reading\n"
+        for process in (client, doomed.process):  # frozen first: neither may see the other go and clean up
+            process.send_signal(signal.SIGSTOP)
+        for process in (client, doomed.process):
+            process.kill()
+            process.wait()
+        # The client's reply buffers at least: it had made them for the frames it read.
+        assert spear_segments(client.pid, doomed.process.pid)
+        if next_client == "inprocess":
+            spear.Instance().close()
+        else:
+            spear.Instance(server=survivor.address).close()
+        assert not spear_segments(client.pid, doomed.process.pid)
+    finally:
+        client.kill()
+        client.wait()
+        if client.stdout:
+            client.stdout.close()
+        doomed.close()
+        survivor.close()
+
