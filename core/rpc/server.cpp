@@ -48,6 +48,21 @@ bool sendSome(int fd, const char*& data, size_t& size) {
     return true;
 }
 
+// Makes way for the socket at `path`: only a socket that no server listens on any more is removed. Any
+// other file there (a typo'd --socket naming someone's data) is left alone, and so is a live server's.
+void removeStaleSocket(const std::string& path, const sockaddr_un& address) {
+    struct stat info {};
+    if (::lstat(path.c_str(), &info) != 0)
+        return; // nothing there
+    SP_CHECK(S_ISSOCK(info.st_mode), InvalidArgument, "spear-server: --socket '", path,
+             "' exists and is not a socket; refusing to replace it");
+    const int probe = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    const bool live =
+        probe >= 0 && ::connect(probe, reinterpret_cast<const sockaddr*>(&address), sizeof(address)) == 0;
+    if (probe >= 0)
+        ::close(probe);
+    SP_CHECK(!live, InvalidState, "spear-server: --socket '", path, "': another server is listening there");
+    ::unlink(path.c_str());
 }
 } // namespace
 
@@ -134,7 +149,7 @@ Server::Server(world::Engine& engine, ServerOptions options, std::string apiHash
         sockaddr_un address{};
         address.sun_family = AF_UNIX;
         std::strncpy(address.sun_path, options_.socketPath.c_str(), sizeof(address.sun_path) - 1);
-        ::unlink(options_.socketPath.c_str());
+        removeStaleSocket(options_.socketPath, address);
         // Owner-only from the moment it exists: no window in which another user could connect.
         const mode_t previous = ::umask(0077);
         const int bound = ::bind(listenFd_, reinterpret_cast<sockaddr*>(&address), sizeof(address));

@@ -20,7 +20,7 @@ import pytest
 
 import spear
 import spear._engine
-from spear._rpc_client import LaunchedServer, RpcConnection
+from spear._rpc_client import LaunchedServer, RpcConnection, find_server_binary
 
 DEPTH_ERROR = "a value has lists or dicts nested deeper than 64 levels"
 
@@ -398,3 +398,24 @@ def test_segments_of_a_client_and_server_killed_together_go_when_the_next_client
         doomed.close()
         survivor.close()
 
+
+# -- the socket path ---------------------------------------------------------------------------------
+
+def test_socket_path_naming_another_file_is_refused_and_the_file_kept(tmp_path: Path) -> None:
+    # The server unlinked whatever --socket named before binding: a typo could delete a user's file.
+    precious = tmp_path / "notes.txt"
+    precious.write_text("precious")
+    done = subprocess.run([str(find_server_binary()), "--socket", str(precious)], capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 1
+    assert done.stderr.strip() == (f"InvalidArgumentError: spear-server: --socket '{precious}' exists and is not a "
+                                   "socket; refusing to replace it")
+    assert precious.read_text() == "precious"
+
+
+def test_a_live_servers_socket_is_not_taken_over(server: LaunchedServer) -> None:
+    path = server.address.removeprefix("unix:")
+    done = subprocess.run([str(find_server_binary()), "--socket", path], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 1
+    assert done.stderr.strip() == f"InvalidStateError: spear-server: --socket '{path}': another server is listening there"
+    still_serves(server)
