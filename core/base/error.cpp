@@ -14,4 +14,20 @@ const char* pythonErrorClass(const std::exception& error) {
     return "SpearError";
 }
 
+void rethrowWithPrefix(const std::string& prefix) {
+    try {
+        throw;
+    } catch (const StaleObject& error) {
+        throw StaleObject(prefix + error.what());
+    } catch (const NotFound& error) {
+        throw NotFound(prefix + error.what());
+    } catch (const InvalidArgument& error) {
+        throw InvalidArgument(prefix + error.what());
+    } catch (const InvalidState& error) {
+        throw InvalidState(prefix + error.what());
+    } catch (const Error& error) {
+        throw Error(prefix + error.what());
+    }
+}
+
 } // namespace sp

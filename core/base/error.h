@@ -42,6 +42,11 @@ class InvalidState : public Error {
 // other engine error). The in-process bindings and the RPC server both use it, so both raise the same.
 const char* pythonErrorClass(const std::exception& error);
 
+// Inside a catch block: throws the exception being handled again, as the same sp error type with
+// `prefix` before its message (who was doing what when it failed); anything that is not an sp::Error is
+// rethrown as it is.
+[[noreturn]] void rethrowWithPrefix(const std::string& prefix);
+
 namespace detail {
 template <typename... Args> std::string concat(const Args&... args) {
     std::ostringstream out;

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "core/base/error.h"
+#include "core/base/regular_file.h"
 #include "core/reflect/object_base.h"
 #include "core/reflect/registry.h"
 
@@ -102,6 +103,7 @@ const PluginInfo& load(const std::string& pathOrName, const std::string& expecte
         return it->second.info;
     }
     SP_CHECK(std::filesystem::exists(path), NotFound, "load_plugin(): '", path, "' does not exist");
+    checkRegularFile(path, "load_plugin()", "plugin library"); // dlopen() of a FIFO would block for good
     // RTLD_LOCAL: two plugins never resolve each other's symbols; RTLD_NOW: a missing symbol fails here;
     // RTLD_NODELETE: see unload(). An absolute path, so that dlopen() opens the file that was checked
     // rather than searching the library path for its name.

@@ -1,5 +1,6 @@
 #include "core/render/mesh_import.h"
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/GltfMaterial.h>
 #include <assimp/Importer.hpp>
 #include <assimp/material.h>
@@ -12,9 +13,28 @@
 
 #include "core/base/error.h"
 #include "core/base/log.h"
+#include "core/base/regular_file.h"
 
 namespace sp::render {
 namespace {
+
+// Assimp opens the files a mesh refers to (an OBJ's material library, a glTF's buffers) by path, with
+// fopen: one that names a FIFO would block the engine for good. Those go through the same checks as the
+// mesh file itself (core/base/regular_file.h); one that fails is reported as missing.
+class RegularFilesOnly : public Assimp::DefaultIOSystem {
+  public:
+    Assimp::IOStream* Open(const char* file, const char* mode) override {
+        if (mode && mode[0] == 'r') {
+            try {
+                checkRegularFile(file, "importMesh()", "referenced file");
+            } catch (const Error& error) {
+                SP_LOG(error.what());
+                return nullptr;
+            }
+        }
+        return Assimp::DefaultIOSystem::Open(file, mode);
+    }
+};
 
 std::optional<TextureImage> readTexture(const aiScene* scene, const aiMaterial* material, aiTextureType type,
                                         unsigned index, const std::filesystem::path& directory) {
@@ -75,8 +95,11 @@ ImportedMaterial readMaterial(const aiScene* scene, const aiMaterial* source,
 } // namespace
 
 ImportedMesh importMesh(const std::string& path) {
-    SP_CHECK(std::filesystem::is_regular_file(path), NotFound, "importMesh(): no such file '", path, "'");
+    SP_CHECK(std::filesystem::exists(path) && !std::filesystem::is_directory(path), NotFound,
+             "importMesh(): no such file '", path, "'");
+    checkRegularFile(path, "importMesh()", "mesh file"); // a FIFO or device: a clear error, not a hang
     Assimp::Importer importer;
+    importer.SetIOHandler(new RegularFilesOnly); // the importer owns it
     // Baking node transforms also joins meshes that share a material: one submesh per material group.
     const aiScene* scene = importer.ReadFile(
         path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |

@@ -13,23 +13,17 @@
 #include <stb_image_write.h>
 
 #include "core/base/error.h"
+#include "core/base/regular_file.h"
 
 namespace sp::render {
 
 TextureImage TextureImage::load(const std::string& path) {
-    SP_CHECK(std::filesystem::is_regular_file(path), NotFound, "TextureImage::load(): no such file '", path,
-             "'");
-    int width = 0, height = 0, channels = 0;
-    stbi_uc* pixels = stbi_load(path.c_str(), &width, &height, &channels, 4);
-    SP_CHECK(pixels != nullptr, InvalidArgument, "TextureImage::load(): cannot decode '", path,
-             "': ", stbi_failure_reason());
-    TextureImage image;
-    image.width = width;
-    image.height = height;
-    image.rgba.assign(pixels, pixels + std::size_t(width) * height * 4);
-    image.source = path;
-    stbi_image_free(pixels);
-    return image;
+    SP_CHECK(std::filesystem::exists(path) && !std::filesystem::is_directory(path), NotFound,
+             "TextureImage::load(): no such file '", path, "'");
+    // Read here rather than by stb_image's fopen: a regular file of bounded size only, never a FIFO or
+    // a device that would block or never end (core/base/regular_file.h).
+    const std::string bytes = readRegularFile(path, "TextureImage::load()", "texture");
+    return decode(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(), path);
 }
 
 TextureImage TextureImage::decode(const std::uint8_t* bytes, std::size_t size, const std::string& source) {

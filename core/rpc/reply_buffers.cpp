@@ -13,7 +13,7 @@ ReplyBuffers::~ReplyBuffers() {
 
 void ReplyBuffers::offer(const std::string& name, size_t size) {
     if (!name.starts_with(prefix_) || name.size() == prefix_.size() ||
-        name.find_first_not_of("0123456789", prefix_.size()) != std::string::npos)
+        name.find_first_not_of("0123456789abcdef", prefix_.size()) != std::string::npos)
         return;
     auto it = buffers_.find(name);
     if (it == buffers_.end()) {

@@ -26,7 +26,7 @@ class ReplyBuffers {
     ReplyBuffers& operator=(const ReplyBuffers&) = delete;
     ~ReplyBuffers(); // removes the names of every buffer offered on the connection
 
-    // The client process; only buffers it named ("/spear-<pid>-r<n>") are accepted.
+    // The client process; only buffers it named ("/spear-<pid>-r<hex digits>") are accepted.
     void setOwner(long pid) { prefix_ = "/spear-" + std::to_string(pid) + "-r"; }
     // The client offers `name` for the current request's reply. Maps it the first time; a name that is
     // not one of the client's buffers, or too small for `size`, is ignored (the reply then uses a segment

@@ -18,6 +18,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <deque>
 
 #include "core/base/error.h"
 #include "core/base/log.h"
@@ -31,11 +32,14 @@ std::string systemError() {
     return std::strerror(errno);
 }
 
-bool sendAll(int fd, const char* data, size_t size) {
+// Sends what the socket takes now without waiting; false when the connection is broken.
+bool sendSome(int fd, const char*& data, size_t& size) {
     while (size > 0) {
-        const ssize_t sent = ::send(fd, data, size, MSG_NOSIGNAL);
+        const ssize_t sent = ::send(fd, data, size, MSG_NOSIGNAL | MSG_DONTWAIT);
         if (sent < 0 && errno == EINTR)
             continue;
+        if (sent < 0 && (errno == EAGAIN || errno == EWOULDBLOCK))
+            return true; // the client has not read enough yet: the rest waits in its outbox
         if (sent <= 0)
             return false;
         data += sent;
@@ -43,11 +47,37 @@ bool sendAll(int fd, const char* data, size_t size) {
     }
     return true;
 }
+
+// Makes way for the socket at `path`: only a socket that no server listens on any more is removed. Any
+// other file there (a typo'd --socket naming someone's data) is left alone, and so is a live server's.
+void removeStaleSocket(const std::string& path, const sockaddr_un& address) {
+    struct stat info {};
+    if (::lstat(path.c_str(), &info) != 0)
+        return; // nothing there
+    SP_CHECK(S_ISSOCK(info.st_mode), InvalidArgument, "spear-server: --socket '", path,
+             "' exists and is not a socket; refusing to replace it");
+    const int probe = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    const bool live =
+        probe >= 0 && ::connect(probe, reinterpret_cast<const sockaddr*>(&address), sizeof(address)) == 0;
+    if (probe >= 0)
+        ::close(probe);
+    SP_CHECK(!live, InvalidState, "spear-server: --socket '", path, "': another server is listening there");
+    ::unlink(path.c_str());
+}
 } // namespace
 
 struct Server::Connection {
     int fd = -1;
     std::string inbox;
+    // Replies the socket did not take yet, oldest first; the first is sent from outboxOffset on. The
+    // server never waits for a client to read (it serves everyone on one thread): a client whose unread
+    // replies pass the limits in server.h is dropped instead (Server::queueReply).
+    std::deque<std::string> outbox;
+    size_t outboxOffset = 0;
+    size_t outboxBytes = 0;
+    // The last reply ends the connection (a refused hello, a malformed first message): nothing more is
+    // read, and the connection is dropped once the outbox is empty.
+    bool closing = false;
     Session session;
     // The client's buffers for large reply arrays (core/rpc/reply_buffers.h).
     std::unique_ptr<ReplyBuffers> replyBuffers = std::make_unique<ReplyBuffers>();
@@ -119,7 +149,7 @@ Server::Server(world::Engine& engine, ServerOptions options, std::string apiHash
         sockaddr_un address{};
         address.sun_family = AF_UNIX;
         std::strncpy(address.sun_path, options_.socketPath.c_str(), sizeof(address.sun_path) - 1);
-        ::unlink(options_.socketPath.c_str());
+        removeStaleSocket(options_.socketPath, address);
         // Owner-only from the moment it exists: no window in which another user could connect.
         const mode_t previous = ::umask(0077);
         const int bound = ::bind(listenFd_, reinterpret_cast<sockaddr*>(&address), sizeof(address));
@@ -131,7 +161,8 @@ Server::Server(world::Engine& engine, ServerOptions options, std::string apiHash
 
 Server::~Server() {
     for (auto& connection : connections_)
-        drop(*connection);
+        if (connection->fd >= 0)
+            drop(*connection);
     if (listenFd_ >= 0)
         ::close(listenFd_);
     if (options_.tcpPort < 0 && !options_.socketPath.empty())
@@ -153,7 +184,7 @@ void Server::stop() {
 }
 
 void Server::accept() {
-    const int fd = ::accept4(listenFd_, nullptr, nullptr, SOCK_CLOEXEC);
+    const int fd = ::accept4(listenFd_, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
     if (fd < 0)
         return;
     if (options_.tcpPort >= 0) {
@@ -242,13 +273,70 @@ bool Server::serve(Connection& connection) {
         connection.inbox.erase(0, 4 + size_t(length));
         const uint32_t replyLength = uint32_t(reply.size() - 4);
         std::memcpy(reply.data(), &replyLength, 4);
-        if (!sendAll(connection.fd, reply.data(), reply.size()))
+        if (!queueReply(connection, reply.data(), reply.size()))
             return false;
         shutdown_ = shutdown_ || connection.session.shutdownRequested;
-        if (connection.session.closeAfterReply)
-            return false;
+        if (connection.session.closeAfterReply) {
+            connection.closing = true; // dropped once its last reply is out (run())
+            break;
+        }
     }
     return true;
+}
+
+bool Server::queueReply(Connection& connection, const char* data, size_t size) {
+    // Straight to the socket when nothing waits before it (the usual case: a client reads each reply
+    // before it sends its next request); the rest is queued, in order.
+    if (connection.outbox.empty() && !sendSome(connection.fd, data, size))
+        return false;
+    if (size == 0)
+        return true;
+    connection.outbox.emplace_back(data, size);
+    connection.outboxBytes += size;
+    // One reply may wait whatever its size: a client reading a large reply is not misbehaving. It is the
+    // replies behind it, those of requests sent without reading, that are bounded.
+    if (connection.outbox.size() > 1 && (connection.outboxBytes > options_.maxQueuedReplyBytes ||
+                                         connection.outbox.size() > options_.maxQueuedReplies)) {
+        // A client that sends requests but does not read the replies: waiting for it would stop every
+        // other client, so it is dropped (its frame aborted, its shared memory released).
+        SP_LOG("spear-server: dropping a client that left ", connection.outbox.size(), " replies (",
+               connection.outboxBytes, " bytes) unread");
+        return false;
+    }
+    return true;
+}
+
+bool Server::flush(Connection& connection) {
+    while (!connection.outbox.empty()) {
+        const std::string& front = connection.outbox.front();
+        const char* data = front.data() + connection.outboxOffset;
+        size_t size = front.size() - connection.outboxOffset;
+        if (!sendSome(connection.fd, data, size))
+            return false;
+        connection.outboxOffset = front.size() - size;
+        if (size > 0)
+            return true; // the socket is full again
+        connection.outboxBytes -= front.size();
+        connection.outbox.pop_front();
+        connection.outboxOffset = 0;
+    }
+    return true;
+}
+
+void Server::flushBeforeExit() {
+    // The replies already made (a shutdown request's, above all) still reach clients that read them; one
+    // that does not read gets a second at most, not the power to keep the server from exiting.
+    for (int waited = 0; waited < 1000; waited += 10) {
+        std::vector<pollfd> fds;
+        for (const auto& connection : connections_)
+            if (connection->fd >= 0 && !connection->outbox.empty())
+                fds.push_back({connection->fd, POLLOUT, 0});
+        if (fds.empty() || ::poll(fds.data(), fds.size(), 10) < 0)
+            return;
+        for (auto& connection : connections_)
+            if (connection->fd >= 0 && !connection->outbox.empty() && !flush(*connection))
+                drop(*connection);
+    }
 }
 
 void Server::run() {
@@ -258,8 +346,13 @@ void Server::run() {
     gWakeFd = pipeFds[1];
     while (!shutdown_) {
         std::vector<pollfd> fds{{pipeFds[0], POLLIN, 0}, {listenFd_, POLLIN, 0}};
-        for (const auto& connection : connections_)
-            fds.push_back({connection->fd, POLLIN, 0});
+        for (const auto& connection : connections_) {
+            // Reading while replies wait is what lets a client that never reads be found out (queueReply).
+            short events = connection->closing ? 0 : POLLIN;
+            if (!connection->outbox.empty())
+                events |= POLLOUT;
+            fds.push_back({connection->fd, events, 0});
+        }
         if (::poll(fds.data(), fds.size(), -1) < 0) {
             if (errno == EINTR)
                 continue;
@@ -270,14 +363,23 @@ void Server::run() {
         if (fds[1].revents & POLLIN)
             accept();
         for (size_t i = 2; i < fds.size(); ++i) {
-            if (!fds[i].revents)
+            const short revents = fds[i].revents;
+            if (!revents)
                 continue;
             Connection& connection = *connections_[i - 2];
-            if (!serve(connection))
+            bool keep = true;
+            if (revents & POLLOUT)
+                keep = flush(connection);
+            if (keep && (revents & (POLLIN | POLLHUP | POLLERR)))
+                keep = connection.closing ? false : serve(connection);
+            if (keep && connection.closing && connection.outbox.empty())
+                keep = false; // its last reply is out
+            if (!keep)
                 drop(connection);
         }
         std::erase_if(connections_, [](const auto& connection) { return connection->fd < 0; });
     }
+    flushBeforeExit();
     gWakeFd = -1;
     ::close(pipeFds[0]);
     ::close(pipeFds[1]);

@@ -1,8 +1,9 @@
 #pragma once
 // Server: serves one engine to any number of clients over a Unix socket (owner-only permissions) or
 // TCP (loopback unless told otherwise; a token is required). Single-threaded: requests run on the
-// thread that owns the engine, one at a time, in arrival order; a client that sends garbage or
-// disappears mid-call is dropped and the others are served on.
+// thread that owns the engine, one at a time, in arrival order; a client that sends garbage,
+// disappears mid-call or leaves its replies unread is dropped and the others are served on. The server
+// never blocks on one client: sockets are non-blocking and unread replies wait in a bounded queue.
 
 #include <memory>
 #include <string>
@@ -19,6 +20,11 @@ struct ServerOptions {
     std::string bindAddress = "127.0.0.1";
     std::string token; // required for TCP
     size_t maxMessageBytes = size_t(1) << 30;
+    // A client's replies that it has not read yet are queued up to these limits; past either, the client
+    // is dropped: one that sends requests and never reads must not stop the server for everyone. (A
+    // single reply waits whatever its size: only replies queued behind another count against a client.)
+    size_t maxQueuedReplyBytes = size_t(64) << 20;
+    size_t maxQueuedReplies = 256;
 };
 
 class Server {
@@ -37,6 +43,11 @@ class Server {
   private:
     void accept();
     bool serve(Connection& connection); // false: drop the connection
+    // Sends a reply now as far as the socket takes it, queueing the rest; false: drop the connection
+    // (broken, or too many replies left unread).
+    bool queueReply(Connection& connection, const char* data, size_t size);
+    bool flush(Connection& connection); // sends queued replies; false: drop the connection
+    void flushBeforeExit();
     void drop(Connection& connection);
 
     ServerOptions options_;

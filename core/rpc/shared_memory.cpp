@@ -3,12 +3,14 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/mman.h>
+#include <sys/random.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <array>
 #include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <mutex>
@@ -85,6 +87,20 @@ void onSigbus(int signal, siginfo_t* info, void* context) {
     }
     ::sigaction(SIGBUS, &gPreviousSigbus, nullptr);
 }
+// 64 random bits in hex: a name no other user can guess and create first (shm_open with O_EXCL would
+// then fail, or a peer would be handed a segment of theirs).
+std::string randomSuffix() {
+    uint64_t bits = 0;
+    for (size_t got = 0; got < sizeof(bits);) {
+        const ssize_t n = ::getrandom(reinterpret_cast<char*>(&bits) + got, sizeof(bits) - got, 0);
+        SP_CHECK(n > 0 || errno == EINTR, Error,
+                 "SharedMemorySegment::create(): getrandom failed: ", systemError());
+        got += n > 0 ? size_t(n) : 0;
+    }
+    char text[17];
+    std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(bits));
+    return text;
+}
 } // namespace
 
 void guardAgainstTruncation() {
@@ -116,9 +132,8 @@ bool SharedMemorySegment::revoked() const {
 }
 
 SharedMemorySegment SharedMemorySegment::create(size_t size) {
-    static std::atomic<uint64_t> counter{0};
     SharedMemorySegment segment;
-    segment.name_ = "/spear-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    segment.name_ = "/spear-" + std::to_string(::getpid()) + "-" + randomSuffix();
     segment.size_ = size;
     int fd = ::shm_open(segment.name_.c_str(), O_CREAT | O_EXCL | O_RDWR, 0600);
     SP_CHECK(fd >= 0, Error, "SharedMemorySegment::create(): shm_open('", segment.name_,

@@ -1,7 +1,8 @@
 #pragma once
 // POSIX shared-memory segments for arrays too large to copy through the socket. Names carry the
-// creating process id ("/spear-<pid>-<n>"), so that segments left by a process that died can be found
-// and removed (removeOrphanedSegments), and nothing stays under /dev/shm after either side exits.
+// creating process id and 64 random bits ("/spear-<pid>-<16 hex digits>"): the id so that segments left
+// by a process that died can be found and removed (removeOrphanedSegments, at every server start and
+// every client start), the random bits so that no other user can create a name before its owner does.
 //
 // A client can shrink a segment (ftruncate) that the server has mapped: its own reply buffers, the
 // arguments it names, and the server's segments whose names it was sent. Touching a page past the new end

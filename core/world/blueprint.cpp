@@ -1,12 +1,11 @@
 #include "core/world/blueprint.h"
 
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <vector>
 
 #include "core/base/error.h"
+#include "core/base/regular_file.h"
 #include "core/reflect/registry.h"
 #include "core/world/actor.h"
 #include "core/world/scene_io.h"
@@ -117,13 +116,12 @@ void applyBlueprint(const Json& document, reflect::ObjectBase& object, const std
                                  self, wheres[i]);
 }
 
-Json readBlueprintFile(const std::string& path, const std::string& where) {
-    std::ifstream in(path, std::ios::binary);
-    SP_CHECK(in && !std::filesystem::is_directory(path), NotFound, where, " not found");
-    std::stringstream text;
-    text << in.rdbuf();
+Json readBlueprintFile(const std::string& path, std::string_view function, const std::string& where) {
+    // A regular file of bounded size only: a FIFO or /dev/zero named here would hang the engine
+    // (core/base/regular_file.h).
+    const std::string text = readRegularFile(path, function, "blueprint");
     try {
-        return Json::parse(text.str());
+        return Json::parse(text);
     } catch (const nlohmann::json::parse_error& error) {
         SP_THROW(InvalidArgument, where, " is not valid JSON: ", error.what());
     }
@@ -145,7 +143,7 @@ const reflect::TypeInfo& loadBlueprint(const std::string& path, std::string_view
         blueprints().erase(it);
     }
 
-    Json document = readBlueprintFile(path, where);
+    Json document = readBlueprintFile(path, function, where);
     SP_CHECK(document.is_object(), InvalidArgument, where, ": expected a JSON object, got ",
              document.type_name());
     const Json* format = optionalMember(document, "format");

@@ -1,13 +1,12 @@
 #include "core/world/scene_io.h"
 
-#include <fstream>
 #include <map>
 #include <memory>
 #include <set>
-#include <sstream>
 #include <vector>
 
 #include "core/base/error.h"
+#include "core/base/regular_file.h"
 #include "core/reflect/registry.h"
 #include "core/world/blueprint.h"
 #include "core/world/world.h"
@@ -366,17 +365,21 @@ void loadScene(UWorld& world, const SceneJson& scene, std::string_view source) {
         }
     }
 
-    // 3. Only now does the world change.
-    world.ReplaceActors(std::move(staged));
+    // 3. Only now does the world change, once every actor has begun play (ReplaceActors: one that fails
+    // to, as one whose physics settings Bullet refuses, leaves the world as it was).
+    try {
+        world.ReplaceActors(std::move(staged));
+    } catch (const Error&) {
+        rethrowWithPrefix(root + ": ");
+    }
 }
 
 SceneJson readSceneFile(const std::string& path, std::string_view function) {
-    std::ifstream in(path, std::ios::binary);
-    SP_CHECK(in, NotFound, function, ": scene file '", path, "' not found");
-    std::stringstream text;
-    text << in.rdbuf();
+    // A regular file of bounded size only: a FIFO or /dev/zero named here would hang the engine
+    // (core/base/regular_file.h).
+    const std::string text = readRegularFile(path, function, "scene file");
     try {
-        return Json::parse(text.str());
+        return Json::parse(text);
     } catch (const nlohmann::json::parse_error& error) {
         SP_THROW(InvalidArgument, function, ": scene file '", path, "' is not valid JSON: ", error.what());
     }

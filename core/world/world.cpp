@@ -1,9 +1,9 @@
 #include "core/world/world.h"
 
 #include <algorithm>
-#include <fstream>
 
 #include "core/base/error.h"
+#include "core/base/regular_file.h"
 #include "core/reflect/registry.h"
 #include "core/world/blueprint.h"
 #include "core/world/engine.h"
@@ -75,13 +75,24 @@ std::unique_ptr<AActor> UWorld::NewActorDeferred(const UClass& type, std::string
 
 void UWorld::ReplaceActors(std::vector<std::unique_ptr<AActor>> actors) {
     SP_CHECK(!ticking_, sp::InvalidState, "UWorld: the actors cannot be replaced while the world ticks");
+    // The incoming actors begin play while the old ones are still here: beginning play checks what
+    // construction and property values could not (physics settings Bullet refuses, a plugin component's
+    // own checks), and a scene that fails there must leave the world as it was. Those that began end play
+    // again, and the old actors are only destroyed once every new one has begun.
+    size_t begun = 0;
+    try {
+        for (; begun < actors.size(); ++begun)
+            actors[begun]->BeginPlay();
+    } catch (...) {
+        for (size_t i = std::min(begun + 1, actors.size()); i-- > 0;)
+            if (actors[i]->HasBegunPlay())
+                actors[i]->EndPlay();
+        sp::rethrowWithPrefix("actor '" + actors[begun]->GetName() + "': ");
+    }
     for (AActor* actor : find_actors())
         destroy_actor(actor);
-    for (auto& actor : actors) {
-        AActor* raw = actor.get();
+    for (auto& actor : actors)
         actors_.push_back(std::move(actor));
-        raw->BeginPlay();
-    }
 }
 
 void UWorld::load_scene(const std::string& path) {
@@ -92,10 +103,7 @@ void UWorld::load_scene(const std::string& path) {
 
 void UWorld::save_scene(const std::string& path) const {
     const std::string text = sp::world::sceneToString(sp::world::saveScene(*this));
-    std::ofstream out(path, std::ios::binary);
-    SP_CHECK(out, sp::NotFound, "UWorld.save_scene(): cannot write scene file '", path, "'");
-    out << text;
-    SP_CHECK(out.flush(), sp::InvalidState, "UWorld.save_scene(): writing scene file '", path, "' failed");
+    sp::writeRegularFile(path, text, "UWorld.save_scene()", "scene file"); // never a FIFO or a device
 }
 
 sp::world::Engine& UWorld::editorEngine(const char* function) const {

@@ -38,7 +38,11 @@ class InProcessBackend:
 
     def __init__(self, fixed_delta_seconds: float, *, editor: bool = False, scene: str = "") -> None:
         from spear import _inprocess
+        from spear._segments import remove_orphaned_segments
 
+        # No shared memory in-process, but a program that ran over RPC before may have been killed along with
+        # its server: every client start removes what such processes left under /dev/shm.
+        remove_orphaned_segments()
         self._module = _inprocess.module()
         self._engine: Any = self._module.Engine(fixed_delta_seconds=fixed_delta_seconds, editor=editor, scene=scene)
 

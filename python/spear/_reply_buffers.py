@@ -13,7 +13,6 @@ one, within the limits below.
 
 from __future__ import annotations
 
-import itertools
 import mmap
 import os
 import weakref
@@ -23,9 +22,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from spear._segments import segment_name
+
 MAX_BUFFERS = 8
 MAX_BYTES = 512 << 20
-_counter = itertools.count()
 
 
 @dataclass
@@ -124,7 +124,7 @@ class ReplyBuffers:
             if not free:
                 return  # every buffer is in use: the server's segments carry the replies meanwhile
             self._remove(min(free, key=lambda b: b.size))
-        name = f"/spear-{os.getpid()}-r{next(_counter)}"
+        name = segment_name("r")
         fd = os.open("/dev/shm" + name, os.O_CREAT | os.O_EXCL | os.O_RDWR, 0o600)
         try:
             # Allocated now, not on first touch: a /dev/shm that fills up later then fails here, in the

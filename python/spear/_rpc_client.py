@@ -26,6 +26,7 @@ from spear import errors
 from spear._object import SpObject
 from spear._reply_buffers import ReplyBuffers
 from spear._rpc_types import convert, convert_result_tuple
+from spear._segments import remove_orphaned_segments
 from spear._wire import OutgoingSegments, ValueTooDeep, encode, pack_frame, unpack_body
 from spear.futures import Future
 
@@ -48,6 +49,7 @@ class RpcConnection:
     def __init__(self, address: str, *, token: str | None = None, timeout: float | None = None) -> None:
         from spear._engine import API_HASH
 
+        remove_orphaned_segments()  # what a client and server killed together left behind
         self.address = address
         if address.startswith("unix:"):
             self._socket = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)

@@ -1,7 +1,7 @@
 """The RPC wire format on the client side: length-prefixed msgpack frames, with extension types for
 object references (1), classes (2) and arrays (3). Arrays of 64 KiB or more travel through POSIX shared
-memory (/dev/shm/spear-<pid>-<n>): the receiver maps the segment and the array views it, no copy. Where
-it can, the connection's reply buffers (spear._reply_buffers) carry them instead of fresh segments.
+memory (/dev/shm/spear-<pid>-<random>): the receiver maps the segment and the array views it, no copy.
+Where it can, the connection's reply buffers (spear._reply_buffers) carry them instead of fresh segments.
 See core/rpc/value_msgpack.h for the server side.
 """
 
@@ -10,7 +10,6 @@ from __future__ import annotations
 import dataclasses
 import enum
 import functools
-import itertools
 import mmap
 import os
 import struct
@@ -23,6 +22,7 @@ from numpy.typing import NDArray
 
 from spear._object import SpObject
 from spear._reply_buffers import ReplyBuffers
+from spear._segments import segment_name
 
 EXT_OBJECT, EXT_CLASS, EXT_ARRAY = 1, 2, 3
 SHARED_MEMORY_THRESHOLD = 64 * 1024
@@ -32,7 +32,6 @@ MAX_VALUE_DEPTH = 64
 # MAP_POPULATE maps every page in one system call instead of one page fault per 4 KiB page as the copy
 # touches it: for a 1080p RGBA image that is most of the cost of a transfer.
 _MAP_FLAGS = mmap.MAP_SHARED | mmap.MAP_POPULATE
-_segment_counter = itertools.count()
 
 
 @dataclasses.dataclass(frozen=True)
@@ -86,7 +85,7 @@ class OutgoingSegments:
             if lent is not None:
                 return lent
             self._buffers.learn(data.nbytes)  # for the next array of this size
-        name = f"/spear-{os.getpid()}-{next(_segment_counter)}"
+        name = segment_name()
         path = _segment_path(name)
         fd = os.open(path, os.O_CREAT | os.O_EXCL | os.O_RDWR, 0o600)
         self.paths.append(path)

@@ -20,7 +20,7 @@ import pytest
 
 import spear
 import spear._engine
-from spear._rpc_client import LaunchedServer, RpcConnection
+from spear._rpc_client import LaunchedServer, RpcConnection, find_server_binary
 
 DEPTH_ERROR = "a value has lists or dicts nested deeper than 64 levels"
 
@@ -300,3 +300,122 @@ def test_a_frame_left_open_by_a_client_that_hung_up_is_aborted(server: LaunchedS
         reply = client_b.request({"id": 2, "op": "frame", "action": action})
         assert "ok" in reply, reply
     assert reply["ok"]["state"] == "idle"
+
+
+# -- clients that do not read --------------------------------------------------------------------------
+
+def frames(count: int, value: str) -> bytes:
+    """`count` echo requests, ids 0..count-1, as one stream of frames."""
+    bodies = (msgpack.packb({"id": i, "op": "echo", "value": value}) for i in range(count))
+    return b"".join(struct.pack("<I", len(body)) + body for body in bodies)
+
+
+def complete_a_frame(client: RawClient) -> int:
+    for action in ("begin", "execute", "begin_end", "end"):
+        reply = client.request({"id": 1, "op": "frame", "action": action})
+        assert "ok" in reply, reply
+    assert reply["ok"]["state"] == "idle"
+    return int(reply["ok"]["frame_count"])
+
+
+def test_a_client_that_never_reads_its_replies_cannot_stop_the_server(server: LaunchedServer) -> None:
+    # The server sent each reply with a blocking send(): once a client that never reads had filled its
+    # socket's buffers, the server waited in send() for good, and every other client with it (here: the
+    # sends below, and client B, time out instead of completing).
+    value = "x" * (32 << 10)
+    slow = RawClient(server)
+    slow.sock.sendall(frames(100, value))  # 3 MiB of replies, more than the socket holds: some wait queued
+    other = RawClient(server)
+    first = complete_a_frame(other)
+    assert complete_a_frame(other) == first + 1
+    # Replies that waited are delivered whole and in order once the client reads.
+    for i in range(100):
+        (length,) = struct.unpack("<I", slow._receive(4))  # noqa: SLF001
+        assert msgpack.unpackb(slow._receive(length), raw=False) == {"id": i, "ok": value}  # noqa: SLF001
+
+    # A client that holds a frame open and never reads: past the queue's bound it is dropped, and its frame
+    # aborted, so that the others go on.
+    hog = RawClient(server)
+    assert "ok" in hog.request({"id": 1, "op": "frame", "action": "begin"})
+    try:
+        hog.sock.sendall(frames(4000, value))  # 128 MiB of replies: past 64 MiB and 256 replies
+    except (BrokenPipeError, ConnectionResetError):
+        pass  # dropped before it had sent them all
+    received = 0
+    try:
+        while chunk := hog.sock.recv(1 << 20):
+            received += len(chunk)
+    except ConnectionResetError:
+        pass
+    assert received < 4000 * len(value)  # it was cut off, not served to the end
+    assert complete_a_frame(other) == first + 3  # the hog's frame was aborted (one tick), then B's own
+    assert server.process.poll() is None
+    still_serves(server)
+
+
+# -- shared memory after a crash ---------------------------------------------------------------------
+
+def spear_segments(*pids: int) -> list[str]:
+    return [n for n in os.listdir("/dev/shm") if any(n.startswith(f"spear-{pid}-") for pid in pids)]
+
+
+@pytest.mark.parametrize("next_client", ["inprocess", "rpc"])
+def test_segments_of_a_client_and_server_killed_together_go_when_the_next_client_starts(next_client: str) -> None:
+    # Both sides SIGKILLed in the middle of 1080p reads leave the segments in flight, and the client's reply
+    # buffers, under /dev/shm: only a server start removed them. Now any client start does too: here one that
+    # connects to a server started before the crash (which therefore swept nothing), or an in-process one.
+    survivor = LaunchedServer(fixed_delta_seconds=1 / 60)
+    doomed = LaunchedServer(fixed_delta_seconds=1 / 60)
+    script = (
+        "import sys, numpy as np; sys.path.insert(0, %r); from spear._rpc_client import RpcConnection\n"
+        "connection = RpcConnection(%r)\n"
+        "frame = np.ones((1080, 1920, 4), np.uint8)\n"
+        "for i in range(1 << 30):\n"
+        "    connection.request('echo', value=frame)\n"
+        "    if i == 3:\n"
+        "        print('reading', flush=True)\n" % (str(Path(spear.__file__).parent.parent), doomed.address)
+    )
+    client = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
+    try:
+        assert client.stdout is not None and client.stdout.readline() == "reading\n"
+        for process in (client, doomed.process):  # frozen first: neither may see the other go and clean up
+            process.send_signal(signal.SIGSTOP)
+        for process in (client, doomed.process):
+            process.kill()
+            process.wait()
+        # The client's reply buffers at least: it had made them for the frames it read.
+        assert spear_segments(client.pid, doomed.process.pid)
+        if next_client == "inprocess":
+            spear.Instance().close()
+        else:
+            spear.Instance(server=survivor.address).close()
+        assert not spear_segments(client.pid, doomed.process.pid)
+    finally:
+        client.kill()
+        client.wait()
+        if client.stdout:
+            client.stdout.close()
+        doomed.close()
+        survivor.close()
+
+
+# -- the socket path ---------------------------------------------------------------------------------
+
+def test_socket_path_naming_another_file_is_refused_and_the_file_kept(tmp_path: Path) -> None:
+    # The server unlinked whatever --socket named before binding: a typo could delete a user's file.
+    precious = tmp_path / "notes.txt"
+    precious.write_text("precious")
+    done = subprocess.run([str(find_server_binary()), "--socket", str(precious)], capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 1
+    assert done.stderr.strip() == (f"InvalidArgumentError: spear-server: --socket '{precious}' exists and is not a "
+                                   "socket; refusing to replace it")
+    assert precious.read_text() == "precious"
+
+
+def test_a_live_servers_socket_is_not_taken_over(server: LaunchedServer) -> None:
+    path = server.address.removeprefix("unix:")
+    done = subprocess.run([str(find_server_binary()), "--socket", path], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 1
+    assert done.stderr.strip() == f"InvalidStateError: spear-server: --socket '{path}': another server is listening there"
+    still_serves(server)

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import json
+import os
+import re
 from collections.abc import Callable
 from pathlib import Path
 
@@ -102,3 +104,82 @@ def test_missing_and_malformed_scenes_are_clear_errors(instance: spear.Instance,
         assert [a.GetName() for a in game.find_actors()] == ["Keep"]
     with pytest.raises(spear.NotFoundError, match="scene file 'missing.json' not found"):
         spear.Instance(scene="missing.json", server="launch" if instance.transport == "rpc" else None)
+
+
+def test_a_fifo_or_a_device_named_as_a_file_is_refused_at_once(instance: spear.Instance, tmp_path: Path) -> None:
+    # A FIFO no one writes blocked the engine in open() for good (over RPC: every client of the server), and
+    # /dev/zero was read until memory ran out. Only regular files are read or written.
+    fifo = tmp_path / "BP_Fifo.json"
+    os.mkfifo(fifo)
+    not_regular = "is not a regular file (a FIFO, device or socket)"
+    game = instance.get_game()
+    with instance.begin_frame():
+        kept = game.spawn_actor(uclass=spear.AActor, name="Kept")
+        for path in (str(fifo), "/dev/zero"):
+            with pytest.raises(spear.InvalidArgumentError,
+                               match=re.escape(f"UWorld.load_scene(): scene file '{path}' {not_regular}")):
+                game.load_scene(path=path)
+            with pytest.raises(spear.InvalidArgumentError,
+                               match=re.escape(f"UWorld.load_class(): blueprint '{path}' {not_regular}")):
+                game.load_class(uclass=spear.AActor, name=path)
+        with pytest.raises(spear.InvalidArgumentError,  # writing: a FIFO with no reader blocked the open
+                           match=re.escape(f"UWorld.save_scene(): scene file '{fifo}' {not_regular}")):
+            game.save_scene(path=str(fifo))
+        with pytest.raises(spear.InvalidArgumentError,
+                           match=re.escape(f"UWorld.save_scene(): scene file '/dev/null' {not_regular}")):
+            game.save_scene(path="/dev/null")
+        assert [a.GetName() for a in game.find_actors()] == ["Kept"] and kept.is_valid()
+    with instance.end_frame():
+        pass
+    with instance.begin_frame():  # the engine works on
+        game.spawn_actor(uclass=spear.AActor, name="Next")
+        game.save_scene(path=str(tmp_path / "after.json"))
+    with instance.end_frame():
+        assert game.get_actor_count() == 2
+
+
+def test_a_scene_that_fails_part_way_leaves_the_world_as_it_was(instance: spear.Instance, tmp_path: Path) -> None:
+    game = instance.get_game()
+    saved = tmp_path / "saved.json"
+    with instance.begin_frame():
+        cubes = [game.spawn_actor(uclass=spear.AStaticMeshActor, name=f"Cube{i}", location=spear.FVector(i, 0, 1))
+                 for i in range(3)]
+        for cube in cubes:
+            cube.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        game.save_scene(path=str(saved))
+        for i, cube in enumerate(cubes):  # the world moves on from what was saved
+            cube.SetActorLocation(NewLocation=spear.FVector(i, 5, 1))
+    with instance.end_frame():
+        pass
+    doc = json.loads(saved.read_text())
+    # The last actor's friction is negative: a valid number, refused by physics only when the actor begins
+    # play, by which time every other actor of the scene had replaced the world's.
+    properties = doc["actors"][-1]["components"][0]["properties"]
+    properties["Friction"] = -1.0
+    late_failure = tmp_path / "late_failure.json"
+    late_failure.write_text(json.dumps(doc))
+    properties["Friction"] = "slippery"  # and a value of the wrong type, refused before anything is built
+    bad_value = tmp_path / "bad_value.json"
+    bad_value.write_text(json.dumps(doc))
+    with instance.begin_frame():
+        with pytest.raises(spear.InvalidArgumentError,
+                           match=re.escape(f"UWorld.load_scene(): scene '{late_failure}': actor 'Cube2': physics of "
+                                           "UStaticMeshComponent 'StaticMeshComponent': PhysicsWorld::addBody(): "
+                                           "friction -1 must be >= 0")):
+            game.load_scene(path=str(late_failure))
+        with pytest.raises(spear.InvalidArgumentError, match=r"actors\[2\] 'Cube2': component 'StaticMeshComponent': "
+                                                             r"property 'Friction': expected a number"):
+            game.load_scene(path=str(bad_value))
+        # The same actors, the same objects, where they were moved to, and usable.
+        assert [a.GetName() for a in game.find_actors()] == ["Cube0", "Cube1", "Cube2"]
+        for i, cube in enumerate(cubes):
+            assert cube.is_valid() and cube.GetActorLocation() == spear.FVector(i, 5, 1)
+            cube.SetActorLocation(NewLocation=spear.FVector(i, 0, 2))
+        assert game.find_actor_by_name(name="Cube2") == cubes[2]
+    with instance.end_frame():
+        assert [cube.GetActorLocation().Z for cube in cubes] == [2, 2, 2]
+    with instance.begin_frame():  # and the good scene still loads over them
+        game.load_scene(path=str(saved))
+        assert not cubes[0].is_valid() and game.get_actor_count() == 3
+    with instance.end_frame():
+        pass

@@ -64,3 +64,20 @@ TEST(SharedMemoryDeathTest, FaultsOutsideSegmentsStillCrash) {
         },
         testing::KilledBySignal(SIGBUS), "");
 }
+
+TEST(SharedMemory, NamesCarryThePidAndRandomBitsNoOneCanGuess) {
+    // A counter made every name predictable: another user could create "/spear-<pid>-<n+1>" first, and the
+    // server's next segment would fail to be created (O_EXCL) or be one of theirs.
+    SharedMemorySegment first = SharedMemorySegment::create(64);
+    SharedMemorySegment second = SharedMemorySegment::create(64);
+    const std::string prefix = "/spear-" + std::to_string(::getpid()) + "-";
+    for (const SharedMemorySegment* segment : {&first, &second}) {
+        ASSERT_TRUE(segment->name().starts_with(prefix)) << segment->name();
+        const std::string suffix = segment->name().substr(prefix.size());
+        EXPECT_EQ(suffix.size(), 16u);
+        EXPECT_EQ(suffix.find_first_not_of("0123456789abcdef"), std::string::npos) << suffix;
+    }
+    EXPECT_NE(first.name(), second.name());
+    first.unlink();
+    second.unlink();
+}
