@@ -263,6 +263,8 @@ FRenderStats RenderSubsystem::stats() const {
     FRenderStats result;
     if (!renderer_)
         return result;
+    // stats() collects timer queries of this context; another world may own the current one.
+    context_->makeCurrent();
     const sp::render::RenderStats& stats = renderer_->stats();
     result.Frames = int64_t(stats.frames);
     result.ShadowPasses = int64_t(stats.shadowPasses);

@@ -316,12 +316,14 @@ def test_bad_modality_names_and_settings_are_clear_errors(instance: spear.Instan
             _ = spear.ECameraModality.Dept  # type: ignore[attr-defined]
     with instance.end_frame():
         pass
-    # Settings are checked when the frame renders; the error names the camera and the property.
-    with pytest.raises(spear.InvalidArgumentError, match=r"'CameraSensor'.*Latency must be 0, 1 or 2, got 3"):
-        with instance.begin_frame():
+    # Settings are checked when they are set (tests/python/test_set_time_validation.py has every one); the
+    # error names the property and its range, and the old value stays.
+    with instance.begin_frame():
+        with pytest.raises(spear.InvalidArgumentError, match=r"UCameraSensorComponent.Latency must be 0, 1 or 2, got 3"):
             camera.Latency = 3
+        assert camera.Latency == 0
     with instance.end_frame():
-        camera.Latency = 0
+        pass
     with instance.begin_frame():
         pass  # the engine kept running
     with instance.end_frame():
