@@ -448,8 +448,6 @@ void Server::run() {
         }
         if (fds[0].revents)
             break;
-        if (fds[1].revents & POLLIN)
-            accept();
         for (size_t i = 2; i < fds.size(); ++i) {
             const short revents = fds[i].revents;
             if (!revents)
@@ -466,6 +464,10 @@ void Server::run() {
                 drop(connection);
         }
         dropSilentBeforeHello();
+        // After the others: connections that went away in the meantime no longer count against the limit of
+        // connections waiting for their hello.
+        if (fds[1].revents & POLLIN)
+            accept();
         std::erase_if(connections_, [](const auto& connection) { return connection->fd < 0; });
     }
     flushBeforeExit();
