@@ -520,7 +520,8 @@ def test_a_token_file_keeps_the_token_off_the_command_line(tmp_path: Path) -> No
                              capture_output=True, text=True, timeout=30,
                              env={k: v for k, v in os.environ.items() if k != "SPEAR_TOKEN"})
     assert refused.returncode == 1
-    assert f"--token-file '{token_file}' must belong to this user and be readable by it alone (mode 644)" in refused.stderr
+    assert (f"--token-file '{token_file}' must belong to this user and be readable by it alone (mode 644)"
+            in refused.stderr)
     token_file.chmod(0o600)
     with started_by_hand("--port", "0", "--token-file", str(token_file)) as (process, address):
         assert b"s3cret" not in Path(f"/proc/{process.pid}/cmdline").read_bytes()
