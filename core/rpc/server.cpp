@@ -214,9 +214,9 @@ void Server::accept() {
     } else if (knownPeer)
         peerName = "uid " + std::to_string(peer.uid);
     const auto now = std::chrono::steady_clock::now();
+    // Refused without a word in the log: a client hammering the server must not fill its log (or block it on
+    // a stderr pipe nobody reads). countTokenFailure() said when the lockout began.
     if (auto it = tokenFailures_.find(peerName); it != tokenFailures_.end() && now < it->second.lockedUntil) {
-        SP_LOG("spear-server: refusing a connection from ", peerName, " after ", it->second.count,
-               " wrong tokens");
         ::close(fd);
         return;
     }
@@ -224,11 +224,13 @@ void Server::accept() {
         return c->fd >= 0 && !c->session.greeted;
     }));
     if (waiting >= options_.maxConnectionsBeforeHello) {
-        SP_LOG("spear-server: refusing a connection from ", peerName, ": ", waiting,
-               " connections are already waiting for their hello");
+        if (!refusingBeforeHello_) // once, until a connection is accepted again
+            SP_LOG("spear-server: refusing connections: ", waiting, " are already waiting for their hello");
+        refusingBeforeHello_ = true;
         ::close(fd);
         return;
     }
+    refusingBeforeHello_ = false;
     if (options_.tcpPort >= 0) {
         int one = 1;
         ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof(one));
@@ -340,9 +342,10 @@ void Server::countTokenFailure(const std::string& peer) {
     ++failures.count;
     if (failures.count >= options_.tokenFailuresBeforeLockout) {
         const int doublings = std::min(failures.count - options_.tokenFailuresBeforeLockout, 6);
-        failures.lockedUntil = now + std::min(std::chrono::seconds(1 << doublings), std::chrono::seconds(60));
-        SP_LOG("spear-server: ", failures.count, " wrong tokens from ", peer,
-               "; its connections are refused for ", 1 << std::min(doublings, 6), " s");
+        const auto lockout = std::min(std::chrono::seconds(1 << doublings), std::chrono::seconds(60));
+        failures.lockedUntil = now + lockout;
+        SP_LOG("spear-server: ", failures.count, " wrong tokens in a row from ", peer,
+               "; its connections are refused for ", lockout.count(), " s");
     }
 }
 

@@ -81,6 +81,7 @@ class Server {
         std::chrono::steady_clock::time_point lockedUntil;
     };
     std::map<std::string, TokenFailures> tokenFailures_; // by peer
+    bool refusingBeforeHello_ = false; // the limit of connections waiting for hello is reached
 };
 
 } // namespace sp::rpc
