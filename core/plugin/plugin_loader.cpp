@@ -93,8 +93,28 @@ template <typename Fn> Fn symbol(void* library, const std::string& name, const s
 }
 } // namespace
 
+std::string resolve(const std::string& pathOrName) {
+    return isBareName(pathOrName) ? findByName(pathOrName) : pathOrName;
+}
+
+bool foundInSearchPath(const std::string& path) {
+    const std::string file = std::filesystem::path(path).filename().string();
+    if (!file.starts_with("lib") || !file.ends_with(".so") || file.size() <= 6)
+        return false;
+    std::string found;
+    try {
+        found = findByName(file.substr(3, file.size() - 6));
+    } catch (const NotFound&) {
+        return false;
+    }
+    std::error_code error, foundError;
+    const auto canonical = std::filesystem::weakly_canonical(path, error);
+    const auto canonicalFound = std::filesystem::weakly_canonical(found, foundError);
+    return !error && !foundError && canonical == canonicalFound;
+}
+
 const PluginInfo& load(const std::string& pathOrName, const std::string& expectedApiHash) {
-    const std::string path = isBareName(pathOrName) ? findByName(pathOrName) : pathOrName;
+    const std::string path = resolve(pathOrName);
     const std::string name = moduleName(path);
     if (auto it = plugins().find(name); it != plugins().end()) {
         SP_CHECK(expectedApiHash.empty() || it->second.info.apiHash == expectedApiHash, InvalidState,

@@ -26,6 +26,14 @@ struct PluginInfo {
 // stubs is refused. Throws NotFound for a missing file, InvalidArgument for a library that is not a plugin.
 const PluginInfo& load(const std::string& pathOrName, const std::string& expectedApiHash = "");
 
+// The file load() would open for `pathOrName`: a bare name looked up in SPEAR_PLUGIN_PATH (NotFound when it
+// is not there), any other text as it is.
+std::string resolve(const std::string& pathOrName);
+
+// Whether `path` is the library that load() finds by its name in this process's SPEAR_PLUGIN_PATH (compared
+// as canonical paths): a library the process's owner installed for it rather than any file a client names.
+bool foundInSearchPath(const std::string& path);
+
 // Unregisters the plugin's types, so that its classes can no longer be created or named. Its code stays
 // mapped until the process ends (RTLD_NODELETE: glibc could not unmap a C++ library reliably anyway), so a
 // process loads one build of a plugin; loading a rebuilt one means restarting the process. Throws

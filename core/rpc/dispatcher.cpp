@@ -2,6 +2,9 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <filesystem>
+
 #include "core/base/error.h"
 #include "core/plugin/plugin_loader.h"
 #include "core/reflect/object_base.h"
@@ -55,6 +58,14 @@ reflect::ObjectBase& requireObject(const msgpack::object& request, const std::st
     reflect::ObjectBase& object = reflect::ObjectTable::resolve(handle.as<reflect::ObjectHandle>(), context);
     world::checkObjectAccess(object, context);
     return object;
+}
+
+// Compares in time that depends on the lengths only, not on how many leading characters of a guess are right.
+bool sameSecret(const std::string& given, const std::string& secret) {
+    unsigned char difference = given.size() == secret.size() ? 0 : 1;
+    for (size_t i = 0; i < given.size(); ++i)
+        difference |= static_cast<unsigned char>(given[i] ^ secret[i % secret.size()]);
+    return difference == 0;
 }
 
 void packError(msgpack::packer<msgpack::sbuffer>& out, const msgpack::object* id, const char* type,
@@ -113,6 +124,27 @@ void Dispatcher::readReplyBuffers(const msgpack::object& request, Session& sessi
             session.offerReplyBuffer(std::string(name.via.str.ptr, name.via.str.size),
                                      size_t(pair.via.array.ptr[1].via.u64));
         }
+}
+
+std::string Dispatcher::allowedPlugin(const std::string& pathOrName) const {
+    if (allowAnyPlugin_)
+        return pathOrName;
+    // Compared as canonical paths, so that "dir/../libx.so" or a link to an allowed library is that library,
+    // and the canonical path is what is opened: the file checked is the file loaded.
+    const std::string path = plugin::resolve(pathOrName);
+    std::error_code error;
+    const std::string canonical = std::filesystem::weakly_canonical(path, error).string();
+    if (!error &&
+        (std::find(allowedPlugins_.begin(), allowedPlugins_.end(), canonical) != allowedPlugins_.end() ||
+         plugin::foundInSearchPath(canonical)))
+        return canonical;
+    SP_THROW(
+        InvalidState, "load_plugin(): this server does not load '", pathOrName,
+        "' for a client: it loads only the plugins named on its command line (--plugin) or found in its "
+        "SPEAR_PLUGIN_PATH; start it with --plugin '",
+        pathOrName,
+        "', or with --allow-remote-plugin-load to let its clients load any library (its code runs in the "
+        "server)");
 }
 
 void Dispatcher::endSession(Session& session) {
@@ -214,8 +246,9 @@ Value Dispatcher::execute(const std::string& op, const msgpack::object& request,
         const std::string given = token && token->type == msgpack::type::STR
                                       ? std::string(token->via.str.ptr, token->via.str.size)
                                       : "";
-        if (!token_.empty() && given != token_) {
+        if (!token_.empty() && !sameSecret(given, token_)) {
             session.closeAfterReply = true;
+            session.tokenRefused = true;
             SP_THROW(InvalidArgument, "hello(): wrong or missing token");
         }
         if (clientHash != apiHash_) {
@@ -308,7 +341,7 @@ Value Dispatcher::execute(const std::string& op, const msgpack::object& request,
         return Value();
     }
     if (op == "load_plugin") {
-        const std::string path = requireString(request, "path", op);
+        const std::string path = allowedPlugin(requireString(request, "path", op));
         const msgpack::object* hash = field(request, "api_hash");
         const auto& info = plugin::load(path, hash && hash->type == msgpack::type::STR
                                                   ? std::string(hash->via.str.ptr, hash->via.str.size)

@@ -19,6 +19,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "core/rpc/value_msgpack.h"
 #include "core/world/engine.h"
@@ -29,6 +30,8 @@ struct Session {
     bool greeted = false;
     bool closeAfterReply = false;
     bool shutdownRequested = false;
+    // A hello gave a wrong token (the server counts these per peer, to slow down guessing).
+    bool tokenRefused = false;
     // A request's "reply_buffers" ([[name, size], ...]) and "dropped_buffers" ([name, ...]): the client's
     // shared-memory buffers for large reply arrays (core/rpc/reply_buffers.h).
     std::function<void(const std::string& name, size_t size)> offerReplyBuffer;
@@ -47,6 +50,16 @@ class Dispatcher {
     // The client of `session` is gone: a frame it left open is aborted, so that other clients can go on.
     void endSession(Session& session);
 
+    // Which libraries load_plugin may open. Loading runs the library's code (its static constructors run
+    // inside dlopen(), before any check that it is a plugin), so a client that could name any file could run
+    // any code as the server's user. Unless `allowAny`, only the libraries at `allowed` (canonical paths: the
+    // plugins the server was started with) and those found by name in the server's own SPEAR_PLUGIN_PATH are
+    // loaded. Nothing is allowed until this is called.
+    void setPluginPolicy(bool allowAny, std::vector<std::string> allowed) {
+        allowAnyPlugin_ = allowAny;
+        allowedPlugins_ = std::move(allowed);
+    }
+
   private:
     reflect::Value execute(const std::string& op, const msgpack::object& request, Session& session);
     static void readReplyBuffers(const msgpack::object& request, Session& session);
@@ -56,6 +69,10 @@ class Dispatcher {
     world::Engine& engine_;
     std::string apiHash_;
     std::string token_;
+    bool allowAnyPlugin_ = false;
+    std::vector<std::string> allowedPlugins_;
+    // The file load_plugin may open for `pathOrName` (see setPluginPolicy); throws InvalidState otherwise.
+    std::string allowedPlugin(const std::string& pathOrName) const;
     const Session* frameOwner_ = nullptr; // the session that last moved the open frame
 };
 

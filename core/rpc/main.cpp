@@ -1,23 +1,33 @@
 // spear-server: runs the engine as its own process and serves it over RPC.
 //
 //   spear-server --socket /tmp/spear.sock
-//   spear-server --port 0 --token SECRET [--bind 127.0.0.1]
+//   spear-server --port 0 --token-file ~/.spear-token [--bind 127.0.0.1]   (or SPEAR_TOKEN=... in the
+//                                                                           environment; --token SECRET
+//                                                                           works too, but any local user
+//                                                                           can read a command line)
 //   spear-server --socket /tmp/spear.sock --mode editor --scene assets/scenes/apartment.json
 //   spear-server --socket /tmp/spear.sock --plugin build/plugin/python/my_plugin/libmy_plugin.so
 //   SPEAR_PLUGIN_PATH=build/plugin/python spear-server --socket /tmp/spear.sock --plugin my_plugin
+//
+// Over RPC, load_plugin loads only the plugins named by --plugin or found in the server's SPEAR_PLUGIN_PATH;
+// --allow-remote-plugin-load lets clients load any library (spear.Instance(server="launch") passes it: that
+// server is private to the user who started it).
 //
 // Prints "spear-server: listening on <address>" once it accepts connections (clients that launch a
 // server wait for that line), and exits cleanly on SIGTERM, SIGINT or a client's shutdown request.
 
 #include <sys/prctl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 #include <string>
-
 #include <vector>
 
 #include "core/base/error.h"
@@ -27,9 +37,35 @@
 
 namespace {
 void usage() {
-    std::fprintf(stderr, "usage: spear-server (--socket PATH | --port N --token TOKEN [--bind ADDRESS])\n"
-                         "                    [--mode game|editor] [--scene FILE] [--fixed-delta-seconds S]\n"
-                         "                    [--plugin LIBRARY|NAME]... [--exit-with-parent]\n");
+    std::fprintf(
+        stderr,
+        "usage: spear-server (--socket PATH | --port N (--token-file FILE | --token TOKEN) [--bind "
+        "ADDRESS])\n"
+        "                    [--mode game|editor] [--scene FILE] [--fixed-delta-seconds S]\n"
+        "                    [--plugin LIBRARY|NAME]... [--allow-remote-plugin-load] [--exit-with-parent]\n"
+        "  The TCP token may also come from the SPEAR_TOKEN environment variable.\n");
+}
+
+// The token in `path`, without the line break an editor adds. The file must be the user's own and
+// owner-only, as an ssh key must: a token others can read protects nothing.
+std::string readTokenFile(const std::string& path) {
+    struct stat info {};
+    SP_CHECK(::stat(path.c_str(), &info) == 0, sp::NotFound, "spear-server: --token-file '", path,
+             "': ", std::strerror(errno));
+    SP_CHECK(S_ISREG(info.st_mode), sp::InvalidArgument, "spear-server: --token-file '", path,
+             "' is not a regular file");
+    SP_CHECK(info.st_uid == ::getuid() && (info.st_mode & 077) == 0, sp::InvalidArgument,
+             "spear-server: --token-file '", path,
+             "' must belong to this user and be readable by it alone (mode ", std::oct, (info.st_mode & 0777),
+             std::dec, "); run chmod 600 '", path, "'");
+    std::ifstream file(path);
+    std::stringstream text;
+    text << file.rdbuf();
+    std::string token = text.str();
+    while (!token.empty() && (token.back() == '\n' || token.back() == '\r'))
+        token.pop_back();
+    SP_CHECK(!token.empty(), sp::InvalidArgument, "spear-server: --token-file '", path, "' is empty");
+    return token;
 }
 } // namespace
 
@@ -37,6 +73,7 @@ int main(int argc, char** argv) {
     sp::rpc::ServerOptions options;
     sp::world::Engine::Settings settings;
     std::vector<std::string> plugins;
+    std::string tokenFile;
     if (const char* token = std::getenv("SPEAR_TOKEN"))
         options.token = token;
     for (int i = 1; i < argc; ++i) {
@@ -50,6 +87,10 @@ int main(int argc, char** argv) {
             options.bindAddress = argv[++i];
         else if (arg == "--token" && hasValue)
             options.token = argv[++i];
+        else if (arg == "--token-file" && hasValue)
+            tokenFile = argv[++i];
+        else if (arg == "--allow-remote-plugin-load")
+            options.allowRemotePluginLoad = true;
         else if (arg == "--fixed-delta-seconds" && hasValue)
             settings.fixedDeltaSeconds = std::atof(argv[++i]);
         else if (arg == "--mode" && hasValue) {
@@ -80,6 +121,9 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
+        if (!tokenFile.empty())
+            options.token = readTokenFile(tokenFile);
+        options.plugins = plugins;
         // Before the engine: its scene may name the plugins' classes.
         for (const std::string& path : plugins)
             sp::plugin::load(path);

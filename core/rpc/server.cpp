@@ -19,9 +19,11 @@
 #include <cerrno>
 #include <cstring>
 #include <deque>
+#include <filesystem>
 
 #include "core/base/error.h"
 #include "core/base/log.h"
+#include "core/plugin/plugin_loader.h"
 
 namespace sp::rpc {
 
@@ -68,6 +70,8 @@ void removeStaleSocket(const std::string& path, const sockaddr_un& address) {
 
 struct Server::Connection {
     int fd = -1;
+    std::string peer; // TCP: the client's address; Unix socket: its user id (for token failures)
+    std::chrono::steady_clock::time_point helloDeadline; // dropped if still not greeted then
     std::string inbox;
     // Replies the socket did not take yet, oldest first; the first is sent from outboxOffset on. The
     // server never waits for a client to read (it serves everyone on one thread): a client whose unread
@@ -157,6 +161,14 @@ Server::Server(world::Engine& engine, ServerOptions options, std::string apiHash
         SP_CHECK(bound == 0, Error, "spear-server: cannot bind '", options_.socketPath, "': ", systemError());
     }
     SP_CHECK(::listen(listenFd_, 16) == 0, Error, "spear-server: listen failed: ", systemError());
+    std::vector<std::string> allowed;
+    for (const std::string& plugin : options_.plugins) {
+        std::error_code error;
+        const auto canonical = std::filesystem::weakly_canonical(plugin::resolve(plugin), error);
+        if (!error)
+            allowed.push_back(canonical.string());
+    }
+    dispatcher_.setPluginPolicy(options_.allowRemotePluginLoad, std::move(allowed));
 }
 
 Server::~Server() {
@@ -184,22 +196,53 @@ void Server::stop() {
 }
 
 void Server::accept() {
-    const int fd = ::accept4(listenFd_, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
+    sockaddr_in peerAddress{};
+    socklen_t addressLength = sizeof(peerAddress);
+    const int fd = ::accept4(listenFd_, reinterpret_cast<sockaddr*>(&peerAddress), &addressLength,
+                             SOCK_CLOEXEC | SOCK_NONBLOCK);
     if (fd < 0)
         return;
+    ucred peer{};
+    socklen_t peerLength = sizeof(peer);
+    const bool knownPeer =
+        options_.tcpPort < 0 && ::getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &peer, &peerLength) == 0;
+    std::string peerName = "unix";
+    if (options_.tcpPort >= 0) {
+        char text[INET_ADDRSTRLEN] = "";
+        ::inet_ntop(AF_INET, &peerAddress.sin_addr, text, sizeof(text));
+        peerName = text;
+    } else if (knownPeer)
+        peerName = "uid " + std::to_string(peer.uid);
+    const auto now = std::chrono::steady_clock::now();
+    // Refused without a word in the log: a client hammering the server must not fill its log (or block it on
+    // a stderr pipe nobody reads). countTokenFailure() said when the lockout began.
+    if (auto it = tokenFailures_.find(peerName); it != tokenFailures_.end() && now < it->second.lockedUntil) {
+        ::close(fd);
+        return;
+    }
+    const size_t waiting = size_t(std::count_if(connections_.begin(), connections_.end(), [](const auto& c) {
+        return c->fd >= 0 && !c->session.greeted;
+    }));
+    if (waiting >= options_.maxConnectionsBeforeHello) {
+        if (!refusingBeforeHello_) // once, until a connection is accepted again
+            SP_LOG("spear-server: refusing connections: ", waiting, " are already waiting for their hello");
+        refusingBeforeHello_ = true;
+        ::close(fd);
+        return;
+    }
+    refusingBeforeHello_ = false;
     if (options_.tcpPort >= 0) {
         int one = 1;
         ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof(one));
     }
     auto connection = std::make_unique<Connection>();
     connection->fd = fd;
+    connection->peer = peerName;
+    connection->helloDeadline = now + std::chrono::milliseconds(options_.helloTimeoutMs);
     // Reply buffers only on a Unix socket, where the kernel says which process the client is: the server then
     // accepts only that process's buffers (never another client's segments); over TCP, replies use the
     // server's own segments.
-    ucred peer{};
-    socklen_t peerLength = sizeof(peer);
-    if (options_.tcpPort < 0 && ::getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &peer, &peerLength) == 0 &&
-        peer.pid > 0) {
+    if (knownPeer && peer.pid > 0) {
         ReplyBuffers* buffers = connection->replyBuffers.get();
         buffers->setOwner(peer.pid);
         connection->session.offerReplyBuffer = [buffers](const std::string& name, size_t size) {
@@ -234,8 +277,10 @@ bool Server::serve(Connection& connection) {
     while (connection.inbox.size() >= 4) {
         uint32_t length = 0;
         std::memcpy(&length, connection.inbox.data(), 4);
-        if (length > options_.maxMessageBytes) {
-            SP_LOG("spear-server: dropping a client that announced a ", length, "-byte message");
+        const bool greeted = connection.session.greeted;
+        if (length > (greeted ? options_.maxMessageBytes : options_.maxMessageBytesBeforeHello)) {
+            SP_LOG("spear-server: dropping a client that announced a ", length, "-byte message",
+                   greeted ? "" : " before its hello");
             return false;
         }
         if (connection.inbox.size() < 4 + size_t(length))
@@ -262,6 +307,11 @@ bool Server::serve(Connection& connection) {
             reflect::ArrayAllocatorScope allocator(&allocateInSegment, &connection);
             dispatcher_.handle(connection.inbox.data() + 4, length, connection.session, reply, toShm);
         }
+        if (connection.session.tokenRefused) {
+            connection.session.tokenRefused = false;
+            countTokenFailure(connection.peer);
+        } else if (!greeted && connection.session.greeted)
+            tokenFailures_.erase(connection.peer); // the right token: the count starts again
         // Arrays allocated in segments of the server's but not sent (kept by the engine for later) lose
         // their names now; their mappings live on with their owners.
         for (auto& [segment, clientBuffer] : connection.requestSegments)
@@ -282,6 +332,47 @@ bool Server::serve(Connection& connection) {
         }
     }
     return true;
+}
+
+void Server::countTokenFailure(const std::string& peer) {
+    const auto now = std::chrono::steady_clock::now();
+    if (tokenFailures_.size() >= 4096) // bounded: forget the peers whose lockout is over
+        std::erase_if(tokenFailures_, [&](const auto& entry) { return entry.second.lockedUntil <= now; });
+    TokenFailures& failures = tokenFailures_[peer];
+    ++failures.count;
+    if (failures.count >= options_.tokenFailuresBeforeLockout) {
+        const int doublings = std::min(failures.count - options_.tokenFailuresBeforeLockout, 6);
+        const auto lockout = std::min(std::chrono::seconds(1 << doublings), std::chrono::seconds(60));
+        failures.lockedUntil = now + lockout;
+        SP_LOG("spear-server: ", failures.count, " wrong tokens in a row from ", peer,
+               "; its connections are refused for ", lockout.count(), " s");
+    }
+}
+
+int Server::msUntilHelloDeadline() const {
+    const auto now = std::chrono::steady_clock::now();
+    int64_t soonest = -1;
+    for (const auto& connection : connections_)
+        if (connection->fd >= 0 && !connection->session.greeted && !connection->closing) {
+            const int64_t left =
+                std::chrono::duration_cast<std::chrono::milliseconds>(connection->helloDeadline - now)
+                    .count() +
+                1;
+            soonest =
+                soonest < 0 ? std::max<int64_t>(left, 0) : std::min(soonest, std::max<int64_t>(left, 0));
+        }
+    return int(soonest);
+}
+
+void Server::dropSilentBeforeHello() {
+    const auto now = std::chrono::steady_clock::now();
+    for (auto& connection : connections_)
+        if (connection->fd >= 0 && !connection->session.greeted && !connection->closing &&
+            now >= connection->helloDeadline) {
+            SP_LOG("spear-server: dropping a client from ", connection->peer,
+                   " that did not say hello within ", options_.helloTimeoutMs, " ms");
+            drop(*connection);
+        }
 }
 
 bool Server::queueReply(Connection& connection, const char* data, size_t size) {
@@ -353,15 +444,13 @@ void Server::run() {
                 events |= POLLOUT;
             fds.push_back({connection->fd, events, 0});
         }
-        if (::poll(fds.data(), fds.size(), -1) < 0) {
+        if (::poll(fds.data(), fds.size(), msUntilHelloDeadline()) < 0) {
             if (errno == EINTR)
                 continue;
             break;
         }
         if (fds[0].revents)
             break;
-        if (fds[1].revents & POLLIN)
-            accept();
         for (size_t i = 2; i < fds.size(); ++i) {
             const short revents = fds[i].revents;
             if (!revents)
@@ -377,6 +466,11 @@ void Server::run() {
             if (!keep)
                 drop(connection);
         }
+        dropSilentBeforeHello();
+        // After the others: connections that went away in the meantime no longer count against the limit of
+        // connections waiting for their hello.
+        if (fds[1].revents & POLLIN)
+            accept();
         std::erase_if(connections_, [](const auto& connection) { return connection->fd < 0; });
     }
     flushBeforeExit();

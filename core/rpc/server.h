@@ -5,6 +5,8 @@
 // disappears mid-call or leaves its replies unread is dropped and the others are served on. The server
 // never blocks on one client: sockets are non-blocking and unread replies wait in a bounded queue.
 
+#include <chrono>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -19,7 +21,22 @@ struct ServerOptions {
     int tcpPort = -1;       // 0 picks a free port
     std::string bindAddress = "127.0.0.1";
     std::string token; // required for TCP
+    // The plugins the server was started with (--plugin), which clients may load_plugin again; with
+    // allowRemotePluginLoad, any library (Dispatcher::setPluginPolicy).
+    std::vector<std::string> plugins;
+    bool allowRemotePluginLoad = false;
     size_t maxMessageBytes = size_t(1) << 30;
+    // Until a connection has said hello (proved its token over TCP), it is anyone's: its messages are
+    // capped, few such connections are kept, and each has a while to say hello. Otherwise a handful of
+    // unauthenticated clients announcing 1 GiB messages could make the server buffer gigabytes, and
+    // connections that never say hello could take every slot.
+    size_t maxMessageBytesBeforeHello = size_t(64) << 10;
+    size_t maxConnectionsBeforeHello = 64;
+    int helloTimeoutMs = 10000;
+    // A peer (TCP: its address) whose hello gave a wrong token this many times in a row has its next
+    // connections closed unread for a while, doubling with each further failure (1 s, 2 s, ... 60 s): a
+    // guessing client gets a few tries a minute instead of thousands a second.
+    int tokenFailuresBeforeLockout = 3;
     // A client's replies that it has not read yet are queued up to these limits; past either, the client
     // is dropped: one that sends requests and never reads must not stop the server for everyone. (A
     // single reply waits whatever its size: only replies queued behind another count against a client.)
@@ -49,6 +66,9 @@ class Server {
     bool flush(Connection& connection); // sends queued replies; false: drop the connection
     void flushBeforeExit();
     void drop(Connection& connection);
+    void countTokenFailure(const std::string& peer);
+    void dropSilentBeforeHello();     // connections past their hello deadline
+    int msUntilHelloDeadline() const; // for poll(): -1 while no connection waits for its hello
 
     ServerOptions options_;
     Dispatcher dispatcher_;
@@ -56,6 +76,12 @@ class Server {
     int boundPort_ = -1;
     std::vector<std::unique_ptr<Connection>> connections_;
     bool shutdown_ = false;
+    struct TokenFailures {
+        int count = 0;
+        std::chrono::steady_clock::time_point lockedUntil;
+    };
+    std::map<std::string, TokenFailures> tokenFailures_; // by peer
+    bool refusingBeforeHello_ = false; // the limit of connections waiting for hello is reached
 };
 
 } // namespace sp::rpc

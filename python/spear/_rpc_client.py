@@ -69,6 +69,8 @@ class RpcConnection:
         self._reply_buffers = ReplyBuffers()
         # Their names go when the connection is closed, or when it is collected without being closed.
         self._buffers_cleanup = weakref.finalize(self, self._reply_buffers.close)
+        if token is None:  # as the server, the token may come from the environment (off the command line)
+            token = os.environ.get("SPEAR_TOKEN")
         hello = self.request("hello", api_hash=API_HASH, token=token or "")
         self.server_pid = int(hello["pid"])
         if not hello.get("reply_buffers"):  # TCP: the server cannot tell which process offers buffers
@@ -296,7 +298,11 @@ class LaunchedServer:
         extra = ["--scene", scene] if scene else []  # relative to the client's directory, which the server shares
         self.process = subprocess.Popen(
             [str(find_server_binary()), "--socket", socket_path, "--fixed-delta-seconds", repr(fixed_delta_seconds),
-             "--mode", mode, *extra, "--exit-with-parent"],
+             "--mode", mode, *extra, "--exit-with-parent",
+             # This server is private to this user (its socket is in a 0700 directory) and serves the one
+             # client that started it: loading any library there grants nothing the user lacks, and
+             # instance.load_plugin(path) works as in-process.
+             "--allow-remote-plugin-load"],
             stdout=subprocess.PIPE, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True,
         )
         deadline = time.monotonic() + startup_timeout

@@ -4,12 +4,15 @@ spear's own client never would."""
 
 from __future__ import annotations
 
+import contextlib
 import os
+import re
 import signal
 import socket
 import struct
 import subprocess
 import sys
+import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -20,7 +23,7 @@ import pytest
 
 import spear
 import spear._engine
-from spear._rpc_client import LaunchedServer, RpcConnection, find_server_binary
+from spear._rpc_client import ConnectionLost, LaunchedServer, RpcConnection, find_server_binary
 
 DEPTH_ERROR = "a value has lists or dicts nested deeper than 64 levels"
 
@@ -419,3 +422,127 @@ def test_a_live_servers_socket_is_not_taken_over(server: LaunchedServer) -> None
     assert done.returncode == 1
     assert done.stderr.strip() == f"InvalidStateError: spear-server: --socket '{path}': another server is listening there"
     still_serves(server)
+
+
+# -- what an unauthenticated or untrusted client can make the server do --------------------------------
+
+@contextlib.contextmanager
+def started_by_hand(*args: str, **env: str) -> Iterator[tuple[subprocess.Popen[str], str]]:
+    """A spear-server started as a user starts one (not through LaunchedServer, which trusts its one client),
+    with SPEAR_PLUGIN_PATH and SPEAR_TOKEN only as given; yields the process and its address."""
+    environment = {k: v for k, v in os.environ.items() if k not in ("SPEAR_PLUGIN_PATH", "SPEAR_TOKEN")}
+    process = subprocess.Popen([str(find_server_binary()), *args, "--exit-with-parent"], stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True, env={**environment, **env})
+    try:
+        assert process.stdout is not None and process.stderr is not None
+        line = process.stdout.readline()
+        assert line.startswith("spear-server: listening on "), process.stderr.read()
+        yield process, line.strip().removeprefix("spear-server: listening on ")
+    finally:
+        process.terminate()
+        process.wait(10)
+
+
+def library_with_a_constructor(directory: Path, name: str) -> tuple[Path, Path]:
+    """lib<name>.so, not a plugin, whose static constructor creates a file (returned second): code that runs
+    inside dlopen(), before the loader can check anything."""
+    marker = directory / f"{name}.ran"
+    source = directory / f"{name}.c"
+    source.write_text("#include <stdio.h>\n"
+                      "__attribute__((constructor)) static void ran(void) {\n"
+                      f'    FILE* file = fopen("{marker}", "w");\n'
+                      "    if (file) fclose(file);\n"
+                      "}\n")
+    library = directory / f"lib{name}.so"
+    subprocess.run(["cc", "-shared", "-fPIC", "-o", str(library), str(source)], check=True)
+    return library, marker
+
+
+def test_load_plugin_over_the_wire_opens_only_the_servers_own_plugins(tmp_path: Path) -> None:
+    # load_plugin dlopen()ed any path a client named: the library's constructors ran with the server's rights
+    # before it was found not to be a plugin.
+    library, marker = library_with_a_constructor(tmp_path, "intruder")
+    with started_by_hand("--socket", str(tmp_path / "server.sock")) as (_, address):
+        connection = RpcConnection(address)
+        for path in (str(library), f"{tmp_path}/./../{tmp_path.name}/{library.name}"):
+            with pytest.raises(spear.InvalidStateError,
+                               match=rf"^load_plugin\(\): this server does not load '{re.escape(path)}' for a client: "
+                                     r"it loads only the plugins named on its command line \(--plugin\) or found in "
+                                     r"its SPEAR_PLUGIN_PATH; .*--allow-remote-plugin-load"):
+                connection.request("load_plugin", path=path)
+        assert not marker.exists()  # its code never ran
+        assert connection.request("echo", value="still serving") == "still serving"
+        connection.close()
+    # Found in the server's own SPEAR_PLUGIN_PATH (its owner put it there), or any library once the server
+    # allows it: loaded, so its constructor runs, and refused as no plugin.
+    for args, env, path in ((["--allow-remote-plugin-load"], {}, str(library)),
+                            ([], {"SPEAR_PLUGIN_PATH": str(tmp_path)}, "intruder"),
+                            ([], {"SPEAR_PLUGIN_PATH": str(tmp_path)}, str(library))):
+        marker.unlink(missing_ok=True)
+        with started_by_hand("--socket", str(tmp_path / "server.sock"), *args, **env) as (_, address):
+            connection = RpcConnection(address)
+            with pytest.raises(spear.InvalidArgumentError, match="is not a spear plugin"):
+                connection.request("load_plugin", path=path)
+            assert marker.exists(), (args, env, path)
+            connection.close()
+
+
+def test_a_client_announcing_a_large_message_before_hello_is_dropped_at_once(server: LaunchedServer) -> None:
+    # Two such clients announcing 1 GiB each made the server buffer 2 GB: before hello a message may have
+    # 64 KiB at most.
+    client = RawClient(server, hello=False)
+    client.sock.sendall(struct.pack("<I", 1 << 30))
+    assert client.closed_by_server()
+    client = RawClient(server, hello=False)
+    client.sock.sendall(struct.pack("<I", (64 << 10) + 1))
+    assert client.closed_by_server()
+    # After hello, messages may be large.
+    connection = RpcConnection(server.address)
+    assert connection.request("echo", value="x" * (1 << 20)) == "x" * (1 << 20)
+    connection.close()
+    still_serves(server)
+
+
+def test_connections_waiting_for_their_hello_are_limited(server: LaunchedServer) -> None:
+    waiting = [RawClient(server, hello=False) for _ in range(64)]
+    extra = RawClient(server, hello=False)
+    assert extra.closed_by_server()  # the 65th, accepted after the 64 before it
+    for client in waiting:
+        client.sock.close()
+    still_serves(server)
+
+
+def test_a_token_file_keeps_the_token_off_the_command_line(tmp_path: Path) -> None:
+    token_file = tmp_path / "token"
+    token_file.write_text("s3cret\n")
+    token_file.chmod(0o644)
+    refused = subprocess.run([str(find_server_binary()), "--port", "0", "--token-file", str(token_file)],
+                             capture_output=True, text=True, timeout=30,
+                             env={k: v for k, v in os.environ.items() if k != "SPEAR_TOKEN"})
+    assert refused.returncode == 1
+    assert (f"--token-file '{token_file}' must belong to this user and be readable by it alone (mode 644)"
+            in refused.stderr)
+    token_file.chmod(0o600)
+    with started_by_hand("--port", "0", "--token-file", str(token_file)) as (process, address):
+        assert b"s3cret" not in Path(f"/proc/{process.pid}/cmdline").read_bytes()
+        connection = RpcConnection(address, token="s3cret")
+        assert connection.request("echo", value=1) == 1
+        connection.close()
+        # Guessing is slowed down: after 3 wrong tokens in a row, the peer's connections are closed unread
+        # for a second (doubling with each further failure).
+        for _ in range(3):
+            with pytest.raises(spear.InvalidArgumentError, match="^hello\\(\\): wrong or missing token$"):
+                RpcConnection(address, token="guess")
+        with pytest.raises((ConnectionLost, OSError)):
+            RpcConnection(address, token="s3cret")
+        time.sleep(1.2)
+        connection = RpcConnection(address, token="s3cret")
+        assert connection.request("echo", value=2) == 2
+        connection.close()
+    # SPEAR_TOKEN in the environment works as well (read by the client too).
+    with started_by_hand("--port", "0", SPEAR_TOKEN="fr0m-env") as (_, address):
+        with pytest.raises(spear.InvalidArgumentError, match="wrong or missing token"):
+            RpcConnection(address, token="guess")
+        connection = RpcConnection(address, token="fr0m-env")
+        assert connection.request("echo", value=3) == 3
+        connection.close()
