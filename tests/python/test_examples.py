@@ -1,5 +1,5 @@
-"""Examples run as their docstrings say, on both transports (the plugin and MCP examples have their own
-tests: test_plugins.py, test_mcp_server.py)."""
+"""Every example runs as its docstring says, on both transports where it takes --server (the plugin,
+MuJoCo and MCP examples have their own tests: test_plugins.py, test_mujoco_interop.py, test_mcp_server.py)."""
 
 from __future__ import annotations
 
@@ -63,3 +63,41 @@ def test_cosim_benchmark_prints_table3_and_lands_images(transport: str, physics:
         image = Image.open(tmp_path / f"cosim_n4_v{views}.png")
         assert image.size == (96, 64)
         assert len(set(image.getdata())) > 20  # ground, sky, shaded objects and their shadows
+
+
+def test_getting_started_spawns_queries_and_destroys() -> None:
+    result = run_example("getting_started.py")
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "after destroying Marker:" in result.stdout
+    assert "using the destroyed actor raises StaleObjectError:" in result.stdout
+
+
+def test_physics_and_input_rests_the_crate_on_the_table() -> None:
+    result = run_example("physics_and_input.py")
+    assert result.returncode == 0, result.stdout + result.stderr
+    resting = [line for line in result.stdout.splitlines() if line.startswith("crate rests at z = ")]
+    assert len(resting) == 1, result.stdout
+    assert 0.88 <= float(resting[0].split("z = ")[1].split(" m")[0]) <= 0.92  # table top 0.75 m + 0.15 m
+
+
+def test_editor_play_copies_the_world_and_saves_the_edit(tmp_path: Path) -> None:
+    out = tmp_path / "edited.json"
+    result = run_example("editor_play.py", str(out))
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "ball present: True" in result.stdout  # destroyed in the game copy only
+    assert json.loads(out.read_text())  # written whole
+
+
+def test_blueprints_spawn_and_settle() -> None:
+    result = run_example("blueprints.py")
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "came to rest at Z = " in result.stdout
+
+
+def test_render_image_writes_the_contact_sheet(tmp_path: Path) -> None:
+    out = tmp_path / "sheet.png"
+    result = run_example("render_image.py", "--out", str(out))
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "object ids visible:" in result.stdout
+    image = Image.open(out)
+    assert image.size[0] > 0 and len(set(image.convert("RGB").getdata())) > 100
