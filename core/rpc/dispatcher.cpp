@@ -103,6 +103,7 @@ void Dispatcher::handle(const char* data, size_t size, Session& session, msgpack
         readReplyBuffers(handle.get(), session);
     OpenedSegments opened;
     OpenedSegmentsScope scope(opened);
+    SegmentOwnerScope owner(session.peerPid);
     handleOne(handle.get(), session, reply, toShm);
 }
 

@@ -36,6 +36,8 @@ struct Session {
     // shared-memory buffers for large reply arrays (core/rpc/reply_buffers.h).
     std::function<void(const std::string& name, size_t size)> offerReplyBuffer;
     std::function<void(const std::string& name)> dropReplyBuffer;
+    // The client's pid when the kernel says it (Unix socket), else -1: only its segments are argument arrays.
+    long peerPid = -1;
 };
 
 class Dispatcher {

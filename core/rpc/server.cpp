@@ -243,6 +243,7 @@ void Server::accept() {
     // accepts only that process's buffers (never another client's segments); over TCP, replies use the
     // server's own segments.
     if (knownPeer && peer.pid > 0) {
+        connection->session.peerPid = peer.pid;
         ReplyBuffers* buffers = connection->replyBuffers.get();
         buffers->setOwner(peer.pid);
         connection->session.offerReplyBuffer = [buffers](const std::string& name, size_t size) {

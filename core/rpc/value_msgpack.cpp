@@ -16,7 +16,20 @@ using reflect::Value;
 
 namespace {
 thread_local OpenedSegments* gOpened = nullptr;
+thread_local long gSegmentOwner = -1;
 } // namespace
+
+SegmentOwnerScope::SegmentOwnerScope(long pid) : previous_(gSegmentOwner) {
+    gSegmentOwner = pid;
+}
+
+SegmentOwnerScope::~SegmentOwnerScope() {
+    gSegmentOwner = previous_;
+}
+
+long SegmentOwnerScope::current() {
+    return gSegmentOwner;
+}
 
 OpenedSegmentsScope::OpenedSegmentsScope(OpenedSegments& list) : previous_(gOpened) {
     gOpened = &list;
@@ -100,6 +113,13 @@ reflect::ArrayValue unpackArray(const msgpack::object& body, std::string_view co
     }
     SP_CHECK(size == expected, InvalidArgument, context, ": shared-memory array holds ", size,
              " bytes, its shape needs ", expected);
+    const long owner = SegmentOwnerScope::current();
+    SP_CHECK(owner > 0, InvalidArgument, context,
+             ": shared-memory arrays are taken only over a Unix socket, from the client's own segments; send "
+             "the array in the message");
+    const std::string prefix = "/spear-" + std::to_string(owner) + "-";
+    SP_CHECK(name.starts_with(prefix), InvalidArgument, context, ": shared-memory array '", name,
+             "' is not a segment of the connected client (pid ", owner, ")");
     // open() compares `size` with the segment's real size (fstat): the client's word is not enough, since
     // touching a page past the end of a shrunk segment is a SIGBUS.
     std::shared_ptr<SharedMemorySegment> segment;

@@ -69,4 +69,20 @@ class OpenedSegmentsScope {
     OpenedSegments* previous_;
 };
 
+// The process whose shared-memory segments a request may name as argument arrays ("/spear-<pid>-..."):
+// the connecting client, as the kernel reports it on a Unix socket. Outside a scope, or with no known peer
+// (TCP), no segment is opened, so no client can make the server read another process's memory.
+class SegmentOwnerScope {
+  public:
+    explicit SegmentOwnerScope(long pid);
+    ~SegmentOwnerScope();
+    SegmentOwnerScope(const SegmentOwnerScope&) = delete;
+    SegmentOwnerScope& operator=(const SegmentOwnerScope&) = delete;
+    // The pid of the innermost scope on this thread, or -1.
+    static long current();
+
+  private:
+    long previous_;
+};
+
 } // namespace sp::rpc

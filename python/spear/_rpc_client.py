@@ -112,7 +112,7 @@ class RpcConnection:
 
     def request(self, op: str, **fields: Any) -> Any:
         self.flush()  # queued calls run first, in the order they were made
-        segments = OutgoingSegments(self._reply_buffers)
+        segments = OutgoingSegments(self._reply_buffers, inline=self.address.startswith("tcp:"))
         reply: Any = None
         try:
             message = {"id": next(self._ids), "op": op, **_encode_fields(op, fields, segments)}
@@ -126,7 +126,7 @@ class RpcConnection:
         """Sends many requests in one message; returns each result, or the exception it raised."""
         if self._queue:
             self.flush()
-        segments = OutgoingSegments(self._reply_buffers)
+        segments = OutgoingSegments(self._reply_buffers, inline=self.address.startswith("tcp:"))
         reply: Any = None
         refused: dict[int, errors.SpearError] = {}  # calls refused before sending, by position
         try:

@@ -75,9 +75,12 @@ class OutgoingSegments:
     """Segments this client created for a request's arrays; removed once the reply has arrived. With the
     connection's reply buffers, an array goes into a free buffer that fits instead, when there is one."""
 
-    def __init__(self, buffers: ReplyBuffers | None = None) -> None:
+    def __init__(self, buffers: ReplyBuffers | None = None, *, inline: bool = False) -> None:
         self.paths: list[str] = []
         self._buffers = buffers
+        # Over TCP the server cannot tell which process (or machine) a segment comes from, so it opens none:
+        # every argument array travels in the message itself.
+        self.inline = inline
 
     def create(self, data: NDArray[Any]) -> str:
         if self._buffers is not None:
@@ -112,7 +115,7 @@ def _encode_array(array: NDArray[Any], segments: OutgoingSegments) -> msgpack.Ex
         array = array.astype(array.dtype.newbyteorder("="))
     dtype = "bool" if array.dtype == np.bool_ else array.dtype.name
     payload: Any
-    if array.nbytes >= SHARED_MEMORY_THRESHOLD:
+    if array.nbytes >= SHARED_MEMORY_THRESHOLD and not segments.inline:
         payload = {"shm": segments.create(array), "size": array.nbytes}
     else:
         payload = array.tobytes()

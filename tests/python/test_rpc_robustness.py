@@ -210,6 +210,24 @@ def test_an_argument_segment_smaller_than_it_claims_is_refused(server: LaunchedS
     still_serves(server)
 
 
+def test_an_argument_segment_of_another_process_is_not_opened(server: LaunchedServer) -> None:
+    # A segment another process made (here: named with the server's pid, as its reply segments are) must not
+    # be readable through the server by naming it: only the connected client's own segments are arguments.
+    name = f"/spear-{server.process.pid}-{900_002}"
+    fd = os.open("/dev/shm" + name, os.O_CREAT | os.O_EXCL | os.O_RDWR, 0o600)
+    try:
+        os.ftruncate(fd, 1 << 20)
+        client = RawClient(server)
+        reply = client.request({"id": 1, "op": "echo",
+                                "value": array_ext("uint8", [1 << 20], {"shm": name, "size": 1 << 20})})
+        assert reply["error"] == ["InvalidArgumentError", f"echo(): shared-memory array '{name}' is not a segment "
+                                                          f"of the connected client (pid {os.getpid()})"]
+        still_serves(server)
+    finally:
+        os.close(fd)
+        os.unlink("/dev/shm" + name)
+
+
 def test_segments_shrunk_while_in_use_never_crash_the_server(server: LaunchedServer) -> None:
     # Another process shrinks and regrows a reply buffer and an argument segment as fast as it can while
     # the server copies 16 MiB from one to the other: between the server's size check and its access is a
