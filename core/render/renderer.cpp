@@ -37,6 +37,13 @@ float toneMapChannel(float hdr, const CameraParams& params) {
     return float(c < 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055);
 }
 
+// final_color of a background pixel, RGBA.
+std::array<float, 4> backgroundFinal(const Environment& environment, const CameraParams& params) {
+    return {toneMapChannel(environment.background.x(), params),
+            toneMapChannel(environment.background.y(), params),
+            toneMapChannel(environment.background.z(), params), 1.0f};
+}
+
 void copy3(float (&out)[4], const Eigen::Vector3f& v, float w) {
     out[0] = v.x();
     out[1] = v.y();
@@ -181,14 +188,12 @@ void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
     copy3(block.background, scene.environment().background, 1.0f);
     block.toneParams[0] = camera.params.exposure;
     block.toneParams[1] = float(static_cast<int>(camera.params.toneMap));
-    for (int c = 0; c < 3; ++c)
-        block.backgroundFinal[c] = toneMapChannel(scene.environment().background[c], camera.params);
-    block.backgroundFinal[3] = 1.0f;
+    const std::array<float, 4> final = backgroundFinal(scene.environment(), camera.params);
+    std::copy(final.begin(), final.end(), block.backgroundFinal);
     for (const ShadowInfo& info : shadows) {
         std::memcpy(block.shadowMatrix[info.layer], info.worldToClip.data(), sizeof(float) * 16);
         block.shadowParams[info.layer][0] = info.texel;
-        block.shadowParams[info.layer][1] = 1.0f / float(camera.params.shadowResolution);
-        block.shadowParams[info.layer][2] = float(camera.params.shadowResolution);
+        block.shadowParams[info.layer][1] = float(camera.params.shadowResolution);
     }
     int count = 0;
     scene.forEachLight([&](LightId, const Light& light) {
@@ -228,9 +233,8 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
         if (target == Target::Hdr) {
             copy3(value, background, 1.0f);
         } else if (target == Target::FinalColor) {
-            for (int c = 0; c < 3; ++c)
-                value[c] = toneMapChannel(background[c], camera.params);
-            value[3] = 1.0f;
+            const std::array<float, 4> final = backgroundFinal(scene.environment(), camera.params);
+            std::copy(final.begin(), final.end(), value);
         }
         glClearBufferfv(GL_COLOR, location++, value);
     }
@@ -286,9 +290,11 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
     if (passes.forward)
         glBindTextureUnit(shaders::kShadowMapUnit, passes.shadow ? shadowMaps_->texture() : 0);
     ShaderProgram* program = nullptr;
+    unsigned programFeatures = 0;
     for (const Draw& draw : draws) {
-        if (program == nullptr || draw.features != draws[std::size_t(&draw - draws.data()) - 1].features) {
+        if (program == nullptr || draw.features != programFeatures) { // draws are grouped by features
             program = &surfaceProgram(passes.surfaceTargets, passes.forward, draw.features, lights);
+            programFeatures = draw.features;
             program->use();
         }
         const Instance& instance = *draw.instance;

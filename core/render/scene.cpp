@@ -176,12 +176,6 @@ const Instance& Scene::instance(InstanceId id) const {
     return instances_.get(id, "Scene::instance");
 }
 
-void Scene::meshBounds(MeshId id, Eigen::Vector3f& min, Eigen::Vector3f& max) const {
-    const MeshEntry& entry = meshes_.get(id, "Scene::meshBounds");
-    min = entry.min;
-    max = entry.max;
-}
-
 void Scene::setMeshLods(MeshId id, std::vector<MeshLod> lods) {
     MeshEntry& entry = meshes_.get(id, "Scene::setMeshLods");
     float previous = 0.0f;

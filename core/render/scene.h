@@ -56,8 +56,6 @@ class Scene {
     void removeMesh(MeshId id); // sp::InvalidState while an instance uses it
     const MeshData& mesh(MeshId id) const;
     std::uint64_t meshRevision(MeshId id) const;
-    // Mesh-space bounding box of a mesh (for culling and shadow fitting).
-    void meshBounds(MeshId id, Eigen::Vector3f& min, Eigen::Vector3f& max) const;
     // Levels of detail of a mesh, from finer to coarser (increasing relativeError); each has the mesh's
     // submesh count. A mesh that is some chain's level cannot be removed while that chain names it.
     void setMeshLods(MeshId id, std::vector<MeshLod> lods);

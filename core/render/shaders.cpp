@@ -123,7 +123,7 @@ float shadowFactor(const int layer, vec4 clipOfP, vec3 n, float texel) {
     vec4 clip = clipOfP + uShadowMatrix[layer] * vec4(n * (1.5 * texel), 0.0);
     vec3 s = clip.xyz / clip.w * 0.5 + 0.5;
     if (any(lessThan(s, vec3(0.0))) || any(greaterThan(s, vec3(1.0)))) return 1.0;
-    float size = uShadowParams[layer].z;
+    float size = uShadowParams[layer].y;
     vec2 t = s.xy * size - 0.5;
     vec2 cell = floor(t);
     vec2 f = t - cell;

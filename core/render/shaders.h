@@ -35,9 +35,8 @@ struct FrameBlock {
     float lightDirection[16][4]; // xyz unit direction light travels
     float lightCone[16][4];      // x = cos(inner), y = cos(outer)
     float shadowMatrix[4][16];   // world -> light clip, column-major
-    float shadowParams[4][4];    // x = world texel size (per metre of distance for a spot light), y = 1 /
-                                 // resolution, z = resolution
-    float backgroundFinal[4];    // rgba: final_color of background pixels (tone-mapped on the CPU side)
+    float shadowParams[4][4]; // x = world texel size (per metre of distance for a spot light), y = resolution
+    float backgroundFinal[4]; // rgba: final_color of background pixels (tone-mapped on the CPU side)
 };
 
 // One light of a shading variant.
