@@ -79,7 +79,7 @@ void ShadowMaps::ensure(int resolution) {
     glDeleteTextures(1, &texture_);
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture_);
     glTextureStorage3D(texture_, 1, GL_DEPTH_COMPONENT32F, resolution, resolution, shaders::kMaxShadowMaps);
-    // Read with texelFetch and compared in the shader (see shadowFactor() in shaders.cpp).
+    // Gathered and compared in the shader (see shadowFactor() in shaders.cpp), never filtered.
     glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTextureParameteri(texture_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

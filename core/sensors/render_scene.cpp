@@ -38,13 +38,16 @@ std::optional<sp::render::MeshData> basicShape(std::string_view name) {
 // about r sin^2(pi / segments), a cylinder's sides by r (1 - cos(pi / segments)).
 std::vector<std::pair<sp::render::MeshData, float>> basicShapeLods(std::string_view name) {
     std::vector<std::pair<sp::render::MeshData, float>> lods;
+    if (!name.starts_with(kBasicShapesPrefix))
+        return lods;
+    name.remove_prefix(kBasicShapesPrefix.size());
     const double halfDiagonal = 0.5 * std::sqrt(3.0);
     for (int segments : {24, 12, 8}) {
         const double angle = M_PI / segments;
-        if (name == std::string(kBasicShapesPrefix) + "Sphere")
+        if (name == "Sphere")
             lods.emplace_back(sp::render::primitives::sphere(0.5f, segments, segments / 2),
                               float(0.5 * std::sin(angle) * std::sin(angle) / halfDiagonal));
-        else if (name == std::string(kBasicShapesPrefix) + "Cylinder")
+        else if (name == "Cylinder")
             lods.emplace_back(sp::render::primitives::cylinder(0.5f, 1.0f, segments),
                               float(0.5 * (1.0 - std::cos(angle)) / halfDiagonal));
     }
