@@ -115,13 +115,10 @@ vec3 toHalf(vec3 v) {
     return vec3(unpackHalf2x16(packHalf2x16(v.xy)), unpackHalf2x16(packHalf2x16(vec2(v.z, 0.0))).x);
 }
 
-// One bilinear percentage-closer tap after a normal offset of 1.5 texels: the four texels around the
-// point come from one textureGather and are compared here, then blended bilinearly (a software
-// rasteriser pays for filtering and level-of-detail work on every texture() call, and a gather shares
-// the address arithmetic of the four fetches).
-float shadowFactor(const int layer, vec4 clipOfP, vec3 n, float texel) {
-    vec4 clip = clipOfP + uShadowMatrix[layer] * vec4(n * (1.5 * texel), 0.0);
-    vec3 s = clip.xyz / clip.w * 0.5 + 0.5;
+// One bilinear percentage-closer tap at s, the point's shadow-map coordinates ([0, 1]^3, after the
+// normal offset): the four texels around the point come from one textureGather and are compared here,
+// then blended bilinearly (a gather shares the address arithmetic of the four fetches).
+float shadowFactor(const int layer, vec3 s) {
     if (any(lessThan(s, vec3(0.0))) || any(greaterThan(s, vec3(1.0)))) return 1.0;
     float size = uShadowParams[layer].y;
     vec2 t = s.xy * size - 0.5;
@@ -132,6 +129,13 @@ float shadowFactor(const int layer, vec4 clipOfP, vec3 n, float texel) {
     vec4 d = vec4(g.w, g.z, g.x, g.y);
     vec4 lit = vec4(greaterThanEqual(d, vec4(s.z))); // lit where the point is not behind the map's depth
     return mix(mix(lit.x, lit.y, f.x), mix(lit.z, lit.w, f.x), f.y);
+}
+
+// The shadow-map coordinates of p, moved 1.5 texels along its normal n (towards the light) so that a
+// surface does not shadow itself.
+vec3 shadowCoordinates(const int layer, vec3 p, vec3 n, float texel) {
+    vec4 clip = uShadowMatrix[layer] * vec4(p + n * (1.5 * texel), 1.0);
+    return clip.xyz / clip.w * 0.5 + 0.5;
 }
 
 struct Shaded {
@@ -319,6 +323,31 @@ std::string shadowClipDeclarations(bool forward, const ShadingLayout& lights, co
     return text;
 }
 
+// The forward vertex shader's shadow-map coordinates for each shadowed light, in homogeneous form
+// (x, y, z already mapped to [0, 1] times w): the vertex moved 1.5 texels along its normal, turned
+// towards the light, then projected. Interpolating them is exact for a directional light (affine) and
+// for a spot light (projective, divided per fragment), and spares every fragment a matrix product.
+std::string shadowClips(const ShadingLayout& lights) {
+    std::string text;
+    for (std::size_t i = 0; i < lights.lights.size(); ++i) {
+        const LightSlot& light = lights.lights[i];
+        if (light.shadowLayer < 0)
+            continue;
+        const std::string at = "[" + std::to_string(i) + "]", layer = std::to_string(light.shadowLayer);
+        const std::string toLight = light.type == LightType::Directional
+                                        ? "-uLightDirection" + at + ".xyz"
+                                        : "uLightPosition" + at + ".xyz - vWorldPosition";
+        const std::string texel = "uShadowParams[" + layer + "].x" +
+                                  (light.type == LightType::Directional ? std::string() : " * length(l)");
+        text += " { vec3 l = " + toLight +
+                "; vec3 n = normalize(vNormal); if (dot(n, l) < 0.0) n = -n;"
+                " vec4 c = uShadowMatrix[" +
+                layer + "] * vec4(vWorldPosition + n * (1.5 * " + texel + "), 1.0); vShadowClip" + layer +
+                " = vec4((c.xyz + c.w) * 0.5, c.w); }";
+    }
+    return text;
+}
+
 // shade(): the shading of one surface point by the layout's lights, unrolled with each light's type,
 // range and shadow layer fixed, and the sky term.
 std::string shadeFunction(const ShadingLayout& layout) {
@@ -364,11 +393,14 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
             // A spot light's texel grows with the distance; a directional light's is fixed.
             const std::string texel = "uShadowParams[" + layer + "].x" +
                                       (light.type == LightType::Directional ? std::string() : " * dist");
-            // The forward vertex shader interpolates the point's light-clip position (exact: affine for a
-            // directional light, projective for a spot light); the lighting pass computes it.
-            text += "#ifdef FORWARD\n            e *= shadowFactor(" + layer + ", vShadowClip" + layer +
-                    ", n, " + texel + ");\n#else\n            e *= shadowFactor(" + layer +
-                    ", uShadowMatrix[" + layer + "] * vec4(p, 1.0), n, " + texel + ");\n#endif\n";
+            // The forward vertex shader interpolates the offset point's coordinates (see shadowClips()):
+            // only a spot light's need the perspective division here. The lighting pass computes them.
+            const std::string forward = light.type == LightType::Directional
+                                            ? "vShadowClip" + layer + ".xyz"
+                                            : "vShadowClip" + layer + ".xyz / vShadowClip" + layer + ".w";
+            text += "#ifdef FORWARD\n            e *= shadowFactor(" + layer + ", " + forward +
+                    ");\n#else\n            e *= shadowFactor(" + layer + ", shadowCoordinates(" + layer +
+                    ", p, n, " + texel + "));\n#endif\n";
         }
         text += "            accumulate(s, l, e, nol, irradiance, specular);\n        }\n    }\n";
     }
@@ -411,12 +443,8 @@ void main() {}
 std::string surfaceVertex(bool forward, const ShadingLayout& lights) {
     std::string text = "#version 450 core\n";
     text += kFrameBlock;
-    text += "#define SHADOW_CLIPS";
-    if (forward)
-        for (int layer : shadowLayers(lights))
-            text += " vShadowClip" + std::to_string(layer) + " = uShadowMatrix[" + std::to_string(layer) +
-                    "] * vec4(vWorldPosition, 1.0);";
-    text += "\n" + shadowClipDeclarations(forward, lights, "out");
+    text += "#define SHADOW_CLIPS" + (forward ? shadowClips(lights) : std::string()) + "\n";
+    text += shadowClipDeclarations(forward, lights, "out");
     return text + kSurfaceVertex;
 }
 
