@@ -2,6 +2,7 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -65,46 +66,145 @@ std::vector<double> shadowSignature(const Scene& scene, int resolution) {
     return signature;
 }
 
+// The scene's bounding sphere, snapped: the radius to steps of 2^(1/4), the centre to a grid of 1/16 of
+// it, the sphere grown until it holds the exact one. Objects moving inside the scene then leave the
+// directional maps where they are (no shimmering texel grid, and the static casters stay valid).
+void stableBounds(const Scene& scene, Eigen::Vector3d& centre, double& radius) {
+    scene.bounds(centre, radius);
+    if (radius <= 0.0)
+        return;
+    double step = std::exp2(std::ceil(4.0 * std::log2(radius)) / 4.0);
+    for (;;) {
+        const double grid = step / 16.0;
+        const Eigen::Vector3d snapped = (centre / grid).array().round().matrix() * grid;
+        if ((snapped - centre).norm() + radius <= step) {
+            centre = snapped;
+            radius = step;
+            return;
+        }
+        step *= std::exp2(0.25);
+    }
+}
+
+std::uint64_t packed(InstanceId id) {
+    return (std::uint64_t(id.generation) << 32) | id.index;
+}
+
 } // namespace
 
 ShadowMaps::~ShadowMaps() {
     glDeleteFramebuffers(1, &fbo_);
     glDeleteTextures(1, &texture_);
+    glDeleteTextures(1, &staticTexture_);
 }
 
-void ShadowMaps::ensure(int resolution) {
-    if (resolution == resolution_)
+void ShadowMaps::ensure(int resolution, unsigned format) {
+    if (resolution == resolution_ && format == format_)
         return;
     glDeleteFramebuffers(1, &fbo_);
     glDeleteTextures(1, &texture_);
-    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture_);
-    glTextureStorage3D(texture_, 1, GL_DEPTH_COMPONENT32F, resolution, resolution, shaders::kMaxShadowMaps);
-    // Gathered and compared in the shader (see shadowFactor() in shaders.cpp), never filtered.
-    glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTextureParameteri(texture_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(texture_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(texture_, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    glDeleteTextures(1, &staticTexture_);
+    for (unsigned* texture : {&texture_, &staticTexture_}) {
+        glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, texture);
+        glTextureStorage3D(*texture, 1, format, resolution, resolution, shaders::kMaxShadowMaps);
+        // Gathered and compared in the shader (see shadowFactor() in shaders.cpp), never filtered.
+        glTextureParameteri(*texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(*texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTextureParameteri(*texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(*texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(*texture, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    }
     glCreateFramebuffers(1, &fbo_);
     glNamedFramebufferDrawBuffer(fbo_, GL_NONE);
     resolution_ = resolution;
+    format_ = format;
+    staticSignature_.clear(); // new storage holds nothing yet
+    movingRects_.clear();
+}
+
+void ShadowMaps::draw(const Scene& scene, const Instance& instance, const ShadowInfo& info,
+                      const Eigen::Matrix4d& lightProjection, const Eigen::Vector3d& lightPosition,
+                      GpuSceneCache& cache, ShaderProgram& depthProgram) {
+    // The level of detail whose error stays within half a shadow-map texel.
+    Eigen::Vector3d centre;
+    double radius = 0.0;
+    scene.boundingSphere(instance, centre, radius);
+    const double texel = info.perspective
+                             ? info.texel * std::max((centre - lightPosition).norm() - radius, 0.02)
+                             : double(info.texel);
+    const GpuMesh& mesh = cache.mesh(scene, scene.lodFor(instance.mesh, radius / texel));
+    depthProgram.set("uModelLightProjection",
+                     Eigen::Matrix4f((lightProjection * instance.transform.matrix()).cast<float>()));
+    glBindVertexArray(mesh.vao);
+    for (const Submesh& sub : mesh.submeshes)
+        glDrawElements(GL_TRIANGLES, GLsizei(sub.indexCount), GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(std::uintptr_t(sub.firstIndex) * 4));
+}
+
+ShadowMaps::Rect ShadowMaps::footprint(const Scene& scene, const Instance& instance,
+                                       const Eigen::Matrix4d& lightProjection, int resolution) const {
+    Eigen::Vector3d centre;
+    double radius = 0.0;
+    scene.boundingSphere(instance, centre, radius);
+    const Rect whole{0, 0, resolution, resolution};
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+    for (int corner = 0; corner < 8; ++corner) {
+        const Eigen::Vector3d offset((corner & 1) ? radius : -radius, (corner & 2) ? radius : -radius,
+                                     (corner & 4) ? radius : -radius);
+        const Eigen::Vector4d clip = lightProjection * (centre + offset).homogeneous();
+        if (clip.w() <= 1e-9)
+            return whole; // reaches behind a spot light: no bounded footprint
+        const double x = (clip.x() / clip.w() * 0.5 + 0.5) * resolution;
+        const double y = (clip.y() / clip.w() * 0.5 + 0.5) * resolution;
+        x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+    }
+    // Two texels of margin for rasterisation rules and the polygon offset.
+    auto clampTo = [&](double v) { return int(std::clamp(v, 0.0, double(resolution))); };
+    return {clampTo(std::floor(x0) - 2), clampTo(std::floor(y0) - 2), clampTo(std::ceil(x1) + 2),
+            clampTo(std::ceil(y1) + 2)};
 }
 
 std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache& cache,
                                ShaderProgram& depthProgram) {
     std::vector<double> signature = shadowSignature(scene, resolution);
+    update_ = {};
     if (texture_ != 0 && signature == signature_)
         return 0;
     signature_ = std::move(signature);
+
+    // Casters unchanged since the previous update are static; the others move.
+    std::vector<const Instance*> statics, moving;
+    std::vector<double> staticSignature{double(resolution)};
+    std::unordered_map<std::uint64_t, CasterState> casters;
+    scene.forEachInstance([&](InstanceId id, const Instance& instance) {
+        if (!instance.visible || !instance.castShadows)
+            return;
+        CasterState state{instance.mesh, scene.meshRevision(instance.mesh), instance.transform.matrix()};
+        auto previous = casters_.find(packed(id));
+        const bool still = previous != casters_.end() && previous->second.mesh == state.mesh &&
+                           previous->second.meshRevision == state.meshRevision &&
+                           previous->second.transform == state.transform;
+        if (still) {
+            statics.push_back(&instance);
+            staticSignature.push_back(double(packed(id)));
+        } else {
+            moving.push_back(&instance);
+        }
+        casters.emplace(packed(id), std::move(state));
+    });
+    casters_ = std::move(casters);
+
     std::vector<ShadowInfo>& infos = infos_;
     infos.clear();
     Eigen::Vector3d centre;
     double radius = 0.0;
-    scene.bounds(centre, radius);
+    stableBounds(scene, centre, radius);
     if (radius <= 0.0)
         return 0;
     int skipped = 0;
     int ordinal = -1;
+    std::vector<Eigen::Matrix4d> projections;
+    std::vector<Eigen::Vector3d> positions;
     scene.forEachLight([&](LightId, const Light& light) {
         ++ordinal;
         if (!light.castShadows || light.type == LightType::Point)
@@ -132,47 +232,85 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
             info.texel = float(2.0 * std::tan(halfAngle) / resolution);
             info.perspective = true;
         }
-        const Eigen::Matrix4d lightProjection = projection * view;
-        info.worldToClip = lightProjection.cast<float>();
+        projections.push_back(projection * view);
+        positions.push_back(light.position);
+        info.worldToClip = projections.back().cast<float>();
         infos.push_back(info);
-
-        ensure(resolution);
-        glNamedFramebufferTextureLayer(fbo_, GL_DEPTH_ATTACHMENT, texture_, 0, info.layer);
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-        glViewport(0, 0, resolution, resolution);
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
-        glDepthMask(GL_TRUE);
-        // Slope-scaled offset against acne; the lighting pass adds a normal offset of 1.5 texels.
-        glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(2.0f, 2.0f);
-        glClear(GL_DEPTH_BUFFER_BIT);
-        depthProgram.use();
-        scene.forEachInstance([&](InstanceId, const Instance& instance) {
-            if (!instance.visible || !instance.castShadows)
-                return;
-            // The level of detail whose error stays within half a shadow-map texel.
-            Eigen::Vector3d centre;
-            double radius = 0.0;
-            scene.boundingSphere(instance, centre, radius);
-            const double texel = info.perspective
-                                     ? info.texel * std::max((centre - light.position).norm() - radius, 0.02)
-                                     : double(info.texel);
-            const GpuMesh& mesh = cache.mesh(scene, scene.lodFor(instance.mesh, radius / texel));
-            depthProgram.set("uModelLightProjection",
-                             Eigen::Matrix4f((lightProjection * instance.transform.matrix()).cast<float>()));
-            glBindVertexArray(mesh.vao);
-            for (const Submesh& sub : mesh.submeshes)
-                glDrawElements(GL_TRIANGLES, GLsizei(sub.indexCount), GL_UNSIGNED_INT,
-                               reinterpret_cast<const void*>(std::uintptr_t(sub.firstIndex) * 4));
-        });
+        staticSignature.insert(staticSignature.end(), projections.back().data(),
+                               projections.back().data() + 16);
+        staticSignature.insert(staticSignature.end(),
+                               {light.position.x(), light.position.y(), light.position.z()});
     });
-    glDisable(GL_POLYGON_OFFSET_FILL);
     if (skipped > 0 && !warnedTooMany_) {
         SP_LOG("render: ", skipped, " shadow-casting light(s) beyond the first ", shaders::kMaxShadowMaps,
                " are rendered without shadows");
         warnedTooMany_ = true;
     }
+    if (infos.empty())
+        return 0;
+
+    // 16 bits of depth when every map is orthographic: a step (extent / 37000 for a cube of the scene)
+    // is far below the 1.5-texel normal offset (extent / resolution), and half the bytes to clear, copy
+    // and write. A perspective map's depth is not linear; far from the light 16 bits would be too coarse.
+    const bool anyPerspective =
+        std::any_of(infos.begin(), infos.end(), [](const ShadowInfo& info) { return info.perspective; });
+    ensure(resolution, anyPerspective ? GL_DEPTH_COMPONENT32F : GL_DEPTH_COMPONENT16);
+    const bool rebuildStatic = staticSignature != staticSignature_ || movingRects_.size() != infos.size();
+    staticSignature_ = std::move(staticSignature);
+    movingRects_.resize(infos.size());
+
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    glViewport(0, 0, resolution, resolution);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    // Slope-scaled offset against acne; the lighting pass adds a normal offset of 1.5 texels.
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(2.0f, 2.0f);
+    depthProgram.use();
+    for (std::size_t i = 0; i < infos.size(); ++i) {
+        const ShadowInfo& info = infos[i];
+        if (rebuildStatic) {
+            glNamedFramebufferTextureLayer(fbo_, GL_DEPTH_ATTACHMENT, staticTexture_, 0, info.layer);
+            glClear(GL_DEPTH_BUFFER_BIT);
+            for (const Instance* instance : statics)
+                draw(scene, *instance, info, projections[i], positions[i], cache, depthProgram);
+            ++update_.staticMaps;
+        }
+        // Restore what moving casters covered (all of it after a static render), then draw them again.
+        Rect now;
+        for (const Instance* instance : moving) {
+            const Rect r = footprint(scene, *instance, projections[i], resolution);
+            if (r.empty())
+                continue;
+            now = now.empty() ? r
+                              : Rect{std::min(now.x0, r.x0), std::min(now.y0, r.y0), std::max(now.x1, r.x1),
+                                     std::max(now.y1, r.y1)};
+        }
+        const Rect& before = movingRects_[i];
+        Rect restore = rebuildStatic ? Rect{0, 0, resolution, resolution} : now;
+        if (!rebuildStatic && !before.empty())
+            restore = restore.empty()
+                          ? before
+                          : Rect{std::min(restore.x0, before.x0), std::min(restore.y0, before.y0),
+                                 std::max(restore.x1, before.x1), std::max(restore.y1, before.y1)};
+        if (!restore.empty()) {
+            glCopyImageSubData(staticTexture_, GL_TEXTURE_2D_ARRAY, 0, restore.x0, restore.y0, info.layer,
+                               texture_, GL_TEXTURE_2D_ARRAY, 0, restore.x0, restore.y0, info.layer,
+                               restore.x1 - restore.x0, restore.y1 - restore.y0, 1);
+            update_.restoredTexels +=
+                std::size_t(restore.x1 - restore.x0) * std::size_t(restore.y1 - restore.y0);
+        }
+        if (!moving.empty()) {
+            glNamedFramebufferTextureLayer(fbo_, GL_DEPTH_ATTACHMENT, texture_, 0, info.layer);
+            for (const Instance* instance : moving)
+                draw(scene, *instance, info, projections[i], positions[i], cache, depthProgram);
+            update_.dynamicDraws += moving.size();
+        }
+        movingRects_[i] = now;
+    }
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    update_.maps = infos.size();
     return infos.size();
 }
 

@@ -1,8 +1,16 @@
 #pragma once
 // Shadow maps of directional and spot lights, one layer of a depth texture array each. Directional maps
-// are orthographic and fit the scene's bounding sphere; spot maps are perspective over the cone.
-// Point lights cast no shadows. Needs a current context.
+// are orthographic and fit the scene's bounding sphere (snapped, so that objects moving inside the
+// scene neither resize nor shift the map); spot maps are perspective over the cone. Point lights cast
+// no shadows. Needs a current context.
+//
+// Casters that did not change since the previous update are static: they are rendered once into a
+// second texture array, and each update restores only the rectangles the moving casters covered (now
+// and at the previous update) from it before drawing the moving casters. A robot in a large still
+// scene costs the pixels it covers, not the whole map. The result equals a full render bit for bit.
 
+#include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Core>
@@ -21,6 +29,14 @@ struct ShadowInfo {
     bool perspective = false;
 };
 
+// What the last update() did, for RenderStats and tests.
+struct ShadowUpdate {
+    std::size_t maps = 0;           // maps brought up to date (0: nothing changed, the maps were reused)
+    std::size_t staticMaps = 0;     // of which the static casters were rendered again
+    std::size_t dynamicDraws = 0;   // moving casters drawn
+    std::size_t restoredTexels = 0; // texels copied back from the static maps
+};
+
 class ShadowMaps {
   public:
     ShadowMaps() = default;
@@ -35,16 +51,43 @@ class ShadowMaps {
     std::size_t render(const Scene& scene, int resolution, GpuSceneCache& cache, ShaderProgram& depthProgram);
     // Where each map is, as of the last render().
     const std::vector<ShadowInfo>& infos() const { return infos_; }
+    const ShadowUpdate& lastUpdate() const { return update_; }
     unsigned texture() const { return texture_; }
+    // The texture's depth format: GL_DEPTH_COMPONENT16 when every map is orthographic, else 32F.
+    unsigned format() const { return format_; }
 
   private:
-    void ensure(int resolution);
-    unsigned texture_ = 0;
+    // A caster as of the previous update: it is static now if nothing of this changed.
+    struct CasterState {
+        MeshId mesh;
+        std::uint64_t meshRevision = 0;
+        Eigen::Matrix4d transform;
+    };
+    // A rectangle of texels [x0, x1) x [y0, y1); empty when x0 >= x1.
+    struct Rect {
+        int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+        bool empty() const { return x0 >= x1 || y0 >= y1; }
+    };
+
+    void ensure(int resolution, unsigned format);
+    void draw(const Scene& scene, const Instance& instance, const ShadowInfo& info,
+              const Eigen::Matrix4d& lightProjection, const Eigen::Vector3d& lightPosition,
+              GpuSceneCache& cache, ShaderProgram& depthProgram);
+    Rect footprint(const Scene& scene, const Instance& instance, const Eigen::Matrix4d& lightProjection,
+                   int resolution) const;
+
+    unsigned texture_ = 0;       // sampled: static and moving casters
+    unsigned staticTexture_ = 0; // static casters only
     unsigned fbo_ = 0;
     int resolution_ = 0;
+    unsigned format_ = 0;
     bool warnedTooMany_ = false;
     std::vector<ShadowInfo> infos_;
-    std::vector<double> signature_; // what the maps were rendered from
+    ShadowUpdate update_;
+    std::vector<double> signature_;                          // what the maps were rendered from
+    std::vector<double> staticSignature_;                    // what the static maps were rendered from
+    std::unordered_map<std::uint64_t, CasterState> casters_; // by packed InstanceId
+    std::vector<Rect> movingRects_; // per layer: where moving casters were drawn last time
 };
 
 } // namespace sp::render

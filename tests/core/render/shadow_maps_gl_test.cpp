@@ -1,0 +1,130 @@
+// ShadowMaps keeps the casters that did not move in a static map and redraws only what moving casters
+// covered. Whatever the history of updates, the maps must equal a fresh render of the same scene bit for
+// bit; and when one object moves in a still scene, only its neighbourhood may be restored.
+
+#include <epoxy/gl.h>
+
+#include <vector>
+
+#include "core/render/gpu_scene_cache.h"
+#include "core/render/shaders.h"
+#include "core/render/shadow_maps.h"
+#include "gl_fixture.h"
+#include "test_scenes.h"
+
+namespace sp::render::test {
+namespace {
+
+constexpr int kResolution = 256;
+
+class ShadowMapsGlTest : public GlTest {
+  protected:
+    ShadowMapsGlTest() : depth_("shadow test", shaders::kShadowVertex, shaders::kShadowFragment) {}
+
+    // Every layer a render of `scene` fills, as floats.
+    std::vector<float> layers(ShadowMaps& maps, const Scene& scene) {
+        maps.render(scene, kResolution, cache_, depth_);
+        std::vector<float> values;
+        for (const ShadowInfo& info : maps.infos()) {
+            std::vector<float> layer(std::size_t(kResolution) * kResolution);
+            glGetTextureSubImage(maps.texture(), 0, 0, 0, info.layer, kResolution, kResolution, 1,
+                                 GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(layer.size() * sizeof(float)),
+                                 layer.data());
+            values.insert(values.end(), layer.begin(), layer.end());
+        }
+        return values;
+    }
+
+    // The maps `maps` hold after an update equal those of a ShadowMaps that never saw the scene before.
+    void expectSameAsFresh(ShadowMaps& maps, const Scene& scene, const char* step) {
+        const std::vector<float> kept = layers(maps, scene);
+        ShadowMaps fresh;
+        const std::vector<float> expected = layers(fresh, scene);
+        ASSERT_EQ(kept.size(), expected.size()) << step;
+        ASSERT_FALSE(kept.empty()) << step;
+        std::size_t differing = 0;
+        for (std::size_t i = 0; i < kept.size(); ++i)
+            differing += kept[i] != expected[i];
+        EXPECT_EQ(differing, 0u) << step;
+    }
+
+    static void moveBy(Scene& scene, InstanceId id, const Eigen::Vector3d& offset) {
+        Eigen::Affine3d transform = scene.instance(id).transform;
+        transform.translation() += offset;
+        scene.setTransform(id, transform);
+    }
+
+    static std::vector<InstanceId> instanceIds(const Scene& scene) {
+        std::vector<InstanceId> ids;
+        scene.forEachInstance([&](InstanceId id, const Instance&) { ids.push_back(id); });
+        return ids;
+    }
+
+    GpuSceneCache cache_;
+    ShaderProgram depth_;
+};
+
+TEST_F(ShadowMapsGlTest, AnyHistoryOfUpdatesGivesTheMapsOfAFreshRender) {
+    Scene scene;
+    buildShapesScene(scene); // ground, box, sphere, cylinder under a sun
+    const std::vector<InstanceId> ids = instanceIds(scene);
+    ShadowMaps maps;
+    expectSameAsFresh(maps, scene, "first update");
+    // Moves longer than the box's footprint: where it was must be restored from the static map.
+    moveBy(scene, ids[1], {1.5, 0.0, 0.0});
+    expectSameAsFresh(maps, scene, "the box moved");
+    moveBy(scene, ids[1], {-1.5, 1.0, 0.0});
+    expectSameAsFresh(maps, scene, "the box moved again");
+    EXPECT_EQ(maps.lastUpdate().staticMaps, 0u); // the still casters came from the static map
+    moveBy(scene, ids[1], {-0.3, 0.0, 0.1});
+    moveBy(scene, ids[2], {0.0, 0.3, 0.0});
+    expectSameAsFresh(maps, scene, "the box and the sphere moved");
+    expectSameAsFresh(maps, scene, "nothing moved");
+    scene.removeInstance(ids[2]);
+    expectSameAsFresh(maps, scene, "the sphere was removed");
+    Instance hidden = scene.instance(ids[3]);
+    hidden.visible = false;
+    scene.setInstance(ids[3], hidden);
+    moveBy(scene, ids[1], {0.0, -0.2, 0.0});
+    expectSameAsFresh(maps, scene, "the cylinder was hidden while the box moved");
+}
+
+TEST_F(ShadowMapsGlTest, SpotLightMapsKeepFullDepthPrecisionAndTheSameGuarantee) {
+    Scene scene;
+    buildSpotScene(scene);
+    MeshId box = scene.addMesh(primitives::box({0.3f, 0.3f, 0.3f}));
+    Instance crate{box, {scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f, 0.0f))}, {77}};
+    crate.transform.translation() = Eigen::Vector3d(0.5, 0.5, 0.15);
+    const InstanceId id = scene.addInstance(crate);
+    ShadowMaps maps;
+    expectSameAsFresh(maps, scene, "first update");
+    EXPECT_EQ(maps.format(), unsigned(GL_DEPTH_COMPONENT32F)); // perspective depth is not linear
+    moveBy(scene, id, {0.8, 0.0, 0.0});
+    expectSameAsFresh(maps, scene, "the crate moved");
+    moveBy(scene, id, {-0.8, 0.8, 0.0});
+    expectSameAsFresh(maps, scene, "the crate moved again");
+    EXPECT_EQ(maps.lastUpdate().staticMaps, 0u);
+}
+
+TEST_F(ShadowMapsGlTest, OneObjectMovingInAStillSceneRestoresOnlyItsNeighbourhood) {
+    Scene scene;
+    buildShapesScene(scene);
+    const std::vector<InstanceId> ids = instanceIds(scene);
+    ShadowMaps maps;
+    maps.render(scene, kResolution, cache_, depth_);
+    EXPECT_EQ(maps.format(), unsigned(GL_DEPTH_COMPONENT16)); // orthographic maps only
+    moveBy(scene, ids[2], {0.05, 0.0, 0.0}); // the sphere starts moving: the others become static
+    maps.render(scene, kResolution, cache_, depth_);
+    EXPECT_EQ(maps.lastUpdate().staticMaps, 1u);
+    moveBy(scene, ids[2], {0.05, 0.0, 0.0});
+    maps.render(scene, kResolution, cache_, depth_);
+    const ShadowUpdate& update = maps.lastUpdate();
+    EXPECT_EQ(update.maps, 1u);
+    EXPECT_EQ(update.staticMaps, 0u);   // the still casters were not drawn again
+    EXPECT_EQ(update.dynamicDraws, 1u); // only the sphere was
+    EXPECT_GT(update.restoredTexels, 0u);
+    EXPECT_LT(update.restoredTexels, std::size_t(kResolution) * kResolution / 10);
+}
+
+} // namespace
+} // namespace sp::render::test
