@@ -6,12 +6,27 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
+#include <random>
 
 #include "core/base/error.h"
 
 namespace sp {
 
 namespace {
+std::vector<std::string>& roots() {
+    static std::vector<std::string> value;
+    return value;
+}
+
+// True when `path` (absolute, resolved) is `root` or below it.
+bool within(const std::string& path, const std::string& root) {
+    if (root == "/")
+        return true;
+    return path.compare(0, root.size(), root) == 0 &&
+           (path.size() == root.size() || path[root.size()] == '/');
+}
+
 // An open descriptor, closed on every path out.
 struct FileDescriptor {
     int fd = -1;
@@ -46,8 +61,52 @@ size_t openRegular(FileDescriptor& file, const std::string& path, std::string_vi
 }
 } // namespace
 
-std::string readRegularFile(const std::string& path, std::string_view function, std::string_view what,
+void confineUserFiles(std::vector<std::string> newRoots) {
+    for (std::string& root : newRoots) {
+        std::error_code error;
+        const std::filesystem::path resolved = std::filesystem::canonical(root, error);
+        SP_CHECK(!error && std::filesystem::is_directory(resolved), NotFound,
+                 "confineUserFiles(): file root '", root, "' is not a directory");
+        root = resolved.string();
+    }
+    roots() = std::move(newRoots);
+}
+
+const std::vector<std::string>& userFileRoots() {
+    return roots();
+}
+
+std::string resolveUserPath(const std::string& path, std::string_view function, std::string_view what) {
+    if (roots().empty())
+        return path;
+    SP_CHECK(!path.empty(), InvalidArgument, function, ": ", what, " path is empty");
+    // weakly_canonical: symbolic links and ".." of the part that exists are followed, the rest (a file to
+    // be created) is normalised; the resolved path is what gets opened.
+    // A relative path is relative to the first root (a client does not know the server's directory).
+    std::error_code error;
+    const std::filesystem::path absolute = std::filesystem::path(path).is_absolute()
+                                               ? std::filesystem::path(path)
+                                               : std::filesystem::path(roots().front()) / path;
+    const std::string resolved = std::filesystem::weakly_canonical(absolute, error).string();
+    bool allowed = !error;
+    if (allowed) {
+        allowed = false;
+        for (const std::string& root : roots())
+            allowed = allowed || within(resolved, root);
+    }
+    if (!allowed) {
+        std::string list;
+        for (const std::string& root : roots())
+            list += (list.empty() ? "'" : ", '") + root + "'";
+        SP_THROW(InvalidArgument, function, ": ", what, " '", path, "' is outside the server's file roots (",
+                 list, "); start spear-server with --file-root DIR to allow another folder");
+    }
+    return resolved;
+}
+
+std::string readRegularFile(const std::string& userPath, std::string_view function, std::string_view what,
                             size_t maxBytes) {
+    const std::string path = resolveUserPath(userPath, function, what);
     FileDescriptor file;
     const size_t size = openRegular(file, path, function, what, maxBytes);
     std::string contents(size, '\0');
@@ -68,38 +127,56 @@ std::string readRegularFile(const std::string& path, std::string_view function, 
 }
 
 size_t checkRegularFile(const std::string& path, std::string_view function, std::string_view what,
-                        size_t maxBytes) {
+                        size_t maxBytes, FileScope scope) {
     FileDescriptor file;
-    return openRegular(file, path, function, what, maxBytes);
+    return openRegular(file, scope == FileScope::User ? resolveUserPath(path, function, what) : path,
+                       function, what, maxBytes);
 }
 
-void writeRegularFile(const std::string& path, std::string_view contents, std::string_view function,
+void writeRegularFile(const std::string& userPath, std::string_view contents, std::string_view function,
                       std::string_view what) {
+    const std::string path = resolveUserPath(userPath, function, what);
+    // Only a regular file (or nothing) may be replaced: never a FIFO, a device or a socket. lstat: a
+    // symbolic link is replaced itself, as rename() does, not the file it points to.
+    struct stat existing {};
+    if (::lstat(path.c_str(), &existing) == 0)
+        SP_CHECK(S_ISREG(existing.st_mode) || S_ISLNK(existing.st_mode), InvalidArgument, function, ": ",
+                 what, " '", userPath, "' is not a regular file (a FIFO, device or socket)");
+    const std::filesystem::path target(path);
+    const std::filesystem::path directory = target.has_parent_path() ? target.parent_path() : ".";
+    SP_CHECK(std::filesystem::is_directory(directory), NotFound, function, ": cannot write ", what, " '",
+             userPath, "': no such directory");
+    // The new contents go to a file of an unpredictable name beside the target (O_EXCL: never one that
+    // exists), then replace it in one rename().
+    std::random_device random;
     FileDescriptor file;
-    // No O_TRUNC: nothing is truncated before it is known to be a regular file. O_NONBLOCK: a FIFO with
-    // no reader fails (ENXIO) instead of waiting for one.
-    file.fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_NONBLOCK | O_NOCTTY | O_CLOEXEC, 0666);
-    if (file.fd < 0) {
-        const int error = errno;
-        SP_CHECK(error != ENOENT && error != ENOTDIR, NotFound, function, ": cannot write ", what, " '", path,
-                 "': ", std::strerror(error));
-        SP_CHECK(error != ENXIO, InvalidArgument, function, ": ", what, " '", path,
-                 "' is not a regular file (a FIFO, device or socket)"); // a FIFO with no reader
-        SP_THROW(InvalidArgument, function, ": cannot write ", what, " '", path, "': ", std::strerror(error));
+    std::string temporary;
+    for (int attempt = 0; attempt < 16 && file.fd < 0; ++attempt) {
+        temporary =
+            (directory / ("." + target.filename().string() + ".tmp" + std::to_string(random()))).string();
+        file.fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+        SP_CHECK(file.fd >= 0 || errno == EEXIST, InvalidArgument, function, ": cannot write ", what, " '",
+                 userPath, "': ", std::strerror(errno));
     }
-    struct stat info {};
-    SP_CHECK(::fstat(file.fd, &info) == 0 && S_ISREG(info.st_mode), InvalidArgument, function, ": ", what,
-             " '", path, "' is not a regular file (a FIFO, device or socket)");
-    SP_CHECK(::ftruncate(file.fd, 0) == 0, InvalidArgument, function, ": cannot write ", what, " '", path,
-             "': ", std::strerror(errno));
-    size_t done = 0;
-    while (done < contents.size()) {
-        const ssize_t wrote = ::write(file.fd, contents.data() + done, contents.size() - done);
-        if (wrote < 0 && errno == EINTR)
-            continue;
-        SP_CHECK(wrote > 0, InvalidArgument, function, ": writing ", what, " '", path,
+    SP_CHECK(file.fd >= 0, InvalidArgument, function, ": cannot write ", what, " '", userPath,
+             "': no free temporary name");
+    try {
+        size_t done = 0;
+        while (done < contents.size()) {
+            const ssize_t wrote = ::write(file.fd, contents.data() + done, contents.size() - done);
+            if (wrote < 0 && errno == EINTR)
+                continue;
+            SP_CHECK(wrote > 0, InvalidArgument, function, ": writing ", what, " '", userPath,
+                     "' failed: ", std::strerror(errno));
+            done += size_t(wrote);
+        }
+        SP_CHECK(::fsync(file.fd) == 0, InvalidArgument, function, ": writing ", what, " '", userPath,
                  "' failed: ", std::strerror(errno));
-        done += size_t(wrote);
+        SP_CHECK(::rename(temporary.c_str(), path.c_str()) == 0, InvalidArgument, function, ": cannot write ",
+                 what, " '", userPath, "': ", std::strerror(errno));
+    } catch (...) {
+        ::unlink(temporary.c_str()); // nothing is left behind by a failed write
+        throw;
     }
 }
 

@@ -123,7 +123,9 @@ const PluginInfo& load(const std::string& pathOrName, const std::string& expecte
         return it->second.info;
     }
     SP_CHECK(std::filesystem::exists(path), NotFound, "load_plugin(): '", path, "' does not exist");
-    checkRegularFile(path, "load_plugin()", "plugin library"); // dlopen() of a FIFO would block for good
+    // dlopen() of a FIFO would block for good. An engine file: which libraries may load is the plugin
+    // policy's decision (the server's --plugin, its plugin path), not the user file roots'.
+    checkRegularFile(path, "load_plugin()", "plugin library", kMaxUserFileBytes, FileScope::Engine);
     // RTLD_LOCAL: two plugins never resolve each other's symbols; RTLD_NOW: a missing symbol fails here;
     // RTLD_NODELETE: see unload(). An absolute path, so that dlopen() opens the file that was checked
     // rather than searching the library path for its name.

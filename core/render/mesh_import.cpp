@@ -94,9 +94,11 @@ ImportedMaterial readMaterial(const aiScene* scene, const aiMaterial* source,
 
 } // namespace
 
-ImportedMesh importMesh(const std::string& path) {
+ImportedMesh importMesh(const std::string& userPath) {
+    // Outside a server's file roots nothing is told about the file, not even whether it exists.
+    const std::string path = resolveUserPath(userPath, "importMesh()", "mesh file");
     SP_CHECK(std::filesystem::exists(path) && !std::filesystem::is_directory(path), NotFound,
-             "importMesh(): no such file '", path, "'");
+             "importMesh(): no such file '", userPath, "'");
     checkRegularFile(path, "importMesh()", "mesh file"); // a FIFO or device: a clear error, not a hang
     Assimp::Importer importer;
     importer.SetIOHandler(new RegularFilesOnly); // the importer owns it
@@ -105,7 +107,7 @@ ImportedMesh importMesh(const std::string& path) {
         path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
                   aiProcess_PreTransformVertices | aiProcess_FlipUVs | aiProcess_SortByPType);
     SP_CHECK(scene != nullptr && !(scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE), InvalidArgument,
-             "importMesh(): cannot read '", path, "': ", importer.GetErrorString());
+             "importMesh(): cannot read '", userPath, "': ", importer.GetErrorString());
 
     ImportedMesh out;
     out.mesh.name = std::filesystem::path(path).stem().string();

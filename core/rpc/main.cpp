@@ -13,6 +13,12 @@
 // --allow-remote-plugin-load lets clients load any library (spear.Instance(server="launch") passes it: that
 // server is private to the user who started it).
 //
+// Files that clients name (scenes, blueprints, meshes, textures, save_scene targets) must lie in a
+// --file-root folder (repeatable; default: the server's working directory; relative paths are relative to the
+// first) or among the built-in assets: a client otherwise reads and writes whatever the server's user can.
+// --file-root / allows any path (launch passes it, for the same reason as --allow-remote-plugin-load). The
+// server's own --scene and --plugin are not confined.
+//
 // Prints "spear-server: listening on <address>" once it accepts connections (clients that launch a
 // server wait for that line), and exits cleanly on SIGTERM, SIGINT or a client's shutdown request.
 
@@ -25,12 +31,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/base/error.h"
+#include "core/base/regular_file.h"
 #include "core/plugin/plugin_loader.h"
 #include "core/rpc/server.h"
 #include "generated/engine/cpp/engine_types.gen.h"
@@ -42,7 +50,8 @@ void usage() {
         "usage: spear-server (--socket PATH | --port N (--token-file FILE | --token TOKEN) [--bind "
         "ADDRESS])\n"
         "                    [--mode game|editor] [--scene FILE] [--fixed-delta-seconds S]\n"
-        "                    [--plugin LIBRARY|NAME]... [--allow-remote-plugin-load] [--exit-with-parent]\n"
+        "                    [--plugin LIBRARY|NAME]... [--allow-remote-plugin-load] [--file-root DIR]...\n"
+        "                    [--exit-with-parent]\n"
         "  The TCP token may also come from the SPEAR_TOKEN environment variable.\n");
 }
 
@@ -73,6 +82,7 @@ int main(int argc, char** argv) {
     sp::rpc::ServerOptions options;
     sp::world::Engine::Settings settings;
     std::vector<std::string> plugins;
+    std::vector<std::string> fileRoots;
     std::string tokenFile;
     if (const char* token = std::getenv("SPEAR_TOKEN"))
         options.token = token;
@@ -105,6 +115,8 @@ int main(int argc, char** argv) {
             settings.scene = argv[++i];
         else if (arg == "--plugin" && hasValue)
             plugins.push_back(argv[++i]);
+        else if (arg == "--file-root" && hasValue)
+            fileRoots.push_back(argv[++i]);
         else if (arg == "--exit-with-parent") {
             // A server launched by a client goes away with it, even if the client is killed.
             const pid_t parent = ::getppid();
@@ -128,6 +140,12 @@ int main(int argc, char** argv) {
         for (const std::string& path : plugins)
             sp::plugin::load(path);
         sp::world::Engine engine(settings);
+        // After the engine has read the server's own --scene: from here on, paths come from clients.
+        if (fileRoots.empty())
+            fileRoots.push_back(std::filesystem::current_path().string());
+        if (std::filesystem::is_directory(SPEAR_BUILTIN_ASSET_DIR))
+            fileRoots.push_back(SPEAR_BUILTIN_ASSET_DIR);
+        sp::confineUserFiles(fileRoots);
         sp::rpc::Server server(engine, options, spear_register_engine_types_api_hash());
         std::signal(SIGTERM, [](int) { sp::rpc::Server::stop(); });
         std::signal(SIGINT, [](int) { sp::rpc::Server::stop(); });

@@ -123,7 +123,7 @@ Json readBlueprintFile(const std::string& path, std::string_view function, const
     try {
         return Json::parse(text);
     } catch (const nlohmann::json::parse_error& error) {
-        SP_THROW(InvalidArgument, where, " is not valid JSON: ", error.what());
+        SP_THROW(InvalidArgument, where, " is not valid JSON: ", jsonErrorWithoutContents(error));
     }
 }
 

@@ -374,6 +374,16 @@ void loadScene(UWorld& world, const SceneJson& scene, std::string_view source) {
     }
 }
 
+std::string jsonErrorWithoutContents(const nlohmann::json::parse_error& error) {
+    std::string message = error.what();
+    if (const std::size_t tag = message.find("] ");
+        message.rfind("[json.exception", 0) == 0 && tag != std::string::npos)
+        message.erase(0, tag + 2);
+    if (const std::size_t lastRead = message.find("; last read"); lastRead != std::string::npos)
+        message.erase(lastRead);
+    return message;
+}
+
 SceneJson readSceneFile(const std::string& path, std::string_view function) {
     // A regular file of bounded size only: a FIFO or /dev/zero named here would hang the engine
     // (core/base/regular_file.h).
@@ -381,7 +391,8 @@ SceneJson readSceneFile(const std::string& path, std::string_view function) {
     try {
         return Json::parse(text);
     } catch (const nlohmann::json::parse_error& error) {
-        SP_THROW(InvalidArgument, function, ": scene file '", path, "' is not valid JSON: ", error.what());
+        SP_THROW(InvalidArgument, function, ": scene file '", path,
+                 "' is not valid JSON: ", jsonErrorWithoutContents(error));
     }
 }
 

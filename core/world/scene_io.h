@@ -32,6 +32,11 @@ using SceneJson = nlohmann::ordered_json;
 
 // The world's actors as a scene document.
 SceneJson saveScene(const UWorld& world);
+
+// "parse error at line 3, column 7: syntax error while parsing value - invalid literal": the parser's
+// message without the text it last read, so that naming a file that is not JSON (a key, /etc/shadow)
+// tells where it stopped being JSON, never what the file holds.
+std::string jsonErrorWithoutContents(const nlohmann::json::parse_error& error);
 // The scene document as text (what save_scene writes): 2-space indent and a final newline.
 std::string sceneToString(const SceneJson& scene);
 // Replaces the world's actors by those of the scene document. Everything is checked and built before

@@ -301,8 +301,9 @@ class LaunchedServer:
              "--mode", mode, *extra, "--exit-with-parent",
              # This server is private to this user (its socket is in a 0700 directory) and serves the one
              # client that started it: loading any library there grants nothing the user lacks, and
-             # instance.load_plugin(path) works as in-process.
-             "--allow-remote-plugin-load"],
+             # instance.load_plugin(path) works as in-process. For the same reason its files are not confined:
+             # a scene or mesh path means what it means in-process.
+             "--allow-remote-plugin-load", "--file-root", "/"],
             stdout=subprocess.PIPE, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True,
         )
         deadline = time.monotonic() + startup_timeout

@@ -75,4 +75,68 @@ TEST_F(RegularFileTest, WritingReplacesTheContents) {
     EXPECT_THROW(sp::writeRegularFile(path("no/such/dir.json"), "x", "f()", "scene file"), sp::NotFound);
 }
 
+TEST_F(RegularFileTest, WritingLeavesNoTemporaryFileAndNeverHalfAFile) {
+    // The contents go to a file beside the target that is renamed over it: a reader holding the old file
+    // still reads it whole, and nothing else is left in the folder.
+    std::ofstream(path("out.json")) << "old";
+    std::ifstream reader(path("out.json"));
+    sp::writeRegularFile(path("out.json"), std::string(1 << 20, 'n'), "f()", "scene file");
+    std::string before;
+    reader >> before;
+    EXPECT_EQ(before, "old");
+    EXPECT_EQ(sp::checkRegularFile(path("out.json"), "f()", "scene file"), std::size_t(1) << 20);
+    std::size_t entries = 0;
+    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir_))
+        ++entries;
+    EXPECT_EQ(entries, 1u);
+}
+
+// Confinement is process-wide: each test sets it and this fixture lifts it again.
+class ConfinedFileTest : public RegularFileTest {
+  protected:
+    void SetUp() override {
+        RegularFileTest::SetUp();
+        std::filesystem::create_directories(dir_ / "root");
+        std::ofstream(path("root/in.json")) << "in";
+        std::ofstream(path("out.json")) << "out";
+        sp::confineUserFiles({path("root")});
+        root_ = std::filesystem::canonical(dir_ / "root").string();
+    }
+    void TearDown() override {
+        sp::confineUserFiles({});
+        RegularFileTest::TearDown();
+    }
+    std::string outside(const std::string& given) const {
+        return "f(): scene file '" + given + "' is outside the server's file roots ('" + root_ +
+               "'); start spear-server with --file-root DIR to allow another folder";
+    }
+    std::string root_;
+};
+
+TEST_F(ConfinedFileTest, FilesInsideTheRootsAreReadAndWrittenRelativePathsFromTheFirstRoot) {
+    EXPECT_EQ(sp::readRegularFile(path("root/in.json"), "f()", "scene file"), "in");
+    EXPECT_EQ(sp::readRegularFile("in.json", "f()", "scene file"), "in");
+    sp::writeRegularFile("new.json", "new", "f()", "scene file");
+    EXPECT_EQ(sp::readRegularFile(path("root/new.json"), "f()", "scene file"), "new");
+}
+
+TEST_F(ConfinedFileTest, PathsLeavingTheRootsAreRefusedWhetherOrNotTheFileExists) {
+    std::filesystem::create_symlink(path("out.json"), path("root/link.json"));
+    for (const std::string& given :
+         {path("out.json"), path("missing.json"), path("root/../out.json"), path("root/link.json"),
+          std::string("../out.json"), std::string("/proc/self/comm")})
+        EXPECT_EQ(messageOf<sp::InvalidArgument>([&] { sp::readRegularFile(given, "f()", "scene file"); }),
+                  outside(given))
+            << given;
+    EXPECT_EQ(messageOf<sp::InvalidArgument>(
+                  [&] { sp::writeRegularFile(path("out.json"), "x", "f()", "scene file"); }),
+              outside(path("out.json")));
+}
+
+TEST_F(ConfinedFileTest, EngineFilesAreNotConfined) {
+    EXPECT_EQ(sp::checkRegularFile(path("out.json"), "f()", "plugin library", sp::kMaxUserFileBytes,
+                                   sp::FileScope::Engine),
+              3u);
+}
+
 } // namespace
