@@ -15,7 +15,9 @@
 
 #include "core/base/error.h"
 #include "core/pybind/object_ref.h"
+#include "core/pybind/value_convert.h"
 #include "core/reflect/class_ref.h"
+#include "core/reflect/codec.h"
 #include "core/reflect/registry.h"
 #include "core/reflect/sp_array.h"
 
@@ -40,6 +42,51 @@ template <typename T, typename = void> struct Bridge {
     using Py = T;
     static T in(Py value, std::string_view) { return value; }
     static py::object out(const T& value) { return py::cast(value); }
+};
+
+inline int anyObject(PyObject*) {
+    return 1;
+}
+// A Python argument taken as it is, for Bridge<T>::in() to check; also built from a C++ default value
+// (the generated bindings spell defaults as static_cast<Bridge<T>::Py>(value)).
+class PyArg : public py::object {
+  public:
+    PYBIND11_OBJECT_DEFAULT(PyArg, object, anyObject)
+    PyArg(bool value) : py::object(py::bool_(value)) {}
+    template <typename T, std::enable_if_t<std::is_integral_v<T> && !std::is_same_v<T, bool>, int> = 0>
+    PyArg(T value) : py::object(py::int_(value)) {}
+};
+
+// Integers and bools are checked as the RPC server checks them (reflect::ValueCodec), with the same
+// messages: pybind11 alone would take True for an int (bool is an int subclass in Python) and 1 for a
+// bool. Anything with __index__ (a numpy integer) still passes for an int, range-checked.
+template <typename T> struct Bridge<T, std::enable_if_t<std::is_integral_v<T> && !std::is_same_v<T, bool>>> {
+    using Py = PyArg;
+    static T in(const Py& value, std::string_view context) {
+        if (!PyBool_Check(value.ptr()) && PyIndex_Check(value.ptr())) {
+            const auto index = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
+            if (!index)
+                throw py::error_already_set();
+            int overflow = 0;
+            const long long number = PyLong_AsLongLongAndOverflow(index.ptr(), &overflow);
+            SP_CHECK(overflow == 0, InvalidArgument, context,
+                     " is out of range: ", std::string(py::str(index)));
+            return reflect::ValueCodec<T>::decode(reflect::Value(int64_t(number)), context);
+        }
+        return reflect::ValueCodec<T>::decode(toValue(value, context), context); // refused, named as over RPC
+    }
+    static py::object out(T value) { return py::int_(value); }
+};
+template <> struct Bridge<bool> {
+    using Py = PyArg;
+    static bool in(const Py& value, std::string_view context) {
+        if (PyBool_Check(value.ptr()))
+            return value.ptr() == Py_True;
+        if (std::string_view(Py_TYPE(value.ptr())->tp_name) == "numpy.bool_")
+            return value.cast<bool>();
+        return reflect::ValueCodec<bool>::decode(toValue(value, context), context);
+    }
+    static py::object out(bool value) { return py::bool_(value); }
 };
 
 template <typename T> struct Bridge<T*, std::enable_if_t<std::is_base_of_v<reflect::ObjectBase, T>>> {

@@ -1,5 +1,6 @@
 #include "core/world/primitive_component.h"
 
+#include <cmath>
 #include <numbers>
 
 #include "core/base/error.h"
@@ -93,6 +94,34 @@ void UPrimitiveComponent::SetMassOverrideInKg(double NewMassInKg) {
     SP_CHECK(std::isfinite(NewMassInKg) && NewMassInKg > 0.0, sp::InvalidArgument,
              "UPrimitiveComponent.SetMassOverrideInKg(): MassInKg ", NewMassInKg, " must be > 0");
     MassInKg = NewMassInKg;
+}
+
+namespace {
+// Physics reads these values at every step; one out of range (NaN, a negative friction) would poison the
+// simulation frames later, far from the call that set it.
+void checkRange(bool ok, const char* property, const char* range, double value) {
+    SP_CHECK(ok, sp::InvalidArgument, "UPrimitiveComponent.", property, " must be ", range, ", got ", value);
+}
+bool unit(double value) {
+    return value >= 0.0 && value <= 1.0; // false for NaN
+}
+} // namespace
+
+void UPrimitiveComponent::SetFriction(double NewFriction) {
+    checkRange(std::isfinite(NewFriction) && NewFriction >= 0.0, "Friction", "finite and >= 0", NewFriction);
+    Friction = NewFriction;
+}
+void UPrimitiveComponent::SetRestitution(double NewRestitution) {
+    checkRange(unit(NewRestitution), "Restitution", "in [0, 1]", NewRestitution);
+    Restitution = NewRestitution;
+}
+void UPrimitiveComponent::SetLinearDamping(double NewLinearDamping) {
+    checkRange(unit(NewLinearDamping), "LinearDamping", "in [0, 1]", NewLinearDamping);
+    LinearDamping = NewLinearDamping;
+}
+void UPrimitiveComponent::SetAngularDamping(double NewAngularDamping) {
+    checkRange(unit(NewAngularDamping), "AngularDamping", "in [0, 1]", NewAngularDamping);
+    AngularDamping = NewAngularDamping;
 }
 
 void UPrimitiveComponent::AddForce(const FVector& Force, bool bAccelChange) {

@@ -48,19 +48,19 @@ class UPrimitiveComponent : public USceneComponent {
     double MassInKg = 1.0;
 
     /// Coulomb friction coefficient (>= 0); the two coefficients at a contact are multiplied.
-    SPPROPERTY()
+    SPPROPERTY(Setter = SetFriction)
     double Friction = 0.5;
 
     /// Bounciness in [0, 1]; the two coefficients at a contact are multiplied.
-    SPPROPERTY()
+    SPPROPERTY(Setter = SetRestitution)
     double Restitution = 0.0;
 
     /// Fraction of linear velocity lost per second, in [0, 1].
-    SPPROPERTY()
+    SPPROPERTY(Setter = SetLinearDamping)
     double LinearDamping = 0.0;
 
     /// Fraction of angular velocity lost per second, in [0, 1].
-    SPPROPERTY()
+    SPPROPERTY(Setter = SetAngularDamping)
     double AngularDamping = 0.0;
 
     /// Returns the world-space axis-aligned bounds as centre Origin and half size BoxExtent.
@@ -78,6 +78,22 @@ class UPrimitiveComponent : public USceneComponent {
     /// Sets the mass in kilograms (> 0).
     SPFUNCTION()
     void SetMassOverrideInKg(double MassInKg);
+
+    /// Sets the Coulomb friction coefficient (finite, >= 0).
+    SPFUNCTION()
+    void SetFriction(double NewFriction);
+
+    /// Sets the bounciness, in [0, 1].
+    SPFUNCTION()
+    void SetRestitution(double NewRestitution);
+
+    /// Sets the fraction of linear velocity lost per second, in [0, 1].
+    SPFUNCTION()
+    void SetLinearDamping(double NewLinearDamping);
+
+    /// Sets the fraction of angular velocity lost per second, in [0, 1].
+    SPFUNCTION()
+    void SetAngularDamping(double NewAngularDamping);
 
     /// Returns the mass in kilograms.
     SPFUNCTION()

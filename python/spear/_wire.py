@@ -143,6 +143,8 @@ def encode(value: Any, segments: OutgoingSegments, depth: int = 0) -> Any:
         asset = getattr(value, "__sp_asset__", "")  # a generated blueprint class: the server loads it if needed
         body = f"{value.__sp_class__}\0\0{asset}" if asset else value.__sp_class__
         return msgpack.ExtType(EXT_CLASS, body.encode())
+    if isinstance(value, (np.integer, np.bool_, np.floating)):
+        return value.item()  # a numpy scalar is sent as the Python number it holds, as pybind11 takes it in-process
     if isinstance(value, np.ndarray):
         return _encode_array(value, segments)
     is_struct = dataclasses.is_dataclass(value) and hasattr(value, "__sp_class__")

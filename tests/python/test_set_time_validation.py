@@ -80,3 +80,77 @@ def test_transforms_are_checked_when_set(instance: spear.Instance, call: str, me
         assert all(math.isfinite(c) for c in (location.X, location.Y, location.Z))
     with instance.end_frame():
         pass
+
+
+PHYSICS_CASES = [
+    ("Friction", math.nan, 0.5, "UPrimitiveComponent.Friction must be finite and >= 0, got nan"),
+    ("Friction", -0.1, 0.5, "UPrimitiveComponent.Friction must be finite and >= 0, got -0.1"),
+    ("Restitution", 1.5, 0.0, "UPrimitiveComponent.Restitution must be in [0, 1], got 1.5"),
+    ("LinearDamping", math.inf, 0.0, "UPrimitiveComponent.LinearDamping must be in [0, 1], got inf"),
+    ("AngularDamping", -1.0, 0.0, "UPrimitiveComponent.AngularDamping must be in [0, 1], got -1"),
+]
+
+
+@pytest.mark.parametrize("name, value, default, message", PHYSICS_CASES, ids=[f"{c[0]}={c[1]}" for c in PHYSICS_CASES])
+def test_physics_properties_are_checked_when_set(instance: spear.Instance, name: str, value: float, default: float,
+                                                 message: str) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        box = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Box", location=spear.FVector(0.0, 0.0, 1.0))
+        mesh = box.StaticMeshComponent
+        mesh.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        mesh.SetSimulatePhysics(bSimulate=True)
+        with pytest.raises(spear.InvalidArgumentError, match=re.escape(message)):
+            setattr(mesh, name, value)
+        assert getattr(mesh, name) == default
+        setattr(mesh, name, 0.25)  # a valid value is taken
+        assert getattr(mesh, name) == 0.25
+    with instance.end_frame():
+        pass
+    instance.step(num_frames=2)
+    with instance.begin_frame():
+        location = box.GetActorLocation()
+        assert all(math.isfinite(c) for c in (location.X, location.Y, location.Z))
+    with instance.end_frame():
+        pass
+
+
+MISTYPED_CASES = [
+    ("Width", True, "UCameraSensorComponent.Width must be an int, got bool True"),
+    ("Width", 1.5, "UCameraSensorComponent.Width must be an int, got float 1.5"),
+    ("Width", "64", "UCameraSensorComponent.Width must be an int, got str '64'"),
+    ("Width", 2**40, "UCameraSensorComponent.Width is out of range: 1099511627776"),
+    ("bShadows", 0, "UCameraSensorComponent.bShadows must be a bool, got int 0"),
+]
+
+
+@pytest.mark.parametrize("name, value, message", MISTYPED_CASES, ids=[f"{c[0]}={c[1]!r}" for c in MISTYPED_CASES])
+def test_mistyped_values_give_the_same_error_on_both_transports(instance: spear.Instance, name: str, value: Any,
+                                                                message: str) -> None:
+    # Python's bool is an int: without its own check, True would have become Width 1 in-process.
+    game = instance.get_game()
+    with instance.begin_frame():
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera").CameraSensor
+        with pytest.raises(spear.InvalidArgumentError) as error:
+            setattr(camera, name, value)
+        assert str(error.value) == message
+        box = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Box").StaticMeshComponent
+        box.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        with pytest.raises(spear.InvalidArgumentError) as error:
+            box.SetSimulatePhysics(bSimulate=1)  # type: ignore[arg-type]  # the misuse under test
+        assert str(error.value) == ("UPrimitiveComponent.SetSimulatePhysics(): argument 'bSimulate' must be a bool, "
+                                    "got int 1")
+    with instance.end_frame():
+        pass
+
+
+def test_numpy_scalars_pass_for_python_numbers_on_both_transports(instance: spear.Instance) -> None:
+    import numpy as np
+
+    game = instance.get_game()
+    with instance.begin_frame():
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera").CameraSensor
+        camera.Width, camera.bShadows, camera.FOV = np.int64(48), np.bool_(False), np.float32(75.0)
+        assert (camera.Width, camera.bShadows, camera.FOV) == (48, False, 75.0)
+    with instance.end_frame():
+        pass

@@ -108,7 +108,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             [](void* self, const sp::reflect::Value& value) {
                 auto* object = sp::reflect::selfCast<Self>(self);
-                object->Friction = sp::reflect::decode<double>(value, "UPrimitiveComponent.Friction");
+                object->SetFriction(sp::reflect::decode<double>(value, "UPrimitiveComponent.Friction"));
                 sp::reflect::notifyPropertyChanged(object, "Friction");
             },
         });
@@ -122,7 +122,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             [](void* self, const sp::reflect::Value& value) {
                 auto* object = sp::reflect::selfCast<Self>(self);
-                object->Restitution = sp::reflect::decode<double>(value, "UPrimitiveComponent.Restitution");
+                object->SetRestitution(sp::reflect::decode<double>(value, "UPrimitiveComponent.Restitution"));
                 sp::reflect::notifyPropertyChanged(object, "Restitution");
             },
         });
@@ -136,7 +136,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             [](void* self, const sp::reflect::Value& value) {
                 auto* object = sp::reflect::selfCast<Self>(self);
-                object->LinearDamping = sp::reflect::decode<double>(value, "UPrimitiveComponent.LinearDamping");
+                object->SetLinearDamping(sp::reflect::decode<double>(value, "UPrimitiveComponent.LinearDamping"));
                 sp::reflect::notifyPropertyChanged(object, "LinearDamping");
             },
         });
@@ -150,7 +150,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             [](void* self, const sp::reflect::Value& value) {
                 auto* object = sp::reflect::selfCast<Self>(self);
-                object->AngularDamping = sp::reflect::decode<double>(value, "UPrimitiveComponent.AngularDamping");
+                object->SetAngularDamping(sp::reflect::decode<double>(value, "UPrimitiveComponent.AngularDamping"));
                 sp::reflect::notifyPropertyChanged(object, "AngularDamping");
             },
         });
@@ -222,6 +222,74 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
                 sp::reflect::checkArguments(args, {"MassInKg"}, kContext);
                 double MassInKg = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "MassInKg", kContext), "UPrimitiveComponent.SetMassOverrideInKg(): argument 'MassInKg'");
                 sp::reflect::selfCast<Self>(self)->SetMassOverrideInKg(MassInKg);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetFriction",
+            "Sets the Coulomb friction coefficient (finite, >= 0).",
+            "None",
+            {
+                {"NewFriction", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetFriction()";
+                sp::reflect::checkArguments(args, {"NewFriction"}, kContext);
+                double NewFriction = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewFriction", kContext), "UPrimitiveComponent.SetFriction(): argument 'NewFriction'");
+                sp::reflect::selfCast<Self>(self)->SetFriction(NewFriction);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetRestitution",
+            "Sets the bounciness, in [0, 1].",
+            "None",
+            {
+                {"NewRestitution", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetRestitution()";
+                sp::reflect::checkArguments(args, {"NewRestitution"}, kContext);
+                double NewRestitution = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewRestitution", kContext), "UPrimitiveComponent.SetRestitution(): argument 'NewRestitution'");
+                sp::reflect::selfCast<Self>(self)->SetRestitution(NewRestitution);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetLinearDamping",
+            "Sets the fraction of linear velocity lost per second, in [0, 1].",
+            "None",
+            {
+                {"NewLinearDamping", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetLinearDamping()";
+                sp::reflect::checkArguments(args, {"NewLinearDamping"}, kContext);
+                double NewLinearDamping = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewLinearDamping", kContext), "UPrimitiveComponent.SetLinearDamping(): argument 'NewLinearDamping'");
+                sp::reflect::selfCast<Self>(self)->SetLinearDamping(NewLinearDamping);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetAngularDamping",
+            "Sets the fraction of angular velocity lost per second, in [0, 1].",
+            "None",
+            {
+                {"NewAngularDamping", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetAngularDamping()";
+                sp::reflect::checkArguments(args, {"NewAngularDamping"}, kContext);
+                double NewAngularDamping = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewAngularDamping", kContext), "UPrimitiveComponent.SetAngularDamping(): argument 'NewAngularDamping'");
+                sp::reflect::selfCast<Self>(self)->SetAngularDamping(NewAngularDamping);
                 return {};
             },
         });

@@ -1272,7 +1272,7 @@ const Self* object = self.get<Self>(kContext);
             [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.Friction")->Friction); },
             [](const Ref<Self>& self, Bridge<double>::Py value) {
                 Self* object = self.get<Self>("UPrimitiveComponent.Friction");
-                object->Friction = Bridge<double>::in(std::move(value), "UPrimitiveComponent.Friction");
+                object->SetFriction(Bridge<double>::in(std::move(value), "UPrimitiveComponent.Friction"));
                 object->PostPropertyChanged("Friction");
             },
             "Coulomb friction coefficient (>= 0); the two coefficients at a contact are multiplied.");
@@ -1281,7 +1281,7 @@ const Self* object = self.get<Self>(kContext);
             [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.Restitution")->Restitution); },
             [](const Ref<Self>& self, Bridge<double>::Py value) {
                 Self* object = self.get<Self>("UPrimitiveComponent.Restitution");
-                object->Restitution = Bridge<double>::in(std::move(value), "UPrimitiveComponent.Restitution");
+                object->SetRestitution(Bridge<double>::in(std::move(value), "UPrimitiveComponent.Restitution"));
                 object->PostPropertyChanged("Restitution");
             },
             "Bounciness in [0, 1]; the two coefficients at a contact are multiplied.");
@@ -1290,7 +1290,7 @@ const Self* object = self.get<Self>(kContext);
             [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.LinearDamping")->LinearDamping); },
             [](const Ref<Self>& self, Bridge<double>::Py value) {
                 Self* object = self.get<Self>("UPrimitiveComponent.LinearDamping");
-                object->LinearDamping = Bridge<double>::in(std::move(value), "UPrimitiveComponent.LinearDamping");
+                object->SetLinearDamping(Bridge<double>::in(std::move(value), "UPrimitiveComponent.LinearDamping"));
                 object->PostPropertyChanged("LinearDamping");
             },
             "Fraction of linear velocity lost per second, in [0, 1].");
@@ -1299,7 +1299,7 @@ const Self* object = self.get<Self>(kContext);
             [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.AngularDamping")->AngularDamping); },
             [](const Ref<Self>& self, Bridge<double>::Py value) {
                 Self* object = self.get<Self>("UPrimitiveComponent.AngularDamping");
-                object->AngularDamping = Bridge<double>::in(std::move(value), "UPrimitiveComponent.AngularDamping");
+                object->SetAngularDamping(Bridge<double>::in(std::move(value), "UPrimitiveComponent.AngularDamping"));
                 object->PostPropertyChanged("AngularDamping");
             },
             "Fraction of angular velocity lost per second, in [0, 1].");
@@ -1348,6 +1348,54 @@ Self* object = self.get<Self>(kContext);
             py::kw_only(),
             py::arg("MassInKg"),
             "Sets the mass in kilograms (> 0).");
+        cls.def(
+            "SetFriction",
+            [](const Ref<Self>& self, Bridge<double>::Py NewFriction) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetFriction()";
+Self* object = self.get<Self>(kContext);
+                auto NewFrictionValue = Bridge<double>::in(std::move(NewFriction), "UPrimitiveComponent.SetFriction(): argument 'NewFriction'");
+                object->SetFriction(NewFrictionValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewFriction"),
+            "Sets the Coulomb friction coefficient (finite, >= 0).");
+        cls.def(
+            "SetRestitution",
+            [](const Ref<Self>& self, Bridge<double>::Py NewRestitution) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetRestitution()";
+Self* object = self.get<Self>(kContext);
+                auto NewRestitutionValue = Bridge<double>::in(std::move(NewRestitution), "UPrimitiveComponent.SetRestitution(): argument 'NewRestitution'");
+                object->SetRestitution(NewRestitutionValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewRestitution"),
+            "Sets the bounciness, in [0, 1].");
+        cls.def(
+            "SetLinearDamping",
+            [](const Ref<Self>& self, Bridge<double>::Py NewLinearDamping) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetLinearDamping()";
+Self* object = self.get<Self>(kContext);
+                auto NewLinearDampingValue = Bridge<double>::in(std::move(NewLinearDamping), "UPrimitiveComponent.SetLinearDamping(): argument 'NewLinearDamping'");
+                object->SetLinearDamping(NewLinearDampingValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewLinearDamping"),
+            "Sets the fraction of linear velocity lost per second, in [0, 1].");
+        cls.def(
+            "SetAngularDamping",
+            [](const Ref<Self>& self, Bridge<double>::Py NewAngularDamping) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetAngularDamping()";
+Self* object = self.get<Self>(kContext);
+                auto NewAngularDampingValue = Bridge<double>::in(std::move(NewAngularDamping), "UPrimitiveComponent.SetAngularDamping(): argument 'NewAngularDamping'");
+                object->SetAngularDamping(NewAngularDampingValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewAngularDamping"),
+            "Sets the fraction of angular velocity lost per second, in [0, 1].");
         cls.def(
             "GetMass",
             [](const Ref<Self>& self) -> py::object {

@@ -114,4 +114,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "46276befd9bd0248"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "ec62917a98f768d2"; }

@@ -1466,6 +1466,14 @@ class UPrimitiveComponentAsync(USceneComponentAsync):
 
     def SetMassOverrideInKg(self, *, MassInKg: float) -> Future[None]: ...
 
+    def SetFriction(self, *, NewFriction: float) -> Future[None]: ...
+
+    def SetRestitution(self, *, NewRestitution: float) -> Future[None]: ...
+
+    def SetLinearDamping(self, *, NewLinearDamping: float) -> Future[None]: ...
+
+    def SetAngularDamping(self, *, NewAngularDamping: float) -> Future[None]: ...
+
     def GetMass(self) -> Future[float]: ...
 
     def AddForce(self, *, Force: FVector, bAccelChange: bool = False) -> Future[None]: ...
@@ -1495,6 +1503,14 @@ class UPrimitiveComponentSend(USceneComponentSend):
     def IsSimulatingPhysics(self) -> None: ...
 
     def SetMassOverrideInKg(self, *, MassInKg: float) -> None: ...
+
+    def SetFriction(self, *, NewFriction: float) -> None: ...
+
+    def SetRestitution(self, *, NewRestitution: float) -> None: ...
+
+    def SetLinearDamping(self, *, NewLinearDamping: float) -> None: ...
+
+    def SetAngularDamping(self, *, NewAngularDamping: float) -> None: ...
 
     def GetMass(self) -> None: ...
 
@@ -1592,6 +1608,18 @@ class UPrimitiveComponent(USceneComponent):
 
     def SetMassOverrideInKg(self, *, MassInKg: float) -> None:
         """Sets the mass in kilograms (> 0)."""
+
+    def SetFriction(self, *, NewFriction: float) -> None:
+        """Sets the Coulomb friction coefficient (finite, >= 0)."""
+
+    def SetRestitution(self, *, NewRestitution: float) -> None:
+        """Sets the bounciness, in [0, 1]."""
+
+    def SetLinearDamping(self, *, NewLinearDamping: float) -> None:
+        """Sets the fraction of linear velocity lost per second, in [0, 1]."""
+
+    def SetAngularDamping(self, *, NewAngularDamping: float) -> None:
+        """Sets the fraction of angular velocity lost per second, in [0, 1]."""
 
     def GetMass(self) -> float:
         """Returns the mass in kilograms."""

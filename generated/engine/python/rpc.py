@@ -703,6 +703,18 @@ class UPrimitiveComponent(USceneComponent, api.UPrimitiveComponent):
     def SetMassOverrideInKg(self, *, MassInKg: float) -> None:
         self._sp_call("UPrimitiveComponent", "SetMassOverrideInKg", {"MassInKg": MassInKg}, "None")
 
+    def SetFriction(self, *, NewFriction: float) -> None:
+        self._sp_call("UPrimitiveComponent", "SetFriction", {"NewFriction": NewFriction}, "None")
+
+    def SetRestitution(self, *, NewRestitution: float) -> None:
+        self._sp_call("UPrimitiveComponent", "SetRestitution", {"NewRestitution": NewRestitution}, "None")
+
+    def SetLinearDamping(self, *, NewLinearDamping: float) -> None:
+        self._sp_call("UPrimitiveComponent", "SetLinearDamping", {"NewLinearDamping": NewLinearDamping}, "None")
+
+    def SetAngularDamping(self, *, NewAngularDamping: float) -> None:
+        self._sp_call("UPrimitiveComponent", "SetAngularDamping", {"NewAngularDamping": NewAngularDamping}, "None")
+
     def GetMass(self) -> float:
         return cast("float", self._sp_call("UPrimitiveComponent", "GetMass", {}, "float"))
 
