@@ -82,12 +82,9 @@ std::string resolveUserPath(const std::string& path, std::string_view function, 
     SP_CHECK(!path.empty(), InvalidArgument, function, ": ", what, " path is empty");
     // weakly_canonical: symbolic links and ".." of the part that exists are followed, the rest (a file to
     // be created) is normalised; the resolved path is what gets opened.
-    // A relative path is relative to the first root (a client does not know the server's directory).
     std::error_code error;
-    const std::filesystem::path absolute = std::filesystem::path(path).is_absolute()
-                                               ? std::filesystem::path(path)
-                                               : std::filesystem::path(roots().front()) / path;
-    const std::string resolved = std::filesystem::weakly_canonical(absolute, error).string();
+    const std::string resolved =
+        std::filesystem::weakly_canonical(std::filesystem::absolute(path, error), error).string();
     bool allowed = !error;
     if (allowed) {
         allowed = false;

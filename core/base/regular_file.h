@@ -18,7 +18,8 @@ namespace sp {
 enum class FileScope { User, Engine };
 
 // Confines user files to `roots`: a path must then resolve, symbolic links and ".." followed, to a root
-// or below one, and the resolved path is what is opened; a relative path is relative to the first root. An
+// or below one, and the resolved path is what is opened (a relative path is relative to the working
+// directory, as everywhere). An
 // empty list (the default, and always in-process: the user owns the process) allows any path. Set once,
 // before a server serves clients; a server's clients otherwise read and write whatever the server's user can
 // (/proc/self/..., keys).

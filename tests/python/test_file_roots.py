@@ -6,7 +6,7 @@ from __future__ import annotations
 import json
 import os
 import subprocess
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import pytest
@@ -24,7 +24,8 @@ def confined(tmp_path: Path) -> Iterator[tuple[spear.Instance, Path, int]]:
     root.mkdir()
     socket_path = tmp_path / "server.sock"
     server = subprocess.Popen([str(find_server_binary()), "--socket", str(socket_path), "--file-root", str(root)],
-                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True)
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True,
+                              cwd=tmp_path)
     assert server.stdout is not None
     assert server.stdout.readline().startswith("spear-server: listening on ")
     instance = spear.Instance(server=f"unix:{socket_path}")
@@ -48,7 +49,9 @@ def test_scenes_inside_the_root_are_saved_whole_and_loaded(confined: tuple[spear
     with instance.begin_frame():
         game.spawn_actor(uclass=spear.AStaticMeshActor, name="Kept")
         game.save_scene(path=str(root / "scene.json"))
-        game.save_scene(path="relative.json")  # relative paths are relative to the (first) root
+        game.save_scene(path="root/relative.json")  # relative to the server's working directory, tmp_path
+        with pytest.raises(spear.InvalidArgumentError, match="is outside the server's file roots"):
+            game.save_scene(path="relative.json")  # tmp_path itself is not a root
     with instance.end_frame():
         pass
     saved = json.loads((root / "scene.json").read_text())
@@ -132,3 +135,16 @@ def test_files_that_are_not_json_are_not_echoed_in_errors(instance: spear.Instan
     assert "TOPSECRET" not in str(error.value)
     assert str(error.value).startswith(f"UWorld.load_scene(): scene file '{secret}' is not valid JSON: "
                                        "parse error at line 2, column 0")
+
+
+def test_relative_paths_mean_the_users_directory_in_process_and_on_a_launched_server(
+        make_instance: Callable[..., spear.Instance], tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)  # a launched server starts in the client's directory
+    instance = make_instance()
+    game = instance.get_game()
+    with instance.begin_frame():
+        game.save_scene(path="relative.json")
+        game.load_scene(path="relative.json")
+    with instance.end_frame():
+        pass
+    assert json.loads((tmp_path / "relative.json").read_text())["format"] == "spear.scene"
