@@ -71,10 +71,15 @@ std::vector<double> shadowSignature(const Scene& scene, int resolution) {
 // directional maps where they are (no shimmering texel grid, and the static casters stay valid).
 void stableBounds(const Scene& scene, Eigen::Vector3d& centre, double& radius) {
     scene.bounds(centre, radius);
+    // Coordinates near the float limits overflow the bounds: no map can cover such a scene.
+    if (!std::isfinite(radius) || !centre.allFinite() || radius > 1e30) {
+        radius = 0.0;
+        return;
+    }
     if (radius <= 0.0)
         return;
     double step = std::exp2(std::ceil(4.0 * std::log2(radius)) / 4.0);
-    for (;;) {
+    for (int attempt = 0; attempt < 8; ++attempt) { // two suffice; the bound keeps rounding from looping
         const double grid = step / 16.0;
         const Eigen::Vector3d snapped = (centre / grid).array().round().matrix() * grid;
         if ((snapped - centre).norm() + radius <= step) {
@@ -84,6 +89,7 @@ void stableBounds(const Scene& scene, Eigen::Vector3d& centre, double& radius) {
         }
         step *= std::exp2(0.25);
     }
+    radius *= 1.25; // not reached for finite bounds; a sphere that certainly holds the scene
 }
 
 std::uint64_t packed(InstanceId id) {

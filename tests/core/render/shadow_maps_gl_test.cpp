@@ -128,3 +128,29 @@ TEST_F(ShadowMapsGlTest, OneObjectMovingInAStillSceneRestoresOnlyItsNeighbourhoo
 
 } // namespace
 } // namespace sp::render::test
+
+namespace sp::render::test {
+namespace {
+
+// Found by spear_rpc_fuzz: an actor moved to 1e300 made the scene's bounds infinite, and snapping them
+// looped for good. Such a scene renders without shadow maps, at once.
+TEST_F(ShadowMapsGlTest, AnObjectNearTheFloatLimitTurnsShadowsOffInsteadOfHanging) {
+    Scene scene;
+    buildShapesScene(scene);
+    Instance far{scene.addMesh(primitives::box()),
+                 {scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f, 0.0f))},
+                 {9}};
+    far.transform.translation() = Eigen::Vector3d(1e300, 0.0, 0.0);
+    scene.addInstance(far);
+    ShadowMaps maps;
+    EXPECT_EQ(maps.render(scene, kResolution, cache_, depth_), 0u);
+    EXPECT_TRUE(maps.infos().empty());
+    Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 32, 24, 60.0);
+    RenderTarget target(renderer(), {Modality::FinalColor}, 0);
+    Frame frame;
+    target.render(scene, camera, frame);
+    EXPECT_EQ(frame.get(Modality::FinalColor).width, 32);
+}
+
+} // namespace
+} // namespace sp::render::test
