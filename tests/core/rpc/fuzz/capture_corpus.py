@@ -1,0 +1,90 @@
+"""Captures the seed corpus of spear_rpc_fuzz: the request bodies a typical client session sends to a
+launched spear-server (hello, frames, spawning, properties, calls, batches, arrays, camera reads, describe,
+scene save and load), one file per request, in the order sent.
+
+    PYTHONPATH=python /usr/bin/python3 tests/core/rpc/fuzz/capture_corpus.py tests/core/rpc/fuzz/corpus
+
+The fuzzer replays them in order first (so that the handles they name exist), then mutates them.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+import spear
+from spear._rpc_client import RpcConnection
+
+
+def main(out: Path) -> int:
+    bodies: list[bytes] = []
+    original = RpcConnection._round_trip
+
+    def recording(self: RpcConnection, frame: bytes) -> Any:
+        bodies.append(frame[4:])  # without the 4-byte length
+        return original(self, frame)
+
+    RpcConnection._round_trip = recording  # type: ignore[assignment]
+    instance = spear.Instance(server="launch")
+    game = instance.get_game()
+    # Scene files first: loading one replaces every actor, and the handles of those spawned below must stay
+    # valid after the replay for the mutated requests to reach the engine's functions.
+    with instance.begin_frame():
+        game.save_scene(path="fuzz_scene.json")
+        game.load_scene(path="fuzz_scene.json")
+        Path("fuzz_scene.json").unlink()
+    with instance.end_frame():
+        pass
+    with instance.begin_frame():
+        box = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Box", location=spear.FVector(0.0, 0.0, 1.0))
+        mesh = box.StaticMeshComponent
+        mesh.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        mesh.SetMassOverrideInKg(MassInKg=2.0)
+        mesh.SetSimulatePhysics(bSimulate=True)
+        mesh.Friction = 0.7
+        camera_actor = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera",
+                                        location=spear.FVector(-3.0, 0.0, 1.5))
+        camera = camera_actor.CameraSensor
+        camera.Width, camera.Height = 32, 24
+        camera.Modalities = [spear.ECameraModality.FinalColor, spear.ECameraModality.Depth]
+        mesh.send_async.AddForce(Force=spear.FVector(1.0, 0.0, 0.0))
+        box.send_async.K2_SetActorLocationAndRotation(NewLocation=spear.FVector(0.0, 0.1, 1.0),
+                                                      NewRotation=spear.FRotator(Pitch=0.0, Yaw=10.0, Roll=0.0))
+        assert game.find_actor_by_name(name="Box") is not None
+        game.spawn_actor(uclass=spear.BP_Crate, name="Crate")
+        box.GetActorLocation()
+        box.Tags = ["a", "b"]
+    with instance.end_frame():
+        camera.read_pixels()
+        box.is_valid()
+        camera.GetRenderStats()
+    instance.step(num_frames=2)
+    with instance.begin_frame():
+        doomed = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Doomed")
+        game.destroy_actor(actor=doomed)
+        found = game.find_actor_by_name(name="Box")
+        assert found is not None
+        found.SetActorScale3D(NewScale3D=spear.FVector(1.0, 1.0, 2.0))
+    with instance.end_frame():
+        pass
+    connection: Any = instance._backend  # the dynamic API and the transport's diagnostics, by hand
+    client = getattr(connection, "connection", None)
+    if client is not None:
+        client.request("echo", value={"list": [1, 2.5, "x", None, True], "array": np.arange(12, dtype=np.float32)})
+    instance.close()
+    RpcConnection._round_trip = original  # type: ignore[assignment]
+
+    out.mkdir(parents=True, exist_ok=True)
+    for old in out.glob("*.msgpack"):
+        old.unlink()
+    for i, body in enumerate(bodies):
+        (out / f"{i:03d}.msgpack").write_bytes(body)
+    print(f"capture_corpus: {len(bodies)} requests written to {out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(Path(sys.argv[1])))
