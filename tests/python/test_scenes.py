@@ -152,8 +152,9 @@ def test_a_scene_that_fails_part_way_leaves_the_world_as_it_was(instance: spear.
     with instance.end_frame():
         pass
     doc = json.loads(saved.read_text())
-    # The last actor's friction is negative: a valid number, refused by physics only when the actor begins
-    # play, by which time every other actor of the scene had replaced the world's.
+    # The last actor's friction is negative: refused when the loader sets it, after the first two actors of
+    # the scene were built (before physics checked it only when the actor began play; either way the world
+    # must stay as it was).
     properties = doc["actors"][-1]["components"][0]["properties"]
     properties["Friction"] = -1.0
     late_failure = tmp_path / "late_failure.json"
@@ -163,9 +164,9 @@ def test_a_scene_that_fails_part_way_leaves_the_world_as_it_was(instance: spear.
     bad_value.write_text(json.dumps(doc))
     with instance.begin_frame():
         with pytest.raises(spear.InvalidArgumentError,
-                           match=re.escape(f"UWorld.load_scene(): scene '{late_failure}': actor 'Cube2': physics of "
-                                           "UStaticMeshComponent 'StaticMeshComponent': PhysicsWorld::addBody(): "
-                                           "friction -1 must be >= 0")):
+                           match=re.escape(f"UWorld.load_scene(): scene '{late_failure}': actors[2] 'Cube2': component "
+                                           "'StaticMeshComponent': property 'Friction': UPrimitiveComponent.Friction "
+                                           "must be finite and >= 0, got -1")):
             game.load_scene(path=str(late_failure))
         with pytest.raises(spear.InvalidArgumentError, match=r"actors\[2\] 'Cube2': component 'StaticMeshComponent': "
                                                              r"property 'Friction': expected a number"):
