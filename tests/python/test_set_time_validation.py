@@ -11,6 +11,17 @@ import pytest
 
 import spear
 
+
+def assert_still_steps(instance: spear.Instance, box: spear.AActor) -> None:
+    """Physics steps on after a refused value, and the box's location stays finite."""
+    instance.step(num_frames=2)
+    with instance.begin_frame():
+        location = box.GetActorLocation()
+        assert all(math.isfinite(c) for c in (location.X, location.Y, location.Z))
+    with instance.end_frame():
+        pass
+
+
 CAMERA_CASES = [
     ("Width", 100000, 640, "UCameraSensorComponent.Width must be in [1, 16384], got 100000"),
     ("Width", -5, 640, "UCameraSensorComponent.Width must be in [1, 16384], got -5"),
@@ -74,12 +85,7 @@ def test_transforms_are_checked_when_set(instance: spear.Instance, call: str, me
         assert box.GetActorLocation() == spear.FVector(1.0, 2.0, 3.0)
     with instance.end_frame():
         pass
-    instance.step(num_frames=2)  # physics keeps stepping with the old, valid transform
-    with instance.begin_frame():
-        location = box.GetActorLocation()
-        assert all(math.isfinite(c) for c in (location.X, location.Y, location.Z))
-    with instance.end_frame():
-        pass
+    assert_still_steps(instance, box)  # with the old, valid transform
 
 
 PHYSICS_CASES = [
@@ -107,12 +113,7 @@ def test_physics_properties_are_checked_when_set(instance: spear.Instance, name:
         assert getattr(mesh, name) == 0.25
     with instance.end_frame():
         pass
-    instance.step(num_frames=2)
-    with instance.begin_frame():
-        location = box.GetActorLocation()
-        assert all(math.isfinite(c) for c in (location.X, location.Y, location.Z))
-    with instance.end_frame():
-        pass
+    assert_still_steps(instance, box)  # with the old, valid values
 
 
 MISTYPED_CASES = [

@@ -126,12 +126,6 @@ TEST_F(ShadowMapsGlTest, OneObjectMovingInAStillSceneRestoresOnlyItsNeighbourhoo
     EXPECT_LT(update.restoredTexels, std::size_t(kResolution) * kResolution / 10);
 }
 
-} // namespace
-} // namespace sp::render::test
-
-namespace sp::render::test {
-namespace {
-
 // Found by spear_rpc_fuzz: an actor moved to 1e300 made the scene's bounds infinite, and snapping them
 // looped for good. Such a scene renders without shadow maps, at once.
 TEST_F(ShadowMapsGlTest, AnObjectNearTheFloatLimitTurnsShadowsOffInsteadOfHanging) {
