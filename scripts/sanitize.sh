@@ -13,7 +13,7 @@ FLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-fr
 
 say "sanitize: configuring and building in $ASAN_DIR (ASan + UBSan)"
 cmake -S "$ROOT" -B "$ASAN_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPython3_EXECUTABLE="$PYTHON" \
-    -DCMAKE_CXX_FLAGS="$FLAGS" -DCMAKE_C_FLAGS="$FLAGS" \
+    -DSPEAR_PACKAGE_DIR="$ASAN_DIR/package" -DCMAKE_CXX_FLAGS="$FLAGS" -DCMAKE_C_FLAGS="$FLAGS" \
     -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
     -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
 cmake --build "$ASAN_DIR" -j "${SPEAR_JOBS:-2}" --target spear_base_tests spear_reflect_tests spear_rpc_tests spear_rpc_fuzz
