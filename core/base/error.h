@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace sp {
 
@@ -65,5 +66,13 @@ template <typename... Args> std::string concat(const Args&... args) {
         if (!(cond))                                                                                         \
             SP_THROW(Type, __VA_ARGS__);                                                                     \
     } while (false)
+
+// The check of a validated setter (SPPROPERTY(Setter = ...)): throws InvalidArgument "<Owner>.<Property>
+// must be <range>, got <value>", the one message every such setter gives, in-process and over RPC.
+template <typename T>
+void checkSetting(bool ok, std::string_view owner, std::string_view property, std::string_view range,
+                  const T& value) {
+    SP_CHECK(ok, InvalidArgument, owner, ".", property, " must be ", range, ", got ", value);
+}
 
 } // namespace sp

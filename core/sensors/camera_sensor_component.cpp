@@ -26,47 +26,44 @@ void UCameraSensorComponent::BeginPlay() {
         GetWorld()->GetSubsystem<sp::sensors::RenderSubsystem>();
 }
 
-namespace {
-
-// "UCameraSensorComponent.Width must be in [1, 16384], got 100000" (InvalidArgument) unless ok.
-template <typename T> void checkSetting(bool ok, const char* property, const char* range, T value) {
-    SP_CHECK(ok, sp::InvalidArgument, "UCameraSensorComponent.", property, " must be ", range, ", got ",
-             value);
-}
-
-} // namespace
-
 void UCameraSensorComponent::SetWidth(int32_t NewWidth) {
-    checkSetting(NewWidth >= 1 && NewWidth <= 16384, "Width", "in [1, 16384]", NewWidth);
+    sp::checkSetting(NewWidth >= 1 && NewWidth <= 16384, "UCameraSensorComponent", "Width", "in [1, 16384]",
+                     NewWidth);
     Width = NewWidth;
 }
 void UCameraSensorComponent::SetHeight(int32_t NewHeight) {
-    checkSetting(NewHeight >= 1 && NewHeight <= 16384, "Height", "in [1, 16384]", NewHeight);
+    sp::checkSetting(NewHeight >= 1 && NewHeight <= 16384, "UCameraSensorComponent", "Height",
+                     "in [1, 16384]", NewHeight);
     Height = NewHeight;
 }
 void UCameraSensorComponent::SetFOV(double NewFOV) {
-    checkSetting(NewFOV > 0.0 && NewFOV < 180.0, "FOV", "in (0, 180) degrees", NewFOV);
+    sp::checkSetting(NewFOV > 0.0 && NewFOV < 180.0, "UCameraSensorComponent", "FOV", "in (0, 180) degrees",
+                     NewFOV);
     FOV = NewFOV;
 }
 void UCameraSensorComponent::SetNearClip(double NewNearClip) {
-    checkSetting(NewNearClip > 0.0 && std::isfinite(NewNearClip), "NearClip", "> 0 and finite", NewNearClip);
+    sp::checkSetting(NewNearClip > 0.0 && std::isfinite(NewNearClip), "UCameraSensorComponent", "NearClip",
+                     "> 0 and finite", NewNearClip);
     NearClip = NewNearClip;
 }
 void UCameraSensorComponent::SetFarClip(double NewFarClip) {
-    checkSetting(NewFarClip > 0.0 && std::isfinite(NewFarClip), "FarClip", "> 0 and finite", NewFarClip);
+    sp::checkSetting(NewFarClip > 0.0 && std::isfinite(NewFarClip), "UCameraSensorComponent", "FarClip",
+                     "> 0 and finite", NewFarClip);
     FarClip = NewFarClip;
 }
 void UCameraSensorComponent::SetExposure(float NewExposure) {
-    checkSetting(NewExposure > 0.0f && std::isfinite(NewExposure), "Exposure", "> 0 and finite", NewExposure);
+    sp::checkSetting(NewExposure > 0.0f && std::isfinite(NewExposure), "UCameraSensorComponent", "Exposure",
+                     "> 0 and finite", NewExposure);
     Exposure = NewExposure;
 }
 void UCameraSensorComponent::SetShadowResolution(int32_t NewShadowResolution) {
-    checkSetting(NewShadowResolution >= 16 && NewShadowResolution <= 8192, "ShadowResolution",
-                 "in [16, 8192]", NewShadowResolution);
+    sp::checkSetting(NewShadowResolution >= 16 && NewShadowResolution <= 8192, "UCameraSensorComponent",
+                     "ShadowResolution", "in [16, 8192]", NewShadowResolution);
     ShadowResolution = NewShadowResolution;
 }
 void UCameraSensorComponent::SetLatency(int32_t NewLatency) {
-    checkSetting(NewLatency >= 0 && NewLatency <= 2, "Latency", "0, 1 or 2", NewLatency);
+    sp::checkSetting(NewLatency >= 0 && NewLatency <= 2, "UCameraSensorComponent", "Latency", "0, 1 or 2",
+                     NewLatency);
     Latency = NewLatency;
 }
 

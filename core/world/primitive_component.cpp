@@ -96,31 +96,31 @@ void UPrimitiveComponent::SetMassOverrideInKg(double NewMassInKg) {
     MassInKg = NewMassInKg;
 }
 
-namespace {
 // Physics reads these values at every step; one out of range (NaN, a negative friction) would poison the
-// simulation frames later, far from the call that set it.
-void checkRange(bool ok, const char* property, const char* range, double value) {
-    SP_CHECK(ok, sp::InvalidArgument, "UPrimitiveComponent.", property, " must be ", range, ", got ", value);
-}
+// simulation frames later, far from the call that set it: they are checked here, when set.
+namespace {
 bool unit(double value) {
     return value >= 0.0 && value <= 1.0; // false for NaN
 }
 } // namespace
 
 void UPrimitiveComponent::SetFriction(double NewFriction) {
-    checkRange(std::isfinite(NewFriction) && NewFriction >= 0.0, "Friction", "finite and >= 0", NewFriction);
+    sp::checkSetting(std::isfinite(NewFriction) && NewFriction >= 0.0, "UPrimitiveComponent", "Friction",
+                     "finite and >= 0", NewFriction);
     Friction = NewFriction;
 }
 void UPrimitiveComponent::SetRestitution(double NewRestitution) {
-    checkRange(unit(NewRestitution), "Restitution", "in [0, 1]", NewRestitution);
+    sp::checkSetting(unit(NewRestitution), "UPrimitiveComponent", "Restitution", "in [0, 1]", NewRestitution);
     Restitution = NewRestitution;
 }
 void UPrimitiveComponent::SetLinearDamping(double NewLinearDamping) {
-    checkRange(unit(NewLinearDamping), "LinearDamping", "in [0, 1]", NewLinearDamping);
+    sp::checkSetting(unit(NewLinearDamping), "UPrimitiveComponent", "LinearDamping", "in [0, 1]",
+                     NewLinearDamping);
     LinearDamping = NewLinearDamping;
 }
 void UPrimitiveComponent::SetAngularDamping(double NewAngularDamping) {
-    checkRange(unit(NewAngularDamping), "AngularDamping", "in [0, 1]", NewAngularDamping);
+    sp::checkSetting(unit(NewAngularDamping), "UPrimitiveComponent", "AngularDamping", "in [0, 1]",
+                     NewAngularDamping);
     AngularDamping = NewAngularDamping;
 }
 
