@@ -285,21 +285,9 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
         }
         // Restore what moving casters covered (all of it after a static render), then draw them again.
         Rect now;
-        for (const Instance* instance : moving) {
-            const Rect r = footprint(scene, *instance, projections[i], resolution);
-            if (r.empty())
-                continue;
-            now = now.empty() ? r
-                              : Rect{std::min(now.x0, r.x0), std::min(now.y0, r.y0), std::max(now.x1, r.x1),
-                                     std::max(now.y1, r.y1)};
-        }
-        const Rect& before = movingRects_[i];
-        Rect restore = rebuildStatic ? Rect{0, 0, resolution, resolution} : now;
-        if (!rebuildStatic && !before.empty())
-            restore = restore.empty()
-                          ? before
-                          : Rect{std::min(restore.x0, before.x0), std::min(restore.y0, before.y0),
-                                 std::max(restore.x1, before.x1), std::max(restore.y1, before.y1)};
+        for (const Instance* instance : moving)
+            now = now.united(footprint(scene, *instance, projections[i], resolution));
+        const Rect restore = rebuildStatic ? Rect{0, 0, resolution, resolution} : now.united(movingRects_[i]);
         if (!restore.empty()) {
             glCopyImageSubData(staticTexture_, GL_TEXTURE_2D_ARRAY, 0, restore.x0, restore.y0, info.layer,
                                texture_, GL_TEXTURE_2D_ARRAY, 0, restore.x0, restore.y0, info.layer,

@@ -9,6 +9,7 @@
 // and at the previous update) from it before drawing the moving casters. A robot in a large still
 // scene costs the pixels it covers, not the whole map. The result equals a full render bit for bit.
 
+#include <algorithm>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -67,6 +68,15 @@ class ShadowMaps {
     struct Rect {
         int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
         bool empty() const { return x0 >= x1 || y0 >= y1; }
+        // The smallest rectangle holding both (an empty one adds nothing).
+        Rect united(const Rect& other) const {
+            if (empty())
+                return other;
+            if (other.empty())
+                return *this;
+            return {std::min(x0, other.x0), std::min(y0, other.y0), std::max(x1, other.x1),
+                    std::max(y1, other.y1)};
+        }
     };
 
     void ensure(int resolution, unsigned format);
