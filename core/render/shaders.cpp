@@ -23,6 +23,11 @@ layout(std140, binding = 0) uniform FrameBlock {
     vec4 uShadowParams[MAX_SHADOWS];
     vec4 uBackgroundFinal;
 };
+// The light-clip position of p moved 1.5 shadow-map texels along n (turned towards the light), so that a
+// surface does not shadow itself: per vertex in the forward pass, per pixel in the lighting pass.
+vec4 offsetShadowClip(const int layer, vec3 p, vec3 n, float texel) {
+    return uShadowMatrix[layer] * vec4(p + n * (1.5 * texel), 1.0);
+}
 )glsl";
 
 // Material inputs of one submesh and the surface they give a fragment: base colour, roughness and
@@ -131,10 +136,9 @@ float shadowFactor(const int layer, vec3 s) {
     return mix(mix(lit.x, lit.y, f.x), mix(lit.z, lit.w, f.x), f.y);
 }
 
-// The shadow-map coordinates of p, moved 1.5 texels along its normal n (towards the light) so that a
-// surface does not shadow itself.
+// The shadow-map coordinates ([0, 1]^3) of p after the normal offset.
 vec3 shadowCoordinates(const int layer, vec3 p, vec3 n, float texel) {
-    vec4 clip = uShadowMatrix[layer] * vec4(p + n * (1.5 * texel), 1.0);
+    vec4 clip = offsetShadowClip(layer, p, n, texel);
     return clip.xyz / clip.w * 0.5 + 0.5;
 }
 
@@ -323,6 +327,13 @@ std::string shadowClipDeclarations(bool forward, const ShadingLayout& lights, co
     return text;
 }
 
+// The GLSL for the world size of a shadow-map texel at a point `distance` (a GLSL expression) from the
+// light: a spot light's texel grows with the distance, a directional light's is fixed.
+std::string shadowTexel(const LightSlot& light, const std::string& distance) {
+    const std::string texel = "uShadowParams[" + std::to_string(light.shadowLayer) + "].x";
+    return light.type == LightType::Directional ? texel : texel + " * " + distance;
+}
+
 // The forward vertex shader's shadow-map coordinates for each shadowed light, in homogeneous form
 // (x, y, z already mapped to [0, 1] times w): the vertex moved 1.5 texels along its normal, turned
 // towards the light, then projected. Interpolating them is exact for a directional light (affine) and
@@ -337,12 +348,11 @@ std::string shadowClips(const ShadingLayout& lights) {
         const std::string toLight = light.type == LightType::Directional
                                         ? "-uLightDirection" + at + ".xyz"
                                         : "uLightPosition" + at + ".xyz - vWorldPosition";
-        const std::string texel = "uShadowParams[" + layer + "].x" +
-                                  (light.type == LightType::Directional ? std::string() : " * length(l)");
+        const std::string texel = shadowTexel(light, "length(l)");
         text += " { vec3 l = " + toLight +
                 "; vec3 n = normalize(vNormal); if (dot(n, l) < 0.0) n = -n;"
-                " vec4 c = uShadowMatrix[" +
-                layer + "] * vec4(vWorldPosition + n * (1.5 * " + texel + "), 1.0); vShadowClip" + layer +
+                " vec4 c = offsetShadowClip(" +
+                layer + ", vWorldPosition, n, " + texel + "); vShadowClip" + layer +
                 " = vec4((c.xyz + c.w) * 0.5, c.w); }";
     }
     return text;
@@ -390,9 +400,7 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
         text += "        float nol = dot(n, l);\n        if (nol > 0.0) {\n";
         if (light.shadowLayer >= 0) {
             const std::string layer = std::to_string(light.shadowLayer);
-            // A spot light's texel grows with the distance; a directional light's is fixed.
-            const std::string texel = "uShadowParams[" + layer + "].x" +
-                                      (light.type == LightType::Directional ? std::string() : " * dist");
+            const std::string texel = shadowTexel(light, "dist");
             // The forward vertex shader interpolates the offset point's coordinates (see shadowClips()):
             // only a spot light's need the perspective division here. The lighting pass computes them.
             const std::string forward = light.type == LightType::Directional
