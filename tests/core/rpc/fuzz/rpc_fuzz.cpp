@@ -25,7 +25,6 @@
 #include <fstream>
 #include <iterator>
 #include <map>
-#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -198,39 +197,32 @@ void countOutcome(const msgpack::sbuffer& reply) {
     ++gErrorKinds[kind];
 }
 
+// One engine and dispatcher for every run, after the corpus has been replayed on the greeted session.
 struct Harness {
-    std::unique_ptr<sp::world::Engine> engine;
-    std::unique_ptr<sp::rpc::Dispatcher> dispatcher;
+    sp::world::Engine engine;
+    sp::rpc::Dispatcher dispatcher{engine, spear_register_engine_types_api_hash(), ""};
     sp::rpc::Session session;
+    std::vector<AActor*> seedActors;
 
-    void reset(const std::vector<Bytes>& corpus) {
-        dispatcher.reset();
-        engine.reset();
-        engine = std::make_unique<sp::world::Engine>();
-        dispatcher =
-            std::make_unique<sp::rpc::Dispatcher>(*engine, spear_register_engine_types_api_hash(), "");
-        session = {};
+    explicit Harness(const std::vector<Bytes>& corpus) {
         for (const Bytes& seed : corpus)
             run(seed, session);
-        const std::vector<AActor*> actors = engine->GetGameWorld().find_actors();
-        seedActors.assign(actors.begin(), actors.end());
+        seedActors = engine.GetGameWorld().find_actors();
     }
 
     // Destroys the actors the inputs spawned (the seeds' own stay, so that their handles keep working):
     // thousands of them would make every tick slower and the fuzzer with it.
     void destroySpawned() {
-        UWorld& world = engine->GetGameWorld();
+        UWorld& world = engine.GetGameWorld();
         for (AActor* actor : world.find_actors())
             if (std::find(seedActors.begin(), seedActors.end(), actor) == seedActors.end())
                 world.destroy_actor(actor);
     }
-    std::vector<AActor*> seedActors;
-
     // Empty when fine, else what broke.
     std::string run(const Bytes& input, sp::rpc::Session& on) {
         msgpack::sbuffer reply;
         try {
-            dispatcher->handle(input.data(), input.size(), on, reply, nullptr);
+            dispatcher.handle(input.data(), input.size(), on, reply, nullptr);
         } catch (const std::exception& error) {
             return std::string("handle() threw: ") + error.what();
         }
@@ -292,8 +284,7 @@ int main(int argc, char** argv) {
     std::filesystem::current_path(scratch);
     sp::confineUserFiles({scratch.string()});
 
-    Harness harness;
-    harness.reset(corpus);
+    Harness harness(corpus);
     // After the replay no scene file can be loaded again: a load replaces every actor, and the handles the
     // seeds name would all be stale from then on. Save and load still run, into a refusal.
     std::filesystem::create_directories(scratch / "empty");
@@ -321,9 +312,9 @@ int main(int argc, char** argv) {
             return 1;
         }
         if (!greeted)
-            harness.dispatcher->endSession(fresh);
+            harness.dispatcher.endSession(fresh);
         if (harness.session.closeAfterReply || harness.session.shutdownRequested) {
-            harness.dispatcher->endSession(harness.session);
+            harness.dispatcher.endSession(harness.session);
             harness.session = {};
             harness.run(corpus.front(), harness.session); // hello again
         }
@@ -331,13 +322,13 @@ int main(int argc, char** argv) {
             sp::rpc::Session probe;
             harness.run(corpus.front(), probe);
             msgpack::sbuffer reply;
-            harness.dispatcher->handle(echo.data(), echo.size(), probe, reply, nullptr);
+            harness.dispatcher.handle(echo.data(), echo.size(), probe, reply, nullptr);
             const std::string text(reply.data(), reply.size());
             if (text.find("ok") == std::string::npos) {
                 writeFailure(run, input, "the engine stopped serving (echo failed after this input)");
                 return 1;
             }
-            harness.dispatcher->endSession(probe);
+            harness.dispatcher.endSession(probe);
         }
         if (run % 10000 == 0)
             harness.destroySpawned();
