@@ -284,22 +284,35 @@ def test_segments_shrunk_while_in_use_never_crash_the_server(server: LaunchedSer
     still_serves(server)
 
 
+def start_client(code: str, *, ready: str) -> subprocess.Popen[str]:
+    """A Python process running `code` with this source tree's spear importable, once it has printed `ready`
+    (killed if it does not)."""
+    path = str(Path(spear.__file__).parent.parent)
+    process = subprocess.Popen([sys.executable, "-c", f"import sys; sys.path.insert(0, {path!r})\n" + code],
+                               stdout=subprocess.PIPE, text=True)
+    assert process.stdout is not None
+    line = process.stdout.readline()
+    if line != ready + "\n":
+        process.kill()
+        process.wait()
+        process.stdout.close()
+        raise AssertionError(f"start_client(): the client printed {line!r}, not {ready!r}")
+    return process
+
+
 # -- frames ------------------------------------------------------------------------------------------
 
 def test_a_frame_left_open_by_a_killed_client_is_aborted(server: LaunchedServer) -> None:
-    script = (
-        "import sys, time; sys.path.insert(0, %r); import spear\n"
-        "instance = spear.Instance(server=%r)\n"
+    client_a = start_client(
+        "import time, spear\n"
+        f"instance = spear.Instance(server={server.address!r})\n"
         "instance.begin_frame().__enter__()\n"
         "print('in frame', flush=True)\n"
-        "time.sleep(600)\n" % (str(Path(spear.__file__).parent.parent), server.address)
-    )
-    client_a = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
-    assert client_a.stdout is not None
-    assert client_a.stdout.readline().strip() == "in frame"
+        "time.sleep(600)\n", ready="in frame")
     client_a.send_signal(signal.SIGKILL)
     client_a.wait()
-    client_a.stdout.close()
+    if client_a.stdout:
+        client_a.stdout.close()
     # Client B used to get "the engine is inside begin_frame, expected idle" from here on.
     with spear.Instance(server=server.address) as client_b:
         assert client_b.frame_state == "idle"
@@ -387,18 +400,15 @@ def test_segments_of_a_client_and_server_killed_together_go_when_the_next_client
     # connects to a server started before the crash (which therefore swept nothing), or an in-process one.
     survivor = LaunchedServer(fixed_delta_seconds=1 / 60)
     doomed = LaunchedServer(fixed_delta_seconds=1 / 60)
-    script = (
-        "import sys, numpy as np; sys.path.insert(0, %r); from spear._rpc_client import RpcConnection\n"
-        "connection = RpcConnection(%r)\n"
+    client = start_client(
+        "import numpy as np\nfrom spear._rpc_client import RpcConnection\n"
+        f"connection = RpcConnection({doomed.address!r})\n"
         "frame = np.ones((1080, 1920, 4), np.uint8)\n"
         "for i in range(1 << 30):\n"
         "    connection.request('echo', value=frame)\n"
         "    if i == 3:\n"
-        "        print('reading', flush=True)\n" % (str(Path(spear.__file__).parent.parent), doomed.address)
-    )
-    client = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
+        "        print('reading', flush=True)\n", ready="reading")
     try:
-        assert client.stdout is not None and client.stdout.readline() == "reading\n"
         for process in (client, doomed.process):  # frozen first: neither may see the other go and clean up
             process.send_signal(signal.SIGSTOP)
         for process in (client, doomed.process):

@@ -12,6 +12,14 @@ import pytest
 import spear
 
 
+def spawn_simulated_box(game: spear.UWorld, location: spear.FVector) -> spear.AStaticMeshActor:
+    """A cube at location that physics simulates."""
+    box = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Box", location=location)
+    box.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+    box.StaticMeshComponent.SetSimulatePhysics(bSimulate=True)
+    return box
+
+
 def assert_still_steps(instance: spear.Instance, box: spear.AActor) -> None:
     """Physics steps on after a refused value, and the box's location stays finite."""
     instance.step(num_frames=2)
@@ -69,10 +77,8 @@ def test_valid_camera_settings_are_taken(instance: spear.Instance) -> None:
 def test_transforms_are_checked_when_set(instance: spear.Instance, call: str, message: str) -> None:
     game = instance.get_game()
     with instance.begin_frame():
-        box = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Box", location=spear.FVector(1.0, 2.0, 3.0))
+        box = spawn_simulated_box(game, spear.FVector(1.0, 2.0, 3.0))
         mesh = box.StaticMeshComponent
-        mesh.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
-        mesh.SetSimulatePhysics(bSimulate=True)
         with pytest.raises(spear.InvalidArgumentError, match=re.escape(message)):
             if call == "location":
                 box.SetActorLocation(NewLocation=spear.FVector(math.nan, 0.0, 0.0))
@@ -102,10 +108,8 @@ def test_physics_properties_are_checked_when_set(instance: spear.Instance, name:
                                                  message: str) -> None:
     game = instance.get_game()
     with instance.begin_frame():
-        box = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Box", location=spear.FVector(0.0, 0.0, 1.0))
+        box = spawn_simulated_box(game, spear.FVector(0.0, 0.0, 1.0))
         mesh = box.StaticMeshComponent
-        mesh.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
-        mesh.SetSimulatePhysics(bSimulate=True)
         with pytest.raises(spear.InvalidArgumentError, match=re.escape(message)):
             setattr(mesh, name, value)
         assert getattr(mesh, name) == default
