@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -72,10 +73,6 @@ void confineUserFiles(std::vector<std::string> newRoots) {
     roots() = std::move(newRoots);
 }
 
-const std::vector<std::string>& userFileRoots() {
-    return roots();
-}
-
 std::string resolveUserPath(const std::string& path, std::string_view function, std::string_view what) {
     if (roots().empty())
         return path;
@@ -85,12 +82,9 @@ std::string resolveUserPath(const std::string& path, std::string_view function, 
     std::error_code error;
     const std::string resolved =
         std::filesystem::weakly_canonical(std::filesystem::absolute(path, error), error).string();
-    bool allowed = !error;
-    if (allowed) {
-        allowed = false;
-        for (const std::string& root : roots())
-            allowed = allowed || within(resolved, root);
-    }
+    const bool allowed = !error && std::any_of(roots().begin(), roots().end(), [&](const std::string& root) {
+        return within(resolved, root);
+    });
     if (!allowed) {
         std::string list;
         for (const std::string& root : roots())

@@ -24,8 +24,6 @@ enum class FileScope { User, Engine };
 // before a server serves clients; a server's clients otherwise read and write whatever the server's user can
 // (/proc/self/..., keys).
 void confineUserFiles(std::vector<std::string> roots);
-// The roots set by confineUserFiles(), each absolute and resolved.
-const std::vector<std::string>& userFileRoots();
 
 // The largest user-named file the engine reads: far above any scene, blueprint, mesh or texture.
 inline constexpr size_t kMaxUserFileBytes = size_t(256) << 20;
