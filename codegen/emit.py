@@ -129,7 +129,7 @@ def _py_default_expr(p: Param) -> str:
 
 def _function_view(c: Class, f: Function) -> dict[str, Any]:
     args = ", ".join(p.name for p in f.params)
-    call = f"{c.cpp_name}::{f.name}({args})" if f.is_static else f"sp::reflect::selfCast<{'const ' if f.is_const else ''}Self>(self)->{f.name}({args})"
+    call = f"Self::{f.name}({args})" if f.is_static else f"sp::reflect::selfCast<{'const ' if f.is_const else ''}Self>(self)->{f.name}({args})"
     params = [_param_view(c.name, f, p) for p in f.params]
     pyargs = ", ".join(f"{p.name}Out" if p.is_out else f"{p.name}Value" for p in f.params)
     pycall = f"Self::{f.name}({pyargs})" if f.is_static else f"object->{f.name}({pyargs})"

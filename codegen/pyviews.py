@@ -187,6 +187,7 @@ def module_view(module: Module) -> dict[str, Any]:
         "enums": enum_views,
         "typevars": [dict(t, rpc_bound=api_qualified(t["bound"], local_objects)) for t in typevars(module)],
         "all_names": names,
+        "has_static_functions": any(f.is_static for c in module.classes for f in c.functions),
     }
 
 

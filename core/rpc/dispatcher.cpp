@@ -8,6 +8,7 @@
 #include "core/base/error.h"
 #include "core/plugin/plugin_loader.h"
 #include "core/reflect/object_base.h"
+#include "core/reflect/registry.h"
 #include "core/reflect/type_info.h"
 #include "core/rpc/shared_memory.h"
 #include "core/spfunc/sp_func_call.h"
@@ -307,13 +308,19 @@ Value Dispatcher::execute(const std::string& op, const msgpack::object& request,
         // Typed proxies name the member as the in-process bindings do ("AActor.GetName()"), so that
         // messages are the same on both transports.
         const std::string context = givenContext(request, "call_function('" + function + "')");
-        reflect::ObjectBase& object = requireObject(request, context);
-        const reflect::FunctionInfo* info = object.GetClass().findFunction(function);
-        SP_CHECK(info, NotFound, context, ": class '", object.GetClass().name, "' has no function '",
-                 function, "'");
+        // A static function names its class instead of an object ("class": "UGameplayStatics").
+        const bool isStatic = field(request, "class") != nullptr;
+        reflect::ObjectBase* object = isStatic ? nullptr : &requireObject(request, context);
+        const reflect::TypeInfo& type =
+            isStatic ? reflect::Registry::get().getClass(requireString(request, "class", context), context)
+                     : object->GetClass();
+        const reflect::FunctionInfo* info = type.findFunction(function);
+        SP_CHECK(info, NotFound, context, ": class '", type.name, "' has no function '", function, "'");
+        SP_CHECK(!isStatic || info->isStatic, InvalidArgument, context, ": '", type.name, ".", function,
+                 "' is not static; call it on an object");
         Value args = field(request, "args") ? unpack(*field(request, "args"), context) : Value(Value::Dict{});
         SP_CHECK(args.is<Value::Dict>(), InvalidArgument, context, ": 'args' must be a map");
-        Value result = info->invoke(&object, args.as<Value::Dict>());
+        Value result = info->invoke(object, args.as<Value::Dict>());
         if (op == "call")
             return result;
         Value::Dict outTypes;

@@ -8,6 +8,7 @@
 //   world {kind}                  "game" (an editor world only exists in editor mode)
 //   frame {action}                begin | execute | begin_end | end | abort
 //   call {object, function, args} invoke a reflected function
+//   call {class, function, args}  invoke a static function of a class (no object)
 //   get {object, property}, set {object, property, value}
 //   is_valid {object}, describe {object}
 //   batch {calls: [request...]}   many calls in one message; one reply per call, in order

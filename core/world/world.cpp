@@ -6,8 +6,10 @@
 #include "core/base/regular_file.h"
 #include "core/reflect/registry.h"
 #include "core/world/blueprint.h"
+#include "core/world/controller.h"
 #include "core/world/engine.h"
 #include "core/world/input_component.h"
+#include "core/world/pawn.h"
 #include "core/world/physics_subsystem.h"
 #include "core/world/scene_io.h"
 
@@ -259,8 +261,14 @@ void UWorld::inject_input_for_actor(AActor* actor, const std::string& input_acti
     SP_CHECK(!input_action_name.empty(), sp::InvalidArgument,
              "UWorld.inject_input_for_actor(): input_action_name is empty");
     auto* input = static_cast<UInputComponent*>(actor->GetComponentByClass(&UInputComponent::StaticClass()));
+    // A controller has no input of its own here: what a player's input moves is its pawn.
+    const auto* controller = dynamic_cast<const AController*>(actor);
+    const APawn* pawn = controller && !input ? controller->K2_GetPawn() : nullptr;
+    if (pawn)
+        input = static_cast<UInputComponent*>(pawn->GetComponentByClass(&UInputComponent::StaticClass()));
     SP_CHECK(input, sp::InvalidArgument, "UWorld.inject_input_for_actor(): ", actor->GetDebugName(),
-             " has no UInputComponent to receive action '", input_action_name, "'");
+             controller && !pawn ? " possesses no pawn" : " has no UInputComponent", " to receive action '",
+             input_action_name, "'");
     input->InjectAction(input_action_name, value);
 }
 

@@ -14,6 +14,14 @@ from spear import _spfunc
 from spear._engine import api
 
 _module: ModuleType | None = None
+_natives: dict[str, Any] = {}  # engine class name -> its pybind11 class (engine and loaded plugins)
+
+
+def native_class(class_name: str) -> Any:
+    """The pybind11 class of an engine class, or None if no in-process module has it."""
+    if _module is None and class_name not in _natives:
+        module()
+    return _natives.get(class_name)
 
 
 def module() -> Any:
@@ -48,6 +56,7 @@ def register_classes(api_module: ModuleType, native_module: Any) -> None:
         native = getattr(native_module, name, None)
         if native is not None and isinstance(public, type) and hasattr(public, "register"):
             public.register(native)
+            _natives[name] = native
 
 
 def new_engine(fixed_delta_seconds: float) -> Any:

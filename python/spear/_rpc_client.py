@@ -206,15 +206,24 @@ class RpcConnection:
 
     def call(self, handle: tuple[int, int], function: str, args: dict[str, Any], result_type: str,
              context: str = "", result_tuple: Any = None) -> Any:
+        return self._call({"object": _HandleRef(handle)}, function, args, result_type, context, result_tuple)
+
+    def call_static(self, class_name: str, function: str, args: dict[str, Any], result_type: str,
+                    context: str = "", result_tuple: Any = None) -> Any:
+        """Calls a static function of an engine class: the request names the class instead of an object."""
+        return self._call({"class": class_name}, function, args, result_type, context, result_tuple)
+
+    def _call(self, target: dict[str, Any], function: str, args: dict[str, Any], result_type: str,
+              context: str, result_tuple: Any) -> Any:
         def typed(value: Any) -> Any:
             if result_tuple is not None:
                 return convert_result_tuple(value, result_tuple, self)
             return convert(value, result_type, self)
 
+        call = {**target, "function": function, "args": args, "context": context}
         if self._deferring is not None:
-            call = {"op": "call", "object": _HandleRef(handle), "function": function, "args": args, "context": context}
-            return self._queue_call(call, typed)
-        return typed(self.request("call", object=_HandleRef(handle), function=function, args=args, context=context))
+            return self._queue_call({"op": "call", **call}, typed)
+        return typed(self.request("call", **call))
 
     def get_property(self, handle: tuple[int, int], name: str, result_type: str, context: str = "") -> Any:
         value = self.request("get", object=_HandleRef(handle), property=name, context=context)

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import weakref
 from collections.abc import Iterator
 from types import ModuleType
 from typing import Any, Literal, cast
@@ -24,6 +25,8 @@ from spear import _plugins
 from spear._backends import Backend, InProcessBackend, RpcBackend
 from spear._engine import api
 from spear.errors import InvalidArgumentError, InvalidStateError
+
+_OPEN: weakref.WeakSet[Instance] = weakref.WeakSet()  # instances not yet closed (see only_open_instance)
 
 FrameState = Literal["idle", "inside begin_frame", "between begin_frame and end_frame", "inside end_frame"]
 
@@ -54,6 +57,7 @@ class Instance:
             self._backend = RpcBackend(server, token, fixed_delta_seconds, editor=mode == "editor", scene=scene_path)
         self.transport = "inprocess" if server is None else "rpc"
         self._closed = False
+        _OPEN.add(self)
 
     # -- worlds --------------------------------------------------------------------------------
 
@@ -149,6 +153,7 @@ class Instance:
         """Destroys the engine (or disconnects, stopping a launched server); handles become stale."""
         if not self._closed:
             self._closed = True
+            _OPEN.discard(self)
             self._backend.close()
 
     def __enter__(self) -> Instance:
@@ -157,7 +162,21 @@ class Instance:
     def __exit__(self, *exc: object) -> None:
         self.close()
 
+    def _rpc_connection(self) -> Any:
+        """The RPC connection of an instance over RPC; None in-process."""
+        return getattr(self._open("_rpc_connection"), "connection", None)
+
     def _open(self, function: str) -> Backend:
         if self._closed:
             raise InvalidStateError(f"{function}(): the instance is closed")
         return self._backend
+
+
+def only_open_instance(context: str) -> Instance:
+    """The one open instance, for a call that names no engine object (a static function without one)."""
+    open_now = list(_OPEN)
+    if len(open_now) == 1:
+        return open_now[0]
+    found = "no spear.Instance is open" if not open_now else f"{len(open_now)} spear.Instances are open"
+    raise InvalidStateError(f"{context}: {found}, so the engine to run it is not known; pass an engine object "
+                            "among its arguments (WorldContextObject=world)")

@@ -101,3 +101,17 @@ def test_render_image_writes_the_contact_sheet(tmp_path: Path) -> None:
     assert "object ids visible:" in result.stdout
     image = Image.open(out)
     assert image.size[0] > 0 and len(set(image.convert("RGB").getdata())) > 100
+
+
+@pytest.mark.parametrize("transport", TRANSPORTS)
+def test_control_pawn_flies_the_player_and_hands_it_over(transport: str, tmp_path: Path) -> None:
+    out = tmp_path / "views.png"
+    result = run_example("control_pawn.py", "--frames", "40", "--out", str(out), *TRANSPORTS[transport])
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "player 0: PlayerController_0 possesses DefaultPawn_0 at (-2.60, -0.60, 1.40)" in result.stdout
+    assert "frame 40/40: pawn at (" in result.stdout
+    assert "after SwapPlayerControllers: player 0 is SecondController, possessing DefaultPawn_0: True" in result.stdout
+    assert "after AI Possess: DefaultPawn_0 is player-controlled: False, player 0 has a pawn: False" in result.stdout
+    image = Image.open(out)
+    assert image.size == (4 * 320, 240)
+    assert len(set(image.convert("L").getdata())) > 20  # a rendered room, not a blank frame

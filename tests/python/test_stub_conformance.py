@@ -42,8 +42,17 @@ def stub_signature(fn: ast.FunctionDef) -> list[tuple[str, bool]]:
     return [(a.arg, d is not None) for a, d in zip(args.kwonlyargs, args.kw_defaults)]
 
 
-def native_signature(doc: str, name: str) -> tuple[list[tuple[str, bool]], bool]:
-    """(keyword-only params, whether positional parameters other than self exist) from pybind11's doc line."""
+def native_doc(native: type, class_name: str, name: str, decorators: set[str]) -> tuple[str, bool]:
+    """The module's doc of a stubbed function, and whether it is static (a static method in both)."""
+    member = native.__dict__[name]
+    static = "staticmethod" in decorators
+    assert isinstance(member, staticmethod) == static, f"{class_name}.{name} is static in one of stub and module only"
+    return (member.__func__ if static else member).__doc__, static
+
+
+def native_signature(doc: str, static: bool, name: str) -> tuple[list[tuple[str, bool]], bool]:
+    """(keyword-only params, whether positional parameters other than self exist) from pybind11's doc line;
+    a static function has no self."""
     line = doc.splitlines()[0]
     m = re.match(rf"{name}\((.*)\) -> ", line)
     assert m, line
@@ -57,8 +66,11 @@ def native_signature(doc: str, name: str) -> tuple[list[tuple[str, bool]], bool]
         else:
             current += ch
     params.append(current.strip())
-    assert params[0].startswith("self")
-    rest = params[1:]
+    if static:
+        rest = [p for p in params if p]
+    else:
+        assert params[0].startswith("self")
+        rest = params[1:]
     if not rest:
         return [], False
     assert rest[0] == "*", f"{name}: parameters are not keyword-only: {line}"
@@ -90,11 +102,11 @@ def test_class_matches_stub(name: str) -> None:
             elif "setter" in decorators:
                 continue
             elif "overload" in decorators:
-                params, _ = native_signature(native.__dict__[node.name].__doc__, node.name)
+                params, _ = native_signature(*native_doc(native, name, node.name, decorators), node.name)
                 assert [p for p, _ in params] == [p for p, _ in stub_signature(node)], node.name
             else:
                 assert node.name in native.__dict__, f"{name}.{node.name} is in the stub but not in the module"
-                params, _ = native_signature(native.__dict__[node.name].__doc__, node.name)
+                params, _ = native_signature(*native_doc(native, name, node.name, decorators), node.name)
                 assert params == stub_signature(node), node.name
     # The root's own surface (is_valid, call_sp_func, ...) is declared once, in spear._object.SpObject.
     native_members = {k for k in native.__dict__ if not k.startswith("_")} - ROOT_MEMBERS - {"call_async", "send_async"}

@@ -19,12 +19,16 @@
 #include "core/spfunc/sp_func_component.h"
 #include "core/world/actor.h"
 #include "core/world/actor_component.h"
+#include "core/world/controller.h"
+#include "core/world/game_mode.h"
+#include "core/world/gameplay_statics.h"
 #include "core/world/hit_result.h"
 #include "core/world/input_component.h"
 #include "core/world/light_actors.h"
 #include "core/world/light_component.h"
 #include "core/world/math.h"
 #include "core/world/object.h"
+#include "core/world/pawn.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
 #include "core/world/simple_vehicle.h"
@@ -39,16 +43,37 @@ template <> struct Ref<UObject> : RefBase {
 template <> struct Ref<AActor> : Ref<UObject> {
     using Ref<UObject>::Ref;
 };
+template <> struct Ref<AController> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
+template <> struct Ref<AAIController> : Ref<AController> {
+    using Ref<AController>::Ref;
+};
 template <> struct Ref<ACameraSensorActor> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
+template <> struct Ref<APawn> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
+template <> struct Ref<ADefaultPawn> : Ref<APawn> {
+    using Ref<APawn>::Ref;
+};
 template <> struct Ref<ADirectionalLight> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
+template <> struct Ref<AGameModeBase> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
 template <> struct Ref<AMaterialLibrary> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
 template <> struct Ref<AMultiViewCameraRig> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
+template <> struct Ref<APlayerController> : Ref<AController> {
+    using Ref<AController>::Ref;
+};
+template <> struct Ref<APlayerStart> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
 template <> struct Ref<APointLight> : Ref<AActor> {
@@ -83,6 +108,9 @@ template <> struct Ref<ULightComponent> : Ref<USceneComponent> {
 };
 template <> struct Ref<UDirectionalLightComponent> : Ref<ULightComponent> {
     using Ref<ULightComponent>::Ref;
+};
+template <> struct Ref<UGameplayStatics> : Ref<UObject> {
+    using Ref<UObject>::Ref;
 };
 template <> struct Ref<UInputComponent> : Ref<UActorComponent> {
     using Ref<UActorComponent>::Ref;

@@ -23,7 +23,7 @@ void spear_bind_engine(py::module_& m) {
             "GetName",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UObject.GetName()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetName();
                 return Bridge<std::string>::out(result);
             },
@@ -32,7 +32,7 @@ const Self* object = self.get<Self>(kContext);
             "GetClassName",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UObject.GetClassName()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetClassName();
                 return Bridge<std::string>::out(result);
             },
@@ -41,7 +41,7 @@ const Self* object = self.get<Self>(kContext);
             "GetWorld",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UObject.GetWorld()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetWorld();
                 return Bridge<UWorld*>::out(result);
             },
@@ -72,7 +72,7 @@ const Self* object = self.get<Self>(kContext);
             "SetRootComponent",
             [](const Ref<Self>& self, Bridge<USceneComponent*>::Py NewRootComponent) -> py::object {
                 static constexpr const char* kContext = "AActor.SetRootComponent()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewRootComponentValue = Bridge<USceneComponent*>::in(std::move(NewRootComponent), "AActor.SetRootComponent(): argument 'NewRootComponent'");
                 SP_CHECK(NewRootComponentValue, sp::InvalidArgument, "AActor.SetRootComponent(): argument 'NewRootComponent'", " must not be None");
                 object->SetRootComponent(NewRootComponentValue);
@@ -85,7 +85,7 @@ Self* object = self.get<Self>(kContext);
             "GetActorLocation",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "AActor.GetActorLocation()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetActorLocation();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
@@ -95,7 +95,7 @@ const Self* object = self.get<Self>(kContext);
             "SetActorLocation",
             [](const Ref<Self>& self, Bridge<FVector>::Py NewLocation) -> py::object {
                 static constexpr const char* kContext = "AActor.SetActorLocation()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewLocationValue = Bridge<FVector>::in(std::move(NewLocation), "AActor.SetActorLocation(): argument 'NewLocation'");
                 auto result = object->SetActorLocation(NewLocationValue);
                 return Bridge<bool>::out(result);
@@ -107,7 +107,7 @@ Self* object = self.get<Self>(kContext);
             "GetActorRotation",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "AActor.GetActorRotation()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetActorRotation();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FRotator>::out(result);
@@ -117,7 +117,7 @@ const Self* object = self.get<Self>(kContext);
             "SetActorRotation",
             [](const Ref<Self>& self, Bridge<FRotator>::Py NewRotation) -> py::object {
                 static constexpr const char* kContext = "AActor.SetActorRotation()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewRotationValue = Bridge<FRotator>::in(std::move(NewRotation), "AActor.SetActorRotation(): argument 'NewRotation'");
                 auto result = object->SetActorRotation(NewRotationValue);
                 return Bridge<bool>::out(result);
@@ -129,7 +129,7 @@ Self* object = self.get<Self>(kContext);
             "K2_SetActorLocationAndRotation",
             [](const Ref<Self>& self, Bridge<FVector>::Py NewLocation, Bridge<FRotator>::Py NewRotation, Bridge<bool>::Py bSweep, Bridge<bool>::Py bTeleport) -> py::object {
                 static constexpr const char* kContext = "AActor.K2_SetActorLocationAndRotation()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewLocationValue = Bridge<FVector>::in(std::move(NewLocation), "AActor.K2_SetActorLocationAndRotation(): argument 'NewLocation'");
                 auto NewRotationValue = Bridge<FRotator>::in(std::move(NewRotation), "AActor.K2_SetActorLocationAndRotation(): argument 'NewRotation'");
                 auto bSweepValue = Bridge<bool>::in(std::move(bSweep), "AActor.K2_SetActorLocationAndRotation(): argument 'bSweep'");
@@ -147,7 +147,7 @@ Self* object = self.get<Self>(kContext);
             "GetActorScale3D",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "AActor.GetActorScale3D()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetActorScale3D();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
@@ -157,7 +157,7 @@ const Self* object = self.get<Self>(kContext);
             "SetActorScale3D",
             [](const Ref<Self>& self, Bridge<FVector>::Py NewScale3D) -> py::object {
                 static constexpr const char* kContext = "AActor.SetActorScale3D()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewScale3DValue = Bridge<FVector>::in(std::move(NewScale3D), "AActor.SetActorScale3D(): argument 'NewScale3D'");
                 object->SetActorScale3D(NewScale3DValue);
                 return py::none();
@@ -169,7 +169,7 @@ Self* object = self.get<Self>(kContext);
             "GetActorTransform",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "AActor.GetActorTransform()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetActorTransform();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FTransform>::out(result);
@@ -179,7 +179,7 @@ const Self* object = self.get<Self>(kContext);
             "SetActorTransform",
             [](const Ref<Self>& self, Bridge<FTransform>::Py NewTransform) -> py::object {
                 static constexpr const char* kContext = "AActor.SetActorTransform()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewTransformValue = Bridge<FTransform>::in(std::move(NewTransform), "AActor.SetActorTransform(): argument 'NewTransform'");
                 auto result = object->SetActorTransform(NewTransformValue);
                 return Bridge<bool>::out(result);
@@ -191,7 +191,7 @@ Self* object = self.get<Self>(kContext);
             "GetActorForwardVector",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "AActor.GetActorForwardVector()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetActorForwardVector();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
@@ -201,7 +201,7 @@ const Self* object = self.get<Self>(kContext);
             "GetActorBounds",
             [](const Ref<Self>& self, Bridge<bool>::Py bOnlyCollidingComponents) -> py::object {
                 static constexpr const char* kContext = "AActor.GetActorBounds()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto bOnlyCollidingComponentsValue = Bridge<bool>::in(std::move(bOnlyCollidingComponents), "AActor.GetActorBounds(): argument 'bOnlyCollidingComponents'");
                 FVector OriginOut{};
                 FVector BoxExtentOut{};
@@ -216,7 +216,7 @@ const Self* object = self.get<Self>(kContext);
             "ActorHasTag",
             [](const Ref<Self>& self, Bridge<std::string>::Py Tag) -> py::object {
                 static constexpr const char* kContext = "AActor.ActorHasTag()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto TagValue = Bridge<std::string>::in(std::move(Tag), "AActor.ActorHasTag(): argument 'Tag'");
                 auto result = object->ActorHasTag(TagValue);
                 return Bridge<bool>::out(result);
@@ -228,7 +228,7 @@ const Self* object = self.get<Self>(kContext);
             "K2_GetComponents",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "AActor.K2_GetComponents()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->K2_GetComponents();
                 return Bridge<std::vector<UActorComponent*>>::out(result);
             },
@@ -237,7 +237,7 @@ const Self* object = self.get<Self>(kContext);
             "GetComponentByClass",
             [](const Ref<Self>& self, Bridge<TSubclassOf<UActorComponent>>::Py ComponentClass) -> py::object {
                 static constexpr const char* kContext = "AActor.GetComponentByClass()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto ComponentClassValue = Bridge<TSubclassOf<UActorComponent>>::in(std::move(ComponentClass), "AActor.GetComponentByClass(): argument 'ComponentClass'");
                 SP_CHECK(ComponentClassValue, sp::InvalidArgument, "AActor.GetComponentByClass(): argument 'ComponentClass'", " must not be None");
                 auto result = object->GetComponentByClass(ComponentClassValue);
@@ -246,6 +246,80 @@ const Self* object = self.get<Self>(kContext);
             py::kw_only(),
             py::arg("ComponentClass"),
             "Returns the first component of class ComponentClass (or a subclass), or None.");
+    }
+    {
+        using Self = AController;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "AController", "An actor that possesses and directs a pawn.");
+        cls.attr("__sp_class__") = "AController";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def(
+            "Possess",
+            [](const Ref<Self>& self, Bridge<APawn*>::Py InPawn) -> py::object {
+                static constexpr const char* kContext = "AController.Possess()";
+                Self* object = self.get<Self>(kContext);
+                auto InPawnValue = Bridge<APawn*>::in(std::move(InPawn), "AController.Possess(): argument 'InPawn'");
+                SP_CHECK(InPawnValue, sp::InvalidArgument, "AController.Possess(): argument 'InPawn'", " must not be None");
+                object->Possess(InPawnValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("InPawn"),
+            "Takes control of InPawn (releasing this controller's previous pawn, and taking InPawn from its\nprevious controller); the control rotation becomes the pawn's rotation.");
+        cls.def(
+            "UnPossess",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "AController.UnPossess()";
+                Self* object = self.get<Self>(kContext);
+                object->UnPossess();
+                return py::none();
+            },
+            "Releases the possessed pawn, if any.");
+        cls.def(
+            "K2_GetPawn",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "AController.K2_GetPawn()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->K2_GetPawn();
+                return Bridge<APawn*>::out(result);
+            },
+            "Returns the possessed pawn, or None.");
+        cls.def(
+            "GetControlRotation",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "AController.GetControlRotation()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetControlRotation();
+                sp::reflect::checkResultFields(result, kContext);
+                return Bridge<FRotator>::out(result);
+            },
+            "Returns the control rotation.");
+        cls.def(
+            "SetControlRotation",
+            [](const Ref<Self>& self, Bridge<FRotator>::Py NewRotation) -> py::object {
+                static constexpr const char* kContext = "AController.SetControlRotation()";
+                Self* object = self.get<Self>(kContext);
+                auto NewRotationValue = Bridge<FRotator>::in(std::move(NewRotation), "AController.SetControlRotation(): argument 'NewRotation'");
+                object->SetControlRotation(NewRotationValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewRotation"),
+            "Sets the control rotation (the possessed pawn follows it on the axes its bUseControllerRotation*\nflags name, from its next tick).");
+        cls.def(
+            "IsPlayerController",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "AController.IsPlayerController()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->IsPlayerController();
+                return Bridge<bool>::out(result);
+            },
+            "Returns true for a player's controller.");
+    }
+    {
+        using Self = AAIController;
+        py::class_<Ref<Self>, Ref<AController>> cls(m, "AAIController", "A controller for non-player pawns, directed from code.");
+        cls.attr("__sp_class__") = "AAIController";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
     }
     {
         using Self = ACameraSensorActor;
@@ -262,6 +336,141 @@ const Self* object = self.get<Self>(kContext);
             "The camera (also the root component); it looks along the actor's forward axis.");
     }
     {
+        using Self = APawn;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "APawn", "An actor that a controller can possess.");
+        cls.attr("__sp_class__") = "APawn";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "bUseControllerRotationPitch",
+            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("APawn.bUseControllerRotationPitch")->bUseControllerRotationPitch); },
+            [](const Ref<Self>& self, Bridge<bool>::Py value) {
+                Self* object = self.get<Self>("APawn.bUseControllerRotationPitch");
+                object->bUseControllerRotationPitch = Bridge<bool>::in(std::move(value), "APawn.bUseControllerRotationPitch");
+                object->PostPropertyChanged("bUseControllerRotationPitch");
+            },
+            "Whether the pawn's pitch follows its controller's control rotation each tick.");
+        cls.def_property(
+            "bUseControllerRotationYaw",
+            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("APawn.bUseControllerRotationYaw")->bUseControllerRotationYaw); },
+            [](const Ref<Self>& self, Bridge<bool>::Py value) {
+                Self* object = self.get<Self>("APawn.bUseControllerRotationYaw");
+                object->bUseControllerRotationYaw = Bridge<bool>::in(std::move(value), "APawn.bUseControllerRotationYaw");
+                object->PostPropertyChanged("bUseControllerRotationYaw");
+            },
+            "Whether the pawn's yaw follows its controller's control rotation each tick.");
+        cls.def_property(
+            "bUseControllerRotationRoll",
+            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("APawn.bUseControllerRotationRoll")->bUseControllerRotationRoll); },
+            [](const Ref<Self>& self, Bridge<bool>::Py value) {
+                Self* object = self.get<Self>("APawn.bUseControllerRotationRoll");
+                object->bUseControllerRotationRoll = Bridge<bool>::in(std::move(value), "APawn.bUseControllerRotationRoll");
+                object->PostPropertyChanged("bUseControllerRotationRoll");
+            },
+            "Whether the pawn's roll follows its controller's control rotation each tick.");
+        cls.def(
+            "GetController",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "APawn.GetController()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetController();
+                return Bridge<AController*>::out(result);
+            },
+            "Returns the controller that possesses this pawn, or None.");
+        cls.def(
+            "IsControlled",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "APawn.IsControlled()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->IsControlled();
+                return Bridge<bool>::out(result);
+            },
+            "Returns true while a controller possesses this pawn.");
+        cls.def(
+            "IsPlayerControlled",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "APawn.IsPlayerControlled()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->IsPlayerControlled();
+                return Bridge<bool>::out(result);
+            },
+            "Returns true while a player controller possesses this pawn.");
+        cls.def(
+            "GetControlRotation",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "APawn.GetControlRotation()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetControlRotation();
+                sp::reflect::checkResultFields(result, kContext);
+                return Bridge<FRotator>::out(result);
+            },
+            "Returns the controller's control rotation, or the pawn's own rotation when it has no controller.");
+        cls.def(
+            "AddMovementInput",
+            [](const Ref<Self>& self, Bridge<FVector>::Py WorldDirection, Bridge<double>::Py ScaleValue) -> py::object {
+                static constexpr const char* kContext = "APawn.AddMovementInput()";
+                Self* object = self.get<Self>(kContext);
+                auto WorldDirectionValue = Bridge<FVector>::in(std::move(WorldDirection), "APawn.AddMovementInput(): argument 'WorldDirection'");
+                auto ScaleValueValue = Bridge<double>::in(std::move(ScaleValue), "APawn.AddMovementInput(): argument 'ScaleValue'");
+                object->AddMovementInput(WorldDirectionValue, ScaleValueValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("WorldDirection"),
+            py::arg("ScaleValue") = static_cast<Bridge<double>::Py>(double(1.0)),
+            "Adds movement along WorldDirection, scaled by ScaleValue, for the pawn's next tick (the inputs of one\ntick add up; a pawn that moves itself, such as ADefaultPawn, consumes them).");
+        cls.def(
+            "GetPendingMovementInputVector",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "APawn.GetPendingMovementInputVector()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetPendingMovementInputVector();
+                sp::reflect::checkResultFields(result, kContext);
+                return Bridge<FVector>::out(result);
+            },
+            "Returns the movement input added since the pawn last moved.");
+    }
+    {
+        using Self = ADefaultPawn;
+        py::class_<Ref<Self>, Ref<APawn>> cls(m, "ADefaultPawn", "A pawn that flies along its control rotation from the \"MoveForward\", \"MoveRight\" and \"MoveUp\" input\nactions (X in [-1, 1]) and AddMovementInput, and turns its controller's view with \"Turn\" and \"LookUp\".\nIt has no collision body: it passes through geometry, like UE's DefaultPawn with collision off.");
+        cls.attr("__sp_class__") = "ADefaultPawn";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "InputComponent",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("ADefaultPawn.InputComponent")->InputComponent;
+                sp::reflect::checkNotNull(value, "ADefaultPawn.InputComponent");
+                return Bridge<UInputComponent*>::out(value);
+            },
+            "Receives the injected actions (from inject_input_for_actor on the pawn or its controller).");
+        cls.def_property(
+            "MaxSpeed",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ADefaultPawn.MaxSpeed")->MaxSpeed); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("ADefaultPawn.MaxSpeed");
+                object->MaxSpeed = Bridge<double>::in(std::move(value), "ADefaultPawn.MaxSpeed");
+                object->PostPropertyChanged("MaxSpeed");
+            },
+            "Speed in metres per second at full input.");
+        cls.def_property(
+            "BaseTurnRate",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ADefaultPawn.BaseTurnRate")->BaseTurnRate); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("ADefaultPawn.BaseTurnRate");
+                object->BaseTurnRate = Bridge<double>::in(std::move(value), "ADefaultPawn.BaseTurnRate");
+                object->PostPropertyChanged("BaseTurnRate");
+            },
+            "Degrees per second of yaw at \"Turn\" = 1.");
+        cls.def_property(
+            "BaseLookUpRate",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ADefaultPawn.BaseLookUpRate")->BaseLookUpRate); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("ADefaultPawn.BaseLookUpRate");
+                object->BaseLookUpRate = Bridge<double>::in(std::move(value), "ADefaultPawn.BaseLookUpRate");
+                object->PostPropertyChanged("BaseLookUpRate");
+            },
+            "Degrees per second of pitch at \"LookUp\" = 1.");
+    }
+    {
         using Self = ADirectionalLight;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "ADirectionalLight", "An actor with a directional light (the sun) as its root.");
         cls.attr("__sp_class__") = "ADirectionalLight";
@@ -274,6 +483,83 @@ const Self* object = self.get<Self>(kContext);
                 return Bridge<UDirectionalLightComponent*>::out(value);
             },
             "The light (also the root component).");
+    }
+    {
+        using Self = AGameModeBase;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "AGameModeBase", "The rules of a game world: which classes its players get, and where they start.");
+        cls.attr("__sp_class__") = "AGameModeBase";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "DefaultPawnClass",
+            [](const Ref<Self>& self) { return Bridge<TSubclassOf<APawn>>::out(self.get<Self>("AGameModeBase.DefaultPawnClass")->DefaultPawnClass); },
+            [](const Ref<Self>& self, Bridge<TSubclassOf<APawn>>::Py value) {
+                Self* object = self.get<Self>("AGameModeBase.DefaultPawnClass");
+                object->DefaultPawnClass = Bridge<TSubclassOf<APawn>>::in(std::move(value), "AGameModeBase.DefaultPawnClass");
+                object->PostPropertyChanged("DefaultPawnClass");
+            },
+            "The class of the pawn each player starts with.");
+        cls.def_property(
+            "PlayerControllerClass",
+            [](const Ref<Self>& self) { return Bridge<TSubclassOf<APlayerController>>::out(self.get<Self>("AGameModeBase.PlayerControllerClass")->PlayerControllerClass); },
+            [](const Ref<Self>& self, Bridge<TSubclassOf<APlayerController>>::Py value) {
+                Self* object = self.get<Self>("AGameModeBase.PlayerControllerClass");
+                object->PlayerControllerClass = Bridge<TSubclassOf<APlayerController>>::in(std::move(value), "AGameModeBase.PlayerControllerClass");
+                object->PostPropertyChanged("PlayerControllerClass");
+            },
+            "The class of each player's controller.");
+        cls.def(
+            "FindPlayerStart",
+            [](const Ref<Self>& self, Bridge<AController*>::Py Player, Bridge<std::string>::Py IncomingName) -> py::object {
+                static constexpr const char* kContext = "AGameModeBase.FindPlayerStart()";
+                const Self* object = self.get<Self>(kContext);
+                auto PlayerValue = Bridge<AController*>::in(std::move(Player), "AGameModeBase.FindPlayerStart(): argument 'Player'");
+                SP_CHECK(PlayerValue, sp::InvalidArgument, "AGameModeBase.FindPlayerStart(): argument 'Player'", " must not be None");
+                auto IncomingNameValue = Bridge<std::string>::in(std::move(IncomingName), "AGameModeBase.FindPlayerStart(): argument 'IncomingName'");
+                auto result = object->FindPlayerStart(PlayerValue, IncomingNameValue);
+                return Bridge<AActor*>::out(result);
+            },
+            py::kw_only(),
+            py::arg("Player"),
+            py::arg("IncomingName") = static_cast<Bridge<std::string>::Py>(std::string("")),
+            "Returns the player start for Player: the first whose PlayerStartTag is IncomingName when that is not\nempty, else the first in the world, or None when the world has none.");
+        cls.def(
+            "RestartPlayer",
+            [](const Ref<Self>& self, Bridge<AController*>::Py NewPlayer) -> py::object {
+                static constexpr const char* kContext = "AGameModeBase.RestartPlayer()";
+                Self* object = self.get<Self>(kContext);
+                auto NewPlayerValue = Bridge<AController*>::in(std::move(NewPlayer), "AGameModeBase.RestartPlayer(): argument 'NewPlayer'");
+                SP_CHECK(NewPlayerValue, sp::InvalidArgument, "AGameModeBase.RestartPlayer(): argument 'NewPlayer'", " must not be None");
+                object->RestartPlayer(NewPlayerValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewPlayer"),
+            "Starts NewPlayer: spawns a DefaultPawnClass pawn for it when it has none, moves the pawn to its player\nstart (the world origin when there is none) and possesses it.");
+        cls.def(
+            "GetNumPlayers",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "AGameModeBase.GetNumPlayers()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetNumPlayers();
+                return Bridge<int32_t>::out(result);
+            },
+            "Returns the number of players (player controllers with a player index).");
+        cls.def(
+            "SwapPlayerControllers",
+            [](const Ref<Self>& self, Bridge<APlayerController*>::Py OldPC, Bridge<APlayerController*>::Py NewPC) -> py::object {
+                static constexpr const char* kContext = "AGameModeBase.SwapPlayerControllers()";
+                Self* object = self.get<Self>(kContext);
+                auto OldPCValue = Bridge<APlayerController*>::in(std::move(OldPC), "AGameModeBase.SwapPlayerControllers(): argument 'OldPC'");
+                SP_CHECK(OldPCValue, sp::InvalidArgument, "AGameModeBase.SwapPlayerControllers(): argument 'OldPC'", " must not be None");
+                auto NewPCValue = Bridge<APlayerController*>::in(std::move(NewPC), "AGameModeBase.SwapPlayerControllers(): argument 'NewPC'");
+                SP_CHECK(NewPCValue, sp::InvalidArgument, "AGameModeBase.SwapPlayerControllers(): argument 'NewPC'", " must not be None");
+                object->SwapPlayerControllers(OldPCValue, NewPCValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("OldPC"),
+            py::arg("NewPC"),
+            "Moves OldPC's player to NewPC: NewPC takes OldPC's player index, pawn and view target, and OldPC is\nleft without a player (destroy it, or keep it as a spectator controller).");
     }
     {
         using Self = AMaterialLibrary;
@@ -293,7 +579,7 @@ const Self* object = self.get<Self>(kContext);
             "SetMaterial",
             [](const Ref<Self>& self, Bridge<std::string>::Py Name, Bridge<FMaterialDesc>::Py Material) -> py::object {
                 static constexpr const char* kContext = "AMaterialLibrary.SetMaterial()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NameValue = Bridge<std::string>::in(std::move(Name), "AMaterialLibrary.SetMaterial(): argument 'Name'");
                 auto MaterialValue = Bridge<FMaterialDesc>::in(std::move(Material), "AMaterialLibrary.SetMaterial(): argument 'Material'");
                 object->SetMaterial(NameValue, MaterialValue);
@@ -307,7 +593,7 @@ Self* object = self.get<Self>(kContext);
             "GetMaterial",
             [](const Ref<Self>& self, Bridge<std::string>::Py Name) -> py::object {
                 static constexpr const char* kContext = "AMaterialLibrary.GetMaterial()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto NameValue = Bridge<std::string>::in(std::move(Name), "AMaterialLibrary.GetMaterial(): argument 'Name'");
                 auto result = object->GetMaterial(NameValue);
                 sp::reflect::checkResultFields(result, kContext);
@@ -320,7 +606,7 @@ const Self* object = self.get<Self>(kContext);
             "GetBuiltinMaterialNames",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "AMaterialLibrary.GetBuiltinMaterialNames()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetBuiltinMaterialNames();
                 return Bridge<std::vector<std::string>>::out(result);
             },
@@ -349,7 +635,7 @@ const Self* object = self.get<Self>(kContext);
             "SetRing",
             [](const Ref<Self>& self, Bridge<int32_t>::Py NumViews, Bridge<double>::Py NewRadius) -> py::object {
                 static constexpr const char* kContext = "AMultiViewCameraRig.SetRing()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NumViewsValue = Bridge<int32_t>::in(std::move(NumViews), "AMultiViewCameraRig.SetRing(): argument 'NumViews'");
                 auto NewRadiusValue = Bridge<double>::in(std::move(NewRadius), "AMultiViewCameraRig.SetRing(): argument 'NewRadius'");
                 object->SetRing(NumViewsValue, NewRadiusValue);
@@ -363,7 +649,7 @@ Self* object = self.get<Self>(kContext);
             "ConfigureCameras",
             [](const Ref<Self>& self, Bridge<int32_t>::Py Width, Bridge<int32_t>::Py Height, Bridge<std::vector<ECameraModality>>::Py Modalities) -> py::object {
                 static constexpr const char* kContext = "AMultiViewCameraRig.ConfigureCameras()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto WidthValue = Bridge<int32_t>::in(std::move(Width), "AMultiViewCameraRig.ConfigureCameras(): argument 'Width'");
                 auto HeightValue = Bridge<int32_t>::in(std::move(Height), "AMultiViewCameraRig.ConfigureCameras(): argument 'Height'");
                 auto ModalitiesValue = Bridge<std::vector<ECameraModality>>::in(std::move(Modalities), "AMultiViewCameraRig.ConfigureCameras(): argument 'Modalities'");
@@ -375,6 +661,99 @@ Self* object = self.get<Self>(kContext);
             py::arg("Height"),
             py::arg("Modalities"),
             "Sets Width, Height and Modalities of every camera of the ring.");
+    }
+    {
+        using Self = APlayerController;
+        py::class_<Ref<Self>, Ref<AController>> cls(m, "APlayerController", "A player's controller: a player index, a view target, and the player's input for its pawn.");
+        cls.attr("__sp_class__") = "APlayerController";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def(
+            "GetViewTarget",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "APlayerController.GetViewTarget()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetViewTarget();
+                return Bridge<AActor*>::out(result);
+            },
+            "Returns the actor the player views the world from: the set view target, else the pawn, else this\ncontroller.");
+        cls.def(
+            "SetViewTargetWithBlend",
+            [](const Ref<Self>& self, Bridge<AActor*>::Py NewViewTarget, Bridge<double>::Py BlendTime) -> py::object {
+                static constexpr const char* kContext = "APlayerController.SetViewTargetWithBlend()";
+                Self* object = self.get<Self>(kContext);
+                auto NewViewTargetValue = Bridge<AActor*>::in(std::move(NewViewTarget), "APlayerController.SetViewTargetWithBlend(): argument 'NewViewTarget'");
+                SP_CHECK(NewViewTargetValue, sp::InvalidArgument, "APlayerController.SetViewTargetWithBlend(): argument 'NewViewTarget'", " must not be None");
+                auto BlendTimeValue = Bridge<double>::in(std::move(BlendTime), "APlayerController.SetViewTargetWithBlend(): argument 'BlendTime'");
+                object->SetViewTargetWithBlend(NewViewTargetValue, BlendTimeValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewViewTarget"),
+            py::arg("BlendTime") = static_cast<Bridge<double>::Py>(double(0.0)),
+            "Makes NewViewTarget the player's view target (None: the pawn). BlendTime is accepted for UE\ncompatibility; the view changes at once.");
+        cls.def(
+            "GetPlayerViewPoint",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "APlayerController.GetPlayerViewPoint()";
+                const Self* object = self.get<Self>(kContext);
+                FVector LocationOut{};
+                FRotator RotationOut{};
+                object->GetPlayerViewPoint(LocationOut, RotationOut);
+                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "APlayerController").attr("GetPlayerViewPointResult");
+                return resultType(py::arg("Location") = Bridge<FVector>::out(LocationOut), py::arg("Rotation") = Bridge<FRotator>::out(RotationOut));
+            },
+            "Returns the player's view point: the view target's location and the control rotation.");
+        cls.def(
+            "AddYawInput",
+            [](const Ref<Self>& self, Bridge<double>::Py Val) -> py::object {
+                static constexpr const char* kContext = "APlayerController.AddYawInput()";
+                Self* object = self.get<Self>(kContext);
+                auto ValValue = Bridge<double>::in(std::move(Val), "APlayerController.AddYawInput(): argument 'Val'");
+                object->AddYawInput(ValValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("Val"),
+            "Adds Val degrees of yaw to the control rotation.");
+        cls.def(
+            "AddPitchInput",
+            [](const Ref<Self>& self, Bridge<double>::Py Val) -> py::object {
+                static constexpr const char* kContext = "APlayerController.AddPitchInput()";
+                Self* object = self.get<Self>(kContext);
+                auto ValValue = Bridge<double>::in(std::move(Val), "APlayerController.AddPitchInput(): argument 'Val'");
+                object->AddPitchInput(ValValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("Val"),
+            "Adds Val degrees of pitch to the control rotation, keeping pitch within [-89, 89].");
+        cls.def(
+            "AddRollInput",
+            [](const Ref<Self>& self, Bridge<double>::Py Val) -> py::object {
+                static constexpr const char* kContext = "APlayerController.AddRollInput()";
+                Self* object = self.get<Self>(kContext);
+                auto ValValue = Bridge<double>::in(std::move(Val), "APlayerController.AddRollInput(): argument 'Val'");
+                object->AddRollInput(ValValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("Val"),
+            "Adds Val degrees of roll to the control rotation.");
+    }
+    {
+        using Self = APlayerStart;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "APlayerStart", "Where a player starts.");
+        cls.attr("__sp_class__") = "APlayerStart";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "PlayerStartTag",
+            [](const Ref<Self>& self) { return Bridge<std::string>::out(self.get<Self>("APlayerStart.PlayerStartTag")->PlayerStartTag); },
+            [](const Ref<Self>& self, Bridge<std::string>::Py value) {
+                Self* object = self.get<Self>("APlayerStart.PlayerStartTag");
+                object->PlayerStartTag = Bridge<std::string>::in(std::move(value), "APlayerStart.PlayerStartTag");
+                object->PostPropertyChanged("PlayerStartTag");
+            },
+            "Chooses this start by name (AGameModeBase.FindPlayerStart's IncomingName).");
     }
     {
         using Self = APointLight;
@@ -506,7 +885,7 @@ Self* object = self.get<Self>(kContext);
             "SetBaseline",
             [](const Ref<Self>& self, Bridge<double>::Py NewBaseline) -> py::object {
                 static constexpr const char* kContext = "AStereoCameraRig.SetBaseline()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewBaselineValue = Bridge<double>::in(std::move(NewBaseline), "AStereoCameraRig.SetBaseline(): argument 'NewBaseline'");
                 object->SetBaseline(NewBaselineValue);
                 return py::none();
@@ -542,7 +921,7 @@ Self* object = self.get<Self>(kContext);
             "GetOwner",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UActorComponent.GetOwner()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetOwner();
                 return Bridge<AActor*>::out(result);
             },
@@ -551,7 +930,7 @@ const Self* object = self.get<Self>(kContext);
             "ComponentHasTag",
             [](const Ref<Self>& self, Bridge<std::string>::Py Tag) -> py::object {
                 static constexpr const char* kContext = "UActorComponent.ComponentHasTag()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto TagValue = Bridge<std::string>::in(std::move(Tag), "UActorComponent.ComponentHasTag(): argument 'Tag'");
                 auto result = object->ComponentHasTag(TagValue);
                 return Bridge<bool>::out(result);
@@ -614,7 +993,7 @@ const Self* object = self.get<Self>(kContext);
             "SetRelativeLocation",
             [](const Ref<Self>& self, Bridge<FVector>::Py NewLocation) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.SetRelativeLocation()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewLocationValue = Bridge<FVector>::in(std::move(NewLocation), "USceneComponent.SetRelativeLocation(): argument 'NewLocation'");
                 object->SetRelativeLocation(NewLocationValue);
                 return py::none();
@@ -626,7 +1005,7 @@ Self* object = self.get<Self>(kContext);
             "SetRelativeRotation",
             [](const Ref<Self>& self, Bridge<FRotator>::Py NewRotation) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.SetRelativeRotation()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewRotationValue = Bridge<FRotator>::in(std::move(NewRotation), "USceneComponent.SetRelativeRotation(): argument 'NewRotation'");
                 object->SetRelativeRotation(NewRotationValue);
                 return py::none();
@@ -638,7 +1017,7 @@ Self* object = self.get<Self>(kContext);
             "SetRelativeScale3D",
             [](const Ref<Self>& self, Bridge<FVector>::Py NewScale3D) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.SetRelativeScale3D()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewScale3DValue = Bridge<FVector>::in(std::move(NewScale3D), "USceneComponent.SetRelativeScale3D(): argument 'NewScale3D'");
                 object->SetRelativeScale3D(NewScale3DValue);
                 return py::none();
@@ -650,7 +1029,7 @@ Self* object = self.get<Self>(kContext);
             "SetRelativeTransform",
             [](const Ref<Self>& self, Bridge<FTransform>::Py NewTransform) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.SetRelativeTransform()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewTransformValue = Bridge<FTransform>::in(std::move(NewTransform), "USceneComponent.SetRelativeTransform(): argument 'NewTransform'");
                 object->SetRelativeTransform(NewTransformValue);
                 return py::none();
@@ -662,7 +1041,7 @@ Self* object = self.get<Self>(kContext);
             "GetRelativeTransform",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.GetRelativeTransform()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetRelativeTransform();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FTransform>::out(result);
@@ -672,7 +1051,7 @@ const Self* object = self.get<Self>(kContext);
             "SetMobility",
             [](const Ref<Self>& self, Bridge<EComponentMobility>::Py NewMobility) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.SetMobility()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewMobilityValue = Bridge<EComponentMobility>::in(std::move(NewMobility), "USceneComponent.SetMobility(): argument 'NewMobility'");
                 object->SetMobility(NewMobilityValue);
                 return py::none();
@@ -684,7 +1063,7 @@ Self* object = self.get<Self>(kContext);
             "GetComponentTransform",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.GetComponentTransform()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetComponentTransform();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FTransform>::out(result);
@@ -694,7 +1073,7 @@ const Self* object = self.get<Self>(kContext);
             "GetComponentLocation",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.GetComponentLocation()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetComponentLocation();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
@@ -704,7 +1083,7 @@ const Self* object = self.get<Self>(kContext);
             "K2_GetComponentLocation",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.K2_GetComponentLocation()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->K2_GetComponentLocation();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
@@ -714,7 +1093,7 @@ const Self* object = self.get<Self>(kContext);
             "GetComponentRotation",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.GetComponentRotation()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetComponentRotation();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FRotator>::out(result);
@@ -724,7 +1103,7 @@ const Self* object = self.get<Self>(kContext);
             "GetComponentScale",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.GetComponentScale()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetComponentScale();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
@@ -734,7 +1113,7 @@ const Self* object = self.get<Self>(kContext);
             "SetWorldLocation",
             [](const Ref<Self>& self, Bridge<FVector>::Py NewLocation) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.SetWorldLocation()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewLocationValue = Bridge<FVector>::in(std::move(NewLocation), "USceneComponent.SetWorldLocation(): argument 'NewLocation'");
                 object->SetWorldLocation(NewLocationValue);
                 return py::none();
@@ -746,7 +1125,7 @@ Self* object = self.get<Self>(kContext);
             "SetWorldRotation",
             [](const Ref<Self>& self, Bridge<FRotator>::Py NewRotation) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.SetWorldRotation()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewRotationValue = Bridge<FRotator>::in(std::move(NewRotation), "USceneComponent.SetWorldRotation(): argument 'NewRotation'");
                 object->SetWorldRotation(NewRotationValue);
                 return py::none();
@@ -758,7 +1137,7 @@ Self* object = self.get<Self>(kContext);
             "SetWorldTransform",
             [](const Ref<Self>& self, Bridge<FTransform>::Py NewTransform) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.SetWorldTransform()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewTransformValue = Bridge<FTransform>::in(std::move(NewTransform), "USceneComponent.SetWorldTransform(): argument 'NewTransform'");
                 object->SetWorldTransform(NewTransformValue);
                 return py::none();
@@ -770,7 +1149,7 @@ Self* object = self.get<Self>(kContext);
             "GetForwardVector",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.GetForwardVector()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetForwardVector();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
@@ -780,7 +1159,7 @@ const Self* object = self.get<Self>(kContext);
             "GetRightVector",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.GetRightVector()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetRightVector();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
@@ -790,7 +1169,7 @@ const Self* object = self.get<Self>(kContext);
             "GetUpVector",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.GetUpVector()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetUpVector();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
@@ -800,7 +1179,7 @@ const Self* object = self.get<Self>(kContext);
             "AttachToComponent",
             [](const Ref<Self>& self, Bridge<USceneComponent*>::Py Parent, Bridge<bool>::Py bKeepWorldTransform) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.AttachToComponent()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto ParentValue = Bridge<USceneComponent*>::in(std::move(Parent), "USceneComponent.AttachToComponent(): argument 'Parent'");
                 SP_CHECK(ParentValue, sp::InvalidArgument, "USceneComponent.AttachToComponent(): argument 'Parent'", " must not be None");
                 auto bKeepWorldTransformValue = Bridge<bool>::in(std::move(bKeepWorldTransform), "USceneComponent.AttachToComponent(): argument 'bKeepWorldTransform'");
@@ -815,7 +1194,7 @@ Self* object = self.get<Self>(kContext);
             "DetachFromComponent",
             [](const Ref<Self>& self, Bridge<bool>::Py bKeepWorldTransform) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.DetachFromComponent()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto bKeepWorldTransformValue = Bridge<bool>::in(std::move(bKeepWorldTransform), "USceneComponent.DetachFromComponent(): argument 'bKeepWorldTransform'");
                 object->DetachFromComponent(bKeepWorldTransformValue);
                 return py::none();
@@ -827,7 +1206,7 @@ Self* object = self.get<Self>(kContext);
             "GetAttachParent",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.GetAttachParent()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetAttachParent();
                 return Bridge<USceneComponent*>::out(result);
             },
@@ -836,7 +1215,7 @@ const Self* object = self.get<Self>(kContext);
             "GetChildrenComponents",
             [](const Ref<Self>& self, Bridge<bool>::Py bIncludeAllDescendants) -> py::object {
                 static constexpr const char* kContext = "USceneComponent.GetChildrenComponents()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto bIncludeAllDescendantsValue = Bridge<bool>::in(std::move(bIncludeAllDescendants), "USceneComponent.GetChildrenComponents(): argument 'bIncludeAllDescendants'");
                 auto result = object->GetChildrenComponents(bIncludeAllDescendantsValue);
                 return Bridge<std::vector<USceneComponent*>>::out(result);
@@ -953,7 +1332,7 @@ const Self* object = self.get<Self>(kContext);
             "SetWidth",
             [](const Ref<Self>& self, Bridge<int32_t>::Py NewWidth) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.SetWidth()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewWidthValue = Bridge<int32_t>::in(std::move(NewWidth), "UCameraSensorComponent.SetWidth(): argument 'NewWidth'");
                 object->SetWidth(NewWidthValue);
                 return py::none();
@@ -965,7 +1344,7 @@ Self* object = self.get<Self>(kContext);
             "SetHeight",
             [](const Ref<Self>& self, Bridge<int32_t>::Py NewHeight) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.SetHeight()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewHeightValue = Bridge<int32_t>::in(std::move(NewHeight), "UCameraSensorComponent.SetHeight(): argument 'NewHeight'");
                 object->SetHeight(NewHeightValue);
                 return py::none();
@@ -977,7 +1356,7 @@ Self* object = self.get<Self>(kContext);
             "SetFOV",
             [](const Ref<Self>& self, Bridge<double>::Py NewFOV) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.SetFOV()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewFOVValue = Bridge<double>::in(std::move(NewFOV), "UCameraSensorComponent.SetFOV(): argument 'NewFOV'");
                 object->SetFOV(NewFOVValue);
                 return py::none();
@@ -989,7 +1368,7 @@ Self* object = self.get<Self>(kContext);
             "SetNearClip",
             [](const Ref<Self>& self, Bridge<double>::Py NewNearClip) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.SetNearClip()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewNearClipValue = Bridge<double>::in(std::move(NewNearClip), "UCameraSensorComponent.SetNearClip(): argument 'NewNearClip'");
                 object->SetNearClip(NewNearClipValue);
                 return py::none();
@@ -1001,7 +1380,7 @@ Self* object = self.get<Self>(kContext);
             "SetFarClip",
             [](const Ref<Self>& self, Bridge<double>::Py NewFarClip) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.SetFarClip()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewFarClipValue = Bridge<double>::in(std::move(NewFarClip), "UCameraSensorComponent.SetFarClip(): argument 'NewFarClip'");
                 object->SetFarClip(NewFarClipValue);
                 return py::none();
@@ -1013,7 +1392,7 @@ Self* object = self.get<Self>(kContext);
             "SetExposure",
             [](const Ref<Self>& self, Bridge<float>::Py NewExposure) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.SetExposure()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewExposureValue = Bridge<float>::in(std::move(NewExposure), "UCameraSensorComponent.SetExposure(): argument 'NewExposure'");
                 object->SetExposure(NewExposureValue);
                 return py::none();
@@ -1025,7 +1404,7 @@ Self* object = self.get<Self>(kContext);
             "SetShadowResolution",
             [](const Ref<Self>& self, Bridge<int32_t>::Py NewShadowResolution) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.SetShadowResolution()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewShadowResolutionValue = Bridge<int32_t>::in(std::move(NewShadowResolution), "UCameraSensorComponent.SetShadowResolution(): argument 'NewShadowResolution'");
                 object->SetShadowResolution(NewShadowResolutionValue);
                 return py::none();
@@ -1037,7 +1416,7 @@ Self* object = self.get<Self>(kContext);
             "SetLatency",
             [](const Ref<Self>& self, Bridge<int32_t>::Py NewLatency) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.SetLatency()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewLatencyValue = Bridge<int32_t>::in(std::move(NewLatency), "UCameraSensorComponent.SetLatency(): argument 'NewLatency'");
                 object->SetLatency(NewLatencyValue);
                 return py::none();
@@ -1049,7 +1428,7 @@ Self* object = self.get<Self>(kContext);
             "read_pixels",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.read_pixels()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto result = object->read_pixels();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FCameraPixels>::out(result);
@@ -1059,7 +1438,7 @@ Self* object = self.get<Self>(kContext);
             "GetPixelsFrame",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.GetPixelsFrame()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetPixelsFrame();
                 return Bridge<int64_t>::out(result);
             },
@@ -1068,7 +1447,7 @@ const Self* object = self.get<Self>(kContext);
             "SetModalityNames",
             [](const Ref<Self>& self, Bridge<std::vector<std::string>>::Py Names) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.SetModalityNames()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NamesValue = Bridge<std::vector<std::string>>::in(std::move(Names), "UCameraSensorComponent.SetModalityNames(): argument 'Names'");
                 object->SetModalityNames(NamesValue);
                 return py::none();
@@ -1080,7 +1459,7 @@ Self* object = self.get<Self>(kContext);
             "GetModalityNames",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.GetModalityNames()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetModalityNames();
                 return Bridge<std::vector<std::string>>::out(result);
             },
@@ -1089,7 +1468,7 @@ const Self* object = self.get<Self>(kContext);
             "GetObjectIdInfo",
             [](const Ref<Self>& self, Bridge<int64_t>::Py ObjectId) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.GetObjectIdInfo()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto ObjectIdValue = Bridge<int64_t>::in(std::move(ObjectId), "UCameraSensorComponent.GetObjectIdInfo(): argument 'ObjectId'");
                 AActor* ActorOut{};
                 UPrimitiveComponent* ComponentOut{};
@@ -1106,7 +1485,7 @@ const Self* object = self.get<Self>(kContext);
             "GetObjectId",
             [](const Ref<Self>& self, Bridge<UPrimitiveComponent*>::Py Component, Bridge<int32_t>::Py MaterialSlot) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.GetObjectId()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto ComponentValue = Bridge<UPrimitiveComponent*>::in(std::move(Component), "UCameraSensorComponent.GetObjectId(): argument 'Component'");
                 SP_CHECK(ComponentValue, sp::InvalidArgument, "UCameraSensorComponent.GetObjectId(): argument 'Component'", " must not be None");
                 auto MaterialSlotValue = Bridge<int32_t>::in(std::move(MaterialSlot), "UCameraSensorComponent.GetObjectId(): argument 'MaterialSlot'");
@@ -1121,7 +1500,7 @@ const Self* object = self.get<Self>(kContext);
             "GetMaterialId",
             [](const Ref<Self>& self, Bridge<std::string>::Py Name) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.GetMaterialId()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto NameValue = Bridge<std::string>::in(std::move(Name), "UCameraSensorComponent.GetMaterialId(): argument 'Name'");
                 auto result = object->GetMaterialId(NameValue);
                 return Bridge<int64_t>::out(result);
@@ -1133,7 +1512,7 @@ const Self* object = self.get<Self>(kContext);
             "get_render_device_info",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.get_render_device_info()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto result = object->get_render_device_info();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FRenderDeviceInfo>::out(result);
@@ -1143,7 +1522,7 @@ Self* object = self.get<Self>(kContext);
             "GetRenderStats",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.GetRenderStats()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetRenderStats();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FRenderStats>::out(result);
@@ -1190,6 +1569,145 @@ const Self* object = self.get<Self>(kContext);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
     }
     {
+        using Self = UGameplayStatics;
+        py::class_<Ref<Self>, Ref<UObject>> cls(m, "UGameplayStatics", "Static functions for games: the game mode, players, and actor queries.");
+        cls.attr("__sp_class__") = "UGameplayStatics";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "GetGameMode",
+            [](Bridge<UObject*>::Py WorldContextObject) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UGameplayStatics.GetGameMode()";
+                auto WorldContextObjectValue = Bridge<UObject*>::in(std::move(WorldContextObject), "UGameplayStatics.GetGameMode(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.GetGameMode(): argument 'WorldContextObject'", " must not be None");
+                auto result = Self::GetGameMode(WorldContextObjectValue);
+                return Bridge<AGameModeBase*>::out(result);
+            },
+            py::kw_only(),
+            py::arg("WorldContextObject"),
+            "Returns the game mode of WorldContextObject's world (None in an editor world).");
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "GetPlayerController",
+            [](Bridge<UObject*>::Py WorldContextObject, Bridge<int32_t>::Py PlayerIndex) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UGameplayStatics.GetPlayerController()";
+                auto WorldContextObjectValue = Bridge<UObject*>::in(std::move(WorldContextObject), "UGameplayStatics.GetPlayerController(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.GetPlayerController(): argument 'WorldContextObject'", " must not be None");
+                auto PlayerIndexValue = Bridge<int32_t>::in(std::move(PlayerIndex), "UGameplayStatics.GetPlayerController(): argument 'PlayerIndex'");
+                auto result = Self::GetPlayerController(WorldContextObjectValue, PlayerIndexValue);
+                return Bridge<APlayerController*>::out(result);
+            },
+            py::kw_only(),
+            py::arg("WorldContextObject"),
+            py::arg("PlayerIndex"),
+            "Returns the controller of player PlayerIndex, or None.");
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "GetPlayerPawn",
+            [](Bridge<UObject*>::Py WorldContextObject, Bridge<int32_t>::Py PlayerIndex) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UGameplayStatics.GetPlayerPawn()";
+                auto WorldContextObjectValue = Bridge<UObject*>::in(std::move(WorldContextObject), "UGameplayStatics.GetPlayerPawn(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.GetPlayerPawn(): argument 'WorldContextObject'", " must not be None");
+                auto PlayerIndexValue = Bridge<int32_t>::in(std::move(PlayerIndex), "UGameplayStatics.GetPlayerPawn(): argument 'PlayerIndex'");
+                auto result = Self::GetPlayerPawn(WorldContextObjectValue, PlayerIndexValue);
+                return Bridge<APawn*>::out(result);
+            },
+            py::kw_only(),
+            py::arg("WorldContextObject"),
+            py::arg("PlayerIndex"),
+            "Returns the pawn of player PlayerIndex, or None.");
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "GetPlayerControllerID",
+            [](Bridge<APlayerController*>::Py Player) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UGameplayStatics.GetPlayerControllerID()";
+                auto PlayerValue = Bridge<APlayerController*>::in(std::move(Player), "UGameplayStatics.GetPlayerControllerID(): argument 'Player'");
+                SP_CHECK(PlayerValue, sp::InvalidArgument, "UGameplayStatics.GetPlayerControllerID(): argument 'Player'", " must not be None");
+                auto result = Self::GetPlayerControllerID(PlayerValue);
+                return Bridge<int32_t>::out(result);
+            },
+            py::kw_only(),
+            py::arg("Player"),
+            "Returns the player index that Player serves, or -1 when it serves none.");
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "GetNumPlayerControllers",
+            [](Bridge<UObject*>::Py WorldContextObject) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UGameplayStatics.GetNumPlayerControllers()";
+                auto WorldContextObjectValue = Bridge<UObject*>::in(std::move(WorldContextObject), "UGameplayStatics.GetNumPlayerControllers(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.GetNumPlayerControllers(): argument 'WorldContextObject'", " must not be None");
+                auto result = Self::GetNumPlayerControllers(WorldContextObjectValue);
+                return Bridge<int32_t>::out(result);
+            },
+            py::kw_only(),
+            py::arg("WorldContextObject"),
+            "Returns the number of player controllers with a player.");
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "CreatePlayer",
+            [](Bridge<UObject*>::Py WorldContextObject, Bridge<int32_t>::Py ControllerId, Bridge<bool>::Py bSpawnPlayerController) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UGameplayStatics.CreatePlayer()";
+                auto WorldContextObjectValue = Bridge<UObject*>::in(std::move(WorldContextObject), "UGameplayStatics.CreatePlayer(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.CreatePlayer(): argument 'WorldContextObject'", " must not be None");
+                auto ControllerIdValue = Bridge<int32_t>::in(std::move(ControllerId), "UGameplayStatics.CreatePlayer(): argument 'ControllerId'");
+                auto bSpawnPlayerControllerValue = Bridge<bool>::in(std::move(bSpawnPlayerController), "UGameplayStatics.CreatePlayer(): argument 'bSpawnPlayerController'");
+                auto result = Self::CreatePlayer(WorldContextObjectValue, ControllerIdValue, bSpawnPlayerControllerValue);
+                return Bridge<APlayerController*>::out(result);
+            },
+            py::kw_only(),
+            py::arg("WorldContextObject"),
+            py::arg("ControllerId") = static_cast<Bridge<int32_t>::Py>(int32_t(-1)),
+            py::arg("bSpawnPlayerController") = static_cast<Bridge<bool>::Py>(bool(true)),
+            "Creates player ControllerId (-1: the next free index) with a new player controller, started with a\npawn as the game mode starts players; returns its controller. bSpawnPlayerController is accepted for\nUE compatibility and must be true.");
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "GetAllActorsOfClass",
+            [](Bridge<UObject*>::Py WorldContextObject, Bridge<TSubclassOf<AActor>>::Py ActorClass) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UGameplayStatics.GetAllActorsOfClass()";
+                auto WorldContextObjectValue = Bridge<UObject*>::in(std::move(WorldContextObject), "UGameplayStatics.GetAllActorsOfClass(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.GetAllActorsOfClass(): argument 'WorldContextObject'", " must not be None");
+                auto ActorClassValue = Bridge<TSubclassOf<AActor>>::in(std::move(ActorClass), "UGameplayStatics.GetAllActorsOfClass(): argument 'ActorClass'");
+                SP_CHECK(ActorClassValue, sp::InvalidArgument, "UGameplayStatics.GetAllActorsOfClass(): argument 'ActorClass'", " must not be None");
+                auto result = Self::GetAllActorsOfClass(WorldContextObjectValue, ActorClassValue);
+                return Bridge<std::vector<AActor*>>::out(result);
+            },
+            py::kw_only(),
+            py::arg("WorldContextObject"),
+            py::arg("ActorClass"),
+            "Returns every actor of class ActorClass or a subclass of it, in spawn order.");
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "GetActorOfClass",
+            [](Bridge<UObject*>::Py WorldContextObject, Bridge<TSubclassOf<AActor>>::Py ActorClass) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UGameplayStatics.GetActorOfClass()";
+                auto WorldContextObjectValue = Bridge<UObject*>::in(std::move(WorldContextObject), "UGameplayStatics.GetActorOfClass(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.GetActorOfClass(): argument 'WorldContextObject'", " must not be None");
+                auto ActorClassValue = Bridge<TSubclassOf<AActor>>::in(std::move(ActorClass), "UGameplayStatics.GetActorOfClass(): argument 'ActorClass'");
+                SP_CHECK(ActorClassValue, sp::InvalidArgument, "UGameplayStatics.GetActorOfClass(): argument 'ActorClass'", " must not be None");
+                auto result = Self::GetActorOfClass(WorldContextObjectValue, ActorClassValue);
+                return Bridge<AActor*>::out(result);
+            },
+            py::kw_only(),
+            py::arg("WorldContextObject"),
+            py::arg("ActorClass"),
+            "Returns the first actor of class ActorClass or a subclass of it, or None.");
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "GetAllActorsWithTag",
+            [](Bridge<UObject*>::Py WorldContextObject, Bridge<std::string>::Py Tag) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UGameplayStatics.GetAllActorsWithTag()";
+                auto WorldContextObjectValue = Bridge<UObject*>::in(std::move(WorldContextObject), "UGameplayStatics.GetAllActorsWithTag(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.GetAllActorsWithTag(): argument 'WorldContextObject'", " must not be None");
+                auto TagValue = Bridge<std::string>::in(std::move(Tag), "UGameplayStatics.GetAllActorsWithTag(): argument 'Tag'");
+                auto result = Self::GetAllActorsWithTag(WorldContextObjectValue, TagValue);
+                return Bridge<std::vector<AActor*>>::out(result);
+            },
+            py::kw_only(),
+            py::arg("WorldContextObject"),
+            py::arg("Tag"),
+            "Returns every actor that has Tag, in spawn order.");
+    }
+    {
         using Self = UInputComponent;
         py::class_<Ref<Self>, Ref<UActorComponent>> cls(m, "UInputComponent", "A component that receives input actions injected for the actor that owns it.");
         cls.attr("__sp_class__") = "UInputComponent";
@@ -1198,7 +1716,7 @@ const Self* object = self.get<Self>(kContext);
             "GetActionValue",
             [](const Ref<Self>& self, Bridge<std::string>::Py ActionName) -> py::object {
                 static constexpr const char* kContext = "UInputComponent.GetActionValue()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto ActionNameValue = Bridge<std::string>::in(std::move(ActionName), "UInputComponent.GetActionValue(): argument 'ActionName'");
                 auto result = object->GetActionValue(ActionNameValue);
                 sp::reflect::checkResultFields(result, kContext);
@@ -1211,7 +1729,7 @@ const Self* object = self.get<Self>(kContext);
             "IsActionTriggered",
             [](const Ref<Self>& self, Bridge<std::string>::Py ActionName) -> py::object {
                 static constexpr const char* kContext = "UInputComponent.IsActionTriggered()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto ActionNameValue = Bridge<std::string>::in(std::move(ActionName), "UInputComponent.IsActionTriggered(): argument 'ActionName'");
                 auto result = object->IsActionTriggered(ActionNameValue);
                 return Bridge<bool>::out(result);
@@ -1307,7 +1825,7 @@ const Self* object = self.get<Self>(kContext);
             "GetBounds",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UPrimitiveComponent.GetBounds()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 FVector OriginOut{};
                 FVector BoxExtentOut{};
                 object->GetBounds(OriginOut, BoxExtentOut);
@@ -1319,7 +1837,7 @@ const Self* object = self.get<Self>(kContext);
             "SetSimulatePhysics",
             [](const Ref<Self>& self, Bridge<bool>::Py bSimulate) -> py::object {
                 static constexpr const char* kContext = "UPrimitiveComponent.SetSimulatePhysics()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto bSimulateValue = Bridge<bool>::in(std::move(bSimulate), "UPrimitiveComponent.SetSimulatePhysics(): argument 'bSimulate'");
                 object->SetSimulatePhysics(bSimulateValue);
                 return py::none();
@@ -1331,7 +1849,7 @@ Self* object = self.get<Self>(kContext);
             "IsSimulatingPhysics",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UPrimitiveComponent.IsSimulatingPhysics()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->IsSimulatingPhysics();
                 return Bridge<bool>::out(result);
             },
@@ -1340,7 +1858,7 @@ const Self* object = self.get<Self>(kContext);
             "SetMassOverrideInKg",
             [](const Ref<Self>& self, Bridge<double>::Py MassInKg) -> py::object {
                 static constexpr const char* kContext = "UPrimitiveComponent.SetMassOverrideInKg()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto MassInKgValue = Bridge<double>::in(std::move(MassInKg), "UPrimitiveComponent.SetMassOverrideInKg(): argument 'MassInKg'");
                 object->SetMassOverrideInKg(MassInKgValue);
                 return py::none();
@@ -1352,7 +1870,7 @@ Self* object = self.get<Self>(kContext);
             "SetFriction",
             [](const Ref<Self>& self, Bridge<double>::Py NewFriction) -> py::object {
                 static constexpr const char* kContext = "UPrimitiveComponent.SetFriction()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewFrictionValue = Bridge<double>::in(std::move(NewFriction), "UPrimitiveComponent.SetFriction(): argument 'NewFriction'");
                 object->SetFriction(NewFrictionValue);
                 return py::none();
@@ -1364,7 +1882,7 @@ Self* object = self.get<Self>(kContext);
             "SetRestitution",
             [](const Ref<Self>& self, Bridge<double>::Py NewRestitution) -> py::object {
                 static constexpr const char* kContext = "UPrimitiveComponent.SetRestitution()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewRestitutionValue = Bridge<double>::in(std::move(NewRestitution), "UPrimitiveComponent.SetRestitution(): argument 'NewRestitution'");
                 object->SetRestitution(NewRestitutionValue);
                 return py::none();
@@ -1376,7 +1894,7 @@ Self* object = self.get<Self>(kContext);
             "SetLinearDamping",
             [](const Ref<Self>& self, Bridge<double>::Py NewLinearDamping) -> py::object {
                 static constexpr const char* kContext = "UPrimitiveComponent.SetLinearDamping()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewLinearDampingValue = Bridge<double>::in(std::move(NewLinearDamping), "UPrimitiveComponent.SetLinearDamping(): argument 'NewLinearDamping'");
                 object->SetLinearDamping(NewLinearDampingValue);
                 return py::none();
@@ -1388,7 +1906,7 @@ Self* object = self.get<Self>(kContext);
             "SetAngularDamping",
             [](const Ref<Self>& self, Bridge<double>::Py NewAngularDamping) -> py::object {
                 static constexpr const char* kContext = "UPrimitiveComponent.SetAngularDamping()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewAngularDampingValue = Bridge<double>::in(std::move(NewAngularDamping), "UPrimitiveComponent.SetAngularDamping(): argument 'NewAngularDamping'");
                 object->SetAngularDamping(NewAngularDampingValue);
                 return py::none();
@@ -1400,7 +1918,7 @@ Self* object = self.get<Self>(kContext);
             "GetMass",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UPrimitiveComponent.GetMass()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetMass();
                 return Bridge<double>::out(result);
             },
@@ -1409,7 +1927,7 @@ const Self* object = self.get<Self>(kContext);
             "AddForce",
             [](const Ref<Self>& self, Bridge<FVector>::Py Force, Bridge<bool>::Py bAccelChange) -> py::object {
                 static constexpr const char* kContext = "UPrimitiveComponent.AddForce()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto ForceValue = Bridge<FVector>::in(std::move(Force), "UPrimitiveComponent.AddForce(): argument 'Force'");
                 auto bAccelChangeValue = Bridge<bool>::in(std::move(bAccelChange), "UPrimitiveComponent.AddForce(): argument 'bAccelChange'");
                 object->AddForce(ForceValue, bAccelChangeValue);
@@ -1423,7 +1941,7 @@ Self* object = self.get<Self>(kContext);
             "AddTorqueInRadians",
             [](const Ref<Self>& self, Bridge<FVector>::Py Torque) -> py::object {
                 static constexpr const char* kContext = "UPrimitiveComponent.AddTorqueInRadians()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto TorqueValue = Bridge<FVector>::in(std::move(Torque), "UPrimitiveComponent.AddTorqueInRadians(): argument 'Torque'");
                 object->AddTorqueInRadians(TorqueValue);
                 return py::none();
@@ -1435,7 +1953,7 @@ Self* object = self.get<Self>(kContext);
             "AddImpulse",
             [](const Ref<Self>& self, Bridge<FVector>::Py Impulse, Bridge<bool>::Py bVelChange) -> py::object {
                 static constexpr const char* kContext = "UPrimitiveComponent.AddImpulse()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto ImpulseValue = Bridge<FVector>::in(std::move(Impulse), "UPrimitiveComponent.AddImpulse(): argument 'Impulse'");
                 auto bVelChangeValue = Bridge<bool>::in(std::move(bVelChange), "UPrimitiveComponent.AddImpulse(): argument 'bVelChange'");
                 object->AddImpulse(ImpulseValue, bVelChangeValue);
@@ -1449,7 +1967,7 @@ Self* object = self.get<Self>(kContext);
             "SetPhysicsLinearVelocity",
             [](const Ref<Self>& self, Bridge<FVector>::Py NewVel, Bridge<bool>::Py bAddToCurrent) -> py::object {
                 static constexpr const char* kContext = "UPrimitiveComponent.SetPhysicsLinearVelocity()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewVelValue = Bridge<FVector>::in(std::move(NewVel), "UPrimitiveComponent.SetPhysicsLinearVelocity(): argument 'NewVel'");
                 auto bAddToCurrentValue = Bridge<bool>::in(std::move(bAddToCurrent), "UPrimitiveComponent.SetPhysicsLinearVelocity(): argument 'bAddToCurrent'");
                 object->SetPhysicsLinearVelocity(NewVelValue, bAddToCurrentValue);
@@ -1463,7 +1981,7 @@ Self* object = self.get<Self>(kContext);
             "GetPhysicsLinearVelocity",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UPrimitiveComponent.GetPhysicsLinearVelocity()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetPhysicsLinearVelocity();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
@@ -1473,7 +1991,7 @@ const Self* object = self.get<Self>(kContext);
             "SetPhysicsAngularVelocityInDegrees",
             [](const Ref<Self>& self, Bridge<FVector>::Py NewAngVel, Bridge<bool>::Py bAddToCurrent) -> py::object {
                 static constexpr const char* kContext = "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewAngVelValue = Bridge<FVector>::in(std::move(NewAngVel), "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees(): argument 'NewAngVel'");
                 auto bAddToCurrentValue = Bridge<bool>::in(std::move(bAddToCurrent), "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees(): argument 'bAddToCurrent'");
                 object->SetPhysicsAngularVelocityInDegrees(NewAngVelValue, bAddToCurrentValue);
@@ -1487,7 +2005,7 @@ Self* object = self.get<Self>(kContext);
             "GetPhysicsAngularVelocityInDegrees",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UPrimitiveComponent.GetPhysicsAngularVelocityInDegrees()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetPhysicsAngularVelocityInDegrees();
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
@@ -1497,7 +2015,7 @@ const Self* object = self.get<Self>(kContext);
             "IsAnyRigidBodyAwake",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UPrimitiveComponent.IsAnyRigidBodyAwake()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->IsAnyRigidBodyAwake();
                 return Bridge<bool>::out(result);
             },
@@ -1545,7 +2063,7 @@ const Self* object = self.get<Self>(kContext);
             "GetFuncNames",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "USpFuncComponent.GetFuncNames()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->GetFuncNames();
                 return Bridge<std::vector<std::string>>::out(result);
             },
@@ -1602,7 +2120,7 @@ const Self* object = self.get<Self>(kContext);
             "SetStaticMesh",
             [](const Ref<Self>& self, Bridge<std::string>::Py NewMesh) -> py::object {
                 static constexpr const char* kContext = "UStaticMeshComponent.SetStaticMesh()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewMeshValue = Bridge<std::string>::in(std::move(NewMesh), "UStaticMeshComponent.SetStaticMesh(): argument 'NewMesh'");
                 auto result = object->SetStaticMesh(NewMeshValue);
                 return Bridge<bool>::out(result);
@@ -1614,7 +2132,7 @@ Self* object = self.get<Self>(kContext);
             "SetMaterial",
             [](const Ref<Self>& self, Bridge<int32_t>::Py ElementIndex, Bridge<std::string>::Py Material) -> py::object {
                 static constexpr const char* kContext = "UStaticMeshComponent.SetMaterial()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto ElementIndexValue = Bridge<int32_t>::in(std::move(ElementIndex), "UStaticMeshComponent.SetMaterial(): argument 'ElementIndex'");
                 auto MaterialValue = Bridge<std::string>::in(std::move(Material), "UStaticMeshComponent.SetMaterial(): argument 'Material'");
                 object->SetMaterial(ElementIndexValue, MaterialValue);
@@ -1634,7 +2152,7 @@ Self* object = self.get<Self>(kContext);
             "spawn_actor",
             [](const Ref<Self>& self, Bridge<TSubclassOf<AActor>>::Py uclass, Bridge<FVector>::Py location, Bridge<FRotator>::Py rotation, Bridge<std::string>::Py name, Bridge<std::vector<std::string>>::Py tags) -> py::object {
                 static constexpr const char* kContext = "UWorld.spawn_actor()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto uclassValue = Bridge<TSubclassOf<AActor>>::in(std::move(uclass), "UWorld.spawn_actor(): argument 'uclass'");
                 SP_CHECK(uclassValue, sp::InvalidArgument, "UWorld.spawn_actor(): argument 'uclass'", " must not be None");
                 auto locationValue = Bridge<FVector>::in(std::move(location), "UWorld.spawn_actor(): argument 'location'");
@@ -1656,7 +2174,7 @@ Self* object = self.get<Self>(kContext);
             "destroy_actor",
             [](const Ref<Self>& self, Bridge<AActor*>::Py actor) -> py::object {
                 static constexpr const char* kContext = "UWorld.destroy_actor()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto actorValue = Bridge<AActor*>::in(std::move(actor), "UWorld.destroy_actor(): argument 'actor'");
                 SP_CHECK(actorValue, sp::InvalidArgument, "UWorld.destroy_actor(): argument 'actor'", " must not be None");
                 object->destroy_actor(actorValue);
@@ -1669,7 +2187,7 @@ Self* object = self.get<Self>(kContext);
             "find_actor_by_name",
             [](const Ref<Self>& self, Bridge<std::string>::Py name) -> py::object {
                 static constexpr const char* kContext = "UWorld.find_actor_by_name()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto nameValue = Bridge<std::string>::in(std::move(name), "UWorld.find_actor_by_name(): argument 'name'");
                 auto result = object->find_actor_by_name(nameValue);
                 return Bridge<AActor*>::out(result);
@@ -1681,7 +2199,7 @@ const Self* object = self.get<Self>(kContext);
             "find_actors_by_tag",
             [](const Ref<Self>& self, Bridge<std::string>::Py tag) -> py::object {
                 static constexpr const char* kContext = "UWorld.find_actors_by_tag()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto tagValue = Bridge<std::string>::in(std::move(tag), "UWorld.find_actors_by_tag(): argument 'tag'");
                 auto result = object->find_actors_by_tag(tagValue);
                 return Bridge<std::vector<AActor*>>::out(result);
@@ -1693,7 +2211,7 @@ const Self* object = self.get<Self>(kContext);
             "find_actor_by_class",
             [](const Ref<Self>& self, Bridge<TSubclassOf<AActor>>::Py uclass) -> py::object {
                 static constexpr const char* kContext = "UWorld.find_actor_by_class()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto uclassValue = Bridge<TSubclassOf<AActor>>::in(std::move(uclass), "UWorld.find_actor_by_class(): argument 'uclass'");
                 SP_CHECK(uclassValue, sp::InvalidArgument, "UWorld.find_actor_by_class(): argument 'uclass'", " must not be None");
                 auto result = object->find_actor_by_class(uclassValue);
@@ -1706,7 +2224,7 @@ const Self* object = self.get<Self>(kContext);
             "find_actors_by_class",
             [](const Ref<Self>& self, Bridge<TSubclassOf<AActor>>::Py uclass) -> py::object {
                 static constexpr const char* kContext = "UWorld.find_actors_by_class()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto uclassValue = Bridge<TSubclassOf<AActor>>::in(std::move(uclass), "UWorld.find_actors_by_class(): argument 'uclass'");
                 SP_CHECK(uclassValue, sp::InvalidArgument, "UWorld.find_actors_by_class(): argument 'uclass'", " must not be None");
                 auto result = object->find_actors_by_class(uclassValue);
@@ -1719,7 +2237,7 @@ const Self* object = self.get<Self>(kContext);
             "find_actors_by_class_as_dict",
             [](const Ref<Self>& self, Bridge<TSubclassOf<AActor>>::Py uclass) -> py::object {
                 static constexpr const char* kContext = "UWorld.find_actors_by_class_as_dict()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto uclassValue = Bridge<TSubclassOf<AActor>>::in(std::move(uclass), "UWorld.find_actors_by_class_as_dict(): argument 'uclass'");
                 SP_CHECK(uclassValue, sp::InvalidArgument, "UWorld.find_actors_by_class_as_dict(): argument 'uclass'", " must not be None");
                 auto result = object->find_actors_by_class_as_dict(uclassValue);
@@ -1732,7 +2250,7 @@ const Self* object = self.get<Self>(kContext);
             "find_actors",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UWorld.find_actors()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->find_actors();
                 return Bridge<std::vector<AActor*>>::out(result);
             },
@@ -1741,7 +2259,7 @@ const Self* object = self.get<Self>(kContext);
             "get_component_by_name",
             [](const Ref<Self>& self, Bridge<AActor*>::Py actor, Bridge<std::string>::Py component_name) -> py::object {
                 static constexpr const char* kContext = "UWorld.get_component_by_name()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto actorValue = Bridge<AActor*>::in(std::move(actor), "UWorld.get_component_by_name(): argument 'actor'");
                 SP_CHECK(actorValue, sp::InvalidArgument, "UWorld.get_component_by_name(): argument 'actor'", " must not be None");
                 auto component_nameValue = Bridge<std::string>::in(std::move(component_name), "UWorld.get_component_by_name(): argument 'component_name'");
@@ -1756,7 +2274,7 @@ const Self* object = self.get<Self>(kContext);
             "get_components_by_class",
             [](const Ref<Self>& self, Bridge<AActor*>::Py actor, Bridge<TSubclassOf<UActorComponent>>::Py uclass) -> py::object {
                 static constexpr const char* kContext = "UWorld.get_components_by_class()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto actorValue = Bridge<AActor*>::in(std::move(actor), "UWorld.get_components_by_class(): argument 'actor'");
                 SP_CHECK(actorValue, sp::InvalidArgument, "UWorld.get_components_by_class(): argument 'actor'", " must not be None");
                 auto uclassValue = Bridge<TSubclassOf<UActorComponent>>::in(std::move(uclass), "UWorld.get_components_by_class(): argument 'uclass'");
@@ -1772,7 +2290,7 @@ const Self* object = self.get<Self>(kContext);
             "get_components_by_class_as_dict",
             [](const Ref<Self>& self, Bridge<AActor*>::Py actor, Bridge<TSubclassOf<UActorComponent>>::Py uclass) -> py::object {
                 static constexpr const char* kContext = "UWorld.get_components_by_class_as_dict()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto actorValue = Bridge<AActor*>::in(std::move(actor), "UWorld.get_components_by_class_as_dict(): argument 'actor'");
                 SP_CHECK(actorValue, sp::InvalidArgument, "UWorld.get_components_by_class_as_dict(): argument 'actor'", " must not be None");
                 auto uclassValue = Bridge<TSubclassOf<UActorComponent>>::in(std::move(uclass), "UWorld.get_components_by_class_as_dict(): argument 'uclass'");
@@ -1788,7 +2306,7 @@ const Self* object = self.get<Self>(kContext);
             "load_class",
             [](const Ref<Self>& self, Bridge<TSubclassOf<UObject>>::Py uclass, Bridge<std::string>::Py name) -> py::object {
                 static constexpr const char* kContext = "UWorld.load_class()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto uclassValue = Bridge<TSubclassOf<UObject>>::in(std::move(uclass), "UWorld.load_class(): argument 'uclass'");
                 SP_CHECK(uclassValue, sp::InvalidArgument, "UWorld.load_class(): argument 'uclass'", " must not be None");
                 auto nameValue = Bridge<std::string>::in(std::move(name), "UWorld.load_class(): argument 'name'");
@@ -1804,7 +2322,7 @@ Self* object = self.get<Self>(kContext);
             "get_default_object",
             [](const Ref<Self>& self, Bridge<TSubclassOf<UObject>>::Py uclass) -> py::object {
                 static constexpr const char* kContext = "UWorld.get_default_object()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto uclassValue = Bridge<TSubclassOf<UObject>>::in(std::move(uclass), "UWorld.get_default_object(): argument 'uclass'");
                 SP_CHECK(uclassValue, sp::InvalidArgument, "UWorld.get_default_object(): argument 'uclass'", " must not be None");
                 auto result = object->get_default_object(uclassValue);
@@ -1818,7 +2336,7 @@ Self* object = self.get<Self>(kContext);
             "get_actor_locations",
             [](const Ref<Self>& self, Bridge<std::vector<AActor*>>::Py actors) -> py::object {
                 static constexpr const char* kContext = "UWorld.get_actor_locations()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto actorsValue = Bridge<std::vector<AActor*>>::in(std::move(actors), "UWorld.get_actor_locations(): argument 'actors'");
                 auto result = object->get_actor_locations(actorsValue);
                 return Bridge<sp::reflect::SpArray<double>>::out(result);
@@ -1830,7 +2348,7 @@ const Self* object = self.get<Self>(kContext);
             "set_actor_locations",
             [](const Ref<Self>& self, Bridge<std::vector<AActor*>>::Py actors, Bridge<sp::reflect::SpArray<double>>::Py locations) -> py::object {
                 static constexpr const char* kContext = "UWorld.set_actor_locations()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto actorsValue = Bridge<std::vector<AActor*>>::in(std::move(actors), "UWorld.set_actor_locations(): argument 'actors'");
                 auto locationsValue = Bridge<sp::reflect::SpArray<double>>::in(std::move(locations), "UWorld.set_actor_locations(): argument 'locations'");
                 object->set_actor_locations(actorsValue, locationsValue);
@@ -1844,7 +2362,7 @@ Self* object = self.get<Self>(kContext);
             "get_actor_count",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UWorld.get_actor_count()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->get_actor_count();
                 return Bridge<int32_t>::out(result);
             },
@@ -1853,7 +2371,7 @@ const Self* object = self.get<Self>(kContext);
             "get_time_seconds",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UWorld.get_time_seconds()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->get_time_seconds();
                 return Bridge<double>::out(result);
             },
@@ -1862,7 +2380,7 @@ const Self* object = self.get<Self>(kContext);
             "get_frame_count",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UWorld.get_frame_count()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->get_frame_count();
                 return Bridge<int64_t>::out(result);
             },
@@ -1871,7 +2389,7 @@ const Self* object = self.get<Self>(kContext);
             "line_trace_single",
             [](const Ref<Self>& self, Bridge<FVector>::Py start, Bridge<FVector>::Py end) -> py::object {
                 static constexpr const char* kContext = "UWorld.line_trace_single()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto startValue = Bridge<FVector>::in(std::move(start), "UWorld.line_trace_single(): argument 'start'");
                 auto endValue = Bridge<FVector>::in(std::move(end), "UWorld.line_trace_single(): argument 'end'");
                 FHitResult hitOut{};
@@ -1889,7 +2407,7 @@ Self* object = self.get<Self>(kContext);
             "inject_input_for_actor",
             [](const Ref<Self>& self, Bridge<AActor*>::Py actor, Bridge<std::string>::Py input_action_name, Bridge<FVector>::Py value) -> py::object {
                 static constexpr const char* kContext = "UWorld.inject_input_for_actor()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto actorValue = Bridge<AActor*>::in(std::move(actor), "UWorld.inject_input_for_actor(): argument 'actor'");
                 SP_CHECK(actorValue, sp::InvalidArgument, "UWorld.inject_input_for_actor(): argument 'actor'", " must not be None");
                 auto input_action_nameValue = Bridge<std::string>::in(std::move(input_action_name), "UWorld.inject_input_for_actor(): argument 'input_action_name'");
@@ -1906,7 +2424,7 @@ Self* object = self.get<Self>(kContext);
             "load_scene",
             [](const Ref<Self>& self, Bridge<std::string>::Py path) -> py::object {
                 static constexpr const char* kContext = "UWorld.load_scene()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto pathValue = Bridge<std::string>::in(std::move(path), "UWorld.load_scene(): argument 'path'");
                 object->load_scene(pathValue);
                 return py::none();
@@ -1918,7 +2436,7 @@ Self* object = self.get<Self>(kContext);
             "save_scene",
             [](const Ref<Self>& self, Bridge<std::string>::Py path) -> py::object {
                 static constexpr const char* kContext = "UWorld.save_scene()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto pathValue = Bridge<std::string>::in(std::move(path), "UWorld.save_scene(): argument 'path'");
                 object->save_scene(pathValue);
                 return py::none();
@@ -1930,7 +2448,7 @@ const Self* object = self.get<Self>(kContext);
             "is_editor_world",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UWorld.is_editor_world()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->is_editor_world();
                 return Bridge<bool>::out(result);
             },
@@ -1939,7 +2457,7 @@ const Self* object = self.get<Self>(kContext);
             "is_game_world",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UWorld.is_game_world()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->is_game_world();
                 return Bridge<bool>::out(result);
             },
@@ -1948,7 +2466,7 @@ const Self* object = self.get<Self>(kContext);
             "play",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UWorld.play()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 object->play();
                 return py::none();
             },
@@ -1957,7 +2475,7 @@ Self* object = self.get<Self>(kContext);
             "stop",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UWorld.stop()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 object->stop();
                 return py::none();
             },
@@ -1966,7 +2484,7 @@ Self* object = self.get<Self>(kContext);
             "is_playing",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "UWorld.is_playing()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->is_playing();
                 return Bridge<bool>::out(result);
             },

@@ -12,12 +12,16 @@
 #include "core/spfunc/sp_func_component.h"
 #include "core/world/actor.h"
 #include "core/world/actor_component.h"
+#include "core/world/controller.h"
+#include "core/world/game_mode.h"
+#include "core/world/gameplay_statics.h"
 #include "core/world/hit_result.h"
 #include "core/world/input_component.h"
 #include "core/world/light_actors.h"
 #include "core/world/light_component.h"
 #include "core/world/math.h"
 #include "core/world/object.h"
+#include "core/world/pawn.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
 #include "core/world/simple_vehicle.h"
@@ -33,10 +37,17 @@ extern "C" void spear_register_engine_types() {
     registry.add(sp::reflect::StaticEnum<EComponentMobility>());
     registry.add(UObject::StaticClass());
     registry.add(AActor::StaticClass());
+    registry.add(AController::StaticClass());
+    registry.add(AAIController::StaticClass());
     registry.add(ACameraSensorActor::StaticClass());
+    registry.add(APawn::StaticClass());
+    registry.add(ADefaultPawn::StaticClass());
     registry.add(ADirectionalLight::StaticClass());
+    registry.add(AGameModeBase::StaticClass());
     registry.add(AMaterialLibrary::StaticClass());
     registry.add(AMultiViewCameraRig::StaticClass());
+    registry.add(APlayerController::StaticClass());
+    registry.add(APlayerStart::StaticClass());
     registry.add(APointLight::StaticClass());
     registry.add(ASimpleVehicle::StaticClass());
     registry.add(ASkyLight::StaticClass());
@@ -59,6 +70,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(UCameraSensorComponent::StaticClass());
     registry.add(ULightComponent::StaticClass());
     registry.add(UDirectionalLightComponent::StaticClass());
+    registry.add(UGameplayStatics::StaticClass());
     registry.add(UInputComponent::StaticClass());
     registry.add(UPointLightComponent::StaticClass());
     registry.add(UPrimitiveComponent::StaticClass());
@@ -80,6 +92,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(UPrimitiveComponent::StaticClass());
     registry.remove(UPointLightComponent::StaticClass());
     registry.remove(UInputComponent::StaticClass());
+    registry.remove(UGameplayStatics::StaticClass());
     registry.remove(UDirectionalLightComponent::StaticClass());
     registry.remove(ULightComponent::StaticClass());
     registry.remove(UCameraSensorComponent::StaticClass());
@@ -102,10 +115,17 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(ASkyLight::StaticClass());
     registry.remove(ASimpleVehicle::StaticClass());
     registry.remove(APointLight::StaticClass());
+    registry.remove(APlayerStart::StaticClass());
+    registry.remove(APlayerController::StaticClass());
     registry.remove(AMultiViewCameraRig::StaticClass());
     registry.remove(AMaterialLibrary::StaticClass());
+    registry.remove(AGameModeBase::StaticClass());
     registry.remove(ADirectionalLight::StaticClass());
+    registry.remove(ADefaultPawn::StaticClass());
+    registry.remove(APawn::StaticClass());
     registry.remove(ACameraSensorActor::StaticClass());
+    registry.remove(AAIController::StaticClass());
+    registry.remove(AController::StaticClass());
     registry.remove(AActor::StaticClass());
     registry.remove(UObject::StaticClass());
     registry.remove(sp::reflect::StaticEnum<EComponentMobility>());
@@ -114,4 +134,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "ec62917a98f768d2"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "5fc0a22986292aad"; }

@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "ec62917a98f768d2"
+API_HASH = "5fc0a22986292aad"

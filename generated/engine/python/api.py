@@ -16,13 +16,21 @@ import numpy as np
 from numpy.typing import NDArray
 
 from spear._object import SpObject as _SpObject
+from spear._static import StaticFunction as _StaticFunction
 
 __all__ = [
+    "AAIController",
     "AActor",
     "ACameraSensorActor",
+    "AController",
+    "ADefaultPawn",
     "ADirectionalLight",
+    "AGameModeBase",
     "AMaterialLibrary",
     "AMultiViewCameraRig",
+    "APawn",
+    "APlayerController",
+    "APlayerStart",
     "APointLight",
     "ASimpleVehicle",
     "ASkyLight",
@@ -49,6 +57,7 @@ __all__ = [
     "UActorComponent",
     "UCameraSensorComponent",
     "UDirectionalLightComponent",
+    "UGameplayStatics",
     "UInputComponent",
     "ULightComponent",
     "UObject",
@@ -300,6 +309,44 @@ class AActor(UObject):
         BoxExtent: FVector
 
 
+class AControllerAsync(AActorAsync):
+    """AController's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class AControllerSend(AActorSend):
+    """AController's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class AController(AActor):
+    """An actor that possesses and directs a pawn."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "AController"
+
+
+class AAIControllerAsync(AControllerAsync):
+    """AAIController's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class AAIControllerSend(AControllerSend):
+    """AAIController's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class AAIController(AController):
+    """A controller for non-player pawns, directed from code."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "AAIController"
+
+
 class ACameraSensorActorAsync(AActorAsync):
     """ACameraSensorActor's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
 
@@ -319,6 +366,47 @@ class ACameraSensorActor(AActor):
     __sp_class__: ClassVar[str] = "ACameraSensorActor"
 
 
+class APawnAsync(AActorAsync):
+    """APawn's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class APawnSend(AActorSend):
+    """APawn's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class APawn(AActor):
+    """An actor that a controller can possess."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "APawn"
+
+
+class ADefaultPawnAsync(APawnAsync):
+    """ADefaultPawn's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class ADefaultPawnSend(APawnSend):
+    """ADefaultPawn's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class ADefaultPawn(APawn):
+    """A pawn that flies along its control rotation from the "MoveForward", "MoveRight" and "MoveUp" input
+    actions (X in [-1, 1]) and AddMovementInput, and turns its controller's view with "Turn" and "LookUp".
+    It has no collision body: it passes through geometry, like UE's DefaultPawn with collision off.
+    """
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "ADefaultPawn"
+
+
 class ADirectionalLightAsync(AActorAsync):
     """ADirectionalLight's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
 
@@ -336,6 +424,25 @@ class ADirectionalLight(AActor):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "ADirectionalLight"
+
+
+class AGameModeBaseAsync(AActorAsync):
+    """AGameModeBase's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class AGameModeBaseSend(AActorSend):
+    """AGameModeBase's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class AGameModeBase(AActor):
+    """The rules of a game world: which classes its players get, and where they start."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "AGameModeBase"
 
 
 class AMaterialLibraryAsync(AActorAsync):
@@ -374,6 +481,48 @@ class AMultiViewCameraRig(AActor):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "AMultiViewCameraRig"
+
+
+class APlayerControllerAsync(AControllerAsync):
+    """APlayerController's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class APlayerControllerSend(AControllerSend):
+    """APlayerController's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class APlayerController(AController):
+    """A player's controller: a player index, a view target, and the player's input for its pawn."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "APlayerController"
+
+    class GetPlayerViewPointResult(NamedTuple):
+        Location: FVector
+        Rotation: FRotator
+
+
+class APlayerStartAsync(AActorAsync):
+    """APlayerStart's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class APlayerStartSend(AActorSend):
+    """APlayerStart's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class APlayerStart(AActor):
+    """Where a player starts."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "APlayerStart"
 
 
 class APointLightAsync(AActorAsync):
@@ -590,6 +739,34 @@ class UDirectionalLightComponent(ULightComponent):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UDirectionalLightComponent"
+
+
+class UGameplayStaticsAsync(UObjectAsync):
+    """UGameplayStatics's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UGameplayStaticsSend(UObjectSend):
+    """UGameplayStatics's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class UGameplayStatics(UObject):
+    """Static functions for games: the game mode, players, and actor queries."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "UGameplayStatics"
+    GetGameMode = _StaticFunction("UGameplayStatics", "GetGameMode", "AGameModeBase | None")
+    GetPlayerController = _StaticFunction("UGameplayStatics", "GetPlayerController", "APlayerController | None")
+    GetPlayerPawn = _StaticFunction("UGameplayStatics", "GetPlayerPawn", "APawn | None")
+    GetPlayerControllerID = _StaticFunction("UGameplayStatics", "GetPlayerControllerID", "int")
+    GetNumPlayerControllers = _StaticFunction("UGameplayStatics", "GetNumPlayerControllers", "int")
+    CreatePlayer = _StaticFunction("UGameplayStatics", "CreatePlayer", "APlayerController | None")
+    GetAllActorsOfClass = _StaticFunction("UGameplayStatics", "GetAllActorsOfClass", "list[AActor]")
+    GetActorOfClass = _StaticFunction("UGameplayStatics", "GetActorOfClass", "AActor | None")
+    GetAllActorsWithTag = _StaticFunction("UGameplayStatics", "GetAllActorsWithTag", "list[AActor]")
 
 
 class UInputComponentAsync(UActorComponentAsync):

@@ -14,11 +14,18 @@ from spear._object import SpObject as _SpObject
 from spear.futures import Future
 
 __all__ = [
+    "AAIController",
     "AActor",
     "ACameraSensorActor",
+    "AController",
+    "ADefaultPawn",
     "ADirectionalLight",
+    "AGameModeBase",
     "AMaterialLibrary",
     "AMultiViewCameraRig",
+    "APawn",
+    "APlayerController",
+    "APlayerStart",
     "APointLight",
     "ASimpleVehicle",
     "ASkyLight",
@@ -45,6 +52,7 @@ __all__ = [
     "UActorComponent",
     "UCameraSensorComponent",
     "UDirectionalLightComponent",
+    "UGameplayStatics",
     "UInputComponent",
     "ULightComponent",
     "UObject",
@@ -484,6 +492,98 @@ class AActor(UObject):
     def GetComponentByClass(self, *, ComponentClass: str) -> UActorComponent | None: ...
 
 
+class AControllerAsync(AActorAsync):
+    """AController's functions, called asynchronously: each returns a Future."""
+
+    def Possess(self, *, InPawn: APawn) -> Future[None]: ...
+
+    def UnPossess(self) -> Future[None]: ...
+
+    def K2_GetPawn(self) -> Future[APawn | None]: ...
+
+    def GetControlRotation(self) -> Future[FRotator]: ...
+
+    def SetControlRotation(self, *, NewRotation: FRotator) -> Future[None]: ...
+
+    def IsPlayerController(self) -> Future[bool]: ...
+
+
+class AControllerSend(AActorSend):
+    """AController's functions, sent without waiting for a result (fire and forget)."""
+
+    def Possess(self, *, InPawn: APawn) -> None: ...
+
+    def UnPossess(self) -> None: ...
+
+    def K2_GetPawn(self) -> None: ...
+
+    def GetControlRotation(self) -> None: ...
+
+    def SetControlRotation(self, *, NewRotation: FRotator) -> None: ...
+
+    def IsPlayerController(self) -> None: ...
+
+
+class AController(AActor):
+    """An actor that possesses and directs a pawn."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> AControllerAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> AControllerSend:
+        """The same functions, fire and forget."""
+
+    def Possess(self, *, InPawn: APawn) -> None:
+        """Takes control of InPawn (releasing this controller's previous pawn, and taking InPawn from its
+        previous controller); the control rotation becomes the pawn's rotation.
+        """
+
+    def UnPossess(self) -> None:
+        """Releases the possessed pawn, if any."""
+
+    def K2_GetPawn(self) -> APawn | None:
+        """Returns the possessed pawn, or None."""
+
+    def GetControlRotation(self) -> FRotator:
+        """Returns the control rotation."""
+
+    def SetControlRotation(self, *, NewRotation: FRotator) -> None:
+        """Sets the control rotation (the possessed pawn follows it on the axes its bUseControllerRotation*
+        flags name, from its next tick).
+        """
+
+    def IsPlayerController(self) -> bool:
+        """Returns true for a player's controller."""
+
+
+class AAIControllerAsync(AControllerAsync):
+    """AAIController's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class AAIControllerSend(AControllerSend):
+    """AAIController's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
+class AAIController(AController):
+    """A controller for non-player pawns, directed from code."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> AAIControllerAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> AAIControllerSend:
+        """The same functions, fire and forget."""
+
+
 class ACameraSensorActorAsync(AActorAsync):
     """ACameraSensorActor's functions, called asynchronously: each returns a Future."""
     ...
@@ -512,6 +612,145 @@ class ACameraSensorActor(AActor):
         """The camera (also the root component); it looks along the actor's forward axis."""
 
 
+class APawnAsync(AActorAsync):
+    """APawn's functions, called asynchronously: each returns a Future."""
+
+    def GetController(self) -> Future[AController | None]: ...
+
+    def IsControlled(self) -> Future[bool]: ...
+
+    def IsPlayerControlled(self) -> Future[bool]: ...
+
+    def GetControlRotation(self) -> Future[FRotator]: ...
+
+    def AddMovementInput(self, *, WorldDirection: FVector, ScaleValue: float = 1.0) -> Future[None]: ...
+
+    def GetPendingMovementInputVector(self) -> Future[FVector]: ...
+
+
+class APawnSend(AActorSend):
+    """APawn's functions, sent without waiting for a result (fire and forget)."""
+
+    def GetController(self) -> None: ...
+
+    def IsControlled(self) -> None: ...
+
+    def IsPlayerControlled(self) -> None: ...
+
+    def GetControlRotation(self) -> None: ...
+
+    def AddMovementInput(self, *, WorldDirection: FVector, ScaleValue: float = 1.0) -> None: ...
+
+    def GetPendingMovementInputVector(self) -> None: ...
+
+
+class APawn(AActor):
+    """An actor that a controller can possess."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> APawnAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> APawnSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def bUseControllerRotationPitch(self) -> bool:
+        """Whether the pawn's pitch follows its controller's control rotation each tick."""
+
+    @bUseControllerRotationPitch.setter
+    def bUseControllerRotationPitch(self, value: bool) -> None: ...
+
+    @property
+    def bUseControllerRotationYaw(self) -> bool:
+        """Whether the pawn's yaw follows its controller's control rotation each tick."""
+
+    @bUseControllerRotationYaw.setter
+    def bUseControllerRotationYaw(self, value: bool) -> None: ...
+
+    @property
+    def bUseControllerRotationRoll(self) -> bool:
+        """Whether the pawn's roll follows its controller's control rotation each tick."""
+
+    @bUseControllerRotationRoll.setter
+    def bUseControllerRotationRoll(self, value: bool) -> None: ...
+
+    def GetController(self) -> AController | None:
+        """Returns the controller that possesses this pawn, or None."""
+
+    def IsControlled(self) -> bool:
+        """Returns true while a controller possesses this pawn."""
+
+    def IsPlayerControlled(self) -> bool:
+        """Returns true while a player controller possesses this pawn."""
+
+    def GetControlRotation(self) -> FRotator:
+        """Returns the controller's control rotation, or the pawn's own rotation when it has no controller."""
+
+    def AddMovementInput(self, *, WorldDirection: FVector, ScaleValue: float = 1.0) -> None:
+        """Adds movement along WorldDirection, scaled by ScaleValue, for the pawn's next tick (the inputs of one
+        tick add up; a pawn that moves itself, such as ADefaultPawn, consumes them).
+        """
+
+    def GetPendingMovementInputVector(self) -> FVector:
+        """Returns the movement input added since the pawn last moved."""
+
+
+class ADefaultPawnAsync(APawnAsync):
+    """ADefaultPawn's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class ADefaultPawnSend(APawnSend):
+    """ADefaultPawn's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
+class ADefaultPawn(APawn):
+    """A pawn that flies along its control rotation from the "MoveForward", "MoveRight" and "MoveUp" input
+    actions (X in [-1, 1]) and AddMovementInput, and turns its controller's view with "Turn" and "LookUp".
+    It has no collision body: it passes through geometry, like UE's DefaultPawn with collision off.
+    """
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> ADefaultPawnAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> ADefaultPawnSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def InputComponent(self) -> UInputComponent:
+        """Receives the injected actions (from inject_input_for_actor on the pawn or its controller)."""
+
+    @property
+    def MaxSpeed(self) -> float:
+        """Speed in metres per second at full input."""
+
+    @MaxSpeed.setter
+    def MaxSpeed(self, value: float) -> None: ...
+
+    @property
+    def BaseTurnRate(self) -> float:
+        """Degrees per second of yaw at "Turn" = 1."""
+
+    @BaseTurnRate.setter
+    def BaseTurnRate(self, value: float) -> None: ...
+
+    @property
+    def BaseLookUpRate(self) -> float:
+        """Degrees per second of pitch at "LookUp" = 1."""
+
+    @BaseLookUpRate.setter
+    def BaseLookUpRate(self, value: float) -> None: ...
+
+
 class ADirectionalLightAsync(AActorAsync):
     """ADirectionalLight's functions, called asynchronously: each returns a Future."""
     ...
@@ -538,6 +777,76 @@ class ADirectionalLight(AActor):
     @property
     def LightComponent(self) -> UDirectionalLightComponent:
         """The light (also the root component)."""
+
+
+class AGameModeBaseAsync(AActorAsync):
+    """AGameModeBase's functions, called asynchronously: each returns a Future."""
+
+    def FindPlayerStart(self, *, Player: AController, IncomingName: str = "") -> Future[AActor | None]: ...
+
+    def RestartPlayer(self, *, NewPlayer: AController) -> Future[None]: ...
+
+    def GetNumPlayers(self) -> Future[int]: ...
+
+    def SwapPlayerControllers(self, *, OldPC: APlayerController, NewPC: APlayerController) -> Future[None]: ...
+
+
+class AGameModeBaseSend(AActorSend):
+    """AGameModeBase's functions, sent without waiting for a result (fire and forget)."""
+
+    def FindPlayerStart(self, *, Player: AController, IncomingName: str = "") -> None: ...
+
+    def RestartPlayer(self, *, NewPlayer: AController) -> None: ...
+
+    def GetNumPlayers(self) -> None: ...
+
+    def SwapPlayerControllers(self, *, OldPC: APlayerController, NewPC: APlayerController) -> None: ...
+
+
+class AGameModeBase(AActor):
+    """The rules of a game world: which classes its players get, and where they start."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> AGameModeBaseAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> AGameModeBaseSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def DefaultPawnClass(self) -> type[APawn] | None:
+        """The class of the pawn each player starts with."""
+
+    @DefaultPawnClass.setter
+    def DefaultPawnClass(self, value: type[APawn] | None) -> None: ...
+
+    @property
+    def PlayerControllerClass(self) -> type[APlayerController] | None:
+        """The class of each player's controller."""
+
+    @PlayerControllerClass.setter
+    def PlayerControllerClass(self, value: type[APlayerController] | None) -> None: ...
+
+    def FindPlayerStart(self, *, Player: AController, IncomingName: str = "") -> AActor | None:
+        """Returns the player start for Player: the first whose PlayerStartTag is IncomingName when that is not
+        empty, else the first in the world, or None when the world has none.
+        """
+
+    def RestartPlayer(self, *, NewPlayer: AController) -> None:
+        """Starts NewPlayer: spawns a DefaultPawnClass pawn for it when it has none, moves the pawn to its player
+        start (the world origin when there is none) and possesses it.
+        """
+
+    def GetNumPlayers(self) -> int:
+        """Returns the number of players (player controllers with a player index)."""
+
+    def SwapPlayerControllers(self, *, OldPC: APlayerController, NewPC: APlayerController) -> None:
+        """Moves OldPC's player to NewPC: NewPC takes OldPC's player index, pawn and view target, and OldPC is
+        left without a player (destroy it, or keep it as a spectator controller).
+        """
 
 
 class AMaterialLibraryAsync(AActorAsync):
@@ -634,6 +943,109 @@ class AMultiViewCameraRig(AActor):
 
     def ConfigureCameras(self, *, Width: int, Height: int, Modalities: list[ECameraModality]) -> None:
         """Sets Width, Height and Modalities of every camera of the ring."""
+
+
+class APlayerControllerAsync(AControllerAsync):
+    """APlayerController's functions, called asynchronously: each returns a Future."""
+
+    def GetViewTarget(self) -> Future[AActor | None]: ...
+
+    def SetViewTargetWithBlend(self, *, NewViewTarget: AActor, BlendTime: float = 0.0) -> Future[None]: ...
+
+    def GetPlayerViewPoint(self) -> Future[APlayerController.GetPlayerViewPointResult]: ...
+
+    def AddYawInput(self, *, Val: float) -> Future[None]: ...
+
+    def AddPitchInput(self, *, Val: float) -> Future[None]: ...
+
+    def AddRollInput(self, *, Val: float) -> Future[None]: ...
+
+
+class APlayerControllerSend(AControllerSend):
+    """APlayerController's functions, sent without waiting for a result (fire and forget)."""
+
+    def GetViewTarget(self) -> None: ...
+
+    def SetViewTargetWithBlend(self, *, NewViewTarget: AActor, BlendTime: float = 0.0) -> None: ...
+
+    def GetPlayerViewPoint(self) -> None: ...
+
+    def AddYawInput(self, *, Val: float) -> None: ...
+
+    def AddPitchInput(self, *, Val: float) -> None: ...
+
+    def AddRollInput(self, *, Val: float) -> None: ...
+
+
+class APlayerController(AController):
+    """A player's controller: a player index, a view target, and the player's input for its pawn."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> APlayerControllerAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> APlayerControllerSend:
+        """The same functions, fire and forget."""
+
+    def GetViewTarget(self) -> AActor | None:
+        """Returns the actor the player views the world from: the set view target, else the pawn, else this
+        controller.
+        """
+
+    def SetViewTargetWithBlend(self, *, NewViewTarget: AActor, BlendTime: float = 0.0) -> None:
+        """Makes NewViewTarget the player's view target (None: the pawn). BlendTime is accepted for UE
+        compatibility; the view changes at once.
+        """
+
+    class GetPlayerViewPointResult(NamedTuple):
+        Location: FVector
+        Rotation: FRotator
+
+    def GetPlayerViewPoint(self) -> APlayerController.GetPlayerViewPointResult:
+        """Returns the player's view point: the view target's location and the control rotation."""
+
+    def AddYawInput(self, *, Val: float) -> None:
+        """Adds Val degrees of yaw to the control rotation."""
+
+    def AddPitchInput(self, *, Val: float) -> None:
+        """Adds Val degrees of pitch to the control rotation, keeping pitch within [-89, 89]."""
+
+    def AddRollInput(self, *, Val: float) -> None:
+        """Adds Val degrees of roll to the control rotation."""
+
+
+class APlayerStartAsync(AActorAsync):
+    """APlayerStart's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class APlayerStartSend(AActorSend):
+    """APlayerStart's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
+class APlayerStart(AActor):
+    """Where a player starts."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> APlayerStartAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> APlayerStartSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def PlayerStartTag(self) -> str:
+        """Chooses this start by name (AGameModeBase.FindPlayerStart's IncomingName)."""
+
+    @PlayerStartTag.setter
+    def PlayerStartTag(self, value: str) -> None: ...
 
 
 class APointLightAsync(AActorAsync):
@@ -1386,6 +1798,119 @@ class UDirectionalLightComponent(ULightComponent):
     @property
     def send_async(self) -> UDirectionalLightComponentSend:
         """The same functions, fire and forget."""
+
+
+class UGameplayStaticsAsync(UObjectAsync):
+    """UGameplayStatics's functions, called asynchronously: each returns a Future."""
+
+    def GetGameMode(self, *, WorldContextObject: UObject) -> Future[AGameModeBase | None]: ...
+
+    def GetPlayerController(self, *, WorldContextObject: UObject, PlayerIndex: int) -> Future[APlayerController | None]: ...
+
+    def GetPlayerPawn(self, *, WorldContextObject: UObject, PlayerIndex: int) -> Future[APawn | None]: ...
+
+    def GetPlayerControllerID(self, *, Player: APlayerController) -> Future[int]: ...
+
+    def GetNumPlayerControllers(self, *, WorldContextObject: UObject) -> Future[int]: ...
+
+    def CreatePlayer(self, *, WorldContextObject: UObject, ControllerId: int = -1, bSpawnPlayerController: bool = True) -> Future[APlayerController | None]: ...
+
+    @overload
+    def GetAllActorsOfClass(self, *, WorldContextObject: UObject, ActorClass: type[_AActorT]) -> Future[list[_AActorT]]: ...
+
+    @overload
+    def GetAllActorsOfClass(self, *, WorldContextObject: UObject, ActorClass: str) -> Future[list[AActor]]: ...
+
+    @overload
+    def GetActorOfClass(self, *, WorldContextObject: UObject, ActorClass: type[_AActorT]) -> Future[_AActorT | None]: ...
+
+    @overload
+    def GetActorOfClass(self, *, WorldContextObject: UObject, ActorClass: str) -> Future[AActor | None]: ...
+
+    def GetAllActorsWithTag(self, *, WorldContextObject: UObject, Tag: str) -> Future[list[AActor]]: ...
+
+
+class UGameplayStaticsSend(UObjectSend):
+    """UGameplayStatics's functions, sent without waiting for a result (fire and forget)."""
+
+    def GetGameMode(self, *, WorldContextObject: UObject) -> None: ...
+
+    def GetPlayerController(self, *, WorldContextObject: UObject, PlayerIndex: int) -> None: ...
+
+    def GetPlayerPawn(self, *, WorldContextObject: UObject, PlayerIndex: int) -> None: ...
+
+    def GetPlayerControllerID(self, *, Player: APlayerController) -> None: ...
+
+    def GetNumPlayerControllers(self, *, WorldContextObject: UObject) -> None: ...
+
+    def CreatePlayer(self, *, WorldContextObject: UObject, ControllerId: int = -1, bSpawnPlayerController: bool = True) -> None: ...
+
+    def GetAllActorsOfClass(self, *, WorldContextObject: UObject, ActorClass: type[AActor] | str) -> None: ...
+
+    def GetActorOfClass(self, *, WorldContextObject: UObject, ActorClass: type[AActor] | str) -> None: ...
+
+    def GetAllActorsWithTag(self, *, WorldContextObject: UObject, Tag: str) -> None: ...
+
+
+class UGameplayStatics(UObject):
+    """Static functions for games: the game mode, players, and actor queries."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UGameplayStaticsAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UGameplayStaticsSend:
+        """The same functions, fire and forget."""
+
+    @staticmethod
+    def GetGameMode(*, WorldContextObject: UObject) -> AGameModeBase | None:
+        """Returns the game mode of WorldContextObject's world (None in an editor world)."""
+
+    @staticmethod
+    def GetPlayerController(*, WorldContextObject: UObject, PlayerIndex: int) -> APlayerController | None:
+        """Returns the controller of player PlayerIndex, or None."""
+
+    @staticmethod
+    def GetPlayerPawn(*, WorldContextObject: UObject, PlayerIndex: int) -> APawn | None:
+        """Returns the pawn of player PlayerIndex, or None."""
+
+    @staticmethod
+    def GetPlayerControllerID(*, Player: APlayerController) -> int:
+        """Returns the player index that Player serves, or -1 when it serves none."""
+
+    @staticmethod
+    def GetNumPlayerControllers(*, WorldContextObject: UObject) -> int:
+        """Returns the number of player controllers with a player."""
+
+    @staticmethod
+    def CreatePlayer(*, WorldContextObject: UObject, ControllerId: int = -1, bSpawnPlayerController: bool = True) -> APlayerController | None:
+        """Creates player ControllerId (-1: the next free index) with a new player controller, started with a
+        pawn as the game mode starts players; returns its controller. bSpawnPlayerController is accepted for
+        UE compatibility and must be true.
+        """
+
+    @overload
+    @staticmethod
+    def GetAllActorsOfClass(*, WorldContextObject: UObject, ActorClass: type[_AActorT]) -> list[_AActorT]: ...
+
+    @overload
+    @staticmethod
+    def GetAllActorsOfClass(*, WorldContextObject: UObject, ActorClass: str) -> list[AActor]: ...
+
+    @overload
+    @staticmethod
+    def GetActorOfClass(*, WorldContextObject: UObject, ActorClass: type[_AActorT]) -> _AActorT | None: ...
+
+    @overload
+    @staticmethod
+    def GetActorOfClass(*, WorldContextObject: UObject, ActorClass: str) -> AActor | None: ...
+
+    @staticmethod
+    def GetAllActorsWithTag(*, WorldContextObject: UObject, Tag: str) -> list[AActor]:
+        """Returns every actor that has Tag, in spawn order."""
 
 
 class UInputComponentAsync(UActorComponentAsync):

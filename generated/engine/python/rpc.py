@@ -113,6 +113,38 @@ class AActor(UObject, api.AActor):
 _register_proxy(AActor)
 
 
+class AController(AActor, api.AController):
+    __slots__ = ()
+
+    def Possess(self, *, InPawn: api.APawn) -> None:
+        self._sp_call("AController", "Possess", {"InPawn": InPawn}, "None")
+
+    def UnPossess(self) -> None:
+        self._sp_call("AController", "UnPossess", {}, "None")
+
+    def K2_GetPawn(self) -> api.APawn | None:
+        return cast("api.APawn | None", self._sp_call("AController", "K2_GetPawn", {}, "APawn | None"))
+
+    def GetControlRotation(self) -> FRotator:
+        return cast("FRotator", self._sp_call("AController", "GetControlRotation", {}, "FRotator"))
+
+    def SetControlRotation(self, *, NewRotation: FRotator) -> None:
+        self._sp_call("AController", "SetControlRotation", {"NewRotation": NewRotation}, "None")
+
+    def IsPlayerController(self) -> bool:
+        return cast("bool", self._sp_call("AController", "IsPlayerController", {}, "bool"))
+
+
+_register_proxy(AController)
+
+
+class AAIController(AController, api.AAIController):
+    __slots__ = ()
+
+
+_register_proxy(AAIController)
+
+
 class ACameraSensorActor(AActor, api.ACameraSensorActor):
     __slots__ = ()
 
@@ -124,6 +156,90 @@ class ACameraSensorActor(AActor, api.ACameraSensorActor):
 _register_proxy(ACameraSensorActor)
 
 
+class APawn(AActor, api.APawn):
+    __slots__ = ()
+
+    @property
+    def bUseControllerRotationPitch(self) -> bool:
+        return cast("bool", self._sp_get("APawn", "bUseControllerRotationPitch", "bool"))
+
+    @bUseControllerRotationPitch.setter
+    def bUseControllerRotationPitch(self, value: bool) -> None:
+        self._sp_set("APawn", "bUseControllerRotationPitch", value)
+
+    @property
+    def bUseControllerRotationYaw(self) -> bool:
+        return cast("bool", self._sp_get("APawn", "bUseControllerRotationYaw", "bool"))
+
+    @bUseControllerRotationYaw.setter
+    def bUseControllerRotationYaw(self, value: bool) -> None:
+        self._sp_set("APawn", "bUseControllerRotationYaw", value)
+
+    @property
+    def bUseControllerRotationRoll(self) -> bool:
+        return cast("bool", self._sp_get("APawn", "bUseControllerRotationRoll", "bool"))
+
+    @bUseControllerRotationRoll.setter
+    def bUseControllerRotationRoll(self, value: bool) -> None:
+        self._sp_set("APawn", "bUseControllerRotationRoll", value)
+
+    def GetController(self) -> api.AController | None:
+        return cast("api.AController | None", self._sp_call("APawn", "GetController", {}, "AController | None"))
+
+    def IsControlled(self) -> bool:
+        return cast("bool", self._sp_call("APawn", "IsControlled", {}, "bool"))
+
+    def IsPlayerControlled(self) -> bool:
+        return cast("bool", self._sp_call("APawn", "IsPlayerControlled", {}, "bool"))
+
+    def GetControlRotation(self) -> FRotator:
+        return cast("FRotator", self._sp_call("APawn", "GetControlRotation", {}, "FRotator"))
+
+    def AddMovementInput(self, *, WorldDirection: FVector, ScaleValue: float = _DEFAULT) -> None:
+        self._sp_call("APawn", "AddMovementInput", {"WorldDirection": WorldDirection, "ScaleValue": ScaleValue}, "None")
+
+    def GetPendingMovementInputVector(self) -> FVector:
+        return cast("FVector", self._sp_call("APawn", "GetPendingMovementInputVector", {}, "FVector"))
+
+
+_register_proxy(APawn)
+
+
+class ADefaultPawn(APawn, api.ADefaultPawn):
+    __slots__ = ()
+
+    @property
+    def InputComponent(self) -> api.UInputComponent:
+        return cast("api.UInputComponent", self._sp_get("ADefaultPawn", "InputComponent", "UInputComponent"))
+
+    @property
+    def MaxSpeed(self) -> float:
+        return cast("float", self._sp_get("ADefaultPawn", "MaxSpeed", "float"))
+
+    @MaxSpeed.setter
+    def MaxSpeed(self, value: float) -> None:
+        self._sp_set("ADefaultPawn", "MaxSpeed", value)
+
+    @property
+    def BaseTurnRate(self) -> float:
+        return cast("float", self._sp_get("ADefaultPawn", "BaseTurnRate", "float"))
+
+    @BaseTurnRate.setter
+    def BaseTurnRate(self, value: float) -> None:
+        self._sp_set("ADefaultPawn", "BaseTurnRate", value)
+
+    @property
+    def BaseLookUpRate(self) -> float:
+        return cast("float", self._sp_get("ADefaultPawn", "BaseLookUpRate", "float"))
+
+    @BaseLookUpRate.setter
+    def BaseLookUpRate(self, value: float) -> None:
+        self._sp_set("ADefaultPawn", "BaseLookUpRate", value)
+
+
+_register_proxy(ADefaultPawn)
+
+
 class ADirectionalLight(AActor, api.ADirectionalLight):
     __slots__ = ()
 
@@ -133,6 +249,41 @@ class ADirectionalLight(AActor, api.ADirectionalLight):
 
 
 _register_proxy(ADirectionalLight)
+
+
+class AGameModeBase(AActor, api.AGameModeBase):
+    __slots__ = ()
+
+    @property
+    def DefaultPawnClass(self) -> type[api.APawn] | None:
+        return cast("type[api.APawn] | None", self._sp_get("AGameModeBase", "DefaultPawnClass", "type[APawn] | None"))
+
+    @DefaultPawnClass.setter
+    def DefaultPawnClass(self, value: type[api.APawn] | None) -> None:
+        self._sp_set("AGameModeBase", "DefaultPawnClass", value)
+
+    @property
+    def PlayerControllerClass(self) -> type[api.APlayerController] | None:
+        return cast("type[api.APlayerController] | None", self._sp_get("AGameModeBase", "PlayerControllerClass", "type[APlayerController] | None"))
+
+    @PlayerControllerClass.setter
+    def PlayerControllerClass(self, value: type[api.APlayerController] | None) -> None:
+        self._sp_set("AGameModeBase", "PlayerControllerClass", value)
+
+    def FindPlayerStart(self, *, Player: api.AController, IncomingName: str = _DEFAULT) -> api.AActor | None:
+        return cast("api.AActor | None", self._sp_call("AGameModeBase", "FindPlayerStart", {"Player": Player, "IncomingName": IncomingName}, "AActor | None"))
+
+    def RestartPlayer(self, *, NewPlayer: api.AController) -> None:
+        self._sp_call("AGameModeBase", "RestartPlayer", {"NewPlayer": NewPlayer}, "None")
+
+    def GetNumPlayers(self) -> int:
+        return cast("int", self._sp_call("AGameModeBase", "GetNumPlayers", {}, "int"))
+
+    def SwapPlayerControllers(self, *, OldPC: api.APlayerController, NewPC: api.APlayerController) -> None:
+        self._sp_call("AGameModeBase", "SwapPlayerControllers", {"OldPC": OldPC, "NewPC": NewPC}, "None")
+
+
+_register_proxy(AGameModeBase)
 
 
 class AMaterialLibrary(AActor, api.AMaterialLibrary):
@@ -178,6 +329,46 @@ class AMultiViewCameraRig(AActor, api.AMultiViewCameraRig):
 
 
 _register_proxy(AMultiViewCameraRig)
+
+
+class APlayerController(AController, api.APlayerController):
+    __slots__ = ()
+
+    def GetViewTarget(self) -> api.AActor | None:
+        return cast("api.AActor | None", self._sp_call("APlayerController", "GetViewTarget", {}, "AActor | None"))
+
+    def SetViewTargetWithBlend(self, *, NewViewTarget: api.AActor, BlendTime: float = _DEFAULT) -> None:
+        self._sp_call("APlayerController", "SetViewTargetWithBlend", {"NewViewTarget": NewViewTarget, "BlendTime": BlendTime}, "None")
+
+    def GetPlayerViewPoint(self) -> api.APlayerController.GetPlayerViewPointResult:
+        return cast("api.APlayerController.GetPlayerViewPointResult", self._sp_call("APlayerController", "GetPlayerViewPoint", {}, "dict", api.APlayerController.GetPlayerViewPointResult))
+
+    def AddYawInput(self, *, Val: float) -> None:
+        self._sp_call("APlayerController", "AddYawInput", {"Val": Val}, "None")
+
+    def AddPitchInput(self, *, Val: float) -> None:
+        self._sp_call("APlayerController", "AddPitchInput", {"Val": Val}, "None")
+
+    def AddRollInput(self, *, Val: float) -> None:
+        self._sp_call("APlayerController", "AddRollInput", {"Val": Val}, "None")
+
+
+_register_proxy(APlayerController)
+
+
+class APlayerStart(AActor, api.APlayerStart):
+    __slots__ = ()
+
+    @property
+    def PlayerStartTag(self) -> str:
+        return cast("str", self._sp_get("APlayerStart", "PlayerStartTag", "str"))
+
+    @PlayerStartTag.setter
+    def PlayerStartTag(self, value: str) -> None:
+        self._sp_set("APlayerStart", "PlayerStartTag", value)
+
+
+_register_proxy(APlayerStart)
 
 
 class APointLight(AActor, api.APointLight):
@@ -602,6 +793,13 @@ class UDirectionalLightComponent(ULightComponent, api.UDirectionalLightComponent
 
 
 _register_proxy(UDirectionalLightComponent)
+
+
+class UGameplayStatics(UObject, api.UGameplayStatics):
+    __slots__ = ()
+
+
+_register_proxy(UGameplayStatics)
 
 
 class UInputComponent(UActorComponent, api.UInputComponent):

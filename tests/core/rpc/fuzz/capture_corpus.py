@@ -1,6 +1,6 @@
 """Captures the seed corpus of spear_rpc_fuzz: the request bodies a typical client session sends to a
-launched spear-server (hello, frames, spawning, properties, calls, batches, arrays, camera reads, describe,
-scene save and load), one file per request, in the order sent.
+launched spear-server (hello, frames, spawning, properties, calls, static calls, batches, arrays, camera reads,
+describe, scene save and load), one file per request, in the order sent.
 
     PYTHONPATH=python /usr/bin/python3 tests/core/rpc/fuzz/capture_corpus.py tests/core/rpc/fuzz/corpus
 
@@ -68,6 +68,11 @@ def main(out: Path) -> int:
         found = game.find_actor_by_name(name="Box")
         assert found is not None
         found.SetActorScale3D(NewScale3D=spear.FVector(1.0, 1.0, 2.0))
+        # Static functions: requests that name a class instead of an object.
+        player = spear.UGameplayStatics.GetPlayerController(WorldContextObject=game, PlayerIndex=0)
+        assert player is not None
+        player.SetControlRotation(NewRotation=spear.FRotator(Pitch=0.0, Yaw=45.0, Roll=0.0))
+        spear.UGameplayStatics.GetAllActorsOfClass(WorldContextObject=game, ActorClass=spear.APawn)
     with instance.end_frame():
         pass
     connection: Any = instance._backend  # the dynamic API and the transport's diagnostics, by hand

@@ -102,7 +102,7 @@ void spear_bind_all_types(py::module_& m) {
             "SetSpeed",
             [](const Ref<Self>& self, Bridge<double>::Py NewSpeed) -> py::object {
                 static constexpr const char* kContext = "AAllTypes.SetSpeed()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NewSpeedValue = Bridge<double>::in(std::move(NewSpeed), "AAllTypes.SetSpeed(): argument 'NewSpeed'");
                 object->SetSpeed(NewSpeedValue);
                 return py::none();
@@ -114,7 +114,7 @@ Self* object = self.get<Self>(kContext);
             "Scale",
             [](const Ref<Self>& self, Bridge<FSample>::Py Sample, Bridge<double>::Py Factor, Bridge<EChannel>::Py Channel) -> py::object {
                 static constexpr const char* kContext = "AAllTypes.Scale()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto SampleValue = Bridge<FSample>::in(std::move(Sample), "AAllTypes.Scale(): argument 'Sample'");
                 auto FactorValue = Bridge<double>::in(std::move(Factor), "AAllTypes.Scale(): argument 'Factor'");
                 auto ChannelValue = Bridge<EChannel>::in(std::move(Channel), "AAllTypes.Scale(): argument 'Channel'");
@@ -131,7 +131,7 @@ const Self* object = self.get<Self>(kContext);
             "Split",
             [](const Ref<Self>& self, Bridge<std::string>::Py Text) -> py::object {
                 static constexpr const char* kContext = "AAllTypes.Split()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto TextValue = Bridge<std::string>::in(std::move(Text), "AAllTypes.Split(): argument 'Text'");
                 std::string HeadOut{};
                 std::vector<std::string> RestOut{};
@@ -146,7 +146,7 @@ Self* object = self.get<Self>(kContext);
             "Collect",
             [](const Ref<Self>& self, Bridge<TSubclassOf<AActor>>::Py ActorClass, Bridge<std::vector<AActor*>>::Py Candidates) -> py::object {
                 static constexpr const char* kContext = "AAllTypes.Collect()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto ActorClassValue = Bridge<TSubclassOf<AActor>>::in(std::move(ActorClass), "AAllTypes.Collect(): argument 'ActorClass'");
                 SP_CHECK(ActorClassValue, sp::InvalidArgument, "AAllTypes.Collect(): argument 'ActorClass'", " must not be None");
                 auto CandidatesValue = Bridge<std::vector<AActor*>>::in(std::move(Candidates), "AAllTypes.Collect(): argument 'Candidates'");
@@ -161,7 +161,7 @@ Self* object = self.get<Self>(kContext);
             "ClassOf",
             [](const Ref<Self>& self, Bridge<UObject*>::Py Object) -> py::object {
                 static constexpr const char* kContext = "AAllTypes.ClassOf()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto ObjectValue = Bridge<UObject*>::in(std::move(Object), "AAllTypes.ClassOf(): argument 'Object'");
                 auto result = object->ClassOf(ObjectValue);
                 return Bridge<const UClass*>::out(result);
@@ -173,7 +173,7 @@ const Self* object = self.get<Self>(kContext);
             "Normalise",
             [](const Ref<Self>& self, Bridge<sp::reflect::SpArray<float>>::Py Points) -> py::object {
                 static constexpr const char* kContext = "AAllTypes.Normalise()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto PointsValue = Bridge<sp::reflect::SpArray<float>>::in(std::move(Points), "AAllTypes.Normalise(): argument 'Points'");
                 auto result = object->Normalise(PointsValue);
                 return Bridge<sp::reflect::SpArray<float>>::out(result);
@@ -181,11 +181,11 @@ Self* object = self.get<Self>(kContext);
             py::kw_only(),
             py::arg("Points"),
             "Normalises points (N, 3) in place and returns their lengths (N,).");
-        cls.def(
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
             "Histogram",
-            [](const Ref<Self>& self, Bridge<sp::reflect::SpArray<uint8_t>>::Py Bytes, Bridge<int32_t>::Py Bins) -> py::object {
-                static constexpr const char* kContext = "AAllTypes.Histogram()";
-                (void)self;
+            [](Bridge<sp::reflect::SpArray<uint8_t>>::Py Bytes, Bridge<int32_t>::Py Bins) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "AAllTypes.Histogram()";
                 auto BytesValue = Bridge<sp::reflect::SpArray<uint8_t>>::in(std::move(Bytes), "AAllTypes.Histogram(): argument 'Bytes'");
                 auto BinsValue = Bridge<int32_t>::in(std::move(Bins), "AAllTypes.Histogram(): argument 'Bins'");
                 auto result = Self::Histogram(BytesValue, BinsValue);
@@ -199,7 +199,7 @@ Self* object = self.get<Self>(kContext);
             "Render",
             [](const Ref<Self>& self, Bridge<std::vector<std::string>>::Py Names) -> py::object {
                 static constexpr const char* kContext = "AAllTypes.Render()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto NamesValue = Bridge<std::vector<std::string>>::in(std::move(Names), "AAllTypes.Render(): argument 'Names'");
                 auto result = object->Render(NamesValue);
                 sp::reflect::checkResultFields(result, kContext);
@@ -212,7 +212,7 @@ Self* object = self.get<Self>(kContext);
             "Measure",
             [](const Ref<Self>& self, Bridge<sp::reflect::SpArray<float>>::Py Points) -> py::object {
                 static constexpr const char* kContext = "AAllTypes.Measure()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto PointsValue = Bridge<sp::reflect::SpArray<float>>::in(std::move(Points), "AAllTypes.Measure(): argument 'Points'");
                 auto result = object->Measure(PointsValue);
                 sp::reflect::checkResultFields(result, kContext);
@@ -225,7 +225,7 @@ Self* object = self.get<Self>(kContext);
             "Self",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "AAllTypes.Self()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto result = object->Self();
                 sp::reflect::checkNotNull(result, kContext);
                 return Bridge<AActor*>::out(result);

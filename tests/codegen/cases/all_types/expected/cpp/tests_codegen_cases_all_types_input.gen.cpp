@@ -292,7 +292,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
                 sp::reflect::SpArray<uint8_t> Bytes = sp::reflect::decode<sp::reflect::SpArray<uint8_t>>(sp::reflect::requireArgument(args, "Bytes", kContext), "AAllTypes.Histogram(): argument 'Bytes'");
                 const sp::reflect::Value* BinsArg = sp::reflect::findArgument(args, "Bins");
                 int32_t Bins = BinsArg ? sp::reflect::decode<int32_t>(*BinsArg, "AAllTypes.Histogram(): argument 'Bins'") : int32_t(16);
-                auto result = AAllTypes::Histogram(Bytes, Bins);
+                auto result = Self::Histogram(Bytes, Bins);
                 return sp::reflect::encode(result);
             },
         });

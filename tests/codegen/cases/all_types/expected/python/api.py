@@ -16,6 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from spear._object import SpObject as _SpObject
+from spear._static import StaticFunction as _StaticFunction
 from spear._engine.api import AActor, AActorAsync, AActorSend, FVector, UObject
 
 __all__ = [
@@ -77,6 +78,7 @@ class AAllTypes(AActor):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "AAllTypes"
+    Histogram = _StaticFunction("AAllTypes", "Histogram", "dict[str, int]")
 
     class SplitResult(NamedTuple):
         ReturnValue: bool

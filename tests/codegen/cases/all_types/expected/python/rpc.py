@@ -122,9 +122,6 @@ class AAllTypes(_AActorProxy, api.AAllTypes):
     def Normalise(self, *, Points: NDArray[np.float32]) -> NDArray[np.float32]:
         return cast("NDArray[np.float32]", self._sp_call("AAllTypes", "Normalise", {"Points": Points}, "NDArray[np.float32]"))
 
-    def Histogram(self, *, Bytes: NDArray[np.uint8], Bins: int = _DEFAULT) -> Any:  # static in C++
-        return self._sp_call("AAllTypes", "Histogram", {"Bytes": Bytes, "Bins": Bins}, "dict[str, int]")
-
     def Render(self, *, Names: list[str]) -> FImages:
         return cast("FImages", self._sp_call("AAllTypes", "Render", {"Names": Names}, "FImages"))
 

@@ -50,7 +50,7 @@ void spear_bind_plugin_actor(py::module_& m) {
             "Offset",
             [](const Ref<Self>& self, Bridge<FVector>::Py Delta) -> py::object {
                 static constexpr const char* kContext = "APluginActor.Offset()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto DeltaValue = Bridge<FVector>::in(std::move(Delta), "APluginActor.Offset(): argument 'Delta'");
                 auto result = object->Offset(DeltaValue);
                 sp::reflect::checkResultFields(result, kContext);
@@ -63,7 +63,7 @@ const Self* object = self.get<Self>(kContext);
             "Neighbours",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "APluginActor.Neighbours()";
-const Self* object = self.get<Self>(kContext);
+                const Self* object = self.get<Self>(kContext);
                 auto result = object->Neighbours();
                 return Bridge<std::vector<AActor*>>::out(result);
             },
@@ -72,7 +72,7 @@ const Self* object = self.get<Self>(kContext);
             "SetMood",
             [](const Ref<Self>& self, Bridge<EPluginMood>::Py Mood) -> py::object {
                 static constexpr const char* kContext = "APluginActor.SetMood()";
-Self* object = self.get<Self>(kContext);
+                Self* object = self.get<Self>(kContext);
                 auto MoodValue = Bridge<EPluginMood>::in(std::move(Mood), "APluginActor.SetMood(): argument 'Mood'");
                 auto result = object->SetMood(MoodValue);
                 return Bridge<EPluginMood>::out(result);

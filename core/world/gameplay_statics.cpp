@@ -1,0 +1,88 @@
+#include "core/world/gameplay_statics.h"
+
+#include "core/world/object_access.h"
+#include "core/world/world.h"
+
+namespace {
+
+// The world a WorldContextObject names: the world itself or the world of an object in one.
+UWorld& worldOf(UObject* context, const char* function) {
+    SP_CHECK(context, sp::InvalidArgument, function, ": WorldContextObject is None");
+    sp::world::checkObjectAccess(*context, function);
+    auto* world = dynamic_cast<UWorld*>(context);
+    if (!world)
+        world = context->GetWorld();
+    SP_CHECK(world, sp::InvalidArgument, function, ": WorldContextObject ", context->GetDebugName(),
+             " is not in a world");
+    return *world;
+}
+
+} // namespace
+
+AGameModeBase* UGameplayStatics::GetGameMode(UObject* WorldContextObject) {
+    return sp::world::startGameFramework(worldOf(WorldContextObject, "UGameplayStatics.GetGameMode()"));
+}
+
+APlayerController* UGameplayStatics::GetPlayerController(UObject* WorldContextObject, int PlayerIndex) {
+    UWorld& world = worldOf(WorldContextObject, "UGameplayStatics.GetPlayerController()");
+    sp::world::startGameFramework(world);
+    return sp::world::findPlayerController(world, PlayerIndex);
+}
+
+APawn* UGameplayStatics::GetPlayerPawn(UObject* WorldContextObject, int PlayerIndex) {
+    UWorld& world = worldOf(WorldContextObject, "UGameplayStatics.GetPlayerPawn()");
+    sp::world::startGameFramework(world);
+    APlayerController* controller = sp::world::findPlayerController(world, PlayerIndex);
+    return controller ? controller->K2_GetPawn() : nullptr;
+}
+
+int UGameplayStatics::GetPlayerControllerID(APlayerController* Player) {
+    SP_CHECK(Player, sp::InvalidArgument, "UGameplayStatics.GetPlayerControllerID(): Player is None");
+    sp::world::checkObjectAccess(*Player, "UGameplayStatics.GetPlayerControllerID()");
+    return Player->GetPlayerIndex();
+}
+
+int UGameplayStatics::GetNumPlayerControllers(UObject* WorldContextObject) {
+    AGameModeBase* mode = sp::world::startGameFramework(
+        worldOf(WorldContextObject, "UGameplayStatics.GetNumPlayerControllers()"));
+    return mode ? mode->GetNumPlayers() : 0;
+}
+
+APlayerController* UGameplayStatics::CreatePlayer(UObject* WorldContextObject, int ControllerId,
+                                                  bool bSpawnPlayerController) {
+    constexpr const char* kContext = "UGameplayStatics.CreatePlayer()";
+    SP_CHECK(bSpawnPlayerController, sp::InvalidArgument, kContext,
+             ": bSpawnPlayerController=False is not supported (a player always has a controller here)");
+    SP_CHECK(ControllerId >= -1, sp::InvalidArgument, kContext, ": ControllerId ", ControllerId,
+             " must be -1 (the next free index) or a player index");
+    UWorld& world = worldOf(WorldContextObject, kContext);
+    AGameModeBase* mode = sp::world::startGameFramework(world);
+    SP_CHECK(mode, sp::InvalidState, kContext, ": an editor world has no players");
+    int index = ControllerId;
+    if (index < 0)
+        for (index = 0; sp::world::findPlayerController(world, index);)
+            ++index;
+    SP_CHECK(!sp::world::findPlayerController(world, index), sp::InvalidArgument, kContext, ": player ",
+             index, " exists already");
+    APlayerController* controller = mode->Login(index);
+    mode->RestartPlayer(controller);
+    return controller;
+}
+
+std::vector<AActor*> UGameplayStatics::GetAllActorsOfClass(UObject* WorldContextObject,
+                                                           TSubclassOf<AActor> ActorClass) {
+    constexpr const char* kContext = "UGameplayStatics.GetAllActorsOfClass()";
+    SP_CHECK(ActorClass, sp::InvalidArgument, kContext, ": ActorClass is None");
+    return worldOf(WorldContextObject, kContext).find_actors_by_class(ActorClass);
+}
+
+AActor* UGameplayStatics::GetActorOfClass(UObject* WorldContextObject, TSubclassOf<AActor> ActorClass) {
+    constexpr const char* kContext = "UGameplayStatics.GetActorOfClass()";
+    SP_CHECK(ActorClass, sp::InvalidArgument, kContext, ": ActorClass is None");
+    return worldOf(WorldContextObject, kContext).find_actor_by_class(ActorClass);
+}
+
+std::vector<AActor*> UGameplayStatics::GetAllActorsWithTag(UObject* WorldContextObject,
+                                                           const std::string& Tag) {
+    return worldOf(WorldContextObject, "UGameplayStatics.GetAllActorsWithTag()").find_actors_by_tag(Tag);
+}
