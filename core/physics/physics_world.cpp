@@ -12,6 +12,7 @@
 #include "core/physics/detail/bullet_convert.h"
 #include "core/physics/detail/format.h"
 #include "core/physics/detail/slot_table.h"
+#include "core/physics/detail/world_impl.h"
 
 namespace sp::physics {
 
@@ -48,100 +49,6 @@ void checkFriction(const char* function, double friction) {
 }
 
 } // namespace
-
-struct PhysicsWorld::Impl {
-    Settings settings;
-    // Bodies are declared first so that they outlive the world, whose destructor still reads them.
-    detail::SlotTable<BodyRecord> bodies;
-    std::unique_ptr<btDefaultCollisionConfiguration> configuration;
-    std::unique_ptr<btCollisionDispatcher> dispatcher;
-    std::unique_ptr<btDbvtBroadphase> broadphase;
-    std::unique_ptr<btSequentialImpulseConstraintSolver> solver;
-    std::unique_ptr<btDiscreteDynamicsWorld> world;
-    double accumulator = 0.0;
-    uint64_t substeps = 0;
-    // Bodies with a pending force or torque (may include removed ones, which are skipped).
-    std::vector<BodyId> pendingForces;
-
-    ~Impl() {
-        bodies.forEach([&](BodyId, BodyRecord& record) { world->removeRigidBody(record.body.get()); });
-    }
-
-    // Brings the Bullet body in line with the record's mobility, simulate flag and mass. Re-adding is
-    // how Bullet moves a body between the static and dynamic broadphase groups.
-    void applyMotionType(BodyRecord& record, bool inWorld) {
-        btRigidBody* body = record.body.get();
-        if (inWorld)
-            world->removeRigidBody(body);
-        int flags = body->getCollisionFlags() &
-                    ~(btCollisionObject::CF_STATIC_OBJECT | btCollisionObject::CF_KINEMATIC_OBJECT);
-        if (record.isSimulated()) {
-            btVector3 inertia(0, 0, 0);
-            record.shape.shape->calculateLocalInertia(record.mass, inertia);
-            body->setMassProps(record.mass, inertia);
-        } else {
-            body->setMassProps(0, btVector3(0, 0, 0));
-            body->setLinearVelocity(btVector3(0, 0, 0));
-            body->setAngularVelocity(btVector3(0, 0, 0));
-            flags |= record.mobility == Mobility::Static ? btCollisionObject::CF_STATIC_OBJECT
-                                                         : btCollisionObject::CF_KINEMATIC_OBJECT;
-        }
-        // setMassProps(0) marks the body static, so the flags are set after it.
-        body->setCollisionFlags(flags);
-        body->updateInertiaTensor();
-        body->setInterpolationWorldTransform(body->getWorldTransform());
-        if (record.mobility == Mobility::Movable && !record.simulate)
-            body->forceActivationState(DISABLE_DEACTIVATION); // Bullet's rule for kinematic bodies.
-        else
-            body->forceActivationState(ACTIVE_TAG);
-        body->setDeactivationTime(0);
-        world->addRigidBody(body);
-    }
-
-    // Wakes the bodies in contact with object, which would otherwise sleep on after it moved or vanished.
-    void wakeTouching(const btCollisionObject* object) {
-        btDispatcher* d = world->getDispatcher();
-        for (int i = 0; i < d->getNumManifolds(); ++i) {
-            const btPersistentManifold* manifold = d->getManifoldByIndexInternal(i);
-            const btCollisionObject* other = manifold->getBody0() == object   ? manifold->getBody1()
-                                             : manifold->getBody1() == object ? manifold->getBody0()
-                                                                              : nullptr;
-            if (other)
-                const_cast<btCollisionObject*>(other)->activate();
-        }
-    }
-
-    // The record of a simulated body; throws sp::InvalidState for static and kinematic bodies.
-    BodyRecord& simulated(BodyId id, const char* function) {
-        BodyRecord& record = bodies.get(id, function);
-        SP_CHECK(record.mobility != Mobility::Static, InvalidState, function, ": body ", id,
-                 " is static; set its mobility to Movable first");
-        SP_CHECK(record.simulate, InvalidState, function, ": body ", id,
-                 " is not simulated; enable simulatePhysics first");
-        return record;
-    }
-
-    void addPendingForce(BodyId id, BodyRecord& record, const btVector3& force, const btVector3& torque) {
-        if (!record.hasPendingForce)
-            pendingForces.push_back(id);
-        record.hasPendingForce = true;
-        record.pendingForce += force;
-        record.pendingTorque += torque;
-        record.body->activate(true);
-    }
-
-    RayHit makeHit(const btCollisionObject* object, const btVector3& point, const btVector3& normal,
-                   double fraction) const {
-        RayHit hit;
-        // Every body in the Bullet world is live in the table: removeBody takes it out of both.
-        hit.body = bodies.idAt(uint32_t(object->getUserIndex()));
-        hit.tag = bodies.find(hit.body)->tag;
-        hit.point = toEigen(point);
-        hit.normal = toEigen(normal).normalized();
-        hit.fraction = fraction;
-        return hit;
-    }
-};
 
 PhysicsWorld::PhysicsWorld(const Settings& settings) : impl_(std::make_unique<Impl>()) {
     checkVector("PhysicsWorld::PhysicsWorld()", "gravity", settings.gravity);
@@ -270,6 +177,7 @@ void PhysicsWorld::removeBody(BodyId id) {
     Impl& w = *impl_;
     BodyRecord& record = w.bodies.get(id, "PhysicsWorld::removeBody()");
     w.wakeTouching(record.body.get());
+    w.dropVehicle(record);
     w.world->removeRigidBody(record.body.get());
     w.bodies.erase(id);
 }

@@ -13,6 +13,7 @@
 #include "core/physics/body_id.h"
 #include "core/physics/mobility.h"
 #include "core/physics/ray_hit.h"
+#include "core/physics/vehicle.h"
 #include "core/physics/world_settings.h"
 
 namespace sp::physics {
@@ -114,6 +115,23 @@ class PhysicsWorld {
     void setTag(BodyId id, uint64_t tag);
     // False while the body sleeps (Bullet deactivation); static bodies always report false.
     bool isAwake(BodyId id) const;
+
+    // --- Vehicles (core/physics/vehicle.h) ---
+
+    // Makes a simulated body the chassis of a raycast vehicle with desc's wheels, replacing the vehicle it
+    // had; its wheels start relaxed and uncontrolled. Throws sp::InvalidArgument naming the bad field of
+    // desc, sp::InvalidState for a body that is not simulated. The vehicle acts only while the body is
+    // simulated and goes with the body.
+    void setVehicle(BodyId chassis, const VehicleDesc& desc);
+    // Takes the vehicle off a body (nothing happens for a body without one).
+    void removeVehicle(BodyId chassis);
+    bool hasVehicle(BodyId chassis) const;
+    // Number of wheels of the body's vehicle; throws sp::InvalidState for a body without one.
+    int getWheelCount(BodyId chassis) const;
+    // Sets what drives a wheel from the next substep on; throws sp::InvalidArgument for a wheel index out
+    // of range or a non-finite or negative brake force or a steering angle outside (-pi/2, pi/2).
+    void setWheelControls(BodyId chassis, int wheel, const WheelControls& controls);
+    WheelState getWheelState(BodyId chassis, int wheel) const;
 
     // --- Queries ---
 

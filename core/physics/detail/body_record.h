@@ -8,6 +8,7 @@
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
 #include "core/physics/detail/collision_shape_builder.h"
+#include "core/physics/detail/vehicle_record.h"
 #include "core/physics/mobility.h"
 
 namespace sp::physics::detail {
@@ -25,6 +26,9 @@ struct BodyRecord {
     btVector3 pendingForce{0, 0, 0};
     btVector3 pendingTorque{0, 0, 0};
     bool hasPendingForce = false;
+    // The raycast vehicle whose chassis this body is, if any: in the Bullet world while the body is
+    // simulated.
+    std::unique_ptr<VehicleRecord> vehicle;
 
     bool isSimulated() const { return mobility == Mobility::Movable && simulate; }
 };
