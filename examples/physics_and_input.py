@@ -24,8 +24,8 @@ def main() -> None:
         mesh.SetRelativeScale3D(NewScale3D=spear.FVector(0.3, 0.3, 0.3))
         mesh.SetMassOverrideInKg(MassInKg=2.0)
         mesh.SetSimulatePhysics(bSimulate=True)
-        car = game.spawn_actor(uclass=spear.ASimpleVehicle, name="Car", location=spear.FVector(-1.0, 0.0, 0.2))
-        other = game.spawn_actor(uclass=spear.ASimpleVehicle, name="Other", location=spear.FVector(-1.0, -1.0, 0.2))
+        car = game.spawn_actor(uclass=spear.AKinematicVehicle, name="Car", location=spear.FVector(-1.0, 0.0, 0.2))
+        other = game.spawn_actor(uclass=spear.AKinematicVehicle, name="Other", location=spear.FVector(-1.0, -1.0, 0.2))
     with instance.end_frame():
         pass
 

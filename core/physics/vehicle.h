@@ -20,6 +20,8 @@ struct WheelDesc {
     double radius = 0.35;
     // Whether WheelControls::steering turns this wheel (front wheels of a car).
     bool steered = false;
+
+    bool operator==(const WheelDesc&) const = default;
 };
 
 struct VehicleDesc {
@@ -43,6 +45,8 @@ struct VehicleDesc {
     // How much of a wheel's sideways impulse acts at the contact height rather than the chassis' centre of
     // mass, in [0, 1]: lower values make the car less likely to roll over.
     double rollInfluence = 0.1;
+
+    bool operator==(const VehicleDesc&) const = default;
 };
 
 // What drives one wheel until it is changed.

@@ -63,6 +63,10 @@ class APawn : public AActor {
     void SetControllerHandle(sp::reflect::ObjectHandle controller) { controller_ = controller; }
 
   protected:
+    // For pawns whose root is a component of their own (a vehicle's chassis): no default root.
+    struct NoDefaultRoot {};
+    explicit APawn(NoDefaultRoot) {}
+
     // The movement input added since the last call, cleared.
     FVector ConsumeMovementInput();
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -115,3 +116,18 @@ def test_control_pawn_flies_the_player_and_hands_it_over(transport: str, tmp_pat
     image = Image.open(out)
     assert image.size == (4 * 320, 240)
     assert len(set(image.convert("L").getdata())) > 20  # a rendered room, not a blank frame
+
+
+@pytest.mark.parametrize("transport", TRANSPORTS)
+def test_control_car_drives_into_the_crate_and_writes_its_frames(transport: str, tmp_path: Path) -> None:
+    out = tmp_path / "car"
+    result = run_example("control_car.py", "--out", str(out), *TRANSPORTS[transport])
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "frame 240/240: car at (" in result.stdout
+    pushed = re.search(r"crate pushed from \(15\.5, 9\.5\) to \((-?[\d.]+), (-?[\d.]+)\)", result.stdout)
+    assert pushed, result.stdout
+    assert float(pushed.group(1)) > 16.0 and float(pushed.group(2)) > 10.0  # the car drove into it
+    assert len(list(out.glob("frame_*.png"))) == 25
+    strip = Image.open(out.with_suffix(".png"))
+    assert strip.size == (4 * 480, 270)
+    assert len(set(strip.convert("L").getdata())) > 20  # a rendered scene, not a blank frame

@@ -10,8 +10,8 @@ import spear
 def test_injected_input_moves_only_the_targeted_actor(instance: spear.Instance) -> None:
     game = instance.get_game()
     with instance.begin_frame():
-        a = game.spawn_actor(uclass=spear.ASimpleVehicle, name="A", location=spear.FVector(0, 0, 0.2))
-        b = game.spawn_actor(uclass=spear.ASimpleVehicle, name="B", location=spear.FVector(0, 5, 0.2))
+        a = game.spawn_actor(uclass=spear.AKinematicVehicle, name="A", location=spear.FVector(0, 0, 0.2))
+        b = game.spawn_actor(uclass=spear.AKinematicVehicle, name="B", location=spear.FVector(0, 5, 0.2))
         assert isinstance(a.InputComponent, spear.UInputComponent) and a.MaxSpeed == 2.0
     with instance.end_frame():
         pass
@@ -37,7 +37,7 @@ def test_injected_input_moves_only_the_targeted_actor(instance: spear.Instance) 
 def test_move_action_drives_in_the_vehicle_frame(instance: spear.Instance) -> None:
     game = instance.get_game()
     with instance.begin_frame():
-        car = game.spawn_actor(uclass=spear.ASimpleVehicle, name="Car", rotation=spear.FRotator(Yaw=90.0))
+        car = game.spawn_actor(uclass=spear.AKinematicVehicle, name="Car", rotation=spear.FRotator(Yaw=90.0))
         car.MaxSpeed = 6.0
         game.inject_input_for_actor(actor=car, input_action_name="Move", value=spear.FVector(X=1.0))
     with instance.end_frame():
@@ -52,6 +52,6 @@ def test_input_errors_are_clear(instance: spear.Instance) -> None:
         with pytest.raises(spear.InvalidArgumentError,
                            match=r"inject_input_for_actor\(\): AStaticMeshActor 'Plain' has no UInputComponent"):
             game.inject_input_for_actor(actor=plain, input_action_name="Throttle", value=spear.FVector(X=1))
-        car = game.spawn_actor(uclass=spear.ASimpleVehicle, name="Car")
+        car = game.spawn_actor(uclass=spear.AKinematicVehicle, name="Car")
         with pytest.raises(spear.InvalidArgumentError, match="input_action_name is empty"):
             game.inject_input_for_actor(actor=car, input_action_name="", value=spear.FVector())

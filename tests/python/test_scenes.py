@@ -50,7 +50,7 @@ def test_save_load_round_trip_keeps_every_property(instance: spear.Instance, tmp
         mesh.Friction = 0.8
         mesh.CollisionPrimitive = spear.ECollisionPrimitive.Box
         mesh.SetMobility(NewMobility=spear.EComponentMobility.Stationary)
-        car = game.spawn_actor(uclass=spear.ASimpleVehicle, name="Car")
+        car = game.spawn_actor(uclass=spear.AKinematicVehicle, name="Car")
         car.MaxSpeed = 7.5
         game.save_scene(path=str(first))
         game.load_scene(path=str(first))
@@ -63,7 +63,7 @@ def test_save_load_round_trip_keeps_every_property(instance: spear.Instance, tmp
         assert lmesh.CollisionPrimitive == spear.ECollisionPrimitive.Box
         assert lmesh.Mobility == spear.EComponentMobility.Stationary
         loaded_car = game.find_actor_by_name(name="Car")
-        assert isinstance(loaded_car, spear.ASimpleVehicle) and loaded_car.MaxSpeed == 7.5
+        assert isinstance(loaded_car, spear.AKinematicVehicle) and loaded_car.MaxSpeed == 7.5
         game.save_scene(path=str(second))
     assert first.read_bytes() == second.read_bytes()
     doc = json.loads(first.read_text())

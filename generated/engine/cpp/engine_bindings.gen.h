@@ -24,6 +24,7 @@
 #include "core/world/gameplay_statics.h"
 #include "core/world/hit_result.h"
 #include "core/world/input_component.h"
+#include "core/world/kinematic_vehicle.h"
 #include "core/world/light_actors.h"
 #include "core/world/light_component.h"
 #include "core/world/math.h"
@@ -31,9 +32,9 @@
 #include "core/world/pawn.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
-#include "core/world/simple_vehicle.h"
 #include "core/world/static_mesh_actor.h"
 #include "core/world/static_mesh_component.h"
+#include "core/world/wheeled_vehicle.h"
 #include "core/world/world.h"
 
 namespace sp::pybind {
@@ -64,6 +65,9 @@ template <> struct Ref<ADirectionalLight> : Ref<AActor> {
 template <> struct Ref<AGameModeBase> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
+template <> struct Ref<AKinematicVehicle> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
 template <> struct Ref<AMaterialLibrary> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
@@ -79,9 +83,6 @@ template <> struct Ref<APlayerStart> : Ref<AActor> {
 template <> struct Ref<APointLight> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
-template <> struct Ref<ASimpleVehicle> : Ref<AActor> {
-    using Ref<AActor>::Ref;
-};
 template <> struct Ref<ASkyLight> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
@@ -93,6 +94,9 @@ template <> struct Ref<AStaticMeshActor> : Ref<AActor> {
 };
 template <> struct Ref<AStereoCameraRig> : Ref<AActor> {
     using Ref<AActor>::Ref;
+};
+template <> struct Ref<AWheeledVehiclePawn> : Ref<APawn> {
+    using Ref<APawn>::Ref;
 };
 template <> struct Ref<UActorComponent> : Ref<UObject> {
     using Ref<UObject>::Ref;
@@ -464,6 +468,26 @@ template <> struct type_caster<FVector2D> {
     static handle cast(const FVector2D& v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FVector2D");
         return cls(sp::pybind::Bridge<double>::out(v.X), sp::pybind::Bridge<double>::out(v.Y)).release();
+    }
+};
+
+template <> struct type_caster<FWheelState> {
+    PYBIND11_TYPE_CASTER(FWheelState, const_name("FWheelState"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FWheelState");
+        if (!isinstance(src, cls))
+            return false;
+        value.bInContact = sp::pybind::Bridge<bool>::in(src.attr("bInContact").cast<sp::pybind::Bridge<bool>::Py>(), "FWheelState.bInContact");
+        value.Location = sp::pybind::Bridge<FVector>::in(src.attr("Location").cast<sp::pybind::Bridge<FVector>::Py>(), "FWheelState.Location");
+        value.ContactPoint = sp::pybind::Bridge<FVector>::in(src.attr("ContactPoint").cast<sp::pybind::Bridge<FVector>::Py>(), "FWheelState.ContactPoint");
+        value.SuspensionLength = sp::pybind::Bridge<double>::in(src.attr("SuspensionLength").cast<sp::pybind::Bridge<double>::Py>(), "FWheelState.SuspensionLength");
+        value.RotationInDegrees = sp::pybind::Bridge<double>::in(src.attr("RotationInDegrees").cast<sp::pybind::Bridge<double>::Py>(), "FWheelState.RotationInDegrees");
+        value.SteerAngleInDegrees = sp::pybind::Bridge<double>::in(src.attr("SteerAngleInDegrees").cast<sp::pybind::Bridge<double>::Py>(), "FWheelState.SteerAngleInDegrees");
+        return true;
+    }
+    static handle cast(const FWheelState& v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FWheelState");
+        return cls(sp::pybind::Bridge<bool>::out(v.bInContact), sp::pybind::Bridge<FVector>::out(v.Location), sp::pybind::Bridge<FVector>::out(v.ContactPoint), sp::pybind::Bridge<double>::out(v.SuspensionLength), sp::pybind::Bridge<double>::out(v.RotationInDegrees), sp::pybind::Bridge<double>::out(v.SteerAngleInDegrees)).release();
     }
 };
 

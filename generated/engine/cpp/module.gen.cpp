@@ -562,6 +562,46 @@ void spear_bind_engine(py::module_& m) {
             "Moves OldPC's player to NewPC: NewPC takes OldPC's player index, pawn and view target, and OldPC is\nleft without a player (destroy it, or keep it as a spectator controller).");
     }
     {
+        using Self = AKinematicVehicle;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "AKinematicVehicle", "A box-shaped vehicle moved kinematically (not simulated: it passes through geometry) by the \"Throttle\",\n\"Steer\" and \"Move\" input actions. For a car simulated with wheels, see AWheeledVehiclePawn.");
+        cls.attr("__sp_class__") = "AKinematicVehicle";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "Body",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("AKinematicVehicle.Body")->Body;
+                sp::reflect::checkNotNull(value, "AKinematicVehicle.Body");
+                return Bridge<UStaticMeshComponent*>::out(value);
+            },
+            "The vehicle's body (the root component).");
+        cls.def_property_readonly(
+            "InputComponent",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("AKinematicVehicle.InputComponent")->InputComponent;
+                sp::reflect::checkNotNull(value, "AKinematicVehicle.InputComponent");
+                return Bridge<UInputComponent*>::out(value);
+            },
+            "Receives the injected actions.");
+        cls.def_property(
+            "MaxSpeed",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AKinematicVehicle.MaxSpeed")->MaxSpeed); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("AKinematicVehicle.MaxSpeed");
+                object->MaxSpeed = Bridge<double>::in(std::move(value), "AKinematicVehicle.MaxSpeed");
+                object->PostPropertyChanged("MaxSpeed");
+            },
+            "Speed in metres per second at full throttle.");
+        cls.def_property(
+            "MaxYawRateInDegrees",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AKinematicVehicle.MaxYawRateInDegrees")->MaxYawRateInDegrees); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("AKinematicVehicle.MaxYawRateInDegrees");
+                object->MaxYawRateInDegrees = Bridge<double>::in(std::move(value), "AKinematicVehicle.MaxYawRateInDegrees");
+                object->PostPropertyChanged("MaxYawRateInDegrees");
+            },
+            "Yaw rate in degrees per second at full steering.");
+    }
+    {
         using Self = AMaterialLibrary;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "AMaterialLibrary", "An actor that defines materials by name for the meshes of its world.");
         cls.attr("__sp_class__") = "AMaterialLibrary";
@@ -770,46 +810,6 @@ void spear_bind_engine(py::module_& m) {
             "The light (also the root component).");
     }
     {
-        using Self = ASimpleVehicle;
-        py::class_<Ref<Self>, Ref<AActor>> cls(m, "ASimpleVehicle", "A box-shaped vehicle that drives from the \"Throttle\", \"Steer\" and \"Move\" input actions.");
-        cls.attr("__sp_class__") = "ASimpleVehicle";
-        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
-        cls.def_property_readonly(
-            "Body",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("ASimpleVehicle.Body")->Body;
-                sp::reflect::checkNotNull(value, "ASimpleVehicle.Body");
-                return Bridge<UStaticMeshComponent*>::out(value);
-            },
-            "The vehicle's body (the root component).");
-        cls.def_property_readonly(
-            "InputComponent",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("ASimpleVehicle.InputComponent")->InputComponent;
-                sp::reflect::checkNotNull(value, "ASimpleVehicle.InputComponent");
-                return Bridge<UInputComponent*>::out(value);
-            },
-            "Receives the injected actions.");
-        cls.def_property(
-            "MaxSpeed",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ASimpleVehicle.MaxSpeed")->MaxSpeed); },
-            [](const Ref<Self>& self, Bridge<double>::Py value) {
-                Self* object = self.get<Self>("ASimpleVehicle.MaxSpeed");
-                object->MaxSpeed = Bridge<double>::in(std::move(value), "ASimpleVehicle.MaxSpeed");
-                object->PostPropertyChanged("MaxSpeed");
-            },
-            "Speed in metres per second at full throttle.");
-        cls.def_property(
-            "MaxYawRateInDegrees",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ASimpleVehicle.MaxYawRateInDegrees")->MaxYawRateInDegrees); },
-            [](const Ref<Self>& self, Bridge<double>::Py value) {
-                Self* object = self.get<Self>("ASimpleVehicle.MaxYawRateInDegrees");
-                object->MaxYawRateInDegrees = Bridge<double>::in(std::move(value), "ASimpleVehicle.MaxYawRateInDegrees");
-                object->PostPropertyChanged("MaxYawRateInDegrees");
-            },
-            "Yaw rate in degrees per second at full steering.");
-    }
-    {
         using Self = ASkyLight;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "ASkyLight", "An actor with the sky light as its root.");
         cls.attr("__sp_class__") = "ASkyLight";
@@ -893,6 +893,225 @@ void spear_bind_engine(py::module_& m) {
             py::kw_only(),
             py::arg("NewBaseline"),
             "Sets the baseline in metres (> 0) and moves both cameras.");
+    }
+    {
+        using Self = AWheeledVehiclePawn;
+        py::class_<Ref<Self>, Ref<APawn>> cls(m, "AWheeledVehiclePawn", "A four-wheeled, rear-driven car on Bullet's raycast vehicle. Input actions (X component): \"Throttle\" in\n[-1, 1] (negative reverses), \"Steer\" in [-1, 1] (positive turns left), \"Brake\" in [0, 1] (all wheels),\n\"Handbrake\" in [0, 1] (rear wheels). Its X axis is forward.");
+        cls.attr("__sp_class__") = "AWheeledVehiclePawn";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "Mesh",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("AWheeledVehiclePawn.Mesh")->Mesh;
+                sp::reflect::checkNotNull(value, "AWheeledVehiclePawn.Mesh");
+                return Bridge<UStaticMeshComponent*>::out(value);
+            },
+            "The chassis (the root component): a simulated box; its scale is the car's size, its mass the car's.");
+        cls.def_property_readonly(
+            "Cabin",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("AWheeledVehiclePawn.Cabin")->Cabin;
+                sp::reflect::checkNotNull(value, "AWheeledVehiclePawn.Cabin");
+                return Bridge<UStaticMeshComponent*>::out(value);
+            },
+            "The cabin on top of the chassis (no collision: the chassis box is the car's body).");
+        cls.def_property_readonly(
+            "WheelFrontLeft",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("AWheeledVehiclePawn.WheelFrontLeft")->WheelFrontLeft;
+                sp::reflect::checkNotNull(value, "AWheeledVehiclePawn.WheelFrontLeft");
+                return Bridge<UStaticMeshComponent*>::out(value);
+            },
+            "The wheel meshes, which follow the simulated wheels (no collision: the wheels are rays).");
+        cls.def_property_readonly(
+            "WheelFrontRight",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("AWheeledVehiclePawn.WheelFrontRight")->WheelFrontRight;
+                sp::reflect::checkNotNull(value, "AWheeledVehiclePawn.WheelFrontRight");
+                return Bridge<UStaticMeshComponent*>::out(value);
+            },
+            "");
+        cls.def_property_readonly(
+            "WheelRearLeft",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("AWheeledVehiclePawn.WheelRearLeft")->WheelRearLeft;
+                sp::reflect::checkNotNull(value, "AWheeledVehiclePawn.WheelRearLeft");
+                return Bridge<UStaticMeshComponent*>::out(value);
+            },
+            "");
+        cls.def_property_readonly(
+            "WheelRearRight",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("AWheeledVehiclePawn.WheelRearRight")->WheelRearRight;
+                sp::reflect::checkNotNull(value, "AWheeledVehiclePawn.WheelRearRight");
+                return Bridge<UStaticMeshComponent*>::out(value);
+            },
+            "");
+        cls.def_property_readonly(
+            "InputComponent",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("AWheeledVehiclePawn.InputComponent")->InputComponent;
+                sp::reflect::checkNotNull(value, "AWheeledVehiclePawn.InputComponent");
+                return Bridge<UInputComponent*>::out(value);
+            },
+            "Receives the injected actions.");
+        cls.def_property(
+            "MaxEngineForce",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AWheeledVehiclePawn.MaxEngineForce")->MaxEngineForce); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("AWheeledVehiclePawn.MaxEngineForce");
+                object->SetMaxEngineForce(Bridge<double>::in(std::move(value), "AWheeledVehiclePawn.MaxEngineForce"));
+                object->PostPropertyChanged("MaxEngineForce");
+            },
+            "Driving force in newtons at full throttle, shared by the rear wheels (>= 0).");
+        cls.def_property(
+            "MaxBrakeForce",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AWheeledVehiclePawn.MaxBrakeForce")->MaxBrakeForce); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("AWheeledVehiclePawn.MaxBrakeForce");
+                object->SetMaxBrakeForce(Bridge<double>::in(std::move(value), "AWheeledVehiclePawn.MaxBrakeForce"));
+                object->PostPropertyChanged("MaxBrakeForce");
+            },
+            "Braking force in newtons per wheel at full brake (>= 0).");
+        cls.def_property(
+            "MaxSteerAngle",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AWheeledVehiclePawn.MaxSteerAngle")->MaxSteerAngle); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("AWheeledVehiclePawn.MaxSteerAngle");
+                object->SetMaxSteerAngle(Bridge<double>::in(std::move(value), "AWheeledVehiclePawn.MaxSteerAngle"));
+                object->PostPropertyChanged("MaxSteerAngle");
+            },
+            "Front wheels' steering angle in degrees at full steer, in [0, 80].");
+        cls.def_property(
+            "WheelRadius",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AWheeledVehiclePawn.WheelRadius")->WheelRadius); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("AWheeledVehiclePawn.WheelRadius");
+                object->SetWheelRadius(Bridge<double>::in(std::move(value), "AWheeledVehiclePawn.WheelRadius"));
+                object->PostPropertyChanged("WheelRadius");
+            },
+            "Tyre radius in metres (> 0).");
+        cls.def_property(
+            "SuspensionStiffness",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AWheeledVehiclePawn.SuspensionStiffness")->SuspensionStiffness); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("AWheeledVehiclePawn.SuspensionStiffness");
+                object->SetSuspensionStiffness(Bridge<double>::in(std::move(value), "AWheeledVehiclePawn.SuspensionStiffness"));
+                object->PostPropertyChanged("SuspensionStiffness");
+            },
+            "Suspension spring rate per kilogram of the car's mass, N/m/kg (> 0): the car sinks\n9.81 / (4 * SuspensionStiffness) metres under its weight.");
+        cls.def_property(
+            "TireFriction",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AWheeledVehiclePawn.TireFriction")->TireFriction); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("AWheeledVehiclePawn.TireFriction");
+                object->SetTireFriction(Bridge<double>::in(std::move(value), "AWheeledVehiclePawn.TireFriction"));
+                object->PostPropertyChanged("TireFriction");
+            },
+            "Tyre grip: the largest driving and cornering force over the load on the wheel (>= 0).");
+        cls.def(
+            "SetMaxEngineForce",
+            [](const Ref<Self>& self, Bridge<double>::Py NewForce) -> py::object {
+                static constexpr const char* kContext = "AWheeledVehiclePawn.SetMaxEngineForce()";
+                Self* object = self.get<Self>(kContext);
+                auto NewForceValue = Bridge<double>::in(std::move(NewForce), "AWheeledVehiclePawn.SetMaxEngineForce(): argument 'NewForce'");
+                object->SetMaxEngineForce(NewForceValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewForce"),
+            "Sets MaxEngineForce (newtons, >= 0).");
+        cls.def(
+            "SetMaxBrakeForce",
+            [](const Ref<Self>& self, Bridge<double>::Py NewForce) -> py::object {
+                static constexpr const char* kContext = "AWheeledVehiclePawn.SetMaxBrakeForce()";
+                Self* object = self.get<Self>(kContext);
+                auto NewForceValue = Bridge<double>::in(std::move(NewForce), "AWheeledVehiclePawn.SetMaxBrakeForce(): argument 'NewForce'");
+                object->SetMaxBrakeForce(NewForceValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewForce"),
+            "Sets MaxBrakeForce (newtons, >= 0).");
+        cls.def(
+            "SetMaxSteerAngle",
+            [](const Ref<Self>& self, Bridge<double>::Py NewAngle) -> py::object {
+                static constexpr const char* kContext = "AWheeledVehiclePawn.SetMaxSteerAngle()";
+                Self* object = self.get<Self>(kContext);
+                auto NewAngleValue = Bridge<double>::in(std::move(NewAngle), "AWheeledVehiclePawn.SetMaxSteerAngle(): argument 'NewAngle'");
+                object->SetMaxSteerAngle(NewAngleValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewAngle"),
+            "Sets MaxSteerAngle (degrees, in [0, 80]).");
+        cls.def(
+            "SetWheelRadius",
+            [](const Ref<Self>& self, Bridge<double>::Py NewRadius) -> py::object {
+                static constexpr const char* kContext = "AWheeledVehiclePawn.SetWheelRadius()";
+                Self* object = self.get<Self>(kContext);
+                auto NewRadiusValue = Bridge<double>::in(std::move(NewRadius), "AWheeledVehiclePawn.SetWheelRadius(): argument 'NewRadius'");
+                object->SetWheelRadius(NewRadiusValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewRadius"),
+            "Sets WheelRadius (metres, > 0).");
+        cls.def(
+            "SetSuspensionStiffness",
+            [](const Ref<Self>& self, Bridge<double>::Py NewStiffness) -> py::object {
+                static constexpr const char* kContext = "AWheeledVehiclePawn.SetSuspensionStiffness()";
+                Self* object = self.get<Self>(kContext);
+                auto NewStiffnessValue = Bridge<double>::in(std::move(NewStiffness), "AWheeledVehiclePawn.SetSuspensionStiffness(): argument 'NewStiffness'");
+                object->SetSuspensionStiffness(NewStiffnessValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewStiffness"),
+            "Sets SuspensionStiffness (N/m/kg, > 0).");
+        cls.def(
+            "SetTireFriction",
+            [](const Ref<Self>& self, Bridge<double>::Py NewFriction) -> py::object {
+                static constexpr const char* kContext = "AWheeledVehiclePawn.SetTireFriction()";
+                Self* object = self.get<Self>(kContext);
+                auto NewFrictionValue = Bridge<double>::in(std::move(NewFriction), "AWheeledVehiclePawn.SetTireFriction(): argument 'NewFriction'");
+                object->SetTireFriction(NewFrictionValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewFriction"),
+            "Sets TireFriction (>= 0).");
+        cls.def(
+            "GetForwardSpeed",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "AWheeledVehiclePawn.GetForwardSpeed()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetForwardSpeed();
+                return Bridge<double>::out(result);
+            },
+            "Returns the speed along the car's forward axis in metres per second (negative when reversing).");
+        cls.def(
+            "GetNumWheels",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "AWheeledVehiclePawn.GetNumWheels()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetNumWheels();
+                return Bridge<int32_t>::out(result);
+            },
+            "Returns the number of wheels.");
+        cls.def(
+            "GetWheelState",
+            [](const Ref<Self>& self, Bridge<int32_t>::Py WheelIndex) -> py::object {
+                static constexpr const char* kContext = "AWheeledVehiclePawn.GetWheelState()";
+                const Self* object = self.get<Self>(kContext);
+                auto WheelIndexValue = Bridge<int32_t>::in(std::move(WheelIndex), "AWheeledVehiclePawn.GetWheelState(): argument 'WheelIndex'");
+                auto result = object->GetWheelState(WheelIndexValue);
+                sp::reflect::checkResultFields(result, kContext);
+                return Bridge<FWheelState>::out(result);
+            },
+            py::kw_only(),
+            py::arg("WheelIndex"),
+            "Returns the state of wheel WheelIndex (0 front left, 1 front right, 2 rear left, 3 rear right).");
     }
     {
         using Self = UActorComponent;

@@ -17,6 +17,7 @@
 #include "core/world/gameplay_statics.h"
 #include "core/world/hit_result.h"
 #include "core/world/input_component.h"
+#include "core/world/kinematic_vehicle.h"
 #include "core/world/light_actors.h"
 #include "core/world/light_component.h"
 #include "core/world/math.h"
@@ -24,9 +25,9 @@
 #include "core/world/pawn.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
-#include "core/world/simple_vehicle.h"
 #include "core/world/static_mesh_actor.h"
 #include "core/world/static_mesh_component.h"
+#include "core/world/wheeled_vehicle.h"
 #include "core/world/world.h"
 
 extern "C" void spear_register_engine_types() {
@@ -44,16 +45,17 @@ extern "C" void spear_register_engine_types() {
     registry.add(ADefaultPawn::StaticClass());
     registry.add(ADirectionalLight::StaticClass());
     registry.add(AGameModeBase::StaticClass());
+    registry.add(AKinematicVehicle::StaticClass());
     registry.add(AMaterialLibrary::StaticClass());
     registry.add(AMultiViewCameraRig::StaticClass());
     registry.add(APlayerController::StaticClass());
     registry.add(APlayerStart::StaticClass());
     registry.add(APointLight::StaticClass());
-    registry.add(ASimpleVehicle::StaticClass());
     registry.add(ASkyLight::StaticClass());
     registry.add(ASpotLight::StaticClass());
     registry.add(AStaticMeshActor::StaticClass());
     registry.add(AStereoCameraRig::StaticClass());
+    registry.add(AWheeledVehiclePawn::StaticClass());
     registry.add(FCameraPixels::StaticClass());
     registry.add(FVector::StaticClass());
     registry.add(FHitResult::StaticClass());
@@ -65,6 +67,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(FRotator::StaticClass());
     registry.add(FTransform::StaticClass());
     registry.add(FVector2D::StaticClass());
+    registry.add(FWheelState::StaticClass());
     registry.add(UActorComponent::StaticClass());
     registry.add(USceneComponent::StaticClass());
     registry.add(UCameraSensorComponent::StaticClass());
@@ -98,6 +101,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(UCameraSensorComponent::StaticClass());
     registry.remove(USceneComponent::StaticClass());
     registry.remove(UActorComponent::StaticClass());
+    registry.remove(FWheelState::StaticClass());
     registry.remove(FVector2D::StaticClass());
     registry.remove(FTransform::StaticClass());
     registry.remove(FRotator::StaticClass());
@@ -109,16 +113,17 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(FHitResult::StaticClass());
     registry.remove(FVector::StaticClass());
     registry.remove(FCameraPixels::StaticClass());
+    registry.remove(AWheeledVehiclePawn::StaticClass());
     registry.remove(AStereoCameraRig::StaticClass());
     registry.remove(AStaticMeshActor::StaticClass());
     registry.remove(ASpotLight::StaticClass());
     registry.remove(ASkyLight::StaticClass());
-    registry.remove(ASimpleVehicle::StaticClass());
     registry.remove(APointLight::StaticClass());
     registry.remove(APlayerStart::StaticClass());
     registry.remove(APlayerController::StaticClass());
     registry.remove(AMultiViewCameraRig::StaticClass());
     registry.remove(AMaterialLibrary::StaticClass());
+    registry.remove(AKinematicVehicle::StaticClass());
     registry.remove(AGameModeBase::StaticClass());
     registry.remove(ADirectionalLight::StaticClass());
     registry.remove(ADefaultPawn::StaticClass());
@@ -134,4 +139,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "5fc0a22986292aad"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "412a9e9bcd7bb894"; }

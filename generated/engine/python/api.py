@@ -26,17 +26,18 @@ __all__ = [
     "ADefaultPawn",
     "ADirectionalLight",
     "AGameModeBase",
+    "AKinematicVehicle",
     "AMaterialLibrary",
     "AMultiViewCameraRig",
     "APawn",
     "APlayerController",
     "APlayerStart",
     "APointLight",
-    "ASimpleVehicle",
     "ASkyLight",
     "ASpotLight",
     "AStaticMeshActor",
     "AStereoCameraRig",
+    "AWheeledVehiclePawn",
     "BP_Axes",
     "BP_Crate",
     "ECameraModality",
@@ -54,6 +55,7 @@ __all__ = [
     "FTransform",
     "FVector",
     "FVector2D",
+    "FWheelState",
     "UActorComponent",
     "UCameraSensorComponent",
     "UDirectionalLightComponent",
@@ -267,6 +269,19 @@ class FVector2D:
     Y: float = 0.0
 
 
+@dataclass
+class FWheelState:
+    """The state of one wheel of a wheeled vehicle after the last physics step."""
+
+    __sp_class__: ClassVar[str] = "FWheelState"
+    bInContact: bool = False
+    Location: FVector = field(default_factory=FVector)
+    ContactPoint: FVector = field(default_factory=FVector)
+    SuspensionLength: float = 0.0
+    RotationInDegrees: float = 0.0
+    SteerAngleInDegrees: float = 0.0
+
+
 class UObjectAsync:
     """UObject's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
 
@@ -445,6 +460,27 @@ class AGameModeBase(AActor):
     __sp_class__: ClassVar[str] = "AGameModeBase"
 
 
+class AKinematicVehicleAsync(AActorAsync):
+    """AKinematicVehicle's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class AKinematicVehicleSend(AActorSend):
+    """AKinematicVehicle's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class AKinematicVehicle(AActor):
+    """A box-shaped vehicle moved kinematically (not simulated: it passes through geometry) by the "Throttle",
+    "Steer" and "Move" input actions. For a car simulated with wheels, see AWheeledVehiclePawn.
+    """
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "AKinematicVehicle"
+
+
 class AMaterialLibraryAsync(AActorAsync):
     """AMaterialLibrary's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
 
@@ -544,25 +580,6 @@ class APointLight(AActor):
     __sp_class__: ClassVar[str] = "APointLight"
 
 
-class ASimpleVehicleAsync(AActorAsync):
-    """ASimpleVehicle's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
-
-    __slots__ = ()
-
-
-class ASimpleVehicleSend(AActorSend):
-    """ASimpleVehicle's functions, fire and forget (typed in api.pyi)."""
-
-    __slots__ = ()
-
-
-class ASimpleVehicle(AActor):
-    """A box-shaped vehicle that drives from the "Throttle", "Steer" and "Move" input actions."""
-
-    __slots__ = ()
-    __sp_class__: ClassVar[str] = "ASimpleVehicle"
-
-
 class ASkyLightAsync(AActorAsync):
     """ASkyLight's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
 
@@ -637,6 +654,28 @@ class AStereoCameraRig(AActor):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "AStereoCameraRig"
+
+
+class AWheeledVehiclePawnAsync(APawnAsync):
+    """AWheeledVehiclePawn's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class AWheeledVehiclePawnSend(APawnSend):
+    """AWheeledVehiclePawn's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class AWheeledVehiclePawn(APawn):
+    """A four-wheeled, rear-driven car on Bullet's raycast vehicle. Input actions (X component): "Throttle" in
+    [-1, 1] (negative reverses), "Steer" in [-1, 1] (positive turns left), "Brake" in [0, 1] (all wheels),
+    "Handbrake" in [0, 1] (rear wheels). Its X axis is forward.
+    """
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "AWheeledVehiclePawn"
 
 
 class UActorComponentAsync(UObjectAsync):

@@ -21,17 +21,18 @@ __all__ = [
     "ADefaultPawn",
     "ADirectionalLight",
     "AGameModeBase",
+    "AKinematicVehicle",
     "AMaterialLibrary",
     "AMultiViewCameraRig",
     "APawn",
     "APlayerController",
     "APlayerStart",
     "APointLight",
-    "ASimpleVehicle",
     "ASkyLight",
     "ASpotLight",
     "AStaticMeshActor",
     "AStereoCameraRig",
+    "AWheeledVehiclePawn",
     "BP_Axes",
     "BP_Crate",
     "ECameraModality",
@@ -49,6 +50,7 @@ __all__ = [
     "FTransform",
     "FVector",
     "FVector2D",
+    "FWheelState",
     "UActorComponent",
     "UCameraSensorComponent",
     "UDirectionalLightComponent",
@@ -296,6 +298,19 @@ class FVector2D:
     __sp_class__: ClassVar[str]
     X: float = 0.0
     Y: float = 0.0
+
+
+@dataclass
+class FWheelState:
+    """The state of one wheel of a wheeled vehicle after the last physics step."""
+
+    __sp_class__: ClassVar[str]
+    bInContact: bool = False
+    Location: FVector = field(default_factory=FVector)
+    ContactPoint: FVector = field(default_factory=FVector)
+    SuspensionLength: float = 0.0
+    RotationInDegrees: float = 0.0
+    SteerAngleInDegrees: float = 0.0
 
 
 class UObjectAsync:
@@ -849,6 +864,54 @@ class AGameModeBase(AActor):
         """
 
 
+class AKinematicVehicleAsync(AActorAsync):
+    """AKinematicVehicle's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class AKinematicVehicleSend(AActorSend):
+    """AKinematicVehicle's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
+class AKinematicVehicle(AActor):
+    """A box-shaped vehicle moved kinematically (not simulated: it passes through geometry) by the "Throttle",
+    "Steer" and "Move" input actions. For a car simulated with wheels, see AWheeledVehiclePawn.
+    """
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> AKinematicVehicleAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> AKinematicVehicleSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def Body(self) -> UStaticMeshComponent:
+        """The vehicle's body (the root component)."""
+
+    @property
+    def InputComponent(self) -> UInputComponent:
+        """Receives the injected actions."""
+
+    @property
+    def MaxSpeed(self) -> float:
+        """Speed in metres per second at full throttle."""
+
+    @MaxSpeed.setter
+    def MaxSpeed(self, value: float) -> None: ...
+
+    @property
+    def MaxYawRateInDegrees(self) -> float:
+        """Yaw rate in degrees per second at full steering."""
+
+    @MaxYawRateInDegrees.setter
+    def MaxYawRateInDegrees(self, value: float) -> None: ...
+
+
 class AMaterialLibraryAsync(AActorAsync):
     """AMaterialLibrary's functions, called asynchronously: each returns a Future."""
 
@@ -1076,52 +1139,6 @@ class APointLight(AActor):
         """The light (also the root component)."""
 
 
-class ASimpleVehicleAsync(AActorAsync):
-    """ASimpleVehicle's functions, called asynchronously: each returns a Future."""
-    ...
-
-
-class ASimpleVehicleSend(AActorSend):
-    """ASimpleVehicle's functions, sent without waiting for a result (fire and forget)."""
-    ...
-
-
-class ASimpleVehicle(AActor):
-    """A box-shaped vehicle that drives from the "Throttle", "Steer" and "Move" input actions."""
-
-    __sp_class__: ClassVar[str]
-
-    @property
-    def call_async(self) -> ASimpleVehicleAsync:
-        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
-
-    @property
-    def send_async(self) -> ASimpleVehicleSend:
-        """The same functions, fire and forget."""
-
-    @property
-    def Body(self) -> UStaticMeshComponent:
-        """The vehicle's body (the root component)."""
-
-    @property
-    def InputComponent(self) -> UInputComponent:
-        """Receives the injected actions."""
-
-    @property
-    def MaxSpeed(self) -> float:
-        """Speed in metres per second at full throttle."""
-
-    @MaxSpeed.setter
-    def MaxSpeed(self, value: float) -> None: ...
-
-    @property
-    def MaxYawRateInDegrees(self) -> float:
-        """Yaw rate in degrees per second at full steering."""
-
-    @MaxYawRateInDegrees.setter
-    def MaxYawRateInDegrees(self, value: float) -> None: ...
-
-
 class ASkyLightAsync(AActorAsync):
     """ASkyLight's functions, called asynchronously: each returns a Future."""
     ...
@@ -1248,6 +1265,166 @@ class AStereoCameraRig(AActor):
 
     def SetBaseline(self, *, NewBaseline: float) -> None:
         """Sets the baseline in metres (> 0) and moves both cameras."""
+
+
+class AWheeledVehiclePawnAsync(APawnAsync):
+    """AWheeledVehiclePawn's functions, called asynchronously: each returns a Future."""
+
+    def SetMaxEngineForce(self, *, NewForce: float) -> Future[None]: ...
+
+    def SetMaxBrakeForce(self, *, NewForce: float) -> Future[None]: ...
+
+    def SetMaxSteerAngle(self, *, NewAngle: float) -> Future[None]: ...
+
+    def SetWheelRadius(self, *, NewRadius: float) -> Future[None]: ...
+
+    def SetSuspensionStiffness(self, *, NewStiffness: float) -> Future[None]: ...
+
+    def SetTireFriction(self, *, NewFriction: float) -> Future[None]: ...
+
+    def GetForwardSpeed(self) -> Future[float]: ...
+
+    def GetNumWheels(self) -> Future[int]: ...
+
+    def GetWheelState(self, *, WheelIndex: int) -> Future[FWheelState]: ...
+
+
+class AWheeledVehiclePawnSend(APawnSend):
+    """AWheeledVehiclePawn's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetMaxEngineForce(self, *, NewForce: float) -> None: ...
+
+    def SetMaxBrakeForce(self, *, NewForce: float) -> None: ...
+
+    def SetMaxSteerAngle(self, *, NewAngle: float) -> None: ...
+
+    def SetWheelRadius(self, *, NewRadius: float) -> None: ...
+
+    def SetSuspensionStiffness(self, *, NewStiffness: float) -> None: ...
+
+    def SetTireFriction(self, *, NewFriction: float) -> None: ...
+
+    def GetForwardSpeed(self) -> None: ...
+
+    def GetNumWheels(self) -> None: ...
+
+    def GetWheelState(self, *, WheelIndex: int) -> None: ...
+
+
+class AWheeledVehiclePawn(APawn):
+    """A four-wheeled, rear-driven car on Bullet's raycast vehicle. Input actions (X component): "Throttle" in
+    [-1, 1] (negative reverses), "Steer" in [-1, 1] (positive turns left), "Brake" in [0, 1] (all wheels),
+    "Handbrake" in [0, 1] (rear wheels). Its X axis is forward.
+    """
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> AWheeledVehiclePawnAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> AWheeledVehiclePawnSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def Mesh(self) -> UStaticMeshComponent:
+        """The chassis (the root component): a simulated box; its scale is the car's size, its mass the car's."""
+
+    @property
+    def Cabin(self) -> UStaticMeshComponent:
+        """The cabin on top of the chassis (no collision: the chassis box is the car's body)."""
+
+    @property
+    def WheelFrontLeft(self) -> UStaticMeshComponent:
+        """The wheel meshes, which follow the simulated wheels (no collision: the wheels are rays)."""
+
+    @property
+    def WheelFrontRight(self) -> UStaticMeshComponent:
+        ...
+
+    @property
+    def WheelRearLeft(self) -> UStaticMeshComponent:
+        ...
+
+    @property
+    def WheelRearRight(self) -> UStaticMeshComponent:
+        ...
+
+    @property
+    def InputComponent(self) -> UInputComponent:
+        """Receives the injected actions."""
+
+    @property
+    def MaxEngineForce(self) -> float:
+        """Driving force in newtons at full throttle, shared by the rear wheels (>= 0)."""
+
+    @MaxEngineForce.setter
+    def MaxEngineForce(self, value: float) -> None: ...
+
+    @property
+    def MaxBrakeForce(self) -> float:
+        """Braking force in newtons per wheel at full brake (>= 0)."""
+
+    @MaxBrakeForce.setter
+    def MaxBrakeForce(self, value: float) -> None: ...
+
+    @property
+    def MaxSteerAngle(self) -> float:
+        """Front wheels' steering angle in degrees at full steer, in [0, 80]."""
+
+    @MaxSteerAngle.setter
+    def MaxSteerAngle(self, value: float) -> None: ...
+
+    @property
+    def WheelRadius(self) -> float:
+        """Tyre radius in metres (> 0)."""
+
+    @WheelRadius.setter
+    def WheelRadius(self, value: float) -> None: ...
+
+    @property
+    def SuspensionStiffness(self) -> float:
+        """Suspension spring rate per kilogram of the car's mass, N/m/kg (> 0): the car sinks
+        9.81 / (4 * SuspensionStiffness) metres under its weight.
+        """
+
+    @SuspensionStiffness.setter
+    def SuspensionStiffness(self, value: float) -> None: ...
+
+    @property
+    def TireFriction(self) -> float:
+        """Tyre grip: the largest driving and cornering force over the load on the wheel (>= 0)."""
+
+    @TireFriction.setter
+    def TireFriction(self, value: float) -> None: ...
+
+    def SetMaxEngineForce(self, *, NewForce: float) -> None:
+        """Sets MaxEngineForce (newtons, >= 0)."""
+
+    def SetMaxBrakeForce(self, *, NewForce: float) -> None:
+        """Sets MaxBrakeForce (newtons, >= 0)."""
+
+    def SetMaxSteerAngle(self, *, NewAngle: float) -> None:
+        """Sets MaxSteerAngle (degrees, in [0, 80])."""
+
+    def SetWheelRadius(self, *, NewRadius: float) -> None:
+        """Sets WheelRadius (metres, > 0)."""
+
+    def SetSuspensionStiffness(self, *, NewStiffness: float) -> None:
+        """Sets SuspensionStiffness (N/m/kg, > 0)."""
+
+    def SetTireFriction(self, *, NewFriction: float) -> None:
+        """Sets TireFriction (>= 0)."""
+
+    def GetForwardSpeed(self) -> float:
+        """Returns the speed along the car's forward axis in metres per second (negative when reversing)."""
+
+    def GetNumWheels(self) -> int:
+        """Returns the number of wheels."""
+
+    def GetWheelState(self, *, WheelIndex: int) -> FWheelState:
+        """Returns the state of wheel WheelIndex (0 front left, 1 front right, 2 rear left, 3 rear right)."""
 
 
 class UActorComponentAsync(UObjectAsync):

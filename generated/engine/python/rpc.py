@@ -18,7 +18,7 @@ from spear._rpc_proxy import ObjectProxy as _ObjectProxy
 from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
-from .api import ECameraModality, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, FCameraPixels, FHitResult, FLinearColor, FMaterialDesc, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D  # structs and enums are shared with the in-process API
+from .api import ECameraModality, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, FCameraPixels, FHitResult, FLinearColor, FMaterialDesc, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
 
@@ -286,6 +286,37 @@ class AGameModeBase(AActor, api.AGameModeBase):
 _register_proxy(AGameModeBase)
 
 
+class AKinematicVehicle(AActor, api.AKinematicVehicle):
+    __slots__ = ()
+
+    @property
+    def Body(self) -> api.UStaticMeshComponent:
+        return cast("api.UStaticMeshComponent", self._sp_get("AKinematicVehicle", "Body", "UStaticMeshComponent"))
+
+    @property
+    def InputComponent(self) -> api.UInputComponent:
+        return cast("api.UInputComponent", self._sp_get("AKinematicVehicle", "InputComponent", "UInputComponent"))
+
+    @property
+    def MaxSpeed(self) -> float:
+        return cast("float", self._sp_get("AKinematicVehicle", "MaxSpeed", "float"))
+
+    @MaxSpeed.setter
+    def MaxSpeed(self, value: float) -> None:
+        self._sp_set("AKinematicVehicle", "MaxSpeed", value)
+
+    @property
+    def MaxYawRateInDegrees(self) -> float:
+        return cast("float", self._sp_get("AKinematicVehicle", "MaxYawRateInDegrees", "float"))
+
+    @MaxYawRateInDegrees.setter
+    def MaxYawRateInDegrees(self, value: float) -> None:
+        self._sp_set("AKinematicVehicle", "MaxYawRateInDegrees", value)
+
+
+_register_proxy(AKinematicVehicle)
+
+
 class AMaterialLibrary(AActor, api.AMaterialLibrary):
     __slots__ = ()
 
@@ -382,37 +413,6 @@ class APointLight(AActor, api.APointLight):
 _register_proxy(APointLight)
 
 
-class ASimpleVehicle(AActor, api.ASimpleVehicle):
-    __slots__ = ()
-
-    @property
-    def Body(self) -> api.UStaticMeshComponent:
-        return cast("api.UStaticMeshComponent", self._sp_get("ASimpleVehicle", "Body", "UStaticMeshComponent"))
-
-    @property
-    def InputComponent(self) -> api.UInputComponent:
-        return cast("api.UInputComponent", self._sp_get("ASimpleVehicle", "InputComponent", "UInputComponent"))
-
-    @property
-    def MaxSpeed(self) -> float:
-        return cast("float", self._sp_get("ASimpleVehicle", "MaxSpeed", "float"))
-
-    @MaxSpeed.setter
-    def MaxSpeed(self, value: float) -> None:
-        self._sp_set("ASimpleVehicle", "MaxSpeed", value)
-
-    @property
-    def MaxYawRateInDegrees(self) -> float:
-        return cast("float", self._sp_get("ASimpleVehicle", "MaxYawRateInDegrees", "float"))
-
-    @MaxYawRateInDegrees.setter
-    def MaxYawRateInDegrees(self, value: float) -> None:
-        self._sp_set("ASimpleVehicle", "MaxYawRateInDegrees", value)
-
-
-_register_proxy(ASimpleVehicle)
-
-
 class ASkyLight(AActor, api.ASkyLight):
     __slots__ = ()
 
@@ -470,6 +470,116 @@ class AStereoCameraRig(AActor, api.AStereoCameraRig):
 
 
 _register_proxy(AStereoCameraRig)
+
+
+class AWheeledVehiclePawn(APawn, api.AWheeledVehiclePawn):
+    __slots__ = ()
+
+    @property
+    def Mesh(self) -> api.UStaticMeshComponent:
+        return cast("api.UStaticMeshComponent", self._sp_get("AWheeledVehiclePawn", "Mesh", "UStaticMeshComponent"))
+
+    @property
+    def Cabin(self) -> api.UStaticMeshComponent:
+        return cast("api.UStaticMeshComponent", self._sp_get("AWheeledVehiclePawn", "Cabin", "UStaticMeshComponent"))
+
+    @property
+    def WheelFrontLeft(self) -> api.UStaticMeshComponent:
+        return cast("api.UStaticMeshComponent", self._sp_get("AWheeledVehiclePawn", "WheelFrontLeft", "UStaticMeshComponent"))
+
+    @property
+    def WheelFrontRight(self) -> api.UStaticMeshComponent:
+        return cast("api.UStaticMeshComponent", self._sp_get("AWheeledVehiclePawn", "WheelFrontRight", "UStaticMeshComponent"))
+
+    @property
+    def WheelRearLeft(self) -> api.UStaticMeshComponent:
+        return cast("api.UStaticMeshComponent", self._sp_get("AWheeledVehiclePawn", "WheelRearLeft", "UStaticMeshComponent"))
+
+    @property
+    def WheelRearRight(self) -> api.UStaticMeshComponent:
+        return cast("api.UStaticMeshComponent", self._sp_get("AWheeledVehiclePawn", "WheelRearRight", "UStaticMeshComponent"))
+
+    @property
+    def InputComponent(self) -> api.UInputComponent:
+        return cast("api.UInputComponent", self._sp_get("AWheeledVehiclePawn", "InputComponent", "UInputComponent"))
+
+    @property
+    def MaxEngineForce(self) -> float:
+        return cast("float", self._sp_get("AWheeledVehiclePawn", "MaxEngineForce", "float"))
+
+    @MaxEngineForce.setter
+    def MaxEngineForce(self, value: float) -> None:
+        self._sp_set("AWheeledVehiclePawn", "MaxEngineForce", value)
+
+    @property
+    def MaxBrakeForce(self) -> float:
+        return cast("float", self._sp_get("AWheeledVehiclePawn", "MaxBrakeForce", "float"))
+
+    @MaxBrakeForce.setter
+    def MaxBrakeForce(self, value: float) -> None:
+        self._sp_set("AWheeledVehiclePawn", "MaxBrakeForce", value)
+
+    @property
+    def MaxSteerAngle(self) -> float:
+        return cast("float", self._sp_get("AWheeledVehiclePawn", "MaxSteerAngle", "float"))
+
+    @MaxSteerAngle.setter
+    def MaxSteerAngle(self, value: float) -> None:
+        self._sp_set("AWheeledVehiclePawn", "MaxSteerAngle", value)
+
+    @property
+    def WheelRadius(self) -> float:
+        return cast("float", self._sp_get("AWheeledVehiclePawn", "WheelRadius", "float"))
+
+    @WheelRadius.setter
+    def WheelRadius(self, value: float) -> None:
+        self._sp_set("AWheeledVehiclePawn", "WheelRadius", value)
+
+    @property
+    def SuspensionStiffness(self) -> float:
+        return cast("float", self._sp_get("AWheeledVehiclePawn", "SuspensionStiffness", "float"))
+
+    @SuspensionStiffness.setter
+    def SuspensionStiffness(self, value: float) -> None:
+        self._sp_set("AWheeledVehiclePawn", "SuspensionStiffness", value)
+
+    @property
+    def TireFriction(self) -> float:
+        return cast("float", self._sp_get("AWheeledVehiclePawn", "TireFriction", "float"))
+
+    @TireFriction.setter
+    def TireFriction(self, value: float) -> None:
+        self._sp_set("AWheeledVehiclePawn", "TireFriction", value)
+
+    def SetMaxEngineForce(self, *, NewForce: float) -> None:
+        self._sp_call("AWheeledVehiclePawn", "SetMaxEngineForce", {"NewForce": NewForce}, "None")
+
+    def SetMaxBrakeForce(self, *, NewForce: float) -> None:
+        self._sp_call("AWheeledVehiclePawn", "SetMaxBrakeForce", {"NewForce": NewForce}, "None")
+
+    def SetMaxSteerAngle(self, *, NewAngle: float) -> None:
+        self._sp_call("AWheeledVehiclePawn", "SetMaxSteerAngle", {"NewAngle": NewAngle}, "None")
+
+    def SetWheelRadius(self, *, NewRadius: float) -> None:
+        self._sp_call("AWheeledVehiclePawn", "SetWheelRadius", {"NewRadius": NewRadius}, "None")
+
+    def SetSuspensionStiffness(self, *, NewStiffness: float) -> None:
+        self._sp_call("AWheeledVehiclePawn", "SetSuspensionStiffness", {"NewStiffness": NewStiffness}, "None")
+
+    def SetTireFriction(self, *, NewFriction: float) -> None:
+        self._sp_call("AWheeledVehiclePawn", "SetTireFriction", {"NewFriction": NewFriction}, "None")
+
+    def GetForwardSpeed(self) -> float:
+        return cast("float", self._sp_call("AWheeledVehiclePawn", "GetForwardSpeed", {}, "float"))
+
+    def GetNumWheels(self) -> int:
+        return cast("int", self._sp_call("AWheeledVehiclePawn", "GetNumWheels", {}, "int"))
+
+    def GetWheelState(self, *, WheelIndex: int) -> FWheelState:
+        return cast("FWheelState", self._sp_call("AWheeledVehiclePawn", "GetWheelState", {"WheelIndex": WheelIndex}, "FWheelState"))
+
+
+_register_proxy(AWheeledVehiclePawn)
 
 
 class UActorComponent(UObject, api.UActorComponent):

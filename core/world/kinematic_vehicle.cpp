@@ -1,15 +1,15 @@
-#include "core/world/simple_vehicle.h"
+#include "core/world/kinematic_vehicle.h"
 
 #include <algorithm>
 
-ASimpleVehicle::ASimpleVehicle() {
+AKinematicVehicle::AKinematicVehicle() {
     Body = CreateDefaultSubobject<UStaticMeshComponent>("Body");
     Body->StaticMesh = "/Engine/BasicShapes/Cube";
     Body->RelativeScale3D = {1.0, 0.6, 0.4};
     InputComponent = CreateDefaultSubobject<UInputComponent>("InputComponent");
 }
 
-void ASimpleVehicle::Tick(double deltaSeconds) {
+void AKinematicVehicle::Tick(double deltaSeconds) {
     AActor::Tick(deltaSeconds);
     const double throttle = std::clamp(InputComponent->GetActionValue("Throttle").X, -1.0, 1.0);
     const double steer = std::clamp(InputComponent->GetActionValue("Steer").X, -1.0, 1.0);
