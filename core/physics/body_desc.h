@@ -33,6 +33,9 @@ struct BodyDesc {
     double angularDamping = 0.0;
     // Opaque value returned in RayHit::tag, so the owner (an engine component) can be found from a hit.
     uint64_t tag = 0;
+    // A sensor (a trigger volume): other bodies pass through it and rays go through it; overlaps() still
+    // finds what it touches. Fixed when the body is made.
+    bool overlapOnly = false;
 };
 
 } // namespace sp::physics

@@ -48,6 +48,15 @@ void checkFriction(const char* function, double friction) {
              " must be >= 0");
 }
 
+// A ray callback that skips sensors (bodies without contact response).
+template <typename Callback> struct SolidOnly : Callback {
+    using Callback::Callback;
+    bool needsCollision(btBroadphaseProxy* proxy) const override {
+        return Callback::needsCollision(proxy) &&
+               static_cast<const btCollisionObject*>(proxy->m_clientObject)->hasContactResponse();
+    }
+};
+
 } // namespace
 
 PhysicsWorld::PhysicsWorld(const Settings& settings) : impl_(std::make_unique<Impl>()) {
@@ -164,6 +173,9 @@ BodyId PhysicsWorld::addBody(const BodyDesc& desc) {
     info.m_linearDamping = desc.linearDamping;
     info.m_angularDamping = desc.angularDamping;
     record.body = std::make_unique<btRigidBody>(info);
+    if (desc.overlapOnly) // kept by applyMotionType, which changes only the static and kinematic flags
+        record.body->setCollisionFlags(record.body->getCollisionFlags() |
+                                       btCollisionObject::CF_NO_CONTACT_RESPONSE);
 
     Impl& w = *impl_;
     const BodyId id = w.bodies.insert(std::move(record));
@@ -420,7 +432,7 @@ std::optional<RayHit> PhysicsWorld::raycast(const Eigen::Vector3d& from, const E
     checkVector("PhysicsWorld::raycast()", "to", to);
     if (from == to)
         return std::nullopt;
-    btCollisionWorld::ClosestRayResultCallback result(toBullet(from), toBullet(to));
+    SolidOnly<btCollisionWorld::ClosestRayResultCallback> result(toBullet(from), toBullet(to));
     impl_->world->rayTest(result.m_rayFromWorld, result.m_rayToWorld, result);
     if (!result.hasHit())
         return std::nullopt;
@@ -434,7 +446,7 @@ std::vector<RayHit> PhysicsWorld::raycastAll(const Eigen::Vector3d& from, const 
     std::vector<RayHit> hits;
     if (from == to)
         return hits;
-    btCollisionWorld::AllHitsRayResultCallback result(toBullet(from), toBullet(to));
+    SolidOnly<btCollisionWorld::AllHitsRayResultCallback> result(toBullet(from), toBullet(to));
     impl_->world->rayTest(result.m_rayFromWorld, result.m_rayToWorld, result);
     hits.reserve(size_t(result.m_collisionObjects.size()));
     for (int i = 0; i < result.m_collisionObjects.size(); ++i)

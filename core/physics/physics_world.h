@@ -140,6 +140,12 @@ class PhysicsWorld {
     std::optional<RayHit> raycast(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
     // Every body hit by the segment, each at its closest hit, closest first.
     std::vector<RayHit> raycastAll(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
+    // Rays of both kinds pass through overlapOnly bodies (sensors).
+
+    // The bodies whose shapes intersect this body's shape now (touching or penetrating, exact for convex
+    // shapes; two concave shapes never overlap), in id order, of any mobility, sensors included; not the
+    // body itself.
+    std::vector<BodyId> overlaps(BodyId id) const;
 
   private:
     struct Impl;
