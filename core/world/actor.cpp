@@ -179,3 +179,28 @@ void AActor::EndPlay() {
         component->EndPlay();
     begunPlay_ = false;
 }
+
+std::vector<AActor*> AActor::GetOverlappingActors(TSubclassOf<AActor> ClassFilter) const {
+    SP_CHECK(ClassFilter, sp::InvalidArgument,
+             "AActor.GetOverlappingActors(): ClassFilter is None (pass AActor for every actor)");
+    std::vector<AActor*> actors;
+    for (UActorComponent* component : K2_GetComponents()) {
+        const auto* primitive = dynamic_cast<const UPrimitiveComponent*>(component);
+        if (!primitive || !primitive->bGenerateOverlapEvents)
+            continue;
+        for (AActor* actor : primitive->GetOverlappingActors(ClassFilter))
+            if (std::find(actors.begin(), actors.end(), actor) == actors.end())
+                actors.push_back(actor);
+    }
+    return actors;
+}
+
+bool AActor::IsOverlappingActor(const AActor* Other) const {
+    SP_CHECK(Other, sp::InvalidArgument, "AActor.IsOverlappingActor(): Other is None");
+    for (UActorComponent* component : K2_GetComponents()) {
+        const auto* primitive = dynamic_cast<const UPrimitiveComponent*>(component);
+        if (primitive && primitive->bGenerateOverlapEvents && primitive->IsOverlappingActor(Other))
+            return true;
+    }
+    return false;
+}

@@ -79,6 +79,15 @@ class AActor : public UObject {
     SPFUNCTION()
     bool ActorHasTag(const std::string& Tag) const;
 
+    /// Returns the other actors (of class ClassFilter or a subclass) that overlap any of this actor's
+    /// components now (see UPrimitiveComponent.GetOverlappingComponents).
+    SPFUNCTION(DeterminesOutputType = ClassFilter)
+    std::vector<AActor*> GetOverlappingActors(TSubclassOf<AActor> ClassFilter) const;
+
+    /// Returns true when a component of Other overlaps a component of this actor now.
+    SPFUNCTION()
+    bool IsOverlappingActor(const AActor* Other) const;
+
     /// Returns all components of this actor, in creation order.
     SPFUNCTION()
     std::vector<UActorComponent*> K2_GetComponents() const;

@@ -81,7 +81,9 @@ void PhysicsSubsystem::registerComponent(UPrimitiveComponent& component) {
     if (index_.contains(&component))
         return;
     index_.emplace(&component, entries_.size());
-    entries_.push_back(Entry{&component, {}, {}, {}});
+    Entry entry;
+    entry.component = &component;
+    entries_.push_back(std::move(entry));
     syncEntry(entries_.back());
 }
 
@@ -186,6 +188,7 @@ void PhysicsSubsystem::rebuildBody(Entry& entry, const ShapeKey& key) {
         desc.linearDamping = component.LinearDamping;
         desc.angularDamping = component.AngularDamping;
         desc.tag = tagOf(component);
+        desc.overlapOnly = component.IsOverlapOnly();
         entry.body = physicsWorld_.addBody(desc);
     } catch (const NotFound& error) { // a mesh file that is not there: retried and reported each sync
         entry.shape = ShapeKey{};
@@ -246,6 +249,72 @@ void PhysicsSubsystem::Tick(double deltaSeconds) {
     syncAll();
     physicsWorld_.step(deltaSeconds);
     writeBack();
+    updateOverlapEvents();
+}
+
+std::vector<UPrimitiveComponent*> PhysicsSubsystem::currentOverlaps(const Entry& entry) {
+    std::vector<UPrimitiveComponent*> found;
+    if (!entry.component->bGenerateOverlapEvents || !entry.body.isSet())
+        return found;
+    for (const physics::BodyId other : physicsWorld_.overlaps(entry.body)) {
+        UPrimitiveComponent* component = componentOfTag(physicsWorld_.getTag(other));
+        if (component && component->bGenerateOverlapEvents &&
+            component->GetOwner() != entry.component->GetOwner())
+            found.push_back(component);
+    }
+    // In the order the components entered play, as the rest of the subsystem keeps them.
+    std::sort(found.begin(), found.end(), [&](const UPrimitiveComponent* a, const UPrimitiveComponent* b) {
+        return index_.at(a) < index_.at(b);
+    });
+    return found;
+}
+
+void PhysicsSubsystem::updateOverlapEvents() {
+    for (Entry& entry : entries_) {
+        std::vector<reflect::ObjectHandle> now;
+        for (const UPrimitiveComponent* component : currentOverlaps(entry))
+            now.push_back(component->GetHandle());
+        const auto missingFrom = [](const std::vector<reflect::ObjectHandle>& from,
+                                    const std::vector<reflect::ObjectHandle>& handles) {
+            std::vector<reflect::ObjectHandle> missing;
+            for (const reflect::ObjectHandle& handle : handles)
+                if (std::find(from.begin(), from.end(), handle) == from.end())
+                    missing.push_back(handle);
+            return missing;
+        };
+        entry.began = missingFrom(entry.overlapping, now);
+        entry.ended = missingFrom(now, entry.overlapping);
+        entry.overlapping = std::move(now);
+    }
+}
+
+std::vector<UPrimitiveComponent*>
+PhysicsSubsystem::overlappingComponents(const UPrimitiveComponent& component, const char* function) {
+    Entry& entry = entryFor(component, function);
+    syncAll();
+    return currentOverlaps(entry);
+}
+
+namespace {
+
+std::vector<UPrimitiveComponent*> liveComponents(const std::vector<reflect::ObjectHandle>& handles) {
+    std::vector<UPrimitiveComponent*> components;
+    for (const reflect::ObjectHandle& handle : handles)
+        if (auto* component = dynamic_cast<UPrimitiveComponent*>(reflect::ObjectTable::find(handle)))
+            components.push_back(component);
+    return components;
+}
+
+} // namespace
+
+std::vector<UPrimitiveComponent*> PhysicsSubsystem::beganOverlaps(const UPrimitiveComponent& component,
+                                                                  const char* function) {
+    return liveComponents(entryFor(component, function).began);
+}
+
+std::vector<UPrimitiveComponent*> PhysicsSubsystem::endedOverlaps(const UPrimitiveComponent& component,
+                                                                  const char* function) {
+    return liveComponents(entryFor(component, function).ended);
 }
 
 UPrimitiveComponent* PhysicsSubsystem::lineTrace(const FVector& start, const FVector& end, FHitResult& hit) {

@@ -49,6 +49,16 @@ class PhysicsSubsystem : public WorldSubsystem {
     // The closest hit of the segment start -> end, after a sync; fills hit and returns the component hit.
     UPrimitiveComponent* lineTrace(const FVector& start, const FVector& end, FHitResult& hit);
 
+    // The components overlapping `component` now, after a sync (see
+    // UPrimitiveComponent.GetOverlappingComponents); `function` names the caller in messages.
+    std::vector<UPrimitiveComponent*> overlappingComponents(const UPrimitiveComponent& component,
+                                                            const char* function);
+    // The components that began (ended) overlapping `component` in the last step.
+    std::vector<UPrimitiveComponent*> beganOverlaps(const UPrimitiveComponent& component,
+                                                    const char* function);
+    std::vector<UPrimitiveComponent*> endedOverlaps(const UPrimitiveComponent& component,
+                                                    const char* function);
+
     physics::PhysicsWorld& GetPhysicsWorld() { return physicsWorld_; }
     size_t GetBodyCount() const { return physicsWorld_.bodyCount(); }
 
@@ -69,6 +79,8 @@ class PhysicsSubsystem : public WorldSubsystem {
         // The component's world transform when the body was last placed or written back; a different
         // transform at sync means someone moved the component.
         FTransform syncedTransform;
+        // Overlaps after the last step, and how they changed in it (bGenerateOverlapEvents only).
+        std::vector<reflect::ObjectHandle> overlapping, began, ended;
     };
 
     Entry& entryFor(const UPrimitiveComponent& component, const char* function);
@@ -76,6 +88,9 @@ class PhysicsSubsystem : public WorldSubsystem {
     void rebuildBody(Entry& entry, const ShapeKey& key);
     void syncProperties(Entry& entry);
     void writeBack();
+    // The overlapping components of an entry's body as it is now, without a sync.
+    std::vector<UPrimitiveComponent*> currentOverlaps(const Entry& entry);
+    void updateOverlapEvents();
 
     physics::PhysicsWorld physicsWorld_;
     std::vector<Entry> entries_; // registration order: keeps sync (and so the simulation) deterministic

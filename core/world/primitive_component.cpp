@@ -1,5 +1,6 @@
 #include "core/world/primitive_component.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -184,4 +185,44 @@ bool UPrimitiveComponent::IsAnyRigidBodyAwake() const {
     auto& physics = physicsOf(*this, "IsAnyRigidBodyAwake");
     const sp::physics::BodyId body = physics.syncComponent(*this, "IsAnyRigidBodyAwake");
     return body.isSet() && physics.GetPhysicsWorld().isAwake(body);
+}
+
+std::vector<UPrimitiveComponent*> UPrimitiveComponent::GetOverlappingComponents() const {
+    constexpr const char* kFunction = "GetOverlappingComponents";
+    return physicsOf(*this, kFunction).overlappingComponents(*this, kFunction);
+}
+
+std::vector<AActor*> UPrimitiveComponent::GetOverlappingActors(TSubclassOf<AActor> ClassFilter) const {
+    SP_CHECK(ClassFilter, sp::InvalidArgument,
+             "UPrimitiveComponent.GetOverlappingActors(): ClassFilter is None (pass AActor for every actor)");
+    std::vector<AActor*> actors;
+    for (const UPrimitiveComponent* component : GetOverlappingComponents()) {
+        AActor* owner = component->GetOwner();
+        if (owner && owner->IsA(*ClassFilter.Get()) &&
+            std::find(actors.begin(), actors.end(), owner) == actors.end())
+            actors.push_back(owner);
+    }
+    return actors;
+}
+
+bool UPrimitiveComponent::IsOverlappingComponent(const UPrimitiveComponent* OtherComp) const {
+    SP_CHECK(OtherComp, sp::InvalidArgument,
+             "UPrimitiveComponent.IsOverlappingComponent(): OtherComp is None");
+    const std::vector<UPrimitiveComponent*> overlapping = GetOverlappingComponents();
+    return std::find(overlapping.begin(), overlapping.end(), OtherComp) != overlapping.end();
+}
+
+bool UPrimitiveComponent::IsOverlappingActor(const AActor* Other) const {
+    SP_CHECK(Other, sp::InvalidArgument, "UPrimitiveComponent.IsOverlappingActor(): Other is None");
+    const std::vector<UPrimitiveComponent*> overlapping = GetOverlappingComponents();
+    return std::any_of(overlapping.begin(), overlapping.end(),
+                       [&](const UPrimitiveComponent* component) { return component->GetOwner() == Other; });
+}
+
+std::vector<UPrimitiveComponent*> UPrimitiveComponent::GetBeginOverlaps() const {
+    return physicsOf(*this, "GetBeginOverlaps").beganOverlaps(*this, "GetBeginOverlaps");
+}
+
+std::vector<UPrimitiveComponent*> UPrimitiveComponent::GetEndOverlaps() const {
+    return physicsOf(*this, "GetEndOverlaps").endedOverlaps(*this, "GetEndOverlaps");
 }

@@ -4,7 +4,11 @@
 // reads them when it synchronises (before each physics step, raycast or physics call), so they may be
 // set through their setters, the registry or a scene file, before or during play.
 
+#include <vector>
+
 #include <Eigen/Geometry>
+
+#include "core/reflect/class_ref.h"
 
 #include "core/world/scene_component.h"
 
@@ -62,6 +66,11 @@ class UPrimitiveComponent : public USceneComponent {
     /// Fraction of angular velocity lost per second, in [0, 1].
     SPPROPERTY(Setter = SetAngularDamping)
     double AngularDamping = 0.0;
+
+    /// Whether this component takes part in overlaps: two components overlap only when both have it set
+    /// (as in UE). Shape components (UBoxComponent, USphereComponent) have it set by default.
+    SPPROPERTY()
+    bool bGenerateOverlapEvents = false;
 
     /// Returns the world-space axis-aligned bounds as centre Origin and half size BoxExtent.
     SPFUNCTION()
@@ -132,6 +141,36 @@ class UPrimitiveComponent : public USceneComponent {
     /// Returns true while this component's body is awake (false for sleeping or non-simulated ones).
     SPFUNCTION()
     bool IsAnyRigidBodyAwake() const;
+
+    /// Returns the components of other actors whose collision shapes touch or intersect this one's now
+    /// (both must generate overlap events), in the order they entered play.
+    SPFUNCTION()
+    std::vector<UPrimitiveComponent*> GetOverlappingComponents() const;
+
+    /// Returns the actors (of class ClassFilter or a subclass) that own the components overlapping this one.
+    SPFUNCTION(DeterminesOutputType = ClassFilter)
+    std::vector<AActor*> GetOverlappingActors(TSubclassOf<AActor> ClassFilter) const;
+
+    /// Returns true when OtherComp overlaps this component now.
+    SPFUNCTION()
+    bool IsOverlappingComponent(const UPrimitiveComponent* OtherComp) const;
+
+    /// Returns true when a component of Other overlaps this component now.
+    SPFUNCTION()
+    bool IsOverlappingActor(const AActor* Other) const;
+
+    /// Returns the components that began overlapping this one in the last frame's physics step (UE's
+    /// OnComponentBeginOverlap, polled).
+    SPFUNCTION()
+    std::vector<UPrimitiveComponent*> GetBeginOverlaps() const;
+
+    /// Returns the components that stopped overlapping this one in the last frame's physics step (UE's
+    /// OnComponentEndOverlap, polled); destroyed ones are left out.
+    SPFUNCTION()
+    std::vector<UPrimitiveComponent*> GetEndOverlaps() const;
+
+    // True for sensors (trigger shapes): bodies and traces pass through them; they only overlap.
+    virtual bool IsOverlapOnly() const { return false; }
 
     // Bounds in the component's own space (before its scale); empty when it has no geometry.
     virtual Eigen::AlignedBox3d GetLocalBounds() const { return {}; }

@@ -24,6 +24,7 @@
 #include "core/world/pawn.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
+#include "core/world/shape_components.h"
 #include "core/world/static_mesh_actor.h"
 #include "core/world/static_mesh_component.h"
 #include "core/world/wheeled_vehicle.h"
@@ -296,6 +297,40 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
                 sp::reflect::checkArguments(args, {"Tag"}, kContext);
                 std::string Tag = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "Tag", kContext), "AActor.ActorHasTag(): argument 'Tag'");
                 auto result = sp::reflect::selfCast<const Self>(self)->ActorHasTag(Tag);
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "GetOverlappingActors",
+            "Returns the other actors (of class ClassFilter or a subclass) that overlap any of this actor's\ncomponents now (see UPrimitiveComponent.GetOverlappingComponents).",
+            "list[AActor]",
+            {
+                {"ClassFilter", "type[AActor] | str", false, false},
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "AActor.GetOverlappingActors()";
+                sp::reflect::checkArguments(args, {"ClassFilter"}, kContext);
+                TSubclassOf<AActor> ClassFilter = sp::reflect::decodeNonNull<TSubclassOf<AActor>>(sp::reflect::requireArgument(args, "ClassFilter", kContext), "AActor.GetOverlappingActors(): argument 'ClassFilter'");
+                auto result = sp::reflect::selfCast<const Self>(self)->GetOverlappingActors(ClassFilter);
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "IsOverlappingActor",
+            "Returns true when a component of Other overlaps a component of this actor now.",
+            "bool",
+            {
+                {"Other", "AActor", false, false},
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "AActor.IsOverlappingActor()";
+                sp::reflect::checkArguments(args, {"Other"}, kContext);
+                AActor* Other = sp::reflect::decodeNonNull<AActor*>(sp::reflect::requireArgument(args, "Other", kContext), "AActor.IsOverlappingActor(): argument 'Other'");
+                auto result = sp::reflect::selfCast<const Self>(self)->IsOverlappingActor(Other);
                 return sp::reflect::encode(result);
             },
         });

@@ -24,6 +24,7 @@
 #include "core/world/object.h"
 #include "core/world/pawn.h"
 #include "core/world/scene_component.h"
+#include "core/world/shape_components.h"
 #include "core/world/static_mesh_actor.h"
 #include "core/world/static_mesh_component.h"
 #include "core/world/wheeled_vehicle.h"
@@ -157,6 +158,20 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
                 auto* object = sp::reflect::selfCast<Self>(self);
                 object->SetAngularDamping(sp::reflect::decode<double>(value, "UPrimitiveComponent.AngularDamping"));
                 sp::reflect::notifyPropertyChanged(object, "AngularDamping");
+            },
+        });
+        t.properties.push_back({
+            "bGenerateOverlapEvents",
+            "bool",
+            "Whether this component takes part in overlaps: two components overlap only when both have it set\n(as in UE). Shape components (UBoxComponent, USphereComponent) have it set by default.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bGenerateOverlapEvents);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->bGenerateOverlapEvents = sp::reflect::decode<bool>(value, "UPrimitiveComponent.bGenerateOverlapEvents");
+                sp::reflect::notifyPropertyChanged(object, "bGenerateOverlapEvents");
             },
         });
         t.functions.push_back({
@@ -454,6 +469,102 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
                 static constexpr const char* kContext = "UPrimitiveComponent.IsAnyRigidBodyAwake()";
                 sp::reflect::checkArguments(args, {}, kContext);
                 auto result = sp::reflect::selfCast<const Self>(self)->IsAnyRigidBodyAwake();
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "GetOverlappingComponents",
+            "Returns the components of other actors whose collision shapes touch or intersect this one's now\n(both must generate overlap events), in the order they entered play.",
+            "list[UPrimitiveComponent]",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.GetOverlappingComponents()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->GetOverlappingComponents();
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "GetOverlappingActors",
+            "Returns the actors (of class ClassFilter or a subclass) that own the components overlapping this one.",
+            "list[AActor]",
+            {
+                {"ClassFilter", "type[AActor] | str", false, false},
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.GetOverlappingActors()";
+                sp::reflect::checkArguments(args, {"ClassFilter"}, kContext);
+                TSubclassOf<AActor> ClassFilter = sp::reflect::decodeNonNull<TSubclassOf<AActor>>(sp::reflect::requireArgument(args, "ClassFilter", kContext), "UPrimitiveComponent.GetOverlappingActors(): argument 'ClassFilter'");
+                auto result = sp::reflect::selfCast<const Self>(self)->GetOverlappingActors(ClassFilter);
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "IsOverlappingComponent",
+            "Returns true when OtherComp overlaps this component now.",
+            "bool",
+            {
+                {"OtherComp", "UPrimitiveComponent", false, false},
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.IsOverlappingComponent()";
+                sp::reflect::checkArguments(args, {"OtherComp"}, kContext);
+                UPrimitiveComponent* OtherComp = sp::reflect::decodeNonNull<UPrimitiveComponent*>(sp::reflect::requireArgument(args, "OtherComp", kContext), "UPrimitiveComponent.IsOverlappingComponent(): argument 'OtherComp'");
+                auto result = sp::reflect::selfCast<const Self>(self)->IsOverlappingComponent(OtherComp);
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "IsOverlappingActor",
+            "Returns true when a component of Other overlaps this component now.",
+            "bool",
+            {
+                {"Other", "AActor", false, false},
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.IsOverlappingActor()";
+                sp::reflect::checkArguments(args, {"Other"}, kContext);
+                AActor* Other = sp::reflect::decodeNonNull<AActor*>(sp::reflect::requireArgument(args, "Other", kContext), "UPrimitiveComponent.IsOverlappingActor(): argument 'Other'");
+                auto result = sp::reflect::selfCast<const Self>(self)->IsOverlappingActor(Other);
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "GetBeginOverlaps",
+            "Returns the components that began overlapping this one in the last frame's physics step (UE's\nOnComponentBeginOverlap, polled).",
+            "list[UPrimitiveComponent]",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.GetBeginOverlaps()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->GetBeginOverlaps();
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "GetEndOverlaps",
+            "Returns the components that stopped overlapping this one in the last frame's physics step (UE's\nOnComponentEndOverlap, polled); destroyed ones are left out.",
+            "list[UPrimitiveComponent]",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UPrimitiveComponent.GetEndOverlaps()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->GetEndOverlaps();
                 return sp::reflect::encode(result);
             },
         });

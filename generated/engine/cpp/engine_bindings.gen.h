@@ -32,6 +32,7 @@
 #include "core/world/pawn.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
+#include "core/world/shape_components.h"
 #include "core/world/static_mesh_actor.h"
 #include "core/world/static_mesh_component.h"
 #include "core/world/wheeled_vehicle.h"
@@ -95,6 +96,12 @@ template <> struct Ref<AStaticMeshActor> : Ref<AActor> {
 template <> struct Ref<AStereoCameraRig> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
+template <> struct Ref<ATriggerBox> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
+template <> struct Ref<ATriggerSphere> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
 template <> struct Ref<AWheeledVehiclePawn> : Ref<APawn> {
     using Ref<APawn>::Ref;
 };
@@ -103,6 +110,15 @@ template <> struct Ref<UActorComponent> : Ref<UObject> {
 };
 template <> struct Ref<USceneComponent> : Ref<UActorComponent> {
     using Ref<UActorComponent>::Ref;
+};
+template <> struct Ref<UPrimitiveComponent> : Ref<USceneComponent> {
+    using Ref<USceneComponent>::Ref;
+};
+template <> struct Ref<UShapeComponent> : Ref<UPrimitiveComponent> {
+    using Ref<UPrimitiveComponent>::Ref;
+};
+template <> struct Ref<UBoxComponent> : Ref<UShapeComponent> {
+    using Ref<UShapeComponent>::Ref;
 };
 template <> struct Ref<UCameraSensorComponent> : Ref<USceneComponent> {
     using Ref<USceneComponent>::Ref;
@@ -122,14 +138,14 @@ template <> struct Ref<UInputComponent> : Ref<UActorComponent> {
 template <> struct Ref<UPointLightComponent> : Ref<ULightComponent> {
     using Ref<ULightComponent>::Ref;
 };
-template <> struct Ref<UPrimitiveComponent> : Ref<USceneComponent> {
-    using Ref<USceneComponent>::Ref;
-};
 template <> struct Ref<USkyLightComponent> : Ref<USceneComponent> {
     using Ref<USceneComponent>::Ref;
 };
 template <> struct Ref<USpFuncComponent> : Ref<UActorComponent> {
     using Ref<UActorComponent>::Ref;
+};
+template <> struct Ref<USphereComponent> : Ref<UShapeComponent> {
+    using Ref<UShapeComponent>::Ref;
 };
 template <> struct Ref<USpotLightComponent> : Ref<UPointLightComponent> {
     using Ref<UPointLightComponent>::Ref;

@@ -225,6 +225,32 @@ void spear_bind_engine(py::module_& m) {
             py::arg("Tag"),
             "Returns true when Tags contains Tag.");
         cls.def(
+            "GetOverlappingActors",
+            [](const Ref<Self>& self, Bridge<TSubclassOf<AActor>>::Py ClassFilter) -> py::object {
+                static constexpr const char* kContext = "AActor.GetOverlappingActors()";
+                const Self* object = self.get<Self>(kContext);
+                auto ClassFilterValue = Bridge<TSubclassOf<AActor>>::in(std::move(ClassFilter), "AActor.GetOverlappingActors(): argument 'ClassFilter'");
+                SP_CHECK(ClassFilterValue, sp::InvalidArgument, "AActor.GetOverlappingActors(): argument 'ClassFilter'", " must not be None");
+                auto result = object->GetOverlappingActors(ClassFilterValue);
+                return Bridge<std::vector<AActor*>>::out(result);
+            },
+            py::kw_only(),
+            py::arg("ClassFilter"),
+            "Returns the other actors (of class ClassFilter or a subclass) that overlap any of this actor's\ncomponents now (see UPrimitiveComponent.GetOverlappingComponents).");
+        cls.def(
+            "IsOverlappingActor",
+            [](const Ref<Self>& self, Bridge<AActor*>::Py Other) -> py::object {
+                static constexpr const char* kContext = "AActor.IsOverlappingActor()";
+                const Self* object = self.get<Self>(kContext);
+                auto OtherValue = Bridge<AActor*>::in(std::move(Other), "AActor.IsOverlappingActor(): argument 'Other'");
+                SP_CHECK(OtherValue, sp::InvalidArgument, "AActor.IsOverlappingActor(): argument 'Other'", " must not be None");
+                auto result = object->IsOverlappingActor(OtherValue);
+                return Bridge<bool>::out(result);
+            },
+            py::kw_only(),
+            py::arg("Other"),
+            "Returns true when a component of Other overlaps a component of this actor now.");
+        cls.def(
             "K2_GetComponents",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "AActor.K2_GetComponents()";
@@ -895,6 +921,34 @@ void spear_bind_engine(py::module_& m) {
             "Sets the baseline in metres (> 0) and moves both cameras.");
     }
     {
+        using Self = ATriggerBox;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "ATriggerBox", "A box-shaped trigger volume: an actor whose root is a UBoxComponent.");
+        cls.attr("__sp_class__") = "ATriggerBox";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "CollisionComponent",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("ATriggerBox.CollisionComponent")->CollisionComponent;
+                sp::reflect::checkNotNull(value, "ATriggerBox.CollisionComponent");
+                return Bridge<UBoxComponent*>::out(value);
+            },
+            "The trigger's shape (the root component).");
+    }
+    {
+        using Self = ATriggerSphere;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "ATriggerSphere", "A sphere-shaped trigger volume: an actor whose root is a USphereComponent.");
+        cls.attr("__sp_class__") = "ATriggerSphere";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "CollisionComponent",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("ATriggerSphere.CollisionComponent")->CollisionComponent;
+                sp::reflect::checkNotNull(value, "ATriggerSphere.CollisionComponent");
+                return Bridge<USphereComponent*>::out(value);
+            },
+            "The trigger's shape (the root component).");
+    }
+    {
         using Self = AWheeledVehiclePawn;
         py::class_<Ref<Self>, Ref<APawn>> cls(m, "AWheeledVehiclePawn", "A four-wheeled, rear-driven car on Bullet's raycast vehicle. Input actions (X component): \"Throttle\" in\n[-1, 1] (negative reverses), \"Steer\" in [-1, 1] (positive turns left), \"Brake\" in [0, 1] (all wheels),\n\"Handbrake\" in [0, 1] (rear wheels). Its X axis is forward.");
         cls.attr("__sp_class__") = "AWheeledVehiclePawn";
@@ -1444,6 +1498,382 @@ void spear_bind_engine(py::module_& m) {
             "Returns the attached children, and their descendants when bIncludeAllDescendants is true.");
     }
     {
+        using Self = UPrimitiveComponent;
+        py::class_<Ref<Self>, Ref<USceneComponent>> cls(m, "UPrimitiveComponent", "A scene component that has geometry.");
+        cls.attr("__sp_class__") = "UPrimitiveComponent";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "bSimulatePhysics",
+            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UPrimitiveComponent.bSimulatePhysics")->bSimulatePhysics); },
+            [](const Ref<Self>& self, Bridge<bool>::Py value) {
+                Self* object = self.get<Self>("UPrimitiveComponent.bSimulatePhysics");
+                object->SetSimulatePhysics(Bridge<bool>::in(std::move(value), "UPrimitiveComponent.bSimulatePhysics"));
+                object->PostPropertyChanged("bSimulatePhysics");
+            },
+            "Whether physics moves this component (gravity, forces, contacts); it must be Movable.");
+        cls.def_property(
+            "CollisionPrimitive",
+            [](const Ref<Self>& self) { return Bridge<ECollisionPrimitive>::out(self.get<Self>("UPrimitiveComponent.CollisionPrimitive")->CollisionPrimitive); },
+            [](const Ref<Self>& self, Bridge<ECollisionPrimitive>::Py value) {
+                Self* object = self.get<Self>("UPrimitiveComponent.CollisionPrimitive");
+                object->CollisionPrimitive = Bridge<ECollisionPrimitive>::in(std::move(value), "UPrimitiveComponent.CollisionPrimitive");
+                object->PostPropertyChanged("CollisionPrimitive");
+            },
+            "The collision geometry used by physics and traces.");
+        cls.def_property(
+            "MassInKg",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.MassInKg")->MassInKg); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPrimitiveComponent.MassInKg");
+                object->SetMassOverrideInKg(Bridge<double>::in(std::move(value), "UPrimitiveComponent.MassInKg"));
+                object->PostPropertyChanged("MassInKg");
+            },
+            "Mass in kilograms (> 0 to simulate); inertia follows the collision shape at uniform density.");
+        cls.def_property(
+            "Friction",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.Friction")->Friction); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPrimitiveComponent.Friction");
+                object->SetFriction(Bridge<double>::in(std::move(value), "UPrimitiveComponent.Friction"));
+                object->PostPropertyChanged("Friction");
+            },
+            "Coulomb friction coefficient (>= 0); the two coefficients at a contact are multiplied.");
+        cls.def_property(
+            "Restitution",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.Restitution")->Restitution); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPrimitiveComponent.Restitution");
+                object->SetRestitution(Bridge<double>::in(std::move(value), "UPrimitiveComponent.Restitution"));
+                object->PostPropertyChanged("Restitution");
+            },
+            "Bounciness in [0, 1]; the two coefficients at a contact are multiplied.");
+        cls.def_property(
+            "LinearDamping",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.LinearDamping")->LinearDamping); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPrimitiveComponent.LinearDamping");
+                object->SetLinearDamping(Bridge<double>::in(std::move(value), "UPrimitiveComponent.LinearDamping"));
+                object->PostPropertyChanged("LinearDamping");
+            },
+            "Fraction of linear velocity lost per second, in [0, 1].");
+        cls.def_property(
+            "AngularDamping",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.AngularDamping")->AngularDamping); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPrimitiveComponent.AngularDamping");
+                object->SetAngularDamping(Bridge<double>::in(std::move(value), "UPrimitiveComponent.AngularDamping"));
+                object->PostPropertyChanged("AngularDamping");
+            },
+            "Fraction of angular velocity lost per second, in [0, 1].");
+        cls.def_property(
+            "bGenerateOverlapEvents",
+            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UPrimitiveComponent.bGenerateOverlapEvents")->bGenerateOverlapEvents); },
+            [](const Ref<Self>& self, Bridge<bool>::Py value) {
+                Self* object = self.get<Self>("UPrimitiveComponent.bGenerateOverlapEvents");
+                object->bGenerateOverlapEvents = Bridge<bool>::in(std::move(value), "UPrimitiveComponent.bGenerateOverlapEvents");
+                object->PostPropertyChanged("bGenerateOverlapEvents");
+            },
+            "Whether this component takes part in overlaps: two components overlap only when both have it set\n(as in UE). Shape components (UBoxComponent, USphereComponent) have it set by default.");
+        cls.def(
+            "GetBounds",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.GetBounds()";
+                const Self* object = self.get<Self>(kContext);
+                FVector OriginOut{};
+                FVector BoxExtentOut{};
+                object->GetBounds(OriginOut, BoxExtentOut);
+                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "UPrimitiveComponent").attr("GetBoundsResult");
+                return resultType(py::arg("Origin") = Bridge<FVector>::out(OriginOut), py::arg("BoxExtent") = Bridge<FVector>::out(BoxExtentOut));
+            },
+            "Returns the world-space axis-aligned bounds as centre Origin and half size BoxExtent.");
+        cls.def(
+            "SetSimulatePhysics",
+            [](const Ref<Self>& self, Bridge<bool>::Py bSimulate) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetSimulatePhysics()";
+                Self* object = self.get<Self>(kContext);
+                auto bSimulateValue = Bridge<bool>::in(std::move(bSimulate), "UPrimitiveComponent.SetSimulatePhysics(): argument 'bSimulate'");
+                object->SetSimulatePhysics(bSimulateValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("bSimulate"),
+            "Turns physics simulation on or off; turning it on needs a Movable component with collision.");
+        cls.def(
+            "IsSimulatingPhysics",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.IsSimulatingPhysics()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->IsSimulatingPhysics();
+                return Bridge<bool>::out(result);
+            },
+            "Returns true while physics moves this component.");
+        cls.def(
+            "SetMassOverrideInKg",
+            [](const Ref<Self>& self, Bridge<double>::Py MassInKg) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetMassOverrideInKg()";
+                Self* object = self.get<Self>(kContext);
+                auto MassInKgValue = Bridge<double>::in(std::move(MassInKg), "UPrimitiveComponent.SetMassOverrideInKg(): argument 'MassInKg'");
+                object->SetMassOverrideInKg(MassInKgValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("MassInKg"),
+            "Sets the mass in kilograms (> 0).");
+        cls.def(
+            "SetFriction",
+            [](const Ref<Self>& self, Bridge<double>::Py NewFriction) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetFriction()";
+                Self* object = self.get<Self>(kContext);
+                auto NewFrictionValue = Bridge<double>::in(std::move(NewFriction), "UPrimitiveComponent.SetFriction(): argument 'NewFriction'");
+                object->SetFriction(NewFrictionValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewFriction"),
+            "Sets the Coulomb friction coefficient (finite, >= 0).");
+        cls.def(
+            "SetRestitution",
+            [](const Ref<Self>& self, Bridge<double>::Py NewRestitution) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetRestitution()";
+                Self* object = self.get<Self>(kContext);
+                auto NewRestitutionValue = Bridge<double>::in(std::move(NewRestitution), "UPrimitiveComponent.SetRestitution(): argument 'NewRestitution'");
+                object->SetRestitution(NewRestitutionValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewRestitution"),
+            "Sets the bounciness, in [0, 1].");
+        cls.def(
+            "SetLinearDamping",
+            [](const Ref<Self>& self, Bridge<double>::Py NewLinearDamping) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetLinearDamping()";
+                Self* object = self.get<Self>(kContext);
+                auto NewLinearDampingValue = Bridge<double>::in(std::move(NewLinearDamping), "UPrimitiveComponent.SetLinearDamping(): argument 'NewLinearDamping'");
+                object->SetLinearDamping(NewLinearDampingValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewLinearDamping"),
+            "Sets the fraction of linear velocity lost per second, in [0, 1].");
+        cls.def(
+            "SetAngularDamping",
+            [](const Ref<Self>& self, Bridge<double>::Py NewAngularDamping) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetAngularDamping()";
+                Self* object = self.get<Self>(kContext);
+                auto NewAngularDampingValue = Bridge<double>::in(std::move(NewAngularDamping), "UPrimitiveComponent.SetAngularDamping(): argument 'NewAngularDamping'");
+                object->SetAngularDamping(NewAngularDampingValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewAngularDamping"),
+            "Sets the fraction of angular velocity lost per second, in [0, 1].");
+        cls.def(
+            "GetMass",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.GetMass()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetMass();
+                return Bridge<double>::out(result);
+            },
+            "Returns the mass in kilograms.");
+        cls.def(
+            "AddForce",
+            [](const Ref<Self>& self, Bridge<FVector>::Py Force, Bridge<bool>::Py bAccelChange) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.AddForce()";
+                Self* object = self.get<Self>(kContext);
+                auto ForceValue = Bridge<FVector>::in(std::move(Force), "UPrimitiveComponent.AddForce(): argument 'Force'");
+                auto bAccelChangeValue = Bridge<bool>::in(std::move(bAccelChange), "UPrimitiveComponent.AddForce(): argument 'bAccelChange'");
+                object->AddForce(ForceValue, bAccelChangeValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("Force"),
+            py::arg("bAccelChange") = static_cast<Bridge<bool>::Py>(bool(false)),
+            "Adds a force in newtons at the centre of mass for the next physics step (an acceleration in m/s^2\nwhen bAccelChange is true).");
+        cls.def(
+            "AddTorqueInRadians",
+            [](const Ref<Self>& self, Bridge<FVector>::Py Torque) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.AddTorqueInRadians()";
+                Self* object = self.get<Self>(kContext);
+                auto TorqueValue = Bridge<FVector>::in(std::move(Torque), "UPrimitiveComponent.AddTorqueInRadians(): argument 'Torque'");
+                object->AddTorqueInRadians(TorqueValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("Torque"),
+            "Adds a torque in newton-metres about world axes for the next physics step.");
+        cls.def(
+            "AddImpulse",
+            [](const Ref<Self>& self, Bridge<FVector>::Py Impulse, Bridge<bool>::Py bVelChange) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.AddImpulse()";
+                Self* object = self.get<Self>(kContext);
+                auto ImpulseValue = Bridge<FVector>::in(std::move(Impulse), "UPrimitiveComponent.AddImpulse(): argument 'Impulse'");
+                auto bVelChangeValue = Bridge<bool>::in(std::move(bVelChange), "UPrimitiveComponent.AddImpulse(): argument 'bVelChange'");
+                object->AddImpulse(ImpulseValue, bVelChangeValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("Impulse"),
+            py::arg("bVelChange") = static_cast<Bridge<bool>::Py>(bool(false)),
+            "Changes the velocity at once by Impulse / mass (Impulse in N*s; a velocity change in m/s when\nbVelChange is true).");
+        cls.def(
+            "SetPhysicsLinearVelocity",
+            [](const Ref<Self>& self, Bridge<FVector>::Py NewVel, Bridge<bool>::Py bAddToCurrent) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetPhysicsLinearVelocity()";
+                Self* object = self.get<Self>(kContext);
+                auto NewVelValue = Bridge<FVector>::in(std::move(NewVel), "UPrimitiveComponent.SetPhysicsLinearVelocity(): argument 'NewVel'");
+                auto bAddToCurrentValue = Bridge<bool>::in(std::move(bAddToCurrent), "UPrimitiveComponent.SetPhysicsLinearVelocity(): argument 'bAddToCurrent'");
+                object->SetPhysicsLinearVelocity(NewVelValue, bAddToCurrentValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewVel"),
+            py::arg("bAddToCurrent") = static_cast<Bridge<bool>::Py>(bool(false)),
+            "Sets the linear velocity in m/s (adds it to the current one when bAddToCurrent is true).");
+        cls.def(
+            "GetPhysicsLinearVelocity",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.GetPhysicsLinearVelocity()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetPhysicsLinearVelocity();
+                sp::reflect::checkResultFields(result, kContext);
+                return Bridge<FVector>::out(result);
+            },
+            "Returns the linear velocity in m/s (zero when not simulated).");
+        cls.def(
+            "SetPhysicsAngularVelocityInDegrees",
+            [](const Ref<Self>& self, Bridge<FVector>::Py NewAngVel, Bridge<bool>::Py bAddToCurrent) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees()";
+                Self* object = self.get<Self>(kContext);
+                auto NewAngVelValue = Bridge<FVector>::in(std::move(NewAngVel), "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees(): argument 'NewAngVel'");
+                auto bAddToCurrentValue = Bridge<bool>::in(std::move(bAddToCurrent), "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees(): argument 'bAddToCurrent'");
+                object->SetPhysicsAngularVelocityInDegrees(NewAngVelValue, bAddToCurrentValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewAngVel"),
+            py::arg("bAddToCurrent") = static_cast<Bridge<bool>::Py>(bool(false)),
+            "Sets the angular velocity in degrees per second about world axes.");
+        cls.def(
+            "GetPhysicsAngularVelocityInDegrees",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.GetPhysicsAngularVelocityInDegrees()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetPhysicsAngularVelocityInDegrees();
+                sp::reflect::checkResultFields(result, kContext);
+                return Bridge<FVector>::out(result);
+            },
+            "Returns the angular velocity in degrees per second about world axes (zero when not simulated).");
+        cls.def(
+            "IsAnyRigidBodyAwake",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.IsAnyRigidBodyAwake()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->IsAnyRigidBodyAwake();
+                return Bridge<bool>::out(result);
+            },
+            "Returns true while this component's body is awake (false for sleeping or non-simulated ones).");
+        cls.def(
+            "GetOverlappingComponents",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.GetOverlappingComponents()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetOverlappingComponents();
+                return Bridge<std::vector<UPrimitiveComponent*>>::out(result);
+            },
+            "Returns the components of other actors whose collision shapes touch or intersect this one's now\n(both must generate overlap events), in the order they entered play.");
+        cls.def(
+            "GetOverlappingActors",
+            [](const Ref<Self>& self, Bridge<TSubclassOf<AActor>>::Py ClassFilter) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.GetOverlappingActors()";
+                const Self* object = self.get<Self>(kContext);
+                auto ClassFilterValue = Bridge<TSubclassOf<AActor>>::in(std::move(ClassFilter), "UPrimitiveComponent.GetOverlappingActors(): argument 'ClassFilter'");
+                SP_CHECK(ClassFilterValue, sp::InvalidArgument, "UPrimitiveComponent.GetOverlappingActors(): argument 'ClassFilter'", " must not be None");
+                auto result = object->GetOverlappingActors(ClassFilterValue);
+                return Bridge<std::vector<AActor*>>::out(result);
+            },
+            py::kw_only(),
+            py::arg("ClassFilter"),
+            "Returns the actors (of class ClassFilter or a subclass) that own the components overlapping this one.");
+        cls.def(
+            "IsOverlappingComponent",
+            [](const Ref<Self>& self, Bridge<UPrimitiveComponent*>::Py OtherComp) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.IsOverlappingComponent()";
+                const Self* object = self.get<Self>(kContext);
+                auto OtherCompValue = Bridge<UPrimitiveComponent*>::in(std::move(OtherComp), "UPrimitiveComponent.IsOverlappingComponent(): argument 'OtherComp'");
+                SP_CHECK(OtherCompValue, sp::InvalidArgument, "UPrimitiveComponent.IsOverlappingComponent(): argument 'OtherComp'", " must not be None");
+                auto result = object->IsOverlappingComponent(OtherCompValue);
+                return Bridge<bool>::out(result);
+            },
+            py::kw_only(),
+            py::arg("OtherComp"),
+            "Returns true when OtherComp overlaps this component now.");
+        cls.def(
+            "IsOverlappingActor",
+            [](const Ref<Self>& self, Bridge<AActor*>::Py Other) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.IsOverlappingActor()";
+                const Self* object = self.get<Self>(kContext);
+                auto OtherValue = Bridge<AActor*>::in(std::move(Other), "UPrimitiveComponent.IsOverlappingActor(): argument 'Other'");
+                SP_CHECK(OtherValue, sp::InvalidArgument, "UPrimitiveComponent.IsOverlappingActor(): argument 'Other'", " must not be None");
+                auto result = object->IsOverlappingActor(OtherValue);
+                return Bridge<bool>::out(result);
+            },
+            py::kw_only(),
+            py::arg("Other"),
+            "Returns true when a component of Other overlaps this component now.");
+        cls.def(
+            "GetBeginOverlaps",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.GetBeginOverlaps()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetBeginOverlaps();
+                return Bridge<std::vector<UPrimitiveComponent*>>::out(result);
+            },
+            "Returns the components that began overlapping this one in the last frame's physics step (UE's\nOnComponentBeginOverlap, polled).");
+        cls.def(
+            "GetEndOverlaps",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPrimitiveComponent.GetEndOverlaps()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetEndOverlaps();
+                return Bridge<std::vector<UPrimitiveComponent*>>::out(result);
+            },
+            "Returns the components that stopped overlapping this one in the last frame's physics step (UE's\nOnComponentEndOverlap, polled); destroyed ones are left out.");
+    }
+    {
+        using Self = UShapeComponent;
+        py::class_<Ref<Self>, Ref<UPrimitiveComponent>> cls(m, "UShapeComponent", "An invisible collision shape that generates overlaps; bodies and traces pass through it.");
+        cls.attr("__sp_class__") = "UShapeComponent";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+    }
+    {
+        using Self = UBoxComponent;
+        py::class_<Ref<Self>, Ref<UShapeComponent>> cls(m, "UBoxComponent", "A box-shaped sensor.");
+        cls.attr("__sp_class__") = "UBoxComponent";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "BoxExtent",
+            [](const Ref<Self>& self) { return Bridge<FVector>::out(self.get<Self>("UBoxComponent.BoxExtent")->BoxExtent); },
+            [](const Ref<Self>& self, Bridge<FVector>::Py value) {
+                Self* object = self.get<Self>("UBoxComponent.BoxExtent");
+                object->SetBoxExtent(Bridge<FVector>::in(std::move(value), "UBoxComponent.BoxExtent"));
+                object->PostPropertyChanged("BoxExtent");
+            },
+            "Half the box's size along each axis, in metres before the component's scale (each > 0).");
+        cls.def(
+            "SetBoxExtent",
+            [](const Ref<Self>& self, Bridge<FVector>::Py InBoxExtent) -> py::object {
+                static constexpr const char* kContext = "UBoxComponent.SetBoxExtent()";
+                Self* object = self.get<Self>(kContext);
+                auto InBoxExtentValue = Bridge<FVector>::in(std::move(InBoxExtent), "UBoxComponent.SetBoxExtent(): argument 'InBoxExtent'");
+                object->SetBoxExtent(InBoxExtentValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("InBoxExtent"),
+            "Sets BoxExtent (each component finite and > 0).");
+    }
+    {
         using Self = UCameraSensorComponent;
         py::class_<Ref<Self>, Ref<USceneComponent>> cls(m, "UCameraSensorComponent", "A camera that renders the modalities in Modalities at the end of every frame.");
         cls.attr("__sp_class__") = "UCameraSensorComponent";
@@ -1973,274 +2403,6 @@ void spear_bind_engine(py::module_& m) {
             "Distance in metres beyond which the light has no effect.");
     }
     {
-        using Self = UPrimitiveComponent;
-        py::class_<Ref<Self>, Ref<USceneComponent>> cls(m, "UPrimitiveComponent", "A scene component that has geometry.");
-        cls.attr("__sp_class__") = "UPrimitiveComponent";
-        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
-        cls.def_property(
-            "bSimulatePhysics",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UPrimitiveComponent.bSimulatePhysics")->bSimulatePhysics); },
-            [](const Ref<Self>& self, Bridge<bool>::Py value) {
-                Self* object = self.get<Self>("UPrimitiveComponent.bSimulatePhysics");
-                object->SetSimulatePhysics(Bridge<bool>::in(std::move(value), "UPrimitiveComponent.bSimulatePhysics"));
-                object->PostPropertyChanged("bSimulatePhysics");
-            },
-            "Whether physics moves this component (gravity, forces, contacts); it must be Movable.");
-        cls.def_property(
-            "CollisionPrimitive",
-            [](const Ref<Self>& self) { return Bridge<ECollisionPrimitive>::out(self.get<Self>("UPrimitiveComponent.CollisionPrimitive")->CollisionPrimitive); },
-            [](const Ref<Self>& self, Bridge<ECollisionPrimitive>::Py value) {
-                Self* object = self.get<Self>("UPrimitiveComponent.CollisionPrimitive");
-                object->CollisionPrimitive = Bridge<ECollisionPrimitive>::in(std::move(value), "UPrimitiveComponent.CollisionPrimitive");
-                object->PostPropertyChanged("CollisionPrimitive");
-            },
-            "The collision geometry used by physics and traces.");
-        cls.def_property(
-            "MassInKg",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.MassInKg")->MassInKg); },
-            [](const Ref<Self>& self, Bridge<double>::Py value) {
-                Self* object = self.get<Self>("UPrimitiveComponent.MassInKg");
-                object->SetMassOverrideInKg(Bridge<double>::in(std::move(value), "UPrimitiveComponent.MassInKg"));
-                object->PostPropertyChanged("MassInKg");
-            },
-            "Mass in kilograms (> 0 to simulate); inertia follows the collision shape at uniform density.");
-        cls.def_property(
-            "Friction",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.Friction")->Friction); },
-            [](const Ref<Self>& self, Bridge<double>::Py value) {
-                Self* object = self.get<Self>("UPrimitiveComponent.Friction");
-                object->SetFriction(Bridge<double>::in(std::move(value), "UPrimitiveComponent.Friction"));
-                object->PostPropertyChanged("Friction");
-            },
-            "Coulomb friction coefficient (>= 0); the two coefficients at a contact are multiplied.");
-        cls.def_property(
-            "Restitution",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.Restitution")->Restitution); },
-            [](const Ref<Self>& self, Bridge<double>::Py value) {
-                Self* object = self.get<Self>("UPrimitiveComponent.Restitution");
-                object->SetRestitution(Bridge<double>::in(std::move(value), "UPrimitiveComponent.Restitution"));
-                object->PostPropertyChanged("Restitution");
-            },
-            "Bounciness in [0, 1]; the two coefficients at a contact are multiplied.");
-        cls.def_property(
-            "LinearDamping",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.LinearDamping")->LinearDamping); },
-            [](const Ref<Self>& self, Bridge<double>::Py value) {
-                Self* object = self.get<Self>("UPrimitiveComponent.LinearDamping");
-                object->SetLinearDamping(Bridge<double>::in(std::move(value), "UPrimitiveComponent.LinearDamping"));
-                object->PostPropertyChanged("LinearDamping");
-            },
-            "Fraction of linear velocity lost per second, in [0, 1].");
-        cls.def_property(
-            "AngularDamping",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.AngularDamping")->AngularDamping); },
-            [](const Ref<Self>& self, Bridge<double>::Py value) {
-                Self* object = self.get<Self>("UPrimitiveComponent.AngularDamping");
-                object->SetAngularDamping(Bridge<double>::in(std::move(value), "UPrimitiveComponent.AngularDamping"));
-                object->PostPropertyChanged("AngularDamping");
-            },
-            "Fraction of angular velocity lost per second, in [0, 1].");
-        cls.def(
-            "GetBounds",
-            [](const Ref<Self>& self) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetBounds()";
-                const Self* object = self.get<Self>(kContext);
-                FVector OriginOut{};
-                FVector BoxExtentOut{};
-                object->GetBounds(OriginOut, BoxExtentOut);
-                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "UPrimitiveComponent").attr("GetBoundsResult");
-                return resultType(py::arg("Origin") = Bridge<FVector>::out(OriginOut), py::arg("BoxExtent") = Bridge<FVector>::out(BoxExtentOut));
-            },
-            "Returns the world-space axis-aligned bounds as centre Origin and half size BoxExtent.");
-        cls.def(
-            "SetSimulatePhysics",
-            [](const Ref<Self>& self, Bridge<bool>::Py bSimulate) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetSimulatePhysics()";
-                Self* object = self.get<Self>(kContext);
-                auto bSimulateValue = Bridge<bool>::in(std::move(bSimulate), "UPrimitiveComponent.SetSimulatePhysics(): argument 'bSimulate'");
-                object->SetSimulatePhysics(bSimulateValue);
-                return py::none();
-            },
-            py::kw_only(),
-            py::arg("bSimulate"),
-            "Turns physics simulation on or off; turning it on needs a Movable component with collision.");
-        cls.def(
-            "IsSimulatingPhysics",
-            [](const Ref<Self>& self) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.IsSimulatingPhysics()";
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->IsSimulatingPhysics();
-                return Bridge<bool>::out(result);
-            },
-            "Returns true while physics moves this component.");
-        cls.def(
-            "SetMassOverrideInKg",
-            [](const Ref<Self>& self, Bridge<double>::Py MassInKg) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetMassOverrideInKg()";
-                Self* object = self.get<Self>(kContext);
-                auto MassInKgValue = Bridge<double>::in(std::move(MassInKg), "UPrimitiveComponent.SetMassOverrideInKg(): argument 'MassInKg'");
-                object->SetMassOverrideInKg(MassInKgValue);
-                return py::none();
-            },
-            py::kw_only(),
-            py::arg("MassInKg"),
-            "Sets the mass in kilograms (> 0).");
-        cls.def(
-            "SetFriction",
-            [](const Ref<Self>& self, Bridge<double>::Py NewFriction) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetFriction()";
-                Self* object = self.get<Self>(kContext);
-                auto NewFrictionValue = Bridge<double>::in(std::move(NewFriction), "UPrimitiveComponent.SetFriction(): argument 'NewFriction'");
-                object->SetFriction(NewFrictionValue);
-                return py::none();
-            },
-            py::kw_only(),
-            py::arg("NewFriction"),
-            "Sets the Coulomb friction coefficient (finite, >= 0).");
-        cls.def(
-            "SetRestitution",
-            [](const Ref<Self>& self, Bridge<double>::Py NewRestitution) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetRestitution()";
-                Self* object = self.get<Self>(kContext);
-                auto NewRestitutionValue = Bridge<double>::in(std::move(NewRestitution), "UPrimitiveComponent.SetRestitution(): argument 'NewRestitution'");
-                object->SetRestitution(NewRestitutionValue);
-                return py::none();
-            },
-            py::kw_only(),
-            py::arg("NewRestitution"),
-            "Sets the bounciness, in [0, 1].");
-        cls.def(
-            "SetLinearDamping",
-            [](const Ref<Self>& self, Bridge<double>::Py NewLinearDamping) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetLinearDamping()";
-                Self* object = self.get<Self>(kContext);
-                auto NewLinearDampingValue = Bridge<double>::in(std::move(NewLinearDamping), "UPrimitiveComponent.SetLinearDamping(): argument 'NewLinearDamping'");
-                object->SetLinearDamping(NewLinearDampingValue);
-                return py::none();
-            },
-            py::kw_only(),
-            py::arg("NewLinearDamping"),
-            "Sets the fraction of linear velocity lost per second, in [0, 1].");
-        cls.def(
-            "SetAngularDamping",
-            [](const Ref<Self>& self, Bridge<double>::Py NewAngularDamping) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetAngularDamping()";
-                Self* object = self.get<Self>(kContext);
-                auto NewAngularDampingValue = Bridge<double>::in(std::move(NewAngularDamping), "UPrimitiveComponent.SetAngularDamping(): argument 'NewAngularDamping'");
-                object->SetAngularDamping(NewAngularDampingValue);
-                return py::none();
-            },
-            py::kw_only(),
-            py::arg("NewAngularDamping"),
-            "Sets the fraction of angular velocity lost per second, in [0, 1].");
-        cls.def(
-            "GetMass",
-            [](const Ref<Self>& self) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetMass()";
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetMass();
-                return Bridge<double>::out(result);
-            },
-            "Returns the mass in kilograms.");
-        cls.def(
-            "AddForce",
-            [](const Ref<Self>& self, Bridge<FVector>::Py Force, Bridge<bool>::Py bAccelChange) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.AddForce()";
-                Self* object = self.get<Self>(kContext);
-                auto ForceValue = Bridge<FVector>::in(std::move(Force), "UPrimitiveComponent.AddForce(): argument 'Force'");
-                auto bAccelChangeValue = Bridge<bool>::in(std::move(bAccelChange), "UPrimitiveComponent.AddForce(): argument 'bAccelChange'");
-                object->AddForce(ForceValue, bAccelChangeValue);
-                return py::none();
-            },
-            py::kw_only(),
-            py::arg("Force"),
-            py::arg("bAccelChange") = static_cast<Bridge<bool>::Py>(bool(false)),
-            "Adds a force in newtons at the centre of mass for the next physics step (an acceleration in m/s^2\nwhen bAccelChange is true).");
-        cls.def(
-            "AddTorqueInRadians",
-            [](const Ref<Self>& self, Bridge<FVector>::Py Torque) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.AddTorqueInRadians()";
-                Self* object = self.get<Self>(kContext);
-                auto TorqueValue = Bridge<FVector>::in(std::move(Torque), "UPrimitiveComponent.AddTorqueInRadians(): argument 'Torque'");
-                object->AddTorqueInRadians(TorqueValue);
-                return py::none();
-            },
-            py::kw_only(),
-            py::arg("Torque"),
-            "Adds a torque in newton-metres about world axes for the next physics step.");
-        cls.def(
-            "AddImpulse",
-            [](const Ref<Self>& self, Bridge<FVector>::Py Impulse, Bridge<bool>::Py bVelChange) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.AddImpulse()";
-                Self* object = self.get<Self>(kContext);
-                auto ImpulseValue = Bridge<FVector>::in(std::move(Impulse), "UPrimitiveComponent.AddImpulse(): argument 'Impulse'");
-                auto bVelChangeValue = Bridge<bool>::in(std::move(bVelChange), "UPrimitiveComponent.AddImpulse(): argument 'bVelChange'");
-                object->AddImpulse(ImpulseValue, bVelChangeValue);
-                return py::none();
-            },
-            py::kw_only(),
-            py::arg("Impulse"),
-            py::arg("bVelChange") = static_cast<Bridge<bool>::Py>(bool(false)),
-            "Changes the velocity at once by Impulse / mass (Impulse in N*s; a velocity change in m/s when\nbVelChange is true).");
-        cls.def(
-            "SetPhysicsLinearVelocity",
-            [](const Ref<Self>& self, Bridge<FVector>::Py NewVel, Bridge<bool>::Py bAddToCurrent) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetPhysicsLinearVelocity()";
-                Self* object = self.get<Self>(kContext);
-                auto NewVelValue = Bridge<FVector>::in(std::move(NewVel), "UPrimitiveComponent.SetPhysicsLinearVelocity(): argument 'NewVel'");
-                auto bAddToCurrentValue = Bridge<bool>::in(std::move(bAddToCurrent), "UPrimitiveComponent.SetPhysicsLinearVelocity(): argument 'bAddToCurrent'");
-                object->SetPhysicsLinearVelocity(NewVelValue, bAddToCurrentValue);
-                return py::none();
-            },
-            py::kw_only(),
-            py::arg("NewVel"),
-            py::arg("bAddToCurrent") = static_cast<Bridge<bool>::Py>(bool(false)),
-            "Sets the linear velocity in m/s (adds it to the current one when bAddToCurrent is true).");
-        cls.def(
-            "GetPhysicsLinearVelocity",
-            [](const Ref<Self>& self) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetPhysicsLinearVelocity()";
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetPhysicsLinearVelocity();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
-            },
-            "Returns the linear velocity in m/s (zero when not simulated).");
-        cls.def(
-            "SetPhysicsAngularVelocityInDegrees",
-            [](const Ref<Self>& self, Bridge<FVector>::Py NewAngVel, Bridge<bool>::Py bAddToCurrent) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees()";
-                Self* object = self.get<Self>(kContext);
-                auto NewAngVelValue = Bridge<FVector>::in(std::move(NewAngVel), "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees(): argument 'NewAngVel'");
-                auto bAddToCurrentValue = Bridge<bool>::in(std::move(bAddToCurrent), "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees(): argument 'bAddToCurrent'");
-                object->SetPhysicsAngularVelocityInDegrees(NewAngVelValue, bAddToCurrentValue);
-                return py::none();
-            },
-            py::kw_only(),
-            py::arg("NewAngVel"),
-            py::arg("bAddToCurrent") = static_cast<Bridge<bool>::Py>(bool(false)),
-            "Sets the angular velocity in degrees per second about world axes.");
-        cls.def(
-            "GetPhysicsAngularVelocityInDegrees",
-            [](const Ref<Self>& self) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetPhysicsAngularVelocityInDegrees()";
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetPhysicsAngularVelocityInDegrees();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
-            },
-            "Returns the angular velocity in degrees per second about world axes (zero when not simulated).");
-        cls.def(
-            "IsAnyRigidBodyAwake",
-            [](const Ref<Self>& self) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.IsAnyRigidBodyAwake()";
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->IsAnyRigidBodyAwake();
-                return Bridge<bool>::out(result);
-            },
-            "Returns true while this component's body is awake (false for sleeping or non-simulated ones).");
-    }
-    {
         using Self = USkyLightComponent;
         py::class_<Ref<Self>, Ref<USceneComponent>> cls(m, "USkyLightComponent", "Uniform sky light: ambient radiance on every surface, and the colour of pixels that hit nothing.");
         cls.attr("__sp_class__") = "USkyLightComponent";
@@ -2287,6 +2449,33 @@ void spear_bind_engine(py::module_& m) {
                 return Bridge<std::vector<std::string>>::out(result);
             },
             "Returns the names of the SpFuncs registered now, sorted.");
+    }
+    {
+        using Self = USphereComponent;
+        py::class_<Ref<Self>, Ref<UShapeComponent>> cls(m, "USphereComponent", "A sphere-shaped sensor.");
+        cls.attr("__sp_class__") = "USphereComponent";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "SphereRadius",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("USphereComponent.SphereRadius")->SphereRadius); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("USphereComponent.SphereRadius");
+                object->SetSphereRadius(Bridge<double>::in(std::move(value), "USphereComponent.SphereRadius"));
+                object->PostPropertyChanged("SphereRadius");
+            },
+            "The sphere's radius in metres before the component's scale (> 0).");
+        cls.def(
+            "SetSphereRadius",
+            [](const Ref<Self>& self, Bridge<double>::Py InSphereRadius) -> py::object {
+                static constexpr const char* kContext = "USphereComponent.SetSphereRadius()";
+                Self* object = self.get<Self>(kContext);
+                auto InSphereRadiusValue = Bridge<double>::in(std::move(InSphereRadius), "USphereComponent.SetSphereRadius(): argument 'InSphereRadius'");
+                object->SetSphereRadius(InSphereRadiusValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("InSphereRadius"),
+            "Sets SphereRadius (finite, > 0).");
     }
     {
         using Self = USpotLightComponent;

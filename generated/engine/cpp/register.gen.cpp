@@ -25,6 +25,7 @@
 #include "core/world/pawn.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
+#include "core/world/shape_components.h"
 #include "core/world/static_mesh_actor.h"
 #include "core/world/static_mesh_component.h"
 #include "core/world/wheeled_vehicle.h"
@@ -55,6 +56,8 @@ extern "C" void spear_register_engine_types() {
     registry.add(ASpotLight::StaticClass());
     registry.add(AStaticMeshActor::StaticClass());
     registry.add(AStereoCameraRig::StaticClass());
+    registry.add(ATriggerBox::StaticClass());
+    registry.add(ATriggerSphere::StaticClass());
     registry.add(AWheeledVehiclePawn::StaticClass());
     registry.add(FCameraPixels::StaticClass());
     registry.add(FVector::StaticClass());
@@ -70,15 +73,18 @@ extern "C" void spear_register_engine_types() {
     registry.add(FWheelState::StaticClass());
     registry.add(UActorComponent::StaticClass());
     registry.add(USceneComponent::StaticClass());
+    registry.add(UPrimitiveComponent::StaticClass());
+    registry.add(UShapeComponent::StaticClass());
+    registry.add(UBoxComponent::StaticClass());
     registry.add(UCameraSensorComponent::StaticClass());
     registry.add(ULightComponent::StaticClass());
     registry.add(UDirectionalLightComponent::StaticClass());
     registry.add(UGameplayStatics::StaticClass());
     registry.add(UInputComponent::StaticClass());
     registry.add(UPointLightComponent::StaticClass());
-    registry.add(UPrimitiveComponent::StaticClass());
     registry.add(USkyLightComponent::StaticClass());
     registry.add(USpFuncComponent::StaticClass());
+    registry.add(USphereComponent::StaticClass());
     registry.add(USpotLightComponent::StaticClass());
     registry.add(UStaticMeshComponent::StaticClass());
     registry.add(UWorld::StaticClass());
@@ -90,15 +96,18 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(UWorld::StaticClass());
     registry.remove(UStaticMeshComponent::StaticClass());
     registry.remove(USpotLightComponent::StaticClass());
+    registry.remove(USphereComponent::StaticClass());
     registry.remove(USpFuncComponent::StaticClass());
     registry.remove(USkyLightComponent::StaticClass());
-    registry.remove(UPrimitiveComponent::StaticClass());
     registry.remove(UPointLightComponent::StaticClass());
     registry.remove(UInputComponent::StaticClass());
     registry.remove(UGameplayStatics::StaticClass());
     registry.remove(UDirectionalLightComponent::StaticClass());
     registry.remove(ULightComponent::StaticClass());
     registry.remove(UCameraSensorComponent::StaticClass());
+    registry.remove(UBoxComponent::StaticClass());
+    registry.remove(UShapeComponent::StaticClass());
+    registry.remove(UPrimitiveComponent::StaticClass());
     registry.remove(USceneComponent::StaticClass());
     registry.remove(UActorComponent::StaticClass());
     registry.remove(FWheelState::StaticClass());
@@ -114,6 +123,8 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(FVector::StaticClass());
     registry.remove(FCameraPixels::StaticClass());
     registry.remove(AWheeledVehiclePawn::StaticClass());
+    registry.remove(ATriggerSphere::StaticClass());
+    registry.remove(ATriggerBox::StaticClass());
     registry.remove(AStereoCameraRig::StaticClass());
     registry.remove(AStaticMeshActor::StaticClass());
     registry.remove(ASpotLight::StaticClass());
@@ -139,4 +150,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "412a9e9bcd7bb894"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "7666efb651fd77fc"; }

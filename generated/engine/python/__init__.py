@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "412a9e9bcd7bb894"
+API_HASH = "7666efb651fd77fc"

@@ -37,6 +37,8 @@ __all__ = [
     "ASpotLight",
     "AStaticMeshActor",
     "AStereoCameraRig",
+    "ATriggerBox",
+    "ATriggerSphere",
     "AWheeledVehiclePawn",
     "BP_Axes",
     "BP_Crate",
@@ -57,6 +59,7 @@ __all__ = [
     "FVector2D",
     "FWheelState",
     "UActorComponent",
+    "UBoxComponent",
     "UCameraSensorComponent",
     "UDirectionalLightComponent",
     "UGameplayStatics",
@@ -66,8 +69,10 @@ __all__ = [
     "UPointLightComponent",
     "UPrimitiveComponent",
     "USceneComponent",
+    "UShapeComponent",
     "USkyLightComponent",
     "USpFuncComponent",
+    "USphereComponent",
     "USpotLightComponent",
     "UStaticMeshComponent",
     "UWorld",
@@ -656,6 +661,44 @@ class AStereoCameraRig(AActor):
     __sp_class__: ClassVar[str] = "AStereoCameraRig"
 
 
+class ATriggerBoxAsync(AActorAsync):
+    """ATriggerBox's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class ATriggerBoxSend(AActorSend):
+    """ATriggerBox's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class ATriggerBox(AActor):
+    """A box-shaped trigger volume: an actor whose root is a UBoxComponent."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "ATriggerBox"
+
+
+class ATriggerSphereAsync(AActorAsync):
+    """ATriggerSphere's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class ATriggerSphereSend(AActorSend):
+    """ATriggerSphere's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class ATriggerSphere(AActor):
+    """A sphere-shaped trigger volume: an actor whose root is a USphereComponent."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "ATriggerSphere"
+
+
 class AWheeledVehiclePawnAsync(APawnAsync):
     """AWheeledVehiclePawn's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
 
@@ -714,6 +757,67 @@ class USceneComponent(UActorComponent):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "USceneComponent"
+
+
+class UPrimitiveComponentAsync(USceneComponentAsync):
+    """UPrimitiveComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UPrimitiveComponentSend(USceneComponentSend):
+    """UPrimitiveComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class UPrimitiveComponent(USceneComponent):
+    """A scene component that has geometry."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "UPrimitiveComponent"
+
+    class GetBoundsResult(NamedTuple):
+        Origin: FVector
+        BoxExtent: FVector
+
+
+class UShapeComponentAsync(UPrimitiveComponentAsync):
+    """UShapeComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UShapeComponentSend(UPrimitiveComponentSend):
+    """UShapeComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class UShapeComponent(UPrimitiveComponent):
+    """An invisible collision shape that generates overlaps; bodies and traces pass through it."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "UShapeComponent"
+
+
+class UBoxComponentAsync(UShapeComponentAsync):
+    """UBoxComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UBoxComponentSend(UShapeComponentSend):
+    """UBoxComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class UBoxComponent(UShapeComponent):
+    """A box-shaped sensor."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "UBoxComponent"
 
 
 class UCameraSensorComponentAsync(USceneComponentAsync):
@@ -846,29 +950,6 @@ class UPointLightComponent(ULightComponent):
     __sp_class__: ClassVar[str] = "UPointLightComponent"
 
 
-class UPrimitiveComponentAsync(USceneComponentAsync):
-    """UPrimitiveComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
-
-    __slots__ = ()
-
-
-class UPrimitiveComponentSend(USceneComponentSend):
-    """UPrimitiveComponent's functions, fire and forget (typed in api.pyi)."""
-
-    __slots__ = ()
-
-
-class UPrimitiveComponent(USceneComponent):
-    """A scene component that has geometry."""
-
-    __slots__ = ()
-    __sp_class__: ClassVar[str] = "UPrimitiveComponent"
-
-    class GetBoundsResult(NamedTuple):
-        Origin: FVector
-        BoxExtent: FVector
-
-
 class USkyLightComponentAsync(USceneComponentAsync):
     """USkyLightComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
 
@@ -905,6 +986,25 @@ class USpFuncComponent(UActorComponent):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "USpFuncComponent"
+
+
+class USphereComponentAsync(UShapeComponentAsync):
+    """USphereComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class USphereComponentSend(UShapeComponentSend):
+    """USphereComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class USphereComponent(UShapeComponent):
+    """A sphere-shaped sensor."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "USphereComponent"
 
 
 class USpotLightComponentAsync(UPointLightComponentAsync):

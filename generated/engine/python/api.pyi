@@ -32,6 +32,8 @@ __all__ = [
     "ASpotLight",
     "AStaticMeshActor",
     "AStereoCameraRig",
+    "ATriggerBox",
+    "ATriggerSphere",
     "AWheeledVehiclePawn",
     "BP_Axes",
     "BP_Crate",
@@ -52,6 +54,7 @@ __all__ = [
     "FVector2D",
     "FWheelState",
     "UActorComponent",
+    "UBoxComponent",
     "UCameraSensorComponent",
     "UDirectionalLightComponent",
     "UGameplayStatics",
@@ -61,8 +64,10 @@ __all__ = [
     "UPointLightComponent",
     "UPrimitiveComponent",
     "USceneComponent",
+    "UShapeComponent",
     "USkyLightComponent",
     "USpFuncComponent",
+    "USphereComponent",
     "USpotLightComponent",
     "UStaticMeshComponent",
     "UWorld",
@@ -387,6 +392,14 @@ class AActorAsync(UObjectAsync):
 
     def ActorHasTag(self, *, Tag: str) -> Future[bool]: ...
 
+    @overload
+    def GetOverlappingActors(self, *, ClassFilter: type[_AActorT]) -> Future[list[_AActorT]]: ...
+
+    @overload
+    def GetOverlappingActors(self, *, ClassFilter: str) -> Future[list[AActor]]: ...
+
+    def IsOverlappingActor(self, *, Other: AActor) -> Future[bool]: ...
+
     def K2_GetComponents(self) -> Future[list[UActorComponent]]: ...
 
     @overload
@@ -424,6 +437,10 @@ class AActorSend(UObjectSend):
     def GetActorBounds(self, *, bOnlyCollidingComponents: bool) -> None: ...
 
     def ActorHasTag(self, *, Tag: str) -> None: ...
+
+    def GetOverlappingActors(self, *, ClassFilter: type[AActor] | str) -> None: ...
+
+    def IsOverlappingActor(self, *, Other: AActor) -> None: ...
 
     def K2_GetComponents(self) -> None: ...
 
@@ -496,6 +513,15 @@ class AActor(UObject):
 
     def ActorHasTag(self, *, Tag: str) -> bool:
         """Returns true when Tags contains Tag."""
+
+    @overload
+    def GetOverlappingActors(self, *, ClassFilter: type[_AActorT]) -> list[_AActorT]: ...
+
+    @overload
+    def GetOverlappingActors(self, *, ClassFilter: str) -> list[AActor]: ...
+
+    def IsOverlappingActor(self, *, Other: AActor) -> bool:
+        """Returns true when a component of Other overlaps a component of this actor now."""
 
     def K2_GetComponents(self) -> list[UActorComponent]:
         """Returns all components of this actor, in creation order."""
@@ -1267,6 +1293,62 @@ class AStereoCameraRig(AActor):
         """Sets the baseline in metres (> 0) and moves both cameras."""
 
 
+class ATriggerBoxAsync(AActorAsync):
+    """ATriggerBox's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class ATriggerBoxSend(AActorSend):
+    """ATriggerBox's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
+class ATriggerBox(AActor):
+    """A box-shaped trigger volume: an actor whose root is a UBoxComponent."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> ATriggerBoxAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> ATriggerBoxSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def CollisionComponent(self) -> UBoxComponent:
+        """The trigger's shape (the root component)."""
+
+
+class ATriggerSphereAsync(AActorAsync):
+    """ATriggerSphere's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class ATriggerSphereSend(AActorSend):
+    """ATriggerSphere's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
+class ATriggerSphere(AActor):
+    """A sphere-shaped trigger volume: an actor whose root is a USphereComponent."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> ATriggerSphereAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> ATriggerSphereSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def CollisionComponent(self) -> USphereComponent:
+        """The trigger's shape (the root component)."""
+
+
 class AWheeledVehiclePawnAsync(APawnAsync):
     """AWheeledVehiclePawn's functions, called asynchronously: each returns a Future."""
 
@@ -1679,6 +1761,328 @@ class USceneComponent(UActorComponent):
 
     def GetChildrenComponents(self, *, bIncludeAllDescendants: bool = False) -> list[USceneComponent]:
         """Returns the attached children, and their descendants when bIncludeAllDescendants is true."""
+
+
+class UPrimitiveComponentAsync(USceneComponentAsync):
+    """UPrimitiveComponent's functions, called asynchronously: each returns a Future."""
+
+    def GetBounds(self) -> Future[UPrimitiveComponent.GetBoundsResult]: ...
+
+    def SetSimulatePhysics(self, *, bSimulate: bool) -> Future[None]: ...
+
+    def IsSimulatingPhysics(self) -> Future[bool]: ...
+
+    def SetMassOverrideInKg(self, *, MassInKg: float) -> Future[None]: ...
+
+    def SetFriction(self, *, NewFriction: float) -> Future[None]: ...
+
+    def SetRestitution(self, *, NewRestitution: float) -> Future[None]: ...
+
+    def SetLinearDamping(self, *, NewLinearDamping: float) -> Future[None]: ...
+
+    def SetAngularDamping(self, *, NewAngularDamping: float) -> Future[None]: ...
+
+    def GetMass(self) -> Future[float]: ...
+
+    def AddForce(self, *, Force: FVector, bAccelChange: bool = False) -> Future[None]: ...
+
+    def AddTorqueInRadians(self, *, Torque: FVector) -> Future[None]: ...
+
+    def AddImpulse(self, *, Impulse: FVector, bVelChange: bool = False) -> Future[None]: ...
+
+    def SetPhysicsLinearVelocity(self, *, NewVel: FVector, bAddToCurrent: bool = False) -> Future[None]: ...
+
+    def GetPhysicsLinearVelocity(self) -> Future[FVector]: ...
+
+    def SetPhysicsAngularVelocityInDegrees(self, *, NewAngVel: FVector, bAddToCurrent: bool = False) -> Future[None]: ...
+
+    def GetPhysicsAngularVelocityInDegrees(self) -> Future[FVector]: ...
+
+    def IsAnyRigidBodyAwake(self) -> Future[bool]: ...
+
+    def GetOverlappingComponents(self) -> Future[list[UPrimitiveComponent]]: ...
+
+    @overload
+    def GetOverlappingActors(self, *, ClassFilter: type[_AActorT]) -> Future[list[_AActorT]]: ...
+
+    @overload
+    def GetOverlappingActors(self, *, ClassFilter: str) -> Future[list[AActor]]: ...
+
+    def IsOverlappingComponent(self, *, OtherComp: UPrimitiveComponent) -> Future[bool]: ...
+
+    def IsOverlappingActor(self, *, Other: AActor) -> Future[bool]: ...
+
+    def GetBeginOverlaps(self) -> Future[list[UPrimitiveComponent]]: ...
+
+    def GetEndOverlaps(self) -> Future[list[UPrimitiveComponent]]: ...
+
+
+class UPrimitiveComponentSend(USceneComponentSend):
+    """UPrimitiveComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def GetBounds(self) -> None: ...
+
+    def SetSimulatePhysics(self, *, bSimulate: bool) -> None: ...
+
+    def IsSimulatingPhysics(self) -> None: ...
+
+    def SetMassOverrideInKg(self, *, MassInKg: float) -> None: ...
+
+    def SetFriction(self, *, NewFriction: float) -> None: ...
+
+    def SetRestitution(self, *, NewRestitution: float) -> None: ...
+
+    def SetLinearDamping(self, *, NewLinearDamping: float) -> None: ...
+
+    def SetAngularDamping(self, *, NewAngularDamping: float) -> None: ...
+
+    def GetMass(self) -> None: ...
+
+    def AddForce(self, *, Force: FVector, bAccelChange: bool = False) -> None: ...
+
+    def AddTorqueInRadians(self, *, Torque: FVector) -> None: ...
+
+    def AddImpulse(self, *, Impulse: FVector, bVelChange: bool = False) -> None: ...
+
+    def SetPhysicsLinearVelocity(self, *, NewVel: FVector, bAddToCurrent: bool = False) -> None: ...
+
+    def GetPhysicsLinearVelocity(self) -> None: ...
+
+    def SetPhysicsAngularVelocityInDegrees(self, *, NewAngVel: FVector, bAddToCurrent: bool = False) -> None: ...
+
+    def GetPhysicsAngularVelocityInDegrees(self) -> None: ...
+
+    def IsAnyRigidBodyAwake(self) -> None: ...
+
+    def GetOverlappingComponents(self) -> None: ...
+
+    def GetOverlappingActors(self, *, ClassFilter: type[AActor] | str) -> None: ...
+
+    def IsOverlappingComponent(self, *, OtherComp: UPrimitiveComponent) -> None: ...
+
+    def IsOverlappingActor(self, *, Other: AActor) -> None: ...
+
+    def GetBeginOverlaps(self) -> None: ...
+
+    def GetEndOverlaps(self) -> None: ...
+
+
+class UPrimitiveComponent(USceneComponent):
+    """A scene component that has geometry."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UPrimitiveComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UPrimitiveComponentSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def bSimulatePhysics(self) -> bool:
+        """Whether physics moves this component (gravity, forces, contacts); it must be Movable."""
+
+    @bSimulatePhysics.setter
+    def bSimulatePhysics(self, value: bool) -> None: ...
+
+    @property
+    def CollisionPrimitive(self) -> ECollisionPrimitive:
+        """The collision geometry used by physics and traces."""
+
+    @CollisionPrimitive.setter
+    def CollisionPrimitive(self, value: ECollisionPrimitive) -> None: ...
+
+    @property
+    def MassInKg(self) -> float:
+        """Mass in kilograms (> 0 to simulate); inertia follows the collision shape at uniform density."""
+
+    @MassInKg.setter
+    def MassInKg(self, value: float) -> None: ...
+
+    @property
+    def Friction(self) -> float:
+        """Coulomb friction coefficient (>= 0); the two coefficients at a contact are multiplied."""
+
+    @Friction.setter
+    def Friction(self, value: float) -> None: ...
+
+    @property
+    def Restitution(self) -> float:
+        """Bounciness in [0, 1]; the two coefficients at a contact are multiplied."""
+
+    @Restitution.setter
+    def Restitution(self, value: float) -> None: ...
+
+    @property
+    def LinearDamping(self) -> float:
+        """Fraction of linear velocity lost per second, in [0, 1]."""
+
+    @LinearDamping.setter
+    def LinearDamping(self, value: float) -> None: ...
+
+    @property
+    def AngularDamping(self) -> float:
+        """Fraction of angular velocity lost per second, in [0, 1]."""
+
+    @AngularDamping.setter
+    def AngularDamping(self, value: float) -> None: ...
+
+    @property
+    def bGenerateOverlapEvents(self) -> bool:
+        """Whether this component takes part in overlaps: two components overlap only when both have it set
+        (as in UE). Shape components (UBoxComponent, USphereComponent) have it set by default.
+        """
+
+    @bGenerateOverlapEvents.setter
+    def bGenerateOverlapEvents(self, value: bool) -> None: ...
+
+    class GetBoundsResult(NamedTuple):
+        Origin: FVector
+        BoxExtent: FVector
+
+    def GetBounds(self) -> UPrimitiveComponent.GetBoundsResult:
+        """Returns the world-space axis-aligned bounds as centre Origin and half size BoxExtent."""
+
+    def SetSimulatePhysics(self, *, bSimulate: bool) -> None:
+        """Turns physics simulation on or off; turning it on needs a Movable component with collision."""
+
+    def IsSimulatingPhysics(self) -> bool:
+        """Returns true while physics moves this component."""
+
+    def SetMassOverrideInKg(self, *, MassInKg: float) -> None:
+        """Sets the mass in kilograms (> 0)."""
+
+    def SetFriction(self, *, NewFriction: float) -> None:
+        """Sets the Coulomb friction coefficient (finite, >= 0)."""
+
+    def SetRestitution(self, *, NewRestitution: float) -> None:
+        """Sets the bounciness, in [0, 1]."""
+
+    def SetLinearDamping(self, *, NewLinearDamping: float) -> None:
+        """Sets the fraction of linear velocity lost per second, in [0, 1]."""
+
+    def SetAngularDamping(self, *, NewAngularDamping: float) -> None:
+        """Sets the fraction of angular velocity lost per second, in [0, 1]."""
+
+    def GetMass(self) -> float:
+        """Returns the mass in kilograms."""
+
+    def AddForce(self, *, Force: FVector, bAccelChange: bool = False) -> None:
+        """Adds a force in newtons at the centre of mass for the next physics step (an acceleration in m/s^2
+        when bAccelChange is true).
+        """
+
+    def AddTorqueInRadians(self, *, Torque: FVector) -> None:
+        """Adds a torque in newton-metres about world axes for the next physics step."""
+
+    def AddImpulse(self, *, Impulse: FVector, bVelChange: bool = False) -> None:
+        """Changes the velocity at once by Impulse / mass (Impulse in N*s; a velocity change in m/s when
+        bVelChange is true).
+        """
+
+    def SetPhysicsLinearVelocity(self, *, NewVel: FVector, bAddToCurrent: bool = False) -> None:
+        """Sets the linear velocity in m/s (adds it to the current one when bAddToCurrent is true)."""
+
+    def GetPhysicsLinearVelocity(self) -> FVector:
+        """Returns the linear velocity in m/s (zero when not simulated)."""
+
+    def SetPhysicsAngularVelocityInDegrees(self, *, NewAngVel: FVector, bAddToCurrent: bool = False) -> None:
+        """Sets the angular velocity in degrees per second about world axes."""
+
+    def GetPhysicsAngularVelocityInDegrees(self) -> FVector:
+        """Returns the angular velocity in degrees per second about world axes (zero when not simulated)."""
+
+    def IsAnyRigidBodyAwake(self) -> bool:
+        """Returns true while this component's body is awake (false for sleeping or non-simulated ones)."""
+
+    def GetOverlappingComponents(self) -> list[UPrimitiveComponent]:
+        """Returns the components of other actors whose collision shapes touch or intersect this one's now
+        (both must generate overlap events), in the order they entered play.
+        """
+
+    @overload
+    def GetOverlappingActors(self, *, ClassFilter: type[_AActorT]) -> list[_AActorT]: ...
+
+    @overload
+    def GetOverlappingActors(self, *, ClassFilter: str) -> list[AActor]: ...
+
+    def IsOverlappingComponent(self, *, OtherComp: UPrimitiveComponent) -> bool:
+        """Returns true when OtherComp overlaps this component now."""
+
+    def IsOverlappingActor(self, *, Other: AActor) -> bool:
+        """Returns true when a component of Other overlaps this component now."""
+
+    def GetBeginOverlaps(self) -> list[UPrimitiveComponent]:
+        """Returns the components that began overlapping this one in the last frame's physics step (UE's
+        OnComponentBeginOverlap, polled).
+        """
+
+    def GetEndOverlaps(self) -> list[UPrimitiveComponent]:
+        """Returns the components that stopped overlapping this one in the last frame's physics step (UE's
+        OnComponentEndOverlap, polled); destroyed ones are left out.
+        """
+
+
+class UShapeComponentAsync(UPrimitiveComponentAsync):
+    """UShapeComponent's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class UShapeComponentSend(UPrimitiveComponentSend):
+    """UShapeComponent's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
+class UShapeComponent(UPrimitiveComponent):
+    """An invisible collision shape that generates overlaps; bodies and traces pass through it."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UShapeComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UShapeComponentSend:
+        """The same functions, fire and forget."""
+
+
+class UBoxComponentAsync(UShapeComponentAsync):
+    """UBoxComponent's functions, called asynchronously: each returns a Future."""
+
+    def SetBoxExtent(self, *, InBoxExtent: FVector) -> Future[None]: ...
+
+
+class UBoxComponentSend(UShapeComponentSend):
+    """UBoxComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetBoxExtent(self, *, InBoxExtent: FVector) -> None: ...
+
+
+class UBoxComponent(UShapeComponent):
+    """A box-shaped sensor."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UBoxComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UBoxComponentSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def BoxExtent(self) -> FVector:
+        """Half the box's size along each axis, in metres before the component's scale (each > 0)."""
+
+    @BoxExtent.setter
+    def BoxExtent(self, value: FVector) -> None: ...
+
+    def SetBoxExtent(self, *, InBoxExtent: FVector) -> None:
+        """Sets BoxExtent (each component finite and > 0)."""
 
 
 class UCameraSensorComponentAsync(USceneComponentAsync):
@@ -2157,204 +2561,6 @@ class UPointLightComponent(ULightComponent):
     def AttenuationRadius(self, value: float) -> None: ...
 
 
-class UPrimitiveComponentAsync(USceneComponentAsync):
-    """UPrimitiveComponent's functions, called asynchronously: each returns a Future."""
-
-    def GetBounds(self) -> Future[UPrimitiveComponent.GetBoundsResult]: ...
-
-    def SetSimulatePhysics(self, *, bSimulate: bool) -> Future[None]: ...
-
-    def IsSimulatingPhysics(self) -> Future[bool]: ...
-
-    def SetMassOverrideInKg(self, *, MassInKg: float) -> Future[None]: ...
-
-    def SetFriction(self, *, NewFriction: float) -> Future[None]: ...
-
-    def SetRestitution(self, *, NewRestitution: float) -> Future[None]: ...
-
-    def SetLinearDamping(self, *, NewLinearDamping: float) -> Future[None]: ...
-
-    def SetAngularDamping(self, *, NewAngularDamping: float) -> Future[None]: ...
-
-    def GetMass(self) -> Future[float]: ...
-
-    def AddForce(self, *, Force: FVector, bAccelChange: bool = False) -> Future[None]: ...
-
-    def AddTorqueInRadians(self, *, Torque: FVector) -> Future[None]: ...
-
-    def AddImpulse(self, *, Impulse: FVector, bVelChange: bool = False) -> Future[None]: ...
-
-    def SetPhysicsLinearVelocity(self, *, NewVel: FVector, bAddToCurrent: bool = False) -> Future[None]: ...
-
-    def GetPhysicsLinearVelocity(self) -> Future[FVector]: ...
-
-    def SetPhysicsAngularVelocityInDegrees(self, *, NewAngVel: FVector, bAddToCurrent: bool = False) -> Future[None]: ...
-
-    def GetPhysicsAngularVelocityInDegrees(self) -> Future[FVector]: ...
-
-    def IsAnyRigidBodyAwake(self) -> Future[bool]: ...
-
-
-class UPrimitiveComponentSend(USceneComponentSend):
-    """UPrimitiveComponent's functions, sent without waiting for a result (fire and forget)."""
-
-    def GetBounds(self) -> None: ...
-
-    def SetSimulatePhysics(self, *, bSimulate: bool) -> None: ...
-
-    def IsSimulatingPhysics(self) -> None: ...
-
-    def SetMassOverrideInKg(self, *, MassInKg: float) -> None: ...
-
-    def SetFriction(self, *, NewFriction: float) -> None: ...
-
-    def SetRestitution(self, *, NewRestitution: float) -> None: ...
-
-    def SetLinearDamping(self, *, NewLinearDamping: float) -> None: ...
-
-    def SetAngularDamping(self, *, NewAngularDamping: float) -> None: ...
-
-    def GetMass(self) -> None: ...
-
-    def AddForce(self, *, Force: FVector, bAccelChange: bool = False) -> None: ...
-
-    def AddTorqueInRadians(self, *, Torque: FVector) -> None: ...
-
-    def AddImpulse(self, *, Impulse: FVector, bVelChange: bool = False) -> None: ...
-
-    def SetPhysicsLinearVelocity(self, *, NewVel: FVector, bAddToCurrent: bool = False) -> None: ...
-
-    def GetPhysicsLinearVelocity(self) -> None: ...
-
-    def SetPhysicsAngularVelocityInDegrees(self, *, NewAngVel: FVector, bAddToCurrent: bool = False) -> None: ...
-
-    def GetPhysicsAngularVelocityInDegrees(self) -> None: ...
-
-    def IsAnyRigidBodyAwake(self) -> None: ...
-
-
-class UPrimitiveComponent(USceneComponent):
-    """A scene component that has geometry."""
-
-    __sp_class__: ClassVar[str]
-
-    @property
-    def call_async(self) -> UPrimitiveComponentAsync:
-        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
-
-    @property
-    def send_async(self) -> UPrimitiveComponentSend:
-        """The same functions, fire and forget."""
-
-    @property
-    def bSimulatePhysics(self) -> bool:
-        """Whether physics moves this component (gravity, forces, contacts); it must be Movable."""
-
-    @bSimulatePhysics.setter
-    def bSimulatePhysics(self, value: bool) -> None: ...
-
-    @property
-    def CollisionPrimitive(self) -> ECollisionPrimitive:
-        """The collision geometry used by physics and traces."""
-
-    @CollisionPrimitive.setter
-    def CollisionPrimitive(self, value: ECollisionPrimitive) -> None: ...
-
-    @property
-    def MassInKg(self) -> float:
-        """Mass in kilograms (> 0 to simulate); inertia follows the collision shape at uniform density."""
-
-    @MassInKg.setter
-    def MassInKg(self, value: float) -> None: ...
-
-    @property
-    def Friction(self) -> float:
-        """Coulomb friction coefficient (>= 0); the two coefficients at a contact are multiplied."""
-
-    @Friction.setter
-    def Friction(self, value: float) -> None: ...
-
-    @property
-    def Restitution(self) -> float:
-        """Bounciness in [0, 1]; the two coefficients at a contact are multiplied."""
-
-    @Restitution.setter
-    def Restitution(self, value: float) -> None: ...
-
-    @property
-    def LinearDamping(self) -> float:
-        """Fraction of linear velocity lost per second, in [0, 1]."""
-
-    @LinearDamping.setter
-    def LinearDamping(self, value: float) -> None: ...
-
-    @property
-    def AngularDamping(self) -> float:
-        """Fraction of angular velocity lost per second, in [0, 1]."""
-
-    @AngularDamping.setter
-    def AngularDamping(self, value: float) -> None: ...
-
-    class GetBoundsResult(NamedTuple):
-        Origin: FVector
-        BoxExtent: FVector
-
-    def GetBounds(self) -> UPrimitiveComponent.GetBoundsResult:
-        """Returns the world-space axis-aligned bounds as centre Origin and half size BoxExtent."""
-
-    def SetSimulatePhysics(self, *, bSimulate: bool) -> None:
-        """Turns physics simulation on or off; turning it on needs a Movable component with collision."""
-
-    def IsSimulatingPhysics(self) -> bool:
-        """Returns true while physics moves this component."""
-
-    def SetMassOverrideInKg(self, *, MassInKg: float) -> None:
-        """Sets the mass in kilograms (> 0)."""
-
-    def SetFriction(self, *, NewFriction: float) -> None:
-        """Sets the Coulomb friction coefficient (finite, >= 0)."""
-
-    def SetRestitution(self, *, NewRestitution: float) -> None:
-        """Sets the bounciness, in [0, 1]."""
-
-    def SetLinearDamping(self, *, NewLinearDamping: float) -> None:
-        """Sets the fraction of linear velocity lost per second, in [0, 1]."""
-
-    def SetAngularDamping(self, *, NewAngularDamping: float) -> None:
-        """Sets the fraction of angular velocity lost per second, in [0, 1]."""
-
-    def GetMass(self) -> float:
-        """Returns the mass in kilograms."""
-
-    def AddForce(self, *, Force: FVector, bAccelChange: bool = False) -> None:
-        """Adds a force in newtons at the centre of mass for the next physics step (an acceleration in m/s^2
-        when bAccelChange is true).
-        """
-
-    def AddTorqueInRadians(self, *, Torque: FVector) -> None:
-        """Adds a torque in newton-metres about world axes for the next physics step."""
-
-    def AddImpulse(self, *, Impulse: FVector, bVelChange: bool = False) -> None:
-        """Changes the velocity at once by Impulse / mass (Impulse in N*s; a velocity change in m/s when
-        bVelChange is true).
-        """
-
-    def SetPhysicsLinearVelocity(self, *, NewVel: FVector, bAddToCurrent: bool = False) -> None:
-        """Sets the linear velocity in m/s (adds it to the current one when bAddToCurrent is true)."""
-
-    def GetPhysicsLinearVelocity(self) -> FVector:
-        """Returns the linear velocity in m/s (zero when not simulated)."""
-
-    def SetPhysicsAngularVelocityInDegrees(self, *, NewAngVel: FVector, bAddToCurrent: bool = False) -> None:
-        """Sets the angular velocity in degrees per second about world axes."""
-
-    def GetPhysicsAngularVelocityInDegrees(self) -> FVector:
-        """Returns the angular velocity in degrees per second about world axes (zero when not simulated)."""
-
-    def IsAnyRigidBodyAwake(self) -> bool:
-        """Returns true while this component's body is awake (false for sleeping or non-simulated ones)."""
-
-
 class USkyLightComponentAsync(USceneComponentAsync):
     """USkyLightComponent's functions, called asynchronously: each returns a Future."""
     ...
@@ -2427,6 +2633,42 @@ class USpFuncComponent(UActorComponent):
 
     def GetFuncNames(self) -> list[str]:
         """Returns the names of the SpFuncs registered now, sorted."""
+
+
+class USphereComponentAsync(UShapeComponentAsync):
+    """USphereComponent's functions, called asynchronously: each returns a Future."""
+
+    def SetSphereRadius(self, *, InSphereRadius: float) -> Future[None]: ...
+
+
+class USphereComponentSend(UShapeComponentSend):
+    """USphereComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetSphereRadius(self, *, InSphereRadius: float) -> None: ...
+
+
+class USphereComponent(UShapeComponent):
+    """A sphere-shaped sensor."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> USphereComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> USphereComponentSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def SphereRadius(self) -> float:
+        """The sphere's radius in metres before the component's scale (> 0)."""
+
+    @SphereRadius.setter
+    def SphereRadius(self, value: float) -> None: ...
+
+    def SetSphereRadius(self, *, InSphereRadius: float) -> None:
+        """Sets SphereRadius (finite, > 0)."""
 
 
 class USpotLightComponentAsync(UPointLightComponentAsync):

@@ -97,6 +97,18 @@ class AActor(UObject, api.AActor):
     def ActorHasTag(self, *, Tag: str) -> bool:
         return cast("bool", self._sp_call("AActor", "ActorHasTag", {"Tag": Tag}, "bool"))
 
+    @overload
+    def GetOverlappingActors(self, *, ClassFilter: type[_AActorT]) -> list[_AActorT]: ...
+
+    @overload
+    def GetOverlappingActors(self, *, ClassFilter: str) -> list[api.AActor]: ...
+
+    def GetOverlappingActors(self, *, ClassFilter: type[api.AActor] | str) -> Any:
+        return self._sp_call("AActor", "GetOverlappingActors", {"ClassFilter": ClassFilter}, "list[AActor]")
+
+    def IsOverlappingActor(self, *, Other: api.AActor) -> bool:
+        return cast("bool", self._sp_call("AActor", "IsOverlappingActor", {"Other": Other}, "bool"))
+
     def K2_GetComponents(self) -> list[api.UActorComponent]:
         return cast("list[api.UActorComponent]", self._sp_call("AActor", "K2_GetComponents", {}, "list[UActorComponent]"))
 
@@ -472,6 +484,28 @@ class AStereoCameraRig(AActor, api.AStereoCameraRig):
 _register_proxy(AStereoCameraRig)
 
 
+class ATriggerBox(AActor, api.ATriggerBox):
+    __slots__ = ()
+
+    @property
+    def CollisionComponent(self) -> api.UBoxComponent:
+        return cast("api.UBoxComponent", self._sp_get("ATriggerBox", "CollisionComponent", "UBoxComponent"))
+
+
+_register_proxy(ATriggerBox)
+
+
+class ATriggerSphere(AActor, api.ATriggerSphere):
+    __slots__ = ()
+
+    @property
+    def CollisionComponent(self) -> api.USphereComponent:
+        return cast("api.USphereComponent", self._sp_get("ATriggerSphere", "CollisionComponent", "USphereComponent"))
+
+
+_register_proxy(ATriggerSphere)
+
+
 class AWheeledVehiclePawn(APawn, api.AWheeledVehiclePawn):
     __slots__ = ()
 
@@ -721,6 +755,177 @@ class USceneComponent(UActorComponent, api.USceneComponent):
 _register_proxy(USceneComponent)
 
 
+class UPrimitiveComponent(USceneComponent, api.UPrimitiveComponent):
+    __slots__ = ()
+
+    @property
+    def bSimulatePhysics(self) -> bool:
+        return cast("bool", self._sp_get("UPrimitiveComponent", "bSimulatePhysics", "bool"))
+
+    @bSimulatePhysics.setter
+    def bSimulatePhysics(self, value: bool) -> None:
+        self._sp_set("UPrimitiveComponent", "bSimulatePhysics", value)
+
+    @property
+    def CollisionPrimitive(self) -> ECollisionPrimitive:
+        return cast("ECollisionPrimitive", self._sp_get("UPrimitiveComponent", "CollisionPrimitive", "ECollisionPrimitive"))
+
+    @CollisionPrimitive.setter
+    def CollisionPrimitive(self, value: ECollisionPrimitive) -> None:
+        self._sp_set("UPrimitiveComponent", "CollisionPrimitive", value)
+
+    @property
+    def MassInKg(self) -> float:
+        return cast("float", self._sp_get("UPrimitiveComponent", "MassInKg", "float"))
+
+    @MassInKg.setter
+    def MassInKg(self, value: float) -> None:
+        self._sp_set("UPrimitiveComponent", "MassInKg", value)
+
+    @property
+    def Friction(self) -> float:
+        return cast("float", self._sp_get("UPrimitiveComponent", "Friction", "float"))
+
+    @Friction.setter
+    def Friction(self, value: float) -> None:
+        self._sp_set("UPrimitiveComponent", "Friction", value)
+
+    @property
+    def Restitution(self) -> float:
+        return cast("float", self._sp_get("UPrimitiveComponent", "Restitution", "float"))
+
+    @Restitution.setter
+    def Restitution(self, value: float) -> None:
+        self._sp_set("UPrimitiveComponent", "Restitution", value)
+
+    @property
+    def LinearDamping(self) -> float:
+        return cast("float", self._sp_get("UPrimitiveComponent", "LinearDamping", "float"))
+
+    @LinearDamping.setter
+    def LinearDamping(self, value: float) -> None:
+        self._sp_set("UPrimitiveComponent", "LinearDamping", value)
+
+    @property
+    def AngularDamping(self) -> float:
+        return cast("float", self._sp_get("UPrimitiveComponent", "AngularDamping", "float"))
+
+    @AngularDamping.setter
+    def AngularDamping(self, value: float) -> None:
+        self._sp_set("UPrimitiveComponent", "AngularDamping", value)
+
+    @property
+    def bGenerateOverlapEvents(self) -> bool:
+        return cast("bool", self._sp_get("UPrimitiveComponent", "bGenerateOverlapEvents", "bool"))
+
+    @bGenerateOverlapEvents.setter
+    def bGenerateOverlapEvents(self, value: bool) -> None:
+        self._sp_set("UPrimitiveComponent", "bGenerateOverlapEvents", value)
+
+    def GetBounds(self) -> api.UPrimitiveComponent.GetBoundsResult:
+        return cast("api.UPrimitiveComponent.GetBoundsResult", self._sp_call("UPrimitiveComponent", "GetBounds", {}, "dict", api.UPrimitiveComponent.GetBoundsResult))
+
+    def SetSimulatePhysics(self, *, bSimulate: bool) -> None:
+        self._sp_call("UPrimitiveComponent", "SetSimulatePhysics", {"bSimulate": bSimulate}, "None")
+
+    def IsSimulatingPhysics(self) -> bool:
+        return cast("bool", self._sp_call("UPrimitiveComponent", "IsSimulatingPhysics", {}, "bool"))
+
+    def SetMassOverrideInKg(self, *, MassInKg: float) -> None:
+        self._sp_call("UPrimitiveComponent", "SetMassOverrideInKg", {"MassInKg": MassInKg}, "None")
+
+    def SetFriction(self, *, NewFriction: float) -> None:
+        self._sp_call("UPrimitiveComponent", "SetFriction", {"NewFriction": NewFriction}, "None")
+
+    def SetRestitution(self, *, NewRestitution: float) -> None:
+        self._sp_call("UPrimitiveComponent", "SetRestitution", {"NewRestitution": NewRestitution}, "None")
+
+    def SetLinearDamping(self, *, NewLinearDamping: float) -> None:
+        self._sp_call("UPrimitiveComponent", "SetLinearDamping", {"NewLinearDamping": NewLinearDamping}, "None")
+
+    def SetAngularDamping(self, *, NewAngularDamping: float) -> None:
+        self._sp_call("UPrimitiveComponent", "SetAngularDamping", {"NewAngularDamping": NewAngularDamping}, "None")
+
+    def GetMass(self) -> float:
+        return cast("float", self._sp_call("UPrimitiveComponent", "GetMass", {}, "float"))
+
+    def AddForce(self, *, Force: FVector, bAccelChange: bool = _DEFAULT) -> None:
+        self._sp_call("UPrimitiveComponent", "AddForce", {"Force": Force, "bAccelChange": bAccelChange}, "None")
+
+    def AddTorqueInRadians(self, *, Torque: FVector) -> None:
+        self._sp_call("UPrimitiveComponent", "AddTorqueInRadians", {"Torque": Torque}, "None")
+
+    def AddImpulse(self, *, Impulse: FVector, bVelChange: bool = _DEFAULT) -> None:
+        self._sp_call("UPrimitiveComponent", "AddImpulse", {"Impulse": Impulse, "bVelChange": bVelChange}, "None")
+
+    def SetPhysicsLinearVelocity(self, *, NewVel: FVector, bAddToCurrent: bool = _DEFAULT) -> None:
+        self._sp_call("UPrimitiveComponent", "SetPhysicsLinearVelocity", {"NewVel": NewVel, "bAddToCurrent": bAddToCurrent}, "None")
+
+    def GetPhysicsLinearVelocity(self) -> FVector:
+        return cast("FVector", self._sp_call("UPrimitiveComponent", "GetPhysicsLinearVelocity", {}, "FVector"))
+
+    def SetPhysicsAngularVelocityInDegrees(self, *, NewAngVel: FVector, bAddToCurrent: bool = _DEFAULT) -> None:
+        self._sp_call("UPrimitiveComponent", "SetPhysicsAngularVelocityInDegrees", {"NewAngVel": NewAngVel, "bAddToCurrent": bAddToCurrent}, "None")
+
+    def GetPhysicsAngularVelocityInDegrees(self) -> FVector:
+        return cast("FVector", self._sp_call("UPrimitiveComponent", "GetPhysicsAngularVelocityInDegrees", {}, "FVector"))
+
+    def IsAnyRigidBodyAwake(self) -> bool:
+        return cast("bool", self._sp_call("UPrimitiveComponent", "IsAnyRigidBodyAwake", {}, "bool"))
+
+    def GetOverlappingComponents(self) -> list[api.UPrimitiveComponent]:
+        return cast("list[api.UPrimitiveComponent]", self._sp_call("UPrimitiveComponent", "GetOverlappingComponents", {}, "list[UPrimitiveComponent]"))
+
+    @overload
+    def GetOverlappingActors(self, *, ClassFilter: type[_AActorT]) -> list[_AActorT]: ...
+
+    @overload
+    def GetOverlappingActors(self, *, ClassFilter: str) -> list[api.AActor]: ...
+
+    def GetOverlappingActors(self, *, ClassFilter: type[api.AActor] | str) -> Any:
+        return self._sp_call("UPrimitiveComponent", "GetOverlappingActors", {"ClassFilter": ClassFilter}, "list[AActor]")
+
+    def IsOverlappingComponent(self, *, OtherComp: api.UPrimitiveComponent) -> bool:
+        return cast("bool", self._sp_call("UPrimitiveComponent", "IsOverlappingComponent", {"OtherComp": OtherComp}, "bool"))
+
+    def IsOverlappingActor(self, *, Other: api.AActor) -> bool:
+        return cast("bool", self._sp_call("UPrimitiveComponent", "IsOverlappingActor", {"Other": Other}, "bool"))
+
+    def GetBeginOverlaps(self) -> list[api.UPrimitiveComponent]:
+        return cast("list[api.UPrimitiveComponent]", self._sp_call("UPrimitiveComponent", "GetBeginOverlaps", {}, "list[UPrimitiveComponent]"))
+
+    def GetEndOverlaps(self) -> list[api.UPrimitiveComponent]:
+        return cast("list[api.UPrimitiveComponent]", self._sp_call("UPrimitiveComponent", "GetEndOverlaps", {}, "list[UPrimitiveComponent]"))
+
+
+_register_proxy(UPrimitiveComponent)
+
+
+class UShapeComponent(UPrimitiveComponent, api.UShapeComponent):
+    __slots__ = ()
+
+
+_register_proxy(UShapeComponent)
+
+
+class UBoxComponent(UShapeComponent, api.UBoxComponent):
+    __slots__ = ()
+
+    @property
+    def BoxExtent(self) -> FVector:
+        return cast("FVector", self._sp_get("UBoxComponent", "BoxExtent", "FVector"))
+
+    @BoxExtent.setter
+    def BoxExtent(self, value: FVector) -> None:
+        self._sp_set("UBoxComponent", "BoxExtent", value)
+
+    def SetBoxExtent(self, *, InBoxExtent: FVector) -> None:
+        self._sp_call("UBoxComponent", "SetBoxExtent", {"InBoxExtent": InBoxExtent}, "None")
+
+
+_register_proxy(UBoxComponent)
+
+
 class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
     __slots__ = ()
 
@@ -940,120 +1145,6 @@ class UPointLightComponent(ULightComponent, api.UPointLightComponent):
 _register_proxy(UPointLightComponent)
 
 
-class UPrimitiveComponent(USceneComponent, api.UPrimitiveComponent):
-    __slots__ = ()
-
-    @property
-    def bSimulatePhysics(self) -> bool:
-        return cast("bool", self._sp_get("UPrimitiveComponent", "bSimulatePhysics", "bool"))
-
-    @bSimulatePhysics.setter
-    def bSimulatePhysics(self, value: bool) -> None:
-        self._sp_set("UPrimitiveComponent", "bSimulatePhysics", value)
-
-    @property
-    def CollisionPrimitive(self) -> ECollisionPrimitive:
-        return cast("ECollisionPrimitive", self._sp_get("UPrimitiveComponent", "CollisionPrimitive", "ECollisionPrimitive"))
-
-    @CollisionPrimitive.setter
-    def CollisionPrimitive(self, value: ECollisionPrimitive) -> None:
-        self._sp_set("UPrimitiveComponent", "CollisionPrimitive", value)
-
-    @property
-    def MassInKg(self) -> float:
-        return cast("float", self._sp_get("UPrimitiveComponent", "MassInKg", "float"))
-
-    @MassInKg.setter
-    def MassInKg(self, value: float) -> None:
-        self._sp_set("UPrimitiveComponent", "MassInKg", value)
-
-    @property
-    def Friction(self) -> float:
-        return cast("float", self._sp_get("UPrimitiveComponent", "Friction", "float"))
-
-    @Friction.setter
-    def Friction(self, value: float) -> None:
-        self._sp_set("UPrimitiveComponent", "Friction", value)
-
-    @property
-    def Restitution(self) -> float:
-        return cast("float", self._sp_get("UPrimitiveComponent", "Restitution", "float"))
-
-    @Restitution.setter
-    def Restitution(self, value: float) -> None:
-        self._sp_set("UPrimitiveComponent", "Restitution", value)
-
-    @property
-    def LinearDamping(self) -> float:
-        return cast("float", self._sp_get("UPrimitiveComponent", "LinearDamping", "float"))
-
-    @LinearDamping.setter
-    def LinearDamping(self, value: float) -> None:
-        self._sp_set("UPrimitiveComponent", "LinearDamping", value)
-
-    @property
-    def AngularDamping(self) -> float:
-        return cast("float", self._sp_get("UPrimitiveComponent", "AngularDamping", "float"))
-
-    @AngularDamping.setter
-    def AngularDamping(self, value: float) -> None:
-        self._sp_set("UPrimitiveComponent", "AngularDamping", value)
-
-    def GetBounds(self) -> api.UPrimitiveComponent.GetBoundsResult:
-        return cast("api.UPrimitiveComponent.GetBoundsResult", self._sp_call("UPrimitiveComponent", "GetBounds", {}, "dict", api.UPrimitiveComponent.GetBoundsResult))
-
-    def SetSimulatePhysics(self, *, bSimulate: bool) -> None:
-        self._sp_call("UPrimitiveComponent", "SetSimulatePhysics", {"bSimulate": bSimulate}, "None")
-
-    def IsSimulatingPhysics(self) -> bool:
-        return cast("bool", self._sp_call("UPrimitiveComponent", "IsSimulatingPhysics", {}, "bool"))
-
-    def SetMassOverrideInKg(self, *, MassInKg: float) -> None:
-        self._sp_call("UPrimitiveComponent", "SetMassOverrideInKg", {"MassInKg": MassInKg}, "None")
-
-    def SetFriction(self, *, NewFriction: float) -> None:
-        self._sp_call("UPrimitiveComponent", "SetFriction", {"NewFriction": NewFriction}, "None")
-
-    def SetRestitution(self, *, NewRestitution: float) -> None:
-        self._sp_call("UPrimitiveComponent", "SetRestitution", {"NewRestitution": NewRestitution}, "None")
-
-    def SetLinearDamping(self, *, NewLinearDamping: float) -> None:
-        self._sp_call("UPrimitiveComponent", "SetLinearDamping", {"NewLinearDamping": NewLinearDamping}, "None")
-
-    def SetAngularDamping(self, *, NewAngularDamping: float) -> None:
-        self._sp_call("UPrimitiveComponent", "SetAngularDamping", {"NewAngularDamping": NewAngularDamping}, "None")
-
-    def GetMass(self) -> float:
-        return cast("float", self._sp_call("UPrimitiveComponent", "GetMass", {}, "float"))
-
-    def AddForce(self, *, Force: FVector, bAccelChange: bool = _DEFAULT) -> None:
-        self._sp_call("UPrimitiveComponent", "AddForce", {"Force": Force, "bAccelChange": bAccelChange}, "None")
-
-    def AddTorqueInRadians(self, *, Torque: FVector) -> None:
-        self._sp_call("UPrimitiveComponent", "AddTorqueInRadians", {"Torque": Torque}, "None")
-
-    def AddImpulse(self, *, Impulse: FVector, bVelChange: bool = _DEFAULT) -> None:
-        self._sp_call("UPrimitiveComponent", "AddImpulse", {"Impulse": Impulse, "bVelChange": bVelChange}, "None")
-
-    def SetPhysicsLinearVelocity(self, *, NewVel: FVector, bAddToCurrent: bool = _DEFAULT) -> None:
-        self._sp_call("UPrimitiveComponent", "SetPhysicsLinearVelocity", {"NewVel": NewVel, "bAddToCurrent": bAddToCurrent}, "None")
-
-    def GetPhysicsLinearVelocity(self) -> FVector:
-        return cast("FVector", self._sp_call("UPrimitiveComponent", "GetPhysicsLinearVelocity", {}, "FVector"))
-
-    def SetPhysicsAngularVelocityInDegrees(self, *, NewAngVel: FVector, bAddToCurrent: bool = _DEFAULT) -> None:
-        self._sp_call("UPrimitiveComponent", "SetPhysicsAngularVelocityInDegrees", {"NewAngVel": NewAngVel, "bAddToCurrent": bAddToCurrent}, "None")
-
-    def GetPhysicsAngularVelocityInDegrees(self) -> FVector:
-        return cast("FVector", self._sp_call("UPrimitiveComponent", "GetPhysicsAngularVelocityInDegrees", {}, "FVector"))
-
-    def IsAnyRigidBodyAwake(self) -> bool:
-        return cast("bool", self._sp_call("UPrimitiveComponent", "IsAnyRigidBodyAwake", {}, "bool"))
-
-
-_register_proxy(UPrimitiveComponent)
-
-
 class USkyLightComponent(USceneComponent, api.USkyLightComponent):
     __slots__ = ()
 
@@ -1093,6 +1184,24 @@ class USpFuncComponent(UActorComponent, api.USpFuncComponent):
 
 
 _register_proxy(USpFuncComponent)
+
+
+class USphereComponent(UShapeComponent, api.USphereComponent):
+    __slots__ = ()
+
+    @property
+    def SphereRadius(self) -> float:
+        return cast("float", self._sp_get("USphereComponent", "SphereRadius", "float"))
+
+    @SphereRadius.setter
+    def SphereRadius(self, value: float) -> None:
+        self._sp_set("USphereComponent", "SphereRadius", value)
+
+    def SetSphereRadius(self, *, InSphereRadius: float) -> None:
+        self._sp_call("USphereComponent", "SetSphereRadius", {"InSphereRadius": InSphereRadius}, "None")
+
+
+_register_proxy(USphereComponent)
 
 
 class USpotLightComponent(UPointLightComponent, api.USpotLightComponent):

@@ -1,4 +1,4 @@
-"""Negative typing case: misuse of a wheeled vehicle. Every marked line must be rejected by mypy --strict
+"""Negative typing case: misuse of a wheeled vehicle and of trigger volumes. Every marked line must be rejected by mypy --strict
 (`# E:`) and by pyright (`# P: rule: message`)."""
 
 # pyright: standard
@@ -15,3 +15,10 @@ def misuse(instance: spear.Instance) -> None:
     car.MaxSteerAngle = "35"  # E: Incompatible types in assignment (expression has type "str", variable has type "float")  [assignment]  # P: reportAttributeAccessIssue: Cannot assign to attribute "MaxSteerAngle" for class "AWheeledVehiclePawn" / "Literal['35']" is not assignable to "float"
     car.Mesh = car.Cabin  # E: Property "Mesh" defined in "AWheeledVehiclePawn" is read-only  [misc]  # P: reportAttributeAccessIssue: Cannot assign to attribute "Mesh" for class "AWheeledVehiclePawn" / "UStaticMeshComponent" is not assignable to "property"
     car.GetWheelState(WheelIndex=0).bInContact = 1  # E: Incompatible types in assignment (expression has type "int", variable has type "bool")  [assignment]  # P: reportAttributeAccessIssue: Cannot assign to attribute "bInContact" for class "FWheelState" / "Literal[1]" is not assignable to "bool"
+
+
+def overlap_misuse(instance: spear.Instance) -> None:
+    trigger = instance.get_game().spawn_actor(uclass=spear.ATriggerSphere)
+    trigger.CollisionComponent.SphereRadius = "1"  # E: Incompatible types in assignment (expression has type "str", variable has type "float")  [assignment]  # P: reportAttributeAccessIssue: Cannot assign to attribute "SphereRadius" for class "USphereComponent" / "Literal['1']" is not assignable to "float"
+    trigger.GetOverlappingActors(ClassFilter=spear.UBoxComponent)  # E: Value of type variable "_AActorT" of "GetOverlappingActors" of "AActor" cannot be "UBoxComponent"  [type-var]  # P: reportArgumentType: Argument of type "type[UBoxComponent]" cannot be assigned to parameter "ClassFilter" of type "str" in function "GetOverlappingActors" / Type "type[UBoxComponent]" is not assignable to type "str"  # P: reportCallIssue: No overloads for "GetOverlappingActors" match the provided arguments
+    trigger.CollisionComponent.BoxExtent  # E: "USphereComponent" has no attribute "BoxExtent"  [attr-defined]  # P: reportAttributeAccessIssue: Cannot access attribute "BoxExtent" for class "USphereComponent" / Attribute "BoxExtent" is unknown

@@ -1,0 +1,42 @@
+#include "core/world/shape_components.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/base/error.h"
+
+UShapeComponent::UShapeComponent() {
+    bGenerateOverlapEvents = true;
+}
+
+void UBoxComponent::SetBoxExtent(const FVector& InBoxExtent) {
+    const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+    std::ostringstream value;
+    value << '(' << InBoxExtent.X << ", " << InBoxExtent.Y << ", " << InBoxExtent.Z << ')';
+    sp::checkSetting(positive(InBoxExtent.X) && positive(InBoxExtent.Y) && positive(InBoxExtent.Z),
+                     "UBoxComponent", "BoxExtent", "finite and > 0 along every axis", value.str());
+    BoxExtent = InBoxExtent;
+}
+
+Eigen::AlignedBox3d UBoxComponent::GetLocalBounds() const {
+    return {-BoxExtent.toEigen(), BoxExtent.toEigen()};
+}
+
+void USphereComponent::SetSphereRadius(double InSphereRadius) {
+    sp::checkSetting(std::isfinite(InSphereRadius) && InSphereRadius > 0.0, "USphereComponent",
+                     "SphereRadius", "> 0", InSphereRadius);
+    SphereRadius = InSphereRadius;
+}
+
+Eigen::AlignedBox3d USphereComponent::GetLocalBounds() const {
+    const Eigen::Vector3d radius = Eigen::Vector3d::Constant(SphereRadius);
+    return {-radius, radius};
+}
+
+ATriggerBox::ATriggerBox() {
+    CollisionComponent = CreateDefaultSubobject<UBoxComponent>("CollisionComponent");
+}
+
+ATriggerSphere::ATriggerSphere() {
+    CollisionComponent = CreateDefaultSubobject<USphereComponent>("CollisionComponent");
+}
