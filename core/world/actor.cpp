@@ -204,3 +204,8 @@ bool AActor::IsOverlappingActor(const AActor* Other) const {
     }
     return false;
 }
+
+std::string AActor::GetDebugName() const {
+    const std::string name = UObject::GetDebugName();
+    return streamingLevel_.empty() ? name : name + " of streaming level '" + streamingLevel_ + "'";
+}

@@ -88,6 +88,10 @@ class AActor : public UObject {
     SPFUNCTION()
     bool IsOverlappingActor(const AActor* Other) const;
 
+    /// Returns the name of the streaming level that loaded this actor ("" for the persistent level).
+    SPFUNCTION()
+    std::string GetStreamingLevelName() const { return streamingLevel_; }
+
     /// Returns all components of this actor, in creation order.
     SPFUNCTION()
     std::vector<UActorComponent*> K2_GetComponents() const;
@@ -115,10 +119,15 @@ class AActor : public UObject {
     virtual void EndPlay();
     bool HasBegunPlay() const { return begunPlay_; }
     void SetWorldForComponents();
+    // Set by UWorld when a streaming level loads the actor.
+    void SetStreamingLevelName(std::string level) { streamingLevel_ = std::move(level); }
+    // Names the streaming level too, so that a handle into an unloaded level says where it came from.
+    std::string GetDebugName() const override;
 
   private:
     void adoptComponent(std::unique_ptr<UActorComponent> component, std::string name);
 
     std::vector<std::unique_ptr<UActorComponent>> components_;
     bool begunPlay_ = false;
+    std::string streamingLevel_;
 };

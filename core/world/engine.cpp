@@ -40,7 +40,19 @@ void Engine::play() {
     game->SetEngine(this);
     // The copy goes through the same reflection code as scene files, so play starts from exactly what
     // save_scene would write.
-    loadScene(*game, saveScene(*editorWorld_), "UWorld.play(): copying the editor world");
+    // Streaming levels keep the files the editor world resolved (a relative path in the scene means its
+    // folder, which the copy does not know), and those loaded in the editor are loaded in play.
+    const std::string context = "UWorld.play(): copying the editor world";
+    SceneJson scene = saveScene(*editorWorld_);
+    scene.erase("levels");
+    loadScene(*game, scene, context, "");
+    std::vector<UWorld::StreamingLevel> levels = editorWorld_->GetStreamingLevels();
+    for (UWorld::StreamingLevel& level : levels)
+        level.loaded = false;
+    game->SetStreamingLevels(std::move(levels));
+    for (const UWorld::StreamingLevel& level : editorWorld_->GetStreamingLevels())
+        if (level.loaded)
+            game->LoadStreamLevel(level.name, context);
     gameWorld_ = std::move(game);
 }
 

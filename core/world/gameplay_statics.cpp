@@ -86,3 +86,31 @@ std::vector<AActor*> UGameplayStatics::GetAllActorsWithTag(UObject* WorldContext
                                                            const std::string& Tag) {
     return worldOf(WorldContextObject, "UGameplayStatics.GetAllActorsWithTag()").find_actors_by_tag(Tag);
 }
+
+void UGameplayStatics::LoadStreamLevel(UObject* WorldContextObject, const std::string& LevelName,
+                                       bool /*bMakeVisibleAfterLoad*/, bool /*bShouldBlockOnLoad*/) {
+    constexpr const char* kContext = "UGameplayStatics.LoadStreamLevel()";
+    worldOf(WorldContextObject, kContext).LoadStreamLevel(LevelName, kContext);
+}
+
+void UGameplayStatics::UnloadStreamLevel(UObject* WorldContextObject, const std::string& LevelName,
+                                         bool /*bShouldBlockOnUnload*/) {
+    constexpr const char* kContext = "UGameplayStatics.UnloadStreamLevel()";
+    worldOf(WorldContextObject, kContext).UnloadStreamLevel(LevelName, kContext);
+}
+
+std::vector<std::string> UGameplayStatics::GetStreamingLevelNames(UObject* WorldContextObject) {
+    std::vector<std::string> names;
+    for (const UWorld::StreamingLevel& level :
+         worldOf(WorldContextObject, "UGameplayStatics.GetStreamingLevelNames()").GetStreamingLevels())
+        names.push_back(level.name);
+    return names;
+}
+
+bool UGameplayStatics::IsStreamingLevelLoaded(UObject* WorldContextObject, const std::string& LevelName) {
+    for (const UWorld::StreamingLevel& level :
+         worldOf(WorldContextObject, "UGameplayStatics.IsStreamingLevelLoaded()").GetStreamingLevels())
+        if (level.name == LevelName)
+            return level.loaded;
+    return false;
+}

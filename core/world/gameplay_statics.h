@@ -57,4 +57,27 @@ class UGameplayStatics : public UObject {
     /// Returns every actor that has Tag, in spawn order.
     SPFUNCTION()
     static std::vector<AActor*> GetAllActorsWithTag(UObject* WorldContextObject, const std::string& Tag);
+
+    /// Loads streaming level LevelName: one the world's scene file declares (its "levels"), or the scene
+    /// file at that path. Its actors join the world at once, the rest untouched; its object references
+    /// resolve within it and its actor names must be free. Nothing happens for a loaded level.
+    /// bMakeVisibleAfterLoad and bShouldBlockOnLoad are accepted for UE compatibility: a level is loaded,
+    /// visible, before the call returns.
+    SPFUNCTION()
+    static void LoadStreamLevel(UObject* WorldContextObject, const std::string& LevelName,
+                                bool bMakeVisibleAfterLoad = true, bool bShouldBlockOnLoad = true);
+
+    /// Unloads streaming level LevelName: destroys the actors it loaded (their handles go stale, naming
+    /// the level). bShouldBlockOnUnload is accepted for UE compatibility.
+    SPFUNCTION()
+    static void UnloadStreamLevel(UObject* WorldContextObject, const std::string& LevelName,
+                                  bool bShouldBlockOnUnload = true);
+
+    /// Returns the names of the world's streaming levels, declared ones first, in order.
+    SPFUNCTION()
+    static std::vector<std::string> GetStreamingLevelNames(UObject* WorldContextObject);
+
+    /// Returns true while streaming level LevelName is loaded.
+    SPFUNCTION()
+    static bool IsStreamingLevelLoaded(UObject* WorldContextObject, const std::string& LevelName);
 };

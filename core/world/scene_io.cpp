@@ -1,8 +1,10 @@
 #include "core/world/scene_io.h"
 
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include "core/base/error.h"
@@ -245,6 +247,8 @@ void loadObjectProperties(reflect::ObjectBase& object, const Json& properties, c
 SceneJson saveScene(const UWorld& world) {
     Json actors = Json::array();
     for (AActor* actor : world.find_actors()) {
+        if (!actor->GetStreamingLevelName().empty())
+            continue; // in its level's file
         const std::string where = "actor '" + actor->GetName() + "'";
         Json entry = Json::object();
         entry["name"] = actor->GetName();
@@ -271,6 +275,13 @@ SceneJson saveScene(const UWorld& world) {
     scene["format"] = kFormat;
     scene["version"] = kVersion;
     scene["actors"] = std::move(actors);
+    if (!world.GetStreamingLevels().empty()) {
+        Json levels = Json::array();
+        for (const UWorld::StreamingLevel& level : world.GetStreamingLevels())
+            levels.push_back(
+                Json{{"name", level.name}, {"path", level.declaredPath}, {"loaded", level.loaded}});
+        scene["levels"] = std::move(levels);
+    }
     return scene;
 }
 
@@ -278,8 +289,12 @@ std::string sceneToString(const SceneJson& scene) {
     return scene.dump(2) + "\n";
 }
 
-void loadScene(UWorld& world, const SceneJson& scene, std::string_view source) {
-    const std::string root(source);
+namespace {
+
+// Checks the document's header and builds its actors, with their components, attachments and properties,
+// outside the world. `inWorld`: the names must not be used by the world's actors either.
+std::vector<std::unique_ptr<AActor>> stageActors(UWorld& world, const Json& scene, const std::string& root,
+                                                 bool inWorld) {
     SP_CHECK(scene.is_object(), InvalidArgument, root, ": expected a JSON object, got ", jsonKind(scene));
     const Json& format = member(scene, "format", root);
     SP_CHECK(format == kFormat, InvalidArgument, root, ": 'format' must be \"", kFormat, "\", got ",
@@ -301,6 +316,8 @@ void loadScene(UWorld& world, const SceneJson& scene, std::string_view source) {
         const std::string name = stringMember(entry, "name", where);
         where += " '" + name + "'";
         SP_CHECK(!byName.contains(name), InvalidArgument, where, ": the name is used by another actor");
+        SP_CHECK(!inWorld || !world.find_actor_by_name(name), InvalidArgument, where,
+                 ": the name is used by an actor of the world");
         // An actor of a blueprint names its asset: loading the scene loads the blueprint if needed.
         if (const auto blueprint = entry.find("blueprint");
             blueprint != entry.end() && blueprint->is_string() &&
@@ -365,13 +382,66 @@ void loadScene(UWorld& world, const SceneJson& scene, std::string_view source) {
         }
     }
 
-    // 3. Only now does the world change, once every actor has begun play (ReplaceActors: one that fails
-    // to, as one whose physics settings Bullet refuses, leaves the world as it was).
+    return staged;
+}
+
+std::vector<UWorld::StreamingLevel> sceneLevels(const Json& scene, const std::string& root,
+                                                const std::string& directory) {
+    std::vector<UWorld::StreamingLevel> levels;
+    const auto list = scene.find("levels");
+    if (list == scene.end())
+        return levels;
+    SP_CHECK(list->is_array(), InvalidArgument, root, ": 'levels' must be a list, got ", jsonKind(*list));
+    for (size_t i = 0; i < list->size(); ++i) {
+        const Json& entry = (*list)[i];
+        const std::string where = root + ": levels[" + std::to_string(i) + "]";
+        SP_CHECK(entry.is_object(), InvalidArgument, where, ": expected an object, got ", jsonKind(entry));
+        UWorld::StreamingLevel level;
+        level.name = stringMember(entry, "name", where);
+        level.declaredPath = stringMember(entry, "path", where);
+        SP_CHECK(!level.name.empty() && !level.declaredPath.empty(), InvalidArgument, where,
+                 ": 'name' and 'path' must not be empty");
+        for (const UWorld::StreamingLevel& other : levels)
+            SP_CHECK(other.name != level.name, InvalidArgument, where, ": level '", level.name,
+                     "' is declared twice");
+        const std::filesystem::path declared(level.declaredPath);
+        level.path = declared.is_absolute() || directory.empty()
+                         ? level.declaredPath
+                         : (std::filesystem::path(directory) / declared).lexically_normal().string();
+        const auto loaded = entry.find("loaded");
+        SP_CHECK(loaded == entry.end() || loaded->is_boolean(), InvalidArgument, where,
+                 ": 'loaded' must be true or false");
+        level.loaded = loaded != entry.end() && loaded->get<bool>();
+        levels.push_back(std::move(level));
+    }
+    return levels;
+}
+
+} // namespace
+
+void loadScene(UWorld& world, const SceneJson& scene, std::string_view source, const std::string& directory) {
+    const std::string root(source);
+    std::vector<std::unique_ptr<AActor>> staged = stageActors(world, scene, root, false);
+    std::vector<UWorld::StreamingLevel> levels = sceneLevels(scene, root, directory);
+    // Only now does the world change, once every actor has begun play (ReplaceActors: one that fails to,
+    // as one whose physics settings Bullet refuses, leaves the world as it was).
     try {
         world.ReplaceActors(std::move(staged));
     } catch (const Error&) {
         rethrowWithPrefix(root + ": ");
     }
+    std::vector<std::string> toLoad;
+    for (UWorld::StreamingLevel& level : levels)
+        if (std::exchange(level.loaded, false))
+            toLoad.push_back(level.name);
+    world.SetStreamingLevels(std::move(levels));
+    for (const std::string& name : toLoad)
+        world.LoadStreamLevel(name, root);
+}
+
+std::vector<std::unique_ptr<AActor>> stageLevel(UWorld& world, const SceneJson& scene,
+                                                std::string_view source) {
+    return stageActors(world, scene, std::string(source), true);
 }
 
 std::string jsonErrorWithoutContents(const nlohmann::json::parse_error& error) {

@@ -12,10 +12,16 @@
 // actor, "Floor.StaticMeshComponent" for a component, null for None), classes by name. Read-only
 // properties are written for the reader's benefit and checked, not set, on load (construction gives
 // them their value). Saving what was loaded gives the same bytes.
+//
+// A scene may declare streaming levels after its actors: "levels": [{"name": "Kitchen", "path":
+// "kitchen.json", "loaded": false}] (paths relative to the scene file). A level's own actors are not
+// written with the scene's: they are in the level's file.
 
 #include <map>
+#include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -39,10 +45,17 @@ SceneJson saveScene(const UWorld& world);
 std::string jsonErrorWithoutContents(const nlohmann::json::parse_error& error);
 // The scene document as text (what save_scene writes): 2-space indent and a final newline.
 std::string sceneToString(const SceneJson& scene);
-// Replaces the world's actors by those of the scene document. Everything is checked and built before
-// the world is touched, so a bad document leaves the world as it was. `source` names the document in
-// messages ("scene 'x.json'"); errors are sp::InvalidArgument naming the actor, component and property.
-void loadScene(UWorld& world, const SceneJson& scene, std::string_view source);
+// Replaces the world's actors and streaming levels by those of the scene document, and loads the levels
+// it marks loaded. Everything is checked and built before the world is touched, so a bad document
+// leaves the world as it was. `source` names the document in messages ("scene 'x.json'"); errors are
+// sp::InvalidArgument naming the actor, component and property. Level paths are read from `directory`
+// (the scene file's folder) when relative.
+void loadScene(UWorld& world, const SceneJson& scene, std::string_view source,
+               const std::string& directory = "");
+// The actors of a streaming level's document, built and checked but not in the world (UWorld::AddActors
+// puts them in): the document's "levels" are not read, and its names must not be used in the world.
+std::vector<std::unique_ptr<AActor>> stageLevel(UWorld& world, const SceneJson& scene,
+                                                std::string_view source);
 // Actors by name, for resolving object references ("Actor" or "Actor.Component") in property values.
 using ActorsByName = std::map<std::string, AActor*, std::less<>>;
 // Sets each property of `properties` (a JSON object of name -> value in the scene-file format) on

@@ -1,6 +1,7 @@
 #include "core/world/world.h"
 
 #include <algorithm>
+#include <filesystem>
 
 #include "core/base/error.h"
 #include "core/base/regular_file.h"
@@ -75,12 +76,12 @@ std::unique_ptr<AActor> UWorld::NewActorDeferred(const UClass& type, std::string
         static_cast<AActor*>(sp::world::newObject(type, std::move(name), this).release()));
 }
 
-void UWorld::ReplaceActors(std::vector<std::unique_ptr<AActor>> actors) {
-    SP_CHECK(!ticking_, sp::InvalidState, "UWorld: the actors cannot be replaced while the world ticks");
-    // The incoming actors begin play while the old ones are still here: beginning play checks what
-    // construction and property values could not (physics settings Bullet refuses, a plugin component's
-    // own checks), and a scene that fails there must leave the world as it was. Those that began end play
-    // again, and the old actors are only destroyed once every new one has begun.
+namespace {
+
+// Begins the play of every actor; when one fails, those that began end play again and the error names
+// the actor. Checks what construction and property values could not (physics settings Bullet refuses, a
+// plugin component's own checks) before the world changes.
+void beginPlayAll(const std::vector<std::unique_ptr<AActor>>& actors) {
     size_t begun = 0;
     try {
         for (; begun < actors.size(); ++begun)
@@ -91,16 +92,32 @@ void UWorld::ReplaceActors(std::vector<std::unique_ptr<AActor>> actors) {
                 actors[i]->EndPlay();
         sp::rethrowWithPrefix("actor '" + actors[begun]->GetName() + "': ");
     }
+}
+
+} // namespace
+
+void UWorld::ReplaceActors(std::vector<std::unique_ptr<AActor>> actors) {
+    SP_CHECK(!ticking_, sp::InvalidState, "UWorld: the actors cannot be replaced while the world ticks");
+    // The incoming actors begin play while the old ones are still here, so that a scene that fails there
+    // leaves the world as it was; the old actors are only destroyed once every new one has begun.
+    beginPlayAll(actors);
     for (AActor* actor : find_actors())
         destroy_actor(actor);
     for (auto& actor : actors)
         actors_.push_back(std::move(actor));
 }
 
+void UWorld::AddActors(std::vector<std::unique_ptr<AActor>> actors) {
+    SP_CHECK(!ticking_, sp::InvalidState, "UWorld: actors cannot be added while the world ticks");
+    beginPlayAll(actors);
+    for (auto& actor : actors)
+        actors_.push_back(std::move(actor));
+}
+
 void UWorld::load_scene(const std::string& path) {
     const std::string function = "UWorld.load_scene()";
-    sp::world::loadScene(*this, sp::world::readSceneFile(path, function),
-                         function + ": scene '" + path + "'");
+    sp::world::loadScene(*this, sp::world::readSceneFile(path, function), function + ": scene '" + path + "'",
+                         std::filesystem::path(path).parent_path().string());
 }
 
 void UWorld::save_scene(const std::string& path) const {

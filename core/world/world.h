@@ -174,6 +174,27 @@ class UWorld : public UObject {
     std::unique_ptr<AActor> NewActorDeferred(const UClass& type, std::string name);
     // Destroys every actor, then adds `actors` (from NewActorDeferred) in order and begins their play.
     void ReplaceActors(std::vector<std::unique_ptr<AActor>> actors);
+    // Adds `actors` (from NewActorDeferred) after the others once every one has begun play; when one
+    // fails to, none is added.
+    void AddActors(std::vector<std::unique_ptr<AActor>> actors);
+
+    // Streaming levels: sub-scenes that a scene file declares (its "levels" list) and that
+    // UGameplayStatics.LoadStreamLevel / UnloadStreamLevel add to and remove from the world in play.
+    struct StreamingLevel {
+        std::string name;
+        std::string declaredPath; // as the scene file wrote it
+        std::string path;         // the file read: declaredPath from the scene file's folder
+        bool loaded = false;
+        bool operator==(const StreamingLevel&) const = default;
+    };
+    const std::vector<StreamingLevel>& GetStreamingLevels() const { return levels_; }
+    void SetStreamingLevels(std::vector<StreamingLevel> levels) { levels_ = std::move(levels); }
+    // Loads a declared level (or, for a name no level has, the scene file at that path, as a level of
+    // that name): its actors join the world, its references resolve within it, and its names may not be
+    // in use. Nothing happens for a loaded level. `function` names the caller in messages.
+    void LoadStreamLevel(const std::string& name, const std::string& function);
+    // Destroys the actors a level loaded (their handles go stale, naming the level).
+    void UnloadStreamLevel(const std::string& name, const std::string& function);
 
     void SetEditorWorld(bool isEditorWorld) { isEditorWorld_ = isEditorWorld; }
     void SetEngine(sp::world::Engine* engine) { engine_ = engine; }
@@ -194,6 +215,7 @@ class UWorld : public UObject {
 
     sp::world::Engine* engine_ = nullptr;
     std::vector<std::unique_ptr<AActor>> actors_; // spawn order: keeps queries and ticks deterministic
+    std::vector<StreamingLevel> levels_;          // declaration order
     std::map<const UClass*, std::unique_ptr<UObject>> defaultObjects_;
     mutable std::map<std::string, int> nameCounters_; // per name prefix; never reused
     double timeSeconds_ = 0.0;

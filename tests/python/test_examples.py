@@ -131,3 +131,15 @@ def test_control_car_drives_into_the_crate_and_writes_its_frames(transport: str,
     strip = Image.open(out.with_suffix(".png"))
     assert strip.size == (4 * 480, 270)
     assert len(set(strip.convert("L").getdata())) > 20  # a rendered scene, not a blank frame
+
+
+@pytest.mark.parametrize("transport", TRANSPORTS)
+def test_stream_levels_loads_ahead_and_unloads_behind(transport: str, tmp_path: Path) -> None:
+    result = run_example("stream_levels.py", "--out", str(tmp_path), *TRANSPORTS[transport])
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "step 1/24: camera at x = -10 m, levels loaded: Block0, Block1; 21 actors" in result.stdout
+    assert "step 19/24: camera at x = 80 m, levels loaded: Block2; 13 actors" in result.stdout
+    assert sorted(p.name for p in (tmp_path / "levels").iterdir()) == [f"block_{b}.json" for b in range(3)]
+    strip = Image.open(tmp_path / "views.png")
+    assert strip.size == (4 * 320, 180)
+    assert len(set(strip.convert("L").getdata())) > 20  # a rendered street, not a blank frame

@@ -335,6 +335,21 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
         });
         t.functions.push_back({
+            "GetStreamingLevelName",
+            "Returns the name of the streaming level that loaded this actor (\"\" for the persistent level).",
+            "str",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "AActor.GetStreamingLevelName()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->GetStreamingLevelName();
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
             "K2_GetComponents",
             "Returns all components of this actor, in creation order.",
             "list[UActorComponent]",

@@ -213,6 +213,89 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
                 return sp::reflect::encode(result);
             },
         });
+        t.functions.push_back({
+            "LoadStreamLevel",
+            "Loads streaming level LevelName: one the world's scene file declares (its \"levels\"), or the scene\nfile at that path. Its actors join the world at once, the rest untouched; its object references\nresolve within it and its actor names must be free. Nothing happens for a loaded level.\nbMakeVisibleAfterLoad and bShouldBlockOnLoad are accepted for UE compatibility: a level is loaded,\nvisible, before the call returns.",
+            "None",
+            {
+                {"WorldContextObject", "UObject", false, false},
+                {"LevelName", "str", false, false},
+                {"bMakeVisibleAfterLoad", "bool", true, false},
+                {"bShouldBlockOnLoad", "bool", true, false},
+            },
+            true,
+            false,
+            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UGameplayStatics.LoadStreamLevel()";
+                sp::reflect::checkArguments(args, {"WorldContextObject", "LevelName", "bMakeVisibleAfterLoad", "bShouldBlockOnLoad"}, kContext);
+                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UGameplayStatics.LoadStreamLevel(): argument 'WorldContextObject'");
+                std::string LevelName = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "LevelName", kContext), "UGameplayStatics.LoadStreamLevel(): argument 'LevelName'");
+                const sp::reflect::Value* bMakeVisibleAfterLoadArg = sp::reflect::findArgument(args, "bMakeVisibleAfterLoad");
+                bool bMakeVisibleAfterLoad = bMakeVisibleAfterLoadArg ? sp::reflect::decode<bool>(*bMakeVisibleAfterLoadArg, "UGameplayStatics.LoadStreamLevel(): argument 'bMakeVisibleAfterLoad'") : bool(true);
+                const sp::reflect::Value* bShouldBlockOnLoadArg = sp::reflect::findArgument(args, "bShouldBlockOnLoad");
+                bool bShouldBlockOnLoad = bShouldBlockOnLoadArg ? sp::reflect::decode<bool>(*bShouldBlockOnLoadArg, "UGameplayStatics.LoadStreamLevel(): argument 'bShouldBlockOnLoad'") : bool(true);
+                Self::LoadStreamLevel(WorldContextObject, LevelName, bMakeVisibleAfterLoad, bShouldBlockOnLoad);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "UnloadStreamLevel",
+            "Unloads streaming level LevelName: destroys the actors it loaded (their handles go stale, naming\nthe level). bShouldBlockOnUnload is accepted for UE compatibility.",
+            "None",
+            {
+                {"WorldContextObject", "UObject", false, false},
+                {"LevelName", "str", false, false},
+                {"bShouldBlockOnUnload", "bool", true, false},
+            },
+            true,
+            false,
+            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UGameplayStatics.UnloadStreamLevel()";
+                sp::reflect::checkArguments(args, {"WorldContextObject", "LevelName", "bShouldBlockOnUnload"}, kContext);
+                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UGameplayStatics.UnloadStreamLevel(): argument 'WorldContextObject'");
+                std::string LevelName = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "LevelName", kContext), "UGameplayStatics.UnloadStreamLevel(): argument 'LevelName'");
+                const sp::reflect::Value* bShouldBlockOnUnloadArg = sp::reflect::findArgument(args, "bShouldBlockOnUnload");
+                bool bShouldBlockOnUnload = bShouldBlockOnUnloadArg ? sp::reflect::decode<bool>(*bShouldBlockOnUnloadArg, "UGameplayStatics.UnloadStreamLevel(): argument 'bShouldBlockOnUnload'") : bool(true);
+                Self::UnloadStreamLevel(WorldContextObject, LevelName, bShouldBlockOnUnload);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "GetStreamingLevelNames",
+            "Returns the names of the world's streaming levels, declared ones first, in order.",
+            "list[str]",
+            {
+                {"WorldContextObject", "UObject", false, false},
+            },
+            true,
+            false,
+            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UGameplayStatics.GetStreamingLevelNames()";
+                sp::reflect::checkArguments(args, {"WorldContextObject"}, kContext);
+                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UGameplayStatics.GetStreamingLevelNames(): argument 'WorldContextObject'");
+                auto result = Self::GetStreamingLevelNames(WorldContextObject);
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "IsStreamingLevelLoaded",
+            "Returns true while streaming level LevelName is loaded.",
+            "bool",
+            {
+                {"WorldContextObject", "UObject", false, false},
+                {"LevelName", "str", false, false},
+            },
+            true,
+            false,
+            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UGameplayStatics.IsStreamingLevelLoaded()";
+                sp::reflect::checkArguments(args, {"WorldContextObject", "LevelName"}, kContext);
+                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UGameplayStatics.IsStreamingLevelLoaded(): argument 'WorldContextObject'");
+                std::string LevelName = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "LevelName", kContext), "UGameplayStatics.IsStreamingLevelLoaded(): argument 'LevelName'");
+                auto result = Self::IsStreamingLevelLoaded(WorldContextObject, LevelName);
+                return sp::reflect::encode(result);
+            },
+        });
         return t;
     }();
     return info;

@@ -251,6 +251,15 @@ void spear_bind_engine(py::module_& m) {
             py::arg("Other"),
             "Returns true when a component of Other overlaps a component of this actor now.");
         cls.def(
+            "GetStreamingLevelName",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "AActor.GetStreamingLevelName()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetStreamingLevelName();
+                return Bridge<std::string>::out(result);
+            },
+            "Returns the name of the streaming level that loaded this actor (\"\" for the persistent level).");
+        cls.def(
             "K2_GetComponents",
             [](const Ref<Self>& self) -> py::object {
                 static constexpr const char* kContext = "AActor.K2_GetComponents()";
@@ -2355,6 +2364,70 @@ void spear_bind_engine(py::module_& m) {
             py::arg("WorldContextObject"),
             py::arg("Tag"),
             "Returns every actor that has Tag, in spawn order.");
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "LoadStreamLevel",
+            [](Bridge<UObject*>::Py WorldContextObject, Bridge<std::string>::Py LevelName, Bridge<bool>::Py bMakeVisibleAfterLoad, Bridge<bool>::Py bShouldBlockOnLoad) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UGameplayStatics.LoadStreamLevel()";
+                auto WorldContextObjectValue = Bridge<UObject*>::in(std::move(WorldContextObject), "UGameplayStatics.LoadStreamLevel(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.LoadStreamLevel(): argument 'WorldContextObject'", " must not be None");
+                auto LevelNameValue = Bridge<std::string>::in(std::move(LevelName), "UGameplayStatics.LoadStreamLevel(): argument 'LevelName'");
+                auto bMakeVisibleAfterLoadValue = Bridge<bool>::in(std::move(bMakeVisibleAfterLoad), "UGameplayStatics.LoadStreamLevel(): argument 'bMakeVisibleAfterLoad'");
+                auto bShouldBlockOnLoadValue = Bridge<bool>::in(std::move(bShouldBlockOnLoad), "UGameplayStatics.LoadStreamLevel(): argument 'bShouldBlockOnLoad'");
+                Self::LoadStreamLevel(WorldContextObjectValue, LevelNameValue, bMakeVisibleAfterLoadValue, bShouldBlockOnLoadValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("WorldContextObject"),
+            py::arg("LevelName"),
+            py::arg("bMakeVisibleAfterLoad") = static_cast<Bridge<bool>::Py>(bool(true)),
+            py::arg("bShouldBlockOnLoad") = static_cast<Bridge<bool>::Py>(bool(true)),
+            "Loads streaming level LevelName: one the world's scene file declares (its \"levels\"), or the scene\nfile at that path. Its actors join the world at once, the rest untouched; its object references\nresolve within it and its actor names must be free. Nothing happens for a loaded level.\nbMakeVisibleAfterLoad and bShouldBlockOnLoad are accepted for UE compatibility: a level is loaded,\nvisible, before the call returns.");
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "UnloadStreamLevel",
+            [](Bridge<UObject*>::Py WorldContextObject, Bridge<std::string>::Py LevelName, Bridge<bool>::Py bShouldBlockOnUnload) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UGameplayStatics.UnloadStreamLevel()";
+                auto WorldContextObjectValue = Bridge<UObject*>::in(std::move(WorldContextObject), "UGameplayStatics.UnloadStreamLevel(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.UnloadStreamLevel(): argument 'WorldContextObject'", " must not be None");
+                auto LevelNameValue = Bridge<std::string>::in(std::move(LevelName), "UGameplayStatics.UnloadStreamLevel(): argument 'LevelName'");
+                auto bShouldBlockOnUnloadValue = Bridge<bool>::in(std::move(bShouldBlockOnUnload), "UGameplayStatics.UnloadStreamLevel(): argument 'bShouldBlockOnUnload'");
+                Self::UnloadStreamLevel(WorldContextObjectValue, LevelNameValue, bShouldBlockOnUnloadValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("WorldContextObject"),
+            py::arg("LevelName"),
+            py::arg("bShouldBlockOnUnload") = static_cast<Bridge<bool>::Py>(bool(true)),
+            "Unloads streaming level LevelName: destroys the actors it loaded (their handles go stale, naming\nthe level). bShouldBlockOnUnload is accepted for UE compatibility.");
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "GetStreamingLevelNames",
+            [](Bridge<UObject*>::Py WorldContextObject) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UGameplayStatics.GetStreamingLevelNames()";
+                auto WorldContextObjectValue = Bridge<UObject*>::in(std::move(WorldContextObject), "UGameplayStatics.GetStreamingLevelNames(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.GetStreamingLevelNames(): argument 'WorldContextObject'", " must not be None");
+                auto result = Self::GetStreamingLevelNames(WorldContextObjectValue);
+                return Bridge<std::vector<std::string>>::out(result);
+            },
+            py::kw_only(),
+            py::arg("WorldContextObject"),
+            "Returns the names of the world's streaming levels, declared ones first, in order.");
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "IsStreamingLevelLoaded",
+            [](Bridge<UObject*>::Py WorldContextObject, Bridge<std::string>::Py LevelName) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UGameplayStatics.IsStreamingLevelLoaded()";
+                auto WorldContextObjectValue = Bridge<UObject*>::in(std::move(WorldContextObject), "UGameplayStatics.IsStreamingLevelLoaded(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.IsStreamingLevelLoaded(): argument 'WorldContextObject'", " must not be None");
+                auto LevelNameValue = Bridge<std::string>::in(std::move(LevelName), "UGameplayStatics.IsStreamingLevelLoaded(): argument 'LevelName'");
+                auto result = Self::IsStreamingLevelLoaded(WorldContextObjectValue, LevelNameValue);
+                return Bridge<bool>::out(result);
+            },
+            py::kw_only(),
+            py::arg("WorldContextObject"),
+            py::arg("LevelName"),
+            "Returns true while streaming level LevelName is loaded.");
     }
     {
         using Self = UInputComponent;

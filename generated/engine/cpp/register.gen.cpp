@@ -150,4 +150,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "7666efb651fd77fc"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "6b3b12288dbb9873"; }

@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "7666efb651fd77fc"
+API_HASH = "6b3b12288dbb9873"

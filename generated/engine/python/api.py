@@ -910,6 +910,10 @@ class UGameplayStatics(UObject):
     GetAllActorsOfClass = _StaticFunction("UGameplayStatics", "GetAllActorsOfClass", "list[AActor]")
     GetActorOfClass = _StaticFunction("UGameplayStatics", "GetActorOfClass", "AActor | None")
     GetAllActorsWithTag = _StaticFunction("UGameplayStatics", "GetAllActorsWithTag", "list[AActor]")
+    LoadStreamLevel = _StaticFunction("UGameplayStatics", "LoadStreamLevel", "None")
+    UnloadStreamLevel = _StaticFunction("UGameplayStatics", "UnloadStreamLevel", "None")
+    GetStreamingLevelNames = _StaticFunction("UGameplayStatics", "GetStreamingLevelNames", "list[str]")
+    IsStreamingLevelLoaded = _StaticFunction("UGameplayStatics", "IsStreamingLevelLoaded", "bool")
 
 
 class UInputComponentAsync(UActorComponentAsync):

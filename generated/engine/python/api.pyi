@@ -400,6 +400,8 @@ class AActorAsync(UObjectAsync):
 
     def IsOverlappingActor(self, *, Other: AActor) -> Future[bool]: ...
 
+    def GetStreamingLevelName(self) -> Future[str]: ...
+
     def K2_GetComponents(self) -> Future[list[UActorComponent]]: ...
 
     @overload
@@ -441,6 +443,8 @@ class AActorSend(UObjectSend):
     def GetOverlappingActors(self, *, ClassFilter: type[AActor] | str) -> None: ...
 
     def IsOverlappingActor(self, *, Other: AActor) -> None: ...
+
+    def GetStreamingLevelName(self) -> None: ...
 
     def K2_GetComponents(self) -> None: ...
 
@@ -522,6 +526,9 @@ class AActor(UObject):
 
     def IsOverlappingActor(self, *, Other: AActor) -> bool:
         """Returns true when a component of Other overlaps a component of this actor now."""
+
+    def GetStreamingLevelName(self) -> str:
+        """Returns the name of the streaming level that loaded this actor ("" for the persistent level)."""
 
     def K2_GetComponents(self) -> list[UActorComponent]:
         """Returns all components of this actor, in creation order."""
@@ -2410,6 +2417,14 @@ class UGameplayStaticsAsync(UObjectAsync):
 
     def GetAllActorsWithTag(self, *, WorldContextObject: UObject, Tag: str) -> Future[list[AActor]]: ...
 
+    def LoadStreamLevel(self, *, WorldContextObject: UObject, LevelName: str, bMakeVisibleAfterLoad: bool = True, bShouldBlockOnLoad: bool = True) -> Future[None]: ...
+
+    def UnloadStreamLevel(self, *, WorldContextObject: UObject, LevelName: str, bShouldBlockOnUnload: bool = True) -> Future[None]: ...
+
+    def GetStreamingLevelNames(self, *, WorldContextObject: UObject) -> Future[list[str]]: ...
+
+    def IsStreamingLevelLoaded(self, *, WorldContextObject: UObject, LevelName: str) -> Future[bool]: ...
+
 
 class UGameplayStaticsSend(UObjectSend):
     """UGameplayStatics's functions, sent without waiting for a result (fire and forget)."""
@@ -2431,6 +2446,14 @@ class UGameplayStaticsSend(UObjectSend):
     def GetActorOfClass(self, *, WorldContextObject: UObject, ActorClass: type[AActor] | str) -> None: ...
 
     def GetAllActorsWithTag(self, *, WorldContextObject: UObject, Tag: str) -> None: ...
+
+    def LoadStreamLevel(self, *, WorldContextObject: UObject, LevelName: str, bMakeVisibleAfterLoad: bool = True, bShouldBlockOnLoad: bool = True) -> None: ...
+
+    def UnloadStreamLevel(self, *, WorldContextObject: UObject, LevelName: str, bShouldBlockOnUnload: bool = True) -> None: ...
+
+    def GetStreamingLevelNames(self, *, WorldContextObject: UObject) -> None: ...
+
+    def IsStreamingLevelLoaded(self, *, WorldContextObject: UObject, LevelName: str) -> None: ...
 
 
 class UGameplayStatics(UObject):
@@ -2492,6 +2515,29 @@ class UGameplayStatics(UObject):
     @staticmethod
     def GetAllActorsWithTag(*, WorldContextObject: UObject, Tag: str) -> list[AActor]:
         """Returns every actor that has Tag, in spawn order."""
+
+    @staticmethod
+    def LoadStreamLevel(*, WorldContextObject: UObject, LevelName: str, bMakeVisibleAfterLoad: bool = True, bShouldBlockOnLoad: bool = True) -> None:
+        """Loads streaming level LevelName: one the world's scene file declares (its "levels"), or the scene
+        file at that path. Its actors join the world at once, the rest untouched; its object references
+        resolve within it and its actor names must be free. Nothing happens for a loaded level.
+        bMakeVisibleAfterLoad and bShouldBlockOnLoad are accepted for UE compatibility: a level is loaded,
+        visible, before the call returns.
+        """
+
+    @staticmethod
+    def UnloadStreamLevel(*, WorldContextObject: UObject, LevelName: str, bShouldBlockOnUnload: bool = True) -> None:
+        """Unloads streaming level LevelName: destroys the actors it loaded (their handles go stale, naming
+        the level). bShouldBlockOnUnload is accepted for UE compatibility.
+        """
+
+    @staticmethod
+    def GetStreamingLevelNames(*, WorldContextObject: UObject) -> list[str]:
+        """Returns the names of the world's streaming levels, declared ones first, in order."""
+
+    @staticmethod
+    def IsStreamingLevelLoaded(*, WorldContextObject: UObject, LevelName: str) -> bool:
+        """Returns true while streaming level LevelName is loaded."""
 
 
 class UInputComponentAsync(UActorComponentAsync):

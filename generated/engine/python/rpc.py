@@ -109,6 +109,9 @@ class AActor(UObject, api.AActor):
     def IsOverlappingActor(self, *, Other: api.AActor) -> bool:
         return cast("bool", self._sp_call("AActor", "IsOverlappingActor", {"Other": Other}, "bool"))
 
+    def GetStreamingLevelName(self) -> str:
+        return cast("str", self._sp_call("AActor", "GetStreamingLevelName", {}, "str"))
+
     def K2_GetComponents(self) -> list[api.UActorComponent]:
         return cast("list[api.UActorComponent]", self._sp_call("AActor", "K2_GetComponents", {}, "list[UActorComponent]"))
 

@@ -38,3 +38,18 @@ def players(instance: spear.Instance) -> None:
         # A static function is also reachable from an object of its class, as in C++.
         statics: type[spear.UGameplayStatics] = spear.UGameplayStatics
         assert_type(statics.GetNumPlayerControllers(WorldContextObject=game), int)
+
+
+def levels(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        spear.UGameplayStatics.LoadStreamLevel(WorldContextObject=game, LevelName="Kitchen")
+        assert_type(spear.UGameplayStatics.GetStreamingLevelNames(WorldContextObject=game), list[str])
+        assert_type(spear.UGameplayStatics.IsStreamingLevelLoaded(WorldContextObject=game, LevelName="Kitchen"), bool)
+        spear.UGameplayStatics.UnloadStreamLevel(WorldContextObject=game, LevelName="Kitchen",
+                                                 bShouldBlockOnUnload=False)
+        actor = game.find_actor_by_name(name="Crate")
+        if actor is not None:
+            assert_type(actor.GetStreamingLevelName(), str)
+    with instance.end_frame():
+        pass
