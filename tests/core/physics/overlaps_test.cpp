@@ -53,9 +53,11 @@ TEST(OverlapsTest, BoxAndSphereOverlapsMatchTheGeometry) {
         // Static and kinematic spheres alike (a simulation step never tests such pairs).
         for (Mobility mobility : {Mobility::Static, Mobility::Movable}) {
             const BodyId sphere = addSphere(world, centre.x(), centre.y(), centre.z(), mobility);
-            EXPECT_EQ(world.overlaps(sphere), c.overlaps ? std::vector<BodyId>{sensor} : std::vector<BodyId>{})
+            EXPECT_EQ(world.overlaps(sphere),
+                      c.overlaps ? std::vector<BodyId>{sensor} : std::vector<BodyId>{})
                 << "sphere at (" << c.x << ", " << c.y << ")";
-            EXPECT_EQ(world.overlaps(sensor), c.overlaps ? std::vector<BodyId>{sphere} : std::vector<BodyId>{})
+            EXPECT_EQ(world.overlaps(sensor),
+                      c.overlaps ? std::vector<BodyId>{sphere} : std::vector<BodyId>{})
                 << "sphere at (" << c.x << ", " << c.y << ")";
             world.removeBody(sphere);
         }
