@@ -190,6 +190,10 @@ def _class_view(c: Class) -> dict[str, Any]:
         "partial": specifiers.has(c.specifiers, "Partial"),
         "properties": [_property_view(c, p) for p in c.properties],
         "functions": [_function_view(c, f) for f in c.functions],
+        # The registry's `Self` alias is read by the factory and the member bodies only; an abstract class
+        # without members marks it unused (a warning otherwise).
+        "self_attribute": "" if (c.kind == "class" and not c.abstract) or c.properties or c.functions
+        else " [[maybe_unused]]",
         "doc": c.doc,
     }
 
