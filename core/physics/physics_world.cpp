@@ -48,12 +48,12 @@ void checkFriction(const char* function, double friction) {
              " must be >= 0");
 }
 
-// A ray callback that skips sensors (bodies without contact response).
+// A ray callback that sees bodies only: not sensors (bodies without contact response), not characters.
 template <typename Callback> struct SolidOnly : Callback {
     using Callback::Callback;
     bool needsCollision(btBroadphaseProxy* proxy) const override {
-        return Callback::needsCollision(proxy) &&
-               static_cast<const btCollisionObject*>(proxy->m_clientObject)->hasContactResponse();
+        const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+        return Callback::needsCollision(proxy) && object->hasContactResponse() && btRigidBody::upcast(object);
     }
 };
 
@@ -74,6 +74,8 @@ PhysicsWorld::PhysicsWorld(const Settings& settings) : impl_(std::make_unique<Im
     w.world = std::make_unique<btDiscreteDynamicsWorld>(w.dispatcher.get(), w.broadphase.get(),
                                                         w.solver.get(), w.configuration.get());
     w.world->setGravity(toBullet(settings.gravity));
+    w.ghostPairCallback = std::make_unique<btGhostPairCallback>();
+    w.broadphase->getOverlappingPairCache()->setInternalGhostPairCallback(w.ghostPairCallback.get());
     w.world->getSolverInfo().m_numIterations = settings.solverIterations;
 }
 
@@ -93,6 +95,9 @@ int PhysicsWorld::step(double dt) {
              count, " substeps of ", h, " s");
     w.accumulator = std::max(0.0, w.accumulator + dt - count * h);
     const int n = int(count);
+    w.characters.forEach([&](BodyId, detail::CharacterRecord& record) {
+        record.stepStart = toEigen(record.ghost->getWorldTransform().getOrigin());
+    });
     for (int i = 0; i < n; ++i) {
         for (BodyId id : w.pendingForces)
             if (BodyRecord* record = w.bodies.find(id); record && record->hasPendingForce) {
@@ -111,6 +116,10 @@ int PhysicsWorld::step(double dt) {
                 record->hasPendingForce = false;
             }
         w.pendingForces.clear();
+        w.characters.forEach([&](BodyId, detail::CharacterRecord& record) {
+            record.velocity =
+                (toEigen(record.ghost->getWorldTransform().getOrigin()) - record.stepStart) / (n * h);
+        });
     }
     w.substeps += uint64_t(n);
     return n;
@@ -132,6 +141,8 @@ void PhysicsWorld::setGravity(const Eigen::Vector3d& gravity) {
     checkVector("PhysicsWorld::setGravity()", "gravity", gravity);
     impl_->settings.gravity = gravity;
     impl_->world->setGravity(toBullet(gravity));
+    impl_->characters.forEach(
+        [&](BodyId, detail::CharacterRecord& record) { record.controller->setGravity(toBullet(gravity)); });
     impl_->bodies.forEach([](BodyId, BodyRecord& record) { record.body->activate(); });
 }
 

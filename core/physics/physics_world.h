@@ -11,6 +11,7 @@
 
 #include "core/physics/body_desc.h"
 #include "core/physics/body_id.h"
+#include "core/physics/character.h"
 #include "core/physics/mobility.h"
 #include "core/physics/ray_hit.h"
 #include "core/physics/vehicle.h"
@@ -132,6 +133,32 @@ class PhysicsWorld {
     // of range or a non-finite or negative brake force or a steering angle outside (-pi/2, pi/2).
     void setWheelControls(BodyId chassis, int wheel, const WheelControls& controls);
     WheelState getWheelState(BodyId chassis, int wheel) const;
+
+    // --- Characters (core/physics/character.h) ---
+    // Characters have ids of their own (a BodyId names a character here, never a body); every call that
+    // takes one throws sp::StaleObject for a removed or unknown character.
+
+    // Creates a character standing (or falling) at desc.position; throws sp::InvalidArgument naming the
+    // bad field of desc.
+    BodyId addCharacter(const CharacterDesc& desc);
+    void removeCharacter(BodyId character);
+    bool isValidCharacter(BodyId character) const;
+    // Changes the step height, slope and jump speed (radius, height and position must stay as they are:
+    // make a new character for another capsule; use setCharacterPosition to move it).
+    void setCharacterDesc(BodyId character, const CharacterDesc& desc);
+    const CharacterDesc& getCharacterDesc(BodyId character) const;
+    // The horizontal velocity (m/s, world axes; the vertical part is ignored) it walks at from the next
+    // substep until changed.
+    void setCharacterWalkVelocity(BodyId character, const Eigen::Vector3d& velocity);
+    // Starts a jump at the jump speed when it stands on the ground; returns whether it jumped.
+    bool jumpCharacter(BodyId character);
+    // The capsule's centre.
+    Eigen::Vector3d getCharacterPosition(BodyId character) const;
+    // Moves it there at once (no sweep), keeping its walk velocity; its fall stops.
+    void setCharacterPosition(BodyId character, const Eigen::Vector3d& position);
+    bool isCharacterOnGround(BodyId character) const;
+    // Its velocity in the last substep: the walk velocity it managed and its vertical speed.
+    Eigen::Vector3d getCharacterVelocity(BodyId character) const;
 
     // --- Queries ---
 

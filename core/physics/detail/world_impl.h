@@ -10,6 +10,7 @@
 #include "core/base/error.h"
 #include "core/physics/detail/body_record.h"
 #include "core/physics/detail/bullet_convert.h"
+#include "core/physics/detail/character_record.h"
 #include "core/physics/detail/slot_table.h"
 #include "core/physics/physics_world.h"
 #include "core/physics/ray_hit.h"
@@ -20,6 +21,9 @@ struct PhysicsWorld::Impl {
     Settings settings;
     // Bodies are declared first so that they outlive the world, whose destructor still reads them.
     detail::SlotTable<detail::BodyRecord> bodies;
+    detail::SlotTable<detail::CharacterRecord> characters;
+    // Keeps the characters' ghost objects' pair lists current (Bullet's ghost objects need it).
+    std::unique_ptr<btGhostPairCallback> ghostPairCallback;
     std::unique_ptr<btDefaultCollisionConfiguration> configuration;
     std::unique_ptr<btCollisionDispatcher> dispatcher;
     std::unique_ptr<btDbvtBroadphase> broadphase;
@@ -31,6 +35,7 @@ struct PhysicsWorld::Impl {
     std::vector<BodyId> pendingForces;
 
     ~Impl() {
+        characters.forEach([&](BodyId, detail::CharacterRecord& record) { dropCharacter(record); });
         bodies.forEach([&](BodyId, detail::BodyRecord& record) {
             dropVehicle(record);
             world->removeRigidBody(record.body.get());
@@ -79,6 +84,20 @@ struct PhysicsWorld::Impl {
         world->removeAction(record.vehicle->vehicle.get());
         if (record.isSimulated())
             world->addAction(record.vehicle->vehicle.get());
+    }
+
+    // A character's record; the id names a character, so a stale one says so (not "body").
+    detail::CharacterRecord& character(BodyId id, const char* function) {
+        detail::CharacterRecord* record = characters.find(id);
+        SP_CHECK(record, StaleObject, function, ": character ", id,
+                 " does not exist (removed, or never made)");
+        return *record;
+    }
+
+    // Takes a character's controller and ghost object out of the Bullet world.
+    void dropCharacter(detail::CharacterRecord& record) {
+        world->removeAction(record.controller.get());
+        world->removeCollisionObject(record.ghost.get());
     }
 
     // Takes a body's vehicle out of the Bullet world and drops it.
