@@ -74,6 +74,8 @@ PhysicsWorld::PhysicsWorld(const Settings& settings) : impl_(std::make_unique<Im
     w.world = std::make_unique<btDiscreteDynamicsWorld>(w.dispatcher.get(), w.broadphase.get(),
                                                         w.solver.get(), w.configuration.get());
     w.world->setGravity(toBullet(settings.gravity));
+    // Characters' sweeps may end this far inside what they hit (Bullet's default lets them sink 4 cm).
+    w.world->getDispatchInfo().m_allowedCcdPenetration = 1e-4;
     w.ghostPairCallback = std::make_unique<btGhostPairCallback>();
     w.broadphase->getOverlappingPairCache()->setInternalGhostPairCallback(w.ghostPairCallback.get());
     w.world->getSolverInfo().m_numIterations = settings.solverIterations;

@@ -156,6 +156,7 @@ class PhysicsWorld {
     Eigen::Vector3d getCharacterPosition(BodyId character) const;
     // Moves it there at once (no sweep), keeping its walk velocity; its fall stops.
     void setCharacterPosition(BodyId character, const Eigen::Vector3d& position);
+    // Whether it stood on the ground in the last substep (a new character counts as standing until it steps).
     bool isCharacterOnGround(BodyId character) const;
     // Its velocity in the last substep: the walk velocity it managed and its vertical speed.
     Eigen::Vector3d getCharacterVelocity(BodyId character) const;
