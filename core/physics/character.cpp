@@ -20,7 +20,7 @@ void checkDesc(const char* fn, const CharacterDesc& desc) {
         SP_CHECK(std::isfinite(value) && ok, InvalidArgument, fn, ": ", name, ' ', value, " must be ", range);
     };
     check("radius", desc.radius, desc.radius > 0.0, "> 0");
-    check("halfHeight", desc.halfHeight, desc.halfHeight > desc.radius, "> radius");
+    check("halfHeight", desc.halfHeight, desc.halfHeight >= desc.radius, ">= radius");
     SP_CHECK(desc.position.allFinite(), InvalidArgument, fn, ": position ", detail::Vec{desc.position},
              " is not finite");
     check("stepHeight", desc.stepHeight, desc.stepHeight >= 0.0, ">= 0");

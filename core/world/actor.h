@@ -117,6 +117,8 @@ class AActor : public UObject {
     virtual void BeginPlay();
     virtual void Tick(double deltaSeconds);
     virtual void EndPlay();
+    // After every physics step, for actors registered with sp::world::PostPhysicsSubsystem.
+    virtual void PostPhysicsTick() {}
     bool HasBegunPlay() const { return begunPlay_; }
     void SetWorldForComponents();
     // Set by UWorld when a streaming level loads the actor.

@@ -40,6 +40,10 @@ physics::Shape makeShape(ECollisionPrimitive primitive, const Eigen::Vector3d& h
     }
     case ECollisionPrimitive::Sphere:
         return physics::Shape::sphere(he.maxCoeff()).scaled(scale);
+    case ECollisionPrimitive::Capsule: {
+        const double radius = std::max(he.x(), he.y());
+        return physics::Shape::capsule(radius, std::max(he.z() - radius, 0.0)).scaled(scale);
+    }
     case ECollisionPrimitive::Cylinder:
         return physics::Shape::cylinder(std::max(he.x(), he.y()), he.z()).scaled(scale);
     case ECollisionPrimitive::Plane: {

@@ -32,6 +32,8 @@ enum class ECollisionPrimitive : uint8_t {
     ConvexHull = 6,
     /// The triangles of a mesh file; static or kinematic only (what an unsimulated mesh file collides as).
     TriangleMesh = 7,
+    /// A capsule along local Z filling the bounds: radius the larger XY half extent, height the Z extent.
+    Capsule = 8,
 };
 
 /// A scene component that has geometry.

@@ -1,5 +1,6 @@
 #include "core/world/shape_components.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -31,6 +32,23 @@ void USphereComponent::SetSphereRadius(double InSphereRadius) {
 Eigen::AlignedBox3d USphereComponent::GetLocalBounds() const {
     const Eigen::Vector3d radius = Eigen::Vector3d::Constant(SphereRadius);
     return {-radius, radius};
+}
+
+void UCapsuleComponent::SetCapsuleRadius(double Radius) {
+    sp::checkSetting(std::isfinite(Radius) && Radius > 0.0, "UCapsuleComponent", "CapsuleRadius", "> 0",
+                     Radius);
+    CapsuleRadius = Radius;
+}
+
+void UCapsuleComponent::SetCapsuleHalfHeight(double HalfHeight) {
+    sp::checkSetting(std::isfinite(HalfHeight) && HalfHeight > 0.0, "UCapsuleComponent", "CapsuleHalfHeight",
+                     "> 0", HalfHeight);
+    CapsuleHalfHeight = HalfHeight;
+}
+
+Eigen::AlignedBox3d UCapsuleComponent::GetLocalBounds() const {
+    const Eigen::Vector3d half(CapsuleRadius, CapsuleRadius, std::max(CapsuleHalfHeight, CapsuleRadius));
+    return {-half, half};
 }
 
 ATriggerBox::ATriggerBox() {

@@ -49,6 +49,31 @@ class USphereComponent : public UShapeComponent {
     ECollisionPrimitive GetMeshCollisionPrimitive() const override { return ECollisionPrimitive::Sphere; }
 };
 
+/// A capsule-shaped sensor standing along its Z axis (a character's collision capsule).
+SPCLASS()
+class UCapsuleComponent : public UShapeComponent {
+    SP_GENERATED_BODY()
+  public:
+    /// The radius in metres before the component's scale (> 0).
+    SPPROPERTY(Setter = SetCapsuleRadius)
+    double CapsuleRadius = 0.35;
+
+    /// Half the height in metres, hemispheres included, before the component's scale (> 0); a half height
+    /// below the radius counts as the radius (a sphere), as in UE.
+    SPPROPERTY(Setter = SetCapsuleHalfHeight)
+    double CapsuleHalfHeight = 0.9;
+
+    /// Sets CapsuleRadius (finite, > 0).
+    SPFUNCTION()
+    void SetCapsuleRadius(double Radius);
+    /// Sets CapsuleHalfHeight (finite, > 0).
+    SPFUNCTION()
+    void SetCapsuleHalfHeight(double HalfHeight);
+
+    Eigen::AlignedBox3d GetLocalBounds() const override;
+    ECollisionPrimitive GetMeshCollisionPrimitive() const override { return ECollisionPrimitive::Capsule; }
+};
+
 /// A box-shaped trigger volume: an actor whose root is a UBoxComponent.
 SPCLASS()
 class ATriggerBox : public AActor {

@@ -7,8 +7,8 @@
 
 #include "core/base/error.h"
 #include "core/world/physics_subsystem.h"
+#include "core/world/post_physics.h"
 #include "core/world/world.h"
-#include "core/world/world_subsystem.h"
 
 namespace {
 
@@ -16,19 +16,6 @@ constexpr double kDegrees = 180.0 / std::numbers::pi;
 constexpr double kWheelWidth = 0.25; // metres, of the wheel meshes
 constexpr const char* kWheelNames[4] = {"WheelFrontLeft", "WheelFrontRight", "WheelRearLeft",
                                         "WheelRearRight"};
-
-// Moves the wheel meshes of a world's cars after each physics step, so that a frame's images show the
-// wheels where that step left them.
-class VehicleSubsystem : public sp::world::WorldSubsystem {
-  public:
-    static constexpr int kTickOrder = sp::world::tick_order::kPhysics + 1;
-    explicit VehicleSubsystem(UWorld& /*world*/) {}
-    void Tick(double /*deltaSeconds*/) override {
-        for (AWheeledVehiclePawn* vehicle : vehicles)
-            vehicle->UpdateWheelMeshes();
-    }
-    std::vector<AWheeledVehiclePawn*> vehicles; // in play (registered by BeginPlay, removed by EndPlay)
-};
 
 UStaticMeshComponent* makeVisual(AActor& owner, const char* name, const char* mesh) {
     auto* component = owner.CreateDefaultSubobject<UStaticMeshComponent>(name);
@@ -139,13 +126,13 @@ sp::physics::BodyId AWheeledVehiclePawn::vehicleBody(const char* function) {
 
 void AWheeledVehiclePawn::BeginPlay() {
     APawn::BeginPlay();
-    GetWorld()->GetSubsystem<VehicleSubsystem>().vehicles.push_back(this);
-    UpdateWheelMeshes();
+    GetWorld()->GetSubsystem<sp::world::PostPhysicsSubsystem>().add(*this);
+    PostPhysicsTick();
 }
 
 void AWheeledVehiclePawn::EndPlay() {
-    if (auto* subsystem = GetWorld()->FindSubsystem<VehicleSubsystem>())
-        std::erase(subsystem->vehicles, this);
+    if (auto* subsystem = GetWorld()->FindSubsystem<sp::world::PostPhysicsSubsystem>())
+        subsystem->remove(*this);
     body_ = {};
     APawn::EndPlay();
 }
@@ -204,7 +191,8 @@ FWheelState AWheeledVehiclePawn::GetWheelState(int WheelIndex) const {
     return state;
 }
 
-void AWheeledVehiclePawn::UpdateWheelMeshes() {
+void AWheeledVehiclePawn::PostPhysicsTick() {
+    // The wheel meshes follow the simulated wheels.
     const FTransform chassis = Mesh->GetComponentTransform();
     // The cylinder mesh's axis is its Z: turned onto the wheel's axle (Y).
     const Eigen::Isometry3d toAxle(Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitX()));

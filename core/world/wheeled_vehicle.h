@@ -130,8 +130,8 @@ class AWheeledVehiclePawn : public APawn {
     void Tick(double deltaSeconds) override;
     void EndPlay() override;
 
-    // Moves the wheel meshes to the simulated wheels (called after every physics step).
-    void UpdateWheelMeshes();
+    // Moves the wheel meshes to the simulated wheels.
+    void PostPhysicsTick() override;
 
   private:
     // The vehicle as the properties describe it, for the chassis' current size.

@@ -12,6 +12,7 @@
 #include "core/spfunc/sp_func_component.h"
 #include "core/world/actor.h"
 #include "core/world/actor_component.h"
+#include "core/world/character.h"
 #include "core/world/controller.h"
 #include "core/world/game_mode.h"
 #include "core/world/gameplay_statics.h"

@@ -12,6 +12,7 @@
 #include "core/spfunc/sp_func_component.h"
 #include "core/world/actor.h"
 #include "core/world/actor_component.h"
+#include "core/world/character.h"
 #include "core/world/controller.h"
 #include "core/world/game_mode.h"
 #include "core/world/gameplay_statics.h"
@@ -46,6 +47,7 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECollisionPrimi
             {"NoCollision", 5},
             {"ConvexHull", 6},
             {"TriangleMesh", 7},
+            {"Capsule", 8},
         },
     };
     return info;

@@ -12,6 +12,7 @@
 #include "core/spfunc/sp_func_component.h"
 #include "core/world/actor.h"
 #include "core/world/actor_component.h"
+#include "core/world/character.h"
 #include "core/world/controller.h"
 #include "core/world/game_mode.h"
 #include "core/world/gameplay_statics.h"
@@ -140,6 +141,87 @@ const sp::reflect::TypeInfo& UBoxComponent::StaticClass() {
 }
 
 const sp::reflect::TypeInfo& UBoxComponent::GetClass() const { return StaticClass(); }
+
+// -- UCapsuleComponent ----------------------------------------------------------------------------------
+
+const sp::reflect::TypeInfo& UCapsuleComponent::StaticClass() {
+    static const sp::reflect::TypeInfo info = [] {
+        using Self = UCapsuleComponent;
+        sp::reflect::TypeInfo t;
+        t.name = "UCapsuleComponent";
+        t.doc = "A capsule-shaped sensor standing along its Z axis (a character's collision capsule).";
+        t.kind = sp::reflect::TypeInfo::Kind::Class;
+        t.parent = &UShapeComponent::StaticClass();
+        t.isAbstract = false;
+        t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
+        t.properties.push_back({
+            "CapsuleRadius",
+            "float",
+            "The radius in metres before the component's scale (> 0).",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->CapsuleRadius);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->SetCapsuleRadius(sp::reflect::decode<double>(value, "UCapsuleComponent.CapsuleRadius"));
+                sp::reflect::notifyPropertyChanged(object, "CapsuleRadius");
+            },
+        });
+        t.properties.push_back({
+            "CapsuleHalfHeight",
+            "float",
+            "Half the height in metres, hemispheres included, before the component's scale (> 0); a half height\nbelow the radius counts as the radius (a sphere), as in UE.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->CapsuleHalfHeight);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->SetCapsuleHalfHeight(sp::reflect::decode<double>(value, "UCapsuleComponent.CapsuleHalfHeight"));
+                sp::reflect::notifyPropertyChanged(object, "CapsuleHalfHeight");
+            },
+        });
+        t.functions.push_back({
+            "SetCapsuleRadius",
+            "Sets CapsuleRadius (finite, > 0).",
+            "None",
+            {
+                {"Radius", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCapsuleComponent.SetCapsuleRadius()";
+                sp::reflect::checkArguments(args, {"Radius"}, kContext);
+                double Radius = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "Radius", kContext), "UCapsuleComponent.SetCapsuleRadius(): argument 'Radius'");
+                sp::reflect::selfCast<Self>(self)->SetCapsuleRadius(Radius);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetCapsuleHalfHeight",
+            "Sets CapsuleHalfHeight (finite, > 0).",
+            "None",
+            {
+                {"HalfHeight", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCapsuleComponent.SetCapsuleHalfHeight()";
+                sp::reflect::checkArguments(args, {"HalfHeight"}, kContext);
+                double HalfHeight = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "HalfHeight", kContext), "UCapsuleComponent.SetCapsuleHalfHeight(): argument 'HalfHeight'");
+                sp::reflect::selfCast<Self>(self)->SetCapsuleHalfHeight(HalfHeight);
+                return {};
+            },
+        });
+        return t;
+    }();
+    return info;
+}
+
+const sp::reflect::TypeInfo& UCapsuleComponent::GetClass() const { return StaticClass(); }
 
 // -- UShapeComponent ----------------------------------------------------------------------------------
 

@@ -19,6 +19,7 @@
 #include "core/spfunc/sp_func_component.h"
 #include "core/world/actor.h"
 #include "core/world/actor_component.h"
+#include "core/world/character.h"
 #include "core/world/controller.h"
 #include "core/world/game_mode.h"
 #include "core/world/gameplay_statics.h"
@@ -56,6 +57,9 @@ template <> struct Ref<ACameraSensorActor> : Ref<AActor> {
 };
 template <> struct Ref<APawn> : Ref<AActor> {
     using Ref<AActor>::Ref;
+};
+template <> struct Ref<ACharacter> : Ref<APawn> {
+    using Ref<APawn>::Ref;
 };
 template <> struct Ref<ADefaultPawn> : Ref<APawn> {
     using Ref<APawn>::Ref;
@@ -122,6 +126,12 @@ template <> struct Ref<UBoxComponent> : Ref<UShapeComponent> {
 };
 template <> struct Ref<UCameraSensorComponent> : Ref<USceneComponent> {
     using Ref<USceneComponent>::Ref;
+};
+template <> struct Ref<UCapsuleComponent> : Ref<UShapeComponent> {
+    using Ref<UShapeComponent>::Ref;
+};
+template <> struct Ref<UCharacterMovementComponent> : Ref<UActorComponent> {
+    using Ref<UActorComponent>::Ref;
 };
 template <> struct Ref<ULightComponent> : Ref<USceneComponent> {
     using Ref<USceneComponent>::Ref;

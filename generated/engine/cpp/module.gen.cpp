@@ -465,6 +465,80 @@ void spear_bind_engine(py::module_& m) {
             "Returns the movement input added since the pawn last moved.");
     }
     {
+        using Self = ACharacter;
+        py::class_<Ref<Self>, Ref<APawn>> cls(m, "ACharacter", "A pawn that walks, climbs steps, jumps and falls, with UE's Character names.");
+        cls.attr("__sp_class__") = "ACharacter";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "CapsuleComponent",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("ACharacter.CapsuleComponent")->CapsuleComponent;
+                sp::reflect::checkNotNull(value, "ACharacter.CapsuleComponent");
+                return Bridge<UCapsuleComponent*>::out(value);
+            },
+            "The collision capsule (the root component); its size is the character's.");
+        cls.def_property_readonly(
+            "Mesh",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("ACharacter.Mesh")->Mesh;
+                sp::reflect::checkNotNull(value, "ACharacter.Mesh");
+                return Bridge<UStaticMeshComponent*>::out(value);
+            },
+            "The character's visible body (no collision of its own).");
+        cls.def_property_readonly(
+            "CharacterMovement",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("ACharacter.CharacterMovement")->CharacterMovement;
+                sp::reflect::checkNotNull(value, "ACharacter.CharacterMovement");
+                return Bridge<UCharacterMovementComponent*>::out(value);
+            },
+            "How the character walks.");
+        cls.def_property_readonly(
+            "InputComponent",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("ACharacter.InputComponent")->InputComponent;
+                sp::reflect::checkNotNull(value, "ACharacter.InputComponent");
+                return Bridge<UInputComponent*>::out(value);
+            },
+            "Receives the injected actions.");
+        cls.def(
+            "Jump",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "ACharacter.Jump()";
+                Self* object = self.get<Self>(kContext);
+                object->Jump();
+                return py::none();
+            },
+            "Jumps at the next physics step if the character stands on the ground.");
+        cls.def(
+            "StopJumping",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "ACharacter.StopJumping()";
+                Self* object = self.get<Self>(kContext);
+                object->StopJumping();
+                return py::none();
+            },
+            "Ends a jump request that has not started yet.");
+        cls.def(
+            "CanJump",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "ACharacter.CanJump()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->CanJump();
+                return Bridge<bool>::out(result);
+            },
+            "Returns true when the character could jump now (it stands on the ground).");
+        cls.def(
+            "GetCharacterMovement",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "ACharacter.GetCharacterMovement()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetCharacterMovement();
+                return Bridge<UCharacterMovementComponent*>::out(result);
+            },
+            "Returns the character's movement component (UE's GetCharacterMovement).");
+    }
+    {
         using Self = ADefaultPawn;
         py::class_<Ref<Self>, Ref<APawn>> cls(m, "ADefaultPawn", "A pawn that flies along its control rotation from the \"MoveForward\", \"MoveRight\" and \"MoveUp\" input\nactions (X in [-1, 1]) and AddMovementInput, and turns its controller's view with \"Turn\" and \"LookUp\".\nIt has no collision body: it passes through geometry, like UE's DefaultPawn with collision off.");
         cls.attr("__sp_class__") = "ADefaultPawn";
@@ -2186,6 +2260,172 @@ void spear_bind_engine(py::module_& m) {
                 return Bridge<FRenderStats>::out(result);
             },
             "Returns how often each render pass ran in this camera's world, and its timings.");
+    }
+    {
+        using Self = UCapsuleComponent;
+        py::class_<Ref<Self>, Ref<UShapeComponent>> cls(m, "UCapsuleComponent", "A capsule-shaped sensor standing along its Z axis (a character's collision capsule).");
+        cls.attr("__sp_class__") = "UCapsuleComponent";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "CapsuleRadius",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCapsuleComponent.CapsuleRadius")->CapsuleRadius); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UCapsuleComponent.CapsuleRadius");
+                object->SetCapsuleRadius(Bridge<double>::in(std::move(value), "UCapsuleComponent.CapsuleRadius"));
+                object->PostPropertyChanged("CapsuleRadius");
+            },
+            "The radius in metres before the component's scale (> 0).");
+        cls.def_property(
+            "CapsuleHalfHeight",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCapsuleComponent.CapsuleHalfHeight")->CapsuleHalfHeight); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UCapsuleComponent.CapsuleHalfHeight");
+                object->SetCapsuleHalfHeight(Bridge<double>::in(std::move(value), "UCapsuleComponent.CapsuleHalfHeight"));
+                object->PostPropertyChanged("CapsuleHalfHeight");
+            },
+            "Half the height in metres, hemispheres included, before the component's scale (> 0); a half height\nbelow the radius counts as the radius (a sphere), as in UE.");
+        cls.def(
+            "SetCapsuleRadius",
+            [](const Ref<Self>& self, Bridge<double>::Py Radius) -> py::object {
+                static constexpr const char* kContext = "UCapsuleComponent.SetCapsuleRadius()";
+                Self* object = self.get<Self>(kContext);
+                auto RadiusValue = Bridge<double>::in(std::move(Radius), "UCapsuleComponent.SetCapsuleRadius(): argument 'Radius'");
+                object->SetCapsuleRadius(RadiusValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("Radius"),
+            "Sets CapsuleRadius (finite, > 0).");
+        cls.def(
+            "SetCapsuleHalfHeight",
+            [](const Ref<Self>& self, Bridge<double>::Py HalfHeight) -> py::object {
+                static constexpr const char* kContext = "UCapsuleComponent.SetCapsuleHalfHeight()";
+                Self* object = self.get<Self>(kContext);
+                auto HalfHeightValue = Bridge<double>::in(std::move(HalfHeight), "UCapsuleComponent.SetCapsuleHalfHeight(): argument 'HalfHeight'");
+                object->SetCapsuleHalfHeight(HalfHeightValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("HalfHeight"),
+            "Sets CapsuleHalfHeight (finite, > 0).");
+    }
+    {
+        using Self = UCharacterMovementComponent;
+        py::class_<Ref<Self>, Ref<UActorComponent>> cls(m, "UCharacterMovementComponent", "How a character walks, and how it is moving.");
+        cls.attr("__sp_class__") = "UCharacterMovementComponent";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "MaxWalkSpeed",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCharacterMovementComponent.MaxWalkSpeed")->MaxWalkSpeed); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UCharacterMovementComponent.MaxWalkSpeed");
+                object->SetMaxWalkSpeed(Bridge<double>::in(std::move(value), "UCharacterMovementComponent.MaxWalkSpeed"));
+                object->PostPropertyChanged("MaxWalkSpeed");
+            },
+            "Walking speed in m/s at full input (>= 0).");
+        cls.def_property(
+            "JumpZVelocity",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCharacterMovementComponent.JumpZVelocity")->JumpZVelocity); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UCharacterMovementComponent.JumpZVelocity");
+                object->SetJumpZVelocity(Bridge<double>::in(std::move(value), "UCharacterMovementComponent.JumpZVelocity"));
+                object->PostPropertyChanged("JumpZVelocity");
+            },
+            "Upward speed of a jump in m/s (>= 0): a jump rises JumpZVelocity^2 / 2g.");
+        cls.def_property(
+            "MaxStepHeight",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCharacterMovementComponent.MaxStepHeight")->MaxStepHeight); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UCharacterMovementComponent.MaxStepHeight");
+                object->SetMaxStepHeight(Bridge<double>::in(std::move(value), "UCharacterMovementComponent.MaxStepHeight"));
+                object->PostPropertyChanged("MaxStepHeight");
+            },
+            "The highest step the character walks up, in metres (>= 0).");
+        cls.def_property(
+            "WalkableFloorAngle",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCharacterMovementComponent.WalkableFloorAngle")->WalkableFloorAngle); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UCharacterMovementComponent.WalkableFloorAngle");
+                object->SetWalkableFloorAngle(Bridge<double>::in(std::move(value), "UCharacterMovementComponent.WalkableFloorAngle"));
+                object->PostPropertyChanged("WalkableFloorAngle");
+            },
+            "The steepest floor the character walks up, in degrees (in (0, 90)).");
+        cls.def(
+            "SetMaxWalkSpeed",
+            [](const Ref<Self>& self, Bridge<double>::Py NewSpeed) -> py::object {
+                static constexpr const char* kContext = "UCharacterMovementComponent.SetMaxWalkSpeed()";
+                Self* object = self.get<Self>(kContext);
+                auto NewSpeedValue = Bridge<double>::in(std::move(NewSpeed), "UCharacterMovementComponent.SetMaxWalkSpeed(): argument 'NewSpeed'");
+                object->SetMaxWalkSpeed(NewSpeedValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewSpeed"),
+            "Sets MaxWalkSpeed (m/s, >= 0).");
+        cls.def(
+            "SetJumpZVelocity",
+            [](const Ref<Self>& self, Bridge<double>::Py NewVelocity) -> py::object {
+                static constexpr const char* kContext = "UCharacterMovementComponent.SetJumpZVelocity()";
+                Self* object = self.get<Self>(kContext);
+                auto NewVelocityValue = Bridge<double>::in(std::move(NewVelocity), "UCharacterMovementComponent.SetJumpZVelocity(): argument 'NewVelocity'");
+                object->SetJumpZVelocity(NewVelocityValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewVelocity"),
+            "Sets JumpZVelocity (m/s, >= 0).");
+        cls.def(
+            "SetMaxStepHeight",
+            [](const Ref<Self>& self, Bridge<double>::Py NewHeight) -> py::object {
+                static constexpr const char* kContext = "UCharacterMovementComponent.SetMaxStepHeight()";
+                Self* object = self.get<Self>(kContext);
+                auto NewHeightValue = Bridge<double>::in(std::move(NewHeight), "UCharacterMovementComponent.SetMaxStepHeight(): argument 'NewHeight'");
+                object->SetMaxStepHeight(NewHeightValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewHeight"),
+            "Sets MaxStepHeight (metres, >= 0).");
+        cls.def(
+            "SetWalkableFloorAngle",
+            [](const Ref<Self>& self, Bridge<double>::Py NewAngle) -> py::object {
+                static constexpr const char* kContext = "UCharacterMovementComponent.SetWalkableFloorAngle()";
+                Self* object = self.get<Self>(kContext);
+                auto NewAngleValue = Bridge<double>::in(std::move(NewAngle), "UCharacterMovementComponent.SetWalkableFloorAngle(): argument 'NewAngle'");
+                object->SetWalkableFloorAngle(NewAngleValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("NewAngle"),
+            "Sets WalkableFloorAngle (degrees, in (0, 90)).");
+        cls.def(
+            "GetVelocity",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UCharacterMovementComponent.GetVelocity()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetVelocity();
+                sp::reflect::checkResultFields(result, kContext);
+                return Bridge<FVector>::out(result);
+            },
+            "Returns the velocity over the last physics step, m/s (walking and falling).");
+        cls.def(
+            "IsMovingOnGround",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UCharacterMovementComponent.IsMovingOnGround()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->IsMovingOnGround();
+                return Bridge<bool>::out(result);
+            },
+            "Returns true while the character stands on the ground.");
+        cls.def(
+            "IsFalling",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UCharacterMovementComponent.IsFalling()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->IsFalling();
+                return Bridge<bool>::out(result);
+            },
+            "Returns true while the character is in the air (jumping or falling).");
     }
     {
         using Self = ULightComponent;

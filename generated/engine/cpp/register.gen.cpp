@@ -12,6 +12,7 @@
 #include "core/spfunc/sp_func_component.h"
 #include "core/world/actor.h"
 #include "core/world/actor_component.h"
+#include "core/world/character.h"
 #include "core/world/controller.h"
 #include "core/world/game_mode.h"
 #include "core/world/gameplay_statics.h"
@@ -43,6 +44,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(AAIController::StaticClass());
     registry.add(ACameraSensorActor::StaticClass());
     registry.add(APawn::StaticClass());
+    registry.add(ACharacter::StaticClass());
     registry.add(ADefaultPawn::StaticClass());
     registry.add(ADirectionalLight::StaticClass());
     registry.add(AGameModeBase::StaticClass());
@@ -77,6 +79,8 @@ extern "C" void spear_register_engine_types() {
     registry.add(UShapeComponent::StaticClass());
     registry.add(UBoxComponent::StaticClass());
     registry.add(UCameraSensorComponent::StaticClass());
+    registry.add(UCapsuleComponent::StaticClass());
+    registry.add(UCharacterMovementComponent::StaticClass());
     registry.add(ULightComponent::StaticClass());
     registry.add(UDirectionalLightComponent::StaticClass());
     registry.add(UGameplayStatics::StaticClass());
@@ -104,6 +108,8 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(UGameplayStatics::StaticClass());
     registry.remove(UDirectionalLightComponent::StaticClass());
     registry.remove(ULightComponent::StaticClass());
+    registry.remove(UCharacterMovementComponent::StaticClass());
+    registry.remove(UCapsuleComponent::StaticClass());
     registry.remove(UCameraSensorComponent::StaticClass());
     registry.remove(UBoxComponent::StaticClass());
     registry.remove(UShapeComponent::StaticClass());
@@ -138,6 +144,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(AGameModeBase::StaticClass());
     registry.remove(ADirectionalLight::StaticClass());
     registry.remove(ADefaultPawn::StaticClass());
+    registry.remove(ACharacter::StaticClass());
     registry.remove(APawn::StaticClass());
     registry.remove(ACameraSensorActor::StaticClass());
     registry.remove(AAIController::StaticClass());
@@ -150,4 +157,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "6b3b12288dbb9873"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "9dcd9580a541834c"; }

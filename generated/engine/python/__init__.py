@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "6b3b12288dbb9873"
+API_HASH = "9dcd9580a541834c"

@@ -22,6 +22,7 @@ __all__ = [
     "AAIController",
     "AActor",
     "ACameraSensorActor",
+    "ACharacter",
     "AController",
     "ADefaultPawn",
     "ADirectionalLight",
@@ -61,6 +62,8 @@ __all__ = [
     "UActorComponent",
     "UBoxComponent",
     "UCameraSensorComponent",
+    "UCapsuleComponent",
+    "UCharacterMovementComponent",
     "UDirectionalLightComponent",
     "UGameplayStatics",
     "UInputComponent",
@@ -117,6 +120,7 @@ class ECollisionPrimitive(enum.IntEnum):
     NoCollision = 5
     ConvexHull = 6
     TriangleMesh = 7
+    Capsule = 8
 
 
 class EComponentMobility(enum.IntEnum):
@@ -403,6 +407,25 @@ class APawn(AActor):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "APawn"
+
+
+class ACharacterAsync(APawnAsync):
+    """ACharacter's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class ACharacterSend(APawnSend):
+    """ACharacter's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class ACharacter(APawn):
+    """A pawn that walks, climbs steps, jumps and falls, with UE's Character names."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "ACharacter"
 
 
 class ADefaultPawnAsync(APawnAsync):
@@ -844,6 +867,44 @@ class UCameraSensorComponent(USceneComponent):
         Component: UPrimitiveComponent | None
         MaterialSlot: int
         MaterialName: str
+
+
+class UCapsuleComponentAsync(UShapeComponentAsync):
+    """UCapsuleComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UCapsuleComponentSend(UShapeComponentSend):
+    """UCapsuleComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class UCapsuleComponent(UShapeComponent):
+    """A capsule-shaped sensor standing along its Z axis (a character's collision capsule)."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "UCapsuleComponent"
+
+
+class UCharacterMovementComponentAsync(UActorComponentAsync):
+    """UCharacterMovementComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UCharacterMovementComponentSend(UActorComponentSend):
+    """UCharacterMovementComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class UCharacterMovementComponent(UActorComponent):
+    """How a character walks, and how it is moving."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "UCharacterMovementComponent"
 
 
 class ULightComponentAsync(USceneComponentAsync):

@@ -17,6 +17,7 @@ __all__ = [
     "AAIController",
     "AActor",
     "ACameraSensorActor",
+    "ACharacter",
     "AController",
     "ADefaultPawn",
     "ADirectionalLight",
@@ -56,6 +57,8 @@ __all__ = [
     "UActorComponent",
     "UBoxComponent",
     "UCameraSensorComponent",
+    "UCapsuleComponent",
+    "UCharacterMovementComponent",
     "UDirectionalLightComponent",
     "UGameplayStatics",
     "UInputComponent",
@@ -145,6 +148,8 @@ class ECollisionPrimitive(enum.IntEnum):
     """The convex hull of a mesh file's vertices (what a simulated mesh file collides as)."""
     TriangleMesh = 7
     """The triangles of a mesh file; static or kinematic only (what an unsimulated mesh file collides as)."""
+    Capsule = 8
+    """A capsule along local Z filling the bounds: radius the larger XY half extent, height the Z extent."""
 
 
 class EComponentMobility(enum.IntEnum):
@@ -745,6 +750,72 @@ class APawn(AActor):
 
     def GetPendingMovementInputVector(self) -> FVector:
         """Returns the movement input added since the pawn last moved."""
+
+
+class ACharacterAsync(APawnAsync):
+    """ACharacter's functions, called asynchronously: each returns a Future."""
+
+    def Jump(self) -> Future[None]: ...
+
+    def StopJumping(self) -> Future[None]: ...
+
+    def CanJump(self) -> Future[bool]: ...
+
+    def GetCharacterMovement(self) -> Future[UCharacterMovementComponent | None]: ...
+
+
+class ACharacterSend(APawnSend):
+    """ACharacter's functions, sent without waiting for a result (fire and forget)."""
+
+    def Jump(self) -> None: ...
+
+    def StopJumping(self) -> None: ...
+
+    def CanJump(self) -> None: ...
+
+    def GetCharacterMovement(self) -> None: ...
+
+
+class ACharacter(APawn):
+    """A pawn that walks, climbs steps, jumps and falls, with UE's Character names."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> ACharacterAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> ACharacterSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def CapsuleComponent(self) -> UCapsuleComponent:
+        """The collision capsule (the root component); its size is the character's."""
+
+    @property
+    def Mesh(self) -> UStaticMeshComponent:
+        """The character's visible body (no collision of its own)."""
+
+    @property
+    def CharacterMovement(self) -> UCharacterMovementComponent:
+        """How the character walks."""
+
+    @property
+    def InputComponent(self) -> UInputComponent:
+        """Receives the injected actions."""
+
+    def Jump(self) -> None:
+        """Jumps at the next physics step if the character stands on the ground."""
+
+    def StopJumping(self) -> None:
+        """Ends a jump request that has not started yet."""
+
+    def CanJump(self) -> bool:
+        """Returns true when the character could jump now (it stands on the ground)."""
+
+    def GetCharacterMovement(self) -> UCharacterMovementComponent | None:
+        """Returns the character's movement component (UE's GetCharacterMovement)."""
 
 
 class ADefaultPawnAsync(APawnAsync):
@@ -2317,6 +2388,157 @@ class UCameraSensorComponent(USceneComponent):
 
     def GetRenderStats(self) -> FRenderStats:
         """Returns how often each render pass ran in this camera's world, and its timings."""
+
+
+class UCapsuleComponentAsync(UShapeComponentAsync):
+    """UCapsuleComponent's functions, called asynchronously: each returns a Future."""
+
+    def SetCapsuleRadius(self, *, Radius: float) -> Future[None]: ...
+
+    def SetCapsuleHalfHeight(self, *, HalfHeight: float) -> Future[None]: ...
+
+
+class UCapsuleComponentSend(UShapeComponentSend):
+    """UCapsuleComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetCapsuleRadius(self, *, Radius: float) -> None: ...
+
+    def SetCapsuleHalfHeight(self, *, HalfHeight: float) -> None: ...
+
+
+class UCapsuleComponent(UShapeComponent):
+    """A capsule-shaped sensor standing along its Z axis (a character's collision capsule)."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UCapsuleComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UCapsuleComponentSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def CapsuleRadius(self) -> float:
+        """The radius in metres before the component's scale (> 0)."""
+
+    @CapsuleRadius.setter
+    def CapsuleRadius(self, value: float) -> None: ...
+
+    @property
+    def CapsuleHalfHeight(self) -> float:
+        """Half the height in metres, hemispheres included, before the component's scale (> 0); a half height
+        below the radius counts as the radius (a sphere), as in UE.
+        """
+
+    @CapsuleHalfHeight.setter
+    def CapsuleHalfHeight(self, value: float) -> None: ...
+
+    def SetCapsuleRadius(self, *, Radius: float) -> None:
+        """Sets CapsuleRadius (finite, > 0)."""
+
+    def SetCapsuleHalfHeight(self, *, HalfHeight: float) -> None:
+        """Sets CapsuleHalfHeight (finite, > 0)."""
+
+
+class UCharacterMovementComponentAsync(UActorComponentAsync):
+    """UCharacterMovementComponent's functions, called asynchronously: each returns a Future."""
+
+    def SetMaxWalkSpeed(self, *, NewSpeed: float) -> Future[None]: ...
+
+    def SetJumpZVelocity(self, *, NewVelocity: float) -> Future[None]: ...
+
+    def SetMaxStepHeight(self, *, NewHeight: float) -> Future[None]: ...
+
+    def SetWalkableFloorAngle(self, *, NewAngle: float) -> Future[None]: ...
+
+    def GetVelocity(self) -> Future[FVector]: ...
+
+    def IsMovingOnGround(self) -> Future[bool]: ...
+
+    def IsFalling(self) -> Future[bool]: ...
+
+
+class UCharacterMovementComponentSend(UActorComponentSend):
+    """UCharacterMovementComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetMaxWalkSpeed(self, *, NewSpeed: float) -> None: ...
+
+    def SetJumpZVelocity(self, *, NewVelocity: float) -> None: ...
+
+    def SetMaxStepHeight(self, *, NewHeight: float) -> None: ...
+
+    def SetWalkableFloorAngle(self, *, NewAngle: float) -> None: ...
+
+    def GetVelocity(self) -> None: ...
+
+    def IsMovingOnGround(self) -> None: ...
+
+    def IsFalling(self) -> None: ...
+
+
+class UCharacterMovementComponent(UActorComponent):
+    """How a character walks, and how it is moving."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UCharacterMovementComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UCharacterMovementComponentSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def MaxWalkSpeed(self) -> float:
+        """Walking speed in m/s at full input (>= 0)."""
+
+    @MaxWalkSpeed.setter
+    def MaxWalkSpeed(self, value: float) -> None: ...
+
+    @property
+    def JumpZVelocity(self) -> float:
+        """Upward speed of a jump in m/s (>= 0): a jump rises JumpZVelocity^2 / 2g."""
+
+    @JumpZVelocity.setter
+    def JumpZVelocity(self, value: float) -> None: ...
+
+    @property
+    def MaxStepHeight(self) -> float:
+        """The highest step the character walks up, in metres (>= 0)."""
+
+    @MaxStepHeight.setter
+    def MaxStepHeight(self, value: float) -> None: ...
+
+    @property
+    def WalkableFloorAngle(self) -> float:
+        """The steepest floor the character walks up, in degrees (in (0, 90))."""
+
+    @WalkableFloorAngle.setter
+    def WalkableFloorAngle(self, value: float) -> None: ...
+
+    def SetMaxWalkSpeed(self, *, NewSpeed: float) -> None:
+        """Sets MaxWalkSpeed (m/s, >= 0)."""
+
+    def SetJumpZVelocity(self, *, NewVelocity: float) -> None:
+        """Sets JumpZVelocity (m/s, >= 0)."""
+
+    def SetMaxStepHeight(self, *, NewHeight: float) -> None:
+        """Sets MaxStepHeight (metres, >= 0)."""
+
+    def SetWalkableFloorAngle(self, *, NewAngle: float) -> None:
+        """Sets WalkableFloorAngle (degrees, in (0, 90))."""
+
+    def GetVelocity(self) -> FVector:
+        """Returns the velocity over the last physics step, m/s (walking and falling)."""
+
+    def IsMovingOnGround(self) -> bool:
+        """Returns true while the character stands on the ground."""
+
+    def IsFalling(self) -> bool:
+        """Returns true while the character is in the air (jumping or falling)."""
 
 
 class ULightComponentAsync(USceneComponentAsync):

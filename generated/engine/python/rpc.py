@@ -220,6 +220,41 @@ class APawn(AActor, api.APawn):
 _register_proxy(APawn)
 
 
+class ACharacter(APawn, api.ACharacter):
+    __slots__ = ()
+
+    @property
+    def CapsuleComponent(self) -> api.UCapsuleComponent:
+        return cast("api.UCapsuleComponent", self._sp_get("ACharacter", "CapsuleComponent", "UCapsuleComponent"))
+
+    @property
+    def Mesh(self) -> api.UStaticMeshComponent:
+        return cast("api.UStaticMeshComponent", self._sp_get("ACharacter", "Mesh", "UStaticMeshComponent"))
+
+    @property
+    def CharacterMovement(self) -> api.UCharacterMovementComponent:
+        return cast("api.UCharacterMovementComponent", self._sp_get("ACharacter", "CharacterMovement", "UCharacterMovementComponent"))
+
+    @property
+    def InputComponent(self) -> api.UInputComponent:
+        return cast("api.UInputComponent", self._sp_get("ACharacter", "InputComponent", "UInputComponent"))
+
+    def Jump(self) -> None:
+        self._sp_call("ACharacter", "Jump", {}, "None")
+
+    def StopJumping(self) -> None:
+        self._sp_call("ACharacter", "StopJumping", {}, "None")
+
+    def CanJump(self) -> bool:
+        return cast("bool", self._sp_call("ACharacter", "CanJump", {}, "bool"))
+
+    def GetCharacterMovement(self) -> api.UCharacterMovementComponent | None:
+        return cast("api.UCharacterMovementComponent | None", self._sp_call("ACharacter", "GetCharacterMovement", {}, "UCharacterMovementComponent | None"))
+
+
+_register_proxy(ACharacter)
+
+
 class ADefaultPawn(APawn, api.ADefaultPawn):
     __slots__ = ()
 
@@ -1073,6 +1108,95 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
 
 _register_proxy(UCameraSensorComponent)
+
+
+class UCapsuleComponent(UShapeComponent, api.UCapsuleComponent):
+    __slots__ = ()
+
+    @property
+    def CapsuleRadius(self) -> float:
+        return cast("float", self._sp_get("UCapsuleComponent", "CapsuleRadius", "float"))
+
+    @CapsuleRadius.setter
+    def CapsuleRadius(self, value: float) -> None:
+        self._sp_set("UCapsuleComponent", "CapsuleRadius", value)
+
+    @property
+    def CapsuleHalfHeight(self) -> float:
+        return cast("float", self._sp_get("UCapsuleComponent", "CapsuleHalfHeight", "float"))
+
+    @CapsuleHalfHeight.setter
+    def CapsuleHalfHeight(self, value: float) -> None:
+        self._sp_set("UCapsuleComponent", "CapsuleHalfHeight", value)
+
+    def SetCapsuleRadius(self, *, Radius: float) -> None:
+        self._sp_call("UCapsuleComponent", "SetCapsuleRadius", {"Radius": Radius}, "None")
+
+    def SetCapsuleHalfHeight(self, *, HalfHeight: float) -> None:
+        self._sp_call("UCapsuleComponent", "SetCapsuleHalfHeight", {"HalfHeight": HalfHeight}, "None")
+
+
+_register_proxy(UCapsuleComponent)
+
+
+class UCharacterMovementComponent(UActorComponent, api.UCharacterMovementComponent):
+    __slots__ = ()
+
+    @property
+    def MaxWalkSpeed(self) -> float:
+        return cast("float", self._sp_get("UCharacterMovementComponent", "MaxWalkSpeed", "float"))
+
+    @MaxWalkSpeed.setter
+    def MaxWalkSpeed(self, value: float) -> None:
+        self._sp_set("UCharacterMovementComponent", "MaxWalkSpeed", value)
+
+    @property
+    def JumpZVelocity(self) -> float:
+        return cast("float", self._sp_get("UCharacterMovementComponent", "JumpZVelocity", "float"))
+
+    @JumpZVelocity.setter
+    def JumpZVelocity(self, value: float) -> None:
+        self._sp_set("UCharacterMovementComponent", "JumpZVelocity", value)
+
+    @property
+    def MaxStepHeight(self) -> float:
+        return cast("float", self._sp_get("UCharacterMovementComponent", "MaxStepHeight", "float"))
+
+    @MaxStepHeight.setter
+    def MaxStepHeight(self, value: float) -> None:
+        self._sp_set("UCharacterMovementComponent", "MaxStepHeight", value)
+
+    @property
+    def WalkableFloorAngle(self) -> float:
+        return cast("float", self._sp_get("UCharacterMovementComponent", "WalkableFloorAngle", "float"))
+
+    @WalkableFloorAngle.setter
+    def WalkableFloorAngle(self, value: float) -> None:
+        self._sp_set("UCharacterMovementComponent", "WalkableFloorAngle", value)
+
+    def SetMaxWalkSpeed(self, *, NewSpeed: float) -> None:
+        self._sp_call("UCharacterMovementComponent", "SetMaxWalkSpeed", {"NewSpeed": NewSpeed}, "None")
+
+    def SetJumpZVelocity(self, *, NewVelocity: float) -> None:
+        self._sp_call("UCharacterMovementComponent", "SetJumpZVelocity", {"NewVelocity": NewVelocity}, "None")
+
+    def SetMaxStepHeight(self, *, NewHeight: float) -> None:
+        self._sp_call("UCharacterMovementComponent", "SetMaxStepHeight", {"NewHeight": NewHeight}, "None")
+
+    def SetWalkableFloorAngle(self, *, NewAngle: float) -> None:
+        self._sp_call("UCharacterMovementComponent", "SetWalkableFloorAngle", {"NewAngle": NewAngle}, "None")
+
+    def GetVelocity(self) -> FVector:
+        return cast("FVector", self._sp_call("UCharacterMovementComponent", "GetVelocity", {}, "FVector"))
+
+    def IsMovingOnGround(self) -> bool:
+        return cast("bool", self._sp_call("UCharacterMovementComponent", "IsMovingOnGround", {}, "bool"))
+
+    def IsFalling(self) -> bool:
+        return cast("bool", self._sp_call("UCharacterMovementComponent", "IsFalling", {}, "bool"))
+
+
+_register_proxy(UCharacterMovementComponent)
 
 
 class ULightComponent(USceneComponent, api.ULightComponent):

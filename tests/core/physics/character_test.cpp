@@ -92,8 +92,9 @@ TEST(CharacterTest, JumpsToTheHeightItsJumpSpeedGives) {
     for (int i = 0; i < 120; ++i) {
         world.step(1.0 / 240.0);
         apex = std::max(apex, world.getCharacterPosition(character).z());
-        if (i == 10)
+        if (i == 10) {
             EXPECT_FALSE(world.jumpCharacter(character)); // no jumping in the air
+        }
     }
     EXPECT_NEAR(apex - ground, 4.2 * 4.2 / (2 * kGravity), 0.03);
     run(world, 1.0);
@@ -120,7 +121,7 @@ TEST(CharacterTest, TeleportsAndIsRemovedCleanly) {
     CharacterDesc bad;
     bad.halfHeight = 0.2;
     expectThrowMessage<InvalidArgument>([&] { world.addCharacter(bad); },
-                                        "PhysicsWorld::addCharacter(): halfHeight 0.2 must be > radius");
+                                        "PhysicsWorld::addCharacter(): halfHeight 0.2 must be >= radius");
     run(world, 0.1);
 }
 

@@ -53,3 +53,18 @@ def levels(instance: spear.Instance) -> None:
             assert_type(actor.GetStreamingLevelName(), str)
     with instance.end_frame():
         pass
+
+
+def characters(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        character = game.spawn_actor(uclass=spear.ACharacter, location=spear.FVector(Z=1.0))
+        assert_type(character.CapsuleComponent, spear.UCapsuleComponent)
+        movement = character.GetCharacterMovement()
+        assert_type(movement, spear.UCharacterMovementComponent | None)
+        character.CharacterMovement.MaxWalkSpeed = 3.0
+        assert_type(character.CharacterMovement.GetVelocity(), spear.FVector)
+        assert_type(character.CanJump(), bool)
+        character.Jump()
+    with instance.end_frame():
+        pass
