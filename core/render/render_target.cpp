@@ -95,6 +95,7 @@ std::uint64_t RenderTarget::submit(const Scene& scene, const Camera& camera) {
     const PassSet passes = modalities_.requiredPasses(camera.params.shadows);
     renderer_.render(scene, camera, passes, *framebuffers_);
 
+    lastRead_ = nullptr; // latency 0's framebuffers take this frame: the last one cannot be read again
     const std::uint64_t frameNumber = ++submitted_;
     Slot& slot = slots_[frameNumber % slots_.size()];
     dropFence(slot); // an unread frame N + 1 submits old is dropped
@@ -173,24 +174,38 @@ std::optional<std::uint64_t> RenderTarget::read(Frame& frame) {
     for (Modality modality : slot->modalities.list())
         copyOut(*slot, modality, frame.prepare(modality, slot->width, slot->height).bytes.data());
     dropFence(*slot);
+    lastRead_ = slot;
     return frame.frameNumber;
+}
+
+void RenderTarget::checkViews(const Slot& slot, std::span<const OutputView> views) {
+    for (const OutputView& view : views) {
+        SP_CHECK(slot.modalities.contains(view.modality), InvalidArgument, "RenderTarget::read(): frame ",
+                 slot.frameNumber, " was not rendered with modality '", modalityName(view.modality), "'");
+        const std::size_t expected = modalityByteSize(view.modality, slot.width, slot.height);
+        SP_CHECK(view.data != nullptr && view.size == expected, InvalidArgument,
+                 "RenderTarget::read(): the view for '", modalityName(view.modality), "' has ", view.size,
+                 " bytes, expected ", expected, " (", slot.height, "x", slot.width, "x",
+                 modalityInfo(view.modality).channels, " ", dtypeName(modalityInfo(view.modality).dtype),
+                 ")");
+    }
+}
+
+std::optional<std::uint64_t> RenderTarget::readAgain(std::span<const OutputView> views) {
+    if (lastRead_ == nullptr)
+        return std::nullopt;
+    checkViews(*lastRead_, views);
+    // Latency 0 reads the framebuffers, which hold the frame until the next submit; a longer ring reads
+    // the slot's pixel-buffer objects, which hold it until the slot is reused.
+    for (const OutputView& view : views)
+        copyOut(*lastRead_, view.modality, view.data);
+    return lastRead_->frameNumber;
 }
 
 std::optional<std::uint64_t> RenderTarget::read(std::span<const OutputView> views) {
     // Validate against the frame that would be read before waiting or writing anything.
-    if (submitted_ > std::uint64_t(latency_)) {
-        const Slot& due = slots_[(submitted_ - latency_) % slots_.size()];
-        for (const OutputView& view : views) {
-            SP_CHECK(due.modalities.contains(view.modality), InvalidArgument, "RenderTarget::read(): frame ",
-                     due.frameNumber, " was not rendered with modality '", modalityName(view.modality), "'");
-            const std::size_t expected = modalityByteSize(view.modality, due.width, due.height);
-            SP_CHECK(view.data != nullptr && view.size == expected, InvalidArgument,
-                     "RenderTarget::read(): the view for '", modalityName(view.modality), "' has ", view.size,
-                     " bytes, expected ", expected, " (", due.height, "x", due.width, "x",
-                     modalityInfo(view.modality).channels, " ", dtypeName(modalityInfo(view.modality).dtype),
-                     ")");
-        }
-    }
+    if (submitted_ > std::uint64_t(latency_))
+        checkViews(slots_[(submitted_ - latency_) % slots_.size()], views);
     Slot* slot = dueSlot();
     if (slot == nullptr)
         return std::nullopt;
@@ -198,6 +213,7 @@ std::optional<std::uint64_t> RenderTarget::read(std::span<const OutputView> view
         copyOut(*slot, view.modality, view.data);
     const std::uint64_t number = slot->frameNumber;
     dropFence(*slot);
+    lastRead_ = slot;
     return number;
 }
 

@@ -47,6 +47,10 @@ class RenderTarget {
     // exactly modalityByteSize() bytes. Throws sp::InvalidArgument for a wrong size or a modality the
     // frame was not rendered with, before anything is written.
     std::optional<std::uint64_t> read(std::span<const OutputView> views);
+    // Reads the frame the last read() returned once more, into caller memory (checked as read(views)
+    // checks); possible until the next submit(), std::nullopt otherwise. Lets a reader hand out fresh
+    // memory for a second look at a frame instead of keeping the first copy.
+    std::optional<std::uint64_t> readAgain(std::span<const OutputView> views);
     // submit() then read(frame).
     std::optional<std::uint64_t> render(const Scene& scene, const Camera& camera, Frame& frame);
 
@@ -69,12 +73,15 @@ class RenderTarget {
     // The slot holding the frame due for reading, or null.
     Slot* dueSlot();
     void copyOut(Slot& slot, Modality modality, void* destination);
+    // Throws sp::InvalidArgument unless each view fits a modality `slot` was rendered with.
+    static void checkViews(const Slot& slot, std::span<const OutputView> views);
     void dropFence(Slot& slot);
 
     Renderer& renderer_;
     ModalitySet modalities_;
     int latency_;
     std::uint64_t submitted_ = 0;
+    Slot* lastRead_ = nullptr; // the slot read since the last submit(), for readAgain()
     std::vector<Slot> slots_;
     std::unique_ptr<Framebuffers> framebuffers_;
 };

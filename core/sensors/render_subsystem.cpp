@@ -113,7 +113,11 @@ struct RenderSubsystem::PendingFrame {
 struct RenderSubsystem::CameraState {
     std::unique_ptr<sp::render::RenderTarget> target;
     std::deque<PendingFrame> pending;
-    std::optional<FCameraPixels> pixels; // the due frame once read, until the next submit
+    // Whether read_pixels ran since the last submit, and the frame it read (read again by later calls).
+    // The arrays themselves are never kept: each call fills fresh ones, so that memory handed out (a
+    // numpy array, or an RPC client's reply buffer) is not held by the camera after the call.
+    bool readSinceSubmit = false;
+    std::optional<PendingFrame> lastRead;
     std::int64_t pixelsFrame = -1;
 };
 
@@ -178,7 +182,8 @@ void RenderSubsystem::submit(UCameraSensorComponent& camera) {
     const sp::render::ModalitySet modalities = toModalitySet(camera.Modalities);
 
     CameraState& state = cameraState(camera);
-    state.pixels.reset();
+    state.readSinceSubmit = false;
+    state.lastRead.reset();
     if (modalities.empty()) { // nothing to render; older frames are dropped with the target
         state.target.reset();
         state.pending.clear();
@@ -204,8 +209,16 @@ FCameraPixels RenderSubsystem::readPixels(UCameraSensorComponent& camera) {
         return {};
     }
     CameraState& state = *it->second;
-    if (!state.pixels) {
-        state.pixels.emplace();
+    const auto fill = [&](FCameraPixels& pixels, const PendingFrame& frame) {
+        std::vector<sp::render::OutputView> views;
+        for (sp::render::Modality modality : frame.modalities.list())
+            views.push_back(allocate(pixels, modality, frame.width, frame.height));
+        return views;
+    };
+    FCameraPixels pixels;
+    context_->makeCurrent();
+    if (!state.readSinceSubmit) {
+        state.readSinceSubmit = true;
         state.pixelsFrame = -1;
         const std::uint64_t submitted = state.target->submittedFrames();
         const std::uint64_t latency = std::uint64_t(state.target->latency());
@@ -213,20 +226,19 @@ FCameraPixels RenderSubsystem::readPixels(UCameraSensorComponent& camera) {
             return submitted > latency && f.submit == submitted - latency;
         });
         if (due != state.pending.end()) {
-            std::vector<sp::render::OutputView> views;
-            for (sp::render::Modality modality : due->modalities.list())
-                views.push_back(allocate(*state.pixels, modality, due->width, due->height));
-            context_->makeCurrent();
-            if (state.target->read(views)) {
+            if (state.target->read(fill(pixels, *due))) {
                 state.pixelsFrame = due->worldFrame;
+                state.lastRead = *due;
             } else {
-                state.pixels.emplace();
+                pixels = {};
             }
             state.pending.erase(state.pending.begin(), std::next(due));
         }
+    } else if (state.lastRead && !state.target->readAgain(fill(pixels, *state.lastRead))) {
+        pixels = {};
     }
     camera.setPixelsFrame(state.pixelsFrame);
-    return *state.pixels;
+    return pixels;
 }
 
 std::optional<RenderSubsystem::ObjectIdInfo> RenderSubsystem::objectIdInfo(std::uint32_t id) const {

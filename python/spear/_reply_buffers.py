@@ -41,7 +41,9 @@ class _Buffer:
 class ReplyBuffers:
     _buffers: dict[str, _Buffer] = field(default_factory=dict)
     _dropped: list[str] = field(default_factory=list)
-    _wanted: set[int] = field(default_factory=set)  # sizes to make buffers of, before the next request
+    # Sizes to make buffers of before the next request, each with how many buffers of that size the client
+    # needs: those it had when arrays of that size had to go through fresh segments, plus one per such array.
+    _wanted: dict[int, int] = field(default_factory=dict)
     _this_reply: dict[str, NDArray[Any]] = field(default_factory=dict)  # buffers received in the reply being read
     _offered: set[str] = field(default_factory=set)  # offered with the request in flight
     closed: bool = False
@@ -51,8 +53,9 @@ class ReplyBuffers:
 
         Buffers learned since the last request are made here, just before the server hears of them, so
         that a client killed between two requests leaves no name the server does not know to remove."""
-        for size in sorted(self._wanted):
-            self._make(size)
+        for size, needed in sorted(self._wanted.items()):
+            for _ in range(needed - len(self._fitting(size))):
+                self._make(size)
         self._wanted.clear()
         offered = [b for b in self._buffers.values() if not b.held and not b.lent]
         self._offered = {b.name for b in offered}
@@ -64,6 +67,11 @@ class ReplyBuffers:
         return dropped
 
     def begin_reply(self) -> None:
+        self._this_reply.clear()
+
+    def end_reply(self) -> None:
+        """The reply is read: the buffers its arrays are in stay held only while the caller's arrays live
+        (keeping them here until the next reply made the client need one buffer more than it used)."""
         self._this_reply.clear()
 
     def receive(self, name: str, dtype: np.dtype[Any], shape: list[int], size: int) -> NDArray[Any]:
@@ -104,9 +112,13 @@ class ReplyBuffers:
         self._offered.clear()
 
     def learn(self, size: int) -> None:
-        """An array of `size` bytes went through a fresh segment: have a buffer of that size next time."""
+        """An array of `size` bytes went through a fresh segment: the buffers that fit it were all in use (an
+        array of the last frame's still views one, say), so have one more of that size next time."""
         if not self.closed:
-            self._wanted.add(size)
+            self._wanted[size] = self._wanted.get(size, len(self._fitting(size))) + 1
+
+    def _fitting(self, size: int) -> list[_Buffer]:
+        return [b for b in self._buffers.values() if size <= b.size <= 2 * size]
 
     def _make(self, size: int) -> None:
         try:
@@ -115,8 +127,7 @@ class ReplyBuffers:
             pass  # no buffer this time (/dev/shm full, say): the server's own segments carry the arrays
 
     def _create(self, size: int) -> None:
-        if self.closed or any(not b.held and not b.lent and size <= b.size <= 2 * size
-                              for b in self._buffers.values()):
+        if self.closed:
             return
         while self._buffers and (len(self._buffers) >= MAX_BUFFERS or
                                  sum(b.size for b in self._buffers.values()) + size > MAX_BYTES):

@@ -194,4 +194,8 @@ def unpack_body(body: bytes, buffers: ReplyBuffers | None = None) -> Any:
     hook: Callable[[int, bytes], Any] = _ext_hook
     if buffers is not None:
         hook = functools.partial(_ext_hook, buffers=buffers)
-    return msgpack.unpackb(body, raw=False, ext_hook=hook, strict_map_key=False)
+    try:
+        return msgpack.unpackb(body, raw=False, ext_hook=hook, strict_map_key=False)
+    finally:
+        if buffers is not None:
+            buffers.end_reply()  # only the arrays the caller keeps hold buffers from here on

@@ -256,6 +256,35 @@ def test_replies_land_in_reply_buffers_that_never_change_under_the_user() -> Non
     assert np.array_equal(held[0], base + 1)
 
 
+def test_frames_held_while_the_next_is_read_settle_on_two_reply_buffers() -> None:
+    """A loop that keeps the last frame's image while it reads the next (images = [read_pixels()]) needs
+    two buffers of the image's size; once made they serve every frame: no fresh segment, no buffer made
+    or dropped per frame, and the camera keeps none of them (it once held the last frame's arrays, which
+    made the client give a buffer up every other frame)."""
+    with spear.Instance(server="launch") as instance:
+        connection = instance._backend.connection  # type: ignore[attr-defined]
+        game = instance.get_game()
+        with instance.begin_frame():
+            camera = game.spawn_actor(uclass=spear.ACameraSensorActor).CameraSensor
+            camera.Width, camera.Height = 640, 480  # 1.2 MB of final colour: through shared memory
+        with instance.end_frame():
+            pass
+        buffers = connection._reply_buffers._buffers  # noqa: SLF001
+        made: set[str] = set()
+        image = None
+        for frame in range(12):
+            with instance.begin_frame():
+                pass
+            with instance.end_frame():
+                pixels = camera.read_pixels()
+                assert "final_color" in pixels
+                image = pixels["final_color"]  # the previous frame's image is still held until here
+            if frame == 4:
+                made = set(buffers)
+        assert image is not None and image.shape == (480, 640, 4)
+        assert set(buffers) == made and len(made) == 2
+
+
 def test_a_dead_clients_reply_buffers_are_removed_by_the_server(server: LaunchedServer) -> None:
     script = (
         "import os, sys, numpy as np; sys.path.insert(0, %r); from spear._rpc_client import RpcConnection; "

@@ -1,5 +1,6 @@
 // Latency 0, 1, 2: read() returns the frame submitted `latency` submits earlier, nothing while priming,
-// each frame once; reads into caller memory check sizes before writing.
+// each frame once; readAgain() reads that frame again until the next submit; reads into caller memory
+// check sizes before writing.
 
 #include <cstring>
 
@@ -79,6 +80,29 @@ TEST_P(RenderLatencyGlTest, ReadsIntoCallerMemory) {
             EXPECT_EQ(color[3], 255);
         }
     }
+}
+
+TEST_P(RenderLatencyGlTest, TheLastFrameReadCanBeReadAgainUntilTheNextSubmit) {
+    const int latency = GetParam();
+    RenderTarget target(renderer(), {Modality::ObjectIds}, latency);
+    std::vector<std::uint32_t> ids(8 * 8, 0), again(8 * 8, 0);
+    const OutputView view[] = {{Modality::ObjectIds, ids.data(), ids.size() * 4}};
+    const OutputView viewAgain[] = {{Modality::ObjectIds, again.data(), again.size() * 4}};
+    for (std::uint64_t k = 1; k <= std::uint64_t(latency) + 2; ++k) {
+        submitFrame(target, k);
+        EXPECT_FALSE(target.readAgain(viewAgain).has_value()) << "nothing read since the submit";
+        const std::optional<std::uint64_t> got = target.read(view);
+        if (!got)
+            continue; // priming
+        // Frames submitted after it do not change what is read again (the ring keeps the frame).
+        EXPECT_EQ(target.readAgain(viewAgain), got);
+        EXPECT_EQ(again, ids);
+        EXPECT_EQ(again[4 * 8 + 4], 1000 + *got);
+        EXPECT_EQ(target.readAgain(viewAgain), got) << "as often as asked";
+    }
+    std::vector<std::uint32_t> small(4);
+    const OutputView wrong[] = {{Modality::ObjectIds, small.data(), small.size() * 4}};
+    EXPECT_THROW(target.readAgain(wrong), InvalidArgument);
 }
 
 INSTANTIATE_TEST_SUITE_P(Latency, RenderLatencyGlTest, ::testing::Values(0, 1, 2));
