@@ -5,7 +5,6 @@
 #include <numbers>
 
 #include "core/base/error.h"
-#include "core/world/controller.h"
 #include "core/world/physics_subsystem.h"
 #include "core/world/post_physics.h"
 #include "core/world/world.h"
@@ -140,13 +139,7 @@ void ACharacter::Tick(double deltaSeconds) {
     const auto axis = [this](const char* action) {
         return std::clamp(InputComponent->GetActionValue(action).X, -1.0, 1.0);
     };
-    if (AController* controller = GetController()) { // the view turns as ADefaultPawn's does
-        FRotator control = controller->GetControlRotation();
-        control.Yaw += axis("Turn") * 45.0 * deltaSeconds;
-        control.Pitch = std::clamp(control.Pitch + axis("LookUp") * 45.0 * deltaSeconds, -89.0, 89.0);
-        if (!(control == controller->GetControlRotation()))
-            controller->SetControlRotation(control);
-    }
+    TurnControllerView(axis("Turn"), axis("LookUp"), 45.0, 45.0, deltaSeconds); // ADefaultPawn's rates
     // Walking follows the view's heading; the walk is horizontal whatever the pitch.
     const double yaw = GetControlRotation().Yaw * std::numbers::pi / 180.0;
     const Eigen::Vector3d forward(std::cos(yaw), std::sin(yaw), 0.0),

@@ -33,6 +33,18 @@ void APawn::AddMovementInput(const FVector& WorldDirection, double ScaleValue) {
     pendingMovement_ = FVector::fromEigen(pendingMovement_.toEigen() + WorldDirection.toEigen() * ScaleValue);
 }
 
+void APawn::TurnControllerView(double yawAxis, double pitchAxis, double yawRate, double pitchRate,
+                               double deltaSeconds) {
+    AController* controller = GetController();
+    if (!controller)
+        return;
+    FRotator control = controller->GetControlRotation();
+    control.Yaw += yawAxis * yawRate * deltaSeconds;
+    control.Pitch = std::clamp(control.Pitch + pitchAxis * pitchRate * deltaSeconds, -89.0, 89.0);
+    if (!(control == controller->GetControlRotation()))
+        controller->SetControlRotation(control);
+}
+
 FVector APawn::ConsumeMovementInput() {
     return std::exchange(pendingMovement_, FVector{});
 }
@@ -71,14 +83,7 @@ void ADefaultPawn::Tick(double deltaSeconds) {
     const auto axis = [this](const char* action) {
         return std::clamp(InputComponent->GetActionValue(action).X, -1.0, 1.0);
     };
-    if (AController* controller = GetController()) {
-        FRotator control = controller->GetControlRotation();
-        control.Yaw += axis("Turn") * BaseTurnRate * deltaSeconds;
-        control.Pitch =
-            std::clamp(control.Pitch + axis("LookUp") * BaseLookUpRate * deltaSeconds, -89.0, 89.0);
-        if (!(control == controller->GetControlRotation()))
-            controller->SetControlRotation(control);
-    }
+    TurnControllerView(axis("Turn"), axis("LookUp"), BaseTurnRate, BaseLookUpRate, deltaSeconds);
     // Forward follows the view (pitch included, as a flying camera does); right stays level; up is world up.
     const FRotator view = GetControlRotation();
     const Eigen::Vector3d forward = view.toQuaternion() * Eigen::Vector3d::UnitX();

@@ -67,6 +67,11 @@ class APawn : public AActor {
     struct NoDefaultRoot {};
     explicit APawn(NoDefaultRoot) {}
 
+    // Turns the possessing controller's view: yaw by yawAxis * yawRate and pitch (kept within [-89, 89]) by
+    // pitchAxis * pitchRate degrees per second, for deltaSeconds (the "Turn" and "LookUp" actions).
+    void TurnControllerView(double yawAxis, double pitchAxis, double yawRate, double pitchRate,
+                            double deltaSeconds);
+
     // The movement input added since the last call, cleared.
     FVector ConsumeMovementInput();
 
