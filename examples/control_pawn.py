@@ -1,7 +1,8 @@
 """Control a pawn through the gameplay framework: find player 0 with UGameplayStatics (a static function,
 called on the class), fly its pawn through the default apartment with input injected for the player
 controller, look through the player's view point with a camera, then hand the player to a second
-controller and the pawn to an AI controller. Writes the views as one image strip.
+controller and the pawn to an AI controller, and walk a character (ACharacter) possessed by the player
+until the wall stops it. Writes the flight's views as one image strip.
 
     PYTHONPATH=python /usr/bin/python3 examples/control_pawn.py [--server launch] [--out out/control_pawn.png]
 """
@@ -88,6 +89,23 @@ def main() -> None:
         ai.Possess(InPawn=pawn)
         print(f"after AI Possess: {pawn.GetName()} is player-controlled: {pawn.IsPlayerControlled()}, "
               f"player 0 has a pawn: {now.K2_GetPawn() is not None}")
+        # A character walks on the floor: player 0 possesses it and walks it along -Y, past the table and the
+        # ball, towards the east wall.
+        walker = game.spawn_actor(uclass=spear.ACharacter, name="Walker", location=spear.FVector(0.6, 0.2, 1.0),
+                                  rotation=spear.FRotator(Yaw=-90.0))
+        walker.CharacterMovement.MaxWalkSpeed = 1.5
+        now.Possess(InPawn=walker)
+    with instance.end_frame():
+        pass
+    for _ in range(120):  # 2 s at 1.5 m/s would take it 3 m, through the wall (its face at y = -2.5)
+        with instance.begin_frame():
+            game.inject_input_for_actor(actor=now, input_action_name="MoveForward", value=spear.FVector(X=1.0))
+        with instance.end_frame():
+            pass
+    with instance.begin_frame():
+        at = walker.GetActorLocation()
+        print(f"character {walker.GetName()} walked from (0.60, 0.20) to ({at.X:.2f}, {at.Y:.2f}), "
+              f"standing {at.Z:.2f} m up, on the ground: {walker.CharacterMovement.IsMovingOnGround()}")
     with instance.end_frame():
         pass
     instance.close()

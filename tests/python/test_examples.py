@@ -113,6 +113,9 @@ def test_control_pawn_flies_the_player_and_hands_it_over(transport: str, tmp_pat
     assert "frame 40/40: pawn at (" in result.stdout
     assert "after SwapPlayerControllers: player 0 is SecondController, possessing DefaultPawn_0: True" in result.stdout
     assert "after AI Possess: DefaultPawn_0 is player-controlled: False, player 0 has a pawn: False" in result.stdout
+    # The character walks until the wall's face (y = -2.5) stops its capsule (radius 0.35), on the floor.
+    assert ("character Walker walked from (0.60, 0.20) to (0.60, -2.15), standing 0.90 m up, on the ground: True"
+            in result.stdout)
     image = Image.open(out)
     assert image.size == (4 * 320, 240)
     assert len(set(image.convert("L").getdata())) > 20  # a rendered room, not a blank frame

@@ -64,6 +64,7 @@ TEST(CharacterTest, ClimbsAStepUpToItsStepHeightAndStopsAtAWall) {
     EXPECT_NEAR(world.getCharacterPosition(character).z(), 0.3 + 0.9, 0.03);
     run(world, 3.0); // would be at x = 10: the wall stops it
     const Eigen::Vector3d stopped = world.getCharacterPosition(character);
+    EXPECT_NEAR(stopped.z(), 0.9, 0.02) << "pressed against the wall, it stays on the floor";
     EXPECT_LE(stopped.x() + 0.35, 7.8 + 0.01);
     EXPECT_GT(stopped.x() + 0.35, 7.8 - 0.1);
     EXPECT_NEAR(world.getCharacterVelocity(character).x(), 0.0, 0.05);
@@ -100,6 +101,54 @@ TEST(CharacterTest, JumpsToTheHeightItsJumpSpeedGives) {
     run(world, 1.0);
     EXPECT_TRUE(world.isCharacterOnGround(character));
     EXPECT_NEAR(world.getCharacterPosition(character).z(), ground, 0.01);
+}
+
+TEST(CharacterTest, SensorsDoNotPushIt) {
+    // A character's capsule is also a sensor body (for triggers), which follows it a step late: the
+    // character must pass through it, and through any other sensor.
+    PhysicsWorld world;
+    addFloor(world);
+    const BodyId character = addCharacter(world, 0.0, 0.95);
+    BodyDesc desc;
+    desc.shape = Shape::capsule(0.35, 0.55);
+    desc.simulatePhysics = false;
+    desc.overlapOnly = true;
+    desc.pose = at(0.0, 0.0, 0.9);
+    const BodyId sensor = world.addBody(desc);
+    desc.shape = Shape::box({1.0, 1.0, 0.2});
+    desc.pose = at(2.0, 0.0, 0.3);
+    world.addBody(desc); // a low trigger volume in its way
+    world.setCharacterWalkVelocity(character, {1.5, 0.0, 0.0});
+    for (int frame = 0; frame < 180; ++frame) {
+        const Eigen::Vector3d before = world.getCharacterPosition(character);
+        world.step(1.0 / 60.0);
+        world.setPose(sensor, at(before.x(), before.y(), before.z()));
+        ASSERT_NEAR(world.getCharacterPosition(character).z(), 0.9, 0.02) << "frame " << frame;
+    }
+    EXPECT_NEAR(world.getCharacterPosition(character).x(), 4.5, 1e-6);
+}
+
+TEST(CharacterTest, ASensorFollowingItToAWallDoesNotLiftIt) {
+    PhysicsWorld world;
+    addStaticBox(world, {3.0, 2.5, 0.05}, {0.0, 0.0, -0.05}); // a floor box with its top at z = 0
+    addStaticBox(world, {3.0, 0.05, 1.4}, {0.0, -2.55, 1.4}); // a wall with its face at y = -2.5
+    const BodyId character = addCharacter(world, 0.0, 0.95);
+    BodyDesc desc;
+    desc.shape = Shape::capsule(0.35, 0.55);
+    desc.simulatePhysics = false;
+    desc.overlapOnly = true;
+    desc.pose = at(0.0, 0.0, 0.95);
+    const BodyId sensor = world.addBody(desc);
+    run(world, 0.5);
+    world.setCharacterWalkVelocity(character, {0.0, -1.5, 0.0});
+    for (int frame = 0; frame < 150; ++frame) {
+        const Eigen::Vector3d now = world.getCharacterPosition(character);
+        world.setPose(sensor, at(now.x(), now.y(), now.z()));
+        world.step(1.0 / 60.0);
+        ASSERT_NEAR(world.getCharacterPosition(character).z(), 0.9, 0.02)
+            << "frame " << frame << " at y = " << world.getCharacterPosition(character).y();
+    }
+    EXPECT_NEAR(world.getCharacterPosition(character).y(), -2.15, 0.02);
 }
 
 TEST(CharacterTest, TeleportsAndIsRemovedCleanly) {
