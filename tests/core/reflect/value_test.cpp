@@ -122,7 +122,8 @@ TEST(Codec, ResultChecksNameTheFunction) {
                   0u)
             << e.what();
     }
-    checkResultFields(FArrayResult<false>{}, "AMeasurer.MeasureSome()"); // partial: nothing to check
+    const FArrayResult<false> partial;
+    checkResultFields(partial, "AMeasurer.MeasureSome()"); // partial: nothing to check
 }
 
 TEST(Codec, PartialTypedDictsLeaveUnsetArraysOut) {
