@@ -123,6 +123,8 @@ void PhysicsWorld::setCharacterPosition(BodyId character, const Eigen::Vector3d&
              " is not finite");
     record.controller->warp(toBullet(position));
     record.controller->reset(impl_->world.get()); // no fall or jump carried over
+    // reset() also stops the walk; the character keeps walking as it was told.
+    record.controller->setWalkDirection(toBullet(record.walkVelocity * impl_->settings.fixedTimeStep));
     record.stepStart = position;
     record.velocity.setZero();
 }

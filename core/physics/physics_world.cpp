@@ -48,15 +48,6 @@ void checkFriction(const char* function, double friction) {
              " must be >= 0");
 }
 
-// A ray callback that sees bodies only: not sensors (bodies without contact response), not characters.
-template <typename Callback> struct SolidOnly : Callback {
-    using Callback::Callback;
-    bool needsCollision(btBroadphaseProxy* proxy) const override {
-        const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
-        return Callback::needsCollision(proxy) && object->hasContactResponse() && btRigidBody::upcast(object);
-    }
-};
-
 } // namespace
 
 PhysicsWorld::PhysicsWorld(const Settings& settings) : impl_(std::make_unique<Impl>()) {
@@ -445,7 +436,7 @@ std::optional<RayHit> PhysicsWorld::raycast(const Eigen::Vector3d& from, const E
     checkVector("PhysicsWorld::raycast()", "to", to);
     if (from == to)
         return std::nullopt;
-    SolidOnly<btCollisionWorld::ClosestRayResultCallback> result(toBullet(from), toBullet(to));
+    detail::SolidOnly<btCollisionWorld::ClosestRayResultCallback> result(toBullet(from), toBullet(to));
     impl_->world->rayTest(result.m_rayFromWorld, result.m_rayToWorld, result);
     if (!result.hasHit())
         return std::nullopt;
@@ -459,7 +450,7 @@ std::vector<RayHit> PhysicsWorld::raycastAll(const Eigen::Vector3d& from, const 
     std::vector<RayHit> hits;
     if (from == to)
         return hits;
-    SolidOnly<btCollisionWorld::AllHitsRayResultCallback> result(toBullet(from), toBullet(to));
+    detail::SolidOnly<btCollisionWorld::AllHitsRayResultCallback> result(toBullet(from), toBullet(to));
     impl_->world->rayTest(result.m_rayFromWorld, result.m_rayToWorld, result);
     hits.reserve(size_t(result.m_collisionObjects.size()));
     for (int i = 0; i < result.m_collisionObjects.size(); ++i)

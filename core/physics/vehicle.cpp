@@ -40,6 +40,26 @@ void checkDesc(const char* fn, const VehicleDesc& desc) {
           "in [0, 1]");
 }
 
+// The wheels' rays: the closest body, passing through sensors and characters as the world's raycasts do
+// (Bullet's default caster stops at a trigger volume or a character and then reports no ground at all).
+class SolidRaycaster : public btVehicleRaycaster {
+  public:
+    explicit SolidRaycaster(btDynamicsWorld& world) : world_(world) {}
+    void* castRay(const btVector3& from, const btVector3& to, btVehicleRaycasterResult& result) override {
+        detail::SolidOnly<btCollisionWorld::ClosestRayResultCallback> ray(from, to);
+        world_.rayTest(from, to, ray);
+        if (!ray.hasHit())
+            return nullptr;
+        result.m_hitPointInWorld = ray.m_hitPointWorld;
+        result.m_hitNormalInWorld = ray.m_hitNormalWorld.normalized();
+        result.m_distFraction = ray.m_closestHitFraction;
+        return const_cast<btRigidBody*>(btRigidBody::upcast(ray.m_collisionObject));
+    }
+
+  private:
+    btDynamicsWorld& world_;
+};
+
 btRaycastVehicle& vehicleOf(const BodyRecord& record, BodyId id, const char* fn) {
     SP_CHECK(record.vehicle, InvalidState, fn, ": body ", id, " has no vehicle");
     return *record.vehicle->vehicle;
@@ -69,7 +89,7 @@ void PhysicsWorld::setVehicle(BodyId chassis, const VehicleDesc& desc) {
     tuning.m_frictionSlip = desc.frictionSlip;
 
     auto vehicle = std::make_unique<detail::VehicleRecord>();
-    vehicle->raycaster = std::make_unique<btDefaultVehicleRaycaster>(w.world.get());
+    vehicle->raycaster = std::make_unique<SolidRaycaster>(*w.world);
     vehicle->vehicle =
         std::make_unique<btRaycastVehicle>(tuning, record.body.get(), vehicle->raycaster.get());
     // The chassis' axes for Bullet: right = Y, up = Z, forward = X (forward gives the speed's sign and the

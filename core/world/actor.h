@@ -117,7 +117,8 @@ class AActor : public UObject {
     virtual void BeginPlay();
     virtual void Tick(double deltaSeconds);
     virtual void EndPlay();
-    // After every physics step, for actors registered with sp::world::PostPhysicsSubsystem.
+    // Just before and just after every physics step, for actors registered with sp::world::PhysicsHooks.
+    virtual void PrePhysicsTick() {}
     virtual void PostPhysicsTick() {}
     bool HasBegunPlay() const { return begunPlay_; }
     void SetWorldForComponents();

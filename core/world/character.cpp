@@ -5,8 +5,8 @@
 #include <numbers>
 
 #include "core/base/error.h"
+#include "core/world/physics_hooks.h"
 #include "core/world/physics_subsystem.h"
-#include "core/world/post_physics.h"
 #include "core/world/world.h"
 
 namespace {
@@ -118,13 +118,13 @@ bool ACharacter::CanJump() const {
 
 void ACharacter::BeginPlay() {
     APawn::BeginPlay();
-    GetWorld()->GetSubsystem<sp::world::PostPhysicsSubsystem>().add(*this);
+    GetWorld()->GetSubsystem<sp::world::PhysicsHooks>().add(*this);
     PhysicsCharacter("BeginPlay");
     PostPhysicsTick();
 }
 
 void ACharacter::EndPlay() {
-    if (auto* subsystem = GetWorld()->FindSubsystem<sp::world::PostPhysicsSubsystem>())
+    if (auto* subsystem = GetWorld()->FindSubsystem<sp::world::PhysicsHooks>())
         subsystem->remove(*this);
     if (auto* physics = GetWorld()->FindSubsystem<sp::world::PhysicsSubsystem>())
         if (character_.isSet() && physics->GetPhysicsWorld().isValidCharacter(character_))
@@ -155,6 +155,10 @@ void ACharacter::Tick(double deltaSeconds) {
         physics.jumpCharacter(id);
         jumpPressed_ = false;
     }
+}
+
+void ACharacter::PrePhysicsTick() {
+    PhysicsCharacter("PrePhysicsTick");
 }
 
 void ACharacter::PostPhysicsTick() {

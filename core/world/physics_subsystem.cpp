@@ -6,6 +6,7 @@
 #include "core/reflect/object_base.h"
 #include "core/world/actor.h"
 #include "core/world/mesh_geometry.h"
+#include "core/world/physics_hooks.h"
 #include "core/world/static_mesh_component.h"
 #include "core/world/world.h"
 
@@ -77,7 +78,7 @@ bool wantsSimulation(const UPrimitiveComponent& component, ECollisionPrimitive p
 
 } // namespace
 
-PhysicsSubsystem::PhysicsSubsystem(UWorld& /*world*/) {}
+PhysicsSubsystem::PhysicsSubsystem(UWorld& world) : world_(world) {}
 
 PhysicsSubsystem::~PhysicsSubsystem() = default;
 
@@ -250,9 +251,14 @@ void PhysicsSubsystem::writeBack() {
 }
 
 void PhysicsSubsystem::Tick(double deltaSeconds) {
+    PhysicsHooks* hooks = world_.FindSubsystem<PhysicsHooks>();
+    if (hooks)
+        hooks->beforeStep();
     syncAll();
     physicsWorld_.step(deltaSeconds);
     writeBack();
+    if (hooks && hooks->afterStep())
+        syncAll(); // a character's capsule moved: its sensor body follows before overlaps are found
     updateOverlapEvents();
 }
 

@@ -28,6 +28,9 @@ class PhysicsSubsystem : public WorldSubsystem {
     static constexpr int kTickOrder = tick_order::kPhysics;
 
     explicit PhysicsSubsystem(UWorld& world);
+
+    // Per frame: the registered actors' pre-physics hooks, sync, step, write-back, their post-physics
+    // hooks (and a sync, as they move things), then the overlap events.
     ~PhysicsSubsystem() override;
 
     // Syncs, steps the physics world by deltaSeconds and writes simulated poses back.
@@ -92,6 +95,7 @@ class PhysicsSubsystem : public WorldSubsystem {
     std::vector<UPrimitiveComponent*> currentOverlaps(const Entry& entry);
     void updateOverlapEvents();
 
+    UWorld& world_;
     physics::PhysicsWorld physicsWorld_;
     std::vector<Entry> entries_; // registration order: keeps sync (and so the simulation) deterministic
     std::unordered_map<const UPrimitiveComponent*, size_t> index_;

@@ -423,6 +423,23 @@ void loadScene(UWorld& world, const SceneJson& scene, std::string_view source, c
     const std::string root(source);
     std::vector<std::unique_ptr<AActor>> staged = stageActors(world, scene, root, false);
     std::vector<UWorld::StreamingLevel> levels = sceneLevels(scene, root, directory);
+    // The levels marked loaded are read and built now too, with the scene's own actors, so that one that
+    // fails leaves the world as it was; their names must be free among all of them.
+    std::set<std::string, std::less<>> names;
+    for (const auto& actor : staged)
+        names.insert(actor->GetName());
+    for (const UWorld::StreamingLevel& level : levels) {
+        if (!level.loaded)
+            continue;
+        const std::string where = root + ": streaming level '" + level.name + "'";
+        for (auto& actor : stageActors(world, readSceneFile(level.path, where), where, false)) {
+            SP_CHECK(names.insert(actor->GetName()).second, InvalidArgument, where, ": actor '",
+                     actor->GetName(),
+                     "': the name is used by another actor of the scene or its loaded levels");
+            actor->SetStreamingLevelName(level.name);
+            staged.push_back(std::move(actor));
+        }
+    }
     // Only now does the world change, once every actor has begun play (ReplaceActors: one that fails to,
     // as one whose physics settings Bullet refuses, leaves the world as it was).
     try {
@@ -430,13 +447,7 @@ void loadScene(UWorld& world, const SceneJson& scene, std::string_view source, c
     } catch (const Error&) {
         rethrowWithPrefix(root + ": ");
     }
-    std::vector<std::string> toLoad;
-    for (UWorld::StreamingLevel& level : levels)
-        if (std::exchange(level.loaded, false))
-            toLoad.push_back(level.name);
     world.SetStreamingLevels(std::move(levels));
-    for (const std::string& name : toLoad)
-        world.LoadStreamLevel(name, root);
 }
 
 std::vector<std::unique_ptr<AActor>> stageLevel(UWorld& world, const SceneJson& scene,

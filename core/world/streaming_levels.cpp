@@ -2,6 +2,7 @@
 // while it plays, the rest of the world untouched.
 
 #include <algorithm>
+#include <filesystem>
 
 #include "core/base/error.h"
 #include "core/world/scene_io.h"
@@ -26,8 +27,10 @@ std::string levelNames(const std::vector<UWorld::StreamingLevel>& levels) {
 void UWorld::LoadStreamLevel(const std::string& name, const std::string& function) {
     SP_CHECK(!name.empty(), sp::InvalidArgument, function, ": LevelName is empty");
     const bool declared = findLevel(levels_, name) != levels_.end();
-    if (!declared) // the name is a scene file's path
-        levels_.push_back({name, name, name, false});
+    if (!declared) { // the name is a scene file's path; kept absolute, so that a saved scene finds it again
+        const std::string path = std::filesystem::absolute(name).lexically_normal().string();
+        levels_.push_back({name, path, path, false});
+    }
     if (findLevel(levels_, name)->loaded)
         return;
     const std::string path = findLevel(levels_, name)->path;

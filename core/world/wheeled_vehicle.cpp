@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "core/base/error.h"
+#include "core/world/physics_hooks.h"
 #include "core/world/physics_subsystem.h"
-#include "core/world/post_physics.h"
 #include "core/world/world.h"
 
 namespace {
@@ -126,12 +126,12 @@ sp::physics::BodyId AWheeledVehiclePawn::vehicleBody(const char* function) {
 
 void AWheeledVehiclePawn::BeginPlay() {
     APawn::BeginPlay();
-    GetWorld()->GetSubsystem<sp::world::PostPhysicsSubsystem>().add(*this);
+    GetWorld()->GetSubsystem<sp::world::PhysicsHooks>().add(*this);
     PostPhysicsTick();
 }
 
 void AWheeledVehiclePawn::EndPlay() {
-    if (auto* subsystem = GetWorld()->FindSubsystem<sp::world::PostPhysicsSubsystem>())
+    if (auto* subsystem = GetWorld()->FindSubsystem<sp::world::PhysicsHooks>())
         subsystem->remove(*this);
     body_ = {};
     APawn::EndPlay();

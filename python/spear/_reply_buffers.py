@@ -53,9 +53,10 @@ class ReplyBuffers:
 
         Buffers learned since the last request are made here, just before the server hears of them, so
         that a client killed between two requests leaves no name the server does not know to remove."""
+        wanted = set(self._wanted)
         for size, needed in sorted(self._wanted.items()):
             for _ in range(needed - len(self._fitting(size))):
-                self._make(size)
+                self._make(size, wanted)
         self._wanted.clear()
         offered = [b for b in self._buffers.values() if not b.held and not b.lent]
         self._offered = {b.name for b in offered}
@@ -120,20 +121,23 @@ class ReplyBuffers:
     def _fitting(self, size: int) -> list[_Buffer]:
         return [b for b in self._buffers.values() if size <= b.size <= 2 * size]
 
-    def _make(self, size: int) -> None:
+    def _make(self, size: int, wanted: set[int]) -> None:
         try:
-            self._create(size)
+            self._create(size, wanted)
         except OSError:
             pass  # no buffer this time (/dev/shm full, say): the server's own segments carry the arrays
 
-    def _create(self, size: int) -> None:
+    def _create(self, size: int, wanted: set[int]) -> None:
         if self.closed:
             return
         while self._buffers and (len(self._buffers) >= MAX_BUFFERS or
                                  sum(b.size for b in self._buffers.values()) + size > MAX_BYTES):
-            free = [b for b in self._buffers.values() if not b.held and not b.lent]
+            # Room is made from free buffers of sizes nobody wants now (a resolution no longer used); never
+            # from one a wanted size fits, which would only be made again at the next request.
+            free = [b for b in self._buffers.values() if not b.held and not b.lent
+                    and not any(w <= b.size <= 2 * w for w in wanted)]
             if not free:
-                return  # every buffer is in use: the server's segments carry the replies meanwhile
+                return  # the pool is full of buffers in use or wanted: the server's segments carry the rest
             self._remove(min(free, key=lambda b: b.size))
         name = segment_name("r")
         fd = os.open("/dev/shm" + name, os.O_CREAT | os.O_EXCL | os.O_RDWR, 0o600)

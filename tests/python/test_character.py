@@ -121,11 +121,27 @@ def test_a_trigger_sees_it_and_settings_are_checked(instance: spear.Instance) ->
             character.CapsuleComponent.CapsuleRadius = 0.0
     with instance.end_frame():
         pass
-    walk(instance, player, 20)  # x = 2: its capsule reaches into the trigger (x in [1, 2])
+    # Walking at 6 m/s towards the trigger (x in [1, 2]): the frame its capsule first reaches in is the
+    # frame the trigger reports the begin-overlap event (not one later).
+    entered = began = -1
+    for frame in range(20):
+        walk(instance, player, 1)
+        with instance.begin_frame():
+            if entered < 0 and trigger.IsOverlappingActor(Other=character):
+                entered = frame
+            if began < 0 and trigger.CollisionComponent.GetBeginOverlaps() == [character.CapsuleComponent]:
+                began = frame
+        with instance.end_frame():
+            pass
+    assert entered >= 0 and began == entered
     with instance.begin_frame():
         assert trigger.GetOverlappingActors(ClassFilter=spear.ACharacter) == [character]
         # Moving it by hand teleports it; physics carries on from there.
         character.SetActorLocation(NewLocation=spear.FVector(X=-5.0, Z=2.0))
+    with instance.end_frame():
+        pass
+    with instance.begin_frame():
+        assert character.GetActorLocation().X == pytest.approx(-5.0)
     with instance.end_frame():
         pass
     instance.step(num_frames=60)

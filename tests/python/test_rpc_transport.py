@@ -341,3 +341,27 @@ def test_a_frame_the_engine_keeps_is_never_overwritten_by_later_arguments() -> N
                 connection.request("echo", value=np.full((512, 512, 4), value, np.uint8))
             again = camera.read_pixels()["final_color"]  # the frame the engine kept
         assert np.array_equal(again, expected)
+
+
+def test_a_full_reply_buffer_pool_does_not_churn() -> None:
+    """More arrays of one size in flight than the pool may hold: the pool fills up once and then keeps its
+    buffers (it never drops a buffer of a size it wants to make room for another of that size)."""
+    from spear._reply_buffers import MAX_BUFFERS, ReplyBuffers
+
+    pool = ReplyBuffers()
+    try:
+        size = 1 << 16
+        names = []
+        for _ in range(4):
+            for _ in range(MAX_BUFFERS + 4):  # this many arrays missed a buffer in one reply
+                pool.learn(size)
+            pool.offers()
+            names.append(set(pool._buffers))  # noqa: SLF001
+        assert len(names[0]) == MAX_BUFFERS and names[1] == names[0] and names[3] == names[0]
+        # A size nobody wants any more gives way to a wanted one.
+        for _ in range(MAX_BUFFERS):
+            pool.learn(size * 8)
+        pool.offers()
+        assert all(b.size >= size * 8 for b in pool._buffers.values())  # noqa: SLF001
+    finally:
+        pool.close()

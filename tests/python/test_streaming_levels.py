@@ -152,6 +152,16 @@ def test_bad_levels_change_nothing(instance: spear.Instance, tmp_path: Path) -> 
         with pytest.raises(InvalidArgumentError, match="no streaming level 'Attic' in this world \\(levels: "
                                                        "'Kitchen', 'Garden'\\)"):
             Statics.UnloadStreamLevel(WorldContextObject=game, LevelName="Attic")
+        # A scene whose level marked loaded cannot be read is refused as a whole: the world stays as it was.
+        broken = json.loads(main.read_text())
+        broken["levels"][1] = {"name": "Garden", "path": "levels/missing.json", "loaded": True}
+        (tmp_path / "broken.json").write_text(json.dumps(broken))
+        Statics.LoadStreamLevel(WorldContextObject=game, LevelName="Kitchen")
+        with pytest.raises(NotFoundError, match="streaming level 'Garden'"):
+            game.load_scene(path=str(tmp_path / "broken.json"))
+        assert game.get_actor_count() == 4 and game.find_actor_by_name(name="Crate") is not None
+        assert Statics.IsStreamingLevelLoaded(WorldContextObject=game, LevelName="Kitchen")
+        assert Statics.GetStreamingLevelNames(WorldContextObject=game) == ["Kitchen", "Garden"]
     with instance.end_frame():
         pass
 

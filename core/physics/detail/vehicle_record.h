@@ -8,7 +8,7 @@
 namespace sp::physics::detail {
 
 struct VehicleRecord {
-    std::unique_ptr<btDefaultVehicleRaycaster> raycaster;
+    std::unique_ptr<btVehicleRaycaster> raycaster;
     std::unique_ptr<btRaycastVehicle> vehicle; // declared after the ray caster it points to
 };
 

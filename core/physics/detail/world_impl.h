@@ -17,6 +17,20 @@
 
 namespace sp::physics {
 
+namespace detail {
+
+// A ray callback that sees bodies only: not sensors (bodies without contact response), not characters.
+// The world's raycasts and vehicles' wheels use it.
+template <typename Callback> struct SolidOnly : Callback {
+    using Callback::Callback;
+    bool needsCollision(btBroadphaseProxy* proxy) const override {
+        const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+        return Callback::needsCollision(proxy) && object->hasContactResponse() && btRigidBody::upcast(object);
+    }
+};
+
+} // namespace detail
+
 struct PhysicsWorld::Impl {
     Settings settings;
     // Bodies are declared first so that they outlive the world, whose destructor still reads them.

@@ -155,12 +155,15 @@ TEST(CharacterTest, TeleportsAndIsRemovedCleanly) {
     PhysicsWorld world;
     addFloor(world);
     const BodyId character = addCharacter(world, 0.0, 0.95);
+    world.setCharacterWalkVelocity(character, {0.0, 1.0, 0.0});
     world.setCharacterPosition(character, {5.0, 1.0, 3.0});
     EXPECT_EQ(world.getCharacterPosition(character), Eigen::Vector3d(5.0, 1.0, 3.0));
     run(world, 1.5);
     EXPECT_NEAR(world.getCharacterPosition(character).z(), 0.9, 0.02);
+    EXPECT_NEAR(world.getCharacterPosition(character).y(), 2.5, 1e-6); // it kept walking after the teleport
+    world.setCharacterWalkVelocity(character, Eigen::Vector3d::Zero());
     // Rays and overlaps see bodies only.
-    EXPECT_FALSE(world.raycast({5.0, 1.0, 5.0}, {5.0, 1.0, 1.5}).has_value());
+    EXPECT_FALSE(world.raycast({5.0, 2.5, 5.0}, {5.0, 2.5, 1.5}).has_value());
     world.removeCharacter(character);
     EXPECT_FALSE(world.isValidCharacter(character));
     expectThrowMessage<StaleObject>(

@@ -137,6 +137,26 @@ TEST(VehicleTest, AWallStopsIt) {
     EXPECT_GT(world.getPose(car).translation().x(), 6.0);
 }
 
+TEST(VehicleTest, ItsWheelsRollThroughASensorPad) {
+    // A trigger volume on the road, its top between the chassis and the road: the wheels' rays go
+    // through it to the road, as the world's raycasts do.
+    PhysicsWorld world;
+    addFloor(world);
+    BodyDesc pad;
+    pad.shape = Shape::box({5.0, 5.0, 0.2});
+    pad.pose = at(0.0, 0.0, 0.2);
+    pad.mobility = Mobility::Static;
+    pad.overlapOnly = true;
+    world.addBody(pad);
+    const BodyId car = addCar(world);
+    run(world, 4.0);
+    EXPECT_NEAR(
+        world.getPose(car).translation().z(),
+        0.3 + carDesc().suspensionRestLength - kGravity / (4.0 * carDesc().suspensionStiffness) + 0.35, 1e-3);
+    for (int wheel = 0; wheel < 4; ++wheel)
+        EXPECT_NEAR(world.getWheelState(car, wheel).contactPoint.z(), 0.0, 1e-9);
+}
+
 TEST(VehicleTest, RunsAreBitIdentical) {
     auto trajectory = [] {
         PhysicsWorld world;
