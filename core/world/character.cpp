@@ -108,6 +108,11 @@ sp::physics::BodyId ACharacter::PhysicsCharacter(const char* function) const {
     return character_;
 }
 
+double ACharacter::GetAgentRadius() const {
+    const Eigen::Vector3d scale = CapsuleComponent->GetComponentScale().toEigen().cwiseAbs();
+    return CapsuleComponent->CapsuleRadius * std::max(scale.x(), scale.y());
+}
+
 void ACharacter::Jump() {
     jumpPressed_ = true;
 }

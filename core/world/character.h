@@ -104,6 +104,9 @@ class ACharacter : public APawn {
     void BeginPlay() override;
     void Tick(double deltaSeconds) override;
     void EndPlay() override;
+    double GetMovementSpeed() const override { return CharacterMovement->MaxWalkSpeed; }
+    bool IsWalking() const override { return true; }
+    double GetAgentRadius() const override;
     // Brings the physics character in line with the actor just before the step (a teleport by anyone this
     // frame, changed settings).
     void PrePhysicsTick() override;

@@ -106,3 +106,93 @@ void APlayerController::AddRollInput(double Val) {
 void APlayerController::OnPossess(APawn* /*pawn*/) {
     viewTarget_ = {}; // the view follows the new pawn, as UE's default (bAutoManageActiveCameraTarget)
 }
+
+// -- AAIController -----------------------------------------------------------------------------------
+
+FVector AAIController::goalLocation() const {
+    if (const auto* goal = dynamic_cast<const AActor*>(sp::reflect::ObjectTable::find(goalActor_)))
+        return goal->GetActorLocation();
+    return destination_;
+}
+
+bool AAIController::arrived(const APawn& pawn, Eigen::Vector3d& offset) const {
+    offset = goalLocation().toEigen() - pawn.GetActorLocation().toEigen();
+    if (pawn.IsWalking())
+        offset.z() = 0.0;
+    return offset.norm() <= acceptanceRadius_ + (stopOnOverlap_ ? pawn.GetAgentRadius() : 0.0);
+}
+
+EPathFollowingRequestResult AAIController::start(const char* function) {
+    SP_CHECK(std::isfinite(acceptanceRadius_) && acceptanceRadius_ >= 0.0, sp::InvalidArgument,
+             "AAIController.", function, "(): AcceptanceRadius ", acceptanceRadius_, " must be >= 0");
+    moving_ = false;
+    const APawn* pawn = K2_GetPawn();
+    if (!pawn)
+        return EPathFollowingRequestResult::Failed;
+    Eigen::Vector3d offset;
+    if (arrived(*pawn, offset))
+        return EPathFollowingRequestResult::AlreadyAtGoal;
+    moving_ = true;
+    return EPathFollowingRequestResult::RequestSuccessful;
+}
+
+EPathFollowingRequestResult AAIController::MoveToLocation(const FVector& Dest, double AcceptanceRadius,
+                                                          bool bStopOnOverlap, bool /*bUsePathfinding*/) {
+    SP_CHECK(std::isfinite(Dest.X) && std::isfinite(Dest.Y) && std::isfinite(Dest.Z), sp::InvalidArgument,
+             "AAIController.MoveToLocation(): Dest must be finite");
+    destination_ = Dest;
+    goalActor_ = {};
+    acceptanceRadius_ = AcceptanceRadius;
+    stopOnOverlap_ = bStopOnOverlap;
+    return start("MoveToLocation");
+}
+
+EPathFollowingRequestResult AAIController::MoveToActor(AActor* Goal, double AcceptanceRadius,
+                                                       bool bStopOnOverlap, bool /*bUsePathfinding*/) {
+    moving_ = false;
+    if (!Goal)
+        return EPathFollowingRequestResult::Failed;
+    SP_CHECK(Goal->GetWorld() == GetWorld(), sp::InvalidArgument,
+             "AAIController.MoveToActor(): ", Goal->GetDebugName(), " is in another world than ",
+             GetDebugName());
+    goalActor_ = Goal->GetHandle();
+    destination_ = Goal->GetActorLocation();
+    acceptanceRadius_ = AcceptanceRadius;
+    stopOnOverlap_ = bStopOnOverlap;
+    return start("MoveToActor");
+}
+
+void AAIController::StopMovement() {
+    moving_ = false;
+}
+
+FVector AAIController::GetImmediateMoveDestination() const {
+    if (moving_)
+        return goalLocation();
+    const APawn* pawn = K2_GetPawn();
+    return pawn ? pawn->GetActorLocation() : GetActorLocation();
+}
+
+void AAIController::Tick(double deltaSeconds) {
+    AController::Tick(deltaSeconds);
+    APawn* pawn = K2_GetPawn();
+    if (!moving_ || !pawn)
+        return;
+    if (!goalActor_.isNull() && !sp::reflect::ObjectTable::find(goalActor_)) {
+        moving_ = false; // the goal actor is gone
+        return;
+    }
+    Eigen::Vector3d offset;
+    if (arrived(*pawn, offset)) {
+        moving_ = false;
+        return;
+    }
+    // Face where it goes, and ask for the input that covers the rest in this step, at most a full unit (the
+    // pawn's own speed): the last step lands on the goal instead of passing it.
+    const double speed = pawn->GetMovementSpeed();
+    SetControlRotation(FRotator{GetControlRotation().Pitch, std::atan2(offset.y(), offset.x()) * 180.0 / M_PI,
+                                GetControlRotation().Roll});
+    const double reach = speed * deltaSeconds;
+    const double scale = reach > 0.0 ? std::min(1.0, offset.norm() / reach) : 1.0;
+    pawn->AddMovementInput(FVector::fromEigen(offset.normalized()), scale);
+}

@@ -98,9 +98,75 @@ class APlayerController : public AController {
     sp::reflect::ObjectHandle viewTarget_;
 };
 
-/// A controller for non-player pawns, directed from code.
+/// What a move request did (UE's EPathFollowingRequestResult).
+SPENUM()
+enum class EPathFollowingRequestResult : uint8_t {
+    /// Not started: the controller has no pawn, or the goal is None.
+    Failed = 0,
+    /// The pawn is within the acceptance radius already.
+    AlreadyAtGoal = 1,
+    /// The pawn is on its way.
+    RequestSuccessful = 2,
+};
+
+/// What an AI controller's movement is doing (UE's EPathFollowingStatus).
+SPENUM()
+enum class EPathFollowingStatus : uint8_t {
+    /// No move in progress.
+    Idle = 0,
+    /// Waiting (not used yet: moves start at once).
+    Waiting = 1,
+    /// Paused (not used yet).
+    Paused = 2,
+    /// Moving to its goal.
+    Moving = 3,
+};
+
+/// A controller for non-player pawns, directed from code. MoveToLocation / MoveToActor walk (ACharacter)
+/// or fly (ADefaultPawn) the pawn to a goal through its movement input, turning the control rotation to
+/// face where it goes. Paths are straight lines: with no navigation mesh yet, bUsePathfinding is accepted
+/// for UE compatibility and a pawn walks into what is in its way.
 SPCLASS()
 class AAIController : public AController {
     SP_GENERATED_BODY()
   public:
+    /// Starts moving the pawn to Dest; it stops within AcceptanceRadius metres of it (in the horizontal
+    /// plane for a walking pawn), plus its own radius when bStopOnOverlap.
+    SPFUNCTION()
+    EPathFollowingRequestResult MoveToLocation(const FVector& Dest, double AcceptanceRadius = 0.1,
+                                               bool bStopOnOverlap = true, bool bUsePathfinding = true);
+
+    /// Starts moving the pawn to Goal, following it if it moves.
+    SPFUNCTION()
+    EPathFollowingRequestResult MoveToActor(AActor* Goal, double AcceptanceRadius = 0.1,
+                                            bool bStopOnOverlap = true, bool bUsePathfinding = true);
+
+    /// Stops the move in progress.
+    SPFUNCTION()
+    void StopMovement();
+
+    /// Returns whether a move is in progress.
+    SPFUNCTION()
+    EPathFollowingStatus GetMoveStatus() const {
+        return moving_ ? EPathFollowingStatus::Moving : EPathFollowingStatus::Idle;
+    }
+
+    /// Returns the point the pawn is moving to (its location when no move is in progress).
+    SPFUNCTION()
+    FVector GetImmediateMoveDestination() const;
+
+    void Tick(double deltaSeconds) override;
+
+  private:
+    // Where the goal is now: the goal actor's location, else the destination.
+    FVector goalLocation() const;
+    // The remaining offset from the pawn to the goal, horizontal for a walking pawn, and how close counts.
+    bool arrived(const APawn& pawn, Eigen::Vector3d& offset) const;
+    EPathFollowingRequestResult start(const char* function);
+
+    bool moving_ = false;
+    FVector destination_;
+    sp::reflect::ObjectHandle goalActor_;
+    double acceptanceRadius_ = 0.1;
+    bool stopOnOverlap_ = true;
 };

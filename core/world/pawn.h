@@ -59,6 +59,13 @@ class APawn : public AActor {
     void Tick(double deltaSeconds) override;
     void EndPlay() override;
 
+    // For controllers that steer the pawn through its movement input: the speed in m/s that a full unit
+    // of input moves it at (0: it does not move from input), whether it walks (moves in the horizontal
+    // plane only), and its radius in the horizontal plane.
+    virtual double GetMovementSpeed() const { return 0.0; }
+    virtual bool IsWalking() const { return false; }
+    virtual double GetAgentRadius() const { return 0.0; }
+
     // Called by AController::Possess and UnPossess only.
     void SetControllerHandle(sp::reflect::ObjectHandle controller) { controller_ = controller; }
 
@@ -106,4 +113,5 @@ class ADefaultPawn : public APawn {
     double BaseLookUpRate = 45.0;
 
     void Tick(double deltaSeconds) override;
+    double GetMovementSpeed() const override { return MaxSpeed; }
 };

@@ -34,6 +34,33 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPathFollowingRequestResult>() {
+    static const sp::reflect::EnumInfo info{
+        "EPathFollowingRequestResult",
+        "What a move request did (UE's EPathFollowingRequestResult).",
+        {
+            {"Failed", 0},
+            {"AlreadyAtGoal", 1},
+            {"RequestSuccessful", 2},
+        },
+    };
+    return info;
+}
+
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPathFollowingStatus>() {
+    static const sp::reflect::EnumInfo info{
+        "EPathFollowingStatus",
+        "What an AI controller's movement is doing (UE's EPathFollowingStatus).",
+        {
+            {"Idle", 0},
+            {"Waiting", 1},
+            {"Paused", 2},
+            {"Moving", 3},
+        },
+    };
+    return info;
+}
+
 // -- AAIController ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& AAIController::StaticClass() {
@@ -41,11 +68,109 @@ const sp::reflect::TypeInfo& AAIController::StaticClass() {
         using Self = AAIController;
         sp::reflect::TypeInfo t;
         t.name = "AAIController";
-        t.doc = "A controller for non-player pawns, directed from code.";
+        t.doc = "A controller for non-player pawns, directed from code. MoveToLocation / MoveToActor walk (ACharacter)\nor fly (ADefaultPawn) the pawn to a goal through its movement input, turning the control rotation to\nface where it goes. Paths are straight lines: with no navigation mesh yet, bUsePathfinding is accepted\nfor UE compatibility and a pawn walks into what is in its way.";
         t.kind = sp::reflect::TypeInfo::Kind::Class;
         t.parent = &AController::StaticClass();
         t.isAbstract = false;
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
+        t.functions.push_back({
+            "MoveToLocation",
+            "Starts moving the pawn to Dest; it stops within AcceptanceRadius metres of it (in the horizontal\nplane for a walking pawn), plus its own radius when bStopOnOverlap.",
+            "EPathFollowingRequestResult",
+            {
+                {"Dest", "FVector", false, false},
+                {"AcceptanceRadius", "float", true, false},
+                {"bStopOnOverlap", "bool", true, false},
+                {"bUsePathfinding", "bool", true, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "AAIController.MoveToLocation()";
+                sp::reflect::checkArguments(args, {"Dest", "AcceptanceRadius", "bStopOnOverlap", "bUsePathfinding"}, kContext);
+                FVector Dest = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "Dest", kContext), "AAIController.MoveToLocation(): argument 'Dest'");
+                const sp::reflect::Value* AcceptanceRadiusArg = sp::reflect::findArgument(args, "AcceptanceRadius");
+                double AcceptanceRadius = AcceptanceRadiusArg ? sp::reflect::decode<double>(*AcceptanceRadiusArg, "AAIController.MoveToLocation(): argument 'AcceptanceRadius'") : double(0.1);
+                const sp::reflect::Value* bStopOnOverlapArg = sp::reflect::findArgument(args, "bStopOnOverlap");
+                bool bStopOnOverlap = bStopOnOverlapArg ? sp::reflect::decode<bool>(*bStopOnOverlapArg, "AAIController.MoveToLocation(): argument 'bStopOnOverlap'") : bool(true);
+                const sp::reflect::Value* bUsePathfindingArg = sp::reflect::findArgument(args, "bUsePathfinding");
+                bool bUsePathfinding = bUsePathfindingArg ? sp::reflect::decode<bool>(*bUsePathfindingArg, "AAIController.MoveToLocation(): argument 'bUsePathfinding'") : bool(true);
+                auto result = sp::reflect::selfCast<Self>(self)->MoveToLocation(Dest, AcceptanceRadius, bStopOnOverlap, bUsePathfinding);
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "MoveToActor",
+            "Starts moving the pawn to Goal, following it if it moves.",
+            "EPathFollowingRequestResult",
+            {
+                {"Goal", "AActor", false, false},
+                {"AcceptanceRadius", "float", true, false},
+                {"bStopOnOverlap", "bool", true, false},
+                {"bUsePathfinding", "bool", true, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "AAIController.MoveToActor()";
+                sp::reflect::checkArguments(args, {"Goal", "AcceptanceRadius", "bStopOnOverlap", "bUsePathfinding"}, kContext);
+                AActor* Goal = sp::reflect::decodeNonNull<AActor*>(sp::reflect::requireArgument(args, "Goal", kContext), "AAIController.MoveToActor(): argument 'Goal'");
+                const sp::reflect::Value* AcceptanceRadiusArg = sp::reflect::findArgument(args, "AcceptanceRadius");
+                double AcceptanceRadius = AcceptanceRadiusArg ? sp::reflect::decode<double>(*AcceptanceRadiusArg, "AAIController.MoveToActor(): argument 'AcceptanceRadius'") : double(0.1);
+                const sp::reflect::Value* bStopOnOverlapArg = sp::reflect::findArgument(args, "bStopOnOverlap");
+                bool bStopOnOverlap = bStopOnOverlapArg ? sp::reflect::decode<bool>(*bStopOnOverlapArg, "AAIController.MoveToActor(): argument 'bStopOnOverlap'") : bool(true);
+                const sp::reflect::Value* bUsePathfindingArg = sp::reflect::findArgument(args, "bUsePathfinding");
+                bool bUsePathfinding = bUsePathfindingArg ? sp::reflect::decode<bool>(*bUsePathfindingArg, "AAIController.MoveToActor(): argument 'bUsePathfinding'") : bool(true);
+                auto result = sp::reflect::selfCast<Self>(self)->MoveToActor(Goal, AcceptanceRadius, bStopOnOverlap, bUsePathfinding);
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "StopMovement",
+            "Stops the move in progress.",
+            "None",
+            {
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "AAIController.StopMovement()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                sp::reflect::selfCast<Self>(self)->StopMovement();
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "GetMoveStatus",
+            "Returns whether a move is in progress.",
+            "EPathFollowingStatus",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "AAIController.GetMoveStatus()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->GetMoveStatus();
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "GetImmediateMoveDestination",
+            "Returns the point the pawn is moving to (its location when no move is in progress).",
+            "FVector",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "AAIController.GetImmediateMoveDestination()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->GetImmediateMoveDestination();
+                sp::reflect::checkResultFields(result, kContext);
+                return sp::reflect::encode(result);
+            },
+        });
         return t;
     }();
     return info;

@@ -230,6 +230,36 @@ template <> struct type_caster<EComponentMobility> {
     }
 };
 
+template <> struct type_caster<EPathFollowingRequestResult> {
+    PYBIND11_TYPE_CASTER(EPathFollowingRequestResult, const_name("EPathFollowingRequestResult"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EPathFollowingRequestResult");
+        if (!isinstance(src, cls))
+            return false;
+        value = static_cast<EPathFollowingRequestResult>(src.cast<int64_t>());
+        return true;
+    }
+    static handle cast(EPathFollowingRequestResult v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EPathFollowingRequestResult");
+        return cls(static_cast<int64_t>(v)).release();
+    }
+};
+
+template <> struct type_caster<EPathFollowingStatus> {
+    PYBIND11_TYPE_CASTER(EPathFollowingStatus, const_name("EPathFollowingStatus"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EPathFollowingStatus");
+        if (!isinstance(src, cls))
+            return false;
+        value = static_cast<EPathFollowingStatus>(src.cast<int64_t>());
+        return true;
+    }
+    static handle cast(EPathFollowingStatus v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EPathFollowingStatus");
+        return cls(static_cast<int64_t>(v)).release();
+    }
+};
+
 template <> struct type_caster<FCameraPixels> {
     PYBIND11_TYPE_CASTER(FCameraPixels, const_name("FCameraPixels"));
     // A partial TypedDict: a plain dict; array fields without data are left out.

@@ -6,6 +6,7 @@
 #include "core/reflect/type_info.h"
 
 #include "core/sensors/camera_sensor_component.h"
+#include "core/world/controller.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
 
@@ -13,6 +14,8 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraModality
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraToneCurve>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECollisionPrimitive>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EComponentMobility>();
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPathFollowingRequestResult>();
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPathFollowingStatus>();
 
 // The module's entry points, with C linkage so that a plugin's shared library can be opened with dlopen()
 // and its entry points found with dlsym("spear_register_engine_types"); exported even where the library is built

@@ -352,9 +352,74 @@ void spear_bind_engine(py::module_& m) {
     }
     {
         using Self = AAIController;
-        py::class_<Ref<Self>, Ref<AController>> cls(m, "AAIController", "A controller for non-player pawns, directed from code.");
+        py::class_<Ref<Self>, Ref<AController>> cls(m, "AAIController", "A controller for non-player pawns, directed from code. MoveToLocation / MoveToActor walk (ACharacter)\nor fly (ADefaultPawn) the pawn to a goal through its movement input, turning the control rotation to\nface where it goes. Paths are straight lines: with no navigation mesh yet, bUsePathfinding is accepted\nfor UE compatibility and a pawn walks into what is in its way.");
         cls.attr("__sp_class__") = "AAIController";
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def(
+            "MoveToLocation",
+            [](const Ref<Self>& self, Bridge<FVector>::Py Dest, Bridge<double>::Py AcceptanceRadius, Bridge<bool>::Py bStopOnOverlap, Bridge<bool>::Py bUsePathfinding) -> py::object {
+                static constexpr const char* kContext = "AAIController.MoveToLocation()";
+                Self* object = self.get<Self>(kContext);
+                auto DestValue = Bridge<FVector>::in(std::move(Dest), "AAIController.MoveToLocation(): argument 'Dest'");
+                auto AcceptanceRadiusValue = Bridge<double>::in(std::move(AcceptanceRadius), "AAIController.MoveToLocation(): argument 'AcceptanceRadius'");
+                auto bStopOnOverlapValue = Bridge<bool>::in(std::move(bStopOnOverlap), "AAIController.MoveToLocation(): argument 'bStopOnOverlap'");
+                auto bUsePathfindingValue = Bridge<bool>::in(std::move(bUsePathfinding), "AAIController.MoveToLocation(): argument 'bUsePathfinding'");
+                auto result = object->MoveToLocation(DestValue, AcceptanceRadiusValue, bStopOnOverlapValue, bUsePathfindingValue);
+                return Bridge<EPathFollowingRequestResult>::out(result);
+            },
+            py::kw_only(),
+            py::arg("Dest"),
+            py::arg("AcceptanceRadius") = static_cast<Bridge<double>::Py>(double(0.1)),
+            py::arg("bStopOnOverlap") = static_cast<Bridge<bool>::Py>(bool(true)),
+            py::arg("bUsePathfinding") = static_cast<Bridge<bool>::Py>(bool(true)),
+            "Starts moving the pawn to Dest; it stops within AcceptanceRadius metres of it (in the horizontal\nplane for a walking pawn), plus its own radius when bStopOnOverlap.");
+        cls.def(
+            "MoveToActor",
+            [](const Ref<Self>& self, Bridge<AActor*>::Py Goal, Bridge<double>::Py AcceptanceRadius, Bridge<bool>::Py bStopOnOverlap, Bridge<bool>::Py bUsePathfinding) -> py::object {
+                static constexpr const char* kContext = "AAIController.MoveToActor()";
+                Self* object = self.get<Self>(kContext);
+                auto GoalValue = Bridge<AActor*>::in(std::move(Goal), "AAIController.MoveToActor(): argument 'Goal'");
+                SP_CHECK(GoalValue, sp::InvalidArgument, "AAIController.MoveToActor(): argument 'Goal'", " must not be None");
+                auto AcceptanceRadiusValue = Bridge<double>::in(std::move(AcceptanceRadius), "AAIController.MoveToActor(): argument 'AcceptanceRadius'");
+                auto bStopOnOverlapValue = Bridge<bool>::in(std::move(bStopOnOverlap), "AAIController.MoveToActor(): argument 'bStopOnOverlap'");
+                auto bUsePathfindingValue = Bridge<bool>::in(std::move(bUsePathfinding), "AAIController.MoveToActor(): argument 'bUsePathfinding'");
+                auto result = object->MoveToActor(GoalValue, AcceptanceRadiusValue, bStopOnOverlapValue, bUsePathfindingValue);
+                return Bridge<EPathFollowingRequestResult>::out(result);
+            },
+            py::kw_only(),
+            py::arg("Goal"),
+            py::arg("AcceptanceRadius") = static_cast<Bridge<double>::Py>(double(0.1)),
+            py::arg("bStopOnOverlap") = static_cast<Bridge<bool>::Py>(bool(true)),
+            py::arg("bUsePathfinding") = static_cast<Bridge<bool>::Py>(bool(true)),
+            "Starts moving the pawn to Goal, following it if it moves.");
+        cls.def(
+            "StopMovement",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "AAIController.StopMovement()";
+                Self* object = self.get<Self>(kContext);
+                object->StopMovement();
+                return py::none();
+            },
+            "Stops the move in progress.");
+        cls.def(
+            "GetMoveStatus",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "AAIController.GetMoveStatus()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetMoveStatus();
+                return Bridge<EPathFollowingStatus>::out(result);
+            },
+            "Returns whether a move is in progress.");
+        cls.def(
+            "GetImmediateMoveDestination",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "AAIController.GetImmediateMoveDestination()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetImmediateMoveDestination();
+                sp::reflect::checkResultFields(result, kContext);
+                return Bridge<FVector>::out(result);
+            },
+            "Returns the point the pawn is moving to (its location when no move is in progress).");
     }
     {
         using Self = ACameraSensorActor;

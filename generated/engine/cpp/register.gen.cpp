@@ -38,6 +38,8 @@ extern "C" void spear_register_engine_types() {
     registry.add(sp::reflect::StaticEnum<ECameraToneCurve>());
     registry.add(sp::reflect::StaticEnum<ECollisionPrimitive>());
     registry.add(sp::reflect::StaticEnum<EComponentMobility>());
+    registry.add(sp::reflect::StaticEnum<EPathFollowingRequestResult>());
+    registry.add(sp::reflect::StaticEnum<EPathFollowingStatus>());
     registry.add(UObject::StaticClass());
     registry.add(AActor::StaticClass());
     registry.add(AController::StaticClass());
@@ -151,10 +153,12 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(AController::StaticClass());
     registry.remove(AActor::StaticClass());
     registry.remove(UObject::StaticClass());
+    registry.remove(sp::reflect::StaticEnum<EPathFollowingStatus>());
+    registry.remove(sp::reflect::StaticEnum<EPathFollowingRequestResult>());
     registry.remove(sp::reflect::StaticEnum<EComponentMobility>());
     registry.remove(sp::reflect::StaticEnum<ECollisionPrimitive>());
     registry.remove(sp::reflect::StaticEnum<ECameraToneCurve>());
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "9dcd9580a541834c"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "6ca82a178a4337c0"; }

@@ -47,6 +47,8 @@ __all__ = [
     "ECameraToneCurve",
     "ECollisionPrimitive",
     "EComponentMobility",
+    "EPathFollowingRequestResult",
+    "EPathFollowingStatus",
     "FCameraPixels",
     "FHitResult",
     "FLinearColor",
@@ -129,6 +131,23 @@ class EComponentMobility(enum.IntEnum):
     Static = 0
     Stationary = 1
     Movable = 2
+
+
+class EPathFollowingRequestResult(enum.IntEnum):
+    """What a move request did (UE's EPathFollowingRequestResult)."""
+
+    Failed = 0
+    AlreadyAtGoal = 1
+    RequestSuccessful = 2
+
+
+class EPathFollowingStatus(enum.IntEnum):
+    """What an AI controller's movement is doing (UE's EPathFollowingStatus)."""
+
+    Idle = 0
+    Waiting = 1
+    Paused = 2
+    Moving = 3
 
 
 class FCameraPixels(TypedDict, total=False):
@@ -365,7 +384,11 @@ class AAIControllerSend(AControllerSend):
 
 
 class AAIController(AController):
-    """A controller for non-player pawns, directed from code."""
+    """A controller for non-player pawns, directed from code. MoveToLocation / MoveToActor walk (ACharacter)
+    or fly (ADefaultPawn) the pawn to a goal through its movement input, turning the control rotation to
+    face where it goes. Paths are straight lines: with no navigation mesh yet, bUsePathfinding is accepted
+    for UE compatibility and a pawn walks into what is in its way.
+    """
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "AAIController"

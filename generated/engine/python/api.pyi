@@ -42,6 +42,8 @@ __all__ = [
     "ECameraToneCurve",
     "ECollisionPrimitive",
     "EComponentMobility",
+    "EPathFollowingRequestResult",
+    "EPathFollowingStatus",
     "FCameraPixels",
     "FHitResult",
     "FLinearColor",
@@ -161,6 +163,30 @@ class EComponentMobility(enum.IntEnum):
     """Does not move but its lighting may change."""
     Movable = 2
     """Free to move."""
+
+
+class EPathFollowingRequestResult(enum.IntEnum):
+    """What a move request did (UE's EPathFollowingRequestResult)."""
+
+    Failed = 0
+    """Not started: the controller has no pawn, or the goal is None."""
+    AlreadyAtGoal = 1
+    """The pawn is within the acceptance radius already."""
+    RequestSuccessful = 2
+    """The pawn is on its way."""
+
+
+class EPathFollowingStatus(enum.IntEnum):
+    """What an AI controller's movement is doing (UE's EPathFollowingStatus)."""
+
+    Idle = 0
+    """No move in progress."""
+    Waiting = 1
+    """Waiting (not used yet: moves start at once)."""
+    Paused = 2
+    """Paused (not used yet)."""
+    Moving = 3
+    """Moving to its goal."""
 
 
 class FCameraPixels(TypedDict, total=False):
@@ -615,16 +641,38 @@ class AController(AActor):
 
 class AAIControllerAsync(AControllerAsync):
     """AAIController's functions, called asynchronously: each returns a Future."""
-    ...
+
+    def MoveToLocation(self, *, Dest: FVector, AcceptanceRadius: float = 0.1, bStopOnOverlap: bool = True, bUsePathfinding: bool = True) -> Future[EPathFollowingRequestResult]: ...
+
+    def MoveToActor(self, *, Goal: AActor, AcceptanceRadius: float = 0.1, bStopOnOverlap: bool = True, bUsePathfinding: bool = True) -> Future[EPathFollowingRequestResult]: ...
+
+    def StopMovement(self) -> Future[None]: ...
+
+    def GetMoveStatus(self) -> Future[EPathFollowingStatus]: ...
+
+    def GetImmediateMoveDestination(self) -> Future[FVector]: ...
 
 
 class AAIControllerSend(AControllerSend):
     """AAIController's functions, sent without waiting for a result (fire and forget)."""
-    ...
+
+    def MoveToLocation(self, *, Dest: FVector, AcceptanceRadius: float = 0.1, bStopOnOverlap: bool = True, bUsePathfinding: bool = True) -> None: ...
+
+    def MoveToActor(self, *, Goal: AActor, AcceptanceRadius: float = 0.1, bStopOnOverlap: bool = True, bUsePathfinding: bool = True) -> None: ...
+
+    def StopMovement(self) -> None: ...
+
+    def GetMoveStatus(self) -> None: ...
+
+    def GetImmediateMoveDestination(self) -> None: ...
 
 
 class AAIController(AController):
-    """A controller for non-player pawns, directed from code."""
+    """A controller for non-player pawns, directed from code. MoveToLocation / MoveToActor walk (ACharacter)
+    or fly (ADefaultPawn) the pawn to a goal through its movement input, turning the control rotation to
+    face where it goes. Paths are straight lines: with no navigation mesh yet, bUsePathfinding is accepted
+    for UE compatibility and a pawn walks into what is in its way.
+    """
 
     __sp_class__: ClassVar[str]
 
@@ -635,6 +683,23 @@ class AAIController(AController):
     @property
     def send_async(self) -> AAIControllerSend:
         """The same functions, fire and forget."""
+
+    def MoveToLocation(self, *, Dest: FVector, AcceptanceRadius: float = 0.1, bStopOnOverlap: bool = True, bUsePathfinding: bool = True) -> EPathFollowingRequestResult:
+        """Starts moving the pawn to Dest; it stops within AcceptanceRadius metres of it (in the horizontal
+        plane for a walking pawn), plus its own radius when bStopOnOverlap.
+        """
+
+    def MoveToActor(self, *, Goal: AActor, AcceptanceRadius: float = 0.1, bStopOnOverlap: bool = True, bUsePathfinding: bool = True) -> EPathFollowingRequestResult:
+        """Starts moving the pawn to Goal, following it if it moves."""
+
+    def StopMovement(self) -> None:
+        """Stops the move in progress."""
+
+    def GetMoveStatus(self) -> EPathFollowingStatus:
+        """Returns whether a move is in progress."""
+
+    def GetImmediateMoveDestination(self) -> FVector:
+        """Returns the point the pawn is moving to (its location when no move is in progress)."""
 
 
 class ACameraSensorActorAsync(AActorAsync):

@@ -18,7 +18,7 @@ from spear._rpc_proxy import ObjectProxy as _ObjectProxy
 from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
-from .api import ECameraModality, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, FCameraPixels, FHitResult, FLinearColor, FMaterialDesc, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
+from .api import ECameraModality, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EPathFollowingRequestResult, EPathFollowingStatus, FCameraPixels, FHitResult, FLinearColor, FMaterialDesc, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
 
@@ -155,6 +155,21 @@ _register_proxy(AController)
 
 class AAIController(AController, api.AAIController):
     __slots__ = ()
+
+    def MoveToLocation(self, *, Dest: FVector, AcceptanceRadius: float = _DEFAULT, bStopOnOverlap: bool = _DEFAULT, bUsePathfinding: bool = _DEFAULT) -> EPathFollowingRequestResult:
+        return cast("EPathFollowingRequestResult", self._sp_call("AAIController", "MoveToLocation", {"Dest": Dest, "AcceptanceRadius": AcceptanceRadius, "bStopOnOverlap": bStopOnOverlap, "bUsePathfinding": bUsePathfinding}, "EPathFollowingRequestResult"))
+
+    def MoveToActor(self, *, Goal: api.AActor, AcceptanceRadius: float = _DEFAULT, bStopOnOverlap: bool = _DEFAULT, bUsePathfinding: bool = _DEFAULT) -> EPathFollowingRequestResult:
+        return cast("EPathFollowingRequestResult", self._sp_call("AAIController", "MoveToActor", {"Goal": Goal, "AcceptanceRadius": AcceptanceRadius, "bStopOnOverlap": bStopOnOverlap, "bUsePathfinding": bUsePathfinding}, "EPathFollowingRequestResult"))
+
+    def StopMovement(self) -> None:
+        self._sp_call("AAIController", "StopMovement", {}, "None")
+
+    def GetMoveStatus(self) -> EPathFollowingStatus:
+        return cast("EPathFollowingStatus", self._sp_call("AAIController", "GetMoveStatus", {}, "EPathFollowingStatus"))
+
+    def GetImmediateMoveDestination(self) -> FVector:
+        return cast("FVector", self._sp_call("AAIController", "GetImmediateMoveDestination", {}, "FVector"))
 
 
 _register_proxy(AAIController)

@@ -68,3 +68,16 @@ def characters(instance: spear.Instance) -> None:
         character.Jump()
     with instance.end_frame():
         pass
+
+
+def ai(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        controller = game.spawn_actor(uclass=spear.AAIController)
+        result = controller.MoveToLocation(Dest=spear.FVector(X=3.0), AcceptanceRadius=0.5)
+        assert_type(result, spear.EPathFollowingRequestResult)
+        assert_type(controller.GetMoveStatus(), spear.EPathFollowingStatus)
+        if result == spear.EPathFollowingRequestResult.RequestSuccessful:
+            controller.StopMovement()
+    with instance.end_frame():
+        pass
