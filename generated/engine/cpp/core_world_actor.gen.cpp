@@ -26,6 +26,7 @@
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
 #include "core/world/shape_components.h"
+#include "core/world/spline_component.h"
 #include "core/world/static_mesh_actor.h"
 #include "core/world/static_mesh_component.h"
 #include "core/world/wheeled_vehicle.h"

@@ -34,6 +34,7 @@
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
 #include "core/world/shape_components.h"
+#include "core/world/spline_component.h"
 #include "core/world/static_mesh_actor.h"
 #include "core/world/static_mesh_component.h"
 #include "core/world/wheeled_vehicle.h"
@@ -89,6 +90,9 @@ template <> struct Ref<APointLight> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
 template <> struct Ref<ASkyLight> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
+template <> struct Ref<ASplineActor> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
 template <> struct Ref<ASpotLight> : Ref<AActor> {
@@ -156,6 +160,9 @@ template <> struct Ref<USpFuncComponent> : Ref<UActorComponent> {
 };
 template <> struct Ref<USphereComponent> : Ref<UShapeComponent> {
     using Ref<UShapeComponent>::Ref;
+};
+template <> struct Ref<USplineComponent> : Ref<USceneComponent> {
+    using Ref<USceneComponent>::Ref;
 };
 template <> struct Ref<USpotLightComponent> : Ref<UPointLightComponent> {
     using Ref<UPointLightComponent>::Ref;
@@ -256,6 +263,21 @@ template <> struct type_caster<EPathFollowingStatus> {
     }
     static handle cast(EPathFollowingStatus v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EPathFollowingStatus");
+        return cls(static_cast<int64_t>(v)).release();
+    }
+};
+
+template <> struct type_caster<ESplineCoordinateSpace> {
+    PYBIND11_TYPE_CASTER(ESplineCoordinateSpace, const_name("ESplineCoordinateSpace"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ESplineCoordinateSpace");
+        if (!isinstance(src, cls))
+            return false;
+        value = static_cast<ESplineCoordinateSpace>(src.cast<int64_t>());
+        return true;
+    }
+    static handle cast(ESplineCoordinateSpace v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ESplineCoordinateSpace");
         return cls(static_cast<int64_t>(v)).release();
     }
 };

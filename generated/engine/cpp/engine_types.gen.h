@@ -9,6 +9,7 @@
 #include "core/world/controller.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
+#include "core/world/spline_component.h"
 
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraModality>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraToneCurve>();
@@ -16,6 +17,7 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECollisionPrimi
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EComponentMobility>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPathFollowingRequestResult>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPathFollowingStatus>();
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ESplineCoordinateSpace>();
 
 // The module's entry points, with C linkage so that a plugin's shared library can be opened with dlopen()
 // and its entry points found with dlsym("spear_register_engine_types"); exported even where the library is built

@@ -998,6 +998,20 @@ void spear_bind_engine(py::module_& m) {
             "The sky light (also the root component).");
     }
     {
+        using Self = ASplineActor;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "ASplineActor", "An actor whose root is a spline (a path, a road's centre line).");
+        cls.attr("__sp_class__") = "ASplineActor";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "SplineComponent",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("ASplineActor.SplineComponent")->SplineComponent;
+                sp::reflect::checkNotNull(value, "ASplineActor.SplineComponent");
+                return Bridge<USplineComponent*>::out(value);
+            },
+            "The spline (the root component).");
+    }
+    {
         using Self = ASpotLight;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "ASpotLight", "An actor with a spot light as its root.");
         cls.attr("__sp_class__") = "ASpotLight";
@@ -2854,6 +2868,249 @@ void spear_bind_engine(py::module_& m) {
             py::kw_only(),
             py::arg("InSphereRadius"),
             "Sets SphereRadius (finite, > 0).");
+    }
+    {
+        using Self = USplineComponent;
+        py::class_<Ref<Self>, Ref<USceneComponent>> cls(m, "USplineComponent", "A curve through points.");
+        cls.attr("__sp_class__") = "USplineComponent";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "SplinePoints",
+            [](const Ref<Self>& self) { return Bridge<std::vector<FVector>>::out(self.get<Self>("USplineComponent.SplinePoints")->SplinePoints); },
+            [](const Ref<Self>& self, Bridge<std::vector<FVector>>::Py value) {
+                Self* object = self.get<Self>("USplineComponent.SplinePoints");
+                object->SplinePoints = Bridge<std::vector<FVector>>::in(std::move(value), "USplineComponent.SplinePoints");
+                object->PostPropertyChanged("SplinePoints");
+            },
+            "The points, in the component's space (metres).");
+        cls.def_property(
+            "bClosedLoop",
+            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("USplineComponent.bClosedLoop")->bClosedLoop); },
+            [](const Ref<Self>& self, Bridge<bool>::Py value) {
+                Self* object = self.get<Self>("USplineComponent.bClosedLoop");
+                object->bClosedLoop = Bridge<bool>::in(std::move(value), "USplineComponent.bClosedLoop");
+                object->PostPropertyChanged("bClosedLoop");
+            },
+            "Whether the last point joins the first.");
+        cls.def(
+            "AddSplinePoint",
+            [](const Ref<Self>& self, Bridge<FVector>::Py Position, Bridge<ESplineCoordinateSpace>::Py CoordinateSpace, Bridge<bool>::Py bUpdateSpline) -> py::object {
+                static constexpr const char* kContext = "USplineComponent.AddSplinePoint()";
+                Self* object = self.get<Self>(kContext);
+                auto PositionValue = Bridge<FVector>::in(std::move(Position), "USplineComponent.AddSplinePoint(): argument 'Position'");
+                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(std::move(CoordinateSpace), "USplineComponent.AddSplinePoint(): argument 'CoordinateSpace'");
+                auto bUpdateSplineValue = Bridge<bool>::in(std::move(bUpdateSpline), "USplineComponent.AddSplinePoint(): argument 'bUpdateSpline'");
+                object->AddSplinePoint(PositionValue, CoordinateSpaceValue, bUpdateSplineValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("Position"),
+            py::arg("CoordinateSpace"),
+            py::arg("bUpdateSpline") = static_cast<Bridge<bool>::Py>(bool(true)),
+            "Adds a point at the end. bUpdateSpline is accepted for UE compatibility (the curve is always current).");
+        cls.def(
+            "ClearSplinePoints",
+            [](const Ref<Self>& self, Bridge<bool>::Py bUpdateSpline) -> py::object {
+                static constexpr const char* kContext = "USplineComponent.ClearSplinePoints()";
+                Self* object = self.get<Self>(kContext);
+                auto bUpdateSplineValue = Bridge<bool>::in(std::move(bUpdateSpline), "USplineComponent.ClearSplinePoints(): argument 'bUpdateSpline'");
+                object->ClearSplinePoints(bUpdateSplineValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("bUpdateSpline") = static_cast<Bridge<bool>::Py>(bool(true)),
+            "Removes every point.");
+        cls.def(
+            "SetSplinePoints",
+            [](const Ref<Self>& self, Bridge<std::vector<FVector>>::Py Points, Bridge<ESplineCoordinateSpace>::Py CoordinateSpace, Bridge<bool>::Py bUpdateSpline) -> py::object {
+                static constexpr const char* kContext = "USplineComponent.SetSplinePoints()";
+                Self* object = self.get<Self>(kContext);
+                auto PointsValue = Bridge<std::vector<FVector>>::in(std::move(Points), "USplineComponent.SetSplinePoints(): argument 'Points'");
+                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(std::move(CoordinateSpace), "USplineComponent.SetSplinePoints(): argument 'CoordinateSpace'");
+                auto bUpdateSplineValue = Bridge<bool>::in(std::move(bUpdateSpline), "USplineComponent.SetSplinePoints(): argument 'bUpdateSpline'");
+                object->SetSplinePoints(PointsValue, CoordinateSpaceValue, bUpdateSplineValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("Points"),
+            py::arg("CoordinateSpace"),
+            py::arg("bUpdateSpline") = static_cast<Bridge<bool>::Py>(bool(true)),
+            "Replaces the points.");
+        cls.def(
+            "GetNumberOfSplinePoints",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "USplineComponent.GetNumberOfSplinePoints()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetNumberOfSplinePoints();
+                return Bridge<int32_t>::out(result);
+            },
+            "Returns the number of points.");
+        cls.def(
+            "SetClosedLoop",
+            [](const Ref<Self>& self, Bridge<bool>::Py bInClosedLoop, Bridge<bool>::Py bUpdateSpline) -> py::object {
+                static constexpr const char* kContext = "USplineComponent.SetClosedLoop()";
+                Self* object = self.get<Self>(kContext);
+                auto bInClosedLoopValue = Bridge<bool>::in(std::move(bInClosedLoop), "USplineComponent.SetClosedLoop(): argument 'bInClosedLoop'");
+                auto bUpdateSplineValue = Bridge<bool>::in(std::move(bUpdateSpline), "USplineComponent.SetClosedLoop(): argument 'bUpdateSpline'");
+                object->SetClosedLoop(bInClosedLoopValue, bUpdateSplineValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("bInClosedLoop"),
+            py::arg("bUpdateSpline") = static_cast<Bridge<bool>::Py>(bool(true)),
+            "Makes the spline a closed loop or an open curve.");
+        cls.def(
+            "IsClosedLoop",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "USplineComponent.IsClosedLoop()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->IsClosedLoop();
+                return Bridge<bool>::out(result);
+            },
+            "Returns true for a closed loop.");
+        cls.def(
+            "GetSplineLength",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "USplineComponent.GetSplineLength()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetSplineLength();
+                return Bridge<double>::out(result);
+            },
+            "Returns the length of the curve in metres (in the component's space, before its scale).");
+        cls.def(
+            "GetLocationAtDistanceAlongSpline",
+            [](const Ref<Self>& self, Bridge<double>::Py Distance, Bridge<ESplineCoordinateSpace>::Py CoordinateSpace) -> py::object {
+                static constexpr const char* kContext = "USplineComponent.GetLocationAtDistanceAlongSpline()";
+                const Self* object = self.get<Self>(kContext);
+                auto DistanceValue = Bridge<double>::in(std::move(Distance), "USplineComponent.GetLocationAtDistanceAlongSpline(): argument 'Distance'");
+                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(std::move(CoordinateSpace), "USplineComponent.GetLocationAtDistanceAlongSpline(): argument 'CoordinateSpace'");
+                auto result = object->GetLocationAtDistanceAlongSpline(DistanceValue, CoordinateSpaceValue);
+                sp::reflect::checkResultFields(result, kContext);
+                return Bridge<FVector>::out(result);
+            },
+            py::kw_only(),
+            py::arg("Distance"),
+            py::arg("CoordinateSpace"),
+            "Returns the point at Distance metres along the curve (clamped to it).");
+        cls.def(
+            "GetDirectionAtDistanceAlongSpline",
+            [](const Ref<Self>& self, Bridge<double>::Py Distance, Bridge<ESplineCoordinateSpace>::Py CoordinateSpace) -> py::object {
+                static constexpr const char* kContext = "USplineComponent.GetDirectionAtDistanceAlongSpline()";
+                const Self* object = self.get<Self>(kContext);
+                auto DistanceValue = Bridge<double>::in(std::move(Distance), "USplineComponent.GetDirectionAtDistanceAlongSpline(): argument 'Distance'");
+                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(std::move(CoordinateSpace), "USplineComponent.GetDirectionAtDistanceAlongSpline(): argument 'CoordinateSpace'");
+                auto result = object->GetDirectionAtDistanceAlongSpline(DistanceValue, CoordinateSpaceValue);
+                sp::reflect::checkResultFields(result, kContext);
+                return Bridge<FVector>::out(result);
+            },
+            py::kw_only(),
+            py::arg("Distance"),
+            py::arg("CoordinateSpace"),
+            "Returns the unit direction of the curve at Distance metres along it.");
+        cls.def(
+            "GetRotationAtDistanceAlongSpline",
+            [](const Ref<Self>& self, Bridge<double>::Py Distance, Bridge<ESplineCoordinateSpace>::Py CoordinateSpace) -> py::object {
+                static constexpr const char* kContext = "USplineComponent.GetRotationAtDistanceAlongSpline()";
+                const Self* object = self.get<Self>(kContext);
+                auto DistanceValue = Bridge<double>::in(std::move(Distance), "USplineComponent.GetRotationAtDistanceAlongSpline(): argument 'Distance'");
+                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(std::move(CoordinateSpace), "USplineComponent.GetRotationAtDistanceAlongSpline(): argument 'CoordinateSpace'");
+                auto result = object->GetRotationAtDistanceAlongSpline(DistanceValue, CoordinateSpaceValue);
+                sp::reflect::checkResultFields(result, kContext);
+                return Bridge<FRotator>::out(result);
+            },
+            py::kw_only(),
+            py::arg("Distance"),
+            py::arg("CoordinateSpace"),
+            "Returns the rotation whose X axis follows the curve at Distance metres along it (no roll).");
+        cls.def(
+            "GetLocationAtSplineInputKey",
+            [](const Ref<Self>& self, Bridge<double>::Py InKey, Bridge<ESplineCoordinateSpace>::Py CoordinateSpace) -> py::object {
+                static constexpr const char* kContext = "USplineComponent.GetLocationAtSplineInputKey()";
+                const Self* object = self.get<Self>(kContext);
+                auto InKeyValue = Bridge<double>::in(std::move(InKey), "USplineComponent.GetLocationAtSplineInputKey(): argument 'InKey'");
+                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(std::move(CoordinateSpace), "USplineComponent.GetLocationAtSplineInputKey(): argument 'CoordinateSpace'");
+                auto result = object->GetLocationAtSplineInputKey(InKeyValue, CoordinateSpaceValue);
+                sp::reflect::checkResultFields(result, kContext);
+                return Bridge<FVector>::out(result);
+            },
+            py::kw_only(),
+            py::arg("InKey"),
+            py::arg("CoordinateSpace"),
+            "Returns the curve at input key InKey (point index + fraction of the way to the next point).");
+        cls.def(
+            "GetLocationAtSplinePoint",
+            [](const Ref<Self>& self, Bridge<int32_t>::Py PointIndex, Bridge<ESplineCoordinateSpace>::Py CoordinateSpace) -> py::object {
+                static constexpr const char* kContext = "USplineComponent.GetLocationAtSplinePoint()";
+                const Self* object = self.get<Self>(kContext);
+                auto PointIndexValue = Bridge<int32_t>::in(std::move(PointIndex), "USplineComponent.GetLocationAtSplinePoint(): argument 'PointIndex'");
+                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(std::move(CoordinateSpace), "USplineComponent.GetLocationAtSplinePoint(): argument 'CoordinateSpace'");
+                auto result = object->GetLocationAtSplinePoint(PointIndexValue, CoordinateSpaceValue);
+                sp::reflect::checkResultFields(result, kContext);
+                return Bridge<FVector>::out(result);
+            },
+            py::kw_only(),
+            py::arg("PointIndex"),
+            py::arg("CoordinateSpace"),
+            "Returns point PointIndex.");
+        cls.def(
+            "GetTangentAtSplinePoint",
+            [](const Ref<Self>& self, Bridge<int32_t>::Py PointIndex, Bridge<ESplineCoordinateSpace>::Py CoordinateSpace) -> py::object {
+                static constexpr const char* kContext = "USplineComponent.GetTangentAtSplinePoint()";
+                const Self* object = self.get<Self>(kContext);
+                auto PointIndexValue = Bridge<int32_t>::in(std::move(PointIndex), "USplineComponent.GetTangentAtSplinePoint(): argument 'PointIndex'");
+                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(std::move(CoordinateSpace), "USplineComponent.GetTangentAtSplinePoint(): argument 'CoordinateSpace'");
+                auto result = object->GetTangentAtSplinePoint(PointIndexValue, CoordinateSpaceValue);
+                sp::reflect::checkResultFields(result, kContext);
+                return Bridge<FVector>::out(result);
+            },
+            py::kw_only(),
+            py::arg("PointIndex"),
+            py::arg("CoordinateSpace"),
+            "Returns the tangent at point PointIndex (its own, or the automatic one).");
+        cls.def(
+            "SetTangentAtSplinePoint",
+            [](const Ref<Self>& self, Bridge<int32_t>::Py PointIndex, Bridge<FVector>::Py InTangent, Bridge<ESplineCoordinateSpace>::Py CoordinateSpace, Bridge<bool>::Py bUpdateSpline) -> py::object {
+                static constexpr const char* kContext = "USplineComponent.SetTangentAtSplinePoint()";
+                Self* object = self.get<Self>(kContext);
+                auto PointIndexValue = Bridge<int32_t>::in(std::move(PointIndex), "USplineComponent.SetTangentAtSplinePoint(): argument 'PointIndex'");
+                auto InTangentValue = Bridge<FVector>::in(std::move(InTangent), "USplineComponent.SetTangentAtSplinePoint(): argument 'InTangent'");
+                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(std::move(CoordinateSpace), "USplineComponent.SetTangentAtSplinePoint(): argument 'CoordinateSpace'");
+                auto bUpdateSplineValue = Bridge<bool>::in(std::move(bUpdateSpline), "USplineComponent.SetTangentAtSplinePoint(): argument 'bUpdateSpline'");
+                object->SetTangentAtSplinePoint(PointIndexValue, InTangentValue, CoordinateSpaceValue, bUpdateSplineValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("PointIndex"),
+            py::arg("InTangent"),
+            py::arg("CoordinateSpace"),
+            py::arg("bUpdateSpline") = static_cast<Bridge<bool>::Py>(bool(true)),
+            "Gives point PointIndex a tangent of its own.");
+        cls.def(
+            "GetDistanceAlongSplineAtSplinePoint",
+            [](const Ref<Self>& self, Bridge<int32_t>::Py PointIndex) -> py::object {
+                static constexpr const char* kContext = "USplineComponent.GetDistanceAlongSplineAtSplinePoint()";
+                const Self* object = self.get<Self>(kContext);
+                auto PointIndexValue = Bridge<int32_t>::in(std::move(PointIndex), "USplineComponent.GetDistanceAlongSplineAtSplinePoint(): argument 'PointIndex'");
+                auto result = object->GetDistanceAlongSplineAtSplinePoint(PointIndexValue);
+                return Bridge<double>::out(result);
+            },
+            py::kw_only(),
+            py::arg("PointIndex"),
+            "Returns the distance along the curve at point PointIndex.");
+        cls.def(
+            "GetLocationsAtDistances",
+            [](const Ref<Self>& self, Bridge<sp::reflect::SpArray<double>>::Py Distances, Bridge<ESplineCoordinateSpace>::Py CoordinateSpace) -> py::object {
+                static constexpr const char* kContext = "USplineComponent.GetLocationsAtDistances()";
+                const Self* object = self.get<Self>(kContext);
+                auto DistancesValue = Bridge<sp::reflect::SpArray<double>>::in(std::move(Distances), "USplineComponent.GetLocationsAtDistances(): argument 'Distances'");
+                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(std::move(CoordinateSpace), "USplineComponent.GetLocationsAtDistances(): argument 'CoordinateSpace'");
+                auto result = object->GetLocationsAtDistances(DistancesValue, CoordinateSpaceValue);
+                return Bridge<sp::reflect::SpArray<double>>::out(result);
+            },
+            py::kw_only(),
+            py::arg("Distances"),
+            py::arg("CoordinateSpace"),
+            "Returns the points at each of Distances (a 1-D float64 array, metres along the curve) as an (N, 3)\nfloat64 array: many evaluations in one call.");
     }
     {
         using Self = USpotLightComponent;

@@ -27,6 +27,7 @@
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
 #include "core/world/shape_components.h"
+#include "core/world/spline_component.h"
 #include "core/world/static_mesh_actor.h"
 #include "core/world/static_mesh_component.h"
 #include "core/world/wheeled_vehicle.h"
@@ -40,6 +41,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(sp::reflect::StaticEnum<EComponentMobility>());
     registry.add(sp::reflect::StaticEnum<EPathFollowingRequestResult>());
     registry.add(sp::reflect::StaticEnum<EPathFollowingStatus>());
+    registry.add(sp::reflect::StaticEnum<ESplineCoordinateSpace>());
     registry.add(UObject::StaticClass());
     registry.add(AActor::StaticClass());
     registry.add(AController::StaticClass());
@@ -57,6 +59,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(APlayerStart::StaticClass());
     registry.add(APointLight::StaticClass());
     registry.add(ASkyLight::StaticClass());
+    registry.add(ASplineActor::StaticClass());
     registry.add(ASpotLight::StaticClass());
     registry.add(AStaticMeshActor::StaticClass());
     registry.add(AStereoCameraRig::StaticClass());
@@ -91,6 +94,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(USkyLightComponent::StaticClass());
     registry.add(USpFuncComponent::StaticClass());
     registry.add(USphereComponent::StaticClass());
+    registry.add(USplineComponent::StaticClass());
     registry.add(USpotLightComponent::StaticClass());
     registry.add(UStaticMeshComponent::StaticClass());
     registry.add(UWorld::StaticClass());
@@ -102,6 +106,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(UWorld::StaticClass());
     registry.remove(UStaticMeshComponent::StaticClass());
     registry.remove(USpotLightComponent::StaticClass());
+    registry.remove(USplineComponent::StaticClass());
     registry.remove(USphereComponent::StaticClass());
     registry.remove(USpFuncComponent::StaticClass());
     registry.remove(USkyLightComponent::StaticClass());
@@ -136,6 +141,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(AStereoCameraRig::StaticClass());
     registry.remove(AStaticMeshActor::StaticClass());
     registry.remove(ASpotLight::StaticClass());
+    registry.remove(ASplineActor::StaticClass());
     registry.remove(ASkyLight::StaticClass());
     registry.remove(APointLight::StaticClass());
     registry.remove(APlayerStart::StaticClass());
@@ -153,6 +159,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(AController::StaticClass());
     registry.remove(AActor::StaticClass());
     registry.remove(UObject::StaticClass());
+    registry.remove(sp::reflect::StaticEnum<ESplineCoordinateSpace>());
     registry.remove(sp::reflect::StaticEnum<EPathFollowingStatus>());
     registry.remove(sp::reflect::StaticEnum<EPathFollowingRequestResult>());
     registry.remove(sp::reflect::StaticEnum<EComponentMobility>());
@@ -161,4 +168,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "6ca82a178a4337c0"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "70b9ac2fb21cbb69"; }

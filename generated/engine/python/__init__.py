@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "6ca82a178a4337c0"
+API_HASH = "70b9ac2fb21cbb69"

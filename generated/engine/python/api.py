@@ -35,6 +35,7 @@ __all__ = [
     "APlayerStart",
     "APointLight",
     "ASkyLight",
+    "ASplineActor",
     "ASpotLight",
     "AStaticMeshActor",
     "AStereoCameraRig",
@@ -49,6 +50,7 @@ __all__ = [
     "EComponentMobility",
     "EPathFollowingRequestResult",
     "EPathFollowingStatus",
+    "ESplineCoordinateSpace",
     "FCameraPixels",
     "FHitResult",
     "FLinearColor",
@@ -78,6 +80,7 @@ __all__ = [
     "USkyLightComponent",
     "USpFuncComponent",
     "USphereComponent",
+    "USplineComponent",
     "USpotLightComponent",
     "UStaticMeshComponent",
     "UWorld",
@@ -148,6 +151,13 @@ class EPathFollowingStatus(enum.IntEnum):
     Waiting = 1
     Paused = 2
     Moving = 3
+
+
+class ESplineCoordinateSpace(enum.IntEnum):
+    """Which space a spline function's positions and directions are in."""
+
+    Local = 0
+    World = 1
 
 
 class FCameraPixels(TypedDict, total=False):
@@ -650,6 +660,25 @@ class ASkyLight(AActor):
     __sp_class__: ClassVar[str] = "ASkyLight"
 
 
+class ASplineActorAsync(AActorAsync):
+    """ASplineActor's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class ASplineActorSend(AActorSend):
+    """ASplineActor's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class ASplineActor(AActor):
+    """An actor whose root is a spline (a path, a road's centre line)."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "ASplineActor"
+
+
 class ASpotLightAsync(AActorAsync):
     """ASpotLight's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
 
@@ -1093,6 +1122,25 @@ class USphereComponent(UShapeComponent):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "USphereComponent"
+
+
+class USplineComponentAsync(USceneComponentAsync):
+    """USplineComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class USplineComponentSend(USceneComponentSend):
+    """USplineComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class USplineComponent(USceneComponent):
+    """A curve through points."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "USplineComponent"
 
 
 class USpotLightComponentAsync(UPointLightComponentAsync):

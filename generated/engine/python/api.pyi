@@ -30,6 +30,7 @@ __all__ = [
     "APlayerStart",
     "APointLight",
     "ASkyLight",
+    "ASplineActor",
     "ASpotLight",
     "AStaticMeshActor",
     "AStereoCameraRig",
@@ -44,6 +45,7 @@ __all__ = [
     "EComponentMobility",
     "EPathFollowingRequestResult",
     "EPathFollowingStatus",
+    "ESplineCoordinateSpace",
     "FCameraPixels",
     "FHitResult",
     "FLinearColor",
@@ -73,6 +75,7 @@ __all__ = [
     "USkyLightComponent",
     "USpFuncComponent",
     "USphereComponent",
+    "USplineComponent",
     "USpotLightComponent",
     "UStaticMeshComponent",
     "UWorld",
@@ -187,6 +190,15 @@ class EPathFollowingStatus(enum.IntEnum):
     """Paused (not used yet)."""
     Moving = 3
     """Moving to its goal."""
+
+
+class ESplineCoordinateSpace(enum.IntEnum):
+    """Which space a spline function's positions and directions are in."""
+
+    Local = 0
+    """The spline component's own space."""
+    World = 1
+    """World space."""
 
 
 class FCameraPixels(TypedDict, total=False):
@@ -1334,6 +1346,34 @@ class ASkyLight(AActor):
     @property
     def SkyLightComponent(self) -> USkyLightComponent:
         """The sky light (also the root component)."""
+
+
+class ASplineActorAsync(AActorAsync):
+    """ASplineActor's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class ASplineActorSend(AActorSend):
+    """ASplineActor's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
+class ASplineActor(AActor):
+    """An actor whose root is a spline (a path, a road's centre line)."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> ASplineActorAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> ASplineActorSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def SplineComponent(self) -> USplineComponent:
+        """The spline (the root component)."""
 
 
 class ASpotLightAsync(AActorAsync):
@@ -3002,6 +3042,156 @@ class USphereComponent(UShapeComponent):
 
     def SetSphereRadius(self, *, InSphereRadius: float) -> None:
         """Sets SphereRadius (finite, > 0)."""
+
+
+class USplineComponentAsync(USceneComponentAsync):
+    """USplineComponent's functions, called asynchronously: each returns a Future."""
+
+    def AddSplinePoint(self, *, Position: FVector, CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = True) -> Future[None]: ...
+
+    def ClearSplinePoints(self, *, bUpdateSpline: bool = True) -> Future[None]: ...
+
+    def SetSplinePoints(self, *, Points: list[FVector], CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = True) -> Future[None]: ...
+
+    def GetNumberOfSplinePoints(self) -> Future[int]: ...
+
+    def SetClosedLoop(self, *, bInClosedLoop: bool, bUpdateSpline: bool = True) -> Future[None]: ...
+
+    def IsClosedLoop(self) -> Future[bool]: ...
+
+    def GetSplineLength(self) -> Future[float]: ...
+
+    def GetLocationAtDistanceAlongSpline(self, *, Distance: float, CoordinateSpace: ESplineCoordinateSpace) -> Future[FVector]: ...
+
+    def GetDirectionAtDistanceAlongSpline(self, *, Distance: float, CoordinateSpace: ESplineCoordinateSpace) -> Future[FVector]: ...
+
+    def GetRotationAtDistanceAlongSpline(self, *, Distance: float, CoordinateSpace: ESplineCoordinateSpace) -> Future[FRotator]: ...
+
+    def GetLocationAtSplineInputKey(self, *, InKey: float, CoordinateSpace: ESplineCoordinateSpace) -> Future[FVector]: ...
+
+    def GetLocationAtSplinePoint(self, *, PointIndex: int, CoordinateSpace: ESplineCoordinateSpace) -> Future[FVector]: ...
+
+    def GetTangentAtSplinePoint(self, *, PointIndex: int, CoordinateSpace: ESplineCoordinateSpace) -> Future[FVector]: ...
+
+    def SetTangentAtSplinePoint(self, *, PointIndex: int, InTangent: FVector, CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = True) -> Future[None]: ...
+
+    def GetDistanceAlongSplineAtSplinePoint(self, *, PointIndex: int) -> Future[float]: ...
+
+    def GetLocationsAtDistances(self, *, Distances: NDArray[np.float64], CoordinateSpace: ESplineCoordinateSpace) -> Future[NDArray[np.float64]]: ...
+
+
+class USplineComponentSend(USceneComponentSend):
+    """USplineComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def AddSplinePoint(self, *, Position: FVector, CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = True) -> None: ...
+
+    def ClearSplinePoints(self, *, bUpdateSpline: bool = True) -> None: ...
+
+    def SetSplinePoints(self, *, Points: list[FVector], CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = True) -> None: ...
+
+    def GetNumberOfSplinePoints(self) -> None: ...
+
+    def SetClosedLoop(self, *, bInClosedLoop: bool, bUpdateSpline: bool = True) -> None: ...
+
+    def IsClosedLoop(self) -> None: ...
+
+    def GetSplineLength(self) -> None: ...
+
+    def GetLocationAtDistanceAlongSpline(self, *, Distance: float, CoordinateSpace: ESplineCoordinateSpace) -> None: ...
+
+    def GetDirectionAtDistanceAlongSpline(self, *, Distance: float, CoordinateSpace: ESplineCoordinateSpace) -> None: ...
+
+    def GetRotationAtDistanceAlongSpline(self, *, Distance: float, CoordinateSpace: ESplineCoordinateSpace) -> None: ...
+
+    def GetLocationAtSplineInputKey(self, *, InKey: float, CoordinateSpace: ESplineCoordinateSpace) -> None: ...
+
+    def GetLocationAtSplinePoint(self, *, PointIndex: int, CoordinateSpace: ESplineCoordinateSpace) -> None: ...
+
+    def GetTangentAtSplinePoint(self, *, PointIndex: int, CoordinateSpace: ESplineCoordinateSpace) -> None: ...
+
+    def SetTangentAtSplinePoint(self, *, PointIndex: int, InTangent: FVector, CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = True) -> None: ...
+
+    def GetDistanceAlongSplineAtSplinePoint(self, *, PointIndex: int) -> None: ...
+
+    def GetLocationsAtDistances(self, *, Distances: NDArray[np.float64], CoordinateSpace: ESplineCoordinateSpace) -> None: ...
+
+
+class USplineComponent(USceneComponent):
+    """A curve through points."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> USplineComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> USplineComponentSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def SplinePoints(self) -> list[FVector]:
+        """The points, in the component's space (metres)."""
+
+    @SplinePoints.setter
+    def SplinePoints(self, value: list[FVector]) -> None: ...
+
+    @property
+    def bClosedLoop(self) -> bool:
+        """Whether the last point joins the first."""
+
+    @bClosedLoop.setter
+    def bClosedLoop(self, value: bool) -> None: ...
+
+    def AddSplinePoint(self, *, Position: FVector, CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = True) -> None:
+        """Adds a point at the end. bUpdateSpline is accepted for UE compatibility (the curve is always current)."""
+
+    def ClearSplinePoints(self, *, bUpdateSpline: bool = True) -> None:
+        """Removes every point."""
+
+    def SetSplinePoints(self, *, Points: list[FVector], CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = True) -> None:
+        """Replaces the points."""
+
+    def GetNumberOfSplinePoints(self) -> int:
+        """Returns the number of points."""
+
+    def SetClosedLoop(self, *, bInClosedLoop: bool, bUpdateSpline: bool = True) -> None:
+        """Makes the spline a closed loop or an open curve."""
+
+    def IsClosedLoop(self) -> bool:
+        """Returns true for a closed loop."""
+
+    def GetSplineLength(self) -> float:
+        """Returns the length of the curve in metres (in the component's space, before its scale)."""
+
+    def GetLocationAtDistanceAlongSpline(self, *, Distance: float, CoordinateSpace: ESplineCoordinateSpace) -> FVector:
+        """Returns the point at Distance metres along the curve (clamped to it)."""
+
+    def GetDirectionAtDistanceAlongSpline(self, *, Distance: float, CoordinateSpace: ESplineCoordinateSpace) -> FVector:
+        """Returns the unit direction of the curve at Distance metres along it."""
+
+    def GetRotationAtDistanceAlongSpline(self, *, Distance: float, CoordinateSpace: ESplineCoordinateSpace) -> FRotator:
+        """Returns the rotation whose X axis follows the curve at Distance metres along it (no roll)."""
+
+    def GetLocationAtSplineInputKey(self, *, InKey: float, CoordinateSpace: ESplineCoordinateSpace) -> FVector:
+        """Returns the curve at input key InKey (point index + fraction of the way to the next point)."""
+
+    def GetLocationAtSplinePoint(self, *, PointIndex: int, CoordinateSpace: ESplineCoordinateSpace) -> FVector:
+        """Returns point PointIndex."""
+
+    def GetTangentAtSplinePoint(self, *, PointIndex: int, CoordinateSpace: ESplineCoordinateSpace) -> FVector:
+        """Returns the tangent at point PointIndex (its own, or the automatic one)."""
+
+    def SetTangentAtSplinePoint(self, *, PointIndex: int, InTangent: FVector, CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = True) -> None:
+        """Gives point PointIndex a tangent of its own."""
+
+    def GetDistanceAlongSplineAtSplinePoint(self, *, PointIndex: int) -> float:
+        """Returns the distance along the curve at point PointIndex."""
+
+    def GetLocationsAtDistances(self, *, Distances: NDArray[np.float64], CoordinateSpace: ESplineCoordinateSpace) -> NDArray[np.float64]:
+        """Returns the points at each of Distances (a 1-D float64 array, metres along the curve) as an (N, 3)
+        float64 array: many evaluations in one call.
+        """
 
 
 class USpotLightComponentAsync(UPointLightComponentAsync):

@@ -18,7 +18,7 @@ from spear._rpc_proxy import ObjectProxy as _ObjectProxy
 from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
-from .api import ECameraModality, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EPathFollowingRequestResult, EPathFollowingStatus, FCameraPixels, FHitResult, FLinearColor, FMaterialDesc, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
+from .api import ECameraModality, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EPathFollowingRequestResult, EPathFollowingStatus, ESplineCoordinateSpace, FCameraPixels, FHitResult, FLinearColor, FMaterialDesc, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
 
@@ -487,6 +487,17 @@ class ASkyLight(AActor, api.ASkyLight):
 
 
 _register_proxy(ASkyLight)
+
+
+class ASplineActor(AActor, api.ASplineActor):
+    __slots__ = ()
+
+    @property
+    def SplineComponent(self) -> api.USplineComponent:
+        return cast("api.USplineComponent", self._sp_get("ASplineActor", "SplineComponent", "USplineComponent"))
+
+
+_register_proxy(ASplineActor)
 
 
 class ASpotLight(AActor, api.ASpotLight):
@@ -1344,6 +1355,77 @@ class USphereComponent(UShapeComponent, api.USphereComponent):
 
 
 _register_proxy(USphereComponent)
+
+
+class USplineComponent(USceneComponent, api.USplineComponent):
+    __slots__ = ()
+
+    @property
+    def SplinePoints(self) -> list[FVector]:
+        return cast("list[FVector]", self._sp_get("USplineComponent", "SplinePoints", "list[FVector]"))
+
+    @SplinePoints.setter
+    def SplinePoints(self, value: list[FVector]) -> None:
+        self._sp_set("USplineComponent", "SplinePoints", value)
+
+    @property
+    def bClosedLoop(self) -> bool:
+        return cast("bool", self._sp_get("USplineComponent", "bClosedLoop", "bool"))
+
+    @bClosedLoop.setter
+    def bClosedLoop(self, value: bool) -> None:
+        self._sp_set("USplineComponent", "bClosedLoop", value)
+
+    def AddSplinePoint(self, *, Position: FVector, CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = _DEFAULT) -> None:
+        self._sp_call("USplineComponent", "AddSplinePoint", {"Position": Position, "CoordinateSpace": CoordinateSpace, "bUpdateSpline": bUpdateSpline}, "None")
+
+    def ClearSplinePoints(self, *, bUpdateSpline: bool = _DEFAULT) -> None:
+        self._sp_call("USplineComponent", "ClearSplinePoints", {"bUpdateSpline": bUpdateSpline}, "None")
+
+    def SetSplinePoints(self, *, Points: list[FVector], CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = _DEFAULT) -> None:
+        self._sp_call("USplineComponent", "SetSplinePoints", {"Points": Points, "CoordinateSpace": CoordinateSpace, "bUpdateSpline": bUpdateSpline}, "None")
+
+    def GetNumberOfSplinePoints(self) -> int:
+        return cast("int", self._sp_call("USplineComponent", "GetNumberOfSplinePoints", {}, "int"))
+
+    def SetClosedLoop(self, *, bInClosedLoop: bool, bUpdateSpline: bool = _DEFAULT) -> None:
+        self._sp_call("USplineComponent", "SetClosedLoop", {"bInClosedLoop": bInClosedLoop, "bUpdateSpline": bUpdateSpline}, "None")
+
+    def IsClosedLoop(self) -> bool:
+        return cast("bool", self._sp_call("USplineComponent", "IsClosedLoop", {}, "bool"))
+
+    def GetSplineLength(self) -> float:
+        return cast("float", self._sp_call("USplineComponent", "GetSplineLength", {}, "float"))
+
+    def GetLocationAtDistanceAlongSpline(self, *, Distance: float, CoordinateSpace: ESplineCoordinateSpace) -> FVector:
+        return cast("FVector", self._sp_call("USplineComponent", "GetLocationAtDistanceAlongSpline", {"Distance": Distance, "CoordinateSpace": CoordinateSpace}, "FVector"))
+
+    def GetDirectionAtDistanceAlongSpline(self, *, Distance: float, CoordinateSpace: ESplineCoordinateSpace) -> FVector:
+        return cast("FVector", self._sp_call("USplineComponent", "GetDirectionAtDistanceAlongSpline", {"Distance": Distance, "CoordinateSpace": CoordinateSpace}, "FVector"))
+
+    def GetRotationAtDistanceAlongSpline(self, *, Distance: float, CoordinateSpace: ESplineCoordinateSpace) -> FRotator:
+        return cast("FRotator", self._sp_call("USplineComponent", "GetRotationAtDistanceAlongSpline", {"Distance": Distance, "CoordinateSpace": CoordinateSpace}, "FRotator"))
+
+    def GetLocationAtSplineInputKey(self, *, InKey: float, CoordinateSpace: ESplineCoordinateSpace) -> FVector:
+        return cast("FVector", self._sp_call("USplineComponent", "GetLocationAtSplineInputKey", {"InKey": InKey, "CoordinateSpace": CoordinateSpace}, "FVector"))
+
+    def GetLocationAtSplinePoint(self, *, PointIndex: int, CoordinateSpace: ESplineCoordinateSpace) -> FVector:
+        return cast("FVector", self._sp_call("USplineComponent", "GetLocationAtSplinePoint", {"PointIndex": PointIndex, "CoordinateSpace": CoordinateSpace}, "FVector"))
+
+    def GetTangentAtSplinePoint(self, *, PointIndex: int, CoordinateSpace: ESplineCoordinateSpace) -> FVector:
+        return cast("FVector", self._sp_call("USplineComponent", "GetTangentAtSplinePoint", {"PointIndex": PointIndex, "CoordinateSpace": CoordinateSpace}, "FVector"))
+
+    def SetTangentAtSplinePoint(self, *, PointIndex: int, InTangent: FVector, CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = _DEFAULT) -> None:
+        self._sp_call("USplineComponent", "SetTangentAtSplinePoint", {"PointIndex": PointIndex, "InTangent": InTangent, "CoordinateSpace": CoordinateSpace, "bUpdateSpline": bUpdateSpline}, "None")
+
+    def GetDistanceAlongSplineAtSplinePoint(self, *, PointIndex: int) -> float:
+        return cast("float", self._sp_call("USplineComponent", "GetDistanceAlongSplineAtSplinePoint", {"PointIndex": PointIndex}, "float"))
+
+    def GetLocationsAtDistances(self, *, Distances: NDArray[np.float64], CoordinateSpace: ESplineCoordinateSpace) -> NDArray[np.float64]:
+        return cast("NDArray[np.float64]", self._sp_call("USplineComponent", "GetLocationsAtDistances", {"Distances": Distances, "CoordinateSpace": CoordinateSpace}, "NDArray[np.float64]"))
+
+
+_register_proxy(USplineComponent)
 
 
 class USpotLightComponent(UPointLightComponent, api.USpotLightComponent):

@@ -1,4 +1,4 @@
-"""Negative typing case: misuse of a wheeled vehicle and of trigger volumes. Every marked line must be rejected by mypy --strict
+"""Negative typing case: misuse of a wheeled vehicle, of trigger volumes and of splines. Every marked line must be rejected by mypy --strict
 (`# E:`) and by pyright (`# P: rule: message`)."""
 
 # pyright: standard
@@ -22,3 +22,8 @@ def overlap_misuse(instance: spear.Instance) -> None:
     trigger.CollisionComponent.SphereRadius = "1"  # E: Incompatible types in assignment (expression has type "str", variable has type "float")  [assignment]  # P: reportAttributeAccessIssue: Cannot assign to attribute "SphereRadius" for class "USphereComponent" / "Literal['1']" is not assignable to "float"
     trigger.GetOverlappingActors(ClassFilter=spear.UBoxComponent)  # E: Value of type variable "_AActorT" of "GetOverlappingActors" of "AActor" cannot be "UBoxComponent"  [type-var]  # P: reportArgumentType: Argument of type "type[UBoxComponent]" cannot be assigned to parameter "ClassFilter" of type "str" in function "GetOverlappingActors" / Type "type[UBoxComponent]" is not assignable to type "str"  # P: reportCallIssue: No overloads for "GetOverlappingActors" match the provided arguments
     trigger.CollisionComponent.BoxExtent  # E: "USphereComponent" has no attribute "BoxExtent"  [attr-defined]  # P: reportAttributeAccessIssue: Cannot access attribute "BoxExtent" for class "USphereComponent" / Attribute "BoxExtent" is unknown
+
+
+def spline_misuse(instance: spear.Instance) -> None:
+    spline = instance.get_game().spawn_actor(uclass=spear.ASplineActor).SplineComponent
+    spline.GetLocationAtDistanceAlongSpline(Distance=1.0, CoordinateSpace="World")  # E: Argument "CoordinateSpace" to "GetLocationAtDistanceAlongSpline" of "USplineComponent" has incompatible type "str"; expected "ESplineCoordinateSpace"  [arg-type]  # P: reportArgumentType: Argument of type "Literal['World']" cannot be assigned to parameter "CoordinateSpace" of type "ESplineCoordinateSpace" in function "GetLocationAtDistanceAlongSpline" / "Literal['World']" is not assignable to "ESplineCoordinateSpace"
