@@ -52,6 +52,7 @@ AWheeledVehiclePawn::AWheeledVehiclePawn() : APawn(NoDefaultRoot{}) {
     WheelRearRight = makeVisual(*this, "WheelRearRight", "/Engine/BasicShapes/Cylinder");
     Wheels = {WheelFrontLeft, WheelFrontRight, WheelRearLeft, WheelRearRight};
     InputComponent = CreateDefaultSubobject<UInputComponent>("InputComponent");
+    placeWheelMeshes(nullptr); // at rest under the chassis
 }
 
 void AWheeledVehiclePawn::SetMaxEngineForce(double NewForce) {
@@ -126,8 +127,9 @@ sp::physics::BodyId AWheeledVehiclePawn::vehicleBody(const char* function) {
 
 void AWheeledVehiclePawn::BeginPlay() {
     APawn::BeginPlay();
+    // The wheel meshes keep what construction or a scene file gave them until the first step (a scene
+    // loads and saves unchanged).
     GetWorld()->GetSubsystem<sp::world::PhysicsHooks>().add(*this);
-    PostPhysicsTick();
 }
 
 void AWheeledVehiclePawn::EndPlay() {
@@ -193,19 +195,23 @@ FWheelState AWheeledVehiclePawn::GetWheelState(int WheelIndex) const {
 
 void AWheeledVehiclePawn::PostPhysicsTick() {
     // The wheel meshes follow the simulated wheels.
+    auto* physics = GetWorld()->FindSubsystem<sp::world::PhysicsSubsystem>();
+    placeWheelMeshes(physics && body_.isSet() && physics->GetPhysicsWorld().isValid(body_) &&
+                             physics->GetPhysicsWorld().hasVehicle(body_)
+                         ? &physics->GetPhysicsWorld()
+                         : nullptr);
+}
+
+void AWheeledVehiclePawn::placeWheelMeshes(const sp::physics::PhysicsWorld* physics) {
     const FTransform chassis = Mesh->GetComponentTransform();
     // The cylinder mesh's axis is its Z: turned onto the wheel's axle (Y).
     const Eigen::Isometry3d toAxle(Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitX()));
     const Eigen::Vector3d scale(2.0 * WheelRadius, 2.0 * WheelRadius, kWheelWidth);
-    const sp::physics::BodyId body = body_;
-    auto* physics = GetWorld()->FindSubsystem<sp::world::PhysicsSubsystem>();
-    const bool simulated = physics && body.isSet() && physics->GetPhysicsWorld().isValid(body) &&
-                           physics->GetPhysicsWorld().hasVehicle(body);
     const sp::physics::VehicleDesc rest = describe();
     for (std::size_t i = 0; i < Wheels.size(); ++i) {
         Eigen::Isometry3d pose;
-        if (simulated) {
-            pose = physics->GetPhysicsWorld().getWheelState(body, int(i)).pose;
+        if (physics) {
+            pose = physics->getWheelState(body_, int(i)).pose;
         } else { // at rest under the chassis
             Eigen::Isometry3d local = Eigen::Isometry3d::Identity();
             local.translation() =

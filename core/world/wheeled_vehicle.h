@@ -7,6 +7,7 @@
 #include <array>
 
 #include "core/physics/body_id.h"
+#include "core/physics/physics_world.h"
 #include "core/physics/vehicle.h"
 #include "core/world/input_component.h"
 #include "core/world/pawn.h"
@@ -136,6 +137,8 @@ class AWheeledVehiclePawn : public APawn {
   private:
     // The vehicle as the properties describe it, for the chassis' current size.
     sp::physics::VehicleDesc describe() const;
+    // Puts the wheel meshes where the simulated wheels are, or at rest under the chassis (physics null).
+    void placeWheelMeshes(const sp::physics::PhysicsWorld* physics);
     // The chassis body with this car's vehicle on it, set up or rebuilt when the body or the properties
     // changed; an unset id while the chassis is not simulated.
     sp::physics::BodyId vehicleBody(const char* function);

@@ -184,3 +184,34 @@ def test_a_scene_that_fails_part_way_leaves_the_world_as_it_was(instance: spear.
         assert not cubes[0].is_valid() and game.get_actor_count() == 3
     with instance.end_frame():
         pass
+
+
+def test_a_world_of_gameplay_actors_loads_and_saves_byte_identical(instance: spear.Instance, tmp_path: Path) -> None:
+    """A car after it settled on its springs, a character, a trigger, a spline and an AI controller: what
+    a scene saves of them loads back unchanged (begin-play does not move a car's wheel meshes)."""
+    game = instance.get_game()
+    with instance.begin_frame():
+        floor = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Floor", location=spear.FVector(Z=-0.5))
+        floor.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        floor.SetActorScale3D(NewScale3D=spear.FVector(40.0, 40.0, 1.0))
+        car = game.spawn_actor(uclass=spear.AWheeledVehiclePawn, name="Car", location=spear.FVector(Z=1.0))
+        car.MaxSteerAngle = 30.0
+        walker = game.spawn_actor(uclass=spear.ACharacter, name="Walker", location=spear.FVector(X=5.0, Z=1.0))
+        walker.CharacterMovement.MaxWalkSpeed = 2.0
+        game.spawn_actor(uclass=spear.ATriggerSphere, name="Trigger", location=spear.FVector(Y=3.0))
+        path = game.spawn_actor(uclass=spear.ASplineActor, name="Path").SplineComponent
+        path.SetSplinePoints(Points=[spear.FVector(), spear.FVector(X=3.0, Y=1.0)],
+                             CoordinateSpace=spear.ESplineCoordinateSpace.Local)
+        game.spawn_actor(uclass=spear.AAIController, name="AI").Possess(InPawn=walker)
+    with instance.end_frame():
+        pass
+    instance.step(num_frames=30)
+    with instance.begin_frame():
+        game.save_scene(path=str(tmp_path / "first.json"))
+        game.load_scene(path=str(tmp_path / "first.json"))
+        game.save_scene(path=str(tmp_path / "second.json"))
+        assert (tmp_path / "first.json").read_bytes() == (tmp_path / "second.json").read_bytes()
+        loaded = game.find_actor_by_name(name="Car")
+        assert isinstance(loaded, spear.AWheeledVehiclePawn) and loaded.MaxSteerAngle == 30.0
+    with instance.end_frame():
+        pass
