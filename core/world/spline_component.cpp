@@ -17,6 +17,16 @@ const sp::world::SplineCurve& USplineComponent::curve() const {
     return curve_;
 }
 
+namespace {
+
+double checkedDistance(double distance, const char* function) {
+    SP_CHECK(std::isfinite(distance), sp::InvalidArgument, "USplineComponent.", function, "(): Distance ",
+             distance, " is not finite");
+    return distance;
+}
+
+} // namespace
+
 int USplineComponent::checkedIndex(int PointIndex, const char* function) const {
     SP_CHECK(PointIndex >= 0 && PointIndex < GetNumberOfSplinePoints(), sp::InvalidArgument,
              "USplineComponent.", function, "(): PointIndex ", PointIndex, " is out of range [0, ",
@@ -75,19 +85,21 @@ double USplineComponent::GetSplineLength() const {
 FVector USplineComponent::GetLocationAtDistanceAlongSpline(double Distance,
                                                            ESplineCoordinateSpace CoordinateSpace) const {
     return FVector::fromEigen(
-        toSpace(curve().location(curve().keyAtDistance(Distance)), CoordinateSpace, false));
+        toSpace(curve().location(curve().keyAtDistance(checkedDistance(Distance, __func__))), CoordinateSpace,
+                false));
 }
 
 FVector USplineComponent::GetDirectionAtDistanceAlongSpline(double Distance,
                                                             ESplineCoordinateSpace CoordinateSpace) const {
     const Eigen::Vector3d direction =
-        toSpace(curve().derivative(curve().keyAtDistance(Distance)), CoordinateSpace, true);
+        toSpace(curve().derivative(curve().keyAtDistance(checkedDistance(Distance, __func__))),
+                CoordinateSpace, true);
     return FVector::fromEigen(direction.norm() > 0.0 ? Eigen::Vector3d(direction.normalized()) : direction);
 }
 
 FRotator USplineComponent::GetRotationAtDistanceAlongSpline(double Distance,
                                                             ESplineCoordinateSpace CoordinateSpace) const {
-    const FVector d = GetDirectionAtDistanceAlongSpline(Distance, CoordinateSpace);
+    const FVector d = GetDirectionAtDistanceAlongSpline(checkedDistance(Distance, __func__), CoordinateSpace);
     return FRotator{std::atan2(d.Z, std::hypot(d.X, d.Y)) * 180.0 / M_PI, std::atan2(d.Y, d.X) * 180.0 / M_PI,
                     0.0};
 }
@@ -136,6 +148,9 @@ USplineComponent::GetLocationsAtDistances(const sp::reflect::SpArray<double>& Di
     const double* in = Distances.data();
     double* out = locations.data();
     for (int64_t i = 0; i < shape[0]; ++i) {
+        SP_CHECK(std::isfinite(in[i]), sp::InvalidArgument,
+                 "USplineComponent.GetLocationsAtDistances(): Distances[", i, "] = ", in[i],
+                 " is not finite");
         const Eigen::Vector3d p =
             toSpace(curve().location(curve().keyAtDistance(in[i])), CoordinateSpace, false);
         out[3 * i] = p.x();

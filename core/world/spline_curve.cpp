@@ -71,7 +71,7 @@ Eigen::Vector3d SplineCurve::location(double key) const {
     const int segments = segmentCount();
     if (segments == 0)
         return pointCount() == 1 ? point(0) : Eigen::Vector3d::Zero();
-    key = std::clamp(key, 0.0, double(segments));
+    key = std::isfinite(key) ? std::clamp(key, 0.0, double(segments)) : 0.0; // never index with NaN
     const int i = std::min(int(key), segments - 1);
     const double t = key - i, t2 = t * t, t3 = t2 * t;
     const int j = (i + 1) % pointCount();
@@ -83,7 +83,7 @@ Eigen::Vector3d SplineCurve::derivative(double key) const {
     const int segments = segmentCount();
     if (segments == 0)
         return Eigen::Vector3d::Zero();
-    key = std::clamp(key, 0.0, double(segments));
+    key = std::isfinite(key) ? std::clamp(key, 0.0, double(segments)) : 0.0; // never index with NaN
     const int i = std::min(int(key), segments - 1);
     const double t = key - i, t2 = t * t;
     const int j = (i + 1) % pointCount();
@@ -124,7 +124,7 @@ double SplineCurve::keyAtDistance(double distance) const {
     ensureLengths();
     if (lengths_.empty())
         return 0.0;
-    distance = std::clamp(distance, 0.0, lengths_.back());
+    distance = std::isfinite(distance) ? std::clamp(distance, 0.0, lengths_.back()) : 0.0;
     const auto upper = std::upper_bound(lengths_.begin(), lengths_.end(), distance);
     const int segment = std::clamp(int(upper - lengths_.begin()) - 1, 0, segmentCount() - 1);
     const double within = distance - lengths_[std::size_t(segment)];

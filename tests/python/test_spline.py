@@ -63,6 +63,15 @@ def test_a_closed_loop_and_own_tangents(instance: spear.Instance, tmp_path: Path
         assert lifted.Z == pytest.approx((0.125 - 0.5 + 0.5) * 4.0)  # h10(0.5) * 4: the tangent's own lift
         with pytest.raises(InvalidArgumentError, match=r"PointIndex 16 is out of range \[0, 16\)"):
             ring.GetLocationAtSplinePoint(PointIndex=16, CoordinateSpace=LOCAL)
+        # Found by the RPC fuzzer: a NaN distance reached the curve's segment index.
+        with pytest.raises(InvalidArgumentError,
+                           match=r"GetLocationsAtDistances\(\): Distances\[1\] = nan is not finite"):
+            ring.GetLocationsAtDistances(Distances=np.array([0.0, np.nan]), CoordinateSpace=LOCAL)
+        with pytest.raises(InvalidArgumentError,
+                           match=r"GetLocationAtDistanceAlongSpline\(\): Distance inf is not finite"):
+            ring.GetLocationAtDistanceAlongSpline(Distance=math.inf, CoordinateSpace=LOCAL)
+        with pytest.raises(InvalidArgumentError, match=r"GetRotationAtDistanceAlongSpline\(\): Distance nan"):
+            ring.GetRotationAtDistanceAlongSpline(Distance=math.nan, CoordinateSpace=LOCAL)
         with pytest.raises(InvalidArgumentError, match="Distances must be a 1-D array"):
             ring.GetLocationsAtDistances(Distances=np.zeros((2, 2)), CoordinateSpace=LOCAL)
         game.save_scene(path=str(tmp_path / "ring.json"))

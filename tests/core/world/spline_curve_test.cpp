@@ -87,5 +87,17 @@ TEST(SplineCurveTest, AClosedLoopOfCirclePointsIsCloseToTheCircle) {
     EXPECT_LT((curve.location(double(n)) - curve.location(0.0)).norm(), 1e-12); // it closes
 }
 
+TEST(SplineCurveTest, NonFiniteKeysAndDistancesGoToTheStart) {
+    // The component refuses them; the curve itself must never index a segment with one (the RPC fuzzer
+    // reached a NaN distance through it once).
+    SplineCurve curve;
+    curve.addPoint({0, 0, 0});
+    curve.addPoint({1, 0, 0});
+    EXPECT_EQ(curve.location(std::nan("")), Eigen::Vector3d(0, 0, 0));
+    EXPECT_EQ(curve.keyAtDistance(std::nan("")), 0.0);
+    EXPECT_EQ(curve.keyAtDistance(INFINITY), 0.0);
+    EXPECT_TRUE(curve.derivative(-INFINITY).allFinite());
+}
+
 } // namespace
 } // namespace sp::world

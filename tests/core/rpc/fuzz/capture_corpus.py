@@ -1,6 +1,7 @@
 """Captures the seed corpus of spear_rpc_fuzz: the request bodies a typical client session sends to a
 launched spear-server (hello, frames, spawning, properties, calls, static calls, batches, arrays, camera reads,
-describe, scene save and load), one file per request, in the order sent.
+describe, scene save and load, cars, characters and AI moves, triggers, splines, streaming levels), one file
+per request, in the order sent.
 
     PYTHONPATH=python /usr/bin/python3 tests/core/rpc/fuzz/capture_corpus.py tests/core/rpc/fuzz/corpus
 
@@ -73,8 +74,29 @@ def main(out: Path) -> int:
         assert player is not None
         player.SetControlRotation(NewRotation=spear.FRotator(Pitch=0.0, Yaw=45.0, Roll=0.0))
         spear.UGameplayStatics.GetAllActorsOfClass(WorldContextObject=game, ActorClass=spear.APawn)
+        # The gameplay world: a car, a character moved by an AI controller, a trigger, a spline, levels.
+        car = game.spawn_actor(uclass=spear.AWheeledVehiclePawn, name="Car", location=spear.FVector(5.0, 0.0, 1.0))
+        car.MaxSteerAngle = 30.0
+        game.inject_input_for_actor(actor=car, input_action_name="Throttle", value=spear.FVector(X=1.0))
+        walker = game.spawn_actor(uclass=spear.ACharacter, name="Walker", location=spear.FVector(-5.0, 0.0, 1.0))
+        walker.CharacterMovement.MaxWalkSpeed = 2.0
+        ai = game.spawn_actor(uclass=spear.AAIController, name="AI")
+        ai.Possess(InPawn=walker)
+        ai.MoveToLocation(Dest=spear.FVector(-5.0, 3.0, 1.0), AcceptanceRadius=0.2)
+        trigger = game.spawn_actor(uclass=spear.ATriggerBox, name="Trigger")
+        trigger.CollisionComponent.BoxExtent = spear.FVector(2.0, 2.0, 2.0)
+        trigger.GetOverlappingActors(ClassFilter=spear.AActor)
+        spline = game.spawn_actor(uclass=spear.ASplineActor, name="Path").SplineComponent
+        spline.SetSplinePoints(Points=[spear.FVector(), spear.FVector(X=2.0), spear.FVector(X=2.0, Y=2.0)],
+                               CoordinateSpace=spear.ESplineCoordinateSpace.Local)
+        spline.SetTangentAtSplinePoint(PointIndex=1, InTangent=spear.FVector(X=1.0, Y=1.0),
+                                       CoordinateSpace=spear.ESplineCoordinateSpace.World)
+        spline.GetLocationsAtDistances(Distances=np.linspace(0.0, 4.0, 5),
+                                       CoordinateSpace=spear.ESplineCoordinateSpace.World)
+        spear.UGameplayStatics.IsStreamingLevelLoaded(WorldContextObject=game, LevelName="Kitchen")
     with instance.end_frame():
-        pass
+        car.GetWheelState(WheelIndex=0)
+        trigger.CollisionComponent.GetBeginOverlaps()
     connection: Any = instance._backend  # the dynamic API and the transport's diagnostics, by hand
     client = getattr(connection, "connection", None)
     if client is not None:
