@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
 import spear
@@ -55,3 +57,7 @@ def test_input_errors_are_clear(instance: spear.Instance) -> None:
         car = game.spawn_actor(uclass=spear.AKinematicVehicle, name="Car")
         with pytest.raises(spear.InvalidArgumentError, match="input_action_name is empty"):
             game.inject_input_for_actor(actor=car, input_action_name="", value=spear.FVector())
+        # Refused when injected, not in the next tick (where a pawn would fail to move by it).
+        with pytest.raises(spear.InvalidArgumentError,
+                           match=r"inject_input_for_actor\(\): value \(nan, 0, 0\) of action 'Throttle' is not finite"):
+            game.inject_input_for_actor(actor=car, input_action_name="Throttle", value=spear.FVector(X=math.nan))
