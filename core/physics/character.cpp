@@ -16,17 +16,14 @@ using detail::toEigen;
 namespace {
 
 void checkDesc(const char* fn, const CharacterDesc& desc) {
-    const auto check = [fn](const char* name, double value, bool ok, const char* range) {
-        SP_CHECK(std::isfinite(value) && ok, InvalidArgument, fn, ": ", name, ' ', value, " must be ", range);
-    };
-    check("radius", desc.radius, desc.radius > 0.0, "> 0");
-    check("halfHeight", desc.halfHeight, desc.halfHeight >= desc.radius, ">= radius");
+    detail::checkField(fn, "radius", desc.radius, desc.radius > 0.0, "> 0");
+    detail::checkField(fn, "halfHeight", desc.halfHeight, desc.halfHeight >= desc.radius, ">= radius");
     SP_CHECK(desc.position.allFinite(), InvalidArgument, fn, ": position ", detail::Vec{desc.position},
              " is not finite");
-    check("stepHeight", desc.stepHeight, desc.stepHeight >= 0.0, ">= 0");
-    check("maxSlopeDegrees", desc.maxSlopeDegrees, desc.maxSlopeDegrees > 0.0 && desc.maxSlopeDegrees < 90.0,
-          "in (0, 90)");
-    check("jumpSpeed", desc.jumpSpeed, desc.jumpSpeed >= 0.0, ">= 0");
+    detail::checkField(fn, "stepHeight", desc.stepHeight, desc.stepHeight >= 0.0, ">= 0");
+    detail::checkField(fn, "maxSlopeDegrees", desc.maxSlopeDegrees,
+                       desc.maxSlopeDegrees > 0.0 && desc.maxSlopeDegrees < 90.0, "in (0, 90)");
+    detail::checkField(fn, "jumpSpeed", desc.jumpSpeed, desc.jumpSpeed >= 0.0, ">= 0");
 }
 
 void applySettings(CharacterRecord& record) {

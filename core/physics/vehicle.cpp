@@ -24,20 +24,21 @@ void checkDesc(const char* fn, const VehicleDesc& desc) {
         SP_CHECK(std::isfinite(wheel.radius) && wheel.radius > 0.0, InvalidArgument, fn, ": wheel ", i,
                  " radius ", wheel.radius, " must be > 0");
     }
-    const auto check = [fn](const char* name, double value, bool ok, const char* range) {
-        SP_CHECK(std::isfinite(value) && ok, InvalidArgument, fn, ": ", name, ' ', value, " must be ", range);
-    };
-    check("suspensionRestLength", desc.suspensionRestLength, desc.suspensionRestLength >= 0.0, ">= 0");
-    check("suspensionStiffness", desc.suspensionStiffness, desc.suspensionStiffness > 0.0, "> 0");
-    check("suspensionCompressionDamping", desc.suspensionCompressionDamping,
-          desc.suspensionCompressionDamping >= 0.0, ">= 0");
-    check("suspensionRelaxationDamping", desc.suspensionRelaxationDamping,
-          desc.suspensionRelaxationDamping >= 0.0, ">= 0");
-    check("maxSuspensionTravel", desc.maxSuspensionTravel, desc.maxSuspensionTravel >= 0.0, ">= 0");
-    check("maxSuspensionForce", desc.maxSuspensionForce, desc.maxSuspensionForce > 0.0, "> 0");
-    check("frictionSlip", desc.frictionSlip, desc.frictionSlip >= 0.0, ">= 0");
-    check("rollInfluence", desc.rollInfluence, desc.rollInfluence >= 0.0 && desc.rollInfluence <= 1.0,
-          "in [0, 1]");
+    detail::checkField(fn, "suspensionRestLength", desc.suspensionRestLength,
+                       desc.suspensionRestLength >= 0.0, ">= 0");
+    detail::checkField(fn, "suspensionStiffness", desc.suspensionStiffness, desc.suspensionStiffness > 0.0,
+                       "> 0");
+    detail::checkField(fn, "suspensionCompressionDamping", desc.suspensionCompressionDamping,
+                       desc.suspensionCompressionDamping >= 0.0, ">= 0");
+    detail::checkField(fn, "suspensionRelaxationDamping", desc.suspensionRelaxationDamping,
+                       desc.suspensionRelaxationDamping >= 0.0, ">= 0");
+    detail::checkField(fn, "maxSuspensionTravel", desc.maxSuspensionTravel, desc.maxSuspensionTravel >= 0.0,
+                       ">= 0");
+    detail::checkField(fn, "maxSuspensionForce", desc.maxSuspensionForce, desc.maxSuspensionForce > 0.0,
+                       "> 0");
+    detail::checkField(fn, "frictionSlip", desc.frictionSlip, desc.frictionSlip >= 0.0, ">= 0");
+    detail::checkField(fn, "rollInfluence", desc.rollInfluence,
+                       desc.rollInfluence >= 0.0 && desc.rollInfluence <= 1.0, "in [0, 1]");
 }
 
 // The wheels' rays: the closest body, passing through sensors and characters as the world's raycasts do
