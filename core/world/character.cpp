@@ -71,10 +71,10 @@ ACharacter::ACharacter() : APawn(NoDefaultRoot{}) {
 }
 
 sp::physics::CharacterDesc ACharacter::describe() const {
-    const Eigen::Vector3d scale = CapsuleComponent->GetComponentScale().toEigen().cwiseAbs();
     sp::physics::CharacterDesc desc;
-    desc.radius = CapsuleComponent->CapsuleRadius * std::max(scale.x(), scale.y());
-    desc.halfHeight = std::max(CapsuleComponent->CapsuleHalfHeight * scale.z(), desc.radius);
+    desc.radius = GetAgentRadius();
+    desc.halfHeight = std::max(
+        CapsuleComponent->CapsuleHalfHeight * std::abs(CapsuleComponent->GetComponentScale().Z), desc.radius);
     desc.position = GetActorLocation().toEigen();
     desc.stepHeight = CharacterMovement->MaxStepHeight;
     desc.maxSlopeDegrees = CharacterMovement->WalkableFloorAngle;

@@ -57,13 +57,6 @@ physics::Shape makeShape(ECollisionPrimitive primitive, const Eigen::Vector3d& h
     }
 }
 
-Eigen::Isometry3d poseOf(const FTransform& transform) {
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.linear() = transform.Rotation.toEigen().normalized().toRotationMatrix();
-    pose.translation() = transform.Translation.toEigen();
-    return pose;
-}
-
 bool isMovable(const UPrimitiveComponent& component) {
     return component.Mobility == EComponentMobility::Movable;
 }
@@ -167,7 +160,7 @@ void PhysicsSubsystem::syncEntry(Entry& entry) {
         return;
     syncProperties(entry);
     if (!(transform == entry.syncedTransform)) {
-        physicsWorld_.setPose(entry.body, poseOf(transform));
+        physicsWorld_.setPose(entry.body, transform.toIsometry());
         entry.syncedTransform = transform;
     }
 }
@@ -184,7 +177,7 @@ void PhysicsSubsystem::rebuildBody(Entry& entry, const ShapeKey& key) {
     try {
         physics::BodyDesc desc;
         desc.shape = makeShape(key.primitive, key.halfExtents, key.scale, key.mesh);
-        desc.pose = poseOf(entry.syncedTransform);
+        desc.pose = entry.syncedTransform.toIsometry();
         desc.mobility = key.isStatic ? physics::Mobility::Static : physics::Mobility::Movable;
         desc.simulatePhysics = wantsSimulation(component, key.primitive);
         desc.mass = std::max(component.MassInKg, 0.0);

@@ -14,8 +14,6 @@ namespace {
 
 constexpr double kDegrees = 180.0 / std::numbers::pi;
 constexpr double kWheelWidth = 0.25; // metres, of the wheel meshes
-constexpr const char* kWheelNames[4] = {"WheelFrontLeft", "WheelFrontRight", "WheelRearLeft",
-                                        "WheelRearRight"};
 
 UStaticMeshComponent* makeVisual(AActor& owner, const char* name, const char* mesh) {
     auto* component = owner.CreateDefaultSubobject<UStaticMeshComponent>(name);
@@ -216,8 +214,7 @@ void AWheeledVehiclePawn::placeWheelMeshes(const sp::physics::PhysicsWorld* phys
             Eigen::Isometry3d local = Eigen::Isometry3d::Identity();
             local.translation() =
                 rest.wheels[i].connectionPoint - Eigen::Vector3d::UnitZ() * rest.suspensionRestLength;
-            pose = Eigen::Translation3d(chassis.Translation.toEigen()) *
-                   chassis.Rotation.toEigen().normalized() * local;
+            pose = chassis.toIsometry() * local;
         }
         const FTransform world = transformOf(pose * toAxle, scale);
         Wheels[i]->SetRelativeTransform(world.relativeTo(chassis));
