@@ -99,7 +99,8 @@ int main(int argc, char** argv) {
     buildScene(scene, boxes);
     std::printf("device: %s (%s), %d boxes, shadow maps %d, %d timed frames after 3 warm-up frames\n",
                 context.report().renderer.c_str(), context.report().kind.c_str(), boxes, shadows, frames);
-    std::printf("%-10s %-12s %-8s %10s\n", "size", "modalities", "latency", "ms/frame");
+    std::printf("%-10s %-12s %-8s %10s   per pass, ms/frame: shadow surface lighting readback (GL timer / CPU)\n",
+                "size", "modalities", "latency", "ms/frame");
     const std::pair<int, int> sizes[] = {{256, 256}, {1920, 1080}};
     for (auto [width, height] : sizes) {
         Camera camera = makeCamera(width, height, boxes, shadows);
@@ -110,6 +111,7 @@ int main(int argc, char** argv) {
                 Frame frame;
                 for (int i = 0; i < 3; ++i)
                     target.render(scene, camera, frame);
+                renderer.resetStats();
                 const auto start = std::chrono::steady_clock::now();
                 for (int i = 0; i < frames; ++i)
                     target.render(scene, camera, frame);
@@ -117,8 +119,12 @@ int main(int argc, char** argv) {
                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                         .count() /
                     frames;
-                std::printf("%4dx%-5d %-12s %-8d %10.2f\n", width, height, all ? "all (14)" : "final_color",
+                std::printf("%4dx%-5d %-12s %-8d %10.2f  ", width, height, all ? "all (14)" : "final_color",
                             latency, ms);
+                for (const PassTime& pass : renderer.stats().passTimes)
+                    std::printf(" %6.2f/%-6.2f", pass.samples ? pass.gpuMs / double(pass.samples) : 0.0,
+                                pass.cpuMs / frames);
+                std::printf("\n");
                 std::fflush(stdout);
                 if (!pngDir.empty() && !all && latency == 0) {
                     const ImageBuffer& color = frame.get(Modality::FinalColor);
