@@ -162,6 +162,8 @@ BodyId PhysicsWorld::addBody(const BodyDesc& desc) {
 
     BodyRecord record;
     record.shape = detail::buildCollisionShape(desc.shape);
+    record.source = desc.shape;
+    record.overlapOnly = desc.overlapOnly;
     SP_CHECK(!simulated || !record.shape.concave, InvalidArgument, fn, ": a ", desc.shape.type(),
              " shape cannot be simulated; make the body Static, or Movable with simulatePhysics = false");
     record.tag = desc.tag;
@@ -418,6 +420,14 @@ void PhysicsWorld::setAngularDamping(BodyId id, double damping) {
 
 uint64_t PhysicsWorld::getTag(BodyId id) const {
     return impl_->bodies.get(id, "PhysicsWorld::getTag()").tag;
+}
+
+const Shape& PhysicsWorld::getShape(BodyId id) const {
+    return *impl_->bodies.get(id, "PhysicsWorld::getShape()").source;
+}
+
+bool PhysicsWorld::isOverlapOnly(BodyId id) const {
+    return impl_->bodies.get(id, "PhysicsWorld::isOverlapOnly()").overlapOnly;
 }
 
 void PhysicsWorld::setTag(BodyId id, uint64_t tag) {

@@ -112,6 +112,10 @@ class PhysicsWorld {
     // Sets the fraction of angular velocity lost per second, in [0, 1].
     void setAngularDamping(BodyId id, double damping);
     uint64_t getTag(BodyId id) const;
+    // The shape the body was built from (its scale included), in the body's local frame.
+    const Shape& getShape(BodyId id) const;
+    // True for a sensor body (BodyDesc::overlapOnly): it reports overlaps and blocks nothing.
+    bool isOverlapOnly(BodyId id) const;
     // Sets the value reported in RayHit::tag for this body.
     void setTag(BodyId id, uint64_t tag);
     // False while the body sleeps (Bullet deactivation); static bodies always report false.

@@ -4,20 +4,25 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
 #include "core/physics/detail/collision_shape_builder.h"
 #include "core/physics/detail/vehicle_record.h"
 #include "core/physics/mobility.h"
+#include "core/physics/shape.h"
 
 namespace sp::physics::detail {
 
 struct BodyRecord {
     // Declared before body so that it is destroyed after it.
     BuiltShape shape;
+    // The description it was built from, for those who need the geometry itself (navigation).
+    std::optional<Shape> source; // set by addBody
     std::unique_ptr<btRigidBody> body;
     uint64_t tag = 0;
+    bool overlapOnly = false;
     Mobility mobility = Mobility::Movable;
     bool simulate = true;
     // Kept here because Bullet stores only the inverse mass, which is 0 unless the body is simulated.

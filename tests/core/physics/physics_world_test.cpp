@@ -80,6 +80,23 @@ TEST(PhysicsWorldTest, AddRemoveAndStaleIds) {
                                     "PhysicsWorld::getMass(): body invalid does not exist in this world");
 }
 
+TEST(PhysicsWorldTest, BodiesKeepTheShapeTheyWereBuiltFrom) {
+    PhysicsWorld world;
+    BodyDesc sensor = dynamicBody(Shape::box({1, 2, 3}).scaled({2, 2, 2}), 0, 0, 0);
+    sensor.overlapOnly = true;
+    const BodyId a = world.addBody(sensor);
+    const BodyId b = world.addBody(dynamicBody(Shape::sphere(1), 5, 0, 0));
+    EXPECT_EQ(world.getShape(a).type(), ShapeType::Box);
+    EXPECT_EQ(world.getShape(a).halfExtents(), Eigen::Vector3d(1, 2, 3));
+    EXPECT_EQ(world.getShape(a).scale(), Eigen::Vector3d(2, 2, 2));
+    EXPECT_TRUE(world.isOverlapOnly(a));
+    EXPECT_EQ(world.getShape(b).type(), ShapeType::Sphere);
+    EXPECT_FALSE(world.isOverlapOnly(b));
+    world.removeBody(a);
+    expectThrowMessage<StaleObject>([&] { world.getShape(a); },
+                                    "PhysicsWorld::getShape(): body 0:0 was removed");
+}
+
 TEST(PhysicsWorldTest, IdsFromAnotherWorldAreUnknownOrStale) {
     PhysicsWorld first;
     PhysicsWorld second;
