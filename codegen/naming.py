@@ -128,6 +128,8 @@ def cpp_string(text: str) -> str:
 def cpp_default_value(p: Param) -> str:
     """The default as an expression of the parameter's value type."""
     assert p.default_cpp is not None
+    if p.type.cpp.endswith("*"):  # T*(x) is not C++: an object pointer's default (nullptr) is cast instead
+        return f"static_cast<{p.type.cpp}>({p.default_cpp})"
     if p.default_cpp.startswith("{"):
         return f"{p.type.cpp}{p.default_cpp}"
     return f"{p.type.cpp}({p.default_cpp})"

@@ -15,6 +15,8 @@ struct NavMeshSettings {
     double cellHeight = 0.05;      // vertical resolution
     double tileSize = 12.8;        // side of a tile (rebuilt as a unit when geometry changes)
     double minRegionArea = 0.5;    // islands smaller than this (square metres) are dropped
+
+    bool operator==(const NavMeshSettings&) const = default;
 };
 
 // Throws sp::InvalidArgument naming `function`, the field and its value when a setting is out of range

@@ -2,6 +2,7 @@
 // A generation-checked handle to a body in a PhysicsWorld. Components hold these instead of pointers; a
 // handle whose body was removed is detected (sp::StaleObject) and never dereferenced.
 
+#include <compare>
 #include <cstdint>
 #include <functional>
 #include <iosfwd>
@@ -25,6 +26,8 @@ struct BodyId {
     constexpr bool isSet() const { return index != kInvalidIndex; }
 
     friend constexpr bool operator==(const BodyId&, const BodyId&) = default;
+    // An order (by slot, then generation) for keeping ids in sorted containers.
+    friend constexpr auto operator<=>(const BodyId&, const BodyId&) = default;
 };
 
 // Writes "index:generation" ("3:1"), or "invalid" for BodyId::invalid(); used in error messages.

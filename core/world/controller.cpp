@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/world/navigation_system.h"
 #include "core/world/pawn.h"
 #include "core/world/world.h"
 
@@ -122,33 +123,67 @@ bool AAIController::arrived(const APawn& pawn, Eigen::Vector3d& offset) const {
     return offset.norm() <= acceptanceRadius_ + (stopOnOverlap_ ? pawn.GetAgentRadius() : 0.0);
 }
 
-EPathFollowingRequestResult AAIController::start(const char* function) {
+EPathFollowingRequestResult AAIController::start(const char* function, bool usePathfinding) {
     SP_CHECK(std::isfinite(acceptanceRadius_) && acceptanceRadius_ >= 0.0, sp::InvalidArgument,
              "AAIController.", function, "(): AcceptanceRadius ", acceptanceRadius_, " must be >= 0");
     moving_ = false;
+    followingPath_ = false;
     const APawn* pawn = K2_GetPawn();
     if (!pawn)
         return EPathFollowingRequestResult::Failed;
     Eigen::Vector3d offset;
     if (arrived(*pawn, offset))
         return EPathFollowingRequestResult::AlreadyAtGoal;
+    if (usePathfinding && pawn->IsWalking() && sp::world::defaultNavigationIfAny(*GetWorld())) {
+        if (!planPath(*pawn))
+            return EPathFollowingRequestResult::Failed;
+        followingPath_ = true;
+    }
     moving_ = true;
     return EPathFollowingRequestResult::RequestSuccessful;
 }
 
+bool AAIController::planPath(const APawn& pawn) {
+    ARecastNavMesh* navigation = sp::world::defaultNavigationIfAny(*GetWorld());
+    const sp::navigation::Path path =
+        navigation->findPath(pawn.GetActorLocation(), goalLocation(), "AAIController.MoveToLocation()");
+    if (path.points.empty())
+        return false;
+    path_.assign(path.points.begin() + 1, path.points.end());
+    nextCorner_ = 0;
+    plannedGoal_ = goalLocation();
+    return true;
+}
+
+bool AAIController::advanceOnPath(const APawn& pawn) {
+    // A goal actor that left the path's end by a metre is planned for again.
+    if (!goalActor_.isNull() && (goalLocation().toEigen() - plannedGoal_.toEigen()).norm() > 1.0 &&
+        !planPath(pawn))
+        return false;
+    const Eigen::Vector3d at = pawn.GetActorLocation().toEigen();
+    // Corners count as reached within a step's length (at least 10 cm), horizontally.
+    const double reach = std::max(0.1, pawn.GetMovementSpeed() * 0.05);
+    while (nextCorner_ + 1 < path_.size() && (path_[nextCorner_] - at).head<2>().norm() <= reach)
+        ++nextCorner_;
+    if (nextCorner_ + 1 < path_.size())
+        return true;
+    const double stop = acceptanceRadius_ + (stopOnOverlap_ ? pawn.GetAgentRadius() : 0.0);
+    return !path_.empty() && (path_.back() - at).head<2>().norm() > stop;
+}
+
 EPathFollowingRequestResult AAIController::MoveToLocation(const FVector& Dest, double AcceptanceRadius,
-                                                          bool bStopOnOverlap, bool /*bUsePathfinding*/) {
+                                                          bool bStopOnOverlap, bool bUsePathfinding) {
     SP_CHECK(std::isfinite(Dest.X) && std::isfinite(Dest.Y) && std::isfinite(Dest.Z), sp::InvalidArgument,
              "AAIController.MoveToLocation(): Dest must be finite");
     destination_ = Dest;
     goalActor_ = {};
     acceptanceRadius_ = AcceptanceRadius;
     stopOnOverlap_ = bStopOnOverlap;
-    return start("MoveToLocation");
+    return start("MoveToLocation", bUsePathfinding);
 }
 
 EPathFollowingRequestResult AAIController::MoveToActor(AActor* Goal, double AcceptanceRadius,
-                                                       bool bStopOnOverlap, bool /*bUsePathfinding*/) {
+                                                       bool bStopOnOverlap, bool bUsePathfinding) {
     moving_ = false;
     if (!Goal)
         return EPathFollowingRequestResult::Failed;
@@ -159,7 +194,7 @@ EPathFollowingRequestResult AAIController::MoveToActor(AActor* Goal, double Acce
     destination_ = Goal->GetActorLocation();
     acceptanceRadius_ = AcceptanceRadius;
     stopOnOverlap_ = bStopOnOverlap;
-    return start("MoveToActor");
+    return start("MoveToActor", bUsePathfinding);
 }
 
 void AAIController::StopMovement() {
@@ -167,6 +202,8 @@ void AAIController::StopMovement() {
 }
 
 FVector AAIController::GetImmediateMoveDestination() const {
+    if (moving_ && followingPath_ && nextCorner_ + 1 < path_.size())
+        return FVector::fromEigen(path_[nextCorner_]);
     if (moving_)
         return goalLocation();
     const APawn* pawn = K2_GetPawn();
@@ -186,6 +223,14 @@ void AAIController::Tick(double deltaSeconds) {
     if (arrived(*pawn, offset)) {
         moving_ = false;
         return;
+    }
+    if (followingPath_) {
+        if (!advanceOnPath(*pawn)) {
+            moving_ = false; // at the path's end (for an unreachable goal, as near as the mesh allows)
+            return;
+        }
+        offset = path_[nextCorner_] - pawn->GetActorLocation().toEigen();
+        offset.z() = 0.0;
     }
     // Face where it goes, and ask for the input that covers the rest in this step, at most a full unit (the
     // pawn's own speed): the last step lands on the goal instead of passing it.

@@ -4,6 +4,8 @@
 // rotation (the view direction of a player, the facing an AI wants). APlayerController is a player's
 // controller: it has a player index, a view target, and receives the player's input for its pawn.
 
+#include <vector>
+
 #include "core/reflect/object_base.h"
 #include "core/world/actor.h"
 
@@ -124,8 +126,10 @@ enum class EPathFollowingStatus : uint8_t {
 
 /// A controller for non-player pawns, directed from code. MoveToLocation / MoveToActor walk (ACharacter)
 /// or fly (ADefaultPawn) the pawn to a goal through its movement input, turning the control rotation to
-/// face where it goes. Paths are straight lines: with no navigation mesh yet, bUsePathfinding is accepted
-/// for UE compatibility and a pawn walks into what is in its way.
+/// face where it goes. A walking pawn with bUsePathfinding follows a path on the world's default navigation
+/// data when the world has navigation (an ARecastNavMesh or an ANavMeshBoundsVolume), corner by corner,
+/// and the move fails when its start or goal is off the navigation mesh; an unreachable goal is walked to as
+/// close as the mesh allows. Otherwise (flying, no navigation, or bUsePathfinding false) it goes straight.
 SPCLASS()
 class AAIController : public AController {
     SP_GENERATED_BODY()
@@ -151,7 +155,8 @@ class AAIController : public AController {
         return moving_ ? EPathFollowingStatus::Moving : EPathFollowingStatus::Idle;
     }
 
-    /// Returns the point the pawn is moving to (its location when no move is in progress).
+    /// Returns the point the pawn is moving to now: the next corner of its path, else the goal (its location
+    /// when no move is in progress).
     SPFUNCTION()
     FVector GetImmediateMoveDestination() const;
 
@@ -162,9 +167,18 @@ class AAIController : public AController {
     FVector goalLocation() const;
     // The remaining offset from the pawn to the goal, horizontal for a walking pawn, and how close counts.
     bool arrived(const APawn& pawn, Eigen::Vector3d& offset) const;
-    EPathFollowingRequestResult start(const char* function);
+    EPathFollowingRequestResult start(const char* function, bool usePathfinding);
+    // Plans the path to the goal on the world's navigation; false when the start or goal is off it.
+    bool planPath(const APawn& pawn);
+    // Advances nextCorner_ past the corners reached (re-planning for a goal actor that moved); false once the
+    // pawn is at the path's end.
+    bool advanceOnPath(const APawn& pawn);
 
     bool moving_ = false;
+    bool followingPath_ = false;
+    std::vector<Eigen::Vector3d> path_; // corners after the start
+    size_t nextCorner_ = 0;
+    FVector plannedGoal_; // the goal's location when the path was planned
     FVector destination_;
     sp::reflect::ObjectHandle goalActor_;
     double acceptanceRadius_ = 0.1;

@@ -127,6 +127,14 @@ physics::BodyId PhysicsSubsystem::requireSimulatedBody(const UPrimitiveComponent
     return body;
 }
 
+std::vector<std::pair<UPrimitiveComponent*, physics::BodyId>> PhysicsSubsystem::componentBodies() const {
+    std::vector<std::pair<UPrimitiveComponent*, physics::BodyId>> bodies;
+    bodies.reserve(entries_.size());
+    for (const Entry& entry : entries_)
+        bodies.emplace_back(entry.component, entry.body);
+    return bodies;
+}
+
 void PhysicsSubsystem::syncAll() {
     for (Entry& entry : entries_)
         syncEntry(entry);

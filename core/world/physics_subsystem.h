@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <optional>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "core/physics/physics_world.h"
@@ -61,6 +62,10 @@ class PhysicsSubsystem : public WorldSubsystem {
                                                     const char* function);
     std::vector<UPrimitiveComponent*> endedOverlaps(const UPrimitiveComponent& component,
                                                     const char* function);
+
+    // Every component in play with its body (invalid when it has none), in registration order, as of the
+    // last sync (navigation builds from the static ones).
+    std::vector<std::pair<UPrimitiveComponent*, physics::BodyId>> componentBodies() const;
 
     physics::PhysicsWorld& GetPhysicsWorld() { return physicsWorld_; }
     size_t GetBodyCount() const { return physicsWorld_.bodyCount(); }

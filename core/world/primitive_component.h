@@ -74,6 +74,10 @@ class UPrimitiveComponent : public USceneComponent {
     SPPROPERTY()
     bool bGenerateOverlapEvents = false;
 
+    /// Whether navigation meshes are built over this component when it is Static and collides (as in UE).
+    SPPROPERTY()
+    bool bCanEverAffectNavigation = true;
+
     /// Returns the world-space axis-aligned bounds as centre Origin and half size BoxExtent.
     SPFUNCTION()
     void GetBounds(FVector& Origin, FVector& BoxExtent) const;

@@ -21,6 +21,7 @@
 #include "core/world/light_actors.h"
 #include "core/world/light_component.h"
 #include "core/world/math.h"
+#include "core/world/navigation_system.h"
 #include "core/world/object.h"
 #include "core/world/pawn.h"
 #include "core/world/primitive_component.h"

@@ -21,6 +21,7 @@
 #include "core/world/light_actors.h"
 #include "core/world/light_component.h"
 #include "core/world/math.h"
+#include "core/world/navigation_system.h"
 #include "core/world/object.h"
 #include "core/world/pawn.h"
 #include "core/world/primitive_component.h"
@@ -69,7 +70,7 @@ const sp::reflect::TypeInfo& AAIController::StaticClass() {
         using Self = AAIController;
         sp::reflect::TypeInfo t;
         t.name = "AAIController";
-        t.doc = "A controller for non-player pawns, directed from code. MoveToLocation / MoveToActor walk (ACharacter)\nor fly (ADefaultPawn) the pawn to a goal through its movement input, turning the control rotation to\nface where it goes. Paths are straight lines: with no navigation mesh yet, bUsePathfinding is accepted\nfor UE compatibility and a pawn walks into what is in its way.";
+        t.doc = "A controller for non-player pawns, directed from code. MoveToLocation / MoveToActor walk (ACharacter)\nor fly (ADefaultPawn) the pawn to a goal through its movement input, turning the control rotation to\nface where it goes. A walking pawn with bUsePathfinding follows a path on the world's default navigation\ndata when the world has navigation (an ARecastNavMesh or an ANavMeshBoundsVolume), corner by corner,\nand the move fails when its start or goal is off the navigation mesh; an unreachable goal is walked to as\nclose as the mesh allows. Otherwise (flying, no navigation, or bUsePathfinding false) it goes straight.";
         t.kind = sp::reflect::TypeInfo::Kind::Class;
         t.parent = &AController::StaticClass();
         t.isAbstract = false;
@@ -158,7 +159,7 @@ const sp::reflect::TypeInfo& AAIController::StaticClass() {
         });
         t.functions.push_back({
             "GetImmediateMoveDestination",
-            "Returns the point the pawn is moving to (its location when no move is in progress).",
+            "Returns the point the pawn is moving to now: the next corner of its path, else the goal (its location\nwhen no move is in progress).",
             "FVector",
             {
             },

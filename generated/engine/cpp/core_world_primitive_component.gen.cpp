@@ -22,6 +22,7 @@
 #include "core/world/light_actors.h"
 #include "core/world/light_component.h"
 #include "core/world/math.h"
+#include "core/world/navigation_system.h"
 #include "core/world/object.h"
 #include "core/world/pawn.h"
 #include "core/world/scene_component.h"
@@ -175,6 +176,20 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
                 auto* object = sp::reflect::selfCast<Self>(self);
                 object->bGenerateOverlapEvents = sp::reflect::decode<bool>(value, "UPrimitiveComponent.bGenerateOverlapEvents");
                 sp::reflect::notifyPropertyChanged(object, "bGenerateOverlapEvents");
+            },
+        });
+        t.properties.push_back({
+            "bCanEverAffectNavigation",
+            "bool",
+            "Whether navigation meshes are built over this component when it is Static and collides (as in UE).",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bCanEverAffectNavigation);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->bCanEverAffectNavigation = sp::reflect::decode<bool>(value, "UPrimitiveComponent.bCanEverAffectNavigation");
+                sp::reflect::notifyPropertyChanged(object, "bCanEverAffectNavigation");
             },
         });
         t.functions.push_back({

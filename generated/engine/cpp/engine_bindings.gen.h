@@ -29,6 +29,7 @@
 #include "core/world/light_actors.h"
 #include "core/world/light_component.h"
 #include "core/world/math.h"
+#include "core/world/navigation_system.h"
 #include "core/world/object.h"
 #include "core/world/pawn.h"
 #include "core/world/primitive_component.h"
@@ -80,6 +81,9 @@ template <> struct Ref<AMaterialLibrary> : Ref<AActor> {
 template <> struct Ref<AMultiViewCameraRig> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
+template <> struct Ref<ANavMeshBoundsVolume> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
 template <> struct Ref<APlayerController> : Ref<AController> {
     using Ref<AController>::Ref;
 };
@@ -87,6 +91,9 @@ template <> struct Ref<APlayerStart> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
 template <> struct Ref<APointLight> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
+template <> struct Ref<ARecastNavMesh> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
 template <> struct Ref<ASkyLight> : Ref<AActor> {
@@ -148,6 +155,9 @@ template <> struct Ref<UGameplayStatics> : Ref<UObject> {
 };
 template <> struct Ref<UInputComponent> : Ref<UActorComponent> {
     using Ref<UActorComponent>::Ref;
+};
+template <> struct Ref<UNavigationSystemV1> : Ref<UObject> {
+    using Ref<UObject>::Ref;
 };
 template <> struct Ref<UPointLightComponent> : Ref<ULightComponent> {
     using Ref<ULightComponent>::Ref;
@@ -233,6 +243,21 @@ template <> struct type_caster<EComponentMobility> {
     }
     static handle cast(EComponentMobility v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EComponentMobility");
+        return cls(static_cast<int64_t>(v)).release();
+    }
+};
+
+template <> struct type_caster<ENavigationQueryResult> {
+    PYBIND11_TYPE_CASTER(ENavigationQueryResult, const_name("ENavigationQueryResult"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ENavigationQueryResult");
+        if (!isinstance(src, cls))
+            return false;
+        value = static_cast<ENavigationQueryResult>(src.cast<int64_t>());
+        return true;
+    }
+    static handle cast(ENavigationQueryResult v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ENavigationQueryResult");
         return cls(static_cast<int64_t>(v)).release();
     }
 };

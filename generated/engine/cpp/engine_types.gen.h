@@ -7,6 +7,7 @@
 
 #include "core/sensors/camera_sensor_component.h"
 #include "core/world/controller.h"
+#include "core/world/navigation_system.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
 #include "core/world/spline_component.h"
@@ -15,6 +16,7 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraModality
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraToneCurve>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECollisionPrimitive>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EComponentMobility>();
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ENavigationQueryResult>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPathFollowingRequestResult>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPathFollowingStatus>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ESplineCoordinateSpace>();

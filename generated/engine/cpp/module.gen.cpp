@@ -352,7 +352,7 @@ void spear_bind_engine(py::module_& m) {
     }
     {
         using Self = AAIController;
-        py::class_<Ref<Self>, Ref<AController>> cls(m, "AAIController", "A controller for non-player pawns, directed from code. MoveToLocation / MoveToActor walk (ACharacter)\nor fly (ADefaultPawn) the pawn to a goal through its movement input, turning the control rotation to\nface where it goes. Paths are straight lines: with no navigation mesh yet, bUsePathfinding is accepted\nfor UE compatibility and a pawn walks into what is in its way.");
+        py::class_<Ref<Self>, Ref<AController>> cls(m, "AAIController", "A controller for non-player pawns, directed from code. MoveToLocation / MoveToActor walk (ACharacter)\nor fly (ADefaultPawn) the pawn to a goal through its movement input, turning the control rotation to\nface where it goes. A walking pawn with bUsePathfinding follows a path on the world's default navigation\ndata when the world has navigation (an ARecastNavMesh or an ANavMeshBoundsVolume), corner by corner,\nand the move fails when its start or goal is off the navigation mesh; an unreachable goal is walked to as\nclose as the mesh allows. Otherwise (flying, no navigation, or bUsePathfinding false) it goes straight.");
         cls.attr("__sp_class__") = "AAIController";
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def(
@@ -419,7 +419,7 @@ void spear_bind_engine(py::module_& m) {
                 sp::reflect::checkResultFields(result, kContext);
                 return Bridge<FVector>::out(result);
             },
-            "Returns the point the pawn is moving to (its location when no move is in progress).");
+            "Returns the point the pawn is moving to now: the next corner of its path, else the goal (its location\nwhen no move is in progress).");
     }
     {
         using Self = ACameraSensorActor;
@@ -877,6 +877,20 @@ void spear_bind_engine(py::module_& m) {
             "Sets Width, Height and Modalities of every camera of the ring.");
     }
     {
+        using Self = ANavMeshBoundsVolume;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "ANavMeshBoundsVolume", "Where navigation is built: the box of its BoxComponent (which collides with nothing).");
+        cls.attr("__sp_class__") = "ANavMeshBoundsVolume";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "BoxComponent",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("ANavMeshBoundsVolume.BoxComponent")->BoxComponent;
+                sp::reflect::checkNotNull(value, "ANavMeshBoundsVolume.BoxComponent");
+                return Bridge<UBoxComponent*>::out(value);
+            },
+            "The volume's box (the root component); BoxExtent and the actor's transform place it.");
+    }
+    {
         using Self = APlayerController;
         py::class_<Ref<Self>, Ref<AController>> cls(m, "APlayerController", "A player's controller: a player index, a view target, and the player's input for its pawn.");
         cls.attr("__sp_class__") = "APlayerController";
@@ -982,6 +996,292 @@ void spear_bind_engine(py::module_& m) {
                 return Bridge<UPointLightComponent*>::out(value);
             },
             "The light (also the root component).");
+    }
+    {
+        using Self = ARecastNavMesh;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "ARecastNavMesh", "Navigation data for one agent profile: a tiled Recast navigation mesh and the queries on it.");
+        cls.attr("__sp_class__") = "ARecastNavMesh";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "AgentName",
+            [](const Ref<Self>& self) { return Bridge<std::string>::out(self.get<Self>("ARecastNavMesh.AgentName")->AgentName); },
+            [](const Ref<Self>& self, Bridge<std::string>::Py value) {
+                Self* object = self.get<Self>("ARecastNavMesh.AgentName");
+                object->AgentName = Bridge<std::string>::in(std::move(value), "ARecastNavMesh.AgentName");
+                object->PostPropertyChanged("AgentName");
+            },
+            "The agent profile's name (UNavigationSystemV1.GetNavDataForAgentName finds it by this).");
+        cls.def_property(
+            "AgentRadius",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ARecastNavMesh.AgentRadius")->AgentRadius); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("ARecastNavMesh.AgentRadius");
+                object->AgentRadius = Bridge<double>::in(std::move(value), "ARecastNavMesh.AgentRadius");
+                object->PostPropertyChanged("AgentRadius");
+            },
+            "Clearance kept from walls and edges, metres (>= 0).");
+        cls.def_property(
+            "AgentHeight",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ARecastNavMesh.AgentHeight")->AgentHeight); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("ARecastNavMesh.AgentHeight");
+                object->AgentHeight = Bridge<double>::in(std::move(value), "ARecastNavMesh.AgentHeight");
+                object->PostPropertyChanged("AgentHeight");
+            },
+            "Headroom the agent needs, metres (> 0).");
+        cls.def_property(
+            "AgentMaxSlope",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ARecastNavMesh.AgentMaxSlope")->AgentMaxSlope); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("ARecastNavMesh.AgentMaxSlope");
+                object->AgentMaxSlope = Bridge<double>::in(std::move(value), "ARecastNavMesh.AgentMaxSlope");
+                object->PostPropertyChanged("AgentMaxSlope");
+            },
+            "Steepest walkable ground, degrees in (0, 90).");
+        cls.def_property(
+            "AgentMaxStepHeight",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ARecastNavMesh.AgentMaxStepHeight")->AgentMaxStepHeight); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("ARecastNavMesh.AgentMaxStepHeight");
+                object->AgentMaxStepHeight = Bridge<double>::in(std::move(value), "ARecastNavMesh.AgentMaxStepHeight");
+                object->PostPropertyChanged("AgentMaxStepHeight");
+            },
+            "Highest ledge the agent steps up or down, metres (>= 0).");
+        cls.def_property(
+            "CellSize",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ARecastNavMesh.CellSize")->CellSize); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("ARecastNavMesh.CellSize");
+                object->CellSize = Bridge<double>::in(std::move(value), "ARecastNavMesh.CellSize");
+                object->PostPropertyChanged("CellSize");
+            },
+            "Horizontal voxel size, metres (> 0): smaller is finer and slower to build.");
+        cls.def_property(
+            "CellHeight",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ARecastNavMesh.CellHeight")->CellHeight); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("ARecastNavMesh.CellHeight");
+                object->CellHeight = Bridge<double>::in(std::move(value), "ARecastNavMesh.CellHeight");
+                object->PostPropertyChanged("CellHeight");
+            },
+            "Vertical voxel size, metres (> 0).");
+        cls.def_property(
+            "TileSize",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ARecastNavMesh.TileSize")->TileSize); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("ARecastNavMesh.TileSize");
+                object->TileSize = Bridge<double>::in(std::move(value), "ARecastNavMesh.TileSize");
+                object->PostPropertyChanged("TileSize");
+            },
+            "Side of a tile, metres (at least 8 cells): the unit rebuilt when geometry changes.");
+        cls.def_property(
+            "MinRegionArea",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ARecastNavMesh.MinRegionArea")->MinRegionArea); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("ARecastNavMesh.MinRegionArea");
+                object->MinRegionArea = Bridge<double>::in(std::move(value), "ARecastNavMesh.MinRegionArea");
+                object->PostPropertyChanged("MinRegionArea");
+            },
+            "Walkable islands smaller than this are dropped, square metres (>= 0).");
+        cls.def_property(
+            "bRebuildAutomatically",
+            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("ARecastNavMesh.bRebuildAutomatically")->bRebuildAutomatically); },
+            [](const Ref<Self>& self, Bridge<bool>::Py value) {
+                Self* object = self.get<Self>("ARecastNavMesh.bRebuildAutomatically");
+                object->bRebuildAutomatically = Bridge<bool>::in(std::move(value), "ARecastNavMesh.bRebuildAutomatically");
+                object->PostPropertyChanged("bRebuildAutomatically");
+            },
+            "Whether geometry changes rebuild the tiles under them before the next query (else only\nRebuildNavigation does).");
+        cls.def_property(
+            "RandomSeed",
+            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("ARecastNavMesh.RandomSeed")->RandomSeed); },
+            [](const Ref<Self>& self, Bridge<int32_t>::Py value) {
+                Self* object = self.get<Self>("ARecastNavMesh.RandomSeed");
+                object->SetRandomSeed(Bridge<int32_t>::in(std::move(value), "ARecastNavMesh.RandomSeed"));
+                object->PostPropertyChanged("RandomSeed");
+            },
+            "Seed of the random points' generator (SetRandomSeed restarts the sequence).");
+        cls.def(
+            "SetRandomSeed",
+            [](const Ref<Self>& self, Bridge<int32_t>::Py Seed) -> py::object {
+                static constexpr const char* kContext = "ARecastNavMesh.SetRandomSeed()";
+                Self* object = self.get<Self>(kContext);
+                auto SeedValue = Bridge<int32_t>::in(std::move(Seed), "ARecastNavMesh.SetRandomSeed(): argument 'Seed'");
+                object->SetRandomSeed(SeedValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("Seed"),
+            "Restarts the random point sequence from Seed.");
+        cls.def(
+            "RebuildNavigation",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "ARecastNavMesh.RebuildNavigation()";
+                Self* object = self.get<Self>(kContext);
+                object->RebuildNavigation();
+                return py::none();
+            },
+            "Builds the whole navigation mesh now from the current geometry and settings.");
+        cls.def(
+            "GetNumTiles",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "ARecastNavMesh.GetNumTiles()";
+                Self* object = self.get<Self>(kContext);
+                auto result = object->GetNumTiles();
+                return Bridge<int32_t>::out(result);
+            },
+            "Returns the number of tiles that hold navigation polygons (building first if needed).");
+        cls.def(
+            "GetNumPolygons",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "ARecastNavMesh.GetNumPolygons()";
+                Self* object = self.get<Self>(kContext);
+                auto result = object->GetNumPolygons();
+                return Bridge<int32_t>::out(result);
+            },
+            "Returns the number of navigation polygons.");
+        cls.def(
+            "GetNavigableArea",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "ARecastNavMesh.GetNavigableArea()";
+                Self* object = self.get<Self>(kContext);
+                auto result = object->GetNavigableArea();
+                return Bridge<double>::out(result);
+            },
+            "Returns the navigable area in square metres (horizontal projection).");
+        cls.def(
+            "GetLastBuildSeconds",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "ARecastNavMesh.GetLastBuildSeconds()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetLastBuildSeconds();
+                return Bridge<double>::out(result);
+            },
+            "Returns the seconds the last build or tile rebuild took.");
+        cls.def(
+            "GetLastBuildTileCount",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "ARecastNavMesh.GetLastBuildTileCount()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetLastBuildTileCount();
+                return Bridge<int32_t>::out(result);
+            },
+            "Returns the number of tiles the last build or rebuild voxelised.");
+        cls.def(
+            "FindPath",
+            [](const Ref<Self>& self, Bridge<FVector>::Py Start, Bridge<FVector>::Py End) -> py::object {
+                static constexpr const char* kContext = "ARecastNavMesh.FindPath()";
+                Self* object = self.get<Self>(kContext);
+                auto StartValue = Bridge<FVector>::in(std::move(Start), "ARecastNavMesh.FindPath(): argument 'Start'");
+                auto EndValue = Bridge<FVector>::in(std::move(End), "ARecastNavMesh.FindPath(): argument 'End'");
+                sp::reflect::SpArray<double> PathPointsOut{};
+                double PathLengthOut{};
+                auto result = object->FindPath(StartValue, EndValue, PathPointsOut, PathLengthOut);
+                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "ARecastNavMesh").attr("FindPathResult");
+                return resultType(py::arg("ReturnValue") = Bridge<ENavigationQueryResult>::out(result), py::arg("PathPoints") = Bridge<sp::reflect::SpArray<double>>::out(PathPointsOut), py::arg("PathLength") = Bridge<double>::out(PathLengthOut));
+            },
+            py::kw_only(),
+            py::arg("Start"),
+            py::arg("End"),
+            "Finds the shortest path from Start to End (each projected onto the mesh): its corners as an (N, 3)\narray from start to end, and its length in metres. Fail: End is unreachable and the path leads to\nthe reachable point nearest it; Invalid: Start or End is not on the mesh (no points).");
+        cls.def(
+            "FindPaths",
+            [](const Ref<Self>& self, Bridge<sp::reflect::SpArray<double>>::Py StartPoints, Bridge<sp::reflect::SpArray<double>>::Py EndPoints) -> py::object {
+                static constexpr const char* kContext = "ARecastNavMesh.FindPaths()";
+                Self* object = self.get<Self>(kContext);
+                auto StartPointsValue = Bridge<sp::reflect::SpArray<double>>::in(std::move(StartPoints), "ARecastNavMesh.FindPaths(): argument 'StartPoints'");
+                auto EndPointsValue = Bridge<sp::reflect::SpArray<double>>::in(std::move(EndPoints), "ARecastNavMesh.FindPaths(): argument 'EndPoints'");
+                sp::reflect::SpArray<double> PathPointsOut{};
+                sp::reflect::SpArray<int64_t> PathStartsOut{};
+                sp::reflect::SpArray<double> LengthsOut{};
+                sp::reflect::SpArray<uint8_t> ResultsOut{};
+                object->FindPaths(StartPointsValue, EndPointsValue, PathPointsOut, PathStartsOut, LengthsOut, ResultsOut);
+                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "ARecastNavMesh").attr("FindPathsResult");
+                return resultType(py::arg("PathPoints") = Bridge<sp::reflect::SpArray<double>>::out(PathPointsOut), py::arg("PathStarts") = Bridge<sp::reflect::SpArray<int64_t>>::out(PathStartsOut), py::arg("Lengths") = Bridge<sp::reflect::SpArray<double>>::out(LengthsOut), py::arg("Results") = Bridge<sp::reflect::SpArray<uint8_t>>::out(ResultsOut));
+            },
+            py::kw_only(),
+            py::arg("StartPoints"),
+            py::arg("EndPoints"),
+            "Finds a path for each row of StartPoints and EndPoints ((N, 3) arrays): the corners of all of them\nin one (M, 3) array, path i being rows PathStarts[i] to PathStarts[i + 1] (an (N + 1,) int64 array),\nwith Lengths (N,) and Results (N,) (ENavigationQueryResult values, uint8).");
+        cls.def(
+            "GetGeodesicDistance",
+            [](const Ref<Self>& self, Bridge<FVector>::Py Start, Bridge<FVector>::Py End) -> py::object {
+                static constexpr const char* kContext = "ARecastNavMesh.GetGeodesicDistance()";
+                Self* object = self.get<Self>(kContext);
+                auto StartValue = Bridge<FVector>::in(std::move(Start), "ARecastNavMesh.GetGeodesicDistance(): argument 'Start'");
+                auto EndValue = Bridge<FVector>::in(std::move(End), "ARecastNavMesh.GetGeodesicDistance(): argument 'End'");
+                auto result = object->GetGeodesicDistance(StartValue, EndValue);
+                return Bridge<double>::out(result);
+            },
+            py::kw_only(),
+            py::arg("Start"),
+            py::arg("End"),
+            "Returns the length of the shortest path from Start to End in metres, or infinity when End is not\nreachable (or either is off the mesh).");
+        cls.def(
+            "GetRandomPoints",
+            [](const Ref<Self>& self, Bridge<int32_t>::Py NumPoints) -> py::object {
+                static constexpr const char* kContext = "ARecastNavMesh.GetRandomPoints()";
+                Self* object = self.get<Self>(kContext);
+                auto NumPointsValue = Bridge<int32_t>::in(std::move(NumPoints), "ARecastNavMesh.GetRandomPoints(): argument 'NumPoints'");
+                auto result = object->GetRandomPoints(NumPointsValue);
+                return Bridge<sp::reflect::SpArray<double>>::out(result);
+            },
+            py::kw_only(),
+            py::arg("NumPoints"),
+            "Returns NumPoints points drawn uniformly over the navigable area, as an (N, 3) array.");
+        cls.def(
+            "GetRandomReachablePointsInRadius",
+            [](const Ref<Self>& self, Bridge<sp::reflect::SpArray<double>>::Py Origins, Bridge<double>::Py Radius) -> py::object {
+                static constexpr const char* kContext = "ARecastNavMesh.GetRandomReachablePointsInRadius()";
+                Self* object = self.get<Self>(kContext);
+                auto OriginsValue = Bridge<sp::reflect::SpArray<double>>::in(std::move(Origins), "ARecastNavMesh.GetRandomReachablePointsInRadius(): argument 'Origins'");
+                auto RadiusValue = Bridge<double>::in(std::move(Radius), "ARecastNavMesh.GetRandomReachablePointsInRadius(): argument 'Radius'");
+                auto result = object->GetRandomReachablePointsInRadius(OriginsValue, RadiusValue);
+                return Bridge<sp::reflect::SpArray<double>>::out(result);
+            },
+            py::kw_only(),
+            py::arg("Origins"),
+            py::arg("Radius"),
+            "Returns, for each row of Origins ((N, 3)), a point drawn uniformly over the navigable area within\nRadius metres (horizontally) that is reachable from the origin; a row of NaN where there is none.");
+        cls.def(
+            "ProjectPointToNavigation",
+            [](const Ref<Self>& self, Bridge<FVector>::Py Point, Bridge<FVector>::Py QueryExtent) -> py::object {
+                static constexpr const char* kContext = "ARecastNavMesh.ProjectPointToNavigation()";
+                Self* object = self.get<Self>(kContext);
+                auto PointValue = Bridge<FVector>::in(std::move(Point), "ARecastNavMesh.ProjectPointToNavigation(): argument 'Point'");
+                FVector ProjectedLocationOut{};
+                auto QueryExtentValue = Bridge<FVector>::in(std::move(QueryExtent), "ARecastNavMesh.ProjectPointToNavigation(): argument 'QueryExtent'");
+                auto result = object->ProjectPointToNavigation(PointValue, ProjectedLocationOut, QueryExtentValue);
+                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "ARecastNavMesh").attr("ProjectPointToNavigationResult");
+                return resultType(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("ProjectedLocation") = Bridge<FVector>::out(ProjectedLocationOut));
+            },
+            py::kw_only(),
+            py::arg("Point"),
+            py::arg("QueryExtent") = static_cast<Bridge<FVector>::Py>(FVector(FVector())),
+            "Projects Point onto the mesh: the nearest navigable point within QueryExtent (half sizes; zero: two\nagent radii sideways and an agent height up and down). Returns false when there is none.");
+        cls.def(
+            "IsNavigable",
+            [](const Ref<Self>& self, Bridge<FVector>::Py Point, Bridge<double>::Py MaxVerticalDistance) -> py::object {
+                static constexpr const char* kContext = "ARecastNavMesh.IsNavigable()";
+                Self* object = self.get<Self>(kContext);
+                auto PointValue = Bridge<FVector>::in(std::move(Point), "ARecastNavMesh.IsNavigable(): argument 'Point'");
+                auto MaxVerticalDistanceValue = Bridge<double>::in(std::move(MaxVerticalDistance), "ARecastNavMesh.IsNavigable(): argument 'MaxVerticalDistance'");
+                auto result = object->IsNavigable(PointValue, MaxVerticalDistanceValue);
+                return Bridge<bool>::out(result);
+            },
+            py::kw_only(),
+            py::arg("Point"),
+            py::arg("MaxVerticalDistance") = static_cast<Bridge<double>::Py>(double(0.5)),
+            "Returns whether Point is on the navigable area: over it, and at most MaxVerticalDistance metres above\nor below its surface.");
+        cls.def(
+            "GetNavMeshTriangles",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "ARecastNavMesh.GetNavMeshTriangles()";
+                Self* object = self.get<Self>(kContext);
+                auto result = object->GetNavMeshTriangles();
+                return Bridge<sp::reflect::SpArray<double>>::out(result);
+            },
+            "Returns the mesh's surface as triangles, a (T, 3, 3) array of corners (for drawing a map).");
     }
     {
         using Self = ASkyLight;
@@ -1736,6 +2036,15 @@ void spear_bind_engine(py::module_& m) {
                 object->PostPropertyChanged("bGenerateOverlapEvents");
             },
             "Whether this component takes part in overlaps: two components overlap only when both have it set\n(as in UE). Shape components (UBoxComponent, USphereComponent) have it set by default.");
+        cls.def_property(
+            "bCanEverAffectNavigation",
+            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UPrimitiveComponent.bCanEverAffectNavigation")->bCanEverAffectNavigation); },
+            [](const Ref<Self>& self, Bridge<bool>::Py value) {
+                Self* object = self.get<Self>("UPrimitiveComponent.bCanEverAffectNavigation");
+                object->bCanEverAffectNavigation = Bridge<bool>::in(std::move(value), "UPrimitiveComponent.bCanEverAffectNavigation");
+                object->PostPropertyChanged("bCanEverAffectNavigation");
+            },
+            "Whether navigation meshes are built over this component when it is Static and collides (as in UE).");
         cls.def(
             "GetBounds",
             [](const Ref<Self>& self) -> py::object {
@@ -2778,6 +3087,163 @@ void spear_bind_engine(py::module_& m) {
             py::kw_only(),
             py::arg("ActionName"),
             "Returns true when ActionName was injected for the current tick.");
+    }
+    {
+        using Self = UNavigationSystemV1;
+        py::class_<Ref<Self>, Ref<UObject>> cls(m, "UNavigationSystemV1", "The world's navigation system (UE's UNavigationSystemV1).");
+        cls.attr("__sp_class__") = "UNavigationSystemV1";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "GetNavigationSystem",
+            [](Bridge<UObject*>::Py WorldContextObject) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UNavigationSystemV1.GetNavigationSystem()";
+                auto WorldContextObjectValue = Bridge<UObject*>::in(std::move(WorldContextObject), "UNavigationSystemV1.GetNavigationSystem(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UNavigationSystemV1.GetNavigationSystem(): argument 'WorldContextObject'", " must not be None");
+                auto result = Self::GetNavigationSystem(WorldContextObjectValue);
+                sp::reflect::checkNotNull(result, kContext);
+                return Bridge<UNavigationSystemV1*>::out(result);
+            },
+            py::kw_only(),
+            py::arg("WorldContextObject"),
+            "Returns the navigation system of WorldContextObject's world.");
+        cls.def(
+            "GetNavDataForAgentName",
+            [](const Ref<Self>& self, Bridge<std::string>::Py AgentName) -> py::object {
+                static constexpr const char* kContext = "UNavigationSystemV1.GetNavDataForAgentName()";
+                const Self* object = self.get<Self>(kContext);
+                auto AgentNameValue = Bridge<std::string>::in(std::move(AgentName), "UNavigationSystemV1.GetNavDataForAgentName(): argument 'AgentName'");
+                auto result = object->GetNavDataForAgentName(AgentNameValue);
+                return Bridge<ARecastNavMesh*>::out(result);
+            },
+            py::kw_only(),
+            py::arg("AgentName"),
+            "Returns the navigation data of agent profile AgentName, or None.");
+        cls.def(
+            "GetDefaultNavDataInstance",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UNavigationSystemV1.GetDefaultNavDataInstance()";
+                Self* object = self.get<Self>(kContext);
+                auto result = object->GetDefaultNavDataInstance();
+                sp::reflect::checkNotNull(result, kContext);
+                return Bridge<ARecastNavMesh*>::out(result);
+            },
+            "Returns the default navigation data: the world's first ARecastNavMesh, spawned (as\n\"RecastNavMesh-Default\") when it has none.");
+        cls.def(
+            "Build",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UNavigationSystemV1.Build()";
+                Self* object = self.get<Self>(kContext);
+                object->Build();
+                return py::none();
+            },
+            "Rebuilds every navigation data of the world now.");
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "FindPathToLocationSynchronously",
+            [](Bridge<UObject*>::Py WorldContextObject, Bridge<FVector>::Py PathStart, Bridge<FVector>::Py PathEnd, Bridge<ARecastNavMesh*>::Py NavData) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UNavigationSystemV1.FindPathToLocationSynchronously()";
+                auto WorldContextObjectValue = Bridge<UObject*>::in(std::move(WorldContextObject), "UNavigationSystemV1.FindPathToLocationSynchronously(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UNavigationSystemV1.FindPathToLocationSynchronously(): argument 'WorldContextObject'", " must not be None");
+                auto PathStartValue = Bridge<FVector>::in(std::move(PathStart), "UNavigationSystemV1.FindPathToLocationSynchronously(): argument 'PathStart'");
+                auto PathEndValue = Bridge<FVector>::in(std::move(PathEnd), "UNavigationSystemV1.FindPathToLocationSynchronously(): argument 'PathEnd'");
+                sp::reflect::SpArray<double> PathPointsOut{};
+                double PathLengthOut{};
+                auto NavDataValue = Bridge<ARecastNavMesh*>::in(std::move(NavData), "UNavigationSystemV1.FindPathToLocationSynchronously(): argument 'NavData'");
+                auto result = Self::FindPathToLocationSynchronously(WorldContextObjectValue, PathStartValue, PathEndValue, PathPointsOut, PathLengthOut, NavDataValue);
+                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("FindPathToLocationSynchronouslyResult");
+                return resultType(py::arg("ReturnValue") = Bridge<ENavigationQueryResult>::out(result), py::arg("PathPoints") = Bridge<sp::reflect::SpArray<double>>::out(PathPointsOut), py::arg("PathLength") = Bridge<double>::out(PathLengthOut));
+            },
+            py::kw_only(),
+            py::arg("WorldContextObject"),
+            py::arg("PathStart"),
+            py::arg("PathEnd"),
+            py::arg("NavData") = py::none(),
+            "Finds the shortest path from PathStart to PathEnd on NavData (None: the default): its corners\n((N, 3)) and length. Unlike UE, which returns a UNavigationPath, the points come back directly.");
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "GetPathLength",
+            [](Bridge<UObject*>::Py WorldContextObject, Bridge<FVector>::Py PathStart, Bridge<FVector>::Py PathEnd, Bridge<ARecastNavMesh*>::Py NavData) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UNavigationSystemV1.GetPathLength()";
+                auto WorldContextObjectValue = Bridge<UObject*>::in(std::move(WorldContextObject), "UNavigationSystemV1.GetPathLength(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UNavigationSystemV1.GetPathLength(): argument 'WorldContextObject'", " must not be None");
+                auto PathStartValue = Bridge<FVector>::in(std::move(PathStart), "UNavigationSystemV1.GetPathLength(): argument 'PathStart'");
+                auto PathEndValue = Bridge<FVector>::in(std::move(PathEnd), "UNavigationSystemV1.GetPathLength(): argument 'PathEnd'");
+                double PathLengthOut{};
+                auto NavDataValue = Bridge<ARecastNavMesh*>::in(std::move(NavData), "UNavigationSystemV1.GetPathLength(): argument 'NavData'");
+                auto result = Self::GetPathLength(WorldContextObjectValue, PathStartValue, PathEndValue, PathLengthOut, NavDataValue);
+                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("GetPathLengthResult");
+                return resultType(py::arg("ReturnValue") = Bridge<ENavigationQueryResult>::out(result), py::arg("PathLength") = Bridge<double>::out(PathLengthOut));
+            },
+            py::kw_only(),
+            py::arg("WorldContextObject"),
+            py::arg("PathStart"),
+            py::arg("PathEnd"),
+            py::arg("NavData") = py::none(),
+            "Computes the length of the shortest path from PathStart to PathEnd on NavData (None: the default).");
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "K2_GetRandomReachablePointInRadius",
+            [](Bridge<UObject*>::Py WorldContextObject, Bridge<FVector>::Py Origin, Bridge<double>::Py Radius, Bridge<ARecastNavMesh*>::Py NavData) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UNavigationSystemV1.K2_GetRandomReachablePointInRadius()";
+                auto WorldContextObjectValue = Bridge<UObject*>::in(std::move(WorldContextObject), "UNavigationSystemV1.K2_GetRandomReachablePointInRadius(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UNavigationSystemV1.K2_GetRandomReachablePointInRadius(): argument 'WorldContextObject'", " must not be None");
+                auto OriginValue = Bridge<FVector>::in(std::move(Origin), "UNavigationSystemV1.K2_GetRandomReachablePointInRadius(): argument 'Origin'");
+                FVector RandomLocationOut{};
+                auto RadiusValue = Bridge<double>::in(std::move(Radius), "UNavigationSystemV1.K2_GetRandomReachablePointInRadius(): argument 'Radius'");
+                auto NavDataValue = Bridge<ARecastNavMesh*>::in(std::move(NavData), "UNavigationSystemV1.K2_GetRandomReachablePointInRadius(): argument 'NavData'");
+                auto result = Self::K2_GetRandomReachablePointInRadius(WorldContextObjectValue, OriginValue, RandomLocationOut, RadiusValue, NavDataValue);
+                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("K2_GetRandomReachablePointInRadiusResult");
+                return resultType(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("RandomLocation") = Bridge<FVector>::out(RandomLocationOut));
+            },
+            py::kw_only(),
+            py::arg("WorldContextObject"),
+            py::arg("Origin"),
+            py::arg("Radius"),
+            py::arg("NavData") = py::none(),
+            "Draws a point reachable from Origin within Radius metres; returns false when there is none.");
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "K2_GetRandomLocationInNavigableRadius",
+            [](Bridge<UObject*>::Py WorldContextObject, Bridge<FVector>::Py Origin, Bridge<double>::Py Radius, Bridge<ARecastNavMesh*>::Py NavData) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius()";
+                auto WorldContextObjectValue = Bridge<UObject*>::in(std::move(WorldContextObject), "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius(): argument 'WorldContextObject'", " must not be None");
+                auto OriginValue = Bridge<FVector>::in(std::move(Origin), "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius(): argument 'Origin'");
+                FVector RandomLocationOut{};
+                auto RadiusValue = Bridge<double>::in(std::move(Radius), "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius(): argument 'Radius'");
+                auto NavDataValue = Bridge<ARecastNavMesh*>::in(std::move(NavData), "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius(): argument 'NavData'");
+                auto result = Self::K2_GetRandomLocationInNavigableRadius(WorldContextObjectValue, OriginValue, RandomLocationOut, RadiusValue, NavDataValue);
+                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("K2_GetRandomLocationInNavigableRadiusResult");
+                return resultType(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("RandomLocation") = Bridge<FVector>::out(RandomLocationOut));
+            },
+            py::kw_only(),
+            py::arg("WorldContextObject"),
+            py::arg("Origin"),
+            py::arg("Radius"),
+            py::arg("NavData") = py::none(),
+            "Draws a navigable point within Radius metres of Origin, reachable or not; returns false when there is\nnone.");
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "K2_ProjectPointToNavigation",
+            [](Bridge<UObject*>::Py WorldContextObject, Bridge<FVector>::Py Point, Bridge<ARecastNavMesh*>::Py NavData, Bridge<FVector>::Py QueryExtent) -> py::object {
+                [[maybe_unused]] static constexpr const char* kContext = "UNavigationSystemV1.K2_ProjectPointToNavigation()";
+                auto WorldContextObjectValue = Bridge<UObject*>::in(std::move(WorldContextObject), "UNavigationSystemV1.K2_ProjectPointToNavigation(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UNavigationSystemV1.K2_ProjectPointToNavigation(): argument 'WorldContextObject'", " must not be None");
+                auto PointValue = Bridge<FVector>::in(std::move(Point), "UNavigationSystemV1.K2_ProjectPointToNavigation(): argument 'Point'");
+                FVector ProjectedLocationOut{};
+                auto NavDataValue = Bridge<ARecastNavMesh*>::in(std::move(NavData), "UNavigationSystemV1.K2_ProjectPointToNavigation(): argument 'NavData'");
+                auto QueryExtentValue = Bridge<FVector>::in(std::move(QueryExtent), "UNavigationSystemV1.K2_ProjectPointToNavigation(): argument 'QueryExtent'");
+                auto result = Self::K2_ProjectPointToNavigation(WorldContextObjectValue, PointValue, ProjectedLocationOut, NavDataValue, QueryExtentValue);
+                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("K2_ProjectPointToNavigationResult");
+                return resultType(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("ProjectedLocation") = Bridge<FVector>::out(ProjectedLocationOut));
+            },
+            py::kw_only(),
+            py::arg("WorldContextObject"),
+            py::arg("Point"),
+            py::arg("NavData") = py::none(),
+            py::arg("QueryExtent") = static_cast<Bridge<FVector>::Py>(FVector(FVector())),
+            "Projects Point onto NavData within QueryExtent (zero: the agent's default extent); returns false when\nno navigable point is that close.");
     }
     {
         using Self = UPointLightComponent;

@@ -22,6 +22,7 @@
 #include "core/world/light_actors.h"
 #include "core/world/light_component.h"
 #include "core/world/math.h"
+#include "core/world/navigation_system.h"
 #include "core/world/object.h"
 #include "core/world/pawn.h"
 #include "core/world/primitive_component.h"
@@ -39,6 +40,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(sp::reflect::StaticEnum<ECameraToneCurve>());
     registry.add(sp::reflect::StaticEnum<ECollisionPrimitive>());
     registry.add(sp::reflect::StaticEnum<EComponentMobility>());
+    registry.add(sp::reflect::StaticEnum<ENavigationQueryResult>());
     registry.add(sp::reflect::StaticEnum<EPathFollowingRequestResult>());
     registry.add(sp::reflect::StaticEnum<EPathFollowingStatus>());
     registry.add(sp::reflect::StaticEnum<ESplineCoordinateSpace>());
@@ -55,9 +57,11 @@ extern "C" void spear_register_engine_types() {
     registry.add(AKinematicVehicle::StaticClass());
     registry.add(AMaterialLibrary::StaticClass());
     registry.add(AMultiViewCameraRig::StaticClass());
+    registry.add(ANavMeshBoundsVolume::StaticClass());
     registry.add(APlayerController::StaticClass());
     registry.add(APlayerStart::StaticClass());
     registry.add(APointLight::StaticClass());
+    registry.add(ARecastNavMesh::StaticClass());
     registry.add(ASkyLight::StaticClass());
     registry.add(ASplineActor::StaticClass());
     registry.add(ASpotLight::StaticClass());
@@ -90,6 +94,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(UDirectionalLightComponent::StaticClass());
     registry.add(UGameplayStatics::StaticClass());
     registry.add(UInputComponent::StaticClass());
+    registry.add(UNavigationSystemV1::StaticClass());
     registry.add(UPointLightComponent::StaticClass());
     registry.add(USkyLightComponent::StaticClass());
     registry.add(USpFuncComponent::StaticClass());
@@ -111,6 +116,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(USpFuncComponent::StaticClass());
     registry.remove(USkyLightComponent::StaticClass());
     registry.remove(UPointLightComponent::StaticClass());
+    registry.remove(UNavigationSystemV1::StaticClass());
     registry.remove(UInputComponent::StaticClass());
     registry.remove(UGameplayStatics::StaticClass());
     registry.remove(UDirectionalLightComponent::StaticClass());
@@ -143,9 +149,11 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(ASpotLight::StaticClass());
     registry.remove(ASplineActor::StaticClass());
     registry.remove(ASkyLight::StaticClass());
+    registry.remove(ARecastNavMesh::StaticClass());
     registry.remove(APointLight::StaticClass());
     registry.remove(APlayerStart::StaticClass());
     registry.remove(APlayerController::StaticClass());
+    registry.remove(ANavMeshBoundsVolume::StaticClass());
     registry.remove(AMultiViewCameraRig::StaticClass());
     registry.remove(AMaterialLibrary::StaticClass());
     registry.remove(AKinematicVehicle::StaticClass());
@@ -162,10 +170,11 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ESplineCoordinateSpace>());
     registry.remove(sp::reflect::StaticEnum<EPathFollowingStatus>());
     registry.remove(sp::reflect::StaticEnum<EPathFollowingRequestResult>());
+    registry.remove(sp::reflect::StaticEnum<ENavigationQueryResult>());
     registry.remove(sp::reflect::StaticEnum<EComponentMobility>());
     registry.remove(sp::reflect::StaticEnum<ECollisionPrimitive>());
     registry.remove(sp::reflect::StaticEnum<ECameraToneCurve>());
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "70b9ac2fb21cbb69"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "1d84f39635076073"; }

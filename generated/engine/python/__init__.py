@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "70b9ac2fb21cbb69"
+API_HASH = "1d84f39635076073"

@@ -30,10 +30,12 @@ __all__ = [
     "AKinematicVehicle",
     "AMaterialLibrary",
     "AMultiViewCameraRig",
+    "ANavMeshBoundsVolume",
     "APawn",
     "APlayerController",
     "APlayerStart",
     "APointLight",
+    "ARecastNavMesh",
     "ASkyLight",
     "ASplineActor",
     "ASpotLight",
@@ -48,6 +50,7 @@ __all__ = [
     "ECameraToneCurve",
     "ECollisionPrimitive",
     "EComponentMobility",
+    "ENavigationQueryResult",
     "EPathFollowingRequestResult",
     "EPathFollowingStatus",
     "ESplineCoordinateSpace",
@@ -72,6 +75,7 @@ __all__ = [
     "UGameplayStatics",
     "UInputComponent",
     "ULightComponent",
+    "UNavigationSystemV1",
     "UObject",
     "UPointLightComponent",
     "UPrimitiveComponent",
@@ -134,6 +138,15 @@ class EComponentMobility(enum.IntEnum):
     Static = 0
     Stationary = 1
     Movable = 2
+
+
+class ENavigationQueryResult(enum.IntEnum):
+    """What a navigation query ended with (UE's ENavigationQueryResult)."""
+
+    Invalid = 0
+    Error = 1
+    Fail = 2
+    Success = 3
 
 
 class EPathFollowingRequestResult(enum.IntEnum):
@@ -396,8 +409,10 @@ class AAIControllerSend(AControllerSend):
 class AAIController(AController):
     """A controller for non-player pawns, directed from code. MoveToLocation / MoveToActor walk (ACharacter)
     or fly (ADefaultPawn) the pawn to a goal through its movement input, turning the control rotation to
-    face where it goes. Paths are straight lines: with no navigation mesh yet, bUsePathfinding is accepted
-    for UE compatibility and a pawn walks into what is in its way.
+    face where it goes. A walking pawn with bUsePathfinding follows a path on the world's default navigation
+    data when the world has navigation (an ARecastNavMesh or an ANavMeshBoundsVolume), corner by corner,
+    and the move fails when its start or goal is off the navigation mesh; an unreachable goal is walked to as
+    close as the mesh allows. Otherwise (flying, no navigation, or bUsePathfinding false) it goes straight.
     """
 
     __slots__ = ()
@@ -580,6 +595,25 @@ class AMultiViewCameraRig(AActor):
     __sp_class__: ClassVar[str] = "AMultiViewCameraRig"
 
 
+class ANavMeshBoundsVolumeAsync(AActorAsync):
+    """ANavMeshBoundsVolume's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class ANavMeshBoundsVolumeSend(AActorSend):
+    """ANavMeshBoundsVolume's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class ANavMeshBoundsVolume(AActor):
+    """Where navigation is built: the box of its BoxComponent (which collides with nothing)."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "ANavMeshBoundsVolume"
+
+
 class APlayerControllerAsync(AControllerAsync):
     """APlayerController's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
 
@@ -639,6 +673,40 @@ class APointLight(AActor):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "APointLight"
+
+
+class ARecastNavMeshAsync(AActorAsync):
+    """ARecastNavMesh's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class ARecastNavMeshSend(AActorSend):
+    """ARecastNavMesh's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class ARecastNavMesh(AActor):
+    """Navigation data for one agent profile: a tiled Recast navigation mesh and the queries on it."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "ARecastNavMesh"
+
+    class FindPathResult(NamedTuple):
+        ReturnValue: ENavigationQueryResult
+        PathPoints: NDArray[np.float64]
+        PathLength: float
+
+    class FindPathsResult(NamedTuple):
+        PathPoints: NDArray[np.float64]
+        PathStarts: NDArray[np.int64]
+        Lengths: NDArray[np.float64]
+        Results: NDArray[np.uint8]
+
+    class ProjectPointToNavigationResult(NamedTuple):
+        ReturnValue: bool
+        ProjectedLocation: FVector
 
 
 class ASkyLightAsync(AActorAsync):
@@ -1046,6 +1114,52 @@ class UInputComponent(UActorComponent):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UInputComponent"
+
+
+class UNavigationSystemV1Async(UObjectAsync):
+    """UNavigationSystemV1's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UNavigationSystemV1Send(UObjectSend):
+    """UNavigationSystemV1's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class UNavigationSystemV1(UObject):
+    """The world's navigation system (UE's UNavigationSystemV1)."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "UNavigationSystemV1"
+    GetNavigationSystem = _StaticFunction("UNavigationSystemV1", "GetNavigationSystem", "UNavigationSystemV1")
+    FindPathToLocationSynchronously = _StaticFunction("UNavigationSystemV1", "FindPathToLocationSynchronously", "dict", "FindPathToLocationSynchronouslyResult")
+    GetPathLength = _StaticFunction("UNavigationSystemV1", "GetPathLength", "dict", "GetPathLengthResult")
+    K2_GetRandomReachablePointInRadius = _StaticFunction("UNavigationSystemV1", "K2_GetRandomReachablePointInRadius", "dict", "K2_GetRandomReachablePointInRadiusResult")
+    K2_GetRandomLocationInNavigableRadius = _StaticFunction("UNavigationSystemV1", "K2_GetRandomLocationInNavigableRadius", "dict", "K2_GetRandomLocationInNavigableRadiusResult")
+    K2_ProjectPointToNavigation = _StaticFunction("UNavigationSystemV1", "K2_ProjectPointToNavigation", "dict", "K2_ProjectPointToNavigationResult")
+
+    class FindPathToLocationSynchronouslyResult(NamedTuple):
+        ReturnValue: ENavigationQueryResult
+        PathPoints: NDArray[np.float64]
+        PathLength: float
+
+    class GetPathLengthResult(NamedTuple):
+        ReturnValue: ENavigationQueryResult
+        PathLength: float
+
+    class K2_GetRandomReachablePointInRadiusResult(NamedTuple):
+        ReturnValue: bool
+        RandomLocation: FVector
+
+    class K2_GetRandomLocationInNavigableRadiusResult(NamedTuple):
+        ReturnValue: bool
+        RandomLocation: FVector
+
+    class K2_ProjectPointToNavigationResult(NamedTuple):
+        ReturnValue: bool
+        ProjectedLocation: FVector
 
 
 class UPointLightComponentAsync(ULightComponentAsync):

@@ -25,10 +25,12 @@ __all__ = [
     "AKinematicVehicle",
     "AMaterialLibrary",
     "AMultiViewCameraRig",
+    "ANavMeshBoundsVolume",
     "APawn",
     "APlayerController",
     "APlayerStart",
     "APointLight",
+    "ARecastNavMesh",
     "ASkyLight",
     "ASplineActor",
     "ASpotLight",
@@ -43,6 +45,7 @@ __all__ = [
     "ECameraToneCurve",
     "ECollisionPrimitive",
     "EComponentMobility",
+    "ENavigationQueryResult",
     "EPathFollowingRequestResult",
     "EPathFollowingStatus",
     "ESplineCoordinateSpace",
@@ -67,6 +70,7 @@ __all__ = [
     "UGameplayStatics",
     "UInputComponent",
     "ULightComponent",
+    "UNavigationSystemV1",
     "UObject",
     "UPointLightComponent",
     "UPrimitiveComponent",
@@ -166,6 +170,19 @@ class EComponentMobility(enum.IntEnum):
     """Does not move but its lighting may change."""
     Movable = 2
     """Free to move."""
+
+
+class ENavigationQueryResult(enum.IntEnum):
+    """What a navigation query ended with (UE's ENavigationQueryResult)."""
+
+    Invalid = 0
+    """The start or the end is not on the navigation mesh (within the query extent)."""
+    Error = 1
+    """There is no navigation mesh: no static geometry to build one from."""
+    Fail = 2
+    """The end cannot be reached from the start; a path leads as close as it can."""
+    Success = 3
+    """A complete path."""
 
 
 class EPathFollowingRequestResult(enum.IntEnum):
@@ -682,8 +699,10 @@ class AAIControllerSend(AControllerSend):
 class AAIController(AController):
     """A controller for non-player pawns, directed from code. MoveToLocation / MoveToActor walk (ACharacter)
     or fly (ADefaultPawn) the pawn to a goal through its movement input, turning the control rotation to
-    face where it goes. Paths are straight lines: with no navigation mesh yet, bUsePathfinding is accepted
-    for UE compatibility and a pawn walks into what is in its way.
+    face where it goes. A walking pawn with bUsePathfinding follows a path on the world's default navigation
+    data when the world has navigation (an ARecastNavMesh or an ANavMeshBoundsVolume), corner by corner,
+    and the move fails when its start or goal is off the navigation mesh; an unreachable goal is walked to as
+    close as the mesh allows. Otherwise (flying, no navigation, or bUsePathfinding false) it goes straight.
     """
 
     __sp_class__: ClassVar[str]
@@ -711,7 +730,9 @@ class AAIController(AController):
         """Returns whether a move is in progress."""
 
     def GetImmediateMoveDestination(self) -> FVector:
-        """Returns the point the pawn is moving to (its location when no move is in progress)."""
+        """Returns the point the pawn is moving to now: the next corner of its path, else the goal (its location
+        when no move is in progress).
+        """
 
 
 class ACameraSensorActorAsync(AActorAsync):
@@ -1189,6 +1210,34 @@ class AMultiViewCameraRig(AActor):
         """Sets Width, Height and Modalities of every camera of the ring."""
 
 
+class ANavMeshBoundsVolumeAsync(AActorAsync):
+    """ANavMeshBoundsVolume's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class ANavMeshBoundsVolumeSend(AActorSend):
+    """ANavMeshBoundsVolume's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
+class ANavMeshBoundsVolume(AActor):
+    """Where navigation is built: the box of its BoxComponent (which collides with nothing)."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> ANavMeshBoundsVolumeAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> ANavMeshBoundsVolumeSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def BoxComponent(self) -> UBoxComponent:
+        """The volume's box (the root component); BoxExtent and the actor's transform place it."""
+
+
 class APlayerControllerAsync(AControllerAsync):
     """APlayerController's functions, called asynchronously: each returns a Future."""
 
@@ -1318,6 +1367,241 @@ class APointLight(AActor):
     @property
     def LightComponent(self) -> UPointLightComponent:
         """The light (also the root component)."""
+
+
+class ARecastNavMeshAsync(AActorAsync):
+    """ARecastNavMesh's functions, called asynchronously: each returns a Future."""
+
+    def SetRandomSeed(self, *, Seed: int) -> Future[None]: ...
+
+    def RebuildNavigation(self) -> Future[None]: ...
+
+    def GetNumTiles(self) -> Future[int]: ...
+
+    def GetNumPolygons(self) -> Future[int]: ...
+
+    def GetNavigableArea(self) -> Future[float]: ...
+
+    def GetLastBuildSeconds(self) -> Future[float]: ...
+
+    def GetLastBuildTileCount(self) -> Future[int]: ...
+
+    def FindPath(self, *, Start: FVector, End: FVector) -> Future[ARecastNavMesh.FindPathResult]: ...
+
+    def FindPaths(self, *, StartPoints: NDArray[np.float64], EndPoints: NDArray[np.float64]) -> Future[ARecastNavMesh.FindPathsResult]: ...
+
+    def GetGeodesicDistance(self, *, Start: FVector, End: FVector) -> Future[float]: ...
+
+    def GetRandomPoints(self, *, NumPoints: int) -> Future[NDArray[np.float64]]: ...
+
+    def GetRandomReachablePointsInRadius(self, *, Origins: NDArray[np.float64], Radius: float) -> Future[NDArray[np.float64]]: ...
+
+    def ProjectPointToNavigation(self, *, Point: FVector, QueryExtent: FVector = FVector()) -> Future[ARecastNavMesh.ProjectPointToNavigationResult]: ...
+
+    def IsNavigable(self, *, Point: FVector, MaxVerticalDistance: float = 0.5) -> Future[bool]: ...
+
+    def GetNavMeshTriangles(self) -> Future[NDArray[np.float64]]: ...
+
+
+class ARecastNavMeshSend(AActorSend):
+    """ARecastNavMesh's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetRandomSeed(self, *, Seed: int) -> None: ...
+
+    def RebuildNavigation(self) -> None: ...
+
+    def GetNumTiles(self) -> None: ...
+
+    def GetNumPolygons(self) -> None: ...
+
+    def GetNavigableArea(self) -> None: ...
+
+    def GetLastBuildSeconds(self) -> None: ...
+
+    def GetLastBuildTileCount(self) -> None: ...
+
+    def FindPath(self, *, Start: FVector, End: FVector) -> None: ...
+
+    def FindPaths(self, *, StartPoints: NDArray[np.float64], EndPoints: NDArray[np.float64]) -> None: ...
+
+    def GetGeodesicDistance(self, *, Start: FVector, End: FVector) -> None: ...
+
+    def GetRandomPoints(self, *, NumPoints: int) -> None: ...
+
+    def GetRandomReachablePointsInRadius(self, *, Origins: NDArray[np.float64], Radius: float) -> None: ...
+
+    def ProjectPointToNavigation(self, *, Point: FVector, QueryExtent: FVector = FVector()) -> None: ...
+
+    def IsNavigable(self, *, Point: FVector, MaxVerticalDistance: float = 0.5) -> None: ...
+
+    def GetNavMeshTriangles(self) -> None: ...
+
+
+class ARecastNavMesh(AActor):
+    """Navigation data for one agent profile: a tiled Recast navigation mesh and the queries on it."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> ARecastNavMeshAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> ARecastNavMeshSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def AgentName(self) -> str:
+        """The agent profile's name (UNavigationSystemV1.GetNavDataForAgentName finds it by this)."""
+
+    @AgentName.setter
+    def AgentName(self, value: str) -> None: ...
+
+    @property
+    def AgentRadius(self) -> float:
+        """Clearance kept from walls and edges, metres (>= 0)."""
+
+    @AgentRadius.setter
+    def AgentRadius(self, value: float) -> None: ...
+
+    @property
+    def AgentHeight(self) -> float:
+        """Headroom the agent needs, metres (> 0)."""
+
+    @AgentHeight.setter
+    def AgentHeight(self, value: float) -> None: ...
+
+    @property
+    def AgentMaxSlope(self) -> float:
+        """Steepest walkable ground, degrees in (0, 90)."""
+
+    @AgentMaxSlope.setter
+    def AgentMaxSlope(self, value: float) -> None: ...
+
+    @property
+    def AgentMaxStepHeight(self) -> float:
+        """Highest ledge the agent steps up or down, metres (>= 0)."""
+
+    @AgentMaxStepHeight.setter
+    def AgentMaxStepHeight(self, value: float) -> None: ...
+
+    @property
+    def CellSize(self) -> float:
+        """Horizontal voxel size, metres (> 0): smaller is finer and slower to build."""
+
+    @CellSize.setter
+    def CellSize(self, value: float) -> None: ...
+
+    @property
+    def CellHeight(self) -> float:
+        """Vertical voxel size, metres (> 0)."""
+
+    @CellHeight.setter
+    def CellHeight(self, value: float) -> None: ...
+
+    @property
+    def TileSize(self) -> float:
+        """Side of a tile, metres (at least 8 cells): the unit rebuilt when geometry changes."""
+
+    @TileSize.setter
+    def TileSize(self, value: float) -> None: ...
+
+    @property
+    def MinRegionArea(self) -> float:
+        """Walkable islands smaller than this are dropped, square metres (>= 0)."""
+
+    @MinRegionArea.setter
+    def MinRegionArea(self, value: float) -> None: ...
+
+    @property
+    def bRebuildAutomatically(self) -> bool:
+        """Whether geometry changes rebuild the tiles under them before the next query (else only
+        RebuildNavigation does).
+        """
+
+    @bRebuildAutomatically.setter
+    def bRebuildAutomatically(self, value: bool) -> None: ...
+
+    @property
+    def RandomSeed(self) -> int:
+        """Seed of the random points' generator (SetRandomSeed restarts the sequence)."""
+
+    @RandomSeed.setter
+    def RandomSeed(self, value: int) -> None: ...
+
+    def SetRandomSeed(self, *, Seed: int) -> None:
+        """Restarts the random point sequence from Seed."""
+
+    def RebuildNavigation(self) -> None:
+        """Builds the whole navigation mesh now from the current geometry and settings."""
+
+    def GetNumTiles(self) -> int:
+        """Returns the number of tiles that hold navigation polygons (building first if needed)."""
+
+    def GetNumPolygons(self) -> int:
+        """Returns the number of navigation polygons."""
+
+    def GetNavigableArea(self) -> float:
+        """Returns the navigable area in square metres (horizontal projection)."""
+
+    def GetLastBuildSeconds(self) -> float:
+        """Returns the seconds the last build or tile rebuild took."""
+
+    def GetLastBuildTileCount(self) -> int:
+        """Returns the number of tiles the last build or rebuild voxelised."""
+
+    class FindPathResult(NamedTuple):
+        ReturnValue: ENavigationQueryResult
+        PathPoints: NDArray[np.float64]
+        PathLength: float
+
+    def FindPath(self, *, Start: FVector, End: FVector) -> ARecastNavMesh.FindPathResult:
+        """Finds the shortest path from Start to End (each projected onto the mesh): its corners as an (N, 3)
+        array from start to end, and its length in metres. Fail: End is unreachable and the path leads to
+        the reachable point nearest it; Invalid: Start or End is not on the mesh (no points).
+        """
+
+    class FindPathsResult(NamedTuple):
+        PathPoints: NDArray[np.float64]
+        PathStarts: NDArray[np.int64]
+        Lengths: NDArray[np.float64]
+        Results: NDArray[np.uint8]
+
+    def FindPaths(self, *, StartPoints: NDArray[np.float64], EndPoints: NDArray[np.float64]) -> ARecastNavMesh.FindPathsResult:
+        """Finds a path for each row of StartPoints and EndPoints ((N, 3) arrays): the corners of all of them
+        in one (M, 3) array, path i being rows PathStarts[i] to PathStarts[i + 1] (an (N + 1,) int64 array),
+        with Lengths (N,) and Results (N,) (ENavigationQueryResult values, uint8).
+        """
+
+    def GetGeodesicDistance(self, *, Start: FVector, End: FVector) -> float:
+        """Returns the length of the shortest path from Start to End in metres, or infinity when End is not
+        reachable (or either is off the mesh).
+        """
+
+    def GetRandomPoints(self, *, NumPoints: int) -> NDArray[np.float64]:
+        """Returns NumPoints points drawn uniformly over the navigable area, as an (N, 3) array."""
+
+    def GetRandomReachablePointsInRadius(self, *, Origins: NDArray[np.float64], Radius: float) -> NDArray[np.float64]:
+        """Returns, for each row of Origins ((N, 3)), a point drawn uniformly over the navigable area within
+        Radius metres (horizontally) that is reachable from the origin; a row of NaN where there is none.
+        """
+
+    class ProjectPointToNavigationResult(NamedTuple):
+        ReturnValue: bool
+        ProjectedLocation: FVector
+
+    def ProjectPointToNavigation(self, *, Point: FVector, QueryExtent: FVector = FVector()) -> ARecastNavMesh.ProjectPointToNavigationResult:
+        """Projects Point onto the mesh: the nearest navigable point within QueryExtent (half sizes; zero: two
+        agent radii sideways and an agent height up and down). Returns false when there is none.
+        """
+
+    def IsNavigable(self, *, Point: FVector, MaxVerticalDistance: float = 0.5) -> bool:
+        """Returns whether Point is on the navigable area: over it, and at most MaxVerticalDistance metres above
+        or below its surface.
+        """
+
+    def GetNavMeshTriangles(self) -> NDArray[np.float64]:
+        """Returns the mesh's surface as triangles, a (T, 3, 3) array of corners (for drawing a map)."""
 
 
 class ASkyLightAsync(AActorAsync):
@@ -2121,6 +2405,13 @@ class UPrimitiveComponent(USceneComponent):
     @bGenerateOverlapEvents.setter
     def bGenerateOverlapEvents(self, value: bool) -> None: ...
 
+    @property
+    def bCanEverAffectNavigation(self) -> bool:
+        """Whether navigation meshes are built over this component when it is Static and collides (as in UE)."""
+
+    @bCanEverAffectNavigation.setter
+    def bCanEverAffectNavigation(self, value: bool) -> None: ...
+
     class GetBoundsResult(NamedTuple):
         Origin: FVector
         BoxExtent: FVector
@@ -2901,6 +3192,126 @@ class UInputComponent(UActorComponent):
 
     def IsActionTriggered(self, *, ActionName: str) -> bool:
         """Returns true when ActionName was injected for the current tick."""
+
+
+class UNavigationSystemV1Async(UObjectAsync):
+    """UNavigationSystemV1's functions, called asynchronously: each returns a Future."""
+
+    def GetNavigationSystem(self, *, WorldContextObject: UObject) -> Future[UNavigationSystemV1]: ...
+
+    def GetNavDataForAgentName(self, *, AgentName: str) -> Future[ARecastNavMesh | None]: ...
+
+    def GetDefaultNavDataInstance(self) -> Future[ARecastNavMesh]: ...
+
+    def Build(self) -> Future[None]: ...
+
+    def FindPathToLocationSynchronously(self, *, WorldContextObject: UObject, PathStart: FVector, PathEnd: FVector, NavData: ARecastNavMesh | None = None) -> Future[UNavigationSystemV1.FindPathToLocationSynchronouslyResult]: ...
+
+    def GetPathLength(self, *, WorldContextObject: UObject, PathStart: FVector, PathEnd: FVector, NavData: ARecastNavMesh | None = None) -> Future[UNavigationSystemV1.GetPathLengthResult]: ...
+
+    def K2_GetRandomReachablePointInRadius(self, *, WorldContextObject: UObject, Origin: FVector, Radius: float, NavData: ARecastNavMesh | None = None) -> Future[UNavigationSystemV1.K2_GetRandomReachablePointInRadiusResult]: ...
+
+    def K2_GetRandomLocationInNavigableRadius(self, *, WorldContextObject: UObject, Origin: FVector, Radius: float, NavData: ARecastNavMesh | None = None) -> Future[UNavigationSystemV1.K2_GetRandomLocationInNavigableRadiusResult]: ...
+
+    def K2_ProjectPointToNavigation(self, *, WorldContextObject: UObject, Point: FVector, NavData: ARecastNavMesh | None = None, QueryExtent: FVector = FVector()) -> Future[UNavigationSystemV1.K2_ProjectPointToNavigationResult]: ...
+
+
+class UNavigationSystemV1Send(UObjectSend):
+    """UNavigationSystemV1's functions, sent without waiting for a result (fire and forget)."""
+
+    def GetNavigationSystem(self, *, WorldContextObject: UObject) -> None: ...
+
+    def GetNavDataForAgentName(self, *, AgentName: str) -> None: ...
+
+    def GetDefaultNavDataInstance(self) -> None: ...
+
+    def Build(self) -> None: ...
+
+    def FindPathToLocationSynchronously(self, *, WorldContextObject: UObject, PathStart: FVector, PathEnd: FVector, NavData: ARecastNavMesh | None = None) -> None: ...
+
+    def GetPathLength(self, *, WorldContextObject: UObject, PathStart: FVector, PathEnd: FVector, NavData: ARecastNavMesh | None = None) -> None: ...
+
+    def K2_GetRandomReachablePointInRadius(self, *, WorldContextObject: UObject, Origin: FVector, Radius: float, NavData: ARecastNavMesh | None = None) -> None: ...
+
+    def K2_GetRandomLocationInNavigableRadius(self, *, WorldContextObject: UObject, Origin: FVector, Radius: float, NavData: ARecastNavMesh | None = None) -> None: ...
+
+    def K2_ProjectPointToNavigation(self, *, WorldContextObject: UObject, Point: FVector, NavData: ARecastNavMesh | None = None, QueryExtent: FVector = FVector()) -> None: ...
+
+
+class UNavigationSystemV1(UObject):
+    """The world's navigation system (UE's UNavigationSystemV1)."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UNavigationSystemV1Async:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UNavigationSystemV1Send:
+        """The same functions, fire and forget."""
+
+    @staticmethod
+    def GetNavigationSystem(*, WorldContextObject: UObject) -> UNavigationSystemV1:
+        """Returns the navigation system of WorldContextObject's world."""
+
+    def GetNavDataForAgentName(self, *, AgentName: str) -> ARecastNavMesh | None:
+        """Returns the navigation data of agent profile AgentName, or None."""
+
+    def GetDefaultNavDataInstance(self) -> ARecastNavMesh:
+        """Returns the default navigation data: the world's first ARecastNavMesh, spawned (as
+        "RecastNavMesh-Default") when it has none.
+        """
+
+    def Build(self) -> None:
+        """Rebuilds every navigation data of the world now."""
+
+    class FindPathToLocationSynchronouslyResult(NamedTuple):
+        ReturnValue: ENavigationQueryResult
+        PathPoints: NDArray[np.float64]
+        PathLength: float
+
+    @staticmethod
+    def FindPathToLocationSynchronously(*, WorldContextObject: UObject, PathStart: FVector, PathEnd: FVector, NavData: ARecastNavMesh | None = None) -> UNavigationSystemV1.FindPathToLocationSynchronouslyResult:
+        """Finds the shortest path from PathStart to PathEnd on NavData (None: the default): its corners
+        ((N, 3)) and length. Unlike UE, which returns a UNavigationPath, the points come back directly.
+        """
+
+    class GetPathLengthResult(NamedTuple):
+        ReturnValue: ENavigationQueryResult
+        PathLength: float
+
+    @staticmethod
+    def GetPathLength(*, WorldContextObject: UObject, PathStart: FVector, PathEnd: FVector, NavData: ARecastNavMesh | None = None) -> UNavigationSystemV1.GetPathLengthResult:
+        """Computes the length of the shortest path from PathStart to PathEnd on NavData (None: the default)."""
+
+    class K2_GetRandomReachablePointInRadiusResult(NamedTuple):
+        ReturnValue: bool
+        RandomLocation: FVector
+
+    @staticmethod
+    def K2_GetRandomReachablePointInRadius(*, WorldContextObject: UObject, Origin: FVector, Radius: float, NavData: ARecastNavMesh | None = None) -> UNavigationSystemV1.K2_GetRandomReachablePointInRadiusResult:
+        """Draws a point reachable from Origin within Radius metres; returns false when there is none."""
+
+    class K2_GetRandomLocationInNavigableRadiusResult(NamedTuple):
+        ReturnValue: bool
+        RandomLocation: FVector
+
+    @staticmethod
+    def K2_GetRandomLocationInNavigableRadius(*, WorldContextObject: UObject, Origin: FVector, Radius: float, NavData: ARecastNavMesh | None = None) -> UNavigationSystemV1.K2_GetRandomLocationInNavigableRadiusResult:
+        """Draws a navigable point within Radius metres of Origin, reachable or not; returns false when there is
+        none.
+        """
+
+    class K2_ProjectPointToNavigationResult(NamedTuple):
+        ReturnValue: bool
+        ProjectedLocation: FVector
+
+    @staticmethod
+    def K2_ProjectPointToNavigation(*, WorldContextObject: UObject, Point: FVector, NavData: ARecastNavMesh | None = None, QueryExtent: FVector = FVector()) -> UNavigationSystemV1.K2_ProjectPointToNavigationResult:
+        """Projects Point onto NavData within QueryExtent (zero: the agent's default extent); returns false when
+        no navigable point is that close.
+        """
 
 
 class UPointLightComponentAsync(ULightComponentAsync):

@@ -18,7 +18,7 @@ from spear._rpc_proxy import ObjectProxy as _ObjectProxy
 from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
-from .api import ECameraModality, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EPathFollowingRequestResult, EPathFollowingStatus, ESplineCoordinateSpace, FCameraPixels, FHitResult, FLinearColor, FMaterialDesc, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
+from .api import ECameraModality, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, ENavigationQueryResult, EPathFollowingRequestResult, EPathFollowingStatus, ESplineCoordinateSpace, FCameraPixels, FHitResult, FLinearColor, FMaterialDesc, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
 
@@ -427,6 +427,17 @@ class AMultiViewCameraRig(AActor, api.AMultiViewCameraRig):
 _register_proxy(AMultiViewCameraRig)
 
 
+class ANavMeshBoundsVolume(AActor, api.ANavMeshBoundsVolume):
+    __slots__ = ()
+
+    @property
+    def BoxComponent(self) -> api.UBoxComponent:
+        return cast("api.UBoxComponent", self._sp_get("ANavMeshBoundsVolume", "BoxComponent", "UBoxComponent"))
+
+
+_register_proxy(ANavMeshBoundsVolume)
+
+
 class APlayerController(AController, api.APlayerController):
     __slots__ = ()
 
@@ -476,6 +487,146 @@ class APointLight(AActor, api.APointLight):
 
 
 _register_proxy(APointLight)
+
+
+class ARecastNavMesh(AActor, api.ARecastNavMesh):
+    __slots__ = ()
+
+    @property
+    def AgentName(self) -> str:
+        return cast("str", self._sp_get("ARecastNavMesh", "AgentName", "str"))
+
+    @AgentName.setter
+    def AgentName(self, value: str) -> None:
+        self._sp_set("ARecastNavMesh", "AgentName", value)
+
+    @property
+    def AgentRadius(self) -> float:
+        return cast("float", self._sp_get("ARecastNavMesh", "AgentRadius", "float"))
+
+    @AgentRadius.setter
+    def AgentRadius(self, value: float) -> None:
+        self._sp_set("ARecastNavMesh", "AgentRadius", value)
+
+    @property
+    def AgentHeight(self) -> float:
+        return cast("float", self._sp_get("ARecastNavMesh", "AgentHeight", "float"))
+
+    @AgentHeight.setter
+    def AgentHeight(self, value: float) -> None:
+        self._sp_set("ARecastNavMesh", "AgentHeight", value)
+
+    @property
+    def AgentMaxSlope(self) -> float:
+        return cast("float", self._sp_get("ARecastNavMesh", "AgentMaxSlope", "float"))
+
+    @AgentMaxSlope.setter
+    def AgentMaxSlope(self, value: float) -> None:
+        self._sp_set("ARecastNavMesh", "AgentMaxSlope", value)
+
+    @property
+    def AgentMaxStepHeight(self) -> float:
+        return cast("float", self._sp_get("ARecastNavMesh", "AgentMaxStepHeight", "float"))
+
+    @AgentMaxStepHeight.setter
+    def AgentMaxStepHeight(self, value: float) -> None:
+        self._sp_set("ARecastNavMesh", "AgentMaxStepHeight", value)
+
+    @property
+    def CellSize(self) -> float:
+        return cast("float", self._sp_get("ARecastNavMesh", "CellSize", "float"))
+
+    @CellSize.setter
+    def CellSize(self, value: float) -> None:
+        self._sp_set("ARecastNavMesh", "CellSize", value)
+
+    @property
+    def CellHeight(self) -> float:
+        return cast("float", self._sp_get("ARecastNavMesh", "CellHeight", "float"))
+
+    @CellHeight.setter
+    def CellHeight(self, value: float) -> None:
+        self._sp_set("ARecastNavMesh", "CellHeight", value)
+
+    @property
+    def TileSize(self) -> float:
+        return cast("float", self._sp_get("ARecastNavMesh", "TileSize", "float"))
+
+    @TileSize.setter
+    def TileSize(self, value: float) -> None:
+        self._sp_set("ARecastNavMesh", "TileSize", value)
+
+    @property
+    def MinRegionArea(self) -> float:
+        return cast("float", self._sp_get("ARecastNavMesh", "MinRegionArea", "float"))
+
+    @MinRegionArea.setter
+    def MinRegionArea(self, value: float) -> None:
+        self._sp_set("ARecastNavMesh", "MinRegionArea", value)
+
+    @property
+    def bRebuildAutomatically(self) -> bool:
+        return cast("bool", self._sp_get("ARecastNavMesh", "bRebuildAutomatically", "bool"))
+
+    @bRebuildAutomatically.setter
+    def bRebuildAutomatically(self, value: bool) -> None:
+        self._sp_set("ARecastNavMesh", "bRebuildAutomatically", value)
+
+    @property
+    def RandomSeed(self) -> int:
+        return cast("int", self._sp_get("ARecastNavMesh", "RandomSeed", "int"))
+
+    @RandomSeed.setter
+    def RandomSeed(self, value: int) -> None:
+        self._sp_set("ARecastNavMesh", "RandomSeed", value)
+
+    def SetRandomSeed(self, *, Seed: int) -> None:
+        self._sp_call("ARecastNavMesh", "SetRandomSeed", {"Seed": Seed}, "None")
+
+    def RebuildNavigation(self) -> None:
+        self._sp_call("ARecastNavMesh", "RebuildNavigation", {}, "None")
+
+    def GetNumTiles(self) -> int:
+        return cast("int", self._sp_call("ARecastNavMesh", "GetNumTiles", {}, "int"))
+
+    def GetNumPolygons(self) -> int:
+        return cast("int", self._sp_call("ARecastNavMesh", "GetNumPolygons", {}, "int"))
+
+    def GetNavigableArea(self) -> float:
+        return cast("float", self._sp_call("ARecastNavMesh", "GetNavigableArea", {}, "float"))
+
+    def GetLastBuildSeconds(self) -> float:
+        return cast("float", self._sp_call("ARecastNavMesh", "GetLastBuildSeconds", {}, "float"))
+
+    def GetLastBuildTileCount(self) -> int:
+        return cast("int", self._sp_call("ARecastNavMesh", "GetLastBuildTileCount", {}, "int"))
+
+    def FindPath(self, *, Start: FVector, End: FVector) -> api.ARecastNavMesh.FindPathResult:
+        return cast("api.ARecastNavMesh.FindPathResult", self._sp_call("ARecastNavMesh", "FindPath", {"Start": Start, "End": End}, "dict", api.ARecastNavMesh.FindPathResult))
+
+    def FindPaths(self, *, StartPoints: NDArray[np.float64], EndPoints: NDArray[np.float64]) -> api.ARecastNavMesh.FindPathsResult:
+        return cast("api.ARecastNavMesh.FindPathsResult", self._sp_call("ARecastNavMesh", "FindPaths", {"StartPoints": StartPoints, "EndPoints": EndPoints}, "dict", api.ARecastNavMesh.FindPathsResult))
+
+    def GetGeodesicDistance(self, *, Start: FVector, End: FVector) -> float:
+        return cast("float", self._sp_call("ARecastNavMesh", "GetGeodesicDistance", {"Start": Start, "End": End}, "float"))
+
+    def GetRandomPoints(self, *, NumPoints: int) -> NDArray[np.float64]:
+        return cast("NDArray[np.float64]", self._sp_call("ARecastNavMesh", "GetRandomPoints", {"NumPoints": NumPoints}, "NDArray[np.float64]"))
+
+    def GetRandomReachablePointsInRadius(self, *, Origins: NDArray[np.float64], Radius: float) -> NDArray[np.float64]:
+        return cast("NDArray[np.float64]", self._sp_call("ARecastNavMesh", "GetRandomReachablePointsInRadius", {"Origins": Origins, "Radius": Radius}, "NDArray[np.float64]"))
+
+    def ProjectPointToNavigation(self, *, Point: FVector, QueryExtent: FVector = _DEFAULT) -> api.ARecastNavMesh.ProjectPointToNavigationResult:
+        return cast("api.ARecastNavMesh.ProjectPointToNavigationResult", self._sp_call("ARecastNavMesh", "ProjectPointToNavigation", {"Point": Point, "QueryExtent": QueryExtent}, "dict", api.ARecastNavMesh.ProjectPointToNavigationResult))
+
+    def IsNavigable(self, *, Point: FVector, MaxVerticalDistance: float = _DEFAULT) -> bool:
+        return cast("bool", self._sp_call("ARecastNavMesh", "IsNavigable", {"Point": Point, "MaxVerticalDistance": MaxVerticalDistance}, "bool"))
+
+    def GetNavMeshTriangles(self) -> NDArray[np.float64]:
+        return cast("NDArray[np.float64]", self._sp_call("ARecastNavMesh", "GetNavMeshTriangles", {}, "NDArray[np.float64]"))
+
+
+_register_proxy(ARecastNavMesh)
 
 
 class ASkyLight(AActor, api.ASkyLight):
@@ -886,6 +1037,14 @@ class UPrimitiveComponent(USceneComponent, api.UPrimitiveComponent):
     def bGenerateOverlapEvents(self, value: bool) -> None:
         self._sp_set("UPrimitiveComponent", "bGenerateOverlapEvents", value)
 
+    @property
+    def bCanEverAffectNavigation(self) -> bool:
+        return cast("bool", self._sp_get("UPrimitiveComponent", "bCanEverAffectNavigation", "bool"))
+
+    @bCanEverAffectNavigation.setter
+    def bCanEverAffectNavigation(self, value: bool) -> None:
+        self._sp_set("UPrimitiveComponent", "bCanEverAffectNavigation", value)
+
     def GetBounds(self) -> api.UPrimitiveComponent.GetBoundsResult:
         return cast("api.UPrimitiveComponent.GetBoundsResult", self._sp_call("UPrimitiveComponent", "GetBounds", {}, "dict", api.UPrimitiveComponent.GetBoundsResult))
 
@@ -1281,6 +1440,22 @@ class UInputComponent(UActorComponent, api.UInputComponent):
 
 
 _register_proxy(UInputComponent)
+
+
+class UNavigationSystemV1(UObject, api.UNavigationSystemV1):
+    __slots__ = ()
+
+    def GetNavDataForAgentName(self, *, AgentName: str) -> api.ARecastNavMesh | None:
+        return cast("api.ARecastNavMesh | None", self._sp_call("UNavigationSystemV1", "GetNavDataForAgentName", {"AgentName": AgentName}, "ARecastNavMesh | None"))
+
+    def GetDefaultNavDataInstance(self) -> api.ARecastNavMesh:
+        return cast("api.ARecastNavMesh", self._sp_call("UNavigationSystemV1", "GetDefaultNavDataInstance", {}, "ARecastNavMesh"))
+
+    def Build(self) -> None:
+        self._sp_call("UNavigationSystemV1", "Build", {}, "None")
+
+
+_register_proxy(UNavigationSystemV1)
 
 
 class UPointLightComponent(ULightComponent, api.UPointLightComponent):

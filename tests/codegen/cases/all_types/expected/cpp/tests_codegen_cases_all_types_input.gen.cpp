@@ -254,7 +254,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
                 static constexpr const char* kContext = "AAllTypes.ClassOf()";
                 sp::reflect::checkArguments(args, {"Object"}, kContext);
                 const sp::reflect::Value* ObjectArg = sp::reflect::findArgument(args, "Object");
-                UObject* Object = ObjectArg ? sp::reflect::decode<UObject*>(*ObjectArg, "AAllTypes.ClassOf(): argument 'Object'") : UObject*(nullptr);
+                UObject* Object = ObjectArg ? sp::reflect::decode<UObject*>(*ObjectArg, "AAllTypes.ClassOf(): argument 'Object'") : static_cast<UObject*>(nullptr);
                 auto result = sp::reflect::selfCast<const Self>(self)->ClassOf(Object);
                 return sp::reflect::encode(result);
             },
