@@ -43,6 +43,10 @@ ArrayValue allocateArray(DType dtype, const std::vector<int64_t>& shape) {
     checkedByteSize(dtype, shape, "allocateArray()"); // before any allocator sizes storage from the shape
     if (gAllocator)
         return gAllocator(dtype, shape, gAllocatorContext);
+    return allocateOnHeap(dtype, shape);
+}
+
+ArrayValue allocateOnHeap(DType dtype, const std::vector<int64_t>& shape) {
     ArrayValue value;
     value.dtype = dtype;
     value.shape = shape;

@@ -54,6 +54,8 @@ class ArrayAllocatorScope {
 
 // Zero-initialised storage for an array of this dtype and shape, from the current allocator.
 ArrayValue allocateArray(DType dtype, const std::vector<int64_t>& shape);
+// Zero-initialised storage on the heap, whatever the current allocator (which may fall back to it).
+ArrayValue allocateOnHeap(DType dtype, const std::vector<int64_t>& shape);
 
 // The untyped part, so that lists of arrays of different element types can be packed together.
 class SpArrayBase {

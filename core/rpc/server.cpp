@@ -103,13 +103,17 @@ struct Server::Connection {
 
 namespace {
 // The ArrayAllocator installed while a request runs: new arrays (a camera's readback) are placed in
-// shared memory, which the reply then names instead of copying the bytes.
+// shared memory, which the reply then names instead of copying the bytes. Arrays the reply would carry
+// inline (below kSharedMemoryThreshold: a path, a few points) stay on the heap: a segment costs a
+// system call or two to make and map, more than copying them.
 reflect::ArrayValue allocateInSegment(reflect::DType dtype, const std::vector<int64_t>& shape,
                                       void* context) {
     auto& connection = *static_cast<Server::Connection*>(context);
     reflect::ArrayValue value;
     value.dtype = dtype;
     value.shape = shape;
+    if (value.byteSize() < kSharedMemoryThreshold)
+        return reflect::allocateOnHeap(dtype, shape);
     auto [segment, clientBuffer] = connection.replySegment(value.byteSize());
     if (clientBuffer) {
         std::memset(segment->data(), 0, value.byteSize()); // a reused buffer holds an earlier reply
