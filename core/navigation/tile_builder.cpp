@@ -73,6 +73,8 @@ TileGrid makeTileGrid(const Eigen::AlignedBox3d& worldRegion, const NavMeshSetti
     grid.tileWorldSize = float(grid.tileCells * settings.cellSize);
     const float sizeX = std::max(a.x(), b.x()) - grid.origin[0],
                 sizeZ = std::max(a.z(), b.z()) - grid.origin[2];
+    grid.end[0] = grid.origin[0] + sizeX;
+    grid.end[1] = grid.origin[2] + sizeZ;
     grid.tilesX = std::max(1, int(std::ceil(sizeX / grid.tileWorldSize)));
     grid.tilesZ = std::max(1, int(std::ceil(sizeZ / grid.tileWorldSize)));
     return grid;
@@ -145,6 +147,18 @@ TileData buildTile(const RecastGeometry& geometry, const NavMeshSettings& s, con
           "rcBuildCompactHeightfield");
     heightfield.reset();
     check(rcErodeWalkableArea(&context, cfg.walkableRadius, *compact), "rcErodeWalkableArea");
+    // The last row and column of tiles reach past the region: what lies beyond it is cut off (after the
+    // erosion, so the region's edge is a cut, not a wall).
+    const float low = grid.origin[1] - 1.0f, high = grid.maxHeight + 1.0f;
+    const float beyond[4][6] = {
+        {cfg.bmin[0] - 1, low, cfg.bmin[2] - 1, grid.origin[0], high, cfg.bmax[2] + 1},
+        {grid.end[0], low, cfg.bmin[2] - 1, cfg.bmax[0] + 1, high, cfg.bmax[2] + 1},
+        {cfg.bmin[0] - 1, low, cfg.bmin[2] - 1, cfg.bmax[0] + 1, high, grid.origin[2]},
+        {cfg.bmin[0] - 1, low, grid.end[1], cfg.bmax[0] + 1, high, cfg.bmax[2] + 1},
+    };
+    for (const float* box : beyond)
+        if (box[0] < box[3] && box[2] < box[5])
+            rcMarkBoxArea(&context, box, box + 3, RC_NULL_AREA, *compact);
     check(rcBuildDistanceField(&context, *compact), "rcBuildDistanceField");
     check(rcBuildRegions(&context, *compact, cfg.borderSize, cfg.minRegionArea, cfg.mergeRegionArea),
           "rcBuildRegions");

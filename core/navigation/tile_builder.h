@@ -32,6 +32,7 @@ RecastGeometry toRecastGeometry(const physics::TriangleSoup& soup);
 struct TileGrid {
     float origin[3];     // minimum corner of the region
     float maxHeight;     // top of the region (Recast y)
+    float end[2];        // the far corner of the region in x and z (the last tiles may reach past it)
     int tileCells;       // cells along a tile's side
     float tileWorldSize; // tileCells * cell size
     int tilesX, tilesZ;  // tiles along x and z
@@ -47,7 +48,8 @@ struct TileData {
     int size = 0;
 };
 
-// Builds tile (tx, tz); returns no data when the tile has no walkable polygon. Throws sp::InvalidState
+// Builds tile (tx, tz), walkable only inside the region; returns no data when the tile has no walkable
+// polygon. Throws sp::InvalidState
 // naming the Recast step that failed.
 TileData buildTile(const RecastGeometry& geometry, const NavMeshSettings& settings, const TileGrid& grid,
                    int tx, int tz);

@@ -146,3 +146,22 @@ def test_stream_levels_loads_ahead_and_unloads_behind(transport: str, tmp_path: 
     strip = Image.open(tmp_path / "views.png")
     assert strip.size == (4 * 320, 180)
     assert len(set(strip.convert("L").getdata())) > 20  # a rendered street, not a blank frame
+
+
+@pytest.mark.parametrize("transport", TRANSPORTS)
+def test_navigation_plans_episodes_walks_one_and_draws_the_map(transport: str, tmp_path: Path) -> None:
+    out = tmp_path / "nav"
+    result = run_example("navigation.py", "--out", str(out), *TRANSPORTS[transport])
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert re.search(r"navigation mesh: \d+ tiles, \d+ polygons, [\d.]+ m\^2 walkable", result.stdout), result.stdout
+    episodes = re.findall(r"episode \d+/8: (\w+), geodesic ([\d.]+) m, straight line ([\d.]+) m", result.stdout)
+    assert len(episodes) == 8
+    assert all(status == "Success" and float(g) >= float(s) - 1e-2 for status, g, s in episodes)
+    walked = re.search(r"walked ([\d.]+) m in \d+ frames \(the path is ([\d.]+) m\)", result.stdout)
+    assert walked, result.stdout
+    # The walker follows the path and stops its radius plus the acceptance radius short of the goal.
+    assert abs(float(walked.group(1)) - float(walked.group(2))) < 1.0
+    assert list(out.glob("frame_*.png"))
+    image = Image.open(tmp_path / "nav_map.png").convert("RGB")
+    colours = set(image.getdata())
+    assert (220, 40, 30) in colours and (60, 90, 200) in colours and (200, 220, 190) in colours
