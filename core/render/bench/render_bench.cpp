@@ -99,8 +99,9 @@ int main(int argc, char** argv) {
     buildScene(scene, boxes);
     std::printf("device: %s (%s), %d boxes, shadow maps %d, %d timed frames after 3 warm-up frames\n",
                 context.report().renderer.c_str(), context.report().kind.c_str(), boxes, shadows, frames);
-    std::printf("%-10s %-12s %-8s %10s   per pass, ms/frame: shadow surface lighting readback (GL timer / CPU)\n",
-                "size", "modalities", "latency", "ms/frame");
+    std::printf(
+        "%-10s %-12s %-8s %10s   per pass, ms/frame: shadow surface lighting readback (GL timer / CPU)\n",
+        "size", "modalities", "latency", "ms/frame");
     const std::pair<int, int> sizes[] = {{256, 256}, {1920, 1080}};
     for (auto [width, height] : sizes) {
         Camera camera = makeCamera(width, height, boxes, shadows);
