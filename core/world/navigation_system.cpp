@@ -96,16 +96,7 @@ ANavMeshBoundsVolume::ANavMeshBoundsVolume() {
 }
 
 Eigen::AlignedBox3d ANavMeshBoundsVolume::worldBounds() const {
-    const FTransform transform = BoxComponent->GetComponentTransform();
-    const Eigen::Isometry3d pose = transform.toIsometry();
-    const Eigen::Vector3d half =
-        BoxComponent->BoxExtent.toEigen().cwiseProduct(transform.Scale3D.toEigen()).cwiseAbs();
-    Eigen::AlignedBox3d box;
-    for (int corner = 0; corner < 8; ++corner)
-        box.extend(pose * Eigen::Vector3d(corner & 1 ? half.x() : -half.x(),
-                                          corner & 2 ? half.y() : -half.y(),
-                                          corner & 4 ? half.z() : -half.z()));
-    return box;
+    return BoxComponent->worldBox();
 }
 
 // -- ARecastNavMesh ------------------------------------------------------------------------------------

@@ -23,6 +23,18 @@ Eigen::AlignedBox3d UBoxComponent::GetLocalBounds() const {
     return {-BoxExtent.toEigen(), BoxExtent.toEigen()};
 }
 
+Eigen::AlignedBox3d UBoxComponent::worldBox() const {
+    const FTransform transform = GetComponentTransform();
+    const Eigen::Isometry3d pose = transform.toIsometry();
+    const Eigen::Vector3d half = BoxExtent.toEigen().cwiseProduct(transform.Scale3D.toEigen()).cwiseAbs();
+    Eigen::AlignedBox3d box;
+    for (int corner = 0; corner < 8; ++corner)
+        box.extend(pose * Eigen::Vector3d(corner & 1 ? half.x() : -half.x(),
+                                          corner & 2 ? half.y() : -half.y(),
+                                          corner & 4 ? half.z() : -half.z()));
+    return box;
+}
+
 void USphereComponent::SetSphereRadius(double InSphereRadius) {
     sp::checkSetting(std::isfinite(InSphereRadius) && InSphereRadius > 0.0, "USphereComponent",
                      "SphereRadius", "> 0", InSphereRadius);

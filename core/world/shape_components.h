@@ -30,6 +30,10 @@ class UBoxComponent : public UShapeComponent {
 
     Eigen::AlignedBox3d GetLocalBounds() const override;
     ECollisionPrimitive GetMeshCollisionPrimitive() const override { return ECollisionPrimitive::Box; }
+
+    // The world-axis box that holds this (possibly turned and scaled) box: a region for navigation or
+    // procedural generation.
+    Eigen::AlignedBox3d worldBox() const;
 };
 
 /// A sphere-shaped sensor.

@@ -165,3 +165,17 @@ def test_navigation_plans_episodes_walks_one_and_draws_the_map(transport: str, t
     image = Image.open(tmp_path / "nav_map.png").convert("RGB")
     colours = set(image.getdata())
     assert (220, 40, 30) in colours and (60, 90, 200) in colours and (200, 220, 190) in colours
+
+
+@pytest.mark.parametrize("transport", TRANSPORTS)
+def test_control_city_generator_spells_spear_and_regenerates(transport: str, tmp_path: Path) -> None:
+    out = tmp_path / "city.png"
+    result = run_example("control_city_generator.py", "--out", str(out), *TRANSPORTS[transport])
+    assert result.returncode == 0, result.stdout + result.stderr
+    generated = re.search(r"generated (\d+) buildings in \d+ ms around 13 road splines", result.stdout)
+    assert generated and int(generated.group(1)) > 500, result.stdout
+    assert "generate again with nothing changed: the same actors: True" in result.stdout
+    for image_path in (out, tmp_path / "city_wide.png"):
+        image = Image.open(image_path)
+        assert image.size == (1280, 720)
+        assert len(set(image.convert("L").getdata())) > 20  # buildings, roads and shadows

@@ -25,6 +25,7 @@
 #include "core/world/navigation_system.h"
 #include "core/world/object.h"
 #include "core/world/pawn.h"
+#include "core/world/pcg_component.h"
 #include "core/world/scene_component.h"
 #include "core/world/shape_components.h"
 #include "core/world/spline_component.h"

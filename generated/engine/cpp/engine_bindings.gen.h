@@ -32,6 +32,7 @@
 #include "core/world/navigation_system.h"
 #include "core/world/object.h"
 #include "core/world/pawn.h"
+#include "core/world/pcg_component.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
 #include "core/world/shape_components.h"
@@ -82,6 +83,9 @@ template <> struct Ref<AMultiViewCameraRig> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
 template <> struct Ref<ANavMeshBoundsVolume> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
+template <> struct Ref<APCGVolume> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
 template <> struct Ref<APlayerController> : Ref<AController> {
@@ -158,6 +162,9 @@ template <> struct Ref<UInputComponent> : Ref<UActorComponent> {
 };
 template <> struct Ref<UNavigationSystemV1> : Ref<UObject> {
     using Ref<UObject>::Ref;
+};
+template <> struct Ref<UPCGComponent> : Ref<UActorComponent> {
+    using Ref<UActorComponent>::Ref;
 };
 template <> struct Ref<UPointLightComponent> : Ref<ULightComponent> {
     using Ref<ULightComponent>::Ref;
@@ -258,6 +265,21 @@ template <> struct type_caster<ENavigationQueryResult> {
     }
     static handle cast(ENavigationQueryResult v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ENavigationQueryResult");
+        return cls(static_cast<int64_t>(v)).release();
+    }
+};
+
+template <> struct type_caster<EPCGGenerationMode> {
+    PYBIND11_TYPE_CASTER(EPCGGenerationMode, const_name("EPCGGenerationMode"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EPCGGenerationMode");
+        if (!isinstance(src, cls))
+            return false;
+        value = static_cast<EPCGGenerationMode>(src.cast<int64_t>());
+        return true;
+    }
+    static handle cast(EPCGGenerationMode v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EPCGGenerationMode");
         return cls(static_cast<int64_t>(v)).release();
     }
 };

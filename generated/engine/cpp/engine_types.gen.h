@@ -8,6 +8,7 @@
 #include "core/sensors/camera_sensor_component.h"
 #include "core/world/controller.h"
 #include "core/world/navigation_system.h"
+#include "core/world/pcg_component.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
 #include "core/world/spline_component.h"
@@ -17,6 +18,7 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraToneCurv
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECollisionPrimitive>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EComponentMobility>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ENavigationQueryResult>();
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPCGGenerationMode>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPathFollowingRequestResult>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPathFollowingStatus>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ESplineCoordinateSpace>();

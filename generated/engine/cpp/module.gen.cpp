@@ -891,6 +891,28 @@ void spear_bind_engine(py::module_& m) {
             "The volume's box (the root component); BoxExtent and the actor's transform place it.");
     }
     {
+        using Self = APCGVolume;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "APCGVolume", "A box to generate in: its BoxComponent (which collides with nothing) bounds the UPCGComponent's work.");
+        cls.attr("__sp_class__") = "APCGVolume";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "BoxComponent",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("APCGVolume.BoxComponent")->BoxComponent;
+                sp::reflect::checkNotNull(value, "APCGVolume.BoxComponent");
+                return Bridge<UBoxComponent*>::out(value);
+            },
+            "The generation's box (the root component).");
+        cls.def_property_readonly(
+            "PCGComponent",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("APCGVolume.PCGComponent")->PCGComponent;
+                sp::reflect::checkNotNull(value, "APCGVolume.PCGComponent");
+                return Bridge<UPCGComponent*>::out(value);
+            },
+            "The generator.");
+    }
+    {
         using Self = APlayerController;
         py::class_<Ref<Self>, Ref<AController>> cls(m, "APlayerController", "A player's controller: a player index, a view target, and the player's input for its pawn.");
         cls.attr("__sp_class__") = "APlayerController";
@@ -3244,6 +3266,276 @@ void spear_bind_engine(py::module_& m) {
             py::arg("NavData") = py::none(),
             py::arg("QueryExtent") = static_cast<Bridge<FVector>::Py>(FVector(FVector())),
             "Projects Point onto NavData within QueryExtent (zero: the agent's default extent); returns false when\nno navigable point is that close.");
+    }
+    {
+        using Self = UPCGComponent;
+        py::class_<Ref<Self>, Ref<UActorComponent>> cls(m, "UPCGComponent", "Generates actors in its owner's box by rules.");
+        cls.attr("__sp_class__") = "UPCGComponent";
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "GenerationMode",
+            [](const Ref<Self>& self) { return Bridge<EPCGGenerationMode>::out(self.get<Self>("UPCGComponent.GenerationMode")->GenerationMode); },
+            [](const Ref<Self>& self, Bridge<EPCGGenerationMode>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.GenerationMode");
+                object->GenerationMode = Bridge<EPCGGenerationMode>::in(std::move(value), "UPCGComponent.GenerationMode");
+                object->PostPropertyChanged("GenerationMode");
+            },
+            "How actors are placed.");
+        cls.def_property(
+            "Seed",
+            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UPCGComponent.Seed")->Seed); },
+            [](const Ref<Self>& self, Bridge<int32_t>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.Seed");
+                object->Seed = Bridge<int32_t>::in(std::move(value), "UPCGComponent.Seed");
+                object->PostPropertyChanged("Seed");
+            },
+            "Seed of the placement's random draws: the same seed gives the same actors.");
+        cls.def_property(
+            "ActorClass",
+            [](const Ref<Self>& self) { return Bridge<TSubclassOf<AActor>>::out(self.get<Self>("UPCGComponent.ActorClass")->ActorClass); },
+            [](const Ref<Self>& self, Bridge<TSubclassOf<AActor>>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.ActorClass");
+                object->ActorClass = Bridge<TSubclassOf<AActor>>::in(std::move(value), "UPCGComponent.ActorClass");
+                object->PostPropertyChanged("ActorClass");
+            },
+            "The class spawned (AStaticMeshActor and its subclasses take StaticMesh and Materials).");
+        cls.def_property(
+            "StaticMesh",
+            [](const Ref<Self>& self) { return Bridge<std::string>::out(self.get<Self>("UPCGComponent.StaticMesh")->StaticMesh); },
+            [](const Ref<Self>& self, Bridge<std::string>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.StaticMesh");
+                object->StaticMesh = Bridge<std::string>::in(std::move(value), "UPCGComponent.StaticMesh");
+                object->PostPropertyChanged("StaticMesh");
+            },
+            "The mesh of spawned static mesh actors.");
+        cls.def_property(
+            "Materials",
+            [](const Ref<Self>& self) { return Bridge<std::vector<std::string>>::out(self.get<Self>("UPCGComponent.Materials")->Materials); },
+            [](const Ref<Self>& self, Bridge<std::vector<std::string>>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.Materials");
+                object->Materials = Bridge<std::vector<std::string>>::in(std::move(value), "UPCGComponent.Materials");
+                object->PostPropertyChanged("Materials");
+            },
+            "Materials drawn from for each spawned static mesh actor (empty: the mesh's own).");
+        cls.def_property(
+            "Spacing",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.Spacing")->Spacing); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.Spacing");
+                object->Spacing = Bridge<double>::in(std::move(value), "UPCGComponent.Spacing");
+                object->PostPropertyChanged("Spacing");
+            },
+            "Scatter: the least distance between two actors; AlongSpline: the distance between them along it.");
+        cls.def_property(
+            "MaxCount",
+            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UPCGComponent.MaxCount")->MaxCount); },
+            [](const Ref<Self>& self, Bridge<int32_t>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.MaxCount");
+                object->MaxCount = Bridge<int32_t>::in(std::move(value), "UPCGComponent.MaxCount");
+                object->PostPropertyChanged("MaxCount");
+            },
+            "Scatter: at most this many actors.");
+        cls.def_property(
+            "MinScale",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.MinScale")->MinScale); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.MinScale");
+                object->MinScale = Bridge<double>::in(std::move(value), "UPCGComponent.MinScale");
+                object->PostPropertyChanged("MinScale");
+            },
+            "Scatter and AlongSpline: each actor's uniform scale is drawn from [MinScale, MaxScale].");
+        cls.def_property(
+            "MaxScale",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.MaxScale")->MaxScale); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.MaxScale");
+                object->MaxScale = Bridge<double>::in(std::move(value), "UPCGComponent.MaxScale");
+                object->PostPropertyChanged("MaxScale");
+            },
+            "");
+        cls.def_property(
+            "bRandomYaw",
+            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UPCGComponent.bRandomYaw")->bRandomYaw); },
+            [](const Ref<Self>& self, Bridge<bool>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.bRandomYaw");
+                object->bRandomYaw = Bridge<bool>::in(std::move(value), "UPCGComponent.bRandomYaw");
+                object->PostPropertyChanged("bRandomYaw");
+            },
+            "Scatter and AlongSpline (unaligned): turn each actor to a random yaw.");
+        cls.def_property(
+            "bProjectToGround",
+            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UPCGComponent.bProjectToGround")->bProjectToGround); },
+            [](const Ref<Self>& self, Bridge<bool>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.bProjectToGround");
+                object->bProjectToGround = Bridge<bool>::in(std::move(value), "UPCGComponent.bProjectToGround");
+                object->PostPropertyChanged("bProjectToGround");
+            },
+            "Drop each actor onto the geometry below it (a line trace down the box, before anything is spawned);\nwhere nothing is below, the actor is not placed. Otherwise actors stand on the box's floor.");
+        cls.def_property(
+            "ExclusionTag",
+            [](const Ref<Self>& self) { return Bridge<std::string>::out(self.get<Self>("UPCGComponent.ExclusionTag")->ExclusionTag); },
+            [](const Ref<Self>& self, Bridge<std::string>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.ExclusionTag");
+                object->ExclusionTag = Bridge<std::string>::in(std::move(value), "UPCGComponent.ExclusionTag");
+                object->PostPropertyChanged("ExclusionTag");
+            },
+            "Scatter: actors with this tag keep generated actors out of their bounds (\"\" for none).");
+        cls.def_property(
+            "SplineActor",
+            [](const Ref<Self>& self) { return Bridge<ASplineActor*>::out(self.get<Self>("UPCGComponent.SplineActor")->SplineActor); },
+            [](const Ref<Self>& self, Bridge<ASplineActor*>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.SplineActor");
+                object->SplineActor = Bridge<ASplineActor*>::in(std::move(value), "UPCGComponent.SplineActor");
+                object->PostPropertyChanged("SplineActor");
+            },
+            "AlongSpline: the spline followed.");
+        cls.def_property(
+            "SplineOffset",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.SplineOffset")->SplineOffset); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.SplineOffset");
+                object->SplineOffset = Bridge<double>::in(std::move(value), "UPCGComponent.SplineOffset");
+                object->PostPropertyChanged("SplineOffset");
+            },
+            "AlongSpline: the sideways distance from the spline (positive: its left).");
+        cls.def_property(
+            "bBothSides",
+            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UPCGComponent.bBothSides")->bBothSides); },
+            [](const Ref<Self>& self, Bridge<bool>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.bBothSides");
+                object->bBothSides = Bridge<bool>::in(std::move(value), "UPCGComponent.bBothSides");
+                object->PostPropertyChanged("bBothSides");
+            },
+            "AlongSpline: place on both sides.");
+        cls.def_property(
+            "bAlignToSpline",
+            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UPCGComponent.bAlignToSpline")->bAlignToSpline); },
+            [](const Ref<Self>& self, Bridge<bool>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.bAlignToSpline");
+                object->bAlignToSpline = Bridge<bool>::in(std::move(value), "UPCGComponent.bAlignToSpline");
+                object->PostPropertyChanged("bAlignToSpline");
+            },
+            "AlongSpline: face along the spline.");
+        cls.def_property(
+            "BlockSize",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.BlockSize")->BlockSize); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.BlockSize");
+                object->BlockSize = Bridge<double>::in(std::move(value), "UPCGComponent.BlockSize");
+                object->PostPropertyChanged("BlockSize");
+            },
+            "CityBlocks: the side of a block, metres.");
+        cls.def_property(
+            "StreetWidth",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.StreetWidth")->StreetWidth); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.StreetWidth");
+                object->StreetWidth = Bridge<double>::in(std::move(value), "UPCGComponent.StreetWidth");
+                object->PostPropertyChanged("StreetWidth");
+            },
+            "CityBlocks: the street between blocks, metres.");
+        cls.def_property(
+            "LotsPerSide",
+            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UPCGComponent.LotsPerSide")->LotsPerSide); },
+            [](const Ref<Self>& self, Bridge<int32_t>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.LotsPerSide");
+                object->LotsPerSide = Bridge<int32_t>::in(std::move(value), "UPCGComponent.LotsPerSide");
+                object->PostPropertyChanged("LotsPerSide");
+            },
+            "CityBlocks: buildings along a block's side (LotsPerSide^2 per block).");
+        cls.def_property(
+            "MinHeight",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.MinHeight")->MinHeight); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.MinHeight");
+                object->MinHeight = Bridge<double>::in(std::move(value), "UPCGComponent.MinHeight");
+                object->PostPropertyChanged("MinHeight");
+            },
+            "CityBlocks: building heights are drawn from [MinHeight, MaxHeight] metres.");
+        cls.def_property(
+            "MaxHeight",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.MaxHeight")->MaxHeight); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.MaxHeight");
+                object->MaxHeight = Bridge<double>::in(std::move(value), "UPCGComponent.MaxHeight");
+                object->PostPropertyChanged("MaxHeight");
+            },
+            "");
+        cls.def_property(
+            "RoadTag",
+            [](const Ref<Self>& self) { return Bridge<std::string>::out(self.get<Self>("UPCGComponent.RoadTag")->RoadTag); },
+            [](const Ref<Self>& self, Bridge<std::string>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.RoadTag");
+                object->RoadTag = Bridge<std::string>::in(std::move(value), "UPCGComponent.RoadTag");
+                object->PostPropertyChanged("RoadTag");
+            },
+            "CityBlocks: spline actors with this tag are roads.");
+        cls.def_property(
+            "RoadWidth",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.RoadWidth")->RoadWidth); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.RoadWidth");
+                object->RoadWidth = Bridge<double>::in(std::move(value), "UPCGComponent.RoadWidth");
+                object->PostPropertyChanged("RoadWidth");
+            },
+            "CityBlocks: the width kept free along roads, metres.");
+        cls.def(
+            "Generate",
+            [](const Ref<Self>& self, Bridge<bool>::Py bForce) -> py::object {
+                static constexpr const char* kContext = "UPCGComponent.Generate()";
+                Self* object = self.get<Self>(kContext);
+                auto bForceValue = Bridge<bool>::in(std::move(bForce), "UPCGComponent.Generate(): argument 'bForce'");
+                object->Generate(bForceValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("bForce") = static_cast<Bridge<bool>::Py>(bool(false)),
+            "Generates: removes the actors of the last generation and spawns new ones, unless nothing the rules\nread changed since (bForce: regardless).");
+        cls.def(
+            "Cleanup",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPCGComponent.Cleanup()";
+                Self* object = self.get<Self>(kContext);
+                object->Cleanup();
+                return py::none();
+            },
+            "Destroys the generated actors.");
+        cls.def(
+            "FlushCache",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPCGComponent.FlushCache()";
+                Self* object = self.get<Self>(kContext);
+                object->FlushCache();
+                return py::none();
+            },
+            "Forgets what the last generation was made from, so the next Generate() builds afresh.");
+        cls.def(
+            "GetGeneratedActors",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPCGComponent.GetGeneratedActors()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetGeneratedActors();
+                return Bridge<std::vector<AActor*>>::out(result);
+            },
+            "Returns the generated actors, in generation order.");
+        cls.def(
+            "IsGenerated",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPCGComponent.IsGenerated()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->IsGenerated();
+                return Bridge<bool>::out(result);
+            },
+            "Returns whether generated actors exist.");
+        cls.def(
+            "GetLastGenerationSeconds",
+            [](const Ref<Self>& self) -> py::object {
+                static constexpr const char* kContext = "UPCGComponent.GetLastGenerationSeconds()";
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetLastGenerationSeconds();
+                return Bridge<double>::out(result);
+            },
+            "Returns the seconds the last generation took.");
     }
     {
         using Self = UPointLightComponent;

@@ -25,6 +25,7 @@
 #include "core/world/navigation_system.h"
 #include "core/world/object.h"
 #include "core/world/pawn.h"
+#include "core/world/pcg_component.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
 #include "core/world/shape_components.h"
@@ -41,6 +42,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(sp::reflect::StaticEnum<ECollisionPrimitive>());
     registry.add(sp::reflect::StaticEnum<EComponentMobility>());
     registry.add(sp::reflect::StaticEnum<ENavigationQueryResult>());
+    registry.add(sp::reflect::StaticEnum<EPCGGenerationMode>());
     registry.add(sp::reflect::StaticEnum<EPathFollowingRequestResult>());
     registry.add(sp::reflect::StaticEnum<EPathFollowingStatus>());
     registry.add(sp::reflect::StaticEnum<ESplineCoordinateSpace>());
@@ -58,6 +60,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(AMaterialLibrary::StaticClass());
     registry.add(AMultiViewCameraRig::StaticClass());
     registry.add(ANavMeshBoundsVolume::StaticClass());
+    registry.add(APCGVolume::StaticClass());
     registry.add(APlayerController::StaticClass());
     registry.add(APlayerStart::StaticClass());
     registry.add(APointLight::StaticClass());
@@ -95,6 +98,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(UGameplayStatics::StaticClass());
     registry.add(UInputComponent::StaticClass());
     registry.add(UNavigationSystemV1::StaticClass());
+    registry.add(UPCGComponent::StaticClass());
     registry.add(UPointLightComponent::StaticClass());
     registry.add(USkyLightComponent::StaticClass());
     registry.add(USpFuncComponent::StaticClass());
@@ -116,6 +120,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(USpFuncComponent::StaticClass());
     registry.remove(USkyLightComponent::StaticClass());
     registry.remove(UPointLightComponent::StaticClass());
+    registry.remove(UPCGComponent::StaticClass());
     registry.remove(UNavigationSystemV1::StaticClass());
     registry.remove(UInputComponent::StaticClass());
     registry.remove(UGameplayStatics::StaticClass());
@@ -153,6 +158,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(APointLight::StaticClass());
     registry.remove(APlayerStart::StaticClass());
     registry.remove(APlayerController::StaticClass());
+    registry.remove(APCGVolume::StaticClass());
     registry.remove(ANavMeshBoundsVolume::StaticClass());
     registry.remove(AMultiViewCameraRig::StaticClass());
     registry.remove(AMaterialLibrary::StaticClass());
@@ -170,6 +176,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ESplineCoordinateSpace>());
     registry.remove(sp::reflect::StaticEnum<EPathFollowingStatus>());
     registry.remove(sp::reflect::StaticEnum<EPathFollowingRequestResult>());
+    registry.remove(sp::reflect::StaticEnum<EPCGGenerationMode>());
     registry.remove(sp::reflect::StaticEnum<ENavigationQueryResult>());
     registry.remove(sp::reflect::StaticEnum<EComponentMobility>());
     registry.remove(sp::reflect::StaticEnum<ECollisionPrimitive>());
@@ -177,4 +184,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "1d84f39635076073"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "07d6f32a8ed615b5"; }

@@ -31,6 +31,7 @@ __all__ = [
     "AMaterialLibrary",
     "AMultiViewCameraRig",
     "ANavMeshBoundsVolume",
+    "APCGVolume",
     "APawn",
     "APlayerController",
     "APlayerStart",
@@ -51,6 +52,7 @@ __all__ = [
     "ECollisionPrimitive",
     "EComponentMobility",
     "ENavigationQueryResult",
+    "EPCGGenerationMode",
     "EPathFollowingRequestResult",
     "EPathFollowingStatus",
     "ESplineCoordinateSpace",
@@ -77,6 +79,7 @@ __all__ = [
     "ULightComponent",
     "UNavigationSystemV1",
     "UObject",
+    "UPCGComponent",
     "UPointLightComponent",
     "UPrimitiveComponent",
     "USceneComponent",
@@ -147,6 +150,14 @@ class ENavigationQueryResult(enum.IntEnum):
     Error = 1
     Fail = 2
     Success = 3
+
+
+class EPCGGenerationMode(enum.IntEnum):
+    """How a UPCGComponent places actors."""
+
+    Scatter = 0
+    AlongSpline = 1
+    CityBlocks = 2
 
 
 class EPathFollowingRequestResult(enum.IntEnum):
@@ -612,6 +623,25 @@ class ANavMeshBoundsVolume(AActor):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "ANavMeshBoundsVolume"
+
+
+class APCGVolumeAsync(AActorAsync):
+    """APCGVolume's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class APCGVolumeSend(AActorSend):
+    """APCGVolume's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class APCGVolume(AActor):
+    """A box to generate in: its BoxComponent (which collides with nothing) bounds the UPCGComponent's work."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "APCGVolume"
 
 
 class APlayerControllerAsync(AControllerAsync):
@@ -1160,6 +1190,25 @@ class UNavigationSystemV1(UObject):
     class K2_ProjectPointToNavigationResult(NamedTuple):
         ReturnValue: bool
         ProjectedLocation: FVector
+
+
+class UPCGComponentAsync(UActorComponentAsync):
+    """UPCGComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UPCGComponentSend(UActorComponentSend):
+    """UPCGComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class UPCGComponent(UActorComponent):
+    """Generates actors in its owner's box by rules."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "UPCGComponent"
 
 
 class UPointLightComponentAsync(ULightComponentAsync):

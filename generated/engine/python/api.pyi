@@ -26,6 +26,7 @@ __all__ = [
     "AMaterialLibrary",
     "AMultiViewCameraRig",
     "ANavMeshBoundsVolume",
+    "APCGVolume",
     "APawn",
     "APlayerController",
     "APlayerStart",
@@ -46,6 +47,7 @@ __all__ = [
     "ECollisionPrimitive",
     "EComponentMobility",
     "ENavigationQueryResult",
+    "EPCGGenerationMode",
     "EPathFollowingRequestResult",
     "EPathFollowingStatus",
     "ESplineCoordinateSpace",
@@ -72,6 +74,7 @@ __all__ = [
     "ULightComponent",
     "UNavigationSystemV1",
     "UObject",
+    "UPCGComponent",
     "UPointLightComponent",
     "UPrimitiveComponent",
     "USceneComponent",
@@ -183,6 +186,19 @@ class ENavigationQueryResult(enum.IntEnum):
     """The end cannot be reached from the start; a path leads as close as it can."""
     Success = 3
     """A complete path."""
+
+
+class EPCGGenerationMode(enum.IntEnum):
+    """How a UPCGComponent places actors."""
+
+    Scatter = 0
+    """Scattered over the volume, at least Spacing apart, outside actors tagged ExclusionTag."""
+    AlongSpline = 1
+    """Every Spacing metres along SplineActor's spline, SplineOffset to its side."""
+    CityBlocks = 2
+    """City blocks of buildings (BlockSize, StreetWidth, LotsPerSide, MinHeight, MaxHeight), none within
+    RoadWidth / 2 of a spline actor tagged RoadTag.
+    """
 
 
 class EPathFollowingRequestResult(enum.IntEnum):
@@ -1236,6 +1252,38 @@ class ANavMeshBoundsVolume(AActor):
     @property
     def BoxComponent(self) -> UBoxComponent:
         """The volume's box (the root component); BoxExtent and the actor's transform place it."""
+
+
+class APCGVolumeAsync(AActorAsync):
+    """APCGVolume's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class APCGVolumeSend(AActorSend):
+    """APCGVolume's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
+class APCGVolume(AActor):
+    """A box to generate in: its BoxComponent (which collides with nothing) bounds the UPCGComponent's work."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> APCGVolumeAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> APCGVolumeSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def BoxComponent(self) -> UBoxComponent:
+        """The generation's box (the root component)."""
+
+    @property
+    def PCGComponent(self) -> UPCGComponent:
+        """The generator."""
 
 
 class APlayerControllerAsync(AControllerAsync):
@@ -3312,6 +3360,235 @@ class UNavigationSystemV1(UObject):
         """Projects Point onto NavData within QueryExtent (zero: the agent's default extent); returns false when
         no navigable point is that close.
         """
+
+
+class UPCGComponentAsync(UActorComponentAsync):
+    """UPCGComponent's functions, called asynchronously: each returns a Future."""
+
+    def Generate(self, *, bForce: bool = False) -> Future[None]: ...
+
+    def Cleanup(self) -> Future[None]: ...
+
+    def FlushCache(self) -> Future[None]: ...
+
+    def GetGeneratedActors(self) -> Future[list[AActor]]: ...
+
+    def IsGenerated(self) -> Future[bool]: ...
+
+    def GetLastGenerationSeconds(self) -> Future[float]: ...
+
+
+class UPCGComponentSend(UActorComponentSend):
+    """UPCGComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def Generate(self, *, bForce: bool = False) -> None: ...
+
+    def Cleanup(self) -> None: ...
+
+    def FlushCache(self) -> None: ...
+
+    def GetGeneratedActors(self) -> None: ...
+
+    def IsGenerated(self) -> None: ...
+
+    def GetLastGenerationSeconds(self) -> None: ...
+
+
+class UPCGComponent(UActorComponent):
+    """Generates actors in its owner's box by rules."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UPCGComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UPCGComponentSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def GenerationMode(self) -> EPCGGenerationMode:
+        """How actors are placed."""
+
+    @GenerationMode.setter
+    def GenerationMode(self, value: EPCGGenerationMode) -> None: ...
+
+    @property
+    def Seed(self) -> int:
+        """Seed of the placement's random draws: the same seed gives the same actors."""
+
+    @Seed.setter
+    def Seed(self, value: int) -> None: ...
+
+    @property
+    def ActorClass(self) -> type[AActor] | None:
+        """The class spawned (AStaticMeshActor and its subclasses take StaticMesh and Materials)."""
+
+    @ActorClass.setter
+    def ActorClass(self, value: type[AActor] | None) -> None: ...
+
+    @property
+    def StaticMesh(self) -> str:
+        """The mesh of spawned static mesh actors."""
+
+    @StaticMesh.setter
+    def StaticMesh(self, value: str) -> None: ...
+
+    @property
+    def Materials(self) -> list[str]:
+        """Materials drawn from for each spawned static mesh actor (empty: the mesh's own)."""
+
+    @Materials.setter
+    def Materials(self, value: list[str]) -> None: ...
+
+    @property
+    def Spacing(self) -> float:
+        """Scatter: the least distance between two actors; AlongSpline: the distance between them along it."""
+
+    @Spacing.setter
+    def Spacing(self, value: float) -> None: ...
+
+    @property
+    def MaxCount(self) -> int:
+        """Scatter: at most this many actors."""
+
+    @MaxCount.setter
+    def MaxCount(self, value: int) -> None: ...
+
+    @property
+    def MinScale(self) -> float:
+        """Scatter and AlongSpline: each actor's uniform scale is drawn from [MinScale, MaxScale]."""
+
+    @MinScale.setter
+    def MinScale(self, value: float) -> None: ...
+
+    @property
+    def MaxScale(self) -> float:
+        ...
+
+    @MaxScale.setter
+    def MaxScale(self, value: float) -> None: ...
+
+    @property
+    def bRandomYaw(self) -> bool:
+        """Scatter and AlongSpline (unaligned): turn each actor to a random yaw."""
+
+    @bRandomYaw.setter
+    def bRandomYaw(self, value: bool) -> None: ...
+
+    @property
+    def bProjectToGround(self) -> bool:
+        """Drop each actor onto the geometry below it (a line trace down the box, before anything is spawned);
+        where nothing is below, the actor is not placed. Otherwise actors stand on the box's floor.
+        """
+
+    @bProjectToGround.setter
+    def bProjectToGround(self, value: bool) -> None: ...
+
+    @property
+    def ExclusionTag(self) -> str:
+        """Scatter: actors with this tag keep generated actors out of their bounds ("" for none)."""
+
+    @ExclusionTag.setter
+    def ExclusionTag(self, value: str) -> None: ...
+
+    @property
+    def SplineActor(self) -> ASplineActor | None:
+        """AlongSpline: the spline followed."""
+
+    @SplineActor.setter
+    def SplineActor(self, value: ASplineActor | None) -> None: ...
+
+    @property
+    def SplineOffset(self) -> float:
+        """AlongSpline: the sideways distance from the spline (positive: its left)."""
+
+    @SplineOffset.setter
+    def SplineOffset(self, value: float) -> None: ...
+
+    @property
+    def bBothSides(self) -> bool:
+        """AlongSpline: place on both sides."""
+
+    @bBothSides.setter
+    def bBothSides(self, value: bool) -> None: ...
+
+    @property
+    def bAlignToSpline(self) -> bool:
+        """AlongSpline: face along the spline."""
+
+    @bAlignToSpline.setter
+    def bAlignToSpline(self, value: bool) -> None: ...
+
+    @property
+    def BlockSize(self) -> float:
+        """CityBlocks: the side of a block, metres."""
+
+    @BlockSize.setter
+    def BlockSize(self, value: float) -> None: ...
+
+    @property
+    def StreetWidth(self) -> float:
+        """CityBlocks: the street between blocks, metres."""
+
+    @StreetWidth.setter
+    def StreetWidth(self, value: float) -> None: ...
+
+    @property
+    def LotsPerSide(self) -> int:
+        """CityBlocks: buildings along a block's side (LotsPerSide^2 per block)."""
+
+    @LotsPerSide.setter
+    def LotsPerSide(self, value: int) -> None: ...
+
+    @property
+    def MinHeight(self) -> float:
+        """CityBlocks: building heights are drawn from [MinHeight, MaxHeight] metres."""
+
+    @MinHeight.setter
+    def MinHeight(self, value: float) -> None: ...
+
+    @property
+    def MaxHeight(self) -> float:
+        ...
+
+    @MaxHeight.setter
+    def MaxHeight(self, value: float) -> None: ...
+
+    @property
+    def RoadTag(self) -> str:
+        """CityBlocks: spline actors with this tag are roads."""
+
+    @RoadTag.setter
+    def RoadTag(self, value: str) -> None: ...
+
+    @property
+    def RoadWidth(self) -> float:
+        """CityBlocks: the width kept free along roads, metres."""
+
+    @RoadWidth.setter
+    def RoadWidth(self, value: float) -> None: ...
+
+    def Generate(self, *, bForce: bool = False) -> None:
+        """Generates: removes the actors of the last generation and spawns new ones, unless nothing the rules
+        read changed since (bForce: regardless).
+        """
+
+    def Cleanup(self) -> None:
+        """Destroys the generated actors."""
+
+    def FlushCache(self) -> None:
+        """Forgets what the last generation was made from, so the next Generate() builds afresh."""
+
+    def GetGeneratedActors(self) -> list[AActor]:
+        """Returns the generated actors, in generation order."""
+
+    def IsGenerated(self) -> bool:
+        """Returns whether generated actors exist."""
+
+    def GetLastGenerationSeconds(self) -> float:
+        """Returns the seconds the last generation took."""
 
 
 class UPointLightComponentAsync(ULightComponentAsync):

@@ -18,7 +18,7 @@ from spear._rpc_proxy import ObjectProxy as _ObjectProxy
 from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
-from .api import ECameraModality, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, ENavigationQueryResult, EPathFollowingRequestResult, EPathFollowingStatus, ESplineCoordinateSpace, FCameraPixels, FHitResult, FLinearColor, FMaterialDesc, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
+from .api import ECameraModality, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESplineCoordinateSpace, FCameraPixels, FHitResult, FLinearColor, FMaterialDesc, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
 
@@ -436,6 +436,21 @@ class ANavMeshBoundsVolume(AActor, api.ANavMeshBoundsVolume):
 
 
 _register_proxy(ANavMeshBoundsVolume)
+
+
+class APCGVolume(AActor, api.APCGVolume):
+    __slots__ = ()
+
+    @property
+    def BoxComponent(self) -> api.UBoxComponent:
+        return cast("api.UBoxComponent", self._sp_get("APCGVolume", "BoxComponent", "UBoxComponent"))
+
+    @property
+    def PCGComponent(self) -> api.UPCGComponent:
+        return cast("api.UPCGComponent", self._sp_get("APCGVolume", "PCGComponent", "UPCGComponent"))
+
+
+_register_proxy(APCGVolume)
 
 
 class APlayerController(AController, api.APlayerController):
@@ -1456,6 +1471,215 @@ class UNavigationSystemV1(UObject, api.UNavigationSystemV1):
 
 
 _register_proxy(UNavigationSystemV1)
+
+
+class UPCGComponent(UActorComponent, api.UPCGComponent):
+    __slots__ = ()
+
+    @property
+    def GenerationMode(self) -> EPCGGenerationMode:
+        return cast("EPCGGenerationMode", self._sp_get("UPCGComponent", "GenerationMode", "EPCGGenerationMode"))
+
+    @GenerationMode.setter
+    def GenerationMode(self, value: EPCGGenerationMode) -> None:
+        self._sp_set("UPCGComponent", "GenerationMode", value)
+
+    @property
+    def Seed(self) -> int:
+        return cast("int", self._sp_get("UPCGComponent", "Seed", "int"))
+
+    @Seed.setter
+    def Seed(self, value: int) -> None:
+        self._sp_set("UPCGComponent", "Seed", value)
+
+    @property
+    def ActorClass(self) -> type[api.AActor] | None:
+        return cast("type[api.AActor] | None", self._sp_get("UPCGComponent", "ActorClass", "type[AActor] | None"))
+
+    @ActorClass.setter
+    def ActorClass(self, value: type[api.AActor] | None) -> None:
+        self._sp_set("UPCGComponent", "ActorClass", value)
+
+    @property
+    def StaticMesh(self) -> str:
+        return cast("str", self._sp_get("UPCGComponent", "StaticMesh", "str"))
+
+    @StaticMesh.setter
+    def StaticMesh(self, value: str) -> None:
+        self._sp_set("UPCGComponent", "StaticMesh", value)
+
+    @property
+    def Materials(self) -> list[str]:
+        return cast("list[str]", self._sp_get("UPCGComponent", "Materials", "list[str]"))
+
+    @Materials.setter
+    def Materials(self, value: list[str]) -> None:
+        self._sp_set("UPCGComponent", "Materials", value)
+
+    @property
+    def Spacing(self) -> float:
+        return cast("float", self._sp_get("UPCGComponent", "Spacing", "float"))
+
+    @Spacing.setter
+    def Spacing(self, value: float) -> None:
+        self._sp_set("UPCGComponent", "Spacing", value)
+
+    @property
+    def MaxCount(self) -> int:
+        return cast("int", self._sp_get("UPCGComponent", "MaxCount", "int"))
+
+    @MaxCount.setter
+    def MaxCount(self, value: int) -> None:
+        self._sp_set("UPCGComponent", "MaxCount", value)
+
+    @property
+    def MinScale(self) -> float:
+        return cast("float", self._sp_get("UPCGComponent", "MinScale", "float"))
+
+    @MinScale.setter
+    def MinScale(self, value: float) -> None:
+        self._sp_set("UPCGComponent", "MinScale", value)
+
+    @property
+    def MaxScale(self) -> float:
+        return cast("float", self._sp_get("UPCGComponent", "MaxScale", "float"))
+
+    @MaxScale.setter
+    def MaxScale(self, value: float) -> None:
+        self._sp_set("UPCGComponent", "MaxScale", value)
+
+    @property
+    def bRandomYaw(self) -> bool:
+        return cast("bool", self._sp_get("UPCGComponent", "bRandomYaw", "bool"))
+
+    @bRandomYaw.setter
+    def bRandomYaw(self, value: bool) -> None:
+        self._sp_set("UPCGComponent", "bRandomYaw", value)
+
+    @property
+    def bProjectToGround(self) -> bool:
+        return cast("bool", self._sp_get("UPCGComponent", "bProjectToGround", "bool"))
+
+    @bProjectToGround.setter
+    def bProjectToGround(self, value: bool) -> None:
+        self._sp_set("UPCGComponent", "bProjectToGround", value)
+
+    @property
+    def ExclusionTag(self) -> str:
+        return cast("str", self._sp_get("UPCGComponent", "ExclusionTag", "str"))
+
+    @ExclusionTag.setter
+    def ExclusionTag(self, value: str) -> None:
+        self._sp_set("UPCGComponent", "ExclusionTag", value)
+
+    @property
+    def SplineActor(self) -> api.ASplineActor | None:
+        return cast("api.ASplineActor | None", self._sp_get("UPCGComponent", "SplineActor", "ASplineActor | None"))
+
+    @SplineActor.setter
+    def SplineActor(self, value: api.ASplineActor | None) -> None:
+        self._sp_set("UPCGComponent", "SplineActor", value)
+
+    @property
+    def SplineOffset(self) -> float:
+        return cast("float", self._sp_get("UPCGComponent", "SplineOffset", "float"))
+
+    @SplineOffset.setter
+    def SplineOffset(self, value: float) -> None:
+        self._sp_set("UPCGComponent", "SplineOffset", value)
+
+    @property
+    def bBothSides(self) -> bool:
+        return cast("bool", self._sp_get("UPCGComponent", "bBothSides", "bool"))
+
+    @bBothSides.setter
+    def bBothSides(self, value: bool) -> None:
+        self._sp_set("UPCGComponent", "bBothSides", value)
+
+    @property
+    def bAlignToSpline(self) -> bool:
+        return cast("bool", self._sp_get("UPCGComponent", "bAlignToSpline", "bool"))
+
+    @bAlignToSpline.setter
+    def bAlignToSpline(self, value: bool) -> None:
+        self._sp_set("UPCGComponent", "bAlignToSpline", value)
+
+    @property
+    def BlockSize(self) -> float:
+        return cast("float", self._sp_get("UPCGComponent", "BlockSize", "float"))
+
+    @BlockSize.setter
+    def BlockSize(self, value: float) -> None:
+        self._sp_set("UPCGComponent", "BlockSize", value)
+
+    @property
+    def StreetWidth(self) -> float:
+        return cast("float", self._sp_get("UPCGComponent", "StreetWidth", "float"))
+
+    @StreetWidth.setter
+    def StreetWidth(self, value: float) -> None:
+        self._sp_set("UPCGComponent", "StreetWidth", value)
+
+    @property
+    def LotsPerSide(self) -> int:
+        return cast("int", self._sp_get("UPCGComponent", "LotsPerSide", "int"))
+
+    @LotsPerSide.setter
+    def LotsPerSide(self, value: int) -> None:
+        self._sp_set("UPCGComponent", "LotsPerSide", value)
+
+    @property
+    def MinHeight(self) -> float:
+        return cast("float", self._sp_get("UPCGComponent", "MinHeight", "float"))
+
+    @MinHeight.setter
+    def MinHeight(self, value: float) -> None:
+        self._sp_set("UPCGComponent", "MinHeight", value)
+
+    @property
+    def MaxHeight(self) -> float:
+        return cast("float", self._sp_get("UPCGComponent", "MaxHeight", "float"))
+
+    @MaxHeight.setter
+    def MaxHeight(self, value: float) -> None:
+        self._sp_set("UPCGComponent", "MaxHeight", value)
+
+    @property
+    def RoadTag(self) -> str:
+        return cast("str", self._sp_get("UPCGComponent", "RoadTag", "str"))
+
+    @RoadTag.setter
+    def RoadTag(self, value: str) -> None:
+        self._sp_set("UPCGComponent", "RoadTag", value)
+
+    @property
+    def RoadWidth(self) -> float:
+        return cast("float", self._sp_get("UPCGComponent", "RoadWidth", "float"))
+
+    @RoadWidth.setter
+    def RoadWidth(self, value: float) -> None:
+        self._sp_set("UPCGComponent", "RoadWidth", value)
+
+    def Generate(self, *, bForce: bool = _DEFAULT) -> None:
+        self._sp_call("UPCGComponent", "Generate", {"bForce": bForce}, "None")
+
+    def Cleanup(self) -> None:
+        self._sp_call("UPCGComponent", "Cleanup", {}, "None")
+
+    def FlushCache(self) -> None:
+        self._sp_call("UPCGComponent", "FlushCache", {}, "None")
+
+    def GetGeneratedActors(self) -> list[api.AActor]:
+        return cast("list[api.AActor]", self._sp_call("UPCGComponent", "GetGeneratedActors", {}, "list[AActor]"))
+
+    def IsGenerated(self) -> bool:
+        return cast("bool", self._sp_call("UPCGComponent", "IsGenerated", {}, "bool"))
+
+    def GetLastGenerationSeconds(self) -> float:
+        return cast("float", self._sp_call("UPCGComponent", "GetLastGenerationSeconds", {}, "float"))
+
+
+_register_proxy(UPCGComponent)
 
 
 class UPointLightComponent(ULightComponent, api.UPointLightComponent):

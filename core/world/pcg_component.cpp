@@ -1,0 +1,245 @@
+#include "core/world/pcg_component.h"
+
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <sstream>
+
+#include "core/base/error.h"
+#include "core/world/pcg_layout.h"
+#include "core/world/world.h"
+
+namespace {
+
+namespace pcg = sp::world::pcg;
+
+// Splines are followed through points this far apart along them (world space).
+constexpr double kSplineStep = 0.25;
+
+pcg::Polyline sampleSpline(const ASplineActor& actor) {
+    const USplineComponent& spline = *actor.SplineComponent;
+    pcg::Polyline line;
+    const double length = spline.GetSplineLength();
+    const int steps = std::max(1, int(std::ceil(length / kSplineStep)));
+    if (spline.GetNumberOfSplinePoints() == 0)
+        return line;
+    for (int i = 0; i <= steps; ++i)
+        line.push_back(
+            spline.GetLocationAtDistanceAlongSpline(length * i / steps, ESplineCoordinateSpace::World)
+                .toEigen());
+    return line;
+}
+
+Eigen::AlignedBox2d flat(const Eigen::AlignedBox3d& box) {
+    return {box.min().head<2>(), box.max().head<2>()};
+}
+
+Eigen::AlignedBox3d boundsOf(const AActor& actor) {
+    FVector origin, extent;
+    actor.GetActorBounds(false, origin, extent);
+    return {origin.toEigen() - extent.toEigen(), origin.toEigen() + extent.toEigen()};
+}
+
+} // namespace
+
+void UPCGComponent::check(const char* function) const {
+    auto require = [&](bool ok, const char* property, const char* range, double value) {
+        SP_CHECK(ok, sp::InvalidArgument, function, ": ", property, " = ", value, " must be ", range);
+    };
+    SP_CHECK(ActorClass.Get(), sp::InvalidArgument, function, ": ActorClass is None");
+    switch (GenerationMode) {
+    case EPCGGenerationMode::Scatter:
+        require(MaxCount >= 0, "MaxCount", ">= 0", MaxCount);
+        [[fallthrough]];
+    case EPCGGenerationMode::AlongSpline:
+        require(std::isfinite(Spacing) && Spacing > 0.0, "Spacing", "a finite number > 0", Spacing);
+        require(std::isfinite(MinScale) && MinScale > 0.0, "MinScale", "a finite number > 0", MinScale);
+        require(std::isfinite(MaxScale) && MaxScale >= MinScale, "MaxScale", ">= MinScale", MaxScale);
+        require(std::isfinite(SplineOffset), "SplineOffset", "finite", SplineOffset);
+        break;
+    case EPCGGenerationMode::CityBlocks:
+        require(std::isfinite(BlockSize) && BlockSize > 0.0, "BlockSize", "a finite number > 0", BlockSize);
+        require(std::isfinite(StreetWidth) && StreetWidth >= 0.0, "StreetWidth", "a finite number >= 0",
+                StreetWidth);
+        require(LotsPerSide >= 1 && LotsPerSide <= 64, "LotsPerSide", "in [1, 64]", LotsPerSide);
+        require(std::isfinite(MinHeight) && MinHeight > 0.0, "MinHeight", "a finite number > 0", MinHeight);
+        require(std::isfinite(MaxHeight) && MaxHeight >= MinHeight, "MaxHeight", ">= MinHeight", MaxHeight);
+        require(std::isfinite(RoadWidth) && RoadWidth >= 0.0, "RoadWidth", "a finite number >= 0", RoadWidth);
+        break;
+    }
+}
+
+Eigen::AlignedBox3d UPCGComponent::volume(const char* function) const {
+    const AActor* owner = GetOwner();
+    SP_CHECK(owner && GetWorld(), sp::InvalidState, function, ": ", GetDebugName(),
+             " is not on an actor in a world");
+    const auto* box =
+        dynamic_cast<const UBoxComponent*>(owner->GetComponentByClass(&UBoxComponent::StaticClass()));
+    SP_CHECK(box, sp::InvalidState, function, ": ", owner->GetDebugName(),
+             " has no UBoxComponent to generate in (use an APCGVolume)");
+    return box->worldBox();
+}
+
+std::string UPCGComponent::tag() const {
+    return "PCG:" + (GetOwner() ? GetOwner()->GetName() : std::string());
+}
+
+std::string UPCGComponent::generationKey(const char* function) const {
+    std::ostringstream key;
+    key.precision(17);
+    const Eigen::AlignedBox3d box = volume(function);
+    key << int(GenerationMode) << ' ' << Seed << ' ' << ActorClass.Get()->name << ' ' << StaticMesh << ' '
+        << Spacing << ' ' << MaxCount << ' ' << MinScale << ' ' << MaxScale << ' ' << bRandomYaw << ' '
+        << bProjectToGround << ' ' << ExclusionTag << ' ' << SplineOffset << ' ' << bBothSides << ' '
+        << bAlignToSpline << ' ' << BlockSize << ' ' << StreetWidth << ' ' << LotsPerSide << ' ' << MinHeight
+        << ' ' << MaxHeight << ' ' << RoadTag << ' ' << RoadWidth << " box " << box.min().transpose() << ' '
+        << box.max().transpose() << " materials";
+    for (const std::string& material : Materials)
+        key << ' ' << material;
+    auto addLine = [&](const pcg::Polyline& line) {
+        key << " line";
+        for (const Eigen::Vector3d& p : line)
+            key << ' ' << p.x() << ' ' << p.y() << ' ' << p.z();
+    };
+    if (GenerationMode == EPCGGenerationMode::AlongSpline && SplineActor)
+        addLine(sampleSpline(*SplineActor));
+    if (GenerationMode == EPCGGenerationMode::CityBlocks)
+        for (AActor* road : GetWorld()->find_actors_by_tag(RoadTag))
+            if (auto* spline = dynamic_cast<ASplineActor*>(road))
+                addLine(sampleSpline(*spline));
+    if (GenerationMode == EPCGGenerationMode::Scatter && !ExclusionTag.empty())
+        for (AActor* excluded : GetWorld()->find_actors_by_tag(ExclusionTag)) {
+            const Eigen::AlignedBox3d b = boundsOf(*excluded);
+            key << " exclude " << b.min().transpose() << ' ' << b.max().transpose();
+        }
+    return key.str();
+}
+
+std::vector<AActor*> UPCGComponent::GetGeneratedActors() const {
+    if (!GetWorld() || !GetOwner())
+        return {};
+    return GetWorld()->find_actors_by_tag(tag());
+}
+
+void UPCGComponent::Cleanup() {
+    for (AActor* actor : GetGeneratedActors())
+        GetWorld()->destroy_actor(actor);
+    cachedKey_.clear();
+}
+
+void UPCGComponent::FlushCache() {
+    cachedKey_.clear();
+}
+
+void UPCGComponent::Generate(bool bForce) {
+    constexpr const char* kFunction = "UPCGComponent.Generate()";
+    check(kFunction);
+    const std::string key = generationKey(kFunction);
+    if (!bForce && key == cachedKey_ && IsGenerated())
+        return;
+    const auto start = std::chrono::steady_clock::now();
+    Cleanup();
+    UWorld& world = *GetWorld();
+    const Eigen::AlignedBox3d box = volume(kFunction);
+    std::mt19937_64 rng{uint64_t(uint32_t(Seed))};
+    const int variants = std::max(1, int(Materials.size()));
+
+    std::vector<pcg::Placement> placements;
+    switch (GenerationMode) {
+    case EPCGGenerationMode::Scatter: {
+        std::vector<Eigen::AlignedBox2d> exclusions;
+        if (!ExclusionTag.empty())
+            for (AActor* excluded : world.find_actors_by_tag(ExclusionTag))
+                exclusions.push_back(flat(boundsOf(*excluded)));
+        placements = pcg::scatter(flat(box), {Spacing, MaxCount, MinScale, MaxScale, bRandomYaw, variants},
+                                  exclusions, rng);
+        break;
+    }
+    case EPCGGenerationMode::AlongSpline: {
+        SP_CHECK(SplineActor, sp::InvalidArgument, kFunction,
+                 ": SplineActor is None (AlongSpline follows it)");
+        placements = pcg::alongPolyline(
+            sampleSpline(*SplineActor),
+            {Spacing, SplineOffset, bBothSides, bAlignToSpline, bRandomYaw, MinScale, MaxScale, variants},
+            rng);
+        break;
+    }
+    case EPCGGenerationMode::CityBlocks: {
+        std::vector<pcg::Polyline> roads;
+        for (AActor* road : world.find_actors_by_tag(RoadTag))
+            if (auto* spline = dynamic_cast<ASplineActor*>(road))
+                roads.push_back(sampleSpline(*spline));
+        placements = pcg::cityBlocks(
+            flat(box), {BlockSize, StreetWidth, LotsPerSide, MinHeight, MaxHeight, RoadWidth, variants},
+            roads, rng);
+        break;
+    }
+    }
+
+    // The bases first (the box's floor, or the ground under each placement), so that no trace meets an
+    // actor of this generation.
+    std::vector<std::pair<pcg::Placement, double>> grounded;
+    for (const pcg::Placement& placement : placements) {
+        double base = box.min().z();
+        if (bProjectToGround) {
+            FHitResult hit;
+            AActor* hitActor = nullptr;
+            UPrimitiveComponent* hitComponent = nullptr;
+            const FVector top{placement.location.x(), placement.location.y(), box.max().z()};
+            const FVector bottom{placement.location.x(), placement.location.y(), box.min().z()};
+            if (!world.line_trace_single(top, bottom, hit, hitActor, hitComponent))
+                continue; // nothing to stand on
+            base = hit.ImpactPoint.Z;
+        }
+        if (box.contains(Eigen::Vector3d(placement.location.x(), placement.location.y(), base)))
+            grounded.emplace_back(placement, base); // a spline may leave the box
+    }
+    try {
+        spawn(grounded, kFunction);
+    } catch (...) {
+        Cleanup(); // no half generation is left behind
+        throw;
+    }
+    cachedKey_ = key;
+    lastSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void UPCGComponent::spawn(const std::vector<std::pair<sp::world::pcg::Placement, double>>& grounded,
+                          const char* function) {
+    UWorld& world = *GetWorld();
+    int index = 0;
+    for (const auto& [placement, base] : grounded) {
+        std::string name = GetOwner()->GetName() + "_" + std::to_string(index);
+        if (world.find_actor_by_name(name))
+            name.clear(); // taken by someone else: a generated name
+        AActor* actor =
+            world.spawn_actor(ActorClass.Get(), FVector{placement.location.x(), placement.location.y(), base},
+                              FRotator{0.0, placement.yawDegrees, 0.0}, name, {tag()});
+        if (auto* mesh = dynamic_cast<AStaticMeshActor*>(actor)) {
+            SP_CHECK(mesh->StaticMeshComponent->SetStaticMesh(StaticMesh), sp::NotFound, function,
+                     ": StaticMesh '", StaticMesh, "' could not be loaded");
+            if (!Materials.empty())
+                mesh->StaticMeshComponent->SetMaterial(0, Materials[size_t(placement.variant)]);
+        }
+        actor->SetActorScale3D(FVector::fromEigen(placement.scale));
+        // Stand it on its base: its bounds' bottom at the base height.
+        const Eigen::AlignedBox3d bounds = boundsOf(*actor);
+        if (!bounds.isEmpty()) {
+            FVector location = actor->GetActorLocation();
+            location.Z += base - bounds.min().z();
+            actor->SetActorLocation(location);
+        }
+        if (actor->RootComponent)
+            actor->RootComponent->SetMobility(EComponentMobility::Static);
+        ++index;
+    }
+}
+
+APCGVolume::APCGVolume() {
+    BoxComponent = CreateDefaultSubobject<UBoxComponent>("BoxComponent");
+    BoxComponent->BoxExtent = FVector{10.0, 10.0, 5.0};
+    BoxComponent->CollisionPrimitive = ECollisionPrimitive::NoCollision; // a region, not an obstacle
+    BoxComponent->bGenerateOverlapEvents = false;
+    BoxComponent->bCanEverAffectNavigation = false;
+    PCGComponent = CreateDefaultSubobject<UPCGComponent>("PCGComponent");
+}
