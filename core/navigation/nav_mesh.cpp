@@ -23,8 +23,12 @@ struct QueryDeleter {
     void operator()(dtNavMeshQuery* p) const { dtFreeNavMeshQuery(p); }
 };
 
-constexpr int kMaxPathPolygons = 4096;
-constexpr int kQueryNodes = 8192;
+// Detour's node pool indexes nodes with 16 bits: the most a search may visit. Paths across the largest
+// meshes (16384 tiles) fit; a search that runs out reports the goal unreachable (Partial).
+constexpr int kMaxPathPolygons = 65534;
+constexpr int kQueryNodes = 65534;
+// Regions larger than this (metres along an axis) are refused: float coordinates lose centimetres.
+constexpr double kMaxRegionSize = 1.0e5;
 // Tries before giving up on a point inside the radius: the candidates are the polygons that meet the
 // disc, so a miss needs a polygon mostly outside it; 64 misses in a row means there is (almost) nothing.
 constexpr int kRadiusTries = 64;
@@ -83,6 +87,7 @@ struct NavMesh::Impl {
     std::vector<double> cumulative; // running sum of polys[i].area
     std::unordered_map<dtPolyRef, int> indexOf;
     int tiles = 0;
+    int maxPolygonsPerTile = 0;
 
     Impl() {
         filter.setIncludeFlags(0xffff);
@@ -94,6 +99,8 @@ struct NavMesh::Impl {
     std::optional<std::pair<dtPolyRef, Eigen::Vector3f>> nearest(const Eigen::Vector3d& point,
                                                                  const Eigen::Vector3d& extent) const;
     Eigen::Vector3d pointInPolygon(const PolyEntry& entry, std::mt19937_64& rng) const;
+    // The point of the polygon at (x, z) in Recast's frame, when (x, z) lies on it.
+    std::optional<Eigen::Vector3d> pointOnPolygon(const PolyEntry& entry, float x, float z) const;
 };
 
 NavMesh::NavMesh() : impl_(std::make_unique<Impl>()) {}
@@ -103,20 +110,32 @@ BuildStats NavMesh::Impl::buildRange(const physics::TriangleSoup& geometry, int 
     const auto start = std::chrono::steady_clock::now();
     const detail::RecastGeometry recast = detail::toRecastGeometry(geometry);
     BuildStats stats;
-    for (int tz = z0; tz <= z1; ++tz) {
-        for (int tx = x0; tx <= x1; ++tx) {
-            detail::TileData tile = detail::buildTile(recast, settings, grid, tx, tz);
-            ++stats.tilesBuilt;
-            if (const dtTileRef old = mesh->getTileRefAt(tx, tz, 0))
-                mesh->removeTile(old, nullptr, nullptr);
-            if (!tile.data)
-                continue;
-            const dtStatus status = mesh->addTile(tile.data.get(), tile.size, DT_TILE_FREE_DATA, 0, nullptr);
-            SP_CHECK(dtStatusSucceed(status), InvalidState, "navigation: Detour refused tile (", tx, ", ", tz,
-                     ") (status 0x", std::hex, status, ")");
-            tile.data.release(); // the mesh owns it now
-            ++stats.tilesWithMesh;
+    try {
+        for (int tz = z0; tz <= z1; ++tz) {
+            for (int tx = x0; tx <= x1; ++tx) {
+                detail::TileData tile = detail::buildTile(recast, settings, grid, tx, tz);
+                ++stats.tilesBuilt;
+                if (const dtTileRef old = mesh->getTileRefAt(tx, tz, 0))
+                    mesh->removeTile(old, nullptr, nullptr);
+                if (!tile.data)
+                    continue;
+                // Detour 1.5.1 does not check this itself: more polygons than the reference's polygon bits
+                // hold would alias another tile's.
+                const int polygons = reinterpret_cast<const dtMeshHeader*>(tile.data.get())->polyCount;
+                SP_CHECK(polygons <= maxPolygonsPerTile, InvalidState, "navigation: tile (", tx, ", ", tz,
+                         ") has ", polygons, " polygons, more than the ", maxPolygonsPerTile,
+                         " a tile holds with this many tiles; use a larger TileSize");
+                const dtStatus status =
+                    mesh->addTile(tile.data.get(), tile.size, DT_TILE_FREE_DATA, 0, nullptr);
+                SP_CHECK(dtStatusSucceed(status), InvalidState, "navigation: Detour refused tile (", tx, ", ",
+                         tz, ") (status 0x", std::hex, status, ")");
+                tile.data.release(); // the mesh owns it now
+                ++stats.tilesWithMesh;
+            }
         }
+    } catch (...) {
+        indexPolygons(); // the tiles replaced so far are gone: queries must not reach them
+        throw;
     }
     indexPolygons();
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -128,8 +147,10 @@ void NavMesh::Impl::indexPolygons() {
     indexOf.clear();
     tiles = 0;
     const dtNavMesh& m = *mesh;
-    for (int i = 0; i < m.getMaxTiles(); ++i) {
-        const dtMeshTile* tile = m.getTile(i);
+    // By tile position, not by Detour's slot (which depends on the order tiles were rebuilt in), so that a
+    // seed draws the same points from equal meshes however they were built.
+    for (int i = 0; i < grid.tilesX * grid.tilesZ; ++i) {
+        const dtMeshTile* tile = m.getTileAt(i % grid.tilesX, i / grid.tilesX, 0);
         if (!tile || !tile->header || tile->header->polyCount == 0)
             continue;
         ++tiles;
@@ -182,8 +203,17 @@ void NavMesh::Impl::indexPolygons() {
 BuildStats NavMesh::build(const physics::TriangleSoup& geometry, const Eigen::AlignedBox3d& region,
                           const NavMeshSettings& settings) {
     validate(settings, "NavMesh::build()");
-    SP_CHECK(!region.isEmpty() && region.sizes().minCoeff() > 0.0 && region.sizes().allFinite(),
-             InvalidArgument, "NavMesh::build(): the region to build over is empty or not finite");
+    SP_CHECK(!region.isEmpty() && region.sizes().minCoeff() > 0.0 && region.sizes().allFinite() &&
+                 region.min().cwiseAbs().maxCoeff() <= kMaxRegionSize &&
+                 region.max().cwiseAbs().maxCoeff() <= kMaxRegionSize,
+             InvalidArgument, "NavMesh::build(): the region to build over is empty, not finite or beyond ",
+             kMaxRegionSize, " m of the origin");
+    // Counted in doubles first: a huge region must be refused, not overflow an int.
+    const double tiles =
+        std::ceil(region.sizes().x() / settings.tileSize) * std::ceil(region.sizes().y() / settings.tileSize);
+    SP_CHECK(tiles <= 16384.0, InvalidArgument, "NavMesh::build(): ", tiles, " tiles of TileSize ",
+             settings.tileSize,
+             " m cover the region; at most 16384 fit: use a larger TileSize or a smaller region");
     Impl& d = *impl_;
     d.settings = settings;
     d.region = region;
@@ -192,14 +222,12 @@ BuildStats NavMesh::build(const physics::TriangleSoup& geometry, const Eigen::Al
     int tileBits = 0;
     while ((1 << tileBits) < tileCount)
         ++tileBits;
-    SP_CHECK(tileBits <= 14, InvalidArgument, "NavMesh::build(): ", d.grid.tilesX, " x ", d.grid.tilesZ,
-             " tiles of TileSize ", settings.tileSize,
-             " m cover the region; at most 16384 fit: use a larger TileSize");
     dtNavMeshParams params{};
     std::copy(d.grid.origin, d.grid.origin + 3, params.orig);
     params.tileWidth = params.tileHeight = d.grid.tileWorldSize;
     params.maxTiles = 1 << tileBits;
     params.maxPolys = 1 << (22 - tileBits);
+    d.maxPolygonsPerTile = params.maxPolys;
     d.mesh.reset(dtAllocNavMesh());
     d.query.reset(dtAllocNavMeshQuery());
     SP_CHECK(d.mesh && dtStatusSucceed(d.mesh->init(&params)), InvalidState,
@@ -218,7 +246,8 @@ BuildStats NavMesh::rebuildTiles(const physics::TriangleSoup& geometry, const Ei
     const double reach = (std::ceil(d.settings.agentRadius / d.settings.cellSize) + 3) * d.settings.cellSize;
     const Eigen::Vector3f a = detail::toRecast(changed.min()), b = detail::toRecast(changed.max());
     auto tileOf = [&](float coordinate, float origin, int count) {
-        return std::clamp(int(std::floor((coordinate - origin) / d.grid.tileWorldSize)), 0, count - 1);
+        const double tile = std::floor((double(coordinate) - origin) / d.grid.tileWorldSize);
+        return int(std::clamp(tile, 0.0, double(count - 1))); // clamped before the conversion
     };
     const float minX = std::min(a.x(), b.x()) - float(reach), maxX = std::max(a.x(), b.x()) + float(reach);
     const float minZ = std::min(a.z(), b.z()) - float(reach), maxZ = std::max(a.z(), b.z()) + float(reach);
@@ -258,10 +287,16 @@ Eigen::Vector3d NavMesh::defaultQueryExtent() const {
 
 std::optional<std::pair<dtPolyRef, Eigen::Vector3f>>
 NavMesh::Impl::nearest(const Eigen::Vector3d& point, const Eigen::Vector3d& extent) const {
-    if (!mesh || polys.empty())
+    if (!mesh || polys.empty() || !point.allFinite() || !extent.allFinite())
+        return std::nullopt;
+    // Detour visits every tile slot the extent covers: it is cut to the region (nothing lies beyond), and
+    // a point farther from the region than the extent reaches finds nothing.
+    const Eigen::Vector3d reach = extent.cwiseAbs().cwiseMin(region.sizes() + Eigen::Vector3d::Ones());
+    const Eigen::Vector3d inside = point.cwiseMax(region.min()).cwiseMin(region.max());
+    if (((point - inside).cwiseAbs().array() > reach.array()).any())
         return std::nullopt;
     const Eigen::Vector3f center = detail::toRecast(point);
-    const std::array<float, 3> half = extentToRecast(extent);
+    const std::array<float, 3> half = extentToRecast(reach);
     dtPolyRef ref = 0;
     Eigen::Vector3f nearestPoint;
     query->findNearestPoly(center.data(), half.data(), &filter, &ref, nearestPoint.data());
@@ -365,6 +400,31 @@ Eigen::Vector3d NavMesh::Impl::pointInPolygon(const PolyEntry& entry, std::mt199
     return detail::fromRecast(p);
 }
 
+std::optional<Eigen::Vector3d> NavMesh::Impl::pointOnPolygon(const PolyEntry& entry, float x, float z) const {
+    if (x < entry.minX || x > entry.maxX || z < entry.minZ || z > entry.maxZ)
+        return std::nullopt;
+    const dtMeshTile* tile = nullptr;
+    const dtPoly* poly = nullptr;
+    mesh->getTileAndPolyByRefUnsafe(entry.ref, &tile, &poly);
+    // Convex: on it when on the same side of every edge.
+    bool positive = false, negative = false;
+    for (int k = 0; k < poly->vertCount; ++k) {
+        const float* a = &tile->verts[poly->verts[k] * 3];
+        const float* b = &tile->verts[poly->verts[(k + 1) % poly->vertCount] * 3];
+        const double side =
+            (double(b[0]) - a[0]) * (double(z) - a[2]) - (double(b[2]) - a[2]) * (double(x) - a[0]);
+        positive = positive || side > 0.0;
+        negative = negative || side < 0.0;
+    }
+    if (positive && negative)
+        return std::nullopt;
+    float p[3] = {x, tile->verts[poly->verts[0] * 3 + 1], z};
+    float height = 0.0f;
+    if (dtStatusSucceed(query->getPolyHeight(entry.ref, p, &height)))
+        p[1] = height;
+    return detail::fromRecast(p);
+}
+
 std::optional<Eigen::Vector3d> NavMesh::randomPoint(std::mt19937_64& rng) const {
     const Impl& d = *impl_;
     if (d.polys.empty())
@@ -408,6 +468,21 @@ std::optional<Eigen::Vector3d> NavMesh::randomPointInRadius(const Eigen::Vector3
     if (candidates.empty() || sum <= 0.0)
         return std::nullopt;
     const Eigen::Vector2d centre2(centre.x(), -centre.z());
+    // Two exact ways to a uniform point of (mesh within the disc): when the disc is smaller than the
+    // polygons it meets, draw in the disc and keep a point that lies on one of them; otherwise draw on the
+    // polygons and keep a point that lies in the disc. Either way a try succeeds with a good chance.
+    const double discArea = M_PI * radius * radius;
+    if (discArea < sum) {
+        for (int attempt = 0; attempt < kRadiusTries; ++attempt) {
+            const double angle = 2.0 * M_PI * uniform(rng), distance = radius * std::sqrt(uniform(rng));
+            const float x = centre.x() + float(distance * std::cos(angle));
+            const float z = centre.z() + float(distance * std::sin(angle));
+            for (size_t candidate : candidates)
+                if (auto p = d.pointOnPolygon(d.polys[candidate], x, z))
+                    return p;
+        }
+        return std::nullopt;
+    }
     for (int attempt = 0; attempt < kRadiusTries; ++attempt) {
         const double pick = uniform(rng) * sum;
         const size_t k =

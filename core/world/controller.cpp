@@ -123,9 +123,13 @@ bool AAIController::arrived(const APawn& pawn, Eigen::Vector3d& offset) const {
     return offset.norm() <= acceptanceRadius_ + (stopOnOverlap_ ? pawn.GetAgentRadius() : 0.0);
 }
 
-EPathFollowingRequestResult AAIController::start(const char* function, bool usePathfinding) {
-    SP_CHECK(std::isfinite(acceptanceRadius_) && acceptanceRadius_ >= 0.0, sp::InvalidArgument,
-             "AAIController.", function, "(): AcceptanceRadius ", acceptanceRadius_, " must be >= 0");
+void AAIController::checkAcceptanceRadius(double radius, const char* function) {
+    // Checked before anything is changed: a refused request leaves the move in progress as it was.
+    SP_CHECK(std::isfinite(radius) && radius >= 0.0, sp::InvalidArgument, "AAIController.", function,
+             "(): AcceptanceRadius ", radius, " must be >= 0");
+}
+
+EPathFollowingRequestResult AAIController::start(bool usePathfinding) {
     moving_ = false;
     followingPath_ = false;
     const APawn* pawn = K2_GetPawn();
@@ -145,6 +149,8 @@ EPathFollowingRequestResult AAIController::start(const char* function, bool useP
 
 bool AAIController::planPath(const APawn& pawn) {
     ARecastNavMesh* navigation = sp::world::defaultNavigationIfAny(*GetWorld());
+    if (!navigation)
+        return false; // the navigation data went away: the move ends
     const sp::navigation::Path path =
         navigation->findPath(pawn.GetActorLocation(), goalLocation(), "AAIController.MoveToLocation()");
     if (path.points.empty())
@@ -175,15 +181,17 @@ EPathFollowingRequestResult AAIController::MoveToLocation(const FVector& Dest, d
                                                           bool bStopOnOverlap, bool bUsePathfinding) {
     SP_CHECK(std::isfinite(Dest.X) && std::isfinite(Dest.Y) && std::isfinite(Dest.Z), sp::InvalidArgument,
              "AAIController.MoveToLocation(): Dest must be finite");
+    checkAcceptanceRadius(AcceptanceRadius, "MoveToLocation");
     destination_ = Dest;
     goalActor_ = {};
     acceptanceRadius_ = AcceptanceRadius;
     stopOnOverlap_ = bStopOnOverlap;
-    return start("MoveToLocation", bUsePathfinding);
+    return start(bUsePathfinding);
 }
 
 EPathFollowingRequestResult AAIController::MoveToActor(AActor* Goal, double AcceptanceRadius,
                                                        bool bStopOnOverlap, bool bUsePathfinding) {
+    checkAcceptanceRadius(AcceptanceRadius, "MoveToActor");
     moving_ = false;
     if (!Goal)
         return EPathFollowingRequestResult::Failed;
@@ -194,7 +202,7 @@ EPathFollowingRequestResult AAIController::MoveToActor(AActor* Goal, double Acce
     destination_ = Goal->GetActorLocation();
     acceptanceRadius_ = AcceptanceRadius;
     stopOnOverlap_ = bStopOnOverlap;
-    return start("MoveToActor", bUsePathfinding);
+    return start(bUsePathfinding);
 }
 
 void AAIController::StopMovement() {
@@ -202,7 +210,7 @@ void AAIController::StopMovement() {
 }
 
 FVector AAIController::GetImmediateMoveDestination() const {
-    if (moving_ && followingPath_ && nextCorner_ + 1 < path_.size())
+    if (moving_ && followingPath_ && nextCorner_ < path_.size())
         return FVector::fromEigen(path_[nextCorner_]);
     if (moving_)
         return goalLocation();

@@ -167,7 +167,8 @@ class AAIController : public AController {
     FVector goalLocation() const;
     // The remaining offset from the pawn to the goal, horizontal for a walking pawn, and how close counts.
     bool arrived(const APawn& pawn, Eigen::Vector3d& offset) const;
-    EPathFollowingRequestResult start(const char* function, bool usePathfinding);
+    static void checkAcceptanceRadius(double radius, const char* function);
+    EPathFollowingRequestResult start(bool usePathfinding);
     // Plans the path to the goal on the world's navigation; false when the start or goal is off it.
     bool planPath(const APawn& pawn);
     // Advances nextCorner_ past the corners reached (re-planning for a goal actor that moved); false once the

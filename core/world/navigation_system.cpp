@@ -14,6 +14,8 @@ namespace {
 using sp::navigation::Path;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// The most points or paths one call returns (24 bytes a point: 240 MB).
+constexpr int64_t kMaxPoints = 10'000'000;
 
 ENavigationQueryResult resultOf(Path::Status status) {
     switch (status) {
@@ -147,6 +149,15 @@ void ARecastNavMesh::build(const char* function) {
 
 sp::navigation::NavMesh& ARecastNavMesh::ensureBuilt(const char* function) {
     SP_CHECK(GetWorld(), sp::InvalidState, function, ": ", GetDebugName(), " is not in a world");
+    try {
+        return update(function);
+    } catch (...) {
+        stale_ = true; // a build that failed midway is redone from scratch next time
+        throw;
+    }
+}
+
+sp::navigation::NavMesh& ARecastNavMesh::update(const char* function) {
     if (stale_ || !(settings() == builtSettings_)) {
         build(function);
         return *mesh_;
@@ -223,6 +234,8 @@ void ARecastNavMesh::FindPaths(const sp::reflect::SpArray<double>& StartPoints,
                                sp::reflect::SpArray<uint8_t>& Results) {
     constexpr const char* kFunction = "ARecastNavMesh.FindPaths()";
     const int64_t count = rowsOf(StartPoints, kFunction, "StartPoints");
+    SP_CHECK(count <= kMaxPoints, sp::InvalidArgument, kFunction, ": ", count, " paths are more than ",
+             kMaxPoints);
     SP_CHECK(rowsOf(EndPoints, kFunction, "EndPoints") == count, sp::InvalidArgument, kFunction,
              ": StartPoints has ", count, " rows and EndPoints ", EndPoints.getShape()[0],
              "; they must match");
@@ -255,7 +268,8 @@ double ARecastNavMesh::GetGeodesicDistance(const FVector& Start, const FVector& 
 
 sp::reflect::SpArray<double> ARecastNavMesh::GetRandomPoints(int NumPoints) {
     constexpr const char* kFunction = "ARecastNavMesh.GetRandomPoints()";
-    SP_CHECK(NumPoints >= 0, sp::InvalidArgument, kFunction, ": NumPoints ", NumPoints, " must be >= 0");
+    SP_CHECK(NumPoints >= 0 && NumPoints <= kMaxPoints, sp::InvalidArgument, kFunction, ": NumPoints ",
+             NumPoints, " must be in [0, ", kMaxPoints, "]");
     sp::navigation::NavMesh& mesh = ensureBuilt(kFunction);
     SP_CHECK(NumPoints == 0 || mesh.polygonCount() > 0, sp::InvalidState, kFunction, ": ", GetDebugName(),
              " has no navigable area (no static geometry to walk on)");
@@ -280,9 +294,15 @@ sp::reflect::SpArray<double>
 ARecastNavMesh::GetRandomReachablePointsInRadius(const sp::reflect::SpArray<double>& Origins, double Radius) {
     constexpr const char* kFunction = "ARecastNavMesh.GetRandomReachablePointsInRadius()";
     const int64_t count = rowsOf(Origins, kFunction, "Origins");
+    SP_CHECK(count <= kMaxPoints, sp::InvalidArgument, kFunction, ": ", count, " origins are more than ",
+             kMaxPoints);
+    SP_CHECK(std::isfinite(Radius) && Radius >= 0.0, sp::InvalidArgument, kFunction, ": Radius ", Radius,
+             " must be a finite number >= 0");
+    sp::navigation::NavMesh& mesh = ensureBuilt(kFunction);
     std::vector<Eigen::Vector3d> points;
     for (int64_t i = 0; i < count; ++i)
-        points.push_back(randomPointInRadius(rowOf(Origins, i), Radius, true, kFunction)
+        points.push_back(mesh.randomPointInRadius(rowOf(Origins, i).toEigen(), Radius, true,
+                                                  mesh.defaultQueryExtent(), random_)
                              .value_or(Eigen::Vector3d::Constant(kNaN)));
     return toArray(points, "points");
 }

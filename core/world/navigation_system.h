@@ -182,6 +182,7 @@ class ARecastNavMesh : public AActor {
   private:
     sp::navigation::NavMeshSettings settings() const;
     void build(const char* function);
+    sp::navigation::NavMesh& update(const char* function);
 
     std::unique_ptr<sp::navigation::NavMesh> mesh_;
     // What the mesh was built from: the static bodies' world boxes, the region and the settings.

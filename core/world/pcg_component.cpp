@@ -13,14 +13,18 @@ namespace {
 
 namespace pcg = sp::world::pcg;
 
-// Splines are followed through points this far apart along them (world space).
+// Splines are followed through points this far apart along them (world space), or through at most
+// kMaxSplineSamples points for very long ones.
 constexpr double kSplineStep = 0.25;
+constexpr double kMaxSplineSamples = 1e5;
+// The most placements (or scatter grid cells, ten times as many) one generation may lay out.
+constexpr double kMaxPlacements = 1e6;
 
 pcg::Polyline sampleSpline(const ASplineActor& actor) {
     const USplineComponent& spline = *actor.SplineComponent;
     pcg::Polyline line;
     const double length = spline.GetSplineLength();
-    const int steps = std::max(1, int(std::ceil(length / kSplineStep)));
+    const int steps = int(std::clamp(std::ceil(length / kSplineStep), 1.0, kMaxSplineSamples));
     if (spline.GetNumberOfSplinePoints() == 0)
         return line;
     for (int i = 0; i <= steps; ++i)
@@ -32,6 +36,22 @@ pcg::Polyline sampleSpline(const ASplineActor& actor) {
 
 Eigen::AlignedBox2d flat(const Eigen::AlignedBox3d& box) {
     return {box.min().head<2>(), box.max().head<2>()};
+}
+
+// The splines of the spline actors tagged `tag`, in spawn order.
+std::vector<pcg::Polyline> splinesTagged(const UWorld& world, const std::string& tag) {
+    std::vector<pcg::Polyline> lines;
+    for (AActor* actor : world.find_actors_by_tag(tag))
+        if (auto* spline = dynamic_cast<ASplineActor*>(actor))
+            lines.push_back(sampleSpline(*spline));
+    return lines;
+}
+
+double lengthOf(const pcg::Polyline& line) {
+    double length = 0.0;
+    for (size_t i = 0; i + 1 < line.size(); ++i)
+        length += (line[i + 1] - line[i]).norm();
+    return length;
 }
 
 Eigen::AlignedBox3d boundsOf(const AActor& actor) {
@@ -69,6 +89,26 @@ void UPCGComponent::check(const char* function) const {
     }
 }
 
+void UPCGComponent::checkScale(const Eigen::AlignedBox3d& box, const char* function) const {
+    // Counted in doubles before anything is allocated: rules that would lay out millions are refused.
+    const Eigen::Vector3d size = box.sizes();
+    if (GenerationMode == EPCGGenerationMode::Scatter) {
+        const double cell = Spacing / std::sqrt(2.0);
+        const double cells = std::ceil(size.x() / cell) * std::ceil(size.y() / cell);
+        SP_CHECK(cells <= 10.0 * kMaxPlacements && MaxCount <= kMaxPlacements, sp::InvalidArgument, function,
+                 ": Spacing = ", Spacing, " over a ", size.x(), " x ", size.y(),
+                 " m box, or MaxCount = ", MaxCount, ", asks for more than ", kMaxPlacements, " placements");
+    }
+    if (GenerationMode == EPCGGenerationMode::CityBlocks) {
+        const double pitch = BlockSize + StreetWidth;
+        const double lots = (std::floor(size.x() / pitch) + 1) * (std::floor(size.y() / pitch) + 1) *
+                            double(LotsPerSide) * double(LotsPerSide);
+        SP_CHECK(lots <= kMaxPlacements, sp::InvalidArgument, function, ": BlockSize = ", BlockSize,
+                 " and StreetWidth = ", StreetWidth, " over a ", size.x(), " x ", size.y(), " m box make ",
+                 lots, " lots, more than ", kMaxPlacements);
+    }
+}
+
 Eigen::AlignedBox3d UPCGComponent::volume(const char* function) const {
     const AActor* owner = GetOwner();
     SP_CHECK(owner && GetWorld(), sp::InvalidState, function, ": ", GetDebugName(),
@@ -101,12 +141,12 @@ std::string UPCGComponent::generationKey(const char* function) const {
         for (const Eigen::Vector3d& p : line)
             key << ' ' << p.x() << ' ' << p.y() << ' ' << p.z();
     };
-    if (GenerationMode == EPCGGenerationMode::AlongSpline && SplineActor)
-        addLine(sampleSpline(*SplineActor));
+    if (GenerationMode == EPCGGenerationMode::AlongSpline)
+        for (const pcg::Polyline& line : splinesTagged(*GetWorld(), SplineTag))
+            addLine(line);
     if (GenerationMode == EPCGGenerationMode::CityBlocks)
-        for (AActor* road : GetWorld()->find_actors_by_tag(RoadTag))
-            if (auto* spline = dynamic_cast<ASplineActor*>(road))
-                addLine(sampleSpline(*spline));
+        for (const pcg::Polyline& line : splinesTagged(*GetWorld(), RoadTag))
+            addLine(line);
     if (GenerationMode == EPCGGenerationMode::Scatter && !ExclusionTag.empty())
         for (AActor* excluded : GetWorld()->find_actors_by_tag(ExclusionTag)) {
             const Eigen::AlignedBox3d b = boundsOf(*excluded);
@@ -141,6 +181,7 @@ void UPCGComponent::Generate(bool bForce) {
     Cleanup();
     UWorld& world = *GetWorld();
     const Eigen::AlignedBox3d box = volume(kFunction);
+    checkScale(box, kFunction);
     std::mt19937_64 rng{uint64_t(uint32_t(Seed))};
     const int variants = std::max(1, int(Materials.size()));
 
@@ -156,19 +197,25 @@ void UPCGComponent::Generate(bool bForce) {
         break;
     }
     case EPCGGenerationMode::AlongSpline: {
-        SP_CHECK(SplineActor, sp::InvalidArgument, kFunction,
-                 ": SplineActor is None (AlongSpline follows it)");
-        placements = pcg::alongPolyline(
-            sampleSpline(*SplineActor),
-            {Spacing, SplineOffset, bBothSides, bAlignToSpline, bRandomYaw, MinScale, MaxScale, variants},
-            rng);
+        const std::vector<pcg::Polyline> splines = splinesTagged(world, SplineTag);
+        SP_CHECK(!splines.empty(), sp::InvalidArgument, kFunction, ": no ASplineActor has SplineTag '",
+                 SplineTag, "' (AlongSpline follows them)");
+        double length = 0.0;
+        for (const pcg::Polyline& line : splines)
+            length += lengthOf(line);
+        SP_CHECK(length / Spacing <= kMaxPlacements, sp::InvalidArgument, kFunction, ": Spacing = ", Spacing,
+                 " along ", length, " m of spline makes more than ", kMaxPlacements, " placements");
+        for (const pcg::Polyline& line : splines) {
+            const auto along = pcg::alongPolyline(
+                line,
+                {Spacing, SplineOffset, bBothSides, bAlignToSpline, bRandomYaw, MinScale, MaxScale, variants},
+                rng);
+            placements.insert(placements.end(), along.begin(), along.end());
+        }
         break;
     }
     case EPCGGenerationMode::CityBlocks: {
-        std::vector<pcg::Polyline> roads;
-        for (AActor* road : world.find_actors_by_tag(RoadTag))
-            if (auto* spline = dynamic_cast<ASplineActor*>(road))
-                roads.push_back(sampleSpline(*spline));
+        const std::vector<pcg::Polyline> roads = splinesTagged(world, RoadTag);
         placements = pcg::cityBlocks(
             flat(box), {BlockSize, StreetWidth, LotsPerSide, MinHeight, MaxHeight, RoadWidth, variants},
             roads, rng);

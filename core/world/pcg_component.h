@@ -26,7 +26,7 @@ SPENUM()
 enum class EPCGGenerationMode : uint8_t {
     /// Scattered over the volume, at least Spacing apart, outside actors tagged ExclusionTag.
     Scatter = 0,
-    /// Every Spacing metres along SplineActor's spline, SplineOffset to its side.
+    /// Every Spacing metres along each spline actor tagged SplineTag, SplineOffset to its side.
     AlongSpline = 1,
     /// City blocks of buildings (BlockSize, StreetWidth, LotsPerSide, MinHeight, MaxHeight), none within
     /// RoadWidth / 2 of a spline actor tagged RoadTag.
@@ -74,9 +74,10 @@ class UPCGComponent : public UActorComponent {
     /// Scatter: actors with this tag keep generated actors out of their bounds ("" for none).
     SPPROPERTY()
     std::string ExclusionTag;
-    /// AlongSpline: the spline followed.
+    /// AlongSpline: spline actors with this tag are followed, in spawn order. (A tag, not an actor reference:
+    /// a generation outlives the actors it read, and scenes save it as it is.)
     SPPROPERTY()
-    ASplineActor* SplineActor = nullptr;
+    std::string SplineTag = "PCGSpline";
     /// AlongSpline: the sideways distance from the spline (positive: its left).
     SPPROPERTY()
     double SplineOffset = 0.0;
@@ -138,6 +139,7 @@ class UPCGComponent : public UActorComponent {
     std::string tag() const;
     Eigen::AlignedBox3d volume(const char* function) const;
     void check(const char* function) const;
+    void checkScale(const Eigen::AlignedBox3d& box, const char* function) const;
     // Spawns an actor per (placement, base height).
     void spawn(const std::vector<std::pair<sp::world::pcg::Placement, double>>& grounded,
                const char* function);

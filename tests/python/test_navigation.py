@@ -167,8 +167,10 @@ def test_agent_profiles_and_errors(instance: spear.Instance) -> None:
             small.FindPaths(StartPoints=np.zeros((1, 3)), EndPoints=np.zeros((2, 3)))
         with pytest.raises(spear.InvalidArgumentError, match=r"GetRandomReachablePointsInRadius\(\): Origins\[0, 2\] = nan is not finite"):
             small.GetRandomReachablePointsInRadius(Origins=np.array([[0.0, 0.0, math.nan]]), Radius=1.0)
-        with pytest.raises(spear.InvalidArgumentError, match=r"GetRandomPoints\(\): NumPoints -1 must be >= 0"):
+        with pytest.raises(spear.InvalidArgumentError, match=r"GetRandomPoints\(\): NumPoints -1 must be in \[0, 10000000\]"):
             small.GetRandomPoints(NumPoints=-1)
+        with pytest.raises(spear.InvalidArgumentError, match=r"NumPoints 2000000000 must be in"):
+            small.GetRandomPoints(NumPoints=2_000_000_000)  # refused, not a 48 GB allocation
     with instance.end_frame():
         pass
 
@@ -234,5 +236,30 @@ def test_nav_settings_are_saved_with_the_scene(instance: spear.Instance, tmp_pat
         assert loaded is not None and loaded.AgentRadius == 0.45 and loaded.TileSize == 6.4
         after = loaded.FindPath(Start=spear.FVector(-4.0, 0.0, 0.0), End=spear.FVector(4.0, 0.0, 0.0))
         assert np.array_equal(after.PathPoints, before.PathPoints)  # the build is deterministic
+    with instance.end_frame():
+        pass
+
+
+def test_a_move_survives_its_navigation_going_away_and_refused_requests(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        wall_with_gap(game)
+        nav = nav_data(game)
+        walker = game.spawn_actor(uclass=spear.ACharacter, location=spear.FVector(-4.0, 0.0, 0.95))
+        goal = game.spawn_actor(uclass=spear.APlayerStart, name="Goal", location=spear.FVector(4.0, 0.0, 0.0))
+        ai = game.spawn_actor(uclass=spear.AAIController)
+        ai.Possess(InPawn=walker)
+        assert ai.MoveToActor(Goal=goal) == spear.EPathFollowingRequestResult.RequestSuccessful
+        corner = ai.GetImmediateMoveDestination()
+        with pytest.raises(spear.InvalidArgumentError, match=r"MoveToLocation\(\): AcceptanceRadius nan must be >= 0"):
+            ai.MoveToLocation(Dest=spear.FVector(), AcceptanceRadius=math.nan)
+        assert ai.GetImmediateMoveDestination() == corner  # the refused request changed nothing
+        game.destroy_actor(actor=nav)  # the navigation goes away...
+        goal.SetActorLocation(NewLocation=spear.FVector(4.0, -3.0, 0.0))  # ...and the goal moves: a re-plan
+    with instance.end_frame():
+        pass
+    instance.step(num_frames=3)
+    with instance.begin_frame():
+        assert ai.GetMoveStatus() == spear.EPathFollowingStatus.Idle  # the move ended; the engine runs on
     with instance.end_frame():
         pass

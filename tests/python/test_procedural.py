@@ -97,7 +97,8 @@ def test_along_a_spline_and_city_blocks_off_the_roads(instance: spear.Instance) 
         spline.SplineComponent.SetSplinePoints(
             Points=[spear.FVector(-10.0, 0.0, 0.0), spear.FVector(10.0, 0.0, 0.0)], CoordinateSpace=spear.ESplineCoordinateSpace.World)
         trees = volume(game, "Trees", extent=(12.0, 8.0, 5.0)).PCGComponent
-        trees.GenerationMode, trees.SplineActor, trees.Spacing = Mode.AlongSpline, spline, 4.0
+        spline.Tags = ["Road", "Trees"]
+        trees.GenerationMode, trees.SplineTag, trees.Spacing = Mode.AlongSpline, "Trees", 4.0
         trees.SplineOffset, trees.bBothSides = 3.0, True
         trees.Generate()
         rows = locations(trees.GetGeneratedActors())
@@ -160,8 +161,18 @@ def test_bad_rules_are_refused_and_leave_nothing_behind(instance: spear.Instance
             pcg.Generate()
         pcg.Spacing = 2.0
         pcg.GenerationMode = Mode.AlongSpline
-        with pytest.raises(spear.InvalidArgumentError, match=r"SplineActor is None"):
+        with pytest.raises(spear.InvalidArgumentError, match=r"no ASplineActor has SplineTag 'PCGSpline'"):
             pcg.Generate()
+        pcg.GenerationMode = Mode.Scatter
+        pcg.Spacing = 1e-4
+        with pytest.raises(spear.InvalidArgumentError, match=r"Spacing = 0.0001 over a 20 x 16 m box.*more than 1e\+06 placements"):
+            pcg.Generate()  # refused, not billions of grid cells
+        pcg.Spacing = 2.0
+        pcg.GenerationMode = Mode.CityBlocks
+        pcg.BlockSize, pcg.StreetWidth = 1e-9, 0.0
+        with pytest.raises(spear.InvalidArgumentError, match=r"lots, more than 1e\+06"):
+            pcg.Generate()
+        pcg.BlockSize, pcg.StreetWidth = 24.0, 8.0
         pcg.GenerationMode = Mode.Scatter
         pcg.StaticMesh = "/Engine/BasicShapes/Teapot"
         with pytest.raises(spear.NotFoundError, match=r"StaticMesh '/Engine/BasicShapes/Teapot' could not be loaded"):

@@ -270,17 +270,17 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             },
         });
         t.properties.push_back({
-            "SplineActor",
-            "ASplineActor | None",
-            "AlongSpline: the spline followed.",
+            "SplineTag",
+            "str",
+            "AlongSpline: spline actors with this tag are followed, in spawn order. (A tag, not an actor reference:\na generation outlives the actors it read, and scenes save it as it is.)",
             false,
             [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SplineActor);
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SplineTag);
             },
             [](void* self, const sp::reflect::Value& value) {
                 auto* object = sp::reflect::selfCast<Self>(self);
-                object->SplineActor = sp::reflect::decode<ASplineActor*>(value, "UPCGComponent.SplineActor");
-                sp::reflect::notifyPropertyChanged(object, "SplineActor");
+                object->SplineTag = sp::reflect::decode<std::string>(value, "UPCGComponent.SplineTag");
+                sp::reflect::notifyPropertyChanged(object, "SplineTag");
             },
         });
         t.properties.push_back({

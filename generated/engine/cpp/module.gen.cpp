@@ -3381,14 +3381,14 @@ void spear_bind_engine(py::module_& m) {
             },
             "Scatter: actors with this tag keep generated actors out of their bounds (\"\" for none).");
         cls.def_property(
-            "SplineActor",
-            [](const Ref<Self>& self) { return Bridge<ASplineActor*>::out(self.get<Self>("UPCGComponent.SplineActor")->SplineActor); },
-            [](const Ref<Self>& self, Bridge<ASplineActor*>::Py value) {
-                Self* object = self.get<Self>("UPCGComponent.SplineActor");
-                object->SplineActor = Bridge<ASplineActor*>::in(std::move(value), "UPCGComponent.SplineActor");
-                object->PostPropertyChanged("SplineActor");
+            "SplineTag",
+            [](const Ref<Self>& self) { return Bridge<std::string>::out(self.get<Self>("UPCGComponent.SplineTag")->SplineTag); },
+            [](const Ref<Self>& self, Bridge<std::string>::Py value) {
+                Self* object = self.get<Self>("UPCGComponent.SplineTag");
+                object->SplineTag = Bridge<std::string>::in(std::move(value), "UPCGComponent.SplineTag");
+                object->PostPropertyChanged("SplineTag");
             },
-            "AlongSpline: the spline followed.");
+            "AlongSpline: spline actors with this tag are followed, in spawn order. (A tag, not an actor reference:\na generation outlives the actors it read, and scenes save it as it is.)");
         cls.def_property(
             "SplineOffset",
             [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.SplineOffset")->SplineOffset); },

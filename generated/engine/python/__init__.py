@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "07d6f32a8ed615b5"
+API_HASH = "e9aed32263656cbf"

@@ -194,7 +194,7 @@ class EPCGGenerationMode(enum.IntEnum):
     Scatter = 0
     """Scattered over the volume, at least Spacing apart, outside actors tagged ExclusionTag."""
     AlongSpline = 1
-    """Every Spacing metres along SplineActor's spline, SplineOffset to its side."""
+    """Every Spacing metres along each spline actor tagged SplineTag, SplineOffset to its side."""
     CityBlocks = 2
     """City blocks of buildings (BlockSize, StreetWidth, LotsPerSide, MinHeight, MaxHeight), none within
     RoadWidth / 2 of a spline actor tagged RoadTag.
@@ -3494,11 +3494,13 @@ class UPCGComponent(UActorComponent):
     def ExclusionTag(self, value: str) -> None: ...
 
     @property
-    def SplineActor(self) -> ASplineActor | None:
-        """AlongSpline: the spline followed."""
+    def SplineTag(self) -> str:
+        """AlongSpline: spline actors with this tag are followed, in spawn order. (A tag, not an actor reference:
+        a generation outlives the actors it read, and scenes save it as it is.)
+        """
 
-    @SplineActor.setter
-    def SplineActor(self, value: ASplineActor | None) -> None: ...
+    @SplineTag.setter
+    def SplineTag(self, value: str) -> None: ...
 
     @property
     def SplineOffset(self) -> float:

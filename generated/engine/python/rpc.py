@@ -1573,12 +1573,12 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
         self._sp_set("UPCGComponent", "ExclusionTag", value)
 
     @property
-    def SplineActor(self) -> api.ASplineActor | None:
-        return cast("api.ASplineActor | None", self._sp_get("UPCGComponent", "SplineActor", "ASplineActor | None"))
+    def SplineTag(self) -> str:
+        return cast("str", self._sp_get("UPCGComponent", "SplineTag", "str"))
 
-    @SplineActor.setter
-    def SplineActor(self, value: api.ASplineActor | None) -> None:
-        self._sp_set("UPCGComponent", "SplineActor", value)
+    @SplineTag.setter
+    def SplineTag(self, value: str) -> None:
+        self._sp_set("UPCGComponent", "SplineTag", value)
 
     @property
     def SplineOffset(self) -> float:

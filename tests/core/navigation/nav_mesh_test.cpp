@@ -165,6 +165,16 @@ TEST(NavMeshTest, RandomPointsInRadiusStayInTheDiscAndOnTheReachablePart) {
             mesh.randomPointInRadius({-0.5, 0, 0}, 2.0, false, mesh.defaultQueryExtent(), rng)->x() > 0;
     EXPECT_GT(otherSide, 50); // without reachability both sides count
     EXPECT_FALSE(mesh.randomPointInRadius({0, 0, 9}, 2.0, true, mesh.defaultQueryExtent(), rng).has_value());
+    // A disc far smaller than the polygons it meets is still found every time (drawn in the disc).
+    for (int i = 0; i < 200; ++i) {
+        const auto p = mesh.randomPointInRadius({-4, 1, 0}, 0.05, true, mesh.defaultQueryExtent(), rng);
+        ASSERT_TRUE(p.has_value());
+        EXPECT_LE((p->head<2>() - Eigen::Vector2d(-4, 1)).norm(), 0.05 + 1e-6);
+    }
+    const auto exact = mesh.randomPointInRadius({-4, 1, 0}, 0.0, false, mesh.defaultQueryExtent(), rng);
+    ASSERT_TRUE(exact.has_value());
+    EXPECT_NEAR(exact->x(), -4.0, 1e-5);
+    EXPECT_NEAR(exact->y(), 1.0, 1e-5);
 }
 
 TEST(NavMeshTest, RebuildingTilesMatchesAFullBuild) {
@@ -181,6 +191,10 @@ TEST(NavMeshTest, RebuildingTilesMatchesAFullBuild) {
     EXPECT_EQ(mesh.polygonCount(), fresh.polygonCount());
     EXPECT_NEAR(mesh.area(), fresh.area(), 1e-9);
     EXPECT_FALSE(mesh.isNavigable({-5.5, 0, 0.0}, 0.1));
+    // Equal meshes draw equal points from equal seeds, however their tiles were built.
+    std::mt19937_64 a(9), b(9);
+    for (int i = 0; i < 20; ++i)
+        EXPECT_EQ(*mesh.randomPoint(a), *fresh.randomPoint(b));
     // Nothing to do for a change outside the region.
     EXPECT_EQ(mesh.rebuildTiles(changed,
                                 Eigen::AlignedBox3d(Eigen::Vector3d(50, 50, 0), Eigen::Vector3d(51, 51, 1)))
@@ -212,6 +226,29 @@ TEST(NavMeshTest, BadSettingsAndRegionsAreRefusedByName) {
     EXPECT_THROW(mesh.build(wallLayout(true), Eigen::AlignedBox3d(), NavMeshSettings()), InvalidArgument);
     EXPECT_THROW(mesh.rebuildTiles(wallLayout(true), kRegion), InvalidState);
     EXPECT_FALSE(mesh.isBuilt());
+    // Counts that would overflow are refused before anything is allocated.
+    try {
+        mesh.build(wallLayout(true),
+                   Eigen::AlignedBox3d(Eigen::Vector3d(-5e4, -5e4, -1), Eigen::Vector3d(5e4, 5e4, 3)),
+                   NavMeshSettings());
+        FAIL() << "no error";
+    } catch (const InvalidArgument& error) {
+        EXPECT_NE(
+            std::string(error.what()).find("tiles of TileSize 12.8 m cover the region; at most 16384 fit"),
+            std::string::npos)
+            << error.what();
+    }
+    EXPECT_THROW(mesh.build(wallLayout(true),
+                            Eigen::AlignedBox3d(Eigen::Vector3d(-1e30, -1, -1), Eigen::Vector3d(1, 1, 1)),
+                            NavMeshSettings()),
+                 InvalidArgument);
+    settings = NavMeshSettings();
+    settings.agentRadius = 1e10;
+    EXPECT_THROW(mesh.build(wallLayout(true), kRegion, settings), InvalidArgument);
+    // A huge query extent or a far point costs no more than the region.
+    mesh.build(wallLayout(true), kRegion, agent());
+    EXPECT_TRUE(mesh.project({-3, 1, 0}, {1e9, 1e9, 1e9}).has_value());
+    EXPECT_FALSE(mesh.project({1e30, 0, 0}, {1, 1, 1}).has_value());
 }
 
 } // namespace
