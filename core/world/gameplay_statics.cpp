@@ -3,34 +3,19 @@
 #include "core/world/object_access.h"
 #include "core/world/world.h"
 
-namespace {
-
-// The world a WorldContextObject names: the world itself or the world of an object in one.
-UWorld& worldOf(UObject* context, const char* function) {
-    SP_CHECK(context, sp::InvalidArgument, function, ": WorldContextObject is None");
-    sp::world::checkObjectAccess(*context, function);
-    auto* world = dynamic_cast<UWorld*>(context);
-    if (!world)
-        world = context->GetWorld();
-    SP_CHECK(world, sp::InvalidArgument, function, ": WorldContextObject ", context->GetDebugName(),
-             " is not in a world");
-    return *world;
-}
-
-} // namespace
-
 AGameModeBase* UGameplayStatics::GetGameMode(UObject* WorldContextObject) {
-    return sp::world::startGameFramework(worldOf(WorldContextObject, "UGameplayStatics.GetGameMode()"));
+    return sp::world::startGameFramework(
+        sp::world::worldOfContext(WorldContextObject, "UGameplayStatics.GetGameMode()"));
 }
 
 APlayerController* UGameplayStatics::GetPlayerController(UObject* WorldContextObject, int PlayerIndex) {
-    UWorld& world = worldOf(WorldContextObject, "UGameplayStatics.GetPlayerController()");
+    UWorld& world = sp::world::worldOfContext(WorldContextObject, "UGameplayStatics.GetPlayerController()");
     sp::world::startGameFramework(world);
     return sp::world::findPlayerController(world, PlayerIndex);
 }
 
 APawn* UGameplayStatics::GetPlayerPawn(UObject* WorldContextObject, int PlayerIndex) {
-    UWorld& world = worldOf(WorldContextObject, "UGameplayStatics.GetPlayerPawn()");
+    UWorld& world = sp::world::worldOfContext(WorldContextObject, "UGameplayStatics.GetPlayerPawn()");
     sp::world::startGameFramework(world);
     APlayerController* controller = sp::world::findPlayerController(world, PlayerIndex);
     return controller ? controller->K2_GetPawn() : nullptr;
@@ -44,7 +29,7 @@ int UGameplayStatics::GetPlayerControllerID(APlayerController* Player) {
 
 int UGameplayStatics::GetNumPlayerControllers(UObject* WorldContextObject) {
     AGameModeBase* mode = sp::world::startGameFramework(
-        worldOf(WorldContextObject, "UGameplayStatics.GetNumPlayerControllers()"));
+        sp::world::worldOfContext(WorldContextObject, "UGameplayStatics.GetNumPlayerControllers()"));
     return mode ? mode->GetNumPlayers() : 0;
 }
 
@@ -55,7 +40,7 @@ APlayerController* UGameplayStatics::CreatePlayer(UObject* WorldContextObject, i
              ": bSpawnPlayerController=False is not supported (a player always has a controller here)");
     SP_CHECK(ControllerId >= -1, sp::InvalidArgument, kContext, ": ControllerId ", ControllerId,
              " must be -1 (the next free index) or a player index");
-    UWorld& world = worldOf(WorldContextObject, kContext);
+    UWorld& world = sp::world::worldOfContext(WorldContextObject, kContext);
     AGameModeBase* mode = sp::world::startGameFramework(world);
     SP_CHECK(mode, sp::InvalidState, kContext, ": an editor world has no players");
     int index = ControllerId;
@@ -73,43 +58,46 @@ std::vector<AActor*> UGameplayStatics::GetAllActorsOfClass(UObject* WorldContext
                                                            TSubclassOf<AActor> ActorClass) {
     constexpr const char* kContext = "UGameplayStatics.GetAllActorsOfClass()";
     SP_CHECK(ActorClass, sp::InvalidArgument, kContext, ": ActorClass is None");
-    return worldOf(WorldContextObject, kContext).find_actors_by_class(ActorClass);
+    return sp::world::worldOfContext(WorldContextObject, kContext).find_actors_by_class(ActorClass);
 }
 
 AActor* UGameplayStatics::GetActorOfClass(UObject* WorldContextObject, TSubclassOf<AActor> ActorClass) {
     constexpr const char* kContext = "UGameplayStatics.GetActorOfClass()";
     SP_CHECK(ActorClass, sp::InvalidArgument, kContext, ": ActorClass is None");
-    return worldOf(WorldContextObject, kContext).find_actor_by_class(ActorClass);
+    return sp::world::worldOfContext(WorldContextObject, kContext).find_actor_by_class(ActorClass);
 }
 
 std::vector<AActor*> UGameplayStatics::GetAllActorsWithTag(UObject* WorldContextObject,
                                                            const std::string& Tag) {
-    return worldOf(WorldContextObject, "UGameplayStatics.GetAllActorsWithTag()").find_actors_by_tag(Tag);
+    return sp::world::worldOfContext(WorldContextObject, "UGameplayStatics.GetAllActorsWithTag()")
+        .find_actors_by_tag(Tag);
 }
 
 void UGameplayStatics::LoadStreamLevel(UObject* WorldContextObject, const std::string& LevelName,
                                        bool /*bMakeVisibleAfterLoad*/, bool /*bShouldBlockOnLoad*/) {
     constexpr const char* kContext = "UGameplayStatics.LoadStreamLevel()";
-    worldOf(WorldContextObject, kContext).LoadStreamLevel(LevelName, kContext);
+    sp::world::worldOfContext(WorldContextObject, kContext).LoadStreamLevel(LevelName, kContext);
 }
 
 void UGameplayStatics::UnloadStreamLevel(UObject* WorldContextObject, const std::string& LevelName,
                                          bool /*bShouldBlockOnUnload*/) {
     constexpr const char* kContext = "UGameplayStatics.UnloadStreamLevel()";
-    worldOf(WorldContextObject, kContext).UnloadStreamLevel(LevelName, kContext);
+    sp::world::worldOfContext(WorldContextObject, kContext).UnloadStreamLevel(LevelName, kContext);
 }
 
 std::vector<std::string> UGameplayStatics::GetStreamingLevelNames(UObject* WorldContextObject) {
     std::vector<std::string> names;
     for (const UWorld::StreamingLevel& level :
-         worldOf(WorldContextObject, "UGameplayStatics.GetStreamingLevelNames()").GetStreamingLevels())
+         sp::world::worldOfContext(WorldContextObject, "UGameplayStatics.GetStreamingLevelNames()")
+             .GetStreamingLevels())
         names.push_back(level.name);
     return names;
 }
 
 bool UGameplayStatics::IsStreamingLevelLoaded(UObject* WorldContextObject, const std::string& LevelName) {
     for (const UWorld::StreamingLevel& level :
-         worldOf(WorldContextObject, "UGameplayStatics.IsStreamingLevelLoaded()").GetStreamingLevels())
+         sp::world::worldOfContext(WorldContextObject, "UGameplayStatics.IsStreamingLevelLoaded()")
+             .GetStreamingLevels())
         if (level.name == LevelName)
             return level.loaded;
     return false;

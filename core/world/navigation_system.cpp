@@ -64,20 +64,8 @@ sp::reflect::SpArray<double> toArray(const std::vector<Eigen::Vector3d>& points,
     return array;
 }
 
-// The world a WorldContextObject names: the world itself or the world of an object in one.
-UWorld& worldOf(UObject* context, const char* function) {
-    SP_CHECK(context, sp::InvalidArgument, function, ": WorldContextObject is None");
-    sp::world::checkObjectAccess(*context, function);
-    auto* world = dynamic_cast<UWorld*>(context);
-    if (!world)
-        world = context->GetWorld();
-    SP_CHECK(world, sp::InvalidArgument, function, ": WorldContextObject ", context->GetDebugName(),
-             " is not in a world");
-    return *world;
-}
-
 ARecastNavMesh& navDataOf(UObject* context, ARecastNavMesh* navData, const char* function) {
-    UWorld& world = worldOf(context, function);
+    UWorld& world = sp::world::worldOfContext(context, function);
     if (!navData)
         return *UNavigationSystemV1::GetNavigationSystem(&world)->GetDefaultNavDataInstance();
     SP_CHECK(navData->GetWorld() == &world, sp::InvalidArgument, function, ": NavData ",
@@ -343,7 +331,8 @@ sp::reflect::SpArray<double> ARecastNavMesh::GetNavMeshTriangles() {
 // -- UNavigationSystemV1 -------------------------------------------------------------------------------
 
 UNavigationSystemV1* UNavigationSystemV1::GetNavigationSystem(UObject* WorldContextObject) {
-    UWorld& world = worldOf(WorldContextObject, "UNavigationSystemV1.GetNavigationSystem()");
+    UWorld& world =
+        sp::world::worldOfContext(WorldContextObject, "UNavigationSystemV1.GetNavigationSystem()");
     return &world.GetSubsystem<sp::world::NavigationSubsystem>().navigationSystem();
 }
 

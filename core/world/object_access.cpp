@@ -1,6 +1,8 @@
 #include "core/world/object_access.h"
 
+#include "core/base/error.h"
 #include "core/world/engine.h"
+#include "core/world/world.h"
 
 namespace sp::world {
 
@@ -9,6 +11,17 @@ void checkObjectAccess(const reflect::ObjectBase& object, std::string_view conte
     if (!uobject || !uobject->GetWorld() || !uobject->GetWorld()->GetEngine())
         return;
     uobject->GetWorld()->GetEngine()->checkInFrame(context);
+}
+
+UWorld& worldOfContext(UObject* context, std::string_view function) {
+    SP_CHECK(context, InvalidArgument, function, ": WorldContextObject is None");
+    checkObjectAccess(*context, function);
+    auto* world = dynamic_cast<UWorld*>(context);
+    if (!world)
+        world = context->GetWorld();
+    SP_CHECK(world, InvalidArgument, function, ": WorldContextObject ", context->GetDebugName(),
+             " is not in a world");
+    return *world;
 }
 
 } // namespace sp::world
