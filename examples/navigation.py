@@ -144,6 +144,12 @@ def main() -> None:
         ai.Possess(InPawn=walker)
         request = ai.MoveToLocation(Dest=spear.FVector(goal[0], goal[1], goal[2]), AcceptanceRadius=0.2)
         print(f"walking episode {longest + 1} ({paths.Lengths[longest]:.2f} m): {request.name}", flush=True)
+        # The planned path as a debug line, so the follow camera's frames show where the walker is going.
+        route = game.spawn_actor(uclass=spear.ASplineActor, name="Route").SplineComponent
+        corners = episodes[longest]
+        route.SetSplinePoints(Points=[spear.FVector(x, y, z + 0.05) for x, y, z in corners],
+                              CoordinateSpace=spear.ESplineCoordinateSpace.World)
+        route.bDrawDebug = True
         camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="FollowCamera")
         camera.CameraSensor.Width, camera.CameraSensor.Height, camera.CameraSensor.FOV = WIDTH, HEIGHT, 75.0
         follow(walker, camera)

@@ -1,6 +1,9 @@
 #include "core/render/primitives.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include <Eigen/Geometry>
 
 #include "core/base/error.h"
 
@@ -124,6 +127,44 @@ MeshData cylinder(float radius, float height, int segments) {
         }
     }
     mesh.validate("primitives::cylinder");
+    return mesh;
+}
+
+MeshData tube(const std::vector<Eigen::Vector3f>& path, float radius, int sides) {
+    SP_CHECK(radius > 0.0f && std::isfinite(radius) && sides >= 3, InvalidArgument,
+             "primitives::tube(): radius ", radius, " must be > 0 and sides ", sides, " >= 3");
+    std::vector<Eigen::Vector3f> points;
+    for (const Eigen::Vector3f& p : path)
+        if (points.empty() || (p - points.back()).norm() > 1e-6f)
+            points.push_back(p);
+    SP_CHECK(points.size() >= 2, InvalidArgument,
+             "primitives::tube(): the path needs two distinct points, got ", points.size());
+    MeshData mesh;
+    Eigen::Vector3f normal = Eigen::Vector3f::Zero();
+    for (size_t i = 0; i < points.size(); ++i) {
+        const Eigen::Vector3f tangent =
+            (points[std::min(i + 1, points.size() - 1)] - points[i == 0 ? 0 : i - 1]).normalized();
+        // The previous ring's normal, turned into this ring's plane (the first: any perpendicular).
+        normal = i == 0 ? tangent.unitOrthogonal() : (normal - tangent * tangent.dot(normal));
+        if (normal.norm() < 1e-6f)
+            normal = tangent.unitOrthogonal();
+        normal.normalize();
+        const Eigen::Vector3f binormal = tangent.cross(normal);
+        for (int s = 0; s < sides; ++s) {
+            const float angle = 2.0f * float(M_PI) * float(s) / float(sides);
+            const Eigen::Vector3f out = std::cos(angle) * normal + std::sin(angle) * binormal;
+            mesh.positions.push_back(points[i] + radius * out);
+            mesh.normals.push_back(out);
+            mesh.uvs.emplace_back(float(s) / float(sides), float(i) / float(points.size() - 1));
+        }
+    }
+    const auto ring = [&](size_t i, int s) { return std::uint32_t(i * size_t(sides) + size_t(s % sides)); };
+    for (size_t i = 0; i + 1 < points.size(); ++i)
+        for (int s = 0; s < sides; ++s)
+            mesh.indices.insert(mesh.indices.end(), {ring(i, s), ring(i, s + 1), ring(i + 1, s + 1),
+                                                     ring(i, s), ring(i + 1, s + 1), ring(i + 1, s)});
+    mesh.name = "tube";
+    mesh.validate("primitives::tube()");
     return mesh;
 }
 

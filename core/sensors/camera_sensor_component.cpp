@@ -108,10 +108,11 @@ bool UCameraSensorComponent::GetObjectIdInfo(int64_t ObjectId, AActor*& Actor,
     auto info = subsystemOf(*this, "GetObjectIdInfo").objectIdInfo(uint32_t(ObjectId));
     if (!info)
         return false;
-    auto* component = dynamic_cast<UPrimitiveComponent*>(sp::reflect::ObjectTable::find(info->component));
+    // A primitive's pixels, or a spline's debug line (whose component is no primitive: Component stays None).
+    auto* component = dynamic_cast<UActorComponent*>(sp::reflect::ObjectTable::find(info->component));
     if (!component)
         return false;
-    Component = component;
+    Component = dynamic_cast<UPrimitiveComponent*>(component);
     Actor = component->GetOwner();
     MaterialSlot = info->slot;
     MaterialName = info->materialName;

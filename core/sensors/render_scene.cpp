@@ -9,6 +9,7 @@
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
 #include "core/world/light_component.h"
+#include "core/world/spline_component.h"
 #include "core/world/static_mesh_component.h"
 #include "core/world/world.h"
 
@@ -99,6 +100,7 @@ void RenderScene::logOnce(const std::string& key, const std::string& message) {
 void RenderScene::sync(UWorld& world) {
     // One walk over the world; libraries first, because every mesh slot resolves names against them.
     std::vector<UStaticMeshComponent*> meshes;
+    std::vector<const USplineComponent*> splines;
     std::vector<const ULightComponent*> lights;
     const USkyLightComponent* sky = nullptr;
     std::map<std::string, FMaterialDesc> library;
@@ -109,6 +111,9 @@ void RenderScene::sync(UWorld& world) {
         for (const auto& component : actor->GetComponentList()) {
             if (auto* mesh = dynamic_cast<UStaticMeshComponent*>(component.get()))
                 meshes.push_back(mesh);
+            else if (const auto* spline = dynamic_cast<const USplineComponent*>(component.get());
+                     spline && spline->bDrawDebug)
+                splines.push_back(spline);
             else if (const auto* light = dynamic_cast<const ULightComponent*>(component.get()))
                 lights.push_back(light);
             else if (const auto* skyLight = dynamic_cast<const USkyLightComponent*>(component.get());
@@ -133,6 +138,20 @@ void RenderScene::sync(UWorld& world) {
         for (std::uint32_t id : it->second.ids)
             idInfo_.erase(id);
         it = instances_.erase(it);
+    }
+
+    std::set<sp::reflect::ObjectHandle> drawn;
+    for (const USplineComponent* spline : splines) {
+        drawn.insert(spline->GetHandle());
+        syncDebugLine(*spline);
+    }
+    for (auto it = debugLines_.begin(); it != debugLines_.end();) {
+        if (drawn.count(it->first)) {
+            ++it;
+            continue;
+        }
+        removeDebugLine(it->second);
+        it = debugLines_.erase(it);
     }
 
     for (sp::render::LightId id : lights_)
@@ -195,6 +214,62 @@ void RenderScene::syncMesh(UStaticMeshComponent& component,
         scene_.setInstance(entry.instance, instance);
     else
         entry.instance = scene_.addInstance(instance);
+}
+
+void RenderScene::syncDebugLine(const USplineComponent& spline) {
+    // The curve through points a tenth of a metre apart (at most 10000), in world space.
+    const double length = spline.GetSplineLength();
+    const int steps = int(std::clamp(std::ceil(length / 0.1), 1.0, 10000.0));
+    std::vector<Eigen::Vector3f> points;
+    std::string key = std::to_string(spline.DebugLineThickness) + " " +
+                      std::to_string(spline.DebugLineColor.R) + " " +
+                      std::to_string(spline.DebugLineColor.G) + " " + std::to_string(spline.DebugLineColor.B);
+    if (spline.GetNumberOfSplinePoints() >= 2)
+        for (int i = 0; i <= steps; ++i) {
+            const Eigen::Vector3f p =
+                spline.GetLocationAtDistanceAlongSpline(length * i / steps, ESplineCoordinateSpace::World)
+                    .toEigen()
+                    .cast<float>();
+            points.push_back(p);
+            key += " " + std::to_string(p.x()) + "," + std::to_string(p.y()) + "," + std::to_string(p.z());
+        }
+    DebugLineEntry& entry = debugLines_[spline.GetHandle()];
+    if (entry.instance.isSet() && entry.key == key)
+        return;
+    if (points.size() < 2 || length <= 1e-6) { // nothing to draw (yet)
+        removeDebugLine(entry);
+        entry = DebugLineEntry{};
+        return;
+    }
+    sp::render::MeshData mesh = sp::render::primitives::tube(points, float(spline.DebugLineThickness / 2.0));
+    sp::render::Material material;
+    material.baseColor = Eigen::Vector4f(0.02f, 0.02f, 0.02f, 1.0f);
+    material.emissive = rgb(spline.DebugLineColor);
+    if (entry.instance.isSet()) {
+        scene_.updateMesh(entry.mesh, std::move(mesh));
+        scene_.setMaterial(entry.material, material);
+    } else {
+        entry.mesh = scene_.addMesh(std::move(mesh));
+        entry.material = scene_.addMaterial(material);
+        entry.id = nextObjectId_++;
+        idInfo_[entry.id] = {spline.GetHandle(), 0, "DebugLine"};
+        sp::render::Instance instance;
+        instance.mesh = entry.mesh;
+        instance.materials = {entry.material};
+        instance.objectIds = {entry.id};
+        instance.castShadows = false;
+        entry.instance = scene_.addInstance(instance);
+    }
+    entry.key = std::move(key);
+}
+
+void RenderScene::removeDebugLine(DebugLineEntry& entry) {
+    if (!entry.instance.isSet())
+        return;
+    scene_.removeInstance(entry.instance);
+    scene_.removeMesh(entry.mesh);
+    scene_.removeMaterial(entry.material);
+    idInfo_.erase(entry.id);
 }
 
 const RenderScene::MeshEntry* RenderScene::meshFor(const std::string& name) {

@@ -1,7 +1,8 @@
 #pragma once
 // RenderScene: the render-side mirror of one world (no GL). sync() walks the world's actors and brings
 // the sp::render::Scene up to date: one instance per visible static mesh component, one material per
-// slot resolved by name (see material_library.h), lights and the sky. It also owns the object ids:
+// slot resolved by name (see material_library.h), lights and the sky, and a glowing tube along each
+// spline component with bDrawDebug. It also owns the object ids:
 // one per (component, material slot), from a counter that never repeats (0 is the background).
 
 #include <cstdint>
@@ -17,6 +18,7 @@
 
 class UWorld;
 class UStaticMeshComponent;
+class USplineComponent;
 
 namespace sp::sensors {
 
@@ -55,7 +57,17 @@ class RenderScene {
         std::vector<std::uint32_t> ids; // per slot
     };
 
+    struct DebugLineEntry {
+        sp::render::MeshId mesh;
+        sp::render::MaterialId material;
+        sp::render::InstanceId instance;
+        std::string key; // what the mesh was built from
+        std::uint32_t id = 0;
+    };
+
     void syncMesh(UStaticMeshComponent& component, const std::map<std::string, FMaterialDesc>& library);
+    void syncDebugLine(const USplineComponent& spline);
+    void removeDebugLine(DebugLineEntry& entry);
     const MeshEntry* meshFor(const std::string& name);
     sp::render::MaterialId materialFor(const std::string& name,
                                        const std::map<std::string, FMaterialDesc>& library);
@@ -68,6 +80,7 @@ class RenderScene {
     std::map<std::string, MaterialEntry> materials_;
     std::map<std::string, sp::render::TextureId> textures_;
     std::map<sp::reflect::ObjectHandle, InstanceEntry> instances_;
+    std::map<sp::reflect::ObjectHandle, DebugLineEntry> debugLines_;
     std::map<std::uint32_t, ObjectIdInfo> idInfo_;
     std::vector<sp::render::LightId> lights_;
     std::set<std::string> logged_;

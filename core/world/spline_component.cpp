@@ -160,6 +160,12 @@ USplineComponent::GetLocationsAtDistances(const sp::reflect::SpArray<double>& Di
     return locations;
 }
 
+void USplineComponent::SetDebugLineThickness(double Thickness) {
+    sp::checkSetting(std::isfinite(Thickness) && Thickness > 0.0, "USplineComponent", "DebugLineThickness",
+                     "> 0", Thickness);
+    DebugLineThickness = Thickness;
+}
+
 ASplineActor::ASplineActor() {
     SplineComponent = CreateDefaultSubobject<USplineComponent>("SplineComponent");
 }

@@ -36,6 +36,23 @@ class USplineComponent : public USceneComponent {
     SPPROPERTY()
     bool bClosedLoop = false;
 
+    /// Draws the curve in camera images as a glowing tube (a debug line for looking at paths and roads; it is
+    /// drawn like any object, in every modality, casting no shadow).
+    SPPROPERTY()
+    bool bDrawDebug = false;
+
+    /// The debug line's thickness in metres (> 0).
+    SPPROPERTY(Setter = SetDebugLineThickness)
+    double DebugLineThickness = 0.05;
+
+    /// The debug line's colour (linear; it glows with it).
+    SPPROPERTY()
+    FLinearColor DebugLineColor{1.0f, 0.75f, 0.0f, 1.0f};
+
+    /// Sets DebugLineThickness (finite, > 0).
+    SPFUNCTION()
+    void SetDebugLineThickness(double Thickness);
+
     /// Adds a point at the end. bUpdateSpline is accepted for UE compatibility (the curve is always current).
     SPFUNCTION()
     void AddSplinePoint(const FVector& Position, ESplineCoordinateSpace CoordinateSpace,

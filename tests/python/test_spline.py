@@ -83,3 +83,40 @@ def test_a_closed_loop_and_own_tangents(instance: spear.Instance, tmp_path: Path
         assert loaded.GetSplineLength() == pytest.approx(2 * math.pi * 3, rel=2e-3)
     with instance.end_frame():
         pass
+
+
+def test_a_spline_draws_as_a_debug_line_when_asked(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        floor = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Floor", location=spear.FVector(Z=-0.5))
+        floor.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        floor.SetActorScale3D(NewScale3D=spear.FVector(20.0, 20.0, 1.0))
+        path = game.spawn_actor(uclass=spear.ASplineActor, name="Path")
+        spline = path.SplineComponent
+        spline.SetSplinePoints(Points=[spear.FVector(-3.0, -2.0, 0.05), spear.FVector(0.0, 1.0, 0.05), spear.FVector(3.0, -1.0, 0.05)],
+                               CoordinateSpace=spear.ESplineCoordinateSpace.World)
+        spline.bDrawDebug = True
+        spline.SetDebugLineThickness(Thickness=0.2)
+        spline.DebugLineColor = spear.FLinearColor(0.0, 1.0, 0.0, 1.0)
+        with pytest.raises(spear.InvalidArgumentError, match=r"USplineComponent.DebugLineThickness must be > 0, got -1"):
+            spline.SetDebugLineThickness(Thickness=-1.0)
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Above", location=spear.FVector(Z=8.0),
+                                  rotation=spear.FRotator(Pitch=-90.0)).CameraSensor
+        camera.Width, camera.Height, camera.FOV = 96, 96, 70.0
+        camera.SetModalityNames(Names=["final_color", "object_ids"])
+    with instance.end_frame():
+        pixels = camera.read_pixels()
+    assert "final_color" in pixels and "object_ids" in pixels
+    colour, ids = pixels["final_color"], pixels["object_ids"]
+    green = (colour[:, :, 1] > 150) & (colour[:, :, 0] < 80) & (colour[:, :, 2] < 80)  # it glows green
+    assert green.sum() > 50
+    line_ids = set(np.unique(ids[green]).tolist())
+    assert len(line_ids) == 1
+    with instance.begin_frame():
+        info = camera.GetObjectIdInfo(ObjectId=line_ids.pop())
+        assert info.ReturnValue and info.Actor == path and info.Component is None and info.MaterialName == "DebugLine"
+        spline.bDrawDebug = False
+    with instance.end_frame():
+        hidden = camera.read_pixels()
+    assert "final_color" in hidden
+    assert ((hidden["final_color"][:, :, 1] > 150) & (hidden["final_color"][:, :, 0] < 80)).sum() == 0

@@ -971,7 +971,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.functions.push_back({
             "GetObjectIdInfo",
-            "Looks up an object id of object_ids: the actor, the component and the material slot and name it\nbelongs to; returns False (and None, -1, \"\") for 0, an unknown id or a destroyed component.",
+            "Looks up an object id of object_ids: the actor, the component and the material slot and name it\nbelongs to (a spline's debug line: its actor, Component None, material \"DebugLine\"); returns False\n(and None, -1, \"\") for 0, an unknown id or a destroyed component.",
             "GetObjectIdInfoResult",
             {
                 {"ObjectId", "int", false, false},

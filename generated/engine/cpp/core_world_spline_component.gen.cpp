@@ -118,6 +118,65 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
                 sp::reflect::notifyPropertyChanged(object, "bClosedLoop");
             },
         });
+        t.properties.push_back({
+            "bDrawDebug",
+            "bool",
+            "Draws the curve in camera images as a glowing tube (a debug line for looking at paths and roads; it is\ndrawn like any object, in every modality, casting no shadow).",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bDrawDebug);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->bDrawDebug = sp::reflect::decode<bool>(value, "USplineComponent.bDrawDebug");
+                sp::reflect::notifyPropertyChanged(object, "bDrawDebug");
+            },
+        });
+        t.properties.push_back({
+            "DebugLineThickness",
+            "float",
+            "The debug line's thickness in metres (> 0).",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->DebugLineThickness);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->SetDebugLineThickness(sp::reflect::decode<double>(value, "USplineComponent.DebugLineThickness"));
+                sp::reflect::notifyPropertyChanged(object, "DebugLineThickness");
+            },
+        });
+        t.properties.push_back({
+            "DebugLineColor",
+            "FLinearColor",
+            "The debug line's colour (linear; it glows with it).",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->DebugLineColor);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->DebugLineColor = sp::reflect::decode<FLinearColor>(value, "USplineComponent.DebugLineColor");
+                sp::reflect::notifyPropertyChanged(object, "DebugLineColor");
+            },
+        });
+        t.functions.push_back({
+            "SetDebugLineThickness",
+            "Sets DebugLineThickness (finite, > 0).",
+            "None",
+            {
+                {"Thickness", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "USplineComponent.SetDebugLineThickness()";
+                sp::reflect::checkArguments(args, {"Thickness"}, kContext);
+                double Thickness = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "Thickness", kContext), "USplineComponent.SetDebugLineThickness(): argument 'Thickness'");
+                sp::reflect::selfCast<Self>(self)->SetDebugLineThickness(Thickness);
+                return {};
+            },
+        });
         t.functions.push_back({
             "AddSplinePoint",
             "Adds a point at the end. bUpdateSpline is accepted for UE compatibility (the curve is always current).",

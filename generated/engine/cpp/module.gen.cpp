@@ -2622,7 +2622,7 @@ void spear_bind_engine(py::module_& m) {
             },
             py::kw_only(),
             py::arg("ObjectId"),
-            "Looks up an object id of object_ids: the actor, the component and the material slot and name it\nbelongs to; returns False (and None, -1, \"\") for 0, an unknown id or a destroyed component.");
+            "Looks up an object id of object_ids: the actor, the component and the material slot and name it\nbelongs to (a spline's debug line: its actor, Component None, material \"DebugLine\"); returns False\n(and None, -1, \"\") for 0, an unknown id or a destroyed component.");
         cls.def(
             "GetObjectId",
             [](const Ref<Self>& self, Bridge<UPrimitiveComponent*>::Py Component, Bridge<int32_t>::Py MaterialSlot) -> py::object {
@@ -3650,6 +3650,45 @@ void spear_bind_engine(py::module_& m) {
                 object->PostPropertyChanged("bClosedLoop");
             },
             "Whether the last point joins the first.");
+        cls.def_property(
+            "bDrawDebug",
+            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("USplineComponent.bDrawDebug")->bDrawDebug); },
+            [](const Ref<Self>& self, Bridge<bool>::Py value) {
+                Self* object = self.get<Self>("USplineComponent.bDrawDebug");
+                object->bDrawDebug = Bridge<bool>::in(std::move(value), "USplineComponent.bDrawDebug");
+                object->PostPropertyChanged("bDrawDebug");
+            },
+            "Draws the curve in camera images as a glowing tube (a debug line for looking at paths and roads; it is\ndrawn like any object, in every modality, casting no shadow).");
+        cls.def_property(
+            "DebugLineThickness",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("USplineComponent.DebugLineThickness")->DebugLineThickness); },
+            [](const Ref<Self>& self, Bridge<double>::Py value) {
+                Self* object = self.get<Self>("USplineComponent.DebugLineThickness");
+                object->SetDebugLineThickness(Bridge<double>::in(std::move(value), "USplineComponent.DebugLineThickness"));
+                object->PostPropertyChanged("DebugLineThickness");
+            },
+            "The debug line's thickness in metres (> 0).");
+        cls.def_property(
+            "DebugLineColor",
+            [](const Ref<Self>& self) { return Bridge<FLinearColor>::out(self.get<Self>("USplineComponent.DebugLineColor")->DebugLineColor); },
+            [](const Ref<Self>& self, Bridge<FLinearColor>::Py value) {
+                Self* object = self.get<Self>("USplineComponent.DebugLineColor");
+                object->DebugLineColor = Bridge<FLinearColor>::in(std::move(value), "USplineComponent.DebugLineColor");
+                object->PostPropertyChanged("DebugLineColor");
+            },
+            "The debug line's colour (linear; it glows with it).");
+        cls.def(
+            "SetDebugLineThickness",
+            [](const Ref<Self>& self, Bridge<double>::Py Thickness) -> py::object {
+                static constexpr const char* kContext = "USplineComponent.SetDebugLineThickness()";
+                Self* object = self.get<Self>(kContext);
+                auto ThicknessValue = Bridge<double>::in(std::move(Thickness), "USplineComponent.SetDebugLineThickness(): argument 'Thickness'");
+                object->SetDebugLineThickness(ThicknessValue);
+                return py::none();
+            },
+            py::kw_only(),
+            py::arg("Thickness"),
+            "Sets DebugLineThickness (finite, > 0).");
         cls.def(
             "AddSplinePoint",
             [](const Ref<Self>& self, Bridge<FVector>::Py Position, Bridge<ESplineCoordinateSpace>::Py CoordinateSpace, Bridge<bool>::Py bUpdateSpline) -> py::object {

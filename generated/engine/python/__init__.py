@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "e9aed32263656cbf"
+API_HASH = "a070d208c7bc65bc"

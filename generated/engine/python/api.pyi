@@ -2818,7 +2818,8 @@ class UCameraSensorComponent(USceneComponent):
 
     def GetObjectIdInfo(self, *, ObjectId: int) -> UCameraSensorComponent.GetObjectIdInfoResult:
         """Looks up an object id of object_ids: the actor, the component and the material slot and name it
-        belongs to; returns False (and None, -1, "") for 0, an unknown id or a destroyed component.
+        belongs to (a spline's debug line: its actor, Component None, material "DebugLine"); returns False
+        (and None, -1, "") for 0, an unknown id or a destroyed component.
         """
 
     def GetObjectId(self, *, Component: UPrimitiveComponent, MaterialSlot: int = 0) -> int:
@@ -3737,6 +3738,8 @@ class USphereComponent(UShapeComponent):
 class USplineComponentAsync(USceneComponentAsync):
     """USplineComponent's functions, called asynchronously: each returns a Future."""
 
+    def SetDebugLineThickness(self, *, Thickness: float) -> Future[None]: ...
+
     def AddSplinePoint(self, *, Position: FVector, CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = True) -> Future[None]: ...
 
     def ClearSplinePoints(self, *, bUpdateSpline: bool = True) -> Future[None]: ...
@@ -3772,6 +3775,8 @@ class USplineComponentAsync(USceneComponentAsync):
 
 class USplineComponentSend(USceneComponentSend):
     """USplineComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetDebugLineThickness(self, *, Thickness: float) -> None: ...
 
     def AddSplinePoint(self, *, Position: FVector, CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = True) -> None: ...
 
@@ -3832,6 +3837,32 @@ class USplineComponent(USceneComponent):
 
     @bClosedLoop.setter
     def bClosedLoop(self, value: bool) -> None: ...
+
+    @property
+    def bDrawDebug(self) -> bool:
+        """Draws the curve in camera images as a glowing tube (a debug line for looking at paths and roads; it is
+        drawn like any object, in every modality, casting no shadow).
+        """
+
+    @bDrawDebug.setter
+    def bDrawDebug(self, value: bool) -> None: ...
+
+    @property
+    def DebugLineThickness(self) -> float:
+        """The debug line's thickness in metres (> 0)."""
+
+    @DebugLineThickness.setter
+    def DebugLineThickness(self, value: float) -> None: ...
+
+    @property
+    def DebugLineColor(self) -> FLinearColor:
+        """The debug line's colour (linear; it glows with it)."""
+
+    @DebugLineColor.setter
+    def DebugLineColor(self, value: FLinearColor) -> None: ...
+
+    def SetDebugLineThickness(self, *, Thickness: float) -> None:
+        """Sets DebugLineThickness (finite, > 0)."""
 
     def AddSplinePoint(self, *, Position: FVector, CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = True) -> None:
         """Adds a point at the end. bUpdateSpline is accepted for UE compatibility (the curve is always current)."""

@@ -1775,6 +1775,33 @@ class USplineComponent(USceneComponent, api.USplineComponent):
     def bClosedLoop(self, value: bool) -> None:
         self._sp_set("USplineComponent", "bClosedLoop", value)
 
+    @property
+    def bDrawDebug(self) -> bool:
+        return cast("bool", self._sp_get("USplineComponent", "bDrawDebug", "bool"))
+
+    @bDrawDebug.setter
+    def bDrawDebug(self, value: bool) -> None:
+        self._sp_set("USplineComponent", "bDrawDebug", value)
+
+    @property
+    def DebugLineThickness(self) -> float:
+        return cast("float", self._sp_get("USplineComponent", "DebugLineThickness", "float"))
+
+    @DebugLineThickness.setter
+    def DebugLineThickness(self, value: float) -> None:
+        self._sp_set("USplineComponent", "DebugLineThickness", value)
+
+    @property
+    def DebugLineColor(self) -> FLinearColor:
+        return cast("FLinearColor", self._sp_get("USplineComponent", "DebugLineColor", "FLinearColor"))
+
+    @DebugLineColor.setter
+    def DebugLineColor(self, value: FLinearColor) -> None:
+        self._sp_set("USplineComponent", "DebugLineColor", value)
+
+    def SetDebugLineThickness(self, *, Thickness: float) -> None:
+        self._sp_call("USplineComponent", "SetDebugLineThickness", {"Thickness": Thickness}, "None")
+
     def AddSplinePoint(self, *, Position: FVector, CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = _DEFAULT) -> None:
         self._sp_call("USplineComponent", "AddSplinePoint", {"Position": Position, "CoordinateSpace": CoordinateSpace, "bUpdateSpline": bUpdateSpline}, "None")
 

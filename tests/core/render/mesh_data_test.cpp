@@ -51,3 +51,24 @@ TEST(MeshDataTest, PrimitivesAreClosedAndUnit) {
 
 } // namespace
 } // namespace sp::render
+
+namespace sp::render {
+namespace {
+
+TEST(PrimitivesTest, TubeRingsSitAtTheRadiusAroundThePath) {
+    const std::vector<Eigen::Vector3f> path{{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {2, 1, 0}, {2, 1, 1}};
+    const MeshData tube = primitives::tube(path, 0.05f, 6);
+    ASSERT_EQ(tube.positions.size(), 4u * 6u); // the repeated point is skipped
+    EXPECT_EQ(tube.indices.size(), 3u * 6u * 6u);
+    const std::vector<Eigen::Vector3f> kept{{0, 0, 0}, {1, 0, 0}, {2, 1, 0}, {2, 1, 1}};
+    for (size_t i = 0; i < tube.positions.size(); ++i) {
+        const Eigen::Vector3f offset = tube.positions[i] - kept[i / 6];
+        EXPECT_NEAR(offset.norm(), 0.05f, 1e-5f);
+        EXPECT_TRUE(tube.normals[i].isApprox(offset / 0.05f, 1e-4f)); // pointing out of the tube
+    }
+    EXPECT_THROW(primitives::tube({{0, 0, 0}, {0, 0, 0}}, 0.05f), InvalidArgument);
+    EXPECT_THROW(primitives::tube(path, 0.0f), InvalidArgument);
+}
+
+} // namespace
+} // namespace sp::render
