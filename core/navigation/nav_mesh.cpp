@@ -449,7 +449,6 @@ std::optional<Eigen::Vector3d> NavMesh::randomPointInRadius(const Eigen::Vector3
         if (!found)
             return std::nullopt;
         component = d.polys[size_t(d.indexOf.at(found->first))].component;
-        centre = found->second;
     }
     // The polygons that meet the disc (by their bounds), drawn by area; points outside it are redrawn.
     std::vector<size_t> candidates;
