@@ -217,26 +217,16 @@ void RenderScene::syncMesh(UStaticMeshComponent& component,
 }
 
 void RenderScene::syncDebugLine(const USplineComponent& spline) {
-    // The curve through points a tenth of a metre apart (at most 10000), in world space.
-    const double length = spline.GetSplineLength();
-    const int steps = int(std::clamp(std::ceil(length / 0.1), 1.0, 10000.0));
-    std::vector<Eigen::Vector3f> points;
-    std::string key = std::to_string(spline.DebugLineThickness) + " " +
-                      std::to_string(spline.DebugLineColor.R) + " " +
-                      std::to_string(spline.DebugLineColor.G) + " " + std::to_string(spline.DebugLineColor.B);
-    if (spline.GetNumberOfSplinePoints() >= 2)
-        for (int i = 0; i <= steps; ++i) {
-            const Eigen::Vector3f p =
-                spline.GetLocationAtDistanceAlongSpline(length * i / steps, ESplineCoordinateSpace::World)
-                    .toEigen()
-                    .cast<float>();
-            points.push_back(p);
-            key += " " + std::to_string(p.x()) + "," + std::to_string(p.y()) + "," + std::to_string(p.z());
-        }
     DebugLineEntry& entry = debugLines_[spline.GetHandle()];
-    if (entry.instance.isSet() && entry.key == key)
-        return;
-    if (points.size() < 2 || length <= 1e-6) { // nothing to draw (yet)
+    const FTransform transform = spline.GetComponentTransform();
+    if (entry.instance.isSet() && entry.revision == spline.curveRevision() && entry.transform == transform &&
+        entry.thickness == spline.DebugLineThickness && entry.color == spline.DebugLineColor)
+        return; // unchanged: the curve is sampled only when it moved or changed
+    // The curve through points a tenth of a metre apart (at most 10001), in world space.
+    std::vector<Eigen::Vector3f> points;
+    for (const Eigen::Vector3d& p : spline.worldPolyline(0.1, 10000))
+        points.push_back(p.cast<float>());
+    if (points.size() < 2 || spline.GetSplineLength() <= 1e-6) { // nothing to draw (yet)
         removeDebugLine(entry);
         entry = DebugLineEntry{};
         return;
@@ -260,7 +250,10 @@ void RenderScene::syncDebugLine(const USplineComponent& spline) {
         instance.castShadows = false;
         entry.instance = scene_.addInstance(instance);
     }
-    entry.key = std::move(key);
+    entry.revision = spline.curveRevision();
+    entry.transform = transform;
+    entry.thickness = spline.DebugLineThickness;
+    entry.color = spline.DebugLineColor;
 }
 
 void RenderScene::removeDebugLine(DebugLineEntry& entry) {

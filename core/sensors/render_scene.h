@@ -61,7 +61,11 @@ class RenderScene {
         sp::render::MeshId mesh;
         sp::render::MaterialId material;
         sp::render::InstanceId instance;
-        std::string key; // what the mesh was built from
+        // What the mesh was built from: the curve's revision, where the spline is, the line's look.
+        std::uint64_t revision = 0;
+        FTransform transform;
+        double thickness = 0.0;
+        FLinearColor color;
         std::uint32_t id = 0;
     };
 

@@ -26,6 +26,7 @@ struct FVector {
 
     Eigen::Vector3d toEigen() const { return {X, Y, Z}; }
     static FVector fromEigen(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+    bool isFinite() const { return toEigen().allFinite(); }
     friend bool operator==(const FVector&, const FVector&) = default;
 };
 

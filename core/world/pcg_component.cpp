@@ -14,25 +14,11 @@ namespace {
 namespace pcg = sp::world::pcg;
 
 // Splines are followed through points this far apart along them (world space), or through at most
-// kMaxSplineSamples points for very long ones.
+// kMaxSplineSegments + 1 points for very long ones.
 constexpr double kSplineStep = 0.25;
-constexpr double kMaxSplineSamples = 1e5;
+constexpr int kMaxSplineSegments = 100'000;
 // The most placements (or scatter grid cells, ten times as many) one generation may lay out.
 constexpr double kMaxPlacements = 1e6;
-
-pcg::Polyline sampleSpline(const ASplineActor& actor) {
-    const USplineComponent& spline = *actor.SplineComponent;
-    pcg::Polyline line;
-    const double length = spline.GetSplineLength();
-    const int steps = int(std::clamp(std::ceil(length / kSplineStep), 1.0, kMaxSplineSamples));
-    if (spline.GetNumberOfSplinePoints() == 0)
-        return line;
-    for (int i = 0; i <= steps; ++i)
-        line.push_back(
-            spline.GetLocationAtDistanceAlongSpline(length * i / steps, ESplineCoordinateSpace::World)
-                .toEigen());
-    return line;
-}
 
 Eigen::AlignedBox2d flat(const Eigen::AlignedBox3d& box) {
     return {box.min().head<2>(), box.max().head<2>()};
@@ -43,7 +29,7 @@ std::vector<pcg::Polyline> splinesTagged(const UWorld& world, const std::string&
     std::vector<pcg::Polyline> lines;
     for (AActor* actor : world.find_actors_by_tag(tag))
         if (auto* spline = dynamic_cast<ASplineActor*>(actor))
-            lines.push_back(sampleSpline(*spline));
+            lines.push_back(spline->SplineComponent->worldPolyline(kSplineStep, kMaxSplineSegments));
     return lines;
 }
 
@@ -124,34 +110,37 @@ std::string UPCGComponent::tag() const {
     return "PCG:" + (GetOwner() ? GetOwner()->GetName() : std::string());
 }
 
-std::string UPCGComponent::generationKey(const char* function) const {
+UPCGComponent::Inputs UPCGComponent::gather(const char* function) const {
+    Inputs inputs;
+    inputs.box = volume(function);
+    if (GenerationMode == EPCGGenerationMode::AlongSpline)
+        inputs.lines = splinesTagged(*GetWorld(), SplineTag);
+    if (GenerationMode == EPCGGenerationMode::CityBlocks)
+        inputs.lines = splinesTagged(*GetWorld(), RoadTag);
+    if (GenerationMode == EPCGGenerationMode::Scatter && !ExclusionTag.empty())
+        for (AActor* excluded : GetWorld()->find_actors_by_tag(ExclusionTag))
+            inputs.exclusions.push_back(flat(boundsOf(*excluded)));
+    return inputs;
+}
+
+std::string UPCGComponent::generationKey(const Inputs& inputs) const {
     std::ostringstream key;
     key.precision(17);
-    const Eigen::AlignedBox3d box = volume(function);
     key << int(GenerationMode) << ' ' << Seed << ' ' << ActorClass.Get()->name << ' ' << StaticMesh << ' '
         << Spacing << ' ' << MaxCount << ' ' << MinScale << ' ' << MaxScale << ' ' << bRandomYaw << ' '
         << bProjectToGround << ' ' << ExclusionTag << ' ' << SplineOffset << ' ' << bBothSides << ' '
         << bAlignToSpline << ' ' << BlockSize << ' ' << StreetWidth << ' ' << LotsPerSide << ' ' << MinHeight
-        << ' ' << MaxHeight << ' ' << RoadTag << ' ' << RoadWidth << " box " << box.min().transpose() << ' '
-        << box.max().transpose() << " materials";
+        << ' ' << MaxHeight << ' ' << RoadTag << ' ' << RoadWidth << " box " << inputs.box.min().transpose()
+        << ' ' << inputs.box.max().transpose() << " materials";
     for (const std::string& material : Materials)
         key << ' ' << material;
-    auto addLine = [&](const pcg::Polyline& line) {
+    for (const pcg::Polyline& line : inputs.lines) {
         key << " line";
         for (const Eigen::Vector3d& p : line)
             key << ' ' << p.x() << ' ' << p.y() << ' ' << p.z();
-    };
-    if (GenerationMode == EPCGGenerationMode::AlongSpline)
-        for (const pcg::Polyline& line : splinesTagged(*GetWorld(), SplineTag))
-            addLine(line);
-    if (GenerationMode == EPCGGenerationMode::CityBlocks)
-        for (const pcg::Polyline& line : splinesTagged(*GetWorld(), RoadTag))
-            addLine(line);
-    if (GenerationMode == EPCGGenerationMode::Scatter && !ExclusionTag.empty())
-        for (AActor* excluded : GetWorld()->find_actors_by_tag(ExclusionTag)) {
-            const Eigen::AlignedBox3d b = boundsOf(*excluded);
-            key << " exclude " << b.min().transpose() << ' ' << b.max().transpose();
-        }
+    }
+    for (const Eigen::AlignedBox2d& excluded : inputs.exclusions)
+        key << " exclude " << excluded.min().transpose() << ' ' << excluded.max().transpose();
     return key.str();
 }
 
@@ -174,30 +163,26 @@ void UPCGComponent::FlushCache() {
 void UPCGComponent::Generate(bool bForce) {
     constexpr const char* kFunction = "UPCGComponent.Generate()";
     check(kFunction);
-    const std::string key = generationKey(kFunction);
+    const Inputs inputs = gather(kFunction);
+    const std::string key = generationKey(inputs);
     if (!bForce && key == cachedKey_ && IsGenerated())
         return;
     const auto start = std::chrono::steady_clock::now();
     Cleanup();
     UWorld& world = *GetWorld();
-    const Eigen::AlignedBox3d box = volume(kFunction);
+    const Eigen::AlignedBox3d& box = inputs.box;
     checkScale(box, kFunction);
     std::mt19937_64 rng{uint64_t(uint32_t(Seed))};
     const int variants = std::max(1, int(Materials.size()));
 
     std::vector<pcg::Placement> placements;
     switch (GenerationMode) {
-    case EPCGGenerationMode::Scatter: {
-        std::vector<Eigen::AlignedBox2d> exclusions;
-        if (!ExclusionTag.empty())
-            for (AActor* excluded : world.find_actors_by_tag(ExclusionTag))
-                exclusions.push_back(flat(boundsOf(*excluded)));
+    case EPCGGenerationMode::Scatter:
         placements = pcg::scatter(flat(box), {Spacing, MaxCount, MinScale, MaxScale, bRandomYaw, variants},
-                                  exclusions, rng);
+                                  inputs.exclusions, rng);
         break;
-    }
     case EPCGGenerationMode::AlongSpline: {
-        const std::vector<pcg::Polyline> splines = splinesTagged(world, SplineTag);
+        const std::vector<pcg::Polyline>& splines = inputs.lines;
         SP_CHECK(!splines.empty(), sp::InvalidArgument, kFunction, ": no ASplineActor has SplineTag '",
                  SplineTag, "' (AlongSpline follows them)");
         double length = 0.0;
@@ -214,13 +199,11 @@ void UPCGComponent::Generate(bool bForce) {
         }
         break;
     }
-    case EPCGGenerationMode::CityBlocks: {
-        const std::vector<pcg::Polyline> roads = splinesTagged(world, RoadTag);
+    case EPCGGenerationMode::CityBlocks:
         placements = pcg::cityBlocks(
             flat(box), {BlockSize, StreetWidth, LotsPerSide, MinHeight, MaxHeight, RoadWidth, variants},
-            roads, rng);
+            inputs.lines, rng);
         break;
-    }
     }
 
     // The bases first (the box's floor, or the ground under each placement), so that no trace meets an

@@ -134,8 +134,16 @@ class UPCGComponent : public UActorComponent {
     double GetLastGenerationSeconds() const { return lastSeconds_; }
 
   private:
+    // What a generation reads from the world, gathered once: its box, the splines it follows (AlongSpline)
+    // or keeps off (CityBlocks), the boxes it keeps out of (Scatter).
+    struct Inputs {
+        Eigen::AlignedBox3d box;
+        std::vector<sp::world::pcg::Polyline> lines;
+        std::vector<Eigen::AlignedBox2d> exclusions;
+    };
+    Inputs gather(const char* function) const;
     // Everything a generation reads, as text: equal text, equal result.
-    std::string generationKey(const char* function) const;
+    std::string generationKey(const Inputs& inputs) const;
     std::string tag() const;
     Eigen::AlignedBox3d volume(const char* function) const;
     void check(const char* function) const;

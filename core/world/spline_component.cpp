@@ -1,5 +1,6 @@
 #include "core/world/spline_component.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/base/error.h"
@@ -46,8 +47,7 @@ Eigen::Vector3d USplineComponent::toSpace(const Eigen::Vector3d& local, ESplineC
 
 Eigen::Vector3d USplineComponent::fromSpace(const FVector& value, ESplineCoordinateSpace space,
                                             bool direction) const {
-    SP_CHECK(std::isfinite(value.X) && std::isfinite(value.Y) && std::isfinite(value.Z), sp::InvalidArgument,
-             "USplineComponent: a position or tangent must be finite");
+    SP_CHECK(value.isFinite(), sp::InvalidArgument, "USplineComponent: a position or tangent must be finite");
     if (space == ESplineCoordinateSpace::Local)
         return value.toEigen();
     const FTransform transform = GetComponentTransform();
@@ -158,6 +158,19 @@ USplineComponent::GetLocationsAtDistances(const sp::reflect::SpArray<double>& Di
         out[3 * i + 2] = p.z();
     }
     return locations;
+}
+
+std::vector<Eigen::Vector3d> USplineComponent::worldPolyline(double step, int maxSegments) const {
+    std::vector<Eigen::Vector3d> line;
+    if (curve().pointCount() == 0)
+        return line;
+    const double length = curve().length();
+    const int steps = int(std::clamp(std::ceil(length / step), 1.0, double(std::max(maxSegments, 1))));
+    line.reserve(size_t(steps) + 1);
+    for (int i = 0; i <= steps; ++i)
+        line.push_back(toSpace(curve().location(curve().keyAtDistance(length * i / steps)),
+                               ESplineCoordinateSpace::World, false));
+    return line;
 }
 
 void USplineComponent::SetDebugLineThickness(double Thickness) {

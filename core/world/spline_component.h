@@ -122,6 +122,13 @@ class USplineComponent : public USceneComponent {
     sp::reflect::SpArray<double> GetLocationsAtDistances(const sp::reflect::SpArray<double>& Distances,
                                                          ESplineCoordinateSpace CoordinateSpace) const;
 
+    // The curve in world space as a polyline of segments `step` metres long along it (fewer, evenly spaced,
+    // when that would be more than maxSegments), both ends included; empty when there are no points. For
+    // whoever follows or draws the curve (procedural generation, the debug line).
+    std::vector<Eigen::Vector3d> worldPolyline(double step, int maxSegments) const;
+    // Changes whenever the curve's shape in the component's space does (points, loop, own tangents).
+    std::uint64_t curveRevision() const { return curve().revision(); }
+
   private:
     // The curve of SplinePoints and bClosedLoop, rebuilt when they changed (by any path: a setter, the
     // registry, a scene file); own tangents survive only while the points stay the same.

@@ -5,6 +5,7 @@
 // the curve come from a per-segment arc-length table (Gauss-Legendre over sub-intervals), inverted by
 // Newton steps, so a location at a distance is accurate to well below a micrometre for curves of metres.
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -22,6 +23,8 @@ class SplineCurve {
     void setTangent(int index, std::optional<Eigen::Vector3d> tangent);
 
     int pointCount() const { return int(points_.size()); }
+    // Bumped by every change to the curve: equal revisions, equal curve.
+    std::uint64_t revision() const { return revision_; }
     bool closedLoop() const { return closed_; }
     const Eigen::Vector3d& point(int index) const { return points_[std::size_t(index)]; }
     Eigen::Vector3d tangent(int index) const;
@@ -37,13 +40,17 @@ class SplineCurve {
     double keyAtDistance(double distance) const;
 
   private:
-    void invalidate() { lengths_.clear(); }
+    void invalidate() {
+        lengths_.clear();
+        ++revision_;
+    }
     void ensureLengths() const;
     double segmentLength(int segment, double t) const; // arc length from the segment's start to t
 
     std::vector<Eigen::Vector3d> points_;
     std::vector<std::optional<Eigen::Vector3d>> tangents_;
     bool closed_ = false;
+    std::uint64_t revision_ = 0;
     mutable std::vector<double> lengths_; // cumulative: lengths_[i] = distance at the start of segment i
 };
 
