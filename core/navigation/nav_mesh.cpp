@@ -58,6 +58,13 @@ double uniform(std::mt19937_64& rng) {
     return std::uniform_real_distribution<double>(0.0, 1.0)(rng);
 }
 
+// An index drawn with probability proportional to its weight, given the running sums of the weights.
+size_t drawByWeight(const std::vector<double>& running, std::mt19937_64& rng) {
+    const double pick = uniform(rng) * running.back();
+    return std::min(size_t(std::upper_bound(running.begin(), running.end(), pick) - running.begin()),
+                    running.size() - 1);
+}
+
 } // namespace
 
 const char* statusName(Path::Status status) {
@@ -429,11 +436,7 @@ std::optional<Eigen::Vector3d> NavMesh::randomPoint(std::mt19937_64& rng) const 
     const Impl& d = *impl_;
     if (d.polys.empty())
         return std::nullopt;
-    const double pick = uniform(rng) * d.cumulative.back();
-    const size_t index = std::min(
-        size_t(std::upper_bound(d.cumulative.begin(), d.cumulative.end(), pick) - d.cumulative.begin()),
-        d.polys.size() - 1);
-    return d.pointInPolygon(d.polys[index], rng);
+    return d.pointInPolygon(d.polys[drawByWeight(d.cumulative, rng)], rng);
 }
 
 std::optional<Eigen::Vector3d> NavMesh::randomPointInRadius(const Eigen::Vector3d& origin, double radius,
@@ -483,11 +486,7 @@ std::optional<Eigen::Vector3d> NavMesh::randomPointInRadius(const Eigen::Vector3
         return std::nullopt;
     }
     for (int attempt = 0; attempt < kRadiusTries; ++attempt) {
-        const double pick = uniform(rng) * sum;
-        const size_t k =
-            std::min(size_t(std::upper_bound(running.begin(), running.end(), pick) - running.begin()),
-                     candidates.size() - 1);
-        const Eigen::Vector3d p = d.pointInPolygon(d.polys[candidates[k]], rng);
+        const Eigen::Vector3d p = d.pointInPolygon(d.polys[candidates[drawByWeight(running, rng)]], rng);
         if ((p.head<2>() - centre2).norm() <= radius)
             return p;
     }

@@ -120,7 +120,11 @@ bool AAIController::arrived(const APawn& pawn, Eigen::Vector3d& offset) const {
     offset = goalLocation().toEigen() - pawn.GetActorLocation().toEigen();
     if (pawn.IsWalking())
         offset.z() = 0.0;
-    return offset.norm() <= acceptanceRadius_ + (stopOnOverlap_ ? pawn.GetAgentRadius() : 0.0);
+    return offset.norm() <= stopDistance(pawn);
+}
+
+double AAIController::stopDistance(const APawn& pawn) const {
+    return acceptanceRadius_ + (stopOnOverlap_ ? pawn.GetAgentRadius() : 0.0);
 }
 
 void AAIController::checkAcceptanceRadius(double radius, const char* function) {
@@ -138,8 +142,10 @@ EPathFollowingRequestResult AAIController::start(bool usePathfinding) {
     Eigen::Vector3d offset;
     if (arrived(*pawn, offset))
         return EPathFollowingRequestResult::AlreadyAtGoal;
-    if (usePathfinding && pawn->IsWalking() && sp::world::defaultNavigationIfAny(*GetWorld())) {
-        if (!planPath(*pawn))
+    ARecastNavMesh* navigation =
+        usePathfinding && pawn->IsWalking() ? sp::world::defaultNavigationIfAny(*GetWorld()) : nullptr;
+    if (navigation) {
+        if (!planPath(*pawn, *navigation))
             return EPathFollowingRequestResult::Failed;
         followingPath_ = true;
     }
@@ -147,12 +153,9 @@ EPathFollowingRequestResult AAIController::start(bool usePathfinding) {
     return EPathFollowingRequestResult::RequestSuccessful;
 }
 
-bool AAIController::planPath(const APawn& pawn) {
-    ARecastNavMesh* navigation = sp::world::defaultNavigationIfAny(*GetWorld());
-    if (!navigation)
-        return false; // the navigation data went away: the move ends
+bool AAIController::planPath(const APawn& pawn, ARecastNavMesh& navigation) {
     const sp::navigation::Path path =
-        navigation->findPath(pawn.GetActorLocation(), goalLocation(), "AAIController.MoveToLocation()");
+        navigation.findPath(pawn.GetActorLocation(), goalLocation(), "AAIController.MoveToLocation()");
     if (path.points.empty())
         return false;
     path_.assign(path.points.begin() + 1, path.points.end());
@@ -162,10 +165,13 @@ bool AAIController::planPath(const APawn& pawn) {
 }
 
 bool AAIController::advanceOnPath(const APawn& pawn) {
-    // A goal actor that left the path's end by a metre is planned for again.
-    if (!goalActor_.isNull() && (goalLocation().toEigen() - plannedGoal_.toEigen()).norm() > 1.0 &&
-        !planPath(pawn))
-        return false;
+    // A goal actor that left the path's end by a metre is planned for again (the move ends when the
+    // navigation data went away meanwhile).
+    if (!goalActor_.isNull() && (goalLocation().toEigen() - plannedGoal_.toEigen()).norm() > 1.0) {
+        ARecastNavMesh* navigation = sp::world::defaultNavigationIfAny(*GetWorld());
+        if (!navigation || !planPath(pawn, *navigation))
+            return false;
+    }
     const Eigen::Vector3d at = pawn.GetActorLocation().toEigen();
     // Corners count as reached within a step's length (at least 10 cm), horizontally.
     const double reach = std::max(0.1, pawn.GetMovementSpeed() * 0.05);
@@ -173,14 +179,12 @@ bool AAIController::advanceOnPath(const APawn& pawn) {
         ++nextCorner_;
     if (nextCorner_ + 1 < path_.size())
         return true;
-    const double stop = acceptanceRadius_ + (stopOnOverlap_ ? pawn.GetAgentRadius() : 0.0);
-    return !path_.empty() && (path_.back() - at).head<2>().norm() > stop;
+    return !path_.empty() && (path_.back() - at).head<2>().norm() > stopDistance(pawn);
 }
 
 EPathFollowingRequestResult AAIController::MoveToLocation(const FVector& Dest, double AcceptanceRadius,
                                                           bool bStopOnOverlap, bool bUsePathfinding) {
-    SP_CHECK(std::isfinite(Dest.X) && std::isfinite(Dest.Y) && std::isfinite(Dest.Z), sp::InvalidArgument,
-             "AAIController.MoveToLocation(): Dest must be finite");
+    SP_CHECK(Dest.isFinite(), sp::InvalidArgument, "AAIController.MoveToLocation(): Dest must be finite");
     checkAcceptanceRadius(AcceptanceRadius, "MoveToLocation");
     destination_ = Dest;
     goalActor_ = {};

@@ -10,6 +10,7 @@
 #include "core/world/actor.h"
 
 class APawn;
+class ARecastNavMesh;
 
 /// An actor that possesses and directs a pawn.
 SPCLASS()
@@ -167,10 +168,13 @@ class AAIController : public AController {
     FVector goalLocation() const;
     // The remaining offset from the pawn to the goal, horizontal for a walking pawn, and how close counts.
     bool arrived(const APawn& pawn, Eigen::Vector3d& offset) const;
+    // How close to the goal counts as there: the acceptance radius, plus the pawn's radius when
+    // bStopOnOverlap.
+    double stopDistance(const APawn& pawn) const;
     static void checkAcceptanceRadius(double radius, const char* function);
     EPathFollowingRequestResult start(bool usePathfinding);
-    // Plans the path to the goal on the world's navigation; false when the start or goal is off it.
-    bool planPath(const APawn& pawn);
+    // Plans the path to the goal on `navigation`; false when the start or goal is off it.
+    bool planPath(const APawn& pawn, ARecastNavMesh& navigation);
     // Advances nextCorner_ past the corners reached (re-planning for a goal actor that moved); false once the
     // pawn is at the path's end.
     bool advanceOnPath(const APawn& pawn);

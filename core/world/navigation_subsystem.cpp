@@ -66,10 +66,7 @@ const NavigationSubsystem::Snapshot& NavigationSubsystem::snapshot() {
             region.max().array() += kRegionMargin;
         }
     }
-    const bool sameRegion = region.isEmpty()
-                                ? snapshot_.region.isEmpty()
-                                : !snapshot_.region.isEmpty() && region.isApprox(snapshot_.region);
-    if (taken_ && !changed && sameRegion)
+    if (taken_ && !changed && sameRegion(region, snapshot_.region))
         return snapshot_;
     taken_ = true;
 

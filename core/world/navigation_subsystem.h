@@ -41,6 +41,11 @@ class NavigationSubsystem : public WorldSubsystem {
     // The navigation geometry as it is now (physics synced first).
     const Snapshot& snapshot();
 
+    // Whether two regions are the same (two empty regions are: nothing to build over either way).
+    static bool sameRegion(const Eigen::AlignedBox3d& a, const Eigen::AlignedBox3d& b) {
+        return a.isEmpty() || b.isEmpty() ? a.isEmpty() == b.isEmpty() : a.isApprox(b);
+    }
+
   private:
     struct Cached {
         physics::TriangleSoup soup; // empty for an infinite plane, cut to the region at each snapshot

@@ -33,8 +33,8 @@ ENavigationQueryResult resultOf(Path::Status status) {
 }
 
 void checkFinite(const FVector& v, const char* function, const char* name) {
-    SP_CHECK(std::isfinite(v.X) && std::isfinite(v.Y) && std::isfinite(v.Z), sp::InvalidArgument, function,
-             ": ", name, " (", v.X, ", ", v.Y, ", ", v.Z, ") must be finite");
+    SP_CHECK(v.isFinite(), sp::InvalidArgument, function, ": ", name, " (", v.X, ", ", v.Y, ", ", v.Z,
+             ") must be finite");
 }
 
 // Rows of an (N, 3) float64 array of finite values.
@@ -128,7 +128,6 @@ void ARecastNavMesh::build(const char* function) {
         stats = fresh->build(snapshot.soup, snapshot.region, wanted);
     mesh_ = std::move(fresh);
     builtBodies_ = snapshot.bodies;
-    builtRegion_ = snapshot.region;
     builtSettings_ = wanted;
     stale_ = false;
     lastBuildSeconds_ = stats.seconds;
@@ -153,13 +152,13 @@ sp::navigation::NavMesh& ARecastNavMesh::update(const char* function) {
     if (!bRebuildAutomatically)
         return *mesh_;
     const auto& snapshot = GetWorld()->GetSubsystem<sp::world::NavigationSubsystem>().snapshot();
-    const bool sameRegion = snapshot.region.isEmpty()
-                                ? builtRegion_.isEmpty()
-                                : !builtRegion_.isEmpty() && snapshot.region.isApprox(builtRegion_);
-    if (!sameRegion || !mesh_->isBuilt()) {
+    // The mesh knows the region it was built over (none: it was not built, there being nothing to build on).
+    if (!sp::world::NavigationSubsystem::sameRegion(snapshot.region, mesh_->region())) {
         build(function);
         return *mesh_;
     }
+    if (!mesh_->isBuilt())
+        return *mesh_; // nothing to build on, as when it was last built
     // Only the tiles under bodies that came, went or moved (a reshaped body comes back with a new id).
     Eigen::AlignedBox3d changed;
     for (const auto& [body, placed] : snapshot.bodies) {

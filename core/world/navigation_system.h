@@ -185,9 +185,9 @@ class ARecastNavMesh : public AActor {
     sp::navigation::NavMesh& update(const char* function);
 
     std::unique_ptr<sp::navigation::NavMesh> mesh_;
-    // What the mesh was built from: the static bodies' world boxes, the region and the settings.
+    // What the mesh was built from: the bodies' poses and world boxes, and the settings (the region is the
+    // mesh's own).
     std::map<sp::physics::BodyId, sp::world::NavigationSubsystem::Placed> builtBodies_;
-    Eigen::AlignedBox3d builtRegion_;
     sp::navigation::NavMeshSettings builtSettings_;
     bool stale_ = true; // settings changed or a rebuild was asked for
     std::mt19937_64 random_;

@@ -27,9 +27,8 @@ FRotator APawn::GetControlRotation() const {
 }
 
 void APawn::AddMovementInput(const FVector& WorldDirection, double ScaleValue) {
-    SP_CHECK(std::isfinite(WorldDirection.X) && std::isfinite(WorldDirection.Y) &&
-                 std::isfinite(WorldDirection.Z) && std::isfinite(ScaleValue),
-             sp::InvalidArgument, "APawn.AddMovementInput(): WorldDirection and ScaleValue must be finite");
+    SP_CHECK(WorldDirection.isFinite() && std::isfinite(ScaleValue), sp::InvalidArgument,
+             "APawn.AddMovementInput(): WorldDirection and ScaleValue must be finite");
     pendingMovement_ = FVector::fromEigen(pendingMovement_.toEigen() + WorldDirection.toEigen() * ScaleValue);
 }
 

@@ -279,9 +279,8 @@ void UWorld::inject_input_for_actor(AActor* actor, const std::string& input_acti
     SP_CHECK(!input_action_name.empty(), sp::InvalidArgument,
              "UWorld.inject_input_for_actor(): input_action_name is empty");
     // Refused here rather than in the next tick, where a pawn would fail to move by it.
-    SP_CHECK(std::isfinite(value.X) && std::isfinite(value.Y) && std::isfinite(value.Z), sp::InvalidArgument,
-             "UWorld.inject_input_for_actor(): value (", value.X, ", ", value.Y, ", ", value.Z,
-             ") of action '", input_action_name, "' is not finite");
+    SP_CHECK(value.isFinite(), sp::InvalidArgument, "UWorld.inject_input_for_actor(): value (", value.X, ", ",
+             value.Y, ", ", value.Z, ") of action '", input_action_name, "' is not finite");
     auto* input = static_cast<UInputComponent*>(actor->GetComponentByClass(&UInputComponent::StaticClass()));
     // A controller has no input of its own here: what a player's input moves is its pawn.
     const auto* controller = dynamic_cast<const AController*>(actor);
