@@ -154,6 +154,22 @@ const std::vector<Eigen::Vector3d>& Shape::points() const {
     return points_ ? *points_ : kNoPoints;
 }
 
+std::vector<Eigen::Vector3d> Shape::scaledPoints() const {
+    std::vector<Eigen::Vector3d> scaled;
+    scaled.reserve(points().size());
+    for (const Eigen::Vector3d& p : points())
+        scaled.push_back(p.cwiseProduct(scale_));
+    return scaled;
+}
+
+Eigen::Vector3d Shape::scaledNormal() const {
+    return normal_.cwiseQuotient(scale_).normalized();
+}
+
+double Shape::scaledOffset() const {
+    return offset_ / normal_.cwiseQuotient(scale_).norm();
+}
+
 const std::vector<uint32_t>& Shape::indices() const {
     return indices_ ? *indices_ : kNoIndices;
 }

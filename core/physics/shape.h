@@ -59,6 +59,12 @@ class Shape {
     double offset() const { return offset_; }
     // Convex hull points or mesh vertices before scaling; empty for other shapes.
     const std::vector<Eigen::Vector3d>& points() const;
+    // The same with the scale applied (what the solver and the triangles use): points scaled per axis, and
+    // the plane {x : normal . x = offset} after scaling space by S, which maps n . x = d to
+    // (S^-1 n) . x = d, renormalised.
+    std::vector<Eigen::Vector3d> scaledPoints() const;
+    Eigen::Vector3d scaledNormal() const;
+    double scaledOffset() const;
     // Mesh indices; empty for other shapes.
     const std::vector<uint32_t>& indices() const;
 

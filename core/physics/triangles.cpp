@@ -103,13 +103,10 @@ std::vector<std::pair<double, double>> capsuleProfile(double radius, double half
 }
 
 void appendConvexHull(const Shape& shape, const Eigen::Isometry3d& pose, TriangleSoup& out) {
-    std::vector<double> coords;
-    for (const Eigen::Vector3d& p : shape.points()) {
-        const Eigen::Vector3d scaled = p.cwiseProduct(shape.scale());
-        coords.insert(coords.end(), {scaled.x(), scaled.y(), scaled.z()});
-    }
+    static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double));
+    const std::vector<Eigen::Vector3d> points = shape.scaledPoints(); // packed doubles, read in place
     btConvexHullComputer hull;
-    hull.compute(coords.data(), int(3 * sizeof(double)), int(shape.points().size()), 0, 0);
+    hull.compute(points.front().data(), int(sizeof(Eigen::Vector3d)), int(points.size()), 0, 0);
     std::vector<Eigen::Vector3d> vertices;
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
     for (int i = 0; i < hull.vertices.size(); ++i) {
@@ -147,10 +144,8 @@ void appendPlane(const Shape& shape, const Eigen::Isometry3d& pose, const Eigen:
                  TriangleSoup& out) {
     if (bounds.isEmpty())
         return;
-    // Scaling space by S maps the plane n.x = d to (S^-1 n).x = d (as the collision shape does).
-    const Eigen::Vector3d scaled = shape.normal().cwiseQuotient(shape.scale());
-    const Eigen::Vector3d localNormal = scaled.normalized();
-    const double offset = shape.offset() / scaled.norm();
+    const Eigen::Vector3d localNormal = shape.scaledNormal();
+    const double offset = shape.scaledOffset();
     const Eigen::Vector3d normal = pose.linear() * localNormal;
     const Eigen::Vector3d onPlane = pose * (localNormal * offset);
     const Eigen::Vector3d centre = bounds.center() - normal * normal.dot(bounds.center() - onPlane);
@@ -204,11 +199,7 @@ void appendTriangles(const Shape& shape, const Eigen::Isometry3d& pose, const Ei
         appendConvexHull(shape, pose, out);
         return;
     case ShapeType::TriangleMesh: {
-        std::vector<Eigen::Vector3d> scaled;
-        scaled.reserve(shape.points().size());
-        for (const Eigen::Vector3d& p : shape.points())
-            scaled.push_back(p.cwiseProduct(scale));
-        const uint32_t first = appendVertices(scaled, pose, out);
+        const uint32_t first = appendVertices(shape.scaledPoints(), pose, out);
         for (uint32_t i : shape.indices())
             out.indices.push_back(first + i);
         return;

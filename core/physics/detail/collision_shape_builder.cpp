@@ -27,20 +27,18 @@ btScalar marginFor(double smallestHalfSize) {
 }
 
 BuiltShape buildConvexHull(const Shape& shape) {
-    std::vector<btScalar> coords;
-    coords.reserve(shape.points().size() * 3);
-    for (const Eigen::Vector3d& p : shape.points()) {
-        const Eigen::Vector3d scaled = p.cwiseProduct(shape.scale());
-        coords.insert(coords.end(), {scaled.x(), scaled.y(), scaled.z()});
-    }
+    // Eigen's 3-vectors of doubles are three packed btScalars (the double build), read in place.
+    static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(btScalar));
+    const std::vector<Eigen::Vector3d> points = shape.scaledPoints();
+    const btScalar* coords = points.front().data();
+    const int stride = int(sizeof(Eigen::Vector3d)), count = int(points.size());
     // Bullet inflates a hull by its margin; shrinking the hull by the same amount first keeps the
     // collision surface on the given points. The shrink is clamped for thin hulls, and the margin set
     // to whatever shrink was achieved.
     btConvexHullComputer computer;
-    btScalar shrunk = computer.compute(coords.data(), int(3 * sizeof(btScalar)), int(shape.points().size()),
-                                       kMaxMargin, 0.25);
+    btScalar shrunk = computer.compute(coords, stride, count, kMaxMargin, 0.25);
     if (shrunk < 0 || computer.vertices.size() < 4) {
-        computer.compute(coords.data(), int(3 * sizeof(btScalar)), int(shape.points().size()), 0, 0);
+        computer.compute(coords, stride, count, 0, 0);
         shrunk = 0;
     }
     auto hull = std::make_unique<btConvexHullShape>();
@@ -57,10 +55,8 @@ BuiltShape buildTriangleMesh(const Shape& shape) {
     BuiltShape built;
     built.concave = true;
     built.vertices.reserve(shape.points().size() * 3);
-    for (const Eigen::Vector3d& p : shape.points()) {
-        const Eigen::Vector3d scaled = p.cwiseProduct(shape.scale());
-        built.vertices.insert(built.vertices.end(), {scaled.x(), scaled.y(), scaled.z()});
-    }
+    for (const Eigen::Vector3d& p : shape.scaledPoints())
+        built.vertices.insert(built.vertices.end(), {p.x(), p.y(), p.z()});
     built.indices.assign(shape.indices().begin(), shape.indices().end());
 
     btIndexedMesh part;
@@ -107,14 +103,11 @@ BuiltShape buildCollisionShape(const Shape& shape) {
         built.shape = std::move(cylinder);
         return built;
     }
-    case ShapeType::Plane: {
-        // Scaling space by S maps the plane n.x = d to (S^-1 n).x = d, renormalised below.
-        const Eigen::Vector3d normal = shape.normal().cwiseQuotient(scale);
-        built.shape = std::make_unique<btStaticPlaneShape>(toBullet(normal.normalized()),
-                                                           shape.offset() / normal.norm());
+    case ShapeType::Plane:
+        built.shape =
+            std::make_unique<btStaticPlaneShape>(toBullet(shape.scaledNormal()), shape.scaledOffset());
         built.concave = true;
         return built;
-    }
     case ShapeType::ConvexHull:
         return buildConvexHull(shape);
     case ShapeType::TriangleMesh:
