@@ -111,20 +111,19 @@ def _param_view(owner: str, f: Function, p: Param) -> dict[str, Any]:
         "context_literal": naming.cpp_string(f"{owner}.{f.name}(): argument '{p.name}'"),
         "default_value": naming.cpp_default_value(p) if p.default_cpp is not None else "",
         "decode_fn": decode_fn,
+        "not_none": decode_fn == "decodeNonNull",
         "py_type": naming.param_py_type(p),
-        "py_default_expr": _py_default_expr(p),
     }
 
 
-def _py_default_expr(p: Param) -> str:
-    """The default of a pybind11 argument, as a value of Bridge<T>::Py."""
-    if p.default_cpp is None:
-        return ""
-    if p.default_cpp == "nullptr":
-        return "py::none()"
-    if p.default_cpp.replace(" ", "") == "{}":
-        return f"Bridge<{p.type.cpp}>::Py{{}}"
-    return f"static_cast<Bridge<{p.type.cpp}>::Py>({naming.cpp_default_value(p)})"
+def _signature_doc(c: Class, f: Function) -> str:
+    """A function's doc for help(): its Python signature (as the stubs spell it, defaults elided), then the
+    C++ doc comment."""
+    params = [f"{p.name}: {naming.param_py_type(p)}" + (" = ..." if p.default_cpp is not None else "")
+              for p in naming.in_params(f)]
+    head = ([] if f.is_static else ["self"]) + (["*", *params] if params else [])
+    signature = f"{f.name}({', '.join(head)}) -> {naming.return_py_type(f)}"
+    return f"{signature}\n\n{f.doc}" if f.doc else signature
 
 
 def _function_view(c: Class, f: Function) -> dict[str, Any]:
@@ -139,6 +138,7 @@ def _function_view(c: Class, f: Function) -> dict[str, Any]:
         "name": f.name,
         "name_literal": naming.cpp_string(f.name),
         "doc_literal": naming.cpp_string(f.doc),
+        "signature_doc_literal": naming.cpp_string(_signature_doc(c, f)),
         "returns_literal": naming.cpp_string(naming.return_py_type(f)),
         "params": params,
         "outs": [v for v in params if v["is_out"] == "true"],

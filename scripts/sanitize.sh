@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# The C++ tests of the engine's untrusted-input surfaces (core/base, core/reflect, core/rpc: files, values,
-# messages) and a run of the RPC fuzzer, built with AddressSanitizer and UndefinedBehaviorSanitizer in their
-# own folder (build-asan). Not part of test.sh: a second build of the engine does not fit the CI budget
-# on two cores. Run it after changing core/base, core/reflect or core/rpc; RELIABILITY.md records the runs.
+# The engine's untrusted-input surfaces under AddressSanitizer and UndefinedBehaviorSanitizer, in their own
+# build folder (build-asan): the C++ tests of core/base, core/reflect, core/rpc (files, values, messages)
+# and core/physics, a run of the RPC fuzzer, and the Python RPC tests against an instrumented spear-server.
+# bash test.sh runs it last with a short fuzz run; RELIABILITY.md records longer runs.
 #   bash scripts/sanitize.sh [FUZZ_RUNS]     (default 200000)
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 install_dependencies
@@ -16,7 +16,8 @@ cmake -S "$ROOT" -B "$ASAN_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPyt
     -DSPEAR_PACKAGE_DIR="$ASAN_DIR/package" -DCMAKE_CXX_FLAGS="$FLAGS" -DCMAKE_C_FLAGS="$FLAGS" \
     -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
     -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
-cmake --build "$ASAN_DIR" -j "${SPEAR_JOBS:-2}" --target spear_base_tests spear_reflect_tests spear_rpc_tests spear_physics_tests spear_rpc_fuzz
+cmake --build "$ASAN_DIR" -j "${SPEAR_JOBS:-2}" --target spear_base_tests spear_reflect_tests spear_rpc_tests spear_physics_tests spear_rpc_fuzz \
+    spear-server
 
 # Leak checking is off: Mesa's llvmpipe and EGL keep process-lifetime allocations that are not ours.
 # handle_sigbus=0: SIGBUS is the engine's own to handle (core/rpc/shared_memory.h guards truncated
@@ -29,3 +30,11 @@ for suite in base reflect rpc physics; do
 done
 say "sanitize: spear_rpc_fuzz, $FUZZ_RUNS runs"
 "$ASAN_DIR/tests/core/rpc/spear_rpc_fuzz" "$ROOT/tests/core/rpc/fuzz/corpus" --runs "$FUZZ_RUNS" --seed 7
+
+# The Python side is the main build's (the in-process engine module, for the tests that compare both
+# transports); every server these tests launch is the instrumented one.
+build
+say "sanitize: Python RPC tests against the instrumented spear-server"
+cd "$ROOT" && SPEAR_SERVER="$ASAN_DIR/package/bin/spear-server" SPEAR_BUILD_DIR="$BUILD_DIR" "$PYTHON" -m pytest -q \
+    -k "rpc or parity" tests/python/test_rpc_robustness.py tests/python/test_rpc_transport.py \
+    tests/python/test_misuse_parity.py tests/python/test_world_api.py tests/python/test_scenes.py

@@ -1,6 +1,8 @@
 #include "core/pybind/bridge.h"
 
 #include <cstring>
+#include <string>
+#include <vector>
 
 namespace sp::pybind {
 
@@ -106,6 +108,69 @@ bool loadClassArg(py::handle src, ClassArg& value) {
         return true;
     }
     return false;
+}
+
+void useBareTypeName(py::handle pythonClass) {
+    auto* type = reinterpret_cast<PyTypeObject*>(pythonClass.ptr());
+    if (const char* dot =
+            std::strrchr(type->tp_name, '.')) // the rest of pybind11's string, which it never frees
+        type->tp_name = dot + 1;
+}
+
+void nameProperties(py::handle pythonClass) {
+    const py::dict members = pythonClass.attr("__dict__");
+    for (auto [name, member] : members)
+        if (PyObject_TypeCheck(member.ptr(), &PyProperty_Type))
+            member.attr("__set_name__")(pythonClass, name);
+}
+
+py::handle missingArgument() {
+    // A private object nobody else can pass; never freed, so it outlives the interpreter's teardown.
+    static PyObject* const missing = [] {
+        py::gil_scoped_acquire gil;
+        return py::object(py::module_::import("builtins").attr("object")()).release().ptr();
+    }();
+    return missing;
+}
+
+namespace {
+std::string plural(size_t count, const char* word) {
+    return std::to_string(count) + " " + word + (count == 1 ? "" : "s");
+}
+} // namespace
+
+void checkCall(std::string_view function, bool method, const py::args& positional, const py::kwargs& extra,
+               std::initializer_list<Keyword> keywords) {
+    // In the order CPython checks a call: unexpected keywords, then positional arguments, then missing ones.
+    for (auto item : extra)
+        throw py::type_error(std::string(function) + " got an unexpected keyword argument '" +
+                             py::str(item.first).cast<std::string>() + "'");
+    size_t given = 0;
+    std::vector<std::string> missing;
+    for (const Keyword& keyword : keywords) {
+        given += keyword.given;
+        if (keyword.required && !keyword.given)
+            missing.push_back(std::string("'") + keyword.name + "'");
+    }
+    if (!positional.empty()) {
+        const size_t takes = method ? 1 : 0;
+        const size_t count = positional.size() + takes;
+        std::string message = std::string(function) + " takes " + std::to_string(takes) +
+                              " positional argument" + (takes == 1 ? "" : "s") + " but " +
+                              std::to_string(count);
+        if (given)
+            message += std::string(" positional argument") + (count == 1 ? "" : "s") + " (and " +
+                       plural(given, "keyword-only argument") + ")";
+        throw py::type_error(message + (count == 1 && !given ? " was given" : " were given"));
+    }
+    if (missing.empty())
+        return;
+    std::string names = missing[0];
+    for (size_t i = 1; i < missing.size(); ++i)
+        names += (missing.size() > 2 ? ", " : " ") + std::string(i + 1 == missing.size() ? "and " : "") +
+                 missing[i];
+    throw py::type_error(std::string(function) + " missing " +
+                         plural(missing.size(), "required keyword-only argument") + ": " + names);
 }
 
 } // namespace sp::pybind

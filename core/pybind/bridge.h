@@ -1,8 +1,9 @@
 #pragma once
 // Bridge<T>: how a C++ parameter or result type travels through a generated pybind11 binding.
-// Bridge<T>::Py is the type pybind11 converts from Python; in() turns it into T (resolving handles and
-// class names, checking dtypes); out() turns a T into a Python object. Plain values use pybind11's own
-// casters (and the generated ones for reflected structs and enums).
+// Every argument arrives as a PyArg (any Python object); Bridge<T>::in() turns it into T (resolving
+// handles and class names, checking dtypes) and refuses what the RPC server would refuse, with the server's
+// message; out() turns a T into a Python object. Plain values use pybind11's own casters where they agree
+// with the server (and the generated ones for reflected structs and enums).
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -38,23 +39,70 @@ struct ClassArg {
 // core/world/blueprint.h) a subclass of its native class's API class carrying __sp_class__ = its name.
 py::object pythonClassFor(const reflect::TypeInfo& type);
 
-template <typename T, typename = void> struct Bridge {
-    using Py = T;
-    static T in(Py value, std::string_view) { return value; }
-    static py::object out(const T& value) { return py::cast(value); }
-};
+// Fills `value` from None, a class name, or a class carrying __sp_class__; false for anything else.
+// (Defined out of line here, not in the caster: pybind11's namespace is hidden in every shared object.)
+bool loadClassArg(py::handle src, ClassArg& value);
 
 inline int anyObject(PyObject*) {
     return 1;
 }
-// A Python argument taken as it is, for Bridge<T>::in() to check; also built from a C++ default value
-// (the generated bindings spell defaults as static_cast<Bridge<T>::Py>(value)).
+// A Python argument taken as it is, for Bridge<T>::in() to convert. Every parameter and property value of
+// a generated binding arrives as one, so that pybind11 never refuses an argument with its own message.
 class PyArg : public py::object {
   public:
     PYBIND11_OBJECT_DEFAULT(PyArg, object, anyObject)
-    PyArg(bool value) : py::object(py::bool_(value)) {}
-    template <typename T, std::enable_if_t<std::is_integral_v<T> && !std::is_same_v<T, bool>, int> = 0>
-    PyArg(T value) : py::object(py::int_(value)) {}
+};
+
+// What both transports do with a value pybind11 would not take: decode it as the RPC server decodes what
+// the client sends (toValue() is the client's encoding, ValueCodec the server's decoding). That accepts
+// exactly what the server accepts and otherwise throws the server's InvalidArgument, word for word.
+template <typename T> T decodeAsServer(py::handle value, std::string_view context) {
+    return reflect::ValueCodec<T>::decode(toValue(value, context), context);
+}
+
+// The fast path for values pybind11's caster takes (T's generated caster for structs and enums); the
+// server's decoding for the rest. A caster that throws (a struct with a bad field) is answered the same way.
+template <typename T> T convertArgument(py::handle value, std::string_view context) {
+    py::detail::make_caster<T> caster;
+    bool loaded = false;
+    try {
+        loaded = caster.load(value, true);
+    } catch (const py::cast_error&) {
+    } catch (const py::error_already_set&) {
+    } catch (const InvalidArgument&) {
+    }
+    if (loaded)
+        return py::detail::cast_op<T>(std::move(caster));
+    return decodeAsServer<T>(value, context);
+}
+
+template <typename T, typename = void> struct Bridge {
+    using Py = PyArg;
+    static T in(const Py& value, std::string_view context) { return convertArgument<T>(value, context); }
+    static py::object out(const T& value) { return py::cast(value); }
+};
+
+// Strings: str only (pybind11 would also take bytes, which the RPC client cannot send as a str).
+template <> struct Bridge<std::string> {
+    using Py = PyArg;
+    static std::string in(const Py& value, std::string_view context) {
+        if (PyUnicode_Check(value.ptr()))
+            return value.cast<std::string>();
+        return decodeAsServer<std::string>(value, context);
+    }
+    static py::object out(const std::string& value) { return py::str(value); }
+};
+
+// Floats take float and int, as the server does; pybind11 alone would take True (bool is an int subclass)
+// and anything with __float__.
+template <typename T> struct Bridge<T, std::enable_if_t<std::is_floating_point_v<T>>> {
+    using Py = PyArg;
+    static T in(const Py& value, std::string_view context) {
+        if (PyFloat_Check(value.ptr()))
+            return T(PyFloat_AS_DOUBLE(value.ptr()));
+        return decodeAsServer<T>(value, context);
+    }
+    static py::object out(T value) { return py::float_(double(value)); }
 };
 
 // Integers and bools are checked as the RPC server checks them (reflect::ValueCodec), with the same
@@ -73,7 +121,7 @@ template <typename T> struct Bridge<T, std::enable_if_t<std::is_integral_v<T> &&
                      " is out of range: ", std::string(py::str(index)));
             return reflect::ValueCodec<T>::decode(reflect::Value(int64_t(number)), context);
         }
-        return reflect::ValueCodec<T>::decode(toValue(value, context), context); // refused, named as over RPC
+        return decodeAsServer<T>(value, context); // refused, named as over RPC
     }
     static py::object out(T value) { return py::int_(value); }
 };
@@ -84,29 +132,42 @@ template <> struct Bridge<bool> {
             return value.ptr() == Py_True;
         if (std::string_view(Py_TYPE(value.ptr())->tp_name) == "numpy.bool_")
             return value.cast<bool>();
-        return reflect::ValueCodec<bool>::decode(toValue(value, context), context);
+        return decodeAsServer<bool>(value, context);
     }
     static py::object out(bool value) { return py::bool_(value); }
 };
 
 template <typename T> struct Bridge<T*, std::enable_if_t<std::is_base_of_v<reflect::ObjectBase, T>>> {
-    using Py = Ref<T>*;
-    static T* in(Py value, std::string_view context) {
-        return value ? value->template get<T>(context) : nullptr;
+    using Py = PyArg;
+    static T* in(const Py& value, std::string_view context) {
+        if (value.is_none())
+            return nullptr;
+        py::detail::make_caster<Ref<T>> caster;
+        if (caster.load(value, false))
+            return py::detail::cast_op<Ref<T>&>(caster).template get<T>(context);
+        return decodeAsServer<T*>(value, context); // another class's object: named as the server names it
     }
     static py::object out(const T* value) { return wrapObject(value); }
 };
 
 template <> struct Bridge<const UClass*> {
-    using Py = ClassArg;
-    static const UClass* in(Py value, std::string_view context) { return value.resolve(context); }
+    using Py = PyArg;
+    static const UClass* in(const Py& value, std::string_view context) {
+        ClassArg arg;
+        if (loadClassArg(value, arg))
+            return arg.resolve(context);
+        return decodeAsServer<const UClass*>(value, context);
+    }
     static py::object out(const UClass* value) { return value ? pythonClassFor(*value) : py::none(); }
 };
 
 template <typename T> struct Bridge<TSubclassOf<T>> {
-    using Py = ClassArg;
-    static TSubclassOf<T> in(Py value, std::string_view context) {
-        const UClass* type = value.resolve(context);
+    using Py = PyArg;
+    static TSubclassOf<T> in(const Py& value, std::string_view context) {
+        ClassArg arg;
+        if (!loadClassArg(value, arg))
+            return decodeAsServer<TSubclassOf<T>>(value, context);
+        const UClass* type = arg.resolve(context);
         SP_CHECK(!type || type->isChildOf(T::StaticClass()), InvalidArgument, context, ": class '",
                  type->name, "' does not derive from ", T::StaticClass().name);
         return TSubclassOf<T>(type);
@@ -114,14 +175,24 @@ template <typename T> struct Bridge<TSubclassOf<T>> {
     static py::object out(const TSubclassOf<T>& value) { return Bridge<const UClass*>::out(value.Get()); }
 };
 
+// Containers convert element by element; when an element is refused, the server's decoding of the whole
+// value says which one ("AActor.Tags[2] must be a str, got int 3").
 template <typename T> struct Bridge<std::vector<T>> {
-    using Py = std::vector<typename Bridge<T>::Py>;
-    static std::vector<T> in(Py value, std::string_view context) {
-        std::vector<T> result;
-        result.reserve(value.size());
-        for (auto& item : value)
-            result.push_back(Bridge<T>::in(std::move(item), context));
-        return result;
+    using Py = PyArg;
+    static std::vector<T> in(const Py& value, std::string_view context) {
+        if (PyList_Check(value.ptr()) || PyTuple_Check(value.ptr())) {
+            try {
+                std::vector<T> result;
+                result.reserve(py::len(value));
+                for (py::handle item : value)
+                    result.push_back(Bridge<T>::in(py::reinterpret_borrow<PyArg>(item), context));
+                return result;
+            } catch (const InvalidArgument&) { // InvalidState (outside a frame) is not about the value
+            } catch (const NotFound&) {
+            } catch (const StaleObject&) {
+            }
+        }
+        return decodeAsServer<std::vector<T>>(value, context);
     }
     static py::object out(const std::vector<T>& value) {
         py::list result(value.size());
@@ -132,12 +203,26 @@ template <typename T> struct Bridge<std::vector<T>> {
 };
 
 template <typename T> struct Bridge<std::map<std::string, T>> {
-    using Py = std::map<std::string, typename Bridge<T>::Py>;
-    static std::map<std::string, T> in(Py value, std::string_view context) {
-        std::map<std::string, T> result;
-        for (auto& [key, item] : value)
-            result.emplace(key, Bridge<T>::in(std::move(item), context));
-        return result;
+    using Py = PyArg;
+    static std::map<std::string, T> in(const Py& value, std::string_view context) {
+        if (PyDict_Check(value.ptr())) {
+            try {
+                std::map<std::string, T> result;
+                bool keysAreStr = true;
+                for (auto [key, item] : py::reinterpret_borrow<py::dict>(value)) {
+                    if (!(keysAreStr = PyUnicode_Check(key.ptr())))
+                        break;
+                    result.emplace(py::cast<std::string>(key),
+                                   Bridge<T>::in(py::reinterpret_borrow<PyArg>(item), context));
+                }
+                if (keysAreStr)
+                    return result;
+            } catch (const InvalidArgument&) { // InvalidState (outside a frame) is not about the value
+            } catch (const NotFound&) {
+            } catch (const StaleObject&) {
+            }
+        }
+        return decodeAsServer<std::map<std::string, T>>(value, context);
     }
     static py::object out(const std::map<std::string, T>& value) {
         py::dict result;
@@ -147,6 +232,32 @@ template <typename T> struct Bridge<std::map<std::string, T>> {
     }
 };
 
+// Calls: every generated function binding takes (*args, every parameter, **kwargs), each parameter
+// defaulting to missingArgument(), so that a call that does not fit is refused here with the TypeError
+// Python itself raises for the RPC proxy's signature (same words), and a left-out parameter takes its C++
+// default in the binding, as the registry does for an RPC call.
+py::handle missingArgument();
+inline bool isMissing(const PyArg& value) {
+    return value.ptr() == missingArgument().ptr();
+}
+struct Keyword {
+    const char* name;
+    bool given;
+    bool required;
+};
+// `function` is the context ("AActor.SetActorLocation()"); `method` counts self as Python does.
+void checkCall(std::string_view function, bool method, const py::args& positional, const py::kwargs& extra,
+               std::initializer_list<Keyword> keywords);
+
+// Python's own messages about an object ("'AActor' object has no attribute 'X'") name its type by tp_name,
+// which pybind11 sets to "module.Class"; the RPC proxies are Python classes named "Class". The bare name
+// makes both transports say the same.
+void useBareTypeName(py::handle pythonClass);
+
+// Gives each property of the class its name (property.__set_name__, which a class body would have called),
+// so that Python's "property 'RootComponent' of 'AActor' object has no setter" names it as over RPC.
+void nameProperties(py::handle pythonClass);
+
 // The dtype of a numpy array; throws InvalidArgument for dtypes that cannot cross (complex, object, ...).
 reflect::DType dtypeOf(const py::array& array, std::string_view context);
 
@@ -155,18 +266,18 @@ reflect::ArrayValue arrayFromNumpy(const py::array& array, reflect::DType dtype,
 py::array arrayToNumpy(const reflect::ArrayValue& value);
 
 template <typename T> struct Bridge<reflect::SpArray<T>> {
-    using Py = py::array;
-    static reflect::SpArray<T> in(Py value, std::string_view context) {
+    using Py = PyArg;
+    static reflect::SpArray<T> in(const Py& value, std::string_view context) {
+        if (!py::isinstance<py::array>(value)) // a list is not converted: over RPC it arrives as a list
+            return decodeAsServer<reflect::SpArray<T>>(value, context);
         reflect::SpArray<T> result;
-        result.assign(arrayFromNumpy(value, reflect::DTypeOf<T>::value, context), context);
+        result.assign(
+            arrayFromNumpy(py::reinterpret_borrow<py::array>(value), reflect::DTypeOf<T>::value, context),
+            context);
         return result;
     }
     static py::object out(const reflect::SpArray<T>& value) { return arrayToNumpy(value.value()); }
 };
-
-// Fills `value` from None, a class name, or a class carrying __sp_class__; false for anything else.
-// (Defined out of line here, not in the caster: pybind11's namespace is hidden in every shared object.)
-bool loadClassArg(py::handle src, ClassArg& value);
 
 // Looks up a class of the generated API module (structs, enums, result tuples); cached by the caller.
 py::object apiAttribute(const char* module, const char* name);

@@ -32,8 +32,14 @@ Value toValueAt(py::handle object, std::string_view context, int depth) {
         return Value();
     if (PyBool_Check(object.ptr()))
         return Value(object.cast<bool>());
-    if (PyLong_Check(object.ptr()))
+    if (PyLong_Check(object.ptr())) {
+        // An IntEnum keeps its enum's name: an enum parameter takes only its own enum (as over RPC).
+        static const py::object intEnum = py::module_::import("enum").attr("IntEnum");
+        if (!PyLong_CheckExact(object.ptr()) && py::isinstance(object, intEnum))
+            return Value(
+                reflect::EnumValue{py::str(object.get_type().attr("__name__")), object.cast<int64_t>()});
         return Value(object.cast<int64_t>());
+    }
     if (PyFloat_Check(object.ptr()))
         return Value(object.cast<double>());
     if (PyUnicode_Check(object.ptr()))
@@ -43,6 +49,11 @@ Value toValueAt(py::handle object, std::string_view context, int depth) {
         // Any supported dtype; the check against the expected one happens where the registry knows it.
         return Value(arrayFromNumpy(array, dtypeOf(array, context), context));
     }
+    // A numpy scalar (numpy.float32(1.5), numpy.int64(3)) is the Python number it holds, as the RPC client
+    // sends it.
+    static const py::object numpyScalar = py::module_::import("numpy").attr("generic");
+    if (py::isinstance(object, numpyScalar))
+        return toValueAt(object.attr("item")(), context, depth);
     if (py::hasattr(object, "_sp_handle")) {
         auto handle = object.attr("_sp_handle").cast<std::pair<uint32_t, uint32_t>>();
         return Value(reflect::ObjectHandle{handle.first, handle.second});
@@ -111,6 +122,8 @@ py::object generic(const Value& value, const char* apiModule) {
                 return pythonClassOf(reflect::Registry::get().getClass(v.name, "fromValue()"));
             else if constexpr (std::is_same_v<T, reflect::ArrayValue>)
                 return arrayToNumpy(v);
+            else if constexpr (std::is_same_v<T, reflect::EnumValue>)
+                return apiAttribute(apiModule, v.type.c_str())(v.value);
             else if constexpr (std::is_same_v<T, Value::List>) {
                 py::list list;
                 for (const auto& item : v)
@@ -160,10 +173,6 @@ py::object fromValue(const Value& value, std::string_view type, const char* apiM
             }
             return apiAttribute(apiModule, info->name.c_str())(**kwargs);
         }
-    }
-    if (const auto* number = value.tryAs<int64_t>()) {
-        if (registry.findEnum(name))
-            return apiAttribute(apiModule, name.c_str())(*number);
     }
     return generic(value, apiModule);
 }

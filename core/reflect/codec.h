@@ -91,14 +91,16 @@ template <> struct ValueCodec<std::string> {
 template <typename E>
 requires std::is_enum_v<E>
 struct ValueCodec<E> {
-    static Value encode(E v) { return Value(int64_t(v)); }
+    static Value encode(E v) { return Value(EnumValue{StaticEnum<E>().name, int64_t(v)}); }
+    // Only a value of this enum: a bare int (or another enum's entry) is refused, as pybind11 refuses it.
     static E decode(const Value& v, std::string_view context) {
         const EnumInfo& info = StaticEnum<E>();
-        const int64_t* i = v.tryAs<int64_t>();
-        if (!i)
+        const EnumValue* entry = v.tryAs<EnumValue>();
+        if (!entry || entry->type != info.name)
             throwTypeMismatch(context, info.name, v);
-        SP_CHECK(info.contains(*i), InvalidArgument, context, ": ", *i, " is not a value of ", info.name);
-        return E(*i);
+        SP_CHECK(info.contains(entry->value), InvalidArgument, context, ": ", entry->value,
+                 " is not a value of ", info.name);
+        return E(entry->value);
     }
 };
 

@@ -5,6 +5,8 @@
 #include <sstream>
 
 #include "core/base/error.h"
+#include "core/reflect/registry.h"
+#include "core/reflect/type_info.h"
 
 namespace sp::reflect {
 
@@ -86,8 +88,10 @@ size_t ArrayValue::byteSize() const {
 }
 
 std::string_view Value::kindName() const {
+    if (const EnumValue* entry = tryAs<EnumValue>())
+        return entry->type;
     static constexpr std::array<std::string_view, std::variant_size_v<Storage>> names{
-        "None", "bool", "int", "float", "str", "object", "class", "list", "dict", "ndarray"};
+        "None", "bool", "int", "float", "str", "object", "class", "list", "dict", "ndarray", "enum"};
     return names[storage_.index()];
 }
 
@@ -118,6 +122,13 @@ std::string Value::repr() const {
                     first = false;
                 }
                 out << "}";
+            } else if constexpr (std::is_same_v<T, EnumValue>) {
+                const EnumInfo* info = Registry::get().findEnum(v.type);
+                const std::string_view entry = info ? info->nameOf(v.value) : std::string_view();
+                if (entry.empty())
+                    out << v.type << "(" << v.value << ")";
+                else
+                    out << v.type << "." << entry;
             } else if constexpr (std::is_same_v<T, ArrayValue>) {
                 out << "<ndarray " << dtypeName(v.dtype) << " (";
                 for (size_t i = 0; i < v.shape.size(); ++i)

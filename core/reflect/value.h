@@ -32,6 +32,14 @@ struct ClassName {
     friend bool operator==(const ClassName&, const ClassName&) = default;
 };
 
+// An entry of a reflected enum, with the enum's name: over both transports an enum argument must be a value
+// of that enum (the Python IntEnum), not a bare int, so the value carries which enum it belongs to.
+struct EnumValue {
+    std::string type;
+    int64_t value = 0;
+    friend bool operator==(const EnumValue&, const EnumValue&) = default;
+};
+
 // Element types of arrays; the names match numpy's.
 enum class DType : uint8_t {
     Bool,
@@ -83,7 +91,7 @@ class Value {
     using List = std::vector<Value>;
     using Dict = std::map<std::string, Value>;
     using Storage = std::variant<std::monostate, bool, int64_t, double, std::string, ObjectHandle, ClassName,
-                                 List, Dict, ArrayValue>;
+                                 List, Dict, ArrayValue, EnumValue>;
 
     Value() = default;
     Value(bool v) : storage_(v) {}
@@ -96,6 +104,7 @@ class Value {
     Value(List v) : storage_(std::move(v)) {}
     Value(Dict v) : storage_(std::move(v)) {}
     Value(ArrayValue v) : storage_(std::move(v)) {}
+    Value(EnumValue v) : storage_(std::move(v)) {}
 
     bool isNone() const { return std::holds_alternative<std::monostate>(storage_); }
     template <typename T> bool is() const { return std::holds_alternative<T>(storage_); }
@@ -105,7 +114,8 @@ class Value {
 
     const Storage& storage() const { return storage_; }
 
-    // The kind of value held, as a Python-flavoured word for error messages: "int", "str", "dict", ...
+    // The kind of value held, as a Python-flavoured word for error messages: "int", "str", "dict", ...; an
+    // enum's value is named by its enum.
     std::string_view kindName() const;
     // A short printable form for error messages (long strings and containers are abbreviated).
     std::string repr() const;

@@ -160,6 +160,8 @@ void pack(msgpack::packer<msgpack::sbuffer>& out, const Value& value, const Arra
                 const reflect::TypeInfo* type = reflect::Registry::get().findType(v.name);
                 packExt(out, kExtClass,
                         type && type->isDataDefined() ? v.name + '\0' + type->nativeClass().name : v.name);
+            } else if constexpr (std::is_same_v<T, reflect::EnumValue>) {
+                out.pack(v.value);
             } else if constexpr (std::is_same_v<T, Value::List>) {
                 out.pack_array(uint32_t(v.size()));
                 for (const auto& item : v)
@@ -255,6 +257,12 @@ Value unpackAt(const msgpack::object& in, std::string_view context, int depth) {
         }
         if (type == kExtArray)
             return Value(unpackArray(in, context));
+        if (type == kExtEnum) {
+            SP_CHECK(size > 8, InvalidArgument, context, ": malformed enum value");
+            reflect::EnumValue entry{std::string(data + 8, size - 8)};
+            std::memcpy(&entry.value, data, 8);
+            return Value(std::move(entry));
+        }
         SP_THROW(InvalidArgument, context, ": unknown extension type ", int(type));
     }
     default:

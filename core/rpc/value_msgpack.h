@@ -6,6 +6,9 @@
 //   3 array:  a msgpack array [dtype, shape, payload], payload either the bytes (bin) or, for large
 //             arrays, a map {"shm": segment name, "size": bytes} naming a shared-memory segment (in
 //             replies also {"buffer": name, "size": bytes}, one of the client's reply buffers).
+//   4 enum:   i64 value (little endian), then the enum's name (UTF-8); sent by clients, so that an enum
+//             argument is told apart from an int. Replies carry enums as plain ints: the client knows each
+//             result's type from the generated API.
 
 #include <msgpack.hpp>
 
@@ -19,7 +22,7 @@
 
 namespace sp::rpc {
 
-enum ExtType : int8_t { kExtObject = 1, kExtClass = 2, kExtArray = 3 };
+enum ExtType : int8_t { kExtObject = 1, kExtClass = 2, kExtArray = 3, kExtEnum = 4 };
 
 // Arrays of at least this many bytes travel through shared memory.
 inline constexpr size_t kSharedMemoryThreshold = 64 * 1024;

@@ -71,8 +71,9 @@ Json toJson(const Value& value, std::string_view type) {
         return objectPath(*object);
     }
     if (const reflect::EnumInfo* info = reflect::Registry::get().findEnum(type)) {
-        const std::string_view entry = info->nameOf(value.as<int64_t>());
-        SP_CHECK(!entry.empty(), InvalidArgument, value.as<int64_t>(), " is not a value of ", info->name);
+        const int64_t number = value.as<reflect::EnumValue>().value;
+        const std::string_view entry = info->nameOf(number);
+        SP_CHECK(!entry.empty(), InvalidArgument, number, " is not a value of ", info->name);
         return std::string(entry);
     }
     if (const reflect::TypeInfo* info = reflect::Registry::get().findType(type);
@@ -160,7 +161,7 @@ Value fromJson(const Json& j, std::string_view type, const ActorsByName& actors)
         expect(j.is_string(), "an entry name");
         for (const auto& [name, number] : info->entries)
             if (name == j.get<std::string>())
-                return number;
+                return reflect::EnumValue{info->name, number};
         SP_THROW(InvalidArgument, "'", j.get<std::string>(), "' is not an entry of ", info->name);
     }
     const reflect::TypeInfo* info = reflect::Registry::get().findType(type);

@@ -27,7 +27,7 @@ from spear._object import SpObject
 from spear._reply_buffers import ReplyBuffers
 from spear._rpc_types import convert, convert_result_tuple
 from spear._segments import remove_orphaned_segments
-from spear._wire import OutgoingSegments, ValueTooDeep, encode, pack_frame, unpack_body
+from spear._wire import OutgoingSegments, ValueRefused, encode, pack_frame, unpack_body
 from spear.futures import Future
 
 _ERRORS: dict[str, type[errors.SpearError]] = {
@@ -255,12 +255,24 @@ class RpcConnection:
 
 
 def _encode_fields(op: str, fields: dict[str, Any], segments: OutgoingSegments) -> dict[str, Any]:
-    """A request's fields, encoded; a value nested too deeply is refused naming the function, as the
-    server and the in-process engine name it."""
+    """A request's fields, encoded. A value the wire cannot carry is refused naming the function, and for a
+    typed call the argument, as the in-process engine names it."""
+    where = context = _context(op, fields)
+    encoded: dict[str, Any] = {}
     try:
-        return {k: encode(v, segments) for k, v in fields.items()}
-    except ValueTooDeep as error:
-        raise errors.InvalidArgumentError(f"{_context(op, fields)}: {error}") from None
+        for key, value in fields.items():
+            if key == "args" and fields.get("context") and isinstance(value, dict):
+                arguments: dict[str, Any] = {}
+                for name, item in value.items():
+                    where = f"{context}: argument '{name}'"
+                    arguments[name] = encode(item, segments)
+                encoded[key] = arguments
+            else:
+                where = context
+                encoded[key] = encode(value, segments)
+    except ValueRefused as error:
+        raise errors.InvalidArgumentError(f"{where}: {error}") from None
+    return encoded
 
 
 def _context(op: str, fields: dict[str, Any]) -> str:

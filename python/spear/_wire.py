@@ -1,5 +1,5 @@
 """The RPC wire format on the client side: length-prefixed msgpack frames, with extension types for
-object references (1), classes (2) and arrays (3). Arrays of 64 KiB or more travel through POSIX shared
+object references (1), classes (2), arrays (3) and enum values (4). Arrays of 64 KiB or more travel through POSIX shared
 memory (/dev/shm/spear-<pid>-<random>): the receiver maps the segment and the array views it, no copy.
 Where it can, the connection's reply buffers (spear._reply_buffers) carry them instead of fresh segments.
 See core/rpc/value_msgpack.h for the server side.
@@ -24,7 +24,7 @@ from spear._object import SpObject
 from spear._reply_buffers import ReplyBuffers
 from spear._segments import segment_name
 
-EXT_OBJECT, EXT_CLASS, EXT_ARRAY = 1, 2, 3
+EXT_OBJECT, EXT_CLASS, EXT_ARRAY, EXT_ENUM = 1, 2, 3, 4
 SHARED_MEMORY_THRESHOLD = 64 * 1024
 # Lists and dicts nest at most this deep in a value (kMaxValueDepth in core/reflect/value.h): the server
 # refuses deeper ones, and refusing them here keeps Python's recursion limit out of it.
@@ -122,16 +122,21 @@ def _encode_array(array: NDArray[Any], segments: OutgoingSegments) -> msgpack.Ex
     return msgpack.ExtType(EXT_ARRAY, msgpack.packb([dtype, list(array.shape), payload], use_bin_type=True))
 
 
-class ValueTooDeep(ValueError):
-    """A value nests lists or dicts deeper than MAX_VALUE_DEPTH; the caller names the function."""
+class ValueRefused(ValueError):
+    """A value the wire cannot carry, refused in the words the in-process engine uses (toValue() in
+    core/pybind/value_convert.cpp); the caller puts the function and argument in front."""
+
+
+class ValueTooDeep(ValueRefused):
+    """A value nests lists or dicts deeper than MAX_VALUE_DEPTH."""
 
 
 def encode(value: Any, segments: OutgoingSegments, depth: int = 0) -> Any:
     """Python value -> msgpack-ready value."""
     if value is None or isinstance(value, (bool, str, float)):
         return value
-    if isinstance(value, enum.IntEnum):
-        return int(value)
+    if isinstance(value, enum.IntEnum):  # with its enum's name: the server refuses a bare int for an enum
+        return msgpack.ExtType(EXT_ENUM, struct.pack("<q", int(value)) + type(value).__name__.encode())
     if isinstance(value, int):
         return value
     if isinstance(value, SpObject):
@@ -155,8 +160,10 @@ def encode(value: Any, segments: OutgoingSegments, depth: int = 0) -> Any:
     if isinstance(value, (list, tuple)):
         return [encode(item, segments, depth + 1) for item in value]
     if isinstance(value, dict):
-        return {str(key): encode(item, segments, depth + 1) for key, item in value.items()}
-    raise TypeError(f"cannot send a value of type '{type(value).__name__}'")
+        if not all(isinstance(key, str) for key in value):
+            raise ValueRefused("dict keys must be str")
+        return {key: encode(item, segments, depth + 1) for key, item in value.items()}
+    raise ValueRefused(f"cannot pass a value of type '{type(value).__name__}'")
 
 
 def _ext_hook(code: int, data: bytes, buffers: ReplyBuffers | None = None) -> Any:

@@ -275,8 +275,11 @@ def test_dynamic_access_goes_through_the_registry(instance: spear.Instance) -> N
             instance.call_function(uobject=actor, function="SetActorLocation", args={"NewLocation": "x"})
         with pytest.raises(spear.InvalidArgumentError, match="is read-only"):
             instance.set_property(uobject=actor, path="RootComponent", value=None)
-        with pytest.raises(spear.InvalidArgumentError, match="Mobility.*3 is not a value of EComponentMobility"):
+        # An enum takes its own enum's values only (a bare int is refused on both transports).
+        with pytest.raises(spear.InvalidArgumentError, match="Mobility must be EComponentMobility, got int 3"):
             instance.set_property(uobject=comp, path="Mobility", value=3)
+        instance.set_property(uobject=comp, path="Mobility", value=spear.EComponentMobility.Movable)
+        assert comp.Mobility is spear.EComponentMobility.Movable
 
 
 def test_editor_world_needs_an_editor_instance(instance: spear.Instance) -> None:

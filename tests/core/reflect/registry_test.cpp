@@ -76,7 +76,7 @@ TEST_F(RegistryTest, PropertiesUseSettersAndRejectWrongTypes) {
     AActor* actor = engine.GetGameWorld().spawn_actor(&AStaticMeshActor::StaticClass());
     auto* root = actor->RootComponent;
     const PropertyInfo* mobility = root->GetClass().findProperty("Mobility");
-    mobility->set(static_cast<ObjectBase*>(root), Value(int64_t(0)));
+    mobility->set(static_cast<ObjectBase*>(root), Value(EnumValue{"EComponentMobility", 0}));
     EXPECT_EQ(root->Mobility, EComponentMobility::Static);
     const PropertyInfo* location = root->GetClass().findProperty("RelativeLocation");
     // The Setter runs, so a static component refuses to move through the property too.

@@ -8,6 +8,17 @@
 
 using namespace sp::reflect;
 
+namespace {
+template <typename F> void expectInvalid(F&& call, const char* message) {
+    try {
+        call();
+        FAIL() << "no error; expected: " << message;
+    } catch (const sp::InvalidArgument& e) {
+        EXPECT_STREQ(e.what(), message);
+    }
+}
+} // namespace
+
 TEST(Value, KindsAndRepr) {
     EXPECT_EQ(Value().kindName(), "None");
     EXPECT_EQ(Value(int64_t(3)).repr(), "3");
@@ -52,8 +63,19 @@ TEST(Codec, StructsRoundTripThroughDicts) {
 
 TEST(Codec, EnumsAreValidated) {
     sp::world::registerEngineTypes();
-    EXPECT_EQ(decode<EComponentMobility>(Value(int64_t(2)), "m"), EComponentMobility::Movable);
-    EXPECT_THROW(decode<EComponentMobility>(Value(int64_t(9)), "m"), sp::InvalidArgument);
+    EXPECT_EQ(decode<EComponentMobility>(Value(EnumValue{"EComponentMobility", 2}), "m"),
+              EComponentMobility::Movable);
+    EXPECT_EQ(encode(EComponentMobility::Movable), Value(EnumValue{"EComponentMobility", 2}));
+    EXPECT_THROW(decode<EComponentMobility>(Value(EnumValue{"EComponentMobility", 9}), "m"),
+                 sp::InvalidArgument);
+    // A bare int, or another enum's value, is not an EComponentMobility: both transports refuse it.
+    expectInvalid([] { decode<EComponentMobility>(Value(int64_t(2)), "m"); },
+                  "m must be EComponentMobility, got int 2");
+    expectInvalid(
+        [] {
+            decode<EComponentMobility>(Value(EnumValue{"ESplineCoordinateSpace", 1}), "m");
+        },
+        "m must be EComponentMobility, got ESplineCoordinateSpace ESplineCoordinateSpace.World");
     EXPECT_EQ(StaticEnum<EComponentMobility>().nameOf(0), "Static");
 }
 

@@ -75,3 +75,26 @@ TEST(ValueMsgpack, ArrayShapesAreCheckedWithoutWrappingAround) {
     msgpack::object_handle handle = sp::rpc::unpackBounded(good.data(), good.size());
     EXPECT_EQ(sp::rpc::unpack(handle.get(), "f()").as<sp::reflect::ArrayValue>().elementCount(), 2);
 }
+
+TEST(ValueMsgpack, EnumValuesKeepTheirEnumsName) {
+    // Extension 4: the value (i64, little endian), then the enum's name. Clients send enum arguments this
+    // way so that the server can tell EComponentMobility.Movable from the int 2.
+    std::string body(8, '\0');
+    body[0] = 2;
+    body += "EComponentMobility";
+    msgpack::sbuffer out;
+    msgpack::packer<msgpack::sbuffer> packer(&out);
+    packer.pack_ext(body.size(), sp::rpc::kExtEnum);
+    packer.pack_ext_body(body.data(), body.size());
+    msgpack::object_handle handle = sp::rpc::unpackBounded(out.data(), out.size());
+    EXPECT_EQ(sp::rpc::unpack(handle.get(), "f()"), Value(sp::reflect::EnumValue{"EComponentMobility", 2}));
+    // Without a name (or shorter than the value) it is malformed.
+    EXPECT_EQ(unpackError(std::string("\xd7\x04") + std::string(8, '\0'), "f()"),
+              "f(): malformed enum value");
+    EXPECT_EQ(unpackError(std::string("\xd4\x04\x01"), "f()"), "f(): malformed enum value");
+    // Replies carry an enum as its int: the client reads the type from the generated API.
+    msgpack::sbuffer reply;
+    msgpack::packer<msgpack::sbuffer> replyPacker(&reply);
+    sp::rpc::pack(replyPacker, Value(sp::reflect::EnumValue{"EComponentMobility", 2}), nullptr);
+    EXPECT_EQ(std::string(reply.data(), reply.size()), std::string("\x02"));
+}
