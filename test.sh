@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Every test: generator checks, C++ tests (CTest), Python API tests, codegen golden cases and typing
-# cases (pytest, which runs mypy --strict and pyright), and a format check.
+# cases (pytest, which runs mypy --strict and pyright), a format check, and the sanitizer build's tests.
 #   bash test.sh
 source "$(dirname "${BASH_SOURCE[0]}")/scripts/common.sh"
 install_dependencies
@@ -8,9 +8,7 @@ install_pyright
 
 # Before the build, which regenerates generated/: the committed copy must already match the headers.
 say "check: committed generated/ matches the reflected headers"
-mapfile -t headers < <(grep -v '^#' "$ROOT/core/world/reflected_headers.txt")
-(cd "$ROOT" && "$PYTHON" -m codegen check --module engine --root . --out generated \
-    --include-dir /usr/include/eigen3 --blueprint-dir assets/blueprints "${headers[@]}")
+engine_codegen check
 
 build
 
@@ -24,3 +22,7 @@ say "test: Python API, generator and typing (pytest)"
 # The plugin tests build examples/plugin against this build (find_package(spear) in $BUILD_DIR).
 export SPEAR_BUILD_DIR="$BUILD_DIR"
 cd "$ROOT" && "$PYTHON" -m pytest -q tests
+
+# Last, the untrusted-input surfaces again under AddressSanitizer + UndefinedBehaviorSanitizer (their own
+# build in build-asan/): C++ suites, a short fuzz run, and the RPC tests against an instrumented server.
+cd "$ROOT" && bash scripts/sanitize.sh "${SPEAR_FUZZ_RUNS:-200000}"

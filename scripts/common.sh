@@ -42,6 +42,15 @@ install_pyright() {
     fi
 }
 
+# Runs the generator (`generate`, `check`, `dump-ir`) on the engine's reflected headers with the arguments the
+# build passes it in core/world/CMakeLists.txt.
+engine_codegen() {
+    local headers
+    mapfile -t headers < <(grep -v '^#' "$ROOT/core/world/reflected_headers.txt")
+    (cd "$ROOT" && "$PYTHON" -m codegen "$1" --module engine --root . --out generated \
+        --include-dir /usr/include/eigen3 --blueprint-dir assets/blueprints "${headers[@]}")
+}
+
 build() {
     say "build: configuring and building in $BUILD_DIR"
     # Warnings are errors in the project's own code (not in Debian's headers): the tree builds clean.

@@ -16,7 +16,7 @@ import struct
 from collections.abc import Callable
 from typing import Any
 
-import msgpack
+from spear import _msgpack as msgpack
 import numpy as np
 from numpy.typing import NDArray
 

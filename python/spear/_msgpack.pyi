@@ -1,4 +1,4 @@
-# The part of python3-msgpack (Debian ships it untyped) that spear uses, for mypy and pyright.
+# The types of the msgpack functions spear uses (python3-msgpack ships none); see _msgpack.py.
 from collections.abc import Callable
 from typing import Any
 
@@ -10,3 +10,5 @@ class ExtType:
 def packb(o: Any, *, use_bin_type: bool = ..., default: Callable[[Any], Any] | None = ...) -> bytes: ...
 def unpackb(packed: bytes, *, raw: bool = ..., ext_hook: Callable[[int, bytes], Any] = ...,
             strict_map_key: bool = ...) -> Any: ...
+
+__all__ = ["ExtType", "packb", "unpackb"]
