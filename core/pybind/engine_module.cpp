@@ -1,10 +1,15 @@
 // The in-process engine module, spear._spear_engine: the generated bindings of every engine class,
 // the frame loop, and the dynamic API.
 
+#include <dlfcn.h>
+
+#include <filesystem>
+
 #include <pybind11/pybind11.h>
 
 #include <pybind11/stl.h>
 
+#include "core/base/asset_path.h"
 #include "core/plugin/plugin_loader.h"
 #include "core/pybind/bridge.h"
 #include "core/pybind/dynamic_access.h"
@@ -53,6 +58,12 @@ py::dict callSpFunc(py::handle uobject, const std::string& name, const py::dict&
 PYBIND11_MODULE(_spear_engine, m) {
     m.doc() = "spear's in-process engine (generated bindings; use the spear package, not this module)";
     sp::pybind::registerErrorTranslator();
+    // Built-in assets: beside an installed package (spear/assets), else the checkout the module was built
+    // from.
+    // (__file__ is set only after this function: the module's own file comes from the dynamic loader.)
+    Dl_info self{};
+    if (dladdr(reinterpret_cast<void*>(&checkFrame), &self) && self.dli_fname)
+        sp::useBuiltinAssetsOf(std::filesystem::path(self.dli_fname).parent_path());
     sp::pybind::setAccessCheck(&checkFrame);
     spear_bind_engine(m);
     sp::pybind::bindDynamicAccess(m, "spear._engine.api");

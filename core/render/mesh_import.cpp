@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/base/asset_path.h"
 #include "core/base/error.h"
 #include "core/base/log.h"
 #include "core/base/regular_file.h"
@@ -96,7 +97,7 @@ ImportedMaterial readMaterial(const aiScene* scene, const aiMaterial* source,
 
 ImportedMesh importMesh(const std::string& userPath) {
     // Outside a server's file roots nothing is told about the file, not even whether it exists.
-    const std::string path = resolveUserPath(userPath, "importMesh()", "mesh file");
+    const std::string path = resolveUserPath(findAsset(userPath), "importMesh()", "mesh file");
     SP_CHECK(std::filesystem::exists(path) && !std::filesystem::is_directory(path), NotFound,
              "importMesh(): no such file '", userPath, "'");
     checkRegularFile(path, "importMesh()", "mesh file"); // a FIFO or device: a clear error, not a hang

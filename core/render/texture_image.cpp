@@ -12,6 +12,7 @@
 #define STB_IMAGE_WRITE_STATIC
 #include <stb_image_write.h>
 
+#include "core/base/asset_path.h"
 #include "core/base/error.h"
 #include "core/base/regular_file.h"
 
@@ -22,7 +23,7 @@ TextureImage TextureImage::load(const std::string& path) {
              "TextureImage::load(): no such file '", path, "'");
     // Read here rather than by stb_image's fopen: a regular file of bounded size only, never a FIFO or
     // a device that would block or never end (core/base/regular_file.h).
-    const std::string bytes = readRegularFile(path, "TextureImage::load()", "texture");
+    const std::string bytes = readRegularFile(findAsset(path), "TextureImage::load()", "texture");
     return decode(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(), path);
 }
 

@@ -37,6 +37,7 @@
 #include <string>
 #include <vector>
 
+#include "core/base/asset_path.h"
 #include "core/base/error.h"
 #include "core/base/regular_file.h"
 #include "core/plugin/plugin_loader.h"
@@ -139,12 +140,18 @@ int main(int argc, char** argv) {
         // Before the engine: its scene may name the plugins' classes.
         for (const std::string& path : plugins)
             sp::plugin::load(path);
+        // Built-in assets: beside an installed package (spear/bin/spear-server, spear/assets), else the
+        // checkout the server was built from. Before the engine, whose --scene may be one.
+        const std::string builtin = sp::useBuiltinAssetsOf(
+            std::filesystem::read_symlink("/proc/self/exe").parent_path().parent_path());
         sp::world::Engine engine(settings);
-        // After the engine has read the server's own --scene: from here on, paths come from clients.
+        // After the engine has read the server's own --scene: from here on, paths come from clients. They
+        // may read the built-in assets and the asset folders the server's user named (SPEAR_ASSET_PATH).
         if (fileRoots.empty())
             fileRoots.push_back(std::filesystem::current_path().string());
-        if (std::filesystem::is_directory(SPEAR_BUILTIN_ASSET_DIR))
-            fileRoots.push_back(SPEAR_BUILTIN_ASSET_DIR);
+        for (const std::string& folder : sp::assetSearchPath())
+            if (std::filesystem::is_directory(folder))
+                fileRoots.push_back(folder == builtin ? folder + "/assets" : folder);
         sp::confineUserFiles(fileRoots);
         sp::rpc::Server server(engine, options, spear_register_engine_types_api_hash());
         std::signal(SIGTERM, [](int) { sp::rpc::Server::stop(); });

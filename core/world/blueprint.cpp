@@ -4,6 +4,7 @@
 #include <map>
 #include <vector>
 
+#include "core/base/asset_path.h"
 #include "core/base/error.h"
 #include "core/base/regular_file.h"
 #include "core/reflect/registry.h"
@@ -119,7 +120,7 @@ void applyBlueprint(const Json& document, reflect::ObjectBase& object, const std
 Json readBlueprintFile(const std::string& path, std::string_view function, const std::string& where) {
     // A regular file of bounded size only: a FIFO or /dev/zero named here would hang the engine
     // (core/base/regular_file.h).
-    const std::string text = readRegularFile(path, function, "blueprint");
+    const std::string text = readRegularFile(findAsset(path), function, "blueprint");
     try {
         return Json::parse(text);
     } catch (const nlohmann::json::parse_error& error) {

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/base/asset_path.h"
 #include "core/base/error.h"
 #include "core/base/regular_file.h"
 #include "core/reflect/registry.h"
@@ -469,7 +470,7 @@ std::string jsonErrorWithoutContents(const nlohmann::json::parse_error& error) {
 SceneJson readSceneFile(const std::string& path, std::string_view function) {
     // A regular file of bounded size only: a FIFO or /dev/zero named here would hang the engine
     // (core/base/regular_file.h).
-    const std::string text = readRegularFile(path, function, "scene file");
+    const std::string text = readRegularFile(findAsset(path), function, "scene file");
     try {
         return Json::parse(text);
     } catch (const nlohmann::json::parse_error& error) {

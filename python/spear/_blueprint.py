@@ -16,9 +16,12 @@ _CLASSES: dict[str, type[SpObject]] = {}
 
 def declare(name: str, parent: type[SpObject], asset: str, doc: str) -> type[SpObject]:
     """A blueprint class the generator found an asset for (api.py): typed as its parent's class, and
-    loaded from `asset` (relative to the project root) the first time it is used as uclass=."""
-    path = Path(__file__).resolve().parents[2] / asset
-    cls = type(name, (parent,), {"__sp_class__": name, "__sp_asset__": str(path), "__slots__": (),
+    loaded from `asset` (relative to the project root) the first time it is used as uclass=. In a checkout
+    that is a file of the checkout; in an installed package the engine finds it on its asset search path
+    (the package's own assets/, see core/base/asset_path.h)."""
+    in_checkout = Path(__file__).resolve().parents[2] / asset
+    path = str(in_checkout) if in_checkout.is_file() else asset
+    cls = type(name, (parent,), {"__sp_class__": name, "__sp_asset__": path, "__slots__": (),
                                  "__module__": "spear", "__doc__": doc})
     _CLASSES[name] = cls
     return cls
