@@ -1,0 +1,68 @@
+"""Builds the spear package for pip: CMake builds the engine (the pybind11 module, its libraries,
+spear-server and the generated bindings), then the package is assembled from python/spear, the generated
+API (python/spear/_engine, a link into generated/ in the checkout, real files in the wheel) and the built-in
+assets. Only Debian's packages are reachable, so build without isolation:
+
+    /usr/bin/python3 -m pip install --no-build-isolation .
+    /usr/bin/python3 -m pip wheel --no-build-isolation --no-deps -w dist .
+
+The CMake build folder is SPEAR_BUILD_DIR (default build/, shared with bash run.sh and bash test.sh).
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+from setuptools import setup
+from setuptools.command.build_py import build_py
+from setuptools.dist import Distribution
+
+ROOT = Path(__file__).resolve().parent
+
+
+class PlatformDistribution(Distribution):
+    """The package holds compiled code (the module, its libraries, spear-server): the wheel is tagged for
+    this Python and platform, not pure."""
+
+    def has_ext_modules(self) -> bool:
+        return True
+
+
+class BuildWithCMake(build_py):
+    """Builds the engine with CMake before collecting the package's files, then adds the built-in assets."""
+
+    def run(self) -> None:
+        build_dir = Path(os.environ.get("SPEAR_BUILD_DIR", ROOT / "build"))
+        print(f"spear: building the engine with CMake in {build_dir}", flush=True)
+        subprocess.check_call(["cmake", "-S", str(ROOT), "-B", str(build_dir), "-G", "Ninja",
+                               "-DCMAKE_BUILD_TYPE=RelWithDebInfo", "-DPython3_EXECUTABLE=/usr/bin/python3"],
+                              stdout=subprocess.DEVNULL)
+        subprocess.check_call(["cmake", "--build", str(build_dir), "-j", os.environ.get("SPEAR_JOBS", "2"),
+                               "--target", "_spear_engine", "spear-server"])
+        super().run()
+        # Without debug information: the build's RelWithDebInfo libraries are ten times the size.
+        package = Path(self.build_lib) / "spear"
+        for binary in [*package.glob("_spear_engine*.so"), *package.glob("lib/*.so"), package / "bin" / "spear-server"]:
+            subprocess.check_call(["strip", "--strip-debug", str(binary)])
+        # The built-in assets (default scene, blueprints) travel as package data: the engine looks for them
+        # beside an installed package (core/base/asset_path.h).
+        assets = Path(self.build_lib) / "spear" / "assets"
+        shutil.rmtree(assets, ignore_errors=True)
+        shutil.copytree(ROOT / "assets", assets)
+
+
+setup(
+    distclass=PlatformDistribution,
+    options={"build": {"build_base": "build/setuptools"}},  # beside CMake's files in build/, not among them
+    cmdclass={"build_py": BuildWithCMake},
+    package_dir={"": "python"},
+    packages=["spear", "spear._engine"],
+    package_data={
+        "spear": ["py.typed", "*.pyi", "_spear_engine*.so", "bin/spear-server", "lib/*.so"],
+        "spear._engine": ["*.pyi"],
+    },
+    entry_points={"console_scripts": ["spear-server = spear._server_command:main"]},
+)

@@ -1,0 +1,99 @@
+"""The package as a user installs it: a wheel built by pip (setup.py drives CMake), installed into a fresh
+virtual environment, used from a folder outside the checkout with nothing on PYTHONPATH: the getting-started
+example runs, the built-in scene and blueprints load on both transports, spear-server is on the venv's PATH,
+and mypy --strict sees the installed package's types with no stub path."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import venv
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+
+USE_INSTALLED = """
+import spear
+
+for server in (None, "launch"):
+    instance = spear.Instance(server=server, scene="assets/scenes/apartment.json")
+    game = instance.get_game()
+    with instance.begin_frame():
+        crate = game.spawn_actor(uclass=spear.BP_Crate, name="Crate")
+    with instance.end_frame():
+        actors = game.find_actors_by_class(uclass=spear.AActor)
+        print(server, len(actors), crate.GetClassName(), spear.__file__)
+    instance.close()
+"""
+
+
+def _clean_env(venv_dir: Path) -> dict[str, str]:
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "SPEAR_SERVER", "SPEAR_ASSET_PATH")}
+    env["PATH"] = f"{venv_dir / 'bin'}:{env.get('PATH', '')}"
+    return env
+
+
+@pytest.fixture(scope="module")
+def installed(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Path, Path]]:
+    """(venv folder, a work folder outside the checkout) with the wheel installed."""
+    base = tmp_path_factory.mktemp("packaging")
+    wheels = base / "wheels"
+    build_dir = os.environ.get("SPEAR_BUILD_DIR", str(ROOT / "build"))
+    subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-build-isolation", "--no-deps", "-q", "-w",
+                    str(wheels), str(ROOT)], check=True, cwd=base, env={**os.environ, "SPEAR_BUILD_DIR": build_dir})
+    (wheel,) = wheels.glob("spear-*.whl")
+    venv_dir = base / "venv"
+    venv.EnvBuilder(system_site_packages=True, with_pip=False).create(venv_dir)
+    # Debian's pip (23) installs into another environment with --python; the venv itself has no pip.
+    subprocess.run([sys.executable, "-m", "pip", "--python", str(venv_dir / "bin" / "python"), "install", "--no-deps",
+                    "-q", str(wheel)], check=True, cwd=base)
+    work = base / "work"
+    work.mkdir()
+    yield venv_dir, work
+
+
+def _run(installed: tuple[Path, Path], *command: str) -> str:
+    venv_dir, work = installed
+    result = subprocess.run(command, cwd=work, env=_clean_env(venv_dir), capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, f"{command} failed:\n{result.stdout}\n{result.stderr}"
+    return result.stdout
+
+
+def test_getting_started_runs_from_the_installed_package(installed: tuple[Path, Path]) -> None:
+    venv_dir, work = installed
+    (work / "getting_started.py").write_text((ROOT / "examples" / "getting_started.py").read_text())
+    out = _run(installed, str(venv_dir / "bin" / "python"), "getting_started.py")
+    assert "using the destroyed actor raises StaleObjectError" in out
+
+
+def test_built_in_assets_load_on_both_transports(installed: tuple[Path, Path]) -> None:
+    venv_dir, work = installed
+    (work / "use_installed.py").write_text(USE_INSTALLED)
+    lines = _run(installed, str(venv_dir / "bin" / "python"), "use_installed.py").splitlines()
+    assert len(lines) == 2
+    for line in lines:
+        _, count, class_name, package_file = line.split()
+        assert int(count) > 10 and class_name == "BP_Crate"
+        assert package_file.startswith(str(venv_dir)), f"spear imported from {package_file}, not the venv"
+
+
+def test_spear_server_is_on_path(installed: tuple[Path, Path]) -> None:
+    venv_dir, _ = installed
+    result = subprocess.run(["spear-server"], env=_clean_env(venv_dir), capture_output=True, text=True, timeout=60)
+    assert result.returncode == 2 and "usage: spear-server" in result.stderr
+
+
+def test_mypy_sees_the_installed_types(installed: tuple[Path, Path]) -> None:
+    venv_dir, work = installed
+    (work / "getting_started.py").write_text((ROOT / "examples" / "getting_started.py").read_text())
+    (work / "misuse.py").write_text("import spear\n\nspear.FVector(X='far')\n")
+    ok = subprocess.run([str(venv_dir / "bin" / "python"), "-m", "mypy", "--strict", "--no-incremental",
+                         "getting_started.py"], cwd=work, env=_clean_env(venv_dir), capture_output=True, text=True)
+    assert ok.returncode == 0, ok.stdout
+    bad = subprocess.run([str(venv_dir / "bin" / "python"), "-m", "mypy", "--strict", "--no-incremental", "misuse.py"],
+                         cwd=work, env=_clean_env(venv_dir), capture_output=True, text=True)
+    assert 'Argument "X" to "FVector" has incompatible type "str"; expected "float"' in bad.stdout
