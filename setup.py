@@ -4,7 +4,7 @@ API (python/spear/_engine, a link into generated/ in the checkout, real files in
 assets. Only Debian's packages are reachable, so build without isolation:
 
     /usr/bin/python3 -m pip install --no-build-isolation .
-    /usr/bin/python3 -m pip wheel --no-build-isolation --no-deps -w dist .
+    /usr/bin/python3 -m build --no-isolation --wheel
 
 The CMake build folder is SPEAR_BUILD_DIR (default build/, shared with bash run.sh and bash test.sh).
 """
@@ -54,9 +54,12 @@ class BuildWithCMake(build_py):
         shutil.copytree(ROOT / "assets", assets)
 
 
+(ROOT / "build" / "setuptools").mkdir(parents=True, exist_ok=True)
 setup(
     distclass=PlatformDistribution,
-    options={"build": {"build_base": "build/setuptools"}},  # beside CMake's files in build/, not among them
+    # Beside CMake's files in build/, not among them, and no spear.egg-info in python/ (with python/ on
+    # PYTHONPATH, pip would take that for an installed spear).
+    options={"build": {"build_base": "build/setuptools"}, "egg_info": {"egg_base": "build/setuptools"}},
     cmdclass={"build_py": BuildWithCMake},
     package_dir={"": "python"},
     packages=["spear", "spear._engine"],

@@ -1,6 +1,7 @@
 #pragma once
-// SP_LOG("Input is [", x, "]") writes one line to stderr with a source location, as in the SPEAR paper's
-// Fig. 8. Lines from several threads never interleave.
+// SP_LOG("Input is [", x, "]") writes one line with a source location, as in the SPEAR paper's Fig. 8: to
+// stderr ("[spear] file.cpp:12: message"), or to the sink a host installs. Lines from several threads never
+// interleave.
 
 #include <string_view>
 
@@ -8,6 +9,11 @@
 
 namespace sp::base {
 void writeLogLine(std::string_view file, int line, std::string_view message);
+
+// Where log lines go instead of stderr: the Python engine module routes them to Python's logging (logger
+// "spear"). Called without any lock held, from whichever thread logs. nullptr restores stderr.
+using LogSink = void (*)(std::string_view file, int line, std::string_view message);
+void setLogSink(LogSink sink);
 } // namespace sp::base
 
 #define SP_LOG(...) ::sp::base::writeLogLine(__FILE__, __LINE__, ::sp::detail::concat(__VA_ARGS__))

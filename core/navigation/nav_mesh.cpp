@@ -10,6 +10,7 @@
 #include <DetourNavMeshQuery.h>
 
 #include "core/base/error.h"
+#include "core/base/progress.h"
 #include "core/navigation/tile_builder.h"
 
 namespace sp::navigation {
@@ -117,11 +118,15 @@ BuildStats NavMesh::Impl::buildRange(const physics::TriangleSoup& geometry, int 
     const auto start = std::chrono::steady_clock::now();
     const detail::RecastGeometry recast = detail::toRecastGeometry(geometry);
     BuildStats stats;
+    base::Progress progress("navigation: building " + std::to_string((x1 - x0 + 1) * (z1 - z0 + 1)) +
+                                " tiles",
+                            double(x1 - x0 + 1) * double(z1 - z0 + 1));
     try {
         for (int tz = z0; tz <= z1; ++tz) {
             for (int tx = x0; tx <= x1; ++tx) {
                 detail::TileData tile = detail::buildTile(recast, settings, grid, tx, tz);
                 ++stats.tilesBuilt;
+                progress.advance();
                 if (const dtTileRef old = mesh->getTileRefAt(tx, tz, 0))
                     mesh->removeTile(old, nullptr, nullptr);
                 if (!tile.data)

@@ -3,6 +3,7 @@
 
 #include <dlfcn.h>
 
+#include <cstdio>
 #include <filesystem>
 
 #include <pybind11/pybind11.h>
@@ -10,6 +11,8 @@
 #include <pybind11/stl.h>
 
 #include "core/base/asset_path.h"
+#include "core/base/log.h"
+#include "core/base/progress.h"
 #include "core/plugin/plugin_loader.h"
 #include "core/pybind/bridge.h"
 #include "core/pybind/dynamic_access.h"
@@ -27,6 +30,39 @@ void spear_bind_engine(py::module_& m);
 namespace {
 void checkFrame(sp::reflect::ObjectBase& object, std::string_view context) {
     sp::world::checkObjectAccess(object, context);
+}
+
+// Engine log lines become Python logging records (spear._logging.emit), from any thread. While Python
+// shuts down, or if the logging call fails, the line goes to stderr as it would without a sink.
+void logToPython(std::string_view file, int line, std::string_view message) {
+    if (Py_IsInitialized() && !_Py_IsFinalizing()) {
+        py::gil_scoped_acquire gil;
+        try {
+            // Never freed: no Python object may be released after the interpreter is gone.
+            static py::object* const emit =
+                new py::object(py::module_::import("spear._logging").attr("emit"));
+            (*emit)(py::str(file.data(), file.size()), line, py::str(message.data(), message.size()));
+            return;
+        } catch (py::error_already_set& error) {
+            error.discard_as_unraisable("spear: routing an engine log line to logging");
+        }
+    }
+    std::fprintf(stderr, "[spear] %.*s:%d: %.*s\n", int(file.size()), file.data(), line, int(message.size()),
+                 message.data());
+}
+
+// Progress reports of long engine work become terminal bars and end-of-task records (spear._progress).
+void progressToPython(std::string_view task, double done, double total, bool finished) {
+    if (!Py_IsInitialized() || _Py_IsFinalizing())
+        return;
+    py::gil_scoped_acquire gil;
+    try {
+        static py::object* const report =
+            new py::object(py::module_::import("spear._progress").attr("report"));
+        (*report)(py::str(task.data(), task.size()), done, total, finished);
+    } catch (py::error_already_set& error) {
+        error.discard_as_unraisable("spear: showing the engine's progress");
+    }
 }
 
 // SpFuncs, in-process: arrays pass as views of the numpy buffers and come back as arrays that own the
@@ -58,6 +94,8 @@ py::dict callSpFunc(py::handle uobject, const std::string& name, const py::dict&
 PYBIND11_MODULE(_spear_engine, m) {
     m.doc() = "spear's in-process engine (generated bindings; use the spear package, not this module)";
     sp::pybind::registerErrorTranslator();
+    sp::base::setLogSink(&logToPython);
+    sp::base::setProgressSink(&progressToPython);
     // Built-in assets: beside an installed package (spear/assets), else the checkout the module was built
     // from.
     // (__file__ is set only after this function: the module's own file comes from the dynamic loader.)

@@ -3,6 +3,7 @@
 #include <assimp/DefaultIOSystem.h>
 #include <assimp/GltfMaterial.h>
 #include <assimp/Importer.hpp>
+#include <assimp/ProgressHandler.hpp>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -14,6 +15,7 @@
 #include "core/base/asset_path.h"
 #include "core/base/error.h"
 #include "core/base/log.h"
+#include "core/base/progress.h"
 #include "core/base/regular_file.h"
 
 namespace sp::render {
@@ -95,6 +97,22 @@ ImportedMaterial readMaterial(const aiScene* scene, const aiMaterial* source,
 
 } // namespace
 
+namespace {
+// Assimp's reading and post-processing, as the fraction it reports (a large file reads for seconds).
+class ReportProgress : public Assimp::ProgressHandler {
+  public:
+    explicit ReportProgress(base::Progress& progress) : progress_(progress) {}
+    bool Update(float fraction) override {
+        if (fraction >= 0.0f)
+            progress_.set(fraction);
+        return true; // go on
+    }
+
+  private:
+    base::Progress& progress_;
+};
+} // namespace
+
 ImportedMesh importMesh(const std::string& userPath) {
     // Outside a server's file roots nothing is told about the file, not even whether it exists.
     const std::string path = resolveUserPath(findAsset(userPath), "importMesh()", "mesh file");
@@ -103,6 +121,8 @@ ImportedMesh importMesh(const std::string& userPath) {
     checkRegularFile(path, "importMesh()", "mesh file"); // a FIFO or device: a clear error, not a hang
     Assimp::Importer importer;
     importer.SetIOHandler(new RegularFilesOnly); // the importer owns it
+    base::Progress progress("importMesh(): " + std::filesystem::path(path).filename().string(), 1.0);
+    importer.SetProgressHandler(new ReportProgress(progress)); // the importer owns it
     // Baking node transforms also joins meshes that share a material: one submesh per material group.
     const aiScene* scene = importer.ReadFile(
         path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |

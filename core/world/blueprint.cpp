@@ -120,7 +120,7 @@ void applyBlueprint(const Json& document, reflect::ObjectBase& object, const std
 Json readBlueprintFile(const std::string& path, std::string_view function, const std::string& where) {
     // A regular file of bounded size only: a FIFO or /dev/zero named here would hang the engine
     // (core/base/regular_file.h).
-    const std::string text = readRegularFile(findAsset(path), function, "blueprint");
+    const std::string text = readRegularFile(path, function, "blueprint");
     try {
         return Json::parse(text);
     } catch (const nlohmann::json::parse_error& error) {
@@ -132,10 +132,12 @@ Json readBlueprintFile(const std::string& path, std::string_view function, const
 
 const reflect::TypeInfo& loadBlueprint(const std::string& path, std::string_view function) {
     const std::string where = std::string(function) + ": blueprint '" + path + "'";
+    // Keyed by the file itself, however it was named (a relative name, a /Game/ name, an absolute path).
+    const std::string file = findAsset(path);
     std::error_code ignored;
-    std::string key = std::filesystem::weakly_canonical(path, ignored).string();
+    std::string key = std::filesystem::weakly_canonical(file, ignored).string();
     if (key.empty())
-        key = path;
+        key = file;
     if (auto it = blueprints().find(key); it != blueprints().end()) {
         // Still registered: the cached class. Gone from the registry (its native class came from a plugin
         // that was unloaded): load it afresh, which then finds the parent class, or says it is missing.
@@ -144,7 +146,7 @@ const reflect::TypeInfo& loadBlueprint(const std::string& path, std::string_view
         blueprints().erase(it);
     }
 
-    Json document = readBlueprintFile(path, function, where);
+    Json document = readBlueprintFile(file, function, where);
     SP_CHECK(document.is_object(), InvalidArgument, where, ": expected a JSON object, got ",
              document.type_name());
     const Json* format = optionalMember(document, "format");
@@ -159,7 +161,7 @@ const reflect::TypeInfo& loadBlueprint(const std::string& path, std::string_view
              ": 'parent': class '", parentName, "' is not registered");
     SP_CHECK(parent->canCreate(), InvalidArgument, where, ": 'parent': class '", parentName,
              "' is abstract and cannot be a blueprint's parent");
-    const std::string name = std::filesystem::path(path).stem().string();
+    const std::string name = std::filesystem::path(file).stem().string();
     SP_CHECK(!reflect::Registry::get().findType(name), InvalidArgument, where, ": class name '", name,
              "' is already registered");
     for (const auto& [field, value] : document.items())

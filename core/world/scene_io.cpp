@@ -9,6 +9,7 @@
 
 #include "core/base/asset_path.h"
 #include "core/base/error.h"
+#include "core/base/progress.h"
 #include "core/base/regular_file.h"
 #include "core/reflect/registry.h"
 #include "core/world/blueprint.h"
@@ -308,6 +309,10 @@ std::vector<std::unique_ptr<AActor>> stageActors(UWorld& world, const Json& scen
     SP_CHECK(actorList.is_array(), InvalidArgument, root, ": 'actors' must be a list, got ",
              jsonKind(actorList));
 
+    // Each actor counts twice: its structure, then its properties (which may import meshes).
+    base::Progress progress(root + ": loading " + std::to_string(actorList.size()) + " actors",
+                            2.0 * double(actorList.size()));
+
     // 1. Structure: every actor and component, so that references can point anywhere in the scene.
     std::vector<std::unique_ptr<AActor>> staged;
     ActorsByName byName;
@@ -368,10 +373,12 @@ std::vector<std::unique_ptr<AActor>> stageActors(UWorld& world, const Json& scen
                 component->AttachToComponent(target, false);
         }
         wheres.push_back(std::move(where));
+        progress.advance();
     }
 
     // 2. Properties, now that every reference target exists.
     for (size_t i = 0; i < actorList.size(); ++i) {
+        progress.advance();
         const Json& entry = actorList[i];
         AActor& actor = *staged[i];
         if (entry.contains("properties"))

@@ -17,12 +17,13 @@ import socket
 import struct
 import subprocess
 import tempfile
+import threading
 import time
 import weakref
 from pathlib import Path
 from typing import Any
 
-from spear import errors
+from spear import _logging, errors
 from spear._object import SpObject
 from spear._reply_buffers import ReplyBuffers
 from spear._rpc_types import convert, convert_result_tuple
@@ -315,6 +316,7 @@ class LaunchedServer:
     def __init__(self, *, fixed_delta_seconds: float, mode: str = "game", scene: str = "",
                  startup_timeout: float = 30.0) -> None:
         self._directory = tempfile.mkdtemp(prefix="spear-")  # 0700: only this user reaches the socket
+        self._stderr_forwarder: threading.Thread | None = None
         socket_path = os.path.join(self._directory, "server.sock")
         extra = ["--scene", scene] if scene else []  # relative to the client's directory, which the server shares
         self.process = subprocess.Popen(
@@ -332,7 +334,8 @@ class LaunchedServer:
         line = self.process.stdout.readline()
         if not line.startswith("spear-server: listening on ") or time.monotonic() > deadline:
             self.process.wait(10)
-            message = self.process.stderr.read().strip() if self.process.stderr else ""
+            output = self.process.stderr.read() if self.process.stderr else ""
+            message = _logging.log_lines_of(output, "spear-server").strip()
             self.close()
             # The engine's own message (a missing scene file, say) is the useful part.
             kind, _, text = message.partition(": ")
@@ -340,6 +343,9 @@ class LaunchedServer:
                 raise _ERRORS[kind](text)
             raise errors.SpearError(message or f"Instance(): spear-server did not start (said {line.strip()!r})")
         self.address = line.strip().removeprefix("spear-server: listening on ")
+        # Its log lines (and anything else it says on stderr) become logging records of the "spear" logger.
+        assert self.process.stderr is not None
+        self._stderr_forwarder = _logging.forward_stream(self.process.stderr, "spear-server")
 
     def close(self, timeout: float = 10.0) -> None:
         if self.process.poll() is None:
@@ -349,6 +355,8 @@ class LaunchedServer:
             except subprocess.TimeoutExpired:
                 self.process.kill()
                 self.process.wait()
+        if self._stderr_forwarder is not None:  # the server has exited: its last lines, then end of file
+            self._stderr_forwarder.join(timeout=2.0)
         for stream in (self.process.stdout, self.process.stderr):
             if stream:
                 stream.close()

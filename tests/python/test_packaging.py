@@ -43,14 +43,16 @@ def installed(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Path, 
     base = tmp_path_factory.mktemp("packaging")
     wheels = base / "wheels"
     build_dir = os.environ.get("SPEAR_BUILD_DIR", str(ROOT / "build"))
-    subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-build-isolation", "--no-deps", "-q", "-w",
-                    str(wheels), str(ROOT)], check=True, cwd=base, env={**os.environ, "SPEAR_BUILD_DIR": build_dir})
+    # As the README says: Debian's python3-build, without isolation (only Debian's packages are reachable).
+    subprocess.run([sys.executable, "-m", "build", "--no-isolation", "--wheel", "--outdir", str(wheels), str(ROOT)],
+                   check=True, cwd=base, env={**os.environ, "SPEAR_BUILD_DIR": build_dir}, stdout=subprocess.DEVNULL)
     (wheel,) = wheels.glob("spear-*.whl")
     venv_dir = base / "venv"
     venv.EnvBuilder(system_site_packages=True, with_pip=False).create(venv_dir)
     # Debian's pip (23) installs into another environment with --python; the venv itself has no pip.
+    # Without PYTHONPATH: with the checkout's python/ on it, pip would take spear for installed already.
     subprocess.run([sys.executable, "-m", "pip", "--python", str(venv_dir / "bin" / "python"), "install", "--no-deps",
-                    "-q", str(wheel)], check=True, cwd=base)
+                    "-q", str(wheel)], check=True, cwd=base, env=_clean_env(venv_dir))
     work = base / "work"
     work.mkdir()
     yield venv_dir, work

@@ -3,6 +3,7 @@ exported CMake package, loaded, used and unloaded on both transports."""
 
 from __future__ import annotations
 
+import logging
 import os
 import re
 import shutil
@@ -42,7 +43,9 @@ def plugin(instance: spear.Instance, plugin_dir: Path) -> Iterator[Any]:
 
 # -- Fig. 8 ----------------------------------------------------------------------------------------
 
-def test_fig8_python_side_runs_unchanged(instance: spear.Instance, plugin: Any, capfd: pytest.CaptureFixture[str]) -> None:
+def test_fig8_python_side_runs_unchanged(instance: spear.Instance, plugin: Any,
+                                        caplog: pytest.LogCaptureFixture) -> None:
+    caplog.set_level(logging.INFO, logger="spear")
     game = instance.get_game()
     with frame(instance):
         # The figure's Python code, verbatim:
@@ -58,8 +61,13 @@ def test_fig8_python_side_runs_unchanged(instance: spear.Instance, plugin: Any, 
 
     assert output.dtype == np.float64 and output.tolist() == [4.0, 5.0, 6.0]
     assert return_values == {"arrays": {"output": output}, "unreal_objs": {}, "info": ""}
-    if instance.transport == "inprocess":  # a server's log goes to the server's stderr
-        assert re.search(r"my_actor\.h:\d+: Input is \[1 , 2 , 3\]", capfd.readouterr().err)
+    # SP_LOG's line is a record of the "spear" logger with the plugin header's file and line, on both
+    # transports (over RPC, forwarded from the server's stderr by a thread: it may arrive a moment later).
+    deadline = time.monotonic() + 10.0
+    while not (logged := [r for r in caplog.records if r.getMessage() == "Input is [1 , 2 , 3]"]):
+        assert time.monotonic() < deadline, [r.getMessage() for r in caplog.records]
+        time.sleep(0.01)
+    assert logged[0].filename == "my_actor.h" and logged[0].lineno > 0
 
 
 def test_sp_funcs_are_listed_registered_and_unregistered(instance: spear.Instance, plugin: Any) -> None:
