@@ -49,9 +49,24 @@ class BuildWithCMake(build_py):
             subprocess.check_call(["strip", "--strip-debug", str(binary)])
         # The built-in assets (default scene, blueprints) travel as package data: the engine looks for them
         # beside an installed package (core/base/asset_path.h).
-        assets = Path(self.build_lib) / "spear" / "assets"
+        assets = package / "assets"
         shutil.rmtree(assets, ignore_errors=True)
         shutil.copytree(ROOT / "assets", assets)
+        self._copy_sdk(build_dir, package / "sdk")
+
+    @staticmethod
+    def _copy_sdk(build_dir: Path, sdk: Path) -> None:
+        """What a plugin author builds against (spear.get_cmake_dir()): the CMake package, the engine's headers
+        (generated ones included), and the generator with its templates, laid out as in the checkout."""
+        shutil.rmtree(sdk, ignore_errors=True)
+        files = [*ROOT.glob("core/**/*.h"), *ROOT.glob("generated/engine/cpp/*.h"), *ROOT.glob("codegen/*.py"),
+                 *ROOT.glob("templates/*.j2"), *ROOT.glob("cmake/Spear*.cmake"), ROOT / "cmake/plugin_module.cpp.in"]
+        for file in files:
+            target = sdk / file.relative_to(ROOT)
+            target.parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(file, target)
+        for name in ("spearConfig.cmake", "spearTargets.cmake"):
+            shutil.copy2(build_dir / "sdk" / name, sdk / "cmake" / name)
 
 
 (ROOT / "build" / "setuptools").mkdir(parents=True, exist_ok=True)

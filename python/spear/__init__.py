@@ -10,7 +10,23 @@ from spear.errors import InvalidArgumentError, InvalidStateError, NotFoundError,
 from spear._spfunc import SpFuncResult
 from spear.instance import Instance
 
+
+
+def get_cmake_dir() -> str:
+    """The folder of spear's CMake package, for plugins: ``cmake -Dspear_DIR=<this>``. In an installed
+    package it is spear/sdk/cmake (the engine's headers, libraries and generator ship with the package); in a
+    checkout, the build directory (SPEAR_BUILD_DIR, default build/)."""
+    import os
+    from pathlib import Path
+
+    package = Path(__file__).resolve().parent
+    if (package / "sdk" / "cmake" / "spearConfig.cmake").is_file():
+        return str(package / "sdk" / "cmake")
+    return os.environ.get("SPEAR_BUILD_DIR", str(package.parents[1] / "build"))
+
+
 __all__ = [
+    "get_cmake_dir",
     "Instance",
     "SpFuncResult",
     "SpearError",

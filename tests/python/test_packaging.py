@@ -99,3 +99,26 @@ def test_mypy_sees_the_installed_types(installed: tuple[Path, Path]) -> None:
     bad = subprocess.run([str(venv_dir / "bin" / "python"), "-m", "mypy", "--strict", "--no-incremental", "misuse.py"],
                          cwd=work, env=_clean_env(venv_dir), capture_output=True, text=True)
     assert 'Argument "X" to "FVector" has incompatible type "str"; expected "float"' in bad.stdout
+
+
+def test_a_plugin_builds_against_the_installed_package(installed: tuple[Path, Path]) -> None:
+    # The CMake package ships inside the Python package (spear.get_cmake_dir()): the example plugin builds
+    # against its headers, generator and libraries, and loads into the installed spear on both transports.
+    venv_dir, work = installed
+    python = str(venv_dir / "bin" / "python")
+    cmake_dir = _run(installed, python, "-c", "import spear; print(spear.get_cmake_dir())").strip()
+    assert cmake_dir.startswith(str(venv_dir)), cmake_dir
+    build = work / "plugin-build"
+    _run(installed, "cmake", "-S", str(ROOT / "examples" / "plugin"), "-B", str(build), "-G", "Ninja",
+         "-DCMAKE_BUILD_TYPE=RelWithDebInfo", f"-Dspear_DIR={cmake_dir}")
+    _run(installed, "cmake", "--build", str(build), "-j", os.environ.get("SPEAR_JOBS", "2"))
+    env = {**_clean_env(venv_dir), "SPEAR_PLUGIN_DIR": str(build / "python")}
+    for transport in ([], ["--rpc"]):
+        result = subprocess.run([python, str(ROOT / "examples" / "plugin" / "use_plugin.py"), *transport], cwd=work,
+                                env=env, capture_output=True, text=True, timeout=300)
+        assert result.returncode == 0, result.stdout + result.stderr
+        assert "unloaded plugin 'my_plugin'" in result.stdout
+    typed = subprocess.run([python, "-m", "mypy", "--strict", "--no-incremental",
+                            str(ROOT / "examples" / "plugin" / "use_plugin.py")], cwd=work,
+                           env={**env, "MYPYPATH": str(build / "python")}, capture_output=True, text=True)
+    assert typed.returncode == 0, typed.stdout
