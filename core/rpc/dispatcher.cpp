@@ -10,6 +10,7 @@
 #include "core/reflect/object_base.h"
 #include "core/reflect/registry.h"
 #include "core/reflect/type_info.h"
+#include "core/rpc/request.h"
 #include "core/rpc/shared_memory.h"
 #include "core/spfunc/sp_func_call.h"
 #include "core/world/object_access.h"
@@ -19,41 +20,8 @@ namespace sp::rpc {
 using reflect::Value;
 
 namespace {
-const msgpack::object* field(const msgpack::object& map, std::string_view name) {
-    if (map.type != msgpack::type::MAP)
-        return nullptr;
-    for (uint32_t i = 0; i < map.via.map.size; ++i) {
-        const auto& kv = map.via.map.ptr[i];
-        if (kv.key.type == msgpack::type::STR &&
-            std::string_view(kv.key.via.str.ptr, kv.key.via.str.size) == name)
-            return &kv.val;
-    }
-    return nullptr;
-}
-
-const msgpack::object& require(const msgpack::object& map, std::string_view name, std::string_view op) {
-    const msgpack::object* value = field(map, name);
-    SP_CHECK(value, InvalidArgument, op, "(): the request has no '", name, "'");
-    return *value;
-}
-
-std::string requireString(const msgpack::object& map, std::string_view name, std::string_view op) {
-    const msgpack::object& value = require(map, name, op);
-    SP_CHECK(value.type == msgpack::type::STR, InvalidArgument, op, "(): '", name, "' must be a string");
-    return std::string(value.via.str.ptr, value.via.str.size);
-}
-
-// The context a client names a request by ("AMyActor.my_sp_func()", as the in-process bindings would),
-// or `fallback`.
-std::string givenContext(const msgpack::object& request, std::string fallback) {
-    const msgpack::object* given = field(request, "context");
-    if (given && given->type == msgpack::type::STR && given->via.str.size > 0)
-        return std::string(given->via.str.ptr, given->via.str.size);
-    return fallback;
-}
-
-reflect::ObjectBase& requireObject(const msgpack::object& request, const std::string& context) {
-    Value handle = unpack(require(request, "object", context), context);
+reflect::ObjectBase& requireObject(const Request& request, const std::string& context) {
+    Value handle = unpack(request.require("object", context), context);
     SP_CHECK(handle.is<reflect::ObjectHandle>(), InvalidArgument, context,
              ": 'object' must be an object reference");
     reflect::ObjectBase& object = reflect::ObjectTable::resolve(handle.as<reflect::ObjectHandle>(), context);
@@ -109,12 +77,12 @@ void Dispatcher::handle(const char* data, size_t size, Session& session, msgpack
 }
 
 void Dispatcher::readReplyBuffers(const msgpack::object& request, Session& session) {
-    if (const msgpack::object* dropped = field(request, "dropped_buffers");
+    if (const msgpack::object* dropped = mapField(request, "dropped_buffers");
         dropped && dropped->type == msgpack::type::ARRAY && session.dropReplyBuffer)
         for (uint32_t i = 0; i < dropped->via.array.size; ++i)
             if (const msgpack::object& name = dropped->via.array.ptr[i]; name.type == msgpack::type::STR)
                 session.dropReplyBuffer(std::string(name.via.str.ptr, name.via.str.size));
-    if (const msgpack::object* offered = field(request, "reply_buffers");
+    if (const msgpack::object* offered = mapField(request, "reply_buffers");
         offered && offered->type == msgpack::type::ARRAY && session.offerReplyBuffer)
         for (uint32_t i = 0; i < offered->via.array.size; ++i) {
             const msgpack::object& pair = offered->via.array.ptr[i];
@@ -159,9 +127,9 @@ void Dispatcher::endSession(Session& session) {
         frameOwner_ = nullptr;
 }
 
-void Dispatcher::handleOne(const msgpack::object& request, Session& session, msgpack::sbuffer& reply,
+void Dispatcher::handleOne(const msgpack::object& message, Session& session, msgpack::sbuffer& reply,
                            const ArrayToSharedMemory& toShm, bool inBatch) {
-    const msgpack::object* id = field(request, "id");
+    const msgpack::object* id = mapField(message, "id");
     // The id is echoed as it came; packing a container recurses, so only a scalar is (a client's ids are
     // integers).
     if (id && (id->type == msgpack::type::ARRAY || id->type == msgpack::type::MAP))
@@ -171,13 +139,12 @@ void Dispatcher::handleOne(const msgpack::object& request, Session& session, msg
     msgpack::sbuffer built;
     msgpack::packer<msgpack::sbuffer> out(&built);
     try {
-        SP_CHECK(request.type == msgpack::type::MAP, InvalidArgument, "request: expected a map");
-        const std::string op = requireString(request, "op", "request");
-        if (op == "batch") {
+        const Request request(message);
+        if (request.op() == "batch") {
             SP_CHECK(session.greeted, InvalidState, "batch(): say hello first");
             // Each level of batch is a C++ stack frame: nested batches could overflow the stack.
             SP_CHECK(!inBatch, InvalidArgument, "batch(): a batch may not contain a batch");
-            const msgpack::object& calls = require(request, "calls", "batch");
+            const msgpack::object& calls = request.require("calls", "batch");
             SP_CHECK(calls.type == msgpack::type::ARRAY, InvalidArgument, "batch(): 'calls' must be a list");
             out.pack_map(2);
             out.pack(std::string("id"));
@@ -192,13 +159,13 @@ void Dispatcher::handleOne(const msgpack::object& request, Session& session, msg
         OpenedSegments* opened = OpenedSegmentsScope::current();
         const size_t openedBefore = opened ? opened->size() : 0;
         const uint64_t faultsBefore = truncationFaults();
-        Value result = execute(op, request, session);
+        Value result = execute(request, session);
         msgpack::sbuffer okBody;
         msgpack::packer<msgpack::sbuffer> okOut(&okBody);
         pack(okOut, result, toShm);
         // A segment shrank while this request read or wrote it: the server survived (shared_memory.h), but
         // what it read or wrote there is lost, so the request fails.
-        SP_CHECK(truncationFaults() == faultsBefore, InvalidArgument, givenContext(request, op + "()"),
+        SP_CHECK(truncationFaults() == faultsBefore, InvalidArgument, request.context(request.op() + "()"),
                  ": a shared-memory segment was truncated while the server used it; its contents are lost");
         result = Value(); // the request's values are gone now: what still maps a segment was kept
         std::vector<std::string> kept;
@@ -241,162 +208,206 @@ void Dispatcher::handleOne(const msgpack::object& request, Session& session, msg
     reply.write(built.data(), built.size());
 }
 
-Value Dispatcher::execute(const std::string& op, const msgpack::object& request, Session& session) {
-    if (op == "hello") {
-        const std::string clientHash = requireString(request, "api_hash", "hello");
-        const msgpack::object* token = field(request, "token");
-        const std::string given = token && token->type == msgpack::type::STR
-                                      ? std::string(token->via.str.ptr, token->via.str.size)
-                                      : "";
-        if (!token_.empty() && !sameSecret(given, token_)) {
-            session.closeAfterReply = true;
-            session.tokenRefused = true;
-            SP_THROW(InvalidArgument, "hello(): wrong or missing token");
-        }
-        if (clientHash != apiHash_) {
-            session.closeAfterReply = true;
-            SP_THROW(InvalidState, "hello(): the client's API (", clientHash,
-                     ") does not match the server's (", apiHash_,
-                     "); the client's generated stubs come from a different engine build");
-        }
-        session.greeted = true;
-        return Value(Value::Dict{{"api_hash", Value(apiHash_)},
-                                 {"pid", Value(int64_t(::getpid()))},
-                                 {"reply_buffers", Value(bool(session.offerReplyBuffer))}});
-    }
+// -- the ops ------------------------------------------------------------------------------------------
+
+const std::vector<Dispatcher::Route>& Dispatcher::routes() {
+    static const std::vector<Route> table{
+        {"world", &Dispatcher::world},
+        {"frame", &Dispatcher::frame},
+        {"call", &Dispatcher::call},
+        {"call_typed", &Dispatcher::call},
+        {"get", &Dispatcher::property},
+        {"get_typed", &Dispatcher::property},
+        {"set", &Dispatcher::property},
+        {"load_plugin", &Dispatcher::loadPlugin},
+        {"unload_plugin", &Dispatcher::unloadPlugin},
+        {"sp_func", &Dispatcher::spFunc},
+        {"sp_func_names", &Dispatcher::spFuncNames},
+        {"is_valid", &Dispatcher::objectQuery},
+        {"describe", &Dispatcher::objectQuery},
+        {"echo", &Dispatcher::echo},
+        {"shutdown", &Dispatcher::shutdown},
+    };
+    return table;
+}
+
+Value Dispatcher::execute(const Request& request, Session& session) {
+    if (request.op() == "hello")
+        return hello(request, session);
     if (!session.greeted) {
         session.closeAfterReply = true;
-        SP_THROW(InvalidState, op, "(): say hello first");
+        SP_THROW(InvalidState, request.op(), "(): say hello first");
     }
-    if (op == "world") {
-        const std::string kind = requireString(request, "kind", "world");
-        if (kind == "game")
-            return Value(engine_.GetGameWorld().GetHandle());
-        SP_CHECK(kind == "editor", InvalidArgument, "world(): kind must be 'game' or 'editor', got '", kind,
-                 "'");
-        UWorld* editor = engine_.GetEditorWorld();
-        SP_CHECK(editor, InvalidState,
-                 "get_editor(): this instance runs standalone and has no editor world; "
-                 "start it with spear.Instance(mode='editor')");
-        return Value(editor->GetHandle());
+    for (const Route& route : routes())
+        if (route.op == request.op())
+            return (this->*route.handler)(request, session);
+    SP_THROW(InvalidArgument, "request: unknown op '", request.op(), "'");
+}
+
+Value Dispatcher::hello(const Request& request, Session& session) {
+    const std::string clientHash = request.string("api_hash", "hello");
+    const msgpack::object* token = request.field("token");
+    const std::string given = token && token->type == msgpack::type::STR
+                                  ? std::string(token->via.str.ptr, token->via.str.size)
+                                  : "";
+    if (!token_.empty() && !sameSecret(given, token_)) {
+        session.closeAfterReply = true;
+        session.tokenRefused = true;
+        SP_THROW(InvalidArgument, "hello(): wrong or missing token");
     }
-    if (op == "frame") {
-        const std::string action = requireString(request, "action", "frame");
-        if (action == "begin")
-            engine_.beginFrame();
-        else if (action == "execute")
-            engine_.executeFrame();
-        else if (action == "begin_end")
-            engine_.beginEndFrame();
-        else if (action == "end")
-            engine_.endFrame();
-        else if (action == "abort")
-            engine_.abortFrame();
-        else if (action != "state")
-            SP_THROW(InvalidArgument, "frame(): unknown action '", action, "'");
-        // The client that last moved a frame owns it until it ends (see endSession).
-        if (action != "state")
-            frameOwner_ = engine_.GetFrameState() == world::Engine::FrameState::Idle ? nullptr : &session;
-        return Value(
-            Value::Dict{{"state", Value(std::string(world::Engine::toString(engine_.GetFrameState())))},
-                        {"frame_count", Value(engine_.GetFrameCount())}});
+    if (clientHash != apiHash_) {
+        session.closeAfterReply = true;
+        SP_THROW(InvalidState, "hello(): the client's API (", clientHash, ") does not match the server's (",
+                 apiHash_, "); the client's generated stubs come from a different engine build");
     }
-    if (op == "call" || op == "call_typed") {
-        // call_typed (the dynamic API) also returns the declared types, so the client can build
-        // the same Python types the typed proxies do.
-        const std::string function = requireString(request, "function", op);
-        // Typed proxies name the member as the in-process bindings do ("AActor.GetName()"), so that
-        // messages are the same on both transports.
-        const std::string context = givenContext(request, "call_function('" + function + "')");
-        // A static function names its class instead of an object ("class": "UGameplayStatics").
-        const bool isStatic = field(request, "class") != nullptr;
-        reflect::ObjectBase* object = isStatic ? nullptr : &requireObject(request, context);
-        const reflect::TypeInfo& type =
-            isStatic ? reflect::Registry::get().getClass(requireString(request, "class", context), context)
-                     : object->GetClass();
-        const reflect::FunctionInfo* info = type.findFunction(function);
-        SP_CHECK(info, NotFound, context, ": class '", type.name, "' has no function '", function, "'");
-        SP_CHECK(!isStatic || info->isStatic, InvalidArgument, context, ": '", type.name, ".", function,
-                 "' is not static; call it on an object");
-        Value args = field(request, "args") ? unpack(*field(request, "args"), context) : Value(Value::Dict{});
-        SP_CHECK(args.is<Value::Dict>(), InvalidArgument, context, ": 'args' must be a map");
-        Value result = info->invoke(object, args.as<Value::Dict>());
-        if (op == "call")
-            return result;
-        Value::Dict outTypes;
-        for (const auto& param : info->params)
-            if (param.isOut)
-                outTypes.emplace(param.name, Value(param.type));
-        return Value(Value::Dict{{"value", std::move(result)},
-                                 {"type", Value(info->returnType)},
-                                 {"out_types", Value(std::move(outTypes))}});
-    }
-    if (op == "get" || op == "get_typed" || op == "set") {
-        const std::string name = requireString(request, "property", op);
-        const std::string context =
-            givenContext(request, (op == "set" ? "set_property('" : "get_property('") + name + "')");
-        reflect::ObjectBase& object = requireObject(request, context);
-        const reflect::PropertyInfo* property = object.GetClass().findProperty(name);
-        SP_CHECK(property, NotFound, context, ": class '", object.GetClass().name, "' has no property '",
-                 name, "'");
-        if (op == "get")
-            return property->get(&object);
-        if (op == "get_typed")
-            return Value(Value::Dict{{"value", property->get(&object)}, {"type", Value(property->type)}});
-        SP_CHECK(property->set, InvalidArgument, context, ": property '", name, "' of class '",
-                 object.GetClass().name, "' is read-only");
-        property->set(&object, unpack(require(request, "value", op), context));
-        return Value();
-    }
-    if (op == "load_plugin") {
-        const std::string path = allowedPlugin(requireString(request, "path", op));
-        const msgpack::object* hash = field(request, "api_hash");
-        const auto& info = plugin::load(path, hash && hash->type == msgpack::type::STR
-                                                  ? std::string(hash->via.str.ptr, hash->via.str.size)
-                                                  : "");
-        Value::List classes;
-        for (const std::string& name : info.classes)
-            classes.emplace_back(name);
-        return Value(Value::Dict{{"name", Value(info.name)}, {"classes", Value(std::move(classes))}});
-    }
-    if (op == "unload_plugin") {
-        plugin::unload(requireString(request, "name", op));
-        return Value();
-    }
-    if (op == "sp_func") {
-        const std::string name = requireString(request, "name", op);
-        const std::string context = givenContext(request, "call_sp_func('" + name + "')");
-        reflect::ObjectBase& object = requireObject(request, context);
-        Value::Dict bundle;
-        for (const char* key : {"arrays", "unreal_objs", "info"})
-            if (const msgpack::object* given = field(request, key))
-                bundle.emplace(key, unpack(*given, context));
-        return spfunc::toValue(
-            spfunc::call(object, name, spfunc::bundleFromValue(Value(std::move(bundle)), context)));
-    }
-    if (op == "sp_func_names") {
-        reflect::ObjectBase& object = requireObject(request, givenContext(request, "get_sp_func_names()"));
-        Value::List names;
-        for (std::string& name : spfunc::funcNames(object))
-            names.emplace_back(std::move(name));
-        return Value(std::move(names));
-    }
-    if (op == "is_valid" || op == "describe") {
-        Value handle = unpack(require(request, "object", op), op);
-        SP_CHECK(handle.is<reflect::ObjectHandle>(), InvalidArgument, op,
-                 "(): 'object' must be an object reference");
-        const reflect::ObjectBase* object = reflect::ObjectTable::find(handle.as<reflect::ObjectHandle>());
-        if (op == "is_valid")
-            return Value(object != nullptr);
-        return Value(object ? object->GetDebugName() : std::string());
-    }
-    if (op == "echo") // returns its value: for diagnostics, and to measure the transport alone
-        return field(request, "value") ? unpack(*field(request, "value"), "echo()") : Value();
-    if (op == "shutdown") {
-        session.shutdownRequested = true;
-        return Value();
-    }
-    SP_THROW(InvalidArgument, "request: unknown op '", op, "'");
+    session.greeted = true;
+    return Value(Value::Dict{{"api_hash", Value(apiHash_)},
+                             {"pid", Value(int64_t(::getpid()))},
+                             {"reply_buffers", Value(bool(session.offerReplyBuffer))}});
+}
+
+Value Dispatcher::world(const Request& request, Session&) {
+    const std::string kind = request.string("kind", "world");
+    if (kind == "game")
+        return Value(engine_.GetGameWorld().GetHandle());
+    SP_CHECK(kind == "editor", InvalidArgument, "world(): kind must be 'game' or 'editor', got '", kind, "'");
+    UWorld* editor = engine_.GetEditorWorld();
+    SP_CHECK(editor, InvalidState,
+             "get_editor(): this instance runs standalone and has no editor world; "
+             "start it with spear.Instance(mode='editor')");
+    return Value(editor->GetHandle());
+}
+
+Value Dispatcher::frame(const Request& request, Session& session) {
+    const std::string action = request.string("action", "frame");
+    if (action == "begin")
+        engine_.beginFrame();
+    else if (action == "execute")
+        engine_.executeFrame();
+    else if (action == "begin_end")
+        engine_.beginEndFrame();
+    else if (action == "end")
+        engine_.endFrame();
+    else if (action == "abort")
+        engine_.abortFrame();
+    else if (action != "state")
+        SP_THROW(InvalidArgument, "frame(): unknown action '", action, "'");
+    // The client that last moved a frame owns it until it ends (see endSession).
+    if (action != "state")
+        frameOwner_ = engine_.GetFrameState() == world::Engine::FrameState::Idle ? nullptr : &session;
+    return Value(Value::Dict{{"state", Value(std::string(world::Engine::toString(engine_.GetFrameState())))},
+                             {"frame_count", Value(engine_.GetFrameCount())}});
+}
+
+// call {object|class, function, args}; call_typed (the dynamic API) also returns the declared types, so the
+// client can build the same Python types the typed proxies do.
+Value Dispatcher::call(const Request& request, Session&) {
+    const std::string& op = request.op();
+    const std::string function = request.string("function", op);
+    // Typed proxies name the member as the in-process bindings do ("AActor.GetName()"), so that messages are
+    // the same on both transports.
+    const std::string context = request.context("call_function('" + function + "')");
+    // A static function names its class instead of an object ("class": "UGameplayStatics").
+    const bool isStatic = request.field("class") != nullptr;
+    reflect::ObjectBase* object = isStatic ? nullptr : &requireObject(request, context);
+    const reflect::TypeInfo& type =
+        isStatic ? reflect::Registry::get().getClass(request.string("class", context), context)
+                 : object->GetClass();
+    const reflect::FunctionInfo* info = type.findFunction(function);
+    SP_CHECK(info, NotFound, context, ": class '", type.name, "' has no function '", function, "'");
+    SP_CHECK(!isStatic || info->isStatic, InvalidArgument, context, ": '", type.name, ".", function,
+             "' is not static; call it on an object");
+    Value args = request.field("args") ? unpack(*request.field("args"), context) : Value(Value::Dict{});
+    SP_CHECK(args.is<Value::Dict>(), InvalidArgument, context, ": 'args' must be a map");
+    Value result = info->invoke(object, args.as<Value::Dict>());
+    if (op == "call")
+        return result;
+    Value::Dict outTypes;
+    for (const auto& param : info->params)
+        if (param.isOut)
+            outTypes.emplace(param.name, Value(param.type));
+    return Value(Value::Dict{{"value", std::move(result)},
+                             {"type", Value(info->returnType)},
+                             {"out_types", Value(std::move(outTypes))}});
+}
+
+// get / get_typed {object, property}; set {object, property, value}.
+Value Dispatcher::property(const Request& request, Session&) {
+    const std::string& op = request.op();
+    const std::string name = request.string("property", op);
+    const std::string context =
+        request.context((op == "set" ? "set_property('" : "get_property('") + name + "')");
+    reflect::ObjectBase& object = requireObject(request, context);
+    const reflect::PropertyInfo* property = object.GetClass().findProperty(name);
+    SP_CHECK(property, NotFound, context, ": class '", object.GetClass().name, "' has no property '", name,
+             "'");
+    if (op == "get")
+        return property->get(&object);
+    if (op == "get_typed")
+        return Value(Value::Dict{{"value", property->get(&object)}, {"type", Value(property->type)}});
+    SP_CHECK(property->set, InvalidArgument, context, ": property '", name, "' of class '",
+             object.GetClass().name, "' is read-only");
+    property->set(&object, unpack(request.require("value", op), context));
+    return Value();
+}
+
+Value Dispatcher::loadPlugin(const Request& request, Session&) {
+    const std::string path = allowedPlugin(request.string("path", request.op()));
+    const msgpack::object* hash = request.field("api_hash");
+    const auto& info = plugin::load(path, hash && hash->type == msgpack::type::STR
+                                              ? std::string(hash->via.str.ptr, hash->via.str.size)
+                                              : "");
+    Value::List classes;
+    for (const std::string& name : info.classes)
+        classes.emplace_back(name);
+    return Value(Value::Dict{{"name", Value(info.name)}, {"classes", Value(std::move(classes))}});
+}
+
+Value Dispatcher::unloadPlugin(const Request& request, Session&) {
+    plugin::unload(request.string("name", request.op()));
+    return Value();
+}
+
+Value Dispatcher::spFunc(const Request& request, Session&) {
+    const std::string name = request.string("name", request.op());
+    const std::string context = request.context("call_sp_func('" + name + "')");
+    reflect::ObjectBase& object = requireObject(request, context);
+    Value::Dict bundle;
+    for (const char* key : {"arrays", "unreal_objs", "info"})
+        if (const msgpack::object* given = request.field(key))
+            bundle.emplace(key, unpack(*given, context));
+    return spfunc::toValue(
+        spfunc::call(object, name, spfunc::bundleFromValue(Value(std::move(bundle)), context)));
+}
+
+Value Dispatcher::spFuncNames(const Request& request, Session&) {
+    reflect::ObjectBase& object = requireObject(request, request.context("get_sp_func_names()"));
+    Value::List names;
+    for (std::string& name : spfunc::funcNames(object))
+        names.emplace_back(std::move(name));
+    return Value(std::move(names));
+}
+
+// is_valid / describe {object}: about an object reference that may be stale.
+Value Dispatcher::objectQuery(const Request& request, Session&) {
+    const std::string& op = request.op();
+    Value handle = unpack(request.require("object", op), op);
+    SP_CHECK(handle.is<reflect::ObjectHandle>(), InvalidArgument, op,
+             "(): 'object' must be an object reference");
+    const reflect::ObjectBase* object = reflect::ObjectTable::find(handle.as<reflect::ObjectHandle>());
+    if (op == "is_valid")
+        return Value(object != nullptr);
+    return Value(object ? object->GetDebugName() : std::string());
+}
+
+// Returns its value: for diagnostics, and to measure the transport alone.
+Value Dispatcher::echo(const Request& request, Session&) {
+    return request.field("value") ? unpack(*request.field("value"), "echo()") : Value();
+}
+
+Value Dispatcher::shutdown(const Request&, Session& session) {
+    session.shutdownRequested = true;
+    return Value();
 }
 
 } // namespace sp::rpc

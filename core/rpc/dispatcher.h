@@ -20,8 +20,10 @@
 
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "core/rpc/request.h"
 #include "core/rpc/value_msgpack.h"
 #include "core/world/engine.h"
 
@@ -64,9 +66,29 @@ class Dispatcher {
     }
 
   private:
-    reflect::Value execute(const std::string& op, const msgpack::object& request, Session& session);
+    // Runs a parsed request (not a batch): hello, or, once greeted, the op's handler from routes().
+    reflect::Value execute(const Request& request, Session& session);
+    using Handler = reflect::Value (Dispatcher::*)(const Request&, Session&);
+    struct Route {
+        std::string_view op;
+        Handler handler;
+    };
+    static const std::vector<Route>& routes(); // every op but hello and batch
+    reflect::Value hello(const Request& request, Session& session);
+    reflect::Value world(const Request& request, Session& session);
+    reflect::Value frame(const Request& request, Session& session);
+    reflect::Value call(const Request& request, Session& session);
+    reflect::Value property(const Request& request, Session& session);
+    reflect::Value loadPlugin(const Request& request, Session& session);
+    reflect::Value unloadPlugin(const Request& request, Session& session);
+    reflect::Value spFunc(const Request& request, Session& session);
+    reflect::Value spFuncNames(const Request& request, Session& session);
+    reflect::Value objectQuery(const Request& request, Session& session);
+    reflect::Value echo(const Request& request, Session& session);
+    reflect::Value shutdown(const Request& request, Session& session);
+
     static void readReplyBuffers(const msgpack::object& request, Session& session);
-    void handleOne(const msgpack::object& request, Session& session, msgpack::sbuffer& reply,
+    void handleOne(const msgpack::object& message, Session& session, msgpack::sbuffer& reply,
                    const ArrayToSharedMemory& toShm, bool inBatch = false);
 
     world::Engine& engine_;
