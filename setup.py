@@ -14,6 +14,7 @@ from __future__ import annotations
 import os
 import shutil
 import subprocess
+import sys
 from pathlib import Path
 
 from setuptools import setup
@@ -35,6 +36,11 @@ class BuildWithCMake(build_py):
     """Builds the engine with CMake before collecting the package's files, then adds the built-in assets."""
 
     def run(self) -> None:
+        # The module is built for Debian's /usr/bin/python3 (the interpreter that sees the apt-installed
+        # packages); a wheel built by another Python would be tagged for it and hold a module it cannot load.
+        if os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3"):
+            raise SystemExit(f"spear: build the package with /usr/bin/python3 (or a venv made from it), not "
+                             f"{sys.executable}")
         build_dir = Path(os.environ.get("SPEAR_BUILD_DIR", ROOT / "build"))
         print(f"spear: building the engine with CMake in {build_dir}", flush=True)
         subprocess.check_call(["cmake", "-S", str(ROOT), "-B", str(build_dir), "-G", "Ninja",

@@ -113,12 +113,15 @@ template <typename T> struct Bridge<T, std::enable_if_t<std::is_integral_v<T> &&
     static T in(const Py& value, std::string_view context) {
         if (!PyBool_Check(value.ptr()) && PyIndex_Check(value.ptr())) {
             const auto index = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
-            if (!index)
-                throw py::error_already_set();
+            if (!index) { // an object whose __index__ fails (an array of several numbers): refused as the
+                          // server would
+                PyErr_Clear();
+                return decodeAsServer<T>(value, context);
+            }
             int overflow = 0;
             const long long number = PyLong_AsLongLongAndOverflow(index.ptr(), &overflow);
-            SP_CHECK(overflow == 0, InvalidArgument, context,
-                     " is out of range: ", std::string(py::str(index)));
+            if (overflow) // past 64 bits: refused as the RPC client refuses it
+                return decodeAsServer<T>(index, context);
             return reflect::ValueCodec<T>::decode(reflect::Value(int64_t(number)), context);
         }
         return decodeAsServer<T>(value, context); // refused, named as over RPC

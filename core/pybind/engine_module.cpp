@@ -32,10 +32,28 @@ void checkFrame(sp::reflect::ObjectBase& object, std::string_view context) {
     sp::world::checkObjectAccess(object, context);
 }
 
+bool pythonFinalizing() {
+#if PY_VERSION_HEX >= 0x030D0000
+    return Py_IsFinalizing();
+#else
+    return _Py_IsFinalizing();
+#endif
+}
+
+// A Python error raised while showing a log line or progress is not the engine's to handle: Ctrl-C (a
+// KeyboardInterrupt, raised by the signal handler that runs during the call) is raised again at the next
+// chance Python gets; anything else is reported as unraisable.
+void setAside(py::error_already_set& error, const char* what) {
+    if (error.matches(PyExc_KeyboardInterrupt))
+        PyErr_SetInterrupt();
+    else
+        error.discard_as_unraisable(what);
+}
+
 // Engine log lines become Python logging records (spear._logging.emit), from any thread. While Python
 // shuts down, or if the logging call fails, the line goes to stderr as it would without a sink.
 void logToPython(std::string_view file, int line, std::string_view message) {
-    if (Py_IsInitialized() && !_Py_IsFinalizing()) {
+    if (Py_IsInitialized() && !pythonFinalizing()) {
         py::gil_scoped_acquire gil;
         try {
             // Never freed: no Python object may be released after the interpreter is gone.
@@ -44,7 +62,7 @@ void logToPython(std::string_view file, int line, std::string_view message) {
             (*emit)(py::str(file.data(), file.size()), line, py::str(message.data(), message.size()));
             return;
         } catch (py::error_already_set& error) {
-            error.discard_as_unraisable("spear: routing an engine log line to logging");
+            setAside(error, "spear: routing an engine log line to logging");
         }
     }
     std::fprintf(stderr, "[spear] %.*s:%d: %.*s\n", int(file.size()), file.data(), line, int(message.size()),
@@ -53,7 +71,7 @@ void logToPython(std::string_view file, int line, std::string_view message) {
 
 // Progress reports of long engine work become terminal bars and end-of-task records (spear._progress).
 void progressToPython(std::string_view task, double done, double total, bool finished) {
-    if (!Py_IsInitialized() || _Py_IsFinalizing())
+    if (!Py_IsInitialized() || pythonFinalizing())
         return;
     py::gil_scoped_acquire gil;
     try {
@@ -61,7 +79,7 @@ void progressToPython(std::string_view task, double done, double total, bool fin
             new py::object(py::module_::import("spear._progress").attr("report"));
         (*report)(py::str(task.data(), task.size()), done, total, finished);
     } catch (py::error_already_set& error) {
-        error.discard_as_unraisable("spear: showing the engine's progress");
+        setAside(error, "spear: showing the engine's progress");
     }
 }
 

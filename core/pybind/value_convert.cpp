@@ -33,12 +33,16 @@ Value toValueAt(py::handle object, std::string_view context, int depth) {
     if (PyBool_Check(object.ptr()))
         return Value(object.cast<bool>());
     if (PyLong_Check(object.ptr())) {
-        // An IntEnum keeps its enum's name: an enum parameter takes only its own enum (as over RPC).
-        static const py::object intEnum = py::module_::import("enum").attr("IntEnum");
-        if (!PyLong_CheckExact(object.ptr()) && py::isinstance(object, intEnum))
-            return Value(
-                reflect::EnumValue{py::str(object.get_type().attr("__name__")), object.cast<int64_t>()});
-        return Value(object.cast<int64_t>());
+        int overflow = 0;
+        const long long number = PyLong_AsLongLongAndOverflow(object.ptr(), &overflow);
+        SP_CHECK(overflow == 0, InvalidArgument, context, ": integer ", std::string(py::str(object)),
+                 " is too large"); // as the RPC client refuses it: 64 bits at most
+        // An IntEnum keeps its enum's name: an enum parameter takes only its own enum (as over RPC). Never
+        // freed, like every Python object kept here: none may be released after the interpreter is gone.
+        static const py::object* const intEnum = new py::object(py::module_::import("enum").attr("IntEnum"));
+        if (!PyLong_CheckExact(object.ptr()) && py::isinstance(object, *intEnum))
+            return Value(reflect::EnumValue{py::str(object.get_type().attr("__name__")), int64_t(number)});
+        return Value(int64_t(number));
     }
     if (PyFloat_Check(object.ptr()))
         return Value(object.cast<double>());
@@ -51,8 +55,8 @@ Value toValueAt(py::handle object, std::string_view context, int depth) {
     }
     // A numpy scalar (numpy.float32(1.5), numpy.int64(3)) is the Python number it holds, as the RPC client
     // sends it.
-    static const py::object numpyScalar = py::module_::import("numpy").attr("generic");
-    if (py::isinstance(object, numpyScalar))
+    static const py::object* const numpyScalar = new py::object(py::module_::import("numpy").attr("generic"));
+    if (py::isinstance(object, *numpyScalar))
         return toValueAt(object.attr("item")(), context, depth);
     if (py::hasattr(object, "_sp_handle")) {
         auto handle = object.attr("_sp_handle").cast<std::pair<uint32_t, uint32_t>>();

@@ -55,6 +55,8 @@ requires(!std::same_as<T, bool>) struct ValueCodec<T> {
     static Value encode(T v) { return Value(int64_t(v)); }
     static T decode(const Value& v, std::string_view context) {
         const int64_t* i = v.tryAs<int64_t>();
+        if (const EnumValue* entry = v.tryAs<EnumValue>()) // an IntEnum is an int (as Python and mypy say)
+            i = &entry->value;
         if (!i)
             throwTypeMismatch(context, "an int", v);
         if constexpr (std::is_unsigned_v<T>) {
@@ -75,6 +77,8 @@ template <std::floating_point T> struct ValueCodec<T> {
             return T(*d);
         if (const int64_t* i = v.tryAs<int64_t>()) // Python passes 1 for 1.0
             return T(*i);
+        if (const EnumValue* entry = v.tryAs<EnumValue>()) // and an IntEnum is an int
+            return T(entry->value);
         throwTypeMismatch(context, "a float", v);
     }
 };
@@ -88,6 +92,23 @@ template <> struct ValueCodec<std::string> {
     }
 };
 
+// While one exists on this thread, an enum also takes a bare int: for values read from JSON (an SpFunc's
+// unreal_objs), which has no enums; Python's json writes an IntEnum as its int.
+class AcceptIntsForEnums {
+  public:
+    AcceptIntsForEnums() { ++depth(); }
+    ~AcceptIntsForEnums() { --depth(); }
+    AcceptIntsForEnums(const AcceptIntsForEnums&) = delete;
+    AcceptIntsForEnums& operator=(const AcceptIntsForEnums&) = delete;
+    static bool active() { return depth() > 0; }
+
+  private:
+    static int& depth() {
+        thread_local int value = 0;
+        return value;
+    }
+};
+
 template <typename E>
 requires std::is_enum_v<E>
 struct ValueCodec<E> {
@@ -96,11 +117,14 @@ struct ValueCodec<E> {
     static E decode(const Value& v, std::string_view context) {
         const EnumInfo& info = StaticEnum<E>();
         const EnumValue* entry = v.tryAs<EnumValue>();
-        if (!entry || entry->type != info.name)
+        const int64_t* number = entry && entry->type == info.name ? &entry->value : nullptr;
+        if (!entry && AcceptIntsForEnums::active())
+            number = v.tryAs<int64_t>();
+        if (!number)
             throwTypeMismatch(context, info.name, v);
-        SP_CHECK(info.contains(entry->value), InvalidArgument, context, ": ", entry->value,
-                 " is not a value of ", info.name);
-        return E(entry->value);
+        SP_CHECK(info.contains(*number), InvalidArgument, context, ": ", *number, " is not a value of ",
+                 info.name);
+        return E(*number);
     }
 };
 

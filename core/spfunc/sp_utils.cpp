@@ -54,6 +54,8 @@ Json toJson(const Value& value) {
             else if constexpr (std::is_same_v<V, bool> || std::is_same_v<V, int64_t> ||
                                std::is_same_v<V, double> || std::is_same_v<V, std::string>)
                 return v;
+            else if constexpr (std::is_same_v<V, sp::reflect::EnumValue>)
+                return v.value; // as Python's json writes an IntEnum
             else if constexpr (std::is_same_v<V, Value::List>) {
                 Json out = Json::array();
                 for (const Value& item : v)

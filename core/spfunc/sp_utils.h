@@ -36,6 +36,7 @@ class SpUtils {
     // {"X": .., "Y": .., "Z": ..}) as a T: a reflected struct or enum, a number, a string, or a vector or map
     // of those. Throws InvalidArgument naming the SpFunc being called and the object.
     template <typename T> static T getUnrealObj(const SpFuncDataBundle& bundle, const std::string& name) {
+        const sp::reflect::AcceptIntsForEnums json; // JSON has no enums: an enum arrives as its int
         return sp::reflect::decode<T>(unrealObjValue(bundle, name), unrealObjContext(name));
     }
 

@@ -19,8 +19,11 @@ def declare(name: str, parent: type[SpObject], asset: str, doc: str) -> type[SpO
     loaded from `asset` (relative to the project root) the first time it is used as uclass=. In a checkout
     that is a file of the checkout; in an installed package the engine finds it on its asset search path
     (the package's own assets/, see core/base/asset_path.h)."""
-    in_checkout = Path(__file__).resolve().parents[2] / asset
-    path = str(in_checkout) if in_checkout.is_file() else asset
+    here = Path(__file__).resolve().parent
+    # The checkout's file, or the installed package's own copy (spear/assets/...): never a file of the same
+    # name that happens to be in the working directory.
+    found = [p for p in (here.parents[1] / asset, here / asset) if p.is_file()]
+    path = str(found[0]) if found else asset
     cls = type(name, (parent,), {"__sp_class__": name, "__sp_asset__": path, "__slots__": (),
                                  "__module__": "spear", "__doc__": doc})
     _CLASSES[name] = cls

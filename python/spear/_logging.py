@@ -14,6 +14,7 @@ import logging
 import re
 import sys
 import threading
+from collections.abc import Callable
 from typing import IO
 
 LOGGER = logging.getLogger("spear")
@@ -46,41 +47,43 @@ def info(message: str) -> None:
         LOGGER.info("%s", message)
 
 
-def log_lines_of(text: str, source: str) -> str:
-    """Emits the engine log lines in `text` (a server's stderr); returns the rest, such as an error."""
-    rest = []
-    for line in text.splitlines():
-        match = _LINE.match(line)
-        if match:
-            emit(match["file"], int(match["line"]), match["message"])
-        else:
-            rest.append(line)
-    return "\n".join(rest)
+def handle_line(text: str) -> bool:
+    """Shows one line of a server's stderr if it is an engine log line or a progress report; False for
+    anything else."""
+    match = _LINE.match(text)
+    if match:
+        emit(match["file"], int(match["line"]), match["message"])
+        return True
+    progress = _PROGRESS.match(text)
+    if progress:
+        from spear import _progress
+
+        _progress.report(progress["task"], float(progress["done"]), float(progress["total"]),
+                         progress["finished"] == "1")
+        return True
+    return False
 
 
-def forward_stream(stream: IO[str], source: str) -> threading.Thread:
-    """Reads a server's stderr to its end on a daemon thread, each line a record: a server whose stderr
-    nobody read would block once the pipe filled. Lines that are not engine log lines (a sanitizer report,
-    a driver's warning) are logged as they are, from `source`."""
+def forward_stream(stream: IO[str], other: Callable[[str], None]) -> threading.Thread:
+    """Reads a server's stderr to its end on a daemon thread: a server whose stderr nobody read would block
+    once the pipe filled. Log lines and progress reports are shown; every other non-empty line (a start-up
+    error, a sanitizer report, a driver's warning) goes to `other`."""
 
     def pump() -> None:
-        try:
-            for text in stream:
-                text = text.rstrip("\n")
-                match = _LINE.match(text)
-                progress = None if match else _PROGRESS.match(text)
-                if match:
-                    emit(match["file"], int(match["line"]), match["message"])
-                elif progress:
-                    from spear import _progress
+        while True:
+            try:
+                text = stream.readline()
+            except (OSError, ValueError):  # the stream was closed under us: the server is gone
+                return
+            if not text:
+                return
+            text = text.rstrip("\n")
+            try:
+                if not handle_line(text) and text:
+                    other(text)
+            except Exception as error:  # noqa: BLE001 - one bad line must not stop the reading
+                sys.stderr.write(f"[spear] a line of a server's stderr could not be shown ({error!r})\n")
 
-                    _progress.report(progress["task"], float(progress["done"]), float(progress["total"]),
-                                     progress["finished"] == "1")
-                elif text:
-                    emit(source, 0, text)
-        except (OSError, ValueError):  # the stream was closed under us: the server is gone
-            pass
-
-    thread = threading.Thread(target=pump, name=f"{source} stderr", daemon=True)
+    thread = threading.Thread(target=pump, name="spear-server stderr", daemon=True)
     thread.start()
     return thread

@@ -54,3 +54,13 @@ def report(task: str, done: float, total: float, finished: bool) -> None:
         del _BARS[task]
     _logging.info(f"{task}: done in {elapsed:.1f} s" if done >= total else f"{task}: stopped at "
                   f"{done:g} of {total:g} after {elapsed:.1f} s")
+
+
+def abandon_unfinished() -> None:
+    """Closes the bars of tasks that will never finish (their server is gone)."""
+    with _LOCK:
+        for bar in _BARS.values():
+            if bar is not None:
+                bar.close()
+        _BARS.clear()
+        _STARTED.clear()

@@ -12,6 +12,7 @@ import itertools
 import warnings
 from collections.abc import Callable, Iterator
 import os
+import select
 import shutil
 import socket
 import struct
@@ -23,7 +24,7 @@ import weakref
 from pathlib import Path
 from typing import Any
 
-from spear import _logging, errors
+from spear import _logging, _progress, errors
 from spear._object import SpObject
 from spear._reply_buffers import ReplyBuffers
 from spear._rpc_types import convert, convert_result_tuple
@@ -327,25 +328,39 @@ class LaunchedServer:
              # instance.load_plugin(path) works as in-process. For the same reason its files are not confined:
              # a scene or mesh path means what it means in-process.
              "--allow-remote-plugin-load", "--file-root", "/"],
-            stdout=subprocess.PIPE, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True,
+            # errors="replace": a log line with bytes that are not UTF-8 (a name from a mesh file) must not stop
+            # the reading of the server's stderr.
+            stdout=subprocess.PIPE, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True, errors="replace",
         )
-        deadline = time.monotonic() + startup_timeout
-        assert self.process.stdout is not None
-        line = self.process.stdout.readline()
-        if not line.startswith("spear-server: listening on ") or time.monotonic() > deadline:
+        # Its stderr is read from the start (a start-up that says much would otherwise block on a full pipe):
+        # log lines and progress become logging records of the "spear" logger; other lines are kept until the
+        # server is listening (a start-up error), then logged as they are.
+        self._startup_lines: list[str] | None = []
+        assert self.process.stdout is not None and self.process.stderr is not None
+        self._stderr_forwarder = _logging.forward_stream(self.process.stderr, self._other_stderr_line)
+        ready, _, _ = select.select([self.process.stdout], [], [], startup_timeout)
+        line = self.process.stdout.readline() if ready else ""
+        if not line.startswith("spear-server: listening on "):
+            if not ready:
+                self.process.kill()
             self.process.wait(10)
-            output = self.process.stderr.read() if self.process.stderr else ""
-            message = _logging.log_lines_of(output, "spear-server").strip()
+            self._stderr_forwarder.join(timeout=10.0)  # to the end of what it said
+            message = "\n".join(self._startup_lines or []).strip()
             self.close()
             # The engine's own message (a missing scene file, say) is the useful part.
-            kind, _, text = message.partition(": ")
+            kind, _, text = message.rpartition("\n")[2].partition(": ")
             if kind in _ERRORS:
                 raise _ERRORS[kind](text)
-            raise errors.SpearError(message or f"Instance(): spear-server did not start (said {line.strip()!r})")
+            said = "nothing within {:g} s".format(startup_timeout) if not ready else repr(line.strip())
+            raise errors.SpearError(message or f"Instance(): spear-server did not start (said {said})")
+        self._startup_lines = None
         self.address = line.strip().removeprefix("spear-server: listening on ")
-        # Its log lines (and anything else it says on stderr) become logging records of the "spear" logger.
-        assert self.process.stderr is not None
-        self._stderr_forwarder = _logging.forward_stream(self.process.stderr, "spear-server")
+
+    def _other_stderr_line(self, line: str) -> None:
+        if self._startup_lines is not None:
+            self._startup_lines.append(line)
+        else:
+            _logging.emit("spear-server", 0, line)
 
     def close(self, timeout: float = 10.0) -> None:
         if self.process.poll() is None:
@@ -357,6 +372,7 @@ class LaunchedServer:
                 self.process.wait()
         if self._stderr_forwarder is not None:  # the server has exited: its last lines, then end of file
             self._stderr_forwarder.join(timeout=2.0)
+            _progress.abandon_unfinished()
         for stream in (self.process.stdout, self.process.stderr):
             if stream:
                 stream.close()

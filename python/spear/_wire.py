@@ -138,6 +138,8 @@ def encode(value: Any, segments: OutgoingSegments, depth: int = 0) -> Any:
     if isinstance(value, enum.IntEnum):  # with its enum's name: the server refuses a bare int for an enum
         return msgpack.ExtType(EXT_ENUM, struct.pack("<q", int(value)) + type(value).__name__.encode())
     if isinstance(value, int):
+        if not -(2**63) <= value < 2**63:  # as the in-process engine refuses it: 64 bits at most
+            raise ValueRefused(f"integer {value} is too large")
         return value
     if isinstance(value, SpObject):
         handle = getattr(value, "_sp_handle", None)

@@ -336,35 +336,64 @@ template <> struct type_caster<FCameraPixels> {
         if (!PyDict_Check(src.ptr()))
             return false;
         dict d = reinterpret_borrow<dict>(src);
-        if (d.contains("final_color"))
+        size_t known = 0; // a key that is not a field (or not a str) is left to the server's decoding to refuse
+        if (d.contains("final_color")) {
             value.final_color = sp::pybind::Bridge<sp::reflect::SpArray<uint8_t>>::in(d["final_color"].cast<sp::pybind::Bridge<sp::reflect::SpArray<uint8_t>>::Py>(), "FCameraPixels.final_color");
-        if (d.contains("hdr_color"))
+            ++known;
+        }
+        if (d.contains("hdr_color")) {
             value.hdr_color = sp::pybind::Bridge<sp::reflect::SpArray<sp::reflect::Half>>::in(d["hdr_color"].cast<sp::pybind::Bridge<sp::reflect::SpArray<sp::reflect::Half>>::Py>(), "FCameraPixels.hdr_color");
-        if (d.contains("depth"))
+            ++known;
+        }
+        if (d.contains("depth")) {
             value.depth = sp::pybind::Bridge<sp::reflect::SpArray<float>>::in(d["depth"].cast<sp::pybind::Bridge<sp::reflect::SpArray<float>>::Py>(), "FCameraPixels.depth");
-        if (d.contains("position"))
+            ++known;
+        }
+        if (d.contains("position")) {
             value.position = sp::pybind::Bridge<sp::reflect::SpArray<float>>::in(d["position"].cast<sp::pybind::Bridge<sp::reflect::SpArray<float>>::Py>(), "FCameraPixels.position");
-        if (d.contains("normal"))
+            ++known;
+        }
+        if (d.contains("normal")) {
             value.normal = sp::pybind::Bridge<sp::reflect::SpArray<float>>::in(d["normal"].cast<sp::pybind::Bridge<sp::reflect::SpArray<float>>::Py>(), "FCameraPixels.normal");
-        if (d.contains("object_ids"))
+            ++known;
+        }
+        if (d.contains("object_ids")) {
             value.object_ids = sp::pybind::Bridge<sp::reflect::SpArray<uint32_t>>::in(d["object_ids"].cast<sp::pybind::Bridge<sp::reflect::SpArray<uint32_t>>::Py>(), "FCameraPixels.object_ids");
-        if (d.contains("material_ids"))
+            ++known;
+        }
+        if (d.contains("material_ids")) {
             value.material_ids = sp::pybind::Bridge<sp::reflect::SpArray<uint32_t>>::in(d["material_ids"].cast<sp::pybind::Bridge<sp::reflect::SpArray<uint32_t>>::Py>(), "FCameraPixels.material_ids");
-        if (d.contains("base_color"))
+            ++known;
+        }
+        if (d.contains("base_color")) {
             value.base_color = sp::pybind::Bridge<sp::reflect::SpArray<sp::reflect::Half>>::in(d["base_color"].cast<sp::pybind::Bridge<sp::reflect::SpArray<sp::reflect::Half>>::Py>(), "FCameraPixels.base_color");
-        if (d.contains("roughness"))
+            ++known;
+        }
+        if (d.contains("roughness")) {
             value.roughness = sp::pybind::Bridge<sp::reflect::SpArray<sp::reflect::Half>>::in(d["roughness"].cast<sp::pybind::Bridge<sp::reflect::SpArray<sp::reflect::Half>>::Py>(), "FCameraPixels.roughness");
-        if (d.contains("metallic"))
+            ++known;
+        }
+        if (d.contains("metallic")) {
             value.metallic = sp::pybind::Bridge<sp::reflect::SpArray<sp::reflect::Half>>::in(d["metallic"].cast<sp::pybind::Bridge<sp::reflect::SpArray<sp::reflect::Half>>::Py>(), "FCameraPixels.metallic");
-        if (d.contains("material_ao"))
+            ++known;
+        }
+        if (d.contains("material_ao")) {
             value.material_ao = sp::pybind::Bridge<sp::reflect::SpArray<sp::reflect::Half>>::in(d["material_ao"].cast<sp::pybind::Bridge<sp::reflect::SpArray<sp::reflect::Half>>::Py>(), "FCameraPixels.material_ao");
-        if (d.contains("diffuse_illumination"))
+            ++known;
+        }
+        if (d.contains("diffuse_illumination")) {
             value.diffuse_illumination = sp::pybind::Bridge<sp::reflect::SpArray<sp::reflect::Half>>::in(d["diffuse_illumination"].cast<sp::pybind::Bridge<sp::reflect::SpArray<sp::reflect::Half>>::Py>(), "FCameraPixels.diffuse_illumination");
-        if (d.contains("diffuse_only"))
+            ++known;
+        }
+        if (d.contains("diffuse_only")) {
             value.diffuse_only = sp::pybind::Bridge<sp::reflect::SpArray<sp::reflect::Half>>::in(d["diffuse_only"].cast<sp::pybind::Bridge<sp::reflect::SpArray<sp::reflect::Half>>::Py>(), "FCameraPixels.diffuse_only");
-        if (d.contains("specular_residual"))
+            ++known;
+        }
+        if (d.contains("specular_residual")) {
             value.specular_residual = sp::pybind::Bridge<sp::reflect::SpArray<sp::reflect::Half>>::in(d["specular_residual"].cast<sp::pybind::Bridge<sp::reflect::SpArray<sp::reflect::Half>>::Py>(), "FCameraPixels.specular_residual");
-        return true;
+            ++known;
+        }
+        return known == len(d);
     }
     static handle cast(const FCameraPixels& v, return_value_policy, handle) {
         dict d;

@@ -3,6 +3,7 @@
 #include "core/spfunc/sp_func_call.h"
 #include "core/spfunc/spfunc.h"
 #include "core/world/engine.h"
+#include "core/world/scene_component.h"
 
 namespace {
 // Fig. 8's SpFunc, registered on a component created at run time.
@@ -123,6 +124,15 @@ TEST_F(SpFuncTest, ObjectsAreReadAndWrittenAsReflectedTypes) {
               (std::vector<std::string>{"a", "b"}));
     EXPECT_EQ(errorOf([&] { SpUtils::getUnrealObj<FVector>(bundle, "nope"); }),
               "SpUtils::getUnrealObj(): object 'nope' was not passed (got 'names', 'out', 'pose')");
+    // JSON has no enums: an enum travels as its int (as Python's json writes an IntEnum), both ways.
+    SpUtils::setUnrealObj(bundle, "mobility", EComponentMobility::Movable);
+    EXPECT_EQ(bundle.unreal_obj_strings_.at("mobility"), "2");
+    EXPECT_EQ(SpUtils::getUnrealObj<EComponentMobility>(bundle, "mobility"), EComponentMobility::Movable);
+    bundle.unreal_obj_strings_["mobilities"] = "[0, 2]";
+    EXPECT_EQ(SpUtils::getUnrealObj<std::vector<EComponentMobility>>(bundle, "mobilities"),
+              (std::vector<EComponentMobility>{EComponentMobility::Static, EComponentMobility::Movable}));
+    bundle.unreal_obj_strings_["mobility"] = "7";
+    EXPECT_THROW(SpUtils::getUnrealObj<EComponentMobility>(bundle, "mobility"), sp::InvalidArgument);
     bundle.unreal_obj_strings_["bad"] = "{not json";
     EXPECT_THROW(SpUtils::getUnrealObj<FVector>(bundle, "bad"), sp::InvalidArgument);
     // Inside an SpFunc, errors name it.

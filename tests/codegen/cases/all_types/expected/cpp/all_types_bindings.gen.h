@@ -44,11 +44,16 @@ template <> struct type_caster<FCloudStats> {
         if (!PyDict_Check(src.ptr()))
             return false;
         dict d = reinterpret_borrow<dict>(src);
-        if (d.contains("distances"))
+        size_t known = 0; // a key that is not a field (or not a str) is left to the server's decoding to refuse
+        if (d.contains("distances")) {
             value.distances = sp::pybind::Bridge<sp::reflect::SpArray<float>>::in(d["distances"].cast<sp::pybind::Bridge<sp::reflect::SpArray<float>>::Py>(), "FCloudStats.distances");
-        if (d.contains("count"))
+            ++known;
+        }
+        if (d.contains("count")) {
             value.count = sp::pybind::Bridge<int64_t>::in(d["count"].cast<sp::pybind::Bridge<int64_t>::Py>(), "FCloudStats.count");
-        return true;
+            ++known;
+        }
+        return known == len(d);
     }
     static handle cast(const FCloudStats& v, return_value_policy, handle) {
         dict d;
@@ -66,11 +71,16 @@ template <> struct type_caster<FImages> {
         if (!PyDict_Check(src.ptr()))
             return false;
         dict d = reinterpret_borrow<dict>(src);
-        if (d.contains("color"))
+        size_t known = 0; // a key that is not a field (or not a str) is left to the server's decoding to refuse
+        if (d.contains("color")) {
             value.color = sp::pybind::Bridge<sp::reflect::SpArray<uint8_t>>::in(d["color"].cast<sp::pybind::Bridge<sp::reflect::SpArray<uint8_t>>::Py>(), "FImages.color");
-        if (d.contains("depth"))
+            ++known;
+        }
+        if (d.contains("depth")) {
             value.depth = sp::pybind::Bridge<sp::reflect::SpArray<float>>::in(d["depth"].cast<sp::pybind::Bridge<sp::reflect::SpArray<float>>::Py>(), "FImages.depth");
-        return true;
+            ++known;
+        }
+        return known == len(d);
     }
     static handle cast(const FImages& v, return_value_policy, handle) {
         dict d;
