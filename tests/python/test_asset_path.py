@@ -71,6 +71,23 @@ def test_spear_asset_path_folders_are_searched(tmp_path: Path, monkeypatch: pyte
     assert len(_actor_names(make_instance(scene="rooms/my_room.json"))) == 3
 
 
+def test_streaming_levels_are_relative_to_the_scene_file_found(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                               elsewhere: Path,
+                                                               make_instance: Callable[..., spear.Instance]) -> None:
+    # A scene found on SPEAR_ASSET_PATH names its level relative to its own folder: a file of the same
+    # relative name in the working directory (two actors) is not the level (one actor).
+    _first_actors(elsewhere / "rooms" / "extra.json", 2)
+    library = tmp_path / "library"
+    _first_actors(library / "rooms" / "extra.json", 1)
+    room = library / "rooms" / "my_room.json"
+    _first_actors(room, 0)
+    document = json.loads(room.read_text())
+    document["levels"] = [{"name": "Extra", "path": "extra.json", "loaded": True}]
+    room.write_text(json.dumps(document))
+    monkeypatch.setenv("SPEAR_ASSET_PATH", str(library))
+    assert len(_actor_names(make_instance(scene="rooms/my_room.json"))) == 1
+
+
 def test_a_file_in_the_working_directory_comes_first(elsewhere: Path,
                                                      make_instance: Callable[..., spear.Instance]) -> None:
     # The user's own assets/scenes/apartment.json (two actors) shadows the built-in one.
