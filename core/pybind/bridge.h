@@ -10,6 +10,7 @@
 #include <pybind11/stl.h>
 
 #include <map>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -179,22 +180,32 @@ template <typename T> struct Bridge<TSubclassOf<T>> {
 };
 
 // Containers convert element by element; when an element is refused, the server's decoding of the whole
-// value says which one ("AActor.Tags[2] must be a str, got int 3").
+// value says which one ("AActor.Tags[2] must be a str, got int 3"). unlessRefused runs such a conversion
+// (which returns nullopt for a container it does not take) and gives nullopt when an element was refused
+// too: InvalidArgument, NotFound or StaleObject, never InvalidState (outside a frame), which is not about the
+// value.
+template <typename Convert> auto unlessRefused(Convert&& convert) -> decltype(convert()) {
+    try {
+        return convert();
+    } catch (const InvalidArgument&) {
+    } catch (const NotFound&) {
+    } catch (const StaleObject&) {
+    }
+    return std::nullopt;
+}
+
 template <typename T> struct Bridge<std::vector<T>> {
     using Py = PyArg;
     static std::vector<T> in(const Py& value, std::string_view context) {
-        if (PyList_Check(value.ptr()) || PyTuple_Check(value.ptr())) {
-            try {
-                std::vector<T> result;
-                result.reserve(py::len(value));
-                for (py::handle item : value)
-                    result.push_back(Bridge<T>::in(py::reinterpret_borrow<PyArg>(item), context));
-                return result;
-            } catch (const InvalidArgument&) { // InvalidState (outside a frame) is not about the value
-            } catch (const NotFound&) {
-            } catch (const StaleObject&) {
-            }
-        }
+        if (PyList_Check(value.ptr()) || PyTuple_Check(value.ptr()))
+            if (auto result = unlessRefused([&] {
+                    std::vector<T> items;
+                    items.reserve(py::len(value));
+                    for (py::handle item : value)
+                        items.push_back(Bridge<T>::in(py::reinterpret_borrow<PyArg>(item), context));
+                    return std::optional(std::move(items));
+                }))
+                return std::move(*result);
         return decodeAsServer<std::vector<T>>(value, context);
     }
     static py::object out(const std::vector<T>& value) {
@@ -208,23 +219,18 @@ template <typename T> struct Bridge<std::vector<T>> {
 template <typename T> struct Bridge<std::map<std::string, T>> {
     using Py = PyArg;
     static std::map<std::string, T> in(const Py& value, std::string_view context) {
-        if (PyDict_Check(value.ptr())) {
-            try {
-                std::map<std::string, T> result;
-                bool keysAreStr = true;
-                for (auto [key, item] : py::reinterpret_borrow<py::dict>(value)) {
-                    if (!(keysAreStr = PyUnicode_Check(key.ptr())))
-                        break;
-                    result.emplace(py::cast<std::string>(key),
-                                   Bridge<T>::in(py::reinterpret_borrow<PyArg>(item), context));
-                }
-                if (keysAreStr)
-                    return result;
-            } catch (const InvalidArgument&) { // InvalidState (outside a frame) is not about the value
-            } catch (const NotFound&) {
-            } catch (const StaleObject&) {
-            }
-        }
+        if (PyDict_Check(value.ptr()))
+            if (auto result = unlessRefused([&]() -> std::optional<std::map<std::string, T>> {
+                    std::map<std::string, T> items;
+                    for (auto [key, item] : py::reinterpret_borrow<py::dict>(value)) {
+                        if (!PyUnicode_Check(key.ptr()))
+                            return std::nullopt;
+                        items.emplace(py::cast<std::string>(key),
+                                      Bridge<T>::in(py::reinterpret_borrow<PyArg>(item), context));
+                    }
+                    return items;
+                }))
+                return std::move(*result);
         return decodeAsServer<std::map<std::string, T>>(value, context);
     }
     static py::object out(const std::map<std::string, T>& value) {

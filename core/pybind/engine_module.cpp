@@ -50,37 +50,41 @@ void setAside(py::error_already_set& error, const char* what) {
         error.discard_as_unraisable(what);
 }
 
+// Calls spear's Python function `module.name` from any engine thread, under the GIL; false while Python
+// shuts down or when the call raised (set aside as above). `function` caches the function; it is never
+// freed: no Python object may be released after the interpreter is gone.
+template <typename... Args>
+bool callPython(py::object*& function, const char* module, const char* name, const char* what,
+                const Args&... args) {
+    if (!Py_IsInitialized() || pythonFinalizing())
+        return false;
+    py::gil_scoped_acquire gil;
+    try {
+        if (!function)
+            function = new py::object(py::module_::import(module).attr(name));
+        (*function)(args...);
+        return true;
+    } catch (py::error_already_set& error) {
+        setAside(error, what);
+        return false;
+    }
+}
+
 // Engine log lines become Python logging records (spear._logging.emit), from any thread. While Python
 // shuts down, or if the logging call fails, the line goes to stderr as it would without a sink.
 void logToPython(std::string_view file, int line, std::string_view message) {
-    if (Py_IsInitialized() && !pythonFinalizing()) {
-        py::gil_scoped_acquire gil;
-        try {
-            // Never freed: no Python object may be released after the interpreter is gone.
-            static py::object* const emit =
-                new py::object(py::module_::import("spear._logging").attr("emit"));
-            (*emit)(py::str(file.data(), file.size()), line, py::str(message.data(), message.size()));
-            return;
-        } catch (py::error_already_set& error) {
-            setAside(error, "spear: routing an engine log line to logging");
-        }
-    }
-    std::fprintf(stderr, "[spear] %.*s:%d: %.*s\n", int(file.size()), file.data(), line, int(message.size()),
-                 message.data());
+    static py::object* emit = nullptr;
+    if (!callPython(emit, "spear._logging", "emit", "spear: routing an engine log line to logging", file,
+                    line, message))
+        std::fprintf(stderr, "[spear] %.*s:%d: %.*s\n", int(file.size()), file.data(), line,
+                     int(message.size()), message.data());
 }
 
 // Progress reports of long engine work become terminal bars and end-of-task records (spear._progress).
 void progressToPython(std::string_view task, double done, double total, bool finished) {
-    if (!Py_IsInitialized() || pythonFinalizing())
-        return;
-    py::gil_scoped_acquire gil;
-    try {
-        static py::object* const report =
-            new py::object(py::module_::import("spear._progress").attr("report"));
-        (*report)(py::str(task.data(), task.size()), done, total, finished);
-    } catch (py::error_already_set& error) {
-        setAside(error, "spear: showing the engine's progress");
-    }
+    static py::object* report = nullptr;
+    callPython(report, "spear._progress", "report", "spear: showing the engine's progress", task, done, total,
+               finished);
 }
 
 // SpFuncs, in-process: arrays pass as views of the numpy buffers and come back as arrays that own the
