@@ -1,6 +1,7 @@
 #include "core/render/modality.h"
 
 #include <array>
+#include <bit>
 
 #include "core/base/error.h"
 
@@ -180,13 +181,14 @@ PassSet ModalitySet::requiredPasses(bool shadowsEnabled) const {
     passes.shadow = passes.lighting && shadowsEnabled;
     if (!passes.gbuffer)
         return passes;
-    // Forward when nothing but colour, depth and ids is asked: one pass, no G-buffer round trip.
-    constexpr TargetMask kForwardable = targetBit(Target::FinalColor) | targetBit(Target::Hdr) |
-                                        targetBit(Target::Depth) | targetBit(Target::Ids);
+    // Forward whenever the requested targets fit the draw buffers every GL 4.5 context has: the surface
+    // pass shades each fragment where it is rasterised and writes the attributes beside the colour. A
+    // G-buffer round trip costs a software rasteriser more than the shading itself (every pixel fetches
+    // five textures back), so deferred shading is kept for the sets that do not fit.
     constexpr TargetMask kLightingOutputs =
         targetBit(Target::Hdr) | targetBit(Target::DiffuseIllumination) | targetBit(Target::DiffuseOnly) |
         targetBit(Target::SpecularResidual) | targetBit(Target::FinalColor);
-    passes.forward = passes.lighting && (requested & ~kForwardable) == 0;
+    passes.forward = passes.lighting && std::popcount(requested) <= kMaxForwardTargets;
     if (passes.forward || !passes.lighting) {
         passes.surfaceTargets = requested;
     } else {

@@ -88,11 +88,13 @@ Target targetOf(Modality modality);
 std::string_view targetName(Target target);
 
 // The render passes a modality set needs; only these run. Two ways to produce colour:
-//   - forward: when colour, depth and ids are all that is asked, one surface pass shades every fragment
-//     (lights, shadows, sky, tone curve, sRGB) and writes only the requested targets;
-//   - deferred: when material attributes or the intrinsic images are asked, the surface pass fills a
-//     G-buffer of just the targets needed, and one full-screen lighting pass shades it and writes the
-//     HDR, intrinsic and tone-mapped targets asked for (tone mapping is fused into it).
+//   - forward: when the requested targets fit kMaxForwardTargets draw buffers, one surface pass shades
+//     every fragment (lights, shadows, sky, tone curve, sRGB) and writes only the requested targets;
+//   - deferred: for larger sets, the surface pass fills a G-buffer of just the targets needed, and one
+//     full-screen lighting pass shades it and writes the HDR, intrinsic and tone-mapped targets asked
+//     for (tone mapping is fused into it).
+// The draw buffers every OpenGL 4.5 context has (GL_MAX_DRAW_BUFFERS is at least 8).
+inline constexpr int kMaxForwardTargets = 8;
 struct PassSet {
     bool shadow = false;            // shadow maps (only when shading runs and the camera enables shadows)
     bool gbuffer = false;           // the surface pass (geometry rasterisation; forward or G-buffer)

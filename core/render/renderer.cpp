@@ -230,7 +230,7 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
             continue;
         }
         float value[4] = {0, 0, 0, 0};
-        if (target == Target::Hdr) {
+        if (target == Target::Hdr || target == Target::SpecularResidual) { // the background is all residual
             copy3(value, background, 1.0f);
         } else if (target == Target::FinalColor) {
             const std::array<float, 4> final = backgroundFinal(scene.environment(), camera.params);

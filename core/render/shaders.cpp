@@ -114,7 +114,7 @@ vec3 envBrdfApprox(vec3 f0, float roughness, float nov) {
 // Rounds to float16 so that diffuse_only = albedo * diffuse_illumination holds for the stored values
 // (only the intrinsic images need it; forward colour skips the conversions).
 vec3 toHalf(vec3 v) {
-#ifdef FORWARD
+#if defined(FORWARD) && !defined(EXACT_INTRINSICS)
     return v;
 #endif
     return vec3(unpackHalf2x16(packHalf2x16(v.xy)), unpackHalf2x16(packHalf2x16(vec2(v.z, 0.0))).x);
@@ -147,6 +147,22 @@ struct Shaded {
     vec3 diffuseIllumination; // of a white Lambertian surface, rounded to float16
     vec3 diffuseOnly;         // base * (1 - metallic) * diffuseIllumination
 };
+
+// The HDR and intrinsic targets of a shaded point (either pass; final colour is written apart).
+void writeShaded(Shaded s) {
+#ifdef OUT_Hdr
+    oHdr = vec4(s.hdr, 1.0);
+#endif
+#ifdef OUT_DiffuseIllumination
+    oDiffuseIllumination = vec4(s.diffuseIllumination, 1.0);
+#endif
+#ifdef OUT_DiffuseOnly
+    oDiffuseOnly = vec4(s.diffuseOnly, 1.0);
+#endif
+#ifdef OUT_SpecularResidual
+    oSpecularResidual = vec4(s.hdr - s.diffuseOnly, 1.0);
+#endif
+}
 
 struct Surface {
     vec3 p, n, v, f0;
@@ -235,10 +251,13 @@ void main() {
     oIds = uvec2(uObjectId, uMaterialId);
 #endif
 #ifdef FORWARD
-    Shaded s = shade(vWorldPosition, n, base, roughness, metallic, uAo, uEmissive);
-#ifdef OUT_Hdr
-    oHdr = vec4(s.hdr, 1.0);
+#ifdef EXACT_INTRINSICS
+    // Shade with the inputs as the float16 targets store them (see toHalf()).
+    base = toHalf(base);
+    metallic = unpackHalf2x16(packHalf2x16(vec2(metallic, 0.0))).x;
 #endif
+    Shaded s = shade(vWorldPosition, n, base, roughness, metallic, uAo, uEmissive);
+    writeShaded(s);
 #ifdef OUT_FinalColor
     oFinalColor = toneMapped(s.hdr);
 #endif
@@ -274,18 +293,7 @@ void main() {
         s = shade(position.xyz, texelFetch(gNormal, pixel, 0).xyz, texelFetch(gBaseColor, pixel, 0).rgb,
                   params.x, params.y, params.z, texelFetch(gEmissive, pixel, 0).rgb);
     }
-#ifdef OUT_Hdr
-    oHdr = vec4(s.hdr, 1.0);
-#endif
-#ifdef OUT_DiffuseIllumination
-    oDiffuseIllumination = vec4(s.diffuseIllumination, 1.0);
-#endif
-#ifdef OUT_DiffuseOnly
-    oDiffuseOnly = vec4(s.diffuseOnly, 1.0);
-#endif
-#ifdef OUT_SpecularResidual
-    oSpecularResidual = vec4(s.hdr - s.diffuseOnly, 1.0);
-#endif
+    writeShaded(s);
 #ifdef OUT_FinalColor
     oFinalColor = position.w == 0.0 ? uBackgroundFinal : toneMapped(s.hdr);
 #endif
@@ -462,6 +470,8 @@ std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialF
     // Forward shading is the costly part: depth-test before it, so hidden fragments are never shaded.
     if (forward)
         text += "#define FORWARD\nlayout(early_fragment_tests) in;\n";
+    if (forward && (targets & targetBit(Target::DiffuseOnly)) != 0)
+        text += "#define EXACT_INTRINSICS\n";
     if (materialFeatures & kBaseColorTexture)
         text += "#define HAS_BASE_COLOR_TEXTURE\n";
     if (materialFeatures & kRoughnessMetallicTexture)

@@ -1,7 +1,9 @@
-// spear_render_bench: ms/frame of submit + read at 256x256 and 1920x1080, for final_color only and for
-// every modality, per latency mode, on a ground plane with N boxes, a shadowed sun and a spot light.
+// spear_render_bench: ms/frame of submit + read at 256x256 and 1920x1080, for final_color only, for
+// every modality and for any further sets named on the command line, per latency mode, on a ground plane
+// with N boxes, a shadowed sun and a spot light.
 //
-//   spear_render_bench [--boxes N] [--frames F] [--shadows RES] [--png DIR]   (--shadows 0: off)
+//   spear_render_bench [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--modalities a,b,...]...
+//   (--shadows 0: off; each --modalities adds one set, e.g. final_color,depth,normal,object_ids)
 //
 // --png writes the 256x256 and 1920x1080 final_color images of the scene, to look at.
 
@@ -12,6 +14,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/render/gl_context.h"
 #include "core/render/image_buffer.h"
@@ -79,6 +83,9 @@ Camera makeCamera(int width, int height, int boxes, int shadowResolution) {
 int main(int argc, char** argv) {
     int boxes = 64, frames = 10, shadows = 2048;
     std::string pngDir;
+    // The sets timed: a label and the modalities.
+    std::vector<std::pair<std::string, ModalitySet>> sets = {
+        {"final_color", ModalitySet{Modality::FinalColor}}, {"all (14)", ModalitySet::all()}};
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--boxes") && i + 1 < argc)
             boxes = std::atoi(argv[++i]);
@@ -88,8 +95,21 @@ int main(int argc, char** argv) {
             shadows = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--png") && i + 1 < argc)
             pngDir = argv[++i];
-        else {
-            std::fprintf(stderr, "usage: %s [--boxes N] [--frames F] [--shadows RES] [--png DIR]\n", argv[0]);
+        else if (!std::strcmp(argv[i], "--modalities") && i + 1 < argc) {
+            const std::string list = argv[++i];
+            std::vector<std::string> names;
+            for (std::string rest = list; !rest.empty();) {
+                const std::size_t comma = rest.find(',');
+                names.push_back(rest.substr(0, comma));
+                rest = comma == std::string::npos ? std::string() : rest.substr(comma + 1);
+            }
+            const ModalitySet set = ModalitySet::fromNames(names); // throws on an unknown name
+            sets.emplace_back(list, set);
+        } else {
+            std::fprintf(
+                stderr,
+                "usage: %s [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--modalities a,b,...]\n",
+                argv[0]);
             return 2;
         }
     }
@@ -105,10 +125,9 @@ int main(int argc, char** argv) {
     const std::pair<int, int> sizes[] = {{256, 256}, {1920, 1080}};
     for (auto [width, height] : sizes) {
         Camera camera = makeCamera(width, height, boxes, shadows);
-        for (bool all : {false, true}) {
+        for (const auto& [label, modalities] : sets) {
             for (int latency = 0; latency <= RenderTarget::kMaxLatency; ++latency) {
-                RenderTarget target(renderer, all ? ModalitySet::all() : ModalitySet{Modality::FinalColor},
-                                    latency);
+                RenderTarget target(renderer, modalities, latency);
                 Frame frame;
                 for (int i = 0; i < 3; ++i)
                     target.render(scene, camera, frame);
@@ -120,14 +139,13 @@ int main(int argc, char** argv) {
                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                         .count() /
                     frames;
-                std::printf("%4dx%-5d %-12s %-8d %10.2f  ", width, height, all ? "all (14)" : "final_color",
-                            latency, ms);
+                std::printf("%4dx%-5d %-12s %-8d %10.2f  ", width, height, label.c_str(), latency, ms);
                 for (const PassTime& pass : renderer.stats().passTimes)
                     std::printf(" %6.2f/%-6.2f", pass.samples ? pass.gpuMs / double(pass.samples) : 0.0,
                                 pass.cpuMs / frames);
                 std::printf("\n");
                 std::fflush(stdout);
-                if (!pngDir.empty() && !all && latency == 0) {
+                if (!pngDir.empty() && label == "final_color" && latency == 0) {
                     const ImageBuffer& color = frame.get(Modality::FinalColor);
                     writePng(pngDir + "/bench_" + std::to_string(width) + "x" + std::to_string(height) +
                                  ".png",

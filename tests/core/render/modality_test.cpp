@@ -1,3 +1,5 @@
+#include <bit>
+
 #include <gtest/gtest.h>
 
 #include "core/base/error.h"
@@ -45,6 +47,29 @@ TEST(ModalityTest, OnlyNeededPassesAreRequired) {
     PassSet color = ModalitySet{Modality::FinalColor}.requiredPasses(false);
     EXPECT_TRUE(color.gbuffer && color.lighting && color.tonemap && !color.shadow);
     EXPECT_FALSE(ModalitySet().requiredPasses(true).gbuffer);
+}
+
+TEST(ModalityTest, ShadingIsForwardWhenTheTargetsFitTheDrawBuffers) {
+    // Colour, depth, normals and both ids: four targets, shaded where rasterised.
+    const PassSet common = ModalitySet{Modality::FinalColor, Modality::Depth, Modality::Normal,
+                                       Modality::ObjectIds, Modality::MaterialIds}
+                               .requiredPasses(true);
+    EXPECT_TRUE(common.forward);
+    EXPECT_EQ(common.lightingTargets, 0u);
+    EXPECT_EQ(common.surfaceTargets, targetBit(Target::Normal) | targetBit(Target::Depth) |
+                                         targetBit(Target::Ids) | targetBit(Target::FinalColor));
+    // The intrinsic images with their inputs: eight targets (roughness, metallic and AO share one).
+    const ModalitySet intrinsics{
+        Modality::FinalColor,      Modality::HdrColor,  Modality::BaseColor,           Modality::Metallic,
+        Modality::Roughness,       Modality::ObjectIds, Modality::DiffuseIllumination, Modality::DiffuseOnly,
+        Modality::SpecularResidual};
+    EXPECT_TRUE(intrinsics.requiredPasses(true).forward);
+    // Every modality: eleven targets, more than GL 4.5 promises, so a G-buffer and a lighting pass.
+    const PassSet all = ModalitySet::all().requiredPasses(true);
+    EXPECT_FALSE(all.forward);
+    EXPECT_NE(all.surfaceTargets & targetBit(Target::Emissive), 0u);
+    EXPECT_LE(std::popcount(all.surfaceTargets), kMaxForwardTargets);
+    EXPECT_LE(std::popcount(all.lightingTargets), kMaxForwardTargets);
 }
 
 TEST(ModalityTest, HalfFloatRoundTrips) {

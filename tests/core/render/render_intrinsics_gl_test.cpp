@@ -11,7 +11,10 @@ namespace {
 
 using RenderIntrinsicsGlTest = GlTest;
 
-TEST_F(RenderIntrinsicsGlTest, IdentitiesHoldPerPixel) {
+// Renders the shapes under a sun and a spot light with `modalities` (which hold every image the identities
+// name) on the path `forward` says, and checks the identities at every pixel.
+void expectIdentitiesPerPixel(Renderer& renderer, const ModalitySet& modalities, bool forward) {
+    ASSERT_EQ(modalities.requiredPasses(true).forward, forward);
     Scene scene;
     buildShapesScene(scene);
     Light spot;
@@ -21,7 +24,7 @@ TEST_F(RenderIntrinsicsGlTest, IdentitiesHoldPerPixel) {
     spot.intensity = 8.0f;
     scene.addLight(spot);
     Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 48, 40);
-    RenderTarget target(renderer(), ModalitySet::all(), 0);
+    RenderTarget target(renderer, modalities, 0);
     Frame frame;
     target.render(scene, camera, frame);
     const ImageBuffer& hdr = frame.get(Modality::HdrColor);
@@ -54,6 +57,19 @@ TEST_F(RenderIntrinsicsGlTest, IdentitiesHoldPerPixel) {
         }
     EXPECT_GT(background, 0);
     EXPECT_GT(metalPixels, 0); // the gold sphere is in view: its diffuse part is zero
+}
+
+TEST_F(RenderIntrinsicsGlTest, IdentitiesHoldPerPixelWhenShadedForward) {
+    // Eight targets: shaded in the surface pass, with the inputs rounded as the targets store them.
+    expectIdentitiesPerPixel(renderer(),
+                             {Modality::HdrColor, Modality::BaseColor, Modality::Metallic,
+                              Modality::ObjectIds, Modality::DiffuseIllumination, Modality::DiffuseOnly,
+                              Modality::SpecularResidual},
+                             true);
+}
+
+TEST_F(RenderIntrinsicsGlTest, IdentitiesHoldPerPixelWhenShadedDeferred) {
+    expectIdentitiesPerPixel(renderer(), ModalitySet::all(), false);
 }
 
 TEST_F(RenderIntrinsicsGlTest, WhiteLambertianUnderANormalSunHasUnitIllumination) {

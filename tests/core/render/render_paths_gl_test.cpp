@@ -32,13 +32,13 @@ TEST_F(RenderPathsGlTest, ForwardAndDeferredColourAgree) {
     buildShapesScene(scene);
     Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 96, 64, 60.0);
     const PassSet forward = ModalitySet{Modality::FinalColor, Modality::Depth}.requiredPasses(true);
-    const PassSet deferred = ModalitySet{Modality::FinalColor, Modality::Normal}.requiredPasses(true);
+    const PassSet deferred = ModalitySet::all().requiredPasses(true);
     ASSERT_TRUE(forward.forward);
     ASSERT_FALSE(deferred.forward);
 
     renderer().resetStats();
     RenderTarget forwardTarget(renderer(), {Modality::FinalColor, Modality::HdrColor, Modality::Depth}, 0);
-    RenderTarget deferredTarget(renderer(), {Modality::FinalColor, Modality::HdrColor, Modality::Normal}, 0);
+    RenderTarget deferredTarget(renderer(), ModalitySet::all(), 0);
     Frame a, b;
     forwardTarget.render(scene, camera, a);
     deferredTarget.render(scene, camera, b);
