@@ -7,14 +7,13 @@
 namespace sp::render {
 namespace {
 
-GLenum formatOf(Target target, const PassSet& passes) {
+GLenum formatOf(Target target) {
     switch (target) {
     case Target::Position:
-    case Target::Depth:
-        return target == Target::Depth ? GL_R32F : GL_RGBA32F;
     case Target::Normal:
-        // float32 when the normal modality is read back; shading alone is content with half floats.
-        return passes.highPrecisionNormal ? GL_RGBA32F : GL_RGBA16F;
+        return GL_RGBA32F;
+    case Target::Depth:
+        return GL_R32F;
     case Target::Ids:
         return GL_RG32UI; // never filtered or blended
     case Target::FinalColor:
@@ -49,16 +48,16 @@ Framebuffers::~Framebuffers() {
 }
 
 void Framebuffers::release() {
-    if (surfaceFbo == 0 && lightingFbo == 0 && depthBuffer_ == 0)
+    if (surfaceFbo == 0 && attributeFbo == 0 && depthBuffer_ == 0)
         return; // nothing allocated: no GL call, so a never-used target needs no context
     glDeleteFramebuffers(1, &surfaceFbo);
-    glDeleteFramebuffers(1, &lightingFbo);
+    glDeleteFramebuffers(1, &attributeFbo);
     glDeleteTextures(GLsizei(textures_.size()), textures_.data());
     glDeleteRenderbuffers(1, &depthBuffer_);
-    surfaceFbo = lightingFbo = depthBuffer_ = 0;
+    surfaceFbo = attributeFbo = depthBuffer_ = 0;
     textures_.fill(0);
     formats_.fill(0);
-    surfaceTargets_ = lightingTargets_ = 0;
+    surfaceTargets_ = attributeTargets_ = 0;
     width = height = 0;
 }
 
@@ -88,12 +87,12 @@ void Framebuffers::ensure(int w, int h, const PassSet& passes) {
         release();
     width = w;
     height = h;
-    const TargetMask needed = passes.surfaceTargets | passes.lightingTargets;
-    bool changed = passes.surfaceTargets != surfaceTargets_ || passes.lightingTargets != lightingTargets_;
+    const TargetMask needed = passes.surfaceTargets | passes.attributeTargets;
+    bool changed = passes.surfaceTargets != surfaceTargets_ || passes.attributeTargets != attributeTargets_;
     for (std::size_t t = 0; t < kTargetCount; ++t) {
         if ((needed & (TargetMask(1) << t)) == 0)
             continue; // kept for when the modalities come back; freed with the size
-        const GLenum format = formatOf(static_cast<Target>(t), passes);
+        const GLenum format = formatOf(static_cast<Target>(t));
         if (textures_[t] != 0 && formats_[t] == format)
             continue;
         glDeleteTextures(1, &textures_[t]);
@@ -101,7 +100,7 @@ void Framebuffers::ensure(int w, int h, const PassSet& passes) {
         formats_[t] = format;
         changed = true;
     }
-    if (passes.gbuffer && depthBuffer_ == 0) {
+    if (passes.surface && depthBuffer_ == 0) {
         glCreateRenderbuffers(1, &depthBuffer_);
         glNamedRenderbufferStorage(depthBuffer_, GL_DEPTH_COMPONENT32F, w, h);
         changed = true;
@@ -109,21 +108,21 @@ void Framebuffers::ensure(int w, int h, const PassSet& passes) {
     if (!changed)
         return;
     glDeleteFramebuffers(1, &surfaceFbo);
-    glDeleteFramebuffers(1, &lightingFbo);
-    surfaceFbo = lightingFbo = 0;
+    glDeleteFramebuffers(1, &attributeFbo);
+    surfaceFbo = attributeFbo = 0;
     surfaceTargets_ = passes.surfaceTargets;
-    lightingTargets_ = passes.lightingTargets;
+    attributeTargets_ = passes.attributeTargets;
     if (surfaceTargets_ != 0)
         surfaceFbo = makeFramebuffer(surfaceTargets_, true, "surface");
-    if (lightingTargets_ != 0)
-        lightingFbo = makeFramebuffer(lightingTargets_, false, "lighting");
+    if (attributeTargets_ != 0)
+        attributeFbo = makeFramebuffer(attributeTargets_, true, "attribute");
 }
 
 Framebuffers::Attachment Framebuffers::attachment(Target target) const {
     if (int index = indexIn(surfaceTargets_, target); index >= 0)
         return {surfaceFbo, index};
-    if (int index = indexIn(lightingTargets_, target); index >= 0)
-        return {lightingFbo, index};
+    if (int index = indexIn(attributeTargets_, target); index >= 0)
+        return {attributeFbo, index};
     SP_THROW(InvalidState, "Framebuffers::attachment(): target ", targetName(target),
              " was not rendered in the last frame");
 }

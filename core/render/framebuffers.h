@@ -1,6 +1,7 @@
 #pragma once
 // The off-screen targets of one RenderTarget: one texture per Target a frame writes, a depth buffer, and
-// the framebuffers of the surface and lighting passes, each attaching its targets in Target order.
+// the framebuffers of the surface and attribute passes, each attaching its targets in Target order and
+// both the one depth buffer (the attribute pass tests against the surface pass's depth).
 // Textures are allocated only for the targets the passes write and kept across frames while the size
 // and format fit. Needs a current context.
 
@@ -31,7 +32,7 @@ class Framebuffers {
     int width = 0;
     int height = 0;
     unsigned surfaceFbo = 0;
-    unsigned lightingFbo = 0;
+    unsigned attributeFbo = 0;
 
   private:
     void release();
@@ -41,7 +42,7 @@ class Framebuffers {
     std::array<unsigned, kTargetCount> formats_{};
     unsigned depthBuffer_ = 0;
     TargetMask surfaceTargets_ = 0;
-    TargetMask lightingTargets_ = 0;
+    TargetMask attributeTargets_ = 0;
 };
 
 } // namespace sp::render

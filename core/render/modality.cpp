@@ -160,10 +160,12 @@ Target targetOf(Modality modality) {
 }
 
 std::string_view targetName(Target target) {
-    static constexpr std::array<std::string_view, kTargetCount> kNames{
-        "Position",         "Normal",    "Depth", "BaseColor",           "Params",
-        "Emissive",         "Ids",       "Hdr",   "DiffuseIllumination", "DiffuseOnly",
-        "SpecularResidual", "FinalColor"};
+    static constexpr std::array<std::string_view, kTargetCount> kNames{"Position",    "Normal",
+                                                                       "Depth",       "BaseColor",
+                                                                       "Params",      "Ids",
+                                                                       "Hdr",         "DiffuseIllumination",
+                                                                       "DiffuseOnly", "SpecularResidual",
+                                                                       "FinalColor"};
     const auto index = static_cast<std::size_t>(target);
     SP_CHECK(index < kTargetCount, InvalidArgument, "targetName(): bad target value ", index);
     return kNames[index];
@@ -173,33 +175,33 @@ PassSet ModalitySet::requiredPasses(bool shadowsEnabled) const {
     PassSet passes;
     TargetMask requested = 0;
     for (Modality m : list()) {
-        passes.gbuffer = true;
+        passes.surface = true;
         passes.lighting = passes.lighting || needsLighting(m);
         passes.tonemap = passes.tonemap || m == Modality::FinalColor;
         requested |= targetBit(targetOf(m));
     }
     passes.shadow = passes.lighting && shadowsEnabled;
-    if (!passes.gbuffer)
+    if (!passes.surface)
         return passes;
-    // Forward whenever the requested targets fit the draw buffers every GL 4.5 context has: the surface
-    // pass shades each fragment where it is rasterised and writes the attributes beside the colour. A
-    // G-buffer round trip costs a software rasteriser more than the shading itself (every pixel fetches
-    // five textures back), so deferred shading is kept for the sets that do not fit.
-    constexpr TargetMask kLightingOutputs =
-        targetBit(Target::Hdr) | targetBit(Target::DiffuseIllumination) | targetBit(Target::DiffuseOnly) |
-        targetBit(Target::SpecularResidual) | targetBit(Target::FinalColor);
-    passes.forward = passes.lighting && std::popcount(requested) <= kMaxForwardTargets;
-    if (passes.forward || !passes.lighting) {
+    if (std::popcount(requested) <= kMaxDrawTargets) {
         passes.surfaceTargets = requested;
-    } else {
-        // The G-buffer: what shading reads, plus the geometric and material targets asked for.
-        constexpr TargetMask kShadingInputs = targetBit(Target::Position) | targetBit(Target::Normal) |
-                                              targetBit(Target::BaseColor) | targetBit(Target::Params) |
-                                              targetBit(Target::Emissive);
-        passes.surfaceTargets = kShadingInputs | (requested & ~kLightingOutputs);
-        passes.lightingTargets = requested & kLightingOutputs;
+        return passes;
     }
-    passes.highPrecisionNormal = contains(Modality::Normal);
+    // The shaded targets go to the surface pass (only it shades), then the others in Target order
+    // while draw buffers are left; the rest to the attribute pass.
+    constexpr TargetMask kShaded = targetBit(Target::Hdr) | targetBit(Target::DiffuseIllumination) |
+                                   targetBit(Target::DiffuseOnly) | targetBit(Target::SpecularResidual) |
+                                   targetBit(Target::FinalColor);
+    passes.surfaceTargets = requested & kShaded;
+    for (std::size_t t = 0; t < kTargetCount; ++t) {
+        const TargetMask bit = TargetMask(1) << t;
+        if ((requested & bit) == 0 || (passes.surfaceTargets & bit) != 0)
+            continue;
+        if (std::popcount(passes.surfaceTargets) < kMaxDrawTargets)
+            passes.surfaceTargets |= bit;
+        else
+            passes.attributeTargets |= bit;
+    }
     return passes;
 }
 

@@ -66,11 +66,10 @@ Modality modalityFromName(std::string_view name);
 // The colour targets a frame can write, each one texture of the camera's framebuffers.
 enum class Target : std::uint8_t {
     Position,            // RGBA32F world position, w = 1 on geometry (0 = background)
-    Normal,              // RGBA32F when the normal modality is read, RGBA16F when only shading needs it
+    Normal,              // RGBA32F world normal
     Depth,               // R32F metres along the optical axis
     BaseColor,           // RGBA16F
     Params,              // RGBA16F roughness, metallic, ao
-    Emissive,            // RGBA16F
     Ids,                 // RG32UI object id, material id
     Hdr,                 // RGBA16F linear radiance
     DiffuseIllumination, // RGBA16F
@@ -78,7 +77,7 @@ enum class Target : std::uint8_t {
     SpecularResidual,    // RGBA16F
     FinalColor,          // RGBA8 tone-mapped sRGB
 };
-inline constexpr std::size_t kTargetCount = 12;
+inline constexpr std::size_t kTargetCount = 11;
 using TargetMask = std::uint32_t;
 inline constexpr TargetMask targetBit(Target target) {
     return TargetMask(1) << static_cast<unsigned>(target);
@@ -87,23 +86,21 @@ inline constexpr TargetMask targetBit(Target target) {
 Target targetOf(Modality modality);
 std::string_view targetName(Target target);
 
-// The render passes a modality set needs; only these run. Two ways to produce colour:
-//   - forward: when the requested targets fit kMaxForwardTargets draw buffers, one surface pass shades
-//     every fragment (lights, shadows, sky, tone curve, sRGB) and writes only the requested targets;
-//   - deferred: for larger sets, the surface pass fills a G-buffer of just the targets needed, and one
-//     full-screen lighting pass shades it and writes the HDR, intrinsic and tone-mapped targets asked
-//     for (tone mapping is fused into it).
 // The draw buffers every OpenGL 4.5 context has (GL_MAX_DRAW_BUFFERS is at least 8).
-inline constexpr int kMaxForwardTargets = 8;
+inline constexpr int kMaxDrawTargets = 8;
+
+// The render passes a modality set needs; only these run. Shading is forward: the surface pass shades
+// every fragment where it is rasterised (lights, shadows, sky, tone curve, sRGB) and writes the requested
+// targets beside the colour. A set with more targets than one pass can write (all 14 modalities need 11)
+// has the rest written by an attribute pass: the same geometry drawn again against the surface pass's
+// depth (equal depth, no writes), so only the visible fragment of each pixel runs its shader.
 struct PassSet {
-    bool shadow = false;            // shadow maps (only when shading runs and the camera enables shadows)
-    bool gbuffer = false;           // the surface pass (geometry rasterisation; forward or G-buffer)
-    bool lighting = false;          // shading: in the surface pass when forward, else a full-screen pass
-    bool tonemap = false;           // exposure, tone curve, sRGB encoding (fused into whichever pass shades)
-    bool forward = false;           // shading happens in the surface pass
-    TargetMask surfaceTargets = 0;  // written by the surface pass, attached in Target order
-    TargetMask lightingTargets = 0; // written by the deferred lighting pass, attached in Target order
-    bool highPrecisionNormal = false; // the normal target holds the float32 normal modality
+    bool shadow = false;             // shadow maps (only when shading runs and the camera enables shadows)
+    bool surface = false;            // the surface pass (geometry rasterisation)
+    bool lighting = false;           // the surface pass shades
+    bool tonemap = false;            // exposure, tone curve, sRGB encoding (fused into the shading)
+    TargetMask surfaceTargets = 0;   // written by the surface pass, attached in Target order
+    TargetMask attributeTargets = 0; // written by the attribute pass, attached in Target order
 
     bool operator==(const PassSet&) const = default;
 };

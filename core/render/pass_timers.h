@@ -11,7 +11,7 @@
 
 namespace sp::render {
 
-enum class Pass : std::uint8_t { Shadow, Surface, Lighting, Readback };
+enum class Pass : std::uint8_t { Shadow, Surface, Attribute, Readback };
 inline constexpr std::size_t kPassCount = 4;
 
 struct PassTime {

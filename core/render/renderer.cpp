@@ -63,8 +63,9 @@ std::array<Eigen::Vector4d, 6> frustumPlanes(const Eigen::Matrix4d& viewProjecti
     return planes;
 }
 
-// One submesh of a visible instance.
-struct Draw {
+} // namespace
+
+struct Renderer::Draw {
     const Instance* instance;
     MeshId mesh; // the level of detail drawn
     std::size_t slot;
@@ -72,13 +73,10 @@ struct Draw {
     double distance;   // from the eye to the instance's bounding sphere
 };
 
-} // namespace
-
 Renderer::Renderer(const GlContext& context) : context_(context) {
     context_.makeCurrent();
     shadow_ = std::make_unique<ShaderProgram>("shadow", shaders::kShadowVertex, shaders::kShadowFragment);
     shadowMaps_ = std::make_unique<ShadowMaps>();
-    glCreateVertexArrays(1, &emptyVao_);
     glCreateBuffers(1, &frameBlock_);
     glNamedBufferData(frameBlock_, sizeof(shaders::FrameBlock), nullptr, GL_DYNAMIC_DRAW);
     // Readbacks of 3-channel and 16-bit images have rows that are not multiples of 4 bytes.
@@ -89,7 +87,6 @@ Renderer::~Renderer() {
     context_.makeCurrent();
     caches_.clear();
     shadowMaps_.reset();
-    glDeleteVertexArrays(1, &emptyVao_);
     glDeleteBuffers(1, &frameBlock_);
 }
 
@@ -126,15 +123,6 @@ ShaderProgram& Renderer::surfaceProgram(TargetMask targets, bool forward, unsign
     return *program;
 }
 
-ShaderProgram& Renderer::lightingProgram(TargetMask targets, const shaders::ShadingLayout& lights) {
-    const std::string key = "lighting/" + std::to_string(targets) + "/" + lights.key();
-    auto& program = programs_[key];
-    if (!program)
-        program = std::make_unique<ShaderProgram>(key, shaders::fullscreenVertex().c_str(),
-                                                  shaders::lightingFragment(targets, lights).c_str());
-    return *program;
-}
-
 void Renderer::render(const Scene& scene, const Camera& camera, const PassSet& passes, Framebuffers& fb) {
     camera.params.validate("Renderer::render");
     GpuSceneCache& cache = cacheFor(scene);
@@ -167,10 +155,12 @@ void Renderer::render(const Scene& scene, const Camera& camera, const PassSet& p
         });
         uploadFrameBlock(scene, camera, shadowInfos);
     }
-    if (passes.gbuffer)
-        surfacePass(scene, camera, passes, lights, cache, fb);
-    if (passes.lighting && !passes.forward)
-        lightingPass(passes, lights, fb);
+    if (passes.surface) {
+        const std::vector<Draw> draws = visibleDraws(scene, camera);
+        surfacePass(scene, camera, passes, lights, draws, cache, fb);
+        if (passes.attributeTargets != 0)
+            attributePass(scene, camera, passes, draws, cache, fb);
+    }
     stats_.lightingPasses += passes.lighting ? 1 : 0;
     stats_.tonemapPasses += passes.tonemap ? 1 : 0;
     stats_.meshUploads += cache.meshUploads() - meshUploads;
@@ -210,18 +200,47 @@ void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
 }
 
 void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassSet& passes,
-                           const shaders::ShadingLayout& lights, GpuSceneCache& cache, Framebuffers& fb) {
+                           const shaders::ShadingLayout& lights, const std::vector<Draw>& draws,
+                           GpuSceneCache& cache, Framebuffers& fb) {
     timers_.begin(Pass::Surface);
     glBindFramebuffer(GL_FRAMEBUFFER, fb.surfaceFbo);
     glViewport(0, 0, fb.width, fb.height);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
+    clearTargets(scene, camera, passes.surfaceTargets);
+    glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+    if (!passes.lighting) // the material chunk still reads the camera position from the frame block
+        uploadFrameBlock(scene, camera, {});
+    if (passes.lighting)
+        glBindTextureUnit(shaders::kShadowMapUnit, passes.shadow ? shadowMaps_->texture() : 0);
+    drawAll(scene, camera, draws, passes.surfaceTargets, passes.lighting, lights, cache);
+    timers_.end();
+    ++stats_.surfacePasses;
+}
+
+void Renderer::attributePass(const Scene& scene, const Camera& camera, const PassSet& passes,
+                             const std::vector<Draw>& draws, GpuSceneCache& cache, Framebuffers& fb) {
+    timers_.begin(Pass::Attribute);
+    glBindFramebuffer(GL_FRAMEBUFFER, fb.attributeFbo);
+    glViewport(0, 0, fb.width, fb.height);
+    // The surface pass's depth, kept: a fragment passes only where it is the one the surface pass left.
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    clearTargets(scene, camera, passes.attributeTargets);
+    drawAll(scene, camera, draws, passes.attributeTargets, false, {}, cache);
+    glDepthMask(GL_TRUE);
+    timers_.end();
+    ++stats_.attributePasses;
+}
+
+void Renderer::clearTargets(const Scene& scene, const Camera& camera, TargetMask targets) {
     // Clear values are what a background pixel of each modality reads.
     const Eigen::Vector3f background = scene.environment().background;
     int location = 0;
     for (std::size_t t = 0; t < kTargetCount; ++t) {
-        if ((passes.surfaceTargets & (TargetMask(1) << t)) == 0)
+        if ((targets & (TargetMask(1) << t)) == 0)
             continue;
         const auto target = static_cast<Target>(t);
         if (target == Target::Ids) {
@@ -238,11 +257,9 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
         }
         glClearBufferfv(GL_COLOR, location++, value);
     }
-    glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+}
 
-    // The projection is flipped vertically so that GL's bottom row holds image row 0 and glReadPixels
-    // returns the top image row first; depth and ids are unaffected.
-    const Eigen::Matrix4d worldToCamera = camera.pose.inverse(Eigen::Isometry).matrix();
+std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Camera& camera) {
     const Eigen::Matrix4d viewProjection = camera.projectionMatrix(true) * camera.viewMatrix();
     const std::array<Eigen::Vector4d, 6> planes = frustumPlanes(viewProjection);
     const Eigen::Vector3d eye = camera.pose.translation();
@@ -284,16 +301,21 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
         return a.features != b.features ? a.features < b.features : a.distance < b.distance;
     });
     stats_.drawnInstances += drawn;
+    return draws;
+}
 
-    if (!passes.lighting) // a G-buffer alone still reads the camera position from the frame block
-        uploadFrameBlock(scene, camera, {});
-    if (passes.forward)
-        glBindTextureUnit(shaders::kShadowMapUnit, passes.shadow ? shadowMaps_->texture() : 0);
+void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vector<Draw>& draws,
+                       TargetMask targets, bool shade, const shaders::ShadingLayout& lights,
+                       GpuSceneCache& cache) {
+    // The projection is flipped vertically so that GL's bottom row holds image row 0 and glReadPixels
+    // returns the top image row first; depth and ids are unaffected.
+    const Eigen::Matrix4d worldToCamera = camera.pose.inverse(Eigen::Isometry).matrix();
+    const Eigen::Matrix4d viewProjection = camera.projectionMatrix(true) * camera.viewMatrix();
     ShaderProgram* program = nullptr;
     unsigned programFeatures = 0;
     for (const Draw& draw : draws) {
         if (program == nullptr || draw.features != programFeatures) { // draws are grouped by features
-            program = &surfaceProgram(passes.surfaceTargets, passes.forward, draw.features, lights);
+            program = &surfaceProgram(targets, shade, draw.features, lights);
             programFeatures = draw.features;
             program->use();
         }
@@ -325,25 +347,6 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
                        reinterpret_cast<const void*>(std::uintptr_t(sub.firstIndex) * 4));
     }
     glBindVertexArray(0);
-    timers_.end();
-    ++stats_.gbufferPasses;
-    stats_.forwardPasses += passes.forward ? 1 : 0;
-}
-
-void Renderer::lightingPass(const PassSet& passes, const shaders::ShadingLayout& lights, Framebuffers& fb) {
-    timers_.begin(Pass::Lighting);
-    glBindFramebuffer(GL_FRAMEBUFFER, fb.lightingFbo);
-    glViewport(0, 0, fb.width, fb.height);
-    glDisable(GL_DEPTH_TEST);
-    // G-buffer samplers sit at the units of their Target index (see kLightingMain).
-    for (Target t : {Target::Position, Target::Normal, Target::BaseColor, Target::Params, Target::Emissive})
-        glBindTextureUnit(static_cast<unsigned>(t), fb.texture(t));
-    glBindTextureUnit(shaders::kShadowMapUnit, passes.shadow ? shadowMaps_->texture() : 0);
-    lightingProgram(passes.lightingTargets, lights).use();
-    glBindVertexArray(emptyVao_);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindVertexArray(0);
-    timers_.end();
 }
 
 } // namespace sp::render

@@ -1,9 +1,10 @@
 #pragma once
 // The GL renderer: owns the shader programs, shadow maps and per-scene GPU caches, and runs the passes
 // a RenderTarget asks for (see PassSet in modality.h): shadow maps (reused while lights and casters do
-// not move, so the views of one frame share them), then either one forward surface pass that shades and
-// tone-maps, or a G-buffer surface pass and one full-screen lighting pass. Instances outside the view
-// are culled and the rest drawn front to back, so hidden fragments fail the early depth test.
+// not move, so the views of one frame share them), then one surface pass that shades, tone-maps and
+// writes up to 8 targets, and for larger sets an attribute pass that writes the rest at the fragments
+// the surface pass kept. Instances outside the view are culled and the rest drawn front to back, so
+// hidden fragments fail the early depth test.
 // One Renderer per GlContext; destroy it (and its RenderTargets) before the context.
 
 #include <array>
@@ -11,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/render/camera.h"
 #include "core/render/gl_context.h"
@@ -30,13 +32,13 @@ struct ShadowInfo;
 // How often each pass ran (tests use it to check that only the needed passes run), and what it cost.
 struct RenderStats {
     std::uint64_t frames = 0;
-    std::uint64_t shadowPasses = 0;   // one per shadow map rendered
-    std::uint64_t shadowReuses = 0;   // frames whose shadow maps were reused unchanged
-    std::uint64_t gbufferPasses = 0;  // surface passes (forward or G-buffer)
-    std::uint64_t forwardPasses = 0;  // surface passes that shaded (no lighting pass)
-    std::uint64_t lightingPasses = 0; // frames that shaded (forward or deferred)
-    std::uint64_t tonemapPasses = 0;  // frames that tone-mapped (fused into whichever pass shaded)
-    std::uint64_t readbacks = 0;      // one per modality read back
+    std::uint64_t shadowPasses = 0;    // one per shadow map rendered
+    std::uint64_t shadowReuses = 0;    // frames whose shadow maps were reused unchanged
+    std::uint64_t surfacePasses = 0;   // surface passes (shading or not)
+    std::uint64_t attributePasses = 0; // attribute passes (targets past the surface pass's 8)
+    std::uint64_t lightingPasses = 0;  // frames that shaded
+    std::uint64_t tonemapPasses = 0;   // frames that tone-mapped (fused into the shading)
+    std::uint64_t readbacks = 0;       // one per modality read back
     std::uint64_t meshUploads = 0;
     std::uint64_t textureUploads = 0;
     std::uint64_t drawnInstances = 0;             // instances drawn by surface passes
@@ -64,14 +66,23 @@ class Renderer {
     PassTimers& timers() { return timers_; }
 
   private:
+    struct Draw; // one submesh of a visible instance
+
     GpuSceneCache& cacheFor(const Scene& scene);
     ShaderProgram& surfaceProgram(TargetMask targets, bool forward, unsigned materialFeatures,
                                   const shaders::ShadingLayout& lights);
-    ShaderProgram& lightingProgram(TargetMask targets, const shaders::ShadingLayout& lights);
     void uploadFrameBlock(const Scene& scene, const Camera& camera, const std::vector<ShadowInfo>& shadows);
+    // The submeshes of the instances in view, grouped by program and front to back within a group.
+    std::vector<Draw> visibleDraws(const Scene& scene, const Camera& camera);
     void surfacePass(const Scene& scene, const Camera& camera, const PassSet& passes,
-                     const shaders::ShadingLayout& lights, GpuSceneCache& cache, Framebuffers& fb);
-    void lightingPass(const PassSet& passes, const shaders::ShadingLayout& lights, Framebuffers& fb);
+                     const shaders::ShadingLayout& lights, const std::vector<Draw>& draws,
+                     GpuSceneCache& cache, Framebuffers& fb);
+    void attributePass(const Scene& scene, const Camera& camera, const PassSet& passes,
+                       const std::vector<Draw>& draws, GpuSceneCache& cache, Framebuffers& fb);
+    // Clears the bound framebuffer's `targets` to what a background pixel of each modality reads.
+    void clearTargets(const Scene& scene, const Camera& camera, TargetMask targets);
+    void drawAll(const Scene& scene, const Camera& camera, const std::vector<Draw>& draws, TargetMask targets,
+                 bool shade, const shaders::ShadingLayout& lights, GpuSceneCache& cache);
 
     const GlContext& context_;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs_; // by variant key
@@ -79,7 +90,6 @@ class Renderer {
     std::unique_ptr<ShadowMaps> shadowMaps_;
     std::map<std::uint64_t, std::unique_ptr<GpuSceneCache>> caches_;
     mutable PassTimers timers_; // stats() collects finished timer queries
-    unsigned emptyVao_ = 0;
     unsigned frameBlock_ = 0;
     mutable RenderStats stats_;
 };

@@ -24,7 +24,7 @@ layout(std140, binding = 0) uniform FrameBlock {
     vec4 uBackgroundFinal;
 };
 // The light-clip position of p moved 1.5 shadow-map texels along n (turned towards the light), so that a
-// surface does not shadow itself: per vertex in the forward pass, per pixel in the lighting pass.
+// surface does not shadow itself (per vertex: see shadowClips()).
 vec4 offsetShadowClip(const int layer, vec3 p, vec3 n, float texel) {
     return uShadowMatrix[layer] * vec4(p + n * (1.5 * texel), 1.0);
 }
@@ -112,9 +112,9 @@ vec3 envBrdfApprox(vec3 f0, float roughness, float nov) {
     return f0 * ab.x + ab.y;
 }
 // Rounds to float16 so that diffuse_only = albedo * diffuse_illumination holds for the stored values
-// (only the intrinsic images need it; forward colour skips the conversions).
+// (only when diffuse_only is written; colour skips the conversions).
 vec3 toHalf(vec3 v) {
-#if defined(FORWARD) && !defined(EXACT_INTRINSICS)
+#ifndef EXACT_INTRINSICS
     return v;
 #endif
     return vec3(unpackHalf2x16(packHalf2x16(v.xy)), unpackHalf2x16(packHalf2x16(vec2(v.z, 0.0))).x);
@@ -136,19 +136,13 @@ float shadowFactor(const int layer, vec3 s) {
     return mix(mix(lit.x, lit.y, f.x), mix(lit.z, lit.w, f.x), f.y);
 }
 
-// The shadow-map coordinates ([0, 1]^3) of p after the normal offset.
-vec3 shadowCoordinates(const int layer, vec3 p, vec3 n, float texel) {
-    vec4 clip = offsetShadowClip(layer, p, n, texel);
-    return clip.xyz / clip.w * 0.5 + 0.5;
-}
-
 struct Shaded {
     vec3 hdr;                 // linear radiance towards the camera
     vec3 diffuseIllumination; // of a white Lambertian surface, rounded to float16
     vec3 diffuseOnly;         // base * (1 - metallic) * diffuseIllumination
 };
 
-// The HDR and intrinsic targets of a shaded point (either pass; final colour is written apart).
+// The HDR and intrinsic targets of a shaded point.
 void writeShaded(Shaded s) {
 #ifdef OUT_Hdr
     oHdr = vec4(s.hdr, 1.0);
@@ -214,6 +208,9 @@ out vec3 vWorldPosition;
 out float vDepth;
 out vec3 vNormal;
 out vec2 vUv;
+// The attribute pass draws the geometry again against the surface pass's depth, with another program:
+// both must compute the same depth bit for bit.
+invariant gl_Position;
 void main() {
     vWorldPosition = (uModel * vec4(aPosition, 1.0)).xyz;
     vDepth = (uModelToCamera * vec4(aPosition, 1.0)).x;
@@ -244,9 +241,6 @@ void main() {
 #ifdef OUT_Params
     oParams = vec4(roughness, metallic, uAo, 0.0);
 #endif
-#ifdef OUT_Emissive
-    oEmissive = vec4(uEmissive, 0.0);
-#endif
 #ifdef OUT_Ids
     oIds = uvec2(uObjectId, uMaterialId);
 #endif
@@ -261,41 +255,6 @@ void main() {
 #ifdef OUT_FinalColor
     oFinalColor = toneMapped(s.hdr);
 #endif
-#endif
-}
-)glsl";
-
-// One triangle covering the viewport; no vertex buffer.
-const char* const kFullscreenVertex = R"glsl(#version 450 core
-void main() {
-    vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
-    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
-}
-)glsl";
-
-const char* const kLightingMain = R"glsl(
-layout(binding = 0) uniform sampler2D gPosition;
-layout(binding = 1) uniform sampler2D gNormal;
-layout(binding = 3) uniform sampler2D gBaseColor;
-layout(binding = 4) uniform sampler2D gParams;
-layout(binding = 5) uniform sampler2D gEmissive;
-
-void main() {
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
-    vec4 position = texelFetch(gPosition, pixel, 0);
-    Shaded s;
-    if (position.w == 0.0) {
-        s.hdr = uBackground.xyz;
-        s.diffuseIllumination = vec3(0.0);
-        s.diffuseOnly = vec3(0.0);
-    } else {
-        vec4 params = texelFetch(gParams, pixel, 0);
-        s = shade(position.xyz, texelFetch(gNormal, pixel, 0).xyz, texelFetch(gBaseColor, pixel, 0).rgb,
-                  params.x, params.y, params.z, texelFetch(gEmissive, pixel, 0).rgb);
-    }
-    writeShaded(s);
-#ifdef OUT_FinalColor
-    oFinalColor = position.w == 0.0 ? uBackgroundFinal : toneMapped(s.hdr);
 #endif
 }
 )glsl";
@@ -408,15 +367,12 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
         text += "        float nol = dot(n, l);\n        if (nol > 0.0) {\n";
         if (light.shadowLayer >= 0) {
             const std::string layer = std::to_string(light.shadowLayer);
-            const std::string texel = shadowTexel(light, "dist");
-            // The forward vertex shader interpolates the offset point's coordinates (see shadowClips()):
-            // only a spot light's need the perspective division here. The lighting pass computes them.
-            const std::string forward = light.type == LightType::Directional
-                                            ? "vShadowClip" + layer + ".xyz"
-                                            : "vShadowClip" + layer + ".xyz / vShadowClip" + layer + ".w";
-            text += "#ifdef FORWARD\n            e *= shadowFactor(" + layer + ", " + forward +
-                    ");\n#else\n            e *= shadowFactor(" + layer + ", shadowCoordinates(" + layer +
-                    ", p, n, " + texel + "));\n#endif\n";
+            // The vertex shader interpolates the offset point's coordinates (see shadowClips()): only a
+            // spot light's need the perspective division here.
+            const std::string coordinates = light.type == LightType::Directional
+                                                ? "vShadowClip" + layer + ".xyz"
+                                                : "vShadowClip" + layer + ".xyz / vShadowClip" + layer + ".w";
+            text += "            e *= shadowFactor(" + layer + ", " + coordinates + ");\n";
         }
         text += "            accumulate(s, l, e, nol, irradiance, specular);\n        }\n    }\n";
     }
@@ -467,9 +423,11 @@ std::string surfaceVertex(bool forward, const ShadingLayout& lights) {
 std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialFeatures,
                             const ShadingLayout& lights) {
     std::string text = "#version 450 core\n";
-    // Forward shading is the costly part: depth-test before it, so hidden fragments are never shaded.
+    // Depth-test before the shader (it writes no depth and discards nothing), so hidden fragments never
+    // run it: with draws front to back, shading; against the surface pass's depth, the attribute pass.
+    text += "layout(early_fragment_tests) in;\n";
     if (forward)
-        text += "#define FORWARD\nlayout(early_fragment_tests) in;\n";
+        text += "#define FORWARD\n";
     if (forward && (targets & targetBit(Target::DiffuseOnly)) != 0)
         text += "#define EXACT_INTRINSICS\n";
     if (materialFeatures & kBaseColorTexture)
@@ -488,15 +446,6 @@ std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialF
         text += kToneChunk;
     }
     return text + kSurfaceMain;
-}
-
-std::string fullscreenVertex() {
-    return kFullscreenVertex;
-}
-
-std::string lightingFragment(TargetMask targets, const ShadingLayout& lights) {
-    return "#version 450 core\n" + outputs(targets) + kFrameBlock + kShadingChunk + shadeFunction(lights) +
-           kToneChunk + kLightingMain;
 }
 
 } // namespace sp::render::shaders

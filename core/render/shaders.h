@@ -1,5 +1,5 @@
 #pragma once
-// GLSL 4.50 sources of the render passes. The surface and lighting programs are composed per variant
+// GLSL 4.50 sources of the render passes. The surface programs are composed per variant
 // from shared chunks (material evaluation, shading, tone curve), with one output per target the variant
 // writes, so that a pass never computes or stores what no requested modality needs.
 //
@@ -64,13 +64,11 @@ enum MaterialFeature : unsigned {
 extern const char* const kShadowVertex;
 extern const char* const kShadowFragment;
 
-// The surface pass: rasterises every visible instance and writes `targets` (a mask of Target bits, in
-// Target order at locations 0, 1, ...); when `forward`, shades each fragment as well (Hdr, FinalColor).
+// The surface and attribute passes: rasterise every visible instance and write `targets` (a mask of
+// Target bits, in Target order at locations 0, 1, ...); when `forward`, shade each fragment as well (the
+// HDR, intrinsic and final colour targets).
 std::string surfaceVertex(bool forward, const ShadingLayout& lights);
 std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialFeatures,
                             const ShadingLayout& lights);
-// The deferred lighting pass: a full-screen triangle reading the G-buffer and writing `targets`.
-std::string fullscreenVertex();
-std::string lightingFragment(TargetMask targets, const ShadingLayout& lights);
 
 } // namespace sp::render::shaders

@@ -150,13 +150,14 @@ struct FRenderStats {
     /// Frames that reused the shadow maps unchanged (nothing that casts or lights moved).
     SPPROPERTY()
     int64_t ShadowReuses = 0;
-    /// Surface passes (geometry rasterisation, forward or G-buffer).
+    /// Surface passes (geometry rasterisation; shading too when colour is asked for).
     SPPROPERTY()
-    int64_t GBufferPasses = 0;
-    /// Surface passes that shaded and tone-mapped in one pass (colour, depth and ids only).
+    int64_t SurfacePasses = 0;
+    /// Attribute passes: a second rasterisation writing the targets past the surface pass's 8 (all 14
+    /// modalities need one), at the fragments the surface pass kept.
     SPPROPERTY()
-    int64_t ForwardPasses = 0;
-    /// Frames that shaded (forward or with a deferred lighting pass).
+    int64_t AttributePasses = 0;
+    /// Frames that shaded.
     SPPROPERTY()
     int64_t LightingPasses = 0;
     /// Frames that tone-mapped (fused into the pass that shaded).
@@ -177,9 +178,9 @@ struct FRenderStats {
     /// Milliseconds in surface passes, by GL timer queries.
     SPPROPERTY()
     double SurfaceMs = 0.0;
-    /// Milliseconds in deferred lighting passes, by GL timer queries.
+    /// Milliseconds in attribute passes, by GL timer queries.
     SPPROPERTY()
-    double LightingMs = 0.0;
+    double AttributeMs = 0.0;
     /// Milliseconds the CPU spent reading images back (waiting for the frame included).
     SPPROPERTY()
     double ReadbackMs = 0.0;

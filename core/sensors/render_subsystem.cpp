@@ -281,8 +281,8 @@ FRenderStats RenderSubsystem::stats() const {
     result.Frames = int64_t(stats.frames);
     result.ShadowPasses = int64_t(stats.shadowPasses);
     result.ShadowReuses = int64_t(stats.shadowReuses);
-    result.GBufferPasses = int64_t(stats.gbufferPasses);
-    result.ForwardPasses = int64_t(stats.forwardPasses);
+    result.SurfacePasses = int64_t(stats.surfacePasses);
+    result.AttributePasses = int64_t(stats.attributePasses);
     result.LightingPasses = int64_t(stats.lightingPasses);
     result.TonemapPasses = int64_t(stats.tonemapPasses);
     result.Readbacks = int64_t(stats.readbacks);
@@ -291,7 +291,7 @@ FRenderStats RenderSubsystem::stats() const {
     const auto time = [&](sp::render::Pass pass) { return stats.passTimes[std::size_t(pass)]; };
     result.ShadowMs = time(sp::render::Pass::Shadow).gpuMs;
     result.SurfaceMs = time(sp::render::Pass::Surface).gpuMs;
-    result.LightingMs = time(sp::render::Pass::Lighting).gpuMs;
+    result.AttributeMs = time(sp::render::Pass::Attribute).gpuMs;
     result.ReadbackMs = time(sp::render::Pass::Readback).cpuMs;
     return result;
 }

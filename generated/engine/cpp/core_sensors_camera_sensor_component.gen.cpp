@@ -444,37 +444,37 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             },
         });
         t.properties.push_back({
-            "GBufferPasses",
+            "SurfacePasses",
             "int",
-            "Surface passes (geometry rasterisation, forward or G-buffer).",
+            "Surface passes (geometry rasterisation; shading too when colour is asked for).",
             false,
             [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->GBufferPasses);
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SurfacePasses);
             },
             [](void* self, const sp::reflect::Value& value) {
                 auto* object = sp::reflect::selfCast<Self>(self);
-                object->GBufferPasses = sp::reflect::decode<int64_t>(value, "FRenderStats.GBufferPasses");
-                sp::reflect::notifyPropertyChanged(object, "GBufferPasses");
+                object->SurfacePasses = sp::reflect::decode<int64_t>(value, "FRenderStats.SurfacePasses");
+                sp::reflect::notifyPropertyChanged(object, "SurfacePasses");
             },
         });
         t.properties.push_back({
-            "ForwardPasses",
+            "AttributePasses",
             "int",
-            "Surface passes that shaded and tone-mapped in one pass (colour, depth and ids only).",
+            "Attribute passes: a second rasterisation writing the targets past the surface pass's 8 (all 14\nmodalities need one), at the fragments the surface pass kept.",
             false,
             [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ForwardPasses);
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->AttributePasses);
             },
             [](void* self, const sp::reflect::Value& value) {
                 auto* object = sp::reflect::selfCast<Self>(self);
-                object->ForwardPasses = sp::reflect::decode<int64_t>(value, "FRenderStats.ForwardPasses");
-                sp::reflect::notifyPropertyChanged(object, "ForwardPasses");
+                object->AttributePasses = sp::reflect::decode<int64_t>(value, "FRenderStats.AttributePasses");
+                sp::reflect::notifyPropertyChanged(object, "AttributePasses");
             },
         });
         t.properties.push_back({
             "LightingPasses",
             "int",
-            "Frames that shaded (forward or with a deferred lighting pass).",
+            "Frames that shaded.",
             false,
             [](const void* self) -> sp::reflect::Value {
                 return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->LightingPasses);
@@ -570,17 +570,17 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             },
         });
         t.properties.push_back({
-            "LightingMs",
+            "AttributeMs",
             "float",
-            "Milliseconds in deferred lighting passes, by GL timer queries.",
+            "Milliseconds in attribute passes, by GL timer queries.",
             false,
             [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->LightingMs);
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->AttributeMs);
             },
             [](void* self, const sp::reflect::Value& value) {
                 auto* object = sp::reflect::selfCast<Self>(self);
-                object->LightingMs = sp::reflect::decode<double>(value, "FRenderStats.LightingMs");
-                sp::reflect::notifyPropertyChanged(object, "LightingMs");
+                object->AttributeMs = sp::reflect::decode<double>(value, "FRenderStats.AttributeMs");
+                sp::reflect::notifyPropertyChanged(object, "AttributeMs");
             },
         });
         t.properties.push_back({

@@ -556,8 +556,8 @@ template <> struct type_caster<FRenderStats> {
         value.Frames = sp::pybind::Bridge<int64_t>::in(src.attr("Frames").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.Frames");
         value.ShadowPasses = sp::pybind::Bridge<int64_t>::in(src.attr("ShadowPasses").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.ShadowPasses");
         value.ShadowReuses = sp::pybind::Bridge<int64_t>::in(src.attr("ShadowReuses").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.ShadowReuses");
-        value.GBufferPasses = sp::pybind::Bridge<int64_t>::in(src.attr("GBufferPasses").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.GBufferPasses");
-        value.ForwardPasses = sp::pybind::Bridge<int64_t>::in(src.attr("ForwardPasses").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.ForwardPasses");
+        value.SurfacePasses = sp::pybind::Bridge<int64_t>::in(src.attr("SurfacePasses").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.SurfacePasses");
+        value.AttributePasses = sp::pybind::Bridge<int64_t>::in(src.attr("AttributePasses").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.AttributePasses");
         value.LightingPasses = sp::pybind::Bridge<int64_t>::in(src.attr("LightingPasses").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.LightingPasses");
         value.TonemapPasses = sp::pybind::Bridge<int64_t>::in(src.attr("TonemapPasses").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.TonemapPasses");
         value.Readbacks = sp::pybind::Bridge<int64_t>::in(src.attr("Readbacks").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.Readbacks");
@@ -565,13 +565,13 @@ template <> struct type_caster<FRenderStats> {
         value.CulledInstances = sp::pybind::Bridge<int64_t>::in(src.attr("CulledInstances").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.CulledInstances");
         value.ShadowMs = sp::pybind::Bridge<double>::in(src.attr("ShadowMs").cast<sp::pybind::Bridge<double>::Py>(), "FRenderStats.ShadowMs");
         value.SurfaceMs = sp::pybind::Bridge<double>::in(src.attr("SurfaceMs").cast<sp::pybind::Bridge<double>::Py>(), "FRenderStats.SurfaceMs");
-        value.LightingMs = sp::pybind::Bridge<double>::in(src.attr("LightingMs").cast<sp::pybind::Bridge<double>::Py>(), "FRenderStats.LightingMs");
+        value.AttributeMs = sp::pybind::Bridge<double>::in(src.attr("AttributeMs").cast<sp::pybind::Bridge<double>::Py>(), "FRenderStats.AttributeMs");
         value.ReadbackMs = sp::pybind::Bridge<double>::in(src.attr("ReadbackMs").cast<sp::pybind::Bridge<double>::Py>(), "FRenderStats.ReadbackMs");
         return true;
     }
     static handle cast(const FRenderStats& v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FRenderStats");
-        return cls(sp::pybind::Bridge<int64_t>::out(v.Frames), sp::pybind::Bridge<int64_t>::out(v.ShadowPasses), sp::pybind::Bridge<int64_t>::out(v.ShadowReuses), sp::pybind::Bridge<int64_t>::out(v.GBufferPasses), sp::pybind::Bridge<int64_t>::out(v.ForwardPasses), sp::pybind::Bridge<int64_t>::out(v.LightingPasses), sp::pybind::Bridge<int64_t>::out(v.TonemapPasses), sp::pybind::Bridge<int64_t>::out(v.Readbacks), sp::pybind::Bridge<int64_t>::out(v.DrawnInstances), sp::pybind::Bridge<int64_t>::out(v.CulledInstances), sp::pybind::Bridge<double>::out(v.ShadowMs), sp::pybind::Bridge<double>::out(v.SurfaceMs), sp::pybind::Bridge<double>::out(v.LightingMs), sp::pybind::Bridge<double>::out(v.ReadbackMs)).release();
+        return cls(sp::pybind::Bridge<int64_t>::out(v.Frames), sp::pybind::Bridge<int64_t>::out(v.ShadowPasses), sp::pybind::Bridge<int64_t>::out(v.ShadowReuses), sp::pybind::Bridge<int64_t>::out(v.SurfacePasses), sp::pybind::Bridge<int64_t>::out(v.AttributePasses), sp::pybind::Bridge<int64_t>::out(v.LightingPasses), sp::pybind::Bridge<int64_t>::out(v.TonemapPasses), sp::pybind::Bridge<int64_t>::out(v.Readbacks), sp::pybind::Bridge<int64_t>::out(v.DrawnInstances), sp::pybind::Bridge<int64_t>::out(v.CulledInstances), sp::pybind::Bridge<double>::out(v.ShadowMs), sp::pybind::Bridge<double>::out(v.SurfaceMs), sp::pybind::Bridge<double>::out(v.AttributeMs), sp::pybind::Bridge<double>::out(v.ReadbackMs)).release();
     }
 };
 

@@ -289,8 +289,8 @@ class FRenderStats:
     Frames: int = 0
     ShadowPasses: int = 0
     ShadowReuses: int = 0
-    GBufferPasses: int = 0
-    ForwardPasses: int = 0
+    SurfacePasses: int = 0
+    AttributePasses: int = 0
     LightingPasses: int = 0
     TonemapPasses: int = 0
     Readbacks: int = 0
@@ -298,7 +298,7 @@ class FRenderStats:
     CulledInstances: int = 0
     ShadowMs: float = 0.0
     SurfaceMs: float = 0.0
-    LightingMs: float = 0.0
+    AttributeMs: float = 0.0
     ReadbackMs: float = 0.0
 
 

@@ -38,24 +38,24 @@ TEST(ModalityTest, UnknownNameIsNotFoundWithTheName) {
 
 TEST(ModalityTest, OnlyNeededPassesAreRequired) {
     PassSet ids = ModalitySet{Modality::ObjectIds, Modality::Depth}.requiredPasses(true);
-    EXPECT_TRUE(ids.gbuffer);
+    EXPECT_TRUE(ids.surface);
     EXPECT_FALSE(ids.lighting);
     EXPECT_FALSE(ids.tonemap);
     EXPECT_FALSE(ids.shadow);
     PassSet hdr = ModalitySet{Modality::HdrColor}.requiredPasses(true);
     EXPECT_TRUE(hdr.lighting && hdr.shadow && !hdr.tonemap);
     PassSet color = ModalitySet{Modality::FinalColor}.requiredPasses(false);
-    EXPECT_TRUE(color.gbuffer && color.lighting && color.tonemap && !color.shadow);
-    EXPECT_FALSE(ModalitySet().requiredPasses(true).gbuffer);
+    EXPECT_TRUE(color.surface && color.lighting && color.tonemap && !color.shadow);
+    EXPECT_FALSE(ModalitySet().requiredPasses(true).surface);
 }
 
-TEST(ModalityTest, ShadingIsForwardWhenTheTargetsFitTheDrawBuffers) {
-    // Colour, depth, normals and both ids: four targets, shaded where rasterised.
+TEST(ModalityTest, OnePassWhenTheTargetsFitTheDrawBuffers) {
+    // Colour, depth, normals and both ids: four targets.
     const PassSet common = ModalitySet{Modality::FinalColor, Modality::Depth, Modality::Normal,
                                        Modality::ObjectIds, Modality::MaterialIds}
                                .requiredPasses(true);
-    EXPECT_TRUE(common.forward);
-    EXPECT_EQ(common.lightingTargets, 0u);
+    EXPECT_TRUE(common.lighting);
+    EXPECT_EQ(common.attributeTargets, 0u);
     EXPECT_EQ(common.surfaceTargets, targetBit(Target::Normal) | targetBit(Target::Depth) |
                                          targetBit(Target::Ids) | targetBit(Target::FinalColor));
     // The intrinsic images with their inputs: eight targets (roughness, metallic and AO share one).
@@ -63,13 +63,30 @@ TEST(ModalityTest, ShadingIsForwardWhenTheTargetsFitTheDrawBuffers) {
         Modality::FinalColor,      Modality::HdrColor,  Modality::BaseColor,           Modality::Metallic,
         Modality::Roughness,       Modality::ObjectIds, Modality::DiffuseIllumination, Modality::DiffuseOnly,
         Modality::SpecularResidual};
-    EXPECT_TRUE(intrinsics.requiredPasses(true).forward);
-    // Every modality: eleven targets, more than GL 4.5 promises, so a G-buffer and a lighting pass.
+    EXPECT_EQ(intrinsics.requiredPasses(true).attributeTargets, 0u);
+}
+
+TEST(ModalityTest, TargetsPastTheDrawBuffersGoToTheAttributePass) {
+    // Every modality: eleven targets, more than GL 4.5 promises one pass. The shaded ones stay in the
+    // surface pass (only it shades), the first attributes fill it up, the rest go to the attribute pass.
     const PassSet all = ModalitySet::all().requiredPasses(true);
-    EXPECT_FALSE(all.forward);
-    EXPECT_NE(all.surfaceTargets & targetBit(Target::Emissive), 0u);
-    EXPECT_LE(std::popcount(all.surfaceTargets), kMaxForwardTargets);
-    EXPECT_LE(std::popcount(all.lightingTargets), kMaxForwardTargets);
+    constexpr TargetMask kShaded = targetBit(Target::Hdr) | targetBit(Target::DiffuseIllumination) |
+                                   targetBit(Target::DiffuseOnly) | targetBit(Target::SpecularResidual) |
+                                   targetBit(Target::FinalColor);
+    EXPECT_EQ(all.surfaceTargets,
+              kShaded | targetBit(Target::Position) | targetBit(Target::Normal) | targetBit(Target::Depth));
+    EXPECT_EQ(all.attributeTargets,
+              targetBit(Target::BaseColor) | targetBit(Target::Params) | targetBit(Target::Ids));
+    EXPECT_EQ(std::popcount(all.surfaceTargets), kMaxDrawTargets);
+    EXPECT_EQ(all.surfaceTargets & all.attributeTargets, 0u);
+    // Without colour nothing is shaded: the attributes alone fit one pass.
+    ModalitySet attributes = ModalitySet::all();
+    for (Modality m : {Modality::FinalColor, Modality::HdrColor, Modality::DiffuseIllumination,
+                       Modality::DiffuseOnly, Modality::SpecularResidual})
+        attributes.remove(m);
+    const PassSet plain = attributes.requiredPasses(true);
+    EXPECT_FALSE(plain.lighting || plain.shadow);
+    EXPECT_EQ(plain.attributeTargets, 0u);
 }
 
 TEST(ModalityTest, HalfFloatRoundTrips) {

@@ -124,7 +124,8 @@ TEST_F(RenderGeometryGlTest, OnlyRequestedPassesRun) {
     RenderTarget ids(renderer(), {Modality::ObjectIds, Modality::Depth}, 0);
     ids.render(scene, camera, frame);
     RenderStats stats = renderer().stats();
-    EXPECT_EQ(stats.gbufferPasses, 1u);
+    EXPECT_EQ(stats.surfacePasses, 1u);
+    EXPECT_EQ(stats.attributePasses, 0u);
     EXPECT_EQ(stats.lightingPasses, 0u);
     EXPECT_EQ(stats.tonemapPasses, 0u);
     EXPECT_EQ(stats.shadowPasses, 0u);

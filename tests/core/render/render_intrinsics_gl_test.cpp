@@ -12,9 +12,10 @@ namespace {
 using RenderIntrinsicsGlTest = GlTest;
 
 // Renders the shapes under a sun and a spot light with `modalities` (which hold every image the identities
-// name) on the path `forward` says, and checks the identities at every pixel.
-void expectIdentitiesPerPixel(Renderer& renderer, const ModalitySet& modalities, bool forward) {
-    ASSERT_EQ(modalities.requiredPasses(true).forward, forward);
+// name), in one pass or with an attribute pass as `attributePass` says, and checks the identities at
+// every pixel.
+void expectIdentitiesPerPixel(Renderer& renderer, const ModalitySet& modalities, bool attributePass) {
+    ASSERT_EQ(modalities.requiredPasses(true).attributeTargets != 0, attributePass);
     Scene scene;
     buildShapesScene(scene);
     Light spot;
@@ -59,17 +60,18 @@ void expectIdentitiesPerPixel(Renderer& renderer, const ModalitySet& modalities,
     EXPECT_GT(metalPixels, 0); // the gold sphere is in view: its diffuse part is zero
 }
 
-TEST_F(RenderIntrinsicsGlTest, IdentitiesHoldPerPixelWhenShadedForward) {
-    // Eight targets: shaded in the surface pass, with the inputs rounded as the targets store them.
+TEST_F(RenderIntrinsicsGlTest, IdentitiesHoldPerPixelInOnePass) {
+    // Seven targets: shaded with the inputs rounded as the targets store them.
     expectIdentitiesPerPixel(renderer(),
                              {Modality::HdrColor, Modality::BaseColor, Modality::Metallic,
                               Modality::ObjectIds, Modality::DiffuseIllumination, Modality::DiffuseOnly,
                               Modality::SpecularResidual},
-                             true);
+                             false);
 }
 
-TEST_F(RenderIntrinsicsGlTest, IdentitiesHoldPerPixelWhenShadedDeferred) {
-    expectIdentitiesPerPixel(renderer(), ModalitySet::all(), false);
+TEST_F(RenderIntrinsicsGlTest, IdentitiesHoldPerPixelWithAnAttributePass) {
+    // Base colour, metallic and the ids come from the attribute pass, the rest from the surface pass.
+    expectIdentitiesPerPixel(renderer(), ModalitySet::all(), true);
 }
 
 TEST_F(RenderIntrinsicsGlTest, WhiteLambertianUnderANormalSunHasUnitIllumination) {
