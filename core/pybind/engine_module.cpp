@@ -158,6 +158,25 @@ PYBIND11_MODULE(_spear_engine, m) {
                  UWorld* world = e.GetEditorWorld();
                  return world ? py::object(sp::pybind::wrapObject(world)) : py::none();
              })
+        .def(
+            "create_world",
+            [](Engine& e, const std::string& name) { return sp::pybind::wrapObject(&e.CreateWorld(name)); },
+            py::arg("name"))
+        .def(
+            "destroy_world",
+            [](Engine& e, py::handle world) {
+                auto* target = dynamic_cast<UWorld*>(&sp::pybind::resolveArgument(world, "destroy_world()"));
+                SP_CHECK(target, sp::InvalidArgument, "destroy_world(): world is not a UWorld");
+                e.DestroyWorld(*target);
+            },
+            py::arg("world"))
+        .def("get_worlds",
+             [](const Engine& e) {
+                 py::list worlds;
+                 for (UWorld* world : e.GetWorlds())
+                     worlds.append(sp::pybind::wrapObject(world));
+                 return worlds;
+             })
         .def("begin_frame", &Engine::beginFrame)
         .def("execute_frame", &Engine::executeFrame)
         .def("begin_end_frame", &Engine::beginEndFrame)

@@ -213,6 +213,7 @@ void Dispatcher::handleOne(const msgpack::object& message, Session& session, msg
 const std::vector<Dispatcher::Route>& Dispatcher::routes() {
     static const std::vector<Route> table{
         {"world", &Dispatcher::world},
+        {"worlds", &Dispatcher::worlds},
         {"frame", &Dispatcher::frame},
         {"call", &Dispatcher::call},
         {"call_typed", &Dispatcher::call},
@@ -276,6 +277,24 @@ Value Dispatcher::world(const Request& request, Session&) {
              "get_editor(): this instance runs standalone and has no editor world; "
              "start it with spear.Instance(mode='editor')");
     return Value(editor->GetHandle());
+}
+
+Value Dispatcher::worlds(const Request& request, Session&) {
+    const std::string action = request.string("action", "worlds");
+    if (action == "create")
+        return Value(engine_.CreateWorld(request.string("name", "create_world()")).GetHandle());
+    if (action == "destroy") {
+        auto* world = dynamic_cast<UWorld*>(&requireObject(request, "destroy_world()"));
+        SP_CHECK(world, InvalidArgument, "destroy_world(): 'object' is not a world");
+        engine_.DestroyWorld(*world);
+        return Value();
+    }
+    SP_CHECK(action == "list", InvalidArgument,
+             "worlds(): action must be 'create', 'destroy' or 'list', got '", action, "'");
+    Value::List handles;
+    for (UWorld* world : engine_.GetWorlds())
+        handles.emplace_back(world->GetHandle());
+    return Value(std::move(handles));
 }
 
 Value Dispatcher::frame(const Request& request, Session& session) {

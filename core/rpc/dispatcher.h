@@ -76,6 +76,7 @@ class Dispatcher {
     static const std::vector<Route>& routes(); // every op but hello and batch
     reflect::Value hello(const Request& request, Session& session);
     reflect::Value world(const Request& request, Session& session);
+    reflect::Value worlds(const Request& request, Session& session);
     reflect::Value frame(const Request& request, Session& session);
     reflect::Value call(const Request& request, Session& session);
     reflect::Value property(const Request& request, Session& session);

@@ -1,5 +1,7 @@
 #include "core/world/engine.h"
 
+#include <exception>
+
 #include "core/base/error.h"
 #include "core/world/scene_io.h"
 
@@ -56,6 +58,40 @@ void Engine::play() {
     gameWorld_ = std::move(game);
 }
 
+UWorld& Engine::CreateWorld(const std::string& name) {
+    SP_CHECK(!name.empty(), InvalidArgument, "create_world(): name must not be empty");
+    const auto taken = [&](const UWorld* world) { return world && world->GetName() == name; };
+    bool exists = taken(editorWorld_.get()) || taken(gameWorld_.get());
+    for (const auto& world : createdWorlds_)
+        exists = exists || taken(world.get());
+    SP_CHECK(!exists, InvalidArgument, "create_world(): a world named '", name, "' exists already");
+    auto world = std::make_unique<UWorld>();
+    world->InitObject(name, world.get());
+    world->SetEngine(this);
+    createdWorlds_.push_back(std::move(world));
+    return *createdWorlds_.back();
+}
+
+void Engine::DestroyWorld(UWorld& world) {
+    for (auto it = createdWorlds_.begin(); it != createdWorlds_.end(); ++it) {
+        if (it->get() == &world) {
+            createdWorlds_.erase(it);
+            return;
+        }
+    }
+    SP_THROW(InvalidArgument, "destroy_world(): '", world.GetName(),
+             "' is not a world create_world() made; the game and editor worlds live as long as the engine");
+}
+
+std::vector<UWorld*> Engine::GetWorlds() const {
+    std::vector<UWorld*> worlds;
+    if (gameWorld_)
+        worlds.push_back(gameWorld_.get());
+    for (const auto& world : createdWorlds_)
+        worlds.push_back(world.get());
+    return worlds;
+}
+
 void Engine::stop() {
     SP_CHECK(editorWorld_, InvalidState,
              "UWorld.stop(): this engine runs standalone and has no editor world");
@@ -95,8 +131,19 @@ void Engine::executeFrame() {
     expectState(FrameState::BeginFrame, "execute_frame()");
     state_ = FrameState::FrameExecuted;
     ++frameCount_;
-    if (gameWorld_) // an editor that is not playing only runs the frame protocol
-        gameWorld_->Tick(settings_.fixedDeltaSeconds);
+    // Every world ticks even when one throws (its error propagates after the others ran), so that a
+    // failing environment does not stall the rest. An editor that is not playing has none.
+    std::exception_ptr failure;
+    for (UWorld* world : GetWorlds()) {
+        try {
+            world->Tick(settings_.fixedDeltaSeconds);
+        } catch (...) {
+            if (!failure)
+                failure = std::current_exception();
+        }
+    }
+    if (failure)
+        std::rethrow_exception(failure);
 }
 
 void Engine::beginEndFrame() {

@@ -12,6 +12,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/world/world.h"
 
@@ -48,6 +49,16 @@ class Engine {
     // Editor mode: destroys the game world; its objects' handles become stale.
     void stop();
     bool IsPlaying() const { return editorWorld_ && gameWorld_; }
+
+    // More worlds beside the game world, each with its own actors, physics and render scene, ticked in
+    // the same frame after it (in creation order): many small environments in one process. `name` must
+    // be non-empty and not the name of another world of this engine.
+    UWorld& CreateWorld(const std::string& name);
+    // Destroys a world CreateWorld made; its objects' handles become stale. The game and editor worlds
+    // cannot be destroyed this way.
+    void DestroyWorld(UWorld& world);
+    // The worlds that tick each frame: the game world (when there is one), then the created ones.
+    std::vector<UWorld*> GetWorlds() const;
     const Settings& GetSettings() const { return settings_; }
 
     // Idle -> BeginFrame. Throws InvalidState if a frame is already open.
@@ -76,6 +87,7 @@ class Engine {
     Settings settings_;
     std::unique_ptr<UWorld> editorWorld_;
     std::unique_ptr<UWorld> gameWorld_;
+    std::vector<std::unique_ptr<UWorld>> createdWorlds_;
     FrameState state_ = FrameState::Idle;
     int64_t frameCount_ = 0;
 };

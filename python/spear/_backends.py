@@ -14,6 +14,9 @@ from spear._plugins import PluginPackage
 class Backend(Protocol):
     def world(self, kind: str) -> Any: ...
 
+    # action: "create" (name), "destroy" (world) or "list".
+    def worlds(self, action: str, *, name: str = "", world: Any = None) -> Any: ...
+
     def frame(self, action: str) -> None: ...
 
     def frame_count(self) -> int: ...
@@ -55,6 +58,13 @@ class InProcessBackend:
                     "start it with spear.Instance(mode='editor')")
             return world
         return self._engine.get_game_world()
+
+    def worlds(self, action: str, *, name: str = "", world: Any = None) -> Any:
+        if action == "create":
+            return self._engine.create_world(name=name)
+        if action == "destroy":
+            return self._engine.destroy_world(world=world)
+        return self._engine.get_worlds()
 
     def frame(self, action: str) -> None:
         getattr(self._engine, {"begin": "begin_frame", "execute": "execute_frame", "begin_end": "begin_end_frame",
@@ -116,6 +126,16 @@ class RpcBackend:
         from spear._rpc_types import convert
 
         return convert(self.connection.request("world", kind=kind), "UWorld", self.connection)
+
+    def worlds(self, action: str, *, name: str = "", world: Any = None) -> Any:
+        from spear._rpc_types import convert
+
+        if action == "create":
+            return convert(self.connection.request("worlds", action="create", name=name), "UWorld", self.connection)
+        if action == "destroy":
+            return self.connection.request("worlds", action="destroy", object=world)
+        handles = self.connection.request("worlds", action="list")
+        return [convert(handle, "UWorld", self.connection) for handle in handles]
 
     def frame(self, action: str) -> None:
         self.connection.request("frame", action=action)

@@ -73,6 +73,24 @@ class Instance:
         assert isinstance(world, api.UWorld)
         return world
 
+    def create_world(self, *, name: str) -> api.UWorld:
+        """A new world beside the game world, with its own actors, physics and render scene, ticked in the
+        same frames (after the game world, in creation order): many small environments in one engine.
+        name: unique among this instance's worlds."""
+        world = self._open("create_world").worlds("create", name=name)
+        assert isinstance(world, api.UWorld)
+        return world
+
+    def destroy_world(self, *, world: api.UWorld) -> None:
+        """Destroys a world create_world() made (inside a frame); its objects' handles become stale."""
+        self._open("destroy_world").worlds("destroy", world=world)
+
+    def get_worlds(self) -> list[api.UWorld]:
+        """The worlds that tick each frame: the game world (when there is one), then the created ones."""
+        worlds = self._open("get_worlds").worlds("list")
+        assert all(isinstance(world, api.UWorld) for world in worlds)
+        return list(worlds)
+
     # -- frames --------------------------------------------------------------------------------
 
     @contextlib.contextmanager

@@ -38,3 +38,38 @@ TEST(Engine, AbortEndsTheFrameAndTicks) {
     EXPECT_EQ(engine.GetFrameCount(), 1);
     EXPECT_THROW(Engine(Engine::Settings{0.0}), sp::InvalidArgument);
 }
+
+TEST(Engine, CreatedWorldsTickWithTheGameWorldAndAreIsolated) {
+    Engine engine;
+    UWorld& a = engine.CreateWorld("EnvA");
+    UWorld& b = engine.CreateWorld("EnvB");
+    ASSERT_EQ(engine.GetWorlds(), (std::vector<UWorld*>{&engine.GetGameWorld(), &a, &b}));
+    EXPECT_EQ(a.GetName(), "EnvA");
+    engine.beginFrame();
+    AActor* only = a.spawn_actor(&AActor::StaticClass(), {}, {}, "Only");
+    engine.executeFrame();
+    engine.beginEndFrame();
+    engine.endFrame();
+    EXPECT_EQ(a.find_actor_by_name("Only"), only);
+    EXPECT_EQ(b.find_actor_by_name("Only"), nullptr);
+    EXPECT_EQ(engine.GetGameWorld().find_actor_by_name("Only"), nullptr);
+    for (UWorld* world : engine.GetWorlds())
+        EXPECT_EQ(world->get_frame_count(), 1);
+
+    engine.DestroyWorld(a);
+    EXPECT_EQ(engine.GetWorlds(), (std::vector<UWorld*>{&engine.GetGameWorld(), &b}));
+}
+
+TEST(Engine, WorldNamesAreUniqueAndOnlyCreatedWorldsAreDestroyed) {
+    Engine engine;
+    engine.CreateWorld("Env");
+    try {
+        engine.CreateWorld("Env");
+        FAIL();
+    } catch (const sp::InvalidArgument& e) {
+        EXPECT_STREQ(e.what(), "create_world(): a world named 'Env' exists already");
+    }
+    EXPECT_THROW(engine.CreateWorld(""), sp::InvalidArgument);
+    EXPECT_THROW(engine.CreateWorld(engine.GetGameWorld().GetName()), sp::InvalidArgument);
+    EXPECT_THROW(engine.DestroyWorld(engine.GetGameWorld()), sp::InvalidArgument);
+}
