@@ -12,12 +12,16 @@ namespace sp::pybind {
 namespace py = ::pybind11;
 using reflect::Value;
 
-reflect::ObjectBase& resolveArgument(py::handle object, std::string_view context) {
+reflect::ObjectBase& resolveHandle(py::handle object, std::string_view context) {
     SP_CHECK(py::hasattr(object, "_sp_handle"), InvalidArgument, context,
              ": expected an engine object, got '", std::string(py::str(object.get_type().attr("__name__"))),
              "'");
     auto handle = object.attr("_sp_handle").cast<std::pair<uint32_t, uint32_t>>();
-    reflect::ObjectBase& resolved = reflect::ObjectTable::resolve({handle.first, handle.second}, context);
+    return reflect::ObjectTable::resolve({handle.first, handle.second}, context);
+}
+
+reflect::ObjectBase& resolveArgument(py::handle object, std::string_view context) {
+    reflect::ObjectBase& resolved = resolveHandle(object, context);
     checkAccess(resolved, context);
     return resolved;
 }

@@ -11,7 +11,9 @@
 #pragma GCC visibility push(default)
 namespace sp::pybind {
 
-// The engine object behind a Python object (anything with `_sp_handle`), checked alive and usable now.
+// The engine object behind a Python object (anything with `_sp_handle`), checked alive.
+reflect::ObjectBase& resolveHandle(pybind11::handle object, std::string_view context);
+// The same, checked usable now as well (inside a frame, for engine objects).
 reflect::ObjectBase& resolveArgument(pybind11::handle object, std::string_view context);
 
 // Adds call_function, get_property, set_property and the class queries to `m`. `apiModule` names the

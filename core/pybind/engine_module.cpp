@@ -165,8 +165,9 @@ PYBIND11_MODULE(_spear_engine, m) {
         .def(
             "destroy_world",
             [](Engine& e, py::handle world) {
-                auto* target = dynamic_cast<UWorld*>(&sp::pybind::resolveArgument(world, "destroy_world()"));
-                SP_CHECK(target, sp::InvalidArgument, "destroy_world(): world is not a UWorld");
+                // Like create_world, any time the engine is not ticking: no frame needed.
+                auto* target = dynamic_cast<UWorld*>(&sp::pybind::resolveHandle(world, "destroy_world()"));
+                SP_CHECK(target, sp::InvalidArgument, "destroy_world(): 'world' is not a world");
                 e.DestroyWorld(*target);
             },
             py::arg("world"))

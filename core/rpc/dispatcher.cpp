@@ -284,8 +284,13 @@ Value Dispatcher::worlds(const Request& request, Session&) {
     if (action == "create")
         return Value(engine_.CreateWorld(request.string("name", "create_world()")).GetHandle());
     if (action == "destroy") {
-        auto* world = dynamic_cast<UWorld*>(&requireObject(request, "destroy_world()"));
-        SP_CHECK(world, InvalidArgument, "destroy_world(): 'object' is not a world");
+        // Like create_world, any time the engine is not ticking: no frame needed.
+        const Value handle = unpack(request.require("object", "destroy_world()"), "destroy_world()");
+        SP_CHECK(handle.is<reflect::ObjectHandle>(), InvalidArgument,
+                 "destroy_world(): 'object' must be an object reference");
+        auto* world = dynamic_cast<UWorld*>(
+            &reflect::ObjectTable::resolve(handle.as<reflect::ObjectHandle>(), "destroy_world()"));
+        SP_CHECK(world, InvalidArgument, "destroy_world(): 'world' is not a world");
         engine_.DestroyWorld(*world);
         return Value();
     }

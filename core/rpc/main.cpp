@@ -22,11 +22,11 @@
 // Prints "spear-server: listening on <address>" once it accepts connections (clients that launch a
 // server wait for that line), and exits cleanly on SIGTERM, SIGINT or a client's shutdown request.
 
-#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -35,6 +35,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/base/asset_path.h"
@@ -77,6 +78,18 @@ std::string readTokenFile(const std::string& path) {
     SP_CHECK(!token.empty(), sp::InvalidArgument, "spear-server: --token-file '", path, "' is empty");
     return token;
 }
+
+// A server launched by a client goes away with it, even if the client is killed: stopped (SIGTERM) once its
+// parent process is gone. Polled, not PR_SET_PDEATHSIG, which fires when the launching *thread* exits: a
+// client that starts servers from worker threads would lose them with the threads.
+void watchParent(pid_t parent) {
+    std::thread([parent] {
+        while (::getppid() == parent)
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        ::kill(::getpid(), SIGTERM);
+    }).detach();
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -85,6 +98,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> plugins;
     std::vector<std::string> fileRoots;
     std::string tokenFile;
+    pid_t exitWithParent = 0;
     if (const char* token = std::getenv("SPEAR_TOKEN"))
         options.token = token;
     for (int i = 1; i < argc; ++i) {
@@ -119,11 +133,7 @@ int main(int argc, char** argv) {
         else if (arg == "--file-root" && hasValue)
             fileRoots.push_back(argv[++i]);
         else if (arg == "--exit-with-parent") {
-            // A server launched by a client goes away with it, even if the client is killed.
-            const pid_t parent = ::getppid();
-            ::prctl(PR_SET_PDEATHSIG, SIGTERM);
-            if (::getppid() != parent)
-                return 0;
+            exitWithParent = ::getppid();
         } else {
             usage();
             return 2;
@@ -157,6 +167,8 @@ int main(int argc, char** argv) {
         std::signal(SIGTERM, [](int) { sp::rpc::Server::stop(); });
         std::signal(SIGINT, [](int) { sp::rpc::Server::stop(); });
         std::signal(SIGPIPE, SIG_IGN);
+        if (exitWithParent > 0)
+            watchParent(exitWithParent);
         std::printf("spear-server: listening on %s\n", server.address().c_str());
         std::fflush(stdout);
         server.run();

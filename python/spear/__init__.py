@@ -6,7 +6,8 @@ the engine's reflected C++ headers): spear.AActor, spear.FVector, spear.ECompone
 
 from spear._engine.api import *  # noqa: F403
 from spear._engine import api as _api
-from spear.errors import InvalidArgumentError, InvalidStateError, NotFoundError, SpearError, StaleObjectError
+from spear.errors import (ConnectionLostError, InvalidArgumentError, InvalidStateError, NotFoundError, SpearError,
+                          StaleObjectError)
 from spear._spfunc import SpFuncResult
 from spear.instance import Instance
 
@@ -30,6 +31,7 @@ __all__ = [
     "Instance",
     "SpFuncResult",
     "SpearError",
+    "ConnectionLostError",
     "InvalidArgumentError",
     "InvalidStateError",
     "NotFoundError",

@@ -41,8 +41,7 @@ _ERRORS: dict[str, type[errors.SpearError]] = {
 }
 
 
-class ConnectionLost(errors.SpearError):
-    """The server closed the connection or went away."""
+ConnectionLost = errors.ConnectionLostError  # the name this module has always raised
 
 
 class RpcConnection:

@@ -25,3 +25,8 @@ class StaleObjectError(SpearError, ReferenceError):
 
 class InvalidStateError(SpearError, RuntimeError):
     """A call not allowed in the engine's current state (outside a frame, moving a static component, ...)."""
+
+
+class ConnectionLostError(SpearError, ConnectionError):
+    """The spear server of an instance over RPC closed the connection or went away (the process died, the
+    machine became unreachable)."""

@@ -82,7 +82,7 @@ class Instance:
         return world
 
     def destroy_world(self, *, world: api.UWorld) -> None:
-        """Destroys a world create_world() made (inside a frame); its objects' handles become stale."""
+        """Destroys a world create_world() made (inside or outside a frame); its objects' handles become stale."""
         self._open("destroy_world").worlds("destroy", world=world)
 
     def get_worlds(self) -> list[api.UWorld]:
@@ -179,6 +179,13 @@ class Instance:
 
     def __exit__(self, *exc: object) -> None:
         self.close()
+
+    @property
+    def server_pid(self) -> int | None:
+        """The process id of the spear server this instance talks to over RPC (on its machine); None
+        in-process."""
+        connection = self._rpc_connection()
+        return None if connection is None else int(connection.server_pid)
 
     def _rpc_connection(self) -> Any:
         """The RPC connection of an instance over RPC; None in-process."""

@@ -300,6 +300,45 @@ def start_client(code: str, *, ready: str) -> subprocess.Popen[str]:
     return process
 
 
+def alive(pid: int) -> bool:
+    try:
+        with open(f"/proc/{pid}/stat") as stat:
+            return stat.read().split(") ")[1][0] != "Z"  # a zombie has exited
+    except FileNotFoundError:
+        return False
+
+
+def test_a_launched_server_outlives_the_launching_thread_and_goes_with_the_client_process() -> None:
+    # A server launched from a worker thread that then ended kept serving (it went when the thread did), and
+    # one whose client was killed went away by itself.
+    client = start_client(
+        "import threading, time\nimport spear\n"
+        "instances = []\n"
+        "thread = threading.Thread(target=lambda: instances.append(spear.Instance(server='launch')))\n"
+        "thread.start(); thread.join(); time.sleep(0.5)\n"
+        "print('launched', flush=True)\n"
+        "print(instances[0].server_pid, flush=True)\n"
+        "instances[0].get_worlds()\n"
+        "print('served', flush=True)\n"
+        "time.sleep(60)\n", ready="launched")
+    try:
+        assert client.stdout is not None
+        server_pid = int(client.stdout.readline())
+        assert client.stdout.readline() == "served\n"
+        assert alive(server_pid)
+        client.kill()
+        client.wait()
+        deadline = time.monotonic() + 10.0
+        while alive(server_pid) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert not alive(server_pid), "the launched server kept running after its client was killed"
+    finally:
+        client.kill()
+        client.wait()
+        if client.stdout:
+            client.stdout.close()
+
+
 # -- frames ------------------------------------------------------------------------------------------
 
 def test_a_frame_left_open_by_a_killed_client_is_aborted(server: LaunchedServer) -> None:

@@ -1,0 +1,358 @@
+"""Vectorised environments: N environments stepped together, each in a world of its own, across the worlds of
+one engine and across spear-server processes, with observations stacked into numpy arrays.
+
+    envs = spear.vector.VectorEnv.in_worlds(Reach, num_envs=16)                     # one engine, 16 worlds
+    envs = spear.vector.VectorEnv.on_servers(Reach, num_servers=4, worlds_per_server=4)
+    observations, infos = envs.reset(seed=0)
+    observations, rewards, terminated, truncated, infos = envs.step(actions)
+
+An environment is a class of the Env protocol: reset() builds or rearranges its world, act() applies an action,
+observe() reads the observation, reward and end of episode. A step is SPEAR's frame: every engine opens one frame,
+its environments act (or reset) inside begin_frame, the engine ticks all its worlds once, and the environments
+observe inside end_frame. Engines on separate servers step concurrently, one thread each waiting on its socket.
+
+Auto-reset follows the "next step" convention: an environment whose step ended its episode (terminated or
+truncated) is reset during the following step() instead of acting; that step returns its first observation,
+reward 0, terminated and truncated False, and info["reset"] True.
+
+A server that goes away is reported once (a warning naming the environments it held); its environments stay
+failed: their observations are zeros, truncated is True, info["error"] holds the error, and `failed` maps their
+indices to it. The other environments keep running.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures
+import logging
+import math
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Generic, Protocol, TypeVar
+
+import numpy as np
+from numpy.typing import DTypeLike, NDArray
+
+from spear._engine import api
+from spear.errors import ConnectionLostError, InvalidArgumentError, InvalidStateError
+from spear.instance import Instance
+
+_log = logging.getLogger("spear")
+
+ActionT = TypeVar("ActionT")
+ActionT_contra = TypeVar("ActionT_contra", contravariant=True)
+
+# -- spaces ------------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Box:
+    """Arrays of one shape and dtype with every element in [low, high] (infinite bounds allowed)."""
+
+    shape: tuple[int, ...]
+    dtype: DTypeLike = np.float32
+    low: float = -math.inf
+    high: float = math.inf
+
+    def zeros(self) -> NDArray[Any]:
+        return np.zeros(self.shape, dtype=self.dtype)
+
+    def contains(self, value: object) -> bool:
+        array = np.asarray(value)
+        return (array.shape == self.shape and array.dtype == np.dtype(self.dtype)
+                and bool(np.all(array >= self.low)) and bool(np.all(array <= self.high)))
+
+    def sample(self, rng: np.random.Generator) -> NDArray[Any]:
+        """Uniform over the box; a float dimension with an infinite bound draws from a standard normal
+        (clipped to the finite bound, if any)."""
+        dtype = np.dtype(self.dtype)
+        if np.issubdtype(dtype, np.integer):
+            info = np.iinfo(dtype)
+            low = int(max(self.low, info.min))
+            high = int(min(self.high, info.max))
+            return rng.integers(low, high, size=self.shape, endpoint=True).astype(dtype)
+        if math.isfinite(self.low) and math.isfinite(self.high):
+            return rng.uniform(self.low, self.high, size=self.shape).astype(dtype)
+        return np.clip(rng.standard_normal(size=self.shape), self.low, self.high).astype(dtype)
+
+
+@dataclass(frozen=True)
+class Discrete:
+    """One of the integers 0, 1, ..., n - 1."""
+
+    n: int
+
+    def contains(self, value: object) -> bool:
+        return isinstance(value, (int, np.integer)) and 0 <= int(value) < self.n
+
+    def sample(self, rng: np.random.Generator) -> int:
+        return int(rng.integers(self.n))
+
+
+# -- one environment ---------------------------------------------------------------------------------------
+
+
+@dataclass
+class StepResult:
+    """What an environment observes at the end of a frame."""
+
+    observation: dict[str, NDArray[Any]]
+    reward: float = 0.0
+    terminated: bool = False  # the episode reached a terminal state
+    truncated: bool = False  # the episode was cut short (a time limit)
+    info: dict[str, Any] = field(default_factory=dict)
+
+
+class Env(Protocol[ActionT_contra]):
+    """One environment in one world. reset() and act() run inside begin_frame, observe() inside end_frame."""
+
+    @property
+    def observation_space(self) -> Mapping[str, Box]: ...
+
+    @property
+    def action_space(self) -> Box | Discrete: ...
+
+    def reset(self, world: api.UWorld, seed: int) -> None:
+        """Starts an episode: builds the world's scene on the first call, rearranges it on later ones."""
+
+    def act(self, world: api.UWorld, action: ActionT_contra) -> None:
+        """Applies one action."""
+
+    def observe(self, world: api.UWorld) -> StepResult:
+        """Reads the observation (one array per observation_space key), reward and end of episode."""
+        ...
+
+
+# -- many environments -------------------------------------------------------------------------------------
+
+
+@dataclass
+class _Group:
+    """The environments one engine holds: stepped in one frame of that engine."""
+
+    instance: Instance
+    indices: list[int]
+
+
+Observations = dict[str, NDArray[Any]]
+StepBatch = tuple[Observations, NDArray[np.float32], NDArray[np.bool_], NDArray[np.bool_], list[dict[str, Any]]]
+
+
+class VectorEnv(Generic[ActionT]):
+    """num_envs environments, each in its own world of one of the instances, stepped together."""
+
+    def __init__(self, make_env: Callable[[], Env[ActionT]], slots: Sequence[tuple[Instance, api.UWorld]], *,
+                 owned: Sequence[Instance] = (), destroy_worlds: bool = False) -> None:
+        """make_env: builds one environment (called once per slot). slots: (instance, world) per environment, in
+        environment order. owned: instances close() closes. destroy_worlds: close() destroys the slots' worlds
+        in the instances it does not close."""
+        if not slots:
+            raise InvalidArgumentError("VectorEnv(): slots must hold at least one (instance, world)")
+        self._owned = list(owned)
+        self._slots = list(slots) if destroy_worlds else []
+        self._worlds = [world for _, world in slots]
+        self._envs = [make_env() for _ in slots]
+        self.observation_space: Mapping[str, Box] = dict(self._envs[0].observation_space)
+        self.action_space: Box | Discrete = self._envs[0].action_space
+        for i, env in enumerate(self._envs):
+            if dict(env.observation_space) != self.observation_space or env.action_space != self.action_space:
+                raise InvalidArgumentError(f"VectorEnv(): environment {i}'s spaces differ from environment 0's")
+        self._groups: list[_Group] = []
+        for i, (instance, _) in enumerate(slots):
+            group = next((g for g in self._groups if g.instance is instance), None)
+            if group is None:
+                self._groups.append(group := _Group(instance, []))
+            group.indices.append(i)
+        self._pool = (concurrent.futures.ThreadPoolExecutor(len(self._groups), thread_name_prefix="spear-vector")
+                      if len(self._groups) > 1 else None)
+        self._seeds: list[np.random.Generator] = []
+        self._needs_reset = [True] * len(slots)
+        self.failed: dict[int, BaseException] = {}
+        """Environments whose server went away, by index, with the error."""
+
+    # -- construction ------------------------------------------------------------------------------------
+
+    @classmethod
+    def in_worlds(cls, make_env: Callable[[], Env[ActionT]], *, num_envs: int, instance: Instance | None = None,
+                  prefix: str = "env") -> VectorEnv[ActionT]:
+        """num_envs environments in new worlds named prefix0, prefix1, ... of one engine: `instance` (close()
+        destroys the worlds), or an in-process engine that close() closes."""
+        if num_envs < 1:
+            raise InvalidArgumentError(f"VectorEnv.in_worlds(): num_envs must be >= 1, got {num_envs}")
+        engine = Instance() if instance is None else instance
+        slots: list[tuple[Instance, api.UWorld]] = []
+        try:
+            for i in range(num_envs):
+                slots.append((engine, engine.create_world(name=f"{prefix}{i}")))
+        except BaseException:
+            _destroy(slots)
+            if instance is None:
+                engine.close()
+            raise
+        return cls(make_env, slots, owned=[engine] if instance is None else [], destroy_worlds=True)
+
+    @classmethod
+    def on_servers(cls, make_env: Callable[[], Env[ActionT]], *, num_servers: int, worlds_per_server: int = 1,
+                   servers: Sequence[str] | None = None, token: str | None = None) -> VectorEnv[ActionT]:
+        """num_servers * worlds_per_server environments, worlds_per_server in each of num_servers spear-server
+        processes launched here, or in the running servers at the addresses `servers` ("unix:PATH",
+        "tcp:HOST:PORT"; token: their TCP token). close() destroys the worlds and stops the launched servers (or
+        disconnects from the running ones)."""
+        if num_servers < 1 or worlds_per_server < 1:
+            raise InvalidArgumentError("VectorEnv.on_servers(): num_servers and worlds_per_server must be >= 1, got "
+                                       f"{num_servers} and {worlds_per_server}")
+        if servers is not None and len(servers) != num_servers:
+            raise InvalidArgumentError(f"VectorEnv.on_servers(): {len(servers)} server addresses for num_servers="
+                                       f"{num_servers}")
+        addresses = list(servers) if servers is not None else ["launch"] * num_servers
+        # Servers start concurrently, each launch waiting for its process to listen (a launched server lives as
+        # long as this process, not the thread that launched it).
+        with concurrent.futures.ThreadPoolExecutor(num_servers) as pool:
+            futures = [pool.submit(Instance, server=address, token=token) for address in addresses]
+        instances = [future.result() for future in futures if future.exception() is None]
+        slots: list[tuple[Instance, api.UWorld]] = []
+        try:
+            for future in futures:
+                future.result()  # the first failure to start, if any
+            for s, engine in enumerate(instances):
+                for w in range(worlds_per_server):
+                    slots.append((engine, engine.create_world(name=f"env{s * worlds_per_server + w}")))
+        except BaseException:
+            _destroy(slots)
+            for engine in instances:
+                engine.close()
+            raise
+        return cls(make_env, slots, owned=instances, destroy_worlds=True)
+
+    # -- the loop ----------------------------------------------------------------------------------------
+
+    @property
+    def num_envs(self) -> int:
+        return len(self._envs)
+
+    @property
+    def envs(self) -> Sequence[Env[ActionT]]:
+        """The environments, in index order."""
+        return self._envs
+
+    @property
+    def worlds(self) -> Sequence[api.UWorld]:
+        """Each environment's world, in index order."""
+        return self._worlds
+
+    def reset(self, *, seed: int | None = None) -> tuple[Observations, list[dict[str, Any]]]:
+        """Starts an episode in every environment (environment i's seeds come from SeedSequence(seed) child i)."""
+        children = np.random.SeedSequence(seed).spawn(self.num_envs)
+        self._seeds = [np.random.default_rng(child) for child in children]
+        plan: dict[int, tuple[bool, Any]] = {i: (True, None) for i in range(self.num_envs)}
+        observations, _, _, _, infos = self._run(plan)
+        return observations, infos
+
+    def step(self, actions: Sequence[ActionT]) -> StepBatch:
+        """Applies actions[i] to environment i (resetting the ones whose episode ended last step) and returns
+        (observations, rewards, terminated, truncated, infos) with a leading environment axis."""
+        if not self._seeds:
+            raise InvalidStateError("VectorEnv.step(): call reset() first")
+        if len(actions) != self.num_envs:
+            raise InvalidArgumentError(f"VectorEnv.step(): {len(actions)} actions for {self.num_envs} environments")
+        plan = {i: (self._needs_reset[i], actions[i]) for i in range(self.num_envs)}
+        return self._run(plan)
+
+    def close(self) -> None:
+        """Stops the thread pool, destroys the worlds this vector env created (on servers that are still there),
+        and closes the instances it opened."""
+        if self._pool is not None:
+            self._pool.shutdown()
+            self._pool = None
+        gone = [self._slots[i][0] for i in self.failed] if self._slots else []
+        _destroy([(instance, world) for instance, world in self._slots if all(instance is not g for g in gone)])
+        self._slots = []
+        for instance in self._owned:
+            instance.close()
+        self._owned = []
+
+    def __enter__(self) -> VectorEnv[ActionT]:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    # -- internals ---------------------------------------------------------------------------------------
+
+    def _run(self, plan: dict[int, tuple[bool, Any]]) -> StepBatch:
+        groups = [g for g in self._groups if g.indices[0] not in self.failed]
+        if self._pool is None:
+            outcomes: list[dict[int, StepResult] | ConnectionLostError] = [self._guarded(g, plan) for g in groups]
+        else:
+            outcomes = list(self._pool.map(lambda g: self._guarded(g, plan), groups))
+        results: dict[int, StepResult] = {}
+        for group, outcome in zip(groups, outcomes):
+            if isinstance(outcome, ConnectionLostError):
+                self._fail(group, outcome)
+            else:
+                results.update(outcome)
+        return self._stack(plan, results)
+
+    def _guarded(self, group: _Group, plan: dict[int, tuple[bool, Any]]) -> dict[int, StepResult] | ConnectionLostError:
+        """The group's frame, or the error that says its server went away (any other error propagates)."""
+        try:
+            return self._frame(group, plan)
+        except ConnectionLostError as error:
+            return error
+
+    def _frame(self, group: _Group, plan: dict[int, tuple[bool, Any]]) -> dict[int, StepResult]:
+        """One frame of one engine: its environments act or reset, the engine ticks, they observe."""
+        instance = group.instance
+        with instance.begin_frame():
+            for i in group.indices:
+                reset, action = plan[i]
+                if reset:
+                    self._envs[i].reset(self._worlds[i], int(self._seeds[i].integers(2**63)))
+                else:
+                    self._envs[i].act(self._worlds[i], action)
+        results: dict[int, StepResult] = {}
+        with instance.end_frame():
+            for i in group.indices:
+                results[i] = self._envs[i].observe(self._worlds[i])
+        return results
+
+    def _fail(self, group: _Group, error: BaseException) -> None:
+        for i in group.indices:
+            self.failed[i] = error
+        _log.warning("environments %s failed and are left out from now on (%d of %d keep running): %s",
+                     group.indices, self.num_envs - len(self.failed), self.num_envs, error)
+
+    def _stack(self, plan: dict[int, tuple[bool, Any]], results: dict[int, StepResult]) -> StepBatch:
+        n = self.num_envs
+        observations = {key: np.zeros((n, *space.shape), dtype=space.dtype)
+                        for key, space in self.observation_space.items()}
+        rewards = np.zeros(n, dtype=np.float32)
+        terminated = np.zeros(n, dtype=np.bool_)
+        truncated = np.zeros(n, dtype=np.bool_)
+        infos: list[dict[str, Any]] = [{} for _ in range(n)]
+        for i in range(n):
+            if i in self.failed:
+                truncated[i] = True
+                infos[i] = {"error": self.failed[i]}
+                continue
+            result = results[i]
+            for key, space in self.observation_space.items():
+                value = result.observation.get(key)
+                if value is None or np.shape(value) != space.shape:
+                    got = "nothing" if value is None else f"shape {np.shape(value)}"
+                    raise InvalidArgumentError(f"VectorEnv: environment {i} observed {got} for '{key}', its "
+                                               f"observation_space says shape {space.shape}")
+                observations[key][i] = value
+            infos[i] = dict(result.info)
+            if plan[i][0]:
+                infos[i]["reset"] = True  # the first observation of an episode: no reward, not over
+            else:
+                rewards[i] = result.reward
+                terminated[i] = result.terminated
+                truncated[i] = result.truncated
+            self._needs_reset[i] = bool(terminated[i] or truncated[i])
+        return observations, rewards, terminated, truncated, infos
+
+
+def _destroy(slots: Sequence[tuple[Instance, api.UWorld]]) -> None:
+    for instance, world in slots:
+        instance.destroy_world(world=world)

@@ -1,0 +1,174 @@
+"""spear.vector: environments in worlds of one engine (both transports) and across servers, stacked
+observations in environment order, next-step auto-reset, a dead server reported while the rest keep running."""
+
+from __future__ import annotations
+
+import itertools
+import logging
+import os
+import signal
+from collections.abc import Callable, Iterator, Mapping
+from typing import Any
+
+import numpy as np
+import pytest
+from numpy.typing import NDArray
+
+import spear
+from spear.vector import Box, StepResult, VectorEnv
+
+CUBE = "/Engine/BasicShapes/Cube"
+
+
+class Slide:
+    """A cube on a frictionless-enough floor at x = its environment's index, pushed along X by the action. The
+    episode is truncated after `horizon` steps; the reward is the cube's x."""
+
+    observation_space: Mapping[str, Box] = {"position": Box((3,), np.float64)}
+    action_space = Box((1,), np.float32, -1.0, 1.0)
+
+    def __init__(self, index: int, horizon: int = 1000) -> None:
+        self.index = index
+        self.horizon = horizon
+        self.steps = 0
+        self.cube: spear.AStaticMeshActor | None = None
+        self.resets = 0
+
+    def reset(self, world: spear.UWorld, seed: int) -> None:
+        if self.cube is None:
+            self.cube = world.spawn_actor(uclass=spear.AStaticMeshActor, name="Cube")
+            self.cube.StaticMeshComponent.SetStaticMesh(NewMesh=CUBE)
+        self.cube.SetActorLocation(NewLocation=spear.FVector(X=float(self.index), Z=5.0))
+        self.steps = 0
+        self.resets += 1
+
+    def act(self, world: spear.UWorld, action: NDArray[np.float32]) -> None:
+        assert self.cube is not None
+        location = self.cube.GetActorLocation()
+        self.cube.SetActorLocation(NewLocation=spear.FVector(X=location.X + float(action[0]), Z=5.0))
+        self.steps += 1
+
+    def observe(self, world: spear.UWorld) -> StepResult:
+        assert self.cube is not None
+        location = self.cube.GetActorLocation()
+        return StepResult(observation={"position": np.array([location.X, location.Y, location.Z])},
+                          reward=location.X, truncated=self.steps >= self.horizon, info={"steps": self.steps})
+
+
+def numbered(horizon: int = 1000) -> Callable[[], Slide]:
+    """A make_env that numbers the environments it builds 0, 1, 2, ..."""
+    counter = itertools.count()
+    return lambda: Slide(next(counter), horizon)
+
+
+@pytest.fixture
+def worlds_env(instance: spear.Instance) -> Iterator[VectorEnv[NDArray[np.float32]]]:
+    envs = VectorEnv.in_worlds(numbered(horizon=3), num_envs=3, instance=instance)
+    with instance.begin_frame():
+        assert [world.GetName() for world in envs.worlds] == ["env0", "env1", "env2"]
+    with instance.end_frame():
+        pass
+    yield envs
+    envs.close()  # destroys the worlds it made: the instance has its game world alone again
+    assert instance.get_worlds() == [instance.get_game()]
+
+
+def test_observations_are_stacked_in_environment_order(worlds_env: VectorEnv[NDArray[np.float32]]) -> None:
+    observations, infos = worlds_env.reset(seed=7)
+    assert observations["position"].shape == (3, 3)
+    assert observations["position"][:, 0].tolist() == [0.0, 1.0, 2.0]
+    assert all(info["reset"] for info in infos)
+    actions = [np.array([0.5], np.float32)] * 3
+    observations, rewards, terminated, truncated, infos = worlds_env.step(actions)
+    assert observations["position"][:, 0].tolist() == [0.5, 1.5, 2.5]
+    assert rewards.dtype == np.float32 and rewards.tolist() == [0.5, 1.5, 2.5]
+    assert not terminated.any() and not truncated.any()
+    assert [info["steps"] for info in infos] == [1, 1, 1]
+
+
+def test_an_ended_episode_resets_on_the_next_step(worlds_env: VectorEnv[NDArray[np.float32]]) -> None:
+    worlds_env.reset(seed=0)
+    push = [np.array([1.0], np.float32)] * 3
+    for _ in range(2):
+        _, _, _, truncated, _ = worlds_env.step(push)
+        assert not truncated.any()
+    observations, rewards, _, truncated, _ = worlds_env.step(push)  # the third step ends the episodes
+    assert truncated.all() and rewards.tolist() == [3.0, 4.0, 5.0]
+    observations, rewards, terminated, truncated, infos = worlds_env.step(push)  # reset instead of acting
+    assert observations["position"][:, 0].tolist() == [0.0, 1.0, 2.0]
+    assert rewards.tolist() == [0.0, 0.0, 0.0] and not terminated.any() and not truncated.any()
+    assert all(info.get("reset") for info in infos)
+    assert [env.resets for env in worlds_env.envs if isinstance(env, Slide)] == [2, 2, 2]
+
+
+def test_camera_images_stack_per_world(instance: spear.Instance) -> None:
+    class Look:
+        """A depth camera facing a wall at 2 + index metres."""
+
+        observation_space: Mapping[str, Box] = {"depth": Box((12, 16), np.float32, 0.0)}
+        action_space = Box((1,), np.float32)
+
+        def __init__(self, index: int) -> None:
+            self.index = index
+            self.camera: spear.UCameraSensorComponent | None = None
+
+        def reset(self, world: spear.UWorld, seed: int) -> None:
+            wall = world.spawn_actor(uclass=spear.AStaticMeshActor, location=spear.FVector(X=2.05 + self.index))
+            wall.StaticMeshComponent.SetStaticMesh(NewMesh=CUBE)
+            wall.SetActorScale3D(NewScale3D=spear.FVector(0.1, 10, 10))
+            self.camera = world.spawn_actor(uclass=spear.ACameraSensorActor).CameraSensor
+            self.camera.Width, self.camera.Height = 16, 12
+            self.camera.Modalities = [spear.ECameraModality.Depth]
+
+        def act(self, world: spear.UWorld, action: Any) -> None:
+            pass
+
+        def observe(self, world: spear.UWorld) -> StepResult:
+            assert self.camera is not None
+            return StepResult(observation={"depth": self.camera.read_pixels()["depth"]})
+
+    counter = itertools.count()
+    with VectorEnv.in_worlds(lambda: Look(next(counter)), num_envs=3, instance=instance) as envs:
+        observations, _ = envs.reset(seed=1)
+        depth = observations["depth"]
+        assert depth.shape == (3, 12, 16) and depth.dtype == np.float32
+        for i in range(3):
+            assert np.allclose(depth[i], 2.0 + i, atol=1e-3)
+
+
+def test_misuse_is_refused_with_the_reason(instance: spear.Instance) -> None:
+    with VectorEnv.in_worlds(numbered(), num_envs=2, instance=instance) as envs:
+        with pytest.raises(spear.InvalidStateError, match=r"^VectorEnv.step\(\): call reset\(\) first$"):
+            envs.step([np.zeros(1, np.float32)] * 2)
+        envs.reset()
+        with pytest.raises(spear.InvalidArgumentError, match=r"^VectorEnv.step\(\): 1 actions for 2 environments$"):
+            envs.step([np.zeros(1, np.float32)])
+
+    class Wrong(Slide):
+        observation_space: Mapping[str, Box] = {"position": Box((2,), np.float64)}
+
+    with VectorEnv.in_worlds(lambda: Wrong(0), num_envs=1, instance=instance) as envs:
+        with pytest.raises(spear.InvalidArgumentError,
+                           match=r"^VectorEnv: environment 0 observed shape \(3,\) for 'position', its "
+                                 r"observation_space says shape \(2,\)$"):
+            envs.reset()
+
+
+def test_a_dead_server_is_reported_and_the_others_keep_running(caplog: pytest.LogCaptureFixture) -> None:
+    with VectorEnv.on_servers(numbered(), num_servers=2, worlds_per_server=2) as envs:
+        observations, _ = envs.reset(seed=3)
+        assert observations["position"][:, 0].tolist() == [0.0, 1.0, 2.0, 3.0]
+        doomed = envs._groups[1].instance.server_pid  # the second server holds environments 2 and 3
+        assert doomed is not None
+        os.kill(doomed, signal.SIGKILL)  # its socket closes as the process dies
+        push = [np.array([1.0], np.float32)] * 4
+        with caplog.at_level(logging.WARNING, logger="spear"):
+            observations, _, _, truncated, infos = envs.step(push)
+        assert sorted(envs.failed) == [2, 3]
+        assert isinstance(infos[2]["error"], spear.ConnectionLostError)
+        assert truncated.tolist() == [False, False, True, True]
+        assert observations["position"][:, 0].tolist() == [1.0, 2.0, 0.0, 0.0]
+        assert "environments [2, 3] failed" in caplog.text and "2 of 4 keep running" in caplog.text
+        observations, _, _, truncated, _ = envs.step(push)  # the survivors go on
+        assert observations["position"][:2, 0].tolist() == [2.0, 3.0]
+        assert truncated.tolist() == [False, False, True, True]
