@@ -9,6 +9,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
+#include <set>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -225,10 +228,16 @@ GlContext::GlContext(const GlContextOptions& options) {
         SP_THROW(InvalidState, "GlContext::GlContext(): need OpenGL 4.5 core, the ", report_.kind,
                  " context is ", report_.version, " (", report_.renderer, ")");
     }
-    SP_LOG("render: EGL ", report_.kind,
-           report_.deviceIndex >= 0 ? " " + std::to_string(report_.deviceIndex) : std::string(), " of ",
-           report_.deviceCount, " device(s): ", report_.vendor, " | ", report_.renderer, " | ",
-           report_.version);
+    // Once per process and device: a process with many worlds makes a context for each.
+    const std::string chosen =
+        report_.kind + (report_.deviceIndex >= 0 ? " " + std::to_string(report_.deviceIndex) : std::string()) +
+        " of " + std::to_string(report_.deviceCount) + " device(s): " + report_.vendor + " | " +
+        report_.renderer + " | " + report_.version;
+    static std::mutex mutex;
+    static std::set<std::string> logged;
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (logged.insert(chosen).second)
+        SP_LOG("render: EGL ", chosen);
 }
 
 GlContext::~GlContext() {

@@ -39,6 +39,7 @@ from spear.instance import Instance
 _log = logging.getLogger("spear")
 
 ActionT = TypeVar("ActionT")
+A = TypeVar("A")  # the constructors' own: a class's TypeVar is bound (to Unknown, in pyright) before they run
 ActionT_contra = TypeVar("ActionT_contra", contravariant=True)
 
 # -- spaces ------------------------------------------------------------------------------------------------
@@ -133,8 +134,9 @@ class _Group:
     indices: list[int]
 
 
-Observations = dict[str, NDArray[Any]]
-StepBatch = tuple[Observations, NDArray[np.float32], NDArray[np.bool_], NDArray[np.bool_], list[dict[str, Any]]]
+# (observations, rewards, terminated, truncated, infos) of one step; the public signatures spell it out (pyright's
+# --verifytypes counts a module-level alias of a numpy array type as unknown).
+_Batch = tuple[dict[str, NDArray[Any]], NDArray[np.float32], NDArray[np.bool_], NDArray[np.bool_], list[dict[str, Any]]]
 
 
 class VectorEnv(Generic[ActionT]):
@@ -172,8 +174,8 @@ class VectorEnv(Generic[ActionT]):
     # -- construction ------------------------------------------------------------------------------------
 
     @classmethod
-    def in_worlds(cls, make_env: Callable[[], Env[ActionT]], *, num_envs: int, instance: Instance | None = None,
-                  prefix: str = "env") -> VectorEnv[ActionT]:
+    def in_worlds(cls, make_env: Callable[[], Env[A]], *, num_envs: int, instance: Instance | None = None,
+                  prefix: str = "env") -> VectorEnv[A]:
         """num_envs environments in new worlds named prefix0, prefix1, ... of one engine: `instance` (close()
         destroys the worlds), or an in-process engine that close() closes."""
         if num_envs < 1:
@@ -188,11 +190,11 @@ class VectorEnv(Generic[ActionT]):
             if instance is None:
                 engine.close()
             raise
-        return cls(make_env, slots, owned=[engine] if instance is None else [], destroy_worlds=True)
+        return VectorEnv(make_env, slots, owned=[engine] if instance is None else [], destroy_worlds=True)
 
     @classmethod
-    def on_servers(cls, make_env: Callable[[], Env[ActionT]], *, num_servers: int, worlds_per_server: int = 1,
-                   servers: Sequence[str] | None = None, token: str | None = None) -> VectorEnv[ActionT]:
+    def on_servers(cls, make_env: Callable[[], Env[A]], *, num_servers: int, worlds_per_server: int = 1,
+                   servers: Sequence[str] | None = None, token: str | None = None) -> VectorEnv[A]:
         """num_servers * worlds_per_server environments, worlds_per_server in each of num_servers spear-server
         processes launched here, or in the running servers at the addresses `servers` ("unix:PATH",
         "tcp:HOST:PORT"; token: their TCP token). close() destroys the worlds and stops the launched servers (or
@@ -221,7 +223,7 @@ class VectorEnv(Generic[ActionT]):
             for engine in instances:
                 engine.close()
             raise
-        return cls(make_env, slots, owned=instances, destroy_worlds=True)
+        return VectorEnv(make_env, slots, owned=instances, destroy_worlds=True)
 
     # -- the loop ----------------------------------------------------------------------------------------
 
@@ -239,7 +241,7 @@ class VectorEnv(Generic[ActionT]):
         """Each environment's world, in index order."""
         return self._worlds
 
-    def reset(self, *, seed: int | None = None) -> tuple[Observations, list[dict[str, Any]]]:
+    def reset(self, *, seed: int | None = None) -> tuple[dict[str, NDArray[Any]], list[dict[str, Any]]]:
         """Starts an episode in every environment (environment i's seeds come from SeedSequence(seed) child i)."""
         children = np.random.SeedSequence(seed).spawn(self.num_envs)
         self._seeds = [np.random.default_rng(child) for child in children]
@@ -247,7 +249,8 @@ class VectorEnv(Generic[ActionT]):
         observations, _, _, _, infos = self._run(plan)
         return observations, infos
 
-    def step(self, actions: Sequence[ActionT]) -> StepBatch:
+    def step(self, actions: Sequence[ActionT]) -> tuple[
+            dict[str, NDArray[Any]], NDArray[np.float32], NDArray[np.bool_], NDArray[np.bool_], list[dict[str, Any]]]:
         """Applies actions[i] to environment i (resetting the ones whose episode ended last step) and returns
         (observations, rewards, terminated, truncated, infos) with a leading environment axis."""
         if not self._seeds:
@@ -278,7 +281,7 @@ class VectorEnv(Generic[ActionT]):
 
     # -- internals ---------------------------------------------------------------------------------------
 
-    def _run(self, plan: dict[int, tuple[bool, Any]]) -> StepBatch:
+    def _run(self, plan: dict[int, tuple[bool, Any]]) -> _Batch:
         groups = [g for g in self._groups if g.indices[0] not in self.failed]
         if self._pool is None:
             outcomes: list[dict[int, StepResult] | ConnectionLostError] = [self._guarded(g, plan) for g in groups]
@@ -321,7 +324,7 @@ class VectorEnv(Generic[ActionT]):
         _log.warning("environments %s failed and are left out from now on (%d of %d keep running): %s",
                      group.indices, self.num_envs - len(self.failed), self.num_envs, error)
 
-    def _stack(self, plan: dict[int, tuple[bool, Any]], results: dict[int, StepResult]) -> StepBatch:
+    def _stack(self, plan: dict[int, tuple[bool, Any]], results: dict[int, StepResult]) -> _Batch:
         n = self.num_envs
         observations = {key: np.zeros((n, *space.shape), dtype=space.dtype)
                         for key, space in self.observation_space.items()}

@@ -10,6 +10,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 from PIL import Image
 
@@ -179,3 +180,20 @@ def test_control_city_generator_spells_spear_and_regenerates(transport: str, tmp
         image = Image.open(image_path)
         assert image.size == (1280, 720)
         assert len(set(image.convert("L").getdata())) > 20  # buildings, roads and shadows
+
+
+@pytest.mark.parametrize("servers", [[], ["--servers", "2"]], ids=["worlds", "servers"])
+def test_vector_env_steps_the_environments_and_writes_their_grid(servers: list[str], tmp_path: Path) -> None:
+    out = tmp_path / "grid.png"
+    result = run_example("vector_env.py", "--envs", "4", "--steps", "5", "--out", str(out), *servers)
+    assert result.returncode == 0, result.stdout + result.stderr
+    where = "2 spear-servers" if servers else "one in-process engine"
+    assert re.search(rf"^4 environments in {where}: 5 steps in [\d.]+ s, \d+ environment steps/s", result.stdout,
+                     re.M), result.stdout
+    sheet = np.asarray(Image.open(out))
+    assert sheet.shape == (2 * 96 + 2, 2 * 96 + 2, 3)
+    for r in range(2):  # each tile shows the grey floor with the red puck and the green goal on it
+        for c in range(2):
+            tile = sheet[r * 98:r * 98 + 96, c * 98:c * 98 + 96].reshape(-1, 3).astype(int)
+            assert np.any((tile[:, 0] > tile[:, 1] + 60)), f"no red puck in tile {r},{c}"
+            assert np.any((tile[:, 1] > tile[:, 0] + 30)), f"no green goal in tile {r},{c}"
