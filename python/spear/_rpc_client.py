@@ -10,7 +10,7 @@ from __future__ import annotations
 import contextlib
 import itertools
 import warnings
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 import os
 import select
 import shutil
@@ -311,22 +311,33 @@ def find_server_binary() -> Path:
 
 
 class LaunchedServer:
-    """A spear-server process started for one Instance, on a private Unix socket; stopped by close()."""
+    """A spear-server process started for one Instance, on a private Unix socket; stopped by close().
+
+    tcp_bind: listen on TCP instead, on that address and a free port, for clients on other machines that give
+    `token` (spear.distributed starts one per Dask worker so). Such a server is not private: it loads only the
+    plugins it is started with and confines files to its working directory and `file_roots`."""
 
     def __init__(self, *, fixed_delta_seconds: float, mode: str = "game", scene: str = "",
-                 startup_timeout: float = 30.0) -> None:
+                 startup_timeout: float = 30.0, tcp_bind: str | None = None, token: str | None = None,
+                 file_roots: Sequence[str] = ()) -> None:
         self._directory = tempfile.mkdtemp(prefix="spear-")  # 0700: only this user reaches the socket
         self._stderr_forwarder: threading.Thread | None = None
         socket_path = os.path.join(self._directory, "server.sock")
         extra = ["--scene", scene] if scene else []  # relative to the client's directory, which the server shares
+        if tcp_bind is None:
+            # This server is private to this user (its socket is in a 0700 directory) and serves the one
+            # client that started it: loading any library there grants nothing the user lacks, and
+            # instance.load_plugin(path) works as in-process. For the same reason its files are not confined:
+            # a scene or mesh path means what it means in-process.
+            listen = ["--socket", socket_path, "--allow-remote-plugin-load", "--file-root", "/"]
+        else:
+            if not token:
+                raise errors.InvalidArgumentError("LaunchedServer(): a TCP server needs a token")
+            listen = ["--port", "0", "--bind", tcp_bind, *(arg for root in file_roots for arg in ("--file-root", root))]
         self.process = subprocess.Popen(
-            [str(find_server_binary()), "--socket", socket_path, "--fixed-delta-seconds", repr(fixed_delta_seconds),
-             "--mode", mode, *extra, "--exit-with-parent",
-             # This server is private to this user (its socket is in a 0700 directory) and serves the one
-             # client that started it: loading any library there grants nothing the user lacks, and
-             # instance.load_plugin(path) works as in-process. For the same reason its files are not confined:
-             # a scene or mesh path means what it means in-process.
-             "--allow-remote-plugin-load", "--file-root", "/"],
+            [str(find_server_binary()), *listen, "--fixed-delta-seconds", repr(fixed_delta_seconds), "--mode", mode,
+             *extra, "--exit-with-parent"],
+            env=None if tcp_bind is None else {**os.environ, "SPEAR_TOKEN": token or ""},  # not on the command line
             # errors="replace": a log line with bytes that are not UTF-8 (a name from a mesh file) must not stop
             # the reading of the server's stderr.
             stdout=subprocess.PIPE, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True, errors="replace",
