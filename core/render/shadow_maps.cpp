@@ -101,7 +101,6 @@ std::uint64_t packed(InstanceId id) {
 ShadowMaps::~ShadowMaps() {
     glDeleteFramebuffers(1, &fbo_);
     glDeleteTextures(1, &texture_);
-    glDeleteTextures(1, &staticTexture_);
 }
 
 void ShadowMaps::ensure(int resolution, unsigned format) {
@@ -109,22 +108,19 @@ void ShadowMaps::ensure(int resolution, unsigned format) {
         return;
     glDeleteFramebuffers(1, &fbo_);
     glDeleteTextures(1, &texture_);
-    glDeleteTextures(1, &staticTexture_);
-    for (unsigned* texture : {&texture_, &staticTexture_}) {
-        glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, texture);
-        glTextureStorage3D(*texture, 1, format, resolution, resolution, shaders::kMaxShadowMaps);
-        // Gathered and compared in the shader (see shadowFactor() in shaders.cpp), never filtered.
-        glTextureParameteri(*texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(*texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glTextureParameteri(*texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(*texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(*texture, GL_TEXTURE_COMPARE_MODE, GL_NONE);
-    }
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture_);
+    glTextureStorage3D(texture_, 1, format, resolution, resolution, shaders::kMaxShadowMaps);
+    // Gathered and compared in the shader (see shadowFactor() in shaders.cpp), never filtered.
+    glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(texture_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture_, GL_TEXTURE_COMPARE_MODE, GL_NONE);
     glCreateFramebuffers(1, &fbo_);
     glNamedFramebufferDrawBuffer(fbo_, GL_NONE);
     resolution_ = resolution;
     format_ = format;
-    staticSignature_.clear(); // new storage holds nothing yet
+    staticSignature_.clear(); // new storage holds nothing yet: the next update draws in full
     movingRects_.clear();
 }
 
@@ -261,7 +257,7 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
     const bool anyPerspective =
         std::any_of(infos.begin(), infos.end(), [](const ShadowInfo& info) { return info.perspective; });
     ensure(resolution, anyPerspective ? GL_DEPTH_COMPONENT32F : GL_DEPTH_COMPONENT16);
-    const bool rebuildStatic = staticSignature != staticSignature_ || movingRects_.size() != infos.size();
+    const bool drawAll = staticSignature != staticSignature_ || movingRects_.size() != infos.size();
     staticSignature_ = std::move(staticSignature);
     movingRects_.resize(infos.size());
 
@@ -276,30 +272,39 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
     depthProgram.use();
     for (std::size_t i = 0; i < infos.size(); ++i) {
         const ShadowInfo& info = infos[i];
-        if (rebuildStatic) {
-            glNamedFramebufferTextureLayer(fbo_, GL_DEPTH_ATTACHMENT, staticTexture_, 0, info.layer);
-            glClear(GL_DEPTH_BUFFER_BIT);
-            for (const Instance* instance : statics)
-                draw(scene, *instance, info, projections[i], positions[i], cache, depthProgram);
-            ++update_.staticMaps;
-        }
-        // Restore what moving casters covered (all of it after a static render), then draw them again.
+        glNamedFramebufferTextureLayer(fbo_, GL_DEPTH_ATTACHMENT, texture_, 0, info.layer);
         Rect now;
         for (const Instance* instance : moving)
             now = now.united(footprint(scene, *instance, projections[i], resolution));
-        const Rect restore = rebuildStatic ? Rect{0, 0, resolution, resolution} : now.united(movingRects_[i]);
-        if (!restore.empty()) {
-            glCopyImageSubData(staticTexture_, GL_TEXTURE_2D_ARRAY, 0, restore.x0, restore.y0, info.layer,
-                               texture_, GL_TEXTURE_2D_ARRAY, 0, restore.x0, restore.y0, info.layer,
-                               restore.x1 - restore.x0, restore.y1 - restore.y0, 1);
-            update_.restoredTexels +=
-                std::size_t(restore.x1 - restore.x0) * std::size_t(restore.y1 - restore.y0);
-        }
-        if (!moving.empty()) {
-            glNamedFramebufferTextureLayer(fbo_, GL_DEPTH_ATTACHMENT, texture_, 0, info.layer);
+        if (drawAll) {
+            glClear(GL_DEPTH_BUFFER_BIT);
+            for (const Instance* instance : statics)
+                draw(scene, *instance, info, projections[i], positions[i], cache, depthProgram);
             for (const Instance* instance : moving)
                 draw(scene, *instance, info, projections[i], positions[i], cache, depthProgram);
+            ++update_.fullMaps;
+            update_.staticDraws += statics.size();
             update_.dynamicDraws += moving.size();
+        } else if (const Rect region = now.united(movingRects_[i]); !region.empty()) {
+            // Where moving casters are and were: cleared and drawn again, scissored to the rectangle, from
+            // the still casters reaching into it and the moving ones. A texel's depth is the nearest of the
+            // casters covering it, whatever the order, so this equals a full render bit for bit; and unlike
+            // copying the rectangle back from a map of the still casters, it never makes the CPU wait for
+            // the rasteriser (a software one copies through mapped memory).
+            glEnable(GL_SCISSOR_TEST);
+            glScissor(region.x0, region.y0, region.x1 - region.x0, region.y1 - region.y0);
+            glClear(GL_DEPTH_BUFFER_BIT);
+            for (const Instance* instance : statics) {
+                if (footprint(scene, *instance, projections[i], resolution).overlaps(region)) {
+                    draw(scene, *instance, info, projections[i], positions[i], cache, depthProgram);
+                    ++update_.staticDraws;
+                }
+            }
+            for (const Instance* instance : moving)
+                draw(scene, *instance, info, projections[i], positions[i], cache, depthProgram);
+            glDisable(GL_SCISSOR_TEST);
+            update_.dynamicDraws += moving.size();
+            update_.redrawnTexels += std::size_t(region.x1 - region.x0) * std::size_t(region.y1 - region.y0);
         }
         movingRects_[i] = now;
     }

@@ -4,10 +4,11 @@
 // scene neither resize nor shift the map); spot maps are perspective over the cone. Point lights cast
 // no shadows. Needs a current context.
 //
-// Casters that did not change since the previous update are static: they are rendered once into a
-// second texture array, and each update restores only the rectangles the moving casters covered (now
-// and at the previous update) from it before drawing the moving casters. A robot in a large still
-// scene costs the pixels it covers, not the whole map. The result equals a full render bit for bit.
+// Casters that did not change since the previous update are still: while the set of still casters stays
+// the same, an update clears and redraws only the rectangles the moving casters cover (now and at the
+// previous update), scissored, drawing there the still casters that reach into them and the moving ones.
+// A robot in a large still scene costs the texels it covers, not the whole map. The result equals a full
+// render bit for bit.
 
 #include <algorithm>
 #include <cstdint>
@@ -32,10 +33,11 @@ struct ShadowInfo {
 
 // What the last update() did, for RenderStats and tests.
 struct ShadowUpdate {
-    std::size_t maps = 0;           // maps brought up to date (0: nothing changed, the maps were reused)
-    std::size_t staticMaps = 0;     // of which the static casters were rendered again
-    std::size_t dynamicDraws = 0;   // moving casters drawn
-    std::size_t restoredTexels = 0; // texels copied back from the static maps
+    std::size_t maps = 0;          // maps brought up to date (0: nothing changed, the maps were reused)
+    std::size_t fullMaps = 0;      // of which every caster was drawn again over the whole map
+    std::size_t dynamicDraws = 0;  // moving casters drawn
+    std::size_t staticDraws = 0;   // still casters drawn again (those reaching into a redrawn rectangle)
+    std::size_t redrawnTexels = 0; // texels cleared and drawn again around moving casters
 };
 
 class ShadowMaps {
@@ -68,6 +70,10 @@ class ShadowMaps {
     struct Rect {
         int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
         bool empty() const { return x0 >= x1 || y0 >= y1; }
+        bool overlaps(const Rect& other) const {
+            return !empty() && !other.empty() && x0 < other.x1 && other.x0 < x1 && y0 < other.y1 &&
+                   other.y0 < y1;
+        }
         // The smallest rectangle holding both (an empty one adds nothing).
         Rect united(const Rect& other) const {
             if (empty())
@@ -86,16 +92,15 @@ class ShadowMaps {
     Rect footprint(const Scene& scene, const Instance& instance, const Eigen::Matrix4d& lightProjection,
                    int resolution) const;
 
-    unsigned texture_ = 0;       // sampled: static and moving casters
-    unsigned staticTexture_ = 0; // static casters only
+    unsigned texture_ = 0;
     unsigned fbo_ = 0;
     int resolution_ = 0;
     unsigned format_ = 0;
     bool warnedTooMany_ = false;
     std::vector<ShadowInfo> infos_;
     ShadowUpdate update_;
-    std::vector<double> signature_;                          // what the maps were rendered from
-    std::vector<double> staticSignature_;                    // what the static maps were rendered from
+    std::vector<double> signature_;       // what the maps were rendered from
+    std::vector<double> staticSignature_; // the still casters and projections drawn in full
     std::unordered_map<std::uint64_t, CasterState> casters_; // by packed InstanceId
     std::vector<Rect> movingRects_; // per layer: where moving casters were drawn last time
 };

@@ -70,12 +70,12 @@ TEST_F(ShadowMapsGlTest, AnyHistoryOfUpdatesGivesTheMapsOfAFreshRender) {
     const std::vector<InstanceId> ids = instanceIds(scene);
     ShadowMaps maps;
     expectSameAsFresh(maps, scene, "first update");
-    // Moves longer than the box's footprint: where it was must be restored from the static map.
+    // Moves longer than the box's footprint: where it was must be drawn again from the still casters.
     moveBy(scene, ids[1], {1.5, 0.0, 0.0});
     expectSameAsFresh(maps, scene, "the box moved");
     moveBy(scene, ids[1], {-1.5, 1.0, 0.0});
     expectSameAsFresh(maps, scene, "the box moved again");
-    EXPECT_EQ(maps.lastUpdate().staticMaps, 0u); // the still casters came from the static map
+    EXPECT_EQ(maps.lastUpdate().fullMaps, 0u); // only around the box
     moveBy(scene, ids[1], {-0.3, 0.0, 0.1});
     moveBy(scene, ids[2], {0.0, 0.3, 0.0});
     expectSameAsFresh(maps, scene, "the box and the sphere moved");
@@ -103,27 +103,36 @@ TEST_F(ShadowMapsGlTest, SpotLightMapsKeepFullDepthPrecisionAndTheSameGuarantee)
     expectSameAsFresh(maps, scene, "the crate moved");
     moveBy(scene, id, {-0.8, 0.8, 0.0});
     expectSameAsFresh(maps, scene, "the crate moved again");
-    EXPECT_EQ(maps.lastUpdate().staticMaps, 0u);
+    EXPECT_EQ(maps.lastUpdate().fullMaps, 0u);
 }
 
 TEST_F(ShadowMapsGlTest, OneObjectMovingInAStillSceneRestoresOnlyItsNeighbourhood) {
     Scene scene;
     buildShapesScene(scene);
+    Instance far{scene.addMesh(primitives::box({0.4f, 0.4f, 0.4f})),
+                 {scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f, 0.0f))},
+                 {9}};
+    far.transform.translation() =
+        Eigen::Vector3d(3.6, 3.6, 0.2); // in a corner of the ground, far from the sphere
+    scene.addInstance(far);
     const std::vector<InstanceId> ids = instanceIds(scene);
     ShadowMaps maps;
     maps.render(scene, kResolution, cache_, depth_);
     EXPECT_EQ(maps.format(), unsigned(GL_DEPTH_COMPONENT16)); // orthographic maps only
     moveBy(scene, ids[2], {0.05, 0.0, 0.0}); // the sphere starts moving: the others become static
     maps.render(scene, kResolution, cache_, depth_);
-    EXPECT_EQ(maps.lastUpdate().staticMaps, 1u);
+    EXPECT_EQ(maps.lastUpdate().fullMaps, 1u); // the set of still casters changed: everything drawn
     moveBy(scene, ids[2], {0.05, 0.0, 0.0});
     maps.render(scene, kResolution, cache_, depth_);
     const ShadowUpdate& update = maps.lastUpdate();
     EXPECT_EQ(update.maps, 1u);
-    EXPECT_EQ(update.staticMaps, 0u);   // the still casters were not drawn again
-    EXPECT_EQ(update.dynamicDraws, 1u); // only the sphere was
-    EXPECT_GT(update.restoredTexels, 0u);
-    EXPECT_LT(update.restoredTexels, std::size_t(kResolution) * kResolution / 10);
+    EXPECT_EQ(update.fullMaps, 0u);
+    EXPECT_EQ(update.dynamicDraws, 1u); // the sphere
+    // and the still casters whose (conservative) footprints reach the sphere's: the ground, the box and the
+    // cylinder nearby, not the box in the far corner.
+    EXPECT_EQ(update.staticDraws, 3u);
+    EXPECT_GT(update.redrawnTexels, 0u);
+    EXPECT_LT(update.redrawnTexels, std::size_t(kResolution) * kResolution / 10);
 }
 
 // Found by spear_rpc_fuzz: an actor moved to 1e300 made the scene's bounds infinite, and snapping them
