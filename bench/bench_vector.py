@@ -1,0 +1,129 @@
+"""Vectorised environments: environment steps per second for N environments (a cube pushed by a force, physics,
+one 128 x 128 final-colour camera each), stepped as N worlds of one in-process engine, as worlds spread over one
+spear-server per core, and over a Dask LocalCluster with one worker per core; each against the floor, N
+independent single-world spear-server processes stepped one after another in the same run (what a user without
+spear.vector writes).
+
+    PYTHONPATH=python /usr/bin/python3 bench/bench_vector.py [--counts 1 4 16 64] [--steps 30]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+from collections.abc import Callable, Mapping
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "python"))
+
+import spear  # noqa: E402
+import spear.distributed  # noqa: E402
+from spear.vector import Box, StepResult, VectorEnv  # noqa: E402
+
+SIZE = 128
+
+
+class Push:
+    """A cube on a floor under a sun, pushed along X; an overhead 128 x 128 colour camera."""
+
+    observation_space: Mapping[str, Box] = {"final_color": Box((SIZE, SIZE, 4), np.uint8, 0, 255)}
+    action_space = Box((1,), np.float32, -1.0, 1.0)
+
+    def __init__(self) -> None:
+        self.cube: spear.AStaticMeshActor | None = None
+        self.camera: spear.UCameraSensorComponent | None = None
+
+    def reset(self, world: spear.UWorld, seed: int) -> None:
+        if self.cube is None:
+            sun = world.spawn_actor(uclass=spear.ADirectionalLight, rotation=spear.FRotator(Pitch=-60.0))
+            sun.LightComponent.Intensity = 3.0
+            floor = world.spawn_actor(uclass=spear.AStaticMeshActor, location=spear.FVector(Z=-0.05))
+            floor.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+            floor.SetActorScale3D(NewScale3D=spear.FVector(8.0, 8.0, 0.1))
+            floor.StaticMeshComponent.SetMobility(NewMobility=spear.EComponentMobility.Static)
+            self.cube = world.spawn_actor(uclass=spear.AStaticMeshActor, location=spear.FVector(Z=0.5))
+            self.cube.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+            self.cube.StaticMeshComponent.SetSimulatePhysics(bSimulate=True)
+            camera = world.spawn_actor(uclass=spear.ACameraSensorActor, location=spear.FVector(Z=6.0),
+                                       rotation=spear.FRotator(Pitch=-90.0))
+            self.camera = camera.CameraSensor
+            self.camera.Width, self.camera.Height = SIZE, SIZE
+            self.camera.Modalities = [spear.ECameraModality.FinalColor]
+
+    def act(self, world: spear.UWorld, action: NDArray[np.float32]) -> None:
+        assert self.cube is not None
+        self.cube.StaticMeshComponent.AddForce(Force=spear.FVector(X=5.0 * float(action[0])))
+
+    def observe(self, world: spear.UWorld) -> StepResult:
+        assert self.camera is not None
+        pixels = self.camera.read_pixels()
+        assert "final_color" in pixels
+        return StepResult(observation={"final_color": pixels["final_color"]})
+
+
+def rate(envs: list[VectorEnv[NDArray[np.float32]]], steps: int) -> float:
+    """Environment steps per second of stepping `envs` one after another, after 3 warm-up steps."""
+    actions = [[np.array([0.5], np.float32)] * e.num_envs for e in envs]
+    for e in envs:
+        e.reset(seed=0)
+    for _ in range(3):
+        for e, a in zip(envs, actions):
+            e.step(a)
+    start = time.perf_counter()
+    for _ in range(steps):
+        for e, a in zip(envs, actions):
+            e.step(a)
+    return sum(e.num_envs for e in envs) * steps / (time.perf_counter() - start)
+
+
+def measured(make: Callable[[], list[VectorEnv[NDArray[np.float32]]]], steps: int) -> float:
+    envs = make()
+    try:
+        return rate(envs, steps)
+    finally:
+        for e in envs:
+            e.close()
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=(__doc__ or "").split("\n\n")[0])
+    parser.add_argument("--counts", type=int, nargs="+", default=[1, 4, 16, 64])
+    parser.add_argument("--steps", type=int, default=30)
+    args = parser.parse_args()
+    cores = os.cpu_count() or 1
+    import distributed  # Debian's python3-distributed
+
+    cluster = distributed.LocalCluster(n_workers=cores, threads_per_worker=1, processes=True,
+                                       dashboard_address=None, silence_logs=40)
+    client = distributed.Client(cluster)
+    print(f"{cores} cores; environment steps per second (physics + one {SIZE}x{SIZE} colour camera each), "
+          f"{args.steps} timed steps after 3 warm-up steps")
+    print("| N | floor: N single-world servers, one after another | worlds in one process | "
+          f"one server per core ({cores}) | Dask LocalCluster ({cores} workers) |")
+    print("|---:|---:|---:|---:|---:|")
+    try:
+        for n in args.counts:
+            floor = measured(lambda: [VectorEnv.on_servers(Push, num_servers=1) for _ in range(n)], args.steps)
+            worlds = measured(lambda: [VectorEnv.in_worlds(Push, num_envs=n)], args.steps)
+            servers = min(cores, n)
+            per_core = measured(lambda: [VectorEnv.on_servers(Push, num_servers=servers,
+                                                              worlds_per_server=n // servers)], args.steps)
+            with spear.distributed.Servers(client) as dask_servers:
+                on_dask = measured(lambda: [VectorEnv.on_servers(
+                    Push, num_servers=servers, worlds_per_server=n // servers, servers=dask_servers.addresses[:servers],
+                    token=dask_servers.token)], args.steps)
+            print(f"| {n} | {floor:.0f} | {worlds:.0f} ({worlds / floor:.1f}×) | {per_core:.0f} ({per_core / floor:.1f}×) "
+                  f"| {on_dask:.0f} ({on_dask / floor:.1f}×) |", flush=True)
+    finally:
+        client.close()
+        cluster.close()
+
+
+if __name__ == "__main__":
+    main()
