@@ -71,6 +71,12 @@ FCameraPixels UCameraSensorComponent::read_pixels() {
     return subsystemOf(*this, "read_pixels").readPixels(*this);
 }
 
+FCameraPixels
+UCameraSensorComponent::read_pixels_stacked(const std::vector<UCameraSensorComponent*>& Cameras) {
+    return sp::sensors::RenderSubsystem::readPixelsStacked(Cameras,
+                                                           "UCameraSensorComponent.read_pixels_stacked()");
+}
+
 void UCameraSensorComponent::SetModalityNames(const std::vector<std::string>& Names) {
     std::vector<ECameraModality> modalities;
     for (const std::string& name : Names) {

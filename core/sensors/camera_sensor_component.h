@@ -267,6 +267,13 @@ class UCameraSensorComponent : public USceneComponent {
     SPFUNCTION()
     FCameraPixels read_pixels();
 
+    /// Returns the images of several cameras' due frames (cameras of any worlds of one engine) in one call:
+    /// each modality as one array with a leading camera axis, (len(Cameras), H, W[, C]), each camera's images
+    /// read straight into its slice. The cameras must show frames of one size and the same modalities; an
+    /// empty dict while any of them is priming.
+    SPFUNCTION()
+    static FCameraPixels read_pixels_stacked(const std::vector<UCameraSensorComponent*>& Cameras);
+
     /// Returns the world frame shown by the last read_pixels() result, or -1 when it was empty.
     SPFUNCTION()
     int64_t GetPixelsFrame() const { return pixelsFrame_; }

@@ -52,49 +52,60 @@ sp::render::CameraParams cameraParams(const UCameraSensorComponent& camera) {
     return params;
 }
 
-// Allocates the SpArray of one modality at the given size and returns the view the readback writes to.
+std::string joined(const std::vector<std::string>& names) {
+    std::string text;
+    for (const std::string& name : names)
+        text += (text.empty() ? "" : ", ") + name;
+    return text;
+}
+
+// Allocates the SpArray of one modality for `count` images of the given size, (count, H, W[, C]), or one
+// image, (H, W[, C]), when count is 0; returns the view of the first image (the next ones follow it).
 template <typename T>
 sp::render::OutputView allocate(sp::reflect::SpArray<T>& array, sp::render::Modality modality, int width,
-                                int height) {
+                                int height, int count) {
     const int channels = sp::render::modalityInfo(modality).channels;
     std::vector<int64_t> shape{height, width};
     if (channels > 1)
         shape.push_back(channels);
+    if (count > 0)
+        shape.insert(shape.begin(), count);
     array.resize(shape);
     return {modality, array.data(), sp::render::modalityByteSize(modality, width, height)};
 }
 
-sp::render::OutputView allocate(FCameraPixels& pixels, sp::render::Modality modality, int width, int height) {
+sp::render::OutputView allocate(FCameraPixels& pixels, sp::render::Modality modality, int width, int height,
+                                int count) {
     using M = sp::render::Modality;
     switch (modality) {
     case M::FinalColor:
-        return allocate(pixels.final_color, modality, width, height);
+        return allocate(pixels.final_color, modality, width, height, count);
     case M::HdrColor:
-        return allocate(pixels.hdr_color, modality, width, height);
+        return allocate(pixels.hdr_color, modality, width, height, count);
     case M::Depth:
-        return allocate(pixels.depth, modality, width, height);
+        return allocate(pixels.depth, modality, width, height, count);
     case M::Position:
-        return allocate(pixels.position, modality, width, height);
+        return allocate(pixels.position, modality, width, height, count);
     case M::Normal:
-        return allocate(pixels.normal, modality, width, height);
+        return allocate(pixels.normal, modality, width, height, count);
     case M::ObjectIds:
-        return allocate(pixels.object_ids, modality, width, height);
+        return allocate(pixels.object_ids, modality, width, height, count);
     case M::MaterialIds:
-        return allocate(pixels.material_ids, modality, width, height);
+        return allocate(pixels.material_ids, modality, width, height, count);
     case M::BaseColor:
-        return allocate(pixels.base_color, modality, width, height);
+        return allocate(pixels.base_color, modality, width, height, count);
     case M::Roughness:
-        return allocate(pixels.roughness, modality, width, height);
+        return allocate(pixels.roughness, modality, width, height, count);
     case M::Metallic:
-        return allocate(pixels.metallic, modality, width, height);
+        return allocate(pixels.metallic, modality, width, height, count);
     case M::MaterialAo:
-        return allocate(pixels.material_ao, modality, width, height);
+        return allocate(pixels.material_ao, modality, width, height, count);
     case M::DiffuseIllumination:
-        return allocate(pixels.diffuse_illumination, modality, width, height);
+        return allocate(pixels.diffuse_illumination, modality, width, height, count);
     case M::DiffuseOnly:
-        return allocate(pixels.diffuse_only, modality, width, height);
+        return allocate(pixels.diffuse_only, modality, width, height, count);
     case M::SpecularResidual:
-        return allocate(pixels.specular_residual, modality, width, height);
+        return allocate(pixels.specular_residual, modality, width, height, count);
     }
     SP_THROW(sp::InvalidArgument, "RenderSubsystem::readPixels(): unknown modality ", int(modality));
 }
@@ -202,42 +213,108 @@ void RenderSubsystem::submit(UCameraSensorComponent& camera) {
         state.pending.pop_front();
 }
 
-FCameraPixels RenderSubsystem::readPixels(UCameraSensorComponent& camera) {
+const RenderSubsystem::PendingFrame* RenderSubsystem::dueFrame(UCameraSensorComponent& camera) const {
     auto it = cameras_.find(camera.GetHandle());
-    if (it == cameras_.end() || !it->second->target) {
+    if (it == cameras_.end() || !it->second->target)
+        return nullptr;
+    const CameraState& state = *it->second;
+    if (state.readSinceSubmit)
+        return state.lastRead ? &*state.lastRead : nullptr;
+    const std::uint64_t submitted = state.target->submittedFrames();
+    const std::uint64_t latency = std::uint64_t(state.target->latency());
+    auto due = std::find_if(state.pending.begin(), state.pending.end(), [&](const PendingFrame& f) {
+        return submitted > latency && f.submit == submitted - latency;
+    });
+    return due == state.pending.end() ? nullptr : &*due;
+}
+
+std::optional<RenderSubsystem::FrameShape> RenderSubsystem::dueShape(UCameraSensorComponent& camera) const {
+    const PendingFrame* frame = dueFrame(camera);
+    if (frame == nullptr)
+        return std::nullopt;
+    return FrameShape{frame->width, frame->height, frame->modalities};
+}
+
+bool RenderSubsystem::readInto(UCameraSensorComponent& camera,
+                               const std::vector<sp::render::OutputView>& views) {
+    const PendingFrame* frame = dueFrame(camera);
+    if (frame == nullptr) {
+        if (auto it = cameras_.find(camera.GetHandle()); it != cameras_.end() && it->second->target) {
+            it->second->readSinceSubmit = true; // priming: this frame's read found nothing, as it will again
+            it->second->pixelsFrame = -1;
+        }
         camera.setPixelsFrame(-1);
-        return {};
+        return false;
     }
-    CameraState& state = *it->second;
-    const auto fill = [&](FCameraPixels& pixels, const PendingFrame& frame) {
-        std::vector<sp::render::OutputView> views;
-        for (sp::render::Modality modality : frame.modalities.list())
-            views.push_back(allocate(pixels, modality, frame.width, frame.height));
-        return views;
-    };
-    FCameraPixels pixels;
+    CameraState& state = *cameras_.at(camera.GetHandle());
     context_->makeCurrent();
+    bool read = false;
     if (!state.readSinceSubmit) {
+        const PendingFrame due = *frame;
         state.readSinceSubmit = true;
         state.pixelsFrame = -1;
-        const std::uint64_t submitted = state.target->submittedFrames();
-        const std::uint64_t latency = std::uint64_t(state.target->latency());
-        auto due = std::find_if(state.pending.begin(), state.pending.end(), [&](const PendingFrame& f) {
-            return submitted > latency && f.submit == submitted - latency;
-        });
-        if (due != state.pending.end()) {
-            if (state.target->read(fill(pixels, *due))) {
-                state.pixelsFrame = due->worldFrame;
-                state.lastRead = *due;
-            } else {
-                pixels = {};
-            }
-            state.pending.erase(state.pending.begin(), std::next(due));
+        read = state.target->read(views).has_value();
+        if (read) {
+            state.pixelsFrame = due.worldFrame;
+            state.lastRead = due;
         }
-    } else if (state.lastRead && !state.target->readAgain(fill(pixels, *state.lastRead))) {
-        pixels = {};
+        auto end = std::find_if(state.pending.begin(), state.pending.end(),
+                                [&](const PendingFrame& f) { return f.submit == due.submit; });
+        state.pending.erase(state.pending.begin(), std::next(end));
+    } else {
+        read = state.target->readAgain(views).has_value();
     }
-    camera.setPixelsFrame(state.pixelsFrame);
+    camera.setPixelsFrame(read ? state.pixelsFrame : -1);
+    return read;
+}
+
+FCameraPixels RenderSubsystem::readPixels(UCameraSensorComponent& camera) {
+    FCameraPixels pixels;
+    std::vector<sp::render::OutputView> views;
+    if (const std::optional<FrameShape> shape = dueShape(camera))
+        for (sp::render::Modality modality : shape->modalities.list())
+            views.push_back(allocate(pixels, modality, shape->width, shape->height, 0));
+    return readInto(camera, views) ? pixels : FCameraPixels{};
+}
+
+FCameraPixels RenderSubsystem::readPixelsStacked(const std::vector<UCameraSensorComponent*>& cameras,
+                                                 const char* context) {
+    SP_CHECK(!cameras.empty(), sp::InvalidArgument, context, ": Cameras is empty");
+    std::vector<std::pair<RenderSubsystem*, FrameShape>> shapes;
+    for (std::size_t i = 0; i < cameras.size(); ++i) {
+        SP_CHECK(cameras[i], sp::InvalidArgument, context, ": Cameras[", i, "] is None");
+        UWorld* world = cameras[i]->GetWorld();
+        SP_CHECK(world, sp::InvalidState, context, ": Cameras[", i, "] (", cameras[i]->GetDebugName(),
+                 ") is not in a world");
+        auto& subsystem = world->GetSubsystem<RenderSubsystem>();
+        const std::optional<FrameShape> shape = subsystem.dueShape(*cameras[i]);
+        if (!shape)
+            return {}; // a camera still priming: nothing read, as read_pixels() would return for it
+        if (!shapes.empty()) {
+            const FrameShape& first = shapes.front().second;
+            SP_CHECK(shape->width == first.width && shape->height == first.height, sp::InvalidArgument,
+                     context, ": Cameras[", i, "] shows ", shape->width, "x", shape->height,
+                     " images, Cameras[0] ", first.width, "x", first.height,
+                     "; stacked cameras need one size");
+            SP_CHECK(shape->modalities == first.modalities, sp::InvalidArgument, context, ": Cameras[", i,
+                     "] renders other modalities than Cameras[0] (", joined(shape->modalities.names()),
+                     " against ", joined(first.modalities.names()), ")");
+        }
+        shapes.emplace_back(&subsystem, *shape);
+    }
+    // One array per modality with a leading camera axis; each camera's images are read into their slice.
+    const FrameShape& shape = shapes.front().second;
+    FCameraPixels pixels;
+    std::vector<sp::render::OutputView> first;
+    for (sp::render::Modality modality : shape.modalities.list())
+        first.push_back(allocate(pixels, modality, shape.width, shape.height, int(cameras.size())));
+    for (std::size_t i = 0; i < cameras.size(); ++i) {
+        std::vector<sp::render::OutputView> views = first;
+        for (sp::render::OutputView& view : views)
+            view.data = static_cast<std::byte*>(view.data) + i * view.size;
+        if (!shapes[i].first->readInto(*cameras[i], views))
+            return {};
+    }
     return pixels;
 }
 

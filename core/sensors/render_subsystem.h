@@ -17,6 +17,8 @@
 #include <vector>
 
 #include "core/reflect/value.h"
+#include "core/render/image_buffer.h"
+#include "core/render/modality.h"
 #include "core/sensors/camera_sensor_component.h"
 #include "core/sensors/material_library.h"
 #include "core/world/world_subsystem.h"
@@ -47,6 +49,21 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     // The due frame of `camera` (see UCameraSensorComponent); empty while priming or before the first
     // render. Reading twice returns the same images.
     FCameraPixels readPixels(UCameraSensorComponent& camera);
+    // The due frames of cameras of any worlds, one array per modality with a leading camera axis, each
+    // camera's images read into their slice (UCameraSensorComponent.read_pixels_stacked()).
+    static FCameraPixels readPixelsStacked(const std::vector<UCameraSensorComponent*>& cameras,
+                                           const char* context);
+
+    // What readPixels would return now: the size and modalities of the due frame (none while priming).
+    struct FrameShape {
+        int width = 0;
+        int height = 0;
+        sp::render::ModalitySet modalities;
+    };
+    std::optional<FrameShape> dueShape(UCameraSensorComponent& camera) const;
+    // Reads the due frame into `views` (one per modality of dueShape(), in list order, each of its size);
+    // false, with nothing written, while priming.
+    bool readInto(UCameraSensorComponent& camera, const std::vector<sp::render::OutputView>& views);
 
     struct ObjectIdInfo {
         sp::reflect::ObjectHandle component;
@@ -66,6 +83,7 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     struct PendingFrame;
 
     void ensureRenderer();
+    const PendingFrame* dueFrame(UCameraSensorComponent& camera) const;
     CameraState& cameraState(UCameraSensorComponent& camera);
     void submit(UCameraSensorComponent& camera);
 

@@ -4,7 +4,7 @@
 
 A static SPFUNCTION has no object to say which engine should run it, so the call goes where its
 arguments live: the engine of the first engine-object argument (the WorldContextObject of UE's
-function libraries), else the only open spear.Instance. Called on an object (`proxy.Fn(...)`), it
+function libraries; the first element of a list argument counts too), else the only open spear.Instance. Called on an object (`proxy.Fn(...)`), it
 goes to that object's engine. The types are in api.pyi (a @staticmethod); this is the runtime.
 """
 
@@ -47,7 +47,8 @@ class StaticFunction:
         from spear import _inprocess
         from spear._rpc_proxy import ObjectProxy
 
-        for value in kwargs.values():
+        for argument in kwargs.values():
+            value = argument[0] if isinstance(argument, (list, tuple)) and argument else argument
             if isinstance(value, ObjectProxy):
                 return self._call_rpc(value._sp_client, owner, kwargs)
             if isinstance(value, SpObject):

@@ -92,3 +92,56 @@ def test_world_names_are_unique_and_only_created_worlds_are_destroyed(instance: 
         pass
     assert instance.get_worlds() == [instance.get_game()]
     instance.create_world(name="Env")  # the name is free again
+
+
+def test_cameras_of_many_worlds_are_read_in_one_stacked_call(instance: spear.Instance) -> None:
+    worlds = [instance.create_world(name=f"Env{i}") for i in range(3)]
+    cameras = []
+    with instance.begin_frame():
+        for i, world in enumerate(worlds):  # a wall 2 + i metres in front of each camera
+            wall = world.spawn_actor(uclass=spear.AStaticMeshActor, location=spear.FVector(X=2.05 + i))
+            wall.StaticMeshComponent.SetStaticMesh(NewMesh=CUBE)
+            wall.SetActorScale3D(NewScale3D=spear.FVector(0.1, 10, 10))
+            camera = world.spawn_actor(uclass=spear.ACameraSensorActor).CameraSensor
+            camera.Width, camera.Height = 16, 12
+            camera.Modalities = [spear.ECameraModality.FinalColor, spear.ECameraModality.Depth]
+            cameras.append(camera)
+    with instance.end_frame():
+        stacked = spear.UCameraSensorComponent.read_pixels_stacked(Cameras=cameras)
+        one_by_one = [camera.read_pixels() for camera in cameras]  # the same frame, read again
+        frames = [camera.GetPixelsFrame() for camera in cameras]
+    assert sorted(stacked) == ["depth", "final_color"]
+    assert stacked["depth"].shape == (3, 12, 16) and stacked["final_color"].shape == (3, 12, 16, 4)
+    for i in range(3):
+        assert np.allclose(stacked["depth"][i], 2.0 + i, atol=1e-3)
+        assert np.array_equal(stacked["depth"][i], one_by_one[i]["depth"])
+        assert np.array_equal(stacked["final_color"][i], one_by_one[i]["final_color"])
+    assert frames == [1, 1, 1]
+
+
+def test_stacked_reads_need_one_size_and_one_set_of_modalities(instance: spear.Instance) -> None:
+    worlds = [instance.create_world(name=f"Env{i}") for i in range(2)]
+    with instance.begin_frame():
+        a, b = (world.spawn_actor(uclass=spear.ACameraSensorActor).CameraSensor for world in worlds)
+        a.Width, a.Height, b.Width, b.Height = 16, 12, 8, 6
+        b.Latency = 1
+    with instance.end_frame():
+        # b renders with one frame of latency: nothing is due for it yet, so nothing is read for either.
+        assert spear.UCameraSensorComponent.read_pixels_stacked(Cameras=[a, b]) == {}
+    with instance.begin_frame():
+        pass
+    with instance.end_frame():
+        with pytest.raises(InvalidArgumentError, match=r"^UCameraSensorComponent.read_pixels_stacked\(\): Cameras\[1\] "
+                                                       r"shows 8x6 images, Cameras\[0\] 16x12; stacked cameras need one size$"):
+            spear.UCameraSensorComponent.read_pixels_stacked(Cameras=[a, b])
+        with pytest.raises(InvalidArgumentError, match=r"^UCameraSensorComponent.read_pixels_stacked\(\): Cameras is empty$"):
+            a.read_pixels_stacked(Cameras=[])  # called on an object: that object's engine runs it
+        b.Width, b.Height = 16, 12
+        b.Modalities = [spear.ECameraModality.Depth]
+    instance.step(num_frames=2)
+    with instance.begin_frame():
+        pass
+    with instance.end_frame():
+        with pytest.raises(InvalidArgumentError, match=r"^UCameraSensorComponent.read_pixels_stacked\(\): Cameras\[1\] "
+                                                       r"renders other modalities than Cameras\[0\] \(depth against final_color\)$"):
+            spear.UCameraSensorComponent.read_pixels_stacked(Cameras=[a, b])

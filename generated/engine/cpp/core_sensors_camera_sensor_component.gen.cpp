@@ -923,6 +923,24 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
         });
         t.functions.push_back({
+            "read_pixels_stacked",
+            "Returns the images of several cameras' due frames (cameras of any worlds of one engine) in one call:\neach modality as one array with a leading camera axis, (len(Cameras), H, W[, C]), each camera's images\nread straight into its slice. The cameras must show frames of one size and the same modalities; an\nempty dict while any of them is priming.",
+            "FCameraPixels",
+            {
+                {"Cameras", "list[UCameraSensorComponent]", false, false},
+            },
+            true,
+            false,
+            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.read_pixels_stacked()";
+                sp::reflect::checkArguments(args, {"Cameras"}, kContext);
+                std::vector<UCameraSensorComponent*> Cameras = sp::reflect::decode<std::vector<UCameraSensorComponent*>>(sp::reflect::requireArgument(args, "Cameras", kContext), "UCameraSensorComponent.read_pixels_stacked(): argument 'Cameras'");
+                auto result = Self::read_pixels_stacked(Cameras);
+                sp::reflect::checkResultFields(result, kContext);
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
             "GetPixelsFrame",
             "Returns the world frame shown by the last read_pixels() result, or -1 when it was empty.",
             "int",

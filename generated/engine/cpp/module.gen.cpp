@@ -2709,6 +2709,19 @@ void spear_bind_engine(py::module_& m) {
                 return Bridge<FCameraPixels>::out(result);
             },
             "read_pixels(self) -> FCameraPixels\n\nReturns the images of the frame due (see the class notes on latency); an empty dict while priming.");
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "read_pixels_stacked",
+            [](const py::args& positional, const PyArg& Cameras, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.read_pixels_stacked()";
+                sp::pybind::checkCall(kContext, false, positional, extra, {{"Cameras", !isMissing(Cameras), true}});
+                auto CamerasValue = Bridge<std::vector<UCameraSensorComponent*>>::in(Cameras, "UCameraSensorComponent.read_pixels_stacked(): argument 'Cameras'");
+                auto result = Self::read_pixels_stacked(CamerasValue);
+                sp::reflect::checkResultFields(result, kContext);
+                return Bridge<FCameraPixels>::out(result);
+            },
+            py::arg("Cameras") = sp::pybind::missingArgument(),
+            "read_pixels_stacked(*, Cameras: list[UCameraSensorComponent]) -> FCameraPixels\n\nReturns the images of several cameras' due frames (cameras of any worlds of one engine) in one call:\neach modality as one array with a leading camera axis, (len(Cameras), H, W[, C]), each camera's images\nread straight into its slice. The cameras must show frames of one size and the same modalities; an\nempty dict while any of them is priming.");
         cls.def(
             "GetPixelsFrame",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {

@@ -1010,6 +1010,7 @@ class UCameraSensorComponent(USceneComponent):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UCameraSensorComponent"
+    read_pixels_stacked = _StaticFunction("UCameraSensorComponent", "read_pixels_stacked", "FCameraPixels")
 
     class GetObjectIdInfoResult(NamedTuple):
         ReturnValue: bool

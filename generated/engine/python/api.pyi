@@ -2628,6 +2628,8 @@ class UCameraSensorComponentAsync(USceneComponentAsync):
 
     def read_pixels(self) -> Future[FCameraPixels]: ...
 
+    def read_pixels_stacked(self, *, Cameras: list[UCameraSensorComponent]) -> Future[FCameraPixels]: ...
+
     def GetPixelsFrame(self) -> Future[int]: ...
 
     def SetModalityNames(self, *, Names: list[str]) -> Future[None]: ...
@@ -2665,6 +2667,8 @@ class UCameraSensorComponentSend(USceneComponentSend):
     def SetLatency(self, *, NewLatency: int) -> None: ...
 
     def read_pixels(self) -> None: ...
+
+    def read_pixels_stacked(self, *, Cameras: list[UCameraSensorComponent]) -> None: ...
 
     def GetPixelsFrame(self) -> None: ...
 
@@ -2799,6 +2803,14 @@ class UCameraSensorComponent(USceneComponent):
 
     def read_pixels(self) -> FCameraPixels:
         """Returns the images of the frame due (see the class notes on latency); an empty dict while priming."""
+
+    @staticmethod
+    def read_pixels_stacked(*, Cameras: list[UCameraSensorComponent]) -> FCameraPixels:
+        """Returns the images of several cameras' due frames (cameras of any worlds of one engine) in one call:
+        each modality as one array with a leading camera axis, (len(Cameras), H, W[, C]), each camera's images
+        read straight into its slice. The cameras must show frames of one size and the same modalities; an
+        empty dict while any of them is priming.
+        """
 
     def GetPixelsFrame(self) -> int:
         """Returns the world frame shown by the last read_pixels() result, or -1 when it was empty."""
