@@ -224,12 +224,15 @@ void Renderer::attributePass(const Scene& scene, const Camera& camera, const Pas
     timers_.begin(Pass::Attribute);
     glBindFramebuffer(GL_FRAMEBUFFER, fb.attributeFbo);
     glViewport(0, 0, fb.width, fb.height);
-    // The surface pass's depth, kept: a fragment passes only where it is the one the surface pass left.
+    // The surface pass's depth, kept: a fragment passes only where it is the one the surface pass left. Where
+    // surfaces tie (coincident instances), every tied fragment passes and the last drawn stays, while the
+    // surface pass (GL_LESS) kept the first drawn: drawn in reverse order, the last here is the first there.
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
     clearTargets(scene, camera, passes.attributeTargets);
-    drawAll(scene, camera, draws, passes.attributeTargets, false, {}, cache);
+    const std::vector<Draw> reversed(draws.rbegin(), draws.rend());
+    drawAll(scene, camera, reversed, passes.attributeTargets, false, {}, cache);
     glDepthMask(GL_TRUE);
     timers_.end();
     ++stats_.attributePasses;

@@ -266,9 +266,17 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    // Slope-scaled offset against acne; the lighting pass adds a normal offset of 1.5 texels.
+    // Slope-scaled offset against acne; the surface pass's vertex shader adds a normal offset of 1.5 texels.
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(2.0f, 2.0f);
+    // Whatever happens below (a mesh upload can throw), the passes after this one must not inherit the
+    // offset or a scissor: a scissored clear would clear only the rectangle.
+    struct RestoreState {
+        ~RestoreState() {
+            glDisable(GL_SCISSOR_TEST);
+            glDisable(GL_POLYGON_OFFSET_FILL);
+        }
+    } restoreState;
     depthProgram.use();
     for (std::size_t i = 0; i < infos.size(); ++i) {
         const ShadowInfo& info = infos[i];
@@ -308,7 +316,6 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
         }
         movingRects_[i] = now;
     }
-    glDisable(GL_POLYGON_OFFSET_FILL);
     update_.maps = infos.size();
     return infos.size();
 }

@@ -282,10 +282,10 @@ Value Dispatcher::world(const Request& request, Session&) {
 Value Dispatcher::worlds(const Request& request, Session&) {
     const std::string action = request.string("action", "worlds");
     if (action == "create")
-        return Value(engine_.CreateWorld(request.string("name", "create_world()")).GetHandle());
+        return Value(engine_.CreateWorld(request.string("name", "create_world")).GetHandle());
     if (action == "destroy") {
         // Like create_world, any time the engine is not ticking: no frame needed.
-        const Value handle = unpack(request.require("object", "destroy_world()"), "destroy_world()");
+        const Value handle = unpack(request.require("object", "destroy_world"), "destroy_world()");
         SP_CHECK(handle.is<reflect::ObjectHandle>(), InvalidArgument,
                  "destroy_world(): 'object' must be an object reference");
         auto* world = dynamic_cast<UWorld*>(

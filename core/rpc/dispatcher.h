@@ -6,6 +6,7 @@
 // {"id": n, "error": [type, message]}, where type names a class of spear.errors. Ops:
 //   hello {api_hash, token}       must come first; mismatched API hash or token closes the connection
 //   world {kind}                  "game" (an editor world only exists in editor mode)
+//   worlds {action, name, object} create (name) | destroy (object) | list: worlds beside the game world
 //   frame {action}                begin | execute | begin_end | end | abort
 //   call {object, function, args} invoke a reflected function
 //   call {class, function, args}  invoke a static function of a class (no object)

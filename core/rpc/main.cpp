@@ -80,8 +80,9 @@ std::string readTokenFile(const std::string& path) {
 }
 
 // A server launched by a client goes away with it, even if the client is killed: stopped (SIGTERM) once its
-// parent process is gone. Polled, not PR_SET_PDEATHSIG, which fires when the launching *thread* exits: a
-// client that starts servers from worker threads would lose them with the threads.
+// parent process is gone (it is no longer our parent). Polled, not PR_SET_PDEATHSIG, which fires when the
+// launching *thread* exits: a client that starts servers from worker threads would lose them with the
+// threads.
 void watchParent(pid_t parent) {
     std::thread([parent] {
         while (::getppid() == parent)
@@ -133,7 +134,10 @@ int main(int argc, char** argv) {
         else if (arg == "--file-root" && hasValue)
             fileRoots.push_back(argv[++i]);
         else if (arg == "--exit-with-parent") {
-            exitWithParent = ::getppid();
+            // The launcher's pid when it says it (a launcher gone before this line ran left us to init or
+            // a subreaper, whose pid getppid() would return), else the parent's now.
+            const char* launcher = std::getenv("SPEAR_PARENT_PID");
+            exitWithParent = launcher ? pid_t(std::atol(launcher)) : ::getppid();
         } else {
             usage();
             return 2;

@@ -3,6 +3,7 @@
 #include <exception>
 
 #include "core/base/error.h"
+#include "core/base/log.h"
 #include "core/world/scene_io.h"
 
 namespace sp::world {
@@ -37,6 +38,10 @@ void Engine::play() {
     SP_CHECK(editorWorld_, InvalidState,
              "UWorld.play(): this engine runs standalone and has no editor world");
     SP_CHECK(!gameWorld_, InvalidState, "UWorld.play(): the editor is already playing; call stop() first");
+    for (const auto& world : createdWorlds_)
+        SP_CHECK(world->GetName() != "GameWorld", InvalidState,
+                 "UWorld.play(): a world create_world() made is "
+                 "named 'GameWorld', the name of the world play() makes; destroy it first");
     auto game = std::make_unique<UWorld>();
     game->InitObject("GameWorld", game.get());
     game->SetEngine(this);
@@ -73,6 +78,9 @@ UWorld& Engine::CreateWorld(const std::string& name) {
 }
 
 void Engine::DestroyWorld(UWorld& world) {
+    SP_CHECK(
+        !ticking_, InvalidState, "destroy_world(): '", world.GetName(),
+        "' cannot be destroyed while the worlds tick; destroy it inside a frame block or between frames");
     for (auto it = createdWorlds_.begin(); it != createdWorlds_.end(); ++it) {
         if (it->get() == &world) {
             createdWorlds_.erase(it);
@@ -131,17 +139,25 @@ void Engine::executeFrame() {
     expectState(FrameState::BeginFrame, "execute_frame()");
     state_ = FrameState::FrameExecuted;
     ++frameCount_;
-    // Every world ticks even when one throws (its error propagates after the others ran), so that a
-    // failing environment does not stall the rest. An editor that is not playing has none.
+    // Every world ticks even when one throws, so that a failing environment does not stall the rest: the
+    // first error propagates after the others ran, and any further ones are logged. (An editor that is not
+    // playing has only the worlds create_world() made.)
     std::exception_ptr failure;
+    ticking_ = true;
     for (UWorld* world : GetWorlds()) {
         try {
             world->Tick(settings_.fixedDeltaSeconds);
+        } catch (const std::exception& e) {
+            if (failure)
+                SP_LOG("execute_frame(): world '", world->GetName(), "' also failed: ", e.what());
+            else
+                failure = std::current_exception();
         } catch (...) {
             if (!failure)
                 failure = std::current_exception();
         }
     }
+    ticking_ = false;
     if (failure)
         std::rethrow_exception(failure);
 }

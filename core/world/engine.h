@@ -88,6 +88,7 @@ class Engine {
     std::unique_ptr<UWorld> editorWorld_;
     std::unique_ptr<UWorld> gameWorld_;
     std::vector<std::unique_ptr<UWorld>> createdWorlds_;
+    bool ticking_ = false; // inside executeFrame()'s ticks
     FrameState state_ = FrameState::Idle;
     int64_t frameCount_ = 0;
 };

@@ -337,7 +337,10 @@ class LaunchedServer:
         self.process = subprocess.Popen(
             [str(find_server_binary()), *listen, "--fixed-delta-seconds", repr(fixed_delta_seconds), "--mode", mode,
              *extra, "--exit-with-parent"],
-            env=None if tcp_bind is None else {**os.environ, "SPEAR_TOKEN": token or ""},  # not on the command line
+            # The token in the environment, not on the command line; our pid for --exit-with-parent, in case we
+            # are gone before the server looks for its parent.
+            env={**os.environ, "SPEAR_PARENT_PID": str(os.getpid()),
+                 **({} if tcp_bind is None else {"SPEAR_TOKEN": token or ""})},
             # errors="replace": a log line with bytes that are not UTF-8 (a name from a mesh file) must not stop
             # the reading of the server's stderr.
             stdout=subprocess.PIPE, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True, errors="replace",

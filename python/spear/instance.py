@@ -77,12 +77,16 @@ class Instance:
         """A new world beside the game world, with its own actors, physics and render scene, ticked in the
         same frames (after the game world, in creation order): many small environments in one engine.
         name: unique among this instance's worlds."""
+        if not isinstance(name, str):  # the same words on both transports
+            raise InvalidArgumentError(f"create_world(): name must be a str, got {type(name).__name__}")
         world = self._open("create_world").worlds("create", name=name)
         assert isinstance(world, api.UWorld)
         return world
 
     def destroy_world(self, *, world: api.UWorld) -> None:
         """Destroys a world create_world() made (inside or outside a frame); its objects' handles become stale."""
+        if not isinstance(world, api.UWorld):  # the same words on both transports
+            raise InvalidArgumentError(f"destroy_world(): world must be a UWorld, got {type(world).__name__}")
         self._open("destroy_world").worlds("destroy", world=world)
 
     def get_worlds(self) -> list[api.UWorld]:

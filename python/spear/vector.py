@@ -153,10 +153,13 @@ class VectorEnv(Generic[ActionT]):
         self._slots = list(slots) if destroy_worlds else []
         self._worlds = [world for _, world in slots]
         self._envs = [make_env() for _ in slots]
-        self.observation_space: Mapping[str, Box] = dict(self._envs[0].observation_space)
-        self.action_space: Box | Discrete = self._envs[0].action_space
+        self.single_observation_space: Mapping[str, Box] = dict(self._envs[0].observation_space)
+        """One environment's observation space (each array of a step has a leading environment axis more)."""
+        self.single_action_space: Box | Discrete = self._envs[0].action_space
+        """One environment's action space."""
         for i, env in enumerate(self._envs):
-            if dict(env.observation_space) != self.observation_space or env.action_space != self.action_space:
+            if (dict(env.observation_space) != self.single_observation_space
+                    or env.action_space != self.single_action_space):
                 raise InvalidArgumentError(f"VectorEnv(): environment {i}'s spaces differ from environment 0's")
         self._groups: list[_Group] = []
         for i, (instance, _) in enumerate(slots):
@@ -164,8 +167,11 @@ class VectorEnv(Generic[ActionT]):
             if group is None:
                 self._groups.append(group := _Group(instance, []))
             group.indices.append(i)
-        self._pool = (concurrent.futures.ThreadPoolExecutor(len(self._groups), thread_name_prefix="spear-vector")
-                      if len(self._groups) > 1 else None)
+        # Engines over RPC step concurrently, one pool thread each waiting on its socket; an in-process engine
+        # steps on the calling thread (its GL contexts are current there).
+        remote = sum(1 for g in self._groups if g.instance.transport == "rpc")
+        self._pool = (concurrent.futures.ThreadPoolExecutor(remote, thread_name_prefix="spear-vector")
+                      if remote > 1 else None)
         self._seeds: list[np.random.Generator] = []
         self._needs_reset = [True] * len(slots)
         self.failed: dict[int, BaseException] = {}
@@ -185,20 +191,19 @@ class VectorEnv(Generic[ActionT]):
         try:
             for i in range(num_envs):
                 slots.append((engine, engine.create_world(name=f"{prefix}{i}")))
+            return VectorEnv(make_env, slots, owned=[engine] if instance is None else [], destroy_worlds=True)
         except BaseException:
-            _destroy(slots)
-            if instance is None:
-                engine.close()
+            _release(slots, [engine] if instance is None else [])
             raise
-        return VectorEnv(make_env, slots, owned=[engine] if instance is None else [], destroy_worlds=True)
 
     @classmethod
     def on_servers(cls, make_env: Callable[[], Env[A]], *, num_servers: int, worlds_per_server: int = 1,
-                   servers: Sequence[str] | None = None, token: str | None = None) -> VectorEnv[A]:
+                   servers: Sequence[str] | None = None, token: str | None = None,
+                   prefix: str = "env") -> VectorEnv[A]:
         """num_servers * worlds_per_server environments, worlds_per_server in each of num_servers spear-server
         processes launched here, or in the running servers at the addresses `servers` ("unix:PATH",
-        "tcp:HOST:PORT"; token: their TCP token). close() destroys the worlds and stops the launched servers (or
-        disconnects from the running ones)."""
+        "tcp:HOST:PORT"; token: their TCP token). Worlds are named prefix0, prefix1, ... across the servers.
+        close() destroys the worlds and stops the launched servers (or disconnects from the running ones)."""
         if num_servers < 1 or worlds_per_server < 1:
             raise InvalidArgumentError("VectorEnv.on_servers(): num_servers and worlds_per_server must be >= 1, got "
                                        f"{num_servers} and {worlds_per_server}")
@@ -217,13 +222,11 @@ class VectorEnv(Generic[ActionT]):
                 future.result()  # the first failure to start, if any
             for s, engine in enumerate(instances):
                 for w in range(worlds_per_server):
-                    slots.append((engine, engine.create_world(name=f"env{s * worlds_per_server + w}")))
+                    slots.append((engine, engine.create_world(name=f"{prefix}{s * worlds_per_server + w}")))
+            return VectorEnv(make_env, slots, owned=instances, destroy_worlds=True)
         except BaseException:
-            _destroy(slots)
-            for engine in instances:
-                engine.close()
+            _release(slots, instances)
             raise
-        return VectorEnv(make_env, slots, owned=instances, destroy_worlds=True)
 
     # -- the loop ----------------------------------------------------------------------------------------
 
@@ -249,10 +252,11 @@ class VectorEnv(Generic[ActionT]):
         observations, _, _, _, infos = self._run(plan)
         return observations, infos
 
-    def step(self, actions: Sequence[ActionT]) -> tuple[
+    def step(self, actions: Sequence[ActionT] | NDArray[Any]) -> tuple[
             dict[str, NDArray[Any]], NDArray[np.float32], NDArray[np.bool_], NDArray[np.bool_], list[dict[str, Any]]]:
         """Applies actions[i] to environment i (resetting the ones whose episode ended last step) and returns
-        (observations, rewards, terminated, truncated, infos) with a leading environment axis."""
+        (observations, rewards, terminated, truncated, infos) with a leading environment axis; actions may be
+        a sequence or an array with a leading environment axis."""
         if not self._seeds:
             raise InvalidStateError("VectorEnv.step(): call reset() first")
         if len(actions) != self.num_envs:
@@ -267,11 +271,9 @@ class VectorEnv(Generic[ActionT]):
             self._pool.shutdown()
             self._pool = None
         gone = [self._slots[i][0] for i in self.failed] if self._slots else []
-        _destroy([(instance, world) for instance, world in self._slots if all(instance is not g for g in gone)])
-        self._slots = []
-        for instance in self._owned:
-            instance.close()
-        self._owned = []
+        slots = [(instance, world) for instance, world in self._slots if all(instance is not g for g in gone)]
+        owned, self._slots, self._owned = self._owned, [], []
+        _release(slots, owned)
 
     def __enter__(self) -> VectorEnv[ActionT]:
         return self
@@ -283,12 +285,22 @@ class VectorEnv(Generic[ActionT]):
 
     def _run(self, plan: dict[int, tuple[bool, Any]]) -> _Batch:
         groups = [g for g in self._groups if g.indices[0] not in self.failed]
-        if self._pool is None:
-            outcomes: list[dict[int, StepResult] | ConnectionLostError] = [self._guarded(g, plan) for g in groups]
-        else:
-            outcomes = list(self._pool.map(lambda g: self._guarded(g, plan), groups))
+        outcomes: dict[int, dict[int, StepResult] | ConnectionLostError] = {}
+        pooled = {id(g): self._pool.submit(self._guarded, g, plan) for g in groups
+                  if self._pool is not None and g.instance.transport == "rpc"}
+        try:
+            for group in groups:
+                if id(group) not in pooled:
+                    outcomes[id(group)] = self._guarded(group, plan)
+        finally:
+            # Every engine's frame ends before this step returns or raises: the next step (or close()) must
+            # not meet an engine still inside this one.
+            concurrent.futures.wait(pooled.values())
+        for key, future in pooled.items():
+            outcomes[key] = future.result()  # an error other than a lost server propagates
         results: dict[int, StepResult] = {}
-        for group, outcome in zip(groups, outcomes):
+        for group in groups:
+            outcome = outcomes[id(group)]
             if isinstance(outcome, ConnectionLostError):
                 self._fail(group, outcome)
             else:
@@ -327,7 +339,7 @@ class VectorEnv(Generic[ActionT]):
     def _stack(self, plan: dict[int, tuple[bool, Any]], results: dict[int, StepResult]) -> _Batch:
         n = self.num_envs
         observations = {key: np.zeros((n, *space.shape), dtype=space.dtype)
-                        for key, space in self.observation_space.items()}
+                        for key, space in self.single_observation_space.items()}
         rewards = np.zeros(n, dtype=np.float32)
         terminated = np.zeros(n, dtype=np.bool_)
         truncated = np.zeros(n, dtype=np.bool_)
@@ -338,12 +350,14 @@ class VectorEnv(Generic[ActionT]):
                 infos[i] = {"error": self.failed[i]}
                 continue
             result = results[i]
-            for key, space in self.observation_space.items():
+            for key, space in self.single_observation_space.items():
                 value = result.observation.get(key)
-                if value is None or np.shape(value) != space.shape:
-                    got = "nothing" if value is None else f"shape {np.shape(value)}"
+                dtype = np.dtype(space.dtype)
+                if value is None or np.shape(value) != space.shape or np.asarray(value).dtype != dtype:
+                    got = ("nothing" if value is None
+                           else f"shape {np.shape(value)} {np.asarray(value).dtype}")
                     raise InvalidArgumentError(f"VectorEnv: environment {i} observed {got} for '{key}', its "
-                                               f"observation_space says shape {space.shape}")
+                                               f"observation_space says shape {space.shape} {dtype}")
                 observations[key][i] = value
             infos[i] = dict(result.info)
             if plan[i][0]:
@@ -356,6 +370,21 @@ class VectorEnv(Generic[ActionT]):
         return observations, rewards, terminated, truncated, infos
 
 
-def _destroy(slots: Sequence[tuple[Instance, api.UWorld]]) -> None:
+def _release(slots: Sequence[tuple[Instance, api.UWorld]], instances: Sequence[Instance]) -> None:
+    """Destroys the slots' worlds in the instances not about to close, then closes `instances`; every step is
+    tried, and the first error raised after the rest were done."""
+    failure: BaseException | None = None
     for instance, world in slots:
-        instance.destroy_world(world=world)
+        if any(instance is closing for closing in instances):
+            continue  # its worlds go with it
+        try:
+            instance.destroy_world(world=world)
+        except Exception as error:  # a server that went away: the other worlds still go
+            failure = failure or error
+    for instance in instances:
+        try:
+            instance.close()
+        except Exception as error:
+            failure = failure or error
+    if failure is not None:
+        raise failure

@@ -43,3 +43,12 @@ def test_each_worker_runs_servers_that_hold_environments(client: distributed.Cli
     # Stopped with the context: nothing listens at the addresses any more.
     with pytest.raises((spear.ConnectionLostError, OSError)):
         spear.Instance(server=servers.addresses[0], token=servers.token)
+
+
+def test_two_sets_of_servers_on_one_cluster_keep_to_themselves(client: distributed.Client) -> None:
+    with spear.distributed.Servers(client) as first, spear.distributed.Servers(client) as second:
+        assert len(first.addresses) == len(second.addresses) == 2
+        assert not set(first.addresses) & set(second.addresses)
+        for servers in (first, second):  # starting the second did not stop the first's
+            for address in servers.addresses:
+                spear.Instance(server=address, token=servers.token).close()

@@ -149,9 +149,25 @@ def test_misuse_is_refused_with_the_reason(instance: spear.Instance) -> None:
 
     with VectorEnv.in_worlds(lambda: Wrong(0), num_envs=1, instance=instance) as envs:
         with pytest.raises(spear.InvalidArgumentError,
-                           match=r"^VectorEnv: environment 0 observed shape \(3,\) for 'position', its "
-                                 r"observation_space says shape \(2,\)$"):
+                           match=r"^VectorEnv: environment 0 observed shape \(3,\) float64 for 'position', its "
+                                 r"observation_space says shape \(2,\) float64$"):
             envs.reset()
+
+    class Mismatched(Slide):
+        def __init__(self) -> None:
+            super().__init__(0)
+            self.observation_space = {"position": Box((3,), np.float64, 0.0 if next(calls) else -1.0)}
+
+    calls = itertools.count()
+    with pytest.raises(spear.InvalidArgumentError, match=r"^VectorEnv\(\): environment 1's spaces differ from "
+                                                         r"environment 0's$"):
+        VectorEnv.in_worlds(Mismatched, num_envs=2, instance=instance)
+    # A failed construction leaves nothing behind: the worlds it made are gone, so the names are free again.
+    assert instance.get_worlds() == [instance.get_game()]
+    with VectorEnv.in_worlds(numbered(), num_envs=2, instance=instance) as envs:
+        observations, _ = envs.reset(seed=0)
+        observations, *_ = envs.step(np.full((2, 1), 0.5, np.float32))  # actions as one array
+        assert observations["position"][:, 0].tolist() == [0.5, 1.5]
 
 
 def test_a_dead_server_is_reported_and_the_others_keep_running(caplog: pytest.LogCaptureFixture) -> None:

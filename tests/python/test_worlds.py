@@ -80,10 +80,17 @@ def test_world_names_are_unique_and_only_created_worlds_are_destroyed(instance: 
         instance.create_world(name="Env")
     with pytest.raises(InvalidArgumentError, match=r"^create_world\(\): name must not be empty$"):
         instance.create_world(name="")
+    with pytest.raises(InvalidArgumentError, match=r"^create_world\(\): name must be a str, got int$"):
+        instance.create_world(name=1)  # type: ignore[arg-type]
+    with pytest.raises(InvalidArgumentError, match=r"^destroy_world\(\): world must be a UWorld, got NoneType$"):
+        instance.destroy_world(world=None)  # type: ignore[arg-type]
     with instance.begin_frame():
         actor = world.spawn_actor(uclass=spear.AActor)
-        with pytest.raises(InvalidArgumentError, match=r"is not a world create_world\(\) made"):
+        with pytest.raises(InvalidArgumentError, match=r"^destroy_world\(\): 'World' is not a world create_world\(\) "
+                                                       r"made; the game and editor worlds live as long as the engine$"):
             instance.destroy_world(world=instance.get_game())
+        with pytest.raises(InvalidArgumentError, match=r"^destroy_world\(\): world must be a UWorld, got AActor$"):
+            instance.destroy_world(world=actor)  # type: ignore[arg-type]
         instance.destroy_world(world=world)
         assert not actor.is_valid() and not world.is_valid()
         with pytest.raises(StaleObjectError, match=r"^UWorld.spawn_actor\(\): object \(handle \d+:\d+\) was destroyed$"):
@@ -145,3 +152,19 @@ def test_stacked_reads_need_one_size_and_one_set_of_modalities(instance: spear.I
         with pytest.raises(InvalidArgumentError, match=r"^UCameraSensorComponent.read_pixels_stacked\(\): Cameras\[1\] "
                                                        r"renders other modalities than Cameras\[0\] \(depth against final_color\)$"):
             spear.UCameraSensorComponent.read_pixels_stacked(Cameras=[a, b])
+
+
+def test_a_world_destroyed_with_its_camera_leaves_the_others_rendering(instance: spear.Instance) -> None:
+    worlds = [instance.create_world(name=f"Env{i}") for i in range(2)]
+    with instance.begin_frame():
+        cameras = [world.spawn_actor(uclass=spear.ACameraSensorActor).CameraSensor for world in worlds]
+        for camera in cameras:
+            camera.Width, camera.Height = 8, 6
+    with instance.end_frame():
+        assert all("final_color" in camera.read_pixels() for camera in cameras)
+    instance.destroy_world(world=worlds[0])  # its renderer goes, between frames
+    with instance.begin_frame():
+        pass
+    with instance.end_frame():
+        assert cameras[1].read_pixels()["final_color"].shape == (6, 8, 4)
+        assert not cameras[0].is_valid()

@@ -70,6 +70,33 @@ TEST_F(RenderPathsGlTest, AttributePassAgreesWithOnePass) {
             }
 }
 
+TEST_F(RenderPathsGlTest, AttributePassKeepsTheSurfacePassesFragmentWhereSurfacesTie) {
+    // Two instances in the same place, different ids and materials: the surface pass keeps the first drawn
+    // (GL_LESS); the attribute pass must write that one's ids and base colour, not the second's.
+    Scene scene;
+    buildShapesScene(scene);
+    MeshId box = scene.addMesh(primitives::box({1.0f, 1.0f, 1.0f}));
+    for (std::uint32_t id : {50u, 60u}) {
+        Instance twin{box, {scene.addMaterial(makeMaterial({id / 100.0f, 0.2f, 0.2f}, 0.5f, 0.0f))}, {id}};
+        twin.transform.translation() = Eigen::Vector3d(-1.0, 1.0, 0.5);
+        scene.addInstance(twin);
+    }
+    Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 96, 64, 60.0);
+    RenderTarget everything(renderer(), ModalitySet::all(), 0);
+    RenderTarget alone(renderer(), {Modality::ObjectIds, Modality::BaseColor}, 0);
+    ASSERT_NE(ModalitySet::all().requiredPasses(true).attributeTargets & targetBit(Target::Ids), 0u);
+    Frame all, one;
+    everything.render(scene, camera, all);
+    alone.render(scene, camera, one);
+    const auto ids = all.get(Modality::ObjectIds).as<std::uint32_t>();
+    EXPECT_TRUE(std::find(ids.begin(), ids.end(), 50u) != ids.end() ||
+                std::find(ids.begin(), ids.end(), 60u) != ids.end()); // the twins are in view
+    for (Modality m : {Modality::ObjectIds, Modality::BaseColor}) {
+        const ImageBuffer &x = all.get(m), &y = one.get(m);
+        EXPECT_TRUE(std::equal(x.bytes.begin(), x.bytes.end(), y.bytes.begin())) << modalityName(m);
+    }
+}
+
 TEST_F(RenderPathsGlTest, ShadowMapsAreReusedUntilSomethingMoves) {
     Scene scene;
     buildShapesScene(scene);

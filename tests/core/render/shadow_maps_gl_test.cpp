@@ -1,6 +1,7 @@
-// ShadowMaps keeps the casters that did not move in a static map and redraws only what moving casters
-// covered. Whatever the history of updates, the maps must equal a fresh render of the same scene bit for
-// bit; and when one object moves in a still scene, only its neighbourhood may be restored.
+// ShadowMaps redraws only the rectangles moving casters cover (now and at the previous update), from the
+// still casters reaching into them and the moving ones. Whatever the history of updates, the maps must equal
+// a fresh render of the same scene bit for bit; and when one object moves in a still scene, only its
+// neighbourhood may be redrawn.
 
 #include <epoxy/gl.h>
 
@@ -106,7 +107,7 @@ TEST_F(ShadowMapsGlTest, SpotLightMapsKeepFullDepthPrecisionAndTheSameGuarantee)
     EXPECT_EQ(maps.lastUpdate().fullMaps, 0u);
 }
 
-TEST_F(ShadowMapsGlTest, OneObjectMovingInAStillSceneRestoresOnlyItsNeighbourhood) {
+TEST_F(ShadowMapsGlTest, OneObjectMovingInAStillSceneRedrawsOnlyItsNeighbourhood) {
     Scene scene;
     buildShapesScene(scene);
     Instance far{scene.addMesh(primitives::box({0.4f, 0.4f, 0.4f})),

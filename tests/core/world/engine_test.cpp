@@ -2,8 +2,18 @@
 
 #include "core/base/error.h"
 #include "core/world/engine.h"
+#include "core/world/world_subsystem.h"
 
 using sp::world::Engine;
+
+namespace {
+// A subsystem whose tick fails, standing for a world whose actors or physics throw.
+struct Failing : sp::world::WorldSubsystem {
+    static constexpr int kTickOrder = 0;
+    explicit Failing(UWorld&) {}
+    void Tick(double) override { throw sp::InvalidState("a failing world"); }
+};
+} // namespace
 
 TEST(Engine, FrameStateMachine) {
     Engine engine;
@@ -72,4 +82,18 @@ TEST(Engine, WorldNamesAreUniqueAndOnlyCreatedWorldsAreDestroyed) {
     EXPECT_THROW(engine.CreateWorld(""), sp::InvalidArgument);
     EXPECT_THROW(engine.CreateWorld(engine.GetGameWorld().GetName()), sp::InvalidArgument);
     EXPECT_THROW(engine.DestroyWorld(engine.GetGameWorld()), sp::InvalidArgument);
+}
+
+TEST(Engine, EveryWorldTicksWhenOneThrowsAndTheFirstErrorPropagates) {
+    Engine engine;
+    UWorld& failing = engine.CreateWorld("Failing");
+    UWorld& healthy = engine.CreateWorld("Healthy");
+    failing.GetSubsystem<Failing>();
+    engine.beginFrame();
+    EXPECT_THROW(engine.executeFrame(), sp::InvalidState);
+    EXPECT_EQ(engine.GetFrameState(), Engine::FrameState::FrameExecuted); // the frame still ended
+    engine.beginEndFrame();
+    engine.endFrame();
+    EXPECT_EQ(engine.GetGameWorld().get_frame_count(), 1);
+    EXPECT_EQ(healthy.get_frame_count(), 1); // ticked after the failing world
 }
