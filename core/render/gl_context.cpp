@@ -230,9 +230,10 @@ GlContext::GlContext(const GlContextOptions& options) {
     }
     // Once per process and device: a process with many worlds makes a context for each.
     const std::string chosen =
-        report_.kind + (report_.deviceIndex >= 0 ? " " + std::to_string(report_.deviceIndex) : std::string()) +
-        " of " + std::to_string(report_.deviceCount) + " device(s): " + report_.vendor + " | " +
-        report_.renderer + " | " + report_.version;
+        report_.kind +
+        (report_.deviceIndex >= 0 ? " " + std::to_string(report_.deviceIndex) : std::string()) + " of " +
+        std::to_string(report_.deviceCount) + " device(s): " + report_.vendor + " | " + report_.renderer +
+        " | " + report_.version;
     static std::mutex mutex;
     static std::set<std::string> logged;
     const std::lock_guard<std::mutex> lock(mutex);
