@@ -82,8 +82,10 @@ py::array arrayToNumpy(const reflect::ArrayValue& value) {
 py::object pythonClassFor(const reflect::TypeInfo& type) {
     if (!type.isDataDefined())
         return pythonClassOf(type);
-    static const py::object blueprintClass = apiAttribute("spear._blueprint", "blueprint_class");
-    return blueprintClass(type.name, type.nativeClass().name);
+    // Never released: a static py::object would be, after Python has shut down (a crash at exit).
+    static const py::object* const blueprintClass =
+        new py::object(apiAttribute("spear._blueprint", "blueprint_class"));
+    return (*blueprintClass)(type.name, type.nativeClass().name);
 }
 
 py::object apiAttribute(const char* module, const char* name) {

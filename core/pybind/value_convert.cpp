@@ -69,9 +69,11 @@ Value toValueAt(py::handle object, std::string_view context, int depth) {
                                             : std::string()});
     if (py::hasattr(object, "__dataclass_fields__") && py::hasattr(object, "__sp_class__")) {
         checkDepth(depth, context);
-        static const py::object dataclassFields = py::module_::import("dataclasses").attr("fields");
+        // Never released, like the others here: a static py::object would be, after Python has shut down.
+        static const py::object* const dataclassFields =
+            new py::object(py::module_::import("dataclasses").attr("fields"));
         Value::Dict fields;
-        for (auto field : dataclassFields(object)) { // excludes the ClassVar __sp_class__
+        for (auto field : (*dataclassFields)(object)) { // excludes the ClassVar __sp_class__
             py::object name = field.attr("name");
             fields.emplace(name.cast<std::string>(), toValueAt(object.attr(name), context, depth + 1));
         }

@@ -35,7 +35,7 @@ from spear._rpc_client import LaunchedServer
 from spear.errors import InvalidArgumentError
 
 
-class ServerPlugin(WorkerPlugin):
+class _ServerPlugin(WorkerPlugin):
     """The Dask worker plugin that runs spear-servers on a worker, registered under `name` (one per Servers)."""
 
     def __init__(self, *, name: str, token: str, per_worker: int, fixed_delta_seconds: float,
@@ -73,7 +73,7 @@ class ServerPlugin(WorkerPlugin):
 
 
 def _addresses_on_worker(dask_worker: Any, name: str) -> list[str]:
-    plugin: ServerPlugin = dask_worker.plugins[name]
+    plugin: _ServerPlugin = dask_worker.plugins[name]
     return plugin.addresses
 
 
@@ -90,8 +90,8 @@ class Servers:
         # A name of its own: Dask replaces a plugin registered under a name already taken, which would stop the
         # servers of another Servers on the same cluster.
         self._name = f"spear-servers-{secrets.token_hex(4)}"
-        plugin = ServerPlugin(name=self._name, token=self.token, per_worker=per_worker,
-                              fixed_delta_seconds=fixed_delta_seconds, file_roots=file_roots)
+        plugin = _ServerPlugin(name=self._name, token=self.token, per_worker=per_worker,
+                               fixed_delta_seconds=fixed_delta_seconds, file_roots=file_roots)
         try:
             client.register_worker_plugin(plugin, name=self._name)
             by_worker: dict[str, list[str]] = client.run(_addresses_on_worker, name=self._name)

@@ -226,8 +226,9 @@ void spear_bind_engine(py::module_& m) {
                 FVector OriginOut{};
                 FVector BoxExtentOut{};
                 object->GetActorBounds(bOnlyCollidingComponentsValue, OriginOut, BoxExtentOut);
-                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "AActor").attr("GetActorBoundsResult");
-                return resultType(py::arg("Origin") = Bridge<FVector>::out(OriginOut), py::arg("BoxExtent") = Bridge<FVector>::out(BoxExtentOut));
+                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
+                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "AActor").attr("GetActorBoundsResult"));
+                return (*resultType)(py::arg("Origin") = Bridge<FVector>::out(OriginOut), py::arg("BoxExtent") = Bridge<FVector>::out(BoxExtentOut));
             },
             py::arg("bOnlyCollidingComponents") = sp::pybind::missingArgument(),
             "GetActorBounds(self, *, bOnlyCollidingComponents: bool) -> GetActorBoundsResult\n\nReturns the world-space bounds of the actor's primitives as centre Origin and half size BoxExtent.");
@@ -1018,8 +1019,9 @@ void spear_bind_engine(py::module_& m) {
                 FVector LocationOut{};
                 FRotator RotationOut{};
                 object->GetPlayerViewPoint(LocationOut, RotationOut);
-                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "APlayerController").attr("GetPlayerViewPointResult");
-                return resultType(py::arg("Location") = Bridge<FVector>::out(LocationOut), py::arg("Rotation") = Bridge<FRotator>::out(RotationOut));
+                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
+                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "APlayerController").attr("GetPlayerViewPointResult"));
+                return (*resultType)(py::arg("Location") = Bridge<FVector>::out(LocationOut), py::arg("Rotation") = Bridge<FRotator>::out(RotationOut));
             },
             "GetPlayerViewPoint(self) -> GetPlayerViewPointResult\n\nReturns the player's view point: the view target's location and the control rotation.");
         cls.def(
@@ -1281,8 +1283,9 @@ void spear_bind_engine(py::module_& m) {
                 sp::reflect::SpArray<double> PathPointsOut{};
                 double PathLengthOut{};
                 auto result = object->FindPath(StartValue, EndValue, PathPointsOut, PathLengthOut);
-                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "ARecastNavMesh").attr("FindPathResult");
-                return resultType(py::arg("ReturnValue") = Bridge<ENavigationQueryResult>::out(result), py::arg("PathPoints") = Bridge<sp::reflect::SpArray<double>>::out(PathPointsOut), py::arg("PathLength") = Bridge<double>::out(PathLengthOut));
+                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
+                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "ARecastNavMesh").attr("FindPathResult"));
+                return (*resultType)(py::arg("ReturnValue") = Bridge<ENavigationQueryResult>::out(result), py::arg("PathPoints") = Bridge<sp::reflect::SpArray<double>>::out(PathPointsOut), py::arg("PathLength") = Bridge<double>::out(PathLengthOut));
             },
             py::arg("Start") = sp::pybind::missingArgument(),
             py::arg("End") = sp::pybind::missingArgument(),
@@ -1300,8 +1303,9 @@ void spear_bind_engine(py::module_& m) {
                 sp::reflect::SpArray<double> LengthsOut{};
                 sp::reflect::SpArray<uint8_t> ResultsOut{};
                 object->FindPaths(StartPointsValue, EndPointsValue, PathPointsOut, PathStartsOut, LengthsOut, ResultsOut);
-                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "ARecastNavMesh").attr("FindPathsResult");
-                return resultType(py::arg("PathPoints") = Bridge<sp::reflect::SpArray<double>>::out(PathPointsOut), py::arg("PathStarts") = Bridge<sp::reflect::SpArray<int64_t>>::out(PathStartsOut), py::arg("Lengths") = Bridge<sp::reflect::SpArray<double>>::out(LengthsOut), py::arg("Results") = Bridge<sp::reflect::SpArray<uint8_t>>::out(ResultsOut));
+                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
+                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "ARecastNavMesh").attr("FindPathsResult"));
+                return (*resultType)(py::arg("PathPoints") = Bridge<sp::reflect::SpArray<double>>::out(PathPointsOut), py::arg("PathStarts") = Bridge<sp::reflect::SpArray<int64_t>>::out(PathStartsOut), py::arg("Lengths") = Bridge<sp::reflect::SpArray<double>>::out(LengthsOut), py::arg("Results") = Bridge<sp::reflect::SpArray<uint8_t>>::out(ResultsOut));
             },
             py::arg("StartPoints") = sp::pybind::missingArgument(),
             py::arg("EndPoints") = sp::pybind::missingArgument(),
@@ -1356,8 +1360,9 @@ void spear_bind_engine(py::module_& m) {
                 FVector ProjectedLocationOut{};
                 FVector QueryExtentValue = isMissing(QueryExtent) ? FVector(FVector()) : Bridge<FVector>::in(QueryExtent, "ARecastNavMesh.ProjectPointToNavigation(): argument 'QueryExtent'");
                 auto result = object->ProjectPointToNavigation(PointValue, ProjectedLocationOut, QueryExtentValue);
-                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "ARecastNavMesh").attr("ProjectPointToNavigationResult");
-                return resultType(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("ProjectedLocation") = Bridge<FVector>::out(ProjectedLocationOut));
+                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
+                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "ARecastNavMesh").attr("ProjectPointToNavigationResult"));
+                return (*resultType)(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("ProjectedLocation") = Bridge<FVector>::out(ProjectedLocationOut));
             },
             py::arg("Point") = sp::pybind::missingArgument(),
             py::arg("QueryExtent") = sp::pybind::missingArgument(),
@@ -2193,8 +2198,9 @@ void spear_bind_engine(py::module_& m) {
                 FVector OriginOut{};
                 FVector BoxExtentOut{};
                 object->GetBounds(OriginOut, BoxExtentOut);
-                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "UPrimitiveComponent").attr("GetBoundsResult");
-                return resultType(py::arg("Origin") = Bridge<FVector>::out(OriginOut), py::arg("BoxExtent") = Bridge<FVector>::out(BoxExtentOut));
+                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
+                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "UPrimitiveComponent").attr("GetBoundsResult"));
+                return (*resultType)(py::arg("Origin") = Bridge<FVector>::out(OriginOut), py::arg("BoxExtent") = Bridge<FVector>::out(BoxExtentOut));
             },
             "GetBounds(self) -> GetBoundsResult\n\nReturns the world-space axis-aligned bounds as centre Origin and half size BoxExtent.");
         cls.def(
@@ -2766,8 +2772,9 @@ void spear_bind_engine(py::module_& m) {
                 int32_t MaterialSlotOut{};
                 std::string MaterialNameOut{};
                 auto result = object->GetObjectIdInfo(ObjectIdValue, ActorOut, ComponentOut, MaterialSlotOut, MaterialNameOut);
-                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "UCameraSensorComponent").attr("GetObjectIdInfoResult");
-                return resultType(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("Actor") = Bridge<AActor*>::out(ActorOut), py::arg("Component") = Bridge<UPrimitiveComponent*>::out(ComponentOut), py::arg("MaterialSlot") = Bridge<int32_t>::out(MaterialSlotOut), py::arg("MaterialName") = Bridge<std::string>::out(MaterialNameOut));
+                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
+                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "UCameraSensorComponent").attr("GetObjectIdInfoResult"));
+                return (*resultType)(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("Actor") = Bridge<AActor*>::out(ActorOut), py::arg("Component") = Bridge<UPrimitiveComponent*>::out(ComponentOut), py::arg("MaterialSlot") = Bridge<int32_t>::out(MaterialSlotOut), py::arg("MaterialName") = Bridge<std::string>::out(MaterialNameOut));
             },
             py::arg("ObjectId") = sp::pybind::missingArgument(),
             "GetObjectIdInfo(self, *, ObjectId: int) -> GetObjectIdInfoResult\n\nLooks up an object id of object_ids: the actor, the component and the material slot and name it\nbelongs to (a spline's debug line: its actor, Component None, material \"DebugLine\"); returns False\n(and None, -1, \"\") for 0, an unknown id or a destroyed component.");
@@ -3343,8 +3350,9 @@ void spear_bind_engine(py::module_& m) {
                 double PathLengthOut{};
                 ARecastNavMesh* NavDataValue = isMissing(NavData) ? static_cast<ARecastNavMesh*>(nullptr) : Bridge<ARecastNavMesh*>::in(NavData, "UNavigationSystemV1.FindPathToLocationSynchronously(): argument 'NavData'");
                 auto result = Self::FindPathToLocationSynchronously(WorldContextObjectValue, PathStartValue, PathEndValue, PathPointsOut, PathLengthOut, NavDataValue);
-                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("FindPathToLocationSynchronouslyResult");
-                return resultType(py::arg("ReturnValue") = Bridge<ENavigationQueryResult>::out(result), py::arg("PathPoints") = Bridge<sp::reflect::SpArray<double>>::out(PathPointsOut), py::arg("PathLength") = Bridge<double>::out(PathLengthOut));
+                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
+                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("FindPathToLocationSynchronouslyResult"));
+                return (*resultType)(py::arg("ReturnValue") = Bridge<ENavigationQueryResult>::out(result), py::arg("PathPoints") = Bridge<sp::reflect::SpArray<double>>::out(PathPointsOut), py::arg("PathLength") = Bridge<double>::out(PathLengthOut));
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("PathStart") = sp::pybind::missingArgument(),
@@ -3364,8 +3372,9 @@ void spear_bind_engine(py::module_& m) {
                 double PathLengthOut{};
                 ARecastNavMesh* NavDataValue = isMissing(NavData) ? static_cast<ARecastNavMesh*>(nullptr) : Bridge<ARecastNavMesh*>::in(NavData, "UNavigationSystemV1.GetPathLength(): argument 'NavData'");
                 auto result = Self::GetPathLength(WorldContextObjectValue, PathStartValue, PathEndValue, PathLengthOut, NavDataValue);
-                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("GetPathLengthResult");
-                return resultType(py::arg("ReturnValue") = Bridge<ENavigationQueryResult>::out(result), py::arg("PathLength") = Bridge<double>::out(PathLengthOut));
+                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
+                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("GetPathLengthResult"));
+                return (*resultType)(py::arg("ReturnValue") = Bridge<ENavigationQueryResult>::out(result), py::arg("PathLength") = Bridge<double>::out(PathLengthOut));
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("PathStart") = sp::pybind::missingArgument(),
@@ -3385,8 +3394,9 @@ void spear_bind_engine(py::module_& m) {
                 auto RadiusValue = Bridge<double>::in(Radius, "UNavigationSystemV1.K2_GetRandomReachablePointInRadius(): argument 'Radius'");
                 ARecastNavMesh* NavDataValue = isMissing(NavData) ? static_cast<ARecastNavMesh*>(nullptr) : Bridge<ARecastNavMesh*>::in(NavData, "UNavigationSystemV1.K2_GetRandomReachablePointInRadius(): argument 'NavData'");
                 auto result = Self::K2_GetRandomReachablePointInRadius(WorldContextObjectValue, OriginValue, RandomLocationOut, RadiusValue, NavDataValue);
-                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("K2_GetRandomReachablePointInRadiusResult");
-                return resultType(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("RandomLocation") = Bridge<FVector>::out(RandomLocationOut));
+                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
+                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("K2_GetRandomReachablePointInRadiusResult"));
+                return (*resultType)(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("RandomLocation") = Bridge<FVector>::out(RandomLocationOut));
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("Origin") = sp::pybind::missingArgument(),
@@ -3406,8 +3416,9 @@ void spear_bind_engine(py::module_& m) {
                 auto RadiusValue = Bridge<double>::in(Radius, "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius(): argument 'Radius'");
                 ARecastNavMesh* NavDataValue = isMissing(NavData) ? static_cast<ARecastNavMesh*>(nullptr) : Bridge<ARecastNavMesh*>::in(NavData, "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius(): argument 'NavData'");
                 auto result = Self::K2_GetRandomLocationInNavigableRadius(WorldContextObjectValue, OriginValue, RandomLocationOut, RadiusValue, NavDataValue);
-                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("K2_GetRandomLocationInNavigableRadiusResult");
-                return resultType(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("RandomLocation") = Bridge<FVector>::out(RandomLocationOut));
+                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
+                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("K2_GetRandomLocationInNavigableRadiusResult"));
+                return (*resultType)(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("RandomLocation") = Bridge<FVector>::out(RandomLocationOut));
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("Origin") = sp::pybind::missingArgument(),
@@ -3427,8 +3438,9 @@ void spear_bind_engine(py::module_& m) {
                 ARecastNavMesh* NavDataValue = isMissing(NavData) ? static_cast<ARecastNavMesh*>(nullptr) : Bridge<ARecastNavMesh*>::in(NavData, "UNavigationSystemV1.K2_ProjectPointToNavigation(): argument 'NavData'");
                 FVector QueryExtentValue = isMissing(QueryExtent) ? FVector(FVector()) : Bridge<FVector>::in(QueryExtent, "UNavigationSystemV1.K2_ProjectPointToNavigation(): argument 'QueryExtent'");
                 auto result = Self::K2_ProjectPointToNavigation(WorldContextObjectValue, PointValue, ProjectedLocationOut, NavDataValue, QueryExtentValue);
-                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("K2_ProjectPointToNavigationResult");
-                return resultType(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("ProjectedLocation") = Bridge<FVector>::out(ProjectedLocationOut));
+                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
+                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("K2_ProjectPointToNavigationResult"));
+                return (*resultType)(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("ProjectedLocation") = Bridge<FVector>::out(ProjectedLocationOut));
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("Point") = sp::pybind::missingArgument(),
@@ -4437,8 +4449,9 @@ void spear_bind_engine(py::module_& m) {
                 AActor* actorOut{};
                 UPrimitiveComponent* componentOut{};
                 auto result = object->line_trace_single(startValue, endValue, hitOut, actorOut, componentOut);
-                static const py::object resultType = sp::pybind::apiAttribute("spear._engine.api", "UWorld").attr("line_trace_singleResult");
-                return resultType(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("hit") = Bridge<FHitResult>::out(hitOut), py::arg("actor") = Bridge<AActor*>::out(actorOut), py::arg("component") = Bridge<UPrimitiveComponent*>::out(componentOut));
+                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
+                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "UWorld").attr("line_trace_singleResult"));
+                return (*resultType)(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("hit") = Bridge<FHitResult>::out(hitOut), py::arg("actor") = Bridge<AActor*>::out(actorOut), py::arg("component") = Bridge<UPrimitiveComponent*>::out(componentOut));
             },
             py::arg("start") = sp::pybind::missingArgument(),
             py::arg("end") = sp::pybind::missingArgument(),

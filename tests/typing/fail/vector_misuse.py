@@ -38,5 +38,5 @@ class Blind:
 def misuse() -> None:
     envs = VectorEnv.in_worlds(Turn, num_envs=2)
     envs.step([1, 2])
-    envs.step([0.5])  # E: List item 0 has incompatible type "float"; expected "int"  [list-item]  # P: reportArgumentType: Argument of type "list[float]" cannot be assigned to parameter "actions" of type "Sequence[int]" in function "step" / "float" is not assignable to "int"
+    envs.step([0.5])  # E: List item 0 has incompatible type "float"; expected "int"  [list-item]  # P: reportArgumentType: Argument of type "list[float]" cannot be assigned to parameter "actions" of type "Sequence[int] | NDArray[Any]" in function "step" / "float" is not assignable to "int"
     VectorEnv.in_worlds(Blind, num_envs=2)  # E: Argument 1 to "in_worlds" of "VectorEnv" has incompatible type "Type[Blind]"; expected "Callable[[], Env[<nothing>]]"  [arg-type]  # P: reportArgumentType: Argument of type "type[Blind]" cannot be assigned to parameter "make_env" of type "() -> Env[A@in_worlds]" in function "in_worlds" / Type "type[Blind]" is not assignable to type "() -> Env[A@in_worlds]" / Function return type "Blind" is incompatible with type "Env[A@in_worlds]" / "Blind" is incompatible with protocol "Env[A@in_worlds]" / "observe" is not present

@@ -146,8 +146,9 @@ void spear_bind_all_types(py::module_& m) {
                 std::string HeadOut{};
                 std::vector<std::string> RestOut{};
                 auto result = object->Split(TextValue, HeadOut, RestOut);
-                static const py::object resultType = sp::pybind::apiAttribute("spear._all_types.api", "AAllTypes").attr("SplitResult");
-                return resultType(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("Head") = Bridge<std::string>::out(HeadOut), py::arg("Rest") = Bridge<std::vector<std::string>>::out(RestOut));
+                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
+                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._all_types.api", "AAllTypes").attr("SplitResult"));
+                return (*resultType)(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("Head") = Bridge<std::string>::out(HeadOut), py::arg("Rest") = Bridge<std::vector<std::string>>::out(RestOut));
             },
             py::arg("Text") = sp::pybind::missingArgument(),
             "Split(self, *, Text: str) -> SplitResult\n\nSplits a string, with out-parameters.");
