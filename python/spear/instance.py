@@ -21,7 +21,7 @@ from collections.abc import Iterator
 from types import ModuleType
 from typing import Any, Literal, cast
 
-from spear import _plugins
+from spear import _events, _plugins
 from spear._backends import Backend, InProcessBackend, RpcBackend
 from spear._engine import api
 from spear.errors import InvalidArgumentError, InvalidStateError
@@ -57,6 +57,7 @@ class Instance:
             self._backend = RpcBackend(server, token, fixed_delta_seconds, editor=mode == "editor", scene=scene_path)
         self.transport = "inprocess" if server is None else "rpc"
         self._closed = False
+        self._overlap_subscriptions: list[_events.OverlapSubscription] = []
         _OPEN.add(self)
 
     # -- worlds --------------------------------------------------------------------------------
@@ -115,6 +116,7 @@ class Instance:
         backend = self._open("end_frame")
         backend.frame("begin_end")
         try:
+            _events.deliver_all(self._overlap_subscriptions)  # the events of the frame that just ticked
             yield
         finally:
             backend.frame("end")
@@ -137,6 +139,23 @@ class Instance:
         """Where the engine is in the frame protocol: "idle", "inside begin_frame", "between begin_frame and
         end_frame" (a frame ran; end_frame comes next) or "inside end_frame"."""
         return cast(FrameState, self._open("frame_state").frame_state())
+
+    # -- events --------------------------------------------------------------------------------
+
+    def on_overlap(self, component: api.UPrimitiveComponent, *, begin: _events.OverlapCallback | None = None,
+                   end: _events.OverlapCallback | None = None) -> _events.OverlapSubscription:
+        """Calls begin(component, other) and end(component, other) at the start of each end_frame block, for
+        the components that began or stopped overlapping `component` in the frame that ticked (UE's
+        OnComponentBeginOverlap/EndOverlap). Returns the subscription; cancel() stops it, and it ends by
+        itself with its component. A callback's exception propagates from the end_frame block."""
+        if begin is None and end is None:
+            raise InvalidArgumentError("on_overlap(): give begin=, end= or both")
+        if not isinstance(component, api.UPrimitiveComponent):
+            raise InvalidArgumentError(
+                f"on_overlap(): component must be a UPrimitiveComponent, got {type(component).__name__}")
+        subscription = _events.OverlapSubscription(component, begin, end, self._overlap_subscriptions)
+        self._overlap_subscriptions.append(subscription)
+        return subscription
 
     # -- dynamic access ------------------------------------------------------------------------
 

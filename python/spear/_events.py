@@ -1,0 +1,68 @@
+"""Overlap events delivered to Python callbacks, UE's OnComponentBeginOverlap/OnComponentEndOverlap:
+
+    def entered(trigger: spear.UPrimitiveComponent, other: spear.UPrimitiveComponent) -> None: ...
+    subscription = instance.on_overlap(trigger.CollisionComponent, begin=entered, end=left)
+    ...
+    subscription.cancel()
+
+At the start of every end_frame block, before the block's own code, each subscription's callbacks run for the
+components that began and stopped overlapping its component in the frame that just ticked (begins first, in the
+order the engine reports them; subscriptions in the order they were made). It is the polled API
+(GetBeginOverlaps/GetEndOverlaps) read for you, so both transports deliver the same events. A subscription
+whose component is destroyed ends by itself; an exception in a callback propagates from the end_frame block
+(the frame still ends).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
+from spear.errors import StaleObjectError
+
+if TYPE_CHECKING:
+    from spear._engine import api
+
+OverlapCallback = Callable[["api.UPrimitiveComponent", "api.UPrimitiveComponent"], None]
+
+
+class OverlapSubscription:
+    """Begin and end overlap callbacks of one component; cancel() stops them."""
+
+    def __init__(self, component: api.UPrimitiveComponent, begin: OverlapCallback | None,
+                 end: OverlapCallback | None, subscriptions: list[OverlapSubscription]) -> None:
+        self.component = component
+        self.begin = begin
+        self.end = end
+        self._subscriptions = subscriptions
+
+    @property
+    def active(self) -> bool:
+        """False once cancelled, or once its component was destroyed."""
+        return any(s is self for s in self._subscriptions)
+
+    def cancel(self) -> None:
+        """Stops the callbacks (doing nothing when already stopped)."""
+        self._subscriptions[:] = [s for s in self._subscriptions if s is not self]
+
+    def deliver(self) -> None:
+        """Calls the callbacks for the last tick's events (see the module notes)."""
+        try:
+            begins = self.component.GetBeginOverlaps() if self.begin is not None else []
+            ends = self.component.GetEndOverlaps() if self.end is not None else []
+        except StaleObjectError:
+            self.cancel()  # the component is gone, and so are its events
+            return
+        for other in begins:
+            if self.begin is not None:
+                self.begin(self.component, other)
+        for other in ends:
+            if self.end is not None:
+                self.end(self.component, other)
+
+
+def deliver_all(subscriptions: list[OverlapSubscription]) -> None:
+    """Delivers every subscription's events, in subscription order (a callback may cancel or add ones)."""
+    for subscription in list(subscriptions):
+        if subscription.active:
+            subscription.deliver()
