@@ -62,7 +62,7 @@ template <typename R> void bindObjectBasics(py::class_<R>& cls) {
         return std::make_pair(self.handle.index, self.handle.generation);
     });
     cls.def("__eq__", [](const R& self, py::handle other) {
-        if (!py::hasattr(other, "_sp_handle"))
+        if (!py::hasattr(other, "_sp_handle") || py::hasattr(other, "_sp_client")) // an RPC engine's object
             return false;
         return other.attr("_sp_handle").cast<std::pair<uint32_t, uint32_t>>() ==
                std::make_pair(self.handle.index, self.handle.generation);

@@ -59,6 +59,10 @@ Value toValueAt(py::handle object, std::string_view context, int depth) {
     if (py::isinstance(object, *numpyScalar))
         return toValueAt(object.attr("item")(), context, depth);
     if (py::hasattr(object, "_sp_handle")) {
+        // An object of an engine over RPC has a handle too, which means something to its server only.
+        SP_CHECK(!py::hasattr(object, "_sp_client"), InvalidArgument, context, ": ",
+                 std::string(py::str(object.get_type().attr("__name__"))),
+                 " belongs to another engine (a different spear.Instance)");
         auto handle = object.attr("_sp_handle").cast<std::pair<uint32_t, uint32_t>>();
         return Value(reflect::ObjectHandle{handle.first, handle.second});
     }

@@ -133,7 +133,7 @@ class RpcBackend:
         if action == "create":
             return convert(self.connection.request("worlds", action="create", name=name), "UWorld", self.connection)
         if action == "destroy":
-            return self.connection.request("worlds", action="destroy", object=world)
+            return self.connection.request("worlds", action="destroy", object=world, context="destroy_world()")
         handles = self.connection.request("worlds", action="list")
         return [convert(handle, "UWorld", self.connection) for handle in handles]
 

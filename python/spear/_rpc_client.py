@@ -113,7 +113,7 @@ class RpcConnection:
 
     def request(self, op: str, **fields: Any) -> Any:
         self.flush()  # queued calls run first, in the order they were made
-        segments = OutgoingSegments(self._reply_buffers, inline=self.address.startswith("tcp:"))
+        segments = OutgoingSegments(self._reply_buffers, inline=self.address.startswith("tcp:"), owner=self)
         reply: Any = None
         try:
             message = {"id": next(self._ids), "op": op, **_encode_fields(op, fields, segments)}
@@ -127,7 +127,7 @@ class RpcConnection:
         """Sends many requests in one message; returns each result, or the exception it raised."""
         if self._queue:
             self.flush()
-        segments = OutgoingSegments(self._reply_buffers, inline=self.address.startswith("tcp:"))
+        segments = OutgoingSegments(self._reply_buffers, inline=self.address.startswith("tcp:"), owner=self)
         reply: Any = None
         refused: dict[int, errors.SpearError] = {}  # calls refused before sending, by position
         try:
@@ -290,9 +290,10 @@ def _context(op: str, fields: dict[str, Any]) -> str:
 
 
 class _HandleRef(SpObject):
-    """A bare handle, sent as an object reference."""
+    """A bare handle, sent as an object reference: the connection's own (taken from one of its proxies)."""
 
     __slots__ = ("_sp_handle",)
+    _sp_own_handle = True
 
     def __init__(self, handle: tuple[int, int]) -> None:
         self._sp_handle = handle

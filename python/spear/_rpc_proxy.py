@@ -68,7 +68,7 @@ class ObjectProxy(SpObject):
         self._sp_handle = handle
 
     def __eq__(self, other: object) -> bool:
-        return isinstance(other, ObjectProxy) and other._sp_handle == self._sp_handle
+        return isinstance(other, ObjectProxy) and other._sp_client is self._sp_client and other._sp_handle == self._sp_handle
 
     def __hash__(self) -> int:
         return hash(self._sp_handle)

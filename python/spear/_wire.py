@@ -75,8 +75,10 @@ class OutgoingSegments:
     """Segments this client created for a request's arrays; removed once the reply has arrived. With the
     connection's reply buffers, an array goes into a free buffer that fits instead, when there is one."""
 
-    def __init__(self, buffers: ReplyBuffers | None = None, *, inline: bool = False) -> None:
+    def __init__(self, buffers: ReplyBuffers | None = None, *, inline: bool = False, owner: object = None) -> None:
         self.paths: list[str] = []
+        # The connection the request goes to: engine objects passed in it must be that engine's.
+        self.owner = owner
         self._buffers = buffers
         # Over TCP the server cannot tell which process (or machine) a segment comes from, so it opens none:
         # every argument array travels in the message itself.
@@ -145,6 +147,11 @@ def encode(value: Any, segments: OutgoingSegments, depth: int = 0) -> Any:
         handle = getattr(value, "_sp_handle", None)
         if handle is None:
             raise TypeError(f"{type(value).__name__} is not an engine object of this connection")
+        own = getattr(value, "_sp_own_handle", False) or getattr(value, "_sp_client", None) is segments.owner
+        if segments.owner is not None and not own:
+            # A handle means something only to the engine that made it: sent elsewhere, it would name
+            # whatever object that engine has under the same number.
+            raise ValueRefused(f"{type(value).__name__} belongs to another engine (a different spear.Instance)")
         return msgpack.ExtType(EXT_OBJECT, struct.pack("<II", handle[0], handle[1]))
     if isinstance(value, type) and hasattr(value, "__sp_class__"):
         asset = getattr(value, "__sp_asset__", "")  # a generated blueprint class: the server loads it if needed

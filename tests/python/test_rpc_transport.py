@@ -365,3 +365,34 @@ def test_a_full_reply_buffer_pool_does_not_churn() -> None:
         assert all(b.size >= size * 8 for b in pool._buffers.values())  # noqa: SLF001
     finally:
         pool.close()
+
+
+def test_an_engine_refuses_the_objects_of_another() -> None:
+    # A handle names an object only in the engine that made it: sent to another engine it would name
+    # whatever that one has under the same number (two servers that made the same objects in the same order
+    # give the same handles). Over RPC and in-process alike, it is refused, naming the argument.
+    first, second, local = spear.Instance(server="launch"), spear.Instance(server="launch"), spear.Instance()
+    try:
+        worlds = [engine.create_world(name="Env") for engine in (first, second, local)]
+        assert worlds[0] != worlds[1]  # equal handles, different engines
+        with first.begin_frame():
+            actor = first.get_game().spawn_actor(uclass=spear.AActor)
+        with first.end_frame():
+            pass
+        for engine, foreign in ((second, worlds[0]), (local, worlds[0]), (second, worlds[2])):
+            with pytest.raises(spear.InvalidArgumentError,
+                               match=r"^destroy_world\(\): UWorld belongs to another engine \(a different "
+                                     r"spear.Instance\)$"):
+                engine.destroy_world(world=foreign)
+        for engine in (second, local):
+            with engine.begin_frame():
+                with pytest.raises(spear.InvalidArgumentError,
+                                   match=r"^UWorld.destroy_actor\(\): argument 'actor': AActor belongs to another "
+                                         r"engine \(a different spear.Instance\)$"):
+                    engine.get_game().destroy_actor(actor=actor)
+            with engine.end_frame():
+                pass
+        assert len(second.get_worlds()) == len(local.get_worlds()) == 2  # nothing was destroyed
+    finally:
+        for engine in (first, second, local):
+            engine.close()
