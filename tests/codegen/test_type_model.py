@@ -1,0 +1,144 @@
+"""The generator's type model alone (codegen/types.py, codegen/naming.py), without rendering any output: which C++
+types cross the boundary as which TypeRef, the reasons given for those that do not, and the Python spellings and
+defaults the templates print."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import clang.cindex as ci
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
+from codegen import naming  # noqa: E402
+from codegen.model import Param, TypeRef  # noqa: E402
+from codegen.types import TypeMapper, UnsupportedType  # noqa: E402
+
+# Stand-ins for the engine's reflection types (matched by qualified name) and a few reflected declarations.
+PRELUDE = """
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+namespace sp::reflect {
+template <typename T> class SpArray {};
+struct Half {};
+struct TypeInfo {};
+}
+using UClass = sp::reflect::TypeInfo;
+template <typename T> class TSubclassOf {};
+class UThing {};
+struct FPoint { double X; };
+enum class EMode : uint8_t { A, B };
+enum class EPlain { C };
+struct FPlainStruct {};
+"""
+
+REFLECTED = {"UThing": "class", "FPoint": "struct", "EMode": "enum"}
+
+
+def mapped(type_spelling: str) -> TypeRef:
+    """The TypeRef of a variable declared with `type_spelling` after the prelude."""
+    source = PRELUDE + f"extern {type_spelling} probe;\n"
+    tu = ci.Index.create().parse("probe.cpp", args=["-x", "c++", "-std=c++20"],
+                                 unsaved_files=[("probe.cpp", source)])
+    errors = [d.spelling for d in tu.diagnostics if d.severity >= ci.Diagnostic.Error]
+    assert not errors, errors
+    probe = next(c for c in tu.cursor.get_children() if c.spelling == "probe")
+    mapper = TypeMapper(lambda decl: REFLECTED.get(decl.spelling))
+    return mapper.map(probe.type)
+
+
+@pytest.mark.parametrize("spelling, kind, cpp, name", [
+    ("bool", "bool", "bool", ""),
+    ("int8_t", "int", "int8_t", ""),
+    ("uint16_t", "int", "uint16_t", ""),
+    ("int", "int", "int32_t", ""),
+    ("long long", "int", "int64_t", ""),
+    ("unsigned long", "int", "uint64_t", ""),
+    ("float", "float", "float", ""),
+    ("double", "float", "double", ""),
+    ("std::string", "str", "std::string", ""),
+    ("EMode", "enum", "EMode", "EMode"),
+    ("FPoint", "struct", "FPoint", "FPoint"),
+    ("UThing*", "object", "UThing*", "UThing"),
+    ("const UClass*", "class", "const UClass*", "UObject"),
+    ("TSubclassOf<UThing>", "class", "TSubclassOf<UThing>", "UThing"),
+    ("sp::reflect::SpArray<float>", "array", "sp::reflect::SpArray<float>", "float32"),
+    ("sp::reflect::SpArray<uint8_t>", "array", "sp::reflect::SpArray<uint8_t>", "uint8"),
+    ("sp::reflect::SpArray<sp::reflect::Half>", "array", "sp::reflect::SpArray<sp::reflect::Half>", "float16"),
+])
+def test_supported_types_map_to_their_kind(spelling: str, kind: str, cpp: str, name: str) -> None:
+    t = mapped(spelling)
+    assert (t.kind, t.cpp, t.name) == (kind, cpp, name)
+
+
+def test_containers_nest_their_element_types() -> None:
+    t = mapped("std::vector<std::map<std::string, UThing*>>")
+    assert t.kind == "list" and t.cpp == "std::vector<std::map<std::string, UThing*>>"
+    inner = t.args[0]
+    assert inner.kind == "dict" and inner.args == (TypeRef("object", "UThing*", "UThing"),)
+    assert naming.py_type(t) == "list[dict[str, UThing]]"
+
+
+@pytest.mark.parametrize("spelling, reason", [
+    ("char", "'char': char is ambiguous; use int8_t, uint8_t or std::string"),
+    ("EPlain", "enum 'EPlain' is not reflected; mark it SPENUM()"),
+    ("UClass*", "a class reference must be 'const UClass*'"),
+    ("FPoint*", "'FPoint *': pass reflected structs by value or const reference"),
+    ("int*", "pointer type 'int *' is not supported; only pointers to reflected classes cross the boundary"),
+    ("std::wstring", "only std::string is supported"),
+    ("std::map<int, double>", "map keys must be std::string"),
+    ("UThing", "'UThing': reflected classes cross the boundary by pointer (UThing*)"),
+    ("FPlainStruct", "type 'FPlainStruct' is not supported across the boundary; reflect it with SPSTRUCT()"),
+    ("TSubclassOf<FPoint>", "TSubclassOf needs a reflected class"),
+    ("sp::reflect::SpArray<FPoint>", "unsupported array element type"),
+])
+def test_unsupported_types_are_rejected_with_the_reason(spelling: str, reason: str) -> None:
+    with pytest.raises(UnsupportedType) as caught:
+        mapped(spelling)
+    assert reason in str(caught.value)
+
+
+@pytest.mark.parametrize("t, spelling, as_result", [
+    (TypeRef("void", "void"), "None", "None"),
+    (TypeRef("object", "UThing*", "UThing"), "UThing | None", "UThing | None"),
+    (TypeRef("class", "TSubclassOf<UThing>", "UThing"), "type[UThing] | str", "type[UThing] | None"),
+    (TypeRef("array", "sp::reflect::SpArray<float>", "float32"), "NDArray[np.float32]", "NDArray[np.float32]"),
+    (TypeRef("dict", "std::map<std::string, double>", args=(TypeRef("float", "double"),)), "dict[str, float]",
+     "dict[str, float]"),
+])
+def test_python_spellings(t: TypeRef, spelling: str, as_result: str) -> None:
+    assert naming.py_type(t) == spelling
+    assert naming.py_type(t, result=True) == as_result
+
+
+@pytest.mark.parametrize("cpp_type, default, python", [
+    (TypeRef("bool", "bool"), "true", "True"),
+    (TypeRef("float", "double"), "1", "1.0"),  # an integer literal for a float parameter stays a float
+    (TypeRef("float", "float"), "0.5f", "0.5"),
+    (TypeRef("int", "int32_t"), "-3", "-3"),
+    (TypeRef("str", "std::string"), '"name"', '"name"'),
+    (TypeRef("str", "std::string"), '"a\\"b"', None),  # an escape: no faithful spelling, so none is printed
+    (TypeRef("list", "std::vector<int32_t>", args=(TypeRef("int", "int32_t"),)), "{}", "[]"),
+    (TypeRef("object", "UThing*", "UThing"), "nullptr", "None"),
+    (TypeRef("enum", "EMode", "EMode"), "EMode::B", "EMode.B"),
+    (TypeRef("enum", "EMode", "EMode"), "EOther::B", None),  # not a known enum
+    (TypeRef("struct", "FPoint", "FPoint"), "FPoint(1.0, 2)", "FPoint(1.0, 2)"),
+    (TypeRef("struct", "FPoint", "FPoint"), "FPoint(Origin())", None),
+])
+def test_cpp_defaults_get_a_python_spelling_only_when_faithful(cpp_type: TypeRef, default: str,
+                                                               python: str | None) -> None:
+    param = Param("P", cpp_type, cpp_type.cpp, default_cpp=default)
+    assert naming.py_default(param, {"EMode"}) == python
+
+
+def test_cpp_spellings() -> None:
+    assert naming.cpp_string('say "hi"\n\\') == '"say \\"hi\\"\\n\\\\"'
+    assert naming.header_stem("core/world/actor.h") == "core_world_actor"
+    pointer = Param("Actor", TypeRef("object", "UThing*", "UThing"), "UThing *", default_cpp="nullptr")
+    assert naming.cpp_default_value(pointer) == "static_cast<UThing*>(nullptr)"
+    braced = Param("Tags", TypeRef("list", "std::vector<std::string>", args=(TypeRef("str", "std::string"),)),
+                   "const std::vector<std::string> &", default_cpp="{}")
+    assert naming.cpp_default_value(braced) == "std::vector<std::string>{}"
