@@ -47,33 +47,63 @@ ActionT_contra = TypeVar("ActionT_contra", contravariant=True)
 
 @dataclass(frozen=True)
 class Box:
-    """Arrays of one shape and dtype with every element in [low, high] (infinite bounds allowed)."""
+    """Arrays of one shape and dtype with every element in [low, high]: one bound for all elements, or one per
+    element (a sequence of shape's size, row-major: a robot's joint limits); infinite bounds allowed."""
 
     shape: tuple[int, ...]
     dtype: DTypeLike = np.float32
-    low: float = -math.inf
-    high: float = math.inf
+    low: float | Sequence[float] = -math.inf
+    high: float | Sequence[float] = math.inf
+
+    def __post_init__(self) -> None:
+        # Per-element bounds are kept as tuples, so that spaces compare (and hash) by value.
+        size = int(np.prod(self.shape))
+        for name in ("low", "high"):
+            bound = getattr(self, name)
+            if not isinstance(bound, (int, float)):
+                values = tuple(float(v) for v in np.asarray(bound, dtype=np.float64).ravel())
+                if len(values) != size:
+                    raise InvalidArgumentError(f"Box(): {name} has {len(values)} values for shape {self.shape} "
+                                               f"({size} elements)")
+                object.__setattr__(self, name, values)
+        low, high = self.bounds()
+        if np.any(low > high):
+            raise InvalidArgumentError(f"Box(): low exceeds high at element {int(np.argmax(low > high))}")
+
+    def bounds(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """(low, high) as arrays of the box's shape."""
+        def full(bound: float | Sequence[float]) -> NDArray[np.float64]:
+            return np.broadcast_to(np.asarray(bound, dtype=np.float64).reshape(
+                () if isinstance(bound, (int, float)) else self.shape), self.shape)
+        return full(self.low), full(self.high)
 
     def zeros(self) -> NDArray[Any]:
         return np.zeros(self.shape, dtype=self.dtype)
 
     def contains(self, value: object) -> bool:
         array = np.asarray(value)
-        return (array.shape == self.shape and array.dtype == np.dtype(self.dtype)
-                and bool(np.all(array >= self.low)) and bool(np.all(array <= self.high)))
+        if array.shape != self.shape or array.dtype != np.dtype(self.dtype):
+            return False
+        low, high = self.bounds()
+        return bool(np.all(array >= low)) and bool(np.all(array <= high))
 
     def sample(self, rng: np.random.Generator) -> NDArray[Any]:
-        """Uniform over the box; a float dimension with an infinite bound draws from a standard normal
-        (clipped to the finite bound, if any)."""
+        """Uniform where both bounds are finite; low + an exponential where only low is, high - an exponential
+        where only high is, a standard normal where neither is (gymnasium's rule). Integer boxes draw uniformly
+        from the bounds clipped to the dtype's range."""
         dtype = np.dtype(self.dtype)
+        low, high = self.bounds()
         if np.issubdtype(dtype, np.integer):
             info = np.iinfo(dtype)
-            low = int(max(self.low, info.min))
-            high = int(min(self.high, info.max))
-            return rng.integers(low, high, size=self.shape, endpoint=True).astype(dtype)
-        if math.isfinite(self.low) and math.isfinite(self.high):
-            return rng.uniform(self.low, self.high, size=self.shape).astype(dtype)
-        return np.clip(rng.standard_normal(size=self.shape), self.low, self.high).astype(dtype)
+            return rng.integers(np.clip(low, info.min, info.max).astype(np.int64),
+                                np.clip(high, info.min, info.max).astype(np.int64), endpoint=True).astype(dtype)
+        below, above = np.isfinite(low), np.isfinite(high)
+        uniform = rng.uniform(np.where(below, low, 0.0), np.where(above, high, 1.0))
+        exponential = rng.exponential(size=self.shape)
+        normal = rng.standard_normal(size=self.shape)
+        drawn = np.where(below & above, uniform,
+                         np.where(below, low + exponential, np.where(above, high - exponential, normal)))
+        return drawn.astype(dtype)
 
 
 @dataclass(frozen=True)

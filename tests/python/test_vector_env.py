@@ -188,3 +188,23 @@ def test_a_dead_server_is_reported_and_the_others_keep_running(caplog: pytest.Lo
         observations, _, _, truncated, _ = envs.step(push)  # the survivors go on
         assert observations["position"][:2, 0].tolist() == [2.0, 3.0]
         assert truncated.tolist() == [False, False, True, True]
+
+
+def test_boxes_take_per_element_bounds_and_sample_inside_them() -> None:
+    rng = np.random.default_rng(0)
+    joints = Box((2,), np.float32, [-1.0, 0.0], [1.0, 2.0])
+    samples = np.stack([joints.sample(rng) for _ in range(1000)])
+    assert samples.dtype == np.float32 and samples.shape == (1000, 2)
+    assert samples[:, 0].min() >= -1 and samples[:, 0].max() <= 1 and samples[:, 1].min() >= 0
+    assert samples[:, 1].max() <= 2 and samples[:, 1].max() > 1.5  # uniform over each element's own range
+    assert joints.contains(np.array([0.5, 1.5], np.float32)) and not joints.contains(np.array([0.5, 2.5], np.float32))
+    assert joints == Box((2,), np.float32, (-1.0, 0.0), np.array([1.0, 2.0]))  # compared by value
+    # One finite bound: gymnasium's rule (an exponential off the bound), not a pile of samples at the bound.
+    half = Box((1000,), np.float64, low=0.0).sample(rng)
+    assert half.min() > 0.0 and 0.8 < half.mean() < 1.2
+    steps = Box((3,), np.int64, 0, [1, 5, 10]).sample(rng)
+    assert steps.dtype == np.int64 and (steps >= 0).all() and (steps <= [1, 5, 10]).all()
+    with pytest.raises(spear.InvalidArgumentError, match=r"^Box\(\): low has 3 values for shape \(2,\) \(2 elements\)$"):
+        Box((2,), low=[0.0, 0.0, 0.0])
+    with pytest.raises(spear.InvalidArgumentError, match=r"^Box\(\): low exceeds high at element 1$"):
+        Box((2,), np.float32, [0.0, 3.0], 2.0)
