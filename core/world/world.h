@@ -90,11 +90,13 @@ class UWorld : public UObject {
     // Destroys the default objects of the classes `test` accepts (a plugin's, before it is unloaded).
     void ReleaseDefaultObjects(bool (*test)(const UClass&));
 
-    /// Returns the world-space locations of actors as an (N, 3) float64 array, rows in the order given.
+    /// Returns the world-space locations of actors as an (N, 3) float64 array, rows in the order given. The
+    /// actors may be in any of the engine's worlds: one actor per world gives a leading world axis.
     SPFUNCTION()
     sp::reflect::SpArray<double> get_actor_locations(const std::vector<AActor*>& actors) const;
 
-    /// Moves each actor to the matching row of locations, an (N, 3) float64 array (one call for many actors).
+    /// Moves each actor to the matching row of locations, an (N, 3) float64 array (one call for many actors,
+    /// in any of the engine's worlds).
     SPFUNCTION()
     void set_actor_locations(const std::vector<AActor*>& actors,
                              const sp::reflect::SpArray<double>& locations);

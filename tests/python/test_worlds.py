@@ -168,3 +168,15 @@ def test_a_world_destroyed_with_its_camera_leaves_the_others_rendering(instance:
     with instance.end_frame():
         assert cameras[1].read_pixels()["final_color"].shape == (6, 8, 4)
         assert not cameras[0].is_valid()
+
+
+def test_batched_locations_span_worlds(instance: spear.Instance) -> None:
+    # One actor per world, moved and read in one call each: rows are a leading world axis.
+    worlds = [instance.create_world(name=f"Env{i}") for i in range(3)]
+    with instance.begin_frame():
+        actors = [world.spawn_actor(uclass=spear.AStaticMeshActor, name="Agent") for world in worlds]
+        targets = np.array([[i, 2.0 * i, 0.5] for i in range(3)])
+        worlds[0].set_actor_locations(actors=actors, locations=targets)
+    with instance.end_frame():
+        assert np.array_equal(worlds[2].get_actor_locations(actors=actors), targets)
+        assert [world.find_actor_by_name(name="Agent").GetActorLocation().Y for world in worlds] == [0.0, 2.0, 4.0]

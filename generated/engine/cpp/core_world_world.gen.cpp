@@ -293,7 +293,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         });
         t.functions.push_back({
             "get_actor_locations",
-            "Returns the world-space locations of actors as an (N, 3) float64 array, rows in the order given.",
+            "Returns the world-space locations of actors as an (N, 3) float64 array, rows in the order given. The\nactors may be in any of the engine's worlds: one actor per world gives a leading world axis.",
             "NDArray[np.float64]",
             {
                 {"actors", "list[AActor]", false, false},
@@ -310,7 +310,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         });
         t.functions.push_back({
             "set_actor_locations",
-            "Moves each actor to the matching row of locations, an (N, 3) float64 array (one call for many actors).",
+            "Moves each actor to the matching row of locations, an (N, 3) float64 array (one call for many actors,\nin any of the engine's worlds).",
             "None",
             {
                 {"actors", "list[AActor]", false, false},

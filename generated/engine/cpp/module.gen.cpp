@@ -4392,7 +4392,7 @@ void spear_bind_engine(py::module_& m) {
                 return Bridge<sp::reflect::SpArray<double>>::out(result);
             },
             py::arg("actors") = sp::pybind::missingArgument(),
-            "get_actor_locations(self, *, actors: list[AActor]) -> NDArray[np.float64]\n\nReturns the world-space locations of actors as an (N, 3) float64 array, rows in the order given.");
+            "get_actor_locations(self, *, actors: list[AActor]) -> NDArray[np.float64]\n\nReturns the world-space locations of actors as an (N, 3) float64 array, rows in the order given. The\nactors may be in any of the engine's worlds: one actor per world gives a leading world axis.");
         cls.def(
             "set_actor_locations",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& actors, const PyArg& locations, const py::kwargs& extra) -> py::object {
@@ -4406,7 +4406,7 @@ void spear_bind_engine(py::module_& m) {
             },
             py::arg("actors") = sp::pybind::missingArgument(),
             py::arg("locations") = sp::pybind::missingArgument(),
-            "set_actor_locations(self, *, actors: list[AActor], locations: NDArray[np.float64]) -> None\n\nMoves each actor to the matching row of locations, an (N, 3) float64 array (one call for many actors).");
+            "set_actor_locations(self, *, actors: list[AActor], locations: NDArray[np.float64]) -> None\n\nMoves each actor to the matching row of locations, an (N, 3) float64 array (one call for many actors,\nin any of the engine's worlds).");
         cls.def(
             "get_actor_count",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {

@@ -184,4 +184,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "3a3c3b58f25088e7"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "52762266f714774a"; }

@@ -4242,10 +4242,14 @@ class UWorld(UObject):
     def get_default_object(self, *, uclass: str) -> UObject: ...
 
     def get_actor_locations(self, *, actors: list[AActor]) -> NDArray[np.float64]:
-        """Returns the world-space locations of actors as an (N, 3) float64 array, rows in the order given."""
+        """Returns the world-space locations of actors as an (N, 3) float64 array, rows in the order given. The
+        actors may be in any of the engine's worlds: one actor per world gives a leading world axis.
+        """
 
     def set_actor_locations(self, *, actors: list[AActor], locations: NDArray[np.float64]) -> None:
-        """Moves each actor to the matching row of locations, an (N, 3) float64 array (one call for many actors)."""
+        """Moves each actor to the matching row of locations, an (N, 3) float64 array (one call for many actors,
+        in any of the engine's worlds).
+        """
 
     def get_actor_count(self) -> int:
         """Returns the number of actors in the world."""
