@@ -202,12 +202,7 @@ void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
 void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassSet& passes,
                            const shaders::ShadingLayout& lights, const std::vector<Draw>& draws,
                            GpuSceneCache& cache, Framebuffers& fb) {
-    timers_.begin(Pass::Surface);
-    glBindFramebuffer(GL_FRAMEBUFFER, fb.surfaceFbo);
-    glViewport(0, 0, fb.width, fb.height);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
+    beginPass(Pass::Surface, fb.surfaceFbo, fb, GL_LESS, true);
     clearTargets(scene, camera, passes.surfaceTargets);
     glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
     if (!passes.lighting) // the material chunk still reads the camera position from the frame block
@@ -221,21 +216,26 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
 
 void Renderer::attributePass(const Scene& scene, const Camera& camera, const PassSet& passes,
                              const std::vector<Draw>& draws, GpuSceneCache& cache, Framebuffers& fb) {
-    timers_.begin(Pass::Attribute);
-    glBindFramebuffer(GL_FRAMEBUFFER, fb.attributeFbo);
-    glViewport(0, 0, fb.width, fb.height);
     // The surface pass's depth, kept: a fragment passes only where it is the one the surface pass left. Where
     // surfaces tie (coincident instances), every tied fragment passes and the last drawn stays, while the
     // surface pass (GL_LESS) kept the first drawn: drawn in reverse order, the last here is the first there.
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LEQUAL);
-    glDepthMask(GL_FALSE);
+    beginPass(Pass::Attribute, fb.attributeFbo, fb, GL_LEQUAL, false);
     clearTargets(scene, camera, passes.attributeTargets);
     const std::vector<Draw> reversed(draws.rbegin(), draws.rend());
     drawAll(scene, camera, reversed, passes.attributeTargets, false, {}, cache);
     glDepthMask(GL_TRUE);
     timers_.end();
     ++stats_.attributePasses;
+}
+
+void Renderer::beginPass(Pass pass, unsigned fbo, const Framebuffers& fb, unsigned depthFunc,
+                         bool depthWrite) {
+    timers_.begin(pass);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, fb.width, fb.height);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(depthFunc);
+    glDepthMask(depthWrite ? GL_TRUE : GL_FALSE);
 }
 
 void Renderer::clearTargets(const Scene& scene, const Camera& camera, TargetMask targets) {

@@ -79,6 +79,8 @@ class Renderer {
                      GpuSceneCache& cache, Framebuffers& fb);
     void attributePass(const Scene& scene, const Camera& camera, const PassSet& passes,
                        const std::vector<Draw>& draws, GpuSceneCache& cache, Framebuffers& fb);
+    // Starts timing `pass` and binds `fbo` at the framebuffers' size with the given depth test and writes.
+    void beginPass(Pass pass, unsigned fbo, const Framebuffers& fb, unsigned depthFunc, bool depthWrite);
     // Clears the bound framebuffer's `targets` to what a background pixel of each modality reads.
     void clearTargets(const Scene& scene, const Camera& camera, TargetMask targets);
     void drawAll(const Scene& scene, const Camera& camera, const std::vector<Draw>& draws, TargetMask targets,

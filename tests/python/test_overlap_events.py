@@ -10,24 +10,26 @@ import spear
 from spear.errors import InvalidArgumentError
 
 
-def falling_box_and_trigger(game: spear.UWorld) -> tuple[spear.ATriggerBox, spear.AStaticMeshActor]:
-    """A trigger at z in [2.5, 3.5] and a unit box falling through it from z = 6."""
-    trigger = game.spawn_actor(uclass=spear.ATriggerBox, location=spear.FVector(Z=3.0))
-    trigger.CollisionComponent.BoxExtent = spear.FVector(2.0, 2.0, 0.5)
-    box = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Falling", location=spear.FVector(Z=6.0))
-    box.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
-    box.StaticMeshComponent.bGenerateOverlapEvents = True
-    box.StaticMeshComponent.SetSimulatePhysics(bSimulate=True)
-    return trigger, box
+def falling_box_and_trigger(instance: spear.Instance) -> tuple[spear.ATriggerBox, spear.UPrimitiveComponent,
+                                                                 spear.UPrimitiveComponent]:
+    """A trigger at z in [2.5, 3.5] and a unit box falling through it from z = 6, spawned in one frame: the
+    trigger, its collision component and the box's mesh component."""
+    game = instance.get_game()
+    with instance.begin_frame():
+        trigger = game.spawn_actor(uclass=spear.ATriggerBox, location=spear.FVector(Z=3.0))
+        trigger.CollisionComponent.BoxExtent = spear.FVector(2.0, 2.0, 0.5)
+        box = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Falling", location=spear.FVector(Z=6.0))
+        box.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        box.StaticMeshComponent.bGenerateOverlapEvents = True
+        box.StaticMeshComponent.SetSimulatePhysics(bSimulate=True)
+        components = trigger.CollisionComponent, box.StaticMeshComponent
+    with instance.end_frame():
+        pass
+    return trigger, *components
 
 
 def test_callbacks_see_the_polled_events_of_each_frame(instance: spear.Instance) -> None:
-    game = instance.get_game()
-    with instance.begin_frame():
-        trigger, box = falling_box_and_trigger(game)
-        component, falling = trigger.CollisionComponent, box.StaticMeshComponent
-    with instance.end_frame():
-        pass
+    _, component, falling = falling_box_and_trigger(instance)
     events: list[tuple[str, int, spear.UPrimitiveComponent, spear.UPrimitiveComponent]] = []
     polled: list[tuple[str, int]] = []
     subscription = instance.on_overlap(
@@ -50,12 +52,7 @@ def test_callbacks_see_the_polled_events_of_each_frame(instance: spear.Instance)
 
 
 def test_cancelled_and_destroyed_subscriptions_stop(instance: spear.Instance) -> None:
-    game = instance.get_game()
-    with instance.begin_frame():
-        trigger, _ = falling_box_and_trigger(game)
-        component = trigger.CollisionComponent
-    with instance.end_frame():
-        pass
+    trigger, component, _ = falling_box_and_trigger(instance)
     calls: list[str] = []
     cancelled = instance.on_overlap(component, begin=lambda *_: calls.append("cancelled"))
     cancelled.cancel()
@@ -63,19 +60,14 @@ def test_cancelled_and_destroyed_subscriptions_stop(instance: spear.Instance) ->
     instance.step(num_frames=60)  # the box has entered
     assert calls == ["kept"]
     with instance.begin_frame():
-        game.destroy_actor(actor=trigger)
+        instance.get_game().destroy_actor(actor=trigger)
     with instance.end_frame():
         pass
     assert not kept.active  # its component went with the trigger
 
 
 def test_a_failing_callback_raises_from_end_frame_and_the_frame_still_ends(instance: spear.Instance) -> None:
-    game = instance.get_game()
-    with instance.begin_frame():
-        trigger, _ = falling_box_and_trigger(game)
-        component = trigger.CollisionComponent
-    with instance.end_frame():
-        pass
+    trigger, component, _ = falling_box_and_trigger(instance)
 
     def fail(me: spear.UPrimitiveComponent, other: spear.UPrimitiveComponent) -> None:
         raise RuntimeError(f"callback saw {other.GetName()}")
