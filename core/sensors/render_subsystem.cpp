@@ -288,8 +288,12 @@ FCameraPixels RenderSubsystem::readPixelsStacked(const std::vector<UCameraSensor
                  ") is not in a world");
         auto& subsystem = world->GetSubsystem<RenderSubsystem>();
         const std::optional<FrameShape> shape = subsystem.dueShape(*cameras[i]);
-        if (!shape)
-            return {}; // a camera still priming: nothing read, as read_pixels() would return for it
+        if (!shape) { // a camera still priming: nothing read, as read_pixels() would return for it
+            for (UCameraSensorComponent* camera : cameras)
+                if (camera)
+                    camera->setPixelsFrame(-1);
+            return {};
+        }
         if (!shapes.empty()) {
             const FrameShape& first = shapes.front().second;
             SP_CHECK(shape->width == first.width && shape->height == first.height, sp::InvalidArgument,

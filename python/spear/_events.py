@@ -10,7 +10,7 @@ components that began and stopped overlapping its component in the frame that ju
 order the engine reports them; subscriptions in the order they were made). It is the polled API
 (GetBeginOverlaps/GetEndOverlaps) read for you, so both transports deliver the same events. A subscription
 whose component is destroyed ends by itself; an exception in a callback propagates from the end_frame block
-(the frame still ends).
+once every other event of the frame has been delivered (the frame still ends).
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from spear.errors import StaleObjectError
 if TYPE_CHECKING:
     from spear._engine import api
 
-OverlapCallback = Callable[["api.UPrimitiveComponent", "api.UPrimitiveComponent"], None]
+OverlapCallback = Callable[["api.UPrimitiveComponent", "api.UPrimitiveComponent"], object]
 
 
 class OverlapSubscription:
@@ -45,24 +45,33 @@ class OverlapSubscription:
         """Stops the callbacks (doing nothing when already stopped)."""
         self._subscriptions[:] = [s for s in self._subscriptions if s is not self]
 
-    def deliver(self) -> None:
-        """Calls the callbacks for the last tick's events (see the module notes)."""
+    def deliver(self) -> list[BaseException]:
+        """Calls the callbacks for the last tick's events (see the module notes); returns what they raised,
+        having called the rest (a callback that cancels its subscription stops the calls that follow)."""
         try:
             begins = self.component.GetBeginOverlaps() if self.begin is not None else []
             ends = self.component.GetEndOverlaps() if self.end is not None else []
         except StaleObjectError:
             self.cancel()  # the component is gone, and so are its events
-            return
-        for other in begins:
-            if self.begin is not None:
-                self.begin(self.component, other)
-        for other in ends:
-            if self.end is not None:
-                self.end(self.component, other)
+            return []
+        failures: list[BaseException] = []
+        for callback, others in ((self.begin, begins), (self.end, ends)):
+            for other in others:
+                if callback is None or not self.active:
+                    break
+                try:
+                    callback(self.component, other)
+                except Exception as error:  # the other events are delivered first
+                    failures.append(error)
+        return failures
 
 
 def deliver_all(subscriptions: list[OverlapSubscription]) -> None:
-    """Delivers every subscription's events, in subscription order (a callback may cancel or add ones)."""
+    """Delivers every subscription's events, in subscription order (a callback may cancel or add ones), then
+    raises the first exception a callback raised: the polled events are read once, so none may be dropped."""
+    failures: list[BaseException] = []
     for subscription in list(subscriptions):
         if subscription.active:
-            subscription.deliver()
+            failures += subscription.deliver()
+    if failures:
+        raise failures[0]

@@ -74,6 +74,8 @@ class RpcConnection:
             token = os.environ.get("SPEAR_TOKEN")
         hello = self.request("hello", api_hash=API_HASH, token=token or "")
         self.server_pid = int(hello["pid"])
+        # The engine this connection reaches: several connections to one server reach the same engine.
+        self.engine: tuple[str, int] = (address, self.server_pid)
         if not hello.get("reply_buffers"):  # TCP: the server cannot tell which process offers buffers
             self._reply_buffers.close()
 
@@ -246,6 +248,10 @@ class RpcConnection:
 
     def sp_func_names(self, handle: tuple[int, int], context: str = "") -> list[str]:
         return list(self.request("sp_func_names", object=_HandleRef(handle), context=context))
+
+    def same_engine(self, other: object) -> bool:
+        """Whether `other` (a connection) reaches the engine this one does: their handles mean the same objects."""
+        return other is self or getattr(other, "engine", None) == self.engine
 
     def close(self) -> None:
         self._buffers_cleanup()

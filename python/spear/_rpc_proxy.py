@@ -68,7 +68,12 @@ class ObjectProxy(SpObject):
         self._sp_handle = handle
 
     def __eq__(self, other: object) -> bool:
-        return isinstance(other, ObjectProxy) and other._sp_client is self._sp_client and other._sp_handle == self._sp_handle
+        if not isinstance(other, ObjectProxy) or other._sp_handle != self._sp_handle:
+            return False
+        # The same engine (several connections may reach one server), not necessarily the same connection.
+        mine, theirs = self._sp_client, other._sp_client
+        engine = getattr(mine, "engine", None)
+        return mine is theirs or (engine is not None and engine == getattr(theirs, "engine", None))
 
     def __hash__(self) -> int:
         return hash(self._sp_handle)

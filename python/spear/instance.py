@@ -148,11 +148,17 @@ class Instance:
         the components that began or stopped overlapping `component` in the frame that ticked (UE's
         OnComponentBeginOverlap/EndOverlap). Returns the subscription; cancel() stops it, and it ends by
         itself with its component. A callback's exception propagates from the end_frame block."""
+        self._open("on_overlap")
         if begin is None and end is None:
             raise InvalidArgumentError("on_overlap(): give begin=, end= or both")
         if not isinstance(component, api.UPrimitiveComponent):
             raise InvalidArgumentError(
                 f"on_overlap(): component must be a UPrimitiveComponent, got {type(component).__name__}")
+        connection = self._rpc_connection()
+        owner = getattr(component, "_sp_client", None)
+        if (owner is None) != (connection is None) or (owner is not None and not owner.same_engine(connection)):
+            raise InvalidArgumentError(f"on_overlap(): {type(component).__name__} belongs to another engine "
+                                       "(a different spear.Instance)")
         subscription = _events.OverlapSubscription(component, begin, end, self._overlap_subscriptions)
         self._overlap_subscriptions.append(subscription)
         return subscription
@@ -195,6 +201,7 @@ class Instance:
         if not self._closed:
             self._closed = True
             _OPEN.discard(self)
+            self._overlap_subscriptions.clear()
             self._backend.close()
 
     def __enter__(self) -> Instance:

@@ -52,29 +52,33 @@ class Box:
 
     shape: tuple[int, ...]
     dtype: DTypeLike = np.float32
-    low: float | Sequence[float] = -math.inf
-    high: float | Sequence[float] = math.inf
+    low: float | Sequence[float] | NDArray[Any] = -math.inf
+    high: float | Sequence[float] | NDArray[Any] = math.inf
 
     def __post_init__(self) -> None:
-        # Per-element bounds are kept as tuples, so that spaces compare (and hash) by value.
+        # One bound is kept as a float, per-element bounds as a tuple, so that spaces compare (and hash) by value.
         size = int(np.prod(self.shape))
         for name in ("low", "high"):
             bound = getattr(self, name)
-            if not isinstance(bound, (int, float)):
+            if np.ndim(bound) == 0:  # a number, numpy scalars and 0-d arrays included
+                values: float | tuple[float, ...] = float(bound)
+            else:
                 values = tuple(float(v) for v in np.asarray(bound, dtype=np.float64).ravel())
                 if len(values) != size:
                     raise InvalidArgumentError(f"Box(): {name} has {len(values)} values for shape {self.shape} "
                                                f"({size} elements)")
-                object.__setattr__(self, name, values)
+            if np.any(np.isnan(values)):
+                raise InvalidArgumentError(f"Box(): {name} is NaN")
+            object.__setattr__(self, name, values)
         low, high = self.bounds()
         if np.any(low > high):
             raise InvalidArgumentError(f"Box(): low exceeds high at element {int(np.argmax(low > high))}")
 
     def bounds(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """(low, high) as arrays of the box's shape."""
-        def full(bound: float | Sequence[float]) -> NDArray[np.float64]:
-            return np.broadcast_to(np.asarray(bound, dtype=np.float64).reshape(
-                () if isinstance(bound, (int, float)) else self.shape), self.shape)
+        def full(bound: float | Sequence[float] | NDArray[Any]) -> NDArray[np.float64]:
+            array = np.asarray(bound, dtype=np.float64)
+            return np.broadcast_to(array if array.ndim == 0 else array.reshape(self.shape), self.shape)
         return full(self.low), full(self.high)
 
     def zeros(self) -> NDArray[Any]:
@@ -94,9 +98,18 @@ class Box:
         dtype = np.dtype(self.dtype)
         low, high = self.bounds()
         if np.issubdtype(dtype, np.integer):
+            # The integers inside each element's bounds, in Python ints (a float64 cannot hold 2**63 - 1).
             info = np.iinfo(dtype)
-            return rng.integers(np.clip(low, info.min, info.max).astype(np.int64),
-                                np.clip(high, info.min, info.max).astype(np.int64), endpoint=True).astype(dtype)
+
+            def integers(bounds: NDArray[np.float64], rounding: Any, infinite: int) -> NDArray[Any]:
+                values = [min(max(int(rounding(b)), info.min), info.max) if math.isfinite(b) else infinite
+                          for b in bounds.ravel()]
+                return np.array(values, dtype=dtype).reshape(self.shape)
+
+            first, last = integers(low, math.ceil, int(info.min)), integers(high, math.floor, int(info.max))
+            # numpy 1.24's stubs type dtype= per literal dtype, not a dtype object.
+            drawn: NDArray[Any] = rng.integers(first, last, endpoint=True, dtype=dtype)  # type: ignore[arg-type]
+            return np.asarray(drawn)
         below, above = np.isfinite(low), np.isfinite(high)
         uniform = rng.uniform(np.where(below, low, 0.0), np.where(above, high, 1.0))
         exponential = rng.exponential(size=self.shape)

@@ -85,3 +85,39 @@ def test_a_failing_callback_raises_from_end_frame_and_the_frame_still_ends(insta
     with pytest.raises(InvalidArgumentError, match=r"^on_overlap\(\): component must be a UPrimitiveComponent, "
                                                    r"got ATriggerBox$"):
         instance.on_overlap(trigger, begin=fail)  # type: ignore[arg-type]
+
+
+def test_every_event_is_delivered_before_a_callback_error_is_raised(instance: spear.Instance) -> None:
+    trigger, component, falling = falling_box_and_trigger(instance)
+    seen: list[str] = []
+
+    def fail(me: spear.UPrimitiveComponent, other: spear.UPrimitiveComponent) -> None:
+        seen.append("failed")
+        raise RuntimeError("first")
+
+    instance.on_overlap(component, begin=fail)
+    instance.on_overlap(component, begin=lambda me, other: seen.append("second"))
+    with pytest.raises(RuntimeError, match="^first$"):
+        for _ in range(60):
+            with instance.begin_frame():
+                pass
+            with instance.end_frame():
+                pass
+    assert seen == ["failed", "second"]  # the later subscription still saw the frame's begin event
+
+
+def test_subscriptions_belong_to_their_instance(instance: spear.Instance) -> None:
+    _, component, _ = falling_box_and_trigger(instance)
+    # An engine of the other transport (two in-process engines share one object table and are not told apart).
+    other = spear.Instance(server="launch") if instance.transport == "inprocess" else spear.Instance()
+    try:
+        with pytest.raises(InvalidArgumentError, match=r"^on_overlap\(\): \w+ belongs to another engine "
+                                                       r"\(a different spear.Instance\)$"):
+            other.on_overlap(component, begin=lambda me, it: None)
+    finally:
+        other.close()
+    subscription = instance.on_overlap(component, begin=lambda me, it: None)
+    instance.close()
+    assert not subscription.active
+    with pytest.raises(spear.InvalidStateError, match=r"^on_overlap\(\): the instance is closed$"):
+        instance.on_overlap(component, begin=lambda me, it: None)

@@ -396,3 +396,21 @@ def test_an_engine_refuses_the_objects_of_another() -> None:
     finally:
         for engine in (first, second, local):
             engine.close()
+
+
+def test_two_connections_to_one_server_share_its_objects(server: LaunchedServer) -> None:
+    first, second = spear.Instance(server=server.address), spear.Instance(server=server.address)
+    try:
+        with first.begin_frame():
+            actor = first.get_game().spawn_actor(uclass=spear.AStaticMeshActor, name="Shared")
+        with first.end_frame():
+            pass
+        with second.begin_frame():
+            game = second.get_game()
+            assert game.find_actor_by_name(name="Shared") == actor  # the same engine: the same object
+            game.set_actor_locations(actors=[actor], locations=np.array([[1.0, 2.0, 3.0]]))
+        with second.end_frame():
+            pass
+    finally:
+        first.close()
+        second.close()
