@@ -18,7 +18,13 @@ def test_call_async_returns_futures_resolved_by_end_frame(instance: spear.Instan
         bad = actor.call_async.SetActorLocation(NewLocation="nowhere")  # type: ignore[arg-type]
         spawned = game.call_async.spawn_actor(uclass=spear.AStaticMeshActor, name="Async")
         bounds = actor.call_async.GetActorBounds(bOnlyCollidingComponents=False)
+        doomed = game.spawn_actor(uclass=spear.AActor)
+        destroyed = game.call_async.destroy_actor(actor=doomed)  # a function without a result
+        refused = game.call_async.destroy_actor(actor=None)  # type: ignore[arg-type]
     with instance.end_frame():
+        assert destroyed.get() is None and not doomed.is_valid()
+        with pytest.raises(spear.InvalidArgumentError):  # its error, not lost with the future
+            refused.get()
         assert all(f.get() == spear.FVector(Z=1.0) for f in before)
         assert moved.get() is True
         assert after.get() == spear.FVector(Z=2.0)

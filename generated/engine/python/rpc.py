@@ -59,7 +59,7 @@ class AActor(UObject, api.AActor):
         return cast("api.USceneComponent | None", self._sp_get("AActor", "RootComponent", "USceneComponent | None"))
 
     def SetRootComponent(self, *, NewRootComponent: api.USceneComponent) -> None:
-        self._sp_call("AActor", "SetRootComponent", {"NewRootComponent": NewRootComponent}, "None")
+        return cast(None, self._sp_call("AActor", "SetRootComponent", {"NewRootComponent": NewRootComponent}, "None"))  # a Future when queued by call_async
 
     def GetActorLocation(self) -> FVector:
         return cast("FVector", self._sp_call("AActor", "GetActorLocation", {}, "FVector"))
@@ -80,7 +80,7 @@ class AActor(UObject, api.AActor):
         return cast("FVector", self._sp_call("AActor", "GetActorScale3D", {}, "FVector"))
 
     def SetActorScale3D(self, *, NewScale3D: FVector) -> None:
-        self._sp_call("AActor", "SetActorScale3D", {"NewScale3D": NewScale3D}, "None")
+        return cast(None, self._sp_call("AActor", "SetActorScale3D", {"NewScale3D": NewScale3D}, "None"))  # a Future when queued by call_async
 
     def GetActorTransform(self) -> FTransform:
         return cast("FTransform", self._sp_call("AActor", "GetActorTransform", {}, "FTransform"))
@@ -132,10 +132,10 @@ class AController(AActor, api.AController):
     __slots__ = ()
 
     def Possess(self, *, InPawn: api.APawn) -> None:
-        self._sp_call("AController", "Possess", {"InPawn": InPawn}, "None")
+        return cast(None, self._sp_call("AController", "Possess", {"InPawn": InPawn}, "None"))  # a Future when queued by call_async
 
     def UnPossess(self) -> None:
-        self._sp_call("AController", "UnPossess", {}, "None")
+        return cast(None, self._sp_call("AController", "UnPossess", {}, "None"))  # a Future when queued by call_async
 
     def K2_GetPawn(self) -> api.APawn | None:
         return cast("api.APawn | None", self._sp_call("AController", "K2_GetPawn", {}, "APawn | None"))
@@ -144,7 +144,7 @@ class AController(AActor, api.AController):
         return cast("FRotator", self._sp_call("AController", "GetControlRotation", {}, "FRotator"))
 
     def SetControlRotation(self, *, NewRotation: FRotator) -> None:
-        self._sp_call("AController", "SetControlRotation", {"NewRotation": NewRotation}, "None")
+        return cast(None, self._sp_call("AController", "SetControlRotation", {"NewRotation": NewRotation}, "None"))  # a Future when queued by call_async
 
     def IsPlayerController(self) -> bool:
         return cast("bool", self._sp_call("AController", "IsPlayerController", {}, "bool"))
@@ -163,7 +163,7 @@ class AAIController(AController, api.AAIController):
         return cast("EPathFollowingRequestResult", self._sp_call("AAIController", "MoveToActor", {"Goal": Goal, "AcceptanceRadius": AcceptanceRadius, "bStopOnOverlap": bStopOnOverlap, "bUsePathfinding": bUsePathfinding}, "EPathFollowingRequestResult"))
 
     def StopMovement(self) -> None:
-        self._sp_call("AAIController", "StopMovement", {}, "None")
+        return cast(None, self._sp_call("AAIController", "StopMovement", {}, "None"))  # a Future when queued by call_async
 
     def GetMoveStatus(self) -> EPathFollowingStatus:
         return cast("EPathFollowingStatus", self._sp_call("AAIController", "GetMoveStatus", {}, "EPathFollowingStatus"))
@@ -226,7 +226,7 @@ class APawn(AActor, api.APawn):
         return cast("FRotator", self._sp_call("APawn", "GetControlRotation", {}, "FRotator"))
 
     def AddMovementInput(self, *, WorldDirection: FVector, ScaleValue: float = _DEFAULT) -> None:
-        self._sp_call("APawn", "AddMovementInput", {"WorldDirection": WorldDirection, "ScaleValue": ScaleValue}, "None")
+        return cast(None, self._sp_call("APawn", "AddMovementInput", {"WorldDirection": WorldDirection, "ScaleValue": ScaleValue}, "None"))  # a Future when queued by call_async
 
     def GetPendingMovementInputVector(self) -> FVector:
         return cast("FVector", self._sp_call("APawn", "GetPendingMovementInputVector", {}, "FVector"))
@@ -255,10 +255,10 @@ class ACharacter(APawn, api.ACharacter):
         return cast("api.UInputComponent", self._sp_get("ACharacter", "InputComponent", "UInputComponent"))
 
     def Jump(self) -> None:
-        self._sp_call("ACharacter", "Jump", {}, "None")
+        return cast(None, self._sp_call("ACharacter", "Jump", {}, "None"))  # a Future when queued by call_async
 
     def StopJumping(self) -> None:
-        self._sp_call("ACharacter", "StopJumping", {}, "None")
+        return cast(None, self._sp_call("ACharacter", "StopJumping", {}, "None"))  # a Future when queued by call_async
 
     def CanJump(self) -> bool:
         return cast("bool", self._sp_call("ACharacter", "CanJump", {}, "bool"))
@@ -339,13 +339,13 @@ class AGameModeBase(AActor, api.AGameModeBase):
         return cast("api.AActor | None", self._sp_call("AGameModeBase", "FindPlayerStart", {"Player": Player, "IncomingName": IncomingName}, "AActor | None"))
 
     def RestartPlayer(self, *, NewPlayer: api.AController) -> None:
-        self._sp_call("AGameModeBase", "RestartPlayer", {"NewPlayer": NewPlayer}, "None")
+        return cast(None, self._sp_call("AGameModeBase", "RestartPlayer", {"NewPlayer": NewPlayer}, "None"))  # a Future when queued by call_async
 
     def GetNumPlayers(self) -> int:
         return cast("int", self._sp_call("AGameModeBase", "GetNumPlayers", {}, "int"))
 
     def SwapPlayerControllers(self, *, OldPC: api.APlayerController, NewPC: api.APlayerController) -> None:
-        self._sp_call("AGameModeBase", "SwapPlayerControllers", {"OldPC": OldPC, "NewPC": NewPC}, "None")
+        return cast(None, self._sp_call("AGameModeBase", "SwapPlayerControllers", {"OldPC": OldPC, "NewPC": NewPC}, "None"))  # a Future when queued by call_async
 
 
 _register_proxy(AGameModeBase)
@@ -394,7 +394,7 @@ class AMaterialLibrary(AActor, api.AMaterialLibrary):
         self._sp_set("AMaterialLibrary", "Materials", value)
 
     def SetMaterial(self, *, Name: str, Material: FMaterialDesc) -> None:
-        self._sp_call("AMaterialLibrary", "SetMaterial", {"Name": Name, "Material": Material}, "None")
+        return cast(None, self._sp_call("AMaterialLibrary", "SetMaterial", {"Name": Name, "Material": Material}, "None"))  # a Future when queued by call_async
 
     def GetMaterial(self, *, Name: str) -> FMaterialDesc:
         return cast("FMaterialDesc", self._sp_call("AMaterialLibrary", "GetMaterial", {"Name": Name}, "FMaterialDesc"))
@@ -418,10 +418,10 @@ class AMultiViewCameraRig(AActor, api.AMultiViewCameraRig):
         return cast("float", self._sp_get("AMultiViewCameraRig", "Radius", "float"))
 
     def SetRing(self, *, NumViews: int, NewRadius: float) -> None:
-        self._sp_call("AMultiViewCameraRig", "SetRing", {"NumViews": NumViews, "NewRadius": NewRadius}, "None")
+        return cast(None, self._sp_call("AMultiViewCameraRig", "SetRing", {"NumViews": NumViews, "NewRadius": NewRadius}, "None"))  # a Future when queued by call_async
 
     def ConfigureCameras(self, *, Width: int, Height: int, Modalities: list[ECameraModality]) -> None:
-        self._sp_call("AMultiViewCameraRig", "ConfigureCameras", {"Width": Width, "Height": Height, "Modalities": Modalities}, "None")
+        return cast(None, self._sp_call("AMultiViewCameraRig", "ConfigureCameras", {"Width": Width, "Height": Height, "Modalities": Modalities}, "None"))  # a Future when queued by call_async
 
 
 _register_proxy(AMultiViewCameraRig)
@@ -460,19 +460,19 @@ class APlayerController(AController, api.APlayerController):
         return cast("api.AActor | None", self._sp_call("APlayerController", "GetViewTarget", {}, "AActor | None"))
 
     def SetViewTargetWithBlend(self, *, NewViewTarget: api.AActor, BlendTime: float = _DEFAULT) -> None:
-        self._sp_call("APlayerController", "SetViewTargetWithBlend", {"NewViewTarget": NewViewTarget, "BlendTime": BlendTime}, "None")
+        return cast(None, self._sp_call("APlayerController", "SetViewTargetWithBlend", {"NewViewTarget": NewViewTarget, "BlendTime": BlendTime}, "None"))  # a Future when queued by call_async
 
     def GetPlayerViewPoint(self) -> api.APlayerController.GetPlayerViewPointResult:
         return cast("api.APlayerController.GetPlayerViewPointResult", self._sp_call("APlayerController", "GetPlayerViewPoint", {}, "dict", api.APlayerController.GetPlayerViewPointResult))
 
     def AddYawInput(self, *, Val: float) -> None:
-        self._sp_call("APlayerController", "AddYawInput", {"Val": Val}, "None")
+        return cast(None, self._sp_call("APlayerController", "AddYawInput", {"Val": Val}, "None"))  # a Future when queued by call_async
 
     def AddPitchInput(self, *, Val: float) -> None:
-        self._sp_call("APlayerController", "AddPitchInput", {"Val": Val}, "None")
+        return cast(None, self._sp_call("APlayerController", "AddPitchInput", {"Val": Val}, "None"))  # a Future when queued by call_async
 
     def AddRollInput(self, *, Val: float) -> None:
-        self._sp_call("APlayerController", "AddRollInput", {"Val": Val}, "None")
+        return cast(None, self._sp_call("APlayerController", "AddRollInput", {"Val": Val}, "None"))  # a Future when queued by call_async
 
 
 _register_proxy(APlayerController)
@@ -596,10 +596,10 @@ class ARecastNavMesh(AActor, api.ARecastNavMesh):
         self._sp_set("ARecastNavMesh", "RandomSeed", value)
 
     def SetRandomSeed(self, *, Seed: int) -> None:
-        self._sp_call("ARecastNavMesh", "SetRandomSeed", {"Seed": Seed}, "None")
+        return cast(None, self._sp_call("ARecastNavMesh", "SetRandomSeed", {"Seed": Seed}, "None"))  # a Future when queued by call_async
 
     def RebuildNavigation(self) -> None:
-        self._sp_call("ARecastNavMesh", "RebuildNavigation", {}, "None")
+        return cast(None, self._sp_call("ARecastNavMesh", "RebuildNavigation", {}, "None"))  # a Future when queued by call_async
 
     def GetNumTiles(self) -> int:
         return cast("int", self._sp_call("ARecastNavMesh", "GetNumTiles", {}, "int"))
@@ -708,7 +708,7 @@ class AStereoCameraRig(AActor, api.AStereoCameraRig):
         return cast("api.UCameraSensorComponent", self._sp_get("AStereoCameraRig", "RightCamera", "UCameraSensorComponent"))
 
     def SetBaseline(self, *, NewBaseline: float) -> None:
-        self._sp_call("AStereoCameraRig", "SetBaseline", {"NewBaseline": NewBaseline}, "None")
+        return cast(None, self._sp_call("AStereoCameraRig", "SetBaseline", {"NewBaseline": NewBaseline}, "None"))  # a Future when queued by call_async
 
 
 _register_proxy(AStereoCameraRig)
@@ -816,22 +816,22 @@ class AWheeledVehiclePawn(APawn, api.AWheeledVehiclePawn):
         self._sp_set("AWheeledVehiclePawn", "TireFriction", value)
 
     def SetMaxEngineForce(self, *, NewForce: float) -> None:
-        self._sp_call("AWheeledVehiclePawn", "SetMaxEngineForce", {"NewForce": NewForce}, "None")
+        return cast(None, self._sp_call("AWheeledVehiclePawn", "SetMaxEngineForce", {"NewForce": NewForce}, "None"))  # a Future when queued by call_async
 
     def SetMaxBrakeForce(self, *, NewForce: float) -> None:
-        self._sp_call("AWheeledVehiclePawn", "SetMaxBrakeForce", {"NewForce": NewForce}, "None")
+        return cast(None, self._sp_call("AWheeledVehiclePawn", "SetMaxBrakeForce", {"NewForce": NewForce}, "None"))  # a Future when queued by call_async
 
     def SetMaxSteerAngle(self, *, NewAngle: float) -> None:
-        self._sp_call("AWheeledVehiclePawn", "SetMaxSteerAngle", {"NewAngle": NewAngle}, "None")
+        return cast(None, self._sp_call("AWheeledVehiclePawn", "SetMaxSteerAngle", {"NewAngle": NewAngle}, "None"))  # a Future when queued by call_async
 
     def SetWheelRadius(self, *, NewRadius: float) -> None:
-        self._sp_call("AWheeledVehiclePawn", "SetWheelRadius", {"NewRadius": NewRadius}, "None")
+        return cast(None, self._sp_call("AWheeledVehiclePawn", "SetWheelRadius", {"NewRadius": NewRadius}, "None"))  # a Future when queued by call_async
 
     def SetSuspensionStiffness(self, *, NewStiffness: float) -> None:
-        self._sp_call("AWheeledVehiclePawn", "SetSuspensionStiffness", {"NewStiffness": NewStiffness}, "None")
+        return cast(None, self._sp_call("AWheeledVehiclePawn", "SetSuspensionStiffness", {"NewStiffness": NewStiffness}, "None"))  # a Future when queued by call_async
 
     def SetTireFriction(self, *, NewFriction: float) -> None:
-        self._sp_call("AWheeledVehiclePawn", "SetTireFriction", {"NewFriction": NewFriction}, "None")
+        return cast(None, self._sp_call("AWheeledVehiclePawn", "SetTireFriction", {"NewFriction": NewFriction}, "None"))  # a Future when queued by call_async
 
     def GetForwardSpeed(self) -> float:
         return cast("float", self._sp_call("AWheeledVehiclePawn", "GetForwardSpeed", {}, "float"))
@@ -919,22 +919,22 @@ class USceneComponent(UActorComponent, api.USceneComponent):
         self._sp_set("USceneComponent", "bVisible", value)
 
     def SetRelativeLocation(self, *, NewLocation: FVector) -> None:
-        self._sp_call("USceneComponent", "SetRelativeLocation", {"NewLocation": NewLocation}, "None")
+        return cast(None, self._sp_call("USceneComponent", "SetRelativeLocation", {"NewLocation": NewLocation}, "None"))  # a Future when queued by call_async
 
     def SetRelativeRotation(self, *, NewRotation: FRotator) -> None:
-        self._sp_call("USceneComponent", "SetRelativeRotation", {"NewRotation": NewRotation}, "None")
+        return cast(None, self._sp_call("USceneComponent", "SetRelativeRotation", {"NewRotation": NewRotation}, "None"))  # a Future when queued by call_async
 
     def SetRelativeScale3D(self, *, NewScale3D: FVector) -> None:
-        self._sp_call("USceneComponent", "SetRelativeScale3D", {"NewScale3D": NewScale3D}, "None")
+        return cast(None, self._sp_call("USceneComponent", "SetRelativeScale3D", {"NewScale3D": NewScale3D}, "None"))  # a Future when queued by call_async
 
     def SetRelativeTransform(self, *, NewTransform: FTransform) -> None:
-        self._sp_call("USceneComponent", "SetRelativeTransform", {"NewTransform": NewTransform}, "None")
+        return cast(None, self._sp_call("USceneComponent", "SetRelativeTransform", {"NewTransform": NewTransform}, "None"))  # a Future when queued by call_async
 
     def GetRelativeTransform(self) -> FTransform:
         return cast("FTransform", self._sp_call("USceneComponent", "GetRelativeTransform", {}, "FTransform"))
 
     def SetMobility(self, *, NewMobility: EComponentMobility) -> None:
-        self._sp_call("USceneComponent", "SetMobility", {"NewMobility": NewMobility}, "None")
+        return cast(None, self._sp_call("USceneComponent", "SetMobility", {"NewMobility": NewMobility}, "None"))  # a Future when queued by call_async
 
     def GetComponentTransform(self) -> FTransform:
         return cast("FTransform", self._sp_call("USceneComponent", "GetComponentTransform", {}, "FTransform"))
@@ -952,13 +952,13 @@ class USceneComponent(UActorComponent, api.USceneComponent):
         return cast("FVector", self._sp_call("USceneComponent", "GetComponentScale", {}, "FVector"))
 
     def SetWorldLocation(self, *, NewLocation: FVector) -> None:
-        self._sp_call("USceneComponent", "SetWorldLocation", {"NewLocation": NewLocation}, "None")
+        return cast(None, self._sp_call("USceneComponent", "SetWorldLocation", {"NewLocation": NewLocation}, "None"))  # a Future when queued by call_async
 
     def SetWorldRotation(self, *, NewRotation: FRotator) -> None:
-        self._sp_call("USceneComponent", "SetWorldRotation", {"NewRotation": NewRotation}, "None")
+        return cast(None, self._sp_call("USceneComponent", "SetWorldRotation", {"NewRotation": NewRotation}, "None"))  # a Future when queued by call_async
 
     def SetWorldTransform(self, *, NewTransform: FTransform) -> None:
-        self._sp_call("USceneComponent", "SetWorldTransform", {"NewTransform": NewTransform}, "None")
+        return cast(None, self._sp_call("USceneComponent", "SetWorldTransform", {"NewTransform": NewTransform}, "None"))  # a Future when queued by call_async
 
     def GetForwardVector(self) -> FVector:
         return cast("FVector", self._sp_call("USceneComponent", "GetForwardVector", {}, "FVector"))
@@ -970,10 +970,10 @@ class USceneComponent(UActorComponent, api.USceneComponent):
         return cast("FVector", self._sp_call("USceneComponent", "GetUpVector", {}, "FVector"))
 
     def AttachToComponent(self, *, Parent: api.USceneComponent, bKeepWorldTransform: bool = _DEFAULT) -> None:
-        self._sp_call("USceneComponent", "AttachToComponent", {"Parent": Parent, "bKeepWorldTransform": bKeepWorldTransform}, "None")
+        return cast(None, self._sp_call("USceneComponent", "AttachToComponent", {"Parent": Parent, "bKeepWorldTransform": bKeepWorldTransform}, "None"))  # a Future when queued by call_async
 
     def DetachFromComponent(self, *, bKeepWorldTransform: bool = _DEFAULT) -> None:
-        self._sp_call("USceneComponent", "DetachFromComponent", {"bKeepWorldTransform": bKeepWorldTransform}, "None")
+        return cast(None, self._sp_call("USceneComponent", "DetachFromComponent", {"bKeepWorldTransform": bKeepWorldTransform}, "None"))  # a Future when queued by call_async
 
     def GetAttachParent(self) -> api.USceneComponent | None:
         return cast("api.USceneComponent | None", self._sp_call("USceneComponent", "GetAttachParent", {}, "USceneComponent | None"))
@@ -1064,46 +1064,46 @@ class UPrimitiveComponent(USceneComponent, api.UPrimitiveComponent):
         return cast("api.UPrimitiveComponent.GetBoundsResult", self._sp_call("UPrimitiveComponent", "GetBounds", {}, "dict", api.UPrimitiveComponent.GetBoundsResult))
 
     def SetSimulatePhysics(self, *, bSimulate: bool) -> None:
-        self._sp_call("UPrimitiveComponent", "SetSimulatePhysics", {"bSimulate": bSimulate}, "None")
+        return cast(None, self._sp_call("UPrimitiveComponent", "SetSimulatePhysics", {"bSimulate": bSimulate}, "None"))  # a Future when queued by call_async
 
     def IsSimulatingPhysics(self) -> bool:
         return cast("bool", self._sp_call("UPrimitiveComponent", "IsSimulatingPhysics", {}, "bool"))
 
     def SetMassOverrideInKg(self, *, MassInKg: float) -> None:
-        self._sp_call("UPrimitiveComponent", "SetMassOverrideInKg", {"MassInKg": MassInKg}, "None")
+        return cast(None, self._sp_call("UPrimitiveComponent", "SetMassOverrideInKg", {"MassInKg": MassInKg}, "None"))  # a Future when queued by call_async
 
     def SetFriction(self, *, NewFriction: float) -> None:
-        self._sp_call("UPrimitiveComponent", "SetFriction", {"NewFriction": NewFriction}, "None")
+        return cast(None, self._sp_call("UPrimitiveComponent", "SetFriction", {"NewFriction": NewFriction}, "None"))  # a Future when queued by call_async
 
     def SetRestitution(self, *, NewRestitution: float) -> None:
-        self._sp_call("UPrimitiveComponent", "SetRestitution", {"NewRestitution": NewRestitution}, "None")
+        return cast(None, self._sp_call("UPrimitiveComponent", "SetRestitution", {"NewRestitution": NewRestitution}, "None"))  # a Future when queued by call_async
 
     def SetLinearDamping(self, *, NewLinearDamping: float) -> None:
-        self._sp_call("UPrimitiveComponent", "SetLinearDamping", {"NewLinearDamping": NewLinearDamping}, "None")
+        return cast(None, self._sp_call("UPrimitiveComponent", "SetLinearDamping", {"NewLinearDamping": NewLinearDamping}, "None"))  # a Future when queued by call_async
 
     def SetAngularDamping(self, *, NewAngularDamping: float) -> None:
-        self._sp_call("UPrimitiveComponent", "SetAngularDamping", {"NewAngularDamping": NewAngularDamping}, "None")
+        return cast(None, self._sp_call("UPrimitiveComponent", "SetAngularDamping", {"NewAngularDamping": NewAngularDamping}, "None"))  # a Future when queued by call_async
 
     def GetMass(self) -> float:
         return cast("float", self._sp_call("UPrimitiveComponent", "GetMass", {}, "float"))
 
     def AddForce(self, *, Force: FVector, bAccelChange: bool = _DEFAULT) -> None:
-        self._sp_call("UPrimitiveComponent", "AddForce", {"Force": Force, "bAccelChange": bAccelChange}, "None")
+        return cast(None, self._sp_call("UPrimitiveComponent", "AddForce", {"Force": Force, "bAccelChange": bAccelChange}, "None"))  # a Future when queued by call_async
 
     def AddTorqueInRadians(self, *, Torque: FVector) -> None:
-        self._sp_call("UPrimitiveComponent", "AddTorqueInRadians", {"Torque": Torque}, "None")
+        return cast(None, self._sp_call("UPrimitiveComponent", "AddTorqueInRadians", {"Torque": Torque}, "None"))  # a Future when queued by call_async
 
     def AddImpulse(self, *, Impulse: FVector, bVelChange: bool = _DEFAULT) -> None:
-        self._sp_call("UPrimitiveComponent", "AddImpulse", {"Impulse": Impulse, "bVelChange": bVelChange}, "None")
+        return cast(None, self._sp_call("UPrimitiveComponent", "AddImpulse", {"Impulse": Impulse, "bVelChange": bVelChange}, "None"))  # a Future when queued by call_async
 
     def SetPhysicsLinearVelocity(self, *, NewVel: FVector, bAddToCurrent: bool = _DEFAULT) -> None:
-        self._sp_call("UPrimitiveComponent", "SetPhysicsLinearVelocity", {"NewVel": NewVel, "bAddToCurrent": bAddToCurrent}, "None")
+        return cast(None, self._sp_call("UPrimitiveComponent", "SetPhysicsLinearVelocity", {"NewVel": NewVel, "bAddToCurrent": bAddToCurrent}, "None"))  # a Future when queued by call_async
 
     def GetPhysicsLinearVelocity(self) -> FVector:
         return cast("FVector", self._sp_call("UPrimitiveComponent", "GetPhysicsLinearVelocity", {}, "FVector"))
 
     def SetPhysicsAngularVelocityInDegrees(self, *, NewAngVel: FVector, bAddToCurrent: bool = _DEFAULT) -> None:
-        self._sp_call("UPrimitiveComponent", "SetPhysicsAngularVelocityInDegrees", {"NewAngVel": NewAngVel, "bAddToCurrent": bAddToCurrent}, "None")
+        return cast(None, self._sp_call("UPrimitiveComponent", "SetPhysicsAngularVelocityInDegrees", {"NewAngVel": NewAngVel, "bAddToCurrent": bAddToCurrent}, "None"))  # a Future when queued by call_async
 
     def GetPhysicsAngularVelocityInDegrees(self) -> FVector:
         return cast("FVector", self._sp_call("UPrimitiveComponent", "GetPhysicsAngularVelocityInDegrees", {}, "FVector"))
@@ -1158,7 +1158,7 @@ class UBoxComponent(UShapeComponent, api.UBoxComponent):
         self._sp_set("UBoxComponent", "BoxExtent", value)
 
     def SetBoxExtent(self, *, InBoxExtent: FVector) -> None:
-        self._sp_call("UBoxComponent", "SetBoxExtent", {"InBoxExtent": InBoxExtent}, "None")
+        return cast(None, self._sp_call("UBoxComponent", "SetBoxExtent", {"InBoxExtent": InBoxExtent}, "None"))  # a Future when queued by call_async
 
 
 _register_proxy(UBoxComponent)
@@ -1256,28 +1256,28 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
         self._sp_set("UCameraSensorComponent", "Latency", value)
 
     def SetWidth(self, *, NewWidth: int) -> None:
-        self._sp_call("UCameraSensorComponent", "SetWidth", {"NewWidth": NewWidth}, "None")
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetWidth", {"NewWidth": NewWidth}, "None"))  # a Future when queued by call_async
 
     def SetHeight(self, *, NewHeight: int) -> None:
-        self._sp_call("UCameraSensorComponent", "SetHeight", {"NewHeight": NewHeight}, "None")
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetHeight", {"NewHeight": NewHeight}, "None"))  # a Future when queued by call_async
 
     def SetFOV(self, *, NewFOV: float) -> None:
-        self._sp_call("UCameraSensorComponent", "SetFOV", {"NewFOV": NewFOV}, "None")
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetFOV", {"NewFOV": NewFOV}, "None"))  # a Future when queued by call_async
 
     def SetNearClip(self, *, NewNearClip: float) -> None:
-        self._sp_call("UCameraSensorComponent", "SetNearClip", {"NewNearClip": NewNearClip}, "None")
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetNearClip", {"NewNearClip": NewNearClip}, "None"))  # a Future when queued by call_async
 
     def SetFarClip(self, *, NewFarClip: float) -> None:
-        self._sp_call("UCameraSensorComponent", "SetFarClip", {"NewFarClip": NewFarClip}, "None")
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetFarClip", {"NewFarClip": NewFarClip}, "None"))  # a Future when queued by call_async
 
     def SetExposure(self, *, NewExposure: float) -> None:
-        self._sp_call("UCameraSensorComponent", "SetExposure", {"NewExposure": NewExposure}, "None")
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetExposure", {"NewExposure": NewExposure}, "None"))  # a Future when queued by call_async
 
     def SetShadowResolution(self, *, NewShadowResolution: int) -> None:
-        self._sp_call("UCameraSensorComponent", "SetShadowResolution", {"NewShadowResolution": NewShadowResolution}, "None")
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetShadowResolution", {"NewShadowResolution": NewShadowResolution}, "None"))  # a Future when queued by call_async
 
     def SetLatency(self, *, NewLatency: int) -> None:
-        self._sp_call("UCameraSensorComponent", "SetLatency", {"NewLatency": NewLatency}, "None")
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetLatency", {"NewLatency": NewLatency}, "None"))  # a Future when queued by call_async
 
     def read_pixels(self) -> FCameraPixels:
         return cast("FCameraPixels", self._sp_call("UCameraSensorComponent", "read_pixels", {}, "FCameraPixels"))
@@ -1286,7 +1286,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
         return cast("int", self._sp_call("UCameraSensorComponent", "GetPixelsFrame", {}, "int"))
 
     def SetModalityNames(self, *, Names: list[str]) -> None:
-        self._sp_call("UCameraSensorComponent", "SetModalityNames", {"Names": Names}, "None")
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetModalityNames", {"Names": Names}, "None"))  # a Future when queued by call_async
 
     def GetModalityNames(self) -> list[str]:
         return cast("list[str]", self._sp_call("UCameraSensorComponent", "GetModalityNames", {}, "list[str]"))
@@ -1330,10 +1330,10 @@ class UCapsuleComponent(UShapeComponent, api.UCapsuleComponent):
         self._sp_set("UCapsuleComponent", "CapsuleHalfHeight", value)
 
     def SetCapsuleRadius(self, *, Radius: float) -> None:
-        self._sp_call("UCapsuleComponent", "SetCapsuleRadius", {"Radius": Radius}, "None")
+        return cast(None, self._sp_call("UCapsuleComponent", "SetCapsuleRadius", {"Radius": Radius}, "None"))  # a Future when queued by call_async
 
     def SetCapsuleHalfHeight(self, *, HalfHeight: float) -> None:
-        self._sp_call("UCapsuleComponent", "SetCapsuleHalfHeight", {"HalfHeight": HalfHeight}, "None")
+        return cast(None, self._sp_call("UCapsuleComponent", "SetCapsuleHalfHeight", {"HalfHeight": HalfHeight}, "None"))  # a Future when queued by call_async
 
 
 _register_proxy(UCapsuleComponent)
@@ -1375,16 +1375,16 @@ class UCharacterMovementComponent(UActorComponent, api.UCharacterMovementCompone
         self._sp_set("UCharacterMovementComponent", "WalkableFloorAngle", value)
 
     def SetMaxWalkSpeed(self, *, NewSpeed: float) -> None:
-        self._sp_call("UCharacterMovementComponent", "SetMaxWalkSpeed", {"NewSpeed": NewSpeed}, "None")
+        return cast(None, self._sp_call("UCharacterMovementComponent", "SetMaxWalkSpeed", {"NewSpeed": NewSpeed}, "None"))  # a Future when queued by call_async
 
     def SetJumpZVelocity(self, *, NewVelocity: float) -> None:
-        self._sp_call("UCharacterMovementComponent", "SetJumpZVelocity", {"NewVelocity": NewVelocity}, "None")
+        return cast(None, self._sp_call("UCharacterMovementComponent", "SetJumpZVelocity", {"NewVelocity": NewVelocity}, "None"))  # a Future when queued by call_async
 
     def SetMaxStepHeight(self, *, NewHeight: float) -> None:
-        self._sp_call("UCharacterMovementComponent", "SetMaxStepHeight", {"NewHeight": NewHeight}, "None")
+        return cast(None, self._sp_call("UCharacterMovementComponent", "SetMaxStepHeight", {"NewHeight": NewHeight}, "None"))  # a Future when queued by call_async
 
     def SetWalkableFloorAngle(self, *, NewAngle: float) -> None:
-        self._sp_call("UCharacterMovementComponent", "SetWalkableFloorAngle", {"NewAngle": NewAngle}, "None")
+        return cast(None, self._sp_call("UCharacterMovementComponent", "SetWalkableFloorAngle", {"NewAngle": NewAngle}, "None"))  # a Future when queued by call_async
 
     def GetVelocity(self) -> FVector:
         return cast("FVector", self._sp_call("UCharacterMovementComponent", "GetVelocity", {}, "FVector"))
@@ -1467,7 +1467,7 @@ class UNavigationSystemV1(UObject, api.UNavigationSystemV1):
         return cast("api.ARecastNavMesh", self._sp_call("UNavigationSystemV1", "GetDefaultNavDataInstance", {}, "ARecastNavMesh"))
 
     def Build(self) -> None:
-        self._sp_call("UNavigationSystemV1", "Build", {}, "None")
+        return cast(None, self._sp_call("UNavigationSystemV1", "Build", {}, "None"))  # a Future when queued by call_async
 
 
 _register_proxy(UNavigationSystemV1)
@@ -1661,13 +1661,13 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
         self._sp_set("UPCGComponent", "RoadWidth", value)
 
     def Generate(self, *, bForce: bool = _DEFAULT) -> None:
-        self._sp_call("UPCGComponent", "Generate", {"bForce": bForce}, "None")
+        return cast(None, self._sp_call("UPCGComponent", "Generate", {"bForce": bForce}, "None"))  # a Future when queued by call_async
 
     def Cleanup(self) -> None:
-        self._sp_call("UPCGComponent", "Cleanup", {}, "None")
+        return cast(None, self._sp_call("UPCGComponent", "Cleanup", {}, "None"))  # a Future when queued by call_async
 
     def FlushCache(self) -> None:
-        self._sp_call("UPCGComponent", "FlushCache", {}, "None")
+        return cast(None, self._sp_call("UPCGComponent", "FlushCache", {}, "None"))  # a Future when queued by call_async
 
     def GetGeneratedActors(self) -> list[api.AActor]:
         return cast("list[api.AActor]", self._sp_call("UPCGComponent", "GetGeneratedActors", {}, "list[AActor]"))
@@ -1750,7 +1750,7 @@ class USphereComponent(UShapeComponent, api.USphereComponent):
         self._sp_set("USphereComponent", "SphereRadius", value)
 
     def SetSphereRadius(self, *, InSphereRadius: float) -> None:
-        self._sp_call("USphereComponent", "SetSphereRadius", {"InSphereRadius": InSphereRadius}, "None")
+        return cast(None, self._sp_call("USphereComponent", "SetSphereRadius", {"InSphereRadius": InSphereRadius}, "None"))  # a Future when queued by call_async
 
 
 _register_proxy(USphereComponent)
@@ -1800,22 +1800,22 @@ class USplineComponent(USceneComponent, api.USplineComponent):
         self._sp_set("USplineComponent", "DebugLineColor", value)
 
     def SetDebugLineThickness(self, *, Thickness: float) -> None:
-        self._sp_call("USplineComponent", "SetDebugLineThickness", {"Thickness": Thickness}, "None")
+        return cast(None, self._sp_call("USplineComponent", "SetDebugLineThickness", {"Thickness": Thickness}, "None"))  # a Future when queued by call_async
 
     def AddSplinePoint(self, *, Position: FVector, CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = _DEFAULT) -> None:
-        self._sp_call("USplineComponent", "AddSplinePoint", {"Position": Position, "CoordinateSpace": CoordinateSpace, "bUpdateSpline": bUpdateSpline}, "None")
+        return cast(None, self._sp_call("USplineComponent", "AddSplinePoint", {"Position": Position, "CoordinateSpace": CoordinateSpace, "bUpdateSpline": bUpdateSpline}, "None"))  # a Future when queued by call_async
 
     def ClearSplinePoints(self, *, bUpdateSpline: bool = _DEFAULT) -> None:
-        self._sp_call("USplineComponent", "ClearSplinePoints", {"bUpdateSpline": bUpdateSpline}, "None")
+        return cast(None, self._sp_call("USplineComponent", "ClearSplinePoints", {"bUpdateSpline": bUpdateSpline}, "None"))  # a Future when queued by call_async
 
     def SetSplinePoints(self, *, Points: list[FVector], CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = _DEFAULT) -> None:
-        self._sp_call("USplineComponent", "SetSplinePoints", {"Points": Points, "CoordinateSpace": CoordinateSpace, "bUpdateSpline": bUpdateSpline}, "None")
+        return cast(None, self._sp_call("USplineComponent", "SetSplinePoints", {"Points": Points, "CoordinateSpace": CoordinateSpace, "bUpdateSpline": bUpdateSpline}, "None"))  # a Future when queued by call_async
 
     def GetNumberOfSplinePoints(self) -> int:
         return cast("int", self._sp_call("USplineComponent", "GetNumberOfSplinePoints", {}, "int"))
 
     def SetClosedLoop(self, *, bInClosedLoop: bool, bUpdateSpline: bool = _DEFAULT) -> None:
-        self._sp_call("USplineComponent", "SetClosedLoop", {"bInClosedLoop": bInClosedLoop, "bUpdateSpline": bUpdateSpline}, "None")
+        return cast(None, self._sp_call("USplineComponent", "SetClosedLoop", {"bInClosedLoop": bInClosedLoop, "bUpdateSpline": bUpdateSpline}, "None"))  # a Future when queued by call_async
 
     def IsClosedLoop(self) -> bool:
         return cast("bool", self._sp_call("USplineComponent", "IsClosedLoop", {}, "bool"))
@@ -1842,7 +1842,7 @@ class USplineComponent(USceneComponent, api.USplineComponent):
         return cast("FVector", self._sp_call("USplineComponent", "GetTangentAtSplinePoint", {"PointIndex": PointIndex, "CoordinateSpace": CoordinateSpace}, "FVector"))
 
     def SetTangentAtSplinePoint(self, *, PointIndex: int, InTangent: FVector, CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = _DEFAULT) -> None:
-        self._sp_call("USplineComponent", "SetTangentAtSplinePoint", {"PointIndex": PointIndex, "InTangent": InTangent, "CoordinateSpace": CoordinateSpace, "bUpdateSpline": bUpdateSpline}, "None")
+        return cast(None, self._sp_call("USplineComponent", "SetTangentAtSplinePoint", {"PointIndex": PointIndex, "InTangent": InTangent, "CoordinateSpace": CoordinateSpace, "bUpdateSpline": bUpdateSpline}, "None"))  # a Future when queued by call_async
 
     def GetDistanceAlongSplineAtSplinePoint(self, *, PointIndex: int) -> float:
         return cast("float", self._sp_call("USplineComponent", "GetDistanceAlongSplineAtSplinePoint", {"PointIndex": PointIndex}, "float"))
@@ -1900,7 +1900,7 @@ class UStaticMeshComponent(UPrimitiveComponent, api.UStaticMeshComponent):
         return cast("bool", self._sp_call("UStaticMeshComponent", "SetStaticMesh", {"NewMesh": NewMesh}, "bool"))
 
     def SetMaterial(self, *, ElementIndex: int, Material: str) -> None:
-        self._sp_call("UStaticMeshComponent", "SetMaterial", {"ElementIndex": ElementIndex, "Material": Material}, "None")
+        return cast(None, self._sp_call("UStaticMeshComponent", "SetMaterial", {"ElementIndex": ElementIndex, "Material": Material}, "None"))  # a Future when queued by call_async
 
 
 _register_proxy(UStaticMeshComponent)
@@ -1919,7 +1919,7 @@ class UWorld(UObject, api.UWorld):
         return self._sp_call("UWorld", "spawn_actor", {"uclass": uclass, "location": location, "rotation": rotation, "name": name, "tags": tags}, "AActor")
 
     def destroy_actor(self, *, actor: api.AActor) -> None:
-        self._sp_call("UWorld", "destroy_actor", {"actor": actor}, "None")
+        return cast(None, self._sp_call("UWorld", "destroy_actor", {"actor": actor}, "None"))  # a Future when queued by call_async
 
     def find_actor_by_name(self, *, name: str) -> api.AActor | None:
         return cast("api.AActor | None", self._sp_call("UWorld", "find_actor_by_name", {"name": name}, "AActor | None"))
@@ -2000,7 +2000,7 @@ class UWorld(UObject, api.UWorld):
         return cast("NDArray[np.float64]", self._sp_call("UWorld", "get_actor_locations", {"actors": actors}, "NDArray[np.float64]"))
 
     def set_actor_locations(self, *, actors: list[api.AActor], locations: NDArray[np.float64]) -> None:
-        self._sp_call("UWorld", "set_actor_locations", {"actors": actors, "locations": locations}, "None")
+        return cast(None, self._sp_call("UWorld", "set_actor_locations", {"actors": actors, "locations": locations}, "None"))  # a Future when queued by call_async
 
     def get_actor_count(self) -> int:
         return cast("int", self._sp_call("UWorld", "get_actor_count", {}, "int"))
@@ -2015,13 +2015,13 @@ class UWorld(UObject, api.UWorld):
         return cast("api.UWorld.line_trace_singleResult", self._sp_call("UWorld", "line_trace_single", {"start": start, "end": end}, "dict", api.UWorld.line_trace_singleResult))
 
     def inject_input_for_actor(self, *, actor: api.AActor, input_action_name: str, value: FVector) -> None:
-        self._sp_call("UWorld", "inject_input_for_actor", {"actor": actor, "input_action_name": input_action_name, "value": value}, "None")
+        return cast(None, self._sp_call("UWorld", "inject_input_for_actor", {"actor": actor, "input_action_name": input_action_name, "value": value}, "None"))  # a Future when queued by call_async
 
     def load_scene(self, *, path: str) -> None:
-        self._sp_call("UWorld", "load_scene", {"path": path}, "None")
+        return cast(None, self._sp_call("UWorld", "load_scene", {"path": path}, "None"))  # a Future when queued by call_async
 
     def save_scene(self, *, path: str) -> None:
-        self._sp_call("UWorld", "save_scene", {"path": path}, "None")
+        return cast(None, self._sp_call("UWorld", "save_scene", {"path": path}, "None"))  # a Future when queued by call_async
 
     def is_editor_world(self) -> bool:
         return cast("bool", self._sp_call("UWorld", "is_editor_world", {}, "bool"))
@@ -2030,10 +2030,10 @@ class UWorld(UObject, api.UWorld):
         return cast("bool", self._sp_call("UWorld", "is_game_world", {}, "bool"))
 
     def play(self) -> None:
-        self._sp_call("UWorld", "play", {}, "None")
+        return cast(None, self._sp_call("UWorld", "play", {}, "None"))  # a Future when queued by call_async
 
     def stop(self) -> None:
-        self._sp_call("UWorld", "stop", {}, "None")
+        return cast(None, self._sp_call("UWorld", "stop", {}, "None"))  # a Future when queued by call_async
 
     def is_playing(self) -> bool:
         return cast("bool", self._sp_call("UWorld", "is_playing", {}, "bool"))

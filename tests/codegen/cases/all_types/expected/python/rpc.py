@@ -99,7 +99,7 @@ class AAllTypes(_AActorProxy, api.AAllTypes):
         self._sp_set("AAllTypes", "Speed", value)
 
     def SetSpeed(self, *, NewSpeed: float) -> None:
-        self._sp_call("AAllTypes", "SetSpeed", {"NewSpeed": NewSpeed}, "None")
+        return cast(None, self._sp_call("AAllTypes", "SetSpeed", {"NewSpeed": NewSpeed}, "None"))  # a Future when queued by call_async
 
     def Scale(self, *, Sample: FSample, Factor: float = _DEFAULT, Channel: EChannel = _DEFAULT) -> FSample:
         return cast("FSample", self._sp_call("AAllTypes", "Scale", {"Sample": Sample, "Factor": Factor, "Channel": Channel}, "FSample"))
