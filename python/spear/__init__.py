@@ -8,6 +8,7 @@ from spear._engine.api import *  # noqa: F403
 from spear._engine import api as _api
 from spear.errors import (ConnectionLostError, InvalidArgumentError, InvalidStateError, NotFoundError, SpearError,
                           StaleObjectError)
+from spear._events import OverlapSubscription
 from spear._spfunc import SpFuncResult
 from spear.instance import Instance
 
@@ -30,6 +31,7 @@ __all__ = [
     "get_cmake_dir",
     "Instance",
     "SpFuncResult",
+    "OverlapSubscription",
     "SpearError",
     "ConnectionLostError",
     "InvalidArgumentError",

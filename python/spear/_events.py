@@ -19,6 +19,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from spear.errors import StaleObjectError
+from spear.futures import Future
 
 if TYPE_CHECKING:
     from spear._engine import api
@@ -45,17 +46,24 @@ class OverlapSubscription:
         """Stops the callbacks (doing nothing when already stopped)."""
         self._subscriptions[:] = [s for s in self._subscriptions if s is not self]
 
-    def deliver(self) -> list[BaseException]:
-        """Calls the callbacks for the last tick's events (see the module notes); returns what they raised,
+    def poll(self) -> tuple[Future[list[api.UPrimitiveComponent]] | None, Future[list[api.UPrimitiveComponent]] | None]:
+        """Queues the reads of the last tick's events (over RPC, all subscriptions' reads travel together)."""
+        queued = self.component.call_async
+        return (queued.GetBeginOverlaps() if self.begin is not None else None,
+                queued.GetEndOverlaps() if self.end is not None else None)
+
+    def deliver(self, begins: Future[list[api.UPrimitiveComponent]] | None,
+                ends: Future[list[api.UPrimitiveComponent]] | None) -> list[BaseException]:
+        """Calls the callbacks for the events poll() read (see the module notes); returns what they raised,
         having called the rest (a callback that cancels its subscription stops the calls that follow)."""
         try:
-            begins = self.component.GetBeginOverlaps() if self.begin is not None else []
-            ends = self.component.GetEndOverlaps() if self.end is not None else []
+            events = ((self.begin, begins.get() if begins is not None else []),
+                      (self.end, ends.get() if ends is not None else []))
         except StaleObjectError:
             self.cancel()  # the component is gone, and so are its events
             return []
         failures: list[BaseException] = []
-        for callback, others in ((self.begin, begins), (self.end, ends)):
+        for callback, others in events:
             for other in others:
                 if callback is None or not self.active:
                     break
@@ -69,9 +77,15 @@ class OverlapSubscription:
 def deliver_all(subscriptions: list[OverlapSubscription]) -> None:
     """Delivers every subscription's events, in subscription order (a callback may cancel or add ones), then
     raises the first exception a callback raised: the polled events are read once, so none may be dropped."""
-    failures: list[BaseException] = []
+    polled = []
     for subscription in list(subscriptions):
+        try:
+            polled.append((subscription, *subscription.poll()))
+        except StaleObjectError:  # in-process, a destroyed component fails at once
+            subscription.cancel()
+    failures: list[BaseException] = []
+    for subscription, begins, ends in polled:
         if subscription.active:
-            failures += subscription.deliver()
+            failures += subscription.deliver(begins, ends)
     if failures:
         raise failures[0]

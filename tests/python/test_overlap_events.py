@@ -121,3 +121,17 @@ def test_subscriptions_belong_to_their_instance(instance: spear.Instance) -> Non
     assert not subscription.active
     with pytest.raises(spear.InvalidStateError, match=r"^on_overlap\(\): the instance is closed$"):
         instance.on_overlap(component, begin=lambda me, it: None)
+
+
+def test_over_rpc_the_subscriptions_read_their_events_in_one_message() -> None:
+    with spear.Instance(server="launch") as instance:
+        _, component, _ = falling_box_and_trigger(instance)
+        for _ in range(3):
+            instance.on_overlap(component, begin=lambda me, other: None, end=lambda me, other: None)
+        connection = instance._backend.connection  # type: ignore[attr-defined]
+        with instance.begin_frame():
+            pass
+        sent = connection.messages_sent
+        with instance.end_frame():
+            # The frame's begin_end, then one batch of the six reads.
+            assert connection.messages_sent == sent + 2
