@@ -16,12 +16,7 @@ reflect::ObjectBase& resolveHandle(py::handle object, std::string_view context) 
     SP_CHECK(py::hasattr(object, "_sp_handle"), InvalidArgument, context,
              ": expected an engine object, got '", std::string(py::str(object.get_type().attr("__name__"))),
              "'");
-    // An object of an engine over RPC has a handle too, which means something to its server only.
-    SP_CHECK(!py::hasattr(object, "_sp_client"), InvalidArgument, context, ": ",
-             std::string(py::str(object.get_type().attr("__name__"))),
-             " belongs to another engine (a different spear.Instance)");
-    auto handle = object.attr("_sp_handle").cast<std::pair<uint32_t, uint32_t>>();
-    return reflect::ObjectTable::resolve({handle.first, handle.second}, context);
+    return reflect::ObjectTable::resolve(localHandle(object, context), context);
 }
 
 reflect::ObjectBase& resolveArgument(py::handle object, std::string_view context) {

@@ -22,6 +22,14 @@ void checkDepth(int depth, std::string_view context) {
 }
 } // namespace
 
+reflect::ObjectHandle localHandle(py::handle object, std::string_view context) {
+    SP_CHECK(!py::hasattr(object, "_sp_client"), InvalidArgument, context, ": ",
+             std::string(py::str(object.get_type().attr("__name__"))),
+             " belongs to another engine (a different spear.Instance)");
+    auto handle = object.attr("_sp_handle").cast<std::pair<uint32_t, uint32_t>>();
+    return reflect::ObjectHandle{handle.first, handle.second};
+}
+
 reflect::Value toValue(py::handle object, std::string_view context) {
     return toValueAt(object, context, 0);
 }
@@ -58,14 +66,8 @@ Value toValueAt(py::handle object, std::string_view context, int depth) {
     static const py::object* const numpyScalar = new py::object(py::module_::import("numpy").attr("generic"));
     if (py::isinstance(object, *numpyScalar))
         return toValueAt(object.attr("item")(), context, depth);
-    if (py::hasattr(object, "_sp_handle")) {
-        // An object of an engine over RPC has a handle too, which means something to its server only.
-        SP_CHECK(!py::hasattr(object, "_sp_client"), InvalidArgument, context, ": ",
-                 std::string(py::str(object.get_type().attr("__name__"))),
-                 " belongs to another engine (a different spear.Instance)");
-        auto handle = object.attr("_sp_handle").cast<std::pair<uint32_t, uint32_t>>();
-        return Value(reflect::ObjectHandle{handle.first, handle.second});
-    }
+    if (py::hasattr(object, "_sp_handle"))
+        return Value(localHandle(object, context));
     if (PyType_Check(object.ptr()) && py::hasattr(object, "__sp_class__"))
         return Value(reflect::ClassName{object.attr("__sp_class__").cast<std::string>(),
                                         py::hasattr(object, "__sp_asset__")

@@ -17,6 +17,10 @@ namespace py = ::pybind11;
 // dataclasses, engine objects and classes (anything with __sp_class__).
 reflect::Value toValue(py::handle object, std::string_view context);
 
+// The handle of an engine object of this process (anything with `_sp_handle`); an object of an engine over
+// RPC has one too, which means something to its server only, and is refused naming `context`.
+reflect::ObjectHandle localHandle(py::handle object, std::string_view context);
+
 // `type` is the Python spelling the registry records for the value ("FVector", "list[AActor]",
 // "AActor | None"); it decides which struct, enum or object class to build.
 py::object fromValue(const reflect::Value& value, std::string_view type, const char* apiModule);

@@ -133,11 +133,14 @@ class ValueTooDeep(ValueRefused):
     """A value nests lists or dicts deeper than MAX_VALUE_DEPTH."""
 
 
-def _of_engine(value: SpObject, connection: Any) -> bool:
-    """Whether an engine object belongs to the engine `connection` reaches (its own bare handles do)."""
+def of_engine(value: SpObject, connection: Any) -> bool:
+    """Whether an engine object belongs to the engine `connection` reaches (its own bare handles do), or with
+    connection None, to the in-process engine (whose objects have no RPC client)."""
     if getattr(type(value), "_sp_own_handle", False):  # on the class: an instance lookup would try SpFuncs
         return True
     client = getattr(value, "_sp_client", None)
+    if connection is None:
+        return client is None
     return client is not None and bool(connection.same_engine(client))
 
 
@@ -155,7 +158,7 @@ def encode(value: Any, segments: OutgoingSegments, depth: int = 0) -> Any:
         handle = getattr(value, "_sp_handle", None)
         if handle is None:
             raise TypeError(f"{type(value).__name__} is not an engine object of this connection")
-        if segments.owner is not None and not _of_engine(value, segments.owner):
+        if segments.owner is not None and not of_engine(value, segments.owner):
             # A handle means something only to the engine that made it: sent elsewhere, it would name
             # whatever object that engine has under the same number.
             raise ValueRefused(f"{type(value).__name__} belongs to another engine (a different spear.Instance)")

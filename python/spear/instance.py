@@ -154,9 +154,9 @@ class Instance:
         if not isinstance(component, api.UPrimitiveComponent):
             raise InvalidArgumentError(
                 f"on_overlap(): component must be a UPrimitiveComponent, got {type(component).__name__}")
-        connection = self._rpc_connection()
-        owner = getattr(component, "_sp_client", None)
-        if (owner is None) != (connection is None) or (owner is not None and not owner.same_engine(connection)):
+        from spear._wire import of_engine  # the RPC wire format, loaded only when needed
+
+        if not of_engine(component, self._rpc_connection()):
             raise InvalidArgumentError(f"on_overlap(): {type(component).__name__} belongs to another engine "
                                        "(a different spear.Instance)")
         subscription = _events.OverlapSubscription(component, begin, end, self._overlap_subscriptions)
