@@ -65,10 +65,9 @@ void Engine::play() {
 
 UWorld& Engine::CreateWorld(const std::string& name) {
     SP_CHECK(!name.empty(), InvalidArgument, "create_world(): name must not be empty");
-    const auto taken = [&](const UWorld* world) { return world && world->GetName() == name; };
-    bool exists = taken(editorWorld_.get()) || taken(gameWorld_.get());
-    for (const auto& world : createdWorlds_)
-        exists = exists || taken(world.get());
+    bool exists = editorWorld_ && editorWorld_->GetName() == name;
+    for (const UWorld* world : GetWorlds())
+        exists = exists || world->GetName() == name;
     SP_CHECK(!exists, InvalidArgument, "create_world(): a world named '", name, "' exists already");
     auto world = std::make_unique<UWorld>();
     world->InitObject(name, world.get());
