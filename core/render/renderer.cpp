@@ -153,6 +153,7 @@ void Renderer::render(const Scene& scene, const Camera& camera, const PassSet& p
                     slot.shadowLayer = info.layer;
             lights.lights.push_back(slot);
         });
+        lights.floatShadowMaps = !shadowInfos.empty() && shadowMaps_->format() == GL_R32F;
         uploadFrameBlock(scene, camera, shadowInfos);
     }
     if (passes.surface) {
@@ -207,8 +208,9 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
     glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
     if (!passes.lighting) // the material chunk still reads the camera position from the frame block
         uploadFrameBlock(scene, camera, {});
-    if (passes.lighting)
-        glBindTextureUnit(shaders::kShadowMapUnit, passes.shadow ? shadowMaps_->texture() : 0);
+    if (passes.lighting && passes.shadow && shadowMaps_->texture() != 0)
+        glBindImageTexture(shaders::kShadowMapImageUnit, shadowMaps_->texture(), 0, GL_TRUE, 0, GL_READ_ONLY,
+                           shadowMaps_->format());
     drawAll(scene, camera, draws, passes.surfaceTargets, passes.lighting, lights, cache);
     timers_.end();
     ++stats_.surfacePasses;

@@ -19,8 +19,8 @@ namespace sp::render::shaders {
 inline constexpr int kMaxLights = 16;    // must match MAX_LIGHTS in kFrameBlock
 inline constexpr int kMaxShadowMaps = 4; // must match MAX_SHADOWS in kFrameBlock
 
-// Texture units the passes sample from.
-inline constexpr int kShadowMapUnit = 7;
+// The image unit the shading reads shadow maps from (binding 0 in kShadingChunk).
+inline constexpr int kShadowMapImageUnit = 0;
 inline constexpr int kFrameBlockBinding = 0;
 
 // Per-frame constants of one view, shared by every program through one uniform buffer (std140).
@@ -50,6 +50,7 @@ struct LightSlot {
 // The lights a shading variant is compiled for, in the scene's light order (FrameBlock's indices).
 struct ShadingLayout {
     std::vector<LightSlot> lights;
+    bool floatShadowMaps = false; // the shadow maps are GL_R32F, not GL_R16 (ShadowMaps::format())
     // A short text naming the layout, for program caches ("D0.S1r.P").
     std::string key() const;
 };

@@ -100,6 +100,7 @@ std::uint64_t packed(InstanceId id) {
 
 ShadowMaps::~ShadowMaps() {
     glDeleteFramebuffers(1, &fbo_);
+    glDeleteRenderbuffers(1, &depthBuffer_);
     glDeleteTextures(1, &texture_);
 }
 
@@ -107,17 +108,17 @@ void ShadowMaps::ensure(int resolution, unsigned format) {
     if (resolution == resolution_ && format == format_)
         return;
     glDeleteFramebuffers(1, &fbo_);
+    glDeleteRenderbuffers(1, &depthBuffer_);
     glDeleteTextures(1, &texture_);
+    // Read texel by texel with imageLoad and compared in the shader (see shadowFactor() in shaders.cpp).
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture_);
     glTextureStorage3D(texture_, 1, format, resolution, resolution, shaders::kMaxShadowMaps);
-    // Gathered and compared in the shader (see shadowFactor() in shaders.cpp), never filtered.
-    glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTextureParameteri(texture_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(texture_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(texture_, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    glCreateRenderbuffers(1, &depthBuffer_);
+    glNamedRenderbufferStorage(depthBuffer_, format == GL_R16 ? GL_DEPTH_COMPONENT16 : GL_DEPTH_COMPONENT32F,
+                               resolution, resolution);
     glCreateFramebuffers(1, &fbo_);
-    glNamedFramebufferDrawBuffer(fbo_, GL_NONE);
+    glNamedFramebufferRenderbuffer(fbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depthBuffer_);
+    glNamedFramebufferDrawBuffer(fbo_, GL_COLOR_ATTACHMENT0);
     resolution_ = resolution;
     format_ = format;
     staticSignature_.clear(); // new storage holds nothing yet: the next update draws in full
@@ -252,11 +253,11 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
         return 0;
 
     // 16 bits of depth when every map is orthographic: a step (extent / 37000 for a cube of the scene)
-    // is far below the 1.5-texel normal offset (extent / resolution), and half the bytes to clear, copy
-    // and write. A perspective map's depth is not linear; far from the light 16 bits would be too coarse.
+    // is far below the 1.5-texel normal offset (extent / resolution), and half the bytes to clear, write
+    // and read. A perspective map's depth is not linear; far from the light 16 bits would be too coarse.
     const bool anyPerspective =
         std::any_of(infos.begin(), infos.end(), [](const ShadowInfo& info) { return info.perspective; });
-    ensure(resolution, anyPerspective ? GL_DEPTH_COMPONENT32F : GL_DEPTH_COMPONENT16);
+    ensure(resolution, anyPerspective ? GL_R32F : GL_R16);
     const bool drawAll = staticSignature != staticSignature_ || movingRects_.size() != infos.size();
     staticSignature_ = std::move(staticSignature);
     movingRects_.resize(infos.size());
@@ -278,14 +279,20 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
         }
     } restoreState;
     depthProgram.use();
+    // The layer's depths to the far plane, and the depth buffer with them (within the scissor, if any).
+    auto clear = [] {
+        const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+        glClearBufferfv(GL_COLOR, 0, far);
+        glClearBufferfv(GL_DEPTH, 0, far);
+    };
     for (std::size_t i = 0; i < infos.size(); ++i) {
         const ShadowInfo& info = infos[i];
-        glNamedFramebufferTextureLayer(fbo_, GL_DEPTH_ATTACHMENT, texture_, 0, info.layer);
+        glNamedFramebufferTextureLayer(fbo_, GL_COLOR_ATTACHMENT0, texture_, 0, info.layer);
         Rect now;
         for (const Instance* instance : moving)
             now = now.united(footprint(scene, *instance, projections[i], resolution));
         if (drawAll) {
-            glClear(GL_DEPTH_BUFFER_BIT);
+            clear();
             for (const Instance* instance : statics)
                 draw(scene, *instance, info, projections[i], positions[i], cache, depthProgram);
             for (const Instance* instance : moving)
@@ -301,7 +308,7 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
             // the rasteriser (a software one copies through mapped memory).
             glEnable(GL_SCISSOR_TEST);
             glScissor(region.x0, region.y0, region.x1 - region.x0, region.y1 - region.y0);
-            glClear(GL_DEPTH_BUFFER_BIT);
+            clear();
             for (const Instance* instance : statics) {
                 if (footprint(scene, *instance, projections[i], resolution).overlaps(region)) {
                     draw(scene, *instance, info, projections[i], positions[i], cache, depthProgram);

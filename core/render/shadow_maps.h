@@ -9,6 +9,11 @@
 // previous update), scissored, drawing there the still casters that reach into them and the moving ones.
 // A robot in a large still scene costs the texels it covers, not the whole map. The result equals a full
 // render bit for bit.
+//
+// The maps are a colour texture array holding each texel's depth (the depth test's own value, polygon
+// offset included), not a depth texture: the surface pass reads four texels with imageLoad, which a
+// software rasteriser runs several times faster than a texture gather (see shadowFactor() in shaders.cpp).
+// The depth test runs against one depth buffer shared by the layers, cleared with each layer.
 
 #include <algorithm>
 #include <cstdint>
@@ -56,7 +61,7 @@ class ShadowMaps {
     const std::vector<ShadowInfo>& infos() const { return infos_; }
     const ShadowUpdate& lastUpdate() const { return update_; }
     unsigned texture() const { return texture_; }
-    // The texture's depth format: GL_DEPTH_COMPONENT16 when every map is orthographic, else 32F.
+    // The texture's format: GL_R16 (unsigned normalised) when every map is orthographic, else GL_R32F.
     unsigned format() const { return format_; }
 
   private:
@@ -93,6 +98,7 @@ class ShadowMaps {
                    int resolution) const;
 
     unsigned texture_ = 0;
+    unsigned depthBuffer_ = 0; // the depth test's buffer, one layer's worth
     unsigned fbo_ = 0;
     int resolution_ = 0;
     unsigned format_ = 0;
