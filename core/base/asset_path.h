@@ -6,7 +6,8 @@
 // own file), then in each folder of SPEAR_ASSET_PATH (colon-separated), then in the host's built-in
 // folder: the folder that holds spear's `assets/` (the checkout, or the installed package). UE's
 // `/Game/...` names are `assets/...` ("/Game/scenes/apartment" is assets/scenes/apartment.json; a name
-// without an extension gets `.json`). An absolute path is itself.
+// without an extension gets `.json`). An absolute path is itself. A scene file's streaming levels and mesh
+// files named relative to it are looked for in its folder first (UStaticMeshComponent::GetMeshAsset()).
 
 #include <string>
 #include <string_view>

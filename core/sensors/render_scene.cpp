@@ -181,7 +181,7 @@ void RenderScene::sync(UWorld& world) {
 void RenderScene::syncMesh(UStaticMeshComponent& component,
                            const std::map<std::string, FMaterialDesc>& library) {
     InstanceEntry& entry = instances_[component.GetHandle()];
-    const MeshEntry* mesh = component.StaticMesh.empty() ? nullptr : meshFor(component.StaticMesh);
+    const MeshEntry* mesh = component.StaticMesh.empty() ? nullptr : meshFor(component.GetMeshAsset());
     if (!mesh) { // no mesh (yet): nothing to draw, but ids already handed out stay
         if (entry.instance.isSet())
             scene_.removeInstance(entry.instance);

@@ -156,7 +156,7 @@ void PhysicsSubsystem::syncEntry(Entry& entry) {
         if (key.primitive == ECollisionPrimitive::ConvexHull ||
             key.primitive == ECollisionPrimitive::TriangleMesh)
             if (const auto* mesh = dynamic_cast<const UStaticMeshComponent*>(&component))
-                key.mesh = mesh->StaticMesh;
+                key.mesh = mesh->GetMeshAsset();
     }
     const FTransform transform = component.GetComponentTransform();
     // A static body is rebuilt rather than moved: only an attach parent moving can move it in play.

@@ -13,6 +13,7 @@
 #include "core/base/regular_file.h"
 #include "core/reflect/registry.h"
 #include "core/world/blueprint.h"
+#include "core/world/static_mesh_component.h"
 #include "core/world/world.h"
 
 namespace sp::world {
@@ -296,8 +297,10 @@ namespace {
 
 // Checks the document's header and builds its actors, with their components, attachments and properties,
 // outside the world. `inWorld`: the names must not be used by the world's actors either.
+// `directory` is the scene file's folder (empty for a document not read from a file): the meshes it names
+// by relative paths are looked for there first (UStaticMeshComponent::GetMeshAsset()).
 std::vector<std::unique_ptr<AActor>> stageActors(UWorld& world, const Json& scene, const std::string& root,
-                                                 bool inWorld) {
+                                                 bool inWorld, const std::string& directory) {
     SP_CHECK(scene.is_object(), InvalidArgument, root, ": expected a JSON object, got ", jsonKind(scene));
     const Json& format = member(scene, "format", root);
     SP_CHECK(format == kFormat, InvalidArgument, root, ": 'format' must be \"", kFormat, "\", got ",
@@ -385,10 +388,14 @@ std::vector<std::unique_ptr<AActor>> stageActors(UWorld& world, const Json& scen
             loadObjectProperties(actor, entry["properties"], byName, wheres[i]);
         for (const Json& c : entry["components"]) {
             const std::string componentName = c["name"].get<std::string>();
+            UActorComponent* component = world.get_component_by_name(&actor, componentName);
             if (c.contains("properties"))
-                loadObjectProperties(*world.get_component_by_name(&actor, componentName), c["properties"],
-                                     byName, wheres[i] + ": component '" + componentName + "'");
+                loadObjectProperties(*component, c["properties"], byName,
+                                     wheres[i] + ": component '" + componentName + "'");
         }
+        for (UActorComponent* component : actor.K2_GetComponents())
+            if (auto* mesh = dynamic_cast<UStaticMeshComponent*>(component))
+                mesh->ResolveMeshAgainst(directory);
     }
 
     return staged;
@@ -430,7 +437,7 @@ std::vector<UWorld::StreamingLevel> sceneLevels(const Json& scene, const std::st
 
 void loadScene(UWorld& world, const SceneJson& scene, std::string_view source, const std::string& directory) {
     const std::string root(source);
-    std::vector<std::unique_ptr<AActor>> staged = stageActors(world, scene, root, false);
+    std::vector<std::unique_ptr<AActor>> staged = stageActors(world, scene, root, false, directory);
     std::vector<UWorld::StreamingLevel> levels = sceneLevels(scene, root, directory);
     // The levels marked loaded are read and built now too, with the scene's own actors, so that one that
     // fails leaves the world as it was; their names must be free among all of them.
@@ -441,7 +448,8 @@ void loadScene(UWorld& world, const SceneJson& scene, std::string_view source, c
         if (!level.loaded)
             continue;
         const std::string where = root + ": streaming level '" + level.name + "'";
-        for (auto& actor : stageActors(world, readSceneFile(level.path, where), where, false)) {
+        for (auto& actor :
+             stageActors(world, readSceneFile(level.path, where), where, false, sceneFolder(level.path))) {
             SP_CHECK(names.insert(actor->GetName()).second, InvalidArgument, where, ": actor '",
                      actor->GetName(),
                      "': the name is used by another actor of the scene or its loaded levels");
@@ -460,8 +468,8 @@ void loadScene(UWorld& world, const SceneJson& scene, std::string_view source, c
 }
 
 std::vector<std::unique_ptr<AActor>> stageLevel(UWorld& world, const SceneJson& scene,
-                                                std::string_view source) {
-    return stageActors(world, scene, std::string(source), true);
+                                                std::string_view source, const std::string& directory) {
+    return stageActors(world, scene, std::string(source), true, directory);
 }
 
 std::string jsonErrorWithoutContents(const nlohmann::json::parse_error& error) {
@@ -472,6 +480,10 @@ std::string jsonErrorWithoutContents(const nlohmann::json::parse_error& error) {
     if (const std::size_t lastRead = message.find("; last read"); lastRead != std::string::npos)
         message.erase(lastRead);
     return message;
+}
+
+std::string sceneFolder(const std::string& path) {
+    return std::filesystem::path(findAsset(path)).parent_path().string();
 }
 
 SceneJson readSceneFile(const std::string& path, std::string_view function) {

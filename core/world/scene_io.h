@@ -48,14 +48,17 @@ std::string sceneToString(const SceneJson& scene);
 // Replaces the world's actors and streaming levels by those of the scene document, and loads the levels
 // it marks loaded. Everything is checked and built before the world is touched, so a bad document
 // leaves the world as it was. `source` names the document in messages ("scene 'x.json'"); errors are
-// sp::InvalidArgument naming the actor, component and property. Level paths are read from `directory`
-// (the scene file's folder) when relative.
+// sp::InvalidArgument naming the actor, component and property. Relative level paths are read from
+// `directory` (the scene file's folder), where relative mesh paths are looked for first too.
 void loadScene(UWorld& world, const SceneJson& scene, std::string_view source,
                const std::string& directory = "");
 // The actors of a streaming level's document, built and checked but not in the world (UWorld::AddActors
 // puts them in): the document's "levels" are not read, and its names must not be used in the world.
+// `directory` is the level file's folder, where its meshes named by relative paths are looked for first.
 std::vector<std::unique_ptr<AActor>> stageLevel(UWorld& world, const SceneJson& scene,
-                                                std::string_view source);
+                                                std::string_view source, const std::string& directory);
+// The folder of the scene file `path` names (through the asset search path, core/base/asset_path.h).
+std::string sceneFolder(const std::string& path);
 // Actors by name, for resolving object references ("Actor" or "Actor.Component") in property values.
 using ActorsByName = std::map<std::string, AActor*, std::less<>>;
 // Sets each property of `properties` (a JSON object of name -> value in the scene-file format) on

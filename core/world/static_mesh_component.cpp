@@ -1,6 +1,7 @@
 #include "core/world/static_mesh_component.h"
 
 #include <array>
+#include <filesystem>
 #include <string_view>
 
 #include "core/base/error.h"
@@ -46,9 +47,27 @@ void UStaticMeshComponent::SetMaterial(int ElementIndex, const std::string& Mate
     Materials[size_t(ElementIndex)] = Material;
 }
 
+const std::string& UStaticMeshComponent::GetMeshAsset() const {
+    return !resolvedFile_.empty() && resolvedName_ == StaticMesh ? resolvedFile_ : StaticMesh;
+}
+
+void UStaticMeshComponent::ResolveMeshAgainst(const std::string& folder) {
+    resolvedName_.clear();
+    resolvedFile_.clear();
+    const std::filesystem::path name(StaticMesh);
+    if (folder.empty() || !sp::world::isMeshFile(StaticMesh) || name.is_absolute())
+        return;
+    std::error_code error;
+    const std::filesystem::path candidate = (std::filesystem::path(folder) / name).lexically_normal();
+    if (std::filesystem::is_regular_file(candidate, error)) {
+        resolvedName_ = StaticMesh;
+        resolvedFile_ = candidate.string();
+    }
+}
+
 Eigen::AlignedBox3d UStaticMeshComponent::GetLocalBounds() const {
     if (sp::world::isMeshFile(StaticMesh)) {
-        const auto geometry = sp::world::findMeshGeometry(StaticMesh);
+        const auto geometry = sp::world::findMeshGeometry(GetMeshAsset());
         return geometry ? geometry->bounds : Eigen::AlignedBox3d{};
     }
     const BasicShape* shape = findBasicShape(StaticMesh);

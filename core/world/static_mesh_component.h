@@ -30,4 +30,16 @@ class UStaticMeshComponent : public UPrimitiveComponent {
 
     Eigen::AlignedBox3d GetLocalBounds() const override;
     ECollisionPrimitive GetMeshCollisionPrimitive() const override;
+
+    // The mesh to load for StaticMesh: the file it names relative to the folder of the scene file it was
+    // read from, when it is there (a scene's own meshes travel with it, as in glTF or USD), else StaticMesh
+    // itself (a built-in shape, or a file found through the asset search path, core/base/asset_path.h).
+    // Assigning StaticMesh any other value drops the scene's folder.
+    const std::string& GetMeshAsset() const;
+    // Called by the scene loader once StaticMesh was read from a scene file in `folder`.
+    void ResolveMeshAgainst(const std::string& folder);
+
+  private:
+    std::string resolvedName_; // the StaticMesh value resolvedFile_ was found for
+    std::string resolvedFile_;
 };

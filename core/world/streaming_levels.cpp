@@ -35,9 +35,9 @@ void UWorld::LoadStreamLevel(const std::string& name, const std::string& functio
         return;
     const std::string path = findLevel(levels_, name)->path;
     try {
-        std::vector<std::unique_ptr<AActor>> actors =
-            sp::world::stageLevel(*this, sp::world::readSceneFile(path, function),
-                                  function + ": streaming level '" + name + "' ('" + path + "')");
+        std::vector<std::unique_ptr<AActor>> actors = sp::world::stageLevel(
+            *this, sp::world::readSceneFile(path, function),
+            function + ": streaming level '" + name + "' ('" + path + "')", sp::world::sceneFolder(path));
         for (const auto& actor : actors)
             actor->SetStreamingLevelName(name);
         AddActors(std::move(actors));

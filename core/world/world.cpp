@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 
-#include "core/base/asset_path.h"
 #include "core/base/error.h"
 #include "core/base/regular_file.h"
 #include "core/reflect/registry.h"
@@ -118,10 +116,10 @@ void UWorld::AddActors(std::vector<std::unique_ptr<AActor>> actors) {
 
 void UWorld::load_scene(const std::string& path) {
     const std::string function = "UWorld.load_scene()";
-    // Its streaming levels are relative to the file the name resolved to (core/base/asset_path.h), which may
-    // be in an asset folder rather than the working directory.
+    // Its streaming levels and meshes are relative to the file the name resolved to (core/base/asset_path.h),
+    // which may be in an asset folder rather than the working directory.
     sp::world::loadScene(*this, sp::world::readSceneFile(path, function), function + ": scene '" + path + "'",
-                         std::filesystem::path(sp::findAsset(path)).parent_path().string());
+                         sp::world::sceneFolder(path));
 }
 
 void UWorld::save_scene(const std::string& path) const {

@@ -9,9 +9,11 @@ import shutil
 from collections.abc import Callable
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import spear
+from test_camera import spawn_camera
 
 ASSETS = Path(__file__).resolve().parents[2] / "assets"
 
@@ -98,3 +100,62 @@ def test_a_file_in_the_working_directory_comes_first(elsewhere: Path,
 def test_a_missing_asset_is_named(make_instance: Callable[..., spear.Instance]) -> None:
     with pytest.raises(spear.NotFoundError, match="no_such_room"):
         make_instance(scene="/Game/scenes/no_such_room")
+
+
+def _box_obj(half: tuple[float, float, float]) -> str:
+    """An OBJ box of the given half extents, centred on the origin."""
+    hx, hy, hz = half
+    corners = [(x, y, z) for x in (-hx, hx) for y in (-hy, hy) for z in (-hz, hz)]
+    faces = [(1, 2, 4, 3), (5, 7, 8, 6), (1, 5, 6, 2), (3, 4, 8, 7), (1, 3, 7, 5), (2, 6, 8, 4)]
+    return "".join(f"v {x} {y} {z}\n" for x, y, z in corners) + "".join(
+        f"f {a} {b} {c}\nf {a} {c} {d}\n" for a, b, c, d in faces
+    )
+
+
+def _mesh_scene(path: Path, mesh: str) -> None:
+    """A scene of one static mesh actor named Box showing `mesh`."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    component = {"name": "StaticMeshComponent", "class": "UStaticMeshComponent", "attach_parent": None,
+                 "properties": {"StaticMesh": mesh}}
+    actor = {"name": "Box", "class": "AStaticMeshActor", "components": [component]}
+    path.write_text(json.dumps({"format": "spear.scene", "version": 1, "actors": [actor]}))
+
+
+@pytest.mark.parametrize("levels", [False, True], ids=["scene", "streaming-level"])
+def test_meshes_are_relative_to_the_scene_file_that_names_them(
+    tmp_path: Path, elsewhere: Path, levels: bool, make_instance: Callable[..., spear.Instance]
+) -> None:
+    # A scene travels with its meshes: "meshes/box.obj" is the one beside the scene file (half extents
+    # 0.25, 0.5, 1), not a file of the same relative name in the working directory (a unit box), both for
+    # the engine's bounds and physics and for the renderer.
+    (elsewhere / "meshes").mkdir()
+    (elsewhere / "meshes" / "box.obj").write_text(_box_obj((0.5, 0.5, 0.5)))
+    bundle = tmp_path / "bundle"
+    (bundle / "meshes").mkdir(parents=True)
+    (bundle / "meshes" / "box.obj").write_text(_box_obj((0.25, 0.5, 1.0)))
+    _mesh_scene(bundle / "scene.json", "meshes/box.obj")
+    if levels:  # the level's file is in a folder of its own, and its mesh is relative to that folder
+        room = tmp_path / "room.json"
+        _first_actors(room, 0)
+        document = json.loads(room.read_text())
+        document["levels"] = [{"name": "Bundle", "path": "bundle/scene.json", "loaded": True}]
+        room.write_text(json.dumps(document))
+    instance = make_instance(scene=str(tmp_path / "room.json" if levels else bundle / "scene.json"))
+    game = instance.get_game()
+    with instance.begin_frame():
+        box = game.find_actor_by_name(name="Box")
+        assert isinstance(box, spear.AStaticMeshActor)
+        # What the scene says is kept as written, so that saving it keeps the bundle relocatable.
+        assert box.StaticMeshComponent.StaticMesh == "meshes/box.obj"
+        extent = box.GetActorBounds(bOnlyCollidingComponents=False).BoxExtent
+        camera = spawn_camera(game, [spear.ECameraModality.ObjectIds], 32, 32, 90.0)
+        camera.GetOwner().SetActorLocation(NewLocation=spear.FVector(X=-4.0))  # type: ignore[union-attr]
+    with instance.end_frame():
+        assert (extent.X, extent.Y, extent.Z) == pytest.approx((0.25, 0.5, 1.0))
+        ids = camera.read_pixels()["object_ids"]
+        box_id = camera.GetObjectId(Component=box.StaticMeshComponent)
+        # Its face 3.75 m away, 1 m wide and 2 m high, covers 1 / 7.5 and 2 / 7.5 of a 90 degree view of
+        # 32 pixels (the unit box would be as wide, and half as high).
+        rows, columns = np.nonzero(ids == box_id)
+        assert columns.max() - columns.min() + 1 == pytest.approx(4.3, abs=1)
+        assert rows.max() - rows.min() + 1 == pytest.approx(8.5, abs=1)
