@@ -1,0 +1,454 @@
+#include "core/pathtrace/path_tracer.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <thread>
+
+#include "core/base/error.h"
+#include "core/base/log.h"
+#include "core/pathtrace/bsdf.h"
+
+namespace sp::pathtrace {
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+// FNV-1a over the bytes of what an image depends on.
+struct Hasher {
+    std::uint64_t value = 1469598103934665603ull;
+    void bytes(const void* data, std::size_t size) {
+        const auto* p = static_cast<const unsigned char*>(data);
+        for (std::size_t i = 0; i < size; ++i)
+            value = (value ^ p[i]) * 1099511628211ull;
+    }
+    template <typename T> void add(const T& v) { bytes(&v, sizeof v); }
+    template <typename Derived> void matrix(const Eigen::MatrixBase<Derived>& m) {
+        for (Eigen::Index i = 0; i < m.size(); ++i)
+            add(m(i));
+    }
+};
+
+// SplitMix64: one stream per (pixel, sample), so that images do not depend on how rows meet threads.
+struct Random {
+    std::uint64_t state;
+    float next() {
+        std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        z ^= z >> 31;
+        return float(z >> 40) * (1.0f / 16777216.0f);
+    }
+};
+
+// One instance's triangles in world space, with what shading needs at a hit.
+struct Shape {
+    std::vector<Eigen::Vector3f> normals; // world
+    std::vector<Eigen::Vector2f> uvs;
+    std::vector<std::uint32_t> indices;
+    std::vector<std::uint32_t> firstTriangles; // of each submesh
+    std::vector<render::MaterialId> materials; // one per submesh
+};
+
+std::array<float, 256> srgbTable() {
+    std::array<float, 256> table{};
+    for (int i = 0; i < 256; ++i) {
+        const float c = float(i) / 255.0f;
+        table[std::size_t(i)] = c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+    }
+    return table;
+}
+
+// Bilinear, repeating texel lookup; colour textures decoded from sRGB.
+Eigen::Vector4f sampleTexture(const render::TextureImage& image, bool srgb, const Eigen::Vector2f& uv) {
+    static const std::array<float, 256> kSrgb = srgbTable();
+    const float x = uv.x() * float(image.width) - 0.5f, y = uv.y() * float(image.height) - 0.5f;
+    const float fx = std::floor(x), fy = std::floor(y);
+    const float tx = x - fx, ty = y - fy;
+    auto texel = [&](int i, int j) {
+        i = ((i % image.width) + image.width) % image.width;
+        j = ((j % image.height) + image.height) % image.height;
+        const std::uint8_t* p = &image.rgba[(std::size_t(j) * image.width + i) * 4];
+        Eigen::Vector4f v;
+        for (int c = 0; c < 3; ++c)
+            v[c] = srgb ? kSrgb[p[c]] : float(p[c]) / 255.0f;
+        v[3] = float(p[3]) / 255.0f;
+        return v;
+    };
+    const int i = int(fx), j = int(fy);
+    return (texel(i, j) * (1 - tx) + texel(i + 1, j) * tx) * (1 - ty) +
+           (texel(i, j + 1) * (1 - tx) + texel(i + 1, j + 1) * tx) * ty;
+}
+
+Eigen::Vector3f lightIrradiance(const render::Light& light, const Eigen::Vector3f& p, Eigen::Vector3f& l,
+                                float& distance) {
+    const Eigen::Vector3f radiance = light.color * light.intensity;
+    if (light.type == render::LightType::Directional) {
+        l = -light.direction.cast<float>().normalized();
+        distance = std::numeric_limits<float>::infinity();
+        return radiance;
+    }
+    const Eigen::Vector3f d = light.position.cast<float>() - p;
+    distance = d.norm();
+    l = d / std::max(distance, 1e-6f);
+    Eigen::Vector3f e = radiance / std::max(distance * distance, 1e-4f);
+    if (light.range > 0.0f) { // the rasteriser's window: (1 - (d / range)^4)^2
+        const float r = distance / light.range;
+        const float w = std::clamp(1.0f - r * r * r * r, 0.0f, 1.0f);
+        e *= w * w;
+    }
+    if (light.type == render::LightType::Spot) {
+        const float inner = std::cos(light.innerConeDeg * kPi / 180.0f);
+        const float outer = std::cos(light.outerConeDeg * kPi / 180.0f);
+        const float t = std::clamp(((-l).dot(light.direction.cast<float>().normalized()) - outer) /
+                                       std::max(inner - outer, 1e-4f),
+                                   0.0f, 1.0f);
+        e *= t * t;
+    }
+    return e;
+}
+
+} // namespace
+
+void Settings::validate(const char* function) const {
+    SP_CHECK(samplesPerPixel >= 1 && samplesPerPixel <= 65536, InvalidArgument, function,
+             ": samplesPerPixel ", samplesPerPixel, " is out of range [1, 65536]");
+    SP_CHECK(maxBounces >= 0 && maxBounces <= 64, InvalidArgument, function, ": maxBounces ", maxBounces,
+             " is out of range [0, 64]");
+}
+
+struct PathTracer::Impl {
+    RTCDevice device = nullptr;
+    RTCScene rtcScene = nullptr;
+    std::uint64_t geometrySignature = 0;
+    std::uint64_t builds = 0;
+    std::vector<Shape> shapes; // by geometry id
+
+    ~Impl() {
+        if (rtcScene)
+            rtcReleaseScene(rtcScene);
+        if (device)
+            rtcReleaseDevice(device);
+    }
+
+    static std::uint64_t geometryHash(const render::Scene& scene) {
+        Hasher h;
+        h.add(scene.uid());
+        scene.forEachInstance([&](render::InstanceId, const render::Instance& instance) {
+            if (!instance.visible)
+                return;
+            h.add(instance.mesh.index);
+            h.add(instance.mesh.generation);
+            h.add(scene.meshRevision(instance.mesh));
+            h.matrix(instance.transform.matrix());
+            for (render::MaterialId material : instance.materials) {
+                h.add(material.index);
+                h.add(material.generation);
+            }
+        });
+        return h.value;
+    }
+
+    void build(const render::Scene& scene) {
+        if (rtcScene)
+            rtcReleaseScene(rtcScene);
+        shapes.clear();
+        rtcScene = rtcNewScene(device);
+        scene.forEachInstance([&](render::InstanceId, const render::Instance& instance) {
+            if (!instance.visible)
+                return;
+            const render::MeshData& mesh = scene.mesh(instance.mesh);
+            if (mesh.indices.empty())
+                return;
+            const Eigen::Affine3f transform = instance.transform.cast<float>();
+            const Eigen::Matrix3f normalMatrix = transform.linear().inverse().transpose();
+            Shape shape;
+            shape.normals.reserve(mesh.normals.size());
+            for (const Eigen::Vector3f& n : mesh.normals)
+                shape.normals.push_back((normalMatrix * n).normalized());
+            shape.uvs = mesh.uvs;
+            shape.indices = mesh.indices;
+            for (const render::Submesh& sub : mesh.submeshes)
+                shape.firstTriangles.push_back(sub.firstIndex / 3);
+            shape.materials = instance.materials;
+
+            RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+            auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                                         RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                                         mesh.positions.size()));
+            for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+                const Eigen::Vector3f p = transform * mesh.positions[i];
+                std::memcpy(vertices + 3 * i, p.data(), 3 * sizeof(float));
+            }
+            auto* indices = static_cast<unsigned*>(
+                rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                        3 * sizeof(unsigned), mesh.indices.size() / 3));
+            std::memcpy(indices, mesh.indices.data(), mesh.indices.size() * sizeof(unsigned));
+            rtcCommitGeometry(geometry);
+            rtcAttachGeometryByID(rtcScene, geometry, unsigned(shapes.size()));
+            rtcReleaseGeometry(geometry);
+            shapes.push_back(std::move(shape));
+        });
+        rtcCommitScene(rtcScene);
+        ++builds;
+    }
+
+    // Everything an image depends on besides the geometry: materials, lights, sky, camera, bounces.
+    std::uint64_t imageHash(const render::Scene& scene, const render::Camera& camera,
+                            const Settings& settings) const {
+        Hasher h;
+        h.add(geometrySignature);
+        for (const Shape& shape : shapes)
+            for (render::MaterialId id : shape.materials) {
+                const render::Material& m = scene.material(id);
+                h.matrix(m.baseColor);
+                h.add(m.roughness);
+                h.add(m.metallic);
+                h.matrix(m.emissive);
+                for (const auto& texture : {m.baseColorTexture, m.roughnessMetallicTexture})
+                    h.add(texture ? texture->index + 1 : 0u);
+            }
+        scene.forEachLight([&](render::LightId, const render::Light& light) {
+            h.add(light.type);
+            h.matrix(light.color);
+            h.add(light.intensity);
+            h.matrix(light.position);
+            h.matrix(light.direction);
+            h.add(light.range);
+            h.add(light.innerConeDeg);
+            h.add(light.outerConeDeg);
+        });
+        h.matrix(scene.environment().ambient);
+        h.matrix(scene.environment().background);
+        h.matrix(camera.pose.matrix());
+        h.add(camera.params.width);
+        h.add(camera.params.height);
+        h.add(camera.params.hfovDeg);
+        h.add(camera.params.nearClip);
+        h.add(camera.params.farClip);
+        h.add(settings.maxBounces);
+        return h.value;
+    }
+
+    bool occluded(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, float distance) const {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        RTCRay ray{};
+        ray.org_x = origin.x(), ray.org_y = origin.y(), ray.org_z = origin.z();
+        ray.dir_x = direction.x(), ray.dir_y = direction.y(), ray.dir_z = direction.z();
+        ray.tnear = 0.0f;
+        ray.tfar = distance;
+        ray.mask = ~0u;
+        rtcOccluded1(rtcScene, &context, &ray);
+        return ray.tfar < 0.0f;
+    }
+
+    // The radiance arriving at `origin` from `direction` (a primary ray, clipped to [tnear, tfar]).
+    Eigen::Vector3f trace(const render::Scene& scene, Eigen::Vector3f origin, Eigen::Vector3f direction,
+                          float tnear, float tfar, const Settings& settings, Random& random) const {
+        const render::Environment& environment = scene.environment();
+        const bool sky = environment.ambient.maxCoeff() > 0.0f;
+        Eigen::Vector3f radiance = Eigen::Vector3f::Zero(), throughput = Eigen::Vector3f::Ones();
+        float bsdfPdf = 0.0f, skyPdf = 0.0f; // of the last bounce's direction
+        for (int depth = 0;; ++depth) {
+            RTCIntersectContext context;
+            rtcInitIntersectContext(&context);
+            RTCRayHit hit{};
+            hit.ray.org_x = origin.x(), hit.ray.org_y = origin.y(), hit.ray.org_z = origin.z();
+            hit.ray.dir_x = direction.x(), hit.ray.dir_y = direction.y(), hit.ray.dir_z = direction.z();
+            hit.ray.tnear = tnear;
+            hit.ray.tfar = tfar;
+            hit.ray.mask = ~0u;
+            hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(rtcScene, &context, &hit);
+            if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+                if (depth == 0) {
+                    radiance += throughput.cwiseProduct(environment.background);
+                } else if (sky) { // the BSDF's share of the sky (multiple importance sampling)
+                    const float weight = bsdfPdf * bsdfPdf / (bsdfPdf * bsdfPdf + skyPdf * skyPdf);
+                    radiance += throughput.cwiseProduct(environment.ambient) * weight;
+                }
+                break;
+            }
+
+            const Shape& shape = shapes[hit.hit.geomID];
+            const std::uint32_t triangle = hit.hit.primID;
+            const std::uint32_t i0 = shape.indices[3 * triangle], i1 = shape.indices[3 * triangle + 1],
+                                i2 = shape.indices[3 * triangle + 2];
+            const float u = hit.hit.u, v = hit.hit.v, w = 1.0f - u - v;
+            const Eigen::Vector3f p = origin + direction * hit.ray.tfar;
+            const Eigen::Vector3f toViewer = -direction;
+            // Two-sided, as the rasteriser: the geometric normal faces the viewer, the shading normal
+            // follows.
+            Eigen::Vector3f ng = Eigen::Vector3f(hit.hit.Ng_x, hit.hit.Ng_y, hit.hit.Ng_z).normalized();
+            if (ng.dot(toViewer) < 0.0f)
+                ng = -ng;
+            Eigen::Vector3f n =
+                (shape.normals[i0] * w + shape.normals[i1] * u + shape.normals[i2] * v).normalized();
+            if (!n.allFinite())
+                n = ng;
+            if (n.dot(ng) < 0.0f)
+                n = -n;
+            const Eigen::Vector2f uv = shape.uvs[i0] * w + shape.uvs[i1] * u + shape.uvs[i2] * v;
+
+            const auto slot = std::size_t(
+                std::upper_bound(shape.firstTriangles.begin(), shape.firstTriangles.end(), triangle) -
+                shape.firstTriangles.begin() - 1);
+            const render::Material& material = scene.material(shape.materials[slot]);
+            SurfacePoint s{n, material.baseColor.head<3>(), material.roughness, material.metallic};
+            if (material.baseColorTexture)
+                s.base =
+                    s.base.cwiseProduct(sampleTexture(scene.texture(*material.baseColorTexture),
+                                                      scene.textureEncoding(*material.baseColorTexture) ==
+                                                          render::TextureEncoding::Srgb,
+                                                      uv)
+                                            .head<3>());
+            if (material.roughnessMetallicTexture) {
+                const Eigen::Vector4f rm =
+                    sampleTexture(scene.texture(*material.roughnessMetallicTexture), false, uv);
+                s.roughness *= rm.y();
+                s.metallic *= rm.z();
+            }
+            radiance += throughput.cwiseProduct(material.emissive);
+
+            // Shadow and bounce rays leave from just above the surface, on the viewer's side.
+            const Eigen::Vector3f above = p + ng * (1e-4f * std::max(1.0f, p.cwiseAbs().maxCoeff()));
+            scene.forEachLight([&](render::LightId, const render::Light& light) {
+                Eigen::Vector3f l;
+                float distance = 0.0f;
+                const Eigen::Vector3f e = lightIrradiance(light, p, l, distance);
+                const float nol = n.dot(l);
+                if (nol <= 0.0f || ng.dot(l) <= 0.0f || e.maxCoeff() <= 0.0f)
+                    return;
+                if (light.castShadows && occluded(above, l, distance))
+                    return;
+                radiance += throughput.cwiseProduct(evaluate(s, toViewer, l)).cwiseProduct(e) * nol;
+            });
+            const bool last = depth >= settings.maxBounces;
+            if (sky) {
+                const Eigen::Vector3f l = cosineDirection(n, random.next(), random.next());
+                const float nol = n.dot(l);
+                if (nol > 0.0f && ng.dot(l) > 0.0f &&
+                    !occluded(above, l, std::numeric_limits<float>::infinity())) {
+                    const float pdfSky = nol / kPi, pdfBsdf = pdf(s, toViewer, l);
+                    // At the last vertex no BSDF ray follows, so the sky sample takes the whole estimate.
+                    const float weight =
+                        last ? 1.0f : pdfSky * pdfSky / (pdfSky * pdfSky + pdfBsdf * pdfBsdf);
+                    radiance +=
+                        throughput.cwiseProduct(evaluate(s, toViewer, l)).cwiseProduct(environment.ambient) *
+                        (nol / pdfSky * weight);
+                }
+            }
+            if (last)
+                break;
+
+            Eigen::Vector3f l;
+            if (!sample(s, toViewer, random.next(), random.next(), random.next(), l) || ng.dot(l) <= 0.0f)
+                break;
+            bsdfPdf = pdf(s, toViewer, l);
+            if (!(bsdfPdf > 0.0f))
+                break;
+            const float nol = n.dot(l);
+            skyPdf = nol / kPi;
+            throughput = throughput.cwiseProduct(evaluate(s, toViewer, l)) * (nol / bsdfPdf);
+            if (depth >= 2) { // Russian roulette, keeping the estimate unbiased
+                const float survive = std::clamp(throughput.maxCoeff(), 0.05f, 1.0f);
+                if (random.next() >= survive)
+                    break;
+                throughput /= survive;
+            }
+            if (!throughput.allFinite() || throughput.maxCoeff() <= 0.0f)
+                break;
+            origin = above;
+            direction = l;
+            tnear = 0.0f;
+            tfar = std::numeric_limits<float>::infinity();
+        }
+        return radiance;
+    }
+};
+
+PathTracer::PathTracer() : impl_(std::make_unique<Impl>()) {
+    impl_->device = rtcNewDevice(nullptr);
+    SP_CHECK(impl_->device != nullptr, InvalidState, "PathTracer: Embree could not start (error ",
+             int(rtcGetDeviceError(nullptr)), ")");
+    rtcSetDeviceErrorFunction(
+        impl_->device,
+        [](void*, RTCError code, const char* message) {
+            SP_LOG("pathtrace: Embree error ", int(code), ": ", message ? message : "");
+        },
+        nullptr);
+}
+
+PathTracer::~PathTracer() = default;
+
+std::uint64_t PathTracer::builds() const {
+    return impl_->builds;
+}
+
+void PathTracer::render(const render::Scene& scene, const render::Camera& camera, const Settings& settings,
+                        Accumulation& image) {
+    camera.params.validate("PathTracer::render");
+    settings.validate("PathTracer::render");
+    Impl& impl = *impl_;
+    if (const std::uint64_t geometry = Impl::geometryHash(scene);
+        !impl.rtcScene || geometry != impl.geometrySignature) {
+        impl.build(scene);
+        impl.geometrySignature = geometry;
+    }
+    const std::uint64_t signature = impl.imageHash(scene, camera, settings);
+    const int width = camera.params.width, height = camera.params.height;
+    if (image.signature != signature || image.width != width || image.height != height || image.sum.empty()) {
+        image.width = width;
+        image.height = height;
+        image.sum.assign(std::size_t(width) * height * 3, 0.0);
+        image.samples = 0;
+        image.signature = signature;
+    }
+
+    const double focal = camera.focalLengthPixels();
+    const Eigen::Matrix3f rotation = camera.pose.linear().cast<float>();
+    const Eigen::Vector3f eye = camera.pose.translation().cast<float>();
+    const std::uint64_t firstSample = image.samples;
+    std::atomic<int> nextRow{0};
+    auto work = [&] {
+        for (int y = nextRow++; y < height; y = nextRow++) {
+            for (int x = 0; x < width; ++x) {
+                double* sum = &image.sum[(std::size_t(y) * width + x) * 3];
+                for (int k = 0; k < settings.samplesPerPixel; ++k) {
+                    const std::uint64_t index = firstSample + std::uint64_t(k);
+                    Random random{signature ^ ((std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x)) *
+                                                   0x9E3779B97F4A7C15ull +
+                                               index * 0xD1B54A32D192ED03ull)};
+                    // Camera body frame: +X forward, +Y left, +Z up; pixel (u right, v down).
+                    const float u = float(x) + random.next(), v = float(y) + random.next();
+                    const Eigen::Vector3f local(float(focal), -(u - 0.5f * float(width)),
+                                                -(v - 0.5f * float(height)));
+                    const Eigen::Vector3f direction = (rotation * local).normalized();
+                    const float axial = local.x() / local.norm(); // cosine to the optical axis
+                    const Eigen::Vector3f radiance =
+                        impl.trace(scene, eye, direction, float(camera.params.nearClip) / axial,
+                                   float(camera.params.farClip) / axial, settings, random);
+                    for (int c = 0; c < 3; ++c)
+                        if (std::isfinite(radiance[c]))
+                            sum[c] += radiance[c];
+                }
+            }
+        }
+    };
+    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < threads; ++t)
+        pool.emplace_back(work);
+    work();
+    for (std::thread& thread : pool)
+        thread.join();
+    image.samples += std::uint64_t(settings.samplesPerPixel);
+}
+
+} // namespace sp::pathtrace

@@ -1,0 +1,65 @@
+#pragma once
+// sp::pathtrace: the reference renderer behind the camera sensor (ECameraRenderer.PathTraced), a CPU path
+// tracer on Embree over the rasteriser's own scene (core/render/scene.h): the same meshes, materials
+// (base colour and its texture, roughness/metallic and their texture, emissive), lights and sky.
+//
+// Unbiased multi-bounce global illumination: at every vertex, next-event estimation of each analytic light
+// (directional, point, spot: delta lights, one shadow ray each) and of the uniform sky (a cosine-weighted
+// direction, combined with the BSDF-sampled ray by multiple importance sampling, power heuristic); the
+// surface model is the rasteriser's (bsdf.h). Russian roulette after three bounces. Images accumulate
+// across calls while the scene, the camera and the settings stay the same, so a still view converges.
+// Primary rays that leave the scene show the environment's background, as in the rasteriser; rays
+// that leave it after a bounce bring back its ambient (sky) radiance. Normal maps are not used yet.
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/render/camera.h"
+#include "core/render/scene.h"
+
+namespace sp::pathtrace {
+
+struct Settings {
+    int samplesPerPixel = 4; // samples added per render() call, in [1, 65536]
+    int maxBounces = 4;      // indirect bounces after the first hit, in [0, 64] (0: direct light only)
+    // Throws sp::InvalidArgument naming the bad field.
+    void validate(const char* function) const;
+};
+
+// The running estimate of one camera's image.
+struct Accumulation {
+    int width = 0;
+    int height = 0;
+    std::vector<double> sum;     // RGB radiance sums, (height, width, 3), row 0 = top
+    std::uint64_t samples = 0;   // per pixel
+    std::uint64_t signature = 0; // of the scene, camera and settings the samples were taken of
+    // The mean radiance of channel c of pixel (x, y).
+    float mean(int x, int y, int c) const {
+        return samples == 0 ? 0.0f : float(sum[(std::size_t(y) * width + x) * 3 + c] / double(samples));
+    }
+};
+
+class PathTracer {
+  public:
+    // Starts an Embree device; throws sp::InvalidState when it cannot.
+    PathTracer();
+    ~PathTracer();
+    PathTracer(const PathTracer&) = delete;
+    PathTracer& operator=(const PathTracer&) = delete;
+
+    // Adds settings.samplesPerPixel samples per pixel of `camera`'s view of `scene` to `image`, after
+    // restarting it when the scene, the camera or the settings changed since its last samples. Runs on
+    // every hardware thread.
+    void render(const render::Scene& scene, const render::Camera& camera, const Settings& settings,
+                Accumulation& image);
+
+    // Geometry (re)builds so far: one whenever an instance, a mesh or a transform changed.
+    std::uint64_t builds() const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace sp::pathtrace

@@ -1,0 +1,188 @@
+// The path tracer against closed forms and the rasteriser: a furnace (a convex diffuse object in a uniform
+// sky reflects base x sky), direct light of a Lambertian plane equal to the rasteriser's, error falling
+// as 1 / sqrt(samples), and accumulation that restarts exactly when something changes.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/base/error.h"
+#include "core/pathtrace/path_tracer.h"
+#include "gl_fixture.h"
+
+namespace sp::pathtrace {
+namespace {
+
+using render::Camera;
+using render::Light;
+using render::LightType;
+using render::Material;
+using render::Scene;
+
+class PathTracerGlTest : public render::test::GlTest {
+  protected:
+    static Material material(Eigen::Vector3f base, float roughness, float metallic) {
+        Material m;
+        m.baseColor << base, 1.0f;
+        m.roughness = roughness;
+        m.metallic = metallic;
+        return m;
+    }
+    // A sphere of radius 0.5 at the origin, seen from 3 m along +X with a narrow view that it fills.
+    static render::MaterialId addSphere(Scene& scene, const Material& m) {
+        const render::MaterialId id = scene.addMaterial(m);
+        scene.addInstance({scene.addMesh(render::primitives::sphere(0.5f, 64, 32)), {id}, {1}});
+        return id;
+    }
+    static Camera sphereCamera() { return lookingAlong({-3.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, 16, 16, 8.0); }
+    // The mean over the image of channel 0.
+    static double mean(const Accumulation& image) {
+        double sum = 0.0;
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x)
+                sum += image.mean(x, y, 0);
+        return sum / (image.width * image.height);
+    }
+    static double rmsDifference(const Accumulation& a, const Accumulation& b) {
+        double sum = 0.0;
+        for (int y = 0; y < a.height; ++y)
+            for (int x = 0; x < a.width; ++x)
+                for (int c = 0; c < 3; ++c)
+                    sum += std::pow(double(a.mean(x, y, c)) - b.mean(x, y, c), 2);
+        return std::sqrt(sum / (a.width * a.height * 3));
+    }
+    PathTracer tracer_;
+};
+
+TEST_F(PathTracerGlTest, AConvexDiffuseObjectInAUniformSkyReflectsBaseTimesSky) {
+    // Furnace: every pixel of the sphere sees base x sky from its diffuse lobe, plus the specular lobe's
+    // share, which is the same for any dielectric base (F0 = 0.04): the difference of two bases is exact.
+    Accumulation white, grey;
+    for (auto [base, image] : {std::pair{1.0f, &white}, std::pair{0.5f, &grey}}) {
+        Scene scene;
+        addSphere(scene, material({base, base, base}, 0.6f, 0.0f));
+        scene.setEnvironment({{1.0f, 1.0f, 1.0f}, {1.0f, 1.0f, 1.0f}});
+        tracer_.render(scene, sphereCamera(), {256, 3}, *image);
+    }
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x)
+            EXPECT_NEAR(white.mean(x, y, 0) - grey.mean(x, y, 0), 0.5, 0.05) << x << ", " << y;
+    EXPECT_NEAR(mean(white) - mean(grey), 0.5, 0.01);
+
+    // A smooth white metal in a white sky reflects the sky: radiance 1 (the GGX lobe's white furnace).
+    Scene scene;
+    addSphere(scene, material({1.0f, 1.0f, 1.0f}, 0.05f, 1.0f));
+    scene.setEnvironment({{1.0f, 1.0f, 1.0f}, {1.0f, 1.0f, 1.0f}});
+    Accumulation metal;
+    tracer_.render(scene, sphereCamera(), {64, 3}, metal);
+    EXPECT_NEAR(metal.mean(8, 8, 0), 1.0, 0.03);
+    EXPECT_LE(mean(metal), 1.01);
+}
+
+TEST_F(PathTracerGlTest, DirectLightOfALambertianPlaneMatchesTheRasteriser) {
+    // A rough plane under a shadowless sun, no sky: both renderers evaluate the same surface model with
+    // the same light, so their hdr_color agree (the path tracer's is a mean over jittered pixel areas).
+    Scene scene;
+    const render::MaterialId id = scene.addMaterial(material({0.5f, 0.4f, 0.3f}, 0.9f, 0.0f));
+    scene.addInstance({scene.addMesh(render::primitives::plane(40.0f, 40.0f)), {id}, {1}});
+    Light sun;
+    sun.direction = Eigen::Vector3d(0.3, 0.2, -1.0).normalized();
+    sun.intensity = 3.0f;
+    sun.castShadows = false;
+    scene.addLight(sun);
+    scene.setEnvironment({{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}});
+    Camera camera = lookingAlong({-2.0, 0.0, 1.5}, {1.0, 0.0, -0.6}, 24, 16, 50.0);
+    camera.params.shadows = false;
+
+    render::RenderTarget target(renderer(), {render::Modality::HdrColor}, 0);
+    render::Frame frame;
+    target.render(scene, camera, frame);
+    Accumulation traced;
+    tracer_.render(scene, camera, {64, 0}, traced);
+    const render::ImageBuffer& raster = frame.get(render::Modality::HdrColor);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 24; ++x)
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(traced.mean(x, y, c), raster.at(x, y, c), 0.02 * raster.at(x, y, c) + 2e-3)
+                    << x << ", " << y << ", " << c;
+}
+
+TEST_F(PathTracerGlTest, ErrorFallsAsOneOverTheSquareRootOfSamples) {
+    Scene scene;
+    addSphere(scene, material({0.8f, 0.5f, 0.3f}, 0.4f, 0.0f));
+    const render::MaterialId floor = scene.addMaterial(material({0.6f, 0.6f, 0.6f}, 0.8f, 0.0f));
+    render::Instance ground{scene.addMesh(render::primitives::plane(10.0f, 10.0f)), {floor}, {2}};
+    ground.transform.translation() = Eigen::Vector3d(0.0, 0.0, -0.5);
+    scene.addInstance(ground);
+    Light sun;
+    sun.direction = Eigen::Vector3d(1.0, 0.5, -1.0).normalized();
+    scene.addLight(sun);
+    scene.setEnvironment({{0.4f, 0.5f, 0.6f}, {0.0f, 0.0f, 0.0f}});
+    Camera camera = lookingAlong({-3.0, -1.0, 1.0}, {3.0, 1.0, -1.0}, 12, 12, 40.0);
+    Camera other = camera; // the same view with other random numbers: an independent reference
+    other.params.farClip = 999.0;
+
+    Accumulation reference, few, many;
+    tracer_.render(scene, other, {2048, 4}, reference);
+    tracer_.render(scene, camera, {16, 4}, few);
+    tracer_.render(scene, camera, {128, 4}, many);
+    tracer_.render(scene, camera, {128, 4}, many); // accumulates: 256 samples in all
+    ASSERT_EQ(many.samples, 256u);
+    const double ratio = rmsDifference(few, reference) / rmsDifference(many, reference);
+    EXPECT_GT(ratio, 2.8); // sqrt(256 / 16) = 4, less the reference's own noise
+    EXPECT_LT(ratio, 5.5);
+}
+
+TEST_F(PathTracerGlTest, AccumulationRestartsWhenTheSceneOrCameraChanges) {
+    Scene scene;
+    const render::MaterialId id = addSphere(scene, material({0.8f, 0.8f, 0.8f}, 0.5f, 0.0f));
+    scene.addLight(Light{});
+    const Camera camera = sphereCamera();
+    Accumulation image;
+    tracer_.render(scene, camera, {2, 1}, image);
+    tracer_.render(scene, camera, {3, 1}, image);
+    EXPECT_EQ(image.samples, 5u); // a still view accumulates
+    const std::uint64_t builds = tracer_.builds();
+
+    Material red = scene.material(id);
+    red.baseColor << 0.8f, 0.1f, 0.1f, 1.0f;
+    scene.setMaterial(id, red);
+    tracer_.render(scene, camera, {2, 1}, image);
+    EXPECT_EQ(image.samples, 2u);        // restarted
+    EXPECT_EQ(tracer_.builds(), builds); // without rebuilding the geometry
+    EXPECT_LT(image.mean(8, 8, 1), image.mean(8, 8, 0));
+
+    Camera moved = camera;
+    moved.pose.translation().y() += 0.01;
+    tracer_.render(scene, moved, {2, 1}, image);
+    EXPECT_EQ(image.samples, 2u);
+    tracer_.render(scene, moved, {2, 2}, image); // more bounces: another image
+    EXPECT_EQ(image.samples, 2u);
+
+    scene.forEachInstance([&](render::InstanceId instance, const render::Instance&) {
+        scene.setTransform(instance, Eigen::Affine3d(Eigen::Translation3d(0.0, 0.0, 0.1)));
+    });
+    tracer_.render(scene, moved, {2, 2}, image);
+    EXPECT_EQ(image.samples, 2u);
+    EXPECT_EQ(tracer_.builds(), builds + 1);
+}
+
+TEST_F(PathTracerGlTest, BadSettingsAreRefusedNamingTheField) {
+    Scene scene;
+    Accumulation image;
+    EXPECT_THROW(
+        {
+            try {
+                tracer_.render(scene, sphereCamera(), {0, 1}, image);
+            } catch (const sp::InvalidArgument& error) {
+                EXPECT_NE(std::string(error.what()).find("samplesPerPixel 0"), std::string::npos)
+                    << error.what();
+                throw;
+            }
+        },
+        sp::InvalidArgument);
+    EXPECT_THROW(tracer_.render(scene, sphereCamera(), {1, 65}, image), sp::InvalidArgument);
+}
+
+} // namespace
+} // namespace sp::pathtrace
