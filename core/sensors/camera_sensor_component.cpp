@@ -67,6 +67,17 @@ void UCameraSensorComponent::SetLatency(int32_t NewLatency) {
     Latency = NewLatency;
 }
 
+void UCameraSensorComponent::SetSamplesPerPixel(int32_t NewSamplesPerPixel) {
+    sp::checkSetting(NewSamplesPerPixel >= 1 && NewSamplesPerPixel <= 65536, "UCameraSensorComponent",
+                     "SamplesPerPixel", "in [1, 65536]", NewSamplesPerPixel);
+    SamplesPerPixel = NewSamplesPerPixel;
+}
+void UCameraSensorComponent::SetMaxBounces(int32_t NewMaxBounces) {
+    sp::checkSetting(NewMaxBounces >= 0 && NewMaxBounces <= 64, "UCameraSensorComponent", "MaxBounces",
+                     "in [0, 64]", NewMaxBounces);
+    MaxBounces = NewMaxBounces;
+}
+
 FCameraPixels UCameraSensorComponent::read_pixels() {
     return subsystemOf(*this, "read_pixels").readPixels(*this);
 }

@@ -61,6 +61,16 @@ enum class ECameraToneCurve : uint8_t {
     Linear = 2,
 };
 
+/// Which renderer makes a camera's final_color and hdr_color.
+SPENUM()
+enum class ECameraRenderer : uint8_t {
+    /// The real-time rasteriser (OpenGL): every modality, every frame.
+    Raster = 0,
+    /// The reference path tracer (Embree, on the CPU): global illumination, accumulated over frames while
+    /// nothing in view changes; the other modalities still come from the rasteriser.
+    PathTraced = 1,
+};
+
 /// The images of one frame, keyed by modality name; only the modalities the camera renders are present.
 SPSTRUCT(TypedDict, Partial)
 struct FCameraPixels {
@@ -235,6 +245,18 @@ class UCameraSensorComponent : public USceneComponent {
     SPPROPERTY(Setter = SetLatency)
     int32_t Latency = 0;
 
+    /// The renderer of final_color and hdr_color (geometric and material modalities are rasterised).
+    SPPROPERTY()
+    ECameraRenderer Renderer = ECameraRenderer::Raster;
+
+    /// Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating.
+    SPPROPERTY(Setter = SetSamplesPerPixel)
+    int32_t SamplesPerPixel = 4;
+
+    /// Path tracing: indirect bounces after the first hit, in [0, 64] (0: direct light and sky only).
+    SPPROPERTY(Setter = SetMaxBounces)
+    int32_t MaxBounces = 4;
+
     // Settings are checked when they are set, on either transport, so that a bad value is refused with
     // the property's name and range instead of failing every later frame.
 
@@ -262,6 +284,18 @@ class UCameraSensorComponent : public USceneComponent {
     /// Sets Latency: 0, 1 or 2 frames.
     SPFUNCTION()
     void SetLatency(int32_t NewLatency);
+    /// Sets SamplesPerPixel, in [1, 65536].
+    SPFUNCTION()
+    void SetSamplesPerPixel(int32_t NewSamplesPerPixel);
+    /// Sets MaxBounces, in [0, 64].
+    SPFUNCTION()
+    void SetMaxBounces(int32_t NewMaxBounces);
+
+    /// Returns the samples per pixel behind the path-traced images of the frame last read (they restart
+    /// from SamplesPerPixel when the scene, the camera or its settings change), or 0 when the last read
+    /// frame was not path traced.
+    SPFUNCTION()
+    int64_t GetAccumulatedSamples() const { return accumulatedSamples_; }
 
     /// Returns the images of the frame due (see the class notes on latency); an empty dict while priming.
     SPFUNCTION()
@@ -313,7 +347,9 @@ class UCameraSensorComponent : public USceneComponent {
 
     // Set by the RenderSubsystem when read_pixels() reads a frame.
     void setPixelsFrame(int64_t frame) { pixelsFrame_ = frame; }
+    void setAccumulatedSamples(int64_t samples) { accumulatedSamples_ = samples; }
 
   private:
     int64_t pixelsFrame_ = -1;
+    int64_t accumulatedSamples_ = 0;
 };

@@ -1,12 +1,15 @@
 #include "core/sensors/render_subsystem.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "core/base/error.h"
+#include "core/pathtrace/path_tracer.h"
 #include "core/render/camera.h"
 #include "core/render/gl_context.h"
 #include "core/render/render_target.h"
 #include "core/render/renderer.h"
+#include "core/render/tone.h"
 #include "core/sensors/render_scene.h"
 #include "core/world/world.h"
 
@@ -113,12 +116,20 @@ sp::render::OutputView allocate(FCameraPixels& pixels, sp::render::Modality moda
 } // namespace
 
 // What was submitted, so that the due frame can be read straight into arrays of the right size.
+// A path-traced camera's colour images of one frame, made when it was submitted (RenderSubsystem::trace).
+struct TracedImages {
+    std::vector<std::byte> hdrColor;   // float16 (H, W, 4)
+    std::vector<std::byte> finalColor; // uint8 (H, W, 4)
+    std::uint64_t samples = 0;         // per pixel, accumulated
+};
+
 struct RenderSubsystem::PendingFrame {
     std::uint64_t submit = 0;
     std::int64_t worldFrame = 0;
     int width = 0;
     int height = 0;
     sp::render::ModalitySet modalities;
+    std::shared_ptr<const TracedImages> traced; // replaces the rasterised colour when set
 };
 
 struct RenderSubsystem::CameraState {
@@ -130,6 +141,7 @@ struct RenderSubsystem::CameraState {
     bool readSinceSubmit = false;
     std::optional<PendingFrame> lastRead;
     std::int64_t pixelsFrame = -1;
+    sp::pathtrace::Accumulation accumulation; // the path tracer's running image
 };
 
 RenderSubsystem::RenderSubsystem(UWorld& world) : world_(world) {}
@@ -207,10 +219,47 @@ void RenderSubsystem::submit(UCameraSensorComponent& camera) {
         state.target->setModalities(modalities);
     }
     const std::uint64_t number = state.target->submit(scene_->scene(), renderCamera);
+    std::shared_ptr<const TracedImages> traced;
+    if (camera.Renderer == ECameraRenderer::PathTraced &&
+        (modalities.contains(sp::render::Modality::FinalColor) ||
+         modalities.contains(sp::render::Modality::HdrColor)))
+        traced = trace(camera, renderCamera, state);
     // The world's frame counter advances after its subsystems tick, so this frame is count + 1.
-    state.pending.push_back({number, world_.get_frame_count() + 1, camera.Width, camera.Height, modalities});
+    state.pending.push_back(
+        {number, world_.get_frame_count() + 1, camera.Width, camera.Height, modalities, std::move(traced)});
     while (state.pending.size() > std::size_t(camera.Latency) + 1)
         state.pending.pop_front();
+}
+
+std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponent& camera,
+                                                           const sp::render::Camera& renderCamera,
+                                                           CameraState& state) {
+    if (!tracer_)
+        tracer_ = std::make_unique<sp::pathtrace::PathTracer>();
+    tracer_->render(scene_->scene(), renderCamera, {camera.SamplesPerPixel, camera.MaxBounces},
+                    state.accumulation);
+    const sp::pathtrace::Accumulation& image = state.accumulation;
+    auto traced = std::make_shared<TracedImages>();
+    traced->samples = image.samples;
+    traced->hdrColor.resize(
+        sp::render::modalityByteSize(sp::render::Modality::HdrColor, image.width, image.height));
+    traced->finalColor.resize(
+        sp::render::modalityByteSize(sp::render::Modality::FinalColor, image.width, image.height));
+    auto* hdr = reinterpret_cast<std::uint16_t*>(traced->hdrColor.data());
+    auto* final = reinterpret_cast<std::uint8_t*>(traced->finalColor.data());
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const std::size_t pixel = (std::size_t(y) * image.width + x) * 4;
+            for (int c = 0; c < 3; ++c) {
+                const float radiance = image.mean(x, y, c);
+                hdr[pixel + c] = sp::render::floatToHalf(radiance);
+                final[pixel + c] = std::uint8_t(
+                    std::lround(255.0f * sp::render::toneMapChannel(radiance, renderCamera.params)));
+            }
+            hdr[pixel + 3] = sp::render::floatToHalf(1.0f);
+            final[pixel + 3] = 255;
+        }
+    return traced;
 }
 
 const RenderSubsystem::PendingFrame* RenderSubsystem::dueFrame(UCameraSensorComponent& camera) const {
@@ -264,6 +313,18 @@ bool RenderSubsystem::readInto(UCameraSensorComponent& camera,
     } else {
         read = state.target->readAgain(views).has_value();
     }
+    // A path-traced frame's colour images replace the rasterised ones.
+    const TracedImages* traced = read && state.lastRead ? state.lastRead->traced.get() : nullptr;
+    if (traced)
+        for (const sp::render::OutputView& view : views) {
+            const std::vector<std::byte>* image =
+                view.modality == sp::render::Modality::HdrColor     ? &traced->hdrColor
+                : view.modality == sp::render::Modality::FinalColor ? &traced->finalColor
+                                                                    : nullptr;
+            if (image)
+                std::memcpy(view.data, image->data(), std::min(view.size, image->size()));
+        }
+    camera.setAccumulatedSamples(traced ? std::int64_t(traced->samples) : 0);
     camera.setPixelsFrame(read ? state.pixelsFrame : -1);
     return read;
 }

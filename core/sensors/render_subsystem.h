@@ -27,15 +27,21 @@ class UWorld;
 class UStaticMeshComponent;
 
 namespace sp::render {
+struct Camera;
 class GlContext;
 class Renderer;
 class RenderTarget;
 class Scene;
 } // namespace sp::render
 
+namespace sp::pathtrace {
+class PathTracer;
+} // namespace sp::pathtrace
+
 namespace sp::sensors {
 
 class RenderScene;
+struct TracedImages;
 
 class RenderSubsystem : public sp::world::WorldSubsystem {
   public:
@@ -86,6 +92,9 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     const PendingFrame* dueFrame(UCameraSensorComponent& camera) const;
     CameraState& cameraState(UCameraSensorComponent& camera);
     void submit(UCameraSensorComponent& camera);
+    // Adds the camera's path-traced samples of this frame and returns its colour images.
+    std::shared_ptr<const TracedImages> trace(UCameraSensorComponent& camera,
+                                              const sp::render::Camera& renderCamera, CameraState& state);
 
     UWorld& world_;
     // Destruction order matters: targets and scene GPU data before the renderer, the renderer before
@@ -93,6 +102,7 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     std::unique_ptr<sp::render::GlContext> context_;
     std::unique_ptr<sp::render::Renderer> renderer_;
     std::unique_ptr<RenderScene> scene_;
+    std::unique_ptr<sp::pathtrace::PathTracer> tracer_; // started by the first path-traced camera
     std::map<sp::reflect::ObjectHandle, std::unique_ptr<CameraState>> cameras_;
 };
 

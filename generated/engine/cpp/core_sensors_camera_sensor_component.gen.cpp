@@ -61,6 +61,18 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraModality
     return info;
 }
 
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraRenderer>() {
+    static const sp::reflect::EnumInfo info{
+        "ECameraRenderer",
+        "Which renderer makes a camera's final_color and hdr_color.",
+        {
+            {"Raster", 0},
+            {"PathTraced", 1},
+        },
+    };
+    return info;
+}
+
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraToneCurve>() {
     static const sp::reflect::EnumInfo info{
         "ECameraToneCurve",
@@ -770,6 +782,48 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
                 sp::reflect::notifyPropertyChanged(object, "Latency");
             },
         });
+        t.properties.push_back({
+            "Renderer",
+            "ECameraRenderer",
+            "The renderer of final_color and hdr_color (geometric and material modalities are rasterised).",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Renderer);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->Renderer = sp::reflect::decode<ECameraRenderer>(value, "UCameraSensorComponent.Renderer");
+                sp::reflect::notifyPropertyChanged(object, "Renderer");
+            },
+        });
+        t.properties.push_back({
+            "SamplesPerPixel",
+            "int",
+            "Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SamplesPerPixel);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->SetSamplesPerPixel(sp::reflect::decode<int32_t>(value, "UCameraSensorComponent.SamplesPerPixel"));
+                sp::reflect::notifyPropertyChanged(object, "SamplesPerPixel");
+            },
+        });
+        t.properties.push_back({
+            "MaxBounces",
+            "int",
+            "Path tracing: indirect bounces after the first hit, in [0, 64] (0: direct light and sky only).",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->MaxBounces);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->SetMaxBounces(sp::reflect::decode<int32_t>(value, "UCameraSensorComponent.MaxBounces"));
+                sp::reflect::notifyPropertyChanged(object, "MaxBounces");
+            },
+        });
         t.functions.push_back({
             "SetWidth",
             "Sets Width in pixels, in [1, 16384].",
@@ -904,6 +958,55 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
                 int32_t NewLatency = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "NewLatency", kContext), "UCameraSensorComponent.SetLatency(): argument 'NewLatency'");
                 sp::reflect::selfCast<Self>(self)->SetLatency(NewLatency);
                 return {};
+            },
+        });
+        t.functions.push_back({
+            "SetSamplesPerPixel",
+            "Sets SamplesPerPixel, in [1, 65536].",
+            "None",
+            {
+                {"NewSamplesPerPixel", "int", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetSamplesPerPixel()";
+                sp::reflect::checkArguments(args, {"NewSamplesPerPixel"}, kContext);
+                int32_t NewSamplesPerPixel = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "NewSamplesPerPixel", kContext), "UCameraSensorComponent.SetSamplesPerPixel(): argument 'NewSamplesPerPixel'");
+                sp::reflect::selfCast<Self>(self)->SetSamplesPerPixel(NewSamplesPerPixel);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetMaxBounces",
+            "Sets MaxBounces, in [0, 64].",
+            "None",
+            {
+                {"NewMaxBounces", "int", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetMaxBounces()";
+                sp::reflect::checkArguments(args, {"NewMaxBounces"}, kContext);
+                int32_t NewMaxBounces = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "NewMaxBounces", kContext), "UCameraSensorComponent.SetMaxBounces(): argument 'NewMaxBounces'");
+                sp::reflect::selfCast<Self>(self)->SetMaxBounces(NewMaxBounces);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "GetAccumulatedSamples",
+            "Returns the samples per pixel behind the path-traced images of the frame last read (they restart\nfrom SamplesPerPixel when the scene, the camera or its settings change), or 0 when the last read\nframe was not path traced.",
+            "int",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.GetAccumulatedSamples()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->GetAccumulatedSamples();
+                return sp::reflect::encode(result);
             },
         });
         t.functions.push_back({

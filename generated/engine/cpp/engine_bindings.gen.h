@@ -209,6 +209,21 @@ template <> struct type_caster<ECameraModality> {
     }
 };
 
+template <> struct type_caster<ECameraRenderer> {
+    PYBIND11_TYPE_CASTER(ECameraRenderer, const_name("ECameraRenderer"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ECameraRenderer");
+        if (!isinstance(src, cls))
+            return false;
+        value = static_cast<ECameraRenderer>(src.cast<int64_t>());
+        return true;
+    }
+    static handle cast(ECameraRenderer v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ECameraRenderer");
+        return cls(static_cast<int64_t>(v)).release();
+    }
+};
+
 template <> struct type_caster<ECameraToneCurve> {
     PYBIND11_TYPE_CASTER(ECameraToneCurve, const_name("ECameraToneCurve"));
     bool load(handle src, bool) {

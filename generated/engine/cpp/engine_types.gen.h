@@ -14,6 +14,7 @@
 #include "core/world/spline_component.h"
 
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraModality>();
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraRenderer>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraToneCurve>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECollisionPrimitive>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EComponentMobility>();

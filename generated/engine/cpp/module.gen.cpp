@@ -2607,6 +2607,33 @@ void spear_bind_engine(py::module_& m) {
                 object->PostPropertyChanged("Latency");
             },
             "Frames between rendering and reading: 0 (same frame), 1 or 2 (double or triple buffered).");
+        cls.def_property(
+            "Renderer",
+            [](const Ref<Self>& self) { return Bridge<ECameraRenderer>::out(self.get<Self>("UCameraSensorComponent.Renderer")->Renderer); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.Renderer");
+                object->Renderer = Bridge<ECameraRenderer>::in(value, "UCameraSensorComponent.Renderer");
+                object->PostPropertyChanged("Renderer");
+            },
+            "The renderer of final_color and hdr_color (geometric and material modalities are rasterised).");
+        cls.def_property(
+            "SamplesPerPixel",
+            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UCameraSensorComponent.SamplesPerPixel")->SamplesPerPixel); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.SamplesPerPixel");
+                object->SetSamplesPerPixel(Bridge<int32_t>::in(value, "UCameraSensorComponent.SamplesPerPixel"));
+                object->PostPropertyChanged("SamplesPerPixel");
+            },
+            "Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating.");
+        cls.def_property(
+            "MaxBounces",
+            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UCameraSensorComponent.MaxBounces")->MaxBounces); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.MaxBounces");
+                object->SetMaxBounces(Bridge<int32_t>::in(value, "UCameraSensorComponent.MaxBounces"));
+                object->PostPropertyChanged("MaxBounces");
+            },
+            "Path tracing: indirect bounces after the first hit, in [0, 64] (0: direct light and sky only).");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetWidth",
@@ -2704,6 +2731,40 @@ void spear_bind_engine(py::module_& m) {
             },
             py::arg("NewLatency") = sp::pybind::missingArgument(),
             "SetLatency(self, *, NewLatency: int) -> None\n\nSets Latency: 0, 1 or 2 frames.");
+        cls.def(
+            "SetSamplesPerPixel",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewSamplesPerPixel, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetSamplesPerPixel()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewSamplesPerPixel", !isMissing(NewSamplesPerPixel), true}});
+                Self* object = self.get<Self>(kContext);
+                auto NewSamplesPerPixelValue = Bridge<int32_t>::in(NewSamplesPerPixel, "UCameraSensorComponent.SetSamplesPerPixel(): argument 'NewSamplesPerPixel'");
+                object->SetSamplesPerPixel(NewSamplesPerPixelValue);
+                return py::none();
+            },
+            py::arg("NewSamplesPerPixel") = sp::pybind::missingArgument(),
+            "SetSamplesPerPixel(self, *, NewSamplesPerPixel: int) -> None\n\nSets SamplesPerPixel, in [1, 65536].");
+        cls.def(
+            "SetMaxBounces",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewMaxBounces, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetMaxBounces()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewMaxBounces", !isMissing(NewMaxBounces), true}});
+                Self* object = self.get<Self>(kContext);
+                auto NewMaxBouncesValue = Bridge<int32_t>::in(NewMaxBounces, "UCameraSensorComponent.SetMaxBounces(): argument 'NewMaxBounces'");
+                object->SetMaxBounces(NewMaxBouncesValue);
+                return py::none();
+            },
+            py::arg("NewMaxBounces") = sp::pybind::missingArgument(),
+            "SetMaxBounces(self, *, NewMaxBounces: int) -> None\n\nSets MaxBounces, in [0, 64].");
+        cls.def(
+            "GetAccumulatedSamples",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.GetAccumulatedSamples()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {});
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetAccumulatedSamples();
+                return Bridge<int64_t>::out(result);
+            },
+            "GetAccumulatedSamples(self) -> int\n\nReturns the samples per pixel behind the path-traced images of the frame last read (they restart\nfrom SamplesPerPixel when the scene, the camera or its settings change), or 0 when the last read\nframe was not path traced.");
         cls.def(
             "read_pixels",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {

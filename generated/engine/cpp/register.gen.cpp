@@ -38,6 +38,7 @@
 extern "C" void spear_register_engine_types() {
     auto& registry = sp::reflect::Registry::get();
     registry.add(sp::reflect::StaticEnum<ECameraModality>());
+    registry.add(sp::reflect::StaticEnum<ECameraRenderer>());
     registry.add(sp::reflect::StaticEnum<ECameraToneCurve>());
     registry.add(sp::reflect::StaticEnum<ECollisionPrimitive>());
     registry.add(sp::reflect::StaticEnum<EComponentMobility>());
@@ -181,7 +182,8 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<EComponentMobility>());
     registry.remove(sp::reflect::StaticEnum<ECollisionPrimitive>());
     registry.remove(sp::reflect::StaticEnum<ECameraToneCurve>());
+    registry.remove(sp::reflect::StaticEnum<ECameraRenderer>());
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "52762266f714774a"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "b8c06afc4a4c3f25"; }

@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "52762266f714774a"
+API_HASH = "b8c06afc4a4c3f25"

@@ -48,6 +48,7 @@ __all__ = [
     "BP_Axes",
     "BP_Crate",
     "ECameraModality",
+    "ECameraRenderer",
     "ECameraToneCurve",
     "ECollisionPrimitive",
     "EComponentMobility",
@@ -111,6 +112,13 @@ class ECameraModality(enum.IntEnum):
     DiffuseIllumination = 11
     DiffuseOnly = 12
     SpecularResidual = 13
+
+
+class ECameraRenderer(enum.IntEnum):
+    """Which renderer makes a camera's final_color and hdr_color."""
+
+    Raster = 0
+    PathTraced = 1
 
 
 class ECameraToneCurve(enum.IntEnum):

@@ -43,6 +43,7 @@ __all__ = [
     "BP_Axes",
     "BP_Crate",
     "ECameraModality",
+    "ECameraRenderer",
     "ECameraToneCurve",
     "ECollisionPrimitive",
     "EComponentMobility",
@@ -126,6 +127,17 @@ class ECameraModality(enum.IntEnum):
     """"diffuse_only": base_color * (1 - metallic) * diffuse_illumination, float16 (H, W, 3)."""
     SpecularResidual = 13
     """"specular_residual": hdr_color.rgb - diffuse_only (specular, emission, sky), float16 (H, W, 3)."""
+
+
+class ECameraRenderer(enum.IntEnum):
+    """Which renderer makes a camera's final_color and hdr_color."""
+
+    Raster = 0
+    """The real-time rasteriser (OpenGL): every modality, every frame."""
+    PathTraced = 1
+    """The reference path tracer (Embree, on the CPU): global illumination, accumulated over frames while
+    nothing in view changes; the other modalities still come from the rasteriser.
+    """
 
 
 class ECameraToneCurve(enum.IntEnum):
@@ -2626,6 +2638,12 @@ class UCameraSensorComponentAsync(USceneComponentAsync):
 
     def SetLatency(self, *, NewLatency: int) -> Future[None]: ...
 
+    def SetSamplesPerPixel(self, *, NewSamplesPerPixel: int) -> Future[None]: ...
+
+    def SetMaxBounces(self, *, NewMaxBounces: int) -> Future[None]: ...
+
+    def GetAccumulatedSamples(self) -> Future[int]: ...
+
     def read_pixels(self) -> Future[FCameraPixels]: ...
 
     def read_pixels_stacked(self, *, Cameras: list[UCameraSensorComponent]) -> Future[FCameraPixels]: ...
@@ -2665,6 +2683,12 @@ class UCameraSensorComponentSend(USceneComponentSend):
     def SetShadowResolution(self, *, NewShadowResolution: int) -> None: ...
 
     def SetLatency(self, *, NewLatency: int) -> None: ...
+
+    def SetSamplesPerPixel(self, *, NewSamplesPerPixel: int) -> None: ...
+
+    def SetMaxBounces(self, *, NewMaxBounces: int) -> None: ...
+
+    def GetAccumulatedSamples(self) -> None: ...
 
     def read_pixels(self) -> None: ...
 
@@ -2777,6 +2801,27 @@ class UCameraSensorComponent(USceneComponent):
     @Latency.setter
     def Latency(self, value: int) -> None: ...
 
+    @property
+    def Renderer(self) -> ECameraRenderer:
+        """The renderer of final_color and hdr_color (geometric and material modalities are rasterised)."""
+
+    @Renderer.setter
+    def Renderer(self, value: ECameraRenderer) -> None: ...
+
+    @property
+    def SamplesPerPixel(self) -> int:
+        """Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating."""
+
+    @SamplesPerPixel.setter
+    def SamplesPerPixel(self, value: int) -> None: ...
+
+    @property
+    def MaxBounces(self) -> int:
+        """Path tracing: indirect bounces after the first hit, in [0, 64] (0: direct light and sky only)."""
+
+    @MaxBounces.setter
+    def MaxBounces(self, value: int) -> None: ...
+
     def SetWidth(self, *, NewWidth: int) -> None:
         """Sets Width in pixels, in [1, 16384]."""
 
@@ -2800,6 +2845,18 @@ class UCameraSensorComponent(USceneComponent):
 
     def SetLatency(self, *, NewLatency: int) -> None:
         """Sets Latency: 0, 1 or 2 frames."""
+
+    def SetSamplesPerPixel(self, *, NewSamplesPerPixel: int) -> None:
+        """Sets SamplesPerPixel, in [1, 65536]."""
+
+    def SetMaxBounces(self, *, NewMaxBounces: int) -> None:
+        """Sets MaxBounces, in [0, 64]."""
+
+    def GetAccumulatedSamples(self) -> int:
+        """Returns the samples per pixel behind the path-traced images of the frame last read (they restart
+        from SamplesPerPixel when the scene, the camera or its settings change), or 0 when the last read
+        frame was not path traced.
+        """
 
     def read_pixels(self) -> FCameraPixels:
         """Returns the images of the frame due (see the class notes on latency); an empty dict while priming."""

@@ -18,7 +18,7 @@ from spear._rpc_proxy import ObjectProxy as _ObjectProxy
 from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
-from .api import ECameraModality, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESplineCoordinateSpace, FCameraPixels, FHitResult, FLinearColor, FMaterialDesc, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
+from .api import ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESplineCoordinateSpace, FCameraPixels, FHitResult, FLinearColor, FMaterialDesc, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
 
@@ -1255,6 +1255,30 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
     def Latency(self, value: int) -> None:
         self._sp_set("UCameraSensorComponent", "Latency", value)
 
+    @property
+    def Renderer(self) -> ECameraRenderer:
+        return cast("ECameraRenderer", self._sp_get("UCameraSensorComponent", "Renderer", "ECameraRenderer"))
+
+    @Renderer.setter
+    def Renderer(self, value: ECameraRenderer) -> None:
+        self._sp_set("UCameraSensorComponent", "Renderer", value)
+
+    @property
+    def SamplesPerPixel(self) -> int:
+        return cast("int", self._sp_get("UCameraSensorComponent", "SamplesPerPixel", "int"))
+
+    @SamplesPerPixel.setter
+    def SamplesPerPixel(self, value: int) -> None:
+        self._sp_set("UCameraSensorComponent", "SamplesPerPixel", value)
+
+    @property
+    def MaxBounces(self) -> int:
+        return cast("int", self._sp_get("UCameraSensorComponent", "MaxBounces", "int"))
+
+    @MaxBounces.setter
+    def MaxBounces(self, value: int) -> None:
+        self._sp_set("UCameraSensorComponent", "MaxBounces", value)
+
     def SetWidth(self, *, NewWidth: int) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetWidth", {"NewWidth": NewWidth}, "None"))  # a Future when queued by call_async
 
@@ -1278,6 +1302,15 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     def SetLatency(self, *, NewLatency: int) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetLatency", {"NewLatency": NewLatency}, "None"))  # a Future when queued by call_async
+
+    def SetSamplesPerPixel(self, *, NewSamplesPerPixel: int) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetSamplesPerPixel", {"NewSamplesPerPixel": NewSamplesPerPixel}, "None"))  # a Future when queued by call_async
+
+    def SetMaxBounces(self, *, NewMaxBounces: int) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetMaxBounces", {"NewMaxBounces": NewMaxBounces}, "None"))  # a Future when queued by call_async
+
+    def GetAccumulatedSamples(self) -> int:
+        return cast("int", self._sp_call("UCameraSensorComponent", "GetAccumulatedSamples", {}, "int"))
 
     def read_pixels(self) -> FCameraPixels:
         return cast("FCameraPixels", self._sp_call("UCameraSensorComponent", "read_pixels", {}, "FCameraPixels"))

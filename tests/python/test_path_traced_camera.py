@@ -1,0 +1,115 @@
+"""The path-traced camera (UCameraSensorComponent.Renderer = PathTraced): global illumination from the
+reference path tracer (core/pathtrace) behind the same sensor, both transports. Its colour accumulates
+while nothing in view changes; the geometric modalities stay the rasteriser's."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+import pytest
+
+import spear
+from test_camera import spawn_camera
+
+M = spear.ECameraModality
+
+
+def _sphere_in_sky(game: spear.UWorld, base: float) -> spear.AStaticMeshActor:
+    """A unit sphere of a grey dielectric `base` at the origin, in a white sky that is also the background."""
+    library = game.spawn_actor(uclass=spear.AMaterialLibrary, name="Library")
+    library.SetMaterial(Name="Grey", Material=spear.FMaterialDesc(
+        BaseColor=spear.FLinearColor(R=base, G=base, B=base, A=1.0), Roughness=0.6))
+    sky = game.spawn_actor(uclass=spear.ASkyLight, name="Sky")
+    sky.SkyLightComponent.Intensity = 1.0
+    sky.SkyLightComponent.BackgroundColor = spear.FLinearColor(R=1.0, G=1.0, B=1.0, A=1.0)
+    sphere = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Sphere")
+    sphere.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Sphere")
+    sphere.StaticMeshComponent.SetMaterial(ElementIndex=0, Material="Grey")
+    return sphere
+
+
+def _traced_camera(game: spear.UWorld, modalities: list[spear.ECameraModality], samples: int
+                   ) -> spear.UCameraSensorComponent:
+    """A path-traced 16 x 16 camera 3 m from the origin along -X, its 8 degree view filled by the sphere."""
+    camera = spawn_camera(game, modalities, 16, 16, 8.0)
+    camera.Renderer = spear.ECameraRenderer.PathTraced
+    camera.SamplesPerPixel = samples
+    camera.MaxBounces = 2
+    camera.GetOwner().SetActorLocation(NewLocation=spear.FVector(X=-3.0))  # type: ignore[union-attr]
+    return camera
+
+
+def test_a_diffuse_sphere_in_a_white_sky_reflects_its_base_colour(
+    make_instance: Callable[..., spear.Instance]
+) -> None:
+    # Furnace: a convex dielectric in a uniform sky of radiance 1 shows base x 1 from its diffuse lobe plus
+    # a specular share that is the same for any base (F0 = 0.04), so two bases differ by their difference.
+    means = []
+    for base in (1.0, 0.5):
+        instance = make_instance()
+        game = instance.get_game()
+        with instance.begin_frame():
+            _sphere_in_sky(game, base)
+            camera = _traced_camera(game, [M.HdrColor], 128)
+        with instance.end_frame():
+            hdr = camera.read_pixels()["hdr_color"]
+            assert camera.GetAccumulatedSamples() == 128
+        assert hdr.dtype == np.float16 and hdr.shape == (16, 16, 4)
+        means.append(hdr[..., :3].astype(np.float64).mean())
+    assert means[0] - means[1] == pytest.approx(0.5, abs=0.02)
+
+
+def test_a_still_view_accumulates_and_a_change_restarts(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        _sphere_in_sky(game, 0.8)
+        camera = _traced_camera(game, [M.FinalColor, M.HdrColor], 2)
+    with instance.end_frame():
+        pass
+    samples = []
+    for frame in range(4):
+        with instance.begin_frame():
+            if frame == 2:  # the camera moves: its image starts again
+                camera.GetOwner().SetActorLocation(NewLocation=spear.FVector(X=-3.0, Y=0.01))  # type: ignore[union-attr]
+        with instance.end_frame():
+            pixels = camera.read_pixels()
+            samples.append(camera.GetAccumulatedSamples())
+    assert samples == [4, 6, 2, 4]  # the spawning frame rendered the first 2
+    # final_color is hdr_color through the camera's tone curve (ACES, exposure 1) and sRGB.
+    x = np.clip(pixels["hdr_color"][..., :3].astype(np.float64), 0.0, None)
+    aces = np.clip(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0)
+    srgb = np.where(aces < 0.0031308, aces * 12.92, 1.055 * aces ** (1 / 2.4) - 0.055)
+    assert np.abs(pixels["final_color"][..., :3] - srgb * 255).max() <= 1.5  # float16 rounding of hdr_color
+    assert (pixels["final_color"][..., 3] == 255).all()
+
+
+def test_geometric_modalities_are_the_rasterisers(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        _sphere_in_sky(game, 0.8)
+        raster = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Raster",
+                                  location=spear.FVector(X=-3.0)).CameraSensor
+        raster.Width, raster.Height, raster.FOV = 16, 16, 30.0
+        raster.Modalities = [M.Depth, M.ObjectIds, M.FinalColor]
+        traced = _traced_camera(game, [M.Depth, M.ObjectIds, M.FinalColor], 1)
+        traced.FOV = 30.0
+    with instance.end_frame():
+        a, b = raster.read_pixels(), traced.read_pixels()
+        assert raster.GetAccumulatedSamples() == 0 and traced.GetAccumulatedSamples() == 1
+    np.testing.assert_array_equal(a["depth"], b["depth"])
+    np.testing.assert_array_equal(a["object_ids"], b["object_ids"])
+
+
+@pytest.mark.parametrize(("name", "value", "words"), [
+    ("SamplesPerPixel", 0, "SamplesPerPixel must be in [1, 65536], got 0"),
+    ("MaxBounces", 65, "MaxBounces must be in [0, 64], got 65"),
+])
+def test_bad_path_tracing_settings_are_refused(instance: spear.Instance, name: str, value: int, words: str) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        camera = spawn_camera(game, [M.FinalColor])
+        with pytest.raises(spear.InvalidArgumentError, match=words.replace("[", r"\[").replace("]", r"\]")):
+            setattr(camera, name, value)
+    with instance.end_frame():
+        pass
