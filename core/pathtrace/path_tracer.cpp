@@ -213,16 +213,22 @@ struct PathTracer::Impl {
                 for (const auto& texture : {m.baseColorTexture, m.roughnessMetallicTexture})
                     h.add(texture ? texture->index + 1 : 0u);
             }
+        // A world adds its lights again every frame, in no fixed order: the lights count as a set.
+        std::uint64_t lights = 0;
         scene.forEachLight([&](render::LightId, const render::Light& light) {
-            h.add(light.type);
-            h.matrix(light.color);
-            h.add(light.intensity);
-            h.matrix(light.position);
-            h.matrix(light.direction);
-            h.add(light.range);
-            h.add(light.innerConeDeg);
-            h.add(light.outerConeDeg);
+            Hasher l;
+            l.add(light.type);
+            l.matrix(light.color);
+            l.add(light.intensity);
+            l.matrix(light.position);
+            l.matrix(light.direction);
+            l.add(light.range);
+            l.add(light.innerConeDeg);
+            l.add(light.outerConeDeg);
+            l.add(light.castShadows);
+            lights += l.value;
         });
+        h.add(lights);
         h.matrix(scene.environment().ambient);
         h.matrix(scene.environment().background);
         h.matrix(camera.pose.matrix());
@@ -401,7 +407,8 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
         impl.build(scene);
         impl.geometrySignature = geometry;
     }
-    const std::uint64_t signature = impl.imageHash(scene, camera, settings);
+    const std::uint64_t seed = impl.imageHash(scene, camera, settings);
+    const std::uint64_t signature = seed ^ (impl.geometrySignature * 0x9E3779B97F4A7C15ull);
     const int width = camera.params.width, height = camera.params.height;
     if (image.signature != signature || image.width != width || image.height != height || image.sum.empty()) {
         image.width = width;
@@ -422,7 +429,7 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
                 double* sum = &image.sum[(std::size_t(y) * width + x) * 3];
                 for (int k = 0; k < settings.samplesPerPixel; ++k) {
                     const std::uint64_t index = firstSample + std::uint64_t(k);
-                    Random random{signature ^ ((std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x)) *
+                    Random random{seed ^ ((std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x)) *
                                                    0x9E3779B97F4A7C15ull +
                                                index * 0xD1B54A32D192ED03ull)};
                     // Camera body frame: +X forward, +Y left, +Z up; pixel (u right, v down).

@@ -197,3 +197,18 @@ def test_vector_env_steps_the_environments_and_writes_their_grid(servers: list[s
             tile = sheet[r * 98:r * 98 + 96, c * 98:c * 98 + 96].reshape(-1, 3).astype(int)
             assert np.any((tile[:, 0] > tile[:, 1] + 60)), f"no red puck in tile {r},{c}"
             assert np.any((tile[:, 1] > tile[:, 0] + 30)), f"no green goal in tile {r},{c}"
+
+
+@pytest.mark.parametrize("transport", TRANSPORTS)
+def test_raster_vs_path_traced_writes_both_renderings_side_by_side(transport: str, tmp_path: Path) -> None:
+    out = tmp_path / "both.png"
+    result = run_example("raster_vs_path_traced.py", "--width", "64", "--height", "48", "--samples", "8",
+                         "--per-frame", "4", "--out", str(out), *TRANSPORTS[transport])
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "froze Ball, Box for the still view path tracing needs" in result.stdout
+    assert "path traced: 4/8 samples per pixel" in result.stderr  # progress as samples accumulate
+    assert "path traced: 8/8 samples per pixel" in result.stderr
+    image = np.asarray(Image.open(out))
+    assert image.shape == (48 + 22, 128, 3)
+    raster, traced = image[22:, :64].astype(float), image[22:, 64:].astype(float)
+    assert raster.std() > 10 and traced.std() > 10  # both show the room, not a flat colour

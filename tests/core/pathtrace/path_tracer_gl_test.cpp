@@ -108,8 +108,9 @@ TEST_F(PathTracerGlTest, DirectLightOfALambertianPlaneMatchesTheRasteriser) {
 }
 
 TEST_F(PathTracerGlTest, ErrorFallsAsOneOverTheSquareRootOfSamples) {
+    // Rough surfaces, so that the error is the estimator's spread rather than a few rare bright paths.
     Scene scene;
-    addSphere(scene, material({0.8f, 0.5f, 0.3f}, 0.4f, 0.0f));
+    addSphere(scene, material({0.8f, 0.5f, 0.3f}, 0.9f, 0.0f));
     const render::MaterialId floor = scene.addMaterial(material({0.6f, 0.6f, 0.6f}, 0.8f, 0.0f));
     render::Instance ground{scene.addMesh(render::primitives::plane(10.0f, 10.0f)), {floor}, {2}};
     ground.transform.translation() = Eigen::Vector3d(0.0, 0.0, -0.5);
@@ -118,19 +119,19 @@ TEST_F(PathTracerGlTest, ErrorFallsAsOneOverTheSquareRootOfSamples) {
     sun.direction = Eigen::Vector3d(1.0, 0.5, -1.0).normalized();
     scene.addLight(sun);
     scene.setEnvironment({{0.4f, 0.5f, 0.6f}, {0.0f, 0.0f, 0.0f}});
-    Camera camera = lookingAlong({-3.0, -1.0, 1.0}, {3.0, 1.0, -1.0}, 12, 12, 40.0);
+    Camera camera = lookingAlong({-3.0, -1.0, 1.0}, {3.0, 1.0, -1.0}, 16, 16, 40.0);
     Camera other = camera; // the same view with other random numbers: an independent reference
     other.params.farClip = 999.0;
 
     Accumulation reference, few, many;
-    tracer_.render(scene, other, {2048, 4}, reference);
+    tracer_.render(scene, other, {4096, 4}, reference);
     tracer_.render(scene, camera, {16, 4}, few);
     tracer_.render(scene, camera, {128, 4}, many);
     tracer_.render(scene, camera, {128, 4}, many); // accumulates: 256 samples in all
     ASSERT_EQ(many.samples, 256u);
     const double ratio = rmsDifference(few, reference) / rmsDifference(many, reference);
-    EXPECT_GT(ratio, 2.8); // sqrt(256 / 16) = 4, less the reference's own noise
-    EXPECT_LT(ratio, 5.5);
+    EXPECT_GT(ratio, 3.0); // sqrt(256 / 16) = 4, less the reference's own noise
+    EXPECT_LT(ratio, 5.0);
 }
 
 TEST_F(PathTracerGlTest, AccumulationRestartsWhenTheSceneOrCameraChanges) {
@@ -142,6 +143,26 @@ TEST_F(PathTracerGlTest, AccumulationRestartsWhenTheSceneOrCameraChanges) {
     tracer_.render(scene, camera, {2, 1}, image);
     tracer_.render(scene, camera, {3, 1}, image);
     EXPECT_EQ(image.samples, 5u); // a still view accumulates
+    // Lights added again in another order (as a world does every frame) are the same lights.
+    Light lamp;
+    lamp.type = LightType::Point;
+    lamp.position = {-2.0, 1.0, 1.0};
+    const render::LightId lampId = scene.addLight(lamp);
+    tracer_.render(scene, camera, {1, 1}, image);
+    EXPECT_EQ(image.samples, 1u); // a new light: another image
+    std::vector<Light> lights;
+    std::vector<render::LightId> ids;
+    scene.forEachLight([&](render::LightId id, const Light& light) {
+        ids.push_back(id);
+        lights.push_back(light);
+    });
+    for (render::LightId id : ids)
+        scene.removeLight(id);
+    for (auto it = lights.rbegin(); it != lights.rend(); ++it)
+        scene.addLight(*it);
+    tracer_.render(scene, camera, {1, 1}, image);
+    EXPECT_EQ(image.samples, 2u);
+    (void)lampId;
     const std::uint64_t builds = tracer_.builds();
 
     Material red = scene.material(id);
