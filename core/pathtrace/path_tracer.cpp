@@ -127,6 +127,7 @@ struct PathTracer::Impl {
     RTCScene rtcScene = nullptr;
     std::uint64_t geometrySignature = 0;
     std::uint64_t builds = 0;
+    std::uint64_t lastRays = 0;
     std::vector<Shape> shapes; // by geometry id
 
     ~Impl() {
@@ -241,7 +242,9 @@ struct PathTracer::Impl {
         return h.value;
     }
 
-    bool occluded(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, float distance) const {
+    bool occluded(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, float distance,
+                  std::uint64_t& rays) const {
+        ++rays;
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         RTCRay ray{};
@@ -256,7 +259,8 @@ struct PathTracer::Impl {
 
     // The radiance arriving at `origin` from `direction` (a primary ray, clipped to [tnear, tfar]).
     Eigen::Vector3f trace(const render::Scene& scene, Eigen::Vector3f origin, Eigen::Vector3f direction,
-                          float tnear, float tfar, const Settings& settings, Random& random) const {
+                          float tnear, float tfar, const Settings& settings, Random& random,
+                          std::uint64_t& rays) const {
         const render::Environment& environment = scene.environment();
         const bool sky = environment.ambient.maxCoeff() > 0.0f;
         Eigen::Vector3f radiance = Eigen::Vector3f::Zero(), throughput = Eigen::Vector3f::Ones();
@@ -272,6 +276,7 @@ struct PathTracer::Impl {
             hit.ray.mask = ~0u;
             hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
             rtcIntersect1(rtcScene, &context, &hit);
+            ++rays;
             if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
                 if (depth == 0) {
                     radiance += throughput.cwiseProduct(environment.background);
@@ -331,7 +336,7 @@ struct PathTracer::Impl {
                 const float nol = n.dot(l);
                 if (nol <= 0.0f || ng.dot(l) <= 0.0f || e.maxCoeff() <= 0.0f)
                     return;
-                if (light.castShadows && occluded(above, l, distance))
+                if (light.castShadows && occluded(above, l, distance, rays))
                     return;
                 radiance += throughput.cwiseProduct(evaluate(s, toViewer, l)).cwiseProduct(e) * nol;
             });
@@ -340,7 +345,7 @@ struct PathTracer::Impl {
                 const Eigen::Vector3f l = cosineDirection(n, random.next(), random.next());
                 const float nol = n.dot(l);
                 if (nol > 0.0f && ng.dot(l) > 0.0f &&
-                    !occluded(above, l, std::numeric_limits<float>::infinity())) {
+                    !occluded(above, l, std::numeric_limits<float>::infinity(), rays)) {
                     const float pdfSky = nol / kPi, pdfBsdf = pdf(s, toViewer, l);
                     // At the last vertex no BSDF ray follows, so the sky sample takes the whole estimate.
                     const float weight =
@@ -423,15 +428,17 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
     const Eigen::Vector3f eye = camera.pose.translation().cast<float>();
     const std::uint64_t firstSample = image.samples;
     std::atomic<int> nextRow{0};
+    std::atomic<std::uint64_t> rays{0};
     auto work = [&] {
+        std::uint64_t traced = 0;
         for (int y = nextRow++; y < height; y = nextRow++) {
             for (int x = 0; x < width; ++x) {
                 double* sum = &image.sum[(std::size_t(y) * width + x) * 3];
                 for (int k = 0; k < settings.samplesPerPixel; ++k) {
                     const std::uint64_t index = firstSample + std::uint64_t(k);
                     Random random{seed ^ ((std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x)) *
-                                                   0x9E3779B97F4A7C15ull +
-                                               index * 0xD1B54A32D192ED03ull)};
+                                              0x9E3779B97F4A7C15ull +
+                                          index * 0xD1B54A32D192ED03ull)};
                     // Camera body frame: +X forward, +Y left, +Z up; pixel (u right, v down).
                     const float u = float(x) + random.next(), v = float(y) + random.next();
                     const Eigen::Vector3f local(float(focal), -(u - 0.5f * float(width)),
@@ -440,13 +447,14 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
                     const float axial = local.x() / local.norm(); // cosine to the optical axis
                     const Eigen::Vector3f radiance =
                         impl.trace(scene, eye, direction, float(camera.params.nearClip) / axial,
-                                   float(camera.params.farClip) / axial, settings, random);
+                                   float(camera.params.farClip) / axial, settings, random, traced);
                     for (int c = 0; c < 3; ++c)
                         if (std::isfinite(radiance[c]))
                             sum[c] += radiance[c];
                 }
             }
         }
+        rays += traced;
     };
     const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     std::vector<std::thread> pool;
@@ -456,6 +464,11 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
     for (std::thread& thread : pool)
         thread.join();
     image.samples += std::uint64_t(settings.samplesPerPixel);
+    impl.lastRays = rays;
+}
+
+std::uint64_t PathTracer::lastRays() const {
+    return impl_->lastRays;
 }
 
 } // namespace sp::pathtrace

@@ -56,6 +56,8 @@ class PathTracer {
 
     // Geometry (re)builds so far: one whenever an instance, a mesh or a transform changed.
     std::uint64_t builds() const;
+    // Rays the last render() traced: closest hits and shadow (occlusion) rays.
+    std::uint64_t lastRays() const;
 
   private:
     struct Impl;
