@@ -26,13 +26,11 @@ float dGgx(float noh, float a) {
     return a2 / (kPi * d * d);
 }
 
-// The probability of drawing from the specular lobe: its share of the albedo estimate.
+// The probability of drawing from the specular lobe: its share of the albedo estimate, within [0.1, 0.9].
 float specularProbability(const SurfacePoint& s) {
     const float diffuse = luminance(s.base) * (1.0f - s.metallic);
     const float specular = luminance(specularColor(s));
-    if (diffuse <= 0.0f)
-        return 1.0f;
-    return std::clamp(specular / (specular + diffuse), 0.1f, 0.9f);
+    return std::clamp(specular / std::max(specular + diffuse, 1e-6f), 0.1f, 0.9f);
 }
 
 } // namespace
@@ -65,7 +63,11 @@ Eigen::Vector3f evaluate(const SurfacePoint& s, const Eigen::Vector3f& v, const 
     const Eigen::Vector3f f0 = specularColor(s);
     const Eigen::Vector3f fresnel = f0 + (Eigen::Vector3f::Ones() - f0) * m5;
     const Eigen::Vector3f specular = fresnel * (dGgx(noh, alpha(s)) * g / (4.0f * nol * nov));
-    return s.base * ((1.0f - s.metallic) / kPi) + specular;
+    return diffuse(s) + specular;
+}
+
+Eigen::Vector3f diffuse(const SurfacePoint& s) {
+    return s.base * ((1.0f - s.metallic) / kPi);
 }
 
 float pdf(const SurfacePoint& s, const Eigen::Vector3f& v, const Eigen::Vector3f& l) {

@@ -16,14 +16,19 @@ struct SurfacePoint {
     float metallic = 0.0f;
 };
 
-// The reflectance f(v, l) (1/sr), zero below the surface.
+// The reflectance f(v, l) (1/sr), zero below the surface: diffuse(s) plus the specular lobe.
 Eigen::Vector3f evaluate(const SurfacePoint& s, const Eigen::Vector3f& v, const Eigen::Vector3f& l);
+
+// The diffuse lobe alone, base * (1 - metallic) / pi (the same for every pair of directions above).
+Eigen::Vector3f diffuse(const SurfacePoint& s);
 
 // The solid-angle density with which sample() picks l.
 float pdf(const SurfacePoint& s, const Eigen::Vector3f& v, const Eigen::Vector3f& l);
 
 // A direction l drawn from a mixture of cosine-weighted hemisphere and GGX half-vector sampling, chosen
-// from the uniform numbers u0, u1, u2 in [0, 1); returns false when it points below the surface.
+// from the uniform numbers u0, u1, u2 in [0, 1); returns false when it points below the surface. Each
+// strategy gets at least a tenth of the draws, so that the density covers the whole hemisphere even for a
+// metal (the diffuse illumination a white surface would receive is estimated from the same paths).
 bool sample(const SurfacePoint& s, const Eigen::Vector3f& v, float u0, float u1, float u2,
             Eigen::Vector3f& l);
 

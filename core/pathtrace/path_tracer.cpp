@@ -46,6 +46,14 @@ struct Random {
     }
 };
 
+// One path's estimate: hdr_color, and the part of it the first surface reflects through its diffuse lobe
+// (diffuse_only) with what a white Lambertian surface there would reflect (diffuse_illumination).
+struct PathSample {
+    Eigen::Vector3f hdr = Eigen::Vector3f::Zero();
+    Eigen::Vector3f diffuseOnly = Eigen::Vector3f::Zero();
+    Eigen::Vector3f diffuseIllumination = Eigen::Vector3f::Zero();
+};
+
 // One instance's triangles in world space, with what shading needs at a hit.
 struct Shape {
     std::vector<Eigen::Vector3f> normals; // world
@@ -257,13 +265,35 @@ struct PathTracer::Impl {
         return ray.tfar < 0.0f;
     }
 
-    // The radiance arriving at `origin` from `direction` (a primary ray, clipped to [tnear, tfar]).
-    Eigen::Vector3f trace(const render::Scene& scene, Eigen::Vector3f origin, Eigen::Vector3f direction,
-                          float tnear, float tfar, const Settings& settings, Random& random,
-                          std::uint64_t& rays) const {
+    // One path's estimate of the radiance arriving at `origin` from `direction` (a primary ray, clipped to
+    // [tnear, tfar]), with its intrinsic parts (see PathSample).
+    PathSample trace(const render::Scene& scene, Eigen::Vector3f origin, Eigen::Vector3f direction,
+                     float tnear, float tfar, const Settings& settings, Random& random,
+                     std::uint64_t& rays) const {
         const render::Environment& environment = scene.environment();
         const bool sky = environment.ambient.maxCoeff() > 0.0f;
-        Eigen::Vector3f radiance = Eigen::Vector3f::Zero(), throughput = Eigen::Vector3f::Ones();
+        PathSample out;
+        // Light reflected at the first surface splits by lobe. What arrives there along direction l is
+        // weighted by f cos / pdf for hdr_color, by its diffuse lobe's share for diffuse_only and by a white
+        // Lambertian's (cos / pi / pdf) for diffuse_illumination; `first*` hold these for the first bounce's
+        // direction and `throughput` the product of the factors after it.
+        Eigen::Vector3f firstTotal = Eigen::Vector3f::Ones(), firstDiffuse = Eigen::Vector3f::Zero(),
+                        firstWhite = Eigen::Vector3f::Zero(), throughput = Eigen::Vector3f::Ones();
+        // Radiance `x` reflected towards the camera by the first surface from direction l, whose BSDF value
+        // there is `f` and diffuse share `fd`, per unit of the estimator's weight `w` (cos / pdf).
+        auto reflectFirst = [&](const Eigen::Vector3f& x, const Eigen::Vector3f& f, const Eigen::Vector3f& fd,
+                                float w) {
+            out.hdr += f.cwiseProduct(x) * w;
+            out.diffuseOnly += fd.cwiseProduct(x) * w;
+            out.diffuseIllumination += x * (w / kPi);
+        };
+        // Radiance `x` arriving at the first surface along the first bounce's direction, after `throughput`.
+        auto throughFirst = [&](const Eigen::Vector3f& x) {
+            const Eigen::Vector3f arriving = throughput.cwiseProduct(x);
+            out.hdr += firstTotal.cwiseProduct(arriving);
+            out.diffuseOnly += firstDiffuse.cwiseProduct(arriving);
+            out.diffuseIllumination += firstWhite.cwiseProduct(arriving);
+        };
         float bsdfPdf = 0.0f, skyPdf = 0.0f; // of the last bounce's direction
         for (int depth = 0;; ++depth) {
             RTCIntersectContext context;
@@ -279,10 +309,10 @@ struct PathTracer::Impl {
             ++rays;
             if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
                 if (depth == 0) {
-                    radiance += throughput.cwiseProduct(environment.background);
+                    out.hdr += environment.background;
                 } else if (sky) { // the BSDF's share of the sky (multiple importance sampling)
                     const float weight = bsdfPdf * bsdfPdf / (bsdfPdf * bsdfPdf + skyPdf * skyPdf);
-                    radiance += throughput.cwiseProduct(environment.ambient) * weight;
+                    throughFirst(environment.ambient * weight);
                 }
                 break;
             }
@@ -325,7 +355,11 @@ struct PathTracer::Impl {
                 s.roughness *= rm.y();
                 s.metallic *= rm.z();
             }
-            radiance += throughput.cwiseProduct(material.emissive);
+            if (depth == 0)
+                out.hdr += material.emissive; // emitted, not reflected: part of the specular residual
+            else
+                throughFirst(material.emissive);
+            const Eigen::Vector3f fd = diffuse(s);
 
             // Shadow and bounce rays leave from just above the surface, on the viewer's side.
             const Eigen::Vector3f above = p + ng * (1e-4f * std::max(1.0f, p.cwiseAbs().maxCoeff()));
@@ -338,7 +372,11 @@ struct PathTracer::Impl {
                     return;
                 if (light.castShadows && occluded(above, l, distance, rays))
                     return;
-                radiance += throughput.cwiseProduct(evaluate(s, toViewer, l)).cwiseProduct(e) * nol;
+                const Eigen::Vector3f f = evaluate(s, toViewer, l);
+                if (depth == 0)
+                    reflectFirst(e, f, fd, nol);
+                else
+                    throughFirst(f.cwiseProduct(e) * nol);
             });
             const bool last = depth >= settings.maxBounces;
             if (sky) {
@@ -350,9 +388,11 @@ struct PathTracer::Impl {
                     // At the last vertex no BSDF ray follows, so the sky sample takes the whole estimate.
                     const float weight =
                         last ? 1.0f : pdfSky * pdfSky / (pdfSky * pdfSky + pdfBsdf * pdfBsdf);
-                    radiance +=
-                        throughput.cwiseProduct(evaluate(s, toViewer, l)).cwiseProduct(environment.ambient) *
-                        (nol / pdfSky * weight);
+                    const Eigen::Vector3f f = evaluate(s, toViewer, l);
+                    if (depth == 0)
+                        reflectFirst(environment.ambient, f, fd, nol / pdfSky * weight);
+                    else
+                        throughFirst(f.cwiseProduct(environment.ambient) * (nol / pdfSky * weight));
                 }
             }
             if (last)
@@ -366,21 +406,30 @@ struct PathTracer::Impl {
                 break;
             const float nol = n.dot(l);
             skyPdf = nol / kPi;
-            throughput = throughput.cwiseProduct(evaluate(s, toViewer, l)) * (nol / bsdfPdf);
+            if (depth == 0) {
+                firstTotal = evaluate(s, toViewer, l) * (nol / bsdfPdf);
+                firstDiffuse = fd * (nol / bsdfPdf);
+                firstWhite = Eigen::Vector3f::Constant(nol / (kPi * bsdfPdf));
+            } else {
+                throughput = throughput.cwiseProduct(evaluate(s, toViewer, l)) * (nol / bsdfPdf);
+            }
+            // What the path can still add, through the largest of its weights (a white surface's included).
+            const float strength = std::max(firstTotal.cwiseProduct(throughput).maxCoeff(),
+                                            firstWhite.cwiseProduct(throughput).maxCoeff());
             if (depth >= 2) { // Russian roulette, keeping the estimate unbiased
-                const float survive = std::clamp(throughput.maxCoeff(), 0.05f, 1.0f);
+                const float survive = std::clamp(strength, 0.05f, 1.0f);
                 if (random.next() >= survive)
                     break;
                 throughput /= survive;
             }
-            if (!throughput.allFinite() || throughput.maxCoeff() <= 0.0f)
+            if (!throughput.allFinite() || !(strength > 0.0f))
                 break;
             origin = above;
             direction = l;
             tnear = 0.0f;
             tfar = std::numeric_limits<float>::infinity();
         }
-        return radiance;
+        return out;
     }
 };
 
@@ -419,6 +468,8 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
         image.width = width;
         image.height = height;
         image.sum.assign(std::size_t(width) * height * 3, 0.0);
+        image.diffuseOnlySum.assign(image.sum.size(), 0.0);
+        image.diffuseIlluminationSum.assign(image.sum.size(), 0.0);
         image.samples = 0;
         image.signature = signature;
     }
@@ -433,7 +484,10 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
         std::uint64_t traced = 0;
         for (int y = nextRow++; y < height; y = nextRow++) {
             for (int x = 0; x < width; ++x) {
-                double* sum = &image.sum[(std::size_t(y) * width + x) * 3];
+                const std::size_t at = (std::size_t(y) * width + x) * 3;
+                double* sum = &image.sum[at];
+                double* diffuseOnly = &image.diffuseOnlySum[at];
+                double* diffuseIllumination = &image.diffuseIlluminationSum[at];
                 for (int k = 0; k < settings.samplesPerPixel; ++k) {
                     const std::uint64_t index = firstSample + std::uint64_t(k);
                     Random random{seed ^ ((std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x)) *
@@ -445,12 +499,16 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
                                                 -(v - 0.5f * float(height)));
                     const Eigen::Vector3f direction = (rotation * local).normalized();
                     const float axial = local.x() / local.norm(); // cosine to the optical axis
-                    const Eigen::Vector3f radiance =
+                    const PathSample path =
                         impl.trace(scene, eye, direction, float(camera.params.nearClip) / axial,
                                    float(camera.params.farClip) / axial, settings, random, traced);
-                    for (int c = 0; c < 3; ++c)
-                        if (std::isfinite(radiance[c]))
-                            sum[c] += radiance[c];
+                    if (path.hdr.allFinite() && path.diffuseOnly.allFinite() &&
+                        path.diffuseIllumination.allFinite())
+                        for (int c = 0; c < 3; ++c) {
+                            sum[c] += path.hdr[c];
+                            diffuseOnly[c] += path.diffuseOnly[c];
+                            diffuseIllumination[c] += path.diffuseIllumination[c];
+                        }
                 }
             }
         }

@@ -27,17 +27,23 @@ struct Settings {
     void validate(const char* function) const;
 };
 
-// The running estimate of one camera's image.
+// The running estimate of one camera's image and of its intrinsic parts: diffuse_only, the light the first
+// surface a pixel sees reflects through its diffuse lobe, and diffuse_illumination, what a white Lambertian
+// surface there would reflect (both with indirect light); hdr_color minus diffuse_only is the specular
+// residual (specular reflection, emission and background).
 struct Accumulation {
     int width = 0;
     int height = 0;
-    std::vector<double> sum;     // RGB radiance sums, (height, width, 3), row 0 = top
-    std::uint64_t samples = 0;   // per pixel
-    std::uint64_t signature = 0; // of the scene, camera and settings the samples were taken of
-    // The mean radiance of channel c of pixel (x, y).
-    float mean(int x, int y, int c) const {
-        return samples == 0 ? 0.0f : float(sum[(std::size_t(y) * width + x) * 3 + c] / double(samples));
+    std::vector<double> sum;                    // hdr_color RGB sums, (height, width, 3), row 0 = top
+    std::vector<double> diffuseOnlySum;         // likewise
+    std::vector<double> diffuseIlluminationSum; // likewise
+    std::uint64_t samples = 0;                  // per pixel
+    std::uint64_t signature = 0;                // of the scene, camera and settings the samples were taken of
+    // The mean of channel c of pixel (x, y) of `sums` (one of the three above).
+    float mean(const std::vector<double>& sums, int x, int y, int c) const {
+        return samples == 0 ? 0.0f : float(sums[(std::size_t(y) * width + x) * 3 + c] / double(samples));
     }
+    float mean(int x, int y, int c) const { return mean(sum, x, y, c); }
 };
 
 class PathTracer {

@@ -67,7 +67,9 @@ enum class ECameraRenderer : uint8_t {
     /// The real-time rasteriser (OpenGL): every modality, every frame.
     Raster = 0,
     /// The reference path tracer (Embree, on the CPU): global illumination, accumulated over frames while
-    /// nothing in view changes; the other modalities still come from the rasteriser.
+    /// nothing in view changes. final_color, hdr_color and the intrinsic images (diffuse_illumination,
+    /// diffuse_only, specular_residual, indirect light included) are path traced; the geometric and
+    /// material modalities still come from the rasteriser.
     PathTraced = 1,
 };
 
@@ -245,7 +247,8 @@ class UCameraSensorComponent : public USceneComponent {
     SPPROPERTY(Setter = SetLatency)
     int32_t Latency = 0;
 
-    /// The renderer of final_color and hdr_color (geometric and material modalities are rasterised).
+    /// The renderer of final_color, hdr_color and the intrinsic images (geometric and material modalities
+    /// are always rasterised).
     SPPROPERTY()
     ECameraRenderer Renderer = ECameraRenderer::Raster;
 

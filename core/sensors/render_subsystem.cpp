@@ -1,7 +1,9 @@
 #include "core/sensors/render_subsystem.h"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
+#include <map>
 
 #include "core/base/error.h"
 #include "core/pathtrace/path_tracer.h"
@@ -116,11 +118,17 @@ sp::render::OutputView allocate(FCameraPixels& pixels, sp::render::Modality moda
 } // namespace
 
 // What was submitted, so that the due frame can be read straight into arrays of the right size.
-// A path-traced camera's colour images of one frame, made when it was submitted (RenderSubsystem::trace).
+// What a path-traced camera takes from the path tracer; its other modalities are rasterised.
+constexpr std::array kTracedModalities{sp::render::Modality::FinalColor, sp::render::Modality::HdrColor,
+                                       sp::render::Modality::DiffuseIllumination,
+                                       sp::render::Modality::DiffuseOnly,
+                                       sp::render::Modality::SpecularResidual};
+
+// A path-traced camera's images of one frame, made when it was submitted (RenderSubsystem::trace): the
+// requested ones of kTracedModalities, each as the modality's dtype and shape.
 struct TracedImages {
-    std::vector<std::byte> hdrColor;   // float16 (H, W, 4)
-    std::vector<std::byte> finalColor; // uint8 (H, W, 4)
-    std::uint64_t samples = 0;         // per pixel, accumulated
+    std::map<sp::render::Modality, std::vector<std::byte>> images;
+    std::uint64_t samples = 0; // per pixel, accumulated
 };
 
 struct RenderSubsystem::PendingFrame {
@@ -129,7 +137,7 @@ struct RenderSubsystem::PendingFrame {
     int width = 0;
     int height = 0;
     sp::render::ModalitySet modalities;
-    std::shared_ptr<const TracedImages> traced; // replaces the rasterised colour when set
+    std::shared_ptr<const TracedImages> traced; // replaces rasterised images when set
 };
 
 struct RenderSubsystem::CameraState {
@@ -221,9 +229,9 @@ void RenderSubsystem::submit(UCameraSensorComponent& camera) {
     const std::uint64_t number = state.target->submit(scene_->scene(), renderCamera);
     std::shared_ptr<const TracedImages> traced;
     if (camera.Renderer == ECameraRenderer::PathTraced &&
-        (modalities.contains(sp::render::Modality::FinalColor) ||
-         modalities.contains(sp::render::Modality::HdrColor)))
-        traced = trace(camera, renderCamera, state);
+        std::any_of(kTracedModalities.begin(), kTracedModalities.end(),
+                    [&](sp::render::Modality m) { return modalities.contains(m); }))
+        traced = trace(camera, renderCamera, modalities, state);
     // The world's frame counter advances after its subsystems tick, so this frame is count + 1.
     state.pending.push_back(
         {number, world_.get_frame_count() + 1, camera.Width, camera.Height, modalities, std::move(traced)});
@@ -233,6 +241,7 @@ void RenderSubsystem::submit(UCameraSensorComponent& camera) {
 
 std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponent& camera,
                                                            const sp::render::Camera& renderCamera,
+                                                           const sp::render::ModalitySet& modalities,
                                                            CameraState& state) {
     if (!tracer_)
         tracer_ = std::make_unique<sp::pathtrace::PathTracer>();
@@ -241,24 +250,46 @@ std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponen
     const sp::pathtrace::Accumulation& image = state.accumulation;
     auto traced = std::make_shared<TracedImages>();
     traced->samples = image.samples;
-    traced->hdrColor.resize(
-        sp::render::modalityByteSize(sp::render::Modality::HdrColor, image.width, image.height));
-    traced->finalColor.resize(
-        sp::render::modalityByteSize(sp::render::Modality::FinalColor, image.width, image.height));
-    auto* hdr = reinterpret_cast<std::uint16_t*>(traced->hdrColor.data());
-    auto* final = reinterpret_cast<std::uint8_t*>(traced->finalColor.data());
-    for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x) {
-            const std::size_t pixel = (std::size_t(y) * image.width + x) * 4;
-            for (int c = 0; c < 3; ++c) {
-                const float radiance = image.mean(x, y, c);
-                hdr[pixel + c] = sp::render::floatToHalf(radiance);
-                final[pixel + c] = std::uint8_t(
-                    std::lround(255.0f * sp::render::toneMapChannel(radiance, renderCamera.params)));
+    for (sp::render::Modality modality : kTracedModalities) {
+        if (!modalities.contains(modality))
+            continue;
+        std::vector<std::byte>& bytes = traced->images[modality];
+        bytes.resize(sp::render::modalityByteSize(modality, image.width, image.height));
+        const int channels = sp::render::modalityInfo(modality).channels;
+        auto* half = reinterpret_cast<std::uint16_t*>(bytes.data());
+        auto* final = reinterpret_cast<std::uint8_t*>(bytes.data());
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) {
+                const std::size_t pixel = (std::size_t(y) * image.width + x) * std::size_t(channels);
+                for (int c = 0; c < 3; ++c) {
+                    const float hdr = image.mean(x, y, c);
+                    switch (modality) {
+                    case sp::render::Modality::FinalColor:
+                        final[pixel + c] = std::uint8_t(
+                            std::lround(255.0f * sp::render::toneMapChannel(hdr, renderCamera.params)));
+                        break;
+                    case sp::render::Modality::HdrColor:
+                        half[pixel + c] = sp::render::floatToHalf(hdr);
+                        break;
+                    case sp::render::Modality::DiffuseIllumination:
+                        half[pixel + c] =
+                            sp::render::floatToHalf(image.mean(image.diffuseIlluminationSum, x, y, c));
+                        break;
+                    case sp::render::Modality::DiffuseOnly:
+                        half[pixel + c] = sp::render::floatToHalf(image.mean(image.diffuseOnlySum, x, y, c));
+                        break;
+                    default: // SpecularResidual: what hdr_color holds beyond diffuse_only
+                        half[pixel + c] =
+                            sp::render::floatToHalf(hdr - image.mean(image.diffuseOnlySum, x, y, c));
+                        break;
+                    }
+                }
+                if (modality == sp::render::Modality::FinalColor)
+                    final[pixel + 3] = 255;
+                else if (channels == 4)
+                    half[pixel + 3] = sp::render::floatToHalf(1.0f);
             }
-            hdr[pixel + 3] = sp::render::floatToHalf(1.0f);
-            final[pixel + 3] = 255;
-        }
+    }
     return traced;
 }
 
@@ -313,17 +344,12 @@ bool RenderSubsystem::readInto(UCameraSensorComponent& camera,
     } else {
         read = state.target->readAgain(views).has_value();
     }
-    // A path-traced frame's colour images replace the rasterised ones.
+    // A path-traced frame's images replace the rasterised ones.
     const TracedImages* traced = read && state.lastRead ? state.lastRead->traced.get() : nullptr;
     if (traced)
-        for (const sp::render::OutputView& view : views) {
-            const std::vector<std::byte>* image =
-                view.modality == sp::render::Modality::HdrColor     ? &traced->hdrColor
-                : view.modality == sp::render::Modality::FinalColor ? &traced->finalColor
-                                                                    : nullptr;
-            if (image)
-                std::memcpy(view.data, image->data(), std::min(view.size, image->size()));
-        }
+        for (const sp::render::OutputView& view : views)
+            if (auto image = traced->images.find(view.modality); image != traced->images.end())
+                std::memcpy(view.data, image->second.data(), std::min(view.size, image->second.size()));
     camera.setAccumulatedSamples(traced ? std::int64_t(traced->samples) : 0);
     camera.setPixelsFrame(read ? state.pixelsFrame : -1);
     return read;

@@ -92,9 +92,11 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     const PendingFrame* dueFrame(UCameraSensorComponent& camera) const;
     CameraState& cameraState(UCameraSensorComponent& camera);
     void submit(UCameraSensorComponent& camera);
-    // Adds the camera's path-traced samples of this frame and returns its colour images.
+    // Adds the camera's path-traced samples of this frame and returns the images of `modalities` that the
+    // path tracer makes.
     std::shared_ptr<const TracedImages> trace(UCameraSensorComponent& camera,
-                                              const sp::render::Camera& renderCamera, CameraState& state);
+                                              const sp::render::Camera& renderCamera,
+                                              const sp::render::ModalitySet& modalities, CameraState& state);
 
     UWorld& world_;
     // Destruction order matters: targets and scene GPU data before the renderer, the renderer before

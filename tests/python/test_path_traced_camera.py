@@ -113,3 +113,24 @@ def test_bad_path_tracing_settings_are_refused(instance: spear.Instance, name: s
             setattr(camera, name, value)
     with instance.end_frame():
         pass
+
+
+def test_path_traced_intrinsics_include_indirect_light_and_sum_to_hdr(instance: spear.Instance) -> None:
+    # In a white sky a white Lambertian surface anywhere on the sphere reflects 1 (diffuse_illumination),
+    # so diffuse_only is the base colour; the specular residual is the rest of hdr_color.
+    game = instance.get_game()
+    with instance.begin_frame():
+        _sphere_in_sky(game, 0.5)
+        camera = _traced_camera(game, [M.HdrColor, M.DiffuseIllumination, M.DiffuseOnly, M.SpecularResidual], 128)
+    with instance.end_frame():
+        pixels = camera.read_pixels()
+    hdr = pixels["hdr_color"][..., :3].astype(np.float32)
+    illumination = pixels["diffuse_illumination"].astype(np.float32)
+    diffuse = pixels["diffuse_only"].astype(np.float32)
+    residual = pixels["specular_residual"].astype(np.float32)
+    assert illumination.shape == diffuse.shape == residual.shape == (16, 16, 3)
+    assert illumination.mean() == pytest.approx(1.0, abs=0.03)
+    assert diffuse.mean() == pytest.approx(0.5, abs=0.02)
+    assert residual.mean() > 0.0  # the dielectric's specular lobe
+    # hdr = diffuse_only + specular_residual, to the float16 rounding of the stored images.
+    np.testing.assert_allclose(diffuse + residual, hdr, rtol=2e-3, atol=2e-3)

@@ -785,7 +785,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.properties.push_back({
             "Renderer",
             "ECameraRenderer",
-            "The renderer of final_color and hdr_color (geometric and material modalities are rasterised).",
+            "The renderer of final_color, hdr_color and the intrinsic images (geometric and material modalities\nare always rasterised).",
             false,
             [](const void* self) -> sp::reflect::Value {
                 return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Renderer);

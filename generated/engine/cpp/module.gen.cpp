@@ -2615,7 +2615,7 @@ void spear_bind_engine(py::module_& m) {
                 object->Renderer = Bridge<ECameraRenderer>::in(value, "UCameraSensorComponent.Renderer");
                 object->PostPropertyChanged("Renderer");
             },
-            "The renderer of final_color and hdr_color (geometric and material modalities are rasterised).");
+            "The renderer of final_color, hdr_color and the intrinsic images (geometric and material modalities\nare always rasterised).");
         cls.def_property(
             "SamplesPerPixel",
             [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UCameraSensorComponent.SamplesPerPixel")->SamplesPerPixel); },

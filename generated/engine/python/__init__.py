@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "b8c06afc4a4c3f25"
+API_HASH = "18c23bdad9bc618c"

@@ -136,7 +136,9 @@ class ECameraRenderer(enum.IntEnum):
     """The real-time rasteriser (OpenGL): every modality, every frame."""
     PathTraced = 1
     """The reference path tracer (Embree, on the CPU): global illumination, accumulated over frames while
-    nothing in view changes; the other modalities still come from the rasteriser.
+    nothing in view changes. final_color, hdr_color and the intrinsic images (diffuse_illumination,
+    diffuse_only, specular_residual, indirect light included) are path traced; the geometric and
+    material modalities still come from the rasteriser.
     """
 
 
@@ -2803,7 +2805,9 @@ class UCameraSensorComponent(USceneComponent):
 
     @property
     def Renderer(self) -> ECameraRenderer:
-        """The renderer of final_color and hdr_color (geometric and material modalities are rasterised)."""
+        """The renderer of final_color, hdr_color and the intrinsic images (geometric and material modalities
+        are always rasterised).
+        """
 
     @Renderer.setter
     def Renderer(self, value: ECameraRenderer) -> None: ...

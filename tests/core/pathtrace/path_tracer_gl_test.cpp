@@ -79,6 +79,31 @@ TEST_F(PathTracerGlTest, AConvexDiffuseObjectInAUniformSkyReflectsBaseTimesSky) 
     EXPECT_LE(mean(metal), 1.01);
 }
 
+TEST_F(PathTracerGlTest, IntrinsicPartsHaveTheirClosedForms) {
+    // In a white sky of radiance 1, a white Lambertian surface anywhere on a convex object reflects 1:
+    // diffuse_illumination is 1 on a dielectric and on a metal alike (estimated from the same paths), and
+    // diffuse_only is base x (1 - metallic) x that.
+    for (float metallic : {0.0f, 1.0f}) {
+        Scene scene;
+        addSphere(scene, material({0.6f, 0.4f, 0.2f}, 0.5f, metallic));
+        scene.setEnvironment({{1.0f, 1.0f, 1.0f}, {1.0f, 1.0f, 1.0f}});
+        Accumulation image;
+        tracer_.render(scene, sphereCamera(), {256, 3}, image);
+        double illumination = 0.0, diffuseOnly[3] = {0.0, 0.0, 0.0};
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x) {
+                for (int c = 0; c < 3; ++c) {
+                    illumination += image.mean(image.diffuseIlluminationSum, x, y, c) / (16 * 16 * 3);
+                    diffuseOnly[c] += image.mean(image.diffuseOnlySum, x, y, c) / (16 * 16);
+                }
+            }
+        EXPECT_NEAR(illumination, 1.0, 0.03) << metallic;
+        const float base[3] = {0.6f, 0.4f, 0.2f};
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(diffuseOnly[c], base[c] * (1.0f - metallic), 0.02) << metallic << " " << c;
+    }
+}
+
 TEST_F(PathTracerGlTest, DirectLightOfALambertianPlaneMatchesTheRasteriser) {
     // A rough plane under a shadowless sun, no sky: both renderers evaluate the same surface model with
     // the same light, so their hdr_color agree (the path tracer's is a mean over jittered pixel areas).
@@ -94,17 +119,28 @@ TEST_F(PathTracerGlTest, DirectLightOfALambertianPlaneMatchesTheRasteriser) {
     Camera camera = lookingAlong({-2.0, 0.0, 1.5}, {1.0, 0.0, -0.6}, 24, 16, 50.0);
     camera.params.shadows = false;
 
-    render::RenderTarget target(renderer(), {render::Modality::HdrColor}, 0);
+    render::RenderTarget target(
+        renderer(),
+        {render::Modality::HdrColor, render::Modality::DiffuseIllumination, render::Modality::DiffuseOnly},
+        0);
     render::Frame frame;
     target.render(scene, camera, frame);
     Accumulation traced;
     tracer_.render(scene, camera, {64, 0}, traced);
     const render::ImageBuffer& raster = frame.get(render::Modality::HdrColor);
+    const render::ImageBuffer& illumination = frame.get(render::Modality::DiffuseIllumination);
+    const render::ImageBuffer& diffuseOnly = frame.get(render::Modality::DiffuseOnly);
     for (int y = 0; y < 16; ++y)
         for (int x = 0; x < 24; ++x)
-            for (int c = 0; c < 3; ++c)
+            for (int c = 0; c < 3; ++c) {
                 EXPECT_NEAR(traced.mean(x, y, c), raster.at(x, y, c), 0.02 * raster.at(x, y, c) + 2e-3)
                     << x << ", " << y << ", " << c;
+                // The intrinsic parts too: direct light only, so both renderers have the same closed form.
+                EXPECT_NEAR(traced.mean(traced.diffuseIlluminationSum, x, y, c), illumination.at(x, y, c),
+                            0.02 * illumination.at(x, y, c) + 2e-3);
+                EXPECT_NEAR(traced.mean(traced.diffuseOnlySum, x, y, c), diffuseOnly.at(x, y, c),
+                            0.02 * diffuseOnly.at(x, y, c) + 2e-3);
+            }
 }
 
 TEST_F(PathTracerGlTest, ErrorFallsAsOneOverTheSquareRootOfSamples) {
