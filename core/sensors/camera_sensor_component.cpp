@@ -1,5 +1,6 @@
 #include "core/sensors/camera_sensor_component.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -76,6 +77,33 @@ void UCameraSensorComponent::SetMaxBounces(int32_t NewMaxBounces) {
     sp::checkSetting(NewMaxBounces >= 0 && NewMaxBounces <= 64, "UCameraSensorComponent", "MaxBounces",
                      "in [0, 64]", NewMaxBounces);
     MaxBounces = NewMaxBounces;
+}
+
+sp::reflect::SpArray<double> UCameraSensorComponent::GetIntrinsicMatrix() const {
+    const double focal = 0.5 * Width / std::tan(0.5 * FOV * M_PI / 180.0);
+    sp::reflect::SpArray<double> k("K");
+    k.resize({3, 3});
+    const double values[9] = {focal, 0.0, 0.5 * (Width - 1), 0.0, focal, 0.5 * (Height - 1), 0.0, 0.0, 1.0};
+    std::copy(values, values + 9, k.data());
+    return k;
+}
+
+sp::reflect::SpArray<double> UCameraSensorComponent::GetWorldToCamera() const {
+    // The component's frame looks along +X with +Y left and +Z up; OpenCV's looks along +z with x right, y
+    // down.
+    Eigen::Matrix4d bodyToOpenCv = Eigen::Matrix4d::Zero();
+    bodyToOpenCv(0, 1) = -1.0;
+    bodyToOpenCv(1, 2) = -1.0;
+    bodyToOpenCv(2, 0) = 1.0;
+    bodyToOpenCv(3, 3) = 1.0;
+    const Eigen::Matrix4d worldToCamera =
+        bodyToOpenCv * GetComponentTransform().toIsometry().inverse().matrix();
+    sp::reflect::SpArray<double> t("world_to_camera");
+    t.resize({4, 4});
+    for (int row = 0; row < 4; ++row)
+        for (int column = 0; column < 4; ++column)
+            t.data()[4 * row + column] = worldToCamera(row, column);
+    return t;
 }
 
 FCameraPixels UCameraSensorComponent::read_pixels() {

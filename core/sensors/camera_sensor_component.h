@@ -294,6 +294,19 @@ class UCameraSensorComponent : public USceneComponent {
     SPFUNCTION()
     void SetMaxBounces(int32_t NewMaxBounces);
 
+    /// Returns the intrinsic matrix K (3, 3) of the images in OpenCV's convention: pixel (u right, v down,
+    /// the centre of pixel [i, j] at u = j, v = i) = K @ (x, y, z) / z for a point (x, y, z) in the OpenCV
+    /// camera frame (x right, y down, z forward); fx = fy = (Width / 2) / tan(FOV / 2), cx = (Width - 1) / 2,
+    /// cy = (Height - 1) / 2.
+    SPFUNCTION()
+    sp::reflect::SpArray<double> GetIntrinsicMatrix() const;
+
+    /// Returns the world-to-camera transform (4, 4) into the OpenCV camera frame (x right, y down, z
+    /// forward, metres) from the component's current world transform: with GetIntrinsicMatrix(), a world
+    /// point's pixel is K @ (T @ [p, 1])[:3] divided by its z.
+    SPFUNCTION()
+    sp::reflect::SpArray<double> GetWorldToCamera() const;
+
     /// Returns the samples per pixel behind the path-traced images of the frame last read (they restart
     /// from SamplesPerPixel when the scene, the camera or its settings change), or 0 when the last read
     /// frame was not path traced.

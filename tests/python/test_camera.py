@@ -337,3 +337,34 @@ def test_render_device_is_reported(instance: spear.Instance) -> None:
         info = camera.get_render_device_info()
     assert info.Kind in ("device", "surfaceless")
     assert info.Renderer and info.Version.startswith("4.")
+
+
+def test_intrinsics_and_extrinsics_project_points_where_they_are_rendered(instance: spear.Instance) -> None:
+    # K and the world-to-camera transform in OpenCV's convention: a small ball's projected centre is the
+    # centroid of its pixels, and its camera-frame z is its depth (plus its radius).
+    game = instance.get_game()
+    centre = np.array([2.0, 0.7, 0.4])
+    with instance.begin_frame():
+        ball = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Ball", location=spear.FVector(*centre))
+        ball.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Sphere")
+        ball.SetActorScale3D(NewScale3D=spear.FVector(X=0.3, Y=0.3, Z=0.3))  # radius 0.15 m
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera", location=spear.FVector(-1.0, -0.5, 1.2),
+                                  rotation=spear.FRotator(Pitch=-12.0, Yaw=20.0, Roll=5.0)).CameraSensor
+        camera.Width, camera.Height, camera.FOV = 96, 64, 70.0
+        camera.Modalities = [M.ObjectIds, M.Depth]
+    with instance.end_frame():
+        pixels = camera.read_pixels()
+        k, world_to_camera = camera.GetIntrinsicMatrix(), camera.GetWorldToCamera()
+        ball_id = camera.GetObjectId(Component=ball.StaticMeshComponent)
+    assert k.shape == (3, 3) and k.dtype == np.float64 and world_to_camera.shape == (4, 4)
+    focal = 48 / math.tan(math.radians(35.0))
+    np.testing.assert_allclose(k, [[focal, 0, 47.5], [0, focal, 31.5], [0, 0, 1]])
+    np.testing.assert_allclose(world_to_camera[3], [0, 0, 0, 1])
+    np.testing.assert_allclose(world_to_camera[:3, :3] @ world_to_camera[:3, :3].T, np.eye(3), atol=1e-12)
+    point = (world_to_camera @ np.append(centre, 1.0))[:3]
+    u, v = (k @ point)[:2] / point[2]
+    rows, columns = np.nonzero(pixels["object_ids"] == ball_id)
+    assert len(rows) > 20
+    assert columns.mean() == pytest.approx(u, abs=0.5) and rows.mean() == pytest.approx(v, abs=0.5)
+    nearest = pixels["depth"][int(round(v)), int(round(u))]
+    assert point[2] - 0.15 <= nearest <= point[2] - 0.1  # the ball's near side

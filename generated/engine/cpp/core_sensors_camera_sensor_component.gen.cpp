@@ -995,6 +995,36 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
         });
         t.functions.push_back({
+            "GetIntrinsicMatrix",
+            "Returns the intrinsic matrix K (3, 3) of the images in OpenCV's convention: pixel (u right, v down,\nthe centre of pixel [i, j] at u = j, v = i) = K @ (x, y, z) / z for a point (x, y, z) in the OpenCV\ncamera frame (x right, y down, z forward); fx = fy = (Width / 2) / tan(FOV / 2), cx = (Width - 1) / 2,\ncy = (Height - 1) / 2.",
+            "NDArray[np.float64]",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.GetIntrinsicMatrix()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->GetIntrinsicMatrix();
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "GetWorldToCamera",
+            "Returns the world-to-camera transform (4, 4) into the OpenCV camera frame (x right, y down, z\nforward, metres) from the component's current world transform: with GetIntrinsicMatrix(), a world\npoint's pixel is K @ (T @ [p, 1])[:3] divided by its z.",
+            "NDArray[np.float64]",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.GetWorldToCamera()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->GetWorldToCamera();
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
             "GetAccumulatedSamples",
             "Returns the samples per pixel behind the path-traced images of the frame last read (they restart\nfrom SamplesPerPixel when the scene, the camera or its settings change), or 0 when the last read\nframe was not path traced.",
             "int",

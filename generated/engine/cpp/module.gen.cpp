@@ -2756,6 +2756,26 @@ void spear_bind_engine(py::module_& m) {
             py::arg("NewMaxBounces") = sp::pybind::missingArgument(),
             "SetMaxBounces(self, *, NewMaxBounces: int) -> None\n\nSets MaxBounces, in [0, 64].");
         cls.def(
+            "GetIntrinsicMatrix",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.GetIntrinsicMatrix()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {});
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetIntrinsicMatrix();
+                return Bridge<sp::reflect::SpArray<double>>::out(result);
+            },
+            "GetIntrinsicMatrix(self) -> NDArray[np.float64]\n\nReturns the intrinsic matrix K (3, 3) of the images in OpenCV's convention: pixel (u right, v down,\nthe centre of pixel [i, j] at u = j, v = i) = K @ (x, y, z) / z for a point (x, y, z) in the OpenCV\ncamera frame (x right, y down, z forward); fx = fy = (Width / 2) / tan(FOV / 2), cx = (Width - 1) / 2,\ncy = (Height - 1) / 2.");
+        cls.def(
+            "GetWorldToCamera",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.GetWorldToCamera()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {});
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetWorldToCamera();
+                return Bridge<sp::reflect::SpArray<double>>::out(result);
+            },
+            "GetWorldToCamera(self) -> NDArray[np.float64]\n\nReturns the world-to-camera transform (4, 4) into the OpenCV camera frame (x right, y down, z\nforward, metres) from the component's current world transform: with GetIntrinsicMatrix(), a world\npoint's pixel is K @ (T @ [p, 1])[:3] divided by its z.");
+        cls.def(
             "GetAccumulatedSamples",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.GetAccumulatedSamples()";

@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "18c23bdad9bc618c"
+API_HASH = "7ec99b0c7616b90d"

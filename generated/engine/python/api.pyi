@@ -2644,6 +2644,10 @@ class UCameraSensorComponentAsync(USceneComponentAsync):
 
     def SetMaxBounces(self, *, NewMaxBounces: int) -> Future[None]: ...
 
+    def GetIntrinsicMatrix(self) -> Future[NDArray[np.float64]]: ...
+
+    def GetWorldToCamera(self) -> Future[NDArray[np.float64]]: ...
+
     def GetAccumulatedSamples(self) -> Future[int]: ...
 
     def read_pixels(self) -> Future[FCameraPixels]: ...
@@ -2689,6 +2693,10 @@ class UCameraSensorComponentSend(USceneComponentSend):
     def SetSamplesPerPixel(self, *, NewSamplesPerPixel: int) -> None: ...
 
     def SetMaxBounces(self, *, NewMaxBounces: int) -> None: ...
+
+    def GetIntrinsicMatrix(self) -> None: ...
+
+    def GetWorldToCamera(self) -> None: ...
 
     def GetAccumulatedSamples(self) -> None: ...
 
@@ -2855,6 +2863,19 @@ class UCameraSensorComponent(USceneComponent):
 
     def SetMaxBounces(self, *, NewMaxBounces: int) -> None:
         """Sets MaxBounces, in [0, 64]."""
+
+    def GetIntrinsicMatrix(self) -> NDArray[np.float64]:
+        """Returns the intrinsic matrix K (3, 3) of the images in OpenCV's convention: pixel (u right, v down,
+        the centre of pixel [i, j] at u = j, v = i) = K @ (x, y, z) / z for a point (x, y, z) in the OpenCV
+        camera frame (x right, y down, z forward); fx = fy = (Width / 2) / tan(FOV / 2), cx = (Width - 1) / 2,
+        cy = (Height - 1) / 2.
+        """
+
+    def GetWorldToCamera(self) -> NDArray[np.float64]:
+        """Returns the world-to-camera transform (4, 4) into the OpenCV camera frame (x right, y down, z
+        forward, metres) from the component's current world transform: with GetIntrinsicMatrix(), a world
+        point's pixel is K @ (T @ [p, 1])[:3] divided by its z.
+        """
 
     def GetAccumulatedSamples(self) -> int:
         """Returns the samples per pixel behind the path-traced images of the frame last read (they restart

@@ -1309,6 +1309,12 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
     def SetMaxBounces(self, *, NewMaxBounces: int) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetMaxBounces", {"NewMaxBounces": NewMaxBounces}, "None"))  # a Future when queued by call_async
 
+    def GetIntrinsicMatrix(self) -> NDArray[np.float64]:
+        return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "GetIntrinsicMatrix", {}, "NDArray[np.float64]"))
+
+    def GetWorldToCamera(self) -> NDArray[np.float64]:
+        return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "GetWorldToCamera", {}, "NDArray[np.float64]"))
+
     def GetAccumulatedSamples(self) -> int:
         return cast("int", self._sp_call("UCameraSensorComponent", "GetAccumulatedSamples", {}, "int"))
 
