@@ -18,6 +18,8 @@ namespace sp::pathtrace {
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
+// Geometry mask bits: every instance is seen by camera and bounce rays, shadow-casting ones by shadow rays.
+constexpr unsigned kCameraRays = 1u, kShadowRays = 2u;
 
 // FNV-1a over the bytes of what an image depends on.
 struct Hasher {
@@ -58,8 +60,8 @@ struct PathSample {
 struct Shape {
     std::vector<Eigen::Vector3f> normals; // world
     std::vector<Eigen::Vector2f> uvs;
-    std::vector<std::uint32_t> indices;
-    std::vector<std::uint32_t> firstTriangles; // of each submesh
+    std::vector<std::uint32_t> indices;        // the submeshes' triangles, in submesh order
+    std::vector<std::uint32_t> slots;          // each triangle's material slot
     std::vector<render::MaterialId> materials; // one per submesh
 };
 
@@ -133,7 +135,8 @@ void Settings::validate(const char* function) const {
 struct PathTracer::Impl {
     RTCDevice device = nullptr;
     RTCScene rtcScene = nullptr;
-    std::uint64_t geometrySignature = 0;
+    std::uint64_t geometrySignature = 0; // of the built geometry (geometryHash())
+    std::uint64_t builtFor = 0;          // the uid of the scene it was built from
     std::uint64_t builds = 0;
     std::uint64_t lastRays = 0;
     std::vector<Shape> shapes; // by geometry id
@@ -145,12 +148,13 @@ struct PathTracer::Impl {
             rtcReleaseDevice(device);
     }
 
+    // What the geometry is built from (the scene's process-unique id left out: see imageHash()).
     static std::uint64_t geometryHash(const render::Scene& scene) {
         Hasher h;
-        h.add(scene.uid());
         scene.forEachInstance([&](render::InstanceId, const render::Instance& instance) {
             if (!instance.visible)
                 return;
+            h.add(instance.castShadows);
             h.add(instance.mesh.index);
             h.add(instance.mesh.generation);
             h.add(scene.meshRevision(instance.mesh));
@@ -168,12 +172,12 @@ struct PathTracer::Impl {
             rtcReleaseScene(rtcScene);
         shapes.clear();
         rtcScene = rtcNewScene(device);
+        // Robust triangle tests: no rays slipping through shared edges of a closed room.
+        rtcSetSceneFlags(rtcScene, RTC_SCENE_FLAG_ROBUST);
         scene.forEachInstance([&](render::InstanceId, const render::Instance& instance) {
             if (!instance.visible)
                 return;
             const render::MeshData& mesh = scene.mesh(instance.mesh);
-            if (mesh.indices.empty())
-                return;
             const Eigen::Affine3f transform = instance.transform.cast<float>();
             const Eigen::Matrix3f normalMatrix = transform.linear().inverse().transpose();
             Shape shape;
@@ -181,12 +185,23 @@ struct PathTracer::Impl {
             for (const Eigen::Vector3f& n : mesh.normals)
                 shape.normals.push_back((normalMatrix * n).normalized());
             shape.uvs = mesh.uvs;
-            shape.indices = mesh.indices;
-            for (const render::Submesh& sub : mesh.submeshes)
-                shape.firstTriangles.push_back(sub.firstIndex / 3);
+            // The triangles the rasteriser draws: those of the submeshes, each with its material slot.
+            for (std::size_t slot = 0; slot < mesh.submeshes.size(); ++slot) {
+                const render::Submesh& sub = mesh.submeshes[slot];
+                shape.indices.insert(shape.indices.end(), mesh.indices.begin() + sub.firstIndex,
+                                     mesh.indices.begin() + sub.firstIndex + sub.indexCount / 3 * 3);
+                shape.slots.resize(shape.indices.size() / 3, std::uint32_t(slot));
+            }
             shape.materials = instance.materials;
+            if (shape.indices.empty())
+                return;
 
             RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+            SP_CHECK(geometry != nullptr, InvalidState,
+                     "PathTracer: Embree could not create a geometry (error ", int(rtcGetDeviceError(device)),
+                     ")");
+            // Every ray sees the instance; shadow rays only when it casts shadows (kShadowRays).
+            rtcSetGeometryMask(geometry, instance.castShadows ? kCameraRays | kShadowRays : kCameraRays);
             auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
                                                                          RTC_FORMAT_FLOAT3, 3 * sizeof(float),
                                                                          mesh.positions.size()));
@@ -196,8 +211,8 @@ struct PathTracer::Impl {
             }
             auto* indices = static_cast<unsigned*>(
                 rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                        3 * sizeof(unsigned), mesh.indices.size() / 3));
-            std::memcpy(indices, mesh.indices.data(), mesh.indices.size() * sizeof(unsigned));
+                                        3 * sizeof(unsigned), shape.indices.size() / 3));
+            std::memcpy(indices, shape.indices.data(), shape.indices.size() * sizeof(unsigned));
             rtcCommitGeometry(geometry);
             rtcAttachGeometryByID(rtcScene, geometry, unsigned(shapes.size()));
             rtcReleaseGeometry(geometry);
@@ -207,7 +222,7 @@ struct PathTracer::Impl {
         ++builds;
     }
 
-    // Everything an image depends on besides the geometry: materials, lights, sky, camera, bounces.
+    // Everything an image depends on: the geometry, materials, lights, sky, camera and bounces.
     std::uint64_t imageHash(const render::Scene& scene, const render::Camera& camera,
                             const Settings& settings) const {
         Hasher h;
@@ -220,7 +235,12 @@ struct PathTracer::Impl {
                 h.add(m.metallic);
                 h.matrix(m.emissive);
                 for (const auto& texture : {m.baseColorTexture, m.roughnessMetallicTexture})
-                    h.add(texture ? texture->index + 1 : 0u);
+                    if (texture) {
+                        h.add(texture->index);
+                        h.add(texture->generation);
+                    } else {
+                        h.add(~0u);
+                    }
             }
         // A world adds its lights again every frame, in no fixed order: the lights count as a set.
         std::uint64_t lights = 0;
@@ -259,8 +279,9 @@ struct PathTracer::Impl {
         ray.org_x = origin.x(), ray.org_y = origin.y(), ray.org_z = origin.z();
         ray.dir_x = direction.x(), ray.dir_y = direction.y(), ray.dir_z = direction.z();
         ray.tnear = 0.0f;
-        ray.tfar = distance;
-        ray.mask = ~0u;
+        // Short of the light itself, which may sit on a surface or inside a lamp's mesh.
+        ray.tfar = std::isinf(distance) ? distance : distance * (1.0f - 1e-4f);
+        ray.mask = kShadowRays;
         rtcOccluded1(rtcScene, &context, &ray);
         return ray.tfar < 0.0f;
     }
@@ -303,7 +324,7 @@ struct PathTracer::Impl {
             hit.ray.dir_x = direction.x(), hit.ray.dir_y = direction.y(), hit.ray.dir_z = direction.z();
             hit.ray.tnear = tnear;
             hit.ray.tfar = tfar;
-            hit.ray.mask = ~0u;
+            hit.ray.mask = kCameraRays;
             hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
             rtcIntersect1(rtcScene, &context, &hit);
             ++rays;
@@ -337,10 +358,7 @@ struct PathTracer::Impl {
                 n = -n;
             const Eigen::Vector2f uv = shape.uvs[i0] * w + shape.uvs[i1] * u + shape.uvs[i2] * v;
 
-            const auto slot = std::size_t(
-                std::upper_bound(shape.firstTriangles.begin(), shape.firstTriangles.end(), triangle) -
-                shape.firstTriangles.begin() - 1);
-            const render::Material& material = scene.material(shape.materials[slot]);
+            const render::Material& material = scene.material(shape.materials[shape.slots[triangle]]);
             SurfacePoint s{n, material.baseColor.head<3>(), material.roughness, material.metallic};
             if (material.baseColorTexture)
                 s.base =
@@ -457,12 +475,14 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
     settings.validate("PathTracer::render");
     Impl& impl = *impl_;
     if (const std::uint64_t geometry = Impl::geometryHash(scene);
-        !impl.rtcScene || geometry != impl.geometrySignature) {
+        !impl.rtcScene || geometry != impl.geometrySignature || scene.uid() != impl.builtFor) {
         impl.build(scene);
         impl.geometrySignature = geometry;
+        impl.builtFor = scene.uid();
     }
-    const std::uint64_t seed = impl.imageHash(scene, camera, settings);
-    const std::uint64_t signature = seed ^ (impl.geometrySignature * 0x9E3779B97F4A7C15ull);
+    // What the image depends on; it also seeds the random numbers, so it leaves out the scene's
+    // process-unique id: the same scene and view give the same image in every run.
+    const std::uint64_t signature = impl.imageHash(scene, camera, settings);
     const int width = camera.params.width, height = camera.params.height;
     if (image.signature != signature || image.width != width || image.height != height || image.sum.empty()) {
         image.width = width;
@@ -490,9 +510,9 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
                 double* diffuseIllumination = &image.diffuseIlluminationSum[at];
                 for (int k = 0; k < settings.samplesPerPixel; ++k) {
                     const std::uint64_t index = firstSample + std::uint64_t(k);
-                    Random random{seed ^ ((std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x)) *
-                                              0x9E3779B97F4A7C15ull +
-                                          index * 0xD1B54A32D192ED03ull)};
+                    Random random{signature ^ ((std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x)) *
+                                                   0x9E3779B97F4A7C15ull +
+                                               index * 0xD1B54A32D192ED03ull)};
                     // Camera body frame: +X forward, +Y left, +Z up; pixel (u right, v down).
                     const float u = float(x) + random.next(), v = float(y) + random.next();
                     const Eigen::Vector3f local(float(focal), -(u - 0.5f * float(width)),
@@ -515,12 +535,12 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
         rays += traced;
     };
     const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-    std::vector<std::thread> pool;
-    for (unsigned t = 1; t < threads; ++t)
-        pool.emplace_back(work);
-    work();
-    for (std::thread& thread : pool)
-        thread.join();
+    {
+        std::vector<std::jthread> pool; // joined on the way out, even when starting one throws
+        for (unsigned t = 1; t < threads; ++t)
+            pool.emplace_back(work);
+        work();
+    }
     image.samples += std::uint64_t(settings.samplesPerPixel);
     impl.lastRays = rays;
 }

@@ -3,11 +3,13 @@
 // tracer on Embree over the rasteriser's own scene (core/render/scene.h): the same meshes, materials
 // (base colour and its texture, roughness/metallic and their texture, emissive), lights and sky.
 //
-// Unbiased multi-bounce global illumination: at every vertex, next-event estimation of each analytic light
-// (directional, point, spot: delta lights, one shadow ray each) and of the uniform sky (a cosine-weighted
-// direction, combined with the BSDF-sampled ray by multiple importance sampling, power heuristic); the
-// surface model is the rasteriser's (bsdf.h). Russian roulette after three bounces. Images accumulate
-// across calls while the scene, the camera and the settings stay the same, so a still view converges.
+// Multi-bounce global illumination, unbiased up to the bounce limit: at every vertex, next-event estimation
+// of each analytic light (directional, point, spot: delta lights, one shadow ray each) and of the uniform sky
+// (a cosine-weighted direction, combined with the BSDF-sampled ray by multiple importance sampling, power
+// heuristic); the surface model is the rasteriser's (bsdf.h). Russian roulette after three bounces. Images
+// accumulate across calls while the scene, the camera and maxBounces stay the same, so a still view
+// converges; any change anywhere in the scene restarts them. Point lights cast shadows here (the rasteriser
+// has no point light shadow maps); instances that do not cast shadows are invisible to shadow rays only.
 // Primary rays that leave the scene show the environment's background, as in the rasteriser; rays
 // that leave it after a bounce bring back its ambient (sky) radiance. Normal maps are not used yet.
 
@@ -55,8 +57,8 @@ class PathTracer {
     PathTracer& operator=(const PathTracer&) = delete;
 
     // Adds settings.samplesPerPixel samples per pixel of `camera`'s view of `scene` to `image`, after
-    // restarting it when the scene, the camera or the settings changed since its last samples. Runs on
-    // every hardware thread.
+    // restarting it when the scene, the camera or settings.maxBounces changed since its last samples. Runs
+    // on every hardware thread.
     void render(const render::Scene& scene, const render::Camera& camera, const Settings& settings,
                 Accumulation& image);
 

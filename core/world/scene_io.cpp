@@ -483,7 +483,11 @@ std::string jsonErrorWithoutContents(const nlohmann::json::parse_error& error) {
 }
 
 std::string sceneFolder(const std::string& path) {
-    return std::filesystem::path(findAsset(path)).parent_path().string();
+    // Absolute, so that what is resolved against it (meshes, loaded later) survives a change of directory.
+    std::error_code error;
+    const std::filesystem::path folder = std::filesystem::path(findAsset(path)).parent_path();
+    const std::filesystem::path absolute = std::filesystem::absolute(folder, error);
+    return (error ? folder : absolute).lexically_normal().string();
 }
 
 SceneJson readSceneFile(const std::string& path, std::string_view function) {

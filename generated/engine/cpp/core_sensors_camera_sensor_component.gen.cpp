@@ -1011,7 +1011,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.functions.push_back({
             "GetWorldToCamera",
-            "Returns the world-to-camera transform (4, 4) into the OpenCV camera frame (x right, y down, z\nforward, metres) from the component's current world transform: with GetIntrinsicMatrix(), a world\npoint's pixel is K @ (T @ [p, 1])[:3] divided by its z.",
+            "Returns the world-to-camera transform (4, 4) into the OpenCV camera frame (x right, y down, z\nforward, metres) from the component's current world transform: with GetIntrinsicMatrix(), a world\npoint's pixel is K @ (T @ [p, 1])[:3] divided by its z. Both describe the camera as it is now: the\nframe read in the same end_frame at Latency 0, Latency frames earlier otherwise.",
             "NDArray[np.float64]",
             {
             },
@@ -1026,7 +1026,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.functions.push_back({
             "GetAccumulatedSamples",
-            "Returns the samples per pixel behind the path-traced images of the frame last read (they restart\nfrom SamplesPerPixel when the scene, the camera or its settings change), or 0 when the last read\nframe was not path traced.",
+            "Returns the samples per pixel behind the path-traced images of the frame last read (they restart\nfrom SamplesPerPixel when anything in the scene, the camera or MaxBounces changes), or 0 when the\nlast read frame was not path traced.",
             "int",
             {
             },

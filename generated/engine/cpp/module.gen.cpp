@@ -2774,7 +2774,7 @@ void spear_bind_engine(py::module_& m) {
                 auto result = object->GetWorldToCamera();
                 return Bridge<sp::reflect::SpArray<double>>::out(result);
             },
-            "GetWorldToCamera(self) -> NDArray[np.float64]\n\nReturns the world-to-camera transform (4, 4) into the OpenCV camera frame (x right, y down, z\nforward, metres) from the component's current world transform: with GetIntrinsicMatrix(), a world\npoint's pixel is K @ (T @ [p, 1])[:3] divided by its z.");
+            "GetWorldToCamera(self) -> NDArray[np.float64]\n\nReturns the world-to-camera transform (4, 4) into the OpenCV camera frame (x right, y down, z\nforward, metres) from the component's current world transform: with GetIntrinsicMatrix(), a world\npoint's pixel is K @ (T @ [p, 1])[:3] divided by its z. Both describe the camera as it is now: the\nframe read in the same end_frame at Latency 0, Latency frames earlier otherwise.");
         cls.def(
             "GetAccumulatedSamples",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
@@ -2784,7 +2784,7 @@ void spear_bind_engine(py::module_& m) {
                 auto result = object->GetAccumulatedSamples();
                 return Bridge<int64_t>::out(result);
             },
-            "GetAccumulatedSamples(self) -> int\n\nReturns the samples per pixel behind the path-traced images of the frame last read (they restart\nfrom SamplesPerPixel when the scene, the camera or its settings change), or 0 when the last read\nframe was not path traced.");
+            "GetAccumulatedSamples(self) -> int\n\nReturns the samples per pixel behind the path-traced images of the frame last read (they restart\nfrom SamplesPerPixel when anything in the scene, the camera or MaxBounces changes), or 0 when the\nlast read frame was not path traced.");
         cls.def(
             "read_pixels",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {

@@ -186,4 +186,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "7ec99b0c7616b90d"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "1edcb4068b0889e5"; }

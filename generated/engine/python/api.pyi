@@ -136,7 +136,7 @@ class ECameraRenderer(enum.IntEnum):
     """The real-time rasteriser (OpenGL): every modality, every frame."""
     PathTraced = 1
     """The reference path tracer (Embree, on the CPU): global illumination, accumulated over frames while
-    nothing in view changes. final_color, hdr_color and the intrinsic images (diffuse_illumination,
+    nothing in the scene changes. final_color, hdr_color and the intrinsic images (diffuse_illumination,
     diffuse_only, specular_residual, indirect light included) are path traced; the geometric and
     material modalities still come from the rasteriser.
     """
@@ -2874,13 +2874,14 @@ class UCameraSensorComponent(USceneComponent):
     def GetWorldToCamera(self) -> NDArray[np.float64]:
         """Returns the world-to-camera transform (4, 4) into the OpenCV camera frame (x right, y down, z
         forward, metres) from the component's current world transform: with GetIntrinsicMatrix(), a world
-        point's pixel is K @ (T @ [p, 1])[:3] divided by its z.
+        point's pixel is K @ (T @ [p, 1])[:3] divided by its z. Both describe the camera as it is now: the
+        frame read in the same end_frame at Latency 0, Latency frames earlier otherwise.
         """
 
     def GetAccumulatedSamples(self) -> int:
         """Returns the samples per pixel behind the path-traced images of the frame last read (they restart
-        from SamplesPerPixel when the scene, the camera or its settings change), or 0 when the last read
-        frame was not path traced.
+        from SamplesPerPixel when anything in the scene, the camera or MaxBounces changes), or 0 when the
+        last read frame was not path traced.
         """
 
     def read_pixels(self) -> FCameraPixels:
