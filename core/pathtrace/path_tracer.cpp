@@ -266,6 +266,7 @@ struct PathTracer::Impl {
         h.add(camera.params.hfovDeg);
         h.add(camera.params.nearClip);
         h.add(camera.params.farClip);
+        h.add(camera.params.shadows);
         h.add(settings.maxBounces);
         return h.value;
     }
@@ -288,12 +289,13 @@ struct PathTracer::Impl {
 
     // One path's estimate of the radiance arriving at `origin` from `direction` (a primary ray, clipped to
     // [tnear, tfar]), with its intrinsic parts (see PathSample).
-    PathSample trace(const render::Scene& scene, Eigen::Vector3f origin, Eigen::Vector3f direction,
-                     float tnear, float tfar, const Settings& settings, Random& random,
-                     std::uint64_t& rays) const {
+    PathSample trace(const render::Scene& scene, const render::Camera& camera, Eigen::Vector3f origin,
+                     Eigen::Vector3f direction, float tnear, float tfar, const Settings& settings,
+                     Random& random, std::uint64_t& rays) const {
         const render::Environment& environment = scene.environment();
         const bool sky = environment.ambient.maxCoeff() > 0.0f;
         PathSample out;
+        const bool shadows = camera.params.shadows; // lights' shadows, as the rasteriser's shadow maps
         // Light reflected at the first surface splits by lobe. What arrives there along direction l is
         // weighted by f cos / pdf for hdr_color, by its diffuse lobe's share for diffuse_only and by a white
         // Lambertian's (cos / pi / pdf) for diffuse_illumination; `first*` hold these for the first bounce's
@@ -388,7 +390,7 @@ struct PathTracer::Impl {
                 const float nol = n.dot(l);
                 if (nol <= 0.0f || ng.dot(l) <= 0.0f || e.maxCoeff() <= 0.0f)
                     return;
-                if (light.castShadows && occluded(above, l, distance, rays))
+                if (shadows && light.castShadows && occluded(above, l, distance, rays))
                     return;
                 const Eigen::Vector3f f = evaluate(s, toViewer, l);
                 if (depth == 0)
@@ -520,7 +522,7 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
                     const Eigen::Vector3f direction = (rotation * local).normalized();
                     const float axial = local.x() / local.norm(); // cosine to the optical axis
                     const PathSample path =
-                        impl.trace(scene, eye, direction, float(camera.params.nearClip) / axial,
+                        impl.trace(scene, camera, eye, direction, float(camera.params.nearClip) / axial,
                                    float(camera.params.farClip) / axial, settings, random, traced);
                     if (path.hdr.allFinite() && path.diffuseOnly.allFinite() &&
                         path.diffuseIllumination.allFinite())

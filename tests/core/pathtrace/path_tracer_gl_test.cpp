@@ -240,11 +240,18 @@ TEST_F(PathTracerGlTest, InstancesThatCastNoShadowsAreSeenButDoNotShadow) {
         scene.setEnvironment({{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}});
         // From the side, low: the middle of the view is the plane under the box (x = -0.1).
         Accumulation image;
-        tracer_.render(scene, lookingAlong({-3.0, 0.0, 0.3}, {1.0, 0.0, -0.1}, 16, 16, 10.0), {4, 0}, image);
+        Camera camera = lookingAlong({-3.0, 0.0, 0.3}, {1.0, 0.0, -0.1}, 16, 16, 10.0);
+        tracer_.render(scene, camera, {4, 0}, image);
         if (casts)
             EXPECT_LT(image.mean(8, 8, 0), 0.01);
         else
             EXPECT_NEAR(image.mean(8, 8, 0), 0.5, 0.05); // base / pi x the sun's pi
+        // A camera without shadows (bShadows false) traces no shadow rays to lights, as the rasteriser
+        // then draws no shadow maps.
+        camera.params.shadows = false;
+        tracer_.render(scene, camera, {4, 0}, image);
+        EXPECT_EQ(image.samples, 4u);
+        EXPECT_NEAR(image.mean(8, 8, 0), 0.5, 0.05);
     }
 }
 
