@@ -57,6 +57,32 @@ void UCameraSensorComponent::SetExposure(float NewExposure) {
                      "> 0 and finite", NewExposure);
     Exposure = NewExposure;
 }
+void UCameraSensorComponent::SetSensorWidth(double NewSensorWidth) {
+    sp::checkSetting(NewSensorWidth > 0.0 && std::isfinite(NewSensorWidth), "UCameraSensorComponent",
+                     "SensorWidth", "> 0 and finite", NewSensorWidth);
+    SensorWidth = NewSensorWidth;
+}
+void UCameraSensorComponent::SetFocalLength(double FocalLength) {
+    sp::checkSetting(FocalLength > 0.0 && std::isfinite(FocalLength), "UCameraSensorComponent", "FocalLength",
+                     "> 0 and finite", FocalLength);
+    SetFOV(2.0 * std::atan(SensorWidth / (2.0 * FocalLength)) * 180.0 / M_PI);
+}
+double UCameraSensorComponent::GetFocalLength() const {
+    return SensorWidth / (2.0 * std::tan(0.5 * FOV * M_PI / 180.0));
+}
+void UCameraSensorComponent::SetExposureValue(double EV100) {
+    sp::checkSetting(std::isfinite(EV100) && EV100 > -60.0 && EV100 < 60.0, "UCameraSensorComponent", "EV100",
+                     "in (-60, 60)", EV100);
+    SetExposure(float(1.0 / (1.2 * std::exp2(EV100))));
+}
+void UCameraSensorComponent::SetPhysicalExposure(double FNumber, double ShutterSeconds, double ISO) {
+    sp::checkSetting(FNumber > 0.0 && std::isfinite(FNumber), "UCameraSensorComponent", "FNumber",
+                     "> 0 and finite", FNumber);
+    sp::checkSetting(ShutterSeconds > 0.0 && std::isfinite(ShutterSeconds), "UCameraSensorComponent",
+                     "ShutterSeconds", "> 0 and finite", ShutterSeconds);
+    sp::checkSetting(ISO > 0.0 && std::isfinite(ISO), "UCameraSensorComponent", "ISO", "> 0 and finite", ISO);
+    SetExposureValue(std::log2(FNumber * FNumber / ShutterSeconds * 100.0 / ISO));
+}
 void UCameraSensorComponent::SetShadowResolution(int32_t NewShadowResolution) {
     sp::checkSetting(NewShadowResolution >= 16 && NewShadowResolution <= 8192, "UCameraSensorComponent",
                      "ShadowResolution", "in [16, 8192]", NewShadowResolution);

@@ -223,9 +223,14 @@ class UCameraSensorComponent : public USceneComponent {
     SPPROPERTY(Setter = SetFarClip)
     double FarClip = 1000.0;
 
-    /// Linear multiplier of HDR radiance before the tone curve.
+    /// Linear multiplier of HDR radiance before the tone curve (SetExposureValue and SetPhysicalExposure
+    /// set it from photographic settings).
     SPPROPERTY(Setter = SetExposure)
     float Exposure = 1.0f;
+
+    /// Sensor width in millimetres (> 0), relating FOV to a lens's focal length: 36 is full frame.
+    SPPROPERTY(Setter = SetSensorWidth)
+    double SensorWidth = 36.0;
 
     /// The tone curve of final_color.
     SPPROPERTY()
@@ -281,6 +286,24 @@ class UCameraSensorComponent : public USceneComponent {
     /// Sets Exposure (> 0 and finite).
     SPFUNCTION()
     void SetExposure(float NewExposure);
+    /// Sets SensorWidth in millimetres (> 0 and finite); FOV is kept.
+    SPFUNCTION()
+    void SetSensorWidth(double NewSensorWidth);
+    /// Sets FOV from a lens's focal length in millimetres on SensorWidth: FOV = 2 atan(SensorWidth / (2 f)).
+    SPFUNCTION()
+    void SetFocalLength(double FocalLength);
+    /// Returns the focal length in millimetres that FOV gives on SensorWidth.
+    SPFUNCTION()
+    double GetFocalLength() const;
+    /// Sets Exposure from an exposure value at ISO 100 (EV100, as light meters give it): a scene of
+    /// luminance L (cd/m^2) metered at EV100 = log2(L * 100 / 12.5) maps to 18 % grey; Exposure = 1 / (1.2 *
+    /// 2^EV100) (the saturation-based sensitivity of ISO 12232).
+    SPFUNCTION()
+    void SetExposureValue(double EV100);
+    /// Sets Exposure from an aperture (f-number), a shutter time in seconds and an ISO speed: EV100 =
+    /// log2(FNumber^2 / ShutterSeconds * 100 / ISO).
+    SPFUNCTION()
+    void SetPhysicalExposure(double FNumber, double ShutterSeconds, double ISO);
     /// Sets ShadowResolution in texels, in [16, 8192].
     SPFUNCTION()
     void SetShadowResolution(int32_t NewShadowResolution);

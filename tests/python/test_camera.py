@@ -368,3 +368,30 @@ def test_intrinsics_and_extrinsics_project_points_where_they_are_rendered(instan
     assert columns.mean() == pytest.approx(u, abs=0.5) and rows.mean() == pytest.approx(v, abs=0.5)
     nearest = pixels["depth"][int(round(v)), int(round(u))]
     assert point[2] - 0.15 <= nearest <= point[2] - 0.1  # the ball's near side
+
+
+def test_photographic_settings_set_fov_and_exposure(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        camera = spawn_camera(game, [M.FinalColor], 64, 48)
+        assert camera.SensorWidth == 36.0  # full frame
+        camera.SetFocalLength(FocalLength=18.0)  # 36 mm across at 18 mm: a 90 degree view
+        assert camera.FOV == pytest.approx(90.0)
+        assert camera.GetFocalLength() == pytest.approx(18.0)
+        np.testing.assert_allclose(camera.GetIntrinsicMatrix()[0, 0], 32.0)  # (64 / 2) / tan(45 degrees)
+        camera.SensorWidth = 23.6  # APS-C keeps the view; the same view is a shorter lens
+        assert camera.FOV == pytest.approx(90.0) and camera.GetFocalLength() == pytest.approx(11.8)
+        camera.SetExposureValue(EV100=0.0)
+        assert camera.Exposure == pytest.approx(1 / 1.2)
+        camera.SetPhysicalExposure(FNumber=16.0, ShutterSeconds=1 / 100, ISO=100.0)  # sunny 16: EV100 ~ 14.6
+        assert camera.Exposure == pytest.approx(1 / (1.2 * 16.0**2 * 100), rel=1e-6)
+        for call, words in [
+            (lambda: camera.SetFocalLength(FocalLength=0.0), "FocalLength must be > 0 and finite, got 0"),
+            (lambda: setattr(camera, "SensorWidth", -1.0), "SensorWidth must be > 0 and finite, got -1"),
+            (lambda: camera.SetPhysicalExposure(FNumber=2.8, ShutterSeconds=0.0, ISO=100.0),
+             "ShutterSeconds must be > 0 and finite, got 0"),
+        ]:
+            with pytest.raises(spear.InvalidArgumentError, match=words):
+                call()
+    with instance.end_frame():
+        pass

@@ -701,7 +701,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.properties.push_back({
             "Exposure",
             "float",
-            "Linear multiplier of HDR radiance before the tone curve.",
+            "Linear multiplier of HDR radiance before the tone curve (SetExposureValue and SetPhysicalExposure\nset it from photographic settings).",
             false,
             [](const void* self) -> sp::reflect::Value {
                 return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Exposure);
@@ -710,6 +710,20 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
                 auto* object = sp::reflect::selfCast<Self>(self);
                 object->SetExposure(sp::reflect::decode<float>(value, "UCameraSensorComponent.Exposure"));
                 sp::reflect::notifyPropertyChanged(object, "Exposure");
+            },
+        });
+        t.properties.push_back({
+            "SensorWidth",
+            "float",
+            "Sensor width in millimetres (> 0), relating FOV to a lens's focal length: 36 is full frame.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SensorWidth);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->SetSensorWidth(sp::reflect::decode<double>(value, "UCameraSensorComponent.SensorWidth"));
+                sp::reflect::notifyPropertyChanged(object, "SensorWidth");
             },
         });
         t.properties.push_back({
@@ -923,6 +937,93 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
                 sp::reflect::checkArguments(args, {"NewExposure"}, kContext);
                 float NewExposure = sp::reflect::decode<float>(sp::reflect::requireArgument(args, "NewExposure", kContext), "UCameraSensorComponent.SetExposure(): argument 'NewExposure'");
                 sp::reflect::selfCast<Self>(self)->SetExposure(NewExposure);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetSensorWidth",
+            "Sets SensorWidth in millimetres (> 0 and finite); FOV is kept.",
+            "None",
+            {
+                {"NewSensorWidth", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetSensorWidth()";
+                sp::reflect::checkArguments(args, {"NewSensorWidth"}, kContext);
+                double NewSensorWidth = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewSensorWidth", kContext), "UCameraSensorComponent.SetSensorWidth(): argument 'NewSensorWidth'");
+                sp::reflect::selfCast<Self>(self)->SetSensorWidth(NewSensorWidth);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetFocalLength",
+            "Sets FOV from a lens's focal length in millimetres on SensorWidth: FOV = 2 atan(SensorWidth / (2 f)).",
+            "None",
+            {
+                {"FocalLength", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetFocalLength()";
+                sp::reflect::checkArguments(args, {"FocalLength"}, kContext);
+                double FocalLength = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "FocalLength", kContext), "UCameraSensorComponent.SetFocalLength(): argument 'FocalLength'");
+                sp::reflect::selfCast<Self>(self)->SetFocalLength(FocalLength);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "GetFocalLength",
+            "Returns the focal length in millimetres that FOV gives on SensorWidth.",
+            "float",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.GetFocalLength()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->GetFocalLength();
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "SetExposureValue",
+            "Sets Exposure from an exposure value at ISO 100 (EV100, as light meters give it): a scene of\nluminance L (cd/m^2) metered at EV100 = log2(L * 100 / 12.5) maps to 18 % grey; Exposure = 1 / (1.2 *\n2^EV100) (the saturation-based sensitivity of ISO 12232).",
+            "None",
+            {
+                {"EV100", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetExposureValue()";
+                sp::reflect::checkArguments(args, {"EV100"}, kContext);
+                double EV100 = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "EV100", kContext), "UCameraSensorComponent.SetExposureValue(): argument 'EV100'");
+                sp::reflect::selfCast<Self>(self)->SetExposureValue(EV100);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetPhysicalExposure",
+            "Sets Exposure from an aperture (f-number), a shutter time in seconds and an ISO speed: EV100 =\nlog2(FNumber^2 / ShutterSeconds * 100 / ISO).",
+            "None",
+            {
+                {"FNumber", "float", false, false},
+                {"ShutterSeconds", "float", false, false},
+                {"ISO", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetPhysicalExposure()";
+                sp::reflect::checkArguments(args, {"FNumber", "ShutterSeconds", "ISO"}, kContext);
+                double FNumber = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "FNumber", kContext), "UCameraSensorComponent.SetPhysicalExposure(): argument 'FNumber'");
+                double ShutterSeconds = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "ShutterSeconds", kContext), "UCameraSensorComponent.SetPhysicalExposure(): argument 'ShutterSeconds'");
+                double ISO = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "ISO", kContext), "UCameraSensorComponent.SetPhysicalExposure(): argument 'ISO'");
+                sp::reflect::selfCast<Self>(self)->SetPhysicalExposure(FNumber, ShutterSeconds, ISO);
                 return {};
             },
         });

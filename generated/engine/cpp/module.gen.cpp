@@ -2561,7 +2561,16 @@ void spear_bind_engine(py::module_& m) {
                 object->SetExposure(Bridge<float>::in(value, "UCameraSensorComponent.Exposure"));
                 object->PostPropertyChanged("Exposure");
             },
-            "Linear multiplier of HDR radiance before the tone curve.");
+            "Linear multiplier of HDR radiance before the tone curve (SetExposureValue and SetPhysicalExposure\nset it from photographic settings).");
+        cls.def_property(
+            "SensorWidth",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCameraSensorComponent.SensorWidth")->SensorWidth); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.SensorWidth");
+                object->SetSensorWidth(Bridge<double>::in(value, "UCameraSensorComponent.SensorWidth"));
+                object->PostPropertyChanged("SensorWidth");
+            },
+            "Sensor width in millimetres (> 0), relating FOV to a lens's focal length: 36 is full frame.");
         cls.def_property(
             "ToneCurve",
             [](const Ref<Self>& self) { return Bridge<ECameraToneCurve>::out(self.get<Self>("UCameraSensorComponent.ToneCurve")->ToneCurve); },
@@ -2707,6 +2716,68 @@ void spear_bind_engine(py::module_& m) {
             },
             py::arg("NewExposure") = sp::pybind::missingArgument(),
             "SetExposure(self, *, NewExposure: float) -> None\n\nSets Exposure (> 0 and finite).");
+        cls.def(
+            "SetSensorWidth",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewSensorWidth, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetSensorWidth()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewSensorWidth", !isMissing(NewSensorWidth), true}});
+                Self* object = self.get<Self>(kContext);
+                auto NewSensorWidthValue = Bridge<double>::in(NewSensorWidth, "UCameraSensorComponent.SetSensorWidth(): argument 'NewSensorWidth'");
+                object->SetSensorWidth(NewSensorWidthValue);
+                return py::none();
+            },
+            py::arg("NewSensorWidth") = sp::pybind::missingArgument(),
+            "SetSensorWidth(self, *, NewSensorWidth: float) -> None\n\nSets SensorWidth in millimetres (> 0 and finite); FOV is kept.");
+        cls.def(
+            "SetFocalLength",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& FocalLength, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetFocalLength()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"FocalLength", !isMissing(FocalLength), true}});
+                Self* object = self.get<Self>(kContext);
+                auto FocalLengthValue = Bridge<double>::in(FocalLength, "UCameraSensorComponent.SetFocalLength(): argument 'FocalLength'");
+                object->SetFocalLength(FocalLengthValue);
+                return py::none();
+            },
+            py::arg("FocalLength") = sp::pybind::missingArgument(),
+            "SetFocalLength(self, *, FocalLength: float) -> None\n\nSets FOV from a lens's focal length in millimetres on SensorWidth: FOV = 2 atan(SensorWidth / (2 f)).");
+        cls.def(
+            "GetFocalLength",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.GetFocalLength()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {});
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetFocalLength();
+                return Bridge<double>::out(result);
+            },
+            "GetFocalLength(self) -> float\n\nReturns the focal length in millimetres that FOV gives on SensorWidth.");
+        cls.def(
+            "SetExposureValue",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& EV100, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetExposureValue()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"EV100", !isMissing(EV100), true}});
+                Self* object = self.get<Self>(kContext);
+                auto EV100Value = Bridge<double>::in(EV100, "UCameraSensorComponent.SetExposureValue(): argument 'EV100'");
+                object->SetExposureValue(EV100Value);
+                return py::none();
+            },
+            py::arg("EV100") = sp::pybind::missingArgument(),
+            "SetExposureValue(self, *, EV100: float) -> None\n\nSets Exposure from an exposure value at ISO 100 (EV100, as light meters give it): a scene of\nluminance L (cd/m^2) metered at EV100 = log2(L * 100 / 12.5) maps to 18 % grey; Exposure = 1 / (1.2 *\n2^EV100) (the saturation-based sensitivity of ISO 12232).");
+        cls.def(
+            "SetPhysicalExposure",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& FNumber, const PyArg& ShutterSeconds, const PyArg& ISO, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetPhysicalExposure()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"FNumber", !isMissing(FNumber), true}, {"ShutterSeconds", !isMissing(ShutterSeconds), true}, {"ISO", !isMissing(ISO), true}});
+                Self* object = self.get<Self>(kContext);
+                auto FNumberValue = Bridge<double>::in(FNumber, "UCameraSensorComponent.SetPhysicalExposure(): argument 'FNumber'");
+                auto ShutterSecondsValue = Bridge<double>::in(ShutterSeconds, "UCameraSensorComponent.SetPhysicalExposure(): argument 'ShutterSeconds'");
+                auto ISOValue = Bridge<double>::in(ISO, "UCameraSensorComponent.SetPhysicalExposure(): argument 'ISO'");
+                object->SetPhysicalExposure(FNumberValue, ShutterSecondsValue, ISOValue);
+                return py::none();
+            },
+            py::arg("FNumber") = sp::pybind::missingArgument(),
+            py::arg("ShutterSeconds") = sp::pybind::missingArgument(),
+            py::arg("ISO") = sp::pybind::missingArgument(),
+            "SetPhysicalExposure(self, *, FNumber: float, ShutterSeconds: float, ISO: float) -> None\n\nSets Exposure from an aperture (f-number), a shutter time in seconds and an ISO speed: EV100 =\nlog2(FNumber^2 / ShutterSeconds * 100 / ISO).");
         cls.def(
             "SetShadowResolution",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewShadowResolution, const py::kwargs& extra) -> py::object {

@@ -186,4 +186,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "1edcb4068b0889e5"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "18392744dae405ba"; }

@@ -2636,6 +2636,16 @@ class UCameraSensorComponentAsync(USceneComponentAsync):
 
     def SetExposure(self, *, NewExposure: float) -> Future[None]: ...
 
+    def SetSensorWidth(self, *, NewSensorWidth: float) -> Future[None]: ...
+
+    def SetFocalLength(self, *, FocalLength: float) -> Future[None]: ...
+
+    def GetFocalLength(self) -> Future[float]: ...
+
+    def SetExposureValue(self, *, EV100: float) -> Future[None]: ...
+
+    def SetPhysicalExposure(self, *, FNumber: float, ShutterSeconds: float, ISO: float) -> Future[None]: ...
+
     def SetShadowResolution(self, *, NewShadowResolution: int) -> Future[None]: ...
 
     def SetLatency(self, *, NewLatency: int) -> Future[None]: ...
@@ -2685,6 +2695,16 @@ class UCameraSensorComponentSend(USceneComponentSend):
     def SetFarClip(self, *, NewFarClip: float) -> None: ...
 
     def SetExposure(self, *, NewExposure: float) -> None: ...
+
+    def SetSensorWidth(self, *, NewSensorWidth: float) -> None: ...
+
+    def SetFocalLength(self, *, FocalLength: float) -> None: ...
+
+    def GetFocalLength(self) -> None: ...
+
+    def SetExposureValue(self, *, EV100: float) -> None: ...
+
+    def SetPhysicalExposure(self, *, FNumber: float, ShutterSeconds: float, ISO: float) -> None: ...
 
     def SetShadowResolution(self, *, NewShadowResolution: int) -> None: ...
 
@@ -2771,10 +2791,19 @@ class UCameraSensorComponent(USceneComponent):
 
     @property
     def Exposure(self) -> float:
-        """Linear multiplier of HDR radiance before the tone curve."""
+        """Linear multiplier of HDR radiance before the tone curve (SetExposureValue and SetPhysicalExposure
+        set it from photographic settings).
+        """
 
     @Exposure.setter
     def Exposure(self, value: float) -> None: ...
+
+    @property
+    def SensorWidth(self) -> float:
+        """Sensor width in millimetres (> 0), relating FOV to a lens's focal length: 36 is full frame."""
+
+    @SensorWidth.setter
+    def SensorWidth(self, value: float) -> None: ...
 
     @property
     def ToneCurve(self) -> ECameraToneCurve:
@@ -2851,6 +2880,26 @@ class UCameraSensorComponent(USceneComponent):
 
     def SetExposure(self, *, NewExposure: float) -> None:
         """Sets Exposure (> 0 and finite)."""
+
+    def SetSensorWidth(self, *, NewSensorWidth: float) -> None:
+        """Sets SensorWidth in millimetres (> 0 and finite); FOV is kept."""
+
+    def SetFocalLength(self, *, FocalLength: float) -> None:
+        """Sets FOV from a lens's focal length in millimetres on SensorWidth: FOV = 2 atan(SensorWidth / (2 f))."""
+
+    def GetFocalLength(self) -> float:
+        """Returns the focal length in millimetres that FOV gives on SensorWidth."""
+
+    def SetExposureValue(self, *, EV100: float) -> None:
+        """Sets Exposure from an exposure value at ISO 100 (EV100, as light meters give it): a scene of
+        luminance L (cd/m^2) metered at EV100 = log2(L * 100 / 12.5) maps to 18 % grey; Exposure = 1 / (1.2 *
+        2^EV100) (the saturation-based sensitivity of ISO 12232).
+        """
+
+    def SetPhysicalExposure(self, *, FNumber: float, ShutterSeconds: float, ISO: float) -> None:
+        """Sets Exposure from an aperture (f-number), a shutter time in seconds and an ISO speed: EV100 =
+        log2(FNumber^2 / ShutterSeconds * 100 / ISO).
+        """
 
     def SetShadowResolution(self, *, NewShadowResolution: int) -> None:
         """Sets ShadowResolution in texels, in [16, 8192]."""

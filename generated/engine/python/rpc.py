@@ -1216,6 +1216,14 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
         self._sp_set("UCameraSensorComponent", "Exposure", value)
 
     @property
+    def SensorWidth(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "SensorWidth", "float"))
+
+    @SensorWidth.setter
+    def SensorWidth(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "SensorWidth", value)
+
+    @property
     def ToneCurve(self) -> ECameraToneCurve:
         return cast("ECameraToneCurve", self._sp_get("UCameraSensorComponent", "ToneCurve", "ECameraToneCurve"))
 
@@ -1296,6 +1304,21 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     def SetExposure(self, *, NewExposure: float) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetExposure", {"NewExposure": NewExposure}, "None"))  # a Future when queued by call_async
+
+    def SetSensorWidth(self, *, NewSensorWidth: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetSensorWidth", {"NewSensorWidth": NewSensorWidth}, "None"))  # a Future when queued by call_async
+
+    def SetFocalLength(self, *, FocalLength: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetFocalLength", {"FocalLength": FocalLength}, "None"))  # a Future when queued by call_async
+
+    def GetFocalLength(self) -> float:
+        return cast("float", self._sp_call("UCameraSensorComponent", "GetFocalLength", {}, "float"))
+
+    def SetExposureValue(self, *, EV100: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetExposureValue", {"EV100": EV100}, "None"))  # a Future when queued by call_async
+
+    def SetPhysicalExposure(self, *, FNumber: float, ShutterSeconds: float, ISO: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetPhysicalExposure", {"FNumber": FNumber, "ShutterSeconds": ShutterSeconds, "ISO": ISO}, "None"))  # a Future when queued by call_async
 
     def SetShadowResolution(self, *, NewShadowResolution: int) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetShadowResolution", {"NewShadowResolution": NewShadowResolution}, "None"))  # a Future when queued by call_async
