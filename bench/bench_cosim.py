@@ -23,6 +23,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "python"))
 
 import spear  # noqa: E402
+from markdown_section import replace_section  # noqa: E402  (beside this script)
 
 BEGIN, END = "<!-- cosim:begin -->", "<!-- cosim:end -->"
 
@@ -111,13 +112,8 @@ def main() -> int:
     ])
     print(section)
     if args.write:
-        path = ROOT / "BENCHMARKS.md"
-        text = path.read_text()
-        if BEGIN in text and END in text:
-            text = text[:text.index(BEGIN)] + section + text[text.index(END) + len(END):]
-        else:
-            text = text.rstrip("\n") + "\n\n## Table 3: the co-simulation benchmark beside MuJoCo\n\n" + section + "\n"
-        path.write_text(text)
+        replace_section(ROOT / "BENCHMARKS.md", BEGIN, END, "Table 3: the co-simulation benchmark beside MuJoCo",
+                        section)
     return 0
 
 

@@ -16,6 +16,7 @@ import time
 from pathlib import Path
 
 import spear
+from markdown_section import replace_section  # beside this script
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = ROOT / "assets" / "scenes" / "apartment.json"
@@ -83,13 +84,7 @@ def main() -> int:
     ])
     print(section)
     if args.write:
-        path = ROOT / "BENCHMARKS.md"
-        text = path.read_text()
-        if BEGIN in text and END in text:
-            text = text[:text.index(BEGIN)] + section + text[text.index(END) + len(END):]
-        else:
-            text = text.rstrip("\n") + "\n\n## Path tracer throughput\n\n" + section + "\n"
-        path.write_text(text)
+        replace_section(ROOT / "BENCHMARKS.md", BEGIN, END, "Path tracer throughput", section)
     return 0
 
 

@@ -9,6 +9,7 @@
 #include "core/base/error.h"
 #include "core/pathtrace/path_tracer.h"
 #include "gl_fixture.h"
+#include "test_scenes.h"
 
 namespace sp::pathtrace {
 namespace {
@@ -22,11 +23,7 @@ using render::Scene;
 class PathTracerGlTest : public render::test::GlTest {
   protected:
     static Material material(Eigen::Vector3f base, float roughness, float metallic) {
-        Material m;
-        m.baseColor << base, 1.0f;
-        m.roughness = roughness;
-        m.metallic = metallic;
-        return m;
+        return render::test::makeMaterial(base, roughness, metallic);
     }
     // A sphere of radius 0.5 at the origin, seen from 3 m along +X with a narrow view that it fills.
     static render::MaterialId addSphere(Scene& scene, const Material& m) {
