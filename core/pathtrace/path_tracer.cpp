@@ -12,6 +12,7 @@
 
 #include "core/base/error.h"
 #include "core/base/log.h"
+#include "core/base/progress.h"
 #include "core/pathtrace/bsdf.h"
 
 namespace sp::pathtrace {
@@ -500,11 +501,19 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
     const Eigen::Matrix3f rotation = camera.pose.linear().cast<float>();
     const Eigen::Vector3f eye = camera.pose.translation().cast<float>();
     const std::uint64_t firstSample = image.samples;
-    std::atomic<int> nextRow{0};
+    std::atomic<int> nextRow{0}, rowsDone{0};
     std::atomic<std::uint64_t> rays{0};
+    // Reported by the calling thread only (Progress is not shared between threads).
+    base::Progress progress("path tracing " + std::to_string(width) + "x" + std::to_string(height) + ", " +
+                                std::to_string(settings.samplesPerPixel) + " samples per pixel",
+                            double(height));
+    const std::thread::id caller = std::this_thread::get_id();
     auto work = [&] {
         std::uint64_t traced = 0;
-        for (int y = nextRow++; y < height; y = nextRow++) {
+        const bool reports = std::this_thread::get_id() == caller;
+        for (int y = nextRow++; y < height; y = nextRow++, ++rowsDone) {
+            if (reports)
+                progress.set(double(rowsDone.load()));
             for (int x = 0; x < width; ++x) {
                 const std::size_t at = (std::size_t(y) * width + x) * 3;
                 double* sum = &image.sum[at];
@@ -543,6 +552,7 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
             pool.emplace_back(work);
         work();
     }
+    progress.set(double(height));
     image.samples += std::uint64_t(settings.samplesPerPixel);
     impl.lastRays = rays;
 }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/base/error.h"
+#include "core/base/progress.h"
 #include "core/world/pcg_layout.h"
 #include "core/world/world.h"
 
@@ -237,8 +238,11 @@ void UPCGComponent::Generate(bool bForce) {
 void UPCGComponent::spawn(const std::vector<std::pair<sp::world::pcg::Placement, double>>& grounded,
                           const char* function) {
     UWorld& world = *GetWorld();
+    sp::base::Progress progress(std::string(function) + ": spawning " + std::to_string(grounded.size()) + " actors",
+                                double(grounded.size()));
     int index = 0;
     for (const auto& [placement, base] : grounded) {
+        progress.advance();
         std::string name = GetOwner()->GetName() + "_" + std::to_string(index);
         if (world.find_actor_by_name(name))
             name.clear(); // taken by someone else: a generated name

@@ -83,3 +83,49 @@ def test_a_terminal_shows_a_bar(big_mesh: Path) -> None:
     text = output.decode(errors="replace")
     assert "importMesh(): grid.obj:" in text and "%|" in text, text  # the bar
     assert "[spear] importMesh(): grid.obj: done in" in text
+
+
+def test_a_long_path_traced_frame_ends_with_a_record(make_instance: Callable[..., spear.Instance],
+                                                     caplog: pytest.LogCaptureFixture) -> None:
+    # A path-traced camera's frame is long work too (here a second or two of samples on two cores).
+    caplog.set_level(logging.INFO, logger="spear")
+    instance = make_instance()
+    game = instance.get_game()
+    with instance.begin_frame():
+        sky = game.spawn_actor(uclass=spear.ASkyLight)
+        sky.SkyLightComponent.Intensity = 1.0
+        ball = game.spawn_actor(uclass=spear.AStaticMeshActor, location=spear.FVector(X=3.0))
+        ball.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Sphere")
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor).CameraSensor
+        camera.Width, camera.Height, camera.FOV = 160, 120, 20.0
+        camera.Renderer = spear.ECameraRenderer.PathTraced
+        camera.SamplesPerPixel = 256
+    with instance.end_frame():
+        pass
+    instance.close()
+    done = [r.getMessage() for r in caplog.records
+            if r.getMessage().startswith("path tracing 160x120, 256 samples per pixel: done in")]
+    assert len(done) == 1, [r.getMessage() for r in caplog.records]
+
+
+def test_a_large_procedural_generation_ends_with_a_record(make_instance: Callable[..., spear.Instance],
+                                                          caplog: pytest.LogCaptureFixture) -> None:
+    # Spawning thousands of scattered actors (each grounded by a physics raycast) is long work too.
+    caplog.set_level(logging.INFO, logger="spear")
+    instance = make_instance()
+    game = instance.get_game()
+    with instance.begin_frame():
+        floor = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Floor")
+        floor.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        floor.SetActorScale3D(NewScale3D=spear.FVector(X=200.0, Y=200.0, Z=1.0))
+        volume = game.spawn_actor(uclass=spear.APCGVolume, name="Forest", location=spear.FVector(Z=2.0))
+        volume.BoxComponent.SetBoxExtent(InBoxExtent=spear.FVector(X=90.0, Y=90.0, Z=5.0))
+        pcg = volume.PCGComponent
+        pcg.Spacing, pcg.MaxCount = 1.0, 15000
+        pcg.Generate()
+        count = len(pcg.GetGeneratedActors())
+    with instance.end_frame():
+        pass
+    instance.close()
+    done = [r.getMessage() for r in caplog.records if f"spawning {count} actors: done in" in r.getMessage()]
+    assert len(done) == 1, [r.getMessage() for r in caplog.records]
