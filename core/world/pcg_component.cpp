@@ -238,7 +238,8 @@ void UPCGComponent::Generate(bool bForce) {
 void UPCGComponent::spawn(const std::vector<std::pair<sp::world::pcg::Placement, double>>& grounded,
                           const char* function) {
     UWorld& world = *GetWorld();
-    sp::base::Progress progress(std::string(function) + ": spawning " + std::to_string(grounded.size()) + " actors",
+    sp::base::Progress progress(std::string(function) + ": spawning " + std::to_string(grounded.size()) +
+                                    " actors",
                                 double(grounded.size()));
     int index = 0;
     for (const auto& [placement, base] : grounded) {
