@@ -117,7 +117,6 @@ sp::render::OutputView allocate(FCameraPixels& pixels, sp::render::Modality moda
 
 } // namespace
 
-// What was submitted, so that the due frame can be read straight into arrays of the right size.
 // What a path-traced camera takes from the path tracer; its other modalities are rasterised.
 constexpr std::array kTracedModalities{sp::render::Modality::FinalColor, sp::render::Modality::HdrColor,
                                        sp::render::Modality::DiffuseIllumination,
@@ -131,6 +130,7 @@ struct TracedImages {
     std::uint64_t samples = 0; // per pixel, accumulated
 };
 
+// What was submitted, so that the due frame can be read straight into arrays of the right size.
 struct RenderSubsystem::PendingFrame {
     std::uint64_t submit = 0;
     std::int64_t worldFrame = 0;
