@@ -21,6 +21,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import NDArray
 from PIL import Image, ImageDraw  # type: ignore[import]  # Debian ships no Pillow stubs
 
 import spear
@@ -37,6 +38,12 @@ def spawn_camera(game: spear.UWorld, name: str, width: int, height: int) -> spea
     camera.ShadowResolution = 2048
     camera.Exposure = 0.6  # a sunlit white room: expose for the walls
     return camera
+
+
+def final_color(camera: spear.UCameraSensorComponent) -> NDArray[np.uint8]:
+    pixels = camera.read_pixels()
+    assert "final_color" in pixels  # the one modality the cameras render
+    return pixels["final_color"]
 
 
 def freeze(game: spear.UWorld) -> list[str]:
@@ -75,13 +82,13 @@ def main() -> None:
 
     start = time.monotonic()
     samples = 0
+    raster_image = traced_image = np.zeros((args.height, args.width, 4), np.uint8)
     while samples < args.samples:
         with instance.begin_frame():
             traced.Renderer = spear.ECameraRenderer.PathTraced
             traced.SamplesPerPixel = min(args.per_frame, args.samples - samples)
         with instance.end_frame():
-            raster_image = raster.read_pixels()["final_color"]
-            traced_image = traced.read_pixels()["final_color"]
+            raster_image, traced_image = final_color(raster), final_color(traced)
             previous, samples = samples, traced.GetAccumulatedSamples()
         elapsed = time.monotonic() - start
         print(f"path traced: {samples}/{args.samples} samples per pixel, {elapsed:.1f} s", file=sys.stderr)
