@@ -23,9 +23,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "python"))
 
 import spear  # noqa: E402
-from markdown_section import replace_section  # noqa: E402  (beside this script)
-
-BEGIN, END = "<!-- cosim:begin -->", "<!-- cosim:end -->"
+from markdown_section import replace_section, section  # noqa: E402  (beside this script)
 
 
 def load_example() -> ModuleType:
@@ -98,22 +96,15 @@ def main() -> int:
             f"{'-' if rpc is None else f'{rpc / inprocess:.2f}'} | {reference} |")
     command = ("PYTHONPATH=python /usr/bin/python3 bench/bench_cosim.py --build-dir build "
                f"--frames {args.frames}{' --no-rpc' if args.no_rpc else ''} --write")
-    section = "\n".join([
-        BEGIN,
-        "```bash",
-        command,
-        "```",
-        "",
+    text = section("cosim", command, [
         f"Device: {device} ({platform.machine()}, {args.frames} timed frames per cell after 10 warm-up frames; "
         "MuJoCo renders RGB with its own shadows, no MSAA).",
         "",
         *lines,
-        END,
     ])
-    print(section)
+    print(text)
     if args.write:
-        replace_section(ROOT / "BENCHMARKS.md", BEGIN, END, "Table 3: the co-simulation benchmark beside MuJoCo",
-                        section)
+        replace_section(ROOT / "BENCHMARKS.md", "cosim", "Table 3: the co-simulation benchmark beside MuJoCo", text)
     return 0
 
 

@@ -16,11 +16,10 @@ import time
 from pathlib import Path
 
 import spear
-from markdown_section import replace_section  # beside this script
+from markdown_section import replace_section, section  # beside this script
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = ROOT / "assets" / "scenes" / "apartment.json"
-BEGIN, END = "<!-- pathtrace:begin -->", "<!-- pathtrace:end -->"
 
 
 def default_scene_samples_per_second(server: str | None, frames: int, spp: int) -> float:
@@ -67,12 +66,7 @@ def main() -> int:
     rates = {name: default_scene_samples_per_second(server, args.frames, args.spp)
              for name, server in (("in-process", None), ("RPC", "launch"))}
     command = "PYTHONPATH=python /usr/bin/python3 bench/bench_pathtrace.py --build-dir build --write"
-    section = "\n".join([
-        BEGIN,
-        "```bash",
-        command,
-        "```",
-        "",
+    text = section("pathtrace", command, [
         "```",
         rays,
         "```",
@@ -80,11 +74,10 @@ def main() -> int:
         "| default scene, 640x480, path traced | Msamples/s | ms per sample per pixel |",
         "|---|---:|---:|",
         *[f"| {name} | {rate / 1e6:.2f} | {640 * 480 / rate * 1e3:.0f} |" for name, rate in rates.items()],
-        END,
     ])
-    print(section)
+    print(text)
     if args.write:
-        replace_section(ROOT / "BENCHMARKS.md", BEGIN, END, "Path tracer throughput", section)
+        replace_section(ROOT / "BENCHMARKS.md", "pathtrace", "Path tracer throughput", text)
     return 0
 
 
