@@ -41,6 +41,10 @@ class RpcClient(Protocol):
 
     def sp_func_names(self, handle: tuple[int, int], context: str) -> list[str]: ...
 
+    def same_engine(self, other: object) -> bool:
+        """Whether `other` (a client) reaches the engine this one does: their handles mean the same objects."""
+        ...
+
     def deferred(self, discard: bool) -> Any:
         """A context in which calls are queued and return Futures."""
         ...
@@ -68,12 +72,9 @@ class ObjectProxy(SpObject):
         self._sp_handle = handle
 
     def __eq__(self, other: object) -> bool:
-        if not isinstance(other, ObjectProxy) or other._sp_handle != self._sp_handle:
-            return False
         # The same engine (several connections may reach one server), not necessarily the same connection.
-        mine, theirs = self._sp_client, other._sp_client
-        engine = getattr(mine, "engine", None)
-        return mine is theirs or (engine is not None and engine == getattr(theirs, "engine", None))
+        return (isinstance(other, ObjectProxy) and other._sp_handle == self._sp_handle
+                and self._sp_client.same_engine(other._sp_client))
 
     def __hash__(self) -> int:
         return hash(self._sp_handle)
