@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "core/base/error.h"
+#include "core/render/camera.h"
 #include "core/render/modality.h"
 #include "core/sensors/render_subsystem.h"
 #include "core/world/actor.h"
@@ -106,7 +107,11 @@ void UCameraSensorComponent::SetMaxBounces(int32_t NewMaxBounces) {
 }
 
 sp::reflect::SpArray<double> UCameraSensorComponent::GetIntrinsicMatrix() const {
-    const double focal = 0.5 * Width / std::tan(0.5 * FOV * M_PI / 180.0);
+    // The renderer's own focal length, so that K is the projection the images were made with.
+    sp::render::Camera camera;
+    camera.params.width = Width;
+    camera.params.hfovDeg = FOV;
+    const double focal = camera.focalLengthPixels();
     sp::reflect::SpArray<double> k("K");
     k.resize({3, 3});
     const double values[9] = {focal, 0.0, 0.5 * (Width - 1), 0.0, focal, 0.5 * (Height - 1), 0.0, 0.0, 1.0};
