@@ -4,8 +4,10 @@
 #include <dlfcn.h>
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
 #include <pybind11/stl.h>
@@ -13,6 +15,7 @@
 #include "core/base/asset_path.h"
 #include "core/base/log.h"
 #include "core/base/progress.h"
+#include "core/imageio/exr.h"
 #include "core/plugin/plugin_loader.h"
 #include "core/pybind/bridge.h"
 #include "core/pybind/dynamic_access.h"
@@ -111,6 +114,18 @@ py::dict callSpFunc(py::handle uobject, const std::string& name, const py::dict&
     out["info"] = py::str(result.info_);
     return out;
 }
+// An EXR file as the array read_pixels() gives for its modality: (H, W) for one channel, else (H, W, C).
+py::array readExr(const std::string& path) {
+    py::gil_scoped_release release;
+    sp::imageio::Image image = sp::imageio::readExr(path, "spear.images.read_exr()");
+    py::gil_scoped_acquire acquire;
+    std::vector<py::ssize_t> shape{image.height, image.width};
+    if (image.channelNames.size() > 1)
+        shape.push_back(py::ssize_t(image.channelNames.size()));
+    py::array array(py::dtype(sp::imageio::toString(image.type)), shape);
+    std::memcpy(array.mutable_data(), image.pixels.data(), image.pixels.size());
+    return array;
+}
 } // namespace
 
 PYBIND11_MODULE(_spear_engine, m) {
@@ -136,6 +151,7 @@ PYBIND11_MODULE(_spear_engine, m) {
         py::arg("path"), py::arg("api_hash"), "Loads a plugin library (use Instance.load_plugin()).");
     m.def("_unload_plugin", &sp::plugin::unload, py::arg("name"),
           "Unloads a plugin's classes (use Instance.unload_plugin()).");
+    m.def("_read_exr", &readExr, py::arg("path"), "Reads an EXR file (use spear.images.read_exr()).");
     m.def("_call_sp_func", &callSpFunc, "Calls an SpFunc (use obj.call_sp_func()).");
     m.def(
         "_get_sp_func_names",

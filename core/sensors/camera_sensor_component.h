@@ -388,8 +388,13 @@ class UCameraSensorComponent : public USceneComponent {
     // Set by the RenderSubsystem when read_pixels() reads a frame.
     void setPixelsFrame(int64_t frame) { pixelsFrame_ = frame; }
     void setAccumulatedSamples(int64_t samples) { accumulatedSamples_ = samples; }
+    // Set by a render job for an engine frame whose output frame is already written: the world does not
+    // render this camera in that frame.
+    void setRenderSuspended(bool suspended) { renderSuspended_ = suspended; }
+    bool renderSuspended() const { return renderSuspended_; }
 
   private:
     int64_t pixelsFrame_ = -1;
     int64_t accumulatedSamples_ = 0;
+    bool renderSuspended_ = false;
 };

@@ -196,7 +196,8 @@ void RenderSubsystem::Tick(double /*deltaSeconds*/) {
     ensureRenderer();
     scene_->sync(world_);
     for (UCameraSensorComponent* camera : cameras)
-        submit(*camera);
+        if (!camera->renderSuspended())
+            submit(*camera);
 }
 
 RenderSubsystem::CameraState& RenderSubsystem::cameraState(UCameraSensorComponent& camera) {
@@ -291,6 +292,10 @@ std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponen
             }
     }
     return traced;
+}
+
+void RenderSubsystem::restartAccumulation(UCameraSensorComponent& camera) {
+    cameraState(camera).accumulation = {};
 }
 
 const RenderSubsystem::PendingFrame* RenderSubsystem::dueFrame(UCameraSensorComponent& camera) const {

@@ -80,6 +80,10 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     std::uint32_t objectId(sp::reflect::ObjectHandle component, int slot) const;
     std::uint32_t materialId(const std::string& name) const;
 
+    // Makes the camera's next path-traced frame start a new image (its samples only), even when nothing
+    // moved since the last one.
+    void restartAccumulation(UCameraSensorComponent& camera);
+
     // Starts the GL context and renderer if they are not running yet.
     FRenderDeviceInfo deviceInfo();
     FRenderStats stats() const;

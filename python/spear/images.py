@@ -1,15 +1,31 @@
-"""Camera images as pictures: uint8 RGB (H, W, 3) arrays for a PNG writer or a notebook.
+"""Camera images as pictures: uint8 RGB (H, W, 3) arrays for a PNG writer or a notebook; and the EXR files
+the render queue writes, read back as the arrays read_pixels() returns.
 
     import spear.images
     Image.fromarray(spear.images.id_colours(pixels["object_ids"])).save("ids.png")
+    depth = spear.images.read_exr("out/depth/0000.exr")   # float32 (H, W), as pixels["depth"]
 """
 
 from __future__ import annotations
 
+import importlib
+import os
+from typing import Any
+
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["depth_grey", "id_colours"]
+__all__ = ["depth_grey", "id_colours", "read_exr"]
+
+
+def read_exr(path: str | os.PathLike[str]) -> NDArray[Any]:
+    """The image of an OpenEXR file (through the engine's OpenEXR library): (H, W) for one channel, else
+    (H, W, C) in R, G, B, A order, as float16, float32 or uint32 as stored, so a file the render queue wrote
+    equals the read_pixels() array it came from. Raises spear.errors.NotFoundError for a missing file and
+    InvalidArgumentError for one that is not EXR."""
+    engine = importlib.import_module("spear._spear_engine")  # the reader is C++, in the engine library
+    image: NDArray[Any] = engine._read_exr(os.fspath(path))
+    return image
 
 
 def id_colours(ids: NDArray[np.uint32]) -> NDArray[np.uint8]:

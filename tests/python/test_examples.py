@@ -212,3 +212,24 @@ def test_raster_vs_path_traced_writes_both_renderings_side_by_side(transport: st
     assert image.shape == (48 + 22, 128, 3)
     raster, traced = image[22:, :64].astype(float), image[22:, 64:].astype(float)
     assert raster.std() > 10 and traced.std() > 10  # both show the room, not a flat colour
+
+
+@pytest.mark.parametrize("transport", TRANSPORTS)
+def test_movie_render_queue_renders_the_camera_move_to_files_and_resumes(transport: str, tmp_path: Path) -> None:
+    out = tmp_path / "movie"
+    args = ["--frames", "6", "--width", "64", "--height", "48", "--out", str(out), *TRANSPORTS[transport]]
+    result = run_example("movie_render_queue.py", *args)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "render: [########################] 6/6 frames" in result.stderr  # the progress bar
+    assert "rendered 6 frames, skipped 0 already written" in result.stdout
+    for modality, suffix in [("final_color", "png"), ("depth", "exr"), ("normal", "exr"), ("object_ids", "exr")]:
+        assert sorted(p.name for p in (out / modality).iterdir()) == [f"{k:04d}.{suffix}" for k in range(6)]
+    assert json.loads((out / "camera" / "0005.json").read_text())["width"] == 64
+    assert Image.open(out / "preview.png").size == (2 * 64, 48)  # frames 0 and 5
+    frames = [np.asarray(Image.open(out / "final_color" / f"{k:04d}.png")) for k in (0, 5)]
+    assert frames[0].std() > 10 and not np.array_equal(frames[0], frames[1])  # the room, seen as the camera moves
+
+    (out / "depth" / "0003.exr").unlink()
+    result = run_example("movie_render_queue.py", *args)  # run again: resumes
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "rendered 1 frames, skipped 5 already written" in result.stdout

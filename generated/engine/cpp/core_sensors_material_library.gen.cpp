@@ -6,6 +6,7 @@
 // Every header of the module: types used in signatures must be complete here.
 #include "core/sensors/camera_sensor_actor.h"
 #include "core/sensors/camera_sensor_component.h"
+#include "core/sensors/movie_pipeline_queue.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
 #include "core/spfunc/sp_func_component.h"

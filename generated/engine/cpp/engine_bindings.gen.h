@@ -14,6 +14,7 @@
 #include "core/sensors/camera_sensor_actor.h"
 #include "core/sensors/camera_sensor_component.h"
 #include "core/sensors/material_library.h"
+#include "core/sensors/movie_pipeline_queue.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
 #include "core/spfunc/sp_func_component.h"
@@ -160,6 +161,12 @@ template <> struct Ref<UGameplayStatics> : Ref<UObject> {
 template <> struct Ref<UInputComponent> : Ref<UActorComponent> {
     using Ref<UActorComponent>::Ref;
 };
+template <> struct Ref<UMoviePipelineExecutorJob> : Ref<UObject> {
+    using Ref<UObject>::Ref;
+};
+template <> struct Ref<UMoviePipelineQueueEngineSubsystem> : Ref<UObject> {
+    using Ref<UObject>::Ref;
+};
 template <> struct Ref<UNavigationSystemV1> : Ref<UObject> {
     using Ref<UObject>::Ref;
 };
@@ -265,6 +272,21 @@ template <> struct type_caster<EComponentMobility> {
     }
     static handle cast(EComponentMobility v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EComponentMobility");
+        return cls(static_cast<int64_t>(v)).release();
+    }
+};
+
+template <> struct type_caster<EMoviePipelineJobStatus> {
+    PYBIND11_TYPE_CASTER(EMoviePipelineJobStatus, const_name("EMoviePipelineJobStatus"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EMoviePipelineJobStatus");
+        if (!isinstance(src, cls))
+            return false;
+        value = static_cast<EMoviePipelineJobStatus>(src.cast<int64_t>());
+        return true;
+    }
+    static handle cast(EMoviePipelineJobStatus v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EMoviePipelineJobStatus");
         return cls(static_cast<int64_t>(v)).release();
     }
 };
@@ -521,6 +543,49 @@ template <> struct type_caster<FMaterialDesc> {
     static handle cast(const FMaterialDesc& v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FMaterialDesc");
         return cls(sp::pybind::Bridge<FLinearColor>::out(v.BaseColor), sp::pybind::Bridge<float>::out(v.Roughness), sp::pybind::Bridge<float>::out(v.Metallic), sp::pybind::Bridge<float>::out(v.AmbientOcclusion), sp::pybind::Bridge<FLinearColor>::out(v.Emissive), sp::pybind::Bridge<std::string>::out(v.BaseColorTexture), sp::pybind::Bridge<std::string>::out(v.RoughnessMetallicTexture), sp::pybind::Bridge<std::string>::out(v.NormalTexture)).release();
+    }
+};
+
+template <> struct type_caster<FMoviePipelineConfiguration> {
+    PYBIND11_TYPE_CASTER(FMoviePipelineConfiguration, const_name("FMoviePipelineConfiguration"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FMoviePipelineConfiguration");
+        if (!isinstance(src, cls))
+            return false;
+        value.OutputDirectory = sp::pybind::Bridge<std::string>::in(src.attr("OutputDirectory").cast<sp::pybind::Bridge<std::string>::Py>(), "FMoviePipelineConfiguration.OutputDirectory");
+        value.Modalities = sp::pybind::Bridge<std::vector<ECameraModality>>::in(src.attr("Modalities").cast<sp::pybind::Bridge<std::vector<ECameraModality>>::Py>(), "FMoviePipelineConfiguration.Modalities");
+        value.Width = sp::pybind::Bridge<int32_t>::in(src.attr("Width").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineConfiguration.Width");
+        value.Height = sp::pybind::Bridge<int32_t>::in(src.attr("Height").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineConfiguration.Height");
+        value.SamplesPerPixel = sp::pybind::Bridge<int32_t>::in(src.attr("SamplesPerPixel").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineConfiguration.SamplesPerPixel");
+        value.CameraLocations = sp::pybind::Bridge<std::vector<FVector>>::in(src.attr("CameraLocations").cast<sp::pybind::Bridge<std::vector<FVector>>::Py>(), "FMoviePipelineConfiguration.CameraLocations");
+        value.CameraRotations = sp::pybind::Bridge<std::vector<FRotator>>::in(src.attr("CameraRotations").cast<sp::pybind::Bridge<std::vector<FRotator>>::Py>(), "FMoviePipelineConfiguration.CameraRotations");
+        value.FrameStart = sp::pybind::Bridge<int32_t>::in(src.attr("FrameStart").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineConfiguration.FrameStart");
+        value.FrameEnd = sp::pybind::Bridge<int32_t>::in(src.attr("FrameEnd").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineConfiguration.FrameEnd");
+        value.bOverwriteExisting = sp::pybind::Bridge<bool>::in(src.attr("bOverwriteExisting").cast<sp::pybind::Bridge<bool>::Py>(), "FMoviePipelineConfiguration.bOverwriteExisting");
+        return true;
+    }
+    static handle cast(const FMoviePipelineConfiguration& v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FMoviePipelineConfiguration");
+        return cls(sp::pybind::Bridge<std::string>::out(v.OutputDirectory), sp::pybind::Bridge<std::vector<ECameraModality>>::out(v.Modalities), sp::pybind::Bridge<int32_t>::out(v.Width), sp::pybind::Bridge<int32_t>::out(v.Height), sp::pybind::Bridge<int32_t>::out(v.SamplesPerPixel), sp::pybind::Bridge<std::vector<FVector>>::out(v.CameraLocations), sp::pybind::Bridge<std::vector<FRotator>>::out(v.CameraRotations), sp::pybind::Bridge<int32_t>::out(v.FrameStart), sp::pybind::Bridge<int32_t>::out(v.FrameEnd), sp::pybind::Bridge<bool>::out(v.bOverwriteExisting)).release();
+    }
+};
+
+template <> struct type_caster<FMoviePipelineProgress> {
+    PYBIND11_TYPE_CASTER(FMoviePipelineProgress, const_name("FMoviePipelineProgress"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FMoviePipelineProgress");
+        if (!isinstance(src, cls))
+            return false;
+        value.FramesTotal = sp::pybind::Bridge<int32_t>::in(src.attr("FramesTotal").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineProgress.FramesTotal");
+        value.FramesRendered = sp::pybind::Bridge<int32_t>::in(src.attr("FramesRendered").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineProgress.FramesRendered");
+        value.FramesSkipped = sp::pybind::Bridge<int32_t>::in(src.attr("FramesSkipped").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineProgress.FramesSkipped");
+        value.ElapsedSeconds = sp::pybind::Bridge<double>::in(src.attr("ElapsedSeconds").cast<sp::pybind::Bridge<double>::Py>(), "FMoviePipelineProgress.ElapsedSeconds");
+        value.EstimatedSecondsLeft = sp::pybind::Bridge<double>::in(src.attr("EstimatedSecondsLeft").cast<sp::pybind::Bridge<double>::Py>(), "FMoviePipelineProgress.EstimatedSecondsLeft");
+        return true;
+    }
+    static handle cast(const FMoviePipelineProgress& v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FMoviePipelineProgress");
+        return cls(sp::pybind::Bridge<int32_t>::out(v.FramesTotal), sp::pybind::Bridge<int32_t>::out(v.FramesRendered), sp::pybind::Bridge<int32_t>::out(v.FramesSkipped), sp::pybind::Bridge<double>::out(v.ElapsedSeconds), sp::pybind::Bridge<double>::out(v.EstimatedSecondsLeft)).release();
     }
 };
 

@@ -6,6 +6,7 @@
 #include "core/reflect/type_info.h"
 
 #include "core/sensors/camera_sensor_component.h"
+#include "core/sensors/movie_pipeline_queue.h"
 #include "core/world/controller.h"
 #include "core/world/navigation_system.h"
 #include "core/world/pcg_component.h"
@@ -18,6 +19,7 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraRenderer
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraToneCurve>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECollisionPrimitive>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EComponentMobility>();
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EMoviePipelineJobStatus>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ENavigationQueryResult>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPCGGenerationMode>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPathFollowingRequestResult>();

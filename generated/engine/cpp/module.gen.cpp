@@ -3435,6 +3435,211 @@ void spear_bind_engine(py::module_& m) {
             "IsActionTriggered(self, *, ActionName: str) -> bool\n\nReturns true when ActionName was injected for the current tick.");
     }
     {
+        using Self = UMoviePipelineExecutorJob;
+        py::class_<Ref<Self>, Ref<UObject>> cls(m, "UMoviePipelineExecutorJob", "One render job: a camera, a configuration, and where rendering is.");
+        cls.attr("__sp_class__") = "UMoviePipelineExecutorJob";
+        sp::pybind::useBareTypeName(cls);
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "JobName",
+            [](const Ref<Self>& self) {
+                const auto& value = self.get<Self>("UMoviePipelineExecutorJob.JobName")->JobName;
+                return Bridge<std::string>::out(value);
+            },
+            "The name given to AllocateJob (used in progress and log lines).");
+        sp::pybind::nameProperties(cls);
+        cls.def(
+            "SetConfiguration",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& Configuration, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UMoviePipelineExecutorJob.SetConfiguration()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"Configuration", !isMissing(Configuration), true}});
+                Self* object = self.get<Self>(kContext);
+                auto ConfigurationValue = Bridge<FMoviePipelineConfiguration>::in(Configuration, "UMoviePipelineExecutorJob.SetConfiguration(): argument 'Configuration'");
+                object->SetConfiguration(ConfigurationValue);
+                return py::none();
+            },
+            py::arg("Configuration") = sp::pybind::missingArgument(),
+            "SetConfiguration(self, *, Configuration: FMoviePipelineConfiguration) -> None\n\nSets what the job renders; checked now (each field's range, poses that pair up, a frame range), and\nrefused while the job is queued or rendering.");
+        cls.def(
+            "GetConfiguration",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UMoviePipelineExecutorJob.GetConfiguration()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {});
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetConfiguration();
+                sp::reflect::checkResultFields(result, kContext);
+                return Bridge<FMoviePipelineConfiguration>::out(result);
+            },
+            "GetConfiguration(self) -> FMoviePipelineConfiguration\n\nReturns the configuration set last.");
+        cls.def(
+            "GetCamera",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UMoviePipelineExecutorJob.GetCamera()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {});
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetCamera();
+                return Bridge<UCameraSensorComponent*>::out(result);
+            },
+            "GetCamera(self) -> UCameraSensorComponent | None\n\nReturns the camera the job renders with, or None when it was destroyed.");
+        cls.def(
+            "GetStatus",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UMoviePipelineExecutorJob.GetStatus()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {});
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetStatus();
+                return Bridge<EMoviePipelineJobStatus>::out(result);
+            },
+            "GetStatus(self) -> EMoviePipelineJobStatus\n\nReturns where the job is.");
+        cls.def(
+            "GetProgress",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UMoviePipelineExecutorJob.GetProgress()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {});
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetProgress();
+                sp::reflect::checkResultFields(result, kContext);
+                return Bridge<FMoviePipelineProgress>::out(result);
+            },
+            "GetProgress(self) -> FMoviePipelineProgress\n\nReturns how far the job is (of its current or last run).");
+        cls.def(
+            "GetErrorMessage",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UMoviePipelineExecutorJob.GetErrorMessage()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {});
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetErrorMessage();
+                return Bridge<std::string>::out(result);
+            },
+            "GetErrorMessage(self) -> str\n\nReturns why the job failed, or \"\" when it did not.");
+        cls.def(
+            "GetOutputFiles",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& Frame, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UMoviePipelineExecutorJob.GetOutputFiles()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"Frame", !isMissing(Frame), true}});
+                const Self* object = self.get<Self>(kContext);
+                auto FrameValue = Bridge<int32_t>::in(Frame, "UMoviePipelineExecutorJob.GetOutputFiles(): argument 'Frame'");
+                auto result = object->GetOutputFiles(FrameValue);
+                return Bridge<std::vector<std::string>>::out(result);
+            },
+            py::arg("Frame") = sp::pybind::missingArgument(),
+            "GetOutputFiles(self, *, Frame: int) -> list[str]\n\nReturns the paths of the files output frame Frame writes: one per modality, then the camera file.");
+        cls.def(
+            "Cancel",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UMoviePipelineExecutorJob.Cancel()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {});
+                Self* object = self.get<Self>(kContext);
+                object->Cancel();
+                return py::none();
+            },
+            "Cancel(self) -> None\n\nStops the job (queued or rendering) at the end of the current frame's work; frames written stay.");
+    }
+    {
+        using Self = UMoviePipelineQueueEngineSubsystem;
+        py::class_<Ref<Self>, Ref<UObject>> cls(m, "UMoviePipelineQueueEngineSubsystem", "A world's render queue (UE's UMoviePipelineQueueEngineSubsystem): jobs render one after another, in the\norder RenderJob queued them.");
+        cls.attr("__sp_class__") = "UMoviePipelineQueueEngineSubsystem";
+        sp::pybind::useBareTypeName(cls);
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        sp::pybind::nameProperties(cls);
+        // Static in C++: called on the class, with no object.
+        cls.def_static(
+            "GetMoviePipelineQueueEngineSubsystem",
+            [](const py::args& positional, const PyArg& WorldContextObject, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.GetMoviePipelineQueueEngineSubsystem()";
+                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}});
+                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UMoviePipelineQueueEngineSubsystem.GetMoviePipelineQueueEngineSubsystem(): argument 'WorldContextObject'");
+                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UMoviePipelineQueueEngineSubsystem.GetMoviePipelineQueueEngineSubsystem(): argument 'WorldContextObject'", " must not be None");
+                auto result = Self::GetMoviePipelineQueueEngineSubsystem(WorldContextObjectValue);
+                sp::reflect::checkNotNull(result, kContext);
+                return Bridge<UMoviePipelineQueueEngineSubsystem*>::out(result);
+            },
+            py::arg("WorldContextObject") = sp::pybind::missingArgument(),
+            "GetMoviePipelineQueueEngineSubsystem(*, WorldContextObject: UObject) -> UMoviePipelineQueueEngineSubsystem\n\nReturns the render queue of WorldContextObject's world.");
+        cls.def(
+            "AllocateJob",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& Camera, const PyArg& JobName, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.AllocateJob()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"Camera", !isMissing(Camera), true}, {"JobName", !isMissing(JobName), false}});
+                Self* object = self.get<Self>(kContext);
+                auto CameraValue = Bridge<UCameraSensorComponent*>::in(Camera, "UMoviePipelineQueueEngineSubsystem.AllocateJob(): argument 'Camera'");
+                SP_CHECK(CameraValue, sp::InvalidArgument, "UMoviePipelineQueueEngineSubsystem.AllocateJob(): argument 'Camera'", " must not be None");
+                std::string JobNameValue = isMissing(JobName) ? std::string("") : Bridge<std::string>::in(JobName, "UMoviePipelineQueueEngineSubsystem.AllocateJob(): argument 'JobName'");
+                auto result = object->AllocateJob(CameraValue, JobNameValue);
+                sp::reflect::checkNotNull(result, kContext);
+                return Bridge<UMoviePipelineExecutorJob*>::out(result);
+            },
+            py::arg("Camera") = sp::pybind::missingArgument(),
+            py::arg("JobName") = sp::pybind::missingArgument(),
+            "AllocateJob(self, *, Camera: UCameraSensorComponent, JobName: str = ...) -> UMoviePipelineExecutorJob\n\nMakes a job that renders with Camera (a camera of this world), named JobName (\"\" gives one).");
+        cls.def(
+            "RenderJob",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& Job, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.RenderJob()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"Job", !isMissing(Job), true}});
+                Self* object = self.get<Self>(kContext);
+                auto JobValue = Bridge<UMoviePipelineExecutorJob*>::in(Job, "UMoviePipelineQueueEngineSubsystem.RenderJob(): argument 'Job'");
+                SP_CHECK(JobValue, sp::InvalidArgument, "UMoviePipelineQueueEngineSubsystem.RenderJob(): argument 'Job'", " must not be None");
+                object->RenderJob(JobValue);
+                return py::none();
+            },
+            py::arg("Job") = sp::pybind::missingArgument(),
+            "RenderJob(self, *, Job: UMoviePipelineExecutorJob) -> None\n\nQueues a configured job and returns at once; it renders over the next engine frames. A job that\nended (finished, cancelled, failed) may be queued again: it skips the frames already written.");
+        cls.def(
+            "IsRendering",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.IsRendering()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {});
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->IsRendering();
+                return Bridge<bool>::out(result);
+            },
+            "IsRendering(self) -> bool\n\nReturns whether a job is rendering or queued.");
+        cls.def(
+            "GetActiveJob",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.GetActiveJob()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {});
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetActiveJob();
+                return Bridge<UMoviePipelineExecutorJob*>::out(result);
+            },
+            "GetActiveJob(self) -> UMoviePipelineExecutorJob | None\n\nReturns the job rendering now, or None.");
+        cls.def(
+            "GetJobs",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.GetJobs()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {});
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetJobs();
+                return Bridge<std::vector<UMoviePipelineExecutorJob*>>::out(result);
+            },
+            "GetJobs(self) -> list[UMoviePipelineExecutorJob]\n\nReturns every job of this queue, in allocation order.");
+        cls.def(
+            "CancelAllJobs",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.CancelAllJobs()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {});
+                Self* object = self.get<Self>(kContext);
+                object->CancelAllJobs();
+                return py::none();
+            },
+            "CancelAllJobs(self) -> None\n\nCancels the rendering job and every queued one.");
+        cls.def(
+            "DeleteJob",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& Job, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.DeleteJob()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"Job", !isMissing(Job), true}});
+                Self* object = self.get<Self>(kContext);
+                auto JobValue = Bridge<UMoviePipelineExecutorJob*>::in(Job, "UMoviePipelineQueueEngineSubsystem.DeleteJob(): argument 'Job'");
+                SP_CHECK(JobValue, sp::InvalidArgument, "UMoviePipelineQueueEngineSubsystem.DeleteJob(): argument 'Job'", " must not be None");
+                object->DeleteJob(JobValue);
+                return py::none();
+            },
+            py::arg("Job") = sp::pybind::missingArgument(),
+            "DeleteJob(self, *, Job: UMoviePipelineExecutorJob) -> None\n\nDestroys a job that is not queued or rendering; its handles become stale.");
+    }
+    {
         using Self = UNavigationSystemV1;
         py::class_<Ref<Self>, Ref<UObject>> cls(m, "UNavigationSystemV1", "The world's navigation system (UE's UNavigationSystemV1).");
         cls.attr("__sp_class__") = "UNavigationSystemV1";

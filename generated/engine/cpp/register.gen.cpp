@@ -7,6 +7,7 @@
 #include "core/sensors/camera_sensor_actor.h"
 #include "core/sensors/camera_sensor_component.h"
 #include "core/sensors/material_library.h"
+#include "core/sensors/movie_pipeline_queue.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
 #include "core/spfunc/sp_func_component.h"
@@ -42,6 +43,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(sp::reflect::StaticEnum<ECameraToneCurve>());
     registry.add(sp::reflect::StaticEnum<ECollisionPrimitive>());
     registry.add(sp::reflect::StaticEnum<EComponentMobility>());
+    registry.add(sp::reflect::StaticEnum<EMoviePipelineJobStatus>());
     registry.add(sp::reflect::StaticEnum<ENavigationQueryResult>());
     registry.add(sp::reflect::StaticEnum<EPCGGenerationMode>());
     registry.add(sp::reflect::StaticEnum<EPathFollowingRequestResult>());
@@ -79,6 +81,8 @@ extern "C" void spear_register_engine_types() {
     registry.add(FHitResult::StaticClass());
     registry.add(FLinearColor::StaticClass());
     registry.add(FMaterialDesc::StaticClass());
+    registry.add(FMoviePipelineConfiguration::StaticClass());
+    registry.add(FMoviePipelineProgress::StaticClass());
     registry.add(FQuat::StaticClass());
     registry.add(FRenderDeviceInfo::StaticClass());
     registry.add(FRenderStats::StaticClass());
@@ -98,6 +102,8 @@ extern "C" void spear_register_engine_types() {
     registry.add(UDirectionalLightComponent::StaticClass());
     registry.add(UGameplayStatics::StaticClass());
     registry.add(UInputComponent::StaticClass());
+    registry.add(UMoviePipelineExecutorJob::StaticClass());
+    registry.add(UMoviePipelineQueueEngineSubsystem::StaticClass());
     registry.add(UNavigationSystemV1::StaticClass());
     registry.add(UPCGComponent::StaticClass());
     registry.add(UPointLightComponent::StaticClass());
@@ -123,6 +129,8 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(UPointLightComponent::StaticClass());
     registry.remove(UPCGComponent::StaticClass());
     registry.remove(UNavigationSystemV1::StaticClass());
+    registry.remove(UMoviePipelineQueueEngineSubsystem::StaticClass());
+    registry.remove(UMoviePipelineExecutorJob::StaticClass());
     registry.remove(UInputComponent::StaticClass());
     registry.remove(UGameplayStatics::StaticClass());
     registry.remove(UDirectionalLightComponent::StaticClass());
@@ -142,6 +150,8 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(FRenderStats::StaticClass());
     registry.remove(FRenderDeviceInfo::StaticClass());
     registry.remove(FQuat::StaticClass());
+    registry.remove(FMoviePipelineProgress::StaticClass());
+    registry.remove(FMoviePipelineConfiguration::StaticClass());
     registry.remove(FMaterialDesc::StaticClass());
     registry.remove(FLinearColor::StaticClass());
     registry.remove(FHitResult::StaticClass());
@@ -179,6 +189,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<EPathFollowingRequestResult>());
     registry.remove(sp::reflect::StaticEnum<EPCGGenerationMode>());
     registry.remove(sp::reflect::StaticEnum<ENavigationQueryResult>());
+    registry.remove(sp::reflect::StaticEnum<EMoviePipelineJobStatus>());
     registry.remove(sp::reflect::StaticEnum<EComponentMobility>());
     registry.remove(sp::reflect::StaticEnum<ECollisionPrimitive>());
     registry.remove(sp::reflect::StaticEnum<ECameraToneCurve>());
@@ -186,4 +197,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "18392744dae405ba"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "1fcb773dffb60021"; }

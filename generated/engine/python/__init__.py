@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "18392744dae405ba"
+API_HASH = "1fcb773dffb60021"

@@ -52,6 +52,7 @@ __all__ = [
     "ECameraToneCurve",
     "ECollisionPrimitive",
     "EComponentMobility",
+    "EMoviePipelineJobStatus",
     "ENavigationQueryResult",
     "EPCGGenerationMode",
     "EPathFollowingRequestResult",
@@ -61,6 +62,8 @@ __all__ = [
     "FHitResult",
     "FLinearColor",
     "FMaterialDesc",
+    "FMoviePipelineConfiguration",
+    "FMoviePipelineProgress",
     "FQuat",
     "FRenderDeviceInfo",
     "FRenderStats",
@@ -78,6 +81,8 @@ __all__ = [
     "UGameplayStatics",
     "UInputComponent",
     "ULightComponent",
+    "UMoviePipelineExecutorJob",
+    "UMoviePipelineQueueEngineSubsystem",
     "UNavigationSystemV1",
     "UObject",
     "UPCGComponent",
@@ -149,6 +154,18 @@ class EComponentMobility(enum.IntEnum):
     Static = 0
     Stationary = 1
     Movable = 2
+
+
+class EMoviePipelineJobStatus(enum.IntEnum):
+    """Where a render job is in its life."""
+
+    Unconfigured = 0
+    Ready = 1
+    Queued = 2
+    Rendering = 3
+    Finished = 4
+    Cancelled = 5
+    Failed = 6
 
 
 class ENavigationQueryResult(enum.IntEnum):
@@ -261,6 +278,35 @@ class FMaterialDesc:
     BaseColorTexture: str = ""
     RoughnessMetallicTexture: str = ""
     NormalTexture: str = ""
+
+
+@dataclass
+class FMoviePipelineConfiguration:
+    """What a render job renders, and where its files go."""
+
+    __sp_class__: ClassVar[str] = "FMoviePipelineConfiguration"
+    OutputDirectory: str = ""
+    Modalities: list[ECameraModality] = field(default_factory=list)
+    Width: int = 0
+    Height: int = 0
+    SamplesPerPixel: int = 0
+    CameraLocations: list[FVector] = field(default_factory=list)
+    CameraRotations: list[FRotator] = field(default_factory=list)
+    FrameStart: int = 0
+    FrameEnd: int = -1
+    bOverwriteExisting: bool = False
+
+
+@dataclass
+class FMoviePipelineProgress:
+    """How far a render job is."""
+
+    __sp_class__: ClassVar[str] = "FMoviePipelineProgress"
+    FramesTotal: int = 0
+    FramesRendered: int = 0
+    FramesSkipped: int = 0
+    ElapsedSeconds: float = 0.0
+    EstimatedSecondsLeft: float = -1.0
 
 
 @dataclass
@@ -1153,6 +1199,47 @@ class UInputComponent(UActorComponent):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UInputComponent"
+
+
+class UMoviePipelineExecutorJobAsync(UObjectAsync):
+    """UMoviePipelineExecutorJob's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UMoviePipelineExecutorJobSend(UObjectSend):
+    """UMoviePipelineExecutorJob's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class UMoviePipelineExecutorJob(UObject):
+    """One render job: a camera, a configuration, and where rendering is."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "UMoviePipelineExecutorJob"
+
+
+class UMoviePipelineQueueEngineSubsystemAsync(UObjectAsync):
+    """UMoviePipelineQueueEngineSubsystem's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UMoviePipelineQueueEngineSubsystemSend(UObjectSend):
+    """UMoviePipelineQueueEngineSubsystem's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class UMoviePipelineQueueEngineSubsystem(UObject):
+    """A world's render queue (UE's UMoviePipelineQueueEngineSubsystem): jobs render one after another, in the
+    order RenderJob queued them.
+    """
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "UMoviePipelineQueueEngineSubsystem"
+    GetMoviePipelineQueueEngineSubsystem = _StaticFunction("UMoviePipelineQueueEngineSubsystem", "GetMoviePipelineQueueEngineSubsystem", "UMoviePipelineQueueEngineSubsystem")
 
 
 class UNavigationSystemV1Async(UObjectAsync):

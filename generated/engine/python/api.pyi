@@ -47,6 +47,7 @@ __all__ = [
     "ECameraToneCurve",
     "ECollisionPrimitive",
     "EComponentMobility",
+    "EMoviePipelineJobStatus",
     "ENavigationQueryResult",
     "EPCGGenerationMode",
     "EPathFollowingRequestResult",
@@ -56,6 +57,8 @@ __all__ = [
     "FHitResult",
     "FLinearColor",
     "FMaterialDesc",
+    "FMoviePipelineConfiguration",
+    "FMoviePipelineProgress",
     "FQuat",
     "FRenderDeviceInfo",
     "FRenderStats",
@@ -73,6 +76,8 @@ __all__ = [
     "UGameplayStatics",
     "UInputComponent",
     "ULightComponent",
+    "UMoviePipelineExecutorJob",
+    "UMoviePipelineQueueEngineSubsystem",
     "UNavigationSystemV1",
     "UObject",
     "UPCGComponent",
@@ -187,6 +192,25 @@ class EComponentMobility(enum.IntEnum):
     """Does not move but its lighting may change."""
     Movable = 2
     """Free to move."""
+
+
+class EMoviePipelineJobStatus(enum.IntEnum):
+    """Where a render job is in its life."""
+
+    Unconfigured = 0
+    """Allocated; SetConfiguration has not been called yet."""
+    Ready = 1
+    """Configured; RenderJob has not been called (or it ended and may be rendered again)."""
+    Queued = 2
+    """Waiting for the jobs before it."""
+    Rendering = 3
+    """Rendering, one output frame per engine frame."""
+    Finished = 4
+    """Every frame's files are written."""
+    Cancelled = 5
+    """Cancel() or CancelAllJobs() stopped it; the frames written so far stay (a new run resumes)."""
+    Failed = 6
+    """An error stopped it (GetErrorMessage() says which); the frames written so far stay."""
 
 
 class ENavigationQueryResult(enum.IntEnum):
@@ -317,6 +341,35 @@ class FMaterialDesc:
     BaseColorTexture: str = ""
     RoughnessMetallicTexture: str = ""
     NormalTexture: str = ""
+
+
+@dataclass
+class FMoviePipelineConfiguration:
+    """What a render job renders, and where its files go."""
+
+    __sp_class__: ClassVar[str]
+    OutputDirectory: str = ""
+    Modalities: list[ECameraModality] = field(default_factory=list)
+    Width: int = 0
+    Height: int = 0
+    SamplesPerPixel: int = 0
+    CameraLocations: list[FVector] = field(default_factory=list)
+    CameraRotations: list[FRotator] = field(default_factory=list)
+    FrameStart: int = 0
+    FrameEnd: int = -1
+    bOverwriteExisting: bool = False
+
+
+@dataclass
+class FMoviePipelineProgress:
+    """How far a render job is."""
+
+    __sp_class__: ClassVar[str]
+    FramesTotal: int = 0
+    FramesRendered: int = 0
+    FramesSkipped: int = 0
+    ElapsedSeconds: float = 0.0
+    EstimatedSecondsLeft: float = -1.0
 
 
 @dataclass
@@ -3385,6 +3438,173 @@ class UInputComponent(UActorComponent):
 
     def IsActionTriggered(self, *, ActionName: str) -> bool:
         """Returns true when ActionName was injected for the current tick."""
+
+
+class UMoviePipelineExecutorJobAsync(UObjectAsync):
+    """UMoviePipelineExecutorJob's functions, called asynchronously: each returns a Future."""
+
+    def SetConfiguration(self, *, Configuration: FMoviePipelineConfiguration) -> Future[None]: ...
+
+    def GetConfiguration(self) -> Future[FMoviePipelineConfiguration]: ...
+
+    def GetCamera(self) -> Future[UCameraSensorComponent | None]: ...
+
+    def GetStatus(self) -> Future[EMoviePipelineJobStatus]: ...
+
+    def GetProgress(self) -> Future[FMoviePipelineProgress]: ...
+
+    def GetErrorMessage(self) -> Future[str]: ...
+
+    def GetOutputFiles(self, *, Frame: int) -> Future[list[str]]: ...
+
+    def Cancel(self) -> Future[None]: ...
+
+
+class UMoviePipelineExecutorJobSend(UObjectSend):
+    """UMoviePipelineExecutorJob's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetConfiguration(self, *, Configuration: FMoviePipelineConfiguration) -> None: ...
+
+    def GetConfiguration(self) -> None: ...
+
+    def GetCamera(self) -> None: ...
+
+    def GetStatus(self) -> None: ...
+
+    def GetProgress(self) -> None: ...
+
+    def GetErrorMessage(self) -> None: ...
+
+    def GetOutputFiles(self, *, Frame: int) -> None: ...
+
+    def Cancel(self) -> None: ...
+
+
+class UMoviePipelineExecutorJob(UObject):
+    """One render job: a camera, a configuration, and where rendering is."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UMoviePipelineExecutorJobAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UMoviePipelineExecutorJobSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def JobName(self) -> str:
+        """The name given to AllocateJob (used in progress and log lines)."""
+
+    def SetConfiguration(self, *, Configuration: FMoviePipelineConfiguration) -> None:
+        """Sets what the job renders; checked now (each field's range, poses that pair up, a frame range), and
+        refused while the job is queued or rendering.
+        """
+
+    def GetConfiguration(self) -> FMoviePipelineConfiguration:
+        """Returns the configuration set last."""
+
+    def GetCamera(self) -> UCameraSensorComponent | None:
+        """Returns the camera the job renders with, or None when it was destroyed."""
+
+    def GetStatus(self) -> EMoviePipelineJobStatus:
+        """Returns where the job is."""
+
+    def GetProgress(self) -> FMoviePipelineProgress:
+        """Returns how far the job is (of its current or last run)."""
+
+    def GetErrorMessage(self) -> str:
+        """Returns why the job failed, or "" when it did not."""
+
+    def GetOutputFiles(self, *, Frame: int) -> list[str]:
+        """Returns the paths of the files output frame Frame writes: one per modality, then the camera file."""
+
+    def Cancel(self) -> None:
+        """Stops the job (queued or rendering) at the end of the current frame's work; frames written stay."""
+
+
+class UMoviePipelineQueueEngineSubsystemAsync(UObjectAsync):
+    """UMoviePipelineQueueEngineSubsystem's functions, called asynchronously: each returns a Future."""
+
+    def GetMoviePipelineQueueEngineSubsystem(self, *, WorldContextObject: UObject) -> Future[UMoviePipelineQueueEngineSubsystem]: ...
+
+    def AllocateJob(self, *, Camera: UCameraSensorComponent, JobName: str = "") -> Future[UMoviePipelineExecutorJob]: ...
+
+    def RenderJob(self, *, Job: UMoviePipelineExecutorJob) -> Future[None]: ...
+
+    def IsRendering(self) -> Future[bool]: ...
+
+    def GetActiveJob(self) -> Future[UMoviePipelineExecutorJob | None]: ...
+
+    def GetJobs(self) -> Future[list[UMoviePipelineExecutorJob]]: ...
+
+    def CancelAllJobs(self) -> Future[None]: ...
+
+    def DeleteJob(self, *, Job: UMoviePipelineExecutorJob) -> Future[None]: ...
+
+
+class UMoviePipelineQueueEngineSubsystemSend(UObjectSend):
+    """UMoviePipelineQueueEngineSubsystem's functions, sent without waiting for a result (fire and forget)."""
+
+    def GetMoviePipelineQueueEngineSubsystem(self, *, WorldContextObject: UObject) -> None: ...
+
+    def AllocateJob(self, *, Camera: UCameraSensorComponent, JobName: str = "") -> None: ...
+
+    def RenderJob(self, *, Job: UMoviePipelineExecutorJob) -> None: ...
+
+    def IsRendering(self) -> None: ...
+
+    def GetActiveJob(self) -> None: ...
+
+    def GetJobs(self) -> None: ...
+
+    def CancelAllJobs(self) -> None: ...
+
+    def DeleteJob(self, *, Job: UMoviePipelineExecutorJob) -> None: ...
+
+
+class UMoviePipelineQueueEngineSubsystem(UObject):
+    """A world's render queue (UE's UMoviePipelineQueueEngineSubsystem): jobs render one after another, in the
+    order RenderJob queued them.
+    """
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UMoviePipelineQueueEngineSubsystemAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UMoviePipelineQueueEngineSubsystemSend:
+        """The same functions, fire and forget."""
+
+    @staticmethod
+    def GetMoviePipelineQueueEngineSubsystem(*, WorldContextObject: UObject) -> UMoviePipelineQueueEngineSubsystem:
+        """Returns the render queue of WorldContextObject's world."""
+
+    def AllocateJob(self, *, Camera: UCameraSensorComponent, JobName: str = "") -> UMoviePipelineExecutorJob:
+        """Makes a job that renders with Camera (a camera of this world), named JobName ("" gives one)."""
+
+    def RenderJob(self, *, Job: UMoviePipelineExecutorJob) -> None:
+        """Queues a configured job and returns at once; it renders over the next engine frames. A job that
+        ended (finished, cancelled, failed) may be queued again: it skips the frames already written.
+        """
+
+    def IsRendering(self) -> bool:
+        """Returns whether a job is rendering or queued."""
+
+    def GetActiveJob(self) -> UMoviePipelineExecutorJob | None:
+        """Returns the job rendering now, or None."""
+
+    def GetJobs(self) -> list[UMoviePipelineExecutorJob]:
+        """Returns every job of this queue, in allocation order."""
+
+    def CancelAllJobs(self) -> None:
+        """Cancels the rendering job and every queued one."""
+
+    def DeleteJob(self, *, Job: UMoviePipelineExecutorJob) -> None:
+        """Destroys a job that is not queued or rendering; its handles become stale."""
 
 
 class UNavigationSystemV1Async(UObjectAsync):

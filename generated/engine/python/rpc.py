@@ -18,7 +18,7 @@ from spear._rpc_proxy import ObjectProxy as _ObjectProxy
 from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
-from .api import ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESplineCoordinateSpace, FCameraPixels, FHitResult, FLinearColor, FMaterialDesc, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
+from .api import ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESplineCoordinateSpace, FCameraPixels, FHitResult, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
 
@@ -1517,6 +1517,69 @@ class UInputComponent(UActorComponent, api.UInputComponent):
 
 
 _register_proxy(UInputComponent)
+
+
+class UMoviePipelineExecutorJob(UObject, api.UMoviePipelineExecutorJob):
+    __slots__ = ()
+
+    @property
+    def JobName(self) -> str:
+        return cast("str", self._sp_get("UMoviePipelineExecutorJob", "JobName", "str"))
+
+    def SetConfiguration(self, *, Configuration: FMoviePipelineConfiguration) -> None:
+        return cast(None, self._sp_call("UMoviePipelineExecutorJob", "SetConfiguration", {"Configuration": Configuration}, "None"))  # a Future when queued by call_async
+
+    def GetConfiguration(self) -> FMoviePipelineConfiguration:
+        return cast("FMoviePipelineConfiguration", self._sp_call("UMoviePipelineExecutorJob", "GetConfiguration", {}, "FMoviePipelineConfiguration"))
+
+    def GetCamera(self) -> api.UCameraSensorComponent | None:
+        return cast("api.UCameraSensorComponent | None", self._sp_call("UMoviePipelineExecutorJob", "GetCamera", {}, "UCameraSensorComponent | None"))
+
+    def GetStatus(self) -> EMoviePipelineJobStatus:
+        return cast("EMoviePipelineJobStatus", self._sp_call("UMoviePipelineExecutorJob", "GetStatus", {}, "EMoviePipelineJobStatus"))
+
+    def GetProgress(self) -> FMoviePipelineProgress:
+        return cast("FMoviePipelineProgress", self._sp_call("UMoviePipelineExecutorJob", "GetProgress", {}, "FMoviePipelineProgress"))
+
+    def GetErrorMessage(self) -> str:
+        return cast("str", self._sp_call("UMoviePipelineExecutorJob", "GetErrorMessage", {}, "str"))
+
+    def GetOutputFiles(self, *, Frame: int) -> list[str]:
+        return cast("list[str]", self._sp_call("UMoviePipelineExecutorJob", "GetOutputFiles", {"Frame": Frame}, "list[str]"))
+
+    def Cancel(self) -> None:
+        return cast(None, self._sp_call("UMoviePipelineExecutorJob", "Cancel", {}, "None"))  # a Future when queued by call_async
+
+
+_register_proxy(UMoviePipelineExecutorJob)
+
+
+class UMoviePipelineQueueEngineSubsystem(UObject, api.UMoviePipelineQueueEngineSubsystem):
+    __slots__ = ()
+
+    def AllocateJob(self, *, Camera: api.UCameraSensorComponent, JobName: str = _DEFAULT) -> api.UMoviePipelineExecutorJob:
+        return cast("api.UMoviePipelineExecutorJob", self._sp_call("UMoviePipelineQueueEngineSubsystem", "AllocateJob", {"Camera": Camera, "JobName": JobName}, "UMoviePipelineExecutorJob"))
+
+    def RenderJob(self, *, Job: api.UMoviePipelineExecutorJob) -> None:
+        return cast(None, self._sp_call("UMoviePipelineQueueEngineSubsystem", "RenderJob", {"Job": Job}, "None"))  # a Future when queued by call_async
+
+    def IsRendering(self) -> bool:
+        return cast("bool", self._sp_call("UMoviePipelineQueueEngineSubsystem", "IsRendering", {}, "bool"))
+
+    def GetActiveJob(self) -> api.UMoviePipelineExecutorJob | None:
+        return cast("api.UMoviePipelineExecutorJob | None", self._sp_call("UMoviePipelineQueueEngineSubsystem", "GetActiveJob", {}, "UMoviePipelineExecutorJob | None"))
+
+    def GetJobs(self) -> list[api.UMoviePipelineExecutorJob]:
+        return cast("list[api.UMoviePipelineExecutorJob]", self._sp_call("UMoviePipelineQueueEngineSubsystem", "GetJobs", {}, "list[UMoviePipelineExecutorJob]"))
+
+    def CancelAllJobs(self) -> None:
+        return cast(None, self._sp_call("UMoviePipelineQueueEngineSubsystem", "CancelAllJobs", {}, "None"))  # a Future when queued by call_async
+
+    def DeleteJob(self, *, Job: api.UMoviePipelineExecutorJob) -> None:
+        return cast(None, self._sp_call("UMoviePipelineQueueEngineSubsystem", "DeleteJob", {"Job": Job}, "None"))  # a Future when queued by call_async
+
+
+_register_proxy(UMoviePipelineQueueEngineSubsystem)
 
 
 class UNavigationSystemV1(UObject, api.UNavigationSystemV1):
