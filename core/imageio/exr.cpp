@@ -117,6 +117,9 @@ std::string encodeExr(const ImageView& image, std::string_view function) {
     try {
         Imf::Header header(image.width, image.height);
         header.compression() = Imf::ZIP_COMPRESSION;
+        // Level 1: a third faster than the default (4) for files 0-25 % larger (BENCHMARKS.md, "Render
+        // queue").
+        header.zipCompressionLevel() = 1;
         Imf::FrameBuffer frame;
         for (int c = 0; c < image.channels; ++c) {
             header.channels().insert(names[std::size_t(c)], Imf::Channel(exrType(image.type)));

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <set>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -11,6 +13,7 @@
 #include "core/base/log.h"
 #include "core/base/regular_file.h"
 #include "core/imageio/exr.h"
+#include "core/imageio/file_writer.h"
 #include "core/imageio/png.h"
 #include "core/render/image_buffer.h"
 #include "core/render/modality.h"
@@ -105,6 +108,8 @@ struct MoviePipelineQueue::Run {
     int32_t frame = 0; // the output frame of this engine frame
     int32_t end = 0;
     bool renderThisFrame = false;
+    std::set<std::uint64_t> writing; // the writer's tickets of this run's frames being written
+    std::string writeError;          // the first frame that could not be written
     std::chrono::steady_clock::time_point started;
     std::unique_ptr<sp::base::Progress> progress;
 
@@ -255,6 +260,15 @@ void MoviePipelineQueue::start(UMoviePipelineExecutorJob& job) {
 }
 
 void MoviePipelineQueue::end(EMoviePipelineJobStatus status, std::string error) {
+    // Frames being written are finished first: a job that ended writes nothing more.
+    if (writer_)
+        writer_->waitAll();
+    collectWritten();
+    if (status == EMoviePipelineJobStatus::Finished && !active_->writeError.empty()) {
+        SP_LOG("render job '", active_->job->JobName, "' failed: ", active_->writeError);
+        status = EMoviePipelineJobStatus::Failed;
+        error = active_->writeError;
+    }
     std::unique_ptr<Run> run = std::move(active_);
     if (UCameraSensorComponent* camera = findCamera(run->job->cameraHandle())) {
         camera->Width = run->saved.width;
@@ -296,6 +310,8 @@ void MoviePipelineQueue::Tick(double /*deltaSeconds*/) {
     Run& run = *active_;
     run.renderThisFrame = false;
     try {
+        collectWritten();
+        SP_CHECK(run.writeError.empty(), InvalidArgument, run.writeError);
         UCameraSensorComponent* camera = findCamera(run.job->cameraHandle());
         SP_CHECK(camera, InvalidState, "render job '", run.job->JobName, "': its camera was destroyed");
         FMoviePipelineProgress& progress = run.job->progress();
@@ -339,22 +355,16 @@ void MoviePipelineQueue::afterRender() {
     try {
         UCameraSensorComponent* camera = findCamera(run.job->cameraHandle());
         SP_CHECK(camera, InvalidState, "render job '", run.job->JobName, "': its camera was destroyed");
-        FMoviePipelineProgress& progress = run.job->progress();
-        if (run.renderThisFrame) {
+        if (run.renderThisFrame)
             writeFrame(*camera);
-            ++progress.FramesRendered;
-        } else if (run.frame >= run.configuration.FrameStart) {
-            ++progress.FramesSkipped;
-        }
+        else if (run.frame >= run.configuration.FrameStart)
+            ++run.job->progress().FramesSkipped;
         camera->setRenderSuspended(false);
         ++run.frame;
-        const double elapsed =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - run.started).count();
-        progress.ElapsedSeconds = elapsed;
-        const int32_t left = run.end - std::max(run.frame, run.configuration.FrameStart);
-        if (progress.FramesRendered > 0)
-            progress.EstimatedSecondsLeft = elapsed / progress.FramesRendered * left;
-        run.progress->set(progress.FramesRendered + progress.FramesSkipped);
+        collectWritten();
+        SP_CHECK(run.writeError.empty(), InvalidArgument, run.writeError);
+        // The last frame waits for the files still being written, so that when IsRendering() turns false
+        // every file is on disk.
         if (run.frame >= run.end)
             end(EMoviePipelineJobStatus::Finished);
     } catch (const std::exception& error) {
@@ -363,37 +373,41 @@ void MoviePipelineQueue::afterRender() {
 }
 
 void MoviePipelineQueue::writeFrame(UCameraSensorComponent& camera) {
-    const std::string function = "render job '" + active_->job->JobName + "'";
+    Run& run = *active_;
+    const std::string function = "render job '" + run.job->JobName + "'";
     RenderSubsystem& render = world_.GetSubsystem<RenderSubsystem>();
     const std::optional<RenderSubsystem::FrameShape> shape = render.dueShape(camera);
-    SP_CHECK(shape, InvalidState, function, ": frame ", active_->frame, " was not rendered");
-    const std::vector<sp::render::Modality> modalities = shape->modalities.list();
-    std::vector<std::vector<std::byte>> images;
+    SP_CHECK(shape, InvalidState, function, ": frame ", run.frame, " was not rendered");
+
+    // What the writer's thread needs, owned by the task: the images, their files, and the camera record.
+    struct FrameFiles {
+        struct File {
+            std::string path;
+            sp::render::Modality modality;
+            std::vector<std::byte> pixels;
+        };
+        std::vector<File> images;
+        std::string cameraPath, cameraRecord, function;
+        int width = 0, height = 0;
+    };
+    auto files = std::make_shared<FrameFiles>();
+    files->width = shape->width;
+    files->height = shape->height;
+    files->function = function;
     std::vector<sp::render::OutputView> views;
-    for (sp::render::Modality modality : modalities) {
-        images.emplace_back(sp::render::modalityByteSize(modality, shape->width, shape->height));
-        views.push_back({modality, images.back().data(), images.back().size()});
-    }
-    SP_CHECK(render.readInto(camera, views), InvalidState, function, ": frame ", active_->frame,
+    for (sp::render::Modality modality : shape->modalities.list())
+        files->images.push_back(
+            {imageFile(run.configuration.OutputDirectory, modality, run.frame), modality,
+             std::vector<std::byte>(sp::render::modalityByteSize(modality, shape->width, shape->height))});
+    for (FrameFiles::File& file : files->images)
+        views.push_back({file.modality, file.pixels.data(), file.pixels.size()});
+    SP_CHECK(render.readInto(camera, views), InvalidState, function, ": frame ", run.frame,
              " could not be read");
 
-    const std::string& folder = active_->configuration.OutputDirectory;
-    for (std::size_t i = 0; i < modalities.size(); ++i) {
-        const sp::render::ModalityInfo& info = sp::render::modalityInfo(modalities[i]);
-        const sp::imageio::ImageView image{shape->width, shape->height, info.channels, pixelType(info.dtype),
-                                           images[i].data()};
-        const std::string file = imageFile(folder, modalities[i], active_->frame);
-        if (isPng(modalities[i]))
-            sp::imageio::writePng(file, image, function);
-        else
-            sp::imageio::writeExr(file, image, function);
-    }
-
-    // The camera file last: its presence means the frame is whole.
     const FTransform pose = camera.GetComponentTransform();
     const FRotator rotation = camera.GetComponentRotation();
-    nlohmann::json record{
-        {"frame", active_->frame},
+    const nlohmann::json record{
+        {"frame", run.frame},
         {"engine_frame", world_.get_frame_count() + 1},
         {"width", shape->width},
         {"height", shape->height},
@@ -404,7 +418,51 @@ void MoviePipelineQueue::writeFrame(UCameraSensorComponent& camera) {
         {"renderer", camera.Renderer == ECameraRenderer::PathTraced ? "path_traced" : "raster"},
         {"samples_per_pixel", camera.GetAccumulatedSamples()},
     };
-    writeRegularFile(cameraFile(folder, active_->frame), record.dump() + "\n", function, "camera file");
+    files->cameraPath = cameraFile(run.configuration.OutputDirectory, run.frame);
+    files->cameraRecord = record.dump() + "\n";
+
+    if (!writer_) // threads beside the renderer's: encoding overlaps the next frames
+        writer_ = std::make_unique<sp::imageio::FileWriter>(
+            int(std::max(2u, std::thread::hardware_concurrency())),
+            int(std::max(2u, std::thread::hardware_concurrency())) + 1);
+    const std::uint64_t ticket = writer_->submit([files] {
+        for (const FrameFiles::File& file : files->images) {
+            const sp::render::ModalityInfo& info = sp::render::modalityInfo(file.modality);
+            const sp::imageio::ImageView image{files->width, files->height, info.channels,
+                                               pixelType(info.dtype), file.pixels.data()};
+            if (isPng(file.modality))
+                sp::imageio::writePng(file.path, image, files->function);
+            else
+                sp::imageio::writeExr(file.path, image, files->function);
+        }
+        // The camera file last: its presence means the frame is whole.
+        writeRegularFile(files->cameraPath, files->cameraRecord, files->function, "camera file");
+    });
+    run.writing.insert(ticket);
+}
+
+void MoviePipelineQueue::collectWritten() {
+    if (!active_)
+        return;
+    Run& run = *active_;
+    FMoviePipelineProgress& progress = run.job->progress();
+    for (const sp::imageio::FileWriter::Finished& done :
+         writer_ ? writer_->takeFinished() : std::vector<sp::imageio::FileWriter::Finished>{}) {
+        if (!run.writing.erase(done.ticket))
+            continue; // a task of an earlier run
+        if (!done.error.empty() && run.writeError.empty())
+            run.writeError = done.error;
+        else if (done.error.empty())
+            ++progress.FramesRendered;
+    }
+    progress.FramesWriting = int32_t(run.writing.size());
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - run.started).count();
+    progress.ElapsedSeconds = elapsed;
+    const int32_t left = progress.FramesTotal - progress.FramesRendered - progress.FramesSkipped;
+    if (progress.FramesRendered > 0)
+        progress.EstimatedSecondsLeft = elapsed / progress.FramesRendered * left;
+    run.progress->set(progress.FramesRendered + progress.FramesSkipped);
 }
 
 } // namespace sp::sensors

@@ -30,6 +30,9 @@
 #include "core/world/object.h"
 #include "core/world/world_subsystem.h"
 
+namespace sp::imageio {
+class FileWriter;
+} // namespace sp::imageio
 namespace sp::sensors {
 class MoviePipelineQueue;
 } // namespace sp::sensors
@@ -105,6 +108,10 @@ struct FMoviePipelineProgress {
     /// Frames rendered and written by this run.
     SPPROPERTY()
     int32_t FramesRendered = 0;
+    /// Frames rendered whose files are still being written (on background threads, while the next frames
+    /// render); a job ends only when this is 0.
+    SPPROPERTY()
+    int32_t FramesWriting = 0;
     /// Frames skipped because their files were already there.
     SPPROPERTY()
     int32_t FramesSkipped = 0;
@@ -256,13 +263,18 @@ class MoviePipelineQueue : public sp::world::WorldSubsystem {
     void end(EMoviePipelineJobStatus status, std::string error = {});
     void fail(const std::exception& error);
     bool frameWritten(int32_t frame) const;
+    // Reads the frame the camera rendered and hands its files to the writer.
     void writeFrame(UCameraSensorComponent& camera);
+    // Counts the active run's frames the writer finished (and keeps the first error).
+    void collectWritten();
 
     UWorld& world_;
     std::unique_ptr<UMoviePipelineQueueEngineSubsystem> object_;
     std::vector<std::unique_ptr<UMoviePipelineExecutorJob>> jobs_;
     std::vector<UMoviePipelineExecutorJob*> queued_;
     std::unique_ptr<Run> active_;
+    // Started by the first frame written; destroyed first (members go bottom-up), waiting for its files.
+    std::unique_ptr<sp::imageio::FileWriter> writer_;
     int nextJobNumber_ = 0;
 };
 

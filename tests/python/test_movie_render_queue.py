@@ -86,13 +86,17 @@ def test_a_job_writes_every_frame_equal_to_read_pixels_and_puts_the_camera_back(
         assert job.GetStatus() == Status.Queued and queue.IsRendering()
     with instance.end_frame():
         assert job.GetStatus() == Status.Rendering and queue.GetActiveJob() == job
-        assert job.GetProgress().FramesRendered == 1  # the frame RenderJob was called in rendered frame 0
+        # The frame RenderJob was called in rendered frame 0; its files are written while the next frames
+        # render.
+        progress = job.GetProgress()
+        assert progress.FramesRendered + progress.FramesWriting == 1
     _render(instance, queue)
 
     with instance.begin_frame():
         progress = job.GetProgress()
         assert job.GetStatus() == Status.Finished and not queue.IsRendering() and queue.GetActiveJob() is None
         assert (progress.FramesTotal, progress.FramesRendered, progress.FramesSkipped) == (3, 3, 0)
+        assert progress.FramesWriting == 0  # a job ends when its files are on disk
         assert progress.EstimatedSecondsLeft == 0.0 and progress.ElapsedSeconds > 0.0
         # The camera is as it was before the job.
         assert (camera.Width, camera.Height, camera.Modalities, camera.Latency) == (40, 30, [M.FinalColor], 0)
@@ -193,8 +197,10 @@ def test_cancel_stops_a_job_and_the_queue_goes_on_to_the_next(instance: spear.In
     with instance.begin_frame():
         pass
     with instance.end_frame():
-        assert first.GetProgress().FramesRendered == 2
-        first.Cancel()
+        progress = first.GetProgress()
+        assert progress.FramesRendered + progress.FramesWriting == 2
+        first.Cancel()  # waits for the frames being written
+        assert (first.GetProgress().FramesRendered, first.GetProgress().FramesWriting) == (2, 0)
         assert first.GetStatus() == Status.Cancelled and second.GetStatus() == Status.Queued
         assert camera.Width == 40 and camera.GetComponentLocation() == spear.FVector(X=-4.0, Z=1.5)
         with pytest.raises(InvalidStateError, match=r"DeleteJob\(\): job 'RenderJob_1' is queued or rendering"):
@@ -327,3 +333,27 @@ def test_a_failing_job_is_reported_and_the_engine_goes_on(instance: spear.Instan
         assert orphan.GetErrorMessage() == "render job 'orphan': its camera was destroyed"
         assert orphan.GetCamera() is None
         assert orphan.GetProgress().FramesRendered == 1
+
+
+def test_a_file_that_cannot_be_written_fails_the_job(instance: spear.Instance, tmp_path: Path) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        camera = _scene(game)
+        queue = _queue(game)
+        job = queue.AllocateJob(Camera=camera, JobName="lost")
+        job.SetConfiguration(Configuration=_configuration(tmp_path, 8, Modalities=[M.FinalColor, M.Depth]))
+        queue.RenderJob(Job=job)
+    with instance.end_frame():
+        pass
+    for file in (tmp_path / "depth").iterdir():  # the folder goes away under the job (files are written
+        file.unlink()                             # on background threads, so this one may be in flight)
+    (tmp_path / "depth").rmdir()
+    _render(instance, queue)
+    with instance.begin_frame():
+        assert job.GetStatus() == Status.Failed and not queue.IsRendering()
+        assert "render job 'lost': cannot write EXR file" in job.GetErrorMessage()
+        assert "no such directory" in job.GetErrorMessage()
+        assert job.GetProgress().FramesWriting == 0
+        assert camera.Width == 40  # put back
+    with instance.end_frame():
+        pass

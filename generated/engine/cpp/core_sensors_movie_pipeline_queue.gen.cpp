@@ -253,6 +253,20 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
             },
         });
         t.properties.push_back({
+            "FramesWriting",
+            "int",
+            "Frames rendered whose files are still being written (on background threads, while the next frames\nrender); a job ends only when this is 0.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->FramesWriting);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->FramesWriting = sp::reflect::decode<int32_t>(value, "FMoviePipelineProgress.FramesWriting");
+                sp::reflect::notifyPropertyChanged(object, "FramesWriting");
+            },
+        });
+        t.properties.push_back({
             "FramesSkipped",
             "int",
             "Frames skipped because their files were already there.",

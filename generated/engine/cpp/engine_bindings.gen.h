@@ -578,6 +578,7 @@ template <> struct type_caster<FMoviePipelineProgress> {
             return false;
         value.FramesTotal = sp::pybind::Bridge<int32_t>::in(src.attr("FramesTotal").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineProgress.FramesTotal");
         value.FramesRendered = sp::pybind::Bridge<int32_t>::in(src.attr("FramesRendered").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineProgress.FramesRendered");
+        value.FramesWriting = sp::pybind::Bridge<int32_t>::in(src.attr("FramesWriting").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineProgress.FramesWriting");
         value.FramesSkipped = sp::pybind::Bridge<int32_t>::in(src.attr("FramesSkipped").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineProgress.FramesSkipped");
         value.ElapsedSeconds = sp::pybind::Bridge<double>::in(src.attr("ElapsedSeconds").cast<sp::pybind::Bridge<double>::Py>(), "FMoviePipelineProgress.ElapsedSeconds");
         value.EstimatedSecondsLeft = sp::pybind::Bridge<double>::in(src.attr("EstimatedSecondsLeft").cast<sp::pybind::Bridge<double>::Py>(), "FMoviePipelineProgress.EstimatedSecondsLeft");
@@ -585,7 +586,7 @@ template <> struct type_caster<FMoviePipelineProgress> {
     }
     static handle cast(const FMoviePipelineProgress& v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FMoviePipelineProgress");
-        return cls(sp::pybind::Bridge<int32_t>::out(v.FramesTotal), sp::pybind::Bridge<int32_t>::out(v.FramesRendered), sp::pybind::Bridge<int32_t>::out(v.FramesSkipped), sp::pybind::Bridge<double>::out(v.ElapsedSeconds), sp::pybind::Bridge<double>::out(v.EstimatedSecondsLeft)).release();
+        return cls(sp::pybind::Bridge<int32_t>::out(v.FramesTotal), sp::pybind::Bridge<int32_t>::out(v.FramesRendered), sp::pybind::Bridge<int32_t>::out(v.FramesWriting), sp::pybind::Bridge<int32_t>::out(v.FramesSkipped), sp::pybind::Bridge<double>::out(v.ElapsedSeconds), sp::pybind::Bridge<double>::out(v.EstimatedSecondsLeft)).release();
     }
 };
 

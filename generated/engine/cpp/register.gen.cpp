@@ -197,4 +197,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "1fcb773dffb60021"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "67b971a3fe8cc722"; }

@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "1fcb773dffb60021"
+API_HASH = "67b971a3fe8cc722"

@@ -304,6 +304,7 @@ class FMoviePipelineProgress:
     __sp_class__: ClassVar[str] = "FMoviePipelineProgress"
     FramesTotal: int = 0
     FramesRendered: int = 0
+    FramesWriting: int = 0
     FramesSkipped: int = 0
     ElapsedSeconds: float = 0.0
     EstimatedSecondsLeft: float = -1.0

@@ -367,6 +367,7 @@ class FMoviePipelineProgress:
     __sp_class__: ClassVar[str]
     FramesTotal: int = 0
     FramesRendered: int = 0
+    FramesWriting: int = 0
     FramesSkipped: int = 0
     ElapsedSeconds: float = 0.0
     EstimatedSecondsLeft: float = -1.0
