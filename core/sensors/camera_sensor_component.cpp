@@ -106,17 +106,89 @@ void UCameraSensorComponent::SetMaxBounces(int32_t NewMaxBounces) {
     MaxBounces = NewMaxBounces;
 }
 
-sp::reflect::SpArray<double> UCameraSensorComponent::GetIntrinsicMatrix() const {
+sp::render::LensModel UCameraSensorComponent::lensModel() const {
     // The renderer's own focal length, so that K is the projection the images were made with.
     sp::render::Camera camera;
     camera.params.width = Width;
     camera.params.hfovDeg = FOV;
-    const double focal = camera.focalLengthPixels();
+    sp::render::LensModel lens;
+    lens.fx = lens.fy = camera.focalLengthPixels();
+    lens.cx = 0.5 * (Width - 1) + PrincipalPointOffset.X;
+    lens.cy = 0.5 * (Height - 1) + PrincipalPointOffset.Y;
+    lens.k1 = LensDistortion.K1;
+    lens.k2 = LensDistortion.K2;
+    lens.k3 = LensDistortion.K3;
+    lens.p1 = LensDistortion.P1;
+    lens.p2 = LensDistortion.P2;
+    return lens;
+}
+
+sp::reflect::SpArray<double> UCameraSensorComponent::GetIntrinsicMatrix() const {
+    const sp::render::LensModel lens = lensModel();
     sp::reflect::SpArray<double> k("K");
     k.resize({3, 3});
-    const double values[9] = {focal, 0.0, 0.5 * (Width - 1), 0.0, focal, 0.5 * (Height - 1), 0.0, 0.0, 1.0};
+    const double values[9] = {lens.fx, 0.0, lens.cx, 0.0, lens.fy, lens.cy, 0.0, 0.0, 1.0};
     std::copy(values, values + 9, k.data());
     return k;
+}
+
+void UCameraSensorComponent::SetLensDistortion(const FLensDistortion& NewLensDistortion) {
+    const FLensDistortion& d = NewLensDistortion;
+    for (const auto& [name, value] :
+         {std::pair{"K1", d.K1}, {"K2", d.K2}, {"K3", d.K3}, {"P1", d.P1}, {"P2", d.P2}})
+        sp::checkSetting(std::isfinite(value), "UCameraSensorComponent",
+                         std::string("LensDistortion.") + name, "finite", value);
+    LensDistortion = NewLensDistortion;
+}
+
+void UCameraSensorComponent::SetPrincipalPointOffset(const FVector2D& NewPrincipalPointOffset) {
+    sp::checkSetting(std::isfinite(NewPrincipalPointOffset.X), "UCameraSensorComponent",
+                     "PrincipalPointOffset.X", "finite", NewPrincipalPointOffset.X);
+    sp::checkSetting(std::isfinite(NewPrincipalPointOffset.Y), "UCameraSensorComponent",
+                     "PrincipalPointOffset.Y", "finite", NewPrincipalPointOffset.Y);
+    PrincipalPointOffset = NewPrincipalPointOffset;
+}
+
+sp::reflect::SpArray<double> UCameraSensorComponent::GetDistortionCoefficients() const {
+    sp::reflect::SpArray<double> coefficients("distortion_coefficients");
+    coefficients.resize({5});
+    const double values[5] = {LensDistortion.K1, LensDistortion.K2, LensDistortion.P1, LensDistortion.P2,
+                              LensDistortion.K3};
+    std::copy(values, values + 5, coefficients.data());
+    return coefficients;
+}
+
+namespace {
+
+// Points (N, 2) mapped one by one by `map`, as an (N, 2) array.
+template <typename Map>
+sp::reflect::SpArray<double> mapPixels(const sp::reflect::SpArray<double>& points, const char* function,
+                                       Map map) {
+    points.checkShape({-1, 2}, std::string("UCameraSensorComponent.") + function + "(): array 'Points'");
+    sp::reflect::SpArray<double> result("points");
+    const int64_t count = points.getShape()[0];
+    result.resize({count, 2});
+    for (int64_t i = 0; i < count; ++i) {
+        const Eigen::Vector2d mapped = map(Eigen::Vector2d(points.data()[2 * i], points.data()[2 * i + 1]));
+        result.data()[2 * i] = mapped.x();
+        result.data()[2 * i + 1] = mapped.y();
+    }
+    return result;
+}
+
+} // namespace
+
+sp::reflect::SpArray<double>
+UCameraSensorComponent::DistortPixels(const sp::reflect::SpArray<double>& Points) const {
+    const sp::render::LensModel lens = lensModel();
+    return mapPixels(Points, "DistortPixels", [&](const Eigen::Vector2d& p) { return lens.distortPixel(p); });
+}
+
+sp::reflect::SpArray<double>
+UCameraSensorComponent::UndistortPixels(const sp::reflect::SpArray<double>& Points) const {
+    const sp::render::LensModel lens = lensModel();
+    return mapPixels(Points, "UndistortPixels",
+                     [&](const Eigen::Vector2d& p) { return lens.undistortPixel(p); });
 }
 
 sp::reflect::SpArray<double> UCameraSensorComponent::GetWorldToCamera() const {

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/reflect/sp_array.h"
+#include "core/render/lens.h"
 #include "core/world/primitive_component.h"
 
 /// A ground-truth image a camera can render; read_pixels() returns it under its snake_case name.
@@ -71,6 +72,31 @@ enum class ECameraRenderer : uint8_t {
     /// diffuse_only, specular_residual, indirect light included) are path traced; the geometric and
     /// material modalities still come from the rasteriser.
     PathTraced = 1,
+};
+
+/// Brown–Conrady lens distortion in OpenCV's convention (radial K1, K2, K3; tangential P1, P2): all zero is a
+/// pinhole. See UCameraSensorComponent.LensDistortion.
+SPSTRUCT()
+struct FLensDistortion {
+    SP_GENERATED_BODY()
+
+    /// Radial coefficient of r^2 (negative: barrel, positive: pincushion).
+    SPPROPERTY()
+    double K1 = 0.0;
+    /// Radial coefficient of r^4.
+    SPPROPERTY()
+    double K2 = 0.0;
+    /// Radial coefficient of r^6.
+    SPPROPERTY()
+    double K3 = 0.0;
+    /// First tangential coefficient.
+    SPPROPERTY()
+    double P1 = 0.0;
+    /// Second tangential coefficient.
+    SPPROPERTY()
+    double P2 = 0.0;
+
+    friend bool operator==(const FLensDistortion&, const FLensDistortion&) = default;
 };
 
 /// The images of one frame, keyed by modality name; only the modalities the camera renders are present.
@@ -232,6 +258,17 @@ class UCameraSensorComponent : public USceneComponent {
     SPPROPERTY(Setter = SetSensorWidth)
     double SensorWidth = 36.0;
 
+    /// Lens distortion applied to every modality (OpenCV's model with GetIntrinsicMatrix()'s K; see
+    /// GetDistortionCoefficients): each pixel shows what the distorted ray through it sees, taken from a
+    /// pinhole render wide enough to hold every ray, nearest pixel, so that all modalities stay consistent.
+    SPPROPERTY(Setter = SetLensDistortion)
+    FLensDistortion LensDistortion;
+
+    /// The principal point's offset from the image centre in pixels (X right, Y down): an off-centre lens, as
+    /// a real camera's calibration gives it (cx, cy of GetIntrinsicMatrix() move by it).
+    SPPROPERTY(Setter = SetPrincipalPointOffset)
+    FVector2D PrincipalPointOffset;
+
     /// The tone curve of final_color.
     SPPROPERTY()
     ECameraToneCurve ToneCurve = ECameraToneCurve::Aces;
@@ -304,6 +341,25 @@ class UCameraSensorComponent : public USceneComponent {
     /// log2(FNumber^2 / ShutterSeconds * 100 / ISO).
     SPFUNCTION()
     void SetPhysicalExposure(double FNumber, double ShutterSeconds, double ISO);
+    /// Sets LensDistortion (every coefficient finite; a lens too strong to invert over the image is refused
+    /// when the camera renders).
+    SPFUNCTION()
+    void SetLensDistortion(const FLensDistortion& NewLensDistortion);
+    /// Sets PrincipalPointOffset in pixels (finite).
+    SPFUNCTION()
+    void SetPrincipalPointOffset(const FVector2D& NewPrincipalPointOffset);
+    /// Returns the distortion coefficients in OpenCV's order, (k1, k2, p1, p2, k3) as a (5,) array, for
+    /// cv2.undistort(image, K, coefficients) and cv2.projectPoints.
+    SPFUNCTION()
+    sp::reflect::SpArray<double> GetDistortionCoefficients() const;
+    /// Returns where pinhole pixels (an (N, 2) array of u, v under GetIntrinsicMatrix()'s K, no distortion)
+    /// land in this camera's images: OpenCV's distortion model applied to them.
+    SPFUNCTION()
+    sp::reflect::SpArray<double> DistortPixels(const sp::reflect::SpArray<double>& Points) const;
+    /// Returns the pinhole pixels ((N, 2)) that this camera's image pixels Points ((N, 2)) show: the inverse
+    /// of DistortPixels, as cv2.undistortPoints(..., P=K) computes it.
+    SPFUNCTION()
+    sp::reflect::SpArray<double> UndistortPixels(const sp::reflect::SpArray<double>& Points) const;
     /// Sets ShadowResolution in texels, in [16, 8192].
     SPFUNCTION()
     void SetShadowResolution(int32_t NewShadowResolution);
@@ -319,8 +375,9 @@ class UCameraSensorComponent : public USceneComponent {
 
     /// Returns the intrinsic matrix K (3, 3) of the images in OpenCV's convention: pixel (u right, v down,
     /// the centre of pixel [i, j] at u = j, v = i) = K @ (x, y, z) / z for a point (x, y, z) in the OpenCV
-    /// camera frame (x right, y down, z forward); fx = fy = (Width / 2) / tan(FOV / 2), cx = (Width - 1) / 2,
-    /// cy = (Height - 1) / 2.
+    /// camera frame (x right, y down, z forward); fx = fy = (Width / 2) / tan(FOV / 2), cx = (Width - 1) / 2
+    /// + PrincipalPointOffset.X, cy = (Height - 1) / 2 + PrincipalPointOffset.Y. With LensDistortion the
+    /// distortion applies between the normalised point and K, as in OpenCV (DistortPixels).
     SPFUNCTION()
     sp::reflect::SpArray<double> GetIntrinsicMatrix() const;
 
@@ -384,6 +441,9 @@ class UCameraSensorComponent : public USceneComponent {
     FRenderStats GetRenderStats() const;
 
     void BeginPlay() override;
+
+    // The lens of the images: K (with the principal point offset) and the distortion coefficients.
+    sp::render::LensModel lensModel() const;
 
     // Set by the RenderSubsystem when read_pixels() reads a frame.
     void setPixelsFrame(int64_t frame) { pixelsFrame_ = frame; }

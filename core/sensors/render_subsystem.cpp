@@ -9,6 +9,7 @@
 #include "core/pathtrace/path_tracer.h"
 #include "core/render/camera.h"
 #include "core/render/gl_context.h"
+#include "core/render/lens.h"
 #include "core/render/render_target.h"
 #include "core/render/renderer.h"
 #include "core/render/tone.h"
@@ -138,6 +139,9 @@ struct RenderSubsystem::PendingFrame {
     int height = 0;
     sp::render::ModalitySet modalities;
     std::shared_ptr<const TracedImages> traced; // replaces rasterised images when set
+    // Set for a lens camera: the frame was rendered as the remap's pinhole source (sourceWidth x
+    // sourceHeight) and is read through it into width x height images.
+    std::shared_ptr<const sp::render::LensRemap> lens;
 };
 
 struct RenderSubsystem::CameraState {
@@ -150,6 +154,9 @@ struct RenderSubsystem::CameraState {
     std::optional<PendingFrame> lastRead;
     std::int64_t pixelsFrame = -1;
     sp::pathtrace::Accumulation accumulation; // the path tracer's running image
+    // The lens remap of the camera's current lens and size (rebuilt when either changes).
+    std::shared_ptr<const sp::render::LensRemap> lens;
+    sp::render::LensModel lensModel;
 };
 
 RenderSubsystem::RenderSubsystem(UWorld& world) : world_(world) {}
@@ -214,6 +221,24 @@ void RenderSubsystem::submit(UCameraSensorComponent& camera) {
     const sp::render::ModalitySet modalities = toModalitySet(camera.Modalities);
 
     CameraState& state = cameraState(camera);
+    // A lens camera renders the pinhole image its remap samples (centred, wide enough for every ray).
+    const sp::render::LensModel lens = camera.lensModel();
+    const bool pinhole = lens.undistorted() && camera.PrincipalPointOffset == FVector2D{};
+    if (pinhole) {
+        state.lens.reset();
+    } else {
+        const bool same = state.lens && state.lens->width() == camera.Width &&
+                          state.lens->height() == camera.Height && state.lensModel == lens;
+        if (!same) {
+            const std::string context = camera.GetDebugName();
+            state.lens =
+                std::make_shared<sp::render::LensRemap>(lens, camera.Width, camera.Height, context.c_str());
+            state.lensModel = lens;
+        }
+        renderCamera.params.width = state.lens->sourceWidth();
+        renderCamera.params.height = state.lens->sourceHeight();
+        renderCamera.params.hfovDeg = state.lens->sourceHfovDeg();
+    }
     state.readSinceSubmit = false;
     state.lastRead.reset();
     if (modalities.empty()) { // nothing to render; older frames are dropped with the target
@@ -234,8 +259,8 @@ void RenderSubsystem::submit(UCameraSensorComponent& camera) {
                     [&](sp::render::Modality m) { return modalities.contains(m); }))
         traced = trace(camera, renderCamera, modalities, state);
     // The world's frame counter advances after its subsystems tick, so this frame is count + 1.
-    state.pending.push_back(
-        {number, world_.get_frame_count() + 1, camera.Width, camera.Height, modalities, std::move(traced)});
+    state.pending.push_back({number, world_.get_frame_count() + 1, camera.Width, camera.Height, modalities,
+                             std::move(traced), state.lens});
     while (state.pending.size() > std::size_t(camera.Latency) + 1)
         state.pending.pop_front();
 }
@@ -333,12 +358,22 @@ bool RenderSubsystem::readInto(UCameraSensorComponent& camera,
     }
     CameraState& state = *cameras_.at(camera.GetHandle());
     context_->makeCurrent();
+    // A lens frame is read at its render's size into buffers of its own, then remapped into `views`.
+    const std::shared_ptr<const sp::render::LensRemap> lens = frame->lens;
+    std::vector<std::vector<std::byte>> rendered;
+    std::vector<sp::render::OutputView> readViews = views;
+    if (lens)
+        for (sp::render::OutputView& view : readViews) {
+            rendered.emplace_back(
+                sp::render::modalityByteSize(view.modality, lens->sourceWidth(), lens->sourceHeight()));
+            view = {view.modality, rendered.back().data(), rendered.back().size()};
+        }
     bool read = false;
     if (!state.readSinceSubmit) {
         const PendingFrame due = *frame;
         state.readSinceSubmit = true;
         state.pixelsFrame = -1;
-        read = state.target->read(views).has_value();
+        read = state.target->read(readViews).has_value();
         if (read) {
             state.pixelsFrame = due.worldFrame;
             state.lastRead = due;
@@ -347,14 +382,21 @@ bool RenderSubsystem::readInto(UCameraSensorComponent& camera,
                                 [&](const PendingFrame& f) { return f.submit == due.submit; });
         state.pending.erase(state.pending.begin(), std::next(end));
     } else {
-        read = state.target->readAgain(views).has_value();
+        read = state.target->readAgain(readViews).has_value();
     }
     // A path-traced frame's images replace the rasterised ones.
     const TracedImages* traced = read && state.lastRead ? state.lastRead->traced.get() : nullptr;
     if (traced)
-        for (const sp::render::OutputView& view : views)
+        for (const sp::render::OutputView& view : readViews)
             if (auto image = traced->images.find(view.modality); image != traced->images.end())
                 std::memcpy(view.data, image->second.data(), std::min(view.size, image->second.size()));
+    if (read && lens)
+        for (std::size_t i = 0; i < views.size(); ++i) {
+            const sp::render::ModalityInfo& info = sp::render::modalityInfo(views[i].modality);
+            lens->apply(static_cast<const std::byte*>(readViews[i].data),
+                        static_cast<std::byte*>(views[i].data),
+                        sp::render::dtypeSize(info.dtype) * std::size_t(info.channels));
+        }
     camera.setAccumulatedSamples(traced ? std::int64_t(traced->samples) : 0);
     camera.setPixelsFrame(read ? state.pixelsFrame : -1);
     return read;

@@ -395,3 +395,81 @@ def test_photographic_settings_set_fov_and_exposure(instance: spear.Instance) ->
                 call()
     with instance.end_frame():
         pass
+
+
+def test_a_distorted_off_centre_lens_renders_points_where_opencvs_model_puts_them(instance: spear.Instance) -> None:
+    # Brown-Conrady distortion and a principal point off the centre, in OpenCV's convention: each ball's
+    # pixels centre where K, the coefficients and the world-to-camera transform project its centre, in every
+    # modality alike; undistorting pixels inverts distorting them.
+    game = instance.get_game()
+    centres = [np.array([4.0, y, z]) for y in (-1.6, 0.0, 1.6) for z in (-1.0, 0.0, 1.0)]
+    lens = spear.FLensDistortion(K1=-0.25, K2=0.06, K3=0.0, P1=0.004, P2=-0.003)
+    with instance.begin_frame():
+        balls = []
+        for i, c in enumerate(centres):
+            ball = game.spawn_actor(uclass=spear.AStaticMeshActor, name=f"Ball{i}", location=spear.FVector(*c))
+            ball.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Sphere")
+            ball.SetActorScale3D(NewScale3D=spear.FVector(X=0.24, Y=0.24, Z=0.24))
+            balls.append(ball)
+        camera = spawn_camera(game, [M.ObjectIds, M.Depth, M.FinalColor], 160, 120, 80.0)
+        camera.LensDistortion = lens
+        camera.PrincipalPointOffset = spear.FVector2D(X=6.0, Y=-4.0)
+    with instance.end_frame():
+        pixels = camera.read_pixels()
+        k, world_to_camera = camera.GetIntrinsicMatrix(), camera.GetWorldToCamera()
+        coefficients = camera.GetDistortionCoefficients()
+        ids = [camera.GetObjectId(Component=ball.StaticMeshComponent) for ball in balls]
+        grid = np.array([[u, v] for u in np.linspace(0.0, 159.0, 9) for v in np.linspace(0.0, 119.0, 7)])
+        undistorted = camera.UndistortPixels(Points=grid)
+        round_trip = camera.DistortPixels(Points=undistorted)
+        with pytest.raises(spear.InvalidArgumentError, match=r"DistortPixels\(\): array 'Points' must have shape"):
+            camera.DistortPixels(Points=np.zeros((3, 3)))
+    np.testing.assert_allclose(coefficients, [-0.25, 0.06, 0.004, -0.003, 0.0])
+    focal = 80 / math.tan(math.radians(40.0))
+    np.testing.assert_allclose(k, [[focal, 0, 79.5 + 6.0], [0, focal, 59.5 - 4.0], [0, 0, 1]])
+    np.testing.assert_allclose(round_trip, grid, atol=1e-9)
+    assert np.abs(undistorted - grid).max() > 5.0  # the lens does bend the image
+    assert pixels["object_ids"].shape == (120, 160) and pixels["final_color"].shape == (120, 160, 4)
+
+    k1, k2, p1, p2, k3 = coefficients
+    for centre, ball_id in zip(centres, ids):
+        x, y, z = (world_to_camera @ np.append(centre, 1.0))[:3]
+        a, b = x / z, y / z
+        r2 = a * a + b * b
+        radial = 1 + k1 * r2 + k2 * r2 * r2 + k3 * r2**3
+        ad = a * radial + 2 * p1 * a * b + p2 * (r2 + 2 * a * a)
+        bd = b * radial + p1 * (r2 + 2 * b * b) + 2 * p2 * a * b
+        u, v = k[0, 0] * ad + k[0, 2], k[1, 1] * bd + k[1, 2]
+        rows, columns = np.nonzero(pixels["object_ids"] == ball_id)
+        assert len(rows) > 15, centre
+        assert columns.mean() == pytest.approx(u, abs=0.6) and rows.mean() == pytest.approx(v, abs=0.6), centre
+        # Depth is along the optical axis in every lens: the nearest point of the ball is its centre's z less
+        # at most its radius.
+        assert z - 0.12 - 0.01 <= pixels["depth"][rows, columns].min() <= z - 0.05, centre
+        # The colour at a ball's pixels is the ball's, not the background's: modalities stay aligned.
+        assert (pixels["final_color"][rows, columns, :3] > 0).any(axis=-1).all(), centre
+
+
+def test_lens_settings_are_checked(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        camera = spawn_camera(game, [M.Depth], 64, 48, 120.0)
+        with pytest.raises(spear.InvalidArgumentError, match=r"LensDistortion.K2 must be finite, got inf"):
+            camera.LensDistortion = spear.FLensDistortion(K2=float("inf"))
+        with pytest.raises(spear.InvalidArgumentError, match=r"PrincipalPointOffset.Y must be finite, got nan"):
+            camera.PrincipalPointOffset = spear.FVector2D(Y=float("nan"))
+    with instance.end_frame():
+        pass
+    # Whether a lens can be inverted over the image depends on its size and field of view too, so it is
+    # checked when the camera renders (the frame's tick, at the end of the begin_frame block).
+    with pytest.raises(spear.InvalidArgumentError, match=r"UCameraSensorComponent 'CameraSensor': the lens "
+                       r"\(distortion and principal point\) needs a render of \d+x\d+ pixels to cover its 64x48 "
+                       r"image; the distortion is too strong for the model to be inverted there"):
+        with instance.begin_frame():
+            camera.LensDistortion = spear.FLensDistortion(K1=-0.9)  # folds over inside a 120 degree view
+    with instance.end_frame():
+        pass
+    with instance.begin_frame():
+        camera.LensDistortion = spear.FLensDistortion()
+    with instance.end_frame():
+        assert camera.read_pixels()["depth"].shape == (48, 64)  # the engine rendered on

@@ -301,6 +301,94 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
 
 const sp::reflect::TypeInfo& FCameraPixels::GetClass() const { return StaticClass(); }
 
+// -- FLensDistortion ----------------------------------------------------------------------------------
+
+const sp::reflect::TypeInfo& FLensDistortion::StaticClass() {
+    static const sp::reflect::TypeInfo info = [] {
+        using Self = FLensDistortion;
+        sp::reflect::TypeInfo t;
+        t.name = "FLensDistortion";
+        t.doc = "Brown–Conrady lens distortion in OpenCV's convention (radial K1, K2, K3; tangential P1, P2): all zero is a\npinhole. See UCameraSensorComponent.LensDistortion.";
+        t.kind = sp::reflect::TypeInfo::Kind::Struct;
+        t.parent = nullptr;
+        t.isAbstract = false;
+        t.properties.push_back({
+            "K1",
+            "float",
+            "Radial coefficient of r^2 (negative: barrel, positive: pincushion).",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->K1);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->K1 = sp::reflect::decode<double>(value, "FLensDistortion.K1");
+                sp::reflect::notifyPropertyChanged(object, "K1");
+            },
+        });
+        t.properties.push_back({
+            "K2",
+            "float",
+            "Radial coefficient of r^4.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->K2);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->K2 = sp::reflect::decode<double>(value, "FLensDistortion.K2");
+                sp::reflect::notifyPropertyChanged(object, "K2");
+            },
+        });
+        t.properties.push_back({
+            "K3",
+            "float",
+            "Radial coefficient of r^6.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->K3);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->K3 = sp::reflect::decode<double>(value, "FLensDistortion.K3");
+                sp::reflect::notifyPropertyChanged(object, "K3");
+            },
+        });
+        t.properties.push_back({
+            "P1",
+            "float",
+            "First tangential coefficient.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->P1);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->P1 = sp::reflect::decode<double>(value, "FLensDistortion.P1");
+                sp::reflect::notifyPropertyChanged(object, "P1");
+            },
+        });
+        t.properties.push_back({
+            "P2",
+            "float",
+            "Second tangential coefficient.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->P2);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->P2 = sp::reflect::decode<double>(value, "FLensDistortion.P2");
+                sp::reflect::notifyPropertyChanged(object, "P2");
+            },
+        });
+        return t;
+    }();
+    return info;
+}
+
+const sp::reflect::TypeInfo& FLensDistortion::GetClass() const { return StaticClass(); }
+
 // -- FRenderDeviceInfo ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
@@ -728,6 +816,34 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
         });
         t.properties.push_back({
+            "LensDistortion",
+            "FLensDistortion",
+            "Lens distortion applied to every modality (OpenCV's model with GetIntrinsicMatrix()'s K; see\nGetDistortionCoefficients): each pixel shows what the distorted ray through it sees, taken from a\npinhole render wide enough to hold every ray, nearest pixel, so that all modalities stay consistent.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->LensDistortion);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->SetLensDistortion(sp::reflect::decode<FLensDistortion>(value, "UCameraSensorComponent.LensDistortion"));
+                sp::reflect::notifyPropertyChanged(object, "LensDistortion");
+            },
+        });
+        t.properties.push_back({
+            "PrincipalPointOffset",
+            "FVector2D",
+            "The principal point's offset from the image centre in pixels (X right, Y down): an off-centre lens, as\na real camera's calibration gives it (cx, cy of GetIntrinsicMatrix() move by it).",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->PrincipalPointOffset);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->SetPrincipalPointOffset(sp::reflect::decode<FVector2D>(value, "UCameraSensorComponent.PrincipalPointOffset"));
+                sp::reflect::notifyPropertyChanged(object, "PrincipalPointOffset");
+            },
+        });
+        t.properties.push_back({
             "ToneCurve",
             "ECameraToneCurve",
             "The tone curve of final_color.",
@@ -1029,6 +1145,89 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
         });
         t.functions.push_back({
+            "SetLensDistortion",
+            "Sets LensDistortion (every coefficient finite; a lens too strong to invert over the image is refused\nwhen the camera renders).",
+            "None",
+            {
+                {"NewLensDistortion", "FLensDistortion", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetLensDistortion()";
+                sp::reflect::checkArguments(args, {"NewLensDistortion"}, kContext);
+                FLensDistortion NewLensDistortion = sp::reflect::decode<FLensDistortion>(sp::reflect::requireArgument(args, "NewLensDistortion", kContext), "UCameraSensorComponent.SetLensDistortion(): argument 'NewLensDistortion'");
+                sp::reflect::selfCast<Self>(self)->SetLensDistortion(NewLensDistortion);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetPrincipalPointOffset",
+            "Sets PrincipalPointOffset in pixels (finite).",
+            "None",
+            {
+                {"NewPrincipalPointOffset", "FVector2D", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetPrincipalPointOffset()";
+                sp::reflect::checkArguments(args, {"NewPrincipalPointOffset"}, kContext);
+                FVector2D NewPrincipalPointOffset = sp::reflect::decode<FVector2D>(sp::reflect::requireArgument(args, "NewPrincipalPointOffset", kContext), "UCameraSensorComponent.SetPrincipalPointOffset(): argument 'NewPrincipalPointOffset'");
+                sp::reflect::selfCast<Self>(self)->SetPrincipalPointOffset(NewPrincipalPointOffset);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "GetDistortionCoefficients",
+            "Returns the distortion coefficients in OpenCV's order, (k1, k2, p1, p2, k3) as a (5,) array, for\ncv2.undistort(image, K, coefficients) and cv2.projectPoints.",
+            "NDArray[np.float64]",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.GetDistortionCoefficients()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->GetDistortionCoefficients();
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "DistortPixels",
+            "Returns where pinhole pixels (an (N, 2) array of u, v under GetIntrinsicMatrix()'s K, no distortion)\nland in this camera's images: OpenCV's distortion model applied to them.",
+            "NDArray[np.float64]",
+            {
+                {"Points", "NDArray[np.float64]", false, false},
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.DistortPixels()";
+                sp::reflect::checkArguments(args, {"Points"}, kContext);
+                sp::reflect::SpArray<double> Points = sp::reflect::decode<sp::reflect::SpArray<double>>(sp::reflect::requireArgument(args, "Points", kContext), "UCameraSensorComponent.DistortPixels(): argument 'Points'");
+                auto result = sp::reflect::selfCast<const Self>(self)->DistortPixels(Points);
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "UndistortPixels",
+            "Returns the pinhole pixels ((N, 2)) that this camera's image pixels Points ((N, 2)) show: the inverse\nof DistortPixels, as cv2.undistortPoints(..., P=K) computes it.",
+            "NDArray[np.float64]",
+            {
+                {"Points", "NDArray[np.float64]", false, false},
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.UndistortPixels()";
+                sp::reflect::checkArguments(args, {"Points"}, kContext);
+                sp::reflect::SpArray<double> Points = sp::reflect::decode<sp::reflect::SpArray<double>>(sp::reflect::requireArgument(args, "Points", kContext), "UCameraSensorComponent.UndistortPixels(): argument 'Points'");
+                auto result = sp::reflect::selfCast<const Self>(self)->UndistortPixels(Points);
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
             "SetShadowResolution",
             "Sets ShadowResolution in texels, in [16, 8192].",
             "None",
@@ -1098,7 +1297,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.functions.push_back({
             "GetIntrinsicMatrix",
-            "Returns the intrinsic matrix K (3, 3) of the images in OpenCV's convention: pixel (u right, v down,\nthe centre of pixel [i, j] at u = j, v = i) = K @ (x, y, z) / z for a point (x, y, z) in the OpenCV\ncamera frame (x right, y down, z forward); fx = fy = (Width / 2) / tan(FOV / 2), cx = (Width - 1) / 2,\ncy = (Height - 1) / 2.",
+            "Returns the intrinsic matrix K (3, 3) of the images in OpenCV's convention: pixel (u right, v down,\nthe centre of pixel [i, j] at u = j, v = i) = K @ (x, y, z) / z for a point (x, y, z) in the OpenCV\ncamera frame (x right, y down, z forward); fx = fy = (Width / 2) / tan(FOV / 2), cx = (Width - 1) / 2\n+ PrincipalPointOffset.X, cy = (Height - 1) / 2 + PrincipalPointOffset.Y. With LensDistortion the\ndistortion applies between the normalised point and K, as in OpenCV (DistortPixels).",
             "NDArray[np.float64]",
             {
             },

@@ -506,6 +506,25 @@ template <> struct type_caster<FHitResult> {
     }
 };
 
+template <> struct type_caster<FLensDistortion> {
+    PYBIND11_TYPE_CASTER(FLensDistortion, const_name("FLensDistortion"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FLensDistortion");
+        if (!isinstance(src, cls))
+            return false;
+        value.K1 = sp::pybind::Bridge<double>::in(src.attr("K1").cast<sp::pybind::Bridge<double>::Py>(), "FLensDistortion.K1");
+        value.K2 = sp::pybind::Bridge<double>::in(src.attr("K2").cast<sp::pybind::Bridge<double>::Py>(), "FLensDistortion.K2");
+        value.K3 = sp::pybind::Bridge<double>::in(src.attr("K3").cast<sp::pybind::Bridge<double>::Py>(), "FLensDistortion.K3");
+        value.P1 = sp::pybind::Bridge<double>::in(src.attr("P1").cast<sp::pybind::Bridge<double>::Py>(), "FLensDistortion.P1");
+        value.P2 = sp::pybind::Bridge<double>::in(src.attr("P2").cast<sp::pybind::Bridge<double>::Py>(), "FLensDistortion.P2");
+        return true;
+    }
+    static handle cast(const FLensDistortion& v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FLensDistortion");
+        return cls(sp::pybind::Bridge<double>::out(v.K1), sp::pybind::Bridge<double>::out(v.K2), sp::pybind::Bridge<double>::out(v.K3), sp::pybind::Bridge<double>::out(v.P1), sp::pybind::Bridge<double>::out(v.P2)).release();
+    }
+};
+
 template <> struct type_caster<FLinearColor> {
     PYBIND11_TYPE_CASTER(FLinearColor, const_name("FLinearColor"));
     bool load(handle src, bool) {

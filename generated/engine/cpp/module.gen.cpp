@@ -2572,6 +2572,24 @@ void spear_bind_engine(py::module_& m) {
             },
             "Sensor width in millimetres (> 0), relating FOV to a lens's focal length: 36 is full frame.");
         cls.def_property(
+            "LensDistortion",
+            [](const Ref<Self>& self) { return Bridge<FLensDistortion>::out(self.get<Self>("UCameraSensorComponent.LensDistortion")->LensDistortion); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.LensDistortion");
+                object->SetLensDistortion(Bridge<FLensDistortion>::in(value, "UCameraSensorComponent.LensDistortion"));
+                object->PostPropertyChanged("LensDistortion");
+            },
+            "Lens distortion applied to every modality (OpenCV's model with GetIntrinsicMatrix()'s K; see\nGetDistortionCoefficients): each pixel shows what the distorted ray through it sees, taken from a\npinhole render wide enough to hold every ray, nearest pixel, so that all modalities stay consistent.");
+        cls.def_property(
+            "PrincipalPointOffset",
+            [](const Ref<Self>& self) { return Bridge<FVector2D>::out(self.get<Self>("UCameraSensorComponent.PrincipalPointOffset")->PrincipalPointOffset); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.PrincipalPointOffset");
+                object->SetPrincipalPointOffset(Bridge<FVector2D>::in(value, "UCameraSensorComponent.PrincipalPointOffset"));
+                object->PostPropertyChanged("PrincipalPointOffset");
+            },
+            "The principal point's offset from the image centre in pixels (X right, Y down): an off-centre lens, as\na real camera's calibration gives it (cx, cy of GetIntrinsicMatrix() move by it).");
+        cls.def_property(
             "ToneCurve",
             [](const Ref<Self>& self) { return Bridge<ECameraToneCurve>::out(self.get<Self>("UCameraSensorComponent.ToneCurve")->ToneCurve); },
             [](const Ref<Self>& self, const PyArg& value) {
@@ -2779,6 +2797,64 @@ void spear_bind_engine(py::module_& m) {
             py::arg("ISO") = sp::pybind::missingArgument(),
             "SetPhysicalExposure(self, *, FNumber: float, ShutterSeconds: float, ISO: float) -> None\n\nSets Exposure from an aperture (f-number), a shutter time in seconds and an ISO speed: EV100 =\nlog2(FNumber^2 / ShutterSeconds * 100 / ISO).");
         cls.def(
+            "SetLensDistortion",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewLensDistortion, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetLensDistortion()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewLensDistortion", !isMissing(NewLensDistortion), true}});
+                Self* object = self.get<Self>(kContext);
+                auto NewLensDistortionValue = Bridge<FLensDistortion>::in(NewLensDistortion, "UCameraSensorComponent.SetLensDistortion(): argument 'NewLensDistortion'");
+                object->SetLensDistortion(NewLensDistortionValue);
+                return py::none();
+            },
+            py::arg("NewLensDistortion") = sp::pybind::missingArgument(),
+            "SetLensDistortion(self, *, NewLensDistortion: FLensDistortion) -> None\n\nSets LensDistortion (every coefficient finite; a lens too strong to invert over the image is refused\nwhen the camera renders).");
+        cls.def(
+            "SetPrincipalPointOffset",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewPrincipalPointOffset, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetPrincipalPointOffset()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewPrincipalPointOffset", !isMissing(NewPrincipalPointOffset), true}});
+                Self* object = self.get<Self>(kContext);
+                auto NewPrincipalPointOffsetValue = Bridge<FVector2D>::in(NewPrincipalPointOffset, "UCameraSensorComponent.SetPrincipalPointOffset(): argument 'NewPrincipalPointOffset'");
+                object->SetPrincipalPointOffset(NewPrincipalPointOffsetValue);
+                return py::none();
+            },
+            py::arg("NewPrincipalPointOffset") = sp::pybind::missingArgument(),
+            "SetPrincipalPointOffset(self, *, NewPrincipalPointOffset: FVector2D) -> None\n\nSets PrincipalPointOffset in pixels (finite).");
+        cls.def(
+            "GetDistortionCoefficients",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.GetDistortionCoefficients()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {});
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetDistortionCoefficients();
+                return Bridge<sp::reflect::SpArray<double>>::out(result);
+            },
+            "GetDistortionCoefficients(self) -> NDArray[np.float64]\n\nReturns the distortion coefficients in OpenCV's order, (k1, k2, p1, p2, k3) as a (5,) array, for\ncv2.undistort(image, K, coefficients) and cv2.projectPoints.");
+        cls.def(
+            "DistortPixels",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& Points, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.DistortPixels()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"Points", !isMissing(Points), true}});
+                const Self* object = self.get<Self>(kContext);
+                auto PointsValue = Bridge<sp::reflect::SpArray<double>>::in(Points, "UCameraSensorComponent.DistortPixels(): argument 'Points'");
+                auto result = object->DistortPixels(PointsValue);
+                return Bridge<sp::reflect::SpArray<double>>::out(result);
+            },
+            py::arg("Points") = sp::pybind::missingArgument(),
+            "DistortPixels(self, *, Points: NDArray[np.float64]) -> NDArray[np.float64]\n\nReturns where pinhole pixels (an (N, 2) array of u, v under GetIntrinsicMatrix()'s K, no distortion)\nland in this camera's images: OpenCV's distortion model applied to them.");
+        cls.def(
+            "UndistortPixels",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& Points, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.UndistortPixels()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"Points", !isMissing(Points), true}});
+                const Self* object = self.get<Self>(kContext);
+                auto PointsValue = Bridge<sp::reflect::SpArray<double>>::in(Points, "UCameraSensorComponent.UndistortPixels(): argument 'Points'");
+                auto result = object->UndistortPixels(PointsValue);
+                return Bridge<sp::reflect::SpArray<double>>::out(result);
+            },
+            py::arg("Points") = sp::pybind::missingArgument(),
+            "UndistortPixels(self, *, Points: NDArray[np.float64]) -> NDArray[np.float64]\n\nReturns the pinhole pixels ((N, 2)) that this camera's image pixels Points ((N, 2)) show: the inverse\nof DistortPixels, as cv2.undistortPoints(..., P=K) computes it.");
+        cls.def(
             "SetShadowResolution",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewShadowResolution, const py::kwargs& extra) -> py::object {
                 static constexpr const char* kContext = "UCameraSensorComponent.SetShadowResolution()";
@@ -2835,7 +2911,7 @@ void spear_bind_engine(py::module_& m) {
                 auto result = object->GetIntrinsicMatrix();
                 return Bridge<sp::reflect::SpArray<double>>::out(result);
             },
-            "GetIntrinsicMatrix(self) -> NDArray[np.float64]\n\nReturns the intrinsic matrix K (3, 3) of the images in OpenCV's convention: pixel (u right, v down,\nthe centre of pixel [i, j] at u = j, v = i) = K @ (x, y, z) / z for a point (x, y, z) in the OpenCV\ncamera frame (x right, y down, z forward); fx = fy = (Width / 2) / tan(FOV / 2), cx = (Width - 1) / 2,\ncy = (Height - 1) / 2.");
+            "GetIntrinsicMatrix(self) -> NDArray[np.float64]\n\nReturns the intrinsic matrix K (3, 3) of the images in OpenCV's convention: pixel (u right, v down,\nthe centre of pixel [i, j] at u = j, v = i) = K @ (x, y, z) / z for a point (x, y, z) in the OpenCV\ncamera frame (x right, y down, z forward); fx = fy = (Width / 2) / tan(FOV / 2), cx = (Width - 1) / 2\n+ PrincipalPointOffset.X, cy = (Height - 1) / 2 + PrincipalPointOffset.Y. With LensDistortion the\ndistortion applies between the normalised point and K, as in OpenCV (DistortPixels).");
         cls.def(
             "GetWorldToCamera",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {

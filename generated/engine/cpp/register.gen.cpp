@@ -79,6 +79,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(FCameraPixels::StaticClass());
     registry.add(FVector::StaticClass());
     registry.add(FHitResult::StaticClass());
+    registry.add(FLensDistortion::StaticClass());
     registry.add(FLinearColor::StaticClass());
     registry.add(FMaterialDesc::StaticClass());
     registry.add(FMoviePipelineConfiguration::StaticClass());
@@ -154,6 +155,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(FMoviePipelineConfiguration::StaticClass());
     registry.remove(FMaterialDesc::StaticClass());
     registry.remove(FLinearColor::StaticClass());
+    registry.remove(FLensDistortion::StaticClass());
     registry.remove(FHitResult::StaticClass());
     registry.remove(FVector::StaticClass());
     registry.remove(FCameraPixels::StaticClass());
@@ -197,4 +199,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "67b971a3fe8cc722"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "c8e0a15931d72e25"; }

@@ -60,6 +60,7 @@ __all__ = [
     "ESplineCoordinateSpace",
     "FCameraPixels",
     "FHitResult",
+    "FLensDistortion",
     "FLinearColor",
     "FMaterialDesc",
     "FMoviePipelineConfiguration",
@@ -252,6 +253,20 @@ class FHitResult:
     Time: float = 1.0
     TraceStart: FVector = field(default_factory=FVector)
     TraceEnd: FVector = field(default_factory=FVector)
+
+
+@dataclass
+class FLensDistortion:
+    """Brown–Conrady lens distortion in OpenCV's convention (radial K1, K2, K3; tangential P1, P2): all zero is a
+    pinhole. See UCameraSensorComponent.LensDistortion.
+    """
+
+    __sp_class__: ClassVar[str] = "FLensDistortion"
+    K1: float = 0.0
+    K2: float = 0.0
+    K3: float = 0.0
+    P1: float = 0.0
+    P2: float = 0.0
 
 
 @dataclass

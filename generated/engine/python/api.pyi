@@ -55,6 +55,7 @@ __all__ = [
     "ESplineCoordinateSpace",
     "FCameraPixels",
     "FHitResult",
+    "FLensDistortion",
     "FLinearColor",
     "FMaterialDesc",
     "FMoviePipelineConfiguration",
@@ -315,6 +316,20 @@ class FHitResult:
     Time: float = 1.0
     TraceStart: FVector = field(default_factory=FVector)
     TraceEnd: FVector = field(default_factory=FVector)
+
+
+@dataclass
+class FLensDistortion:
+    """Brown–Conrady lens distortion in OpenCV's convention (radial K1, K2, K3; tangential P1, P2): all zero is a
+    pinhole. See UCameraSensorComponent.LensDistortion.
+    """
+
+    __sp_class__: ClassVar[str]
+    K1: float = 0.0
+    K2: float = 0.0
+    K3: float = 0.0
+    P1: float = 0.0
+    P2: float = 0.0
 
 
 @dataclass
@@ -2700,6 +2715,16 @@ class UCameraSensorComponentAsync(USceneComponentAsync):
 
     def SetPhysicalExposure(self, *, FNumber: float, ShutterSeconds: float, ISO: float) -> Future[None]: ...
 
+    def SetLensDistortion(self, *, NewLensDistortion: FLensDistortion) -> Future[None]: ...
+
+    def SetPrincipalPointOffset(self, *, NewPrincipalPointOffset: FVector2D) -> Future[None]: ...
+
+    def GetDistortionCoefficients(self) -> Future[NDArray[np.float64]]: ...
+
+    def DistortPixels(self, *, Points: NDArray[np.float64]) -> Future[NDArray[np.float64]]: ...
+
+    def UndistortPixels(self, *, Points: NDArray[np.float64]) -> Future[NDArray[np.float64]]: ...
+
     def SetShadowResolution(self, *, NewShadowResolution: int) -> Future[None]: ...
 
     def SetLatency(self, *, NewLatency: int) -> Future[None]: ...
@@ -2759,6 +2784,16 @@ class UCameraSensorComponentSend(USceneComponentSend):
     def SetExposureValue(self, *, EV100: float) -> None: ...
 
     def SetPhysicalExposure(self, *, FNumber: float, ShutterSeconds: float, ISO: float) -> None: ...
+
+    def SetLensDistortion(self, *, NewLensDistortion: FLensDistortion) -> None: ...
+
+    def SetPrincipalPointOffset(self, *, NewPrincipalPointOffset: FVector2D) -> None: ...
+
+    def GetDistortionCoefficients(self) -> None: ...
+
+    def DistortPixels(self, *, Points: NDArray[np.float64]) -> None: ...
+
+    def UndistortPixels(self, *, Points: NDArray[np.float64]) -> None: ...
 
     def SetShadowResolution(self, *, NewShadowResolution: int) -> None: ...
 
@@ -2860,6 +2895,25 @@ class UCameraSensorComponent(USceneComponent):
     def SensorWidth(self, value: float) -> None: ...
 
     @property
+    def LensDistortion(self) -> FLensDistortion:
+        """Lens distortion applied to every modality (OpenCV's model with GetIntrinsicMatrix()'s K; see
+        GetDistortionCoefficients): each pixel shows what the distorted ray through it sees, taken from a
+        pinhole render wide enough to hold every ray, nearest pixel, so that all modalities stay consistent.
+        """
+
+    @LensDistortion.setter
+    def LensDistortion(self, value: FLensDistortion) -> None: ...
+
+    @property
+    def PrincipalPointOffset(self) -> FVector2D:
+        """The principal point's offset from the image centre in pixels (X right, Y down): an off-centre lens, as
+        a real camera's calibration gives it (cx, cy of GetIntrinsicMatrix() move by it).
+        """
+
+    @PrincipalPointOffset.setter
+    def PrincipalPointOffset(self, value: FVector2D) -> None: ...
+
+    @property
     def ToneCurve(self) -> ECameraToneCurve:
         """The tone curve of final_color."""
 
@@ -2955,6 +3009,29 @@ class UCameraSensorComponent(USceneComponent):
         log2(FNumber^2 / ShutterSeconds * 100 / ISO).
         """
 
+    def SetLensDistortion(self, *, NewLensDistortion: FLensDistortion) -> None:
+        """Sets LensDistortion (every coefficient finite; a lens too strong to invert over the image is refused
+        when the camera renders).
+        """
+
+    def SetPrincipalPointOffset(self, *, NewPrincipalPointOffset: FVector2D) -> None:
+        """Sets PrincipalPointOffset in pixels (finite)."""
+
+    def GetDistortionCoefficients(self) -> NDArray[np.float64]:
+        """Returns the distortion coefficients in OpenCV's order, (k1, k2, p1, p2, k3) as a (5,) array, for
+        cv2.undistort(image, K, coefficients) and cv2.projectPoints.
+        """
+
+    def DistortPixels(self, *, Points: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Returns where pinhole pixels (an (N, 2) array of u, v under GetIntrinsicMatrix()'s K, no distortion)
+        land in this camera's images: OpenCV's distortion model applied to them.
+        """
+
+    def UndistortPixels(self, *, Points: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Returns the pinhole pixels ((N, 2)) that this camera's image pixels Points ((N, 2)) show: the inverse
+        of DistortPixels, as cv2.undistortPoints(..., P=K) computes it.
+        """
+
     def SetShadowResolution(self, *, NewShadowResolution: int) -> None:
         """Sets ShadowResolution in texels, in [16, 8192]."""
 
@@ -2970,8 +3047,9 @@ class UCameraSensorComponent(USceneComponent):
     def GetIntrinsicMatrix(self) -> NDArray[np.float64]:
         """Returns the intrinsic matrix K (3, 3) of the images in OpenCV's convention: pixel (u right, v down,
         the centre of pixel [i, j] at u = j, v = i) = K @ (x, y, z) / z for a point (x, y, z) in the OpenCV
-        camera frame (x right, y down, z forward); fx = fy = (Width / 2) / tan(FOV / 2), cx = (Width - 1) / 2,
-        cy = (Height - 1) / 2.
+        camera frame (x right, y down, z forward); fx = fy = (Width / 2) / tan(FOV / 2), cx = (Width - 1) / 2
+        + PrincipalPointOffset.X, cy = (Height - 1) / 2 + PrincipalPointOffset.Y. With LensDistortion the
+        distortion applies between the normalised point and K, as in OpenCV (DistortPixels).
         """
 
     def GetWorldToCamera(self) -> NDArray[np.float64]:

@@ -18,7 +18,7 @@ from spear._rpc_proxy import ObjectProxy as _ObjectProxy
 from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
-from .api import ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESplineCoordinateSpace, FCameraPixels, FHitResult, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
+from .api import ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESplineCoordinateSpace, FCameraPixels, FHitResult, FLensDistortion, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
 
@@ -1224,6 +1224,22 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
         self._sp_set("UCameraSensorComponent", "SensorWidth", value)
 
     @property
+    def LensDistortion(self) -> FLensDistortion:
+        return cast("FLensDistortion", self._sp_get("UCameraSensorComponent", "LensDistortion", "FLensDistortion"))
+
+    @LensDistortion.setter
+    def LensDistortion(self, value: FLensDistortion) -> None:
+        self._sp_set("UCameraSensorComponent", "LensDistortion", value)
+
+    @property
+    def PrincipalPointOffset(self) -> FVector2D:
+        return cast("FVector2D", self._sp_get("UCameraSensorComponent", "PrincipalPointOffset", "FVector2D"))
+
+    @PrincipalPointOffset.setter
+    def PrincipalPointOffset(self, value: FVector2D) -> None:
+        self._sp_set("UCameraSensorComponent", "PrincipalPointOffset", value)
+
+    @property
     def ToneCurve(self) -> ECameraToneCurve:
         return cast("ECameraToneCurve", self._sp_get("UCameraSensorComponent", "ToneCurve", "ECameraToneCurve"))
 
@@ -1319,6 +1335,21 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     def SetPhysicalExposure(self, *, FNumber: float, ShutterSeconds: float, ISO: float) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetPhysicalExposure", {"FNumber": FNumber, "ShutterSeconds": ShutterSeconds, "ISO": ISO}, "None"))  # a Future when queued by call_async
+
+    def SetLensDistortion(self, *, NewLensDistortion: FLensDistortion) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetLensDistortion", {"NewLensDistortion": NewLensDistortion}, "None"))  # a Future when queued by call_async
+
+    def SetPrincipalPointOffset(self, *, NewPrincipalPointOffset: FVector2D) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetPrincipalPointOffset", {"NewPrincipalPointOffset": NewPrincipalPointOffset}, "None"))  # a Future when queued by call_async
+
+    def GetDistortionCoefficients(self) -> NDArray[np.float64]:
+        return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "GetDistortionCoefficients", {}, "NDArray[np.float64]"))
+
+    def DistortPixels(self, *, Points: NDArray[np.float64]) -> NDArray[np.float64]:
+        return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "DistortPixels", {"Points": Points}, "NDArray[np.float64]"))
+
+    def UndistortPixels(self, *, Points: NDArray[np.float64]) -> NDArray[np.float64]:
+        return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "UndistortPixels", {"Points": Points}, "NDArray[np.float64]"))
 
     def SetShadowResolution(self, *, NewShadowResolution: int) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetShadowResolution", {"NewShadowResolution": NewShadowResolution}, "None"))  # a Future when queued by call_async
