@@ -17,6 +17,12 @@
 namespace sp::imageio {
 namespace {
 
+// What readExr takes: the camera's largest image (16384 pixels a side), and a file of it with four float
+// channels uncompressed.
+constexpr std::int64_t kMaxExrExtent = 16384;
+constexpr std::size_t kMaxExrFileBytes =
+    std::size_t(kMaxExrExtent * kMaxExrExtent) * 16 + (std::size_t(64) << 20);
+
 // OpenEXR writes and reads through these, so that files go through writeRegularFile/readRegularFile (whole
 // writes, the server's file roots, no FIFOs) like every other file the engine touches.
 class StringOStream : public Imf::OStream {
@@ -84,12 +90,13 @@ std::vector<std::string> orderedNames(const Imf::ChannelList& channels) {
     std::vector<std::string> names;
     for (auto it = channels.begin(); it != channels.end(); ++it)
         names.emplace_back(it.name());
-    static const std::vector<std::string> rgba{"R", "G", "B", "A"};
+    // The orders channelNames() writes ("Y" first; EXR files list channels alphabetically).
+    static const std::vector<std::string> order{"Y", "R", "G", "B", "A"};
     if (std::all_of(names.begin(), names.end(), [](const std::string& n) {
-            return std::find(rgba.begin(), rgba.end(), n) != rgba.end();
+            return std::find(order.begin(), order.end(), n) != order.end();
         }))
         std::sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
-            return std::find(rgba.begin(), rgba.end(), a) < std::find(rgba.begin(), rgba.end(), b);
+            return std::find(order.begin(), order.end(), a) < std::find(order.begin(), order.end(), b);
         });
     return names;
 }
@@ -142,21 +149,28 @@ std::string encodeExr(const ImageView& image, std::string_view function) {
 }
 
 void writeExr(const std::string& path, const ImageView& image, std::string_view function) {
-    writeRegularFile(path, encodeExr(image, function), function, "EXR file");
+    writeRegularFile(path, encodeExr(image, std::string(function) + ": '" + path + "'"), function,
+                     "EXR file");
 }
 
 Image readExr(const std::string& path, std::string_view function) {
-    const std::string bytes = readRegularFile(path, function, "EXR file");
+    const std::string bytes = readRegularFile(path, function, "EXR file", kMaxExrFileBytes);
     try {
         StringIStream stream(bytes);
         Imf::InputFile file(stream);
         const Imath::Box2i window = file.header().dataWindow();
         Image image;
-        image.width = window.max.x - window.min.x + 1;
-        image.height = window.max.y - window.min.y + 1;
+        const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
+        const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
         image.channelNames = orderedNames(file.header().channels());
-        SP_CHECK(!image.channelNames.empty(), InvalidArgument, function, ": EXR file '", path,
-                 "' has no channels");
+        SP_CHECK(!image.channelNames.empty() && image.channelNames.size() <= 4, InvalidArgument, function,
+                 ": EXR file '", path, "' has ", image.channelNames.size(), " channels; 1 to 4 are read");
+        // A small file may declare a huge image: the size is checked before anything is allocated.
+        SP_CHECK(width > 0 && height > 0 && width <= kMaxExrExtent && height <= kMaxExrExtent,
+                 InvalidArgument, function, ": EXR file '", path, "' declares a ", width, "x", height,
+                 " image; at most ", kMaxExrExtent, "x", kMaxExrExtent, " is read");
+        image.width = int(width);
+        image.height = int(height);
         const Imf::PixelType type = file.header().channels()[image.channelNames.front()].type;
         image.type = type == Imf::HALF    ? PixelType::Half
                      : type == Imf::FLOAT ? PixelType::Float
@@ -168,7 +182,8 @@ Image readExr(const std::string& path, std::string_view function) {
         for (int c = 0; c < channels; ++c) {
             const std::string& name = image.channelNames[std::size_t(c)];
             SP_CHECK(file.header().channels()[name].type == type, InvalidArgument, function, ": EXR file '",
-                     path, "' mixes pixel types (channel ", name, ")");
+                     path, "' mixes pixel types (channel ", name, " against ", image.channelNames.front(),
+                     ")");
             frame.insert(name, interleavedSlice(image.type, reinterpret_cast<char*>(image.pixels.data()), c,
                                                 channels, image.width, window.min.x, window.min.y));
         }

@@ -18,8 +18,9 @@ std::string encodeExr(const ImageView& image, std::string_view function);
 void writeExr(const std::string& path, const ImageView& image, std::string_view function);
 
 // Reads the EXR file at `path`: its channels in R, G, B, A order when it has only those, else in the
-// file's (alphabetical) order, all of one pixel type. Throws sp::NotFound when there is no such file and
-// sp::InvalidArgument when it is not an EXR file or mixes pixel types.
+// file's (alphabetical) order ("Y" before "A"), all of one pixel type, 1 to 4 channels, at most 16384 pixels
+// a side. Throws sp::NotFound when there is no such file and sp::InvalidArgument when it is not an EXR file,
+// mixes pixel types or exceeds those bounds.
 Image readExr(const std::string& path, std::string_view function);
 
 } // namespace sp::imageio

@@ -6,7 +6,8 @@
 
 namespace sp::imageio {
 
-FileWriter::FileWriter(int threads, int maxPending) : maxPending_(std::max(1, maxPending)) {
+FileWriter::FileWriter(int threads, int maxPending, std::size_t maxBytes)
+    : maxPending_(std::max(1, maxPending)), maxBytes_(maxBytes) {
     for (int i = 0; i < std::max(1, threads); ++i)
         threads_.emplace_back([this] { work(); });
 }
@@ -22,12 +23,16 @@ FileWriter::~FileWriter() {
         thread.join();
 }
 
-std::uint64_t FileWriter::submit(Task task) {
+std::uint64_t FileWriter::submit(std::size_t bytes, Task task) {
     std::unique_lock lock(mutex_);
-    changed_.wait(lock, [&] { return unfinished_ < maxPending_; });
-    const std::uint64_t ticket = ++submitted_;
+    changed_.wait(lock, [&] {
+        return unfinished_ == 0 || (unfinished_ < maxPending_ && bytesHeld_ + bytes <= maxBytes_);
+    });
+    const std::uint64_t ticket = submitted_ + 1;
+    queue_.push_back({ticket, bytes, std::move(task)}); // first: if it throws, nothing is counted
+    submitted_ = ticket;
     ++unfinished_;
-    queue_.emplace_back(ticket, std::move(task));
+    bytesHeld_ += bytes;
     lock.unlock();
     changed_.notify_all();
     return ticket;
@@ -54,12 +59,12 @@ void FileWriter::work() {
         changed_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
         if (queue_.empty())
             return; // stopping, and nothing left
-        auto [ticket, task] = std::move(queue_.front());
+        Queued next = std::move(queue_.front());
         queue_.pop_front();
         lock.unlock();
-        Finished result{ticket, {}};
+        Finished result{next.ticket, {}};
         try {
-            task();
+            next.task();
         } catch (const std::exception& error) {
             result.error = error.what();
             if (result.error.empty())
@@ -70,6 +75,7 @@ void FileWriter::work() {
         lock.lock();
         finished_.push_back(std::move(result));
         --unfinished_;
+        bytesHeld_ -= next.bytes;
         lock.unlock();
         changed_.notify_all();
     }

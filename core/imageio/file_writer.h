@@ -2,10 +2,12 @@
 // FileWriter: writes files on background threads, so that encoding images (PNG, ZIP-compressed EXR) and
 // waiting for the disk overlap with rendering the next frame instead of adding to it. A task is a group of
 // files written in order by one thread (a frame's images, then the file that says the frame is whole);
-// tasks run in parallel with each other. At most `maxPending` tasks wait or run: submit() blocks beyond
-// that, so memory stays bounded when the disk is slower than the renderer.
+// tasks run in parallel with each other. At most `maxPending` tasks, holding at most `maxBytes` between
+// them, wait or run: submit() blocks beyond that (a task of any size may run alone), so memory stays bounded
+// when the disk is slower than the renderer.
 
 #include <condition_variable>
+#include <cstddef>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -24,13 +26,14 @@ class FileWriter {
         std::string error; // the task's exception message; empty when it succeeded
     };
 
-    FileWriter(int threads, int maxPending);
+    FileWriter(int threads, int maxPending, std::size_t maxBytes);
     ~FileWriter(); // waits for every task submitted
     FileWriter(const FileWriter&) = delete;
     FileWriter& operator=(const FileWriter&) = delete;
 
-    // Queues `task` and returns its ticket (1, 2, ...); blocks while maxPending tasks are unfinished.
-    std::uint64_t submit(Task task);
+    // Queues `task`, which holds `bytes` of data until it finishes, and returns its ticket (1, 2, ...);
+    // blocks while that would exceed maxPending tasks or maxBytes.
+    std::uint64_t submit(std::size_t bytes, Task task);
     // The tasks that finished since the last call, in the order they finished.
     std::vector<Finished> takeFinished();
     // Blocks until every submitted task has finished.
@@ -43,12 +46,19 @@ class FileWriter {
 
     mutable std::mutex mutex_;
     std::condition_variable changed_;
-    std::deque<std::pair<std::uint64_t, Task>> queue_;
+    struct Queued {
+        std::uint64_t ticket;
+        std::size_t bytes;
+        Task task;
+    };
+    std::deque<Queued> queue_;
     std::vector<Finished> finished_;
     std::vector<std::thread> threads_;
     std::uint64_t submitted_ = 0;
     int unfinished_ = 0;
+    std::size_t bytesHeld_ = 0;
     int maxPending_;
+    std::size_t maxBytes_;
     bool stopping_ = false;
 };
 

@@ -57,7 +57,8 @@ std::string encodePng(const ImageView& image, std::string_view function) {
 }
 
 void writePng(const std::string& path, const ImageView& image, std::string_view function) {
-    writeRegularFile(path, encodePng(image, function), function, "PNG file");
+    writeRegularFile(path, encodePng(image, std::string(function) + ": '" + path + "'"), function,
+                     "PNG file");
 }
 
 } // namespace sp::imageio

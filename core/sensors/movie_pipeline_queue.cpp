@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <thread>
 
@@ -25,6 +26,8 @@ namespace sp::sensors {
 namespace {
 
 constexpr const char* kQueue = "UMoviePipelineQueueEngineSubsystem";
+// Images waiting to be written, at most (one frame always may, whatever its size).
+constexpr std::size_t kMaxBytesInFlight = std::size_t(1) << 30;
 
 // Runs after the world rendered, so that the queue reads the images of this frame.
 class MoviePipelineOutput : public sp::world::WorldSubsystem {
@@ -108,9 +111,12 @@ struct MoviePipelineQueue::Run {
     int32_t frame = 0; // the output frame of this engine frame
     int32_t end = 0;
     bool renderThisFrame = false;
+    std::string
+        folder; // OutputDirectory resolved once (absolute), so a later change of directory does not move it
     std::set<std::uint64_t> writing; // the writer's tickets of this run's frames being written
     std::string writeError;          // the first frame that could not be written
     std::chrono::steady_clock::time_point started;
+    std::optional<std::chrono::steady_clock::time_point> firstRender; // of this run, for the ETA
     std::unique_ptr<sp::base::Progress> progress;
 
     struct Saved {
@@ -211,15 +217,15 @@ std::vector<std::string> MoviePipelineQueue::outputFiles(const UMoviePipelineExe
 }
 
 bool MoviePipelineQueue::frameWritten(int32_t frame) const {
-    if (active_->configuration.bOverwriteExisting)
+    const Run& run = *active_;
+    if (run.configuration.bOverwriteExisting)
         return false;
-    for (const std::string& file : outputFiles(*active_->job, frame)) {
-        std::error_code error;
+    std::error_code error;
+    for (ECameraModality modality : run.modalities)
         if (!std::filesystem::is_regular_file(
-                resolveUserPath(file, std::string(kQueue) + ".RenderJob()", "output file"), error))
+                imageFile(run.folder, static_cast<sp::render::Modality>(modality), frame), error))
             return false;
-    }
-    return true;
+    return std::filesystem::is_regular_file(cameraFile(run.folder, frame), error);
 }
 
 void MoviePipelineQueue::start(UMoviePipelineExecutorJob& job) {
@@ -233,6 +239,9 @@ void MoviePipelineQueue::start(UMoviePipelineExecutorJob& job) {
     SP_CHECK(!run->modalities.empty(), InvalidArgument, function, ": job '", job.JobName,
              "' renders no modality (its configuration and its camera list none)");
     run->poses = !run->configuration.CameraLocations.empty();
+    SP_CHECK(!run->poses || camera->Mobility != EComponentMobility::Static, InvalidState, function, ": job '",
+             job.JobName, "' moves its camera through poses, but ", camera->GetDebugName(),
+             " is static; set its Mobility to Movable");
     run->end = job.frameEnd();
     run->frame = run->poses ? run->configuration.FrameStart : 0;
     run->started = std::chrono::steady_clock::now();
@@ -240,8 +249,9 @@ void MoviePipelineQueue::start(UMoviePipelineExecutorJob& job) {
                   camera->Latency, camera->Modalities, camera->GetRelativeTransform()};
 
     // The folders first: a job that cannot write fails before it touches the camera.
-    const std::filesystem::path folder(
+    const std::filesystem::path folder = std::filesystem::absolute(
         resolveUserPath(run->configuration.OutputDirectory, function, "output folder"));
+    run->folder = folder.string();
     std::vector<std::string> folders{"camera"};
     for (ECameraModality modality : run->modalities)
         folders.emplace_back(sp::render::modalityName(static_cast<sp::render::Modality>(modality)));
@@ -264,12 +274,19 @@ void MoviePipelineQueue::end(EMoviePipelineJobStatus status, std::string error) 
     if (writer_)
         writer_->waitAll();
     collectWritten();
-    if (status == EMoviePipelineJobStatus::Finished && !active_->writeError.empty()) {
-        SP_LOG("render job '", active_->job->JobName, "' failed: ", active_->writeError);
-        status = EMoviePipelineJobStatus::Failed;
+    if (!active_->writeError.empty() && status != EMoviePipelineJobStatus::Failed) {
+        SP_LOG("render job '", active_->job->JobName, "': ", active_->writeError);
+        if (status == EMoviePipelineJobStatus::Finished)
+            status = EMoviePipelineJobStatus::Failed;
         error = active_->writeError;
     }
     std::unique_ptr<Run> run = std::move(active_);
+    FMoviePipelineProgress& progress = run->job->progress();
+    progress.ElapsedSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - run->started).count();
+    progress.EstimatedSecondsLeft = status == EMoviePipelineJobStatus::Finished ? 0.0 : -1.0;
+    run->job->setStatus(status, std::move(error));
+    // The camera as it was; nothing here may throw, as end() runs from error handlers too.
     if (UCameraSensorComponent* camera = findCamera(run->job->cameraHandle())) {
         camera->Width = run->saved.width;
         camera->Height = run->saved.height;
@@ -277,36 +294,47 @@ void MoviePipelineQueue::end(EMoviePipelineJobStatus status, std::string error) 
         camera->Latency = run->saved.latency;
         camera->Modalities = run->saved.modalities;
         camera->setRenderSuspended(false);
-        if (run->poses)
-            camera->SetRelativeTransform(run->saved.relative);
+        if (run->poses) {
+            try {
+                camera->SetRelativeTransform(run->saved.relative);
+            } catch (const std::exception& failure) {
+                SP_LOG("render job '", run->job->JobName,
+                       "' could not put its camera back: ", failure.what());
+            }
+        }
     }
-    FMoviePipelineProgress& progress = run->job->progress();
-    progress.ElapsedSeconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - run->started).count();
-    if (status == EMoviePipelineJobStatus::Finished)
-        progress.EstimatedSecondsLeft = 0.0;
-    run->job->setStatus(status, std::move(error));
 }
 
 void MoviePipelineQueue::fail(const std::exception& error) {
+    if (!active_)
+        return;
     SP_LOG("render job '", active_->job->JobName, "' failed: ", error.what());
     end(EMoviePipelineJobStatus::Failed, error.what());
 }
 
 void MoviePipelineQueue::Tick(double /*deltaSeconds*/) {
-    if (!active_ && !queued_.empty()) {
-        UMoviePipelineExecutorJob& job = *queued_.front();
-        queued_.erase(queued_.begin());
-        try {
-            start(job);
-        } catch (const std::exception& error) {
-            SP_LOG("render job '", job.JobName, "' failed: ", error.what());
-            job.setStatus(EMoviePipelineJobStatus::Failed, error.what());
-            return;
+    // A job that fails to start, or ends here without rendering (every frame already written), leaves this
+    // engine frame to the next job in the queue.
+    for (;;) {
+        if (!active_) {
+            if (queued_.empty())
+                return;
+            UMoviePipelineExecutorJob& job = *queued_.front();
+            queued_.erase(queued_.begin());
+            try {
+                start(job);
+            } catch (const std::exception& error) {
+                SP_LOG("render job '", job.JobName, "' failed: ", error.what());
+                job.setStatus(EMoviePipelineJobStatus::Failed, error.what());
+                continue;
+            }
         }
+        if (prepareFrame())
+            return;
     }
-    if (!active_)
-        return;
+}
+
+bool MoviePipelineQueue::prepareFrame() {
     Run& run = *active_;
     run.renderThisFrame = false;
     try {
@@ -322,12 +350,12 @@ void MoviePipelineQueue::Tick(double /*deltaSeconds*/) {
                 ++progress.FramesSkipped;
         if (run.frame >= run.end) {
             end(EMoviePipelineJobStatus::Finished);
-            return;
+            return false;
         }
         const bool inRange = run.frame >= run.configuration.FrameStart;
         if (!inRange || frameWritten(run.frame)) {
             camera->setRenderSuspended(true);
-            return;
+            return true;
         }
         const FMoviePipelineConfiguration& c = run.configuration;
         camera->Width = c.Width > 0 ? c.Width : run.saved.width;
@@ -343,8 +371,12 @@ void MoviePipelineQueue::Tick(double /*deltaSeconds*/) {
         // Each output frame has its own samples, even when nothing moved since the last one.
         world_.GetSubsystem<RenderSubsystem>().restartAccumulation(*camera);
         run.renderThisFrame = true;
+        if (!run.firstRender)
+            run.firstRender = std::chrono::steady_clock::now();
+        return true;
     } catch (const std::exception& error) {
         fail(error);
+        return false;
     }
 }
 
@@ -397,7 +429,7 @@ void MoviePipelineQueue::writeFrame(UCameraSensorComponent& camera) {
     std::vector<sp::render::OutputView> views;
     for (sp::render::Modality modality : shape->modalities.list())
         files->images.push_back(
-            {imageFile(run.configuration.OutputDirectory, modality, run.frame), modality,
+            {imageFile(run.folder, modality, run.frame), modality,
              std::vector<std::byte>(sp::render::modalityByteSize(modality, shape->width, shape->height))});
     for (FrameFiles::File& file : files->images)
         views.push_back({file.modality, file.pixels.data(), file.pixels.size()});
@@ -418,14 +450,21 @@ void MoviePipelineQueue::writeFrame(UCameraSensorComponent& camera) {
         {"renderer", camera.Renderer == ECameraRenderer::PathTraced ? "path_traced" : "raster"},
         {"samples_per_pixel", camera.GetAccumulatedSamples()},
     };
-    files->cameraPath = cameraFile(run.configuration.OutputDirectory, run.frame);
+    files->cameraPath = cameraFile(run.folder, run.frame);
     files->cameraRecord = record.dump() + "\n";
 
-    if (!writer_) // threads beside the renderer's: encoding overlaps the next frames
-        writer_ = std::make_unique<sp::imageio::FileWriter>(
-            int(std::max(2u, std::thread::hardware_concurrency())),
-            int(std::max(2u, std::thread::hardware_concurrency())) + 1);
-    const std::uint64_t ticket = writer_->submit([files] {
+    if (!writer_) { // threads beside the renderer's: encoding overlaps the next frames
+        const int threads = int(std::clamp(std::thread::hardware_concurrency(), 2u, 8u));
+        writer_ = std::make_unique<sp::imageio::FileWriter>(threads, threads + 1, kMaxBytesInFlight);
+    }
+    std::size_t bytes = 0;
+    for (const FrameFiles::File& file : files->images)
+        bytes += file.pixels.size();
+    const std::uint64_t ticket = writer_->submit(bytes, [files] {
+        // An older camera file goes first: until the new one is written the frame is not whole (a run that
+        // overwrites and stops midway must not leave new images beside an old camera file).
+        std::error_code stale;
+        std::filesystem::remove(files->cameraPath, stale);
         for (const FrameFiles::File& file : files->images) {
             const sp::render::ModalityInfo& info = sp::render::modalityInfo(file.modality);
             const sp::imageio::ImageView image{files->width, files->height, info.channels,
@@ -456,12 +495,15 @@ void MoviePipelineQueue::collectWritten() {
             ++progress.FramesRendered;
     }
     progress.FramesWriting = int32_t(run.writing.size());
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - run.started).count();
-    progress.ElapsedSeconds = elapsed;
-    const int32_t left = progress.FramesTotal - progress.FramesRendered - progress.FramesSkipped;
-    if (progress.FramesRendered > 0)
-        progress.EstimatedSecondsLeft = elapsed / progress.FramesRendered * left;
+    const auto now = std::chrono::steady_clock::now();
+    progress.ElapsedSeconds = std::chrono::duration<double>(now - run.started).count();
+    // The pace of rendering (frames being written included) since this run's first rendered frame.
+    const int32_t rendered = progress.FramesRendered + progress.FramesWriting;
+    if (run.firstRender && rendered > 0) {
+        const double seconds = std::chrono::duration<double>(now - *run.firstRender).count();
+        const int32_t left = progress.FramesTotal - rendered - progress.FramesSkipped;
+        progress.EstimatedSecondsLeft = seconds / rendered * std::max(left, 0);
+    }
     run.progress->set(progress.FramesRendered + progress.FramesSkipped);
 }
 
@@ -504,9 +546,10 @@ void UMoviePipelineExecutorJob::SetConfiguration(const FMoviePipelineConfigurati
         const FVector& l = c.CameraLocations[i];
         const FRotator& r = c.CameraRotations[i];
         SP_CHECK(std::isfinite(l.X) && std::isfinite(l.Y) && std::isfinite(l.Z), sp::InvalidArgument, who,
-                 "CameraLocations[", i, "] is not finite");
+                 "CameraLocations[", i, "] must be finite, got (", l.X, ", ", l.Y, ", ", l.Z, ")");
         SP_CHECK(std::isfinite(r.Pitch) && std::isfinite(r.Yaw) && std::isfinite(r.Roll), sp::InvalidArgument,
-                 who, "CameraRotations[", i, "] is not finite");
+                 who, "CameraRotations[", i, "] must be finite, got (Pitch ", r.Pitch, ", Yaw ", r.Yaw,
+                 ", Roll ", r.Roll, ")");
     }
     SP_CHECK(c.FrameStart >= 0, sp::InvalidArgument, who, "FrameStart must be >= 0, got ", c.FrameStart);
     const int64_t poses = int64_t(c.CameraLocations.size());

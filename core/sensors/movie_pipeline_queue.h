@@ -118,7 +118,8 @@ struct FMoviePipelineProgress {
     /// Seconds since the job started rendering (0 before).
     SPPROPERTY()
     double ElapsedSeconds = 0.0;
-    /// Seconds left at the pace of the frames rendered so far (0 when done, -1 before the first frame).
+    /// Seconds left at the pace of the frames rendered so far (0 when finished; -1 before the first frame and
+    /// after a cancel or a failure).
     SPPROPERTY()
     double EstimatedSecondsLeft = -1.0;
 };
@@ -161,7 +162,8 @@ class UMoviePipelineExecutorJob : public UObject {
     SPFUNCTION()
     std::vector<std::string> GetOutputFiles(int32_t Frame) const;
 
-    /// Stops the job (queued or rendering) at the end of the current frame's work; frames written stay.
+    /// Stops the job (queued or rendering) now, once the frames being written are on disk; frames written
+    /// stay.
     SPFUNCTION()
     void Cancel();
 
@@ -259,6 +261,8 @@ class MoviePipelineQueue : public sp::world::WorldSubsystem {
     struct Run;
 
     void start(UMoviePipelineExecutorJob& job);
+    // Sets the camera up for this engine frame's output frame (or skips it); false when the job ended.
+    bool prepareFrame();
     // Ends the active run with `status`, putting the camera back as it was.
     void end(EMoviePipelineJobStatus status, std::string error = {});
     void fail(const std::exception& error);

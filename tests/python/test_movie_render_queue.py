@@ -140,7 +140,9 @@ def test_a_job_run_again_skips_the_frames_already_written(instance: spear.Instan
     with instance.end_frame():
         pass
     _render(instance, queue)
-    written = {f: os.stat(f).st_mtime_ns for f in tmp_path.rglob("*") if f.is_file()}
+    # Files are written to a new file renamed into place: a rewritten one has another inode or modification
+    # time (an inode number alone may be reused for the new file).
+    written = {f: (os.stat(f).st_ino, os.stat(f).st_mtime_ns) for f in tmp_path.rglob("*") if f.is_file()}
     assert len(written) == 4 * 3
     (tmp_path / "depth" / "0002.exr").unlink()  # frame 2 is no longer whole
 
@@ -156,7 +158,7 @@ def test_a_job_run_again_skips_the_frames_already_written(instance: spear.Instan
     with instance.end_frame():
         pass
     assert frames == 1  # the poses of finished frames cost no engine frame
-    again = {f: os.stat(f).st_mtime_ns for f in tmp_path.rglob("*") if f.is_file()}
+    again = {f: (os.stat(f).st_ino, os.stat(f).st_mtime_ns) for f in tmp_path.rglob("*") if f.is_file()}
     changed = sorted(f.relative_to(tmp_path).as_posix() for f in again if again[f] != written.get(f))
     assert changed == ["camera/0002.json", "depth/0002.exr", "final_color/0002.png"]
 
@@ -245,6 +247,24 @@ def test_without_poses_a_job_records_consecutive_frames_of_the_running_world(
     depths = [spear.images.read_exr(tmp_path / "depth" / f"{k:04d}.exr") for k in (2, 3, 4)]
     assert depths[0].shape == (30, 40)  # the camera's own size
     assert not np.array_equal(depths[0], depths[2])  # the ball fell meanwhile
+    with instance.begin_frame():
+        progress = job.GetProgress()
+        assert (progress.FramesTotal, progress.FramesRendered, progress.FramesSkipped) == (3, 3, 0)
+        assert camera.Modalities == [M.FinalColor] and camera.GetComponentLocation() == spear.FVector(X=-4.0, Z=1.5)
+        # Run again with frame 3 missing: frames 2 and 4 pass unrendered, frame 3 is the engine frame after.
+        (tmp_path / "depth" / "0003.exr").unlink()
+        queue.RenderJob(Job=job)
+        start = game.get_frame_count()
+    with instance.end_frame():
+        pass
+    _render(instance, queue)
+    with instance.begin_frame():
+        progress = job.GetProgress()
+        assert (progress.FramesRendered, progress.FramesSkipped) == (1, 2)
+    with instance.end_frame():
+        pass
+    record = json.loads((tmp_path / "camera" / "0003.json").read_text())
+    assert record["engine_frame"] - start == 4
 
 
 def test_a_path_traced_frame_has_its_own_samples(instance: spear.Instance, tmp_path: Path) -> None:
@@ -288,7 +308,8 @@ def test_bad_configurations_and_jobs_are_refused_naming_the_field(instance: spea
             (dict(CameraRotations=[]), r"CameraLocations has 3 poses and CameraRotations 0; they pair up"),
             (dict(FrameEnd=4), r"frames \[0, 4\) are not a non-empty range within the 3 poses"),
             (dict(CameraLocations=[], CameraRotations=[]), r"without CameraLocations, FrameEnd must be given"),
-            (dict(CameraLocations=[spear.FVector(X=float("nan"))] * 3), r"CameraLocations\[0\] is not finite"),
+            (dict(CameraLocations=[spear.FVector(X=float("nan"))] * 3),
+             r"CameraLocations\[0\] must be finite, got \(nan, 0, 0\)"),
         ]
         for fields, message in cases:
             with pytest.raises(InvalidArgumentError, match=r"UMoviePipelineExecutorJob.SetConfiguration\(\): "
@@ -320,10 +341,7 @@ def test_a_failing_job_is_reported_and_the_engine_goes_on(instance: spear.Instan
     with instance.end_frame():
         assert unwritable.GetStatus() == Status.Failed
         assert "cannot create folder" in unwritable.GetErrorMessage()
-    with instance.begin_frame():
-        pass
-    with instance.end_frame():
-        assert orphan.GetStatus() == Status.Rendering
+        assert orphan.GetStatus() == Status.Rendering  # it took the frame the first job could not use
     with instance.begin_frame():
         owner = camera.GetOwner()
         assert owner is not None
@@ -336,24 +354,51 @@ def test_a_failing_job_is_reported_and_the_engine_goes_on(instance: spear.Instan
 
 
 def test_a_file_that_cannot_be_written_fails_the_job(instance: spear.Instance, tmp_path: Path) -> None:
+    (tmp_path / "depth" / "0002.exr").mkdir(parents=True)  # where frame 2's depth file should go
     game = instance.get_game()
     with instance.begin_frame():
         camera = _scene(game)
         queue = _queue(game)
-        job = queue.AllocateJob(Camera=camera, JobName="lost")
+        job = queue.AllocateJob(Camera=camera, JobName="blocked")
         job.SetConfiguration(Configuration=_configuration(tmp_path, 8, Modalities=[M.FinalColor, M.Depth]))
         queue.RenderJob(Job=job)
     with instance.end_frame():
         pass
-    for file in (tmp_path / "depth").iterdir():  # the folder goes away under the job (files are written
-        file.unlink()                             # on background threads, so this one may be in flight)
-    (tmp_path / "depth").rmdir()
     _render(instance, queue)
     with instance.begin_frame():
         assert job.GetStatus() == Status.Failed and not queue.IsRendering()
-        assert "render job 'lost': cannot write EXR file" in job.GetErrorMessage()
-        assert "no such directory" in job.GetErrorMessage()
-        assert job.GetProgress().FramesWriting == 0
+        assert job.GetErrorMessage().startswith("render job 'blocked': EXR file '")
+        assert job.GetErrorMessage().endswith("depth/0002.exr' is not a regular file (a FIFO, device or socket)")
+        progress = job.GetProgress()
+        assert progress.FramesWriting == 0 and progress.EstimatedSecondsLeft == -1.0
+        assert not (tmp_path / "camera" / "0002.json").exists()  # frame 2 is not whole
         assert camera.Width == 40  # put back
+    with instance.end_frame():
+        pass
+
+
+def test_poses_need_a_movable_camera(instance: spear.Instance, tmp_path: Path) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        camera = _scene(game)
+        camera.SetMobility(NewMobility=spear.EComponentMobility.Static)
+        queue = _queue(game)
+        still = queue.AllocateJob(Camera=camera, JobName="still")
+        still.SetConfiguration(Configuration=_configuration(tmp_path / "still", 2))
+        recording = queue.AllocateJob(Camera=camera, JobName="recording")
+        recording.SetConfiguration(Configuration=spear.FMoviePipelineConfiguration(
+            OutputDirectory=str(tmp_path / "recording"), FrameEnd=2))
+        queue.RenderJob(Job=still)
+        queue.RenderJob(Job=recording)
+    with instance.end_frame():
+        # The first job fails to start; the second takes the same frame (a static camera may record).
+        assert still.GetStatus() == Status.Failed
+        assert still.GetErrorMessage() == (
+            "UMoviePipelineQueueEngineSubsystem.RenderJob(): job 'still' moves its camera through poses, but "
+            "UCameraSensorComponent 'CameraSensor' is static; set its Mobility to Movable")
+        assert recording.GetStatus() == Status.Rendering
+    _render(instance, queue)
+    with instance.begin_frame():
+        assert recording.GetStatus() == Status.Finished
     with instance.end_frame():
         pass

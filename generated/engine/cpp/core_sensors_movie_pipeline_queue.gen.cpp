@@ -297,7 +297,7 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
         t.properties.push_back({
             "EstimatedSecondsLeft",
             "float",
-            "Seconds left at the pace of the frames rendered so far (0 when done, -1 before the first frame).",
+            "Seconds left at the pace of the frames rendered so far (0 when finished; -1 before the first frame and\nafter a cancel or a failure).",
             false,
             [](const void* self) -> sp::reflect::Value {
                 return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->EstimatedSecondsLeft);
@@ -449,7 +449,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         });
         t.functions.push_back({
             "Cancel",
-            "Stops the job (queued or rendering) at the end of the current frame's work; frames written stay.",
+            "Stops the job (queued or rendering) now, once the frames being written are on disk; frames written\nstay.",
             "None",
             {
             },

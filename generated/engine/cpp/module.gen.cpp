@@ -3609,7 +3609,7 @@ void spear_bind_engine(py::module_& m) {
                 object->Cancel();
                 return py::none();
             },
-            "Cancel(self) -> None\n\nStops the job (queued or rendering) at the end of the current frame's work; frames written stay.");
+            "Cancel(self) -> None\n\nStops the job (queued or rendering) now, once the frames being written are on disk; frames written\nstay.");
     }
     {
         using Self = UMoviePipelineQueueEngineSubsystem;

@@ -199,4 +199,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "c8e0a15931d72e25"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "06b13fe8829acb5b"; }

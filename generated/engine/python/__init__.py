@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "c8e0a15931d72e25"
+API_HASH = "06b13fe8829acb5b"

@@ -3600,7 +3600,9 @@ class UMoviePipelineExecutorJob(UObject):
         """Returns the paths of the files output frame Frame writes: one per modality, then the camera file."""
 
     def Cancel(self) -> None:
-        """Stops the job (queued or rendering) at the end of the current frame's work; frames written stay."""
+        """Stops the job (queued or rendering) now, once the frames being written are on disk; frames written
+        stay.
+        """
 
 
 class UMoviePipelineQueueEngineSubsystemAsync(UObjectAsync):

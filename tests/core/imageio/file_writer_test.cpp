@@ -15,10 +15,10 @@ namespace {
 
 TEST(FileWriter, RunsEveryTaskAndReportsErrorsByTicket) {
     std::atomic<int> ran{0};
-    FileWriter writer(2, 3);
+    FileWriter writer(2, 3, 1 << 20);
     std::uint64_t failing = 0;
     for (int i = 0; i < 10; ++i) {
-        const std::uint64_t ticket = writer.submit([&ran, i] {
+        const std::uint64_t ticket = writer.submit(1, [&ran, i] {
             ++ran;
             if (i == 4)
                 throw std::runtime_error("disk full");
@@ -38,9 +38,9 @@ TEST(FileWriter, RunsEveryTaskAndReportsErrorsByTicket) {
 
 TEST(FileWriter, BoundsTheTasksInFlight) {
     std::atomic<int> running{0}, most{0};
-    FileWriter writer(4, 2);
+    FileWriter writer(4, 2, 1 << 20);
     for (int i = 0; i < 12; ++i)
-        writer.submit([&] {
+        writer.submit(1, [&] {
             const int now = ++running;
             for (int seen = most.load(); now > seen && !most.compare_exchange_weak(seen, now);) {
             }
@@ -52,12 +52,28 @@ TEST(FileWriter, BoundsTheTasksInFlight) {
     EXPECT_LE(most.load(), 2);
 }
 
+TEST(FileWriter, BoundsTheBytesHeldButRunsAnyTaskAlone) {
+    std::atomic<int> running{0}, most{0};
+    FileWriter writer(4, 8, 100);
+    for (int i = 0; i < 8; ++i)
+        writer.submit(i == 3 ? 500 : 40, [&] { // 40 + 40 fit, a third does not; 500 runs alone
+            const int now = ++running;
+            for (int seen = most.load(); now > seen && !most.compare_exchange_weak(seen, now);) {
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+            --running;
+        });
+    writer.waitAll();
+    EXPECT_LE(most.load(), 2);
+    EXPECT_EQ(writer.takeFinished().size(), 8u);
+}
+
 TEST(FileWriter, DestroyingItWaitsForItsTasks) {
     std::atomic<int> ran{0};
     {
-        FileWriter writer(1, 8);
+        FileWriter writer(1, 8, 1 << 20);
         for (int i = 0; i < 5; ++i)
-            writer.submit([&] {
+            writer.submit(1, [&] {
                 std::this_thread::sleep_for(std::chrono::milliseconds(3));
                 ++ran;
             });

@@ -76,6 +76,7 @@ TEST_F(ImageFiles, ExrRoundTripsHalfFloatAndUint32) {
         {"float_y", {9, 4, 1, PixelType::Float, floats.data()}, {"Y"}},
         {"uint_y", {9, 4, 1, PixelType::UInt32, ids.data()}, {"Y"}},
         {"half_rgba", {9, 4, 4, PixelType::Half, rgba.data()}, {"R", "G", "B", "A"}},
+        {"half_ya", {9, 4, 2, PixelType::Half, rgba.data()}, {"Y", "A"}},
     };
     for (const Case& c : cases) {
         const std::string file = path(std::string(c.name) + ".exr");
