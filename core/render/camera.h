@@ -14,12 +14,14 @@ enum class ToneMap { Aces, Reinhard, Linear };
 
 // Settings of one camera; validate() throws sp::InvalidArgument naming the bad field.
 struct CameraParams {
-    int width = 640;                 // pixels
-    int height = 480;                // pixels
-    double hfovDeg = 90.0;           // horizontal field of view, degrees, in (0, 180)
-    double nearClip = 0.05;          // metres, > 0
-    double farClip = 1000.0;         // metres, > nearClip
-    float exposure = 1.0f;           // linear multiplier applied to hdr_color before the tone curve
+    int width = 640;         // pixels
+    int height = 480;        // pixels
+    double hfovDeg = 90.0;   // horizontal field of view, degrees, in (0, 180)
+    double nearClip = 0.05;  // metres, > 0
+    double farClip = 1000.0; // metres, > nearClip
+    float exposure = 1.0f;   // linear multiplier applied to hdr_color before the tone curve
+    // Per-channel gains of white balance, applied with exposure (whiteBalanceGains(); 1, 1, 1: none).
+    Eigen::Vector3f whiteBalance = Eigen::Vector3f::Ones();
     ToneMap toneMap = ToneMap::Aces; // tone curve for final_color
     bool shadows = true;             // render shadow maps for shadow-casting lights
     int shadowResolution = 1024;     // shadow map size in texels, in [16, 8192]

@@ -22,9 +22,9 @@ namespace {
 
 // final_color of a background pixel, RGBA.
 std::array<float, 4> backgroundFinal(const Environment& environment, const CameraParams& params) {
-    return {toneMapChannel(environment.background.x(), params),
-            toneMapChannel(environment.background.y(), params),
-            toneMapChannel(environment.background.z(), params), 1.0f};
+    return {toneMapChannel(environment.background.x(), 0, params),
+            toneMapChannel(environment.background.y(), 1, params),
+            toneMapChannel(environment.background.z(), 2, params), 1.0f};
 }
 
 void copy3(float (&out)[4], const Eigen::Vector3f& v, float w) {
@@ -162,6 +162,7 @@ void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
     copy3(block.background, scene.environment().background, 1.0f);
     block.toneParams[0] = camera.params.exposure;
     block.toneParams[1] = float(static_cast<int>(camera.params.toneMap));
+    copy3(block.exposure, camera.params.exposure * camera.params.whiteBalance, 0.0f);
     const std::array<float, 4> final = backgroundFinal(scene.environment(), camera.params);
     std::copy(final.begin(), final.end(), block.backgroundFinal);
     for (const ShadowInfo& info : shadows) {

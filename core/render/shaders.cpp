@@ -22,6 +22,7 @@ layout(std140, binding = 0) uniform FrameBlock {
     mat4 uShadowMatrix[MAX_SHADOWS];
     vec4 uShadowParams[MAX_SHADOWS];
     vec4 uBackgroundFinal;
+    vec4 uExposure;
 };
 // The light-clip position of p moved 1.5 shadow-map texels along n (turned towards the light), so that a
 // surface does not shadow itself (per vertex: see shadowClips()).
@@ -191,7 +192,7 @@ vec3 srgbEncode(vec3 c) {
     return mix(c * 12.92, curve, step(vec3(0.0031308), c));
 }
 vec4 toneMapped(vec3 hdr) {
-    vec3 x = max(hdr, 0.0) * uToneParams.x;
+    vec3 x = max(hdr, 0.0) * uExposure.xyz;
     int curve = int(uToneParams.y);
     vec3 mapped = curve == 0 ? aces(x) : curve == 1 ? x / (1.0 + x) : clamp(x, 0.0, 1.0);
     return vec4(srgbEncode(mapped), 1.0);

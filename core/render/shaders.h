@@ -37,6 +37,7 @@ struct FrameBlock {
     float shadowMatrix[4][16];   // world -> light clip, column-major
     float shadowParams[4][4]; // x = world texel size (per metre of distance for a spot light), y = resolution
     float backgroundFinal[4]; // rgba: final_color of background pixels (tone-mapped on the CPU side)
+    float exposure[4];        // xyz: exposure times the white balance gains
 };
 
 // One light of a shading variant.

@@ -7,7 +7,14 @@
 
 namespace sp::render {
 
-// The sRGB-encoded value in [0, 1] of one linear HDR channel.
-float toneMapChannel(float hdr, const CameraParams& params);
+// The sRGB-encoded value in [0, 1] of channel `channel` (0 red, 1 green, 2 blue) of a linear HDR colour:
+// exposure and white balance, the tone curve, sRGB.
+float toneMapChannel(float hdr, int channel, const CameraParams& params);
+
+// The per-channel gains that balance a camera for light of colour temperature `kelvin` (in [2000, 25000]):
+// a grey lit by a black body at that temperature comes out grey. Relative to 6500 K (which gives 1, 1, 1),
+// from the Planckian locus (Kim et al.'s cubic fit) in linear sRGB, scaled so that a grey keeps its
+// luminance. Lower temperatures (tungsten) raise blue, higher ones raise red.
+Eigen::Vector3f whiteBalanceGains(double kelvin);
 
 } // namespace sp::render

@@ -7,6 +7,7 @@
 #include "core/base/error.h"
 #include "core/render/camera.h"
 #include "core/render/modality.h"
+#include "core/render/tone.h"
 #include "core/sensors/render_subsystem.h"
 #include "core/world/actor.h"
 #include "core/world/world.h"
@@ -130,6 +131,22 @@ sp::reflect::SpArray<double> UCameraSensorComponent::GetIntrinsicMatrix() const 
     const double values[9] = {lens.fx, 0.0, lens.cx, 0.0, lens.fy, lens.cy, 0.0, 0.0, 1.0};
     std::copy(values, values + 9, k.data());
     return k;
+}
+
+void UCameraSensorComponent::SetWhiteBalanceTemperature(double NewWhiteBalanceTemperature) {
+    sp::checkSetting(NewWhiteBalanceTemperature >= 2000.0 && NewWhiteBalanceTemperature <= 25000.0,
+                     "UCameraSensorComponent", "WhiteBalanceTemperature", "in [2000, 25000] kelvin",
+                     NewWhiteBalanceTemperature);
+    WhiteBalanceTemperature = NewWhiteBalanceTemperature;
+}
+
+sp::reflect::SpArray<double> UCameraSensorComponent::GetWhiteBalanceGains() const {
+    const Eigen::Vector3f gains = sp::render::whiteBalanceGains(WhiteBalanceTemperature);
+    sp::reflect::SpArray<double> result("white_balance_gains");
+    result.resize({3});
+    for (int c = 0; c < 3; ++c)
+        result.data()[c] = gains[c];
+    return result;
 }
 
 void UCameraSensorComponent::SetLensDistortion(const FLensDistortion& NewLensDistortion) {

@@ -254,6 +254,12 @@ class UCameraSensorComponent : public USceneComponent {
     SPPROPERTY(Setter = SetExposure)
     float Exposure = 1.0f;
 
+    /// The colour temperature in kelvin the camera is balanced for, in [2000, 25000]: light of this
+    /// temperature renders neutral in final_color (hdr_color is unchanged). 6500 (daylight) leaves colours as
+    /// they are; 3200 suits tungsten light (the image turns bluer), 10000 shade (warmer).
+    SPPROPERTY(Setter = SetWhiteBalanceTemperature)
+    double WhiteBalanceTemperature = 6500.0;
+
     /// Sensor width in millimetres (> 0), relating FOV to a lens's focal length: 36 is full frame.
     SPPROPERTY(Setter = SetSensorWidth)
     double SensorWidth = 36.0;
@@ -360,6 +366,13 @@ class UCameraSensorComponent : public USceneComponent {
     /// of DistortPixels, as cv2.undistortPoints(..., P=K) computes it.
     SPFUNCTION()
     sp::reflect::SpArray<double> UndistortPixels(const sp::reflect::SpArray<double>& Points) const;
+    /// Sets WhiteBalanceTemperature in kelvin, in [2000, 25000].
+    SPFUNCTION()
+    void SetWhiteBalanceTemperature(double NewWhiteBalanceTemperature);
+    /// Returns the gains (3,) white balance multiplies linear red, green and blue by before the tone curve
+    /// (1, 1, 1 at 6500 K; a grey keeps its luminance).
+    SPFUNCTION()
+    sp::reflect::SpArray<double> GetWhiteBalanceGains() const;
     /// Sets ShadowResolution in texels, in [16, 8192].
     SPFUNCTION()
     void SetShadowResolution(int32_t NewShadowResolution);

@@ -52,6 +52,7 @@ sp::render::CameraParams cameraParams(const UCameraSensorComponent& camera) {
     params.nearClip = camera.NearClip;
     params.farClip = camera.FarClip;
     params.exposure = camera.Exposure;
+    params.whiteBalance = sp::render::whiteBalanceGains(camera.WhiteBalanceTemperature);
     params.toneMap = static_cast<sp::render::ToneMap>(camera.ToneCurve);
     params.shadows = camera.bShadows;
     params.shadowResolution = camera.ShadowResolution;
@@ -292,7 +293,7 @@ std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponen
                     switch (modality) {
                     case sp::render::Modality::FinalColor:
                         final[pixel + c] = std::uint8_t(
-                            std::lround(255.0f * sp::render::toneMapChannel(hdr, renderCamera.params)));
+                            std::lround(255.0f * sp::render::toneMapChannel(hdr, c, renderCamera.params)));
                         break;
                     case sp::render::Modality::HdrColor:
                         half[pixel + c] = sp::render::floatToHalf(hdr);

@@ -473,3 +473,37 @@ def test_lens_settings_are_checked(instance: spear.Instance) -> None:
         camera.LensDistortion = spear.FLensDistortion()
     with instance.end_frame():
         assert camera.read_pixels()["depth"].shape == (48, 64)  # the engine rendered on
+
+
+@pytest.mark.parametrize("renderer", [spear.ECameraRenderer.Raster, spear.ECameraRenderer.PathTraced])
+def test_white_balance_scales_linear_colour_before_the_tone_curve(
+    instance: spear.Instance, renderer: spear.ECameraRenderer
+) -> None:
+    # Balancing for tungsten light (3200 K) raises blue and lowers red in final_color; hdr_color is radiance
+    # and does not change. final_color = sRGB(ACES(hdr * exposure * gains)), on both renderers.
+    game = instance.get_game()
+    with instance.begin_frame():
+        spawn_wall(game, 3.0)
+        sky = game.spawn_actor(uclass=spear.ASkyLight, name="Sky")
+        sky.SkyLightComponent.Intensity = 0.6
+        sky.SkyLightComponent.BackgroundColor = spear.FLinearColor(R=0.5, G=0.5, B=0.5, A=1.0)
+        camera = spawn_camera(game, [M.FinalColor, M.HdrColor], 24, 16, 90.0)
+        camera.Renderer = renderer
+        camera.SamplesPerPixel = 2
+        assert camera.WhiteBalanceTemperature == 6500.0
+        np.testing.assert_allclose(camera.GetWhiteBalanceGains(), [1.0, 1.0, 1.0], atol=1e-6)
+        camera.WhiteBalanceTemperature = 3200.0
+        gains = camera.GetWhiteBalanceGains()
+        with pytest.raises(spear.InvalidArgumentError, match=r"WhiteBalanceTemperature must be in \[2000, 25000\] "
+                                                            r"kelvin, got 1000"):
+            camera.WhiteBalanceTemperature = 1000.0
+    with instance.end_frame():
+        pixels = camera.read_pixels()
+    assert gains[2] > gains[1] > gains[0]
+    assert float(gains @ [0.2126, 0.7152, 0.0722]) == pytest.approx(1.0)  # a grey keeps its luminance
+    x = np.clip(pixels["hdr_color"][..., :3].astype(np.float64), 0.0, None) * gains
+    aces = np.clip(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0)
+    srgb = np.where(aces < 0.0031308, aces * 12.92, 1.055 * aces ** (1 / 2.4) - 0.055)
+    final = pixels["final_color"][..., :3].astype(np.float64)
+    assert np.abs(final - srgb * 255).max() <= 1.5  # float16 rounding of hdr_color, the shader's sRGB fit
+    assert final[..., 2].mean() > final[..., 0].mean() + 10  # a grey scene turns blue

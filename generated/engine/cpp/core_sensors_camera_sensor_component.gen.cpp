@@ -802,6 +802,20 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
         });
         t.properties.push_back({
+            "WhiteBalanceTemperature",
+            "float",
+            "The colour temperature in kelvin the camera is balanced for, in [2000, 25000]: light of this\ntemperature renders neutral in final_color (hdr_color is unchanged). 6500 (daylight) leaves colours as\nthey are; 3200 suits tungsten light (the image turns bluer), 10000 shade (warmer).",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->WhiteBalanceTemperature);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->SetWhiteBalanceTemperature(sp::reflect::decode<double>(value, "UCameraSensorComponent.WhiteBalanceTemperature"));
+                sp::reflect::notifyPropertyChanged(object, "WhiteBalanceTemperature");
+            },
+        });
+        t.properties.push_back({
             "SensorWidth",
             "float",
             "Sensor width in millimetres (> 0), relating FOV to a lens's focal length: 36 is full frame.",
@@ -1224,6 +1238,38 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
                 sp::reflect::checkArguments(args, {"Points"}, kContext);
                 sp::reflect::SpArray<double> Points = sp::reflect::decode<sp::reflect::SpArray<double>>(sp::reflect::requireArgument(args, "Points", kContext), "UCameraSensorComponent.UndistortPixels(): argument 'Points'");
                 auto result = sp::reflect::selfCast<const Self>(self)->UndistortPixels(Points);
+                return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "SetWhiteBalanceTemperature",
+            "Sets WhiteBalanceTemperature in kelvin, in [2000, 25000].",
+            "None",
+            {
+                {"NewWhiteBalanceTemperature", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetWhiteBalanceTemperature()";
+                sp::reflect::checkArguments(args, {"NewWhiteBalanceTemperature"}, kContext);
+                double NewWhiteBalanceTemperature = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewWhiteBalanceTemperature", kContext), "UCameraSensorComponent.SetWhiteBalanceTemperature(): argument 'NewWhiteBalanceTemperature'");
+                sp::reflect::selfCast<Self>(self)->SetWhiteBalanceTemperature(NewWhiteBalanceTemperature);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "GetWhiteBalanceGains",
+            "Returns the gains (3,) white balance multiplies linear red, green and blue by before the tone curve\n(1, 1, 1 at 6500 K; a grey keeps its luminance).",
+            "NDArray[np.float64]",
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.GetWhiteBalanceGains()";
+                sp::reflect::checkArguments(args, {}, kContext);
+                auto result = sp::reflect::selfCast<const Self>(self)->GetWhiteBalanceGains();
                 return sp::reflect::encode(result);
             },
         });

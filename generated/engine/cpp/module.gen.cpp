@@ -2563,6 +2563,15 @@ void spear_bind_engine(py::module_& m) {
             },
             "Linear multiplier of HDR radiance before the tone curve (SetExposureValue and SetPhysicalExposure\nset it from photographic settings).");
         cls.def_property(
+            "WhiteBalanceTemperature",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCameraSensorComponent.WhiteBalanceTemperature")->WhiteBalanceTemperature); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.WhiteBalanceTemperature");
+                object->SetWhiteBalanceTemperature(Bridge<double>::in(value, "UCameraSensorComponent.WhiteBalanceTemperature"));
+                object->PostPropertyChanged("WhiteBalanceTemperature");
+            },
+            "The colour temperature in kelvin the camera is balanced for, in [2000, 25000]: light of this\ntemperature renders neutral in final_color (hdr_color is unchanged). 6500 (daylight) leaves colours as\nthey are; 3200 suits tungsten light (the image turns bluer), 10000 shade (warmer).");
+        cls.def_property(
             "SensorWidth",
             [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCameraSensorComponent.SensorWidth")->SensorWidth); },
             [](const Ref<Self>& self, const PyArg& value) {
@@ -2854,6 +2863,28 @@ void spear_bind_engine(py::module_& m) {
             },
             py::arg("Points") = sp::pybind::missingArgument(),
             "UndistortPixels(self, *, Points: NDArray[np.float64]) -> NDArray[np.float64]\n\nReturns the pinhole pixels ((N, 2)) that this camera's image pixels Points ((N, 2)) show: the inverse\nof DistortPixels, as cv2.undistortPoints(..., P=K) computes it.");
+        cls.def(
+            "SetWhiteBalanceTemperature",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewWhiteBalanceTemperature, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetWhiteBalanceTemperature()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewWhiteBalanceTemperature", !isMissing(NewWhiteBalanceTemperature), true}});
+                Self* object = self.get<Self>(kContext);
+                auto NewWhiteBalanceTemperatureValue = Bridge<double>::in(NewWhiteBalanceTemperature, "UCameraSensorComponent.SetWhiteBalanceTemperature(): argument 'NewWhiteBalanceTemperature'");
+                object->SetWhiteBalanceTemperature(NewWhiteBalanceTemperatureValue);
+                return py::none();
+            },
+            py::arg("NewWhiteBalanceTemperature") = sp::pybind::missingArgument(),
+            "SetWhiteBalanceTemperature(self, *, NewWhiteBalanceTemperature: float) -> None\n\nSets WhiteBalanceTemperature in kelvin, in [2000, 25000].");
+        cls.def(
+            "GetWhiteBalanceGains",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.GetWhiteBalanceGains()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {});
+                const Self* object = self.get<Self>(kContext);
+                auto result = object->GetWhiteBalanceGains();
+                return Bridge<sp::reflect::SpArray<double>>::out(result);
+            },
+            "GetWhiteBalanceGains(self) -> NDArray[np.float64]\n\nReturns the gains (3,) white balance multiplies linear red, green and blue by before the tone curve\n(1, 1, 1 at 6500 K; a grey keeps its luminance).");
         cls.def(
             "SetShadowResolution",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewShadowResolution, const py::kwargs& extra) -> py::object {

@@ -2725,6 +2725,10 @@ class UCameraSensorComponentAsync(USceneComponentAsync):
 
     def UndistortPixels(self, *, Points: NDArray[np.float64]) -> Future[NDArray[np.float64]]: ...
 
+    def SetWhiteBalanceTemperature(self, *, NewWhiteBalanceTemperature: float) -> Future[None]: ...
+
+    def GetWhiteBalanceGains(self) -> Future[NDArray[np.float64]]: ...
+
     def SetShadowResolution(self, *, NewShadowResolution: int) -> Future[None]: ...
 
     def SetLatency(self, *, NewLatency: int) -> Future[None]: ...
@@ -2794,6 +2798,10 @@ class UCameraSensorComponentSend(USceneComponentSend):
     def DistortPixels(self, *, Points: NDArray[np.float64]) -> None: ...
 
     def UndistortPixels(self, *, Points: NDArray[np.float64]) -> None: ...
+
+    def SetWhiteBalanceTemperature(self, *, NewWhiteBalanceTemperature: float) -> None: ...
+
+    def GetWhiteBalanceGains(self) -> None: ...
 
     def SetShadowResolution(self, *, NewShadowResolution: int) -> None: ...
 
@@ -2886,6 +2894,16 @@ class UCameraSensorComponent(USceneComponent):
 
     @Exposure.setter
     def Exposure(self, value: float) -> None: ...
+
+    @property
+    def WhiteBalanceTemperature(self) -> float:
+        """The colour temperature in kelvin the camera is balanced for, in [2000, 25000]: light of this
+        temperature renders neutral in final_color (hdr_color is unchanged). 6500 (daylight) leaves colours as
+        they are; 3200 suits tungsten light (the image turns bluer), 10000 shade (warmer).
+        """
+
+    @WhiteBalanceTemperature.setter
+    def WhiteBalanceTemperature(self, value: float) -> None: ...
 
     @property
     def SensorWidth(self) -> float:
@@ -3030,6 +3048,14 @@ class UCameraSensorComponent(USceneComponent):
     def UndistortPixels(self, *, Points: NDArray[np.float64]) -> NDArray[np.float64]:
         """Returns the pinhole pixels ((N, 2)) that this camera's image pixels Points ((N, 2)) show: the inverse
         of DistortPixels, as cv2.undistortPoints(..., P=K) computes it.
+        """
+
+    def SetWhiteBalanceTemperature(self, *, NewWhiteBalanceTemperature: float) -> None:
+        """Sets WhiteBalanceTemperature in kelvin, in [2000, 25000]."""
+
+    def GetWhiteBalanceGains(self) -> NDArray[np.float64]:
+        """Returns the gains (3,) white balance multiplies linear red, green and blue by before the tone curve
+        (1, 1, 1 at 6500 K; a grey keeps its luminance).
         """
 
     def SetShadowResolution(self, *, NewShadowResolution: int) -> None:

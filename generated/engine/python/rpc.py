@@ -1216,6 +1216,14 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
         self._sp_set("UCameraSensorComponent", "Exposure", value)
 
     @property
+    def WhiteBalanceTemperature(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "WhiteBalanceTemperature", "float"))
+
+    @WhiteBalanceTemperature.setter
+    def WhiteBalanceTemperature(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "WhiteBalanceTemperature", value)
+
+    @property
     def SensorWidth(self) -> float:
         return cast("float", self._sp_get("UCameraSensorComponent", "SensorWidth", "float"))
 
@@ -1350,6 +1358,12 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     def UndistortPixels(self, *, Points: NDArray[np.float64]) -> NDArray[np.float64]:
         return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "UndistortPixels", {"Points": Points}, "NDArray[np.float64]"))
+
+    def SetWhiteBalanceTemperature(self, *, NewWhiteBalanceTemperature: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetWhiteBalanceTemperature", {"NewWhiteBalanceTemperature": NewWhiteBalanceTemperature}, "None"))  # a Future when queued by call_async
+
+    def GetWhiteBalanceGains(self) -> NDArray[np.float64]:
+        return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "GetWhiteBalanceGains", {}, "NDArray[np.float64]"))
 
     def SetShadowResolution(self, *, NewShadowResolution: int) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetShadowResolution", {"NewShadowResolution": NewShadowResolution}, "None"))  # a Future when queued by call_async

@@ -2,6 +2,7 @@
 
 #include "core/base/error.h"
 #include "core/render/camera.h"
+#include "core/render/tone.h"
 
 namespace sp::render {
 namespace {
@@ -50,6 +51,33 @@ TEST(CameraTest, ProjectsPointsToPixels) {
         camera.projectionMatrix(false) * camera.viewMatrix() * Eigen::Vector4d(11, 12, 8, 1);
     EXPECT_NEAR(clip.x() / clip.w(), -1.0, 1e-9);
     EXPECT_NEAR(clip.y() / clip.w(), 1.0, 1e-9);
+}
+
+} // namespace
+} // namespace sp::render
+
+namespace sp::render {
+namespace {
+
+TEST(WhiteBalance, DaylightIsNeutralAndOtherLightIsBalancedKeepingLuminance) {
+    const Eigen::Vector3f luma(0.2126f, 0.7152f, 0.0722f);
+    EXPECT_TRUE(whiteBalanceGains(6500.0).isApprox(Eigen::Vector3f::Ones(), 1e-6f));
+    const Eigen::Vector3f tungsten = whiteBalanceGains(3200.0), shade = whiteBalanceGains(10000.0);
+    EXPECT_GT(tungsten.z(), tungsten.y());
+    EXPECT_GT(tungsten.y(), tungsten.x());
+    EXPECT_GT(shade.x(), shade.z());
+    EXPECT_NEAR(tungsten.dot(luma), 1.0f, 1e-5f);
+    EXPECT_NEAR(shade.dot(luma), 1.0f, 1e-5f);
+    // Continuous across the fit's pieces (2222 K and 4000 K).
+    for (double kelvin : {2222.0, 4000.0})
+        EXPECT_TRUE(whiteBalanceGains(kelvin - 0.5).isApprox(whiteBalanceGains(kelvin + 0.5), 2e-3f))
+            << kelvin;
+    // A grey lit by a black body at the temperature comes out grey: the gains undo the light's colour.
+    CameraParams params;
+    params.toneMap = ToneMap::Linear;
+    params.whiteBalance = tungsten;
+    const Eigen::Vector3f light = tungsten.cwiseInverse() * 0.2f;
+    EXPECT_NEAR(toneMapChannel(light.x(), 0, params), toneMapChannel(light.z(), 2, params), 1e-6f);
 }
 
 } // namespace
