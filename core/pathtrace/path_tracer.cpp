@@ -49,6 +49,18 @@ struct Random {
     }
 };
 
+// A point of the aperture disc of `radius` (camera body frame: the disc spans +Y and +Z at X = 0), uniform
+// over its area by Shirley and Chiu's concentric mapping.
+Eigen::Vector3f lensPoint(Random& random, float radius) {
+    const float a = 2.0f * random.next() - 1.0f, b = 2.0f * random.next() - 1.0f;
+    if (a == 0.0f && b == 0.0f)
+        return Eigen::Vector3f::Zero();
+    const float quarter = 0.25f * float(M_PI);
+    const bool wide = std::abs(a) > std::abs(b);
+    const float r = wide ? a : b, phi = wide ? quarter * (b / a) : 2.0f * quarter - quarter * (a / b);
+    return {0.0f, radius * r * std::cos(phi), radius * r * std::sin(phi)};
+}
+
 // One path's estimate: hdr_color, and the part of it the first surface reflects through its diffuse lobe
 // (diffuse_only) with what a white Lambertian surface there would reflect (diffuse_illumination).
 struct PathSample {
@@ -268,6 +280,8 @@ struct PathTracer::Impl {
         h.add(camera.params.nearClip);
         h.add(camera.params.farClip);
         h.add(camera.params.shadows);
+        h.add(camera.params.apertureRadius);
+        h.add(camera.params.focusDistance);
         h.add(settings.maxBounces);
         return h.value;
     }
@@ -498,6 +512,7 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
     }
 
     const double focal = camera.focalLengthPixels();
+    const float aperture = float(camera.params.apertureRadius), focus = float(camera.params.focusDistance);
     const Eigen::Matrix3f rotation = camera.pose.linear().cast<float>();
     const Eigen::Vector3f eye = camera.pose.translation().cast<float>();
     const std::uint64_t firstSample = image.samples;
@@ -528,10 +543,16 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
                     const float u = float(x) + random.next(), v = float(y) + random.next();
                     const Eigen::Vector3f local(float(focal), -(u - 0.5f * float(width)),
                                                 -(v - 0.5f * float(height)));
-                    const Eigen::Vector3f direction = (rotation * local).normalized();
-                    const float axial = local.x() / local.norm(); // cosine to the optical axis
+                    // A thin lens: rays from a point of the aperture disc through the pixel's point on the
+                    // focal plane (a pinhole when the aperture is 0).
+                    const Eigen::Vector3f lens =
+                        aperture > 0.0f ? lensPoint(random, aperture) : Eigen::Vector3f::Zero();
+                    const Eigen::Vector3f toFocus = local * (focus / local.x()) - lens;
+                    const Eigen::Vector3f direction = (rotation * toFocus).normalized();
+                    const float axial = toFocus.x() / toFocus.norm(); // cosine to the optical axis
                     const PathSample path =
-                        impl.trace(scene, camera, eye, direction, float(camera.params.nearClip) / axial,
+                        impl.trace(scene, camera, eye + rotation * lens, direction,
+                                   float(camera.params.nearClip) / axial,
                                    float(camera.params.farClip) / axial, settings, random, traced);
                     if (path.hdr.allFinite() && path.diffuseOnly.allFinite() &&
                         path.diffuseIllumination.allFinite())

@@ -20,6 +20,10 @@ void CameraParams::validate(const char* function) const {
              "(): exposure must be finite and >= 0, got ", exposure);
     SP_CHECK(shadowResolution >= 16 && shadowResolution <= 8192, InvalidArgument, function,
              "(): shadowResolution must be in [16, 8192], got ", shadowResolution);
+    SP_CHECK(std::isfinite(apertureRadius) && apertureRadius >= 0.0, InvalidArgument, function,
+             "(): apertureRadius must be finite and >= 0, got ", apertureRadius);
+    SP_CHECK(std::isfinite(focusDistance) && focusDistance > 0.0, InvalidArgument, function,
+             "(): focusDistance must be finite and > 0, got ", focusDistance);
 }
 
 std::string toneMapName(ToneMap toneMap) {

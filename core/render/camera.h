@@ -25,6 +25,10 @@ struct CameraParams {
     ToneMap toneMap = ToneMap::Aces; // tone curve for final_color
     bool shadows = true;             // render shadow maps for shadow-casting lights
     int shadowResolution = 1024;     // shadow map size in texels, in [16, 8192]
+    // Depth of field, path tracer only: a thin lens of this radius (metres; 0 = a pinhole, all sharp)
+    // focused at focusDistance metres along the optical axis.
+    double apertureRadius = 0.0;
+    double focusDistance = 10.0;
 
     void validate(const char* function) const;
 };

@@ -133,6 +133,20 @@ sp::reflect::SpArray<double> UCameraSensorComponent::GetIntrinsicMatrix() const 
     return k;
 }
 
+void UCameraSensorComponent::SetApertureFNumber(double NewApertureFNumber) {
+    sp::checkSetting(NewApertureFNumber == 0.0 ||
+                         (NewApertureFNumber >= 0.5 && std::isfinite(NewApertureFNumber)),
+                     "UCameraSensorComponent", "ApertureFNumber", "0 (a pinhole) or a finite f-number >= 0.5",
+                     NewApertureFNumber);
+    ApertureFNumber = NewApertureFNumber;
+}
+
+void UCameraSensorComponent::SetFocusDistance(double NewFocusDistance) {
+    sp::checkSetting(NewFocusDistance > 0.0 && std::isfinite(NewFocusDistance), "UCameraSensorComponent",
+                     "FocusDistance", "> 0 and finite", NewFocusDistance);
+    FocusDistance = NewFocusDistance;
+}
+
 void UCameraSensorComponent::SetWhiteBalanceTemperature(double NewWhiteBalanceTemperature) {
     sp::checkSetting(NewWhiteBalanceTemperature >= 2000.0 && NewWhiteBalanceTemperature <= 25000.0,
                      "UCameraSensorComponent", "WhiteBalanceTemperature", "in [2000, 25000] kelvin",

@@ -275,6 +275,16 @@ class UCameraSensorComponent : public USceneComponent {
     SPPROPERTY(Setter = SetPrincipalPointOffset)
     FVector2D PrincipalPointOffset;
 
+    /// Depth of field of the path tracer: the lens's f-number (its focal length, GetFocalLength() on
+    /// SensorWidth, over the aperture's diameter); 0 (the default) is a pinhole, everything sharp. The raster
+    /// renderer, and the geometric modalities, are always sharp.
+    SPPROPERTY(Setter = SetApertureFNumber)
+    double ApertureFNumber = 0.0;
+
+    /// The distance in metres, along the optical axis, that the path tracer's lens is focused at (> 0).
+    SPPROPERTY(Setter = SetFocusDistance)
+    double FocusDistance = 10.0;
+
     /// The tone curve of final_color.
     SPPROPERTY()
     ECameraToneCurve ToneCurve = ECameraToneCurve::Aces;
@@ -366,6 +376,12 @@ class UCameraSensorComponent : public USceneComponent {
     /// of DistortPixels, as cv2.undistortPoints(..., P=K) computes it.
     SPFUNCTION()
     sp::reflect::SpArray<double> UndistortPixels(const sp::reflect::SpArray<double>& Points) const;
+    /// Sets ApertureFNumber: 0 (a pinhole) or >= 0.5.
+    SPFUNCTION()
+    void SetApertureFNumber(double NewApertureFNumber);
+    /// Sets FocusDistance in metres (> 0 and finite).
+    SPFUNCTION()
+    void SetFocusDistance(double NewFocusDistance);
     /// Sets WhiteBalanceTemperature in kelvin, in [2000, 25000].
     SPFUNCTION()
     void SetWhiteBalanceTemperature(double NewWhiteBalanceTemperature);

@@ -53,6 +53,10 @@ sp::render::CameraParams cameraParams(const UCameraSensorComponent& camera) {
     params.farClip = camera.FarClip;
     params.exposure = camera.Exposure;
     params.whiteBalance = sp::render::whiteBalanceGains(camera.WhiteBalanceTemperature);
+    // A thin lens of the camera's focal length (on its sensor) at its f-number: radius f / (2 N), in metres.
+    params.apertureRadius =
+        camera.ApertureFNumber > 0.0 ? 0.5e-3 * camera.GetFocalLength() / camera.ApertureFNumber : 0.0;
+    params.focusDistance = camera.FocusDistance;
     params.toneMap = static_cast<sp::render::ToneMap>(camera.ToneCurve);
     params.shadows = camera.bShadows;
     params.shadowResolution = camera.ShadowResolution;

@@ -134,3 +134,39 @@ def test_path_traced_intrinsics_include_indirect_light_and_sum_to_hdr(instance: 
     assert residual.mean() > 0.0  # the dielectric's specular lobe
     # hdr = diffuse_only + specular_residual, to the float16 rounding of the stored images.
     np.testing.assert_allclose(diffuse + residual, hdr, rtol=2e-3, atol=2e-3)
+
+
+def test_depth_of_field_blurs_what_is_out_of_focus(instance: spear.Instance) -> None:
+    # A thin lens (ApertureFNumber, FocusDistance): a sphere whose front is in focus keeps the pinhole
+    # image's sharp silhouette; focused far behind it, its silhouette spreads over several pixels.
+    game = instance.get_game()
+    with instance.begin_frame():
+        _sphere_in_sky(game, 0.2)
+        camera = _traced_camera(game, [M.HdrColor, M.Depth], 64)
+        camera.Width, camera.Height, camera.FOV = 64, 64, 20.0
+        with pytest.raises(spear.InvalidArgumentError, match=r"ApertureFNumber must be 0 \(a pinhole\) or a finite "
+                                                            r"f-number >= 0.5, got 0.2"):
+            camera.ApertureFNumber = 0.2
+        with pytest.raises(spear.InvalidArgumentError, match=r"FocusDistance must be > 0 and finite, got 0"):
+            camera.FocusDistance = 0.0
+    with instance.end_frame():
+        pass
+    images = {}
+    for name, f_number, focus in [("pinhole", 0.0, 10.0), ("focused", 1.0, 2.5), ("far", 1.0, 30.0)]:
+        with instance.begin_frame():
+            camera.ApertureFNumber, camera.FocusDistance = f_number, focus
+        with instance.end_frame():
+            pixels = camera.read_pixels()
+        images[name] = pixels["hdr_color"][..., :3].astype(np.float64).mean(axis=-1)
+        depth = pixels["depth"]
+    # The silhouette: pixels within 3 of the sphere's edge in the (always sharp) depth image.
+    inside = depth > 0
+    edge = np.zeros_like(inside)
+    for dy in range(-3, 4):
+        for dx in range(-3, 4):
+            edge |= np.roll(inside, (dy, dx), axis=(0, 1)) != inside
+
+    def blur(name: str) -> float:
+        return float(np.abs(images[name] - images["pinhole"])[edge].mean())
+    assert blur("far") > 4 * blur("focused"), (blur("far"), blur("focused"))
+    assert blur("far") > 0.05  # sky 1 against a sphere of about 0.2, spread over the edge

@@ -858,6 +858,34 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
         });
         t.properties.push_back({
+            "ApertureFNumber",
+            "float",
+            "Depth of field of the path tracer: the lens's f-number (its focal length, GetFocalLength() on\nSensorWidth, over the aperture's diameter); 0 (the default) is a pinhole, everything sharp. The raster\nrenderer, and the geometric modalities, are always sharp.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ApertureFNumber);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->SetApertureFNumber(sp::reflect::decode<double>(value, "UCameraSensorComponent.ApertureFNumber"));
+                sp::reflect::notifyPropertyChanged(object, "ApertureFNumber");
+            },
+        });
+        t.properties.push_back({
+            "FocusDistance",
+            "float",
+            "The distance in metres, along the optical axis, that the path tracer's lens is focused at (> 0).",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->FocusDistance);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->SetFocusDistance(sp::reflect::decode<double>(value, "UCameraSensorComponent.FocusDistance"));
+                sp::reflect::notifyPropertyChanged(object, "FocusDistance");
+            },
+        });
+        t.properties.push_back({
             "ToneCurve",
             "ECameraToneCurve",
             "The tone curve of final_color.",
@@ -1239,6 +1267,40 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
                 sp::reflect::SpArray<double> Points = sp::reflect::decode<sp::reflect::SpArray<double>>(sp::reflect::requireArgument(args, "Points", kContext), "UCameraSensorComponent.UndistortPixels(): argument 'Points'");
                 auto result = sp::reflect::selfCast<const Self>(self)->UndistortPixels(Points);
                 return sp::reflect::encode(result);
+            },
+        });
+        t.functions.push_back({
+            "SetApertureFNumber",
+            "Sets ApertureFNumber: 0 (a pinhole) or >= 0.5.",
+            "None",
+            {
+                {"NewApertureFNumber", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetApertureFNumber()";
+                sp::reflect::checkArguments(args, {"NewApertureFNumber"}, kContext);
+                double NewApertureFNumber = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewApertureFNumber", kContext), "UCameraSensorComponent.SetApertureFNumber(): argument 'NewApertureFNumber'");
+                sp::reflect::selfCast<Self>(self)->SetApertureFNumber(NewApertureFNumber);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetFocusDistance",
+            "Sets FocusDistance in metres (> 0 and finite).",
+            "None",
+            {
+                {"NewFocusDistance", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetFocusDistance()";
+                sp::reflect::checkArguments(args, {"NewFocusDistance"}, kContext);
+                double NewFocusDistance = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewFocusDistance", kContext), "UCameraSensorComponent.SetFocusDistance(): argument 'NewFocusDistance'");
+                sp::reflect::selfCast<Self>(self)->SetFocusDistance(NewFocusDistance);
+                return {};
             },
         });
         t.functions.push_back({

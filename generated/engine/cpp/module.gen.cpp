@@ -2599,6 +2599,24 @@ void spear_bind_engine(py::module_& m) {
             },
             "The principal point's offset from the image centre in pixels (X right, Y down): an off-centre lens, as\na real camera's calibration gives it (cx, cy of GetIntrinsicMatrix() move by it).");
         cls.def_property(
+            "ApertureFNumber",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCameraSensorComponent.ApertureFNumber")->ApertureFNumber); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.ApertureFNumber");
+                object->SetApertureFNumber(Bridge<double>::in(value, "UCameraSensorComponent.ApertureFNumber"));
+                object->PostPropertyChanged("ApertureFNumber");
+            },
+            "Depth of field of the path tracer: the lens's f-number (its focal length, GetFocalLength() on\nSensorWidth, over the aperture's diameter); 0 (the default) is a pinhole, everything sharp. The raster\nrenderer, and the geometric modalities, are always sharp.");
+        cls.def_property(
+            "FocusDistance",
+            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCameraSensorComponent.FocusDistance")->FocusDistance); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.FocusDistance");
+                object->SetFocusDistance(Bridge<double>::in(value, "UCameraSensorComponent.FocusDistance"));
+                object->PostPropertyChanged("FocusDistance");
+            },
+            "The distance in metres, along the optical axis, that the path tracer's lens is focused at (> 0).");
+        cls.def_property(
             "ToneCurve",
             [](const Ref<Self>& self) { return Bridge<ECameraToneCurve>::out(self.get<Self>("UCameraSensorComponent.ToneCurve")->ToneCurve); },
             [](const Ref<Self>& self, const PyArg& value) {
@@ -2863,6 +2881,30 @@ void spear_bind_engine(py::module_& m) {
             },
             py::arg("Points") = sp::pybind::missingArgument(),
             "UndistortPixels(self, *, Points: NDArray[np.float64]) -> NDArray[np.float64]\n\nReturns the pinhole pixels ((N, 2)) that this camera's image pixels Points ((N, 2)) show: the inverse\nof DistortPixels, as cv2.undistortPoints(..., P=K) computes it.");
+        cls.def(
+            "SetApertureFNumber",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewApertureFNumber, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetApertureFNumber()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewApertureFNumber", !isMissing(NewApertureFNumber), true}});
+                Self* object = self.get<Self>(kContext);
+                auto NewApertureFNumberValue = Bridge<double>::in(NewApertureFNumber, "UCameraSensorComponent.SetApertureFNumber(): argument 'NewApertureFNumber'");
+                object->SetApertureFNumber(NewApertureFNumberValue);
+                return py::none();
+            },
+            py::arg("NewApertureFNumber") = sp::pybind::missingArgument(),
+            "SetApertureFNumber(self, *, NewApertureFNumber: float) -> None\n\nSets ApertureFNumber: 0 (a pinhole) or >= 0.5.");
+        cls.def(
+            "SetFocusDistance",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewFocusDistance, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetFocusDistance()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewFocusDistance", !isMissing(NewFocusDistance), true}});
+                Self* object = self.get<Self>(kContext);
+                auto NewFocusDistanceValue = Bridge<double>::in(NewFocusDistance, "UCameraSensorComponent.SetFocusDistance(): argument 'NewFocusDistance'");
+                object->SetFocusDistance(NewFocusDistanceValue);
+                return py::none();
+            },
+            py::arg("NewFocusDistance") = sp::pybind::missingArgument(),
+            "SetFocusDistance(self, *, NewFocusDistance: float) -> None\n\nSets FocusDistance in metres (> 0 and finite).");
         cls.def(
             "SetWhiteBalanceTemperature",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewWhiteBalanceTemperature, const py::kwargs& extra) -> py::object {

@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "a11b7d8b692b6465"
+API_HASH = "2ba02f211a001fb0"

@@ -2725,6 +2725,10 @@ class UCameraSensorComponentAsync(USceneComponentAsync):
 
     def UndistortPixels(self, *, Points: NDArray[np.float64]) -> Future[NDArray[np.float64]]: ...
 
+    def SetApertureFNumber(self, *, NewApertureFNumber: float) -> Future[None]: ...
+
+    def SetFocusDistance(self, *, NewFocusDistance: float) -> Future[None]: ...
+
     def SetWhiteBalanceTemperature(self, *, NewWhiteBalanceTemperature: float) -> Future[None]: ...
 
     def GetWhiteBalanceGains(self) -> Future[NDArray[np.float64]]: ...
@@ -2798,6 +2802,10 @@ class UCameraSensorComponentSend(USceneComponentSend):
     def DistortPixels(self, *, Points: NDArray[np.float64]) -> None: ...
 
     def UndistortPixels(self, *, Points: NDArray[np.float64]) -> None: ...
+
+    def SetApertureFNumber(self, *, NewApertureFNumber: float) -> None: ...
+
+    def SetFocusDistance(self, *, NewFocusDistance: float) -> None: ...
 
     def SetWhiteBalanceTemperature(self, *, NewWhiteBalanceTemperature: float) -> None: ...
 
@@ -2932,6 +2940,23 @@ class UCameraSensorComponent(USceneComponent):
     def PrincipalPointOffset(self, value: FVector2D) -> None: ...
 
     @property
+    def ApertureFNumber(self) -> float:
+        """Depth of field of the path tracer: the lens's f-number (its focal length, GetFocalLength() on
+        SensorWidth, over the aperture's diameter); 0 (the default) is a pinhole, everything sharp. The raster
+        renderer, and the geometric modalities, are always sharp.
+        """
+
+    @ApertureFNumber.setter
+    def ApertureFNumber(self, value: float) -> None: ...
+
+    @property
+    def FocusDistance(self) -> float:
+        """The distance in metres, along the optical axis, that the path tracer's lens is focused at (> 0)."""
+
+    @FocusDistance.setter
+    def FocusDistance(self, value: float) -> None: ...
+
+    @property
     def ToneCurve(self) -> ECameraToneCurve:
         """The tone curve of final_color."""
 
@@ -3049,6 +3074,12 @@ class UCameraSensorComponent(USceneComponent):
         """Returns the pinhole pixels ((N, 2)) that this camera's image pixels Points ((N, 2)) show: the inverse
         of DistortPixels, as cv2.undistortPoints(..., P=K) computes it.
         """
+
+    def SetApertureFNumber(self, *, NewApertureFNumber: float) -> None:
+        """Sets ApertureFNumber: 0 (a pinhole) or >= 0.5."""
+
+    def SetFocusDistance(self, *, NewFocusDistance: float) -> None:
+        """Sets FocusDistance in metres (> 0 and finite)."""
 
     def SetWhiteBalanceTemperature(self, *, NewWhiteBalanceTemperature: float) -> None:
         """Sets WhiteBalanceTemperature in kelvin, in [2000, 25000]."""

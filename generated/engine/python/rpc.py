@@ -1248,6 +1248,22 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
         self._sp_set("UCameraSensorComponent", "PrincipalPointOffset", value)
 
     @property
+    def ApertureFNumber(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "ApertureFNumber", "float"))
+
+    @ApertureFNumber.setter
+    def ApertureFNumber(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "ApertureFNumber", value)
+
+    @property
+    def FocusDistance(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "FocusDistance", "float"))
+
+    @FocusDistance.setter
+    def FocusDistance(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "FocusDistance", value)
+
+    @property
     def ToneCurve(self) -> ECameraToneCurve:
         return cast("ECameraToneCurve", self._sp_get("UCameraSensorComponent", "ToneCurve", "ECameraToneCurve"))
 
@@ -1358,6 +1374,12 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     def UndistortPixels(self, *, Points: NDArray[np.float64]) -> NDArray[np.float64]:
         return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "UndistortPixels", {"Points": Points}, "NDArray[np.float64]"))
+
+    def SetApertureFNumber(self, *, NewApertureFNumber: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetApertureFNumber", {"NewApertureFNumber": NewApertureFNumber}, "None"))  # a Future when queued by call_async
+
+    def SetFocusDistance(self, *, NewFocusDistance: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetFocusDistance", {"NewFocusDistance": NewFocusDistance}, "None"))  # a Future when queued by call_async
 
     def SetWhiteBalanceTemperature(self, *, NewWhiteBalanceTemperature: float) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetWhiteBalanceTemperature", {"NewWhiteBalanceTemperature": NewWhiteBalanceTemperature}, "None"))  # a Future when queued by call_async
