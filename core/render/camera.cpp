@@ -24,6 +24,8 @@ void CameraParams::validate(const char* function) const {
              "(): apertureRadius must be finite and >= 0, got ", apertureRadius);
     SP_CHECK(std::isfinite(focusDistance) && focusDistance > 0.0, InvalidArgument, function,
              "(): focusDistance must be finite and > 0, got ", focusDistance);
+    SP_CHECK(vignetteIntensity >= 0.0f && vignetteIntensity <= 1.0f, InvalidArgument, function,
+             "(): vignetteIntensity must be in [0, 1], got ", vignetteIntensity);
 }
 
 std::string toneMapName(ToneMap toneMap) {

@@ -29,6 +29,9 @@ struct CameraParams {
     // focused at focusDistance metres along the optical axis.
     double apertureRadius = 0.0;
     double focusDistance = 10.0;
+    // Natural vignetting of final_color, in [0, 1]: a pixel's exposure is scaled by
+    // mix(1, cos^4(angle of its ray to the optical axis), vignetteIntensity) (tone.h, vignetteFactor).
+    float vignetteIntensity = 0.0f;
 
     void validate(const char* function) const;
 };

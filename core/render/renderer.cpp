@@ -62,6 +62,7 @@ Renderer::Renderer(const GlContext& context) : context_(context) {
     shadowMaps_ = std::make_unique<ShadowMaps>();
     glCreateBuffers(1, &frameBlock_);
     glNamedBufferData(frameBlock_, sizeof(shaders::FrameBlock), nullptr, GL_DYNAMIC_DRAW);
+    glCreateVertexArrays(1, &emptyVao_);
     // Readbacks of 3-channel and 16-bit images have rows that are not multiples of 4 bytes.
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
 }
@@ -71,6 +72,7 @@ Renderer::~Renderer() {
     caches_.clear();
     shadowMaps_.reset();
     glDeleteBuffers(1, &frameBlock_);
+    glDeleteVertexArrays(1, &emptyVao_);
 }
 
 const RenderStats& Renderer::stats() const {
@@ -137,6 +139,7 @@ void Renderer::render(const Scene& scene, const Camera& camera, const PassSet& p
             lights.lights.push_back(slot);
         });
         lights.floatShadowMaps = !shadowInfos.empty() && shadowMaps_->format() == GL_R32F;
+        lights.vignette = camera.params.vignetteIntensity > 0.0f;
         uploadFrameBlock(scene, camera, shadowInfos);
     }
     if (passes.surface) {
@@ -163,6 +166,10 @@ void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
     block.toneParams[0] = camera.params.exposure;
     block.toneParams[1] = float(static_cast<int>(camera.params.toneMap));
     copy3(block.exposure, camera.params.exposure * camera.params.whiteBalance, 0.0f);
+    block.vignette[0] = camera.params.vignetteIntensity;
+    block.vignette[1] = float(camera.focalLengthPixels());
+    block.vignette[2] = 0.5f * float(camera.params.width);
+    block.vignette[3] = 0.5f * float(camera.params.height);
     const std::array<float, 4> final = backgroundFinal(scene.environment(), camera.params);
     std::copy(final.begin(), final.end(), block.backgroundFinal);
     for (const ShadowInfo& info : shadows) {
@@ -196,8 +203,38 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
         glBindImageTexture(shaders::kShadowMapImageUnit, shadowMaps_->texture(), 0, GL_TRUE, 0, GL_READ_ONLY,
                            shadowMaps_->format());
     drawAll(scene, camera, draws, passes.surfaceTargets, passes.lighting, lights, cache);
+    if (lights.vignette && (passes.surfaceTargets & targetBit(Target::FinalColor)) != 0)
+        drawVignettedBackground(passes.surfaceTargets);
     timers_.end();
     ++stats_.surfacePasses;
+}
+
+void Renderer::drawVignettedBackground(TargetMask targets) {
+    // The cleared background of final_color is one colour; vignetted, it varies by pixel, so it is drawn
+    // where the surfaces left the far plane, into final_color alone.
+    int location = 0, count = 0;
+    for (std::size_t t = 0; t < kTargetCount; ++t)
+        if ((targets & (TargetMask(1) << t)) != 0) {
+            if (static_cast<Target>(t) == Target::FinalColor)
+                location = count;
+            ++count;
+        }
+    auto& program = programs_["background/" + std::to_string(location)];
+    if (!program)
+        program = std::make_unique<ShaderProgram>("background", shaders::kBackgroundVertex,
+                                                  shaders::backgroundFragment(location).c_str());
+    for (int i = 0; i < count; ++i)
+        glColorMaski(GLuint(i), i == location, i == location, i == location, i == location);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    program->use();
+    glBindVertexArray(emptyVao_);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    for (int i = 0; i < count; ++i)
+        glColorMaski(GLuint(i), GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
 }
 
 void Renderer::attributePass(const Scene& scene, const Camera& camera, const PassSet& passes,

@@ -85,6 +85,8 @@ class Renderer {
     void clearTargets(const Scene& scene, const Camera& camera, TargetMask targets);
     void drawAll(const Scene& scene, const Camera& camera, const std::vector<Draw>& draws, TargetMask targets,
                  bool shade, const shaders::ShadingLayout& lights, GpuSceneCache& cache);
+    // Writes the vignetted background into final_color (one of `targets`) where no surface was drawn.
+    void drawVignettedBackground(TargetMask targets);
 
     const GlContext& context_;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs_; // by variant key
@@ -93,6 +95,7 @@ class Renderer {
     std::map<std::uint64_t, std::unique_ptr<GpuSceneCache>> caches_;
     mutable PassTimers timers_; // stats() collects finished timer queries
     unsigned frameBlock_ = 0;
+    unsigned emptyVao_ = 0; // bound for draws whose vertices come from gl_VertexID alone
     mutable RenderStats stats_;
 };
 

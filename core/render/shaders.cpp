@@ -23,6 +23,7 @@ layout(std140, binding = 0) uniform FrameBlock {
     vec4 uShadowParams[MAX_SHADOWS];
     vec4 uBackgroundFinal;
     vec4 uExposure;
+    vec4 uVignette;
 };
 // The light-clip position of p moved 1.5 shadow-map texels along n (turned towards the light), so that a
 // surface does not shadow itself (per vertex: see shadowClips()).
@@ -193,6 +194,12 @@ vec3 srgbEncode(vec3 c) {
 }
 vec4 toneMapped(vec3 hdr) {
     vec3 x = max(hdr, 0.0) * uExposure.xyz;
+#ifdef VIGNETTE
+    // The cos^4 falloff of the pixel's ray (tone.h, vignetteFactor); row 0 of the image is GL's bottom row.
+    vec2 d = (gl_FragCoord.xy - uVignette.zw) / uVignette.y;
+    float cos2 = 1.0 / (1.0 + dot(d, d));
+    x *= 1.0 + (cos2 * cos2 - 1.0) * uVignette.x;
+#endif
     int curve = int(uToneParams.y);
     vec3 mapped = curve == 0 ? aces(x) : curve == 1 ? x / (1.0 + x) : clamp(x, 0.0, 1.0);
     return vec4(srgbEncode(mapped), 1.0);
@@ -406,6 +413,8 @@ std::string ShadingLayout::key() const {
     }
     if (floatShadowMaps)
         key += ".f";
+    if (vignette)
+        key += ".v";
     return key;
 }
 
@@ -420,6 +429,22 @@ const char* const kShadowFragment = R"glsl(#version 450 core
 layout(location = 0) out float oDepth;
 void main() { oDepth = gl_FragCoord.z; }
 )glsl";
+
+const char* const kBackgroundVertex = R"glsl(#version 450 core
+// One triangle covering the viewport, on the far plane (depth 1: it passes GL_LEQUAL where nothing was drawn).
+void main() {
+    vec2 corner = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+    gl_Position = vec4(corner * 2.0 - 1.0, 1.0, 1.0);
+}
+)glsl";
+
+std::string backgroundFragment(int location) {
+    std::string text = "#version 450 core\n#define VIGNETTE\n";
+    text += "layout(location = " + std::to_string(location) + ") out vec4 oFinalColor;\n";
+    text += kFrameBlock;
+    text += kToneChunk;
+    return text + "void main() { oFinalColor = toneMapped(uBackground.xyz); }\n";
+}
 
 std::string surfaceVertex(bool forward, const ShadingLayout& lights) {
     std::string text = "#version 450 core\n";
@@ -451,6 +476,8 @@ std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialF
     text += kMaterialChunk;
     if (forward) {
         text += std::string("#define SHADOW_FORMAT ") + (lights.floatShadowMaps ? "r32f" : "r16") + "\n";
+        if (lights.vignette)
+            text += "#define VIGNETTE\n";
         text += kShadingChunk;
         text += shadeFunction(lights);
         text += kToneChunk;

@@ -38,6 +38,7 @@ struct FrameBlock {
     float shadowParams[4][4]; // x = world texel size (per metre of distance for a spot light), y = resolution
     float backgroundFinal[4]; // rgba: final_color of background pixels (tone-mapped on the CPU side)
     float exposure[4];        // xyz: exposure times the white balance gains
+    float vignette[4];        // x = intensity, y = focal length in pixels, zw = the image centre in pixels
 };
 
 // One light of a shading variant.
@@ -52,6 +53,7 @@ struct LightSlot {
 struct ShadingLayout {
     std::vector<LightSlot> lights;
     bool floatShadowMaps = false; // the shadow maps are GL_R32F, not GL_R16 (ShadowMaps::format())
+    bool vignette = false;        // final_color is vignetted (FrameBlock::vignette)
     // A short text naming the layout, for program caches ("D0.S1r.P").
     std::string key() const;
 };
@@ -72,5 +74,10 @@ extern const char* const kShadowFragment;
 std::string surfaceVertex(bool forward, const ShadingLayout& lights);
 std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialFeatures,
                             const ShadingLayout& lights);
+
+// The background of a vignetted final_color: a full-screen triangle on the far plane writing the tone-mapped,
+// vignetted background colour at draw buffer `location`, drawn after the surfaces where none was.
+extern const char* const kBackgroundVertex;
+std::string backgroundFragment(int location);
 
 } // namespace sp::render::shaders

@@ -31,6 +31,17 @@ Eigen::Vector3f whiteBalanceGains(double kelvin) {
     return (gains / luminance).cast<float>();
 }
 
+float vignetteFactor(const CameraParams& params, double u, double v) {
+    if (params.vignetteIntensity == 0.0f)
+        return 1.0f;
+    Camera camera;
+    camera.params = params;
+    const double focal = camera.focalLengthPixels();
+    const double du = (u - 0.5 * params.width) / focal, dv = (v - 0.5 * params.height) / focal;
+    const double cos2 = 1.0 / (1.0 + du * du + dv * dv);
+    return float(1.0 + (cos2 * cos2 - 1.0) * params.vignetteIntensity);
+}
+
 float toneMapChannel(float hdr, int channel, const CameraParams& params) {
     const double x = std::max(double(hdr), 0.0) * params.exposure * params.whiteBalance[channel];
     double mapped = x;

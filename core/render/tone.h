@@ -17,4 +17,9 @@ float toneMapChannel(float hdr, int channel, const CameraParams& params);
 // luminance. Lower temperatures (tungsten) raise blue, higher ones raise red.
 Eigen::Vector3f whiteBalanceGains(double kelvin);
 
+// The vignetting of the pixel at (u, v) (u right, v down, the pixel (0, 0)'s centre at (0.5, 0.5)):
+// mix(1, cos^4 theta, params.vignetteIntensity), theta the angle of the pixel's ray to the optical axis (the
+// cos^4 law of a lens's illumination falloff). The surface shader computes the same.
+float vignetteFactor(const CameraParams& params, double u, double v);
+
 } // namespace sp::render

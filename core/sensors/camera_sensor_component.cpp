@@ -147,6 +147,12 @@ void UCameraSensorComponent::SetFocusDistance(double NewFocusDistance) {
     FocusDistance = NewFocusDistance;
 }
 
+void UCameraSensorComponent::SetVignetteIntensity(float NewVignetteIntensity) {
+    sp::checkSetting(NewVignetteIntensity >= 0.0f && NewVignetteIntensity <= 1.0f, "UCameraSensorComponent",
+                     "VignetteIntensity", "in [0, 1]", NewVignetteIntensity);
+    VignetteIntensity = NewVignetteIntensity;
+}
+
 void UCameraSensorComponent::SetWhiteBalanceTemperature(double NewWhiteBalanceTemperature) {
     sp::checkSetting(NewWhiteBalanceTemperature >= 2000.0 && NewWhiteBalanceTemperature <= 25000.0,
                      "UCameraSensorComponent", "WhiteBalanceTemperature", "in [2000, 25000] kelvin",

@@ -285,6 +285,12 @@ class UCameraSensorComponent : public USceneComponent {
     SPPROPERTY(Setter = SetFocusDistance)
     double FocusDistance = 10.0;
 
+    /// Natural vignetting of final_color, in [0, 1]: each pixel's exposure falls off as mix(1, cos^4 theta,
+    /// VignetteIntensity), theta the angle of its ray to the optical axis (the cos^4 law of a lens); 0 (the
+    /// default) is none. hdr_color, the scene's radiance, is not vignetted.
+    SPPROPERTY(Setter = SetVignetteIntensity)
+    float VignetteIntensity = 0.0f;
+
     /// The tone curve of final_color.
     SPPROPERTY()
     ECameraToneCurve ToneCurve = ECameraToneCurve::Aces;
@@ -382,6 +388,9 @@ class UCameraSensorComponent : public USceneComponent {
     /// Sets FocusDistance in metres (> 0 and finite).
     SPFUNCTION()
     void SetFocusDistance(double NewFocusDistance);
+    /// Sets VignetteIntensity, in [0, 1].
+    SPFUNCTION()
+    void SetVignetteIntensity(float NewVignetteIntensity);
     /// Sets WhiteBalanceTemperature in kelvin, in [2000, 25000].
     SPFUNCTION()
     void SetWhiteBalanceTemperature(double NewWhiteBalanceTemperature);

@@ -57,6 +57,7 @@ sp::render::CameraParams cameraParams(const UCameraSensorComponent& camera) {
     params.apertureRadius =
         camera.ApertureFNumber > 0.0 ? 0.5e-3 * camera.GetFocalLength() / camera.ApertureFNumber : 0.0;
     params.focusDistance = camera.FocusDistance;
+    params.vignetteIntensity = camera.VignetteIntensity;
     params.toneMap = static_cast<sp::render::ToneMap>(camera.ToneCurve);
     params.shadows = camera.bShadows;
     params.shadowResolution = camera.ShadowResolution;
@@ -281,6 +282,10 @@ std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponen
     const sp::pathtrace::Accumulation& image = state.accumulation;
     auto traced = std::make_shared<TracedImages>();
     traced->samples = image.samples;
+    // The pixel's vignetting (1 without), as the surface shader applies it to final_color.
+    const auto vignette = [&](int x, int y) {
+        return sp::render::vignetteFactor(renderCamera.params, x + 0.5, y + 0.5);
+    };
     for (sp::render::Modality modality : kTracedModalities) {
         if (!modalities.contains(modality))
             continue;
@@ -297,7 +302,8 @@ std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponen
                     switch (modality) {
                     case sp::render::Modality::FinalColor:
                         final[pixel + c] = std::uint8_t(
-                            std::lround(255.0f * sp::render::toneMapChannel(hdr, c, renderCamera.params)));
+                            std::lround(255.0f * sp::render::toneMapChannel(hdr * vignette(x, y), c,
+                                                                            renderCamera.params)));
                         break;
                     case sp::render::Modality::HdrColor:
                         half[pixel + c] = sp::render::floatToHalf(hdr);

@@ -507,3 +507,38 @@ def test_white_balance_scales_linear_colour_before_the_tone_curve(
     final = pixels["final_color"][..., :3].astype(np.float64)
     assert np.abs(final - srgb * 255).max() <= 1.5  # float16 rounding of hdr_color, the shader's sRGB fit
     assert final[..., 2].mean() > final[..., 0].mean() + 10  # a grey scene turns blue
+
+
+@pytest.mark.parametrize("renderer", [spear.ECameraRenderer.Raster, spear.ECameraRenderer.PathTraced])
+def test_vignetting_darkens_final_colour_by_the_cos4_law(
+    instance: spear.Instance, renderer: spear.ECameraRenderer
+) -> None:
+    # final_color = sRGB(ACES(hdr * exposure * mix(1, cos^4 theta, VignetteIntensity))) at every pixel, the
+    # background's included; hdr_color is radiance and is not vignetted.
+    game = instance.get_game()
+    with instance.begin_frame():
+        spawn_wall(game, 3.0, name="Left").SetActorLocation(NewLocation=spear.FVector(X=3.05, Y=7.0))
+        sky = game.spawn_actor(uclass=spear.ASkyLight, name="Sky")
+        sky.SkyLightComponent.Intensity = 0.8
+        sky.SkyLightComponent.BackgroundColor = spear.FLinearColor(R=0.6, G=0.6, B=0.6, A=1.0)
+        camera = spawn_camera(game, [M.FinalColor, M.HdrColor, M.Depth], 32, 20, 100.0)
+        camera.Renderer = renderer
+        camera.SamplesPerPixel = 2
+        camera.VignetteIntensity = 0.8
+        with pytest.raises(spear.InvalidArgumentError, match=r"VignetteIntensity must be in \[0, 1\], got 1.5"):
+            camera.VignetteIntensity = 1.5
+    with instance.end_frame():
+        pixels = camera.read_pixels()
+    depth = pixels["depth"]
+    assert (depth > 0).any() and (depth == 0).any()  # both the wall and the background are in view
+    focal = 16 / math.tan(math.radians(50.0))
+    v, u = np.mgrid[0:20, 0:32] + 0.5
+    cos2 = 1 / (1 + ((u - 16) / focal) ** 2 + ((v - 10) / focal) ** 2)
+    factor = 1 + (cos2**2 - 1) * 0.8
+    x = np.clip(pixels["hdr_color"][..., :3].astype(np.float64), 0.0, None) * factor[..., None]
+    aces = np.clip(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0)
+    srgb = np.where(aces < 0.0031308, aces * 12.92, 1.055 * aces ** (1 / 2.4) - 0.055)
+    final = pixels["final_color"][..., :3].astype(np.float64)
+    assert np.abs(final - srgb * 255).max() <= 1.5
+    background = final[depth == 0][:, 0]
+    assert background.max() - background.min() > 40  # the uniform sky darkens towards the corners

@@ -886,6 +886,20 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
         });
         t.properties.push_back({
+            "VignetteIntensity",
+            "float",
+            "Natural vignetting of final_color, in [0, 1]: each pixel's exposure falls off as mix(1, cos^4 theta,\nVignetteIntensity), theta the angle of its ray to the optical axis (the cos^4 law of a lens); 0 (the\ndefault) is none. hdr_color, the scene's radiance, is not vignetted.",
+            false,
+            [](const void* self) -> sp::reflect::Value {
+                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->VignetteIntensity);
+            },
+            [](void* self, const sp::reflect::Value& value) {
+                auto* object = sp::reflect::selfCast<Self>(self);
+                object->SetVignetteIntensity(sp::reflect::decode<float>(value, "UCameraSensorComponent.VignetteIntensity"));
+                sp::reflect::notifyPropertyChanged(object, "VignetteIntensity");
+            },
+        });
+        t.properties.push_back({
             "ToneCurve",
             "ECameraToneCurve",
             "The tone curve of final_color.",
@@ -1300,6 +1314,23 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
                 sp::reflect::checkArguments(args, {"NewFocusDistance"}, kContext);
                 double NewFocusDistance = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewFocusDistance", kContext), "UCameraSensorComponent.SetFocusDistance(): argument 'NewFocusDistance'");
                 sp::reflect::selfCast<Self>(self)->SetFocusDistance(NewFocusDistance);
+                return {};
+            },
+        });
+        t.functions.push_back({
+            "SetVignetteIntensity",
+            "Sets VignetteIntensity, in [0, 1].",
+            "None",
+            {
+                {"NewVignetteIntensity", "float", false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetVignetteIntensity()";
+                sp::reflect::checkArguments(args, {"NewVignetteIntensity"}, kContext);
+                float NewVignetteIntensity = sp::reflect::decode<float>(sp::reflect::requireArgument(args, "NewVignetteIntensity", kContext), "UCameraSensorComponent.SetVignetteIntensity(): argument 'NewVignetteIntensity'");
+                sp::reflect::selfCast<Self>(self)->SetVignetteIntensity(NewVignetteIntensity);
                 return {};
             },
         });

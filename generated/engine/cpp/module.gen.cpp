@@ -2617,6 +2617,15 @@ void spear_bind_engine(py::module_& m) {
             },
             "The distance in metres, along the optical axis, that the path tracer's lens is focused at (> 0).");
         cls.def_property(
+            "VignetteIntensity",
+            [](const Ref<Self>& self) { return Bridge<float>::out(self.get<Self>("UCameraSensorComponent.VignetteIntensity")->VignetteIntensity); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Self* object = self.get<Self>("UCameraSensorComponent.VignetteIntensity");
+                object->SetVignetteIntensity(Bridge<float>::in(value, "UCameraSensorComponent.VignetteIntensity"));
+                object->PostPropertyChanged("VignetteIntensity");
+            },
+            "Natural vignetting of final_color, in [0, 1]: each pixel's exposure falls off as mix(1, cos^4 theta,\nVignetteIntensity), theta the angle of its ray to the optical axis (the cos^4 law of a lens); 0 (the\ndefault) is none. hdr_color, the scene's radiance, is not vignetted.");
+        cls.def_property(
             "ToneCurve",
             [](const Ref<Self>& self) { return Bridge<ECameraToneCurve>::out(self.get<Self>("UCameraSensorComponent.ToneCurve")->ToneCurve); },
             [](const Ref<Self>& self, const PyArg& value) {
@@ -2905,6 +2914,18 @@ void spear_bind_engine(py::module_& m) {
             },
             py::arg("NewFocusDistance") = sp::pybind::missingArgument(),
             "SetFocusDistance(self, *, NewFocusDistance: float) -> None\n\nSets FocusDistance in metres (> 0 and finite).");
+        cls.def(
+            "SetVignetteIntensity",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewVignetteIntensity, const py::kwargs& extra) -> py::object {
+                static constexpr const char* kContext = "UCameraSensorComponent.SetVignetteIntensity()";
+                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewVignetteIntensity", !isMissing(NewVignetteIntensity), true}});
+                Self* object = self.get<Self>(kContext);
+                auto NewVignetteIntensityValue = Bridge<float>::in(NewVignetteIntensity, "UCameraSensorComponent.SetVignetteIntensity(): argument 'NewVignetteIntensity'");
+                object->SetVignetteIntensity(NewVignetteIntensityValue);
+                return py::none();
+            },
+            py::arg("NewVignetteIntensity") = sp::pybind::missingArgument(),
+            "SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> None\n\nSets VignetteIntensity, in [0, 1].");
         cls.def(
             "SetWhiteBalanceTemperature",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewWhiteBalanceTemperature, const py::kwargs& extra) -> py::object {

@@ -2729,6 +2729,8 @@ class UCameraSensorComponentAsync(USceneComponentAsync):
 
     def SetFocusDistance(self, *, NewFocusDistance: float) -> Future[None]: ...
 
+    def SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> Future[None]: ...
+
     def SetWhiteBalanceTemperature(self, *, NewWhiteBalanceTemperature: float) -> Future[None]: ...
 
     def GetWhiteBalanceGains(self) -> Future[NDArray[np.float64]]: ...
@@ -2806,6 +2808,8 @@ class UCameraSensorComponentSend(USceneComponentSend):
     def SetApertureFNumber(self, *, NewApertureFNumber: float) -> None: ...
 
     def SetFocusDistance(self, *, NewFocusDistance: float) -> None: ...
+
+    def SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> None: ...
 
     def SetWhiteBalanceTemperature(self, *, NewWhiteBalanceTemperature: float) -> None: ...
 
@@ -2957,6 +2961,16 @@ class UCameraSensorComponent(USceneComponent):
     def FocusDistance(self, value: float) -> None: ...
 
     @property
+    def VignetteIntensity(self) -> float:
+        """Natural vignetting of final_color, in [0, 1]: each pixel's exposure falls off as mix(1, cos^4 theta,
+        VignetteIntensity), theta the angle of its ray to the optical axis (the cos^4 law of a lens); 0 (the
+        default) is none. hdr_color, the scene's radiance, is not vignetted.
+        """
+
+    @VignetteIntensity.setter
+    def VignetteIntensity(self, value: float) -> None: ...
+
+    @property
     def ToneCurve(self) -> ECameraToneCurve:
         """The tone curve of final_color."""
 
@@ -3080,6 +3094,9 @@ class UCameraSensorComponent(USceneComponent):
 
     def SetFocusDistance(self, *, NewFocusDistance: float) -> None:
         """Sets FocusDistance in metres (> 0 and finite)."""
+
+    def SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> None:
+        """Sets VignetteIntensity, in [0, 1]."""
 
     def SetWhiteBalanceTemperature(self, *, NewWhiteBalanceTemperature: float) -> None:
         """Sets WhiteBalanceTemperature in kelvin, in [2000, 25000]."""

@@ -1264,6 +1264,14 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
         self._sp_set("UCameraSensorComponent", "FocusDistance", value)
 
     @property
+    def VignetteIntensity(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "VignetteIntensity", "float"))
+
+    @VignetteIntensity.setter
+    def VignetteIntensity(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "VignetteIntensity", value)
+
+    @property
     def ToneCurve(self) -> ECameraToneCurve:
         return cast("ECameraToneCurve", self._sp_get("UCameraSensorComponent", "ToneCurve", "ECameraToneCurve"))
 
@@ -1380,6 +1388,9 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     def SetFocusDistance(self, *, NewFocusDistance: float) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetFocusDistance", {"NewFocusDistance": NewFocusDistance}, "None"))  # a Future when queued by call_async
+
+    def SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetVignetteIntensity", {"NewVignetteIntensity": NewVignetteIntensity}, "None"))  # a Future when queued by call_async
 
     def SetWhiteBalanceTemperature(self, *, NewWhiteBalanceTemperature: float) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetWhiteBalanceTemperature", {"NewWhiteBalanceTemperature": NewWhiteBalanceTemperature}, "None"))  # a Future when queued by call_async
