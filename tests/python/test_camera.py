@@ -8,6 +8,7 @@ import math
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import NDArray
 import pytest
 
 import spear
@@ -22,6 +23,14 @@ def spawn_wall(game: spear.UWorld, x_front: float, name: str = "Wall", material:
     wall.StaticMeshComponent.SetMaterial(ElementIndex=0, Material=material)
     wall.SetActorScale3D(NewScale3D=spear.FVector(X=0.1, Y=10.0, Z=10.0))
     return wall
+
+
+def aces_srgb(exposed: NDArray[np.float64]) -> NDArray[np.float64]:
+    """final_color's RGB in 0..255 from exposed linear radiance: the ACES fit, then the exact sRGB OETF."""
+    x = np.clip(exposed, 0.0, None)
+    aces = np.clip(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0)
+    srgb: NDArray[np.float64] = np.where(aces < 0.0031308, aces * 12.92, 1.055 * aces ** (1 / 2.4) - 0.055) * 255
+    return srgb
 
 
 def spawn_camera(
@@ -501,11 +510,9 @@ def test_white_balance_scales_linear_colour_before_the_tone_curve(
         pixels = camera.read_pixels()
     assert gains[2] > gains[1] > gains[0]
     assert float(gains @ [0.2126, 0.7152, 0.0722]) == pytest.approx(1.0)  # a grey keeps its luminance
-    x = np.clip(pixels["hdr_color"][..., :3].astype(np.float64), 0.0, None) * gains
-    aces = np.clip(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0)
-    srgb = np.where(aces < 0.0031308, aces * 12.92, 1.055 * aces ** (1 / 2.4) - 0.055)
     final = pixels["final_color"][..., :3].astype(np.float64)
-    assert np.abs(final - srgb * 255).max() <= 1.5  # float16 rounding of hdr_color, the shader's sRGB fit
+    expected = aces_srgb(pixels["hdr_color"][..., :3].astype(np.float64) * gains)
+    assert np.abs(final - expected).max() <= 1.5  # float16 rounding of hdr_color, the shader's sRGB fit
     assert final[..., 2].mean() > final[..., 0].mean() + 10  # a grey scene turns blue
 
 
@@ -535,10 +542,8 @@ def test_vignetting_darkens_final_colour_by_the_cos4_law(
     v, u = np.mgrid[0:20, 0:32] + 0.5
     cos2 = 1 / (1 + ((u - 16) / focal) ** 2 + ((v - 10) / focal) ** 2)
     factor = 1 + (cos2**2 - 1) * 0.8
-    x = np.clip(pixels["hdr_color"][..., :3].astype(np.float64), 0.0, None) * factor[..., None]
-    aces = np.clip(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0)
-    srgb = np.where(aces < 0.0031308, aces * 12.92, 1.055 * aces ** (1 / 2.4) - 0.055)
     final = pixels["final_color"][..., :3].astype(np.float64)
-    assert np.abs(final - srgb * 255).max() <= 1.5
+    expected = aces_srgb(pixels["hdr_color"][..., :3].astype(np.float64) * factor[..., None])
+    assert np.abs(final - expected).max() <= 1.5
     background = final[depth == 0][:, 0]
     assert background.max() - background.min() > 40  # the uniform sky darkens towards the corners

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import spear
-from test_camera import spawn_camera
+from test_camera import aces_srgb, spawn_camera
 
 M = spear.ECameraModality
 
@@ -77,10 +77,8 @@ def test_a_still_view_accumulates_and_a_change_restarts(instance: spear.Instance
             samples.append(camera.GetAccumulatedSamples())
     assert samples == [4, 6, 2, 4]  # the spawning frame rendered the first 2
     # final_color is hdr_color through the camera's tone curve (ACES, exposure 1) and sRGB.
-    x = np.clip(pixels["hdr_color"][..., :3].astype(np.float64), 0.0, None)
-    aces = np.clip(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0)
-    srgb = np.where(aces < 0.0031308, aces * 12.92, 1.055 * aces ** (1 / 2.4) - 0.055)
-    assert np.abs(pixels["final_color"][..., :3] - srgb * 255).max() <= 1.5  # float16 rounding of hdr_color
+    expected = aces_srgb(pixels["hdr_color"][..., :3].astype(np.float64))
+    assert np.abs(pixels["final_color"][..., :3] - expected).max() <= 1.5  # float16 rounding of hdr_color
     assert (pixels["final_color"][..., 3] == 255).all()
 
 
