@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <string>
 
 #include "core/base/error.h"
 
@@ -16,22 +18,50 @@ Eigen::Vector2d LensModel::distortNormalized(const Eigen::Vector2d& undistorted)
             y * radial + p1 * (r2 + 2.0 * y * y) + 2.0 * p2 * x * y};
 }
 
-Eigen::Vector2d LensModel::undistortNormalized(const Eigen::Vector2d& distorted) const {
-    // Fixed-point iteration x = (x_d - tangential(x)) / radial(x), as OpenCV's undistortPoints, run until
-    // it stops moving.
-    Eigen::Vector2d point = distorted;
-    for (int i = 0; i < 100; ++i) {
-        const double x = point.x(), y = point.y();
-        const double r2 = x * x + y * y;
-        const double radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3));
-        const Eigen::Vector2d next{(distorted.x() - 2.0 * p1 * x * y - p2 * (r2 + 2.0 * x * x)) / radial,
-                                   (distorted.y() - p1 * (r2 + 2.0 * y * y) - 2.0 * p2 * x * y) / radial};
-        const bool settled = (next - point).squaredNorm() < 1e-28;
-        point = next;
-        if (settled)
-            break;
+Eigen::Matrix2d LensModel::distortionJacobian(const Eigen::Vector2d& undistorted) const {
+    const double x = undistorted.x(), y = undistorted.y();
+    const double r2 = x * x + y * y;
+    const double radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3));
+    const double slope = k1 + r2 * (2.0 * k2 + 3.0 * k3 * r2); // d radial / d r^2
+    const double cross = 2.0 * x * y * slope + 2.0 * p1 * x + 2.0 * p2 * y;
+    Eigen::Matrix2d jacobian;
+    jacobian << radial + 2.0 * x * x * slope + 2.0 * p1 * y + 6.0 * p2 * x, cross, cross,
+        radial + 2.0 * y * y * slope + 6.0 * p1 * y + 2.0 * p2 * x;
+    return jacobian;
+}
+
+std::optional<Eigen::Vector2d> LensModel::undistortFrom(const Eigen::Vector2d& distorted,
+                                                        const Eigen::Vector2d& start) const {
+    // Newton's method on distort(p) = distorted. A step where the Jacobian's determinant is not positive
+    // has left the sheet of the model that holds the image centre (the model folds over there).
+    Eigen::Vector2d point = start;
+    for (int i = 0; i < 50; ++i) {
+        const Eigen::Matrix2d jacobian = distortionJacobian(point);
+        if (!(jacobian.determinant() > 1e-12))
+            return std::nullopt;
+        const Eigen::Vector2d error = distortNormalized(point) - distorted;
+        if (error.squaredNorm() < 1e-26)
+            return point;
+        point -= jacobian.inverse() * error;
+        if (!point.allFinite())
+            return std::nullopt;
     }
+    return std::nullopt;
+}
+
+std::optional<Eigen::Vector2d> LensModel::undistortNormalizedIfAny(const Eigen::Vector2d& distorted) const {
+    // Followed from the centre out (distorted * t, t = 1/8 ... 1), each step starting from the last one's
+    // solution, so that it stays on the sheet that holds the image centre.
+    constexpr int kSteps = 8;
+    std::optional<Eigen::Vector2d> point = Eigen::Vector2d::Zero();
+    for (int step = 1; step <= kSteps && point; ++step)
+        point = undistortFrom(distorted * (double(step) / kSteps), *point);
     return point;
+}
+
+Eigen::Vector2d LensModel::undistortNormalized(const Eigen::Vector2d& distorted) const {
+    return undistortNormalizedIfAny(distorted).value_or(
+        Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN()));
 }
 
 Eigen::Vector2d LensModel::distortPixel(const Eigen::Vector2d& pixel) const {
@@ -44,43 +74,59 @@ Eigen::Vector2d LensModel::undistortPixel(const Eigen::Vector2d& pixel) const {
     return {fx * u.x() + cx, fy * u.y() + cy};
 }
 
-LensRemap::LensRemap(const LensModel& lens, int width, int height, const char* context,
-                     std::int64_t maxSourcePixels)
+LensRemap::LensRemap(const LensModel& lens, int width, int height, const char* context)
     : width_(width), height_(height) {
     SP_CHECK(lens.fx > 0.0 && lens.fx == lens.fy, InvalidArgument, context,
              ": lens images need square pixels (fx == fy > 0), got fx ", lens.fx, ", fy ", lens.fy);
-    // Every lens pixel's ray, as undistorted normalised coordinates; the render must hold them all.
-    std::vector<Eigen::Vector2d> rays(std::size_t(width) * std::size_t(height));
+    // Every lens pixel's ray, as undistorted normalised coordinates (none where the model folds over:
+    // those pixels stay empty, as cv2.remap leaves them); the render must hold them all.
+    std::vector<std::optional<Eigen::Vector2d>> rays(std::size_t(width) * std::size_t(height));
     double reachX = 0.0, reachY = 0.0;
-    bool finite = true;
     for (int v = 0; v < height; ++v)
         for (int u = 0; u < width; ++u) {
-            const Eigen::Vector2d ray =
-                lens.undistortNormalized({(u - lens.cx) / lens.fx, (v - lens.cy) / lens.fy});
-            finite = finite && std::isfinite(ray.x()) && std::isfinite(ray.y());
-            reachX = std::max(reachX, std::abs(ray.x()));
-            reachY = std::max(reachY, std::abs(ray.y()));
-            rays[std::size_t(v) * std::size_t(width) + std::size_t(u)] = ray;
+            auto& ray = rays[std::size_t(v) * std::size_t(width) + std::size_t(u)];
+            const Eigen::Vector2d distorted{(u - lens.cx) / lens.fx, (v - lens.cy) / lens.fy};
+            // The neighbour's ray is a start a step or two from this one, on the same sheet; from the
+            // centre out when there is none.
+            if (u > 0 && rays[std::size_t(v) * std::size_t(width) + std::size_t(u) - 1])
+                ray = lens.undistortFrom(distorted,
+                                         *rays[std::size_t(v) * std::size_t(width) + std::size_t(u) - 1]);
+            if (!ray)
+                ray = lens.undistortNormalizedIfAny(distorted);
+            if (ray) {
+                reachX = std::max(reachX, std::abs(ray->x()));
+                reachY = std::max(reachY, std::abs(ray->y()));
+            }
         }
     // The render keeps the lens's focal length (the same pixel density at the centre), centred, with a
-    // pixel of margin around the farthest ray.
+    // pixel of margin around the farthest ray, and the image's parity, so that a principal point offset by
+    // whole pixels maps pixel centres onto pixel centres.
     const double focal = lens.fx;
-    const double halfWidth = reachX * focal + 1.5, halfHeight = reachY * focal + 1.5;
-    SP_CHECK(finite && 2.0 * halfWidth * 2.0 * halfHeight <= double(maxSourcePixels), InvalidArgument,
-             context, ": the lens (distortion and principal point) needs a render of ",
-             finite ? std::to_string(std::int64_t(2.0 * halfWidth)) + "x" +
-                          std::to_string(std::int64_t(2.0 * halfHeight))
-                    : std::string("unbounded size"),
-             " pixels to cover its ", width, "x", height,
-             " image; the distortion is too strong for the model to be inverted there");
-    sourceWidth_ = 2 * int(std::ceil(halfWidth));
-    sourceHeight_ = 2 * int(std::ceil(halfHeight));
+    const auto side = [](double reach, int image) {
+        int size = 2 * int(std::min(std::ceil(reach + 1.5), 1e6));
+        return size + ((size - image) % 2 != 0 ? 1 : 0);
+    };
+    const int sourceWidth = side(reachX * focal, width), sourceHeight = side(reachY * focal, height);
+    // A render far larger than the image means rays near 90 degrees: a lens (or an offset) the pinhole
+    // render cannot serve.
+    SP_CHECK(sourceWidth <= kMaxSourceSide && sourceHeight <= kMaxSourceSide &&
+                 double(sourceWidth) * sourceHeight <= kMaxSourceToImage * double(width) * height,
+             InvalidArgument, context, ": the lens (distortion and principal point) needs a ", sourceWidth,
+             "x", sourceHeight, " pinhole render to cover its ", width, "x", height, " image (at most ",
+             kMaxSourceSide, " a side and ", kMaxSourceToImage,
+             " times the image's pixels); its rays reach too far from the axis");
+    sourceWidth_ = sourceWidth;
+    sourceHeight_ = sourceHeight;
     sourceHfovDeg_ = 2.0 * std::atan(0.5 * sourceWidth_ / focal) * 180.0 / M_PI;
     const double sourceCx = 0.5 * (sourceWidth_ - 1), sourceCy = 0.5 * (sourceHeight_ - 1);
     sourceIndex_.resize(rays.size());
     for (std::size_t i = 0; i < rays.size(); ++i) {
-        const long column = std::lround(focal * rays[i].x() + sourceCx);
-        const long row = std::lround(focal * rays[i].y() + sourceCy);
+        if (!rays[i]) {
+            sourceIndex_[i] = -1;
+            continue;
+        }
+        const long column = std::lround(focal * rays[i]->x() + sourceCx);
+        const long row = std::lround(focal * rays[i]->y() + sourceCy);
         sourceIndex_[i] = column >= 0 && column < sourceWidth_ && row >= 0 && row < sourceHeight_
                               ? std::int64_t(row) * sourceWidth_ + column
                               : -1;

@@ -10,13 +10,16 @@
 // The renderer rasterises pinhole images with the principal point at the centre; LensRemap turns such an
 // image (rendered wide enough to hold every ray of the lens image) into the lens image, each lens pixel
 // taking the rendered pixel its ray falls in. Nearest, not interpolated, so that every modality stays
-// consistent: a pixel's id, depth, normal and colour all come from one surface point. Pure logic, no GL.
+// consistent: a pixel's id, depth, normal and colour all come from one surface point; the price is that a
+// pixel shows its ray to within half a rendered pixel. Pure logic, no GL.
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 namespace sp::render {
 
@@ -26,9 +29,19 @@ struct LensModel {
 
     // No distortion (the principal point may still be anywhere).
     bool undistorted() const { return k1 == 0.0 && k2 == 0.0 && k3 == 0.0 && p1 == 0.0 && p2 == 0.0; }
-    // Normalised image coordinates (x, y) = (X/Z, Y/Z) to distorted ones, and back (iteratively, as OpenCV's
-    // undistortPoints; exact to about 1e-12 where the model is invertible).
+    // Normalised image coordinates (x, y) = (X/Z, Y/Z) to distorted ones.
     Eigen::Vector2d distortNormalized(const Eigen::Vector2d& undistorted) const;
+    // d distorted / d undistorted at a point.
+    Eigen::Matrix2d distortionJacobian(const Eigen::Vector2d& undistorted) const;
+    // The undistorted point that distorts to `distorted` on the sheet of the model that holds the image
+    // centre (where the lens maps one to one), to about 1e-13; none where the model folds over before
+    // reaching it (strong barrel distortion far from the axis): no ray shows that point.
+    std::optional<Eigen::Vector2d> undistortNormalizedIfAny(const Eigen::Vector2d& distorted) const;
+    // Newton's method from `start`, staying on the sheet `start` is on (none when it leaves it or does not
+    // converge).
+    std::optional<Eigen::Vector2d> undistortFrom(const Eigen::Vector2d& distorted,
+                                                 const Eigen::Vector2d& start) const;
+    // The same, NaN where there is none.
     Eigen::Vector2d undistortNormalized(const Eigen::Vector2d& distorted) const;
     // The same in pixels: a pinhole pixel under (fx, fy, cx, cy) to the lens image's pixel, and back.
     Eigen::Vector2d distortPixel(const Eigen::Vector2d& pixel) const;
@@ -40,12 +53,15 @@ struct LensModel {
 // Which rendered pixel each pixel of a lens image shows.
 class LensRemap {
   public:
+    // The largest pinhole render a lens image may need: a side, and its pixels over the image's.
+    static constexpr int kMaxSourceSide = 16384;
+    static constexpr int kMaxSourceToImage = 16;
+
     // The remap of a width x height lens image, for a pinhole render of focal length lens.fx (square pixels,
-    // fx == fy), centred, just large enough to hold every lens pixel's ray. Throws sp::InvalidArgument,
-    // naming `context`, when that render would exceed maxSourcePixels (a distortion so strong that the
-    // model folds over, or rays near 90 degrees).
-    LensRemap(const LensModel& lens, int width, int height, const char* context,
-              std::int64_t maxSourcePixels = std::int64_t(16384) * 16384);
+    // fx == fy), centred, just large enough to hold every lens pixel's ray. Pixels no ray shows (beyond
+    // where the model folds over) stay empty. Throws sp::InvalidArgument, naming `context`, when the render
+    // would exceed the limits above (rays too far from the axis).
+    LensRemap(const LensModel& lens, int width, int height, const char* context);
 
     int width() const { return width_; }
     int height() const { return height_; }
@@ -55,8 +71,8 @@ class LensRemap {
     double sourceHfovDeg() const { return sourceHfovDeg_; }
 
     // Writes the lens image of `source` (sourceWidth x sourceHeight pixels of pixelBytes each, row 0 at the
-    // top) into `target` (width x height pixels); pixels whose ray misses the render (none, by
-    // construction) are zero.
+    // top) into `target` (width x height pixels); pixels no ray shows are zero (the background of every
+    // modality but colour).
     void apply(const std::byte* source, std::byte* target, std::size_t pixelBytes) const;
 
   private:

@@ -267,6 +267,8 @@ class UCameraSensorComponent : public USceneComponent {
     /// Lens distortion applied to every modality (OpenCV's model with GetIntrinsicMatrix()'s K; see
     /// GetDistortionCoefficients): each pixel shows what the distorted ray through it sees, taken from a
     /// pinhole render wide enough to hold every ray, nearest pixel, so that all modalities stay consistent.
+    /// Pixels past where the model folds over (strong barrel distortion far from the axis) show no ray and
+    /// are zero in every modality. The remap is rebuilt when the lens, the size or the FOV changes.
     SPPROPERTY(Setter = SetLensDistortion)
     FLensDistortion LensDistortion;
 
@@ -379,7 +381,8 @@ class UCameraSensorComponent : public USceneComponent {
     SPFUNCTION()
     sp::reflect::SpArray<double> DistortPixels(const sp::reflect::SpArray<double>& Points) const;
     /// Returns the pinhole pixels ((N, 2)) that this camera's image pixels Points ((N, 2)) show: the inverse
-    /// of DistortPixels, as cv2.undistortPoints(..., P=K) computes it.
+    /// of DistortPixels (cv2.undistortPoints(..., P=K) approximates it), solved to about 1e-10 pixels; NaN
+    /// for a pixel no ray shows (past where a strong barrel distortion folds over; such pixels render empty).
     SPFUNCTION()
     sp::reflect::SpArray<double> UndistortPixels(const sp::reflect::SpArray<double>& Points) const;
     /// Sets ApertureFNumber: 0 (a pinhole) or >= 0.5.

@@ -445,6 +445,7 @@ void MoviePipelineQueue::writeFrame(UCameraSensorComponent& camera) {
         {"height", shape->height},
         {"intrinsic_matrix", matrix(camera.GetIntrinsicMatrix())},
         {"world_to_camera", matrix(camera.GetWorldToCamera())},
+        {"distortion_coefficients", camera.GetDistortionCoefficients().getView()},
         {"location", {pose.Translation.X, pose.Translation.Y, pose.Translation.Z}},
         {"rotation", {{"Pitch", rotation.Pitch}, {"Yaw", rotation.Yaw}, {"Roll", rotation.Roll}}},
         {"renderer", camera.Renderer == ECameraRenderer::PathTraced ? "path_traced" : "raster"},

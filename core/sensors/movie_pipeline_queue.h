@@ -6,7 +6,8 @@
 // calibration as JSON:
 //
 //   <OutputDirectory>/<modality>/<frame>.png|.exr    e.g. out/final_color/0007.png, out/depth/0007.exr
-//   <OutputDirectory>/camera/<frame>.json             K, world-to-camera, pose, engine frame, samples
+//   <OutputDirectory>/camera/<frame>.json             K, distortion, world-to-camera, pose, engine frame,
+//   samples
 //
 // RenderJob() only queues a job: the work proceeds in the engine, one output frame per engine frame, while
 // the client keeps stepping frames (each frame's images are those of that frame's world; a path-traced

@@ -43,6 +43,9 @@ sp::render::CameraParams cameraParams(const UCameraSensorComponent& camera) {
              camera.NearClip, "), got ", camera.FarClip);
     SP_CHECK(camera.ShadowResolution >= 16 && camera.ShadowResolution <= 8192, sp::InvalidArgument, who,
              "ShadowResolution must be in [16, 8192], got ", camera.ShadowResolution);
+    SP_CHECK(camera.WhiteBalanceTemperature >= 2000.0 && camera.WhiteBalanceTemperature <= 25000.0,
+             sp::InvalidArgument, who, "WhiteBalanceTemperature must be in [2000, 25000] kelvin, got ",
+             camera.WhiteBalanceTemperature);
     SP_CHECK(camera.Latency >= 0 && camera.Latency <= sp::render::RenderTarget::kMaxLatency,
              sp::InvalidArgument, who, "Latency must be 0, 1 or 2, got ", camera.Latency);
     sp::render::CameraParams params;
@@ -227,6 +230,13 @@ void RenderSubsystem::submit(UCameraSensorComponent& camera) {
     const sp::render::ModalitySet modalities = toModalitySet(camera.Modalities);
 
     CameraState& state = cameraState(camera);
+    state.readSinceSubmit = false;
+    state.lastRead.reset();
+    if (modalities.empty()) { // nothing to render; older frames are dropped with the target
+        state.target.reset();
+        state.pending.clear();
+        return;
+    }
     // A lens camera renders the pinhole image its remap samples (centred, wide enough for every ray).
     const sp::render::LensModel lens = camera.lensModel();
     const bool pinhole = lens.undistorted() && camera.PrincipalPointOffset == FVector2D{};
@@ -244,13 +254,6 @@ void RenderSubsystem::submit(UCameraSensorComponent& camera) {
         renderCamera.params.width = state.lens->sourceWidth();
         renderCamera.params.height = state.lens->sourceHeight();
         renderCamera.params.hfovDeg = state.lens->sourceHfovDeg();
-    }
-    state.readSinceSubmit = false;
-    state.lastRead.reset();
-    if (modalities.empty()) { // nothing to render; older frames are dropped with the target
-        state.target.reset();
-        state.pending.clear();
-        return;
     }
     if (!state.target || state.target->latency() != camera.Latency) { // a new latency restarts the ring
         state.target = std::make_unique<sp::render::RenderTarget>(*renderer_, modalities, camera.Latency);
@@ -403,6 +406,12 @@ bool RenderSubsystem::readInto(UCameraSensorComponent& camera,
                 std::memcpy(view.data, image->second.data(), std::min(view.size, image->second.size()));
     if (read && lens)
         for (std::size_t i = 0; i < views.size(); ++i) {
+            SP_CHECK(views[i].size ==
+                         sp::render::modalityByteSize(views[i].modality, lens->width(), lens->height()),
+                     sp::InvalidArgument,
+                     "RenderSubsystem::readInto(): ", sp::render::modalityName(views[i].modality), " needs ",
+                     sp::render::modalityByteSize(views[i].modality, lens->width(), lens->height()),
+                     " bytes, got ", views[i].size);
             const sp::render::ModalityInfo& info = sp::render::modalityInfo(views[i].modality);
             lens->apply(static_cast<const std::byte*>(readViews[i].data),
                         static_cast<std::byte*>(views[i].data),

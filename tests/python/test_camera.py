@@ -462,24 +462,32 @@ def test_a_distorted_off_centre_lens_renders_points_where_opencvs_model_puts_the
 def test_lens_settings_are_checked(instance: spear.Instance) -> None:
     game = instance.get_game()
     with instance.begin_frame():
-        camera = spawn_camera(game, [M.Depth], 64, 48, 120.0)
+        camera = spawn_camera(game, [M.Depth, M.ObjectIds, M.FinalColor], 64, 48, 90.0)
+        spawn_wall(game, 3.0)
         with pytest.raises(spear.InvalidArgumentError, match=r"LensDistortion.K2 must be finite, got inf"):
             camera.LensDistortion = spear.FLensDistortion(K2=float("inf"))
         with pytest.raises(spear.InvalidArgumentError, match=r"PrincipalPointOffset.Y must be finite, got nan"):
             camera.PrincipalPointOffset = spear.FVector2D(Y=float("nan"))
+        # A mild barrel past its fold: K1 = -0.1 folds over before the corners of a 90 degree view.
+        camera.LensDistortion = spear.FLensDistortion(K1=-0.1)
     with instance.end_frame():
-        pass
-    # Whether a lens can be inverted over the image depends on its size and field of view too, so it is
-    # checked when the camera renders (the frame's tick, at the end of the begin_frame block).
+        pixels = camera.read_pixels()
+        corner = camera.UndistortPixels(Points=np.array([[0.0, 0.0], [31.5, 23.5]]))
+    assert np.isnan(corner[0]).all() and np.isfinite(corner[1]).all()
+    for name in ("depth", "object_ids", "final_color"):  # the corners show no ray: empty in every modality
+        assert not pixels[name][0, 0].any() and pixels[name][24, 32].any(), name  # type: ignore[literal-required]
+    # Whether a lens can serve an image depends on its size and field of view too, so it is checked when
+    # the camera renders (the frame's tick, at the end of the begin_frame block).
     with pytest.raises(spear.InvalidArgumentError, match=r"UCameraSensorComponent 'CameraSensor': the lens "
-                       r"\(distortion and principal point\) needs a render of \d+x\d+ pixels to cover its 64x48 "
-                       r"image; the distortion is too strong for the model to be inverted there"):
+                       r"\(distortion and principal point\) needs a \d+x\d+ pinhole render to cover its 64x48 "
+                       r"image .*; its rays reach too far from the axis"):
         with instance.begin_frame():
-            camera.LensDistortion = spear.FLensDistortion(K1=-0.9)  # folds over inside a 120 degree view
+            camera.LensDistortion = spear.FLensDistortion()
+            camera.PrincipalPointOffset = spear.FVector2D(X=5000.0)  # the image far off the axis
     with instance.end_frame():
         pass
     with instance.begin_frame():
-        camera.LensDistortion = spear.FLensDistortion()
+        camera.PrincipalPointOffset = spear.FVector2D()
     with instance.end_frame():
         assert camera.read_pixels()["depth"].shape == (48, 64)  # the engine rendered on
 
@@ -547,3 +555,36 @@ def test_vignetting_darkens_final_colour_by_the_cos4_law(
     assert np.abs(final - expected).max() <= 1.5
     background = final[depth == 0][:, 0]
     assert background.max() - background.min() > 40  # the uniform sky darkens towards the corners
+
+
+def test_a_lens_applies_alike_to_path_traced_buffered_and_stacked_reads(instance: spear.Instance) -> None:
+    # The remap follows each frame: a path-traced lens camera's images and a raster one's agree on geometry,
+    # a buffered frame is read with the lens it was rendered with, and stacked reads equal single ones.
+    game = instance.get_game()
+    lens = spear.FLensDistortion(K1=-0.2, P2=0.01)
+    with instance.begin_frame():
+        spawn_wall(game, 3.0)
+        ball = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Ball", location=spear.FVector(X=2.0, Y=0.4))
+        ball.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Sphere")
+        cameras = []
+        for name in ("Raster", "Traced", "Buffered"):
+            camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name=name).CameraSensor
+            camera.Width, camera.Height, camera.FOV = 40, 30, 80.0
+            camera.Modalities = [M.Depth] if name == "Buffered" else [M.Depth, M.FinalColor]
+            camera.LensDistortion, camera.PrincipalPointOffset = lens, spear.FVector2D(X=3.0, Y=-2.0)
+            cameras.append(camera)
+        raster, traced, buffered = cameras
+        traced.Renderer, traced.SamplesPerPixel = spear.ECameraRenderer.PathTraced, 1
+        buffered.Latency = 1
+    with instance.end_frame():
+        a, b = raster.read_pixels(), traced.read_pixels()
+        stacked = spear.UCameraSensorComponent.read_pixels_stacked(Cameras=[raster, traced])
+    assert a["final_color"].shape == b["final_color"].shape == (30, 40, 4)
+    np.testing.assert_array_equal(a["depth"], b["depth"])
+    np.testing.assert_array_equal(stacked["depth"][0], a["depth"])
+    np.testing.assert_array_equal(stacked["final_color"][1], b["final_color"])
+    with instance.begin_frame():
+        buffered.LensDistortion = spear.FLensDistortion()  # the frame due now was rendered with the lens
+        buffered.PrincipalPointOffset = spear.FVector2D()
+    with instance.end_frame():
+        np.testing.assert_array_equal(buffered.read_pixels()["depth"], a["depth"])

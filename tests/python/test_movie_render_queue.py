@@ -124,6 +124,7 @@ def test_a_job_writes_every_frame_equal_to_read_pixels_and_puts_the_camera_back(
         assert np.array_equal(image, expected), key
     record = json.loads(Path(files[5]).read_text())
     assert record["frame"] == 1 and (record["width"], record["height"]) == (48, 32)
+    assert record["distortion_coefficients"] == [0.0] * 5
     assert np.allclose(record["intrinsic_matrix"], K) and np.allclose(record["world_to_camera"], T)
     assert record["renderer"] == "raster"
     assert (pixels["object_ids"] > 0).any()  # the box and the ground are in view

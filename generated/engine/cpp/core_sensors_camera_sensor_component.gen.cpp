@@ -832,7 +832,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.properties.push_back({
             "LensDistortion",
             "FLensDistortion",
-            "Lens distortion applied to every modality (OpenCV's model with GetIntrinsicMatrix()'s K; see\nGetDistortionCoefficients): each pixel shows what the distorted ray through it sees, taken from a\npinhole render wide enough to hold every ray, nearest pixel, so that all modalities stay consistent.",
+            "Lens distortion applied to every modality (OpenCV's model with GetIntrinsicMatrix()'s K; see\nGetDistortionCoefficients): each pixel shows what the distorted ray through it sees, taken from a\npinhole render wide enough to hold every ray, nearest pixel, so that all modalities stay consistent.\nPixels past where the model folds over (strong barrel distortion far from the axis) show no ray and\nare zero in every modality. The remap is rebuilt when the lens, the size or the FOV changes.",
             false,
             [](const void* self) -> sp::reflect::Value {
                 return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->LensDistortion);
@@ -1268,7 +1268,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.functions.push_back({
             "UndistortPixels",
-            "Returns the pinhole pixels ((N, 2)) that this camera's image pixels Points ((N, 2)) show: the inverse\nof DistortPixels, as cv2.undistortPoints(..., P=K) computes it.",
+            "Returns the pinhole pixels ((N, 2)) that this camera's image pixels Points ((N, 2)) show: the inverse\nof DistortPixels (cv2.undistortPoints(..., P=K) approximates it), solved to about 1e-10 pixels; NaN\nfor a pixel no ray shows (past where a strong barrel distortion folds over; such pixels render empty).",
             "NDArray[np.float64]",
             {
                 {"Points", "NDArray[np.float64]", false, false},

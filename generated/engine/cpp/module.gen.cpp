@@ -2588,7 +2588,7 @@ void spear_bind_engine(py::module_& m) {
                 object->SetLensDistortion(Bridge<FLensDistortion>::in(value, "UCameraSensorComponent.LensDistortion"));
                 object->PostPropertyChanged("LensDistortion");
             },
-            "Lens distortion applied to every modality (OpenCV's model with GetIntrinsicMatrix()'s K; see\nGetDistortionCoefficients): each pixel shows what the distorted ray through it sees, taken from a\npinhole render wide enough to hold every ray, nearest pixel, so that all modalities stay consistent.");
+            "Lens distortion applied to every modality (OpenCV's model with GetIntrinsicMatrix()'s K; see\nGetDistortionCoefficients): each pixel shows what the distorted ray through it sees, taken from a\npinhole render wide enough to hold every ray, nearest pixel, so that all modalities stay consistent.\nPixels past where the model folds over (strong barrel distortion far from the axis) show no ray and\nare zero in every modality. The remap is rebuilt when the lens, the size or the FOV changes.");
         cls.def_property(
             "PrincipalPointOffset",
             [](const Ref<Self>& self) { return Bridge<FVector2D>::out(self.get<Self>("UCameraSensorComponent.PrincipalPointOffset")->PrincipalPointOffset); },
@@ -2889,7 +2889,7 @@ void spear_bind_engine(py::module_& m) {
                 return Bridge<sp::reflect::SpArray<double>>::out(result);
             },
             py::arg("Points") = sp::pybind::missingArgument(),
-            "UndistortPixels(self, *, Points: NDArray[np.float64]) -> NDArray[np.float64]\n\nReturns the pinhole pixels ((N, 2)) that this camera's image pixels Points ((N, 2)) show: the inverse\nof DistortPixels, as cv2.undistortPoints(..., P=K) computes it.");
+            "UndistortPixels(self, *, Points: NDArray[np.float64]) -> NDArray[np.float64]\n\nReturns the pinhole pixels ((N, 2)) that this camera's image pixels Points ((N, 2)) show: the inverse\nof DistortPixels (cv2.undistortPoints(..., P=K) approximates it), solved to about 1e-10 pixels; NaN\nfor a pixel no ray shows (past where a strong barrel distortion folds over; such pixels render empty).");
         cls.def(
             "SetApertureFNumber",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewApertureFNumber, const py::kwargs& extra) -> py::object {

@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "3df2edf68295a048"
+API_HASH = "2559419e09b2c1fe"

@@ -78,12 +78,87 @@ TEST(Lens, RemapTakesEachPixelFromTheRenderedPixelItsRayFallsIn) {
         }
 }
 
-TEST(Lens, AFoldingLensIsRefusedNamingTheCaller) {
-    LensModel model = lens(-0.9, 0.0, 0.0, 0.0, 0.0);
-    model.fx = model.fy = 20.0; // a very wide view: the model folds over inside the image
+// Checks, on a grid of lens pixels, that each valid one shows the rendered pixel holding its ray, and counts
+// the pixels that show none.
+int checkRemap(const LensModel& model, int width, int height) {
+    const LensRemap remap(model, width, height, "test");
+    std::vector<std::uint32_t> source(std::size_t(remap.sourceWidth()) * std::size_t(remap.sourceHeight()));
+    for (std::size_t i = 0; i < source.size(); ++i)
+        source[i] = std::uint32_t(i) + 1; // 0 is "no ray"
+    std::vector<std::uint32_t> image(std::size_t(width) * std::size_t(height));
+    remap.apply(reinterpret_cast<const std::byte*>(source.data()), reinterpret_cast<std::byte*>(image.data()),
+                sizeof(std::uint32_t));
+    int empty = 0;
+    for (int v = 0; v < height; ++v)
+        for (int u = 0; u < width; ++u) {
+            const std::uint32_t shown = image[std::size_t(v) * std::size_t(width) + std::size_t(u)];
+            const auto ray =
+                model.undistortNormalizedIfAny({(u - model.cx) / model.fx, (v - model.cy) / model.fy});
+            EXPECT_EQ(shown == 0, !ray.has_value()) << u << ", " << v;
+            if (!ray) {
+                ++empty;
+                continue;
+            }
+            EXPECT_TRUE(model.distortNormalized(*ray).isApprox(
+                Eigen::Vector2d((u - model.cx) / model.fx, (v - model.cy) / model.fy), 1e-9));
+            const double su = model.fx * ray->x() + 0.5 * (remap.sourceWidth() - 1);
+            const double sv = model.fx * ray->y() + 0.5 * (remap.sourceHeight() - 1);
+            const std::uint32_t index = shown - 1;
+            EXPECT_LE(std::abs(double(index % std::uint32_t(remap.sourceWidth())) - su), 0.5)
+                << u << ", " << v;
+            EXPECT_LE(std::abs(double(index / std::uint32_t(remap.sourceWidth())) - sv), 0.5)
+                << u << ", " << v;
+        }
+    return empty;
+}
+
+TEST(Lens, AMildBarrelPastItsFoldLeavesTheCornersEmptyAndTheRenderSmall) {
+    // 90 degrees, K1 = -0.1: the model folds at r = 1.83 before the corners' 1.25 distorted radius is reached
+    // (its largest distorted radius is 1.22), so the corners show no ray.
+    LensModel model = lens(-0.1, 0.0, 0.0, 0.0, 0.0);
+    model.fx = model.fy = 320.0;
+    model.cx = 319.5;
+    model.cy = 239.5;
+    const LensRemap remap(model, 640, 480, "test");
+    EXPECT_LE(remap.sourceWidth(), 2 * 640);
+    EXPECT_LE(remap.sourceHeight(), 2 * 480);
+    const int empty = checkRemap(model, 640, 480);
+    EXPECT_GT(empty, 0);
+    EXPECT_LT(empty, 640 * 480 / 50);
+}
+
+TEST(Lens, AStrongPincushionIsInvertedEverywhere) {
+    // 120 degrees, K1 = 1: k1 r^2 reaches 4 at the corners, where a fixed-point inverse diverges.
+    LensModel model = lens(1.0, 0.0, 0.0, 0.0, 0.0);
+    model.fx = model.fy = 320.0 / std::tan(M_PI / 3.0);
+    model.cx = 319.5;
+    model.cy = 239.5;
+    EXPECT_EQ(checkRemap(model, 640, 480), 0);
+}
+
+TEST(Lens, AWholePixelOffsetMapsPixelCentresExactly) {
+    LensModel model = lens(0.0, 0.0, 0.0, 0.0, 0.0);
+    model.cx = 0.5 * (31 - 1) + 4.0;
+    model.cy = 0.5 * (20 - 1) - 3.0;
+    const LensRemap remap(model, 31, 20, "test");
+    EXPECT_EQ((remap.sourceWidth() - 31) % 2, 0);
+    EXPECT_EQ((remap.sourceHeight() - 20) % 2, 0);
+    for (int v = 0; v < 20; ++v)
+        for (int u = 0; u < 31; ++u) {
+            const double su = u - model.cx + 0.5 * (remap.sourceWidth() - 1);
+            const double sv = v - model.cy + 0.5 * (remap.sourceHeight() - 1);
+            EXPECT_EQ(su, std::round(su));
+            EXPECT_EQ(sv, std::round(sv));
+        }
+    EXPECT_EQ(checkRemap(model, 31, 20), 0);
+}
+
+TEST(Lens, ARenderTooLargeIsRefusedNamingTheCaller) {
+    LensModel model = lens(0.0, 0.0, 0.0, 0.0, 0.0);
+    model.cx = 20000.0; // the image far off the axis: rays near 90 degrees
     try {
         LensRemap remap(model, 167, 116, "UCameraSensorComponent 'Cam'");
-        FAIL() << "a folding lens was accepted";
+        FAIL() << "a render of " << remap.sourceWidth() << "x" << remap.sourceHeight() << " was accepted";
     } catch (const InvalidArgument& error) {
         EXPECT_NE(std::string(error.what()).find("UCameraSensorComponent 'Cam': the lens"), std::string::npos)
             << error.what();
