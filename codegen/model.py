@@ -74,6 +74,7 @@ class Class:
     header: str
     doc: str
     parent: str | None = None
+    parent_cpp: str | None = None  # the parent, fully qualified (C++ code names it from outside its namespace)
     abstract: bool = False
     properties: tuple[Property, ...] = ()
     functions: tuple[Function, ...] = ()
@@ -162,7 +163,8 @@ def _module_from_dict(d: dict[str, Any]) -> Module:
         classes.append(
             Class(
                 name=c["name"], cpp_name=c["cpp_name"], kind=c["kind"], header=c["header"], doc=c["doc"],
-                parent=c["parent"], abstract=c["abstract"], properties=props, functions=funcs,
+                parent=c["parent"], parent_cpp=c["parent_cpp"], abstract=c["abstract"], properties=props,
+                functions=funcs,
                 specifiers=_pairs(c["specifiers"]),
             )
         )

@@ -248,7 +248,7 @@ class Scanner:
         has_body = any(_kind(c) == ci.CursorKind.CXX_METHOD and c.spelling == BODY_MARKER for c in decl.get_children())
         if not has_body:
             raise self._error(decl, f"'{name}' is marked SP{kind.upper()}() but has no SP_GENERATED_BODY()")
-        parent = self._parent(kind, decl)
+        parent, parent_cpp = self._parent(kind, decl)
         self._record_kind = kind
         properties: list[Property] = []
         functions: list[Function] = []
@@ -280,12 +280,13 @@ class Scanner:
             raise self._error(decl, f"'{name}' needs a public default constructor, or SPCLASS(Abstract)")
         return Class(
             name=name, cpp_name=qualified_name(decl), kind=kind, header=self._rel(decl.location.file.name),  # type: ignore[arg-type]
-            doc=clean_doc(decl.raw_comment), parent=parent, abstract=abstract, properties=tuple(properties),
+            doc=clean_doc(decl.raw_comment), parent=parent, parent_cpp=parent_cpp, abstract=abstract, properties=tuple(properties),
             functions=tuple(functions), specifiers=spec,
         )
 
-    def _parent(self, kind: str, decl: ci.Cursor) -> str | None:
-        reflected_bases = []
+    def _parent(self, kind: str, decl: ci.Cursor) -> tuple[str | None, str | None]:
+        """The reflected base: its name, and its fully qualified name."""
+        reflected_bases: list[ci.Cursor] = []
         derives_object_base = False
         for base in decl.get_children():
             if _kind(base) != ci.CursorKind.CXX_BASE_SPECIFIER:
@@ -294,12 +295,15 @@ class Scanner:
             if qualified_name(base_decl) == "sp::reflect::ObjectBase":
                 derives_object_base = True
             elif self._reflected_kind(base_decl) == kind:
-                reflected_bases.append(base_decl.spelling)
+                reflected_bases.append(base_decl)
         if len(reflected_bases) > 1:
-            raise self._error(decl, f"'{decl.spelling}' has more than one reflected base: {', '.join(reflected_bases)}")
+            names = ", ".join(b.spelling for b in reflected_bases)
+            raise self._error(decl, f"'{decl.spelling}' has more than one reflected base: {names}")
         if kind == "class" and not reflected_bases and not derives_object_base:
             raise self._error(decl, f"SPCLASS '{decl.spelling}' must derive from UObject (or another reflected class)")
-        return reflected_bases[0] if reflected_bases else None
+        if not reflected_bases:
+            return None, None
+        return reflected_bases[0].spelling, qualified_name(reflected_bases[0])
 
     @staticmethod
     def _default_constructible(decl: ci.Cursor) -> bool:
@@ -409,10 +413,44 @@ class Scanner:
 
     @staticmethod
     def _default(arg: ci.Cursor) -> str | None:
-        tokens = [t.spelling for t in arg.get_tokens()]
-        if "=" not in tokens:
+        """The default argument's expression, with the names it refers to spelled in full: the generated code
+        that uses it is outside the namespace the function is declared in ("EGait::Run" in namespace acme
+        becomes "acme::EGait::Run")."""
+        tokens = list(arg.get_tokens())
+        spellings = [t.spelling for t in tokens]
+        if "=" not in spellings:
             return None
-        return _join_tokens(tokens[tokens.index("=") + 1:])
+        start = spellings.index("=") + 1
+        spans: dict[int, tuple[int, str]] = {}  # first token -> (last token, qualified name)
+        for node in arg.walk_preorder():
+            if _kind(node) not in (ci.CursorKind.DECL_REF_EXPR, ci.CursorKind.TYPE_REF) or node.referenced is None:
+                continue
+            covered = [i for i in range(start, len(tokens))
+                       if tokens[i].extent.start.offset >= node.extent.start.offset
+                       and tokens[i].extent.end.offset <= node.extent.end.offset]
+            if not covered:
+                continue
+            first, last = covered[0], covered[-1]
+            if _kind(node) == ci.CursorKind.DECL_REF_EXPR:  # its name is the last token, after any qualifiers
+                first = next((i for i in covered if spellings[i] == node.referenced.spelling), first)
+                last = first
+            while first - 2 >= start and spellings[first - 1] == "::" and spellings[first - 2].isidentifier():
+                first -= 2  # a qualifier spelled before the name
+            if any(f <= first and last <= l for f, (l, _) in spans.items()):
+                continue  # inside a name already taken
+            spans[first] = (last, qualified_name(node.referenced))
+        out: list[str] = []
+        i = start
+        while i < len(tokens):
+            if i in spans:
+                last, qualified = spans[i]
+                spelled = "".join(spellings[i:last + 1])
+                out.append(spelled if spelled == qualified else qualified)
+                i = last + 1
+            else:
+                out.append(spellings[i])
+                i += 1
+        return _join_tokens(out)
 
     def _check_functions(self, decl: ci.Cursor, functions: list[Function]) -> None:
         seen: set[str] = set()

@@ -18,7 +18,7 @@ from codegen.model import Module  # noqa: E402
 CASES = ROOT / "tests/codegen/cases"
 NEGATIVE = ROOT / "tests/codegen/negative"
 # Extra generator arguments of a golden case: the plugin case is generated as a plugin package would be.
-CASE_ARGS = {"plugin_actor": ["--package", "plugin_actor"]}
+CASE_ARGS = {"plugin_actor": ["--package", "plugin_actor"], "namespaced_plugin": ["--package", "namespaced_plugin"]}
 
 
 def _diff(expected: bytes, actual: bytes, name: str) -> str:
@@ -41,6 +41,29 @@ def test_golden_case(case: str, tmp_path: Path) -> None:
     assert sorted(actual) == sorted(expected)
     diffs = [_diff(expected[n], actual[n], n) for n in sorted(actual) if actual[n] != expected[n]]
     assert not diffs, "generated output differs from the golden files (SPEAR_UPDATE_GOLDEN=1 to accept):\n" + "\n".join(diffs)
+
+
+def test_generated_cpp_of_a_namespaced_plugin_compiles(tmp_path: Path) -> None:
+    """Classes in a namespace, one deriving from another, with defaults spelled as inside the namespace: the
+    generated C++ (outside it) names them in full. Checked by the compiler, not by reading."""
+    import subprocess
+
+    compiler = shutil.which("c++")
+    if compiler is None:
+        pytest.skip("no C++ compiler")
+    out = tmp_path / "generated"
+    result = run_codegen("generate", "namespaced_plugin", out, ["tests/codegen/cases/namespaced_plugin/input.h"],
+                         extra=CASE_ARGS["namespaced_plugin"])
+    assert result.returncode == 0, result.stderr
+    import pybind11  # type: ignore[import-untyped]
+    import sysconfig
+
+    flags = ["-std=c++20", "-fsyntax-only", f"-I{ROOT}", f"-I{tmp_path}", "-isystem", "/usr/include/eigen3",
+             "-isystem", pybind11.get_include(), "-isystem", sysconfig.get_paths()["include"]]
+    for source in sorted((out / "namespaced_plugin" / "cpp").glob("*.cpp")):
+        # The generated files include each other as generated/<module>/cpp/..., from the output's parent.
+        compiled = subprocess.run([compiler, *flags, str(source)], capture_output=True, text=True, check=False)
+        assert compiled.returncode == 0, f"{source.name}:\n{compiled.stderr[-3000:]}"
 
 
 @pytest.mark.parametrize("header", sorted(p.name for p in NEGATIVE.glob("*.h")))

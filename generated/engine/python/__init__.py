@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "2559419e09b2c1fe"
+API_HASH = "aa8faaf2d4f7618f"

@@ -25,4 +25,4 @@ extern "C" void spear_unregister_all_types_types() {
     registry.remove(sp::reflect::StaticEnum<EChannel>());
 }
 
-extern "C" const char* spear_register_all_types_types_api_hash() { return "e349d0bd951eaeee"; }
+extern "C" const char* spear_register_all_types_types_api_hash() { return "ec70b4e174520a3a"; }

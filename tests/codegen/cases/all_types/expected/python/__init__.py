@@ -2,4 +2,4 @@
 """Typed API of the 'all_types' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "all_types"
-API_HASH = "e349d0bd951eaeee"
+API_HASH = "ec70b4e174520a3a"

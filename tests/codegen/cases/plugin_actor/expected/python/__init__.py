@@ -2,4 +2,4 @@
 """Typed API of the 'plugin_actor' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "plugin_actor"
-API_HASH = "bd060b92f0926e7c"
+API_HASH = "13cb484572ccd904"
