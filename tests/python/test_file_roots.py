@@ -148,3 +148,32 @@ def test_relative_paths_mean_the_users_directory_in_process_and_on_a_launched_se
     with instance.end_frame():
         pass
     assert json.loads((tmp_path / "relative.json").read_text())["format"] == "spear.scene"
+
+
+def test_render_jobs_write_inside_the_roots_only(confined: tuple[spear.Instance, Path, int], tmp_path: Path) -> None:
+    instance, root, _ = confined
+    game = instance.get_game()
+    outside = tmp_path / "elsewhere"
+    with instance.begin_frame():
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera").CameraSensor
+        camera.Width, camera.Height = 16, 12
+        queue = spear.UMoviePipelineQueueEngineSubsystem.GetMoviePipelineQueueEngineSubsystem(WorldContextObject=game)
+        jobs = []
+        for name, folder in [("outside", outside), ("inside", root / "frames")]:
+            job = queue.AllocateJob(Camera=camera, JobName=name)
+            job.SetConfiguration(Configuration=spear.FMoviePipelineConfiguration(
+                OutputDirectory=str(folder), Modalities=[spear.ECameraModality.Depth], FrameEnd=2))
+            queue.RenderJob(Job=job)
+            jobs.append(job)
+    with instance.end_frame():
+        pass
+    with instance.begin_frame():
+        pass
+    with instance.end_frame():
+        refused, kept = jobs
+        assert refused.GetStatus() == spear.EMoviePipelineJobStatus.Failed
+        assert refused.GetErrorMessage() == outside_message(
+            "UMoviePipelineQueueEngineSubsystem.RenderJob()", "output folder", str(outside), root)
+        assert kept.GetStatus() == spear.EMoviePipelineJobStatus.Finished
+    assert not outside.exists()
+    assert sorted(p.name for p in (root / "frames" / "depth").iterdir()) == ["0000.exr", "0001.exr"]
