@@ -432,10 +432,12 @@ class Scanner:
                 continue
             first, last = covered[0], covered[-1]
             if _kind(node) == ci.CursorKind.DECL_REF_EXPR:  # its name is the last token, after any qualifiers
-                first = next((i for i in covered if spellings[i] == node.referenced.spelling), first)
+                first = next((i for i in reversed(covered) if spellings[i] == node.referenced.spelling), last)
                 last = first
             while first - 2 >= start and spellings[first - 1] == "::" and spellings[first - 2].isidentifier():
                 first -= 2  # a qualifier spelled before the name
+            if first - 1 >= start and spellings[first - 1] == "::":
+                continue  # qualified by something other than names (a template's arguments): kept as written
             if any(f <= first and last <= l for f, (l, _) in spans.items()):
                 continue  # inside a name already taken
             spans[first] = (last, qualified_name(node.referenced))
@@ -445,7 +447,8 @@ class Scanner:
             if i in spans:
                 last, qualified = spans[i]
                 spelled = "".join(spellings[i:last + 1])
-                out.append(spelled if spelled == qualified else qualified)
+                # Only qualifiers are added: a name spelled another way (an alias) is kept as written.
+                out.append(qualified if qualified.endswith("::" + spelled) else spelled)
                 i = last + 1
             else:
                 out.append(spellings[i])
