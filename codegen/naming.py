@@ -6,6 +6,7 @@ Templates hold loops and holes only; anything that needs a decision is a functio
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 
 from codegen.model import Class, Function, Module, Param, Property, TypeRef
 
@@ -16,8 +17,18 @@ ENGINE_PACKAGE = "spear._engine"
 
 # -- Python spellings ------------------------------------------------------------------------------
 
-def py_type(t: TypeRef, *, nullable_objects: bool = True, result: bool = False) -> str:
-    """The Python annotation for a type, as used in stubs, proxies and runtime type strings.
+# How a module spells the name of a reflected class: as it is (the API module), or through another module
+# (the RPC module writes its own module's object classes api.X, its names being proxies).
+Qualifier = Callable[[str], str]
+
+
+def _as_is(name: str) -> str:
+    return name
+
+
+def py_type(t: TypeRef, *, nullable_objects: bool = True, result: bool = False, qualify: Qualifier = _as_is) -> str:
+    """The Python annotation for a type, as used in stubs, proxies and runtime type strings; `qualify`
+    spells the object classes' names.
 
     Class references are accepted as a class or its name, and returned as the class (or None)."""
     if t.kind == "void":
@@ -27,32 +38,32 @@ def py_type(t: TypeRef, *, nullable_objects: bool = True, result: bool = False) 
     if t.kind in ("enum", "struct"):
         return t.name
     if t.kind == "object":
-        return f"{t.name} | None" if nullable_objects else t.name
+        return f"{qualify(t.name)} | None" if nullable_objects else qualify(t.name)
     if t.kind == "class":
-        return f"type[{t.name}] | None" if result else f"type[{t.name}] | str"
+        return f"type[{qualify(t.name)}] | None" if result else f"type[{qualify(t.name)}] | str"
     if t.kind == "list":
-        return f"list[{py_type(t.args[0], nullable_objects=False, result=result)}]"
+        return f"list[{py_type(t.args[0], nullable_objects=False, result=result, qualify=qualify)}]"
     if t.kind == "dict":
-        return f"dict[str, {py_type(t.args[0], nullable_objects=False, result=result)}]"
+        return f"dict[str, {py_type(t.args[0], nullable_objects=False, result=result, qualify=qualify)}]"
     if t.kind == "array":
         return f"NDArray[np.{t.name}]"
     raise ValueError(f"unknown type kind {t.kind}")
 
 
-def property_py_type(p: Property) -> str:
-    return py_type(p.type, nullable_objects=not p.not_null, result=True)
+def property_py_type(p: Property, qualify: Qualifier = _as_is) -> str:
+    return py_type(p.type, nullable_objects=not p.not_null, result=True, qualify=qualify)
 
 
-def param_py_type(p: Param) -> str:
+def param_py_type(p: Param, qualify: Qualifier = _as_is) -> str:
     """Object parameters are required unless their default is nullptr."""
     nullable = p.default_cpp == "nullptr"
     if p.type.kind in ("object", "class"):
-        base = py_type(p.type, nullable_objects=False)
+        base = py_type(p.type, nullable_objects=False, qualify=qualify)
         return f"{base} | None" if nullable else base
-    return py_type(p.type)
+    return py_type(p.type, qualify=qualify)
 
 
-def return_py_type(f: Function, typevar: str | None = None) -> str:
+def return_py_type(f: Function, typevar: str | None = None, qualify: Qualifier = _as_is) -> str:
     """The result annotation; with DeterminesOutputType the class part becomes the type variable."""
     t = f.returns
     outs = out_params(f)
@@ -67,10 +78,10 @@ def return_py_type(f: Function, typevar: str | None = None) -> str:
             return f"type[{typevar}]" if f.not_null else f"type[{typevar}] | None"
         return typevar if f.not_null else f"{typevar} | None"
     if t.kind == "object" and f.not_null:
-        return t.name
+        return qualify(t.name)
     if t.kind == "class" and f.not_null:
-        return f"type[{t.name}]"
-    return py_type(t, result=True)
+        return f"type[{qualify(t.name)}]"
+    return py_type(t, result=True, qualify=qualify)
 
 
 def result_tuple_name(f: Function) -> str:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import re
 from typing import Any
 
 from codegen import naming, specifiers
@@ -39,14 +38,13 @@ def _field_default(p: Property, enums: dict[str, str], default_cpp: str | None) 
     raise ValueError(f"struct field {p.name} of kind {t.kind} has no Python default")
 
 
-def api_qualified(type_string: str, object_names: set[str]) -> str:
-    """A type spelling with the module's object classes written api.X, for the RPC module, whose own names
-    are proxies. (Other modules' classes keep their names: rpc.py imports them from their API module.)"""
-    return re.sub(r"\b[A-Za-z_]\w*\b", lambda m: f"api.{m.group(0)}" if m.group(0) in object_names else m.group(0),
-                  type_string)
+def rpc_qualifier(object_names: set[str]) -> naming.Qualifier:
+    """How the RPC module spells a class: its own module's object classes as api.X (its own names are
+    proxies); other modules' classes keep their names (rpc.py imports them from their API module)."""
+    return lambda name: f"api.{name}" if name in object_names else name
 
 
-def _function_view(c: Class, f: Function, enums: set[str]) -> dict[str, Any]:
+def _function_view(c: Class, f: Function, enums: set[str], rpc: naming.Qualifier) -> dict[str, Any]:
     ins = naming.in_params(f)
     params = []
     for p in ins:
@@ -54,6 +52,7 @@ def _function_view(c: Class, f: Function, enums: set[str]) -> dict[str, Any]:
         params.append({
             "name": p.name,
             "type": naming.param_py_type(p),
+            "rpc_type": naming.param_py_type(p, rpc),
             "stub_default": (" = " + default) if default is not None else (" = ..." if p.default_cpp else ""),
             "proxy_default": " = _DEFAULT" if p.default_cpp is not None else "",
         })
@@ -69,18 +68,23 @@ def _function_view(c: Class, f: Function, enums: set[str]) -> dict[str, Any]:
         base = target.type.name
         tv = _typevar(base)
         inner = f.returns.args[0] if f.returns.kind in ("list", "dict") else f.returns
-        for uclass_type, ret in ((f"type[{tv}]", naming.return_py_type(f, tv)),
-                                 ("str", naming.return_py_type(f, inner.name))):
+        for uclass_type, ret, rpc_ret in (
+                (f"type[{tv}]", naming.return_py_type(f, tv), naming.return_py_type(f, tv)),
+                ("str", naming.return_py_type(f, inner.name), naming.return_py_type(f, rpc(inner.name)))):
             overloads.append({
-                "params": [dict(p, type=uclass_type) if p["name"] == target.name else p for p in params],
+                "params": [dict(p, type=uclass_type, rpc_type=uclass_type) if p["name"] == target.name else p
+                           for p in params],
                 "returns": ret,
+                "rpc_returns": rpc_ret,
             })
-    returns = f"{c.name}.{naming.result_tuple_name(f)}" if outs else naming.return_py_type(f)
+    result = naming.result_tuple_name(f)
+    returns = f"{c.name}.{result}" if outs else naming.return_py_type(f)
     return {
         "name": f.name,
         "doc": naming.py_docstring(f.doc, " " * 8),
         "params": params,
         "returns": returns,
+        "rpc_returns": f"{rpc(c.name)}.{result}" if outs else naming.return_py_type(f, qualify=rpc),
         "result_name": naming.result_tuple_name(f),
         "result_fields": result_fields,
         "overloads": overloads,
@@ -90,10 +94,11 @@ def _function_view(c: Class, f: Function, enums: set[str]) -> dict[str, Any]:
     }
 
 
-def _property_view(p: Property) -> dict[str, Any]:
+def _property_view(p: Property, rpc: naming.Qualifier) -> dict[str, Any]:
     return {
         "name": p.name,
         "type": naming.property_py_type(p),
+        "rpc_type": naming.property_py_type(p, rpc),
         "read_only": p.read_only,
         "doc": naming.py_docstring(p.doc, " " * 8),
     }
@@ -123,7 +128,7 @@ def module_view(module: Module) -> dict[str, Any]:
     enums = {e.name: e.entries[0].name for e in module.enums}
     structs: list[dict[str, Any]] = []
     objects: list[dict[str, Any]] = []
-    local_objects = {c.name for c in module.classes if c.kind == "class"}
+    rpc = rpc_qualifier({c.name for c in module.classes if c.kind == "class"})
     names = sorted([e.name for e in module.enums] + [c.name for c in module.classes] +
                    [b.name for b in module.blueprints])
     # Types of other modules (a plugin's API mentions AActor, FVector, ...) come from the engine's API.
@@ -148,20 +153,9 @@ def module_view(module: Module) -> dict[str, Any]:
                 "parent": c.parent or "_SpObject",
                 "rpc_parent": _proxy_parent(c, referenced),
                 "doc": naming.py_docstring(c.doc, "    "),
-                "properties": [_property_view(p) for p in c.properties],
-                "functions": [_function_view(c, f, set(enums)) for f in c.functions],
+                "properties": [_property_view(p, rpc) for p in c.properties],
+                "functions": [_function_view(c, f, set(enums), rpc) for f in c.functions],
             })
-    for view in objects:
-        for p in view["properties"]:
-            p["rpc_type"] = api_qualified(p["type"], local_objects)
-        for f in view["functions"]:
-            f["rpc_returns"] = api_qualified(f["returns"], local_objects)
-            for q in f["params"]:
-                q["rpc_type"] = api_qualified(q["type"], local_objects)
-            for o in f["overloads"]:
-                o["rpc_returns"] = api_qualified(o["returns"], local_objects)
-                for q in o["params"]:
-                    q["rpc_type"] = api_qualified(q["type"], local_objects)
     enum_views = [
         {
             "name": e.name,
@@ -185,7 +179,7 @@ def module_view(module: Module) -> dict[str, Any]:
         "structs": structs,
         "objects": objects,
         "enums": enum_views,
-        "typevars": [dict(t, rpc_bound=api_qualified(t["bound"], local_objects)) for t in typevars(module)],
+        "typevars": [dict(t, rpc_bound=rpc(t["bound"])) for t in typevars(module)],
         "all_names": names,
         "has_static_functions": any(f.is_static for c in module.classes for f in c.functions),
     }
