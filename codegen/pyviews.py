@@ -1,11 +1,116 @@
-"""Views of the IR for the Python templates (api.py, api.pyi, rpc.py)."""
+"""Views of the IR for the Python templates (api.py, api.pyi, rpc.py): frozen dataclasses built here, each
+type spelled twice, as the API module and as the RPC module (whose own object classes are api.X)."""
 
 from __future__ import annotations
 
+import dataclasses
+from dataclasses import dataclass
 from typing import Any
 
 from codegen import naming, specifiers
 from codegen.model import Class, Function, Module, Property
+
+
+@dataclass(frozen=True)
+class ParamView:
+    name: str
+    type: str
+    rpc_type: str
+    stub_default: str  # " = value", " = ..." or ""
+    proxy_default: str  # " = _DEFAULT" or ""
+
+
+@dataclass(frozen=True)
+class OverloadView:
+    params: tuple[ParamView, ...]
+    returns: str
+    rpc_returns: str
+
+
+@dataclass(frozen=True)
+class FieldView:
+    name: str
+    type: str
+    default: str = ""  # a dataclass field's default ("" for a TypedDict's)
+
+
+@dataclass(frozen=True)
+class FunctionView:
+    name: str
+    doc: str
+    params: tuple[ParamView, ...]
+    returns: str
+    rpc_returns: str
+    result_name: str
+    result_fields: tuple[FieldView, ...]
+    overloads: tuple[OverloadView, ...]
+    is_static: bool
+    type_string: str
+    arg_names: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class PropertyView:
+    name: str
+    type: str
+    rpc_type: str
+    read_only: bool
+    doc: str
+
+
+@dataclass(frozen=True)
+class ObjectView:
+    name: str
+    parent: str
+    rpc_parent: str
+    doc: str
+    properties: tuple[PropertyView, ...]
+    functions: tuple[FunctionView, ...]
+
+
+@dataclass(frozen=True)
+class StructView:
+    name: str
+    typed_dict: bool
+    partial: bool
+    doc: str
+    fields: tuple[FieldView, ...]
+
+
+@dataclass(frozen=True)
+class EnumEntryView:
+    name: str
+    value: int
+    doc: str
+
+
+@dataclass(frozen=True)
+class EnumView:
+    name: str
+    doc: str
+    entries: tuple[EnumEntryView, ...]
+
+
+@dataclass(frozen=True)
+class BlueprintView:
+    name: str
+    parent: str
+    asset: str
+    doc_literal: str
+    doc: str
+
+
+@dataclass(frozen=True)
+class TypeVarView:
+    name: str
+    bound: str
+    rpc_bound: str
+
+
+@dataclass(frozen=True)
+class ForeignProxyView:
+    name: str
+    alias: str
 
 
 def _typevar(base: str) -> str:
@@ -44,24 +149,24 @@ def rpc_qualifier(object_names: set[str]) -> naming.Qualifier:
     return lambda name: f"api.{name}" if name in object_names else name
 
 
-def _function_view(c: Class, f: Function, enums: set[str], rpc: naming.Qualifier) -> dict[str, Any]:
+def _function_view(c: Class, f: Function, enums: set[str], rpc: naming.Qualifier) -> FunctionView:
     ins = naming.in_params(f)
     params = []
     for p in ins:
         default = naming.py_default(p, enums)
-        params.append({
-            "name": p.name,
-            "type": naming.param_py_type(p),
-            "rpc_type": naming.param_py_type(p, rpc),
-            "stub_default": (" = " + default) if default is not None else (" = ..." if p.default_cpp else ""),
-            "proxy_default": " = _DEFAULT" if p.default_cpp is not None else "",
-        })
+        params.append(ParamView(
+            name=p.name,
+            type=naming.param_py_type(p),
+            rpc_type=naming.param_py_type(p, rpc),
+            stub_default=(" = " + default) if default is not None else (" = ..." if p.default_cpp else ""),
+            proxy_default=" = _DEFAULT" if p.default_cpp is not None else "",
+        ))
     outs = naming.out_params(f)
     result_fields = []
     if outs:
         if f.returns.kind != "void":
-            result_fields.append({"name": "ReturnValue", "type": naming.py_type(f.returns, result=True)})
-        result_fields += [{"name": p.name, "type": naming.py_type(p.type, result=True)} for p in outs]
+            result_fields.append(FieldView(name="ReturnValue", type=naming.py_type(f.returns, result=True)))
+        result_fields += [FieldView(name=p.name, type=naming.py_type(p.type, result=True)) for p in outs]
     overloads = []
     if f.determines_output_type:
         target = next(p for p in f.params if p.name == f.determines_output_type)
@@ -71,45 +176,45 @@ def _function_view(c: Class, f: Function, enums: set[str], rpc: naming.Qualifier
         for uclass_type, ret, rpc_ret in (
                 (f"type[{tv}]", naming.return_py_type(f, tv), naming.return_py_type(f, tv)),
                 ("str", naming.return_py_type(f, inner.name), naming.return_py_type(f, rpc(inner.name)))):
-            overloads.append({
-                "params": [dict(p, type=uclass_type, rpc_type=uclass_type) if p["name"] == target.name else p
-                           for p in params],
-                "returns": ret,
-                "rpc_returns": rpc_ret,
-            })
+            overloads.append(OverloadView(
+                params=tuple(dataclasses.replace(p, type=uclass_type, rpc_type=uclass_type)
+                             if p.name == target.name else p for p in params),
+                returns=ret,
+                rpc_returns=rpc_ret,
+            ))
     result = naming.result_tuple_name(f)
     returns = f"{c.name}.{result}" if outs else naming.return_py_type(f)
-    return {
-        "name": f.name,
-        "doc": naming.py_docstring(f.doc, " " * 8),
-        "params": params,
-        "returns": returns,
-        "rpc_returns": f"{rpc(c.name)}.{result}" if outs else naming.return_py_type(f, qualify=rpc),
-        "result_name": naming.result_tuple_name(f),
-        "result_fields": result_fields,
-        "overloads": overloads,
-        "is_static": f.is_static,
-        "type_string": returns if not outs else "dict",
-        "arg_names": [p.name for p in ins],
-    }
+    return FunctionView(
+        name=f.name,
+        doc=naming.py_docstring(f.doc, " " * 8),
+        params=tuple(params),
+        returns=returns,
+        rpc_returns=f"{rpc(c.name)}.{result}" if outs else naming.return_py_type(f, qualify=rpc),
+        result_name=result,
+        result_fields=tuple(result_fields),
+        overloads=tuple(overloads),
+        is_static=f.is_static,
+        type_string=returns if not outs else "dict",
+        arg_names=tuple(p.name for p in ins),
+    )
 
 
-def _property_view(p: Property, rpc: naming.Qualifier) -> dict[str, Any]:
-    return {
-        "name": p.name,
-        "type": naming.property_py_type(p),
-        "rpc_type": naming.property_py_type(p, rpc),
-        "read_only": p.read_only,
-        "doc": naming.py_docstring(p.doc, " " * 8),
-    }
+def _property_view(p: Property, rpc: naming.Qualifier) -> PropertyView:
+    return PropertyView(
+        name=p.name,
+        type=naming.property_py_type(p),
+        rpc_type=naming.property_py_type(p, rpc),
+        read_only=p.read_only,
+        doc=naming.py_docstring(p.doc, " " * 8),
+    )
 
 
-def typevars(module: Module) -> list[dict[str, str]]:
+def typevars(module: Module, rpc: naming.Qualifier) -> list[TypeVarView]:
     bases = sorted({
         next(p for p in f.params if p.name == f.determines_output_type).type.name
         for c in module.classes for f in c.functions if f.determines_output_type
     })
-    return [{"name": _typevar(b), "bound": b} for b in bases]
+    return [TypeVarView(name=_typevar(b), bound=b, rpc_bound=rpc(b)) for b in bases]
 
 
 def _proxy_parent(c: Class, foreign: set[str]) -> str:
@@ -126,8 +231,8 @@ def _proxy_alias(name: str) -> str:
 
 def module_view(module: Module) -> dict[str, Any]:
     enums = {e.name: e.entries[0].name for e in module.enums}
-    structs: list[dict[str, Any]] = []
-    objects: list[dict[str, Any]] = []
+    structs: list[StructView] = []
+    objects: list[ObjectView] = []
     rpc = rpc_qualifier({c.name for c in module.classes if c.kind == "class"})
     names = sorted([e.name for e in module.enums] + [c.name for c in module.classes] +
                    [b.name for b in module.blueprints])
@@ -136,50 +241,50 @@ def module_view(module: Module) -> dict[str, Any]:
     for c in naming.topo_classes(module):
         if c.kind == "struct":
             typed_dict = specifiers.has(c.specifiers, "TypedDict")
-            structs.append({
-                "name": c.name,
-                "typed_dict": typed_dict,
-                "partial": specifiers.has(c.specifiers, "Partial"),
-                "doc": naming.py_docstring(c.doc, "    "),
-                "fields": [
-                    {"name": p.name, "type": naming.py_type(p.type),
-                     "default": "" if typed_dict else _field_default(p, enums, p.default_cpp)}
+            structs.append(StructView(
+                name=c.name,
+                typed_dict=typed_dict,
+                partial=specifiers.has(c.specifiers, "Partial"),
+                doc=naming.py_docstring(c.doc, "    "),
+                fields=tuple(
+                    FieldView(name=p.name, type=naming.py_type(p.type),
+                              default="" if typed_dict else _field_default(p, enums, p.default_cpp))
                     for p in c.properties
-                ],
-            })
+                ),
+            ))
         else:
-            objects.append({
-                "name": c.name,
-                "parent": c.parent or "_SpObject",
-                "rpc_parent": _proxy_parent(c, referenced),
-                "doc": naming.py_docstring(c.doc, "    "),
-                "properties": [_property_view(p, rpc) for p in c.properties],
-                "functions": [_function_view(c, f, set(enums), rpc) for f in c.functions],
-            })
+            objects.append(ObjectView(
+                name=c.name,
+                parent=c.parent or "_SpObject",
+                rpc_parent=_proxy_parent(c, referenced),
+                doc=naming.py_docstring(c.doc, "    "),
+                properties=tuple(_property_view(p, rpc) for p in c.properties),
+                functions=tuple(_function_view(c, f, set(enums), rpc) for f in c.functions),
+            ))
     enum_views = [
-        {
-            "name": e.name,
-            "doc": naming.py_docstring(e.doc, "    "),
-            "entries": [{"name": x.name, "value": x.value, "doc": naming.py_docstring(x.doc, "    ")}
-                        for x in e.entries],
-        }
+        EnumView(
+            name=e.name,
+            doc=naming.py_docstring(e.doc, "    "),
+            entries=tuple(EnumEntryView(name=x.name, value=x.value, doc=naming.py_docstring(x.doc, "    "))
+                          for x in e.entries),
+        )
         for e in module.enums
     ]
     # A local class whose parent is foreign derives its Async and Send views from the parent's.
     foreign_parents = sorted({c.parent for c in module.classes if c.parent is not None and c.parent in referenced})
     foreign = sorted(referenced | {f"{p}{suffix}" for p in foreign_parents for suffix in ("Async", "Send")})
-    blueprint_views = [{"name": b.name, "parent": b.parent, "asset": b.asset,
-                        "doc_literal": repr(b.doc), "doc": naming.py_docstring(b.doc, "")} for b in module.blueprints]
+    blueprint_views = [BlueprintView(name=b.name, parent=b.parent, asset=b.asset, doc_literal=repr(b.doc),
+                                     doc=naming.py_docstring(b.doc, "")) for b in module.blueprints]
     return {
         "blueprints": blueprint_views,
         "foreign_names": foreign,
         "value_names": sorted([e.name for e in module.enums] + [c.name for c in module.classes if c.kind == "struct"]),
         "foreign_rpc_names": sorted(referenced),
-        "foreign_proxies": [{"name": p, "alias": _proxy_alias(p)} for p in foreign_parents],
+        "foreign_proxies": [ForeignProxyView(name=p, alias=_proxy_alias(p)) for p in foreign_parents],
         "structs": structs,
         "objects": objects,
         "enums": enum_views,
-        "typevars": [dict(t, rpc_bound=rpc(t["bound"])) for t in typevars(module)],
+        "typevars": typevars(module, rpc),
         "all_names": names,
         "has_static_functions": any(f.is_static for c in module.classes for f in c.functions),
     }
