@@ -30,7 +30,7 @@ struct CameraParams {
     double apertureRadius = 0.0;
     double focusDistance = 10.0;
     // Natural vignetting of final_color, in [0, 1]: a pixel's exposure is scaled by
-    // mix(1, cos^4(angle of its ray to the optical axis), vignetteIntensity) (tone.h, vignetteFactor).
+    // mix(1, cos^4(angle of its ray to the optical axis), vignetteIntensity) (tone.h, Vignette).
     float vignetteIntensity = 0.0f;
 
     void validate(const char* function) const;

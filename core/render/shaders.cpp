@@ -195,7 +195,7 @@ vec3 srgbEncode(vec3 c) {
 vec4 toneMapped(vec3 hdr) {
     vec3 x = max(hdr, 0.0) * uExposure.xyz;
 #ifdef VIGNETTE
-    // The cos^4 falloff of the pixel's ray (tone.h, vignetteFactor); row 0 of the image is GL's bottom row.
+    // The cos^4 falloff of the pixel's ray (tone.h, Vignette); row 0 of the image is GL's bottom row.
     vec2 d = (gl_FragCoord.xy - uVignette.zw) / uVignette.y;
     float cos2 = 1.0 / (1.0 + dot(d, d));
     x *= 1.0 + (cos2 * cos2 - 1.0) * uVignette.x;

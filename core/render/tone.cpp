@@ -31,15 +31,17 @@ Eigen::Vector3f whiteBalanceGains(double kelvin) {
     return (gains / luminance).cast<float>();
 }
 
-float vignetteFactor(const CameraParams& params, double u, double v) {
-    if (params.vignetteIntensity == 0.0f)
+Vignette::Vignette(const CameraParams& params)
+    : intensity_(params.vignetteIntensity),
+      focal_(Camera{Eigen::Isometry3d::Identity(), params}.focalLengthPixels()), centreU_(0.5 * params.width),
+      centreV_(0.5 * params.height) {}
+
+float Vignette::operator()(double u, double v) const {
+    if (intensity_ == 0.0f)
         return 1.0f;
-    Camera camera;
-    camera.params = params;
-    const double focal = camera.focalLengthPixels();
-    const double du = (u - 0.5 * params.width) / focal, dv = (v - 0.5 * params.height) / focal;
+    const double du = (u - centreU_) / focal_, dv = (v - centreV_) / focal_;
     const double cos2 = 1.0 / (1.0 + du * du + dv * dv);
-    return float(1.0 + (cos2 * cos2 - 1.0) * params.vignetteIntensity);
+    return float(1.0 + (cos2 * cos2 - 1.0) * intensity_);
 }
 
 float toneMapChannel(float hdr, int channel, const CameraParams& params) {

@@ -17,9 +17,18 @@ float toneMapChannel(float hdr, int channel, const CameraParams& params);
 // luminance. Lower temperatures (tungsten) raise blue, higher ones raise red.
 Eigen::Vector3f whiteBalanceGains(double kelvin);
 
-// The vignetting of the pixel at (u, v) (u right, v down, the pixel (0, 0)'s centre at (0.5, 0.5)):
+// The vignetting of a camera's pixels: at (u, v) (u right, v down, the pixel (0, 0)'s centre at (0.5, 0.5)),
 // mix(1, cos^4 theta, params.vignetteIntensity), theta the angle of the pixel's ray to the optical axis (the
-// cos^4 law of a lens's illumination falloff). The surface shader computes the same.
-float vignetteFactor(const CameraParams& params, double u, double v);
+// cos^4 law of a lens's illumination falloff). The surface shader computes the same. The focal length is
+// worked out once, for images evaluated pixel by pixel.
+class Vignette {
+  public:
+    explicit Vignette(const CameraParams& params);
+    float operator()(double u, double v) const;
+
+  private:
+    float intensity_;
+    double focal_, centreU_, centreV_;
+};
 
 } // namespace sp::render

@@ -286,9 +286,7 @@ std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponen
     auto traced = std::make_shared<TracedImages>();
     traced->samples = image.samples;
     // The pixel's vignetting (1 without), as the surface shader applies it to final_color.
-    const auto vignette = [&](int x, int y) {
-        return sp::render::vignetteFactor(renderCamera.params, x + 0.5, y + 0.5);
-    };
+    const sp::render::Vignette vignette(renderCamera.params);
     for (sp::render::Modality modality : kTracedModalities) {
         if (!modalities.contains(modality))
             continue;
@@ -305,8 +303,8 @@ std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponen
                     switch (modality) {
                     case sp::render::Modality::FinalColor:
                         final[pixel + c] = std::uint8_t(
-                            std::lround(255.0f * sp::render::toneMapChannel(hdr * vignette(x, y), c,
-                                                                            renderCamera.params)));
+                            std::lround(255.0f * sp::render::toneMapChannel(hdr * vignette(x + 0.5, y + 0.5),
+                                                                            c, renderCamera.params)));
                         break;
                     case sp::render::Modality::HdrColor:
                         half[pixel + c] = sp::render::floatToHalf(hdr);
