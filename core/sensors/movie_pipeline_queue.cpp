@@ -88,6 +88,17 @@ std::string cameraFile(const std::string& folder, int32_t frame) {
     return (std::filesystem::path(folder) / "camera" / (frameName(frame) + ".json")).string();
 }
 
+// Every file output frame `frame` writes into `folder`: one per modality, in list order, then the camera
+// file.
+std::vector<std::string> frameFiles(const std::string& folder, const std::vector<ECameraModality>& modalities,
+                                    int32_t frame) {
+    std::vector<std::string> files;
+    for (ECameraModality modality : modalities)
+        files.push_back(imageFile(folder, static_cast<sp::render::Modality>(modality), frame));
+    files.push_back(cameraFile(folder, frame));
+    return files;
+}
+
 nlohmann::json matrix(const sp::reflect::SpArray<double>& array) {
     const std::vector<int64_t>& shape = array.getShape();
     nlohmann::json rows = nlohmann::json::array();
@@ -208,12 +219,7 @@ std::vector<std::string> MoviePipelineQueue::outputFiles(const UMoviePipelineExe
     const std::vector<ECameraModality> modalities =
         active_ && active_->job == &job ? active_->modalities
                                         : effectiveModalities(configuration, findCamera(job.cameraHandle()));
-    std::vector<std::string> files;
-    for (ECameraModality modality : modalities)
-        files.push_back(
-            imageFile(configuration.OutputDirectory, static_cast<sp::render::Modality>(modality), frame));
-    files.push_back(cameraFile(configuration.OutputDirectory, frame));
-    return files;
+    return frameFiles(configuration.OutputDirectory, modalities, frame);
 }
 
 bool MoviePipelineQueue::frameWritten(int32_t frame) const {
@@ -221,11 +227,10 @@ bool MoviePipelineQueue::frameWritten(int32_t frame) const {
     if (run.configuration.bOverwriteExisting)
         return false;
     std::error_code error;
-    for (ECameraModality modality : run.modalities)
-        if (!std::filesystem::is_regular_file(
-                imageFile(run.folder, static_cast<sp::render::Modality>(modality), frame), error))
+    for (const std::string& file : frameFiles(run.folder, run.modalities, frame))
+        if (!std::filesystem::is_regular_file(file, error))
             return false;
-    return std::filesystem::is_regular_file(cameraFile(run.folder, frame), error);
+    return true;
 }
 
 void MoviePipelineQueue::start(UMoviePipelineExecutorJob& job) {
