@@ -6,7 +6,7 @@
 #   lib<name>.so         the plugin's classes and their registry (loaded by the in-process engine and by
 #                        spear-server --plugin, through sp::plugin::load)
 #   _<name>.*.so         the pybind11 bindings used in-process
-#   api.py, api.pyi, rpc.py, __init__.py, py.typed   the typed API (mypy reads api.pyi)
+#   api.py, api.pyi, rpc.py, type_codes.py, __init__.py, py.typed   the typed API (mypy reads api.pyi)
 # Put <PYTHON_DIR> on sys.path (and MYPYPATH) and call spear.Instance.load_plugin("<name>").
 function(spear_add_plugin name)
   cmake_parse_arguments(ARG "" "PYTHON_DIR" "HEADERS;SOURCES;INCLUDE_DIRS" ${ARGN})

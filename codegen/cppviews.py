@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from codegen import naming, specifiers
+from codegen import naming, specifiers, typecodes
 from codegen.model import Class, Enum, Function, Param, Property
 
 
@@ -15,7 +15,7 @@ from codegen.model import Class, Enum, Function, Param, Property
 class ParamView:
     name: str
     name_literal: str
-    type_literal: str
+    type_code: str  # a C++ expression (codegen/typecodes.py)
     has_default: bool
     is_out: bool
     cpp_type: str
@@ -33,7 +33,7 @@ class FunctionView:
     doc: str
     doc_literal: str
     signature_doc_literal: str
-    returns_literal: str
+    returns_code: str
     result_name: str
     params: tuple[ParamView, ...]
     outs: tuple[ParamView, ...]
@@ -55,7 +55,7 @@ class FunctionView:
 class PropertyView:
     name: str
     name_literal: str
-    type_literal: str
+    type_code: str
     doc: str
     doc_literal: str
     read_only: bool
@@ -110,7 +110,7 @@ def param_view(owner: str, f: Function, p: Param) -> ParamView:
     return ParamView(
         name=p.name,
         name_literal=naming.cpp_string(p.name),
-        type_literal=naming.cpp_string(naming.param_py_type(p)),
+        type_code=typecodes.cpp(typecodes.of_param(p)),
         has_default=p.default_cpp is not None,
         is_out=p.is_out,
         cpp_type=p.type.cpp,
@@ -143,7 +143,7 @@ def function_view(c: Class, f: Function) -> FunctionView:
         doc=f.doc,
         doc_literal=naming.cpp_string(f.doc),
         signature_doc_literal=naming.cpp_string(_signature_doc(f)),
-        returns_literal=naming.cpp_string(naming.return_py_type(f)),
+        returns_code=typecodes.cpp(typecodes.of_result(f)),
         result_name=naming.result_tuple_name(f),
         params=params,
         outs=tuple(v for v in params if v.is_out),
@@ -166,7 +166,7 @@ def property_view(c: Class, p: Property) -> PropertyView:
     return PropertyView(
         name=p.name,
         name_literal=naming.cpp_string(p.name),
-        type_literal=naming.cpp_string(naming.property_py_type(p)),
+        type_code=typecodes.cpp(typecodes.of_property(p)),
         doc=p.doc,
         doc_literal=naming.cpp_string(p.doc),
         read_only=p.read_only,

@@ -7,7 +7,7 @@ import dataclasses
 from dataclasses import dataclass
 from typing import Any
 
-from codegen import naming, specifiers
+from codegen import naming, specifiers, typecodes
 from codegen.model import Class, Function, Module, Property
 
 
@@ -45,7 +45,7 @@ class FunctionView:
     result_fields: tuple[FieldView, ...]
     overloads: tuple[OverloadView, ...]
     is_static: bool
-    type_string: str
+    result_code: str  # the api.py constant of the result's TypeCode
     arg_names: tuple[str, ...]
 
 
@@ -54,6 +54,7 @@ class PropertyView:
     name: str
     type: str
     rpc_type: str
+    code: str  # the api.py constant of its TypeCode
     read_only: bool
     doc: str
 
@@ -105,6 +106,18 @@ class TypeVarView:
     name: str
     bound: str
     rpc_bound: str
+
+
+@dataclass(frozen=True)
+class TypeCodeView:
+    name: str
+    value: str
+
+
+@dataclass(frozen=True)
+class FieldTypesView:
+    owner: str  # a struct, or a result tuple ("AActor.GetThingsResult")
+    fields: tuple[tuple[str, str], ...]  # (field, the api.py constant of its TypeCode)
 
 
 @dataclass(frozen=True)
@@ -194,7 +207,7 @@ def _function_view(c: Class, f: Function, enums: set[str], rpc: naming.Qualifier
         result_fields=tuple(result_fields),
         overloads=tuple(overloads),
         is_static=f.is_static,
-        type_string=returns if not outs else "dict",
+        result_code=typecodes.py_name(typecodes.of_result(f)),
         arg_names=tuple(p.name for p in ins),
     )
 
@@ -204,6 +217,7 @@ def _property_view(p: Property, rpc: naming.Qualifier) -> PropertyView:
         name=p.name,
         type=naming.property_py_type(p),
         rpc_type=naming.property_py_type(p, rpc),
+        code=typecodes.py_name(typecodes.of_property(p)),
         read_only=p.read_only,
         doc=naming.py_docstring(p.doc, " " * 8),
     )
@@ -276,6 +290,9 @@ def module_view(module: Module) -> dict[str, Any]:
     blueprint_views = [BlueprintView(name=b.name, parent=b.parent, asset=b.asset, doc_literal=repr(b.doc),
                                      doc=naming.py_docstring(b.doc, "")) for b in module.blueprints]
     return {
+        "type_codes": [TypeCodeView(typecodes.py_name(t), typecodes.py_value(t))
+                       for t in typecodes.constants(typecodes.module_codes(module))],
+        "field_types": _field_types(module),
         "blueprints": blueprint_views,
         "foreign_names": foreign,
         "value_names": sorted([e.name for e in module.enums] + [c.name for c in module.classes if c.kind == "struct"]),
@@ -288,6 +305,21 @@ def module_view(module: Module) -> dict[str, Any]:
         "all_names": names,
         "has_static_functions": any(f.is_static for c in module.classes for f in c.functions),
     }
+
+
+def _field_types(module: Module) -> list[FieldTypesView]:
+    """The field types RPC results decode structs and result tuples by, in the module's class order."""
+    views = []
+    for c in module.classes:
+        if c.kind == "struct":
+            codes = typecodes.field_codes(c)
+            views.append(FieldTypesView(c.name, tuple((k, typecodes.py_name(v)) for k, v in codes.items())))
+        for f in c.functions:
+            if naming.out_params(f):
+                codes = typecodes.result_codes(f)
+                views.append(FieldTypesView(f"{c.name}.{naming.result_tuple_name(f)}",
+                                            tuple((k, typecodes.py_name(v)) for k, v in codes.items())))
+    return views
 
 
 def api_hash(module: Module) -> str:

@@ -47,19 +47,22 @@ const reflect::PropertyInfo& findProperty(const reflect::TypeInfo& type, const s
 }
 
 // Walks "Field.SubField" inside a struct value; returns the innermost value and its declared type.
-std::pair<Value*, std::string> walk(Value& root, std::string type, const std::vector<std::string>& parts,
-                                    std::string_view context) {
+std::pair<Value*, const reflect::TypeCode*> walk(Value& root, const reflect::TypeCode& type,
+                                                 const std::vector<std::string>& parts,
+                                                 std::string_view context) {
     Value* current = &root;
+    const reflect::TypeCode* currentType = &type;
     for (size_t i = 1; i < parts.size(); ++i) {
-        const reflect::TypeInfo* info = reflect::Registry::get().findType(type);
-        SP_CHECK(info && info->kind == reflect::TypeInfo::Kind::Struct && current->is<Value::Dict>(),
-                 NotFound, context, ": '", parts[i - 1], "' is not a struct, so it has no field '", parts[i],
-                 "'");
+        const reflect::TypeInfo* info = currentType->kind == reflect::TypeCode::Kind::Struct
+                                            ? reflect::Registry::get().findType(currentType->name)
+                                            : nullptr;
+        SP_CHECK(info && current->is<Value::Dict>(), NotFound, context, ": '", parts[i - 1],
+                 "' is not a struct, so it has no field '", parts[i], "'");
         const reflect::PropertyInfo& field = findProperty(*info, parts[i], context);
         current = &current->as<Value::Dict>()[parts[i]];
-        type = field.type;
+        currentType = &field.type;
     }
-    return {current, type};
+    return {current, currentType};
 }
 } // namespace
 
@@ -80,13 +83,13 @@ void bindDynamicAccess(py::module_& m, const char* apiModule) {
             for (const auto& param : info->params)
                 hasOut = hasOut || param.isOut;
             if (!hasOut)
-                return fromValue(result, info->returnType, apiModule);
+                return fromValue(result, &info->returnType, apiModule);
             py::dict outputs;
             for (const auto& [key, item] : result.as<Value::Dict>()) {
-                std::string itemType;
+                const reflect::TypeCode* itemType = key == "ReturnValue" ? &info->returnType : nullptr;
                 for (const auto& param : info->params)
                     if (param.name == key)
-                        itemType = param.type;
+                        itemType = &param.type;
                 outputs[py::str(key)] = fromValue(item, itemType, apiModule);
             }
             return outputs;

@@ -105,22 +105,6 @@ Value toValueAt(py::handle object, std::string_view context, int depth) {
              std::string(py::str(object.get_type().attr("__name__"))), "'");
 }
 
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && s.front() == ' ')
-        s.remove_prefix(1);
-    while (!s.empty() && s.back() == ' ')
-        s.remove_suffix(1);
-    return s;
-}
-
-bool unwrap(std::string_view& type, std::string_view prefix) {
-    if (type.starts_with(prefix) && type.ends_with("]")) {
-        type = type.substr(prefix.size(), type.size() - prefix.size() - 1);
-        return true;
-    }
-    return false;
-}
-
 // Untyped fallback, for values whose declared type is not recorded (e.g. a dynamic call's ReturnValue).
 py::object generic(const Value& value, const char* apiModule) {
     return std::visit(
@@ -153,38 +137,33 @@ py::object generic(const Value& value, const char* apiModule) {
 }
 } // namespace
 
-py::object fromValue(const Value& value, std::string_view type, const char* apiModule) {
-    type = trim(type);
-    if (type.ends_with("| None"))
-        type = trim(type.substr(0, type.size() - 6));
+py::object fromValue(const Value& value, const reflect::TypeCode* type, const char* apiModule) {
     if (value.isNone())
         return py::none();
     if (const auto* handle = value.tryAs<reflect::ObjectHandle>())
         return wrapObject(reflect::ObjectTable::find(*handle));
-    if (const auto* list = value.tryAs<Value::List>(); list && unwrap(type, "list[")) {
+    const bool container = type && type->isContainer();
+    if (const auto* list = value.tryAs<Value::List>(); list && container) {
         py::list result;
         for (const auto& item : *list)
-            result.append(fromValue(item, type, apiModule));
+            result.append(fromValue(item, &type->elementType(), apiModule));
         return result;
     }
-    if (const auto* dict = value.tryAs<Value::Dict>(); dict && unwrap(type, "dict[str, ")) {
+    if (const auto* dict = value.tryAs<Value::Dict>(); dict && container) {
         py::dict result;
         for (const auto& [key, item] : *dict)
-            result[py::str(key)] = fromValue(item, type, apiModule);
+            result[py::str(key)] = fromValue(item, &type->elementType(), apiModule);
         return result;
     }
-    const reflect::Registry& registry = reflect::Registry::get();
-    std::string name(type);
-    if (const auto* fields = value.tryAs<Value::Dict>()) {
-        const reflect::TypeInfo* info = registry.findType(name);
-        if (info && info->kind == reflect::TypeInfo::Kind::Struct) {
-            py::dict kwargs;
-            for (const auto& [key, item] : *fields) {
-                const reflect::PropertyInfo* property = info->findProperty(key);
-                kwargs[py::str(key)] = fromValue(item, property ? property->type : "", apiModule);
-            }
-            return apiAttribute(apiModule, info->name.c_str())(**kwargs);
+    if (const auto* fields = value.tryAs<Value::Dict>();
+        fields && type && type->kind == reflect::TypeCode::Kind::Struct) {
+        const reflect::TypeInfo& info = reflect::Registry::get().getStruct(type->name, "fromValue()");
+        py::dict kwargs;
+        for (const auto& [key, item] : *fields) {
+            const reflect::PropertyInfo* property = info.findProperty(key);
+            kwargs[py::str(key)] = fromValue(item, property ? &property->type : nullptr, apiModule);
         }
+        return apiAttribute(apiModule, info.name.c_str())(**kwargs);
     }
     return generic(value, apiModule);
 }

@@ -6,6 +6,7 @@
 
 #include <string_view>
 
+#include "core/reflect/type_code.h"
 #include "core/reflect/value.h"
 
 #pragma GCC visibility push(default)
@@ -21,9 +22,9 @@ reflect::Value toValue(py::handle object, std::string_view context);
 // RPC has one too, which means something to its server only, and is refused naming `context`.
 reflect::ObjectHandle localHandle(py::handle object, std::string_view context);
 
-// `type` is the Python spelling the registry records for the value ("FVector", "list[AActor]",
-// "AActor | None"); it decides which struct, enum or object class to build.
-py::object fromValue(const reflect::Value& value, std::string_view type, const char* apiModule);
+// `type` is the value's declared type as the registry records it; it decides which struct dataclass to
+// build. Null: not recorded (the value alone decides).
+py::object fromValue(const reflect::Value& value, const reflect::TypeCode* type, const char* apiModule);
 
 } // namespace sp::pybind
 #pragma GCC visibility pop

@@ -41,6 +41,19 @@ const EnumInfo* Registry::findEnum(std::string_view name) const {
     return it == enums_.end() ? nullptr : it->second;
 }
 
+const TypeInfo& Registry::getStruct(std::string_view name, std::string_view context) const {
+    const TypeInfo* type = findType(name);
+    SP_CHECK(type && type->kind == TypeInfo::Kind::Struct, NotFound, context, ": struct '", name,
+             "' is not registered");
+    return *type;
+}
+
+const EnumInfo& Registry::getEnum(std::string_view name, std::string_view context) const {
+    const EnumInfo* info = findEnum(name);
+    SP_CHECK(info, NotFound, context, ": enum '", name, "' is not registered");
+    return *info;
+}
+
 const TypeInfo& Registry::getClass(std::string_view name, std::string_view context,
                                    const std::string& asset) const {
     const TypeInfo* type = findType(name);

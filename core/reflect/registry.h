@@ -31,6 +31,10 @@ class Registry {
     const TypeInfo& getClass(std::string_view name, std::string_view context,
                              const std::string& asset = "") const;
 
+    // Throw NotFound: "<context>: struct 'FFoo' is not registered" (and likewise for an enum).
+    const TypeInfo& getStruct(std::string_view name, std::string_view context) const;
+    const EnumInfo& getEnum(std::string_view name, std::string_view context) const;
+
     using ClassLoader = const TypeInfo& (*)(const std::string& asset, std::string_view context);
     void setClassLoader(ClassLoader loader) { loader_ = loader; }
 

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/reflect/type_code.h"
 #include "core/reflect/value.h"
 
 namespace sp::reflect {
@@ -20,14 +21,14 @@ using CallArgs = Value::Dict;
 
 struct ParamInfo {
     std::string name;
-    std::string type; // Python spelling, for messages and introspection: "float", "list[AActor]"
+    TypeCode type;
     bool hasDefault = false;
     bool isOut = false; // non-const lvalue reference: returned with the result, not passed in
 };
 
 struct PropertyInfo {
     std::string name;
-    std::string type;
+    TypeCode type;
     std::string doc;
     bool readOnly = false;
     // `self` points to the declaring class's ObjectBase (classes) or to the struct itself (structs).
@@ -38,7 +39,7 @@ struct PropertyInfo {
 struct FunctionInfo {
     std::string name;
     std::string doc;
-    std::string returnType; // Python spelling; "None" for void
+    TypeCode returnType; // with out-parameters: the "ReturnValue" entry's
     std::vector<ParamInfo> params;
     bool isStatic = false;
     bool isConst = false;

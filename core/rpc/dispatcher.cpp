@@ -346,12 +346,15 @@ Value Dispatcher::call(const Request& request, Session&) {
     Value result = info->invoke(object, args.as<Value::Dict>());
     if (op == "call")
         return result;
+    // Declared types as data (reflect::TypeCode), by which the client builds typed results.
     Value::Dict outTypes;
     for (const auto& param : info->params)
         if (param.isOut)
-            outTypes.emplace(param.name, Value(param.type));
+            outTypes.emplace(param.name, param.type.toValue());
+    if (!outTypes.empty() && info->returnType.kind != reflect::TypeCode::Kind::Void)
+        outTypes.emplace("ReturnValue", info->returnType.toValue());
     return Value(Value::Dict{{"value", std::move(result)},
-                             {"type", Value(info->returnType)},
+                             {"type", info->returnType.toValue()},
                              {"out_types", Value(std::move(outTypes))}});
 }
 
@@ -368,7 +371,7 @@ Value Dispatcher::property(const Request& request, Session&) {
     if (op == "get")
         return property->get(&object);
     if (op == "get_typed")
-        return Value(Value::Dict{{"value", property->get(&object)}, {"type", Value(property->type)}});
+        return Value(Value::Dict{{"value", property->get(&object)}, {"type", property->type.toValue()}});
     SP_CHECK(property->set, InvalidArgument, context, ": property '", name, "' of class '",
              object.GetClass().name, "' is read-only");
     property->set(&object, unpack(request.require("value", op), context));

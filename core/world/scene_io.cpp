@@ -27,15 +27,10 @@ constexpr std::string_view kFormat = "spear.scene";
 constexpr int kVersion = 1;
 
 // --- property types ---------------------------------------------------------------------------
-// The registry spells property types the way Python does ("float", "list[str]", "AActor | None",
-// "EComponentMobility", "FVector"); these helpers take those spellings apart.
+// Values are saved and loaded by their property's declared type (reflect::TypeCode).
 
-bool stripAffix(std::string_view& type, std::string_view prefix, std::string_view suffix) {
-    if (type.size() < prefix.size() + suffix.size() || !type.starts_with(prefix) || !type.ends_with(suffix))
-        return false;
-    type = type.substr(prefix.size(), type.size() - prefix.size() - suffix.size());
-    return true;
-}
+using reflect::TypeCode;
+using Kind = TypeCode::Kind;
 
 // The name path of an object inside a scene: "Actor" or "Actor.Component".
 std::string objectPath(const reflect::ObjectBase& object) {
@@ -48,22 +43,19 @@ std::string objectPath(const reflect::ObjectBase& object) {
              " is neither an actor nor a component and cannot be saved");
 }
 
-Json toJson(const Value& value, std::string_view type) {
+Json toJson(const Value& value, const TypeCode& type) {
     if (value.isNone())
         return nullptr;
-    std::string_view inner = type;
-    if (stripAffix(inner, "", " | None"))
-        return toJson(value, inner);
-    if (stripAffix(inner, "list[", "]")) {
+    if (type.kind == Kind::List) {
         Json out = Json::array();
         for (const Value& item : value.as<Value::List>())
-            out.push_back(toJson(item, inner));
+            out.push_back(toJson(item, type.elementType()));
         return out;
     }
-    if (stripAffix(inner, "dict[str, ", "]")) {
+    if (type.kind == Kind::Dict) {
         Json out = Json::object();
         for (const auto& [key, item] : value.as<Value::Dict>())
-            out[key] = toJson(item, inner);
+            out[key] = toJson(item, type.elementType());
         return out;
     }
     if (const auto* name = value.tryAs<reflect::ClassName>())
@@ -73,17 +65,18 @@ Json toJson(const Value& value, std::string_view type) {
         SP_CHECK(object, InvalidArgument, "refers to a destroyed object");
         return objectPath(*object);
     }
-    if (const reflect::EnumInfo* info = reflect::Registry::get().findEnum(type)) {
+    if (type.kind == Kind::Enum) {
+        const reflect::EnumInfo& info = reflect::Registry::get().getEnum(type.name, "toJson()");
         const int64_t number = value.as<reflect::EnumValue>().value;
-        const std::string_view entry = info->nameOf(number);
-        SP_CHECK(!entry.empty(), InvalidArgument, number, " is not a value of ", info->name);
+        const std::string_view entry = info.nameOf(number);
+        SP_CHECK(!entry.empty(), InvalidArgument, number, " is not a value of ", info.name);
         return std::string(entry);
     }
-    if (const reflect::TypeInfo* info = reflect::Registry::get().findType(type);
-        info && info->kind == reflect::TypeInfo::Kind::Struct) {
+    if (type.kind == Kind::Struct) {
+        const reflect::TypeInfo& info = reflect::Registry::get().getStruct(type.name, "toJson()");
         Json out = Json::object();
         const auto& fields = value.as<Value::Dict>();
-        for (const reflect::PropertyInfo* field : info->allProperties())
+        for (const reflect::PropertyInfo* field : info.allProperties())
             out[field->name] = toJson(fields.at(field->name), field->type);
         return out;
     }
@@ -94,7 +87,7 @@ Json toJson(const Value& value, std::string_view type) {
                           std::is_same_v<V, double> || std::is_same_v<V, std::string>)
                 return v;
             else
-                SP_THROW(InvalidArgument, "a ", value.kindName(), " (type ", type,
+                SP_THROW(InvalidArgument, "a ", value.kindName(), " (type ", type.spelling(),
                          ") cannot be saved in a scene");
         },
         value.storage());
@@ -119,68 +112,70 @@ reflect::ObjectBase* resolvePath(std::string_view path, const ActorsByName& acto
     SP_THROW(InvalidArgument, "actor '", it->first, "' has no component '", componentName, "'");
 }
 
-Value fromJson(const Json& j, std::string_view type, const ActorsByName& actors) {
-    std::string_view inner = type;
-    if (stripAffix(inner, "", " | None"))
-        return j.is_null() ? Value() : fromJson(j, inner, actors);
+Value fromJson(const Json& j, const TypeCode& type, const ActorsByName& actors) {
+    if (type.optional && j.is_null())
+        return Value();
     auto expect = [&](bool ok, std::string_view what) {
-        SP_CHECK(ok, InvalidArgument, "expected ", what, " (", type, "), got ", jsonKind(j), " ", j.dump());
+        SP_CHECK(ok, InvalidArgument, "expected ", what, " (", type.spelling(), "), got ", jsonKind(j), " ",
+                 j.dump());
     };
-    if (stripAffix(inner, "list[", "]")) {
+    switch (type.kind) {
+    case Kind::List: {
         expect(j.is_array(), "a list");
         Value::List out;
         for (const Json& item : j)
-            out.push_back(fromJson(item, inner, actors));
+            out.push_back(fromJson(item, type.elementType(), actors));
         return out;
     }
-    if (stripAffix(inner, "dict[str, ", "]")) {
+    case Kind::Dict: {
         expect(j.is_object(), "an object");
         Value::Dict out;
         for (const auto& [key, item] : j.items())
-            out.emplace(key, fromJson(item, inner, actors));
+            out.emplace(key, fromJson(item, type.elementType(), actors));
         return out;
     }
-    if (type == "bool") {
+    case Kind::Bool:
         expect(j.is_boolean(), "a bool");
         return j.get<bool>();
-    }
-    if (type == "int") {
+    case Kind::Int:
         expect(j.is_number_integer(), "an integer");
         return j.get<int64_t>();
-    }
-    if (type == "float") {
+    case Kind::Float:
         expect(j.is_number(), "a number");
         return j.get<double>();
-    }
-    if (type == "str") {
+    case Kind::Str:
         expect(j.is_string(), "a string");
         return j.get<std::string>();
-    }
-    if (stripAffix(inner, "type[", "]")) {
+    case Kind::Class:
         expect(j.is_string(), "a class name");
         return reflect::ClassName{j.get<std::string>()};
-    }
-    if (const reflect::EnumInfo* info = reflect::Registry::get().findEnum(type)) {
+    case Kind::Enum: {
+        const reflect::EnumInfo& info = reflect::Registry::get().getEnum(type.name, "fromJson()");
         expect(j.is_string(), "an entry name");
-        for (const auto& [name, number] : info->entries)
+        for (const auto& [name, number] : info.entries)
             if (name == j.get<std::string>())
-                return reflect::EnumValue{info->name, number};
-        SP_THROW(InvalidArgument, "'", j.get<std::string>(), "' is not an entry of ", info->name);
+                return reflect::EnumValue{info.name, number};
+        SP_THROW(InvalidArgument, "'", j.get<std::string>(), "' is not an entry of ", info.name);
     }
-    const reflect::TypeInfo* info = reflect::Registry::get().findType(type);
-    SP_CHECK(info, InvalidArgument, "type '", type, "' cannot be loaded from a scene");
-    if (info->kind == reflect::TypeInfo::Kind::Struct) {
+    case Kind::Struct: {
+        const reflect::TypeInfo& info = reflect::Registry::get().getStruct(type.name, "fromJson()");
         expect(j.is_object(), "an object");
         Value::Dict out;
         for (const auto& [key, item] : j.items()) {
-            const reflect::PropertyInfo* field = info->findProperty(key);
-            SP_CHECK(field, InvalidArgument, type, " has no field '", key, "'");
+            const reflect::PropertyInfo* field = info.findProperty(key);
+            SP_CHECK(field, InvalidArgument, type.name, " has no field '", key, "'");
             out.emplace(key, fromJson(item, field->type, actors));
         }
         return out;
     }
-    expect(j.is_string(), "an object path");
-    return resolvePath(j.get<std::string>(), actors)->GetHandle();
+    case Kind::Object:
+        expect(j.is_string(), "an object path");
+        return resolvePath(j.get<std::string>(), actors)->GetHandle();
+    case Kind::Void:
+    case Kind::Array:
+        break;
+    }
+    SP_THROW(InvalidArgument, "type '", type.spelling(), "' cannot be loaded from a scene");
 }
 
 // --- saving -----------------------------------------------------------------------------------

@@ -9,6 +9,9 @@ from typing import Any, Protocol
 
 from spear import errors
 from spear._plugins import PluginPackage
+from spear._type_code import TypeCode
+
+_WORLD = TypeCode("object", "UWorld")
 
 
 class Backend(Protocol):
@@ -125,17 +128,17 @@ class RpcBackend:
     def world(self, kind: str) -> Any:
         from spear._rpc_types import convert
 
-        return convert(self.connection.request("world", kind=kind), "UWorld", self.connection)
+        return convert(self.connection.request("world", kind=kind), _WORLD, self.connection)
 
     def worlds(self, action: str, *, name: str = "", world: Any = None) -> Any:
         from spear._rpc_types import convert
 
         if action == "create":
-            return convert(self.connection.request("worlds", action="create", name=name), "UWorld", self.connection)
+            return convert(self.connection.request("worlds", action="create", name=name), _WORLD, self.connection)
         if action == "destroy":
             return self.connection.request("worlds", action="destroy", object=world, context="destroy_world()")
         handles = self.connection.request("worlds", action="list")
-        return [convert(handle, "UWorld", self.connection) for handle in handles]
+        return [convert(handle, _WORLD, self.connection) for handle in handles]
 
     def frame(self, action: str) -> None:
         self.connection.request("frame", action=action)
@@ -151,15 +154,16 @@ class RpcBackend:
 
         typed = self.connection.request("call_typed", object=uobject, function=function, args=args)
         if typed["out_types"]:
-            return {k: convert(v, typed["out_types"].get(k, ""), self.connection) for k, v in typed["value"].items()}
-        return convert(typed["value"], typed["type"], self.connection)
+            types = {k: TypeCode.from_wire(t) for k, t in typed["out_types"].items()}
+            return {k: convert(v, types.get(k), self.connection) for k, v in typed["value"].items()}
+        return convert(typed["value"], TypeCode.from_wire(typed["type"]), self.connection)
 
     def get_property(self, uobject: Any, path: str) -> Any:
         from spear._rpc_types import convert
 
         name, *rest = path.split(".")
         typed = self.connection.request("get_typed", object=uobject, property=name)
-        value = convert(typed["value"], typed["type"], self.connection)
+        value = convert(typed["value"], TypeCode.from_wire(typed["type"]), self.connection)
         for part in rest:
             value = _field(value, part, path)
         return value

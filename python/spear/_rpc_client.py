@@ -28,6 +28,7 @@ from spear import _logging, _progress, errors
 from spear._object import SpObject
 from spear._reply_buffers import ReplyBuffers
 from spear._rpc_types import convert, convert_result_tuple
+from spear._type_code import TypeCode
 from spear._segments import remove_orphaned_segments
 from spear._wire import OutgoingSegments, ValueRefused, encode, pack_frame, unpack_body
 from spear.futures import Future
@@ -207,16 +208,16 @@ class RpcConnection:
 
     # -- RpcClient protocol --------------------------------------------------------------------
 
-    def call(self, handle: tuple[int, int], function: str, args: dict[str, Any], result_type: str,
+    def call(self, handle: tuple[int, int], function: str, args: dict[str, Any], result_type: TypeCode,
              context: str = "", result_tuple: Any = None) -> Any:
         return self._call({"object": _HandleRef(handle)}, function, args, result_type, context, result_tuple)
 
-    def call_static(self, class_name: str, function: str, args: dict[str, Any], result_type: str,
+    def call_static(self, class_name: str, function: str, args: dict[str, Any], result_type: TypeCode,
                     context: str = "", result_tuple: Any = None) -> Any:
         """Calls a static function of an engine class: the request names the class instead of an object."""
         return self._call({"class": class_name}, function, args, result_type, context, result_tuple)
 
-    def _call(self, target: dict[str, Any], function: str, args: dict[str, Any], result_type: str,
+    def _call(self, target: dict[str, Any], function: str, args: dict[str, Any], result_type: TypeCode,
               context: str, result_tuple: Any) -> Any:
         def typed(value: Any) -> Any:
             if result_tuple is not None:
@@ -228,7 +229,7 @@ class RpcConnection:
             return self._queue_call({"op": "call", **call}, typed)
         return typed(self.request("call", **call))
 
-    def get_property(self, handle: tuple[int, int], name: str, result_type: str, context: str = "") -> Any:
+    def get_property(self, handle: tuple[int, int], name: str, result_type: TypeCode, context: str = "") -> Any:
         value = self.request("get", object=_HandleRef(handle), property=name, context=context)
         return convert(value, result_type, self)
 

@@ -11,6 +11,7 @@ from typing import Any, Protocol
 
 from spear import _spfunc
 from spear._object import SpObject
+from spear._type_code import TypeCode
 
 
 class _Default:
@@ -24,13 +25,13 @@ DEFAULT: Any = _Default()
 
 
 class RpcClient(Protocol):
-    def call(self, handle: tuple[int, int], function: str, args: dict[str, Any], result_type: str,
+    def call(self, handle: tuple[int, int], function: str, args: dict[str, Any], result_type: TypeCode,
              context: str = "", result_tuple: Any = None) -> Any: ...
 
-    def call_static(self, class_name: str, function: str, args: dict[str, Any], result_type: str,
+    def call_static(self, class_name: str, function: str, args: dict[str, Any], result_type: TypeCode,
                     context: str = "", result_tuple: Any = None) -> Any: ...
 
-    def get_property(self, handle: tuple[int, int], name: str, result_type: str, context: str = "") -> Any: ...
+    def get_property(self, handle: tuple[int, int], name: str, result_type: TypeCode, context: str = "") -> Any: ...
 
     def set_property(self, handle: tuple[int, int], name: str, value: Any, context: str = "") -> None: ...
 
@@ -99,12 +100,12 @@ class ObjectProxy(SpObject):
 
     # `owner` is the class that declares the member: messages then read as in-process ("AActor.GetName()").
 
-    def _sp_call(self, owner: str, function: str, args: dict[str, Any], result_type: str,
+    def _sp_call(self, owner: str, function: str, args: dict[str, Any], result_type: TypeCode,
                  result_tuple: Any = None) -> Any:
         sent = {name: value for name, value in args.items() if value is not DEFAULT}
         return self._sp_client.call(self._sp_handle, function, sent, result_type, f"{owner}.{function}()", result_tuple)
 
-    def _sp_get(self, owner: str, name: str, result_type: str) -> Any:
+    def _sp_get(self, owner: str, name: str, result_type: TypeCode) -> Any:
         return self._sp_client.get_property(self._sp_handle, name, result_type, f"{owner}.{name}")
 
     def _sp_set(self, owner: str, name: str, value: Any) -> None:

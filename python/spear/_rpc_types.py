@@ -1,14 +1,16 @@
 """Typed decoding of RPC results: wire values become the same Python types the in-process API returns
-(dataclasses, IntEnums, typed proxies), guided by the type spelling the generator recorded
-("FVector", "list[AActor]", "AActor | None", "dict[str, float]")."""
+(dataclasses, IntEnums, typed proxies), guided by the declared type the generator recorded as data
+(spear._type_code.TypeCode)."""
 
 from __future__ import annotations
 
 import dataclasses
+import sys
 from collections.abc import Callable
 from typing import Any
 
 from spear._rpc_proxy import ObjectProxy, proxy_class, RpcClient
+from spear._type_code import TypeCode
 from spear._wire import ClassRef, ObjectRef
 
 _api_modules: list[Any] = []
@@ -48,14 +50,18 @@ def _proxy(ref: ObjectRef, client: RpcClient, fallback: str) -> ObjectProxy:
     return cls(client, (ref.index, ref.generation))
 
 
-def convert(value: Any, type_string: str, client: RpcClient) -> Any:
-    t = type_string.strip()
-    if t.endswith("| None"):
-        t = t[: -len("| None")].strip()
+def _field_types(cls: type) -> dict[str, TypeCode]:
+    """The declared field types of a generated struct or result tuple (its API module's type_codes)."""
+    table: dict[str, dict[str, TypeCode]] = getattr(sys.modules[cls.__module__], "_FIELD_TYPES", {})
+    return table.get(cls.__qualname__, {})
+
+
+def convert(value: Any, type: TypeCode | None, client: RpcClient) -> Any:
+    """`value` as its declared `type` says (None: not recorded, the value alone decides)."""
     if value is None:
         return None
     if isinstance(value, ObjectRef):
-        return _proxy(value, client, t if t.isidentifier() else "")
+        return _proxy(value, client, type.name if type is not None and type.kind == "object" else "")
     if isinstance(value, ClassRef):
         found = _api_lookup(value.name)
         if found is None and value.native:
@@ -63,28 +69,23 @@ def convert(value: Any, type_string: str, client: RpcClient) -> Any:
 
             return blueprint_class(value.name, value.native)
         return found or value.name
-    if t.startswith("list[") and isinstance(value, list):
-        inner = t[5:-1]
-        return [convert(item, inner, client) for item in value]
-    if t.startswith("dict[str, ") and isinstance(value, dict):
-        inner = t[10:-1]
-        return {key: convert(item, inner, client) for key, item in value.items()}
-    if isinstance(value, dict):
-        cls = _api_lookup(t)
-        if cls is not None and dataclasses.is_dataclass(cls):
-            hints = {f.name: f.type for f in dataclasses.fields(cls)}
-            return cls(**{k: convert(v, str(hints.get(k, "")), client) for k, v in value.items()})
-        return {key: convert(item, "", client) for key, item in value.items()}
-    if isinstance(value, int) and not isinstance(value, bool):
-        cls = _api_lookup(t)
-        if cls is not None and isinstance(cls, type) and issubclass(cls, int) and cls is not int:
-            return cls(value)
+    element = type.element if type is not None else None
     if isinstance(value, list):
-        return [convert(item, "", client) for item in value]
+        return [convert(item, element, client) for item in value]
+    if isinstance(value, dict):
+        cls = _api_lookup(type.name) if type is not None and type.kind == "struct" else None
+        if cls is not None:  # a dataclass, or a TypedDict (a dict with typed values)
+            fields = _field_types(cls)
+            items = {k: convert(v, fields.get(k), client) for k, v in value.items()}
+            return cls(**items) if dataclasses.is_dataclass(cls) else items
+        return {key: convert(item, element, client) for key, item in value.items()}
+    if type is not None and type.kind == "enum" and isinstance(value, int) and not isinstance(value, bool):
+        cls = _api_lookup(type.name)
+        if cls is not None:
+            return cls(value)
     return value
 
 
 def convert_result_tuple(value: dict[str, Any], result_tuple: Callable[..., Any], client: RpcClient) -> Any:
-    # The generator's spellings; NamedTuple keeps them as ForwardRefs.
-    hints = {k: getattr(t, "__forward_arg__", t) for k, t in result_tuple.__annotations__.items()}
-    return result_tuple(**{k: convert(v, str(hints.get(k, "")), client) for k, v in value.items()})
+    fields = _field_types(result_tuple)  # type: ignore[arg-type]
+    return result_tuple(**{k: convert(v, fields.get(k), client) for k, v in value.items()})

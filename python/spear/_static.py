@@ -14,6 +14,7 @@ from typing import Any
 
 from spear import errors
 from spear._object import SpObject
+from spear._type_code import TypeCode
 
 
 class StaticFunction:
@@ -21,7 +22,7 @@ class StaticFunction:
 
     __slots__ = ("_class_name", "_function", "_result_type", "_result_tuple_name")
 
-    def __init__(self, class_name: str, function: str, result_type: str, result_tuple_name: str | None = None) -> None:
+    def __init__(self, class_name: str, function: str, result_type: TypeCode, result_tuple_name: str | None = None) -> None:
         self._class_name = class_name
         self._function = function
         self._result_type = result_type

@@ -164,7 +164,7 @@ def test_listed_outputs_follow_python_out(tmp_path: Path) -> None:
     produced = {str(p) for p in tmp_path.rglob("*") if p.is_file()}
     assert set(listed.stdout.split()) == produced
     assert {Path(p).name for p in produced if Path(p).parent == packages / "plugin_actor"} == {
-        "__init__.py", "api.py", "api.pyi", "rpc.py"}
+        "__init__.py", "api.py", "api.pyi", "rpc.py", "type_codes.py"}
 
 
 def test_plugin_package_derives_from_the_engine_api_and_proxies(tmp_path: Path) -> None:

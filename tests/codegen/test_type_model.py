@@ -1,6 +1,6 @@
-"""The generator's type model alone (codegen/types.py, codegen/naming.py), without rendering any output: which C++
-types cross the boundary as which TypeRef, the reasons given for those that do not, and the Python spellings and
-defaults the templates print."""
+"""The generator's type model alone (codegen/types.py, codegen/naming.py, codegen/typecodes.py), without rendering
+any output: which C++ types cross the boundary as which TypeRef, the reasons given for those that do not, the
+Python spellings and defaults the templates print, and the type codes the registry and type_codes.py hold."""
 
 from __future__ import annotations
 
@@ -11,8 +11,8 @@ import clang.cindex as ci
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
-from codegen import naming  # noqa: E402
-from codegen.model import Param, TypeRef  # noqa: E402
+from codegen import naming, typecodes  # noqa: E402
+from codegen.model import Function, Param, Property, TypeRef  # noqa: E402
 from codegen.types import TypeMapper, UnsupportedType  # noqa: E402
 
 # Stand-ins for the engine's reflection types (matched by qualified name) and a few reflected declarations.
@@ -142,3 +142,35 @@ def test_cpp_spellings() -> None:
     braced = Param("Tags", TypeRef("list", "std::vector<std::string>", args=(TypeRef("str", "std::string"),)),
                    "const std::vector<std::string> &", default_cpp="{}")
     assert naming.cpp_default_value(braced) == "std::vector<std::string>{}"
+
+
+THING = TypeRef("object", "UThing*", "UThing")
+THINGS = TypeRef("list", "std::vector<UThing*>", args=(THING,))
+
+
+def test_type_codes_say_where_none_is_a_value() -> None:
+    # Objects are nullable unless declared NotNull; list elements never are; a class result may be None.
+    assert typecodes.of_property(Property("Owner", "", THING)) == typecodes.TypeCode("object", "UThing", True)
+    assert typecodes.of_property(Property("Owner", "", THING, not_null=True)).optional is False
+    assert typecodes.of_property(Property("All", "", THINGS)) == typecodes.TypeCode(
+        "list", element=typecodes.TypeCode("object", "UThing"))
+    # A parameter takes None only with a nullptr default.
+    assert typecodes.of_param(Param("A", THING, "UThing *")).optional is False
+    assert typecodes.of_param(Param("A", THING, "UThing *", default_cpp="nullptr")).optional is True
+    cls = TypeRef("class", "TSubclassOf<UThing>", "UThing")
+    assert typecodes.of_result(Function("F", "", cls, ())).optional is True
+    assert typecodes.of_result(Function("F", "", cls, (), not_null=True)).optional is False
+
+
+def test_type_codes_spelled_for_cpp_and_python() -> None:
+    code = typecodes.of_property(Property("All", "", TypeRef("dict", "std::map<std::string, std::vector<UThing*>>",
+                                                             args=(THINGS,))))
+    assert typecodes.cpp(code) == "TypeCode(Kind::Dict, TypeCode(Kind::List, TypeCode(Kind::Object, \"UThing\")))"
+    assert typecodes.cpp(typecodes.TypeCode("object", "UThing", True)) == 'TypeCode(Kind::Object, "UThing", true)'
+    assert typecodes.py_name(code) == "T_dict_of_list_of_UThing"
+    assert typecodes.py_value(code) == "TypeCode(\"dict\", element=T_list_of_UThing)"
+    assert typecodes.py_name(typecodes.TypeCode("class", "UThing", True)) == "T_class_UThing_or_None"
+    assert typecodes.py_name(typecodes.TypeCode("array", "float32")) == "T_array_float32"
+    # Each element is defined before the codes that hold it.
+    names = [typecodes.py_name(c) for c in typecodes.constants({code})]
+    assert names == ["T_UThing", "T_list_of_UThing", "T_dict_of_list_of_UThing"]

@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- ACameraSensorActor ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& ACameraSensorActor::StaticClass() {
@@ -52,7 +57,7 @@ const sp::reflect::TypeInfo& ACameraSensorActor::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "CameraSensor",
-            "UCameraSensorComponent",
+            TypeCode(Kind::Object, "UCameraSensorComponent"),
             "The camera (also the root component); it looks along the actor's forward axis.",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -81,7 +86,7 @@ const sp::reflect::TypeInfo& AMultiViewCameraRig::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Cameras",
-            "list[UCameraSensorComponent]",
+            TypeCode(Kind::List, TypeCode(Kind::Object, "UCameraSensorComponent")),
             "The cameras, counter-clockwise from the rig's -X side (camera 0 looks along +X).",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -91,7 +96,7 @@ const sp::reflect::TypeInfo& AMultiViewCameraRig::StaticClass() {
         });
         t.properties.push_back({
             "Radius",
-            "float",
+            TypeCode(Kind::Float),
             "Ring radius in metres.",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -102,10 +107,10 @@ const sp::reflect::TypeInfo& AMultiViewCameraRig::StaticClass() {
         t.functions.push_back({
             "SetRing",
             "Replaces the cameras by NumViews (in [1, 64]) cameras on a ring of Radius metres (> 0).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NumViews", "int", false, false},
-                {"NewRadius", "float", false, false},
+                {"NumViews", TypeCode(Kind::Int), false, false},
+                {"NewRadius", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -121,11 +126,11 @@ const sp::reflect::TypeInfo& AMultiViewCameraRig::StaticClass() {
         t.functions.push_back({
             "ConfigureCameras",
             "Sets Width, Height and Modalities of every camera of the ring.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Width", "int", false, false},
-                {"Height", "int", false, false},
-                {"Modalities", "list[ECameraModality]", false, false},
+                {"Width", TypeCode(Kind::Int), false, false},
+                {"Height", TypeCode(Kind::Int), false, false},
+                {"Modalities", TypeCode(Kind::List, TypeCode(Kind::Enum, "ECameraModality")), false, false},
             },
             false,
             false,
@@ -160,7 +165,7 @@ const sp::reflect::TypeInfo& AStereoCameraRig::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Baseline",
-            "float",
+            TypeCode(Kind::Float),
             "Distance between the two optical centres in metres (> 0); the left camera is at +Y.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -174,7 +179,7 @@ const sp::reflect::TypeInfo& AStereoCameraRig::StaticClass() {
         });
         t.properties.push_back({
             "LeftCamera",
-            "UCameraSensorComponent",
+            TypeCode(Kind::Object, "UCameraSensorComponent"),
             "The left camera (at +Baseline/2 on the rig's Y axis, which points left).",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -184,7 +189,7 @@ const sp::reflect::TypeInfo& AStereoCameraRig::StaticClass() {
         });
         t.properties.push_back({
             "RightCamera",
-            "UCameraSensorComponent",
+            TypeCode(Kind::Object, "UCameraSensorComponent"),
             "The right camera (at -Baseline/2 on the rig's Y axis).",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -195,9 +200,9 @@ const sp::reflect::TypeInfo& AStereoCameraRig::StaticClass() {
         t.functions.push_back({
             "SetBaseline",
             "Sets the baseline in metres (> 0) and moves both cameras.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewBaseline", "float", false, false},
+                {"NewBaseline", TypeCode(Kind::Float), false, false},
             },
             false,
             false,

@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraModality>() {
     static const sp::reflect::EnumInfo info{
         "ECameraModality",
@@ -100,7 +105,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "final_color",
-            "NDArray[np.uint8]",
+            TypeCode(Kind::Array, "uint8"),
             "Tone-mapped sRGB, uint8 (H, W, 4).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -114,7 +119,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "hdr_color",
-            "NDArray[np.float16]",
+            TypeCode(Kind::Array, "float16"),
             "Linear HDR radiance, float16 (H, W, 4).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -128,7 +133,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "depth",
-            "NDArray[np.float32]",
+            TypeCode(Kind::Array, "float32"),
             "Metres along the optical axis, 0 for background, float32 (H, W).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -142,7 +147,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "position",
-            "NDArray[np.float32]",
+            TypeCode(Kind::Array, "float32"),
             "World-space position in metres, float32 (H, W, 3).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -156,7 +161,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "normal",
-            "NDArray[np.float32]",
+            TypeCode(Kind::Array, "float32"),
             "World-space unit normal, float32 (H, W, 3).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -170,7 +175,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "object_ids",
-            "NDArray[np.uint32]",
+            TypeCode(Kind::Array, "uint32"),
             "Object ids (component, material slot), 0 for background, uint32 (H, W).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -184,7 +189,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "material_ids",
-            "NDArray[np.uint32]",
+            TypeCode(Kind::Array, "uint32"),
             "Material ids, 0 for background, uint32 (H, W).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -198,7 +203,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "base_color",
-            "NDArray[np.float16]",
+            TypeCode(Kind::Array, "float16"),
             "Linear base colour, float16 (H, W, 3).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -212,7 +217,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "roughness",
-            "NDArray[np.float16]",
+            TypeCode(Kind::Array, "float16"),
             "Roughness, float16 (H, W).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -226,7 +231,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "metallic",
-            "NDArray[np.float16]",
+            TypeCode(Kind::Array, "float16"),
             "Metalness, float16 (H, W).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -240,7 +245,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "material_ao",
-            "NDArray[np.float16]",
+            TypeCode(Kind::Array, "float16"),
             "Material ambient occlusion, float16 (H, W).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -254,7 +259,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "diffuse_illumination",
-            "NDArray[np.float16]",
+            TypeCode(Kind::Array, "float16"),
             "Radiance of a white Lambertian surface, float16 (H, W, 3).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -268,7 +273,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "diffuse_only",
-            "NDArray[np.float16]",
+            TypeCode(Kind::Array, "float16"),
             "base_color * (1 - metallic) * diffuse_illumination, float16 (H, W, 3).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -282,7 +287,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "specular_residual",
-            "NDArray[np.float16]",
+            TypeCode(Kind::Array, "float16"),
             "hdr_color.rgb - diffuse_only, float16 (H, W, 3).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -314,7 +319,7 @@ const sp::reflect::TypeInfo& FLensDistortion::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "K1",
-            "float",
+            TypeCode(Kind::Float),
             "Radial coefficient of r^2 (negative: barrel, positive: pincushion).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -328,7 +333,7 @@ const sp::reflect::TypeInfo& FLensDistortion::StaticClass() {
         });
         t.properties.push_back({
             "K2",
-            "float",
+            TypeCode(Kind::Float),
             "Radial coefficient of r^4.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -342,7 +347,7 @@ const sp::reflect::TypeInfo& FLensDistortion::StaticClass() {
         });
         t.properties.push_back({
             "K3",
-            "float",
+            TypeCode(Kind::Float),
             "Radial coefficient of r^6.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -356,7 +361,7 @@ const sp::reflect::TypeInfo& FLensDistortion::StaticClass() {
         });
         t.properties.push_back({
             "P1",
-            "float",
+            TypeCode(Kind::Float),
             "First tangential coefficient.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -370,7 +375,7 @@ const sp::reflect::TypeInfo& FLensDistortion::StaticClass() {
         });
         t.properties.push_back({
             "P2",
-            "float",
+            TypeCode(Kind::Float),
             "Second tangential coefficient.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -402,7 +407,7 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "Kind",
-            "str",
+            TypeCode(Kind::Str),
             "\"device\" (an EGL device, e.g. a GPU) or \"surfaceless\" (Mesa's software platform).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -416,7 +421,7 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
         });
         t.properties.push_back({
             "DeviceIndex",
-            "int",
+            TypeCode(Kind::Int),
             "Index in the EGL device list, -1 for surfaceless.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -430,7 +435,7 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
         });
         t.properties.push_back({
             "DeviceCount",
-            "int",
+            TypeCode(Kind::Int),
             "Number of EGL devices listed.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -444,7 +449,7 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
         });
         t.properties.push_back({
             "Vendor",
-            "str",
+            TypeCode(Kind::Str),
             "GL_VENDOR.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -458,7 +463,7 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
         });
         t.properties.push_back({
             "Renderer",
-            "str",
+            TypeCode(Kind::Str),
             "GL_RENDERER.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -472,7 +477,7 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
         });
         t.properties.push_back({
             "Version",
-            "str",
+            TypeCode(Kind::Str),
             "GL_VERSION.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -504,7 +509,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "Frames",
-            "int",
+            TypeCode(Kind::Int),
             "Frames rendered (one per camera per world frame).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -518,7 +523,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "ShadowPasses",
-            "int",
+            TypeCode(Kind::Int),
             "Shadow maps rendered.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -532,7 +537,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "ShadowReuses",
-            "int",
+            TypeCode(Kind::Int),
             "Frames that reused the shadow maps unchanged (nothing that casts or lights moved).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -546,7 +551,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "SurfacePasses",
-            "int",
+            TypeCode(Kind::Int),
             "Surface passes (geometry rasterisation; shading too when colour is asked for).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -560,7 +565,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "AttributePasses",
-            "int",
+            TypeCode(Kind::Int),
             "Attribute passes: a second rasterisation writing the targets past the surface pass's 8 (all 14\nmodalities need one), at the fragments the surface pass kept.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -574,7 +579,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "LightingPasses",
-            "int",
+            TypeCode(Kind::Int),
             "Frames that shaded.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -588,7 +593,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "TonemapPasses",
-            "int",
+            TypeCode(Kind::Int),
             "Frames that tone-mapped (fused into the pass that shaded).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -602,7 +607,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "Readbacks",
-            "int",
+            TypeCode(Kind::Int),
             "Images read back (one per modality per frame).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -616,7 +621,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "DrawnInstances",
-            "int",
+            TypeCode(Kind::Int),
             "Instances drawn by surface passes.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -630,7 +635,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "CulledInstances",
-            "int",
+            TypeCode(Kind::Int),
             "Instances outside a camera's view, skipped.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -644,7 +649,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "ShadowMs",
-            "float",
+            TypeCode(Kind::Float),
             "Milliseconds in shadow passes, by GL timer queries (the device's own clock).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -658,7 +663,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "SurfaceMs",
-            "float",
+            TypeCode(Kind::Float),
             "Milliseconds in surface passes, by GL timer queries.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -672,7 +677,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "AttributeMs",
-            "float",
+            TypeCode(Kind::Float),
             "Milliseconds in attribute passes, by GL timer queries.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -686,7 +691,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "ReadbackMs",
-            "float",
+            TypeCode(Kind::Float),
             "Milliseconds the CPU spent reading images back (waiting for the frame included).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -719,7 +724,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Width",
-            "int",
+            TypeCode(Kind::Int),
             "Image width in pixels.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -733,7 +738,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "Height",
-            "int",
+            TypeCode(Kind::Int),
             "Image height in pixels.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -747,7 +752,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "FOV",
-            "float",
+            TypeCode(Kind::Float),
             "Horizontal field of view in degrees, in (0, 180); square pixels.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -761,7 +766,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "NearClip",
-            "float",
+            TypeCode(Kind::Float),
             "Near clipping distance in metres (> 0).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -775,7 +780,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "FarClip",
-            "float",
+            TypeCode(Kind::Float),
             "Far clipping distance in metres (> NearClip).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -789,7 +794,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "Exposure",
-            "float",
+            TypeCode(Kind::Float),
             "Linear multiplier of HDR radiance before the tone curve (SetExposureValue and SetPhysicalExposure\nset it from photographic settings).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -803,7 +808,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "WhiteBalanceTemperature",
-            "float",
+            TypeCode(Kind::Float),
             "The colour temperature in kelvin the camera is balanced for, in [2000, 25000]: light of this\ntemperature renders neutral in final_color (hdr_color is unchanged). 6500 (daylight) leaves colours as\nthey are; 3200 suits tungsten light (the image turns bluer), 10000 shade (warmer).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -817,7 +822,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "SensorWidth",
-            "float",
+            TypeCode(Kind::Float),
             "Sensor width in millimetres (> 0), relating FOV to a lens's focal length: 36 is full frame.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -831,7 +836,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "LensDistortion",
-            "FLensDistortion",
+            TypeCode(Kind::Struct, "FLensDistortion"),
             "Lens distortion applied to every modality (OpenCV's model with GetIntrinsicMatrix()'s K; see\nGetDistortionCoefficients): each pixel shows what the distorted ray through it sees, taken from a\npinhole render wide enough to hold every ray, nearest pixel, so that all modalities stay consistent.\nPixels past where the model folds over (strong barrel distortion far from the axis) show no ray and\nare zero in every modality. The remap is rebuilt when the lens, the size or the FOV changes.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -845,7 +850,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "PrincipalPointOffset",
-            "FVector2D",
+            TypeCode(Kind::Struct, "FVector2D"),
             "The principal point's offset from the image centre in pixels (X right, Y down): an off-centre lens, as\na real camera's calibration gives it (cx, cy of GetIntrinsicMatrix() move by it).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -859,7 +864,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "ApertureFNumber",
-            "float",
+            TypeCode(Kind::Float),
             "Depth of field of the path tracer: the lens's f-number (its focal length, GetFocalLength() on\nSensorWidth, over the aperture's diameter); 0 (the default) is a pinhole, everything sharp. The raster\nrenderer, and the geometric modalities, are always sharp.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -873,7 +878,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "FocusDistance",
-            "float",
+            TypeCode(Kind::Float),
             "The distance in metres, along the optical axis, that the path tracer's lens is focused at (> 0).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -887,7 +892,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "VignetteIntensity",
-            "float",
+            TypeCode(Kind::Float),
             "Natural vignetting of final_color, in [0, 1]: each pixel's exposure falls off as mix(1, cos^4 theta,\nVignetteIntensity), theta the angle of its ray to the optical axis (the cos^4 law of a lens); 0 (the\ndefault) is none. hdr_color, the scene's radiance, is not vignetted.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -901,7 +906,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "ToneCurve",
-            "ECameraToneCurve",
+            TypeCode(Kind::Enum, "ECameraToneCurve"),
             "The tone curve of final_color.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -915,7 +920,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "bShadows",
-            "bool",
+            TypeCode(Kind::Bool),
             "Whether shadow-casting lights render shadow maps for this camera.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -929,7 +934,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "ShadowResolution",
-            "int",
+            TypeCode(Kind::Int),
             "Shadow map size in texels, in [16, 8192].",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -943,7 +948,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "Modalities",
-            "list[ECameraModality]",
+            TypeCode(Kind::List, TypeCode(Kind::Enum, "ECameraModality")),
             "The modalities rendered each frame; only the passes they need run.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -957,7 +962,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "Latency",
-            "int",
+            TypeCode(Kind::Int),
             "Frames between rendering and reading: 0 (same frame), 1 or 2 (double or triple buffered).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -971,7 +976,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "Renderer",
-            "ECameraRenderer",
+            TypeCode(Kind::Enum, "ECameraRenderer"),
             "The renderer of final_color, hdr_color and the intrinsic images (geometric and material modalities\nare always rasterised).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -985,7 +990,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "SamplesPerPixel",
-            "int",
+            TypeCode(Kind::Int),
             "Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -999,7 +1004,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "MaxBounces",
-            "int",
+            TypeCode(Kind::Int),
             "Path tracing: indirect bounces after the first hit, in [0, 64] (0: direct light and sky only).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -1014,9 +1019,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetWidth",
             "Sets Width in pixels, in [1, 16384].",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewWidth", "int", false, false},
+                {"NewWidth", TypeCode(Kind::Int), false, false},
             },
             false,
             false,
@@ -1031,9 +1036,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetHeight",
             "Sets Height in pixels, in [1, 16384].",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewHeight", "int", false, false},
+                {"NewHeight", TypeCode(Kind::Int), false, false},
             },
             false,
             false,
@@ -1048,9 +1053,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetFOV",
             "Sets the horizontal field of view in degrees, in (0, 180).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewFOV", "float", false, false},
+                {"NewFOV", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -1065,9 +1070,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetNearClip",
             "Sets NearClip in metres (> 0 and finite).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewNearClip", "float", false, false},
+                {"NewNearClip", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -1082,9 +1087,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetFarClip",
             "Sets FarClip in metres (> 0 and finite; it must exceed NearClip when the camera renders).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewFarClip", "float", false, false},
+                {"NewFarClip", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -1099,9 +1104,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetExposure",
             "Sets Exposure (> 0 and finite).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewExposure", "float", false, false},
+                {"NewExposure", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -1116,9 +1121,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetSensorWidth",
             "Sets SensorWidth in millimetres (> 0 and finite); FOV is kept.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewSensorWidth", "float", false, false},
+                {"NewSensorWidth", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -1133,9 +1138,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetFocalLength",
             "Sets FOV from a lens's focal length in millimetres on SensorWidth: FOV = 2 atan(SensorWidth / (2 f)).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"FocalLength", "float", false, false},
+                {"FocalLength", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -1150,7 +1155,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetFocalLength",
             "Returns the focal length in millimetres that FOV gives on SensorWidth.",
-            "float",
+            TypeCode(Kind::Float),
             {
             },
             false,
@@ -1165,9 +1170,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetExposureValue",
             "Sets Exposure from an exposure value at ISO 100 (EV100, as light meters give it): a scene of\nluminance L (cd/m^2) metered at EV100 = log2(L * 100 / 12.5) maps to 18 % grey; Exposure = 1 / (1.2 *\n2^EV100) (the saturation-based sensitivity of ISO 12232).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"EV100", "float", false, false},
+                {"EV100", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -1182,11 +1187,11 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetPhysicalExposure",
             "Sets Exposure from an aperture (f-number), a shutter time in seconds and an ISO speed: EV100 =\nlog2(FNumber^2 / ShutterSeconds * 100 / ISO).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"FNumber", "float", false, false},
-                {"ShutterSeconds", "float", false, false},
-                {"ISO", "float", false, false},
+                {"FNumber", TypeCode(Kind::Float), false, false},
+                {"ShutterSeconds", TypeCode(Kind::Float), false, false},
+                {"ISO", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -1203,9 +1208,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetLensDistortion",
             "Sets LensDistortion (every coefficient finite; a lens too strong to invert over the image is refused\nwhen the camera renders).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewLensDistortion", "FLensDistortion", false, false},
+                {"NewLensDistortion", TypeCode(Kind::Struct, "FLensDistortion"), false, false},
             },
             false,
             false,
@@ -1220,9 +1225,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetPrincipalPointOffset",
             "Sets PrincipalPointOffset in pixels (finite).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewPrincipalPointOffset", "FVector2D", false, false},
+                {"NewPrincipalPointOffset", TypeCode(Kind::Struct, "FVector2D"), false, false},
             },
             false,
             false,
@@ -1237,7 +1242,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetDistortionCoefficients",
             "Returns the distortion coefficients in OpenCV's order, (k1, k2, p1, p2, k3) as a (5,) array, for\ncv2.undistort(image, K, coefficients) and cv2.projectPoints.",
-            "NDArray[np.float64]",
+            TypeCode(Kind::Array, "float64"),
             {
             },
             false,
@@ -1252,9 +1257,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "DistortPixels",
             "Returns where pinhole pixels (an (N, 2) array of u, v under GetIntrinsicMatrix()'s K, no distortion)\nland in this camera's images: OpenCV's distortion model applied to them.",
-            "NDArray[np.float64]",
+            TypeCode(Kind::Array, "float64"),
             {
-                {"Points", "NDArray[np.float64]", false, false},
+                {"Points", TypeCode(Kind::Array, "float64"), false, false},
             },
             false,
             true,
@@ -1269,9 +1274,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "UndistortPixels",
             "Returns the pinhole pixels ((N, 2)) that this camera's image pixels Points ((N, 2)) show: the inverse\nof DistortPixels (cv2.undistortPoints(..., P=K) approximates it), solved to about 1e-10 pixels; NaN\nfor a pixel no ray shows (past where a strong barrel distortion folds over; such pixels render empty).",
-            "NDArray[np.float64]",
+            TypeCode(Kind::Array, "float64"),
             {
-                {"Points", "NDArray[np.float64]", false, false},
+                {"Points", TypeCode(Kind::Array, "float64"), false, false},
             },
             false,
             true,
@@ -1286,9 +1291,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetApertureFNumber",
             "Sets ApertureFNumber: 0 (a pinhole) or >= 0.5.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewApertureFNumber", "float", false, false},
+                {"NewApertureFNumber", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -1303,9 +1308,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetFocusDistance",
             "Sets FocusDistance in metres (> 0 and finite).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewFocusDistance", "float", false, false},
+                {"NewFocusDistance", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -1320,9 +1325,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetVignetteIntensity",
             "Sets VignetteIntensity, in [0, 1].",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewVignetteIntensity", "float", false, false},
+                {"NewVignetteIntensity", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -1337,9 +1342,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetWhiteBalanceTemperature",
             "Sets WhiteBalanceTemperature in kelvin, in [2000, 25000].",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewWhiteBalanceTemperature", "float", false, false},
+                {"NewWhiteBalanceTemperature", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -1354,7 +1359,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetWhiteBalanceGains",
             "Returns the gains (3,) white balance multiplies linear red, green and blue by before the tone curve\n(1, 1, 1 at 6500 K; a grey keeps its luminance).",
-            "NDArray[np.float64]",
+            TypeCode(Kind::Array, "float64"),
             {
             },
             false,
@@ -1369,9 +1374,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetShadowResolution",
             "Sets ShadowResolution in texels, in [16, 8192].",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewShadowResolution", "int", false, false},
+                {"NewShadowResolution", TypeCode(Kind::Int), false, false},
             },
             false,
             false,
@@ -1386,9 +1391,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetLatency",
             "Sets Latency: 0, 1 or 2 frames.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewLatency", "int", false, false},
+                {"NewLatency", TypeCode(Kind::Int), false, false},
             },
             false,
             false,
@@ -1403,9 +1408,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetSamplesPerPixel",
             "Sets SamplesPerPixel, in [1, 65536].",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewSamplesPerPixel", "int", false, false},
+                {"NewSamplesPerPixel", TypeCode(Kind::Int), false, false},
             },
             false,
             false,
@@ -1420,9 +1425,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetMaxBounces",
             "Sets MaxBounces, in [0, 64].",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewMaxBounces", "int", false, false},
+                {"NewMaxBounces", TypeCode(Kind::Int), false, false},
             },
             false,
             false,
@@ -1437,7 +1442,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetIntrinsicMatrix",
             "Returns the intrinsic matrix K (3, 3) of the images in OpenCV's convention: pixel (u right, v down,\nthe centre of pixel [i, j] at u = j, v = i) = K @ (x, y, z) / z for a point (x, y, z) in the OpenCV\ncamera frame (x right, y down, z forward); fx = fy = (Width / 2) / tan(FOV / 2), cx = (Width - 1) / 2\n+ PrincipalPointOffset.X, cy = (Height - 1) / 2 + PrincipalPointOffset.Y. With LensDistortion the\ndistortion applies between the normalised point and K, as in OpenCV (DistortPixels).",
-            "NDArray[np.float64]",
+            TypeCode(Kind::Array, "float64"),
             {
             },
             false,
@@ -1452,7 +1457,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetWorldToCamera",
             "Returns the world-to-camera transform (4, 4) into the OpenCV camera frame (x right, y down, z\nforward, metres) from the component's current world transform: with GetIntrinsicMatrix(), a world\npoint's pixel is K @ (T @ [p, 1])[:3] divided by its z. Both describe the camera as it is now: the\nframe read in the same end_frame at Latency 0, Latency frames earlier otherwise.",
-            "NDArray[np.float64]",
+            TypeCode(Kind::Array, "float64"),
             {
             },
             false,
@@ -1467,7 +1472,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetAccumulatedSamples",
             "Returns the samples per pixel behind the path-traced images of the frame last read (they restart\nfrom SamplesPerPixel when anything in the scene, the camera or MaxBounces changes), or 0 when the\nlast read frame was not path traced.",
-            "int",
+            TypeCode(Kind::Int),
             {
             },
             false,
@@ -1482,7 +1487,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "read_pixels",
             "Returns the images of the frame due (see the class notes on latency); an empty dict while priming.",
-            "FCameraPixels",
+            TypeCode(Kind::Struct, "FCameraPixels"),
             {
             },
             false,
@@ -1498,9 +1503,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "read_pixels_stacked",
             "Returns the images of several cameras' due frames (cameras of any worlds of one engine) in one call:\neach modality as one array with a leading camera axis, (len(Cameras), H, W[, C]), each camera's images\nread straight into its slice. The cameras must show frames of one size and the same modalities; an\nempty dict while any of them is priming.",
-            "FCameraPixels",
+            TypeCode(Kind::Struct, "FCameraPixels"),
             {
-                {"Cameras", "list[UCameraSensorComponent]", false, false},
+                {"Cameras", TypeCode(Kind::List, TypeCode(Kind::Object, "UCameraSensorComponent")), false, false},
             },
             true,
             false,
@@ -1516,7 +1521,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetPixelsFrame",
             "Returns the world frame shown by the last read_pixels() result, or -1 when it was empty.",
-            "int",
+            TypeCode(Kind::Int),
             {
             },
             false,
@@ -1531,9 +1536,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetModalityNames",
             "Sets Modalities from snake_case names (\"final_color\", \"depth\", ...); an unknown name is an error.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Names", "list[str]", false, false},
+                {"Names", TypeCode(Kind::List, TypeCode(Kind::Str)), false, false},
             },
             false,
             false,
@@ -1548,7 +1553,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetModalityNames",
             "Returns the snake_case names of Modalities, in the order read_pixels() uses as dict keys.",
-            "list[str]",
+            TypeCode(Kind::List, TypeCode(Kind::Str)),
             {
             },
             false,
@@ -1563,13 +1568,13 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetObjectIdInfo",
             "Looks up an object id of object_ids: the actor, the component and the material slot and name it\nbelongs to (a spline's debug line: its actor, Component None, material \"DebugLine\"); returns False\n(and None, -1, \"\") for 0, an unknown id or a destroyed component.",
-            "GetObjectIdInfoResult",
+            TypeCode(Kind::Bool),
             {
-                {"ObjectId", "int", false, false},
-                {"Actor", "AActor", false, true},
-                {"Component", "UPrimitiveComponent", false, true},
-                {"MaterialSlot", "int", false, true},
-                {"MaterialName", "str", false, true},
+                {"ObjectId", TypeCode(Kind::Int), false, false},
+                {"Actor", TypeCode(Kind::Object, "AActor"), false, true},
+                {"Component", TypeCode(Kind::Object, "UPrimitiveComponent"), false, true},
+                {"MaterialSlot", TypeCode(Kind::Int), false, true},
+                {"MaterialName", TypeCode(Kind::Str), false, true},
             },
             false,
             true,
@@ -1594,10 +1599,10 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetObjectId",
             "Returns the object id of one material slot of Component, or 0 when it has not been rendered yet.",
-            "int",
+            TypeCode(Kind::Int),
             {
-                {"Component", "UPrimitiveComponent", false, false},
-                {"MaterialSlot", "int", true, false},
+                {"Component", TypeCode(Kind::Object, "UPrimitiveComponent"), false, false},
+                {"MaterialSlot", TypeCode(Kind::Int), true, false},
             },
             false,
             true,
@@ -1614,9 +1619,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetMaterialId",
             "Returns the material id that material_ids holds for the material called Name, or 0 when unused.",
-            "int",
+            TypeCode(Kind::Int),
             {
-                {"Name", "str", false, false},
+                {"Name", TypeCode(Kind::Str), false, false},
             },
             false,
             true,
@@ -1631,7 +1636,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "get_render_device_info",
             "Returns which EGL device renders this camera's world (starting the renderer if needed).",
-            "FRenderDeviceInfo",
+            TypeCode(Kind::Struct, "FRenderDeviceInfo"),
             {
             },
             false,
@@ -1647,7 +1652,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetRenderStats",
             "Returns how often each render pass ran in this camera's world, and its timings.",
-            "FRenderStats",
+            TypeCode(Kind::Struct, "FRenderStats"),
             {
             },
             false,

@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- AMaterialLibrary ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& AMaterialLibrary::StaticClass() {
@@ -52,7 +57,7 @@ const sp::reflect::TypeInfo& AMaterialLibrary::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Materials",
-            "dict[str, FMaterialDesc]",
+            TypeCode(Kind::Dict, TypeCode(Kind::Struct, "FMaterialDesc")),
             "Materials by name; mesh components refer to them in their Materials list.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -67,10 +72,10 @@ const sp::reflect::TypeInfo& AMaterialLibrary::StaticClass() {
         t.functions.push_back({
             "SetMaterial",
             "Defines (or replaces) the material called Name.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Name", "str", false, false},
-                {"Material", "FMaterialDesc", false, false},
+                {"Name", TypeCode(Kind::Str), false, false},
+                {"Material", TypeCode(Kind::Struct, "FMaterialDesc"), false, false},
             },
             false,
             false,
@@ -86,9 +91,9 @@ const sp::reflect::TypeInfo& AMaterialLibrary::StaticClass() {
         t.functions.push_back({
             "GetMaterial",
             "Returns the material a mesh slot named Name gets: this library's, else the built-in one, else the\ndefault grey one.",
-            "FMaterialDesc",
+            TypeCode(Kind::Struct, "FMaterialDesc"),
             {
-                {"Name", "str", false, false},
+                {"Name", TypeCode(Kind::Str), false, false},
             },
             false,
             true,
@@ -104,7 +109,7 @@ const sp::reflect::TypeInfo& AMaterialLibrary::StaticClass() {
         t.functions.push_back({
             "GetBuiltinMaterialNames",
             "Returns the names of the built-in materials.",
-            "list[str]",
+            TypeCode(Kind::List, TypeCode(Kind::Str)),
             {
             },
             false,
@@ -136,7 +141,7 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "BaseColor",
-            "FLinearColor",
+            TypeCode(Kind::Struct, "FLinearColor"),
             "Linear RGB base colour (alpha unused: materials are opaque).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -150,7 +155,7 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
         });
         t.properties.push_back({
             "Roughness",
-            "float",
+            TypeCode(Kind::Float),
             "Perceptual roughness in [0, 1].",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -164,7 +169,7 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
         });
         t.properties.push_back({
             "Metallic",
-            "float",
+            TypeCode(Kind::Float),
             "Metalness in [0, 1].",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -178,7 +183,7 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
         });
         t.properties.push_back({
             "AmbientOcclusion",
-            "float",
+            TypeCode(Kind::Float),
             "Ambient occlusion in [0, 1]; scales the sky light only.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -192,7 +197,7 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
         });
         t.properties.push_back({
             "Emissive",
-            "FLinearColor",
+            TypeCode(Kind::Struct, "FLinearColor"),
             "Linear RGB radiance emitted by the surface (alpha unused).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -206,7 +211,7 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
         });
         t.properties.push_back({
             "BaseColorTexture",
-            "str",
+            TypeCode(Kind::Str),
             "Path of an sRGB PNG/JPG multiplying BaseColor (\"\" for none).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -220,7 +225,7 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
         });
         t.properties.push_back({
             "RoughnessMetallicTexture",
-            "str",
+            TypeCode(Kind::Str),
             "Path of a glTF-layout texture (G = roughness, B = metallic) multiplying the factors (\"\" for none).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -234,7 +239,7 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
         });
         t.properties.push_back({
             "NormalTexture",
-            "str",
+            TypeCode(Kind::Str),
             "Path of a tangent-space normal map, OpenGL convention (\"\" for none).",
             false,
             [](const void* self) -> sp::reflect::Value {

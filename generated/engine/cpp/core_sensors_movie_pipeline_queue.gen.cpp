@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EMoviePipelineJobStatus>() {
     static const sp::reflect::EnumInfo info{
         "EMoviePipelineJobStatus",
@@ -68,7 +73,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "OutputDirectory",
-            "str",
+            TypeCode(Kind::Str),
             "The folder the files go to (created when missing): <modality>/<frame>.png|.exr and\ncamera/<frame>.json.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -82,7 +87,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         });
         t.properties.push_back({
             "Modalities",
-            "list[ECameraModality]",
+            TypeCode(Kind::List, TypeCode(Kind::Enum, "ECameraModality")),
             "The modalities written; empty: the camera's Modalities.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -96,7 +101,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         });
         t.properties.push_back({
             "Width",
-            "int",
+            TypeCode(Kind::Int),
             "Image width in pixels, in [1, 16384]; 0: the camera's Width.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -110,7 +115,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         });
         t.properties.push_back({
             "Height",
-            "int",
+            TypeCode(Kind::Int),
             "Image height in pixels, in [1, 16384]; 0: the camera's Height.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -124,7 +129,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         });
         t.properties.push_back({
             "SamplesPerPixel",
-            "int",
+            TypeCode(Kind::Int),
             "Path-traced cameras: samples per pixel of each output frame, in [1, 65536] (each frame's own, never\naccumulated across frames); 0: the camera's SamplesPerPixel. Raster cameras ignore it.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -138,7 +143,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         });
         t.properties.push_back({
             "CameraLocations",
-            "list[FVector]",
+            TypeCode(Kind::List, TypeCode(Kind::Struct, "FVector")),
             "World locations of the camera, one per output frame; empty: the camera stays where the world puts it\nand output frame k is the k-th engine frame of the job (a recording of the running world).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -152,7 +157,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         });
         t.properties.push_back({
             "CameraRotations",
-            "list[FRotator]",
+            TypeCode(Kind::List, TypeCode(Kind::Struct, "FRotator")),
             "World rotations of the camera, one per location.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -166,7 +171,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         });
         t.properties.push_back({
             "FrameStart",
-            "int",
+            TypeCode(Kind::Int),
             "The first output frame rendered (>= 0); frames are numbered from 0 and name the files.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -180,7 +185,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         });
         t.properties.push_back({
             "FrameEnd",
-            "int",
+            TypeCode(Kind::Int),
             "One past the last output frame rendered; -1: the number of poses (required without poses).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -194,7 +199,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         });
         t.properties.push_back({
             "bOverwriteExisting",
-            "bool",
+            TypeCode(Kind::Bool),
             "Whether frames whose files all exist are rendered again (false: they are skipped, which resumes an\ninterrupted job).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -226,7 +231,7 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "FramesTotal",
-            "int",
+            TypeCode(Kind::Int),
             "Output frames in the job's range.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -240,7 +245,7 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
         });
         t.properties.push_back({
             "FramesRendered",
-            "int",
+            TypeCode(Kind::Int),
             "Frames rendered and written by this run.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -254,7 +259,7 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
         });
         t.properties.push_back({
             "FramesWriting",
-            "int",
+            TypeCode(Kind::Int),
             "Frames rendered whose files are still being written (on background threads, while the next frames\nrender); a job ends only when this is 0.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -268,7 +273,7 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
         });
         t.properties.push_back({
             "FramesSkipped",
-            "int",
+            TypeCode(Kind::Int),
             "Frames skipped because their files were already there.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -282,7 +287,7 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
         });
         t.properties.push_back({
             "ElapsedSeconds",
-            "float",
+            TypeCode(Kind::Float),
             "Seconds since the job started rendering (0 before).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -296,7 +301,7 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
         });
         t.properties.push_back({
             "EstimatedSecondsLeft",
-            "float",
+            TypeCode(Kind::Float),
             "Seconds left at the pace of the frames rendered so far (0 when finished; -1 before the first frame and\nafter a cancel or a failure).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -328,7 +333,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         t.isAbstract = true;
         t.properties.push_back({
             "JobName",
-            "str",
+            TypeCode(Kind::Str),
             "The name given to AllocateJob (used in progress and log lines).",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -339,9 +344,9 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         t.functions.push_back({
             "SetConfiguration",
             "Sets what the job renders; checked now (each field's range, poses that pair up, a frame range), and\nrefused while the job is queued or rendering.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Configuration", "FMoviePipelineConfiguration", false, false},
+                {"Configuration", TypeCode(Kind::Struct, "FMoviePipelineConfiguration"), false, false},
             },
             false,
             false,
@@ -356,7 +361,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         t.functions.push_back({
             "GetConfiguration",
             "Returns the configuration set last.",
-            "FMoviePipelineConfiguration",
+            TypeCode(Kind::Struct, "FMoviePipelineConfiguration"),
             {
             },
             false,
@@ -372,7 +377,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         t.functions.push_back({
             "GetCamera",
             "Returns the camera the job renders with, or None when it was destroyed.",
-            "UCameraSensorComponent | None",
+            TypeCode(Kind::Object, "UCameraSensorComponent", true),
             {
             },
             false,
@@ -387,7 +392,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         t.functions.push_back({
             "GetStatus",
             "Returns where the job is.",
-            "EMoviePipelineJobStatus",
+            TypeCode(Kind::Enum, "EMoviePipelineJobStatus"),
             {
             },
             false,
@@ -402,7 +407,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         t.functions.push_back({
             "GetProgress",
             "Returns how far the job is (of its current or last run).",
-            "FMoviePipelineProgress",
+            TypeCode(Kind::Struct, "FMoviePipelineProgress"),
             {
             },
             false,
@@ -418,7 +423,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         t.functions.push_back({
             "GetErrorMessage",
             "Returns why the job failed, or \"\" when it did not.",
-            "str",
+            TypeCode(Kind::Str),
             {
             },
             false,
@@ -433,9 +438,9 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         t.functions.push_back({
             "GetOutputFiles",
             "Returns the paths of the files output frame Frame writes: one per modality, then the camera file.",
-            "list[str]",
+            TypeCode(Kind::List, TypeCode(Kind::Str)),
             {
-                {"Frame", "int", false, false},
+                {"Frame", TypeCode(Kind::Int), false, false},
             },
             false,
             true,
@@ -450,7 +455,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         t.functions.push_back({
             "Cancel",
             "Stops the job (queued or rendering) now, once the frames being written are on disk; frames written\nstay.",
-            "None",
+            TypeCode(Kind::Void),
             {
             },
             false,
@@ -483,9 +488,9 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
         t.functions.push_back({
             "GetMoviePipelineQueueEngineSubsystem",
             "Returns the render queue of WorldContextObject's world.",
-            "UMoviePipelineQueueEngineSubsystem",
+            TypeCode(Kind::Object, "UMoviePipelineQueueEngineSubsystem"),
             {
-                {"WorldContextObject", "UObject", false, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
             },
             true,
             false,
@@ -501,10 +506,10 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
         t.functions.push_back({
             "AllocateJob",
             "Makes a job that renders with Camera (a camera of this world), named JobName (\"\" gives one).",
-            "UMoviePipelineExecutorJob",
+            TypeCode(Kind::Object, "UMoviePipelineExecutorJob"),
             {
-                {"Camera", "UCameraSensorComponent", false, false},
-                {"JobName", "str", true, false},
+                {"Camera", TypeCode(Kind::Object, "UCameraSensorComponent"), false, false},
+                {"JobName", TypeCode(Kind::Str), true, false},
             },
             false,
             false,
@@ -522,9 +527,9 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
         t.functions.push_back({
             "RenderJob",
             "Queues a configured job and returns at once; it renders over the next engine frames. A job that\nended (finished, cancelled, failed) may be queued again: it skips the frames already written.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Job", "UMoviePipelineExecutorJob", false, false},
+                {"Job", TypeCode(Kind::Object, "UMoviePipelineExecutorJob"), false, false},
             },
             false,
             false,
@@ -539,7 +544,7 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
         t.functions.push_back({
             "IsRendering",
             "Returns whether a job is rendering or queued.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
             },
             false,
@@ -554,7 +559,7 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
         t.functions.push_back({
             "GetActiveJob",
             "Returns the job rendering now, or None.",
-            "UMoviePipelineExecutorJob | None",
+            TypeCode(Kind::Object, "UMoviePipelineExecutorJob", true),
             {
             },
             false,
@@ -569,7 +574,7 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
         t.functions.push_back({
             "GetJobs",
             "Returns every job of this queue, in allocation order.",
-            "list[UMoviePipelineExecutorJob]",
+            TypeCode(Kind::List, TypeCode(Kind::Object, "UMoviePipelineExecutorJob")),
             {
             },
             false,
@@ -584,7 +589,7 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
         t.functions.push_back({
             "CancelAllJobs",
             "Cancels the rendering job and every queued one.",
-            "None",
+            TypeCode(Kind::Void),
             {
             },
             false,
@@ -599,9 +604,9 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
         t.functions.push_back({
             "DeleteJob",
             "Destroys a job that is not queued or rendering; its handles become stale.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Job", "UMoviePipelineExecutorJob", false, false},
+                {"Job", TypeCode(Kind::Object, "UMoviePipelineExecutorJob"), false, false},
             },
             false,
             false,

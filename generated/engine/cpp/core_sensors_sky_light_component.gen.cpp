@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- ASkyLight ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& ASkyLight::StaticClass() {
@@ -52,7 +57,7 @@ const sp::reflect::TypeInfo& ASkyLight::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "SkyLightComponent",
-            "USkyLightComponent",
+            TypeCode(Kind::Object, "USkyLightComponent"),
             "The sky light (also the root component).",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -81,7 +86,7 @@ const sp::reflect::TypeInfo& USkyLightComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "SkyColor",
-            "FLinearColor",
+            TypeCode(Kind::Struct, "FLinearColor"),
             "Linear RGB radiance of the uniform sky, multiplied by Intensity.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -95,7 +100,7 @@ const sp::reflect::TypeInfo& USkyLightComponent::StaticClass() {
         });
         t.properties.push_back({
             "Intensity",
-            "float",
+            TypeCode(Kind::Float),
             "Multiplier of SkyColor.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -109,7 +114,7 @@ const sp::reflect::TypeInfo& USkyLightComponent::StaticClass() {
         });
         t.properties.push_back({
             "BackgroundColor",
-            "FLinearColor",
+            TypeCode(Kind::Struct, "FLinearColor"),
             "Linear HDR colour of the pixels that hit no geometry.",
             false,
             [](const void* self) -> sp::reflect::Value {

@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- ASpotLight ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& ASpotLight::StaticClass() {
@@ -52,7 +57,7 @@ const sp::reflect::TypeInfo& ASpotLight::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "LightComponent",
-            "USpotLightComponent",
+            TypeCode(Kind::Object, "USpotLightComponent"),
             "The light (also the root component); its cone points along the actor's forward axis.",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -81,7 +86,7 @@ const sp::reflect::TypeInfo& USpotLightComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "InnerConeAngle",
-            "float",
+            TypeCode(Kind::Float),
             "Half-angle in degrees inside which the light has full intensity.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -95,7 +100,7 @@ const sp::reflect::TypeInfo& USpotLightComponent::StaticClass() {
         });
         t.properties.push_back({
             "OuterConeAngle",
-            "float",
+            TypeCode(Kind::Float),
             "Half-angle in degrees outside which the light is zero (>= InnerConeAngle, < 90).",
             false,
             [](const void* self) -> sp::reflect::Value {

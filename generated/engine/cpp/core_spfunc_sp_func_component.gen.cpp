@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- USpFuncComponent ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& USpFuncComponent::StaticClass() {
@@ -53,7 +58,7 @@ const sp::reflect::TypeInfo& USpFuncComponent::StaticClass() {
         t.functions.push_back({
             "GetFuncNames",
             "Returns the names of the SpFuncs registered now, sorted.",
-            "list[str]",
+            TypeCode(Kind::List, TypeCode(Kind::Str)),
             {
             },
             false,

@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- AActor ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& AActor::StaticClass() {
@@ -52,7 +57,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Tags",
-            "list[str]",
+            TypeCode(Kind::List, TypeCode(Kind::Str)),
             "Tags for finding this actor.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -66,7 +71,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         });
         t.properties.push_back({
             "RootComponent",
-            "USceneComponent | None",
+            TypeCode(Kind::Object, "USceneComponent", true),
             "The component that defines the actor's transform.",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -77,9 +82,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "SetRootComponent",
             "Makes NewRootComponent (one of this actor's components) the root.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewRootComponent", "USceneComponent", false, false},
+                {"NewRootComponent", TypeCode(Kind::Object, "USceneComponent"), false, false},
             },
             false,
             false,
@@ -94,7 +99,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "GetActorLocation",
             "Returns the world-space location of the root component.",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
             },
             false,
@@ -110,9 +115,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "SetActorLocation",
             "Moves the actor; returns true when it moved.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
-                {"NewLocation", "FVector", false, false},
+                {"NewLocation", TypeCode(Kind::Struct, "FVector"), false, false},
             },
             false,
             false,
@@ -127,7 +132,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "GetActorRotation",
             "Returns the world-space rotation of the root component.",
-            "FRotator",
+            TypeCode(Kind::Struct, "FRotator"),
             {
             },
             false,
@@ -143,9 +148,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "SetActorRotation",
             "Rotates the actor; returns true when it rotated.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
-                {"NewRotation", "FRotator", false, false},
+                {"NewRotation", TypeCode(Kind::Struct, "FRotator"), false, false},
             },
             false,
             false,
@@ -160,12 +165,12 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "K2_SetActorLocationAndRotation",
             "Moves and rotates the actor (bSweep is accepted for UE compatibility; sweeps are not supported).",
-            "bool",
+            TypeCode(Kind::Bool),
             {
-                {"NewLocation", "FVector", false, false},
-                {"NewRotation", "FRotator", false, false},
-                {"bSweep", "bool", true, false},
-                {"bTeleport", "bool", true, false},
+                {"NewLocation", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"NewRotation", TypeCode(Kind::Struct, "FRotator"), false, false},
+                {"bSweep", TypeCode(Kind::Bool), true, false},
+                {"bTeleport", TypeCode(Kind::Bool), true, false},
             },
             false,
             false,
@@ -185,7 +190,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "GetActorScale3D",
             "Returns the world-space scale of the root component.",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
             },
             false,
@@ -201,9 +206,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "SetActorScale3D",
             "Sets the world-space scale of the root component.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewScale3D", "FVector", false, false},
+                {"NewScale3D", TypeCode(Kind::Struct, "FVector"), false, false},
             },
             false,
             false,
@@ -218,7 +223,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "GetActorTransform",
             "Returns the world-space transform of the root component.",
-            "FTransform",
+            TypeCode(Kind::Struct, "FTransform"),
             {
             },
             false,
@@ -234,9 +239,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "SetActorTransform",
             "Sets the world-space transform of the root component.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
-                {"NewTransform", "FTransform", false, false},
+                {"NewTransform", TypeCode(Kind::Struct, "FTransform"), false, false},
             },
             false,
             false,
@@ -251,7 +256,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "GetActorForwardVector",
             "Returns the unit vector along the actor's X axis.",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
             },
             false,
@@ -267,11 +272,11 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "GetActorBounds",
             "Returns the world-space bounds of the actor's primitives as centre Origin and half size BoxExtent.",
-            "GetActorBoundsResult",
+            TypeCode(Kind::Void),
             {
-                {"bOnlyCollidingComponents", "bool", false, false},
-                {"Origin", "FVector", false, true},
-                {"BoxExtent", "FVector", false, true},
+                {"bOnlyCollidingComponents", TypeCode(Kind::Bool), false, false},
+                {"Origin", TypeCode(Kind::Struct, "FVector"), false, true},
+                {"BoxExtent", TypeCode(Kind::Struct, "FVector"), false, true},
             },
             false,
             true,
@@ -291,9 +296,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "ActorHasTag",
             "Returns true when Tags contains Tag.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
-                {"Tag", "str", false, false},
+                {"Tag", TypeCode(Kind::Str), false, false},
             },
             false,
             true,
@@ -308,9 +313,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "GetOverlappingActors",
             "Returns the other actors (of class ClassFilter or a subclass) that overlap any of this actor's\ncomponents now (see UPrimitiveComponent.GetOverlappingComponents).",
-            "list[AActor]",
+            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
             {
-                {"ClassFilter", "type[AActor] | str", false, false},
+                {"ClassFilter", TypeCode(Kind::Class, "AActor"), false, false},
             },
             false,
             true,
@@ -325,9 +330,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "IsOverlappingActor",
             "Returns true when a component of Other overlaps a component of this actor now.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
-                {"Other", "AActor", false, false},
+                {"Other", TypeCode(Kind::Object, "AActor"), false, false},
             },
             false,
             true,
@@ -342,7 +347,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "GetStreamingLevelName",
             "Returns the name of the streaming level that loaded this actor (\"\" for the persistent level).",
-            "str",
+            TypeCode(Kind::Str),
             {
             },
             false,
@@ -357,7 +362,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "K2_GetComponents",
             "Returns all components of this actor, in creation order.",
-            "list[UActorComponent]",
+            TypeCode(Kind::List, TypeCode(Kind::Object, "UActorComponent")),
             {
             },
             false,
@@ -372,9 +377,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "GetComponentByClass",
             "Returns the first component of class ComponentClass (or a subclass), or None.",
-            "UActorComponent | None",
+            TypeCode(Kind::Object, "UActorComponent", true),
             {
-                {"ComponentClass", "type[UActorComponent] | str", false, false},
+                {"ComponentClass", TypeCode(Kind::Class, "UActorComponent"), false, false},
             },
             false,
             true,

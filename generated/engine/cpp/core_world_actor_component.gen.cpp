@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- UActorComponent ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& UActorComponent::StaticClass() {
@@ -51,7 +56,7 @@ const sp::reflect::TypeInfo& UActorComponent::StaticClass() {
         t.isAbstract = true;
         t.properties.push_back({
             "ComponentTags",
-            "list[str]",
+            TypeCode(Kind::List, TypeCode(Kind::Str)),
             "Tags for finding this component.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -65,7 +70,7 @@ const sp::reflect::TypeInfo& UActorComponent::StaticClass() {
         });
         t.properties.push_back({
             "bTickEnabled",
-            "bool",
+            TypeCode(Kind::Bool),
             "Whether TickComponent runs every frame.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -80,7 +85,7 @@ const sp::reflect::TypeInfo& UActorComponent::StaticClass() {
         t.functions.push_back({
             "GetOwner",
             "Returns the actor that owns this component.",
-            "AActor | None",
+            TypeCode(Kind::Object, "AActor", true),
             {
             },
             false,
@@ -95,9 +100,9 @@ const sp::reflect::TypeInfo& UActorComponent::StaticClass() {
         t.functions.push_back({
             "ComponentHasTag",
             "Returns true when ComponentTags contains Tag.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
-                {"Tag", "str", false, false},
+                {"Tag", TypeCode(Kind::Str), false, false},
             },
             false,
             true,

@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- ACharacter ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& ACharacter::StaticClass() {
@@ -52,7 +57,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "CapsuleComponent",
-            "UCapsuleComponent",
+            TypeCode(Kind::Object, "UCapsuleComponent"),
             "The collision capsule (the root component); its size is the character's.",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -62,7 +67,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
         });
         t.properties.push_back({
             "Mesh",
-            "UStaticMeshComponent",
+            TypeCode(Kind::Object, "UStaticMeshComponent"),
             "The character's visible body (no collision of its own).",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -72,7 +77,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
         });
         t.properties.push_back({
             "CharacterMovement",
-            "UCharacterMovementComponent",
+            TypeCode(Kind::Object, "UCharacterMovementComponent"),
             "How the character walks.",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -82,7 +87,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
         });
         t.properties.push_back({
             "InputComponent",
-            "UInputComponent",
+            TypeCode(Kind::Object, "UInputComponent"),
             "Receives the injected actions.",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -93,7 +98,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
         t.functions.push_back({
             "Jump",
             "Jumps at the next physics step if the character stands on the ground.",
-            "None",
+            TypeCode(Kind::Void),
             {
             },
             false,
@@ -108,7 +113,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
         t.functions.push_back({
             "StopJumping",
             "Ends a jump request that has not started yet.",
-            "None",
+            TypeCode(Kind::Void),
             {
             },
             false,
@@ -123,7 +128,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
         t.functions.push_back({
             "CanJump",
             "Returns true when the character could jump now (it stands on the ground).",
-            "bool",
+            TypeCode(Kind::Bool),
             {
             },
             false,
@@ -138,7 +143,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
         t.functions.push_back({
             "GetCharacterMovement",
             "Returns the character's movement component (UE's GetCharacterMovement).",
-            "UCharacterMovementComponent | None",
+            TypeCode(Kind::Object, "UCharacterMovementComponent", true),
             {
             },
             false,
@@ -171,7 +176,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "MaxWalkSpeed",
-            "float",
+            TypeCode(Kind::Float),
             "Walking speed in m/s at full input (>= 0).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -185,7 +190,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         });
         t.properties.push_back({
             "JumpZVelocity",
-            "float",
+            TypeCode(Kind::Float),
             "Upward speed of a jump in m/s (>= 0): a jump rises JumpZVelocity^2 / 2g.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -199,7 +204,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         });
         t.properties.push_back({
             "MaxStepHeight",
-            "float",
+            TypeCode(Kind::Float),
             "The highest step the character walks up, in metres (>= 0).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -213,7 +218,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         });
         t.properties.push_back({
             "WalkableFloorAngle",
-            "float",
+            TypeCode(Kind::Float),
             "The steepest floor the character walks up, in degrees (in (0, 90)).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -228,9 +233,9 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         t.functions.push_back({
             "SetMaxWalkSpeed",
             "Sets MaxWalkSpeed (m/s, >= 0).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewSpeed", "float", false, false},
+                {"NewSpeed", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -245,9 +250,9 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         t.functions.push_back({
             "SetJumpZVelocity",
             "Sets JumpZVelocity (m/s, >= 0).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewVelocity", "float", false, false},
+                {"NewVelocity", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -262,9 +267,9 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         t.functions.push_back({
             "SetMaxStepHeight",
             "Sets MaxStepHeight (metres, >= 0).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewHeight", "float", false, false},
+                {"NewHeight", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -279,9 +284,9 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         t.functions.push_back({
             "SetWalkableFloorAngle",
             "Sets WalkableFloorAngle (degrees, in (0, 90)).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewAngle", "float", false, false},
+                {"NewAngle", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -296,7 +301,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         t.functions.push_back({
             "GetVelocity",
             "Returns the velocity over the last physics step, m/s (walking and falling).",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
             },
             false,
@@ -312,7 +317,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         t.functions.push_back({
             "IsMovingOnGround",
             "Returns true while the character stands on the ground.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
             },
             false,
@@ -327,7 +332,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         t.functions.push_back({
             "IsFalling",
             "Returns true while the character is in the air (jumping or falling).",
-            "bool",
+            TypeCode(Kind::Bool),
             {
             },
             false,

@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPathFollowingRequestResult>() {
     static const sp::reflect::EnumInfo info{
         "EPathFollowingRequestResult",
@@ -80,12 +85,12 @@ const sp::reflect::TypeInfo& AAIController::StaticClass() {
         t.functions.push_back({
             "MoveToLocation",
             "Starts moving the pawn to Dest; it stops within AcceptanceRadius metres of it (in the horizontal\nplane for a walking pawn), plus its own radius when bStopOnOverlap.",
-            "EPathFollowingRequestResult",
+            TypeCode(Kind::Enum, "EPathFollowingRequestResult"),
             {
-                {"Dest", "FVector", false, false},
-                {"AcceptanceRadius", "float", true, false},
-                {"bStopOnOverlap", "bool", true, false},
-                {"bUsePathfinding", "bool", true, false},
+                {"Dest", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"AcceptanceRadius", TypeCode(Kind::Float), true, false},
+                {"bStopOnOverlap", TypeCode(Kind::Bool), true, false},
+                {"bUsePathfinding", TypeCode(Kind::Bool), true, false},
             },
             false,
             false,
@@ -106,12 +111,12 @@ const sp::reflect::TypeInfo& AAIController::StaticClass() {
         t.functions.push_back({
             "MoveToActor",
             "Starts moving the pawn to Goal, following it if it moves.",
-            "EPathFollowingRequestResult",
+            TypeCode(Kind::Enum, "EPathFollowingRequestResult"),
             {
-                {"Goal", "AActor", false, false},
-                {"AcceptanceRadius", "float", true, false},
-                {"bStopOnOverlap", "bool", true, false},
-                {"bUsePathfinding", "bool", true, false},
+                {"Goal", TypeCode(Kind::Object, "AActor"), false, false},
+                {"AcceptanceRadius", TypeCode(Kind::Float), true, false},
+                {"bStopOnOverlap", TypeCode(Kind::Bool), true, false},
+                {"bUsePathfinding", TypeCode(Kind::Bool), true, false},
             },
             false,
             false,
@@ -132,7 +137,7 @@ const sp::reflect::TypeInfo& AAIController::StaticClass() {
         t.functions.push_back({
             "StopMovement",
             "Stops the move in progress.",
-            "None",
+            TypeCode(Kind::Void),
             {
             },
             false,
@@ -147,7 +152,7 @@ const sp::reflect::TypeInfo& AAIController::StaticClass() {
         t.functions.push_back({
             "GetMoveStatus",
             "Returns whether a move is in progress.",
-            "EPathFollowingStatus",
+            TypeCode(Kind::Enum, "EPathFollowingStatus"),
             {
             },
             false,
@@ -162,7 +167,7 @@ const sp::reflect::TypeInfo& AAIController::StaticClass() {
         t.functions.push_back({
             "GetImmediateMoveDestination",
             "Returns the point the pawn is moving to now: the next corner of its path, else the goal (its location\nwhen no move is in progress).",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
             },
             false,
@@ -197,9 +202,9 @@ const sp::reflect::TypeInfo& AController::StaticClass() {
         t.functions.push_back({
             "Possess",
             "Takes control of InPawn (releasing this controller's previous pawn, and taking InPawn from its\nprevious controller); the control rotation becomes the pawn's rotation.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"InPawn", "APawn", false, false},
+                {"InPawn", TypeCode(Kind::Object, "APawn"), false, false},
             },
             false,
             false,
@@ -214,7 +219,7 @@ const sp::reflect::TypeInfo& AController::StaticClass() {
         t.functions.push_back({
             "UnPossess",
             "Releases the possessed pawn, if any.",
-            "None",
+            TypeCode(Kind::Void),
             {
             },
             false,
@@ -229,7 +234,7 @@ const sp::reflect::TypeInfo& AController::StaticClass() {
         t.functions.push_back({
             "K2_GetPawn",
             "Returns the possessed pawn, or None.",
-            "APawn | None",
+            TypeCode(Kind::Object, "APawn", true),
             {
             },
             false,
@@ -244,7 +249,7 @@ const sp::reflect::TypeInfo& AController::StaticClass() {
         t.functions.push_back({
             "GetControlRotation",
             "Returns the control rotation.",
-            "FRotator",
+            TypeCode(Kind::Struct, "FRotator"),
             {
             },
             false,
@@ -260,9 +265,9 @@ const sp::reflect::TypeInfo& AController::StaticClass() {
         t.functions.push_back({
             "SetControlRotation",
             "Sets the control rotation (the possessed pawn follows it on the axes its bUseControllerRotation*\nflags name, from its next tick).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewRotation", "FRotator", false, false},
+                {"NewRotation", TypeCode(Kind::Struct, "FRotator"), false, false},
             },
             false,
             false,
@@ -277,7 +282,7 @@ const sp::reflect::TypeInfo& AController::StaticClass() {
         t.functions.push_back({
             "IsPlayerController",
             "Returns true for a player's controller.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
             },
             false,
@@ -311,7 +316,7 @@ const sp::reflect::TypeInfo& APlayerController::StaticClass() {
         t.functions.push_back({
             "GetViewTarget",
             "Returns the actor the player views the world from: the set view target, else the pawn, else this\ncontroller.",
-            "AActor | None",
+            TypeCode(Kind::Object, "AActor", true),
             {
             },
             false,
@@ -326,10 +331,10 @@ const sp::reflect::TypeInfo& APlayerController::StaticClass() {
         t.functions.push_back({
             "SetViewTargetWithBlend",
             "Makes NewViewTarget the player's view target (None: the pawn). BlendTime is accepted for UE\ncompatibility; the view changes at once.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewViewTarget", "AActor", false, false},
-                {"BlendTime", "float", true, false},
+                {"NewViewTarget", TypeCode(Kind::Object, "AActor"), false, false},
+                {"BlendTime", TypeCode(Kind::Float), true, false},
             },
             false,
             false,
@@ -346,10 +351,10 @@ const sp::reflect::TypeInfo& APlayerController::StaticClass() {
         t.functions.push_back({
             "GetPlayerViewPoint",
             "Returns the player's view point: the view target's location and the control rotation.",
-            "GetPlayerViewPointResult",
+            TypeCode(Kind::Void),
             {
-                {"Location", "FVector", false, true},
-                {"Rotation", "FRotator", false, true},
+                {"Location", TypeCode(Kind::Struct, "FVector"), false, true},
+                {"Rotation", TypeCode(Kind::Struct, "FRotator"), false, true},
             },
             false,
             true,
@@ -368,9 +373,9 @@ const sp::reflect::TypeInfo& APlayerController::StaticClass() {
         t.functions.push_back({
             "AddYawInput",
             "Adds Val degrees of yaw to the control rotation.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Val", "float", false, false},
+                {"Val", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -385,9 +390,9 @@ const sp::reflect::TypeInfo& APlayerController::StaticClass() {
         t.functions.push_back({
             "AddPitchInput",
             "Adds Val degrees of pitch to the control rotation, keeping pitch within [-89, 89].",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Val", "float", false, false},
+                {"Val", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -402,9 +407,9 @@ const sp::reflect::TypeInfo& APlayerController::StaticClass() {
         t.functions.push_back({
             "AddRollInput",
             "Adds Val degrees of roll to the control rotation.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Val", "float", false, false},
+                {"Val", TypeCode(Kind::Float), false, false},
             },
             false,
             false,

@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- AGameModeBase ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
@@ -52,7 +57,7 @@ const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "DefaultPawnClass",
-            "type[APawn] | None",
+            TypeCode(Kind::Class, "APawn", true),
             "The class of the pawn each player starts with.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -66,7 +71,7 @@ const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
         });
         t.properties.push_back({
             "PlayerControllerClass",
-            "type[APlayerController] | None",
+            TypeCode(Kind::Class, "APlayerController", true),
             "The class of each player's controller.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -81,10 +86,10 @@ const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
         t.functions.push_back({
             "FindPlayerStart",
             "Returns the player start for Player: the first whose PlayerStartTag is IncomingName when that is not\nempty, else the first in the world, or None when the world has none.",
-            "AActor | None",
+            TypeCode(Kind::Object, "AActor", true),
             {
-                {"Player", "AController", false, false},
-                {"IncomingName", "str", true, false},
+                {"Player", TypeCode(Kind::Object, "AController"), false, false},
+                {"IncomingName", TypeCode(Kind::Str), true, false},
             },
             false,
             true,
@@ -101,9 +106,9 @@ const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
         t.functions.push_back({
             "RestartPlayer",
             "Starts NewPlayer: spawns a DefaultPawnClass pawn for it when it has none, moves the pawn to its player\nstart (the world origin when there is none) and possesses it.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewPlayer", "AController", false, false},
+                {"NewPlayer", TypeCode(Kind::Object, "AController"), false, false},
             },
             false,
             false,
@@ -118,7 +123,7 @@ const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
         t.functions.push_back({
             "GetNumPlayers",
             "Returns the number of players (player controllers with a player index).",
-            "int",
+            TypeCode(Kind::Int),
             {
             },
             false,
@@ -133,10 +138,10 @@ const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
         t.functions.push_back({
             "SwapPlayerControllers",
             "Moves OldPC's player to NewPC: NewPC takes OldPC's player index, pawn and view target, and OldPC is\nleft without a player (destroy it, or keep it as a spectator controller).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"OldPC", "APlayerController", false, false},
-                {"NewPC", "APlayerController", false, false},
+                {"OldPC", TypeCode(Kind::Object, "APlayerController"), false, false},
+                {"NewPC", TypeCode(Kind::Object, "APlayerController"), false, false},
             },
             false,
             false,
@@ -170,7 +175,7 @@ const sp::reflect::TypeInfo& APlayerStart::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "PlayerStartTag",
-            "str",
+            TypeCode(Kind::Str),
             "Chooses this start by name (AGameModeBase.FindPlayerStart's IncomingName).",
             false,
             [](const void* self) -> sp::reflect::Value {

@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- UGameplayStatics ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
@@ -52,9 +57,9 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "GetGameMode",
             "Returns the game mode of WorldContextObject's world (None in an editor world).",
-            "AGameModeBase | None",
+            TypeCode(Kind::Object, "AGameModeBase", true),
             {
-                {"WorldContextObject", "UObject", false, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
             },
             true,
             false,
@@ -69,10 +74,10 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "GetPlayerController",
             "Returns the controller of player PlayerIndex, or None.",
-            "APlayerController | None",
+            TypeCode(Kind::Object, "APlayerController", true),
             {
-                {"WorldContextObject", "UObject", false, false},
-                {"PlayerIndex", "int", false, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"PlayerIndex", TypeCode(Kind::Int), false, false},
             },
             true,
             false,
@@ -88,10 +93,10 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "GetPlayerPawn",
             "Returns the pawn of player PlayerIndex, or None.",
-            "APawn | None",
+            TypeCode(Kind::Object, "APawn", true),
             {
-                {"WorldContextObject", "UObject", false, false},
-                {"PlayerIndex", "int", false, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"PlayerIndex", TypeCode(Kind::Int), false, false},
             },
             true,
             false,
@@ -107,9 +112,9 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "GetPlayerControllerID",
             "Returns the player index that Player serves, or -1 when it serves none.",
-            "int",
+            TypeCode(Kind::Int),
             {
-                {"Player", "APlayerController", false, false},
+                {"Player", TypeCode(Kind::Object, "APlayerController"), false, false},
             },
             true,
             false,
@@ -124,9 +129,9 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "GetNumPlayerControllers",
             "Returns the number of player controllers with a player.",
-            "int",
+            TypeCode(Kind::Int),
             {
-                {"WorldContextObject", "UObject", false, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
             },
             true,
             false,
@@ -141,11 +146,11 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "CreatePlayer",
             "Creates player ControllerId (-1: the next free index) with a new player controller, started with a\npawn as the game mode starts players; returns its controller. bSpawnPlayerController is accepted for\nUE compatibility and must be true.",
-            "APlayerController | None",
+            TypeCode(Kind::Object, "APlayerController", true),
             {
-                {"WorldContextObject", "UObject", false, false},
-                {"ControllerId", "int", true, false},
-                {"bSpawnPlayerController", "bool", true, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"ControllerId", TypeCode(Kind::Int), true, false},
+                {"bSpawnPlayerController", TypeCode(Kind::Bool), true, false},
             },
             true,
             false,
@@ -164,10 +169,10 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "GetAllActorsOfClass",
             "Returns every actor of class ActorClass or a subclass of it, in spawn order.",
-            "list[AActor]",
+            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
             {
-                {"WorldContextObject", "UObject", false, false},
-                {"ActorClass", "type[AActor] | str", false, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"ActorClass", TypeCode(Kind::Class, "AActor"), false, false},
             },
             true,
             false,
@@ -183,10 +188,10 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "GetActorOfClass",
             "Returns the first actor of class ActorClass or a subclass of it, or None.",
-            "AActor | None",
+            TypeCode(Kind::Object, "AActor", true),
             {
-                {"WorldContextObject", "UObject", false, false},
-                {"ActorClass", "type[AActor] | str", false, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"ActorClass", TypeCode(Kind::Class, "AActor"), false, false},
             },
             true,
             false,
@@ -202,10 +207,10 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "GetAllActorsWithTag",
             "Returns every actor that has Tag, in spawn order.",
-            "list[AActor]",
+            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
             {
-                {"WorldContextObject", "UObject", false, false},
-                {"Tag", "str", false, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"Tag", TypeCode(Kind::Str), false, false},
             },
             true,
             false,
@@ -221,12 +226,12 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "LoadStreamLevel",
             "Loads streaming level LevelName: one the world's scene file declares (its \"levels\"), or the scene\nfile at that path. Its actors join the world at once, the rest untouched; its object references\nresolve within it and its actor names must be free. Nothing happens for a loaded level.\nbMakeVisibleAfterLoad and bShouldBlockOnLoad are accepted for UE compatibility: a level is loaded,\nvisible, before the call returns.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"WorldContextObject", "UObject", false, false},
-                {"LevelName", "str", false, false},
-                {"bMakeVisibleAfterLoad", "bool", true, false},
-                {"bShouldBlockOnLoad", "bool", true, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"LevelName", TypeCode(Kind::Str), false, false},
+                {"bMakeVisibleAfterLoad", TypeCode(Kind::Bool), true, false},
+                {"bShouldBlockOnLoad", TypeCode(Kind::Bool), true, false},
             },
             true,
             false,
@@ -246,11 +251,11 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "UnloadStreamLevel",
             "Unloads streaming level LevelName: destroys the actors it loaded (their handles go stale, naming\nthe level). bShouldBlockOnUnload is accepted for UE compatibility.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"WorldContextObject", "UObject", false, false},
-                {"LevelName", "str", false, false},
-                {"bShouldBlockOnUnload", "bool", true, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"LevelName", TypeCode(Kind::Str), false, false},
+                {"bShouldBlockOnUnload", TypeCode(Kind::Bool), true, false},
             },
             true,
             false,
@@ -268,9 +273,9 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "GetStreamingLevelNames",
             "Returns the names of the world's streaming levels, declared ones first, in order.",
-            "list[str]",
+            TypeCode(Kind::List, TypeCode(Kind::Str)),
             {
-                {"WorldContextObject", "UObject", false, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
             },
             true,
             false,
@@ -285,10 +290,10 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "IsStreamingLevelLoaded",
             "Returns true while streaming level LevelName is loaded.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
-                {"WorldContextObject", "UObject", false, false},
-                {"LevelName", "str", false, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"LevelName", TypeCode(Kind::Str), false, false},
             },
             true,
             false,

@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- FHitResult ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& FHitResult::StaticClass() {
@@ -51,7 +56,7 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "bBlockingHit",
-            "bool",
+            TypeCode(Kind::Bool),
             "True when the trace hit something.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -65,7 +70,7 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
         });
         t.properties.push_back({
             "Location",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             "Where the trace hit, in world space (metres); the trace end when nothing was hit.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -79,7 +84,7 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
         });
         t.properties.push_back({
             "ImpactPoint",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             "The same point as Location (UE keeps both for swept shapes).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -93,7 +98,7 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
         });
         t.properties.push_back({
             "ImpactNormal",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             "Unit surface normal at the hit, facing the trace start.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -107,7 +112,7 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
         });
         t.properties.push_back({
             "Normal",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             "The same vector as ImpactNormal (UE keeps both for swept shapes).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -121,7 +126,7 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
         });
         t.properties.push_back({
             "Distance",
-            "float",
+            TypeCode(Kind::Float),
             "Distance from TraceStart to Location in metres.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -135,7 +140,7 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
         });
         t.properties.push_back({
             "Time",
-            "float",
+            TypeCode(Kind::Float),
             "Fraction of the way from TraceStart to TraceEnd where the hit lies, in [0, 1].",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -149,7 +154,7 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
         });
         t.properties.push_back({
             "TraceStart",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             "Start of the trace.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -163,7 +168,7 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
         });
         t.properties.push_back({
             "TraceEnd",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             "End of the trace.",
             false,
             [](const void* self) -> sp::reflect::Value {

@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- UInputComponent ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& UInputComponent::StaticClass() {
@@ -53,9 +58,9 @@ const sp::reflect::TypeInfo& UInputComponent::StaticClass() {
         t.functions.push_back({
             "GetActionValue",
             "Returns the value of ActionName injected for the current tick, or zero when it was not injected.",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
-                {"ActionName", "str", false, false},
+                {"ActionName", TypeCode(Kind::Str), false, false},
             },
             false,
             true,
@@ -71,9 +76,9 @@ const sp::reflect::TypeInfo& UInputComponent::StaticClass() {
         t.functions.push_back({
             "IsActionTriggered",
             "Returns true when ActionName was injected for the current tick.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
-                {"ActionName", "str", false, false},
+                {"ActionName", TypeCode(Kind::Str), false, false},
             },
             false,
             true,

@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- AKinematicVehicle ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& AKinematicVehicle::StaticClass() {
@@ -52,7 +57,7 @@ const sp::reflect::TypeInfo& AKinematicVehicle::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Body",
-            "UStaticMeshComponent",
+            TypeCode(Kind::Object, "UStaticMeshComponent"),
             "The vehicle's body (the root component).",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -62,7 +67,7 @@ const sp::reflect::TypeInfo& AKinematicVehicle::StaticClass() {
         });
         t.properties.push_back({
             "InputComponent",
-            "UInputComponent",
+            TypeCode(Kind::Object, "UInputComponent"),
             "Receives the injected actions.",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -72,7 +77,7 @@ const sp::reflect::TypeInfo& AKinematicVehicle::StaticClass() {
         });
         t.properties.push_back({
             "MaxSpeed",
-            "float",
+            TypeCode(Kind::Float),
             "Speed in metres per second at full throttle.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -86,7 +91,7 @@ const sp::reflect::TypeInfo& AKinematicVehicle::StaticClass() {
         });
         t.properties.push_back({
             "MaxYawRateInDegrees",
-            "float",
+            TypeCode(Kind::Float),
             "Yaw rate in degrees per second at full steering.",
             false,
             [](const void* self) -> sp::reflect::Value {

@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- ADirectionalLight ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& ADirectionalLight::StaticClass() {
@@ -52,7 +57,7 @@ const sp::reflect::TypeInfo& ADirectionalLight::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "LightComponent",
-            "UDirectionalLightComponent",
+            TypeCode(Kind::Object, "UDirectionalLightComponent"),
             "The light (also the root component).",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -81,7 +86,7 @@ const sp::reflect::TypeInfo& APointLight::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "LightComponent",
-            "UPointLightComponent",
+            TypeCode(Kind::Object, "UPointLightComponent"),
             "The light (also the root component).",
             true,
             [](const void* self) -> sp::reflect::Value {

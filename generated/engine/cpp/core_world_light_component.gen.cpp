@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- UDirectionalLightComponent ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& UDirectionalLightComponent::StaticClass() {
@@ -70,7 +75,7 @@ const sp::reflect::TypeInfo& ULightComponent::StaticClass() {
         t.isAbstract = true;
         t.properties.push_back({
             "Intensity",
-            "float",
+            TypeCode(Kind::Float),
             "Brightness: lux for directional lights, candela for point lights.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -84,7 +89,7 @@ const sp::reflect::TypeInfo& ULightComponent::StaticClass() {
         });
         t.properties.push_back({
             "LightColor",
-            "FLinearColor",
+            TypeCode(Kind::Struct, "FLinearColor"),
             "Colour of the emitted light (linear).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -98,7 +103,7 @@ const sp::reflect::TypeInfo& ULightComponent::StaticClass() {
         });
         t.properties.push_back({
             "bCastShadows",
-            "bool",
+            TypeCode(Kind::Bool),
             "Whether this light casts shadows.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -131,7 +136,7 @@ const sp::reflect::TypeInfo& UPointLightComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "AttenuationRadius",
-            "float",
+            TypeCode(Kind::Float),
             "Distance in metres beyond which the light has no effect.",
             false,
             [](const void* self) -> sp::reflect::Value {

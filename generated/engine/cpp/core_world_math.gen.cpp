@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- FLinearColor ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& FLinearColor::StaticClass() {
@@ -51,7 +56,7 @@ const sp::reflect::TypeInfo& FLinearColor::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "R",
-            "float",
+            TypeCode(Kind::Float),
             "Red.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -65,7 +70,7 @@ const sp::reflect::TypeInfo& FLinearColor::StaticClass() {
         });
         t.properties.push_back({
             "G",
-            "float",
+            TypeCode(Kind::Float),
             "Green.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -79,7 +84,7 @@ const sp::reflect::TypeInfo& FLinearColor::StaticClass() {
         });
         t.properties.push_back({
             "B",
-            "float",
+            TypeCode(Kind::Float),
             "Blue.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -93,7 +98,7 @@ const sp::reflect::TypeInfo& FLinearColor::StaticClass() {
         });
         t.properties.push_back({
             "A",
-            "float",
+            TypeCode(Kind::Float),
             "Alpha.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -125,7 +130,7 @@ const sp::reflect::TypeInfo& FQuat::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "X",
-            "float",
+            TypeCode(Kind::Float),
             "X component.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -139,7 +144,7 @@ const sp::reflect::TypeInfo& FQuat::StaticClass() {
         });
         t.properties.push_back({
             "Y",
-            "float",
+            TypeCode(Kind::Float),
             "Y component.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -153,7 +158,7 @@ const sp::reflect::TypeInfo& FQuat::StaticClass() {
         });
         t.properties.push_back({
             "Z",
-            "float",
+            TypeCode(Kind::Float),
             "Z component.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -167,7 +172,7 @@ const sp::reflect::TypeInfo& FQuat::StaticClass() {
         });
         t.properties.push_back({
             "W",
-            "float",
+            TypeCode(Kind::Float),
             "W (scalar) component.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -199,7 +204,7 @@ const sp::reflect::TypeInfo& FRotator::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "Pitch",
-            "float",
+            TypeCode(Kind::Float),
             "Rotation that raises the X axis toward +Z, in degrees.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -213,7 +218,7 @@ const sp::reflect::TypeInfo& FRotator::StaticClass() {
         });
         t.properties.push_back({
             "Yaw",
-            "float",
+            TypeCode(Kind::Float),
             "Rotation about +Z, in degrees.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -227,7 +232,7 @@ const sp::reflect::TypeInfo& FRotator::StaticClass() {
         });
         t.properties.push_back({
             "Roll",
-            "float",
+            TypeCode(Kind::Float),
             "Rotation about +X, in degrees.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -259,7 +264,7 @@ const sp::reflect::TypeInfo& FTransform::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "Translation",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             "Translation in metres.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -273,7 +278,7 @@ const sp::reflect::TypeInfo& FTransform::StaticClass() {
         });
         t.properties.push_back({
             "Rotation",
-            "FQuat",
+            TypeCode(Kind::Struct, "FQuat"),
             "Rotation.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -287,7 +292,7 @@ const sp::reflect::TypeInfo& FTransform::StaticClass() {
         });
         t.properties.push_back({
             "Scale3D",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             "Scale along each local axis.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -319,7 +324,7 @@ const sp::reflect::TypeInfo& FVector::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "X",
-            "float",
+            TypeCode(Kind::Float),
             "X component (forward).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -333,7 +338,7 @@ const sp::reflect::TypeInfo& FVector::StaticClass() {
         });
         t.properties.push_back({
             "Y",
-            "float",
+            TypeCode(Kind::Float),
             "Y component (left).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -347,7 +352,7 @@ const sp::reflect::TypeInfo& FVector::StaticClass() {
         });
         t.properties.push_back({
             "Z",
-            "float",
+            TypeCode(Kind::Float),
             "Z component (up).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -379,7 +384,7 @@ const sp::reflect::TypeInfo& FVector2D::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "X",
-            "float",
+            TypeCode(Kind::Float),
             "X component.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -393,7 +398,7 @@ const sp::reflect::TypeInfo& FVector2D::StaticClass() {
         });
         t.properties.push_back({
             "Y",
-            "float",
+            TypeCode(Kind::Float),
             "Y component.",
             false,
             [](const void* self) -> sp::reflect::Value {

@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ENavigationQueryResult>() {
     static const sp::reflect::EnumInfo info{
         "ENavigationQueryResult",
@@ -66,7 +71,7 @@ const sp::reflect::TypeInfo& ANavMeshBoundsVolume::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "BoxComponent",
-            "UBoxComponent",
+            TypeCode(Kind::Object, "UBoxComponent"),
             "The volume's box (the root component); BoxExtent and the actor's transform place it.",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -95,7 +100,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "AgentName",
-            "str",
+            TypeCode(Kind::Str),
             "The agent profile's name (UNavigationSystemV1.GetNavDataForAgentName finds it by this).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -109,7 +114,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "AgentRadius",
-            "float",
+            TypeCode(Kind::Float),
             "Clearance kept from walls and edges, metres (>= 0).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -123,7 +128,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "AgentHeight",
-            "float",
+            TypeCode(Kind::Float),
             "Headroom the agent needs, metres (> 0).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -137,7 +142,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "AgentMaxSlope",
-            "float",
+            TypeCode(Kind::Float),
             "Steepest walkable ground, degrees in (0, 90).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -151,7 +156,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "AgentMaxStepHeight",
-            "float",
+            TypeCode(Kind::Float),
             "Highest ledge the agent steps up or down, metres (>= 0).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -165,7 +170,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "CellSize",
-            "float",
+            TypeCode(Kind::Float),
             "Horizontal voxel size, metres (> 0): smaller is finer and slower to build.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -179,7 +184,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "CellHeight",
-            "float",
+            TypeCode(Kind::Float),
             "Vertical voxel size, metres (> 0).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -193,7 +198,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "TileSize",
-            "float",
+            TypeCode(Kind::Float),
             "Side of a tile, metres (at least 8 cells): the unit rebuilt when geometry changes.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -207,7 +212,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "MinRegionArea",
-            "float",
+            TypeCode(Kind::Float),
             "Walkable islands smaller than this are dropped, square metres (>= 0).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -221,7 +226,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "bRebuildAutomatically",
-            "bool",
+            TypeCode(Kind::Bool),
             "Whether geometry changes rebuild the tiles under them before the next query (else only\nRebuildNavigation does).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -235,7 +240,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "RandomSeed",
-            "int",
+            TypeCode(Kind::Int),
             "Seed of the random points' generator (SetRandomSeed restarts the sequence).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -250,9 +255,9 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "SetRandomSeed",
             "Restarts the random point sequence from Seed.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Seed", "int", false, false},
+                {"Seed", TypeCode(Kind::Int), false, false},
             },
             false,
             false,
@@ -267,7 +272,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "RebuildNavigation",
             "Builds the whole navigation mesh now from the current geometry and settings.",
-            "None",
+            TypeCode(Kind::Void),
             {
             },
             false,
@@ -282,7 +287,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "GetNumTiles",
             "Returns the number of tiles that hold navigation polygons (building first if needed).",
-            "int",
+            TypeCode(Kind::Int),
             {
             },
             false,
@@ -297,7 +302,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "GetNumPolygons",
             "Returns the number of navigation polygons.",
-            "int",
+            TypeCode(Kind::Int),
             {
             },
             false,
@@ -312,7 +317,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "GetNavigableArea",
             "Returns the navigable area in square metres (horizontal projection).",
-            "float",
+            TypeCode(Kind::Float),
             {
             },
             false,
@@ -327,7 +332,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "GetLastBuildSeconds",
             "Returns the seconds the last build or tile rebuild took.",
-            "float",
+            TypeCode(Kind::Float),
             {
             },
             false,
@@ -342,7 +347,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "GetLastBuildTileCount",
             "Returns the number of tiles the last build or rebuild voxelised.",
-            "int",
+            TypeCode(Kind::Int),
             {
             },
             false,
@@ -357,12 +362,12 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "FindPath",
             "Finds the shortest path from Start to End (each projected onto the mesh): its corners as an (N, 3)\narray from start to end, and its length in metres. Fail: End is unreachable and the path leads to\nthe reachable point nearest it; Invalid: Start or End is not on the mesh (no points).",
-            "FindPathResult",
+            TypeCode(Kind::Enum, "ENavigationQueryResult"),
             {
-                {"Start", "FVector", false, false},
-                {"End", "FVector", false, false},
-                {"PathPoints", "NDArray[np.float64]", false, true},
-                {"PathLength", "float", false, true},
+                {"Start", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"End", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"PathPoints", TypeCode(Kind::Array, "float64"), false, true},
+                {"PathLength", TypeCode(Kind::Float), false, true},
             },
             false,
             false,
@@ -384,14 +389,14 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "FindPaths",
             "Finds a path for each row of StartPoints and EndPoints ((N, 3) arrays): the corners of all of them\nin one (M, 3) array, path i being rows PathStarts[i] to PathStarts[i + 1] (an (N + 1,) int64 array),\nwith Lengths (N,) and Results (N,) (ENavigationQueryResult values, uint8).",
-            "FindPathsResult",
+            TypeCode(Kind::Void),
             {
-                {"StartPoints", "NDArray[np.float64]", false, false},
-                {"EndPoints", "NDArray[np.float64]", false, false},
-                {"PathPoints", "NDArray[np.float64]", false, true},
-                {"PathStarts", "NDArray[np.int64]", false, true},
-                {"Lengths", "NDArray[np.float64]", false, true},
-                {"Results", "NDArray[np.uint8]", false, true},
+                {"StartPoints", TypeCode(Kind::Array, "float64"), false, false},
+                {"EndPoints", TypeCode(Kind::Array, "float64"), false, false},
+                {"PathPoints", TypeCode(Kind::Array, "float64"), false, true},
+                {"PathStarts", TypeCode(Kind::Array, "int64"), false, true},
+                {"Lengths", TypeCode(Kind::Array, "float64"), false, true},
+                {"Results", TypeCode(Kind::Array, "uint8"), false, true},
             },
             false,
             false,
@@ -416,10 +421,10 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "GetGeodesicDistance",
             "Returns the length of the shortest path from Start to End in metres, or infinity when End is not\nreachable (or either is off the mesh).",
-            "float",
+            TypeCode(Kind::Float),
             {
-                {"Start", "FVector", false, false},
-                {"End", "FVector", false, false},
+                {"Start", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"End", TypeCode(Kind::Struct, "FVector"), false, false},
             },
             false,
             false,
@@ -435,9 +440,9 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "GetRandomPoints",
             "Returns NumPoints points drawn uniformly over the navigable area, as an (N, 3) array.",
-            "NDArray[np.float64]",
+            TypeCode(Kind::Array, "float64"),
             {
-                {"NumPoints", "int", false, false},
+                {"NumPoints", TypeCode(Kind::Int), false, false},
             },
             false,
             false,
@@ -452,10 +457,10 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "GetRandomReachablePointsInRadius",
             "Returns, for each row of Origins ((N, 3)), a point drawn uniformly over the navigable area within\nRadius metres (horizontally) that is reachable from the origin; a row of NaN where there is none.",
-            "NDArray[np.float64]",
+            TypeCode(Kind::Array, "float64"),
             {
-                {"Origins", "NDArray[np.float64]", false, false},
-                {"Radius", "float", false, false},
+                {"Origins", TypeCode(Kind::Array, "float64"), false, false},
+                {"Radius", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -471,11 +476,11 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "ProjectPointToNavigation",
             "Projects Point onto the mesh: the nearest navigable point within QueryExtent (half sizes; zero: two\nagent radii sideways and an agent height up and down). Returns false when there is none.",
-            "ProjectPointToNavigationResult",
+            TypeCode(Kind::Bool),
             {
-                {"Point", "FVector", false, false},
-                {"ProjectedLocation", "FVector", false, true},
-                {"QueryExtent", "FVector", true, false},
+                {"Point", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"ProjectedLocation", TypeCode(Kind::Struct, "FVector"), false, true},
+                {"QueryExtent", TypeCode(Kind::Struct, "FVector"), true, false},
             },
             false,
             false,
@@ -496,10 +501,10 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "IsNavigable",
             "Returns whether Point is on the navigable area: over it, and at most MaxVerticalDistance metres above\nor below its surface.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
-                {"Point", "FVector", false, false},
-                {"MaxVerticalDistance", "float", true, false},
+                {"Point", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"MaxVerticalDistance", TypeCode(Kind::Float), true, false},
             },
             false,
             false,
@@ -516,7 +521,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "GetNavMeshTriangles",
             "Returns the mesh's surface as triangles, a (T, 3, 3) array of corners (for drawing a map).",
-            "NDArray[np.float64]",
+            TypeCode(Kind::Array, "float64"),
             {
             },
             false,
@@ -549,9 +554,9 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
         t.functions.push_back({
             "GetNavigationSystem",
             "Returns the navigation system of WorldContextObject's world.",
-            "UNavigationSystemV1",
+            TypeCode(Kind::Object, "UNavigationSystemV1"),
             {
-                {"WorldContextObject", "UObject", false, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
             },
             true,
             false,
@@ -567,9 +572,9 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
         t.functions.push_back({
             "GetNavDataForAgentName",
             "Returns the navigation data of agent profile AgentName, or None.",
-            "ARecastNavMesh | None",
+            TypeCode(Kind::Object, "ARecastNavMesh", true),
             {
-                {"AgentName", "str", false, false},
+                {"AgentName", TypeCode(Kind::Str), false, false},
             },
             false,
             true,
@@ -584,7 +589,7 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
         t.functions.push_back({
             "GetDefaultNavDataInstance",
             "Returns the default navigation data: the world's first ARecastNavMesh, spawned (as\n\"RecastNavMesh-Default\") when it has none.",
-            "ARecastNavMesh",
+            TypeCode(Kind::Object, "ARecastNavMesh"),
             {
             },
             false,
@@ -600,7 +605,7 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
         t.functions.push_back({
             "Build",
             "Rebuilds every navigation data of the world now.",
-            "None",
+            TypeCode(Kind::Void),
             {
             },
             false,
@@ -615,14 +620,14 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
         t.functions.push_back({
             "FindPathToLocationSynchronously",
             "Finds the shortest path from PathStart to PathEnd on NavData (None: the default): its corners\n((N, 3)) and length. Unlike UE, which returns a UNavigationPath, the points come back directly.",
-            "FindPathToLocationSynchronouslyResult",
+            TypeCode(Kind::Enum, "ENavigationQueryResult"),
             {
-                {"WorldContextObject", "UObject", false, false},
-                {"PathStart", "FVector", false, false},
-                {"PathEnd", "FVector", false, false},
-                {"PathPoints", "NDArray[np.float64]", false, true},
-                {"PathLength", "float", false, true},
-                {"NavData", "ARecastNavMesh | None", true, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"PathStart", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"PathEnd", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"PathPoints", TypeCode(Kind::Array, "float64"), false, true},
+                {"PathLength", TypeCode(Kind::Float), false, true},
+                {"NavData", TypeCode(Kind::Object, "ARecastNavMesh", true), true, false},
             },
             true,
             false,
@@ -647,13 +652,13 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
         t.functions.push_back({
             "GetPathLength",
             "Computes the length of the shortest path from PathStart to PathEnd on NavData (None: the default).",
-            "GetPathLengthResult",
+            TypeCode(Kind::Enum, "ENavigationQueryResult"),
             {
-                {"WorldContextObject", "UObject", false, false},
-                {"PathStart", "FVector", false, false},
-                {"PathEnd", "FVector", false, false},
-                {"PathLength", "float", false, true},
-                {"NavData", "ARecastNavMesh | None", true, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"PathStart", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"PathEnd", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"PathLength", TypeCode(Kind::Float), false, true},
+                {"NavData", TypeCode(Kind::Object, "ARecastNavMesh", true), true, false},
             },
             true,
             false,
@@ -676,13 +681,13 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
         t.functions.push_back({
             "K2_GetRandomReachablePointInRadius",
             "Draws a point reachable from Origin within Radius metres; returns false when there is none.",
-            "K2_GetRandomReachablePointInRadiusResult",
+            TypeCode(Kind::Bool),
             {
-                {"WorldContextObject", "UObject", false, false},
-                {"Origin", "FVector", false, false},
-                {"RandomLocation", "FVector", false, true},
-                {"Radius", "float", false, false},
-                {"NavData", "ARecastNavMesh | None", true, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"Origin", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"RandomLocation", TypeCode(Kind::Struct, "FVector"), false, true},
+                {"Radius", TypeCode(Kind::Float), false, false},
+                {"NavData", TypeCode(Kind::Object, "ARecastNavMesh", true), true, false},
             },
             true,
             false,
@@ -705,13 +710,13 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
         t.functions.push_back({
             "K2_GetRandomLocationInNavigableRadius",
             "Draws a navigable point within Radius metres of Origin, reachable or not; returns false when there is\nnone.",
-            "K2_GetRandomLocationInNavigableRadiusResult",
+            TypeCode(Kind::Bool),
             {
-                {"WorldContextObject", "UObject", false, false},
-                {"Origin", "FVector", false, false},
-                {"RandomLocation", "FVector", false, true},
-                {"Radius", "float", false, false},
-                {"NavData", "ARecastNavMesh | None", true, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"Origin", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"RandomLocation", TypeCode(Kind::Struct, "FVector"), false, true},
+                {"Radius", TypeCode(Kind::Float), false, false},
+                {"NavData", TypeCode(Kind::Object, "ARecastNavMesh", true), true, false},
             },
             true,
             false,
@@ -734,13 +739,13 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
         t.functions.push_back({
             "K2_ProjectPointToNavigation",
             "Projects Point onto NavData within QueryExtent (zero: the agent's default extent); returns false when\nno navigable point is that close.",
-            "K2_ProjectPointToNavigationResult",
+            TypeCode(Kind::Bool),
             {
-                {"WorldContextObject", "UObject", false, false},
-                {"Point", "FVector", false, false},
-                {"ProjectedLocation", "FVector", false, true},
-                {"NavData", "ARecastNavMesh | None", true, false},
-                {"QueryExtent", "FVector", true, false},
+                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"Point", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"ProjectedLocation", TypeCode(Kind::Struct, "FVector"), false, true},
+                {"NavData", TypeCode(Kind::Object, "ARecastNavMesh", true), true, false},
+                {"QueryExtent", TypeCode(Kind::Struct, "FVector"), true, false},
             },
             true,
             false,

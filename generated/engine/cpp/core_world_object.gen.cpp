@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- UObject ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& UObject::StaticClass() {
@@ -52,7 +57,7 @@ const sp::reflect::TypeInfo& UObject::StaticClass() {
         t.functions.push_back({
             "GetName",
             "Returns the object's name, unique among its siblings.",
-            "str",
+            TypeCode(Kind::Str),
             {
             },
             false,
@@ -67,7 +72,7 @@ const sp::reflect::TypeInfo& UObject::StaticClass() {
         t.functions.push_back({
             "GetClassName",
             "Returns the name of the object's class: its blueprint when it was spawned from one, else its most\nderived native class.",
-            "str",
+            TypeCode(Kind::Str),
             {
             },
             false,
@@ -82,7 +87,7 @@ const sp::reflect::TypeInfo& UObject::StaticClass() {
         t.functions.push_back({
             "GetWorld",
             "Returns the world this object lives in, or None for objects outside any world.",
-            "UWorld | None",
+            TypeCode(Kind::Object, "UWorld", true),
             {
             },
             false,

@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- ADefaultPawn ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& ADefaultPawn::StaticClass() {
@@ -52,7 +57,7 @@ const sp::reflect::TypeInfo& ADefaultPawn::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "InputComponent",
-            "UInputComponent",
+            TypeCode(Kind::Object, "UInputComponent"),
             "Receives the injected actions (from inject_input_for_actor on the pawn or its controller).",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -62,7 +67,7 @@ const sp::reflect::TypeInfo& ADefaultPawn::StaticClass() {
         });
         t.properties.push_back({
             "MaxSpeed",
-            "float",
+            TypeCode(Kind::Float),
             "Speed in metres per second at full input.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -76,7 +81,7 @@ const sp::reflect::TypeInfo& ADefaultPawn::StaticClass() {
         });
         t.properties.push_back({
             "BaseTurnRate",
-            "float",
+            TypeCode(Kind::Float),
             "Degrees per second of yaw at \"Turn\" = 1.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -90,7 +95,7 @@ const sp::reflect::TypeInfo& ADefaultPawn::StaticClass() {
         });
         t.properties.push_back({
             "BaseLookUpRate",
-            "float",
+            TypeCode(Kind::Float),
             "Degrees per second of pitch at \"LookUp\" = 1.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -123,7 +128,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "bUseControllerRotationPitch",
-            "bool",
+            TypeCode(Kind::Bool),
             "Whether the pawn's pitch follows its controller's control rotation each tick.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -137,7 +142,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
         });
         t.properties.push_back({
             "bUseControllerRotationYaw",
-            "bool",
+            TypeCode(Kind::Bool),
             "Whether the pawn's yaw follows its controller's control rotation each tick.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -151,7 +156,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
         });
         t.properties.push_back({
             "bUseControllerRotationRoll",
-            "bool",
+            TypeCode(Kind::Bool),
             "Whether the pawn's roll follows its controller's control rotation each tick.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -166,7 +171,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
         t.functions.push_back({
             "GetController",
             "Returns the controller that possesses this pawn, or None.",
-            "AController | None",
+            TypeCode(Kind::Object, "AController", true),
             {
             },
             false,
@@ -181,7 +186,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
         t.functions.push_back({
             "IsControlled",
             "Returns true while a controller possesses this pawn.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
             },
             false,
@@ -196,7 +201,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
         t.functions.push_back({
             "IsPlayerControlled",
             "Returns true while a player controller possesses this pawn.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
             },
             false,
@@ -211,7 +216,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
         t.functions.push_back({
             "GetControlRotation",
             "Returns the controller's control rotation, or the pawn's own rotation when it has no controller.",
-            "FRotator",
+            TypeCode(Kind::Struct, "FRotator"),
             {
             },
             false,
@@ -227,10 +232,10 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
         t.functions.push_back({
             "AddMovementInput",
             "Adds movement along WorldDirection, scaled by ScaleValue, for the pawn's next tick (the inputs of one\ntick add up; a pawn that moves itself, such as ADefaultPawn, consumes them).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"WorldDirection", "FVector", false, false},
-                {"ScaleValue", "float", true, false},
+                {"WorldDirection", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"ScaleValue", TypeCode(Kind::Float), true, false},
             },
             false,
             false,
@@ -247,7 +252,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
         t.functions.push_back({
             "GetPendingMovementInputVector",
             "Returns the movement input added since the pawn last moved.",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
             },
             false,

@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPCGGenerationMode>() {
     static const sp::reflect::EnumInfo info{
         "EPCGGenerationMode",
@@ -65,7 +70,7 @@ const sp::reflect::TypeInfo& APCGVolume::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "BoxComponent",
-            "UBoxComponent",
+            TypeCode(Kind::Object, "UBoxComponent"),
             "The generation's box (the root component).",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -75,7 +80,7 @@ const sp::reflect::TypeInfo& APCGVolume::StaticClass() {
         });
         t.properties.push_back({
             "PCGComponent",
-            "UPCGComponent",
+            TypeCode(Kind::Object, "UPCGComponent"),
             "The generator.",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -104,7 +109,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "GenerationMode",
-            "EPCGGenerationMode",
+            TypeCode(Kind::Enum, "EPCGGenerationMode"),
             "How actors are placed.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -118,7 +123,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "Seed",
-            "int",
+            TypeCode(Kind::Int),
             "Seed of the placement's random draws: the same seed gives the same actors.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -132,7 +137,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "ActorClass",
-            "type[AActor] | None",
+            TypeCode(Kind::Class, "AActor", true),
             "The class spawned (AStaticMeshActor and its subclasses take StaticMesh and Materials).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -146,7 +151,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "StaticMesh",
-            "str",
+            TypeCode(Kind::Str),
             "The mesh of spawned static mesh actors.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -160,7 +165,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "Materials",
-            "list[str]",
+            TypeCode(Kind::List, TypeCode(Kind::Str)),
             "Materials drawn from for each spawned static mesh actor (empty: the mesh's own).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -174,7 +179,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "Spacing",
-            "float",
+            TypeCode(Kind::Float),
             "Scatter: the least distance between two actors; AlongSpline: the distance between them along it.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -188,7 +193,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "MaxCount",
-            "int",
+            TypeCode(Kind::Int),
             "Scatter: at most this many actors.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -202,7 +207,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "MinScale",
-            "float",
+            TypeCode(Kind::Float),
             "Scatter and AlongSpline: each actor's uniform scale is drawn from [MinScale, MaxScale].",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -216,7 +221,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "MaxScale",
-            "float",
+            TypeCode(Kind::Float),
             "",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -230,7 +235,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "bRandomYaw",
-            "bool",
+            TypeCode(Kind::Bool),
             "Scatter and AlongSpline (unaligned): turn each actor to a random yaw.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -244,7 +249,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "bProjectToGround",
-            "bool",
+            TypeCode(Kind::Bool),
             "Drop each actor onto the geometry below it (a line trace down the box, before anything is spawned);\nwhere nothing is below, the actor is not placed. Otherwise actors stand on the box's floor.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -258,7 +263,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "ExclusionTag",
-            "str",
+            TypeCode(Kind::Str),
             "Scatter: actors with this tag keep generated actors out of their bounds (\"\" for none).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -272,7 +277,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "SplineTag",
-            "str",
+            TypeCode(Kind::Str),
             "AlongSpline: spline actors with this tag are followed, in spawn order. (A tag, not an actor reference:\na generation outlives the actors it read, and scenes save it as it is.)",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -286,7 +291,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "SplineOffset",
-            "float",
+            TypeCode(Kind::Float),
             "AlongSpline: the sideways distance from the spline (positive: its left).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -300,7 +305,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "bBothSides",
-            "bool",
+            TypeCode(Kind::Bool),
             "AlongSpline: place on both sides.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -314,7 +319,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "bAlignToSpline",
-            "bool",
+            TypeCode(Kind::Bool),
             "AlongSpline: face along the spline.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -328,7 +333,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "BlockSize",
-            "float",
+            TypeCode(Kind::Float),
             "CityBlocks: the side of a block, metres.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -342,7 +347,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "StreetWidth",
-            "float",
+            TypeCode(Kind::Float),
             "CityBlocks: the street between blocks, metres.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -356,7 +361,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "LotsPerSide",
-            "int",
+            TypeCode(Kind::Int),
             "CityBlocks: buildings along a block's side (LotsPerSide^2 per block).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -370,7 +375,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "MinHeight",
-            "float",
+            TypeCode(Kind::Float),
             "CityBlocks: building heights are drawn from [MinHeight, MaxHeight] metres.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -384,7 +389,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "MaxHeight",
-            "float",
+            TypeCode(Kind::Float),
             "",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -398,7 +403,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "RoadTag",
-            "str",
+            TypeCode(Kind::Str),
             "CityBlocks: spline actors with this tag are roads.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -412,7 +417,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "RoadWidth",
-            "float",
+            TypeCode(Kind::Float),
             "CityBlocks: the width kept free along roads, metres.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -427,9 +432,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         t.functions.push_back({
             "Generate",
             "Generates: removes the actors of the last generation and spawns new ones, unless nothing the rules\nread changed since (bForce: regardless).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"bForce", "bool", true, false},
+                {"bForce", TypeCode(Kind::Bool), true, false},
             },
             false,
             false,
@@ -445,7 +450,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         t.functions.push_back({
             "Cleanup",
             "Destroys the generated actors.",
-            "None",
+            TypeCode(Kind::Void),
             {
             },
             false,
@@ -460,7 +465,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         t.functions.push_back({
             "FlushCache",
             "Forgets what the last generation was made from, so the next Generate() builds afresh.",
-            "None",
+            TypeCode(Kind::Void),
             {
             },
             false,
@@ -475,7 +480,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         t.functions.push_back({
             "GetGeneratedActors",
             "Returns the generated actors, in generation order.",
-            "list[AActor]",
+            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
             {
             },
             false,
@@ -490,7 +495,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         t.functions.push_back({
             "IsGenerated",
             "Returns whether generated actors exist.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
             },
             false,
@@ -505,7 +510,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         t.functions.push_back({
             "GetLastGenerationSeconds",
             "Returns the seconds the last generation took.",
-            "float",
+            TypeCode(Kind::Float),
             {
             },
             false,

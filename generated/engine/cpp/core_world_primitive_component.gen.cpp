@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECollisionPrimitive>() {
     static const sp::reflect::EnumInfo info{
         "ECollisionPrimitive",
@@ -70,7 +75,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.isAbstract = true;
         t.properties.push_back({
             "bSimulatePhysics",
-            "bool",
+            TypeCode(Kind::Bool),
             "Whether physics moves this component (gravity, forces, contacts); it must be Movable.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -84,7 +89,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         });
         t.properties.push_back({
             "CollisionPrimitive",
-            "ECollisionPrimitive",
+            TypeCode(Kind::Enum, "ECollisionPrimitive"),
             "The collision geometry used by physics and traces.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -98,7 +103,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         });
         t.properties.push_back({
             "MassInKg",
-            "float",
+            TypeCode(Kind::Float),
             "Mass in kilograms (> 0 to simulate); inertia follows the collision shape at uniform density.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -112,7 +117,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         });
         t.properties.push_back({
             "Friction",
-            "float",
+            TypeCode(Kind::Float),
             "Coulomb friction coefficient (>= 0); the two coefficients at a contact are multiplied.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -126,7 +131,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         });
         t.properties.push_back({
             "Restitution",
-            "float",
+            TypeCode(Kind::Float),
             "Bounciness in [0, 1]; the two coefficients at a contact are multiplied.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -140,7 +145,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         });
         t.properties.push_back({
             "LinearDamping",
-            "float",
+            TypeCode(Kind::Float),
             "Fraction of linear velocity lost per second, in [0, 1].",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -154,7 +159,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         });
         t.properties.push_back({
             "AngularDamping",
-            "float",
+            TypeCode(Kind::Float),
             "Fraction of angular velocity lost per second, in [0, 1].",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -168,7 +173,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         });
         t.properties.push_back({
             "bGenerateOverlapEvents",
-            "bool",
+            TypeCode(Kind::Bool),
             "Whether this component takes part in overlaps: two components overlap only when both have it set\n(as in UE). Shape components (UBoxComponent, USphereComponent) have it set by default.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -182,7 +187,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         });
         t.properties.push_back({
             "bCanEverAffectNavigation",
-            "bool",
+            TypeCode(Kind::Bool),
             "Whether navigation meshes are built over this component when it is Static and collides (as in UE).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -197,10 +202,10 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "GetBounds",
             "Returns the world-space axis-aligned bounds as centre Origin and half size BoxExtent.",
-            "GetBoundsResult",
+            TypeCode(Kind::Void),
             {
-                {"Origin", "FVector", false, true},
-                {"BoxExtent", "FVector", false, true},
+                {"Origin", TypeCode(Kind::Struct, "FVector"), false, true},
+                {"BoxExtent", TypeCode(Kind::Struct, "FVector"), false, true},
             },
             false,
             true,
@@ -219,9 +224,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "SetSimulatePhysics",
             "Turns physics simulation on or off; turning it on needs a Movable component with collision.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"bSimulate", "bool", false, false},
+                {"bSimulate", TypeCode(Kind::Bool), false, false},
             },
             false,
             false,
@@ -236,7 +241,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "IsSimulatingPhysics",
             "Returns true while physics moves this component.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
             },
             false,
@@ -251,9 +256,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "SetMassOverrideInKg",
             "Sets the mass in kilograms (> 0).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"MassInKg", "float", false, false},
+                {"MassInKg", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -268,9 +273,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "SetFriction",
             "Sets the Coulomb friction coefficient (finite, >= 0).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewFriction", "float", false, false},
+                {"NewFriction", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -285,9 +290,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "SetRestitution",
             "Sets the bounciness, in [0, 1].",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewRestitution", "float", false, false},
+                {"NewRestitution", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -302,9 +307,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "SetLinearDamping",
             "Sets the fraction of linear velocity lost per second, in [0, 1].",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewLinearDamping", "float", false, false},
+                {"NewLinearDamping", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -319,9 +324,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "SetAngularDamping",
             "Sets the fraction of angular velocity lost per second, in [0, 1].",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewAngularDamping", "float", false, false},
+                {"NewAngularDamping", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -336,7 +341,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "GetMass",
             "Returns the mass in kilograms.",
-            "float",
+            TypeCode(Kind::Float),
             {
             },
             false,
@@ -351,10 +356,10 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "AddForce",
             "Adds a force in newtons at the centre of mass for the next physics step (an acceleration in m/s^2\nwhen bAccelChange is true).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Force", "FVector", false, false},
-                {"bAccelChange", "bool", true, false},
+                {"Force", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"bAccelChange", TypeCode(Kind::Bool), true, false},
             },
             false,
             false,
@@ -371,9 +376,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "AddTorqueInRadians",
             "Adds a torque in newton-metres about world axes for the next physics step.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Torque", "FVector", false, false},
+                {"Torque", TypeCode(Kind::Struct, "FVector"), false, false},
             },
             false,
             false,
@@ -388,10 +393,10 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "AddImpulse",
             "Changes the velocity at once by Impulse / mass (Impulse in N*s; a velocity change in m/s when\nbVelChange is true).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Impulse", "FVector", false, false},
-                {"bVelChange", "bool", true, false},
+                {"Impulse", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"bVelChange", TypeCode(Kind::Bool), true, false},
             },
             false,
             false,
@@ -408,10 +413,10 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "SetPhysicsLinearVelocity",
             "Sets the linear velocity in m/s (adds it to the current one when bAddToCurrent is true).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewVel", "FVector", false, false},
-                {"bAddToCurrent", "bool", true, false},
+                {"NewVel", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"bAddToCurrent", TypeCode(Kind::Bool), true, false},
             },
             false,
             false,
@@ -428,7 +433,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "GetPhysicsLinearVelocity",
             "Returns the linear velocity in m/s (zero when not simulated).",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
             },
             false,
@@ -444,10 +449,10 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "SetPhysicsAngularVelocityInDegrees",
             "Sets the angular velocity in degrees per second about world axes.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewAngVel", "FVector", false, false},
-                {"bAddToCurrent", "bool", true, false},
+                {"NewAngVel", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"bAddToCurrent", TypeCode(Kind::Bool), true, false},
             },
             false,
             false,
@@ -464,7 +469,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "GetPhysicsAngularVelocityInDegrees",
             "Returns the angular velocity in degrees per second about world axes (zero when not simulated).",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
             },
             false,
@@ -480,7 +485,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "IsAnyRigidBodyAwake",
             "Returns true while this component's body is awake (false for sleeping or non-simulated ones).",
-            "bool",
+            TypeCode(Kind::Bool),
             {
             },
             false,
@@ -495,7 +500,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "GetOverlappingComponents",
             "Returns the components of other actors whose collision shapes touch or intersect this one's now\n(both must generate overlap events), in the order they entered play.",
-            "list[UPrimitiveComponent]",
+            TypeCode(Kind::List, TypeCode(Kind::Object, "UPrimitiveComponent")),
             {
             },
             false,
@@ -510,9 +515,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "GetOverlappingActors",
             "Returns the actors (of class ClassFilter or a subclass) that own the components overlapping this one.",
-            "list[AActor]",
+            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
             {
-                {"ClassFilter", "type[AActor] | str", false, false},
+                {"ClassFilter", TypeCode(Kind::Class, "AActor"), false, false},
             },
             false,
             true,
@@ -527,9 +532,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "IsOverlappingComponent",
             "Returns true when OtherComp overlaps this component now.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
-                {"OtherComp", "UPrimitiveComponent", false, false},
+                {"OtherComp", TypeCode(Kind::Object, "UPrimitiveComponent"), false, false},
             },
             false,
             true,
@@ -544,9 +549,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "IsOverlappingActor",
             "Returns true when a component of Other overlaps this component now.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
-                {"Other", "AActor", false, false},
+                {"Other", TypeCode(Kind::Object, "AActor"), false, false},
             },
             false,
             true,
@@ -561,7 +566,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "GetBeginOverlaps",
             "Returns the components that began overlapping this one in the last frame's physics step (UE's\nOnComponentBeginOverlap, polled).",
-            "list[UPrimitiveComponent]",
+            TypeCode(Kind::List, TypeCode(Kind::Object, "UPrimitiveComponent")),
             {
             },
             false,
@@ -576,7 +581,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "GetEndOverlaps",
             "Returns the components that stopped overlapping this one in the last frame's physics step (UE's\nOnComponentEndOverlap, polled); destroyed ones are left out.",
-            "list[UPrimitiveComponent]",
+            TypeCode(Kind::List, TypeCode(Kind::Object, "UPrimitiveComponent")),
             {
             },
             false,

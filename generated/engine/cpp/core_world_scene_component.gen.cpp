@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EComponentMobility>() {
     static const sp::reflect::EnumInfo info{
         "EComponentMobility",
@@ -65,7 +70,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "RelativeLocation",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             "Location relative to the attach parent (or the world), in metres.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -79,7 +84,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         });
         t.properties.push_back({
             "RelativeRotation",
-            "FRotator",
+            TypeCode(Kind::Struct, "FRotator"),
             "Rotation relative to the attach parent (or the world).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -93,7 +98,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         });
         t.properties.push_back({
             "RelativeScale3D",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             "Scale relative to the attach parent (or the world).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -107,7 +112,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         });
         t.properties.push_back({
             "Mobility",
-            "EComponentMobility",
+            TypeCode(Kind::Enum, "EComponentMobility"),
             "Whether the component may move once in play.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -121,7 +126,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         });
         t.properties.push_back({
             "bVisible",
-            "bool",
+            TypeCode(Kind::Bool),
             "Whether the component is rendered.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -136,9 +141,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "SetRelativeLocation",
             "Sets the location relative to the attach parent; fails for a static component in play.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewLocation", "FVector", false, false},
+                {"NewLocation", TypeCode(Kind::Struct, "FVector"), false, false},
             },
             false,
             false,
@@ -153,9 +158,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "SetRelativeRotation",
             "Sets the rotation relative to the attach parent; fails for a static component in play.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewRotation", "FRotator", false, false},
+                {"NewRotation", TypeCode(Kind::Struct, "FRotator"), false, false},
             },
             false,
             false,
@@ -170,9 +175,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "SetRelativeScale3D",
             "Sets the scale relative to the attach parent; fails for a static component in play.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewScale3D", "FVector", false, false},
+                {"NewScale3D", TypeCode(Kind::Struct, "FVector"), false, false},
             },
             false,
             false,
@@ -187,9 +192,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "SetRelativeTransform",
             "Sets location, rotation and scale relative to the attach parent.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewTransform", "FTransform", false, false},
+                {"NewTransform", TypeCode(Kind::Struct, "FTransform"), false, false},
             },
             false,
             false,
@@ -204,7 +209,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetRelativeTransform",
             "Returns the transform relative to the attach parent.",
-            "FTransform",
+            TypeCode(Kind::Struct, "FTransform"),
             {
             },
             false,
@@ -220,9 +225,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "SetMobility",
             "Sets the mobility (Static, Stationary or Movable).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewMobility", "EComponentMobility", false, false},
+                {"NewMobility", TypeCode(Kind::Enum, "EComponentMobility"), false, false},
             },
             false,
             false,
@@ -237,7 +242,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetComponentTransform",
             "Returns the world-space transform.",
-            "FTransform",
+            TypeCode(Kind::Struct, "FTransform"),
             {
             },
             false,
@@ -253,7 +258,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetComponentLocation",
             "Returns the world-space location in metres.",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
             },
             false,
@@ -269,7 +274,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "K2_GetComponentLocation",
             "Returns the world-space location in metres (the Blueprint name of GetComponentLocation).",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
             },
             false,
@@ -285,7 +290,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetComponentRotation",
             "Returns the world-space rotation.",
-            "FRotator",
+            TypeCode(Kind::Struct, "FRotator"),
             {
             },
             false,
@@ -301,7 +306,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetComponentScale",
             "Returns the world-space scale.",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
             },
             false,
@@ -317,9 +322,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "SetWorldLocation",
             "Moves the component so that its world-space location is NewLocation.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewLocation", "FVector", false, false},
+                {"NewLocation", TypeCode(Kind::Struct, "FVector"), false, false},
             },
             false,
             false,
@@ -334,9 +339,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "SetWorldRotation",
             "Rotates the component so that its world-space rotation is NewRotation.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewRotation", "FRotator", false, false},
+                {"NewRotation", TypeCode(Kind::Struct, "FRotator"), false, false},
             },
             false,
             false,
@@ -351,9 +356,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "SetWorldTransform",
             "Sets the world-space transform.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewTransform", "FTransform", false, false},
+                {"NewTransform", TypeCode(Kind::Struct, "FTransform"), false, false},
             },
             false,
             false,
@@ -368,7 +373,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetForwardVector",
             "Returns the unit vector along the component's world-space X axis.",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
             },
             false,
@@ -384,7 +389,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetRightVector",
             "Returns the unit vector along the component's world-space Y axis (left).",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
             },
             false,
@@ -400,7 +405,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetUpVector",
             "Returns the unit vector along the component's world-space Z axis.",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
             },
             false,
@@ -416,10 +421,10 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "AttachToComponent",
             "Attaches this component to Parent; keeps the world transform when bKeepWorldTransform is true.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Parent", "USceneComponent", false, false},
-                {"bKeepWorldTransform", "bool", true, false},
+                {"Parent", TypeCode(Kind::Object, "USceneComponent"), false, false},
+                {"bKeepWorldTransform", TypeCode(Kind::Bool), true, false},
             },
             false,
             false,
@@ -436,9 +441,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "DetachFromComponent",
             "Detaches this component from its parent; keeps the world transform when bKeepWorldTransform is true.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"bKeepWorldTransform", "bool", true, false},
+                {"bKeepWorldTransform", TypeCode(Kind::Bool), true, false},
             },
             false,
             false,
@@ -454,7 +459,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetAttachParent",
             "Returns the component this one is attached to, or None.",
-            "USceneComponent | None",
+            TypeCode(Kind::Object, "USceneComponent", true),
             {
             },
             false,
@@ -469,9 +474,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetChildrenComponents",
             "Returns the attached children, and their descendants when bIncludeAllDescendants is true.",
-            "list[USceneComponent]",
+            TypeCode(Kind::List, TypeCode(Kind::Object, "USceneComponent")),
             {
-                {"bIncludeAllDescendants", "bool", true, false},
+                {"bIncludeAllDescendants", TypeCode(Kind::Bool), true, false},
             },
             false,
             true,

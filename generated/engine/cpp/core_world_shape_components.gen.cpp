@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- ATriggerBox ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& ATriggerBox::StaticClass() {
@@ -52,7 +57,7 @@ const sp::reflect::TypeInfo& ATriggerBox::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "CollisionComponent",
-            "UBoxComponent",
+            TypeCode(Kind::Object, "UBoxComponent"),
             "The trigger's shape (the root component).",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -81,7 +86,7 @@ const sp::reflect::TypeInfo& ATriggerSphere::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "CollisionComponent",
-            "USphereComponent",
+            TypeCode(Kind::Object, "USphereComponent"),
             "The trigger's shape (the root component).",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -110,7 +115,7 @@ const sp::reflect::TypeInfo& UBoxComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "BoxExtent",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             "Half the box's size along each axis, in metres before the component's scale (each > 0).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -125,9 +130,9 @@ const sp::reflect::TypeInfo& UBoxComponent::StaticClass() {
         t.functions.push_back({
             "SetBoxExtent",
             "Sets BoxExtent (each component finite and > 0).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"InBoxExtent", "FVector", false, false},
+                {"InBoxExtent", TypeCode(Kind::Struct, "FVector"), false, false},
             },
             false,
             false,
@@ -160,7 +165,7 @@ const sp::reflect::TypeInfo& UCapsuleComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "CapsuleRadius",
-            "float",
+            TypeCode(Kind::Float),
             "The radius in metres before the component's scale (> 0).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -174,7 +179,7 @@ const sp::reflect::TypeInfo& UCapsuleComponent::StaticClass() {
         });
         t.properties.push_back({
             "CapsuleHalfHeight",
-            "float",
+            TypeCode(Kind::Float),
             "Half the height in metres, hemispheres included, before the component's scale (> 0); a half height\nbelow the radius counts as the radius (a sphere), as in UE.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -189,9 +194,9 @@ const sp::reflect::TypeInfo& UCapsuleComponent::StaticClass() {
         t.functions.push_back({
             "SetCapsuleRadius",
             "Sets CapsuleRadius (finite, > 0).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Radius", "float", false, false},
+                {"Radius", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -206,9 +211,9 @@ const sp::reflect::TypeInfo& UCapsuleComponent::StaticClass() {
         t.functions.push_back({
             "SetCapsuleHalfHeight",
             "Sets CapsuleHalfHeight (finite, > 0).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"HalfHeight", "float", false, false},
+                {"HalfHeight", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -259,7 +264,7 @@ const sp::reflect::TypeInfo& USphereComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "SphereRadius",
-            "float",
+            TypeCode(Kind::Float),
             "The sphere's radius in metres before the component's scale (> 0).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -274,9 +279,9 @@ const sp::reflect::TypeInfo& USphereComponent::StaticClass() {
         t.functions.push_back({
             "SetSphereRadius",
             "Sets SphereRadius (finite, > 0).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"InSphereRadius", "float", false, false},
+                {"InSphereRadius", TypeCode(Kind::Float), false, false},
             },
             false,
             false,

@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ESplineCoordinateSpace>() {
     static const sp::reflect::EnumInfo info{
         "ESplineCoordinateSpace",
@@ -64,7 +69,7 @@ const sp::reflect::TypeInfo& ASplineActor::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "SplineComponent",
-            "USplineComponent",
+            TypeCode(Kind::Object, "USplineComponent"),
             "The spline (the root component).",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -93,7 +98,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "SplinePoints",
-            "list[FVector]",
+            TypeCode(Kind::List, TypeCode(Kind::Struct, "FVector")),
             "The points, in the component's space (metres).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -107,7 +112,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         });
         t.properties.push_back({
             "bClosedLoop",
-            "bool",
+            TypeCode(Kind::Bool),
             "Whether the last point joins the first.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -121,7 +126,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         });
         t.properties.push_back({
             "bDrawDebug",
-            "bool",
+            TypeCode(Kind::Bool),
             "Draws the curve in camera images as a glowing tube (a debug line for looking at paths and roads; it is\ndrawn like any object, in every modality, casting no shadow).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -135,7 +140,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         });
         t.properties.push_back({
             "DebugLineThickness",
-            "float",
+            TypeCode(Kind::Float),
             "The debug line's thickness in metres (> 0).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -149,7 +154,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         });
         t.properties.push_back({
             "DebugLineColor",
-            "FLinearColor",
+            TypeCode(Kind::Struct, "FLinearColor"),
             "The debug line's colour (linear; it glows with it).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -164,9 +169,9 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "SetDebugLineThickness",
             "Sets DebugLineThickness (finite, > 0).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Thickness", "float", false, false},
+                {"Thickness", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -181,11 +186,11 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "AddSplinePoint",
             "Adds a point at the end. bUpdateSpline is accepted for UE compatibility (the curve is always current).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Position", "FVector", false, false},
-                {"CoordinateSpace", "ESplineCoordinateSpace", false, false},
-                {"bUpdateSpline", "bool", true, false},
+                {"Position", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
+                {"bUpdateSpline", TypeCode(Kind::Bool), true, false},
             },
             false,
             false,
@@ -203,9 +208,9 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "ClearSplinePoints",
             "Removes every point.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"bUpdateSpline", "bool", true, false},
+                {"bUpdateSpline", TypeCode(Kind::Bool), true, false},
             },
             false,
             false,
@@ -221,11 +226,11 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "SetSplinePoints",
             "Replaces the points.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Points", "list[FVector]", false, false},
-                {"CoordinateSpace", "ESplineCoordinateSpace", false, false},
-                {"bUpdateSpline", "bool", true, false},
+                {"Points", TypeCode(Kind::List, TypeCode(Kind::Struct, "FVector")), false, false},
+                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
+                {"bUpdateSpline", TypeCode(Kind::Bool), true, false},
             },
             false,
             false,
@@ -243,7 +248,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetNumberOfSplinePoints",
             "Returns the number of points.",
-            "int",
+            TypeCode(Kind::Int),
             {
             },
             false,
@@ -258,10 +263,10 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "SetClosedLoop",
             "Makes the spline a closed loop or an open curve.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"bInClosedLoop", "bool", false, false},
-                {"bUpdateSpline", "bool", true, false},
+                {"bInClosedLoop", TypeCode(Kind::Bool), false, false},
+                {"bUpdateSpline", TypeCode(Kind::Bool), true, false},
             },
             false,
             false,
@@ -278,7 +283,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "IsClosedLoop",
             "Returns true for a closed loop.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
             },
             false,
@@ -293,7 +298,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetSplineLength",
             "Returns the length of the curve in metres (in the component's space, before its scale).",
-            "float",
+            TypeCode(Kind::Float),
             {
             },
             false,
@@ -308,10 +313,10 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetLocationAtDistanceAlongSpline",
             "Returns the point at Distance metres along the curve (clamped to it).",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
-                {"Distance", "float", false, false},
-                {"CoordinateSpace", "ESplineCoordinateSpace", false, false},
+                {"Distance", TypeCode(Kind::Float), false, false},
+                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
             },
             false,
             true,
@@ -328,10 +333,10 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetDirectionAtDistanceAlongSpline",
             "Returns the unit direction of the curve at Distance metres along it.",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
-                {"Distance", "float", false, false},
-                {"CoordinateSpace", "ESplineCoordinateSpace", false, false},
+                {"Distance", TypeCode(Kind::Float), false, false},
+                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
             },
             false,
             true,
@@ -348,10 +353,10 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetRotationAtDistanceAlongSpline",
             "Returns the rotation whose X axis follows the curve at Distance metres along it (no roll).",
-            "FRotator",
+            TypeCode(Kind::Struct, "FRotator"),
             {
-                {"Distance", "float", false, false},
-                {"CoordinateSpace", "ESplineCoordinateSpace", false, false},
+                {"Distance", TypeCode(Kind::Float), false, false},
+                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
             },
             false,
             true,
@@ -368,10 +373,10 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetLocationAtSplineInputKey",
             "Returns the curve at input key InKey (point index + fraction of the way to the next point).",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
-                {"InKey", "float", false, false},
-                {"CoordinateSpace", "ESplineCoordinateSpace", false, false},
+                {"InKey", TypeCode(Kind::Float), false, false},
+                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
             },
             false,
             true,
@@ -388,10 +393,10 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetLocationAtSplinePoint",
             "Returns point PointIndex.",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
-                {"PointIndex", "int", false, false},
-                {"CoordinateSpace", "ESplineCoordinateSpace", false, false},
+                {"PointIndex", TypeCode(Kind::Int), false, false},
+                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
             },
             false,
             true,
@@ -408,10 +413,10 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetTangentAtSplinePoint",
             "Returns the tangent at point PointIndex (its own, or the automatic one).",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
-                {"PointIndex", "int", false, false},
-                {"CoordinateSpace", "ESplineCoordinateSpace", false, false},
+                {"PointIndex", TypeCode(Kind::Int), false, false},
+                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
             },
             false,
             true,
@@ -428,12 +433,12 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "SetTangentAtSplinePoint",
             "Gives point PointIndex a tangent of its own.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"PointIndex", "int", false, false},
-                {"InTangent", "FVector", false, false},
-                {"CoordinateSpace", "ESplineCoordinateSpace", false, false},
-                {"bUpdateSpline", "bool", true, false},
+                {"PointIndex", TypeCode(Kind::Int), false, false},
+                {"InTangent", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
+                {"bUpdateSpline", TypeCode(Kind::Bool), true, false},
             },
             false,
             false,
@@ -452,9 +457,9 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetDistanceAlongSplineAtSplinePoint",
             "Returns the distance along the curve at point PointIndex.",
-            "float",
+            TypeCode(Kind::Float),
             {
-                {"PointIndex", "int", false, false},
+                {"PointIndex", TypeCode(Kind::Int), false, false},
             },
             false,
             true,
@@ -469,10 +474,10 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetLocationsAtDistances",
             "Returns the points at each of Distances (a 1-D float64 array, metres along the curve) as an (N, 3)\nfloat64 array: many evaluations in one call.",
-            "NDArray[np.float64]",
+            TypeCode(Kind::Array, "float64"),
             {
-                {"Distances", "NDArray[np.float64]", false, false},
-                {"CoordinateSpace", "ESplineCoordinateSpace", false, false},
+                {"Distances", TypeCode(Kind::Array, "float64"), false, false},
+                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
             },
             false,
             true,

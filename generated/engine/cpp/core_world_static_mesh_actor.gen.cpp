@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- AStaticMeshActor ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& AStaticMeshActor::StaticClass() {
@@ -52,7 +57,7 @@ const sp::reflect::TypeInfo& AStaticMeshActor::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "StaticMeshComponent",
-            "UStaticMeshComponent",
+            TypeCode(Kind::Object, "UStaticMeshComponent"),
             "The mesh component (also the root component).",
             true,
             [](const void* self) -> sp::reflect::Value {

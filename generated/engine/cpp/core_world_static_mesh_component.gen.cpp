@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- UStaticMeshComponent ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
@@ -52,7 +57,7 @@ const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "StaticMesh",
-            "str",
+            TypeCode(Kind::Str),
             "The mesh asset: a built-in shape (\"/Engine/BasicShapes/Cube\", \"Sphere\", \"Cylinder\", \"Plane\") or a\nfile.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -66,7 +71,7 @@ const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
         });
         t.properties.push_back({
             "Materials",
-            "list[str]",
+            TypeCode(Kind::List, TypeCode(Kind::Str)),
             "One material asset per mesh slot; an empty entry uses the default material.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -81,9 +86,9 @@ const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
         t.functions.push_back({
             "SetStaticMesh",
             "Sets the mesh asset; returns false when the name is not a known mesh.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
-                {"NewMesh", "str", false, false},
+                {"NewMesh", TypeCode(Kind::Str), false, false},
             },
             false,
             false,
@@ -98,10 +103,10 @@ const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
         t.functions.push_back({
             "SetMaterial",
             "Sets the material of one slot, growing the list as needed.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"ElementIndex", "int", false, false},
-                {"Material", "str", false, false},
+                {"ElementIndex", TypeCode(Kind::Int), false, false},
+                {"Material", TypeCode(Kind::Str), false, false},
             },
             false,
             false,

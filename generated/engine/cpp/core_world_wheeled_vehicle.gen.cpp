@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- AWheeledVehiclePawn ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
@@ -52,7 +57,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Mesh",
-            "UStaticMeshComponent",
+            TypeCode(Kind::Object, "UStaticMeshComponent"),
             "The chassis (the root component): a simulated box; its scale is the car's size, its mass the car's.",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -62,7 +67,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "Cabin",
-            "UStaticMeshComponent",
+            TypeCode(Kind::Object, "UStaticMeshComponent"),
             "The cabin on top of the chassis (no collision: the chassis box is the car's body).",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -72,7 +77,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "WheelFrontLeft",
-            "UStaticMeshComponent",
+            TypeCode(Kind::Object, "UStaticMeshComponent"),
             "The wheel meshes, which follow the simulated wheels (no collision: the wheels are rays).",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -82,7 +87,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "WheelFrontRight",
-            "UStaticMeshComponent",
+            TypeCode(Kind::Object, "UStaticMeshComponent"),
             "",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -92,7 +97,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "WheelRearLeft",
-            "UStaticMeshComponent",
+            TypeCode(Kind::Object, "UStaticMeshComponent"),
             "",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -102,7 +107,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "WheelRearRight",
-            "UStaticMeshComponent",
+            TypeCode(Kind::Object, "UStaticMeshComponent"),
             "",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -112,7 +117,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "InputComponent",
-            "UInputComponent",
+            TypeCode(Kind::Object, "UInputComponent"),
             "Receives the injected actions.",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -122,7 +127,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "MaxEngineForce",
-            "float",
+            TypeCode(Kind::Float),
             "Driving force in newtons at full throttle, shared by the rear wheels (>= 0).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -136,7 +141,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "MaxBrakeForce",
-            "float",
+            TypeCode(Kind::Float),
             "Braking force in newtons per wheel at full brake (>= 0).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -150,7 +155,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "MaxSteerAngle",
-            "float",
+            TypeCode(Kind::Float),
             "Front wheels' steering angle in degrees at full steer, in [0, 80].",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -164,7 +169,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "WheelRadius",
-            "float",
+            TypeCode(Kind::Float),
             "Tyre radius in metres (> 0).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -178,7 +183,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "SuspensionStiffness",
-            "float",
+            TypeCode(Kind::Float),
             "Suspension spring rate per kilogram of the car's mass, N/m/kg (> 0): the car sinks\n9.81 / (4 * SuspensionStiffness) metres under its weight.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -192,7 +197,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "TireFriction",
-            "float",
+            TypeCode(Kind::Float),
             "Tyre grip: the largest driving and cornering force over the load on the wheel (>= 0).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -207,9 +212,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.functions.push_back({
             "SetMaxEngineForce",
             "Sets MaxEngineForce (newtons, >= 0).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewForce", "float", false, false},
+                {"NewForce", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -224,9 +229,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.functions.push_back({
             "SetMaxBrakeForce",
             "Sets MaxBrakeForce (newtons, >= 0).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewForce", "float", false, false},
+                {"NewForce", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -241,9 +246,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.functions.push_back({
             "SetMaxSteerAngle",
             "Sets MaxSteerAngle (degrees, in [0, 80]).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewAngle", "float", false, false},
+                {"NewAngle", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -258,9 +263,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.functions.push_back({
             "SetWheelRadius",
             "Sets WheelRadius (metres, > 0).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewRadius", "float", false, false},
+                {"NewRadius", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -275,9 +280,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.functions.push_back({
             "SetSuspensionStiffness",
             "Sets SuspensionStiffness (N/m/kg, > 0).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewStiffness", "float", false, false},
+                {"NewStiffness", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -292,9 +297,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.functions.push_back({
             "SetTireFriction",
             "Sets TireFriction (>= 0).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewFriction", "float", false, false},
+                {"NewFriction", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -309,7 +314,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.functions.push_back({
             "GetForwardSpeed",
             "Returns the speed along the car's forward axis in metres per second (negative when reversing).",
-            "float",
+            TypeCode(Kind::Float),
             {
             },
             false,
@@ -324,7 +329,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.functions.push_back({
             "GetNumWheels",
             "Returns the number of wheels.",
-            "int",
+            TypeCode(Kind::Int),
             {
             },
             false,
@@ -339,9 +344,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.functions.push_back({
             "GetWheelState",
             "Returns the state of wheel WheelIndex (0 front left, 1 front right, 2 rear left, 3 rear right).",
-            "FWheelState",
+            TypeCode(Kind::Struct, "FWheelState"),
             {
-                {"WheelIndex", "int", false, false},
+                {"WheelIndex", TypeCode(Kind::Int), false, false},
             },
             false,
             true,
@@ -374,7 +379,7 @@ const sp::reflect::TypeInfo& FWheelState::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "bInContact",
-            "bool",
+            TypeCode(Kind::Bool),
             "True while the wheel touches the ground.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -388,7 +393,7 @@ const sp::reflect::TypeInfo& FWheelState::StaticClass() {
         });
         t.properties.push_back({
             "Location",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             "The wheel's centre, world space (metres).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -402,7 +407,7 @@ const sp::reflect::TypeInfo& FWheelState::StaticClass() {
         });
         t.properties.push_back({
             "ContactPoint",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             "Where the wheel touches the ground, world space (meaningful while bInContact).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -416,7 +421,7 @@ const sp::reflect::TypeInfo& FWheelState::StaticClass() {
         });
         t.properties.push_back({
             "SuspensionLength",
-            "float",
+            TypeCode(Kind::Float),
             "Suspension length in metres (the rest length less the compression).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -430,7 +435,7 @@ const sp::reflect::TypeInfo& FWheelState::StaticClass() {
         });
         t.properties.push_back({
             "RotationInDegrees",
-            "float",
+            TypeCode(Kind::Float),
             "Degrees the wheel has rolled (forward is positive).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -444,7 +449,7 @@ const sp::reflect::TypeInfo& FWheelState::StaticClass() {
         });
         t.properties.push_back({
             "SteerAngleInDegrees",
-            "float",
+            TypeCode(Kind::Float),
             "Steering angle in degrees, positive to the left.",
             false,
             [](const void* self) -> sp::reflect::Value {

@@ -38,6 +38,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 // -- UWorld ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& UWorld::StaticClass() {
@@ -53,13 +58,13 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "spawn_actor",
             "Spawns an actor of class uclass at location and rotation; name must be unique in the world (empty:\ngenerated).",
-            "AActor",
+            TypeCode(Kind::Object, "AActor"),
             {
-                {"uclass", "type[AActor] | str", false, false},
-                {"location", "FVector", true, false},
-                {"rotation", "FRotator", true, false},
-                {"name", "str", true, false},
-                {"tags", "list[str]", true, false},
+                {"uclass", TypeCode(Kind::Class, "AActor"), false, false},
+                {"location", TypeCode(Kind::Struct, "FVector"), true, false},
+                {"rotation", TypeCode(Kind::Struct, "FRotator"), true, false},
+                {"name", TypeCode(Kind::Str), true, false},
+                {"tags", TypeCode(Kind::List, TypeCode(Kind::Str)), true, false},
             },
             false,
             false,
@@ -83,9 +88,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "destroy_actor",
             "Destroys actor and its components; its handles become invalid.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"actor", "AActor", false, false},
+                {"actor", TypeCode(Kind::Object, "AActor"), false, false},
             },
             false,
             false,
@@ -100,9 +105,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "find_actor_by_name",
             "Returns the actor called name, or None.",
-            "AActor | None",
+            TypeCode(Kind::Object, "AActor", true),
             {
-                {"name", "str", false, false},
+                {"name", TypeCode(Kind::Str), false, false},
             },
             false,
             true,
@@ -117,9 +122,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "find_actors_by_tag",
             "Returns every actor that has tag, in spawn order.",
-            "list[AActor]",
+            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
             {
-                {"tag", "str", false, false},
+                {"tag", TypeCode(Kind::Str), false, false},
             },
             false,
             true,
@@ -134,9 +139,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "find_actor_by_class",
             "Returns the first actor of class uclass or a subclass of it, or None.",
-            "AActor | None",
+            TypeCode(Kind::Object, "AActor", true),
             {
-                {"uclass", "type[AActor] | str", false, false},
+                {"uclass", TypeCode(Kind::Class, "AActor"), false, false},
             },
             false,
             true,
@@ -151,9 +156,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "find_actors_by_class",
             "Returns every actor of class uclass or a subclass of it, in spawn order.",
-            "list[AActor]",
+            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
             {
-                {"uclass", "type[AActor] | str", false, false},
+                {"uclass", TypeCode(Kind::Class, "AActor"), false, false},
             },
             false,
             true,
@@ -168,9 +173,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "find_actors_by_class_as_dict",
             "Returns every actor of class uclass or a subclass of it, by name.",
-            "dict[str, AActor]",
+            TypeCode(Kind::Dict, TypeCode(Kind::Object, "AActor")),
             {
-                {"uclass", "type[AActor] | str", false, false},
+                {"uclass", TypeCode(Kind::Class, "AActor"), false, false},
             },
             false,
             true,
@@ -185,7 +190,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "find_actors",
             "Returns every actor in the world, in spawn order.",
-            "list[AActor]",
+            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
             {
             },
             false,
@@ -200,10 +205,10 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "get_component_by_name",
             "Returns the component of actor called component_name, or None.",
-            "UActorComponent | None",
+            TypeCode(Kind::Object, "UActorComponent", true),
             {
-                {"actor", "AActor", false, false},
-                {"component_name", "str", false, false},
+                {"actor", TypeCode(Kind::Object, "AActor"), false, false},
+                {"component_name", TypeCode(Kind::Str), false, false},
             },
             false,
             true,
@@ -219,10 +224,10 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "get_components_by_class",
             "Returns the components of actor of class uclass or a subclass of it.",
-            "list[UActorComponent]",
+            TypeCode(Kind::List, TypeCode(Kind::Object, "UActorComponent")),
             {
-                {"actor", "AActor", false, false},
-                {"uclass", "type[UActorComponent] | str", false, false},
+                {"actor", TypeCode(Kind::Object, "AActor"), false, false},
+                {"uclass", TypeCode(Kind::Class, "UActorComponent"), false, false},
             },
             false,
             true,
@@ -238,10 +243,10 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "get_components_by_class_as_dict",
             "Returns the components of actor of class uclass or a subclass of it, by name.",
-            "dict[str, UActorComponent]",
+            TypeCode(Kind::Dict, TypeCode(Kind::Object, "UActorComponent")),
             {
-                {"actor", "AActor", false, false},
-                {"uclass", "type[UActorComponent] | str", false, false},
+                {"actor", TypeCode(Kind::Object, "AActor"), false, false},
+                {"uclass", TypeCode(Kind::Class, "UActorComponent"), false, false},
             },
             false,
             true,
@@ -257,10 +262,10 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "load_class",
             "Loads the blueprint asset at path name (a JSON file, see core/world/blueprint.h) once and returns its\nclass, named after the file (\"BP_Axes\"), which must derive from uclass; name may also name a class.",
-            "type[UObject]",
+            TypeCode(Kind::Class, "UObject"),
             {
-                {"uclass", "type[UObject] | str", false, false},
-                {"name", "str", false, false},
+                {"uclass", TypeCode(Kind::Class, "UObject"), false, false},
+                {"name", TypeCode(Kind::Str), false, false},
             },
             false,
             false,
@@ -277,9 +282,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "get_default_object",
             "Returns the class default object of uclass: an instance outside the world holding the class defaults.",
-            "UObject",
+            TypeCode(Kind::Object, "UObject"),
             {
-                {"uclass", "type[UObject] | str", false, false},
+                {"uclass", TypeCode(Kind::Class, "UObject"), false, false},
             },
             false,
             false,
@@ -295,9 +300,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "get_actor_locations",
             "Returns the world-space locations of actors as an (N, 3) float64 array, rows in the order given. The\nactors may be in any of the engine's worlds: one actor per world gives a leading world axis.",
-            "NDArray[np.float64]",
+            TypeCode(Kind::Array, "float64"),
             {
-                {"actors", "list[AActor]", false, false},
+                {"actors", TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")), false, false},
             },
             false,
             true,
@@ -312,10 +317,10 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "set_actor_locations",
             "Moves each actor to the matching row of locations, an (N, 3) float64 array (one call for many actors,\nin any of the engine's worlds).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"actors", "list[AActor]", false, false},
-                {"locations", "NDArray[np.float64]", false, false},
+                {"actors", TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")), false, false},
+                {"locations", TypeCode(Kind::Array, "float64"), false, false},
             },
             false,
             false,
@@ -331,7 +336,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "get_actor_count",
             "Returns the number of actors in the world.",
-            "int",
+            TypeCode(Kind::Int),
             {
             },
             false,
@@ -346,7 +351,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "get_time_seconds",
             "Returns the simulated time of this world in seconds.",
-            "float",
+            TypeCode(Kind::Float),
             {
             },
             false,
@@ -361,7 +366,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "get_frame_count",
             "Returns the number of frames this world has ticked.",
-            "int",
+            TypeCode(Kind::Int),
             {
             },
             false,
@@ -376,13 +381,13 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "line_trace_single",
             "Traces the segment start -> end against every collision body; returns true on a hit, with the hit,\nand the actor and component that were hit (None when nothing was hit).",
-            "line_trace_singleResult",
+            TypeCode(Kind::Bool),
             {
-                {"start", "FVector", false, false},
-                {"end", "FVector", false, false},
-                {"hit", "FHitResult", false, true},
-                {"actor", "AActor", false, true},
-                {"component", "UPrimitiveComponent", false, true},
+                {"start", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"end", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"hit", TypeCode(Kind::Struct, "FHitResult"), false, true},
+                {"actor", TypeCode(Kind::Object, "AActor"), false, true},
+                {"component", TypeCode(Kind::Object, "UPrimitiveComponent"), false, true},
             },
             false,
             false,
@@ -406,11 +411,11 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "inject_input_for_actor",
             "Routes a continuous input action with the given value to actor's UInputComponent for the next tick.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"actor", "AActor", false, false},
-                {"input_action_name", "str", false, false},
-                {"value", "FVector", false, false},
+                {"actor", TypeCode(Kind::Object, "AActor"), false, false},
+                {"input_action_name", TypeCode(Kind::Str), false, false},
+                {"value", TypeCode(Kind::Struct, "FVector"), false, false},
             },
             false,
             false,
@@ -427,9 +432,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "load_scene",
             "Replaces every actor of this world by those of the scene file at path (see core/world/scene_io.h).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"path", "str", false, false},
+                {"path", TypeCode(Kind::Str), false, false},
             },
             false,
             false,
@@ -444,9 +449,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "save_scene",
             "Writes every actor and component of this world, with every reflected property, to a scene file.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"path", "str", false, false},
+                {"path", TypeCode(Kind::Str), false, false},
             },
             false,
             true,
@@ -461,7 +466,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "is_editor_world",
             "Returns true for the persistent world of an editor instance.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
             },
             false,
@@ -476,7 +481,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "is_game_world",
             "Returns true for a world that plays (a standalone instance's world, or the editor's play world).",
-            "bool",
+            TypeCode(Kind::Bool),
             {
             },
             false,
@@ -491,7 +496,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "play",
             "Editor world only: starts play in a new game world copied from this one (instance.get_game()).",
-            "None",
+            TypeCode(Kind::Void),
             {
             },
             false,
@@ -506,7 +511,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "stop",
             "Editor world only: ends play and destroys the game world; its objects' handles become stale.",
-            "None",
+            TypeCode(Kind::Void),
             {
             },
             false,
@@ -521,7 +526,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "is_playing",
             "Editor world only: returns true while a game world copied from this one is playing.",
-            "bool",
+            TypeCode(Kind::Bool),
             {
             },
             false,

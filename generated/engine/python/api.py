@@ -17,6 +17,8 @@ from numpy.typing import NDArray
 
 from spear._object import SpObject as _SpObject
 from spear._static import StaticFunction as _StaticFunction
+from . import type_codes as _t
+from .type_codes import FIELD_TYPES as _FIELD_TYPES  # read by spear._rpc_types
 
 __all__ = [
     "AAIController",
@@ -1080,7 +1082,7 @@ class UCameraSensorComponent(USceneComponent):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UCameraSensorComponent"
-    read_pixels_stacked = _StaticFunction("UCameraSensorComponent", "read_pixels_stacked", "FCameraPixels")
+    read_pixels_stacked = _StaticFunction("UCameraSensorComponent", "read_pixels_stacked", _t.T_FCameraPixels)
 
     class GetObjectIdInfoResult(NamedTuple):
         ReturnValue: bool
@@ -1183,19 +1185,19 @@ class UGameplayStatics(UObject):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UGameplayStatics"
-    GetGameMode = _StaticFunction("UGameplayStatics", "GetGameMode", "AGameModeBase | None")
-    GetPlayerController = _StaticFunction("UGameplayStatics", "GetPlayerController", "APlayerController | None")
-    GetPlayerPawn = _StaticFunction("UGameplayStatics", "GetPlayerPawn", "APawn | None")
-    GetPlayerControllerID = _StaticFunction("UGameplayStatics", "GetPlayerControllerID", "int")
-    GetNumPlayerControllers = _StaticFunction("UGameplayStatics", "GetNumPlayerControllers", "int")
-    CreatePlayer = _StaticFunction("UGameplayStatics", "CreatePlayer", "APlayerController | None")
-    GetAllActorsOfClass = _StaticFunction("UGameplayStatics", "GetAllActorsOfClass", "list[AActor]")
-    GetActorOfClass = _StaticFunction("UGameplayStatics", "GetActorOfClass", "AActor | None")
-    GetAllActorsWithTag = _StaticFunction("UGameplayStatics", "GetAllActorsWithTag", "list[AActor]")
-    LoadStreamLevel = _StaticFunction("UGameplayStatics", "LoadStreamLevel", "None")
-    UnloadStreamLevel = _StaticFunction("UGameplayStatics", "UnloadStreamLevel", "None")
-    GetStreamingLevelNames = _StaticFunction("UGameplayStatics", "GetStreamingLevelNames", "list[str]")
-    IsStreamingLevelLoaded = _StaticFunction("UGameplayStatics", "IsStreamingLevelLoaded", "bool")
+    GetGameMode = _StaticFunction("UGameplayStatics", "GetGameMode", _t.T_AGameModeBase_or_None)
+    GetPlayerController = _StaticFunction("UGameplayStatics", "GetPlayerController", _t.T_APlayerController_or_None)
+    GetPlayerPawn = _StaticFunction("UGameplayStatics", "GetPlayerPawn", _t.T_APawn_or_None)
+    GetPlayerControllerID = _StaticFunction("UGameplayStatics", "GetPlayerControllerID", _t.T_int)
+    GetNumPlayerControllers = _StaticFunction("UGameplayStatics", "GetNumPlayerControllers", _t.T_int)
+    CreatePlayer = _StaticFunction("UGameplayStatics", "CreatePlayer", _t.T_APlayerController_or_None)
+    GetAllActorsOfClass = _StaticFunction("UGameplayStatics", "GetAllActorsOfClass", _t.T_list_of_AActor)
+    GetActorOfClass = _StaticFunction("UGameplayStatics", "GetActorOfClass", _t.T_AActor_or_None)
+    GetAllActorsWithTag = _StaticFunction("UGameplayStatics", "GetAllActorsWithTag", _t.T_list_of_AActor)
+    LoadStreamLevel = _StaticFunction("UGameplayStatics", "LoadStreamLevel", _t.T_void)
+    UnloadStreamLevel = _StaticFunction("UGameplayStatics", "UnloadStreamLevel", _t.T_void)
+    GetStreamingLevelNames = _StaticFunction("UGameplayStatics", "GetStreamingLevelNames", _t.T_list_of_str)
+    IsStreamingLevelLoaded = _StaticFunction("UGameplayStatics", "IsStreamingLevelLoaded", _t.T_bool)
 
 
 class UInputComponentAsync(UActorComponentAsync):
@@ -1255,7 +1257,7 @@ class UMoviePipelineQueueEngineSubsystem(UObject):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UMoviePipelineQueueEngineSubsystem"
-    GetMoviePipelineQueueEngineSubsystem = _StaticFunction("UMoviePipelineQueueEngineSubsystem", "GetMoviePipelineQueueEngineSubsystem", "UMoviePipelineQueueEngineSubsystem")
+    GetMoviePipelineQueueEngineSubsystem = _StaticFunction("UMoviePipelineQueueEngineSubsystem", "GetMoviePipelineQueueEngineSubsystem", _t.T_UMoviePipelineQueueEngineSubsystem)
 
 
 class UNavigationSystemV1Async(UObjectAsync):
@@ -1275,12 +1277,12 @@ class UNavigationSystemV1(UObject):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UNavigationSystemV1"
-    GetNavigationSystem = _StaticFunction("UNavigationSystemV1", "GetNavigationSystem", "UNavigationSystemV1")
-    FindPathToLocationSynchronously = _StaticFunction("UNavigationSystemV1", "FindPathToLocationSynchronously", "dict", "FindPathToLocationSynchronouslyResult")
-    GetPathLength = _StaticFunction("UNavigationSystemV1", "GetPathLength", "dict", "GetPathLengthResult")
-    K2_GetRandomReachablePointInRadius = _StaticFunction("UNavigationSystemV1", "K2_GetRandomReachablePointInRadius", "dict", "K2_GetRandomReachablePointInRadiusResult")
-    K2_GetRandomLocationInNavigableRadius = _StaticFunction("UNavigationSystemV1", "K2_GetRandomLocationInNavigableRadius", "dict", "K2_GetRandomLocationInNavigableRadiusResult")
-    K2_ProjectPointToNavigation = _StaticFunction("UNavigationSystemV1", "K2_ProjectPointToNavigation", "dict", "K2_ProjectPointToNavigationResult")
+    GetNavigationSystem = _StaticFunction("UNavigationSystemV1", "GetNavigationSystem", _t.T_UNavigationSystemV1)
+    FindPathToLocationSynchronously = _StaticFunction("UNavigationSystemV1", "FindPathToLocationSynchronously", _t.T_ENavigationQueryResult, "FindPathToLocationSynchronouslyResult")
+    GetPathLength = _StaticFunction("UNavigationSystemV1", "GetPathLength", _t.T_ENavigationQueryResult, "GetPathLengthResult")
+    K2_GetRandomReachablePointInRadius = _StaticFunction("UNavigationSystemV1", "K2_GetRandomReachablePointInRadius", _t.T_bool, "K2_GetRandomReachablePointInRadiusResult")
+    K2_GetRandomLocationInNavigableRadius = _StaticFunction("UNavigationSystemV1", "K2_GetRandomLocationInNavigableRadius", _t.T_bool, "K2_GetRandomLocationInNavigableRadiusResult")
+    K2_ProjectPointToNavigation = _StaticFunction("UNavigationSystemV1", "K2_ProjectPointToNavigation", _t.T_bool, "K2_ProjectPointToNavigationResult")
 
     class FindPathToLocationSynchronouslyResult(NamedTuple):
         ReturnValue: ENavigationQueryResult

@@ -18,6 +18,7 @@ from spear._rpc_proxy import ObjectProxy as _ObjectProxy
 from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
+from . import type_codes as _t
 from .api import ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESplineCoordinateSpace, FCameraPixels, FHitResult, FLensDistortion, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
@@ -31,13 +32,13 @@ class UObject(_ObjectProxy, api.UObject):
     __slots__ = ()
 
     def GetName(self) -> str:
-        return cast("str", self._sp_call("UObject", "GetName", {}, "str"))
+        return cast("str", self._sp_call("UObject", "GetName", {}, _t.T_str))
 
     def GetClassName(self) -> str:
-        return cast("str", self._sp_call("UObject", "GetClassName", {}, "str"))
+        return cast("str", self._sp_call("UObject", "GetClassName", {}, _t.T_str))
 
     def GetWorld(self) -> api.UWorld | None:
-        return cast("api.UWorld | None", self._sp_call("UObject", "GetWorld", {}, "UWorld | None"))
+        return cast("api.UWorld | None", self._sp_call("UObject", "GetWorld", {}, _t.T_UWorld_or_None))
 
 
 _register_proxy(UObject)
@@ -48,7 +49,7 @@ class AActor(UObject, api.AActor):
 
     @property
     def Tags(self) -> list[str]:
-        return cast("list[str]", self._sp_get("AActor", "Tags", "list[str]"))
+        return cast("list[str]", self._sp_get("AActor", "Tags", _t.T_list_of_str))
 
     @Tags.setter
     def Tags(self, value: list[str]) -> None:
@@ -56,46 +57,46 @@ class AActor(UObject, api.AActor):
 
     @property
     def RootComponent(self) -> api.USceneComponent | None:
-        return cast("api.USceneComponent | None", self._sp_get("AActor", "RootComponent", "USceneComponent | None"))
+        return cast("api.USceneComponent | None", self._sp_get("AActor", "RootComponent", _t.T_USceneComponent_or_None))
 
     def SetRootComponent(self, *, NewRootComponent: api.USceneComponent) -> None:
-        return cast(None, self._sp_call("AActor", "SetRootComponent", {"NewRootComponent": NewRootComponent}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AActor", "SetRootComponent", {"NewRootComponent": NewRootComponent}, _t.T_void))  # a Future when queued by call_async
 
     def GetActorLocation(self) -> FVector:
-        return cast("FVector", self._sp_call("AActor", "GetActorLocation", {}, "FVector"))
+        return cast("FVector", self._sp_call("AActor", "GetActorLocation", {}, _t.T_FVector))
 
     def SetActorLocation(self, *, NewLocation: FVector) -> bool:
-        return cast("bool", self._sp_call("AActor", "SetActorLocation", {"NewLocation": NewLocation}, "bool"))
+        return cast("bool", self._sp_call("AActor", "SetActorLocation", {"NewLocation": NewLocation}, _t.T_bool))
 
     def GetActorRotation(self) -> FRotator:
-        return cast("FRotator", self._sp_call("AActor", "GetActorRotation", {}, "FRotator"))
+        return cast("FRotator", self._sp_call("AActor", "GetActorRotation", {}, _t.T_FRotator))
 
     def SetActorRotation(self, *, NewRotation: FRotator) -> bool:
-        return cast("bool", self._sp_call("AActor", "SetActorRotation", {"NewRotation": NewRotation}, "bool"))
+        return cast("bool", self._sp_call("AActor", "SetActorRotation", {"NewRotation": NewRotation}, _t.T_bool))
 
     def K2_SetActorLocationAndRotation(self, *, NewLocation: FVector, NewRotation: FRotator, bSweep: bool = _DEFAULT, bTeleport: bool = _DEFAULT) -> bool:
-        return cast("bool", self._sp_call("AActor", "K2_SetActorLocationAndRotation", {"NewLocation": NewLocation, "NewRotation": NewRotation, "bSweep": bSweep, "bTeleport": bTeleport}, "bool"))
+        return cast("bool", self._sp_call("AActor", "K2_SetActorLocationAndRotation", {"NewLocation": NewLocation, "NewRotation": NewRotation, "bSweep": bSweep, "bTeleport": bTeleport}, _t.T_bool))
 
     def GetActorScale3D(self) -> FVector:
-        return cast("FVector", self._sp_call("AActor", "GetActorScale3D", {}, "FVector"))
+        return cast("FVector", self._sp_call("AActor", "GetActorScale3D", {}, _t.T_FVector))
 
     def SetActorScale3D(self, *, NewScale3D: FVector) -> None:
-        return cast(None, self._sp_call("AActor", "SetActorScale3D", {"NewScale3D": NewScale3D}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AActor", "SetActorScale3D", {"NewScale3D": NewScale3D}, _t.T_void))  # a Future when queued by call_async
 
     def GetActorTransform(self) -> FTransform:
-        return cast("FTransform", self._sp_call("AActor", "GetActorTransform", {}, "FTransform"))
+        return cast("FTransform", self._sp_call("AActor", "GetActorTransform", {}, _t.T_FTransform))
 
     def SetActorTransform(self, *, NewTransform: FTransform) -> bool:
-        return cast("bool", self._sp_call("AActor", "SetActorTransform", {"NewTransform": NewTransform}, "bool"))
+        return cast("bool", self._sp_call("AActor", "SetActorTransform", {"NewTransform": NewTransform}, _t.T_bool))
 
     def GetActorForwardVector(self) -> FVector:
-        return cast("FVector", self._sp_call("AActor", "GetActorForwardVector", {}, "FVector"))
+        return cast("FVector", self._sp_call("AActor", "GetActorForwardVector", {}, _t.T_FVector))
 
     def GetActorBounds(self, *, bOnlyCollidingComponents: bool) -> api.AActor.GetActorBoundsResult:
-        return cast("api.AActor.GetActorBoundsResult", self._sp_call("AActor", "GetActorBounds", {"bOnlyCollidingComponents": bOnlyCollidingComponents}, "dict", api.AActor.GetActorBoundsResult))
+        return cast("api.AActor.GetActorBoundsResult", self._sp_call("AActor", "GetActorBounds", {"bOnlyCollidingComponents": bOnlyCollidingComponents}, _t.T_void, api.AActor.GetActorBoundsResult))
 
     def ActorHasTag(self, *, Tag: str) -> bool:
-        return cast("bool", self._sp_call("AActor", "ActorHasTag", {"Tag": Tag}, "bool"))
+        return cast("bool", self._sp_call("AActor", "ActorHasTag", {"Tag": Tag}, _t.T_bool))
 
     @overload
     def GetOverlappingActors(self, *, ClassFilter: type[_AActorT]) -> list[_AActorT]: ...
@@ -104,16 +105,16 @@ class AActor(UObject, api.AActor):
     def GetOverlappingActors(self, *, ClassFilter: str) -> list[api.AActor]: ...
 
     def GetOverlappingActors(self, *, ClassFilter: type[api.AActor] | str) -> Any:
-        return self._sp_call("AActor", "GetOverlappingActors", {"ClassFilter": ClassFilter}, "list[AActor]")
+        return self._sp_call("AActor", "GetOverlappingActors", {"ClassFilter": ClassFilter}, _t.T_list_of_AActor)
 
     def IsOverlappingActor(self, *, Other: api.AActor) -> bool:
-        return cast("bool", self._sp_call("AActor", "IsOverlappingActor", {"Other": Other}, "bool"))
+        return cast("bool", self._sp_call("AActor", "IsOverlappingActor", {"Other": Other}, _t.T_bool))
 
     def GetStreamingLevelName(self) -> str:
-        return cast("str", self._sp_call("AActor", "GetStreamingLevelName", {}, "str"))
+        return cast("str", self._sp_call("AActor", "GetStreamingLevelName", {}, _t.T_str))
 
     def K2_GetComponents(self) -> list[api.UActorComponent]:
-        return cast("list[api.UActorComponent]", self._sp_call("AActor", "K2_GetComponents", {}, "list[UActorComponent]"))
+        return cast("list[api.UActorComponent]", self._sp_call("AActor", "K2_GetComponents", {}, _t.T_list_of_UActorComponent))
 
     @overload
     def GetComponentByClass(self, *, ComponentClass: type[_UActorComponentT]) -> _UActorComponentT | None: ...
@@ -122,7 +123,7 @@ class AActor(UObject, api.AActor):
     def GetComponentByClass(self, *, ComponentClass: str) -> api.UActorComponent | None: ...
 
     def GetComponentByClass(self, *, ComponentClass: type[api.UActorComponent] | str) -> Any:
-        return self._sp_call("AActor", "GetComponentByClass", {"ComponentClass": ComponentClass}, "UActorComponent | None")
+        return self._sp_call("AActor", "GetComponentByClass", {"ComponentClass": ComponentClass}, _t.T_UActorComponent_or_None)
 
 
 _register_proxy(AActor)
@@ -132,22 +133,22 @@ class AController(AActor, api.AController):
     __slots__ = ()
 
     def Possess(self, *, InPawn: api.APawn) -> None:
-        return cast(None, self._sp_call("AController", "Possess", {"InPawn": InPawn}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AController", "Possess", {"InPawn": InPawn}, _t.T_void))  # a Future when queued by call_async
 
     def UnPossess(self) -> None:
-        return cast(None, self._sp_call("AController", "UnPossess", {}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AController", "UnPossess", {}, _t.T_void))  # a Future when queued by call_async
 
     def K2_GetPawn(self) -> api.APawn | None:
-        return cast("api.APawn | None", self._sp_call("AController", "K2_GetPawn", {}, "APawn | None"))
+        return cast("api.APawn | None", self._sp_call("AController", "K2_GetPawn", {}, _t.T_APawn_or_None))
 
     def GetControlRotation(self) -> FRotator:
-        return cast("FRotator", self._sp_call("AController", "GetControlRotation", {}, "FRotator"))
+        return cast("FRotator", self._sp_call("AController", "GetControlRotation", {}, _t.T_FRotator))
 
     def SetControlRotation(self, *, NewRotation: FRotator) -> None:
-        return cast(None, self._sp_call("AController", "SetControlRotation", {"NewRotation": NewRotation}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AController", "SetControlRotation", {"NewRotation": NewRotation}, _t.T_void))  # a Future when queued by call_async
 
     def IsPlayerController(self) -> bool:
-        return cast("bool", self._sp_call("AController", "IsPlayerController", {}, "bool"))
+        return cast("bool", self._sp_call("AController", "IsPlayerController", {}, _t.T_bool))
 
 
 _register_proxy(AController)
@@ -157,19 +158,19 @@ class AAIController(AController, api.AAIController):
     __slots__ = ()
 
     def MoveToLocation(self, *, Dest: FVector, AcceptanceRadius: float = _DEFAULT, bStopOnOverlap: bool = _DEFAULT, bUsePathfinding: bool = _DEFAULT) -> EPathFollowingRequestResult:
-        return cast("EPathFollowingRequestResult", self._sp_call("AAIController", "MoveToLocation", {"Dest": Dest, "AcceptanceRadius": AcceptanceRadius, "bStopOnOverlap": bStopOnOverlap, "bUsePathfinding": bUsePathfinding}, "EPathFollowingRequestResult"))
+        return cast("EPathFollowingRequestResult", self._sp_call("AAIController", "MoveToLocation", {"Dest": Dest, "AcceptanceRadius": AcceptanceRadius, "bStopOnOverlap": bStopOnOverlap, "bUsePathfinding": bUsePathfinding}, _t.T_EPathFollowingRequestResult))
 
     def MoveToActor(self, *, Goal: api.AActor, AcceptanceRadius: float = _DEFAULT, bStopOnOverlap: bool = _DEFAULT, bUsePathfinding: bool = _DEFAULT) -> EPathFollowingRequestResult:
-        return cast("EPathFollowingRequestResult", self._sp_call("AAIController", "MoveToActor", {"Goal": Goal, "AcceptanceRadius": AcceptanceRadius, "bStopOnOverlap": bStopOnOverlap, "bUsePathfinding": bUsePathfinding}, "EPathFollowingRequestResult"))
+        return cast("EPathFollowingRequestResult", self._sp_call("AAIController", "MoveToActor", {"Goal": Goal, "AcceptanceRadius": AcceptanceRadius, "bStopOnOverlap": bStopOnOverlap, "bUsePathfinding": bUsePathfinding}, _t.T_EPathFollowingRequestResult))
 
     def StopMovement(self) -> None:
-        return cast(None, self._sp_call("AAIController", "StopMovement", {}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AAIController", "StopMovement", {}, _t.T_void))  # a Future when queued by call_async
 
     def GetMoveStatus(self) -> EPathFollowingStatus:
-        return cast("EPathFollowingStatus", self._sp_call("AAIController", "GetMoveStatus", {}, "EPathFollowingStatus"))
+        return cast("EPathFollowingStatus", self._sp_call("AAIController", "GetMoveStatus", {}, _t.T_EPathFollowingStatus))
 
     def GetImmediateMoveDestination(self) -> FVector:
-        return cast("FVector", self._sp_call("AAIController", "GetImmediateMoveDestination", {}, "FVector"))
+        return cast("FVector", self._sp_call("AAIController", "GetImmediateMoveDestination", {}, _t.T_FVector))
 
 
 _register_proxy(AAIController)
@@ -180,7 +181,7 @@ class ACameraSensorActor(AActor, api.ACameraSensorActor):
 
     @property
     def CameraSensor(self) -> api.UCameraSensorComponent:
-        return cast("api.UCameraSensorComponent", self._sp_get("ACameraSensorActor", "CameraSensor", "UCameraSensorComponent"))
+        return cast("api.UCameraSensorComponent", self._sp_get("ACameraSensorActor", "CameraSensor", _t.T_UCameraSensorComponent))
 
 
 _register_proxy(ACameraSensorActor)
@@ -191,7 +192,7 @@ class APawn(AActor, api.APawn):
 
     @property
     def bUseControllerRotationPitch(self) -> bool:
-        return cast("bool", self._sp_get("APawn", "bUseControllerRotationPitch", "bool"))
+        return cast("bool", self._sp_get("APawn", "bUseControllerRotationPitch", _t.T_bool))
 
     @bUseControllerRotationPitch.setter
     def bUseControllerRotationPitch(self, value: bool) -> None:
@@ -199,7 +200,7 @@ class APawn(AActor, api.APawn):
 
     @property
     def bUseControllerRotationYaw(self) -> bool:
-        return cast("bool", self._sp_get("APawn", "bUseControllerRotationYaw", "bool"))
+        return cast("bool", self._sp_get("APawn", "bUseControllerRotationYaw", _t.T_bool))
 
     @bUseControllerRotationYaw.setter
     def bUseControllerRotationYaw(self, value: bool) -> None:
@@ -207,29 +208,29 @@ class APawn(AActor, api.APawn):
 
     @property
     def bUseControllerRotationRoll(self) -> bool:
-        return cast("bool", self._sp_get("APawn", "bUseControllerRotationRoll", "bool"))
+        return cast("bool", self._sp_get("APawn", "bUseControllerRotationRoll", _t.T_bool))
 
     @bUseControllerRotationRoll.setter
     def bUseControllerRotationRoll(self, value: bool) -> None:
         self._sp_set("APawn", "bUseControllerRotationRoll", value)
 
     def GetController(self) -> api.AController | None:
-        return cast("api.AController | None", self._sp_call("APawn", "GetController", {}, "AController | None"))
+        return cast("api.AController | None", self._sp_call("APawn", "GetController", {}, _t.T_AController_or_None))
 
     def IsControlled(self) -> bool:
-        return cast("bool", self._sp_call("APawn", "IsControlled", {}, "bool"))
+        return cast("bool", self._sp_call("APawn", "IsControlled", {}, _t.T_bool))
 
     def IsPlayerControlled(self) -> bool:
-        return cast("bool", self._sp_call("APawn", "IsPlayerControlled", {}, "bool"))
+        return cast("bool", self._sp_call("APawn", "IsPlayerControlled", {}, _t.T_bool))
 
     def GetControlRotation(self) -> FRotator:
-        return cast("FRotator", self._sp_call("APawn", "GetControlRotation", {}, "FRotator"))
+        return cast("FRotator", self._sp_call("APawn", "GetControlRotation", {}, _t.T_FRotator))
 
     def AddMovementInput(self, *, WorldDirection: FVector, ScaleValue: float = _DEFAULT) -> None:
-        return cast(None, self._sp_call("APawn", "AddMovementInput", {"WorldDirection": WorldDirection, "ScaleValue": ScaleValue}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("APawn", "AddMovementInput", {"WorldDirection": WorldDirection, "ScaleValue": ScaleValue}, _t.T_void))  # a Future when queued by call_async
 
     def GetPendingMovementInputVector(self) -> FVector:
-        return cast("FVector", self._sp_call("APawn", "GetPendingMovementInputVector", {}, "FVector"))
+        return cast("FVector", self._sp_call("APawn", "GetPendingMovementInputVector", {}, _t.T_FVector))
 
 
 _register_proxy(APawn)
@@ -240,31 +241,31 @@ class ACharacter(APawn, api.ACharacter):
 
     @property
     def CapsuleComponent(self) -> api.UCapsuleComponent:
-        return cast("api.UCapsuleComponent", self._sp_get("ACharacter", "CapsuleComponent", "UCapsuleComponent"))
+        return cast("api.UCapsuleComponent", self._sp_get("ACharacter", "CapsuleComponent", _t.T_UCapsuleComponent))
 
     @property
     def Mesh(self) -> api.UStaticMeshComponent:
-        return cast("api.UStaticMeshComponent", self._sp_get("ACharacter", "Mesh", "UStaticMeshComponent"))
+        return cast("api.UStaticMeshComponent", self._sp_get("ACharacter", "Mesh", _t.T_UStaticMeshComponent))
 
     @property
     def CharacterMovement(self) -> api.UCharacterMovementComponent:
-        return cast("api.UCharacterMovementComponent", self._sp_get("ACharacter", "CharacterMovement", "UCharacterMovementComponent"))
+        return cast("api.UCharacterMovementComponent", self._sp_get("ACharacter", "CharacterMovement", _t.T_UCharacterMovementComponent))
 
     @property
     def InputComponent(self) -> api.UInputComponent:
-        return cast("api.UInputComponent", self._sp_get("ACharacter", "InputComponent", "UInputComponent"))
+        return cast("api.UInputComponent", self._sp_get("ACharacter", "InputComponent", _t.T_UInputComponent))
 
     def Jump(self) -> None:
-        return cast(None, self._sp_call("ACharacter", "Jump", {}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("ACharacter", "Jump", {}, _t.T_void))  # a Future when queued by call_async
 
     def StopJumping(self) -> None:
-        return cast(None, self._sp_call("ACharacter", "StopJumping", {}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("ACharacter", "StopJumping", {}, _t.T_void))  # a Future when queued by call_async
 
     def CanJump(self) -> bool:
-        return cast("bool", self._sp_call("ACharacter", "CanJump", {}, "bool"))
+        return cast("bool", self._sp_call("ACharacter", "CanJump", {}, _t.T_bool))
 
     def GetCharacterMovement(self) -> api.UCharacterMovementComponent | None:
-        return cast("api.UCharacterMovementComponent | None", self._sp_call("ACharacter", "GetCharacterMovement", {}, "UCharacterMovementComponent | None"))
+        return cast("api.UCharacterMovementComponent | None", self._sp_call("ACharacter", "GetCharacterMovement", {}, _t.T_UCharacterMovementComponent_or_None))
 
 
 _register_proxy(ACharacter)
@@ -275,11 +276,11 @@ class ADefaultPawn(APawn, api.ADefaultPawn):
 
     @property
     def InputComponent(self) -> api.UInputComponent:
-        return cast("api.UInputComponent", self._sp_get("ADefaultPawn", "InputComponent", "UInputComponent"))
+        return cast("api.UInputComponent", self._sp_get("ADefaultPawn", "InputComponent", _t.T_UInputComponent))
 
     @property
     def MaxSpeed(self) -> float:
-        return cast("float", self._sp_get("ADefaultPawn", "MaxSpeed", "float"))
+        return cast("float", self._sp_get("ADefaultPawn", "MaxSpeed", _t.T_float))
 
     @MaxSpeed.setter
     def MaxSpeed(self, value: float) -> None:
@@ -287,7 +288,7 @@ class ADefaultPawn(APawn, api.ADefaultPawn):
 
     @property
     def BaseTurnRate(self) -> float:
-        return cast("float", self._sp_get("ADefaultPawn", "BaseTurnRate", "float"))
+        return cast("float", self._sp_get("ADefaultPawn", "BaseTurnRate", _t.T_float))
 
     @BaseTurnRate.setter
     def BaseTurnRate(self, value: float) -> None:
@@ -295,7 +296,7 @@ class ADefaultPawn(APawn, api.ADefaultPawn):
 
     @property
     def BaseLookUpRate(self) -> float:
-        return cast("float", self._sp_get("ADefaultPawn", "BaseLookUpRate", "float"))
+        return cast("float", self._sp_get("ADefaultPawn", "BaseLookUpRate", _t.T_float))
 
     @BaseLookUpRate.setter
     def BaseLookUpRate(self, value: float) -> None:
@@ -310,7 +311,7 @@ class ADirectionalLight(AActor, api.ADirectionalLight):
 
     @property
     def LightComponent(self) -> api.UDirectionalLightComponent:
-        return cast("api.UDirectionalLightComponent", self._sp_get("ADirectionalLight", "LightComponent", "UDirectionalLightComponent"))
+        return cast("api.UDirectionalLightComponent", self._sp_get("ADirectionalLight", "LightComponent", _t.T_UDirectionalLightComponent))
 
 
 _register_proxy(ADirectionalLight)
@@ -321,7 +322,7 @@ class AGameModeBase(AActor, api.AGameModeBase):
 
     @property
     def DefaultPawnClass(self) -> type[api.APawn] | None:
-        return cast("type[api.APawn] | None", self._sp_get("AGameModeBase", "DefaultPawnClass", "type[APawn] | None"))
+        return cast("type[api.APawn] | None", self._sp_get("AGameModeBase", "DefaultPawnClass", _t.T_class_APawn_or_None))
 
     @DefaultPawnClass.setter
     def DefaultPawnClass(self, value: type[api.APawn] | None) -> None:
@@ -329,23 +330,23 @@ class AGameModeBase(AActor, api.AGameModeBase):
 
     @property
     def PlayerControllerClass(self) -> type[api.APlayerController] | None:
-        return cast("type[api.APlayerController] | None", self._sp_get("AGameModeBase", "PlayerControllerClass", "type[APlayerController] | None"))
+        return cast("type[api.APlayerController] | None", self._sp_get("AGameModeBase", "PlayerControllerClass", _t.T_class_APlayerController_or_None))
 
     @PlayerControllerClass.setter
     def PlayerControllerClass(self, value: type[api.APlayerController] | None) -> None:
         self._sp_set("AGameModeBase", "PlayerControllerClass", value)
 
     def FindPlayerStart(self, *, Player: api.AController, IncomingName: str = _DEFAULT) -> api.AActor | None:
-        return cast("api.AActor | None", self._sp_call("AGameModeBase", "FindPlayerStart", {"Player": Player, "IncomingName": IncomingName}, "AActor | None"))
+        return cast("api.AActor | None", self._sp_call("AGameModeBase", "FindPlayerStart", {"Player": Player, "IncomingName": IncomingName}, _t.T_AActor_or_None))
 
     def RestartPlayer(self, *, NewPlayer: api.AController) -> None:
-        return cast(None, self._sp_call("AGameModeBase", "RestartPlayer", {"NewPlayer": NewPlayer}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AGameModeBase", "RestartPlayer", {"NewPlayer": NewPlayer}, _t.T_void))  # a Future when queued by call_async
 
     def GetNumPlayers(self) -> int:
-        return cast("int", self._sp_call("AGameModeBase", "GetNumPlayers", {}, "int"))
+        return cast("int", self._sp_call("AGameModeBase", "GetNumPlayers", {}, _t.T_int))
 
     def SwapPlayerControllers(self, *, OldPC: api.APlayerController, NewPC: api.APlayerController) -> None:
-        return cast(None, self._sp_call("AGameModeBase", "SwapPlayerControllers", {"OldPC": OldPC, "NewPC": NewPC}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AGameModeBase", "SwapPlayerControllers", {"OldPC": OldPC, "NewPC": NewPC}, _t.T_void))  # a Future when queued by call_async
 
 
 _register_proxy(AGameModeBase)
@@ -356,15 +357,15 @@ class AKinematicVehicle(AActor, api.AKinematicVehicle):
 
     @property
     def Body(self) -> api.UStaticMeshComponent:
-        return cast("api.UStaticMeshComponent", self._sp_get("AKinematicVehicle", "Body", "UStaticMeshComponent"))
+        return cast("api.UStaticMeshComponent", self._sp_get("AKinematicVehicle", "Body", _t.T_UStaticMeshComponent))
 
     @property
     def InputComponent(self) -> api.UInputComponent:
-        return cast("api.UInputComponent", self._sp_get("AKinematicVehicle", "InputComponent", "UInputComponent"))
+        return cast("api.UInputComponent", self._sp_get("AKinematicVehicle", "InputComponent", _t.T_UInputComponent))
 
     @property
     def MaxSpeed(self) -> float:
-        return cast("float", self._sp_get("AKinematicVehicle", "MaxSpeed", "float"))
+        return cast("float", self._sp_get("AKinematicVehicle", "MaxSpeed", _t.T_float))
 
     @MaxSpeed.setter
     def MaxSpeed(self, value: float) -> None:
@@ -372,7 +373,7 @@ class AKinematicVehicle(AActor, api.AKinematicVehicle):
 
     @property
     def MaxYawRateInDegrees(self) -> float:
-        return cast("float", self._sp_get("AKinematicVehicle", "MaxYawRateInDegrees", "float"))
+        return cast("float", self._sp_get("AKinematicVehicle", "MaxYawRateInDegrees", _t.T_float))
 
     @MaxYawRateInDegrees.setter
     def MaxYawRateInDegrees(self, value: float) -> None:
@@ -387,20 +388,20 @@ class AMaterialLibrary(AActor, api.AMaterialLibrary):
 
     @property
     def Materials(self) -> dict[str, FMaterialDesc]:
-        return cast("dict[str, FMaterialDesc]", self._sp_get("AMaterialLibrary", "Materials", "dict[str, FMaterialDesc]"))
+        return cast("dict[str, FMaterialDesc]", self._sp_get("AMaterialLibrary", "Materials", _t.T_dict_of_FMaterialDesc))
 
     @Materials.setter
     def Materials(self, value: dict[str, FMaterialDesc]) -> None:
         self._sp_set("AMaterialLibrary", "Materials", value)
 
     def SetMaterial(self, *, Name: str, Material: FMaterialDesc) -> None:
-        return cast(None, self._sp_call("AMaterialLibrary", "SetMaterial", {"Name": Name, "Material": Material}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AMaterialLibrary", "SetMaterial", {"Name": Name, "Material": Material}, _t.T_void))  # a Future when queued by call_async
 
     def GetMaterial(self, *, Name: str) -> FMaterialDesc:
-        return cast("FMaterialDesc", self._sp_call("AMaterialLibrary", "GetMaterial", {"Name": Name}, "FMaterialDesc"))
+        return cast("FMaterialDesc", self._sp_call("AMaterialLibrary", "GetMaterial", {"Name": Name}, _t.T_FMaterialDesc))
 
     def GetBuiltinMaterialNames(self) -> list[str]:
-        return cast("list[str]", self._sp_call("AMaterialLibrary", "GetBuiltinMaterialNames", {}, "list[str]"))
+        return cast("list[str]", self._sp_call("AMaterialLibrary", "GetBuiltinMaterialNames", {}, _t.T_list_of_str))
 
 
 _register_proxy(AMaterialLibrary)
@@ -411,17 +412,17 @@ class AMultiViewCameraRig(AActor, api.AMultiViewCameraRig):
 
     @property
     def Cameras(self) -> list[api.UCameraSensorComponent]:
-        return cast("list[api.UCameraSensorComponent]", self._sp_get("AMultiViewCameraRig", "Cameras", "list[UCameraSensorComponent]"))
+        return cast("list[api.UCameraSensorComponent]", self._sp_get("AMultiViewCameraRig", "Cameras", _t.T_list_of_UCameraSensorComponent))
 
     @property
     def Radius(self) -> float:
-        return cast("float", self._sp_get("AMultiViewCameraRig", "Radius", "float"))
+        return cast("float", self._sp_get("AMultiViewCameraRig", "Radius", _t.T_float))
 
     def SetRing(self, *, NumViews: int, NewRadius: float) -> None:
-        return cast(None, self._sp_call("AMultiViewCameraRig", "SetRing", {"NumViews": NumViews, "NewRadius": NewRadius}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AMultiViewCameraRig", "SetRing", {"NumViews": NumViews, "NewRadius": NewRadius}, _t.T_void))  # a Future when queued by call_async
 
     def ConfigureCameras(self, *, Width: int, Height: int, Modalities: list[ECameraModality]) -> None:
-        return cast(None, self._sp_call("AMultiViewCameraRig", "ConfigureCameras", {"Width": Width, "Height": Height, "Modalities": Modalities}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AMultiViewCameraRig", "ConfigureCameras", {"Width": Width, "Height": Height, "Modalities": Modalities}, _t.T_void))  # a Future when queued by call_async
 
 
 _register_proxy(AMultiViewCameraRig)
@@ -432,7 +433,7 @@ class ANavMeshBoundsVolume(AActor, api.ANavMeshBoundsVolume):
 
     @property
     def BoxComponent(self) -> api.UBoxComponent:
-        return cast("api.UBoxComponent", self._sp_get("ANavMeshBoundsVolume", "BoxComponent", "UBoxComponent"))
+        return cast("api.UBoxComponent", self._sp_get("ANavMeshBoundsVolume", "BoxComponent", _t.T_UBoxComponent))
 
 
 _register_proxy(ANavMeshBoundsVolume)
@@ -443,11 +444,11 @@ class APCGVolume(AActor, api.APCGVolume):
 
     @property
     def BoxComponent(self) -> api.UBoxComponent:
-        return cast("api.UBoxComponent", self._sp_get("APCGVolume", "BoxComponent", "UBoxComponent"))
+        return cast("api.UBoxComponent", self._sp_get("APCGVolume", "BoxComponent", _t.T_UBoxComponent))
 
     @property
     def PCGComponent(self) -> api.UPCGComponent:
-        return cast("api.UPCGComponent", self._sp_get("APCGVolume", "PCGComponent", "UPCGComponent"))
+        return cast("api.UPCGComponent", self._sp_get("APCGVolume", "PCGComponent", _t.T_UPCGComponent))
 
 
 _register_proxy(APCGVolume)
@@ -457,22 +458,22 @@ class APlayerController(AController, api.APlayerController):
     __slots__ = ()
 
     def GetViewTarget(self) -> api.AActor | None:
-        return cast("api.AActor | None", self._sp_call("APlayerController", "GetViewTarget", {}, "AActor | None"))
+        return cast("api.AActor | None", self._sp_call("APlayerController", "GetViewTarget", {}, _t.T_AActor_or_None))
 
     def SetViewTargetWithBlend(self, *, NewViewTarget: api.AActor, BlendTime: float = _DEFAULT) -> None:
-        return cast(None, self._sp_call("APlayerController", "SetViewTargetWithBlend", {"NewViewTarget": NewViewTarget, "BlendTime": BlendTime}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("APlayerController", "SetViewTargetWithBlend", {"NewViewTarget": NewViewTarget, "BlendTime": BlendTime}, _t.T_void))  # a Future when queued by call_async
 
     def GetPlayerViewPoint(self) -> api.APlayerController.GetPlayerViewPointResult:
-        return cast("api.APlayerController.GetPlayerViewPointResult", self._sp_call("APlayerController", "GetPlayerViewPoint", {}, "dict", api.APlayerController.GetPlayerViewPointResult))
+        return cast("api.APlayerController.GetPlayerViewPointResult", self._sp_call("APlayerController", "GetPlayerViewPoint", {}, _t.T_void, api.APlayerController.GetPlayerViewPointResult))
 
     def AddYawInput(self, *, Val: float) -> None:
-        return cast(None, self._sp_call("APlayerController", "AddYawInput", {"Val": Val}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("APlayerController", "AddYawInput", {"Val": Val}, _t.T_void))  # a Future when queued by call_async
 
     def AddPitchInput(self, *, Val: float) -> None:
-        return cast(None, self._sp_call("APlayerController", "AddPitchInput", {"Val": Val}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("APlayerController", "AddPitchInput", {"Val": Val}, _t.T_void))  # a Future when queued by call_async
 
     def AddRollInput(self, *, Val: float) -> None:
-        return cast(None, self._sp_call("APlayerController", "AddRollInput", {"Val": Val}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("APlayerController", "AddRollInput", {"Val": Val}, _t.T_void))  # a Future when queued by call_async
 
 
 _register_proxy(APlayerController)
@@ -483,7 +484,7 @@ class APlayerStart(AActor, api.APlayerStart):
 
     @property
     def PlayerStartTag(self) -> str:
-        return cast("str", self._sp_get("APlayerStart", "PlayerStartTag", "str"))
+        return cast("str", self._sp_get("APlayerStart", "PlayerStartTag", _t.T_str))
 
     @PlayerStartTag.setter
     def PlayerStartTag(self, value: str) -> None:
@@ -498,7 +499,7 @@ class APointLight(AActor, api.APointLight):
 
     @property
     def LightComponent(self) -> api.UPointLightComponent:
-        return cast("api.UPointLightComponent", self._sp_get("APointLight", "LightComponent", "UPointLightComponent"))
+        return cast("api.UPointLightComponent", self._sp_get("APointLight", "LightComponent", _t.T_UPointLightComponent))
 
 
 _register_proxy(APointLight)
@@ -509,7 +510,7 @@ class ARecastNavMesh(AActor, api.ARecastNavMesh):
 
     @property
     def AgentName(self) -> str:
-        return cast("str", self._sp_get("ARecastNavMesh", "AgentName", "str"))
+        return cast("str", self._sp_get("ARecastNavMesh", "AgentName", _t.T_str))
 
     @AgentName.setter
     def AgentName(self, value: str) -> None:
@@ -517,7 +518,7 @@ class ARecastNavMesh(AActor, api.ARecastNavMesh):
 
     @property
     def AgentRadius(self) -> float:
-        return cast("float", self._sp_get("ARecastNavMesh", "AgentRadius", "float"))
+        return cast("float", self._sp_get("ARecastNavMesh", "AgentRadius", _t.T_float))
 
     @AgentRadius.setter
     def AgentRadius(self, value: float) -> None:
@@ -525,7 +526,7 @@ class ARecastNavMesh(AActor, api.ARecastNavMesh):
 
     @property
     def AgentHeight(self) -> float:
-        return cast("float", self._sp_get("ARecastNavMesh", "AgentHeight", "float"))
+        return cast("float", self._sp_get("ARecastNavMesh", "AgentHeight", _t.T_float))
 
     @AgentHeight.setter
     def AgentHeight(self, value: float) -> None:
@@ -533,7 +534,7 @@ class ARecastNavMesh(AActor, api.ARecastNavMesh):
 
     @property
     def AgentMaxSlope(self) -> float:
-        return cast("float", self._sp_get("ARecastNavMesh", "AgentMaxSlope", "float"))
+        return cast("float", self._sp_get("ARecastNavMesh", "AgentMaxSlope", _t.T_float))
 
     @AgentMaxSlope.setter
     def AgentMaxSlope(self, value: float) -> None:
@@ -541,7 +542,7 @@ class ARecastNavMesh(AActor, api.ARecastNavMesh):
 
     @property
     def AgentMaxStepHeight(self) -> float:
-        return cast("float", self._sp_get("ARecastNavMesh", "AgentMaxStepHeight", "float"))
+        return cast("float", self._sp_get("ARecastNavMesh", "AgentMaxStepHeight", _t.T_float))
 
     @AgentMaxStepHeight.setter
     def AgentMaxStepHeight(self, value: float) -> None:
@@ -549,7 +550,7 @@ class ARecastNavMesh(AActor, api.ARecastNavMesh):
 
     @property
     def CellSize(self) -> float:
-        return cast("float", self._sp_get("ARecastNavMesh", "CellSize", "float"))
+        return cast("float", self._sp_get("ARecastNavMesh", "CellSize", _t.T_float))
 
     @CellSize.setter
     def CellSize(self, value: float) -> None:
@@ -557,7 +558,7 @@ class ARecastNavMesh(AActor, api.ARecastNavMesh):
 
     @property
     def CellHeight(self) -> float:
-        return cast("float", self._sp_get("ARecastNavMesh", "CellHeight", "float"))
+        return cast("float", self._sp_get("ARecastNavMesh", "CellHeight", _t.T_float))
 
     @CellHeight.setter
     def CellHeight(self, value: float) -> None:
@@ -565,7 +566,7 @@ class ARecastNavMesh(AActor, api.ARecastNavMesh):
 
     @property
     def TileSize(self) -> float:
-        return cast("float", self._sp_get("ARecastNavMesh", "TileSize", "float"))
+        return cast("float", self._sp_get("ARecastNavMesh", "TileSize", _t.T_float))
 
     @TileSize.setter
     def TileSize(self, value: float) -> None:
@@ -573,7 +574,7 @@ class ARecastNavMesh(AActor, api.ARecastNavMesh):
 
     @property
     def MinRegionArea(self) -> float:
-        return cast("float", self._sp_get("ARecastNavMesh", "MinRegionArea", "float"))
+        return cast("float", self._sp_get("ARecastNavMesh", "MinRegionArea", _t.T_float))
 
     @MinRegionArea.setter
     def MinRegionArea(self, value: float) -> None:
@@ -581,7 +582,7 @@ class ARecastNavMesh(AActor, api.ARecastNavMesh):
 
     @property
     def bRebuildAutomatically(self) -> bool:
-        return cast("bool", self._sp_get("ARecastNavMesh", "bRebuildAutomatically", "bool"))
+        return cast("bool", self._sp_get("ARecastNavMesh", "bRebuildAutomatically", _t.T_bool))
 
     @bRebuildAutomatically.setter
     def bRebuildAutomatically(self, value: bool) -> None:
@@ -589,56 +590,56 @@ class ARecastNavMesh(AActor, api.ARecastNavMesh):
 
     @property
     def RandomSeed(self) -> int:
-        return cast("int", self._sp_get("ARecastNavMesh", "RandomSeed", "int"))
+        return cast("int", self._sp_get("ARecastNavMesh", "RandomSeed", _t.T_int))
 
     @RandomSeed.setter
     def RandomSeed(self, value: int) -> None:
         self._sp_set("ARecastNavMesh", "RandomSeed", value)
 
     def SetRandomSeed(self, *, Seed: int) -> None:
-        return cast(None, self._sp_call("ARecastNavMesh", "SetRandomSeed", {"Seed": Seed}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("ARecastNavMesh", "SetRandomSeed", {"Seed": Seed}, _t.T_void))  # a Future when queued by call_async
 
     def RebuildNavigation(self) -> None:
-        return cast(None, self._sp_call("ARecastNavMesh", "RebuildNavigation", {}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("ARecastNavMesh", "RebuildNavigation", {}, _t.T_void))  # a Future when queued by call_async
 
     def GetNumTiles(self) -> int:
-        return cast("int", self._sp_call("ARecastNavMesh", "GetNumTiles", {}, "int"))
+        return cast("int", self._sp_call("ARecastNavMesh", "GetNumTiles", {}, _t.T_int))
 
     def GetNumPolygons(self) -> int:
-        return cast("int", self._sp_call("ARecastNavMesh", "GetNumPolygons", {}, "int"))
+        return cast("int", self._sp_call("ARecastNavMesh", "GetNumPolygons", {}, _t.T_int))
 
     def GetNavigableArea(self) -> float:
-        return cast("float", self._sp_call("ARecastNavMesh", "GetNavigableArea", {}, "float"))
+        return cast("float", self._sp_call("ARecastNavMesh", "GetNavigableArea", {}, _t.T_float))
 
     def GetLastBuildSeconds(self) -> float:
-        return cast("float", self._sp_call("ARecastNavMesh", "GetLastBuildSeconds", {}, "float"))
+        return cast("float", self._sp_call("ARecastNavMesh", "GetLastBuildSeconds", {}, _t.T_float))
 
     def GetLastBuildTileCount(self) -> int:
-        return cast("int", self._sp_call("ARecastNavMesh", "GetLastBuildTileCount", {}, "int"))
+        return cast("int", self._sp_call("ARecastNavMesh", "GetLastBuildTileCount", {}, _t.T_int))
 
     def FindPath(self, *, Start: FVector, End: FVector) -> api.ARecastNavMesh.FindPathResult:
-        return cast("api.ARecastNavMesh.FindPathResult", self._sp_call("ARecastNavMesh", "FindPath", {"Start": Start, "End": End}, "dict", api.ARecastNavMesh.FindPathResult))
+        return cast("api.ARecastNavMesh.FindPathResult", self._sp_call("ARecastNavMesh", "FindPath", {"Start": Start, "End": End}, _t.T_ENavigationQueryResult, api.ARecastNavMesh.FindPathResult))
 
     def FindPaths(self, *, StartPoints: NDArray[np.float64], EndPoints: NDArray[np.float64]) -> api.ARecastNavMesh.FindPathsResult:
-        return cast("api.ARecastNavMesh.FindPathsResult", self._sp_call("ARecastNavMesh", "FindPaths", {"StartPoints": StartPoints, "EndPoints": EndPoints}, "dict", api.ARecastNavMesh.FindPathsResult))
+        return cast("api.ARecastNavMesh.FindPathsResult", self._sp_call("ARecastNavMesh", "FindPaths", {"StartPoints": StartPoints, "EndPoints": EndPoints}, _t.T_void, api.ARecastNavMesh.FindPathsResult))
 
     def GetGeodesicDistance(self, *, Start: FVector, End: FVector) -> float:
-        return cast("float", self._sp_call("ARecastNavMesh", "GetGeodesicDistance", {"Start": Start, "End": End}, "float"))
+        return cast("float", self._sp_call("ARecastNavMesh", "GetGeodesicDistance", {"Start": Start, "End": End}, _t.T_float))
 
     def GetRandomPoints(self, *, NumPoints: int) -> NDArray[np.float64]:
-        return cast("NDArray[np.float64]", self._sp_call("ARecastNavMesh", "GetRandomPoints", {"NumPoints": NumPoints}, "NDArray[np.float64]"))
+        return cast("NDArray[np.float64]", self._sp_call("ARecastNavMesh", "GetRandomPoints", {"NumPoints": NumPoints}, _t.T_array_float64))
 
     def GetRandomReachablePointsInRadius(self, *, Origins: NDArray[np.float64], Radius: float) -> NDArray[np.float64]:
-        return cast("NDArray[np.float64]", self._sp_call("ARecastNavMesh", "GetRandomReachablePointsInRadius", {"Origins": Origins, "Radius": Radius}, "NDArray[np.float64]"))
+        return cast("NDArray[np.float64]", self._sp_call("ARecastNavMesh", "GetRandomReachablePointsInRadius", {"Origins": Origins, "Radius": Radius}, _t.T_array_float64))
 
     def ProjectPointToNavigation(self, *, Point: FVector, QueryExtent: FVector = _DEFAULT) -> api.ARecastNavMesh.ProjectPointToNavigationResult:
-        return cast("api.ARecastNavMesh.ProjectPointToNavigationResult", self._sp_call("ARecastNavMesh", "ProjectPointToNavigation", {"Point": Point, "QueryExtent": QueryExtent}, "dict", api.ARecastNavMesh.ProjectPointToNavigationResult))
+        return cast("api.ARecastNavMesh.ProjectPointToNavigationResult", self._sp_call("ARecastNavMesh", "ProjectPointToNavigation", {"Point": Point, "QueryExtent": QueryExtent}, _t.T_bool, api.ARecastNavMesh.ProjectPointToNavigationResult))
 
     def IsNavigable(self, *, Point: FVector, MaxVerticalDistance: float = _DEFAULT) -> bool:
-        return cast("bool", self._sp_call("ARecastNavMesh", "IsNavigable", {"Point": Point, "MaxVerticalDistance": MaxVerticalDistance}, "bool"))
+        return cast("bool", self._sp_call("ARecastNavMesh", "IsNavigable", {"Point": Point, "MaxVerticalDistance": MaxVerticalDistance}, _t.T_bool))
 
     def GetNavMeshTriangles(self) -> NDArray[np.float64]:
-        return cast("NDArray[np.float64]", self._sp_call("ARecastNavMesh", "GetNavMeshTriangles", {}, "NDArray[np.float64]"))
+        return cast("NDArray[np.float64]", self._sp_call("ARecastNavMesh", "GetNavMeshTriangles", {}, _t.T_array_float64))
 
 
 _register_proxy(ARecastNavMesh)
@@ -649,7 +650,7 @@ class ASkyLight(AActor, api.ASkyLight):
 
     @property
     def SkyLightComponent(self) -> api.USkyLightComponent:
-        return cast("api.USkyLightComponent", self._sp_get("ASkyLight", "SkyLightComponent", "USkyLightComponent"))
+        return cast("api.USkyLightComponent", self._sp_get("ASkyLight", "SkyLightComponent", _t.T_USkyLightComponent))
 
 
 _register_proxy(ASkyLight)
@@ -660,7 +661,7 @@ class ASplineActor(AActor, api.ASplineActor):
 
     @property
     def SplineComponent(self) -> api.USplineComponent:
-        return cast("api.USplineComponent", self._sp_get("ASplineActor", "SplineComponent", "USplineComponent"))
+        return cast("api.USplineComponent", self._sp_get("ASplineActor", "SplineComponent", _t.T_USplineComponent))
 
 
 _register_proxy(ASplineActor)
@@ -671,7 +672,7 @@ class ASpotLight(AActor, api.ASpotLight):
 
     @property
     def LightComponent(self) -> api.USpotLightComponent:
-        return cast("api.USpotLightComponent", self._sp_get("ASpotLight", "LightComponent", "USpotLightComponent"))
+        return cast("api.USpotLightComponent", self._sp_get("ASpotLight", "LightComponent", _t.T_USpotLightComponent))
 
 
 _register_proxy(ASpotLight)
@@ -682,7 +683,7 @@ class AStaticMeshActor(AActor, api.AStaticMeshActor):
 
     @property
     def StaticMeshComponent(self) -> api.UStaticMeshComponent:
-        return cast("api.UStaticMeshComponent", self._sp_get("AStaticMeshActor", "StaticMeshComponent", "UStaticMeshComponent"))
+        return cast("api.UStaticMeshComponent", self._sp_get("AStaticMeshActor", "StaticMeshComponent", _t.T_UStaticMeshComponent))
 
 
 _register_proxy(AStaticMeshActor)
@@ -693,7 +694,7 @@ class AStereoCameraRig(AActor, api.AStereoCameraRig):
 
     @property
     def Baseline(self) -> float:
-        return cast("float", self._sp_get("AStereoCameraRig", "Baseline", "float"))
+        return cast("float", self._sp_get("AStereoCameraRig", "Baseline", _t.T_float))
 
     @Baseline.setter
     def Baseline(self, value: float) -> None:
@@ -701,14 +702,14 @@ class AStereoCameraRig(AActor, api.AStereoCameraRig):
 
     @property
     def LeftCamera(self) -> api.UCameraSensorComponent:
-        return cast("api.UCameraSensorComponent", self._sp_get("AStereoCameraRig", "LeftCamera", "UCameraSensorComponent"))
+        return cast("api.UCameraSensorComponent", self._sp_get("AStereoCameraRig", "LeftCamera", _t.T_UCameraSensorComponent))
 
     @property
     def RightCamera(self) -> api.UCameraSensorComponent:
-        return cast("api.UCameraSensorComponent", self._sp_get("AStereoCameraRig", "RightCamera", "UCameraSensorComponent"))
+        return cast("api.UCameraSensorComponent", self._sp_get("AStereoCameraRig", "RightCamera", _t.T_UCameraSensorComponent))
 
     def SetBaseline(self, *, NewBaseline: float) -> None:
-        return cast(None, self._sp_call("AStereoCameraRig", "SetBaseline", {"NewBaseline": NewBaseline}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AStereoCameraRig", "SetBaseline", {"NewBaseline": NewBaseline}, _t.T_void))  # a Future when queued by call_async
 
 
 _register_proxy(AStereoCameraRig)
@@ -719,7 +720,7 @@ class ATriggerBox(AActor, api.ATriggerBox):
 
     @property
     def CollisionComponent(self) -> api.UBoxComponent:
-        return cast("api.UBoxComponent", self._sp_get("ATriggerBox", "CollisionComponent", "UBoxComponent"))
+        return cast("api.UBoxComponent", self._sp_get("ATriggerBox", "CollisionComponent", _t.T_UBoxComponent))
 
 
 _register_proxy(ATriggerBox)
@@ -730,7 +731,7 @@ class ATriggerSphere(AActor, api.ATriggerSphere):
 
     @property
     def CollisionComponent(self) -> api.USphereComponent:
-        return cast("api.USphereComponent", self._sp_get("ATriggerSphere", "CollisionComponent", "USphereComponent"))
+        return cast("api.USphereComponent", self._sp_get("ATriggerSphere", "CollisionComponent", _t.T_USphereComponent))
 
 
 _register_proxy(ATriggerSphere)
@@ -741,35 +742,35 @@ class AWheeledVehiclePawn(APawn, api.AWheeledVehiclePawn):
 
     @property
     def Mesh(self) -> api.UStaticMeshComponent:
-        return cast("api.UStaticMeshComponent", self._sp_get("AWheeledVehiclePawn", "Mesh", "UStaticMeshComponent"))
+        return cast("api.UStaticMeshComponent", self._sp_get("AWheeledVehiclePawn", "Mesh", _t.T_UStaticMeshComponent))
 
     @property
     def Cabin(self) -> api.UStaticMeshComponent:
-        return cast("api.UStaticMeshComponent", self._sp_get("AWheeledVehiclePawn", "Cabin", "UStaticMeshComponent"))
+        return cast("api.UStaticMeshComponent", self._sp_get("AWheeledVehiclePawn", "Cabin", _t.T_UStaticMeshComponent))
 
     @property
     def WheelFrontLeft(self) -> api.UStaticMeshComponent:
-        return cast("api.UStaticMeshComponent", self._sp_get("AWheeledVehiclePawn", "WheelFrontLeft", "UStaticMeshComponent"))
+        return cast("api.UStaticMeshComponent", self._sp_get("AWheeledVehiclePawn", "WheelFrontLeft", _t.T_UStaticMeshComponent))
 
     @property
     def WheelFrontRight(self) -> api.UStaticMeshComponent:
-        return cast("api.UStaticMeshComponent", self._sp_get("AWheeledVehiclePawn", "WheelFrontRight", "UStaticMeshComponent"))
+        return cast("api.UStaticMeshComponent", self._sp_get("AWheeledVehiclePawn", "WheelFrontRight", _t.T_UStaticMeshComponent))
 
     @property
     def WheelRearLeft(self) -> api.UStaticMeshComponent:
-        return cast("api.UStaticMeshComponent", self._sp_get("AWheeledVehiclePawn", "WheelRearLeft", "UStaticMeshComponent"))
+        return cast("api.UStaticMeshComponent", self._sp_get("AWheeledVehiclePawn", "WheelRearLeft", _t.T_UStaticMeshComponent))
 
     @property
     def WheelRearRight(self) -> api.UStaticMeshComponent:
-        return cast("api.UStaticMeshComponent", self._sp_get("AWheeledVehiclePawn", "WheelRearRight", "UStaticMeshComponent"))
+        return cast("api.UStaticMeshComponent", self._sp_get("AWheeledVehiclePawn", "WheelRearRight", _t.T_UStaticMeshComponent))
 
     @property
     def InputComponent(self) -> api.UInputComponent:
-        return cast("api.UInputComponent", self._sp_get("AWheeledVehiclePawn", "InputComponent", "UInputComponent"))
+        return cast("api.UInputComponent", self._sp_get("AWheeledVehiclePawn", "InputComponent", _t.T_UInputComponent))
 
     @property
     def MaxEngineForce(self) -> float:
-        return cast("float", self._sp_get("AWheeledVehiclePawn", "MaxEngineForce", "float"))
+        return cast("float", self._sp_get("AWheeledVehiclePawn", "MaxEngineForce", _t.T_float))
 
     @MaxEngineForce.setter
     def MaxEngineForce(self, value: float) -> None:
@@ -777,7 +778,7 @@ class AWheeledVehiclePawn(APawn, api.AWheeledVehiclePawn):
 
     @property
     def MaxBrakeForce(self) -> float:
-        return cast("float", self._sp_get("AWheeledVehiclePawn", "MaxBrakeForce", "float"))
+        return cast("float", self._sp_get("AWheeledVehiclePawn", "MaxBrakeForce", _t.T_float))
 
     @MaxBrakeForce.setter
     def MaxBrakeForce(self, value: float) -> None:
@@ -785,7 +786,7 @@ class AWheeledVehiclePawn(APawn, api.AWheeledVehiclePawn):
 
     @property
     def MaxSteerAngle(self) -> float:
-        return cast("float", self._sp_get("AWheeledVehiclePawn", "MaxSteerAngle", "float"))
+        return cast("float", self._sp_get("AWheeledVehiclePawn", "MaxSteerAngle", _t.T_float))
 
     @MaxSteerAngle.setter
     def MaxSteerAngle(self, value: float) -> None:
@@ -793,7 +794,7 @@ class AWheeledVehiclePawn(APawn, api.AWheeledVehiclePawn):
 
     @property
     def WheelRadius(self) -> float:
-        return cast("float", self._sp_get("AWheeledVehiclePawn", "WheelRadius", "float"))
+        return cast("float", self._sp_get("AWheeledVehiclePawn", "WheelRadius", _t.T_float))
 
     @WheelRadius.setter
     def WheelRadius(self, value: float) -> None:
@@ -801,7 +802,7 @@ class AWheeledVehiclePawn(APawn, api.AWheeledVehiclePawn):
 
     @property
     def SuspensionStiffness(self) -> float:
-        return cast("float", self._sp_get("AWheeledVehiclePawn", "SuspensionStiffness", "float"))
+        return cast("float", self._sp_get("AWheeledVehiclePawn", "SuspensionStiffness", _t.T_float))
 
     @SuspensionStiffness.setter
     def SuspensionStiffness(self, value: float) -> None:
@@ -809,38 +810,38 @@ class AWheeledVehiclePawn(APawn, api.AWheeledVehiclePawn):
 
     @property
     def TireFriction(self) -> float:
-        return cast("float", self._sp_get("AWheeledVehiclePawn", "TireFriction", "float"))
+        return cast("float", self._sp_get("AWheeledVehiclePawn", "TireFriction", _t.T_float))
 
     @TireFriction.setter
     def TireFriction(self, value: float) -> None:
         self._sp_set("AWheeledVehiclePawn", "TireFriction", value)
 
     def SetMaxEngineForce(self, *, NewForce: float) -> None:
-        return cast(None, self._sp_call("AWheeledVehiclePawn", "SetMaxEngineForce", {"NewForce": NewForce}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AWheeledVehiclePawn", "SetMaxEngineForce", {"NewForce": NewForce}, _t.T_void))  # a Future when queued by call_async
 
     def SetMaxBrakeForce(self, *, NewForce: float) -> None:
-        return cast(None, self._sp_call("AWheeledVehiclePawn", "SetMaxBrakeForce", {"NewForce": NewForce}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AWheeledVehiclePawn", "SetMaxBrakeForce", {"NewForce": NewForce}, _t.T_void))  # a Future when queued by call_async
 
     def SetMaxSteerAngle(self, *, NewAngle: float) -> None:
-        return cast(None, self._sp_call("AWheeledVehiclePawn", "SetMaxSteerAngle", {"NewAngle": NewAngle}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AWheeledVehiclePawn", "SetMaxSteerAngle", {"NewAngle": NewAngle}, _t.T_void))  # a Future when queued by call_async
 
     def SetWheelRadius(self, *, NewRadius: float) -> None:
-        return cast(None, self._sp_call("AWheeledVehiclePawn", "SetWheelRadius", {"NewRadius": NewRadius}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AWheeledVehiclePawn", "SetWheelRadius", {"NewRadius": NewRadius}, _t.T_void))  # a Future when queued by call_async
 
     def SetSuspensionStiffness(self, *, NewStiffness: float) -> None:
-        return cast(None, self._sp_call("AWheeledVehiclePawn", "SetSuspensionStiffness", {"NewStiffness": NewStiffness}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AWheeledVehiclePawn", "SetSuspensionStiffness", {"NewStiffness": NewStiffness}, _t.T_void))  # a Future when queued by call_async
 
     def SetTireFriction(self, *, NewFriction: float) -> None:
-        return cast(None, self._sp_call("AWheeledVehiclePawn", "SetTireFriction", {"NewFriction": NewFriction}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AWheeledVehiclePawn", "SetTireFriction", {"NewFriction": NewFriction}, _t.T_void))  # a Future when queued by call_async
 
     def GetForwardSpeed(self) -> float:
-        return cast("float", self._sp_call("AWheeledVehiclePawn", "GetForwardSpeed", {}, "float"))
+        return cast("float", self._sp_call("AWheeledVehiclePawn", "GetForwardSpeed", {}, _t.T_float))
 
     def GetNumWheels(self) -> int:
-        return cast("int", self._sp_call("AWheeledVehiclePawn", "GetNumWheels", {}, "int"))
+        return cast("int", self._sp_call("AWheeledVehiclePawn", "GetNumWheels", {}, _t.T_int))
 
     def GetWheelState(self, *, WheelIndex: int) -> FWheelState:
-        return cast("FWheelState", self._sp_call("AWheeledVehiclePawn", "GetWheelState", {"WheelIndex": WheelIndex}, "FWheelState"))
+        return cast("FWheelState", self._sp_call("AWheeledVehiclePawn", "GetWheelState", {"WheelIndex": WheelIndex}, _t.T_FWheelState))
 
 
 _register_proxy(AWheeledVehiclePawn)
@@ -851,7 +852,7 @@ class UActorComponent(UObject, api.UActorComponent):
 
     @property
     def ComponentTags(self) -> list[str]:
-        return cast("list[str]", self._sp_get("UActorComponent", "ComponentTags", "list[str]"))
+        return cast("list[str]", self._sp_get("UActorComponent", "ComponentTags", _t.T_list_of_str))
 
     @ComponentTags.setter
     def ComponentTags(self, value: list[str]) -> None:
@@ -859,17 +860,17 @@ class UActorComponent(UObject, api.UActorComponent):
 
     @property
     def bTickEnabled(self) -> bool:
-        return cast("bool", self._sp_get("UActorComponent", "bTickEnabled", "bool"))
+        return cast("bool", self._sp_get("UActorComponent", "bTickEnabled", _t.T_bool))
 
     @bTickEnabled.setter
     def bTickEnabled(self, value: bool) -> None:
         self._sp_set("UActorComponent", "bTickEnabled", value)
 
     def GetOwner(self) -> api.AActor | None:
-        return cast("api.AActor | None", self._sp_call("UActorComponent", "GetOwner", {}, "AActor | None"))
+        return cast("api.AActor | None", self._sp_call("UActorComponent", "GetOwner", {}, _t.T_AActor_or_None))
 
     def ComponentHasTag(self, *, Tag: str) -> bool:
-        return cast("bool", self._sp_call("UActorComponent", "ComponentHasTag", {"Tag": Tag}, "bool"))
+        return cast("bool", self._sp_call("UActorComponent", "ComponentHasTag", {"Tag": Tag}, _t.T_bool))
 
 
 _register_proxy(UActorComponent)
@@ -880,7 +881,7 @@ class USceneComponent(UActorComponent, api.USceneComponent):
 
     @property
     def RelativeLocation(self) -> FVector:
-        return cast("FVector", self._sp_get("USceneComponent", "RelativeLocation", "FVector"))
+        return cast("FVector", self._sp_get("USceneComponent", "RelativeLocation", _t.T_FVector))
 
     @RelativeLocation.setter
     def RelativeLocation(self, value: FVector) -> None:
@@ -888,7 +889,7 @@ class USceneComponent(UActorComponent, api.USceneComponent):
 
     @property
     def RelativeRotation(self) -> FRotator:
-        return cast("FRotator", self._sp_get("USceneComponent", "RelativeRotation", "FRotator"))
+        return cast("FRotator", self._sp_get("USceneComponent", "RelativeRotation", _t.T_FRotator))
 
     @RelativeRotation.setter
     def RelativeRotation(self, value: FRotator) -> None:
@@ -896,7 +897,7 @@ class USceneComponent(UActorComponent, api.USceneComponent):
 
     @property
     def RelativeScale3D(self) -> FVector:
-        return cast("FVector", self._sp_get("USceneComponent", "RelativeScale3D", "FVector"))
+        return cast("FVector", self._sp_get("USceneComponent", "RelativeScale3D", _t.T_FVector))
 
     @RelativeScale3D.setter
     def RelativeScale3D(self, value: FVector) -> None:
@@ -904,7 +905,7 @@ class USceneComponent(UActorComponent, api.USceneComponent):
 
     @property
     def Mobility(self) -> EComponentMobility:
-        return cast("EComponentMobility", self._sp_get("USceneComponent", "Mobility", "EComponentMobility"))
+        return cast("EComponentMobility", self._sp_get("USceneComponent", "Mobility", _t.T_EComponentMobility))
 
     @Mobility.setter
     def Mobility(self, value: EComponentMobility) -> None:
@@ -912,74 +913,74 @@ class USceneComponent(UActorComponent, api.USceneComponent):
 
     @property
     def bVisible(self) -> bool:
-        return cast("bool", self._sp_get("USceneComponent", "bVisible", "bool"))
+        return cast("bool", self._sp_get("USceneComponent", "bVisible", _t.T_bool))
 
     @bVisible.setter
     def bVisible(self, value: bool) -> None:
         self._sp_set("USceneComponent", "bVisible", value)
 
     def SetRelativeLocation(self, *, NewLocation: FVector) -> None:
-        return cast(None, self._sp_call("USceneComponent", "SetRelativeLocation", {"NewLocation": NewLocation}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("USceneComponent", "SetRelativeLocation", {"NewLocation": NewLocation}, _t.T_void))  # a Future when queued by call_async
 
     def SetRelativeRotation(self, *, NewRotation: FRotator) -> None:
-        return cast(None, self._sp_call("USceneComponent", "SetRelativeRotation", {"NewRotation": NewRotation}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("USceneComponent", "SetRelativeRotation", {"NewRotation": NewRotation}, _t.T_void))  # a Future when queued by call_async
 
     def SetRelativeScale3D(self, *, NewScale3D: FVector) -> None:
-        return cast(None, self._sp_call("USceneComponent", "SetRelativeScale3D", {"NewScale3D": NewScale3D}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("USceneComponent", "SetRelativeScale3D", {"NewScale3D": NewScale3D}, _t.T_void))  # a Future when queued by call_async
 
     def SetRelativeTransform(self, *, NewTransform: FTransform) -> None:
-        return cast(None, self._sp_call("USceneComponent", "SetRelativeTransform", {"NewTransform": NewTransform}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("USceneComponent", "SetRelativeTransform", {"NewTransform": NewTransform}, _t.T_void))  # a Future when queued by call_async
 
     def GetRelativeTransform(self) -> FTransform:
-        return cast("FTransform", self._sp_call("USceneComponent", "GetRelativeTransform", {}, "FTransform"))
+        return cast("FTransform", self._sp_call("USceneComponent", "GetRelativeTransform", {}, _t.T_FTransform))
 
     def SetMobility(self, *, NewMobility: EComponentMobility) -> None:
-        return cast(None, self._sp_call("USceneComponent", "SetMobility", {"NewMobility": NewMobility}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("USceneComponent", "SetMobility", {"NewMobility": NewMobility}, _t.T_void))  # a Future when queued by call_async
 
     def GetComponentTransform(self) -> FTransform:
-        return cast("FTransform", self._sp_call("USceneComponent", "GetComponentTransform", {}, "FTransform"))
+        return cast("FTransform", self._sp_call("USceneComponent", "GetComponentTransform", {}, _t.T_FTransform))
 
     def GetComponentLocation(self) -> FVector:
-        return cast("FVector", self._sp_call("USceneComponent", "GetComponentLocation", {}, "FVector"))
+        return cast("FVector", self._sp_call("USceneComponent", "GetComponentLocation", {}, _t.T_FVector))
 
     def K2_GetComponentLocation(self) -> FVector:
-        return cast("FVector", self._sp_call("USceneComponent", "K2_GetComponentLocation", {}, "FVector"))
+        return cast("FVector", self._sp_call("USceneComponent", "K2_GetComponentLocation", {}, _t.T_FVector))
 
     def GetComponentRotation(self) -> FRotator:
-        return cast("FRotator", self._sp_call("USceneComponent", "GetComponentRotation", {}, "FRotator"))
+        return cast("FRotator", self._sp_call("USceneComponent", "GetComponentRotation", {}, _t.T_FRotator))
 
     def GetComponentScale(self) -> FVector:
-        return cast("FVector", self._sp_call("USceneComponent", "GetComponentScale", {}, "FVector"))
+        return cast("FVector", self._sp_call("USceneComponent", "GetComponentScale", {}, _t.T_FVector))
 
     def SetWorldLocation(self, *, NewLocation: FVector) -> None:
-        return cast(None, self._sp_call("USceneComponent", "SetWorldLocation", {"NewLocation": NewLocation}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("USceneComponent", "SetWorldLocation", {"NewLocation": NewLocation}, _t.T_void))  # a Future when queued by call_async
 
     def SetWorldRotation(self, *, NewRotation: FRotator) -> None:
-        return cast(None, self._sp_call("USceneComponent", "SetWorldRotation", {"NewRotation": NewRotation}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("USceneComponent", "SetWorldRotation", {"NewRotation": NewRotation}, _t.T_void))  # a Future when queued by call_async
 
     def SetWorldTransform(self, *, NewTransform: FTransform) -> None:
-        return cast(None, self._sp_call("USceneComponent", "SetWorldTransform", {"NewTransform": NewTransform}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("USceneComponent", "SetWorldTransform", {"NewTransform": NewTransform}, _t.T_void))  # a Future when queued by call_async
 
     def GetForwardVector(self) -> FVector:
-        return cast("FVector", self._sp_call("USceneComponent", "GetForwardVector", {}, "FVector"))
+        return cast("FVector", self._sp_call("USceneComponent", "GetForwardVector", {}, _t.T_FVector))
 
     def GetRightVector(self) -> FVector:
-        return cast("FVector", self._sp_call("USceneComponent", "GetRightVector", {}, "FVector"))
+        return cast("FVector", self._sp_call("USceneComponent", "GetRightVector", {}, _t.T_FVector))
 
     def GetUpVector(self) -> FVector:
-        return cast("FVector", self._sp_call("USceneComponent", "GetUpVector", {}, "FVector"))
+        return cast("FVector", self._sp_call("USceneComponent", "GetUpVector", {}, _t.T_FVector))
 
     def AttachToComponent(self, *, Parent: api.USceneComponent, bKeepWorldTransform: bool = _DEFAULT) -> None:
-        return cast(None, self._sp_call("USceneComponent", "AttachToComponent", {"Parent": Parent, "bKeepWorldTransform": bKeepWorldTransform}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("USceneComponent", "AttachToComponent", {"Parent": Parent, "bKeepWorldTransform": bKeepWorldTransform}, _t.T_void))  # a Future when queued by call_async
 
     def DetachFromComponent(self, *, bKeepWorldTransform: bool = _DEFAULT) -> None:
-        return cast(None, self._sp_call("USceneComponent", "DetachFromComponent", {"bKeepWorldTransform": bKeepWorldTransform}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("USceneComponent", "DetachFromComponent", {"bKeepWorldTransform": bKeepWorldTransform}, _t.T_void))  # a Future when queued by call_async
 
     def GetAttachParent(self) -> api.USceneComponent | None:
-        return cast("api.USceneComponent | None", self._sp_call("USceneComponent", "GetAttachParent", {}, "USceneComponent | None"))
+        return cast("api.USceneComponent | None", self._sp_call("USceneComponent", "GetAttachParent", {}, _t.T_USceneComponent_or_None))
 
     def GetChildrenComponents(self, *, bIncludeAllDescendants: bool = _DEFAULT) -> list[api.USceneComponent]:
-        return cast("list[api.USceneComponent]", self._sp_call("USceneComponent", "GetChildrenComponents", {"bIncludeAllDescendants": bIncludeAllDescendants}, "list[USceneComponent]"))
+        return cast("list[api.USceneComponent]", self._sp_call("USceneComponent", "GetChildrenComponents", {"bIncludeAllDescendants": bIncludeAllDescendants}, _t.T_list_of_USceneComponent))
 
 
 _register_proxy(USceneComponent)
@@ -990,7 +991,7 @@ class UPrimitiveComponent(USceneComponent, api.UPrimitiveComponent):
 
     @property
     def bSimulatePhysics(self) -> bool:
-        return cast("bool", self._sp_get("UPrimitiveComponent", "bSimulatePhysics", "bool"))
+        return cast("bool", self._sp_get("UPrimitiveComponent", "bSimulatePhysics", _t.T_bool))
 
     @bSimulatePhysics.setter
     def bSimulatePhysics(self, value: bool) -> None:
@@ -998,7 +999,7 @@ class UPrimitiveComponent(USceneComponent, api.UPrimitiveComponent):
 
     @property
     def CollisionPrimitive(self) -> ECollisionPrimitive:
-        return cast("ECollisionPrimitive", self._sp_get("UPrimitiveComponent", "CollisionPrimitive", "ECollisionPrimitive"))
+        return cast("ECollisionPrimitive", self._sp_get("UPrimitiveComponent", "CollisionPrimitive", _t.T_ECollisionPrimitive))
 
     @CollisionPrimitive.setter
     def CollisionPrimitive(self, value: ECollisionPrimitive) -> None:
@@ -1006,7 +1007,7 @@ class UPrimitiveComponent(USceneComponent, api.UPrimitiveComponent):
 
     @property
     def MassInKg(self) -> float:
-        return cast("float", self._sp_get("UPrimitiveComponent", "MassInKg", "float"))
+        return cast("float", self._sp_get("UPrimitiveComponent", "MassInKg", _t.T_float))
 
     @MassInKg.setter
     def MassInKg(self, value: float) -> None:
@@ -1014,7 +1015,7 @@ class UPrimitiveComponent(USceneComponent, api.UPrimitiveComponent):
 
     @property
     def Friction(self) -> float:
-        return cast("float", self._sp_get("UPrimitiveComponent", "Friction", "float"))
+        return cast("float", self._sp_get("UPrimitiveComponent", "Friction", _t.T_float))
 
     @Friction.setter
     def Friction(self, value: float) -> None:
@@ -1022,7 +1023,7 @@ class UPrimitiveComponent(USceneComponent, api.UPrimitiveComponent):
 
     @property
     def Restitution(self) -> float:
-        return cast("float", self._sp_get("UPrimitiveComponent", "Restitution", "float"))
+        return cast("float", self._sp_get("UPrimitiveComponent", "Restitution", _t.T_float))
 
     @Restitution.setter
     def Restitution(self, value: float) -> None:
@@ -1030,7 +1031,7 @@ class UPrimitiveComponent(USceneComponent, api.UPrimitiveComponent):
 
     @property
     def LinearDamping(self) -> float:
-        return cast("float", self._sp_get("UPrimitiveComponent", "LinearDamping", "float"))
+        return cast("float", self._sp_get("UPrimitiveComponent", "LinearDamping", _t.T_float))
 
     @LinearDamping.setter
     def LinearDamping(self, value: float) -> None:
@@ -1038,7 +1039,7 @@ class UPrimitiveComponent(USceneComponent, api.UPrimitiveComponent):
 
     @property
     def AngularDamping(self) -> float:
-        return cast("float", self._sp_get("UPrimitiveComponent", "AngularDamping", "float"))
+        return cast("float", self._sp_get("UPrimitiveComponent", "AngularDamping", _t.T_float))
 
     @AngularDamping.setter
     def AngularDamping(self, value: float) -> None:
@@ -1046,7 +1047,7 @@ class UPrimitiveComponent(USceneComponent, api.UPrimitiveComponent):
 
     @property
     def bGenerateOverlapEvents(self) -> bool:
-        return cast("bool", self._sp_get("UPrimitiveComponent", "bGenerateOverlapEvents", "bool"))
+        return cast("bool", self._sp_get("UPrimitiveComponent", "bGenerateOverlapEvents", _t.T_bool))
 
     @bGenerateOverlapEvents.setter
     def bGenerateOverlapEvents(self, value: bool) -> None:
@@ -1054,65 +1055,65 @@ class UPrimitiveComponent(USceneComponent, api.UPrimitiveComponent):
 
     @property
     def bCanEverAffectNavigation(self) -> bool:
-        return cast("bool", self._sp_get("UPrimitiveComponent", "bCanEverAffectNavigation", "bool"))
+        return cast("bool", self._sp_get("UPrimitiveComponent", "bCanEverAffectNavigation", _t.T_bool))
 
     @bCanEverAffectNavigation.setter
     def bCanEverAffectNavigation(self, value: bool) -> None:
         self._sp_set("UPrimitiveComponent", "bCanEverAffectNavigation", value)
 
     def GetBounds(self) -> api.UPrimitiveComponent.GetBoundsResult:
-        return cast("api.UPrimitiveComponent.GetBoundsResult", self._sp_call("UPrimitiveComponent", "GetBounds", {}, "dict", api.UPrimitiveComponent.GetBoundsResult))
+        return cast("api.UPrimitiveComponent.GetBoundsResult", self._sp_call("UPrimitiveComponent", "GetBounds", {}, _t.T_void, api.UPrimitiveComponent.GetBoundsResult))
 
     def SetSimulatePhysics(self, *, bSimulate: bool) -> None:
-        return cast(None, self._sp_call("UPrimitiveComponent", "SetSimulatePhysics", {"bSimulate": bSimulate}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UPrimitiveComponent", "SetSimulatePhysics", {"bSimulate": bSimulate}, _t.T_void))  # a Future when queued by call_async
 
     def IsSimulatingPhysics(self) -> bool:
-        return cast("bool", self._sp_call("UPrimitiveComponent", "IsSimulatingPhysics", {}, "bool"))
+        return cast("bool", self._sp_call("UPrimitiveComponent", "IsSimulatingPhysics", {}, _t.T_bool))
 
     def SetMassOverrideInKg(self, *, MassInKg: float) -> None:
-        return cast(None, self._sp_call("UPrimitiveComponent", "SetMassOverrideInKg", {"MassInKg": MassInKg}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UPrimitiveComponent", "SetMassOverrideInKg", {"MassInKg": MassInKg}, _t.T_void))  # a Future when queued by call_async
 
     def SetFriction(self, *, NewFriction: float) -> None:
-        return cast(None, self._sp_call("UPrimitiveComponent", "SetFriction", {"NewFriction": NewFriction}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UPrimitiveComponent", "SetFriction", {"NewFriction": NewFriction}, _t.T_void))  # a Future when queued by call_async
 
     def SetRestitution(self, *, NewRestitution: float) -> None:
-        return cast(None, self._sp_call("UPrimitiveComponent", "SetRestitution", {"NewRestitution": NewRestitution}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UPrimitiveComponent", "SetRestitution", {"NewRestitution": NewRestitution}, _t.T_void))  # a Future when queued by call_async
 
     def SetLinearDamping(self, *, NewLinearDamping: float) -> None:
-        return cast(None, self._sp_call("UPrimitiveComponent", "SetLinearDamping", {"NewLinearDamping": NewLinearDamping}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UPrimitiveComponent", "SetLinearDamping", {"NewLinearDamping": NewLinearDamping}, _t.T_void))  # a Future when queued by call_async
 
     def SetAngularDamping(self, *, NewAngularDamping: float) -> None:
-        return cast(None, self._sp_call("UPrimitiveComponent", "SetAngularDamping", {"NewAngularDamping": NewAngularDamping}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UPrimitiveComponent", "SetAngularDamping", {"NewAngularDamping": NewAngularDamping}, _t.T_void))  # a Future when queued by call_async
 
     def GetMass(self) -> float:
-        return cast("float", self._sp_call("UPrimitiveComponent", "GetMass", {}, "float"))
+        return cast("float", self._sp_call("UPrimitiveComponent", "GetMass", {}, _t.T_float))
 
     def AddForce(self, *, Force: FVector, bAccelChange: bool = _DEFAULT) -> None:
-        return cast(None, self._sp_call("UPrimitiveComponent", "AddForce", {"Force": Force, "bAccelChange": bAccelChange}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UPrimitiveComponent", "AddForce", {"Force": Force, "bAccelChange": bAccelChange}, _t.T_void))  # a Future when queued by call_async
 
     def AddTorqueInRadians(self, *, Torque: FVector) -> None:
-        return cast(None, self._sp_call("UPrimitiveComponent", "AddTorqueInRadians", {"Torque": Torque}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UPrimitiveComponent", "AddTorqueInRadians", {"Torque": Torque}, _t.T_void))  # a Future when queued by call_async
 
     def AddImpulse(self, *, Impulse: FVector, bVelChange: bool = _DEFAULT) -> None:
-        return cast(None, self._sp_call("UPrimitiveComponent", "AddImpulse", {"Impulse": Impulse, "bVelChange": bVelChange}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UPrimitiveComponent", "AddImpulse", {"Impulse": Impulse, "bVelChange": bVelChange}, _t.T_void))  # a Future when queued by call_async
 
     def SetPhysicsLinearVelocity(self, *, NewVel: FVector, bAddToCurrent: bool = _DEFAULT) -> None:
-        return cast(None, self._sp_call("UPrimitiveComponent", "SetPhysicsLinearVelocity", {"NewVel": NewVel, "bAddToCurrent": bAddToCurrent}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UPrimitiveComponent", "SetPhysicsLinearVelocity", {"NewVel": NewVel, "bAddToCurrent": bAddToCurrent}, _t.T_void))  # a Future when queued by call_async
 
     def GetPhysicsLinearVelocity(self) -> FVector:
-        return cast("FVector", self._sp_call("UPrimitiveComponent", "GetPhysicsLinearVelocity", {}, "FVector"))
+        return cast("FVector", self._sp_call("UPrimitiveComponent", "GetPhysicsLinearVelocity", {}, _t.T_FVector))
 
     def SetPhysicsAngularVelocityInDegrees(self, *, NewAngVel: FVector, bAddToCurrent: bool = _DEFAULT) -> None:
-        return cast(None, self._sp_call("UPrimitiveComponent", "SetPhysicsAngularVelocityInDegrees", {"NewAngVel": NewAngVel, "bAddToCurrent": bAddToCurrent}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UPrimitiveComponent", "SetPhysicsAngularVelocityInDegrees", {"NewAngVel": NewAngVel, "bAddToCurrent": bAddToCurrent}, _t.T_void))  # a Future when queued by call_async
 
     def GetPhysicsAngularVelocityInDegrees(self) -> FVector:
-        return cast("FVector", self._sp_call("UPrimitiveComponent", "GetPhysicsAngularVelocityInDegrees", {}, "FVector"))
+        return cast("FVector", self._sp_call("UPrimitiveComponent", "GetPhysicsAngularVelocityInDegrees", {}, _t.T_FVector))
 
     def IsAnyRigidBodyAwake(self) -> bool:
-        return cast("bool", self._sp_call("UPrimitiveComponent", "IsAnyRigidBodyAwake", {}, "bool"))
+        return cast("bool", self._sp_call("UPrimitiveComponent", "IsAnyRigidBodyAwake", {}, _t.T_bool))
 
     def GetOverlappingComponents(self) -> list[api.UPrimitiveComponent]:
-        return cast("list[api.UPrimitiveComponent]", self._sp_call("UPrimitiveComponent", "GetOverlappingComponents", {}, "list[UPrimitiveComponent]"))
+        return cast("list[api.UPrimitiveComponent]", self._sp_call("UPrimitiveComponent", "GetOverlappingComponents", {}, _t.T_list_of_UPrimitiveComponent))
 
     @overload
     def GetOverlappingActors(self, *, ClassFilter: type[_AActorT]) -> list[_AActorT]: ...
@@ -1121,19 +1122,19 @@ class UPrimitiveComponent(USceneComponent, api.UPrimitiveComponent):
     def GetOverlappingActors(self, *, ClassFilter: str) -> list[api.AActor]: ...
 
     def GetOverlappingActors(self, *, ClassFilter: type[api.AActor] | str) -> Any:
-        return self._sp_call("UPrimitiveComponent", "GetOverlappingActors", {"ClassFilter": ClassFilter}, "list[AActor]")
+        return self._sp_call("UPrimitiveComponent", "GetOverlappingActors", {"ClassFilter": ClassFilter}, _t.T_list_of_AActor)
 
     def IsOverlappingComponent(self, *, OtherComp: api.UPrimitiveComponent) -> bool:
-        return cast("bool", self._sp_call("UPrimitiveComponent", "IsOverlappingComponent", {"OtherComp": OtherComp}, "bool"))
+        return cast("bool", self._sp_call("UPrimitiveComponent", "IsOverlappingComponent", {"OtherComp": OtherComp}, _t.T_bool))
 
     def IsOverlappingActor(self, *, Other: api.AActor) -> bool:
-        return cast("bool", self._sp_call("UPrimitiveComponent", "IsOverlappingActor", {"Other": Other}, "bool"))
+        return cast("bool", self._sp_call("UPrimitiveComponent", "IsOverlappingActor", {"Other": Other}, _t.T_bool))
 
     def GetBeginOverlaps(self) -> list[api.UPrimitiveComponent]:
-        return cast("list[api.UPrimitiveComponent]", self._sp_call("UPrimitiveComponent", "GetBeginOverlaps", {}, "list[UPrimitiveComponent]"))
+        return cast("list[api.UPrimitiveComponent]", self._sp_call("UPrimitiveComponent", "GetBeginOverlaps", {}, _t.T_list_of_UPrimitiveComponent))
 
     def GetEndOverlaps(self) -> list[api.UPrimitiveComponent]:
-        return cast("list[api.UPrimitiveComponent]", self._sp_call("UPrimitiveComponent", "GetEndOverlaps", {}, "list[UPrimitiveComponent]"))
+        return cast("list[api.UPrimitiveComponent]", self._sp_call("UPrimitiveComponent", "GetEndOverlaps", {}, _t.T_list_of_UPrimitiveComponent))
 
 
 _register_proxy(UPrimitiveComponent)
@@ -1151,14 +1152,14 @@ class UBoxComponent(UShapeComponent, api.UBoxComponent):
 
     @property
     def BoxExtent(self) -> FVector:
-        return cast("FVector", self._sp_get("UBoxComponent", "BoxExtent", "FVector"))
+        return cast("FVector", self._sp_get("UBoxComponent", "BoxExtent", _t.T_FVector))
 
     @BoxExtent.setter
     def BoxExtent(self, value: FVector) -> None:
         self._sp_set("UBoxComponent", "BoxExtent", value)
 
     def SetBoxExtent(self, *, InBoxExtent: FVector) -> None:
-        return cast(None, self._sp_call("UBoxComponent", "SetBoxExtent", {"InBoxExtent": InBoxExtent}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UBoxComponent", "SetBoxExtent", {"InBoxExtent": InBoxExtent}, _t.T_void))  # a Future when queued by call_async
 
 
 _register_proxy(UBoxComponent)
@@ -1169,7 +1170,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def Width(self) -> int:
-        return cast("int", self._sp_get("UCameraSensorComponent", "Width", "int"))
+        return cast("int", self._sp_get("UCameraSensorComponent", "Width", _t.T_int))
 
     @Width.setter
     def Width(self, value: int) -> None:
@@ -1177,7 +1178,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def Height(self) -> int:
-        return cast("int", self._sp_get("UCameraSensorComponent", "Height", "int"))
+        return cast("int", self._sp_get("UCameraSensorComponent", "Height", _t.T_int))
 
     @Height.setter
     def Height(self, value: int) -> None:
@@ -1185,7 +1186,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def FOV(self) -> float:
-        return cast("float", self._sp_get("UCameraSensorComponent", "FOV", "float"))
+        return cast("float", self._sp_get("UCameraSensorComponent", "FOV", _t.T_float))
 
     @FOV.setter
     def FOV(self, value: float) -> None:
@@ -1193,7 +1194,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def NearClip(self) -> float:
-        return cast("float", self._sp_get("UCameraSensorComponent", "NearClip", "float"))
+        return cast("float", self._sp_get("UCameraSensorComponent", "NearClip", _t.T_float))
 
     @NearClip.setter
     def NearClip(self, value: float) -> None:
@@ -1201,7 +1202,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def FarClip(self) -> float:
-        return cast("float", self._sp_get("UCameraSensorComponent", "FarClip", "float"))
+        return cast("float", self._sp_get("UCameraSensorComponent", "FarClip", _t.T_float))
 
     @FarClip.setter
     def FarClip(self, value: float) -> None:
@@ -1209,7 +1210,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def Exposure(self) -> float:
-        return cast("float", self._sp_get("UCameraSensorComponent", "Exposure", "float"))
+        return cast("float", self._sp_get("UCameraSensorComponent", "Exposure", _t.T_float))
 
     @Exposure.setter
     def Exposure(self, value: float) -> None:
@@ -1217,7 +1218,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def WhiteBalanceTemperature(self) -> float:
-        return cast("float", self._sp_get("UCameraSensorComponent", "WhiteBalanceTemperature", "float"))
+        return cast("float", self._sp_get("UCameraSensorComponent", "WhiteBalanceTemperature", _t.T_float))
 
     @WhiteBalanceTemperature.setter
     def WhiteBalanceTemperature(self, value: float) -> None:
@@ -1225,7 +1226,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def SensorWidth(self) -> float:
-        return cast("float", self._sp_get("UCameraSensorComponent", "SensorWidth", "float"))
+        return cast("float", self._sp_get("UCameraSensorComponent", "SensorWidth", _t.T_float))
 
     @SensorWidth.setter
     def SensorWidth(self, value: float) -> None:
@@ -1233,7 +1234,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def LensDistortion(self) -> FLensDistortion:
-        return cast("FLensDistortion", self._sp_get("UCameraSensorComponent", "LensDistortion", "FLensDistortion"))
+        return cast("FLensDistortion", self._sp_get("UCameraSensorComponent", "LensDistortion", _t.T_FLensDistortion))
 
     @LensDistortion.setter
     def LensDistortion(self, value: FLensDistortion) -> None:
@@ -1241,7 +1242,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def PrincipalPointOffset(self) -> FVector2D:
-        return cast("FVector2D", self._sp_get("UCameraSensorComponent", "PrincipalPointOffset", "FVector2D"))
+        return cast("FVector2D", self._sp_get("UCameraSensorComponent", "PrincipalPointOffset", _t.T_FVector2D))
 
     @PrincipalPointOffset.setter
     def PrincipalPointOffset(self, value: FVector2D) -> None:
@@ -1249,7 +1250,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def ApertureFNumber(self) -> float:
-        return cast("float", self._sp_get("UCameraSensorComponent", "ApertureFNumber", "float"))
+        return cast("float", self._sp_get("UCameraSensorComponent", "ApertureFNumber", _t.T_float))
 
     @ApertureFNumber.setter
     def ApertureFNumber(self, value: float) -> None:
@@ -1257,7 +1258,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def FocusDistance(self) -> float:
-        return cast("float", self._sp_get("UCameraSensorComponent", "FocusDistance", "float"))
+        return cast("float", self._sp_get("UCameraSensorComponent", "FocusDistance", _t.T_float))
 
     @FocusDistance.setter
     def FocusDistance(self, value: float) -> None:
@@ -1265,7 +1266,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def VignetteIntensity(self) -> float:
-        return cast("float", self._sp_get("UCameraSensorComponent", "VignetteIntensity", "float"))
+        return cast("float", self._sp_get("UCameraSensorComponent", "VignetteIntensity", _t.T_float))
 
     @VignetteIntensity.setter
     def VignetteIntensity(self, value: float) -> None:
@@ -1273,7 +1274,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def ToneCurve(self) -> ECameraToneCurve:
-        return cast("ECameraToneCurve", self._sp_get("UCameraSensorComponent", "ToneCurve", "ECameraToneCurve"))
+        return cast("ECameraToneCurve", self._sp_get("UCameraSensorComponent", "ToneCurve", _t.T_ECameraToneCurve))
 
     @ToneCurve.setter
     def ToneCurve(self, value: ECameraToneCurve) -> None:
@@ -1281,7 +1282,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def bShadows(self) -> bool:
-        return cast("bool", self._sp_get("UCameraSensorComponent", "bShadows", "bool"))
+        return cast("bool", self._sp_get("UCameraSensorComponent", "bShadows", _t.T_bool))
 
     @bShadows.setter
     def bShadows(self, value: bool) -> None:
@@ -1289,7 +1290,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def ShadowResolution(self) -> int:
-        return cast("int", self._sp_get("UCameraSensorComponent", "ShadowResolution", "int"))
+        return cast("int", self._sp_get("UCameraSensorComponent", "ShadowResolution", _t.T_int))
 
     @ShadowResolution.setter
     def ShadowResolution(self, value: int) -> None:
@@ -1297,7 +1298,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def Modalities(self) -> list[ECameraModality]:
-        return cast("list[ECameraModality]", self._sp_get("UCameraSensorComponent", "Modalities", "list[ECameraModality]"))
+        return cast("list[ECameraModality]", self._sp_get("UCameraSensorComponent", "Modalities", _t.T_list_of_ECameraModality))
 
     @Modalities.setter
     def Modalities(self, value: list[ECameraModality]) -> None:
@@ -1305,7 +1306,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def Latency(self) -> int:
-        return cast("int", self._sp_get("UCameraSensorComponent", "Latency", "int"))
+        return cast("int", self._sp_get("UCameraSensorComponent", "Latency", _t.T_int))
 
     @Latency.setter
     def Latency(self, value: int) -> None:
@@ -1313,7 +1314,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def Renderer(self) -> ECameraRenderer:
-        return cast("ECameraRenderer", self._sp_get("UCameraSensorComponent", "Renderer", "ECameraRenderer"))
+        return cast("ECameraRenderer", self._sp_get("UCameraSensorComponent", "Renderer", _t.T_ECameraRenderer))
 
     @Renderer.setter
     def Renderer(self, value: ECameraRenderer) -> None:
@@ -1321,7 +1322,7 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def SamplesPerPixel(self) -> int:
-        return cast("int", self._sp_get("UCameraSensorComponent", "SamplesPerPixel", "int"))
+        return cast("int", self._sp_get("UCameraSensorComponent", "SamplesPerPixel", _t.T_int))
 
     @SamplesPerPixel.setter
     def SamplesPerPixel(self, value: int) -> None:
@@ -1329,122 +1330,122 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     @property
     def MaxBounces(self) -> int:
-        return cast("int", self._sp_get("UCameraSensorComponent", "MaxBounces", "int"))
+        return cast("int", self._sp_get("UCameraSensorComponent", "MaxBounces", _t.T_int))
 
     @MaxBounces.setter
     def MaxBounces(self, value: int) -> None:
         self._sp_set("UCameraSensorComponent", "MaxBounces", value)
 
     def SetWidth(self, *, NewWidth: int) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetWidth", {"NewWidth": NewWidth}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetWidth", {"NewWidth": NewWidth}, _t.T_void))  # a Future when queued by call_async
 
     def SetHeight(self, *, NewHeight: int) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetHeight", {"NewHeight": NewHeight}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetHeight", {"NewHeight": NewHeight}, _t.T_void))  # a Future when queued by call_async
 
     def SetFOV(self, *, NewFOV: float) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetFOV", {"NewFOV": NewFOV}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetFOV", {"NewFOV": NewFOV}, _t.T_void))  # a Future when queued by call_async
 
     def SetNearClip(self, *, NewNearClip: float) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetNearClip", {"NewNearClip": NewNearClip}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetNearClip", {"NewNearClip": NewNearClip}, _t.T_void))  # a Future when queued by call_async
 
     def SetFarClip(self, *, NewFarClip: float) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetFarClip", {"NewFarClip": NewFarClip}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetFarClip", {"NewFarClip": NewFarClip}, _t.T_void))  # a Future when queued by call_async
 
     def SetExposure(self, *, NewExposure: float) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetExposure", {"NewExposure": NewExposure}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetExposure", {"NewExposure": NewExposure}, _t.T_void))  # a Future when queued by call_async
 
     def SetSensorWidth(self, *, NewSensorWidth: float) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetSensorWidth", {"NewSensorWidth": NewSensorWidth}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetSensorWidth", {"NewSensorWidth": NewSensorWidth}, _t.T_void))  # a Future when queued by call_async
 
     def SetFocalLength(self, *, FocalLength: float) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetFocalLength", {"FocalLength": FocalLength}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetFocalLength", {"FocalLength": FocalLength}, _t.T_void))  # a Future when queued by call_async
 
     def GetFocalLength(self) -> float:
-        return cast("float", self._sp_call("UCameraSensorComponent", "GetFocalLength", {}, "float"))
+        return cast("float", self._sp_call("UCameraSensorComponent", "GetFocalLength", {}, _t.T_float))
 
     def SetExposureValue(self, *, EV100: float) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetExposureValue", {"EV100": EV100}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetExposureValue", {"EV100": EV100}, _t.T_void))  # a Future when queued by call_async
 
     def SetPhysicalExposure(self, *, FNumber: float, ShutterSeconds: float, ISO: float) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetPhysicalExposure", {"FNumber": FNumber, "ShutterSeconds": ShutterSeconds, "ISO": ISO}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetPhysicalExposure", {"FNumber": FNumber, "ShutterSeconds": ShutterSeconds, "ISO": ISO}, _t.T_void))  # a Future when queued by call_async
 
     def SetLensDistortion(self, *, NewLensDistortion: FLensDistortion) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetLensDistortion", {"NewLensDistortion": NewLensDistortion}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetLensDistortion", {"NewLensDistortion": NewLensDistortion}, _t.T_void))  # a Future when queued by call_async
 
     def SetPrincipalPointOffset(self, *, NewPrincipalPointOffset: FVector2D) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetPrincipalPointOffset", {"NewPrincipalPointOffset": NewPrincipalPointOffset}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetPrincipalPointOffset", {"NewPrincipalPointOffset": NewPrincipalPointOffset}, _t.T_void))  # a Future when queued by call_async
 
     def GetDistortionCoefficients(self) -> NDArray[np.float64]:
-        return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "GetDistortionCoefficients", {}, "NDArray[np.float64]"))
+        return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "GetDistortionCoefficients", {}, _t.T_array_float64))
 
     def DistortPixels(self, *, Points: NDArray[np.float64]) -> NDArray[np.float64]:
-        return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "DistortPixels", {"Points": Points}, "NDArray[np.float64]"))
+        return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "DistortPixels", {"Points": Points}, _t.T_array_float64))
 
     def UndistortPixels(self, *, Points: NDArray[np.float64]) -> NDArray[np.float64]:
-        return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "UndistortPixels", {"Points": Points}, "NDArray[np.float64]"))
+        return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "UndistortPixels", {"Points": Points}, _t.T_array_float64))
 
     def SetApertureFNumber(self, *, NewApertureFNumber: float) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetApertureFNumber", {"NewApertureFNumber": NewApertureFNumber}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetApertureFNumber", {"NewApertureFNumber": NewApertureFNumber}, _t.T_void))  # a Future when queued by call_async
 
     def SetFocusDistance(self, *, NewFocusDistance: float) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetFocusDistance", {"NewFocusDistance": NewFocusDistance}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetFocusDistance", {"NewFocusDistance": NewFocusDistance}, _t.T_void))  # a Future when queued by call_async
 
     def SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetVignetteIntensity", {"NewVignetteIntensity": NewVignetteIntensity}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetVignetteIntensity", {"NewVignetteIntensity": NewVignetteIntensity}, _t.T_void))  # a Future when queued by call_async
 
     def SetWhiteBalanceTemperature(self, *, NewWhiteBalanceTemperature: float) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetWhiteBalanceTemperature", {"NewWhiteBalanceTemperature": NewWhiteBalanceTemperature}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetWhiteBalanceTemperature", {"NewWhiteBalanceTemperature": NewWhiteBalanceTemperature}, _t.T_void))  # a Future when queued by call_async
 
     def GetWhiteBalanceGains(self) -> NDArray[np.float64]:
-        return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "GetWhiteBalanceGains", {}, "NDArray[np.float64]"))
+        return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "GetWhiteBalanceGains", {}, _t.T_array_float64))
 
     def SetShadowResolution(self, *, NewShadowResolution: int) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetShadowResolution", {"NewShadowResolution": NewShadowResolution}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetShadowResolution", {"NewShadowResolution": NewShadowResolution}, _t.T_void))  # a Future when queued by call_async
 
     def SetLatency(self, *, NewLatency: int) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetLatency", {"NewLatency": NewLatency}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetLatency", {"NewLatency": NewLatency}, _t.T_void))  # a Future when queued by call_async
 
     def SetSamplesPerPixel(self, *, NewSamplesPerPixel: int) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetSamplesPerPixel", {"NewSamplesPerPixel": NewSamplesPerPixel}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetSamplesPerPixel", {"NewSamplesPerPixel": NewSamplesPerPixel}, _t.T_void))  # a Future when queued by call_async
 
     def SetMaxBounces(self, *, NewMaxBounces: int) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetMaxBounces", {"NewMaxBounces": NewMaxBounces}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetMaxBounces", {"NewMaxBounces": NewMaxBounces}, _t.T_void))  # a Future when queued by call_async
 
     def GetIntrinsicMatrix(self) -> NDArray[np.float64]:
-        return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "GetIntrinsicMatrix", {}, "NDArray[np.float64]"))
+        return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "GetIntrinsicMatrix", {}, _t.T_array_float64))
 
     def GetWorldToCamera(self) -> NDArray[np.float64]:
-        return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "GetWorldToCamera", {}, "NDArray[np.float64]"))
+        return cast("NDArray[np.float64]", self._sp_call("UCameraSensorComponent", "GetWorldToCamera", {}, _t.T_array_float64))
 
     def GetAccumulatedSamples(self) -> int:
-        return cast("int", self._sp_call("UCameraSensorComponent", "GetAccumulatedSamples", {}, "int"))
+        return cast("int", self._sp_call("UCameraSensorComponent", "GetAccumulatedSamples", {}, _t.T_int))
 
     def read_pixels(self) -> FCameraPixels:
-        return cast("FCameraPixels", self._sp_call("UCameraSensorComponent", "read_pixels", {}, "FCameraPixels"))
+        return cast("FCameraPixels", self._sp_call("UCameraSensorComponent", "read_pixels", {}, _t.T_FCameraPixels))
 
     def GetPixelsFrame(self) -> int:
-        return cast("int", self._sp_call("UCameraSensorComponent", "GetPixelsFrame", {}, "int"))
+        return cast("int", self._sp_call("UCameraSensorComponent", "GetPixelsFrame", {}, _t.T_int))
 
     def SetModalityNames(self, *, Names: list[str]) -> None:
-        return cast(None, self._sp_call("UCameraSensorComponent", "SetModalityNames", {"Names": Names}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetModalityNames", {"Names": Names}, _t.T_void))  # a Future when queued by call_async
 
     def GetModalityNames(self) -> list[str]:
-        return cast("list[str]", self._sp_call("UCameraSensorComponent", "GetModalityNames", {}, "list[str]"))
+        return cast("list[str]", self._sp_call("UCameraSensorComponent", "GetModalityNames", {}, _t.T_list_of_str))
 
     def GetObjectIdInfo(self, *, ObjectId: int) -> api.UCameraSensorComponent.GetObjectIdInfoResult:
-        return cast("api.UCameraSensorComponent.GetObjectIdInfoResult", self._sp_call("UCameraSensorComponent", "GetObjectIdInfo", {"ObjectId": ObjectId}, "dict", api.UCameraSensorComponent.GetObjectIdInfoResult))
+        return cast("api.UCameraSensorComponent.GetObjectIdInfoResult", self._sp_call("UCameraSensorComponent", "GetObjectIdInfo", {"ObjectId": ObjectId}, _t.T_bool, api.UCameraSensorComponent.GetObjectIdInfoResult))
 
     def GetObjectId(self, *, Component: api.UPrimitiveComponent, MaterialSlot: int = _DEFAULT) -> int:
-        return cast("int", self._sp_call("UCameraSensorComponent", "GetObjectId", {"Component": Component, "MaterialSlot": MaterialSlot}, "int"))
+        return cast("int", self._sp_call("UCameraSensorComponent", "GetObjectId", {"Component": Component, "MaterialSlot": MaterialSlot}, _t.T_int))
 
     def GetMaterialId(self, *, Name: str) -> int:
-        return cast("int", self._sp_call("UCameraSensorComponent", "GetMaterialId", {"Name": Name}, "int"))
+        return cast("int", self._sp_call("UCameraSensorComponent", "GetMaterialId", {"Name": Name}, _t.T_int))
 
     def get_render_device_info(self) -> FRenderDeviceInfo:
-        return cast("FRenderDeviceInfo", self._sp_call("UCameraSensorComponent", "get_render_device_info", {}, "FRenderDeviceInfo"))
+        return cast("FRenderDeviceInfo", self._sp_call("UCameraSensorComponent", "get_render_device_info", {}, _t.T_FRenderDeviceInfo))
 
     def GetRenderStats(self) -> FRenderStats:
-        return cast("FRenderStats", self._sp_call("UCameraSensorComponent", "GetRenderStats", {}, "FRenderStats"))
+        return cast("FRenderStats", self._sp_call("UCameraSensorComponent", "GetRenderStats", {}, _t.T_FRenderStats))
 
 
 _register_proxy(UCameraSensorComponent)
@@ -1455,7 +1456,7 @@ class UCapsuleComponent(UShapeComponent, api.UCapsuleComponent):
 
     @property
     def CapsuleRadius(self) -> float:
-        return cast("float", self._sp_get("UCapsuleComponent", "CapsuleRadius", "float"))
+        return cast("float", self._sp_get("UCapsuleComponent", "CapsuleRadius", _t.T_float))
 
     @CapsuleRadius.setter
     def CapsuleRadius(self, value: float) -> None:
@@ -1463,17 +1464,17 @@ class UCapsuleComponent(UShapeComponent, api.UCapsuleComponent):
 
     @property
     def CapsuleHalfHeight(self) -> float:
-        return cast("float", self._sp_get("UCapsuleComponent", "CapsuleHalfHeight", "float"))
+        return cast("float", self._sp_get("UCapsuleComponent", "CapsuleHalfHeight", _t.T_float))
 
     @CapsuleHalfHeight.setter
     def CapsuleHalfHeight(self, value: float) -> None:
         self._sp_set("UCapsuleComponent", "CapsuleHalfHeight", value)
 
     def SetCapsuleRadius(self, *, Radius: float) -> None:
-        return cast(None, self._sp_call("UCapsuleComponent", "SetCapsuleRadius", {"Radius": Radius}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCapsuleComponent", "SetCapsuleRadius", {"Radius": Radius}, _t.T_void))  # a Future when queued by call_async
 
     def SetCapsuleHalfHeight(self, *, HalfHeight: float) -> None:
-        return cast(None, self._sp_call("UCapsuleComponent", "SetCapsuleHalfHeight", {"HalfHeight": HalfHeight}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCapsuleComponent", "SetCapsuleHalfHeight", {"HalfHeight": HalfHeight}, _t.T_void))  # a Future when queued by call_async
 
 
 _register_proxy(UCapsuleComponent)
@@ -1484,7 +1485,7 @@ class UCharacterMovementComponent(UActorComponent, api.UCharacterMovementCompone
 
     @property
     def MaxWalkSpeed(self) -> float:
-        return cast("float", self._sp_get("UCharacterMovementComponent", "MaxWalkSpeed", "float"))
+        return cast("float", self._sp_get("UCharacterMovementComponent", "MaxWalkSpeed", _t.T_float))
 
     @MaxWalkSpeed.setter
     def MaxWalkSpeed(self, value: float) -> None:
@@ -1492,7 +1493,7 @@ class UCharacterMovementComponent(UActorComponent, api.UCharacterMovementCompone
 
     @property
     def JumpZVelocity(self) -> float:
-        return cast("float", self._sp_get("UCharacterMovementComponent", "JumpZVelocity", "float"))
+        return cast("float", self._sp_get("UCharacterMovementComponent", "JumpZVelocity", _t.T_float))
 
     @JumpZVelocity.setter
     def JumpZVelocity(self, value: float) -> None:
@@ -1500,7 +1501,7 @@ class UCharacterMovementComponent(UActorComponent, api.UCharacterMovementCompone
 
     @property
     def MaxStepHeight(self) -> float:
-        return cast("float", self._sp_get("UCharacterMovementComponent", "MaxStepHeight", "float"))
+        return cast("float", self._sp_get("UCharacterMovementComponent", "MaxStepHeight", _t.T_float))
 
     @MaxStepHeight.setter
     def MaxStepHeight(self, value: float) -> None:
@@ -1508,32 +1509,32 @@ class UCharacterMovementComponent(UActorComponent, api.UCharacterMovementCompone
 
     @property
     def WalkableFloorAngle(self) -> float:
-        return cast("float", self._sp_get("UCharacterMovementComponent", "WalkableFloorAngle", "float"))
+        return cast("float", self._sp_get("UCharacterMovementComponent", "WalkableFloorAngle", _t.T_float))
 
     @WalkableFloorAngle.setter
     def WalkableFloorAngle(self, value: float) -> None:
         self._sp_set("UCharacterMovementComponent", "WalkableFloorAngle", value)
 
     def SetMaxWalkSpeed(self, *, NewSpeed: float) -> None:
-        return cast(None, self._sp_call("UCharacterMovementComponent", "SetMaxWalkSpeed", {"NewSpeed": NewSpeed}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCharacterMovementComponent", "SetMaxWalkSpeed", {"NewSpeed": NewSpeed}, _t.T_void))  # a Future when queued by call_async
 
     def SetJumpZVelocity(self, *, NewVelocity: float) -> None:
-        return cast(None, self._sp_call("UCharacterMovementComponent", "SetJumpZVelocity", {"NewVelocity": NewVelocity}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCharacterMovementComponent", "SetJumpZVelocity", {"NewVelocity": NewVelocity}, _t.T_void))  # a Future when queued by call_async
 
     def SetMaxStepHeight(self, *, NewHeight: float) -> None:
-        return cast(None, self._sp_call("UCharacterMovementComponent", "SetMaxStepHeight", {"NewHeight": NewHeight}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCharacterMovementComponent", "SetMaxStepHeight", {"NewHeight": NewHeight}, _t.T_void))  # a Future when queued by call_async
 
     def SetWalkableFloorAngle(self, *, NewAngle: float) -> None:
-        return cast(None, self._sp_call("UCharacterMovementComponent", "SetWalkableFloorAngle", {"NewAngle": NewAngle}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UCharacterMovementComponent", "SetWalkableFloorAngle", {"NewAngle": NewAngle}, _t.T_void))  # a Future when queued by call_async
 
     def GetVelocity(self) -> FVector:
-        return cast("FVector", self._sp_call("UCharacterMovementComponent", "GetVelocity", {}, "FVector"))
+        return cast("FVector", self._sp_call("UCharacterMovementComponent", "GetVelocity", {}, _t.T_FVector))
 
     def IsMovingOnGround(self) -> bool:
-        return cast("bool", self._sp_call("UCharacterMovementComponent", "IsMovingOnGround", {}, "bool"))
+        return cast("bool", self._sp_call("UCharacterMovementComponent", "IsMovingOnGround", {}, _t.T_bool))
 
     def IsFalling(self) -> bool:
-        return cast("bool", self._sp_call("UCharacterMovementComponent", "IsFalling", {}, "bool"))
+        return cast("bool", self._sp_call("UCharacterMovementComponent", "IsFalling", {}, _t.T_bool))
 
 
 _register_proxy(UCharacterMovementComponent)
@@ -1544,7 +1545,7 @@ class ULightComponent(USceneComponent, api.ULightComponent):
 
     @property
     def Intensity(self) -> float:
-        return cast("float", self._sp_get("ULightComponent", "Intensity", "float"))
+        return cast("float", self._sp_get("ULightComponent", "Intensity", _t.T_float))
 
     @Intensity.setter
     def Intensity(self, value: float) -> None:
@@ -1552,7 +1553,7 @@ class ULightComponent(USceneComponent, api.ULightComponent):
 
     @property
     def LightColor(self) -> FLinearColor:
-        return cast("FLinearColor", self._sp_get("ULightComponent", "LightColor", "FLinearColor"))
+        return cast("FLinearColor", self._sp_get("ULightComponent", "LightColor", _t.T_FLinearColor))
 
     @LightColor.setter
     def LightColor(self, value: FLinearColor) -> None:
@@ -1560,7 +1561,7 @@ class ULightComponent(USceneComponent, api.ULightComponent):
 
     @property
     def bCastShadows(self) -> bool:
-        return cast("bool", self._sp_get("ULightComponent", "bCastShadows", "bool"))
+        return cast("bool", self._sp_get("ULightComponent", "bCastShadows", _t.T_bool))
 
     @bCastShadows.setter
     def bCastShadows(self, value: bool) -> None:
@@ -1588,10 +1589,10 @@ class UInputComponent(UActorComponent, api.UInputComponent):
     __slots__ = ()
 
     def GetActionValue(self, *, ActionName: str) -> FVector:
-        return cast("FVector", self._sp_call("UInputComponent", "GetActionValue", {"ActionName": ActionName}, "FVector"))
+        return cast("FVector", self._sp_call("UInputComponent", "GetActionValue", {"ActionName": ActionName}, _t.T_FVector))
 
     def IsActionTriggered(self, *, ActionName: str) -> bool:
-        return cast("bool", self._sp_call("UInputComponent", "IsActionTriggered", {"ActionName": ActionName}, "bool"))
+        return cast("bool", self._sp_call("UInputComponent", "IsActionTriggered", {"ActionName": ActionName}, _t.T_bool))
 
 
 _register_proxy(UInputComponent)
@@ -1602,31 +1603,31 @@ class UMoviePipelineExecutorJob(UObject, api.UMoviePipelineExecutorJob):
 
     @property
     def JobName(self) -> str:
-        return cast("str", self._sp_get("UMoviePipelineExecutorJob", "JobName", "str"))
+        return cast("str", self._sp_get("UMoviePipelineExecutorJob", "JobName", _t.T_str))
 
     def SetConfiguration(self, *, Configuration: FMoviePipelineConfiguration) -> None:
-        return cast(None, self._sp_call("UMoviePipelineExecutorJob", "SetConfiguration", {"Configuration": Configuration}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UMoviePipelineExecutorJob", "SetConfiguration", {"Configuration": Configuration}, _t.T_void))  # a Future when queued by call_async
 
     def GetConfiguration(self) -> FMoviePipelineConfiguration:
-        return cast("FMoviePipelineConfiguration", self._sp_call("UMoviePipelineExecutorJob", "GetConfiguration", {}, "FMoviePipelineConfiguration"))
+        return cast("FMoviePipelineConfiguration", self._sp_call("UMoviePipelineExecutorJob", "GetConfiguration", {}, _t.T_FMoviePipelineConfiguration))
 
     def GetCamera(self) -> api.UCameraSensorComponent | None:
-        return cast("api.UCameraSensorComponent | None", self._sp_call("UMoviePipelineExecutorJob", "GetCamera", {}, "UCameraSensorComponent | None"))
+        return cast("api.UCameraSensorComponent | None", self._sp_call("UMoviePipelineExecutorJob", "GetCamera", {}, _t.T_UCameraSensorComponent_or_None))
 
     def GetStatus(self) -> EMoviePipelineJobStatus:
-        return cast("EMoviePipelineJobStatus", self._sp_call("UMoviePipelineExecutorJob", "GetStatus", {}, "EMoviePipelineJobStatus"))
+        return cast("EMoviePipelineJobStatus", self._sp_call("UMoviePipelineExecutorJob", "GetStatus", {}, _t.T_EMoviePipelineJobStatus))
 
     def GetProgress(self) -> FMoviePipelineProgress:
-        return cast("FMoviePipelineProgress", self._sp_call("UMoviePipelineExecutorJob", "GetProgress", {}, "FMoviePipelineProgress"))
+        return cast("FMoviePipelineProgress", self._sp_call("UMoviePipelineExecutorJob", "GetProgress", {}, _t.T_FMoviePipelineProgress))
 
     def GetErrorMessage(self) -> str:
-        return cast("str", self._sp_call("UMoviePipelineExecutorJob", "GetErrorMessage", {}, "str"))
+        return cast("str", self._sp_call("UMoviePipelineExecutorJob", "GetErrorMessage", {}, _t.T_str))
 
     def GetOutputFiles(self, *, Frame: int) -> list[str]:
-        return cast("list[str]", self._sp_call("UMoviePipelineExecutorJob", "GetOutputFiles", {"Frame": Frame}, "list[str]"))
+        return cast("list[str]", self._sp_call("UMoviePipelineExecutorJob", "GetOutputFiles", {"Frame": Frame}, _t.T_list_of_str))
 
     def Cancel(self) -> None:
-        return cast(None, self._sp_call("UMoviePipelineExecutorJob", "Cancel", {}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UMoviePipelineExecutorJob", "Cancel", {}, _t.T_void))  # a Future when queued by call_async
 
 
 _register_proxy(UMoviePipelineExecutorJob)
@@ -1636,25 +1637,25 @@ class UMoviePipelineQueueEngineSubsystem(UObject, api.UMoviePipelineQueueEngineS
     __slots__ = ()
 
     def AllocateJob(self, *, Camera: api.UCameraSensorComponent, JobName: str = _DEFAULT) -> api.UMoviePipelineExecutorJob:
-        return cast("api.UMoviePipelineExecutorJob", self._sp_call("UMoviePipelineQueueEngineSubsystem", "AllocateJob", {"Camera": Camera, "JobName": JobName}, "UMoviePipelineExecutorJob"))
+        return cast("api.UMoviePipelineExecutorJob", self._sp_call("UMoviePipelineQueueEngineSubsystem", "AllocateJob", {"Camera": Camera, "JobName": JobName}, _t.T_UMoviePipelineExecutorJob))
 
     def RenderJob(self, *, Job: api.UMoviePipelineExecutorJob) -> None:
-        return cast(None, self._sp_call("UMoviePipelineQueueEngineSubsystem", "RenderJob", {"Job": Job}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UMoviePipelineQueueEngineSubsystem", "RenderJob", {"Job": Job}, _t.T_void))  # a Future when queued by call_async
 
     def IsRendering(self) -> bool:
-        return cast("bool", self._sp_call("UMoviePipelineQueueEngineSubsystem", "IsRendering", {}, "bool"))
+        return cast("bool", self._sp_call("UMoviePipelineQueueEngineSubsystem", "IsRendering", {}, _t.T_bool))
 
     def GetActiveJob(self) -> api.UMoviePipelineExecutorJob | None:
-        return cast("api.UMoviePipelineExecutorJob | None", self._sp_call("UMoviePipelineQueueEngineSubsystem", "GetActiveJob", {}, "UMoviePipelineExecutorJob | None"))
+        return cast("api.UMoviePipelineExecutorJob | None", self._sp_call("UMoviePipelineQueueEngineSubsystem", "GetActiveJob", {}, _t.T_UMoviePipelineExecutorJob_or_None))
 
     def GetJobs(self) -> list[api.UMoviePipelineExecutorJob]:
-        return cast("list[api.UMoviePipelineExecutorJob]", self._sp_call("UMoviePipelineQueueEngineSubsystem", "GetJobs", {}, "list[UMoviePipelineExecutorJob]"))
+        return cast("list[api.UMoviePipelineExecutorJob]", self._sp_call("UMoviePipelineQueueEngineSubsystem", "GetJobs", {}, _t.T_list_of_UMoviePipelineExecutorJob))
 
     def CancelAllJobs(self) -> None:
-        return cast(None, self._sp_call("UMoviePipelineQueueEngineSubsystem", "CancelAllJobs", {}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UMoviePipelineQueueEngineSubsystem", "CancelAllJobs", {}, _t.T_void))  # a Future when queued by call_async
 
     def DeleteJob(self, *, Job: api.UMoviePipelineExecutorJob) -> None:
-        return cast(None, self._sp_call("UMoviePipelineQueueEngineSubsystem", "DeleteJob", {"Job": Job}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UMoviePipelineQueueEngineSubsystem", "DeleteJob", {"Job": Job}, _t.T_void))  # a Future when queued by call_async
 
 
 _register_proxy(UMoviePipelineQueueEngineSubsystem)
@@ -1664,13 +1665,13 @@ class UNavigationSystemV1(UObject, api.UNavigationSystemV1):
     __slots__ = ()
 
     def GetNavDataForAgentName(self, *, AgentName: str) -> api.ARecastNavMesh | None:
-        return cast("api.ARecastNavMesh | None", self._sp_call("UNavigationSystemV1", "GetNavDataForAgentName", {"AgentName": AgentName}, "ARecastNavMesh | None"))
+        return cast("api.ARecastNavMesh | None", self._sp_call("UNavigationSystemV1", "GetNavDataForAgentName", {"AgentName": AgentName}, _t.T_ARecastNavMesh_or_None))
 
     def GetDefaultNavDataInstance(self) -> api.ARecastNavMesh:
-        return cast("api.ARecastNavMesh", self._sp_call("UNavigationSystemV1", "GetDefaultNavDataInstance", {}, "ARecastNavMesh"))
+        return cast("api.ARecastNavMesh", self._sp_call("UNavigationSystemV1", "GetDefaultNavDataInstance", {}, _t.T_ARecastNavMesh))
 
     def Build(self) -> None:
-        return cast(None, self._sp_call("UNavigationSystemV1", "Build", {}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UNavigationSystemV1", "Build", {}, _t.T_void))  # a Future when queued by call_async
 
 
 _register_proxy(UNavigationSystemV1)
@@ -1681,7 +1682,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def GenerationMode(self) -> EPCGGenerationMode:
-        return cast("EPCGGenerationMode", self._sp_get("UPCGComponent", "GenerationMode", "EPCGGenerationMode"))
+        return cast("EPCGGenerationMode", self._sp_get("UPCGComponent", "GenerationMode", _t.T_EPCGGenerationMode))
 
     @GenerationMode.setter
     def GenerationMode(self, value: EPCGGenerationMode) -> None:
@@ -1689,7 +1690,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def Seed(self) -> int:
-        return cast("int", self._sp_get("UPCGComponent", "Seed", "int"))
+        return cast("int", self._sp_get("UPCGComponent", "Seed", _t.T_int))
 
     @Seed.setter
     def Seed(self, value: int) -> None:
@@ -1697,7 +1698,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def ActorClass(self) -> type[api.AActor] | None:
-        return cast("type[api.AActor] | None", self._sp_get("UPCGComponent", "ActorClass", "type[AActor] | None"))
+        return cast("type[api.AActor] | None", self._sp_get("UPCGComponent", "ActorClass", _t.T_class_AActor_or_None))
 
     @ActorClass.setter
     def ActorClass(self, value: type[api.AActor] | None) -> None:
@@ -1705,7 +1706,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def StaticMesh(self) -> str:
-        return cast("str", self._sp_get("UPCGComponent", "StaticMesh", "str"))
+        return cast("str", self._sp_get("UPCGComponent", "StaticMesh", _t.T_str))
 
     @StaticMesh.setter
     def StaticMesh(self, value: str) -> None:
@@ -1713,7 +1714,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def Materials(self) -> list[str]:
-        return cast("list[str]", self._sp_get("UPCGComponent", "Materials", "list[str]"))
+        return cast("list[str]", self._sp_get("UPCGComponent", "Materials", _t.T_list_of_str))
 
     @Materials.setter
     def Materials(self, value: list[str]) -> None:
@@ -1721,7 +1722,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def Spacing(self) -> float:
-        return cast("float", self._sp_get("UPCGComponent", "Spacing", "float"))
+        return cast("float", self._sp_get("UPCGComponent", "Spacing", _t.T_float))
 
     @Spacing.setter
     def Spacing(self, value: float) -> None:
@@ -1729,7 +1730,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def MaxCount(self) -> int:
-        return cast("int", self._sp_get("UPCGComponent", "MaxCount", "int"))
+        return cast("int", self._sp_get("UPCGComponent", "MaxCount", _t.T_int))
 
     @MaxCount.setter
     def MaxCount(self, value: int) -> None:
@@ -1737,7 +1738,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def MinScale(self) -> float:
-        return cast("float", self._sp_get("UPCGComponent", "MinScale", "float"))
+        return cast("float", self._sp_get("UPCGComponent", "MinScale", _t.T_float))
 
     @MinScale.setter
     def MinScale(self, value: float) -> None:
@@ -1745,7 +1746,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def MaxScale(self) -> float:
-        return cast("float", self._sp_get("UPCGComponent", "MaxScale", "float"))
+        return cast("float", self._sp_get("UPCGComponent", "MaxScale", _t.T_float))
 
     @MaxScale.setter
     def MaxScale(self, value: float) -> None:
@@ -1753,7 +1754,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def bRandomYaw(self) -> bool:
-        return cast("bool", self._sp_get("UPCGComponent", "bRandomYaw", "bool"))
+        return cast("bool", self._sp_get("UPCGComponent", "bRandomYaw", _t.T_bool))
 
     @bRandomYaw.setter
     def bRandomYaw(self, value: bool) -> None:
@@ -1761,7 +1762,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def bProjectToGround(self) -> bool:
-        return cast("bool", self._sp_get("UPCGComponent", "bProjectToGround", "bool"))
+        return cast("bool", self._sp_get("UPCGComponent", "bProjectToGround", _t.T_bool))
 
     @bProjectToGround.setter
     def bProjectToGround(self, value: bool) -> None:
@@ -1769,7 +1770,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def ExclusionTag(self) -> str:
-        return cast("str", self._sp_get("UPCGComponent", "ExclusionTag", "str"))
+        return cast("str", self._sp_get("UPCGComponent", "ExclusionTag", _t.T_str))
 
     @ExclusionTag.setter
     def ExclusionTag(self, value: str) -> None:
@@ -1777,7 +1778,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def SplineTag(self) -> str:
-        return cast("str", self._sp_get("UPCGComponent", "SplineTag", "str"))
+        return cast("str", self._sp_get("UPCGComponent", "SplineTag", _t.T_str))
 
     @SplineTag.setter
     def SplineTag(self, value: str) -> None:
@@ -1785,7 +1786,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def SplineOffset(self) -> float:
-        return cast("float", self._sp_get("UPCGComponent", "SplineOffset", "float"))
+        return cast("float", self._sp_get("UPCGComponent", "SplineOffset", _t.T_float))
 
     @SplineOffset.setter
     def SplineOffset(self, value: float) -> None:
@@ -1793,7 +1794,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def bBothSides(self) -> bool:
-        return cast("bool", self._sp_get("UPCGComponent", "bBothSides", "bool"))
+        return cast("bool", self._sp_get("UPCGComponent", "bBothSides", _t.T_bool))
 
     @bBothSides.setter
     def bBothSides(self, value: bool) -> None:
@@ -1801,7 +1802,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def bAlignToSpline(self) -> bool:
-        return cast("bool", self._sp_get("UPCGComponent", "bAlignToSpline", "bool"))
+        return cast("bool", self._sp_get("UPCGComponent", "bAlignToSpline", _t.T_bool))
 
     @bAlignToSpline.setter
     def bAlignToSpline(self, value: bool) -> None:
@@ -1809,7 +1810,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def BlockSize(self) -> float:
-        return cast("float", self._sp_get("UPCGComponent", "BlockSize", "float"))
+        return cast("float", self._sp_get("UPCGComponent", "BlockSize", _t.T_float))
 
     @BlockSize.setter
     def BlockSize(self, value: float) -> None:
@@ -1817,7 +1818,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def StreetWidth(self) -> float:
-        return cast("float", self._sp_get("UPCGComponent", "StreetWidth", "float"))
+        return cast("float", self._sp_get("UPCGComponent", "StreetWidth", _t.T_float))
 
     @StreetWidth.setter
     def StreetWidth(self, value: float) -> None:
@@ -1825,7 +1826,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def LotsPerSide(self) -> int:
-        return cast("int", self._sp_get("UPCGComponent", "LotsPerSide", "int"))
+        return cast("int", self._sp_get("UPCGComponent", "LotsPerSide", _t.T_int))
 
     @LotsPerSide.setter
     def LotsPerSide(self, value: int) -> None:
@@ -1833,7 +1834,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def MinHeight(self) -> float:
-        return cast("float", self._sp_get("UPCGComponent", "MinHeight", "float"))
+        return cast("float", self._sp_get("UPCGComponent", "MinHeight", _t.T_float))
 
     @MinHeight.setter
     def MinHeight(self, value: float) -> None:
@@ -1841,7 +1842,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def MaxHeight(self) -> float:
-        return cast("float", self._sp_get("UPCGComponent", "MaxHeight", "float"))
+        return cast("float", self._sp_get("UPCGComponent", "MaxHeight", _t.T_float))
 
     @MaxHeight.setter
     def MaxHeight(self, value: float) -> None:
@@ -1849,7 +1850,7 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def RoadTag(self) -> str:
-        return cast("str", self._sp_get("UPCGComponent", "RoadTag", "str"))
+        return cast("str", self._sp_get("UPCGComponent", "RoadTag", _t.T_str))
 
     @RoadTag.setter
     def RoadTag(self, value: str) -> None:
@@ -1857,29 +1858,29 @@ class UPCGComponent(UActorComponent, api.UPCGComponent):
 
     @property
     def RoadWidth(self) -> float:
-        return cast("float", self._sp_get("UPCGComponent", "RoadWidth", "float"))
+        return cast("float", self._sp_get("UPCGComponent", "RoadWidth", _t.T_float))
 
     @RoadWidth.setter
     def RoadWidth(self, value: float) -> None:
         self._sp_set("UPCGComponent", "RoadWidth", value)
 
     def Generate(self, *, bForce: bool = _DEFAULT) -> None:
-        return cast(None, self._sp_call("UPCGComponent", "Generate", {"bForce": bForce}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UPCGComponent", "Generate", {"bForce": bForce}, _t.T_void))  # a Future when queued by call_async
 
     def Cleanup(self) -> None:
-        return cast(None, self._sp_call("UPCGComponent", "Cleanup", {}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UPCGComponent", "Cleanup", {}, _t.T_void))  # a Future when queued by call_async
 
     def FlushCache(self) -> None:
-        return cast(None, self._sp_call("UPCGComponent", "FlushCache", {}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UPCGComponent", "FlushCache", {}, _t.T_void))  # a Future when queued by call_async
 
     def GetGeneratedActors(self) -> list[api.AActor]:
-        return cast("list[api.AActor]", self._sp_call("UPCGComponent", "GetGeneratedActors", {}, "list[AActor]"))
+        return cast("list[api.AActor]", self._sp_call("UPCGComponent", "GetGeneratedActors", {}, _t.T_list_of_AActor))
 
     def IsGenerated(self) -> bool:
-        return cast("bool", self._sp_call("UPCGComponent", "IsGenerated", {}, "bool"))
+        return cast("bool", self._sp_call("UPCGComponent", "IsGenerated", {}, _t.T_bool))
 
     def GetLastGenerationSeconds(self) -> float:
-        return cast("float", self._sp_call("UPCGComponent", "GetLastGenerationSeconds", {}, "float"))
+        return cast("float", self._sp_call("UPCGComponent", "GetLastGenerationSeconds", {}, _t.T_float))
 
 
 _register_proxy(UPCGComponent)
@@ -1890,7 +1891,7 @@ class UPointLightComponent(ULightComponent, api.UPointLightComponent):
 
     @property
     def AttenuationRadius(self) -> float:
-        return cast("float", self._sp_get("UPointLightComponent", "AttenuationRadius", "float"))
+        return cast("float", self._sp_get("UPointLightComponent", "AttenuationRadius", _t.T_float))
 
     @AttenuationRadius.setter
     def AttenuationRadius(self, value: float) -> None:
@@ -1905,7 +1906,7 @@ class USkyLightComponent(USceneComponent, api.USkyLightComponent):
 
     @property
     def SkyColor(self) -> FLinearColor:
-        return cast("FLinearColor", self._sp_get("USkyLightComponent", "SkyColor", "FLinearColor"))
+        return cast("FLinearColor", self._sp_get("USkyLightComponent", "SkyColor", _t.T_FLinearColor))
 
     @SkyColor.setter
     def SkyColor(self, value: FLinearColor) -> None:
@@ -1913,7 +1914,7 @@ class USkyLightComponent(USceneComponent, api.USkyLightComponent):
 
     @property
     def Intensity(self) -> float:
-        return cast("float", self._sp_get("USkyLightComponent", "Intensity", "float"))
+        return cast("float", self._sp_get("USkyLightComponent", "Intensity", _t.T_float))
 
     @Intensity.setter
     def Intensity(self, value: float) -> None:
@@ -1921,7 +1922,7 @@ class USkyLightComponent(USceneComponent, api.USkyLightComponent):
 
     @property
     def BackgroundColor(self) -> FLinearColor:
-        return cast("FLinearColor", self._sp_get("USkyLightComponent", "BackgroundColor", "FLinearColor"))
+        return cast("FLinearColor", self._sp_get("USkyLightComponent", "BackgroundColor", _t.T_FLinearColor))
 
     @BackgroundColor.setter
     def BackgroundColor(self, value: FLinearColor) -> None:
@@ -1935,7 +1936,7 @@ class USpFuncComponent(UActorComponent, api.USpFuncComponent):
     __slots__ = ()
 
     def GetFuncNames(self) -> list[str]:
-        return cast("list[str]", self._sp_call("USpFuncComponent", "GetFuncNames", {}, "list[str]"))
+        return cast("list[str]", self._sp_call("USpFuncComponent", "GetFuncNames", {}, _t.T_list_of_str))
 
 
 _register_proxy(USpFuncComponent)
@@ -1946,14 +1947,14 @@ class USphereComponent(UShapeComponent, api.USphereComponent):
 
     @property
     def SphereRadius(self) -> float:
-        return cast("float", self._sp_get("USphereComponent", "SphereRadius", "float"))
+        return cast("float", self._sp_get("USphereComponent", "SphereRadius", _t.T_float))
 
     @SphereRadius.setter
     def SphereRadius(self, value: float) -> None:
         self._sp_set("USphereComponent", "SphereRadius", value)
 
     def SetSphereRadius(self, *, InSphereRadius: float) -> None:
-        return cast(None, self._sp_call("USphereComponent", "SetSphereRadius", {"InSphereRadius": InSphereRadius}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("USphereComponent", "SetSphereRadius", {"InSphereRadius": InSphereRadius}, _t.T_void))  # a Future when queued by call_async
 
 
 _register_proxy(USphereComponent)
@@ -1964,7 +1965,7 @@ class USplineComponent(USceneComponent, api.USplineComponent):
 
     @property
     def SplinePoints(self) -> list[FVector]:
-        return cast("list[FVector]", self._sp_get("USplineComponent", "SplinePoints", "list[FVector]"))
+        return cast("list[FVector]", self._sp_get("USplineComponent", "SplinePoints", _t.T_list_of_FVector))
 
     @SplinePoints.setter
     def SplinePoints(self, value: list[FVector]) -> None:
@@ -1972,7 +1973,7 @@ class USplineComponent(USceneComponent, api.USplineComponent):
 
     @property
     def bClosedLoop(self) -> bool:
-        return cast("bool", self._sp_get("USplineComponent", "bClosedLoop", "bool"))
+        return cast("bool", self._sp_get("USplineComponent", "bClosedLoop", _t.T_bool))
 
     @bClosedLoop.setter
     def bClosedLoop(self, value: bool) -> None:
@@ -1980,7 +1981,7 @@ class USplineComponent(USceneComponent, api.USplineComponent):
 
     @property
     def bDrawDebug(self) -> bool:
-        return cast("bool", self._sp_get("USplineComponent", "bDrawDebug", "bool"))
+        return cast("bool", self._sp_get("USplineComponent", "bDrawDebug", _t.T_bool))
 
     @bDrawDebug.setter
     def bDrawDebug(self, value: bool) -> None:
@@ -1988,7 +1989,7 @@ class USplineComponent(USceneComponent, api.USplineComponent):
 
     @property
     def DebugLineThickness(self) -> float:
-        return cast("float", self._sp_get("USplineComponent", "DebugLineThickness", "float"))
+        return cast("float", self._sp_get("USplineComponent", "DebugLineThickness", _t.T_float))
 
     @DebugLineThickness.setter
     def DebugLineThickness(self, value: float) -> None:
@@ -1996,62 +1997,62 @@ class USplineComponent(USceneComponent, api.USplineComponent):
 
     @property
     def DebugLineColor(self) -> FLinearColor:
-        return cast("FLinearColor", self._sp_get("USplineComponent", "DebugLineColor", "FLinearColor"))
+        return cast("FLinearColor", self._sp_get("USplineComponent", "DebugLineColor", _t.T_FLinearColor))
 
     @DebugLineColor.setter
     def DebugLineColor(self, value: FLinearColor) -> None:
         self._sp_set("USplineComponent", "DebugLineColor", value)
 
     def SetDebugLineThickness(self, *, Thickness: float) -> None:
-        return cast(None, self._sp_call("USplineComponent", "SetDebugLineThickness", {"Thickness": Thickness}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("USplineComponent", "SetDebugLineThickness", {"Thickness": Thickness}, _t.T_void))  # a Future when queued by call_async
 
     def AddSplinePoint(self, *, Position: FVector, CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = _DEFAULT) -> None:
-        return cast(None, self._sp_call("USplineComponent", "AddSplinePoint", {"Position": Position, "CoordinateSpace": CoordinateSpace, "bUpdateSpline": bUpdateSpline}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("USplineComponent", "AddSplinePoint", {"Position": Position, "CoordinateSpace": CoordinateSpace, "bUpdateSpline": bUpdateSpline}, _t.T_void))  # a Future when queued by call_async
 
     def ClearSplinePoints(self, *, bUpdateSpline: bool = _DEFAULT) -> None:
-        return cast(None, self._sp_call("USplineComponent", "ClearSplinePoints", {"bUpdateSpline": bUpdateSpline}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("USplineComponent", "ClearSplinePoints", {"bUpdateSpline": bUpdateSpline}, _t.T_void))  # a Future when queued by call_async
 
     def SetSplinePoints(self, *, Points: list[FVector], CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = _DEFAULT) -> None:
-        return cast(None, self._sp_call("USplineComponent", "SetSplinePoints", {"Points": Points, "CoordinateSpace": CoordinateSpace, "bUpdateSpline": bUpdateSpline}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("USplineComponent", "SetSplinePoints", {"Points": Points, "CoordinateSpace": CoordinateSpace, "bUpdateSpline": bUpdateSpline}, _t.T_void))  # a Future when queued by call_async
 
     def GetNumberOfSplinePoints(self) -> int:
-        return cast("int", self._sp_call("USplineComponent", "GetNumberOfSplinePoints", {}, "int"))
+        return cast("int", self._sp_call("USplineComponent", "GetNumberOfSplinePoints", {}, _t.T_int))
 
     def SetClosedLoop(self, *, bInClosedLoop: bool, bUpdateSpline: bool = _DEFAULT) -> None:
-        return cast(None, self._sp_call("USplineComponent", "SetClosedLoop", {"bInClosedLoop": bInClosedLoop, "bUpdateSpline": bUpdateSpline}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("USplineComponent", "SetClosedLoop", {"bInClosedLoop": bInClosedLoop, "bUpdateSpline": bUpdateSpline}, _t.T_void))  # a Future when queued by call_async
 
     def IsClosedLoop(self) -> bool:
-        return cast("bool", self._sp_call("USplineComponent", "IsClosedLoop", {}, "bool"))
+        return cast("bool", self._sp_call("USplineComponent", "IsClosedLoop", {}, _t.T_bool))
 
     def GetSplineLength(self) -> float:
-        return cast("float", self._sp_call("USplineComponent", "GetSplineLength", {}, "float"))
+        return cast("float", self._sp_call("USplineComponent", "GetSplineLength", {}, _t.T_float))
 
     def GetLocationAtDistanceAlongSpline(self, *, Distance: float, CoordinateSpace: ESplineCoordinateSpace) -> FVector:
-        return cast("FVector", self._sp_call("USplineComponent", "GetLocationAtDistanceAlongSpline", {"Distance": Distance, "CoordinateSpace": CoordinateSpace}, "FVector"))
+        return cast("FVector", self._sp_call("USplineComponent", "GetLocationAtDistanceAlongSpline", {"Distance": Distance, "CoordinateSpace": CoordinateSpace}, _t.T_FVector))
 
     def GetDirectionAtDistanceAlongSpline(self, *, Distance: float, CoordinateSpace: ESplineCoordinateSpace) -> FVector:
-        return cast("FVector", self._sp_call("USplineComponent", "GetDirectionAtDistanceAlongSpline", {"Distance": Distance, "CoordinateSpace": CoordinateSpace}, "FVector"))
+        return cast("FVector", self._sp_call("USplineComponent", "GetDirectionAtDistanceAlongSpline", {"Distance": Distance, "CoordinateSpace": CoordinateSpace}, _t.T_FVector))
 
     def GetRotationAtDistanceAlongSpline(self, *, Distance: float, CoordinateSpace: ESplineCoordinateSpace) -> FRotator:
-        return cast("FRotator", self._sp_call("USplineComponent", "GetRotationAtDistanceAlongSpline", {"Distance": Distance, "CoordinateSpace": CoordinateSpace}, "FRotator"))
+        return cast("FRotator", self._sp_call("USplineComponent", "GetRotationAtDistanceAlongSpline", {"Distance": Distance, "CoordinateSpace": CoordinateSpace}, _t.T_FRotator))
 
     def GetLocationAtSplineInputKey(self, *, InKey: float, CoordinateSpace: ESplineCoordinateSpace) -> FVector:
-        return cast("FVector", self._sp_call("USplineComponent", "GetLocationAtSplineInputKey", {"InKey": InKey, "CoordinateSpace": CoordinateSpace}, "FVector"))
+        return cast("FVector", self._sp_call("USplineComponent", "GetLocationAtSplineInputKey", {"InKey": InKey, "CoordinateSpace": CoordinateSpace}, _t.T_FVector))
 
     def GetLocationAtSplinePoint(self, *, PointIndex: int, CoordinateSpace: ESplineCoordinateSpace) -> FVector:
-        return cast("FVector", self._sp_call("USplineComponent", "GetLocationAtSplinePoint", {"PointIndex": PointIndex, "CoordinateSpace": CoordinateSpace}, "FVector"))
+        return cast("FVector", self._sp_call("USplineComponent", "GetLocationAtSplinePoint", {"PointIndex": PointIndex, "CoordinateSpace": CoordinateSpace}, _t.T_FVector))
 
     def GetTangentAtSplinePoint(self, *, PointIndex: int, CoordinateSpace: ESplineCoordinateSpace) -> FVector:
-        return cast("FVector", self._sp_call("USplineComponent", "GetTangentAtSplinePoint", {"PointIndex": PointIndex, "CoordinateSpace": CoordinateSpace}, "FVector"))
+        return cast("FVector", self._sp_call("USplineComponent", "GetTangentAtSplinePoint", {"PointIndex": PointIndex, "CoordinateSpace": CoordinateSpace}, _t.T_FVector))
 
     def SetTangentAtSplinePoint(self, *, PointIndex: int, InTangent: FVector, CoordinateSpace: ESplineCoordinateSpace, bUpdateSpline: bool = _DEFAULT) -> None:
-        return cast(None, self._sp_call("USplineComponent", "SetTangentAtSplinePoint", {"PointIndex": PointIndex, "InTangent": InTangent, "CoordinateSpace": CoordinateSpace, "bUpdateSpline": bUpdateSpline}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("USplineComponent", "SetTangentAtSplinePoint", {"PointIndex": PointIndex, "InTangent": InTangent, "CoordinateSpace": CoordinateSpace, "bUpdateSpline": bUpdateSpline}, _t.T_void))  # a Future when queued by call_async
 
     def GetDistanceAlongSplineAtSplinePoint(self, *, PointIndex: int) -> float:
-        return cast("float", self._sp_call("USplineComponent", "GetDistanceAlongSplineAtSplinePoint", {"PointIndex": PointIndex}, "float"))
+        return cast("float", self._sp_call("USplineComponent", "GetDistanceAlongSplineAtSplinePoint", {"PointIndex": PointIndex}, _t.T_float))
 
     def GetLocationsAtDistances(self, *, Distances: NDArray[np.float64], CoordinateSpace: ESplineCoordinateSpace) -> NDArray[np.float64]:
-        return cast("NDArray[np.float64]", self._sp_call("USplineComponent", "GetLocationsAtDistances", {"Distances": Distances, "CoordinateSpace": CoordinateSpace}, "NDArray[np.float64]"))
+        return cast("NDArray[np.float64]", self._sp_call("USplineComponent", "GetLocationsAtDistances", {"Distances": Distances, "CoordinateSpace": CoordinateSpace}, _t.T_array_float64))
 
 
 _register_proxy(USplineComponent)
@@ -2062,7 +2063,7 @@ class USpotLightComponent(UPointLightComponent, api.USpotLightComponent):
 
     @property
     def InnerConeAngle(self) -> float:
-        return cast("float", self._sp_get("USpotLightComponent", "InnerConeAngle", "float"))
+        return cast("float", self._sp_get("USpotLightComponent", "InnerConeAngle", _t.T_float))
 
     @InnerConeAngle.setter
     def InnerConeAngle(self, value: float) -> None:
@@ -2070,7 +2071,7 @@ class USpotLightComponent(UPointLightComponent, api.USpotLightComponent):
 
     @property
     def OuterConeAngle(self) -> float:
-        return cast("float", self._sp_get("USpotLightComponent", "OuterConeAngle", "float"))
+        return cast("float", self._sp_get("USpotLightComponent", "OuterConeAngle", _t.T_float))
 
     @OuterConeAngle.setter
     def OuterConeAngle(self, value: float) -> None:
@@ -2085,7 +2086,7 @@ class UStaticMeshComponent(UPrimitiveComponent, api.UStaticMeshComponent):
 
     @property
     def StaticMesh(self) -> str:
-        return cast("str", self._sp_get("UStaticMeshComponent", "StaticMesh", "str"))
+        return cast("str", self._sp_get("UStaticMeshComponent", "StaticMesh", _t.T_str))
 
     @StaticMesh.setter
     def StaticMesh(self, value: str) -> None:
@@ -2093,17 +2094,17 @@ class UStaticMeshComponent(UPrimitiveComponent, api.UStaticMeshComponent):
 
     @property
     def Materials(self) -> list[str]:
-        return cast("list[str]", self._sp_get("UStaticMeshComponent", "Materials", "list[str]"))
+        return cast("list[str]", self._sp_get("UStaticMeshComponent", "Materials", _t.T_list_of_str))
 
     @Materials.setter
     def Materials(self, value: list[str]) -> None:
         self._sp_set("UStaticMeshComponent", "Materials", value)
 
     def SetStaticMesh(self, *, NewMesh: str) -> bool:
-        return cast("bool", self._sp_call("UStaticMeshComponent", "SetStaticMesh", {"NewMesh": NewMesh}, "bool"))
+        return cast("bool", self._sp_call("UStaticMeshComponent", "SetStaticMesh", {"NewMesh": NewMesh}, _t.T_bool))
 
     def SetMaterial(self, *, ElementIndex: int, Material: str) -> None:
-        return cast(None, self._sp_call("UStaticMeshComponent", "SetMaterial", {"ElementIndex": ElementIndex, "Material": Material}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UStaticMeshComponent", "SetMaterial", {"ElementIndex": ElementIndex, "Material": Material}, _t.T_void))  # a Future when queued by call_async
 
 
 _register_proxy(UStaticMeshComponent)
@@ -2119,16 +2120,16 @@ class UWorld(UObject, api.UWorld):
     def spawn_actor(self, *, uclass: str, location: FVector = ..., rotation: FRotator = ..., name: str = ..., tags: list[str] = ...) -> api.AActor: ...
 
     def spawn_actor(self, *, uclass: type[api.AActor] | str, location: FVector = _DEFAULT, rotation: FRotator = _DEFAULT, name: str = _DEFAULT, tags: list[str] = _DEFAULT) -> Any:
-        return self._sp_call("UWorld", "spawn_actor", {"uclass": uclass, "location": location, "rotation": rotation, "name": name, "tags": tags}, "AActor")
+        return self._sp_call("UWorld", "spawn_actor", {"uclass": uclass, "location": location, "rotation": rotation, "name": name, "tags": tags}, _t.T_AActor)
 
     def destroy_actor(self, *, actor: api.AActor) -> None:
-        return cast(None, self._sp_call("UWorld", "destroy_actor", {"actor": actor}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UWorld", "destroy_actor", {"actor": actor}, _t.T_void))  # a Future when queued by call_async
 
     def find_actor_by_name(self, *, name: str) -> api.AActor | None:
-        return cast("api.AActor | None", self._sp_call("UWorld", "find_actor_by_name", {"name": name}, "AActor | None"))
+        return cast("api.AActor | None", self._sp_call("UWorld", "find_actor_by_name", {"name": name}, _t.T_AActor_or_None))
 
     def find_actors_by_tag(self, *, tag: str) -> list[api.AActor]:
-        return cast("list[api.AActor]", self._sp_call("UWorld", "find_actors_by_tag", {"tag": tag}, "list[AActor]"))
+        return cast("list[api.AActor]", self._sp_call("UWorld", "find_actors_by_tag", {"tag": tag}, _t.T_list_of_AActor))
 
     @overload
     def find_actor_by_class(self, *, uclass: type[_AActorT]) -> _AActorT | None: ...
@@ -2137,7 +2138,7 @@ class UWorld(UObject, api.UWorld):
     def find_actor_by_class(self, *, uclass: str) -> api.AActor | None: ...
 
     def find_actor_by_class(self, *, uclass: type[api.AActor] | str) -> Any:
-        return self._sp_call("UWorld", "find_actor_by_class", {"uclass": uclass}, "AActor | None")
+        return self._sp_call("UWorld", "find_actor_by_class", {"uclass": uclass}, _t.T_AActor_or_None)
 
     @overload
     def find_actors_by_class(self, *, uclass: type[_AActorT]) -> list[_AActorT]: ...
@@ -2146,7 +2147,7 @@ class UWorld(UObject, api.UWorld):
     def find_actors_by_class(self, *, uclass: str) -> list[api.AActor]: ...
 
     def find_actors_by_class(self, *, uclass: type[api.AActor] | str) -> Any:
-        return self._sp_call("UWorld", "find_actors_by_class", {"uclass": uclass}, "list[AActor]")
+        return self._sp_call("UWorld", "find_actors_by_class", {"uclass": uclass}, _t.T_list_of_AActor)
 
     @overload
     def find_actors_by_class_as_dict(self, *, uclass: type[_AActorT]) -> dict[str, _AActorT]: ...
@@ -2155,13 +2156,13 @@ class UWorld(UObject, api.UWorld):
     def find_actors_by_class_as_dict(self, *, uclass: str) -> dict[str, api.AActor]: ...
 
     def find_actors_by_class_as_dict(self, *, uclass: type[api.AActor] | str) -> Any:
-        return self._sp_call("UWorld", "find_actors_by_class_as_dict", {"uclass": uclass}, "dict[str, AActor]")
+        return self._sp_call("UWorld", "find_actors_by_class_as_dict", {"uclass": uclass}, _t.T_dict_of_AActor)
 
     def find_actors(self) -> list[api.AActor]:
-        return cast("list[api.AActor]", self._sp_call("UWorld", "find_actors", {}, "list[AActor]"))
+        return cast("list[api.AActor]", self._sp_call("UWorld", "find_actors", {}, _t.T_list_of_AActor))
 
     def get_component_by_name(self, *, actor: api.AActor, component_name: str) -> api.UActorComponent | None:
-        return cast("api.UActorComponent | None", self._sp_call("UWorld", "get_component_by_name", {"actor": actor, "component_name": component_name}, "UActorComponent | None"))
+        return cast("api.UActorComponent | None", self._sp_call("UWorld", "get_component_by_name", {"actor": actor, "component_name": component_name}, _t.T_UActorComponent_or_None))
 
     @overload
     def get_components_by_class(self, *, actor: api.AActor, uclass: type[_UActorComponentT]) -> list[_UActorComponentT]: ...
@@ -2170,7 +2171,7 @@ class UWorld(UObject, api.UWorld):
     def get_components_by_class(self, *, actor: api.AActor, uclass: str) -> list[api.UActorComponent]: ...
 
     def get_components_by_class(self, *, actor: api.AActor, uclass: type[api.UActorComponent] | str) -> Any:
-        return self._sp_call("UWorld", "get_components_by_class", {"actor": actor, "uclass": uclass}, "list[UActorComponent]")
+        return self._sp_call("UWorld", "get_components_by_class", {"actor": actor, "uclass": uclass}, _t.T_list_of_UActorComponent)
 
     @overload
     def get_components_by_class_as_dict(self, *, actor: api.AActor, uclass: type[_UActorComponentT]) -> dict[str, _UActorComponentT]: ...
@@ -2179,7 +2180,7 @@ class UWorld(UObject, api.UWorld):
     def get_components_by_class_as_dict(self, *, actor: api.AActor, uclass: str) -> dict[str, api.UActorComponent]: ...
 
     def get_components_by_class_as_dict(self, *, actor: api.AActor, uclass: type[api.UActorComponent] | str) -> Any:
-        return self._sp_call("UWorld", "get_components_by_class_as_dict", {"actor": actor, "uclass": uclass}, "dict[str, UActorComponent]")
+        return self._sp_call("UWorld", "get_components_by_class_as_dict", {"actor": actor, "uclass": uclass}, _t.T_dict_of_UActorComponent)
 
     @overload
     def load_class(self, *, uclass: type[_UObjectT], name: str) -> type[_UObjectT]: ...
@@ -2188,7 +2189,7 @@ class UWorld(UObject, api.UWorld):
     def load_class(self, *, uclass: str, name: str) -> type[api.UObject]: ...
 
     def load_class(self, *, uclass: type[api.UObject] | str, name: str) -> Any:
-        return self._sp_call("UWorld", "load_class", {"uclass": uclass, "name": name}, "type[UObject]")
+        return self._sp_call("UWorld", "load_class", {"uclass": uclass, "name": name}, _t.T_class_UObject)
 
     @overload
     def get_default_object(self, *, uclass: type[_UObjectT]) -> _UObjectT: ...
@@ -2197,49 +2198,49 @@ class UWorld(UObject, api.UWorld):
     def get_default_object(self, *, uclass: str) -> api.UObject: ...
 
     def get_default_object(self, *, uclass: type[api.UObject] | str) -> Any:
-        return self._sp_call("UWorld", "get_default_object", {"uclass": uclass}, "UObject")
+        return self._sp_call("UWorld", "get_default_object", {"uclass": uclass}, _t.T_UObject)
 
     def get_actor_locations(self, *, actors: list[api.AActor]) -> NDArray[np.float64]:
-        return cast("NDArray[np.float64]", self._sp_call("UWorld", "get_actor_locations", {"actors": actors}, "NDArray[np.float64]"))
+        return cast("NDArray[np.float64]", self._sp_call("UWorld", "get_actor_locations", {"actors": actors}, _t.T_array_float64))
 
     def set_actor_locations(self, *, actors: list[api.AActor], locations: NDArray[np.float64]) -> None:
-        return cast(None, self._sp_call("UWorld", "set_actor_locations", {"actors": actors, "locations": locations}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UWorld", "set_actor_locations", {"actors": actors, "locations": locations}, _t.T_void))  # a Future when queued by call_async
 
     def get_actor_count(self) -> int:
-        return cast("int", self._sp_call("UWorld", "get_actor_count", {}, "int"))
+        return cast("int", self._sp_call("UWorld", "get_actor_count", {}, _t.T_int))
 
     def get_time_seconds(self) -> float:
-        return cast("float", self._sp_call("UWorld", "get_time_seconds", {}, "float"))
+        return cast("float", self._sp_call("UWorld", "get_time_seconds", {}, _t.T_float))
 
     def get_frame_count(self) -> int:
-        return cast("int", self._sp_call("UWorld", "get_frame_count", {}, "int"))
+        return cast("int", self._sp_call("UWorld", "get_frame_count", {}, _t.T_int))
 
     def line_trace_single(self, *, start: FVector, end: FVector) -> api.UWorld.line_trace_singleResult:
-        return cast("api.UWorld.line_trace_singleResult", self._sp_call("UWorld", "line_trace_single", {"start": start, "end": end}, "dict", api.UWorld.line_trace_singleResult))
+        return cast("api.UWorld.line_trace_singleResult", self._sp_call("UWorld", "line_trace_single", {"start": start, "end": end}, _t.T_bool, api.UWorld.line_trace_singleResult))
 
     def inject_input_for_actor(self, *, actor: api.AActor, input_action_name: str, value: FVector) -> None:
-        return cast(None, self._sp_call("UWorld", "inject_input_for_actor", {"actor": actor, "input_action_name": input_action_name, "value": value}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UWorld", "inject_input_for_actor", {"actor": actor, "input_action_name": input_action_name, "value": value}, _t.T_void))  # a Future when queued by call_async
 
     def load_scene(self, *, path: str) -> None:
-        return cast(None, self._sp_call("UWorld", "load_scene", {"path": path}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UWorld", "load_scene", {"path": path}, _t.T_void))  # a Future when queued by call_async
 
     def save_scene(self, *, path: str) -> None:
-        return cast(None, self._sp_call("UWorld", "save_scene", {"path": path}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UWorld", "save_scene", {"path": path}, _t.T_void))  # a Future when queued by call_async
 
     def is_editor_world(self) -> bool:
-        return cast("bool", self._sp_call("UWorld", "is_editor_world", {}, "bool"))
+        return cast("bool", self._sp_call("UWorld", "is_editor_world", {}, _t.T_bool))
 
     def is_game_world(self) -> bool:
-        return cast("bool", self._sp_call("UWorld", "is_game_world", {}, "bool"))
+        return cast("bool", self._sp_call("UWorld", "is_game_world", {}, _t.T_bool))
 
     def play(self) -> None:
-        return cast(None, self._sp_call("UWorld", "play", {}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UWorld", "play", {}, _t.T_void))  # a Future when queued by call_async
 
     def stop(self) -> None:
-        return cast(None, self._sp_call("UWorld", "stop", {}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("UWorld", "stop", {}, _t.T_void))  # a Future when queued by call_async
 
     def is_playing(self) -> bool:
-        return cast("bool", self._sp_call("UWorld", "is_playing", {}, "bool"))
+        return cast("bool", self._sp_call("UWorld", "is_playing", {}, _t.T_bool))
 
 
 _register_proxy(UWorld)

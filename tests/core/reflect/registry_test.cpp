@@ -46,7 +46,7 @@ TEST_F(RegistryTest, InvokersConvertCheckAndReturnOutParameters) {
     UWorld& world = engine.GetGameWorld();
     const FunctionInfo* spawn = UWorld::StaticClass().findFunction("spawn_actor");
     ASSERT_NE(spawn, nullptr);
-    EXPECT_EQ(spawn->returnType, "AActor");
+    EXPECT_EQ(spawn->returnType.spelling(), "AActor");
     Value actor = spawn->invoke(&world, {{"uclass", Value(ClassName{"AStaticMeshActor"})},
                                          {"location", Value(Value::Dict{{"Z", Value(2.0)}})}});
     ASSERT_TRUE(actor.is<ObjectHandle>());

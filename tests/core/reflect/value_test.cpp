@@ -109,9 +109,9 @@ template <bool Complete> struct FArrayResult {
             t.name = Complete ? "FCompleteResult" : "FPartialResult";
             t.kind = TypeInfo::Kind::Struct;
             t.isCompleteDict = Complete;
-            t.properties.push_back({"Values", "NDArray[np.float32]", "", false, [](const void* self) {
-                                        return encode(static_cast<const FArrayResult*>(self)->Values);
-                                    }});
+            t.properties.push_back(
+                {"Values", TypeCode(TypeCode::Kind::Array, "float32"), "", false,
+                 [](const void* self) { return encode(static_cast<const FArrayResult*>(self)->Values); }});
             return t;
         }();
         return info;

@@ -8,6 +8,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/all_types/cpp/all_types_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EChannel>() {
     static const sp::reflect::EnumInfo info{
         "EChannel",
@@ -35,7 +40,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "bFlag",
-            "bool",
+            TypeCode(Kind::Bool),
             "A flag.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -49,7 +54,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         });
         t.properties.push_back({
             "Small",
-            "int",
+            TypeCode(Kind::Int),
             "A small unsigned integer.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -63,7 +68,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         });
         t.properties.push_back({
             "Big",
-            "int",
+            TypeCode(Kind::Int),
             "A 64-bit integer.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -77,7 +82,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         });
         t.properties.push_back({
             "Ratio",
-            "float",
+            TypeCode(Kind::Float),
             "A float.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -91,7 +96,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         });
         t.properties.push_back({
             "Label",
-            "str",
+            TypeCode(Kind::Str),
             "A name.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -105,7 +110,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         });
         t.properties.push_back({
             "Target",
-            "AActor | None",
+            TypeCode(Kind::Object, "AActor", true),
             "A reference to another actor.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -119,7 +124,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         });
         t.properties.push_back({
             "Weights",
-            "dict[str, float]",
+            TypeCode(Kind::Dict, TypeCode(Kind::Float)),
             "Named weights.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -133,7 +138,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         });
         t.properties.push_back({
             "Counter",
-            "int",
+            TypeCode(Kind::Int),
             "Visible but not writable from Python.",
             true,
             [](const void* self) -> sp::reflect::Value {
@@ -143,7 +148,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         });
         t.properties.push_back({
             "Speed",
-            "float",
+            TypeCode(Kind::Float),
             "Written through its setter.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -158,9 +163,9 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "SetSpeed",
             "Sets Speed, clamped to be non-negative.",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"NewSpeed", "float", false, false},
+                {"NewSpeed", TypeCode(Kind::Float), false, false},
             },
             false,
             false,
@@ -175,11 +180,11 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "Scale",
             "Returns a scaled copy of the sample.",
-            "FSample",
+            TypeCode(Kind::Struct, "FSample"),
             {
-                {"Sample", "FSample", false, false},
-                {"Factor", "float", true, false},
-                {"Channel", "EChannel", true, false},
+                {"Sample", TypeCode(Kind::Struct, "FSample"), false, false},
+                {"Factor", TypeCode(Kind::Float), true, false},
+                {"Channel", TypeCode(Kind::Enum, "EChannel"), true, false},
             },
             false,
             true,
@@ -199,11 +204,11 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "Split",
             "Splits a string, with out-parameters.",
-            "SplitResult",
+            TypeCode(Kind::Bool),
             {
-                {"Text", "str", false, false},
-                {"Head", "str", false, true},
-                {"Rest", "list[str]", false, true},
+                {"Text", TypeCode(Kind::Str), false, false},
+                {"Head", TypeCode(Kind::Str), false, true},
+                {"Rest", TypeCode(Kind::List, TypeCode(Kind::Str)), false, true},
             },
             false,
             false,
@@ -224,10 +229,10 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "Collect",
             "Returns the actors of a class, typed by it.",
-            "list[AActor]",
+            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
             {
-                {"ActorClass", "type[AActor] | str", false, false},
-                {"Candidates", "list[AActor]", true, false},
+                {"ActorClass", TypeCode(Kind::Class, "AActor"), false, false},
+                {"Candidates", TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")), true, false},
             },
             false,
             false,
@@ -244,9 +249,9 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "ClassOf",
             "Returns the class of an object, or None.",
-            "type[UObject] | None",
+            TypeCode(Kind::Class, "UObject", true),
             {
-                {"Object", "UObject | None", true, false},
+                {"Object", TypeCode(Kind::Object, "UObject", true), true, false},
             },
             false,
             true,
@@ -262,9 +267,9 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "Normalise",
             "Normalises points (N, 3) in place and returns their lengths (N,).",
-            "NDArray[np.float32]",
+            TypeCode(Kind::Array, "float32"),
             {
-                {"Points", "NDArray[np.float32]", false, false},
+                {"Points", TypeCode(Kind::Array, "float32"), false, false},
             },
             false,
             false,
@@ -279,10 +284,10 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "Histogram",
             "Returns a histogram of byte values.",
-            "dict[str, int]",
+            TypeCode(Kind::Dict, TypeCode(Kind::Int)),
             {
-                {"Bytes", "NDArray[np.uint8]", false, false},
-                {"Bins", "int", true, false},
+                {"Bytes", TypeCode(Kind::Array, "uint8"), false, false},
+                {"Bins", TypeCode(Kind::Int), true, false},
             },
             true,
             false,
@@ -299,9 +304,9 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "Render",
             "Renders the requested images.",
-            "FImages",
+            TypeCode(Kind::Struct, "FImages"),
             {
-                {"Names", "list[str]", false, false},
+                {"Names", TypeCode(Kind::List, TypeCode(Kind::Str)), false, false},
             },
             false,
             false,
@@ -317,9 +322,9 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "Measure",
             "Measures a cloud of (N, 3) points.",
-            "FCloudStats",
+            TypeCode(Kind::Struct, "FCloudStats"),
             {
-                {"Points", "NDArray[np.float32]", false, false},
+                {"Points", TypeCode(Kind::Array, "float32"), false, false},
             },
             false,
             false,
@@ -335,7 +340,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "Self",
             "Never returns None.",
-            "AActor",
+            TypeCode(Kind::Object, "AActor"),
             {
             },
             false,
@@ -369,7 +374,7 @@ const sp::reflect::TypeInfo& FCloudStats::StaticClass() {
         t.isCompleteDict = true;
         t.properties.push_back({
             "distances",
-            "NDArray[np.float32]",
+            TypeCode(Kind::Array, "float32"),
             "Distance of each point from the origin, (N,).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -383,7 +388,7 @@ const sp::reflect::TypeInfo& FCloudStats::StaticClass() {
         });
         t.properties.push_back({
             "count",
-            "int",
+            TypeCode(Kind::Int),
             "How many points there were.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -415,7 +420,7 @@ const sp::reflect::TypeInfo& FImages::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "color",
-            "NDArray[np.uint8]",
+            TypeCode(Kind::Array, "uint8"),
             "Colour, (H, W, 4).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -429,7 +434,7 @@ const sp::reflect::TypeInfo& FImages::StaticClass() {
         });
         t.properties.push_back({
             "depth",
-            "NDArray[np.float32]",
+            TypeCode(Kind::Array, "float32"),
             "Depth in metres, (H, W).",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -461,7 +466,7 @@ const sp::reflect::TypeInfo& FSample::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "Where",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             "Where it was taken.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -475,7 +480,7 @@ const sp::reflect::TypeInfo& FSample::StaticClass() {
         });
         t.properties.push_back({
             "Channel",
-            "EChannel",
+            TypeCode(Kind::Enum, "EChannel"),
             "Which channel.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -489,7 +494,7 @@ const sp::reflect::TypeInfo& FSample::StaticClass() {
         });
         t.properties.push_back({
             "Values",
-            "list[float]",
+            TypeCode(Kind::List, TypeCode(Kind::Float)),
             "Raw values.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -503,7 +508,7 @@ const sp::reflect::TypeInfo& FSample::StaticClass() {
         });
         t.properties.push_back({
             "Count",
-            "int",
+            TypeCode(Kind::Int),
             "A count.",
             false,
             [](const void* self) -> sp::reflect::Value {

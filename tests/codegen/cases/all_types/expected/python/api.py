@@ -17,6 +17,8 @@ from numpy.typing import NDArray
 
 from spear._object import SpObject as _SpObject
 from spear._static import StaticFunction as _StaticFunction
+from . import type_codes as _t
+from .type_codes import FIELD_TYPES as _FIELD_TYPES  # read by spear._rpc_types
 from spear._engine.api import AActor, AActorAsync, AActorSend, FVector, UObject
 
 __all__ = [
@@ -78,7 +80,7 @@ class AAllTypes(AActor):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "AAllTypes"
-    Histogram = _StaticFunction("AAllTypes", "Histogram", "dict[str, int]")
+    Histogram = _StaticFunction("AAllTypes", "Histogram", _t.T_dict_of_int)
 
     class SplitResult(NamedTuple):
         ReturnValue: bool

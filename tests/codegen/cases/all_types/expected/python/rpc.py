@@ -18,6 +18,7 @@ from spear._rpc_proxy import ObjectProxy as _ObjectProxy
 from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
+from . import type_codes as _t
 from .api import EChannel, FCloudStats, FImages, FSample  # structs and enums are shared with the in-process API
 from spear._engine.api import AActor, FVector, UObject
 from spear._engine.rpc import AActor as _AActorProxy
@@ -32,7 +33,7 @@ class AAllTypes(_AActorProxy, api.AAllTypes):
 
     @property
     def bFlag(self) -> bool:
-        return cast("bool", self._sp_get("AAllTypes", "bFlag", "bool"))
+        return cast("bool", self._sp_get("AAllTypes", "bFlag", _t.T_bool))
 
     @bFlag.setter
     def bFlag(self, value: bool) -> None:
@@ -40,7 +41,7 @@ class AAllTypes(_AActorProxy, api.AAllTypes):
 
     @property
     def Small(self) -> int:
-        return cast("int", self._sp_get("AAllTypes", "Small", "int"))
+        return cast("int", self._sp_get("AAllTypes", "Small", _t.T_int))
 
     @Small.setter
     def Small(self, value: int) -> None:
@@ -48,7 +49,7 @@ class AAllTypes(_AActorProxy, api.AAllTypes):
 
     @property
     def Big(self) -> int:
-        return cast("int", self._sp_get("AAllTypes", "Big", "int"))
+        return cast("int", self._sp_get("AAllTypes", "Big", _t.T_int))
 
     @Big.setter
     def Big(self, value: int) -> None:
@@ -56,7 +57,7 @@ class AAllTypes(_AActorProxy, api.AAllTypes):
 
     @property
     def Ratio(self) -> float:
-        return cast("float", self._sp_get("AAllTypes", "Ratio", "float"))
+        return cast("float", self._sp_get("AAllTypes", "Ratio", _t.T_float))
 
     @Ratio.setter
     def Ratio(self, value: float) -> None:
@@ -64,7 +65,7 @@ class AAllTypes(_AActorProxy, api.AAllTypes):
 
     @property
     def Label(self) -> str:
-        return cast("str", self._sp_get("AAllTypes", "Label", "str"))
+        return cast("str", self._sp_get("AAllTypes", "Label", _t.T_str))
 
     @Label.setter
     def Label(self, value: str) -> None:
@@ -72,7 +73,7 @@ class AAllTypes(_AActorProxy, api.AAllTypes):
 
     @property
     def Target(self) -> AActor | None:
-        return cast("AActor | None", self._sp_get("AAllTypes", "Target", "AActor | None"))
+        return cast("AActor | None", self._sp_get("AAllTypes", "Target", _t.T_AActor_or_None))
 
     @Target.setter
     def Target(self, value: AActor | None) -> None:
@@ -80,7 +81,7 @@ class AAllTypes(_AActorProxy, api.AAllTypes):
 
     @property
     def Weights(self) -> dict[str, float]:
-        return cast("dict[str, float]", self._sp_get("AAllTypes", "Weights", "dict[str, float]"))
+        return cast("dict[str, float]", self._sp_get("AAllTypes", "Weights", _t.T_dict_of_float))
 
     @Weights.setter
     def Weights(self, value: dict[str, float]) -> None:
@@ -88,24 +89,24 @@ class AAllTypes(_AActorProxy, api.AAllTypes):
 
     @property
     def Counter(self) -> int:
-        return cast("int", self._sp_get("AAllTypes", "Counter", "int"))
+        return cast("int", self._sp_get("AAllTypes", "Counter", _t.T_int))
 
     @property
     def Speed(self) -> float:
-        return cast("float", self._sp_get("AAllTypes", "Speed", "float"))
+        return cast("float", self._sp_get("AAllTypes", "Speed", _t.T_float))
 
     @Speed.setter
     def Speed(self, value: float) -> None:
         self._sp_set("AAllTypes", "Speed", value)
 
     def SetSpeed(self, *, NewSpeed: float) -> None:
-        return cast(None, self._sp_call("AAllTypes", "SetSpeed", {"NewSpeed": NewSpeed}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("AAllTypes", "SetSpeed", {"NewSpeed": NewSpeed}, _t.T_void))  # a Future when queued by call_async
 
     def Scale(self, *, Sample: FSample, Factor: float = _DEFAULT, Channel: EChannel = _DEFAULT) -> FSample:
-        return cast("FSample", self._sp_call("AAllTypes", "Scale", {"Sample": Sample, "Factor": Factor, "Channel": Channel}, "FSample"))
+        return cast("FSample", self._sp_call("AAllTypes", "Scale", {"Sample": Sample, "Factor": Factor, "Channel": Channel}, _t.T_FSample))
 
     def Split(self, *, Text: str) -> api.AAllTypes.SplitResult:
-        return cast("api.AAllTypes.SplitResult", self._sp_call("AAllTypes", "Split", {"Text": Text}, "dict", api.AAllTypes.SplitResult))
+        return cast("api.AAllTypes.SplitResult", self._sp_call("AAllTypes", "Split", {"Text": Text}, _t.T_bool, api.AAllTypes.SplitResult))
 
     @overload
     def Collect(self, *, ActorClass: type[_AActorT], Candidates: list[AActor] = ...) -> list[_AActorT]: ...
@@ -114,22 +115,22 @@ class AAllTypes(_AActorProxy, api.AAllTypes):
     def Collect(self, *, ActorClass: str, Candidates: list[AActor] = ...) -> list[AActor]: ...
 
     def Collect(self, *, ActorClass: type[AActor] | str, Candidates: list[AActor] = _DEFAULT) -> Any:
-        return self._sp_call("AAllTypes", "Collect", {"ActorClass": ActorClass, "Candidates": Candidates}, "list[AActor]")
+        return self._sp_call("AAllTypes", "Collect", {"ActorClass": ActorClass, "Candidates": Candidates}, _t.T_list_of_AActor)
 
     def ClassOf(self, *, Object: UObject | None = _DEFAULT) -> type[UObject] | None:
-        return cast("type[UObject] | None", self._sp_call("AAllTypes", "ClassOf", {"Object": Object}, "type[UObject] | None"))
+        return cast("type[UObject] | None", self._sp_call("AAllTypes", "ClassOf", {"Object": Object}, _t.T_class_UObject_or_None))
 
     def Normalise(self, *, Points: NDArray[np.float32]) -> NDArray[np.float32]:
-        return cast("NDArray[np.float32]", self._sp_call("AAllTypes", "Normalise", {"Points": Points}, "NDArray[np.float32]"))
+        return cast("NDArray[np.float32]", self._sp_call("AAllTypes", "Normalise", {"Points": Points}, _t.T_array_float32))
 
     def Render(self, *, Names: list[str]) -> FImages:
-        return cast("FImages", self._sp_call("AAllTypes", "Render", {"Names": Names}, "FImages"))
+        return cast("FImages", self._sp_call("AAllTypes", "Render", {"Names": Names}, _t.T_FImages))
 
     def Measure(self, *, Points: NDArray[np.float32]) -> FCloudStats:
-        return cast("FCloudStats", self._sp_call("AAllTypes", "Measure", {"Points": Points}, "FCloudStats"))
+        return cast("FCloudStats", self._sp_call("AAllTypes", "Measure", {"Points": Points}, _t.T_FCloudStats))
 
     def Self(self) -> AActor:
-        return cast("AActor", self._sp_call("AAllTypes", "Self", {}, "AActor"))
+        return cast("AActor", self._sp_call("AAllTypes", "Self", {}, _t.T_AActor))
 
 
 _register_proxy(AAllTypes)

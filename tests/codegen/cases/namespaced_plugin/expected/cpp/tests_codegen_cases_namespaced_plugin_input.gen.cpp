@@ -8,6 +8,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/namespaced_plugin/cpp/namespaced_plugin_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<acme::robots::EGait>() {
     static const sp::reflect::EnumInfo info{
         "EGait",
@@ -34,7 +39,7 @@ const sp::reflect::TypeInfo& acme::robots::ABaseBot::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Speed",
-            "float",
+            TypeCode(Kind::Float),
             "Speed in metres per second.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -49,10 +54,10 @@ const sp::reflect::TypeInfo& acme::robots::ABaseBot::StaticClass() {
         t.functions.push_back({
             "SetGait",
             "Sets the gait (running unless told).",
-            "None",
+            TypeCode(Kind::Void),
             {
-                {"Gait", "EGait", true, false},
-                {"Settings", "FGaitSettings", true, false},
+                {"Gait", TypeCode(Kind::Enum, "EGait"), true, false},
+                {"Settings", TypeCode(Kind::Struct, "FGaitSettings"), true, false},
             },
             false,
             false,
@@ -70,7 +75,7 @@ const sp::reflect::TypeInfo& acme::robots::ABaseBot::StaticClass() {
         t.functions.push_back({
             "GetGait",
             "Returns the gait.",
-            "EGait",
+            TypeCode(Kind::Enum, "EGait"),
             {
             },
             false,
@@ -85,10 +90,10 @@ const sp::reflect::TypeInfo& acme::robots::ABaseBot::StaticClass() {
         t.functions.push_back({
             "FleetSize",
             "Returns how many robots a fleet of Count has, plus Spares.",
-            "int",
+            TypeCode(Kind::Int),
             {
-                {"Count", "int", false, false},
-                {"Spares", "int", true, false},
+                {"Count", TypeCode(Kind::Int), false, false},
+                {"Spares", TypeCode(Kind::Int), true, false},
             },
             true,
             false,
@@ -123,7 +128,7 @@ const sp::reflect::TypeInfo& acme::robots::AWalkerBot::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Legs",
-            "int",
+            TypeCode(Kind::Int),
             "Number of legs.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -138,7 +143,7 @@ const sp::reflect::TypeInfo& acme::robots::AWalkerBot::StaticClass() {
         t.functions.push_back({
             "GetLeader",
             "Returns the robot it follows, or None.",
-            "ABaseBot | None",
+            TypeCode(Kind::Object, "ABaseBot", true),
             {
             },
             false,
@@ -170,7 +175,7 @@ const sp::reflect::TypeInfo& acme::robots::FGaitSettings::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "Stride",
-            "float",
+            TypeCode(Kind::Float),
             "Stride in metres.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -184,7 +189,7 @@ const sp::reflect::TypeInfo& acme::robots::FGaitSettings::StaticClass() {
         });
         t.properties.push_back({
             "Gait",
-            "EGait",
+            TypeCode(Kind::Enum, "EGait"),
             "The gait it starts in.",
             false,
             [](const void* self) -> sp::reflect::Value {

@@ -17,6 +17,8 @@ from numpy.typing import NDArray
 
 from spear._object import SpObject as _SpObject
 from spear._static import StaticFunction as _StaticFunction
+from . import type_codes as _t
+from .type_codes import FIELD_TYPES as _FIELD_TYPES  # read by spear._rpc_types
 from spear._engine.api import AActor, AActorAsync, AActorSend
 
 __all__ = [
@@ -60,7 +62,7 @@ class ABaseBot(AActor):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "ABaseBot"
-    FleetSize = _StaticFunction("ABaseBot", "FleetSize", "int")
+    FleetSize = _StaticFunction("ABaseBot", "FleetSize", _t.T_int)
 
 
 class AWalkerBotAsync(ABaseBotAsync):

@@ -18,6 +18,7 @@ from spear._rpc_proxy import ObjectProxy as _ObjectProxy
 from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
+from . import type_codes as _t
 from .api import EGait, FGaitSettings  # structs and enums are shared with the in-process API
 from spear._engine.api import AActor
 from spear._engine.rpc import AActor as _AActorProxy
@@ -30,17 +31,17 @@ class ABaseBot(_AActorProxy, api.ABaseBot):
 
     @property
     def Speed(self) -> float:
-        return cast("float", self._sp_get("ABaseBot", "Speed", "float"))
+        return cast("float", self._sp_get("ABaseBot", "Speed", _t.T_float))
 
     @Speed.setter
     def Speed(self, value: float) -> None:
         self._sp_set("ABaseBot", "Speed", value)
 
     def SetGait(self, *, Gait: EGait = _DEFAULT, Settings: FGaitSettings = _DEFAULT) -> None:
-        return cast(None, self._sp_call("ABaseBot", "SetGait", {"Gait": Gait, "Settings": Settings}, "None"))  # a Future when queued by call_async
+        return cast(None, self._sp_call("ABaseBot", "SetGait", {"Gait": Gait, "Settings": Settings}, _t.T_void))  # a Future when queued by call_async
 
     def GetGait(self) -> EGait:
-        return cast("EGait", self._sp_call("ABaseBot", "GetGait", {}, "EGait"))
+        return cast("EGait", self._sp_call("ABaseBot", "GetGait", {}, _t.T_EGait))
 
 
 _register_proxy(ABaseBot)
@@ -51,14 +52,14 @@ class AWalkerBot(ABaseBot, api.AWalkerBot):
 
     @property
     def Legs(self) -> int:
-        return cast("int", self._sp_get("AWalkerBot", "Legs", "int"))
+        return cast("int", self._sp_get("AWalkerBot", "Legs", _t.T_int))
 
     @Legs.setter
     def Legs(self, value: int) -> None:
         self._sp_set("AWalkerBot", "Legs", value)
 
     def GetLeader(self) -> api.ABaseBot | None:
-        return cast("api.ABaseBot | None", self._sp_call("AWalkerBot", "GetLeader", {}, "ABaseBot | None"))
+        return cast("api.ABaseBot | None", self._sp_call("AWalkerBot", "GetLeader", {}, _t.T_ABaseBot_or_None))
 
 
 _register_proxy(AWalkerBot)

@@ -8,6 +8,11 @@
 #include "core/reflect/invoke.h"
 #include "generated/plugin_actor/cpp/plugin_actor_types.gen.h"
 
+namespace {
+using sp::reflect::TypeCode; // the declared types below
+using Kind = sp::reflect::TypeCode::Kind;
+} // namespace
+
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPluginMood>() {
     static const sp::reflect::EnumInfo info{
         "EPluginMood",
@@ -34,7 +39,7 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Radius",
-            "float",
+            TypeCode(Kind::Float),
             "Its radius in metres.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -48,7 +53,7 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
         });
         t.properties.push_back({
             "Settings",
-            "FPluginSettings",
+            TypeCode(Kind::Struct, "FPluginSettings"),
             "Its settings.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -62,7 +67,7 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
         });
         t.properties.push_back({
             "Leader",
-            "AActor | None",
+            TypeCode(Kind::Object, "AActor", true),
             "Another actor it follows, or None.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -77,9 +82,9 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
         t.functions.push_back({
             "Offset",
             "Returns its location moved by Delta.",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             {
-                {"Delta", "FVector", false, false},
+                {"Delta", TypeCode(Kind::Struct, "FVector"), false, false},
             },
             false,
             true,
@@ -95,7 +100,7 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
         t.functions.push_back({
             "Neighbours",
             "Returns the actors within Radius.",
-            "list[AActor]",
+            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
             {
             },
             false,
@@ -110,9 +115,9 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
         t.functions.push_back({
             "SetMood",
             "Sets its mood, returning the previous one.",
-            "EPluginMood",
+            TypeCode(Kind::Enum, "EPluginMood"),
             {
-                {"Mood", "EPluginMood", true, false},
+                {"Mood", TypeCode(Kind::Enum, "EPluginMood"), true, false},
             },
             false,
             false,
@@ -146,7 +151,7 @@ const sp::reflect::TypeInfo& APluginChild::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Nickname",
-            "str",
+            TypeCode(Kind::Str),
             "A name.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -178,7 +183,7 @@ const sp::reflect::TypeInfo& FPluginSettings::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "Home",
-            "FVector",
+            TypeCode(Kind::Struct, "FVector"),
             "Where it rests.",
             false,
             [](const void* self) -> sp::reflect::Value {
@@ -192,7 +197,7 @@ const sp::reflect::TypeInfo& FPluginSettings::StaticClass() {
         });
         t.properties.push_back({
             "Mood",
-            "EPluginMood",
+            TypeCode(Kind::Enum, "EPluginMood"),
             "How it reacts.",
             false,
             [](const void* self) -> sp::reflect::Value {

@@ -16,6 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from spear._object import SpObject as _SpObject
+from .type_codes import FIELD_TYPES as _FIELD_TYPES  # read by spear._rpc_types
 from spear._engine.api import AActor, AActorAsync, AActorSend, FVector
 
 __all__ = [

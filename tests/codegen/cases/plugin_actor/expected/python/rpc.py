@@ -18,6 +18,7 @@ from spear._rpc_proxy import ObjectProxy as _ObjectProxy
 from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
+from . import type_codes as _t
 from .api import EPluginMood, FPluginSettings  # structs and enums are shared with the in-process API
 from spear._engine.api import AActor, FVector
 from spear._engine.rpc import AActor as _AActorProxy
@@ -30,7 +31,7 @@ class APluginActor(_AActorProxy, api.APluginActor):
 
     @property
     def Radius(self) -> float:
-        return cast("float", self._sp_get("APluginActor", "Radius", "float"))
+        return cast("float", self._sp_get("APluginActor", "Radius", _t.T_float))
 
     @Radius.setter
     def Radius(self, value: float) -> None:
@@ -38,7 +39,7 @@ class APluginActor(_AActorProxy, api.APluginActor):
 
     @property
     def Settings(self) -> FPluginSettings:
-        return cast("FPluginSettings", self._sp_get("APluginActor", "Settings", "FPluginSettings"))
+        return cast("FPluginSettings", self._sp_get("APluginActor", "Settings", _t.T_FPluginSettings))
 
     @Settings.setter
     def Settings(self, value: FPluginSettings) -> None:
@@ -46,20 +47,20 @@ class APluginActor(_AActorProxy, api.APluginActor):
 
     @property
     def Leader(self) -> AActor | None:
-        return cast("AActor | None", self._sp_get("APluginActor", "Leader", "AActor | None"))
+        return cast("AActor | None", self._sp_get("APluginActor", "Leader", _t.T_AActor_or_None))
 
     @Leader.setter
     def Leader(self, value: AActor | None) -> None:
         self._sp_set("APluginActor", "Leader", value)
 
     def Offset(self, *, Delta: FVector) -> FVector:
-        return cast("FVector", self._sp_call("APluginActor", "Offset", {"Delta": Delta}, "FVector"))
+        return cast("FVector", self._sp_call("APluginActor", "Offset", {"Delta": Delta}, _t.T_FVector))
 
     def Neighbours(self) -> list[AActor]:
-        return cast("list[AActor]", self._sp_call("APluginActor", "Neighbours", {}, "list[AActor]"))
+        return cast("list[AActor]", self._sp_call("APluginActor", "Neighbours", {}, _t.T_list_of_AActor))
 
     def SetMood(self, *, Mood: EPluginMood = _DEFAULT) -> EPluginMood:
-        return cast("EPluginMood", self._sp_call("APluginActor", "SetMood", {"Mood": Mood}, "EPluginMood"))
+        return cast("EPluginMood", self._sp_call("APluginActor", "SetMood", {"Mood": Mood}, _t.T_EPluginMood))
 
 
 _register_proxy(APluginActor)
@@ -70,7 +71,7 @@ class APluginChild(APluginActor, api.APluginChild):
 
     @property
     def Nickname(self) -> str:
-        return cast("str", self._sp_get("APluginChild", "Nickname", "str"))
+        return cast("str", self._sp_get("APluginChild", "Nickname", _t.T_str))
 
     @Nickname.setter
     def Nickname(self, value: str) -> None:
