@@ -16,14 +16,13 @@ class ParamView:
     name: str
     name_literal: str
     type_code: str  # a C++ expression (codegen/typecodes.py)
+    index: int  # among the input parameters; -1 for an out-parameter
     has_default: bool
     is_out: bool
     cpp_type: str
     context_literal: str
     default_value: str  # the C++ default, "" without one
-    decode_fn: str  # the registry's decoder: decodeNonNull for an object that must not be None
-    not_none: bool
-    py_type: str
+    not_none: bool  # an object or class argument without a nullptr default
 
 
 @dataclass(frozen=True)
@@ -38,13 +37,10 @@ class FunctionView:
     params: tuple[ParamView, ...]
     outs: tuple[ParamView, ...]
     ins: tuple[ParamView, ...]
-    in_names: str
     is_static: bool
     is_const: bool
-    self_name: str
     context_literal: str
-    call: str  # the registry's call of the C++ function
-    pycall: str  # the pybind module's
+    call: str  # the call body's call of the C++ function (calls.gen.h.j2)
     returns_void: bool
     returns_cpp: str
     not_null: bool
@@ -106,19 +102,18 @@ class EnumView:
 
 
 def param_view(owner: str, f: Function, p: Param) -> ParamView:
-    not_none = p.type.kind in ("object", "class") and p.default_cpp != "nullptr"
+    ins = naming.in_params(f)
     return ParamView(
         name=p.name,
         name_literal=naming.cpp_string(p.name),
         type_code=typecodes.cpp(typecodes.of_param(p)),
+        index=ins.index(p) if not p.is_out else -1,
         has_default=p.default_cpp is not None,
         is_out=p.is_out,
         cpp_type=p.type.cpp,
         context_literal=naming.cpp_string(f"{owner}.{f.name}(): argument '{p.name}'"),
         default_value=naming.cpp_default_value(p) if p.default_cpp is not None else "",
-        decode_fn="decodeNonNull" if not_none else "decode",
-        not_none=not_none,
-        py_type=naming.param_py_type(p),
+        not_none=p.type.kind in ("object", "class") and p.default_cpp != "nullptr",
     )
 
 
@@ -133,9 +128,7 @@ def _signature_doc(f: Function) -> str:
 
 
 def function_view(c: Class, f: Function) -> FunctionView:
-    args = ", ".join(p.name for p in f.params)
-    self_cast = f"sp::reflect::selfCast<{'const ' if f.is_const else ''}Self>(self)"
-    pyargs = ", ".join(f"{p.name}Out" if p.is_out else f"{p.name}Value" for p in f.params)
+    args = ", ".join(f"{p.name}Out" if p.is_out else f"{p.name}Arg" for p in f.params)
     params = tuple(param_view(c.name, f, p) for p in f.params)
     return FunctionView(
         name=f.name,
@@ -148,13 +141,10 @@ def function_view(c: Class, f: Function) -> FunctionView:
         params=params,
         outs=tuple(v for v in params if v.is_out),
         ins=tuple(v for v in params if not v.is_out),
-        in_names=", ".join(naming.cpp_string(p.name) for p in naming.in_params(f)),
         is_static=f.is_static,
         is_const=f.is_const,
-        self_name="" if f.is_static else "self",
         context_literal=naming.cpp_string(f"{c.name}.{f.name}()"),
-        call=f"Self::{f.name}({args})" if f.is_static else f"{self_cast}->{f.name}({args})",
-        pycall=f"Self::{f.name}({pyargs})" if f.is_static else f"object->{f.name}({pyargs})",
+        call=f"Self::{f.name}({args})" if f.is_static else f"self->{f.name}({args})",
         returns_void=f.returns.kind == "void",
         returns_cpp=f.returns.cpp,
         not_null=f.not_null,
@@ -196,10 +186,9 @@ def class_view(c: Class) -> ClassView:
         partial=specifiers.has(c.specifiers, "Partial"),
         properties=tuple(property_view(c, p) for p in c.properties),
         functions=tuple(function_view(c, f) for f in c.functions),
-        # The registry's `Self` alias is read by the factory and the member bodies only; an abstract class
-        # without members marks it unused (a warning otherwise).
-        self_attribute="" if (c.kind == "class" and not c.abstract) or c.properties or c.functions
-        else " [[maybe_unused]]",
+        # The registry's `Self` alias is read by the factory and the property accessors only; a class with
+        # neither marks it unused (a warning otherwise).
+        self_attribute="" if (c.kind == "class" and not c.abstract) or c.properties else " [[maybe_unused]]",
     )
 
 

@@ -75,6 +75,10 @@ class OutputLayout:
         return f"generated/{self.module}/cpp/{self.module}_bindings.gen.h"
 
     @property
+    def calls_header(self) -> str:
+        return f"generated/{self.module}/cpp/{self.module}_calls.gen.h"
+
+    @property
     def imported_bindings(self) -> list[str]:
         """Bindings headers of the modules this one builds on: a plugin binds subclasses of engine classes
         and passes engine structs, so it needs the engine's Ref<T> specialisations and type casters."""
@@ -90,7 +94,7 @@ class OutputLayout:
 
     def cpp_files(self, module: Module) -> list[str]:
         files = [f"{self.cpp_dir}/{naming.registry_file(h)}" for h in module.headers]
-        files += [f"{self.cpp_dir}/{self.module}_{kind}.gen.h" for kind in ("types", "bindings")]
+        files += [f"{self.cpp_dir}/{self.module}_{kind}.gen.h" for kind in ("types", "bindings", "calls")]
         return files + [f"{self.cpp_dir}/register.gen.cpp", f"{self.cpp_dir}/module.gen.cpp"]
 
     def python_files(self) -> list[str]:
@@ -109,7 +113,8 @@ def render(module: Module, layout: OutputLayout | None = None) -> dict[str, str]
     env = _env()
     layout = layout or OutputLayout(module.name)
     common = {"banner": BANNER, "module": module.name, "enums_header": layout.enums_header,
-              "bindings_header": layout.bindings_header, "imported_bindings": layout.imported_bindings,
+              "bindings_header": layout.bindings_header, "calls_header": layout.calls_header,
+              "imported_bindings": layout.imported_bindings,
               "register_fn": layout.register_fn, "unregister_fn": layout.unregister_fn,
               "api_hash": pyviews.api_hash(module), "api_module": layout.api_module,
               "engine_package": naming.ENGINE_PACKAGE}
@@ -127,6 +132,9 @@ def render(module: Module, layout: OutputLayout | None = None) -> dict[str, str]
     )
     out[f"{layout.cpp_dir}/{module.name}_bindings.gen.h"] = env.get_template("bindings.gen.h.j2").render(
         headers=module.headers, classes=ordered, enums=enums, **common,
+    )
+    out[f"{layout.cpp_dir}/{module.name}_calls.gen.h"] = env.get_template("calls.gen.h.j2").render(
+        headers=module.headers, classes=ordered, **common,
     )
     out[f"{layout.cpp_dir}/register.gen.cpp"] = env.get_template("register.gen.cpp.j2").render(
         headers=module.headers, enums=enums, classes=ordered, **common,

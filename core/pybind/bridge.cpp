@@ -2,6 +2,7 @@
 
 #include <cstring>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace sp::pybind {
@@ -92,6 +93,16 @@ py::object apiAttribute(const char* module, const char* name) {
     return py::module_::import(module).attr(name);
 }
 
+const py::object& PyCall::resultTuple(const reflect::ResultTupleDesc& tuple) {
+    // Keyed by the body's descriptor (one static per function); the GIL guards the map. The classes are never
+    // released: a py::object freed after Python has shut down would crash at exit.
+    static auto* const classes = new std::unordered_map<const reflect::ResultTupleDesc*, const py::object*>();
+    const py::object*& found = (*classes)[&tuple];
+    if (!found)
+        found = new py::object(apiAttribute(tuple.apiModule, tuple.owner).attr(tuple.name));
+    return *found;
+}
+
 bool loadClassArg(py::handle src, ClassArg& value) {
     if (src.is_none()) {
         value.name.clear();
@@ -141,18 +152,22 @@ std::string plural(size_t count, const char* word) {
 }
 } // namespace
 
-void checkCall(std::string_view function, bool method, const py::args& positional, const py::kwargs& extra,
-               std::initializer_list<Keyword> keywords) {
+void checkCall(std::string_view function, const PyCallArgs& args,
+               std::span<const reflect::ParamDesc> params) {
+    const bool method = args.method;
+    const py::args& positional = args.positional;
+    const py::kwargs& extra = args.extra;
     // In the order CPython checks a call: unexpected keywords, then positional arguments, then missing ones.
     for (auto item : extra)
         throw py::type_error(std::string(function) + " got an unexpected keyword argument '" +
                              py::str(item.first).cast<std::string>() + "'");
     size_t given = 0;
     std::vector<std::string> missing;
-    for (const Keyword& keyword : keywords) {
-        given += keyword.given;
-        if (keyword.required && !keyword.given)
-            missing.push_back(std::string("'") + keyword.name + "'");
+    for (std::size_t i = 0; i < params.size(); ++i) {
+        const bool present = !isMissing(*args.values[i]);
+        given += present;
+        if (params[i].required && !present)
+            missing.push_back(std::string("'") + params[i].name + "'");
     }
     if (!positional.empty()) {
         const size_t takes = method ? 1 : 0;

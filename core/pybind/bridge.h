@@ -11,6 +11,7 @@
 
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "core/pybind/value_convert.h"
 #include "core/reflect/class_ref.h"
 #include "core/reflect/codec.h"
+#include "core/reflect/invoke.h"
 #include "core/reflect/registry.h"
 #include "core/reflect/sp_array.h"
 
@@ -249,14 +251,58 @@ py::handle missingArgument();
 inline bool isMissing(const PyArg& value) {
     return value.ptr() == missingArgument().ptr();
 }
-struct Keyword {
-    const char* name;
-    bool given;
-    bool required;
+
+// What a generated function binding received: its parameters (missingArgument() where left out), in order,
+// and what Python passed beside them.
+struct PyCallArgs {
+    const py::args& positional;
+    const py::kwargs& extra;
+    std::span<const PyArg* const> values;
+    bool method; // called on an object (Python counts self)
 };
-// `function` is the context ("AActor.SetActorLocation()"); `method` counts self as Python does.
-void checkCall(std::string_view function, bool method, const py::args& positional, const py::kwargs& extra,
-               std::initializer_list<Keyword> keywords);
+// `function` is the context ("AActor.SetActorLocation()").
+void checkCall(std::string_view function, const PyCallArgs& args, std::span<const reflect::ParamDesc> params);
+
+// The in-process boundary of a generated call body (see sp::reflect::ValueCall, the registry's): arguments
+// arrive as PyArgs and convert through Bridge<T>, results leave as Python objects.
+class PyCall {
+  public:
+    using Args = const PyCallArgs&;
+    using Result = py::object;
+    using Input = PyArg; // a property setter's value
+
+    PyCall(Args args, std::string_view context, std::span<const reflect::ParamDesc> params)
+        : args_(args), params_(params) {
+        checkCall(context, args, params);
+    }
+    bool given(std::size_t index) const { return !isMissing(*args_.values[index]); }
+    template <typename T> T arg(std::size_t index) const {
+        return Bridge<T>::in(*args_.values[index], params_[index].context);
+    }
+    // The object a function is called on: resolved only after the call's checks, as over RPC, where the
+    // proxy's Python signature refuses a bad call before the server sees the object.
+    template <typename T> static T* object(const RefBase& self, std::string_view context) {
+        return self.get<T>(context);
+    }
+    template <typename T> static T input(const PyArg& value, std::string_view context) {
+        return Bridge<T>::in(value, context);
+    }
+    template <typename T, typename V> static py::object result(const V& value) {
+        return Bridge<T>::out(value);
+    }
+    static py::object none() { return py::none(); }
+    template <typename... T>
+    static py::object outputs(const reflect::ResultTupleDesc& tuple, const reflect::Output<T>&... fields) {
+        return resultTuple(tuple)(py::arg(fields.name) = Bridge<T>::out(fields.value)...);
+    }
+
+  private:
+    // The generated NamedTuple class, looked up once per function.
+    static const py::object& resultTuple(const reflect::ResultTupleDesc& tuple);
+
+    const PyCallArgs& args_;
+    std::span<const reflect::ParamDesc> params_;
+};
 
 // Python's own messages about an object ("'AActor' object has no attribute 'X'") name its type by tp_name,
 // which pybind11 sets to "module.Class"; the RPC proxies are Python classes named "Class". The bare name

@@ -4,20 +4,13 @@
 
 namespace sp::reflect {
 
-void checkArguments(const CallArgs& args, std::initializer_list<const char*> names,
-                    std::string_view context) {
-    for (const auto& [name, value] : args) {
-        bool known = false;
-        for (const char* expected : names)
-            known = known || name == expected;
-        if (!known) {
-            std::string list;
-            for (const char* expected : names)
-                list += (list.empty() ? "" : ", ") + std::string(expected);
-            SP_THROW(InvalidArgument, context, ": unexpected argument '", name,
-                     "' (parameters: ", list.empty() ? "none" : list, ")");
-        }
-    }
+// Names that are not input parameters are refused: a misspelt keyword must not be ignored.
+void ValueCall::rejectArgument(const std::string& name) const {
+    std::string list;
+    for (const ParamDesc& param : params_)
+        list += (list.empty() ? "" : ", ") + std::string(param.name);
+    SP_THROW(InvalidArgument, context_, ": unexpected argument '", name,
+             "' (parameters: ", list.empty() ? "none" : list, ")");
 }
 
 const Value& requireArgument(const CallArgs& args, const char* name, std::string_view context) {

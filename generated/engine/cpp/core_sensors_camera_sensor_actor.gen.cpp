@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& ACameraSensorActor::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = ACameraSensorActor;
+        using Calls = sp::generated::engine::ACameraSensorActorCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "ACameraSensorActor";
         t.doc = "An actor whose root is a camera sensor.";
@@ -60,9 +63,7 @@ const sp::reflect::TypeInfo& ACameraSensorActor::StaticClass() {
             TypeCode(Kind::Object, "UCameraSensorComponent"),
             "The camera (also the root component); it looks along the actor's forward axis.",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->CameraSensor);
-            },
+            [](const void* self) { return Calls::get_CameraSensor<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         return t;
@@ -77,6 +78,8 @@ const sp::reflect::TypeInfo& ACameraSensorActor::GetClass() const { return Stati
 const sp::reflect::TypeInfo& AMultiViewCameraRig::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = AMultiViewCameraRig;
+        using Calls = sp::generated::engine::AMultiViewCameraRigCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "AMultiViewCameraRig";
         t.doc = "A ring of cameras around the rig's origin in its XY plane, all looking at the origin.";
@@ -89,9 +92,7 @@ const sp::reflect::TypeInfo& AMultiViewCameraRig::StaticClass() {
             TypeCode(Kind::List, TypeCode(Kind::Object, "UCameraSensorComponent")),
             "The cameras, counter-clockwise from the rig's -X side (camera 0 looks along +X).",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Cameras);
-            },
+            [](const void* self) { return Calls::get_Cameras<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.properties.push_back({
@@ -99,9 +100,7 @@ const sp::reflect::TypeInfo& AMultiViewCameraRig::StaticClass() {
             TypeCode(Kind::Float),
             "Ring radius in metres.",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Radius);
-            },
+            [](const void* self) { return Calls::get_Radius<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.functions.push_back({
@@ -114,14 +113,7 @@ const sp::reflect::TypeInfo& AMultiViewCameraRig::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AMultiViewCameraRig.SetRing()";
-                sp::reflect::checkArguments(args, {"NumViews", "NewRadius"}, kContext);
-                int32_t NumViews = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "NumViews", kContext), "AMultiViewCameraRig.SetRing(): argument 'NumViews'");
-                double NewRadius = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewRadius", kContext), "AMultiViewCameraRig.SetRing(): argument 'NewRadius'");
-                sp::reflect::selfCast<Self>(self)->SetRing(NumViews, NewRadius);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetRing<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "ConfigureCameras",
@@ -134,15 +126,7 @@ const sp::reflect::TypeInfo& AMultiViewCameraRig::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AMultiViewCameraRig.ConfigureCameras()";
-                sp::reflect::checkArguments(args, {"Width", "Height", "Modalities"}, kContext);
-                int32_t Width = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "Width", kContext), "AMultiViewCameraRig.ConfigureCameras(): argument 'Width'");
-                int32_t Height = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "Height", kContext), "AMultiViewCameraRig.ConfigureCameras(): argument 'Height'");
-                std::vector<ECameraModality> Modalities = sp::reflect::decode<std::vector<ECameraModality>>(sp::reflect::requireArgument(args, "Modalities", kContext), "AMultiViewCameraRig.ConfigureCameras(): argument 'Modalities'");
-                sp::reflect::selfCast<Self>(self)->ConfigureCameras(Width, Height, Modalities);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_ConfigureCameras<ValueCall>(self, args); },
         });
         return t;
     }();
@@ -156,6 +140,8 @@ const sp::reflect::TypeInfo& AMultiViewCameraRig::GetClass() const { return Stat
 const sp::reflect::TypeInfo& AStereoCameraRig::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = AStereoCameraRig;
+        using Calls = sp::generated::engine::AStereoCameraRigCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "AStereoCameraRig";
         t.doc = "Two parallel cameras Baseline metres apart along the rig's Y axis, looking along its forward axis.";
@@ -168,13 +154,9 @@ const sp::reflect::TypeInfo& AStereoCameraRig::StaticClass() {
             TypeCode(Kind::Float),
             "Distance between the two optical centres in metres (> 0); the left camera is at +Y.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Baseline);
-            },
+            [](const void* self) { return Calls::get_Baseline<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetBaseline(sp::reflect::decode<double>(value, "AStereoCameraRig.Baseline"));
-                sp::reflect::notifyPropertyChanged(object, "Baseline");
+                Calls::set_Baseline<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -182,9 +164,7 @@ const sp::reflect::TypeInfo& AStereoCameraRig::StaticClass() {
             TypeCode(Kind::Object, "UCameraSensorComponent"),
             "The left camera (at +Baseline/2 on the rig's Y axis, which points left).",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->LeftCamera);
-            },
+            [](const void* self) { return Calls::get_LeftCamera<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.properties.push_back({
@@ -192,9 +172,7 @@ const sp::reflect::TypeInfo& AStereoCameraRig::StaticClass() {
             TypeCode(Kind::Object, "UCameraSensorComponent"),
             "The right camera (at -Baseline/2 on the rig's Y axis).",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->RightCamera);
-            },
+            [](const void* self) { return Calls::get_RightCamera<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.functions.push_back({
@@ -206,13 +184,7 @@ const sp::reflect::TypeInfo& AStereoCameraRig::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AStereoCameraRig.SetBaseline()";
-                sp::reflect::checkArguments(args, {"NewBaseline"}, kContext);
-                double NewBaseline = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewBaseline", kContext), "AStereoCameraRig.SetBaseline(): argument 'NewBaseline'");
-                sp::reflect::selfCast<Self>(self)->SetBaseline(NewBaseline);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetBaseline<ValueCall>(self, args); },
         });
         return t;
     }();

@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -97,6 +98,8 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraToneCurv
 const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FCameraPixels;
+        using Calls = sp::generated::engine::FCameraPixelsCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FCameraPixels";
         t.doc = "The images of one frame, keyed by modality name; only the modalities the camera renders are present.";
@@ -108,13 +111,9 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
             TypeCode(Kind::Array, "uint8"),
             "Tone-mapped sRGB, uint8 (H, W, 4).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->final_color);
-            },
+            [](const void* self) { return Calls::get_final_color<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->final_color = sp::reflect::decode<sp::reflect::SpArray<uint8_t>>(value, "FCameraPixels.final_color");
-                sp::reflect::notifyPropertyChanged(object, "final_color");
+                Calls::set_final_color<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -122,13 +121,9 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
             TypeCode(Kind::Array, "float16"),
             "Linear HDR radiance, float16 (H, W, 4).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->hdr_color);
-            },
+            [](const void* self) { return Calls::get_hdr_color<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->hdr_color = sp::reflect::decode<sp::reflect::SpArray<sp::reflect::Half>>(value, "FCameraPixels.hdr_color");
-                sp::reflect::notifyPropertyChanged(object, "hdr_color");
+                Calls::set_hdr_color<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -136,13 +131,9 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
             TypeCode(Kind::Array, "float32"),
             "Metres along the optical axis, 0 for background, float32 (H, W).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->depth);
-            },
+            [](const void* self) { return Calls::get_depth<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->depth = sp::reflect::decode<sp::reflect::SpArray<float>>(value, "FCameraPixels.depth");
-                sp::reflect::notifyPropertyChanged(object, "depth");
+                Calls::set_depth<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -150,13 +141,9 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
             TypeCode(Kind::Array, "float32"),
             "World-space position in metres, float32 (H, W, 3).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->position);
-            },
+            [](const void* self) { return Calls::get_position<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->position = sp::reflect::decode<sp::reflect::SpArray<float>>(value, "FCameraPixels.position");
-                sp::reflect::notifyPropertyChanged(object, "position");
+                Calls::set_position<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -164,13 +151,9 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
             TypeCode(Kind::Array, "float32"),
             "World-space unit normal, float32 (H, W, 3).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->normal);
-            },
+            [](const void* self) { return Calls::get_normal<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->normal = sp::reflect::decode<sp::reflect::SpArray<float>>(value, "FCameraPixels.normal");
-                sp::reflect::notifyPropertyChanged(object, "normal");
+                Calls::set_normal<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -178,13 +161,9 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
             TypeCode(Kind::Array, "uint32"),
             "Object ids (component, material slot), 0 for background, uint32 (H, W).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->object_ids);
-            },
+            [](const void* self) { return Calls::get_object_ids<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->object_ids = sp::reflect::decode<sp::reflect::SpArray<uint32_t>>(value, "FCameraPixels.object_ids");
-                sp::reflect::notifyPropertyChanged(object, "object_ids");
+                Calls::set_object_ids<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -192,13 +171,9 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
             TypeCode(Kind::Array, "uint32"),
             "Material ids, 0 for background, uint32 (H, W).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->material_ids);
-            },
+            [](const void* self) { return Calls::get_material_ids<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->material_ids = sp::reflect::decode<sp::reflect::SpArray<uint32_t>>(value, "FCameraPixels.material_ids");
-                sp::reflect::notifyPropertyChanged(object, "material_ids");
+                Calls::set_material_ids<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -206,13 +181,9 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
             TypeCode(Kind::Array, "float16"),
             "Linear base colour, float16 (H, W, 3).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->base_color);
-            },
+            [](const void* self) { return Calls::get_base_color<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->base_color = sp::reflect::decode<sp::reflect::SpArray<sp::reflect::Half>>(value, "FCameraPixels.base_color");
-                sp::reflect::notifyPropertyChanged(object, "base_color");
+                Calls::set_base_color<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -220,13 +191,9 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
             TypeCode(Kind::Array, "float16"),
             "Roughness, float16 (H, W).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->roughness);
-            },
+            [](const void* self) { return Calls::get_roughness<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->roughness = sp::reflect::decode<sp::reflect::SpArray<sp::reflect::Half>>(value, "FCameraPixels.roughness");
-                sp::reflect::notifyPropertyChanged(object, "roughness");
+                Calls::set_roughness<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -234,13 +201,9 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
             TypeCode(Kind::Array, "float16"),
             "Metalness, float16 (H, W).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->metallic);
-            },
+            [](const void* self) { return Calls::get_metallic<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->metallic = sp::reflect::decode<sp::reflect::SpArray<sp::reflect::Half>>(value, "FCameraPixels.metallic");
-                sp::reflect::notifyPropertyChanged(object, "metallic");
+                Calls::set_metallic<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -248,13 +211,9 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
             TypeCode(Kind::Array, "float16"),
             "Material ambient occlusion, float16 (H, W).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->material_ao);
-            },
+            [](const void* self) { return Calls::get_material_ao<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->material_ao = sp::reflect::decode<sp::reflect::SpArray<sp::reflect::Half>>(value, "FCameraPixels.material_ao");
-                sp::reflect::notifyPropertyChanged(object, "material_ao");
+                Calls::set_material_ao<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -262,13 +221,9 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
             TypeCode(Kind::Array, "float16"),
             "Radiance of a white Lambertian surface, float16 (H, W, 3).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->diffuse_illumination);
-            },
+            [](const void* self) { return Calls::get_diffuse_illumination<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->diffuse_illumination = sp::reflect::decode<sp::reflect::SpArray<sp::reflect::Half>>(value, "FCameraPixels.diffuse_illumination");
-                sp::reflect::notifyPropertyChanged(object, "diffuse_illumination");
+                Calls::set_diffuse_illumination<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -276,13 +231,9 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
             TypeCode(Kind::Array, "float16"),
             "base_color * (1 - metallic) * diffuse_illumination, float16 (H, W, 3).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->diffuse_only);
-            },
+            [](const void* self) { return Calls::get_diffuse_only<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->diffuse_only = sp::reflect::decode<sp::reflect::SpArray<sp::reflect::Half>>(value, "FCameraPixels.diffuse_only");
-                sp::reflect::notifyPropertyChanged(object, "diffuse_only");
+                Calls::set_diffuse_only<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -290,13 +241,9 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
             TypeCode(Kind::Array, "float16"),
             "hdr_color.rgb - diffuse_only, float16 (H, W, 3).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->specular_residual);
-            },
+            [](const void* self) { return Calls::get_specular_residual<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->specular_residual = sp::reflect::decode<sp::reflect::SpArray<sp::reflect::Half>>(value, "FCameraPixels.specular_residual");
-                sp::reflect::notifyPropertyChanged(object, "specular_residual");
+                Calls::set_specular_residual<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;
@@ -311,6 +258,8 @@ const sp::reflect::TypeInfo& FCameraPixels::GetClass() const { return StaticClas
 const sp::reflect::TypeInfo& FLensDistortion::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FLensDistortion;
+        using Calls = sp::generated::engine::FLensDistortionCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FLensDistortion";
         t.doc = "Brown–Conrady lens distortion in OpenCV's convention (radial K1, K2, K3; tangential P1, P2): all zero is a\npinhole. See UCameraSensorComponent.LensDistortion.";
@@ -322,13 +271,9 @@ const sp::reflect::TypeInfo& FLensDistortion::StaticClass() {
             TypeCode(Kind::Float),
             "Radial coefficient of r^2 (negative: barrel, positive: pincushion).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->K1);
-            },
+            [](const void* self) { return Calls::get_K1<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->K1 = sp::reflect::decode<double>(value, "FLensDistortion.K1");
-                sp::reflect::notifyPropertyChanged(object, "K1");
+                Calls::set_K1<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -336,13 +281,9 @@ const sp::reflect::TypeInfo& FLensDistortion::StaticClass() {
             TypeCode(Kind::Float),
             "Radial coefficient of r^4.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->K2);
-            },
+            [](const void* self) { return Calls::get_K2<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->K2 = sp::reflect::decode<double>(value, "FLensDistortion.K2");
-                sp::reflect::notifyPropertyChanged(object, "K2");
+                Calls::set_K2<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -350,13 +291,9 @@ const sp::reflect::TypeInfo& FLensDistortion::StaticClass() {
             TypeCode(Kind::Float),
             "Radial coefficient of r^6.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->K3);
-            },
+            [](const void* self) { return Calls::get_K3<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->K3 = sp::reflect::decode<double>(value, "FLensDistortion.K3");
-                sp::reflect::notifyPropertyChanged(object, "K3");
+                Calls::set_K3<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -364,13 +301,9 @@ const sp::reflect::TypeInfo& FLensDistortion::StaticClass() {
             TypeCode(Kind::Float),
             "First tangential coefficient.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->P1);
-            },
+            [](const void* self) { return Calls::get_P1<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->P1 = sp::reflect::decode<double>(value, "FLensDistortion.P1");
-                sp::reflect::notifyPropertyChanged(object, "P1");
+                Calls::set_P1<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -378,13 +311,9 @@ const sp::reflect::TypeInfo& FLensDistortion::StaticClass() {
             TypeCode(Kind::Float),
             "Second tangential coefficient.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->P2);
-            },
+            [](const void* self) { return Calls::get_P2<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->P2 = sp::reflect::decode<double>(value, "FLensDistortion.P2");
-                sp::reflect::notifyPropertyChanged(object, "P2");
+                Calls::set_P2<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;
@@ -399,6 +328,8 @@ const sp::reflect::TypeInfo& FLensDistortion::GetClass() const { return StaticCl
 const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FRenderDeviceInfo;
+        using Calls = sp::generated::engine::FRenderDeviceInfoCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FRenderDeviceInfo";
         t.doc = "Which EGL device renders this world, and what OpenGL reports about itself.";
@@ -410,13 +341,9 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
             TypeCode(Kind::Str),
             "\"device\" (an EGL device, e.g. a GPU) or \"surfaceless\" (Mesa's software platform).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Kind);
-            },
+            [](const void* self) { return Calls::get_Kind<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Kind = sp::reflect::decode<std::string>(value, "FRenderDeviceInfo.Kind");
-                sp::reflect::notifyPropertyChanged(object, "Kind");
+                Calls::set_Kind<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -424,13 +351,9 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
             TypeCode(Kind::Int),
             "Index in the EGL device list, -1 for surfaceless.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->DeviceIndex);
-            },
+            [](const void* self) { return Calls::get_DeviceIndex<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->DeviceIndex = sp::reflect::decode<int32_t>(value, "FRenderDeviceInfo.DeviceIndex");
-                sp::reflect::notifyPropertyChanged(object, "DeviceIndex");
+                Calls::set_DeviceIndex<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -438,13 +361,9 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
             TypeCode(Kind::Int),
             "Number of EGL devices listed.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->DeviceCount);
-            },
+            [](const void* self) { return Calls::get_DeviceCount<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->DeviceCount = sp::reflect::decode<int32_t>(value, "FRenderDeviceInfo.DeviceCount");
-                sp::reflect::notifyPropertyChanged(object, "DeviceCount");
+                Calls::set_DeviceCount<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -452,13 +371,9 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
             TypeCode(Kind::Str),
             "GL_VENDOR.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Vendor);
-            },
+            [](const void* self) { return Calls::get_Vendor<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Vendor = sp::reflect::decode<std::string>(value, "FRenderDeviceInfo.Vendor");
-                sp::reflect::notifyPropertyChanged(object, "Vendor");
+                Calls::set_Vendor<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -466,13 +381,9 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
             TypeCode(Kind::Str),
             "GL_RENDERER.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Renderer);
-            },
+            [](const void* self) { return Calls::get_Renderer<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Renderer = sp::reflect::decode<std::string>(value, "FRenderDeviceInfo.Renderer");
-                sp::reflect::notifyPropertyChanged(object, "Renderer");
+                Calls::set_Renderer<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -480,13 +391,9 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
             TypeCode(Kind::Str),
             "GL_VERSION.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Version);
-            },
+            [](const void* self) { return Calls::get_Version<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Version = sp::reflect::decode<std::string>(value, "FRenderDeviceInfo.Version");
-                sp::reflect::notifyPropertyChanged(object, "Version");
+                Calls::set_Version<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;
@@ -501,6 +408,8 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::GetClass() const { return Static
 const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FRenderStats;
+        using Calls = sp::generated::engine::FRenderStatsCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FRenderStats";
         t.doc = "How often each render pass ran in this world since its renderer started (all cameras together), and\nwhat the passes cost (see core/render/README.md, \"Passes and timings\").";
@@ -512,13 +421,9 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             TypeCode(Kind::Int),
             "Frames rendered (one per camera per world frame).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Frames);
-            },
+            [](const void* self) { return Calls::get_Frames<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Frames = sp::reflect::decode<int64_t>(value, "FRenderStats.Frames");
-                sp::reflect::notifyPropertyChanged(object, "Frames");
+                Calls::set_Frames<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -526,13 +431,9 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             TypeCode(Kind::Int),
             "Shadow maps rendered.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ShadowPasses);
-            },
+            [](const void* self) { return Calls::get_ShadowPasses<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->ShadowPasses = sp::reflect::decode<int64_t>(value, "FRenderStats.ShadowPasses");
-                sp::reflect::notifyPropertyChanged(object, "ShadowPasses");
+                Calls::set_ShadowPasses<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -540,13 +441,9 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             TypeCode(Kind::Int),
             "Frames that reused the shadow maps unchanged (nothing that casts or lights moved).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ShadowReuses);
-            },
+            [](const void* self) { return Calls::get_ShadowReuses<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->ShadowReuses = sp::reflect::decode<int64_t>(value, "FRenderStats.ShadowReuses");
-                sp::reflect::notifyPropertyChanged(object, "ShadowReuses");
+                Calls::set_ShadowReuses<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -554,13 +451,9 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             TypeCode(Kind::Int),
             "Surface passes (geometry rasterisation; shading too when colour is asked for).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SurfacePasses);
-            },
+            [](const void* self) { return Calls::get_SurfacePasses<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SurfacePasses = sp::reflect::decode<int64_t>(value, "FRenderStats.SurfacePasses");
-                sp::reflect::notifyPropertyChanged(object, "SurfacePasses");
+                Calls::set_SurfacePasses<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -568,13 +461,9 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             TypeCode(Kind::Int),
             "Attribute passes: a second rasterisation writing the targets past the surface pass's 8 (all 14\nmodalities need one), at the fragments the surface pass kept.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->AttributePasses);
-            },
+            [](const void* self) { return Calls::get_AttributePasses<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->AttributePasses = sp::reflect::decode<int64_t>(value, "FRenderStats.AttributePasses");
-                sp::reflect::notifyPropertyChanged(object, "AttributePasses");
+                Calls::set_AttributePasses<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -582,13 +471,9 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             TypeCode(Kind::Int),
             "Frames that shaded.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->LightingPasses);
-            },
+            [](const void* self) { return Calls::get_LightingPasses<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->LightingPasses = sp::reflect::decode<int64_t>(value, "FRenderStats.LightingPasses");
-                sp::reflect::notifyPropertyChanged(object, "LightingPasses");
+                Calls::set_LightingPasses<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -596,13 +481,9 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             TypeCode(Kind::Int),
             "Frames that tone-mapped (fused into the pass that shaded).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->TonemapPasses);
-            },
+            [](const void* self) { return Calls::get_TonemapPasses<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->TonemapPasses = sp::reflect::decode<int64_t>(value, "FRenderStats.TonemapPasses");
-                sp::reflect::notifyPropertyChanged(object, "TonemapPasses");
+                Calls::set_TonemapPasses<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -610,13 +491,9 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             TypeCode(Kind::Int),
             "Images read back (one per modality per frame).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Readbacks);
-            },
+            [](const void* self) { return Calls::get_Readbacks<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Readbacks = sp::reflect::decode<int64_t>(value, "FRenderStats.Readbacks");
-                sp::reflect::notifyPropertyChanged(object, "Readbacks");
+                Calls::set_Readbacks<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -624,13 +501,9 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             TypeCode(Kind::Int),
             "Instances drawn by surface passes.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->DrawnInstances);
-            },
+            [](const void* self) { return Calls::get_DrawnInstances<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->DrawnInstances = sp::reflect::decode<int64_t>(value, "FRenderStats.DrawnInstances");
-                sp::reflect::notifyPropertyChanged(object, "DrawnInstances");
+                Calls::set_DrawnInstances<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -638,13 +511,9 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             TypeCode(Kind::Int),
             "Instances outside a camera's view, skipped.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->CulledInstances);
-            },
+            [](const void* self) { return Calls::get_CulledInstances<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->CulledInstances = sp::reflect::decode<int64_t>(value, "FRenderStats.CulledInstances");
-                sp::reflect::notifyPropertyChanged(object, "CulledInstances");
+                Calls::set_CulledInstances<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -652,13 +521,9 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             TypeCode(Kind::Float),
             "Milliseconds in shadow passes, by GL timer queries (the device's own clock).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ShadowMs);
-            },
+            [](const void* self) { return Calls::get_ShadowMs<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->ShadowMs = sp::reflect::decode<double>(value, "FRenderStats.ShadowMs");
-                sp::reflect::notifyPropertyChanged(object, "ShadowMs");
+                Calls::set_ShadowMs<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -666,13 +531,9 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             TypeCode(Kind::Float),
             "Milliseconds in surface passes, by GL timer queries.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SurfaceMs);
-            },
+            [](const void* self) { return Calls::get_SurfaceMs<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SurfaceMs = sp::reflect::decode<double>(value, "FRenderStats.SurfaceMs");
-                sp::reflect::notifyPropertyChanged(object, "SurfaceMs");
+                Calls::set_SurfaceMs<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -680,13 +541,9 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             TypeCode(Kind::Float),
             "Milliseconds in attribute passes, by GL timer queries.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->AttributeMs);
-            },
+            [](const void* self) { return Calls::get_AttributeMs<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->AttributeMs = sp::reflect::decode<double>(value, "FRenderStats.AttributeMs");
-                sp::reflect::notifyPropertyChanged(object, "AttributeMs");
+                Calls::set_AttributeMs<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -694,13 +551,9 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             TypeCode(Kind::Float),
             "Milliseconds the CPU spent reading images back (waiting for the frame included).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ReadbackMs);
-            },
+            [](const void* self) { return Calls::get_ReadbackMs<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->ReadbackMs = sp::reflect::decode<double>(value, "FRenderStats.ReadbackMs");
-                sp::reflect::notifyPropertyChanged(object, "ReadbackMs");
+                Calls::set_ReadbackMs<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;
@@ -715,6 +568,8 @@ const sp::reflect::TypeInfo& FRenderStats::GetClass() const { return StaticClass
 const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = UCameraSensorComponent;
+        using Calls = sp::generated::engine::UCameraSensorComponentCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "UCameraSensorComponent";
         t.doc = "A camera that renders the modalities in Modalities at the end of every frame.";
@@ -727,13 +582,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Int),
             "Image width in pixels.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Width);
-            },
+            [](const void* self) { return Calls::get_Width<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetWidth(sp::reflect::decode<int32_t>(value, "UCameraSensorComponent.Width"));
-                sp::reflect::notifyPropertyChanged(object, "Width");
+                Calls::set_Width<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -741,13 +592,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Int),
             "Image height in pixels.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Height);
-            },
+            [](const void* self) { return Calls::get_Height<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetHeight(sp::reflect::decode<int32_t>(value, "UCameraSensorComponent.Height"));
-                sp::reflect::notifyPropertyChanged(object, "Height");
+                Calls::set_Height<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -755,13 +602,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Horizontal field of view in degrees, in (0, 180); square pixels.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->FOV);
-            },
+            [](const void* self) { return Calls::get_FOV<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetFOV(sp::reflect::decode<double>(value, "UCameraSensorComponent.FOV"));
-                sp::reflect::notifyPropertyChanged(object, "FOV");
+                Calls::set_FOV<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -769,13 +612,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Near clipping distance in metres (> 0).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->NearClip);
-            },
+            [](const void* self) { return Calls::get_NearClip<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetNearClip(sp::reflect::decode<double>(value, "UCameraSensorComponent.NearClip"));
-                sp::reflect::notifyPropertyChanged(object, "NearClip");
+                Calls::set_NearClip<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -783,13 +622,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Far clipping distance in metres (> NearClip).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->FarClip);
-            },
+            [](const void* self) { return Calls::get_FarClip<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetFarClip(sp::reflect::decode<double>(value, "UCameraSensorComponent.FarClip"));
-                sp::reflect::notifyPropertyChanged(object, "FarClip");
+                Calls::set_FarClip<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -797,13 +632,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Linear multiplier of HDR radiance before the tone curve (SetExposureValue and SetPhysicalExposure\nset it from photographic settings).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Exposure);
-            },
+            [](const void* self) { return Calls::get_Exposure<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetExposure(sp::reflect::decode<float>(value, "UCameraSensorComponent.Exposure"));
-                sp::reflect::notifyPropertyChanged(object, "Exposure");
+                Calls::set_Exposure<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -811,13 +642,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Float),
             "The colour temperature in kelvin the camera is balanced for, in [2000, 25000]: light of this\ntemperature renders neutral in final_color (hdr_color is unchanged). 6500 (daylight) leaves colours as\nthey are; 3200 suits tungsten light (the image turns bluer), 10000 shade (warmer).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->WhiteBalanceTemperature);
-            },
+            [](const void* self) { return Calls::get_WhiteBalanceTemperature<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetWhiteBalanceTemperature(sp::reflect::decode<double>(value, "UCameraSensorComponent.WhiteBalanceTemperature"));
-                sp::reflect::notifyPropertyChanged(object, "WhiteBalanceTemperature");
+                Calls::set_WhiteBalanceTemperature<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -825,13 +652,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Sensor width in millimetres (> 0), relating FOV to a lens's focal length: 36 is full frame.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SensorWidth);
-            },
+            [](const void* self) { return Calls::get_SensorWidth<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetSensorWidth(sp::reflect::decode<double>(value, "UCameraSensorComponent.SensorWidth"));
-                sp::reflect::notifyPropertyChanged(object, "SensorWidth");
+                Calls::set_SensorWidth<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -839,13 +662,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Struct, "FLensDistortion"),
             "Lens distortion applied to every modality (OpenCV's model with GetIntrinsicMatrix()'s K; see\nGetDistortionCoefficients): each pixel shows what the distorted ray through it sees, taken from a\npinhole render wide enough to hold every ray, nearest pixel, so that all modalities stay consistent.\nPixels past where the model folds over (strong barrel distortion far from the axis) show no ray and\nare zero in every modality. The remap is rebuilt when the lens, the size or the FOV changes.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->LensDistortion);
-            },
+            [](const void* self) { return Calls::get_LensDistortion<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetLensDistortion(sp::reflect::decode<FLensDistortion>(value, "UCameraSensorComponent.LensDistortion"));
-                sp::reflect::notifyPropertyChanged(object, "LensDistortion");
+                Calls::set_LensDistortion<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -853,13 +672,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Struct, "FVector2D"),
             "The principal point's offset from the image centre in pixels (X right, Y down): an off-centre lens, as\na real camera's calibration gives it (cx, cy of GetIntrinsicMatrix() move by it).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->PrincipalPointOffset);
-            },
+            [](const void* self) { return Calls::get_PrincipalPointOffset<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetPrincipalPointOffset(sp::reflect::decode<FVector2D>(value, "UCameraSensorComponent.PrincipalPointOffset"));
-                sp::reflect::notifyPropertyChanged(object, "PrincipalPointOffset");
+                Calls::set_PrincipalPointOffset<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -867,13 +682,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Depth of field of the path tracer: the lens's f-number (its focal length, GetFocalLength() on\nSensorWidth, over the aperture's diameter); 0 (the default) is a pinhole, everything sharp. The raster\nrenderer, and the geometric modalities, are always sharp.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ApertureFNumber);
-            },
+            [](const void* self) { return Calls::get_ApertureFNumber<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetApertureFNumber(sp::reflect::decode<double>(value, "UCameraSensorComponent.ApertureFNumber"));
-                sp::reflect::notifyPropertyChanged(object, "ApertureFNumber");
+                Calls::set_ApertureFNumber<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -881,13 +692,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Float),
             "The distance in metres, along the optical axis, that the path tracer's lens is focused at (> 0).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->FocusDistance);
-            },
+            [](const void* self) { return Calls::get_FocusDistance<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetFocusDistance(sp::reflect::decode<double>(value, "UCameraSensorComponent.FocusDistance"));
-                sp::reflect::notifyPropertyChanged(object, "FocusDistance");
+                Calls::set_FocusDistance<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -895,13 +702,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Natural vignetting of final_color, in [0, 1]: each pixel's exposure falls off as mix(1, cos^4 theta,\nVignetteIntensity), theta the angle of its ray to the optical axis (the cos^4 law of a lens); 0 (the\ndefault) is none. hdr_color, the scene's radiance, is not vignetted.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->VignetteIntensity);
-            },
+            [](const void* self) { return Calls::get_VignetteIntensity<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetVignetteIntensity(sp::reflect::decode<float>(value, "UCameraSensorComponent.VignetteIntensity"));
-                sp::reflect::notifyPropertyChanged(object, "VignetteIntensity");
+                Calls::set_VignetteIntensity<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -909,13 +712,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Enum, "ECameraToneCurve"),
             "The tone curve of final_color.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ToneCurve);
-            },
+            [](const void* self) { return Calls::get_ToneCurve<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->ToneCurve = sp::reflect::decode<ECameraToneCurve>(value, "UCameraSensorComponent.ToneCurve");
-                sp::reflect::notifyPropertyChanged(object, "ToneCurve");
+                Calls::set_ToneCurve<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -923,13 +722,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Bool),
             "Whether shadow-casting lights render shadow maps for this camera.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bShadows);
-            },
+            [](const void* self) { return Calls::get_bShadows<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bShadows = sp::reflect::decode<bool>(value, "UCameraSensorComponent.bShadows");
-                sp::reflect::notifyPropertyChanged(object, "bShadows");
+                Calls::set_bShadows<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -937,13 +732,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Int),
             "Shadow map size in texels, in [16, 8192].",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ShadowResolution);
-            },
+            [](const void* self) { return Calls::get_ShadowResolution<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetShadowResolution(sp::reflect::decode<int32_t>(value, "UCameraSensorComponent.ShadowResolution"));
-                sp::reflect::notifyPropertyChanged(object, "ShadowResolution");
+                Calls::set_ShadowResolution<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -951,13 +742,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::List, TypeCode(Kind::Enum, "ECameraModality")),
             "The modalities rendered each frame; only the passes they need run.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Modalities);
-            },
+            [](const void* self) { return Calls::get_Modalities<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Modalities = sp::reflect::decode<std::vector<ECameraModality>>(value, "UCameraSensorComponent.Modalities");
-                sp::reflect::notifyPropertyChanged(object, "Modalities");
+                Calls::set_Modalities<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -965,13 +752,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Int),
             "Frames between rendering and reading: 0 (same frame), 1 or 2 (double or triple buffered).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Latency);
-            },
+            [](const void* self) { return Calls::get_Latency<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetLatency(sp::reflect::decode<int32_t>(value, "UCameraSensorComponent.Latency"));
-                sp::reflect::notifyPropertyChanged(object, "Latency");
+                Calls::set_Latency<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -979,13 +762,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Enum, "ECameraRenderer"),
             "The renderer of final_color, hdr_color and the intrinsic images (geometric and material modalities\nare always rasterised).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Renderer);
-            },
+            [](const void* self) { return Calls::get_Renderer<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Renderer = sp::reflect::decode<ECameraRenderer>(value, "UCameraSensorComponent.Renderer");
-                sp::reflect::notifyPropertyChanged(object, "Renderer");
+                Calls::set_Renderer<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -993,13 +772,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Int),
             "Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SamplesPerPixel);
-            },
+            [](const void* self) { return Calls::get_SamplesPerPixel<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetSamplesPerPixel(sp::reflect::decode<int32_t>(value, "UCameraSensorComponent.SamplesPerPixel"));
-                sp::reflect::notifyPropertyChanged(object, "SamplesPerPixel");
+                Calls::set_SamplesPerPixel<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -1007,13 +782,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             TypeCode(Kind::Int),
             "Path tracing: indirect bounces after the first hit, in [0, 64] (0: direct light and sky only).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->MaxBounces);
-            },
+            [](const void* self) { return Calls::get_MaxBounces<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetMaxBounces(sp::reflect::decode<int32_t>(value, "UCameraSensorComponent.MaxBounces"));
-                sp::reflect::notifyPropertyChanged(object, "MaxBounces");
+                Calls::set_MaxBounces<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -1025,13 +796,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetWidth()";
-                sp::reflect::checkArguments(args, {"NewWidth"}, kContext);
-                int32_t NewWidth = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "NewWidth", kContext), "UCameraSensorComponent.SetWidth(): argument 'NewWidth'");
-                sp::reflect::selfCast<Self>(self)->SetWidth(NewWidth);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetWidth<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetHeight",
@@ -1042,13 +807,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetHeight()";
-                sp::reflect::checkArguments(args, {"NewHeight"}, kContext);
-                int32_t NewHeight = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "NewHeight", kContext), "UCameraSensorComponent.SetHeight(): argument 'NewHeight'");
-                sp::reflect::selfCast<Self>(self)->SetHeight(NewHeight);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetHeight<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetFOV",
@@ -1059,13 +818,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetFOV()";
-                sp::reflect::checkArguments(args, {"NewFOV"}, kContext);
-                double NewFOV = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewFOV", kContext), "UCameraSensorComponent.SetFOV(): argument 'NewFOV'");
-                sp::reflect::selfCast<Self>(self)->SetFOV(NewFOV);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetFOV<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetNearClip",
@@ -1076,13 +829,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetNearClip()";
-                sp::reflect::checkArguments(args, {"NewNearClip"}, kContext);
-                double NewNearClip = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewNearClip", kContext), "UCameraSensorComponent.SetNearClip(): argument 'NewNearClip'");
-                sp::reflect::selfCast<Self>(self)->SetNearClip(NewNearClip);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetNearClip<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetFarClip",
@@ -1093,13 +840,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetFarClip()";
-                sp::reflect::checkArguments(args, {"NewFarClip"}, kContext);
-                double NewFarClip = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewFarClip", kContext), "UCameraSensorComponent.SetFarClip(): argument 'NewFarClip'");
-                sp::reflect::selfCast<Self>(self)->SetFarClip(NewFarClip);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetFarClip<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetExposure",
@@ -1110,13 +851,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetExposure()";
-                sp::reflect::checkArguments(args, {"NewExposure"}, kContext);
-                float NewExposure = sp::reflect::decode<float>(sp::reflect::requireArgument(args, "NewExposure", kContext), "UCameraSensorComponent.SetExposure(): argument 'NewExposure'");
-                sp::reflect::selfCast<Self>(self)->SetExposure(NewExposure);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetExposure<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetSensorWidth",
@@ -1127,13 +862,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetSensorWidth()";
-                sp::reflect::checkArguments(args, {"NewSensorWidth"}, kContext);
-                double NewSensorWidth = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewSensorWidth", kContext), "UCameraSensorComponent.SetSensorWidth(): argument 'NewSensorWidth'");
-                sp::reflect::selfCast<Self>(self)->SetSensorWidth(NewSensorWidth);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetSensorWidth<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetFocalLength",
@@ -1144,13 +873,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetFocalLength()";
-                sp::reflect::checkArguments(args, {"FocalLength"}, kContext);
-                double FocalLength = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "FocalLength", kContext), "UCameraSensorComponent.SetFocalLength(): argument 'FocalLength'");
-                sp::reflect::selfCast<Self>(self)->SetFocalLength(FocalLength);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetFocalLength<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetFocalLength",
@@ -1160,12 +883,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetFocalLength()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetFocalLength();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetFocalLength<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetExposureValue",
@@ -1176,13 +894,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetExposureValue()";
-                sp::reflect::checkArguments(args, {"EV100"}, kContext);
-                double EV100 = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "EV100", kContext), "UCameraSensorComponent.SetExposureValue(): argument 'EV100'");
-                sp::reflect::selfCast<Self>(self)->SetExposureValue(EV100);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetExposureValue<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetPhysicalExposure",
@@ -1195,15 +907,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetPhysicalExposure()";
-                sp::reflect::checkArguments(args, {"FNumber", "ShutterSeconds", "ISO"}, kContext);
-                double FNumber = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "FNumber", kContext), "UCameraSensorComponent.SetPhysicalExposure(): argument 'FNumber'");
-                double ShutterSeconds = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "ShutterSeconds", kContext), "UCameraSensorComponent.SetPhysicalExposure(): argument 'ShutterSeconds'");
-                double ISO = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "ISO", kContext), "UCameraSensorComponent.SetPhysicalExposure(): argument 'ISO'");
-                sp::reflect::selfCast<Self>(self)->SetPhysicalExposure(FNumber, ShutterSeconds, ISO);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetPhysicalExposure<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetLensDistortion",
@@ -1214,13 +918,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetLensDistortion()";
-                sp::reflect::checkArguments(args, {"NewLensDistortion"}, kContext);
-                FLensDistortion NewLensDistortion = sp::reflect::decode<FLensDistortion>(sp::reflect::requireArgument(args, "NewLensDistortion", kContext), "UCameraSensorComponent.SetLensDistortion(): argument 'NewLensDistortion'");
-                sp::reflect::selfCast<Self>(self)->SetLensDistortion(NewLensDistortion);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetLensDistortion<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetPrincipalPointOffset",
@@ -1231,13 +929,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetPrincipalPointOffset()";
-                sp::reflect::checkArguments(args, {"NewPrincipalPointOffset"}, kContext);
-                FVector2D NewPrincipalPointOffset = sp::reflect::decode<FVector2D>(sp::reflect::requireArgument(args, "NewPrincipalPointOffset", kContext), "UCameraSensorComponent.SetPrincipalPointOffset(): argument 'NewPrincipalPointOffset'");
-                sp::reflect::selfCast<Self>(self)->SetPrincipalPointOffset(NewPrincipalPointOffset);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetPrincipalPointOffset<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetDistortionCoefficients",
@@ -1247,12 +939,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetDistortionCoefficients()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetDistortionCoefficients();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetDistortionCoefficients<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "DistortPixels",
@@ -1263,13 +950,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.DistortPixels()";
-                sp::reflect::checkArguments(args, {"Points"}, kContext);
-                sp::reflect::SpArray<double> Points = sp::reflect::decode<sp::reflect::SpArray<double>>(sp::reflect::requireArgument(args, "Points", kContext), "UCameraSensorComponent.DistortPixels(): argument 'Points'");
-                auto result = sp::reflect::selfCast<const Self>(self)->DistortPixels(Points);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_DistortPixels<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "UndistortPixels",
@@ -1280,13 +961,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.UndistortPixels()";
-                sp::reflect::checkArguments(args, {"Points"}, kContext);
-                sp::reflect::SpArray<double> Points = sp::reflect::decode<sp::reflect::SpArray<double>>(sp::reflect::requireArgument(args, "Points", kContext), "UCameraSensorComponent.UndistortPixels(): argument 'Points'");
-                auto result = sp::reflect::selfCast<const Self>(self)->UndistortPixels(Points);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_UndistortPixels<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetApertureFNumber",
@@ -1297,13 +972,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetApertureFNumber()";
-                sp::reflect::checkArguments(args, {"NewApertureFNumber"}, kContext);
-                double NewApertureFNumber = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewApertureFNumber", kContext), "UCameraSensorComponent.SetApertureFNumber(): argument 'NewApertureFNumber'");
-                sp::reflect::selfCast<Self>(self)->SetApertureFNumber(NewApertureFNumber);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetApertureFNumber<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetFocusDistance",
@@ -1314,13 +983,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetFocusDistance()";
-                sp::reflect::checkArguments(args, {"NewFocusDistance"}, kContext);
-                double NewFocusDistance = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewFocusDistance", kContext), "UCameraSensorComponent.SetFocusDistance(): argument 'NewFocusDistance'");
-                sp::reflect::selfCast<Self>(self)->SetFocusDistance(NewFocusDistance);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetFocusDistance<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetVignetteIntensity",
@@ -1331,13 +994,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetVignetteIntensity()";
-                sp::reflect::checkArguments(args, {"NewVignetteIntensity"}, kContext);
-                float NewVignetteIntensity = sp::reflect::decode<float>(sp::reflect::requireArgument(args, "NewVignetteIntensity", kContext), "UCameraSensorComponent.SetVignetteIntensity(): argument 'NewVignetteIntensity'");
-                sp::reflect::selfCast<Self>(self)->SetVignetteIntensity(NewVignetteIntensity);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetVignetteIntensity<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetWhiteBalanceTemperature",
@@ -1348,13 +1005,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetWhiteBalanceTemperature()";
-                sp::reflect::checkArguments(args, {"NewWhiteBalanceTemperature"}, kContext);
-                double NewWhiteBalanceTemperature = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewWhiteBalanceTemperature", kContext), "UCameraSensorComponent.SetWhiteBalanceTemperature(): argument 'NewWhiteBalanceTemperature'");
-                sp::reflect::selfCast<Self>(self)->SetWhiteBalanceTemperature(NewWhiteBalanceTemperature);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetWhiteBalanceTemperature<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetWhiteBalanceGains",
@@ -1364,12 +1015,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetWhiteBalanceGains()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetWhiteBalanceGains();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetWhiteBalanceGains<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetShadowResolution",
@@ -1380,13 +1026,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetShadowResolution()";
-                sp::reflect::checkArguments(args, {"NewShadowResolution"}, kContext);
-                int32_t NewShadowResolution = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "NewShadowResolution", kContext), "UCameraSensorComponent.SetShadowResolution(): argument 'NewShadowResolution'");
-                sp::reflect::selfCast<Self>(self)->SetShadowResolution(NewShadowResolution);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetShadowResolution<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetLatency",
@@ -1397,13 +1037,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetLatency()";
-                sp::reflect::checkArguments(args, {"NewLatency"}, kContext);
-                int32_t NewLatency = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "NewLatency", kContext), "UCameraSensorComponent.SetLatency(): argument 'NewLatency'");
-                sp::reflect::selfCast<Self>(self)->SetLatency(NewLatency);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetLatency<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetSamplesPerPixel",
@@ -1414,13 +1048,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetSamplesPerPixel()";
-                sp::reflect::checkArguments(args, {"NewSamplesPerPixel"}, kContext);
-                int32_t NewSamplesPerPixel = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "NewSamplesPerPixel", kContext), "UCameraSensorComponent.SetSamplesPerPixel(): argument 'NewSamplesPerPixel'");
-                sp::reflect::selfCast<Self>(self)->SetSamplesPerPixel(NewSamplesPerPixel);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetSamplesPerPixel<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetMaxBounces",
@@ -1431,13 +1059,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetMaxBounces()";
-                sp::reflect::checkArguments(args, {"NewMaxBounces"}, kContext);
-                int32_t NewMaxBounces = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "NewMaxBounces", kContext), "UCameraSensorComponent.SetMaxBounces(): argument 'NewMaxBounces'");
-                sp::reflect::selfCast<Self>(self)->SetMaxBounces(NewMaxBounces);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetMaxBounces<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetIntrinsicMatrix",
@@ -1447,12 +1069,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetIntrinsicMatrix()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetIntrinsicMatrix();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetIntrinsicMatrix<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetWorldToCamera",
@@ -1462,12 +1079,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetWorldToCamera()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetWorldToCamera();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetWorldToCamera<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetAccumulatedSamples",
@@ -1477,12 +1089,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetAccumulatedSamples()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetAccumulatedSamples();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetAccumulatedSamples<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "read_pixels",
@@ -1492,13 +1099,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.read_pixels()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<Self>(self)->read_pixels();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_read_pixels<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "read_pixels_stacked",
@@ -1509,14 +1110,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.read_pixels_stacked()";
-                sp::reflect::checkArguments(args, {"Cameras"}, kContext);
-                std::vector<UCameraSensorComponent*> Cameras = sp::reflect::decode<std::vector<UCameraSensorComponent*>>(sp::reflect::requireArgument(args, "Cameras", kContext), "UCameraSensorComponent.read_pixels_stacked(): argument 'Cameras'");
-                auto result = Self::read_pixels_stacked(Cameras);
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_read_pixels_stacked<ValueCall>(args); },
         });
         t.functions.push_back({
             "GetPixelsFrame",
@@ -1526,12 +1120,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetPixelsFrame()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetPixelsFrame();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetPixelsFrame<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetModalityNames",
@@ -1542,13 +1131,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetModalityNames()";
-                sp::reflect::checkArguments(args, {"Names"}, kContext);
-                std::vector<std::string> Names = sp::reflect::decode<std::vector<std::string>>(sp::reflect::requireArgument(args, "Names", kContext), "UCameraSensorComponent.SetModalityNames(): argument 'Names'");
-                sp::reflect::selfCast<Self>(self)->SetModalityNames(Names);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetModalityNames<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetModalityNames",
@@ -1558,12 +1141,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetModalityNames()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetModalityNames();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetModalityNames<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetObjectIdInfo",
@@ -1578,23 +1156,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetObjectIdInfo()";
-                sp::reflect::checkArguments(args, {"ObjectId"}, kContext);
-                int64_t ObjectId = sp::reflect::decode<int64_t>(sp::reflect::requireArgument(args, "ObjectId", kContext), "UCameraSensorComponent.GetObjectIdInfo(): argument 'ObjectId'");
-                AActor* Actor{};
-                UPrimitiveComponent* Component{};
-                int32_t MaterialSlot{};
-                std::string MaterialName{};
-                auto result = sp::reflect::selfCast<const Self>(self)->GetObjectIdInfo(ObjectId, Actor, Component, MaterialSlot, MaterialName);
-                sp::reflect::Value::Dict outputs;
-                outputs.emplace("ReturnValue", sp::reflect::encode(result));
-                outputs.emplace("Actor", sp::reflect::encode(Actor));
-                outputs.emplace("Component", sp::reflect::encode(Component));
-                outputs.emplace("MaterialSlot", sp::reflect::encode(MaterialSlot));
-                outputs.emplace("MaterialName", sp::reflect::encode(MaterialName));
-                return sp::reflect::Value(std::move(outputs));
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetObjectIdInfo<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetObjectId",
@@ -1606,15 +1168,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetObjectId()";
-                sp::reflect::checkArguments(args, {"Component", "MaterialSlot"}, kContext);
-                UPrimitiveComponent* Component = sp::reflect::decodeNonNull<UPrimitiveComponent*>(sp::reflect::requireArgument(args, "Component", kContext), "UCameraSensorComponent.GetObjectId(): argument 'Component'");
-                const sp::reflect::Value* MaterialSlotArg = sp::reflect::findArgument(args, "MaterialSlot");
-                int32_t MaterialSlot = MaterialSlotArg ? sp::reflect::decode<int32_t>(*MaterialSlotArg, "UCameraSensorComponent.GetObjectId(): argument 'MaterialSlot'") : int32_t(0);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetObjectId(Component, MaterialSlot);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetObjectId<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetMaterialId",
@@ -1625,13 +1179,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetMaterialId()";
-                sp::reflect::checkArguments(args, {"Name"}, kContext);
-                std::string Name = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "Name", kContext), "UCameraSensorComponent.GetMaterialId(): argument 'Name'");
-                auto result = sp::reflect::selfCast<const Self>(self)->GetMaterialId(Name);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetMaterialId<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "get_render_device_info",
@@ -1641,13 +1189,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.get_render_device_info()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<Self>(self)->get_render_device_info();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_get_render_device_info<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetRenderStats",
@@ -1657,13 +1199,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetRenderStats()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetRenderStats();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetRenderStats<ValueCall>(self, args); },
         });
         return t;
     }();

@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& AMaterialLibrary::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = AMaterialLibrary;
+        using Calls = sp::generated::engine::AMaterialLibraryCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "AMaterialLibrary";
         t.doc = "An actor that defines materials by name for the meshes of its world.";
@@ -60,13 +63,9 @@ const sp::reflect::TypeInfo& AMaterialLibrary::StaticClass() {
             TypeCode(Kind::Dict, TypeCode(Kind::Struct, "FMaterialDesc")),
             "Materials by name; mesh components refer to them in their Materials list.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Materials);
-            },
+            [](const void* self) { return Calls::get_Materials<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Materials = sp::reflect::decode<std::map<std::string, FMaterialDesc>>(value, "AMaterialLibrary.Materials");
-                sp::reflect::notifyPropertyChanged(object, "Materials");
+                Calls::set_Materials<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -79,14 +78,7 @@ const sp::reflect::TypeInfo& AMaterialLibrary::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AMaterialLibrary.SetMaterial()";
-                sp::reflect::checkArguments(args, {"Name", "Material"}, kContext);
-                std::string Name = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "Name", kContext), "AMaterialLibrary.SetMaterial(): argument 'Name'");
-                FMaterialDesc Material = sp::reflect::decode<FMaterialDesc>(sp::reflect::requireArgument(args, "Material", kContext), "AMaterialLibrary.SetMaterial(): argument 'Material'");
-                sp::reflect::selfCast<Self>(self)->SetMaterial(Name, Material);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetMaterial<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetMaterial",
@@ -97,14 +89,7 @@ const sp::reflect::TypeInfo& AMaterialLibrary::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AMaterialLibrary.GetMaterial()";
-                sp::reflect::checkArguments(args, {"Name"}, kContext);
-                std::string Name = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "Name", kContext), "AMaterialLibrary.GetMaterial(): argument 'Name'");
-                auto result = sp::reflect::selfCast<const Self>(self)->GetMaterial(Name);
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetMaterial<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetBuiltinMaterialNames",
@@ -114,12 +99,7 @@ const sp::reflect::TypeInfo& AMaterialLibrary::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AMaterialLibrary.GetBuiltinMaterialNames()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetBuiltinMaterialNames();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetBuiltinMaterialNames<ValueCall>(self, args); },
         });
         return t;
     }();
@@ -133,6 +113,8 @@ const sp::reflect::TypeInfo& AMaterialLibrary::GetClass() const { return StaticC
 const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FMaterialDesc;
+        using Calls = sp::generated::engine::FMaterialDescCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FMaterialDesc";
         t.doc = "A PBR metallic-roughness material (glTF / UE conventions, linear colours).";
@@ -144,13 +126,9 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
             TypeCode(Kind::Struct, "FLinearColor"),
             "Linear RGB base colour (alpha unused: materials are opaque).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->BaseColor);
-            },
+            [](const void* self) { return Calls::get_BaseColor<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->BaseColor = sp::reflect::decode<FLinearColor>(value, "FMaterialDesc.BaseColor");
-                sp::reflect::notifyPropertyChanged(object, "BaseColor");
+                Calls::set_BaseColor<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -158,13 +136,9 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
             TypeCode(Kind::Float),
             "Perceptual roughness in [0, 1].",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Roughness);
-            },
+            [](const void* self) { return Calls::get_Roughness<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Roughness = sp::reflect::decode<float>(value, "FMaterialDesc.Roughness");
-                sp::reflect::notifyPropertyChanged(object, "Roughness");
+                Calls::set_Roughness<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -172,13 +146,9 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
             TypeCode(Kind::Float),
             "Metalness in [0, 1].",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Metallic);
-            },
+            [](const void* self) { return Calls::get_Metallic<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Metallic = sp::reflect::decode<float>(value, "FMaterialDesc.Metallic");
-                sp::reflect::notifyPropertyChanged(object, "Metallic");
+                Calls::set_Metallic<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -186,13 +156,9 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
             TypeCode(Kind::Float),
             "Ambient occlusion in [0, 1]; scales the sky light only.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->AmbientOcclusion);
-            },
+            [](const void* self) { return Calls::get_AmbientOcclusion<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->AmbientOcclusion = sp::reflect::decode<float>(value, "FMaterialDesc.AmbientOcclusion");
-                sp::reflect::notifyPropertyChanged(object, "AmbientOcclusion");
+                Calls::set_AmbientOcclusion<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -200,13 +166,9 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
             TypeCode(Kind::Struct, "FLinearColor"),
             "Linear RGB radiance emitted by the surface (alpha unused).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Emissive);
-            },
+            [](const void* self) { return Calls::get_Emissive<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Emissive = sp::reflect::decode<FLinearColor>(value, "FMaterialDesc.Emissive");
-                sp::reflect::notifyPropertyChanged(object, "Emissive");
+                Calls::set_Emissive<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -214,13 +176,9 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
             TypeCode(Kind::Str),
             "Path of an sRGB PNG/JPG multiplying BaseColor (\"\" for none).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->BaseColorTexture);
-            },
+            [](const void* self) { return Calls::get_BaseColorTexture<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->BaseColorTexture = sp::reflect::decode<std::string>(value, "FMaterialDesc.BaseColorTexture");
-                sp::reflect::notifyPropertyChanged(object, "BaseColorTexture");
+                Calls::set_BaseColorTexture<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -228,13 +186,9 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
             TypeCode(Kind::Str),
             "Path of a glTF-layout texture (G = roughness, B = metallic) multiplying the factors (\"\" for none).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->RoughnessMetallicTexture);
-            },
+            [](const void* self) { return Calls::get_RoughnessMetallicTexture<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->RoughnessMetallicTexture = sp::reflect::decode<std::string>(value, "FMaterialDesc.RoughnessMetallicTexture");
-                sp::reflect::notifyPropertyChanged(object, "RoughnessMetallicTexture");
+                Calls::set_RoughnessMetallicTexture<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -242,13 +196,9 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
             TypeCode(Kind::Str),
             "Path of a tangent-space normal map, OpenGL convention (\"\" for none).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->NormalTexture);
-            },
+            [](const void* self) { return Calls::get_NormalTexture<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->NormalTexture = sp::reflect::decode<std::string>(value, "FMaterialDesc.NormalTexture");
-                sp::reflect::notifyPropertyChanged(object, "NormalTexture");
+                Calls::set_NormalTexture<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;

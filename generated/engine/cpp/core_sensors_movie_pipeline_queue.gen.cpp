@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -65,6 +66,8 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EMoviePipelineJ
 const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FMoviePipelineConfiguration;
+        using Calls = sp::generated::engine::FMoviePipelineConfigurationCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FMoviePipelineConfiguration";
         t.doc = "What a render job renders, and where its files go.";
@@ -76,13 +79,9 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
             TypeCode(Kind::Str),
             "The folder the files go to (created when missing): <modality>/<frame>.png|.exr and\ncamera/<frame>.json.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->OutputDirectory);
-            },
+            [](const void* self) { return Calls::get_OutputDirectory<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->OutputDirectory = sp::reflect::decode<std::string>(value, "FMoviePipelineConfiguration.OutputDirectory");
-                sp::reflect::notifyPropertyChanged(object, "OutputDirectory");
+                Calls::set_OutputDirectory<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -90,13 +89,9 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
             TypeCode(Kind::List, TypeCode(Kind::Enum, "ECameraModality")),
             "The modalities written; empty: the camera's Modalities.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Modalities);
-            },
+            [](const void* self) { return Calls::get_Modalities<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Modalities = sp::reflect::decode<std::vector<ECameraModality>>(value, "FMoviePipelineConfiguration.Modalities");
-                sp::reflect::notifyPropertyChanged(object, "Modalities");
+                Calls::set_Modalities<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -104,13 +99,9 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
             TypeCode(Kind::Int),
             "Image width in pixels, in [1, 16384]; 0: the camera's Width.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Width);
-            },
+            [](const void* self) { return Calls::get_Width<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Width = sp::reflect::decode<int32_t>(value, "FMoviePipelineConfiguration.Width");
-                sp::reflect::notifyPropertyChanged(object, "Width");
+                Calls::set_Width<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -118,13 +109,9 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
             TypeCode(Kind::Int),
             "Image height in pixels, in [1, 16384]; 0: the camera's Height.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Height);
-            },
+            [](const void* self) { return Calls::get_Height<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Height = sp::reflect::decode<int32_t>(value, "FMoviePipelineConfiguration.Height");
-                sp::reflect::notifyPropertyChanged(object, "Height");
+                Calls::set_Height<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -132,13 +119,9 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
             TypeCode(Kind::Int),
             "Path-traced cameras: samples per pixel of each output frame, in [1, 65536] (each frame's own, never\naccumulated across frames); 0: the camera's SamplesPerPixel. Raster cameras ignore it.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SamplesPerPixel);
-            },
+            [](const void* self) { return Calls::get_SamplesPerPixel<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SamplesPerPixel = sp::reflect::decode<int32_t>(value, "FMoviePipelineConfiguration.SamplesPerPixel");
-                sp::reflect::notifyPropertyChanged(object, "SamplesPerPixel");
+                Calls::set_SamplesPerPixel<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -146,13 +129,9 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
             TypeCode(Kind::List, TypeCode(Kind::Struct, "FVector")),
             "World locations of the camera, one per output frame; empty: the camera stays where the world puts it\nand output frame k is the k-th engine frame of the job (a recording of the running world).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->CameraLocations);
-            },
+            [](const void* self) { return Calls::get_CameraLocations<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->CameraLocations = sp::reflect::decode<std::vector<FVector>>(value, "FMoviePipelineConfiguration.CameraLocations");
-                sp::reflect::notifyPropertyChanged(object, "CameraLocations");
+                Calls::set_CameraLocations<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -160,13 +139,9 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
             TypeCode(Kind::List, TypeCode(Kind::Struct, "FRotator")),
             "World rotations of the camera, one per location.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->CameraRotations);
-            },
+            [](const void* self) { return Calls::get_CameraRotations<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->CameraRotations = sp::reflect::decode<std::vector<FRotator>>(value, "FMoviePipelineConfiguration.CameraRotations");
-                sp::reflect::notifyPropertyChanged(object, "CameraRotations");
+                Calls::set_CameraRotations<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -174,13 +149,9 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
             TypeCode(Kind::Int),
             "The first output frame rendered (>= 0); frames are numbered from 0 and name the files.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->FrameStart);
-            },
+            [](const void* self) { return Calls::get_FrameStart<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->FrameStart = sp::reflect::decode<int32_t>(value, "FMoviePipelineConfiguration.FrameStart");
-                sp::reflect::notifyPropertyChanged(object, "FrameStart");
+                Calls::set_FrameStart<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -188,13 +159,9 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
             TypeCode(Kind::Int),
             "One past the last output frame rendered; -1: the number of poses (required without poses).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->FrameEnd);
-            },
+            [](const void* self) { return Calls::get_FrameEnd<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->FrameEnd = sp::reflect::decode<int32_t>(value, "FMoviePipelineConfiguration.FrameEnd");
-                sp::reflect::notifyPropertyChanged(object, "FrameEnd");
+                Calls::set_FrameEnd<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -202,13 +169,9 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
             TypeCode(Kind::Bool),
             "Whether frames whose files all exist are rendered again (false: they are skipped, which resumes an\ninterrupted job).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bOverwriteExisting);
-            },
+            [](const void* self) { return Calls::get_bOverwriteExisting<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bOverwriteExisting = sp::reflect::decode<bool>(value, "FMoviePipelineConfiguration.bOverwriteExisting");
-                sp::reflect::notifyPropertyChanged(object, "bOverwriteExisting");
+                Calls::set_bOverwriteExisting<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;
@@ -223,6 +186,8 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::GetClass() const { ret
 const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FMoviePipelineProgress;
+        using Calls = sp::generated::engine::FMoviePipelineProgressCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FMoviePipelineProgress";
         t.doc = "How far a render job is.";
@@ -234,13 +199,9 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
             TypeCode(Kind::Int),
             "Output frames in the job's range.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->FramesTotal);
-            },
+            [](const void* self) { return Calls::get_FramesTotal<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->FramesTotal = sp::reflect::decode<int32_t>(value, "FMoviePipelineProgress.FramesTotal");
-                sp::reflect::notifyPropertyChanged(object, "FramesTotal");
+                Calls::set_FramesTotal<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -248,13 +209,9 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
             TypeCode(Kind::Int),
             "Frames rendered and written by this run.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->FramesRendered);
-            },
+            [](const void* self) { return Calls::get_FramesRendered<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->FramesRendered = sp::reflect::decode<int32_t>(value, "FMoviePipelineProgress.FramesRendered");
-                sp::reflect::notifyPropertyChanged(object, "FramesRendered");
+                Calls::set_FramesRendered<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -262,13 +219,9 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
             TypeCode(Kind::Int),
             "Frames rendered whose files are still being written (on background threads, while the next frames\nrender); a job ends only when this is 0.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->FramesWriting);
-            },
+            [](const void* self) { return Calls::get_FramesWriting<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->FramesWriting = sp::reflect::decode<int32_t>(value, "FMoviePipelineProgress.FramesWriting");
-                sp::reflect::notifyPropertyChanged(object, "FramesWriting");
+                Calls::set_FramesWriting<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -276,13 +229,9 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
             TypeCode(Kind::Int),
             "Frames skipped because their files were already there.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->FramesSkipped);
-            },
+            [](const void* self) { return Calls::get_FramesSkipped<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->FramesSkipped = sp::reflect::decode<int32_t>(value, "FMoviePipelineProgress.FramesSkipped");
-                sp::reflect::notifyPropertyChanged(object, "FramesSkipped");
+                Calls::set_FramesSkipped<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -290,13 +239,9 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
             TypeCode(Kind::Float),
             "Seconds since the job started rendering (0 before).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ElapsedSeconds);
-            },
+            [](const void* self) { return Calls::get_ElapsedSeconds<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->ElapsedSeconds = sp::reflect::decode<double>(value, "FMoviePipelineProgress.ElapsedSeconds");
-                sp::reflect::notifyPropertyChanged(object, "ElapsedSeconds");
+                Calls::set_ElapsedSeconds<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -304,13 +249,9 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
             TypeCode(Kind::Float),
             "Seconds left at the pace of the frames rendered so far (0 when finished; -1 before the first frame and\nafter a cancel or a failure).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->EstimatedSecondsLeft);
-            },
+            [](const void* self) { return Calls::get_EstimatedSecondsLeft<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->EstimatedSecondsLeft = sp::reflect::decode<double>(value, "FMoviePipelineProgress.EstimatedSecondsLeft");
-                sp::reflect::notifyPropertyChanged(object, "EstimatedSecondsLeft");
+                Calls::set_EstimatedSecondsLeft<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;
@@ -325,6 +266,8 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::GetClass() const { return S
 const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = UMoviePipelineExecutorJob;
+        using Calls = sp::generated::engine::UMoviePipelineExecutorJobCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "UMoviePipelineExecutorJob";
         t.doc = "One render job: a camera, a configuration, and where rendering is.";
@@ -336,9 +279,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
             TypeCode(Kind::Str),
             "The name given to AllocateJob (used in progress and log lines).",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->JobName);
-            },
+            [](const void* self) { return Calls::get_JobName<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.functions.push_back({
@@ -350,13 +291,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UMoviePipelineExecutorJob.SetConfiguration()";
-                sp::reflect::checkArguments(args, {"Configuration"}, kContext);
-                FMoviePipelineConfiguration Configuration = sp::reflect::decode<FMoviePipelineConfiguration>(sp::reflect::requireArgument(args, "Configuration", kContext), "UMoviePipelineExecutorJob.SetConfiguration(): argument 'Configuration'");
-                sp::reflect::selfCast<Self>(self)->SetConfiguration(Configuration);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetConfiguration<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetConfiguration",
@@ -366,13 +301,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UMoviePipelineExecutorJob.GetConfiguration()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetConfiguration();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetConfiguration<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetCamera",
@@ -382,12 +311,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UMoviePipelineExecutorJob.GetCamera()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetCamera();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetCamera<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetStatus",
@@ -397,12 +321,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UMoviePipelineExecutorJob.GetStatus()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetStatus();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetStatus<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetProgress",
@@ -412,13 +331,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UMoviePipelineExecutorJob.GetProgress()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetProgress();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetProgress<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetErrorMessage",
@@ -428,12 +341,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UMoviePipelineExecutorJob.GetErrorMessage()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetErrorMessage();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetErrorMessage<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetOutputFiles",
@@ -444,13 +352,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UMoviePipelineExecutorJob.GetOutputFiles()";
-                sp::reflect::checkArguments(args, {"Frame"}, kContext);
-                int32_t Frame = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "Frame", kContext), "UMoviePipelineExecutorJob.GetOutputFiles(): argument 'Frame'");
-                auto result = sp::reflect::selfCast<const Self>(self)->GetOutputFiles(Frame);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetOutputFiles<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "Cancel",
@@ -460,12 +362,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UMoviePipelineExecutorJob.Cancel()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                sp::reflect::selfCast<Self>(self)->Cancel();
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_Cancel<ValueCall>(self, args); },
         });
         return t;
     }();
@@ -478,7 +375,9 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::GetClass() const { retur
 
 const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
-        using Self = UMoviePipelineQueueEngineSubsystem;
+        using Self [[maybe_unused]] = UMoviePipelineQueueEngineSubsystem;
+        using Calls = sp::generated::engine::UMoviePipelineQueueEngineSubsystemCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "UMoviePipelineQueueEngineSubsystem";
         t.doc = "A world's render queue (UE's UMoviePipelineQueueEngineSubsystem): jobs render one after another, in the\norder RenderJob queued them.";
@@ -494,14 +393,7 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.GetMoviePipelineQueueEngineSubsystem()";
-                sp::reflect::checkArguments(args, {"WorldContextObject"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UMoviePipelineQueueEngineSubsystem.GetMoviePipelineQueueEngineSubsystem(): argument 'WorldContextObject'");
-                auto result = Self::GetMoviePipelineQueueEngineSubsystem(WorldContextObject);
-                sp::reflect::checkNotNull(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_GetMoviePipelineQueueEngineSubsystem<ValueCall>(args); },
         });
         t.functions.push_back({
             "AllocateJob",
@@ -513,16 +405,7 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.AllocateJob()";
-                sp::reflect::checkArguments(args, {"Camera", "JobName"}, kContext);
-                UCameraSensorComponent* Camera = sp::reflect::decodeNonNull<UCameraSensorComponent*>(sp::reflect::requireArgument(args, "Camera", kContext), "UMoviePipelineQueueEngineSubsystem.AllocateJob(): argument 'Camera'");
-                const sp::reflect::Value* JobNameArg = sp::reflect::findArgument(args, "JobName");
-                std::string JobName = JobNameArg ? sp::reflect::decode<std::string>(*JobNameArg, "UMoviePipelineQueueEngineSubsystem.AllocateJob(): argument 'JobName'") : std::string("");
-                auto result = sp::reflect::selfCast<Self>(self)->AllocateJob(Camera, JobName);
-                sp::reflect::checkNotNull(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_AllocateJob<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "RenderJob",
@@ -533,13 +416,7 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.RenderJob()";
-                sp::reflect::checkArguments(args, {"Job"}, kContext);
-                UMoviePipelineExecutorJob* Job = sp::reflect::decodeNonNull<UMoviePipelineExecutorJob*>(sp::reflect::requireArgument(args, "Job", kContext), "UMoviePipelineQueueEngineSubsystem.RenderJob(): argument 'Job'");
-                sp::reflect::selfCast<Self>(self)->RenderJob(Job);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_RenderJob<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "IsRendering",
@@ -549,12 +426,7 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.IsRendering()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->IsRendering();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_IsRendering<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetActiveJob",
@@ -564,12 +436,7 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.GetActiveJob()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetActiveJob();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetActiveJob<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetJobs",
@@ -579,12 +446,7 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.GetJobs()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetJobs();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetJobs<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "CancelAllJobs",
@@ -594,12 +456,7 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.CancelAllJobs()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                sp::reflect::selfCast<Self>(self)->CancelAllJobs();
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_CancelAllJobs<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "DeleteJob",
@@ -610,13 +467,7 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.DeleteJob()";
-                sp::reflect::checkArguments(args, {"Job"}, kContext);
-                UMoviePipelineExecutorJob* Job = sp::reflect::decodeNonNull<UMoviePipelineExecutorJob*>(sp::reflect::requireArgument(args, "Job", kContext), "UMoviePipelineQueueEngineSubsystem.DeleteJob(): argument 'Job'");
-                sp::reflect::selfCast<Self>(self)->DeleteJob(Job);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_DeleteJob<ValueCall>(self, args); },
         });
         return t;
     }();

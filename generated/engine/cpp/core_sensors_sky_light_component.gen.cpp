@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& ASkyLight::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = ASkyLight;
+        using Calls = sp::generated::engine::ASkyLightCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "ASkyLight";
         t.doc = "An actor with the sky light as its root.";
@@ -60,9 +63,7 @@ const sp::reflect::TypeInfo& ASkyLight::StaticClass() {
             TypeCode(Kind::Object, "USkyLightComponent"),
             "The sky light (also the root component).",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SkyLightComponent);
-            },
+            [](const void* self) { return Calls::get_SkyLightComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         return t;
@@ -77,6 +78,8 @@ const sp::reflect::TypeInfo& ASkyLight::GetClass() const { return StaticClass();
 const sp::reflect::TypeInfo& USkyLightComponent::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = USkyLightComponent;
+        using Calls = sp::generated::engine::USkyLightComponentCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "USkyLightComponent";
         t.doc = "Uniform sky light: ambient radiance on every surface, and the colour of pixels that hit nothing.";
@@ -89,13 +92,9 @@ const sp::reflect::TypeInfo& USkyLightComponent::StaticClass() {
             TypeCode(Kind::Struct, "FLinearColor"),
             "Linear RGB radiance of the uniform sky, multiplied by Intensity.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SkyColor);
-            },
+            [](const void* self) { return Calls::get_SkyColor<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SkyColor = sp::reflect::decode<FLinearColor>(value, "USkyLightComponent.SkyColor");
-                sp::reflect::notifyPropertyChanged(object, "SkyColor");
+                Calls::set_SkyColor<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -103,13 +102,9 @@ const sp::reflect::TypeInfo& USkyLightComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Multiplier of SkyColor.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Intensity);
-            },
+            [](const void* self) { return Calls::get_Intensity<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Intensity = sp::reflect::decode<float>(value, "USkyLightComponent.Intensity");
-                sp::reflect::notifyPropertyChanged(object, "Intensity");
+                Calls::set_Intensity<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -117,13 +112,9 @@ const sp::reflect::TypeInfo& USkyLightComponent::StaticClass() {
             TypeCode(Kind::Struct, "FLinearColor"),
             "Linear HDR colour of the pixels that hit no geometry.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->BackgroundColor);
-            },
+            [](const void* self) { return Calls::get_BackgroundColor<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->BackgroundColor = sp::reflect::decode<FLinearColor>(value, "USkyLightComponent.BackgroundColor");
-                sp::reflect::notifyPropertyChanged(object, "BackgroundColor");
+                Calls::set_BackgroundColor<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;

@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& ASpotLight::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = ASpotLight;
+        using Calls = sp::generated::engine::ASpotLightCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "ASpotLight";
         t.doc = "An actor with a spot light as its root.";
@@ -60,9 +63,7 @@ const sp::reflect::TypeInfo& ASpotLight::StaticClass() {
             TypeCode(Kind::Object, "USpotLightComponent"),
             "The light (also the root component); its cone points along the actor's forward axis.",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->LightComponent);
-            },
+            [](const void* self) { return Calls::get_LightComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         return t;
@@ -77,6 +78,8 @@ const sp::reflect::TypeInfo& ASpotLight::GetClass() const { return StaticClass()
 const sp::reflect::TypeInfo& USpotLightComponent::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = USpotLightComponent;
+        using Calls = sp::generated::engine::USpotLightComponentCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "USpotLightComponent";
         t.doc = "A point light restricted to a cone around the component's forward axis.";
@@ -89,13 +92,9 @@ const sp::reflect::TypeInfo& USpotLightComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Half-angle in degrees inside which the light has full intensity.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->InnerConeAngle);
-            },
+            [](const void* self) { return Calls::get_InnerConeAngle<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->InnerConeAngle = sp::reflect::decode<float>(value, "USpotLightComponent.InnerConeAngle");
-                sp::reflect::notifyPropertyChanged(object, "InnerConeAngle");
+                Calls::set_InnerConeAngle<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -103,13 +102,9 @@ const sp::reflect::TypeInfo& USpotLightComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Half-angle in degrees outside which the light is zero (>= InnerConeAngle, < 90).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->OuterConeAngle);
-            },
+            [](const void* self) { return Calls::get_OuterConeAngle<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->OuterConeAngle = sp::reflect::decode<float>(value, "USpotLightComponent.OuterConeAngle");
-                sp::reflect::notifyPropertyChanged(object, "OuterConeAngle");
+                Calls::set_OuterConeAngle<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;

@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& USpFuncComponent::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = USpFuncComponent;
+        using Calls = sp::generated::engine::USpFuncComponentCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "USpFuncComponent";
         t.doc = "Holds SpFuncs: named functions over bundles of arrays, registered at run time by C++ code.";
@@ -63,12 +66,7 @@ const sp::reflect::TypeInfo& USpFuncComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USpFuncComponent.GetFuncNames()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetFuncNames();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetFuncNames<ValueCall>(self, args); },
         });
         return t;
     }();

@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& AActor::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = AActor;
+        using Calls = sp::generated::engine::AActorCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "AActor";
         t.doc = "An object that can be placed in a world.";
@@ -60,13 +63,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             TypeCode(Kind::List, TypeCode(Kind::Str)),
             "Tags for finding this actor.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Tags);
-            },
+            [](const void* self) { return Calls::get_Tags<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Tags = sp::reflect::decode<std::vector<std::string>>(value, "AActor.Tags");
-                sp::reflect::notifyPropertyChanged(object, "Tags");
+                Calls::set_Tags<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -74,9 +73,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             TypeCode(Kind::Object, "USceneComponent", true),
             "The component that defines the actor's transform.",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->RootComponent);
-            },
+            [](const void* self) { return Calls::get_RootComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.functions.push_back({
@@ -88,13 +85,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AActor.SetRootComponent()";
-                sp::reflect::checkArguments(args, {"NewRootComponent"}, kContext);
-                USceneComponent* NewRootComponent = sp::reflect::decodeNonNull<USceneComponent*>(sp::reflect::requireArgument(args, "NewRootComponent", kContext), "AActor.SetRootComponent(): argument 'NewRootComponent'");
-                sp::reflect::selfCast<Self>(self)->SetRootComponent(NewRootComponent);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetRootComponent<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetActorLocation",
@@ -104,13 +95,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AActor.GetActorLocation()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetActorLocation();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetActorLocation<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetActorLocation",
@@ -121,13 +106,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AActor.SetActorLocation()";
-                sp::reflect::checkArguments(args, {"NewLocation"}, kContext);
-                FVector NewLocation = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "NewLocation", kContext), "AActor.SetActorLocation(): argument 'NewLocation'");
-                auto result = sp::reflect::selfCast<Self>(self)->SetActorLocation(NewLocation);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetActorLocation<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetActorRotation",
@@ -137,13 +116,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AActor.GetActorRotation()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetActorRotation();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetActorRotation<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetActorRotation",
@@ -154,13 +127,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AActor.SetActorRotation()";
-                sp::reflect::checkArguments(args, {"NewRotation"}, kContext);
-                FRotator NewRotation = sp::reflect::decode<FRotator>(sp::reflect::requireArgument(args, "NewRotation", kContext), "AActor.SetActorRotation(): argument 'NewRotation'");
-                auto result = sp::reflect::selfCast<Self>(self)->SetActorRotation(NewRotation);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetActorRotation<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "K2_SetActorLocationAndRotation",
@@ -174,18 +141,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AActor.K2_SetActorLocationAndRotation()";
-                sp::reflect::checkArguments(args, {"NewLocation", "NewRotation", "bSweep", "bTeleport"}, kContext);
-                FVector NewLocation = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "NewLocation", kContext), "AActor.K2_SetActorLocationAndRotation(): argument 'NewLocation'");
-                FRotator NewRotation = sp::reflect::decode<FRotator>(sp::reflect::requireArgument(args, "NewRotation", kContext), "AActor.K2_SetActorLocationAndRotation(): argument 'NewRotation'");
-                const sp::reflect::Value* bSweepArg = sp::reflect::findArgument(args, "bSweep");
-                bool bSweep = bSweepArg ? sp::reflect::decode<bool>(*bSweepArg, "AActor.K2_SetActorLocationAndRotation(): argument 'bSweep'") : bool(false);
-                const sp::reflect::Value* bTeleportArg = sp::reflect::findArgument(args, "bTeleport");
-                bool bTeleport = bTeleportArg ? sp::reflect::decode<bool>(*bTeleportArg, "AActor.K2_SetActorLocationAndRotation(): argument 'bTeleport'") : bool(true);
-                auto result = sp::reflect::selfCast<Self>(self)->K2_SetActorLocationAndRotation(NewLocation, NewRotation, bSweep, bTeleport);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_K2_SetActorLocationAndRotation<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetActorScale3D",
@@ -195,13 +151,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AActor.GetActorScale3D()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetActorScale3D();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetActorScale3D<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetActorScale3D",
@@ -212,13 +162,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AActor.SetActorScale3D()";
-                sp::reflect::checkArguments(args, {"NewScale3D"}, kContext);
-                FVector NewScale3D = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "NewScale3D", kContext), "AActor.SetActorScale3D(): argument 'NewScale3D'");
-                sp::reflect::selfCast<Self>(self)->SetActorScale3D(NewScale3D);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetActorScale3D<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetActorTransform",
@@ -228,13 +172,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AActor.GetActorTransform()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetActorTransform();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetActorTransform<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetActorTransform",
@@ -245,13 +183,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AActor.SetActorTransform()";
-                sp::reflect::checkArguments(args, {"NewTransform"}, kContext);
-                FTransform NewTransform = sp::reflect::decode<FTransform>(sp::reflect::requireArgument(args, "NewTransform", kContext), "AActor.SetActorTransform(): argument 'NewTransform'");
-                auto result = sp::reflect::selfCast<Self>(self)->SetActorTransform(NewTransform);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetActorTransform<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetActorForwardVector",
@@ -261,13 +193,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AActor.GetActorForwardVector()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetActorForwardVector();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetActorForwardVector<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetActorBounds",
@@ -280,18 +206,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AActor.GetActorBounds()";
-                sp::reflect::checkArguments(args, {"bOnlyCollidingComponents"}, kContext);
-                bool bOnlyCollidingComponents = sp::reflect::decode<bool>(sp::reflect::requireArgument(args, "bOnlyCollidingComponents", kContext), "AActor.GetActorBounds(): argument 'bOnlyCollidingComponents'");
-                FVector Origin{};
-                FVector BoxExtent{};
-                sp::reflect::selfCast<const Self>(self)->GetActorBounds(bOnlyCollidingComponents, Origin, BoxExtent);
-                sp::reflect::Value::Dict outputs;
-                outputs.emplace("Origin", sp::reflect::encode(Origin));
-                outputs.emplace("BoxExtent", sp::reflect::encode(BoxExtent));
-                return sp::reflect::Value(std::move(outputs));
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetActorBounds<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "ActorHasTag",
@@ -302,13 +217,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AActor.ActorHasTag()";
-                sp::reflect::checkArguments(args, {"Tag"}, kContext);
-                std::string Tag = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "Tag", kContext), "AActor.ActorHasTag(): argument 'Tag'");
-                auto result = sp::reflect::selfCast<const Self>(self)->ActorHasTag(Tag);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_ActorHasTag<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetOverlappingActors",
@@ -319,13 +228,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AActor.GetOverlappingActors()";
-                sp::reflect::checkArguments(args, {"ClassFilter"}, kContext);
-                TSubclassOf<AActor> ClassFilter = sp::reflect::decodeNonNull<TSubclassOf<AActor>>(sp::reflect::requireArgument(args, "ClassFilter", kContext), "AActor.GetOverlappingActors(): argument 'ClassFilter'");
-                auto result = sp::reflect::selfCast<const Self>(self)->GetOverlappingActors(ClassFilter);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetOverlappingActors<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "IsOverlappingActor",
@@ -336,13 +239,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AActor.IsOverlappingActor()";
-                sp::reflect::checkArguments(args, {"Other"}, kContext);
-                AActor* Other = sp::reflect::decodeNonNull<AActor*>(sp::reflect::requireArgument(args, "Other", kContext), "AActor.IsOverlappingActor(): argument 'Other'");
-                auto result = sp::reflect::selfCast<const Self>(self)->IsOverlappingActor(Other);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_IsOverlappingActor<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetStreamingLevelName",
@@ -352,12 +249,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AActor.GetStreamingLevelName()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetStreamingLevelName();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetStreamingLevelName<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "K2_GetComponents",
@@ -367,12 +259,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AActor.K2_GetComponents()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->K2_GetComponents();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_K2_GetComponents<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetComponentByClass",
@@ -383,13 +270,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AActor.GetComponentByClass()";
-                sp::reflect::checkArguments(args, {"ComponentClass"}, kContext);
-                TSubclassOf<UActorComponent> ComponentClass = sp::reflect::decodeNonNull<TSubclassOf<UActorComponent>>(sp::reflect::requireArgument(args, "ComponentClass", kContext), "AActor.GetComponentByClass(): argument 'ComponentClass'");
-                auto result = sp::reflect::selfCast<const Self>(self)->GetComponentByClass(ComponentClass);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetComponentByClass<ValueCall>(self, args); },
         });
         return t;
     }();

@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& UActorComponent::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = UActorComponent;
+        using Calls = sp::generated::engine::UActorComponentCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "UActorComponent";
         t.doc = "A component that adds behaviour to the actor that owns it.";
@@ -59,13 +62,9 @@ const sp::reflect::TypeInfo& UActorComponent::StaticClass() {
             TypeCode(Kind::List, TypeCode(Kind::Str)),
             "Tags for finding this component.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ComponentTags);
-            },
+            [](const void* self) { return Calls::get_ComponentTags<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->ComponentTags = sp::reflect::decode<std::vector<std::string>>(value, "UActorComponent.ComponentTags");
-                sp::reflect::notifyPropertyChanged(object, "ComponentTags");
+                Calls::set_ComponentTags<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -73,13 +72,9 @@ const sp::reflect::TypeInfo& UActorComponent::StaticClass() {
             TypeCode(Kind::Bool),
             "Whether TickComponent runs every frame.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bTickEnabled);
-            },
+            [](const void* self) { return Calls::get_bTickEnabled<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bTickEnabled = sp::reflect::decode<bool>(value, "UActorComponent.bTickEnabled");
-                sp::reflect::notifyPropertyChanged(object, "bTickEnabled");
+                Calls::set_bTickEnabled<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -90,12 +85,7 @@ const sp::reflect::TypeInfo& UActorComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UActorComponent.GetOwner()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetOwner();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetOwner<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "ComponentHasTag",
@@ -106,13 +96,7 @@ const sp::reflect::TypeInfo& UActorComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UActorComponent.ComponentHasTag()";
-                sp::reflect::checkArguments(args, {"Tag"}, kContext);
-                std::string Tag = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "Tag", kContext), "UActorComponent.ComponentHasTag(): argument 'Tag'");
-                auto result = sp::reflect::selfCast<const Self>(self)->ComponentHasTag(Tag);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_ComponentHasTag<ValueCall>(self, args); },
         });
         return t;
     }();

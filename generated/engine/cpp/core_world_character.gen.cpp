@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& ACharacter::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = ACharacter;
+        using Calls = sp::generated::engine::ACharacterCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "ACharacter";
         t.doc = "A pawn that walks, climbs steps, jumps and falls, with UE's Character names.";
@@ -60,9 +63,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
             TypeCode(Kind::Object, "UCapsuleComponent"),
             "The collision capsule (the root component); its size is the character's.",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->CapsuleComponent);
-            },
+            [](const void* self) { return Calls::get_CapsuleComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.properties.push_back({
@@ -70,9 +71,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
             TypeCode(Kind::Object, "UStaticMeshComponent"),
             "The character's visible body (no collision of its own).",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Mesh);
-            },
+            [](const void* self) { return Calls::get_Mesh<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.properties.push_back({
@@ -80,9 +79,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
             TypeCode(Kind::Object, "UCharacterMovementComponent"),
             "How the character walks.",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->CharacterMovement);
-            },
+            [](const void* self) { return Calls::get_CharacterMovement<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.properties.push_back({
@@ -90,9 +87,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
             TypeCode(Kind::Object, "UInputComponent"),
             "Receives the injected actions.",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->InputComponent);
-            },
+            [](const void* self) { return Calls::get_InputComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.functions.push_back({
@@ -103,12 +98,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ACharacter.Jump()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                sp::reflect::selfCast<Self>(self)->Jump();
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_Jump<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "StopJumping",
@@ -118,12 +108,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ACharacter.StopJumping()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                sp::reflect::selfCast<Self>(self)->StopJumping();
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_StopJumping<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "CanJump",
@@ -133,12 +118,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ACharacter.CanJump()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->CanJump();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_CanJump<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetCharacterMovement",
@@ -148,12 +128,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ACharacter.GetCharacterMovement()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetCharacterMovement();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetCharacterMovement<ValueCall>(self, args); },
         });
         return t;
     }();
@@ -167,6 +142,8 @@ const sp::reflect::TypeInfo& ACharacter::GetClass() const { return StaticClass()
 const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = UCharacterMovementComponent;
+        using Calls = sp::generated::engine::UCharacterMovementComponentCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "UCharacterMovementComponent";
         t.doc = "How a character walks, and how it is moving.";
@@ -179,13 +156,9 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Walking speed in m/s at full input (>= 0).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->MaxWalkSpeed);
-            },
+            [](const void* self) { return Calls::get_MaxWalkSpeed<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetMaxWalkSpeed(sp::reflect::decode<double>(value, "UCharacterMovementComponent.MaxWalkSpeed"));
-                sp::reflect::notifyPropertyChanged(object, "MaxWalkSpeed");
+                Calls::set_MaxWalkSpeed<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -193,13 +166,9 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Upward speed of a jump in m/s (>= 0): a jump rises JumpZVelocity^2 / 2g.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->JumpZVelocity);
-            },
+            [](const void* self) { return Calls::get_JumpZVelocity<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetJumpZVelocity(sp::reflect::decode<double>(value, "UCharacterMovementComponent.JumpZVelocity"));
-                sp::reflect::notifyPropertyChanged(object, "JumpZVelocity");
+                Calls::set_JumpZVelocity<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -207,13 +176,9 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
             TypeCode(Kind::Float),
             "The highest step the character walks up, in metres (>= 0).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->MaxStepHeight);
-            },
+            [](const void* self) { return Calls::get_MaxStepHeight<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetMaxStepHeight(sp::reflect::decode<double>(value, "UCharacterMovementComponent.MaxStepHeight"));
-                sp::reflect::notifyPropertyChanged(object, "MaxStepHeight");
+                Calls::set_MaxStepHeight<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -221,13 +186,9 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
             TypeCode(Kind::Float),
             "The steepest floor the character walks up, in degrees (in (0, 90)).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->WalkableFloorAngle);
-            },
+            [](const void* self) { return Calls::get_WalkableFloorAngle<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetWalkableFloorAngle(sp::reflect::decode<double>(value, "UCharacterMovementComponent.WalkableFloorAngle"));
-                sp::reflect::notifyPropertyChanged(object, "WalkableFloorAngle");
+                Calls::set_WalkableFloorAngle<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -239,13 +200,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCharacterMovementComponent.SetMaxWalkSpeed()";
-                sp::reflect::checkArguments(args, {"NewSpeed"}, kContext);
-                double NewSpeed = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewSpeed", kContext), "UCharacterMovementComponent.SetMaxWalkSpeed(): argument 'NewSpeed'");
-                sp::reflect::selfCast<Self>(self)->SetMaxWalkSpeed(NewSpeed);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetMaxWalkSpeed<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetJumpZVelocity",
@@ -256,13 +211,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCharacterMovementComponent.SetJumpZVelocity()";
-                sp::reflect::checkArguments(args, {"NewVelocity"}, kContext);
-                double NewVelocity = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewVelocity", kContext), "UCharacterMovementComponent.SetJumpZVelocity(): argument 'NewVelocity'");
-                sp::reflect::selfCast<Self>(self)->SetJumpZVelocity(NewVelocity);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetJumpZVelocity<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetMaxStepHeight",
@@ -273,13 +222,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCharacterMovementComponent.SetMaxStepHeight()";
-                sp::reflect::checkArguments(args, {"NewHeight"}, kContext);
-                double NewHeight = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewHeight", kContext), "UCharacterMovementComponent.SetMaxStepHeight(): argument 'NewHeight'");
-                sp::reflect::selfCast<Self>(self)->SetMaxStepHeight(NewHeight);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetMaxStepHeight<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetWalkableFloorAngle",
@@ -290,13 +233,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCharacterMovementComponent.SetWalkableFloorAngle()";
-                sp::reflect::checkArguments(args, {"NewAngle"}, kContext);
-                double NewAngle = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewAngle", kContext), "UCharacterMovementComponent.SetWalkableFloorAngle(): argument 'NewAngle'");
-                sp::reflect::selfCast<Self>(self)->SetWalkableFloorAngle(NewAngle);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetWalkableFloorAngle<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetVelocity",
@@ -306,13 +243,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCharacterMovementComponent.GetVelocity()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetVelocity();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetVelocity<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "IsMovingOnGround",
@@ -322,12 +253,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCharacterMovementComponent.IsMovingOnGround()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->IsMovingOnGround();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_IsMovingOnGround<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "IsFalling",
@@ -337,12 +263,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCharacterMovementComponent.IsFalling()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->IsFalling();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_IsFalling<ValueCall>(self, args); },
         });
         return t;
     }();

@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -75,6 +76,8 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPathFollowingS
 const sp::reflect::TypeInfo& AAIController::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = AAIController;
+        using Calls = sp::generated::engine::AAIControllerCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "AAIController";
         t.doc = "A controller for non-player pawns, directed from code. MoveToLocation / MoveToActor walk (ACharacter)\nor fly (ADefaultPawn) the pawn to a goal through its movement input, turning the control rotation to\nface where it goes. A walking pawn with bUsePathfinding follows a path on the world's default navigation\ndata when the world has navigation (an ARecastNavMesh or an ANavMeshBoundsVolume), corner by corner,\nand the move fails when its start or goal is off the navigation mesh; an unreachable goal is walked to as\nclose as the mesh allows. Otherwise (flying, no navigation, or bUsePathfinding false) it goes straight.";
@@ -94,19 +97,7 @@ const sp::reflect::TypeInfo& AAIController::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AAIController.MoveToLocation()";
-                sp::reflect::checkArguments(args, {"Dest", "AcceptanceRadius", "bStopOnOverlap", "bUsePathfinding"}, kContext);
-                FVector Dest = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "Dest", kContext), "AAIController.MoveToLocation(): argument 'Dest'");
-                const sp::reflect::Value* AcceptanceRadiusArg = sp::reflect::findArgument(args, "AcceptanceRadius");
-                double AcceptanceRadius = AcceptanceRadiusArg ? sp::reflect::decode<double>(*AcceptanceRadiusArg, "AAIController.MoveToLocation(): argument 'AcceptanceRadius'") : double(0.1);
-                const sp::reflect::Value* bStopOnOverlapArg = sp::reflect::findArgument(args, "bStopOnOverlap");
-                bool bStopOnOverlap = bStopOnOverlapArg ? sp::reflect::decode<bool>(*bStopOnOverlapArg, "AAIController.MoveToLocation(): argument 'bStopOnOverlap'") : bool(true);
-                const sp::reflect::Value* bUsePathfindingArg = sp::reflect::findArgument(args, "bUsePathfinding");
-                bool bUsePathfinding = bUsePathfindingArg ? sp::reflect::decode<bool>(*bUsePathfindingArg, "AAIController.MoveToLocation(): argument 'bUsePathfinding'") : bool(true);
-                auto result = sp::reflect::selfCast<Self>(self)->MoveToLocation(Dest, AcceptanceRadius, bStopOnOverlap, bUsePathfinding);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_MoveToLocation<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "MoveToActor",
@@ -120,19 +111,7 @@ const sp::reflect::TypeInfo& AAIController::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AAIController.MoveToActor()";
-                sp::reflect::checkArguments(args, {"Goal", "AcceptanceRadius", "bStopOnOverlap", "bUsePathfinding"}, kContext);
-                AActor* Goal = sp::reflect::decodeNonNull<AActor*>(sp::reflect::requireArgument(args, "Goal", kContext), "AAIController.MoveToActor(): argument 'Goal'");
-                const sp::reflect::Value* AcceptanceRadiusArg = sp::reflect::findArgument(args, "AcceptanceRadius");
-                double AcceptanceRadius = AcceptanceRadiusArg ? sp::reflect::decode<double>(*AcceptanceRadiusArg, "AAIController.MoveToActor(): argument 'AcceptanceRadius'") : double(0.1);
-                const sp::reflect::Value* bStopOnOverlapArg = sp::reflect::findArgument(args, "bStopOnOverlap");
-                bool bStopOnOverlap = bStopOnOverlapArg ? sp::reflect::decode<bool>(*bStopOnOverlapArg, "AAIController.MoveToActor(): argument 'bStopOnOverlap'") : bool(true);
-                const sp::reflect::Value* bUsePathfindingArg = sp::reflect::findArgument(args, "bUsePathfinding");
-                bool bUsePathfinding = bUsePathfindingArg ? sp::reflect::decode<bool>(*bUsePathfindingArg, "AAIController.MoveToActor(): argument 'bUsePathfinding'") : bool(true);
-                auto result = sp::reflect::selfCast<Self>(self)->MoveToActor(Goal, AcceptanceRadius, bStopOnOverlap, bUsePathfinding);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_MoveToActor<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "StopMovement",
@@ -142,12 +121,7 @@ const sp::reflect::TypeInfo& AAIController::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AAIController.StopMovement()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                sp::reflect::selfCast<Self>(self)->StopMovement();
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_StopMovement<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetMoveStatus",
@@ -157,12 +131,7 @@ const sp::reflect::TypeInfo& AAIController::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AAIController.GetMoveStatus()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetMoveStatus();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetMoveStatus<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetImmediateMoveDestination",
@@ -172,13 +141,7 @@ const sp::reflect::TypeInfo& AAIController::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AAIController.GetImmediateMoveDestination()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetImmediateMoveDestination();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetImmediateMoveDestination<ValueCall>(self, args); },
         });
         return t;
     }();
@@ -192,6 +155,8 @@ const sp::reflect::TypeInfo& AAIController::GetClass() const { return StaticClas
 const sp::reflect::TypeInfo& AController::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = AController;
+        using Calls = sp::generated::engine::AControllerCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "AController";
         t.doc = "An actor that possesses and directs a pawn.";
@@ -208,13 +173,7 @@ const sp::reflect::TypeInfo& AController::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AController.Possess()";
-                sp::reflect::checkArguments(args, {"InPawn"}, kContext);
-                APawn* InPawn = sp::reflect::decodeNonNull<APawn*>(sp::reflect::requireArgument(args, "InPawn", kContext), "AController.Possess(): argument 'InPawn'");
-                sp::reflect::selfCast<Self>(self)->Possess(InPawn);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_Possess<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "UnPossess",
@@ -224,12 +183,7 @@ const sp::reflect::TypeInfo& AController::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AController.UnPossess()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                sp::reflect::selfCast<Self>(self)->UnPossess();
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_UnPossess<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "K2_GetPawn",
@@ -239,12 +193,7 @@ const sp::reflect::TypeInfo& AController::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AController.K2_GetPawn()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->K2_GetPawn();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_K2_GetPawn<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetControlRotation",
@@ -254,13 +203,7 @@ const sp::reflect::TypeInfo& AController::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AController.GetControlRotation()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetControlRotation();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetControlRotation<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetControlRotation",
@@ -271,13 +214,7 @@ const sp::reflect::TypeInfo& AController::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AController.SetControlRotation()";
-                sp::reflect::checkArguments(args, {"NewRotation"}, kContext);
-                FRotator NewRotation = sp::reflect::decode<FRotator>(sp::reflect::requireArgument(args, "NewRotation", kContext), "AController.SetControlRotation(): argument 'NewRotation'");
-                sp::reflect::selfCast<Self>(self)->SetControlRotation(NewRotation);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetControlRotation<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "IsPlayerController",
@@ -287,12 +224,7 @@ const sp::reflect::TypeInfo& AController::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AController.IsPlayerController()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->IsPlayerController();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_IsPlayerController<ValueCall>(self, args); },
         });
         return t;
     }();
@@ -306,6 +238,8 @@ const sp::reflect::TypeInfo& AController::GetClass() const { return StaticClass(
 const sp::reflect::TypeInfo& APlayerController::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = APlayerController;
+        using Calls = sp::generated::engine::APlayerControllerCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "APlayerController";
         t.doc = "A player's controller: a player index, a view target, and the player's input for its pawn.";
@@ -321,12 +255,7 @@ const sp::reflect::TypeInfo& APlayerController::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "APlayerController.GetViewTarget()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetViewTarget();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetViewTarget<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetViewTargetWithBlend",
@@ -338,15 +267,7 @@ const sp::reflect::TypeInfo& APlayerController::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "APlayerController.SetViewTargetWithBlend()";
-                sp::reflect::checkArguments(args, {"NewViewTarget", "BlendTime"}, kContext);
-                AActor* NewViewTarget = sp::reflect::decodeNonNull<AActor*>(sp::reflect::requireArgument(args, "NewViewTarget", kContext), "APlayerController.SetViewTargetWithBlend(): argument 'NewViewTarget'");
-                const sp::reflect::Value* BlendTimeArg = sp::reflect::findArgument(args, "BlendTime");
-                double BlendTime = BlendTimeArg ? sp::reflect::decode<double>(*BlendTimeArg, "APlayerController.SetViewTargetWithBlend(): argument 'BlendTime'") : double(0.0);
-                sp::reflect::selfCast<Self>(self)->SetViewTargetWithBlend(NewViewTarget, BlendTime);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetViewTargetWithBlend<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetPlayerViewPoint",
@@ -358,17 +279,7 @@ const sp::reflect::TypeInfo& APlayerController::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "APlayerController.GetPlayerViewPoint()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                FVector Location{};
-                FRotator Rotation{};
-                sp::reflect::selfCast<const Self>(self)->GetPlayerViewPoint(Location, Rotation);
-                sp::reflect::Value::Dict outputs;
-                outputs.emplace("Location", sp::reflect::encode(Location));
-                outputs.emplace("Rotation", sp::reflect::encode(Rotation));
-                return sp::reflect::Value(std::move(outputs));
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetPlayerViewPoint<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "AddYawInput",
@@ -379,13 +290,7 @@ const sp::reflect::TypeInfo& APlayerController::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "APlayerController.AddYawInput()";
-                sp::reflect::checkArguments(args, {"Val"}, kContext);
-                double Val = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "Val", kContext), "APlayerController.AddYawInput(): argument 'Val'");
-                sp::reflect::selfCast<Self>(self)->AddYawInput(Val);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_AddYawInput<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "AddPitchInput",
@@ -396,13 +301,7 @@ const sp::reflect::TypeInfo& APlayerController::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "APlayerController.AddPitchInput()";
-                sp::reflect::checkArguments(args, {"Val"}, kContext);
-                double Val = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "Val", kContext), "APlayerController.AddPitchInput(): argument 'Val'");
-                sp::reflect::selfCast<Self>(self)->AddPitchInput(Val);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_AddPitchInput<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "AddRollInput",
@@ -413,13 +312,7 @@ const sp::reflect::TypeInfo& APlayerController::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "APlayerController.AddRollInput()";
-                sp::reflect::checkArguments(args, {"Val"}, kContext);
-                double Val = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "Val", kContext), "APlayerController.AddRollInput(): argument 'Val'");
-                sp::reflect::selfCast<Self>(self)->AddRollInput(Val);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_AddRollInput<ValueCall>(self, args); },
         });
         return t;
     }();

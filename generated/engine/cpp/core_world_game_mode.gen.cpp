@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = AGameModeBase;
+        using Calls = sp::generated::engine::AGameModeBaseCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "AGameModeBase";
         t.doc = "The rules of a game world: which classes its players get, and where they start.";
@@ -60,13 +63,9 @@ const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
             TypeCode(Kind::Class, "APawn", true),
             "The class of the pawn each player starts with.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->DefaultPawnClass);
-            },
+            [](const void* self) { return Calls::get_DefaultPawnClass<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->DefaultPawnClass = sp::reflect::decode<TSubclassOf<APawn>>(value, "AGameModeBase.DefaultPawnClass");
-                sp::reflect::notifyPropertyChanged(object, "DefaultPawnClass");
+                Calls::set_DefaultPawnClass<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -74,13 +73,9 @@ const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
             TypeCode(Kind::Class, "APlayerController", true),
             "The class of each player's controller.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->PlayerControllerClass);
-            },
+            [](const void* self) { return Calls::get_PlayerControllerClass<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->PlayerControllerClass = sp::reflect::decode<TSubclassOf<APlayerController>>(value, "AGameModeBase.PlayerControllerClass");
-                sp::reflect::notifyPropertyChanged(object, "PlayerControllerClass");
+                Calls::set_PlayerControllerClass<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -93,15 +88,7 @@ const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AGameModeBase.FindPlayerStart()";
-                sp::reflect::checkArguments(args, {"Player", "IncomingName"}, kContext);
-                AController* Player = sp::reflect::decodeNonNull<AController*>(sp::reflect::requireArgument(args, "Player", kContext), "AGameModeBase.FindPlayerStart(): argument 'Player'");
-                const sp::reflect::Value* IncomingNameArg = sp::reflect::findArgument(args, "IncomingName");
-                std::string IncomingName = IncomingNameArg ? sp::reflect::decode<std::string>(*IncomingNameArg, "AGameModeBase.FindPlayerStart(): argument 'IncomingName'") : std::string("");
-                auto result = sp::reflect::selfCast<const Self>(self)->FindPlayerStart(Player, IncomingName);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_FindPlayerStart<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "RestartPlayer",
@@ -112,13 +99,7 @@ const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AGameModeBase.RestartPlayer()";
-                sp::reflect::checkArguments(args, {"NewPlayer"}, kContext);
-                AController* NewPlayer = sp::reflect::decodeNonNull<AController*>(sp::reflect::requireArgument(args, "NewPlayer", kContext), "AGameModeBase.RestartPlayer(): argument 'NewPlayer'");
-                sp::reflect::selfCast<Self>(self)->RestartPlayer(NewPlayer);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_RestartPlayer<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetNumPlayers",
@@ -128,12 +109,7 @@ const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AGameModeBase.GetNumPlayers()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetNumPlayers();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetNumPlayers<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SwapPlayerControllers",
@@ -145,14 +121,7 @@ const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AGameModeBase.SwapPlayerControllers()";
-                sp::reflect::checkArguments(args, {"OldPC", "NewPC"}, kContext);
-                APlayerController* OldPC = sp::reflect::decodeNonNull<APlayerController*>(sp::reflect::requireArgument(args, "OldPC", kContext), "AGameModeBase.SwapPlayerControllers(): argument 'OldPC'");
-                APlayerController* NewPC = sp::reflect::decodeNonNull<APlayerController*>(sp::reflect::requireArgument(args, "NewPC", kContext), "AGameModeBase.SwapPlayerControllers(): argument 'NewPC'");
-                sp::reflect::selfCast<Self>(self)->SwapPlayerControllers(OldPC, NewPC);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SwapPlayerControllers<ValueCall>(self, args); },
         });
         return t;
     }();
@@ -166,6 +135,8 @@ const sp::reflect::TypeInfo& AGameModeBase::GetClass() const { return StaticClas
 const sp::reflect::TypeInfo& APlayerStart::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = APlayerStart;
+        using Calls = sp::generated::engine::APlayerStartCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "APlayerStart";
         t.doc = "Where a player starts.";
@@ -178,13 +149,9 @@ const sp::reflect::TypeInfo& APlayerStart::StaticClass() {
             TypeCode(Kind::Str),
             "Chooses this start by name (AGameModeBase.FindPlayerStart's IncomingName).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->PlayerStartTag);
-            },
+            [](const void* self) { return Calls::get_PlayerStartTag<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->PlayerStartTag = sp::reflect::decode<std::string>(value, "APlayerStart.PlayerStartTag");
-                sp::reflect::notifyPropertyChanged(object, "PlayerStartTag");
+                Calls::set_PlayerStartTag<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;

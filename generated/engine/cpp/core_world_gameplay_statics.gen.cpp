@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -47,7 +48,9 @@ using Kind = sp::reflect::TypeCode::Kind;
 
 const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
-        using Self = UGameplayStatics;
+        using Self [[maybe_unused]] = UGameplayStatics;
+        using Calls = sp::generated::engine::UGameplayStaticsCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "UGameplayStatics";
         t.doc = "Static functions for games: the game mode, players, and actor queries.";
@@ -63,13 +66,7 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UGameplayStatics.GetGameMode()";
-                sp::reflect::checkArguments(args, {"WorldContextObject"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UGameplayStatics.GetGameMode(): argument 'WorldContextObject'");
-                auto result = Self::GetGameMode(WorldContextObject);
-                return sp::reflect::encode(result);
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_GetGameMode<ValueCall>(args); },
         });
         t.functions.push_back({
             "GetPlayerController",
@@ -81,14 +78,7 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UGameplayStatics.GetPlayerController()";
-                sp::reflect::checkArguments(args, {"WorldContextObject", "PlayerIndex"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UGameplayStatics.GetPlayerController(): argument 'WorldContextObject'");
-                int32_t PlayerIndex = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "PlayerIndex", kContext), "UGameplayStatics.GetPlayerController(): argument 'PlayerIndex'");
-                auto result = Self::GetPlayerController(WorldContextObject, PlayerIndex);
-                return sp::reflect::encode(result);
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_GetPlayerController<ValueCall>(args); },
         });
         t.functions.push_back({
             "GetPlayerPawn",
@@ -100,14 +90,7 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UGameplayStatics.GetPlayerPawn()";
-                sp::reflect::checkArguments(args, {"WorldContextObject", "PlayerIndex"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UGameplayStatics.GetPlayerPawn(): argument 'WorldContextObject'");
-                int32_t PlayerIndex = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "PlayerIndex", kContext), "UGameplayStatics.GetPlayerPawn(): argument 'PlayerIndex'");
-                auto result = Self::GetPlayerPawn(WorldContextObject, PlayerIndex);
-                return sp::reflect::encode(result);
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_GetPlayerPawn<ValueCall>(args); },
         });
         t.functions.push_back({
             "GetPlayerControllerID",
@@ -118,13 +101,7 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UGameplayStatics.GetPlayerControllerID()";
-                sp::reflect::checkArguments(args, {"Player"}, kContext);
-                APlayerController* Player = sp::reflect::decodeNonNull<APlayerController*>(sp::reflect::requireArgument(args, "Player", kContext), "UGameplayStatics.GetPlayerControllerID(): argument 'Player'");
-                auto result = Self::GetPlayerControllerID(Player);
-                return sp::reflect::encode(result);
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_GetPlayerControllerID<ValueCall>(args); },
         });
         t.functions.push_back({
             "GetNumPlayerControllers",
@@ -135,13 +112,7 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UGameplayStatics.GetNumPlayerControllers()";
-                sp::reflect::checkArguments(args, {"WorldContextObject"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UGameplayStatics.GetNumPlayerControllers(): argument 'WorldContextObject'");
-                auto result = Self::GetNumPlayerControllers(WorldContextObject);
-                return sp::reflect::encode(result);
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_GetNumPlayerControllers<ValueCall>(args); },
         });
         t.functions.push_back({
             "CreatePlayer",
@@ -154,17 +125,7 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UGameplayStatics.CreatePlayer()";
-                sp::reflect::checkArguments(args, {"WorldContextObject", "ControllerId", "bSpawnPlayerController"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UGameplayStatics.CreatePlayer(): argument 'WorldContextObject'");
-                const sp::reflect::Value* ControllerIdArg = sp::reflect::findArgument(args, "ControllerId");
-                int32_t ControllerId = ControllerIdArg ? sp::reflect::decode<int32_t>(*ControllerIdArg, "UGameplayStatics.CreatePlayer(): argument 'ControllerId'") : int32_t(-1);
-                const sp::reflect::Value* bSpawnPlayerControllerArg = sp::reflect::findArgument(args, "bSpawnPlayerController");
-                bool bSpawnPlayerController = bSpawnPlayerControllerArg ? sp::reflect::decode<bool>(*bSpawnPlayerControllerArg, "UGameplayStatics.CreatePlayer(): argument 'bSpawnPlayerController'") : bool(true);
-                auto result = Self::CreatePlayer(WorldContextObject, ControllerId, bSpawnPlayerController);
-                return sp::reflect::encode(result);
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_CreatePlayer<ValueCall>(args); },
         });
         t.functions.push_back({
             "GetAllActorsOfClass",
@@ -176,14 +137,7 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UGameplayStatics.GetAllActorsOfClass()";
-                sp::reflect::checkArguments(args, {"WorldContextObject", "ActorClass"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UGameplayStatics.GetAllActorsOfClass(): argument 'WorldContextObject'");
-                TSubclassOf<AActor> ActorClass = sp::reflect::decodeNonNull<TSubclassOf<AActor>>(sp::reflect::requireArgument(args, "ActorClass", kContext), "UGameplayStatics.GetAllActorsOfClass(): argument 'ActorClass'");
-                auto result = Self::GetAllActorsOfClass(WorldContextObject, ActorClass);
-                return sp::reflect::encode(result);
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_GetAllActorsOfClass<ValueCall>(args); },
         });
         t.functions.push_back({
             "GetActorOfClass",
@@ -195,14 +149,7 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UGameplayStatics.GetActorOfClass()";
-                sp::reflect::checkArguments(args, {"WorldContextObject", "ActorClass"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UGameplayStatics.GetActorOfClass(): argument 'WorldContextObject'");
-                TSubclassOf<AActor> ActorClass = sp::reflect::decodeNonNull<TSubclassOf<AActor>>(sp::reflect::requireArgument(args, "ActorClass", kContext), "UGameplayStatics.GetActorOfClass(): argument 'ActorClass'");
-                auto result = Self::GetActorOfClass(WorldContextObject, ActorClass);
-                return sp::reflect::encode(result);
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_GetActorOfClass<ValueCall>(args); },
         });
         t.functions.push_back({
             "GetAllActorsWithTag",
@@ -214,14 +161,7 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UGameplayStatics.GetAllActorsWithTag()";
-                sp::reflect::checkArguments(args, {"WorldContextObject", "Tag"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UGameplayStatics.GetAllActorsWithTag(): argument 'WorldContextObject'");
-                std::string Tag = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "Tag", kContext), "UGameplayStatics.GetAllActorsWithTag(): argument 'Tag'");
-                auto result = Self::GetAllActorsWithTag(WorldContextObject, Tag);
-                return sp::reflect::encode(result);
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_GetAllActorsWithTag<ValueCall>(args); },
         });
         t.functions.push_back({
             "LoadStreamLevel",
@@ -235,18 +175,7 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UGameplayStatics.LoadStreamLevel()";
-                sp::reflect::checkArguments(args, {"WorldContextObject", "LevelName", "bMakeVisibleAfterLoad", "bShouldBlockOnLoad"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UGameplayStatics.LoadStreamLevel(): argument 'WorldContextObject'");
-                std::string LevelName = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "LevelName", kContext), "UGameplayStatics.LoadStreamLevel(): argument 'LevelName'");
-                const sp::reflect::Value* bMakeVisibleAfterLoadArg = sp::reflect::findArgument(args, "bMakeVisibleAfterLoad");
-                bool bMakeVisibleAfterLoad = bMakeVisibleAfterLoadArg ? sp::reflect::decode<bool>(*bMakeVisibleAfterLoadArg, "UGameplayStatics.LoadStreamLevel(): argument 'bMakeVisibleAfterLoad'") : bool(true);
-                const sp::reflect::Value* bShouldBlockOnLoadArg = sp::reflect::findArgument(args, "bShouldBlockOnLoad");
-                bool bShouldBlockOnLoad = bShouldBlockOnLoadArg ? sp::reflect::decode<bool>(*bShouldBlockOnLoadArg, "UGameplayStatics.LoadStreamLevel(): argument 'bShouldBlockOnLoad'") : bool(true);
-                Self::LoadStreamLevel(WorldContextObject, LevelName, bMakeVisibleAfterLoad, bShouldBlockOnLoad);
-                return {};
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_LoadStreamLevel<ValueCall>(args); },
         });
         t.functions.push_back({
             "UnloadStreamLevel",
@@ -259,16 +188,7 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UGameplayStatics.UnloadStreamLevel()";
-                sp::reflect::checkArguments(args, {"WorldContextObject", "LevelName", "bShouldBlockOnUnload"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UGameplayStatics.UnloadStreamLevel(): argument 'WorldContextObject'");
-                std::string LevelName = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "LevelName", kContext), "UGameplayStatics.UnloadStreamLevel(): argument 'LevelName'");
-                const sp::reflect::Value* bShouldBlockOnUnloadArg = sp::reflect::findArgument(args, "bShouldBlockOnUnload");
-                bool bShouldBlockOnUnload = bShouldBlockOnUnloadArg ? sp::reflect::decode<bool>(*bShouldBlockOnUnloadArg, "UGameplayStatics.UnloadStreamLevel(): argument 'bShouldBlockOnUnload'") : bool(true);
-                Self::UnloadStreamLevel(WorldContextObject, LevelName, bShouldBlockOnUnload);
-                return {};
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_UnloadStreamLevel<ValueCall>(args); },
         });
         t.functions.push_back({
             "GetStreamingLevelNames",
@@ -279,13 +199,7 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UGameplayStatics.GetStreamingLevelNames()";
-                sp::reflect::checkArguments(args, {"WorldContextObject"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UGameplayStatics.GetStreamingLevelNames(): argument 'WorldContextObject'");
-                auto result = Self::GetStreamingLevelNames(WorldContextObject);
-                return sp::reflect::encode(result);
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_GetStreamingLevelNames<ValueCall>(args); },
         });
         t.functions.push_back({
             "IsStreamingLevelLoaded",
@@ -297,14 +211,7 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UGameplayStatics.IsStreamingLevelLoaded()";
-                sp::reflect::checkArguments(args, {"WorldContextObject", "LevelName"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UGameplayStatics.IsStreamingLevelLoaded(): argument 'WorldContextObject'");
-                std::string LevelName = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "LevelName", kContext), "UGameplayStatics.IsStreamingLevelLoaded(): argument 'LevelName'");
-                auto result = Self::IsStreamingLevelLoaded(WorldContextObject, LevelName);
-                return sp::reflect::encode(result);
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_IsStreamingLevelLoaded<ValueCall>(args); },
         });
         return t;
     }();

@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& FHitResult::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FHitResult;
+        using Calls = sp::generated::engine::FHitResultCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FHitResult";
         t.doc = "The result of a trace: whether it hit, and where.";
@@ -59,13 +62,9 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
             TypeCode(Kind::Bool),
             "True when the trace hit something.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bBlockingHit);
-            },
+            [](const void* self) { return Calls::get_bBlockingHit<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bBlockingHit = sp::reflect::decode<bool>(value, "FHitResult.bBlockingHit");
-                sp::reflect::notifyPropertyChanged(object, "bBlockingHit");
+                Calls::set_bBlockingHit<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -73,13 +72,9 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
             TypeCode(Kind::Struct, "FVector"),
             "Where the trace hit, in world space (metres); the trace end when nothing was hit.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Location);
-            },
+            [](const void* self) { return Calls::get_Location<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Location = sp::reflect::decode<FVector>(value, "FHitResult.Location");
-                sp::reflect::notifyPropertyChanged(object, "Location");
+                Calls::set_Location<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -87,13 +82,9 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
             TypeCode(Kind::Struct, "FVector"),
             "The same point as Location (UE keeps both for swept shapes).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ImpactPoint);
-            },
+            [](const void* self) { return Calls::get_ImpactPoint<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->ImpactPoint = sp::reflect::decode<FVector>(value, "FHitResult.ImpactPoint");
-                sp::reflect::notifyPropertyChanged(object, "ImpactPoint");
+                Calls::set_ImpactPoint<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -101,13 +92,9 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
             TypeCode(Kind::Struct, "FVector"),
             "Unit surface normal at the hit, facing the trace start.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ImpactNormal);
-            },
+            [](const void* self) { return Calls::get_ImpactNormal<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->ImpactNormal = sp::reflect::decode<FVector>(value, "FHitResult.ImpactNormal");
-                sp::reflect::notifyPropertyChanged(object, "ImpactNormal");
+                Calls::set_ImpactNormal<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -115,13 +102,9 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
             TypeCode(Kind::Struct, "FVector"),
             "The same vector as ImpactNormal (UE keeps both for swept shapes).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Normal);
-            },
+            [](const void* self) { return Calls::get_Normal<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Normal = sp::reflect::decode<FVector>(value, "FHitResult.Normal");
-                sp::reflect::notifyPropertyChanged(object, "Normal");
+                Calls::set_Normal<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -129,13 +112,9 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
             TypeCode(Kind::Float),
             "Distance from TraceStart to Location in metres.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Distance);
-            },
+            [](const void* self) { return Calls::get_Distance<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Distance = sp::reflect::decode<double>(value, "FHitResult.Distance");
-                sp::reflect::notifyPropertyChanged(object, "Distance");
+                Calls::set_Distance<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -143,13 +122,9 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
             TypeCode(Kind::Float),
             "Fraction of the way from TraceStart to TraceEnd where the hit lies, in [0, 1].",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Time);
-            },
+            [](const void* self) { return Calls::get_Time<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Time = sp::reflect::decode<double>(value, "FHitResult.Time");
-                sp::reflect::notifyPropertyChanged(object, "Time");
+                Calls::set_Time<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -157,13 +132,9 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
             TypeCode(Kind::Struct, "FVector"),
             "Start of the trace.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->TraceStart);
-            },
+            [](const void* self) { return Calls::get_TraceStart<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->TraceStart = sp::reflect::decode<FVector>(value, "FHitResult.TraceStart");
-                sp::reflect::notifyPropertyChanged(object, "TraceStart");
+                Calls::set_TraceStart<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -171,13 +142,9 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
             TypeCode(Kind::Struct, "FVector"),
             "End of the trace.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->TraceEnd);
-            },
+            [](const void* self) { return Calls::get_TraceEnd<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->TraceEnd = sp::reflect::decode<FVector>(value, "FHitResult.TraceEnd");
-                sp::reflect::notifyPropertyChanged(object, "TraceEnd");
+                Calls::set_TraceEnd<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;

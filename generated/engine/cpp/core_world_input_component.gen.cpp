@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& UInputComponent::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = UInputComponent;
+        using Calls = sp::generated::engine::UInputComponentCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "UInputComponent";
         t.doc = "A component that receives input actions injected for the actor that owns it.";
@@ -64,14 +67,7 @@ const sp::reflect::TypeInfo& UInputComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UInputComponent.GetActionValue()";
-                sp::reflect::checkArguments(args, {"ActionName"}, kContext);
-                std::string ActionName = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "ActionName", kContext), "UInputComponent.GetActionValue(): argument 'ActionName'");
-                auto result = sp::reflect::selfCast<const Self>(self)->GetActionValue(ActionName);
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetActionValue<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "IsActionTriggered",
@@ -82,13 +78,7 @@ const sp::reflect::TypeInfo& UInputComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UInputComponent.IsActionTriggered()";
-                sp::reflect::checkArguments(args, {"ActionName"}, kContext);
-                std::string ActionName = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "ActionName", kContext), "UInputComponent.IsActionTriggered(): argument 'ActionName'");
-                auto result = sp::reflect::selfCast<const Self>(self)->IsActionTriggered(ActionName);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_IsActionTriggered<ValueCall>(self, args); },
         });
         return t;
     }();

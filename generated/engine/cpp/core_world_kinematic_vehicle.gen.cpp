@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& AKinematicVehicle::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = AKinematicVehicle;
+        using Calls = sp::generated::engine::AKinematicVehicleCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "AKinematicVehicle";
         t.doc = "A box-shaped vehicle moved kinematically (not simulated: it passes through geometry) by the \"Throttle\",\n\"Steer\" and \"Move\" input actions. For a car simulated with wheels, see AWheeledVehiclePawn.";
@@ -60,9 +63,7 @@ const sp::reflect::TypeInfo& AKinematicVehicle::StaticClass() {
             TypeCode(Kind::Object, "UStaticMeshComponent"),
             "The vehicle's body (the root component).",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Body);
-            },
+            [](const void* self) { return Calls::get_Body<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.properties.push_back({
@@ -70,9 +71,7 @@ const sp::reflect::TypeInfo& AKinematicVehicle::StaticClass() {
             TypeCode(Kind::Object, "UInputComponent"),
             "Receives the injected actions.",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->InputComponent);
-            },
+            [](const void* self) { return Calls::get_InputComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.properties.push_back({
@@ -80,13 +79,9 @@ const sp::reflect::TypeInfo& AKinematicVehicle::StaticClass() {
             TypeCode(Kind::Float),
             "Speed in metres per second at full throttle.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->MaxSpeed);
-            },
+            [](const void* self) { return Calls::get_MaxSpeed<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->MaxSpeed = sp::reflect::decode<double>(value, "AKinematicVehicle.MaxSpeed");
-                sp::reflect::notifyPropertyChanged(object, "MaxSpeed");
+                Calls::set_MaxSpeed<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -94,13 +89,9 @@ const sp::reflect::TypeInfo& AKinematicVehicle::StaticClass() {
             TypeCode(Kind::Float),
             "Yaw rate in degrees per second at full steering.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->MaxYawRateInDegrees);
-            },
+            [](const void* self) { return Calls::get_MaxYawRateInDegrees<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->MaxYawRateInDegrees = sp::reflect::decode<double>(value, "AKinematicVehicle.MaxYawRateInDegrees");
-                sp::reflect::notifyPropertyChanged(object, "MaxYawRateInDegrees");
+                Calls::set_MaxYawRateInDegrees<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;

@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& ADirectionalLight::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = ADirectionalLight;
+        using Calls = sp::generated::engine::ADirectionalLightCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "ADirectionalLight";
         t.doc = "An actor with a directional light (the sun) as its root.";
@@ -60,9 +63,7 @@ const sp::reflect::TypeInfo& ADirectionalLight::StaticClass() {
             TypeCode(Kind::Object, "UDirectionalLightComponent"),
             "The light (also the root component).",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->LightComponent);
-            },
+            [](const void* self) { return Calls::get_LightComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         return t;
@@ -77,6 +78,8 @@ const sp::reflect::TypeInfo& ADirectionalLight::GetClass() const { return Static
 const sp::reflect::TypeInfo& APointLight::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = APointLight;
+        using Calls = sp::generated::engine::APointLightCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "APointLight";
         t.doc = "An actor with a point light as its root.";
@@ -89,9 +92,7 @@ const sp::reflect::TypeInfo& APointLight::StaticClass() {
             TypeCode(Kind::Object, "UPointLightComponent"),
             "The light (also the root component).",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->LightComponent);
-            },
+            [](const void* self) { return Calls::get_LightComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         return t;

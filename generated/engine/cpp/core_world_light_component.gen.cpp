@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -67,6 +68,8 @@ const sp::reflect::TypeInfo& UDirectionalLightComponent::GetClass() const { retu
 const sp::reflect::TypeInfo& ULightComponent::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = ULightComponent;
+        using Calls = sp::generated::engine::ULightComponentCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "ULightComponent";
         t.doc = "A scene component that emits light.";
@@ -78,13 +81,9 @@ const sp::reflect::TypeInfo& ULightComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Brightness: lux for directional lights, candela for point lights.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Intensity);
-            },
+            [](const void* self) { return Calls::get_Intensity<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Intensity = sp::reflect::decode<float>(value, "ULightComponent.Intensity");
-                sp::reflect::notifyPropertyChanged(object, "Intensity");
+                Calls::set_Intensity<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -92,13 +91,9 @@ const sp::reflect::TypeInfo& ULightComponent::StaticClass() {
             TypeCode(Kind::Struct, "FLinearColor"),
             "Colour of the emitted light (linear).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->LightColor);
-            },
+            [](const void* self) { return Calls::get_LightColor<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->LightColor = sp::reflect::decode<FLinearColor>(value, "ULightComponent.LightColor");
-                sp::reflect::notifyPropertyChanged(object, "LightColor");
+                Calls::set_LightColor<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -106,13 +101,9 @@ const sp::reflect::TypeInfo& ULightComponent::StaticClass() {
             TypeCode(Kind::Bool),
             "Whether this light casts shadows.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bCastShadows);
-            },
+            [](const void* self) { return Calls::get_bCastShadows<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bCastShadows = sp::reflect::decode<bool>(value, "ULightComponent.bCastShadows");
-                sp::reflect::notifyPropertyChanged(object, "bCastShadows");
+                Calls::set_bCastShadows<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;
@@ -127,6 +118,8 @@ const sp::reflect::TypeInfo& ULightComponent::GetClass() const { return StaticCl
 const sp::reflect::TypeInfo& UPointLightComponent::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = UPointLightComponent;
+        using Calls = sp::generated::engine::UPointLightComponentCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "UPointLightComponent";
         t.doc = "A light that shines equally in every direction from the component's location.";
@@ -139,13 +132,9 @@ const sp::reflect::TypeInfo& UPointLightComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Distance in metres beyond which the light has no effect.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->AttenuationRadius);
-            },
+            [](const void* self) { return Calls::get_AttenuationRadius<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->AttenuationRadius = sp::reflect::decode<float>(value, "UPointLightComponent.AttenuationRadius");
-                sp::reflect::notifyPropertyChanged(object, "AttenuationRadius");
+                Calls::set_AttenuationRadius<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;

@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& FLinearColor::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FLinearColor;
+        using Calls = sp::generated::engine::FLinearColorCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FLinearColor";
         t.doc = "A linear-space colour with alpha; components usually in [0, 1], HDR values may exceed 1.";
@@ -59,13 +62,9 @@ const sp::reflect::TypeInfo& FLinearColor::StaticClass() {
             TypeCode(Kind::Float),
             "Red.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->R);
-            },
+            [](const void* self) { return Calls::get_R<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->R = sp::reflect::decode<float>(value, "FLinearColor.R");
-                sp::reflect::notifyPropertyChanged(object, "R");
+                Calls::set_R<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -73,13 +72,9 @@ const sp::reflect::TypeInfo& FLinearColor::StaticClass() {
             TypeCode(Kind::Float),
             "Green.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->G);
-            },
+            [](const void* self) { return Calls::get_G<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->G = sp::reflect::decode<float>(value, "FLinearColor.G");
-                sp::reflect::notifyPropertyChanged(object, "G");
+                Calls::set_G<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -87,13 +82,9 @@ const sp::reflect::TypeInfo& FLinearColor::StaticClass() {
             TypeCode(Kind::Float),
             "Blue.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->B);
-            },
+            [](const void* self) { return Calls::get_B<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->B = sp::reflect::decode<float>(value, "FLinearColor.B");
-                sp::reflect::notifyPropertyChanged(object, "B");
+                Calls::set_B<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -101,13 +92,9 @@ const sp::reflect::TypeInfo& FLinearColor::StaticClass() {
             TypeCode(Kind::Float),
             "Alpha.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->A);
-            },
+            [](const void* self) { return Calls::get_A<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->A = sp::reflect::decode<float>(value, "FLinearColor.A");
-                sp::reflect::notifyPropertyChanged(object, "A");
+                Calls::set_A<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;
@@ -122,6 +109,8 @@ const sp::reflect::TypeInfo& FLinearColor::GetClass() const { return StaticClass
 const sp::reflect::TypeInfo& FQuat::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FQuat;
+        using Calls = sp::generated::engine::FQuatCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FQuat";
         t.doc = "A unit quaternion.";
@@ -133,13 +122,9 @@ const sp::reflect::TypeInfo& FQuat::StaticClass() {
             TypeCode(Kind::Float),
             "X component.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->X);
-            },
+            [](const void* self) { return Calls::get_X<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->X = sp::reflect::decode<double>(value, "FQuat.X");
-                sp::reflect::notifyPropertyChanged(object, "X");
+                Calls::set_X<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -147,13 +132,9 @@ const sp::reflect::TypeInfo& FQuat::StaticClass() {
             TypeCode(Kind::Float),
             "Y component.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Y);
-            },
+            [](const void* self) { return Calls::get_Y<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Y = sp::reflect::decode<double>(value, "FQuat.Y");
-                sp::reflect::notifyPropertyChanged(object, "Y");
+                Calls::set_Y<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -161,13 +142,9 @@ const sp::reflect::TypeInfo& FQuat::StaticClass() {
             TypeCode(Kind::Float),
             "Z component.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Z);
-            },
+            [](const void* self) { return Calls::get_Z<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Z = sp::reflect::decode<double>(value, "FQuat.Z");
-                sp::reflect::notifyPropertyChanged(object, "Z");
+                Calls::set_Z<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -175,13 +152,9 @@ const sp::reflect::TypeInfo& FQuat::StaticClass() {
             TypeCode(Kind::Float),
             "W (scalar) component.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->W);
-            },
+            [](const void* self) { return Calls::get_W<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->W = sp::reflect::decode<double>(value, "FQuat.W");
-                sp::reflect::notifyPropertyChanged(object, "W");
+                Calls::set_W<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;
@@ -196,6 +169,8 @@ const sp::reflect::TypeInfo& FQuat::GetClass() const { return StaticClass(); }
 const sp::reflect::TypeInfo& FRotator::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FRotator;
+        using Calls = sp::generated::engine::FRotatorCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FRotator";
         t.doc = "An orientation as Euler angles in degrees.";
@@ -207,13 +182,9 @@ const sp::reflect::TypeInfo& FRotator::StaticClass() {
             TypeCode(Kind::Float),
             "Rotation that raises the X axis toward +Z, in degrees.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Pitch);
-            },
+            [](const void* self) { return Calls::get_Pitch<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Pitch = sp::reflect::decode<double>(value, "FRotator.Pitch");
-                sp::reflect::notifyPropertyChanged(object, "Pitch");
+                Calls::set_Pitch<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -221,13 +192,9 @@ const sp::reflect::TypeInfo& FRotator::StaticClass() {
             TypeCode(Kind::Float),
             "Rotation about +Z, in degrees.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Yaw);
-            },
+            [](const void* self) { return Calls::get_Yaw<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Yaw = sp::reflect::decode<double>(value, "FRotator.Yaw");
-                sp::reflect::notifyPropertyChanged(object, "Yaw");
+                Calls::set_Yaw<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -235,13 +202,9 @@ const sp::reflect::TypeInfo& FRotator::StaticClass() {
             TypeCode(Kind::Float),
             "Rotation about +X, in degrees.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Roll);
-            },
+            [](const void* self) { return Calls::get_Roll<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Roll = sp::reflect::decode<double>(value, "FRotator.Roll");
-                sp::reflect::notifyPropertyChanged(object, "Roll");
+                Calls::set_Roll<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;
@@ -256,6 +219,8 @@ const sp::reflect::TypeInfo& FRotator::GetClass() const { return StaticClass(); 
 const sp::reflect::TypeInfo& FTransform::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FTransform;
+        using Calls = sp::generated::engine::FTransformCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FTransform";
         t.doc = "Translation, rotation and non-uniform scale, applied as scale, then rotation, then translation.";
@@ -267,13 +232,9 @@ const sp::reflect::TypeInfo& FTransform::StaticClass() {
             TypeCode(Kind::Struct, "FVector"),
             "Translation in metres.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Translation);
-            },
+            [](const void* self) { return Calls::get_Translation<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Translation = sp::reflect::decode<FVector>(value, "FTransform.Translation");
-                sp::reflect::notifyPropertyChanged(object, "Translation");
+                Calls::set_Translation<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -281,13 +242,9 @@ const sp::reflect::TypeInfo& FTransform::StaticClass() {
             TypeCode(Kind::Struct, "FQuat"),
             "Rotation.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Rotation);
-            },
+            [](const void* self) { return Calls::get_Rotation<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Rotation = sp::reflect::decode<FQuat>(value, "FTransform.Rotation");
-                sp::reflect::notifyPropertyChanged(object, "Rotation");
+                Calls::set_Rotation<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -295,13 +252,9 @@ const sp::reflect::TypeInfo& FTransform::StaticClass() {
             TypeCode(Kind::Struct, "FVector"),
             "Scale along each local axis.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Scale3D);
-            },
+            [](const void* self) { return Calls::get_Scale3D<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Scale3D = sp::reflect::decode<FVector>(value, "FTransform.Scale3D");
-                sp::reflect::notifyPropertyChanged(object, "Scale3D");
+                Calls::set_Scale3D<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;
@@ -316,6 +269,8 @@ const sp::reflect::TypeInfo& FTransform::GetClass() const { return StaticClass()
 const sp::reflect::TypeInfo& FVector::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FVector;
+        using Calls = sp::generated::engine::FVectorCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FVector";
         t.doc = "A vector in 3-D space (metres for positions).";
@@ -327,13 +282,9 @@ const sp::reflect::TypeInfo& FVector::StaticClass() {
             TypeCode(Kind::Float),
             "X component (forward).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->X);
-            },
+            [](const void* self) { return Calls::get_X<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->X = sp::reflect::decode<double>(value, "FVector.X");
-                sp::reflect::notifyPropertyChanged(object, "X");
+                Calls::set_X<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -341,13 +292,9 @@ const sp::reflect::TypeInfo& FVector::StaticClass() {
             TypeCode(Kind::Float),
             "Y component (left).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Y);
-            },
+            [](const void* self) { return Calls::get_Y<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Y = sp::reflect::decode<double>(value, "FVector.Y");
-                sp::reflect::notifyPropertyChanged(object, "Y");
+                Calls::set_Y<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -355,13 +302,9 @@ const sp::reflect::TypeInfo& FVector::StaticClass() {
             TypeCode(Kind::Float),
             "Z component (up).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Z);
-            },
+            [](const void* self) { return Calls::get_Z<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Z = sp::reflect::decode<double>(value, "FVector.Z");
-                sp::reflect::notifyPropertyChanged(object, "Z");
+                Calls::set_Z<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;
@@ -376,6 +319,8 @@ const sp::reflect::TypeInfo& FVector::GetClass() const { return StaticClass(); }
 const sp::reflect::TypeInfo& FVector2D::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FVector2D;
+        using Calls = sp::generated::engine::FVector2DCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FVector2D";
         t.doc = "A vector in 2-D space.";
@@ -387,13 +332,9 @@ const sp::reflect::TypeInfo& FVector2D::StaticClass() {
             TypeCode(Kind::Float),
             "X component.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->X);
-            },
+            [](const void* self) { return Calls::get_X<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->X = sp::reflect::decode<double>(value, "FVector2D.X");
-                sp::reflect::notifyPropertyChanged(object, "X");
+                Calls::set_X<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -401,13 +342,9 @@ const sp::reflect::TypeInfo& FVector2D::StaticClass() {
             TypeCode(Kind::Float),
             "Y component.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Y);
-            },
+            [](const void* self) { return Calls::get_Y<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Y = sp::reflect::decode<double>(value, "FVector2D.Y");
-                sp::reflect::notifyPropertyChanged(object, "Y");
+                Calls::set_Y<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;

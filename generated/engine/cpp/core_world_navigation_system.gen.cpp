@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -62,6 +63,8 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ENavigationQuer
 const sp::reflect::TypeInfo& ANavMeshBoundsVolume::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = ANavMeshBoundsVolume;
+        using Calls = sp::generated::engine::ANavMeshBoundsVolumeCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "ANavMeshBoundsVolume";
         t.doc = "Where navigation is built: the box of its BoxComponent (which collides with nothing).";
@@ -74,9 +77,7 @@ const sp::reflect::TypeInfo& ANavMeshBoundsVolume::StaticClass() {
             TypeCode(Kind::Object, "UBoxComponent"),
             "The volume's box (the root component); BoxExtent and the actor's transform place it.",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->BoxComponent);
-            },
+            [](const void* self) { return Calls::get_BoxComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         return t;
@@ -91,6 +92,8 @@ const sp::reflect::TypeInfo& ANavMeshBoundsVolume::GetClass() const { return Sta
 const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = ARecastNavMesh;
+        using Calls = sp::generated::engine::ARecastNavMeshCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "ARecastNavMesh";
         t.doc = "Navigation data for one agent profile: a tiled Recast navigation mesh and the queries on it.";
@@ -103,13 +106,9 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             TypeCode(Kind::Str),
             "The agent profile's name (UNavigationSystemV1.GetNavDataForAgentName finds it by this).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->AgentName);
-            },
+            [](const void* self) { return Calls::get_AgentName<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->AgentName = sp::reflect::decode<std::string>(value, "ARecastNavMesh.AgentName");
-                sp::reflect::notifyPropertyChanged(object, "AgentName");
+                Calls::set_AgentName<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -117,13 +116,9 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             TypeCode(Kind::Float),
             "Clearance kept from walls and edges, metres (>= 0).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->AgentRadius);
-            },
+            [](const void* self) { return Calls::get_AgentRadius<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->AgentRadius = sp::reflect::decode<double>(value, "ARecastNavMesh.AgentRadius");
-                sp::reflect::notifyPropertyChanged(object, "AgentRadius");
+                Calls::set_AgentRadius<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -131,13 +126,9 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             TypeCode(Kind::Float),
             "Headroom the agent needs, metres (> 0).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->AgentHeight);
-            },
+            [](const void* self) { return Calls::get_AgentHeight<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->AgentHeight = sp::reflect::decode<double>(value, "ARecastNavMesh.AgentHeight");
-                sp::reflect::notifyPropertyChanged(object, "AgentHeight");
+                Calls::set_AgentHeight<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -145,13 +136,9 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             TypeCode(Kind::Float),
             "Steepest walkable ground, degrees in (0, 90).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->AgentMaxSlope);
-            },
+            [](const void* self) { return Calls::get_AgentMaxSlope<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->AgentMaxSlope = sp::reflect::decode<double>(value, "ARecastNavMesh.AgentMaxSlope");
-                sp::reflect::notifyPropertyChanged(object, "AgentMaxSlope");
+                Calls::set_AgentMaxSlope<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -159,13 +146,9 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             TypeCode(Kind::Float),
             "Highest ledge the agent steps up or down, metres (>= 0).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->AgentMaxStepHeight);
-            },
+            [](const void* self) { return Calls::get_AgentMaxStepHeight<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->AgentMaxStepHeight = sp::reflect::decode<double>(value, "ARecastNavMesh.AgentMaxStepHeight");
-                sp::reflect::notifyPropertyChanged(object, "AgentMaxStepHeight");
+                Calls::set_AgentMaxStepHeight<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -173,13 +156,9 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             TypeCode(Kind::Float),
             "Horizontal voxel size, metres (> 0): smaller is finer and slower to build.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->CellSize);
-            },
+            [](const void* self) { return Calls::get_CellSize<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->CellSize = sp::reflect::decode<double>(value, "ARecastNavMesh.CellSize");
-                sp::reflect::notifyPropertyChanged(object, "CellSize");
+                Calls::set_CellSize<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -187,13 +166,9 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             TypeCode(Kind::Float),
             "Vertical voxel size, metres (> 0).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->CellHeight);
-            },
+            [](const void* self) { return Calls::get_CellHeight<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->CellHeight = sp::reflect::decode<double>(value, "ARecastNavMesh.CellHeight");
-                sp::reflect::notifyPropertyChanged(object, "CellHeight");
+                Calls::set_CellHeight<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -201,13 +176,9 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             TypeCode(Kind::Float),
             "Side of a tile, metres (at least 8 cells): the unit rebuilt when geometry changes.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->TileSize);
-            },
+            [](const void* self) { return Calls::get_TileSize<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->TileSize = sp::reflect::decode<double>(value, "ARecastNavMesh.TileSize");
-                sp::reflect::notifyPropertyChanged(object, "TileSize");
+                Calls::set_TileSize<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -215,13 +186,9 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             TypeCode(Kind::Float),
             "Walkable islands smaller than this are dropped, square metres (>= 0).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->MinRegionArea);
-            },
+            [](const void* self) { return Calls::get_MinRegionArea<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->MinRegionArea = sp::reflect::decode<double>(value, "ARecastNavMesh.MinRegionArea");
-                sp::reflect::notifyPropertyChanged(object, "MinRegionArea");
+                Calls::set_MinRegionArea<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -229,13 +196,9 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             TypeCode(Kind::Bool),
             "Whether geometry changes rebuild the tiles under them before the next query (else only\nRebuildNavigation does).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bRebuildAutomatically);
-            },
+            [](const void* self) { return Calls::get_bRebuildAutomatically<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bRebuildAutomatically = sp::reflect::decode<bool>(value, "ARecastNavMesh.bRebuildAutomatically");
-                sp::reflect::notifyPropertyChanged(object, "bRebuildAutomatically");
+                Calls::set_bRebuildAutomatically<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -243,13 +206,9 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             TypeCode(Kind::Int),
             "Seed of the random points' generator (SetRandomSeed restarts the sequence).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->RandomSeed);
-            },
+            [](const void* self) { return Calls::get_RandomSeed<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetRandomSeed(sp::reflect::decode<int32_t>(value, "ARecastNavMesh.RandomSeed"));
-                sp::reflect::notifyPropertyChanged(object, "RandomSeed");
+                Calls::set_RandomSeed<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -261,13 +220,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ARecastNavMesh.SetRandomSeed()";
-                sp::reflect::checkArguments(args, {"Seed"}, kContext);
-                int32_t Seed = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "Seed", kContext), "ARecastNavMesh.SetRandomSeed(): argument 'Seed'");
-                sp::reflect::selfCast<Self>(self)->SetRandomSeed(Seed);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetRandomSeed<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "RebuildNavigation",
@@ -277,12 +230,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ARecastNavMesh.RebuildNavigation()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                sp::reflect::selfCast<Self>(self)->RebuildNavigation();
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_RebuildNavigation<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetNumTiles",
@@ -292,12 +240,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ARecastNavMesh.GetNumTiles()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<Self>(self)->GetNumTiles();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetNumTiles<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetNumPolygons",
@@ -307,12 +250,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ARecastNavMesh.GetNumPolygons()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<Self>(self)->GetNumPolygons();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetNumPolygons<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetNavigableArea",
@@ -322,12 +260,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ARecastNavMesh.GetNavigableArea()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<Self>(self)->GetNavigableArea();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetNavigableArea<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetLastBuildSeconds",
@@ -337,12 +270,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ARecastNavMesh.GetLastBuildSeconds()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetLastBuildSeconds();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetLastBuildSeconds<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetLastBuildTileCount",
@@ -352,12 +280,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ARecastNavMesh.GetLastBuildTileCount()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetLastBuildTileCount();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetLastBuildTileCount<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "FindPath",
@@ -371,20 +294,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ARecastNavMesh.FindPath()";
-                sp::reflect::checkArguments(args, {"Start", "End"}, kContext);
-                FVector Start = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "Start", kContext), "ARecastNavMesh.FindPath(): argument 'Start'");
-                FVector End = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "End", kContext), "ARecastNavMesh.FindPath(): argument 'End'");
-                sp::reflect::SpArray<double> PathPoints{};
-                double PathLength{};
-                auto result = sp::reflect::selfCast<Self>(self)->FindPath(Start, End, PathPoints, PathLength);
-                sp::reflect::Value::Dict outputs;
-                outputs.emplace("ReturnValue", sp::reflect::encode(result));
-                outputs.emplace("PathPoints", sp::reflect::encode(PathPoints));
-                outputs.emplace("PathLength", sp::reflect::encode(PathLength));
-                return sp::reflect::Value(std::move(outputs));
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_FindPath<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "FindPaths",
@@ -400,23 +310,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ARecastNavMesh.FindPaths()";
-                sp::reflect::checkArguments(args, {"StartPoints", "EndPoints"}, kContext);
-                sp::reflect::SpArray<double> StartPoints = sp::reflect::decode<sp::reflect::SpArray<double>>(sp::reflect::requireArgument(args, "StartPoints", kContext), "ARecastNavMesh.FindPaths(): argument 'StartPoints'");
-                sp::reflect::SpArray<double> EndPoints = sp::reflect::decode<sp::reflect::SpArray<double>>(sp::reflect::requireArgument(args, "EndPoints", kContext), "ARecastNavMesh.FindPaths(): argument 'EndPoints'");
-                sp::reflect::SpArray<double> PathPoints{};
-                sp::reflect::SpArray<int64_t> PathStarts{};
-                sp::reflect::SpArray<double> Lengths{};
-                sp::reflect::SpArray<uint8_t> Results{};
-                sp::reflect::selfCast<Self>(self)->FindPaths(StartPoints, EndPoints, PathPoints, PathStarts, Lengths, Results);
-                sp::reflect::Value::Dict outputs;
-                outputs.emplace("PathPoints", sp::reflect::encode(PathPoints));
-                outputs.emplace("PathStarts", sp::reflect::encode(PathStarts));
-                outputs.emplace("Lengths", sp::reflect::encode(Lengths));
-                outputs.emplace("Results", sp::reflect::encode(Results));
-                return sp::reflect::Value(std::move(outputs));
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_FindPaths<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetGeodesicDistance",
@@ -428,14 +322,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ARecastNavMesh.GetGeodesicDistance()";
-                sp::reflect::checkArguments(args, {"Start", "End"}, kContext);
-                FVector Start = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "Start", kContext), "ARecastNavMesh.GetGeodesicDistance(): argument 'Start'");
-                FVector End = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "End", kContext), "ARecastNavMesh.GetGeodesicDistance(): argument 'End'");
-                auto result = sp::reflect::selfCast<Self>(self)->GetGeodesicDistance(Start, End);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetGeodesicDistance<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetRandomPoints",
@@ -446,13 +333,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ARecastNavMesh.GetRandomPoints()";
-                sp::reflect::checkArguments(args, {"NumPoints"}, kContext);
-                int32_t NumPoints = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "NumPoints", kContext), "ARecastNavMesh.GetRandomPoints(): argument 'NumPoints'");
-                auto result = sp::reflect::selfCast<Self>(self)->GetRandomPoints(NumPoints);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetRandomPoints<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetRandomReachablePointsInRadius",
@@ -464,14 +345,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ARecastNavMesh.GetRandomReachablePointsInRadius()";
-                sp::reflect::checkArguments(args, {"Origins", "Radius"}, kContext);
-                sp::reflect::SpArray<double> Origins = sp::reflect::decode<sp::reflect::SpArray<double>>(sp::reflect::requireArgument(args, "Origins", kContext), "ARecastNavMesh.GetRandomReachablePointsInRadius(): argument 'Origins'");
-                double Radius = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "Radius", kContext), "ARecastNavMesh.GetRandomReachablePointsInRadius(): argument 'Radius'");
-                auto result = sp::reflect::selfCast<Self>(self)->GetRandomReachablePointsInRadius(Origins, Radius);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetRandomReachablePointsInRadius<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "ProjectPointToNavigation",
@@ -484,19 +358,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ARecastNavMesh.ProjectPointToNavigation()";
-                sp::reflect::checkArguments(args, {"Point", "QueryExtent"}, kContext);
-                FVector Point = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "Point", kContext), "ARecastNavMesh.ProjectPointToNavigation(): argument 'Point'");
-                FVector ProjectedLocation{};
-                const sp::reflect::Value* QueryExtentArg = sp::reflect::findArgument(args, "QueryExtent");
-                FVector QueryExtent = QueryExtentArg ? sp::reflect::decode<FVector>(*QueryExtentArg, "ARecastNavMesh.ProjectPointToNavigation(): argument 'QueryExtent'") : FVector(FVector());
-                auto result = sp::reflect::selfCast<Self>(self)->ProjectPointToNavigation(Point, ProjectedLocation, QueryExtent);
-                sp::reflect::Value::Dict outputs;
-                outputs.emplace("ReturnValue", sp::reflect::encode(result));
-                outputs.emplace("ProjectedLocation", sp::reflect::encode(ProjectedLocation));
-                return sp::reflect::Value(std::move(outputs));
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_ProjectPointToNavigation<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "IsNavigable",
@@ -508,15 +370,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ARecastNavMesh.IsNavigable()";
-                sp::reflect::checkArguments(args, {"Point", "MaxVerticalDistance"}, kContext);
-                FVector Point = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "Point", kContext), "ARecastNavMesh.IsNavigable(): argument 'Point'");
-                const sp::reflect::Value* MaxVerticalDistanceArg = sp::reflect::findArgument(args, "MaxVerticalDistance");
-                double MaxVerticalDistance = MaxVerticalDistanceArg ? sp::reflect::decode<double>(*MaxVerticalDistanceArg, "ARecastNavMesh.IsNavigable(): argument 'MaxVerticalDistance'") : double(0.5);
-                auto result = sp::reflect::selfCast<Self>(self)->IsNavigable(Point, MaxVerticalDistance);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_IsNavigable<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetNavMeshTriangles",
@@ -526,12 +380,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ARecastNavMesh.GetNavMeshTriangles()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<Self>(self)->GetNavMeshTriangles();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetNavMeshTriangles<ValueCall>(self, args); },
         });
         return t;
     }();
@@ -544,7 +393,9 @@ const sp::reflect::TypeInfo& ARecastNavMesh::GetClass() const { return StaticCla
 
 const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
-        using Self = UNavigationSystemV1;
+        using Self [[maybe_unused]] = UNavigationSystemV1;
+        using Calls = sp::generated::engine::UNavigationSystemV1Calls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "UNavigationSystemV1";
         t.doc = "The world's navigation system (UE's UNavigationSystemV1).";
@@ -560,14 +411,7 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UNavigationSystemV1.GetNavigationSystem()";
-                sp::reflect::checkArguments(args, {"WorldContextObject"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UNavigationSystemV1.GetNavigationSystem(): argument 'WorldContextObject'");
-                auto result = Self::GetNavigationSystem(WorldContextObject);
-                sp::reflect::checkNotNull(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_GetNavigationSystem<ValueCall>(args); },
         });
         t.functions.push_back({
             "GetNavDataForAgentName",
@@ -578,13 +422,7 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UNavigationSystemV1.GetNavDataForAgentName()";
-                sp::reflect::checkArguments(args, {"AgentName"}, kContext);
-                std::string AgentName = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "AgentName", kContext), "UNavigationSystemV1.GetNavDataForAgentName(): argument 'AgentName'");
-                auto result = sp::reflect::selfCast<const Self>(self)->GetNavDataForAgentName(AgentName);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetNavDataForAgentName<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetDefaultNavDataInstance",
@@ -594,13 +432,7 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UNavigationSystemV1.GetDefaultNavDataInstance()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<Self>(self)->GetDefaultNavDataInstance();
-                sp::reflect::checkNotNull(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetDefaultNavDataInstance<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "Build",
@@ -610,12 +442,7 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UNavigationSystemV1.Build()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                sp::reflect::selfCast<Self>(self)->Build();
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_Build<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "FindPathToLocationSynchronously",
@@ -631,23 +458,7 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UNavigationSystemV1.FindPathToLocationSynchronously()";
-                sp::reflect::checkArguments(args, {"WorldContextObject", "PathStart", "PathEnd", "NavData"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UNavigationSystemV1.FindPathToLocationSynchronously(): argument 'WorldContextObject'");
-                FVector PathStart = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "PathStart", kContext), "UNavigationSystemV1.FindPathToLocationSynchronously(): argument 'PathStart'");
-                FVector PathEnd = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "PathEnd", kContext), "UNavigationSystemV1.FindPathToLocationSynchronously(): argument 'PathEnd'");
-                sp::reflect::SpArray<double> PathPoints{};
-                double PathLength{};
-                const sp::reflect::Value* NavDataArg = sp::reflect::findArgument(args, "NavData");
-                ARecastNavMesh* NavData = NavDataArg ? sp::reflect::decode<ARecastNavMesh*>(*NavDataArg, "UNavigationSystemV1.FindPathToLocationSynchronously(): argument 'NavData'") : static_cast<ARecastNavMesh*>(nullptr);
-                auto result = Self::FindPathToLocationSynchronously(WorldContextObject, PathStart, PathEnd, PathPoints, PathLength, NavData);
-                sp::reflect::Value::Dict outputs;
-                outputs.emplace("ReturnValue", sp::reflect::encode(result));
-                outputs.emplace("PathPoints", sp::reflect::encode(PathPoints));
-                outputs.emplace("PathLength", sp::reflect::encode(PathLength));
-                return sp::reflect::Value(std::move(outputs));
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_FindPathToLocationSynchronously<ValueCall>(args); },
         });
         t.functions.push_back({
             "GetPathLength",
@@ -662,21 +473,7 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UNavigationSystemV1.GetPathLength()";
-                sp::reflect::checkArguments(args, {"WorldContextObject", "PathStart", "PathEnd", "NavData"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UNavigationSystemV1.GetPathLength(): argument 'WorldContextObject'");
-                FVector PathStart = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "PathStart", kContext), "UNavigationSystemV1.GetPathLength(): argument 'PathStart'");
-                FVector PathEnd = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "PathEnd", kContext), "UNavigationSystemV1.GetPathLength(): argument 'PathEnd'");
-                double PathLength{};
-                const sp::reflect::Value* NavDataArg = sp::reflect::findArgument(args, "NavData");
-                ARecastNavMesh* NavData = NavDataArg ? sp::reflect::decode<ARecastNavMesh*>(*NavDataArg, "UNavigationSystemV1.GetPathLength(): argument 'NavData'") : static_cast<ARecastNavMesh*>(nullptr);
-                auto result = Self::GetPathLength(WorldContextObject, PathStart, PathEnd, PathLength, NavData);
-                sp::reflect::Value::Dict outputs;
-                outputs.emplace("ReturnValue", sp::reflect::encode(result));
-                outputs.emplace("PathLength", sp::reflect::encode(PathLength));
-                return sp::reflect::Value(std::move(outputs));
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_GetPathLength<ValueCall>(args); },
         });
         t.functions.push_back({
             "K2_GetRandomReachablePointInRadius",
@@ -691,21 +488,7 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UNavigationSystemV1.K2_GetRandomReachablePointInRadius()";
-                sp::reflect::checkArguments(args, {"WorldContextObject", "Origin", "Radius", "NavData"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UNavigationSystemV1.K2_GetRandomReachablePointInRadius(): argument 'WorldContextObject'");
-                FVector Origin = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "Origin", kContext), "UNavigationSystemV1.K2_GetRandomReachablePointInRadius(): argument 'Origin'");
-                FVector RandomLocation{};
-                double Radius = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "Radius", kContext), "UNavigationSystemV1.K2_GetRandomReachablePointInRadius(): argument 'Radius'");
-                const sp::reflect::Value* NavDataArg = sp::reflect::findArgument(args, "NavData");
-                ARecastNavMesh* NavData = NavDataArg ? sp::reflect::decode<ARecastNavMesh*>(*NavDataArg, "UNavigationSystemV1.K2_GetRandomReachablePointInRadius(): argument 'NavData'") : static_cast<ARecastNavMesh*>(nullptr);
-                auto result = Self::K2_GetRandomReachablePointInRadius(WorldContextObject, Origin, RandomLocation, Radius, NavData);
-                sp::reflect::Value::Dict outputs;
-                outputs.emplace("ReturnValue", sp::reflect::encode(result));
-                outputs.emplace("RandomLocation", sp::reflect::encode(RandomLocation));
-                return sp::reflect::Value(std::move(outputs));
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_K2_GetRandomReachablePointInRadius<ValueCall>(args); },
         });
         t.functions.push_back({
             "K2_GetRandomLocationInNavigableRadius",
@@ -720,21 +503,7 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius()";
-                sp::reflect::checkArguments(args, {"WorldContextObject", "Origin", "Radius", "NavData"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius(): argument 'WorldContextObject'");
-                FVector Origin = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "Origin", kContext), "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius(): argument 'Origin'");
-                FVector RandomLocation{};
-                double Radius = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "Radius", kContext), "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius(): argument 'Radius'");
-                const sp::reflect::Value* NavDataArg = sp::reflect::findArgument(args, "NavData");
-                ARecastNavMesh* NavData = NavDataArg ? sp::reflect::decode<ARecastNavMesh*>(*NavDataArg, "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius(): argument 'NavData'") : static_cast<ARecastNavMesh*>(nullptr);
-                auto result = Self::K2_GetRandomLocationInNavigableRadius(WorldContextObject, Origin, RandomLocation, Radius, NavData);
-                sp::reflect::Value::Dict outputs;
-                outputs.emplace("ReturnValue", sp::reflect::encode(result));
-                outputs.emplace("RandomLocation", sp::reflect::encode(RandomLocation));
-                return sp::reflect::Value(std::move(outputs));
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_K2_GetRandomLocationInNavigableRadius<ValueCall>(args); },
         });
         t.functions.push_back({
             "K2_ProjectPointToNavigation",
@@ -749,22 +518,7 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UNavigationSystemV1.K2_ProjectPointToNavigation()";
-                sp::reflect::checkArguments(args, {"WorldContextObject", "Point", "NavData", "QueryExtent"}, kContext);
-                UObject* WorldContextObject = sp::reflect::decodeNonNull<UObject*>(sp::reflect::requireArgument(args, "WorldContextObject", kContext), "UNavigationSystemV1.K2_ProjectPointToNavigation(): argument 'WorldContextObject'");
-                FVector Point = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "Point", kContext), "UNavigationSystemV1.K2_ProjectPointToNavigation(): argument 'Point'");
-                FVector ProjectedLocation{};
-                const sp::reflect::Value* NavDataArg = sp::reflect::findArgument(args, "NavData");
-                ARecastNavMesh* NavData = NavDataArg ? sp::reflect::decode<ARecastNavMesh*>(*NavDataArg, "UNavigationSystemV1.K2_ProjectPointToNavigation(): argument 'NavData'") : static_cast<ARecastNavMesh*>(nullptr);
-                const sp::reflect::Value* QueryExtentArg = sp::reflect::findArgument(args, "QueryExtent");
-                FVector QueryExtent = QueryExtentArg ? sp::reflect::decode<FVector>(*QueryExtentArg, "UNavigationSystemV1.K2_ProjectPointToNavigation(): argument 'QueryExtent'") : FVector(FVector());
-                auto result = Self::K2_ProjectPointToNavigation(WorldContextObject, Point, ProjectedLocation, NavData, QueryExtent);
-                sp::reflect::Value::Dict outputs;
-                outputs.emplace("ReturnValue", sp::reflect::encode(result));
-                outputs.emplace("ProjectedLocation", sp::reflect::encode(ProjectedLocation));
-                return sp::reflect::Value(std::move(outputs));
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_K2_ProjectPointToNavigation<ValueCall>(args); },
         });
         return t;
     }();

@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -47,7 +48,9 @@ using Kind = sp::reflect::TypeCode::Kind;
 
 const sp::reflect::TypeInfo& UObject::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
-        using Self = UObject;
+        using Self [[maybe_unused]] = UObject;
+        using Calls = sp::generated::engine::UObjectCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "UObject";
         t.doc = "The base class of every engine object.";
@@ -62,12 +65,7 @@ const sp::reflect::TypeInfo& UObject::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UObject.GetName()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetName();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetName<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetClassName",
@@ -77,12 +75,7 @@ const sp::reflect::TypeInfo& UObject::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UObject.GetClassName()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetClassName();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetClassName<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetWorld",
@@ -92,12 +85,7 @@ const sp::reflect::TypeInfo& UObject::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UObject.GetWorld()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetWorld();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetWorld<ValueCall>(self, args); },
         });
         return t;
     }();

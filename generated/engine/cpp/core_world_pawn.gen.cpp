@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& ADefaultPawn::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = ADefaultPawn;
+        using Calls = sp::generated::engine::ADefaultPawnCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "ADefaultPawn";
         t.doc = "A pawn that flies along its control rotation from the \"MoveForward\", \"MoveRight\" and \"MoveUp\" input\nactions (X in [-1, 1]) and AddMovementInput, and turns its controller's view with \"Turn\" and \"LookUp\".\nIt has no collision body: it passes through geometry, like UE's DefaultPawn with collision off.";
@@ -60,9 +63,7 @@ const sp::reflect::TypeInfo& ADefaultPawn::StaticClass() {
             TypeCode(Kind::Object, "UInputComponent"),
             "Receives the injected actions (from inject_input_for_actor on the pawn or its controller).",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->InputComponent);
-            },
+            [](const void* self) { return Calls::get_InputComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.properties.push_back({
@@ -70,13 +71,9 @@ const sp::reflect::TypeInfo& ADefaultPawn::StaticClass() {
             TypeCode(Kind::Float),
             "Speed in metres per second at full input.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->MaxSpeed);
-            },
+            [](const void* self) { return Calls::get_MaxSpeed<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->MaxSpeed = sp::reflect::decode<double>(value, "ADefaultPawn.MaxSpeed");
-                sp::reflect::notifyPropertyChanged(object, "MaxSpeed");
+                Calls::set_MaxSpeed<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -84,13 +81,9 @@ const sp::reflect::TypeInfo& ADefaultPawn::StaticClass() {
             TypeCode(Kind::Float),
             "Degrees per second of yaw at \"Turn\" = 1.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->BaseTurnRate);
-            },
+            [](const void* self) { return Calls::get_BaseTurnRate<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->BaseTurnRate = sp::reflect::decode<double>(value, "ADefaultPawn.BaseTurnRate");
-                sp::reflect::notifyPropertyChanged(object, "BaseTurnRate");
+                Calls::set_BaseTurnRate<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -98,13 +91,9 @@ const sp::reflect::TypeInfo& ADefaultPawn::StaticClass() {
             TypeCode(Kind::Float),
             "Degrees per second of pitch at \"LookUp\" = 1.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->BaseLookUpRate);
-            },
+            [](const void* self) { return Calls::get_BaseLookUpRate<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->BaseLookUpRate = sp::reflect::decode<double>(value, "ADefaultPawn.BaseLookUpRate");
-                sp::reflect::notifyPropertyChanged(object, "BaseLookUpRate");
+                Calls::set_BaseLookUpRate<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;
@@ -119,6 +108,8 @@ const sp::reflect::TypeInfo& ADefaultPawn::GetClass() const { return StaticClass
 const sp::reflect::TypeInfo& APawn::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = APawn;
+        using Calls = sp::generated::engine::APawnCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "APawn";
         t.doc = "An actor that a controller can possess.";
@@ -131,13 +122,9 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
             TypeCode(Kind::Bool),
             "Whether the pawn's pitch follows its controller's control rotation each tick.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bUseControllerRotationPitch);
-            },
+            [](const void* self) { return Calls::get_bUseControllerRotationPitch<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bUseControllerRotationPitch = sp::reflect::decode<bool>(value, "APawn.bUseControllerRotationPitch");
-                sp::reflect::notifyPropertyChanged(object, "bUseControllerRotationPitch");
+                Calls::set_bUseControllerRotationPitch<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -145,13 +132,9 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
             TypeCode(Kind::Bool),
             "Whether the pawn's yaw follows its controller's control rotation each tick.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bUseControllerRotationYaw);
-            },
+            [](const void* self) { return Calls::get_bUseControllerRotationYaw<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bUseControllerRotationYaw = sp::reflect::decode<bool>(value, "APawn.bUseControllerRotationYaw");
-                sp::reflect::notifyPropertyChanged(object, "bUseControllerRotationYaw");
+                Calls::set_bUseControllerRotationYaw<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -159,13 +142,9 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
             TypeCode(Kind::Bool),
             "Whether the pawn's roll follows its controller's control rotation each tick.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bUseControllerRotationRoll);
-            },
+            [](const void* self) { return Calls::get_bUseControllerRotationRoll<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bUseControllerRotationRoll = sp::reflect::decode<bool>(value, "APawn.bUseControllerRotationRoll");
-                sp::reflect::notifyPropertyChanged(object, "bUseControllerRotationRoll");
+                Calls::set_bUseControllerRotationRoll<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -176,12 +155,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "APawn.GetController()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetController();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetController<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "IsControlled",
@@ -191,12 +165,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "APawn.IsControlled()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->IsControlled();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_IsControlled<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "IsPlayerControlled",
@@ -206,12 +175,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "APawn.IsPlayerControlled()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->IsPlayerControlled();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_IsPlayerControlled<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetControlRotation",
@@ -221,13 +185,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "APawn.GetControlRotation()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetControlRotation();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetControlRotation<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "AddMovementInput",
@@ -239,15 +197,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "APawn.AddMovementInput()";
-                sp::reflect::checkArguments(args, {"WorldDirection", "ScaleValue"}, kContext);
-                FVector WorldDirection = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "WorldDirection", kContext), "APawn.AddMovementInput(): argument 'WorldDirection'");
-                const sp::reflect::Value* ScaleValueArg = sp::reflect::findArgument(args, "ScaleValue");
-                double ScaleValue = ScaleValueArg ? sp::reflect::decode<double>(*ScaleValueArg, "APawn.AddMovementInput(): argument 'ScaleValue'") : double(1.0);
-                sp::reflect::selfCast<Self>(self)->AddMovementInput(WorldDirection, ScaleValue);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_AddMovementInput<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetPendingMovementInputVector",
@@ -257,13 +207,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "APawn.GetPendingMovementInputVector()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetPendingMovementInputVector();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetPendingMovementInputVector<ValueCall>(self, args); },
         });
         return t;
     }();

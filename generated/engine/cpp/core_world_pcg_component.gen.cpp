@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -61,6 +62,8 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPCGGenerationM
 const sp::reflect::TypeInfo& APCGVolume::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = APCGVolume;
+        using Calls = sp::generated::engine::APCGVolumeCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "APCGVolume";
         t.doc = "A box to generate in: its BoxComponent (which collides with nothing) bounds the UPCGComponent's work.";
@@ -73,9 +76,7 @@ const sp::reflect::TypeInfo& APCGVolume::StaticClass() {
             TypeCode(Kind::Object, "UBoxComponent"),
             "The generation's box (the root component).",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->BoxComponent);
-            },
+            [](const void* self) { return Calls::get_BoxComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.properties.push_back({
@@ -83,9 +84,7 @@ const sp::reflect::TypeInfo& APCGVolume::StaticClass() {
             TypeCode(Kind::Object, "UPCGComponent"),
             "The generator.",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->PCGComponent);
-            },
+            [](const void* self) { return Calls::get_PCGComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         return t;
@@ -100,6 +99,8 @@ const sp::reflect::TypeInfo& APCGVolume::GetClass() const { return StaticClass()
 const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = UPCGComponent;
+        using Calls = sp::generated::engine::UPCGComponentCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "UPCGComponent";
         t.doc = "Generates actors in its owner's box by rules.";
@@ -112,13 +113,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Enum, "EPCGGenerationMode"),
             "How actors are placed.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->GenerationMode);
-            },
+            [](const void* self) { return Calls::get_GenerationMode<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->GenerationMode = sp::reflect::decode<EPCGGenerationMode>(value, "UPCGComponent.GenerationMode");
-                sp::reflect::notifyPropertyChanged(object, "GenerationMode");
+                Calls::set_GenerationMode<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -126,13 +123,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Int),
             "Seed of the placement's random draws: the same seed gives the same actors.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Seed);
-            },
+            [](const void* self) { return Calls::get_Seed<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Seed = sp::reflect::decode<int32_t>(value, "UPCGComponent.Seed");
-                sp::reflect::notifyPropertyChanged(object, "Seed");
+                Calls::set_Seed<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -140,13 +133,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Class, "AActor", true),
             "The class spawned (AStaticMeshActor and its subclasses take StaticMesh and Materials).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ActorClass);
-            },
+            [](const void* self) { return Calls::get_ActorClass<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->ActorClass = sp::reflect::decode<TSubclassOf<AActor>>(value, "UPCGComponent.ActorClass");
-                sp::reflect::notifyPropertyChanged(object, "ActorClass");
+                Calls::set_ActorClass<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -154,13 +143,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Str),
             "The mesh of spawned static mesh actors.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->StaticMesh);
-            },
+            [](const void* self) { return Calls::get_StaticMesh<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->StaticMesh = sp::reflect::decode<std::string>(value, "UPCGComponent.StaticMesh");
-                sp::reflect::notifyPropertyChanged(object, "StaticMesh");
+                Calls::set_StaticMesh<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -168,13 +153,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::List, TypeCode(Kind::Str)),
             "Materials drawn from for each spawned static mesh actor (empty: the mesh's own).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Materials);
-            },
+            [](const void* self) { return Calls::get_Materials<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Materials = sp::reflect::decode<std::vector<std::string>>(value, "UPCGComponent.Materials");
-                sp::reflect::notifyPropertyChanged(object, "Materials");
+                Calls::set_Materials<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -182,13 +163,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Scatter: the least distance between two actors; AlongSpline: the distance between them along it.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Spacing);
-            },
+            [](const void* self) { return Calls::get_Spacing<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Spacing = sp::reflect::decode<double>(value, "UPCGComponent.Spacing");
-                sp::reflect::notifyPropertyChanged(object, "Spacing");
+                Calls::set_Spacing<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -196,13 +173,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Int),
             "Scatter: at most this many actors.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->MaxCount);
-            },
+            [](const void* self) { return Calls::get_MaxCount<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->MaxCount = sp::reflect::decode<int32_t>(value, "UPCGComponent.MaxCount");
-                sp::reflect::notifyPropertyChanged(object, "MaxCount");
+                Calls::set_MaxCount<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -210,13 +183,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Scatter and AlongSpline: each actor's uniform scale is drawn from [MinScale, MaxScale].",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->MinScale);
-            },
+            [](const void* self) { return Calls::get_MinScale<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->MinScale = sp::reflect::decode<double>(value, "UPCGComponent.MinScale");
-                sp::reflect::notifyPropertyChanged(object, "MinScale");
+                Calls::set_MinScale<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -224,13 +193,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Float),
             "",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->MaxScale);
-            },
+            [](const void* self) { return Calls::get_MaxScale<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->MaxScale = sp::reflect::decode<double>(value, "UPCGComponent.MaxScale");
-                sp::reflect::notifyPropertyChanged(object, "MaxScale");
+                Calls::set_MaxScale<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -238,13 +203,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Bool),
             "Scatter and AlongSpline (unaligned): turn each actor to a random yaw.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bRandomYaw);
-            },
+            [](const void* self) { return Calls::get_bRandomYaw<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bRandomYaw = sp::reflect::decode<bool>(value, "UPCGComponent.bRandomYaw");
-                sp::reflect::notifyPropertyChanged(object, "bRandomYaw");
+                Calls::set_bRandomYaw<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -252,13 +213,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Bool),
             "Drop each actor onto the geometry below it (a line trace down the box, before anything is spawned);\nwhere nothing is below, the actor is not placed. Otherwise actors stand on the box's floor.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bProjectToGround);
-            },
+            [](const void* self) { return Calls::get_bProjectToGround<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bProjectToGround = sp::reflect::decode<bool>(value, "UPCGComponent.bProjectToGround");
-                sp::reflect::notifyPropertyChanged(object, "bProjectToGround");
+                Calls::set_bProjectToGround<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -266,13 +223,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Str),
             "Scatter: actors with this tag keep generated actors out of their bounds (\"\" for none).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ExclusionTag);
-            },
+            [](const void* self) { return Calls::get_ExclusionTag<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->ExclusionTag = sp::reflect::decode<std::string>(value, "UPCGComponent.ExclusionTag");
-                sp::reflect::notifyPropertyChanged(object, "ExclusionTag");
+                Calls::set_ExclusionTag<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -280,13 +233,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Str),
             "AlongSpline: spline actors with this tag are followed, in spawn order. (A tag, not an actor reference:\na generation outlives the actors it read, and scenes save it as it is.)",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SplineTag);
-            },
+            [](const void* self) { return Calls::get_SplineTag<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SplineTag = sp::reflect::decode<std::string>(value, "UPCGComponent.SplineTag");
-                sp::reflect::notifyPropertyChanged(object, "SplineTag");
+                Calls::set_SplineTag<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -294,13 +243,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Float),
             "AlongSpline: the sideways distance from the spline (positive: its left).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SplineOffset);
-            },
+            [](const void* self) { return Calls::get_SplineOffset<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SplineOffset = sp::reflect::decode<double>(value, "UPCGComponent.SplineOffset");
-                sp::reflect::notifyPropertyChanged(object, "SplineOffset");
+                Calls::set_SplineOffset<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -308,13 +253,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Bool),
             "AlongSpline: place on both sides.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bBothSides);
-            },
+            [](const void* self) { return Calls::get_bBothSides<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bBothSides = sp::reflect::decode<bool>(value, "UPCGComponent.bBothSides");
-                sp::reflect::notifyPropertyChanged(object, "bBothSides");
+                Calls::set_bBothSides<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -322,13 +263,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Bool),
             "AlongSpline: face along the spline.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bAlignToSpline);
-            },
+            [](const void* self) { return Calls::get_bAlignToSpline<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bAlignToSpline = sp::reflect::decode<bool>(value, "UPCGComponent.bAlignToSpline");
-                sp::reflect::notifyPropertyChanged(object, "bAlignToSpline");
+                Calls::set_bAlignToSpline<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -336,13 +273,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Float),
             "CityBlocks: the side of a block, metres.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->BlockSize);
-            },
+            [](const void* self) { return Calls::get_BlockSize<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->BlockSize = sp::reflect::decode<double>(value, "UPCGComponent.BlockSize");
-                sp::reflect::notifyPropertyChanged(object, "BlockSize");
+                Calls::set_BlockSize<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -350,13 +283,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Float),
             "CityBlocks: the street between blocks, metres.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->StreetWidth);
-            },
+            [](const void* self) { return Calls::get_StreetWidth<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->StreetWidth = sp::reflect::decode<double>(value, "UPCGComponent.StreetWidth");
-                sp::reflect::notifyPropertyChanged(object, "StreetWidth");
+                Calls::set_StreetWidth<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -364,13 +293,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Int),
             "CityBlocks: buildings along a block's side (LotsPerSide^2 per block).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->LotsPerSide);
-            },
+            [](const void* self) { return Calls::get_LotsPerSide<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->LotsPerSide = sp::reflect::decode<int32_t>(value, "UPCGComponent.LotsPerSide");
-                sp::reflect::notifyPropertyChanged(object, "LotsPerSide");
+                Calls::set_LotsPerSide<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -378,13 +303,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Float),
             "CityBlocks: building heights are drawn from [MinHeight, MaxHeight] metres.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->MinHeight);
-            },
+            [](const void* self) { return Calls::get_MinHeight<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->MinHeight = sp::reflect::decode<double>(value, "UPCGComponent.MinHeight");
-                sp::reflect::notifyPropertyChanged(object, "MinHeight");
+                Calls::set_MinHeight<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -392,13 +313,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Float),
             "",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->MaxHeight);
-            },
+            [](const void* self) { return Calls::get_MaxHeight<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->MaxHeight = sp::reflect::decode<double>(value, "UPCGComponent.MaxHeight");
-                sp::reflect::notifyPropertyChanged(object, "MaxHeight");
+                Calls::set_MaxHeight<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -406,13 +323,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Str),
             "CityBlocks: spline actors with this tag are roads.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->RoadTag);
-            },
+            [](const void* self) { return Calls::get_RoadTag<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->RoadTag = sp::reflect::decode<std::string>(value, "UPCGComponent.RoadTag");
-                sp::reflect::notifyPropertyChanged(object, "RoadTag");
+                Calls::set_RoadTag<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -420,13 +333,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             TypeCode(Kind::Float),
             "CityBlocks: the width kept free along roads, metres.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->RoadWidth);
-            },
+            [](const void* self) { return Calls::get_RoadWidth<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->RoadWidth = sp::reflect::decode<double>(value, "UPCGComponent.RoadWidth");
-                sp::reflect::notifyPropertyChanged(object, "RoadWidth");
+                Calls::set_RoadWidth<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -438,14 +347,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPCGComponent.Generate()";
-                sp::reflect::checkArguments(args, {"bForce"}, kContext);
-                const sp::reflect::Value* bForceArg = sp::reflect::findArgument(args, "bForce");
-                bool bForce = bForceArg ? sp::reflect::decode<bool>(*bForceArg, "UPCGComponent.Generate(): argument 'bForce'") : bool(false);
-                sp::reflect::selfCast<Self>(self)->Generate(bForce);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_Generate<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "Cleanup",
@@ -455,12 +357,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPCGComponent.Cleanup()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                sp::reflect::selfCast<Self>(self)->Cleanup();
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_Cleanup<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "FlushCache",
@@ -470,12 +367,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPCGComponent.FlushCache()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                sp::reflect::selfCast<Self>(self)->FlushCache();
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_FlushCache<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetGeneratedActors",
@@ -485,12 +377,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPCGComponent.GetGeneratedActors()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetGeneratedActors();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetGeneratedActors<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "IsGenerated",
@@ -500,12 +387,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPCGComponent.IsGenerated()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->IsGenerated();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_IsGenerated<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetLastGenerationSeconds",
@@ -515,12 +397,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPCGComponent.GetLastGenerationSeconds()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetLastGenerationSeconds();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetLastGenerationSeconds<ValueCall>(self, args); },
         });
         return t;
     }();

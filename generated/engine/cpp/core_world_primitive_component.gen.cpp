@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -67,6 +68,8 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECollisionPrimi
 const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = UPrimitiveComponent;
+        using Calls = sp::generated::engine::UPrimitiveComponentCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "UPrimitiveComponent";
         t.doc = "A scene component that has geometry.";
@@ -78,13 +81,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             TypeCode(Kind::Bool),
             "Whether physics moves this component (gravity, forces, contacts); it must be Movable.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bSimulatePhysics);
-            },
+            [](const void* self) { return Calls::get_bSimulatePhysics<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetSimulatePhysics(sp::reflect::decode<bool>(value, "UPrimitiveComponent.bSimulatePhysics"));
-                sp::reflect::notifyPropertyChanged(object, "bSimulatePhysics");
+                Calls::set_bSimulatePhysics<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -92,13 +91,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             TypeCode(Kind::Enum, "ECollisionPrimitive"),
             "The collision geometry used by physics and traces.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->CollisionPrimitive);
-            },
+            [](const void* self) { return Calls::get_CollisionPrimitive<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->CollisionPrimitive = sp::reflect::decode<ECollisionPrimitive>(value, "UPrimitiveComponent.CollisionPrimitive");
-                sp::reflect::notifyPropertyChanged(object, "CollisionPrimitive");
+                Calls::set_CollisionPrimitive<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -106,13 +101,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Mass in kilograms (> 0 to simulate); inertia follows the collision shape at uniform density.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->MassInKg);
-            },
+            [](const void* self) { return Calls::get_MassInKg<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetMassOverrideInKg(sp::reflect::decode<double>(value, "UPrimitiveComponent.MassInKg"));
-                sp::reflect::notifyPropertyChanged(object, "MassInKg");
+                Calls::set_MassInKg<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -120,13 +111,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Coulomb friction coefficient (>= 0); the two coefficients at a contact are multiplied.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Friction);
-            },
+            [](const void* self) { return Calls::get_Friction<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetFriction(sp::reflect::decode<double>(value, "UPrimitiveComponent.Friction"));
-                sp::reflect::notifyPropertyChanged(object, "Friction");
+                Calls::set_Friction<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -134,13 +121,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Bounciness in [0, 1]; the two coefficients at a contact are multiplied.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Restitution);
-            },
+            [](const void* self) { return Calls::get_Restitution<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetRestitution(sp::reflect::decode<double>(value, "UPrimitiveComponent.Restitution"));
-                sp::reflect::notifyPropertyChanged(object, "Restitution");
+                Calls::set_Restitution<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -148,13 +131,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Fraction of linear velocity lost per second, in [0, 1].",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->LinearDamping);
-            },
+            [](const void* self) { return Calls::get_LinearDamping<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetLinearDamping(sp::reflect::decode<double>(value, "UPrimitiveComponent.LinearDamping"));
-                sp::reflect::notifyPropertyChanged(object, "LinearDamping");
+                Calls::set_LinearDamping<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -162,13 +141,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Fraction of angular velocity lost per second, in [0, 1].",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->AngularDamping);
-            },
+            [](const void* self) { return Calls::get_AngularDamping<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetAngularDamping(sp::reflect::decode<double>(value, "UPrimitiveComponent.AngularDamping"));
-                sp::reflect::notifyPropertyChanged(object, "AngularDamping");
+                Calls::set_AngularDamping<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -176,13 +151,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             TypeCode(Kind::Bool),
             "Whether this component takes part in overlaps: two components overlap only when both have it set\n(as in UE). Shape components (UBoxComponent, USphereComponent) have it set by default.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bGenerateOverlapEvents);
-            },
+            [](const void* self) { return Calls::get_bGenerateOverlapEvents<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bGenerateOverlapEvents = sp::reflect::decode<bool>(value, "UPrimitiveComponent.bGenerateOverlapEvents");
-                sp::reflect::notifyPropertyChanged(object, "bGenerateOverlapEvents");
+                Calls::set_bGenerateOverlapEvents<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -190,13 +161,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             TypeCode(Kind::Bool),
             "Whether navigation meshes are built over this component when it is Static and collides (as in UE).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bCanEverAffectNavigation);
-            },
+            [](const void* self) { return Calls::get_bCanEverAffectNavigation<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bCanEverAffectNavigation = sp::reflect::decode<bool>(value, "UPrimitiveComponent.bCanEverAffectNavigation");
-                sp::reflect::notifyPropertyChanged(object, "bCanEverAffectNavigation");
+                Calls::set_bCanEverAffectNavigation<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -209,17 +176,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetBounds()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                FVector Origin{};
-                FVector BoxExtent{};
-                sp::reflect::selfCast<const Self>(self)->GetBounds(Origin, BoxExtent);
-                sp::reflect::Value::Dict outputs;
-                outputs.emplace("Origin", sp::reflect::encode(Origin));
-                outputs.emplace("BoxExtent", sp::reflect::encode(BoxExtent));
-                return sp::reflect::Value(std::move(outputs));
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetBounds<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetSimulatePhysics",
@@ -230,13 +187,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetSimulatePhysics()";
-                sp::reflect::checkArguments(args, {"bSimulate"}, kContext);
-                bool bSimulate = sp::reflect::decode<bool>(sp::reflect::requireArgument(args, "bSimulate", kContext), "UPrimitiveComponent.SetSimulatePhysics(): argument 'bSimulate'");
-                sp::reflect::selfCast<Self>(self)->SetSimulatePhysics(bSimulate);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetSimulatePhysics<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "IsSimulatingPhysics",
@@ -246,12 +197,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.IsSimulatingPhysics()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->IsSimulatingPhysics();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_IsSimulatingPhysics<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetMassOverrideInKg",
@@ -262,13 +208,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetMassOverrideInKg()";
-                sp::reflect::checkArguments(args, {"MassInKg"}, kContext);
-                double MassInKg = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "MassInKg", kContext), "UPrimitiveComponent.SetMassOverrideInKg(): argument 'MassInKg'");
-                sp::reflect::selfCast<Self>(self)->SetMassOverrideInKg(MassInKg);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetMassOverrideInKg<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetFriction",
@@ -279,13 +219,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetFriction()";
-                sp::reflect::checkArguments(args, {"NewFriction"}, kContext);
-                double NewFriction = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewFriction", kContext), "UPrimitiveComponent.SetFriction(): argument 'NewFriction'");
-                sp::reflect::selfCast<Self>(self)->SetFriction(NewFriction);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetFriction<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetRestitution",
@@ -296,13 +230,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetRestitution()";
-                sp::reflect::checkArguments(args, {"NewRestitution"}, kContext);
-                double NewRestitution = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewRestitution", kContext), "UPrimitiveComponent.SetRestitution(): argument 'NewRestitution'");
-                sp::reflect::selfCast<Self>(self)->SetRestitution(NewRestitution);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetRestitution<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetLinearDamping",
@@ -313,13 +241,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetLinearDamping()";
-                sp::reflect::checkArguments(args, {"NewLinearDamping"}, kContext);
-                double NewLinearDamping = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewLinearDamping", kContext), "UPrimitiveComponent.SetLinearDamping(): argument 'NewLinearDamping'");
-                sp::reflect::selfCast<Self>(self)->SetLinearDamping(NewLinearDamping);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetLinearDamping<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetAngularDamping",
@@ -330,13 +252,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetAngularDamping()";
-                sp::reflect::checkArguments(args, {"NewAngularDamping"}, kContext);
-                double NewAngularDamping = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewAngularDamping", kContext), "UPrimitiveComponent.SetAngularDamping(): argument 'NewAngularDamping'");
-                sp::reflect::selfCast<Self>(self)->SetAngularDamping(NewAngularDamping);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetAngularDamping<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetMass",
@@ -346,12 +262,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetMass()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetMass();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetMass<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "AddForce",
@@ -363,15 +274,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.AddForce()";
-                sp::reflect::checkArguments(args, {"Force", "bAccelChange"}, kContext);
-                FVector Force = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "Force", kContext), "UPrimitiveComponent.AddForce(): argument 'Force'");
-                const sp::reflect::Value* bAccelChangeArg = sp::reflect::findArgument(args, "bAccelChange");
-                bool bAccelChange = bAccelChangeArg ? sp::reflect::decode<bool>(*bAccelChangeArg, "UPrimitiveComponent.AddForce(): argument 'bAccelChange'") : bool(false);
-                sp::reflect::selfCast<Self>(self)->AddForce(Force, bAccelChange);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_AddForce<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "AddTorqueInRadians",
@@ -382,13 +285,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.AddTorqueInRadians()";
-                sp::reflect::checkArguments(args, {"Torque"}, kContext);
-                FVector Torque = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "Torque", kContext), "UPrimitiveComponent.AddTorqueInRadians(): argument 'Torque'");
-                sp::reflect::selfCast<Self>(self)->AddTorqueInRadians(Torque);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_AddTorqueInRadians<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "AddImpulse",
@@ -400,15 +297,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.AddImpulse()";
-                sp::reflect::checkArguments(args, {"Impulse", "bVelChange"}, kContext);
-                FVector Impulse = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "Impulse", kContext), "UPrimitiveComponent.AddImpulse(): argument 'Impulse'");
-                const sp::reflect::Value* bVelChangeArg = sp::reflect::findArgument(args, "bVelChange");
-                bool bVelChange = bVelChangeArg ? sp::reflect::decode<bool>(*bVelChangeArg, "UPrimitiveComponent.AddImpulse(): argument 'bVelChange'") : bool(false);
-                sp::reflect::selfCast<Self>(self)->AddImpulse(Impulse, bVelChange);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_AddImpulse<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetPhysicsLinearVelocity",
@@ -420,15 +309,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetPhysicsLinearVelocity()";
-                sp::reflect::checkArguments(args, {"NewVel", "bAddToCurrent"}, kContext);
-                FVector NewVel = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "NewVel", kContext), "UPrimitiveComponent.SetPhysicsLinearVelocity(): argument 'NewVel'");
-                const sp::reflect::Value* bAddToCurrentArg = sp::reflect::findArgument(args, "bAddToCurrent");
-                bool bAddToCurrent = bAddToCurrentArg ? sp::reflect::decode<bool>(*bAddToCurrentArg, "UPrimitiveComponent.SetPhysicsLinearVelocity(): argument 'bAddToCurrent'") : bool(false);
-                sp::reflect::selfCast<Self>(self)->SetPhysicsLinearVelocity(NewVel, bAddToCurrent);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetPhysicsLinearVelocity<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetPhysicsLinearVelocity",
@@ -438,13 +319,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetPhysicsLinearVelocity()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetPhysicsLinearVelocity();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetPhysicsLinearVelocity<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetPhysicsAngularVelocityInDegrees",
@@ -456,15 +331,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees()";
-                sp::reflect::checkArguments(args, {"NewAngVel", "bAddToCurrent"}, kContext);
-                FVector NewAngVel = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "NewAngVel", kContext), "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees(): argument 'NewAngVel'");
-                const sp::reflect::Value* bAddToCurrentArg = sp::reflect::findArgument(args, "bAddToCurrent");
-                bool bAddToCurrent = bAddToCurrentArg ? sp::reflect::decode<bool>(*bAddToCurrentArg, "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees(): argument 'bAddToCurrent'") : bool(false);
-                sp::reflect::selfCast<Self>(self)->SetPhysicsAngularVelocityInDegrees(NewAngVel, bAddToCurrent);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetPhysicsAngularVelocityInDegrees<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetPhysicsAngularVelocityInDegrees",
@@ -474,13 +341,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetPhysicsAngularVelocityInDegrees()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetPhysicsAngularVelocityInDegrees();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetPhysicsAngularVelocityInDegrees<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "IsAnyRigidBodyAwake",
@@ -490,12 +351,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.IsAnyRigidBodyAwake()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->IsAnyRigidBodyAwake();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_IsAnyRigidBodyAwake<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetOverlappingComponents",
@@ -505,12 +361,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetOverlappingComponents()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetOverlappingComponents();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetOverlappingComponents<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetOverlappingActors",
@@ -521,13 +372,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetOverlappingActors()";
-                sp::reflect::checkArguments(args, {"ClassFilter"}, kContext);
-                TSubclassOf<AActor> ClassFilter = sp::reflect::decodeNonNull<TSubclassOf<AActor>>(sp::reflect::requireArgument(args, "ClassFilter", kContext), "UPrimitiveComponent.GetOverlappingActors(): argument 'ClassFilter'");
-                auto result = sp::reflect::selfCast<const Self>(self)->GetOverlappingActors(ClassFilter);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetOverlappingActors<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "IsOverlappingComponent",
@@ -538,13 +383,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.IsOverlappingComponent()";
-                sp::reflect::checkArguments(args, {"OtherComp"}, kContext);
-                UPrimitiveComponent* OtherComp = sp::reflect::decodeNonNull<UPrimitiveComponent*>(sp::reflect::requireArgument(args, "OtherComp", kContext), "UPrimitiveComponent.IsOverlappingComponent(): argument 'OtherComp'");
-                auto result = sp::reflect::selfCast<const Self>(self)->IsOverlappingComponent(OtherComp);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_IsOverlappingComponent<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "IsOverlappingActor",
@@ -555,13 +394,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.IsOverlappingActor()";
-                sp::reflect::checkArguments(args, {"Other"}, kContext);
-                AActor* Other = sp::reflect::decodeNonNull<AActor*>(sp::reflect::requireArgument(args, "Other", kContext), "UPrimitiveComponent.IsOverlappingActor(): argument 'Other'");
-                auto result = sp::reflect::selfCast<const Self>(self)->IsOverlappingActor(Other);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_IsOverlappingActor<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetBeginOverlaps",
@@ -571,12 +404,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetBeginOverlaps()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetBeginOverlaps();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetBeginOverlaps<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetEndOverlaps",
@@ -586,12 +414,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetEndOverlaps()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetEndOverlaps();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetEndOverlaps<ValueCall>(self, args); },
         });
         return t;
     }();

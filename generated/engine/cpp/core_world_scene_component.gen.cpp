@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -61,6 +62,8 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EComponentMobil
 const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = USceneComponent;
+        using Calls = sp::generated::engine::USceneComponentCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "USceneComponent";
         t.doc = "A component with a location, rotation and scale, that can be attached to another one.";
@@ -73,13 +76,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             TypeCode(Kind::Struct, "FVector"),
             "Location relative to the attach parent (or the world), in metres.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->RelativeLocation);
-            },
+            [](const void* self) { return Calls::get_RelativeLocation<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetRelativeLocation(sp::reflect::decode<FVector>(value, "USceneComponent.RelativeLocation"));
-                sp::reflect::notifyPropertyChanged(object, "RelativeLocation");
+                Calls::set_RelativeLocation<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -87,13 +86,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             TypeCode(Kind::Struct, "FRotator"),
             "Rotation relative to the attach parent (or the world).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->RelativeRotation);
-            },
+            [](const void* self) { return Calls::get_RelativeRotation<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetRelativeRotation(sp::reflect::decode<FRotator>(value, "USceneComponent.RelativeRotation"));
-                sp::reflect::notifyPropertyChanged(object, "RelativeRotation");
+                Calls::set_RelativeRotation<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -101,13 +96,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             TypeCode(Kind::Struct, "FVector"),
             "Scale relative to the attach parent (or the world).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->RelativeScale3D);
-            },
+            [](const void* self) { return Calls::get_RelativeScale3D<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetRelativeScale3D(sp::reflect::decode<FVector>(value, "USceneComponent.RelativeScale3D"));
-                sp::reflect::notifyPropertyChanged(object, "RelativeScale3D");
+                Calls::set_RelativeScale3D<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -115,13 +106,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             TypeCode(Kind::Enum, "EComponentMobility"),
             "Whether the component may move once in play.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Mobility);
-            },
+            [](const void* self) { return Calls::get_Mobility<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Mobility = sp::reflect::decode<EComponentMobility>(value, "USceneComponent.Mobility");
-                sp::reflect::notifyPropertyChanged(object, "Mobility");
+                Calls::set_Mobility<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -129,13 +116,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             TypeCode(Kind::Bool),
             "Whether the component is rendered.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bVisible);
-            },
+            [](const void* self) { return Calls::get_bVisible<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bVisible = sp::reflect::decode<bool>(value, "USceneComponent.bVisible");
-                sp::reflect::notifyPropertyChanged(object, "bVisible");
+                Calls::set_bVisible<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -147,13 +130,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.SetRelativeLocation()";
-                sp::reflect::checkArguments(args, {"NewLocation"}, kContext);
-                FVector NewLocation = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "NewLocation", kContext), "USceneComponent.SetRelativeLocation(): argument 'NewLocation'");
-                sp::reflect::selfCast<Self>(self)->SetRelativeLocation(NewLocation);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetRelativeLocation<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetRelativeRotation",
@@ -164,13 +141,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.SetRelativeRotation()";
-                sp::reflect::checkArguments(args, {"NewRotation"}, kContext);
-                FRotator NewRotation = sp::reflect::decode<FRotator>(sp::reflect::requireArgument(args, "NewRotation", kContext), "USceneComponent.SetRelativeRotation(): argument 'NewRotation'");
-                sp::reflect::selfCast<Self>(self)->SetRelativeRotation(NewRotation);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetRelativeRotation<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetRelativeScale3D",
@@ -181,13 +152,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.SetRelativeScale3D()";
-                sp::reflect::checkArguments(args, {"NewScale3D"}, kContext);
-                FVector NewScale3D = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "NewScale3D", kContext), "USceneComponent.SetRelativeScale3D(): argument 'NewScale3D'");
-                sp::reflect::selfCast<Self>(self)->SetRelativeScale3D(NewScale3D);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetRelativeScale3D<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetRelativeTransform",
@@ -198,13 +163,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.SetRelativeTransform()";
-                sp::reflect::checkArguments(args, {"NewTransform"}, kContext);
-                FTransform NewTransform = sp::reflect::decode<FTransform>(sp::reflect::requireArgument(args, "NewTransform", kContext), "USceneComponent.SetRelativeTransform(): argument 'NewTransform'");
-                sp::reflect::selfCast<Self>(self)->SetRelativeTransform(NewTransform);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetRelativeTransform<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetRelativeTransform",
@@ -214,13 +173,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.GetRelativeTransform()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetRelativeTransform();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetRelativeTransform<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetMobility",
@@ -231,13 +184,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.SetMobility()";
-                sp::reflect::checkArguments(args, {"NewMobility"}, kContext);
-                EComponentMobility NewMobility = sp::reflect::decode<EComponentMobility>(sp::reflect::requireArgument(args, "NewMobility", kContext), "USceneComponent.SetMobility(): argument 'NewMobility'");
-                sp::reflect::selfCast<Self>(self)->SetMobility(NewMobility);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetMobility<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetComponentTransform",
@@ -247,13 +194,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.GetComponentTransform()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetComponentTransform();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetComponentTransform<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetComponentLocation",
@@ -263,13 +204,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.GetComponentLocation()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetComponentLocation();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetComponentLocation<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "K2_GetComponentLocation",
@@ -279,13 +214,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.K2_GetComponentLocation()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->K2_GetComponentLocation();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_K2_GetComponentLocation<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetComponentRotation",
@@ -295,13 +224,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.GetComponentRotation()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetComponentRotation();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetComponentRotation<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetComponentScale",
@@ -311,13 +234,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.GetComponentScale()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetComponentScale();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetComponentScale<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetWorldLocation",
@@ -328,13 +245,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.SetWorldLocation()";
-                sp::reflect::checkArguments(args, {"NewLocation"}, kContext);
-                FVector NewLocation = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "NewLocation", kContext), "USceneComponent.SetWorldLocation(): argument 'NewLocation'");
-                sp::reflect::selfCast<Self>(self)->SetWorldLocation(NewLocation);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetWorldLocation<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetWorldRotation",
@@ -345,13 +256,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.SetWorldRotation()";
-                sp::reflect::checkArguments(args, {"NewRotation"}, kContext);
-                FRotator NewRotation = sp::reflect::decode<FRotator>(sp::reflect::requireArgument(args, "NewRotation", kContext), "USceneComponent.SetWorldRotation(): argument 'NewRotation'");
-                sp::reflect::selfCast<Self>(self)->SetWorldRotation(NewRotation);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetWorldRotation<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetWorldTransform",
@@ -362,13 +267,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.SetWorldTransform()";
-                sp::reflect::checkArguments(args, {"NewTransform"}, kContext);
-                FTransform NewTransform = sp::reflect::decode<FTransform>(sp::reflect::requireArgument(args, "NewTransform", kContext), "USceneComponent.SetWorldTransform(): argument 'NewTransform'");
-                sp::reflect::selfCast<Self>(self)->SetWorldTransform(NewTransform);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetWorldTransform<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetForwardVector",
@@ -378,13 +277,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.GetForwardVector()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetForwardVector();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetForwardVector<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetRightVector",
@@ -394,13 +287,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.GetRightVector()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetRightVector();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetRightVector<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetUpVector",
@@ -410,13 +297,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.GetUpVector()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetUpVector();
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetUpVector<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "AttachToComponent",
@@ -428,15 +309,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.AttachToComponent()";
-                sp::reflect::checkArguments(args, {"Parent", "bKeepWorldTransform"}, kContext);
-                USceneComponent* Parent = sp::reflect::decodeNonNull<USceneComponent*>(sp::reflect::requireArgument(args, "Parent", kContext), "USceneComponent.AttachToComponent(): argument 'Parent'");
-                const sp::reflect::Value* bKeepWorldTransformArg = sp::reflect::findArgument(args, "bKeepWorldTransform");
-                bool bKeepWorldTransform = bKeepWorldTransformArg ? sp::reflect::decode<bool>(*bKeepWorldTransformArg, "USceneComponent.AttachToComponent(): argument 'bKeepWorldTransform'") : bool(false);
-                sp::reflect::selfCast<Self>(self)->AttachToComponent(Parent, bKeepWorldTransform);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_AttachToComponent<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "DetachFromComponent",
@@ -447,14 +320,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.DetachFromComponent()";
-                sp::reflect::checkArguments(args, {"bKeepWorldTransform"}, kContext);
-                const sp::reflect::Value* bKeepWorldTransformArg = sp::reflect::findArgument(args, "bKeepWorldTransform");
-                bool bKeepWorldTransform = bKeepWorldTransformArg ? sp::reflect::decode<bool>(*bKeepWorldTransformArg, "USceneComponent.DetachFromComponent(): argument 'bKeepWorldTransform'") : bool(true);
-                sp::reflect::selfCast<Self>(self)->DetachFromComponent(bKeepWorldTransform);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_DetachFromComponent<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetAttachParent",
@@ -464,12 +330,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.GetAttachParent()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetAttachParent();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetAttachParent<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetChildrenComponents",
@@ -480,14 +341,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USceneComponent.GetChildrenComponents()";
-                sp::reflect::checkArguments(args, {"bIncludeAllDescendants"}, kContext);
-                const sp::reflect::Value* bIncludeAllDescendantsArg = sp::reflect::findArgument(args, "bIncludeAllDescendants");
-                bool bIncludeAllDescendants = bIncludeAllDescendantsArg ? sp::reflect::decode<bool>(*bIncludeAllDescendantsArg, "USceneComponent.GetChildrenComponents(): argument 'bIncludeAllDescendants'") : bool(false);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetChildrenComponents(bIncludeAllDescendants);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetChildrenComponents<ValueCall>(self, args); },
         });
         return t;
     }();

@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& ATriggerBox::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = ATriggerBox;
+        using Calls = sp::generated::engine::ATriggerBoxCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "ATriggerBox";
         t.doc = "A box-shaped trigger volume: an actor whose root is a UBoxComponent.";
@@ -60,9 +63,7 @@ const sp::reflect::TypeInfo& ATriggerBox::StaticClass() {
             TypeCode(Kind::Object, "UBoxComponent"),
             "The trigger's shape (the root component).",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->CollisionComponent);
-            },
+            [](const void* self) { return Calls::get_CollisionComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         return t;
@@ -77,6 +78,8 @@ const sp::reflect::TypeInfo& ATriggerBox::GetClass() const { return StaticClass(
 const sp::reflect::TypeInfo& ATriggerSphere::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = ATriggerSphere;
+        using Calls = sp::generated::engine::ATriggerSphereCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "ATriggerSphere";
         t.doc = "A sphere-shaped trigger volume: an actor whose root is a USphereComponent.";
@@ -89,9 +92,7 @@ const sp::reflect::TypeInfo& ATriggerSphere::StaticClass() {
             TypeCode(Kind::Object, "USphereComponent"),
             "The trigger's shape (the root component).",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->CollisionComponent);
-            },
+            [](const void* self) { return Calls::get_CollisionComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         return t;
@@ -106,6 +107,8 @@ const sp::reflect::TypeInfo& ATriggerSphere::GetClass() const { return StaticCla
 const sp::reflect::TypeInfo& UBoxComponent::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = UBoxComponent;
+        using Calls = sp::generated::engine::UBoxComponentCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "UBoxComponent";
         t.doc = "A box-shaped sensor.";
@@ -118,13 +121,9 @@ const sp::reflect::TypeInfo& UBoxComponent::StaticClass() {
             TypeCode(Kind::Struct, "FVector"),
             "Half the box's size along each axis, in metres before the component's scale (each > 0).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->BoxExtent);
-            },
+            [](const void* self) { return Calls::get_BoxExtent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetBoxExtent(sp::reflect::decode<FVector>(value, "UBoxComponent.BoxExtent"));
-                sp::reflect::notifyPropertyChanged(object, "BoxExtent");
+                Calls::set_BoxExtent<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -136,13 +135,7 @@ const sp::reflect::TypeInfo& UBoxComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UBoxComponent.SetBoxExtent()";
-                sp::reflect::checkArguments(args, {"InBoxExtent"}, kContext);
-                FVector InBoxExtent = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "InBoxExtent", kContext), "UBoxComponent.SetBoxExtent(): argument 'InBoxExtent'");
-                sp::reflect::selfCast<Self>(self)->SetBoxExtent(InBoxExtent);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetBoxExtent<ValueCall>(self, args); },
         });
         return t;
     }();
@@ -156,6 +149,8 @@ const sp::reflect::TypeInfo& UBoxComponent::GetClass() const { return StaticClas
 const sp::reflect::TypeInfo& UCapsuleComponent::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = UCapsuleComponent;
+        using Calls = sp::generated::engine::UCapsuleComponentCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "UCapsuleComponent";
         t.doc = "A capsule-shaped sensor standing along its Z axis (a character's collision capsule).";
@@ -168,13 +163,9 @@ const sp::reflect::TypeInfo& UCapsuleComponent::StaticClass() {
             TypeCode(Kind::Float),
             "The radius in metres before the component's scale (> 0).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->CapsuleRadius);
-            },
+            [](const void* self) { return Calls::get_CapsuleRadius<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetCapsuleRadius(sp::reflect::decode<double>(value, "UCapsuleComponent.CapsuleRadius"));
-                sp::reflect::notifyPropertyChanged(object, "CapsuleRadius");
+                Calls::set_CapsuleRadius<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -182,13 +173,9 @@ const sp::reflect::TypeInfo& UCapsuleComponent::StaticClass() {
             TypeCode(Kind::Float),
             "Half the height in metres, hemispheres included, before the component's scale (> 0); a half height\nbelow the radius counts as the radius (a sphere), as in UE.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->CapsuleHalfHeight);
-            },
+            [](const void* self) { return Calls::get_CapsuleHalfHeight<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetCapsuleHalfHeight(sp::reflect::decode<double>(value, "UCapsuleComponent.CapsuleHalfHeight"));
-                sp::reflect::notifyPropertyChanged(object, "CapsuleHalfHeight");
+                Calls::set_CapsuleHalfHeight<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -200,13 +187,7 @@ const sp::reflect::TypeInfo& UCapsuleComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCapsuleComponent.SetCapsuleRadius()";
-                sp::reflect::checkArguments(args, {"Radius"}, kContext);
-                double Radius = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "Radius", kContext), "UCapsuleComponent.SetCapsuleRadius(): argument 'Radius'");
-                sp::reflect::selfCast<Self>(self)->SetCapsuleRadius(Radius);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetCapsuleRadius<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetCapsuleHalfHeight",
@@ -217,13 +198,7 @@ const sp::reflect::TypeInfo& UCapsuleComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UCapsuleComponent.SetCapsuleHalfHeight()";
-                sp::reflect::checkArguments(args, {"HalfHeight"}, kContext);
-                double HalfHeight = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "HalfHeight", kContext), "UCapsuleComponent.SetCapsuleHalfHeight(): argument 'HalfHeight'");
-                sp::reflect::selfCast<Self>(self)->SetCapsuleHalfHeight(HalfHeight);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetCapsuleHalfHeight<ValueCall>(self, args); },
         });
         return t;
     }();
@@ -255,6 +230,8 @@ const sp::reflect::TypeInfo& UShapeComponent::GetClass() const { return StaticCl
 const sp::reflect::TypeInfo& USphereComponent::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = USphereComponent;
+        using Calls = sp::generated::engine::USphereComponentCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "USphereComponent";
         t.doc = "A sphere-shaped sensor.";
@@ -267,13 +244,9 @@ const sp::reflect::TypeInfo& USphereComponent::StaticClass() {
             TypeCode(Kind::Float),
             "The sphere's radius in metres before the component's scale (> 0).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SphereRadius);
-            },
+            [](const void* self) { return Calls::get_SphereRadius<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetSphereRadius(sp::reflect::decode<double>(value, "USphereComponent.SphereRadius"));
-                sp::reflect::notifyPropertyChanged(object, "SphereRadius");
+                Calls::set_SphereRadius<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -285,13 +258,7 @@ const sp::reflect::TypeInfo& USphereComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USphereComponent.SetSphereRadius()";
-                sp::reflect::checkArguments(args, {"InSphereRadius"}, kContext);
-                double InSphereRadius = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "InSphereRadius", kContext), "USphereComponent.SetSphereRadius(): argument 'InSphereRadius'");
-                sp::reflect::selfCast<Self>(self)->SetSphereRadius(InSphereRadius);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetSphereRadius<ValueCall>(self, args); },
         });
         return t;
     }();

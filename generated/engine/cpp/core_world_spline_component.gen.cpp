@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -60,6 +61,8 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ESplineCoordina
 const sp::reflect::TypeInfo& ASplineActor::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = ASplineActor;
+        using Calls = sp::generated::engine::ASplineActorCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "ASplineActor";
         t.doc = "An actor whose root is a spline (a path, a road's centre line).";
@@ -72,9 +75,7 @@ const sp::reflect::TypeInfo& ASplineActor::StaticClass() {
             TypeCode(Kind::Object, "USplineComponent"),
             "The spline (the root component).",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SplineComponent);
-            },
+            [](const void* self) { return Calls::get_SplineComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         return t;
@@ -89,6 +90,8 @@ const sp::reflect::TypeInfo& ASplineActor::GetClass() const { return StaticClass
 const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = USplineComponent;
+        using Calls = sp::generated::engine::USplineComponentCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "USplineComponent";
         t.doc = "A curve through points.";
@@ -101,13 +104,9 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             TypeCode(Kind::List, TypeCode(Kind::Struct, "FVector")),
             "The points, in the component's space (metres).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SplinePoints);
-            },
+            [](const void* self) { return Calls::get_SplinePoints<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SplinePoints = sp::reflect::decode<std::vector<FVector>>(value, "USplineComponent.SplinePoints");
-                sp::reflect::notifyPropertyChanged(object, "SplinePoints");
+                Calls::set_SplinePoints<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -115,13 +114,9 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             TypeCode(Kind::Bool),
             "Whether the last point joins the first.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bClosedLoop);
-            },
+            [](const void* self) { return Calls::get_bClosedLoop<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bClosedLoop = sp::reflect::decode<bool>(value, "USplineComponent.bClosedLoop");
-                sp::reflect::notifyPropertyChanged(object, "bClosedLoop");
+                Calls::set_bClosedLoop<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -129,13 +124,9 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             TypeCode(Kind::Bool),
             "Draws the curve in camera images as a glowing tube (a debug line for looking at paths and roads; it is\ndrawn like any object, in every modality, casting no shadow).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bDrawDebug);
-            },
+            [](const void* self) { return Calls::get_bDrawDebug<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bDrawDebug = sp::reflect::decode<bool>(value, "USplineComponent.bDrawDebug");
-                sp::reflect::notifyPropertyChanged(object, "bDrawDebug");
+                Calls::set_bDrawDebug<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -143,13 +134,9 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             TypeCode(Kind::Float),
             "The debug line's thickness in metres (> 0).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->DebugLineThickness);
-            },
+            [](const void* self) { return Calls::get_DebugLineThickness<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetDebugLineThickness(sp::reflect::decode<double>(value, "USplineComponent.DebugLineThickness"));
-                sp::reflect::notifyPropertyChanged(object, "DebugLineThickness");
+                Calls::set_DebugLineThickness<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -157,13 +144,9 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             TypeCode(Kind::Struct, "FLinearColor"),
             "The debug line's colour (linear; it glows with it).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->DebugLineColor);
-            },
+            [](const void* self) { return Calls::get_DebugLineColor<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->DebugLineColor = sp::reflect::decode<FLinearColor>(value, "USplineComponent.DebugLineColor");
-                sp::reflect::notifyPropertyChanged(object, "DebugLineColor");
+                Calls::set_DebugLineColor<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -175,13 +158,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USplineComponent.SetDebugLineThickness()";
-                sp::reflect::checkArguments(args, {"Thickness"}, kContext);
-                double Thickness = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "Thickness", kContext), "USplineComponent.SetDebugLineThickness(): argument 'Thickness'");
-                sp::reflect::selfCast<Self>(self)->SetDebugLineThickness(Thickness);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetDebugLineThickness<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "AddSplinePoint",
@@ -194,16 +171,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USplineComponent.AddSplinePoint()";
-                sp::reflect::checkArguments(args, {"Position", "CoordinateSpace", "bUpdateSpline"}, kContext);
-                FVector Position = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "Position", kContext), "USplineComponent.AddSplinePoint(): argument 'Position'");
-                ESplineCoordinateSpace CoordinateSpace = sp::reflect::decode<ESplineCoordinateSpace>(sp::reflect::requireArgument(args, "CoordinateSpace", kContext), "USplineComponent.AddSplinePoint(): argument 'CoordinateSpace'");
-                const sp::reflect::Value* bUpdateSplineArg = sp::reflect::findArgument(args, "bUpdateSpline");
-                bool bUpdateSpline = bUpdateSplineArg ? sp::reflect::decode<bool>(*bUpdateSplineArg, "USplineComponent.AddSplinePoint(): argument 'bUpdateSpline'") : bool(true);
-                sp::reflect::selfCast<Self>(self)->AddSplinePoint(Position, CoordinateSpace, bUpdateSpline);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_AddSplinePoint<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "ClearSplinePoints",
@@ -214,14 +182,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USplineComponent.ClearSplinePoints()";
-                sp::reflect::checkArguments(args, {"bUpdateSpline"}, kContext);
-                const sp::reflect::Value* bUpdateSplineArg = sp::reflect::findArgument(args, "bUpdateSpline");
-                bool bUpdateSpline = bUpdateSplineArg ? sp::reflect::decode<bool>(*bUpdateSplineArg, "USplineComponent.ClearSplinePoints(): argument 'bUpdateSpline'") : bool(true);
-                sp::reflect::selfCast<Self>(self)->ClearSplinePoints(bUpdateSpline);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_ClearSplinePoints<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetSplinePoints",
@@ -234,16 +195,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USplineComponent.SetSplinePoints()";
-                sp::reflect::checkArguments(args, {"Points", "CoordinateSpace", "bUpdateSpline"}, kContext);
-                std::vector<FVector> Points = sp::reflect::decode<std::vector<FVector>>(sp::reflect::requireArgument(args, "Points", kContext), "USplineComponent.SetSplinePoints(): argument 'Points'");
-                ESplineCoordinateSpace CoordinateSpace = sp::reflect::decode<ESplineCoordinateSpace>(sp::reflect::requireArgument(args, "CoordinateSpace", kContext), "USplineComponent.SetSplinePoints(): argument 'CoordinateSpace'");
-                const sp::reflect::Value* bUpdateSplineArg = sp::reflect::findArgument(args, "bUpdateSpline");
-                bool bUpdateSpline = bUpdateSplineArg ? sp::reflect::decode<bool>(*bUpdateSplineArg, "USplineComponent.SetSplinePoints(): argument 'bUpdateSpline'") : bool(true);
-                sp::reflect::selfCast<Self>(self)->SetSplinePoints(Points, CoordinateSpace, bUpdateSpline);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetSplinePoints<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetNumberOfSplinePoints",
@@ -253,12 +205,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USplineComponent.GetNumberOfSplinePoints()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetNumberOfSplinePoints();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetNumberOfSplinePoints<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetClosedLoop",
@@ -270,15 +217,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USplineComponent.SetClosedLoop()";
-                sp::reflect::checkArguments(args, {"bInClosedLoop", "bUpdateSpline"}, kContext);
-                bool bInClosedLoop = sp::reflect::decode<bool>(sp::reflect::requireArgument(args, "bInClosedLoop", kContext), "USplineComponent.SetClosedLoop(): argument 'bInClosedLoop'");
-                const sp::reflect::Value* bUpdateSplineArg = sp::reflect::findArgument(args, "bUpdateSpline");
-                bool bUpdateSpline = bUpdateSplineArg ? sp::reflect::decode<bool>(*bUpdateSplineArg, "USplineComponent.SetClosedLoop(): argument 'bUpdateSpline'") : bool(true);
-                sp::reflect::selfCast<Self>(self)->SetClosedLoop(bInClosedLoop, bUpdateSpline);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetClosedLoop<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "IsClosedLoop",
@@ -288,12 +227,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USplineComponent.IsClosedLoop()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->IsClosedLoop();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_IsClosedLoop<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetSplineLength",
@@ -303,12 +237,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USplineComponent.GetSplineLength()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetSplineLength();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetSplineLength<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetLocationAtDistanceAlongSpline",
@@ -320,15 +249,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USplineComponent.GetLocationAtDistanceAlongSpline()";
-                sp::reflect::checkArguments(args, {"Distance", "CoordinateSpace"}, kContext);
-                double Distance = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "Distance", kContext), "USplineComponent.GetLocationAtDistanceAlongSpline(): argument 'Distance'");
-                ESplineCoordinateSpace CoordinateSpace = sp::reflect::decode<ESplineCoordinateSpace>(sp::reflect::requireArgument(args, "CoordinateSpace", kContext), "USplineComponent.GetLocationAtDistanceAlongSpline(): argument 'CoordinateSpace'");
-                auto result = sp::reflect::selfCast<const Self>(self)->GetLocationAtDistanceAlongSpline(Distance, CoordinateSpace);
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetLocationAtDistanceAlongSpline<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetDirectionAtDistanceAlongSpline",
@@ -340,15 +261,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USplineComponent.GetDirectionAtDistanceAlongSpline()";
-                sp::reflect::checkArguments(args, {"Distance", "CoordinateSpace"}, kContext);
-                double Distance = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "Distance", kContext), "USplineComponent.GetDirectionAtDistanceAlongSpline(): argument 'Distance'");
-                ESplineCoordinateSpace CoordinateSpace = sp::reflect::decode<ESplineCoordinateSpace>(sp::reflect::requireArgument(args, "CoordinateSpace", kContext), "USplineComponent.GetDirectionAtDistanceAlongSpline(): argument 'CoordinateSpace'");
-                auto result = sp::reflect::selfCast<const Self>(self)->GetDirectionAtDistanceAlongSpline(Distance, CoordinateSpace);
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetDirectionAtDistanceAlongSpline<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetRotationAtDistanceAlongSpline",
@@ -360,15 +273,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USplineComponent.GetRotationAtDistanceAlongSpline()";
-                sp::reflect::checkArguments(args, {"Distance", "CoordinateSpace"}, kContext);
-                double Distance = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "Distance", kContext), "USplineComponent.GetRotationAtDistanceAlongSpline(): argument 'Distance'");
-                ESplineCoordinateSpace CoordinateSpace = sp::reflect::decode<ESplineCoordinateSpace>(sp::reflect::requireArgument(args, "CoordinateSpace", kContext), "USplineComponent.GetRotationAtDistanceAlongSpline(): argument 'CoordinateSpace'");
-                auto result = sp::reflect::selfCast<const Self>(self)->GetRotationAtDistanceAlongSpline(Distance, CoordinateSpace);
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetRotationAtDistanceAlongSpline<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetLocationAtSplineInputKey",
@@ -380,15 +285,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USplineComponent.GetLocationAtSplineInputKey()";
-                sp::reflect::checkArguments(args, {"InKey", "CoordinateSpace"}, kContext);
-                double InKey = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "InKey", kContext), "USplineComponent.GetLocationAtSplineInputKey(): argument 'InKey'");
-                ESplineCoordinateSpace CoordinateSpace = sp::reflect::decode<ESplineCoordinateSpace>(sp::reflect::requireArgument(args, "CoordinateSpace", kContext), "USplineComponent.GetLocationAtSplineInputKey(): argument 'CoordinateSpace'");
-                auto result = sp::reflect::selfCast<const Self>(self)->GetLocationAtSplineInputKey(InKey, CoordinateSpace);
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetLocationAtSplineInputKey<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetLocationAtSplinePoint",
@@ -400,15 +297,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USplineComponent.GetLocationAtSplinePoint()";
-                sp::reflect::checkArguments(args, {"PointIndex", "CoordinateSpace"}, kContext);
-                int32_t PointIndex = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "PointIndex", kContext), "USplineComponent.GetLocationAtSplinePoint(): argument 'PointIndex'");
-                ESplineCoordinateSpace CoordinateSpace = sp::reflect::decode<ESplineCoordinateSpace>(sp::reflect::requireArgument(args, "CoordinateSpace", kContext), "USplineComponent.GetLocationAtSplinePoint(): argument 'CoordinateSpace'");
-                auto result = sp::reflect::selfCast<const Self>(self)->GetLocationAtSplinePoint(PointIndex, CoordinateSpace);
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetLocationAtSplinePoint<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetTangentAtSplinePoint",
@@ -420,15 +309,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USplineComponent.GetTangentAtSplinePoint()";
-                sp::reflect::checkArguments(args, {"PointIndex", "CoordinateSpace"}, kContext);
-                int32_t PointIndex = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "PointIndex", kContext), "USplineComponent.GetTangentAtSplinePoint(): argument 'PointIndex'");
-                ESplineCoordinateSpace CoordinateSpace = sp::reflect::decode<ESplineCoordinateSpace>(sp::reflect::requireArgument(args, "CoordinateSpace", kContext), "USplineComponent.GetTangentAtSplinePoint(): argument 'CoordinateSpace'");
-                auto result = sp::reflect::selfCast<const Self>(self)->GetTangentAtSplinePoint(PointIndex, CoordinateSpace);
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetTangentAtSplinePoint<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetTangentAtSplinePoint",
@@ -442,17 +323,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USplineComponent.SetTangentAtSplinePoint()";
-                sp::reflect::checkArguments(args, {"PointIndex", "InTangent", "CoordinateSpace", "bUpdateSpline"}, kContext);
-                int32_t PointIndex = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "PointIndex", kContext), "USplineComponent.SetTangentAtSplinePoint(): argument 'PointIndex'");
-                FVector InTangent = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "InTangent", kContext), "USplineComponent.SetTangentAtSplinePoint(): argument 'InTangent'");
-                ESplineCoordinateSpace CoordinateSpace = sp::reflect::decode<ESplineCoordinateSpace>(sp::reflect::requireArgument(args, "CoordinateSpace", kContext), "USplineComponent.SetTangentAtSplinePoint(): argument 'CoordinateSpace'");
-                const sp::reflect::Value* bUpdateSplineArg = sp::reflect::findArgument(args, "bUpdateSpline");
-                bool bUpdateSpline = bUpdateSplineArg ? sp::reflect::decode<bool>(*bUpdateSplineArg, "USplineComponent.SetTangentAtSplinePoint(): argument 'bUpdateSpline'") : bool(true);
-                sp::reflect::selfCast<Self>(self)->SetTangentAtSplinePoint(PointIndex, InTangent, CoordinateSpace, bUpdateSpline);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetTangentAtSplinePoint<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetDistanceAlongSplineAtSplinePoint",
@@ -463,13 +334,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USplineComponent.GetDistanceAlongSplineAtSplinePoint()";
-                sp::reflect::checkArguments(args, {"PointIndex"}, kContext);
-                int32_t PointIndex = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "PointIndex", kContext), "USplineComponent.GetDistanceAlongSplineAtSplinePoint(): argument 'PointIndex'");
-                auto result = sp::reflect::selfCast<const Self>(self)->GetDistanceAlongSplineAtSplinePoint(PointIndex);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetDistanceAlongSplineAtSplinePoint<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetLocationsAtDistances",
@@ -481,14 +346,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "USplineComponent.GetLocationsAtDistances()";
-                sp::reflect::checkArguments(args, {"Distances", "CoordinateSpace"}, kContext);
-                sp::reflect::SpArray<double> Distances = sp::reflect::decode<sp::reflect::SpArray<double>>(sp::reflect::requireArgument(args, "Distances", kContext), "USplineComponent.GetLocationsAtDistances(): argument 'Distances'");
-                ESplineCoordinateSpace CoordinateSpace = sp::reflect::decode<ESplineCoordinateSpace>(sp::reflect::requireArgument(args, "CoordinateSpace", kContext), "USplineComponent.GetLocationsAtDistances(): argument 'CoordinateSpace'");
-                auto result = sp::reflect::selfCast<const Self>(self)->GetLocationsAtDistances(Distances, CoordinateSpace);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetLocationsAtDistances<ValueCall>(self, args); },
         });
         return t;
     }();

@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& AStaticMeshActor::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = AStaticMeshActor;
+        using Calls = sp::generated::engine::AStaticMeshActorCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "AStaticMeshActor";
         t.doc = "An actor that shows one static mesh.";
@@ -60,9 +63,7 @@ const sp::reflect::TypeInfo& AStaticMeshActor::StaticClass() {
             TypeCode(Kind::Object, "UStaticMeshComponent"),
             "The mesh component (also the root component).",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->StaticMeshComponent);
-            },
+            [](const void* self) { return Calls::get_StaticMeshComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         return t;

@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = UStaticMeshComponent;
+        using Calls = sp::generated::engine::UStaticMeshComponentCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "UStaticMeshComponent";
         t.doc = "A component that renders a static mesh.";
@@ -60,13 +63,9 @@ const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
             TypeCode(Kind::Str),
             "The mesh asset: a built-in shape (\"/Engine/BasicShapes/Cube\", \"Sphere\", \"Cylinder\", \"Plane\") or a\nfile.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->StaticMesh);
-            },
+            [](const void* self) { return Calls::get_StaticMesh<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->StaticMesh = sp::reflect::decode<std::string>(value, "UStaticMeshComponent.StaticMesh");
-                sp::reflect::notifyPropertyChanged(object, "StaticMesh");
+                Calls::set_StaticMesh<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -74,13 +73,9 @@ const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
             TypeCode(Kind::List, TypeCode(Kind::Str)),
             "One material asset per mesh slot; an empty entry uses the default material.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Materials);
-            },
+            [](const void* self) { return Calls::get_Materials<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Materials = sp::reflect::decode<std::vector<std::string>>(value, "UStaticMeshComponent.Materials");
-                sp::reflect::notifyPropertyChanged(object, "Materials");
+                Calls::set_Materials<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -92,13 +87,7 @@ const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UStaticMeshComponent.SetStaticMesh()";
-                sp::reflect::checkArguments(args, {"NewMesh"}, kContext);
-                std::string NewMesh = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "NewMesh", kContext), "UStaticMeshComponent.SetStaticMesh(): argument 'NewMesh'");
-                auto result = sp::reflect::selfCast<Self>(self)->SetStaticMesh(NewMesh);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetStaticMesh<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetMaterial",
@@ -110,14 +99,7 @@ const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UStaticMeshComponent.SetMaterial()";
-                sp::reflect::checkArguments(args, {"ElementIndex", "Material"}, kContext);
-                int32_t ElementIndex = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "ElementIndex", kContext), "UStaticMeshComponent.SetMaterial(): argument 'ElementIndex'");
-                std::string Material = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "Material", kContext), "UStaticMeshComponent.SetMaterial(): argument 'Material'");
-                sp::reflect::selfCast<Self>(self)->SetMaterial(ElementIndex, Material);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetMaterial<ValueCall>(self, args); },
         });
         return t;
     }();

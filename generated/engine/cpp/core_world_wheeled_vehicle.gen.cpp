@@ -36,6 +36,7 @@
 #include "core/world/world.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = AWheeledVehiclePawn;
+        using Calls = sp::generated::engine::AWheeledVehiclePawnCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "AWheeledVehiclePawn";
         t.doc = "A four-wheeled, rear-driven car on Bullet's raycast vehicle. Input actions (X component): \"Throttle\" in\n[-1, 1] (negative reverses), \"Steer\" in [-1, 1] (positive turns left), \"Brake\" in [0, 1] (all wheels),\n\"Handbrake\" in [0, 1] (rear wheels). Its X axis is forward.";
@@ -60,9 +63,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             TypeCode(Kind::Object, "UStaticMeshComponent"),
             "The chassis (the root component): a simulated box; its scale is the car's size, its mass the car's.",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Mesh);
-            },
+            [](const void* self) { return Calls::get_Mesh<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.properties.push_back({
@@ -70,9 +71,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             TypeCode(Kind::Object, "UStaticMeshComponent"),
             "The cabin on top of the chassis (no collision: the chassis box is the car's body).",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Cabin);
-            },
+            [](const void* self) { return Calls::get_Cabin<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.properties.push_back({
@@ -80,9 +79,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             TypeCode(Kind::Object, "UStaticMeshComponent"),
             "The wheel meshes, which follow the simulated wheels (no collision: the wheels are rays).",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->WheelFrontLeft);
-            },
+            [](const void* self) { return Calls::get_WheelFrontLeft<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.properties.push_back({
@@ -90,9 +87,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             TypeCode(Kind::Object, "UStaticMeshComponent"),
             "",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->WheelFrontRight);
-            },
+            [](const void* self) { return Calls::get_WheelFrontRight<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.properties.push_back({
@@ -100,9 +95,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             TypeCode(Kind::Object, "UStaticMeshComponent"),
             "",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->WheelRearLeft);
-            },
+            [](const void* self) { return Calls::get_WheelRearLeft<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.properties.push_back({
@@ -110,9 +103,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             TypeCode(Kind::Object, "UStaticMeshComponent"),
             "",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->WheelRearRight);
-            },
+            [](const void* self) { return Calls::get_WheelRearRight<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.properties.push_back({
@@ -120,9 +111,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             TypeCode(Kind::Object, "UInputComponent"),
             "Receives the injected actions.",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->InputComponent);
-            },
+            [](const void* self) { return Calls::get_InputComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.properties.push_back({
@@ -130,13 +119,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             TypeCode(Kind::Float),
             "Driving force in newtons at full throttle, shared by the rear wheels (>= 0).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->MaxEngineForce);
-            },
+            [](const void* self) { return Calls::get_MaxEngineForce<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetMaxEngineForce(sp::reflect::decode<double>(value, "AWheeledVehiclePawn.MaxEngineForce"));
-                sp::reflect::notifyPropertyChanged(object, "MaxEngineForce");
+                Calls::set_MaxEngineForce<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -144,13 +129,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             TypeCode(Kind::Float),
             "Braking force in newtons per wheel at full brake (>= 0).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->MaxBrakeForce);
-            },
+            [](const void* self) { return Calls::get_MaxBrakeForce<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetMaxBrakeForce(sp::reflect::decode<double>(value, "AWheeledVehiclePawn.MaxBrakeForce"));
-                sp::reflect::notifyPropertyChanged(object, "MaxBrakeForce");
+                Calls::set_MaxBrakeForce<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -158,13 +139,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             TypeCode(Kind::Float),
             "Front wheels' steering angle in degrees at full steer, in [0, 80].",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->MaxSteerAngle);
-            },
+            [](const void* self) { return Calls::get_MaxSteerAngle<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetMaxSteerAngle(sp::reflect::decode<double>(value, "AWheeledVehiclePawn.MaxSteerAngle"));
-                sp::reflect::notifyPropertyChanged(object, "MaxSteerAngle");
+                Calls::set_MaxSteerAngle<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -172,13 +149,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             TypeCode(Kind::Float),
             "Tyre radius in metres (> 0).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->WheelRadius);
-            },
+            [](const void* self) { return Calls::get_WheelRadius<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetWheelRadius(sp::reflect::decode<double>(value, "AWheeledVehiclePawn.WheelRadius"));
-                sp::reflect::notifyPropertyChanged(object, "WheelRadius");
+                Calls::set_WheelRadius<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -186,13 +159,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             TypeCode(Kind::Float),
             "Suspension spring rate per kilogram of the car's mass, N/m/kg (> 0): the car sinks\n9.81 / (4 * SuspensionStiffness) metres under its weight.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SuspensionStiffness);
-            },
+            [](const void* self) { return Calls::get_SuspensionStiffness<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetSuspensionStiffness(sp::reflect::decode<double>(value, "AWheeledVehiclePawn.SuspensionStiffness"));
-                sp::reflect::notifyPropertyChanged(object, "SuspensionStiffness");
+                Calls::set_SuspensionStiffness<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -200,13 +169,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             TypeCode(Kind::Float),
             "Tyre grip: the largest driving and cornering force over the load on the wheel (>= 0).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->TireFriction);
-            },
+            [](const void* self) { return Calls::get_TireFriction<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetTireFriction(sp::reflect::decode<double>(value, "AWheeledVehiclePawn.TireFriction"));
-                sp::reflect::notifyPropertyChanged(object, "TireFriction");
+                Calls::set_TireFriction<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -218,13 +183,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AWheeledVehiclePawn.SetMaxEngineForce()";
-                sp::reflect::checkArguments(args, {"NewForce"}, kContext);
-                double NewForce = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewForce", kContext), "AWheeledVehiclePawn.SetMaxEngineForce(): argument 'NewForce'");
-                sp::reflect::selfCast<Self>(self)->SetMaxEngineForce(NewForce);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetMaxEngineForce<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetMaxBrakeForce",
@@ -235,13 +194,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AWheeledVehiclePawn.SetMaxBrakeForce()";
-                sp::reflect::checkArguments(args, {"NewForce"}, kContext);
-                double NewForce = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewForce", kContext), "AWheeledVehiclePawn.SetMaxBrakeForce(): argument 'NewForce'");
-                sp::reflect::selfCast<Self>(self)->SetMaxBrakeForce(NewForce);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetMaxBrakeForce<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetMaxSteerAngle",
@@ -252,13 +205,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AWheeledVehiclePawn.SetMaxSteerAngle()";
-                sp::reflect::checkArguments(args, {"NewAngle"}, kContext);
-                double NewAngle = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewAngle", kContext), "AWheeledVehiclePawn.SetMaxSteerAngle(): argument 'NewAngle'");
-                sp::reflect::selfCast<Self>(self)->SetMaxSteerAngle(NewAngle);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetMaxSteerAngle<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetWheelRadius",
@@ -269,13 +216,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AWheeledVehiclePawn.SetWheelRadius()";
-                sp::reflect::checkArguments(args, {"NewRadius"}, kContext);
-                double NewRadius = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewRadius", kContext), "AWheeledVehiclePawn.SetWheelRadius(): argument 'NewRadius'");
-                sp::reflect::selfCast<Self>(self)->SetWheelRadius(NewRadius);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetWheelRadius<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetSuspensionStiffness",
@@ -286,13 +227,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AWheeledVehiclePawn.SetSuspensionStiffness()";
-                sp::reflect::checkArguments(args, {"NewStiffness"}, kContext);
-                double NewStiffness = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewStiffness", kContext), "AWheeledVehiclePawn.SetSuspensionStiffness(): argument 'NewStiffness'");
-                sp::reflect::selfCast<Self>(self)->SetSuspensionStiffness(NewStiffness);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetSuspensionStiffness<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetTireFriction",
@@ -303,13 +238,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AWheeledVehiclePawn.SetTireFriction()";
-                sp::reflect::checkArguments(args, {"NewFriction"}, kContext);
-                double NewFriction = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewFriction", kContext), "AWheeledVehiclePawn.SetTireFriction(): argument 'NewFriction'");
-                sp::reflect::selfCast<Self>(self)->SetTireFriction(NewFriction);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetTireFriction<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetForwardSpeed",
@@ -319,12 +248,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AWheeledVehiclePawn.GetForwardSpeed()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetForwardSpeed();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetForwardSpeed<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetNumWheels",
@@ -334,12 +258,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AWheeledVehiclePawn.GetNumWheels()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetNumWheels();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetNumWheels<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetWheelState",
@@ -350,14 +269,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AWheeledVehiclePawn.GetWheelState()";
-                sp::reflect::checkArguments(args, {"WheelIndex"}, kContext);
-                int32_t WheelIndex = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "WheelIndex", kContext), "AWheeledVehiclePawn.GetWheelState(): argument 'WheelIndex'");
-                auto result = sp::reflect::selfCast<const Self>(self)->GetWheelState(WheelIndex);
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetWheelState<ValueCall>(self, args); },
         });
         return t;
     }();
@@ -371,6 +283,8 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::GetClass() const { return Stat
 const sp::reflect::TypeInfo& FWheelState::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FWheelState;
+        using Calls = sp::generated::engine::FWheelStateCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FWheelState";
         t.doc = "The state of one wheel of a wheeled vehicle after the last physics step.";
@@ -382,13 +296,9 @@ const sp::reflect::TypeInfo& FWheelState::StaticClass() {
             TypeCode(Kind::Bool),
             "True while the wheel touches the ground.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bInContact);
-            },
+            [](const void* self) { return Calls::get_bInContact<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bInContact = sp::reflect::decode<bool>(value, "FWheelState.bInContact");
-                sp::reflect::notifyPropertyChanged(object, "bInContact");
+                Calls::set_bInContact<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -396,13 +306,9 @@ const sp::reflect::TypeInfo& FWheelState::StaticClass() {
             TypeCode(Kind::Struct, "FVector"),
             "The wheel's centre, world space (metres).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Location);
-            },
+            [](const void* self) { return Calls::get_Location<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Location = sp::reflect::decode<FVector>(value, "FWheelState.Location");
-                sp::reflect::notifyPropertyChanged(object, "Location");
+                Calls::set_Location<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -410,13 +316,9 @@ const sp::reflect::TypeInfo& FWheelState::StaticClass() {
             TypeCode(Kind::Struct, "FVector"),
             "Where the wheel touches the ground, world space (meaningful while bInContact).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->ContactPoint);
-            },
+            [](const void* self) { return Calls::get_ContactPoint<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->ContactPoint = sp::reflect::decode<FVector>(value, "FWheelState.ContactPoint");
-                sp::reflect::notifyPropertyChanged(object, "ContactPoint");
+                Calls::set_ContactPoint<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -424,13 +326,9 @@ const sp::reflect::TypeInfo& FWheelState::StaticClass() {
             TypeCode(Kind::Float),
             "Suspension length in metres (the rest length less the compression).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SuspensionLength);
-            },
+            [](const void* self) { return Calls::get_SuspensionLength<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SuspensionLength = sp::reflect::decode<double>(value, "FWheelState.SuspensionLength");
-                sp::reflect::notifyPropertyChanged(object, "SuspensionLength");
+                Calls::set_SuspensionLength<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -438,13 +336,9 @@ const sp::reflect::TypeInfo& FWheelState::StaticClass() {
             TypeCode(Kind::Float),
             "Degrees the wheel has rolled (forward is positive).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->RotationInDegrees);
-            },
+            [](const void* self) { return Calls::get_RotationInDegrees<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->RotationInDegrees = sp::reflect::decode<double>(value, "FWheelState.RotationInDegrees");
-                sp::reflect::notifyPropertyChanged(object, "RotationInDegrees");
+                Calls::set_RotationInDegrees<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -452,13 +346,9 @@ const sp::reflect::TypeInfo& FWheelState::StaticClass() {
             TypeCode(Kind::Float),
             "Steering angle in degrees, positive to the left.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->SteerAngleInDegrees);
-            },
+            [](const void* self) { return Calls::get_SteerAngleInDegrees<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SteerAngleInDegrees = sp::reflect::decode<double>(value, "FWheelState.SteerAngleInDegrees");
-                sp::reflect::notifyPropertyChanged(object, "SteerAngleInDegrees");
+                Calls::set_SteerAngleInDegrees<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;

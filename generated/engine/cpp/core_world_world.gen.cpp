@@ -36,6 +36,7 @@
 #include "core/world/wheeled_vehicle.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -48,6 +49,8 @@ using Kind = sp::reflect::TypeCode::Kind;
 const sp::reflect::TypeInfo& UWorld::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = UWorld;
+        using Calls = sp::generated::engine::UWorldCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "UWorld";
         t.doc = "A world: the actors that exist together, and the services to create and find them.";
@@ -68,22 +71,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.spawn_actor()";
-                sp::reflect::checkArguments(args, {"uclass", "location", "rotation", "name", "tags"}, kContext);
-                TSubclassOf<AActor> uclass = sp::reflect::decodeNonNull<TSubclassOf<AActor>>(sp::reflect::requireArgument(args, "uclass", kContext), "UWorld.spawn_actor(): argument 'uclass'");
-                const sp::reflect::Value* locationArg = sp::reflect::findArgument(args, "location");
-                FVector location = locationArg ? sp::reflect::decode<FVector>(*locationArg, "UWorld.spawn_actor(): argument 'location'") : FVector(FVector());
-                const sp::reflect::Value* rotationArg = sp::reflect::findArgument(args, "rotation");
-                FRotator rotation = rotationArg ? sp::reflect::decode<FRotator>(*rotationArg, "UWorld.spawn_actor(): argument 'rotation'") : FRotator(FRotator());
-                const sp::reflect::Value* nameArg = sp::reflect::findArgument(args, "name");
-                std::string name = nameArg ? sp::reflect::decode<std::string>(*nameArg, "UWorld.spawn_actor(): argument 'name'") : std::string("");
-                const sp::reflect::Value* tagsArg = sp::reflect::findArgument(args, "tags");
-                std::vector<std::string> tags = tagsArg ? sp::reflect::decode<std::vector<std::string>>(*tagsArg, "UWorld.spawn_actor(): argument 'tags'") : std::vector<std::string>{};
-                auto result = sp::reflect::selfCast<Self>(self)->spawn_actor(uclass, location, rotation, name, tags);
-                sp::reflect::checkNotNull(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_spawn_actor<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "destroy_actor",
@@ -94,13 +82,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.destroy_actor()";
-                sp::reflect::checkArguments(args, {"actor"}, kContext);
-                AActor* actor = sp::reflect::decodeNonNull<AActor*>(sp::reflect::requireArgument(args, "actor", kContext), "UWorld.destroy_actor(): argument 'actor'");
-                sp::reflect::selfCast<Self>(self)->destroy_actor(actor);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_destroy_actor<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "find_actor_by_name",
@@ -111,13 +93,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.find_actor_by_name()";
-                sp::reflect::checkArguments(args, {"name"}, kContext);
-                std::string name = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "name", kContext), "UWorld.find_actor_by_name(): argument 'name'");
-                auto result = sp::reflect::selfCast<const Self>(self)->find_actor_by_name(name);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_find_actor_by_name<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "find_actors_by_tag",
@@ -128,13 +104,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.find_actors_by_tag()";
-                sp::reflect::checkArguments(args, {"tag"}, kContext);
-                std::string tag = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "tag", kContext), "UWorld.find_actors_by_tag(): argument 'tag'");
-                auto result = sp::reflect::selfCast<const Self>(self)->find_actors_by_tag(tag);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_find_actors_by_tag<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "find_actor_by_class",
@@ -145,13 +115,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.find_actor_by_class()";
-                sp::reflect::checkArguments(args, {"uclass"}, kContext);
-                TSubclassOf<AActor> uclass = sp::reflect::decodeNonNull<TSubclassOf<AActor>>(sp::reflect::requireArgument(args, "uclass", kContext), "UWorld.find_actor_by_class(): argument 'uclass'");
-                auto result = sp::reflect::selfCast<const Self>(self)->find_actor_by_class(uclass);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_find_actor_by_class<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "find_actors_by_class",
@@ -162,13 +126,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.find_actors_by_class()";
-                sp::reflect::checkArguments(args, {"uclass"}, kContext);
-                TSubclassOf<AActor> uclass = sp::reflect::decodeNonNull<TSubclassOf<AActor>>(sp::reflect::requireArgument(args, "uclass", kContext), "UWorld.find_actors_by_class(): argument 'uclass'");
-                auto result = sp::reflect::selfCast<const Self>(self)->find_actors_by_class(uclass);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_find_actors_by_class<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "find_actors_by_class_as_dict",
@@ -179,13 +137,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.find_actors_by_class_as_dict()";
-                sp::reflect::checkArguments(args, {"uclass"}, kContext);
-                TSubclassOf<AActor> uclass = sp::reflect::decodeNonNull<TSubclassOf<AActor>>(sp::reflect::requireArgument(args, "uclass", kContext), "UWorld.find_actors_by_class_as_dict(): argument 'uclass'");
-                auto result = sp::reflect::selfCast<const Self>(self)->find_actors_by_class_as_dict(uclass);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_find_actors_by_class_as_dict<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "find_actors",
@@ -195,12 +147,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.find_actors()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->find_actors();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_find_actors<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "get_component_by_name",
@@ -212,14 +159,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.get_component_by_name()";
-                sp::reflect::checkArguments(args, {"actor", "component_name"}, kContext);
-                AActor* actor = sp::reflect::decodeNonNull<AActor*>(sp::reflect::requireArgument(args, "actor", kContext), "UWorld.get_component_by_name(): argument 'actor'");
-                std::string component_name = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "component_name", kContext), "UWorld.get_component_by_name(): argument 'component_name'");
-                auto result = sp::reflect::selfCast<const Self>(self)->get_component_by_name(actor, component_name);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_get_component_by_name<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "get_components_by_class",
@@ -231,14 +171,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.get_components_by_class()";
-                sp::reflect::checkArguments(args, {"actor", "uclass"}, kContext);
-                AActor* actor = sp::reflect::decodeNonNull<AActor*>(sp::reflect::requireArgument(args, "actor", kContext), "UWorld.get_components_by_class(): argument 'actor'");
-                TSubclassOf<UActorComponent> uclass = sp::reflect::decodeNonNull<TSubclassOf<UActorComponent>>(sp::reflect::requireArgument(args, "uclass", kContext), "UWorld.get_components_by_class(): argument 'uclass'");
-                auto result = sp::reflect::selfCast<const Self>(self)->get_components_by_class(actor, uclass);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_get_components_by_class<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "get_components_by_class_as_dict",
@@ -250,14 +183,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.get_components_by_class_as_dict()";
-                sp::reflect::checkArguments(args, {"actor", "uclass"}, kContext);
-                AActor* actor = sp::reflect::decodeNonNull<AActor*>(sp::reflect::requireArgument(args, "actor", kContext), "UWorld.get_components_by_class_as_dict(): argument 'actor'");
-                TSubclassOf<UActorComponent> uclass = sp::reflect::decodeNonNull<TSubclassOf<UActorComponent>>(sp::reflect::requireArgument(args, "uclass", kContext), "UWorld.get_components_by_class_as_dict(): argument 'uclass'");
-                auto result = sp::reflect::selfCast<const Self>(self)->get_components_by_class_as_dict(actor, uclass);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_get_components_by_class_as_dict<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "load_class",
@@ -269,15 +195,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.load_class()";
-                sp::reflect::checkArguments(args, {"uclass", "name"}, kContext);
-                TSubclassOf<UObject> uclass = sp::reflect::decodeNonNull<TSubclassOf<UObject>>(sp::reflect::requireArgument(args, "uclass", kContext), "UWorld.load_class(): argument 'uclass'");
-                std::string name = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "name", kContext), "UWorld.load_class(): argument 'name'");
-                auto result = sp::reflect::selfCast<Self>(self)->load_class(uclass, name);
-                sp::reflect::checkNotNull(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_load_class<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "get_default_object",
@@ -288,14 +206,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.get_default_object()";
-                sp::reflect::checkArguments(args, {"uclass"}, kContext);
-                TSubclassOf<UObject> uclass = sp::reflect::decodeNonNull<TSubclassOf<UObject>>(sp::reflect::requireArgument(args, "uclass", kContext), "UWorld.get_default_object(): argument 'uclass'");
-                auto result = sp::reflect::selfCast<Self>(self)->get_default_object(uclass);
-                sp::reflect::checkNotNull(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_get_default_object<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "get_actor_locations",
@@ -306,13 +217,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.get_actor_locations()";
-                sp::reflect::checkArguments(args, {"actors"}, kContext);
-                std::vector<AActor*> actors = sp::reflect::decode<std::vector<AActor*>>(sp::reflect::requireArgument(args, "actors", kContext), "UWorld.get_actor_locations(): argument 'actors'");
-                auto result = sp::reflect::selfCast<const Self>(self)->get_actor_locations(actors);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_get_actor_locations<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "set_actor_locations",
@@ -324,14 +229,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.set_actor_locations()";
-                sp::reflect::checkArguments(args, {"actors", "locations"}, kContext);
-                std::vector<AActor*> actors = sp::reflect::decode<std::vector<AActor*>>(sp::reflect::requireArgument(args, "actors", kContext), "UWorld.set_actor_locations(): argument 'actors'");
-                sp::reflect::SpArray<double> locations = sp::reflect::decode<sp::reflect::SpArray<double>>(sp::reflect::requireArgument(args, "locations", kContext), "UWorld.set_actor_locations(): argument 'locations'");
-                sp::reflect::selfCast<Self>(self)->set_actor_locations(actors, locations);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_set_actor_locations<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "get_actor_count",
@@ -341,12 +239,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.get_actor_count()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->get_actor_count();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_get_actor_count<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "get_time_seconds",
@@ -356,12 +249,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.get_time_seconds()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->get_time_seconds();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_get_time_seconds<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "get_frame_count",
@@ -371,12 +259,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.get_frame_count()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->get_frame_count();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_get_frame_count<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "line_trace_single",
@@ -391,22 +274,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.line_trace_single()";
-                sp::reflect::checkArguments(args, {"start", "end"}, kContext);
-                FVector start = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "start", kContext), "UWorld.line_trace_single(): argument 'start'");
-                FVector end = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "end", kContext), "UWorld.line_trace_single(): argument 'end'");
-                FHitResult hit{};
-                AActor* actor{};
-                UPrimitiveComponent* component{};
-                auto result = sp::reflect::selfCast<Self>(self)->line_trace_single(start, end, hit, actor, component);
-                sp::reflect::Value::Dict outputs;
-                outputs.emplace("ReturnValue", sp::reflect::encode(result));
-                outputs.emplace("hit", sp::reflect::encode(hit));
-                outputs.emplace("actor", sp::reflect::encode(actor));
-                outputs.emplace("component", sp::reflect::encode(component));
-                return sp::reflect::Value(std::move(outputs));
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_line_trace_single<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "inject_input_for_actor",
@@ -419,15 +287,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.inject_input_for_actor()";
-                sp::reflect::checkArguments(args, {"actor", "input_action_name", "value"}, kContext);
-                AActor* actor = sp::reflect::decodeNonNull<AActor*>(sp::reflect::requireArgument(args, "actor", kContext), "UWorld.inject_input_for_actor(): argument 'actor'");
-                std::string input_action_name = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "input_action_name", kContext), "UWorld.inject_input_for_actor(): argument 'input_action_name'");
-                FVector value = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "value", kContext), "UWorld.inject_input_for_actor(): argument 'value'");
-                sp::reflect::selfCast<Self>(self)->inject_input_for_actor(actor, input_action_name, value);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_inject_input_for_actor<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "load_scene",
@@ -438,13 +298,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.load_scene()";
-                sp::reflect::checkArguments(args, {"path"}, kContext);
-                std::string path = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "path", kContext), "UWorld.load_scene(): argument 'path'");
-                sp::reflect::selfCast<Self>(self)->load_scene(path);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_load_scene<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "save_scene",
@@ -455,13 +309,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.save_scene()";
-                sp::reflect::checkArguments(args, {"path"}, kContext);
-                std::string path = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "path", kContext), "UWorld.save_scene(): argument 'path'");
-                sp::reflect::selfCast<const Self>(self)->save_scene(path);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_save_scene<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "is_editor_world",
@@ -471,12 +319,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.is_editor_world()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->is_editor_world();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_is_editor_world<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "is_game_world",
@@ -486,12 +329,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.is_game_world()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->is_game_world();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_is_game_world<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "play",
@@ -501,12 +339,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.play()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                sp::reflect::selfCast<Self>(self)->play();
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_play<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "stop",
@@ -516,12 +349,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.stop()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                sp::reflect::selfCast<Self>(self)->stop();
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_stop<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "is_playing",
@@ -531,12 +359,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "UWorld.is_playing()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->is_playing();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_is_playing<ValueCall>(self, args); },
         });
         return t;
     }();

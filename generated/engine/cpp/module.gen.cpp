@@ -6,15 +6,17 @@
 
 #include <pybind11/pybind11.h>
 
-#include "core/reflect/invoke.h"
+#include <array>
+
 #include "generated/engine/cpp/engine_bindings.gen.h"
+#include "generated/engine/cpp/engine_calls.gen.h"
 
 namespace py = pybind11;
 using sp::pybind::Bridge;
 
 void spear_bind_engine(py::module_& m) {
-    using sp::pybind::isMissing;
     using sp::pybind::PyArg;
+    using sp::pybind::PyCall;
     using sp::pybind::Ref;
     // Each function's doc starts with its Python signature, as the stubs spell it; pybind11's own would
     // show the PyArg every parameter arrives as.
@@ -22,6 +24,7 @@ void spear_bind_engine(py::module_& m) {
     options.disable_function_signatures();
     {
         using Self = UObject;
+        using Calls = sp::generated::engine::UObjectCalls;
         py::class_<Ref<Self>> cls(m, "UObject", "The base class of every engine object.");
         cls.attr("__sp_class__") = "UObject";
         sp::pybind::useBareTypeName(cls);
@@ -31,128 +34,87 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetName",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UObject.GetName()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetName();
-                return Bridge<std::string>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetName<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetName(self) -> str\n\nReturns the object's name, unique among its siblings.");
         cls.def(
             "GetClassName",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UObject.GetClassName()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetClassName();
-                return Bridge<std::string>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetClassName<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetClassName(self) -> str\n\nReturns the name of the object's class: its blueprint when it was spawned from one, else its most\nderived native class.");
         cls.def(
             "GetWorld",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UObject.GetWorld()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetWorld();
-                return Bridge<UWorld*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetWorld<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetWorld(self) -> UWorld | None\n\nReturns the world this object lives in, or None for objects outside any world.");
     }
     {
         using Self = AActor;
+        using Calls = sp::generated::engine::AActorCalls;
         py::class_<Ref<Self>, Ref<UObject>> cls(m, "AActor", "An object that can be placed in a world.");
         cls.attr("__sp_class__") = "AActor";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "Tags",
-            [](const Ref<Self>& self) { return Bridge<std::vector<std::string>>::out(self.get<Self>("AActor.Tags")->Tags); },
+            [](const Ref<Self>& self) { return Calls::get_Tags<PyCall>(self.get<Self>("AActor.Tags")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AActor.Tags");
-                object->Tags = Bridge<std::vector<std::string>>::in(value, "AActor.Tags");
-                object->PostPropertyChanged("Tags");
+                Calls::set_Tags<PyCall>(self.get<Self>("AActor.Tags"), value);
             },
             "Tags for finding this actor.");
         cls.def_property_readonly(
             "RootComponent",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("AActor.RootComponent")->RootComponent;
-                return Bridge<USceneComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_RootComponent<PyCall>(self.get<Self>("AActor.RootComponent")); },
             "The component that defines the actor's transform.");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetRootComponent",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewRootComponent, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AActor.SetRootComponent()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewRootComponent", !isMissing(NewRootComponent), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewRootComponentValue = Bridge<USceneComponent*>::in(NewRootComponent, "AActor.SetRootComponent(): argument 'NewRootComponent'");
-                SP_CHECK(NewRootComponentValue, sp::InvalidArgument, "AActor.SetRootComponent(): argument 'NewRootComponent'", " must not be None");
-                object->SetRootComponent(NewRootComponentValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetRootComponent<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewRootComponent}, true});
             },
             py::arg("NewRootComponent") = sp::pybind::missingArgument(),
             "SetRootComponent(self, *, NewRootComponent: USceneComponent) -> None\n\nMakes NewRootComponent (one of this actor's components) the root.");
         cls.def(
             "GetActorLocation",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AActor.GetActorLocation()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetActorLocation();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetActorLocation<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetActorLocation(self) -> FVector\n\nReturns the world-space location of the root component.");
         cls.def(
             "SetActorLocation",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewLocation, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AActor.SetActorLocation()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewLocation", !isMissing(NewLocation), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewLocationValue = Bridge<FVector>::in(NewLocation, "AActor.SetActorLocation(): argument 'NewLocation'");
-                auto result = object->SetActorLocation(NewLocationValue);
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetActorLocation<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewLocation}, true});
             },
             py::arg("NewLocation") = sp::pybind::missingArgument(),
             "SetActorLocation(self, *, NewLocation: FVector) -> bool\n\nMoves the actor; returns true when it moved.");
         cls.def(
             "GetActorRotation",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AActor.GetActorRotation()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetActorRotation();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FRotator>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetActorRotation<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetActorRotation(self) -> FRotator\n\nReturns the world-space rotation of the root component.");
         cls.def(
             "SetActorRotation",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewRotation, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AActor.SetActorRotation()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewRotation", !isMissing(NewRotation), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewRotationValue = Bridge<FRotator>::in(NewRotation, "AActor.SetActorRotation(): argument 'NewRotation'");
-                auto result = object->SetActorRotation(NewRotationValue);
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetActorRotation<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewRotation}, true});
             },
             py::arg("NewRotation") = sp::pybind::missingArgument(),
             "SetActorRotation(self, *, NewRotation: FRotator) -> bool\n\nRotates the actor; returns true when it rotated.");
         cls.def(
             "K2_SetActorLocationAndRotation",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewLocation, const PyArg& NewRotation, const PyArg& bSweep, const PyArg& bTeleport, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AActor.K2_SetActorLocationAndRotation()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewLocation", !isMissing(NewLocation), true}, {"NewRotation", !isMissing(NewRotation), true}, {"bSweep", !isMissing(bSweep), false}, {"bTeleport", !isMissing(bTeleport), false}});
-                Self* object = self.get<Self>(kContext);
-                auto NewLocationValue = Bridge<FVector>::in(NewLocation, "AActor.K2_SetActorLocationAndRotation(): argument 'NewLocation'");
-                auto NewRotationValue = Bridge<FRotator>::in(NewRotation, "AActor.K2_SetActorLocationAndRotation(): argument 'NewRotation'");
-                bool bSweepValue = isMissing(bSweep) ? bool(false) : Bridge<bool>::in(bSweep, "AActor.K2_SetActorLocationAndRotation(): argument 'bSweep'");
-                bool bTeleportValue = isMissing(bTeleport) ? bool(true) : Bridge<bool>::in(bTeleport, "AActor.K2_SetActorLocationAndRotation(): argument 'bTeleport'");
-                auto result = object->K2_SetActorLocationAndRotation(NewLocationValue, NewRotationValue, bSweepValue, bTeleportValue);
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_K2_SetActorLocationAndRotation<PyCall>(self, {positional, extra, std::array<const PyArg*, 4>{&NewLocation, &NewRotation, &bSweep, &bTeleport}, true});
             },
             py::arg("NewLocation") = sp::pybind::missingArgument(),
             py::arg("NewRotation") = sp::pybind::missingArgument(),
@@ -162,150 +124,98 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetActorScale3D",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AActor.GetActorScale3D()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetActorScale3D();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetActorScale3D<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetActorScale3D(self) -> FVector\n\nReturns the world-space scale of the root component.");
         cls.def(
             "SetActorScale3D",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewScale3D, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AActor.SetActorScale3D()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewScale3D", !isMissing(NewScale3D), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewScale3DValue = Bridge<FVector>::in(NewScale3D, "AActor.SetActorScale3D(): argument 'NewScale3D'");
-                object->SetActorScale3D(NewScale3DValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetActorScale3D<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewScale3D}, true});
             },
             py::arg("NewScale3D") = sp::pybind::missingArgument(),
             "SetActorScale3D(self, *, NewScale3D: FVector) -> None\n\nSets the world-space scale of the root component.");
         cls.def(
             "GetActorTransform",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AActor.GetActorTransform()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetActorTransform();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FTransform>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetActorTransform<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetActorTransform(self) -> FTransform\n\nReturns the world-space transform of the root component.");
         cls.def(
             "SetActorTransform",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewTransform, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AActor.SetActorTransform()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewTransform", !isMissing(NewTransform), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewTransformValue = Bridge<FTransform>::in(NewTransform, "AActor.SetActorTransform(): argument 'NewTransform'");
-                auto result = object->SetActorTransform(NewTransformValue);
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetActorTransform<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewTransform}, true});
             },
             py::arg("NewTransform") = sp::pybind::missingArgument(),
             "SetActorTransform(self, *, NewTransform: FTransform) -> bool\n\nSets the world-space transform of the root component.");
         cls.def(
             "GetActorForwardVector",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AActor.GetActorForwardVector()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetActorForwardVector();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetActorForwardVector<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetActorForwardVector(self) -> FVector\n\nReturns the unit vector along the actor's X axis.");
         cls.def(
             "GetActorBounds",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& bOnlyCollidingComponents, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AActor.GetActorBounds()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"bOnlyCollidingComponents", !isMissing(bOnlyCollidingComponents), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto bOnlyCollidingComponentsValue = Bridge<bool>::in(bOnlyCollidingComponents, "AActor.GetActorBounds(): argument 'bOnlyCollidingComponents'");
-                FVector OriginOut{};
-                FVector BoxExtentOut{};
-                object->GetActorBounds(bOnlyCollidingComponentsValue, OriginOut, BoxExtentOut);
-                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
-                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "AActor").attr("GetActorBoundsResult"));
-                return (*resultType)(py::arg("Origin") = Bridge<FVector>::out(OriginOut), py::arg("BoxExtent") = Bridge<FVector>::out(BoxExtentOut));
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetActorBounds<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&bOnlyCollidingComponents}, true});
             },
             py::arg("bOnlyCollidingComponents") = sp::pybind::missingArgument(),
             "GetActorBounds(self, *, bOnlyCollidingComponents: bool) -> GetActorBoundsResult\n\nReturns the world-space bounds of the actor's primitives as centre Origin and half size BoxExtent.");
         cls.def(
             "ActorHasTag",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Tag, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AActor.ActorHasTag()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Tag", !isMissing(Tag), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto TagValue = Bridge<std::string>::in(Tag, "AActor.ActorHasTag(): argument 'Tag'");
-                auto result = object->ActorHasTag(TagValue);
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_ActorHasTag<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Tag}, true});
             },
             py::arg("Tag") = sp::pybind::missingArgument(),
             "ActorHasTag(self, *, Tag: str) -> bool\n\nReturns true when Tags contains Tag.");
         cls.def(
             "GetOverlappingActors",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& ClassFilter, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AActor.GetOverlappingActors()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"ClassFilter", !isMissing(ClassFilter), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto ClassFilterValue = Bridge<TSubclassOf<AActor>>::in(ClassFilter, "AActor.GetOverlappingActors(): argument 'ClassFilter'");
-                SP_CHECK(ClassFilterValue, sp::InvalidArgument, "AActor.GetOverlappingActors(): argument 'ClassFilter'", " must not be None");
-                auto result = object->GetOverlappingActors(ClassFilterValue);
-                return Bridge<std::vector<AActor*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetOverlappingActors<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&ClassFilter}, true});
             },
             py::arg("ClassFilter") = sp::pybind::missingArgument(),
             "GetOverlappingActors(self, *, ClassFilter: type[AActor] | str) -> list[AActor]\n\nReturns the other actors (of class ClassFilter or a subclass) that overlap any of this actor's\ncomponents now (see UPrimitiveComponent.GetOverlappingComponents).");
         cls.def(
             "IsOverlappingActor",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Other, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AActor.IsOverlappingActor()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Other", !isMissing(Other), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto OtherValue = Bridge<AActor*>::in(Other, "AActor.IsOverlappingActor(): argument 'Other'");
-                SP_CHECK(OtherValue, sp::InvalidArgument, "AActor.IsOverlappingActor(): argument 'Other'", " must not be None");
-                auto result = object->IsOverlappingActor(OtherValue);
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_IsOverlappingActor<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Other}, true});
             },
             py::arg("Other") = sp::pybind::missingArgument(),
             "IsOverlappingActor(self, *, Other: AActor) -> bool\n\nReturns true when a component of Other overlaps a component of this actor now.");
         cls.def(
             "GetStreamingLevelName",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AActor.GetStreamingLevelName()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetStreamingLevelName();
-                return Bridge<std::string>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetStreamingLevelName<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetStreamingLevelName(self) -> str\n\nReturns the name of the streaming level that loaded this actor (\"\" for the persistent level).");
         cls.def(
             "K2_GetComponents",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AActor.K2_GetComponents()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->K2_GetComponents();
-                return Bridge<std::vector<UActorComponent*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_K2_GetComponents<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "K2_GetComponents(self) -> list[UActorComponent]\n\nReturns all components of this actor, in creation order.");
         cls.def(
             "GetComponentByClass",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& ComponentClass, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AActor.GetComponentByClass()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"ComponentClass", !isMissing(ComponentClass), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto ComponentClassValue = Bridge<TSubclassOf<UActorComponent>>::in(ComponentClass, "AActor.GetComponentByClass(): argument 'ComponentClass'");
-                SP_CHECK(ComponentClassValue, sp::InvalidArgument, "AActor.GetComponentByClass(): argument 'ComponentClass'", " must not be None");
-                auto result = object->GetComponentByClass(ComponentClassValue);
-                return Bridge<UActorComponent*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetComponentByClass<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&ComponentClass}, true});
             },
             py::arg("ComponentClass") = sp::pybind::missingArgument(),
             "GetComponentByClass(self, *, ComponentClass: type[UActorComponent] | str) -> UActorComponent | None\n\nReturns the first component of class ComponentClass (or a subclass), or None.");
     }
     {
         using Self = AController;
+        using Calls = sp::generated::engine::AControllerCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "AController", "An actor that possesses and directs a pawn.");
         cls.attr("__sp_class__") = "AController";
         sp::pybind::useBareTypeName(cls);
@@ -314,72 +224,51 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "Possess",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& InPawn, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AController.Possess()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"InPawn", !isMissing(InPawn), true}});
-                Self* object = self.get<Self>(kContext);
-                auto InPawnValue = Bridge<APawn*>::in(InPawn, "AController.Possess(): argument 'InPawn'");
-                SP_CHECK(InPawnValue, sp::InvalidArgument, "AController.Possess(): argument 'InPawn'", " must not be None");
-                object->Possess(InPawnValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_Possess<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&InPawn}, true});
             },
             py::arg("InPawn") = sp::pybind::missingArgument(),
             "Possess(self, *, InPawn: APawn) -> None\n\nTakes control of InPawn (releasing this controller's previous pawn, and taking InPawn from its\nprevious controller); the control rotation becomes the pawn's rotation.");
         cls.def(
             "UnPossess",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AController.UnPossess()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                object->UnPossess();
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_UnPossess<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "UnPossess(self) -> None\n\nReleases the possessed pawn, if any.");
         cls.def(
             "K2_GetPawn",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AController.K2_GetPawn()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->K2_GetPawn();
-                return Bridge<APawn*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_K2_GetPawn<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "K2_GetPawn(self) -> APawn | None\n\nReturns the possessed pawn, or None.");
         cls.def(
             "GetControlRotation",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AController.GetControlRotation()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetControlRotation();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FRotator>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetControlRotation<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetControlRotation(self) -> FRotator\n\nReturns the control rotation.");
         cls.def(
             "SetControlRotation",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewRotation, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AController.SetControlRotation()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewRotation", !isMissing(NewRotation), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewRotationValue = Bridge<FRotator>::in(NewRotation, "AController.SetControlRotation(): argument 'NewRotation'");
-                object->SetControlRotation(NewRotationValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetControlRotation<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewRotation}, true});
             },
             py::arg("NewRotation") = sp::pybind::missingArgument(),
             "SetControlRotation(self, *, NewRotation: FRotator) -> None\n\nSets the control rotation (the possessed pawn follows it on the axes its bUseControllerRotation*\nflags name, from its next tick).");
         cls.def(
             "IsPlayerController",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AController.IsPlayerController()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->IsPlayerController();
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_IsPlayerController<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "IsPlayerController(self) -> bool\n\nReturns true for a player's controller.");
     }
     {
         using Self = AAIController;
+        using Calls = sp::generated::engine::AAIControllerCalls;
         py::class_<Ref<Self>, Ref<AController>> cls(m, "AAIController", "A controller for non-player pawns, directed from code. MoveToLocation / MoveToActor walk (ACharacter)\nor fly (ADefaultPawn) the pawn to a goal through its movement input, turning the control rotation to\nface where it goes. A walking pawn with bUsePathfinding follows a path on the world's default navigation\ndata when the world has navigation (an ARecastNavMesh or an ANavMeshBoundsVolume), corner by corner,\nand the move fails when its start or goal is off the navigation mesh; an unreachable goal is walked to as\nclose as the mesh allows. Otherwise (flying, no navigation, or bUsePathfinding false) it goes straight.");
         cls.attr("__sp_class__") = "AAIController";
         sp::pybind::useBareTypeName(cls);
@@ -388,15 +277,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "MoveToLocation",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Dest, const PyArg& AcceptanceRadius, const PyArg& bStopOnOverlap, const PyArg& bUsePathfinding, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AAIController.MoveToLocation()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Dest", !isMissing(Dest), true}, {"AcceptanceRadius", !isMissing(AcceptanceRadius), false}, {"bStopOnOverlap", !isMissing(bStopOnOverlap), false}, {"bUsePathfinding", !isMissing(bUsePathfinding), false}});
-                Self* object = self.get<Self>(kContext);
-                auto DestValue = Bridge<FVector>::in(Dest, "AAIController.MoveToLocation(): argument 'Dest'");
-                double AcceptanceRadiusValue = isMissing(AcceptanceRadius) ? double(0.1) : Bridge<double>::in(AcceptanceRadius, "AAIController.MoveToLocation(): argument 'AcceptanceRadius'");
-                bool bStopOnOverlapValue = isMissing(bStopOnOverlap) ? bool(true) : Bridge<bool>::in(bStopOnOverlap, "AAIController.MoveToLocation(): argument 'bStopOnOverlap'");
-                bool bUsePathfindingValue = isMissing(bUsePathfinding) ? bool(true) : Bridge<bool>::in(bUsePathfinding, "AAIController.MoveToLocation(): argument 'bUsePathfinding'");
-                auto result = object->MoveToLocation(DestValue, AcceptanceRadiusValue, bStopOnOverlapValue, bUsePathfindingValue);
-                return Bridge<EPathFollowingRequestResult>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_MoveToLocation<PyCall>(self, {positional, extra, std::array<const PyArg*, 4>{&Dest, &AcceptanceRadius, &bStopOnOverlap, &bUsePathfinding}, true});
             },
             py::arg("Dest") = sp::pybind::missingArgument(),
             py::arg("AcceptanceRadius") = sp::pybind::missingArgument(),
@@ -406,16 +288,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "MoveToActor",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Goal, const PyArg& AcceptanceRadius, const PyArg& bStopOnOverlap, const PyArg& bUsePathfinding, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AAIController.MoveToActor()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Goal", !isMissing(Goal), true}, {"AcceptanceRadius", !isMissing(AcceptanceRadius), false}, {"bStopOnOverlap", !isMissing(bStopOnOverlap), false}, {"bUsePathfinding", !isMissing(bUsePathfinding), false}});
-                Self* object = self.get<Self>(kContext);
-                auto GoalValue = Bridge<AActor*>::in(Goal, "AAIController.MoveToActor(): argument 'Goal'");
-                SP_CHECK(GoalValue, sp::InvalidArgument, "AAIController.MoveToActor(): argument 'Goal'", " must not be None");
-                double AcceptanceRadiusValue = isMissing(AcceptanceRadius) ? double(0.1) : Bridge<double>::in(AcceptanceRadius, "AAIController.MoveToActor(): argument 'AcceptanceRadius'");
-                bool bStopOnOverlapValue = isMissing(bStopOnOverlap) ? bool(true) : Bridge<bool>::in(bStopOnOverlap, "AAIController.MoveToActor(): argument 'bStopOnOverlap'");
-                bool bUsePathfindingValue = isMissing(bUsePathfinding) ? bool(true) : Bridge<bool>::in(bUsePathfinding, "AAIController.MoveToActor(): argument 'bUsePathfinding'");
-                auto result = object->MoveToActor(GoalValue, AcceptanceRadiusValue, bStopOnOverlapValue, bUsePathfindingValue);
-                return Bridge<EPathFollowingRequestResult>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_MoveToActor<PyCall>(self, {positional, extra, std::array<const PyArg*, 4>{&Goal, &AcceptanceRadius, &bStopOnOverlap, &bUsePathfinding}, true});
             },
             py::arg("Goal") = sp::pybind::missingArgument(),
             py::arg("AcceptanceRadius") = sp::pybind::missingArgument(),
@@ -425,136 +299,100 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "StopMovement",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AAIController.StopMovement()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                object->StopMovement();
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_StopMovement<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "StopMovement(self) -> None\n\nStops the move in progress.");
         cls.def(
             "GetMoveStatus",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AAIController.GetMoveStatus()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetMoveStatus();
-                return Bridge<EPathFollowingStatus>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetMoveStatus<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetMoveStatus(self) -> EPathFollowingStatus\n\nReturns whether a move is in progress.");
         cls.def(
             "GetImmediateMoveDestination",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AAIController.GetImmediateMoveDestination()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetImmediateMoveDestination();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetImmediateMoveDestination<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetImmediateMoveDestination(self) -> FVector\n\nReturns the point the pawn is moving to now: the next corner of its path, else the goal (its location\nwhen no move is in progress).");
     }
     {
         using Self = ACameraSensorActor;
+        using Calls = sp::generated::engine::ACameraSensorActorCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "ACameraSensorActor", "An actor whose root is a camera sensor.");
         cls.attr("__sp_class__") = "ACameraSensorActor";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property_readonly(
             "CameraSensor",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("ACameraSensorActor.CameraSensor")->CameraSensor;
-                sp::reflect::checkNotNull(value, "ACameraSensorActor.CameraSensor");
-                return Bridge<UCameraSensorComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_CameraSensor<PyCall>(self.get<Self>("ACameraSensorActor.CameraSensor")); },
             "The camera (also the root component); it looks along the actor's forward axis.");
         sp::pybind::nameProperties(cls);
     }
     {
         using Self = APawn;
+        using Calls = sp::generated::engine::APawnCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "APawn", "An actor that a controller can possess.");
         cls.attr("__sp_class__") = "APawn";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "bUseControllerRotationPitch",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("APawn.bUseControllerRotationPitch")->bUseControllerRotationPitch); },
+            [](const Ref<Self>& self) { return Calls::get_bUseControllerRotationPitch<PyCall>(self.get<Self>("APawn.bUseControllerRotationPitch")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("APawn.bUseControllerRotationPitch");
-                object->bUseControllerRotationPitch = Bridge<bool>::in(value, "APawn.bUseControllerRotationPitch");
-                object->PostPropertyChanged("bUseControllerRotationPitch");
+                Calls::set_bUseControllerRotationPitch<PyCall>(self.get<Self>("APawn.bUseControllerRotationPitch"), value);
             },
             "Whether the pawn's pitch follows its controller's control rotation each tick.");
         cls.def_property(
             "bUseControllerRotationYaw",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("APawn.bUseControllerRotationYaw")->bUseControllerRotationYaw); },
+            [](const Ref<Self>& self) { return Calls::get_bUseControllerRotationYaw<PyCall>(self.get<Self>("APawn.bUseControllerRotationYaw")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("APawn.bUseControllerRotationYaw");
-                object->bUseControllerRotationYaw = Bridge<bool>::in(value, "APawn.bUseControllerRotationYaw");
-                object->PostPropertyChanged("bUseControllerRotationYaw");
+                Calls::set_bUseControllerRotationYaw<PyCall>(self.get<Self>("APawn.bUseControllerRotationYaw"), value);
             },
             "Whether the pawn's yaw follows its controller's control rotation each tick.");
         cls.def_property(
             "bUseControllerRotationRoll",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("APawn.bUseControllerRotationRoll")->bUseControllerRotationRoll); },
+            [](const Ref<Self>& self) { return Calls::get_bUseControllerRotationRoll<PyCall>(self.get<Self>("APawn.bUseControllerRotationRoll")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("APawn.bUseControllerRotationRoll");
-                object->bUseControllerRotationRoll = Bridge<bool>::in(value, "APawn.bUseControllerRotationRoll");
-                object->PostPropertyChanged("bUseControllerRotationRoll");
+                Calls::set_bUseControllerRotationRoll<PyCall>(self.get<Self>("APawn.bUseControllerRotationRoll"), value);
             },
             "Whether the pawn's roll follows its controller's control rotation each tick.");
         sp::pybind::nameProperties(cls);
         cls.def(
             "GetController",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "APawn.GetController()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetController();
-                return Bridge<AController*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetController<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetController(self) -> AController | None\n\nReturns the controller that possesses this pawn, or None.");
         cls.def(
             "IsControlled",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "APawn.IsControlled()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->IsControlled();
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_IsControlled<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "IsControlled(self) -> bool\n\nReturns true while a controller possesses this pawn.");
         cls.def(
             "IsPlayerControlled",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "APawn.IsPlayerControlled()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->IsPlayerControlled();
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_IsPlayerControlled<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "IsPlayerControlled(self) -> bool\n\nReturns true while a player controller possesses this pawn.");
         cls.def(
             "GetControlRotation",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "APawn.GetControlRotation()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetControlRotation();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FRotator>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetControlRotation<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetControlRotation(self) -> FRotator\n\nReturns the controller's control rotation, or the pawn's own rotation when it has no controller.");
         cls.def(
             "AddMovementInput",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& WorldDirection, const PyArg& ScaleValue, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "APawn.AddMovementInput()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"WorldDirection", !isMissing(WorldDirection), true}, {"ScaleValue", !isMissing(ScaleValue), false}});
-                Self* object = self.get<Self>(kContext);
-                auto WorldDirectionValue = Bridge<FVector>::in(WorldDirection, "APawn.AddMovementInput(): argument 'WorldDirection'");
-                double ScaleValueValue = isMissing(ScaleValue) ? double(1.0) : Bridge<double>::in(ScaleValue, "APawn.AddMovementInput(): argument 'ScaleValue'");
-                object->AddMovementInput(WorldDirectionValue, ScaleValueValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_AddMovementInput<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&WorldDirection, &ScaleValue}, true});
             },
             py::arg("WorldDirection") = sp::pybind::missingArgument(),
             py::arg("ScaleValue") = sp::pybind::missingArgument(),
@@ -562,190 +400,138 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetPendingMovementInputVector",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "APawn.GetPendingMovementInputVector()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetPendingMovementInputVector();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetPendingMovementInputVector<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetPendingMovementInputVector(self) -> FVector\n\nReturns the movement input added since the pawn last moved.");
     }
     {
         using Self = ACharacter;
+        using Calls = sp::generated::engine::ACharacterCalls;
         py::class_<Ref<Self>, Ref<APawn>> cls(m, "ACharacter", "A pawn that walks, climbs steps, jumps and falls, with UE's Character names.");
         cls.attr("__sp_class__") = "ACharacter";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property_readonly(
             "CapsuleComponent",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("ACharacter.CapsuleComponent")->CapsuleComponent;
-                sp::reflect::checkNotNull(value, "ACharacter.CapsuleComponent");
-                return Bridge<UCapsuleComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_CapsuleComponent<PyCall>(self.get<Self>("ACharacter.CapsuleComponent")); },
             "The collision capsule (the root component); its size is the character's.");
         cls.def_property_readonly(
             "Mesh",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("ACharacter.Mesh")->Mesh;
-                sp::reflect::checkNotNull(value, "ACharacter.Mesh");
-                return Bridge<UStaticMeshComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_Mesh<PyCall>(self.get<Self>("ACharacter.Mesh")); },
             "The character's visible body (no collision of its own).");
         cls.def_property_readonly(
             "CharacterMovement",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("ACharacter.CharacterMovement")->CharacterMovement;
-                sp::reflect::checkNotNull(value, "ACharacter.CharacterMovement");
-                return Bridge<UCharacterMovementComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_CharacterMovement<PyCall>(self.get<Self>("ACharacter.CharacterMovement")); },
             "How the character walks.");
         cls.def_property_readonly(
             "InputComponent",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("ACharacter.InputComponent")->InputComponent;
-                sp::reflect::checkNotNull(value, "ACharacter.InputComponent");
-                return Bridge<UInputComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_InputComponent<PyCall>(self.get<Self>("ACharacter.InputComponent")); },
             "Receives the injected actions.");
         sp::pybind::nameProperties(cls);
         cls.def(
             "Jump",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ACharacter.Jump()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                object->Jump();
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_Jump<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "Jump(self) -> None\n\nJumps at the next physics step if the character stands on the ground.");
         cls.def(
             "StopJumping",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ACharacter.StopJumping()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                object->StopJumping();
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_StopJumping<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "StopJumping(self) -> None\n\nEnds a jump request that has not started yet.");
         cls.def(
             "CanJump",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ACharacter.CanJump()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->CanJump();
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_CanJump<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "CanJump(self) -> bool\n\nReturns true when the character could jump now (it stands on the ground).");
         cls.def(
             "GetCharacterMovement",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ACharacter.GetCharacterMovement()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetCharacterMovement();
-                return Bridge<UCharacterMovementComponent*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetCharacterMovement<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetCharacterMovement(self) -> UCharacterMovementComponent | None\n\nReturns the character's movement component (UE's GetCharacterMovement).");
     }
     {
         using Self = ADefaultPawn;
+        using Calls = sp::generated::engine::ADefaultPawnCalls;
         py::class_<Ref<Self>, Ref<APawn>> cls(m, "ADefaultPawn", "A pawn that flies along its control rotation from the \"MoveForward\", \"MoveRight\" and \"MoveUp\" input\nactions (X in [-1, 1]) and AddMovementInput, and turns its controller's view with \"Turn\" and \"LookUp\".\nIt has no collision body: it passes through geometry, like UE's DefaultPawn with collision off.");
         cls.attr("__sp_class__") = "ADefaultPawn";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property_readonly(
             "InputComponent",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("ADefaultPawn.InputComponent")->InputComponent;
-                sp::reflect::checkNotNull(value, "ADefaultPawn.InputComponent");
-                return Bridge<UInputComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_InputComponent<PyCall>(self.get<Self>("ADefaultPawn.InputComponent")); },
             "Receives the injected actions (from inject_input_for_actor on the pawn or its controller).");
         cls.def_property(
             "MaxSpeed",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ADefaultPawn.MaxSpeed")->MaxSpeed); },
+            [](const Ref<Self>& self) { return Calls::get_MaxSpeed<PyCall>(self.get<Self>("ADefaultPawn.MaxSpeed")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("ADefaultPawn.MaxSpeed");
-                object->MaxSpeed = Bridge<double>::in(value, "ADefaultPawn.MaxSpeed");
-                object->PostPropertyChanged("MaxSpeed");
+                Calls::set_MaxSpeed<PyCall>(self.get<Self>("ADefaultPawn.MaxSpeed"), value);
             },
             "Speed in metres per second at full input.");
         cls.def_property(
             "BaseTurnRate",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ADefaultPawn.BaseTurnRate")->BaseTurnRate); },
+            [](const Ref<Self>& self) { return Calls::get_BaseTurnRate<PyCall>(self.get<Self>("ADefaultPawn.BaseTurnRate")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("ADefaultPawn.BaseTurnRate");
-                object->BaseTurnRate = Bridge<double>::in(value, "ADefaultPawn.BaseTurnRate");
-                object->PostPropertyChanged("BaseTurnRate");
+                Calls::set_BaseTurnRate<PyCall>(self.get<Self>("ADefaultPawn.BaseTurnRate"), value);
             },
             "Degrees per second of yaw at \"Turn\" = 1.");
         cls.def_property(
             "BaseLookUpRate",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ADefaultPawn.BaseLookUpRate")->BaseLookUpRate); },
+            [](const Ref<Self>& self) { return Calls::get_BaseLookUpRate<PyCall>(self.get<Self>("ADefaultPawn.BaseLookUpRate")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("ADefaultPawn.BaseLookUpRate");
-                object->BaseLookUpRate = Bridge<double>::in(value, "ADefaultPawn.BaseLookUpRate");
-                object->PostPropertyChanged("BaseLookUpRate");
+                Calls::set_BaseLookUpRate<PyCall>(self.get<Self>("ADefaultPawn.BaseLookUpRate"), value);
             },
             "Degrees per second of pitch at \"LookUp\" = 1.");
         sp::pybind::nameProperties(cls);
     }
     {
         using Self = ADirectionalLight;
+        using Calls = sp::generated::engine::ADirectionalLightCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "ADirectionalLight", "An actor with a directional light (the sun) as its root.");
         cls.attr("__sp_class__") = "ADirectionalLight";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property_readonly(
             "LightComponent",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("ADirectionalLight.LightComponent")->LightComponent;
-                sp::reflect::checkNotNull(value, "ADirectionalLight.LightComponent");
-                return Bridge<UDirectionalLightComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_LightComponent<PyCall>(self.get<Self>("ADirectionalLight.LightComponent")); },
             "The light (also the root component).");
         sp::pybind::nameProperties(cls);
     }
     {
         using Self = AGameModeBase;
+        using Calls = sp::generated::engine::AGameModeBaseCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "AGameModeBase", "The rules of a game world: which classes its players get, and where they start.");
         cls.attr("__sp_class__") = "AGameModeBase";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "DefaultPawnClass",
-            [](const Ref<Self>& self) { return Bridge<TSubclassOf<APawn>>::out(self.get<Self>("AGameModeBase.DefaultPawnClass")->DefaultPawnClass); },
+            [](const Ref<Self>& self) { return Calls::get_DefaultPawnClass<PyCall>(self.get<Self>("AGameModeBase.DefaultPawnClass")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AGameModeBase.DefaultPawnClass");
-                object->DefaultPawnClass = Bridge<TSubclassOf<APawn>>::in(value, "AGameModeBase.DefaultPawnClass");
-                object->PostPropertyChanged("DefaultPawnClass");
+                Calls::set_DefaultPawnClass<PyCall>(self.get<Self>("AGameModeBase.DefaultPawnClass"), value);
             },
             "The class of the pawn each player starts with.");
         cls.def_property(
             "PlayerControllerClass",
-            [](const Ref<Self>& self) { return Bridge<TSubclassOf<APlayerController>>::out(self.get<Self>("AGameModeBase.PlayerControllerClass")->PlayerControllerClass); },
+            [](const Ref<Self>& self) { return Calls::get_PlayerControllerClass<PyCall>(self.get<Self>("AGameModeBase.PlayerControllerClass")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AGameModeBase.PlayerControllerClass");
-                object->PlayerControllerClass = Bridge<TSubclassOf<APlayerController>>::in(value, "AGameModeBase.PlayerControllerClass");
-                object->PostPropertyChanged("PlayerControllerClass");
+                Calls::set_PlayerControllerClass<PyCall>(self.get<Self>("AGameModeBase.PlayerControllerClass"), value);
             },
             "The class of each player's controller.");
         sp::pybind::nameProperties(cls);
         cls.def(
             "FindPlayerStart",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Player, const PyArg& IncomingName, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AGameModeBase.FindPlayerStart()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Player", !isMissing(Player), true}, {"IncomingName", !isMissing(IncomingName), false}});
-                const Self* object = self.get<Self>(kContext);
-                auto PlayerValue = Bridge<AController*>::in(Player, "AGameModeBase.FindPlayerStart(): argument 'Player'");
-                SP_CHECK(PlayerValue, sp::InvalidArgument, "AGameModeBase.FindPlayerStart(): argument 'Player'", " must not be None");
-                std::string IncomingNameValue = isMissing(IncomingName) ? std::string("") : Bridge<std::string>::in(IncomingName, "AGameModeBase.FindPlayerStart(): argument 'IncomingName'");
-                auto result = object->FindPlayerStart(PlayerValue, IncomingNameValue);
-                return Bridge<AActor*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_FindPlayerStart<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&Player, &IncomingName}, true});
             },
             py::arg("Player") = sp::pybind::missingArgument(),
             py::arg("IncomingName") = sp::pybind::missingArgument(),
@@ -753,38 +539,23 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "RestartPlayer",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewPlayer, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AGameModeBase.RestartPlayer()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewPlayer", !isMissing(NewPlayer), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewPlayerValue = Bridge<AController*>::in(NewPlayer, "AGameModeBase.RestartPlayer(): argument 'NewPlayer'");
-                SP_CHECK(NewPlayerValue, sp::InvalidArgument, "AGameModeBase.RestartPlayer(): argument 'NewPlayer'", " must not be None");
-                object->RestartPlayer(NewPlayerValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_RestartPlayer<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewPlayer}, true});
             },
             py::arg("NewPlayer") = sp::pybind::missingArgument(),
             "RestartPlayer(self, *, NewPlayer: AController) -> None\n\nStarts NewPlayer: spawns a DefaultPawnClass pawn for it when it has none, moves the pawn to its player\nstart (the world origin when there is none) and possesses it.");
         cls.def(
             "GetNumPlayers",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AGameModeBase.GetNumPlayers()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetNumPlayers();
-                return Bridge<int32_t>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetNumPlayers<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetNumPlayers(self) -> int\n\nReturns the number of players (player controllers with a player index).");
         cls.def(
             "SwapPlayerControllers",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& OldPC, const PyArg& NewPC, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AGameModeBase.SwapPlayerControllers()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"OldPC", !isMissing(OldPC), true}, {"NewPC", !isMissing(NewPC), true}});
-                Self* object = self.get<Self>(kContext);
-                auto OldPCValue = Bridge<APlayerController*>::in(OldPC, "AGameModeBase.SwapPlayerControllers(): argument 'OldPC'");
-                SP_CHECK(OldPCValue, sp::InvalidArgument, "AGameModeBase.SwapPlayerControllers(): argument 'OldPC'", " must not be None");
-                auto NewPCValue = Bridge<APlayerController*>::in(NewPC, "AGameModeBase.SwapPlayerControllers(): argument 'NewPC'");
-                SP_CHECK(NewPCValue, sp::InvalidArgument, "AGameModeBase.SwapPlayerControllers(): argument 'NewPC'", " must not be None");
-                object->SwapPlayerControllers(OldPCValue, NewPCValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SwapPlayerControllers<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&OldPC, &NewPC}, true});
             },
             py::arg("OldPC") = sp::pybind::missingArgument(),
             py::arg("NewPC") = sp::pybind::missingArgument(),
@@ -792,72 +563,55 @@ void spear_bind_engine(py::module_& m) {
     }
     {
         using Self = AKinematicVehicle;
+        using Calls = sp::generated::engine::AKinematicVehicleCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "AKinematicVehicle", "A box-shaped vehicle moved kinematically (not simulated: it passes through geometry) by the \"Throttle\",\n\"Steer\" and \"Move\" input actions. For a car simulated with wheels, see AWheeledVehiclePawn.");
         cls.attr("__sp_class__") = "AKinematicVehicle";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property_readonly(
             "Body",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("AKinematicVehicle.Body")->Body;
-                sp::reflect::checkNotNull(value, "AKinematicVehicle.Body");
-                return Bridge<UStaticMeshComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_Body<PyCall>(self.get<Self>("AKinematicVehicle.Body")); },
             "The vehicle's body (the root component).");
         cls.def_property_readonly(
             "InputComponent",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("AKinematicVehicle.InputComponent")->InputComponent;
-                sp::reflect::checkNotNull(value, "AKinematicVehicle.InputComponent");
-                return Bridge<UInputComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_InputComponent<PyCall>(self.get<Self>("AKinematicVehicle.InputComponent")); },
             "Receives the injected actions.");
         cls.def_property(
             "MaxSpeed",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AKinematicVehicle.MaxSpeed")->MaxSpeed); },
+            [](const Ref<Self>& self) { return Calls::get_MaxSpeed<PyCall>(self.get<Self>("AKinematicVehicle.MaxSpeed")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AKinematicVehicle.MaxSpeed");
-                object->MaxSpeed = Bridge<double>::in(value, "AKinematicVehicle.MaxSpeed");
-                object->PostPropertyChanged("MaxSpeed");
+                Calls::set_MaxSpeed<PyCall>(self.get<Self>("AKinematicVehicle.MaxSpeed"), value);
             },
             "Speed in metres per second at full throttle.");
         cls.def_property(
             "MaxYawRateInDegrees",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AKinematicVehicle.MaxYawRateInDegrees")->MaxYawRateInDegrees); },
+            [](const Ref<Self>& self) { return Calls::get_MaxYawRateInDegrees<PyCall>(self.get<Self>("AKinematicVehicle.MaxYawRateInDegrees")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AKinematicVehicle.MaxYawRateInDegrees");
-                object->MaxYawRateInDegrees = Bridge<double>::in(value, "AKinematicVehicle.MaxYawRateInDegrees");
-                object->PostPropertyChanged("MaxYawRateInDegrees");
+                Calls::set_MaxYawRateInDegrees<PyCall>(self.get<Self>("AKinematicVehicle.MaxYawRateInDegrees"), value);
             },
             "Yaw rate in degrees per second at full steering.");
         sp::pybind::nameProperties(cls);
     }
     {
         using Self = AMaterialLibrary;
+        using Calls = sp::generated::engine::AMaterialLibraryCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "AMaterialLibrary", "An actor that defines materials by name for the meshes of its world.");
         cls.attr("__sp_class__") = "AMaterialLibrary";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "Materials",
-            [](const Ref<Self>& self) { return Bridge<std::map<std::string, FMaterialDesc>>::out(self.get<Self>("AMaterialLibrary.Materials")->Materials); },
+            [](const Ref<Self>& self) { return Calls::get_Materials<PyCall>(self.get<Self>("AMaterialLibrary.Materials")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AMaterialLibrary.Materials");
-                object->Materials = Bridge<std::map<std::string, FMaterialDesc>>::in(value, "AMaterialLibrary.Materials");
-                object->PostPropertyChanged("Materials");
+                Calls::set_Materials<PyCall>(self.get<Self>("AMaterialLibrary.Materials"), value);
             },
             "Materials by name; mesh components refer to them in their Materials list.");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetMaterial",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Name, const PyArg& Material, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AMaterialLibrary.SetMaterial()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Name", !isMissing(Name), true}, {"Material", !isMissing(Material), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NameValue = Bridge<std::string>::in(Name, "AMaterialLibrary.SetMaterial(): argument 'Name'");
-                auto MaterialValue = Bridge<FMaterialDesc>::in(Material, "AMaterialLibrary.SetMaterial(): argument 'Material'");
-                object->SetMaterial(NameValue, MaterialValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetMaterial<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&Name, &Material}, true});
             },
             py::arg("Name") = sp::pybind::missingArgument(),
             py::arg("Material") = sp::pybind::missingArgument(),
@@ -865,58 +619,40 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetMaterial",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Name, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AMaterialLibrary.GetMaterial()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Name", !isMissing(Name), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto NameValue = Bridge<std::string>::in(Name, "AMaterialLibrary.GetMaterial(): argument 'Name'");
-                auto result = object->GetMaterial(NameValue);
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FMaterialDesc>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetMaterial<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Name}, true});
             },
             py::arg("Name") = sp::pybind::missingArgument(),
             "GetMaterial(self, *, Name: str) -> FMaterialDesc\n\nReturns the material a mesh slot named Name gets: this library's, else the built-in one, else the\ndefault grey one.");
         cls.def(
             "GetBuiltinMaterialNames",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AMaterialLibrary.GetBuiltinMaterialNames()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetBuiltinMaterialNames();
-                return Bridge<std::vector<std::string>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetBuiltinMaterialNames<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetBuiltinMaterialNames(self) -> list[str]\n\nReturns the names of the built-in materials.");
     }
     {
         using Self = AMultiViewCameraRig;
+        using Calls = sp::generated::engine::AMultiViewCameraRigCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "AMultiViewCameraRig", "A ring of cameras around the rig's origin in its XY plane, all looking at the origin.");
         cls.attr("__sp_class__") = "AMultiViewCameraRig";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property_readonly(
             "Cameras",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("AMultiViewCameraRig.Cameras")->Cameras;
-                return Bridge<std::vector<UCameraSensorComponent*>>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_Cameras<PyCall>(self.get<Self>("AMultiViewCameraRig.Cameras")); },
             "The cameras, counter-clockwise from the rig's -X side (camera 0 looks along +X).");
         cls.def_property_readonly(
             "Radius",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("AMultiViewCameraRig.Radius")->Radius;
-                return Bridge<double>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_Radius<PyCall>(self.get<Self>("AMultiViewCameraRig.Radius")); },
             "Ring radius in metres.");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetRing",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NumViews, const PyArg& NewRadius, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AMultiViewCameraRig.SetRing()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NumViews", !isMissing(NumViews), true}, {"NewRadius", !isMissing(NewRadius), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NumViewsValue = Bridge<int32_t>::in(NumViews, "AMultiViewCameraRig.SetRing(): argument 'NumViews'");
-                auto NewRadiusValue = Bridge<double>::in(NewRadius, "AMultiViewCameraRig.SetRing(): argument 'NewRadius'");
-                object->SetRing(NumViewsValue, NewRadiusValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetRing<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&NumViews, &NewRadius}, true});
             },
             py::arg("NumViews") = sp::pybind::missingArgument(),
             py::arg("NewRadius") = sp::pybind::missingArgument(),
@@ -924,14 +660,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "ConfigureCameras",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Width, const PyArg& Height, const PyArg& Modalities, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AMultiViewCameraRig.ConfigureCameras()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Width", !isMissing(Width), true}, {"Height", !isMissing(Height), true}, {"Modalities", !isMissing(Modalities), true}});
-                Self* object = self.get<Self>(kContext);
-                auto WidthValue = Bridge<int32_t>::in(Width, "AMultiViewCameraRig.ConfigureCameras(): argument 'Width'");
-                auto HeightValue = Bridge<int32_t>::in(Height, "AMultiViewCameraRig.ConfigureCameras(): argument 'Height'");
-                auto ModalitiesValue = Bridge<std::vector<ECameraModality>>::in(Modalities, "AMultiViewCameraRig.ConfigureCameras(): argument 'Modalities'");
-                object->ConfigureCameras(WidthValue, HeightValue, ModalitiesValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_ConfigureCameras<PyCall>(self, {positional, extra, std::array<const PyArg*, 3>{&Width, &Height, &Modalities}, true});
             },
             py::arg("Width") = sp::pybind::missingArgument(),
             py::arg("Height") = sp::pybind::missingArgument(),
@@ -940,46 +670,37 @@ void spear_bind_engine(py::module_& m) {
     }
     {
         using Self = ANavMeshBoundsVolume;
+        using Calls = sp::generated::engine::ANavMeshBoundsVolumeCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "ANavMeshBoundsVolume", "Where navigation is built: the box of its BoxComponent (which collides with nothing).");
         cls.attr("__sp_class__") = "ANavMeshBoundsVolume";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property_readonly(
             "BoxComponent",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("ANavMeshBoundsVolume.BoxComponent")->BoxComponent;
-                sp::reflect::checkNotNull(value, "ANavMeshBoundsVolume.BoxComponent");
-                return Bridge<UBoxComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_BoxComponent<PyCall>(self.get<Self>("ANavMeshBoundsVolume.BoxComponent")); },
             "The volume's box (the root component); BoxExtent and the actor's transform place it.");
         sp::pybind::nameProperties(cls);
     }
     {
         using Self = APCGVolume;
+        using Calls = sp::generated::engine::APCGVolumeCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "APCGVolume", "A box to generate in: its BoxComponent (which collides with nothing) bounds the UPCGComponent's work.");
         cls.attr("__sp_class__") = "APCGVolume";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property_readonly(
             "BoxComponent",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("APCGVolume.BoxComponent")->BoxComponent;
-                sp::reflect::checkNotNull(value, "APCGVolume.BoxComponent");
-                return Bridge<UBoxComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_BoxComponent<PyCall>(self.get<Self>("APCGVolume.BoxComponent")); },
             "The generation's box (the root component).");
         cls.def_property_readonly(
             "PCGComponent",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("APCGVolume.PCGComponent")->PCGComponent;
-                sp::reflect::checkNotNull(value, "APCGVolume.PCGComponent");
-                return Bridge<UPCGComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_PCGComponent<PyCall>(self.get<Self>("APCGVolume.PCGComponent")); },
             "The generator.");
         sp::pybind::nameProperties(cls);
     }
     {
         using Self = APlayerController;
+        using Calls = sp::generated::engine::APlayerControllerCalls;
         py::class_<Ref<Self>, Ref<AController>> cls(m, "APlayerController", "A player's controller: a player index, a view target, and the player's input for its pawn.");
         cls.attr("__sp_class__") = "APlayerController";
         sp::pybind::useBareTypeName(cls);
@@ -988,24 +709,15 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetViewTarget",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "APlayerController.GetViewTarget()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetViewTarget();
-                return Bridge<AActor*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetViewTarget<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetViewTarget(self) -> AActor | None\n\nReturns the actor the player views the world from: the set view target, else the pawn, else this\ncontroller.");
         cls.def(
             "SetViewTargetWithBlend",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewViewTarget, const PyArg& BlendTime, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "APlayerController.SetViewTargetWithBlend()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewViewTarget", !isMissing(NewViewTarget), true}, {"BlendTime", !isMissing(BlendTime), false}});
-                Self* object = self.get<Self>(kContext);
-                auto NewViewTargetValue = Bridge<AActor*>::in(NewViewTarget, "APlayerController.SetViewTargetWithBlend(): argument 'NewViewTarget'");
-                SP_CHECK(NewViewTargetValue, sp::InvalidArgument, "APlayerController.SetViewTargetWithBlend(): argument 'NewViewTarget'", " must not be None");
-                double BlendTimeValue = isMissing(BlendTime) ? double(0.0) : Bridge<double>::in(BlendTime, "APlayerController.SetViewTargetWithBlend(): argument 'BlendTime'");
-                object->SetViewTargetWithBlend(NewViewTargetValue, BlendTimeValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetViewTargetWithBlend<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&NewViewTarget, &BlendTime}, true});
             },
             py::arg("NewViewTarget") = sp::pybind::missingArgument(),
             py::arg("BlendTime") = sp::pybind::missingArgument(),
@@ -1013,279 +725,204 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetPlayerViewPoint",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "APlayerController.GetPlayerViewPoint()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                FVector LocationOut{};
-                FRotator RotationOut{};
-                object->GetPlayerViewPoint(LocationOut, RotationOut);
-                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
-                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "APlayerController").attr("GetPlayerViewPointResult"));
-                return (*resultType)(py::arg("Location") = Bridge<FVector>::out(LocationOut), py::arg("Rotation") = Bridge<FRotator>::out(RotationOut));
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetPlayerViewPoint<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetPlayerViewPoint(self) -> GetPlayerViewPointResult\n\nReturns the player's view point: the view target's location and the control rotation.");
         cls.def(
             "AddYawInput",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Val, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "APlayerController.AddYawInput()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Val", !isMissing(Val), true}});
-                Self* object = self.get<Self>(kContext);
-                auto ValValue = Bridge<double>::in(Val, "APlayerController.AddYawInput(): argument 'Val'");
-                object->AddYawInput(ValValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_AddYawInput<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Val}, true});
             },
             py::arg("Val") = sp::pybind::missingArgument(),
             "AddYawInput(self, *, Val: float) -> None\n\nAdds Val degrees of yaw to the control rotation.");
         cls.def(
             "AddPitchInput",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Val, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "APlayerController.AddPitchInput()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Val", !isMissing(Val), true}});
-                Self* object = self.get<Self>(kContext);
-                auto ValValue = Bridge<double>::in(Val, "APlayerController.AddPitchInput(): argument 'Val'");
-                object->AddPitchInput(ValValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_AddPitchInput<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Val}, true});
             },
             py::arg("Val") = sp::pybind::missingArgument(),
             "AddPitchInput(self, *, Val: float) -> None\n\nAdds Val degrees of pitch to the control rotation, keeping pitch within [-89, 89].");
         cls.def(
             "AddRollInput",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Val, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "APlayerController.AddRollInput()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Val", !isMissing(Val), true}});
-                Self* object = self.get<Self>(kContext);
-                auto ValValue = Bridge<double>::in(Val, "APlayerController.AddRollInput(): argument 'Val'");
-                object->AddRollInput(ValValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_AddRollInput<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Val}, true});
             },
             py::arg("Val") = sp::pybind::missingArgument(),
             "AddRollInput(self, *, Val: float) -> None\n\nAdds Val degrees of roll to the control rotation.");
     }
     {
         using Self = APlayerStart;
+        using Calls = sp::generated::engine::APlayerStartCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "APlayerStart", "Where a player starts.");
         cls.attr("__sp_class__") = "APlayerStart";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "PlayerStartTag",
-            [](const Ref<Self>& self) { return Bridge<std::string>::out(self.get<Self>("APlayerStart.PlayerStartTag")->PlayerStartTag); },
+            [](const Ref<Self>& self) { return Calls::get_PlayerStartTag<PyCall>(self.get<Self>("APlayerStart.PlayerStartTag")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("APlayerStart.PlayerStartTag");
-                object->PlayerStartTag = Bridge<std::string>::in(value, "APlayerStart.PlayerStartTag");
-                object->PostPropertyChanged("PlayerStartTag");
+                Calls::set_PlayerStartTag<PyCall>(self.get<Self>("APlayerStart.PlayerStartTag"), value);
             },
             "Chooses this start by name (AGameModeBase.FindPlayerStart's IncomingName).");
         sp::pybind::nameProperties(cls);
     }
     {
         using Self = APointLight;
+        using Calls = sp::generated::engine::APointLightCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "APointLight", "An actor with a point light as its root.");
         cls.attr("__sp_class__") = "APointLight";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property_readonly(
             "LightComponent",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("APointLight.LightComponent")->LightComponent;
-                sp::reflect::checkNotNull(value, "APointLight.LightComponent");
-                return Bridge<UPointLightComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_LightComponent<PyCall>(self.get<Self>("APointLight.LightComponent")); },
             "The light (also the root component).");
         sp::pybind::nameProperties(cls);
     }
     {
         using Self = ARecastNavMesh;
+        using Calls = sp::generated::engine::ARecastNavMeshCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "ARecastNavMesh", "Navigation data for one agent profile: a tiled Recast navigation mesh and the queries on it.");
         cls.attr("__sp_class__") = "ARecastNavMesh";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "AgentName",
-            [](const Ref<Self>& self) { return Bridge<std::string>::out(self.get<Self>("ARecastNavMesh.AgentName")->AgentName); },
+            [](const Ref<Self>& self) { return Calls::get_AgentName<PyCall>(self.get<Self>("ARecastNavMesh.AgentName")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("ARecastNavMesh.AgentName");
-                object->AgentName = Bridge<std::string>::in(value, "ARecastNavMesh.AgentName");
-                object->PostPropertyChanged("AgentName");
+                Calls::set_AgentName<PyCall>(self.get<Self>("ARecastNavMesh.AgentName"), value);
             },
             "The agent profile's name (UNavigationSystemV1.GetNavDataForAgentName finds it by this).");
         cls.def_property(
             "AgentRadius",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ARecastNavMesh.AgentRadius")->AgentRadius); },
+            [](const Ref<Self>& self) { return Calls::get_AgentRadius<PyCall>(self.get<Self>("ARecastNavMesh.AgentRadius")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("ARecastNavMesh.AgentRadius");
-                object->AgentRadius = Bridge<double>::in(value, "ARecastNavMesh.AgentRadius");
-                object->PostPropertyChanged("AgentRadius");
+                Calls::set_AgentRadius<PyCall>(self.get<Self>("ARecastNavMesh.AgentRadius"), value);
             },
             "Clearance kept from walls and edges, metres (>= 0).");
         cls.def_property(
             "AgentHeight",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ARecastNavMesh.AgentHeight")->AgentHeight); },
+            [](const Ref<Self>& self) { return Calls::get_AgentHeight<PyCall>(self.get<Self>("ARecastNavMesh.AgentHeight")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("ARecastNavMesh.AgentHeight");
-                object->AgentHeight = Bridge<double>::in(value, "ARecastNavMesh.AgentHeight");
-                object->PostPropertyChanged("AgentHeight");
+                Calls::set_AgentHeight<PyCall>(self.get<Self>("ARecastNavMesh.AgentHeight"), value);
             },
             "Headroom the agent needs, metres (> 0).");
         cls.def_property(
             "AgentMaxSlope",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ARecastNavMesh.AgentMaxSlope")->AgentMaxSlope); },
+            [](const Ref<Self>& self) { return Calls::get_AgentMaxSlope<PyCall>(self.get<Self>("ARecastNavMesh.AgentMaxSlope")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("ARecastNavMesh.AgentMaxSlope");
-                object->AgentMaxSlope = Bridge<double>::in(value, "ARecastNavMesh.AgentMaxSlope");
-                object->PostPropertyChanged("AgentMaxSlope");
+                Calls::set_AgentMaxSlope<PyCall>(self.get<Self>("ARecastNavMesh.AgentMaxSlope"), value);
             },
             "Steepest walkable ground, degrees in (0, 90).");
         cls.def_property(
             "AgentMaxStepHeight",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ARecastNavMesh.AgentMaxStepHeight")->AgentMaxStepHeight); },
+            [](const Ref<Self>& self) { return Calls::get_AgentMaxStepHeight<PyCall>(self.get<Self>("ARecastNavMesh.AgentMaxStepHeight")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("ARecastNavMesh.AgentMaxStepHeight");
-                object->AgentMaxStepHeight = Bridge<double>::in(value, "ARecastNavMesh.AgentMaxStepHeight");
-                object->PostPropertyChanged("AgentMaxStepHeight");
+                Calls::set_AgentMaxStepHeight<PyCall>(self.get<Self>("ARecastNavMesh.AgentMaxStepHeight"), value);
             },
             "Highest ledge the agent steps up or down, metres (>= 0).");
         cls.def_property(
             "CellSize",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ARecastNavMesh.CellSize")->CellSize); },
+            [](const Ref<Self>& self) { return Calls::get_CellSize<PyCall>(self.get<Self>("ARecastNavMesh.CellSize")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("ARecastNavMesh.CellSize");
-                object->CellSize = Bridge<double>::in(value, "ARecastNavMesh.CellSize");
-                object->PostPropertyChanged("CellSize");
+                Calls::set_CellSize<PyCall>(self.get<Self>("ARecastNavMesh.CellSize"), value);
             },
             "Horizontal voxel size, metres (> 0): smaller is finer and slower to build.");
         cls.def_property(
             "CellHeight",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ARecastNavMesh.CellHeight")->CellHeight); },
+            [](const Ref<Self>& self) { return Calls::get_CellHeight<PyCall>(self.get<Self>("ARecastNavMesh.CellHeight")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("ARecastNavMesh.CellHeight");
-                object->CellHeight = Bridge<double>::in(value, "ARecastNavMesh.CellHeight");
-                object->PostPropertyChanged("CellHeight");
+                Calls::set_CellHeight<PyCall>(self.get<Self>("ARecastNavMesh.CellHeight"), value);
             },
             "Vertical voxel size, metres (> 0).");
         cls.def_property(
             "TileSize",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ARecastNavMesh.TileSize")->TileSize); },
+            [](const Ref<Self>& self) { return Calls::get_TileSize<PyCall>(self.get<Self>("ARecastNavMesh.TileSize")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("ARecastNavMesh.TileSize");
-                object->TileSize = Bridge<double>::in(value, "ARecastNavMesh.TileSize");
-                object->PostPropertyChanged("TileSize");
+                Calls::set_TileSize<PyCall>(self.get<Self>("ARecastNavMesh.TileSize"), value);
             },
             "Side of a tile, metres (at least 8 cells): the unit rebuilt when geometry changes.");
         cls.def_property(
             "MinRegionArea",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ARecastNavMesh.MinRegionArea")->MinRegionArea); },
+            [](const Ref<Self>& self) { return Calls::get_MinRegionArea<PyCall>(self.get<Self>("ARecastNavMesh.MinRegionArea")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("ARecastNavMesh.MinRegionArea");
-                object->MinRegionArea = Bridge<double>::in(value, "ARecastNavMesh.MinRegionArea");
-                object->PostPropertyChanged("MinRegionArea");
+                Calls::set_MinRegionArea<PyCall>(self.get<Self>("ARecastNavMesh.MinRegionArea"), value);
             },
             "Walkable islands smaller than this are dropped, square metres (>= 0).");
         cls.def_property(
             "bRebuildAutomatically",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("ARecastNavMesh.bRebuildAutomatically")->bRebuildAutomatically); },
+            [](const Ref<Self>& self) { return Calls::get_bRebuildAutomatically<PyCall>(self.get<Self>("ARecastNavMesh.bRebuildAutomatically")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("ARecastNavMesh.bRebuildAutomatically");
-                object->bRebuildAutomatically = Bridge<bool>::in(value, "ARecastNavMesh.bRebuildAutomatically");
-                object->PostPropertyChanged("bRebuildAutomatically");
+                Calls::set_bRebuildAutomatically<PyCall>(self.get<Self>("ARecastNavMesh.bRebuildAutomatically"), value);
             },
             "Whether geometry changes rebuild the tiles under them before the next query (else only\nRebuildNavigation does).");
         cls.def_property(
             "RandomSeed",
-            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("ARecastNavMesh.RandomSeed")->RandomSeed); },
+            [](const Ref<Self>& self) { return Calls::get_RandomSeed<PyCall>(self.get<Self>("ARecastNavMesh.RandomSeed")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("ARecastNavMesh.RandomSeed");
-                object->SetRandomSeed(Bridge<int32_t>::in(value, "ARecastNavMesh.RandomSeed"));
-                object->PostPropertyChanged("RandomSeed");
+                Calls::set_RandomSeed<PyCall>(self.get<Self>("ARecastNavMesh.RandomSeed"), value);
             },
             "Seed of the random points' generator (SetRandomSeed restarts the sequence).");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetRandomSeed",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Seed, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ARecastNavMesh.SetRandomSeed()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Seed", !isMissing(Seed), true}});
-                Self* object = self.get<Self>(kContext);
-                auto SeedValue = Bridge<int32_t>::in(Seed, "ARecastNavMesh.SetRandomSeed(): argument 'Seed'");
-                object->SetRandomSeed(SeedValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetRandomSeed<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Seed}, true});
             },
             py::arg("Seed") = sp::pybind::missingArgument(),
             "SetRandomSeed(self, *, Seed: int) -> None\n\nRestarts the random point sequence from Seed.");
         cls.def(
             "RebuildNavigation",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ARecastNavMesh.RebuildNavigation()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                object->RebuildNavigation();
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_RebuildNavigation<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "RebuildNavigation(self) -> None\n\nBuilds the whole navigation mesh now from the current geometry and settings.");
         cls.def(
             "GetNumTiles",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ARecastNavMesh.GetNumTiles()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                auto result = object->GetNumTiles();
-                return Bridge<int32_t>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetNumTiles<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetNumTiles(self) -> int\n\nReturns the number of tiles that hold navigation polygons (building first if needed).");
         cls.def(
             "GetNumPolygons",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ARecastNavMesh.GetNumPolygons()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                auto result = object->GetNumPolygons();
-                return Bridge<int32_t>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetNumPolygons<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetNumPolygons(self) -> int\n\nReturns the number of navigation polygons.");
         cls.def(
             "GetNavigableArea",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ARecastNavMesh.GetNavigableArea()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                auto result = object->GetNavigableArea();
-                return Bridge<double>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetNavigableArea<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetNavigableArea(self) -> float\n\nReturns the navigable area in square metres (horizontal projection).");
         cls.def(
             "GetLastBuildSeconds",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ARecastNavMesh.GetLastBuildSeconds()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetLastBuildSeconds();
-                return Bridge<double>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetLastBuildSeconds<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetLastBuildSeconds(self) -> float\n\nReturns the seconds the last build or tile rebuild took.");
         cls.def(
             "GetLastBuildTileCount",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ARecastNavMesh.GetLastBuildTileCount()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetLastBuildTileCount();
-                return Bridge<int32_t>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetLastBuildTileCount<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetLastBuildTileCount(self) -> int\n\nReturns the number of tiles the last build or rebuild voxelised.");
         cls.def(
             "FindPath",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Start, const PyArg& End, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ARecastNavMesh.FindPath()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Start", !isMissing(Start), true}, {"End", !isMissing(End), true}});
-                Self* object = self.get<Self>(kContext);
-                auto StartValue = Bridge<FVector>::in(Start, "ARecastNavMesh.FindPath(): argument 'Start'");
-                auto EndValue = Bridge<FVector>::in(End, "ARecastNavMesh.FindPath(): argument 'End'");
-                sp::reflect::SpArray<double> PathPointsOut{};
-                double PathLengthOut{};
-                auto result = object->FindPath(StartValue, EndValue, PathPointsOut, PathLengthOut);
-                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
-                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "ARecastNavMesh").attr("FindPathResult"));
-                return (*resultType)(py::arg("ReturnValue") = Bridge<ENavigationQueryResult>::out(result), py::arg("PathPoints") = Bridge<sp::reflect::SpArray<double>>::out(PathPointsOut), py::arg("PathLength") = Bridge<double>::out(PathLengthOut));
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_FindPath<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&Start, &End}, true});
             },
             py::arg("Start") = sp::pybind::missingArgument(),
             py::arg("End") = sp::pybind::missingArgument(),
@@ -1293,19 +930,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "FindPaths",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& StartPoints, const PyArg& EndPoints, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ARecastNavMesh.FindPaths()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"StartPoints", !isMissing(StartPoints), true}, {"EndPoints", !isMissing(EndPoints), true}});
-                Self* object = self.get<Self>(kContext);
-                auto StartPointsValue = Bridge<sp::reflect::SpArray<double>>::in(StartPoints, "ARecastNavMesh.FindPaths(): argument 'StartPoints'");
-                auto EndPointsValue = Bridge<sp::reflect::SpArray<double>>::in(EndPoints, "ARecastNavMesh.FindPaths(): argument 'EndPoints'");
-                sp::reflect::SpArray<double> PathPointsOut{};
-                sp::reflect::SpArray<int64_t> PathStartsOut{};
-                sp::reflect::SpArray<double> LengthsOut{};
-                sp::reflect::SpArray<uint8_t> ResultsOut{};
-                object->FindPaths(StartPointsValue, EndPointsValue, PathPointsOut, PathStartsOut, LengthsOut, ResultsOut);
-                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
-                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "ARecastNavMesh").attr("FindPathsResult"));
-                return (*resultType)(py::arg("PathPoints") = Bridge<sp::reflect::SpArray<double>>::out(PathPointsOut), py::arg("PathStarts") = Bridge<sp::reflect::SpArray<int64_t>>::out(PathStartsOut), py::arg("Lengths") = Bridge<sp::reflect::SpArray<double>>::out(LengthsOut), py::arg("Results") = Bridge<sp::reflect::SpArray<uint8_t>>::out(ResultsOut));
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_FindPaths<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&StartPoints, &EndPoints}, true});
             },
             py::arg("StartPoints") = sp::pybind::missingArgument(),
             py::arg("EndPoints") = sp::pybind::missingArgument(),
@@ -1313,13 +939,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetGeodesicDistance",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Start, const PyArg& End, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ARecastNavMesh.GetGeodesicDistance()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Start", !isMissing(Start), true}, {"End", !isMissing(End), true}});
-                Self* object = self.get<Self>(kContext);
-                auto StartValue = Bridge<FVector>::in(Start, "ARecastNavMesh.GetGeodesicDistance(): argument 'Start'");
-                auto EndValue = Bridge<FVector>::in(End, "ARecastNavMesh.GetGeodesicDistance(): argument 'End'");
-                auto result = object->GetGeodesicDistance(StartValue, EndValue);
-                return Bridge<double>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetGeodesicDistance<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&Start, &End}, true});
             },
             py::arg("Start") = sp::pybind::missingArgument(),
             py::arg("End") = sp::pybind::missingArgument(),
@@ -1327,25 +948,16 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetRandomPoints",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NumPoints, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ARecastNavMesh.GetRandomPoints()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NumPoints", !isMissing(NumPoints), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NumPointsValue = Bridge<int32_t>::in(NumPoints, "ARecastNavMesh.GetRandomPoints(): argument 'NumPoints'");
-                auto result = object->GetRandomPoints(NumPointsValue);
-                return Bridge<sp::reflect::SpArray<double>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetRandomPoints<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NumPoints}, true});
             },
             py::arg("NumPoints") = sp::pybind::missingArgument(),
             "GetRandomPoints(self, *, NumPoints: int) -> NDArray[np.float64]\n\nReturns NumPoints points drawn uniformly over the navigable area, as an (N, 3) array.");
         cls.def(
             "GetRandomReachablePointsInRadius",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Origins, const PyArg& Radius, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ARecastNavMesh.GetRandomReachablePointsInRadius()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Origins", !isMissing(Origins), true}, {"Radius", !isMissing(Radius), true}});
-                Self* object = self.get<Self>(kContext);
-                auto OriginsValue = Bridge<sp::reflect::SpArray<double>>::in(Origins, "ARecastNavMesh.GetRandomReachablePointsInRadius(): argument 'Origins'");
-                auto RadiusValue = Bridge<double>::in(Radius, "ARecastNavMesh.GetRandomReachablePointsInRadius(): argument 'Radius'");
-                auto result = object->GetRandomReachablePointsInRadius(OriginsValue, RadiusValue);
-                return Bridge<sp::reflect::SpArray<double>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetRandomReachablePointsInRadius<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&Origins, &Radius}, true});
             },
             py::arg("Origins") = sp::pybind::missingArgument(),
             py::arg("Radius") = sp::pybind::missingArgument(),
@@ -1353,16 +965,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "ProjectPointToNavigation",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Point, const PyArg& QueryExtent, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ARecastNavMesh.ProjectPointToNavigation()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Point", !isMissing(Point), true}, {"QueryExtent", !isMissing(QueryExtent), false}});
-                Self* object = self.get<Self>(kContext);
-                auto PointValue = Bridge<FVector>::in(Point, "ARecastNavMesh.ProjectPointToNavigation(): argument 'Point'");
-                FVector ProjectedLocationOut{};
-                FVector QueryExtentValue = isMissing(QueryExtent) ? FVector(FVector()) : Bridge<FVector>::in(QueryExtent, "ARecastNavMesh.ProjectPointToNavigation(): argument 'QueryExtent'");
-                auto result = object->ProjectPointToNavigation(PointValue, ProjectedLocationOut, QueryExtentValue);
-                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
-                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "ARecastNavMesh").attr("ProjectPointToNavigationResult"));
-                return (*resultType)(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("ProjectedLocation") = Bridge<FVector>::out(ProjectedLocationOut));
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_ProjectPointToNavigation<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&Point, &QueryExtent}, true});
             },
             py::arg("Point") = sp::pybind::missingArgument(),
             py::arg("QueryExtent") = sp::pybind::missingArgument(),
@@ -1370,13 +974,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "IsNavigable",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Point, const PyArg& MaxVerticalDistance, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ARecastNavMesh.IsNavigable()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Point", !isMissing(Point), true}, {"MaxVerticalDistance", !isMissing(MaxVerticalDistance), false}});
-                Self* object = self.get<Self>(kContext);
-                auto PointValue = Bridge<FVector>::in(Point, "ARecastNavMesh.IsNavigable(): argument 'Point'");
-                double MaxVerticalDistanceValue = isMissing(MaxVerticalDistance) ? double(0.5) : Bridge<double>::in(MaxVerticalDistance, "ARecastNavMesh.IsNavigable(): argument 'MaxVerticalDistance'");
-                auto result = object->IsNavigable(PointValue, MaxVerticalDistanceValue);
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_IsNavigable<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&Point, &MaxVerticalDistance}, true});
             },
             py::arg("Point") = sp::pybind::missingArgument(),
             py::arg("MaxVerticalDistance") = sp::pybind::missingArgument(),
@@ -1384,684 +983,483 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetNavMeshTriangles",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ARecastNavMesh.GetNavMeshTriangles()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                auto result = object->GetNavMeshTriangles();
-                return Bridge<sp::reflect::SpArray<double>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetNavMeshTriangles<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetNavMeshTriangles(self) -> NDArray[np.float64]\n\nReturns the mesh's surface as triangles, a (T, 3, 3) array of corners (for drawing a map).");
     }
     {
         using Self = ASkyLight;
+        using Calls = sp::generated::engine::ASkyLightCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "ASkyLight", "An actor with the sky light as its root.");
         cls.attr("__sp_class__") = "ASkyLight";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property_readonly(
             "SkyLightComponent",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("ASkyLight.SkyLightComponent")->SkyLightComponent;
-                sp::reflect::checkNotNull(value, "ASkyLight.SkyLightComponent");
-                return Bridge<USkyLightComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_SkyLightComponent<PyCall>(self.get<Self>("ASkyLight.SkyLightComponent")); },
             "The sky light (also the root component).");
         sp::pybind::nameProperties(cls);
     }
     {
         using Self = ASplineActor;
+        using Calls = sp::generated::engine::ASplineActorCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "ASplineActor", "An actor whose root is a spline (a path, a road's centre line).");
         cls.attr("__sp_class__") = "ASplineActor";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property_readonly(
             "SplineComponent",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("ASplineActor.SplineComponent")->SplineComponent;
-                sp::reflect::checkNotNull(value, "ASplineActor.SplineComponent");
-                return Bridge<USplineComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_SplineComponent<PyCall>(self.get<Self>("ASplineActor.SplineComponent")); },
             "The spline (the root component).");
         sp::pybind::nameProperties(cls);
     }
     {
         using Self = ASpotLight;
+        using Calls = sp::generated::engine::ASpotLightCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "ASpotLight", "An actor with a spot light as its root.");
         cls.attr("__sp_class__") = "ASpotLight";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property_readonly(
             "LightComponent",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("ASpotLight.LightComponent")->LightComponent;
-                sp::reflect::checkNotNull(value, "ASpotLight.LightComponent");
-                return Bridge<USpotLightComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_LightComponent<PyCall>(self.get<Self>("ASpotLight.LightComponent")); },
             "The light (also the root component); its cone points along the actor's forward axis.");
         sp::pybind::nameProperties(cls);
     }
     {
         using Self = AStaticMeshActor;
+        using Calls = sp::generated::engine::AStaticMeshActorCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "AStaticMeshActor", "An actor that shows one static mesh.");
         cls.attr("__sp_class__") = "AStaticMeshActor";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property_readonly(
             "StaticMeshComponent",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("AStaticMeshActor.StaticMeshComponent")->StaticMeshComponent;
-                sp::reflect::checkNotNull(value, "AStaticMeshActor.StaticMeshComponent");
-                return Bridge<UStaticMeshComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_StaticMeshComponent<PyCall>(self.get<Self>("AStaticMeshActor.StaticMeshComponent")); },
             "The mesh component (also the root component).");
         sp::pybind::nameProperties(cls);
     }
     {
         using Self = AStereoCameraRig;
+        using Calls = sp::generated::engine::AStereoCameraRigCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "AStereoCameraRig", "Two parallel cameras Baseline metres apart along the rig's Y axis, looking along its forward axis.");
         cls.attr("__sp_class__") = "AStereoCameraRig";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "Baseline",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AStereoCameraRig.Baseline")->Baseline); },
+            [](const Ref<Self>& self) { return Calls::get_Baseline<PyCall>(self.get<Self>("AStereoCameraRig.Baseline")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AStereoCameraRig.Baseline");
-                object->SetBaseline(Bridge<double>::in(value, "AStereoCameraRig.Baseline"));
-                object->PostPropertyChanged("Baseline");
+                Calls::set_Baseline<PyCall>(self.get<Self>("AStereoCameraRig.Baseline"), value);
             },
             "Distance between the two optical centres in metres (> 0); the left camera is at +Y.");
         cls.def_property_readonly(
             "LeftCamera",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("AStereoCameraRig.LeftCamera")->LeftCamera;
-                sp::reflect::checkNotNull(value, "AStereoCameraRig.LeftCamera");
-                return Bridge<UCameraSensorComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_LeftCamera<PyCall>(self.get<Self>("AStereoCameraRig.LeftCamera")); },
             "The left camera (at +Baseline/2 on the rig's Y axis, which points left).");
         cls.def_property_readonly(
             "RightCamera",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("AStereoCameraRig.RightCamera")->RightCamera;
-                sp::reflect::checkNotNull(value, "AStereoCameraRig.RightCamera");
-                return Bridge<UCameraSensorComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_RightCamera<PyCall>(self.get<Self>("AStereoCameraRig.RightCamera")); },
             "The right camera (at -Baseline/2 on the rig's Y axis).");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetBaseline",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewBaseline, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AStereoCameraRig.SetBaseline()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewBaseline", !isMissing(NewBaseline), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewBaselineValue = Bridge<double>::in(NewBaseline, "AStereoCameraRig.SetBaseline(): argument 'NewBaseline'");
-                object->SetBaseline(NewBaselineValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetBaseline<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewBaseline}, true});
             },
             py::arg("NewBaseline") = sp::pybind::missingArgument(),
             "SetBaseline(self, *, NewBaseline: float) -> None\n\nSets the baseline in metres (> 0) and moves both cameras.");
     }
     {
         using Self = ATriggerBox;
+        using Calls = sp::generated::engine::ATriggerBoxCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "ATriggerBox", "A box-shaped trigger volume: an actor whose root is a UBoxComponent.");
         cls.attr("__sp_class__") = "ATriggerBox";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property_readonly(
             "CollisionComponent",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("ATriggerBox.CollisionComponent")->CollisionComponent;
-                sp::reflect::checkNotNull(value, "ATriggerBox.CollisionComponent");
-                return Bridge<UBoxComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_CollisionComponent<PyCall>(self.get<Self>("ATriggerBox.CollisionComponent")); },
             "The trigger's shape (the root component).");
         sp::pybind::nameProperties(cls);
     }
     {
         using Self = ATriggerSphere;
+        using Calls = sp::generated::engine::ATriggerSphereCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "ATriggerSphere", "A sphere-shaped trigger volume: an actor whose root is a USphereComponent.");
         cls.attr("__sp_class__") = "ATriggerSphere";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property_readonly(
             "CollisionComponent",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("ATriggerSphere.CollisionComponent")->CollisionComponent;
-                sp::reflect::checkNotNull(value, "ATriggerSphere.CollisionComponent");
-                return Bridge<USphereComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_CollisionComponent<PyCall>(self.get<Self>("ATriggerSphere.CollisionComponent")); },
             "The trigger's shape (the root component).");
         sp::pybind::nameProperties(cls);
     }
     {
         using Self = AWheeledVehiclePawn;
+        using Calls = sp::generated::engine::AWheeledVehiclePawnCalls;
         py::class_<Ref<Self>, Ref<APawn>> cls(m, "AWheeledVehiclePawn", "A four-wheeled, rear-driven car on Bullet's raycast vehicle. Input actions (X component): \"Throttle\" in\n[-1, 1] (negative reverses), \"Steer\" in [-1, 1] (positive turns left), \"Brake\" in [0, 1] (all wheels),\n\"Handbrake\" in [0, 1] (rear wheels). Its X axis is forward.");
         cls.attr("__sp_class__") = "AWheeledVehiclePawn";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property_readonly(
             "Mesh",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("AWheeledVehiclePawn.Mesh")->Mesh;
-                sp::reflect::checkNotNull(value, "AWheeledVehiclePawn.Mesh");
-                return Bridge<UStaticMeshComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_Mesh<PyCall>(self.get<Self>("AWheeledVehiclePawn.Mesh")); },
             "The chassis (the root component): a simulated box; its scale is the car's size, its mass the car's.");
         cls.def_property_readonly(
             "Cabin",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("AWheeledVehiclePawn.Cabin")->Cabin;
-                sp::reflect::checkNotNull(value, "AWheeledVehiclePawn.Cabin");
-                return Bridge<UStaticMeshComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_Cabin<PyCall>(self.get<Self>("AWheeledVehiclePawn.Cabin")); },
             "The cabin on top of the chassis (no collision: the chassis box is the car's body).");
         cls.def_property_readonly(
             "WheelFrontLeft",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("AWheeledVehiclePawn.WheelFrontLeft")->WheelFrontLeft;
-                sp::reflect::checkNotNull(value, "AWheeledVehiclePawn.WheelFrontLeft");
-                return Bridge<UStaticMeshComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_WheelFrontLeft<PyCall>(self.get<Self>("AWheeledVehiclePawn.WheelFrontLeft")); },
             "The wheel meshes, which follow the simulated wheels (no collision: the wheels are rays).");
         cls.def_property_readonly(
             "WheelFrontRight",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("AWheeledVehiclePawn.WheelFrontRight")->WheelFrontRight;
-                sp::reflect::checkNotNull(value, "AWheeledVehiclePawn.WheelFrontRight");
-                return Bridge<UStaticMeshComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_WheelFrontRight<PyCall>(self.get<Self>("AWheeledVehiclePawn.WheelFrontRight")); },
             "");
         cls.def_property_readonly(
             "WheelRearLeft",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("AWheeledVehiclePawn.WheelRearLeft")->WheelRearLeft;
-                sp::reflect::checkNotNull(value, "AWheeledVehiclePawn.WheelRearLeft");
-                return Bridge<UStaticMeshComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_WheelRearLeft<PyCall>(self.get<Self>("AWheeledVehiclePawn.WheelRearLeft")); },
             "");
         cls.def_property_readonly(
             "WheelRearRight",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("AWheeledVehiclePawn.WheelRearRight")->WheelRearRight;
-                sp::reflect::checkNotNull(value, "AWheeledVehiclePawn.WheelRearRight");
-                return Bridge<UStaticMeshComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_WheelRearRight<PyCall>(self.get<Self>("AWheeledVehiclePawn.WheelRearRight")); },
             "");
         cls.def_property_readonly(
             "InputComponent",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("AWheeledVehiclePawn.InputComponent")->InputComponent;
-                sp::reflect::checkNotNull(value, "AWheeledVehiclePawn.InputComponent");
-                return Bridge<UInputComponent*>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_InputComponent<PyCall>(self.get<Self>("AWheeledVehiclePawn.InputComponent")); },
             "Receives the injected actions.");
         cls.def_property(
             "MaxEngineForce",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AWheeledVehiclePawn.MaxEngineForce")->MaxEngineForce); },
+            [](const Ref<Self>& self) { return Calls::get_MaxEngineForce<PyCall>(self.get<Self>("AWheeledVehiclePawn.MaxEngineForce")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AWheeledVehiclePawn.MaxEngineForce");
-                object->SetMaxEngineForce(Bridge<double>::in(value, "AWheeledVehiclePawn.MaxEngineForce"));
-                object->PostPropertyChanged("MaxEngineForce");
+                Calls::set_MaxEngineForce<PyCall>(self.get<Self>("AWheeledVehiclePawn.MaxEngineForce"), value);
             },
             "Driving force in newtons at full throttle, shared by the rear wheels (>= 0).");
         cls.def_property(
             "MaxBrakeForce",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AWheeledVehiclePawn.MaxBrakeForce")->MaxBrakeForce); },
+            [](const Ref<Self>& self) { return Calls::get_MaxBrakeForce<PyCall>(self.get<Self>("AWheeledVehiclePawn.MaxBrakeForce")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AWheeledVehiclePawn.MaxBrakeForce");
-                object->SetMaxBrakeForce(Bridge<double>::in(value, "AWheeledVehiclePawn.MaxBrakeForce"));
-                object->PostPropertyChanged("MaxBrakeForce");
+                Calls::set_MaxBrakeForce<PyCall>(self.get<Self>("AWheeledVehiclePawn.MaxBrakeForce"), value);
             },
             "Braking force in newtons per wheel at full brake (>= 0).");
         cls.def_property(
             "MaxSteerAngle",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AWheeledVehiclePawn.MaxSteerAngle")->MaxSteerAngle); },
+            [](const Ref<Self>& self) { return Calls::get_MaxSteerAngle<PyCall>(self.get<Self>("AWheeledVehiclePawn.MaxSteerAngle")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AWheeledVehiclePawn.MaxSteerAngle");
-                object->SetMaxSteerAngle(Bridge<double>::in(value, "AWheeledVehiclePawn.MaxSteerAngle"));
-                object->PostPropertyChanged("MaxSteerAngle");
+                Calls::set_MaxSteerAngle<PyCall>(self.get<Self>("AWheeledVehiclePawn.MaxSteerAngle"), value);
             },
             "Front wheels' steering angle in degrees at full steer, in [0, 80].");
         cls.def_property(
             "WheelRadius",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AWheeledVehiclePawn.WheelRadius")->WheelRadius); },
+            [](const Ref<Self>& self) { return Calls::get_WheelRadius<PyCall>(self.get<Self>("AWheeledVehiclePawn.WheelRadius")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AWheeledVehiclePawn.WheelRadius");
-                object->SetWheelRadius(Bridge<double>::in(value, "AWheeledVehiclePawn.WheelRadius"));
-                object->PostPropertyChanged("WheelRadius");
+                Calls::set_WheelRadius<PyCall>(self.get<Self>("AWheeledVehiclePawn.WheelRadius"), value);
             },
             "Tyre radius in metres (> 0).");
         cls.def_property(
             "SuspensionStiffness",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AWheeledVehiclePawn.SuspensionStiffness")->SuspensionStiffness); },
+            [](const Ref<Self>& self) { return Calls::get_SuspensionStiffness<PyCall>(self.get<Self>("AWheeledVehiclePawn.SuspensionStiffness")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AWheeledVehiclePawn.SuspensionStiffness");
-                object->SetSuspensionStiffness(Bridge<double>::in(value, "AWheeledVehiclePawn.SuspensionStiffness"));
-                object->PostPropertyChanged("SuspensionStiffness");
+                Calls::set_SuspensionStiffness<PyCall>(self.get<Self>("AWheeledVehiclePawn.SuspensionStiffness"), value);
             },
             "Suspension spring rate per kilogram of the car's mass, N/m/kg (> 0): the car sinks\n9.81 / (4 * SuspensionStiffness) metres under its weight.");
         cls.def_property(
             "TireFriction",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AWheeledVehiclePawn.TireFriction")->TireFriction); },
+            [](const Ref<Self>& self) { return Calls::get_TireFriction<PyCall>(self.get<Self>("AWheeledVehiclePawn.TireFriction")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AWheeledVehiclePawn.TireFriction");
-                object->SetTireFriction(Bridge<double>::in(value, "AWheeledVehiclePawn.TireFriction"));
-                object->PostPropertyChanged("TireFriction");
+                Calls::set_TireFriction<PyCall>(self.get<Self>("AWheeledVehiclePawn.TireFriction"), value);
             },
             "Tyre grip: the largest driving and cornering force over the load on the wheel (>= 0).");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetMaxEngineForce",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewForce, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AWheeledVehiclePawn.SetMaxEngineForce()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewForce", !isMissing(NewForce), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewForceValue = Bridge<double>::in(NewForce, "AWheeledVehiclePawn.SetMaxEngineForce(): argument 'NewForce'");
-                object->SetMaxEngineForce(NewForceValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetMaxEngineForce<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewForce}, true});
             },
             py::arg("NewForce") = sp::pybind::missingArgument(),
             "SetMaxEngineForce(self, *, NewForce: float) -> None\n\nSets MaxEngineForce (newtons, >= 0).");
         cls.def(
             "SetMaxBrakeForce",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewForce, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AWheeledVehiclePawn.SetMaxBrakeForce()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewForce", !isMissing(NewForce), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewForceValue = Bridge<double>::in(NewForce, "AWheeledVehiclePawn.SetMaxBrakeForce(): argument 'NewForce'");
-                object->SetMaxBrakeForce(NewForceValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetMaxBrakeForce<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewForce}, true});
             },
             py::arg("NewForce") = sp::pybind::missingArgument(),
             "SetMaxBrakeForce(self, *, NewForce: float) -> None\n\nSets MaxBrakeForce (newtons, >= 0).");
         cls.def(
             "SetMaxSteerAngle",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewAngle, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AWheeledVehiclePawn.SetMaxSteerAngle()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewAngle", !isMissing(NewAngle), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewAngleValue = Bridge<double>::in(NewAngle, "AWheeledVehiclePawn.SetMaxSteerAngle(): argument 'NewAngle'");
-                object->SetMaxSteerAngle(NewAngleValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetMaxSteerAngle<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewAngle}, true});
             },
             py::arg("NewAngle") = sp::pybind::missingArgument(),
             "SetMaxSteerAngle(self, *, NewAngle: float) -> None\n\nSets MaxSteerAngle (degrees, in [0, 80]).");
         cls.def(
             "SetWheelRadius",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewRadius, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AWheeledVehiclePawn.SetWheelRadius()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewRadius", !isMissing(NewRadius), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewRadiusValue = Bridge<double>::in(NewRadius, "AWheeledVehiclePawn.SetWheelRadius(): argument 'NewRadius'");
-                object->SetWheelRadius(NewRadiusValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetWheelRadius<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewRadius}, true});
             },
             py::arg("NewRadius") = sp::pybind::missingArgument(),
             "SetWheelRadius(self, *, NewRadius: float) -> None\n\nSets WheelRadius (metres, > 0).");
         cls.def(
             "SetSuspensionStiffness",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewStiffness, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AWheeledVehiclePawn.SetSuspensionStiffness()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewStiffness", !isMissing(NewStiffness), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewStiffnessValue = Bridge<double>::in(NewStiffness, "AWheeledVehiclePawn.SetSuspensionStiffness(): argument 'NewStiffness'");
-                object->SetSuspensionStiffness(NewStiffnessValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetSuspensionStiffness<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewStiffness}, true});
             },
             py::arg("NewStiffness") = sp::pybind::missingArgument(),
             "SetSuspensionStiffness(self, *, NewStiffness: float) -> None\n\nSets SuspensionStiffness (N/m/kg, > 0).");
         cls.def(
             "SetTireFriction",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewFriction, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AWheeledVehiclePawn.SetTireFriction()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewFriction", !isMissing(NewFriction), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewFrictionValue = Bridge<double>::in(NewFriction, "AWheeledVehiclePawn.SetTireFriction(): argument 'NewFriction'");
-                object->SetTireFriction(NewFrictionValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetTireFriction<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewFriction}, true});
             },
             py::arg("NewFriction") = sp::pybind::missingArgument(),
             "SetTireFriction(self, *, NewFriction: float) -> None\n\nSets TireFriction (>= 0).");
         cls.def(
             "GetForwardSpeed",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AWheeledVehiclePawn.GetForwardSpeed()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetForwardSpeed();
-                return Bridge<double>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetForwardSpeed<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetForwardSpeed(self) -> float\n\nReturns the speed along the car's forward axis in metres per second (negative when reversing).");
         cls.def(
             "GetNumWheels",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AWheeledVehiclePawn.GetNumWheels()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetNumWheels();
-                return Bridge<int32_t>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetNumWheels<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetNumWheels(self) -> int\n\nReturns the number of wheels.");
         cls.def(
             "GetWheelState",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& WheelIndex, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AWheeledVehiclePawn.GetWheelState()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"WheelIndex", !isMissing(WheelIndex), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto WheelIndexValue = Bridge<int32_t>::in(WheelIndex, "AWheeledVehiclePawn.GetWheelState(): argument 'WheelIndex'");
-                auto result = object->GetWheelState(WheelIndexValue);
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FWheelState>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetWheelState<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&WheelIndex}, true});
             },
             py::arg("WheelIndex") = sp::pybind::missingArgument(),
             "GetWheelState(self, *, WheelIndex: int) -> FWheelState\n\nReturns the state of wheel WheelIndex (0 front left, 1 front right, 2 rear left, 3 rear right).");
     }
     {
         using Self = UActorComponent;
+        using Calls = sp::generated::engine::UActorComponentCalls;
         py::class_<Ref<Self>, Ref<UObject>> cls(m, "UActorComponent", "A component that adds behaviour to the actor that owns it.");
         cls.attr("__sp_class__") = "UActorComponent";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "ComponentTags",
-            [](const Ref<Self>& self) { return Bridge<std::vector<std::string>>::out(self.get<Self>("UActorComponent.ComponentTags")->ComponentTags); },
+            [](const Ref<Self>& self) { return Calls::get_ComponentTags<PyCall>(self.get<Self>("UActorComponent.ComponentTags")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UActorComponent.ComponentTags");
-                object->ComponentTags = Bridge<std::vector<std::string>>::in(value, "UActorComponent.ComponentTags");
-                object->PostPropertyChanged("ComponentTags");
+                Calls::set_ComponentTags<PyCall>(self.get<Self>("UActorComponent.ComponentTags"), value);
             },
             "Tags for finding this component.");
         cls.def_property(
             "bTickEnabled",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UActorComponent.bTickEnabled")->bTickEnabled); },
+            [](const Ref<Self>& self) { return Calls::get_bTickEnabled<PyCall>(self.get<Self>("UActorComponent.bTickEnabled")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UActorComponent.bTickEnabled");
-                object->bTickEnabled = Bridge<bool>::in(value, "UActorComponent.bTickEnabled");
-                object->PostPropertyChanged("bTickEnabled");
+                Calls::set_bTickEnabled<PyCall>(self.get<Self>("UActorComponent.bTickEnabled"), value);
             },
             "Whether TickComponent runs every frame.");
         sp::pybind::nameProperties(cls);
         cls.def(
             "GetOwner",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UActorComponent.GetOwner()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetOwner();
-                return Bridge<AActor*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetOwner<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetOwner(self) -> AActor | None\n\nReturns the actor that owns this component.");
         cls.def(
             "ComponentHasTag",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Tag, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UActorComponent.ComponentHasTag()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Tag", !isMissing(Tag), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto TagValue = Bridge<std::string>::in(Tag, "UActorComponent.ComponentHasTag(): argument 'Tag'");
-                auto result = object->ComponentHasTag(TagValue);
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_ComponentHasTag<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Tag}, true});
             },
             py::arg("Tag") = sp::pybind::missingArgument(),
             "ComponentHasTag(self, *, Tag: str) -> bool\n\nReturns true when ComponentTags contains Tag.");
     }
     {
         using Self = USceneComponent;
+        using Calls = sp::generated::engine::USceneComponentCalls;
         py::class_<Ref<Self>, Ref<UActorComponent>> cls(m, "USceneComponent", "A component with a location, rotation and scale, that can be attached to another one.");
         cls.attr("__sp_class__") = "USceneComponent";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "RelativeLocation",
-            [](const Ref<Self>& self) { return Bridge<FVector>::out(self.get<Self>("USceneComponent.RelativeLocation")->RelativeLocation); },
+            [](const Ref<Self>& self) { return Calls::get_RelativeLocation<PyCall>(self.get<Self>("USceneComponent.RelativeLocation")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("USceneComponent.RelativeLocation");
-                object->SetRelativeLocation(Bridge<FVector>::in(value, "USceneComponent.RelativeLocation"));
-                object->PostPropertyChanged("RelativeLocation");
+                Calls::set_RelativeLocation<PyCall>(self.get<Self>("USceneComponent.RelativeLocation"), value);
             },
             "Location relative to the attach parent (or the world), in metres.");
         cls.def_property(
             "RelativeRotation",
-            [](const Ref<Self>& self) { return Bridge<FRotator>::out(self.get<Self>("USceneComponent.RelativeRotation")->RelativeRotation); },
+            [](const Ref<Self>& self) { return Calls::get_RelativeRotation<PyCall>(self.get<Self>("USceneComponent.RelativeRotation")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("USceneComponent.RelativeRotation");
-                object->SetRelativeRotation(Bridge<FRotator>::in(value, "USceneComponent.RelativeRotation"));
-                object->PostPropertyChanged("RelativeRotation");
+                Calls::set_RelativeRotation<PyCall>(self.get<Self>("USceneComponent.RelativeRotation"), value);
             },
             "Rotation relative to the attach parent (or the world).");
         cls.def_property(
             "RelativeScale3D",
-            [](const Ref<Self>& self) { return Bridge<FVector>::out(self.get<Self>("USceneComponent.RelativeScale3D")->RelativeScale3D); },
+            [](const Ref<Self>& self) { return Calls::get_RelativeScale3D<PyCall>(self.get<Self>("USceneComponent.RelativeScale3D")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("USceneComponent.RelativeScale3D");
-                object->SetRelativeScale3D(Bridge<FVector>::in(value, "USceneComponent.RelativeScale3D"));
-                object->PostPropertyChanged("RelativeScale3D");
+                Calls::set_RelativeScale3D<PyCall>(self.get<Self>("USceneComponent.RelativeScale3D"), value);
             },
             "Scale relative to the attach parent (or the world).");
         cls.def_property(
             "Mobility",
-            [](const Ref<Self>& self) { return Bridge<EComponentMobility>::out(self.get<Self>("USceneComponent.Mobility")->Mobility); },
+            [](const Ref<Self>& self) { return Calls::get_Mobility<PyCall>(self.get<Self>("USceneComponent.Mobility")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("USceneComponent.Mobility");
-                object->Mobility = Bridge<EComponentMobility>::in(value, "USceneComponent.Mobility");
-                object->PostPropertyChanged("Mobility");
+                Calls::set_Mobility<PyCall>(self.get<Self>("USceneComponent.Mobility"), value);
             },
             "Whether the component may move once in play.");
         cls.def_property(
             "bVisible",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("USceneComponent.bVisible")->bVisible); },
+            [](const Ref<Self>& self) { return Calls::get_bVisible<PyCall>(self.get<Self>("USceneComponent.bVisible")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("USceneComponent.bVisible");
-                object->bVisible = Bridge<bool>::in(value, "USceneComponent.bVisible");
-                object->PostPropertyChanged("bVisible");
+                Calls::set_bVisible<PyCall>(self.get<Self>("USceneComponent.bVisible"), value);
             },
             "Whether the component is rendered.");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetRelativeLocation",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewLocation, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.SetRelativeLocation()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewLocation", !isMissing(NewLocation), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewLocationValue = Bridge<FVector>::in(NewLocation, "USceneComponent.SetRelativeLocation(): argument 'NewLocation'");
-                object->SetRelativeLocation(NewLocationValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetRelativeLocation<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewLocation}, true});
             },
             py::arg("NewLocation") = sp::pybind::missingArgument(),
             "SetRelativeLocation(self, *, NewLocation: FVector) -> None\n\nSets the location relative to the attach parent; fails for a static component in play.");
         cls.def(
             "SetRelativeRotation",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewRotation, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.SetRelativeRotation()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewRotation", !isMissing(NewRotation), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewRotationValue = Bridge<FRotator>::in(NewRotation, "USceneComponent.SetRelativeRotation(): argument 'NewRotation'");
-                object->SetRelativeRotation(NewRotationValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetRelativeRotation<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewRotation}, true});
             },
             py::arg("NewRotation") = sp::pybind::missingArgument(),
             "SetRelativeRotation(self, *, NewRotation: FRotator) -> None\n\nSets the rotation relative to the attach parent; fails for a static component in play.");
         cls.def(
             "SetRelativeScale3D",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewScale3D, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.SetRelativeScale3D()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewScale3D", !isMissing(NewScale3D), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewScale3DValue = Bridge<FVector>::in(NewScale3D, "USceneComponent.SetRelativeScale3D(): argument 'NewScale3D'");
-                object->SetRelativeScale3D(NewScale3DValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetRelativeScale3D<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewScale3D}, true});
             },
             py::arg("NewScale3D") = sp::pybind::missingArgument(),
             "SetRelativeScale3D(self, *, NewScale3D: FVector) -> None\n\nSets the scale relative to the attach parent; fails for a static component in play.");
         cls.def(
             "SetRelativeTransform",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewTransform, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.SetRelativeTransform()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewTransform", !isMissing(NewTransform), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewTransformValue = Bridge<FTransform>::in(NewTransform, "USceneComponent.SetRelativeTransform(): argument 'NewTransform'");
-                object->SetRelativeTransform(NewTransformValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetRelativeTransform<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewTransform}, true});
             },
             py::arg("NewTransform") = sp::pybind::missingArgument(),
             "SetRelativeTransform(self, *, NewTransform: FTransform) -> None\n\nSets location, rotation and scale relative to the attach parent.");
         cls.def(
             "GetRelativeTransform",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.GetRelativeTransform()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetRelativeTransform();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FTransform>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetRelativeTransform<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetRelativeTransform(self) -> FTransform\n\nReturns the transform relative to the attach parent.");
         cls.def(
             "SetMobility",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewMobility, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.SetMobility()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewMobility", !isMissing(NewMobility), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewMobilityValue = Bridge<EComponentMobility>::in(NewMobility, "USceneComponent.SetMobility(): argument 'NewMobility'");
-                object->SetMobility(NewMobilityValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetMobility<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewMobility}, true});
             },
             py::arg("NewMobility") = sp::pybind::missingArgument(),
             "SetMobility(self, *, NewMobility: EComponentMobility) -> None\n\nSets the mobility (Static, Stationary or Movable).");
         cls.def(
             "GetComponentTransform",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.GetComponentTransform()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetComponentTransform();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FTransform>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetComponentTransform<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetComponentTransform(self) -> FTransform\n\nReturns the world-space transform.");
         cls.def(
             "GetComponentLocation",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.GetComponentLocation()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetComponentLocation();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetComponentLocation<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetComponentLocation(self) -> FVector\n\nReturns the world-space location in metres.");
         cls.def(
             "K2_GetComponentLocation",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.K2_GetComponentLocation()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->K2_GetComponentLocation();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_K2_GetComponentLocation<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "K2_GetComponentLocation(self) -> FVector\n\nReturns the world-space location in metres (the Blueprint name of GetComponentLocation).");
         cls.def(
             "GetComponentRotation",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.GetComponentRotation()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetComponentRotation();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FRotator>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetComponentRotation<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetComponentRotation(self) -> FRotator\n\nReturns the world-space rotation.");
         cls.def(
             "GetComponentScale",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.GetComponentScale()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetComponentScale();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetComponentScale<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetComponentScale(self) -> FVector\n\nReturns the world-space scale.");
         cls.def(
             "SetWorldLocation",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewLocation, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.SetWorldLocation()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewLocation", !isMissing(NewLocation), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewLocationValue = Bridge<FVector>::in(NewLocation, "USceneComponent.SetWorldLocation(): argument 'NewLocation'");
-                object->SetWorldLocation(NewLocationValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetWorldLocation<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewLocation}, true});
             },
             py::arg("NewLocation") = sp::pybind::missingArgument(),
             "SetWorldLocation(self, *, NewLocation: FVector) -> None\n\nMoves the component so that its world-space location is NewLocation.");
         cls.def(
             "SetWorldRotation",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewRotation, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.SetWorldRotation()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewRotation", !isMissing(NewRotation), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewRotationValue = Bridge<FRotator>::in(NewRotation, "USceneComponent.SetWorldRotation(): argument 'NewRotation'");
-                object->SetWorldRotation(NewRotationValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetWorldRotation<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewRotation}, true});
             },
             py::arg("NewRotation") = sp::pybind::missingArgument(),
             "SetWorldRotation(self, *, NewRotation: FRotator) -> None\n\nRotates the component so that its world-space rotation is NewRotation.");
         cls.def(
             "SetWorldTransform",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewTransform, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.SetWorldTransform()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewTransform", !isMissing(NewTransform), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewTransformValue = Bridge<FTransform>::in(NewTransform, "USceneComponent.SetWorldTransform(): argument 'NewTransform'");
-                object->SetWorldTransform(NewTransformValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetWorldTransform<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewTransform}, true});
             },
             py::arg("NewTransform") = sp::pybind::missingArgument(),
             "SetWorldTransform(self, *, NewTransform: FTransform) -> None\n\nSets the world-space transform.");
         cls.def(
             "GetForwardVector",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.GetForwardVector()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetForwardVector();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetForwardVector<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetForwardVector(self) -> FVector\n\nReturns the unit vector along the component's world-space X axis.");
         cls.def(
             "GetRightVector",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.GetRightVector()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetRightVector();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetRightVector<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetRightVector(self) -> FVector\n\nReturns the unit vector along the component's world-space Y axis (left).");
         cls.def(
             "GetUpVector",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.GetUpVector()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetUpVector();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetUpVector<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetUpVector(self) -> FVector\n\nReturns the unit vector along the component's world-space Z axis.");
         cls.def(
             "AttachToComponent",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Parent, const PyArg& bKeepWorldTransform, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.AttachToComponent()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Parent", !isMissing(Parent), true}, {"bKeepWorldTransform", !isMissing(bKeepWorldTransform), false}});
-                Self* object = self.get<Self>(kContext);
-                auto ParentValue = Bridge<USceneComponent*>::in(Parent, "USceneComponent.AttachToComponent(): argument 'Parent'");
-                SP_CHECK(ParentValue, sp::InvalidArgument, "USceneComponent.AttachToComponent(): argument 'Parent'", " must not be None");
-                bool bKeepWorldTransformValue = isMissing(bKeepWorldTransform) ? bool(false) : Bridge<bool>::in(bKeepWorldTransform, "USceneComponent.AttachToComponent(): argument 'bKeepWorldTransform'");
-                object->AttachToComponent(ParentValue, bKeepWorldTransformValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_AttachToComponent<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&Parent, &bKeepWorldTransform}, true});
             },
             py::arg("Parent") = sp::pybind::missingArgument(),
             py::arg("bKeepWorldTransform") = sp::pybind::missingArgument(),
@@ -2069,242 +1467,172 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "DetachFromComponent",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& bKeepWorldTransform, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.DetachFromComponent()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"bKeepWorldTransform", !isMissing(bKeepWorldTransform), false}});
-                Self* object = self.get<Self>(kContext);
-                bool bKeepWorldTransformValue = isMissing(bKeepWorldTransform) ? bool(true) : Bridge<bool>::in(bKeepWorldTransform, "USceneComponent.DetachFromComponent(): argument 'bKeepWorldTransform'");
-                object->DetachFromComponent(bKeepWorldTransformValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_DetachFromComponent<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&bKeepWorldTransform}, true});
             },
             py::arg("bKeepWorldTransform") = sp::pybind::missingArgument(),
             "DetachFromComponent(self, *, bKeepWorldTransform: bool = ...) -> None\n\nDetaches this component from its parent; keeps the world transform when bKeepWorldTransform is true.");
         cls.def(
             "GetAttachParent",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.GetAttachParent()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetAttachParent();
-                return Bridge<USceneComponent*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetAttachParent<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetAttachParent(self) -> USceneComponent | None\n\nReturns the component this one is attached to, or None.");
         cls.def(
             "GetChildrenComponents",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& bIncludeAllDescendants, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USceneComponent.GetChildrenComponents()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"bIncludeAllDescendants", !isMissing(bIncludeAllDescendants), false}});
-                const Self* object = self.get<Self>(kContext);
-                bool bIncludeAllDescendantsValue = isMissing(bIncludeAllDescendants) ? bool(false) : Bridge<bool>::in(bIncludeAllDescendants, "USceneComponent.GetChildrenComponents(): argument 'bIncludeAllDescendants'");
-                auto result = object->GetChildrenComponents(bIncludeAllDescendantsValue);
-                return Bridge<std::vector<USceneComponent*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetChildrenComponents<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&bIncludeAllDescendants}, true});
             },
             py::arg("bIncludeAllDescendants") = sp::pybind::missingArgument(),
             "GetChildrenComponents(self, *, bIncludeAllDescendants: bool = ...) -> list[USceneComponent]\n\nReturns the attached children, and their descendants when bIncludeAllDescendants is true.");
     }
     {
         using Self = UPrimitiveComponent;
+        using Calls = sp::generated::engine::UPrimitiveComponentCalls;
         py::class_<Ref<Self>, Ref<USceneComponent>> cls(m, "UPrimitiveComponent", "A scene component that has geometry.");
         cls.attr("__sp_class__") = "UPrimitiveComponent";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "bSimulatePhysics",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UPrimitiveComponent.bSimulatePhysics")->bSimulatePhysics); },
+            [](const Ref<Self>& self) { return Calls::get_bSimulatePhysics<PyCall>(self.get<Self>("UPrimitiveComponent.bSimulatePhysics")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPrimitiveComponent.bSimulatePhysics");
-                object->SetSimulatePhysics(Bridge<bool>::in(value, "UPrimitiveComponent.bSimulatePhysics"));
-                object->PostPropertyChanged("bSimulatePhysics");
+                Calls::set_bSimulatePhysics<PyCall>(self.get<Self>("UPrimitiveComponent.bSimulatePhysics"), value);
             },
             "Whether physics moves this component (gravity, forces, contacts); it must be Movable.");
         cls.def_property(
             "CollisionPrimitive",
-            [](const Ref<Self>& self) { return Bridge<ECollisionPrimitive>::out(self.get<Self>("UPrimitiveComponent.CollisionPrimitive")->CollisionPrimitive); },
+            [](const Ref<Self>& self) { return Calls::get_CollisionPrimitive<PyCall>(self.get<Self>("UPrimitiveComponent.CollisionPrimitive")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPrimitiveComponent.CollisionPrimitive");
-                object->CollisionPrimitive = Bridge<ECollisionPrimitive>::in(value, "UPrimitiveComponent.CollisionPrimitive");
-                object->PostPropertyChanged("CollisionPrimitive");
+                Calls::set_CollisionPrimitive<PyCall>(self.get<Self>("UPrimitiveComponent.CollisionPrimitive"), value);
             },
             "The collision geometry used by physics and traces.");
         cls.def_property(
             "MassInKg",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.MassInKg")->MassInKg); },
+            [](const Ref<Self>& self) { return Calls::get_MassInKg<PyCall>(self.get<Self>("UPrimitiveComponent.MassInKg")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPrimitiveComponent.MassInKg");
-                object->SetMassOverrideInKg(Bridge<double>::in(value, "UPrimitiveComponent.MassInKg"));
-                object->PostPropertyChanged("MassInKg");
+                Calls::set_MassInKg<PyCall>(self.get<Self>("UPrimitiveComponent.MassInKg"), value);
             },
             "Mass in kilograms (> 0 to simulate); inertia follows the collision shape at uniform density.");
         cls.def_property(
             "Friction",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.Friction")->Friction); },
+            [](const Ref<Self>& self) { return Calls::get_Friction<PyCall>(self.get<Self>("UPrimitiveComponent.Friction")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPrimitiveComponent.Friction");
-                object->SetFriction(Bridge<double>::in(value, "UPrimitiveComponent.Friction"));
-                object->PostPropertyChanged("Friction");
+                Calls::set_Friction<PyCall>(self.get<Self>("UPrimitiveComponent.Friction"), value);
             },
             "Coulomb friction coefficient (>= 0); the two coefficients at a contact are multiplied.");
         cls.def_property(
             "Restitution",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.Restitution")->Restitution); },
+            [](const Ref<Self>& self) { return Calls::get_Restitution<PyCall>(self.get<Self>("UPrimitiveComponent.Restitution")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPrimitiveComponent.Restitution");
-                object->SetRestitution(Bridge<double>::in(value, "UPrimitiveComponent.Restitution"));
-                object->PostPropertyChanged("Restitution");
+                Calls::set_Restitution<PyCall>(self.get<Self>("UPrimitiveComponent.Restitution"), value);
             },
             "Bounciness in [0, 1]; the two coefficients at a contact are multiplied.");
         cls.def_property(
             "LinearDamping",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.LinearDamping")->LinearDamping); },
+            [](const Ref<Self>& self) { return Calls::get_LinearDamping<PyCall>(self.get<Self>("UPrimitiveComponent.LinearDamping")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPrimitiveComponent.LinearDamping");
-                object->SetLinearDamping(Bridge<double>::in(value, "UPrimitiveComponent.LinearDamping"));
-                object->PostPropertyChanged("LinearDamping");
+                Calls::set_LinearDamping<PyCall>(self.get<Self>("UPrimitiveComponent.LinearDamping"), value);
             },
             "Fraction of linear velocity lost per second, in [0, 1].");
         cls.def_property(
             "AngularDamping",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPrimitiveComponent.AngularDamping")->AngularDamping); },
+            [](const Ref<Self>& self) { return Calls::get_AngularDamping<PyCall>(self.get<Self>("UPrimitiveComponent.AngularDamping")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPrimitiveComponent.AngularDamping");
-                object->SetAngularDamping(Bridge<double>::in(value, "UPrimitiveComponent.AngularDamping"));
-                object->PostPropertyChanged("AngularDamping");
+                Calls::set_AngularDamping<PyCall>(self.get<Self>("UPrimitiveComponent.AngularDamping"), value);
             },
             "Fraction of angular velocity lost per second, in [0, 1].");
         cls.def_property(
             "bGenerateOverlapEvents",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UPrimitiveComponent.bGenerateOverlapEvents")->bGenerateOverlapEvents); },
+            [](const Ref<Self>& self) { return Calls::get_bGenerateOverlapEvents<PyCall>(self.get<Self>("UPrimitiveComponent.bGenerateOverlapEvents")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPrimitiveComponent.bGenerateOverlapEvents");
-                object->bGenerateOverlapEvents = Bridge<bool>::in(value, "UPrimitiveComponent.bGenerateOverlapEvents");
-                object->PostPropertyChanged("bGenerateOverlapEvents");
+                Calls::set_bGenerateOverlapEvents<PyCall>(self.get<Self>("UPrimitiveComponent.bGenerateOverlapEvents"), value);
             },
             "Whether this component takes part in overlaps: two components overlap only when both have it set\n(as in UE). Shape components (UBoxComponent, USphereComponent) have it set by default.");
         cls.def_property(
             "bCanEverAffectNavigation",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UPrimitiveComponent.bCanEverAffectNavigation")->bCanEverAffectNavigation); },
+            [](const Ref<Self>& self) { return Calls::get_bCanEverAffectNavigation<PyCall>(self.get<Self>("UPrimitiveComponent.bCanEverAffectNavigation")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPrimitiveComponent.bCanEverAffectNavigation");
-                object->bCanEverAffectNavigation = Bridge<bool>::in(value, "UPrimitiveComponent.bCanEverAffectNavigation");
-                object->PostPropertyChanged("bCanEverAffectNavigation");
+                Calls::set_bCanEverAffectNavigation<PyCall>(self.get<Self>("UPrimitiveComponent.bCanEverAffectNavigation"), value);
             },
             "Whether navigation meshes are built over this component when it is Static and collides (as in UE).");
         sp::pybind::nameProperties(cls);
         cls.def(
             "GetBounds",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetBounds()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                FVector OriginOut{};
-                FVector BoxExtentOut{};
-                object->GetBounds(OriginOut, BoxExtentOut);
-                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
-                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "UPrimitiveComponent").attr("GetBoundsResult"));
-                return (*resultType)(py::arg("Origin") = Bridge<FVector>::out(OriginOut), py::arg("BoxExtent") = Bridge<FVector>::out(BoxExtentOut));
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetBounds<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetBounds(self) -> GetBoundsResult\n\nReturns the world-space axis-aligned bounds as centre Origin and half size BoxExtent.");
         cls.def(
             "SetSimulatePhysics",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& bSimulate, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetSimulatePhysics()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"bSimulate", !isMissing(bSimulate), true}});
-                Self* object = self.get<Self>(kContext);
-                auto bSimulateValue = Bridge<bool>::in(bSimulate, "UPrimitiveComponent.SetSimulatePhysics(): argument 'bSimulate'");
-                object->SetSimulatePhysics(bSimulateValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetSimulatePhysics<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&bSimulate}, true});
             },
             py::arg("bSimulate") = sp::pybind::missingArgument(),
             "SetSimulatePhysics(self, *, bSimulate: bool) -> None\n\nTurns physics simulation on or off; turning it on needs a Movable component with collision.");
         cls.def(
             "IsSimulatingPhysics",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.IsSimulatingPhysics()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->IsSimulatingPhysics();
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_IsSimulatingPhysics<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "IsSimulatingPhysics(self) -> bool\n\nReturns true while physics moves this component.");
         cls.def(
             "SetMassOverrideInKg",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& MassInKg, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetMassOverrideInKg()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"MassInKg", !isMissing(MassInKg), true}});
-                Self* object = self.get<Self>(kContext);
-                auto MassInKgValue = Bridge<double>::in(MassInKg, "UPrimitiveComponent.SetMassOverrideInKg(): argument 'MassInKg'");
-                object->SetMassOverrideInKg(MassInKgValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetMassOverrideInKg<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&MassInKg}, true});
             },
             py::arg("MassInKg") = sp::pybind::missingArgument(),
             "SetMassOverrideInKg(self, *, MassInKg: float) -> None\n\nSets the mass in kilograms (> 0).");
         cls.def(
             "SetFriction",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewFriction, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetFriction()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewFriction", !isMissing(NewFriction), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewFrictionValue = Bridge<double>::in(NewFriction, "UPrimitiveComponent.SetFriction(): argument 'NewFriction'");
-                object->SetFriction(NewFrictionValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetFriction<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewFriction}, true});
             },
             py::arg("NewFriction") = sp::pybind::missingArgument(),
             "SetFriction(self, *, NewFriction: float) -> None\n\nSets the Coulomb friction coefficient (finite, >= 0).");
         cls.def(
             "SetRestitution",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewRestitution, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetRestitution()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewRestitution", !isMissing(NewRestitution), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewRestitutionValue = Bridge<double>::in(NewRestitution, "UPrimitiveComponent.SetRestitution(): argument 'NewRestitution'");
-                object->SetRestitution(NewRestitutionValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetRestitution<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewRestitution}, true});
             },
             py::arg("NewRestitution") = sp::pybind::missingArgument(),
             "SetRestitution(self, *, NewRestitution: float) -> None\n\nSets the bounciness, in [0, 1].");
         cls.def(
             "SetLinearDamping",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewLinearDamping, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetLinearDamping()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewLinearDamping", !isMissing(NewLinearDamping), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewLinearDampingValue = Bridge<double>::in(NewLinearDamping, "UPrimitiveComponent.SetLinearDamping(): argument 'NewLinearDamping'");
-                object->SetLinearDamping(NewLinearDampingValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetLinearDamping<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewLinearDamping}, true});
             },
             py::arg("NewLinearDamping") = sp::pybind::missingArgument(),
             "SetLinearDamping(self, *, NewLinearDamping: float) -> None\n\nSets the fraction of linear velocity lost per second, in [0, 1].");
         cls.def(
             "SetAngularDamping",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewAngularDamping, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetAngularDamping()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewAngularDamping", !isMissing(NewAngularDamping), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewAngularDampingValue = Bridge<double>::in(NewAngularDamping, "UPrimitiveComponent.SetAngularDamping(): argument 'NewAngularDamping'");
-                object->SetAngularDamping(NewAngularDampingValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetAngularDamping<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewAngularDamping}, true});
             },
             py::arg("NewAngularDamping") = sp::pybind::missingArgument(),
             "SetAngularDamping(self, *, NewAngularDamping: float) -> None\n\nSets the fraction of angular velocity lost per second, in [0, 1].");
         cls.def(
             "GetMass",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetMass()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetMass();
-                return Bridge<double>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetMass<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetMass(self) -> float\n\nReturns the mass in kilograms.");
         cls.def(
             "AddForce",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Force, const PyArg& bAccelChange, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.AddForce()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Force", !isMissing(Force), true}, {"bAccelChange", !isMissing(bAccelChange), false}});
-                Self* object = self.get<Self>(kContext);
-                auto ForceValue = Bridge<FVector>::in(Force, "UPrimitiveComponent.AddForce(): argument 'Force'");
-                bool bAccelChangeValue = isMissing(bAccelChange) ? bool(false) : Bridge<bool>::in(bAccelChange, "UPrimitiveComponent.AddForce(): argument 'bAccelChange'");
-                object->AddForce(ForceValue, bAccelChangeValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_AddForce<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&Force, &bAccelChange}, true});
             },
             py::arg("Force") = sp::pybind::missingArgument(),
             py::arg("bAccelChange") = sp::pybind::missingArgument(),
@@ -2312,25 +1640,16 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "AddTorqueInRadians",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Torque, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.AddTorqueInRadians()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Torque", !isMissing(Torque), true}});
-                Self* object = self.get<Self>(kContext);
-                auto TorqueValue = Bridge<FVector>::in(Torque, "UPrimitiveComponent.AddTorqueInRadians(): argument 'Torque'");
-                object->AddTorqueInRadians(TorqueValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_AddTorqueInRadians<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Torque}, true});
             },
             py::arg("Torque") = sp::pybind::missingArgument(),
             "AddTorqueInRadians(self, *, Torque: FVector) -> None\n\nAdds a torque in newton-metres about world axes for the next physics step.");
         cls.def(
             "AddImpulse",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Impulse, const PyArg& bVelChange, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.AddImpulse()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Impulse", !isMissing(Impulse), true}, {"bVelChange", !isMissing(bVelChange), false}});
-                Self* object = self.get<Self>(kContext);
-                auto ImpulseValue = Bridge<FVector>::in(Impulse, "UPrimitiveComponent.AddImpulse(): argument 'Impulse'");
-                bool bVelChangeValue = isMissing(bVelChange) ? bool(false) : Bridge<bool>::in(bVelChange, "UPrimitiveComponent.AddImpulse(): argument 'bVelChange'");
-                object->AddImpulse(ImpulseValue, bVelChangeValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_AddImpulse<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&Impulse, &bVelChange}, true});
             },
             py::arg("Impulse") = sp::pybind::missingArgument(),
             py::arg("bVelChange") = sp::pybind::missingArgument(),
@@ -2338,13 +1657,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "SetPhysicsLinearVelocity",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewVel, const PyArg& bAddToCurrent, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetPhysicsLinearVelocity()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewVel", !isMissing(NewVel), true}, {"bAddToCurrent", !isMissing(bAddToCurrent), false}});
-                Self* object = self.get<Self>(kContext);
-                auto NewVelValue = Bridge<FVector>::in(NewVel, "UPrimitiveComponent.SetPhysicsLinearVelocity(): argument 'NewVel'");
-                bool bAddToCurrentValue = isMissing(bAddToCurrent) ? bool(false) : Bridge<bool>::in(bAddToCurrent, "UPrimitiveComponent.SetPhysicsLinearVelocity(): argument 'bAddToCurrent'");
-                object->SetPhysicsLinearVelocity(NewVelValue, bAddToCurrentValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetPhysicsLinearVelocity<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&NewVel, &bAddToCurrent}, true});
             },
             py::arg("NewVel") = sp::pybind::missingArgument(),
             py::arg("bAddToCurrent") = sp::pybind::missingArgument(),
@@ -2352,24 +1666,15 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetPhysicsLinearVelocity",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetPhysicsLinearVelocity()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetPhysicsLinearVelocity();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetPhysicsLinearVelocity<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetPhysicsLinearVelocity(self) -> FVector\n\nReturns the linear velocity in m/s (zero when not simulated).");
         cls.def(
             "SetPhysicsAngularVelocityInDegrees",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewAngVel, const PyArg& bAddToCurrent, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewAngVel", !isMissing(NewAngVel), true}, {"bAddToCurrent", !isMissing(bAddToCurrent), false}});
-                Self* object = self.get<Self>(kContext);
-                auto NewAngVelValue = Bridge<FVector>::in(NewAngVel, "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees(): argument 'NewAngVel'");
-                bool bAddToCurrentValue = isMissing(bAddToCurrent) ? bool(false) : Bridge<bool>::in(bAddToCurrent, "UPrimitiveComponent.SetPhysicsAngularVelocityInDegrees(): argument 'bAddToCurrent'");
-                object->SetPhysicsAngularVelocityInDegrees(NewAngVelValue, bAddToCurrentValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetPhysicsAngularVelocityInDegrees<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&NewAngVel, &bAddToCurrent}, true});
             },
             py::arg("NewAngVel") = sp::pybind::missingArgument(),
             py::arg("bAddToCurrent") = sp::pybind::missingArgument(),
@@ -2377,91 +1682,60 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetPhysicsAngularVelocityInDegrees",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetPhysicsAngularVelocityInDegrees()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetPhysicsAngularVelocityInDegrees();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetPhysicsAngularVelocityInDegrees<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetPhysicsAngularVelocityInDegrees(self) -> FVector\n\nReturns the angular velocity in degrees per second about world axes (zero when not simulated).");
         cls.def(
             "IsAnyRigidBodyAwake",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.IsAnyRigidBodyAwake()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->IsAnyRigidBodyAwake();
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_IsAnyRigidBodyAwake<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "IsAnyRigidBodyAwake(self) -> bool\n\nReturns true while this component's body is awake (false for sleeping or non-simulated ones).");
         cls.def(
             "GetOverlappingComponents",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetOverlappingComponents()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetOverlappingComponents();
-                return Bridge<std::vector<UPrimitiveComponent*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetOverlappingComponents<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetOverlappingComponents(self) -> list[UPrimitiveComponent]\n\nReturns the components of other actors whose collision shapes touch or intersect this one's now\n(both must generate overlap events), in the order they entered play.");
         cls.def(
             "GetOverlappingActors",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& ClassFilter, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetOverlappingActors()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"ClassFilter", !isMissing(ClassFilter), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto ClassFilterValue = Bridge<TSubclassOf<AActor>>::in(ClassFilter, "UPrimitiveComponent.GetOverlappingActors(): argument 'ClassFilter'");
-                SP_CHECK(ClassFilterValue, sp::InvalidArgument, "UPrimitiveComponent.GetOverlappingActors(): argument 'ClassFilter'", " must not be None");
-                auto result = object->GetOverlappingActors(ClassFilterValue);
-                return Bridge<std::vector<AActor*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetOverlappingActors<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&ClassFilter}, true});
             },
             py::arg("ClassFilter") = sp::pybind::missingArgument(),
             "GetOverlappingActors(self, *, ClassFilter: type[AActor] | str) -> list[AActor]\n\nReturns the actors (of class ClassFilter or a subclass) that own the components overlapping this one.");
         cls.def(
             "IsOverlappingComponent",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& OtherComp, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.IsOverlappingComponent()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"OtherComp", !isMissing(OtherComp), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto OtherCompValue = Bridge<UPrimitiveComponent*>::in(OtherComp, "UPrimitiveComponent.IsOverlappingComponent(): argument 'OtherComp'");
-                SP_CHECK(OtherCompValue, sp::InvalidArgument, "UPrimitiveComponent.IsOverlappingComponent(): argument 'OtherComp'", " must not be None");
-                auto result = object->IsOverlappingComponent(OtherCompValue);
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_IsOverlappingComponent<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&OtherComp}, true});
             },
             py::arg("OtherComp") = sp::pybind::missingArgument(),
             "IsOverlappingComponent(self, *, OtherComp: UPrimitiveComponent) -> bool\n\nReturns true when OtherComp overlaps this component now.");
         cls.def(
             "IsOverlappingActor",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Other, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.IsOverlappingActor()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Other", !isMissing(Other), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto OtherValue = Bridge<AActor*>::in(Other, "UPrimitiveComponent.IsOverlappingActor(): argument 'Other'");
-                SP_CHECK(OtherValue, sp::InvalidArgument, "UPrimitiveComponent.IsOverlappingActor(): argument 'Other'", " must not be None");
-                auto result = object->IsOverlappingActor(OtherValue);
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_IsOverlappingActor<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Other}, true});
             },
             py::arg("Other") = sp::pybind::missingArgument(),
             "IsOverlappingActor(self, *, Other: AActor) -> bool\n\nReturns true when a component of Other overlaps this component now.");
         cls.def(
             "GetBeginOverlaps",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetBeginOverlaps()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetBeginOverlaps();
-                return Bridge<std::vector<UPrimitiveComponent*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetBeginOverlaps<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetBeginOverlaps(self) -> list[UPrimitiveComponent]\n\nReturns the components that began overlapping this one in the last frame's physics step (UE's\nOnComponentBeginOverlap, polled).");
         cls.def(
             "GetEndOverlaps",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPrimitiveComponent.GetEndOverlaps()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetEndOverlaps();
-                return Bridge<std::vector<UPrimitiveComponent*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetEndOverlaps<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetEndOverlaps(self) -> list[UPrimitiveComponent]\n\nReturns the components that stopped overlapping this one in the last frame's physics step (UE's\nOnComponentEndOverlap, polled); destroyed ones are left out.");
     }
@@ -2475,358 +1749,267 @@ void spear_bind_engine(py::module_& m) {
     }
     {
         using Self = UBoxComponent;
+        using Calls = sp::generated::engine::UBoxComponentCalls;
         py::class_<Ref<Self>, Ref<UShapeComponent>> cls(m, "UBoxComponent", "A box-shaped sensor.");
         cls.attr("__sp_class__") = "UBoxComponent";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "BoxExtent",
-            [](const Ref<Self>& self) { return Bridge<FVector>::out(self.get<Self>("UBoxComponent.BoxExtent")->BoxExtent); },
+            [](const Ref<Self>& self) { return Calls::get_BoxExtent<PyCall>(self.get<Self>("UBoxComponent.BoxExtent")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UBoxComponent.BoxExtent");
-                object->SetBoxExtent(Bridge<FVector>::in(value, "UBoxComponent.BoxExtent"));
-                object->PostPropertyChanged("BoxExtent");
+                Calls::set_BoxExtent<PyCall>(self.get<Self>("UBoxComponent.BoxExtent"), value);
             },
             "Half the box's size along each axis, in metres before the component's scale (each > 0).");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetBoxExtent",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& InBoxExtent, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UBoxComponent.SetBoxExtent()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"InBoxExtent", !isMissing(InBoxExtent), true}});
-                Self* object = self.get<Self>(kContext);
-                auto InBoxExtentValue = Bridge<FVector>::in(InBoxExtent, "UBoxComponent.SetBoxExtent(): argument 'InBoxExtent'");
-                object->SetBoxExtent(InBoxExtentValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetBoxExtent<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&InBoxExtent}, true});
             },
             py::arg("InBoxExtent") = sp::pybind::missingArgument(),
             "SetBoxExtent(self, *, InBoxExtent: FVector) -> None\n\nSets BoxExtent (each component finite and > 0).");
     }
     {
         using Self = UCameraSensorComponent;
+        using Calls = sp::generated::engine::UCameraSensorComponentCalls;
         py::class_<Ref<Self>, Ref<USceneComponent>> cls(m, "UCameraSensorComponent", "A camera that renders the modalities in Modalities at the end of every frame.");
         cls.attr("__sp_class__") = "UCameraSensorComponent";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "Width",
-            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UCameraSensorComponent.Width")->Width); },
+            [](const Ref<Self>& self) { return Calls::get_Width<PyCall>(self.get<Self>("UCameraSensorComponent.Width")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.Width");
-                object->SetWidth(Bridge<int32_t>::in(value, "UCameraSensorComponent.Width"));
-                object->PostPropertyChanged("Width");
+                Calls::set_Width<PyCall>(self.get<Self>("UCameraSensorComponent.Width"), value);
             },
             "Image width in pixels.");
         cls.def_property(
             "Height",
-            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UCameraSensorComponent.Height")->Height); },
+            [](const Ref<Self>& self) { return Calls::get_Height<PyCall>(self.get<Self>("UCameraSensorComponent.Height")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.Height");
-                object->SetHeight(Bridge<int32_t>::in(value, "UCameraSensorComponent.Height"));
-                object->PostPropertyChanged("Height");
+                Calls::set_Height<PyCall>(self.get<Self>("UCameraSensorComponent.Height"), value);
             },
             "Image height in pixels.");
         cls.def_property(
             "FOV",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCameraSensorComponent.FOV")->FOV); },
+            [](const Ref<Self>& self) { return Calls::get_FOV<PyCall>(self.get<Self>("UCameraSensorComponent.FOV")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.FOV");
-                object->SetFOV(Bridge<double>::in(value, "UCameraSensorComponent.FOV"));
-                object->PostPropertyChanged("FOV");
+                Calls::set_FOV<PyCall>(self.get<Self>("UCameraSensorComponent.FOV"), value);
             },
             "Horizontal field of view in degrees, in (0, 180); square pixels.");
         cls.def_property(
             "NearClip",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCameraSensorComponent.NearClip")->NearClip); },
+            [](const Ref<Self>& self) { return Calls::get_NearClip<PyCall>(self.get<Self>("UCameraSensorComponent.NearClip")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.NearClip");
-                object->SetNearClip(Bridge<double>::in(value, "UCameraSensorComponent.NearClip"));
-                object->PostPropertyChanged("NearClip");
+                Calls::set_NearClip<PyCall>(self.get<Self>("UCameraSensorComponent.NearClip"), value);
             },
             "Near clipping distance in metres (> 0).");
         cls.def_property(
             "FarClip",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCameraSensorComponent.FarClip")->FarClip); },
+            [](const Ref<Self>& self) { return Calls::get_FarClip<PyCall>(self.get<Self>("UCameraSensorComponent.FarClip")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.FarClip");
-                object->SetFarClip(Bridge<double>::in(value, "UCameraSensorComponent.FarClip"));
-                object->PostPropertyChanged("FarClip");
+                Calls::set_FarClip<PyCall>(self.get<Self>("UCameraSensorComponent.FarClip"), value);
             },
             "Far clipping distance in metres (> NearClip).");
         cls.def_property(
             "Exposure",
-            [](const Ref<Self>& self) { return Bridge<float>::out(self.get<Self>("UCameraSensorComponent.Exposure")->Exposure); },
+            [](const Ref<Self>& self) { return Calls::get_Exposure<PyCall>(self.get<Self>("UCameraSensorComponent.Exposure")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.Exposure");
-                object->SetExposure(Bridge<float>::in(value, "UCameraSensorComponent.Exposure"));
-                object->PostPropertyChanged("Exposure");
+                Calls::set_Exposure<PyCall>(self.get<Self>("UCameraSensorComponent.Exposure"), value);
             },
             "Linear multiplier of HDR radiance before the tone curve (SetExposureValue and SetPhysicalExposure\nset it from photographic settings).");
         cls.def_property(
             "WhiteBalanceTemperature",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCameraSensorComponent.WhiteBalanceTemperature")->WhiteBalanceTemperature); },
+            [](const Ref<Self>& self) { return Calls::get_WhiteBalanceTemperature<PyCall>(self.get<Self>("UCameraSensorComponent.WhiteBalanceTemperature")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.WhiteBalanceTemperature");
-                object->SetWhiteBalanceTemperature(Bridge<double>::in(value, "UCameraSensorComponent.WhiteBalanceTemperature"));
-                object->PostPropertyChanged("WhiteBalanceTemperature");
+                Calls::set_WhiteBalanceTemperature<PyCall>(self.get<Self>("UCameraSensorComponent.WhiteBalanceTemperature"), value);
             },
             "The colour temperature in kelvin the camera is balanced for, in [2000, 25000]: light of this\ntemperature renders neutral in final_color (hdr_color is unchanged). 6500 (daylight) leaves colours as\nthey are; 3200 suits tungsten light (the image turns bluer), 10000 shade (warmer).");
         cls.def_property(
             "SensorWidth",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCameraSensorComponent.SensorWidth")->SensorWidth); },
+            [](const Ref<Self>& self) { return Calls::get_SensorWidth<PyCall>(self.get<Self>("UCameraSensorComponent.SensorWidth")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.SensorWidth");
-                object->SetSensorWidth(Bridge<double>::in(value, "UCameraSensorComponent.SensorWidth"));
-                object->PostPropertyChanged("SensorWidth");
+                Calls::set_SensorWidth<PyCall>(self.get<Self>("UCameraSensorComponent.SensorWidth"), value);
             },
             "Sensor width in millimetres (> 0), relating FOV to a lens's focal length: 36 is full frame.");
         cls.def_property(
             "LensDistortion",
-            [](const Ref<Self>& self) { return Bridge<FLensDistortion>::out(self.get<Self>("UCameraSensorComponent.LensDistortion")->LensDistortion); },
+            [](const Ref<Self>& self) { return Calls::get_LensDistortion<PyCall>(self.get<Self>("UCameraSensorComponent.LensDistortion")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.LensDistortion");
-                object->SetLensDistortion(Bridge<FLensDistortion>::in(value, "UCameraSensorComponent.LensDistortion"));
-                object->PostPropertyChanged("LensDistortion");
+                Calls::set_LensDistortion<PyCall>(self.get<Self>("UCameraSensorComponent.LensDistortion"), value);
             },
             "Lens distortion applied to every modality (OpenCV's model with GetIntrinsicMatrix()'s K; see\nGetDistortionCoefficients): each pixel shows what the distorted ray through it sees, taken from a\npinhole render wide enough to hold every ray, nearest pixel, so that all modalities stay consistent.\nPixels past where the model folds over (strong barrel distortion far from the axis) show no ray and\nare zero in every modality. The remap is rebuilt when the lens, the size or the FOV changes.");
         cls.def_property(
             "PrincipalPointOffset",
-            [](const Ref<Self>& self) { return Bridge<FVector2D>::out(self.get<Self>("UCameraSensorComponent.PrincipalPointOffset")->PrincipalPointOffset); },
+            [](const Ref<Self>& self) { return Calls::get_PrincipalPointOffset<PyCall>(self.get<Self>("UCameraSensorComponent.PrincipalPointOffset")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.PrincipalPointOffset");
-                object->SetPrincipalPointOffset(Bridge<FVector2D>::in(value, "UCameraSensorComponent.PrincipalPointOffset"));
-                object->PostPropertyChanged("PrincipalPointOffset");
+                Calls::set_PrincipalPointOffset<PyCall>(self.get<Self>("UCameraSensorComponent.PrincipalPointOffset"), value);
             },
             "The principal point's offset from the image centre in pixels (X right, Y down): an off-centre lens, as\na real camera's calibration gives it (cx, cy of GetIntrinsicMatrix() move by it).");
         cls.def_property(
             "ApertureFNumber",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCameraSensorComponent.ApertureFNumber")->ApertureFNumber); },
+            [](const Ref<Self>& self) { return Calls::get_ApertureFNumber<PyCall>(self.get<Self>("UCameraSensorComponent.ApertureFNumber")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.ApertureFNumber");
-                object->SetApertureFNumber(Bridge<double>::in(value, "UCameraSensorComponent.ApertureFNumber"));
-                object->PostPropertyChanged("ApertureFNumber");
+                Calls::set_ApertureFNumber<PyCall>(self.get<Self>("UCameraSensorComponent.ApertureFNumber"), value);
             },
             "Depth of field of the path tracer: the lens's f-number (its focal length, GetFocalLength() on\nSensorWidth, over the aperture's diameter); 0 (the default) is a pinhole, everything sharp. The raster\nrenderer, and the geometric modalities, are always sharp.");
         cls.def_property(
             "FocusDistance",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCameraSensorComponent.FocusDistance")->FocusDistance); },
+            [](const Ref<Self>& self) { return Calls::get_FocusDistance<PyCall>(self.get<Self>("UCameraSensorComponent.FocusDistance")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.FocusDistance");
-                object->SetFocusDistance(Bridge<double>::in(value, "UCameraSensorComponent.FocusDistance"));
-                object->PostPropertyChanged("FocusDistance");
+                Calls::set_FocusDistance<PyCall>(self.get<Self>("UCameraSensorComponent.FocusDistance"), value);
             },
             "The distance in metres, along the optical axis, that the path tracer's lens is focused at (> 0).");
         cls.def_property(
             "VignetteIntensity",
-            [](const Ref<Self>& self) { return Bridge<float>::out(self.get<Self>("UCameraSensorComponent.VignetteIntensity")->VignetteIntensity); },
+            [](const Ref<Self>& self) { return Calls::get_VignetteIntensity<PyCall>(self.get<Self>("UCameraSensorComponent.VignetteIntensity")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.VignetteIntensity");
-                object->SetVignetteIntensity(Bridge<float>::in(value, "UCameraSensorComponent.VignetteIntensity"));
-                object->PostPropertyChanged("VignetteIntensity");
+                Calls::set_VignetteIntensity<PyCall>(self.get<Self>("UCameraSensorComponent.VignetteIntensity"), value);
             },
             "Natural vignetting of final_color, in [0, 1]: each pixel's exposure falls off as mix(1, cos^4 theta,\nVignetteIntensity), theta the angle of its ray to the optical axis (the cos^4 law of a lens); 0 (the\ndefault) is none. hdr_color, the scene's radiance, is not vignetted.");
         cls.def_property(
             "ToneCurve",
-            [](const Ref<Self>& self) { return Bridge<ECameraToneCurve>::out(self.get<Self>("UCameraSensorComponent.ToneCurve")->ToneCurve); },
+            [](const Ref<Self>& self) { return Calls::get_ToneCurve<PyCall>(self.get<Self>("UCameraSensorComponent.ToneCurve")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.ToneCurve");
-                object->ToneCurve = Bridge<ECameraToneCurve>::in(value, "UCameraSensorComponent.ToneCurve");
-                object->PostPropertyChanged("ToneCurve");
+                Calls::set_ToneCurve<PyCall>(self.get<Self>("UCameraSensorComponent.ToneCurve"), value);
             },
             "The tone curve of final_color.");
         cls.def_property(
             "bShadows",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UCameraSensorComponent.bShadows")->bShadows); },
+            [](const Ref<Self>& self) { return Calls::get_bShadows<PyCall>(self.get<Self>("UCameraSensorComponent.bShadows")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.bShadows");
-                object->bShadows = Bridge<bool>::in(value, "UCameraSensorComponent.bShadows");
-                object->PostPropertyChanged("bShadows");
+                Calls::set_bShadows<PyCall>(self.get<Self>("UCameraSensorComponent.bShadows"), value);
             },
             "Whether shadow-casting lights render shadow maps for this camera.");
         cls.def_property(
             "ShadowResolution",
-            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UCameraSensorComponent.ShadowResolution")->ShadowResolution); },
+            [](const Ref<Self>& self) { return Calls::get_ShadowResolution<PyCall>(self.get<Self>("UCameraSensorComponent.ShadowResolution")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.ShadowResolution");
-                object->SetShadowResolution(Bridge<int32_t>::in(value, "UCameraSensorComponent.ShadowResolution"));
-                object->PostPropertyChanged("ShadowResolution");
+                Calls::set_ShadowResolution<PyCall>(self.get<Self>("UCameraSensorComponent.ShadowResolution"), value);
             },
             "Shadow map size in texels, in [16, 8192].");
         cls.def_property(
             "Modalities",
-            [](const Ref<Self>& self) { return Bridge<std::vector<ECameraModality>>::out(self.get<Self>("UCameraSensorComponent.Modalities")->Modalities); },
+            [](const Ref<Self>& self) { return Calls::get_Modalities<PyCall>(self.get<Self>("UCameraSensorComponent.Modalities")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.Modalities");
-                object->Modalities = Bridge<std::vector<ECameraModality>>::in(value, "UCameraSensorComponent.Modalities");
-                object->PostPropertyChanged("Modalities");
+                Calls::set_Modalities<PyCall>(self.get<Self>("UCameraSensorComponent.Modalities"), value);
             },
             "The modalities rendered each frame; only the passes they need run.");
         cls.def_property(
             "Latency",
-            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UCameraSensorComponent.Latency")->Latency); },
+            [](const Ref<Self>& self) { return Calls::get_Latency<PyCall>(self.get<Self>("UCameraSensorComponent.Latency")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.Latency");
-                object->SetLatency(Bridge<int32_t>::in(value, "UCameraSensorComponent.Latency"));
-                object->PostPropertyChanged("Latency");
+                Calls::set_Latency<PyCall>(self.get<Self>("UCameraSensorComponent.Latency"), value);
             },
             "Frames between rendering and reading: 0 (same frame), 1 or 2 (double or triple buffered).");
         cls.def_property(
             "Renderer",
-            [](const Ref<Self>& self) { return Bridge<ECameraRenderer>::out(self.get<Self>("UCameraSensorComponent.Renderer")->Renderer); },
+            [](const Ref<Self>& self) { return Calls::get_Renderer<PyCall>(self.get<Self>("UCameraSensorComponent.Renderer")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.Renderer");
-                object->Renderer = Bridge<ECameraRenderer>::in(value, "UCameraSensorComponent.Renderer");
-                object->PostPropertyChanged("Renderer");
+                Calls::set_Renderer<PyCall>(self.get<Self>("UCameraSensorComponent.Renderer"), value);
             },
             "The renderer of final_color, hdr_color and the intrinsic images (geometric and material modalities\nare always rasterised).");
         cls.def_property(
             "SamplesPerPixel",
-            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UCameraSensorComponent.SamplesPerPixel")->SamplesPerPixel); },
+            [](const Ref<Self>& self) { return Calls::get_SamplesPerPixel<PyCall>(self.get<Self>("UCameraSensorComponent.SamplesPerPixel")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.SamplesPerPixel");
-                object->SetSamplesPerPixel(Bridge<int32_t>::in(value, "UCameraSensorComponent.SamplesPerPixel"));
-                object->PostPropertyChanged("SamplesPerPixel");
+                Calls::set_SamplesPerPixel<PyCall>(self.get<Self>("UCameraSensorComponent.SamplesPerPixel"), value);
             },
             "Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating.");
         cls.def_property(
             "MaxBounces",
-            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UCameraSensorComponent.MaxBounces")->MaxBounces); },
+            [](const Ref<Self>& self) { return Calls::get_MaxBounces<PyCall>(self.get<Self>("UCameraSensorComponent.MaxBounces")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCameraSensorComponent.MaxBounces");
-                object->SetMaxBounces(Bridge<int32_t>::in(value, "UCameraSensorComponent.MaxBounces"));
-                object->PostPropertyChanged("MaxBounces");
+                Calls::set_MaxBounces<PyCall>(self.get<Self>("UCameraSensorComponent.MaxBounces"), value);
             },
             "Path tracing: indirect bounces after the first hit, in [0, 64] (0: direct light and sky only).");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetWidth",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewWidth, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetWidth()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewWidth", !isMissing(NewWidth), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewWidthValue = Bridge<int32_t>::in(NewWidth, "UCameraSensorComponent.SetWidth(): argument 'NewWidth'");
-                object->SetWidth(NewWidthValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetWidth<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewWidth}, true});
             },
             py::arg("NewWidth") = sp::pybind::missingArgument(),
             "SetWidth(self, *, NewWidth: int) -> None\n\nSets Width in pixels, in [1, 16384].");
         cls.def(
             "SetHeight",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewHeight, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetHeight()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewHeight", !isMissing(NewHeight), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewHeightValue = Bridge<int32_t>::in(NewHeight, "UCameraSensorComponent.SetHeight(): argument 'NewHeight'");
-                object->SetHeight(NewHeightValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetHeight<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewHeight}, true});
             },
             py::arg("NewHeight") = sp::pybind::missingArgument(),
             "SetHeight(self, *, NewHeight: int) -> None\n\nSets Height in pixels, in [1, 16384].");
         cls.def(
             "SetFOV",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewFOV, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetFOV()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewFOV", !isMissing(NewFOV), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewFOVValue = Bridge<double>::in(NewFOV, "UCameraSensorComponent.SetFOV(): argument 'NewFOV'");
-                object->SetFOV(NewFOVValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetFOV<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewFOV}, true});
             },
             py::arg("NewFOV") = sp::pybind::missingArgument(),
             "SetFOV(self, *, NewFOV: float) -> None\n\nSets the horizontal field of view in degrees, in (0, 180).");
         cls.def(
             "SetNearClip",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewNearClip, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetNearClip()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewNearClip", !isMissing(NewNearClip), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewNearClipValue = Bridge<double>::in(NewNearClip, "UCameraSensorComponent.SetNearClip(): argument 'NewNearClip'");
-                object->SetNearClip(NewNearClipValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetNearClip<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewNearClip}, true});
             },
             py::arg("NewNearClip") = sp::pybind::missingArgument(),
             "SetNearClip(self, *, NewNearClip: float) -> None\n\nSets NearClip in metres (> 0 and finite).");
         cls.def(
             "SetFarClip",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewFarClip, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetFarClip()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewFarClip", !isMissing(NewFarClip), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewFarClipValue = Bridge<double>::in(NewFarClip, "UCameraSensorComponent.SetFarClip(): argument 'NewFarClip'");
-                object->SetFarClip(NewFarClipValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetFarClip<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewFarClip}, true});
             },
             py::arg("NewFarClip") = sp::pybind::missingArgument(),
             "SetFarClip(self, *, NewFarClip: float) -> None\n\nSets FarClip in metres (> 0 and finite; it must exceed NearClip when the camera renders).");
         cls.def(
             "SetExposure",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewExposure, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetExposure()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewExposure", !isMissing(NewExposure), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewExposureValue = Bridge<float>::in(NewExposure, "UCameraSensorComponent.SetExposure(): argument 'NewExposure'");
-                object->SetExposure(NewExposureValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetExposure<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewExposure}, true});
             },
             py::arg("NewExposure") = sp::pybind::missingArgument(),
             "SetExposure(self, *, NewExposure: float) -> None\n\nSets Exposure (> 0 and finite).");
         cls.def(
             "SetSensorWidth",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewSensorWidth, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetSensorWidth()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewSensorWidth", !isMissing(NewSensorWidth), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewSensorWidthValue = Bridge<double>::in(NewSensorWidth, "UCameraSensorComponent.SetSensorWidth(): argument 'NewSensorWidth'");
-                object->SetSensorWidth(NewSensorWidthValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetSensorWidth<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewSensorWidth}, true});
             },
             py::arg("NewSensorWidth") = sp::pybind::missingArgument(),
             "SetSensorWidth(self, *, NewSensorWidth: float) -> None\n\nSets SensorWidth in millimetres (> 0 and finite); FOV is kept.");
         cls.def(
             "SetFocalLength",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& FocalLength, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetFocalLength()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"FocalLength", !isMissing(FocalLength), true}});
-                Self* object = self.get<Self>(kContext);
-                auto FocalLengthValue = Bridge<double>::in(FocalLength, "UCameraSensorComponent.SetFocalLength(): argument 'FocalLength'");
-                object->SetFocalLength(FocalLengthValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetFocalLength<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&FocalLength}, true});
             },
             py::arg("FocalLength") = sp::pybind::missingArgument(),
             "SetFocalLength(self, *, FocalLength: float) -> None\n\nSets FOV from a lens's focal length in millimetres on SensorWidth: FOV = 2 atan(SensorWidth / (2 f)).");
         cls.def(
             "GetFocalLength",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetFocalLength()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetFocalLength();
-                return Bridge<double>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetFocalLength<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetFocalLength(self) -> float\n\nReturns the focal length in millimetres that FOV gives on SensorWidth.");
         cls.def(
             "SetExposureValue",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& EV100, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetExposureValue()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"EV100", !isMissing(EV100), true}});
-                Self* object = self.get<Self>(kContext);
-                auto EV100Value = Bridge<double>::in(EV100, "UCameraSensorComponent.SetExposureValue(): argument 'EV100'");
-                object->SetExposureValue(EV100Value);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetExposureValue<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&EV100}, true});
             },
             py::arg("EV100") = sp::pybind::missingArgument(),
             "SetExposureValue(self, *, EV100: float) -> None\n\nSets Exposure from an exposure value at ISO 100 (EV100, as light meters give it): a scene of\nluminance L (cd/m^2) metered at EV100 = log2(L * 100 / 12.5) maps to 18 % grey; Exposure = 1 / (1.2 *\n2^EV100) (the saturation-based sensitivity of ISO 12232).");
         cls.def(
             "SetPhysicalExposure",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& FNumber, const PyArg& ShutterSeconds, const PyArg& ISO, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetPhysicalExposure()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"FNumber", !isMissing(FNumber), true}, {"ShutterSeconds", !isMissing(ShutterSeconds), true}, {"ISO", !isMissing(ISO), true}});
-                Self* object = self.get<Self>(kContext);
-                auto FNumberValue = Bridge<double>::in(FNumber, "UCameraSensorComponent.SetPhysicalExposure(): argument 'FNumber'");
-                auto ShutterSecondsValue = Bridge<double>::in(ShutterSeconds, "UCameraSensorComponent.SetPhysicalExposure(): argument 'ShutterSeconds'");
-                auto ISOValue = Bridge<double>::in(ISO, "UCameraSensorComponent.SetPhysicalExposure(): argument 'ISO'");
-                object->SetPhysicalExposure(FNumberValue, ShutterSecondsValue, ISOValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetPhysicalExposure<PyCall>(self, {positional, extra, std::array<const PyArg*, 3>{&FNumber, &ShutterSeconds, &ISO}, true});
             },
             py::arg("FNumber") = sp::pybind::missingArgument(),
             py::arg("ShutterSeconds") = sp::pybind::missingArgument(),
@@ -2835,282 +2018,185 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "SetLensDistortion",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewLensDistortion, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetLensDistortion()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewLensDistortion", !isMissing(NewLensDistortion), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewLensDistortionValue = Bridge<FLensDistortion>::in(NewLensDistortion, "UCameraSensorComponent.SetLensDistortion(): argument 'NewLensDistortion'");
-                object->SetLensDistortion(NewLensDistortionValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetLensDistortion<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewLensDistortion}, true});
             },
             py::arg("NewLensDistortion") = sp::pybind::missingArgument(),
             "SetLensDistortion(self, *, NewLensDistortion: FLensDistortion) -> None\n\nSets LensDistortion (every coefficient finite; a lens too strong to invert over the image is refused\nwhen the camera renders).");
         cls.def(
             "SetPrincipalPointOffset",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewPrincipalPointOffset, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetPrincipalPointOffset()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewPrincipalPointOffset", !isMissing(NewPrincipalPointOffset), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewPrincipalPointOffsetValue = Bridge<FVector2D>::in(NewPrincipalPointOffset, "UCameraSensorComponent.SetPrincipalPointOffset(): argument 'NewPrincipalPointOffset'");
-                object->SetPrincipalPointOffset(NewPrincipalPointOffsetValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetPrincipalPointOffset<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewPrincipalPointOffset}, true});
             },
             py::arg("NewPrincipalPointOffset") = sp::pybind::missingArgument(),
             "SetPrincipalPointOffset(self, *, NewPrincipalPointOffset: FVector2D) -> None\n\nSets PrincipalPointOffset in pixels (finite).");
         cls.def(
             "GetDistortionCoefficients",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetDistortionCoefficients()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetDistortionCoefficients();
-                return Bridge<sp::reflect::SpArray<double>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetDistortionCoefficients<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetDistortionCoefficients(self) -> NDArray[np.float64]\n\nReturns the distortion coefficients in OpenCV's order, (k1, k2, p1, p2, k3) as a (5,) array, for\ncv2.undistort(image, K, coefficients) and cv2.projectPoints.");
         cls.def(
             "DistortPixels",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Points, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.DistortPixels()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Points", !isMissing(Points), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto PointsValue = Bridge<sp::reflect::SpArray<double>>::in(Points, "UCameraSensorComponent.DistortPixels(): argument 'Points'");
-                auto result = object->DistortPixels(PointsValue);
-                return Bridge<sp::reflect::SpArray<double>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_DistortPixels<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Points}, true});
             },
             py::arg("Points") = sp::pybind::missingArgument(),
             "DistortPixels(self, *, Points: NDArray[np.float64]) -> NDArray[np.float64]\n\nReturns where pinhole pixels (an (N, 2) array of u, v under GetIntrinsicMatrix()'s K, no distortion)\nland in this camera's images: OpenCV's distortion model applied to them.");
         cls.def(
             "UndistortPixels",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Points, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.UndistortPixels()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Points", !isMissing(Points), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto PointsValue = Bridge<sp::reflect::SpArray<double>>::in(Points, "UCameraSensorComponent.UndistortPixels(): argument 'Points'");
-                auto result = object->UndistortPixels(PointsValue);
-                return Bridge<sp::reflect::SpArray<double>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_UndistortPixels<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Points}, true});
             },
             py::arg("Points") = sp::pybind::missingArgument(),
             "UndistortPixels(self, *, Points: NDArray[np.float64]) -> NDArray[np.float64]\n\nReturns the pinhole pixels ((N, 2)) that this camera's image pixels Points ((N, 2)) show: the inverse\nof DistortPixels (cv2.undistortPoints(..., P=K) approximates it), solved to about 1e-10 pixels; NaN\nfor a pixel no ray shows (past where a strong barrel distortion folds over; such pixels render empty).");
         cls.def(
             "SetApertureFNumber",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewApertureFNumber, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetApertureFNumber()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewApertureFNumber", !isMissing(NewApertureFNumber), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewApertureFNumberValue = Bridge<double>::in(NewApertureFNumber, "UCameraSensorComponent.SetApertureFNumber(): argument 'NewApertureFNumber'");
-                object->SetApertureFNumber(NewApertureFNumberValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetApertureFNumber<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewApertureFNumber}, true});
             },
             py::arg("NewApertureFNumber") = sp::pybind::missingArgument(),
             "SetApertureFNumber(self, *, NewApertureFNumber: float) -> None\n\nSets ApertureFNumber: 0 (a pinhole) or >= 0.5.");
         cls.def(
             "SetFocusDistance",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewFocusDistance, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetFocusDistance()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewFocusDistance", !isMissing(NewFocusDistance), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewFocusDistanceValue = Bridge<double>::in(NewFocusDistance, "UCameraSensorComponent.SetFocusDistance(): argument 'NewFocusDistance'");
-                object->SetFocusDistance(NewFocusDistanceValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetFocusDistance<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewFocusDistance}, true});
             },
             py::arg("NewFocusDistance") = sp::pybind::missingArgument(),
             "SetFocusDistance(self, *, NewFocusDistance: float) -> None\n\nSets FocusDistance in metres (> 0 and finite).");
         cls.def(
             "SetVignetteIntensity",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewVignetteIntensity, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetVignetteIntensity()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewVignetteIntensity", !isMissing(NewVignetteIntensity), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewVignetteIntensityValue = Bridge<float>::in(NewVignetteIntensity, "UCameraSensorComponent.SetVignetteIntensity(): argument 'NewVignetteIntensity'");
-                object->SetVignetteIntensity(NewVignetteIntensityValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetVignetteIntensity<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewVignetteIntensity}, true});
             },
             py::arg("NewVignetteIntensity") = sp::pybind::missingArgument(),
             "SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> None\n\nSets VignetteIntensity, in [0, 1].");
         cls.def(
             "SetWhiteBalanceTemperature",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewWhiteBalanceTemperature, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetWhiteBalanceTemperature()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewWhiteBalanceTemperature", !isMissing(NewWhiteBalanceTemperature), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewWhiteBalanceTemperatureValue = Bridge<double>::in(NewWhiteBalanceTemperature, "UCameraSensorComponent.SetWhiteBalanceTemperature(): argument 'NewWhiteBalanceTemperature'");
-                object->SetWhiteBalanceTemperature(NewWhiteBalanceTemperatureValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetWhiteBalanceTemperature<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewWhiteBalanceTemperature}, true});
             },
             py::arg("NewWhiteBalanceTemperature") = sp::pybind::missingArgument(),
             "SetWhiteBalanceTemperature(self, *, NewWhiteBalanceTemperature: float) -> None\n\nSets WhiteBalanceTemperature in kelvin, in [2000, 25000].");
         cls.def(
             "GetWhiteBalanceGains",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetWhiteBalanceGains()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetWhiteBalanceGains();
-                return Bridge<sp::reflect::SpArray<double>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetWhiteBalanceGains<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetWhiteBalanceGains(self) -> NDArray[np.float64]\n\nReturns the gains (3,) white balance multiplies linear red, green and blue by before the tone curve\n(1, 1, 1 at 6500 K; a grey keeps its luminance).");
         cls.def(
             "SetShadowResolution",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewShadowResolution, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetShadowResolution()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewShadowResolution", !isMissing(NewShadowResolution), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewShadowResolutionValue = Bridge<int32_t>::in(NewShadowResolution, "UCameraSensorComponent.SetShadowResolution(): argument 'NewShadowResolution'");
-                object->SetShadowResolution(NewShadowResolutionValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetShadowResolution<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewShadowResolution}, true});
             },
             py::arg("NewShadowResolution") = sp::pybind::missingArgument(),
             "SetShadowResolution(self, *, NewShadowResolution: int) -> None\n\nSets ShadowResolution in texels, in [16, 8192].");
         cls.def(
             "SetLatency",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewLatency, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetLatency()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewLatency", !isMissing(NewLatency), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewLatencyValue = Bridge<int32_t>::in(NewLatency, "UCameraSensorComponent.SetLatency(): argument 'NewLatency'");
-                object->SetLatency(NewLatencyValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetLatency<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewLatency}, true});
             },
             py::arg("NewLatency") = sp::pybind::missingArgument(),
             "SetLatency(self, *, NewLatency: int) -> None\n\nSets Latency: 0, 1 or 2 frames.");
         cls.def(
             "SetSamplesPerPixel",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewSamplesPerPixel, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetSamplesPerPixel()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewSamplesPerPixel", !isMissing(NewSamplesPerPixel), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewSamplesPerPixelValue = Bridge<int32_t>::in(NewSamplesPerPixel, "UCameraSensorComponent.SetSamplesPerPixel(): argument 'NewSamplesPerPixel'");
-                object->SetSamplesPerPixel(NewSamplesPerPixelValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetSamplesPerPixel<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewSamplesPerPixel}, true});
             },
             py::arg("NewSamplesPerPixel") = sp::pybind::missingArgument(),
             "SetSamplesPerPixel(self, *, NewSamplesPerPixel: int) -> None\n\nSets SamplesPerPixel, in [1, 65536].");
         cls.def(
             "SetMaxBounces",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewMaxBounces, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetMaxBounces()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewMaxBounces", !isMissing(NewMaxBounces), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewMaxBouncesValue = Bridge<int32_t>::in(NewMaxBounces, "UCameraSensorComponent.SetMaxBounces(): argument 'NewMaxBounces'");
-                object->SetMaxBounces(NewMaxBouncesValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetMaxBounces<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewMaxBounces}, true});
             },
             py::arg("NewMaxBounces") = sp::pybind::missingArgument(),
             "SetMaxBounces(self, *, NewMaxBounces: int) -> None\n\nSets MaxBounces, in [0, 64].");
         cls.def(
             "GetIntrinsicMatrix",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetIntrinsicMatrix()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetIntrinsicMatrix();
-                return Bridge<sp::reflect::SpArray<double>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetIntrinsicMatrix<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetIntrinsicMatrix(self) -> NDArray[np.float64]\n\nReturns the intrinsic matrix K (3, 3) of the images in OpenCV's convention: pixel (u right, v down,\nthe centre of pixel [i, j] at u = j, v = i) = K @ (x, y, z) / z for a point (x, y, z) in the OpenCV\ncamera frame (x right, y down, z forward); fx = fy = (Width / 2) / tan(FOV / 2), cx = (Width - 1) / 2\n+ PrincipalPointOffset.X, cy = (Height - 1) / 2 + PrincipalPointOffset.Y. With LensDistortion the\ndistortion applies between the normalised point and K, as in OpenCV (DistortPixels).");
         cls.def(
             "GetWorldToCamera",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetWorldToCamera()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetWorldToCamera();
-                return Bridge<sp::reflect::SpArray<double>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetWorldToCamera<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetWorldToCamera(self) -> NDArray[np.float64]\n\nReturns the world-to-camera transform (4, 4) into the OpenCV camera frame (x right, y down, z\nforward, metres) from the component's current world transform: with GetIntrinsicMatrix(), a world\npoint's pixel is K @ (T @ [p, 1])[:3] divided by its z. Both describe the camera as it is now: the\nframe read in the same end_frame at Latency 0, Latency frames earlier otherwise.");
         cls.def(
             "GetAccumulatedSamples",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetAccumulatedSamples()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetAccumulatedSamples();
-                return Bridge<int64_t>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetAccumulatedSamples<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetAccumulatedSamples(self) -> int\n\nReturns the samples per pixel behind the path-traced images of the frame last read (they restart\nfrom SamplesPerPixel when anything in the scene, the camera or MaxBounces changes), or 0 when the\nlast read frame was not path traced.");
         cls.def(
             "read_pixels",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.read_pixels()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                auto result = object->read_pixels();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FCameraPixels>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_read_pixels<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "read_pixels(self) -> FCameraPixels\n\nReturns the images of the frame due (see the class notes on latency); an empty dict while priming.");
         // Static in C++: called on the class, with no object.
         cls.def_static(
             "read_pixels_stacked",
             [](const py::args& positional, const PyArg& Cameras, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.read_pixels_stacked()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"Cameras", !isMissing(Cameras), true}});
-                auto CamerasValue = Bridge<std::vector<UCameraSensorComponent*>>::in(Cameras, "UCameraSensorComponent.read_pixels_stacked(): argument 'Cameras'");
-                auto result = Self::read_pixels_stacked(CamerasValue);
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FCameraPixels>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_read_pixels_stacked<PyCall>({positional, extra, std::array<const PyArg*, 1>{&Cameras}, false});
             },
             py::arg("Cameras") = sp::pybind::missingArgument(),
             "read_pixels_stacked(*, Cameras: list[UCameraSensorComponent]) -> FCameraPixels\n\nReturns the images of several cameras' due frames (cameras of any worlds of one engine) in one call:\neach modality as one array with a leading camera axis, (len(Cameras), H, W[, C]), each camera's images\nread straight into its slice. The cameras must show frames of one size and the same modalities; an\nempty dict while any of them is priming.");
         cls.def(
             "GetPixelsFrame",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetPixelsFrame()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetPixelsFrame();
-                return Bridge<int64_t>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetPixelsFrame<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetPixelsFrame(self) -> int\n\nReturns the world frame shown by the last read_pixels() result, or -1 when it was empty.");
         cls.def(
             "SetModalityNames",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Names, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.SetModalityNames()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Names", !isMissing(Names), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NamesValue = Bridge<std::vector<std::string>>::in(Names, "UCameraSensorComponent.SetModalityNames(): argument 'Names'");
-                object->SetModalityNames(NamesValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetModalityNames<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Names}, true});
             },
             py::arg("Names") = sp::pybind::missingArgument(),
             "SetModalityNames(self, *, Names: list[str]) -> None\n\nSets Modalities from snake_case names (\"final_color\", \"depth\", ...); an unknown name is an error.");
         cls.def(
             "GetModalityNames",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetModalityNames()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetModalityNames();
-                return Bridge<std::vector<std::string>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetModalityNames<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetModalityNames(self) -> list[str]\n\nReturns the snake_case names of Modalities, in the order read_pixels() uses as dict keys.");
         cls.def(
             "GetObjectIdInfo",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& ObjectId, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetObjectIdInfo()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"ObjectId", !isMissing(ObjectId), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto ObjectIdValue = Bridge<int64_t>::in(ObjectId, "UCameraSensorComponent.GetObjectIdInfo(): argument 'ObjectId'");
-                AActor* ActorOut{};
-                UPrimitiveComponent* ComponentOut{};
-                int32_t MaterialSlotOut{};
-                std::string MaterialNameOut{};
-                auto result = object->GetObjectIdInfo(ObjectIdValue, ActorOut, ComponentOut, MaterialSlotOut, MaterialNameOut);
-                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
-                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "UCameraSensorComponent").attr("GetObjectIdInfoResult"));
-                return (*resultType)(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("Actor") = Bridge<AActor*>::out(ActorOut), py::arg("Component") = Bridge<UPrimitiveComponent*>::out(ComponentOut), py::arg("MaterialSlot") = Bridge<int32_t>::out(MaterialSlotOut), py::arg("MaterialName") = Bridge<std::string>::out(MaterialNameOut));
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetObjectIdInfo<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&ObjectId}, true});
             },
             py::arg("ObjectId") = sp::pybind::missingArgument(),
             "GetObjectIdInfo(self, *, ObjectId: int) -> GetObjectIdInfoResult\n\nLooks up an object id of object_ids: the actor, the component and the material slot and name it\nbelongs to (a spline's debug line: its actor, Component None, material \"DebugLine\"); returns False\n(and None, -1, \"\") for 0, an unknown id or a destroyed component.");
         cls.def(
             "GetObjectId",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Component, const PyArg& MaterialSlot, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetObjectId()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Component", !isMissing(Component), true}, {"MaterialSlot", !isMissing(MaterialSlot), false}});
-                const Self* object = self.get<Self>(kContext);
-                auto ComponentValue = Bridge<UPrimitiveComponent*>::in(Component, "UCameraSensorComponent.GetObjectId(): argument 'Component'");
-                SP_CHECK(ComponentValue, sp::InvalidArgument, "UCameraSensorComponent.GetObjectId(): argument 'Component'", " must not be None");
-                int32_t MaterialSlotValue = isMissing(MaterialSlot) ? int32_t(0) : Bridge<int32_t>::in(MaterialSlot, "UCameraSensorComponent.GetObjectId(): argument 'MaterialSlot'");
-                auto result = object->GetObjectId(ComponentValue, MaterialSlotValue);
-                return Bridge<int64_t>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetObjectId<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&Component, &MaterialSlot}, true});
             },
             py::arg("Component") = sp::pybind::missingArgument(),
             py::arg("MaterialSlot") = sp::pybind::missingArgument(),
@@ -3118,242 +2204,181 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetMaterialId",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Name, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetMaterialId()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Name", !isMissing(Name), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto NameValue = Bridge<std::string>::in(Name, "UCameraSensorComponent.GetMaterialId(): argument 'Name'");
-                auto result = object->GetMaterialId(NameValue);
-                return Bridge<int64_t>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetMaterialId<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Name}, true});
             },
             py::arg("Name") = sp::pybind::missingArgument(),
             "GetMaterialId(self, *, Name: str) -> int\n\nReturns the material id that material_ids holds for the material called Name, or 0 when unused.");
         cls.def(
             "get_render_device_info",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.get_render_device_info()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                auto result = object->get_render_device_info();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FRenderDeviceInfo>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_get_render_device_info<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "get_render_device_info(self) -> FRenderDeviceInfo\n\nReturns which EGL device renders this camera's world (starting the renderer if needed).");
         cls.def(
             "GetRenderStats",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCameraSensorComponent.GetRenderStats()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetRenderStats();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FRenderStats>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetRenderStats<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetRenderStats(self) -> FRenderStats\n\nReturns how often each render pass ran in this camera's world, and its timings.");
     }
     {
         using Self = UCapsuleComponent;
+        using Calls = sp::generated::engine::UCapsuleComponentCalls;
         py::class_<Ref<Self>, Ref<UShapeComponent>> cls(m, "UCapsuleComponent", "A capsule-shaped sensor standing along its Z axis (a character's collision capsule).");
         cls.attr("__sp_class__") = "UCapsuleComponent";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "CapsuleRadius",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCapsuleComponent.CapsuleRadius")->CapsuleRadius); },
+            [](const Ref<Self>& self) { return Calls::get_CapsuleRadius<PyCall>(self.get<Self>("UCapsuleComponent.CapsuleRadius")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCapsuleComponent.CapsuleRadius");
-                object->SetCapsuleRadius(Bridge<double>::in(value, "UCapsuleComponent.CapsuleRadius"));
-                object->PostPropertyChanged("CapsuleRadius");
+                Calls::set_CapsuleRadius<PyCall>(self.get<Self>("UCapsuleComponent.CapsuleRadius"), value);
             },
             "The radius in metres before the component's scale (> 0).");
         cls.def_property(
             "CapsuleHalfHeight",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCapsuleComponent.CapsuleHalfHeight")->CapsuleHalfHeight); },
+            [](const Ref<Self>& self) { return Calls::get_CapsuleHalfHeight<PyCall>(self.get<Self>("UCapsuleComponent.CapsuleHalfHeight")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCapsuleComponent.CapsuleHalfHeight");
-                object->SetCapsuleHalfHeight(Bridge<double>::in(value, "UCapsuleComponent.CapsuleHalfHeight"));
-                object->PostPropertyChanged("CapsuleHalfHeight");
+                Calls::set_CapsuleHalfHeight<PyCall>(self.get<Self>("UCapsuleComponent.CapsuleHalfHeight"), value);
             },
             "Half the height in metres, hemispheres included, before the component's scale (> 0); a half height\nbelow the radius counts as the radius (a sphere), as in UE.");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetCapsuleRadius",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Radius, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCapsuleComponent.SetCapsuleRadius()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Radius", !isMissing(Radius), true}});
-                Self* object = self.get<Self>(kContext);
-                auto RadiusValue = Bridge<double>::in(Radius, "UCapsuleComponent.SetCapsuleRadius(): argument 'Radius'");
-                object->SetCapsuleRadius(RadiusValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetCapsuleRadius<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Radius}, true});
             },
             py::arg("Radius") = sp::pybind::missingArgument(),
             "SetCapsuleRadius(self, *, Radius: float) -> None\n\nSets CapsuleRadius (finite, > 0).");
         cls.def(
             "SetCapsuleHalfHeight",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& HalfHeight, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCapsuleComponent.SetCapsuleHalfHeight()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"HalfHeight", !isMissing(HalfHeight), true}});
-                Self* object = self.get<Self>(kContext);
-                auto HalfHeightValue = Bridge<double>::in(HalfHeight, "UCapsuleComponent.SetCapsuleHalfHeight(): argument 'HalfHeight'");
-                object->SetCapsuleHalfHeight(HalfHeightValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetCapsuleHalfHeight<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&HalfHeight}, true});
             },
             py::arg("HalfHeight") = sp::pybind::missingArgument(),
             "SetCapsuleHalfHeight(self, *, HalfHeight: float) -> None\n\nSets CapsuleHalfHeight (finite, > 0).");
     }
     {
         using Self = UCharacterMovementComponent;
+        using Calls = sp::generated::engine::UCharacterMovementComponentCalls;
         py::class_<Ref<Self>, Ref<UActorComponent>> cls(m, "UCharacterMovementComponent", "How a character walks, and how it is moving.");
         cls.attr("__sp_class__") = "UCharacterMovementComponent";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "MaxWalkSpeed",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCharacterMovementComponent.MaxWalkSpeed")->MaxWalkSpeed); },
+            [](const Ref<Self>& self) { return Calls::get_MaxWalkSpeed<PyCall>(self.get<Self>("UCharacterMovementComponent.MaxWalkSpeed")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCharacterMovementComponent.MaxWalkSpeed");
-                object->SetMaxWalkSpeed(Bridge<double>::in(value, "UCharacterMovementComponent.MaxWalkSpeed"));
-                object->PostPropertyChanged("MaxWalkSpeed");
+                Calls::set_MaxWalkSpeed<PyCall>(self.get<Self>("UCharacterMovementComponent.MaxWalkSpeed"), value);
             },
             "Walking speed in m/s at full input (>= 0).");
         cls.def_property(
             "JumpZVelocity",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCharacterMovementComponent.JumpZVelocity")->JumpZVelocity); },
+            [](const Ref<Self>& self) { return Calls::get_JumpZVelocity<PyCall>(self.get<Self>("UCharacterMovementComponent.JumpZVelocity")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCharacterMovementComponent.JumpZVelocity");
-                object->SetJumpZVelocity(Bridge<double>::in(value, "UCharacterMovementComponent.JumpZVelocity"));
-                object->PostPropertyChanged("JumpZVelocity");
+                Calls::set_JumpZVelocity<PyCall>(self.get<Self>("UCharacterMovementComponent.JumpZVelocity"), value);
             },
             "Upward speed of a jump in m/s (>= 0): a jump rises JumpZVelocity^2 / 2g.");
         cls.def_property(
             "MaxStepHeight",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCharacterMovementComponent.MaxStepHeight")->MaxStepHeight); },
+            [](const Ref<Self>& self) { return Calls::get_MaxStepHeight<PyCall>(self.get<Self>("UCharacterMovementComponent.MaxStepHeight")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCharacterMovementComponent.MaxStepHeight");
-                object->SetMaxStepHeight(Bridge<double>::in(value, "UCharacterMovementComponent.MaxStepHeight"));
-                object->PostPropertyChanged("MaxStepHeight");
+                Calls::set_MaxStepHeight<PyCall>(self.get<Self>("UCharacterMovementComponent.MaxStepHeight"), value);
             },
             "The highest step the character walks up, in metres (>= 0).");
         cls.def_property(
             "WalkableFloorAngle",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UCharacterMovementComponent.WalkableFloorAngle")->WalkableFloorAngle); },
+            [](const Ref<Self>& self) { return Calls::get_WalkableFloorAngle<PyCall>(self.get<Self>("UCharacterMovementComponent.WalkableFloorAngle")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UCharacterMovementComponent.WalkableFloorAngle");
-                object->SetWalkableFloorAngle(Bridge<double>::in(value, "UCharacterMovementComponent.WalkableFloorAngle"));
-                object->PostPropertyChanged("WalkableFloorAngle");
+                Calls::set_WalkableFloorAngle<PyCall>(self.get<Self>("UCharacterMovementComponent.WalkableFloorAngle"), value);
             },
             "The steepest floor the character walks up, in degrees (in (0, 90)).");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetMaxWalkSpeed",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewSpeed, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCharacterMovementComponent.SetMaxWalkSpeed()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewSpeed", !isMissing(NewSpeed), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewSpeedValue = Bridge<double>::in(NewSpeed, "UCharacterMovementComponent.SetMaxWalkSpeed(): argument 'NewSpeed'");
-                object->SetMaxWalkSpeed(NewSpeedValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetMaxWalkSpeed<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewSpeed}, true});
             },
             py::arg("NewSpeed") = sp::pybind::missingArgument(),
             "SetMaxWalkSpeed(self, *, NewSpeed: float) -> None\n\nSets MaxWalkSpeed (m/s, >= 0).");
         cls.def(
             "SetJumpZVelocity",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewVelocity, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCharacterMovementComponent.SetJumpZVelocity()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewVelocity", !isMissing(NewVelocity), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewVelocityValue = Bridge<double>::in(NewVelocity, "UCharacterMovementComponent.SetJumpZVelocity(): argument 'NewVelocity'");
-                object->SetJumpZVelocity(NewVelocityValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetJumpZVelocity<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewVelocity}, true});
             },
             py::arg("NewVelocity") = sp::pybind::missingArgument(),
             "SetJumpZVelocity(self, *, NewVelocity: float) -> None\n\nSets JumpZVelocity (m/s, >= 0).");
         cls.def(
             "SetMaxStepHeight",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewHeight, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCharacterMovementComponent.SetMaxStepHeight()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewHeight", !isMissing(NewHeight), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewHeightValue = Bridge<double>::in(NewHeight, "UCharacterMovementComponent.SetMaxStepHeight(): argument 'NewHeight'");
-                object->SetMaxStepHeight(NewHeightValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetMaxStepHeight<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewHeight}, true});
             },
             py::arg("NewHeight") = sp::pybind::missingArgument(),
             "SetMaxStepHeight(self, *, NewHeight: float) -> None\n\nSets MaxStepHeight (metres, >= 0).");
         cls.def(
             "SetWalkableFloorAngle",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewAngle, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCharacterMovementComponent.SetWalkableFloorAngle()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewAngle", !isMissing(NewAngle), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewAngleValue = Bridge<double>::in(NewAngle, "UCharacterMovementComponent.SetWalkableFloorAngle(): argument 'NewAngle'");
-                object->SetWalkableFloorAngle(NewAngleValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetWalkableFloorAngle<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewAngle}, true});
             },
             py::arg("NewAngle") = sp::pybind::missingArgument(),
             "SetWalkableFloorAngle(self, *, NewAngle: float) -> None\n\nSets WalkableFloorAngle (degrees, in (0, 90)).");
         cls.def(
             "GetVelocity",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCharacterMovementComponent.GetVelocity()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetVelocity();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetVelocity<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetVelocity(self) -> FVector\n\nReturns the velocity over the last physics step, m/s (walking and falling).");
         cls.def(
             "IsMovingOnGround",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCharacterMovementComponent.IsMovingOnGround()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->IsMovingOnGround();
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_IsMovingOnGround<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "IsMovingOnGround(self) -> bool\n\nReturns true while the character stands on the ground.");
         cls.def(
             "IsFalling",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UCharacterMovementComponent.IsFalling()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->IsFalling();
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_IsFalling<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "IsFalling(self) -> bool\n\nReturns true while the character is in the air (jumping or falling).");
     }
     {
         using Self = ULightComponent;
+        using Calls = sp::generated::engine::ULightComponentCalls;
         py::class_<Ref<Self>, Ref<USceneComponent>> cls(m, "ULightComponent", "A scene component that emits light.");
         cls.attr("__sp_class__") = "ULightComponent";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "Intensity",
-            [](const Ref<Self>& self) { return Bridge<float>::out(self.get<Self>("ULightComponent.Intensity")->Intensity); },
+            [](const Ref<Self>& self) { return Calls::get_Intensity<PyCall>(self.get<Self>("ULightComponent.Intensity")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("ULightComponent.Intensity");
-                object->Intensity = Bridge<float>::in(value, "ULightComponent.Intensity");
-                object->PostPropertyChanged("Intensity");
+                Calls::set_Intensity<PyCall>(self.get<Self>("ULightComponent.Intensity"), value);
             },
             "Brightness: lux for directional lights, candela for point lights.");
         cls.def_property(
             "LightColor",
-            [](const Ref<Self>& self) { return Bridge<FLinearColor>::out(self.get<Self>("ULightComponent.LightColor")->LightColor); },
+            [](const Ref<Self>& self) { return Calls::get_LightColor<PyCall>(self.get<Self>("ULightComponent.LightColor")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("ULightComponent.LightColor");
-                object->LightColor = Bridge<FLinearColor>::in(value, "ULightComponent.LightColor");
-                object->PostPropertyChanged("LightColor");
+                Calls::set_LightColor<PyCall>(self.get<Self>("ULightComponent.LightColor"), value);
             },
             "Colour of the emitted light (linear).");
         cls.def_property(
             "bCastShadows",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("ULightComponent.bCastShadows")->bCastShadows); },
+            [](const Ref<Self>& self) { return Calls::get_bCastShadows<PyCall>(self.get<Self>("ULightComponent.bCastShadows")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("ULightComponent.bCastShadows");
-                object->bCastShadows = Bridge<bool>::in(value, "ULightComponent.bCastShadows");
-                object->PostPropertyChanged("bCastShadows");
+                Calls::set_bCastShadows<PyCall>(self.get<Self>("ULightComponent.bCastShadows"), value);
             },
             "Whether this light casts shadows.");
         sp::pybind::nameProperties(cls);
@@ -3368,6 +2393,7 @@ void spear_bind_engine(py::module_& m) {
     }
     {
         using Self = UGameplayStatics;
+        using Calls = sp::generated::engine::UGameplayStaticsCalls;
         py::class_<Ref<Self>, Ref<UObject>> cls(m, "UGameplayStatics", "Static functions for games: the game mode, players, and actor queries.");
         cls.attr("__sp_class__") = "UGameplayStatics";
         sp::pybind::useBareTypeName(cls);
@@ -3377,12 +2403,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "GetGameMode",
             [](const py::args& positional, const PyArg& WorldContextObject, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UGameplayStatics.GetGameMode()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UGameplayStatics.GetGameMode(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.GetGameMode(): argument 'WorldContextObject'", " must not be None");
-                auto result = Self::GetGameMode(WorldContextObjectValue);
-                return Bridge<AGameModeBase*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetGameMode<PyCall>({positional, extra, std::array<const PyArg*, 1>{&WorldContextObject}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             "GetGameMode(*, WorldContextObject: UObject) -> AGameModeBase | None\n\nReturns the game mode of WorldContextObject's world (None in an editor world).");
@@ -3390,13 +2412,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "GetPlayerController",
             [](const py::args& positional, const PyArg& WorldContextObject, const PyArg& PlayerIndex, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UGameplayStatics.GetPlayerController()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}, {"PlayerIndex", !isMissing(PlayerIndex), true}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UGameplayStatics.GetPlayerController(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.GetPlayerController(): argument 'WorldContextObject'", " must not be None");
-                auto PlayerIndexValue = Bridge<int32_t>::in(PlayerIndex, "UGameplayStatics.GetPlayerController(): argument 'PlayerIndex'");
-                auto result = Self::GetPlayerController(WorldContextObjectValue, PlayerIndexValue);
-                return Bridge<APlayerController*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetPlayerController<PyCall>({positional, extra, std::array<const PyArg*, 2>{&WorldContextObject, &PlayerIndex}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("PlayerIndex") = sp::pybind::missingArgument(),
@@ -3405,13 +2422,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "GetPlayerPawn",
             [](const py::args& positional, const PyArg& WorldContextObject, const PyArg& PlayerIndex, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UGameplayStatics.GetPlayerPawn()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}, {"PlayerIndex", !isMissing(PlayerIndex), true}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UGameplayStatics.GetPlayerPawn(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.GetPlayerPawn(): argument 'WorldContextObject'", " must not be None");
-                auto PlayerIndexValue = Bridge<int32_t>::in(PlayerIndex, "UGameplayStatics.GetPlayerPawn(): argument 'PlayerIndex'");
-                auto result = Self::GetPlayerPawn(WorldContextObjectValue, PlayerIndexValue);
-                return Bridge<APawn*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetPlayerPawn<PyCall>({positional, extra, std::array<const PyArg*, 2>{&WorldContextObject, &PlayerIndex}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("PlayerIndex") = sp::pybind::missingArgument(),
@@ -3420,12 +2432,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "GetPlayerControllerID",
             [](const py::args& positional, const PyArg& Player, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UGameplayStatics.GetPlayerControllerID()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"Player", !isMissing(Player), true}});
-                auto PlayerValue = Bridge<APlayerController*>::in(Player, "UGameplayStatics.GetPlayerControllerID(): argument 'Player'");
-                SP_CHECK(PlayerValue, sp::InvalidArgument, "UGameplayStatics.GetPlayerControllerID(): argument 'Player'", " must not be None");
-                auto result = Self::GetPlayerControllerID(PlayerValue);
-                return Bridge<int32_t>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetPlayerControllerID<PyCall>({positional, extra, std::array<const PyArg*, 1>{&Player}, false});
             },
             py::arg("Player") = sp::pybind::missingArgument(),
             "GetPlayerControllerID(*, Player: APlayerController) -> int\n\nReturns the player index that Player serves, or -1 when it serves none.");
@@ -3433,12 +2441,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "GetNumPlayerControllers",
             [](const py::args& positional, const PyArg& WorldContextObject, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UGameplayStatics.GetNumPlayerControllers()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UGameplayStatics.GetNumPlayerControllers(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.GetNumPlayerControllers(): argument 'WorldContextObject'", " must not be None");
-                auto result = Self::GetNumPlayerControllers(WorldContextObjectValue);
-                return Bridge<int32_t>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetNumPlayerControllers<PyCall>({positional, extra, std::array<const PyArg*, 1>{&WorldContextObject}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             "GetNumPlayerControllers(*, WorldContextObject: UObject) -> int\n\nReturns the number of player controllers with a player.");
@@ -3446,14 +2450,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "CreatePlayer",
             [](const py::args& positional, const PyArg& WorldContextObject, const PyArg& ControllerId, const PyArg& bSpawnPlayerController, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UGameplayStatics.CreatePlayer()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}, {"ControllerId", !isMissing(ControllerId), false}, {"bSpawnPlayerController", !isMissing(bSpawnPlayerController), false}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UGameplayStatics.CreatePlayer(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.CreatePlayer(): argument 'WorldContextObject'", " must not be None");
-                int32_t ControllerIdValue = isMissing(ControllerId) ? int32_t(-1) : Bridge<int32_t>::in(ControllerId, "UGameplayStatics.CreatePlayer(): argument 'ControllerId'");
-                bool bSpawnPlayerControllerValue = isMissing(bSpawnPlayerController) ? bool(true) : Bridge<bool>::in(bSpawnPlayerController, "UGameplayStatics.CreatePlayer(): argument 'bSpawnPlayerController'");
-                auto result = Self::CreatePlayer(WorldContextObjectValue, ControllerIdValue, bSpawnPlayerControllerValue);
-                return Bridge<APlayerController*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_CreatePlayer<PyCall>({positional, extra, std::array<const PyArg*, 3>{&WorldContextObject, &ControllerId, &bSpawnPlayerController}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("ControllerId") = sp::pybind::missingArgument(),
@@ -3463,14 +2461,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "GetAllActorsOfClass",
             [](const py::args& positional, const PyArg& WorldContextObject, const PyArg& ActorClass, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UGameplayStatics.GetAllActorsOfClass()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}, {"ActorClass", !isMissing(ActorClass), true}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UGameplayStatics.GetAllActorsOfClass(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.GetAllActorsOfClass(): argument 'WorldContextObject'", " must not be None");
-                auto ActorClassValue = Bridge<TSubclassOf<AActor>>::in(ActorClass, "UGameplayStatics.GetAllActorsOfClass(): argument 'ActorClass'");
-                SP_CHECK(ActorClassValue, sp::InvalidArgument, "UGameplayStatics.GetAllActorsOfClass(): argument 'ActorClass'", " must not be None");
-                auto result = Self::GetAllActorsOfClass(WorldContextObjectValue, ActorClassValue);
-                return Bridge<std::vector<AActor*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetAllActorsOfClass<PyCall>({positional, extra, std::array<const PyArg*, 2>{&WorldContextObject, &ActorClass}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("ActorClass") = sp::pybind::missingArgument(),
@@ -3479,14 +2471,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "GetActorOfClass",
             [](const py::args& positional, const PyArg& WorldContextObject, const PyArg& ActorClass, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UGameplayStatics.GetActorOfClass()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}, {"ActorClass", !isMissing(ActorClass), true}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UGameplayStatics.GetActorOfClass(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.GetActorOfClass(): argument 'WorldContextObject'", " must not be None");
-                auto ActorClassValue = Bridge<TSubclassOf<AActor>>::in(ActorClass, "UGameplayStatics.GetActorOfClass(): argument 'ActorClass'");
-                SP_CHECK(ActorClassValue, sp::InvalidArgument, "UGameplayStatics.GetActorOfClass(): argument 'ActorClass'", " must not be None");
-                auto result = Self::GetActorOfClass(WorldContextObjectValue, ActorClassValue);
-                return Bridge<AActor*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetActorOfClass<PyCall>({positional, extra, std::array<const PyArg*, 2>{&WorldContextObject, &ActorClass}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("ActorClass") = sp::pybind::missingArgument(),
@@ -3495,13 +2481,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "GetAllActorsWithTag",
             [](const py::args& positional, const PyArg& WorldContextObject, const PyArg& Tag, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UGameplayStatics.GetAllActorsWithTag()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}, {"Tag", !isMissing(Tag), true}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UGameplayStatics.GetAllActorsWithTag(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.GetAllActorsWithTag(): argument 'WorldContextObject'", " must not be None");
-                auto TagValue = Bridge<std::string>::in(Tag, "UGameplayStatics.GetAllActorsWithTag(): argument 'Tag'");
-                auto result = Self::GetAllActorsWithTag(WorldContextObjectValue, TagValue);
-                return Bridge<std::vector<AActor*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetAllActorsWithTag<PyCall>({positional, extra, std::array<const PyArg*, 2>{&WorldContextObject, &Tag}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("Tag") = sp::pybind::missingArgument(),
@@ -3510,15 +2491,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "LoadStreamLevel",
             [](const py::args& positional, const PyArg& WorldContextObject, const PyArg& LevelName, const PyArg& bMakeVisibleAfterLoad, const PyArg& bShouldBlockOnLoad, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UGameplayStatics.LoadStreamLevel()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}, {"LevelName", !isMissing(LevelName), true}, {"bMakeVisibleAfterLoad", !isMissing(bMakeVisibleAfterLoad), false}, {"bShouldBlockOnLoad", !isMissing(bShouldBlockOnLoad), false}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UGameplayStatics.LoadStreamLevel(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.LoadStreamLevel(): argument 'WorldContextObject'", " must not be None");
-                auto LevelNameValue = Bridge<std::string>::in(LevelName, "UGameplayStatics.LoadStreamLevel(): argument 'LevelName'");
-                bool bMakeVisibleAfterLoadValue = isMissing(bMakeVisibleAfterLoad) ? bool(true) : Bridge<bool>::in(bMakeVisibleAfterLoad, "UGameplayStatics.LoadStreamLevel(): argument 'bMakeVisibleAfterLoad'");
-                bool bShouldBlockOnLoadValue = isMissing(bShouldBlockOnLoad) ? bool(true) : Bridge<bool>::in(bShouldBlockOnLoad, "UGameplayStatics.LoadStreamLevel(): argument 'bShouldBlockOnLoad'");
-                Self::LoadStreamLevel(WorldContextObjectValue, LevelNameValue, bMakeVisibleAfterLoadValue, bShouldBlockOnLoadValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_LoadStreamLevel<PyCall>({positional, extra, std::array<const PyArg*, 4>{&WorldContextObject, &LevelName, &bMakeVisibleAfterLoad, &bShouldBlockOnLoad}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("LevelName") = sp::pybind::missingArgument(),
@@ -3529,14 +2503,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "UnloadStreamLevel",
             [](const py::args& positional, const PyArg& WorldContextObject, const PyArg& LevelName, const PyArg& bShouldBlockOnUnload, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UGameplayStatics.UnloadStreamLevel()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}, {"LevelName", !isMissing(LevelName), true}, {"bShouldBlockOnUnload", !isMissing(bShouldBlockOnUnload), false}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UGameplayStatics.UnloadStreamLevel(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.UnloadStreamLevel(): argument 'WorldContextObject'", " must not be None");
-                auto LevelNameValue = Bridge<std::string>::in(LevelName, "UGameplayStatics.UnloadStreamLevel(): argument 'LevelName'");
-                bool bShouldBlockOnUnloadValue = isMissing(bShouldBlockOnUnload) ? bool(true) : Bridge<bool>::in(bShouldBlockOnUnload, "UGameplayStatics.UnloadStreamLevel(): argument 'bShouldBlockOnUnload'");
-                Self::UnloadStreamLevel(WorldContextObjectValue, LevelNameValue, bShouldBlockOnUnloadValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_UnloadStreamLevel<PyCall>({positional, extra, std::array<const PyArg*, 3>{&WorldContextObject, &LevelName, &bShouldBlockOnUnload}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("LevelName") = sp::pybind::missingArgument(),
@@ -3546,12 +2514,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "GetStreamingLevelNames",
             [](const py::args& positional, const PyArg& WorldContextObject, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UGameplayStatics.GetStreamingLevelNames()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UGameplayStatics.GetStreamingLevelNames(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.GetStreamingLevelNames(): argument 'WorldContextObject'", " must not be None");
-                auto result = Self::GetStreamingLevelNames(WorldContextObjectValue);
-                return Bridge<std::vector<std::string>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetStreamingLevelNames<PyCall>({positional, extra, std::array<const PyArg*, 1>{&WorldContextObject}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             "GetStreamingLevelNames(*, WorldContextObject: UObject) -> list[str]\n\nReturns the names of the world's streaming levels, declared ones first, in order.");
@@ -3559,13 +2523,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "IsStreamingLevelLoaded",
             [](const py::args& positional, const PyArg& WorldContextObject, const PyArg& LevelName, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UGameplayStatics.IsStreamingLevelLoaded()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}, {"LevelName", !isMissing(LevelName), true}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UGameplayStatics.IsStreamingLevelLoaded(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UGameplayStatics.IsStreamingLevelLoaded(): argument 'WorldContextObject'", " must not be None");
-                auto LevelNameValue = Bridge<std::string>::in(LevelName, "UGameplayStatics.IsStreamingLevelLoaded(): argument 'LevelName'");
-                auto result = Self::IsStreamingLevelLoaded(WorldContextObjectValue, LevelNameValue);
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_IsStreamingLevelLoaded<PyCall>({positional, extra, std::array<const PyArg*, 2>{&WorldContextObject, &LevelName}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("LevelName") = sp::pybind::missingArgument(),
@@ -3573,6 +2532,7 @@ void spear_bind_engine(py::module_& m) {
     }
     {
         using Self = UInputComponent;
+        using Calls = sp::generated::engine::UInputComponentCalls;
         py::class_<Ref<Self>, Ref<UActorComponent>> cls(m, "UInputComponent", "A component that receives input actions injected for the actor that owns it.");
         cls.attr("__sp_class__") = "UInputComponent";
         sp::pybind::useBareTypeName(cls);
@@ -3581,132 +2541,94 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetActionValue",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& ActionName, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UInputComponent.GetActionValue()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"ActionName", !isMissing(ActionName), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto ActionNameValue = Bridge<std::string>::in(ActionName, "UInputComponent.GetActionValue(): argument 'ActionName'");
-                auto result = object->GetActionValue(ActionNameValue);
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetActionValue<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&ActionName}, true});
             },
             py::arg("ActionName") = sp::pybind::missingArgument(),
             "GetActionValue(self, *, ActionName: str) -> FVector\n\nReturns the value of ActionName injected for the current tick, or zero when it was not injected.");
         cls.def(
             "IsActionTriggered",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& ActionName, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UInputComponent.IsActionTriggered()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"ActionName", !isMissing(ActionName), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto ActionNameValue = Bridge<std::string>::in(ActionName, "UInputComponent.IsActionTriggered(): argument 'ActionName'");
-                auto result = object->IsActionTriggered(ActionNameValue);
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_IsActionTriggered<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&ActionName}, true});
             },
             py::arg("ActionName") = sp::pybind::missingArgument(),
             "IsActionTriggered(self, *, ActionName: str) -> bool\n\nReturns true when ActionName was injected for the current tick.");
     }
     {
         using Self = UMoviePipelineExecutorJob;
+        using Calls = sp::generated::engine::UMoviePipelineExecutorJobCalls;
         py::class_<Ref<Self>, Ref<UObject>> cls(m, "UMoviePipelineExecutorJob", "One render job: a camera, a configuration, and where rendering is.");
         cls.attr("__sp_class__") = "UMoviePipelineExecutorJob";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property_readonly(
             "JobName",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("UMoviePipelineExecutorJob.JobName")->JobName;
-                return Bridge<std::string>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_JobName<PyCall>(self.get<Self>("UMoviePipelineExecutorJob.JobName")); },
             "The name given to AllocateJob (used in progress and log lines).");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetConfiguration",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Configuration, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UMoviePipelineExecutorJob.SetConfiguration()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Configuration", !isMissing(Configuration), true}});
-                Self* object = self.get<Self>(kContext);
-                auto ConfigurationValue = Bridge<FMoviePipelineConfiguration>::in(Configuration, "UMoviePipelineExecutorJob.SetConfiguration(): argument 'Configuration'");
-                object->SetConfiguration(ConfigurationValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetConfiguration<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Configuration}, true});
             },
             py::arg("Configuration") = sp::pybind::missingArgument(),
             "SetConfiguration(self, *, Configuration: FMoviePipelineConfiguration) -> None\n\nSets what the job renders; checked now (each field's range, poses that pair up, a frame range), and\nrefused while the job is queued or rendering.");
         cls.def(
             "GetConfiguration",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UMoviePipelineExecutorJob.GetConfiguration()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetConfiguration();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FMoviePipelineConfiguration>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetConfiguration<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetConfiguration(self) -> FMoviePipelineConfiguration\n\nReturns the configuration set last.");
         cls.def(
             "GetCamera",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UMoviePipelineExecutorJob.GetCamera()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetCamera();
-                return Bridge<UCameraSensorComponent*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetCamera<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetCamera(self) -> UCameraSensorComponent | None\n\nReturns the camera the job renders with, or None when it was destroyed.");
         cls.def(
             "GetStatus",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UMoviePipelineExecutorJob.GetStatus()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetStatus();
-                return Bridge<EMoviePipelineJobStatus>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetStatus<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetStatus(self) -> EMoviePipelineJobStatus\n\nReturns where the job is.");
         cls.def(
             "GetProgress",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UMoviePipelineExecutorJob.GetProgress()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetProgress();
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FMoviePipelineProgress>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetProgress<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetProgress(self) -> FMoviePipelineProgress\n\nReturns how far the job is (of its current or last run).");
         cls.def(
             "GetErrorMessage",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UMoviePipelineExecutorJob.GetErrorMessage()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetErrorMessage();
-                return Bridge<std::string>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetErrorMessage<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetErrorMessage(self) -> str\n\nReturns why the job failed, or \"\" when it did not.");
         cls.def(
             "GetOutputFiles",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Frame, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UMoviePipelineExecutorJob.GetOutputFiles()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Frame", !isMissing(Frame), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto FrameValue = Bridge<int32_t>::in(Frame, "UMoviePipelineExecutorJob.GetOutputFiles(): argument 'Frame'");
-                auto result = object->GetOutputFiles(FrameValue);
-                return Bridge<std::vector<std::string>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetOutputFiles<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Frame}, true});
             },
             py::arg("Frame") = sp::pybind::missingArgument(),
             "GetOutputFiles(self, *, Frame: int) -> list[str]\n\nReturns the paths of the files output frame Frame writes: one per modality, then the camera file.");
         cls.def(
             "Cancel",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UMoviePipelineExecutorJob.Cancel()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                object->Cancel();
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_Cancel<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "Cancel(self) -> None\n\nStops the job (queued or rendering) now, once the frames being written are on disk; frames written\nstay.");
     }
     {
         using Self = UMoviePipelineQueueEngineSubsystem;
+        using Calls = sp::generated::engine::UMoviePipelineQueueEngineSubsystemCalls;
         py::class_<Ref<Self>, Ref<UObject>> cls(m, "UMoviePipelineQueueEngineSubsystem", "A world's render queue (UE's UMoviePipelineQueueEngineSubsystem): jobs render one after another, in the\norder RenderJob queued them.");
         cls.attr("__sp_class__") = "UMoviePipelineQueueEngineSubsystem";
         sp::pybind::useBareTypeName(cls);
@@ -3716,28 +2638,16 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "GetMoviePipelineQueueEngineSubsystem",
             [](const py::args& positional, const PyArg& WorldContextObject, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.GetMoviePipelineQueueEngineSubsystem()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UMoviePipelineQueueEngineSubsystem.GetMoviePipelineQueueEngineSubsystem(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UMoviePipelineQueueEngineSubsystem.GetMoviePipelineQueueEngineSubsystem(): argument 'WorldContextObject'", " must not be None");
-                auto result = Self::GetMoviePipelineQueueEngineSubsystem(WorldContextObjectValue);
-                sp::reflect::checkNotNull(result, kContext);
-                return Bridge<UMoviePipelineQueueEngineSubsystem*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetMoviePipelineQueueEngineSubsystem<PyCall>({positional, extra, std::array<const PyArg*, 1>{&WorldContextObject}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             "GetMoviePipelineQueueEngineSubsystem(*, WorldContextObject: UObject) -> UMoviePipelineQueueEngineSubsystem\n\nReturns the render queue of WorldContextObject's world.");
         cls.def(
             "AllocateJob",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Camera, const PyArg& JobName, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.AllocateJob()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Camera", !isMissing(Camera), true}, {"JobName", !isMissing(JobName), false}});
-                Self* object = self.get<Self>(kContext);
-                auto CameraValue = Bridge<UCameraSensorComponent*>::in(Camera, "UMoviePipelineQueueEngineSubsystem.AllocateJob(): argument 'Camera'");
-                SP_CHECK(CameraValue, sp::InvalidArgument, "UMoviePipelineQueueEngineSubsystem.AllocateJob(): argument 'Camera'", " must not be None");
-                std::string JobNameValue = isMissing(JobName) ? std::string("") : Bridge<std::string>::in(JobName, "UMoviePipelineQueueEngineSubsystem.AllocateJob(): argument 'JobName'");
-                auto result = object->AllocateJob(CameraValue, JobNameValue);
-                sp::reflect::checkNotNull(result, kContext);
-                return Bridge<UMoviePipelineExecutorJob*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_AllocateJob<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&Camera, &JobName}, true});
             },
             py::arg("Camera") = sp::pybind::missingArgument(),
             py::arg("JobName") = sp::pybind::missingArgument(),
@@ -3745,72 +2655,51 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "RenderJob",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Job, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.RenderJob()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Job", !isMissing(Job), true}});
-                Self* object = self.get<Self>(kContext);
-                auto JobValue = Bridge<UMoviePipelineExecutorJob*>::in(Job, "UMoviePipelineQueueEngineSubsystem.RenderJob(): argument 'Job'");
-                SP_CHECK(JobValue, sp::InvalidArgument, "UMoviePipelineQueueEngineSubsystem.RenderJob(): argument 'Job'", " must not be None");
-                object->RenderJob(JobValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_RenderJob<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Job}, true});
             },
             py::arg("Job") = sp::pybind::missingArgument(),
             "RenderJob(self, *, Job: UMoviePipelineExecutorJob) -> None\n\nQueues a configured job and returns at once; it renders over the next engine frames. A job that\nended (finished, cancelled, failed) may be queued again: it skips the frames already written.");
         cls.def(
             "IsRendering",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.IsRendering()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->IsRendering();
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_IsRendering<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "IsRendering(self) -> bool\n\nReturns whether a job is rendering or queued.");
         cls.def(
             "GetActiveJob",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.GetActiveJob()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetActiveJob();
-                return Bridge<UMoviePipelineExecutorJob*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetActiveJob<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetActiveJob(self) -> UMoviePipelineExecutorJob | None\n\nReturns the job rendering now, or None.");
         cls.def(
             "GetJobs",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.GetJobs()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetJobs();
-                return Bridge<std::vector<UMoviePipelineExecutorJob*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetJobs<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetJobs(self) -> list[UMoviePipelineExecutorJob]\n\nReturns every job of this queue, in allocation order.");
         cls.def(
             "CancelAllJobs",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.CancelAllJobs()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                object->CancelAllJobs();
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_CancelAllJobs<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "CancelAllJobs(self) -> None\n\nCancels the rendering job and every queued one.");
         cls.def(
             "DeleteJob",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Job, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UMoviePipelineQueueEngineSubsystem.DeleteJob()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Job", !isMissing(Job), true}});
-                Self* object = self.get<Self>(kContext);
-                auto JobValue = Bridge<UMoviePipelineExecutorJob*>::in(Job, "UMoviePipelineQueueEngineSubsystem.DeleteJob(): argument 'Job'");
-                SP_CHECK(JobValue, sp::InvalidArgument, "UMoviePipelineQueueEngineSubsystem.DeleteJob(): argument 'Job'", " must not be None");
-                object->DeleteJob(JobValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_DeleteJob<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Job}, true});
             },
             py::arg("Job") = sp::pybind::missingArgument(),
             "DeleteJob(self, *, Job: UMoviePipelineExecutorJob) -> None\n\nDestroys a job that is not queued or rendering; its handles become stale.");
     }
     {
         using Self = UNavigationSystemV1;
+        using Calls = sp::generated::engine::UNavigationSystemV1Calls;
         py::class_<Ref<Self>, Ref<UObject>> cls(m, "UNavigationSystemV1", "The world's navigation system (UE's UNavigationSystemV1).");
         cls.attr("__sp_class__") = "UNavigationSystemV1";
         sp::pybind::useBareTypeName(cls);
@@ -3820,66 +2709,39 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "GetNavigationSystem",
             [](const py::args& positional, const PyArg& WorldContextObject, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UNavigationSystemV1.GetNavigationSystem()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UNavigationSystemV1.GetNavigationSystem(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UNavigationSystemV1.GetNavigationSystem(): argument 'WorldContextObject'", " must not be None");
-                auto result = Self::GetNavigationSystem(WorldContextObjectValue);
-                sp::reflect::checkNotNull(result, kContext);
-                return Bridge<UNavigationSystemV1*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetNavigationSystem<PyCall>({positional, extra, std::array<const PyArg*, 1>{&WorldContextObject}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             "GetNavigationSystem(*, WorldContextObject: UObject) -> UNavigationSystemV1\n\nReturns the navigation system of WorldContextObject's world.");
         cls.def(
             "GetNavDataForAgentName",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& AgentName, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UNavigationSystemV1.GetNavDataForAgentName()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"AgentName", !isMissing(AgentName), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto AgentNameValue = Bridge<std::string>::in(AgentName, "UNavigationSystemV1.GetNavDataForAgentName(): argument 'AgentName'");
-                auto result = object->GetNavDataForAgentName(AgentNameValue);
-                return Bridge<ARecastNavMesh*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetNavDataForAgentName<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&AgentName}, true});
             },
             py::arg("AgentName") = sp::pybind::missingArgument(),
             "GetNavDataForAgentName(self, *, AgentName: str) -> ARecastNavMesh | None\n\nReturns the navigation data of agent profile AgentName, or None.");
         cls.def(
             "GetDefaultNavDataInstance",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UNavigationSystemV1.GetDefaultNavDataInstance()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                auto result = object->GetDefaultNavDataInstance();
-                sp::reflect::checkNotNull(result, kContext);
-                return Bridge<ARecastNavMesh*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetDefaultNavDataInstance<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetDefaultNavDataInstance(self) -> ARecastNavMesh\n\nReturns the default navigation data: the world's first ARecastNavMesh, spawned (as\n\"RecastNavMesh-Default\") when it has none.");
         cls.def(
             "Build",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UNavigationSystemV1.Build()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                object->Build();
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_Build<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "Build(self) -> None\n\nRebuilds every navigation data of the world now.");
         // Static in C++: called on the class, with no object.
         cls.def_static(
             "FindPathToLocationSynchronously",
             [](const py::args& positional, const PyArg& WorldContextObject, const PyArg& PathStart, const PyArg& PathEnd, const PyArg& NavData, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UNavigationSystemV1.FindPathToLocationSynchronously()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}, {"PathStart", !isMissing(PathStart), true}, {"PathEnd", !isMissing(PathEnd), true}, {"NavData", !isMissing(NavData), false}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UNavigationSystemV1.FindPathToLocationSynchronously(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UNavigationSystemV1.FindPathToLocationSynchronously(): argument 'WorldContextObject'", " must not be None");
-                auto PathStartValue = Bridge<FVector>::in(PathStart, "UNavigationSystemV1.FindPathToLocationSynchronously(): argument 'PathStart'");
-                auto PathEndValue = Bridge<FVector>::in(PathEnd, "UNavigationSystemV1.FindPathToLocationSynchronously(): argument 'PathEnd'");
-                sp::reflect::SpArray<double> PathPointsOut{};
-                double PathLengthOut{};
-                ARecastNavMesh* NavDataValue = isMissing(NavData) ? static_cast<ARecastNavMesh*>(nullptr) : Bridge<ARecastNavMesh*>::in(NavData, "UNavigationSystemV1.FindPathToLocationSynchronously(): argument 'NavData'");
-                auto result = Self::FindPathToLocationSynchronously(WorldContextObjectValue, PathStartValue, PathEndValue, PathPointsOut, PathLengthOut, NavDataValue);
-                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
-                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("FindPathToLocationSynchronouslyResult"));
-                return (*resultType)(py::arg("ReturnValue") = Bridge<ENavigationQueryResult>::out(result), py::arg("PathPoints") = Bridge<sp::reflect::SpArray<double>>::out(PathPointsOut), py::arg("PathLength") = Bridge<double>::out(PathLengthOut));
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_FindPathToLocationSynchronously<PyCall>({positional, extra, std::array<const PyArg*, 4>{&WorldContextObject, &PathStart, &PathEnd, &NavData}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("PathStart") = sp::pybind::missingArgument(),
@@ -3890,18 +2752,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "GetPathLength",
             [](const py::args& positional, const PyArg& WorldContextObject, const PyArg& PathStart, const PyArg& PathEnd, const PyArg& NavData, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UNavigationSystemV1.GetPathLength()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}, {"PathStart", !isMissing(PathStart), true}, {"PathEnd", !isMissing(PathEnd), true}, {"NavData", !isMissing(NavData), false}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UNavigationSystemV1.GetPathLength(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UNavigationSystemV1.GetPathLength(): argument 'WorldContextObject'", " must not be None");
-                auto PathStartValue = Bridge<FVector>::in(PathStart, "UNavigationSystemV1.GetPathLength(): argument 'PathStart'");
-                auto PathEndValue = Bridge<FVector>::in(PathEnd, "UNavigationSystemV1.GetPathLength(): argument 'PathEnd'");
-                double PathLengthOut{};
-                ARecastNavMesh* NavDataValue = isMissing(NavData) ? static_cast<ARecastNavMesh*>(nullptr) : Bridge<ARecastNavMesh*>::in(NavData, "UNavigationSystemV1.GetPathLength(): argument 'NavData'");
-                auto result = Self::GetPathLength(WorldContextObjectValue, PathStartValue, PathEndValue, PathLengthOut, NavDataValue);
-                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
-                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("GetPathLengthResult"));
-                return (*resultType)(py::arg("ReturnValue") = Bridge<ENavigationQueryResult>::out(result), py::arg("PathLength") = Bridge<double>::out(PathLengthOut));
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetPathLength<PyCall>({positional, extra, std::array<const PyArg*, 4>{&WorldContextObject, &PathStart, &PathEnd, &NavData}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("PathStart") = sp::pybind::missingArgument(),
@@ -3912,18 +2764,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "K2_GetRandomReachablePointInRadius",
             [](const py::args& positional, const PyArg& WorldContextObject, const PyArg& Origin, const PyArg& Radius, const PyArg& NavData, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UNavigationSystemV1.K2_GetRandomReachablePointInRadius()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}, {"Origin", !isMissing(Origin), true}, {"Radius", !isMissing(Radius), true}, {"NavData", !isMissing(NavData), false}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UNavigationSystemV1.K2_GetRandomReachablePointInRadius(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UNavigationSystemV1.K2_GetRandomReachablePointInRadius(): argument 'WorldContextObject'", " must not be None");
-                auto OriginValue = Bridge<FVector>::in(Origin, "UNavigationSystemV1.K2_GetRandomReachablePointInRadius(): argument 'Origin'");
-                FVector RandomLocationOut{};
-                auto RadiusValue = Bridge<double>::in(Radius, "UNavigationSystemV1.K2_GetRandomReachablePointInRadius(): argument 'Radius'");
-                ARecastNavMesh* NavDataValue = isMissing(NavData) ? static_cast<ARecastNavMesh*>(nullptr) : Bridge<ARecastNavMesh*>::in(NavData, "UNavigationSystemV1.K2_GetRandomReachablePointInRadius(): argument 'NavData'");
-                auto result = Self::K2_GetRandomReachablePointInRadius(WorldContextObjectValue, OriginValue, RandomLocationOut, RadiusValue, NavDataValue);
-                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
-                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("K2_GetRandomReachablePointInRadiusResult"));
-                return (*resultType)(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("RandomLocation") = Bridge<FVector>::out(RandomLocationOut));
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_K2_GetRandomReachablePointInRadius<PyCall>({positional, extra, std::array<const PyArg*, 4>{&WorldContextObject, &Origin, &Radius, &NavData}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("Origin") = sp::pybind::missingArgument(),
@@ -3934,18 +2776,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "K2_GetRandomLocationInNavigableRadius",
             [](const py::args& positional, const PyArg& WorldContextObject, const PyArg& Origin, const PyArg& Radius, const PyArg& NavData, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}, {"Origin", !isMissing(Origin), true}, {"Radius", !isMissing(Radius), true}, {"NavData", !isMissing(NavData), false}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius(): argument 'WorldContextObject'", " must not be None");
-                auto OriginValue = Bridge<FVector>::in(Origin, "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius(): argument 'Origin'");
-                FVector RandomLocationOut{};
-                auto RadiusValue = Bridge<double>::in(Radius, "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius(): argument 'Radius'");
-                ARecastNavMesh* NavDataValue = isMissing(NavData) ? static_cast<ARecastNavMesh*>(nullptr) : Bridge<ARecastNavMesh*>::in(NavData, "UNavigationSystemV1.K2_GetRandomLocationInNavigableRadius(): argument 'NavData'");
-                auto result = Self::K2_GetRandomLocationInNavigableRadius(WorldContextObjectValue, OriginValue, RandomLocationOut, RadiusValue, NavDataValue);
-                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
-                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("K2_GetRandomLocationInNavigableRadiusResult"));
-                return (*resultType)(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("RandomLocation") = Bridge<FVector>::out(RandomLocationOut));
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_K2_GetRandomLocationInNavigableRadius<PyCall>({positional, extra, std::array<const PyArg*, 4>{&WorldContextObject, &Origin, &Radius, &NavData}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("Origin") = sp::pybind::missingArgument(),
@@ -3956,18 +2788,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def_static(
             "K2_ProjectPointToNavigation",
             [](const py::args& positional, const PyArg& WorldContextObject, const PyArg& Point, const PyArg& NavData, const PyArg& QueryExtent, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UNavigationSystemV1.K2_ProjectPointToNavigation()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"WorldContextObject", !isMissing(WorldContextObject), true}, {"Point", !isMissing(Point), true}, {"NavData", !isMissing(NavData), false}, {"QueryExtent", !isMissing(QueryExtent), false}});
-                auto WorldContextObjectValue = Bridge<UObject*>::in(WorldContextObject, "UNavigationSystemV1.K2_ProjectPointToNavigation(): argument 'WorldContextObject'");
-                SP_CHECK(WorldContextObjectValue, sp::InvalidArgument, "UNavigationSystemV1.K2_ProjectPointToNavigation(): argument 'WorldContextObject'", " must not be None");
-                auto PointValue = Bridge<FVector>::in(Point, "UNavigationSystemV1.K2_ProjectPointToNavigation(): argument 'Point'");
-                FVector ProjectedLocationOut{};
-                ARecastNavMesh* NavDataValue = isMissing(NavData) ? static_cast<ARecastNavMesh*>(nullptr) : Bridge<ARecastNavMesh*>::in(NavData, "UNavigationSystemV1.K2_ProjectPointToNavigation(): argument 'NavData'");
-                FVector QueryExtentValue = isMissing(QueryExtent) ? FVector(FVector()) : Bridge<FVector>::in(QueryExtent, "UNavigationSystemV1.K2_ProjectPointToNavigation(): argument 'QueryExtent'");
-                auto result = Self::K2_ProjectPointToNavigation(WorldContextObjectValue, PointValue, ProjectedLocationOut, NavDataValue, QueryExtentValue);
-                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
-                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "UNavigationSystemV1").attr("K2_ProjectPointToNavigationResult"));
-                return (*resultType)(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("ProjectedLocation") = Bridge<FVector>::out(ProjectedLocationOut));
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_K2_ProjectPointToNavigation<PyCall>({positional, extra, std::array<const PyArg*, 4>{&WorldContextObject, &Point, &NavData, &QueryExtent}, false});
             },
             py::arg("WorldContextObject") = sp::pybind::missingArgument(),
             py::arg("Point") = sp::pybind::missingArgument(),
@@ -3977,335 +2799,266 @@ void spear_bind_engine(py::module_& m) {
     }
     {
         using Self = UPCGComponent;
+        using Calls = sp::generated::engine::UPCGComponentCalls;
         py::class_<Ref<Self>, Ref<UActorComponent>> cls(m, "UPCGComponent", "Generates actors in its owner's box by rules.");
         cls.attr("__sp_class__") = "UPCGComponent";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "GenerationMode",
-            [](const Ref<Self>& self) { return Bridge<EPCGGenerationMode>::out(self.get<Self>("UPCGComponent.GenerationMode")->GenerationMode); },
+            [](const Ref<Self>& self) { return Calls::get_GenerationMode<PyCall>(self.get<Self>("UPCGComponent.GenerationMode")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.GenerationMode");
-                object->GenerationMode = Bridge<EPCGGenerationMode>::in(value, "UPCGComponent.GenerationMode");
-                object->PostPropertyChanged("GenerationMode");
+                Calls::set_GenerationMode<PyCall>(self.get<Self>("UPCGComponent.GenerationMode"), value);
             },
             "How actors are placed.");
         cls.def_property(
             "Seed",
-            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UPCGComponent.Seed")->Seed); },
+            [](const Ref<Self>& self) { return Calls::get_Seed<PyCall>(self.get<Self>("UPCGComponent.Seed")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.Seed");
-                object->Seed = Bridge<int32_t>::in(value, "UPCGComponent.Seed");
-                object->PostPropertyChanged("Seed");
+                Calls::set_Seed<PyCall>(self.get<Self>("UPCGComponent.Seed"), value);
             },
             "Seed of the placement's random draws: the same seed gives the same actors.");
         cls.def_property(
             "ActorClass",
-            [](const Ref<Self>& self) { return Bridge<TSubclassOf<AActor>>::out(self.get<Self>("UPCGComponent.ActorClass")->ActorClass); },
+            [](const Ref<Self>& self) { return Calls::get_ActorClass<PyCall>(self.get<Self>("UPCGComponent.ActorClass")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.ActorClass");
-                object->ActorClass = Bridge<TSubclassOf<AActor>>::in(value, "UPCGComponent.ActorClass");
-                object->PostPropertyChanged("ActorClass");
+                Calls::set_ActorClass<PyCall>(self.get<Self>("UPCGComponent.ActorClass"), value);
             },
             "The class spawned (AStaticMeshActor and its subclasses take StaticMesh and Materials).");
         cls.def_property(
             "StaticMesh",
-            [](const Ref<Self>& self) { return Bridge<std::string>::out(self.get<Self>("UPCGComponent.StaticMesh")->StaticMesh); },
+            [](const Ref<Self>& self) { return Calls::get_StaticMesh<PyCall>(self.get<Self>("UPCGComponent.StaticMesh")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.StaticMesh");
-                object->StaticMesh = Bridge<std::string>::in(value, "UPCGComponent.StaticMesh");
-                object->PostPropertyChanged("StaticMesh");
+                Calls::set_StaticMesh<PyCall>(self.get<Self>("UPCGComponent.StaticMesh"), value);
             },
             "The mesh of spawned static mesh actors.");
         cls.def_property(
             "Materials",
-            [](const Ref<Self>& self) { return Bridge<std::vector<std::string>>::out(self.get<Self>("UPCGComponent.Materials")->Materials); },
+            [](const Ref<Self>& self) { return Calls::get_Materials<PyCall>(self.get<Self>("UPCGComponent.Materials")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.Materials");
-                object->Materials = Bridge<std::vector<std::string>>::in(value, "UPCGComponent.Materials");
-                object->PostPropertyChanged("Materials");
+                Calls::set_Materials<PyCall>(self.get<Self>("UPCGComponent.Materials"), value);
             },
             "Materials drawn from for each spawned static mesh actor (empty: the mesh's own).");
         cls.def_property(
             "Spacing",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.Spacing")->Spacing); },
+            [](const Ref<Self>& self) { return Calls::get_Spacing<PyCall>(self.get<Self>("UPCGComponent.Spacing")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.Spacing");
-                object->Spacing = Bridge<double>::in(value, "UPCGComponent.Spacing");
-                object->PostPropertyChanged("Spacing");
+                Calls::set_Spacing<PyCall>(self.get<Self>("UPCGComponent.Spacing"), value);
             },
             "Scatter: the least distance between two actors; AlongSpline: the distance between them along it.");
         cls.def_property(
             "MaxCount",
-            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UPCGComponent.MaxCount")->MaxCount); },
+            [](const Ref<Self>& self) { return Calls::get_MaxCount<PyCall>(self.get<Self>("UPCGComponent.MaxCount")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.MaxCount");
-                object->MaxCount = Bridge<int32_t>::in(value, "UPCGComponent.MaxCount");
-                object->PostPropertyChanged("MaxCount");
+                Calls::set_MaxCount<PyCall>(self.get<Self>("UPCGComponent.MaxCount"), value);
             },
             "Scatter: at most this many actors.");
         cls.def_property(
             "MinScale",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.MinScale")->MinScale); },
+            [](const Ref<Self>& self) { return Calls::get_MinScale<PyCall>(self.get<Self>("UPCGComponent.MinScale")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.MinScale");
-                object->MinScale = Bridge<double>::in(value, "UPCGComponent.MinScale");
-                object->PostPropertyChanged("MinScale");
+                Calls::set_MinScale<PyCall>(self.get<Self>("UPCGComponent.MinScale"), value);
             },
             "Scatter and AlongSpline: each actor's uniform scale is drawn from [MinScale, MaxScale].");
         cls.def_property(
             "MaxScale",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.MaxScale")->MaxScale); },
+            [](const Ref<Self>& self) { return Calls::get_MaxScale<PyCall>(self.get<Self>("UPCGComponent.MaxScale")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.MaxScale");
-                object->MaxScale = Bridge<double>::in(value, "UPCGComponent.MaxScale");
-                object->PostPropertyChanged("MaxScale");
+                Calls::set_MaxScale<PyCall>(self.get<Self>("UPCGComponent.MaxScale"), value);
             },
             "");
         cls.def_property(
             "bRandomYaw",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UPCGComponent.bRandomYaw")->bRandomYaw); },
+            [](const Ref<Self>& self) { return Calls::get_bRandomYaw<PyCall>(self.get<Self>("UPCGComponent.bRandomYaw")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.bRandomYaw");
-                object->bRandomYaw = Bridge<bool>::in(value, "UPCGComponent.bRandomYaw");
-                object->PostPropertyChanged("bRandomYaw");
+                Calls::set_bRandomYaw<PyCall>(self.get<Self>("UPCGComponent.bRandomYaw"), value);
             },
             "Scatter and AlongSpline (unaligned): turn each actor to a random yaw.");
         cls.def_property(
             "bProjectToGround",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UPCGComponent.bProjectToGround")->bProjectToGround); },
+            [](const Ref<Self>& self) { return Calls::get_bProjectToGround<PyCall>(self.get<Self>("UPCGComponent.bProjectToGround")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.bProjectToGround");
-                object->bProjectToGround = Bridge<bool>::in(value, "UPCGComponent.bProjectToGround");
-                object->PostPropertyChanged("bProjectToGround");
+                Calls::set_bProjectToGround<PyCall>(self.get<Self>("UPCGComponent.bProjectToGround"), value);
             },
             "Drop each actor onto the geometry below it (a line trace down the box, before anything is spawned);\nwhere nothing is below, the actor is not placed. Otherwise actors stand on the box's floor.");
         cls.def_property(
             "ExclusionTag",
-            [](const Ref<Self>& self) { return Bridge<std::string>::out(self.get<Self>("UPCGComponent.ExclusionTag")->ExclusionTag); },
+            [](const Ref<Self>& self) { return Calls::get_ExclusionTag<PyCall>(self.get<Self>("UPCGComponent.ExclusionTag")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.ExclusionTag");
-                object->ExclusionTag = Bridge<std::string>::in(value, "UPCGComponent.ExclusionTag");
-                object->PostPropertyChanged("ExclusionTag");
+                Calls::set_ExclusionTag<PyCall>(self.get<Self>("UPCGComponent.ExclusionTag"), value);
             },
             "Scatter: actors with this tag keep generated actors out of their bounds (\"\" for none).");
         cls.def_property(
             "SplineTag",
-            [](const Ref<Self>& self) { return Bridge<std::string>::out(self.get<Self>("UPCGComponent.SplineTag")->SplineTag); },
+            [](const Ref<Self>& self) { return Calls::get_SplineTag<PyCall>(self.get<Self>("UPCGComponent.SplineTag")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.SplineTag");
-                object->SplineTag = Bridge<std::string>::in(value, "UPCGComponent.SplineTag");
-                object->PostPropertyChanged("SplineTag");
+                Calls::set_SplineTag<PyCall>(self.get<Self>("UPCGComponent.SplineTag"), value);
             },
             "AlongSpline: spline actors with this tag are followed, in spawn order. (A tag, not an actor reference:\na generation outlives the actors it read, and scenes save it as it is.)");
         cls.def_property(
             "SplineOffset",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.SplineOffset")->SplineOffset); },
+            [](const Ref<Self>& self) { return Calls::get_SplineOffset<PyCall>(self.get<Self>("UPCGComponent.SplineOffset")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.SplineOffset");
-                object->SplineOffset = Bridge<double>::in(value, "UPCGComponent.SplineOffset");
-                object->PostPropertyChanged("SplineOffset");
+                Calls::set_SplineOffset<PyCall>(self.get<Self>("UPCGComponent.SplineOffset"), value);
             },
             "AlongSpline: the sideways distance from the spline (positive: its left).");
         cls.def_property(
             "bBothSides",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UPCGComponent.bBothSides")->bBothSides); },
+            [](const Ref<Self>& self) { return Calls::get_bBothSides<PyCall>(self.get<Self>("UPCGComponent.bBothSides")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.bBothSides");
-                object->bBothSides = Bridge<bool>::in(value, "UPCGComponent.bBothSides");
-                object->PostPropertyChanged("bBothSides");
+                Calls::set_bBothSides<PyCall>(self.get<Self>("UPCGComponent.bBothSides"), value);
             },
             "AlongSpline: place on both sides.");
         cls.def_property(
             "bAlignToSpline",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("UPCGComponent.bAlignToSpline")->bAlignToSpline); },
+            [](const Ref<Self>& self) { return Calls::get_bAlignToSpline<PyCall>(self.get<Self>("UPCGComponent.bAlignToSpline")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.bAlignToSpline");
-                object->bAlignToSpline = Bridge<bool>::in(value, "UPCGComponent.bAlignToSpline");
-                object->PostPropertyChanged("bAlignToSpline");
+                Calls::set_bAlignToSpline<PyCall>(self.get<Self>("UPCGComponent.bAlignToSpline"), value);
             },
             "AlongSpline: face along the spline.");
         cls.def_property(
             "BlockSize",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.BlockSize")->BlockSize); },
+            [](const Ref<Self>& self) { return Calls::get_BlockSize<PyCall>(self.get<Self>("UPCGComponent.BlockSize")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.BlockSize");
-                object->BlockSize = Bridge<double>::in(value, "UPCGComponent.BlockSize");
-                object->PostPropertyChanged("BlockSize");
+                Calls::set_BlockSize<PyCall>(self.get<Self>("UPCGComponent.BlockSize"), value);
             },
             "CityBlocks: the side of a block, metres.");
         cls.def_property(
             "StreetWidth",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.StreetWidth")->StreetWidth); },
+            [](const Ref<Self>& self) { return Calls::get_StreetWidth<PyCall>(self.get<Self>("UPCGComponent.StreetWidth")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.StreetWidth");
-                object->StreetWidth = Bridge<double>::in(value, "UPCGComponent.StreetWidth");
-                object->PostPropertyChanged("StreetWidth");
+                Calls::set_StreetWidth<PyCall>(self.get<Self>("UPCGComponent.StreetWidth"), value);
             },
             "CityBlocks: the street between blocks, metres.");
         cls.def_property(
             "LotsPerSide",
-            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("UPCGComponent.LotsPerSide")->LotsPerSide); },
+            [](const Ref<Self>& self) { return Calls::get_LotsPerSide<PyCall>(self.get<Self>("UPCGComponent.LotsPerSide")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.LotsPerSide");
-                object->LotsPerSide = Bridge<int32_t>::in(value, "UPCGComponent.LotsPerSide");
-                object->PostPropertyChanged("LotsPerSide");
+                Calls::set_LotsPerSide<PyCall>(self.get<Self>("UPCGComponent.LotsPerSide"), value);
             },
             "CityBlocks: buildings along a block's side (LotsPerSide^2 per block).");
         cls.def_property(
             "MinHeight",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.MinHeight")->MinHeight); },
+            [](const Ref<Self>& self) { return Calls::get_MinHeight<PyCall>(self.get<Self>("UPCGComponent.MinHeight")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.MinHeight");
-                object->MinHeight = Bridge<double>::in(value, "UPCGComponent.MinHeight");
-                object->PostPropertyChanged("MinHeight");
+                Calls::set_MinHeight<PyCall>(self.get<Self>("UPCGComponent.MinHeight"), value);
             },
             "CityBlocks: building heights are drawn from [MinHeight, MaxHeight] metres.");
         cls.def_property(
             "MaxHeight",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.MaxHeight")->MaxHeight); },
+            [](const Ref<Self>& self) { return Calls::get_MaxHeight<PyCall>(self.get<Self>("UPCGComponent.MaxHeight")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.MaxHeight");
-                object->MaxHeight = Bridge<double>::in(value, "UPCGComponent.MaxHeight");
-                object->PostPropertyChanged("MaxHeight");
+                Calls::set_MaxHeight<PyCall>(self.get<Self>("UPCGComponent.MaxHeight"), value);
             },
             "");
         cls.def_property(
             "RoadTag",
-            [](const Ref<Self>& self) { return Bridge<std::string>::out(self.get<Self>("UPCGComponent.RoadTag")->RoadTag); },
+            [](const Ref<Self>& self) { return Calls::get_RoadTag<PyCall>(self.get<Self>("UPCGComponent.RoadTag")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.RoadTag");
-                object->RoadTag = Bridge<std::string>::in(value, "UPCGComponent.RoadTag");
-                object->PostPropertyChanged("RoadTag");
+                Calls::set_RoadTag<PyCall>(self.get<Self>("UPCGComponent.RoadTag"), value);
             },
             "CityBlocks: spline actors with this tag are roads.");
         cls.def_property(
             "RoadWidth",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("UPCGComponent.RoadWidth")->RoadWidth); },
+            [](const Ref<Self>& self) { return Calls::get_RoadWidth<PyCall>(self.get<Self>("UPCGComponent.RoadWidth")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPCGComponent.RoadWidth");
-                object->RoadWidth = Bridge<double>::in(value, "UPCGComponent.RoadWidth");
-                object->PostPropertyChanged("RoadWidth");
+                Calls::set_RoadWidth<PyCall>(self.get<Self>("UPCGComponent.RoadWidth"), value);
             },
             "CityBlocks: the width kept free along roads, metres.");
         sp::pybind::nameProperties(cls);
         cls.def(
             "Generate",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& bForce, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPCGComponent.Generate()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"bForce", !isMissing(bForce), false}});
-                Self* object = self.get<Self>(kContext);
-                bool bForceValue = isMissing(bForce) ? bool(false) : Bridge<bool>::in(bForce, "UPCGComponent.Generate(): argument 'bForce'");
-                object->Generate(bForceValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_Generate<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&bForce}, true});
             },
             py::arg("bForce") = sp::pybind::missingArgument(),
             "Generate(self, *, bForce: bool = ...) -> None\n\nGenerates: removes the actors of the last generation and spawns new ones, unless nothing the rules\nread changed since (bForce: regardless).");
         cls.def(
             "Cleanup",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPCGComponent.Cleanup()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                object->Cleanup();
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_Cleanup<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "Cleanup(self) -> None\n\nDestroys the generated actors.");
         cls.def(
             "FlushCache",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPCGComponent.FlushCache()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                object->FlushCache();
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_FlushCache<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "FlushCache(self) -> None\n\nForgets what the last generation was made from, so the next Generate() builds afresh.");
         cls.def(
             "GetGeneratedActors",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPCGComponent.GetGeneratedActors()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetGeneratedActors();
-                return Bridge<std::vector<AActor*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetGeneratedActors<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetGeneratedActors(self) -> list[AActor]\n\nReturns the generated actors, in generation order.");
         cls.def(
             "IsGenerated",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPCGComponent.IsGenerated()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->IsGenerated();
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_IsGenerated<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "IsGenerated(self) -> bool\n\nReturns whether generated actors exist.");
         cls.def(
             "GetLastGenerationSeconds",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UPCGComponent.GetLastGenerationSeconds()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetLastGenerationSeconds();
-                return Bridge<double>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetLastGenerationSeconds<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetLastGenerationSeconds(self) -> float\n\nReturns the seconds the last generation took.");
     }
     {
         using Self = UPointLightComponent;
+        using Calls = sp::generated::engine::UPointLightComponentCalls;
         py::class_<Ref<Self>, Ref<ULightComponent>> cls(m, "UPointLightComponent", "A light that shines equally in every direction from the component's location.");
         cls.attr("__sp_class__") = "UPointLightComponent";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "AttenuationRadius",
-            [](const Ref<Self>& self) { return Bridge<float>::out(self.get<Self>("UPointLightComponent.AttenuationRadius")->AttenuationRadius); },
+            [](const Ref<Self>& self) { return Calls::get_AttenuationRadius<PyCall>(self.get<Self>("UPointLightComponent.AttenuationRadius")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UPointLightComponent.AttenuationRadius");
-                object->AttenuationRadius = Bridge<float>::in(value, "UPointLightComponent.AttenuationRadius");
-                object->PostPropertyChanged("AttenuationRadius");
+                Calls::set_AttenuationRadius<PyCall>(self.get<Self>("UPointLightComponent.AttenuationRadius"), value);
             },
             "Distance in metres beyond which the light has no effect.");
         sp::pybind::nameProperties(cls);
     }
     {
         using Self = USkyLightComponent;
+        using Calls = sp::generated::engine::USkyLightComponentCalls;
         py::class_<Ref<Self>, Ref<USceneComponent>> cls(m, "USkyLightComponent", "Uniform sky light: ambient radiance on every surface, and the colour of pixels that hit nothing.");
         cls.attr("__sp_class__") = "USkyLightComponent";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "SkyColor",
-            [](const Ref<Self>& self) { return Bridge<FLinearColor>::out(self.get<Self>("USkyLightComponent.SkyColor")->SkyColor); },
+            [](const Ref<Self>& self) { return Calls::get_SkyColor<PyCall>(self.get<Self>("USkyLightComponent.SkyColor")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("USkyLightComponent.SkyColor");
-                object->SkyColor = Bridge<FLinearColor>::in(value, "USkyLightComponent.SkyColor");
-                object->PostPropertyChanged("SkyColor");
+                Calls::set_SkyColor<PyCall>(self.get<Self>("USkyLightComponent.SkyColor"), value);
             },
             "Linear RGB radiance of the uniform sky, multiplied by Intensity.");
         cls.def_property(
             "Intensity",
-            [](const Ref<Self>& self) { return Bridge<float>::out(self.get<Self>("USkyLightComponent.Intensity")->Intensity); },
+            [](const Ref<Self>& self) { return Calls::get_Intensity<PyCall>(self.get<Self>("USkyLightComponent.Intensity")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("USkyLightComponent.Intensity");
-                object->Intensity = Bridge<float>::in(value, "USkyLightComponent.Intensity");
-                object->PostPropertyChanged("Intensity");
+                Calls::set_Intensity<PyCall>(self.get<Self>("USkyLightComponent.Intensity"), value);
             },
             "Multiplier of SkyColor.");
         cls.def_property(
             "BackgroundColor",
-            [](const Ref<Self>& self) { return Bridge<FLinearColor>::out(self.get<Self>("USkyLightComponent.BackgroundColor")->BackgroundColor); },
+            [](const Ref<Self>& self) { return Calls::get_BackgroundColor<PyCall>(self.get<Self>("USkyLightComponent.BackgroundColor")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("USkyLightComponent.BackgroundColor");
-                object->BackgroundColor = Bridge<FLinearColor>::in(value, "USkyLightComponent.BackgroundColor");
-                object->PostPropertyChanged("BackgroundColor");
+                Calls::set_BackgroundColor<PyCall>(self.get<Self>("USkyLightComponent.BackgroundColor"), value);
             },
             "Linear HDR colour of the pixels that hit no geometry.");
         sp::pybind::nameProperties(cls);
     }
     {
         using Self = USpFuncComponent;
+        using Calls = sp::generated::engine::USpFuncComponentCalls;
         py::class_<Ref<Self>, Ref<UActorComponent>> cls(m, "USpFuncComponent", "Holds SpFuncs: named functions over bundles of arrays, registered at run time by C++ code.");
         cls.attr("__sp_class__") = "USpFuncComponent";
         sp::pybind::useBareTypeName(cls);
@@ -4314,118 +3067,91 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetFuncNames",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USpFuncComponent.GetFuncNames()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetFuncNames();
-                return Bridge<std::vector<std::string>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetFuncNames<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetFuncNames(self) -> list[str]\n\nReturns the names of the SpFuncs registered now, sorted.");
     }
     {
         using Self = USphereComponent;
+        using Calls = sp::generated::engine::USphereComponentCalls;
         py::class_<Ref<Self>, Ref<UShapeComponent>> cls(m, "USphereComponent", "A sphere-shaped sensor.");
         cls.attr("__sp_class__") = "USphereComponent";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "SphereRadius",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("USphereComponent.SphereRadius")->SphereRadius); },
+            [](const Ref<Self>& self) { return Calls::get_SphereRadius<PyCall>(self.get<Self>("USphereComponent.SphereRadius")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("USphereComponent.SphereRadius");
-                object->SetSphereRadius(Bridge<double>::in(value, "USphereComponent.SphereRadius"));
-                object->PostPropertyChanged("SphereRadius");
+                Calls::set_SphereRadius<PyCall>(self.get<Self>("USphereComponent.SphereRadius"), value);
             },
             "The sphere's radius in metres before the component's scale (> 0).");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetSphereRadius",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& InSphereRadius, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USphereComponent.SetSphereRadius()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"InSphereRadius", !isMissing(InSphereRadius), true}});
-                Self* object = self.get<Self>(kContext);
-                auto InSphereRadiusValue = Bridge<double>::in(InSphereRadius, "USphereComponent.SetSphereRadius(): argument 'InSphereRadius'");
-                object->SetSphereRadius(InSphereRadiusValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetSphereRadius<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&InSphereRadius}, true});
             },
             py::arg("InSphereRadius") = sp::pybind::missingArgument(),
             "SetSphereRadius(self, *, InSphereRadius: float) -> None\n\nSets SphereRadius (finite, > 0).");
     }
     {
         using Self = USplineComponent;
+        using Calls = sp::generated::engine::USplineComponentCalls;
         py::class_<Ref<Self>, Ref<USceneComponent>> cls(m, "USplineComponent", "A curve through points.");
         cls.attr("__sp_class__") = "USplineComponent";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "SplinePoints",
-            [](const Ref<Self>& self) { return Bridge<std::vector<FVector>>::out(self.get<Self>("USplineComponent.SplinePoints")->SplinePoints); },
+            [](const Ref<Self>& self) { return Calls::get_SplinePoints<PyCall>(self.get<Self>("USplineComponent.SplinePoints")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("USplineComponent.SplinePoints");
-                object->SplinePoints = Bridge<std::vector<FVector>>::in(value, "USplineComponent.SplinePoints");
-                object->PostPropertyChanged("SplinePoints");
+                Calls::set_SplinePoints<PyCall>(self.get<Self>("USplineComponent.SplinePoints"), value);
             },
             "The points, in the component's space (metres).");
         cls.def_property(
             "bClosedLoop",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("USplineComponent.bClosedLoop")->bClosedLoop); },
+            [](const Ref<Self>& self) { return Calls::get_bClosedLoop<PyCall>(self.get<Self>("USplineComponent.bClosedLoop")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("USplineComponent.bClosedLoop");
-                object->bClosedLoop = Bridge<bool>::in(value, "USplineComponent.bClosedLoop");
-                object->PostPropertyChanged("bClosedLoop");
+                Calls::set_bClosedLoop<PyCall>(self.get<Self>("USplineComponent.bClosedLoop"), value);
             },
             "Whether the last point joins the first.");
         cls.def_property(
             "bDrawDebug",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("USplineComponent.bDrawDebug")->bDrawDebug); },
+            [](const Ref<Self>& self) { return Calls::get_bDrawDebug<PyCall>(self.get<Self>("USplineComponent.bDrawDebug")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("USplineComponent.bDrawDebug");
-                object->bDrawDebug = Bridge<bool>::in(value, "USplineComponent.bDrawDebug");
-                object->PostPropertyChanged("bDrawDebug");
+                Calls::set_bDrawDebug<PyCall>(self.get<Self>("USplineComponent.bDrawDebug"), value);
             },
             "Draws the curve in camera images as a glowing tube (a debug line for looking at paths and roads; it is\ndrawn like any object, in every modality, casting no shadow).");
         cls.def_property(
             "DebugLineThickness",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("USplineComponent.DebugLineThickness")->DebugLineThickness); },
+            [](const Ref<Self>& self) { return Calls::get_DebugLineThickness<PyCall>(self.get<Self>("USplineComponent.DebugLineThickness")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("USplineComponent.DebugLineThickness");
-                object->SetDebugLineThickness(Bridge<double>::in(value, "USplineComponent.DebugLineThickness"));
-                object->PostPropertyChanged("DebugLineThickness");
+                Calls::set_DebugLineThickness<PyCall>(self.get<Self>("USplineComponent.DebugLineThickness"), value);
             },
             "The debug line's thickness in metres (> 0).");
         cls.def_property(
             "DebugLineColor",
-            [](const Ref<Self>& self) { return Bridge<FLinearColor>::out(self.get<Self>("USplineComponent.DebugLineColor")->DebugLineColor); },
+            [](const Ref<Self>& self) { return Calls::get_DebugLineColor<PyCall>(self.get<Self>("USplineComponent.DebugLineColor")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("USplineComponent.DebugLineColor");
-                object->DebugLineColor = Bridge<FLinearColor>::in(value, "USplineComponent.DebugLineColor");
-                object->PostPropertyChanged("DebugLineColor");
+                Calls::set_DebugLineColor<PyCall>(self.get<Self>("USplineComponent.DebugLineColor"), value);
             },
             "The debug line's colour (linear; it glows with it).");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetDebugLineThickness",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Thickness, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USplineComponent.SetDebugLineThickness()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Thickness", !isMissing(Thickness), true}});
-                Self* object = self.get<Self>(kContext);
-                auto ThicknessValue = Bridge<double>::in(Thickness, "USplineComponent.SetDebugLineThickness(): argument 'Thickness'");
-                object->SetDebugLineThickness(ThicknessValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetDebugLineThickness<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Thickness}, true});
             },
             py::arg("Thickness") = sp::pybind::missingArgument(),
             "SetDebugLineThickness(self, *, Thickness: float) -> None\n\nSets DebugLineThickness (finite, > 0).");
         cls.def(
             "AddSplinePoint",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Position, const PyArg& CoordinateSpace, const PyArg& bUpdateSpline, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USplineComponent.AddSplinePoint()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Position", !isMissing(Position), true}, {"CoordinateSpace", !isMissing(CoordinateSpace), true}, {"bUpdateSpline", !isMissing(bUpdateSpline), false}});
-                Self* object = self.get<Self>(kContext);
-                auto PositionValue = Bridge<FVector>::in(Position, "USplineComponent.AddSplinePoint(): argument 'Position'");
-                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(CoordinateSpace, "USplineComponent.AddSplinePoint(): argument 'CoordinateSpace'");
-                bool bUpdateSplineValue = isMissing(bUpdateSpline) ? bool(true) : Bridge<bool>::in(bUpdateSpline, "USplineComponent.AddSplinePoint(): argument 'bUpdateSpline'");
-                object->AddSplinePoint(PositionValue, CoordinateSpaceValue, bUpdateSplineValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_AddSplinePoint<PyCall>(self, {positional, extra, std::array<const PyArg*, 3>{&Position, &CoordinateSpace, &bUpdateSpline}, true});
             },
             py::arg("Position") = sp::pybind::missingArgument(),
             py::arg("CoordinateSpace") = sp::pybind::missingArgument(),
@@ -4434,26 +3160,16 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "ClearSplinePoints",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& bUpdateSpline, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USplineComponent.ClearSplinePoints()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"bUpdateSpline", !isMissing(bUpdateSpline), false}});
-                Self* object = self.get<Self>(kContext);
-                bool bUpdateSplineValue = isMissing(bUpdateSpline) ? bool(true) : Bridge<bool>::in(bUpdateSpline, "USplineComponent.ClearSplinePoints(): argument 'bUpdateSpline'");
-                object->ClearSplinePoints(bUpdateSplineValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_ClearSplinePoints<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&bUpdateSpline}, true});
             },
             py::arg("bUpdateSpline") = sp::pybind::missingArgument(),
             "ClearSplinePoints(self, *, bUpdateSpline: bool = ...) -> None\n\nRemoves every point.");
         cls.def(
             "SetSplinePoints",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Points, const PyArg& CoordinateSpace, const PyArg& bUpdateSpline, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USplineComponent.SetSplinePoints()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Points", !isMissing(Points), true}, {"CoordinateSpace", !isMissing(CoordinateSpace), true}, {"bUpdateSpline", !isMissing(bUpdateSpline), false}});
-                Self* object = self.get<Self>(kContext);
-                auto PointsValue = Bridge<std::vector<FVector>>::in(Points, "USplineComponent.SetSplinePoints(): argument 'Points'");
-                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(CoordinateSpace, "USplineComponent.SetSplinePoints(): argument 'CoordinateSpace'");
-                bool bUpdateSplineValue = isMissing(bUpdateSpline) ? bool(true) : Bridge<bool>::in(bUpdateSpline, "USplineComponent.SetSplinePoints(): argument 'bUpdateSpline'");
-                object->SetSplinePoints(PointsValue, CoordinateSpaceValue, bUpdateSplineValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetSplinePoints<PyCall>(self, {positional, extra, std::array<const PyArg*, 3>{&Points, &CoordinateSpace, &bUpdateSpline}, true});
             },
             py::arg("Points") = sp::pybind::missingArgument(),
             py::arg("CoordinateSpace") = sp::pybind::missingArgument(),
@@ -4462,23 +3178,15 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetNumberOfSplinePoints",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USplineComponent.GetNumberOfSplinePoints()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetNumberOfSplinePoints();
-                return Bridge<int32_t>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetNumberOfSplinePoints<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetNumberOfSplinePoints(self) -> int\n\nReturns the number of points.");
         cls.def(
             "SetClosedLoop",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& bInClosedLoop, const PyArg& bUpdateSpline, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USplineComponent.SetClosedLoop()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"bInClosedLoop", !isMissing(bInClosedLoop), true}, {"bUpdateSpline", !isMissing(bUpdateSpline), false}});
-                Self* object = self.get<Self>(kContext);
-                auto bInClosedLoopValue = Bridge<bool>::in(bInClosedLoop, "USplineComponent.SetClosedLoop(): argument 'bInClosedLoop'");
-                bool bUpdateSplineValue = isMissing(bUpdateSpline) ? bool(true) : Bridge<bool>::in(bUpdateSpline, "USplineComponent.SetClosedLoop(): argument 'bUpdateSpline'");
-                object->SetClosedLoop(bInClosedLoopValue, bUpdateSplineValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetClosedLoop<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&bInClosedLoop, &bUpdateSpline}, true});
             },
             py::arg("bInClosedLoop") = sp::pybind::missingArgument(),
             py::arg("bUpdateSpline") = sp::pybind::missingArgument(),
@@ -4486,34 +3194,22 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "IsClosedLoop",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USplineComponent.IsClosedLoop()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->IsClosedLoop();
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_IsClosedLoop<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "IsClosedLoop(self) -> bool\n\nReturns true for a closed loop.");
         cls.def(
             "GetSplineLength",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USplineComponent.GetSplineLength()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetSplineLength();
-                return Bridge<double>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetSplineLength<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetSplineLength(self) -> float\n\nReturns the length of the curve in metres (in the component's space, before its scale).");
         cls.def(
             "GetLocationAtDistanceAlongSpline",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Distance, const PyArg& CoordinateSpace, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USplineComponent.GetLocationAtDistanceAlongSpline()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Distance", !isMissing(Distance), true}, {"CoordinateSpace", !isMissing(CoordinateSpace), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto DistanceValue = Bridge<double>::in(Distance, "USplineComponent.GetLocationAtDistanceAlongSpline(): argument 'Distance'");
-                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(CoordinateSpace, "USplineComponent.GetLocationAtDistanceAlongSpline(): argument 'CoordinateSpace'");
-                auto result = object->GetLocationAtDistanceAlongSpline(DistanceValue, CoordinateSpaceValue);
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetLocationAtDistanceAlongSpline<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&Distance, &CoordinateSpace}, true});
             },
             py::arg("Distance") = sp::pybind::missingArgument(),
             py::arg("CoordinateSpace") = sp::pybind::missingArgument(),
@@ -4521,14 +3217,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetDirectionAtDistanceAlongSpline",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Distance, const PyArg& CoordinateSpace, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USplineComponent.GetDirectionAtDistanceAlongSpline()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Distance", !isMissing(Distance), true}, {"CoordinateSpace", !isMissing(CoordinateSpace), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto DistanceValue = Bridge<double>::in(Distance, "USplineComponent.GetDirectionAtDistanceAlongSpline(): argument 'Distance'");
-                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(CoordinateSpace, "USplineComponent.GetDirectionAtDistanceAlongSpline(): argument 'CoordinateSpace'");
-                auto result = object->GetDirectionAtDistanceAlongSpline(DistanceValue, CoordinateSpaceValue);
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetDirectionAtDistanceAlongSpline<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&Distance, &CoordinateSpace}, true});
             },
             py::arg("Distance") = sp::pybind::missingArgument(),
             py::arg("CoordinateSpace") = sp::pybind::missingArgument(),
@@ -4536,14 +3226,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetRotationAtDistanceAlongSpline",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Distance, const PyArg& CoordinateSpace, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USplineComponent.GetRotationAtDistanceAlongSpline()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Distance", !isMissing(Distance), true}, {"CoordinateSpace", !isMissing(CoordinateSpace), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto DistanceValue = Bridge<double>::in(Distance, "USplineComponent.GetRotationAtDistanceAlongSpline(): argument 'Distance'");
-                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(CoordinateSpace, "USplineComponent.GetRotationAtDistanceAlongSpline(): argument 'CoordinateSpace'");
-                auto result = object->GetRotationAtDistanceAlongSpline(DistanceValue, CoordinateSpaceValue);
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FRotator>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetRotationAtDistanceAlongSpline<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&Distance, &CoordinateSpace}, true});
             },
             py::arg("Distance") = sp::pybind::missingArgument(),
             py::arg("CoordinateSpace") = sp::pybind::missingArgument(),
@@ -4551,14 +3235,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetLocationAtSplineInputKey",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& InKey, const PyArg& CoordinateSpace, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USplineComponent.GetLocationAtSplineInputKey()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"InKey", !isMissing(InKey), true}, {"CoordinateSpace", !isMissing(CoordinateSpace), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto InKeyValue = Bridge<double>::in(InKey, "USplineComponent.GetLocationAtSplineInputKey(): argument 'InKey'");
-                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(CoordinateSpace, "USplineComponent.GetLocationAtSplineInputKey(): argument 'CoordinateSpace'");
-                auto result = object->GetLocationAtSplineInputKey(InKeyValue, CoordinateSpaceValue);
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetLocationAtSplineInputKey<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&InKey, &CoordinateSpace}, true});
             },
             py::arg("InKey") = sp::pybind::missingArgument(),
             py::arg("CoordinateSpace") = sp::pybind::missingArgument(),
@@ -4566,14 +3244,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetLocationAtSplinePoint",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& PointIndex, const PyArg& CoordinateSpace, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USplineComponent.GetLocationAtSplinePoint()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"PointIndex", !isMissing(PointIndex), true}, {"CoordinateSpace", !isMissing(CoordinateSpace), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto PointIndexValue = Bridge<int32_t>::in(PointIndex, "USplineComponent.GetLocationAtSplinePoint(): argument 'PointIndex'");
-                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(CoordinateSpace, "USplineComponent.GetLocationAtSplinePoint(): argument 'CoordinateSpace'");
-                auto result = object->GetLocationAtSplinePoint(PointIndexValue, CoordinateSpaceValue);
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetLocationAtSplinePoint<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&PointIndex, &CoordinateSpace}, true});
             },
             py::arg("PointIndex") = sp::pybind::missingArgument(),
             py::arg("CoordinateSpace") = sp::pybind::missingArgument(),
@@ -4581,14 +3253,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetTangentAtSplinePoint",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& PointIndex, const PyArg& CoordinateSpace, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USplineComponent.GetTangentAtSplinePoint()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"PointIndex", !isMissing(PointIndex), true}, {"CoordinateSpace", !isMissing(CoordinateSpace), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto PointIndexValue = Bridge<int32_t>::in(PointIndex, "USplineComponent.GetTangentAtSplinePoint(): argument 'PointIndex'");
-                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(CoordinateSpace, "USplineComponent.GetTangentAtSplinePoint(): argument 'CoordinateSpace'");
-                auto result = object->GetTangentAtSplinePoint(PointIndexValue, CoordinateSpaceValue);
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetTangentAtSplinePoint<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&PointIndex, &CoordinateSpace}, true});
             },
             py::arg("PointIndex") = sp::pybind::missingArgument(),
             py::arg("CoordinateSpace") = sp::pybind::missingArgument(),
@@ -4596,15 +3262,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "SetTangentAtSplinePoint",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& PointIndex, const PyArg& InTangent, const PyArg& CoordinateSpace, const PyArg& bUpdateSpline, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USplineComponent.SetTangentAtSplinePoint()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"PointIndex", !isMissing(PointIndex), true}, {"InTangent", !isMissing(InTangent), true}, {"CoordinateSpace", !isMissing(CoordinateSpace), true}, {"bUpdateSpline", !isMissing(bUpdateSpline), false}});
-                Self* object = self.get<Self>(kContext);
-                auto PointIndexValue = Bridge<int32_t>::in(PointIndex, "USplineComponent.SetTangentAtSplinePoint(): argument 'PointIndex'");
-                auto InTangentValue = Bridge<FVector>::in(InTangent, "USplineComponent.SetTangentAtSplinePoint(): argument 'InTangent'");
-                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(CoordinateSpace, "USplineComponent.SetTangentAtSplinePoint(): argument 'CoordinateSpace'");
-                bool bUpdateSplineValue = isMissing(bUpdateSpline) ? bool(true) : Bridge<bool>::in(bUpdateSpline, "USplineComponent.SetTangentAtSplinePoint(): argument 'bUpdateSpline'");
-                object->SetTangentAtSplinePoint(PointIndexValue, InTangentValue, CoordinateSpaceValue, bUpdateSplineValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetTangentAtSplinePoint<PyCall>(self, {positional, extra, std::array<const PyArg*, 4>{&PointIndex, &InTangent, &CoordinateSpace, &bUpdateSpline}, true});
             },
             py::arg("PointIndex") = sp::pybind::missingArgument(),
             py::arg("InTangent") = sp::pybind::missingArgument(),
@@ -4614,25 +3273,16 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "GetDistanceAlongSplineAtSplinePoint",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& PointIndex, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USplineComponent.GetDistanceAlongSplineAtSplinePoint()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"PointIndex", !isMissing(PointIndex), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto PointIndexValue = Bridge<int32_t>::in(PointIndex, "USplineComponent.GetDistanceAlongSplineAtSplinePoint(): argument 'PointIndex'");
-                auto result = object->GetDistanceAlongSplineAtSplinePoint(PointIndexValue);
-                return Bridge<double>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetDistanceAlongSplineAtSplinePoint<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&PointIndex}, true});
             },
             py::arg("PointIndex") = sp::pybind::missingArgument(),
             "GetDistanceAlongSplineAtSplinePoint(self, *, PointIndex: int) -> float\n\nReturns the distance along the curve at point PointIndex.");
         cls.def(
             "GetLocationsAtDistances",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Distances, const PyArg& CoordinateSpace, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "USplineComponent.GetLocationsAtDistances()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Distances", !isMissing(Distances), true}, {"CoordinateSpace", !isMissing(CoordinateSpace), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto DistancesValue = Bridge<sp::reflect::SpArray<double>>::in(Distances, "USplineComponent.GetLocationsAtDistances(): argument 'Distances'");
-                auto CoordinateSpaceValue = Bridge<ESplineCoordinateSpace>::in(CoordinateSpace, "USplineComponent.GetLocationsAtDistances(): argument 'CoordinateSpace'");
-                auto result = object->GetLocationsAtDistances(DistancesValue, CoordinateSpaceValue);
-                return Bridge<sp::reflect::SpArray<double>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetLocationsAtDistances<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&Distances, &CoordinateSpace}, true});
             },
             py::arg("Distances") = sp::pybind::missingArgument(),
             py::arg("CoordinateSpace") = sp::pybind::missingArgument(),
@@ -4640,77 +3290,62 @@ void spear_bind_engine(py::module_& m) {
     }
     {
         using Self = USpotLightComponent;
+        using Calls = sp::generated::engine::USpotLightComponentCalls;
         py::class_<Ref<Self>, Ref<UPointLightComponent>> cls(m, "USpotLightComponent", "A point light restricted to a cone around the component's forward axis.");
         cls.attr("__sp_class__") = "USpotLightComponent";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "InnerConeAngle",
-            [](const Ref<Self>& self) { return Bridge<float>::out(self.get<Self>("USpotLightComponent.InnerConeAngle")->InnerConeAngle); },
+            [](const Ref<Self>& self) { return Calls::get_InnerConeAngle<PyCall>(self.get<Self>("USpotLightComponent.InnerConeAngle")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("USpotLightComponent.InnerConeAngle");
-                object->InnerConeAngle = Bridge<float>::in(value, "USpotLightComponent.InnerConeAngle");
-                object->PostPropertyChanged("InnerConeAngle");
+                Calls::set_InnerConeAngle<PyCall>(self.get<Self>("USpotLightComponent.InnerConeAngle"), value);
             },
             "Half-angle in degrees inside which the light has full intensity.");
         cls.def_property(
             "OuterConeAngle",
-            [](const Ref<Self>& self) { return Bridge<float>::out(self.get<Self>("USpotLightComponent.OuterConeAngle")->OuterConeAngle); },
+            [](const Ref<Self>& self) { return Calls::get_OuterConeAngle<PyCall>(self.get<Self>("USpotLightComponent.OuterConeAngle")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("USpotLightComponent.OuterConeAngle");
-                object->OuterConeAngle = Bridge<float>::in(value, "USpotLightComponent.OuterConeAngle");
-                object->PostPropertyChanged("OuterConeAngle");
+                Calls::set_OuterConeAngle<PyCall>(self.get<Self>("USpotLightComponent.OuterConeAngle"), value);
             },
             "Half-angle in degrees outside which the light is zero (>= InnerConeAngle, < 90).");
         sp::pybind::nameProperties(cls);
     }
     {
         using Self = UStaticMeshComponent;
+        using Calls = sp::generated::engine::UStaticMeshComponentCalls;
         py::class_<Ref<Self>, Ref<UPrimitiveComponent>> cls(m, "UStaticMeshComponent", "A component that renders a static mesh.");
         cls.attr("__sp_class__") = "UStaticMeshComponent";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "StaticMesh",
-            [](const Ref<Self>& self) { return Bridge<std::string>::out(self.get<Self>("UStaticMeshComponent.StaticMesh")->StaticMesh); },
+            [](const Ref<Self>& self) { return Calls::get_StaticMesh<PyCall>(self.get<Self>("UStaticMeshComponent.StaticMesh")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UStaticMeshComponent.StaticMesh");
-                object->StaticMesh = Bridge<std::string>::in(value, "UStaticMeshComponent.StaticMesh");
-                object->PostPropertyChanged("StaticMesh");
+                Calls::set_StaticMesh<PyCall>(self.get<Self>("UStaticMeshComponent.StaticMesh"), value);
             },
             "The mesh asset: a built-in shape (\"/Engine/BasicShapes/Cube\", \"Sphere\", \"Cylinder\", \"Plane\") or a\nfile.");
         cls.def_property(
             "Materials",
-            [](const Ref<Self>& self) { return Bridge<std::vector<std::string>>::out(self.get<Self>("UStaticMeshComponent.Materials")->Materials); },
+            [](const Ref<Self>& self) { return Calls::get_Materials<PyCall>(self.get<Self>("UStaticMeshComponent.Materials")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("UStaticMeshComponent.Materials");
-                object->Materials = Bridge<std::vector<std::string>>::in(value, "UStaticMeshComponent.Materials");
-                object->PostPropertyChanged("Materials");
+                Calls::set_Materials<PyCall>(self.get<Self>("UStaticMeshComponent.Materials"), value);
             },
             "One material asset per mesh slot; an empty entry uses the default material.");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetStaticMesh",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewMesh, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UStaticMeshComponent.SetStaticMesh()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewMesh", !isMissing(NewMesh), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewMeshValue = Bridge<std::string>::in(NewMesh, "UStaticMeshComponent.SetStaticMesh(): argument 'NewMesh'");
-                auto result = object->SetStaticMesh(NewMeshValue);
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetStaticMesh<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewMesh}, true});
             },
             py::arg("NewMesh") = sp::pybind::missingArgument(),
             "SetStaticMesh(self, *, NewMesh: str) -> bool\n\nSets the mesh asset; returns false when the name is not a known mesh.");
         cls.def(
             "SetMaterial",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& ElementIndex, const PyArg& Material, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UStaticMeshComponent.SetMaterial()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"ElementIndex", !isMissing(ElementIndex), true}, {"Material", !isMissing(Material), true}});
-                Self* object = self.get<Self>(kContext);
-                auto ElementIndexValue = Bridge<int32_t>::in(ElementIndex, "UStaticMeshComponent.SetMaterial(): argument 'ElementIndex'");
-                auto MaterialValue = Bridge<std::string>::in(Material, "UStaticMeshComponent.SetMaterial(): argument 'Material'");
-                object->SetMaterial(ElementIndexValue, MaterialValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetMaterial<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&ElementIndex, &Material}, true});
             },
             py::arg("ElementIndex") = sp::pybind::missingArgument(),
             py::arg("Material") = sp::pybind::missingArgument(),
@@ -4718,6 +3353,7 @@ void spear_bind_engine(py::module_& m) {
     }
     {
         using Self = UWorld;
+        using Calls = sp::generated::engine::UWorldCalls;
         py::class_<Ref<Self>, Ref<UObject>> cls(m, "UWorld", "A world: the actors that exist together, and the services to create and find them.");
         cls.attr("__sp_class__") = "UWorld";
         sp::pybind::useBareTypeName(cls);
@@ -4726,18 +3362,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "spawn_actor",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& uclass, const PyArg& location, const PyArg& rotation, const PyArg& name, const PyArg& tags, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.spawn_actor()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"uclass", !isMissing(uclass), true}, {"location", !isMissing(location), false}, {"rotation", !isMissing(rotation), false}, {"name", !isMissing(name), false}, {"tags", !isMissing(tags), false}});
-                Self* object = self.get<Self>(kContext);
-                auto uclassValue = Bridge<TSubclassOf<AActor>>::in(uclass, "UWorld.spawn_actor(): argument 'uclass'");
-                SP_CHECK(uclassValue, sp::InvalidArgument, "UWorld.spawn_actor(): argument 'uclass'", " must not be None");
-                FVector locationValue = isMissing(location) ? FVector(FVector()) : Bridge<FVector>::in(location, "UWorld.spawn_actor(): argument 'location'");
-                FRotator rotationValue = isMissing(rotation) ? FRotator(FRotator()) : Bridge<FRotator>::in(rotation, "UWorld.spawn_actor(): argument 'rotation'");
-                std::string nameValue = isMissing(name) ? std::string("") : Bridge<std::string>::in(name, "UWorld.spawn_actor(): argument 'name'");
-                std::vector<std::string> tagsValue = isMissing(tags) ? std::vector<std::string>{} : Bridge<std::vector<std::string>>::in(tags, "UWorld.spawn_actor(): argument 'tags'");
-                auto result = object->spawn_actor(uclassValue, locationValue, rotationValue, nameValue, tagsValue);
-                sp::reflect::checkNotNull(result, kContext);
-                return Bridge<AActor*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_spawn_actor<PyCall>(self, {positional, extra, std::array<const PyArg*, 5>{&uclass, &location, &rotation, &name, &tags}, true});
             },
             py::arg("uclass") = sp::pybind::missingArgument(),
             py::arg("location") = sp::pybind::missingArgument(),
@@ -4748,100 +3374,63 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "destroy_actor",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& actor, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.destroy_actor()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"actor", !isMissing(actor), true}});
-                Self* object = self.get<Self>(kContext);
-                auto actorValue = Bridge<AActor*>::in(actor, "UWorld.destroy_actor(): argument 'actor'");
-                SP_CHECK(actorValue, sp::InvalidArgument, "UWorld.destroy_actor(): argument 'actor'", " must not be None");
-                object->destroy_actor(actorValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_destroy_actor<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&actor}, true});
             },
             py::arg("actor") = sp::pybind::missingArgument(),
             "destroy_actor(self, *, actor: AActor) -> None\n\nDestroys actor and its components; its handles become invalid.");
         cls.def(
             "find_actor_by_name",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& name, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.find_actor_by_name()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"name", !isMissing(name), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto nameValue = Bridge<std::string>::in(name, "UWorld.find_actor_by_name(): argument 'name'");
-                auto result = object->find_actor_by_name(nameValue);
-                return Bridge<AActor*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_find_actor_by_name<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&name}, true});
             },
             py::arg("name") = sp::pybind::missingArgument(),
             "find_actor_by_name(self, *, name: str) -> AActor | None\n\nReturns the actor called name, or None.");
         cls.def(
             "find_actors_by_tag",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& tag, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.find_actors_by_tag()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"tag", !isMissing(tag), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto tagValue = Bridge<std::string>::in(tag, "UWorld.find_actors_by_tag(): argument 'tag'");
-                auto result = object->find_actors_by_tag(tagValue);
-                return Bridge<std::vector<AActor*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_find_actors_by_tag<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&tag}, true});
             },
             py::arg("tag") = sp::pybind::missingArgument(),
             "find_actors_by_tag(self, *, tag: str) -> list[AActor]\n\nReturns every actor that has tag, in spawn order.");
         cls.def(
             "find_actor_by_class",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& uclass, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.find_actor_by_class()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"uclass", !isMissing(uclass), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto uclassValue = Bridge<TSubclassOf<AActor>>::in(uclass, "UWorld.find_actor_by_class(): argument 'uclass'");
-                SP_CHECK(uclassValue, sp::InvalidArgument, "UWorld.find_actor_by_class(): argument 'uclass'", " must not be None");
-                auto result = object->find_actor_by_class(uclassValue);
-                return Bridge<AActor*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_find_actor_by_class<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&uclass}, true});
             },
             py::arg("uclass") = sp::pybind::missingArgument(),
             "find_actor_by_class(self, *, uclass: type[AActor] | str) -> AActor | None\n\nReturns the first actor of class uclass or a subclass of it, or None.");
         cls.def(
             "find_actors_by_class",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& uclass, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.find_actors_by_class()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"uclass", !isMissing(uclass), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto uclassValue = Bridge<TSubclassOf<AActor>>::in(uclass, "UWorld.find_actors_by_class(): argument 'uclass'");
-                SP_CHECK(uclassValue, sp::InvalidArgument, "UWorld.find_actors_by_class(): argument 'uclass'", " must not be None");
-                auto result = object->find_actors_by_class(uclassValue);
-                return Bridge<std::vector<AActor*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_find_actors_by_class<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&uclass}, true});
             },
             py::arg("uclass") = sp::pybind::missingArgument(),
             "find_actors_by_class(self, *, uclass: type[AActor] | str) -> list[AActor]\n\nReturns every actor of class uclass or a subclass of it, in spawn order.");
         cls.def(
             "find_actors_by_class_as_dict",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& uclass, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.find_actors_by_class_as_dict()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"uclass", !isMissing(uclass), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto uclassValue = Bridge<TSubclassOf<AActor>>::in(uclass, "UWorld.find_actors_by_class_as_dict(): argument 'uclass'");
-                SP_CHECK(uclassValue, sp::InvalidArgument, "UWorld.find_actors_by_class_as_dict(): argument 'uclass'", " must not be None");
-                auto result = object->find_actors_by_class_as_dict(uclassValue);
-                return Bridge<std::map<std::string, AActor*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_find_actors_by_class_as_dict<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&uclass}, true});
             },
             py::arg("uclass") = sp::pybind::missingArgument(),
             "find_actors_by_class_as_dict(self, *, uclass: type[AActor] | str) -> dict[str, AActor]\n\nReturns every actor of class uclass or a subclass of it, by name.");
         cls.def(
             "find_actors",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.find_actors()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->find_actors();
-                return Bridge<std::vector<AActor*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_find_actors<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "find_actors(self) -> list[AActor]\n\nReturns every actor in the world, in spawn order.");
         cls.def(
             "get_component_by_name",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& actor, const PyArg& component_name, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.get_component_by_name()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"actor", !isMissing(actor), true}, {"component_name", !isMissing(component_name), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto actorValue = Bridge<AActor*>::in(actor, "UWorld.get_component_by_name(): argument 'actor'");
-                SP_CHECK(actorValue, sp::InvalidArgument, "UWorld.get_component_by_name(): argument 'actor'", " must not be None");
-                auto component_nameValue = Bridge<std::string>::in(component_name, "UWorld.get_component_by_name(): argument 'component_name'");
-                auto result = object->get_component_by_name(actorValue, component_nameValue);
-                return Bridge<UActorComponent*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_get_component_by_name<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&actor, &component_name}, true});
             },
             py::arg("actor") = sp::pybind::missingArgument(),
             py::arg("component_name") = sp::pybind::missingArgument(),
@@ -4849,15 +3438,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "get_components_by_class",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& actor, const PyArg& uclass, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.get_components_by_class()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"actor", !isMissing(actor), true}, {"uclass", !isMissing(uclass), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto actorValue = Bridge<AActor*>::in(actor, "UWorld.get_components_by_class(): argument 'actor'");
-                SP_CHECK(actorValue, sp::InvalidArgument, "UWorld.get_components_by_class(): argument 'actor'", " must not be None");
-                auto uclassValue = Bridge<TSubclassOf<UActorComponent>>::in(uclass, "UWorld.get_components_by_class(): argument 'uclass'");
-                SP_CHECK(uclassValue, sp::InvalidArgument, "UWorld.get_components_by_class(): argument 'uclass'", " must not be None");
-                auto result = object->get_components_by_class(actorValue, uclassValue);
-                return Bridge<std::vector<UActorComponent*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_get_components_by_class<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&actor, &uclass}, true});
             },
             py::arg("actor") = sp::pybind::missingArgument(),
             py::arg("uclass") = sp::pybind::missingArgument(),
@@ -4865,15 +3447,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "get_components_by_class_as_dict",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& actor, const PyArg& uclass, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.get_components_by_class_as_dict()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"actor", !isMissing(actor), true}, {"uclass", !isMissing(uclass), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto actorValue = Bridge<AActor*>::in(actor, "UWorld.get_components_by_class_as_dict(): argument 'actor'");
-                SP_CHECK(actorValue, sp::InvalidArgument, "UWorld.get_components_by_class_as_dict(): argument 'actor'", " must not be None");
-                auto uclassValue = Bridge<TSubclassOf<UActorComponent>>::in(uclass, "UWorld.get_components_by_class_as_dict(): argument 'uclass'");
-                SP_CHECK(uclassValue, sp::InvalidArgument, "UWorld.get_components_by_class_as_dict(): argument 'uclass'", " must not be None");
-                auto result = object->get_components_by_class_as_dict(actorValue, uclassValue);
-                return Bridge<std::map<std::string, UActorComponent*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_get_components_by_class_as_dict<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&actor, &uclass}, true});
             },
             py::arg("actor") = sp::pybind::missingArgument(),
             py::arg("uclass") = sp::pybind::missingArgument(),
@@ -4881,15 +3456,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "load_class",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& uclass, const PyArg& name, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.load_class()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"uclass", !isMissing(uclass), true}, {"name", !isMissing(name), true}});
-                Self* object = self.get<Self>(kContext);
-                auto uclassValue = Bridge<TSubclassOf<UObject>>::in(uclass, "UWorld.load_class(): argument 'uclass'");
-                SP_CHECK(uclassValue, sp::InvalidArgument, "UWorld.load_class(): argument 'uclass'", " must not be None");
-                auto nameValue = Bridge<std::string>::in(name, "UWorld.load_class(): argument 'name'");
-                auto result = object->load_class(uclassValue, nameValue);
-                sp::reflect::checkNotNull(result, kContext);
-                return Bridge<const UClass*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_load_class<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&uclass, &name}, true});
             },
             py::arg("uclass") = sp::pybind::missingArgument(),
             py::arg("name") = sp::pybind::missingArgument(),
@@ -4897,39 +3465,24 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "get_default_object",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& uclass, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.get_default_object()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"uclass", !isMissing(uclass), true}});
-                Self* object = self.get<Self>(kContext);
-                auto uclassValue = Bridge<TSubclassOf<UObject>>::in(uclass, "UWorld.get_default_object(): argument 'uclass'");
-                SP_CHECK(uclassValue, sp::InvalidArgument, "UWorld.get_default_object(): argument 'uclass'", " must not be None");
-                auto result = object->get_default_object(uclassValue);
-                sp::reflect::checkNotNull(result, kContext);
-                return Bridge<UObject*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_get_default_object<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&uclass}, true});
             },
             py::arg("uclass") = sp::pybind::missingArgument(),
             "get_default_object(self, *, uclass: type[UObject] | str) -> UObject\n\nReturns the class default object of uclass: an instance outside the world holding the class defaults.");
         cls.def(
             "get_actor_locations",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& actors, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.get_actor_locations()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"actors", !isMissing(actors), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto actorsValue = Bridge<std::vector<AActor*>>::in(actors, "UWorld.get_actor_locations(): argument 'actors'");
-                auto result = object->get_actor_locations(actorsValue);
-                return Bridge<sp::reflect::SpArray<double>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_get_actor_locations<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&actors}, true});
             },
             py::arg("actors") = sp::pybind::missingArgument(),
             "get_actor_locations(self, *, actors: list[AActor]) -> NDArray[np.float64]\n\nReturns the world-space locations of actors as an (N, 3) float64 array, rows in the order given. The\nactors may be in any of the engine's worlds: one actor per world gives a leading world axis.");
         cls.def(
             "set_actor_locations",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& actors, const PyArg& locations, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.set_actor_locations()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"actors", !isMissing(actors), true}, {"locations", !isMissing(locations), true}});
-                Self* object = self.get<Self>(kContext);
-                auto actorsValue = Bridge<std::vector<AActor*>>::in(actors, "UWorld.set_actor_locations(): argument 'actors'");
-                auto locationsValue = Bridge<sp::reflect::SpArray<double>>::in(locations, "UWorld.set_actor_locations(): argument 'locations'");
-                object->set_actor_locations(actorsValue, locationsValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_set_actor_locations<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&actors, &locations}, true});
             },
             py::arg("actors") = sp::pybind::missingArgument(),
             py::arg("locations") = sp::pybind::missingArgument(),
@@ -4937,48 +3490,29 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "get_actor_count",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.get_actor_count()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->get_actor_count();
-                return Bridge<int32_t>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_get_actor_count<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "get_actor_count(self) -> int\n\nReturns the number of actors in the world.");
         cls.def(
             "get_time_seconds",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.get_time_seconds()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->get_time_seconds();
-                return Bridge<double>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_get_time_seconds<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "get_time_seconds(self) -> float\n\nReturns the simulated time of this world in seconds.");
         cls.def(
             "get_frame_count",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.get_frame_count()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->get_frame_count();
-                return Bridge<int64_t>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_get_frame_count<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "get_frame_count(self) -> int\n\nReturns the number of frames this world has ticked.");
         cls.def(
             "line_trace_single",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& start, const PyArg& end, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.line_trace_single()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"start", !isMissing(start), true}, {"end", !isMissing(end), true}});
-                Self* object = self.get<Self>(kContext);
-                auto startValue = Bridge<FVector>::in(start, "UWorld.line_trace_single(): argument 'start'");
-                auto endValue = Bridge<FVector>::in(end, "UWorld.line_trace_single(): argument 'end'");
-                FHitResult hitOut{};
-                AActor* actorOut{};
-                UPrimitiveComponent* componentOut{};
-                auto result = object->line_trace_single(startValue, endValue, hitOut, actorOut, componentOut);
-                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
-                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._engine.api", "UWorld").attr("line_trace_singleResult"));
-                return (*resultType)(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("hit") = Bridge<FHitResult>::out(hitOut), py::arg("actor") = Bridge<AActor*>::out(actorOut), py::arg("component") = Bridge<UPrimitiveComponent*>::out(componentOut));
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_line_trace_single<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&start, &end}, true});
             },
             py::arg("start") = sp::pybind::missingArgument(),
             py::arg("end") = sp::pybind::missingArgument(),
@@ -4986,15 +3520,8 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "inject_input_for_actor",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& actor, const PyArg& input_action_name, const PyArg& value, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.inject_input_for_actor()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"actor", !isMissing(actor), true}, {"input_action_name", !isMissing(input_action_name), true}, {"value", !isMissing(value), true}});
-                Self* object = self.get<Self>(kContext);
-                auto actorValue = Bridge<AActor*>::in(actor, "UWorld.inject_input_for_actor(): argument 'actor'");
-                SP_CHECK(actorValue, sp::InvalidArgument, "UWorld.inject_input_for_actor(): argument 'actor'", " must not be None");
-                auto input_action_nameValue = Bridge<std::string>::in(input_action_name, "UWorld.inject_input_for_actor(): argument 'input_action_name'");
-                auto valueValue = Bridge<FVector>::in(value, "UWorld.inject_input_for_actor(): argument 'value'");
-                object->inject_input_for_actor(actorValue, input_action_nameValue, valueValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_inject_input_for_actor<PyCall>(self, {positional, extra, std::array<const PyArg*, 3>{&actor, &input_action_name, &value}, true});
             },
             py::arg("actor") = sp::pybind::missingArgument(),
             py::arg("input_action_name") = sp::pybind::missingArgument(),
@@ -5003,75 +3530,52 @@ void spear_bind_engine(py::module_& m) {
         cls.def(
             "load_scene",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& path, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.load_scene()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"path", !isMissing(path), true}});
-                Self* object = self.get<Self>(kContext);
-                auto pathValue = Bridge<std::string>::in(path, "UWorld.load_scene(): argument 'path'");
-                object->load_scene(pathValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_load_scene<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&path}, true});
             },
             py::arg("path") = sp::pybind::missingArgument(),
             "load_scene(self, *, path: str) -> None\n\nReplaces every actor of this world by those of the scene file at path (see core/world/scene_io.h).");
         cls.def(
             "save_scene",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& path, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.save_scene()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"path", !isMissing(path), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto pathValue = Bridge<std::string>::in(path, "UWorld.save_scene(): argument 'path'");
-                object->save_scene(pathValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_save_scene<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&path}, true});
             },
             py::arg("path") = sp::pybind::missingArgument(),
             "save_scene(self, *, path: str) -> None\n\nWrites every actor and component of this world, with every reflected property, to a scene file.");
         cls.def(
             "is_editor_world",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.is_editor_world()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->is_editor_world();
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_is_editor_world<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "is_editor_world(self) -> bool\n\nReturns true for the persistent world of an editor instance.");
         cls.def(
             "is_game_world",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.is_game_world()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->is_game_world();
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_is_game_world<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "is_game_world(self) -> bool\n\nReturns true for a world that plays (a standalone instance's world, or the editor's play world).");
         cls.def(
             "play",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.play()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                object->play();
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_play<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "play(self) -> None\n\nEditor world only: starts play in a new game world copied from this one (instance.get_game()).");
         cls.def(
             "stop",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.stop()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                object->stop();
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_stop<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "stop(self) -> None\n\nEditor world only: ends play and destroys the game world; its objects' handles become stale.");
         cls.def(
             "is_playing",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "UWorld.is_playing()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->is_playing();
-                return Bridge<bool>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_is_playing<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "is_playing(self) -> bool\n\nEditor world only: returns true while a game world copied from this one is playing.");
     }

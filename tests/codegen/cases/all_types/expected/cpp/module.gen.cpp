@@ -6,16 +6,18 @@
 
 #include <pybind11/pybind11.h>
 
+#include <array>
+
 #include "generated/engine/cpp/engine_bindings.gen.h"
-#include "core/reflect/invoke.h"
 #include "generated/all_types/cpp/all_types_bindings.gen.h"
+#include "generated/all_types/cpp/all_types_calls.gen.h"
 
 namespace py = pybind11;
 using sp::pybind::Bridge;
 
 void spear_bind_all_types(py::module_& m) {
-    using sp::pybind::isMissing;
     using sp::pybind::PyArg;
+    using sp::pybind::PyCall;
     using sp::pybind::Ref;
     // Each function's doc starts with its Python signature, as the stubs spell it; pybind11's own would
     // show the PyArg every parameter arrives as.
@@ -23,114 +25,85 @@ void spear_bind_all_types(py::module_& m) {
     options.disable_function_signatures();
     {
         using Self = AAllTypes;
+        using Calls = sp::generated::all_types::AAllTypesCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "AAllTypes", "An actor whose API uses every supported type.");
         cls.attr("__sp_class__") = "AAllTypes";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "bFlag",
-            [](const Ref<Self>& self) { return Bridge<bool>::out(self.get<Self>("AAllTypes.bFlag")->bFlag); },
+            [](const Ref<Self>& self) { return Calls::get_bFlag<PyCall>(self.get<Self>("AAllTypes.bFlag")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AAllTypes.bFlag");
-                object->bFlag = Bridge<bool>::in(value, "AAllTypes.bFlag");
-                object->PostPropertyChanged("bFlag");
+                Calls::set_bFlag<PyCall>(self.get<Self>("AAllTypes.bFlag"), value);
             },
             "A flag.");
         cls.def_property(
             "Small",
-            [](const Ref<Self>& self) { return Bridge<uint8_t>::out(self.get<Self>("AAllTypes.Small")->Small); },
+            [](const Ref<Self>& self) { return Calls::get_Small<PyCall>(self.get<Self>("AAllTypes.Small")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AAllTypes.Small");
-                object->Small = Bridge<uint8_t>::in(value, "AAllTypes.Small");
-                object->PostPropertyChanged("Small");
+                Calls::set_Small<PyCall>(self.get<Self>("AAllTypes.Small"), value);
             },
             "A small unsigned integer.");
         cls.def_property(
             "Big",
-            [](const Ref<Self>& self) { return Bridge<int64_t>::out(self.get<Self>("AAllTypes.Big")->Big); },
+            [](const Ref<Self>& self) { return Calls::get_Big<PyCall>(self.get<Self>("AAllTypes.Big")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AAllTypes.Big");
-                object->Big = Bridge<int64_t>::in(value, "AAllTypes.Big");
-                object->PostPropertyChanged("Big");
+                Calls::set_Big<PyCall>(self.get<Self>("AAllTypes.Big"), value);
             },
             "A 64-bit integer.");
         cls.def_property(
             "Ratio",
-            [](const Ref<Self>& self) { return Bridge<float>::out(self.get<Self>("AAllTypes.Ratio")->Ratio); },
+            [](const Ref<Self>& self) { return Calls::get_Ratio<PyCall>(self.get<Self>("AAllTypes.Ratio")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AAllTypes.Ratio");
-                object->Ratio = Bridge<float>::in(value, "AAllTypes.Ratio");
-                object->PostPropertyChanged("Ratio");
+                Calls::set_Ratio<PyCall>(self.get<Self>("AAllTypes.Ratio"), value);
             },
             "A float.");
         cls.def_property(
             "Label",
-            [](const Ref<Self>& self) { return Bridge<std::string>::out(self.get<Self>("AAllTypes.Label")->Label); },
+            [](const Ref<Self>& self) { return Calls::get_Label<PyCall>(self.get<Self>("AAllTypes.Label")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AAllTypes.Label");
-                object->Label = Bridge<std::string>::in(value, "AAllTypes.Label");
-                object->PostPropertyChanged("Label");
+                Calls::set_Label<PyCall>(self.get<Self>("AAllTypes.Label"), value);
             },
             "A name.");
         cls.def_property(
             "Target",
-            [](const Ref<Self>& self) { return Bridge<AActor*>::out(self.get<Self>("AAllTypes.Target")->Target); },
+            [](const Ref<Self>& self) { return Calls::get_Target<PyCall>(self.get<Self>("AAllTypes.Target")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AAllTypes.Target");
-                object->Target = Bridge<AActor*>::in(value, "AAllTypes.Target");
-                object->PostPropertyChanged("Target");
+                Calls::set_Target<PyCall>(self.get<Self>("AAllTypes.Target"), value);
             },
             "A reference to another actor.");
         cls.def_property(
             "Weights",
-            [](const Ref<Self>& self) { return Bridge<std::map<std::string, float>>::out(self.get<Self>("AAllTypes.Weights")->Weights); },
+            [](const Ref<Self>& self) { return Calls::get_Weights<PyCall>(self.get<Self>("AAllTypes.Weights")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AAllTypes.Weights");
-                object->Weights = Bridge<std::map<std::string, float>>::in(value, "AAllTypes.Weights");
-                object->PostPropertyChanged("Weights");
+                Calls::set_Weights<PyCall>(self.get<Self>("AAllTypes.Weights"), value);
             },
             "Named weights.");
         cls.def_property_readonly(
             "Counter",
-            [](const Ref<Self>& self) {
-                const auto& value = self.get<Self>("AAllTypes.Counter")->Counter;
-                return Bridge<int32_t>::out(value);
-            },
+            [](const Ref<Self>& self) { return Calls::get_Counter<PyCall>(self.get<Self>("AAllTypes.Counter")); },
             "Visible but not writable from Python.");
         cls.def_property(
             "Speed",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("AAllTypes.Speed")->Speed); },
+            [](const Ref<Self>& self) { return Calls::get_Speed<PyCall>(self.get<Self>("AAllTypes.Speed")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AAllTypes.Speed");
-                object->SetSpeed(Bridge<double>::in(value, "AAllTypes.Speed"));
-                object->PostPropertyChanged("Speed");
+                Calls::set_Speed<PyCall>(self.get<Self>("AAllTypes.Speed"), value);
             },
             "Written through its setter.");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetSpeed",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewSpeed, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AAllTypes.SetSpeed()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"NewSpeed", !isMissing(NewSpeed), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NewSpeedValue = Bridge<double>::in(NewSpeed, "AAllTypes.SetSpeed(): argument 'NewSpeed'");
-                object->SetSpeed(NewSpeedValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetSpeed<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewSpeed}, true});
             },
             py::arg("NewSpeed") = sp::pybind::missingArgument(),
             "SetSpeed(self, *, NewSpeed: float) -> None\n\nSets Speed, clamped to be non-negative.");
         cls.def(
             "Scale",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Sample, const PyArg& Factor, const PyArg& Channel, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AAllTypes.Scale()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Sample", !isMissing(Sample), true}, {"Factor", !isMissing(Factor), false}, {"Channel", !isMissing(Channel), false}});
-                const Self* object = self.get<Self>(kContext);
-                auto SampleValue = Bridge<FSample>::in(Sample, "AAllTypes.Scale(): argument 'Sample'");
-                double FactorValue = isMissing(Factor) ? double(2.0) : Bridge<double>::in(Factor, "AAllTypes.Scale(): argument 'Factor'");
-                EChannel ChannelValue = isMissing(Channel) ? EChannel(EChannel::Red) : Bridge<EChannel>::in(Channel, "AAllTypes.Scale(): argument 'Channel'");
-                auto result = object->Scale(SampleValue, FactorValue, ChannelValue);
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FSample>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_Scale<PyCall>(self, {positional, extra, std::array<const PyArg*, 3>{&Sample, &Factor, &Channel}, true});
             },
             py::arg("Sample") = sp::pybind::missingArgument(),
             py::arg("Factor") = sp::pybind::missingArgument(),
@@ -139,30 +112,16 @@ void spear_bind_all_types(py::module_& m) {
         cls.def(
             "Split",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Text, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AAllTypes.Split()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Text", !isMissing(Text), true}});
-                Self* object = self.get<Self>(kContext);
-                auto TextValue = Bridge<std::string>::in(Text, "AAllTypes.Split(): argument 'Text'");
-                std::string HeadOut{};
-                std::vector<std::string> RestOut{};
-                auto result = object->Split(TextValue, HeadOut, RestOut);
-                // Never released: a static py::object would be, after Python has shut down (a crash at exit).
-                static const py::object* const resultType = new py::object(sp::pybind::apiAttribute("spear._all_types.api", "AAllTypes").attr("SplitResult"));
-                return (*resultType)(py::arg("ReturnValue") = Bridge<bool>::out(result), py::arg("Head") = Bridge<std::string>::out(HeadOut), py::arg("Rest") = Bridge<std::vector<std::string>>::out(RestOut));
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_Split<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Text}, true});
             },
             py::arg("Text") = sp::pybind::missingArgument(),
             "Split(self, *, Text: str) -> SplitResult\n\nSplits a string, with out-parameters.");
         cls.def(
             "Collect",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& ActorClass, const PyArg& Candidates, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AAllTypes.Collect()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"ActorClass", !isMissing(ActorClass), true}, {"Candidates", !isMissing(Candidates), false}});
-                Self* object = self.get<Self>(kContext);
-                auto ActorClassValue = Bridge<TSubclassOf<AActor>>::in(ActorClass, "AAllTypes.Collect(): argument 'ActorClass'");
-                SP_CHECK(ActorClassValue, sp::InvalidArgument, "AAllTypes.Collect(): argument 'ActorClass'", " must not be None");
-                std::vector<AActor*> CandidatesValue = isMissing(Candidates) ? std::vector<AActor*>{} : Bridge<std::vector<AActor*>>::in(Candidates, "AAllTypes.Collect(): argument 'Candidates'");
-                auto result = object->Collect(ActorClassValue, CandidatesValue);
-                return Bridge<std::vector<AActor*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_Collect<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&ActorClass, &Candidates}, true});
             },
             py::arg("ActorClass") = sp::pybind::missingArgument(),
             py::arg("Candidates") = sp::pybind::missingArgument(),
@@ -170,24 +129,16 @@ void spear_bind_all_types(py::module_& m) {
         cls.def(
             "ClassOf",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Object, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AAllTypes.ClassOf()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Object", !isMissing(Object), false}});
-                const Self* object = self.get<Self>(kContext);
-                UObject* ObjectValue = isMissing(Object) ? static_cast<UObject*>(nullptr) : Bridge<UObject*>::in(Object, "AAllTypes.ClassOf(): argument 'Object'");
-                auto result = object->ClassOf(ObjectValue);
-                return Bridge<const UClass*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_ClassOf<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Object}, true});
             },
             py::arg("Object") = sp::pybind::missingArgument(),
             "ClassOf(self, *, Object: UObject | None = ...) -> type[UObject] | None\n\nReturns the class of an object, or None.");
         cls.def(
             "Normalise",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Points, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AAllTypes.Normalise()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Points", !isMissing(Points), true}});
-                Self* object = self.get<Self>(kContext);
-                auto PointsValue = Bridge<sp::reflect::SpArray<float>>::in(Points, "AAllTypes.Normalise(): argument 'Points'");
-                auto result = object->Normalise(PointsValue);
-                return Bridge<sp::reflect::SpArray<float>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_Normalise<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Points}, true});
             },
             py::arg("Points") = sp::pybind::missingArgument(),
             "Normalise(self, *, Points: NDArray[np.float32]) -> NDArray[np.float32]\n\nNormalises points (N, 3) in place and returns their lengths (N,).");
@@ -195,12 +146,8 @@ void spear_bind_all_types(py::module_& m) {
         cls.def_static(
             "Histogram",
             [](const py::args& positional, const PyArg& Bytes, const PyArg& Bins, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AAllTypes.Histogram()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"Bytes", !isMissing(Bytes), true}, {"Bins", !isMissing(Bins), false}});
-                auto BytesValue = Bridge<sp::reflect::SpArray<uint8_t>>::in(Bytes, "AAllTypes.Histogram(): argument 'Bytes'");
-                int32_t BinsValue = isMissing(Bins) ? int32_t(16) : Bridge<int32_t>::in(Bins, "AAllTypes.Histogram(): argument 'Bins'");
-                auto result = Self::Histogram(BytesValue, BinsValue);
-                return Bridge<std::map<std::string, int64_t>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_Histogram<PyCall>({positional, extra, std::array<const PyArg*, 2>{&Bytes, &Bins}, false});
             },
             py::arg("Bytes") = sp::pybind::missingArgument(),
             py::arg("Bins") = sp::pybind::missingArgument(),
@@ -208,38 +155,24 @@ void spear_bind_all_types(py::module_& m) {
         cls.def(
             "Render",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Names, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AAllTypes.Render()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Names", !isMissing(Names), true}});
-                Self* object = self.get<Self>(kContext);
-                auto NamesValue = Bridge<std::vector<std::string>>::in(Names, "AAllTypes.Render(): argument 'Names'");
-                auto result = object->Render(NamesValue);
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FImages>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_Render<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Names}, true});
             },
             py::arg("Names") = sp::pybind::missingArgument(),
             "Render(self, *, Names: list[str]) -> FImages\n\nRenders the requested images.");
         cls.def(
             "Measure",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Points, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AAllTypes.Measure()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Points", !isMissing(Points), true}});
-                Self* object = self.get<Self>(kContext);
-                auto PointsValue = Bridge<sp::reflect::SpArray<float>>::in(Points, "AAllTypes.Measure(): argument 'Points'");
-                auto result = object->Measure(PointsValue);
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FCloudStats>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_Measure<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Points}, true});
             },
             py::arg("Points") = sp::pybind::missingArgument(),
             "Measure(self, *, Points: NDArray[np.float32]) -> FCloudStats\n\nMeasures a cloud of (N, 3) points.");
         cls.def(
             "Self",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AAllTypes.Self()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                Self* object = self.get<Self>(kContext);
-                auto result = object->Self();
-                sp::reflect::checkNotNull(result, kContext);
-                return Bridge<AActor*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_Self<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "Self(self) -> AActor\n\nNever returns None.");
     }

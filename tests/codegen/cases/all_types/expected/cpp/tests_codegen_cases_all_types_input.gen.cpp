@@ -6,6 +6,7 @@
 // Every header of the module: types used in signatures must be complete here.
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/all_types/cpp/all_types_calls.gen.h"
 #include "generated/all_types/cpp/all_types_types.gen.h"
 
 namespace {
@@ -31,6 +32,8 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EChannel>() {
 const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = AAllTypes;
+        using Calls = sp::generated::all_types::AAllTypesCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "AAllTypes";
         t.doc = "An actor whose API uses every supported type.";
@@ -43,13 +46,9 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             TypeCode(Kind::Bool),
             "A flag.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->bFlag);
-            },
+            [](const void* self) { return Calls::get_bFlag<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->bFlag = sp::reflect::decode<bool>(value, "AAllTypes.bFlag");
-                sp::reflect::notifyPropertyChanged(object, "bFlag");
+                Calls::set_bFlag<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -57,13 +56,9 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             TypeCode(Kind::Int),
             "A small unsigned integer.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Small);
-            },
+            [](const void* self) { return Calls::get_Small<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Small = sp::reflect::decode<uint8_t>(value, "AAllTypes.Small");
-                sp::reflect::notifyPropertyChanged(object, "Small");
+                Calls::set_Small<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -71,13 +66,9 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             TypeCode(Kind::Int),
             "A 64-bit integer.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Big);
-            },
+            [](const void* self) { return Calls::get_Big<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Big = sp::reflect::decode<int64_t>(value, "AAllTypes.Big");
-                sp::reflect::notifyPropertyChanged(object, "Big");
+                Calls::set_Big<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -85,13 +76,9 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             TypeCode(Kind::Float),
             "A float.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Ratio);
-            },
+            [](const void* self) { return Calls::get_Ratio<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Ratio = sp::reflect::decode<float>(value, "AAllTypes.Ratio");
-                sp::reflect::notifyPropertyChanged(object, "Ratio");
+                Calls::set_Ratio<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -99,13 +86,9 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             TypeCode(Kind::Str),
             "A name.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Label);
-            },
+            [](const void* self) { return Calls::get_Label<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Label = sp::reflect::decode<std::string>(value, "AAllTypes.Label");
-                sp::reflect::notifyPropertyChanged(object, "Label");
+                Calls::set_Label<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -113,13 +96,9 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             TypeCode(Kind::Object, "AActor", true),
             "A reference to another actor.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Target);
-            },
+            [](const void* self) { return Calls::get_Target<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Target = sp::reflect::decode<AActor*>(value, "AAllTypes.Target");
-                sp::reflect::notifyPropertyChanged(object, "Target");
+                Calls::set_Target<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -127,13 +106,9 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             TypeCode(Kind::Dict, TypeCode(Kind::Float)),
             "Named weights.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Weights);
-            },
+            [](const void* self) { return Calls::get_Weights<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Weights = sp::reflect::decode<std::map<std::string, float>>(value, "AAllTypes.Weights");
-                sp::reflect::notifyPropertyChanged(object, "Weights");
+                Calls::set_Weights<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -141,9 +116,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             TypeCode(Kind::Int),
             "Visible but not writable from Python.",
             true,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Counter);
-            },
+            [](const void* self) { return Calls::get_Counter<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,
         });
         t.properties.push_back({
@@ -151,13 +124,9 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             TypeCode(Kind::Float),
             "Written through its setter.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Speed);
-            },
+            [](const void* self) { return Calls::get_Speed<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->SetSpeed(sp::reflect::decode<double>(value, "AAllTypes.Speed"));
-                sp::reflect::notifyPropertyChanged(object, "Speed");
+                Calls::set_Speed<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -169,13 +138,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AAllTypes.SetSpeed()";
-                sp::reflect::checkArguments(args, {"NewSpeed"}, kContext);
-                double NewSpeed = sp::reflect::decode<double>(sp::reflect::requireArgument(args, "NewSpeed", kContext), "AAllTypes.SetSpeed(): argument 'NewSpeed'");
-                sp::reflect::selfCast<Self>(self)->SetSpeed(NewSpeed);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetSpeed<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "Scale",
@@ -188,18 +151,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AAllTypes.Scale()";
-                sp::reflect::checkArguments(args, {"Sample", "Factor", "Channel"}, kContext);
-                FSample Sample = sp::reflect::decode<FSample>(sp::reflect::requireArgument(args, "Sample", kContext), "AAllTypes.Scale(): argument 'Sample'");
-                const sp::reflect::Value* FactorArg = sp::reflect::findArgument(args, "Factor");
-                double Factor = FactorArg ? sp::reflect::decode<double>(*FactorArg, "AAllTypes.Scale(): argument 'Factor'") : double(2.0);
-                const sp::reflect::Value* ChannelArg = sp::reflect::findArgument(args, "Channel");
-                EChannel Channel = ChannelArg ? sp::reflect::decode<EChannel>(*ChannelArg, "AAllTypes.Scale(): argument 'Channel'") : EChannel(EChannel::Red);
-                auto result = sp::reflect::selfCast<const Self>(self)->Scale(Sample, Factor, Channel);
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_Scale<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "Split",
@@ -212,19 +164,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AAllTypes.Split()";
-                sp::reflect::checkArguments(args, {"Text"}, kContext);
-                std::string Text = sp::reflect::decode<std::string>(sp::reflect::requireArgument(args, "Text", kContext), "AAllTypes.Split(): argument 'Text'");
-                std::string Head{};
-                std::vector<std::string> Rest{};
-                auto result = sp::reflect::selfCast<Self>(self)->Split(Text, Head, Rest);
-                sp::reflect::Value::Dict outputs;
-                outputs.emplace("ReturnValue", sp::reflect::encode(result));
-                outputs.emplace("Head", sp::reflect::encode(Head));
-                outputs.emplace("Rest", sp::reflect::encode(Rest));
-                return sp::reflect::Value(std::move(outputs));
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_Split<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "Collect",
@@ -236,15 +176,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AAllTypes.Collect()";
-                sp::reflect::checkArguments(args, {"ActorClass", "Candidates"}, kContext);
-                TSubclassOf<AActor> ActorClass = sp::reflect::decodeNonNull<TSubclassOf<AActor>>(sp::reflect::requireArgument(args, "ActorClass", kContext), "AAllTypes.Collect(): argument 'ActorClass'");
-                const sp::reflect::Value* CandidatesArg = sp::reflect::findArgument(args, "Candidates");
-                std::vector<AActor*> Candidates = CandidatesArg ? sp::reflect::decode<std::vector<AActor*>>(*CandidatesArg, "AAllTypes.Collect(): argument 'Candidates'") : std::vector<AActor*>{};
-                auto result = sp::reflect::selfCast<Self>(self)->Collect(ActorClass, Candidates);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_Collect<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "ClassOf",
@@ -255,14 +187,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AAllTypes.ClassOf()";
-                sp::reflect::checkArguments(args, {"Object"}, kContext);
-                const sp::reflect::Value* ObjectArg = sp::reflect::findArgument(args, "Object");
-                UObject* Object = ObjectArg ? sp::reflect::decode<UObject*>(*ObjectArg, "AAllTypes.ClassOf(): argument 'Object'") : static_cast<UObject*>(nullptr);
-                auto result = sp::reflect::selfCast<const Self>(self)->ClassOf(Object);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_ClassOf<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "Normalise",
@@ -273,13 +198,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AAllTypes.Normalise()";
-                sp::reflect::checkArguments(args, {"Points"}, kContext);
-                sp::reflect::SpArray<float> Points = sp::reflect::decode<sp::reflect::SpArray<float>>(sp::reflect::requireArgument(args, "Points", kContext), "AAllTypes.Normalise(): argument 'Points'");
-                auto result = sp::reflect::selfCast<Self>(self)->Normalise(Points);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_Normalise<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "Histogram",
@@ -291,15 +210,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AAllTypes.Histogram()";
-                sp::reflect::checkArguments(args, {"Bytes", "Bins"}, kContext);
-                sp::reflect::SpArray<uint8_t> Bytes = sp::reflect::decode<sp::reflect::SpArray<uint8_t>>(sp::reflect::requireArgument(args, "Bytes", kContext), "AAllTypes.Histogram(): argument 'Bytes'");
-                const sp::reflect::Value* BinsArg = sp::reflect::findArgument(args, "Bins");
-                int32_t Bins = BinsArg ? sp::reflect::decode<int32_t>(*BinsArg, "AAllTypes.Histogram(): argument 'Bins'") : int32_t(16);
-                auto result = Self::Histogram(Bytes, Bins);
-                return sp::reflect::encode(result);
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_Histogram<ValueCall>(args); },
         });
         t.functions.push_back({
             "Render",
@@ -310,14 +221,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AAllTypes.Render()";
-                sp::reflect::checkArguments(args, {"Names"}, kContext);
-                std::vector<std::string> Names = sp::reflect::decode<std::vector<std::string>>(sp::reflect::requireArgument(args, "Names", kContext), "AAllTypes.Render(): argument 'Names'");
-                auto result = sp::reflect::selfCast<Self>(self)->Render(Names);
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_Render<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "Measure",
@@ -328,14 +232,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AAllTypes.Measure()";
-                sp::reflect::checkArguments(args, {"Points"}, kContext);
-                sp::reflect::SpArray<float> Points = sp::reflect::decode<sp::reflect::SpArray<float>>(sp::reflect::requireArgument(args, "Points", kContext), "AAllTypes.Measure(): argument 'Points'");
-                auto result = sp::reflect::selfCast<Self>(self)->Measure(Points);
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_Measure<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "Self",
@@ -345,13 +242,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AAllTypes.Self()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<Self>(self)->Self();
-                sp::reflect::checkNotNull(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_Self<ValueCall>(self, args); },
         });
         return t;
     }();
@@ -365,6 +256,8 @@ const sp::reflect::TypeInfo& AAllTypes::GetClass() const { return StaticClass();
 const sp::reflect::TypeInfo& FCloudStats::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FCloudStats;
+        using Calls = sp::generated::all_types::FCloudStatsCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FCloudStats";
         t.doc = "Measurements of a point cloud; a complete TypedDict: every entry is always produced.";
@@ -377,13 +270,9 @@ const sp::reflect::TypeInfo& FCloudStats::StaticClass() {
             TypeCode(Kind::Array, "float32"),
             "Distance of each point from the origin, (N,).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->distances);
-            },
+            [](const void* self) { return Calls::get_distances<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->distances = sp::reflect::decode<sp::reflect::SpArray<float>>(value, "FCloudStats.distances");
-                sp::reflect::notifyPropertyChanged(object, "distances");
+                Calls::set_distances<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -391,13 +280,9 @@ const sp::reflect::TypeInfo& FCloudStats::StaticClass() {
             TypeCode(Kind::Int),
             "How many points there were.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->count);
-            },
+            [](const void* self) { return Calls::get_count<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->count = sp::reflect::decode<int64_t>(value, "FCloudStats.count");
-                sp::reflect::notifyPropertyChanged(object, "count");
+                Calls::set_count<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;
@@ -412,6 +297,8 @@ const sp::reflect::TypeInfo& FCloudStats::GetClass() const { return StaticClass(
 const sp::reflect::TypeInfo& FImages::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FImages;
+        using Calls = sp::generated::all_types::FImagesCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FImages";
         t.doc = "Images keyed by name; only the ones produced are present.";
@@ -423,13 +310,9 @@ const sp::reflect::TypeInfo& FImages::StaticClass() {
             TypeCode(Kind::Array, "uint8"),
             "Colour, (H, W, 4).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->color);
-            },
+            [](const void* self) { return Calls::get_color<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->color = sp::reflect::decode<sp::reflect::SpArray<uint8_t>>(value, "FImages.color");
-                sp::reflect::notifyPropertyChanged(object, "color");
+                Calls::set_color<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -437,13 +320,9 @@ const sp::reflect::TypeInfo& FImages::StaticClass() {
             TypeCode(Kind::Array, "float32"),
             "Depth in metres, (H, W).",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->depth);
-            },
+            [](const void* self) { return Calls::get_depth<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->depth = sp::reflect::decode<sp::reflect::SpArray<float>>(value, "FImages.depth");
-                sp::reflect::notifyPropertyChanged(object, "depth");
+                Calls::set_depth<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;
@@ -458,6 +337,8 @@ const sp::reflect::TypeInfo& FImages::GetClass() const { return StaticClass(); }
 const sp::reflect::TypeInfo& FSample::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FSample;
+        using Calls = sp::generated::all_types::FSampleCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FSample";
         t.doc = "A sample with nested struct, enum and container fields.";
@@ -469,13 +350,9 @@ const sp::reflect::TypeInfo& FSample::StaticClass() {
             TypeCode(Kind::Struct, "FVector"),
             "Where it was taken.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Where);
-            },
+            [](const void* self) { return Calls::get_Where<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Where = sp::reflect::decode<FVector>(value, "FSample.Where");
-                sp::reflect::notifyPropertyChanged(object, "Where");
+                Calls::set_Where<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -483,13 +360,9 @@ const sp::reflect::TypeInfo& FSample::StaticClass() {
             TypeCode(Kind::Enum, "EChannel"),
             "Which channel.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Channel);
-            },
+            [](const void* self) { return Calls::get_Channel<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Channel = sp::reflect::decode<EChannel>(value, "FSample.Channel");
-                sp::reflect::notifyPropertyChanged(object, "Channel");
+                Calls::set_Channel<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -497,13 +370,9 @@ const sp::reflect::TypeInfo& FSample::StaticClass() {
             TypeCode(Kind::List, TypeCode(Kind::Float)),
             "Raw values.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Values);
-            },
+            [](const void* self) { return Calls::get_Values<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Values = sp::reflect::decode<std::vector<double>>(value, "FSample.Values");
-                sp::reflect::notifyPropertyChanged(object, "Values");
+                Calls::set_Values<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -511,13 +380,9 @@ const sp::reflect::TypeInfo& FSample::StaticClass() {
             TypeCode(Kind::Int),
             "A count.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Count);
-            },
+            [](const void* self) { return Calls::get_Count<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Count = sp::reflect::decode<int32_t>(value, "FSample.Count");
-                sp::reflect::notifyPropertyChanged(object, "Count");
+                Calls::set_Count<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;

@@ -6,16 +6,18 @@
 
 #include <pybind11/pybind11.h>
 
+#include <array>
+
 #include "generated/engine/cpp/engine_bindings.gen.h"
-#include "core/reflect/invoke.h"
 #include "generated/namespaced_plugin/cpp/namespaced_plugin_bindings.gen.h"
+#include "generated/namespaced_plugin/cpp/namespaced_plugin_calls.gen.h"
 
 namespace py = pybind11;
 using sp::pybind::Bridge;
 
 void spear_bind_namespaced_plugin(py::module_& m) {
-    using sp::pybind::isMissing;
     using sp::pybind::PyArg;
+    using sp::pybind::PyCall;
     using sp::pybind::Ref;
     // Each function's doc starts with its Python signature, as the stubs spell it; pybind11's own would
     // show the PyArg every parameter arrives as.
@@ -23,30 +25,24 @@ void spear_bind_namespaced_plugin(py::module_& m) {
     options.disable_function_signatures();
     {
         using Self = acme::robots::ABaseBot;
+        using Calls = sp::generated::namespaced_plugin::ABaseBotCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "ABaseBot", "A robot.");
         cls.attr("__sp_class__") = "ABaseBot";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "Speed",
-            [](const Ref<Self>& self) { return Bridge<double>::out(self.get<Self>("ABaseBot.Speed")->Speed); },
+            [](const Ref<Self>& self) { return Calls::get_Speed<PyCall>(self.get<Self>("ABaseBot.Speed")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("ABaseBot.Speed");
-                object->Speed = Bridge<double>::in(value, "ABaseBot.Speed");
-                object->PostPropertyChanged("Speed");
+                Calls::set_Speed<PyCall>(self.get<Self>("ABaseBot.Speed"), value);
             },
             "Speed in metres per second.");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetGait",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Gait, const PyArg& Settings, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ABaseBot.SetGait()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Gait", !isMissing(Gait), false}, {"Settings", !isMissing(Settings), false}});
-                Self* object = self.get<Self>(kContext);
-                acme::robots::EGait GaitValue = isMissing(Gait) ? acme::robots::EGait(acme::robots::EGait::Run) : Bridge<acme::robots::EGait>::in(Gait, "ABaseBot.SetGait(): argument 'Gait'");
-                acme::robots::FGaitSettings SettingsValue = isMissing(Settings) ? acme::robots::FGaitSettings(acme::robots::FGaitSettings()) : Bridge<acme::robots::FGaitSettings>::in(Settings, "ABaseBot.SetGait(): argument 'Settings'");
-                object->SetGait(GaitValue, SettingsValue);
-                return py::none();
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetGait<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&Gait, &Settings}, true});
             },
             py::arg("Gait") = sp::pybind::missingArgument(),
             py::arg("Settings") = sp::pybind::missingArgument(),
@@ -54,23 +50,16 @@ void spear_bind_namespaced_plugin(py::module_& m) {
         cls.def(
             "GetGait",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ABaseBot.GetGait()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetGait();
-                return Bridge<acme::robots::EGait>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetGait<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetGait(self) -> EGait\n\nReturns the gait.");
         // Static in C++: called on the class, with no object.
         cls.def_static(
             "FleetSize",
             [](const py::args& positional, const PyArg& Count, const PyArg& Spares, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "ABaseBot.FleetSize()";
-                sp::pybind::checkCall(kContext, false, positional, extra, {{"Count", !isMissing(Count), true}, {"Spares", !isMissing(Spares), false}});
-                auto CountValue = Bridge<int32_t>::in(Count, "ABaseBot.FleetSize(): argument 'Count'");
-                int32_t SparesValue = isMissing(Spares) ? int32_t(0) : Bridge<int32_t>::in(Spares, "ABaseBot.FleetSize(): argument 'Spares'");
-                auto result = Self::FleetSize(CountValue, SparesValue);
-                return Bridge<int32_t>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_FleetSize<PyCall>({positional, extra, std::array<const PyArg*, 2>{&Count, &Spares}, false});
             },
             py::arg("Count") = sp::pybind::missingArgument(),
             py::arg("Spares") = sp::pybind::missingArgument(),
@@ -78,28 +67,24 @@ void spear_bind_namespaced_plugin(py::module_& m) {
     }
     {
         using Self = acme::robots::AWalkerBot;
+        using Calls = sp::generated::namespaced_plugin::AWalkerBotCalls;
         py::class_<Ref<Self>, Ref<acme::robots::ABaseBot>> cls(m, "AWalkerBot", "A robot that walks on legs.");
         cls.attr("__sp_class__") = "AWalkerBot";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "Legs",
-            [](const Ref<Self>& self) { return Bridge<int32_t>::out(self.get<Self>("AWalkerBot.Legs")->Legs); },
+            [](const Ref<Self>& self) { return Calls::get_Legs<PyCall>(self.get<Self>("AWalkerBot.Legs")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("AWalkerBot.Legs");
-                object->Legs = Bridge<int32_t>::in(value, "AWalkerBot.Legs");
-                object->PostPropertyChanged("Legs");
+                Calls::set_Legs<PyCall>(self.get<Self>("AWalkerBot.Legs"), value);
             },
             "Number of legs.");
         sp::pybind::nameProperties(cls);
         cls.def(
             "GetLeader",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "AWalkerBot.GetLeader()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->GetLeader();
-                return Bridge<acme::robots::ABaseBot*>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetLeader<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "GetLeader(self) -> ABaseBot | None\n\nReturns the robot it follows, or None.");
     }

@@ -6,6 +6,7 @@
 // Every header of the module: types used in signatures must be complete here.
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/namespaced_plugin/cpp/namespaced_plugin_calls.gen.h"
 #include "generated/namespaced_plugin/cpp/namespaced_plugin_types.gen.h"
 
 namespace {
@@ -30,6 +31,8 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<acme::robots::E
 const sp::reflect::TypeInfo& acme::robots::ABaseBot::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = acme::robots::ABaseBot;
+        using Calls = sp::generated::namespaced_plugin::ABaseBotCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "ABaseBot";
         t.doc = "A robot.";
@@ -42,13 +45,9 @@ const sp::reflect::TypeInfo& acme::robots::ABaseBot::StaticClass() {
             TypeCode(Kind::Float),
             "Speed in metres per second.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Speed);
-            },
+            [](const void* self) { return Calls::get_Speed<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Speed = sp::reflect::decode<double>(value, "ABaseBot.Speed");
-                sp::reflect::notifyPropertyChanged(object, "Speed");
+                Calls::set_Speed<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -61,16 +60,7 @@ const sp::reflect::TypeInfo& acme::robots::ABaseBot::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ABaseBot.SetGait()";
-                sp::reflect::checkArguments(args, {"Gait", "Settings"}, kContext);
-                const sp::reflect::Value* GaitArg = sp::reflect::findArgument(args, "Gait");
-                acme::robots::EGait Gait = GaitArg ? sp::reflect::decode<acme::robots::EGait>(*GaitArg, "ABaseBot.SetGait(): argument 'Gait'") : acme::robots::EGait(acme::robots::EGait::Run);
-                const sp::reflect::Value* SettingsArg = sp::reflect::findArgument(args, "Settings");
-                acme::robots::FGaitSettings Settings = SettingsArg ? sp::reflect::decode<acme::robots::FGaitSettings>(*SettingsArg, "ABaseBot.SetGait(): argument 'Settings'") : acme::robots::FGaitSettings(acme::robots::FGaitSettings());
-                sp::reflect::selfCast<Self>(self)->SetGait(Gait, Settings);
-                return {};
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetGait<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetGait",
@@ -80,12 +70,7 @@ const sp::reflect::TypeInfo& acme::robots::ABaseBot::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ABaseBot.GetGait()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetGait();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetGait<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "FleetSize",
@@ -97,15 +82,7 @@ const sp::reflect::TypeInfo& acme::robots::ABaseBot::StaticClass() {
             },
             true,
             false,
-            [](void* , const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "ABaseBot.FleetSize()";
-                sp::reflect::checkArguments(args, {"Count", "Spares"}, kContext);
-                int32_t Count = sp::reflect::decode<int32_t>(sp::reflect::requireArgument(args, "Count", kContext), "ABaseBot.FleetSize(): argument 'Count'");
-                const sp::reflect::Value* SparesArg = sp::reflect::findArgument(args, "Spares");
-                int32_t Spares = SparesArg ? sp::reflect::decode<int32_t>(*SparesArg, "ABaseBot.FleetSize(): argument 'Spares'") : int32_t(0);
-                auto result = Self::FleetSize(Count, Spares);
-                return sp::reflect::encode(result);
-            },
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_FleetSize<ValueCall>(args); },
         });
         return t;
     }();
@@ -119,6 +96,8 @@ const sp::reflect::TypeInfo& acme::robots::ABaseBot::GetClass() const { return S
 const sp::reflect::TypeInfo& acme::robots::AWalkerBot::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = acme::robots::AWalkerBot;
+        using Calls = sp::generated::namespaced_plugin::AWalkerBotCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "AWalkerBot";
         t.doc = "A robot that walks on legs.";
@@ -131,13 +110,9 @@ const sp::reflect::TypeInfo& acme::robots::AWalkerBot::StaticClass() {
             TypeCode(Kind::Int),
             "Number of legs.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Legs);
-            },
+            [](const void* self) { return Calls::get_Legs<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Legs = sp::reflect::decode<int32_t>(value, "AWalkerBot.Legs");
-                sp::reflect::notifyPropertyChanged(object, "Legs");
+                Calls::set_Legs<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -148,12 +123,7 @@ const sp::reflect::TypeInfo& acme::robots::AWalkerBot::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "AWalkerBot.GetLeader()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->GetLeader();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetLeader<ValueCall>(self, args); },
         });
         return t;
     }();
@@ -167,6 +137,8 @@ const sp::reflect::TypeInfo& acme::robots::AWalkerBot::GetClass() const { return
 const sp::reflect::TypeInfo& acme::robots::FGaitSettings::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = acme::robots::FGaitSettings;
+        using Calls = sp::generated::namespaced_plugin::FGaitSettingsCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FGaitSettings";
         t.doc = "A robot's tuning.";
@@ -178,13 +150,9 @@ const sp::reflect::TypeInfo& acme::robots::FGaitSettings::StaticClass() {
             TypeCode(Kind::Float),
             "Stride in metres.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Stride);
-            },
+            [](const void* self) { return Calls::get_Stride<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Stride = sp::reflect::decode<double>(value, "FGaitSettings.Stride");
-                sp::reflect::notifyPropertyChanged(object, "Stride");
+                Calls::set_Stride<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -192,13 +160,9 @@ const sp::reflect::TypeInfo& acme::robots::FGaitSettings::StaticClass() {
             TypeCode(Kind::Enum, "EGait"),
             "The gait it starts in.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Gait);
-            },
+            [](const void* self) { return Calls::get_Gait<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Gait = sp::reflect::decode<acme::robots::EGait>(value, "FGaitSettings.Gait");
-                sp::reflect::notifyPropertyChanged(object, "Gait");
+                Calls::set_Gait<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;

@@ -6,16 +6,18 @@
 
 #include <pybind11/pybind11.h>
 
+#include <array>
+
 #include "generated/engine/cpp/engine_bindings.gen.h"
-#include "core/reflect/invoke.h"
 #include "generated/plugin_actor/cpp/plugin_actor_bindings.gen.h"
+#include "generated/plugin_actor/cpp/plugin_actor_calls.gen.h"
 
 namespace py = pybind11;
 using sp::pybind::Bridge;
 
 void spear_bind_plugin_actor(py::module_& m) {
-    using sp::pybind::isMissing;
     using sp::pybind::PyArg;
+    using sp::pybind::PyCall;
     using sp::pybind::Ref;
     // Each function's doc starts with its Python signature, as the stubs spell it; pybind11's own would
     // show the PyArg every parameter arrives as.
@@ -23,87 +25,69 @@ void spear_bind_plugin_actor(py::module_& m) {
     options.disable_function_signatures();
     {
         using Self = APluginActor;
+        using Calls = sp::generated::plugin_actor::APluginActorCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "APluginActor", "An actor defined by a plugin.");
         cls.attr("__sp_class__") = "APluginActor";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "Radius",
-            [](const Ref<Self>& self) { return Bridge<float>::out(self.get<Self>("APluginActor.Radius")->Radius); },
+            [](const Ref<Self>& self) { return Calls::get_Radius<PyCall>(self.get<Self>("APluginActor.Radius")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("APluginActor.Radius");
-                object->Radius = Bridge<float>::in(value, "APluginActor.Radius");
-                object->PostPropertyChanged("Radius");
+                Calls::set_Radius<PyCall>(self.get<Self>("APluginActor.Radius"), value);
             },
             "Its radius in metres.");
         cls.def_property(
             "Settings",
-            [](const Ref<Self>& self) { return Bridge<FPluginSettings>::out(self.get<Self>("APluginActor.Settings")->Settings); },
+            [](const Ref<Self>& self) { return Calls::get_Settings<PyCall>(self.get<Self>("APluginActor.Settings")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("APluginActor.Settings");
-                object->Settings = Bridge<FPluginSettings>::in(value, "APluginActor.Settings");
-                object->PostPropertyChanged("Settings");
+                Calls::set_Settings<PyCall>(self.get<Self>("APluginActor.Settings"), value);
             },
             "Its settings.");
         cls.def_property(
             "Leader",
-            [](const Ref<Self>& self) { return Bridge<AActor*>::out(self.get<Self>("APluginActor.Leader")->Leader); },
+            [](const Ref<Self>& self) { return Calls::get_Leader<PyCall>(self.get<Self>("APluginActor.Leader")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("APluginActor.Leader");
-                object->Leader = Bridge<AActor*>::in(value, "APluginActor.Leader");
-                object->PostPropertyChanged("Leader");
+                Calls::set_Leader<PyCall>(self.get<Self>("APluginActor.Leader"), value);
             },
             "Another actor it follows, or None.");
         sp::pybind::nameProperties(cls);
         cls.def(
             "Offset",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Delta, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "APluginActor.Offset()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Delta", !isMissing(Delta), true}});
-                const Self* object = self.get<Self>(kContext);
-                auto DeltaValue = Bridge<FVector>::in(Delta, "APluginActor.Offset(): argument 'Delta'");
-                auto result = object->Offset(DeltaValue);
-                sp::reflect::checkResultFields(result, kContext);
-                return Bridge<FVector>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_Offset<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Delta}, true});
             },
             py::arg("Delta") = sp::pybind::missingArgument(),
             "Offset(self, *, Delta: FVector) -> FVector\n\nReturns its location moved by Delta.");
         cls.def(
             "Neighbours",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "APluginActor.Neighbours()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {});
-                const Self* object = self.get<Self>(kContext);
-                auto result = object->Neighbours();
-                return Bridge<std::vector<AActor*>>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_Neighbours<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
             },
             "Neighbours(self) -> list[AActor]\n\nReturns the actors within Radius.");
         cls.def(
             "SetMood",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Mood, const py::kwargs& extra) -> py::object {
-                static constexpr const char* kContext = "APluginActor.SetMood()";
-                sp::pybind::checkCall(kContext, true, positional, extra, {{"Mood", !isMissing(Mood), false}});
-                Self* object = self.get<Self>(kContext);
-                EPluginMood MoodValue = isMissing(Mood) ? EPluginMood(EPluginMood::Shy) : Bridge<EPluginMood>::in(Mood, "APluginActor.SetMood(): argument 'Mood'");
-                auto result = object->SetMood(MoodValue);
-                return Bridge<EPluginMood>::out(result);
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetMood<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Mood}, true});
             },
             py::arg("Mood") = sp::pybind::missingArgument(),
             "SetMood(self, *, Mood: EPluginMood = ...) -> EPluginMood\n\nSets its mood, returning the previous one.");
     }
     {
         using Self = APluginChild;
+        using Calls = sp::generated::plugin_actor::APluginChildCalls;
         py::class_<Ref<Self>, Ref<APluginActor>> cls(m, "APluginChild", "A plugin class derived from a plugin class: its parent is local, its grandparent the engine's.");
         cls.attr("__sp_class__") = "APluginChild";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
         cls.def_property(
             "Nickname",
-            [](const Ref<Self>& self) { return Bridge<std::string>::out(self.get<Self>("APluginChild.Nickname")->Nickname); },
+            [](const Ref<Self>& self) { return Calls::get_Nickname<PyCall>(self.get<Self>("APluginChild.Nickname")); },
             [](const Ref<Self>& self, const PyArg& value) {
-                Self* object = self.get<Self>("APluginChild.Nickname");
-                object->Nickname = Bridge<std::string>::in(value, "APluginChild.Nickname");
-                object->PostPropertyChanged("Nickname");
+                Calls::set_Nickname<PyCall>(self.get<Self>("APluginChild.Nickname"), value);
             },
             "A name.");
         sp::pybind::nameProperties(cls);

@@ -6,6 +6,7 @@
 // Every header of the module: types used in signatures must be complete here.
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
+#include "generated/plugin_actor/cpp/plugin_actor_calls.gen.h"
 #include "generated/plugin_actor/cpp/plugin_actor_types.gen.h"
 
 namespace {
@@ -30,6 +31,8 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPluginMood>() 
 const sp::reflect::TypeInfo& APluginActor::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = APluginActor;
+        using Calls = sp::generated::plugin_actor::APluginActorCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "APluginActor";
         t.doc = "An actor defined by a plugin.";
@@ -42,13 +45,9 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
             TypeCode(Kind::Float),
             "Its radius in metres.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Radius);
-            },
+            [](const void* self) { return Calls::get_Radius<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Radius = sp::reflect::decode<float>(value, "APluginActor.Radius");
-                sp::reflect::notifyPropertyChanged(object, "Radius");
+                Calls::set_Radius<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -56,13 +55,9 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
             TypeCode(Kind::Struct, "FPluginSettings"),
             "Its settings.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Settings);
-            },
+            [](const void* self) { return Calls::get_Settings<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Settings = sp::reflect::decode<FPluginSettings>(value, "APluginActor.Settings");
-                sp::reflect::notifyPropertyChanged(object, "Settings");
+                Calls::set_Settings<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -70,13 +65,9 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
             TypeCode(Kind::Object, "AActor", true),
             "Another actor it follows, or None.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Leader);
-            },
+            [](const void* self) { return Calls::get_Leader<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Leader = sp::reflect::decode<AActor*>(value, "APluginActor.Leader");
-                sp::reflect::notifyPropertyChanged(object, "Leader");
+                Calls::set_Leader<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.functions.push_back({
@@ -88,14 +79,7 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "APluginActor.Offset()";
-                sp::reflect::checkArguments(args, {"Delta"}, kContext);
-                FVector Delta = sp::reflect::decode<FVector>(sp::reflect::requireArgument(args, "Delta", kContext), "APluginActor.Offset(): argument 'Delta'");
-                auto result = sp::reflect::selfCast<const Self>(self)->Offset(Delta);
-                sp::reflect::checkResultFields(result, kContext);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_Offset<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "Neighbours",
@@ -105,12 +89,7 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
             },
             false,
             true,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "APluginActor.Neighbours()";
-                sp::reflect::checkArguments(args, {}, kContext);
-                auto result = sp::reflect::selfCast<const Self>(self)->Neighbours();
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_Neighbours<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetMood",
@@ -121,14 +100,7 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
             },
             false,
             false,
-            [](void* self, const sp::reflect::CallArgs& args) -> sp::reflect::Value {
-                static constexpr const char* kContext = "APluginActor.SetMood()";
-                sp::reflect::checkArguments(args, {"Mood"}, kContext);
-                const sp::reflect::Value* MoodArg = sp::reflect::findArgument(args, "Mood");
-                EPluginMood Mood = MoodArg ? sp::reflect::decode<EPluginMood>(*MoodArg, "APluginActor.SetMood(): argument 'Mood'") : EPluginMood(EPluginMood::Shy);
-                auto result = sp::reflect::selfCast<Self>(self)->SetMood(Mood);
-                return sp::reflect::encode(result);
-            },
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetMood<ValueCall>(self, args); },
         });
         return t;
     }();
@@ -142,6 +114,8 @@ const sp::reflect::TypeInfo& APluginActor::GetClass() const { return StaticClass
 const sp::reflect::TypeInfo& APluginChild::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = APluginChild;
+        using Calls = sp::generated::plugin_actor::APluginChildCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "APluginChild";
         t.doc = "A plugin class derived from a plugin class: its parent is local, its grandparent the engine's.";
@@ -154,13 +128,9 @@ const sp::reflect::TypeInfo& APluginChild::StaticClass() {
             TypeCode(Kind::Str),
             "A name.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Nickname);
-            },
+            [](const void* self) { return Calls::get_Nickname<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Nickname = sp::reflect::decode<std::string>(value, "APluginChild.Nickname");
-                sp::reflect::notifyPropertyChanged(object, "Nickname");
+                Calls::set_Nickname<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;
@@ -175,6 +145,8 @@ const sp::reflect::TypeInfo& APluginChild::GetClass() const { return StaticClass
 const sp::reflect::TypeInfo& FPluginSettings::StaticClass() {
     static const sp::reflect::TypeInfo info = [] {
         using Self = FPluginSettings;
+        using Calls = sp::generated::plugin_actor::FPluginSettingsCalls;
+        using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FPluginSettings";
         t.doc = "A plugin struct holding an engine struct.";
@@ -186,13 +158,9 @@ const sp::reflect::TypeInfo& FPluginSettings::StaticClass() {
             TypeCode(Kind::Struct, "FVector"),
             "Where it rests.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Home);
-            },
+            [](const void* self) { return Calls::get_Home<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Home = sp::reflect::decode<FVector>(value, "FPluginSettings.Home");
-                sp::reflect::notifyPropertyChanged(object, "Home");
+                Calls::set_Home<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({
@@ -200,13 +168,9 @@ const sp::reflect::TypeInfo& FPluginSettings::StaticClass() {
             TypeCode(Kind::Enum, "EPluginMood"),
             "How it reacts.",
             false,
-            [](const void* self) -> sp::reflect::Value {
-                return sp::reflect::encode(sp::reflect::selfCast<const Self>(self)->Mood);
-            },
+            [](const void* self) { return Calls::get_Mood<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
-                auto* object = sp::reflect::selfCast<Self>(self);
-                object->Mood = sp::reflect::decode<EPluginMood>(value, "FPluginSettings.Mood");
-                sp::reflect::notifyPropertyChanged(object, "Mood");
+                Calls::set_Mood<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         return t;
