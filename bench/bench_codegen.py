@@ -26,7 +26,7 @@ def main() -> None:
     parser.add_argument("--build-dir", type=Path, default=ROOT / "build")
     parser.add_argument("--runs", type=int, default=5)
     args = parser.parse_args()
-    headers = [h for h in (ROOT / "core/world/reflected_headers.txt").read_text().splitlines()
+    headers = [h for h in (ROOT / "core/engine/reflected_headers.txt").read_text().splitlines()
                if h and not h.startswith("#")]
     with tempfile.TemporaryDirectory() as out:
         gen = [sys.executable, "-m", "codegen", "generate", "--module", "engine", "--root", str(ROOT), "--out", out,

@@ -46,7 +46,7 @@ install_pyright() {
 # build passes it in core/world/CMakeLists.txt.
 engine_codegen() {
     local headers
-    mapfile -t headers < <(grep -v '^#' "$ROOT/core/world/reflected_headers.txt")
+    mapfile -t headers < <(grep -v '^#' "$ROOT/core/engine/reflected_headers.txt")
     (cd "$ROOT" && "$PYTHON" -m codegen "$1" --module engine --root . --out generated \
         --include-dir /usr/include/eigen3 --blueprint-dir assets/blueprints "${headers[@]}")
 }

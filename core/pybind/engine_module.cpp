@@ -15,6 +15,7 @@
 #include "core/base/asset_path.h"
 #include "core/base/log.h"
 #include "core/base/progress.h"
+#include "core/engine/engine.h"
 #include "core/imageio/exr.h"
 #include "core/plugin/plugin_loader.h"
 #include "core/pybind/bridge.h"
@@ -23,7 +24,6 @@
 #include "core/pybind/object_ref.h"
 #include "core/pybind/value_convert.h"
 #include "core/spfunc/sp_func_call.h"
-#include "core/world/engine.h"
 #include "core/world/object_access.h"
 
 namespace py = pybind11;
@@ -160,7 +160,7 @@ PYBIND11_MODULE(_spear_engine, m) {
         },
         "The SpFuncs of an object (use obj.get_sp_func_names()).");
 
-    using sp::world::Engine;
+    using sp::engine::Engine;
     py::class_<Engine>(m, "Engine", "The engine: its worlds and the frame loop.")
         .def(py::init([](double fixedDeltaSeconds, bool editor, std::string scene) {
                  return std::make_unique<Engine>(

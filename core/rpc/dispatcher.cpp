@@ -121,7 +121,7 @@ void Dispatcher::endSession(Session& session) {
     // A client that began a frame and went away (killed, or disconnected) would leave the engine inside the
     // frame, and every other client refused ("expected idle") for good: its frame ends here, as a frame
     // whose Python block raised does.
-    if (frameOwner_ == &session && engine_.GetFrameState() != world::Engine::FrameState::Idle)
+    if (frameOwner_ == &session && engine_.GetFrameState() != engine::Engine::FrameState::Idle)
         engine_.abortFrame();
     if (frameOwner_ == &session)
         frameOwner_ = nullptr;
@@ -318,8 +318,8 @@ Value Dispatcher::frame(const Request& request, Session& session) {
         SP_THROW(InvalidArgument, "frame(): unknown action '", action, "'");
     // The client that last moved a frame owns it until it ends (see endSession).
     if (action != "state")
-        frameOwner_ = engine_.GetFrameState() == world::Engine::FrameState::Idle ? nullptr : &session;
-    return Value(Value::Dict{{"state", Value(std::string(world::Engine::toString(engine_.GetFrameState())))},
+        frameOwner_ = engine_.GetFrameState() == engine::Engine::FrameState::Idle ? nullptr : &session;
+    return Value(Value::Dict{{"state", Value(std::string(engine::Engine::toString(engine_.GetFrameState())))},
                              {"frame_count", Value(engine_.GetFrameCount())}});
 }
 

@@ -24,9 +24,9 @@
 #include <string_view>
 #include <vector>
 
+#include "core/engine/engine.h"
 #include "core/rpc/request.h"
 #include "core/rpc/value_msgpack.h"
-#include "core/world/engine.h"
 
 namespace sp::rpc {
 
@@ -46,7 +46,7 @@ struct Session {
 
 class Dispatcher {
   public:
-    Dispatcher(world::Engine& engine, std::string apiHash, std::string token)
+    Dispatcher(engine::Engine& engine, std::string apiHash, std::string token)
         : engine_(engine), apiHash_(std::move(apiHash)), token_(std::move(token)) {}
 
     // Handles one encoded request and appends the encoded reply to `reply`. Never throws: malformed
@@ -93,7 +93,7 @@ class Dispatcher {
     void handleOne(const msgpack::object& message, Session& session, msgpack::sbuffer& reply,
                    const ArrayToSharedMemory& toShm, bool inBatch = false);
 
-    world::Engine& engine_;
+    engine::Engine& engine_;
     std::string apiHash_;
     std::string token_;
     bool allowAnyPlugin_ = false;

@@ -95,7 +95,7 @@ void watchParent(pid_t parent) {
 
 int main(int argc, char** argv) {
     sp::rpc::ServerOptions options;
-    sp::world::Engine::Settings settings;
+    sp::engine::Engine::Settings settings;
     std::vector<std::string> plugins;
     std::vector<std::string> fileRoots;
     std::string tokenFile;
@@ -158,7 +158,7 @@ int main(int argc, char** argv) {
         // checkout the server was built from. Before the engine, whose --scene may be one.
         const std::string builtin = sp::useBuiltinAssetsOf(
             std::filesystem::read_symlink("/proc/self/exe").parent_path().parent_path());
-        sp::world::Engine engine(settings);
+        sp::engine::Engine engine(settings);
         // After the engine has read the server's own --scene: from here on, paths come from clients. They
         // may read the built-in assets and the asset folders the server's user named (SPEAR_ASSET_PATH).
         if (fileRoots.empty())

@@ -129,7 +129,7 @@ reflect::ArrayValue allocateInSegment(reflect::DType dtype, const std::vector<in
 }
 } // namespace
 
-Server::Server(world::Engine& engine, ServerOptions options, std::string apiHash)
+Server::Server(engine::Engine& engine, ServerOptions options, std::string apiHash)
     : options_(std::move(options)), dispatcher_(engine, std::move(apiHash), options_.token) {
     removeOrphanedSegments();
     guardAgainstTruncation(); // a client shrinking a segment the server maps must not crash it

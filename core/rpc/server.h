@@ -46,7 +46,7 @@ struct ServerOptions {
 
 class Server {
   public:
-    Server(world::Engine& engine, ServerOptions options, std::string apiHash);
+    Server(engine::Engine& engine, ServerOptions options, std::string apiHash);
     ~Server();
 
     // Where clients connect: "unix:/path" or "tcp:127.0.0.1:port".

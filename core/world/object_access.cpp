@@ -1,16 +1,15 @@
 #include "core/world/object_access.h"
 
 #include "core/base/error.h"
-#include "core/world/engine.h"
 #include "core/world/world.h"
 
 namespace sp::world {
 
 void checkObjectAccess(const reflect::ObjectBase& object, std::string_view context) {
     const auto* uobject = dynamic_cast<const UObject*>(&object);
-    if (!uobject || !uobject->GetWorld() || !uobject->GetWorld()->GetEngine())
+    if (!uobject || !uobject->GetWorld() || !uobject->GetWorld()->GetHost())
         return;
-    uobject->GetWorld()->GetEngine()->checkInFrame(context);
+    uobject->GetWorld()->GetHost()->checkInFrame(context);
 }
 
 UWorld& worldOfContext(UObject* context, std::string_view function) {

@@ -8,7 +8,6 @@
 #include "core/reflect/registry.h"
 #include "core/world/blueprint.h"
 #include "core/world/controller.h"
-#include "core/world/engine.h"
 #include "core/world/input_component.h"
 #include "core/world/pawn.h"
 #include "core/world/physics_subsystem.h"
@@ -127,22 +126,22 @@ void UWorld::save_scene(const std::string& path) const {
     sp::writeRegularFile(path, text, "UWorld.save_scene()", "scene file"); // never a FIFO or a device
 }
 
-sp::world::Engine& UWorld::editorEngine(const char* function) const {
-    SP_CHECK(isEditorWorld_ && engine_, sp::InvalidState, "UWorld.", function, "(): ", GetName(),
+sp::world::WorldHost& UWorld::editorHost(const char* function) const {
+    SP_CHECK(isEditorWorld_ && host_, sp::InvalidState, "UWorld.", function, "(): ", GetName(),
              " is not an editor world; only instance.get_editor() can ", function);
-    return *engine_;
+    return *host_;
 }
 
 void UWorld::play() {
-    editorEngine("play").play();
+    editorHost("play").play();
 }
 
 void UWorld::stop() {
-    editorEngine("stop").stop();
+    editorHost("stop").stop();
 }
 
 bool UWorld::is_playing() const {
-    return isEditorWorld_ && engine_ && engine_->IsPlaying();
+    return isEditorWorld_ && host_ && host_->IsPlaying();
 }
 
 void UWorld::destroy_actor(AActor* actor) {

@@ -15,11 +15,8 @@
 #include "core/world/actor.h"
 #include "core/world/hit_result.h"
 #include "core/world/primitive_component.h"
+#include "core/world/world_host.h"
 #include "core/world/world_subsystem.h"
-
-namespace sp::world {
-class Engine;
-}
 
 /// A world: the actors that exist together, and the services to create and find them.
 SPCLASS()
@@ -199,8 +196,9 @@ class UWorld : public UObject {
     void UnloadStreamLevel(const std::string& name, const std::string& function);
 
     void SetEditorWorld(bool isEditorWorld) { isEditorWorld_ = isEditorWorld; }
-    void SetEngine(sp::world::Engine* engine) { engine_ = engine; }
-    sp::world::Engine* GetEngine() const { return engine_; }
+    // The engine that owns this world; null for a world made on its own (tests).
+    void SetHost(sp::world::WorldHost* host) { host_ = host; }
+    sp::world::WorldHost* GetHost() const { return host_; }
 
   private:
     struct SubsystemEntry {
@@ -211,11 +209,11 @@ class UWorld : public UObject {
     void addSubsystem(std::type_index type, int tickOrder,
                       std::unique_ptr<sp::world::WorldSubsystem> subsystem);
     std::string uniqueActorName(const UClass& type) const;
-    sp::world::Engine& editorEngine(const char* function) const;
+    sp::world::WorldHost& editorHost(const char* function) const;
 
     std::vector<SubsystemEntry> subsystems_; // sorted by tick order; destroyed after the actors
 
-    sp::world::Engine* engine_ = nullptr;
+    sp::world::WorldHost* host_ = nullptr;
     std::vector<std::unique_ptr<AActor>> actors_; // spawn order: keeps queries and ticks deterministic
     std::vector<StreamingLevel> levels_;          // declaration order
     std::map<const UClass*, std::unique_ptr<UObject>> defaultObjects_;

@@ -12,7 +12,7 @@ EIGEN = "/usr/include/eigen3"
 
 
 def engine_headers() -> list[str]:
-    lines = (ROOT / "core/world/reflected_headers.txt").read_text().splitlines()
+    lines = (ROOT / "core/engine/reflected_headers.txt").read_text().splitlines()
     return [line for line in lines if line and not line.startswith("#")]
 
 

@@ -1,13 +1,13 @@
 #include <gtest/gtest.h>
 
 #include "core/base/error.h"
+#include "core/engine/engine.h"
 #include "core/world/actor.h"
-#include "core/world/engine.h"
 
 using sp::reflect::ObjectTable;
 
 TEST(ObjectTable, HandlesAreGenerationChecked) {
-    sp::world::registerEngineTypes();
+    sp::engine::registerEngineTypes();
     auto* first = new AActor();
     first->InitObject("First", nullptr);
     const auto handle = first->GetHandle();

@@ -3,15 +3,15 @@
 #include <algorithm>
 
 #include "core/base/error.h"
+#include "core/engine/engine.h"
 #include "core/reflect/registry.h"
-#include "core/world/engine.h"
 #include "core/world/static_mesh_actor.h"
 
 using namespace sp::reflect;
 
 namespace {
 struct RegistryTest : ::testing::Test {
-    void SetUp() override { sp::world::registerEngineTypes(); }
+    void SetUp() override { sp::engine::registerEngineTypes(); }
     Registry& registry = Registry::get();
 };
 } // namespace
@@ -42,7 +42,7 @@ TEST_F(RegistryTest, ClassesKnowTheirHierarchy) {
 }
 
 TEST_F(RegistryTest, InvokersConvertCheckAndReturnOutParameters) {
-    sp::world::Engine engine;
+    sp::engine::Engine engine;
     UWorld& world = engine.GetGameWorld();
     const FunctionInfo* spawn = UWorld::StaticClass().findFunction("spawn_actor");
     ASSERT_NE(spawn, nullptr);
@@ -72,7 +72,7 @@ TEST_F(RegistryTest, InvokersConvertCheckAndReturnOutParameters) {
 }
 
 TEST_F(RegistryTest, PropertiesUseSettersAndRejectWrongTypes) {
-    sp::world::Engine engine;
+    sp::engine::Engine engine;
     AActor* actor = engine.GetGameWorld().spawn_actor(&AStaticMeshActor::StaticClass());
     auto* root = actor->RootComponent;
     const PropertyInfo* mobility = root->GetClass().findProperty("Mobility");

@@ -1,9 +1,9 @@
 #include <gtest/gtest.h>
 
+#include "core/engine/engine.h"
 #include "core/reflect/registry.h"
 #include "core/reflect/type_code.h"
 #include "core/world/actor.h"
-#include "core/world/engine.h"
 
 using namespace sp::reflect;
 using Kind = TypeCode::Kind;
@@ -34,7 +34,7 @@ TEST(TypeCode, WireFormIsKindNameOptionalElement) {
 
 // The generated registry records each member's declared type as the IR says, nullability included.
 TEST(TypeCode, RegistryRecordsDeclaredTypes) {
-    sp::world::registerEngineTypes();
+    sp::engine::registerEngineTypes();
     const TypeInfo& actor = Registry::get().getClass("AActor", "test");
     EXPECT_EQ(actor.findProperty("RootComponent")->type, TypeCode(Kind::Object, "USceneComponent", true));
     EXPECT_EQ(actor.findProperty("Tags")->type, TypeCode(Kind::List, TypeCode(Kind::Str)));

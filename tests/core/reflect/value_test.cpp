@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
 #include "core/base/error.h"
+#include "core/engine/engine.h"
 #include "core/reflect/codec.h"
-#include "core/world/engine.h"
 #include "core/world/math.h"
 #include "core/world/scene_component.h"
 
@@ -50,7 +50,7 @@ TEST(Codec, ScalarsAreChecked) {
 }
 
 TEST(Codec, StructsRoundTripThroughDicts) {
-    sp::world::registerEngineTypes();
+    sp::engine::registerEngineTypes();
     FTransform t{{1, 2, 3}, {0, 0, 0, 1}, {2, 2, 2}};
     Value v = encode(t);
     ASSERT_TRUE(v.is<Value::Dict>());
@@ -62,7 +62,7 @@ TEST(Codec, StructsRoundTripThroughDicts) {
 }
 
 TEST(Codec, EnumsAreValidated) {
-    sp::world::registerEngineTypes();
+    sp::engine::registerEngineTypes();
     EXPECT_EQ(decode<EComponentMobility>(Value(EnumValue{"EComponentMobility", 2}), "m"),
               EComponentMobility::Movable);
     EXPECT_EQ(encode(EComponentMobility::Movable), Value(EnumValue{"EComponentMobility", 2}));

@@ -5,9 +5,9 @@
 
 #include "core/rpc/dispatcher.h"
 
+using sp::engine::Engine;
 using sp::rpc::Dispatcher;
 using sp::rpc::Session;
-using sp::world::Engine;
 
 namespace {
 // {"op": op, key: value, ...} with string values.

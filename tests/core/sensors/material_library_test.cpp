@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
 #include "core/base/error.h"
+#include "core/engine/engine.h"
 #include "core/sensors/material_library.h"
-#include "core/world/engine.h"
 
 TEST(MaterialLibraryTest, BuiltinsWithOrWithoutPrefixAndLibraryOverrides) {
     ASSERT_NE(sp::sensors::builtinMaterial("Gold"), nullptr);
@@ -10,7 +10,7 @@ TEST(MaterialLibraryTest, BuiltinsWithOrWithoutPrefixAndLibraryOverrides) {
     EXPECT_EQ(sp::sensors::builtinMaterial("Unobtainium"), nullptr);
     EXPECT_EQ(sp::sensors::builtinMaterialNames().front(), "Default");
 
-    sp::world::Engine engine;
+    sp::engine::Engine engine;
     auto* library =
         static_cast<AMaterialLibrary*>(engine.GetGameWorld().spawn_actor(&AMaterialLibrary::StaticClass()));
     FMaterialDesc red;

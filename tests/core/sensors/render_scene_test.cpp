@@ -3,17 +3,17 @@
 
 #include <gtest/gtest.h>
 
+#include "core/engine/engine.h"
 #include "core/sensors/render_scene.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
-#include "core/world/engine.h"
 #include "core/world/light_actors.h"
 #include "core/world/static_mesh_actor.h"
 
 namespace {
 
 struct RenderSceneTest : ::testing::Test {
-    sp::world::Engine engine;
+    sp::engine::Engine engine;
     UWorld& world = engine.GetGameWorld();
     sp::sensors::RenderScene scene;
 

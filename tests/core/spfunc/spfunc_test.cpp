@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
+#include "core/engine/engine.h"
 #include "core/spfunc/sp_func_call.h"
 #include "core/spfunc/spfunc.h"
-#include "core/world/engine.h"
 #include "core/world/scene_component.h"
 
 namespace {
@@ -29,7 +29,7 @@ SpPackedArray doubles(std::vector<double> values) {
 }
 
 struct SpFuncTest : ::testing::Test {
-    sp::world::Engine engine;
+    sp::engine::Engine engine;
     AActor* actor = engine.GetGameWorld().spawn_actor(&AActor::StaticClass());
     USpFuncComponent* component = SpUtils::createComponent<USpFuncComponent>(actor, "sp_funcs");
 

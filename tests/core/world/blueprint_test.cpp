@@ -4,7 +4,7 @@
 #include <fstream>
 
 #include "core/base/error.h"
-#include "core/world/engine.h"
+#include "core/engine/engine.h"
 #include "core/world/static_mesh_actor.h"
 
 namespace {
@@ -19,7 +19,7 @@ std::string writeAsset(const std::string& stem, const std::string& text) {
 } // namespace
 
 TEST(BlueprintTest, SpawnedObjectsReportTheBlueprintClassAndGetItsDefaults) {
-    sp::world::Engine engine;
+    sp::engine::Engine engine;
     UWorld& world = engine.GetGameWorld();
     const std::string path = writeAsset("BP_CppTestCrate", R"({
         "format": "spear.blueprint", "version": 1, "parent": "AStaticMeshActor",
@@ -55,7 +55,7 @@ TEST(BlueprintTest, SpawnedObjectsReportTheBlueprintClassAndGetItsDefaults) {
 }
 
 TEST(BlueprintTest, ABadAssetIsRejectedOnLoadWithItsPathAndField) {
-    sp::world::Engine engine;
+    sp::engine::Engine engine;
     UWorld& world = engine.GetGameWorld();
     const std::string path = writeAsset("BP_CppTestBad", R"({"format": "spear.blueprint", "version": 1,
         "parent": "AActor", "components": [{"name": "C", "class": "UNope"}]})");

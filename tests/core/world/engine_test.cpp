@@ -1,10 +1,10 @@
 #include <gtest/gtest.h>
 
 #include "core/base/error.h"
-#include "core/world/engine.h"
+#include "core/engine/engine.h"
 #include "core/world/world_subsystem.h"
 
-using sp::world::Engine;
+using sp::engine::Engine;
 
 namespace {
 // A subsystem whose tick fails, standing for a world whose actors or physics throw.

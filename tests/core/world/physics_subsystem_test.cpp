@@ -3,7 +3,7 @@
 #include <cstring>
 
 #include "core/base/error.h"
-#include "core/world/engine.h"
+#include "core/engine/engine.h"
 #include "core/world/physics_subsystem.h"
 #include "core/world/static_mesh_actor.h"
 
@@ -23,7 +23,7 @@ AStaticMeshActor* spawnFloor(UWorld& world) {
     return floor;
 }
 
-void runFrames(sp::world::Engine& engine, int frames) {
+void runFrames(sp::engine::Engine& engine, int frames) {
     for (int i = 0; i < frames; ++i) {
         engine.beginFrame();
         engine.executeFrame();
@@ -34,7 +34,7 @@ void runFrames(sp::world::Engine& engine, int frames) {
 } // namespace
 
 TEST(PhysicsSubsystemTest, BodiesFollowComponentsIntoAndOutOfPlay) {
-    sp::world::Engine engine;
+    sp::engine::Engine engine;
     UWorld& world = engine.GetGameWorld();
     AStaticMeshActor* empty = spawnMesh(world, "", {}, false);
     auto& physics = world.GetSubsystem<sp::world::PhysicsSubsystem>();
@@ -49,7 +49,7 @@ TEST(PhysicsSubsystemTest, BodiesFollowComponentsIntoAndOutOfPlay) {
 }
 
 TEST(PhysicsSubsystemTest, ACubeRestsOnTheFloorAndWritesItsPoseBack) {
-    sp::world::Engine engine;
+    sp::engine::Engine engine;
     UWorld& world = engine.GetGameWorld();
     spawnFloor(world);
     AStaticMeshActor* cube = spawnMesh(world, "/Engine/BasicShapes/Cube", {0, 0, 3}, true);
@@ -60,7 +60,7 @@ TEST(PhysicsSubsystemTest, ACubeRestsOnTheFloorAndWritesItsPoseBack) {
 
 TEST(PhysicsSubsystemTest, TwoEnginesGiveBitIdenticalPoses) {
     auto run = [] {
-        sp::world::Engine engine;
+        sp::engine::Engine engine;
         UWorld& world = engine.GetGameWorld();
         spawnFloor(world);
         std::vector<AStaticMeshActor*> bodies;
@@ -82,7 +82,7 @@ TEST(PhysicsSubsystemTest, TwoEnginesGiveBitIdenticalPoses) {
 }
 
 TEST(PhysicsSubsystemTest, LineTraceReportsActorComponentAndDistance) {
-    sp::world::Engine engine;
+    sp::engine::Engine engine;
     UWorld& world = engine.GetGameWorld();
     AStaticMeshActor* box = spawnMesh(world, "/Engine/BasicShapes/Cube", {0, 0, 1}, false);
     FHitResult hit;
@@ -98,7 +98,7 @@ TEST(PhysicsSubsystemTest, LineTraceReportsActorComponentAndDistance) {
 }
 
 TEST(PhysicsSubsystemTest, StaticComponentsCannotMoveOrSimulateInPlay) {
-    sp::world::Engine engine;
+    sp::engine::Engine engine;
     UWorld& world = engine.GetGameWorld();
     AStaticMeshActor* floor = spawnFloor(world);
     EXPECT_THROW(floor->SetActorLocation({0, 0, 1}), sp::InvalidState);

@@ -1,13 +1,13 @@
 #include <gtest/gtest.h>
 
 #include "core/base/error.h"
-#include "core/world/engine.h"
+#include "core/engine/engine.h"
 #include "core/world/light_actors.h"
 #include "core/world/scene_io.h"
 #include "core/world/static_mesh_actor.h"
 
 TEST(SceneIoTest, SaveLoadSaveIsIdentical) {
-    sp::world::Engine engine;
+    sp::engine::Engine engine;
     UWorld& world = engine.GetGameWorld();
     auto* cube = static_cast<AStaticMeshActor*>(
         world.spawn_actor(&AStaticMeshActor::StaticClass(), {1, 2, 3}, {10, 20, 30}, "Cube", {"t"}));
@@ -26,7 +26,7 @@ TEST(SceneIoTest, SaveLoadSaveIsIdentical) {
 }
 
 TEST(SceneIoTest, ABadDocumentLeavesTheWorldUnchanged) {
-    sp::world::Engine engine;
+    sp::engine::Engine engine;
     UWorld& world = engine.GetGameWorld();
     world.spawn_actor(&AActor::StaticClass(), {}, {}, "Keep");
     sp::world::SceneJson scene = sp::world::saveScene(world);

@@ -3,12 +3,12 @@
 #include <cmath>
 
 #include "core/base/error.h"
-#include "core/world/engine.h"
+#include "core/engine/engine.h"
 #include "core/world/static_mesh_actor.h"
 
 namespace {
 struct WorldTest : ::testing::Test {
-    sp::world::Engine engine;
+    sp::engine::Engine engine;
     UWorld& world = engine.GetGameWorld();
 };
 

@@ -199,7 +199,7 @@ void countOutcome(const msgpack::sbuffer& reply) {
 
 // One engine and dispatcher for every run, after the corpus has been replayed on the greeted session.
 struct Harness {
-    sp::world::Engine engine;
+    sp::engine::Engine engine;
     sp::rpc::Dispatcher dispatcher{engine, spear_register_engine_types_api_hash(), ""};
     sp::rpc::Session session;
     std::vector<AActor*> seedActors;

@@ -1,16 +1,16 @@
+#include "core/engine/engine.h"
 #include "core/plugin/plugin_loader.h"
 #include "core/reflect/object_base.h"
 #include "core/reflect/registry.h"
 #include "core/world/blueprint.h"
-#include "core/world/engine.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace sp::world {
+namespace sp::engine {
 
 void registerEngineTypes() {
     spear_register_engine_types();
     // Generated blueprint classes carry their asset, so that they can be used before load_class().
-    reflect::Registry::get().setClassLoader(&loadBlueprint);
+    reflect::Registry::get().setClassLoader(&world::loadBlueprint);
     // Default objects live as long as their world; those of an unloading plugin's classes go first.
     plugin::setReleaseHook([](bool (*isPluginClass)(const reflect::TypeInfo&)) {
         // The worlds first: releasing destroys objects that a snapshot of the table would still list.
@@ -23,4 +23,4 @@ void registerEngineTypes() {
     });
 }
 
-} // namespace sp::world
+} // namespace sp::engine

@@ -7,6 +7,10 @@
 //
 // Calls on engine objects are only valid inside the two blocks; the binding layers check that through
 // checkInFrame(), so the rule is the same in-process and over RPC.
+//
+// sp::engine sits above every library with reflected classes (world, sensors, spfunc): it owns the engine
+// module's header list (reflected_headers.txt) and registers the module's types; its worlds see it only
+// as their sp::world::WorldHost.
 
 #include <cstdint>
 #include <memory>
@@ -15,13 +19,15 @@
 #include <vector>
 
 #include "core/world/world.h"
+#include "core/world/world_host.h"
 
-namespace sp::world {
+namespace sp::engine {
 
-// Registers every reflected engine type with the registry; idempotent.
+// Registers every reflected engine type with the registry; idempotent. An Engine registers them when it
+// is made; code that uses the registry without an engine (tests, tools) calls it first.
 void registerEngineTypes();
 
-class Engine {
+class Engine final : public world::WorldHost {
   public:
     enum class FrameState { Idle, BeginFrame, FrameExecuted, EndFrame };
 
@@ -36,7 +42,7 @@ class Engine {
 
     Engine();
     explicit Engine(Settings settings);
-    ~Engine();
+    ~Engine() override;
     Engine(const Engine&) = delete;
     Engine& operator=(const Engine&) = delete;
 
@@ -45,10 +51,10 @@ class Engine {
     // The editor world, or nullptr in a standalone engine.
     UWorld* GetEditorWorld() { return editorWorld_.get(); }
     // Editor mode: creates the game world as a reflection copy of the editor world (a scene round trip).
-    void play();
+    void play() override;
     // Editor mode: destroys the game world; its objects' handles become stale.
-    void stop();
-    bool IsPlaying() const { return editorWorld_ && gameWorld_; }
+    void stop() override;
+    bool IsPlaying() const override { return editorWorld_ && gameWorld_; }
 
     // More worlds beside the game world, each with its own actors, physics and render scene, ticked in
     // the same frame after it (in creation order): many small environments in one process. `name` must
@@ -76,7 +82,7 @@ class Engine {
     FrameState GetFrameState() const { return state_; }
     bool IsInFrame() const { return state_ == FrameState::BeginFrame || state_ == FrameState::EndFrame; }
     // Throws InvalidState: "<context>: called outside a frame; use 'with instance.begin_frame():' ...".
-    void checkInFrame(std::string_view context) const;
+    void checkInFrame(std::string_view context) const override;
     int64_t GetFrameCount() const { return frameCount_; }
 
     static std::string_view toString(FrameState state);
@@ -93,4 +99,4 @@ class Engine {
     int64_t frameCount_ = 0;
 };
 
-} // namespace sp::world
+} // namespace sp::engine

@@ -1,4 +1,4 @@
-#include "core/world/engine.h"
+#include "core/engine/engine.h"
 
 #include <exception>
 
@@ -6,7 +6,7 @@
 #include "core/base/log.h"
 #include "core/world/scene_io.h"
 
-namespace sp::world {
+namespace sp::engine {
 
 Engine::Engine() : Engine(Settings{}) {}
 
@@ -18,10 +18,10 @@ Engine::Engine(Settings settings) : settings_(settings) {
         editorWorld_ = std::make_unique<UWorld>();
         editorWorld_->InitObject("EditorWorld", editorWorld_.get());
         editorWorld_->SetEditorWorld(true);
-        editorWorld_->SetEngine(this);
+        editorWorld_->SetHost(this);
     } else {
         gameWorld_ = std::make_unique<UWorld>();
-        gameWorld_->SetEngine(this);
+        gameWorld_->SetHost(this);
     }
     if (!settings_.scene.empty())
         (editorWorld_ ? *editorWorld_ : *gameWorld_).load_scene(settings_.scene);
@@ -44,15 +44,15 @@ void Engine::play() {
                  "named 'GameWorld', the name of the world play() makes; destroy it first");
     auto game = std::make_unique<UWorld>();
     game->InitObject("GameWorld", game.get());
-    game->SetEngine(this);
+    game->SetHost(this);
     // The copy goes through the same reflection code as scene files, so play starts from exactly what
     // save_scene would write.
     // Streaming levels keep the files the editor world resolved (a relative path in the scene means its
     // folder, which the copy does not know), and those loaded in the editor are loaded in play.
     const std::string context = "UWorld.play(): copying the editor world";
-    SceneJson scene = saveScene(*editorWorld_);
+    world::SceneJson scene = world::saveScene(*editorWorld_);
     scene.erase("levels");
-    loadScene(*game, scene, context, "");
+    world::loadScene(*game, scene, context, "");
     std::vector<UWorld::StreamingLevel> levels = editorWorld_->GetStreamingLevels();
     for (UWorld::StreamingLevel& level : levels)
         level.loaded = false;
@@ -71,7 +71,7 @@ UWorld& Engine::CreateWorld(const std::string& name) {
     SP_CHECK(!exists, InvalidArgument, "create_world(): a world named '", name, "' exists already");
     auto world = std::make_unique<UWorld>();
     world->InitObject(name, world.get());
-    world->SetEngine(this);
+    world->SetHost(this);
     createdWorlds_.push_back(std::move(world));
     return *createdWorlds_.back();
 }
@@ -190,4 +190,4 @@ void Engine::checkInFrame(std::string_view context) const {
              "'with instance.end_frame():'");
 }
 
-} // namespace sp::world
+} // namespace sp::engine
