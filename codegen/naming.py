@@ -27,8 +27,8 @@ def _as_is(name: str) -> str:
 
 
 def py_type(t: TypeRef, *, nullable_objects: bool = True, result: bool = False, qualify: Qualifier = _as_is) -> str:
-    """The Python annotation for a type, as used in stubs, proxies and runtime type strings; `qualify`
-    spells the object classes' names.
+    """The Python annotation for a type, as used in stubs and proxies (declared types at run time are type
+    codes, codegen/typecodes.py); `qualify` spells the object classes' names.
 
     Class references are accepted as a class or its name, and returned as the class (or None)."""
     if t.kind == "void":

@@ -322,9 +322,15 @@ def _field_types(module: Module) -> list[FieldTypesView]:
     return views
 
 
+# The RPC wire format's version, part of every API hash, so that a client and a server (or a plugin and an
+# engine) from either side of a change refuse each other on connect instead of failing on the first reply.
+# 2: declared types travel as type codes (call_typed, get_typed).
+WIRE_FORMAT = 2
+
+
 def api_hash(module: Module) -> str:
-    """Identifies the generated API: client and server compare it on connect."""
+    """Identifies the generated API and the wire format: client and server compare it on connect."""
     import hashlib
 
-    return hashlib.sha256(module.to_json().encode()).hexdigest()[:16]
+    return hashlib.sha256(f"wire {WIRE_FORMAT}\n{module.to_json()}".encode()).hexdigest()[:16]
 

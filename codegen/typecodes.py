@@ -24,9 +24,14 @@ class TypeCode:
     element: TypeCode | None = None
 
 
-def of(t: TypeRef, optional: bool = False) -> TypeCode:
-    """The code of a type; list and dict elements are never None, as the Python annotations say."""
-    return TypeCode(t.kind, t.name, optional, of(t.args[0]) if t.args else None)
+def of(t: TypeRef, optional: bool = False, result: bool = True) -> TypeCode:
+    """The code of a type, as the Python annotations say (naming.py_type): a list's or dict's elements are
+    never None, except class references in a result (a class that is gone comes back as None)."""
+    element = None
+    if t.args:
+        inner = t.args[0]
+        element = of(inner, optional=result and inner.kind == "class", result=result)
+    return TypeCode(t.kind, t.name, optional, element)
 
 
 def of_property(p: Property) -> TypeCode:
@@ -34,13 +39,12 @@ def of_property(p: Property) -> TypeCode:
 
 
 def of_param(p: Param) -> TypeCode:
-    """Object and class parameters take None only when their default is nullptr."""
-    return of(p.type, optional=p.type.kind in ("object", "class") and p.default_cpp == "nullptr")
-
-
-def of_out_param(p: Param) -> TypeCode:
-    """An out-parameter comes back as a result does."""
-    return of(p.type, optional=p.type.kind in ("object", "class"))
+    """An input takes None only for an object or class parameter whose default is nullptr; an out-parameter
+    comes back as a result does."""
+    if p.is_out:
+        return of(p.type, optional=p.type.kind in ("object", "class"))
+    return of(p.type, optional=p.type.kind in ("object", "class") and p.default_cpp == "nullptr",
+              result=False)
 
 
 def of_result(f: Function) -> TypeCode:
@@ -56,16 +60,17 @@ _CPP_KINDS = {
 
 
 def cpp(code: TypeCode) -> str:
-    """A C++ expression building the code, with the registry's `TypeCode` and `Kind` aliases in scope."""
-    kind = f"Kind::{_CPP_KINDS[code.kind]}"
+    """A C++ expression building the code. Fully qualified: it stands inside a reflected class's
+    StaticClass(), where a member of the class named like an alias would win the lookup."""
+    kind = f"sp::reflect::TypeCode::Kind::{_CPP_KINDS[code.kind]}"
     if code.element is not None:
-        return f"TypeCode({kind}, {cpp(code.element)})"
+        return f"sp::reflect::TypeCode({kind}, {cpp(code.element)})"
     args = [kind]
     if code.name or code.optional:
         args.append(f'"{code.name}"')
     if code.optional:
         args.append("true")
-    return f"TypeCode({', '.join(args)})"
+    return f"sp::reflect::TypeCode({', '.join(args)})"
 
 
 # -- Python ----------------------------------------------------------------------------------------
@@ -121,7 +126,7 @@ def field_codes(c: Class) -> dict[str, TypeCode]:
 def result_codes(f: Function) -> dict[str, TypeCode]:
     """The fields of the result tuple a function with out-parameters returns."""
     fields = {"ReturnValue": of_result(f)} if f.returns.kind != "void" else {}
-    return fields | {p.name: of_out_param(p) for p in f.params if p.is_out}
+    return fields | {p.name: of_param(p) for p in f.params if p.is_out}
 
 
 def module_codes(module: Module) -> set[TypeCode]:

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The generator on the engine's reflected headers, with the arguments the build gives it
-# (core/world/CMakeLists.txt: the header list, Eigen's include folder, the blueprint folder).
+# (core/engine/CMakeLists.txt: the header list, Eigen's include folder, the blueprint folder).
 #   bash scripts/codegen.sh generate     # rewrite generated/ (what the build does when a header changes)
 #   bash scripts/codegen.sh check        # non-zero when the committed generated/ is stale
 #   bash scripts/codegen.sh dump-ir      # the IR as JSON

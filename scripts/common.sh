@@ -43,7 +43,7 @@ install_pyright() {
 }
 
 # Runs the generator (`generate`, `check`, `dump-ir`) on the engine's reflected headers with the arguments the
-# build passes it in core/world/CMakeLists.txt.
+# build passes it in core/engine/CMakeLists.txt.
 engine_codegen() {
     local headers
     mapfile -t headers < <(grep -v '^#' "$ROOT/core/engine/reflected_headers.txt")

@@ -94,7 +94,8 @@ py::object apiAttribute(const char* module, const char* name) {
 }
 
 const py::object& PyCall::resultTuple(const reflect::ResultTupleDesc& tuple) {
-    // Keyed by the body's descriptor (one static per function); the GIL guards the map. The classes are never
+    // Keyed by the body's descriptor (one static per function), used with the GIL held (an import inside
+    // apiAttribute may let another thread in, which at worst looks a class up twice). The classes are never
     // released: a py::object freed after Python has shut down would crash at exit.
     static auto* const classes = new std::unordered_map<const reflect::ResultTupleDesc*, const py::object*>();
     const py::object*& found = (*classes)[&tuple];

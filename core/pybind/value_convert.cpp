@@ -105,7 +105,8 @@ Value toValueAt(py::handle object, std::string_view context, int depth) {
              std::string(py::str(object.get_type().attr("__name__"))), "'");
 }
 
-// Untyped fallback, for values whose declared type is not recorded (e.g. a dynamic call's ReturnValue).
+// Untyped fallback, for values whose declared type is not recorded (a struct field the registry does not
+// know).
 py::object generic(const Value& value, const char* apiModule) {
     return std::visit(
         [&](const auto& v) -> py::object {

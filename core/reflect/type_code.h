@@ -16,8 +16,10 @@ struct TypeCode {
     enum class Kind : uint8_t { Void, Bool, Int, Float, Str, Enum, Struct, Object, Class, Array, List, Dict };
 
     Kind kind = Kind::Void;
-    std::string name;      // Enum, Struct, Object, Class (its base): the reflected name; Array: a dtype
-    bool optional = false; // None is a value of it: a nullable object, a class result
+    std::string name; // Enum, Struct, Object, Class (its base): the reflected name; Array: a dtype
+    // None is a value of it (see codegen/typecodes.py): a nullable object, a class result, a parameter
+    // whose default is nullptr.
+    bool optional = false;
     std::vector<TypeCode> element; // List and Dict: their element (dict keys are str); empty otherwise
 
     TypeCode() = default;

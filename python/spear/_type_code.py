@@ -1,8 +1,9 @@
 """Declared types as data: how an RPC result becomes the typed value the in-process API returns.
 
-The generator writes one TypeCode per type a module's properties, results and struct fields have (api.py's
-`_T_...` constants and `_FIELD_TYPES`); the server sends the same codes with dynamic calls' results
-(`call_typed`, `get_typed`), in the wire form core/reflect/type_code.h writes. spear._rpc_types decodes by
+The generator writes one TypeCode per type a module's properties, results and struct fields have (the `T_...`
+constants of its type_codes.py, and FIELD_TYPES there for each struct and result tuple); the server sends the
+same codes with dynamic calls' results (`call_typed`, `get_typed`), in the wire form core/reflect/type_code.h
+writes. spear._rpc_types decodes by
 them; nothing parses an annotation string.
 """
 

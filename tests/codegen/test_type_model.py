@@ -160,13 +160,19 @@ def test_type_codes_say_where_none_is_a_value() -> None:
     cls = TypeRef("class", "TSubclassOf<UThing>", "UThing")
     assert typecodes.of_result(Function("F", "", cls, ())).optional is True
     assert typecodes.of_result(Function("F", "", cls, (), not_null=True)).optional is False
+    # Out-parameters come back as results do; class references in a result may be None, in a list too.
+    assert typecodes.of_param(Param("Hit", THING, "UThing *&", is_out=True)).optional is True
+    classes = TypeRef("list", "std::vector<TSubclassOf<UThing>>", args=(cls,))
+    assert typecodes.of_result(Function("F", "", classes, ())).element == typecodes.TypeCode("class", "UThing", True)
+    assert typecodes.of_param(Param("C", classes, "")).element == typecodes.TypeCode("class", "UThing")
 
 
 def test_type_codes_spelled_for_cpp_and_python() -> None:
     code = typecodes.of_property(Property("All", "", TypeRef("dict", "std::map<std::string, std::vector<UThing*>>",
                                                              args=(THINGS,))))
-    assert typecodes.cpp(code) == "TypeCode(Kind::Dict, TypeCode(Kind::List, TypeCode(Kind::Object, \"UThing\")))"
-    assert typecodes.cpp(typecodes.TypeCode("object", "UThing", True)) == 'TypeCode(Kind::Object, "UThing", true)'
+    t, k = "sp::reflect::TypeCode", "sp::reflect::TypeCode::Kind"
+    assert typecodes.cpp(code) == f'{t}({k}::Dict, {t}({k}::List, {t}({k}::Object, "UThing")))'
+    assert typecodes.cpp(typecodes.TypeCode("object", "UThing", True)) == f'{t}({k}::Object, "UThing", true)'
     assert typecodes.py_name(code) == "T_dict_of_list_of_UThing"
     assert typecodes.py_value(code) == "TypeCode(\"dict\", element=T_list_of_UThing)"
     assert typecodes.py_name(typecodes.TypeCode("class", "UThing", True)) == "T_class_UThing_or_None"

@@ -13,7 +13,7 @@ import pytest
 import spear
 from codegen import typecodes
 from spear._engine import type_codes
-from spear._type_code import TypeCode
+from spear._type_code import Kind, TypeCode
 
 
 def _generator_code(code: TypeCode) -> typecodes.TypeCode:
@@ -63,16 +63,22 @@ def test_registry_and_type_codes_module_hold_the_same_codes(server: spear.Instan
     assert checked > 50
 
 
-def test_out_parameter_types_match_the_result_tuple_fields(server: spear.Instance) -> None:
-    cube = _scene_objects(server)[0]
+@pytest.mark.parametrize("owner, declared_by, function, args, result_type", [
+    (0, "AActor", "GetActorBounds", {"bOnlyCollidingComponents": False}, "void"),
+    # Object out-parameters may come back as None (nothing hit), as the result tuple says.
+    (-1, "UWorld", "line_trace_single", {"start": spear.FVector(0, 0, 5), "end": spear.FVector(0, 0, 4)}, "bool"),
+])
+def test_out_parameter_types_match_the_result_tuple_fields(server: spear.Instance, owner: int, declared_by: str,
+                                                           function: str, args: dict[str, Any],
+                                                           result_type: Kind) -> None:
+    target = _scene_objects(server)[owner]
     with server.begin_frame():
-        reply = server._rpc_connection().request("call_typed", object=cube, function="GetActorBounds",
-                                                  args={"bOnlyCollidingComponents": False})
+        reply = server._rpc_connection().request("call_typed", object=target, function=function, args=args)
     with server.end_frame():
         pass
     sent = {name: TypeCode.from_wire(wire) for name, wire in reply["out_types"].items()}
-    assert sent == type_codes.FIELD_TYPES["AActor.GetActorBoundsResult"]
-    assert TypeCode.from_wire(reply["type"]) == type_codes.T_void
+    assert sent == type_codes.FIELD_TYPES[f"{declared_by}.{function}Result"]
+    assert TypeCode.from_wire(reply["type"]) == TypeCode(result_type)
 
 
 def test_dynamic_results_are_typed_by_their_codes(instance: spear.Instance) -> None:

@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- ACameraSensorActor ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& ACameraSensorActor::StaticClass() {
@@ -60,7 +55,7 @@ const sp::reflect::TypeInfo& ACameraSensorActor::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "CameraSensor",
-            TypeCode(Kind::Object, "UCameraSensorComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UCameraSensorComponent"),
             "The camera (also the root component); it looks along the actor's forward axis.",
             true,
             [](const void* self) { return Calls::get_CameraSensor<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -89,7 +84,7 @@ const sp::reflect::TypeInfo& AMultiViewCameraRig::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Cameras",
-            TypeCode(Kind::List, TypeCode(Kind::Object, "UCameraSensorComponent")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UCameraSensorComponent")),
             "The cameras, counter-clockwise from the rig's -X side (camera 0 looks along +X).",
             true,
             [](const void* self) { return Calls::get_Cameras<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -97,7 +92,7 @@ const sp::reflect::TypeInfo& AMultiViewCameraRig::StaticClass() {
         });
         t.properties.push_back({
             "Radius",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Ring radius in metres.",
             true,
             [](const void* self) { return Calls::get_Radius<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -106,10 +101,10 @@ const sp::reflect::TypeInfo& AMultiViewCameraRig::StaticClass() {
         t.functions.push_back({
             "SetRing",
             "Replaces the cameras by NumViews (in [1, 64]) cameras on a ring of Radius metres (> 0).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NumViews", TypeCode(Kind::Int), false, false},
-                {"NewRadius", TypeCode(Kind::Float), false, false},
+                {"NumViews", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
+                {"NewRadius", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -118,11 +113,11 @@ const sp::reflect::TypeInfo& AMultiViewCameraRig::StaticClass() {
         t.functions.push_back({
             "ConfigureCameras",
             "Sets Width, Height and Modalities of every camera of the ring.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Width", TypeCode(Kind::Int), false, false},
-                {"Height", TypeCode(Kind::Int), false, false},
-                {"Modalities", TypeCode(Kind::List, TypeCode(Kind::Enum, "ECameraModality")), false, false},
+                {"Width", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
+                {"Height", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
+                {"Modalities", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ECameraModality")), false, false},
             },
             false,
             false,
@@ -151,7 +146,7 @@ const sp::reflect::TypeInfo& AStereoCameraRig::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Baseline",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Distance between the two optical centres in metres (> 0); the left camera is at +Y.",
             false,
             [](const void* self) { return Calls::get_Baseline<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -161,7 +156,7 @@ const sp::reflect::TypeInfo& AStereoCameraRig::StaticClass() {
         });
         t.properties.push_back({
             "LeftCamera",
-            TypeCode(Kind::Object, "UCameraSensorComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UCameraSensorComponent"),
             "The left camera (at +Baseline/2 on the rig's Y axis, which points left).",
             true,
             [](const void* self) { return Calls::get_LeftCamera<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -169,7 +164,7 @@ const sp::reflect::TypeInfo& AStereoCameraRig::StaticClass() {
         });
         t.properties.push_back({
             "RightCamera",
-            TypeCode(Kind::Object, "UCameraSensorComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UCameraSensorComponent"),
             "The right camera (at -Baseline/2 on the rig's Y axis).",
             true,
             [](const void* self) { return Calls::get_RightCamera<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -178,9 +173,9 @@ const sp::reflect::TypeInfo& AStereoCameraRig::StaticClass() {
         t.functions.push_back({
             "SetBaseline",
             "Sets the baseline in metres (> 0) and moves both cameras.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewBaseline", TypeCode(Kind::Float), false, false},
+                {"NewBaseline", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,

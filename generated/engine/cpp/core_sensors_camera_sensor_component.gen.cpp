@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraModality>() {
     static const sp::reflect::EnumInfo info{
         "ECameraModality",
@@ -108,7 +103,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "final_color",
-            TypeCode(Kind::Array, "uint8"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "uint8"),
             "Tone-mapped sRGB, uint8 (H, W, 4).",
             false,
             [](const void* self) { return Calls::get_final_color<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -118,7 +113,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "hdr_color",
-            TypeCode(Kind::Array, "float16"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float16"),
             "Linear HDR radiance, float16 (H, W, 4).",
             false,
             [](const void* self) { return Calls::get_hdr_color<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -128,7 +123,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "depth",
-            TypeCode(Kind::Array, "float32"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float32"),
             "Metres along the optical axis, 0 for background, float32 (H, W).",
             false,
             [](const void* self) { return Calls::get_depth<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -138,7 +133,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "position",
-            TypeCode(Kind::Array, "float32"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float32"),
             "World-space position in metres, float32 (H, W, 3).",
             false,
             [](const void* self) { return Calls::get_position<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -148,7 +143,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "normal",
-            TypeCode(Kind::Array, "float32"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float32"),
             "World-space unit normal, float32 (H, W, 3).",
             false,
             [](const void* self) { return Calls::get_normal<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -158,7 +153,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "object_ids",
-            TypeCode(Kind::Array, "uint32"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "uint32"),
             "Object ids (component, material slot), 0 for background, uint32 (H, W).",
             false,
             [](const void* self) { return Calls::get_object_ids<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -168,7 +163,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "material_ids",
-            TypeCode(Kind::Array, "uint32"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "uint32"),
             "Material ids, 0 for background, uint32 (H, W).",
             false,
             [](const void* self) { return Calls::get_material_ids<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -178,7 +173,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "base_color",
-            TypeCode(Kind::Array, "float16"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float16"),
             "Linear base colour, float16 (H, W, 3).",
             false,
             [](const void* self) { return Calls::get_base_color<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -188,7 +183,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "roughness",
-            TypeCode(Kind::Array, "float16"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float16"),
             "Roughness, float16 (H, W).",
             false,
             [](const void* self) { return Calls::get_roughness<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -198,7 +193,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "metallic",
-            TypeCode(Kind::Array, "float16"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float16"),
             "Metalness, float16 (H, W).",
             false,
             [](const void* self) { return Calls::get_metallic<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -208,7 +203,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "material_ao",
-            TypeCode(Kind::Array, "float16"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float16"),
             "Material ambient occlusion, float16 (H, W).",
             false,
             [](const void* self) { return Calls::get_material_ao<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -218,7 +213,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "diffuse_illumination",
-            TypeCode(Kind::Array, "float16"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float16"),
             "Radiance of a white Lambertian surface, float16 (H, W, 3).",
             false,
             [](const void* self) { return Calls::get_diffuse_illumination<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -228,7 +223,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "diffuse_only",
-            TypeCode(Kind::Array, "float16"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float16"),
             "base_color * (1 - metallic) * diffuse_illumination, float16 (H, W, 3).",
             false,
             [](const void* self) { return Calls::get_diffuse_only<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -238,7 +233,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         });
         t.properties.push_back({
             "specular_residual",
-            TypeCode(Kind::Array, "float16"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float16"),
             "hdr_color.rgb - diffuse_only, float16 (H, W, 3).",
             false,
             [](const void* self) { return Calls::get_specular_residual<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -268,7 +263,7 @@ const sp::reflect::TypeInfo& FLensDistortion::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "K1",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Radial coefficient of r^2 (negative: barrel, positive: pincushion).",
             false,
             [](const void* self) { return Calls::get_K1<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -278,7 +273,7 @@ const sp::reflect::TypeInfo& FLensDistortion::StaticClass() {
         });
         t.properties.push_back({
             "K2",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Radial coefficient of r^4.",
             false,
             [](const void* self) { return Calls::get_K2<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -288,7 +283,7 @@ const sp::reflect::TypeInfo& FLensDistortion::StaticClass() {
         });
         t.properties.push_back({
             "K3",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Radial coefficient of r^6.",
             false,
             [](const void* self) { return Calls::get_K3<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -298,7 +293,7 @@ const sp::reflect::TypeInfo& FLensDistortion::StaticClass() {
         });
         t.properties.push_back({
             "P1",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "First tangential coefficient.",
             false,
             [](const void* self) { return Calls::get_P1<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -308,7 +303,7 @@ const sp::reflect::TypeInfo& FLensDistortion::StaticClass() {
         });
         t.properties.push_back({
             "P2",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Second tangential coefficient.",
             false,
             [](const void* self) { return Calls::get_P2<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -338,7 +333,7 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "Kind",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "\"device\" (an EGL device, e.g. a GPU) or \"surfaceless\" (Mesa's software platform).",
             false,
             [](const void* self) { return Calls::get_Kind<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -348,7 +343,7 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
         });
         t.properties.push_back({
             "DeviceIndex",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Index in the EGL device list, -1 for surfaceless.",
             false,
             [](const void* self) { return Calls::get_DeviceIndex<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -358,7 +353,7 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
         });
         t.properties.push_back({
             "DeviceCount",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Number of EGL devices listed.",
             false,
             [](const void* self) { return Calls::get_DeviceCount<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -368,7 +363,7 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
         });
         t.properties.push_back({
             "Vendor",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "GL_VENDOR.",
             false,
             [](const void* self) { return Calls::get_Vendor<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -378,7 +373,7 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
         });
         t.properties.push_back({
             "Renderer",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "GL_RENDERER.",
             false,
             [](const void* self) { return Calls::get_Renderer<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -388,7 +383,7 @@ const sp::reflect::TypeInfo& FRenderDeviceInfo::StaticClass() {
         });
         t.properties.push_back({
             "Version",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "GL_VERSION.",
             false,
             [](const void* self) { return Calls::get_Version<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -418,7 +413,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "Frames",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Frames rendered (one per camera per world frame).",
             false,
             [](const void* self) { return Calls::get_Frames<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -428,7 +423,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "ShadowPasses",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Shadow maps rendered.",
             false,
             [](const void* self) { return Calls::get_ShadowPasses<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -438,7 +433,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "ShadowReuses",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Frames that reused the shadow maps unchanged (nothing that casts or lights moved).",
             false,
             [](const void* self) { return Calls::get_ShadowReuses<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -448,7 +443,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "SurfacePasses",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Surface passes (geometry rasterisation; shading too when colour is asked for).",
             false,
             [](const void* self) { return Calls::get_SurfacePasses<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -458,7 +453,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "AttributePasses",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Attribute passes: a second rasterisation writing the targets past the surface pass's 8 (all 14\nmodalities need one), at the fragments the surface pass kept.",
             false,
             [](const void* self) { return Calls::get_AttributePasses<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -468,7 +463,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "LightingPasses",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Frames that shaded.",
             false,
             [](const void* self) { return Calls::get_LightingPasses<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -478,7 +473,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "TonemapPasses",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Frames that tone-mapped (fused into the pass that shaded).",
             false,
             [](const void* self) { return Calls::get_TonemapPasses<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -488,7 +483,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "Readbacks",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Images read back (one per modality per frame).",
             false,
             [](const void* self) { return Calls::get_Readbacks<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -498,7 +493,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "DrawnInstances",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Instances drawn by surface passes.",
             false,
             [](const void* self) { return Calls::get_DrawnInstances<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -508,7 +503,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "CulledInstances",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Instances outside a camera's view, skipped.",
             false,
             [](const void* self) { return Calls::get_CulledInstances<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -518,7 +513,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "ShadowMs",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Milliseconds in shadow passes, by GL timer queries (the device's own clock).",
             false,
             [](const void* self) { return Calls::get_ShadowMs<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -528,7 +523,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "SurfaceMs",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Milliseconds in surface passes, by GL timer queries.",
             false,
             [](const void* self) { return Calls::get_SurfaceMs<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -538,7 +533,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "AttributeMs",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Milliseconds in attribute passes, by GL timer queries.",
             false,
             [](const void* self) { return Calls::get_AttributeMs<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -548,7 +543,7 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
         });
         t.properties.push_back({
             "ReadbackMs",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Milliseconds the CPU spent reading images back (waiting for the frame included).",
             false,
             [](const void* self) { return Calls::get_ReadbackMs<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -579,7 +574,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Width",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Image width in pixels.",
             false,
             [](const void* self) { return Calls::get_Width<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -589,7 +584,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "Height",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Image height in pixels.",
             false,
             [](const void* self) { return Calls::get_Height<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -599,7 +594,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "FOV",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Horizontal field of view in degrees, in (0, 180); square pixels.",
             false,
             [](const void* self) { return Calls::get_FOV<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -609,7 +604,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "NearClip",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Near clipping distance in metres (> 0).",
             false,
             [](const void* self) { return Calls::get_NearClip<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -619,7 +614,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "FarClip",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Far clipping distance in metres (> NearClip).",
             false,
             [](const void* self) { return Calls::get_FarClip<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -629,7 +624,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "Exposure",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Linear multiplier of HDR radiance before the tone curve (SetExposureValue and SetPhysicalExposure\nset it from photographic settings).",
             false,
             [](const void* self) { return Calls::get_Exposure<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -639,7 +634,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "WhiteBalanceTemperature",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "The colour temperature in kelvin the camera is balanced for, in [2000, 25000]: light of this\ntemperature renders neutral in final_color (hdr_color is unchanged). 6500 (daylight) leaves colours as\nthey are; 3200 suits tungsten light (the image turns bluer), 10000 shade (warmer).",
             false,
             [](const void* self) { return Calls::get_WhiteBalanceTemperature<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -649,7 +644,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "SensorWidth",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Sensor width in millimetres (> 0), relating FOV to a lens's focal length: 36 is full frame.",
             false,
             [](const void* self) { return Calls::get_SensorWidth<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -659,7 +654,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "LensDistortion",
-            TypeCode(Kind::Struct, "FLensDistortion"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FLensDistortion"),
             "Lens distortion applied to every modality (OpenCV's model with GetIntrinsicMatrix()'s K; see\nGetDistortionCoefficients): each pixel shows what the distorted ray through it sees, taken from a\npinhole render wide enough to hold every ray, nearest pixel, so that all modalities stay consistent.\nPixels past where the model folds over (strong barrel distortion far from the axis) show no ray and\nare zero in every modality. The remap is rebuilt when the lens, the size or the FOV changes.",
             false,
             [](const void* self) { return Calls::get_LensDistortion<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -669,7 +664,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "PrincipalPointOffset",
-            TypeCode(Kind::Struct, "FVector2D"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector2D"),
             "The principal point's offset from the image centre in pixels (X right, Y down): an off-centre lens, as\na real camera's calibration gives it (cx, cy of GetIntrinsicMatrix() move by it).",
             false,
             [](const void* self) { return Calls::get_PrincipalPointOffset<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -679,7 +674,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "ApertureFNumber",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Depth of field of the path tracer: the lens's f-number (its focal length, GetFocalLength() on\nSensorWidth, over the aperture's diameter); 0 (the default) is a pinhole, everything sharp. The raster\nrenderer, and the geometric modalities, are always sharp.",
             false,
             [](const void* self) { return Calls::get_ApertureFNumber<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -689,7 +684,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "FocusDistance",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "The distance in metres, along the optical axis, that the path tracer's lens is focused at (> 0).",
             false,
             [](const void* self) { return Calls::get_FocusDistance<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -699,7 +694,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "VignetteIntensity",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Natural vignetting of final_color, in [0, 1]: each pixel's exposure falls off as mix(1, cos^4 theta,\nVignetteIntensity), theta the angle of its ray to the optical axis (the cos^4 law of a lens); 0 (the\ndefault) is none. hdr_color, the scene's radiance, is not vignetted.",
             false,
             [](const void* self) { return Calls::get_VignetteIntensity<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -709,7 +704,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "ToneCurve",
-            TypeCode(Kind::Enum, "ECameraToneCurve"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ECameraToneCurve"),
             "The tone curve of final_color.",
             false,
             [](const void* self) { return Calls::get_ToneCurve<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -719,7 +714,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "bShadows",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "Whether shadow-casting lights render shadow maps for this camera.",
             false,
             [](const void* self) { return Calls::get_bShadows<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -729,7 +724,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "ShadowResolution",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Shadow map size in texels, in [16, 8192].",
             false,
             [](const void* self) { return Calls::get_ShadowResolution<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -739,7 +734,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "Modalities",
-            TypeCode(Kind::List, TypeCode(Kind::Enum, "ECameraModality")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ECameraModality")),
             "The modalities rendered each frame; only the passes they need run.",
             false,
             [](const void* self) { return Calls::get_Modalities<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -749,7 +744,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "Latency",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Frames between rendering and reading: 0 (same frame), 1 or 2 (double or triple buffered).",
             false,
             [](const void* self) { return Calls::get_Latency<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -759,7 +754,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "Renderer",
-            TypeCode(Kind::Enum, "ECameraRenderer"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ECameraRenderer"),
             "The renderer of final_color, hdr_color and the intrinsic images (geometric and material modalities\nare always rasterised).",
             false,
             [](const void* self) { return Calls::get_Renderer<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -769,7 +764,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "SamplesPerPixel",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating.",
             false,
             [](const void* self) { return Calls::get_SamplesPerPixel<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -779,7 +774,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.properties.push_back({
             "MaxBounces",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Path tracing: indirect bounces after the first hit, in [0, 64] (0: direct light and sky only).",
             false,
             [](const void* self) { return Calls::get_MaxBounces<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -790,9 +785,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetWidth",
             "Sets Width in pixels, in [1, 16384].",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewWidth", TypeCode(Kind::Int), false, false},
+                {"NewWidth", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
             },
             false,
             false,
@@ -801,9 +796,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetHeight",
             "Sets Height in pixels, in [1, 16384].",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewHeight", TypeCode(Kind::Int), false, false},
+                {"NewHeight", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
             },
             false,
             false,
@@ -812,9 +807,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetFOV",
             "Sets the horizontal field of view in degrees, in (0, 180).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewFOV", TypeCode(Kind::Float), false, false},
+                {"NewFOV", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -823,9 +818,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetNearClip",
             "Sets NearClip in metres (> 0 and finite).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewNearClip", TypeCode(Kind::Float), false, false},
+                {"NewNearClip", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -834,9 +829,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetFarClip",
             "Sets FarClip in metres (> 0 and finite; it must exceed NearClip when the camera renders).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewFarClip", TypeCode(Kind::Float), false, false},
+                {"NewFarClip", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -845,9 +840,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetExposure",
             "Sets Exposure (> 0 and finite).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewExposure", TypeCode(Kind::Float), false, false},
+                {"NewExposure", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -856,9 +851,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetSensorWidth",
             "Sets SensorWidth in millimetres (> 0 and finite); FOV is kept.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewSensorWidth", TypeCode(Kind::Float), false, false},
+                {"NewSensorWidth", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -867,9 +862,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetFocalLength",
             "Sets FOV from a lens's focal length in millimetres on SensorWidth: FOV = 2 atan(SensorWidth / (2 f)).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"FocalLength", TypeCode(Kind::Float), false, false},
+                {"FocalLength", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -878,7 +873,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetFocalLength",
             "Returns the focal length in millimetres that FOV gives on SensorWidth.",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             {
             },
             false,
@@ -888,9 +883,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetExposureValue",
             "Sets Exposure from an exposure value at ISO 100 (EV100, as light meters give it): a scene of\nluminance L (cd/m^2) metered at EV100 = log2(L * 100 / 12.5) maps to 18 % grey; Exposure = 1 / (1.2 *\n2^EV100) (the saturation-based sensitivity of ISO 12232).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"EV100", TypeCode(Kind::Float), false, false},
+                {"EV100", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -899,11 +894,11 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetPhysicalExposure",
             "Sets Exposure from an aperture (f-number), a shutter time in seconds and an ISO speed: EV100 =\nlog2(FNumber^2 / ShutterSeconds * 100 / ISO).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"FNumber", TypeCode(Kind::Float), false, false},
-                {"ShutterSeconds", TypeCode(Kind::Float), false, false},
-                {"ISO", TypeCode(Kind::Float), false, false},
+                {"FNumber", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+                {"ShutterSeconds", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+                {"ISO", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -912,9 +907,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetLensDistortion",
             "Sets LensDistortion (every coefficient finite; a lens too strong to invert over the image is refused\nwhen the camera renders).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewLensDistortion", TypeCode(Kind::Struct, "FLensDistortion"), false, false},
+                {"NewLensDistortion", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FLensDistortion"), false, false},
             },
             false,
             false,
@@ -923,9 +918,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetPrincipalPointOffset",
             "Sets PrincipalPointOffset in pixels (finite).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewPrincipalPointOffset", TypeCode(Kind::Struct, "FVector2D"), false, false},
+                {"NewPrincipalPointOffset", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector2D"), false, false},
             },
             false,
             false,
@@ -934,7 +929,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetDistortionCoefficients",
             "Returns the distortion coefficients in OpenCV's order, (k1, k2, p1, p2, k3) as a (5,) array, for\ncv2.undistort(image, K, coefficients) and cv2.projectPoints.",
-            TypeCode(Kind::Array, "float64"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"),
             {
             },
             false,
@@ -944,9 +939,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "DistortPixels",
             "Returns where pinhole pixels (an (N, 2) array of u, v under GetIntrinsicMatrix()'s K, no distortion)\nland in this camera's images: OpenCV's distortion model applied to them.",
-            TypeCode(Kind::Array, "float64"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"),
             {
-                {"Points", TypeCode(Kind::Array, "float64"), false, false},
+                {"Points", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"), false, false},
             },
             false,
             true,
@@ -955,9 +950,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "UndistortPixels",
             "Returns the pinhole pixels ((N, 2)) that this camera's image pixels Points ((N, 2)) show: the inverse\nof DistortPixels (cv2.undistortPoints(..., P=K) approximates it), solved to about 1e-10 pixels; NaN\nfor a pixel no ray shows (past where a strong barrel distortion folds over; such pixels render empty).",
-            TypeCode(Kind::Array, "float64"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"),
             {
-                {"Points", TypeCode(Kind::Array, "float64"), false, false},
+                {"Points", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"), false, false},
             },
             false,
             true,
@@ -966,9 +961,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetApertureFNumber",
             "Sets ApertureFNumber: 0 (a pinhole) or >= 0.5.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewApertureFNumber", TypeCode(Kind::Float), false, false},
+                {"NewApertureFNumber", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -977,9 +972,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetFocusDistance",
             "Sets FocusDistance in metres (> 0 and finite).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewFocusDistance", TypeCode(Kind::Float), false, false},
+                {"NewFocusDistance", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -988,9 +983,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetVignetteIntensity",
             "Sets VignetteIntensity, in [0, 1].",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewVignetteIntensity", TypeCode(Kind::Float), false, false},
+                {"NewVignetteIntensity", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -999,9 +994,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetWhiteBalanceTemperature",
             "Sets WhiteBalanceTemperature in kelvin, in [2000, 25000].",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewWhiteBalanceTemperature", TypeCode(Kind::Float), false, false},
+                {"NewWhiteBalanceTemperature", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -1010,7 +1005,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetWhiteBalanceGains",
             "Returns the gains (3,) white balance multiplies linear red, green and blue by before the tone curve\n(1, 1, 1 at 6500 K; a grey keeps its luminance).",
-            TypeCode(Kind::Array, "float64"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"),
             {
             },
             false,
@@ -1020,9 +1015,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetShadowResolution",
             "Sets ShadowResolution in texels, in [16, 8192].",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewShadowResolution", TypeCode(Kind::Int), false, false},
+                {"NewShadowResolution", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
             },
             false,
             false,
@@ -1031,9 +1026,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetLatency",
             "Sets Latency: 0, 1 or 2 frames.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewLatency", TypeCode(Kind::Int), false, false},
+                {"NewLatency", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
             },
             false,
             false,
@@ -1042,9 +1037,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetSamplesPerPixel",
             "Sets SamplesPerPixel, in [1, 65536].",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewSamplesPerPixel", TypeCode(Kind::Int), false, false},
+                {"NewSamplesPerPixel", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
             },
             false,
             false,
@@ -1053,9 +1048,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetMaxBounces",
             "Sets MaxBounces, in [0, 64].",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewMaxBounces", TypeCode(Kind::Int), false, false},
+                {"NewMaxBounces", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
             },
             false,
             false,
@@ -1064,7 +1059,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetIntrinsicMatrix",
             "Returns the intrinsic matrix K (3, 3) of the images in OpenCV's convention: pixel (u right, v down,\nthe centre of pixel [i, j] at u = j, v = i) = K @ (x, y, z) / z for a point (x, y, z) in the OpenCV\ncamera frame (x right, y down, z forward); fx = fy = (Width / 2) / tan(FOV / 2), cx = (Width - 1) / 2\n+ PrincipalPointOffset.X, cy = (Height - 1) / 2 + PrincipalPointOffset.Y. With LensDistortion the\ndistortion applies between the normalised point and K, as in OpenCV (DistortPixels).",
-            TypeCode(Kind::Array, "float64"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"),
             {
             },
             false,
@@ -1074,7 +1069,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetWorldToCamera",
             "Returns the world-to-camera transform (4, 4) into the OpenCV camera frame (x right, y down, z\nforward, metres) from the component's current world transform: with GetIntrinsicMatrix(), a world\npoint's pixel is K @ (T @ [p, 1])[:3] divided by its z. Both describe the camera as it is now: the\nframe read in the same end_frame at Latency 0, Latency frames earlier otherwise.",
-            TypeCode(Kind::Array, "float64"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"),
             {
             },
             false,
@@ -1084,7 +1079,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetAccumulatedSamples",
             "Returns the samples per pixel behind the path-traced images of the frame last read (they restart\nfrom SamplesPerPixel when anything in the scene, the camera or MaxBounces changes), or 0 when the\nlast read frame was not path traced.",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             {
             },
             false,
@@ -1094,7 +1089,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "read_pixels",
             "Returns the images of the frame due (see the class notes on latency); an empty dict while priming.",
-            TypeCode(Kind::Struct, "FCameraPixels"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FCameraPixels"),
             {
             },
             false,
@@ -1104,9 +1099,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "read_pixels_stacked",
             "Returns the images of several cameras' due frames (cameras of any worlds of one engine) in one call:\neach modality as one array with a leading camera axis, (len(Cameras), H, W[, C]), each camera's images\nread straight into its slice. The cameras must show frames of one size and the same modalities; an\nempty dict while any of them is priming.",
-            TypeCode(Kind::Struct, "FCameraPixels"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FCameraPixels"),
             {
-                {"Cameras", TypeCode(Kind::List, TypeCode(Kind::Object, "UCameraSensorComponent")), false, false},
+                {"Cameras", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UCameraSensorComponent")), false, false},
             },
             true,
             false,
@@ -1115,7 +1110,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetPixelsFrame",
             "Returns the world frame shown by the last read_pixels() result, or -1 when it was empty.",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             {
             },
             false,
@@ -1125,9 +1120,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "SetModalityNames",
             "Sets Modalities from snake_case names (\"final_color\", \"depth\", ...); an unknown name is an error.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Names", TypeCode(Kind::List, TypeCode(Kind::Str)), false, false},
+                {"Names", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str)), false, false},
             },
             false,
             false,
@@ -1136,7 +1131,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetModalityNames",
             "Returns the snake_case names of Modalities, in the order read_pixels() uses as dict keys.",
-            TypeCode(Kind::List, TypeCode(Kind::Str)),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str)),
             {
             },
             false,
@@ -1146,13 +1141,13 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetObjectIdInfo",
             "Looks up an object id of object_ids: the actor, the component and the material slot and name it\nbelongs to (a spline's debug line: its actor, Component None, material \"DebugLine\"); returns False\n(and None, -1, \"\") for 0, an unknown id or a destroyed component.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"ObjectId", TypeCode(Kind::Int), false, false},
-                {"Actor", TypeCode(Kind::Object, "AActor"), false, true},
-                {"Component", TypeCode(Kind::Object, "UPrimitiveComponent"), false, true},
-                {"MaterialSlot", TypeCode(Kind::Int), false, true},
-                {"MaterialName", TypeCode(Kind::Str), false, true},
+                {"ObjectId", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
+                {"Actor", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor", true), false, true},
+                {"Component", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UPrimitiveComponent", true), false, true},
+                {"MaterialSlot", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, true},
+                {"MaterialName", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, true},
             },
             false,
             true,
@@ -1161,10 +1156,10 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetObjectId",
             "Returns the object id of one material slot of Component, or 0 when it has not been rendered yet.",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             {
-                {"Component", TypeCode(Kind::Object, "UPrimitiveComponent"), false, false},
-                {"MaterialSlot", TypeCode(Kind::Int), true, false},
+                {"Component", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UPrimitiveComponent"), false, false},
+                {"MaterialSlot", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), true, false},
             },
             false,
             true,
@@ -1173,9 +1168,9 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetMaterialId",
             "Returns the material id that material_ids holds for the material called Name, or 0 when unused.",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             {
-                {"Name", TypeCode(Kind::Str), false, false},
+                {"Name", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
             },
             false,
             true,
@@ -1184,7 +1179,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "get_render_device_info",
             "Returns which EGL device renders this camera's world (starting the renderer if needed).",
-            TypeCode(Kind::Struct, "FRenderDeviceInfo"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FRenderDeviceInfo"),
             {
             },
             false,
@@ -1194,7 +1189,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.functions.push_back({
             "GetRenderStats",
             "Returns how often each render pass ran in this camera's world, and its timings.",
-            TypeCode(Kind::Struct, "FRenderStats"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FRenderStats"),
             {
             },
             false,

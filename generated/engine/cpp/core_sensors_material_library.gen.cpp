@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- AMaterialLibrary ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& AMaterialLibrary::StaticClass() {
@@ -60,7 +55,7 @@ const sp::reflect::TypeInfo& AMaterialLibrary::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Materials",
-            TypeCode(Kind::Dict, TypeCode(Kind::Struct, "FMaterialDesc")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Dict, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FMaterialDesc")),
             "Materials by name; mesh components refer to them in their Materials list.",
             false,
             [](const void* self) { return Calls::get_Materials<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -71,10 +66,10 @@ const sp::reflect::TypeInfo& AMaterialLibrary::StaticClass() {
         t.functions.push_back({
             "SetMaterial",
             "Defines (or replaces) the material called Name.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Name", TypeCode(Kind::Str), false, false},
-                {"Material", TypeCode(Kind::Struct, "FMaterialDesc"), false, false},
+                {"Name", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
+                {"Material", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FMaterialDesc"), false, false},
             },
             false,
             false,
@@ -83,9 +78,9 @@ const sp::reflect::TypeInfo& AMaterialLibrary::StaticClass() {
         t.functions.push_back({
             "GetMaterial",
             "Returns the material a mesh slot named Name gets: this library's, else the built-in one, else the\ndefault grey one.",
-            TypeCode(Kind::Struct, "FMaterialDesc"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FMaterialDesc"),
             {
-                {"Name", TypeCode(Kind::Str), false, false},
+                {"Name", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
             },
             false,
             true,
@@ -94,7 +89,7 @@ const sp::reflect::TypeInfo& AMaterialLibrary::StaticClass() {
         t.functions.push_back({
             "GetBuiltinMaterialNames",
             "Returns the names of the built-in materials.",
-            TypeCode(Kind::List, TypeCode(Kind::Str)),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str)),
             {
             },
             false,
@@ -123,7 +118,7 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "BaseColor",
-            TypeCode(Kind::Struct, "FLinearColor"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FLinearColor"),
             "Linear RGB base colour (alpha unused: materials are opaque).",
             false,
             [](const void* self) { return Calls::get_BaseColor<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -133,7 +128,7 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
         });
         t.properties.push_back({
             "Roughness",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Perceptual roughness in [0, 1].",
             false,
             [](const void* self) { return Calls::get_Roughness<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -143,7 +138,7 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
         });
         t.properties.push_back({
             "Metallic",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Metalness in [0, 1].",
             false,
             [](const void* self) { return Calls::get_Metallic<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -153,7 +148,7 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
         });
         t.properties.push_back({
             "AmbientOcclusion",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Ambient occlusion in [0, 1]; scales the sky light only.",
             false,
             [](const void* self) { return Calls::get_AmbientOcclusion<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -163,7 +158,7 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
         });
         t.properties.push_back({
             "Emissive",
-            TypeCode(Kind::Struct, "FLinearColor"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FLinearColor"),
             "Linear RGB radiance emitted by the surface (alpha unused).",
             false,
             [](const void* self) { return Calls::get_Emissive<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -173,7 +168,7 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
         });
         t.properties.push_back({
             "BaseColorTexture",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "Path of an sRGB PNG/JPG multiplying BaseColor (\"\" for none).",
             false,
             [](const void* self) { return Calls::get_BaseColorTexture<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -183,7 +178,7 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
         });
         t.properties.push_back({
             "RoughnessMetallicTexture",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "Path of a glTF-layout texture (G = roughness, B = metallic) multiplying the factors (\"\" for none).",
             false,
             [](const void* self) { return Calls::get_RoughnessMetallicTexture<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -193,7 +188,7 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
         });
         t.properties.push_back({
             "NormalTexture",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "Path of a tangent-space normal map, OpenGL convention (\"\" for none).",
             false,
             [](const void* self) { return Calls::get_NormalTexture<ValueCall>(sp::reflect::selfCast<const Self>(self)); },

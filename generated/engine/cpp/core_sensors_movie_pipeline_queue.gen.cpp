@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EMoviePipelineJobStatus>() {
     static const sp::reflect::EnumInfo info{
         "EMoviePipelineJobStatus",
@@ -76,7 +71,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "OutputDirectory",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "The folder the files go to (created when missing): <modality>/<frame>.png|.exr and\ncamera/<frame>.json.",
             false,
             [](const void* self) { return Calls::get_OutputDirectory<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -86,7 +81,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         });
         t.properties.push_back({
             "Modalities",
-            TypeCode(Kind::List, TypeCode(Kind::Enum, "ECameraModality")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ECameraModality")),
             "The modalities written; empty: the camera's Modalities.",
             false,
             [](const void* self) { return Calls::get_Modalities<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -96,7 +91,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         });
         t.properties.push_back({
             "Width",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Image width in pixels, in [1, 16384]; 0: the camera's Width.",
             false,
             [](const void* self) { return Calls::get_Width<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -106,7 +101,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         });
         t.properties.push_back({
             "Height",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Image height in pixels, in [1, 16384]; 0: the camera's Height.",
             false,
             [](const void* self) { return Calls::get_Height<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -116,7 +111,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         });
         t.properties.push_back({
             "SamplesPerPixel",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Path-traced cameras: samples per pixel of each output frame, in [1, 65536] (each frame's own, never\naccumulated across frames); 0: the camera's SamplesPerPixel. Raster cameras ignore it.",
             false,
             [](const void* self) { return Calls::get_SamplesPerPixel<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -126,7 +121,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         });
         t.properties.push_back({
             "CameraLocations",
-            TypeCode(Kind::List, TypeCode(Kind::Struct, "FVector")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector")),
             "World locations of the camera, one per output frame; empty: the camera stays where the world puts it\nand output frame k is the k-th engine frame of the job (a recording of the running world).",
             false,
             [](const void* self) { return Calls::get_CameraLocations<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -136,7 +131,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         });
         t.properties.push_back({
             "CameraRotations",
-            TypeCode(Kind::List, TypeCode(Kind::Struct, "FRotator")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FRotator")),
             "World rotations of the camera, one per location.",
             false,
             [](const void* self) { return Calls::get_CameraRotations<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -146,7 +141,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         });
         t.properties.push_back({
             "FrameStart",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "The first output frame rendered (>= 0); frames are numbered from 0 and name the files.",
             false,
             [](const void* self) { return Calls::get_FrameStart<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -156,7 +151,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         });
         t.properties.push_back({
             "FrameEnd",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "One past the last output frame rendered; -1: the number of poses (required without poses).",
             false,
             [](const void* self) { return Calls::get_FrameEnd<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -166,7 +161,7 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
         });
         t.properties.push_back({
             "bOverwriteExisting",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "Whether frames whose files all exist are rendered again (false: they are skipped, which resumes an\ninterrupted job).",
             false,
             [](const void* self) { return Calls::get_bOverwriteExisting<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -196,7 +191,7 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "FramesTotal",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Output frames in the job's range.",
             false,
             [](const void* self) { return Calls::get_FramesTotal<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -206,7 +201,7 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
         });
         t.properties.push_back({
             "FramesRendered",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Frames rendered and written by this run.",
             false,
             [](const void* self) { return Calls::get_FramesRendered<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -216,7 +211,7 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
         });
         t.properties.push_back({
             "FramesWriting",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Frames rendered whose files are still being written (on background threads, while the next frames\nrender); a job ends only when this is 0.",
             false,
             [](const void* self) { return Calls::get_FramesWriting<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -226,7 +221,7 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
         });
         t.properties.push_back({
             "FramesSkipped",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Frames skipped because their files were already there.",
             false,
             [](const void* self) { return Calls::get_FramesSkipped<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -236,7 +231,7 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
         });
         t.properties.push_back({
             "ElapsedSeconds",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Seconds since the job started rendering (0 before).",
             false,
             [](const void* self) { return Calls::get_ElapsedSeconds<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -246,7 +241,7 @@ const sp::reflect::TypeInfo& FMoviePipelineProgress::StaticClass() {
         });
         t.properties.push_back({
             "EstimatedSecondsLeft",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Seconds left at the pace of the frames rendered so far (0 when finished; -1 before the first frame and\nafter a cancel or a failure).",
             false,
             [](const void* self) { return Calls::get_EstimatedSecondsLeft<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -276,7 +271,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         t.isAbstract = true;
         t.properties.push_back({
             "JobName",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "The name given to AllocateJob (used in progress and log lines).",
             true,
             [](const void* self) { return Calls::get_JobName<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -285,9 +280,9 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         t.functions.push_back({
             "SetConfiguration",
             "Sets what the job renders; checked now (each field's range, poses that pair up, a frame range), and\nrefused while the job is queued or rendering.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Configuration", TypeCode(Kind::Struct, "FMoviePipelineConfiguration"), false, false},
+                {"Configuration", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FMoviePipelineConfiguration"), false, false},
             },
             false,
             false,
@@ -296,7 +291,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         t.functions.push_back({
             "GetConfiguration",
             "Returns the configuration set last.",
-            TypeCode(Kind::Struct, "FMoviePipelineConfiguration"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FMoviePipelineConfiguration"),
             {
             },
             false,
@@ -306,7 +301,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         t.functions.push_back({
             "GetCamera",
             "Returns the camera the job renders with, or None when it was destroyed.",
-            TypeCode(Kind::Object, "UCameraSensorComponent", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UCameraSensorComponent", true),
             {
             },
             false,
@@ -316,7 +311,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         t.functions.push_back({
             "GetStatus",
             "Returns where the job is.",
-            TypeCode(Kind::Enum, "EMoviePipelineJobStatus"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EMoviePipelineJobStatus"),
             {
             },
             false,
@@ -326,7 +321,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         t.functions.push_back({
             "GetProgress",
             "Returns how far the job is (of its current or last run).",
-            TypeCode(Kind::Struct, "FMoviePipelineProgress"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FMoviePipelineProgress"),
             {
             },
             false,
@@ -336,7 +331,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         t.functions.push_back({
             "GetErrorMessage",
             "Returns why the job failed, or \"\" when it did not.",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             {
             },
             false,
@@ -346,9 +341,9 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         t.functions.push_back({
             "GetOutputFiles",
             "Returns the paths of the files output frame Frame writes: one per modality, then the camera file.",
-            TypeCode(Kind::List, TypeCode(Kind::Str)),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str)),
             {
-                {"Frame", TypeCode(Kind::Int), false, false},
+                {"Frame", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
             },
             false,
             true,
@@ -357,7 +352,7 @@ const sp::reflect::TypeInfo& UMoviePipelineExecutorJob::StaticClass() {
         t.functions.push_back({
             "Cancel",
             "Stops the job (queued or rendering) now, once the frames being written are on disk; frames written\nstay.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
             },
             false,
@@ -387,9 +382,9 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
         t.functions.push_back({
             "GetMoviePipelineQueueEngineSubsystem",
             "Returns the render queue of WorldContextObject's world.",
-            TypeCode(Kind::Object, "UMoviePipelineQueueEngineSubsystem"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UMoviePipelineQueueEngineSubsystem"),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
             },
             true,
             false,
@@ -398,10 +393,10 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
         t.functions.push_back({
             "AllocateJob",
             "Makes a job that renders with Camera (a camera of this world), named JobName (\"\" gives one).",
-            TypeCode(Kind::Object, "UMoviePipelineExecutorJob"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UMoviePipelineExecutorJob"),
             {
-                {"Camera", TypeCode(Kind::Object, "UCameraSensorComponent"), false, false},
-                {"JobName", TypeCode(Kind::Str), true, false},
+                {"Camera", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UCameraSensorComponent"), false, false},
+                {"JobName", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), true, false},
             },
             false,
             false,
@@ -410,9 +405,9 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
         t.functions.push_back({
             "RenderJob",
             "Queues a configured job and returns at once; it renders over the next engine frames. A job that\nended (finished, cancelled, failed) may be queued again: it skips the frames already written.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Job", TypeCode(Kind::Object, "UMoviePipelineExecutorJob"), false, false},
+                {"Job", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UMoviePipelineExecutorJob"), false, false},
             },
             false,
             false,
@@ -421,7 +416,7 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
         t.functions.push_back({
             "IsRendering",
             "Returns whether a job is rendering or queued.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
             },
             false,
@@ -431,7 +426,7 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
         t.functions.push_back({
             "GetActiveJob",
             "Returns the job rendering now, or None.",
-            TypeCode(Kind::Object, "UMoviePipelineExecutorJob", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UMoviePipelineExecutorJob", true),
             {
             },
             false,
@@ -441,7 +436,7 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
         t.functions.push_back({
             "GetJobs",
             "Returns every job of this queue, in allocation order.",
-            TypeCode(Kind::List, TypeCode(Kind::Object, "UMoviePipelineExecutorJob")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UMoviePipelineExecutorJob")),
             {
             },
             false,
@@ -451,7 +446,7 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
         t.functions.push_back({
             "CancelAllJobs",
             "Cancels the rendering job and every queued one.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
             },
             false,
@@ -461,9 +456,9 @@ const sp::reflect::TypeInfo& UMoviePipelineQueueEngineSubsystem::StaticClass() {
         t.functions.push_back({
             "DeleteJob",
             "Destroys a job that is not queued or rendering; its handles become stale.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Job", TypeCode(Kind::Object, "UMoviePipelineExecutorJob"), false, false},
+                {"Job", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UMoviePipelineExecutorJob"), false, false},
             },
             false,
             false,

@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- ASkyLight ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& ASkyLight::StaticClass() {
@@ -60,7 +55,7 @@ const sp::reflect::TypeInfo& ASkyLight::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "SkyLightComponent",
-            TypeCode(Kind::Object, "USkyLightComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "USkyLightComponent"),
             "The sky light (also the root component).",
             true,
             [](const void* self) { return Calls::get_SkyLightComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -89,7 +84,7 @@ const sp::reflect::TypeInfo& USkyLightComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "SkyColor",
-            TypeCode(Kind::Struct, "FLinearColor"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FLinearColor"),
             "Linear RGB radiance of the uniform sky, multiplied by Intensity.",
             false,
             [](const void* self) { return Calls::get_SkyColor<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -99,7 +94,7 @@ const sp::reflect::TypeInfo& USkyLightComponent::StaticClass() {
         });
         t.properties.push_back({
             "Intensity",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Multiplier of SkyColor.",
             false,
             [](const void* self) { return Calls::get_Intensity<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -109,7 +104,7 @@ const sp::reflect::TypeInfo& USkyLightComponent::StaticClass() {
         });
         t.properties.push_back({
             "BackgroundColor",
-            TypeCode(Kind::Struct, "FLinearColor"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FLinearColor"),
             "Linear HDR colour of the pixels that hit no geometry.",
             false,
             [](const void* self) { return Calls::get_BackgroundColor<ValueCall>(sp::reflect::selfCast<const Self>(self)); },

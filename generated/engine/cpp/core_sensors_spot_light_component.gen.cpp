@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- ASpotLight ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& ASpotLight::StaticClass() {
@@ -60,7 +55,7 @@ const sp::reflect::TypeInfo& ASpotLight::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "LightComponent",
-            TypeCode(Kind::Object, "USpotLightComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "USpotLightComponent"),
             "The light (also the root component); its cone points along the actor's forward axis.",
             true,
             [](const void* self) { return Calls::get_LightComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -89,7 +84,7 @@ const sp::reflect::TypeInfo& USpotLightComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "InnerConeAngle",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Half-angle in degrees inside which the light has full intensity.",
             false,
             [](const void* self) { return Calls::get_InnerConeAngle<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -99,7 +94,7 @@ const sp::reflect::TypeInfo& USpotLightComponent::StaticClass() {
         });
         t.properties.push_back({
             "OuterConeAngle",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Half-angle in degrees outside which the light is zero (>= InnerConeAngle, < 90).",
             false,
             [](const void* self) { return Calls::get_OuterConeAngle<ValueCall>(sp::reflect::selfCast<const Self>(self)); },

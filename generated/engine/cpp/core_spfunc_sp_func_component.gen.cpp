@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- USpFuncComponent ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& USpFuncComponent::StaticClass() {
@@ -61,7 +56,7 @@ const sp::reflect::TypeInfo& USpFuncComponent::StaticClass() {
         t.functions.push_back({
             "GetFuncNames",
             "Returns the names of the SpFuncs registered now, sorted.",
-            TypeCode(Kind::List, TypeCode(Kind::Str)),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str)),
             {
             },
             false,

@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- AActor ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& AActor::StaticClass() {
@@ -60,7 +55,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Tags",
-            TypeCode(Kind::List, TypeCode(Kind::Str)),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str)),
             "Tags for finding this actor.",
             false,
             [](const void* self) { return Calls::get_Tags<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -70,7 +65,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         });
         t.properties.push_back({
             "RootComponent",
-            TypeCode(Kind::Object, "USceneComponent", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "USceneComponent", true),
             "The component that defines the actor's transform.",
             true,
             [](const void* self) { return Calls::get_RootComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -79,9 +74,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "SetRootComponent",
             "Makes NewRootComponent (one of this actor's components) the root.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewRootComponent", TypeCode(Kind::Object, "USceneComponent"), false, false},
+                {"NewRootComponent", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "USceneComponent"), false, false},
             },
             false,
             false,
@@ -90,7 +85,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "GetActorLocation",
             "Returns the world-space location of the root component.",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
             },
             false,
@@ -100,9 +95,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "SetActorLocation",
             "Moves the actor; returns true when it moved.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"NewLocation", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"NewLocation", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
             },
             false,
             false,
@@ -111,7 +106,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "GetActorRotation",
             "Returns the world-space rotation of the root component.",
-            TypeCode(Kind::Struct, "FRotator"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FRotator"),
             {
             },
             false,
@@ -121,9 +116,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "SetActorRotation",
             "Rotates the actor; returns true when it rotated.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"NewRotation", TypeCode(Kind::Struct, "FRotator"), false, false},
+                {"NewRotation", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FRotator"), false, false},
             },
             false,
             false,
@@ -132,12 +127,12 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "K2_SetActorLocationAndRotation",
             "Moves and rotates the actor (bSweep is accepted for UE compatibility; sweeps are not supported).",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"NewLocation", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"NewRotation", TypeCode(Kind::Struct, "FRotator"), false, false},
-                {"bSweep", TypeCode(Kind::Bool), true, false},
-                {"bTeleport", TypeCode(Kind::Bool), true, false},
+                {"NewLocation", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"NewRotation", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FRotator"), false, false},
+                {"bSweep", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
+                {"bTeleport", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             false,
             false,
@@ -146,7 +141,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "GetActorScale3D",
             "Returns the world-space scale of the root component.",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
             },
             false,
@@ -156,9 +151,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "SetActorScale3D",
             "Sets the world-space scale of the root component.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewScale3D", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"NewScale3D", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
             },
             false,
             false,
@@ -167,7 +162,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "GetActorTransform",
             "Returns the world-space transform of the root component.",
-            TypeCode(Kind::Struct, "FTransform"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FTransform"),
             {
             },
             false,
@@ -177,9 +172,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "SetActorTransform",
             "Sets the world-space transform of the root component.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"NewTransform", TypeCode(Kind::Struct, "FTransform"), false, false},
+                {"NewTransform", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FTransform"), false, false},
             },
             false,
             false,
@@ -188,7 +183,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "GetActorForwardVector",
             "Returns the unit vector along the actor's X axis.",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
             },
             false,
@@ -198,11 +193,11 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "GetActorBounds",
             "Returns the world-space bounds of the actor's primitives as centre Origin and half size BoxExtent.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"bOnlyCollidingComponents", TypeCode(Kind::Bool), false, false},
-                {"Origin", TypeCode(Kind::Struct, "FVector"), false, true},
-                {"BoxExtent", TypeCode(Kind::Struct, "FVector"), false, true},
+                {"bOnlyCollidingComponents", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), false, false},
+                {"Origin", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, true},
+                {"BoxExtent", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, true},
             },
             false,
             true,
@@ -211,9 +206,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "ActorHasTag",
             "Returns true when Tags contains Tag.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"Tag", TypeCode(Kind::Str), false, false},
+                {"Tag", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
             },
             false,
             true,
@@ -222,9 +217,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "GetOverlappingActors",
             "Returns the other actors (of class ClassFilter or a subclass) that overlap any of this actor's\ncomponents now (see UPrimitiveComponent.GetOverlappingComponents).",
-            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor")),
             {
-                {"ClassFilter", TypeCode(Kind::Class, "AActor"), false, false},
+                {"ClassFilter", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "AActor"), false, false},
             },
             false,
             true,
@@ -233,9 +228,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "IsOverlappingActor",
             "Returns true when a component of Other overlaps a component of this actor now.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"Other", TypeCode(Kind::Object, "AActor"), false, false},
+                {"Other", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor"), false, false},
             },
             false,
             true,
@@ -244,7 +239,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "GetStreamingLevelName",
             "Returns the name of the streaming level that loaded this actor (\"\" for the persistent level).",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             {
             },
             false,
@@ -254,7 +249,7 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "K2_GetComponents",
             "Returns all components of this actor, in creation order.",
-            TypeCode(Kind::List, TypeCode(Kind::Object, "UActorComponent")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UActorComponent")),
             {
             },
             false,
@@ -264,9 +259,9 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
         t.functions.push_back({
             "GetComponentByClass",
             "Returns the first component of class ComponentClass (or a subclass), or None.",
-            TypeCode(Kind::Object, "UActorComponent", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UActorComponent", true),
             {
-                {"ComponentClass", TypeCode(Kind::Class, "UActorComponent"), false, false},
+                {"ComponentClass", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "UActorComponent"), false, false},
             },
             false,
             true,

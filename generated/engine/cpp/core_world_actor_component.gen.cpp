@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- UActorComponent ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& UActorComponent::StaticClass() {
@@ -59,7 +54,7 @@ const sp::reflect::TypeInfo& UActorComponent::StaticClass() {
         t.isAbstract = true;
         t.properties.push_back({
             "ComponentTags",
-            TypeCode(Kind::List, TypeCode(Kind::Str)),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str)),
             "Tags for finding this component.",
             false,
             [](const void* self) { return Calls::get_ComponentTags<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -69,7 +64,7 @@ const sp::reflect::TypeInfo& UActorComponent::StaticClass() {
         });
         t.properties.push_back({
             "bTickEnabled",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "Whether TickComponent runs every frame.",
             false,
             [](const void* self) { return Calls::get_bTickEnabled<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -80,7 +75,7 @@ const sp::reflect::TypeInfo& UActorComponent::StaticClass() {
         t.functions.push_back({
             "GetOwner",
             "Returns the actor that owns this component.",
-            TypeCode(Kind::Object, "AActor", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor", true),
             {
             },
             false,
@@ -90,9 +85,9 @@ const sp::reflect::TypeInfo& UActorComponent::StaticClass() {
         t.functions.push_back({
             "ComponentHasTag",
             "Returns true when ComponentTags contains Tag.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"Tag", TypeCode(Kind::Str), false, false},
+                {"Tag", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
             },
             false,
             true,

@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- ACharacter ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& ACharacter::StaticClass() {
@@ -60,7 +55,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "CapsuleComponent",
-            TypeCode(Kind::Object, "UCapsuleComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UCapsuleComponent"),
             "The collision capsule (the root component); its size is the character's.",
             true,
             [](const void* self) { return Calls::get_CapsuleComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -68,7 +63,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
         });
         t.properties.push_back({
             "Mesh",
-            TypeCode(Kind::Object, "UStaticMeshComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UStaticMeshComponent"),
             "The character's visible body (no collision of its own).",
             true,
             [](const void* self) { return Calls::get_Mesh<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -76,7 +71,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
         });
         t.properties.push_back({
             "CharacterMovement",
-            TypeCode(Kind::Object, "UCharacterMovementComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UCharacterMovementComponent"),
             "How the character walks.",
             true,
             [](const void* self) { return Calls::get_CharacterMovement<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -84,7 +79,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
         });
         t.properties.push_back({
             "InputComponent",
-            TypeCode(Kind::Object, "UInputComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UInputComponent"),
             "Receives the injected actions.",
             true,
             [](const void* self) { return Calls::get_InputComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -93,7 +88,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
         t.functions.push_back({
             "Jump",
             "Jumps at the next physics step if the character stands on the ground.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
             },
             false,
@@ -103,7 +98,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
         t.functions.push_back({
             "StopJumping",
             "Ends a jump request that has not started yet.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
             },
             false,
@@ -113,7 +108,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
         t.functions.push_back({
             "CanJump",
             "Returns true when the character could jump now (it stands on the ground).",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
             },
             false,
@@ -123,7 +118,7 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
         t.functions.push_back({
             "GetCharacterMovement",
             "Returns the character's movement component (UE's GetCharacterMovement).",
-            TypeCode(Kind::Object, "UCharacterMovementComponent", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UCharacterMovementComponent", true),
             {
             },
             false,
@@ -153,7 +148,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "MaxWalkSpeed",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Walking speed in m/s at full input (>= 0).",
             false,
             [](const void* self) { return Calls::get_MaxWalkSpeed<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -163,7 +158,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         });
         t.properties.push_back({
             "JumpZVelocity",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Upward speed of a jump in m/s (>= 0): a jump rises JumpZVelocity^2 / 2g.",
             false,
             [](const void* self) { return Calls::get_JumpZVelocity<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -173,7 +168,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         });
         t.properties.push_back({
             "MaxStepHeight",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "The highest step the character walks up, in metres (>= 0).",
             false,
             [](const void* self) { return Calls::get_MaxStepHeight<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -183,7 +178,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         });
         t.properties.push_back({
             "WalkableFloorAngle",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "The steepest floor the character walks up, in degrees (in (0, 90)).",
             false,
             [](const void* self) { return Calls::get_WalkableFloorAngle<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -194,9 +189,9 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         t.functions.push_back({
             "SetMaxWalkSpeed",
             "Sets MaxWalkSpeed (m/s, >= 0).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewSpeed", TypeCode(Kind::Float), false, false},
+                {"NewSpeed", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -205,9 +200,9 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         t.functions.push_back({
             "SetJumpZVelocity",
             "Sets JumpZVelocity (m/s, >= 0).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewVelocity", TypeCode(Kind::Float), false, false},
+                {"NewVelocity", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -216,9 +211,9 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         t.functions.push_back({
             "SetMaxStepHeight",
             "Sets MaxStepHeight (metres, >= 0).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewHeight", TypeCode(Kind::Float), false, false},
+                {"NewHeight", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -227,9 +222,9 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         t.functions.push_back({
             "SetWalkableFloorAngle",
             "Sets WalkableFloorAngle (degrees, in (0, 90)).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewAngle", TypeCode(Kind::Float), false, false},
+                {"NewAngle", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -238,7 +233,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         t.functions.push_back({
             "GetVelocity",
             "Returns the velocity over the last physics step, m/s (walking and falling).",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
             },
             false,
@@ -248,7 +243,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         t.functions.push_back({
             "IsMovingOnGround",
             "Returns true while the character stands on the ground.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
             },
             false,
@@ -258,7 +253,7 @@ const sp::reflect::TypeInfo& UCharacterMovementComponent::StaticClass() {
         t.functions.push_back({
             "IsFalling",
             "Returns true while the character is in the air (jumping or falling).",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
             },
             false,

@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPathFollowingRequestResult>() {
     static const sp::reflect::EnumInfo info{
         "EPathFollowingRequestResult",
@@ -88,12 +83,12 @@ const sp::reflect::TypeInfo& AAIController::StaticClass() {
         t.functions.push_back({
             "MoveToLocation",
             "Starts moving the pawn to Dest; it stops within AcceptanceRadius metres of it (in the horizontal\nplane for a walking pawn), plus its own radius when bStopOnOverlap.",
-            TypeCode(Kind::Enum, "EPathFollowingRequestResult"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EPathFollowingRequestResult"),
             {
-                {"Dest", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"AcceptanceRadius", TypeCode(Kind::Float), true, false},
-                {"bStopOnOverlap", TypeCode(Kind::Bool), true, false},
-                {"bUsePathfinding", TypeCode(Kind::Bool), true, false},
+                {"Dest", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"AcceptanceRadius", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), true, false},
+                {"bStopOnOverlap", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
+                {"bUsePathfinding", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             false,
             false,
@@ -102,12 +97,12 @@ const sp::reflect::TypeInfo& AAIController::StaticClass() {
         t.functions.push_back({
             "MoveToActor",
             "Starts moving the pawn to Goal, following it if it moves.",
-            TypeCode(Kind::Enum, "EPathFollowingRequestResult"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EPathFollowingRequestResult"),
             {
-                {"Goal", TypeCode(Kind::Object, "AActor"), false, false},
-                {"AcceptanceRadius", TypeCode(Kind::Float), true, false},
-                {"bStopOnOverlap", TypeCode(Kind::Bool), true, false},
-                {"bUsePathfinding", TypeCode(Kind::Bool), true, false},
+                {"Goal", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor"), false, false},
+                {"AcceptanceRadius", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), true, false},
+                {"bStopOnOverlap", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
+                {"bUsePathfinding", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             false,
             false,
@@ -116,7 +111,7 @@ const sp::reflect::TypeInfo& AAIController::StaticClass() {
         t.functions.push_back({
             "StopMovement",
             "Stops the move in progress.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
             },
             false,
@@ -126,7 +121,7 @@ const sp::reflect::TypeInfo& AAIController::StaticClass() {
         t.functions.push_back({
             "GetMoveStatus",
             "Returns whether a move is in progress.",
-            TypeCode(Kind::Enum, "EPathFollowingStatus"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EPathFollowingStatus"),
             {
             },
             false,
@@ -136,7 +131,7 @@ const sp::reflect::TypeInfo& AAIController::StaticClass() {
         t.functions.push_back({
             "GetImmediateMoveDestination",
             "Returns the point the pawn is moving to now: the next corner of its path, else the goal (its location\nwhen no move is in progress).",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
             },
             false,
@@ -167,9 +162,9 @@ const sp::reflect::TypeInfo& AController::StaticClass() {
         t.functions.push_back({
             "Possess",
             "Takes control of InPawn (releasing this controller's previous pawn, and taking InPawn from its\nprevious controller); the control rotation becomes the pawn's rotation.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"InPawn", TypeCode(Kind::Object, "APawn"), false, false},
+                {"InPawn", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "APawn"), false, false},
             },
             false,
             false,
@@ -178,7 +173,7 @@ const sp::reflect::TypeInfo& AController::StaticClass() {
         t.functions.push_back({
             "UnPossess",
             "Releases the possessed pawn, if any.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
             },
             false,
@@ -188,7 +183,7 @@ const sp::reflect::TypeInfo& AController::StaticClass() {
         t.functions.push_back({
             "K2_GetPawn",
             "Returns the possessed pawn, or None.",
-            TypeCode(Kind::Object, "APawn", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "APawn", true),
             {
             },
             false,
@@ -198,7 +193,7 @@ const sp::reflect::TypeInfo& AController::StaticClass() {
         t.functions.push_back({
             "GetControlRotation",
             "Returns the control rotation.",
-            TypeCode(Kind::Struct, "FRotator"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FRotator"),
             {
             },
             false,
@@ -208,9 +203,9 @@ const sp::reflect::TypeInfo& AController::StaticClass() {
         t.functions.push_back({
             "SetControlRotation",
             "Sets the control rotation (the possessed pawn follows it on the axes its bUseControllerRotation*\nflags name, from its next tick).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewRotation", TypeCode(Kind::Struct, "FRotator"), false, false},
+                {"NewRotation", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FRotator"), false, false},
             },
             false,
             false,
@@ -219,7 +214,7 @@ const sp::reflect::TypeInfo& AController::StaticClass() {
         t.functions.push_back({
             "IsPlayerController",
             "Returns true for a player's controller.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
             },
             false,
@@ -250,7 +245,7 @@ const sp::reflect::TypeInfo& APlayerController::StaticClass() {
         t.functions.push_back({
             "GetViewTarget",
             "Returns the actor the player views the world from: the set view target, else the pawn, else this\ncontroller.",
-            TypeCode(Kind::Object, "AActor", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor", true),
             {
             },
             false,
@@ -260,10 +255,10 @@ const sp::reflect::TypeInfo& APlayerController::StaticClass() {
         t.functions.push_back({
             "SetViewTargetWithBlend",
             "Makes NewViewTarget the player's view target (None: the pawn). BlendTime is accepted for UE\ncompatibility; the view changes at once.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewViewTarget", TypeCode(Kind::Object, "AActor"), false, false},
-                {"BlendTime", TypeCode(Kind::Float), true, false},
+                {"NewViewTarget", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor"), false, false},
+                {"BlendTime", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), true, false},
             },
             false,
             false,
@@ -272,10 +267,10 @@ const sp::reflect::TypeInfo& APlayerController::StaticClass() {
         t.functions.push_back({
             "GetPlayerViewPoint",
             "Returns the player's view point: the view target's location and the control rotation.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Location", TypeCode(Kind::Struct, "FVector"), false, true},
-                {"Rotation", TypeCode(Kind::Struct, "FRotator"), false, true},
+                {"Location", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, true},
+                {"Rotation", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FRotator"), false, true},
             },
             false,
             true,
@@ -284,9 +279,9 @@ const sp::reflect::TypeInfo& APlayerController::StaticClass() {
         t.functions.push_back({
             "AddYawInput",
             "Adds Val degrees of yaw to the control rotation.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Val", TypeCode(Kind::Float), false, false},
+                {"Val", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -295,9 +290,9 @@ const sp::reflect::TypeInfo& APlayerController::StaticClass() {
         t.functions.push_back({
             "AddPitchInput",
             "Adds Val degrees of pitch to the control rotation, keeping pitch within [-89, 89].",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Val", TypeCode(Kind::Float), false, false},
+                {"Val", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -306,9 +301,9 @@ const sp::reflect::TypeInfo& APlayerController::StaticClass() {
         t.functions.push_back({
             "AddRollInput",
             "Adds Val degrees of roll to the control rotation.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Val", TypeCode(Kind::Float), false, false},
+                {"Val", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,

@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- AGameModeBase ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
@@ -60,7 +55,7 @@ const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "DefaultPawnClass",
-            TypeCode(Kind::Class, "APawn", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "APawn", true),
             "The class of the pawn each player starts with.",
             false,
             [](const void* self) { return Calls::get_DefaultPawnClass<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -70,7 +65,7 @@ const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
         });
         t.properties.push_back({
             "PlayerControllerClass",
-            TypeCode(Kind::Class, "APlayerController", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "APlayerController", true),
             "The class of each player's controller.",
             false,
             [](const void* self) { return Calls::get_PlayerControllerClass<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -81,10 +76,10 @@ const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
         t.functions.push_back({
             "FindPlayerStart",
             "Returns the player start for Player: the first whose PlayerStartTag is IncomingName when that is not\nempty, else the first in the world, or None when the world has none.",
-            TypeCode(Kind::Object, "AActor", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor", true),
             {
-                {"Player", TypeCode(Kind::Object, "AController"), false, false},
-                {"IncomingName", TypeCode(Kind::Str), true, false},
+                {"Player", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AController"), false, false},
+                {"IncomingName", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), true, false},
             },
             false,
             true,
@@ -93,9 +88,9 @@ const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
         t.functions.push_back({
             "RestartPlayer",
             "Starts NewPlayer: spawns a DefaultPawnClass pawn for it when it has none, moves the pawn to its player\nstart (the world origin when there is none) and possesses it.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewPlayer", TypeCode(Kind::Object, "AController"), false, false},
+                {"NewPlayer", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AController"), false, false},
             },
             false,
             false,
@@ -104,7 +99,7 @@ const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
         t.functions.push_back({
             "GetNumPlayers",
             "Returns the number of players (player controllers with a player index).",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             {
             },
             false,
@@ -114,10 +109,10 @@ const sp::reflect::TypeInfo& AGameModeBase::StaticClass() {
         t.functions.push_back({
             "SwapPlayerControllers",
             "Moves OldPC's player to NewPC: NewPC takes OldPC's player index, pawn and view target, and OldPC is\nleft without a player (destroy it, or keep it as a spectator controller).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"OldPC", TypeCode(Kind::Object, "APlayerController"), false, false},
-                {"NewPC", TypeCode(Kind::Object, "APlayerController"), false, false},
+                {"OldPC", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "APlayerController"), false, false},
+                {"NewPC", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "APlayerController"), false, false},
             },
             false,
             false,
@@ -146,7 +141,7 @@ const sp::reflect::TypeInfo& APlayerStart::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "PlayerStartTag",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "Chooses this start by name (AGameModeBase.FindPlayerStart's IncomingName).",
             false,
             [](const void* self) { return Calls::get_PlayerStartTag<ValueCall>(sp::reflect::selfCast<const Self>(self)); },

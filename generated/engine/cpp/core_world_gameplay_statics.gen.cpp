@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- UGameplayStatics ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
@@ -60,9 +55,9 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "GetGameMode",
             "Returns the game mode of WorldContextObject's world (None in an editor world).",
-            TypeCode(Kind::Object, "AGameModeBase", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AGameModeBase", true),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
             },
             true,
             false,
@@ -71,10 +66,10 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "GetPlayerController",
             "Returns the controller of player PlayerIndex, or None.",
-            TypeCode(Kind::Object, "APlayerController", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "APlayerController", true),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
-                {"PlayerIndex", TypeCode(Kind::Int), false, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
+                {"PlayerIndex", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
             },
             true,
             false,
@@ -83,10 +78,10 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "GetPlayerPawn",
             "Returns the pawn of player PlayerIndex, or None.",
-            TypeCode(Kind::Object, "APawn", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "APawn", true),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
-                {"PlayerIndex", TypeCode(Kind::Int), false, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
+                {"PlayerIndex", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
             },
             true,
             false,
@@ -95,9 +90,9 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "GetPlayerControllerID",
             "Returns the player index that Player serves, or -1 when it serves none.",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             {
-                {"Player", TypeCode(Kind::Object, "APlayerController"), false, false},
+                {"Player", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "APlayerController"), false, false},
             },
             true,
             false,
@@ -106,9 +101,9 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "GetNumPlayerControllers",
             "Returns the number of player controllers with a player.",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
             },
             true,
             false,
@@ -117,11 +112,11 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "CreatePlayer",
             "Creates player ControllerId (-1: the next free index) with a new player controller, started with a\npawn as the game mode starts players; returns its controller. bSpawnPlayerController is accepted for\nUE compatibility and must be true.",
-            TypeCode(Kind::Object, "APlayerController", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "APlayerController", true),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
-                {"ControllerId", TypeCode(Kind::Int), true, false},
-                {"bSpawnPlayerController", TypeCode(Kind::Bool), true, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
+                {"ControllerId", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), true, false},
+                {"bSpawnPlayerController", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             true,
             false,
@@ -130,10 +125,10 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "GetAllActorsOfClass",
             "Returns every actor of class ActorClass or a subclass of it, in spawn order.",
-            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor")),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
-                {"ActorClass", TypeCode(Kind::Class, "AActor"), false, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
+                {"ActorClass", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "AActor"), false, false},
             },
             true,
             false,
@@ -142,10 +137,10 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "GetActorOfClass",
             "Returns the first actor of class ActorClass or a subclass of it, or None.",
-            TypeCode(Kind::Object, "AActor", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor", true),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
-                {"ActorClass", TypeCode(Kind::Class, "AActor"), false, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
+                {"ActorClass", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "AActor"), false, false},
             },
             true,
             false,
@@ -154,10 +149,10 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "GetAllActorsWithTag",
             "Returns every actor that has Tag, in spawn order.",
-            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor")),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
-                {"Tag", TypeCode(Kind::Str), false, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
+                {"Tag", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
             },
             true,
             false,
@@ -166,12 +161,12 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "LoadStreamLevel",
             "Loads streaming level LevelName: one the world's scene file declares (its \"levels\"), or the scene\nfile at that path. Its actors join the world at once, the rest untouched; its object references\nresolve within it and its actor names must be free. Nothing happens for a loaded level.\nbMakeVisibleAfterLoad and bShouldBlockOnLoad are accepted for UE compatibility: a level is loaded,\nvisible, before the call returns.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
-                {"LevelName", TypeCode(Kind::Str), false, false},
-                {"bMakeVisibleAfterLoad", TypeCode(Kind::Bool), true, false},
-                {"bShouldBlockOnLoad", TypeCode(Kind::Bool), true, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
+                {"LevelName", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
+                {"bMakeVisibleAfterLoad", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
+                {"bShouldBlockOnLoad", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             true,
             false,
@@ -180,11 +175,11 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "UnloadStreamLevel",
             "Unloads streaming level LevelName: destroys the actors it loaded (their handles go stale, naming\nthe level). bShouldBlockOnUnload is accepted for UE compatibility.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
-                {"LevelName", TypeCode(Kind::Str), false, false},
-                {"bShouldBlockOnUnload", TypeCode(Kind::Bool), true, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
+                {"LevelName", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
+                {"bShouldBlockOnUnload", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             true,
             false,
@@ -193,9 +188,9 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "GetStreamingLevelNames",
             "Returns the names of the world's streaming levels, declared ones first, in order.",
-            TypeCode(Kind::List, TypeCode(Kind::Str)),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str)),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
             },
             true,
             false,
@@ -204,10 +199,10 @@ const sp::reflect::TypeInfo& UGameplayStatics::StaticClass() {
         t.functions.push_back({
             "IsStreamingLevelLoaded",
             "Returns true while streaming level LevelName is loaded.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
-                {"LevelName", TypeCode(Kind::Str), false, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
+                {"LevelName", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
             },
             true,
             false,

@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- FHitResult ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& FHitResult::StaticClass() {
@@ -59,7 +54,7 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "bBlockingHit",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "True when the trace hit something.",
             false,
             [](const void* self) { return Calls::get_bBlockingHit<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -69,7 +64,7 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
         });
         t.properties.push_back({
             "Location",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             "Where the trace hit, in world space (metres); the trace end when nothing was hit.",
             false,
             [](const void* self) { return Calls::get_Location<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -79,7 +74,7 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
         });
         t.properties.push_back({
             "ImpactPoint",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             "The same point as Location (UE keeps both for swept shapes).",
             false,
             [](const void* self) { return Calls::get_ImpactPoint<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -89,7 +84,7 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
         });
         t.properties.push_back({
             "ImpactNormal",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             "Unit surface normal at the hit, facing the trace start.",
             false,
             [](const void* self) { return Calls::get_ImpactNormal<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -99,7 +94,7 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
         });
         t.properties.push_back({
             "Normal",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             "The same vector as ImpactNormal (UE keeps both for swept shapes).",
             false,
             [](const void* self) { return Calls::get_Normal<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -109,7 +104,7 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
         });
         t.properties.push_back({
             "Distance",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Distance from TraceStart to Location in metres.",
             false,
             [](const void* self) { return Calls::get_Distance<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -119,7 +114,7 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
         });
         t.properties.push_back({
             "Time",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Fraction of the way from TraceStart to TraceEnd where the hit lies, in [0, 1].",
             false,
             [](const void* self) { return Calls::get_Time<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -129,7 +124,7 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
         });
         t.properties.push_back({
             "TraceStart",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             "Start of the trace.",
             false,
             [](const void* self) { return Calls::get_TraceStart<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -139,7 +134,7 @@ const sp::reflect::TypeInfo& FHitResult::StaticClass() {
         });
         t.properties.push_back({
             "TraceEnd",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             "End of the trace.",
             false,
             [](const void* self) { return Calls::get_TraceEnd<ValueCall>(sp::reflect::selfCast<const Self>(self)); },

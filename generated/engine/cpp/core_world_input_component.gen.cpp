@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- UInputComponent ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& UInputComponent::StaticClass() {
@@ -61,9 +56,9 @@ const sp::reflect::TypeInfo& UInputComponent::StaticClass() {
         t.functions.push_back({
             "GetActionValue",
             "Returns the value of ActionName injected for the current tick, or zero when it was not injected.",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
-                {"ActionName", TypeCode(Kind::Str), false, false},
+                {"ActionName", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
             },
             false,
             true,
@@ -72,9 +67,9 @@ const sp::reflect::TypeInfo& UInputComponent::StaticClass() {
         t.functions.push_back({
             "IsActionTriggered",
             "Returns true when ActionName was injected for the current tick.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"ActionName", TypeCode(Kind::Str), false, false},
+                {"ActionName", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
             },
             false,
             true,

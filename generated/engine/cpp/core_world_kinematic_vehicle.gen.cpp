@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- AKinematicVehicle ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& AKinematicVehicle::StaticClass() {
@@ -60,7 +55,7 @@ const sp::reflect::TypeInfo& AKinematicVehicle::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Body",
-            TypeCode(Kind::Object, "UStaticMeshComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UStaticMeshComponent"),
             "The vehicle's body (the root component).",
             true,
             [](const void* self) { return Calls::get_Body<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -68,7 +63,7 @@ const sp::reflect::TypeInfo& AKinematicVehicle::StaticClass() {
         });
         t.properties.push_back({
             "InputComponent",
-            TypeCode(Kind::Object, "UInputComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UInputComponent"),
             "Receives the injected actions.",
             true,
             [](const void* self) { return Calls::get_InputComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -76,7 +71,7 @@ const sp::reflect::TypeInfo& AKinematicVehicle::StaticClass() {
         });
         t.properties.push_back({
             "MaxSpeed",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Speed in metres per second at full throttle.",
             false,
             [](const void* self) { return Calls::get_MaxSpeed<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -86,7 +81,7 @@ const sp::reflect::TypeInfo& AKinematicVehicle::StaticClass() {
         });
         t.properties.push_back({
             "MaxYawRateInDegrees",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Yaw rate in degrees per second at full steering.",
             false,
             [](const void* self) { return Calls::get_MaxYawRateInDegrees<ValueCall>(sp::reflect::selfCast<const Self>(self)); },

@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- ADirectionalLight ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& ADirectionalLight::StaticClass() {
@@ -60,7 +55,7 @@ const sp::reflect::TypeInfo& ADirectionalLight::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "LightComponent",
-            TypeCode(Kind::Object, "UDirectionalLightComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UDirectionalLightComponent"),
             "The light (also the root component).",
             true,
             [](const void* self) { return Calls::get_LightComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -89,7 +84,7 @@ const sp::reflect::TypeInfo& APointLight::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "LightComponent",
-            TypeCode(Kind::Object, "UPointLightComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UPointLightComponent"),
             "The light (also the root component).",
             true,
             [](const void* self) { return Calls::get_LightComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },

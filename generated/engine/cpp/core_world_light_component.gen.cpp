@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- UDirectionalLightComponent ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& UDirectionalLightComponent::StaticClass() {
@@ -78,7 +73,7 @@ const sp::reflect::TypeInfo& ULightComponent::StaticClass() {
         t.isAbstract = true;
         t.properties.push_back({
             "Intensity",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Brightness: lux for directional lights, candela for point lights.",
             false,
             [](const void* self) { return Calls::get_Intensity<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -88,7 +83,7 @@ const sp::reflect::TypeInfo& ULightComponent::StaticClass() {
         });
         t.properties.push_back({
             "LightColor",
-            TypeCode(Kind::Struct, "FLinearColor"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FLinearColor"),
             "Colour of the emitted light (linear).",
             false,
             [](const void* self) { return Calls::get_LightColor<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -98,7 +93,7 @@ const sp::reflect::TypeInfo& ULightComponent::StaticClass() {
         });
         t.properties.push_back({
             "bCastShadows",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "Whether this light casts shadows.",
             false,
             [](const void* self) { return Calls::get_bCastShadows<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -129,7 +124,7 @@ const sp::reflect::TypeInfo& UPointLightComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "AttenuationRadius",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Distance in metres beyond which the light has no effect.",
             false,
             [](const void* self) { return Calls::get_AttenuationRadius<ValueCall>(sp::reflect::selfCast<const Self>(self)); },

@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- FLinearColor ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& FLinearColor::StaticClass() {
@@ -59,7 +54,7 @@ const sp::reflect::TypeInfo& FLinearColor::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "R",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Red.",
             false,
             [](const void* self) { return Calls::get_R<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -69,7 +64,7 @@ const sp::reflect::TypeInfo& FLinearColor::StaticClass() {
         });
         t.properties.push_back({
             "G",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Green.",
             false,
             [](const void* self) { return Calls::get_G<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -79,7 +74,7 @@ const sp::reflect::TypeInfo& FLinearColor::StaticClass() {
         });
         t.properties.push_back({
             "B",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Blue.",
             false,
             [](const void* self) { return Calls::get_B<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -89,7 +84,7 @@ const sp::reflect::TypeInfo& FLinearColor::StaticClass() {
         });
         t.properties.push_back({
             "A",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Alpha.",
             false,
             [](const void* self) { return Calls::get_A<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -119,7 +114,7 @@ const sp::reflect::TypeInfo& FQuat::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "X",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "X component.",
             false,
             [](const void* self) { return Calls::get_X<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -129,7 +124,7 @@ const sp::reflect::TypeInfo& FQuat::StaticClass() {
         });
         t.properties.push_back({
             "Y",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Y component.",
             false,
             [](const void* self) { return Calls::get_Y<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -139,7 +134,7 @@ const sp::reflect::TypeInfo& FQuat::StaticClass() {
         });
         t.properties.push_back({
             "Z",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Z component.",
             false,
             [](const void* self) { return Calls::get_Z<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -149,7 +144,7 @@ const sp::reflect::TypeInfo& FQuat::StaticClass() {
         });
         t.properties.push_back({
             "W",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "W (scalar) component.",
             false,
             [](const void* self) { return Calls::get_W<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -179,7 +174,7 @@ const sp::reflect::TypeInfo& FRotator::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "Pitch",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Rotation that raises the X axis toward +Z, in degrees.",
             false,
             [](const void* self) { return Calls::get_Pitch<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -189,7 +184,7 @@ const sp::reflect::TypeInfo& FRotator::StaticClass() {
         });
         t.properties.push_back({
             "Yaw",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Rotation about +Z, in degrees.",
             false,
             [](const void* self) { return Calls::get_Yaw<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -199,7 +194,7 @@ const sp::reflect::TypeInfo& FRotator::StaticClass() {
         });
         t.properties.push_back({
             "Roll",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Rotation about +X, in degrees.",
             false,
             [](const void* self) { return Calls::get_Roll<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -229,7 +224,7 @@ const sp::reflect::TypeInfo& FTransform::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "Translation",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             "Translation in metres.",
             false,
             [](const void* self) { return Calls::get_Translation<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -239,7 +234,7 @@ const sp::reflect::TypeInfo& FTransform::StaticClass() {
         });
         t.properties.push_back({
             "Rotation",
-            TypeCode(Kind::Struct, "FQuat"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FQuat"),
             "Rotation.",
             false,
             [](const void* self) { return Calls::get_Rotation<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -249,7 +244,7 @@ const sp::reflect::TypeInfo& FTransform::StaticClass() {
         });
         t.properties.push_back({
             "Scale3D",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             "Scale along each local axis.",
             false,
             [](const void* self) { return Calls::get_Scale3D<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -279,7 +274,7 @@ const sp::reflect::TypeInfo& FVector::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "X",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "X component (forward).",
             false,
             [](const void* self) { return Calls::get_X<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -289,7 +284,7 @@ const sp::reflect::TypeInfo& FVector::StaticClass() {
         });
         t.properties.push_back({
             "Y",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Y component (left).",
             false,
             [](const void* self) { return Calls::get_Y<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -299,7 +294,7 @@ const sp::reflect::TypeInfo& FVector::StaticClass() {
         });
         t.properties.push_back({
             "Z",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Z component (up).",
             false,
             [](const void* self) { return Calls::get_Z<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -329,7 +324,7 @@ const sp::reflect::TypeInfo& FVector2D::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "X",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "X component.",
             false,
             [](const void* self) { return Calls::get_X<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -339,7 +334,7 @@ const sp::reflect::TypeInfo& FVector2D::StaticClass() {
         });
         t.properties.push_back({
             "Y",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Y component.",
             false,
             [](const void* self) { return Calls::get_Y<ValueCall>(sp::reflect::selfCast<const Self>(self)); },

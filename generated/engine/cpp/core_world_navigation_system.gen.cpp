@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ENavigationQueryResult>() {
     static const sp::reflect::EnumInfo info{
         "ENavigationQueryResult",
@@ -74,7 +69,7 @@ const sp::reflect::TypeInfo& ANavMeshBoundsVolume::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "BoxComponent",
-            TypeCode(Kind::Object, "UBoxComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UBoxComponent"),
             "The volume's box (the root component); BoxExtent and the actor's transform place it.",
             true,
             [](const void* self) { return Calls::get_BoxComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -103,7 +98,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "AgentName",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "The agent profile's name (UNavigationSystemV1.GetNavDataForAgentName finds it by this).",
             false,
             [](const void* self) { return Calls::get_AgentName<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -113,7 +108,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "AgentRadius",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Clearance kept from walls and edges, metres (>= 0).",
             false,
             [](const void* self) { return Calls::get_AgentRadius<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -123,7 +118,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "AgentHeight",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Headroom the agent needs, metres (> 0).",
             false,
             [](const void* self) { return Calls::get_AgentHeight<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -133,7 +128,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "AgentMaxSlope",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Steepest walkable ground, degrees in (0, 90).",
             false,
             [](const void* self) { return Calls::get_AgentMaxSlope<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -143,7 +138,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "AgentMaxStepHeight",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Highest ledge the agent steps up or down, metres (>= 0).",
             false,
             [](const void* self) { return Calls::get_AgentMaxStepHeight<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -153,7 +148,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "CellSize",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Horizontal voxel size, metres (> 0): smaller is finer and slower to build.",
             false,
             [](const void* self) { return Calls::get_CellSize<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -163,7 +158,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "CellHeight",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Vertical voxel size, metres (> 0).",
             false,
             [](const void* self) { return Calls::get_CellHeight<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -173,7 +168,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "TileSize",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Side of a tile, metres (at least 8 cells): the unit rebuilt when geometry changes.",
             false,
             [](const void* self) { return Calls::get_TileSize<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -183,7 +178,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "MinRegionArea",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Walkable islands smaller than this are dropped, square metres (>= 0).",
             false,
             [](const void* self) { return Calls::get_MinRegionArea<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -193,7 +188,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "bRebuildAutomatically",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "Whether geometry changes rebuild the tiles under them before the next query (else only\nRebuildNavigation does).",
             false,
             [](const void* self) { return Calls::get_bRebuildAutomatically<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -203,7 +198,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         });
         t.properties.push_back({
             "RandomSeed",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Seed of the random points' generator (SetRandomSeed restarts the sequence).",
             false,
             [](const void* self) { return Calls::get_RandomSeed<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -214,9 +209,9 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "SetRandomSeed",
             "Restarts the random point sequence from Seed.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Seed", TypeCode(Kind::Int), false, false},
+                {"Seed", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
             },
             false,
             false,
@@ -225,7 +220,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "RebuildNavigation",
             "Builds the whole navigation mesh now from the current geometry and settings.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
             },
             false,
@@ -235,7 +230,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "GetNumTiles",
             "Returns the number of tiles that hold navigation polygons (building first if needed).",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             {
             },
             false,
@@ -245,7 +240,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "GetNumPolygons",
             "Returns the number of navigation polygons.",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             {
             },
             false,
@@ -255,7 +250,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "GetNavigableArea",
             "Returns the navigable area in square metres (horizontal projection).",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             {
             },
             false,
@@ -265,7 +260,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "GetLastBuildSeconds",
             "Returns the seconds the last build or tile rebuild took.",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             {
             },
             false,
@@ -275,7 +270,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "GetLastBuildTileCount",
             "Returns the number of tiles the last build or rebuild voxelised.",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             {
             },
             false,
@@ -285,12 +280,12 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "FindPath",
             "Finds the shortest path from Start to End (each projected onto the mesh): its corners as an (N, 3)\narray from start to end, and its length in metres. Fail: End is unreachable and the path leads to\nthe reachable point nearest it; Invalid: Start or End is not on the mesh (no points).",
-            TypeCode(Kind::Enum, "ENavigationQueryResult"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ENavigationQueryResult"),
             {
-                {"Start", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"End", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"PathPoints", TypeCode(Kind::Array, "float64"), false, true},
-                {"PathLength", TypeCode(Kind::Float), false, true},
+                {"Start", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"End", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"PathPoints", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"), false, true},
+                {"PathLength", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, true},
             },
             false,
             false,
@@ -299,14 +294,14 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "FindPaths",
             "Finds a path for each row of StartPoints and EndPoints ((N, 3) arrays): the corners of all of them\nin one (M, 3) array, path i being rows PathStarts[i] to PathStarts[i + 1] (an (N + 1,) int64 array),\nwith Lengths (N,) and Results (N,) (ENavigationQueryResult values, uint8).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"StartPoints", TypeCode(Kind::Array, "float64"), false, false},
-                {"EndPoints", TypeCode(Kind::Array, "float64"), false, false},
-                {"PathPoints", TypeCode(Kind::Array, "float64"), false, true},
-                {"PathStarts", TypeCode(Kind::Array, "int64"), false, true},
-                {"Lengths", TypeCode(Kind::Array, "float64"), false, true},
-                {"Results", TypeCode(Kind::Array, "uint8"), false, true},
+                {"StartPoints", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"), false, false},
+                {"EndPoints", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"), false, false},
+                {"PathPoints", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"), false, true},
+                {"PathStarts", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "int64"), false, true},
+                {"Lengths", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"), false, true},
+                {"Results", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "uint8"), false, true},
             },
             false,
             false,
@@ -315,10 +310,10 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "GetGeodesicDistance",
             "Returns the length of the shortest path from Start to End in metres, or infinity when End is not\nreachable (or either is off the mesh).",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             {
-                {"Start", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"End", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"Start", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"End", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
             },
             false,
             false,
@@ -327,9 +322,9 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "GetRandomPoints",
             "Returns NumPoints points drawn uniformly over the navigable area, as an (N, 3) array.",
-            TypeCode(Kind::Array, "float64"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"),
             {
-                {"NumPoints", TypeCode(Kind::Int), false, false},
+                {"NumPoints", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
             },
             false,
             false,
@@ -338,10 +333,10 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "GetRandomReachablePointsInRadius",
             "Returns, for each row of Origins ((N, 3)), a point drawn uniformly over the navigable area within\nRadius metres (horizontally) that is reachable from the origin; a row of NaN where there is none.",
-            TypeCode(Kind::Array, "float64"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"),
             {
-                {"Origins", TypeCode(Kind::Array, "float64"), false, false},
-                {"Radius", TypeCode(Kind::Float), false, false},
+                {"Origins", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"), false, false},
+                {"Radius", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -350,11 +345,11 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "ProjectPointToNavigation",
             "Projects Point onto the mesh: the nearest navigable point within QueryExtent (half sizes; zero: two\nagent radii sideways and an agent height up and down). Returns false when there is none.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"Point", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"ProjectedLocation", TypeCode(Kind::Struct, "FVector"), false, true},
-                {"QueryExtent", TypeCode(Kind::Struct, "FVector"), true, false},
+                {"Point", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"ProjectedLocation", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, true},
+                {"QueryExtent", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), true, false},
             },
             false,
             false,
@@ -363,10 +358,10 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "IsNavigable",
             "Returns whether Point is on the navigable area: over it, and at most MaxVerticalDistance metres above\nor below its surface.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"Point", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"MaxVerticalDistance", TypeCode(Kind::Float), true, false},
+                {"Point", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"MaxVerticalDistance", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), true, false},
             },
             false,
             false,
@@ -375,7 +370,7 @@ const sp::reflect::TypeInfo& ARecastNavMesh::StaticClass() {
         t.functions.push_back({
             "GetNavMeshTriangles",
             "Returns the mesh's surface as triangles, a (T, 3, 3) array of corners (for drawing a map).",
-            TypeCode(Kind::Array, "float64"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"),
             {
             },
             false,
@@ -405,9 +400,9 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
         t.functions.push_back({
             "GetNavigationSystem",
             "Returns the navigation system of WorldContextObject's world.",
-            TypeCode(Kind::Object, "UNavigationSystemV1"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UNavigationSystemV1"),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
             },
             true,
             false,
@@ -416,9 +411,9 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
         t.functions.push_back({
             "GetNavDataForAgentName",
             "Returns the navigation data of agent profile AgentName, or None.",
-            TypeCode(Kind::Object, "ARecastNavMesh", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "ARecastNavMesh", true),
             {
-                {"AgentName", TypeCode(Kind::Str), false, false},
+                {"AgentName", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
             },
             false,
             true,
@@ -427,7 +422,7 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
         t.functions.push_back({
             "GetDefaultNavDataInstance",
             "Returns the default navigation data: the world's first ARecastNavMesh, spawned (as\n\"RecastNavMesh-Default\") when it has none.",
-            TypeCode(Kind::Object, "ARecastNavMesh"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "ARecastNavMesh"),
             {
             },
             false,
@@ -437,7 +432,7 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
         t.functions.push_back({
             "Build",
             "Rebuilds every navigation data of the world now.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
             },
             false,
@@ -447,14 +442,14 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
         t.functions.push_back({
             "FindPathToLocationSynchronously",
             "Finds the shortest path from PathStart to PathEnd on NavData (None: the default): its corners\n((N, 3)) and length. Unlike UE, which returns a UNavigationPath, the points come back directly.",
-            TypeCode(Kind::Enum, "ENavigationQueryResult"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ENavigationQueryResult"),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
-                {"PathStart", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"PathEnd", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"PathPoints", TypeCode(Kind::Array, "float64"), false, true},
-                {"PathLength", TypeCode(Kind::Float), false, true},
-                {"NavData", TypeCode(Kind::Object, "ARecastNavMesh", true), true, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
+                {"PathStart", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"PathEnd", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"PathPoints", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"), false, true},
+                {"PathLength", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, true},
+                {"NavData", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "ARecastNavMesh", true), true, false},
             },
             true,
             false,
@@ -463,13 +458,13 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
         t.functions.push_back({
             "GetPathLength",
             "Computes the length of the shortest path from PathStart to PathEnd on NavData (None: the default).",
-            TypeCode(Kind::Enum, "ENavigationQueryResult"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ENavigationQueryResult"),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
-                {"PathStart", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"PathEnd", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"PathLength", TypeCode(Kind::Float), false, true},
-                {"NavData", TypeCode(Kind::Object, "ARecastNavMesh", true), true, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
+                {"PathStart", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"PathEnd", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"PathLength", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, true},
+                {"NavData", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "ARecastNavMesh", true), true, false},
             },
             true,
             false,
@@ -478,13 +473,13 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
         t.functions.push_back({
             "K2_GetRandomReachablePointInRadius",
             "Draws a point reachable from Origin within Radius metres; returns false when there is none.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
-                {"Origin", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"RandomLocation", TypeCode(Kind::Struct, "FVector"), false, true},
-                {"Radius", TypeCode(Kind::Float), false, false},
-                {"NavData", TypeCode(Kind::Object, "ARecastNavMesh", true), true, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
+                {"Origin", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"RandomLocation", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, true},
+                {"Radius", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+                {"NavData", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "ARecastNavMesh", true), true, false},
             },
             true,
             false,
@@ -493,13 +488,13 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
         t.functions.push_back({
             "K2_GetRandomLocationInNavigableRadius",
             "Draws a navigable point within Radius metres of Origin, reachable or not; returns false when there is\nnone.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
-                {"Origin", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"RandomLocation", TypeCode(Kind::Struct, "FVector"), false, true},
-                {"Radius", TypeCode(Kind::Float), false, false},
-                {"NavData", TypeCode(Kind::Object, "ARecastNavMesh", true), true, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
+                {"Origin", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"RandomLocation", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, true},
+                {"Radius", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+                {"NavData", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "ARecastNavMesh", true), true, false},
             },
             true,
             false,
@@ -508,13 +503,13 @@ const sp::reflect::TypeInfo& UNavigationSystemV1::StaticClass() {
         t.functions.push_back({
             "K2_ProjectPointToNavigation",
             "Projects Point onto NavData within QueryExtent (zero: the agent's default extent); returns false when\nno navigable point is that close.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"WorldContextObject", TypeCode(Kind::Object, "UObject"), false, false},
-                {"Point", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"ProjectedLocation", TypeCode(Kind::Struct, "FVector"), false, true},
-                {"NavData", TypeCode(Kind::Object, "ARecastNavMesh", true), true, false},
-                {"QueryExtent", TypeCode(Kind::Struct, "FVector"), true, false},
+                {"WorldContextObject", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"), false, false},
+                {"Point", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"ProjectedLocation", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, true},
+                {"NavData", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "ARecastNavMesh", true), true, false},
+                {"QueryExtent", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), true, false},
             },
             true,
             false,

@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- UObject ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& UObject::StaticClass() {
@@ -60,7 +55,7 @@ const sp::reflect::TypeInfo& UObject::StaticClass() {
         t.functions.push_back({
             "GetName",
             "Returns the object's name, unique among its siblings.",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             {
             },
             false,
@@ -70,7 +65,7 @@ const sp::reflect::TypeInfo& UObject::StaticClass() {
         t.functions.push_back({
             "GetClassName",
             "Returns the name of the object's class: its blueprint when it was spawned from one, else its most\nderived native class.",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             {
             },
             false,
@@ -80,7 +75,7 @@ const sp::reflect::TypeInfo& UObject::StaticClass() {
         t.functions.push_back({
             "GetWorld",
             "Returns the world this object lives in, or None for objects outside any world.",
-            TypeCode(Kind::Object, "UWorld", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UWorld", true),
             {
             },
             false,

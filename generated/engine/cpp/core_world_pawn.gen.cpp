@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- ADefaultPawn ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& ADefaultPawn::StaticClass() {
@@ -60,7 +55,7 @@ const sp::reflect::TypeInfo& ADefaultPawn::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "InputComponent",
-            TypeCode(Kind::Object, "UInputComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UInputComponent"),
             "Receives the injected actions (from inject_input_for_actor on the pawn or its controller).",
             true,
             [](const void* self) { return Calls::get_InputComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -68,7 +63,7 @@ const sp::reflect::TypeInfo& ADefaultPawn::StaticClass() {
         });
         t.properties.push_back({
             "MaxSpeed",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Speed in metres per second at full input.",
             false,
             [](const void* self) { return Calls::get_MaxSpeed<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -78,7 +73,7 @@ const sp::reflect::TypeInfo& ADefaultPawn::StaticClass() {
         });
         t.properties.push_back({
             "BaseTurnRate",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Degrees per second of yaw at \"Turn\" = 1.",
             false,
             [](const void* self) { return Calls::get_BaseTurnRate<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -88,7 +83,7 @@ const sp::reflect::TypeInfo& ADefaultPawn::StaticClass() {
         });
         t.properties.push_back({
             "BaseLookUpRate",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Degrees per second of pitch at \"LookUp\" = 1.",
             false,
             [](const void* self) { return Calls::get_BaseLookUpRate<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -119,7 +114,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "bUseControllerRotationPitch",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "Whether the pawn's pitch follows its controller's control rotation each tick.",
             false,
             [](const void* self) { return Calls::get_bUseControllerRotationPitch<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -129,7 +124,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
         });
         t.properties.push_back({
             "bUseControllerRotationYaw",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "Whether the pawn's yaw follows its controller's control rotation each tick.",
             false,
             [](const void* self) { return Calls::get_bUseControllerRotationYaw<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -139,7 +134,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
         });
         t.properties.push_back({
             "bUseControllerRotationRoll",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "Whether the pawn's roll follows its controller's control rotation each tick.",
             false,
             [](const void* self) { return Calls::get_bUseControllerRotationRoll<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -150,7 +145,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
         t.functions.push_back({
             "GetController",
             "Returns the controller that possesses this pawn, or None.",
-            TypeCode(Kind::Object, "AController", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AController", true),
             {
             },
             false,
@@ -160,7 +155,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
         t.functions.push_back({
             "IsControlled",
             "Returns true while a controller possesses this pawn.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
             },
             false,
@@ -170,7 +165,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
         t.functions.push_back({
             "IsPlayerControlled",
             "Returns true while a player controller possesses this pawn.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
             },
             false,
@@ -180,7 +175,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
         t.functions.push_back({
             "GetControlRotation",
             "Returns the controller's control rotation, or the pawn's own rotation when it has no controller.",
-            TypeCode(Kind::Struct, "FRotator"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FRotator"),
             {
             },
             false,
@@ -190,10 +185,10 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
         t.functions.push_back({
             "AddMovementInput",
             "Adds movement along WorldDirection, scaled by ScaleValue, for the pawn's next tick (the inputs of one\ntick add up; a pawn that moves itself, such as ADefaultPawn, consumes them).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"WorldDirection", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"ScaleValue", TypeCode(Kind::Float), true, false},
+                {"WorldDirection", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"ScaleValue", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), true, false},
             },
             false,
             false,
@@ -202,7 +197,7 @@ const sp::reflect::TypeInfo& APawn::StaticClass() {
         t.functions.push_back({
             "GetPendingMovementInputVector",
             "Returns the movement input added since the pawn last moved.",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
             },
             false,

@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPCGGenerationMode>() {
     static const sp::reflect::EnumInfo info{
         "EPCGGenerationMode",
@@ -73,7 +68,7 @@ const sp::reflect::TypeInfo& APCGVolume::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "BoxComponent",
-            TypeCode(Kind::Object, "UBoxComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UBoxComponent"),
             "The generation's box (the root component).",
             true,
             [](const void* self) { return Calls::get_BoxComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -81,7 +76,7 @@ const sp::reflect::TypeInfo& APCGVolume::StaticClass() {
         });
         t.properties.push_back({
             "PCGComponent",
-            TypeCode(Kind::Object, "UPCGComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UPCGComponent"),
             "The generator.",
             true,
             [](const void* self) { return Calls::get_PCGComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -110,7 +105,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "GenerationMode",
-            TypeCode(Kind::Enum, "EPCGGenerationMode"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EPCGGenerationMode"),
             "How actors are placed.",
             false,
             [](const void* self) { return Calls::get_GenerationMode<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -120,7 +115,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "Seed",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Seed of the placement's random draws: the same seed gives the same actors.",
             false,
             [](const void* self) { return Calls::get_Seed<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -130,7 +125,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "ActorClass",
-            TypeCode(Kind::Class, "AActor", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "AActor", true),
             "The class spawned (AStaticMeshActor and its subclasses take StaticMesh and Materials).",
             false,
             [](const void* self) { return Calls::get_ActorClass<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -140,7 +135,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "StaticMesh",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "The mesh of spawned static mesh actors.",
             false,
             [](const void* self) { return Calls::get_StaticMesh<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -150,7 +145,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "Materials",
-            TypeCode(Kind::List, TypeCode(Kind::Str)),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str)),
             "Materials drawn from for each spawned static mesh actor (empty: the mesh's own).",
             false,
             [](const void* self) { return Calls::get_Materials<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -160,7 +155,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "Spacing",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Scatter: the least distance between two actors; AlongSpline: the distance between them along it.",
             false,
             [](const void* self) { return Calls::get_Spacing<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -170,7 +165,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "MaxCount",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Scatter: at most this many actors.",
             false,
             [](const void* self) { return Calls::get_MaxCount<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -180,7 +175,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "MinScale",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Scatter and AlongSpline: each actor's uniform scale is drawn from [MinScale, MaxScale].",
             false,
             [](const void* self) { return Calls::get_MinScale<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -190,7 +185,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "MaxScale",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "",
             false,
             [](const void* self) { return Calls::get_MaxScale<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -200,7 +195,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "bRandomYaw",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "Scatter and AlongSpline (unaligned): turn each actor to a random yaw.",
             false,
             [](const void* self) { return Calls::get_bRandomYaw<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -210,7 +205,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "bProjectToGround",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "Drop each actor onto the geometry below it (a line trace down the box, before anything is spawned);\nwhere nothing is below, the actor is not placed. Otherwise actors stand on the box's floor.",
             false,
             [](const void* self) { return Calls::get_bProjectToGround<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -220,7 +215,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "ExclusionTag",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "Scatter: actors with this tag keep generated actors out of their bounds (\"\" for none).",
             false,
             [](const void* self) { return Calls::get_ExclusionTag<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -230,7 +225,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "SplineTag",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "AlongSpline: spline actors with this tag are followed, in spawn order. (A tag, not an actor reference:\na generation outlives the actors it read, and scenes save it as it is.)",
             false,
             [](const void* self) { return Calls::get_SplineTag<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -240,7 +235,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "SplineOffset",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "AlongSpline: the sideways distance from the spline (positive: its left).",
             false,
             [](const void* self) { return Calls::get_SplineOffset<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -250,7 +245,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "bBothSides",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "AlongSpline: place on both sides.",
             false,
             [](const void* self) { return Calls::get_bBothSides<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -260,7 +255,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "bAlignToSpline",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "AlongSpline: face along the spline.",
             false,
             [](const void* self) { return Calls::get_bAlignToSpline<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -270,7 +265,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "BlockSize",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "CityBlocks: the side of a block, metres.",
             false,
             [](const void* self) { return Calls::get_BlockSize<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -280,7 +275,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "StreetWidth",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "CityBlocks: the street between blocks, metres.",
             false,
             [](const void* self) { return Calls::get_StreetWidth<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -290,7 +285,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "LotsPerSide",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "CityBlocks: buildings along a block's side (LotsPerSide^2 per block).",
             false,
             [](const void* self) { return Calls::get_LotsPerSide<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -300,7 +295,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "MinHeight",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "CityBlocks: building heights are drawn from [MinHeight, MaxHeight] metres.",
             false,
             [](const void* self) { return Calls::get_MinHeight<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -310,7 +305,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "MaxHeight",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "",
             false,
             [](const void* self) { return Calls::get_MaxHeight<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -320,7 +315,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "RoadTag",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "CityBlocks: spline actors with this tag are roads.",
             false,
             [](const void* self) { return Calls::get_RoadTag<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -330,7 +325,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         });
         t.properties.push_back({
             "RoadWidth",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "CityBlocks: the width kept free along roads, metres.",
             false,
             [](const void* self) { return Calls::get_RoadWidth<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -341,9 +336,9 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         t.functions.push_back({
             "Generate",
             "Generates: removes the actors of the last generation and spawns new ones, unless nothing the rules\nread changed since (bForce: regardless).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"bForce", TypeCode(Kind::Bool), true, false},
+                {"bForce", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             false,
             false,
@@ -352,7 +347,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         t.functions.push_back({
             "Cleanup",
             "Destroys the generated actors.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
             },
             false,
@@ -362,7 +357,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         t.functions.push_back({
             "FlushCache",
             "Forgets what the last generation was made from, so the next Generate() builds afresh.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
             },
             false,
@@ -372,7 +367,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         t.functions.push_back({
             "GetGeneratedActors",
             "Returns the generated actors, in generation order.",
-            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor")),
             {
             },
             false,
@@ -382,7 +377,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         t.functions.push_back({
             "IsGenerated",
             "Returns whether generated actors exist.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
             },
             false,
@@ -392,7 +387,7 @@ const sp::reflect::TypeInfo& UPCGComponent::StaticClass() {
         t.functions.push_back({
             "GetLastGenerationSeconds",
             "Returns the seconds the last generation took.",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             {
             },
             false,

@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECollisionPrimitive>() {
     static const sp::reflect::EnumInfo info{
         "ECollisionPrimitive",
@@ -78,7 +73,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.isAbstract = true;
         t.properties.push_back({
             "bSimulatePhysics",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "Whether physics moves this component (gravity, forces, contacts); it must be Movable.",
             false,
             [](const void* self) { return Calls::get_bSimulatePhysics<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -88,7 +83,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         });
         t.properties.push_back({
             "CollisionPrimitive",
-            TypeCode(Kind::Enum, "ECollisionPrimitive"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ECollisionPrimitive"),
             "The collision geometry used by physics and traces.",
             false,
             [](const void* self) { return Calls::get_CollisionPrimitive<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -98,7 +93,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         });
         t.properties.push_back({
             "MassInKg",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Mass in kilograms (> 0 to simulate); inertia follows the collision shape at uniform density.",
             false,
             [](const void* self) { return Calls::get_MassInKg<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -108,7 +103,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         });
         t.properties.push_back({
             "Friction",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Coulomb friction coefficient (>= 0); the two coefficients at a contact are multiplied.",
             false,
             [](const void* self) { return Calls::get_Friction<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -118,7 +113,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         });
         t.properties.push_back({
             "Restitution",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Bounciness in [0, 1]; the two coefficients at a contact are multiplied.",
             false,
             [](const void* self) { return Calls::get_Restitution<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -128,7 +123,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         });
         t.properties.push_back({
             "LinearDamping",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Fraction of linear velocity lost per second, in [0, 1].",
             false,
             [](const void* self) { return Calls::get_LinearDamping<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -138,7 +133,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         });
         t.properties.push_back({
             "AngularDamping",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Fraction of angular velocity lost per second, in [0, 1].",
             false,
             [](const void* self) { return Calls::get_AngularDamping<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -148,7 +143,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         });
         t.properties.push_back({
             "bGenerateOverlapEvents",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "Whether this component takes part in overlaps: two components overlap only when both have it set\n(as in UE). Shape components (UBoxComponent, USphereComponent) have it set by default.",
             false,
             [](const void* self) { return Calls::get_bGenerateOverlapEvents<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -158,7 +153,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         });
         t.properties.push_back({
             "bCanEverAffectNavigation",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "Whether navigation meshes are built over this component when it is Static and collides (as in UE).",
             false,
             [](const void* self) { return Calls::get_bCanEverAffectNavigation<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -169,10 +164,10 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "GetBounds",
             "Returns the world-space axis-aligned bounds as centre Origin and half size BoxExtent.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Origin", TypeCode(Kind::Struct, "FVector"), false, true},
-                {"BoxExtent", TypeCode(Kind::Struct, "FVector"), false, true},
+                {"Origin", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, true},
+                {"BoxExtent", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, true},
             },
             false,
             true,
@@ -181,9 +176,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "SetSimulatePhysics",
             "Turns physics simulation on or off; turning it on needs a Movable component with collision.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"bSimulate", TypeCode(Kind::Bool), false, false},
+                {"bSimulate", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), false, false},
             },
             false,
             false,
@@ -192,7 +187,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "IsSimulatingPhysics",
             "Returns true while physics moves this component.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
             },
             false,
@@ -202,9 +197,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "SetMassOverrideInKg",
             "Sets the mass in kilograms (> 0).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"MassInKg", TypeCode(Kind::Float), false, false},
+                {"MassInKg", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -213,9 +208,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "SetFriction",
             "Sets the Coulomb friction coefficient (finite, >= 0).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewFriction", TypeCode(Kind::Float), false, false},
+                {"NewFriction", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -224,9 +219,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "SetRestitution",
             "Sets the bounciness, in [0, 1].",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewRestitution", TypeCode(Kind::Float), false, false},
+                {"NewRestitution", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -235,9 +230,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "SetLinearDamping",
             "Sets the fraction of linear velocity lost per second, in [0, 1].",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewLinearDamping", TypeCode(Kind::Float), false, false},
+                {"NewLinearDamping", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -246,9 +241,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "SetAngularDamping",
             "Sets the fraction of angular velocity lost per second, in [0, 1].",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewAngularDamping", TypeCode(Kind::Float), false, false},
+                {"NewAngularDamping", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -257,7 +252,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "GetMass",
             "Returns the mass in kilograms.",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             {
             },
             false,
@@ -267,10 +262,10 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "AddForce",
             "Adds a force in newtons at the centre of mass for the next physics step (an acceleration in m/s^2\nwhen bAccelChange is true).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Force", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"bAccelChange", TypeCode(Kind::Bool), true, false},
+                {"Force", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"bAccelChange", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             false,
             false,
@@ -279,9 +274,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "AddTorqueInRadians",
             "Adds a torque in newton-metres about world axes for the next physics step.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Torque", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"Torque", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
             },
             false,
             false,
@@ -290,10 +285,10 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "AddImpulse",
             "Changes the velocity at once by Impulse / mass (Impulse in N*s; a velocity change in m/s when\nbVelChange is true).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Impulse", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"bVelChange", TypeCode(Kind::Bool), true, false},
+                {"Impulse", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"bVelChange", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             false,
             false,
@@ -302,10 +297,10 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "SetPhysicsLinearVelocity",
             "Sets the linear velocity in m/s (adds it to the current one when bAddToCurrent is true).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewVel", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"bAddToCurrent", TypeCode(Kind::Bool), true, false},
+                {"NewVel", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"bAddToCurrent", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             false,
             false,
@@ -314,7 +309,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "GetPhysicsLinearVelocity",
             "Returns the linear velocity in m/s (zero when not simulated).",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
             },
             false,
@@ -324,10 +319,10 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "SetPhysicsAngularVelocityInDegrees",
             "Sets the angular velocity in degrees per second about world axes.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewAngVel", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"bAddToCurrent", TypeCode(Kind::Bool), true, false},
+                {"NewAngVel", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"bAddToCurrent", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             false,
             false,
@@ -336,7 +331,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "GetPhysicsAngularVelocityInDegrees",
             "Returns the angular velocity in degrees per second about world axes (zero when not simulated).",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
             },
             false,
@@ -346,7 +341,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "IsAnyRigidBodyAwake",
             "Returns true while this component's body is awake (false for sleeping or non-simulated ones).",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
             },
             false,
@@ -356,7 +351,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "GetOverlappingComponents",
             "Returns the components of other actors whose collision shapes touch or intersect this one's now\n(both must generate overlap events), in the order they entered play.",
-            TypeCode(Kind::List, TypeCode(Kind::Object, "UPrimitiveComponent")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UPrimitiveComponent")),
             {
             },
             false,
@@ -366,9 +361,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "GetOverlappingActors",
             "Returns the actors (of class ClassFilter or a subclass) that own the components overlapping this one.",
-            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor")),
             {
-                {"ClassFilter", TypeCode(Kind::Class, "AActor"), false, false},
+                {"ClassFilter", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "AActor"), false, false},
             },
             false,
             true,
@@ -377,9 +372,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "IsOverlappingComponent",
             "Returns true when OtherComp overlaps this component now.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"OtherComp", TypeCode(Kind::Object, "UPrimitiveComponent"), false, false},
+                {"OtherComp", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UPrimitiveComponent"), false, false},
             },
             false,
             true,
@@ -388,9 +383,9 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "IsOverlappingActor",
             "Returns true when a component of Other overlaps this component now.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"Other", TypeCode(Kind::Object, "AActor"), false, false},
+                {"Other", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor"), false, false},
             },
             false,
             true,
@@ -399,7 +394,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "GetBeginOverlaps",
             "Returns the components that began overlapping this one in the last frame's physics step (UE's\nOnComponentBeginOverlap, polled).",
-            TypeCode(Kind::List, TypeCode(Kind::Object, "UPrimitiveComponent")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UPrimitiveComponent")),
             {
             },
             false,
@@ -409,7 +404,7 @@ const sp::reflect::TypeInfo& UPrimitiveComponent::StaticClass() {
         t.functions.push_back({
             "GetEndOverlaps",
             "Returns the components that stopped overlapping this one in the last frame's physics step (UE's\nOnComponentEndOverlap, polled); destroyed ones are left out.",
-            TypeCode(Kind::List, TypeCode(Kind::Object, "UPrimitiveComponent")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UPrimitiveComponent")),
             {
             },
             false,

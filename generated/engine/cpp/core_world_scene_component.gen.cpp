@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EComponentMobility>() {
     static const sp::reflect::EnumInfo info{
         "EComponentMobility",
@@ -73,7 +68,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "RelativeLocation",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             "Location relative to the attach parent (or the world), in metres.",
             false,
             [](const void* self) { return Calls::get_RelativeLocation<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -83,7 +78,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         });
         t.properties.push_back({
             "RelativeRotation",
-            TypeCode(Kind::Struct, "FRotator"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FRotator"),
             "Rotation relative to the attach parent (or the world).",
             false,
             [](const void* self) { return Calls::get_RelativeRotation<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -93,7 +88,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         });
         t.properties.push_back({
             "RelativeScale3D",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             "Scale relative to the attach parent (or the world).",
             false,
             [](const void* self) { return Calls::get_RelativeScale3D<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -103,7 +98,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         });
         t.properties.push_back({
             "Mobility",
-            TypeCode(Kind::Enum, "EComponentMobility"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EComponentMobility"),
             "Whether the component may move once in play.",
             false,
             [](const void* self) { return Calls::get_Mobility<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -113,7 +108,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         });
         t.properties.push_back({
             "bVisible",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "Whether the component is rendered.",
             false,
             [](const void* self) { return Calls::get_bVisible<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -124,9 +119,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "SetRelativeLocation",
             "Sets the location relative to the attach parent; fails for a static component in play.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewLocation", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"NewLocation", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
             },
             false,
             false,
@@ -135,9 +130,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "SetRelativeRotation",
             "Sets the rotation relative to the attach parent; fails for a static component in play.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewRotation", TypeCode(Kind::Struct, "FRotator"), false, false},
+                {"NewRotation", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FRotator"), false, false},
             },
             false,
             false,
@@ -146,9 +141,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "SetRelativeScale3D",
             "Sets the scale relative to the attach parent; fails for a static component in play.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewScale3D", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"NewScale3D", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
             },
             false,
             false,
@@ -157,9 +152,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "SetRelativeTransform",
             "Sets location, rotation and scale relative to the attach parent.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewTransform", TypeCode(Kind::Struct, "FTransform"), false, false},
+                {"NewTransform", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FTransform"), false, false},
             },
             false,
             false,
@@ -168,7 +163,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetRelativeTransform",
             "Returns the transform relative to the attach parent.",
-            TypeCode(Kind::Struct, "FTransform"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FTransform"),
             {
             },
             false,
@@ -178,9 +173,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "SetMobility",
             "Sets the mobility (Static, Stationary or Movable).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewMobility", TypeCode(Kind::Enum, "EComponentMobility"), false, false},
+                {"NewMobility", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EComponentMobility"), false, false},
             },
             false,
             false,
@@ -189,7 +184,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetComponentTransform",
             "Returns the world-space transform.",
-            TypeCode(Kind::Struct, "FTransform"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FTransform"),
             {
             },
             false,
@@ -199,7 +194,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetComponentLocation",
             "Returns the world-space location in metres.",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
             },
             false,
@@ -209,7 +204,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "K2_GetComponentLocation",
             "Returns the world-space location in metres (the Blueprint name of GetComponentLocation).",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
             },
             false,
@@ -219,7 +214,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetComponentRotation",
             "Returns the world-space rotation.",
-            TypeCode(Kind::Struct, "FRotator"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FRotator"),
             {
             },
             false,
@@ -229,7 +224,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetComponentScale",
             "Returns the world-space scale.",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
             },
             false,
@@ -239,9 +234,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "SetWorldLocation",
             "Moves the component so that its world-space location is NewLocation.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewLocation", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"NewLocation", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
             },
             false,
             false,
@@ -250,9 +245,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "SetWorldRotation",
             "Rotates the component so that its world-space rotation is NewRotation.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewRotation", TypeCode(Kind::Struct, "FRotator"), false, false},
+                {"NewRotation", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FRotator"), false, false},
             },
             false,
             false,
@@ -261,9 +256,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "SetWorldTransform",
             "Sets the world-space transform.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewTransform", TypeCode(Kind::Struct, "FTransform"), false, false},
+                {"NewTransform", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FTransform"), false, false},
             },
             false,
             false,
@@ -272,7 +267,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetForwardVector",
             "Returns the unit vector along the component's world-space X axis.",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
             },
             false,
@@ -282,7 +277,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetRightVector",
             "Returns the unit vector along the component's world-space Y axis (left).",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
             },
             false,
@@ -292,7 +287,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetUpVector",
             "Returns the unit vector along the component's world-space Z axis.",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
             },
             false,
@@ -302,10 +297,10 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "AttachToComponent",
             "Attaches this component to Parent; keeps the world transform when bKeepWorldTransform is true.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Parent", TypeCode(Kind::Object, "USceneComponent"), false, false},
-                {"bKeepWorldTransform", TypeCode(Kind::Bool), true, false},
+                {"Parent", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "USceneComponent"), false, false},
+                {"bKeepWorldTransform", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             false,
             false,
@@ -314,9 +309,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "DetachFromComponent",
             "Detaches this component from its parent; keeps the world transform when bKeepWorldTransform is true.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"bKeepWorldTransform", TypeCode(Kind::Bool), true, false},
+                {"bKeepWorldTransform", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             false,
             false,
@@ -325,7 +320,7 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetAttachParent",
             "Returns the component this one is attached to, or None.",
-            TypeCode(Kind::Object, "USceneComponent", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "USceneComponent", true),
             {
             },
             false,
@@ -335,9 +330,9 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         t.functions.push_back({
             "GetChildrenComponents",
             "Returns the attached children, and their descendants when bIncludeAllDescendants is true.",
-            TypeCode(Kind::List, TypeCode(Kind::Object, "USceneComponent")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "USceneComponent")),
             {
-                {"bIncludeAllDescendants", TypeCode(Kind::Bool), true, false},
+                {"bIncludeAllDescendants", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             false,
             true,

@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- ATriggerBox ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& ATriggerBox::StaticClass() {
@@ -60,7 +55,7 @@ const sp::reflect::TypeInfo& ATriggerBox::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "CollisionComponent",
-            TypeCode(Kind::Object, "UBoxComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UBoxComponent"),
             "The trigger's shape (the root component).",
             true,
             [](const void* self) { return Calls::get_CollisionComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -89,7 +84,7 @@ const sp::reflect::TypeInfo& ATriggerSphere::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "CollisionComponent",
-            TypeCode(Kind::Object, "USphereComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "USphereComponent"),
             "The trigger's shape (the root component).",
             true,
             [](const void* self) { return Calls::get_CollisionComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -118,7 +113,7 @@ const sp::reflect::TypeInfo& UBoxComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "BoxExtent",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             "Half the box's size along each axis, in metres before the component's scale (each > 0).",
             false,
             [](const void* self) { return Calls::get_BoxExtent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -129,9 +124,9 @@ const sp::reflect::TypeInfo& UBoxComponent::StaticClass() {
         t.functions.push_back({
             "SetBoxExtent",
             "Sets BoxExtent (each component finite and > 0).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"InBoxExtent", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"InBoxExtent", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
             },
             false,
             false,
@@ -160,7 +155,7 @@ const sp::reflect::TypeInfo& UCapsuleComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "CapsuleRadius",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "The radius in metres before the component's scale (> 0).",
             false,
             [](const void* self) { return Calls::get_CapsuleRadius<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -170,7 +165,7 @@ const sp::reflect::TypeInfo& UCapsuleComponent::StaticClass() {
         });
         t.properties.push_back({
             "CapsuleHalfHeight",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Half the height in metres, hemispheres included, before the component's scale (> 0); a half height\nbelow the radius counts as the radius (a sphere), as in UE.",
             false,
             [](const void* self) { return Calls::get_CapsuleHalfHeight<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -181,9 +176,9 @@ const sp::reflect::TypeInfo& UCapsuleComponent::StaticClass() {
         t.functions.push_back({
             "SetCapsuleRadius",
             "Sets CapsuleRadius (finite, > 0).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Radius", TypeCode(Kind::Float), false, false},
+                {"Radius", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -192,9 +187,9 @@ const sp::reflect::TypeInfo& UCapsuleComponent::StaticClass() {
         t.functions.push_back({
             "SetCapsuleHalfHeight",
             "Sets CapsuleHalfHeight (finite, > 0).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"HalfHeight", TypeCode(Kind::Float), false, false},
+                {"HalfHeight", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -241,7 +236,7 @@ const sp::reflect::TypeInfo& USphereComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "SphereRadius",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "The sphere's radius in metres before the component's scale (> 0).",
             false,
             [](const void* self) { return Calls::get_SphereRadius<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -252,9 +247,9 @@ const sp::reflect::TypeInfo& USphereComponent::StaticClass() {
         t.functions.push_back({
             "SetSphereRadius",
             "Sets SphereRadius (finite, > 0).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"InSphereRadius", TypeCode(Kind::Float), false, false},
+                {"InSphereRadius", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,

@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ESplineCoordinateSpace>() {
     static const sp::reflect::EnumInfo info{
         "ESplineCoordinateSpace",
@@ -72,7 +67,7 @@ const sp::reflect::TypeInfo& ASplineActor::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "SplineComponent",
-            TypeCode(Kind::Object, "USplineComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "USplineComponent"),
             "The spline (the root component).",
             true,
             [](const void* self) { return Calls::get_SplineComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -101,7 +96,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "SplinePoints",
-            TypeCode(Kind::List, TypeCode(Kind::Struct, "FVector")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector")),
             "The points, in the component's space (metres).",
             false,
             [](const void* self) { return Calls::get_SplinePoints<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -111,7 +106,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         });
         t.properties.push_back({
             "bClosedLoop",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "Whether the last point joins the first.",
             false,
             [](const void* self) { return Calls::get_bClosedLoop<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -121,7 +116,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         });
         t.properties.push_back({
             "bDrawDebug",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "Draws the curve in camera images as a glowing tube (a debug line for looking at paths and roads; it is\ndrawn like any object, in every modality, casting no shadow).",
             false,
             [](const void* self) { return Calls::get_bDrawDebug<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -131,7 +126,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         });
         t.properties.push_back({
             "DebugLineThickness",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "The debug line's thickness in metres (> 0).",
             false,
             [](const void* self) { return Calls::get_DebugLineThickness<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -141,7 +136,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         });
         t.properties.push_back({
             "DebugLineColor",
-            TypeCode(Kind::Struct, "FLinearColor"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FLinearColor"),
             "The debug line's colour (linear; it glows with it).",
             false,
             [](const void* self) { return Calls::get_DebugLineColor<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -152,9 +147,9 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "SetDebugLineThickness",
             "Sets DebugLineThickness (finite, > 0).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Thickness", TypeCode(Kind::Float), false, false},
+                {"Thickness", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -163,11 +158,11 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "AddSplinePoint",
             "Adds a point at the end. bUpdateSpline is accepted for UE compatibility (the curve is always current).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Position", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
-                {"bUpdateSpline", TypeCode(Kind::Bool), true, false},
+                {"Position", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"CoordinateSpace", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ESplineCoordinateSpace"), false, false},
+                {"bUpdateSpline", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             false,
             false,
@@ -176,9 +171,9 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "ClearSplinePoints",
             "Removes every point.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"bUpdateSpline", TypeCode(Kind::Bool), true, false},
+                {"bUpdateSpline", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             false,
             false,
@@ -187,11 +182,11 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "SetSplinePoints",
             "Replaces the points.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Points", TypeCode(Kind::List, TypeCode(Kind::Struct, "FVector")), false, false},
-                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
-                {"bUpdateSpline", TypeCode(Kind::Bool), true, false},
+                {"Points", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector")), false, false},
+                {"CoordinateSpace", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ESplineCoordinateSpace"), false, false},
+                {"bUpdateSpline", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             false,
             false,
@@ -200,7 +195,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetNumberOfSplinePoints",
             "Returns the number of points.",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             {
             },
             false,
@@ -210,10 +205,10 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "SetClosedLoop",
             "Makes the spline a closed loop or an open curve.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"bInClosedLoop", TypeCode(Kind::Bool), false, false},
-                {"bUpdateSpline", TypeCode(Kind::Bool), true, false},
+                {"bInClosedLoop", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), false, false},
+                {"bUpdateSpline", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             false,
             false,
@@ -222,7 +217,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "IsClosedLoop",
             "Returns true for a closed loop.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
             },
             false,
@@ -232,7 +227,7 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetSplineLength",
             "Returns the length of the curve in metres (in the component's space, before its scale).",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             {
             },
             false,
@@ -242,10 +237,10 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetLocationAtDistanceAlongSpline",
             "Returns the point at Distance metres along the curve (clamped to it).",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
-                {"Distance", TypeCode(Kind::Float), false, false},
-                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
+                {"Distance", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+                {"CoordinateSpace", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ESplineCoordinateSpace"), false, false},
             },
             false,
             true,
@@ -254,10 +249,10 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetDirectionAtDistanceAlongSpline",
             "Returns the unit direction of the curve at Distance metres along it.",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
-                {"Distance", TypeCode(Kind::Float), false, false},
-                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
+                {"Distance", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+                {"CoordinateSpace", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ESplineCoordinateSpace"), false, false},
             },
             false,
             true,
@@ -266,10 +261,10 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetRotationAtDistanceAlongSpline",
             "Returns the rotation whose X axis follows the curve at Distance metres along it (no roll).",
-            TypeCode(Kind::Struct, "FRotator"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FRotator"),
             {
-                {"Distance", TypeCode(Kind::Float), false, false},
-                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
+                {"Distance", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+                {"CoordinateSpace", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ESplineCoordinateSpace"), false, false},
             },
             false,
             true,
@@ -278,10 +273,10 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetLocationAtSplineInputKey",
             "Returns the curve at input key InKey (point index + fraction of the way to the next point).",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
-                {"InKey", TypeCode(Kind::Float), false, false},
-                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
+                {"InKey", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+                {"CoordinateSpace", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ESplineCoordinateSpace"), false, false},
             },
             false,
             true,
@@ -290,10 +285,10 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetLocationAtSplinePoint",
             "Returns point PointIndex.",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
-                {"PointIndex", TypeCode(Kind::Int), false, false},
-                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
+                {"PointIndex", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
+                {"CoordinateSpace", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ESplineCoordinateSpace"), false, false},
             },
             false,
             true,
@@ -302,10 +297,10 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetTangentAtSplinePoint",
             "Returns the tangent at point PointIndex (its own, or the automatic one).",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
-                {"PointIndex", TypeCode(Kind::Int), false, false},
-                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
+                {"PointIndex", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
+                {"CoordinateSpace", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ESplineCoordinateSpace"), false, false},
             },
             false,
             true,
@@ -314,12 +309,12 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "SetTangentAtSplinePoint",
             "Gives point PointIndex a tangent of its own.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"PointIndex", TypeCode(Kind::Int), false, false},
-                {"InTangent", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
-                {"bUpdateSpline", TypeCode(Kind::Bool), true, false},
+                {"PointIndex", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
+                {"InTangent", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"CoordinateSpace", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ESplineCoordinateSpace"), false, false},
+                {"bUpdateSpline", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
             },
             false,
             false,
@@ -328,9 +323,9 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetDistanceAlongSplineAtSplinePoint",
             "Returns the distance along the curve at point PointIndex.",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             {
-                {"PointIndex", TypeCode(Kind::Int), false, false},
+                {"PointIndex", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
             },
             false,
             true,
@@ -339,10 +334,10 @@ const sp::reflect::TypeInfo& USplineComponent::StaticClass() {
         t.functions.push_back({
             "GetLocationsAtDistances",
             "Returns the points at each of Distances (a 1-D float64 array, metres along the curve) as an (N, 3)\nfloat64 array: many evaluations in one call.",
-            TypeCode(Kind::Array, "float64"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"),
             {
-                {"Distances", TypeCode(Kind::Array, "float64"), false, false},
-                {"CoordinateSpace", TypeCode(Kind::Enum, "ESplineCoordinateSpace"), false, false},
+                {"Distances", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"), false, false},
+                {"CoordinateSpace", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ESplineCoordinateSpace"), false, false},
             },
             false,
             true,

@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- AStaticMeshActor ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& AStaticMeshActor::StaticClass() {
@@ -60,7 +55,7 @@ const sp::reflect::TypeInfo& AStaticMeshActor::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "StaticMeshComponent",
-            TypeCode(Kind::Object, "UStaticMeshComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UStaticMeshComponent"),
             "The mesh component (also the root component).",
             true,
             [](const void* self) { return Calls::get_StaticMeshComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },

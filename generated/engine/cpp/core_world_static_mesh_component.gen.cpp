@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- UStaticMeshComponent ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
@@ -60,7 +55,7 @@ const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "StaticMesh",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "The mesh asset: a built-in shape (\"/Engine/BasicShapes/Cube\", \"Sphere\", \"Cylinder\", \"Plane\") or a\nfile.",
             false,
             [](const void* self) { return Calls::get_StaticMesh<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -70,7 +65,7 @@ const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
         });
         t.properties.push_back({
             "Materials",
-            TypeCode(Kind::List, TypeCode(Kind::Str)),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str)),
             "One material asset per mesh slot; an empty entry uses the default material.",
             false,
             [](const void* self) { return Calls::get_Materials<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -81,9 +76,9 @@ const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
         t.functions.push_back({
             "SetStaticMesh",
             "Sets the mesh asset; returns false when the name is not a known mesh.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"NewMesh", TypeCode(Kind::Str), false, false},
+                {"NewMesh", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
             },
             false,
             false,
@@ -92,10 +87,10 @@ const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
         t.functions.push_back({
             "SetMaterial",
             "Sets the material of one slot, growing the list as needed.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"ElementIndex", TypeCode(Kind::Int), false, false},
-                {"Material", TypeCode(Kind::Str), false, false},
+                {"ElementIndex", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
+                {"Material", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
             },
             false,
             false,

@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- AWheeledVehiclePawn ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
@@ -60,7 +55,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Mesh",
-            TypeCode(Kind::Object, "UStaticMeshComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UStaticMeshComponent"),
             "The chassis (the root component): a simulated box; its scale is the car's size, its mass the car's.",
             true,
             [](const void* self) { return Calls::get_Mesh<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -68,7 +63,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "Cabin",
-            TypeCode(Kind::Object, "UStaticMeshComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UStaticMeshComponent"),
             "The cabin on top of the chassis (no collision: the chassis box is the car's body).",
             true,
             [](const void* self) { return Calls::get_Cabin<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -76,7 +71,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "WheelFrontLeft",
-            TypeCode(Kind::Object, "UStaticMeshComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UStaticMeshComponent"),
             "The wheel meshes, which follow the simulated wheels (no collision: the wheels are rays).",
             true,
             [](const void* self) { return Calls::get_WheelFrontLeft<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -84,7 +79,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "WheelFrontRight",
-            TypeCode(Kind::Object, "UStaticMeshComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UStaticMeshComponent"),
             "",
             true,
             [](const void* self) { return Calls::get_WheelFrontRight<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -92,7 +87,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "WheelRearLeft",
-            TypeCode(Kind::Object, "UStaticMeshComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UStaticMeshComponent"),
             "",
             true,
             [](const void* self) { return Calls::get_WheelRearLeft<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -100,7 +95,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "WheelRearRight",
-            TypeCode(Kind::Object, "UStaticMeshComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UStaticMeshComponent"),
             "",
             true,
             [](const void* self) { return Calls::get_WheelRearRight<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -108,7 +103,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "InputComponent",
-            TypeCode(Kind::Object, "UInputComponent"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UInputComponent"),
             "Receives the injected actions.",
             true,
             [](const void* self) { return Calls::get_InputComponent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -116,7 +111,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "MaxEngineForce",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Driving force in newtons at full throttle, shared by the rear wheels (>= 0).",
             false,
             [](const void* self) { return Calls::get_MaxEngineForce<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -126,7 +121,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "MaxBrakeForce",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Braking force in newtons per wheel at full brake (>= 0).",
             false,
             [](const void* self) { return Calls::get_MaxBrakeForce<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -136,7 +131,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "MaxSteerAngle",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Front wheels' steering angle in degrees at full steer, in [0, 80].",
             false,
             [](const void* self) { return Calls::get_MaxSteerAngle<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -146,7 +141,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "WheelRadius",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Tyre radius in metres (> 0).",
             false,
             [](const void* self) { return Calls::get_WheelRadius<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -156,7 +151,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "SuspensionStiffness",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Suspension spring rate per kilogram of the car's mass, N/m/kg (> 0): the car sinks\n9.81 / (4 * SuspensionStiffness) metres under its weight.",
             false,
             [](const void* self) { return Calls::get_SuspensionStiffness<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -166,7 +161,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         });
         t.properties.push_back({
             "TireFriction",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Tyre grip: the largest driving and cornering force over the load on the wheel (>= 0).",
             false,
             [](const void* self) { return Calls::get_TireFriction<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -177,9 +172,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.functions.push_back({
             "SetMaxEngineForce",
             "Sets MaxEngineForce (newtons, >= 0).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewForce", TypeCode(Kind::Float), false, false},
+                {"NewForce", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -188,9 +183,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.functions.push_back({
             "SetMaxBrakeForce",
             "Sets MaxBrakeForce (newtons, >= 0).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewForce", TypeCode(Kind::Float), false, false},
+                {"NewForce", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -199,9 +194,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.functions.push_back({
             "SetMaxSteerAngle",
             "Sets MaxSteerAngle (degrees, in [0, 80]).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewAngle", TypeCode(Kind::Float), false, false},
+                {"NewAngle", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -210,9 +205,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.functions.push_back({
             "SetWheelRadius",
             "Sets WheelRadius (metres, > 0).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewRadius", TypeCode(Kind::Float), false, false},
+                {"NewRadius", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -221,9 +216,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.functions.push_back({
             "SetSuspensionStiffness",
             "Sets SuspensionStiffness (N/m/kg, > 0).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewStiffness", TypeCode(Kind::Float), false, false},
+                {"NewStiffness", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -232,9 +227,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.functions.push_back({
             "SetTireFriction",
             "Sets TireFriction (>= 0).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewFriction", TypeCode(Kind::Float), false, false},
+                {"NewFriction", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -243,7 +238,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.functions.push_back({
             "GetForwardSpeed",
             "Returns the speed along the car's forward axis in metres per second (negative when reversing).",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             {
             },
             false,
@@ -253,7 +248,7 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.functions.push_back({
             "GetNumWheels",
             "Returns the number of wheels.",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             {
             },
             false,
@@ -263,9 +258,9 @@ const sp::reflect::TypeInfo& AWheeledVehiclePawn::StaticClass() {
         t.functions.push_back({
             "GetWheelState",
             "Returns the state of wheel WheelIndex (0 front left, 1 front right, 2 rear left, 3 rear right).",
-            TypeCode(Kind::Struct, "FWheelState"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FWheelState"),
             {
-                {"WheelIndex", TypeCode(Kind::Int), false, false},
+                {"WheelIndex", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
             },
             false,
             true,
@@ -293,7 +288,7 @@ const sp::reflect::TypeInfo& FWheelState::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "bInContact",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "True while the wheel touches the ground.",
             false,
             [](const void* self) { return Calls::get_bInContact<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -303,7 +298,7 @@ const sp::reflect::TypeInfo& FWheelState::StaticClass() {
         });
         t.properties.push_back({
             "Location",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             "The wheel's centre, world space (metres).",
             false,
             [](const void* self) { return Calls::get_Location<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -313,7 +308,7 @@ const sp::reflect::TypeInfo& FWheelState::StaticClass() {
         });
         t.properties.push_back({
             "ContactPoint",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             "Where the wheel touches the ground, world space (meaningful while bInContact).",
             false,
             [](const void* self) { return Calls::get_ContactPoint<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -323,7 +318,7 @@ const sp::reflect::TypeInfo& FWheelState::StaticClass() {
         });
         t.properties.push_back({
             "SuspensionLength",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Suspension length in metres (the rest length less the compression).",
             false,
             [](const void* self) { return Calls::get_SuspensionLength<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -333,7 +328,7 @@ const sp::reflect::TypeInfo& FWheelState::StaticClass() {
         });
         t.properties.push_back({
             "RotationInDegrees",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Degrees the wheel has rolled (forward is positive).",
             false,
             [](const void* self) { return Calls::get_RotationInDegrees<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -343,7 +338,7 @@ const sp::reflect::TypeInfo& FWheelState::StaticClass() {
         });
         t.properties.push_back({
             "SteerAngleInDegrees",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Steering angle in degrees, positive to the left.",
             false,
             [](const void* self) { return Calls::get_SteerAngleInDegrees<ValueCall>(sp::reflect::selfCast<const Self>(self)); },

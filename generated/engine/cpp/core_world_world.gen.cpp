@@ -39,11 +39,6 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 // -- UWorld ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& UWorld::StaticClass() {
@@ -61,13 +56,13 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "spawn_actor",
             "Spawns an actor of class uclass at location and rotation; name must be unique in the world (empty:\ngenerated).",
-            TypeCode(Kind::Object, "AActor"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor"),
             {
-                {"uclass", TypeCode(Kind::Class, "AActor"), false, false},
-                {"location", TypeCode(Kind::Struct, "FVector"), true, false},
-                {"rotation", TypeCode(Kind::Struct, "FRotator"), true, false},
-                {"name", TypeCode(Kind::Str), true, false},
-                {"tags", TypeCode(Kind::List, TypeCode(Kind::Str)), true, false},
+                {"uclass", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "AActor"), false, false},
+                {"location", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), true, false},
+                {"rotation", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FRotator"), true, false},
+                {"name", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), true, false},
+                {"tags", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str)), true, false},
             },
             false,
             false,
@@ -76,9 +71,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "destroy_actor",
             "Destroys actor and its components; its handles become invalid.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"actor", TypeCode(Kind::Object, "AActor"), false, false},
+                {"actor", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor"), false, false},
             },
             false,
             false,
@@ -87,9 +82,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "find_actor_by_name",
             "Returns the actor called name, or None.",
-            TypeCode(Kind::Object, "AActor", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor", true),
             {
-                {"name", TypeCode(Kind::Str), false, false},
+                {"name", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
             },
             false,
             true,
@@ -98,9 +93,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "find_actors_by_tag",
             "Returns every actor that has tag, in spawn order.",
-            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor")),
             {
-                {"tag", TypeCode(Kind::Str), false, false},
+                {"tag", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
             },
             false,
             true,
@@ -109,9 +104,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "find_actor_by_class",
             "Returns the first actor of class uclass or a subclass of it, or None.",
-            TypeCode(Kind::Object, "AActor", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor", true),
             {
-                {"uclass", TypeCode(Kind::Class, "AActor"), false, false},
+                {"uclass", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "AActor"), false, false},
             },
             false,
             true,
@@ -120,9 +115,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "find_actors_by_class",
             "Returns every actor of class uclass or a subclass of it, in spawn order.",
-            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor")),
             {
-                {"uclass", TypeCode(Kind::Class, "AActor"), false, false},
+                {"uclass", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "AActor"), false, false},
             },
             false,
             true,
@@ -131,9 +126,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "find_actors_by_class_as_dict",
             "Returns every actor of class uclass or a subclass of it, by name.",
-            TypeCode(Kind::Dict, TypeCode(Kind::Object, "AActor")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Dict, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor")),
             {
-                {"uclass", TypeCode(Kind::Class, "AActor"), false, false},
+                {"uclass", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "AActor"), false, false},
             },
             false,
             true,
@@ -142,7 +137,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "find_actors",
             "Returns every actor in the world, in spawn order.",
-            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor")),
             {
             },
             false,
@@ -152,10 +147,10 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "get_component_by_name",
             "Returns the component of actor called component_name, or None.",
-            TypeCode(Kind::Object, "UActorComponent", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UActorComponent", true),
             {
-                {"actor", TypeCode(Kind::Object, "AActor"), false, false},
-                {"component_name", TypeCode(Kind::Str), false, false},
+                {"actor", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor"), false, false},
+                {"component_name", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
             },
             false,
             true,
@@ -164,10 +159,10 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "get_components_by_class",
             "Returns the components of actor of class uclass or a subclass of it.",
-            TypeCode(Kind::List, TypeCode(Kind::Object, "UActorComponent")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UActorComponent")),
             {
-                {"actor", TypeCode(Kind::Object, "AActor"), false, false},
-                {"uclass", TypeCode(Kind::Class, "UActorComponent"), false, false},
+                {"actor", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor"), false, false},
+                {"uclass", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "UActorComponent"), false, false},
             },
             false,
             true,
@@ -176,10 +171,10 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "get_components_by_class_as_dict",
             "Returns the components of actor of class uclass or a subclass of it, by name.",
-            TypeCode(Kind::Dict, TypeCode(Kind::Object, "UActorComponent")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Dict, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UActorComponent")),
             {
-                {"actor", TypeCode(Kind::Object, "AActor"), false, false},
-                {"uclass", TypeCode(Kind::Class, "UActorComponent"), false, false},
+                {"actor", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor"), false, false},
+                {"uclass", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "UActorComponent"), false, false},
             },
             false,
             true,
@@ -188,10 +183,10 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "load_class",
             "Loads the blueprint asset at path name (a JSON file, see core/world/blueprint.h) once and returns its\nclass, named after the file (\"BP_Axes\"), which must derive from uclass; name may also name a class.",
-            TypeCode(Kind::Class, "UObject"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "UObject"),
             {
-                {"uclass", TypeCode(Kind::Class, "UObject"), false, false},
-                {"name", TypeCode(Kind::Str), false, false},
+                {"uclass", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "UObject"), false, false},
+                {"name", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
             },
             false,
             false,
@@ -200,9 +195,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "get_default_object",
             "Returns the class default object of uclass: an instance outside the world holding the class defaults.",
-            TypeCode(Kind::Object, "UObject"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject"),
             {
-                {"uclass", TypeCode(Kind::Class, "UObject"), false, false},
+                {"uclass", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "UObject"), false, false},
             },
             false,
             false,
@@ -211,9 +206,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "get_actor_locations",
             "Returns the world-space locations of actors as an (N, 3) float64 array, rows in the order given. The\nactors may be in any of the engine's worlds: one actor per world gives a leading world axis.",
-            TypeCode(Kind::Array, "float64"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"),
             {
-                {"actors", TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")), false, false},
+                {"actors", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor")), false, false},
             },
             false,
             true,
@@ -222,10 +217,10 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "set_actor_locations",
             "Moves each actor to the matching row of locations, an (N, 3) float64 array (one call for many actors,\nin any of the engine's worlds).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"actors", TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")), false, false},
-                {"locations", TypeCode(Kind::Array, "float64"), false, false},
+                {"actors", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor")), false, false},
+                {"locations", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"), false, false},
             },
             false,
             false,
@@ -234,7 +229,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "get_actor_count",
             "Returns the number of actors in the world.",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             {
             },
             false,
@@ -244,7 +239,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "get_time_seconds",
             "Returns the simulated time of this world in seconds.",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             {
             },
             false,
@@ -254,7 +249,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "get_frame_count",
             "Returns the number of frames this world has ticked.",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             {
             },
             false,
@@ -264,13 +259,13 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "line_trace_single",
             "Traces the segment start -> end against every collision body; returns true on a hit, with the hit,\nand the actor and component that were hit (None when nothing was hit).",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"start", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"end", TypeCode(Kind::Struct, "FVector"), false, false},
-                {"hit", TypeCode(Kind::Struct, "FHitResult"), false, true},
-                {"actor", TypeCode(Kind::Object, "AActor"), false, true},
-                {"component", TypeCode(Kind::Object, "UPrimitiveComponent"), false, true},
+                {"start", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"end", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
+                {"hit", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FHitResult"), false, true},
+                {"actor", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor", true), false, true},
+                {"component", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UPrimitiveComponent", true), false, true},
             },
             false,
             false,
@@ -279,11 +274,11 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "inject_input_for_actor",
             "Routes a continuous input action with the given value to actor's UInputComponent for the next tick.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"actor", TypeCode(Kind::Object, "AActor"), false, false},
-                {"input_action_name", TypeCode(Kind::Str), false, false},
-                {"value", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"actor", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor"), false, false},
+                {"input_action_name", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
+                {"value", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
             },
             false,
             false,
@@ -292,9 +287,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "load_scene",
             "Replaces every actor of this world by those of the scene file at path (see core/world/scene_io.h).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"path", TypeCode(Kind::Str), false, false},
+                {"path", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
             },
             false,
             false,
@@ -303,9 +298,9 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "save_scene",
             "Writes every actor and component of this world, with every reflected property, to a scene file.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"path", TypeCode(Kind::Str), false, false},
+                {"path", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
             },
             false,
             true,
@@ -314,7 +309,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "is_editor_world",
             "Returns true for the persistent world of an editor instance.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
             },
             false,
@@ -324,7 +319,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "is_game_world",
             "Returns true for a world that plays (a standalone instance's world, or the editor's play world).",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
             },
             false,
@@ -334,7 +329,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "play",
             "Editor world only: starts play in a new game world copied from this one (instance.get_game()).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
             },
             false,
@@ -344,7 +339,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "stop",
             "Editor world only: ends play and destroys the game world; its objects' handles become stale.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
             },
             false,
@@ -354,7 +349,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         t.functions.push_back({
             "is_playing",
             "Editor world only: returns true while a game world copied from this one is playing.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
             },
             false,

@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "aa8faaf2d4f7618f"
+API_HASH = "8f21a3e79adf4b69"

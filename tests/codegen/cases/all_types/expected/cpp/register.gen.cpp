@@ -25,4 +25,4 @@ extern "C" void spear_unregister_all_types_types() {
     registry.remove(sp::reflect::StaticEnum<EChannel>());
 }
 
-extern "C" const char* spear_register_all_types_types_api_hash() { return "ec70b4e174520a3a"; }
+extern "C" const char* spear_register_all_types_types_api_hash() { return "7c186c6720a02b5e"; }

@@ -9,11 +9,6 @@
 #include "generated/all_types/cpp/all_types_calls.gen.h"
 #include "generated/all_types/cpp/all_types_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EChannel>() {
     static const sp::reflect::EnumInfo info{
         "EChannel",
@@ -43,7 +38,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "bFlag",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             "A flag.",
             false,
             [](const void* self) { return Calls::get_bFlag<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -53,7 +48,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         });
         t.properties.push_back({
             "Small",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "A small unsigned integer.",
             false,
             [](const void* self) { return Calls::get_Small<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -63,7 +58,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         });
         t.properties.push_back({
             "Big",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "A 64-bit integer.",
             false,
             [](const void* self) { return Calls::get_Big<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -73,7 +68,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         });
         t.properties.push_back({
             "Ratio",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "A float.",
             false,
             [](const void* self) { return Calls::get_Ratio<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -83,7 +78,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         });
         t.properties.push_back({
             "Label",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "A name.",
             false,
             [](const void* self) { return Calls::get_Label<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -93,7 +88,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         });
         t.properties.push_back({
             "Target",
-            TypeCode(Kind::Object, "AActor", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor", true),
             "A reference to another actor.",
             false,
             [](const void* self) { return Calls::get_Target<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -103,7 +98,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         });
         t.properties.push_back({
             "Weights",
-            TypeCode(Kind::Dict, TypeCode(Kind::Float)),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Dict, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float)),
             "Named weights.",
             false,
             [](const void* self) { return Calls::get_Weights<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -113,7 +108,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         });
         t.properties.push_back({
             "Counter",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Visible but not writable from Python.",
             true,
             [](const void* self) { return Calls::get_Counter<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -121,7 +116,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         });
         t.properties.push_back({
             "Speed",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Written through its setter.",
             false,
             [](const void* self) { return Calls::get_Speed<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -132,9 +127,9 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "SetSpeed",
             "Sets Speed, clamped to be non-negative.",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"NewSpeed", TypeCode(Kind::Float), false, false},
+                {"NewSpeed", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
             },
             false,
             false,
@@ -143,11 +138,11 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "Scale",
             "Returns a scaled copy of the sample.",
-            TypeCode(Kind::Struct, "FSample"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FSample"),
             {
-                {"Sample", TypeCode(Kind::Struct, "FSample"), false, false},
-                {"Factor", TypeCode(Kind::Float), true, false},
-                {"Channel", TypeCode(Kind::Enum, "EChannel"), true, false},
+                {"Sample", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FSample"), false, false},
+                {"Factor", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), true, false},
+                {"Channel", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EChannel"), true, false},
             },
             false,
             true,
@@ -156,11 +151,11 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "Split",
             "Splits a string, with out-parameters.",
-            TypeCode(Kind::Bool),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
-                {"Text", TypeCode(Kind::Str), false, false},
-                {"Head", TypeCode(Kind::Str), false, true},
-                {"Rest", TypeCode(Kind::List, TypeCode(Kind::Str)), false, true},
+                {"Text", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
+                {"Head", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, true},
+                {"Rest", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str)), false, true},
             },
             false,
             false,
@@ -169,10 +164,10 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "Collect",
             "Returns the actors of a class, typed by it.",
-            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor")),
             {
-                {"ActorClass", TypeCode(Kind::Class, "AActor"), false, false},
-                {"Candidates", TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")), true, false},
+                {"ActorClass", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "AActor"), false, false},
+                {"Candidates", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor")), true, false},
             },
             false,
             false,
@@ -181,9 +176,9 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "ClassOf",
             "Returns the class of an object, or None.",
-            TypeCode(Kind::Class, "UObject", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "UObject", true),
             {
-                {"Object", TypeCode(Kind::Object, "UObject", true), true, false},
+                {"Object", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UObject", true), true, false},
             },
             false,
             true,
@@ -192,9 +187,9 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "Normalise",
             "Normalises points (N, 3) in place and returns their lengths (N,).",
-            TypeCode(Kind::Array, "float32"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float32"),
             {
-                {"Points", TypeCode(Kind::Array, "float32"), false, false},
+                {"Points", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float32"), false, false},
             },
             false,
             false,
@@ -203,10 +198,10 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "Histogram",
             "Returns a histogram of byte values.",
-            TypeCode(Kind::Dict, TypeCode(Kind::Int)),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Dict, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int)),
             {
-                {"Bytes", TypeCode(Kind::Array, "uint8"), false, false},
-                {"Bins", TypeCode(Kind::Int), true, false},
+                {"Bytes", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "uint8"), false, false},
+                {"Bins", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), true, false},
             },
             true,
             false,
@@ -215,9 +210,9 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "Render",
             "Renders the requested images.",
-            TypeCode(Kind::Struct, "FImages"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FImages"),
             {
-                {"Names", TypeCode(Kind::List, TypeCode(Kind::Str)), false, false},
+                {"Names", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str)), false, false},
             },
             false,
             false,
@@ -226,9 +221,9 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "Measure",
             "Measures a cloud of (N, 3) points.",
-            TypeCode(Kind::Struct, "FCloudStats"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FCloudStats"),
             {
-                {"Points", TypeCode(Kind::Array, "float32"), false, false},
+                {"Points", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float32"), false, false},
             },
             false,
             false,
@@ -237,7 +232,7 @@ const sp::reflect::TypeInfo& AAllTypes::StaticClass() {
         t.functions.push_back({
             "Self",
             "Never returns None.",
-            TypeCode(Kind::Object, "AActor"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor"),
             {
             },
             false,
@@ -267,7 +262,7 @@ const sp::reflect::TypeInfo& FCloudStats::StaticClass() {
         t.isCompleteDict = true;
         t.properties.push_back({
             "distances",
-            TypeCode(Kind::Array, "float32"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float32"),
             "Distance of each point from the origin, (N,).",
             false,
             [](const void* self) { return Calls::get_distances<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -277,7 +272,7 @@ const sp::reflect::TypeInfo& FCloudStats::StaticClass() {
         });
         t.properties.push_back({
             "count",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "How many points there were.",
             false,
             [](const void* self) { return Calls::get_count<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -307,7 +302,7 @@ const sp::reflect::TypeInfo& FImages::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "color",
-            TypeCode(Kind::Array, "uint8"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "uint8"),
             "Colour, (H, W, 4).",
             false,
             [](const void* self) { return Calls::get_color<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -317,7 +312,7 @@ const sp::reflect::TypeInfo& FImages::StaticClass() {
         });
         t.properties.push_back({
             "depth",
-            TypeCode(Kind::Array, "float32"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float32"),
             "Depth in metres, (H, W).",
             false,
             [](const void* self) { return Calls::get_depth<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -347,7 +342,7 @@ const sp::reflect::TypeInfo& FSample::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "Where",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             "Where it was taken.",
             false,
             [](const void* self) { return Calls::get_Where<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -357,7 +352,7 @@ const sp::reflect::TypeInfo& FSample::StaticClass() {
         });
         t.properties.push_back({
             "Channel",
-            TypeCode(Kind::Enum, "EChannel"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EChannel"),
             "Which channel.",
             false,
             [](const void* self) { return Calls::get_Channel<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -367,7 +362,7 @@ const sp::reflect::TypeInfo& FSample::StaticClass() {
         });
         t.properties.push_back({
             "Values",
-            TypeCode(Kind::List, TypeCode(Kind::Float)),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float)),
             "Raw values.",
             false,
             [](const void* self) { return Calls::get_Values<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -377,7 +372,7 @@ const sp::reflect::TypeInfo& FSample::StaticClass() {
         });
         t.properties.push_back({
             "Count",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "A count.",
             false,
             [](const void* self) { return Calls::get_Count<ValueCall>(sp::reflect::selfCast<const Self>(self)); },

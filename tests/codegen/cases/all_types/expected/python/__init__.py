@@ -2,4 +2,4 @@
 """Typed API of the 'all_types' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "all_types"
-API_HASH = "ec70b4e174520a3a"
+API_HASH = "7c186c6720a02b5e"

@@ -23,4 +23,4 @@ extern "C" void spear_unregister_namespaced_plugin_types() {
     registry.remove(sp::reflect::StaticEnum<acme::robots::EGait>());
 }
 
-extern "C" const char* spear_register_namespaced_plugin_types_api_hash() { return "2ca3960b17bb495f"; }
+extern "C" const char* spear_register_namespaced_plugin_types_api_hash() { return "909fb30065fb60a0"; }

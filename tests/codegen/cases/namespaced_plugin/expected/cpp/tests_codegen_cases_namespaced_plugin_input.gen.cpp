@@ -9,11 +9,6 @@
 #include "generated/namespaced_plugin/cpp/namespaced_plugin_calls.gen.h"
 #include "generated/namespaced_plugin/cpp/namespaced_plugin_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<acme::robots::EGait>() {
     static const sp::reflect::EnumInfo info{
         "EGait",
@@ -42,7 +37,7 @@ const sp::reflect::TypeInfo& acme::robots::ABaseBot::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Speed",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Speed in metres per second.",
             false,
             [](const void* self) { return Calls::get_Speed<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -53,10 +48,10 @@ const sp::reflect::TypeInfo& acme::robots::ABaseBot::StaticClass() {
         t.functions.push_back({
             "SetGait",
             "Sets the gait (running unless told).",
-            TypeCode(Kind::Void),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
-                {"Gait", TypeCode(Kind::Enum, "EGait"), true, false},
-                {"Settings", TypeCode(Kind::Struct, "FGaitSettings"), true, false},
+                {"Gait", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EGait"), true, false},
+                {"Settings", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FGaitSettings"), true, false},
             },
             false,
             false,
@@ -65,7 +60,7 @@ const sp::reflect::TypeInfo& acme::robots::ABaseBot::StaticClass() {
         t.functions.push_back({
             "GetGait",
             "Returns the gait.",
-            TypeCode(Kind::Enum, "EGait"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EGait"),
             {
             },
             false,
@@ -75,10 +70,10 @@ const sp::reflect::TypeInfo& acme::robots::ABaseBot::StaticClass() {
         t.functions.push_back({
             "FleetSize",
             "Returns how many robots a fleet of Count has, plus Spares.",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             {
-                {"Count", TypeCode(Kind::Int), false, false},
-                {"Spares", TypeCode(Kind::Int), true, false},
+                {"Count", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
+                {"Spares", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), true, false},
             },
             true,
             false,
@@ -107,7 +102,7 @@ const sp::reflect::TypeInfo& acme::robots::AWalkerBot::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Legs",
-            TypeCode(Kind::Int),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Number of legs.",
             false,
             [](const void* self) { return Calls::get_Legs<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -118,7 +113,7 @@ const sp::reflect::TypeInfo& acme::robots::AWalkerBot::StaticClass() {
         t.functions.push_back({
             "GetLeader",
             "Returns the robot it follows, or None.",
-            TypeCode(Kind::Object, "ABaseBot", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "ABaseBot", true),
             {
             },
             false,
@@ -147,7 +142,7 @@ const sp::reflect::TypeInfo& acme::robots::FGaitSettings::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "Stride",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Stride in metres.",
             false,
             [](const void* self) { return Calls::get_Stride<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -157,7 +152,7 @@ const sp::reflect::TypeInfo& acme::robots::FGaitSettings::StaticClass() {
         });
         t.properties.push_back({
             "Gait",
-            TypeCode(Kind::Enum, "EGait"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EGait"),
             "The gait it starts in.",
             false,
             [](const void* self) { return Calls::get_Gait<ValueCall>(sp::reflect::selfCast<const Self>(self)); },

@@ -2,4 +2,4 @@
 """Typed API of the 'namespaced_plugin' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "namespaced_plugin"
-API_HASH = "2ca3960b17bb495f"
+API_HASH = "909fb30065fb60a0"

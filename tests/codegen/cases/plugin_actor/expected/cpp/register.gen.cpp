@@ -23,4 +23,4 @@ extern "C" void spear_unregister_plugin_actor_types() {
     registry.remove(sp::reflect::StaticEnum<EPluginMood>());
 }
 
-extern "C" const char* spear_register_plugin_actor_types_api_hash() { return "13cb484572ccd904"; }
+extern "C" const char* spear_register_plugin_actor_types_api_hash() { return "5734951dbb253649"; }

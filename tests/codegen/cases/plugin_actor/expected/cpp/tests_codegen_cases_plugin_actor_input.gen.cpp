@@ -9,11 +9,6 @@
 #include "generated/plugin_actor/cpp/plugin_actor_calls.gen.h"
 #include "generated/plugin_actor/cpp/plugin_actor_types.gen.h"
 
-namespace {
-using sp::reflect::TypeCode; // the declared types below
-using Kind = sp::reflect::TypeCode::Kind;
-} // namespace
-
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPluginMood>() {
     static const sp::reflect::EnumInfo info{
         "EPluginMood",
@@ -42,7 +37,7 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Radius",
-            TypeCode(Kind::Float),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Its radius in metres.",
             false,
             [](const void* self) { return Calls::get_Radius<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -52,7 +47,7 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
         });
         t.properties.push_back({
             "Settings",
-            TypeCode(Kind::Struct, "FPluginSettings"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FPluginSettings"),
             "Its settings.",
             false,
             [](const void* self) { return Calls::get_Settings<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -62,7 +57,7 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
         });
         t.properties.push_back({
             "Leader",
-            TypeCode(Kind::Object, "AActor", true),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor", true),
             "Another actor it follows, or None.",
             false,
             [](const void* self) { return Calls::get_Leader<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -73,9 +68,9 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
         t.functions.push_back({
             "Offset",
             "Returns its location moved by Delta.",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             {
-                {"Delta", TypeCode(Kind::Struct, "FVector"), false, false},
+                {"Delta", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"), false, false},
             },
             false,
             true,
@@ -84,7 +79,7 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
         t.functions.push_back({
             "Neighbours",
             "Returns the actors within Radius.",
-            TypeCode(Kind::List, TypeCode(Kind::Object, "AActor")),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "AActor")),
             {
             },
             false,
@@ -94,9 +89,9 @@ const sp::reflect::TypeInfo& APluginActor::StaticClass() {
         t.functions.push_back({
             "SetMood",
             "Sets its mood, returning the previous one.",
-            TypeCode(Kind::Enum, "EPluginMood"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EPluginMood"),
             {
-                {"Mood", TypeCode(Kind::Enum, "EPluginMood"), true, false},
+                {"Mood", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EPluginMood"), true, false},
             },
             false,
             false,
@@ -125,7 +120,7 @@ const sp::reflect::TypeInfo& APluginChild::StaticClass() {
         t.create = []() -> sp::reflect::ObjectBase* { return new Self(); };
         t.properties.push_back({
             "Nickname",
-            TypeCode(Kind::Str),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "A name.",
             false,
             [](const void* self) { return Calls::get_Nickname<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -155,7 +150,7 @@ const sp::reflect::TypeInfo& FPluginSettings::StaticClass() {
         t.isAbstract = false;
         t.properties.push_back({
             "Home",
-            TypeCode(Kind::Struct, "FVector"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FVector"),
             "Where it rests.",
             false,
             [](const void* self) { return Calls::get_Home<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
@@ -165,7 +160,7 @@ const sp::reflect::TypeInfo& FPluginSettings::StaticClass() {
         });
         t.properties.push_back({
             "Mood",
-            TypeCode(Kind::Enum, "EPluginMood"),
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EPluginMood"),
             "How it reacts.",
             false,
             [](const void* self) { return Calls::get_Mood<ValueCall>(sp::reflect::selfCast<const Self>(self)); },

@@ -2,4 +2,4 @@
 """Typed API of the 'plugin_actor' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "plugin_actor"
-API_HASH = "13cb484572ccd904"
+API_HASH = "5734951dbb253649"
