@@ -97,30 +97,59 @@ void RenderScene::logOnce(const std::string& key, const std::string& message) {
         SP_LOG(message);
 }
 
-void RenderScene::sync(UWorld& world) {
-    // One walk over the world; libraries first, because every mesh slot resolves names against them.
+void RenderScene::track(AActor& actor) {
+    if (const auto* library = dynamic_cast<const AMaterialLibrary*>(&actor))
+        libraries_.add(library);
+}
+
+void RenderScene::untrack(AActor& actor) {
+    if (const auto* library = dynamic_cast<const AMaterialLibrary*>(&actor))
+        libraries_.remove(library);
+}
+
+void RenderScene::track(UActorComponent& component) {
+    if (auto* mesh = dynamic_cast<UStaticMeshComponent*>(&component))
+        meshComponents_.add(mesh);
+    else if (const auto* spline = dynamic_cast<const USplineComponent*>(&component))
+        splines_.add(spline);
+    else if (const auto* light = dynamic_cast<const ULightComponent*>(&component))
+        lightComponents_.add(light);
+    else if (const auto* sky = dynamic_cast<const USkyLightComponent*>(&component))
+        skies_.add(sky);
+}
+
+void RenderScene::untrack(UActorComponent& component) {
+    if (const auto* mesh = dynamic_cast<const UStaticMeshComponent*>(&component))
+        meshComponents_.remove(mesh);
+    else if (const auto* spline = dynamic_cast<const USplineComponent*>(&component))
+        splines_.remove(spline);
+    else if (const auto* light = dynamic_cast<const ULightComponent*>(&component))
+        lightComponents_.remove(light);
+    else if (const auto* sky = dynamic_cast<const USkyLightComponent*>(&component))
+        skies_.remove(sky);
+}
+
+void RenderScene::sync() {
+    // Libraries first, because every mesh slot resolves names against them.
     std::vector<UStaticMeshComponent*> meshes;
     std::vector<const USplineComponent*> splines;
     std::vector<const ULightComponent*> lights;
     const USkyLightComponent* sky = nullptr;
     std::map<std::string, FMaterialDesc> library;
-    for (AActor* actor : world.find_actors()) {
-        if (const auto* materials = dynamic_cast<const AMaterialLibrary*>(actor))
-            for (const auto& [name, desc] : materials->Materials)
-                library.emplace(name, desc); // the first library spawned wins a name clash
-        for (const auto& component : actor->GetComponentList()) {
-            if (auto* mesh = dynamic_cast<UStaticMeshComponent*>(component.get()))
-                meshes.push_back(mesh);
-            else if (const auto* spline = dynamic_cast<const USplineComponent*>(component.get());
-                     spline && spline->bDrawDebug)
-                splines.push_back(spline);
-            else if (const auto* light = dynamic_cast<const ULightComponent*>(component.get()))
-                lights.push_back(light);
-            else if (const auto* skyLight = dynamic_cast<const USkyLightComponent*>(component.get());
-                     skyLight && !sky)
-                sky = skyLight;
-        }
-    }
+    libraries_.forEach([&](const AMaterialLibrary& materials) {
+        for (const auto& [name, desc] : materials.Materials)
+            library.emplace(name, desc); // the first library spawned wins a name clash
+    });
+    meshComponents_.forEach([&](UStaticMeshComponent& mesh) { meshes.push_back(&mesh); });
+    splines_.forEach([&](const USplineComponent& spline) {
+        if (spline.bDrawDebug)
+            splines.push_back(&spline);
+    });
+    lightComponents_.forEach([&](const ULightComponent& light) { lights.push_back(&light); });
+    skies_.forEach([&](const USkyLightComponent& skyLight) {
+        if (!sky)
+            sky = &skyLight;
+    });
 
     std::set<sp::reflect::ObjectHandle> alive;
     for (UStaticMeshComponent* mesh : meshes) {

@@ -1,26 +1,58 @@
 #pragma once
-// RenderScene: the render-side mirror of one world (no GL). sync() walks the world's actors and brings
-// the sp::render::Scene up to date: one instance per visible static mesh component, one material per
-// slot resolved by name (see material_library.h), lights and the sky, and a glowing tube along each
-// spline component with bDrawDebug. It also owns the object ids:
-// one per (component, material slot), from a counter that never repeats (0 is the background).
+// RenderScene: the render-side mirror of one world (no GL). It knows what to mirror by registration: the
+// world's RenderSubsystem tells it of actors and components as they begin and end play (track/untrack),
+// so a frame never walks the whole world. sync() brings the sp::render::Scene up to date with what it
+// tracks: one instance per visible static mesh component, one material per slot resolved by name (see
+// material_library.h), lights and the sky, and a glowing tube along each spline component with
+// bDrawDebug. It also owns the object ids: one per (component, material slot), from a counter that never
+// repeats (0 is the background).
 
 #include <cstdint>
 #include <map>
 #include <optional>
 #include <set>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "core/reflect/value.h"
 #include "core/render/scene.h"
 #include "core/sensors/material_library.h"
 
-class UWorld;
+class AActor;
+class AMaterialLibrary;
+class UActorComponent;
+class ULightComponent;
+class USkyLightComponent;
 class UStaticMeshComponent;
 class USplineComponent;
 
 namespace sp::sensors {
+
+// Objects in the order they began play (the world's order), removable by pointer.
+template <typename T> class PlayOrder {
+  public:
+    void add(T* item) {
+        if (order_.emplace(item, next_).second)
+            items_.emplace(next_++, item);
+    }
+    void remove(const T* item) {
+        if (auto it = order_.find(item); it != order_.end()) {
+            items_.erase(it->second);
+            order_.erase(it);
+        }
+    }
+    template <typename F> void forEach(const F& f) const {
+        for (const auto& [sequence, item] : items_)
+            f(*item);
+    }
+    bool empty() const { return items_.empty(); }
+
+  private:
+    std::map<std::uint64_t, T*> items_;
+    std::unordered_map<const T*, std::uint64_t> order_;
+    std::uint64_t next_ = 0;
+};
 
 class RenderScene {
   public:
@@ -30,9 +62,16 @@ class RenderScene {
         std::string materialName;
     };
 
-    // Brings the render scene up to date with `world`. Missing mesh files and textures are logged once
-    // and skipped, so that one bad asset does not stop every camera.
-    void sync(UWorld& world);
+    // What the scene mirrors: actors (material libraries) and components (meshes, splines, lights, skies)
+    // in play. Others are ignored; tracking twice or untracking what is not tracked does nothing.
+    void track(AActor& actor);
+    void untrack(AActor& actor);
+    void track(UActorComponent& component);
+    void untrack(UActorComponent& component);
+
+    // Brings the render scene up to date with what is tracked. Missing mesh files and textures are logged
+    // once and skipped, so that one bad asset does not stop every camera.
+    void sync();
 
     const sp::render::Scene& scene() const { return scene_; }
     std::optional<ObjectIdInfo> objectIdInfo(std::uint32_t id) const;
@@ -78,6 +117,12 @@ class RenderScene {
     std::optional<sp::render::TextureId> textureFor(const std::string& path,
                                                     sp::render::TextureEncoding encoding);
     void logOnce(const std::string& key, const std::string& message);
+
+    PlayOrder<const AMaterialLibrary> libraries_;
+    PlayOrder<UStaticMeshComponent> meshComponents_;
+    PlayOrder<const USplineComponent> splines_;
+    PlayOrder<const ULightComponent> lightComponents_;
+    PlayOrder<const USkyLightComponent> skies_;
 
     sp::render::Scene scene_;
     std::map<std::string, MeshEntry> meshes_;

@@ -168,7 +168,27 @@ struct RenderSubsystem::CameraState {
     sp::render::LensModel lensModel;
 };
 
-RenderSubsystem::RenderSubsystem(UWorld& world) : world_(world) {}
+RenderSubsystem::RenderSubsystem(UWorld& world) : world_(world), scene_(std::make_unique<RenderScene>()) {}
+
+void RenderSubsystem::OnActorBeginPlay(AActor& actor) {
+    scene_->track(actor);
+}
+
+void RenderSubsystem::OnActorEndPlay(AActor& actor) {
+    scene_->untrack(actor);
+}
+
+void RenderSubsystem::OnComponentBeginPlay(UActorComponent& component) {
+    if (auto* camera = dynamic_cast<UCameraSensorComponent*>(&component))
+        cameraComponents_.add(camera);
+    scene_->track(component);
+}
+
+void RenderSubsystem::OnComponentEndPlay(UActorComponent& component) {
+    if (const auto* camera = dynamic_cast<const UCameraSensorComponent*>(&component))
+        cameraComponents_.remove(camera);
+    scene_->untrack(component);
+}
 
 RenderSubsystem::~RenderSubsystem() {
     if (!context_)
@@ -185,17 +205,13 @@ void RenderSubsystem::ensureRenderer() {
     if (!context_) {
         context_ = std::make_unique<sp::render::GlContext>(); // logs the EGL device it chose, once
         renderer_ = std::make_unique<sp::render::Renderer>(*context_);
-        scene_ = std::make_unique<RenderScene>();
     }
     context_->makeCurrent();
 }
 
 void RenderSubsystem::Tick(double /*deltaSeconds*/) {
     std::vector<UCameraSensorComponent*> cameras;
-    for (AActor* actor : world_.find_actors())
-        for (const auto& component : actor->GetComponentList())
-            if (auto* camera = dynamic_cast<UCameraSensorComponent*>(component.get()))
-                cameras.push_back(camera);
+    cameraComponents_.forEach([&](UCameraSensorComponent& camera) { cameras.push_back(&camera); });
 
     // Render targets of destroyed cameras go (with the context current, as they hold GL objects).
     if (context_)
@@ -210,7 +226,7 @@ void RenderSubsystem::Tick(double /*deltaSeconds*/) {
         return;
 
     ensureRenderer();
-    scene_->sync(world_);
+    scene_->sync();
     for (UCameraSensorComponent* camera : cameras)
         if (!camera->renderSuspended())
             submit(*camera);

@@ -1,8 +1,10 @@
 #pragma once
-// RenderSubsystem: the renderer of one world. It owns one GL context, renderer and render scene, created
-// lazily on the first frame that has a camera (worlds without cameras never touch EGL), and every
-// frame, after the actors and physics have ticked:
-//   1. syncs the render scene with the world: static mesh components (mesh, one material per slot,
+// RenderSubsystem: the renderer of one world, made by the world's first camera. It mirrors the world by
+// registration, as physics does: the world tells it of actors and components as they begin and end play
+// (sp::world::WorldSubsystem), which it passes to its render scene and its camera list, so a frame never
+// walks every actor. It owns one GL context and renderer, created lazily on the first frame that has a
+// camera (worlds without cameras never touch EGL), and every frame, after the actors and physics ticked:
+//   1. syncs the render scene with what it tracks: static mesh components (mesh, one material per slot,
 //      world transform, visibility), light components and the sky light;
 //   2. submits one render per camera sensor into that camera's render target (latency ring).
 // read_pixels() then reads the due frame. Object ids are one per (component, material slot), assigned
@@ -21,6 +23,7 @@
 #include "core/render/modality.h"
 #include "core/sensors/camera_sensor_component.h"
 #include "core/sensors/material_library.h"
+#include "core/sensors/render_scene.h"
 #include "core/world/world_subsystem.h"
 
 class UWorld;
@@ -51,6 +54,13 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     ~RenderSubsystem() override;
 
     void Tick(double deltaSeconds) override;
+    // Registration: the render scene and the camera list follow the world as things begin and end play.
+    void OnActorBeginPlay(AActor& actor) override;
+    void OnActorEndPlay(AActor& actor) override;
+    void OnComponentBeginPlay(UActorComponent& component) override;
+    void OnComponentEndPlay(UActorComponent& component) override;
+    // The world as the render scene mirrors it (no GL: read without rendering).
+    RenderScene& renderScene() { return *scene_; }
 
     // The due frame of `camera` (see UCameraSensorComponent); empty while priming or before the first
     // render. Reading twice returns the same images.
@@ -107,8 +117,9 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     // the context (members are destroyed bottom-up, and the destructor releases the targets first).
     std::unique_ptr<sp::render::GlContext> context_;
     std::unique_ptr<sp::render::Renderer> renderer_;
-    std::unique_ptr<RenderScene> scene_;
-    std::unique_ptr<sp::pathtrace::PathTracer> tracer_; // started by the first path-traced camera
+    std::unique_ptr<RenderScene> scene_;                 // from construction, to be told of what begins play
+    std::unique_ptr<sp::pathtrace::PathTracer> tracer_;  // started by the first path-traced camera
+    PlayOrder<UCameraSensorComponent> cameraComponents_; // the world's cameras in play
     std::map<sp::reflect::ObjectHandle, std::unique_ptr<CameraState>> cameras_;
 };
 

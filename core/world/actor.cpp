@@ -4,6 +4,7 @@
 
 #include "core/base/error.h"
 #include "core/world/primitive_component.h"
+#include "core/world/world.h"
 
 AActor::AActor() = default;
 
@@ -31,7 +32,23 @@ void AActor::adoptComponent(std::unique_ptr<UActorComponent> component, std::str
     UActorComponent* raw = component.get();
     components_.push_back(std::move(component));
     if (begunPlay_)
-        raw->BeginPlay();
+        beginComponentPlay(*raw);
+}
+
+void AActor::beginComponentPlay(UActorComponent& component) {
+    component.BeginPlay();
+    component.SetBegunPlay(true);
+    if (UWorld* world = GetWorld())
+        world->NotifyComponentBeginPlay(component);
+}
+
+void AActor::endComponentPlay(UActorComponent& component) {
+    if (component.HasBegunPlay()) {
+        component.SetBegunPlay(false);
+        if (UWorld* world = GetWorld())
+            world->NotifyComponentEndPlay(component);
+    }
+    component.EndPlay();
 }
 
 UActorComponent* AActor::CreateComponent(const UClass& type, std::string name) {
@@ -54,7 +71,7 @@ void AActor::DestroyComponent(UActorComponent* component) {
              "AActor.DestroyComponent(): ", component->GetDebugName(), " is the root component of ",
              GetDebugName());
     if (begunPlay_)
-        component->EndPlay();
+        endComponentPlay(*component);
     sp::reflect::ObjectTable::rememberName(*component);
     components_.erase(it);
 }
@@ -164,8 +181,10 @@ UActorComponent* AActor::GetComponentByClass(TSubclassOf<UActorComponent> Compon
 
 void AActor::BeginPlay() {
     begunPlay_ = true;
+    if (UWorld* world = GetWorld())
+        world->NotifyActorBeginPlay(*this);
     for (const auto& component : components_)
-        component->BeginPlay();
+        beginComponentPlay(*component);
 }
 
 void AActor::Tick(double deltaSeconds) {
@@ -176,7 +195,10 @@ void AActor::Tick(double deltaSeconds) {
 
 void AActor::EndPlay() {
     for (const auto& component : components_)
-        component->EndPlay();
+        endComponentPlay(*component);
+    if (begunPlay_)
+        if (UWorld* world = GetWorld())
+            world->NotifyActorEndPlay(*this);
     begunPlay_ = false;
 }
 

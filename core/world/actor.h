@@ -129,6 +129,9 @@ class AActor : public UObject {
 
   private:
     void adoptComponent(std::unique_ptr<UActorComponent> component, std::string name);
+    // A component's BeginPlay()/EndPlay(), and the world's subsystems told of it.
+    void beginComponentPlay(UActorComponent& component);
+    void endComponentPlay(UActorComponent& component);
 
     std::vector<std::unique_ptr<UActorComponent>> components_;
     bool begunPlay_ = false;

@@ -35,7 +35,12 @@ class UActorComponent : public UObject {
     virtual void EndPlay() {}
 
     void SetOwner(AActor* owner) { owner_ = owner; }
+    // Between a successful BeginPlay() and EndPlay() (set by the owning actor): what the world's subsystems
+    // have been told of (sp::world::WorldSubsystem::OnComponentBeginPlay).
+    bool HasBegunPlay() const { return begunPlay_; }
+    void SetBegunPlay(bool begun) { begunPlay_ = begun; }
 
   private:
     AActor* owner_ = nullptr;
+    bool begunPlay_ = false;
 };

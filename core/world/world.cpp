@@ -32,9 +32,41 @@ UWorld::~UWorld() {
 
 void UWorld::addSubsystem(std::type_index type, int tickOrder,
                           std::unique_ptr<sp::world::WorldSubsystem> subsystem) {
+    sp::world::WorldSubsystem& added = *subsystem;
     auto it = std::find_if(subsystems_.begin(), subsystems_.end(),
                            [&](const SubsystemEntry& entry) { return entry.tickOrder > tickOrder; });
     subsystems_.insert(it, SubsystemEntry{type, tickOrder, std::move(subsystem)});
+    // What began play before the subsystem existed, in the world's order.
+    auto tell = [&](const std::vector<std::unique_ptr<AActor>>& actors) {
+        for (const auto& actor : actors) {
+            if (!actor->HasBegunPlay())
+                continue;
+            added.OnActorBeginPlay(*actor);
+            for (const auto& component : actor->GetComponentList())
+                if (component->HasBegunPlay())
+                    added.OnComponentBeginPlay(*component);
+        }
+    };
+    tell(actors_);
+    if (incoming_)
+        tell(*incoming_);
+}
+
+void UWorld::NotifyActorBeginPlay(AActor& actor) {
+    notifySubsystems([&](sp::world::WorldSubsystem& subsystem) { subsystem.OnActorBeginPlay(actor); });
+}
+
+void UWorld::NotifyActorEndPlay(AActor& actor) {
+    notifySubsystems([&](sp::world::WorldSubsystem& subsystem) { subsystem.OnActorEndPlay(actor); });
+}
+
+void UWorld::NotifyComponentBeginPlay(UActorComponent& component) {
+    notifySubsystems(
+        [&](sp::world::WorldSubsystem& subsystem) { subsystem.OnComponentBeginPlay(component); });
+}
+
+void UWorld::NotifyComponentEndPlay(UActorComponent& component) {
+    notifySubsystems([&](sp::world::WorldSubsystem& subsystem) { subsystem.OnComponentEndPlay(component); });
 }
 
 std::string UWorld::uniqueActorName(const UClass& type) const {
@@ -95,11 +127,22 @@ void beginPlayAll(const std::vector<std::unique_ptr<AActor>>& actors) {
 
 } // namespace
 
+void UWorld::beginIncomingPlay(const std::vector<std::unique_ptr<AActor>>& actors) {
+    incoming_ = &actors;
+    try {
+        beginPlayAll(actors);
+    } catch (...) {
+        incoming_ = nullptr;
+        throw;
+    }
+    incoming_ = nullptr;
+}
+
 void UWorld::ReplaceActors(std::vector<std::unique_ptr<AActor>> actors) {
     SP_CHECK(!ticking_, sp::InvalidState, "UWorld: the actors cannot be replaced while the world ticks");
     // The incoming actors begin play while the old ones are still here, so that a scene that fails there
     // leaves the world as it was; the old actors are only destroyed once every new one has begun.
-    beginPlayAll(actors);
+    beginIncomingPlay(actors);
     for (AActor* actor : find_actors())
         destroy_actor(actor);
     for (auto& actor : actors)
@@ -108,7 +151,7 @@ void UWorld::ReplaceActors(std::vector<std::unique_ptr<AActor>> actors) {
 
 void UWorld::AddActors(std::vector<std::unique_ptr<AActor>> actors) {
     SP_CHECK(!ticking_, sp::InvalidState, "UWorld: actors cannot be added while the world ticks");
-    beginPlayAll(actors);
+    beginIncomingPlay(actors);
     for (auto& actor : actors)
         actors_.push_back(std::move(actor));
 }

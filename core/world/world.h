@@ -196,6 +196,13 @@ class UWorld : public UObject {
     void UnloadStreamLevel(const std::string& name, const std::string& function);
 
     void SetEditorWorld(bool isEditorWorld) { isEditorWorld_ = isEditorWorld; }
+    // Called by actors as they and their components begin and end play; tells every subsystem (see
+    // sp::world::WorldSubsystem::OnActorBeginPlay).
+    void NotifyActorBeginPlay(AActor& actor);
+    void NotifyActorEndPlay(AActor& actor);
+    void NotifyComponentBeginPlay(UActorComponent& component);
+    void NotifyComponentEndPlay(UActorComponent& component);
+
     // The engine that owns this world; null for a world made on its own (tests).
     void SetHost(sp::world::WorldHost* host) { host_ = host; }
     sp::world::WorldHost* GetHost() const { return host_; }
@@ -208,14 +215,28 @@ class UWorld : public UObject {
     };
     void addSubsystem(std::type_index type, int tickOrder,
                       std::unique_ptr<sp::world::WorldSubsystem> subsystem);
+    // Calls `notify` on each subsystem there is now; one made meanwhile was told of the world when made.
+    template <typename Notify> void notifySubsystems(const Notify& notify) const {
+        std::vector<sp::world::WorldSubsystem*> current;
+        current.reserve(subsystems_.size());
+        for (const auto& entry : subsystems_)
+            current.push_back(entry.subsystem.get());
+        for (sp::world::WorldSubsystem* subsystem : current)
+            notify(*subsystem);
+    }
     std::string uniqueActorName(const UClass& type) const;
+    // Begins the play of actors that are not in actors_ yet (see incoming_); on failure none has begun.
+    void beginIncomingPlay(const std::vector<std::unique_ptr<AActor>>& actors);
     sp::world::WorldHost& editorHost(const char* function) const;
 
     std::vector<SubsystemEntry> subsystems_; // sorted by tick order; destroyed after the actors
 
     sp::world::WorldHost* host_ = nullptr;
     std::vector<std::unique_ptr<AActor>> actors_; // spawn order: keeps queries and ticks deterministic
-    std::vector<StreamingLevel> levels_;          // declaration order
+    // Actors beginning play before they join actors_ (ReplaceActors, AddActors): a subsystem made meanwhile
+    // is told of those that began, after actors_.
+    const std::vector<std::unique_ptr<AActor>>* incoming_ = nullptr;
+    std::vector<StreamingLevel> levels_; // declaration order
     std::map<const UClass*, std::unique_ptr<UObject>> defaultObjects_;
     mutable std::map<std::string, int> nameCounters_; // per name prefix; never reused
     double timeSeconds_ = 0.0;

@@ -4,6 +4,8 @@
 // GetWorld()->GetSubsystem<T>(), which creates it on first use; subsystems tick in ascending
 // T::kTickOrder, so physics runs before rendering whatever order they were first used in.
 
+class AActor;
+class UActorComponent;
 class UWorld;
 
 namespace sp::world {
@@ -13,6 +15,16 @@ class WorldSubsystem {
     virtual ~WorldSubsystem() = default;
     // Called once per frame after every actor has ticked.
     virtual void Tick(double /*deltaSeconds*/) {}
+
+    // The world's actors and components as they begin play (spawned, loaded, added to an actor in play) and
+    // end it (destroyed, unloaded), so that a subsystem mirrors the world by registration rather than by
+    // walking every actor each frame. A subsystem made after some began play is told of those first, in the
+    // world's order: each actor, then its components. An actor is told of before its components when play
+    // begins, after them when it ends.
+    virtual void OnActorBeginPlay(AActor& /*actor*/) {}
+    virtual void OnActorEndPlay(AActor& /*actor*/) {}
+    virtual void OnComponentBeginPlay(UActorComponent& /*component*/) {}
+    virtual void OnComponentEndPlay(UActorComponent& /*component*/) {}
 };
 
 // Tick orders of the engine's own subsystems (plugins may slot in between).

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include "core/engine/engine.h"
+#include "core/sensors/camera_sensor_actor.h"
 #include "core/sensors/render_scene.h"
+#include "core/sensors/render_subsystem.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
 #include "core/world/light_actors.h"
@@ -15,7 +17,8 @@ namespace {
 struct RenderSceneTest : ::testing::Test {
     sp::engine::Engine engine;
     UWorld& world = engine.GetGameWorld();
-    sp::sensors::RenderScene scene;
+    // The world's own render scene: it learns of actors and components by registration as they begin play.
+    sp::sensors::RenderScene& scene = world.GetSubsystem<sp::sensors::RenderSubsystem>().renderScene();
 
     AStaticMeshActor* spawnMesh(const std::string& mesh, const std::string& material) {
         auto* actor = static_cast<AStaticMeshActor*>(world.spawn_actor(&AStaticMeshActor::StaticClass()));
@@ -29,7 +32,7 @@ TEST_F(RenderSceneTest, OneInstancePerMeshComponentWithStableNonZeroIds) {
     AStaticMeshActor* cube = spawnMesh("/Engine/BasicShapes/Cube", "Red");
     AStaticMeshActor* ball = spawnMesh("/Engine/BasicShapes/Sphere", "Red");
     world.spawn_actor(&AStaticMeshActor::StaticClass()); // no mesh: nothing to draw
-    scene.sync(world);
+    scene.sync();
     EXPECT_EQ(scene.scene().instanceCount(), 2u);
     const std::uint32_t cubeId = scene.objectId(cube->StaticMeshComponent->GetHandle(), 0);
     const std::uint32_t ballId = scene.objectId(ball->StaticMeshComponent->GetHandle(), 0);
@@ -39,7 +42,7 @@ TEST_F(RenderSceneTest, OneInstancePerMeshComponentWithStableNonZeroIds) {
     EXPECT_EQ(scene.objectId(cube->StaticMeshComponent->GetHandle(), 1), 0u); // a cube has one slot
 
     cube->SetActorLocation({1.0, 2.0, 3.0});
-    scene.sync(world);
+    scene.sync();
     EXPECT_EQ(scene.objectId(cube->StaticMeshComponent->GetHandle(), 0), cubeId);
     auto info = scene.objectIdInfo(cubeId);
     ASSERT_TRUE(info);
@@ -49,11 +52,11 @@ TEST_F(RenderSceneTest, OneInstancePerMeshComponentWithStableNonZeroIds) {
     EXPECT_FALSE(scene.objectIdInfo(0));
 
     world.destroy_actor(ball);
-    scene.sync(world);
+    scene.sync();
     EXPECT_EQ(scene.scene().instanceCount(), 1u);
     EXPECT_FALSE(scene.objectIdInfo(ballId)); // gone with its component, never reused
     AStaticMeshActor* again = spawnMesh("/Engine/BasicShapes/Sphere", "Red");
-    scene.sync(world);
+    scene.sync();
     EXPECT_GT(scene.objectId(again->StaticMeshComponent->GetHandle(), 0), ballId);
 }
 
@@ -62,7 +65,7 @@ TEST_F(RenderSceneTest, TransformScaleAndVisibilityReachTheInstance) {
     cube->SetActorLocation({1.0, 2.0, 3.0});
     cube->SetActorScale3D({2.0, 3.0, 4.0});
     cube->StaticMeshComponent->bVisible = false;
-    scene.sync(world);
+    scene.sync();
     bool seen = false;
     scene.scene().forEachInstance([&](sp::render::InstanceId, const sp::render::Instance& instance) {
         seen = true;
@@ -82,7 +85,7 @@ TEST_F(RenderSceneTest, MaterialsResolveLibraryThenBuiltinThenDefault) {
     spawnMesh("/Engine/BasicShapes/Cube", "Mine");
     spawnMesh("/Engine/BasicShapes/Cube", "/Engine/Materials/Gold");
     spawnMesh("/Engine/BasicShapes/Cube", "NoSuchMaterial");
-    scene.sync(world);
+    scene.sync();
     EXPECT_EQ(scene.scene().materialCount(), 3u);
     const std::uint32_t mineId = scene.materialId("Mine");
     EXPECT_NE(mineId, 0u);
@@ -92,7 +95,7 @@ TEST_F(RenderSceneTest, MaterialsResolveLibraryThenBuiltinThenDefault) {
 
     mine.Roughness = 0.9f; // an edited material keeps its id
     library->SetMaterial("Mine", mine);
-    scene.sync(world);
+    scene.sync();
     EXPECT_EQ(scene.materialId("Mine"), mineId);
     EXPECT_EQ(scene.scene().materialCount(), 3u);
 }
@@ -104,7 +107,7 @@ TEST_F(RenderSceneTest, LightsAndSkyAreCopiedEveryFrame) {
     spot->LightComponent->OuterConeAngle = 50.0f;
     auto* sky = static_cast<ASkyLight*>(world.spawn_actor(&ASkyLight::StaticClass()));
     sky->SkyLightComponent->Intensity = 0.5f;
-    scene.sync(world);
+    scene.sync();
     ASSERT_EQ(scene.scene().lightCount(), 2u);
     int directional = 0, spots = 0;
     scene.scene().forEachLight([&](sp::render::LightId, const sp::render::Light& light) {
@@ -123,8 +126,25 @@ TEST_F(RenderSceneTest, LightsAndSkyAreCopiedEveryFrame) {
     EXPECT_FLOAT_EQ(scene.scene().environment().ambient.x(), 0.5f);
 
     world.destroy_actor(sun);
-    scene.sync(world);
+    scene.sync();
     EXPECT_EQ(scene.scene().lightCount(), 1u);
 }
 
 } // namespace
+
+// A scene's actors begin play before they join the world; the camera among them makes the render subsystem,
+// which must still be told of the actors that began before it.
+TEST(RenderSubsystemRegistration, ALoadedSceneIsMirroredFromItsFirstCamera) {
+    sp::engine::Engine engine;
+    UWorld& world = engine.GetGameWorld();
+    std::vector<std::unique_ptr<AActor>> actors;
+    actors.push_back(world.NewActorDeferred(AStaticMeshActor::StaticClass(), "Cube"));
+    static_cast<AStaticMeshActor&>(*actors.back())
+        .StaticMeshComponent->SetStaticMesh("/Engine/BasicShapes/Cube");
+    actors.push_back(world.NewActorDeferred(ACameraSensorActor::StaticClass(), "Camera"));
+    world.ReplaceActors(std::move(actors));
+    auto* render = world.FindSubsystem<sp::sensors::RenderSubsystem>();
+    ASSERT_NE(render, nullptr); // made by the camera as it began play
+    render->renderScene().sync();
+    EXPECT_EQ(render->renderScene().scene().instanceCount(), 1u);
+}

@@ -74,3 +74,35 @@ TEST_F(WorldTest, ActorsDestroyedDuringATickGoAwayAfterIt) {
     world.destroy_actor(a);
     EXPECT_EQ(world.get_actor_count(), 0);
 }
+
+namespace {
+// A subsystem that writes down what the world tells it: "+Actor", "+Actor.Component", "-...".
+struct Recorder : sp::world::WorldSubsystem {
+    static constexpr int kTickOrder = 1000;
+    explicit Recorder(UWorld&) {}
+    std::vector<std::string> events;
+    void OnActorBeginPlay(AActor& actor) override { events.push_back("+" + actor.GetName()); }
+    void OnActorEndPlay(AActor& actor) override { events.push_back("-" + actor.GetName()); }
+    void OnComponentBeginPlay(UActorComponent& component) override {
+        events.push_back("+" + component.GetOwner()->GetName() + "." + component.GetName());
+    }
+    void OnComponentEndPlay(UActorComponent& component) override {
+        events.push_back("-" + component.GetOwner()->GetName() + "." + component.GetName());
+    }
+};
+} // namespace
+
+TEST_F(WorldTest, SubsystemsMirrorTheWorldByRegistration) {
+    world.spawn_actor(&AStaticMeshActor::StaticClass(), {}, {}, "A");
+    // Made late: told first of what already plays, in the world's order.
+    Recorder& recorder = world.GetSubsystem<Recorder>();
+    EXPECT_EQ(recorder.events, (std::vector<std::string>{"+A", "+A.StaticMeshComponent"}));
+
+    recorder.events.clear();
+    AActor* b = world.spawn_actor(&AStaticMeshActor::StaticClass(), {}, {}, "B");
+    UActorComponent* extra = b->CreateComponent(UStaticMeshComponent::StaticClass(), "Extra");
+    b->DestroyComponent(extra);
+    world.destroy_actor(b);
+    EXPECT_EQ(recorder.events, (std::vector<std::string>{"+B", "+B.StaticMeshComponent", "+B.Extra",
+                                                         "-B.Extra", "-B.StaticMeshComponent", "-B"}));
+}
