@@ -1,6 +1,6 @@
 #pragma once
 // RenderSubsystem: the renderer of one world, made by the world's first camera. It mirrors the world by
-// registration, as physics does: the world tells it of actors and components as they begin and end play
+// registration, as physics does: the world tells both of actors and components as they begin and end play
 // (sp::world::WorldSubsystem), which it passes to its render scene and its camera list, so a frame never
 // walks every actor. It owns one GL context and renderer, created lazily on the first frame that has a
 // camera (worlds without cameras never touch EGL), and every frame, after the actors and physics ticked:

@@ -75,6 +75,18 @@ PhysicsSubsystem::PhysicsSubsystem(UWorld& world) : world_(world) {}
 
 PhysicsSubsystem::~PhysicsSubsystem() = default;
 
+void PhysicsSubsystem::OnComponentBeginPlay(UActorComponent& played) {
+    auto* primitive = dynamic_cast<UPrimitiveComponent*>(&played);
+    if (primitive)
+        registerComponent(*primitive);
+}
+
+void PhysicsSubsystem::OnComponentEndPlay(UActorComponent& played) {
+    auto* primitive = dynamic_cast<UPrimitiveComponent*>(&played);
+    if (primitive)
+        unregisterComponent(*primitive);
+}
+
 void PhysicsSubsystem::registerComponent(UPrimitiveComponent& component) {
     if (index_.contains(&component))
         return;

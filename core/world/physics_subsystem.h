@@ -1,6 +1,8 @@
 #pragma once
 // PhysicsSubsystem: the world's rigid-body simulation. It owns a sp::physics::PhysicsWorld and one body
-// per primitive component in play that has collision. Components keep their physics settings as plain
+// per primitive component in play that has collision, which it learns of by registration as the render
+// subsystem does (the world tells every subsystem of components beginning and ending play; see
+// sp::world::WorldSubsystem). Components keep their physics settings as plain
 // reflected properties; the subsystem brings the bodies in line with them ("sync") before every step,
 // trace and physics call, so a property written by any path (setter, registry, scene file) takes effect.
 //
@@ -37,9 +39,10 @@ class PhysicsSubsystem : public WorldSubsystem {
     // Syncs, steps the physics world by deltaSeconds and writes simulated poses back.
     void Tick(double deltaSeconds) override;
 
-    // Called by components entering and leaving play.
-    void registerComponent(UPrimitiveComponent& component);
-    void unregisterComponent(UPrimitiveComponent& component);
+    // Registration, as the world tells of components entering and leaving play: each primitive component
+    // gets a body (its first one makes the subsystem; see UPrimitiveComponent::BeginPlay).
+    void OnComponentBeginPlay(UActorComponent& component) override;
+    void OnComponentEndPlay(UActorComponent& component) override;
     bool isRegistered(const UPrimitiveComponent& component) const;
 
     // Brings every body in line with its component (shape, mobility, material, mass, pose).
@@ -71,6 +74,8 @@ class PhysicsSubsystem : public WorldSubsystem {
     size_t GetBodyCount() const { return physicsWorld_.bodyCount(); }
 
   private:
+    void registerComponent(UPrimitiveComponent& component);
+    void unregisterComponent(UPrimitiveComponent& component);
     // What a body was built from: when any of it changes, the body is rebuilt.
     struct ShapeKey {
         ECollisionPrimitive primitive = ECollisionPrimitive::NoCollision;

@@ -50,15 +50,10 @@ void UPrimitiveComponent::GetBounds(FVector& Origin, FVector& BoxExtent) const {
 
 void UPrimitiveComponent::BeginPlay() {
     USceneComponent::BeginPlay();
+    // The world's physics exists from the first primitive on; the world then registers this component with
+    // it, as with every subsystem, once BeginPlay returns (and unregisters it before EndPlay).
     if (UWorld* world = GetWorld())
-        world->GetSubsystem<sp::world::PhysicsSubsystem>().registerComponent(*this);
-}
-
-void UPrimitiveComponent::EndPlay() {
-    if (UWorld* world = GetWorld())
-        if (auto* physics = world->FindSubsystem<sp::world::PhysicsSubsystem>())
-            physics->unregisterComponent(*this);
-    USceneComponent::EndPlay();
+        world->GetSubsystem<sp::world::PhysicsSubsystem>();
 }
 
 void UPrimitiveComponent::SetSimulatePhysics(bool bSimulate) {

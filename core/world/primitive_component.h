@@ -186,5 +186,4 @@ class UPrimitiveComponent : public USceneComponent {
     virtual ECollisionPrimitive GetMeshCollisionPrimitive() const { return ECollisionPrimitive::Box; }
 
     void BeginPlay() override;
-    void EndPlay() override;
 };
