@@ -36,6 +36,8 @@ void AActor::adoptComponent(std::unique_ptr<UActorComponent> component, std::str
 }
 
 void AActor::beginComponentPlay(UActorComponent& component) {
+    if (component.HasBegunPlay()) // began already: created during its actor's BeginPlay
+        return;
     component.BeginPlay();
     component.SetBegunPlay(true);
     if (UWorld* world = GetWorld())
@@ -183,8 +185,9 @@ void AActor::BeginPlay() {
     begunPlay_ = true;
     if (UWorld* world = GetWorld())
         world->NotifyActorBeginPlay(*this);
-    for (const auto& component : components_)
-        beginComponentPlay(*component);
+    // By index: a component's BeginPlay may create another (which begins at once, and is skipped here).
+    for (std::size_t i = 0; i < components_.size(); ++i)
+        beginComponentPlay(*components_[i]);
 }
 
 void AActor::Tick(double deltaSeconds) {
@@ -196,10 +199,12 @@ void AActor::Tick(double deltaSeconds) {
 void AActor::EndPlay() {
     for (const auto& component : components_)
         endComponentPlay(*component);
-    if (begunPlay_)
+    // Not playing before the notice: a subsystem made during it must not be told this actor plays.
+    const bool wasPlaying = begunPlay_;
+    begunPlay_ = false;
+    if (wasPlaying)
         if (UWorld* world = GetWorld())
             world->NotifyActorEndPlay(*this);
-    begunPlay_ = false;
 }
 
 std::vector<AActor*> AActor::GetOverlappingActors(TSubclassOf<AActor> ClassFilter) const {

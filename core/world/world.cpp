@@ -36,15 +36,18 @@ void UWorld::addSubsystem(std::type_index type, int tickOrder,
     auto it = std::find_if(subsystems_.begin(), subsystems_.end(),
                            [&](const SubsystemEntry& entry) { return entry.tickOrder > tickOrder; });
     subsystems_.insert(it, SubsystemEntry{type, tickOrder, std::move(subsystem)});
-    // What began play before the subsystem existed, in the world's order.
+    // What began play before the subsystem existed, in the world's order. By index, as a callback may add
+    // to the lists; an incoming actor already moved into actors_ is left empty there.
     auto tell = [&](const std::vector<std::unique_ptr<AActor>>& actors) {
-        for (const auto& actor : actors) {
-            if (!actor->HasBegunPlay())
+        for (std::size_t i = 0; i < actors.size(); ++i) {
+            AActor* actor = actors[i].get();
+            if (!actor || !actor->HasBegunPlay())
                 continue;
             added.OnActorBeginPlay(*actor);
-            for (const auto& component : actor->GetComponentList())
-                if (component->HasBegunPlay())
-                    added.OnComponentBeginPlay(*component);
+            const auto& components = actor->GetComponentList();
+            for (std::size_t c = 0; c < components.size(); ++c)
+                if (components[c]->HasBegunPlay())
+                    added.OnComponentBeginPlay(*components[c]);
         }
     };
     tell(actors_);
@@ -125,24 +128,28 @@ void beginPlayAll(const std::vector<std::unique_ptr<AActor>>& actors) {
     }
 }
 
-} // namespace
+// Marks a batch as incoming (UWorld::incoming_) until the scope ends, then restores the outer batch.
+class IncomingActors {
+  public:
+    using Actors = std::vector<std::unique_ptr<AActor>>;
+    IncomingActors(const Actors*& slot, const Actors& actors) : slot_(slot), outer_(slot) { slot_ = &actors; }
+    ~IncomingActors() { slot_ = outer_; }
+    IncomingActors(const IncomingActors&) = delete;
+    IncomingActors& operator=(const IncomingActors&) = delete;
 
-void UWorld::beginIncomingPlay(const std::vector<std::unique_ptr<AActor>>& actors) {
-    incoming_ = &actors;
-    try {
-        beginPlayAll(actors);
-    } catch (...) {
-        incoming_ = nullptr;
-        throw;
-    }
-    incoming_ = nullptr;
-}
+  private:
+    const Actors*& slot_;
+    const Actors* outer_;
+};
+
+} // namespace
 
 void UWorld::ReplaceActors(std::vector<std::unique_ptr<AActor>> actors) {
     SP_CHECK(!ticking_, sp::InvalidState, "UWorld: the actors cannot be replaced while the world ticks");
     // The incoming actors begin play while the old ones are still here, so that a scene that fails there
     // leaves the world as it was; the old actors are only destroyed once every new one has begun.
-    beginIncomingPlay(actors);
+    const IncomingActors incoming(incoming_, actors);
+    beginPlayAll(actors);
     for (AActor* actor : find_actors())
         destroy_actor(actor);
     for (auto& actor : actors)
@@ -151,7 +158,8 @@ void UWorld::ReplaceActors(std::vector<std::unique_ptr<AActor>> actors) {
 
 void UWorld::AddActors(std::vector<std::unique_ptr<AActor>> actors) {
     SP_CHECK(!ticking_, sp::InvalidState, "UWorld: actors cannot be added while the world ticks");
-    beginIncomingPlay(actors);
+    const IncomingActors incoming(incoming_, actors);
+    beginPlayAll(actors);
     for (auto& actor : actors)
         actors_.push_back(std::move(actor));
 }

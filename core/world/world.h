@@ -3,6 +3,7 @@
 // tag or class, components by name or class). Service functions keep SPEAR's snake_case names and, like
 // every reflected function, take keyword arguments in Python.
 
+#include <exception>
 #include <map>
 #include <memory>
 #include <string>
@@ -215,26 +216,35 @@ class UWorld : public UObject {
     };
     void addSubsystem(std::type_index type, int tickOrder,
                       std::unique_ptr<sp::world::WorldSubsystem> subsystem);
-    // Calls `notify` on each subsystem there is now; one made meanwhile was told of the world when made.
+    // Calls `notify` on each subsystem there is now (one made meanwhile was told of the world when made).
+    // Every subsystem hears it even when one throws; the first error is rethrown after.
     template <typename Notify> void notifySubsystems(const Notify& notify) const {
         std::vector<sp::world::WorldSubsystem*> current;
         current.reserve(subsystems_.size());
         for (const auto& entry : subsystems_)
             current.push_back(entry.subsystem.get());
-        for (sp::world::WorldSubsystem* subsystem : current)
-            notify(*subsystem);
+        std::exception_ptr first;
+        for (sp::world::WorldSubsystem* subsystem : current) {
+            try {
+                notify(*subsystem);
+            } catch (...) {
+                if (!first)
+                    first = std::current_exception();
+            }
+        }
+        if (first)
+            std::rethrow_exception(first);
     }
     std::string uniqueActorName(const UClass& type) const;
-    // Begins the play of actors that are not in actors_ yet (see incoming_); on failure none has begun.
-    void beginIncomingPlay(const std::vector<std::unique_ptr<AActor>>& actors);
     sp::world::WorldHost& editorHost(const char* function) const;
 
     std::vector<SubsystemEntry> subsystems_; // sorted by tick order; destroyed after the actors
 
     sp::world::WorldHost* host_ = nullptr;
     std::vector<std::unique_ptr<AActor>> actors_; // spawn order: keeps queries and ticks deterministic
-    // Actors beginning play before they join actors_ (ReplaceActors, AddActors): a subsystem made meanwhile
-    // is told of those that began, after actors_.
+    // Actors beginning play before they join actors_ (ReplaceActors, AddActors; set until they have joined,
+    // an outer batch's restored after a nested one): a subsystem made meanwhile is told of those that began,
+    // after actors_.
     const std::vector<std::unique_ptr<AActor>>* incoming_ = nullptr;
     std::vector<StreamingLevel> levels_; // declaration order
     std::map<const UClass*, std::unique_ptr<UObject>> defaultObjects_;

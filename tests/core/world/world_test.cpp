@@ -106,3 +106,39 @@ TEST_F(WorldTest, SubsystemsMirrorTheWorldByRegistration) {
     EXPECT_EQ(recorder.events, (std::vector<std::string>{"+B", "+B.StaticMeshComponent", "+B.Extra",
                                                          "-B.Extra", "-B.StaticMeshComponent", "-B"}));
 }
+
+namespace {
+// Makes a Recorder while an actor ends play.
+struct MakesRecorderOnEnd : sp::world::WorldSubsystem {
+    static constexpr int kTickOrder = 900;
+    explicit MakesRecorderOnEnd(UWorld& world) : world_(world) {}
+    void OnActorEndPlay(AActor&) override { world_.GetSubsystem<Recorder>(); }
+    UWorld& world_;
+};
+
+// Refuses every component (as physics refuses settings Bullet cannot take).
+struct Refuses : sp::world::WorldSubsystem {
+    static constexpr int kTickOrder = 900;
+    explicit Refuses(UWorld&) {}
+    void OnComponentBeginPlay(UActorComponent& component) override {
+        SP_THROW(sp::InvalidArgument, "refused ", component.GetName());
+    }
+};
+} // namespace
+
+TEST_F(WorldTest, ASubsystemMadeDuringAnEndNoticeIsNotToldOfTheEndingActor) {
+    AActor* a = world.spawn_actor(&AActor::StaticClass(), {}, {}, "A");
+    world.spawn_actor(&AActor::StaticClass(), {}, {}, "B");
+    world.GetSubsystem<MakesRecorderOnEnd>();
+    world.destroy_actor(a);
+    const Recorder* recorder = world.FindSubsystem<Recorder>();
+    ASSERT_NE(recorder, nullptr);
+    EXPECT_EQ(recorder->events, std::vector<std::string>{"+B"});
+}
+
+TEST_F(WorldTest, EverySubsystemHearsANoticeOneOfThemRefuses) {
+    Recorder& recorder = world.GetSubsystem<Recorder>();
+    world.GetSubsystem<Refuses>(); // told first (lower tick order)
+    EXPECT_THROW(world.spawn_actor(&AStaticMeshActor::StaticClass(), {}, {}, "M"), sp::InvalidArgument);
+    EXPECT_EQ(recorder.events, (std::vector<std::string>{"+M", "+M.StaticMeshComponent"}));
+}
