@@ -355,6 +355,10 @@ void UWorld::Tick(double deltaSeconds) {
                 actors_[i]->Tick(deltaSeconds);
     } catch (...) {
         ticking_ = false;
+        // What the tick destroyed goes now, as after a tick that completes: left pending, an actor the user
+        // destroys before the next tick would be destroyed again from here.
+        for (AActor* actor : std::exchange(pendingDestroy_, {}))
+            destroy_actor(actor);
         throw;
     }
     ticking_ = false;
