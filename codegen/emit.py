@@ -85,6 +85,11 @@ class OutputLayout:
         return [] if self.module == naming.ENGINE_MODULE else [OutputLayout(naming.ENGINE_MODULE).bindings_header]
 
     @property
+    def imported_types(self) -> list[str]:
+        """The engine's types header, for a plugin: it carries the engine API hash the plugin records."""
+        return [] if self.module == naming.ENGINE_MODULE else [OutputLayout(naming.ENGINE_MODULE).enums_header]
+
+    @property
     def register_fn(self) -> str:
         return f"spear_register_{self.module}_types"
 
@@ -114,7 +119,7 @@ def render(module: Module, layout: OutputLayout | None = None) -> dict[str, str]
     layout = layout or OutputLayout(module.name)
     common = {"banner": BANNER, "module": module.name, "enums_header": layout.enums_header,
               "bindings_header": layout.bindings_header, "calls_header": layout.calls_header,
-              "imported_bindings": layout.imported_bindings,
+              "imported_types": layout.imported_types, "imported_bindings": layout.imported_bindings,
               "register_fn": layout.register_fn, "unregister_fn": layout.unregister_fn,
               "api_hash": pyviews.api_hash(module), "api_module": layout.api_module,
               "engine_package": naming.ENGINE_PACKAGE}

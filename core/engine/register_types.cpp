@@ -9,6 +9,7 @@ namespace sp::engine {
 
 void registerEngineTypes() {
     spear_register_engine_types();
+    plugin::setEngineApiHash(spear_register_engine_types_api_hash());
     // Generated blueprint classes carry their asset, so that they can be used before load_class().
     reflect::Registry::get().setClassLoader(&world::loadBlueprint);
     // Default objects live as long as their world; those of an unloading plugin's classes go first.

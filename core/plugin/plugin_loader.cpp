@@ -83,6 +83,11 @@ std::set<std::string> registeredNames() {
     return names;
 }
 
+std::string& engineApiHash() {
+    static std::string hash;
+    return hash;
+}
+
 template <typename Fn> Fn symbol(void* library, const std::string& name, const std::string& path) {
     void* address = dlsym(library, name.c_str());
     if (!address) {
@@ -148,6 +153,17 @@ const PluginInfo& load(const std::string& pathOrName, const std::string& expecte
         SP_THROW(InvalidState, "load_plugin(): '", path, "' was built from other headers (API ", actual,
                  ") than the Python package that loads it (API ", expectedApiHash, "); rebuild the plugin");
     }
+    if (!engineApiHash().empty()) {
+        const auto builtAgainst =
+            reinterpret_cast<const char* (*)()>(dlsym(library, (prefix + "_engine_api_hash").c_str()));
+        const std::string recorded = builtAgainst ? builtAgainst() : "none recorded";
+        if (recorded != engineApiHash()) {
+            dlclose(library);
+            SP_THROW(InvalidState, "load_plugin(): '", path, "' was built against another engine API (",
+                     recorded, ") than this engine's (", engineApiHash(),
+                     "); rebuild the plugin against this spear");
+        }
+    }
     const std::set<std::string> before = registeredNames();
     try {
         registerTypes();
@@ -196,6 +212,10 @@ void unload(const std::string& name) {
 
 void setReleaseHook(ReleaseClasses hook) {
     releaseHook = hook;
+}
+
+void setEngineApiHash(std::string hash) {
+    engineApiHash() = std::move(hash);
 }
 
 } // namespace sp::plugin

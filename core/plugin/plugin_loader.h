@@ -45,4 +45,8 @@ void unload(const std::string& name);
 using ReleaseClasses = void (*)(bool (*isPluginClass)(const reflect::TypeInfo&));
 void setReleaseHook(ReleaseClasses hook);
 
+// The engine's API hash, set by the engine as it registers its types: load() refuses a plugin compiled
+// against another engine API (its recorded hash differs, or it records none), naming both.
+void setEngineApiHash(std::string hash);
+
 } // namespace sp::plugin

@@ -409,6 +409,34 @@ def test_stubs_from_other_headers_are_refused(plugin_dir: Path, tmp_path: Path, 
     assert "was built from other headers" in result.stdout and "rebuild the plugin" in result.stdout
 
 
+@pytest.mark.parametrize("transport", ["inprocess", "rpc"])
+def test_a_plugin_built_against_another_engine_api_is_refused(plugin_dir: Path, tmp_path: Path,
+                                                              transport: str) -> None:
+    from spear._engine import API_HASH as engine_hash
+
+    # As if compiled against another engine: the engine API hash the library recorded is not this engine's.
+    old = tmp_path / "my_plugin"
+    shutil.copytree(plugin_dir / "my_plugin", old)
+    library = old / "libmy_plugin.so"
+    data = library.read_bytes()
+    assert engine_hash.encode() in data
+    library.write_bytes(data.replace(engine_hash.encode(), b"0123456789abcdef"))
+    server = "None" if transport == "inprocess" else "'launch'"
+    code = ("import spear\n"
+            f"instance = spear.Instance(server={server})\n"
+            "try:\n"
+            f"    instance.load_plugin({str(old)!r})\n"
+            "except spear.InvalidStateError as error:\n"
+            "    print(error)\n"
+            "instance.close()\n")
+    # The bindings module finds its library through a run path into the original build; the copy goes first.
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120,
+                            env={**os.environ, "PYTHONPATH": str(ROOT / "python"), "LD_LIBRARY_PATH": str(old)})
+    assert result.returncode == 0, result.stderr
+    assert (f"was built against another engine API (0123456789abcdef) than this engine's ({engine_hash}); "
+            "rebuild the plugin against this spear") in result.stdout
+
+
 @pytest.mark.parametrize("flags", [[], ["--rpc"]])
 def test_example_runs_as_documented(plugin_dir: Path, flags: list[str]) -> None:
     result = subprocess.run([sys.executable, str(EXAMPLE / "use_plugin.py"), *flags], capture_output=True, text=True,

@@ -41,3 +41,8 @@ __attribute__((visibility("default"))) void spear_unregister_engine_types();
 __attribute__((visibility("default"))) const char* spear_register_engine_types_api_hash();
 
 } // extern "C"
+
+// The same hash as a constant: a plugin compiled against these headers records the engine's.
+namespace sp::generated::engine {
+inline constexpr char kApiHash[] = "8f21a3e79adf4b69";
+} // namespace sp::generated::engine

@@ -3,6 +3,7 @@
 
 #include "core/reflect/registry.h"
 #include "generated/all_types/cpp/all_types_types.gen.h"
+#include "generated/engine/cpp/engine_types.gen.h"
 
 #include "tests/codegen/cases/all_types/input.h"
 
@@ -26,3 +27,5 @@ extern "C" void spear_unregister_all_types_types() {
 }
 
 extern "C" const char* spear_register_all_types_types_api_hash() { return "7c186c6720a02b5e"; }
+
+extern "C" const char* spear_register_all_types_types_engine_api_hash() { return sp::generated::engine::kApiHash; }

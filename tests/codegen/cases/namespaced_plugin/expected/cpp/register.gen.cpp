@@ -3,6 +3,7 @@
 
 #include "core/reflect/registry.h"
 #include "generated/namespaced_plugin/cpp/namespaced_plugin_types.gen.h"
+#include "generated/engine/cpp/engine_types.gen.h"
 
 #include "tests/codegen/cases/namespaced_plugin/input.h"
 
@@ -24,3 +25,5 @@ extern "C" void spear_unregister_namespaced_plugin_types() {
 }
 
 extern "C" const char* spear_register_namespaced_plugin_types_api_hash() { return "909fb30065fb60a0"; }
+
+extern "C" const char* spear_register_namespaced_plugin_types_engine_api_hash() { return sp::generated::engine::kApiHash; }

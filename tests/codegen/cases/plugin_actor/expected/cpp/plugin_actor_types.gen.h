@@ -23,4 +23,13 @@ __attribute__((visibility("default"))) void spear_unregister_plugin_actor_types(
 // The hash of this module's IR; an RPC client built from other stubs is refused on connect.
 __attribute__((visibility("default"))) const char* spear_register_plugin_actor_types_api_hash();
 
+// The engine API the plugin was compiled against (from the engine's headers); the engine refuses a plugin
+// built against another.
+__attribute__((visibility("default"))) const char* spear_register_plugin_actor_types_engine_api_hash();
+
 } // extern "C"
+
+// The same hash as a constant: a plugin compiled against these headers records the engine's.
+namespace sp::generated::plugin_actor {
+inline constexpr char kApiHash[] = "5734951dbb253649";
+} // namespace sp::generated::plugin_actor

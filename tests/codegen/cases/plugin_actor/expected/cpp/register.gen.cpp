@@ -3,6 +3,7 @@
 
 #include "core/reflect/registry.h"
 #include "generated/plugin_actor/cpp/plugin_actor_types.gen.h"
+#include "generated/engine/cpp/engine_types.gen.h"
 
 #include "tests/codegen/cases/plugin_actor/input.h"
 
@@ -24,3 +25,5 @@ extern "C" void spear_unregister_plugin_actor_types() {
 }
 
 extern "C" const char* spear_register_plugin_actor_types_api_hash() { return "5734951dbb253649"; }
+
+extern "C" const char* spear_register_plugin_actor_types_engine_api_hash() { return sp::generated::engine::kApiHash; }
