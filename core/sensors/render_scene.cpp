@@ -131,28 +131,13 @@ void RenderScene::untrack(UActorComponent& component) {
 
 void RenderScene::sync() {
     // Libraries first, because every mesh slot resolves names against them.
-    std::vector<UStaticMeshComponent*> meshes;
-    std::vector<const USplineComponent*> splines;
-    std::vector<const ULightComponent*> lights;
-    const USkyLightComponent* sky = nullptr;
     std::map<std::string, FMaterialDesc> library;
-    libraries_.forEach([&](const AMaterialLibrary& materials) {
-        for (const auto& [name, desc] : materials.Materials)
+    for (const auto& [sequence, materials] : libraries_.items())
+        for (const auto& [name, desc] : materials->Materials)
             library.emplace(name, desc); // the first library spawned wins a name clash
-    });
-    meshComponents_.forEach([&](UStaticMeshComponent& mesh) { meshes.push_back(&mesh); });
-    splines_.forEach([&](const USplineComponent& spline) {
-        if (spline.bDrawDebug)
-            splines.push_back(&spline);
-    });
-    lightComponents_.forEach([&](const ULightComponent& light) { lights.push_back(&light); });
-    skies_.forEach([&](const USkyLightComponent& skyLight) {
-        if (!sky)
-            sky = &skyLight;
-    });
 
     std::set<sp::reflect::ObjectHandle> alive;
-    for (UStaticMeshComponent* mesh : meshes) {
+    for (const auto& [sequence, mesh] : meshComponents_.items()) {
         alive.insert(mesh->GetHandle());
         syncMesh(*mesh, library);
     }
@@ -170,7 +155,9 @@ void RenderScene::sync() {
     }
 
     std::set<sp::reflect::ObjectHandle> drawn;
-    for (const USplineComponent* spline : splines) {
+    for (const auto& [sequence, spline] : splines_.items()) {
+        if (!spline->bDrawDebug)
+            continue;
         drawn.insert(spline->GetHandle());
         syncDebugLine(*spline);
     }
@@ -186,7 +173,7 @@ void RenderScene::sync() {
     for (sp::render::LightId id : lights_)
         scene_.removeLight(id);
     lights_.clear();
-    for (const ULightComponent* light : lights) {
+    for (const auto& [sequence, light] : lightComponents_.items()) {
         if (!light->bVisible)
             continue;
         if (lights_.size() == sp::render::Scene::kMaxLights) {
@@ -200,7 +187,8 @@ void RenderScene::sync() {
     }
 
     sp::render::Environment environment;
-    if (sky) {
+    if (!skies_.items().empty()) { // the first sky light in play
+        const USkyLightComponent* sky = skies_.items().begin()->second;
         environment.ambient = rgb(sky->SkyColor) * sky->Intensity;
         environment.background = rgb(sky->BackgroundColor);
     }

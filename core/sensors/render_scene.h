@@ -42,11 +42,8 @@ template <typename T> class PlayOrder {
             order_.erase(it);
         }
     }
-    template <typename F> void forEach(const F& f) const {
-        for (const auto& [sequence, item] : items_)
-            f(*item);
-    }
-    bool empty() const { return items_.empty(); }
+    // By the order they began play: (sequence number, item).
+    const std::map<std::uint64_t, T*>& items() const { return items_; }
 
   private:
     std::map<std::uint64_t, T*> items_;

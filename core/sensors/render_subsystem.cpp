@@ -210,8 +210,9 @@ void RenderSubsystem::ensureRenderer() {
 }
 
 void RenderSubsystem::Tick(double /*deltaSeconds*/) {
-    std::vector<UCameraSensorComponent*> cameras;
-    cameraComponents_.forEach([&](UCameraSensorComponent& camera) { cameras.push_back(&camera); });
+    std::vector<UCameraSensorComponent*> cameras; // a snapshot: the frame's cameras, in play order
+    for (const auto& [sequence, camera] : cameraComponents_.items())
+        cameras.push_back(camera);
 
     // Render targets of destroyed cameras go (with the context current, as they hold GL objects).
     if (context_)
