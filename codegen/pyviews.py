@@ -46,7 +46,6 @@ class FunctionView:
     overloads: tuple[OverloadView, ...]
     is_static: bool
     result_code: str  # the api.py constant of the result's TypeCode
-    arg_names: tuple[str, ...]
 
 
 @dataclass(frozen=True)
@@ -208,7 +207,6 @@ def _function_view(c: Class, f: Function, enums: set[str], rpc: naming.Qualifier
         overloads=tuple(overloads),
         is_static=f.is_static,
         result_code=typecodes.py_name(typecodes.of_result(f)),
-        arg_names=tuple(p.name for p in ins),
     )
 
 

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import dataclasses
 import sys
-from collections.abc import Callable
 from typing import Any
 
 from spear._rpc_proxy import ObjectProxy, proxy_class, RpcClient
@@ -86,6 +85,6 @@ def convert(value: Any, type: TypeCode | None, client: RpcClient) -> Any:
     return value
 
 
-def convert_result_tuple(value: dict[str, Any], result_tuple: Callable[..., Any], client: RpcClient) -> Any:
-    fields = _field_types(result_tuple)  # type: ignore[arg-type]
+def convert_result_tuple(value: dict[str, Any], result_tuple: type, client: RpcClient) -> Any:
+    fields = _field_types(result_tuple)
     return result_tuple(**{k: convert(v, fields.get(k), client) for k, v in value.items()})
