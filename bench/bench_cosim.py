@@ -44,11 +44,11 @@ def mujoco(peer: Path, objects: int, views: int, width: int, height: int, frames
 
 
 def spear_cell(example: ModuleType, server: str | None, objects: int, views: int, width: int, height: int,
-               frames: int) -> float:
+               frames: int, png: Path | None) -> float:
     instance = spear.Instance(server=server, fixed_delta_seconds=example.FRAME_DT)
     try:
         result = example.run(instance, objects=objects, views=views, width=width, height=height, frames=frames,
-                             physics="bullet", png=None)
+                             physics="bullet", png=png)
     finally:
         instance.close()
     return float(result.ms_per_frame)
@@ -61,10 +61,19 @@ def main() -> int:
     parser.add_argument("--objects", type=int, nargs="+", default=[4, 16, 64])
     parser.add_argument("--views", type=int, nargs="+", default=[1, 2])
     parser.add_argument("--no-rpc", action="store_true", help="in-process only")
+    parser.add_argument("--no-inprocess", action="store_true",
+                        help="over RPC only: for a Python that cannot load the in-process module (another "
+                        "version than the build's, as on a host running the portable kit, bench/portable_kit.sh)")
+    parser.add_argument("--peer-dir", type=Path, default=None,
+                        help="folder holding spear_mujoco_cosim_peer (default: BUILD_DIR/bench)")
+    parser.add_argument("--png-dir", type=Path, default=None,
+                        help="write view 0 of each cell's last frame here (cosim_N<objects>_<views>v_<size>.png)")
     parser.add_argument("--write", action="store_true", help="update the Table 3 section of BENCHMARKS.md")
     args = parser.parse_args()
 
-    peer = args.build_dir / "bench" / "spear_mujoco_cosim_peer"
+    if args.no_rpc and args.no_inprocess:
+        parser.error("--no-rpc and --no-inprocess leave nothing to measure")
+    peer = (args.peer_dir or args.build_dir / "bench") / "spear_mujoco_cosim_peer"
     if not peer.exists():
         parser.error(f"{peer} is missing: build it with `cmake --build {args.build_dir} --target "
                      "spear_mujoco_cosim_peer` (needs Debian's libmujoco-dev)")
@@ -75,27 +84,38 @@ def main() -> int:
     for objects, views, width, height in cells:
         print(f"cell: N={objects}, {views} view(s), {width}x{height}", file=sys.stderr, flush=True)
         peer_result = mujoco(peer, objects, views, width, height, args.frames)
-        inprocess = spear_cell(example, None, objects, views, width, height, args.frames)
-        rpc = None if args.no_rpc else spear_cell(example, "launch", objects, views, width, height, args.frames)
+        png = None if args.png_dir is None else args.png_dir / f"cosim_N{objects}_{views}v_{width}x{height}.png"
+        inprocess = None if args.no_inprocess else spear_cell(example, None, objects, views, width, height,
+                                                              args.frames, png)
+        rpc = None if args.no_rpc else spear_cell(example, "launch", objects, views, width, height, args.frames, png)
         device = str(peer_result.get("device", ""))
         rows.append((objects, views, width, height, inprocess, rpc, float(peer_result["ms_per_frame"])))
 
     paper = example.PAPER_TABLE3
     lines = [
-        f"| cell | spear in-process ms | spear RPC ms | MuJoCo {rows and 'alone'} ms | spear / MuJoCo | RPC / in-process "
+        "| cell | spear in-process ms | spear RPC ms | MuJoCo alone ms | spear / MuJoCo | RPC / in-process "
         "| paper: SPEAR / UnrealCV+ ms |",
         "|---|---:|---:|---:|---:|---:|---:|",
     ]
+
+    def ms(value: float | None) -> str:
+        return "-" if value is None else f"{value:.1f}"
+
+    def ratio(numerator: float | None, denominator: float | None) -> str:
+        return "-" if numerator is None or denominator is None else f"{numerator / denominator:.2f}"
+
     for objects, views, width, height, inprocess, rpc, peer_ms in rows:
         key = (objects, views)
         reference = (f"{paper['SPEAR'][key]:.1f} / {paper['UnrealCV+'][key]:.1f}"
                      if width == 1920 and key in paper["SPEAR"] else "-")
+        # Without an in-process run the RPC frame time is compared with MuJoCo's (marked so).
+        versus = ratio(inprocess, peer_ms) if inprocess is not None else f"{ratio(rpc, peer_ms)} (RPC)"
         lines.append(
-            f"| N={objects}, {views} view{'s' if views > 1 else ''}, {width}x{height} | {inprocess:.1f} | "
-            f"{'-' if rpc is None else f'{rpc:.1f}'} | {peer_ms:.1f} | {inprocess / peer_ms:.2f} | "
-            f"{'-' if rpc is None else f'{rpc / inprocess:.2f}'} | {reference} |")
+            f"| N={objects}, {views} view{'s' if views > 1 else ''}, {width}x{height} | {ms(inprocess)} | "
+            f"{ms(rpc)} | {peer_ms:.1f} | {versus} | {ratio(rpc, inprocess)} | {reference} |")
     command = ("PYTHONPATH=python /usr/bin/python3 bench/bench_cosim.py --build-dir build "
-               f"--frames {args.frames}{' --no-rpc' if args.no_rpc else ''} --write")
+               f"--frames {args.frames}{' --no-rpc' if args.no_rpc else ''}"
+               f"{' --no-inprocess' if args.no_inprocess else ''} --write")
     text = section("cosim", command, [
         f"Device: {device} ({platform.machine()}, {args.frames} timed frames per cell after 10 warm-up frames; "
         "MuJoCo renders RGB with its own shadows, no MSAA).",
