@@ -220,6 +220,8 @@ GlContext::GlContext(const GlContextOptions& options) {
     makeCurrent();
     report_.vendor = glString(kGlVendor);
     report_.renderer = glString(kGlRenderer);
+    for (const char* rasteriser : {"llvmpipe", "softpipe", "SwiftShader"})
+        report_.software = report_.software || report_.renderer.find(rasteriser) != std::string::npos;
     report_.version = glString(kGlVersion);
     const int major = glInteger(kGlMajorVersion), minor = glInteger(kGlMinorVersion);
     if (major * 10 + minor < 45) {

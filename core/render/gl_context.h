@@ -12,12 +12,13 @@ namespace sp::render {
 
 // Which EGL display the context was created on, and what GL reports about itself.
 struct ContextReport {
-    std::string kind;     // "device" or "surfaceless"
-    int deviceIndex = -1; // index in eglQueryDevicesEXT's list; -1 for surfaceless
-    int deviceCount = 0;  // devices that eglQueryDevicesEXT listed
-    std::string vendor;   // GL_VENDOR
-    std::string renderer; // GL_RENDERER
-    std::string version;  // GL_VERSION
+    std::string kind;      // "device" or "surfaceless"
+    int deviceIndex = -1;  // index in eglQueryDevicesEXT's list; -1 for surfaceless
+    int deviceCount = 0;   // devices that eglQueryDevicesEXT listed
+    std::string vendor;    // GL_VENDOR
+    std::string renderer;  // GL_RENDERER
+    std::string version;   // GL_VERSION
+    bool software = false; // a rasteriser running on the CPU (llvmpipe, softpipe, SwiftShader)
 };
 
 // Options for GlContext::create(); an empty `device` reads SPEAR_EGL_DEVICE, then auto-selects.

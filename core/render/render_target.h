@@ -73,6 +73,10 @@ class RenderTarget {
     // The slot holding the frame due for reading, or null.
     Slot* dueSlot();
     void copyOut(Slot& slot, Modality modality, void* destination);
+    // Whether `modality` is read through the renderer's compute copy (Renderer::packIdsOnGpu()).
+    bool packedOnGpu(Modality modality) const;
+    // Reads a modality of the frame the framebuffers hold into `destination` (latency 0).
+    void readNow(Modality modality, int width, int height, void* destination);
     // Throws sp::InvalidArgument unless each view fits a modality `slot` was rendered with.
     static void checkViews(const Slot& slot, std::span<const OutputView> views);
     void dropFence(Slot& slot);
@@ -84,6 +88,8 @@ class RenderTarget {
     Slot* lastRead_ = nullptr; // the slot read since the last submit(), for readAgain()
     std::vector<Slot> slots_;
     std::unique_ptr<Framebuffers> framebuffers_;
+    unsigned idScratch_ = 0; // latency 0's id readback: the packed channel, then copied out
+    std::size_t idScratchBytes_ = 0;
 };
 
 } // namespace sp::render

@@ -56,7 +56,7 @@ struct Renderer::Draw {
     double distance;   // from the eye to the instance's bounding sphere
 };
 
-Renderer::Renderer(const GlContext& context) : context_(context) {
+Renderer::Renderer(const GlContext& context) : context_(context), packIdsOnGpu_(!context.report().software) {
     context_.makeCurrent();
     shadow_ = std::make_unique<ShaderProgram>("shadow", shaders::kShadowVertex, shaders::kShadowFragment);
     shadowMaps_ = std::make_unique<ShadowMaps>();
@@ -65,6 +65,12 @@ Renderer::Renderer(const GlContext& context) : context_(context) {
     glCreateVertexArrays(1, &emptyVao_);
     // Readbacks of 3-channel and 16-bit images have rows that are not multiples of 4 bytes.
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
+}
+
+ShaderProgram& Renderer::idChannelProgram() {
+    if (!idChannel_)
+        idChannel_ = std::make_unique<ShaderProgram>("id channel", shaders::kIdChannelCompute);
+    return *idChannel_;
 }
 
 Renderer::~Renderer() {

@@ -63,6 +63,13 @@ class Renderer {
     // Runs the passes into `framebuffers` (used by RenderTarget; see render_target.h for the public way).
     void render(const Scene& scene, const Camera& camera, const PassSet& passes, Framebuffers& framebuffers);
     void countReadback() { ++stats_.readbacks; }
+    // The compute program that copies one channel of the ids target (RenderTarget's id readback).
+    ShaderProgram& idChannelProgram();
+    // Whether RenderTarget reads object and material ids through that compute copy rather than
+    // glReadPixels of one channel: by default on hardware, where the driver's one-channel integer read is
+    // slow; a CPU rasteriser converts on the CPU either way, and the dispatch only adds to it.
+    bool packIdsOnGpu() const { return packIdsOnGpu_; }
+    void setPackIdsOnGpu(bool on) { packIdsOnGpu_ = on; }
     PassTimers& timers() { return timers_; }
 
   private:
@@ -91,6 +98,8 @@ class Renderer {
     const GlContext& context_;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs_; // by variant key
     std::unique_ptr<ShaderProgram> shadow_;
+    std::unique_ptr<ShaderProgram> idChannel_; // made at the first id readback
+    bool packIdsOnGpu_ = true;
     std::unique_ptr<ShadowMaps> shadowMaps_;
     std::map<std::uint64_t, std::unique_ptr<GpuSceneCache>> caches_;
     mutable PassTimers timers_; // stats() collects finished timer queries

@@ -7,6 +7,10 @@
 namespace sp::render {
 namespace {
 
+const char* stageName(GLenum stage) {
+    return stage == GL_VERTEX_SHADER ? "vertex" : stage == GL_FRAGMENT_SHADER ? "fragment" : "compute";
+}
+
 GLuint compile(const std::string& name, GLenum stage, const char* source) {
     GLuint shader = glCreateShader(stage);
     glShaderSource(shader, 1, &source, nullptr);
@@ -17,9 +21,8 @@ GLuint compile(const std::string& name, GLenum stage, const char* source) {
         char log[4096] = {};
         glGetShaderInfoLog(shader, sizeof log, nullptr, log);
         glDeleteShader(shader);
-        SP_THROW(InvalidState,
-                 "ShaderProgram::ShaderProgram(): ", stage == GL_VERTEX_SHADER ? "vertex" : "fragment",
-                 " shader of '", name, "' does not compile: ", log);
+        SP_THROW(InvalidState, "ShaderProgram::ShaderProgram(): ", stageName(stage), " shader of '", name,
+                 "' does not compile: ", log);
     }
     return shader;
 }
@@ -36,19 +39,27 @@ ShaderProgram::ShaderProgram(const std::string& name, const char* vertexSource, 
         glDeleteShader(vs);
         throw;
     }
+    link({vs, fs});
+}
+
+ShaderProgram::ShaderProgram(const std::string& name, const char* computeSource) : name_(name) {
+    link({compile(name, GL_COMPUTE_SHADER, computeSource)});
+}
+
+void ShaderProgram::link(std::initializer_list<unsigned> shaders) {
     program_ = glCreateProgram();
-    glAttachShader(program_, vs);
-    glAttachShader(program_, fs);
+    for (unsigned shader : shaders)
+        glAttachShader(program_, shader);
     glLinkProgram(program_);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
+    for (unsigned shader : shaders)
+        glDeleteShader(shader);
     GLint ok = 0;
     glGetProgramiv(program_, GL_LINK_STATUS, &ok);
     if (!ok) {
         char log[4096] = {};
         glGetProgramInfoLog(program_, sizeof log, nullptr, log);
         glDeleteProgram(program_);
-        SP_THROW(InvalidState, "ShaderProgram::ShaderProgram(): program '", name, "' does not link: ", log);
+        SP_THROW(InvalidState, "ShaderProgram::ShaderProgram(): program '", name_, "' does not link: ", log);
     }
 }
 

@@ -1,6 +1,8 @@
 #pragma once
-// A linked GLSL program (vertex + fragment) with cached uniform locations. Needs a current context.
+// A linked GLSL program (vertex + fragment, or compute) with cached uniform locations. Needs a current
+// context.
 
+#include <initializer_list>
 #include <string>
 #include <unordered_map>
 
@@ -12,6 +14,8 @@ class ShaderProgram {
   public:
     // Compiles and links; throws sp::InvalidState with the compiler log naming `name` on failure.
     ShaderProgram(const std::string& name, const char* vertexSource, const char* fragmentSource);
+    // A compute program.
+    ShaderProgram(const std::string& name, const char* computeSource);
     ~ShaderProgram();
     ShaderProgram(const ShaderProgram&) = delete;
     ShaderProgram& operator=(const ShaderProgram&) = delete;
@@ -31,6 +35,9 @@ class ShaderProgram {
     void set(const std::string& uniform, const Eigen::Matrix4f& value);
 
   private:
+    // Links the compiled `shaders` (deleting them) into program_.
+    void link(std::initializer_list<unsigned> shaders);
+
     std::string name_;
     unsigned program_ = 0;
     std::unordered_map<std::string, int> locations_;

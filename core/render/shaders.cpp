@@ -430,6 +430,19 @@ layout(location = 0) out float oDepth;
 void main() { oDepth = gl_FragCoord.z; }
 )glsl";
 
+const char* const kIdChannelCompute = R"glsl(#version 450 core
+layout(local_size_x = 16, local_size_y = 16) in;
+layout(binding = 1, rg32ui) uniform readonly uimage2D uIds;
+layout(std430, binding = 0) writeonly buffer PackedIds { uint packedIds[]; };
+uniform int uChannel;
+uniform ivec2 uSize;
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (p.x >= uSize.x || p.y >= uSize.y) return;
+    packedIds[p.y * uSize.x + p.x] = imageLoad(uIds, p)[uChannel];
+}
+)glsl";
+
 const char* const kBackgroundVertex = R"glsl(#version 450 core
 // One triangle covering the viewport, on the far plane (depth 1: it passes GL_LEQUAL where nothing was drawn).
 void main() {

@@ -21,6 +21,9 @@ inline constexpr int kMaxShadowMaps = 4; // must match MAX_SHADOWS in kFrameBloc
 
 // The image unit the shading reads shadow maps from (binding 0 in kShadingChunk).
 inline constexpr int kShadowMapImageUnit = 0;
+// The image unit and storage-buffer binding of the id-channel copy (kIdChannelCompute).
+inline constexpr int kIdsImageUnit = 1;
+inline constexpr int kPackedIdsBinding = 0;
 inline constexpr int kFrameBlockBinding = 0;
 
 // Per-frame constants of one view, shared by every program through one uniform buffer (std140).
@@ -67,6 +70,11 @@ enum MaterialFeature : unsigned {
 
 extern const char* const kShadowVertex;
 extern const char* const kShadowFragment;
+
+// Copies channel uChannel (0: object ids, 1: material ids) of the ids target's lower-left uSize pixels
+// into a tightly packed uint buffer, in glReadPixels' row order; 16 x 16 work groups.
+extern const char* const kIdChannelCompute;
+inline constexpr int kIdChannelGroupSize = 16;
 
 // The surface and attribute passes: rasterise every visible instance and write `targets` (a mask of
 // Target bits, in Target order at locations 0, 1, ...); when `forward`, shade each fragment as well (the

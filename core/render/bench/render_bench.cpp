@@ -2,8 +2,10 @@
 // every modality and for any further sets named on the command line, per latency mode, on a ground plane
 // with N boxes, a shadowed sun and a spot light.
 //
-//   spear_render_bench [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--modalities a,b,...]...
-//   (--shadows 0: off; each --modalities adds one set, e.g. final_color,depth,normal,object_ids)
+//   spear_render_bench [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--ids compute|driver]
+//                      [--modalities a,b,...]...
+//   (--shadows 0: off; each --modalities adds one set, e.g. final_color,depth,normal,object_ids;
+//   --ids: how object and material ids are read back, default the renderer's choice for the device)
 //
 // --png writes the 256x256 and 1920x1080 final_color images of the scene, to look at.
 
@@ -82,7 +84,7 @@ Camera makeCamera(int width, int height, int boxes, int shadowResolution) {
 
 int main(int argc, char** argv) {
     int boxes = 64, frames = 10, shadows = 2048;
-    std::string pngDir;
+    std::string pngDir, ids;
     // The sets timed: a label and the modalities.
     std::vector<std::pair<std::string, ModalitySet>> sets = {
         {"final_color", ModalitySet{Modality::FinalColor}}, {"all (14)", ModalitySet::all()}};
@@ -95,6 +97,9 @@ int main(int argc, char** argv) {
             shadows = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--png") && i + 1 < argc)
             pngDir = argv[++i];
+        else if (!std::strcmp(argv[i], "--ids") && i + 1 < argc &&
+                 (!std::strcmp(argv[i + 1], "compute") || !std::strcmp(argv[i + 1], "driver")))
+            ids = argv[++i];
         else if (!std::strcmp(argv[i], "--modalities") && i + 1 < argc) {
             const std::string list = argv[++i];
             std::vector<std::string> names;
@@ -108,17 +113,22 @@ int main(int argc, char** argv) {
         } else {
             std::fprintf(
                 stderr,
-                "usage: %s [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--modalities a,b,...]\n",
+                "usage: %s [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--ids compute|driver] "
+                "[--modalities a,b,...]\n",
                 argv[0]);
             return 2;
         }
     }
     GlContext context;
     Renderer renderer(context);
+    if (!ids.empty())
+        renderer.setPackIdsOnGpu(ids == "compute");
     Scene scene;
     buildScene(scene, boxes);
-    std::printf("device: %s (%s), %d boxes, shadow maps %d, %d timed frames after 3 warm-up frames\n",
-                context.report().renderer.c_str(), context.report().kind.c_str(), boxes, shadows, frames);
+    std::printf("device: %s (%s), %d boxes, shadow maps %d, ids read by %s, %d timed frames after 3 warm-up "
+                "frames\n",
+                context.report().renderer.c_str(), context.report().kind.c_str(), boxes, shadows,
+                renderer.packIdsOnGpu() ? "compute" : "driver", frames);
     std::printf(
         "%-10s %-12s %-8s %10s   per pass, ms/frame: shadow surface lighting readback (GL timer / CPU)\n",
         "size", "modalities", "latency", "ms/frame");

@@ -105,6 +105,39 @@ TEST_P(RenderLatencyGlTest, TheLastFrameReadCanBeReadAgainUntilTheNextSubmit) {
     EXPECT_THROW(target.readAgain(wrong), InvalidArgument);
 }
 
+TEST_P(RenderLatencyGlTest, IdsReadTheSameThroughTheComputeCopyAsThroughTheDriver) {
+    // The compute copy runs by default on hardware only (Renderer::packIdsOnGpu()), so it is forced here;
+    // a size that is not a multiple of the copy's 16 x 16 work groups, and a view with background in it.
+    const int latency = GetParam();
+    camera_ = cameraLookingAt({-20, 0, 0}, {0, 0, 0}, 37, 21);
+    const bool byDefault = renderer().packIdsOnGpu();
+    std::vector<std::uint32_t> frames[2][2]; // [compute][object, material] ids of the frame read
+    for (int compute = 0; compute < 2; ++compute) {
+        renderer().setPackIdsOnGpu(compute == 1);
+        RenderTarget target(renderer(), {Modality::ObjectIds, Modality::MaterialIds, Modality::Depth},
+                            latency);
+        for (std::uint64_t k = 1; k <= std::uint64_t(latency) + 1; ++k)
+            submitFrame(target, k);
+        Frame frame;
+        ASSERT_EQ(target.read(frame), 1u);
+        for (int i = 0; i < 2; ++i) {
+            std::span<const std::uint32_t> ids =
+                frame.get(i == 0 ? Modality::ObjectIds : Modality::MaterialIds).as<std::uint32_t>();
+            frames[compute][i].assign(ids.begin(), ids.end());
+        }
+        EXPECT_EQ(frame.get(Modality::ObjectIds).uintAt(18, 10), 1001u) << "compute " << compute;
+        EXPECT_EQ(frame.get(Modality::ObjectIds).uintAt(0, 0), 0u) << "background, compute " << compute;
+        // Read again into caller memory (latency 0 copies from the framebuffers once more).
+        std::vector<std::uint32_t> again(37 * 21, 0xdeadbeef);
+        const OutputView view[] = {{Modality::MaterialIds, again.data(), again.size() * 4}};
+        EXPECT_EQ(target.readAgain(view), 1u);
+        EXPECT_EQ(again, frames[compute][1]);
+    }
+    renderer().setPackIdsOnGpu(byDefault);
+    EXPECT_EQ(frames[1][0], frames[0][0]);
+    EXPECT_EQ(frames[1][1], frames[0][1]);
+}
+
 INSTANTIATE_TEST_SUITE_P(Latency, RenderLatencyGlTest, ::testing::Values(0, 1, 2));
 
 using RenderTargetGlTest = RenderLatencyGlTest;
@@ -132,18 +165,30 @@ TEST_F(RenderTargetGlTest, CallerMemoryOfTheWrongSizeIsRejectedBeforeWriting) {
 }
 
 TEST_F(RenderTargetGlTest, FramesKeepTheSizeTheyWereRenderedWith) {
-    RenderTarget target(renderer(), {Modality::Depth}, 1);
-    submitFrame(target, 1);
+    // Latency 1 alternates two slots; a slot whose next frame has another size gets new readback buffers.
+    RenderTarget target(renderer(), {Modality::Depth, Modality::ObjectIds}, 1);
+    submitFrame(target, 1); // 8 x 8
     camera_.params.width = 4;
     camera_.params.height = 2;
     submitFrame(target, 2);
     Frame frame;
     ASSERT_EQ(target.read(frame), 1u);
     EXPECT_EQ(frame.get(Modality::Depth).width, 8);
-    submitFrame(target, 3);
+    submitFrame(target, 3); // 4 x 2 into frame 1's 8 x 8 slot
     ASSERT_EQ(target.read(frame), 2u);
     EXPECT_EQ(frame.get(Modality::Depth).width, 4);
     EXPECT_EQ(frame.get(Modality::Depth).height, 2);
+    EXPECT_EQ(frame.get(Modality::ObjectIds).uintAt(2, 1), 1002u);
+    camera_.params.width = 8;
+    camera_.params.height = 8;
+    submitFrame(target, 4); // 8 x 8 into frame 2's 4 x 2 slot
+    ASSERT_EQ(target.read(frame), 3u);
+    EXPECT_EQ(frame.get(Modality::ObjectIds).uintAt(2, 1), 1003u);
+    submitFrame(target, 5);
+    ASSERT_EQ(target.read(frame), 4u);
+    EXPECT_EQ(frame.get(Modality::Depth).width, 8);
+    EXPECT_NEAR(frame.get(Modality::Depth).at(4, 4), 3.0f, 1e-4f);
+    EXPECT_EQ(frame.get(Modality::ObjectIds).uintAt(4, 4), 1004u);
 }
 
 TEST_F(RenderTargetGlTest, BadLatencyIsRejected) {
