@@ -1,24 +1,38 @@
 #!/usr/bin/env bash
 # Packs spear-server, the native benchmark programs and the shared libraries they load that another
-# x86-64 Linux host may lack into BUILD/portable/, stripped of debug information, to run the benchmarks
-# on a machine without Debian's packages (a GPU host, say). There the host's own Python 3 (with numpy
-# and msgpack) drives the engine over RPC from this checkout's python/ folder:
+# x86-64 Linux host may lack into BUILD/portable/ (stripped of debug information, then compressed into
+# BUILD/portable.tar.xz), to run the benchmarks on a machine without Debian's packages (a GPU host, say).
+# With --python the kit also carries this machine's Python 3.11 (the standard library, numpy, msgpack, Pillow) and
+# the in-process module, so that the host runs spear in-process too, whatever Python it has itself.
 #
-#   bash bench/portable_kit.sh [BUILD]           # here, after a build
-#   export LD_LIBRARY_PATH=$PWD/build/portable/lib SPEAR_SERVER=$PWD/build/portable/bin/spear-server
-#   PYTHONPATH=python python3 bench/bench_cosim.py --transports rpc --peer-dir build/portable/bin
+#   bash bench/portable_kit.sh [--python] [BUILD]       # here, after a build
+#   bash bench/run_portable.sh [FRAMES] [PNG_DIR]       # there, in a checkout holding BUILD/portable.tar.xz
 #
 # The C and C++ runtimes, EGL and OpenGL are left to the host: its GPU driver provides EGL through
 # libglvnd, and its C++ runtime is at least as new as the one the kit was built against.
 set -euo pipefail
 
+with_python=0
+if [[ ${1:-} == --python ]]; then
+    with_python=1
+    shift
+fi
 build=${1:-build}
 kit=$build/portable
 programs=(python/spear/bin/spear-server "$build/bench/spear_mujoco_cosim_peer" "$build/bench/spear_mujoco_peer"
           "$build/core/render/bench/spear_render_bench")
-host_provided='^(linux-vdso|ld-linux|libc|libm|libdl|libpthread|librt|libgcc_s|libstdc\+\+|libEGL|libGL|libGLX|libGLdispatch|libOpenGL)\.'
+host_provided='^(linux-vdso|ld-linux|libc|libm|libdl|libpthread|librt|libgcc_s|libstdc\+\+|libEGL|libGL|libGLX|libGLdispatch|libOpenGL|libresolv|libutil|libanl|libnss_[a-z]*)\.'
 
-rm -rf "$kit"
+# Copies the libraries `binary` loads (through its RPATH too) into the kit, but those the host provides.
+collect_libraries() {
+    ldd "$1" | awk '$3 ~ /^\// {print $1, $3}' | while read -r name path; do
+        if [[ ! $name =~ $host_provided && ! -e $kit/lib/$name ]]; then
+            objcopy --strip-debug "$(readlink -f "$path")" "$kit/lib/$name"
+        fi
+    done
+}
+
+rm -rf "$kit" "$kit.tar.xz"
 mkdir -p "$kit/bin" "$kit/lib"
 for program in "${programs[@]}"; do
     if [[ ! -x $program ]]; then
@@ -26,12 +40,24 @@ for program in "${programs[@]}"; do
         exit 1
     fi
     objcopy --strip-debug "$program" "$kit/bin/$(basename "$program")"
-    # ldd resolves what the program loads through its RPATH too (libspear_core.so beside the server).
-    ldd "$program" | awk '$3 ~ /^\// {print $1, $3}' | while read -r name path; do
-        if [[ ! $name =~ $host_provided && ! -e $kit/lib/$name ]]; then
-            objcopy --strip-debug "$(readlink -f "$path")" "$kit/lib/$name"
-        fi
-    done
+    collect_libraries "$program"
 done
-tar -C "$build" -cJf "$kit.tar.xz" portable  # the compressed kit travels more easily (embree alone is 44 MB)
+
+if ((with_python)); then
+    module=$(echo python/spear/_spear_engine.cpython-311-*.so)
+    python=$kit/python # PYTHONHOME there: bin/python3.11, lib/python3.11, site/ (numpy, msgpack)
+    mkdir -p "$kit/spear" "$python/bin" "$python/lib" "$python/site"
+    objcopy --strip-debug "$module" "$kit/spear/$(basename "$module")"
+    collect_libraries "$module"
+    cp /usr/bin/python3.11 "$python/bin/"
+    skip=(--exclude=__pycache__ --exclude=test --exclude=tests --exclude=idlelib --exclude=tkinter
+          --exclude=ensurepip --exclude=lib2to3 --exclude=dist-packages --exclude='config-3.11-*'
+          --exclude='_tkinter*')
+    tar -C /usr/lib "${skip[@]}" -cf - python3.11 | tar -C "$python/lib" -xf -
+    tar -C /usr/lib/python3/dist-packages "${skip[@]}" -cf - numpy msgpack PIL | tar -C "$python/site" -xf -
+    collect_libraries /usr/bin/python3.11
+    find "$python" -type f -name '*.so' | while read -r library; do collect_libraries "$library"; done
+fi
+
+tar -C "$build" -cJf "$kit.tar.xz" portable # embree alone is 44 MB uncompressed
 du -sh "$kit" "$kit.tar.xz" | sed "s/^/portable_kit: /"

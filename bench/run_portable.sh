@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs the renderer and Table 3 benchmarks from the portable kit (bench/portable_kit.sh) on a host without
-# the build's Python: the renderer alone (spear_render_bench, per-pass GL timer queries), then Table 3 over
-# RPC beside MuJoCo, driven by the host's python3 (numpy and msgpack needed) from this checkout.
+# the build's Python: the renderer alone (spear_render_bench, per-pass GL timer queries), then Table 3
+# beside MuJoCo: in-process and over RPC when the kit carries its Python (portable_kit.sh --python), else
+# over RPC only, driven by the host's python3 (numpy and msgpack needed).
 #
 #   bash bench/run_portable.sh [FRAMES] [PNG_DIR]     # in the checkout's root, build/portable.tar.xz present
 set -euo pipefail
@@ -9,12 +10,19 @@ set -euo pipefail
 frames=${1:-1000}
 png_dir=${2:-}
 kit=build/portable
-python=${PYTHON:-python3}
-if [[ ! -d $kit ]]; then  # Python's tarfile, as a bare host may have no xz
-    "$python" -c "import tarfile; tarfile.open('$kit.tar.xz').extractall('build')"
+if [[ ! -d $kit ]]; then # a bare host may have no xz, but has a Python
+    python3 -c "import tarfile; tarfile.open('$kit.tar.xz').extractall('build')"
 fi
 export LD_LIBRARY_PATH=$PWD/$kit/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH} SPEAR_SERVER=$PWD/$kit/bin/spear-server
-missing=$(ldd "$kit"/bin/* | grep "not found" | sort -u || true)
+transports=(--no-inprocess)
+python=python3
+if [[ -x $kit/python/bin/python3.11 ]]; then
+    cp "$kit"/spear/*.so python/spear/ # the in-process module, beside the package
+    export PYTHONHOME=$PWD/$kit/python PYTHONPATH=$PWD/$kit/python/site${PYTHONPATH:+:$PYTHONPATH}
+    python=$kit/python/bin/python3.11
+    transports=()
+fi
+missing=$(ldd "$kit"/bin/* "$kit"/spear/*.so 2>/dev/null | grep "not found" | sort -u || true)
 if [[ -n $missing ]]; then
     echo "run_portable: libraries this host lacks:" >&2
     echo "$missing" >&2
@@ -22,9 +30,11 @@ if [[ -n $missing ]]; then
 fi
 
 echo "== host: $(uname -m), $("$python" --version), numpy $("$python" -c 'import numpy; print(numpy.__version__)')"
-command -v nvidia-smi >/dev/null && nvidia-smi -L
+if command -v nvidia-smi >/dev/null; then
+    nvidia-smi -L
+fi
 echo "== the renderer alone: $kit/bin/spear_render_bench --frames $((frames / 5))"
 "$kit"/bin/spear_render_bench --frames $((frames / 5)) ${png_dir:+--png "$png_dir"}
-echo "== Table 3 over RPC beside MuJoCo, $frames frames per cell"
-PYTHONPATH=python${PYTHONPATH:+:$PYTHONPATH} "$python" bench/bench_cosim.py --no-inprocess --peer-dir "$kit/bin" --frames "$frames" \
-    ${png_dir:+--png-dir "$png_dir"}
+echo "== Table 3 beside MuJoCo, $frames frames per cell"
+PYTHONPATH=python${PYTHONPATH:+:$PYTHONPATH} "$python" bench/bench_cosim.py "${transports[@]}" --peer-dir "$kit/bin" \
+    --frames "$frames" ${png_dir:+--png-dir "$png_dir"}
