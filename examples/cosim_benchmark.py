@@ -99,6 +99,7 @@ def add_lights(game: spear.UWorld) -> None:
     sun.LightComponent.Intensity = 3.0
     sky = game.spawn_actor(uclass=spear.ASkyLight, name="Sky")
     sky.SkyLightComponent.SkyColor = spear.FLinearColor(0.1, 0.12, 0.15, 1.0)
+    sky.SkyLightComponent.Intensity = 1.0  # the peer's ambient term, (0.1, 0.12, 0.15)
     sky.SkyLightComponent.BackgroundColor = spear.FLinearColor(0.3, 0.35, 0.45, 1.0)
 
 
