@@ -15,6 +15,7 @@ import sys
 import time
 from collections.abc import Callable, Mapping
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -23,7 +24,6 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "python"))
 
 import spear  # noqa: E402
-import spear.distributed  # noqa: E402
 from spear.vector import Box, StepResult, VectorEnv  # noqa: E402
 
 SIZE = 128
@@ -95,13 +95,18 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=(__doc__ or "").split("\n\n")[0])
     parser.add_argument("--counts", type=int, nargs="+", default=[1, 4, 16, 64])
     parser.add_argument("--steps", type=int, default=30)
+    parser.add_argument("--no-dask", action="store_true", help="skip the Dask column (for a Python without Dask)")
     args = parser.parse_args()
     cores = os.cpu_count() or 1
-    import distributed  # Debian's python3-distributed
+    client: Any = None
+    cluster: Any = None
+    if not args.no_dask:
+        import distributed  # Debian's python3-distributed
 
-    cluster = distributed.LocalCluster(n_workers=cores, threads_per_worker=1, processes=True,
-                                       dashboard_address=None, silence_logs=40)
-    client = distributed.Client(cluster)
+        import spear.distributed
+        cluster = distributed.LocalCluster(n_workers=cores, threads_per_worker=1, processes=True,
+                                           dashboard_address=None, silence_logs=40)
+        client = distributed.Client(cluster)
     print(f"{cores} cores; environment steps per second (physics + one {SIZE}x{SIZE} colour camera each), "
           f"{args.steps} timed steps after 3 warm-up steps")
     print("| N | floor: N single-world servers, one after another | worlds in one process | "
@@ -114,15 +119,19 @@ def main() -> None:
             servers = min(cores, n)
             per_core = measured(lambda: [VectorEnv.on_servers(Push, num_servers=servers,
                                                               worlds_per_server=n // servers)], args.steps)
-            with spear.distributed.Servers(client) as dask_servers:
-                on_dask = measured(lambda: [VectorEnv.on_servers(
-                    Push, num_servers=servers, worlds_per_server=n // servers, servers=dask_servers.addresses[:servers],
-                    token=dask_servers.token)], args.steps)
+            dask_cell = "-"
+            if client is not None:
+                with spear.distributed.Servers(client) as dask_servers:
+                    on_dask = measured(lambda: [VectorEnv.on_servers(
+                        Push, num_servers=servers, worlds_per_server=n // servers,
+                        servers=dask_servers.addresses[:servers], token=dask_servers.token)], args.steps)
+                dask_cell = f"{on_dask:.0f} ({on_dask / floor:.1f}×)"
             print(f"| {n} | {floor:.0f} | {worlds:.0f} ({worlds / floor:.1f}×) | {per_core:.0f} ({per_core / floor:.1f}×) "
-                  f"| {on_dask:.0f} ({on_dask / floor:.1f}×) |", flush=True)
+                  f"| {dask_cell} |", flush=True)
     finally:
-        client.close()
-        cluster.close()
+        if client is not None:
+            client.close()
+            cluster.close()
 
 
 if __name__ == "__main__":
