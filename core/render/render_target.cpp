@@ -121,6 +121,7 @@ std::uint64_t RenderTarget::submit(const Scene& scene, const Camera& camera) {
     Slot& slot = slots_[frameNumber % slots_.size()];
     dropFence(slot); // an unread frame N + 1 submits old is dropped
     slot.frameNumber = frameNumber;
+    slot.sceneUid = scene.uid();
     slot.width = camera.params.width;
     slot.height = camera.params.height;
     slot.modalities = modalities_;
@@ -171,11 +172,10 @@ RenderTarget::Slot* RenderTarget::dueSlot() {
 }
 
 void RenderTarget::copyOut(Slot& slot, Modality modality, void* destination) {
-    renderer_.countReadback();
-    renderer_.timers().begin(Pass::Readback);
+    renderer_.beginReadback(slot.sceneUid);
     if (latency_ == 0) { // the framebuffers still hold this frame: no staging copy but the ids'
         readNow(modality, slot.width, slot.height, destination);
-        renderer_.timers().end();
+        renderer_.endReadback(slot.sceneUid);
         return;
     }
     const auto m = static_cast<std::size_t>(modality);
@@ -185,7 +185,7 @@ void RenderTarget::copyOut(Slot& slot, Modality modality, void* destination) {
              " readback buffer");
     std::memcpy(destination, mapped, bytes);
     glUnmapNamedBuffer(slot.buffers[m]);
-    renderer_.timers().end();
+    renderer_.endReadback(slot.sceneUid);
 }
 
 bool RenderTarget::packedOnGpu(Modality modality) const {

@@ -62,6 +62,7 @@ class RenderTarget {
   private:
     struct Slot {
         std::uint64_t frameNumber = 0;
+        std::uint64_t sceneUid = 0; // the scene rendered, whose statistics count the readback
         bool pending = false;
         int width = 0;
         int height = 0;

@@ -59,7 +59,6 @@ struct Renderer::Draw {
 Renderer::Renderer(const GlContext& context) : context_(context), packIdsOnGpu_(!context.report().software) {
     context_.makeCurrent();
     shadow_ = std::make_unique<ShaderProgram>("shadow", shaders::kShadowVertex, shaders::kShadowFragment);
-    shadowMaps_ = std::make_unique<ShadowMaps>();
     glCreateBuffers(1, &frameBlock_);
     glNamedBufferData(frameBlock_, sizeof(shaders::FrameBlock), nullptr, GL_DYNAMIC_DRAW);
     glCreateVertexArrays(1, &emptyVao_);
@@ -75,31 +74,89 @@ ShaderProgram& Renderer::idChannelProgram() {
 
 Renderer::~Renderer() {
     context_.makeCurrent();
-    caches_.clear();
-    shadowMaps_.reset();
+    scenes_.clear();
     glDeleteBuffers(1, &frameBlock_);
     glDeleteVertexArrays(1, &emptyVao_);
 }
 
-const RenderStats& Renderer::stats() const {
-    timers_.collect();
-    stats_.passTimes = timers_.totals();
-    return stats_;
-}
-void Renderer::resetStats() {
-    timers_.collect();
-    timers_.reset();
-    stats_ = RenderStats();
-}
-void Renderer::releaseScene(const Scene& scene) {
-    caches_.erase(scene.uid());
+Renderer::SceneState::SceneState()
+    : cache(std::make_unique<GpuSceneCache>()), shadowMaps(std::make_unique<ShadowMaps>()) {}
+Renderer::SceneState::~SceneState() = default;
+
+namespace {
+
+void add(RenderStats& total, const RenderStats& s) {
+    total.frames += s.frames;
+    total.shadowPasses += s.shadowPasses;
+    total.shadowReuses += s.shadowReuses;
+    total.surfacePasses += s.surfacePasses;
+    total.attributePasses += s.attributePasses;
+    total.lightingPasses += s.lightingPasses;
+    total.tonemapPasses += s.tonemapPasses;
+    total.readbacks += s.readbacks;
+    total.meshUploads += s.meshUploads;
+    total.textureUploads += s.textureUploads;
+    total.drawnInstances += s.drawnInstances;
+    total.culledInstances += s.culledInstances;
+    for (std::size_t p = 0; p < kPassCount; ++p) {
+        total.passTimes[p].gpuMs += s.passTimes[p].gpuMs;
+        total.passTimes[p].cpuMs += s.passTimes[p].cpuMs;
+        total.passTimes[p].samples += s.passTimes[p].samples;
+    }
 }
 
-GpuSceneCache& Renderer::cacheFor(const Scene& scene) {
-    auto& cache = caches_[scene.uid()];
-    if (!cache)
-        cache = std::make_unique<GpuSceneCache>();
-    return *cache;
+} // namespace
+
+RenderStats Renderer::stats(std::uint64_t sceneUid) const {
+    SceneState* state = findState(sceneUid);
+    if (state == nullptr)
+        return {};
+    state->timers.collect();
+    state->stats.passTimes = state->timers.totals();
+    return state->stats;
+}
+RenderStats Renderer::stats() const {
+    RenderStats total;
+    for (const auto& [uid, state] : scenes_)
+        add(total, stats(uid));
+    return total;
+}
+void Renderer::resetStats() {
+    for (auto& [uid, state] : scenes_) {
+        state->timers.collect();
+        state->timers.reset();
+        state->stats = RenderStats();
+    }
+}
+void Renderer::releaseScene(const Scene& scene) {
+    const auto it = scenes_.find(scene.uid());
+    if (it == scenes_.end())
+        return;
+    if (active_ == it->second.get())
+        active_ = nullptr;
+    scenes_.erase(it);
+}
+
+Renderer::SceneState& Renderer::stateFor(const Scene& scene) {
+    auto& state = scenes_[scene.uid()];
+    if (!state)
+        state = std::make_unique<SceneState>();
+    return *state;
+}
+Renderer::SceneState* Renderer::findState(std::uint64_t sceneUid) const {
+    const auto it = scenes_.find(sceneUid);
+    return it == scenes_.end() ? nullptr : it->second.get();
+}
+
+void Renderer::beginReadback(std::uint64_t sceneUid) {
+    if (SceneState* state = findState(sceneUid)) {
+        ++state->stats.readbacks;
+        state->timers.begin(Pass::Readback);
+    }
+}
+void Renderer::endReadback(std::uint64_t sceneUid) {
+    if (SceneState* state = findState(sceneUid))
+        state->timers.end();
 }
 
 ShaderProgram& Renderer::surfaceProgram(TargetMask targets, bool forward, unsigned materialFeatures,
@@ -116,7 +173,8 @@ ShaderProgram& Renderer::surfaceProgram(TargetMask targets, bool forward, unsign
 
 void Renderer::render(const Scene& scene, const Camera& camera, const PassSet& passes, Framebuffers& fb) {
     camera.params.validate("Renderer::render");
-    GpuSceneCache& cache = cacheFor(scene);
+    active_ = &stateFor(scene);
+    GpuSceneCache& cache = *active_->cache;
     const std::uint64_t meshUploads = cache.meshUploads(), textureUploads = cache.textureUploads();
     fb.ensure(camera.params.width, camera.params.height, passes);
     glDisable(GL_CULL_FACE); // two-sided: imported meshes have unreliable winding
@@ -124,13 +182,13 @@ void Renderer::render(const Scene& scene, const Camera& camera, const PassSet& p
 
     std::vector<ShadowInfo> shadowInfos;
     if (passes.shadow) {
-        timers_.begin(Pass::Shadow);
+        active_->timers.begin(Pass::Shadow);
         const std::size_t rendered =
-            shadowMaps_->render(scene, camera.params.shadowResolution, cache, *shadow_);
-        timers_.end();
-        stats_.shadowPasses += rendered;
-        stats_.shadowReuses += rendered == 0 && !shadowMaps_->infos().empty() ? 1 : 0;
-        shadowInfos = shadowMaps_->infos();
+            active_->shadowMaps->render(scene, camera.params.shadowResolution, cache, *shadow_);
+        active_->timers.end();
+        active_->stats.shadowPasses += rendered;
+        active_->stats.shadowReuses += rendered == 0 && !active_->shadowMaps->infos().empty() ? 1 : 0;
+        shadowInfos = active_->shadowMaps->infos();
     }
     // The shading programs are specialised for the lights (see shaders.h): type, range, shadow layer.
     shaders::ShadingLayout lights;
@@ -144,7 +202,7 @@ void Renderer::render(const Scene& scene, const Camera& camera, const PassSet& p
                     slot.shadowLayer = info.layer;
             lights.lights.push_back(slot);
         });
-        lights.floatShadowMaps = !shadowInfos.empty() && shadowMaps_->format() == GL_R32F;
+        lights.floatShadowMaps = !shadowInfos.empty() && active_->shadowMaps->format() == GL_R32F;
         lights.vignette = camera.params.vignetteIntensity > 0.0f;
         uploadFrameBlock(scene, camera, shadowInfos);
     }
@@ -154,12 +212,12 @@ void Renderer::render(const Scene& scene, const Camera& camera, const PassSet& p
         if (passes.attributeTargets != 0)
             attributePass(scene, camera, passes, draws, cache, fb);
     }
-    stats_.lightingPasses += passes.lighting ? 1 : 0;
-    stats_.tonemapPasses += passes.tonemap ? 1 : 0;
-    stats_.meshUploads += cache.meshUploads() - meshUploads;
-    stats_.textureUploads += cache.textureUploads() - textureUploads;
-    ++stats_.frames;
-    timers_.collect();
+    active_->stats.lightingPasses += passes.lighting ? 1 : 0;
+    active_->stats.tonemapPasses += passes.tonemap ? 1 : 0;
+    active_->stats.meshUploads += cache.meshUploads() - meshUploads;
+    active_->stats.textureUploads += cache.textureUploads() - textureUploads;
+    ++active_->stats.frames;
+    active_->timers.collect();
 }
 
 void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
@@ -205,14 +263,14 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
     glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
     if (!passes.lighting) // the material chunk still reads the camera position from the frame block
         uploadFrameBlock(scene, camera, {});
-    if (passes.lighting && passes.shadow && shadowMaps_->texture() != 0)
-        glBindImageTexture(shaders::kShadowMapImageUnit, shadowMaps_->texture(), 0, GL_TRUE, 0, GL_READ_ONLY,
-                           shadowMaps_->format());
+    if (passes.lighting && passes.shadow && active_->shadowMaps->texture() != 0)
+        glBindImageTexture(shaders::kShadowMapImageUnit, active_->shadowMaps->texture(), 0, GL_TRUE, 0,
+                           GL_READ_ONLY, active_->shadowMaps->format());
     drawAll(scene, camera, draws, passes.surfaceTargets, passes.lighting, lights, cache);
     if (lights.vignette && (passes.surfaceTargets & targetBit(Target::FinalColor)) != 0)
         drawVignettedBackground(passes.surfaceTargets);
-    timers_.end();
-    ++stats_.surfacePasses;
+    active_->timers.end();
+    ++active_->stats.surfacePasses;
 }
 
 void Renderer::drawVignettedBackground(TargetMask targets) {
@@ -253,13 +311,13 @@ void Renderer::attributePass(const Scene& scene, const Camera& camera, const Pas
     const std::vector<Draw> reversed(draws.rbegin(), draws.rend());
     drawAll(scene, camera, reversed, passes.attributeTargets, false, {}, cache);
     glDepthMask(GL_TRUE);
-    timers_.end();
-    ++stats_.attributePasses;
+    active_->timers.end();
+    ++active_->stats.attributePasses;
 }
 
 void Renderer::beginPass(Pass pass, unsigned fbo, const Framebuffers& fb, unsigned depthFunc,
                          bool depthWrite) {
-    timers_.begin(pass);
+    active_->timers.begin(pass);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, fb.width, fb.height);
     glEnable(GL_DEPTH_TEST);
@@ -308,7 +366,7 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
         scene.boundingSphere(instance, centre, radius);
         for (const Eigen::Vector4d& plane : planes) {
             if (plane.head<3>().dot(centre) + plane.w() < -radius) {
-                ++stats_.culledInstances;
+                ++active_->stats.culledInstances;
                 return;
             }
         }
@@ -332,7 +390,7 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
     std::sort(draws.begin(), draws.end(), [](const Draw& a, const Draw& b) {
         return a.features != b.features ? a.features < b.features : a.distance < b.distance;
     });
-    stats_.drawnInstances += drawn;
+    active_->stats.drawnInstances += drawn;
     return draws;
 }
 

@@ -1,11 +1,12 @@
 #pragma once
-// The GL renderer: owns the shader programs, shadow maps and per-scene GPU caches, and runs the passes
-// a RenderTarget asks for (see PassSet in modality.h): shadow maps (reused while lights and casters do
-// not move, so the views of one frame share them), then one surface pass that shades, tone-maps and
-// writes up to 8 targets, and for larger sets an attribute pass that writes the rest at the fragments
-// the surface pass kept. Instances outside the view are culled and the rest drawn front to back, so
-// hidden fragments fail the early depth test.
-// One Renderer per GlContext; destroy it (and its RenderTargets) before the context.
+// The GL renderer: owns the shader programs and, per scene it renders, the GPU copies of the scene's
+// meshes and textures, its shadow maps and its statistics; runs the passes a RenderTarget asks for (see
+// PassSet in modality.h): shadow maps (reused while lights and casters do not move, so the views of one frame
+// share them), then one surface pass that shades, tone-maps and writes up to 8 targets, and for larger sets
+// an attribute pass that writes the rest at the fragments the surface pass kept. Instances outside the view
+// are culled and the rest drawn front to back, so hidden fragments fail the early depth test. One Renderer
+// per GlContext, shared by any number of scenes (an engine's worlds share one: one context, one set of
+// compiled programs); destroy it (and its RenderTargets) before the context.
 
 #include <array>
 #include <cstdint>
@@ -55,14 +56,21 @@ class Renderer {
     Renderer& operator=(const Renderer&) = delete;
 
     const ContextReport& contextReport() const { return context_.report(); }
-    const RenderStats& stats() const;
+    // What the renderer did for one scene (by Scene::uid()) since it first rendered it or since
+    // resetStats(), and the sum over every scene.
+    RenderStats stats(std::uint64_t sceneUid) const;
+    RenderStats stats() const;
     void resetStats();
-    // Frees the GPU copies of a scene's meshes and textures (call when a Scene is destroyed).
+    // Frees what the renderer holds for a scene: its meshes' and textures' GPU copies, its shadow maps and
+    // statistics (call when a Scene is destroyed).
     void releaseScene(const Scene& scene);
 
     // Runs the passes into `framebuffers` (used by RenderTarget; see render_target.h for the public way).
     void render(const Scene& scene, const Camera& camera, const PassSet& passes, Framebuffers& framebuffers);
-    void countReadback() { ++stats_.readbacks; }
+    // Bracket one modality's readback of a frame of scene `sceneUid` (RenderTarget): counted and timed in
+    // that scene's statistics (not at all once the scene is released).
+    void beginReadback(std::uint64_t sceneUid);
+    void endReadback(std::uint64_t sceneUid);
     // The compute program that copies one channel of the ids target (RenderTarget's id readback).
     ShaderProgram& idChannelProgram();
     // Whether RenderTarget reads object and material ids through that compute copy rather than
@@ -70,12 +78,22 @@ class Renderer {
     // slow; a CPU rasteriser converts on the CPU either way, and the dispatch only adds to it.
     bool packIdsOnGpu() const { return packIdsOnGpu_; }
     void setPackIdsOnGpu(bool on) { packIdsOnGpu_ = on; }
-    PassTimers& timers() { return timers_; }
 
   private:
     struct Draw; // one submesh of a visible instance
+    // What the renderer keeps for one scene.
+    struct SceneState {
+        SceneState();
+        ~SceneState();
+        std::unique_ptr<GpuSceneCache> cache;
+        std::unique_ptr<ShadowMaps> shadowMaps;
+        RenderStats stats;
+        PassTimers timers; // stats() collects finished timer queries
+    };
 
-    GpuSceneCache& cacheFor(const Scene& scene);
+    SceneState& stateFor(const Scene& scene);
+    // The scene's state, or null when the renderer holds none for it.
+    SceneState* findState(std::uint64_t sceneUid) const;
     ShaderProgram& surfaceProgram(TargetMask targets, bool forward, unsigned materialFeatures,
                                   const shaders::ShadingLayout& lights);
     void uploadFrameBlock(const Scene& scene, const Camera& camera, const std::vector<ShadowInfo>& shadows);
@@ -100,12 +118,10 @@ class Renderer {
     std::unique_ptr<ShaderProgram> shadow_;
     std::unique_ptr<ShaderProgram> idChannel_; // made at the first id readback
     bool packIdsOnGpu_ = true;
-    std::unique_ptr<ShadowMaps> shadowMaps_;
-    std::map<std::uint64_t, std::unique_ptr<GpuSceneCache>> caches_;
-    mutable PassTimers timers_; // stats() collects finished timer queries
+    std::map<std::uint64_t, std::unique_ptr<SceneState>> scenes_; // by Scene::uid()
+    SceneState* active_ = nullptr;                                // the scene render() is drawing
     unsigned frameBlock_ = 0;
     unsigned emptyVao_ = 0; // bound for draws whose vertices come from gl_VertexID alone
-    mutable RenderStats stats_;
 };
 
 } // namespace sp::render

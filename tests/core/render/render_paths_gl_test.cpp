@@ -127,6 +127,41 @@ TEST_F(RenderPathsGlTest, ShadowMapsAreReusedUntilSomethingMoves) {
     EXPECT_GE(renderer().stats().shadowPasses, 1u); // a new resolution too
 }
 
+TEST_F(RenderPathsGlTest, ScenesSharingARendererKeepTheirShadowMapsAndStatistics) {
+    // Two worlds' scenes drawn in turn by one renderer: each keeps its shadow maps (reused from its own
+    // previous frame, not redrawn because the other scene was drawn in between) and its own counts.
+    Scene first, second;
+    buildShapesScene(first);
+    buildShapesScene(second);
+    Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 48, 32, 60.0);
+    RenderTarget a(renderer(), {Modality::FinalColor, Modality::ObjectIds}, 1);
+    RenderTarget b(renderer(), {Modality::FinalColor}, 0);
+    Frame frame;
+    for (int i = 0; i < 3; ++i) {
+        a.render(first, camera, frame);
+        b.render(second, camera, frame);
+    }
+    const RenderStats one = renderer().stats(first.uid()), two = renderer().stats(second.uid());
+    EXPECT_EQ(one.frames, 3u);
+    EXPECT_EQ(two.frames, 3u);
+    EXPECT_EQ(one.shadowReuses, 2u) << "the first scene's maps survive the second scene's frames";
+    EXPECT_EQ(two.shadowReuses, 2u);
+    EXPECT_EQ(one.shadowPasses, two.shadowPasses);
+    EXPECT_EQ(one.readbacks, 4u) << "latency 1: frames 1 and 2 read, two modalities each";
+    EXPECT_EQ(two.readbacks, 3u);
+    const RenderStats total = renderer().stats();
+    EXPECT_EQ(total.frames, one.frames + two.frames);
+    EXPECT_EQ(total.readbacks, one.readbacks + two.readbacks);
+
+    renderer().releaseScene(first);
+    EXPECT_EQ(renderer().stats(first.uid()).frames, 0u) << "released with its statistics";
+    std::vector<std::uint8_t> color(48 * 32 * 4);
+    const OutputView view[] = {{Modality::FinalColor, color.data(), color.size()}};
+    EXPECT_EQ(a.readAgain(view), 2u); // a frame of the released scene still reads, uncounted
+    EXPECT_EQ(renderer().stats().frames, two.frames);
+    EXPECT_EQ(renderer().stats().readbacks, two.readbacks);
+}
+
 TEST_F(RenderPathsGlTest, CulledInstancesDoNotChangeTheImage) {
     Scene scene;
     buildShapesScene(scene);
