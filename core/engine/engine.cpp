@@ -184,6 +184,19 @@ void Engine::abortFrame() {
     state_ = FrameState::Idle;
 }
 
+std::shared_ptr<void> Engine::shared(std::string_view key,
+                                     const std::function<std::shared_ptr<void>()>& make) {
+    auto it = shared_.find(key);
+    if (it == shared_.end())
+        it = shared_.emplace(std::string(key), std::weak_ptr<void>()).first;
+    std::shared_ptr<void> object = it->second.lock();
+    if (!object) {
+        object = make();
+        it->second = object;
+    }
+    return object;
+}
+
 void Engine::checkInFrame(std::string_view context) const {
     SP_CHECK(IsInFrame(), InvalidState, context,
              ": called outside a frame; engine objects are used inside 'with instance.begin_frame():' or "

@@ -13,6 +13,8 @@
 // as their sp::world::WorldHost.
 
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -55,6 +57,9 @@ class Engine final : public world::WorldHost {
     // Editor mode: destroys the game world; its objects' handles become stale.
     void stop() override;
     bool IsPlaying() const override { return editorWorld_ && gameWorld_; }
+    // One object per key for all of this engine's worlds, alive while a world holds it (WorldHost).
+    std::shared_ptr<void> shared(std::string_view key,
+                                 const std::function<std::shared_ptr<void>()>& make) override;
 
     // More worlds beside the game world, each with its own actors, physics and render scene, ticked in
     // the same frame after it (in creation order): many small environments in one process. `name` must
@@ -91,6 +96,7 @@ class Engine final : public world::WorldHost {
     void expectState(FrameState expected, std::string_view function) const;
 
     Settings settings_;
+    std::map<std::string, std::weak_ptr<void>, std::less<>> shared_; // see shared(); held by the worlds
     std::unique_ptr<UWorld> editorWorld_;
     std::unique_ptr<UWorld> gameWorld_;
     std::vector<std::unique_ptr<UWorld>> createdWorlds_;

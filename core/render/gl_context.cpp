@@ -252,6 +252,8 @@ GlContext::~GlContext() {
 }
 
 void GlContext::makeCurrent() const {
+    if (eglGetCurrentContext() == context_) // worlds sharing a context make it current at every step
+        return;
     SP_CHECK(eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_), InvalidState,
              "GlContext::makeCurrent(): eglMakeCurrent failed (", eglErrorString(), ")");
 }

@@ -190,23 +190,38 @@ void RenderSubsystem::OnComponentEndPlay(UActorComponent& component) {
     scene_->untrack(component);
 }
 
+struct RenderSubsystem::Gl {
+    Gl()
+        : context(std::make_unique<sp::render::GlContext>()),
+          renderer(std::make_unique<sp::render::Renderer>(*context)) {}
+    ~Gl() {
+        context->makeCurrent();
+        renderer.reset();
+    }
+    Gl(const Gl&) = delete;
+    Gl& operator=(const Gl&) = delete;
+
+    std::unique_ptr<sp::render::GlContext> context; // logs the EGL device it chose, once per engine
+    std::unique_ptr<sp::render::Renderer> renderer;
+};
+
 RenderSubsystem::~RenderSubsystem() {
-    if (!context_)
+    if (!gl_)
         return;
-    context_->makeCurrent(); // GL objects are deleted below, bottom-up: targets, scene caches, renderer
+    gl_->context->makeCurrent(); // this world's GL objects go: its targets, then its scene's state
     cameras_.clear();
     if (scene_)
-        renderer_->releaseScene(scene_->scene());
-    renderer_.reset();
-    context_.reset();
+        gl_->renderer->releaseScene(scene_->scene());
 }
 
 void RenderSubsystem::ensureRenderer() {
-    if (!context_) {
-        context_ = std::make_unique<sp::render::GlContext>(); // logs the EGL device it chose, once
-        renderer_ = std::make_unique<sp::render::Renderer>(*context_);
+    if (!gl_) {
+        auto make = [] { return std::static_pointer_cast<void>(std::make_shared<Gl>()); };
+        sp::world::WorldHost* host = world_.GetHost();
+        gl_ = std::static_pointer_cast<Gl>(
+            host != nullptr ? host->shared("sp::sensors::RenderSubsystem::Gl", make) : make());
     }
-    context_->makeCurrent();
+    gl_->context->makeCurrent();
 }
 
 void RenderSubsystem::Tick(double /*deltaSeconds*/) {
@@ -215,8 +230,8 @@ void RenderSubsystem::Tick(double /*deltaSeconds*/) {
         cameras.push_back(camera);
 
     // Render targets of destroyed cameras go (with the context current, as they hold GL objects).
-    if (context_)
-        context_->makeCurrent();
+    if (gl_)
+        gl_->context->makeCurrent();
     for (auto it = cameras_.begin(); it != cameras_.end();) {
         const bool alive = std::any_of(cameras.begin(), cameras.end(), [&](const UCameraSensorComponent* c) {
             return c->GetHandle() == it->first;
@@ -273,7 +288,7 @@ void RenderSubsystem::submit(UCameraSensorComponent& camera) {
         renderCamera.params.hfovDeg = state.lens->sourceHfovDeg();
     }
     if (!state.target || state.target->latency() != camera.Latency) { // a new latency restarts the ring
-        state.target = std::make_unique<sp::render::RenderTarget>(*renderer_, modalities, camera.Latency);
+        state.target = std::make_unique<sp::render::RenderTarget>(*gl_->renderer, modalities, camera.Latency);
         state.pending.clear();
     } else if (state.target->modalities() != modalities) {
         state.target->setModalities(modalities);
@@ -386,7 +401,7 @@ bool RenderSubsystem::readInto(UCameraSensorComponent& camera,
         return false;
     }
     CameraState& state = *cameras_.at(camera.GetHandle());
-    context_->makeCurrent();
+    gl_->context->makeCurrent();
     // A lens frame is read at its render's size into buffers of its own, then remapped into `views`.
     const std::shared_ptr<const sp::render::LensRemap> lens = frame->lens;
     std::vector<std::vector<std::byte>> rendered;
@@ -508,9 +523,13 @@ std::uint32_t RenderSubsystem::materialId(const std::string& name) const {
     return scene_ ? scene_->materialId(name) : 0;
 }
 
+const sp::render::Renderer* RenderSubsystem::renderer() const {
+    return gl_ ? gl_->renderer.get() : nullptr;
+}
+
 FRenderDeviceInfo RenderSubsystem::deviceInfo() {
     ensureRenderer();
-    const sp::render::ContextReport& report = context_->report();
+    const sp::render::ContextReport& report = gl_->context->report();
     FRenderDeviceInfo info;
     info.Kind = report.kind;
     info.DeviceIndex = report.deviceIndex;
@@ -523,11 +542,11 @@ FRenderDeviceInfo RenderSubsystem::deviceInfo() {
 
 FRenderStats RenderSubsystem::stats() const {
     FRenderStats result;
-    if (!renderer_)
+    if (!gl_)
         return result;
-    // stats() collects timer queries of this context; another world may own the current one.
-    context_->makeCurrent();
-    const sp::render::RenderStats& stats = renderer_->stats();
+    // stats() collects timer queries, which needs the context current.
+    gl_->context->makeCurrent();
+    const sp::render::RenderStats stats = gl_->renderer->stats(scene_->scene().uid());
     result.Frames = int64_t(stats.frames);
     result.ShadowPasses = int64_t(stats.shadowPasses);
     result.ShadowReuses = int64_t(stats.shadowReuses);

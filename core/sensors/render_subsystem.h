@@ -2,8 +2,9 @@
 // RenderSubsystem: the renderer of one world, made by the world's first camera. It mirrors the world by
 // registration, as physics does: the world tells both of actors and components as they begin and end play
 // (sp::world::WorldSubsystem), which it passes to its render scene and its camera list, so a frame never
-// walks every actor. It owns one GL context and renderer, created lazily on the first frame that has a
-// camera (worlds without cameras never touch EGL), and every frame, after the actors and physics ticked:
+// walks every actor. The worlds of one engine share one GL context and renderer (through the world's
+// host; the renderer keeps each world's scene apart), started on the first frame of any of them that
+// has a camera (worlds without cameras never touch EGL). Every frame, after the actors and physics ticked:
 //   1. syncs the render scene with what it tracks: static mesh components (mesh, one material per slot,
 //      world transform, visibility), light components and the sky light;
 //   2. submits one render per camera sensor into that camera's render target (latency ring).
@@ -96,11 +97,14 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
 
     // Starts the GL context and renderer if they are not running yet.
     FRenderDeviceInfo deviceInfo();
+    // The renderer this world draws with (shared by the engine's worlds); null before its first render.
+    const sp::render::Renderer* renderer() const;
     FRenderStats stats() const;
 
   private:
     struct CameraState;
     struct PendingFrame;
+    struct Gl; // the GL context and renderer, shared with the engine's other worlds
 
     void ensureRenderer();
     const PendingFrame* dueFrame(UCameraSensorComponent& camera) const;
@@ -113,10 +117,9 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
                                               const sp::render::ModalitySet& modalities, CameraState& state);
 
     UWorld& world_;
-    // Destruction order matters: targets and scene GPU data before the renderer, the renderer before
-    // the context (members are destroyed bottom-up, and the destructor releases the targets first).
-    std::unique_ptr<sp::render::GlContext> context_;
-    std::unique_ptr<sp::render::Renderer> renderer_;
+    // Destruction order matters: the targets and the scene's GPU data go before this world lets go of
+    // the shared renderer (the destructor releases them first, with the context current).
+    std::shared_ptr<Gl> gl_;
     std::unique_ptr<RenderScene> scene_;                 // from construction, to be told of what begins play
     std::unique_ptr<sp::pathtrace::PathTracer> tracer_;  // started by the first path-traced camera
     PlayOrder<UCameraSensorComponent> cameraComponents_; // the world's cameras in play

@@ -3,6 +3,8 @@
 // library knows only this, so that the engine, which registers every reflected type (the world's, the
 // sensors', the SpFuncs'), can sit above it without a dependency cycle.
 
+#include <functional>
+#include <memory>
 #include <string_view>
 
 namespace sp::world {
@@ -16,6 +18,14 @@ class WorldHost {
     virtual void play() = 0;
     virtual void stop() = 0;
     virtual bool IsPlaying() const = 0;
+    // An object the host's worlds share under `key` (the renderer's GL context, say): the first world to
+    // ask makes it with `make`, later ones get the same object while any world still holds it. A host that
+    // shares nothing returns what `make` makes.
+    virtual std::shared_ptr<void> shared(std::string_view key,
+                                         const std::function<std::shared_ptr<void>()>& make) {
+        (void)key;
+        return make();
+    }
 };
 
 } // namespace sp::world

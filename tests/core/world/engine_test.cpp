@@ -1,7 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <memory>
+
 #include "core/base/error.h"
 #include "core/engine/engine.h"
+#include "core/sensors/camera_sensor_actor.h"
+#include "core/sensors/render_subsystem.h"
 #include "core/world/world_subsystem.h"
 
 using sp::engine::Engine;
@@ -96,4 +101,56 @@ TEST(Engine, EveryWorldTicksWhenOneThrowsAndTheFirstErrorPropagates) {
     engine.endFrame();
     EXPECT_EQ(engine.GetGameWorld().get_frame_count(), 1);
     EXPECT_EQ(healthy.get_frame_count(), 1); // ticked after the failing world
+}
+
+TEST(Engine, SharedObjectsLiveWhileAWorldHoldsThem) {
+    Engine engine;
+    int made = 0;
+    auto make = [&] {
+        ++made;
+        return std::static_pointer_cast<void>(std::make_shared<int>(made));
+    };
+    std::shared_ptr<void> first = engine.shared("key", make);
+    EXPECT_EQ(engine.shared("key", make), first);
+    EXPECT_NE(engine.shared("other", make), first) << "another key, another object (dropped at once)";
+    EXPECT_EQ(made, 2);
+    first.reset();
+    EXPECT_EQ(*std::static_pointer_cast<int>(engine.shared("key", make)), 3)
+        << "made again once none held it";
+}
+
+// Needs EGL (llvmpipe in CI).
+TEST(EngineGl, WorldsShareOneRendererAndKeepTheirOwnStatistics) {
+    Engine engine;
+    UWorld& a = engine.CreateWorld("EnvA");
+    UWorld& b = engine.CreateWorld("EnvB");
+    auto frame = [&](const std::function<void()>& work) {
+        engine.beginFrame();
+        work();
+        engine.executeFrame();
+        engine.beginEndFrame();
+        engine.endFrame();
+    };
+    frame([&] {
+        for (UWorld* world : {&a, &b}) {
+            auto* camera = static_cast<ACameraSensorActor*>(
+                world->spawn_actor(&ACameraSensorActor::StaticClass(), {}, {}, "Camera"));
+            camera->CameraSensor->Width = camera->CameraSensor->Height = 16;
+        }
+    });
+    frame([] {});
+    auto& renderA = a.GetSubsystem<sp::sensors::RenderSubsystem>();
+    auto& renderB = b.GetSubsystem<sp::sensors::RenderSubsystem>();
+    ASSERT_NE(renderA.renderer(), nullptr);
+    EXPECT_EQ(renderA.renderer(), renderB.renderer()) << "one GL context and renderer for the engine";
+    EXPECT_EQ(renderA.stats().Frames, 2);
+    EXPECT_EQ(renderB.stats().Frames, 2);
+
+    engine.DestroyWorld(a); // releases its scene from the shared renderer; b renders on
+    frame([] {});
+    EXPECT_EQ(renderB.stats().Frames, 3);
+    UWorld& c = engine.CreateWorld("EnvC");
+    frame([&] { c.spawn_actor(&ACameraSensorActor::StaticClass(), {}, {}, "Camera"); });
+    EXPECT_EQ(c.GetSubsystem<sp::sensors::RenderSubsystem>().renderer(), renderB.renderer());
+    EXPECT_EQ(c.GetSubsystem<sp::sensors::RenderSubsystem>().stats().Frames, 1);
 }
