@@ -5,40 +5,10 @@
 #include <algorithm>
 
 namespace sp::render {
+namespace {
 
-GpuSceneCache::~GpuSceneCache() {
-    for (GpuMesh& mesh : meshes_) {
-        if (mesh.vao != 0) {
-            glDeleteVertexArrays(1, &mesh.vao);
-            glDeleteBuffers(4, mesh.buffers);
-        }
-    }
-    for (GpuTexture& texture : textures_)
-        if (texture.name != 0)
-            glDeleteTextures(1, &texture.name);
-}
-
-const GpuMesh& GpuSceneCache::mesh(const Scene& scene, MeshId id) {
-    const MeshData& data = scene.mesh(id); // throws for a stale id
-    const std::uint64_t revision = scene.meshRevision(id);
-    if (id.index >= meshes_.size())
-        meshes_.resize(id.index + 1);
-    GpuMesh& gpu = meshes_[id.index];
-    if (gpu.vao != 0 && gpu.generation == id.generation && gpu.revision == revision)
-        return gpu;
-    if (gpu.vao == 0) {
-        glCreateVertexArrays(1, &gpu.vao);
-        glCreateBuffers(4, gpu.buffers);
-        glVertexArrayVertexBuffer(gpu.vao, 0, gpu.buffers[0], 0, sizeof(float) * 3);
-        glVertexArrayVertexBuffer(gpu.vao, 1, gpu.buffers[1], 0, sizeof(float) * 3);
-        glVertexArrayVertexBuffer(gpu.vao, 2, gpu.buffers[2], 0, sizeof(float) * 2);
-        glVertexArrayElementBuffer(gpu.vao, gpu.buffers[3]);
-        for (GLuint attribute : {0u, 1u, 2u}) {
-            glEnableVertexArrayAttrib(gpu.vao, attribute);
-            glVertexArrayAttribFormat(gpu.vao, attribute, attribute == 2 ? 2 : 3, GL_FLOAT, GL_FALSE, 0);
-            glVertexArrayAttribBinding(gpu.vao, attribute, attribute);
-        }
-    }
+// (Re)fills a mesh's buffers; glNamedBufferData reallocates them at the new sizes.
+void upload(GpuMesh& gpu, const MeshData& data) {
     // Eigen's fixed-size vectors are packed floats, so the std::vectors upload as flat arrays.
     glNamedBufferData(gpu.buffers[0], GLsizeiptr(data.positions.size() * sizeof(float) * 3),
                       data.positions.data(), GL_STATIC_DRAW);
@@ -48,28 +18,16 @@ const GpuMesh& GpuSceneCache::mesh(const Scene& scene, MeshId id) {
                       GL_STATIC_DRAW);
     glNamedBufferData(gpu.buffers[3], GLsizeiptr(data.indices.size() * sizeof(std::uint32_t)),
                       data.indices.data(), GL_STATIC_DRAW);
-    gpu.generation = id.generation;
-    gpu.revision = revision;
     gpu.submeshes = data.submeshes;
-    ++meshUploads_;
-    return gpu;
 }
 
-unsigned GpuSceneCache::texture(const Scene& scene, TextureId id) {
-    const TextureImage& image = scene.texture(id); // throws for a stale id
-    if (id.index >= textures_.size())
-        textures_.resize(id.index + 1);
-    GpuTexture& gpu = textures_[id.index];
-    if (gpu.name != 0 && gpu.generation == id.generation)
-        return gpu.name;
-    if (gpu.name != 0)
-        glDeleteTextures(1, &gpu.name);
-    const bool srgb = scene.textureEncoding(id) == TextureEncoding::Srgb;
+// Allocates the texture's storage (immutable: a new image needs a new GpuTexture) and fills it.
+void upload(GpuTexture& gpu, const TextureImage& image, TextureEncoding encoding) {
     int levels = 1;
     for (int size = std::max(image.width, image.height); size > 1; size /= 2)
         ++levels;
-    glCreateTextures(GL_TEXTURE_2D, 1, &gpu.name);
-    glTextureStorage2D(gpu.name, levels, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, image.width, image.height);
+    glTextureStorage2D(gpu.name, levels, encoding == TextureEncoding::Srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8,
+                       image.width, image.height);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     // Row 0 (top) goes to t = 0, so uv (0, 0) is the image's top-left corner (glTF convention).
     glTextureSubImage2D(gpu.name, 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE,
@@ -79,9 +37,106 @@ unsigned GpuSceneCache::texture(const Scene& scene, TextureId id) {
     glTextureParameteri(gpu.name, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(gpu.name, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTextureParameteri(gpu.name, GL_TEXTURE_WRAP_T, GL_REPEAT);
-    gpu.generation = id.generation;
-    ++textureUploads_;
-    return gpu.name;
+}
+
+// The upload under `key`, made (and counted in `uploads`) by `make` when no cache holds one.
+template <typename Gpu, typename Make>
+std::shared_ptr<Gpu> sharedUpload(std::map<std::string, std::weak_ptr<Gpu>, std::less<>>& uploads,
+                                  const std::string& key, std::uint64_t& count, Make make) {
+    std::weak_ptr<Gpu>& entry = uploads[key];
+    std::shared_ptr<Gpu> gpu = entry.lock();
+    if (!gpu) {
+        gpu = make();
+        entry = gpu;
+        ++count;
+    }
+    return gpu;
+}
+
+} // namespace
+
+GpuMesh::GpuMesh() {
+    glCreateVertexArrays(1, &vao);
+    glCreateBuffers(4, buffers);
+    glVertexArrayVertexBuffer(vao, 0, buffers[0], 0, sizeof(float) * 3);
+    glVertexArrayVertexBuffer(vao, 1, buffers[1], 0, sizeof(float) * 3);
+    glVertexArrayVertexBuffer(vao, 2, buffers[2], 0, sizeof(float) * 2);
+    glVertexArrayElementBuffer(vao, buffers[3]);
+    for (GLuint attribute : {0u, 1u, 2u}) {
+        glEnableVertexArrayAttrib(vao, attribute);
+        glVertexArrayAttribFormat(vao, attribute, attribute == 2 ? 2 : 3, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(vao, attribute, attribute);
+    }
+}
+
+GpuMesh::~GpuMesh() {
+    glDeleteVertexArrays(1, &vao);
+    glDeleteBuffers(4, buffers);
+}
+
+GpuTexture::GpuTexture() {
+    glCreateTextures(GL_TEXTURE_2D, 1, &name);
+}
+
+GpuTexture::~GpuTexture() {
+    glDeleteTextures(1, &name);
+}
+
+void SharedUploads::prune() {
+    std::erase_if(meshes, [](const auto& entry) { return entry.second.expired(); });
+    std::erase_if(textures, [](const auto& entry) { return entry.second.expired(); });
+}
+
+const GpuMesh& GpuSceneCache::mesh(const Scene& scene, MeshId id) {
+    const MeshData& data = scene.mesh(id); // throws for a stale id
+    const std::uint64_t revision = scene.meshRevision(id);
+    if (id.index >= meshes_.size())
+        meshes_.resize(id.index + 1);
+    Slot<GpuMesh>& slot = meshes_[id.index];
+    if (slot.gpu && slot.generation == id.generation && slot.revision == revision)
+        return *slot.gpu;
+    if (const std::string& key = scene.meshSharedKey(id); !key.empty()) {
+        slot.gpu = sharedUpload(shared_.meshes, key, meshUploads_, [&] {
+            auto gpu = std::make_shared<GpuMesh>();
+            upload(*gpu, data);
+            return gpu;
+        });
+        slot.shared = true;
+    } else {
+        if (!slot.gpu || slot.shared) // the buffers of a shared upload are not this scene's to refill
+            slot.gpu = std::make_shared<GpuMesh>();
+        upload(*slot.gpu, data);
+        slot.shared = false;
+        ++meshUploads_;
+    }
+    slot.generation = id.generation;
+    slot.revision = revision;
+    return *slot.gpu;
+}
+
+unsigned GpuSceneCache::texture(const Scene& scene, TextureId id) {
+    const TextureImage& image = scene.texture(id); // throws for a stale id
+    if (id.index >= textures_.size())
+        textures_.resize(id.index + 1);
+    Slot<GpuTexture>& slot = textures_[id.index];
+    if (slot.gpu && slot.generation == id.generation)
+        return slot.gpu->name;
+    const TextureEncoding encoding = scene.textureEncoding(id);
+    auto make = [&] {
+        auto gpu = std::make_shared<GpuTexture>();
+        upload(*gpu, image, encoding);
+        return gpu;
+    };
+    if (const std::string& key = scene.textureSharedKey(id); !key.empty()) {
+        slot.gpu = sharedUpload(shared_.textures, key, textureUploads_, make);
+        slot.shared = true;
+    } else {
+        slot.gpu = make();
+        slot.shared = false;
+        ++textureUploads_;
+    }
+    slot.generation = id.generation;
+    return slot.gpu->name;
 }
 
 } // namespace sp::render

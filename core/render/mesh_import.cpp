@@ -169,18 +169,24 @@ ImportedMesh importMesh(const std::string& userPath) {
     return out;
 }
 
-ImportedMeshIds addToScene(Scene& scene, const ImportedMesh& imported) {
+ImportedMeshIds addToScene(Scene& scene, const ImportedMesh& imported, const std::string& sharedKey) {
     ImportedMeshIds ids;
-    ids.mesh = scene.addMesh(imported.mesh);
-    for (const ImportedMaterial& source : imported.materials) {
+    ids.mesh = scene.addMesh(imported.mesh, sharedKey);
+    for (std::size_t i = 0; i < imported.materials.size(); ++i) {
+        const ImportedMaterial& source = imported.materials[i];
+        auto key = [&](const char* slot) {
+            return sharedKey.empty() ? std::string() : sharedKey + "#" + std::to_string(i) + ":" + slot;
+        };
         Material material = source.material;
         if (source.baseColorTexture)
-            material.baseColorTexture = scene.addTexture(*source.baseColorTexture, TextureEncoding::Srgb);
+            material.baseColorTexture =
+                scene.addTexture(*source.baseColorTexture, TextureEncoding::Srgb, key("base_color"));
         if (source.roughnessMetallicTexture)
-            material.roughnessMetallicTexture =
-                scene.addTexture(*source.roughnessMetallicTexture, TextureEncoding::Linear);
+            material.roughnessMetallicTexture = scene.addTexture(
+                *source.roughnessMetallicTexture, TextureEncoding::Linear, key("roughness_metallic"));
         if (source.normalTexture)
-            material.normalTexture = scene.addTexture(*source.normalTexture, TextureEncoding::Linear);
+            material.normalTexture =
+                scene.addTexture(*source.normalTexture, TextureEncoding::Linear, key("normal"));
         ids.materials.push_back(scene.addMaterial(material));
     }
     return ids;

@@ -38,7 +38,8 @@ struct ImportedMeshIds {
     std::vector<MaterialId> materials; // one per submesh, ready for Instance::materials
 };
 
-// Adds the mesh, its textures and its materials to `scene`.
-ImportedMeshIds addToScene(Scene& scene, const ImportedMesh& imported);
+// Adds the mesh, its textures and its materials to `scene`; under `sharedKey` (and keys made from it for
+// the textures) when given, so that a renderer drawing several scenes uploads them once (Scene::addMesh).
+ImportedMeshIds addToScene(Scene& scene, const ImportedMesh& imported, const std::string& sharedKey = {});
 
 } // namespace sp::render

@@ -59,6 +59,7 @@ struct Renderer::Draw {
 Renderer::Renderer(const GlContext& context) : context_(context), packIdsOnGpu_(!context.report().software) {
     context_.makeCurrent();
     shadow_ = std::make_unique<ShaderProgram>("shadow", shaders::kShadowVertex, shaders::kShadowFragment);
+    sharedUploads_ = std::make_unique<SharedUploads>();
     glCreateBuffers(1, &frameBlock_);
     glNamedBufferData(frameBlock_, sizeof(shaders::FrameBlock), nullptr, GL_DYNAMIC_DRAW);
     glCreateVertexArrays(1, &emptyVao_);
@@ -79,8 +80,8 @@ Renderer::~Renderer() {
     glDeleteVertexArrays(1, &emptyVao_);
 }
 
-Renderer::SceneState::SceneState()
-    : cache(std::make_unique<GpuSceneCache>()), shadowMaps(std::make_unique<ShadowMaps>()) {}
+Renderer::SceneState::SceneState(SharedUploads& shared)
+    : cache(std::make_unique<GpuSceneCache>(shared)), shadowMaps(std::make_unique<ShadowMaps>()) {}
 Renderer::SceneState::~SceneState() = default;
 
 namespace {
@@ -135,12 +136,13 @@ void Renderer::releaseScene(const Scene& scene) {
     if (active_ == it->second.get())
         active_ = nullptr;
     scenes_.erase(it);
+    sharedUploads_->prune();
 }
 
 Renderer::SceneState& Renderer::stateFor(const Scene& scene) {
     auto& state = scenes_[scene.uid()];
     if (!state)
-        state = std::make_unique<SceneState>();
+        state = std::make_unique<SceneState>(*sharedUploads_);
     return *state;
 }
 Renderer::SceneState* Renderer::findState(std::uint64_t sceneUid) const {

@@ -26,6 +26,7 @@ namespace sp::render {
 
 class Framebuffers;
 class GpuSceneCache;
+struct SharedUploads;
 class ShaderProgram;
 class ShadowMaps;
 struct ShadowInfo;
@@ -83,7 +84,7 @@ class Renderer {
     struct Draw; // one submesh of a visible instance
     // What the renderer keeps for one scene.
     struct SceneState {
-        SceneState();
+        explicit SceneState(SharedUploads& shared);
         ~SceneState();
         std::unique_ptr<GpuSceneCache> cache;
         std::unique_ptr<ShadowMaps> shadowMaps;
@@ -118,6 +119,7 @@ class Renderer {
     std::unique_ptr<ShaderProgram> shadow_;
     std::unique_ptr<ShaderProgram> idChannel_; // made at the first id readback
     bool packIdsOnGpu_ = true;
+    std::unique_ptr<SharedUploads> sharedUploads_; // meshes and textures the scenes add under shared keys
     std::map<std::uint64_t, std::unique_ptr<SceneState>> scenes_; // by Scene::uid()
     SceneState* active_ = nullptr;                                // the scene render() is drawing
     unsigned frameBlock_ = 0;

@@ -12,9 +12,9 @@ std::atomic<std::uint64_t> gNextSceneUid{1};
 
 Scene::Scene() : uid_(gNextSceneUid++) {}
 
-MeshId Scene::addMesh(MeshData mesh) {
+MeshId Scene::addMesh(MeshData mesh, std::string sharedKey) {
     mesh.validate("Scene::addMesh");
-    MeshEntry entry{std::move(mesh), nextRevision_++, {}, {}, {}};
+    MeshEntry entry{std::move(mesh), nextRevision_++, {}, {}, {}, std::move(sharedKey)};
     entry.data.bounds(entry.min, entry.max);
     return meshes_.insert(std::move(entry));
 }
@@ -29,6 +29,7 @@ void Scene::updateMesh(MeshId id, MeshData mesh) {
     });
     entry.data = std::move(mesh);
     entry.revision = nextRevision_++;
+    entry.sharedKey.clear();
     entry.data.bounds(entry.min, entry.max);
 }
 
@@ -51,13 +52,16 @@ const MeshData& Scene::mesh(MeshId id) const {
 std::uint64_t Scene::meshRevision(MeshId id) const {
     return meshes_.get(id, "Scene::meshRevision").revision;
 }
+const std::string& Scene::meshSharedKey(MeshId id) const {
+    return meshes_.get(id, "Scene::meshSharedKey").sharedKey;
+}
 
-TextureId Scene::addTexture(TextureImage image, TextureEncoding encoding) {
+TextureId Scene::addTexture(TextureImage image, TextureEncoding encoding, std::string sharedKey) {
     SP_CHECK(image.width > 0 && image.height > 0 &&
                  image.rgba.size() == std::size_t(image.width) * image.height * 4,
              InvalidArgument, "Scene::addTexture(): image '", image.source, "' is not ", image.width, "x",
              image.height, " RGBA8");
-    return textures_.insert({std::move(image), encoding});
+    return textures_.insert({std::move(image), encoding, std::move(sharedKey)});
 }
 
 void Scene::removeTexture(TextureId id) {
@@ -74,6 +78,9 @@ const TextureImage& Scene::texture(TextureId id) const {
 }
 TextureEncoding Scene::textureEncoding(TextureId id) const {
     return textures_.get(id, "Scene::textureEncoding").encoding;
+}
+const std::string& Scene::textureSharedKey(TextureId id) const {
+    return textures_.get(id, "Scene::textureSharedKey").sharedKey;
 }
 
 void Scene::checkMaterialTextures(const Material& material, const char* function) const {

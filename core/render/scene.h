@@ -51,11 +51,15 @@ class Scene {
     Scene();
 
     // Meshes. updateMesh keeps the handle and bumps the revision (the GPU copy is re-uploaded).
-    MeshId addMesh(MeshData mesh);
+    // A shared key names content that is the same in every scene adding a mesh (or texture) under it: a
+    // built-in shape, a file as last modified. A renderer uploads such content once for all the scenes it
+    // draws (an engine's worlds). updateMesh drops the key: the mesh is this scene's own from then on.
+    MeshId addMesh(MeshData mesh, std::string sharedKey = {});
     void updateMesh(MeshId id, MeshData mesh);
     void removeMesh(MeshId id); // sp::InvalidState while an instance uses it
     const MeshData& mesh(MeshId id) const;
     std::uint64_t meshRevision(MeshId id) const;
+    const std::string& meshSharedKey(MeshId id) const;
     // Levels of detail of a mesh, from finer to coarser (increasing relativeError); each has the mesh's
     // submesh count. A mesh that is some chain's level cannot be removed while that chain names it.
     void setMeshLods(MeshId id, std::vector<MeshLod> lods);
@@ -67,10 +71,12 @@ class Scene {
     void boundingSphere(const Instance& instance, Eigen::Vector3d& centre, double& radius) const;
 
     // Textures (for Material's texture slots).
-    TextureId addTexture(TextureImage image, TextureEncoding encoding = TextureEncoding::Srgb);
+    TextureId addTexture(TextureImage image, TextureEncoding encoding = TextureEncoding::Srgb,
+                         std::string sharedKey = {});
     void removeTexture(TextureId id); // sp::InvalidState while a material uses it
     const TextureImage& texture(TextureId id) const;
     TextureEncoding textureEncoding(TextureId id) const;
+    const std::string& textureSharedKey(TextureId id) const;
 
     MaterialId addMaterial(const Material& material);
     void setMaterial(MaterialId id, const Material& material);
@@ -114,10 +120,12 @@ class Scene {
         std::uint64_t revision = 0;
         Eigen::Vector3f min, max;
         std::vector<MeshLod> lods;
+        std::string sharedKey;
     };
     struct TextureEntry {
         TextureImage image;
         TextureEncoding encoding;
+        std::string sharedKey;
     };
     void checkInstance(const Instance& instance, const char* function) const;
     void checkMaterialTextures(const Material& material, const char* function) const;

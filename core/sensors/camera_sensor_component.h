@@ -210,6 +210,13 @@ struct FRenderStats {
     /// Instances outside a camera's view, skipped.
     SPPROPERTY()
     int64_t CulledInstances = 0;
+    /// Meshes this world uploaded to the GPU. A built-in shape or mesh file that another world of the
+    /// engine uploaded first is drawn from that upload and not counted again.
+    SPPROPERTY()
+    int64_t MeshUploads = 0;
+    /// Textures this world uploaded to the GPU, counted as meshes are.
+    SPPROPERTY()
+    int64_t TextureUploads = 0;
     /// Milliseconds in shadow passes, by GL timer queries (the device's own clock).
     SPPROPERTY()
     double ShadowMs = 0.0;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <system_error>
 
 #include "core/base/log.h"
 #include "core/render/mesh_import.h"
@@ -17,6 +19,23 @@ namespace sp::sensors {
 namespace {
 
 constexpr std::string_view kBasicShapesPrefix = "/Engine/BasicShapes/";
+
+// A key for a file's content as it is now (canonical path, modification time, size), under which the
+// worlds loading the same unchanged file share its upload; empty (nothing shared) when it cannot be read.
+std::string fileKey(const std::string& path) {
+    std::error_code error;
+    const std::filesystem::path canonical = std::filesystem::canonical(path, error);
+    if (error)
+        return {};
+    const auto modified = std::filesystem::last_write_time(canonical, error);
+    if (error)
+        return {};
+    const std::uintmax_t size = std::filesystem::file_size(canonical, error);
+    if (error)
+        return {};
+    return "file:" + canonical.string() + "@" + std::to_string(modified.time_since_epoch().count()) + ":" +
+           std::to_string(size);
+}
 
 // The built-in shapes, sized like UStaticMeshComponent's bounds (unit extents, centred).
 std::optional<sp::render::MeshData> basicShape(std::string_view name) {
@@ -286,16 +305,18 @@ const RenderScene::MeshEntry* RenderScene::meshFor(const std::string& name) {
     if (auto it = meshes_.find(name); it != meshes_.end())
         return &it->second;
     MeshEntry entry;
-    if (auto shape = basicShape(name)) {
-        entry.mesh = scene_.addMesh(std::move(*shape));
+    if (auto shape = basicShape(name)) { // the same in every world: uploaded once per renderer
+        entry.mesh = scene_.addMesh(std::move(*shape), "shape:" + name);
         std::vector<sp::render::MeshLod> lods;
         for (auto& [data, error] : basicShapeLods(name))
-            lods.push_back({scene_.addMesh(std::move(data)), error});
+            lods.push_back(
+                {scene_.addMesh(std::move(data), "shape:" + name + "@lod" + std::to_string(lods.size())),
+                 error});
         scene_.setMeshLods(entry.mesh, std::move(lods));
     } else {
         try {
             const sp::render::ImportedMesh imported = sp::render::importMesh(name);
-            const sp::render::ImportedMeshIds ids = sp::render::addToScene(scene_, imported);
+            const sp::render::ImportedMeshIds ids = sp::render::addToScene(scene_, imported, fileKey(name));
             entry.mesh = ids.mesh;
             entry.importedMaterials = ids.materials;
             for (std::size_t i = 0; i < imported.materials.size(); ++i) {
@@ -325,7 +346,10 @@ std::optional<sp::render::TextureId> RenderScene::textureFor(const std::string& 
     if (auto it = textures_.find(path); it != textures_.end())
         return it->second;
     try {
-        sp::render::TextureId id = scene_.addTexture(sp::render::TextureImage::load(path), encoding);
+        const std::string file = fileKey(path);
+        const char* decoding = encoding == sp::render::TextureEncoding::Srgb ? ":srgb" : ":linear";
+        sp::render::TextureId id = scene_.addTexture(sp::render::TextureImage::load(path), encoding,
+                                                     file.empty() ? std::string() : file + decoding);
         return textures_.emplace(path, id).first->second;
     } catch (const sp::Error& error) {
         logOnce("texture:" + path,

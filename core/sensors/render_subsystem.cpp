@@ -557,6 +557,8 @@ FRenderStats RenderSubsystem::stats() const {
     result.Readbacks = int64_t(stats.readbacks);
     result.DrawnInstances = int64_t(stats.drawnInstances);
     result.CulledInstances = int64_t(stats.culledInstances);
+    result.MeshUploads = int64_t(stats.meshUploads);
+    result.TextureUploads = int64_t(stats.textureUploads);
     const auto time = [&](sp::render::Pass pass) { return stats.passTimes[std::size_t(pass)]; };
     result.ShadowMs = time(sp::render::Pass::Shadow).gpuMs;
     result.SurfaceMs = time(sp::render::Pass::Surface).gpuMs;

@@ -512,6 +512,26 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             },
         });
         t.properties.push_back({
+            "MeshUploads",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
+            "Meshes this world uploaded to the GPU. A built-in shape or mesh file that another world of the\nengine uploaded first is drawn from that upload and not counted again.",
+            false,
+            [](const void* self) { return Calls::get_MeshUploads<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_MeshUploads<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "TextureUploads",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
+            "Textures this world uploaded to the GPU, counted as meshes are.",
+            false,
+            [](const void* self) { return Calls::get_TextureUploads<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_TextureUploads<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
             "ShadowMs",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Milliseconds in shadow passes, by GL timer queries (the device's own clock).",

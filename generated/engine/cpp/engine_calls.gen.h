@@ -2329,6 +2329,24 @@ struct FRenderStatsCalls {
         sp::reflect::notifyPropertyChanged(self, "CulledInstances");
     }
 
+    template <typename Call> static typename Call::Result get_MeshUploads(const Self* self) {
+        const auto& value = self->MeshUploads;
+        return Call::template result<int64_t>(value);
+    }
+    template <typename Call> static void set_MeshUploads(Self* self, const typename Call::Input& value) {
+        self->MeshUploads = Call::template input<int64_t>(value, "FRenderStats.MeshUploads");
+        sp::reflect::notifyPropertyChanged(self, "MeshUploads");
+    }
+
+    template <typename Call> static typename Call::Result get_TextureUploads(const Self* self) {
+        const auto& value = self->TextureUploads;
+        return Call::template result<int64_t>(value);
+    }
+    template <typename Call> static void set_TextureUploads(Self* self, const typename Call::Input& value) {
+        self->TextureUploads = Call::template input<int64_t>(value, "FRenderStats.TextureUploads");
+        sp::reflect::notifyPropertyChanged(self, "TextureUploads");
+    }
+
     template <typename Call> static typename Call::Result get_ShadowMs(const Self* self) {
         const auto& value = self->ShadowMs;
         return Call::template result<double>(value);

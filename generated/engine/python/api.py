@@ -368,6 +368,8 @@ class FRenderStats:
     Readbacks: int = 0
     DrawnInstances: int = 0
     CulledInstances: int = 0
+    MeshUploads: int = 0
+    TextureUploads: int = 0
     ShadowMs: float = 0.0
     SurfaceMs: float = 0.0
     AttributeMs: float = 0.0

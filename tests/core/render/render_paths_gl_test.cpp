@@ -162,6 +162,48 @@ TEST_F(RenderPathsGlTest, ScenesSharingARendererKeepTheirShadowMapsAndStatistics
     EXPECT_EQ(renderer().stats().readbacks, two.readbacks);
 }
 
+TEST_F(RenderPathsGlTest, MeshesUnderASharedKeyAreUploadedOnceForAllScenes) {
+    // What an engine's worlds do with a built-in shape: each scene adds it under the same key.
+    Scene first, second, own;
+    auto addBox = [](Scene& scene, float size, const std::string& key) {
+        const MeshId mesh = scene.addMesh(primitives::box({size, size, size}), key);
+        scene.addInstance({mesh, {scene.addMaterial(Material{})}, {1}});
+        return mesh;
+    };
+    const MeshId firstBox = addBox(first, 1.0f, "test:shared box");
+    addBox(second, 1.0f, "test:shared box");
+    addBox(own, 1.0f, "");
+    const Camera camera = cameraLookingAt({-4, 0, 0}, {0, 0, 0}, 16, 16);
+    RenderTarget target(renderer(), {Modality::Depth}, 0);
+    Frame frame;
+    auto centreDepth = [&](const Scene& scene) {
+        target.render(scene, camera, frame);
+        return frame.get(Modality::Depth).at(8, 8);
+    };
+    EXPECT_NEAR(centreDepth(first), 3.5f, 1e-4f);
+    EXPECT_NEAR(centreDepth(second), 3.5f, 1e-4f);
+    EXPECT_NEAR(centreDepth(own), 3.5f, 1e-4f);
+    EXPECT_EQ(renderer().stats(first.uid()).meshUploads, 1u);
+    EXPECT_EQ(renderer().stats(second.uid()).meshUploads, 0u) << "drawn with the first scene's upload";
+    EXPECT_EQ(renderer().stats(own.uid()).meshUploads, 1u) << "no key: its own copy";
+
+    // A scene that changes the mesh gets a copy of its own; the other keeps drawing the shared one.
+    first.updateMesh(firstBox, primitives::box({2.0f, 2.0f, 2.0f}));
+    EXPECT_NEAR(centreDepth(first), 3.0f, 1e-4f);
+    EXPECT_NEAR(centreDepth(second), 3.5f, 1e-4f);
+    EXPECT_EQ(renderer().stats(first.uid()).meshUploads, 2u);
+
+    // Released with the last scene holding it, the upload is made again by the next scene to need it.
+    renderer().releaseScene(second);
+    Scene third;
+    addBox(third, 1.0f, "test:shared box");
+    EXPECT_NEAR(centreDepth(third), 3.5f, 1e-4f);
+    EXPECT_EQ(renderer().stats(third.uid()).meshUploads, 1u);
+    renderer().releaseScene(first);
+    renderer().releaseScene(own);
+    renderer().releaseScene(third);
+}
+
 TEST_F(RenderPathsGlTest, CulledInstancesDoNotChangeTheImage) {
     Scene scene;
     buildShapesScene(scene);

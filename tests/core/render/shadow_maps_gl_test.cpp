@@ -62,7 +62,8 @@ class ShadowMapsGlTest : public GlTest {
         return ids;
     }
 
-    GpuSceneCache cache_;
+    SharedUploads uploads_;
+    GpuSceneCache cache_{uploads_};
     ShaderProgram depth_;
 };
 

@@ -7,6 +7,8 @@
 #include "core/engine/engine.h"
 #include "core/sensors/camera_sensor_actor.h"
 #include "core/sensors/render_subsystem.h"
+#include "core/world/static_mesh_actor.h"
+#include "core/world/static_mesh_component.h"
 #include "core/world/world_subsystem.h"
 
 using sp::engine::Engine;
@@ -134,8 +136,11 @@ TEST(EngineGl, WorldsShareOneRendererAndKeepTheirOwnStatistics) {
     frame([&] {
         for (UWorld* world : {&a, &b}) {
             auto* camera = static_cast<ACameraSensorActor*>(
-                world->spawn_actor(&ACameraSensorActor::StaticClass(), {}, {}, "Camera"));
+                world->spawn_actor(&ACameraSensorActor::StaticClass(), {-4, 0, 0}, {}, "Camera"));
             camera->CameraSensor->Width = camera->CameraSensor->Height = 16;
+            auto* cube = static_cast<AStaticMeshActor*>(
+                world->spawn_actor(&AStaticMeshActor::StaticClass(), {}, {}, "Cube"));
+            cube->StaticMeshComponent->SetStaticMesh("/Engine/BasicShapes/Cube");
         }
     });
     frame([] {});
@@ -145,6 +150,10 @@ TEST(EngineGl, WorldsShareOneRendererAndKeepTheirOwnStatistics) {
     EXPECT_EQ(renderA.renderer(), renderB.renderer()) << "one GL context and renderer for the engine";
     EXPECT_EQ(renderA.stats().Frames, 2);
     EXPECT_EQ(renderB.stats().Frames, 2);
+    EXPECT_GE(renderA.stats().MeshUploads, 1);
+    EXPECT_EQ(renderB.stats().MeshUploads, 0) << "the cube is uploaded once, by the world that drew it first";
+    EXPECT_EQ(renderA.stats().DrawnInstances, 2);
+    EXPECT_EQ(renderB.stats().DrawnInstances, 2);
 
     engine.DestroyWorld(a); // releases its scene from the shared renderer; b renders on
     frame([] {});
