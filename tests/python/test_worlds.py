@@ -74,6 +74,34 @@ def test_each_world_renders_its_own_scene(instance: spear.Instance) -> None:
     assert np.allclose(walled, 2.95, atol=1e-3)  # the wall's front face, 3 m - 0.05 m
 
 
+def test_worlds_share_the_uploads_of_built_in_shapes_and_count_their_own_frames(instance: spear.Instance) -> None:
+    # The engine's worlds render with one GL context and renderer: the cube's mesh is uploaded once, by the
+    # world that drew it first, and each world's statistics are its own.
+    worlds = [instance.create_world(name=f"Env{i}") for i in range(3)]
+    cameras = []
+    with instance.begin_frame():
+        for world in worlds:
+            cube = world.spawn_actor(uclass=spear.AStaticMeshActor, name="Cube", location=spear.FVector(X=3))
+            cube.StaticMeshComponent.SetStaticMesh(NewMesh=CUBE)
+            camera = world.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera").CameraSensor
+            camera.Width, camera.Height = 16, 12
+            camera.Modalities = [spear.ECameraModality.Depth]
+            cameras.append(camera)
+    with instance.end_frame():
+        depths = [camera.read_pixels()["depth"] for camera in cameras]
+    instance.step(num_frames=2)
+    with instance.begin_frame():
+        stats = [camera.GetRenderStats() for camera in cameras]
+    with instance.end_frame():
+        pass
+    for depth in depths:
+        assert np.isclose(depth[6, 8], 2.5, atol=1e-3)  # the cube's front face, 3 m - 0.5 m, in every world
+    assert [s.Frames for s in stats] == [3, 3, 3]
+    assert stats[0].MeshUploads >= 1
+    assert [s.MeshUploads for s in stats[1:]] == [0, 0]
+    assert [s.Readbacks for s in stats] == [1, 1, 1]
+
+
 def test_world_names_are_unique_and_only_created_worlds_are_destroyed(instance: spear.Instance) -> None:
     world = instance.create_world(name="Env")
     with pytest.raises(InvalidArgumentError, match=r"^create_world\(\): a world named 'Env' exists already$"):
