@@ -2161,7 +2161,7 @@ void spear_bind_engine(py::module_& m) {
                 return Calls::call_read_pixels_stacked<PyCall>({positional, extra, std::array<const PyArg*, 1>{&Cameras}, false});
             },
             py::arg("Cameras") = sp::pybind::missingArgument(),
-            "read_pixels_stacked(*, Cameras: list[UCameraSensorComponent]) -> FCameraPixels\n\nReturns the images of several cameras' due frames (cameras of any worlds of one engine) in one call:\neach modality as one array with a leading camera axis, (len(Cameras), H, W[, C]), each camera's images\nread straight into its slice. The cameras must show frames of one size and the same modalities; an\nempty dict while any of them is priming.");
+            "read_pixels_stacked(*, Cameras: Sequence[UCameraSensorComponent]) -> FCameraPixels\n\nReturns the images of several cameras' due frames (cameras of any worlds of one engine) in one call:\neach modality as one array with a leading camera axis, (len(Cameras), H, W[, C]), each camera's images\nread straight into its slice. The cameras must show frames of one size and the same modalities; an\nempty dict while any of them is priming.");
         cls.def(
             "GetPixelsFrame",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
@@ -3477,7 +3477,7 @@ void spear_bind_engine(py::module_& m) {
                 return Calls::call_get_actor_locations<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&actors}, true});
             },
             py::arg("actors") = sp::pybind::missingArgument(),
-            "get_actor_locations(self, *, actors: list[AActor]) -> NDArray[np.float64]\n\nReturns the world-space locations of actors as an (N, 3) float64 array, rows in the order given. The\nactors may be in any of the engine's worlds: one actor per world gives a leading world axis.");
+            "get_actor_locations(self, *, actors: Sequence[AActor]) -> NDArray[np.float64]\n\nReturns the world-space locations of actors as an (N, 3) float64 array, rows in the order given. The\nactors may be in any of the engine's worlds: one actor per world gives a leading world axis.");
         cls.def(
             "set_actor_locations",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& actors, const PyArg& locations, const py::kwargs& extra) -> py::object {
@@ -3486,7 +3486,7 @@ void spear_bind_engine(py::module_& m) {
             },
             py::arg("actors") = sp::pybind::missingArgument(),
             py::arg("locations") = sp::pybind::missingArgument(),
-            "set_actor_locations(self, *, actors: list[AActor], locations: NDArray[np.float64]) -> None\n\nMoves each actor to the matching row of locations, an (N, 3) float64 array (one call for many actors,\nin any of the engine's worlds).");
+            "set_actor_locations(self, *, actors: Sequence[AActor], locations: NDArray[np.float64]) -> None\n\nMoves each actor to the matching row of locations, an (N, 3) float64 array (one call for many actors,\nin any of the engine's worlds).");
         cls.def(
             "get_actor_count",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import enum
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import ClassVar, NamedTuple, TypedDict, TypeVar, overload
 
@@ -2753,7 +2754,7 @@ class UCameraSensorComponentAsync(USceneComponentAsync):
 
     def read_pixels(self) -> Future[FCameraPixels]: ...
 
-    def read_pixels_stacked(self, *, Cameras: list[UCameraSensorComponent]) -> Future[FCameraPixels]: ...
+    def read_pixels_stacked(self, *, Cameras: Sequence[UCameraSensorComponent]) -> Future[FCameraPixels]: ...
 
     def GetPixelsFrame(self) -> Future[int]: ...
 
@@ -2833,7 +2834,7 @@ class UCameraSensorComponentSend(USceneComponentSend):
 
     def read_pixels(self) -> None: ...
 
-    def read_pixels_stacked(self, *, Cameras: list[UCameraSensorComponent]) -> None: ...
+    def read_pixels_stacked(self, *, Cameras: Sequence[UCameraSensorComponent]) -> None: ...
 
     def GetPixelsFrame(self) -> None: ...
 
@@ -3148,7 +3149,7 @@ class UCameraSensorComponent(USceneComponent):
         """Returns the images of the frame due (see the class notes on latency); an empty dict while priming."""
 
     @staticmethod
-    def read_pixels_stacked(*, Cameras: list[UCameraSensorComponent]) -> FCameraPixels:
+    def read_pixels_stacked(*, Cameras: Sequence[UCameraSensorComponent]) -> FCameraPixels:
         """Returns the images of several cameras' due frames (cameras of any worlds of one engine) in one call:
         each modality as one array with a leading camera axis, (len(Cameras), H, W[, C]), each camera's images
         read straight into its slice. The cameras must show frames of one size and the same modalities; an
@@ -4590,9 +4591,9 @@ class UWorldAsync(UObjectAsync):
     @overload
     def get_default_object(self, *, uclass: str) -> Future[UObject]: ...
 
-    def get_actor_locations(self, *, actors: list[AActor]) -> Future[NDArray[np.float64]]: ...
+    def get_actor_locations(self, *, actors: Sequence[AActor]) -> Future[NDArray[np.float64]]: ...
 
-    def set_actor_locations(self, *, actors: list[AActor], locations: NDArray[np.float64]) -> Future[None]: ...
+    def set_actor_locations(self, *, actors: Sequence[AActor], locations: NDArray[np.float64]) -> Future[None]: ...
 
     def get_actor_count(self) -> Future[int]: ...
 
@@ -4648,9 +4649,9 @@ class UWorldSend(UObjectSend):
 
     def get_default_object(self, *, uclass: type[UObject] | str) -> None: ...
 
-    def get_actor_locations(self, *, actors: list[AActor]) -> None: ...
+    def get_actor_locations(self, *, actors: Sequence[AActor]) -> None: ...
 
-    def set_actor_locations(self, *, actors: list[AActor], locations: NDArray[np.float64]) -> None: ...
+    def set_actor_locations(self, *, actors: Sequence[AActor], locations: NDArray[np.float64]) -> None: ...
 
     def get_actor_count(self) -> None: ...
 
@@ -4753,12 +4754,12 @@ class UWorld(UObject):
     @overload
     def get_default_object(self, *, uclass: str) -> UObject: ...
 
-    def get_actor_locations(self, *, actors: list[AActor]) -> NDArray[np.float64]:
+    def get_actor_locations(self, *, actors: Sequence[AActor]) -> NDArray[np.float64]:
         """Returns the world-space locations of actors as an (N, 3) float64 array, rows in the order given. The
         actors may be in any of the engine's worlds: one actor per world gives a leading world axis.
         """
 
-    def set_actor_locations(self, *, actors: list[AActor], locations: NDArray[np.float64]) -> None:
+    def set_actor_locations(self, *, actors: Sequence[AActor], locations: NDArray[np.float64]) -> None:
         """Moves each actor to the matching row of locations, an (N, 3) float64 array (one call for many actors,
         in any of the engine's worlds).
         """

@@ -8,6 +8,7 @@ behave the same even where a default has no Python spelling.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any, TypeVar, cast, overload
 
 import numpy as np
@@ -2200,10 +2201,10 @@ class UWorld(UObject, api.UWorld):
     def get_default_object(self, *, uclass: type[api.UObject] | str) -> Any:
         return self._sp_call("UWorld", "get_default_object", {"uclass": uclass}, _t.T_UObject)
 
-    def get_actor_locations(self, *, actors: list[api.AActor]) -> NDArray[np.float64]:
+    def get_actor_locations(self, *, actors: Sequence[api.AActor]) -> NDArray[np.float64]:
         return cast("NDArray[np.float64]", self._sp_call("UWorld", "get_actor_locations", {"actors": actors}, _t.T_array_float64))
 
-    def set_actor_locations(self, *, actors: list[api.AActor], locations: NDArray[np.float64]) -> None:
+    def set_actor_locations(self, *, actors: Sequence[api.AActor], locations: NDArray[np.float64]) -> None:
         return cast(None, self._sp_call("UWorld", "set_actor_locations", {"actors": actors, "locations": locations}, _t.T_void))  # a Future when queued by call_async
 
     def get_actor_count(self) -> int:

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from typing import assert_type
 
+import numpy as np
+
 import spear
 from spear._engine import rpc
 from spear._rpc_proxy import RpcClient
@@ -73,3 +75,18 @@ def blueprints(instance: spear.Instance) -> None:
     with instance.begin_frame():
         assert_type(game.spawn_actor(uclass=spear.BP_Crate), spear.AStaticMeshActor)
         assert_type(game.find_actors_by_class(uclass=spear.BP_Axes), list[spear.AActor])
+
+
+def lists_of_derived_actors(instance: spear.Instance) -> None:
+    """A list of a derived class is accepted where a list of actors is asked for (the parameter is a
+    Sequence, covariant; a list parameter would refuse list[AStaticMeshActor]), and so is a tuple."""
+    game = instance.get_game()
+    with instance.begin_frame():
+        cubes: list[spear.AStaticMeshActor] = [game.spawn_actor(uclass=spear.AStaticMeshActor) for _ in range(2)]
+        game.set_actor_locations(actors=cubes, locations=np.zeros((2, 3)))
+        game.set_actor_locations(actors=tuple(cubes), locations=np.zeros((2, 3)))
+        cameras: list[spear.UCameraSensorComponent] = [
+            game.spawn_actor(uclass=spear.ACameraSensorActor).CameraSensor for _ in range(2)]
+    with instance.end_frame():
+        stacked = spear.UCameraSensorComponent.read_pixels_stacked(Cameras=cameras)
+        assert_type(stacked, spear.FCameraPixels)

@@ -125,7 +125,7 @@ void spear_bind_all_types(py::module_& m) {
             },
             py::arg("ActorClass") = sp::pybind::missingArgument(),
             py::arg("Candidates") = sp::pybind::missingArgument(),
-            "Collect(self, *, ActorClass: type[AActor] | str, Candidates: list[AActor] = ...) -> list[AActor]\n\nReturns the actors of a class, typed by it.");
+            "Collect(self, *, ActorClass: type[AActor] | str, Candidates: Sequence[AActor] = ...) -> list[AActor]\n\nReturns the actors of a class, typed by it.");
         cls.def(
             "ClassOf",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& Object, const py::kwargs& extra) -> py::object {

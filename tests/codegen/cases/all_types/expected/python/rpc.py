@@ -8,6 +8,7 @@ behave the same even where a default has no Python spelling.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any, TypeVar, cast, overload
 
 import numpy as np
@@ -109,12 +110,12 @@ class AAllTypes(_AActorProxy, api.AAllTypes):
         return cast("api.AAllTypes.SplitResult", self._sp_call("AAllTypes", "Split", {"Text": Text}, _t.T_bool, api.AAllTypes.SplitResult))
 
     @overload
-    def Collect(self, *, ActorClass: type[_AActorT], Candidates: list[AActor] = ...) -> list[_AActorT]: ...
+    def Collect(self, *, ActorClass: type[_AActorT], Candidates: Sequence[AActor] = ...) -> list[_AActorT]: ...
 
     @overload
-    def Collect(self, *, ActorClass: str, Candidates: list[AActor] = ...) -> list[AActor]: ...
+    def Collect(self, *, ActorClass: str, Candidates: Sequence[AActor] = ...) -> list[AActor]: ...
 
-    def Collect(self, *, ActorClass: type[AActor] | str, Candidates: list[AActor] = _DEFAULT) -> Any:
+    def Collect(self, *, ActorClass: type[AActor] | str, Candidates: Sequence[AActor] = _DEFAULT) -> Any:
         return self._sp_call("AAllTypes", "Collect", {"ActorClass": ActorClass, "Candidates": Candidates}, _t.T_list_of_AActor)
 
     def ClassOf(self, *, Object: UObject | None = _DEFAULT) -> type[UObject] | None:

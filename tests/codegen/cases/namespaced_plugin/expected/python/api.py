@@ -9,6 +9,7 @@ registered as, or derive from, these classes so that isinstance() and uclass= wo
 from __future__ import annotations
 
 import enum
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import ClassVar, NamedTuple, TypedDict
 

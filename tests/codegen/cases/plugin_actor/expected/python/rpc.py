@@ -8,6 +8,7 @@ behave the same even where a default has no Python spelling.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any, cast
 
 import numpy as np
