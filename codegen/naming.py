@@ -57,7 +57,8 @@ def property_py_type(p: Property, qualify: Qualifier = _as_is) -> str:
 def param_py_type(p: Param, qualify: Qualifier = _as_is) -> str:
     """Object parameters are required unless their default is nullptr. A list of objects is taken as a
     Sequence, which is covariant: a list[AStaticMeshActor] is accepted where actors are asked for (a list is
-    invariant), and both transports take any sequence there (pybind11's list caster, the wire's arrays)."""
+    invariant). Both transports take any collections.abc.Sequence but text and bytes as a list
+    (core/pybind/value_convert.cpp, spear/_wire.py)."""
     nullable = p.default_cpp == "nullptr"
     if p.type.kind == "list" and p.type.args[0].kind == "object":
         return f"Sequence[{qualify(p.type.args[0].name)}]"

@@ -12,6 +12,19 @@ namespace sp::pybind {
 using reflect::Value;
 
 namespace {
+// A list, a tuple or any other collections.abc.Sequence but text and bytes: what the generated API takes
+// where it asks for a Sequence (a list of objects, typed covariantly), as the RPC client does.
+bool isSequence(py::handle object) {
+    if (PyList_Check(object.ptr()) || PyTuple_Check(object.ptr()))
+        return true;
+    if (PyUnicode_Check(object.ptr()) || PyBytes_Check(object.ptr()) || PyByteArray_Check(object.ptr()))
+        return false;
+    // Never released, like the others here: a static py::object would be, after Python has shut down.
+    static const py::object* const sequence =
+        new py::object(py::module_::import("collections.abc").attr("Sequence"));
+    return py::isinstance(object, *sequence);
+}
+
 Value toValueAt(py::handle object, std::string_view context, int depth);
 
 // Lists, tuples, dicts and dataclasses recurse: each level costs a C++ stack frame, and a Python list
@@ -85,7 +98,7 @@ Value toValueAt(py::handle object, std::string_view context, int depth) {
         }
         return Value(std::move(fields));
     }
-    if (PyList_Check(object.ptr()) || PyTuple_Check(object.ptr())) {
+    if (isSequence(object)) {
         checkDepth(depth, context);
         Value::List items;
         for (auto item : object)

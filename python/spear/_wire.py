@@ -7,6 +7,7 @@ See core/rpc/value_msgpack.h for the server side.
 
 from __future__ import annotations
 
+import collections.abc
 import dataclasses
 import enum
 import functools
@@ -172,11 +173,14 @@ def encode(value: Any, segments: OutgoingSegments, depth: int = 0) -> Any:
     if isinstance(value, np.ndarray):
         return _encode_array(value, segments)
     is_struct = dataclasses.is_dataclass(value) and hasattr(value, "__sp_class__")
-    if (is_struct or isinstance(value, (list, tuple, dict))) and depth >= MAX_VALUE_DEPTH:
+    # Any sequence but text and bytes goes as a list, as in-process (the API types lists of objects as Sequence).
+    is_sequence = isinstance(value, (list, tuple)) or (
+        isinstance(value, collections.abc.Sequence) and not isinstance(value, (str, bytes, bytearray)))
+    if (is_struct or is_sequence or isinstance(value, dict)) and depth >= MAX_VALUE_DEPTH:
         raise ValueTooDeep(f"a value has lists or dicts nested deeper than {MAX_VALUE_DEPTH} levels")
     if is_struct:
         return {f.name: encode(getattr(value, f.name), segments, depth + 1) for f in dataclasses.fields(value)}
-    if isinstance(value, (list, tuple)):
+    if is_sequence:
         return [encode(item, segments, depth + 1) for item in value]
     if isinstance(value, dict):
         if not all(isinstance(key, str) for key in value):

@@ -3,6 +3,8 @@ render scene; names are unique; destroyed worlds leave stale handles. Every test
 
 from __future__ import annotations
 
+import collections
+
 import numpy as np
 import pytest
 
@@ -208,5 +210,6 @@ def test_batched_locations_span_worlds(instance: spear.Instance) -> None:
     with instance.end_frame():
         assert np.array_equal(worlds[2].get_actor_locations(actors=actors), targets)
         assert np.array_equal(worlds[2].get_actor_locations(actors=tuple(actors)), targets)  # any sequence
+        assert np.array_equal(worlds[2].get_actor_locations(actors=collections.UserList(actors)), targets)
         agents = [world.find_actor_by_name(name="Agent") for world in worlds]
         assert [agent.GetActorLocation().Y for agent in agents if agent is not None] == [0.0, 2.0, 4.0]
