@@ -17,6 +17,7 @@
 #include "core/base/log.h"
 #include "core/base/progress.h"
 #include "core/base/regular_file.h"
+#include "core/render/content_key.h"
 
 namespace sp::render {
 namespace {
@@ -169,24 +170,22 @@ ImportedMesh importMesh(const std::string& userPath) {
     return out;
 }
 
-ImportedMeshIds addToScene(Scene& scene, const ImportedMesh& imported, const std::string& sharedKey) {
+ImportedMeshIds addToScene(Scene& scene, const ImportedMesh& imported, bool shared) {
     ImportedMeshIds ids;
-    ids.mesh = scene.addMesh(imported.mesh, sharedKey);
-    for (std::size_t i = 0; i < imported.materials.size(); ++i) {
-        const ImportedMaterial& source = imported.materials[i];
-        auto key = [&](const char* slot) {
-            return sharedKey.empty() ? std::string() : sharedKey + "#" + std::to_string(i) + ":" + slot;
-        };
+    ids.mesh = scene.addMesh(imported.mesh, shared ? contentKey(imported.mesh) : std::string());
+    auto texture = [&](const TextureImage& image, TextureEncoding encoding) {
+        const char* decoding = encoding == TextureEncoding::Srgb ? ":srgb" : ":linear";
+        return scene.addTexture(image, encoding, shared ? contentKey(image) + decoding : std::string());
+    };
+    for (const ImportedMaterial& source : imported.materials) {
         Material material = source.material;
         if (source.baseColorTexture)
-            material.baseColorTexture =
-                scene.addTexture(*source.baseColorTexture, TextureEncoding::Srgb, key("base_color"));
+            material.baseColorTexture = texture(*source.baseColorTexture, TextureEncoding::Srgb);
         if (source.roughnessMetallicTexture)
-            material.roughnessMetallicTexture = scene.addTexture(
-                *source.roughnessMetallicTexture, TextureEncoding::Linear, key("roughness_metallic"));
+            material.roughnessMetallicTexture =
+                texture(*source.roughnessMetallicTexture, TextureEncoding::Linear);
         if (source.normalTexture)
-            material.normalTexture =
-                scene.addTexture(*source.normalTexture, TextureEncoding::Linear, key("normal"));
+            material.normalTexture = texture(*source.normalTexture, TextureEncoding::Linear);
         ids.materials.push_back(scene.addMaterial(material));
     }
     return ids;

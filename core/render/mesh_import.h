@@ -38,8 +38,9 @@ struct ImportedMeshIds {
     std::vector<MaterialId> materials; // one per submesh, ready for Instance::materials
 };
 
-// Adds the mesh, its textures and its materials to `scene`; under `sharedKey` (and keys made from it for
-// the textures) when given, so that a renderer drawing several scenes uploads them once (Scene::addMesh).
-ImportedMeshIds addToScene(Scene& scene, const ImportedMesh& imported, const std::string& sharedKey = {});
+// Adds the mesh, its textures and its materials to `scene`. With `shared`, the mesh and textures are added
+// under keys naming their content (content_key.h), so that a renderer drawing several scenes that import
+// the same asset uploads it once (Scene::addMesh).
+ImportedMeshIds addToScene(Scene& scene, const ImportedMesh& imported, bool shared = false);
 
 } // namespace sp::render

@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <system_error>
 
 #include "core/base/log.h"
+#include "core/render/content_key.h"
 #include "core/render/mesh_import.h"
 #include "core/render/primitives.h"
 #include "core/sensors/sky_light_component.h"
@@ -19,23 +18,6 @@ namespace sp::sensors {
 namespace {
 
 constexpr std::string_view kBasicShapesPrefix = "/Engine/BasicShapes/";
-
-// A key for a file's content as it is now (canonical path, modification time, size), under which the
-// worlds loading the same unchanged file share its upload; empty (nothing shared) when it cannot be read.
-std::string fileKey(const std::string& path) {
-    std::error_code error;
-    const std::filesystem::path canonical = std::filesystem::canonical(path, error);
-    if (error)
-        return {};
-    const auto modified = std::filesystem::last_write_time(canonical, error);
-    if (error)
-        return {};
-    const std::uintmax_t size = std::filesystem::file_size(canonical, error);
-    if (error)
-        return {};
-    return "file:" + canonical.string() + "@" + std::to_string(modified.time_since_epoch().count()) + ":" +
-           std::to_string(size);
-}
 
 // The built-in shapes, sized like UStaticMeshComponent's bounds (unit extents, centred).
 std::optional<sp::render::MeshData> basicShape(std::string_view name) {
@@ -316,7 +298,7 @@ const RenderScene::MeshEntry* RenderScene::meshFor(const std::string& name) {
     } else {
         try {
             const sp::render::ImportedMesh imported = sp::render::importMesh(name);
-            const sp::render::ImportedMeshIds ids = sp::render::addToScene(scene_, imported, fileKey(name));
+            const sp::render::ImportedMeshIds ids = sp::render::addToScene(scene_, imported, /*shared=*/true);
             entry.mesh = ids.mesh;
             entry.importedMaterials = ids.materials;
             for (std::size_t i = 0; i < imported.materials.size(); ++i) {
@@ -346,10 +328,11 @@ std::optional<sp::render::TextureId> RenderScene::textureFor(const std::string& 
     if (auto it = textures_.find(path); it != textures_.end())
         return it->second;
     try {
-        const std::string file = fileKey(path);
-        const char* decoding = encoding == sp::render::TextureEncoding::Srgb ? ":srgb" : ":linear";
-        sp::render::TextureId id = scene_.addTexture(sp::render::TextureImage::load(path), encoding,
-                                                     file.empty() ? std::string() : file + decoding);
+        sp::render::TextureImage image = sp::render::TextureImage::load(path);
+        // Keyed by its pixels, so that worlds loading the same image share its upload (content_key.h).
+        std::string key = sp::render::contentKey(image) +
+                          (encoding == sp::render::TextureEncoding::Srgb ? ":srgb" : ":linear");
+        sp::render::TextureId id = scene_.addTexture(std::move(image), encoding, std::move(key));
         return textures_.emplace(path, id).first->second;
     } catch (const sp::Error& error) {
         logOnce("texture:" + path,
