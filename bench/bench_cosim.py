@@ -67,7 +67,8 @@ def main() -> int:
     parser.add_argument("--peer-dir", type=Path, default=None,
                         help="folder holding spear_mujoco_cosim_peer (default: BUILD_DIR/bench)")
     parser.add_argument("--png-dir", type=Path, default=None,
-                        help="write view 0 of each cell's last frame here (cosim_N<objects>_<views>v_<size>.png)")
+                        help="write view 0 of each cell's last frame here "
+                        "(cosim_N<objects>_<views>v_<size>_<transport>.png)")
     parser.add_argument("--write", action="store_true", help="update the Table 3 section of BENCHMARKS.md")
     args = parser.parse_args()
 
@@ -84,10 +85,14 @@ def main() -> int:
     for objects, views, width, height in cells:
         print(f"cell: N={objects}, {views} view(s), {width}x{height}", file=sys.stderr, flush=True)
         peer_result = mujoco(peer, objects, views, width, height, args.frames)
-        png = None if args.png_dir is None else args.png_dir / f"cosim_N{objects}_{views}v_{width}x{height}.png"
+        def png(transport: str) -> Path | None:
+            stem = f"cosim_N{objects}_{views}v_{width}x{height}_{transport}"
+            return None if args.png_dir is None else args.png_dir / f"{stem}.png"
+
         inprocess = None if args.no_inprocess else spear_cell(example, None, objects, views, width, height,
-                                                              args.frames, png)
-        rpc = None if args.no_rpc else spear_cell(example, "launch", objects, views, width, height, args.frames, png)
+                                                              args.frames, png("inprocess"))
+        rpc = None if args.no_rpc else spear_cell(example, "launch", objects, views, width, height, args.frames,
+                                                  png("rpc"))
         device = str(peer_result.get("device", ""))
         rows.append((objects, views, width, height, inprocess, rpc, float(peer_result["ms_per_frame"])))
 

@@ -44,7 +44,13 @@ for program in "${programs[@]}"; do
 done
 
 if ((with_python)); then
-    module=$(echo python/spear/_spear_engine.cpython-311-*.so)
+    modules=(python/spear/_spear_engine.cpython-311-*.so)
+    if [[ ${#modules[@]} -ne 1 || ! -f ${modules[0]} ]]; then
+        echo "portable_kit: --python needs the in-process module built for Python 3.11 (python/spear/" \
+             "_spear_engine.cpython-311-*.so): build the project with /usr/bin/python3" >&2
+        exit 1
+    fi
+    module=${modules[0]}
     python=$kit/python # PYTHONHOME there: bin/python3.11, lib/python3.11, site/ (numpy, msgpack)
     mkdir -p "$kit/spear" "$python/bin" "$python/lib" "$python/site"
     objcopy --strip-debug "$module" "$kit/spear/$(basename "$module")"

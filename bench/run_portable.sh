@@ -10,8 +10,12 @@ set -euo pipefail
 frames=${1:-1000}
 png_dir=${2:-}
 kit=build/portable
-if [[ ! -d $kit ]]; then # a bare host may have no xz, but has a Python
-    python3 -c "import tarfile; tarfile.open('$kit.tar.xz').extractall('build')"
+if [[ -f $kit.tar.xz ]]; then # unpacked afresh, so a newer kit is never shadowed by an older one
+    rm -rf "$kit"
+    python3 -c "import tarfile; tarfile.open('$kit.tar.xz').extractall('build')" # a bare host may lack xz
+fi
+if [[ -n $png_dir ]]; then
+    mkdir -p "$png_dir"
 fi
 export LD_LIBRARY_PATH=$PWD/$kit/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH} SPEAR_SERVER=$PWD/$kit/bin/spear-server
 transports=(--no-inprocess)
@@ -36,5 +40,6 @@ fi
 echo "== the renderer alone: $kit/bin/spear_render_bench --frames $((frames / 5))"
 "$kit"/bin/spear_render_bench --frames $((frames / 5)) ${png_dir:+--png "$png_dir"}
 echo "== Table 3 beside MuJoCo, $frames frames per cell"
-PYTHONPATH=python${PYTHONPATH:+:$PYTHONPATH} "$python" bench/bench_cosim.py "${transports[@]}" --peer-dir "$kit/bin" \
+PYTHONPATH=python${PYTHONPATH:+:$PYTHONPATH} "$python" bench/bench_cosim.py ${transports[@]+"${transports[@]}"} \
+    --peer-dir "$kit/bin" \
     --frames "$frames" ${png_dir:+--png-dir "$png_dir"}
