@@ -72,7 +72,7 @@ void bindDynamicAccess(py::module_& m, const char* apiModule) {
         [apiModule](py::handle uobject, const std::string& function, py::dict args) -> py::object {
             const std::string context = "call_function('" + function + "')";
             reflect::ObjectBase& object = resolveArgument(uobject, context);
-            const reflect::TypeInfo& type = object.GetClass();
+            const reflect::TypeInfo& type = object.GetObjectClass(); // a blueprint's functions too
             const reflect::FunctionInfo* info = type.findFunction(function);
             SP_CHECK(info, NotFound, context, ": class '", type.name, "' has no function '", function, "'");
             // Converted as one dict, so that arguments nest as deep as over RPC, where `args` is one value.

@@ -45,7 +45,9 @@ struct FunctionInfo {
     bool isConst = false;
     // Converts `args` (by parameter name) to C++ values, calls, and returns the result: the return value,
     // or, when the function has out-parameters, a dict with "ReturnValue" and one entry per out-parameter.
-    Value (*invoke)(void* self, const CallArgs& args) = nullptr;
+    // Generated functions are plain functions; a blueprint's (core/world/blueprint_functions.h) carry the
+    // steps they run.
+    std::function<Value(void* self, const CallArgs& args)> invoke;
 };
 
 class TypeInfo {

@@ -336,7 +336,7 @@ Value Dispatcher::call(const Request& request, Session&) {
     reflect::ObjectBase* object = isStatic ? nullptr : &requireObject(request, context);
     const reflect::TypeInfo& type =
         isStatic ? reflect::Registry::get().getClass(request.string("class", context), context)
-                 : object->GetClass();
+                 : object->GetObjectClass(); // a blueprint's functions, then its native class's
     const reflect::FunctionInfo* info = type.findFunction(function);
     SP_CHECK(info, NotFound, context, ": class '", type.name, "' has no function '", function, "'");
     SP_CHECK(!isStatic || info->isStatic, InvalidArgument, context, ": '", type.name, ".", function,

@@ -9,6 +9,7 @@
 #include "core/base/regular_file.h"
 #include "core/reflect/registry.h"
 #include "core/world/actor.h"
+#include "core/world/blueprint_functions.h"
 #include "core/world/scene_io.h"
 
 namespace sp::world {
@@ -166,7 +167,7 @@ const reflect::TypeInfo& loadBlueprint(const std::string& path, std::string_view
              "' is already registered");
     for (const auto& [field, value] : document.items())
         SP_CHECK(field == "format" || field == "version" || field == "parent" || field == "doc" ||
-                     field == "properties" || field == "components",
+                     field == "properties" || field == "components" || field == "functions",
                  InvalidArgument, where, ": unknown field '", field, "'");
 
     auto blueprint = std::make_unique<Blueprint>();
@@ -182,11 +183,14 @@ const reflect::TypeInfo& loadBlueprint(const std::string& path, std::string_view
         applyBlueprint(doc, object, spawnWhere);
     };
 
-    // Check every field now by building one object (outside any world), so a bad asset never spawns.
+    // Check every field now by building one object (outside any world), so a bad asset never spawns; the
+    // functions are checked against it too (their targets are its components).
     {
         std::unique_ptr<UObject> trial = newObject(*parent, "Default__" + name, nullptr);
         trial->SetDataDefinedClass(type);
         applyBlueprint(doc, *trial, where);
+        if (const Json* functions = optionalMember(doc, "functions"))
+            type.functions = loadBlueprintFunctions(*functions, name, *trial, where);
         reflect::ObjectTable::rememberName(*trial);
     }
 

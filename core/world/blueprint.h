@@ -15,6 +15,8 @@
 // required), attached to "attach_parent" when given (otherwise the first scene component is the root and
 // later ones attach to it, as for any actor).
 //
+// "functions" declares functions made of reflected calls (core/world/blueprint_functions.h).
+//
 // Loading registers a runtime class named after the file ("BP_Axes.json" -> "BP_Axes") whose parent is
 // the parent class. Objects of it are created by the native class, report the blueprint class
 // (ObjectBase::GetObjectClass), and get the blueprint's defaults before they begin play. Loading builds

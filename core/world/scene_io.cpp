@@ -220,6 +220,10 @@ const reflect::TypeInfo& classMember(const Json& object, const reflect::TypeInfo
 
 } // namespace
 
+Value valueFromJson(const Json& json, const TypeCode& type, const ActorsByName& actors) {
+    return fromJson(json, type, actors);
+}
+
 void loadObjectProperties(reflect::ObjectBase& object, const Json& properties, const ActorsByName& actors,
                           const std::string& where) {
     SP_CHECK(properties.is_object(), InvalidArgument, where, ": 'properties' must be an object, got ",

@@ -30,7 +30,9 @@ class UWorld;
 
 namespace sp::reflect {
 class ObjectBase;
-}
+class Value;
+struct TypeCode;
+} // namespace sp::reflect
 
 namespace sp::world {
 
@@ -66,6 +68,11 @@ using ActorsByName = std::map<std::string, AActor*, std::less<>>;
 // and naming the property. Blueprints (core/world/blueprint.h) share this with scene files.
 void loadObjectProperties(reflect::ObjectBase& object, const SceneJson& properties,
                           const ActorsByName& actors, const std::string& where);
+// A value written as in scene files (enums by entry name, structs as objects, objects as name paths
+// resolved against `actors`), as the Value a property or parameter of declared `type` takes. Errors are
+// sp::InvalidArgument naming what was expected and what was found.
+reflect::Value valueFromJson(const SceneJson& json, const reflect::TypeCode& type,
+                             const ActorsByName& actors);
 // Reads and parses a scene file; sp::NotFound when it does not exist, sp::InvalidArgument when it is
 // not JSON. `function` names the caller in messages.
 SceneJson readSceneFile(const std::string& path, std::string_view function);
