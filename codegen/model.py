@@ -105,6 +105,7 @@ class Blueprint:
     parent: str
     doc: str
     asset: str  # relative to the project root
+    functions: tuple[Function, ...] = ()  # the functions it declares (core/world/blueprint_functions.h)
 
 
 @dataclass(frozen=True)

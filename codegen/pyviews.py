@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from codegen import naming, specifiers, typecodes
-from codegen.model import Class, Function, Module, Property
+from codegen.model import Blueprint, Class, Function, Module, Property
 
 
 @dataclass(frozen=True)
@@ -97,7 +97,10 @@ class BlueprintView:
     parent: str
     asset: str
     doc_literal: str
-    doc: str
+    doc: str  # after a `Name: type[Parent]` line (a blueprint without functions)
+    class_doc: str  # inside its stub class (a blueprint with functions)
+    functions: tuple[FunctionView, ...]
+    function_names: str  # a tuple literal for spear._blueprint.declare, "" when there are none
 
 
 @dataclass(frozen=True)
@@ -210,6 +213,12 @@ def _function_view(c: Class, f: Function, enums: set[str], rpc: naming.Qualifier
     )
 
 
+def _blueprint_class(b: Blueprint) -> Class:
+    """The class a blueprint's functions belong to, as _function_view asks for one."""
+    return Class(name=b.name, cpp_name=b.name, kind="class", header=b.asset, doc=b.doc, parent=b.parent,
+                 functions=b.functions)
+
+
 def _property_view(p: Property, rpc: naming.Qualifier) -> PropertyView:
     return PropertyView(
         name=p.name,
@@ -285,8 +294,15 @@ def module_view(module: Module) -> dict[str, Any]:
     # A local class whose parent is foreign derives its Async and Send views from the parent's.
     foreign_parents = sorted({c.parent for c in module.classes if c.parent is not None and c.parent in referenced})
     foreign = sorted(referenced | {f"{p}{suffix}" for p in foreign_parents for suffix in ("Async", "Send")})
-    blueprint_views = [BlueprintView(name=b.name, parent=b.parent, asset=b.asset, doc_literal=repr(b.doc),
-                                     doc=naming.py_docstring(b.doc, "")) for b in module.blueprints]
+    enum_names = {e.name for e in module.enums}
+    blueprint_views = [
+        BlueprintView(
+            name=b.name, parent=b.parent, asset=b.asset, doc_literal=repr(b.doc), doc=naming.py_docstring(b.doc, ""),
+            class_doc=naming.py_docstring(b.doc, " " * 4),
+            # Called by name on objects of the native class (spear._blueprint), so no class but the stub's.
+            functions=tuple(_function_view(_blueprint_class(b), f, enum_names, rpc) for f in b.functions),
+            function_names=repr(tuple(f.name for f in b.functions)) if b.functions else "")
+        for b in module.blueprints]
     return {
         "type_codes": [TypeCodeView(typecodes.py_name(t), typecodes.py_value(t))
                        for t in typecodes.constants(typecodes.module_codes(module))],

@@ -1,5 +1,5 @@
 """Blueprints: classes defined by asset files. Load one with load_class (SPEAR's call), spawn it like a
-native class, and find its instances by class.
+native class, find its instances by class, and call the functions its asset declares.
 
     PYTHONPATH=python /usr/bin/python3 examples/blueprints.py
 """
@@ -48,6 +48,21 @@ def main() -> None:
         print(f"crates: {[c.GetName() for c in crates]}; mesh actors: {[m.GetName() for m in meshes]}")
         for crate in crates:
             print(f"{crate.GetName()} came to rest at Z = {crate.GetActorLocation().Z:.3f}")
+        # spear.BP_Crate, generated from the asset, types the functions it declares (Launch, Nudge): they are
+        # reflected calls composed in the asset, run by the engine, called like any method.
+        thrown = game.spawn_actor(uclass=spear.BP_Crate, location=spear.FVector(Z=0.5), name="Thrown")
+    with instance.end_frame():
+        pass
+    with instance.begin_frame():
+        start = thrown.Launch(Speed=6.0)  # typed FVector: where it was thrown from
+        thrown.Nudge(Velocity=spear.FVector(X=1.0))
+        print(f"{thrown.GetName()} launched from Z = {start.Z:.2f} with a nudge along X")
+    with instance.end_frame():
+        pass
+    instance.step(num_frames=30)
+    with instance.begin_frame():
+        where = thrown.GetActorLocation()
+        print(f"half a second later it is at X = {where.X:.2f}, Z = {where.Z:.2f}")
     with instance.end_frame():
         pass
 

@@ -18,7 +18,7 @@ from typing import Any, TypedDict
 import numpy as np
 from numpy.typing import NDArray
 
-from spear import errors
+from spear import _blueprint, errors
 
 
 class SpFuncResult(TypedDict):
@@ -93,9 +93,17 @@ def get_sp_func_names(self: Any) -> list[str]:
 
 
 def sp_func_getattr(self: Any, name: str) -> Any:
-    """Attribute fallback: an SpFunc by name, as in Fig. 8 (`my_actor.my_sp_func(arrays=...)`)."""
+    """Attribute fallback: a function the object's blueprint declares (spear._blueprint), else an SpFunc by name,
+    as in Fig. 8 (`my_actor.my_sp_func(arrays=...)`)."""
     if name.startswith("_"):
         raise AttributeError(f"'{type(self).__name__}' object has no attribute '{name}'")
+    try:
+        caller = _blueprint.function_caller(self, name)  # a function its blueprint declares, if any
+    except errors.SpearError as error:
+        raise AttributeError(f"'{type(self).__name__}' object has no attribute '{name}', and its blueprint's "
+                             f"functions cannot be looked up now: {error}") from error
+    if caller is not None:
+        return caller
     try:
         names = self._sp_get_sp_func_names(f"{type(self).__name__}.{name}()")
     except errors.SpearError as error:

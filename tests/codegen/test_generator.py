@@ -128,6 +128,11 @@ def test_ir_json_round_trips_and_records_the_facts() -> None:
                    "'ANoSuchActor' is not a reflected class of module 'engine'"),
     ("bad_json", "tests/codegen/negative_blueprints/bad_json/BP_Broken.json:5: error: blueprint is not valid "
                  "JSON: Expecting ',' delimiter"),
+    ("bad_function_type", "tests/codegen/negative_blueprints/bad_function_type/BP_BadType.json:9: error: parameter "
+                          "'Height' of blueprint function 'Fly': unknown type 'double' (bool, int, float, str, or a "
+                          "reflected struct, enum or class of module 'engine')"),
+    ("function_twice", "tests/codegen/negative_blueprints/function_twice/BP_Twice.json:8: error: blueprint function "
+                       "'Go' is declared twice"),
 ])
 def test_rejected_blueprint_asset(case: str, expected: str, tmp_path: Path) -> None:
     import subprocess

@@ -186,3 +186,46 @@ def test_a_scene_with_blueprint_actors_loads_its_blueprints(
     with second.end_frame():
         pass
     assert (tmp_path / "again.json").read_text() == scene.read_text()  # load then save: the same bytes
+
+
+def test_blueprint_functions_are_typed_methods_of_its_objects(instance: spear.Instance) -> None:
+    # BP_Crate declares Launch and Nudge (assets/blueprints/BP_Crate.json): composed of reflected calls, run by
+    # the engine, called by attribute on the crate (typed in the stubs) or by name through call_function.
+    game = instance.get_game()
+    with instance.begin_frame():
+        crate = game.spawn_actor(uclass=spear.BP_Crate, location=spear.FVector(Z=1.0))
+        plain = game.spawn_actor(uclass=spear.AStaticMeshActor)
+    with instance.end_frame():
+        pass
+    with instance.begin_frame():
+        thrown_from = crate.Launch(Speed=4.0)
+        assert isinstance(thrown_from, spear.FVector)
+        assert thrown_from == crate.GetActorLocation()
+        assert instance.call_function(uobject=crate, function="Launch", args={}) == crate.GetActorLocation()
+        crate.Nudge(Velocity=spear.FVector(X=2.0))
+        assert hasattr(crate, "Nudge") and not hasattr(plain, "Nudge")
+        with pytest.raises(spear.InvalidArgumentError, match=r"^BP_Crate\.Launch\(\): argument 'Speed' must be float"):
+            crate.Launch(Speed="fast")  # type: ignore[arg-type]  # what mypy refuses, the engine refuses too
+        with pytest.raises(spear.InvalidArgumentError, match=r"^BP_Crate\.Nudge\(\): missing argument 'Velocity'"):
+            crate.Nudge()  # type: ignore[call-arg]
+        with pytest.raises(spear.NotFoundError, match=r"class 'AStaticMeshActor' has no function 'Launch'"):
+            instance.call_function(uobject=plain, function="Launch", args={})
+    with instance.end_frame():
+        velocity = crate.StaticMeshComponent.GetPhysicsLinearVelocity()
+    # Launch set 5 m/s up (its default), Nudge added 2 m/s along X; one physics frame of gravity since.
+    assert velocity.X == pytest.approx(2.0, abs=1e-6)
+    assert 4.5 < velocity.Z < 5.0
+    with pytest.raises(AttributeError, match=r"its blueprint's functions cannot be looked up now: .*outside a frame"):
+        crate.Launch()
+
+
+def test_blueprint_functions_are_checked_when_the_asset_loads(instance: spear.Instance, tmp_path: Path) -> None:
+    path = write(tmp_path / "BP_BadCall.json", blueprint(
+        "AStaticMeshActor", functions=[{"name": "Go", "body": [{"call": "StaticMeshComponent.Fly"}]}]))
+    with instance.begin_frame():
+        with pytest.raises(spear.InvalidArgumentError, match=re.escape(
+                f"blueprint '{path}': functions[0]: function 'Go': body[0]: 'StaticMeshComponent.Fly': class "
+                "'UStaticMeshComponent' has no function 'Fly'")):
+            instance.get_game().load_class(uclass=spear.AActor, name=path)
+    with instance.end_frame():
+        pass

@@ -29,11 +29,16 @@ def stub_classes() -> dict[str, ast.ClassDef]:
     return {n.name: n for n in tree.body if isinstance(n, ast.ClassDef)}
 
 
+def blueprint_classes() -> list[str]:
+    """Stub classes of blueprints (assets with functions): made at run time, no class in the module."""
+    return [n for n in stub_classes() if hasattr(getattr(api, n, None), "__sp_asset__")]
+
+
 def object_classes() -> list[str]:
     return [n for n, c in stub_classes().items() if not n.endswith(("Async", "Send")) and not any(
         isinstance(d, ast.Name) and d.id == "dataclass" for d in c.decorator_list) and not any(
         isinstance(b, ast.Attribute) and b.attr == "IntEnum" or isinstance(b, ast.Name) and b.id == "TypedDict"
-        for b in c.bases)]
+        for b in c.bases) and n not in blueprint_classes()]
 
 
 def stub_signature(fn: ast.FunctionDef) -> list[tuple[str, bool]]:
@@ -134,3 +139,18 @@ def test_structs_and_enums_are_shared_python_types() -> None:
                            and n.target.id != "__sp_class__"]
             assert list(runtime.__dataclass_fields__)[1:] == stub_fields or [
                 f for f in runtime.__dataclass_fields__ if f != "__sp_class__"] == stub_fields
+
+
+@pytest.mark.parametrize("name", blueprint_classes())
+def test_blueprint_stub_class_matches_its_asset(name: str) -> None:
+    # The stub's methods are the asset's functions, with its parameters (name, order, default or not); the
+    # engine checks the bodies when it loads the asset, and test_blueprints.py calls them on both transports.
+    import json
+
+    document = json.loads((Path(api.__file__).resolve().parents[3] / getattr(api, name).__sp_asset__).read_text())
+    declared = {f["name"]: [(p["name"], "default" in p) for p in f.get("params", [])] for f in document["functions"]}
+    methods = {node.name: stub_signature(node) for node in stub_classes()[name].body
+               if isinstance(node, ast.FunctionDef)}
+    assert methods == declared
+    parent = stub_classes()[name].bases[0]
+    assert isinstance(parent, ast.Name) and parent.id == document["parent"]

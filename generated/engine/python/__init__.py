@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "e7a7e4454ba7221b"
+API_HASH = "9d89b267002e82bb"

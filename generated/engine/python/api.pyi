@@ -4813,5 +4813,11 @@ BP_Axes: type[AActor]
 """Coordinate axes: three thin 1 m bars along X (red), Y (green) and Z (blue) from the actor's origin."""
 
 
-BP_Crate: type[AStaticMeshActor]
-"""A 0.5 m wooden crate of 12 kg that falls and tumbles under physics."""
+class BP_Crate(AStaticMeshActor):
+    """A 0.5 m wooden crate of 12 kg that falls and tumbles under physics."""
+
+    def Launch(self, *, Speed: float = 5.0) -> FVector:
+        """Throws the crate straight up at Speed m/s and spins it; returns where it was thrown from."""
+
+    def Nudge(self, *, Velocity: FVector) -> None:
+        """Adds Velocity (m/s) to the crate's motion at once, whatever its mass."""

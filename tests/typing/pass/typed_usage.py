@@ -71,10 +71,13 @@ def asynchronous(instance: spear.Instance) -> None:
 
 def blueprints(instance: spear.Instance) -> None:
     game = instance.get_game()
-    assert_type(spear.BP_Crate, type[spear.AStaticMeshActor])
+    # A blueprint without functions is typed as its parent's class; one with functions has a stub class.
+    assert_type(spear.BP_Axes, type[spear.AActor])
     with instance.begin_frame():
-        assert_type(game.spawn_actor(uclass=spear.BP_Crate), spear.AStaticMeshActor)
+        crate: spear.AStaticMeshActor = game.spawn_actor(uclass=spear.BP_Crate)
+        assert_type(game.spawn_actor(uclass=spear.BP_Crate), spear.BP_Crate)
         assert_type(game.find_actors_by_class(uclass=spear.BP_Axes), list[spear.AActor])
+        assert crate.ActorHasTag(Tag="crate")
 
 
 def lists_of_derived_actors(instance: spear.Instance) -> None:
@@ -90,3 +93,17 @@ def lists_of_derived_actors(instance: spear.Instance) -> None:
     with instance.end_frame():
         stacked = spear.UCameraSensorComponent.read_pixels_stacked(Cameras=cameras)
         assert_type(stacked, spear.FCameraPixels)
+
+
+def blueprint_functions(instance: spear.Instance) -> None:
+    """A blueprint's functions are methods of its stub class, typed from its asset."""
+    game = instance.get_game()
+    with instance.begin_frame():
+        crate = game.spawn_actor(uclass=spear.BP_Crate)
+        assert_type(crate, spear.BP_Crate)
+        assert_type(crate.Launch(Speed=3.0), spear.FVector)
+        assert_type(crate.Launch(), spear.FVector)
+        crate.Nudge(Velocity=spear.FVector(X=1.0))
+        assert_type(crate.StaticMeshComponent, spear.UStaticMeshComponent)  # the parent's members stay
+    with instance.end_frame():
+        pass
