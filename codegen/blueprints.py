@@ -37,7 +37,7 @@ def add_blueprints(module: Module, directory: Path, root: Path) -> Module:
         if not isinstance(parent, str) or parent not in classes:
             raise GeneratorError(rel, line, f"blueprint parent {parent!r} is not a reflected class of module "
                                             f"'{module.name}'")
-        functions = _functions(data.get("functions", []), module, rel, text)
+        functions = _functions(data.get("functions", []), module, parent, rel, text)
         blueprints.append(Blueprint(name=path.stem, parent=parent, doc=str(data.get("doc", "")), asset=rel,
                                     functions=functions))
     names = {c.name for c in module.classes} | {e.name for e in module.enums}
@@ -53,30 +53,56 @@ def _line_of(text: str, needle: str, after: int = 1) -> int:
     return next((n for n in range(after, len(lines) + 1) if needle in lines[n - 1]), 1)
 
 
-def _functions(entries: Any, module: Module, rel: str, text: str) -> tuple[Function, ...]:
+def _is_name(name: Any) -> bool:
+    """A public Python identifier: what a method or keyword argument of the stubs can be called."""
+    return isinstance(name, str) and name.isidentifier() and not keyword.iskeyword(name) and \
+        not name.startswith("_") and name != "self"
+
+
+def _inherited(module: Module, parent: str) -> set[str]:
+    """The members a blueprint's objects have already: its parent chain's functions and properties (in this
+    module), and what every engine object has in Python (spear._object.SpObject, call_async, send_async)."""
+    names = {"is_valid", "call_sp_func", "get_sp_func_names", "call_async", "send_async"}
+    classes = {c.name: c for c in module.classes}
+    current = classes.get(parent)
+    while current is not None:
+        names |= {f.name for f in current.functions} | {p.name for p in current.properties}
+        current = classes.get(current.parent) if current.parent else None
+    return names
+
+
+def _functions(entries: Any, module: Module, parent: str, rel: str, text: str) -> tuple[Function, ...]:
     if not isinstance(entries, list):
         raise GeneratorError(rel, _line_of(text, '"functions"'), "blueprint 'functions' must be a list")
     functions: list[Function] = []
+    inherited = _inherited(module, parent)
     cursor = _line_of(text, '"functions"')  # each function's lines come after the one before
     for entry in entries:
         name = entry.get("name") if isinstance(entry, dict) else None
         line = _line_of(text, f'"name": {json.dumps(name)}', cursor) if isinstance(name, str) else cursor
         cursor = line + 1
-        if not isinstance(name, str) or not name.isidentifier() or keyword.iskeyword(name):
-            raise GeneratorError(rel, line, f"blueprint function name {name!r} is not a Python identifier")
+        if not _is_name(name):
+            raise GeneratorError(rel, line, f"blueprint function name {name!r} is not a public Python identifier")
         if any(f.name == name for f in functions):
             raise GeneratorError(rel, line, f"blueprint function '{name}' is declared twice")
+        if name in inherited:
+            raise GeneratorError(rel, line, f"blueprint function '{name}' has the name of a member of {parent}")
+        declared = entry.get("params", [])
+        if not isinstance(declared, list):
+            raise GeneratorError(rel, _line_of(text, '"params"', line),
+                                 f"'params' of blueprint function '{name}' must be a list")
         params: list[Param] = []
-        for p in entry.get("params", []):
+        pcursor = line
+        for p in declared:
             pname = p.get("name") if isinstance(p, dict) else None
-            if not isinstance(pname, str) or not pname.isidentifier() or keyword.iskeyword(pname):
-                raise GeneratorError(rel, _line_of(text, '"params"', line),
-                                     f"parameter {pname!r} of blueprint function '{name}' is not a Python identifier")
+            pline = _line_of(text, f'"name": {json.dumps(pname)}', pcursor) if isinstance(pname, str) else pcursor
+            pcursor = pline + 1
+            if not _is_name(pname):
+                raise GeneratorError(rel, pline, f"parameter {pname!r} of blueprint function '{name}' is not a "
+                                                 "public Python identifier")
             if any(q.name == pname for q in params):
-                raise GeneratorError(rel, _line_of(text, f'"name": "{pname}"', line),
-                                     f"parameter '{pname}' of blueprint function '{name}' is declared twice")
-            ptype = _type(p.get("type"), module, rel, _line_of(text, f'"name": "{pname}"', line),
-                          f"parameter '{pname}' of blueprint function '{name}'")
+                raise GeneratorError(rel, pline, f"parameter '{pname}' of blueprint function '{name}' is declared twice")
+            ptype = _type(p.get("type"), module, rel, pline, f"parameter '{pname}' of blueprint function '{name}'")
             default = _default(p["default"], ptype, module) if "default" in p else None
             params.append(Param(name=pname, type=ptype, cpp_decl="", default_cpp=default))
         returns = TypeRef(kind="void", cpp="void")

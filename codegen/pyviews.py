@@ -100,7 +100,7 @@ class BlueprintView:
     doc: str  # after a `Name: type[Parent]` line (a blueprint without functions)
     class_doc: str  # inside its stub class (a blueprint with functions)
     functions: tuple[FunctionView, ...]
-    function_names: str  # a tuple literal for spear._blueprint.declare, "" when there are none
+    function_types: str  # {name: result TypeCode} for spear._blueprint.declare, "" when there are none
 
 
 @dataclass(frozen=True)
@@ -213,6 +213,14 @@ def _function_view(c: Class, f: Function, enums: set[str], rpc: naming.Qualifier
     )
 
 
+def _function_types(b: Blueprint) -> str:
+    """The result type of each function a blueprint declares, as api.py spells it for _declare_blueprint."""
+    if not b.functions:
+        return ""
+    items = [f'"{f.name}": _{typecodes.py_value(typecodes.of_result(f))}' for f in b.functions]
+    return "{" + ", ".join(items) + "}"
+
+
 def _blueprint_class(b: Blueprint) -> Class:
     """The class a blueprint's functions belong to, as _function_view asks for one."""
     return Class(name=b.name, cpp_name=b.name, kind="class", header=b.asset, doc=b.doc, parent=b.parent,
@@ -301,7 +309,7 @@ def module_view(module: Module) -> dict[str, Any]:
             class_doc=naming.py_docstring(b.doc, " " * 4),
             # Called by name on objects of the native class (spear._blueprint), so no class but the stub's.
             functions=tuple(_function_view(_blueprint_class(b), f, enum_names, rpc) for f in b.functions),
-            function_names=repr(tuple(f.name for f in b.functions)) if b.functions else "")
+            function_types=_function_types(b))
         for b in module.blueprints]
     return {
         "type_codes": [TypeCodeView(typecodes.py_name(t), typecodes.py_value(t))

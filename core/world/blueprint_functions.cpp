@@ -1,6 +1,7 @@
 #include "core/world/blueprint_functions.h"
 
 #include <algorithm>
+#include <cctype>
 #include <map>
 #include <memory>
 #include <set>
@@ -146,8 +147,11 @@ Value resolve(const Json& json, const TypeCode& type, const std::map<std::string
     if (type.kind == Kind::Struct && json.is_object()) {
         const reflect::TypeInfo& info = reflect::Registry::get().getStruct(type.name, "resolve()");
         Value::Dict fields;
-        for (const auto& [field, value] : json.items())
-            fields.emplace(field, resolve(value, info.findProperty(field)->type, variables, actors));
+        for (const auto& [field, value] : json.items()) {
+            const reflect::PropertyInfo* property = info.findProperty(field);
+            SP_CHECK(property, InvalidArgument, type.name, " has no field '", field, "'");
+            fields.emplace(field, resolve(value, property->type, variables, actors));
+        }
         return fields;
     }
     if (type.kind == Kind::List && json.is_array()) {
@@ -308,10 +312,20 @@ reflect::FunctionInfo loadFunction(const Json& json, const std::string& classNam
     info.name = nameMember(json, "name", where);
     const std::string fwhere = where + ": function '" + info.name + "'";
     definition->context = className + "." + info.name + "()";
-    // The class's own functions are not registered yet: what this finds is the parent classes'.
-    SP_CHECK(!prototype.GetClass().findFunction(info.name), InvalidArgument, fwhere,
-             ": the parent class has a function of that name");
-    info.doc = json.value("doc", "");
+    // A name Python can call by attribute and keyword that hides nothing the objects have: the class's own
+    // functions are not registered yet, so what findFunction finds here is the parent classes' (a parent
+    // blueprint's too).
+    SP_CHECK(
+        info.name[0] != '_' && std::all_of(info.name.begin(), info.name.end(),
+                                           [](char c) { return std::isalnum((unsigned char)c) || c == '_'; }),
+        InvalidArgument, fwhere, ": a function's name is letters, digits and '_', not starting with '_'");
+    const reflect::TypeInfo& type = prototype.GetObjectClass();
+    SP_CHECK(!type.findFunction(info.name) && !type.findProperty(info.name), InvalidArgument, fwhere,
+             ": the parent class has a member of that name");
+    if (const Json* doc = member(json, "doc")) {
+        SP_CHECK(doc->is_string(), InvalidArgument, fwhere, ": 'doc' must be a string, got ", doc->dump());
+        info.doc = doc->get<std::string>();
+    }
     std::map<std::string, TypeCode> variables;
     if (const Json* params = member(json, "params")) {
         SP_CHECK(params->is_array(), InvalidArgument, fwhere, ": 'params' must be a list, got ",

@@ -12,20 +12,19 @@ blueprint's stub class.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from spear._object import SpObject
-
-if TYPE_CHECKING:
-    from spear._rpc_client import RpcConnection
+from spear._type_code import TypeCode
 
 _CLASSES: dict[str, type[SpObject]] = {}
-_FUNCTIONS: dict[str, frozenset[str]] = {}  # blueprint name -> the functions it declares
+_FUNCTIONS: dict[str, dict[str, TypeCode]] = {}  # blueprint name -> its functions' result types
 
 
-def declare(name: str, parent: type[SpObject], asset: str, doc: str, functions: Sequence[str] = ()) -> type[SpObject]:
+def declare(name: str, parent: type[SpObject], asset: str, doc: str,
+            functions: Mapping[str, TypeCode] | None = None) -> type[SpObject]:
     """A blueprint class the generator found an asset for (api.py): typed as its parent's class, and
     loaded from `asset` (relative to the project root) the first time it is used as uclass=. In a checkout
     that is a file of the checkout; in an installed package the engine finds it on its asset search path
@@ -39,34 +38,31 @@ def declare(name: str, parent: type[SpObject], asset: str, doc: str, functions: 
                                  "__module__": "spear", "__doc__": doc})
     _CLASSES[name] = cls
     if functions:
-        _FUNCTIONS[name] = frozenset(functions)
+        _FUNCTIONS[name] = dict(functions)
     return cls
 
 
 def function_caller(obj: Any, name: str) -> Callable[..., Any] | None:
-    """`obj.name` when `name` is a function of the blueprint `obj` was spawned from, called by name through
-    the engine's dynamic call path (its arguments checked and converted there); None otherwise."""
+    """`obj.name` when `name` is a function of the blueprint `obj` was spawned from, called by name (its
+    arguments checked and converted by the engine, as for any reflected call); None otherwise. Over RPC it
+    goes through the proxy's typed call, so call_async and send_async queue it like any other call."""
     if not any(name in functions for functions in _FUNCTIONS.values()):
         return None  # no blueprint declares it: no need to ask the object for its class
-    if name not in _FUNCTIONS.get(obj.GetClassName(), ()):
-        return None
     client = getattr(obj, "_sp_client", None)
-    if client is None:  # in-process
+    # Asked at each lookup, as the engine answers it (outside a frame it refuses, on either transport); over
+    # RPC by a direct request rather than a typed call, so that call_async never queues the question.
+    class_name = obj.GetClassName() if client is None else client.request(
+        "call", object=obj, function="GetClassName", args={})
+    result_type = _FUNCTIONS.get(class_name, {}).get(name)
+    if result_type is None:
+        return None
+    if client is None:
         from spear import _inprocess
 
         native = _inprocess.module()
         return lambda **kwargs: native.call_function(uobject=obj, function=name, args=kwargs)
-
-    connection: RpcConnection = client
-
-    def call(**kwargs: Any) -> Any:
-        from spear._rpc_types import convert
-        from spear._type_code import TypeCode
-
-        typed = connection.request("call_typed", object=obj, function=name, args=kwargs)
-        return convert(typed["value"], TypeCode.from_wire(typed["type"]), connection)
-
-    return call
+    owner = class_name
+    return lambda **kwargs: obj._sp_call(owner, name, kwargs, result_type)
 
 
 def blueprint_class(name: str, native: str) -> type[SpObject]:

@@ -133,6 +133,10 @@ def test_ir_json_round_trips_and_records_the_facts() -> None:
                           "reflected struct, enum or class of module 'engine')"),
     ("function_twice", "tests/codegen/negative_blueprints/function_twice/BP_Twice.json:8: error: blueprint function "
                        "'Go' is declared twice"),
+    ("self_parameter", "tests/codegen/negative_blueprints/self_parameter/BP_Self.json:10: error: parameter 'self' of "
+                       "blueprint function 'Go' is not a public Python identifier"),
+    ("inherited_name", "tests/codegen/negative_blueprints/inherited_name/BP_Shadow.json:7: error: blueprint function "
+                       "'Tags' has the name of a member of AStaticMeshActor"),
 ])
 def test_rejected_blueprint_asset(case: str, expected: str, tmp_path: Path) -> None:
     import subprocess

@@ -219,6 +219,20 @@ def test_blueprint_functions_are_typed_methods_of_its_objects(instance: spear.In
         crate.Launch()
 
 
+def test_blueprint_functions_queue_with_call_async(instance: spear.Instance) -> None:
+    # Over RPC the call goes through the proxy's typed call, so call_async queues it and returns a Future.
+    game = instance.get_game()
+    with instance.begin_frame():
+        crate = game.spawn_actor(uclass=spear.BP_Crate, location=spear.FVector(Z=2.0))
+    with instance.end_frame():
+        pass
+    with instance.begin_frame():
+        future = crate.call_async.Launch(Speed=1.0)  # type: ignore[attr-defined]  # call_async is not typed for blueprints
+        assert future.get() == crate.GetActorLocation()
+    with instance.end_frame():
+        pass
+
+
 def test_blueprint_functions_are_checked_when_the_asset_loads(instance: spear.Instance, tmp_path: Path) -> None:
     path = write(tmp_path / "BP_BadCall.json", blueprint(
         "AStaticMeshActor", functions=[{"name": "Go", "body": [{"call": "StaticMeshComponent.Fly"}]}]))

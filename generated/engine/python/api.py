@@ -1489,8 +1489,9 @@ class UWorld(UObject):
 # Blueprints: classes defined by data (assets), typed as their native parent, or as a stub class of their
 # own when they declare functions (called by attribute, spear._blueprint); loaded on first use.
 from spear._blueprint import declare as _declare_blueprint  # noqa: E402
+from spear._type_code import TypeCode as _TypeCode  # noqa: E402
 
 BP_Axes = _declare_blueprint("BP_Axes", AActor, "assets/blueprints/BP_Axes.json", "Coordinate axes: three thin 1 m bars along X (red), Y (green) and Z (blue) from the actor's origin.")
 
 BP_Crate = _declare_blueprint("BP_Crate", AStaticMeshActor, "assets/blueprints/BP_Crate.json", 'A 0.5 m wooden crate of 12 kg that falls and tumbles under physics.',
-                              ('Launch', 'Nudge'))
+                              {"Launch": _TypeCode("struct", "FVector"), "Nudge": _TypeCode("void")})

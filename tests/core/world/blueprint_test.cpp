@@ -160,7 +160,14 @@ TEST(BlueprintTest, BadFunctionsAreRejectedOnLoadNamingTheFunctionAndStep) {
         {R"([{"name": "F", "body": [{"return": 1}]}])",
          "functions[0]: function 'F': body[0]: a return step needs 'returns' to declare the result's type"},
         {R"([{"name": "GetActorLocation", "body": [{"call": "GetActorLocation"}]}])",
-         "functions[0]: function 'GetActorLocation': the parent class has a function of that name"},
+         "functions[0]: function 'GetActorLocation': the parent class has a member of that name"},
+        {R"([{"name": "Tags", "body": [{"call": "GetActorLocation"}]}])",
+         "functions[0]: function 'Tags': the parent class has a member of that name"},
+        {R"([{"name": "_hidden", "body": [{"call": "GetActorLocation"}]}])",
+         "functions[0]: function '_hidden': a function's name is letters, digits and '_', not starting with "
+         "'_'"},
+        {R"([{"name": "F", "doc": 3, "body": [{"call": "GetActorLocation"}]}])",
+         "functions[0]: function 'F': 'doc' must be a string, got 3"},
         {R"([{"name": "F", "body": [{"call": "GetActorLocation"}]}, {"name": "F", "body": [{"call": "GetActorLocation"}]}])",
          "function 'F' is declared twice"},
     };
