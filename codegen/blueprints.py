@@ -14,7 +14,7 @@ import json
 import keyword
 import os
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeGuard
 
 from codegen.errors import GeneratorError
 from codegen.model import Blueprint, Function, Module, Param, TypeRef
@@ -53,7 +53,7 @@ def _line_of(text: str, needle: str, after: int = 1) -> int:
     return next((n for n in range(after, len(lines) + 1) if needle in lines[n - 1]), 1)
 
 
-def _is_name(name: Any) -> bool:
+def _is_name(name: Any) -> TypeGuard[str]:
     """A public Python identifier: what a method or keyword argument of the stubs can be called."""
     return isinstance(name, str) and name.isidentifier() and not keyword.iskeyword(name) and \
         not name.startswith("_") and name != "self"
