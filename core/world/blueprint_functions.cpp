@@ -102,6 +102,14 @@ bool assignable(const TypeCode& from, const TypeCode& to) {
            (!from.isContainer() || from.elementType() == to.elementType());
 }
 
+UActorComponent* componentNamed(reflect::ObjectBase& object, std::string_view name) {
+    if (auto* actor = dynamic_cast<AActor*>(&object))
+        for (const auto& component : actor->GetComponentList())
+            if (component->GetName() == name)
+                return component.get();
+    return nullptr;
+}
+
 // Checks a value written for `type` at load time: variables known and of a fitting type, literals
 // readable (as scene files read them).
 void checkValue(const Json& json, const TypeCode& type, const std::map<std::string, TypeCode>& variables,
@@ -132,6 +140,18 @@ void checkValue(const Json& json, const TypeCode& type, const std::map<std::stri
         valueFromJson(unescaped(json), type, actors);
     } catch (const Error&) {
         rethrowWithPrefix(where + ": ");
+    }
+    // An object named by path ("Self", "Self.StaticMeshComponent") must be of the class asked for there.
+    if (type.kind == Kind::Object && json.is_string() && !actors.empty()) {
+        const std::string& path = json.get_ref<const std::string&>();
+        const size_t dot = path.find('.');
+        reflect::ObjectBase* object = actors.begin()->second;
+        if (dot != std::string::npos)
+            object = componentNamed(*object, std::string_view(path).substr(dot + 1));
+        const reflect::TypeInfo* wanted = reflect::Registry::get().findType(type.name);
+        SP_CHECK(object && wanted && object->GetObjectClass().isChildOf(*wanted), InvalidArgument, where,
+                 ": '", path, "' is ", object ? object->GetObjectClass().name : std::string("nothing"),
+                 ", not ", type.name);
     }
 }
 
@@ -186,14 +206,6 @@ bool fits(const Value& value, const TypeCode& type) {
     default:
         return false;
     }
-}
-
-UActorComponent* componentNamed(reflect::ObjectBase& object, std::string_view name) {
-    if (auto* actor = dynamic_cast<AActor*>(&object))
-        for (const auto& component : actor->GetComponentList())
-            if (component->GetName() == name)
-                return component.get();
-    return nullptr;
 }
 
 ActorsByName selfOf(reflect::ObjectBase& object) {

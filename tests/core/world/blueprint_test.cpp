@@ -90,9 +90,10 @@ TEST(BlueprintTest, FunctionsRunTheirStepsWhenCalledByName) {
         {"name": "MoveTo", "params": [{"name": "Target", "type": "FVector"}],
          "body": [{"call": "SetActorLocation", "args": {"NewLocation": "$Target"}}]},
         {"name": "Label", "params": [{"name": "Text", "type": "str"}], "returns": "str",
-         "body": [{"return": "$Text"}]}])"));
+         "body": [{"return": "$Text"}]},
+        {"name": "Mesh", "returns": "UPrimitiveComponent", "body": [{"return": "Self.StaticMeshComponent"}]}])"));
     const UClass* type = world.load_class(&AActor::StaticClass(), path);
-    ASSERT_EQ(type->functions.size(), 3u);
+    ASSERT_EQ(type->functions.size(), 4u);
     const sp::reflect::FunctionInfo* where = type->findFunction("Where");
     ASSERT_NE(where, nullptr);
     EXPECT_EQ(where->returnType.kind, sp::reflect::TypeCode::Kind::Struct);
@@ -108,6 +109,8 @@ TEST(BlueprintTest, FunctionsRunTheirStepsWhenCalledByName) {
     EXPECT_EQ(crate->StaticMeshComponent->MassInKg, 2.0) << "the default, an int, taken as a float";
     where->invoke(actor, {{"Dz", Value(int64_t(5))}});
     EXPECT_EQ(crate->StaticMeshComponent->MassInKg, 5.0);
+    EXPECT_EQ(type->findFunction("Mesh")->invoke(actor, {}).as<sp::reflect::ObjectHandle>(),
+              static_cast<AStaticMeshActor*>(actor)->StaticMeshComponent->GetHandle());
     EXPECT_EQ(
         type->findFunction("Label")->invoke(actor, {{"Text", Value("$$not a variable")}}).as<std::string>(),
         "$$not a variable")
@@ -155,6 +158,12 @@ TEST(BlueprintTest, BadFunctionsAreRejectedOnLoadNamingTheFunctionAndStep) {
          "functions[0]: function 'F': parameter 'N': unknown type 'double' (bool, int, float, str, or a "
          "reflected "
          "struct, enum or class)"},
+        {R"([{"name": "F", "returns": "AActor", "body": [{"return": "Self.StaticMeshComponent"}]}])",
+         "functions[0]: function 'F': body[0]: 'return': 'Self.StaticMeshComponent' is UStaticMeshComponent, "
+         "not "
+         "AActor"},
+        {R"([{"name": "F", "returns": "UStaticMeshComponent", "body": [{"return": "Self.Lid"}]}])",
+         "functions[0]: function 'F': body[0]: 'return': actor 'Self' has no component 'Lid'"},
         {R"([{"name": "F", "returns": "int", "body": [{"call": "GetActorLocation"}]}])",
          "functions[0]: function 'F': declares 'returns' but its last step is not a return"},
         {R"([{"name": "F", "body": [{"return": 1}]}])",
