@@ -63,6 +63,13 @@ UActorComponent* AActor::CreateComponent(const UClass& type, std::string name) {
     return raw;
 }
 
+UActorComponent* AActor::FindComponentByName(std::string_view name) const {
+    for (const auto& component : components_)
+        if (component->GetName() == name)
+            return component.get();
+    return nullptr;
+}
+
 void AActor::DestroyComponent(UActorComponent* component) {
     auto it = std::find_if(components_.begin(), components_.end(),
                            [&](const auto& owned) { return owned.get() == component; });

@@ -3,6 +3,7 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -112,6 +113,8 @@ class AActor : public UObject {
     UActorComponent* CreateComponent(const UClass& type, std::string name);
     void DestroyComponent(UActorComponent* component);
     const std::vector<std::unique_ptr<UActorComponent>>& GetComponentList() const { return components_; }
+    // The component called `name`, or null.
+    UActorComponent* FindComponentByName(std::string_view name) const;
 
     // Engine hooks.
     virtual void BeginPlay();

@@ -47,13 +47,6 @@ std::string stringMember(const Json& object, const char* key, const std::string&
     return value->get<std::string>();
 }
 
-UActorComponent* findComponent(AActor& actor, std::string_view name) {
-    for (const auto& component : actor.GetComponentList())
-        if (component->GetName() == name)
-            return component.get();
-    return nullptr;
-}
-
 // Applies the defaults and components of `document` to `object`, a new object of the blueprint's class.
 void applyBlueprint(const Json& document, reflect::ObjectBase& object, const std::string& where) {
     auto* actor = dynamic_cast<AActor*>(&object);
@@ -72,7 +65,7 @@ void applyBlueprint(const Json& document, reflect::ObjectBase& object, const std
         const std::string name =
             stringMember(entry, "name", where + ": components[" + std::to_string(i) + "]");
         const std::string cwhere = where + ": component '" + name + "'";
-        UActorComponent* existing = findComponent(*actor, name);
+        UActorComponent* existing = actor->FindComponentByName(name);
         const reflect::TypeInfo* type = nullptr;
         if (optionalMember(entry, "class")) {
             const std::string className = stringMember(entry, "class", cwhere);
@@ -94,13 +87,14 @@ void applyBlueprint(const Json& document, reflect::ObjectBase& object, const std
     }
     for (size_t i = 0; i < entries.size(); ++i) {
         const Json& entry = entries[i];
-        UActorComponent* component = findComponent(*actor, entry["name"].get<std::string>());
+        UActorComponent* component = actor->FindComponentByName(entry["name"].get<std::string>());
         const Json* parent = optionalMember(entry, "attach_parent");
         if (parent && !parent->is_null()) {
             SP_CHECK(parent->is_string(), InvalidArgument, wheres[i],
                      ": 'attach_parent' must be a component name or null, got ", parent->dump());
             auto* scene = dynamic_cast<USceneComponent*>(component);
-            auto* target = dynamic_cast<USceneComponent*>(findComponent(*actor, parent->get<std::string>()));
+            auto* target =
+                dynamic_cast<USceneComponent*>(actor->FindComponentByName(parent->get<std::string>()));
             SP_CHECK(scene, InvalidArgument, wheres[i], ": only scene components can be attached");
             SP_CHECK(target && target != scene, InvalidArgument, wheres[i], ": attach_parent '",
                      parent->get<std::string>(), "' is not another scene component of this actor");
@@ -114,8 +108,8 @@ void applyBlueprint(const Json& document, reflect::ObjectBase& object, const std
         loadObjectProperties(object, *properties, self, where);
     for (size_t i = 0; i < entries.size(); ++i)
         if (const Json* properties = optionalMember(entries[i], "properties"))
-            loadObjectProperties(*findComponent(*actor, entries[i]["name"].get<std::string>()), *properties,
-                                 self, wheres[i]);
+            loadObjectProperties(*actor->FindComponentByName(entries[i]["name"].get<std::string>()),
+                                 *properties, self, wheres[i]);
 }
 
 Json readBlueprintFile(const std::string& path, std::string_view function, const std::string& where) {

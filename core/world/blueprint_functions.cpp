@@ -102,12 +102,10 @@ bool assignable(const TypeCode& from, const TypeCode& to) {
            (!from.isContainer() || from.elementType() == to.elementType());
 }
 
+// The component called `name` of `object` when it is an actor; null otherwise.
 UActorComponent* componentNamed(reflect::ObjectBase& object, std::string_view name) {
-    if (auto* actor = dynamic_cast<AActor*>(&object))
-        for (const auto& component : actor->GetComponentList())
-            if (component->GetName() == name)
-                return component.get();
-    return nullptr;
+    auto* actor = dynamic_cast<AActor*>(&object);
+    return actor ? actor->FindComponentByName(name) : nullptr;
 }
 
 // Checks a value written for `type` at load time: variables known and of a fitting type, literals
@@ -136,22 +134,19 @@ void checkValue(const Json& json, const TypeCode& type, const std::map<std::stri
             checkValue(item, type.elementType(), variables, actors, where);
         return;
     }
+    Value value;
     try {
-        valueFromJson(unescaped(json), type, actors);
+        value = valueFromJson(unescaped(json), type, actors);
     } catch (const Error&) {
         rethrowWithPrefix(where + ": ");
     }
     // An object named by path ("Self", "Self.StaticMeshComponent") must be of the class asked for there.
-    if (type.kind == Kind::Object && json.is_string() && !actors.empty()) {
-        const std::string& path = json.get_ref<const std::string&>();
-        const size_t dot = path.find('.');
-        reflect::ObjectBase* object = actors.begin()->second;
-        if (dot != std::string::npos)
-            object = componentNamed(*object, std::string_view(path).substr(dot + 1));
+    if (const auto* handle = value.tryAs<reflect::ObjectHandle>()) {
+        const reflect::ObjectBase* object = reflect::ObjectTable::find(*handle);
         const reflect::TypeInfo* wanted = reflect::Registry::get().findType(type.name);
         SP_CHECK(object && wanted && object->GetObjectClass().isChildOf(*wanted), InvalidArgument, where,
-                 ": '", path, "' is ", object ? object->GetObjectClass().name : std::string("nothing"),
-                 ", not ", type.name);
+                 ": '", json.get<std::string>(), "' is ",
+                 object ? object->GetObjectClass().name : std::string("nothing"), ", not ", type.name);
     }
 }
 

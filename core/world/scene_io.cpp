@@ -106,9 +106,8 @@ reflect::ObjectBase* resolvePath(std::string_view path, const ActorsByName& acto
     if (dot == std::string_view::npos)
         return it->second;
     const std::string_view componentName = path.substr(dot + 1);
-    for (const auto& component : it->second->GetComponentList())
-        if (component->GetName() == componentName)
-            return component.get();
+    if (UActorComponent* component = it->second->FindComponentByName(componentName))
+        return component;
     SP_THROW(InvalidArgument, "actor '", it->first, "' has no component '", componentName, "'");
 }
 

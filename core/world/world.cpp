@@ -260,10 +260,7 @@ std::vector<AActor*> UWorld::find_actors() const {
 
 UActorComponent* UWorld::get_component_by_name(AActor* actor, const std::string& component_name) const {
     SP_CHECK(actor, sp::InvalidArgument, "UWorld.get_component_by_name(): actor is None");
-    for (const auto& component : actor->GetComponentList())
-        if (component->GetName() == component_name)
-            return component.get();
-    return nullptr;
+    return actor->FindComponentByName(component_name);
 }
 
 std::vector<UActorComponent*> UWorld::get_components_by_class(AActor* actor,
