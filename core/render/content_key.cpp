@@ -66,10 +66,11 @@ std::string contentKey(const MeshData& mesh) {
     return "mesh:" + hasher.hex();
 }
 
-std::string contentKey(const TextureImage& image) {
+std::string contentKey(const TextureImage& image, TextureEncoding encoding) {
     Hasher hasher;
     hasher.add(image.rgba);
-    return "texture:" + std::to_string(image.width) + "x" + std::to_string(image.height) + ":" + hasher.hex();
+    return "texture:" + std::to_string(image.width) + "x" + std::to_string(image.height) +
+           (encoding == TextureEncoding::Srgb ? ":srgb:" : ":linear:") + hasher.hex();
 }
 
 } // namespace sp::render

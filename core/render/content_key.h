@@ -8,13 +8,15 @@
 #include <string>
 
 #include "core/render/mesh_data.h"
+#include "core/render/scene.h"
 #include "core/render/texture_image.h"
 
 namespace sp::render {
 
 // "mesh:<32 hex digits>" over positions, normals, uvs, indices and submeshes (validated data).
 std::string contentKey(const MeshData& mesh);
-// "texture:<width>x<height>:<32 hex digits>" over the pixels.
-std::string contentKey(const TextureImage& image);
+// "texture:<width>x<height>:<srgb|linear>:<32 hex digits>" over the pixels; the encoding is part of what
+// is uploaded (the GL format), so the same pixels read as colour and as data are two uploads.
+std::string contentKey(const TextureImage& image, TextureEncoding encoding);
 
 } // namespace sp::render

@@ -174,8 +174,7 @@ ImportedMeshIds addToScene(Scene& scene, const ImportedMesh& imported, bool shar
     ImportedMeshIds ids;
     ids.mesh = scene.addMesh(imported.mesh, shared ? contentKey(imported.mesh) : std::string());
     auto texture = [&](const TextureImage& image, TextureEncoding encoding) {
-        const char* decoding = encoding == TextureEncoding::Srgb ? ":srgb" : ":linear";
-        return scene.addTexture(image, encoding, shared ? contentKey(image) + decoding : std::string());
+        return scene.addTexture(image, encoding, shared ? contentKey(image, encoding) : std::string());
     };
     for (const ImportedMaterial& source : imported.materials) {
         Material material = source.material;

@@ -329,9 +329,8 @@ std::optional<sp::render::TextureId> RenderScene::textureFor(const std::string& 
         return it->second;
     try {
         sp::render::TextureImage image = sp::render::TextureImage::load(path);
-        // Keyed by its pixels, so that worlds loading the same image share its upload (content_key.h).
-        std::string key = sp::render::contentKey(image) +
-                          (encoding == sp::render::TextureEncoding::Srgb ? ":srgb" : ":linear");
+        // Keyed by its pixels and encoding, so that worlds loading the same image share its upload.
+        std::string key = sp::render::contentKey(image, encoding);
         sp::render::TextureId id = scene_.addTexture(std::move(image), encoding, std::move(key));
         return textures_.emplace(path, id).first->second;
     } catch (const sp::Error& error) {

@@ -28,21 +28,23 @@ TEST(ContentKey, EqualMeshesShareAKeyAndAnyChangeMakesAnother) {
     EXPECT_EQ(contentKey(renamed), contentKey(box));
 }
 
-TEST(ContentKey, TexturesDifferByAnyPixelAndByShape) {
+TEST(ContentKey, TexturesDifferByAnyPixelByShapeAndByEncoding) {
     TextureImage image;
     image.width = 4;
     image.height = 2;
     image.rgba.assign(4 * 2 * 4, 128);
     TextureImage same = image;
     same.source = "elsewhere.png"; // where it came from is not content
-    EXPECT_EQ(contentKey(image), contentKey(same));
+    EXPECT_EQ(contentKey(image, TextureEncoding::Srgb), contentKey(same, TextureEncoding::Srgb));
     TextureImage pixel = image;
     pixel.rgba[17] = 129;
-    EXPECT_NE(contentKey(pixel), contentKey(image));
+    EXPECT_NE(contentKey(pixel, TextureEncoding::Srgb), contentKey(image, TextureEncoding::Srgb));
     TextureImage transposed = image; // the same bytes, another shape
     transposed.width = 2;
     transposed.height = 4;
-    EXPECT_NE(contentKey(transposed), contentKey(image));
+    EXPECT_NE(contentKey(transposed, TextureEncoding::Srgb), contentKey(image, TextureEncoding::Srgb));
+    EXPECT_NE(contentKey(image, TextureEncoding::Linear), contentKey(image, TextureEncoding::Srgb))
+        << "read as data, not colour: another upload";
 }
 
 } // namespace
