@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "core/render/instances.h"
+
 namespace sp::render {
 namespace {
 
@@ -67,6 +69,7 @@ GpuMesh::GpuMesh() {
         glVertexArrayAttribFormat(vao, attribute, attribute == 2 ? 2 : 3, GL_FLOAT, GL_FALSE, 0);
         glVertexArrayAttribBinding(vao, attribute, attribute);
     }
+    configureInstanceAttributes(vao); // the renderer binds its instance records per draw
 }
 
 GpuMesh::~GpuMesh() {

@@ -12,6 +12,7 @@
 #include "core/base/error.h"
 #include "core/render/framebuffers.h"
 #include "core/render/gpu_scene_cache.h"
+#include "core/render/instances.h"
 #include "core/render/shader_program.h"
 #include "core/render/shaders.h"
 #include "core/render/shadow_maps.h"
@@ -52,13 +53,23 @@ struct Renderer::Draw {
     const Instance* instance;
     MeshId mesh; // the level of detail drawn
     std::size_t slot;
-    unsigned features; // shaders::MaterialFeature bits: which program draws it
-    double distance;   // from the eye to the instance's bounding sphere
+    unsigned features;                                // shaders::MaterialFeature bits: which program draws it
+    double distance;                                  // from the eye to the instance's bounding sphere
+    bool holdsEye;                                    // the bounding sphere holds the eye (a floor, a room)
+    std::array<std::optional<TextureId>, 3> textures; // base colour, roughness-metallic, normal
+
+    // Whether one instanced draw call renders both: same program, mesh, submesh and textures.
+    bool batchesWith(const Draw& other) const {
+        return features == other.features && mesh == other.mesh && slot == other.slot &&
+               holdsEye == other.holdsEye && textures == other.textures;
+    }
 };
 
 Renderer::Renderer(const GlContext& context) : context_(context), packIdsOnGpu_(!context.report().software) {
     context_.makeCurrent();
-    shadow_ = std::make_unique<ShaderProgram>("shadow", shaders::kShadowVertex, shaders::kShadowFragment);
+    shadow_ =
+        std::make_unique<ShaderProgram>("shadow", shaders::shadowVertex().c_str(), shaders::kShadowFragment);
+    instances_ = std::make_unique<InstanceBuffer>();
     sharedUploads_ = std::make_unique<SharedUploads>();
     glCreateBuffers(1, &frameBlock_);
     glNamedBufferData(frameBlock_, sizeof(shaders::FrameBlock), nullptr, GL_DYNAMIC_DRAW);
@@ -386,12 +397,44 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
                 (material.baseColorTexture ? shaders::kBaseColorTexture : 0u) |
                 (material.roughnessMetallicTexture ? shaders::kRoughnessMetallicTexture : 0u) |
                 (material.normalTexture ? shaders::kNormalTexture : 0u);
-            draws.push_back({&instance, mesh, slot, features, distance});
+            draws.push_back(
+                {&instance,
+                 mesh,
+                 slot,
+                 features,
+                 distance,
+                 centreDistance <= radius,
+                 {material.baseColorTexture, material.roughnessMetallicTexture, material.normalTexture}});
         }
     });
+    // By program, front to back; then each draw joins the batch of the nearest draw it batches with, so a
+    // batch is drawn where its nearest member was (still roughly front to back), its members front to back.
     std::sort(draws.begin(), draws.end(), [](const Draw& a, const Draw& b) {
         return a.features != b.features ? a.features < b.features : a.distance < b.distance;
     });
+    std::vector<std::size_t> batchOf(draws.size());
+    std::vector<std::size_t> leaders; // the first draw of each batch
+    for (std::size_t i = 0; i < draws.size(); ++i) {
+        std::size_t batch = leaders.size();
+        for (std::size_t b = leaders.size(); b-- > 0 && draws[leaders[b]].features == draws[i].features;)
+            if (draws[leaders[b]].batchesWith(draws[i])) {
+                batch = b;
+                break;
+            }
+        if (batch == leaders.size())
+            leaders.push_back(i);
+        batchOf[i] = batch;
+    }
+    std::vector<std::size_t> order(draws.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+        order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return batchOf[a] < batchOf[b]; });
+    std::vector<Draw> batched;
+    batched.reserve(draws.size());
+    for (std::size_t i : order)
+        batched.push_back(draws[i]);
+    draws = std::move(batched);
     active_->stats.drawnInstances += drawn;
     return draws;
 }
@@ -403,40 +446,51 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
     // returns the top image row first; depth and ids are unaffected.
     const Eigen::Matrix4d worldToCamera = camera.pose.inverse(Eigen::Isometry).matrix();
     const Eigen::Matrix4d viewProjection = camera.projectionMatrix(true) * camera.viewMatrix();
+    records_.resize(draws.size());
+    for (std::size_t i = 0; i < draws.size(); ++i) {
+        const Draw& draw = draws[i];
+        const Instance& instance = *draw.instance;
+        const Eigen::Matrix4d model = instance.transform.matrix();
+        InstanceRecord& record = records_[i];
+        record.setModelViewProjection(viewProjection * model);
+        record.setModel(model, worldToCamera * model);
+        const MaterialId materialId = instance.materials[draw.slot];
+        const Material& material = scene.material(materialId);
+        std::copy(material.baseColor.data(), material.baseColor.data() + 4, record.baseColor);
+        record.material[0] = material.roughness;
+        record.material[1] = material.metallic;
+        record.material[2] = material.ambientOcclusion;
+        record.material[3] = 0.0f;
+        std::copy(material.emissive.data(), material.emissive.data() + 3, record.emissive);
+        record.emissive[3] = 0.0f;
+        record.ids[0] = instance.objectIds[draw.slot];
+        record.ids[1] = scene.materialIdValue(materialId);
+        record.ids[2] = record.ids[3] = 0;
+    }
+    instances_->upload(records_);
+
+    // One instanced draw call per batch (consecutive draws that batch together: see visibleDraws()).
     ShaderProgram* program = nullptr;
     unsigned programFeatures = 0;
-    for (const Draw& draw : draws) {
+    for (std::size_t first = 0, last = 0; first < draws.size(); first = last) {
+        const Draw& draw = draws[first];
+        for (last = first + 1; last < draws.size() && draws[last].batchesWith(draw);)
+            ++last;
         if (program == nullptr || draw.features != programFeatures) { // draws are grouped by features
             program = &surfaceProgram(targets, shade, draw.features, lights);
             programFeatures = draw.features;
             program->use();
         }
-        const Instance& instance = *draw.instance;
         const GpuMesh& mesh = cache.mesh(scene, draw.mesh);
-        const Eigen::Matrix4d model = instance.transform.matrix();
-        program->set("uModel", Eigen::Matrix4f(model.cast<float>()));
-        program->set("uNormalMatrix",
-                     Eigen::Matrix3f(instance.transform.linear().inverse().transpose().cast<float>()));
-        program->set("uModelToCamera", Eigen::Matrix4f((worldToCamera * model).cast<float>()));
-        program->set("uModelViewProjection", Eigen::Matrix4f((viewProjection * model).cast<float>()));
+        instances_->bind(mesh.vao);
         glBindVertexArray(mesh.vao);
-        const MaterialId materialId = instance.materials[draw.slot];
-        const Material& material = scene.material(materialId);
-        program->set("uBaseColor", material.baseColor);
-        program->set("uRoughness", material.roughness);
-        program->set("uMetallic", material.metallic);
-        program->set("uAo", material.ambientOcclusion);
-        program->set("uEmissive", material.emissive);
-        program->set("uObjectId", instance.objectIds[draw.slot]);
-        program->set("uMaterialId", scene.materialIdValue(materialId));
-        const std::optional<TextureId> textures[3] = {
-            material.baseColorTexture, material.roughnessMetallicTexture, material.normalTexture};
         for (int t = 0; t < 3; ++t)
-            if (textures[t])
-                glBindTextureUnit(t, cache.texture(scene, *textures[t]));
+            if (draw.textures[std::size_t(t)])
+                glBindTextureUnit(GLuint(t), cache.texture(scene, *draw.textures[std::size_t(t)]));
         const Submesh& sub = mesh.submeshes[draw.slot];
-        glDrawElements(GL_TRIANGLES, GLsizei(sub.indexCount), GL_UNSIGNED_INT,
-                       reinterpret_cast<const void*>(std::uintptr_t(sub.firstIndex) * 4));
+        glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(sub.indexCount), GL_UNSIGNED_INT,
+                                            reinterpret_cast<const void*>(std::uintptr_t(sub.firstIndex) * 4),
+                                            GLsizei(last - first), GLuint(first));
     }
     glBindVertexArray(0);
 }

@@ -26,6 +26,8 @@ namespace sp::render {
 
 class Framebuffers;
 class GpuSceneCache;
+class InstanceBuffer;
+struct InstanceRecord;
 struct SharedUploads;
 class ShaderProgram;
 class ShadowMaps;
@@ -122,6 +124,8 @@ class Renderer {
     std::unique_ptr<SharedUploads> sharedUploads_; // meshes and textures the scenes add under shared keys
     std::map<std::uint64_t, std::unique_ptr<SceneState>> scenes_; // by Scene::uid()
     SceneState* active_ = nullptr;                                // the scene render() is drawing
+    std::unique_ptr<InstanceBuffer> instances_;                   // the surface passes' instance records
+    std::vector<InstanceRecord> records_;                         // scratch for them
     unsigned frameBlock_ = 0;
     unsigned emptyVao_ = 0; // bound for draws whose vertices come from gl_VertexID alone
 };

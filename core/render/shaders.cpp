@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "core/render/instances.h"
+
 namespace sp::render::shaders {
 namespace {
 
@@ -39,13 +41,11 @@ in vec3 vWorldPosition;
 in float vDepth;
 in vec3 vNormal;
 in vec2 vUv;
-uniform vec4 uBaseColor;
-uniform float uRoughness;
-uniform float uMetallic;
-uniform float uAo;
-uniform vec3 uEmissive;
-uniform uint uObjectId;
-uniform uint uMaterialId;
+// The instance's material factors and ids (InstanceRecord), the same for every fragment of it.
+flat in vec4 vBaseColor;
+flat in vec4 vMaterial; // roughness, metallic, ambient occlusion
+flat in vec3 vEmissive;
+flat in uvec2 vIds;     // object id, material id
 layout(binding = 0) uniform sampler2D uBaseColorTexture;
 layout(binding = 1) uniform sampler2D uRoughnessMetallicTexture;
 layout(binding = 2) uniform sampler2D uNormalTexture;
@@ -74,12 +74,12 @@ void evaluateSurface(out vec3 n, out vec3 base, out float roughness, out float m
         n = normalize(mat3(t * scale, -b * scale, n) * m);
     }
 #endif
-    base = uBaseColor.rgb;
+    base = vBaseColor.rgb;
 #ifdef HAS_BASE_COLOR_TEXTURE
     base *= texture(uBaseColorTexture, vUv).rgb;
 #endif
-    roughness = uRoughness;
-    metallic = uMetallic;
+    roughness = vMaterial.x;
+    metallic = vMaterial.y;
 #ifdef HAS_ROUGHNESS_METALLIC_TEXTURE
     vec4 rm = texture(uRoughnessMetallicTexture, vUv);
     roughness *= rm.g;
@@ -206,29 +206,42 @@ vec4 toneMapped(vec3 hdr) {
 }
 )glsl";
 
-// Positions are transformed with matrices composed in double precision on the CPU: uModelToCamera
-// gives camera-relative coordinates, so depth keeps float precision far from the world origin.
+// Positions are transformed with matrices composed in double precision on the CPU (InstanceRecord): the
+// depth row gives the distance along the optical axis from camera-relative coordinates, so depth keeps
+// float precision far from the world origin. The instance's fields arrive as instanced attributes
+// (instanceAttributes()).
 const char* const kSurfaceVertex = R"glsl(
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec2 aUv;
-uniform mat4 uModel;              // mesh -> world
-uniform mat3 uNormalMatrix;       // inverse transpose of uModel's linear part
-uniform mat4 uModelToCamera;      // mesh -> camera body frame (x forward, y left, z up)
-uniform mat4 uModelViewProjection;
 out vec3 vWorldPosition;
 out float vDepth;
 out vec3 vNormal;
 out vec2 vUv;
+flat out vec4 vBaseColor;
+flat out vec4 vMaterial;
+flat out vec3 vEmissive;
+flat out uvec2 vIds;
 // The attribute pass draws the geometry again against the surface pass's depth, with another program:
 // both must compute the same depth bit for bit.
 invariant gl_Position;
 void main() {
-    vWorldPosition = (uModel * vec4(aPosition, 1.0)).xyz;
-    vDepth = (uModelToCamera * vec4(aPosition, 1.0)).x;
-    vNormal = uNormalMatrix * aNormal;
+    vec4 p = vec4(aPosition, 1.0);
+    vWorldPosition = vec3(dot(iModelRow0, p), dot(iModelRow1, p), dot(iModelRow2, p));
+    vDepth = dot(iDepthRow, p);
+    // Normals transform by the inverse transpose of the model's linear part; its cofactor matrix (columns
+    // c1 x c2, c2 x c0, c0 x c1) is that times the determinant, a scale that normalize() removes and
+    // whose sign the two-sided shading ignores (normals are turned towards the camera and the light).
+    vec3 c0 = vec3(iModelRow0.x, iModelRow1.x, iModelRow2.x);
+    vec3 c1 = vec3(iModelRow0.y, iModelRow1.y, iModelRow2.y);
+    vec3 c2 = vec3(iModelRow0.z, iModelRow1.z, iModelRow2.z);
+    vNormal = mat3(cross(c1, c2), cross(c2, c0), cross(c0, c1)) * aNormal;
     vUv = aUv;
-    gl_Position = uModelViewProjection * vec4(aPosition, 1.0);
+    vBaseColor = iBaseColor;
+    vMaterial = iMaterial;
+    vEmissive = iEmissive.rgb;
+    vIds = iIds;
+    gl_Position = iModelViewProjection * p;
     SHADOW_CLIPS
 }
 )glsl";
@@ -251,10 +264,10 @@ void main() {
     oBaseColor = vec4(base, 1.0);
 #endif
 #ifdef OUT_Params
-    oParams = vec4(roughness, metallic, uAo, 0.0);
+    oParams = vec4(roughness, metallic, vMaterial.z, 0.0);
 #endif
 #ifdef OUT_Ids
-    oIds = uvec2(uObjectId, uMaterialId);
+    oIds = vIds;
 #endif
 #ifdef FORWARD
 #ifdef EXACT_INTRINSICS
@@ -262,7 +275,7 @@ void main() {
     base = toHalf(base);
     metallic = unpackHalf2x16(packHalf2x16(vec2(metallic, 0.0))).x;
 #endif
-    Shaded s = shade(vWorldPosition, n, base, roughness, metallic, uAo, uEmissive);
+    Shaded s = shade(vWorldPosition, n, base, roughness, metallic, vMaterial.z, vEmissive);
     writeShaded(s);
 #ifdef OUT_FinalColor
     oFinalColor = toneMapped(s.hdr);
@@ -270,6 +283,16 @@ void main() {
 #endif
 }
 )glsl";
+
+// The instanced attributes of InstanceRecord, at the locations instances.h gives them.
+std::string instanceAttributes() {
+    auto at = [](unsigned location) { return "layout(location = " + std::to_string(location) + ") in "; };
+    return at(kInstanceModelViewProjection) + "mat4 iModelViewProjection;\n" + at(kInstanceModelRows) +
+           "vec4 iModelRow0;\n" + at(kInstanceModelRows + 1) + "vec4 iModelRow1;\n" +
+           at(kInstanceModelRows + 2) + "vec4 iModelRow2;\n" + at(kInstanceDepthRow) + "vec4 iDepthRow;\n" +
+           at(kInstanceBaseColor) + "vec4 iBaseColor;\n" + at(kInstanceMaterial) + "vec4 iMaterial;\n" +
+           at(kInstanceEmissive) + "vec4 iEmissive;\n" + at(kInstanceIds) + "uvec2 iIds;\n";
+}
 
 // "#define OUT_<Target>" and "layout(location = k) out <type> o<Target>;" for each target in the mask,
 // at consecutive locations in Target order (the order Framebuffers attaches them in).
@@ -418,11 +441,12 @@ std::string ShadingLayout::key() const {
     return key;
 }
 
-const char* const kShadowVertex = R"glsl(#version 450 core
+std::string shadowVertex() {
+    return "#version 450 core\n" + instanceAttributes() + R"glsl(
 layout(location = 0) in vec3 aPosition;
-uniform mat4 uModelLightProjection;
-void main() { gl_Position = uModelLightProjection * vec4(aPosition, 1.0); }
+void main() { gl_Position = iModelViewProjection * vec4(aPosition, 1.0); }
 )glsl";
+}
 
 // Stores the depth test's own value, polygon offset included (see ShadowMaps).
 const char* const kShadowFragment = R"glsl(#version 450 core
@@ -462,6 +486,7 @@ std::string backgroundFragment(int location) {
 std::string surfaceVertex(bool forward, const ShadingLayout& lights) {
     std::string text = "#version 450 core\n";
     text += kFrameBlock;
+    text += instanceAttributes();
     text += "#define SHADOW_CLIPS" + (forward ? shadowClips(lights) : std::string()) + "\n";
     text += shadowClipDeclarations(forward, lights, "out");
     return text + kSurfaceVertex;

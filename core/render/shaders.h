@@ -68,7 +68,8 @@ enum MaterialFeature : unsigned {
     kNormalTexture = 4,
 };
 
-extern const char* const kShadowVertex;
+// The shadow pass's vertex shader: instanced, the light projection in InstanceRecord's modelViewProjection.
+std::string shadowVertex();
 extern const char* const kShadowFragment;
 
 // Copies channel uChannel (0: object ids, 1: material ids) of the ids target's lower-left uSize pixels

@@ -125,23 +125,43 @@ void ShadowMaps::ensure(int resolution, unsigned format) {
     movingRects_.clear();
 }
 
-void ShadowMaps::draw(const Scene& scene, const Instance& instance, const ShadowInfo& info,
+void ShadowMaps::draw(const Scene& scene, const std::vector<const Instance*>& casters, const ShadowInfo& info,
                       const Eigen::Matrix4d& lightProjection, const Eigen::Vector3d& lightPosition,
-                      GpuSceneCache& cache, ShaderProgram& depthProgram) {
-    // The level of detail whose error stays within half a shadow-map texel.
-    Eigen::Vector3d centre;
-    double radius = 0.0;
-    scene.boundingSphere(instance, centre, radius);
-    const double texel = info.perspective
-                             ? info.texel * std::max((centre - lightPosition).norm() - radius, 0.02)
-                             : double(info.texel);
-    const GpuMesh& mesh = cache.mesh(scene, scene.lodFor(instance.mesh, radius / texel));
-    depthProgram.set("uModelLightProjection",
-                     Eigen::Matrix4f((lightProjection * instance.transform.matrix()).cast<float>()));
-    glBindVertexArray(mesh.vao);
-    for (const Submesh& sub : mesh.submeshes)
-        glDrawElements(GL_TRIANGLES, GLsizei(sub.indexCount), GL_UNSIGNED_INT,
-                       reinterpret_cast<const void*>(std::uintptr_t(sub.firstIndex) * 4));
+                      GpuSceneCache& cache) {
+    // Each caster at the level of detail whose error stays within half a shadow-map texel; then one
+    // instanced draw per level of detail (the order of casters does not change a depth map).
+    std::vector<std::pair<MeshId, const Instance*>> drawn;
+    drawn.reserve(casters.size());
+    for (const Instance* instance : casters) {
+        Eigen::Vector3d centre;
+        double radius = 0.0;
+        scene.boundingSphere(*instance, centre, radius);
+        const double texel = info.perspective
+                                 ? info.texel * std::max((centre - lightPosition).norm() - radius, 0.02)
+                                 : double(info.texel);
+        drawn.emplace_back(scene.lodFor(instance->mesh, radius / texel), instance);
+    }
+    std::stable_sort(drawn.begin(), drawn.end(), [](const auto& a, const auto& b) {
+        return a.first.index != b.first.index ? a.first.index < b.first.index
+                                              : a.first.generation < b.first.generation;
+    });
+    records_.resize(drawn.size());
+    for (std::size_t i = 0; i < drawn.size(); ++i)
+        records_[i].setModelViewProjection(lightProjection * drawn[i].second->transform.matrix());
+    instances_.upload(records_);
+    for (std::size_t first = 0, last = 0; first < drawn.size(); first = last) {
+        for (last = first + 1; last < drawn.size() && drawn[last].first == drawn[first].first;)
+            ++last;
+        const GpuMesh& mesh = cache.mesh(scene, drawn[first].first);
+        instances_.bind(mesh.vao);
+        glBindVertexArray(mesh.vao);
+        for (const Submesh& sub : mesh.submeshes)
+            glDrawElementsInstancedBaseInstance(
+                GL_TRIANGLES, GLsizei(sub.indexCount), GL_UNSIGNED_INT,
+                reinterpret_cast<const void*>(std::uintptr_t(sub.firstIndex) * 4), GLsizei(last - first),
+                GLuint(first));
+    }
+    glBindVertexArray(0);
 }
 
 ShadowMaps::Rect ShadowMaps::footprint(const Scene& scene, const Instance& instance,
@@ -293,10 +313,9 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
             now = now.united(footprint(scene, *instance, projections[i], resolution));
         if (drawAll) {
             clear();
-            for (const Instance* instance : statics)
-                draw(scene, *instance, info, projections[i], positions[i], cache, depthProgram);
-            for (const Instance* instance : moving)
-                draw(scene, *instance, info, projections[i], positions[i], cache, depthProgram);
+            std::vector<const Instance*> casters = statics;
+            casters.insert(casters.end(), moving.begin(), moving.end());
+            draw(scene, casters, info, projections[i], positions[i], cache);
             ++update_.fullMaps;
             update_.staticDraws += statics.size();
             update_.dynamicDraws += moving.size();
@@ -309,14 +328,13 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
             glEnable(GL_SCISSOR_TEST);
             glScissor(region.x0, region.y0, region.x1 - region.x0, region.y1 - region.y0);
             clear();
-            for (const Instance* instance : statics) {
-                if (footprint(scene, *instance, projections[i], resolution).overlaps(region)) {
-                    draw(scene, *instance, info, projections[i], positions[i], cache, depthProgram);
-                    ++update_.staticDraws;
-                }
-            }
-            for (const Instance* instance : moving)
-                draw(scene, *instance, info, projections[i], positions[i], cache, depthProgram);
+            std::vector<const Instance*> casters;
+            for (const Instance* instance : statics)
+                if (footprint(scene, *instance, projections[i], resolution).overlaps(region))
+                    casters.push_back(instance);
+            update_.staticDraws += casters.size();
+            casters.insert(casters.end(), moving.begin(), moving.end());
+            draw(scene, casters, info, projections[i], positions[i], cache);
             glDisable(GL_SCISSOR_TEST);
             update_.dynamicDraws += moving.size();
             update_.redrawnTexels += std::size_t(region.x1 - region.x0) * std::size_t(region.y1 - region.y0);

@@ -23,6 +23,7 @@
 #include <Eigen/Core>
 
 #include "core/render/gpu_scene_cache.h"
+#include "core/render/instances.h"
 #include "core/render/scene.h"
 #include "core/render/shader_program.h"
 
@@ -91,9 +92,10 @@ class ShadowMaps {
     };
 
     void ensure(int resolution, unsigned format);
-    void draw(const Scene& scene, const Instance& instance, const ShadowInfo& info,
+    // Draws `casters` into the bound layer with the depth program in use.
+    void draw(const Scene& scene, const std::vector<const Instance*>& casters, const ShadowInfo& info,
               const Eigen::Matrix4d& lightProjection, const Eigen::Vector3d& lightPosition,
-              GpuSceneCache& cache, ShaderProgram& depthProgram);
+              GpuSceneCache& cache);
     Rect footprint(const Scene& scene, const Instance& instance, const Eigen::Matrix4d& lightProjection,
                    int resolution) const;
 
@@ -109,6 +111,8 @@ class ShadowMaps {
     std::vector<double> staticSignature_; // the still casters and projections drawn in full
     std::unordered_map<std::uint64_t, CasterState> casters_; // by packed InstanceId
     std::vector<Rect> movingRects_; // per layer: where moving casters were drawn last time
+    InstanceBuffer instances_;      // the casters' light projections
+    std::vector<InstanceRecord> records_;
 };
 
 } // namespace sp::render

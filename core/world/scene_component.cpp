@@ -29,39 +29,42 @@ void USceneComponent::checkMovable(const char* function) const {
 namespace {
 
 // A transform is checked when it is set, so that a NaN or a zero scale is refused by the call that
-// brings it instead of breaking physics and rendering on every later frame.
+// brings it instead of breaking physics and rendering on every later frame. The text naming the bad value
+// is made only when a check fails: physics writes every simulated body's transform back each frame.
+std::string describe(const FVector& v) {
+    return "(" + std::to_string(v.X) + ", " + std::to_string(v.Y) + ", " + std::to_string(v.Z) + ")";
+}
+
+template <typename Describe>
 void checkFinite(const char* function, const char* what, std::initializer_list<double> values,
-                 const std::string& text) {
+                 const Describe& text) {
     for (double value : values)
         SP_CHECK(std::isfinite(value), sp::InvalidArgument, "USceneComponent.", function, "(): ", what,
-                 " must be finite, got ", text);
+                 " must be finite, got ", text());
 }
 
 void checkScale(const char* function, const FVector& scale) {
-    const std::string text =
-        "(" + std::to_string(scale.X) + ", " + std::to_string(scale.Y) + ", " + std::to_string(scale.Z) + ")";
+    const auto text = [&] { return describe(scale); };
     checkFinite(function, "the scale", {scale.X, scale.Y, scale.Z}, text);
     SP_CHECK(scale.X != 0.0 && scale.Y != 0.0 && scale.Z != 0.0, sp::InvalidArgument, "USceneComponent.",
-             function, "(): the scale must have no zero component, got ", text);
-}
-
-std::string describe(const FVector& v) {
-    return "(" + std::to_string(v.X) + ", " + std::to_string(v.Y) + ", " + std::to_string(v.Z) + ")";
+             function, "(): the scale must have no zero component, got ", text());
 }
 
 } // namespace
 
 void USceneComponent::SetRelativeLocation(const FVector& NewLocation) {
     checkFinite("SetRelativeLocation", "the location", {NewLocation.X, NewLocation.Y, NewLocation.Z},
-                describe(NewLocation));
+                [&] { return describe(NewLocation); });
     checkMovable("SetRelativeLocation");
     RelativeLocation = NewLocation;
 }
 
 void USceneComponent::SetRelativeRotation(const FRotator& NewRotation) {
-    checkFinite("SetRelativeRotation", "the rotation", {NewRotation.Pitch, NewRotation.Yaw, NewRotation.Roll},
-                "(Pitch " + std::to_string(NewRotation.Pitch) + ", Yaw " + std::to_string(NewRotation.Yaw) +
-                    ", Roll " + std::to_string(NewRotation.Roll) + ")");
+    checkFinite(
+        "SetRelativeRotation", "the rotation", {NewRotation.Pitch, NewRotation.Yaw, NewRotation.Roll}, [&] {
+            return "(Pitch " + std::to_string(NewRotation.Pitch) + ", Yaw " +
+                   std::to_string(NewRotation.Yaw) + ", Roll " + std::to_string(NewRotation.Roll) + ")";
+        });
     checkMovable("SetRelativeRotation");
     RelativeRotation = NewRotation;
 }
@@ -75,9 +78,9 @@ void USceneComponent::SetRelativeScale3D(const FVector& NewScale3D) {
 void USceneComponent::SetRelativeTransform(const FTransform& NewTransform) {
     const FVector& t = NewTransform.Translation;
     const FQuat& q = NewTransform.Rotation;
-    checkFinite("SetRelativeTransform", "the location", {t.X, t.Y, t.Z}, describe(t));
+    checkFinite("SetRelativeTransform", "the location", {t.X, t.Y, t.Z}, [&] { return describe(t); });
     checkFinite("SetRelativeTransform", "the rotation", {q.X, q.Y, q.Z, q.W},
-                "a quaternion with a NaN or inf");
+                [] { return std::string("a quaternion with a NaN or inf"); });
     checkScale("SetRelativeTransform", NewTransform.Scale3D);
     checkMovable("SetRelativeTransform");
     RelativeLocation = NewTransform.Translation;

@@ -133,6 +133,7 @@ TEST_F(RenderPathsGlTest, ScenesSharingARendererKeepTheirShadowMapsAndStatistics
     Scene first, second;
     buildShapesScene(first);
     buildShapesScene(second);
+    renderer().resetStats(); // the totals below count these two scenes, not those of earlier tests
     Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 48, 32, 60.0);
     RenderTarget a(renderer(), {Modality::FinalColor, Modality::ObjectIds}, 1);
     RenderTarget b(renderer(), {Modality::FinalColor}, 0);

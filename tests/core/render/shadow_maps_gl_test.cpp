@@ -21,7 +21,7 @@ constexpr int kResolution = 256;
 
 class ShadowMapsGlTest : public GlTest {
   protected:
-    ShadowMapsGlTest() : depth_("shadow test", shaders::kShadowVertex, shaders::kShadowFragment) {}
+    ShadowMapsGlTest() : depth_("shadow test", shaders::shadowVertex().c_str(), shaders::kShadowFragment) {}
 
     // Every layer a render of `scene` fills, as floats.
     std::vector<float> layers(ShadowMaps& maps, const Scene& scene) {
