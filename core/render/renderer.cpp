@@ -109,6 +109,7 @@ void add(RenderStats& total, const RenderStats& s) {
     total.meshUploads += s.meshUploads;
     total.textureUploads += s.textureUploads;
     total.drawnInstances += s.drawnInstances;
+    total.drawCalls += s.drawCalls;
     total.culledInstances += s.culledInstances;
     for (std::size_t p = 0; p < kPassCount; ++p) {
         total.passTimes[p].gpuMs += s.passTimes[p].gpuMs;
@@ -491,6 +492,7 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
         glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(sub.indexCount), GL_UNSIGNED_INT,
                                             reinterpret_cast<const void*>(std::uintptr_t(sub.firstIndex) * 4),
                                             GLsizei(last - first), GLuint(first));
+        ++active_->stats.drawCalls;
     }
     glBindVertexArray(0);
 }

@@ -46,6 +46,7 @@ struct RenderStats {
     std::uint64_t meshUploads = 0;
     std::uint64_t textureUploads = 0;
     std::uint64_t drawnInstances = 0;             // instances drawn by surface passes
+    std::uint64_t drawCalls = 0;                  // instanced draw calls of surface and attribute passes
     std::uint64_t culledInstances = 0;            // instances outside the view, not drawn
     std::array<PassTime, kPassCount> passTimes{}; // by Pass
 };

@@ -210,6 +210,10 @@ struct FRenderStats {
     /// Instances outside a camera's view, skipped.
     SPPROPERTY()
     int64_t CulledInstances = 0;
+    /// Draw calls of surface passes: one per batch of visible instances sharing a mesh, material
+    /// textures and program (instanced), so many copies of one object cost one call.
+    SPPROPERTY()
+    int64_t DrawCalls = 0;
     /// Meshes this world uploaded to the GPU. A built-in shape or mesh file that another world of the
     /// engine uploaded first is drawn from that upload and not counted again.
     SPPROPERTY()

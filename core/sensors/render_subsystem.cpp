@@ -557,6 +557,7 @@ FRenderStats RenderSubsystem::stats() const {
     result.Readbacks = int64_t(stats.readbacks);
     result.DrawnInstances = int64_t(stats.drawnInstances);
     result.CulledInstances = int64_t(stats.culledInstances);
+    result.DrawCalls = int64_t(stats.drawCalls);
     result.MeshUploads = int64_t(stats.meshUploads);
     result.TextureUploads = int64_t(stats.textureUploads);
     const auto time = [&](sp::render::Pass pass) { return stats.passTimes[std::size_t(pass)]; };

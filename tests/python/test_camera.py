@@ -233,6 +233,26 @@ def test_latency_returns_the_promised_frame(instance: spear.Instance, latency: i
             assert np.array_equal(camera.read_pixels()["depth"], px["depth"])  # reading twice: same frame
 
 
+def test_copies_of_one_mesh_are_drawn_in_one_call_with_their_own_ids(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        cubes = []
+        for i, material in enumerate(["Red", "Metal", "Gold", "Plastic"] * 2):
+            cube = game.spawn_actor(uclass=spear.AStaticMeshActor,
+                                    location=spear.FVector(X=4.0, Y=1.75 - 0.5 * i, Z=0.0))
+            cube.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+            cube.StaticMeshComponent.SetRelativeScale3D(NewScale3D=spear.FVector(0.3, 0.3, 0.3))
+            cube.StaticMeshComponent.SetMaterial(ElementIndex=0, Material=material)
+            cubes.append(cube.StaticMeshComponent)
+        camera = spawn_camera(game, [M.ObjectIds], 96, 48)
+    with instance.end_frame():
+        ids = camera.read_pixels()["object_ids"]
+        stats = camera.GetRenderStats()
+        expected = {camera.GetObjectId(Component=cube) for cube in cubes}
+    assert stats.DrawnInstances == 8 and stats.DrawCalls == 1  # eight cubes, one instanced draw
+    assert set(np.unique(ids)) - {0} == expected  # each cube's pixels carry its own id
+
+
 def test_only_the_needed_passes_run(instance: spear.Instance) -> None:
     game = instance.get_game()
     with instance.begin_frame():
@@ -414,7 +434,7 @@ def test_a_distorted_off_centre_lens_renders_points_where_opencvs_model_puts_the
     centres = [np.array([4.0, y, z]) for y in (-1.6, 0.0, 1.6) for z in (-1.0, 0.0, 1.0)]
     lens = spear.FLensDistortion(K1=-0.25, K2=0.06, K3=0.0, P1=0.004, P2=-0.003)
     with instance.begin_frame():
-        balls = []
+        cubes = []
         for i, c in enumerate(centres):
             ball = game.spawn_actor(uclass=spear.AStaticMeshActor, name=f"Ball{i}", location=spear.FVector(*c))
             ball.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Sphere")

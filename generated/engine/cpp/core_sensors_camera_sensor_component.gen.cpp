@@ -512,6 +512,16 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             },
         });
         t.properties.push_back({
+            "DrawCalls",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
+            "Draw calls of surface passes: one per batch of visible instances sharing a mesh, material\ntextures and program (instanced), so many copies of one object cost one call.",
+            false,
+            [](const void* self) { return Calls::get_DrawCalls<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_DrawCalls<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
             "MeshUploads",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Meshes this world uploaded to the GPU. A built-in shape or mesh file that another world of the\nengine uploaded first is drawn from that upload and not counted again.",

@@ -2329,6 +2329,15 @@ struct FRenderStatsCalls {
         sp::reflect::notifyPropertyChanged(self, "CulledInstances");
     }
 
+    template <typename Call> static typename Call::Result get_DrawCalls(const Self* self) {
+        const auto& value = self->DrawCalls;
+        return Call::template result<int64_t>(value);
+    }
+    template <typename Call> static void set_DrawCalls(Self* self, const typename Call::Input& value) {
+        self->DrawCalls = Call::template input<int64_t>(value, "FRenderStats.DrawCalls");
+        sp::reflect::notifyPropertyChanged(self, "DrawCalls");
+    }
+
     template <typename Call> static typename Call::Result get_MeshUploads(const Self* self) {
         const auto& value = self->MeshUploads;
         return Call::template result<int64_t>(value);

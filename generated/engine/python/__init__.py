@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "9d89b267002e82bb"
+API_HASH = "4e26282f8625fdd9"

@@ -225,6 +225,57 @@ TEST_F(RenderPathsGlTest, CulledInstancesDoNotChangeTheImage) {
     EXPECT_EQ(std::count(ids.begin(), ids.end(), 4242u), 0);
 }
 
+TEST_F(RenderPathsGlTest, InstancesSharingAMeshAreDrawnInOneCallWithTheirOwnMaterialsAndIds) {
+    // Five boxes of one mesh (one of them mirrored), each with its own material and object id, a sixth
+    // with a textured material, on a ground: the untextured boxes are one instanced draw, the textured one
+    // and the ground one each, and every box's pixels carry its own id, material and a normal facing
+    // the camera.
+    Scene scene;
+    const MeshId plane = scene.addMesh(primitives::plane(12, 12));
+    const MeshId box = scene.addMesh(primitives::box({0.5f, 0.5f, 0.5f}));
+    scene.addInstance({plane, {scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 0.9f, 0.0f))}, {1}});
+    std::vector<Eigen::Vector3d> centres;
+    std::vector<Eigen::Vector3f> colours;
+    for (int i = 0; i < 6; ++i) {
+        const Eigen::Vector3f colour(0.1f + 0.15f * float(i), 0.8f - 0.1f * float(i), 0.3f);
+        Material material = makeMaterial(colour, 0.4f, i == 3 ? 1.0f : 0.0f);
+        if (i == 5) {
+            std::vector<std::uint8_t> white(4 * 4 * 4, 255);
+            material.baseColorTexture = scene.addTexture(TextureImage::fromPixels(4, 4, white));
+        }
+        Instance instance{box, {scene.addMaterial(material)}, {std::uint32_t(100 + i)}};
+        centres.emplace_back(-1.5 + 0.75 * i, 0.4 * (i % 2), 0.25);
+        instance.transform =
+            Eigen::Translation3d(centres.back()) * Eigen::AngleAxisd(0.3 * i, Eigen::Vector3d::UnitZ());
+        if (i == 2)
+            instance.transform = instance.transform * Eigen::Scaling(-1.0, 1.0, 1.0); // mirrored
+        scene.addInstance(instance);
+        colours.push_back(colour);
+    }
+    scene.addLight({});
+    Camera camera = cameraLookingAt({0.0, -5.0, 2.5}, {0, 0, 0.25}, 96, 64, 60.0);
+    renderer().resetStats();
+    RenderTarget target(renderer(), {Modality::ObjectIds, Modality::BaseColor, Modality::Normal}, 0);
+    Frame frame;
+    target.render(scene, camera, frame);
+    EXPECT_EQ(renderer().stats().drawCalls, 3u) << "untextured boxes, the textured box, the ground";
+    EXPECT_EQ(renderer().stats().drawnInstances, 7u);
+
+    const auto ids = frame.get(Modality::ObjectIds).as<std::uint32_t>();
+    const auto base = frame.get(Modality::BaseColor).as<std::uint16_t>(); // float16 (H,W,3)
+    const auto normals = frame.get(Modality::Normal).as<float>();
+    for (std::size_t i = 0; i < centres.size(); ++i) {
+        // The top face's centre: every box shows it to this camera.
+        const Eigen::Vector3d pixel = camera.project(centres[i] + Eigen::Vector3d(0, 0, 0.25));
+        const std::size_t at = std::size_t(pixel.y()) * 96 + std::size_t(pixel.x());
+        EXPECT_EQ(ids[at], 100 + i) << "box " << i;
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(halfToFloat(base[3 * at + std::size_t(c)]), colours[i][c], 2e-3) << "box " << i;
+        const Eigen::Vector3f normal(normals[3 * at], normals[3 * at + 1], normals[3 * at + 2]);
+        EXPECT_NEAR(normal.z(), 1.0f, 1e-3) << "box " << i << ": the top face's normal, mirrored or not";
+    }
+}
+
 TEST_F(RenderPathsGlTest, LatencyZeroReadsAFrameOnceAndLatencyOneMatchesIt) {
     Scene scene;
     buildShapesScene(scene);
