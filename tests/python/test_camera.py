@@ -434,7 +434,7 @@ def test_a_distorted_off_centre_lens_renders_points_where_opencvs_model_puts_the
     centres = [np.array([4.0, y, z]) for y in (-1.6, 0.0, 1.6) for z in (-1.0, 0.0, 1.0)]
     lens = spear.FLensDistortion(K1=-0.25, K2=0.06, K3=0.0, P1=0.004, P2=-0.003)
     with instance.begin_frame():
-        cubes = []
+        balls = []
         for i, c in enumerate(centres):
             ball = game.spawn_actor(uclass=spear.AStaticMeshActor, name=f"Ball{i}", location=spear.FVector(*c))
             ball.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Sphere")
