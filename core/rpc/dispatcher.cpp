@@ -127,7 +127,7 @@ void Dispatcher::endSession(Session& session) {
         frameOwner_ = nullptr;
 }
 
-void Dispatcher::handleOne(const msgpack::object& message, Session& session, msgpack::sbuffer& reply,
+bool Dispatcher::handleOne(const msgpack::object& message, Session& session, msgpack::sbuffer& reply,
                            const ArrayToSharedMemory& toShm, bool inBatch) {
     const msgpack::object* id = mapField(message, "id");
     // The id is echoed as it came; packing a container recurses, so only a scalar is (a client's ids are
@@ -146,15 +146,42 @@ void Dispatcher::handleOne(const msgpack::object& message, Session& session, msg
             SP_CHECK(!inBatch, InvalidArgument, "batch(): a batch may not contain a batch");
             const msgpack::object& calls = request.require("calls", "batch");
             SP_CHECK(calls.type == msgpack::type::ARRAY, InvalidArgument, "batch(): 'calls' must be a list");
+            // Calls the rest of the batch depends on (a client sends a frame's begin with the calls of its
+            // block): when one fails, the calls after it are not run, so that they cannot act on a frame
+            // that was never begun (or on another client's).
+            std::vector<bool> critical(calls.via.array.size, false);
+            if (const msgpack::object* list = request.field("critical")) {
+                SP_CHECK(list->type == msgpack::type::ARRAY, InvalidArgument,
+                         "batch(): 'critical' must be a list of call positions");
+                for (uint32_t i = 0; i < list->via.array.size; ++i) {
+                    const msgpack::object& at = list->via.array.ptr[i];
+                    SP_CHECK(at.type == msgpack::type::POSITIVE_INTEGER && at.via.u64 < critical.size(),
+                             InvalidArgument, "batch(): 'critical' names call positions below ",
+                             critical.size());
+                    critical[at.via.u64] = true;
+                }
+            }
             out.pack_map(2);
             out.pack(std::string("id"));
             id ? out.pack(*id) : out.pack_nil();
             out.pack(std::string("ok"));
             out.pack_array(calls.via.array.size);
-            for (uint32_t i = 0; i < calls.via.array.size; ++i)
-                handleOne(calls.via.array.ptr[i], session, built, toShm, true);
+            int failedCritical = -1;
+            for (uint32_t i = 0; i < calls.via.array.size; ++i) {
+                if (failedCritical >= 0) {
+                    const msgpack::object* callId = mapField(calls.via.array.ptr[i], "id");
+                    const bool scalar =
+                        callId && callId->type != msgpack::type::ARRAY && callId->type != msgpack::type::MAP;
+                    packError(out, scalar ? callId : nullptr, "InvalidStateError",
+                              "batch(): not run: call " + std::to_string(failedCritical) +
+                                  " of the batch failed");
+                    continue;
+                }
+                if (!handleOne(calls.via.array.ptr[i], session, built, toShm, true) && critical[i])
+                    failedCritical = int(i);
+            }
             reply.write(built.data(), built.size());
-            return;
+            return true;
         }
         OpenedSegments* opened = OpenedSegmentsScope::current();
         const size_t openedBefore = opened ? opened->size() : 0;
@@ -184,7 +211,7 @@ void Dispatcher::handleOne(const msgpack::object& message, Session& session, msg
             out.pack(kept);
         }
         reply.write(built.data(), built.size());
-        return;
+        return true;
     } catch (const Error& e) {
         built.clear();
         packError(out, id, pythonErrorClass(e), e.what());
@@ -206,6 +233,7 @@ void Dispatcher::handleOne(const msgpack::object& message, Session& session, msg
         packError(out, id, "SpearError", std::string(e.what()));
     }
     reply.write(built.data(), built.size());
+    return false;
 }
 
 // -- the ops ------------------------------------------------------------------------------------------

@@ -12,7 +12,10 @@
 //   call {class, function, args}  invoke a static function of a class (no object)
 //   get {object, property}, set {object, property, value}
 //   is_valid {object}, describe {object}
-//   batch {calls: [request...]}   many calls in one message; one reply per call, in order
+//   batch {calls: [request...], critical: [i...]}
+//                                 many calls in one message; one reply per call, in order; when a call
+//                                 at a critical position fails, the later ones are not run (their replies
+//                                 say so): a client sends a frame's begin with its block's calls
 //   echo {value}                  returns value (diagnostics; measures the transport alone)
 //   shutdown                      stop the server after replying
 // Any request may also carry "reply_buffers" and "dropped_buffers" (see Session).
@@ -90,7 +93,8 @@ class Dispatcher {
     reflect::Value shutdown(const Request& request, Session& session);
 
     static void readReplyBuffers(const msgpack::object& request, Session& session);
-    void handleOne(const msgpack::object& message, Session& session, msgpack::sbuffer& reply,
+    // Handles one request (or batch), appending its reply; false when the reply is an error.
+    bool handleOne(const msgpack::object& message, Session& session, msgpack::sbuffer& reply,
                    const ArrayToSharedMemory& toShm, bool inBatch = false);
 
     engine::Engine& engine_;

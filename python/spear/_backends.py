@@ -141,7 +141,12 @@ class RpcBackend:
         return [convert(handle, _WORLD, self.connection) for handle in handles]
 
     def frame(self, action: str) -> None:
-        self.connection.request("frame", action=action)
+        # A frame's begin travels with the first message of its block, and the calls queued in a block travel
+        # with the operation that closes it: a frame whose blocks only queue calls (send_async) and read
+        # results costs three round trips (begin + calls + execute, begin_end + the first read, end).
+        self.connection.queue_frame(action)
+        if action not in ("begin", "begin_end"):
+            self.connection.flush()
 
     def frame_count(self) -> int:
         return int(self.connection.request("frame", action="state")["frame_count"])

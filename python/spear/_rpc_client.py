@@ -67,7 +67,9 @@ class RpcConnection:
         self._ids = itertools.count(1)
         self.messages_sent = 0  # round trips so far (batches count once)
         self._deferring: bool | None = None  # None: calls run now; else queued (True: result discarded)
-        self._queue: list[tuple[dict[str, Any], Future[Any] | None, Callable[[Any], Any]]] = []
+        # Calls waiting for the next message: (call, its future or None, result conversion, critical). A
+        # critical call (a frame operation) stops the rest of its batch when it fails, and its error is raised.
+        self._queue: list[tuple[dict[str, Any], Future[Any] | None, Callable[[Any], Any], bool]] = []
         self._reply_buffers = ReplyBuffers()
         # Their names go when the connection is closed, or when it is collected without being closed.
         self._buffers_cleanup = weakref.finalize(self, self._reply_buffers.close)
@@ -92,14 +94,29 @@ class RpcConnection:
 
     def flush(self) -> None:
         """Sends every queued call in one message and resolves their futures."""
-        if not self._queue:
-            return
+        if self._queue:
+            self._send_queue(None)
+
+    def queue_frame(self, action: str) -> None:
+        """Queues a frame operation ahead of the calls that follow it: it travels with the next message, so
+        a frame's begin and the calls of its block (and its execution) cost one round trip. When it fails,
+        the calls after it do not run (they would act outside the frame, or in another client's) and its
+        error is raised by the call that sent it."""
+        self._queue.append(({"op": "frame", "action": action}, None, _unchanged, True))
+
+    def _send_queue(self, last: dict[str, Any] | None) -> Any:
+        """Sends the queued calls, then `last` if given, in one message; returns the result of `last`."""
         queue, self._queue = self._queue, []
-        results = self.batch([call for call, _, _ in queue])
-        for (_, future, convert_result), result in zip(queue, results):
+        calls = [call for call, _, _, _ in queue] + ([last] if last is not None else [])
+        critical = [i for i, entry in enumerate(queue) if entry[3]]
+        results = self.batch(calls, critical=critical)
+        failure = next((results[i] for i in critical if isinstance(results[i], errors.SpearError)), None)
+        for (_, future, convert_result, is_critical), result in zip(queue, results):
+            if is_critical:
+                continue
             if future is None:
-                if isinstance(result, errors.SpearError):
-                    warnings.warn(f"send_async call failed: {result}", RuntimeWarning, stacklevel=2)
+                if isinstance(result, errors.SpearError) and failure is None:
+                    warnings.warn(f"send_async call failed: {result}", RuntimeWarning, stacklevel=3)
                 continue
             if isinstance(result, errors.SpearError):
                 future._set(error=result)
@@ -108,14 +125,22 @@ class RpcConnection:
                     future._set(convert_result(result))
                 except Exception as error:  # noqa: BLE001
                     future._set(error=error)
+        if failure is not None:
+            raise failure
+        if last is None:
+            return None
+        if isinstance(results[-1], errors.SpearError):
+            raise results[-1]
+        return results[-1]
 
     def _queue_call(self, call: dict[str, Any], convert_result: Callable[[Any], Any]) -> Any:
         future: Future[Any] | None = None if self._deferring else Future(self.flush)
-        self._queue.append((call, future, convert_result))
+        self._queue.append((call, future, convert_result, False))
         return future
 
     def request(self, op: str, **fields: Any) -> Any:
-        self.flush()  # queued calls run first, in the order they were made
+        if self._queue:  # queued calls run first, in the order they were made, in the same message
+            return self._send_queue({"op": op, **fields})
         segments = OutgoingSegments(self._reply_buffers, inline=self.address.startswith("tcp:"), owner=self)
         reply: Any = None
         try:
@@ -126,8 +151,9 @@ class RpcConnection:
             self._settle_buffers(reply, batch=False)
         return self._result(reply)
 
-    def batch(self, calls: list[dict[str, Any]]) -> list[Any]:
-        """Sends many requests in one message; returns each result, or the exception it raised."""
+    def batch(self, calls: list[dict[str, Any]], *, critical: Sequence[int] = ()) -> list[Any]:
+        """Sends many requests in one message; returns each result, or the exception it raised. When a call at
+        one of the `critical` positions fails, the server runs none of the calls after it."""
         if self._queue:
             self.flush()
         segments = OutgoingSegments(self._reply_buffers, inline=self.address.startswith("tcp:"), owner=self)
@@ -141,8 +167,10 @@ class RpcConnection:
                 except errors.InvalidArgumentError as error:
                     refused[i] = error
                     encoded.append({"op": "echo"})  # keeps the positions of the replies
-            reply = self._round_trip(pack_frame(self._offer_buffers({"id": next(self._ids), "op": "batch",
-                                                                      "calls": encoded})))
+            message: dict[str, Any] = {"id": next(self._ids), "op": "batch", "calls": encoded}
+            if critical:
+                message["critical"] = list(critical)
+            reply = self._round_trip(pack_frame(self._offer_buffers(message)))
         finally:
             segments.release()
             self._settle_buffers(reply, batch=True)
@@ -260,6 +288,10 @@ class RpcConnection:
             self._socket.close()
         except OSError:
             pass
+
+
+def _unchanged(value: Any) -> Any:
+    return value
 
 
 def _encode_fields(op: str, fields: dict[str, Any], segments: OutgoingSegments) -> dict[str, Any]:

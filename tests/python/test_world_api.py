@@ -106,6 +106,23 @@ def test_exception_in_frame_leaves_engine_usable(instance: spear.Instance) -> No
             pass
 
 
+def test_a_frame_begun_twice_runs_nothing_of_the_inner_block(instance: spear.Instance) -> None:
+    # Over RPC a frame's begin travels with the calls of its block and the frame's execution; when it fails
+    # they must not run, or the inner block would execute the frame the outer one holds.
+    game = instance.get_game()
+    count = instance.frame_count
+    with pytest.raises(spear.InvalidStateError, match=r"^begin_frame\(\): the engine is inside begin_frame, expected idle$"):
+        with instance.begin_frame():
+            with instance.begin_frame():
+                game.send_async.spawn_actor(uclass=spear.AActor, name="Inner")
+    assert instance.frame_count == count + 1  # the outer frame ended (aborted: it ticked, then closed)
+    with instance.begin_frame():
+        assert game.find_actor_by_name(name="Inner") is None  # the inner block's call never ran
+    with instance.end_frame():
+        pass
+    assert instance.frame_count == count + 2
+
+
 def test_whole_number_floats_stay_floats(instance: spear.Instance) -> None:
     game = instance.get_game()
     with instance.begin_frame():
