@@ -39,19 +39,19 @@ void SpArrayBase::checkShape(std::initializer_list<int64_t> expected, std::strin
              ", got ", describeShape());
 }
 
-ArrayValue allocateArray(DType dtype, const std::vector<int64_t>& shape) {
+ArrayValue allocateArray(DType dtype, const std::vector<int64_t>& shape, ArrayFill fill) {
     checkedByteSize(dtype, shape, "allocateArray()"); // before any allocator sizes storage from the shape
     if (gAllocator)
-        return gAllocator(dtype, shape, gAllocatorContext);
-    return allocateOnHeap(dtype, shape);
+        return gAllocator(dtype, shape, fill, gAllocatorContext);
+    return allocateOnHeap(dtype, shape, fill);
 }
 
-ArrayValue allocateOnHeap(DType dtype, const std::vector<int64_t>& shape) {
+ArrayValue allocateOnHeap(DType dtype, const std::vector<int64_t>& shape, ArrayFill fill) {
     ArrayValue value;
     value.dtype = dtype;
     value.shape = shape;
-    const size_t bytes = value.byteSize();
-    auto storage = std::shared_ptr<char[]>(new char[bytes == 0 ? 1 : bytes]());
+    const size_t bytes = value.byteSize() == 0 ? 1 : value.byteSize();
+    auto storage = std::shared_ptr<char[]>(fill == ArrayFill::Zeroed ? new char[bytes]() : new char[bytes]);
     value.data = storage.get();
     value.owner = std::move(storage);
     return value;

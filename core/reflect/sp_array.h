@@ -35,10 +35,16 @@ template <> struct DTypeOf<Half> { static constexpr DType value = DType::Float16
 template <> struct DTypeOf<float> { static constexpr DType value = DType::Float32; };
 template <> struct DTypeOf<double> { static constexpr DType value = DType::Float64; };
 
+// What new array storage holds: zeros, or whatever was there, for a caller that writes every byte before
+// the array is read (a camera's readback: zeroing 8 MB a 1080p frame only to overwrite it cost a memset and,
+// on fresh pages, a page fault per 4 KiB).
+enum class ArrayFill { Zeroed, Overwritten };
+
 // Where new array storage comes from. By default the heap; the RPC server installs an allocator for
 // the duration of a request that places arrays straight in shared memory, so that a camera's readback
 // lands in the segment the client maps, with no copy in between.
-using ArrayAllocator = ArrayValue (*)(DType dtype, const std::vector<int64_t>& shape, void* context);
+using ArrayAllocator = ArrayValue (*)(DType dtype, const std::vector<int64_t>& shape, ArrayFill fill,
+                                      void* context);
 
 class ArrayAllocatorScope {
   public:
@@ -52,10 +58,10 @@ class ArrayAllocatorScope {
     void* previousContext_;
 };
 
-// Zero-initialised storage for an array of this dtype and shape, from the current allocator.
-ArrayValue allocateArray(DType dtype, const std::vector<int64_t>& shape);
-// Zero-initialised storage on the heap, whatever the current allocator (which may fall back to it).
-ArrayValue allocateOnHeap(DType dtype, const std::vector<int64_t>& shape);
+// Storage for an array of this dtype and shape, from the current allocator.
+ArrayValue allocateArray(DType dtype, const std::vector<int64_t>& shape, ArrayFill fill = ArrayFill::Zeroed);
+// Storage on the heap, whatever the current allocator (which may fall back to it).
+ArrayValue allocateOnHeap(DType dtype, const std::vector<int64_t>& shape, ArrayFill fill = ArrayFill::Zeroed);
 
 // The untyped part, so that lists of arrays of different element types can be packed together.
 class SpArrayBase {
@@ -116,6 +122,11 @@ template <typename T> class SpArray : public SpArrayBase {
 
     // Allocates zeroed storage of the given shape (from the current ArrayAllocator).
     void resize(const std::vector<int64_t>& shape) { value_ = allocateArray(DTypeOf<T>::value, shape); }
+    // Allocates storage of the given shape that the caller overwrites whole before anyone reads the array
+    // (its contents are undefined until then; an array not fully written must not be handed out).
+    void resizeForOverwrite(const std::vector<int64_t>& shape) {
+        value_ = allocateArray(DTypeOf<T>::value, shape, ArrayFill::Overwritten);
+    }
 
   private:
     std::vector<int64_t> resolveShape(std::vector<int64_t> shape, int64_t count) const {

@@ -107,16 +107,17 @@ namespace {
 // inline (below kSharedMemoryThreshold: a path, a few points) stay on the heap: a segment costs a
 // system call or two to make and map, more than copying them.
 reflect::ArrayValue allocateInSegment(reflect::DType dtype, const std::vector<int64_t>& shape,
-                                      void* context) {
+                                      reflect::ArrayFill fill, void* context) {
     auto& connection = *static_cast<Server::Connection*>(context);
     reflect::ArrayValue value;
     value.dtype = dtype;
     value.shape = shape;
     if (value.byteSize() < kSharedMemoryThreshold)
-        return reflect::allocateOnHeap(dtype, shape);
+        return reflect::allocateOnHeap(dtype, shape, fill);
     auto [segment, clientBuffer] = connection.replySegment(value.byteSize());
     if (clientBuffer) {
-        std::memset(segment->data(), 0, value.byteSize()); // a reused buffer holds an earlier reply
+        if (fill == reflect::ArrayFill::Zeroed) // a reused buffer holds an earlier reply
+            std::memset(segment->data(), 0, value.byteSize());
         // If the engine keeps this array (a camera's frame until the next render), the reply says so.
         // Owners besides the engine: the connection's ReplyBuffers and requestSegments.
         if (OpenedSegments* opened = OpenedSegmentsScope::current())

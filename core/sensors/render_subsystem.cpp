@@ -75,7 +75,8 @@ std::string joined(const std::vector<std::string>& names) {
 }
 
 // Allocates the SpArray of one modality for `count` images of the given size, (count, H, W[, C]), or one
-// image, (H, W[, C]), when count is 0; returns the view of the first image (the next ones follow it).
+// image, (H, W[, C]), when count is 0; returns the view of the first image (the next ones follow it). The
+// storage is not zeroed: a read writes every byte of it, and arrays of a read that fails are dropped.
 template <typename T>
 sp::render::OutputView allocate(sp::reflect::SpArray<T>& array, sp::render::Modality modality, int width,
                                 int height, int count) {
@@ -85,7 +86,7 @@ sp::render::OutputView allocate(sp::reflect::SpArray<T>& array, sp::render::Moda
         shape.push_back(channels);
     if (count > 0)
         shape.insert(shape.begin(), count);
-    array.resize(shape);
+    array.resizeForOverwrite(shape);
     return {modality, array.data(), sp::render::modalityByteSize(modality, width, height)};
 }
 

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <vector>
 
 #include "core/base/error.h"
 #include "core/reflect/sp_array.h"
@@ -62,4 +63,24 @@ TEST(ArraySize, SetDataSourceChecksItsShape) {
     EXPECT_THROW(array.setDataSource({1.0f, 2.0f}, {-2, -1}), sp::InvalidArgument);
     array.setDataSource({1.0f, 2.0f}, {2, 1});
     EXPECT_EQ(array.getSize(), 2);
+}
+
+TEST(ArraySize, AllocatorsAreToldWhetherTheStorageMustBeZeroed) {
+    // A camera's readback overwrites its arrays whole: the RPC server's allocator then skips zeroing a
+    // reused shared-memory buffer. Plain arrays still come zeroed.
+    static std::vector<ArrayFill> asked;
+    ArrayAllocator recording = [](DType dtype, const std::vector<int64_t>& shape, ArrayFill fill, void*) {
+        asked.push_back(fill);
+        return allocateOnHeap(dtype, shape, fill);
+    };
+    ArrayAllocatorScope scope(recording, nullptr);
+    SpArray<float> zeroed, overwritten;
+    zeroed.resize({4, 4});
+    overwritten.resizeForOverwrite({4, 4});
+    ASSERT_EQ(asked.size(), 2u);
+    EXPECT_EQ(asked[0], ArrayFill::Zeroed);
+    EXPECT_EQ(asked[1], ArrayFill::Overwritten);
+    for (float v : zeroed.getView())
+        EXPECT_EQ(v, 0.0f);
+    EXPECT_EQ(overwritten.getView().size(), 16u);
 }
