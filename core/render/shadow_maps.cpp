@@ -171,7 +171,18 @@ ShadowMaps::Rect ShadowMaps::footprint(const Scene& scene, const Instance& insta
     scene.boundingSphere(instance, centre, radius);
     const Rect whole{0, 0, resolution, resolution};
     double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-    for (int corner = 0; corner < 8; ++corner) {
+    const bool orthographic = lightProjection.row(3) == Eigen::RowVector4d(0, 0, 0, 1);
+    if (orthographic) {
+        // An orthographic (affine) map: the sphere's shadow is the disc of its centre's image, as wide along
+        // each axis as the radius times that row's scale; a box around the cube of the sphere would be up
+        // to sqrt(3) wider, three times the texels to redraw.
+        const Eigen::Vector4d clip = lightProjection * centre.homogeneous();
+        const double rx = radius * lightProjection.row(0).head<3>().norm();
+        const double ry = radius * lightProjection.row(1).head<3>().norm();
+        x0 = ((clip.x() - rx) * 0.5 + 0.5) * resolution, x1 = ((clip.x() + rx) * 0.5 + 0.5) * resolution;
+        y0 = ((clip.y() - ry) * 0.5 + 0.5) * resolution, y1 = ((clip.y() + ry) * 0.5 + 0.5) * resolution;
+    }
+    for (int corner = 0; corner < 8 && !orthographic; ++corner) {
         const Eigen::Vector3d offset((corner & 1) ? radius : -radius, (corner & 2) ? radius : -radius,
                                      (corner & 4) ? radius : -radius);
         const Eigen::Vector4d clip = lightProjection * (centre + offset).homogeneous();
