@@ -104,15 +104,18 @@ ShadowMaps::~ShadowMaps() {
     glDeleteTextures(1, &texture_);
 }
 
-void ShadowMaps::ensure(int resolution, unsigned format) {
-    if (resolution == resolution_ && format == format_)
+void ShadowMaps::ensure(int resolution, unsigned format, int layers) {
+    if (resolution == resolution_ && format == format_ && layers <= layers_)
         return;
+    // As many layers as maps are drawn, not shaders::kMaxShadowMaps: a world with one sun holds one map
+    // (at 2048 texels, 8 MB instead of 32; sixty-four worlds of an engine, 0.5 GB instead of 2).
+    layers = std::max(layers, layers_);
     glDeleteFramebuffers(1, &fbo_);
     glDeleteRenderbuffers(1, &depthBuffer_);
     glDeleteTextures(1, &texture_);
     // Read texel by texel with imageLoad and compared in the shader (see shadowFactor() in shaders.cpp).
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture_);
-    glTextureStorage3D(texture_, 1, format, resolution, resolution, shaders::kMaxShadowMaps);
+    glTextureStorage3D(texture_, 1, format, resolution, resolution, layers);
     glCreateRenderbuffers(1, &depthBuffer_);
     glNamedRenderbufferStorage(depthBuffer_, format == GL_R16 ? GL_DEPTH_COMPONENT16 : GL_DEPTH_COMPONENT32F,
                                resolution, resolution);
@@ -121,6 +124,7 @@ void ShadowMaps::ensure(int resolution, unsigned format) {
     glNamedFramebufferDrawBuffer(fbo_, GL_COLOR_ATTACHMENT0);
     resolution_ = resolution;
     format_ = format;
+    layers_ = layers;
     staticSignature_.clear(); // new storage holds nothing yet: the next update draws in full
     movingRects_.clear();
 }
@@ -288,7 +292,7 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
     // and read. A perspective map's depth is not linear; far from the light 16 bits would be too coarse.
     const bool anyPerspective =
         std::any_of(infos.begin(), infos.end(), [](const ShadowInfo& info) { return info.perspective; });
-    ensure(resolution, anyPerspective ? GL_R32F : GL_R16);
+    ensure(resolution, anyPerspective ? GL_R32F : GL_R16, int(infos.size()));
     const bool drawAll = staticSignature != staticSignature_ || movingRects_.size() != infos.size();
     staticSignature_ = std::move(staticSignature);
     movingRects_.resize(infos.size());

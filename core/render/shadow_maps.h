@@ -91,7 +91,8 @@ class ShadowMaps {
         }
     };
 
-    void ensure(int resolution, unsigned format);
+    // (Re)allocates the maps' storage for `layers` maps (at least as many as before) when anything changed.
+    void ensure(int resolution, unsigned format, int layers);
     // Draws `casters` into the bound layer with the depth program in use.
     void draw(const Scene& scene, const std::vector<const Instance*>& casters, const ShadowInfo& info,
               const Eigen::Matrix4d& lightProjection, const Eigen::Vector3d& lightPosition,
@@ -104,6 +105,7 @@ class ShadowMaps {
     unsigned fbo_ = 0;
     int resolution_ = 0;
     unsigned format_ = 0;
+    int layers_ = 0;
     bool warnedTooMany_ = false;
     std::vector<ShadowInfo> infos_;
     ShadowUpdate update_;

@@ -138,6 +138,25 @@ TEST_F(ShadowMapsGlTest, OneObjectMovingInAStillSceneRedrawsOnlyItsNeighbourhood
     EXPECT_LT(update.redrawnTexels, std::size_t(kResolution) * kResolution / 10);
 }
 
+TEST_F(ShadowMapsGlTest, StorageHoldsOnlyTheMapsDrawn) {
+    // One sun, one layer; a second shadowed light grows the storage, and the maps still equal a fresh render.
+    Scene scene;
+    buildShapesScene(scene);
+    ShadowMaps maps;
+    expectSameAsFresh(maps, scene, "one sun");
+    auto layers = [&] {
+        GLint depth = 0;
+        glGetTextureLevelParameteriv(maps.texture(), 0, GL_TEXTURE_DEPTH, &depth);
+        return depth;
+    };
+    EXPECT_EQ(layers(), 1);
+    Light second;
+    second.direction = Eigen::Vector3d(0.3, 0.6, -1.0);
+    scene.addLight(second);
+    expectSameAsFresh(maps, scene, "a second sun");
+    EXPECT_EQ(layers(), 2);
+}
+
 // Found by spear_rpc_fuzz: an actor moved to 1e300 made the scene's bounds infinite, and snapping them
 // looped for good. Such a scene renders without shadow maps, at once.
 TEST_F(ShadowMapsGlTest, AnObjectNearTheFloatLimitTurnsShadowsOffInsteadOfHanging) {
