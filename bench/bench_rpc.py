@@ -100,6 +100,15 @@ def main() -> None:
         print(f"  echo op (transport + dispatch)      {echo_us:8.1f} us   {echo_us / floor_us:5.2f}x floor")
         print(f"  typed call actor.GetName()          {call_us:8.1f} us   {call_us / floor_us:5.2f}x floor")
 
+        # A frame with no work: the frame protocol alone (its begin rides with the block's first message, the
+        # execution with the calls queued in the block, end_frame's opening with its first read).
+        frames = 1000
+        sent = connection.messages_sent
+        frame_us = best(lambda: instance.step(num_frames=frames), repeat=3) / frames * 1e6
+        messages = (connection.messages_sent - sent) / (3 * frames)
+        print(f"empty frame (begin_frame + end_frame), {messages:.0f} messages")
+        print(f"  over RPC                            {frame_us:8.1f} us   {frame_us / floor_us:5.2f}x floor")
+
         n = 10_000
         with instance.begin_frame():
             start = time.perf_counter()
