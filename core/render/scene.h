@@ -25,7 +25,9 @@ enum class TextureEncoding { Srgb, Linear };
 // bounding radius, is under half a pixel (or shadow-map texel) where it is drawn.
 struct MeshLod {
     MeshId mesh;
-    float relativeError = 0.0f; // largest distance from the full mesh, as a fraction of its bounding radius
+    // The largest deviation of its outline from the full mesh's, as a fraction of the bounding radius: what
+    // moves in an image (surface inside the outline may deviate more along the line of sight).
+    float relativeError = 0.0f;
 };
 
 // A placed mesh: one material and one object id per submesh slot.

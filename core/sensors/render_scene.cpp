@@ -35,9 +35,10 @@ std::optional<sp::render::MeshData> basicShape(std::string_view name) {
     return std::nullopt;
 }
 
-// Coarser versions of the round built-in shapes, with their largest deviation from the round surface
-// relative to the shape's bounding radius (half the diagonal of its unit box): a UV sphere's quads sag by
-// about r sin^2(pi / segments), a cylinder's sides by r (1 - cos(pi / segments)).
+// Coarser versions of the round built-in shapes, with the largest deviation of their outline from the round
+// one relative to the shape's bounding radius (half the diagonal of its unit box): a polygon of `segments`
+// sides sags by r (1 - cos(pi / segments)), for a UV sphere's outline as for a cylinder's sides. (A sphere's
+// quads sag about twice that at their centres, along the line of sight: depth, not the image, moves.)
 std::vector<std::pair<sp::render::MeshData, float>> basicShapeLods(std::string_view name) {
     std::vector<std::pair<sp::render::MeshData, float>> lods;
     if (!name.starts_with(kBasicShapesPrefix))
@@ -48,7 +49,7 @@ std::vector<std::pair<sp::render::MeshData, float>> basicShapeLods(std::string_v
         const double angle = M_PI / segments;
         if (name == "Sphere")
             lods.emplace_back(sp::render::primitives::sphere(0.5f, segments, segments / 2),
-                              float(0.5 * std::sin(angle) * std::sin(angle) / halfDiagonal));
+                              float(0.5 * (1.0 - std::cos(angle)) / halfDiagonal));
         else if (name == "Cylinder")
             lods.emplace_back(sp::render::primitives::cylinder(0.5f, 1.0f, segments),
                               float(0.5 * (1.0 - std::cos(angle)) / halfDiagonal));

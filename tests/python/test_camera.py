@@ -253,6 +253,29 @@ def test_copies_of_one_mesh_are_drawn_in_one_call_with_their_own_ids(instance: s
     assert set(np.unique(ids)) - {0} == expected  # each cube's pixels carry its own id
 
 
+@pytest.mark.parametrize("distance", [1.0, 3.0, 8.0, 20.0])
+def test_a_round_shape_drawn_at_a_coarser_level_of_detail_keeps_its_outline(instance: spear.Instance,
+                                                                            distance: float) -> None:
+    # Far spheres are drawn with fewer triangles; the level is chosen so that the outline stays within half
+    # a pixel of the true one. Pixels more than a pixel inside the sphere's exact disc show it, pixels more
+    # than a pixel outside show the background, at every distance (so at every level).
+    game = instance.get_game()
+    size, radius = 256, 0.15
+    with instance.begin_frame():
+        ball = game.spawn_actor(uclass=spear.AStaticMeshActor, location=spear.FVector(X=distance))
+        ball.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Sphere")
+        ball.SetActorScale3D(NewScale3D=spear.FVector(X=2 * radius, Y=2 * radius, Z=2 * radius))
+        camera = spawn_camera(game, [M.ObjectIds], size, size, 60.0)
+    with instance.end_frame():
+        ids = camera.read_pixels()["object_ids"]
+    focal = size / 2 / math.tan(math.radians(30.0))
+    disc = focal * math.tan(math.asin(radius / distance))  # the silhouette cone's image, in pixels
+    v, u = np.mgrid[0:size, 0:size] + 0.5
+    r = np.hypot(u - size / 2, v - size / 2)
+    assert np.all(ids[r < disc - 1.0] != 0), f"holes inside the outline at {distance} m"
+    assert np.all(ids[r > disc + 1.0] == 0), f"sphere outside the outline at {distance} m"
+
+
 def test_only_the_needed_passes_run(instance: spear.Instance) -> None:
     game = instance.get_game()
     with instance.begin_frame():
