@@ -95,43 +95,33 @@ TEST_F(DispatcherTest, OnlyScalarIdsAreEchoed) {
 }
 
 TEST_F(DispatcherTest, ABatchRunsNothingAfterAFailedCriticalCall) {
+    // {"op": "batch", "critical": critical, "calls": [{"op": "frame", "action": a}, ...]}
+    auto frameBatch = [](const std::vector<int>& critical, const std::vector<std::string>& actions) {
+        msgpack::sbuffer out;
+        msgpack::packer<msgpack::sbuffer> packer(&out);
+        packer.pack_map(3);
+        packer.pack(std::string("op"));
+        packer.pack(std::string("batch"));
+        packer.pack(std::string("critical"));
+        packer.pack(critical);
+        packer.pack(std::string("calls"));
+        packer.pack_array(uint32_t(actions.size()));
+        for (const std::string& action : actions)
+            packer.pack(std::map<std::string, std::string>{{"op", "frame"}, {"action", action}});
+        return std::string(out.data(), out.size());
+    };
     // A client sends a frame's begin with the calls of its block and the frame's execution: when the begin
     // fails (here: a frame is open already), the execution must not run the frame that was open.
     Session session = greeted();
     ASSERT_EQ(send(dispatcher, session, request("frame", {{"action", "begin"}})), "");
-    msgpack::sbuffer out;
-    msgpack::packer<msgpack::sbuffer> packer(&out);
-    packer.pack_map(3);
-    packer.pack(std::string("op"));
-    packer.pack(std::string("batch"));
-    packer.pack(std::string("critical"));
-    packer.pack(std::vector<int>{0});
-    packer.pack(std::string("calls"));
-    packer.pack_array(2);
-    for (const char* action : {"begin", "execute"}) {
-        packer.pack_map(2);
-        packer.pack(std::string("op"));
-        packer.pack(std::string("frame"));
-        packer.pack(std::string("action"));
-        packer.pack(std::string(action));
-    }
+    const std::string message = frameBatch({0}, {"begin", "execute"});
     msgpack::sbuffer reply;
-    dispatcher.handle(out.data(), out.size(), session, reply, nullptr);
+    dispatcher.handle(message.data(), message.size(), session, reply, nullptr);
     const std::string text(reply.data(), reply.size());
     EXPECT_NE(text.find("begin_frame(): "), std::string::npos) << "the begin's own error";
     EXPECT_NE(text.find("batch(): not run: call 0 of the batch failed"), std::string::npos);
     EXPECT_EQ(engine.GetFrameState(), Engine::FrameState::BeginFrame) << "the open frame was not executed";
     EXPECT_EQ(engine.GetFrameCount(), 0);
-    msgpack::sbuffer bad;
-    msgpack::packer<msgpack::sbuffer> badPacker(&bad);
-    badPacker.pack_map(3);
-    badPacker.pack(std::string("op"));
-    badPacker.pack(std::string("batch"));
-    badPacker.pack(std::string("critical"));
-    badPacker.pack(std::vector<int>{5}); // past the calls
-    badPacker.pack(std::string("calls"));
-    badPacker.pack_array(0);
-    EXPECT_NE(
-        send(dispatcher, session, std::string(bad.data(), bad.size())).find("names call positions below 0"),
-        std::string::npos);
+    EXPECT_NE(send(dispatcher, session, frameBatch({5}, {})).find("names call positions below 0"),
+              std::string::npos);
 }
