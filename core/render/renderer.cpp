@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "core/base/error.h"
@@ -413,18 +415,16 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
     std::sort(draws.begin(), draws.end(), [](const Draw& a, const Draw& b) {
         return a.features != b.features ? a.features < b.features : a.distance < b.distance;
     });
+    // A batch's key: what batchesWith() compares (a scene of many distinct meshes has many batches).
+    using BatchKey = std::tuple<unsigned, MeshId, std::size_t, bool, std::array<std::optional<TextureId>, 3>>;
+    std::map<BatchKey, std::size_t> batches;
     std::vector<std::size_t> batchOf(draws.size());
-    std::vector<std::size_t> leaders; // the first draw of each batch
     for (std::size_t i = 0; i < draws.size(); ++i) {
-        std::size_t batch = leaders.size();
-        for (std::size_t b = leaders.size(); b-- > 0 && draws[leaders[b]].features == draws[i].features;)
-            if (draws[leaders[b]].batchesWith(draws[i])) {
-                batch = b;
-                break;
-            }
-        if (batch == leaders.size())
-            leaders.push_back(i);
-        batchOf[i] = batch;
+        const Draw& draw = draws[i];
+        batchOf[i] = batches
+                         .try_emplace({draw.features, draw.mesh, draw.slot, draw.holdsEye, draw.textures},
+                                      batches.size())
+                         .first->second;
     }
     std::vector<std::size_t> order(draws.size());
     for (std::size_t i = 0; i < order.size(); ++i)
