@@ -125,8 +125,7 @@ void ShadowMaps::ensure(int resolution, unsigned format, int layers) {
     resolution_ = resolution;
     format_ = format;
     layers_ = layers;
-    staticSignature_.clear(); // new storage holds nothing yet: the next update draws in full
-    movingRects_.clear();
+    lightSignature_.clear(); // new storage holds nothing yet: the next update draws in full
 }
 
 void ShadowMaps::draw(const Scene& scene, const std::vector<const Instance*>& casters, const ShadowInfo& info,
@@ -210,35 +209,24 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
         return 0;
     signature_ = std::move(signature);
 
-    // Casters unchanged since the previous update are static; the others move.
-    std::vector<const Instance*> statics, moving;
-    std::vector<double> staticSignature{double(resolution)};
-    std::unordered_map<std::uint64_t, CasterState> casters;
+    std::vector<std::pair<std::uint64_t, const Instance*>> current; // the casters, by packed InstanceId
     scene.forEachInstance([&](InstanceId id, const Instance& instance) {
-        if (!instance.visible || !instance.castShadows)
-            return;
-        CasterState state{instance.mesh, scene.meshRevision(instance.mesh), instance.transform.matrix()};
-        auto previous = casters_.find(packed(id));
-        const bool still = previous != casters_.end() && previous->second.mesh == state.mesh &&
-                           previous->second.meshRevision == state.meshRevision &&
-                           previous->second.transform == state.transform;
-        if (still) {
-            statics.push_back(&instance);
-            staticSignature.push_back(double(packed(id)));
-        } else {
-            moving.push_back(&instance);
-        }
-        casters.emplace(packed(id), std::move(state));
+        if (instance.visible && instance.castShadows)
+            current.emplace_back(packed(id), &instance);
     });
-    casters_ = std::move(casters);
+    // The projections the maps are drawn with; while they stay the same, an update redraws only where
+    // casters changed.
+    std::vector<double> lightSignature{double(resolution)};
 
     std::vector<ShadowInfo>& infos = infos_;
     infos.clear();
     Eigen::Vector3d centre;
     double radius = 0.0;
     stableBounds(scene, centre, radius);
-    if (radius <= 0.0)
+    if (radius <= 0.0) {
+        lightSignature_.clear(); // no maps now: the next ones are drawn whole
         return 0;
+    }
     int skipped = 0;
     int ordinal = -1;
     std::vector<Eigen::Matrix4d> projections;
@@ -274,18 +262,20 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
         positions.push_back(light.position);
         info.worldToClip = projections.back().cast<float>();
         infos.push_back(info);
-        staticSignature.insert(staticSignature.end(), projections.back().data(),
-                               projections.back().data() + 16);
-        staticSignature.insert(staticSignature.end(),
-                               {light.position.x(), light.position.y(), light.position.z()});
+        lightSignature.insert(lightSignature.end(), projections.back().data(),
+                              projections.back().data() + 16);
+        lightSignature.insert(lightSignature.end(),
+                              {light.position.x(), light.position.y(), light.position.z()});
     });
     if (skipped > 0 && !warnedTooMany_) {
         SP_LOG("render: ", skipped, " shadow-casting light(s) beyond the first ", shaders::kMaxShadowMaps,
                " are rendered without shadows");
         warnedTooMany_ = true;
     }
-    if (infos.empty())
+    if (infos.empty()) {
+        lightSignature_.clear();
         return 0;
+    }
 
     // 16 bits of depth when every map is orthographic: a step (extent / 37000 for a cube of the scene)
     // is far below the 1.5-texel normal offset (extent / resolution), and half the bytes to clear, write
@@ -293,9 +283,48 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
     const bool anyPerspective =
         std::any_of(infos.begin(), infos.end(), [](const ShadowInfo& info) { return info.perspective; });
     ensure(resolution, anyPerspective ? GL_R32F : GL_R16, int(infos.size()));
-    const bool drawAll = staticSignature != staticSignature_ || movingRects_.size() != infos.size();
-    staticSignature_ = std::move(staticSignature);
-    movingRects_.resize(infos.size());
+    const bool drawAll = lightSignature != lightSignature_;
+    lightSignature_ = std::move(lightSignature);
+
+    // Casters unchanged since the previous update are still, and their footprints (where they were drawn)
+    // still hold. Each other caster marks its footprint now and where it was drawn last (a caster removed
+    // or hidden since, the latter) as stale: what the update clears and draws again. A caster coming to
+    // rest or starting to move changes nothing else.
+    std::vector<const Instance*> statics, moving;
+    std::vector<const std::vector<Rect>*> staticFootprints, movingFootprints;
+    std::vector<Rect> stale(infos.size());
+    std::unordered_map<std::uint64_t, CasterState> casters;
+    casters.reserve(current.size());
+    for (const auto& [id, instance] : current) {
+        CasterState state{
+            instance->mesh, scene.meshRevision(instance->mesh), instance->transform.matrix(), {}};
+        const auto previous = casters_.find(id);
+        const bool known = previous != casters_.end() && !drawAll;
+        if (known && previous->second.mesh == state.mesh &&
+            previous->second.meshRevision == state.meshRevision &&
+            previous->second.transform == state.transform) {
+            state.footprints = std::move(previous->second.footprints);
+            casters_.erase(previous);
+            statics.push_back(instance);
+            staticFootprints.push_back(&casters.emplace(id, std::move(state)).first->second.footprints);
+            continue;
+        }
+        for (std::size_t i = 0; i < infos.size(); ++i) {
+            state.footprints.push_back(footprint(scene, *instance, projections[i], resolution));
+            stale[i] = stale[i].united(state.footprints.back());
+            if (known)
+                stale[i] = stale[i].united(previous->second.footprints[i]);
+        }
+        if (previous != casters_.end())
+            casters_.erase(previous);
+        moving.push_back(instance);
+        movingFootprints.push_back(&casters.emplace(id, std::move(state)).first->second.footprints);
+    }
+    if (!drawAll)
+        for (const auto& [id, gone] : casters_) // removed, hidden or no longer casting since the last update
+            for (std::size_t i = 0; i < infos.size(); ++i)
+                stale[i] = stale[i].united(gone.footprints[i]);
+    casters_ = std::move(casters);
 
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
     glViewport(0, 0, resolution, resolution);
@@ -323,38 +352,36 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
     for (std::size_t i = 0; i < infos.size(); ++i) {
         const ShadowInfo& info = infos[i];
         glNamedFramebufferTextureLayer(fbo_, GL_COLOR_ATTACHMENT0, texture_, 0, info.layer);
-        Rect now;
-        for (const Instance* instance : moving)
-            now = now.united(footprint(scene, *instance, projections[i], resolution));
         if (drawAll) {
             clear();
-            std::vector<const Instance*> casters = statics;
-            casters.insert(casters.end(), moving.begin(), moving.end());
-            draw(scene, casters, info, projections[i], positions[i], cache);
+            std::vector<const Instance*> all = statics;
+            all.insert(all.end(), moving.begin(), moving.end());
+            draw(scene, all, info, projections[i], positions[i], cache);
             ++update_.fullMaps;
             update_.staticDraws += statics.size();
             update_.dynamicDraws += moving.size();
-        } else if (const Rect region = now.united(movingRects_[i]); !region.empty()) {
-            // Where moving casters are and were: cleared and drawn again, scissored to the rectangle, from
-            // the still casters reaching into it and the moving ones. A texel's depth is the nearest of the
-            // casters covering it, whatever the order, so this equals a full render bit for bit; and unlike
-            // copying the rectangle back from a map of the still casters, it never makes the CPU wait for
-            // the rasteriser (a software one copies through mapped memory).
+        } else if (const Rect& region = stale[i]; !region.empty()) {
+            // Cleared and drawn again, scissored to the rectangle, from every caster reaching into it. A
+            // texel's depth is the nearest of the casters covering it, whatever the order, so this equals a
+            // full render bit for bit; and unlike copying the rectangle back from a map of the still casters,
+            // it never makes the CPU wait for the rasteriser (a software one copies through mapped memory).
             glEnable(GL_SCISSOR_TEST);
             glScissor(region.x0, region.y0, region.x1 - region.x0, region.y1 - region.y0);
             clear();
-            std::vector<const Instance*> casters;
-            for (const Instance* instance : statics)
-                if (footprint(scene, *instance, projections[i], resolution).overlaps(region))
-                    casters.push_back(instance);
-            update_.staticDraws += casters.size();
-            casters.insert(casters.end(), moving.begin(), moving.end());
-            draw(scene, casters, info, projections[i], positions[i], cache);
+            std::vector<const Instance*> reaching;
+            for (std::size_t c = 0; c < statics.size(); ++c)
+                if ((*staticFootprints[c])[i].overlaps(region))
+                    reaching.push_back(statics[c]);
+            update_.staticDraws += reaching.size();
+            for (std::size_t c = 0; c < moving.size(); ++c)
+                if ((*movingFootprints[c])[i].overlaps(region)) {
+                    reaching.push_back(moving[c]);
+                    ++update_.dynamicDraws;
+                }
+            draw(scene, reaching, info, projections[i], positions[i], cache);
             glDisable(GL_SCISSOR_TEST);
-            update_.dynamicDraws += moving.size();
             update_.redrawnTexels += std::size_t(region.x1 - region.x0) * std::size_t(region.y1 - region.y0);
         }
-        movingRects_[i] = now;
     }
     update_.maps = infos.size();
     return infos.size();

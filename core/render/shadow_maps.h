@@ -4,9 +4,10 @@
 // scene neither resize nor shift the map); spot maps are perspective over the cone. Point lights cast
 // no shadows. Needs a current context.
 //
-// Casters that did not change since the previous update are still: while the set of still casters stays
-// the same, an update clears and redraws only the rectangles the moving casters cover (now and at the
-// previous update), scissored, drawing there the still casters that reach into them and the moving ones.
+// Casters that did not change since the previous update are still: while the lights' projections stay the
+// same, an update clears and redraws only the rectangle around what changed (the footprints of casters that
+// moved, now and where they were drawn last, and of casters added or removed), scissored, drawing there
+// every caster that reaches into it.
 // A robot in a large still scene costs the texels it covers, not the whole map. The result equals a full
 // render bit for bit.
 //
@@ -66,13 +67,15 @@ class ShadowMaps {
     unsigned format() const { return format_; }
 
   private:
-    // A caster as of the previous update: it is static now if nothing of this changed.
+    // A rectangle of texels [x0, x1) x [y0, y1); empty when x0 >= x1.
+    struct Rect;
+    // A caster as of the previous update: it is still now if nothing of this changed.
     struct CasterState {
         MeshId mesh;
         std::uint64_t meshRevision = 0;
         Eigen::Matrix4d transform;
+        std::vector<Rect> footprints; // per map: where it was drawn (all the texels it may cover)
     };
-    // A rectangle of texels [x0, x1) x [y0, y1); empty when x0 >= x1.
     struct Rect {
         int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
         bool empty() const { return x0 >= x1 || y0 >= y1; }
@@ -109,11 +112,10 @@ class ShadowMaps {
     bool warnedTooMany_ = false;
     std::vector<ShadowInfo> infos_;
     ShadowUpdate update_;
-    std::vector<double> signature_;       // what the maps were rendered from
-    std::vector<double> staticSignature_; // the still casters and projections drawn in full
-    std::unordered_map<std::uint64_t, CasterState> casters_; // by packed InstanceId
-    std::vector<Rect> movingRects_; // per layer: where moving casters were drawn last time
-    InstanceBuffer instances_;      // the casters' light projections
+    std::vector<double> signature_;      // what the maps were rendered from
+    std::vector<double> lightSignature_; // the projections the maps were drawn with (empty: draw them whole)
+    std::unordered_map<std::uint64_t, CasterState> casters_; // by packed InstanceId, as last drawn
+    InstanceBuffer instances_;                               // the casters' light projections
     std::vector<InstanceRecord> records_;
 };
 

@@ -122,9 +122,9 @@ TEST_F(ShadowMapsGlTest, OneObjectMovingInAStillSceneRedrawsOnlyItsNeighbourhood
     ShadowMaps maps;
     maps.render(scene, kResolution, cache_, depth_);
     EXPECT_EQ(maps.format(), unsigned(GL_R16)); // orthographic maps only
-    moveBy(scene, ids[2], {0.05, 0.0, 0.0});    // the sphere starts moving: the others become static
+    moveBy(scene, ids[2], {0.05, 0.0, 0.0});    // the sphere starts moving: only around it is drawn again
     maps.render(scene, kResolution, cache_, depth_);
-    EXPECT_EQ(maps.lastUpdate().fullMaps, 1u); // the set of still casters changed: everything drawn
+    EXPECT_EQ(maps.lastUpdate().fullMaps, 0u);
     moveBy(scene, ids[2], {0.05, 0.0, 0.0});
     maps.render(scene, kResolution, cache_, depth_);
     const ShadowUpdate& update = maps.lastUpdate();
@@ -136,6 +136,33 @@ TEST_F(ShadowMapsGlTest, OneObjectMovingInAStillSceneRedrawsOnlyItsNeighbourhood
     EXPECT_EQ(update.staticDraws, 3u);
     EXPECT_GT(update.redrawnTexels, 0u);
     EXPECT_LT(update.redrawnTexels, std::size_t(kResolution) * kResolution / 10);
+}
+
+TEST_F(ShadowMapsGlTest, CastersStoppingStartingAndLeavingAreRedrawnWhereTheyWere) {
+    // A caster coming to rest, a still one starting to move, one removed and one hidden: each update redraws
+    // around them alone and leaves the maps a fresh render would make.
+    Scene scene;
+    buildShapesScene(scene);
+    const std::vector<InstanceId> ids = instanceIds(scene); // ground, box, sphere, cylinder
+    ShadowMaps maps;
+    expectSameAsFresh(maps, scene, "first update");
+    moveBy(scene, ids[1], {0.3, 0.0, 0.0});
+    expectSameAsFresh(maps, scene, "the box moved");
+    expectSameAsFresh(maps, scene, "the box came to rest");
+    EXPECT_EQ(maps.lastUpdate().maps, 0u) << "nothing changed: the maps are reused";
+    moveBy(scene, ids[2], {0.0, 0.3, 0.0});
+    expectSameAsFresh(maps, scene, "the sphere, still until now, moved");
+    EXPECT_EQ(maps.lastUpdate().fullMaps, 0u);
+    EXPECT_EQ(maps.lastUpdate().dynamicDraws, 1u);
+    scene.removeInstance(ids[3]);
+    expectSameAsFresh(maps, scene, "the still cylinder was removed");
+    EXPECT_EQ(maps.lastUpdate().fullMaps, 0u);
+    EXPECT_GT(maps.lastUpdate().redrawnTexels, 0u) << "where the cylinder was";
+    Instance hidden = scene.instance(ids[1]);
+    hidden.visible = false;
+    scene.setInstance(ids[1], hidden);
+    expectSameAsFresh(maps, scene, "the box was hidden");
+    EXPECT_EQ(maps.lastUpdate().fullMaps, 0u);
 }
 
 TEST_F(ShadowMapsGlTest, StorageHoldsOnlyTheMapsDrawn) {
