@@ -33,24 +33,10 @@ std::map<std::string, std::unique_ptr<Blueprint>>& blueprints() { // by canonica
     return loaded;
 }
 
-const Json* optionalMember(const Json& object, const char* key) {
-    auto it = object.find(key);
-    return it == object.end() ? nullptr : &*it;
-}
-
-std::string stringMember(const Json& object, const char* key, const std::string& where) {
-    SP_CHECK(object.is_object(), InvalidArgument, where, ": expected an object, got ", object.type_name());
-    const Json* value = optionalMember(object, key);
-    SP_CHECK(value, InvalidArgument, where, ": missing '", key, "'");
-    SP_CHECK(value->is_string() && !value->get<std::string>().empty(), InvalidArgument, where, ": '", key,
-             "' must be a non-empty string, got ", value->dump());
-    return value->get<std::string>();
-}
-
 // Applies the defaults and components of `document` to `object`, a new object of the blueprint's class.
 void applyBlueprint(const Json& document, reflect::ObjectBase& object, const std::string& where) {
     auto* actor = dynamic_cast<AActor*>(&object);
-    const ActorsByName self = actor ? ActorsByName{{"Self", actor}} : ActorsByName{};
+    const ActorsByName self = selfOf(object);
     const Json* components = optionalMember(document, "components");
     SP_CHECK(!components || components->is_array(), InvalidArgument, where,
              ": 'components' must be a list, got ", components->type_name());

@@ -37,18 +37,6 @@ struct Definition {
     std::vector<Step> steps;
 };
 
-const Json* member(const Json& object, const char* key) {
-    auto it = object.find(key);
-    return it == object.end() ? nullptr : &*it;
-}
-
-std::string nameMember(const Json& object, const char* key, const std::string& where) {
-    const Json* value = member(object, key);
-    SP_CHECK(value && value->is_string() && !value->get<std::string>().empty(), InvalidArgument, where, ": '",
-             key, "' must be a non-empty string, got ", value ? value->dump() : "nothing");
-    return value->get<std::string>();
-}
-
 void checkFields(const Json& object, std::initializer_list<std::string_view> known,
                  const std::string& where) {
     SP_CHECK(object.is_object(), InvalidArgument, where, ": expected an object, got ", object.dump());
@@ -203,11 +191,6 @@ bool fits(const Value& value, const TypeCode& type) {
     }
 }
 
-ActorsByName selfOf(reflect::ObjectBase& object) {
-    auto* actor = dynamic_cast<AActor*>(&object);
-    return actor ? ActorsByName{{"Self", actor}} : ActorsByName{};
-}
-
 Value run(const Definition& definition, reflect::ObjectBase& self, const reflect::CallArgs& args) {
     std::map<std::string, Value> variables;
     for (size_t i = 0; i < definition.params.size(); ++i) {
@@ -239,10 +222,10 @@ Value run(const Definition& definition, reflect::ObjectBase& self, const reflect
             SP_CHECK(function, NotFound, "class '", target->GetClass().name, "' has no function '",
                      step.function, "'");
             reflect::CallArgs callArgs;
-            for (const auto& [name, value] : step.args.items())
-                for (const reflect::ParamInfo& param : function->params)
-                    if (param.name == name)
-                        callArgs.emplace(name, resolve(value, param.type, variables, actors));
+            for (const reflect::ParamInfo& param :
+                 function->params) // each argument names one (checked at load)
+                if (const Json* value = optionalMember(step.args, param.name.c_str()))
+                    callArgs.emplace(param.name, resolve(*value, param.type, variables, actors));
             Value result = function->invoke(target, callArgs);
             if (!step.result.empty())
                 variables.insert_or_assign(step.result, std::move(result));
@@ -258,7 +241,7 @@ Step loadStep(const Json& json, size_t index, bool last, Definition& definition,
               const std::string& where) {
     Step step;
     const ActorsByName actors = selfOf(prototype);
-    if (member(json, "return")) {
+    if (optionalMember(json, "return")) {
         checkFields(json, {"return"}, where);
         step.isReturn = true;
         step.value = json["return"];
@@ -270,7 +253,7 @@ Step loadStep(const Json& json, size_t index, bool last, Definition& definition,
         return step;
     }
     checkFields(json, {"call", "args", "result"}, where);
-    const std::string call = nameMember(json, "call", where);
+    const std::string call = stringMember(json, "call", where);
     const size_t dot = call.find('.');
     step.component = dot == std::string::npos ? std::string() : call.substr(0, dot);
     step.function = dot == std::string::npos ? call : call.substr(dot + 1);
@@ -285,12 +268,12 @@ Step loadStep(const Json& json, size_t index, bool last, Definition& definition,
     for (const reflect::ParamInfo& param : function->params)
         SP_CHECK(!param.isOut, InvalidArgument, where, ": '", call,
                  "' has out-parameters, which a blueprint function cannot take yet");
-    if (const Json* args = member(json, "args")) {
+    if (const Json* args = optionalMember(json, "args")) {
         SP_CHECK(args->is_object(), InvalidArgument, where, ": 'args' must be an object, got ", args->dump());
         step.args = *args;
     }
     for (const reflect::ParamInfo& param : function->params) {
-        const Json* value = member(step.args, param.name.c_str());
+        const Json* value = optionalMember(step.args, param.name.c_str());
         SP_CHECK(value || param.hasDefault, InvalidArgument, where, ": '", call, "' needs argument '",
                  param.name, "'");
         if (value)
@@ -300,8 +283,8 @@ Step loadStep(const Json& json, size_t index, bool last, Definition& definition,
         SP_CHECK(std::any_of(function->params.begin(), function->params.end(),
                              [&](const reflect::ParamInfo& param) { return param.name == name; }),
                  InvalidArgument, where, ": '", call, "' has no parameter '", name, "'");
-    if (member(json, "result")) {
-        step.result = nameMember(json, "result", where);
+    if (optionalMember(json, "result")) {
+        step.result = stringMember(json, "result", where);
         SP_CHECK(function->returnType.kind != Kind::Void, InvalidArgument, where, ": '", call,
                  "' returns nothing to keep as '", step.result, "'");
         SP_CHECK(!variables.count(step.result), InvalidArgument, where, ": '", step.result,
@@ -316,7 +299,7 @@ reflect::FunctionInfo loadFunction(const Json& json, const std::string& classNam
     checkFields(json, {"name", "doc", "params", "returns", "body"}, where);
     auto definition = std::make_shared<Definition>();
     reflect::FunctionInfo info;
-    info.name = nameMember(json, "name", where);
+    info.name = stringMember(json, "name", where);
     const std::string fwhere = where + ": function '" + info.name + "'";
     definition->context = className + "." + info.name + "()";
     // A name Python can call by attribute and keyword that hides nothing the objects have: the class's own
@@ -329,23 +312,23 @@ reflect::FunctionInfo loadFunction(const Json& json, const std::string& classNam
     const reflect::TypeInfo& type = prototype.GetObjectClass();
     SP_CHECK(!type.findFunction(info.name) && !type.findProperty(info.name), InvalidArgument, fwhere,
              ": the parent class has a member of that name");
-    if (const Json* doc = member(json, "doc")) {
+    if (const Json* doc = optionalMember(json, "doc")) {
         SP_CHECK(doc->is_string(), InvalidArgument, fwhere, ": 'doc' must be a string, got ", doc->dump());
         info.doc = doc->get<std::string>();
     }
     std::map<std::string, TypeCode> variables;
-    if (const Json* params = member(json, "params")) {
+    if (const Json* params = optionalMember(json, "params")) {
         SP_CHECK(params->is_array(), InvalidArgument, fwhere, ": 'params' must be a list, got ",
                  params->dump());
         for (const Json& entry : *params) {
             checkFields(entry, {"name", "type", "default"}, fwhere + ": params");
             reflect::ParamInfo param;
-            param.name = nameMember(entry, "name", fwhere + ": params");
+            param.name = stringMember(entry, "name", fwhere + ": params");
             const std::string pwhere = fwhere + ": parameter '" + param.name + "'";
             SP_CHECK(!variables.count(param.name), InvalidArgument, pwhere, ": declared twice");
             param.type = parseType(entry.value("type", Json()), pwhere);
             Value fallback;
-            if (const Json* value = member(entry, "default")) {
+            if (const Json* value = optionalMember(entry, "default")) {
                 param.hasDefault = true;
                 try {
                     fallback = valueFromJson(*value, param.type, {});
@@ -358,9 +341,9 @@ reflect::FunctionInfo loadFunction(const Json& json, const std::string& classNam
             definition->defaults.push_back(std::move(fallback));
         }
     }
-    if (const Json* returns = member(json, "returns"))
+    if (const Json* returns = optionalMember(json, "returns"))
         definition->returns = parseType(*returns, fwhere + ": 'returns'");
-    const Json* body = member(json, "body");
+    const Json* body = optionalMember(json, "body");
     SP_CHECK(body && body->is_array() && !body->empty(), InvalidArgument, fwhere,
              ": 'body' must be a non-empty list of steps");
     for (size_t i = 0; i < body->size(); ++i)
@@ -378,6 +361,11 @@ reflect::FunctionInfo loadFunction(const Json& json, const std::string& classNam
 }
 
 } // namespace
+
+ActorsByName selfOf(reflect::ObjectBase& object) {
+    auto* actor = dynamic_cast<AActor*>(&object);
+    return actor ? ActorsByName{{"Self", actor}} : ActorsByName{};
+}
 
 std::vector<reflect::FunctionInfo> loadBlueprintFunctions(const SceneJson& functions,
                                                           const std::string& className,

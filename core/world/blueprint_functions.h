@@ -31,6 +31,9 @@
 
 namespace sp::world {
 
+// The names a blueprint's values may start their object paths with: "Self", `object` when it is an actor.
+ActorsByName selfOf(reflect::ObjectBase& object);
+
 // The functions of a blueprint document's "functions" list for class `className`, checked against
 // `prototype` (an object of the class, its components made). Errors are sp::InvalidArgument prefixed by
 // `where` and naming the function, step and field.

@@ -200,12 +200,23 @@ const Json& member(const Json& object, const char* key, const std::string& where
     return *it;
 }
 
+} // namespace
+
+const Json* optionalMember(const Json& object, const char* key) {
+    if (!object.is_object())
+        return nullptr;
+    auto it = object.find(key);
+    return it == object.end() ? nullptr : &*it;
+}
+
 std::string stringMember(const Json& object, const char* key, const std::string& where) {
     const Json& value = member(object, key, where);
     SP_CHECK(value.is_string() && !value.get<std::string>().empty(), InvalidArgument, where, ": '", key,
              "' must be a non-empty string, got ", value.dump());
     return value.get<std::string>();
 }
+
+namespace {
 
 const reflect::TypeInfo& classMember(const Json& object, const reflect::TypeInfo& base,
                                      const std::string& where) {

@@ -73,6 +73,11 @@ void loadObjectProperties(reflect::ObjectBase& object, const SceneJson& properti
 // sp::InvalidArgument naming what was expected and what was found.
 reflect::Value valueFromJson(const SceneJson& json, const reflect::TypeCode& type,
                              const ActorsByName& actors);
+// Members of a JSON object, shared by scene files and blueprints: `key`'s value, or null when `object` is
+// not an object or has no `key`; `key`'s value, a non-empty string, or sp::InvalidArgument prefixed by
+// `where` when `object` is not an object, has no `key` or its value is not a non-empty string.
+const SceneJson* optionalMember(const SceneJson& object, const char* key);
+std::string stringMember(const SceneJson& object, const char* key, const std::string& where);
 // Reads and parses a scene file; sp::NotFound when it does not exist, sp::InvalidArgument when it is
 // not JSON. `function` names the caller in messages.
 SceneJson readSceneFile(const std::string& path, std::string_view function);
