@@ -59,12 +59,9 @@ struct Renderer::Draw {
     double distance;                                  // from the eye to the instance's bounding sphere
     bool holdsEye;                                    // the bounding sphere holds the eye (a floor, a room)
     std::array<std::optional<TextureId>, 3> textures; // base colour, roughness-metallic, normal
-
-    // Whether one instanced draw call renders both: same program, mesh, submesh and textures.
-    bool batchesWith(const Draw& other) const {
-        return features == other.features && mesh == other.mesh && slot == other.slot &&
-               holdsEye == other.holdsEye && textures == other.textures;
-    }
+    // Draws of one batch are drawn by one instanced call: same program, mesh, submesh and textures (and
+    // whether they hold the eye, so that floors still go last). Numbered in visibleDraws().
+    std::size_t batch = 0;
 };
 
 Renderer::Renderer(const GlContext& context) : context_(context), packIdsOnGpu_(!context.report().software) {
@@ -415,27 +412,17 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
     std::sort(draws.begin(), draws.end(), [](const Draw& a, const Draw& b) {
         return a.features != b.features ? a.features < b.features : a.distance < b.distance;
     });
-    // A batch's key: what batchesWith() compares (a scene of many distinct meshes has many batches).
+    // Batches numbered in order of their nearest draw, through a map of what a batch shares (a scene of many
+    // distinct meshes has many batches).
     using BatchKey = std::tuple<unsigned, MeshId, std::size_t, bool, std::array<std::optional<TextureId>, 3>>;
     std::map<BatchKey, std::size_t> batches;
-    std::vector<std::size_t> batchOf(draws.size());
-    for (std::size_t i = 0; i < draws.size(); ++i) {
-        const Draw& draw = draws[i];
-        batchOf[i] = batches
+    for (Draw& draw : draws)
+        draw.batch = batches
                          .try_emplace({draw.features, draw.mesh, draw.slot, draw.holdsEye, draw.textures},
                                       batches.size())
                          .first->second;
-    }
-    std::vector<std::size_t> order(draws.size());
-    for (std::size_t i = 0; i < order.size(); ++i)
-        order[i] = i;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return batchOf[a] < batchOf[b]; });
-    std::vector<Draw> batched;
-    batched.reserve(draws.size());
-    for (std::size_t i : order)
-        batched.push_back(draws[i]);
-    draws = std::move(batched);
+    std::stable_sort(draws.begin(), draws.end(),
+                     [](const Draw& a, const Draw& b) { return a.batch < b.batch; });
     active_->stats.drawnInstances += drawn;
     return draws;
 }
@@ -470,12 +457,12 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
     }
     instances_->upload(records_);
 
-    // One instanced draw call per batch (consecutive draws that batch together: see visibleDraws()).
+    // One instanced draw call per batch (consecutive draws of one batch: see visibleDraws()).
     ShaderProgram* program = nullptr;
     unsigned programFeatures = 0;
     for (std::size_t first = 0, last = 0; first < draws.size(); first = last) {
         const Draw& draw = draws[first];
-        for (last = first + 1; last < draws.size() && draws[last].batchesWith(draw);)
+        for (last = first + 1; last < draws.size() && draws[last].batch == draw.batch;)
             ++last;
         if (program == nullptr || draw.features != programFeatures) { // draws are grouped by features
             program = &surfaceProgram(targets, shade, draw.features, lights);
