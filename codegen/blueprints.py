@@ -53,6 +53,11 @@ def _line_of(text: str, needle: str, after: int = 1) -> int:
     return next((n for n in range(after, len(lines) + 1) if needle in lines[n - 1]), 1)
 
 
+def _name_line(text: str, name: Any, after: int) -> int:
+    """The line of the entry `"name": <name>` at or after `after`; `after` itself when the name is no string."""
+    return _line_of(text, f'"name": {json.dumps(name)}', after) if isinstance(name, str) else after
+
+
 def _is_name(name: Any) -> TypeGuard[str]:
     """A public Python identifier: what a method or keyword argument of the stubs can be called."""
     return isinstance(name, str) and name.isidentifier() and not keyword.iskeyword(name) and \
@@ -79,7 +84,7 @@ def _functions(entries: Any, module: Module, parent: str, rel: str, text: str) -
     cursor = _line_of(text, '"functions"')  # each function's lines come after the one before
     for entry in entries:
         name = entry.get("name") if isinstance(entry, dict) else None
-        line = _line_of(text, f'"name": {json.dumps(name)}', cursor) if isinstance(name, str) else cursor
+        line = _name_line(text, name, cursor)
         cursor = line + 1
         if not _is_name(name):
             raise GeneratorError(rel, line, f"blueprint function name {name!r} is not a public Python identifier")
@@ -95,7 +100,7 @@ def _functions(entries: Any, module: Module, parent: str, rel: str, text: str) -
         pcursor = line
         for p in declared:
             pname = p.get("name") if isinstance(p, dict) else None
-            pline = _line_of(text, f'"name": {json.dumps(pname)}', pcursor) if isinstance(pname, str) else pcursor
+            pline = _name_line(text, pname, pcursor)
             pcursor = pline + 1
             if not _is_name(pname):
                 raise GeneratorError(rel, pline, f"parameter {pname!r} of blueprint function '{name}' is not a "
