@@ -43,7 +43,10 @@ class BuildWithCMake(build_py):
                              f"{sys.executable}")
         build_dir = Path(os.environ.get("SPEAR_BUILD_DIR", ROOT / "build"))
         print(f"spear: building the engine with CMake in {build_dir}", flush=True)
-        subprocess.check_call(["cmake", "-S", str(ROOT), "-B", str(build_dir), "-G", "Ninja",
+        # A build folder configured before (by hand, with CMake's default generator) keeps its generator:
+        # CMake refuses to switch one.
+        generator = [] if (build_dir / "CMakeCache.txt").exists() else ["-G", "Ninja"]
+        subprocess.check_call(["cmake", "-S", str(ROOT), "-B", str(build_dir), *generator,
                                "-DCMAKE_BUILD_TYPE=RelWithDebInfo", "-DPython3_EXECUTABLE=/usr/bin/python3"],
                               stdout=subprocess.DEVNULL)
         subprocess.check_call(["cmake", "--build", str(build_dir), "-j", os.environ.get("SPEAR_JOBS", "2"),

@@ -54,8 +54,12 @@ engine_codegen() {
 build() {
     say "build: configuring and building in $BUILD_DIR"
     # Warnings are errors in the project's own code (not in Debian's headers): the tree builds clean.
-    cmake -S "$ROOT" -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPython3_EXECUTABLE="$PYTHON" \
-        -DSPEAR_WERROR=ON >/dev/null
+    # A folder configured before (by hand, with CMake's default generator) keeps its generator: CMake
+    # refuses to switch one.
+    local generator=(-G Ninja)
+    [[ -f "$BUILD_DIR/CMakeCache.txt" ]] && generator=()
+    cmake -S "$ROOT" -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+        -DPython3_EXECUTABLE="$PYTHON" -DSPEAR_WERROR=ON >/dev/null
     # Two jobs: the machines this runs on have two cores, and pybind11 translation units are large.
     cmake --build "$BUILD_DIR" -j "${SPEAR_JOBS:-2}"
 }
