@@ -67,6 +67,18 @@ Eigen::Matrix4d Camera::projectionMatrix(bool flipY) const {
     return p;
 }
 
+std::array<Eigen::Vector4d, 6> Camera::frustumPlanes() const {
+    const Eigen::Matrix4d viewProjection = projectionMatrix(true) * viewMatrix();
+    std::array<Eigen::Vector4d, 6> planes;
+    for (int i = 0; i < 3; ++i) {
+        planes[2 * i] = (viewProjection.row(3) + viewProjection.row(i)).transpose();
+        planes[2 * i + 1] = (viewProjection.row(3) - viewProjection.row(i)).transpose();
+    }
+    for (Eigen::Vector4d& plane : planes)
+        plane /= plane.head<3>().norm();
+    return planes;
+}
+
 Eigen::Vector3d Camera::project(const Eigen::Vector3d& world) const {
     Eigen::Vector3d body = pose.inverse(Eigen::Isometry) * world;
     const double fpx = focalLengthPixels();

@@ -4,6 +4,7 @@
 // Convention: world is right-handed, Z up, metres. The camera looks along its local +X, +Y is left and
 // +Z is up (ROS REP-103 body frame); `pose` maps camera to world. Depth is the distance along +X.
 
+#include <array>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -48,6 +49,8 @@ struct Camera {
     // GL clip-space projection. flipY renders image row 0 at the bottom of the framebuffer, so that
     // glReadPixels returns the top image row first.
     Eigen::Matrix4d projectionMatrix(bool flipY) const;
+    // The view frustum's six planes (a, b, c, d with a·x + b·y + c·z + d >= 0 inside; unit normals).
+    std::array<Eigen::Vector4d, 6> frustumPlanes() const;
     // Focal lengths in pixels (fx from the horizontal FOV, square pixels).
     double focalLengthPixels() const;
     // Projects a world point to continuous pixel coordinates (u right, v down, pixel centres at +0.5)

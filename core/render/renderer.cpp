@@ -37,18 +37,6 @@ void copy3(float (&out)[4], const Eigen::Vector3f& v, float w) {
     out[3] = w;
 }
 
-// Frustum planes (a, b, c, d with a·x + b·y + c·z + d >= 0 inside) of a world-to-clip matrix.
-std::array<Eigen::Vector4d, 6> frustumPlanes(const Eigen::Matrix4d& viewProjection) {
-    std::array<Eigen::Vector4d, 6> planes;
-    for (int i = 0; i < 3; ++i) {
-        planes[2 * i] = (viewProjection.row(3) + viewProjection.row(i)).transpose();
-        planes[2 * i + 1] = (viewProjection.row(3) - viewProjection.row(i)).transpose();
-    }
-    for (Eigen::Vector4d& plane : planes)
-        plane /= plane.head<3>().norm();
-    return planes;
-}
-
 } // namespace
 
 struct Renderer::Draw {
@@ -196,8 +184,12 @@ void Renderer::render(const Scene& scene, const Camera& camera, const PassSet& p
     std::vector<ShadowInfo> shadowInfos;
     if (passes.shadow) {
         active_->timers.begin(Pass::Shadow);
+        // The directional maps cover what this view sees (see shadow_maps.h).
+        Sphere seen;
+        const std::array<Eigen::Vector4d, 6> frustum = camera.frustumPlanes();
+        scene.bounds(seen.centre, seen.radius, frustum);
         const std::size_t rendered =
-            active_->shadowMaps->render(scene, camera.params.shadowResolution, cache, *shadow_);
+            active_->shadowMaps->render(scene, camera.params.shadowResolution, cache, *shadow_, &seen);
         active_->timers.end();
         active_->stats.shadowPasses += rendered;
         active_->stats.shadowReuses += rendered == 0 && !active_->shadowMaps->infos().empty() ? 1 : 0;
@@ -363,8 +355,7 @@ void Renderer::clearTargets(const Scene& scene, const Camera& camera, TargetMask
 }
 
 std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Camera& camera) {
-    const Eigen::Matrix4d viewProjection = camera.projectionMatrix(true) * camera.viewMatrix();
-    const std::array<Eigen::Vector4d, 6> planes = frustumPlanes(viewProjection);
+    const std::array<Eigen::Vector4d, 6> planes = camera.frustumPlanes();
     const Eigen::Vector3d eye = camera.pose.translation();
     const double focal = camera.focalLengthPixels();
 

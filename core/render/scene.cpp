@@ -222,11 +222,19 @@ void Scene::boundingSphere(const Instance& instance, Eigen::Vector3d& centre, do
              instance.transform.linear().colwise().norm().maxCoeff();
 }
 
-void Scene::bounds(Eigen::Vector3d& centre, double& radius) const {
+void Scene::bounds(Eigen::Vector3d& centre, double& radius, std::span<const Eigen::Vector4d> within) const {
     Eigen::AlignedBox3d box;
     instances_.forEach([&](InstanceId, const Instance& instance) {
         if (!instance.visible)
             return;
+        if (!within.empty()) {
+            Eigen::Vector3d sphereCentre;
+            double sphereRadius = 0.0;
+            boundingSphere(instance, sphereCentre, sphereRadius);
+            for (const Eigen::Vector4d& plane : within)
+                if (plane.head<3>().dot(sphereCentre) + plane.w() < -sphereRadius)
+                    return;
+        }
         const MeshEntry& entry = meshes_.get(instance.mesh, "Scene::bounds");
         for (int corner = 0; corner < 8; ++corner) {
             Eigen::Vector3d local((corner & 1) ? entry.max.x() : entry.min.x(),

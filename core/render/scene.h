@@ -4,6 +4,7 @@
 // re-uploading a mesh or texture only when its revision changed.
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -113,8 +114,10 @@ class Scene {
     template <typename Fn> void forEachInstance(Fn&& fn) const { instances_.forEach(fn); }
     template <typename Fn> void forEachLight(Fn&& fn) const { lights_.forEach(fn); }
 
-    // World-space bounding sphere of all visible instances (centre, radius); radius 0 when empty.
-    void bounds(Eigen::Vector3d& centre, double& radius) const;
+    // World-space bounding sphere of all visible instances (centre, radius); radius 0 when empty. With
+    // `within` (planes a, b, c, d, inside where a·x + b·y + c·z + d >= 0, unit normals: a view frustum),
+    // of those whose bounding sphere reaches inside every plane: what a camera sees.
+    void bounds(Eigen::Vector3d& centre, double& radius, std::span<const Eigen::Vector4d> within = {}) const;
 
   private:
     struct MeshEntry {

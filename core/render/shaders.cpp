@@ -451,7 +451,7 @@ void main() { gl_Position = iModelViewProjection * vec4(aPosition, 1.0); }
 // Stores the depth test's own value, polygon offset included (see ShadowMaps).
 const char* const kShadowFragment = R"glsl(#version 450 core
 layout(location = 0) out float oDepth;
-void main() { oDepth = gl_FragCoord.z; }
+void main() { oDepth = clamp(gl_FragCoord.z, 0.0, 1.0); } // clamped: see GL_DEPTH_CLAMP in shadow_maps.cpp
 )glsl";
 
 const char* const kIdChannelCompute = R"glsl(#version 450 core

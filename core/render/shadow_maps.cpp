@@ -66,31 +66,39 @@ std::vector<double> shadowSignature(const Scene& scene, int resolution) {
     return signature;
 }
 
-// The scene's bounding sphere, snapped: the radius to steps of 2^(1/4), the centre to a grid of 1/16 of
-// it, the sphere grown until it holds the exact one. Objects moving inside the scene then leave the
-// directional maps where they are (no shimmering texel grid, and the static casters stay valid).
-void stableBounds(const Scene& scene, Eigen::Vector3d& centre, double& radius) {
-    scene.bounds(centre, radius);
-    // Coordinates near the float limits overflow the bounds: no map can cover such a scene.
-    if (!std::isfinite(radius) || !centre.allFinite() || radius > 1e30) {
-        radius = 0.0;
-        return;
-    }
-    if (radius <= 0.0)
-        return;
-    double step = std::exp2(std::ceil(4.0 * std::log2(radius)) / 4.0);
+// `sphere` snapped: the radius to steps of 2^(1/4), the centre to a grid of 1/16 of it, the sphere grown
+// until it holds the exact one. Objects moving inside it then leave the maps where they are (no shimmering
+// texel grid, and the still casters stay valid). Empty for an empty sphere, or one no map can cover
+// (coordinates near the float limits overflow the bounds).
+Sphere snapped(const Sphere& sphere) {
+    if (!std::isfinite(sphere.radius) || !sphere.centre.allFinite() || sphere.radius > 1e30 ||
+        sphere.radius <= 0.0)
+        return {};
+    double step = std::exp2(std::ceil(4.0 * std::log2(sphere.radius)) / 4.0);
     for (int attempt = 0; attempt < 8; ++attempt) { // two suffice; the bound keeps rounding from looping
         const double grid = step / 16.0;
-        const Eigen::Vector3d snapped = (centre / grid).array().round().matrix() * grid;
-        if ((snapped - centre).norm() + radius <= step) {
-            centre = snapped;
-            radius = step;
-            return;
-        }
+        const Eigen::Vector3d centre = (sphere.centre / grid).array().round().matrix() * grid;
+        if ((centre - sphere.centre).norm() + sphere.radius <= step)
+            return {centre, step};
         step *= std::exp2(0.25);
     }
-    radius *= 1.25; // not reached for finite bounds; a sphere that certainly holds the scene
+    return {sphere.centre, sphere.radius * 1.25}; // not reached for finite bounds; certainly holds it
 }
+
+// The smallest sphere holding both.
+Sphere united(const Sphere& a, const Sphere& b) {
+    if (a.holds(b))
+        return a;
+    if (b.holds(a))
+        return b;
+    const double distance = (b.centre - a.centre).norm();
+    const double radius = 0.5 * (distance + a.radius + b.radius);
+    return {a.centre + (b.centre - a.centre) * ((radius - a.radius) / distance), radius};
+}
+
+// A directional region kept for a new frame may be at most this much wider than what is seen: wider, its
+// texels are coarser than a fresh fit's by more than the snapping's own steps.
+constexpr double kLooseRegion = 1.4142135623730951;
 
 std::uint64_t packed(InstanceId id) {
     return (std::uint64_t(id.generation) << 32) | id.index;
@@ -201,13 +209,37 @@ ShadowMaps::Rect ShadowMaps::footprint(const Scene& scene, const Instance& insta
             clampTo(std::ceil(y1) + 2)};
 }
 
+Sphere ShadowMaps::chooseRegion(const Sphere& seen, bool sameScene) const {
+    const bool held = region_.radius > 0.0 && region_.holds(seen);
+    if (seen.radius <= 0.0 || (held && (sameScene || region_.radius <= kLooseRegion * seen.radius)))
+        return region_; // nothing seen needs covering, or the region covers it well enough
+    // Another view of the frame (or of a still scene) seeing beyond the region widens it to hold both, so
+    // that the views share one map; a new frame fits it afresh.
+    return snapped(sameScene && region_.radius > 0.0 ? united(region_, seen) : seen);
+}
+
 std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache& cache,
-                               ShaderProgram& depthProgram) {
+                               ShaderProgram& depthProgram, const Sphere* seen) {
     std::vector<double> signature = shadowSignature(scene, resolution);
     update_ = {};
-    if (texture_ != 0 && signature == signature_)
+    const bool sameScene = texture_ != 0 && signature == signature_;
+    bool directional = false;
+    scene.forEachLight([&](LightId, const Light& light) {
+        directional = directional || (light.castShadows && light.type == LightType::Directional);
+    });
+    Sphere region;
+    if (directional) {
+        Sphere wanted;
+        if (seen)
+            wanted = *seen;
+        else
+            scene.bounds(wanted.centre, wanted.radius);
+        region = chooseRegion(wanted, sameScene);
+    }
+    if (sameScene && region == region_)
         return 0;
     signature_ = std::move(signature);
+    region_ = region;
 
     std::vector<std::pair<std::uint64_t, const Instance*>> current; // the casters, by packed InstanceId
     scene.forEachInstance([&](InstanceId id, const Instance& instance) {
@@ -220,10 +252,13 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
 
     std::vector<ShadowInfo>& infos = infos_;
     infos.clear();
-    Eigen::Vector3d centre;
-    double radius = 0.0;
-    stableBounds(scene, centre, radius);
-    if (radius <= 0.0) {
+    // Spot maps reach as far as the scene does.
+    Sphere scope;
+    scene.bounds(scope.centre, scope.radius);
+    scope = snapped(scope);
+    const Eigen::Vector3d& centre = scope.centre;
+    const double radius = scope.radius;
+    if (radius <= 0.0 && region_.radius <= 0.0) {
         lightSignature_.clear(); // no maps now: the next ones are drawn whole
         return 0;
     }
@@ -246,10 +281,14 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
         Eigen::Matrix4d projection;
         Eigen::Matrix4d view;
         if (light.type == LightType::Directional) {
-            view = lookAlong(centre - forward * (2.0 * radius), forward);
-            projection = orthographic(radius, 0.0, 4.0 * radius);
-            info.texel = float(2.0 * radius / resolution);
+            if (region_.radius <= 0.0)
+                return; // the view sees nothing: no map
+            view = lookAlong(region_.centre - forward * (2.0 * region_.radius), forward);
+            projection = orthographic(region_.radius, 0.0, 4.0 * region_.radius);
+            info.texel = float(2.0 * region_.radius / resolution);
         } else {
+            if (radius <= 0.0)
+                return; // the scene has no bounds a map could cover
             const double halfAngle = std::min(light.outerConeDeg * M_PI / 180.0 + 0.05, 1.5);
             const double farClip = (light.position - centre).norm() + radius;
             const double nearClip = std::max(0.02, farClip * 1e-3);
@@ -340,6 +379,7 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
         ~RestoreState() {
             glDisable(GL_SCISSOR_TEST);
             glDisable(GL_POLYGON_OFFSET_FILL);
+            glDisable(GL_DEPTH_CLAMP);
         }
     } restoreState;
     depthProgram.use();
@@ -352,14 +392,23 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
     for (std::size_t i = 0; i < infos.size(); ++i) {
         const ShadowInfo& info = infos[i];
         glNamedFramebufferTextureLayer(fbo_, GL_COLOR_ATTACHMENT0, texture_, 0, info.layer);
+        // A directional map covers a region, not the scene: casters nearer the light than its near plane are
+        // drawn at depth 0 rather than clipped, since they still shadow the region.
+        if (info.perspective)
+            glDisable(GL_DEPTH_CLAMP);
+        else
+            glEnable(GL_DEPTH_CLAMP);
         if (drawAll) {
+            // Every caster is new to the map (drawAll leaves no still ones); those wholly outside it are
+            // not drawn.
             clear();
-            std::vector<const Instance*> all = statics;
-            all.insert(all.end(), moving.begin(), moving.end());
-            draw(scene, all, info, projections[i], positions[i], cache);
+            std::vector<const Instance*> inside;
+            for (std::size_t c = 0; c < moving.size(); ++c)
+                if (!(*movingFootprints[c])[i].empty())
+                    inside.push_back(moving[c]);
+            draw(scene, inside, info, projections[i], positions[i], cache);
             ++update_.fullMaps;
-            update_.staticDraws += statics.size();
-            update_.dynamicDraws += moving.size();
+            update_.dynamicDraws += inside.size();
         } else if (const Rect& region = stale[i]; !region.empty()) {
             // Cleared and drawn again, scissored to the rectangle, from every caster reaching into it. A
             // texel's depth is the nearest of the casters covering it, whatever the order, so this equals a

@@ -1,8 +1,14 @@
 #pragma once
-// Shadow maps of directional and spot lights, one layer of a depth texture array each. Directional maps
-// are orthographic and fit the scene's bounding sphere (snapped, so that objects moving inside the
-// scene neither resize nor shift the map); spot maps are perspective over the cone. Point lights cast
-// no shadows. Needs a current context.
+// Shadow maps of directional and spot lights, one layer of a depth texture array each. Spot maps are
+// perspective over the cone. Point lights cast no shadows. Needs a current context.
+//
+// Directional maps are orthographic over a region fitted to what the camera sees (the bounding sphere of
+// the instances in its frustum), not to the whole scene: objects that fall or roll far out of view neither
+// stretch the map (costing texels and detail where the camera looks) nor force it to be redrawn. The region
+// is snapped (radius to steps of 2^(1/4), centre to 1/16 of it) and kept while it holds what is seen and is
+// not much larger, so a moving camera or moving objects rarely change it, and the views of one frame share
+// it: a view seeing beyond the region of an earlier view of the same frame widens it to hold both. Casters
+// between the light and the region are drawn however far (depth clamping), so they still shadow it.
 //
 // Casters that did not change since the previous update are still: while the lights' projections stay the
 // same, an update clears and redraws only the rectangle around what changed (the footprints of casters that
@@ -30,6 +36,14 @@
 
 namespace sp::render {
 
+// A sphere in world space; radius 0: empty.
+struct Sphere {
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    double radius = 0.0;
+    bool holds(const Sphere& other) const { return (other.centre - centre).norm() + other.radius <= radius; }
+    bool operator==(const Sphere&) const = default;
+};
+
 struct ShadowInfo {
     int lightOrdinal = -1; // the light's position in the scene's light order
     int layer = -1;
@@ -54,11 +68,16 @@ class ShadowMaps {
     ShadowMaps(const ShadowMaps&) = delete;
     ShadowMaps& operator=(const ShadowMaps&) = delete;
 
-    // Brings the maps up to date for `scene`: one for each of the first shaders::kMaxShadowMaps
-    // shadow-casting directional or spot lights (in handle order). Returns how many maps were rendered:
-    // 0 when nothing that shapes them (lights, visible instances and their meshes, the resolution)
-    // changed since the last call, so the views of one frame and still scenes share one render.
-    std::size_t render(const Scene& scene, int resolution, GpuSceneCache& cache, ShaderProgram& depthProgram);
+    // Brings the maps up to date for `scene` seen by a view: one for each of the first
+    // shaders::kMaxShadowMaps shadow-casting directional or spot lights (in handle order). `seen` is what
+    // the directional maps must cover (Scene::bounds within the view's frustum); left out, the whole scene.
+    // Returns how many maps were rendered: 0 when nothing that shapes them (lights, visible instances and
+    // their meshes, the resolution, the directional region) changed since the last call, so the views of
+    // one frame and still scenes share one render.
+    std::size_t render(const Scene& scene, int resolution, GpuSceneCache& cache, ShaderProgram& depthProgram,
+                       const Sphere* seen = nullptr);
+    // The region the directional maps cover, as of the last render() (radius 0: none).
+    const Sphere& directionalRegion() const { return region_; }
     // Where each map is, as of the last render().
     const std::vector<ShadowInfo>& infos() const { return infos_; }
     const ShadowUpdate& lastUpdate() const { return update_; }
@@ -94,6 +113,9 @@ class ShadowMaps {
         }
     };
 
+    // The region the directional maps cover now, given what is seen and whether the scene is the one of
+    // the last update (another view of the same frame, or a still scene).
+    Sphere chooseRegion(const Sphere& seen, bool sameScene) const;
     // (Re)allocates the maps' storage for `layers` maps (at least as many as before) when anything changed.
     void ensure(int resolution, unsigned format, int layers);
     // Draws `casters` into the bound layer with the depth program in use.
@@ -112,6 +134,7 @@ class ShadowMaps {
     bool warnedTooMany_ = false;
     std::vector<ShadowInfo> infos_;
     ShadowUpdate update_;
+    Sphere region_;                      // what the directional maps cover
     std::vector<double> signature_;      // what the maps were rendered from
     std::vector<double> lightSignature_; // the projections the maps were drawn with (empty: draw them whole)
     std::unordered_map<std::uint64_t, CasterState> casters_; // by packed InstanceId, as last drawn

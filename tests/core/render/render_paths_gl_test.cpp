@@ -127,6 +127,33 @@ TEST_F(RenderPathsGlTest, ShadowMapsAreReusedUntilSomethingMoves) {
     EXPECT_GE(renderer().stats().shadowPasses, 1u); // a new resolution too
 }
 
+TEST_F(RenderPathsGlTest, ObjectsFallingFarOutOfViewLeaveTheImageAsItWas) {
+    // The sun's map covers what the camera sees: an object far out of view (fallen off the ground in a long
+    // run) neither coarsens the shadows in the image nor makes the map be drawn again when it moves.
+    Scene scene;
+    buildShapesScene(scene);
+    Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 96, 64, 60.0);
+    RenderTarget target(renderer(), {Modality::FinalColor}, 0);
+    Frame before;
+    target.render(scene, camera, before);
+    Instance fallen{scene.addMesh(primitives::sphere(0.15f, 16, 8)),
+                    {scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f, 0.0f))},
+                    {9}};
+    fallen.transform.translation() = Eigen::Vector3d(-150.0, 80.0, -400.0);
+    const InstanceId id = scene.addInstance(fallen);
+    for (int step = 0; step < 2; ++step) {
+        renderer().resetStats();
+        Frame after;
+        target.render(scene, camera, after);
+        const ImageBuffer &x = before.get(Modality::FinalColor), &y = after.get(Modality::FinalColor);
+        EXPECT_TRUE(std::equal(x.bytes.begin(), x.bytes.end(), y.bytes.begin())) << "step " << step;
+        EXPECT_EQ(renderer().stats().culledInstances, 1u);
+        Eigen::Affine3d transform = scene.instance(id).transform;
+        transform.translation().z() -= 30.0;
+        scene.setTransform(id, transform);
+    }
+}
+
 TEST_F(RenderPathsGlTest, ScenesSharingARendererKeepTheirShadowMapsAndStatistics) {
     // Two worlds' scenes drawn in turn by one renderer: each keeps its shadow maps (reused from its own
     // previous frame, not redrawn because the other scene was drawn in between) and its own counts.

@@ -24,8 +24,8 @@ class ShadowMapsGlTest : public GlTest {
     ShadowMapsGlTest() : depth_("shadow test", shaders::shadowVertex().c_str(), shaders::kShadowFragment) {}
 
     // Every layer a render of `scene` fills, as floats.
-    std::vector<float> layers(ShadowMaps& maps, const Scene& scene) {
-        maps.render(scene, kResolution, cache_, depth_);
+    std::vector<float> layers(ShadowMaps& maps, const Scene& scene, const Sphere* seen = nullptr) {
+        maps.render(scene, kResolution, cache_, depth_, seen);
         std::vector<float> values;
         for (const ShadowInfo& info : maps.infos()) {
             std::vector<float> layer(std::size_t(kResolution) * kResolution);
@@ -37,10 +37,11 @@ class ShadowMapsGlTest : public GlTest {
     }
 
     // The maps `maps` hold after an update equal those of a ShadowMaps that never saw the scene before.
-    void expectSameAsFresh(ShadowMaps& maps, const Scene& scene, const char* step) {
-        const std::vector<float> kept = layers(maps, scene);
+    void expectSameAsFresh(ShadowMaps& maps, const Scene& scene, const char* step,
+                           const Sphere* seen = nullptr) {
+        const std::vector<float> kept = layers(maps, scene, seen);
         ShadowMaps fresh;
-        const std::vector<float> expected = layers(fresh, scene);
+        const std::vector<float> expected = layers(fresh, scene, seen);
         ASSERT_EQ(kept.size(), expected.size()) << step;
         ASSERT_FALSE(kept.empty()) << step;
         EXPECT_LT(*std::min_element(kept.begin(), kept.end()), 1.0f) << step << ": the maps hold no caster";
@@ -48,6 +49,18 @@ class ShadowMapsGlTest : public GlTest {
         for (std::size_t i = 0; i < kept.size(); ++i)
             differing += kept[i] != expected[i];
         EXPECT_EQ(differing, 0u) << step;
+    }
+
+    // The depth the first map holds where `world` falls.
+    static float depthAt(const ShadowMaps& maps, const Eigen::Vector3d& world) {
+        const ShadowInfo& info = maps.infos().at(0);
+        const Eigen::Vector4f clip = info.worldToClip * world.cast<float>().homogeneous();
+        const int x = int((clip.x() * 0.5f + 0.5f) * kResolution),
+                  y = int((clip.y() * 0.5f + 0.5f) * kResolution);
+        float value = -1.0f;
+        glGetTextureSubImage(maps.texture(), 0, x, y, info.layer, 1, 1, 1, GL_RED, GL_FLOAT, sizeof(value),
+                             &value);
+        return value;
     }
 
     static void moveBy(Scene& scene, InstanceId id, const Eigen::Vector3d& offset) {
@@ -182,6 +195,87 @@ TEST_F(ShadowMapsGlTest, StorageHoldsOnlyTheMapsDrawn) {
     scene.addLight(second);
     expectSameAsFresh(maps, scene, "a second sun");
     EXPECT_EQ(layers(), 2);
+}
+
+TEST_F(ShadowMapsGlTest, ObjectsFarOutOfViewNeitherStretchNorRedrawTheDirectionalMap) {
+    // Objects that fell or rolled far away (as in a long co-simulation) are outside what the camera sees:
+    // the sun's map keeps the region and texels of the scene in view, and their moving draws nothing.
+    Scene scene;
+    buildShapesScene(scene);
+    Sphere seen;
+    scene.bounds(seen.centre, seen.radius);
+    ShadowMaps before;
+    const std::vector<float> expected = layers(before, scene, &seen);
+    Instance fallen{scene.addMesh(primitives::box({0.3f, 0.3f, 0.3f})),
+                    {scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f, 0.0f))},
+                    {9}};
+    fallen.transform.translation() = Eigen::Vector3d(300.0, -40.0, -500.0);
+    const InstanceId id = scene.addInstance(fallen);
+    ShadowMaps maps;
+    EXPECT_EQ(layers(maps, scene, &seen), expected);
+    EXPECT_EQ(maps.directionalRegion(), before.directionalRegion());
+    moveBy(scene, id, {0.0, 0.0, -20.0});
+    EXPECT_EQ(layers(maps, scene, &seen), expected);
+    EXPECT_EQ(maps.lastUpdate().fullMaps, 0u);
+    EXPECT_EQ(maps.lastUpdate().redrawnTexels, 0u) << "the fallen box is outside the map";
+    ShadowMaps whole; // fitted to the whole scene, the map would stretch to the fallen box
+    layers(whole, scene);
+    EXPECT_GT(whole.directionalRegion().radius, 100.0);
+}
+
+TEST_F(ShadowMapsGlTest, ACasterTowardsTheLightFarBeyondTheRegionStillShadowsIt) {
+    // The map covers a small patch of ground; a small box 30 m up towards the sun is far outside the map's
+    // depth range, yet it is drawn (at depth 0, depth clamping) and shadows the patch.
+    Scene scene;
+    buildShapesScene(scene); // the sun shines along (-0.4, -0.5, -1)
+    const Eigen::Vector3d patch(-2.5, 2.5, 0.0);
+    const Eigen::Vector3d towardsSun = -Eigen::Vector3d(-0.4, -0.5, -1.0).normalized();
+    Instance high{scene.addMesh(primitives::box({0.2f, 0.2f, 0.2f})),
+                  {scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f, 0.0f))},
+                  {9}};
+    high.transform.translation() = patch + 30.0 * towardsSun;
+    scene.addInstance(high);
+    const Sphere seen{patch, 0.5};
+    ShadowMaps maps;
+    ASSERT_GT(maps.render(scene, kResolution, cache_, depth_, &seen), 0u);
+    ASSERT_LT(maps.directionalRegion().radius, 1.0);
+    EXPECT_EQ(depthAt(maps, patch), 0.0f) << "the high box's shadow";
+    EXPECT_GT(depthAt(maps, patch + Eigen::Vector3d(0.4, -0.1, 0.0)), 0.3f) << "the ground beside it";
+}
+
+TEST_F(ShadowMapsGlTest, TheDirectionalRegionIsKeptWhileItHoldsWhatIsSeenAndSharedByTheViewsOfAFrame) {
+    Scene scene;
+    buildShapesScene(scene);
+    const std::vector<InstanceId> ids = instanceIds(scene);
+    const Sphere view{{0.0, 0.0, 0.3}, 2.0};
+    ShadowMaps maps;
+    ASSERT_GT(maps.render(scene, kResolution, cache_, depth_, &view), 0u);
+    const Sphere fitted = maps.directionalRegion();
+    EXPECT_TRUE(fitted.holds(view));
+    EXPECT_LT(fitted.radius, 1.5 * view.radius);
+
+    // Another view of the same frame, seeing a little to the side: the map is shared as it is.
+    const Sphere nudged{{0.1, 0.0, 0.3}, 2.0};
+    EXPECT_EQ(maps.render(scene, kResolution, cache_, depth_, &nudged), 0u);
+    EXPECT_EQ(maps.directionalRegion(), fitted);
+    // One seeing beyond it: the region widens to hold both views, so that neither redraws it again.
+    const Sphere aside{{3.0, 3.0, 0.0}, 1.0};
+    EXPECT_GT(maps.render(scene, kResolution, cache_, depth_, &aside), 0u);
+    const Sphere both = maps.directionalRegion();
+    EXPECT_TRUE(both.holds(view) && both.holds(aside));
+    EXPECT_EQ(maps.render(scene, kResolution, cache_, depth_, &view), 0u);
+
+    // A new frame (the sphere moved) seen by the first view alone: fitted afresh, as a new map would be.
+    moveBy(scene, ids[2], {0.05, 0.0, 0.0});
+    expectSameAsFresh(maps, scene, "a new frame", &view);
+    EXPECT_EQ(maps.directionalRegion(), fitted);
+    // The next frame sees a little less: the region is kept, and only around the sphere is drawn again.
+    moveBy(scene, ids[2], {0.05, 0.0, 0.0});
+    const Sphere closer{{0.0, 0.0, 0.3}, 1.8};
+    maps.render(scene, kResolution, cache_, depth_, &closer);
+    EXPECT_EQ(maps.directionalRegion(), fitted);
+    EXPECT_EQ(maps.lastUpdate().fullMaps, 0u);
+    EXPECT_EQ(maps.lastUpdate().dynamicDraws, 1u);
 }
 
 // Found by spear_rpc_fuzz: an actor moved to 1e300 made the scene's bounds infinite, and snapping them
