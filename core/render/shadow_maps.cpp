@@ -107,6 +107,8 @@ std::uint64_t packed(InstanceId id) {
 } // namespace
 
 ShadowMaps::~ShadowMaps() {
+    glDeleteVertexArrays(1, &quadVao_);
+    glDeleteBuffers(2, quadBuffers_);
     glDeleteFramebuffers(1, &fbo_);
     glDeleteRenderbuffers(1, &depthBuffer_);
     glDeleteTextures(1, &texture_);
@@ -134,6 +136,46 @@ void ShadowMaps::ensure(int resolution, unsigned format, int layers) {
     format_ = format;
     layers_ = layers;
     lightSignature_.clear(); // new storage holds nothing yet: the next update draws in full
+}
+
+void ShadowMaps::clearRects(const std::vector<Rect>& rects, int resolution) {
+    if (rects.empty())
+        return;
+    if (quadVao_ == 0) { // the unit square, drawn once per rectangle
+        const float corners[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+        const std::uint32_t triangles[] = {0, 1, 2, 0, 2, 3};
+        glCreateBuffers(2, quadBuffers_);
+        glNamedBufferStorage(quadBuffers_[0], sizeof(corners), corners, 0);
+        glNamedBufferStorage(quadBuffers_[1], sizeof(triangles), triangles, 0);
+        glCreateVertexArrays(1, &quadVao_);
+        glVertexArrayVertexBuffer(quadVao_, 0, quadBuffers_[0], 0, sizeof(float) * 3);
+        glVertexArrayElementBuffer(quadVao_, quadBuffers_[1]);
+        glEnableVertexArrayAttrib(quadVao_, 0);
+        glVertexArrayAttribFormat(quadVao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(quadVao_, 0, 0);
+        configureInstanceAttributes(quadVao_);
+    }
+    // Each rectangle's square at the far plane (z = w: depth 1), over the texels' centres it holds.
+    records_.resize(rects.size());
+    for (std::size_t i = 0; i < rects.size(); ++i) {
+        const Rect& rect = rects[i];
+        Eigen::Matrix4d toClip = Eigen::Matrix4d::Zero();
+        toClip(0, 0) = 2.0 * (rect.x1 - rect.x0) / resolution;
+        toClip(0, 3) = 2.0 * rect.x0 / resolution - 1.0;
+        toClip(1, 1) = 2.0 * (rect.y1 - rect.y0) / resolution;
+        toClip(1, 3) = 2.0 * rect.y0 / resolution - 1.0;
+        toClip(2, 3) = toClip(3, 3) = 1.0;
+        records_[i].setModelViewProjection(toClip);
+    }
+    instances_.upload(records_);
+    instances_.bind(quadVao_);
+    glBindVertexArray(quadVao_);
+    glDepthFunc(GL_ALWAYS);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glDrawElementsInstanced(GL_TRIANGLES, 6, GL_UNSIGNED_INT, nullptr, GLsizei(rects.size()));
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glDepthFunc(GL_LESS);
+    glBindVertexArray(0);
 }
 
 void ShadowMaps::draw(const Scene& scene, const std::vector<const Instance*>& casters, const ShadowInfo& info,
@@ -207,6 +249,30 @@ ShadowMaps::Rect ShadowMaps::footprint(const Scene& scene, const Instance& insta
     auto clampTo = [&](double v) { return int(std::clamp(v, 0.0, double(resolution))); };
     return {clampTo(std::floor(x0) - 2), clampTo(std::floor(y0) - 2), clampTo(std::ceil(x1) + 2),
             clampTo(std::ceil(y1) + 2)};
+}
+
+std::vector<ShadowMaps::Rect> ShadowMaps::coalesced(std::vector<Rect> rects) {
+    std::erase_if(rects, [](const Rect& rect) { return rect.empty(); });
+    // Two rectangles become their union when it costs little more than drawing both: the texels it adds
+    // against the fixed cost of a rectangle (its own scissored draws of the casters reaching into it, which
+    // a software rasteriser pays as about this many texels).
+    constexpr std::size_t kRectCostInTexels = 4096;
+    for (bool merged = true; merged;) {
+        merged = false;
+        for (std::size_t i = 0; i < rects.size(); ++i)
+            for (std::size_t j = i + 1; j < rects.size();) {
+                const Rect both = rects[i].united(rects[j]);
+                if (both.area() <= rects[i].area() + rects[j].area() + kRectCostInTexels) {
+                    rects[i] = both;
+                    rects[j] = rects.back();
+                    rects.pop_back();
+                    merged = true;
+                } else {
+                    ++j;
+                }
+            }
+    }
+    return rects;
 }
 
 Sphere ShadowMaps::chooseRegion(const Sphere& seen, bool sameScene) const {
@@ -331,7 +397,7 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
     // rest or starting to move changes nothing else.
     std::vector<const Instance*> statics, moving;
     std::vector<const std::vector<Rect>*> staticFootprints, movingFootprints;
-    std::vector<Rect> stale(infos.size());
+    std::vector<std::vector<Rect>> stale(infos.size());
     std::unordered_map<std::uint64_t, CasterState> casters;
     casters.reserve(current.size());
     for (const auto& [id, instance] : current) {
@@ -350,9 +416,9 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
         }
         for (std::size_t i = 0; i < infos.size(); ++i) {
             state.footprints.push_back(footprint(scene, *instance, projections[i], resolution));
-            stale[i] = stale[i].united(state.footprints.back());
+            stale[i].push_back(state.footprints.back());
             if (known)
-                stale[i] = stale[i].united(previous->second.footprints[i]);
+                stale[i].push_back(previous->second.footprints[i]);
         }
         if (previous != casters_.end())
             casters_.erase(previous);
@@ -362,7 +428,7 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
     if (!drawAll)
         for (const auto& [id, gone] : casters_) // removed, hidden or no longer casting since the last update
             for (std::size_t i = 0; i < infos.size(); ++i)
-                stale[i] = stale[i].united(gone.footprints[i]);
+                stale[i].push_back(gone.footprints[i]);
     casters_ = std::move(casters);
 
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
@@ -383,7 +449,7 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
         }
     } restoreState;
     depthProgram.use();
-    // The layer's depths to the far plane, and the depth buffer with them (within the scissor, if any).
+    // The whole layer's depths to the far plane, and the depth buffer with them (clearRects() clears parts).
     auto clear = [] {
         const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f};
         glClearBufferfv(GL_COLOR, 0, far);
@@ -409,27 +475,32 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
             draw(scene, inside, info, projections[i], positions[i], cache);
             ++update_.fullMaps;
             update_.dynamicDraws += inside.size();
-        } else if (const Rect& region = stale[i]; !region.empty()) {
-            // Cleared and drawn again, scissored to the rectangle, from every caster reaching into it. A
-            // texel's depth is the nearest of the casters covering it, whatever the order, so this equals a
-            // full render bit for bit; and unlike copying the rectangle back from a map of the still casters,
-            // it never makes the CPU wait for the rasteriser (a software one copies through mapped memory).
-            glEnable(GL_SCISSOR_TEST);
-            glScissor(region.x0, region.y0, region.x1 - region.x0, region.y1 - region.y0);
-            clear();
-            std::vector<const Instance*> reaching;
-            for (std::size_t c = 0; c < statics.size(); ++c)
-                if ((*staticFootprints[c])[i].overlaps(region))
-                    reaching.push_back(statics[c]);
-            update_.staticDraws += reaching.size();
-            for (std::size_t c = 0; c < moving.size(); ++c)
-                if ((*movingFootprints[c])[i].overlaps(region)) {
-                    reaching.push_back(moving[c]);
-                    ++update_.dynamicDraws;
-                }
-            draw(scene, reaching, info, projections[i], positions[i], cache);
-            glDisable(GL_SCISSOR_TEST);
-            update_.redrawnTexels += std::size_t(region.x1 - region.x0) * std::size_t(region.y1 - region.y0);
+        } else {
+            // Each stale rectangle is cleared and drawn again, scissored to it, from every caster reaching
+            // into it. A texel's depth is the nearest of the casters covering it, whatever the order, so this
+            // equals a full render bit for bit; and unlike copying the rectangle back from a map of the still
+            // casters, it never makes the CPU wait for the rasteriser (a software one copies through mapped
+            // memory).
+            const std::vector<Rect> regions = coalesced(std::move(stale[i]));
+            clearRects(regions, resolution);
+            for (const Rect& region : regions) {
+                glEnable(GL_SCISSOR_TEST);
+                glScissor(region.x0, region.y0, region.x1 - region.x0, region.y1 - region.y0);
+                std::vector<const Instance*> reaching;
+                for (std::size_t c = 0; c < statics.size(); ++c)
+                    if ((*staticFootprints[c])[i].overlaps(region))
+                        reaching.push_back(statics[c]);
+                update_.staticDraws += reaching.size();
+                for (std::size_t c = 0; c < moving.size(); ++c)
+                    if ((*movingFootprints[c])[i].overlaps(region)) {
+                        reaching.push_back(moving[c]);
+                        ++update_.dynamicDraws;
+                    }
+                draw(scene, reaching, info, projections[i], positions[i], cache);
+                glDisable(GL_SCISSOR_TEST);
+                update_.redrawnTexels += region.area();
+                ++update_.redrawnRects;
+            }
         }
     }
     update_.maps = infos.size();

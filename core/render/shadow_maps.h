@@ -59,6 +59,7 @@ struct ShadowUpdate {
     std::size_t dynamicDraws = 0;  // moving casters drawn
     std::size_t staticDraws = 0;   // still casters drawn again (those reaching into a redrawn rectangle)
     std::size_t redrawnTexels = 0; // texels cleared and drawn again around moving casters
+    std::size_t redrawnRects = 0;  // the rectangles they form (each drawn on its own, scissored)
 };
 
 class ShadowMaps {
@@ -98,6 +99,7 @@ class ShadowMaps {
     struct Rect {
         int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
         bool empty() const { return x0 >= x1 || y0 >= y1; }
+        std::size_t area() const { return empty() ? 0 : std::size_t(x1 - x0) * std::size_t(y1 - y0); }
         bool overlaps(const Rect& other) const {
             return !empty() && !other.empty() && x0 < other.x1 && other.x0 < x1 && y0 < other.y1 &&
                    other.y0 < y1;
@@ -116,6 +118,12 @@ class ShadowMaps {
     // The region the directional maps cover now, given what is seen and whether the scene is the one of
     // the last update (another view of the same frame, or a still scene).
     Sphere chooseRegion(const Sphere& seen, bool sameScene) const;
+    // `rects` with those that overlap or lie close merged into their union (see the cost in the .cpp).
+    static std::vector<Rect> coalesced(std::vector<Rect> rects);
+    // Sets the texels of `rects` in the bound layer, and the depth buffer's, to the far plane, with one draw
+    // of the depth program (already in use) rather than a scissored clear each: a software rasteriser runs
+    // such a clear apart from the draws queued before it, and each cost more than the draws it served.
+    void clearRects(const std::vector<Rect>& rects, int resolution);
     // (Re)allocates the maps' storage for `layers` maps (at least as many as before) when anything changed.
     void ensure(int resolution, unsigned format, int layers);
     // Draws `casters` into the bound layer with the depth program in use.
@@ -128,6 +136,7 @@ class ShadowMaps {
     unsigned texture_ = 0;
     unsigned depthBuffer_ = 0; // the depth test's buffer, one layer's worth
     unsigned fbo_ = 0;
+    unsigned quadVao_ = 0, quadBuffers_[2] = {0, 0}; // a unit square (clearRects)
     int resolution_ = 0;
     unsigned format_ = 0;
     int layers_ = 0;

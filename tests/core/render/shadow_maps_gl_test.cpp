@@ -178,6 +178,31 @@ TEST_F(ShadowMapsGlTest, CastersStoppingStartingAndLeavingAreRedrawnWhereTheyWer
     EXPECT_EQ(maps.lastUpdate().fullMaps, 0u);
 }
 
+TEST_F(ShadowMapsGlTest, CastersFarApartAreRedrawnInRectanglesOfTheirOwn) {
+    // Two boxes moving in opposite corners of the ground: the texels between them stay as they are (one
+    // rectangle around both would be most of the map), and the maps still equal a fresh render.
+    Scene scene;
+    buildShapesScene(scene);
+    MeshId box = scene.addMesh(primitives::box({0.3f, 0.3f, 0.3f}));
+    MaterialId grey = scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f, 0.0f));
+    Instance a{box, {grey}, {9}}, b{box, {grey}, {10}};
+    a.transform.translation() = Eigen::Vector3d(-3.4, -3.4, 0.15);
+    b.transform.translation() = Eigen::Vector3d(3.4, 3.4, 0.15);
+    const InstanceId first = scene.addInstance(a), second = scene.addInstance(b);
+    ShadowMaps maps;
+    expectSameAsFresh(maps, scene, "first update");
+    for (int step = 0; step < 3; ++step) {
+        moveBy(scene, first, {0.05, 0.0, 0.0});
+        moveBy(scene, second, {0.0, -0.05, 0.0});
+        expectSameAsFresh(maps, scene, "both boxes moved");
+        const ShadowUpdate& update = maps.lastUpdate();
+        EXPECT_EQ(update.fullMaps, 0u);
+        EXPECT_EQ(update.redrawnRects, 2u);
+        EXPECT_EQ(update.dynamicDraws, 2u);
+        EXPECT_LT(update.redrawnTexels, std::size_t(kResolution) * kResolution / 20);
+    }
+}
+
 TEST_F(ShadowMapsGlTest, StorageHoldsOnlyTheMapsDrawn) {
     // One sun, one layer; a second shadowed light grows the storage, and the maps still equal a fresh render.
     Scene scene;
