@@ -276,6 +276,40 @@ def test_a_round_shape_drawn_at_a_coarser_level_of_detail_keeps_its_outline(inst
     assert np.all(ids[r > disc + 1.0] == 0), f"sphere outside the outline at {distance} m"
 
 
+def test_an_object_falling_far_out_of_view_leaves_the_shadowed_image_as_it_was(instance: spear.Instance) -> None:
+    """The sun's shadow map covers what the camera sees: an object far out of view (one that fell off the ground
+    in a long run) neither coarsens the shadows in the image nor changes a pixel as it keeps falling."""
+    game = instance.get_game()
+    with instance.begin_frame():
+        ground = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Ground")
+        ground.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Plane")
+        ground.SetActorScale3D(NewScale3D=spear.FVector(8.0, 8.0, 1.0))
+        crate = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Crate", location=spear.FVector(Z=0.5))
+        crate.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        # Shining towards the camera, so the crate's shadow falls on the ground in view.
+        sun = game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun", rotation=spear.FRotator(Pitch=-50.0, Yaw=-160.0))
+        sun.LightComponent.Intensity = 3.0
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera", location=spear.FVector(-5.0, -2.0, 3.0),
+                                  rotation=spear.FRotator(Pitch=-28.0, Yaw=20.0)).CameraSensor
+        camera.Width, camera.Height, camera.FOV = 64, 48, 60.0
+        camera.ShadowResolution = 256
+        camera.Modalities = [M.FinalColor]
+    with instance.end_frame():
+        before = camera.read_pixels()["final_color"]
+    ground_rows = before[before.shape[0] // 2:, :, :3].astype(np.float64).mean(axis=2)  # the ground, no sky
+    assert ground_rows.max() > 180 and ground_rows.min() < 100, "the crate's shadow darkens part of the ground"
+    with instance.begin_frame():
+        fallen = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Fallen",
+                                  location=spear.FVector(-150.0, 80.0, -400.0))
+        fallen.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Sphere")
+    for step in range(2):
+        with instance.end_frame():
+            after = camera.read_pixels()["final_color"]
+        np.testing.assert_array_equal(after, before, err_msg=f"step {step}")
+        with instance.begin_frame():
+            fallen.SetActorLocation(NewLocation=spear.FVector(-150.0, 80.0, -430.0 - 30.0 * step))
+
+
 def test_only_the_needed_passes_run(instance: spear.Instance) -> None:
     game = instance.get_game()
     with instance.begin_frame():
