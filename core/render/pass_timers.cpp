@@ -20,10 +20,10 @@ void PassTimers::begin(Pass pass) {
         free_.pop_back();
     }
     glBeginQuery(GL_TIME_ELAPSED, query);
-    pending_.push_back({query, pass});
+    start_ = std::chrono::steady_clock::now();
+    pending_.push_back({query, pass, start_});
     open_ = true;
     openPass_ = pass;
-    start_ = std::chrono::steady_clock::now();
 }
 
 void PassTimers::end() {
@@ -37,6 +37,7 @@ void PassTimers::end() {
 
 void PassTimers::collect() {
     // Results arrive in submission order, so stop at the first that is not ready.
+    const auto now = std::chrono::steady_clock::now();
     std::size_t done = 0;
     for (; done < pending_.size(); ++done) {
         if (open_ && done + 1 == pending_.size())
@@ -47,10 +48,16 @@ void PassTimers::collect() {
             break;
         GLuint64 nanoseconds = 0;
         glGetQueryObjectui64v(pending_[done].query, GL_QUERY_RESULT, &nanoseconds);
-        PassTime& total = totals_[static_cast<std::size_t>(pending_[done].pass)];
-        total.gpuMs += double(nanoseconds) * 1e-6;
-        ++total.samples;
         free_.push_back(pending_[done].query);
+        // A pass cannot have run longer than the time since it began. llvmpipe answers the first query of a
+        // new context with its end time alone (the time since boot: 3096 s after two frames), which would
+        // swamp every total; such a result is not a measurement.
+        const double ms = double(nanoseconds) * 1e-6;
+        if (ms > std::chrono::duration<double, std::milli>(now - pending_[done].begun).count())
+            continue;
+        PassTime& total = totals_[static_cast<std::size_t>(pending_[done].pass)];
+        total.gpuMs += ms;
+        ++total.samples;
     }
     pending_.erase(pending_.begin(), pending_.begin() + std::ptrdiff_t(done));
 }

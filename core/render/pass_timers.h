@@ -17,7 +17,9 @@ inline constexpr std::size_t kPassCount = 4;
 struct PassTime {
     double gpuMs = 0.0;        // sum of timer-query results collected so far
     double cpuMs = 0.0;        // sum of the time spent issuing the pass (readback: waiting and copying)
-    std::uint64_t samples = 0; // timer-query results collected
+    std::uint64_t samples = 0; // timer-query results collected (those longer than the time since the pass
+                               // began are dropped: llvmpipe answers a new context's first query with the
+                               // time since boot)
 };
 
 class PassTimers {
@@ -39,6 +41,7 @@ class PassTimers {
     struct Pending {
         unsigned query;
         Pass pass;
+        std::chrono::steady_clock::time_point begun;
     };
     std::vector<unsigned> free_;
     std::vector<Pending> pending_;

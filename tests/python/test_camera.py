@@ -5,6 +5,7 @@ decomposition, latency, pass selection, lifetime and errors."""
 from __future__ import annotations
 
 import math
+import time
 from pathlib import Path
 
 import numpy as np
@@ -308,6 +309,34 @@ def test_an_object_falling_far_out_of_view_leaves_the_shadowed_image_as_it_was(i
         np.testing.assert_array_equal(after, before, err_msg=f"step {step}")
         with instance.begin_frame():
             fallen.SetActorLocation(NewLocation=spear.FVector(-150.0, 80.0, -430.0 - 30.0 * step))
+
+
+def test_pass_timings_are_measurements(instance: spear.Instance) -> None:
+    """ShadowMs, SurfaceMs and ReadbackMs add up per-pass times: none is negative or longer than the frames took
+    (llvmpipe answers a new GL context's first timer query with the time since boot, which is dropped)."""
+    started = time.perf_counter()
+    game = instance.get_game()
+    with instance.begin_frame():
+        ground = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Ground")
+        ground.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Plane")
+        crate = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Crate", location=spear.FVector(Z=0.5))
+        crate.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun", rotation=spear.FRotator(Pitch=-50.0))
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera", location=spear.FVector(-5.0, 0.0, 2.0),
+                                  rotation=spear.FRotator(Pitch=-20.0)).CameraSensor
+        camera.Width, camera.Height, camera.Modalities = 32, 24, [M.FinalColor]
+    with instance.end_frame():
+        pass
+    for step in range(3):
+        with instance.begin_frame():
+            crate.SetActorLocation(NewLocation=spear.FVector(Z=0.5 + 0.1 * step))
+        with instance.end_frame():
+            camera.read_pixels()
+            stats = camera.GetRenderStats()
+    elapsed_ms = 1000.0 * (time.perf_counter() - started)
+    assert stats.ShadowPasses >= 1 and stats.SurfacePasses >= 3
+    for name, value in [("ShadowMs", stats.ShadowMs), ("SurfaceMs", stats.SurfaceMs), ("ReadbackMs", stats.ReadbackMs)]:
+        assert 0.0 <= value <= elapsed_ms, f"{name} = {value} ms in {elapsed_ms:.0f} ms of frames"
 
 
 def test_only_the_needed_passes_run(instance: spear.Instance) -> None:
