@@ -253,6 +253,15 @@ ShadowMaps::Rect ShadowMaps::footprint(const Scene& scene, const Instance& insta
 
 std::vector<ShadowMaps::Rect> ShadowMaps::coalesced(std::vector<Rect> rects) {
     std::erase_if(rects, [](const Rect& rect) { return rect.empty(); });
+    // Merging is quadratic in the rectangles: past this many (over a hundred moving casters), one rectangle
+    // around them all is cheaper to find and about as cheap to redraw, as they cover much of the map.
+    constexpr std::size_t kMostRects = 256;
+    if (rects.size() > kMostRects) {
+        Rect all;
+        for (const Rect& rect : rects)
+            all = all.united(rect);
+        return {all};
+    }
     // Two rectangles become their union when it costs little more than drawing both: the texels it adds
     // against the fixed cost of a rectangle (its own scissored draws of the casters reaching into it, which
     // a software rasteriser pays as about this many texels).

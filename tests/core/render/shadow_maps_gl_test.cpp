@@ -203,6 +203,28 @@ TEST_F(ShadowMapsGlTest, CastersFarApartAreRedrawnInRectanglesOfTheirOwn) {
     }
 }
 
+TEST_F(ShadowMapsGlTest, HundredsOfMovingCastersAreRedrawnInOneRectangle) {
+    // Past a few hundred rectangles, merging them pairwise would cost more than it saves: one rectangle
+    // around them all is redrawn, and the maps still equal a fresh render.
+    Scene scene;
+    buildShapesScene(scene);
+    MeshId box = scene.addMesh(primitives::box({0.1f, 0.1f, 0.1f}));
+    MaterialId grey = scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f, 0.0f));
+    std::vector<InstanceId> boxes;
+    for (int i = 0; i < 210; ++i) {
+        Instance crate{box, {grey}, {std::uint32_t(100 + i)}};
+        crate.transform.translation() = Eigen::Vector3d(-3.5 + 0.5 * (i % 15), -3.5 + 0.5 * (i / 15), 1.5);
+        boxes.push_back(scene.addInstance(crate));
+    }
+    ShadowMaps maps;
+    expectSameAsFresh(maps, scene, "first update");
+    for (const InstanceId id : boxes)
+        moveBy(scene, id, {0.02, 0.0, 0.0});
+    expectSameAsFresh(maps, scene, "every box moved");
+    EXPECT_EQ(maps.lastUpdate().fullMaps, 0u);
+    EXPECT_EQ(maps.lastUpdate().redrawnRects, 1u);
+}
+
 TEST_F(ShadowMapsGlTest, StorageHoldsOnlyTheMapsDrawn) {
     // One sun, one layer; a second shadowed light grows the storage, and the maps still equal a fresh render.
     Scene scene;
