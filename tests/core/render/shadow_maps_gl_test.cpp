@@ -63,6 +63,22 @@ class ShadowMapsGlTest : public GlTest {
         return value;
     }
 
+    // Grey boxes of edge `edge` at `positions` (one mesh and material between them), object ids from
+    // `firstId`.
+    static std::vector<InstanceId> addBoxes(Scene& scene, float edge,
+                                            const std::vector<Eigen::Vector3d>& positions,
+                                            std::uint32_t firstId = 9) {
+        const MeshId box = scene.addMesh(primitives::box(Eigen::Vector3f::Constant(edge)));
+        const MaterialId grey = scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f, 0.0f));
+        std::vector<InstanceId> ids;
+        for (const Eigen::Vector3d& position : positions) {
+            Instance instance{box, {grey}, {firstId++}};
+            instance.transform.translation() = position;
+            ids.push_back(scene.addInstance(instance));
+        }
+        return ids;
+    }
+
     static void moveBy(Scene& scene, InstanceId id, const Eigen::Vector3d& offset) {
         Eigen::Affine3d transform = scene.instance(id).transform;
         transform.translation() += offset;
@@ -108,10 +124,7 @@ TEST_F(ShadowMapsGlTest, AnyHistoryOfUpdatesGivesTheMapsOfAFreshRender) {
 TEST_F(ShadowMapsGlTest, SpotLightMapsKeepFullDepthPrecisionAndTheSameGuarantee) {
     Scene scene;
     buildSpotScene(scene);
-    MeshId box = scene.addMesh(primitives::box({0.3f, 0.3f, 0.3f}));
-    Instance crate{box, {scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f, 0.0f))}, {77}};
-    crate.transform.translation() = Eigen::Vector3d(0.5, 0.5, 0.15);
-    const InstanceId id = scene.addInstance(crate);
+    const InstanceId id = addBoxes(scene, 0.3f, {{0.5, 0.5, 0.15}}, 77)[0];
     ShadowMaps maps;
     expectSameAsFresh(maps, scene, "first update");
     EXPECT_EQ(maps.format(), unsigned(GL_R32F)); // perspective depth is not linear
@@ -125,12 +138,7 @@ TEST_F(ShadowMapsGlTest, SpotLightMapsKeepFullDepthPrecisionAndTheSameGuarantee)
 TEST_F(ShadowMapsGlTest, OneObjectMovingInAStillSceneRedrawsOnlyItsNeighbourhood) {
     Scene scene;
     buildShapesScene(scene);
-    Instance far{scene.addMesh(primitives::box({0.4f, 0.4f, 0.4f})),
-                 {scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f, 0.0f))},
-                 {9}};
-    far.transform.translation() =
-        Eigen::Vector3d(3.6, 3.6, 0.2); // in a corner of the ground, far from the sphere
-    scene.addInstance(far);
+    addBoxes(scene, 0.4f, {{3.6, 3.6, 0.2}}); // in a corner of the ground, far from the sphere
     const std::vector<InstanceId> ids = instanceIds(scene);
     ShadowMaps maps;
     maps.render(scene, kResolution, cache_, depth_);
@@ -183,12 +191,8 @@ TEST_F(ShadowMapsGlTest, CastersFarApartAreRedrawnInRectanglesOfTheirOwn) {
     // rectangle around both would be most of the map), and the maps still equal a fresh render.
     Scene scene;
     buildShapesScene(scene);
-    MeshId box = scene.addMesh(primitives::box({0.3f, 0.3f, 0.3f}));
-    MaterialId grey = scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f, 0.0f));
-    Instance a{box, {grey}, {9}}, b{box, {grey}, {10}};
-    a.transform.translation() = Eigen::Vector3d(-3.4, -3.4, 0.15);
-    b.transform.translation() = Eigen::Vector3d(3.4, 3.4, 0.15);
-    const InstanceId first = scene.addInstance(a), second = scene.addInstance(b);
+    const std::vector<InstanceId> boxes = addBoxes(scene, 0.3f, {{-3.4, -3.4, 0.15}, {3.4, 3.4, 0.15}});
+    const InstanceId first = boxes[0], second = boxes[1];
     ShadowMaps maps;
     expectSameAsFresh(maps, scene, "first update");
     for (int step = 0; step < 3; ++step) {
@@ -208,14 +212,10 @@ TEST_F(ShadowMapsGlTest, HundredsOfMovingCastersAreRedrawnInOneRectangle) {
     // around them all is redrawn, and the maps still equal a fresh render.
     Scene scene;
     buildShapesScene(scene);
-    MeshId box = scene.addMesh(primitives::box({0.1f, 0.1f, 0.1f}));
-    MaterialId grey = scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f, 0.0f));
-    std::vector<InstanceId> boxes;
-    for (int i = 0; i < 210; ++i) {
-        Instance crate{box, {grey}, {std::uint32_t(100 + i)}};
-        crate.transform.translation() = Eigen::Vector3d(-3.5 + 0.5 * (i % 15), -3.5 + 0.5 * (i / 15), 1.5);
-        boxes.push_back(scene.addInstance(crate));
-    }
+    std::vector<Eigen::Vector3d> grid;
+    for (int i = 0; i < 210; ++i)
+        grid.emplace_back(-3.5 + 0.5 * (i % 15), -3.5 + 0.5 * (i / 15), 1.5);
+    const std::vector<InstanceId> boxes = addBoxes(scene, 0.1f, grid, 100);
     ShadowMaps maps;
     expectSameAsFresh(maps, scene, "first update");
     for (const InstanceId id : boxes)
@@ -253,11 +253,7 @@ TEST_F(ShadowMapsGlTest, ObjectsFarOutOfViewNeitherStretchNorRedrawTheDirectiona
     scene.bounds(seen.centre, seen.radius);
     ShadowMaps before;
     const std::vector<float> expected = layers(before, scene, &seen);
-    Instance fallen{scene.addMesh(primitives::box({0.3f, 0.3f, 0.3f})),
-                    {scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f, 0.0f))},
-                    {9}};
-    fallen.transform.translation() = Eigen::Vector3d(300.0, -40.0, -500.0);
-    const InstanceId id = scene.addInstance(fallen);
+    const InstanceId id = addBoxes(scene, 0.3f, {{300.0, -40.0, -500.0}})[0];
     ShadowMaps maps;
     EXPECT_EQ(layers(maps, scene, &seen), expected);
     EXPECT_EQ(maps.directionalRegion(), before.directionalRegion());
@@ -277,11 +273,7 @@ TEST_F(ShadowMapsGlTest, ACasterTowardsTheLightFarBeyondTheRegionStillShadowsIt)
     buildShapesScene(scene); // the sun shines along (-0.4, -0.5, -1)
     const Eigen::Vector3d patch(-2.5, 2.5, 0.0);
     const Eigen::Vector3d towardsSun = -Eigen::Vector3d(-0.4, -0.5, -1.0).normalized();
-    Instance high{scene.addMesh(primitives::box({0.2f, 0.2f, 0.2f})),
-                  {scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f, 0.0f))},
-                  {9}};
-    high.transform.translation() = patch + 30.0 * towardsSun;
-    scene.addInstance(high);
+    addBoxes(scene, 0.2f, {patch + 30.0 * towardsSun});
     const Sphere seen{patch, 0.5};
     ShadowMaps maps;
     ASSERT_GT(maps.render(scene, kResolution, cache_, depth_, &seen), 0u);
@@ -330,11 +322,7 @@ TEST_F(ShadowMapsGlTest, TheDirectionalRegionIsKeptWhileItHoldsWhatIsSeenAndShar
 TEST_F(ShadowMapsGlTest, AnObjectNearTheFloatLimitTurnsShadowsOffInsteadOfHanging) {
     Scene scene;
     buildShapesScene(scene);
-    Instance far{scene.addMesh(primitives::box()),
-                 {scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f, 0.0f))},
-                 {9}};
-    far.transform.translation() = Eigen::Vector3d(1e300, 0.0, 0.0);
-    scene.addInstance(far);
+    addBoxes(scene, 1.0f, {{1e300, 0.0, 0.0}});
     ShadowMaps maps;
     EXPECT_EQ(maps.render(scene, kResolution, cache_, depth_), 0u);
     EXPECT_TRUE(maps.infos().empty());
