@@ -298,9 +298,10 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
     std::vector<double> signature = shadowSignature(scene, resolution);
     update_ = {};
     const bool sameScene = texture_ != 0 && signature == signature_;
-    bool directional = false;
+    bool directional = false, spot = false;
     scene.forEachLight([&](LightId, const Light& light) {
         directional = directional || (light.castShadows && light.type == LightType::Directional);
+        spot = spot || (light.castShadows && light.type == LightType::Spot);
     });
     Sphere region;
     if (directional) {
@@ -327,10 +328,12 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
 
     std::vector<ShadowInfo>& infos = infos_;
     infos.clear();
-    // Spot maps reach as far as the scene does.
+    // Spot maps reach as far as the scene does (its bounds are not needed without them).
     Sphere scope;
-    scene.bounds(scope.centre, scope.radius);
-    scope = snapped(scope);
+    if (spot) {
+        scene.bounds(scope.centre, scope.radius);
+        scope = snapped(scope);
+    }
     const Eigen::Vector3d& centre = scope.centre;
     const double radius = scope.radius;
     if (radius <= 0.0 && region_.radius <= 0.0) {
