@@ -368,11 +368,9 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
         Eigen::Vector3d centre;
         double radius = 0.0;
         scene.boundingSphere(instance, centre, radius);
-        for (const Eigen::Vector4d& plane : planes) {
-            if (plane.head<3>().dot(centre) + plane.w() < -radius) {
-                ++active_->stats.culledInstances;
-                return;
-            }
+        if (!Scene::reachesInside(planes, centre, radius)) {
+            ++active_->stats.culledInstances;
+            return;
         }
         ++drawn;
         // Front to back, so hidden fragments fail the early depth test; an instance whose bounds hold the

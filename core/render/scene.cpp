@@ -1,5 +1,6 @@
 #include "core/render/scene.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 
@@ -222,6 +223,13 @@ void Scene::boundingSphere(const Instance& instance, Eigen::Vector3d& centre, do
              instance.transform.linear().colwise().norm().maxCoeff();
 }
 
+bool Scene::reachesInside(std::span<const Eigen::Vector4d> planes, const Eigen::Vector3d& centre,
+                          double radius) {
+    return std::none_of(planes.begin(), planes.end(), [&](const Eigen::Vector4d& plane) {
+        return plane.head<3>().dot(centre) + plane.w() < -radius; // wholly outside this plane
+    });
+}
+
 void Scene::bounds(Eigen::Vector3d& centre, double& radius, std::span<const Eigen::Vector4d> within) const {
     Eigen::AlignedBox3d box;
     instances_.forEach([&](InstanceId, const Instance& instance) {
@@ -231,9 +239,8 @@ void Scene::bounds(Eigen::Vector3d& centre, double& radius, std::span<const Eige
             Eigen::Vector3d sphereCentre;
             double sphereRadius = 0.0;
             boundingSphere(instance, sphereCentre, sphereRadius);
-            for (const Eigen::Vector4d& plane : within)
-                if (plane.head<3>().dot(sphereCentre) + plane.w() < -sphereRadius)
-                    return;
+            if (!reachesInside(within, sphereCentre, sphereRadius))
+                return;
         }
         const MeshEntry& entry = meshes_.get(instance.mesh, "Scene::bounds");
         for (int corner = 0; corner < 8; ++corner) {

@@ -114,6 +114,10 @@ class Scene {
     template <typename Fn> void forEachInstance(Fn&& fn) const { instances_.forEach(fn); }
     template <typename Fn> void forEachLight(Fn&& fn) const { lights_.forEach(fn); }
 
+    // Whether a sphere reaches inside every plane (a, b, c, d, inside where a·x + b·y + c·z + d >= 0, unit
+    // normals): whether it meets a view frustum, conservatively.
+    static bool reachesInside(std::span<const Eigen::Vector4d> planes, const Eigen::Vector3d& centre,
+                              double radius);
     // World-space bounding sphere of all visible instances (centre, radius); radius 0 when empty. With
     // `within` (planes a, b, c, d, inside where a·x + b·y + c·z + d >= 0, unit normals: a view frustum),
     // of those whose bounding sphere reaches inside every plane: what a camera sees.
