@@ -54,6 +54,17 @@ struct Renderer::Draw {
 
 Renderer::Renderer(const GlContext& context) : context_(context), packIdsOnGpu_(!context.report().software) {
     context_.makeCurrent();
+    if (context.report().software) {
+        // What the surface programs' own varyings leave of the smaller of the two limits (see
+        // shaders::ShadingLayout::constantSlots), in vec4s: 8 per-vertex and per-instance varyings and up to
+        // one light-space position per shadow map; one more is kept back for gl_Position, which some
+        // drivers count among the outputs.
+        GLint vertexOutputs = 0, fragmentInputs = 0;
+        glGetIntegerv(GL_MAX_VERTEX_OUTPUT_COMPONENTS, &vertexOutputs);
+        glGetIntegerv(GL_MAX_FRAGMENT_INPUT_COMPONENTS, &fragmentInputs);
+        constantSlots_ =
+            std::max(0, std::min(vertexOutputs, fragmentInputs) / 4 - 8 - shaders::kMaxShadowMaps - 1);
+    }
     shadow_ =
         std::make_unique<ShaderProgram>("shadow", shaders::shadowVertex().c_str(), shaders::kShadowFragment);
     instances_ = std::make_unique<InstanceBuffer>();
@@ -163,7 +174,8 @@ void Renderer::endReadback(std::uint64_t sceneUid) {
 ShaderProgram& Renderer::surfaceProgram(TargetMask targets, bool forward, unsigned materialFeatures,
                                         const shaders::ShadingLayout& lights) {
     const std::string key = std::string(forward ? "forward/" : "surface/") + std::to_string(targets) + "/" +
-                            std::to_string(materialFeatures) + (forward ? "/" + lights.key() : std::string());
+                            std::to_string(materialFeatures) + "/" +
+                            (forward ? lights.key() : "c" + std::to_string(lights.constantSlots));
     auto& program = programs_[key];
     if (!program)
         program = std::make_unique<ShaderProgram>(
@@ -197,6 +209,7 @@ void Renderer::render(const Scene& scene, const Camera& camera, const PassSet& p
     }
     // The shading programs are specialised for the lights (see shaders.h): type, range, shadow layer.
     shaders::ShadingLayout lights;
+    lights.constantSlots = constantSlots_;
     if (passes.lighting) {
         scene.forEachLight([&](LightId, const Light& light) {
             shaders::LightSlot slot;
@@ -209,6 +222,7 @@ void Renderer::render(const Scene& scene, const Camera& camera, const PassSet& p
         });
         lights.floatShadowMaps = !shadowInfos.empty() && active_->shadowMaps->format() == GL_R32F;
         lights.vignette = camera.params.vignetteIntensity > 0.0f;
+        lights.toneMap = camera.params.toneMap;
         uploadFrameBlock(scene, camera, shadowInfos);
     }
     if (passes.surface) {
@@ -233,7 +247,6 @@ void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
     copy3(block.ambient, scene.environment().ambient, 0.0f);
     copy3(block.background, scene.environment().background, 1.0f);
     block.toneParams[0] = camera.params.exposure;
-    block.toneParams[1] = float(static_cast<int>(camera.params.toneMap));
     copy3(block.exposure, camera.params.exposure * camera.params.whiteBalance, 0.0f);
     block.vignette[0] = camera.params.vignetteIntensity;
     block.vignette[1] = float(camera.focalLengthPixels());
@@ -273,12 +286,12 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
                            GL_READ_ONLY, active_->shadowMaps->format());
     drawAll(scene, camera, draws, passes.surfaceTargets, passes.lighting, lights, cache);
     if (lights.vignette && (passes.surfaceTargets & targetBit(Target::FinalColor)) != 0)
-        drawVignettedBackground(passes.surfaceTargets);
+        drawVignettedBackground(passes.surfaceTargets, lights.toneMap);
     active_->timers.end();
     ++active_->stats.surfacePasses;
 }
 
-void Renderer::drawVignettedBackground(TargetMask targets) {
+void Renderer::drawVignettedBackground(TargetMask targets, ToneMap toneMap) {
     // The cleared background of final_color is one colour; vignetted, it varies by pixel, so it is drawn
     // where the surfaces left the far plane, into final_color alone.
     int location = 0, count = 0;
@@ -288,10 +301,11 @@ void Renderer::drawVignettedBackground(TargetMask targets) {
                 location = count;
             ++count;
         }
-    auto& program = programs_["background/" + std::to_string(location)];
+    auto& program =
+        programs_["background/" + std::to_string(location) + "/" + std::to_string(static_cast<int>(toneMap))];
     if (!program)
         program = std::make_unique<ShaderProgram>("background", shaders::kBackgroundVertex,
-                                                  shaders::backgroundFragment(location).c_str());
+                                                  shaders::backgroundFragment(location, toneMap).c_str());
     for (int i = 0; i < count; ++i)
         glColorMaski(GLuint(i), i == location, i == location, i == location, i == location);
     glDepthFunc(GL_LEQUAL);
@@ -314,7 +328,9 @@ void Renderer::attributePass(const Scene& scene, const Camera& camera, const Pas
     beginPass(Pass::Attribute, fb.attributeFbo, fb, GL_LEQUAL, false);
     clearTargets(scene, camera, passes.attributeTargets);
     const std::vector<Draw> reversed(draws.rbegin(), draws.rend());
-    drawAll(scene, camera, reversed, passes.attributeTargets, false, {}, cache);
+    shaders::ShadingLayout constantsOnly; // no shading: the camera position alone
+    constantsOnly.constantSlots = constantSlots_;
+    drawAll(scene, camera, reversed, passes.attributeTargets, false, constantsOnly, cache);
     glDepthMask(GL_TRUE);
     active_->timers.end();
     ++active_->stats.attributePasses;

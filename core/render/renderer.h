@@ -8,6 +8,7 @@
 // per GlContext, shared by any number of scenes (an engine's worlds share one: one context, one set of
 // compiled programs); destroy it (and its RenderTargets) before the context.
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <map>
@@ -82,6 +83,11 @@ class Renderer {
     // slow; a CPU rasteriser converts on the CPU either way, and the dispatch only adds to it.
     bool packIdsOnGpu() const { return packIdsOnGpu_; }
     void setPackIdsOnGpu(bool on) { packIdsOnGpu_ = on; }
+    // The flat varyings the surface programs may spend on the per-view constants their fragments read
+    // (shaders::ShadingLayout::constantSlots): what the driver's varying limits leave on a software
+    // rasteriser, 0 on a GPU. Settable, so that tests render both ways; images are the same bit for bit.
+    int constantSlots() const { return constantSlots_; }
+    void setConstantSlots(int slots) { constantSlots_ = std::max(0, slots); }
 
   private:
     struct Draw; // one submesh of a visible instance
@@ -115,13 +121,14 @@ class Renderer {
     void drawAll(const Scene& scene, const Camera& camera, const std::vector<Draw>& draws, TargetMask targets,
                  bool shade, const shaders::ShadingLayout& lights, GpuSceneCache& cache);
     // Writes the vignetted background into final_color (one of `targets`) where no surface was drawn.
-    void drawVignettedBackground(TargetMask targets);
+    void drawVignettedBackground(TargetMask targets, ToneMap toneMap);
 
     const GlContext& context_;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs_; // by variant key
     std::unique_ptr<ShaderProgram> shadow_;
     std::unique_ptr<ShaderProgram> idChannel_; // made at the first id readback
     bool packIdsOnGpu_ = true;
+    int constantSlots_ = 0;
     std::unique_ptr<SharedUploads> sharedUploads_; // meshes and textures the scenes add under shared keys
     std::map<std::uint64_t, std::unique_ptr<SceneState>> scenes_; // by Scene::uid()
     SceneState* active_ = nullptr;                                // the scene render() is drawing

@@ -55,7 +55,7 @@ void evaluateSurface(out vec3 n, out vec3 base, out float roughness, out float m
     // the camera and the shading normal follows it.
     vec3 dpdx = dFdx(vWorldPosition), dpdy = dFdy(vWorldPosition);
     vec3 geometric = cross(dpdx, dpdy);
-    vec3 toCamera = uCameraPosition.xyz - vWorldPosition;
+    vec3 toCamera = cameraPosition() - vWorldPosition;
     if (dot(geometric, toCamera) < 0.0) geometric = -geometric;
     n = normalize(vNormal);
     if (dot(n, geometric) < 0.0) n = -n;
@@ -131,7 +131,7 @@ vec3 toHalf(vec3 v) {
 // 38-40 -> 35-37 ms, 33-35 with 16-bit maps); on a GPU both are a few instructions.
 float shadowFactor(const int layer, vec3 s) {
     if (any(lessThan(s, vec3(0.0))) || any(greaterThan(s, vec3(1.0)))) return 1.0;
-    float size = uShadowParams[layer].y;
+    float size = shadowSize(layer);
     vec2 t = s.xy * size - 0.5;
     vec2 cell = floor(t);
     vec2 f = t - cell;
@@ -179,7 +179,7 @@ void accumulate(Surface s, vec3 l, vec3 e, float nol, inout vec3 irradiance, ino
 }
 )glsl";
 
-// Exposure, tone curve (ACES: Narkowicz's fit; Reinhard; linear clamp) and the sRGB OETF.
+// Exposure, tone curve (ACES: Narkowicz's fit; Reinhard; linear clamp, TONE_CURVE 0, 1, 2) and the sRGB OETF.
 const char* const kToneChunk = R"glsl(
 vec3 aces(vec3 x) {
     return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
@@ -193,15 +193,21 @@ vec3 srgbEncode(vec3 c) {
     return mix(c * 12.92, curve, step(vec3(0.0031308), c));
 }
 vec4 toneMapped(vec3 hdr) {
-    vec3 x = max(hdr, 0.0) * uExposure.xyz;
+    vec3 x = max(hdr, 0.0) * exposureGains();
 #ifdef VIGNETTE
     // The cos^4 falloff of the pixel's ray (tone.h, Vignette); row 0 of the image is GL's bottom row.
-    vec2 d = (gl_FragCoord.xy - uVignette.zw) / uVignette.y;
+    vec4 vignette = vignetteParams();
+    vec2 d = (gl_FragCoord.xy - vignette.zw) / vignette.y;
     float cos2 = 1.0 / (1.0 + dot(d, d));
-    x *= 1.0 + (cos2 * cos2 - 1.0) * uVignette.x;
+    x *= 1.0 + (cos2 * cos2 - 1.0) * vignette.x;
 #endif
-    int curve = int(uToneParams.y);
-    vec3 mapped = curve == 0 ? aces(x) : curve == 1 ? x / (1.0 + x) : clamp(x, 0.0, 1.0);
+#if TONE_CURVE == 0
+    vec3 mapped = aces(x);
+#elif TONE_CURVE == 1
+    vec3 mapped = x / (1.0 + x);
+#else
+    vec3 mapped = clamp(x, 0.0, 1.0);
+#endif
     return vec4(srgbEncode(mapped), 1.0);
 }
 )glsl";
@@ -243,6 +249,7 @@ void main() {
     vIds = iIds;
     gl_Position = iModelViewProjection * p;
     SHADOW_CLIPS
+    CONSTANT_COPIES
 }
 )glsl";
 
@@ -360,15 +367,136 @@ std::string shadowClips(const ShadingLayout& lights) {
     return text;
 }
 
+// Where a program reads the per-view constants (ShadingLayout::constantSlots). With slots to spend, the
+// vertex shader copies them from FrameBlock into flat varyings: fFrame (camera position, ambient, exposure
+// gains, vignette), fShadowSizes (each map's resolution, by layer) and fLights, for as many lights as fit.
+// Lights past the budget, and every constant when there is none, are read from FrameBlock.
+struct ConstantPlan {
+    bool flat = false;
+    int frameSlots = 0;         // fFrame elements: 1 (camera position) without shading, 4 with
+    bool shadowSizes = false;   // fShadowSizes is written (a shaded variant with shadows)
+    std::vector<int> lightSlot; // each light's first fLights element, -1 where it reads FrameBlock
+    int lightSlots = 0;         // fLights elements
+};
+
+// fLights elements of a light: radiance (and a spot's cos(inner) in w), then a directional light's
+// direction, or a point or spot light's position and range, then a spot's direction and cos(outer).
+int lightSlotCount(LightType type) {
+    return type == LightType::Spot ? 3 : 2;
+}
+
+ConstantPlan planConstants(bool forward, const ShadingLayout& layout) {
+    ConstantPlan plan;
+    plan.frameSlots = forward ? 4 : 1;
+    plan.shadowSizes = forward && !shadowLayers(layout).empty();
+    int left = layout.constantSlots - plan.frameSlots - (plan.shadowSizes ? 1 : 0);
+    plan.flat = left >= 0;
+    plan.lightSlot.assign(layout.lights.size(), -1);
+    if (!plan.flat || !forward)
+        return plan;
+    for (std::size_t i = 0; i < layout.lights.size(); ++i) {
+        const int count = lightSlotCount(layout.lights[i].type);
+        if (count > left)
+            break; // the rest read FrameBlock, in order, so that the plan is a prefix of the lights
+        plan.lightSlot[i] = plan.lightSlots;
+        plan.lightSlots += count;
+        left -= count;
+    }
+    return plan;
+}
+
+// The GLSL expressions for one light's constants (vec3 radiance, position, direction; float range; vec2
+// cos(inner), cos(outer)), from fLights or FrameBlock.
+struct LightTerms {
+    std::string radiance, position, range, direction, cone;
+};
+
+LightTerms lightTerms(const ShadingLayout& layout, const ConstantPlan& plan, std::size_t i) {
+    const int k = plan.lightSlot[i];
+    if (k < 0) {
+        const std::string at = "[" + std::to_string(i) + "]";
+        return {"uLightRadiance" + at + ".xyz", "uLightPosition" + at + ".xyz", "uLightPosition" + at + ".w",
+                "uLightDirection" + at + ".xyz", "uLightCone" + at + ".xy"};
+    }
+    auto slot = [](int element, const char* swizzle) {
+        return "fLights[" + std::to_string(element) + "]." + swizzle;
+    };
+    if (layout.lights[i].type == LightType::Directional)
+        return {slot(k, "xyz"), "", "", slot(k + 1, "xyz"), ""};
+    return {slot(k, "xyz"), slot(k + 1, "xyz"), slot(k + 1, "w"), slot(k + 2, "xyz"),
+            "vec2(" + slot(k, "w") + ", " + slot(k + 2, "w") + ")"};
+}
+
+// The flat varyings of a plan ("out" in the vertex shader, "in" in the fragment shader).
+std::string constantDeclarations(const ConstantPlan& plan, const char* direction) {
+    if (!plan.flat)
+        return "";
+    const std::string flat = std::string("flat ") + direction + " vec4 ";
+    std::string text = flat + "fFrame[" + std::to_string(plan.frameSlots) + "];\n";
+    if (plan.shadowSizes)
+        text += flat + "fShadowSizes;\n";
+    if (plan.lightSlots > 0)
+        text += flat + "fLights[" + std::to_string(plan.lightSlots) + "];\n";
+    return text;
+}
+
+// The vertex shader's copies from FrameBlock into the flat varyings.
+std::string constantCopies(const ShadingLayout& layout, const ConstantPlan& plan) {
+    if (!plan.flat)
+        return "";
+    std::string text = " fFrame[0] = uCameraPosition;";
+    if (plan.frameSlots == 4)
+        text += " fFrame[1] = uAmbient; fFrame[2] = uExposure; fFrame[3] = uVignette;";
+    if (plan.shadowSizes)
+        text += " fShadowSizes = vec4(uShadowParams[0].y, uShadowParams[1].y, uShadowParams[2].y,"
+                " uShadowParams[3].y);";
+    for (std::size_t i = 0; i < layout.lights.size(); ++i) {
+        const int k = plan.lightSlot[i];
+        if (k < 0)
+            continue;
+        const std::string at = "[" + std::to_string(i) + "]";
+        auto slot = [&](int offset) { return " fLights[" + std::to_string(k + offset) + "] = "; };
+        switch (layout.lights[i].type) {
+        case LightType::Directional:
+            text += slot(0) + "uLightRadiance" + at + ";" + slot(1) + "uLightDirection" + at + ";";
+            break;
+        case LightType::Point:
+            text += slot(0) + "uLightRadiance" + at + ";" + slot(1) + "uLightPosition" + at + ";";
+            break;
+        case LightType::Spot:
+            text += slot(0) + "vec4(uLightRadiance" + at + ".xyz, uLightCone" + at + ".x);" + slot(1) +
+                    "uLightPosition" + at + ";" + slot(2) + "vec4(uLightDirection" + at + ".xyz, uLightCone" +
+                    at + ".y);";
+            break;
+        }
+    }
+    return text;
+}
+
+// The fragment shader's accessors of the view's constants (cameraPosition(), ambientRadiance(),
+// exposureGains(), vignetteParams(), shadowSize(layer)), from the flat varyings or FrameBlock.
+std::string constantAccessors(const ConstantPlan& plan) {
+    const bool frame = plan.flat && plan.frameSlots == 4, sizes = plan.flat && plan.shadowSizes;
+    auto accessor = [](const char* signature, const std::string& value) {
+        return std::string(signature) + " { return " + value + "; }\n";
+    };
+    return accessor("vec3 cameraPosition()", plan.flat ? "fFrame[0].xyz" : "uCameraPosition.xyz") +
+           accessor("vec3 ambientRadiance()", frame ? "fFrame[1].xyz" : "uAmbient.xyz") +
+           accessor("vec3 exposureGains()", frame ? "fFrame[2].xyz" : "uExposure.xyz") +
+           accessor("vec4 vignetteParams()", frame ? "fFrame[3]" : "uVignette") +
+           accessor("float shadowSize(const int layer)",
+                    sizes ? "fShadowSizes[layer]" : "uShadowParams[layer].y");
+}
+
 // shade(): the shading of one surface point by the layout's lights, unrolled with each light's type,
 // range and shadow layer fixed, and the sky term.
-std::string shadeFunction(const ShadingLayout& layout) {
+std::string shadeFunction(const ShadingLayout& layout, const ConstantPlan& plan) {
     std::string text = R"glsl(
 Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float ao, vec3 emissive) {
     Surface s;
     s.p = p;
     s.n = n;
-    s.v = normalize(uCameraPosition.xyz - p);
+    s.v = normalize(cameraPosition() - p);
     s.nov = max(dot(n, s.v), 1e-4);
     s.f0 = mix(vec3(0.04), base, metallic);
     s.a = max(roughness * roughness, 0.002);
@@ -377,25 +505,25 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
 )glsl";
     for (std::size_t i = 0; i < layout.lights.size(); ++i) {
         const LightSlot& light = layout.lights[i];
-        const std::string at = "[" + std::to_string(i) + "]";
+        const LightTerms terms = lightTerms(layout, plan, i);
         text += "    {\n";
         if (light.type == LightType::Directional) {
-            text += "        vec3 l = -uLightDirection" + at + ".xyz;\n";
-            text += "        vec3 e = uLightRadiance" + at + ".xyz;\n";
+            text += "        vec3 l = -" + terms.direction + ";\n";
+            text += "        vec3 e = " + terms.radiance + ";\n";
         } else {
-            text += "        vec3 d = uLightPosition" + at + ".xyz - p;\n";
+            text += "        vec3 d = " + terms.position + " - p;\n";
             text += "        float dist = length(d);\n";
             text += "        vec3 l = d / max(dist, 1e-6);\n";
-            text += "        vec3 e = uLightRadiance" + at + ".xyz / max(dist * dist, 1e-4);\n";
+            text += "        vec3 e = " + terms.radiance + " / max(dist * dist, 1e-4);\n";
             if (light.ranged) { // windowed inverse square: (1 - (d / range)^4)^2
-                text += "        float r = dist / uLightPosition" + at + ".w;\n";
+                text += "        float r = dist / " + terms.range + ";\n";
                 text += "        float w = clamp(1.0 - r * r * r * r, 0.0, 1.0);\n";
                 text += "        e *= w * w;\n";
             }
             if (light.type == LightType::Spot) {
-                text += "        vec2 cone = uLightCone" + at + ".xy;\n";
-                text += "        float t = clamp((dot(-l, uLightDirection" + at +
-                        ".xyz) - cone.y) / max(cone.x - cone.y, 1e-4), 0.0, 1.0);\n";
+                text += "        vec2 cone = " + terms.cone + ";\n";
+                text += "        float t = clamp((dot(-l, " + terms.direction +
+                        ") - cone.y) / max(cone.x - cone.y, 1e-4), 0.0, 1.0);\n";
                 text += "        e *= t * t;\n";
             }
         }
@@ -412,9 +540,9 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
         text += "            accumulate(s, l, e, nol, irradiance, specular);\n        }\n    }\n";
     }
     text += R"glsl(    Shaded result;
-    result.diffuseIllumination = toHalf(irradiance / PI + uAmbient.xyz * ao);
+    result.diffuseIllumination = toHalf(irradiance / PI + ambientRadiance() * ao);
     result.diffuseOnly = base * (1.0 - metallic) * result.diffuseIllumination;
-    result.hdr = result.diffuseOnly + specular + envBrdfApprox(s.f0, roughness, s.nov) * uAmbient.xyz * ao + emissive;
+    result.hdr = result.diffuseOnly + specular + envBrdfApprox(s.f0, roughness, s.nov) * ambientRadiance() * ao + emissive;
     return result;
 }
 )glsl";
@@ -438,6 +566,9 @@ std::string ShadingLayout::key() const {
         key += ".f";
     if (vignette)
         key += ".v";
+    key += ".t" + std::to_string(static_cast<int>(toneMap));
+    if (constantSlots > 0)
+        key += ".c" + std::to_string(constantSlots);
     return key;
 }
 
@@ -475,10 +606,16 @@ void main() {
 }
 )glsl";
 
-std::string backgroundFragment(int location) {
-    std::string text = "#version 450 core\n#define VIGNETTE\n";
+// "#define TONE_CURVE k" for kToneChunk.
+std::string toneCurveDefine(ToneMap toneMap) {
+    return "#define TONE_CURVE " + std::to_string(static_cast<int>(toneMap)) + "\n";
+}
+
+std::string backgroundFragment(int location, ToneMap toneMap) {
+    std::string text = "#version 450 core\n#define VIGNETTE\n" + toneCurveDefine(toneMap);
     text += "layout(location = " + std::to_string(location) + ") out vec4 oFinalColor;\n";
     text += kFrameBlock;
+    text += constantAccessors(ConstantPlan{});
     text += kToneChunk;
     return text + "void main() { oFinalColor = toneMapped(uBackground.xyz); }\n";
 }
@@ -487,8 +624,11 @@ std::string surfaceVertex(bool forward, const ShadingLayout& lights) {
     std::string text = "#version 450 core\n";
     text += kFrameBlock;
     text += instanceAttributes();
+    const ConstantPlan plan = planConstants(forward, lights);
     text += "#define SHADOW_CLIPS" + (forward ? shadowClips(lights) : std::string()) + "\n";
+    text += "#define CONSTANT_COPIES" + constantCopies(lights, plan) + "\n";
     text += shadowClipDeclarations(forward, lights, "out");
+    text += constantDeclarations(plan, "out");
     return text + kSurfaceVertex;
 }
 
@@ -510,14 +650,18 @@ std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialF
         text += "#define HAS_NORMAL_TEXTURE\n";
     text += outputs(targets);
     text += kFrameBlock;
+    const ConstantPlan plan = planConstants(forward, lights);
+    text += constantDeclarations(plan, "in");
+    text += constantAccessors(plan);
     text += shadowClipDeclarations(forward, lights, "in");
     text += kMaterialChunk;
     if (forward) {
         text += std::string("#define SHADOW_FORMAT ") + (lights.floatShadowMaps ? "r32f" : "r16") + "\n";
         if (lights.vignette)
             text += "#define VIGNETTE\n";
+        text += toneCurveDefine(lights.toneMap);
         text += kShadingChunk;
-        text += shadeFunction(lights);
+        text += shadeFunction(lights, plan);
         text += kToneChunk;
     }
     return text + kSurfaceMain;

@@ -70,6 +70,60 @@ TEST_F(RenderPathsGlTest, AttributePassAgreesWithOnePass) {
             }
 }
 
+TEST_F(RenderPathsGlTest, ConstantsInFlatVaryingsRenderTheSameImagesAsUniformReads) {
+    // Every light type, two shadowed, more lights than a small budget holds, vignette and a non-default tone
+    // curve: each modality is the same bit for bit whether the fragments read the view's constants from the
+    // uniform buffer (0 slots), partly from flat varyings (the first light only) or as the renderer chooses.
+    Scene scene;
+    buildShapesScene(scene);
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = Eigen::Vector3d(1.5, 1.2, 2.8);
+    spot.direction = Eigen::Vector3d(-0.5, -0.4, -1.0);
+    spot.intensity = 12.0f;
+    spot.innerConeDeg = 20.0f;
+    spot.outerConeDeg = 35.0f;
+    scene.addLight(spot);
+    Light point;
+    point.type = LightType::Point;
+    point.position = Eigen::Vector3d(0.5, -1.5, 1.0);
+    point.intensity = 1.5f;
+    point.range = 5.0f;
+    scene.addLight(point);
+    Light fill;
+    fill.direction = Eigen::Vector3d(0.6, 0.2, -0.5);
+    fill.intensity = 0.4f;
+    fill.castShadows = false;
+    scene.addLight(fill);
+    Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 96, 64, 60.0);
+    camera.params.vignetteIntensity = 0.6f;
+    camera.params.toneMap = ToneMap::Reinhard;
+
+    const int byDefault = renderer().constantSlots();
+    // fFrame (4), fShadowSizes (1) and the sun (2): the spot, point and fill lights read the uniform buffer.
+    const int budgets[] = {0, 7, std::max(byDefault, 16)};
+    std::vector<Frame> frames(std::size(budgets)), colours(std::size(budgets));
+    for (std::size_t i = 0; i < std::size(budgets); ++i) {
+        renderer().setConstantSlots(budgets[i]);
+        RenderTarget target(renderer(), ModalitySet::all(), 0);
+        target.render(scene, camera, frames[i]);
+        RenderTarget colour(renderer(), {Modality::FinalColor}, 0); // final colour alone: another program
+        colour.render(scene, camera, colours[i]);
+    }
+    renderer().setConstantSlots(byDefault);
+    auto same = [](const ImageBuffer& x, const ImageBuffer& y) {
+        return x.bytes.size() == y.bytes.size() &&
+               std::equal(x.bytes.begin(), x.bytes.end(), y.bytes.begin());
+    };
+    for (std::size_t i = 1; i < std::size(budgets); ++i) {
+        for (Modality m : ModalitySet::all().list())
+            EXPECT_TRUE(same(frames[0].get(m), frames[i].get(m)))
+                << modalityName(m) << ", slots " << budgets[i];
+        EXPECT_TRUE(same(colours[0].get(Modality::FinalColor), colours[i].get(Modality::FinalColor)))
+            << "final_color alone, slots " << budgets[i];
+    }
+}
+
 TEST_F(RenderPathsGlTest, AttributePassKeepsTheSurfacePassesFragmentWhereSurfacesTie) {
     // Two instances in the same place, different ids and materials: the surface pass keeps the first drawn
     // (GL_LESS); the attribute pass must write that one's ids and base colour, not the second's.
