@@ -3,9 +3,11 @@
 // with N boxes, a shadowed sun and a spot light.
 //
 //   spear_render_bench [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--ids compute|driver]
-//                      [--modalities a,b,...]...
+//                      [--constant-slots N] [--modalities a,b,...]...
 //   (--shadows 0: off; each --modalities adds one set, e.g. final_color,depth,normal,object_ids;
-//   --ids: how object and material ids are read back, default the renderer's choice for the device)
+//   --ids: how object and material ids are read back, default the renderer's choice for the device;
+//   --constant-slots: flat varyings for the view's constants, 0 to read them all from the uniform buffer,
+//   default the renderer's choice: see Renderer::constantSlots())
 //
 // --png writes the 256x256 and 1920x1080 final_color images of the scene, to look at.
 
@@ -83,7 +85,7 @@ Camera makeCamera(int width, int height, int boxes, int shadowResolution) {
 } // namespace
 
 int main(int argc, char** argv) {
-    int boxes = 64, frames = 10, shadows = 2048;
+    int boxes = 64, frames = 10, shadows = 2048, constantSlots = -1;
     std::string pngDir, ids;
     // The sets timed: a label and the modalities.
     std::vector<std::pair<std::string, ModalitySet>> sets = {
@@ -100,6 +102,8 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--ids") && i + 1 < argc &&
                  (!std::strcmp(argv[i + 1], "compute") || !std::strcmp(argv[i + 1], "driver")))
             ids = argv[++i];
+        else if (!std::strcmp(argv[i], "--constant-slots") && i + 1 < argc)
+            constantSlots = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--modalities") && i + 1 < argc) {
             const std::string list = argv[++i];
             std::vector<std::string> names;
@@ -114,7 +118,7 @@ int main(int argc, char** argv) {
             std::fprintf(
                 stderr,
                 "usage: %s [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--ids compute|driver] "
-                "[--modalities a,b,...]\n",
+                "[--constant-slots N] [--modalities a,b,...]\n",
                 argv[0]);
             return 2;
         }
@@ -123,12 +127,15 @@ int main(int argc, char** argv) {
     Renderer renderer(context);
     if (!ids.empty())
         renderer.setPackIdsOnGpu(ids == "compute");
+    if (constantSlots >= 0)
+        renderer.setConstantSlots(constantSlots);
     Scene scene;
     buildScene(scene, boxes);
-    std::printf("device: %s (%s), %d boxes, shadow maps %d, ids read by %s, %d timed frames after 3 warm-up "
-                "frames\n",
-                context.report().renderer.c_str(), context.report().kind.c_str(), boxes, shadows,
-                renderer.packIdsOnGpu() ? "compute" : "driver", frames);
+    std::printf(
+        "device: %s (%s), %d boxes, shadow maps %d, ids read by %s, %d constant slots, %d timed frames "
+        "after 3 warm-up frames\n",
+        context.report().renderer.c_str(), context.report().kind.c_str(), boxes, shadows,
+        renderer.packIdsOnGpu() ? "compute" : "driver", renderer.constantSlots(), frames);
     std::printf(
         "%-10s %-12s %-8s %10s   per pass, ms/frame: shadow surface lighting readback (GL timer / CPU)\n",
         "size", "modalities", "latency", "ms/frame");
