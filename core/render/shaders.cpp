@@ -373,7 +373,7 @@ std::string shadowClips(const ShadingLayout& lights) {
 // Lights past the budget, and every constant when there is none, are read from FrameBlock.
 struct ConstantPlan {
     bool flat = false;
-    int frameSlots = 0;         // fFrame elements: 1 (camera position) without shading, 4 with
+    int frameSlots = 0;         // fFrame elements: 1 (camera position) without shading, 3 with, 4 vignetted
     bool shadowSizes = false;   // fShadowSizes is written (a shaded variant with shadows)
     std::vector<int> lightSlot; // each light's first fLights element, -1 where it reads FrameBlock
     int lightSlots = 0;         // fLights elements
@@ -387,7 +387,7 @@ int lightSlotCount(LightType type) {
 
 ConstantPlan planConstants(bool forward, const ShadingLayout& layout) {
     ConstantPlan plan;
-    plan.frameSlots = forward ? 4 : 1;
+    plan.frameSlots = !forward ? 1 : layout.vignette ? 4 : 3;
     plan.shadowSizes = forward && !shadowLayers(layout).empty();
     int left = layout.constantSlots - plan.frameSlots - (plan.shadowSizes ? 1 : 0);
     plan.flat = left >= 0;
@@ -445,8 +445,10 @@ std::string constantCopies(const ShadingLayout& layout, const ConstantPlan& plan
     if (!plan.flat)
         return "";
     std::string text = " fFrame[0] = uCameraPosition;";
+    if (plan.frameSlots >= 3)
+        text += " fFrame[1] = uAmbient; fFrame[2] = uExposure;";
     if (plan.frameSlots == 4)
-        text += " fFrame[1] = uAmbient; fFrame[2] = uExposure; fFrame[3] = uVignette;";
+        text += " fFrame[3] = uVignette;";
     if (plan.shadowSizes)
         text += " fShadowSizes = vec4(uShadowParams[0].y, uShadowParams[1].y, uShadowParams[2].y,"
                 " uShadowParams[3].y);";
@@ -476,14 +478,15 @@ std::string constantCopies(const ShadingLayout& layout, const ConstantPlan& plan
 // The fragment shader's accessors of the view's constants (cameraPosition(), ambientRadiance(),
 // exposureGains(), vignetteParams(), shadowSize(layer)), from the flat varyings or FrameBlock.
 std::string constantAccessors(const ConstantPlan& plan) {
-    const bool frame = plan.flat && plan.frameSlots == 4, sizes = plan.flat && plan.shadowSizes;
+    const bool frame = plan.flat && plan.frameSlots >= 3, vignette = plan.flat && plan.frameSlots == 4;
+    const bool sizes = plan.flat && plan.shadowSizes;
     auto accessor = [](const char* signature, const std::string& value) {
         return std::string(signature) + " { return " + value + "; }\n";
     };
     return accessor("vec3 cameraPosition()", plan.flat ? "fFrame[0].xyz" : "uCameraPosition.xyz") +
            accessor("vec3 ambientRadiance()", frame ? "fFrame[1].xyz" : "uAmbient.xyz") +
            accessor("vec3 exposureGains()", frame ? "fFrame[2].xyz" : "uExposure.xyz") +
-           accessor("vec4 vignetteParams()", frame ? "fFrame[3]" : "uVignette") +
+           accessor("vec4 vignetteParams()", vignette ? "fFrame[3]" : "uVignette") +
            accessor("float shadowSize(const int layer)",
                     sizes ? "fShadowSizes[layer]" : "uShadowParams[layer].y");
 }

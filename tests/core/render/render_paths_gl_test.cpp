@@ -95,20 +95,24 @@ TEST_F(RenderPathsGlTest, ConstantsInFlatVaryingsRenderTheSameImagesAsUniformRea
     fill.intensity = 0.4f;
     fill.castShadows = false;
     scene.addLight(fill);
-    Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 96, 64, 60.0);
-    camera.params.vignetteIntensity = 0.6f;
-    camera.params.toneMap = ToneMap::Reinhard;
+    // The vignetted camera's fragments read its vignette too, so the plain one's budget is one less.
+    Camera vignetted = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 96, 64, 60.0);
+    vignetted.params.vignetteIntensity = 0.6f;
+    vignetted.params.toneMap = ToneMap::Reinhard;
+    Camera plain = cameraLookingAt({-2.6, 2.9, 1.8}, {0, 0, 0.3}, 96, 64, 60.0);
 
     const int byDefault = renderer().constantSlots();
     // fFrame (4), fShadowSizes (1) and the sun (2): the spot, point and fill lights read the uniform buffer.
     const int budgets[] = {0, 7, std::max(byDefault, 16)};
-    std::vector<Frame> frames(std::size(budgets)), colours(std::size(budgets));
+    std::vector<Frame> frames(std::size(budgets)), colours(std::size(budgets)), plains(std::size(budgets));
     for (std::size_t i = 0; i < std::size(budgets); ++i) {
         renderer().setConstantSlots(budgets[i]);
         RenderTarget target(renderer(), ModalitySet::all(), 0);
-        target.render(scene, camera, frames[i]);
+        target.render(scene, vignetted, frames[i]);
         RenderTarget colour(renderer(), {Modality::FinalColor}, 0); // final colour alone: another program
-        colour.render(scene, camera, colours[i]);
+        colour.render(scene, vignetted, colours[i]);
+        renderer().setConstantSlots(budgets[i] == 7 ? 6 : budgets[i]);
+        colour.render(scene, plain, plains[i]);
     }
     renderer().setConstantSlots(byDefault);
     auto same = [](const ImageBuffer& x, const ImageBuffer& y) {
@@ -121,6 +125,8 @@ TEST_F(RenderPathsGlTest, ConstantsInFlatVaryingsRenderTheSameImagesAsUniformRea
                 << modalityName(m) << ", slots " << budgets[i];
         EXPECT_TRUE(same(colours[0].get(Modality::FinalColor), colours[i].get(Modality::FinalColor)))
             << "final_color alone, slots " << budgets[i];
+        EXPECT_TRUE(same(plains[0].get(Modality::FinalColor), plains[i].get(Modality::FinalColor)))
+            << "final_color without vignette, slots " << budgets[i];
     }
 }
 
