@@ -76,20 +76,7 @@ TEST_F(RenderPathsGlTest, ConstantsInFlatVaryingsRenderTheSameImagesAsUniformRea
     // uniform buffer (0 slots), partly from flat varyings (the first light only) or as the renderer chooses.
     Scene scene;
     buildShapesScene(scene);
-    Light spot;
-    spot.type = LightType::Spot;
-    spot.position = Eigen::Vector3d(1.5, 1.2, 2.8);
-    spot.direction = Eigen::Vector3d(-0.5, -0.4, -1.0);
-    spot.intensity = 12.0f;
-    spot.innerConeDeg = 20.0f;
-    spot.outerConeDeg = 35.0f;
-    scene.addLight(spot);
-    Light point;
-    point.type = LightType::Point;
-    point.position = Eigen::Vector3d(0.5, -1.5, 1.0);
-    point.intensity = 1.5f;
-    point.range = 5.0f;
-    scene.addLight(point);
+    addSpotAndPointLights(scene);
     Light fill;
     fill.direction = Eigen::Vector3d(0.6, 0.2, -0.5);
     fill.intensity = 0.4f;

@@ -60,20 +60,8 @@ inline void buildShapesScene(Scene& scene) {
     scene.setEnvironment(environment);
 }
 
-// A grey room corner lit by a spot light and a point light (no sun): tests local lights and falloff.
-inline void buildSpotScene(Scene& scene) {
-    MeshId plane = scene.addMesh(primitives::plane(6, 6));
-    MeshId box = scene.addMesh(primitives::box({0.6f, 0.6f, 1.2f}));
-    MaterialId white = scene.addMaterial(makeMaterial({0.8f, 0.8f, 0.8f}, 0.7f, 0.0f));
-    MaterialId green = scene.addMaterial(makeMaterial({0.2f, 0.6f, 0.25f}, 0.4f, 0.0f));
-    scene.addInstance({plane, {white}, {1}});
-    Instance wall{plane, {white}, {2}};
-    wall.transform =
-        Eigen::Translation3d(-1.5, 0, 1.5) * Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY());
-    scene.addInstance(wall);
-    Instance b{box, {green}, {3}};
-    b.transform.translation() = Eigen::Vector3d(0.2, 0.1, 0.6);
-    scene.addInstance(b);
+// A warm shadowed spot light from above one corner and a bluish point light of finite range.
+inline void addSpotAndPointLights(Scene& scene) {
     Light spot;
     spot.type = LightType::Spot;
     spot.position = Eigen::Vector3d(1.5, 1.2, 2.8);
@@ -90,6 +78,23 @@ inline void buildSpotScene(Scene& scene) {
     point.color = {0.5f, 0.6f, 1.0f};
     point.range = 5.0f;
     scene.addLight(point);
+}
+
+// A grey room corner lit by a spot light and a point light (no sun): tests local lights and falloff.
+inline void buildSpotScene(Scene& scene) {
+    MeshId plane = scene.addMesh(primitives::plane(6, 6));
+    MeshId box = scene.addMesh(primitives::box({0.6f, 0.6f, 1.2f}));
+    MaterialId white = scene.addMaterial(makeMaterial({0.8f, 0.8f, 0.8f}, 0.7f, 0.0f));
+    MaterialId green = scene.addMaterial(makeMaterial({0.2f, 0.6f, 0.25f}, 0.4f, 0.0f));
+    scene.addInstance({plane, {white}, {1}});
+    Instance wall{plane, {white}, {2}};
+    wall.transform =
+        Eigen::Translation3d(-1.5, 0, 1.5) * Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY());
+    scene.addInstance(wall);
+    Instance b{box, {green}, {3}};
+    b.transform.translation() = Eigen::Vector3d(0.2, 0.1, 0.6);
+    scene.addInstance(b);
+    addSpotAndPointLights(scene);
     Environment environment;
     environment.ambient = {0.02f, 0.02f, 0.02f};
     scene.setEnvironment(environment);
