@@ -246,7 +246,6 @@ void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
     copy3(block.cameraPosition, camera.pose.translation().cast<float>(), 1.0f);
     copy3(block.ambient, scene.environment().ambient, 0.0f);
     copy3(block.background, scene.environment().background, 1.0f);
-    block.toneParams[0] = camera.params.exposure;
     copy3(block.exposure, camera.params.exposure * camera.params.whiteBalance, 0.0f);
     block.vignette[0] = camera.params.vignetteIntensity;
     block.vignette[1] = float(camera.focalLengthPixels());

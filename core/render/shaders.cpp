@@ -15,7 +15,6 @@ layout(std140, binding = 0) uniform FrameBlock {
     vec4 uCameraPosition;
     vec4 uAmbient;
     vec4 uBackground;
-    vec4 uToneParams;
     ivec4 uCounts;
     vec4 uLightRadiance[MAX_LIGHTS];
     vec4 uLightPosition[MAX_LIGHTS];

@@ -32,7 +32,6 @@ struct FrameBlock {
     float cameraPosition[4];     // xyz
     float ambient[4];            // xyz: uniform sky radiance
     float background[4];         // xyz: hdr_color of background pixels
-    float toneParams[4];         // x = exposure (the curve is compiled in: ShadingLayout::toneMap)
     int counts[4];               // x = light count (informative: the programs are specialised)
     float lightRadiance[16][4];  // xyz = colour * intensity
     float lightPosition[16][4];  // xyz, w = range (0 = unbounded)
