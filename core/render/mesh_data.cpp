@@ -1,5 +1,6 @@
 #include "core/render/mesh_data.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -98,6 +99,49 @@ void MeshData::bounds(Eigen::Vector3f& min, Eigen::Vector3f& max) const {
         min = min.cwiseMin(p);
         max = max.cwiseMax(p);
     }
+}
+
+bool MeshData::convex() const {
+    const std::size_t triangles = indices.size() / 3;
+    if (triangles == 0 || triangles * positions.size() > kConvexCheckLimit)
+        return false;
+    Eigen::Vector3f min, max;
+    bounds(min, max);
+    // Tolerances relative to the mesh's size: float rounding of the vertices (a tessellated sphere's lie on
+    // it only to that precision), and slivers whose plane that rounding decides (a sphere's pole triangles).
+    const double size = std::max(double((max - min).norm()), 1e-9);
+    const double tolerance = 1e-5 * size, sliver = 1e-10 * size * size;
+    for (std::size_t t = 0; t < triangles; ++t) {
+        const Eigen::Vector3d a = positions[indices[3 * t]].cast<double>();
+        const Eigen::Vector3d normal = (positions[indices[3 * t + 1]].cast<double>() - a)
+                                           .cross(positions[indices[3 * t + 2]].cast<double>() - a);
+        if (normal.norm() <= sliver)
+            continue;
+        const Eigen::Vector3d unit = normal.normalized();
+        bool above = false, below = false;
+        for (const Eigen::Vector3f& p : positions) {
+            const double side = unit.dot(p.cast<double>() - a);
+            above = above || side > tolerance;
+            below = below || side < -tolerance;
+        }
+        if (above && below)
+            return false;
+    }
+    return true;
+}
+
+bool MeshData::faceted() const {
+    for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+        const Eigen::Vector3f& a = positions[indices[t]];
+        const Eigen::Vector3f normal = (positions[indices[t + 1]] - a).cross(positions[indices[t + 2]] - a);
+        if (normal.squaredNorm() <= 0.0f)
+            continue; // degenerate: no plane
+        const Eigen::Vector3f unit = normal.normalized();
+        for (std::size_t v = t; v < t + 3; ++v)
+            if (std::abs(unit.dot(normals[indices[v]])) < 0.9999f)
+                return false;
+    }
+    return true;
 }
 
 } // namespace sp::render

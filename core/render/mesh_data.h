@@ -39,6 +39,15 @@ struct MeshData {
     std::size_t submeshCount() const { return submeshes.size(); }
     // Axis-aligned bounds in mesh-local coordinates (zero when empty).
     void bounds(Eigen::Vector3f& min, Eigen::Vector3f& max) const;
+    // Whether the mesh bounds a convex body (or is flat and convex): every vertex lies on one side of every
+    // triangle's plane, either side, since imported windings are unreliable. False past kConvexCheckLimit
+    // vertex-plane tests, without checking.
+    bool convex() const;
+    // Whether every triangle's vertex normals are its plane's normal (either sign): shaded flat, as a box's
+    // faces. A convex, faceted surface cannot shadow itself (see shadow_reach.h); a smooth-shaded one can,
+    // where its facets turn from the light before its normals do.
+    bool faceted() const;
+    static constexpr std::size_t kConvexCheckLimit = 16u << 20;
 };
 
 } // namespace sp::render

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -47,12 +48,16 @@ struct Renderer::Draw {
     double distance;                                  // from the eye to the instance's bounding sphere
     bool holdsEye;                                    // the bounding sphere holds the eye (a floor, a room)
     std::array<std::optional<TextureId>, 3> textures; // base colour, roughness-metallic, normal
+    ShadowReach::Kind reach = ShadowReach::Kind::Whole; // which shaded programs draw it, and where
+    std::size_t part = 0;                               // Part: its rectangles, in Renderer::parts_
     // Draws of one batch are drawn by one instanced call: same program, mesh, submesh and textures (and
-    // whether they hold the eye, so that floors still go last). Numbered in visibleDraws().
+    // whether they hold the eye, so that floors still go last); a draw in parts is a batch of its own.
+    // Numbered in visibleDraws().
     std::size_t batch = 0;
 };
 
-Renderer::Renderer(const GlContext& context) : context_(context), packIdsOnGpu_(!context.report().software) {
+Renderer::Renderer(const GlContext& context)
+    : context_(context), packIdsOnGpu_(!context.report().software), shadowReach_(context.report().software) {
     context_.makeCurrent();
     if (context.report().software) {
         // What the surface programs' own varyings leave of the smaller of the two limits (see
@@ -109,6 +114,8 @@ void add(RenderStats& total, const RenderStats& s) {
     total.drawnInstances += s.drawnInstances;
     total.drawCalls += s.drawCalls;
     total.culledInstances += s.culledInstances;
+    total.unshadowedInstances += s.unshadowedInstances;
+    total.splitInstances += s.splitInstances;
     for (std::size_t p = 0; p < kPassCount; ++p) {
         total.passTimes[p].gpuMs += s.passTimes[p].gpuMs;
         total.passTimes[p].cpuMs += s.passTimes[p].cpuMs;
@@ -226,7 +233,11 @@ void Renderer::render(const Scene& scene, const Camera& camera, const PassSet& p
         uploadFrameBlock(scene, camera, shadowInfos);
     }
     if (passes.surface) {
-        const std::vector<Draw> draws = visibleDraws(scene, camera);
+        // Where no shadow can fall, the shading programs skip the lookups (see shadow_reach.h).
+        std::optional<ShadowReceivers> receivers;
+        if (shadowReach_ && passes.lighting && !shadowInfos.empty())
+            receivers.emplace(scene, camera, fb.width, fb.height, shadowInfos);
+        const std::vector<Draw> draws = visibleDraws(scene, camera, receivers ? &*receivers : nullptr);
         surfacePass(scene, camera, passes, lights, draws, cache, fb);
         if (passes.attributeTargets != 0)
             attributePass(scene, camera, passes, draws, cache, fb);
@@ -369,7 +380,8 @@ void Renderer::clearTargets(const Scene& scene, const Camera& camera, TargetMask
     }
 }
 
-std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Camera& camera) {
+std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Camera& camera,
+                                                   const ShadowReceivers* receivers) {
     const std::array<Eigen::Vector4d, 6> planes = camera.frustumPlanes();
     const Eigen::Vector3d eye = camera.pose.translation();
     const double focal = camera.focalLengthPixels();
@@ -377,6 +389,7 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
     // Cull against the view frustum (bounding spheres); then draw each program's submeshes front to back.
     std::vector<Draw> draws;
     std::size_t drawn = 0;
+    parts_.clear();
     scene.forEachInstance([&](InstanceId, const Instance& instance) {
         if (!instance.visible)
             return;
@@ -395,6 +408,14 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
                                                         : std::numeric_limits<double>::max() / 2 - radius;
         const double nearest = std::max(centreDistance - radius, camera.params.nearClip);
         const MeshId mesh = scene.lodFor(instance.mesh, radius * focal / nearest);
+        ShadowReach reach;
+        if (receivers != nullptr)
+            reach = receivers->reach(scene, instance);
+        active_->stats.unshadowedInstances += reach.kind == ShadowReach::Kind::None ? 1 : 0;
+        active_->stats.splitInstances += reach.kind == ShadowReach::Kind::Part ? 1 : 0;
+        const std::size_t part = parts_.size();
+        if (reach.kind == ShadowReach::Kind::Part)
+            parts_.push_back(std::move(reach));
         for (std::size_t slot = 0; slot < instance.materials.size(); ++slot) {
             const Material& material = scene.material(instance.materials[slot]);
             const unsigned features =
@@ -408,7 +429,9 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
                  features,
                  distance,
                  centreDistance <= radius,
-                 {material.baseColorTexture, material.roughnessMetallicTexture, material.normalTexture}});
+                 {material.baseColorTexture, material.roughnessMetallicTexture, material.normalTexture},
+                 reach.kind,
+                 part});
         }
     });
     // By program, front to back; then each draw joins the batch of the nearest draw it batches with, so a
@@ -418,13 +441,17 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
     });
     // Batches numbered in order of their nearest draw, through a map of what a batch shares (a scene of many
     // distinct meshes has many batches).
-    using BatchKey = std::tuple<unsigned, MeshId, std::size_t, bool, std::array<std::optional<TextureId>, 3>>;
+    using BatchKey = std::tuple<unsigned, MeshId, std::size_t, bool, std::array<std::optional<TextureId>, 3>,
+                                ShadowReach::Kind, std::size_t>;
     std::map<BatchKey, std::size_t> batches;
-    for (Draw& draw : draws)
+    for (Draw& draw : draws) {
+        const std::size_t part = draw.reach == ShadowReach::Kind::Part ? draw.part : 0;
         draw.batch = batches
-                         .try_emplace({draw.features, draw.mesh, draw.slot, draw.holdsEye, draw.textures},
+                         .try_emplace({draw.features, draw.mesh, draw.slot, draw.holdsEye, draw.textures,
+                                       draw.reach, part},
                                       batches.size())
                          .first->second;
+    }
     std::stable_sort(draws.begin(), draws.end(),
                      [](const Draw& a, const Draw& b) { return a.batch < b.batch; });
     active_->stats.drawnInstances += drawn;
@@ -461,18 +488,26 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
     }
     instances_->upload(records_);
 
-    // One instanced draw call per batch (consecutive draws of one batch: see visibleDraws()).
-    ShaderProgram* program = nullptr;
-    unsigned programFeatures = 0;
+    // What the shaded programs draw where no shadow falls: the same lights, no shadow-map lookups.
+    shaders::ShadingLayout unshadowed = lights;
+    for (shaders::LightSlot& light : unshadowed.lights)
+        light.shadowLayer = -1;
+    unshadowed.floatShadowMaps = false;
+
+    // One instanced draw call per batch (consecutive draws of one batch: see visibleDraws()), or for a
+    // batch in parts one per rectangle, scissored.
+    const ShaderProgram* current = nullptr;
+    const auto use = [&](unsigned features, bool lookups) {
+        ShaderProgram& program = surfaceProgram(targets, shade, features, lookups ? lights : unshadowed);
+        if (&program != current) {
+            program.use();
+            current = &program;
+        }
+    };
     for (std::size_t first = 0, last = 0; first < draws.size(); first = last) {
         const Draw& draw = draws[first];
         for (last = first + 1; last < draws.size() && draws[last].batch == draw.batch;)
             ++last;
-        if (program == nullptr || draw.features != programFeatures) { // draws are grouped by features
-            program = &surfaceProgram(targets, shade, draw.features, lights);
-            programFeatures = draw.features;
-            program->use();
-        }
         const GpuMesh& mesh = cache.mesh(scene, draw.mesh);
         instances_->bind(mesh.vao);
         glBindVertexArray(mesh.vao);
@@ -480,10 +515,29 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
             if (draw.textures[std::size_t(t)])
                 glBindTextureUnit(GLuint(t), cache.texture(scene, *draw.textures[std::size_t(t)]));
         const Submesh& sub = mesh.submeshes[draw.slot];
-        glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(sub.indexCount), GL_UNSIGNED_INT,
-                                            reinterpret_cast<const void*>(std::uintptr_t(sub.firstIndex) * 4),
-                                            GLsizei(last - first), GLuint(first));
-        ++active_->stats.drawCalls;
+        const auto drawBatch = [&] {
+            glDrawElementsInstancedBaseInstance(
+                GL_TRIANGLES, GLsizei(sub.indexCount), GL_UNSIGNED_INT,
+                reinterpret_cast<const void*>(std::uintptr_t(sub.firstIndex) * 4), GLsizei(last - first),
+                GLuint(first));
+            ++active_->stats.drawCalls;
+        };
+        if (!shade || draw.reach != ShadowReach::Kind::Part) {
+            use(draw.features, draw.reach != ShadowReach::Kind::None);
+            drawBatch();
+            continue;
+        }
+        // Each pixel of the instance lies in one rectangle of the two lists, so it is shaded once.
+        glEnable(GL_SCISSOR_TEST);
+        const ShadowReach& reach = parts_[draw.part];
+        for (const bool lookups : {false, true}) {
+            use(draw.features, lookups);
+            for (const PixelRect& rect : lookups ? reach.shadowed : reach.unshadowed) {
+                glScissor(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0);
+                drawBatch();
+            }
+        }
+        glDisable(GL_SCISSOR_TEST);
     }
     glBindVertexArray(0);
 }

@@ -22,6 +22,7 @@
 #include "core/render/pass_timers.h"
 #include "core/render/scene.h"
 #include "core/render/shaders.h"
+#include "core/render/shadow_reach.h"
 
 namespace sp::render {
 
@@ -49,6 +50,8 @@ struct RenderStats {
     std::uint64_t drawnInstances = 0;             // instances drawn by surface passes
     std::uint64_t drawCalls = 0;                  // instanced draw calls of surface and attribute passes
     std::uint64_t culledInstances = 0;            // instances outside the view, not drawn
+    std::uint64_t unshadowedInstances = 0;        // shaded without shadow lookups: no shadow reaches them
+    std::uint64_t splitInstances = 0;             // shaded in parts: lookups only where a shadow can fall
     std::array<PassTime, kPassCount> passTimes{}; // by Pass
 };
 
@@ -88,6 +91,12 @@ class Renderer {
     // rasteriser, 0 on a GPU. Settable, so that tests render both ways; images are the same bit for bit.
     int constantSlots() const { return constantSlots_; }
     void setConstantSlots(int slots) { constantSlots_ = std::max(0, slots); }
+    // Whether the surface pass shades what no shadow can reach without shadow-map lookups, and a large
+    // instance a shadow falls on in part in scissored parts (see shadow_reach.h): by default on a software
+    // rasteriser, where the lookups are a fifth of a shaded pixel; a GPU would only pay for more draws.
+    // Settable, so that tests render both ways; images are the same bit for bit.
+    bool shadowReach() const { return shadowReach_; }
+    void setShadowReach(bool on) { shadowReach_ = on; }
 
   private:
     struct Draw; // one submesh of a visible instance
@@ -107,8 +116,10 @@ class Renderer {
     ShaderProgram& surfaceProgram(TargetMask targets, bool forward, unsigned materialFeatures,
                                   const shaders::ShadingLayout& lights);
     void uploadFrameBlock(const Scene& scene, const Camera& camera, const std::vector<ShadowInfo>& shadows);
-    // The submeshes of the instances in view, grouped by program and front to back within a group.
-    std::vector<Draw> visibleDraws(const Scene& scene, const Camera& camera);
+    // The submeshes of the instances in view, grouped by program and front to back within a group; with
+    // `receivers`, each knows where shadows reach it (the parts of those drawn in parts go to parts_).
+    std::vector<Draw> visibleDraws(const Scene& scene, const Camera& camera,
+                                   const ShadowReceivers* receivers);
     void surfacePass(const Scene& scene, const Camera& camera, const PassSet& passes,
                      const shaders::ShadingLayout& lights, const std::vector<Draw>& draws,
                      GpuSceneCache& cache, Framebuffers& fb);
@@ -129,11 +140,13 @@ class Renderer {
     std::unique_ptr<ShaderProgram> idChannel_; // made at the first id readback
     bool packIdsOnGpu_ = true;
     int constantSlots_ = 0;
+    bool shadowReach_ = false;
     std::unique_ptr<SharedUploads> sharedUploads_; // meshes and textures the scenes add under shared keys
     std::map<std::uint64_t, std::unique_ptr<SceneState>> scenes_; // by Scene::uid()
     SceneState* active_ = nullptr;                                // the scene render() is drawing
     std::unique_ptr<InstanceBuffer> instances_;                   // the surface passes' instance records
     std::vector<InstanceRecord> records_;                         // scratch for them
+    std::vector<ShadowReach> parts_; // the rectangles of the draws in parts, of the last visibleDraws()
     unsigned frameBlock_ = 0;
     unsigned emptyVao_ = 0; // bound for draws whose vertices come from gl_VertexID alone
 };

@@ -15,8 +15,9 @@ Scene::Scene() : uid_(gNextSceneUid++) {}
 
 MeshId Scene::addMesh(MeshData mesh, std::string sharedKey) {
     mesh.validate("Scene::addMesh");
-    MeshEntry entry{std::move(mesh), nextRevision_++, {}, {}, {}, std::move(sharedKey)};
+    MeshEntry entry{std::move(mesh), nextRevision_++, {}, {}, false, {}, std::move(sharedKey)};
     entry.data.bounds(entry.min, entry.max);
+    entry.convexFaceted = entry.data.convex() && entry.data.faceted();
     return meshes_.insert(std::move(entry));
 }
 
@@ -32,6 +33,7 @@ void Scene::updateMesh(MeshId id, MeshData mesh) {
     entry.revision = nextRevision_++;
     entry.sharedKey.clear();
     entry.data.bounds(entry.min, entry.max);
+    entry.convexFaceted = entry.data.convex() && entry.data.faceted();
 }
 
 void Scene::removeMesh(MeshId id) {
@@ -55,6 +57,9 @@ std::uint64_t Scene::meshRevision(MeshId id) const {
 }
 const std::string& Scene::meshSharedKey(MeshId id) const {
     return meshes_.get(id, "Scene::meshSharedKey").sharedKey;
+}
+bool Scene::meshConvexFaceted(MeshId id) const {
+    return meshes_.get(id, "Scene::meshConvexFaceted").convexFaceted;
 }
 
 TextureId Scene::addTexture(TextureImage image, TextureEncoding encoding, std::string sharedKey) {
@@ -223,6 +228,18 @@ void Scene::boundingSphere(const Instance& instance, Eigen::Vector3d& centre, do
              instance.transform.linear().colwise().norm().maxCoeff();
 }
 
+Eigen::AlignedBox3d Scene::boundingBox(const Instance& instance) const {
+    const MeshEntry& entry = meshes_.get(instance.mesh, "Scene::boundingBox");
+    Eigen::AlignedBox3d box;
+    for (int corner = 0; corner < 8; ++corner) {
+        const Eigen::Vector3d local((corner & 1) ? entry.max.x() : entry.min.x(),
+                                    (corner & 2) ? entry.max.y() : entry.min.y(),
+                                    (corner & 4) ? entry.max.z() : entry.min.z());
+        box.extend(instance.transform * local);
+    }
+    return box;
+}
+
 bool Scene::reachesInside(std::span<const Eigen::Vector4d> planes, const Eigen::Vector3d& centre,
                           double radius) {
     return std::none_of(planes.begin(), planes.end(), [&](const Eigen::Vector4d& plane) {
@@ -242,13 +259,7 @@ void Scene::bounds(Eigen::Vector3d& centre, double& radius, std::span<const Eige
             if (!reachesInside(within, sphereCentre, sphereRadius))
                 return;
         }
-        const MeshEntry& entry = meshes_.get(instance.mesh, "Scene::bounds");
-        for (int corner = 0; corner < 8; ++corner) {
-            Eigen::Vector3d local((corner & 1) ? entry.max.x() : entry.min.x(),
-                                  (corner & 2) ? entry.max.y() : entry.min.y(),
-                                  (corner & 4) ? entry.max.z() : entry.min.z());
-            box.extend(instance.transform * local);
-        }
+        box.extend(boundingBox(instance));
     });
     if (box.isEmpty()) {
         centre.setZero();

@@ -63,6 +63,8 @@ class Scene {
     const MeshData& mesh(MeshId id) const;
     std::uint64_t meshRevision(MeshId id) const;
     const std::string& meshSharedKey(MeshId id) const;
+    // MeshData::convex() and faceted(), computed when the mesh was added or updated: it cannot shadow itself.
+    bool meshConvexFaceted(MeshId id) const;
     // Levels of detail of a mesh, from finer to coarser (increasing relativeError); each has the mesh's
     // submesh count. A mesh that is some chain's level cannot be removed while that chain names it.
     void setMeshLods(MeshId id, std::vector<MeshLod> lods);
@@ -72,6 +74,8 @@ class Scene {
     MeshId lodFor(MeshId id, double radiusInPixels) const;
     // World-space bounding sphere of an instance (its mesh's box, transformed; scale included).
     void boundingSphere(const Instance& instance, Eigen::Vector3d& centre, double& radius) const;
+    // World-space axis-aligned box of an instance (its mesh's box, transformed).
+    Eigen::AlignedBox3d boundingBox(const Instance& instance) const;
 
     // Textures (for Material's texture slots).
     TextureId addTexture(TextureImage image, TextureEncoding encoding = TextureEncoding::Srgb,
@@ -128,6 +132,7 @@ class Scene {
         MeshData data;
         std::uint64_t revision = 0;
         Eigen::Vector3f min, max;
+        bool convexFaceted = false;
         std::vector<MeshLod> lods;
         std::string sharedKey;
     };

@@ -138,7 +138,10 @@ float shadowFactor(const int layer, vec3 s) {
     vec4 d = vec4(imageLoad(uShadowMaps, ivec3(c0.x, c0.y, layer)).r, imageLoad(uShadowMaps, ivec3(c1.x, c0.y, layer)).r,
                   imageLoad(uShadowMaps, ivec3(c0.x, c1.y, layer)).r, imageLoad(uShadowMaps, ivec3(c1.x, c1.y, layer)).r);
     vec4 lit = vec4(greaterThanEqual(d, vec4(s.z))); // lit where the point is not behind the map's depth
-    return mix(mix(lit.x, lit.y, f.x), mix(lit.z, lit.w, f.x), f.y);
+    // a + t (b - a) rather than mix(), which a driver may expand to a (1 - t) + b t: exactly 1.0 where all
+    // four texels are lit, as a program without the lookups has it (see shadow_reach.h).
+    float near = lit.x + f.x * (lit.y - lit.x), far = lit.z + f.x * (lit.w - lit.z);
+    return near + f.y * (far - near);
 }
 
 struct Shaded {

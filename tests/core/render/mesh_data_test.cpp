@@ -55,6 +55,31 @@ TEST(MeshDataTest, PrimitivesAreClosedAndUnit) {
 namespace sp::render {
 namespace {
 
+TEST(MeshDataTest, ConvexAndFacetedMeshesAreToldApart) {
+    EXPECT_TRUE(primitives::box({2.0f, 1.0f, 0.1f}).convex());
+    EXPECT_TRUE(primitives::sphere(0.45f, 32, 16).convex());
+    EXPECT_TRUE(primitives::cylinder(0.3f, 1.0f, 24).convex());
+    EXPECT_TRUE(primitives::plane(8, 8).convex()); // flat: every vertex on every triangle's plane
+    // Two boxes side by side: the faces of one have the other's vertices on both sides.
+    MeshData two = primitives::box();
+    const MeshData other = primitives::box();
+    const auto base = std::uint32_t(two.positions.size());
+    for (const Eigen::Vector3f& p : other.positions)
+        two.positions.push_back(p + Eigen::Vector3f(0.4f, 0.3f, 0.0f));
+    two.normals.insert(two.normals.end(), other.normals.begin(), other.normals.end());
+    two.uvs.insert(two.uvs.end(), other.uvs.begin(), other.uvs.end());
+    for (std::uint32_t index : other.indices)
+        two.indices.push_back(base + index);
+    two.submeshes.clear();
+    two.validate("test");
+    EXPECT_FALSE(two.convex());
+    EXPECT_FALSE(MeshData().convex()); // no triangles: no body
+    // Flat shading: a box's and a plane's faces, not a sphere's smooth normals.
+    EXPECT_TRUE(primitives::box({2.0f, 1.0f, 0.1f}).faceted());
+    EXPECT_TRUE(primitives::plane(8, 8).faceted());
+    EXPECT_FALSE(primitives::sphere(0.45f, 32, 16).faceted());
+}
+
 TEST(PrimitivesTest, TubeRingsSitAtTheRadiusAroundThePath) {
     const std::vector<Eigen::Vector3f> path{{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {2, 1, 0}, {2, 1, 1}};
     const MeshData tube = primitives::tube(path, 0.05f, 6);

@@ -117,6 +117,82 @@ TEST_F(RenderPathsGlTest, ConstantsInFlatVaryingsRenderTheSameImagesAsUniformRea
     }
 }
 
+TEST_F(RenderPathsGlTest, ShadingWithoutLookupsWhereNoShadowReachesRendersTheSameImages) {
+    // A floor much larger than the shadows on it, a low sun and a shadowed spot light; a box and a sphere
+    // floating where no other shadow reaches, and a tall post behind the second camera whose shadow falls
+    // into its view (its region crosses the camera's near plane). Every modality is the same bit for bit
+    // whether the surface pass skips the shadow lookups where no shadow reaches (the floor in parts) or not.
+    Scene scene;
+    const MeshId floor = scene.addMesh(primitives::plane(40, 40));
+    const MeshId box = scene.addMesh(primitives::box({0.8f, 0.8f, 0.8f}));
+    const MeshId sphere = scene.addMesh(primitives::sphere(0.45f, 32, 16));
+    const MeshId post = scene.addMesh(primitives::box({0.2f, 0.2f, 3.0f}));
+    const MaterialId grey = scene.addMaterial(makeMaterial({0.6f, 0.6f, 0.55f}, 0.9f, 0.0f));
+    const MaterialId red = scene.addMaterial(makeMaterial({0.7f, 0.12f, 0.1f}, 0.5f, 0.0f));
+    const MaterialId gold = scene.addMaterial(makeMaterial({1.0f, 0.78f, 0.34f}, 0.3f, 1.0f));
+    scene.addInstance({floor, {grey}, {1}});
+    const auto place = [&](MeshId mesh, MaterialId material, std::uint32_t id, Eigen::Vector3d at) {
+        Instance instance{mesh, {material}, {id}};
+        instance.transform.translation() = at;
+        scene.addInstance(instance);
+    };
+    place(box, red, 2, {0.3, 0.8, 0.4});
+    place(sphere, gold, 3, {-0.2, -0.5, 0.45});
+    place(box, red, 4, {1.4, -0.9, 0.4});
+    place(box, red, 5, {2.5, -1.5, 3.0});    // floating: nothing shadows it
+    place(sphere, gold, 7, {3.5, 0.5, 2.5}); // floating, but smooth: it shadows itself near its terminator
+    place(post, grey, 6, {-4.5, 4.5, 1.5});
+    Light sun;
+    sun.direction = Eigen::Vector3d(0.8, -0.3, -0.5);
+    sun.intensity = 3.0f;
+    scene.addLight(sun);
+    addSpotAndPointLights(scene);
+    Environment environment;
+    environment.ambient = {0.12f, 0.14f, 0.18f};
+    environment.background = {0.25f, 0.3f, 0.4f};
+    scene.setEnvironment(environment);
+    Camera wide = cameraLookingAt({11.0, -9.0, 4.5}, {0.5, 0.0, 0.3}, 800, 450, 60.0);
+    wide.params.shadowResolution = 1024;
+    Camera past = cameraLookingAt({-3.0, 3.0, 1.6}, {0.5, -0.5, 0.3}, 480, 270, 70.0);
+
+    const bool byDefault = renderer().shadowReach();
+    std::vector<Frame> all(4), colour(4);
+    std::uint64_t split = 0, unshadowed = 0;
+    for (int i = 0; i < 4; ++i) {
+        renderer().setShadowReach(i % 2 == 1);
+        renderer().resetStats();
+        const Camera& camera = i < 2 ? wide : past;
+        RenderTarget everything(renderer(), ModalitySet::all(), 0);
+        RenderTarget alone(renderer(), {Modality::FinalColor}, 0);
+        everything.render(scene, camera, all[std::size_t(i)]);
+        alone.render(scene, camera, colour[std::size_t(i)]);
+        split += renderer().stats().splitInstances;
+        unshadowed += renderer().stats().unshadowedInstances;
+        if (i % 2 == 0) {
+            EXPECT_EQ(renderer().stats().splitInstances + renderer().stats().unshadowedInstances, 0u);
+        }
+    }
+    renderer().setShadowReach(byDefault);
+    EXPECT_GE(split, 2u);      // the floor, in both views
+    EXPECT_GE(unshadowed, 2u); // the floating box, at least
+    for (int i : {1, 3}) {
+        const std::size_t with = std::size_t(i), without = std::size_t(i - 1);
+        for (Modality m : ModalitySet::all().list()) {
+            const ImageBuffer &x = all[without].get(m), &y = all[with].get(m);
+            EXPECT_TRUE(std::equal(x.bytes.begin(), x.bytes.end(), y.bytes.begin()))
+                << modalityName(m) << ", view " << i / 2;
+        }
+        const ImageBuffer &x = colour[without].get(Modality::FinalColor),
+                          &y = colour[with].get(Modality::FinalColor);
+        EXPECT_TRUE(std::equal(x.bytes.begin(), x.bytes.end(), y.bytes.begin()))
+            << "final_color alone, view " << i / 2;
+    }
+    // The post's shadow and the cluster's are in view: the lookups still ran where they fall.
+    const auto [largest, mean] =
+        difference(colour[0].get(Modality::FinalColor), colour[2].get(Modality::FinalColor));
+    EXPECT_GT(largest, 0);
+}
+
 TEST_F(RenderPathsGlTest, AttributePassKeepsTheSurfacePassesFragmentWhereSurfacesTie) {
     // Two instances in the same place, different ids and materials: the surface pass keeps the first drawn
     // (GL_LESS); the attribute pass must write that one's ids and base colour, not the second's.
