@@ -210,6 +210,14 @@ struct FRenderStats {
     /// Instances outside a camera's view, skipped.
     SPPROPERTY()
     int64_t CulledInstances = 0;
+    /// Instances shaded without shadow-map lookups, since no shadow can reach them (a software
+    /// rasteriser only: there the lookups are a fifth of a shaded pixel; images are the same either way).
+    SPPROPERTY()
+    int64_t UnshadowedInstances = 0;
+    /// Instances shaded in scissored parts, with shadow-map lookups only where a shadow can fall (a floor
+    /// under a few objects, on a software rasteriser).
+    SPPROPERTY()
+    int64_t SplitInstances = 0;
     /// Draw calls of surface passes: one per batch of visible instances sharing a mesh, material
     /// textures and program (instanced), so many copies of one object cost one call.
     SPPROPERTY()

@@ -558,6 +558,8 @@ FRenderStats RenderSubsystem::stats() const {
     result.Readbacks = int64_t(stats.readbacks);
     result.DrawnInstances = int64_t(stats.drawnInstances);
     result.CulledInstances = int64_t(stats.culledInstances);
+    result.UnshadowedInstances = int64_t(stats.unshadowedInstances);
+    result.SplitInstances = int64_t(stats.splitInstances);
     result.DrawCalls = int64_t(stats.drawCalls);
     result.MeshUploads = int64_t(stats.meshUploads);
     result.TextureUploads = int64_t(stats.textureUploads);

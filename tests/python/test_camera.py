@@ -311,6 +311,38 @@ def test_an_object_falling_far_out_of_view_leaves_the_shadowed_image_as_it_was(i
             fallen.SetActorLocation(NewLocation=spear.FVector(-150.0, 80.0, -430.0 - 30.0 * step))
 
 
+def test_what_no_shadow_reaches_is_shaded_without_shadow_lookups_on_a_software_rasteriser(
+        instance: spear.Instance) -> None:
+    """A wide floor with a crate on it and a ball high above it, under the sun: on llvmpipe the floor is shaded in
+    parts (shadow-map lookups only around the crate's shadow) and the ball without lookups; a GPU does neither.
+    The images are the same either way (core/render tests compare them bit for bit)."""
+    game = instance.get_game()
+    with instance.begin_frame():
+        ground = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Ground")
+        ground.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Plane")
+        ground.SetActorScale3D(NewScale3D=spear.FVector(40.0, 40.0, 1.0))
+        crate = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Crate", location=spear.FVector(X=2.0, Z=0.5))
+        crate.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        ball = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Ball", location=spear.FVector(X=6.0, Z=3.0))
+        ball.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        sun = game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun", rotation=spear.FRotator(Pitch=-50.0, Yaw=30.0))
+        sun.LightComponent.Intensity = 3.0
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera", location=spear.FVector(-6.0, 0.0, 4.0),
+                                  rotation=spear.FRotator(Pitch=-20.0)).CameraSensor
+        camera.Width, camera.Height, camera.FOV = 640, 360, 70.0
+        camera.Modalities = [M.FinalColor]
+    with instance.end_frame():
+        colour = camera.read_pixels()["final_color"]
+        stats = camera.GetRenderStats()
+        device = camera.get_render_device_info()
+    assert colour.shape == (360, 640, 4)
+    if "llvmpipe" in device.Renderer:
+        assert stats.SplitInstances == 1, stats  # the floor
+        assert stats.UnshadowedInstances >= 1, stats  # the box in the air, at least
+    else:
+        assert stats.SplitInstances == 0 and stats.UnshadowedInstances == 0, (device.Renderer, stats)
+
+
 def test_pass_timings_are_measurements(instance: spear.Instance) -> None:
     """ShadowMs, SurfaceMs and ReadbackMs add up per-pass times: none is negative or longer than the frames took
     (llvmpipe answers a new GL context's first timer query with the time since boot, which is dropped)."""

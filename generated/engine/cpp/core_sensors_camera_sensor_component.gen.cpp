@@ -512,6 +512,26 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             },
         });
         t.properties.push_back({
+            "UnshadowedInstances",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
+            "Instances shaded without shadow-map lookups, since no shadow can reach them (a software\nrasteriser only: there the lookups are a fifth of a shaded pixel; images are the same either way).",
+            false,
+            [](const void* self) { return Calls::get_UnshadowedInstances<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_UnshadowedInstances<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "SplitInstances",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
+            "Instances shaded in scissored parts, with shadow-map lookups only where a shadow can fall (a floor\nunder a few objects, on a software rasteriser).",
+            false,
+            [](const void* self) { return Calls::get_SplitInstances<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_SplitInstances<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
             "DrawCalls",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Draw calls of surface passes: one per batch of visible instances sharing a mesh, material\ntextures and program (instanced), so many copies of one object cost one call.",

@@ -663,6 +663,8 @@ template <> struct type_caster<FRenderStats> {
         value.Readbacks = sp::pybind::Bridge<int64_t>::in(src.attr("Readbacks").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.Readbacks");
         value.DrawnInstances = sp::pybind::Bridge<int64_t>::in(src.attr("DrawnInstances").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.DrawnInstances");
         value.CulledInstances = sp::pybind::Bridge<int64_t>::in(src.attr("CulledInstances").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.CulledInstances");
+        value.UnshadowedInstances = sp::pybind::Bridge<int64_t>::in(src.attr("UnshadowedInstances").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.UnshadowedInstances");
+        value.SplitInstances = sp::pybind::Bridge<int64_t>::in(src.attr("SplitInstances").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.SplitInstances");
         value.DrawCalls = sp::pybind::Bridge<int64_t>::in(src.attr("DrawCalls").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.DrawCalls");
         value.MeshUploads = sp::pybind::Bridge<int64_t>::in(src.attr("MeshUploads").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.MeshUploads");
         value.TextureUploads = sp::pybind::Bridge<int64_t>::in(src.attr("TextureUploads").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.TextureUploads");
@@ -674,7 +676,7 @@ template <> struct type_caster<FRenderStats> {
     }
     static handle cast(const FRenderStats& v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FRenderStats");
-        return cls(sp::pybind::Bridge<int64_t>::out(v.Frames), sp::pybind::Bridge<int64_t>::out(v.ShadowPasses), sp::pybind::Bridge<int64_t>::out(v.ShadowReuses), sp::pybind::Bridge<int64_t>::out(v.SurfacePasses), sp::pybind::Bridge<int64_t>::out(v.AttributePasses), sp::pybind::Bridge<int64_t>::out(v.LightingPasses), sp::pybind::Bridge<int64_t>::out(v.TonemapPasses), sp::pybind::Bridge<int64_t>::out(v.Readbacks), sp::pybind::Bridge<int64_t>::out(v.DrawnInstances), sp::pybind::Bridge<int64_t>::out(v.CulledInstances), sp::pybind::Bridge<int64_t>::out(v.DrawCalls), sp::pybind::Bridge<int64_t>::out(v.MeshUploads), sp::pybind::Bridge<int64_t>::out(v.TextureUploads), sp::pybind::Bridge<double>::out(v.ShadowMs), sp::pybind::Bridge<double>::out(v.SurfaceMs), sp::pybind::Bridge<double>::out(v.AttributeMs), sp::pybind::Bridge<double>::out(v.ReadbackMs)).release();
+        return cls(sp::pybind::Bridge<int64_t>::out(v.Frames), sp::pybind::Bridge<int64_t>::out(v.ShadowPasses), sp::pybind::Bridge<int64_t>::out(v.ShadowReuses), sp::pybind::Bridge<int64_t>::out(v.SurfacePasses), sp::pybind::Bridge<int64_t>::out(v.AttributePasses), sp::pybind::Bridge<int64_t>::out(v.LightingPasses), sp::pybind::Bridge<int64_t>::out(v.TonemapPasses), sp::pybind::Bridge<int64_t>::out(v.Readbacks), sp::pybind::Bridge<int64_t>::out(v.DrawnInstances), sp::pybind::Bridge<int64_t>::out(v.CulledInstances), sp::pybind::Bridge<int64_t>::out(v.UnshadowedInstances), sp::pybind::Bridge<int64_t>::out(v.SplitInstances), sp::pybind::Bridge<int64_t>::out(v.DrawCalls), sp::pybind::Bridge<int64_t>::out(v.MeshUploads), sp::pybind::Bridge<int64_t>::out(v.TextureUploads), sp::pybind::Bridge<double>::out(v.ShadowMs), sp::pybind::Bridge<double>::out(v.SurfaceMs), sp::pybind::Bridge<double>::out(v.AttributeMs), sp::pybind::Bridge<double>::out(v.ReadbackMs)).release();
     }
 };
 

@@ -2329,6 +2329,24 @@ struct FRenderStatsCalls {
         sp::reflect::notifyPropertyChanged(self, "CulledInstances");
     }
 
+    template <typename Call> static typename Call::Result get_UnshadowedInstances(const Self* self) {
+        const auto& value = self->UnshadowedInstances;
+        return Call::template result<int64_t>(value);
+    }
+    template <typename Call> static void set_UnshadowedInstances(Self* self, const typename Call::Input& value) {
+        self->UnshadowedInstances = Call::template input<int64_t>(value, "FRenderStats.UnshadowedInstances");
+        sp::reflect::notifyPropertyChanged(self, "UnshadowedInstances");
+    }
+
+    template <typename Call> static typename Call::Result get_SplitInstances(const Self* self) {
+        const auto& value = self->SplitInstances;
+        return Call::template result<int64_t>(value);
+    }
+    template <typename Call> static void set_SplitInstances(Self* self, const typename Call::Input& value) {
+        self->SplitInstances = Call::template input<int64_t>(value, "FRenderStats.SplitInstances");
+        sp::reflect::notifyPropertyChanged(self, "SplitInstances");
+    }
+
     template <typename Call> static typename Call::Result get_DrawCalls(const Self* self) {
         const auto& value = self->DrawCalls;
         return Call::template result<int64_t>(value);

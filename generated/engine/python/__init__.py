@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "4e26282f8625fdd9"
+API_HASH = "3de36c9c9f44d43e"

@@ -369,6 +369,8 @@ class FRenderStats:
     Readbacks: int = 0
     DrawnInstances: int = 0
     CulledInstances: int = 0
+    UnshadowedInstances: int = 0
+    SplitInstances: int = 0
     DrawCalls: int = 0
     MeshUploads: int = 0
     TextureUploads: int = 0
