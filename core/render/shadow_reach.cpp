@@ -12,9 +12,10 @@ namespace {
 // The lookup's reach in a map, in texels: the normal offset (1.5, see offsetShadowClip() in shaders.cpp)
 // plus the bilinear tap's texel around the offset point (up to sqrt 2), rounded up.
 constexpr double kReachTexels = 4.0;
-// Past this many caster tests per receiver (casters times shadowed lights), every instance is drawn whole
-// with its lookups: the tests would cost more than they save.
-constexpr std::size_t kMaxCasterTests = 1024;
+// The tests a view may make (casters x shadowed lights x instances, each a few dozen nanoseconds): one per 8
+// pixels, at least 4096. Past it every instance is drawn whole with its lookups, as the tests would cost
+// more than the lookups they spare (a 1080p view allows 512 casters of one light among 512 instances).
+constexpr std::size_t kPixelsPerTest = 8, kMinTests = 4096;
 
 Eigen::AlignedBox3d widened(const Eigen::AlignedBox3d& box, double by) {
     return {box.min().array() - by, box.max().array() + by};
@@ -59,12 +60,14 @@ ShadowReceivers::ShadowReceivers(const Scene& scene, const Camera& camera, int w
                 {scene.boundingBox(instance),
                  scene.meshConvexFaceted(instance.mesh) && scene.meshLods(instance.mesh).empty(), &instance});
     });
+    const std::size_t tests = casters_.size() * lights_.size() * scene.instanceCount();
+    affordable_ = tests <= std::max(kMinTests, std::size_t(width) * std::size_t(height) / kPixelsPerTest);
 }
 
 ShadowReach ShadowReceivers::reach(const Scene& scene, const Instance& receiver) const {
     if (lights_.empty())
         return {ShadowReach::Kind::None, {}, {}};
-    if (casters_.size() * lights_.size() > kMaxCasterTests)
+    if (!affordable_)
         return {};
     const Eigen::AlignedBox3d box = scene.boundingBox(receiver);
     const PixelRect own = pixels(box);

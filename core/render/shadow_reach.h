@@ -104,6 +104,7 @@ class ShadowReceivers {
     int width_ = 0, height_ = 0;
     std::vector<ShadowLight> lights_;
     std::vector<Caster> casters_;
+    bool affordable_ = true; // whether the tests fit the view's budget (see the .cpp)
 };
 
 } // namespace sp::render

@@ -108,6 +108,28 @@ TEST(ShadowReachTest, ASpotLightAboveTheFloorDarkensNothingAboveTheFloorThroughI
     EXPECT_NE(receivers.reach(yard.scene, yard.scene.instance(yard.box)).kind, ShadowReach::Kind::Part);
 }
 
+TEST(ShadowReachTest, ASmallViewOfManyCastersMakesNoTests) {
+    // The tests cost a few dozen nanoseconds each (casters x lights x instances): a view affords one per 8
+    // pixels (at least 4096), and past that draws everything whole with its lookups.
+    Yard yard;
+    Light sun;
+    sun.direction = Eigen::Vector3d(0.3, 0.2, -1.0);
+    yard.scene.addLight(sun);
+    const MeshId cube = yard.scene.instance(yard.box).mesh;
+    for (int i = 0; i < 100; ++i) { // a row of boxes far behind the yard's
+        Instance far{cube, yard.scene.instance(yard.box).materials, {std::uint32_t(10 + i)}};
+        far.transform.translation() = Eigen::Vector3d(-15.0, -15.0 + 0.3 * i, 0.5);
+        yard.scene.addInstance(far);
+    }
+    const Camera wide = cameraLookingAt({9.0, -7.0, 5.0}, {0.0, 0.0, 0.0}, 1280, 720, 70.0);
+    const Camera small = cameraLookingAt({9.0, -7.0, 5.0}, {0.0, 0.0, 0.0}, 64, 36, 70.0);
+    const Instance& floating = yard.scene.instance(yard.floating);
+    EXPECT_EQ(ShadowReceivers(yard.scene, wide, 1280, 720, {sunMap()}).reach(yard.scene, floating).kind,
+              ShadowReach::Kind::None); // 102 x 1 x 103 tests: affordable at 1280 x 720
+    EXPECT_EQ(ShadowReceivers(yard.scene, small, 64, 36, {sunMap()}).reach(yard.scene, floating).kind,
+              ShadowReach::Kind::Whole); // not at 64 x 36
+}
+
 TEST(ShadowReachTest, PixelsOfABoxAreClippedAtTheNearPlane) {
     const Camera camera = cameraLookingAt({0.0, 0.0, 1.0}, {10.0, 0.0, 1.0}, 640, 480, 90.0);
     Scene scene;
