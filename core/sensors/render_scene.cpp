@@ -175,20 +175,29 @@ void RenderScene::sync() {
         it = debugLines_.erase(it);
     }
 
-    for (sp::render::LightId id : lights_)
-        scene_.removeLight(id);
-    lights_.clear();
+    // The lights are set in place, in play order: removed and added again, they came back in the reverse
+    // order of their handles every other frame, which made a still scene's shadow maps be drawn again and
+    // its programs (specialised for the lights in order) change each frame.
+    std::size_t count = 0;
     for (const auto& [sequence, light] : lightComponents_.items()) {
         if (!light->bVisible)
             continue;
-        if (lights_.size() == sp::render::Scene::kMaxLights) {
+        if (count == sp::render::Scene::kMaxLights) {
             logOnce("lights", "RenderSubsystem: more than " + std::to_string(sp::render::Scene::kMaxLights) +
                                   " lights in the world; the rest are not rendered");
             break;
         }
         sp::render::Light renderLight = toRenderLight(*light);
         renderLight.validate(("light '" + light->GetDebugName() + "'").c_str());
-        lights_.push_back(scene_.addLight(renderLight));
+        if (count < lights_.size())
+            scene_.setLight(lights_[count], renderLight);
+        else
+            lights_.push_back(scene_.addLight(renderLight));
+        ++count;
+    }
+    while (lights_.size() > count) {
+        scene_.removeLight(lights_.back());
+        lights_.pop_back();
     }
 
     sp::render::Environment environment;

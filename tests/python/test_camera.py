@@ -343,6 +343,37 @@ def test_what_no_shadow_reaches_is_shaded_without_shadow_lookups_on_a_software_r
         assert stats.SplitInstances == 0 and stats.UnshadowedInstances == 0, (device.Renderer, stats)
 
 
+def test_a_still_scene_with_several_lights_renders_its_shadow_maps_once(instance: spear.Instance) -> None:
+    """Lights keep their order from frame to frame: a still scene's shadow maps are drawn once and reused, and
+    every frame is the same image."""
+    game = instance.get_game()
+    with instance.begin_frame():
+        ground = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Ground")
+        ground.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Plane")
+        ground.SetActorScale3D(NewScale3D=spear.FVector(8.0, 8.0, 1.0))
+        crate = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Crate", location=spear.FVector(X=2.0, Z=0.5))
+        crate.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun", rotation=spear.FRotator(Pitch=-50.0, Yaw=30.0))
+        game.spawn_actor(uclass=spear.APointLight, name="Lamp", location=spear.FVector(X=1.0, Y=1.0, Z=2.0))
+        game.spawn_actor(uclass=spear.APointLight, name="Fill", location=spear.FVector(X=3.0, Y=-1.0, Z=1.0))
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera", location=spear.FVector(-3.0, 0.0, 2.0),
+                                  rotation=spear.FRotator(Pitch=-20.0)).CameraSensor
+        camera.Width, camera.Height = 64, 48
+        camera.Modalities = [M.FinalColor]
+    frames = []
+    for _ in range(4):
+        with instance.end_frame():
+            frames.append(camera.read_pixels()["final_color"])
+            stats = camera.GetRenderStats()
+        with instance.begin_frame():
+            pass
+    with instance.end_frame():
+        pass
+    assert stats.ShadowPasses == 1 and stats.ShadowReuses == 3, stats
+    for frame in frames[1:]:
+        np.testing.assert_array_equal(frame, frames[0])
+
+
 def test_pass_timings_are_measurements(instance: spear.Instance) -> None:
     """ShadowMs, SurfaceMs and ReadbackMs add up per-pass times: none is negative or longer than the frames took
     (llvmpipe answers a new GL context's first timer query with the time since boot, which is dropped)."""
