@@ -34,6 +34,15 @@ def aces_srgb(exposed: NDArray[np.float64]) -> NDArray[np.float64]:
     return srgb
 
 
+def spawn_ground_and_crate(game: spear.UWorld, ground_size: float, crate_x: float = 0.0) -> None:
+    """A square plane of ground_size metres at the origin and a 1 m cube standing on it at X = crate_x."""
+    ground = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Ground")
+    ground.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Plane")
+    ground.SetActorScale3D(NewScale3D=spear.FVector(ground_size, ground_size, 1.0))
+    crate = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Crate", location=spear.FVector(X=crate_x, Z=0.5))
+    crate.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+
+
 def spawn_camera(
     game: spear.UWorld, modalities: list[spear.ECameraModality], width: int = 32, height: int = 24, fov: float = 60.0
 ) -> spear.UCameraSensorComponent:
@@ -282,11 +291,7 @@ def test_an_object_falling_far_out_of_view_leaves_the_shadowed_image_as_it_was(i
     in a long run) neither coarsens the shadows in the image nor changes a pixel as it keeps falling."""
     game = instance.get_game()
     with instance.begin_frame():
-        ground = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Ground")
-        ground.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Plane")
-        ground.SetActorScale3D(NewScale3D=spear.FVector(8.0, 8.0, 1.0))
-        crate = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Crate", location=spear.FVector(Z=0.5))
-        crate.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        spawn_ground_and_crate(game, 8.0)
         # Shining towards the camera, so the crate's shadow falls on the ground in view.
         sun = game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun", rotation=spear.FRotator(Pitch=-50.0, Yaw=-160.0))
         sun.LightComponent.Intensity = 3.0
@@ -318,11 +323,7 @@ def test_what_no_shadow_reaches_is_shaded_without_shadow_lookups_on_a_software_r
     The images are the same either way (core/render tests compare them bit for bit)."""
     game = instance.get_game()
     with instance.begin_frame():
-        ground = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Ground")
-        ground.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Plane")
-        ground.SetActorScale3D(NewScale3D=spear.FVector(40.0, 40.0, 1.0))
-        crate = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Crate", location=spear.FVector(X=2.0, Z=0.5))
-        crate.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        spawn_ground_and_crate(game, 40.0, crate_x=2.0)
         ball = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Ball", location=spear.FVector(X=6.0, Z=3.0))
         ball.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
         sun = game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun", rotation=spear.FRotator(Pitch=-50.0, Yaw=30.0))
@@ -348,11 +349,7 @@ def test_a_still_scene_with_several_lights_renders_its_shadow_maps_once(instance
     every frame is the same image."""
     game = instance.get_game()
     with instance.begin_frame():
-        ground = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Ground")
-        ground.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Plane")
-        ground.SetActorScale3D(NewScale3D=spear.FVector(8.0, 8.0, 1.0))
-        crate = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Crate", location=spear.FVector(X=2.0, Z=0.5))
-        crate.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        spawn_ground_and_crate(game, 8.0, crate_x=2.0)
         game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun", rotation=spear.FRotator(Pitch=-50.0, Yaw=30.0))
         game.spawn_actor(uclass=spear.APointLight, name="Lamp", location=spear.FVector(X=1.0, Y=1.0, Z=2.0))
         game.spawn_actor(uclass=spear.APointLight, name="Fill", location=spear.FVector(X=3.0, Y=-1.0, Z=1.0))
