@@ -102,15 +102,17 @@ Eigen::AlignedBox3d ShadowReceivers::darkened(const ShadowLight& light, const Ei
 }
 
 bool ShadowReceivers::outsideMap(const ShadowLight& light, const Eigen::AlignedBox3d& caster) {
-    // Outside when every corner is beyond one side plane (|x| or |y| > w on the same side, or behind the
-    // light); depth is clamped when the map is drawn, so near and far do not count. Widened by the reach.
-    const double reach = light.clipReach;
+    // Outside when every corner is outside one of the frustum's side planes (x or y beyond +-w, widened by
+    // the reach) or behind the light (w <= 0). Each is a half-space of world space, tested by a linear
+    // function of the corner, so the test holds for corners behind the light too: a box holding the light
+    // has corners on both sides of every plane through it. Depth is clamped when the map is drawn, so near
+    // and far do not count.
     unsigned outside = 0x1f;
     for (int corner = 0; corner < 8; ++corner) {
         const Eigen::Vector4d c =
             light.worldToClip *
             caster.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)).homogeneous();
-        const double w = c.w() * reach;
+        const double w = c.w() * light.clipReach;
         outside &= (c.x() < -w ? 1u : 0u) | (c.x() > w ? 2u : 0u) | (c.y() < -w ? 4u : 0u) |
                    (c.y() > w ? 8u : 0u) | (c.w() <= 0.0 ? 16u : 0u);
     }

@@ -106,6 +106,14 @@ TEST(ShadowReachTest, ASpotLightAboveTheFloorDarkensNothingAboveTheFloorThroughI
     EXPECT_EQ(receivers.reach(yard.scene, yard.scene.instance(yard.floating)).kind, ShadowReach::Kind::None);
     // The standing box is under the light: the floating box's shadow or the floor's edge may reach it.
     EXPECT_NE(receivers.reach(yard.scene, yard.scene.instance(yard.box)).kind, ShadowReach::Kind::Part);
+
+    // A shade around the light (a box holding it) may darken anything: even the floating box is reached.
+    Instance shade{yard.scene.instance(yard.box).mesh, yard.scene.instance(yard.box).materials, {9}};
+    shade.transform.translation() = spot.position;
+    shade.transform.scale(0.5);
+    yard.scene.addInstance(shade);
+    const ShadowReceivers shaded(yard.scene, camera, 1280, 720, {map});
+    EXPECT_EQ(shaded.reach(yard.scene, yard.scene.instance(yard.floating)).kind, ShadowReach::Kind::Whole);
 }
 
 TEST(ShadowReachTest, ASmallViewOfManyCastersMakesNoTests) {
