@@ -86,8 +86,8 @@ void UCameraSensorComponent::SetPhysicalExposure(double FNumber, double ShutterS
     SetExposureValue(std::log2(FNumber * FNumber / ShutterSeconds * 100.0 / ISO));
 }
 void UCameraSensorComponent::SetShadowResolution(int32_t NewShadowResolution) {
-    sp::checkSetting(NewShadowResolution >= 16 && NewShadowResolution <= 8192, "UCameraSensorComponent",
-                     "ShadowResolution", "in [16, 8192]", NewShadowResolution);
+    sp::checkSetting(NewShadowResolution == 0 || (NewShadowResolution >= 16 && NewShadowResolution <= 8192),
+                     "UCameraSensorComponent", "ShadowResolution", "0 or in [16, 8192]", NewShadowResolution);
     ShadowResolution = NewShadowResolution;
 }
 void UCameraSensorComponent::SetLatency(int32_t NewLatency) {

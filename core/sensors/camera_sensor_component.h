@@ -320,9 +320,11 @@ class UCameraSensorComponent : public USceneComponent {
     SPPROPERTY()
     bool bShadows = true;
 
-    /// Shadow map size in texels, in [16, 8192].
+    /// Shadow map size in texels, in [16, 8192], or 0 (the default) to size it to the world's cameras: the
+    /// power of two at or above the longest side of its shadowed cameras, within [256, 4096]. The views of
+    /// a frame share one map, and a small camera's map is small (texels cost a software rasteriser).
     SPPROPERTY(Setter = SetShadowResolution)
-    int32_t ShadowResolution = 1024;
+    int32_t ShadowResolution = 0;
 
     /// The modalities rendered each frame; only the passes they need run.
     SPPROPERTY()
@@ -420,7 +422,7 @@ class UCameraSensorComponent : public USceneComponent {
     /// (1, 1, 1 at 6500 K; a grey keeps its luminance).
     SPFUNCTION()
     sp::reflect::SpArray<double> GetWhiteBalanceGains() const;
-    /// Sets ShadowResolution in texels, in [16, 8192].
+    /// Sets ShadowResolution in texels, in [16, 8192], or 0 to size it to the world's cameras.
     SPFUNCTION()
     void SetShadowResolution(int32_t NewShadowResolution);
     /// Sets Latency: 0, 1 or 2 frames.

@@ -124,6 +124,7 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     std::unique_ptr<sp::pathtrace::PathTracer> tracer_;  // started by the first path-traced camera
     PlayOrder<UCameraSensorComponent> cameraComponents_; // the world's cameras in play
     std::map<sp::reflect::ObjectHandle, std::unique_ptr<CameraState>> cameras_;
+    int sizedShadowResolution_ = 1024; // what ShadowResolution 0 stands for this frame (see Tick)
 };
 
 } // namespace sp::sensors

@@ -371,6 +371,32 @@ def test_a_still_scene_with_several_lights_renders_its_shadow_maps_once(instance
         np.testing.assert_array_equal(frame, frames[0])
 
 
+@pytest.mark.parametrize("sides, sized", [((64, 48), 256), ((640, 360), 1024), ((300, 1030), 2048)])
+def test_shadow_maps_are_sized_to_the_worlds_cameras_by_default(instance: spear.Instance,
+                                                                sides: tuple[int, int], sized: int) -> None:
+    """ShadowResolution 0 (the default) stands for the power of two at or above the longest side of the world's
+    shadowed cameras, within [256, 4096]: the image equals the one rendered at that resolution, bit for bit."""
+    game = instance.get_game()
+    with instance.begin_frame():
+        spawn_ground_and_crate(game, 8.0, crate_x=2.0)
+        game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun", rotation=spear.FRotator(Pitch=-50.0, Yaw=30.0))
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera", location=spear.FVector(-3.0, 0.0, 2.0),
+                                  rotation=spear.FRotator(Pitch=-20.0)).CameraSensor
+        camera.Width, camera.Height = sides
+        camera.Modalities = [M.FinalColor]
+        assert camera.ShadowResolution == 0
+    with instance.end_frame():
+        pass
+    images = []
+    for resolution in (0, sized, sized // 2):
+        with instance.begin_frame():
+            camera.ShadowResolution = resolution
+        with instance.end_frame():
+            images.append(camera.read_pixels()["final_color"])
+    np.testing.assert_array_equal(images[0], images[1])
+    assert not np.array_equal(images[0], images[2])  # the size shows in the image
+
+
 def test_pass_timings_are_measurements(instance: spear.Instance) -> None:
     """ShadowMs, SurfaceMs and ReadbackMs add up per-pass times: none is negative or longer than the frames took
     (llvmpipe answers a new GL context's first timer query with the time since boot, which is dropped)."""

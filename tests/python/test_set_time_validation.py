@@ -38,7 +38,7 @@ CAMERA_CASES = [
     ("NearClip", 0.0, 0.05, "UCameraSensorComponent.NearClip must be > 0 and finite, got 0"),
     ("FarClip", math.inf, 1000.0, "UCameraSensorComponent.FarClip must be > 0 and finite, got inf"),
     ("Exposure", math.nan, 1.0, "UCameraSensorComponent.Exposure must be > 0 and finite, got nan"),
-    ("ShadowResolution", 8, 1024, "UCameraSensorComponent.ShadowResolution must be in [16, 8192], got 8"),
+    ("ShadowResolution", 8, 0, "UCameraSensorComponent.ShadowResolution must be 0 or in [16, 8192], got 8"),
     ("Latency", 3, 0, "UCameraSensorComponent.Latency must be 0, 1 or 2, got 3"),
 ]
 

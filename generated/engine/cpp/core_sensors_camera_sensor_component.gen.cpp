@@ -775,7 +775,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.properties.push_back({
             "ShadowResolution",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
-            "Shadow map size in texels, in [16, 8192].",
+            "Shadow map size in texels, in [16, 8192], or 0 (the default) to size it to the world's cameras: the\npower of two at or above the longest side of its shadowed cameras, within [256, 4096]. The views of\na frame share one map, and a small camera's map is small (texels cost a software rasteriser).",
             false,
             [](const void* self) { return Calls::get_ShadowResolution<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
@@ -1064,7 +1064,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.functions.push_back({
             "SetShadowResolution",
-            "Sets ShadowResolution in texels, in [16, 8192].",
+            "Sets ShadowResolution in texels, in [16, 8192], or 0 to size it to the world's cameras.",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
                 {"NewShadowResolution", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},

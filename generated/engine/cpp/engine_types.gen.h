@@ -44,5 +44,5 @@ __attribute__((visibility("default"))) const char* spear_register_engine_types_a
 
 // The same hash as a constant: a plugin compiled against these headers records the engine's.
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "3de36c9c9f44d43e";
+inline constexpr char kApiHash[] = "8f61a0daaa97d853";
 } // namespace sp::generated::engine

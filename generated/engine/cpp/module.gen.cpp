@@ -1889,7 +1889,7 @@ void spear_bind_engine(py::module_& m) {
             [](const Ref<Self>& self, const PyArg& value) {
                 Calls::set_ShadowResolution<PyCall>(self.get<Self>("UCameraSensorComponent.ShadowResolution"), value);
             },
-            "Shadow map size in texels, in [16, 8192].");
+            "Shadow map size in texels, in [16, 8192], or 0 (the default) to size it to the world's cameras: the\npower of two at or above the longest side of its shadowed cameras, within [256, 4096]. The views of\na frame share one map, and a small camera's map is small (texels cost a software rasteriser).");
         cls.def_property(
             "Modalities",
             [](const Ref<Self>& self) { return Calls::get_Modalities<PyCall>(self.get<Self>("UCameraSensorComponent.Modalities")); },
@@ -2100,7 +2100,7 @@ void spear_bind_engine(py::module_& m) {
                 return Calls::call_SetShadowResolution<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewShadowResolution}, true});
             },
             py::arg("NewShadowResolution") = sp::pybind::missingArgument(),
-            "SetShadowResolution(self, *, NewShadowResolution: int) -> None\n\nSets ShadowResolution in texels, in [16, 8192].");
+            "SetShadowResolution(self, *, NewShadowResolution: int) -> None\n\nSets ShadowResolution in texels, in [16, 8192], or 0 to size it to the world's cameras.");
         cls.def(
             "SetLatency",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewLatency, const py::kwargs& extra) -> py::object {

@@ -199,4 +199,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "3de36c9c9f44d43e"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "8f61a0daaa97d853"; }

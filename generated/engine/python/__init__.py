@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "3de36c9c9f44d43e"
+API_HASH = "8f61a0daaa97d853"

@@ -2994,7 +2994,10 @@ class UCameraSensorComponent(USceneComponent):
 
     @property
     def ShadowResolution(self) -> int:
-        """Shadow map size in texels, in [16, 8192]."""
+        """Shadow map size in texels, in [16, 8192], or 0 (the default) to size it to the world's cameras: the
+        power of two at or above the longest side of its shadowed cameras, within [256, 4096]. The views of
+        a frame share one map, and a small camera's map is small (texels cost a software rasteriser).
+        """
 
     @ShadowResolution.setter
     def ShadowResolution(self, value: int) -> None: ...
@@ -3116,7 +3119,7 @@ class UCameraSensorComponent(USceneComponent):
         """
 
     def SetShadowResolution(self, *, NewShadowResolution: int) -> None:
-        """Sets ShadowResolution in texels, in [16, 8192]."""
+        """Sets ShadowResolution in texels, in [16, 8192], or 0 to size it to the world's cameras."""
 
     def SetLatency(self, *, NewLatency: int) -> None:
         """Sets Latency: 0, 1 or 2 frames."""
