@@ -43,8 +43,10 @@ sp::render::CameraParams cameraParams(const UCameraSensorComponent& camera, int 
     SP_CHECK(camera.NearClip > 0.0, sp::InvalidArgument, who, "NearClip must be > 0, got ", camera.NearClip);
     SP_CHECK(camera.FarClip > camera.NearClip, sp::InvalidArgument, who, "FarClip must be > NearClip (",
              camera.NearClip, "), got ", camera.FarClip);
-    SP_CHECK(camera.ShadowResolution == 0 || (camera.ShadowResolution >= 16 && camera.ShadowResolution <= 8192),
-             sp::InvalidArgument, who, "ShadowResolution must be 0 or in [16, 8192], got ", camera.ShadowResolution);
+    SP_CHECK(camera.ShadowResolution == 0 ||
+                 (camera.ShadowResolution >= 16 && camera.ShadowResolution <= 8192),
+             sp::InvalidArgument, who, "ShadowResolution must be 0 or in [16, 8192], got ",
+             camera.ShadowResolution);
     SP_CHECK(camera.WhiteBalanceTemperature >= 2000.0 && camera.WhiteBalanceTemperature <= 25000.0,
              sp::InvalidArgument, who, "WhiteBalanceTemperature must be in [2000, 25000] kelvin, got ",
              camera.WhiteBalanceTemperature);
