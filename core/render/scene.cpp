@@ -17,7 +17,7 @@ MeshId Scene::addMesh(MeshData mesh, std::string sharedKey) {
     mesh.validate("Scene::addMesh");
     MeshEntry entry{std::move(mesh), nextRevision_++, {}, {}, false, {}, std::move(sharedKey)};
     entry.data.bounds(entry.min, entry.max);
-    entry.convexFaceted = entry.data.convex() && entry.data.faceted();
+    entry.convexFaceted = entry.data.faceted() && entry.data.convex(); // faceted() first: it is cheap
     return meshes_.insert(std::move(entry));
 }
 
@@ -33,7 +33,7 @@ void Scene::updateMesh(MeshId id, MeshData mesh) {
     entry.revision = nextRevision_++;
     entry.sharedKey.clear();
     entry.data.bounds(entry.min, entry.max);
-    entry.convexFaceted = entry.data.convex() && entry.data.faceted();
+    entry.convexFaceted = entry.data.faceted() && entry.data.convex(); // faceted() first: it is cheap
 }
 
 void Scene::removeMesh(MeshId id) {
