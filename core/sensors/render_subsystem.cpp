@@ -256,10 +256,10 @@ void RenderSubsystem::Tick(double /*deltaSeconds*/) {
     for (const UCameraSensorComponent* camera : cameras)
         if (!camera->renderSuspended() && camera->bShadows)
             longest = std::max({longest, camera->Width, camera->Height});
-    sizedShadowResolution_ = std::clamp(int(std::bit_ceil(unsigned(std::max(longest, 1)))), 256, 4096);
+    const int sized = std::clamp(int(std::bit_ceil(unsigned(std::max(longest, 1)))), 256, 4096);
     for (UCameraSensorComponent* camera : cameras)
         if (!camera->renderSuspended())
-            submit(*camera);
+            submit(*camera, sized);
 }
 
 RenderSubsystem::CameraState& RenderSubsystem::cameraState(UCameraSensorComponent& camera) {
@@ -269,9 +269,9 @@ RenderSubsystem::CameraState& RenderSubsystem::cameraState(UCameraSensorComponen
     return *state;
 }
 
-void RenderSubsystem::submit(UCameraSensorComponent& camera) {
+void RenderSubsystem::submit(UCameraSensorComponent& camera, int sizedShadowResolution) {
     sp::render::Camera renderCamera;
-    renderCamera.params = cameraParams(camera, sizedShadowResolution_);
+    renderCamera.params = cameraParams(camera, sizedShadowResolution);
     renderCamera.pose = camera.GetComponentTransform().toIsometry();
     const sp::render::ModalitySet modalities = toModalitySet(camera.Modalities);
 

@@ -109,7 +109,8 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     void ensureRenderer();
     const PendingFrame* dueFrame(UCameraSensorComponent& camera) const;
     CameraState& cameraState(UCameraSensorComponent& camera);
-    void submit(UCameraSensorComponent& camera);
+    // Renders the camera's frame; `sizedShadowResolution` stands for its ShadowResolution 0 (see Tick).
+    void submit(UCameraSensorComponent& camera, int sizedShadowResolution);
     // Adds the camera's path-traced samples of this frame and returns the images of `modalities` that the
     // path tracer makes.
     std::shared_ptr<const TracedImages> trace(UCameraSensorComponent& camera,
@@ -124,7 +125,6 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     std::unique_ptr<sp::pathtrace::PathTracer> tracer_;  // started by the first path-traced camera
     PlayOrder<UCameraSensorComponent> cameraComponents_; // the world's cameras in play
     std::map<sp::reflect::ObjectHandle, std::unique_ptr<CameraState>> cameras_;
-    int sizedShadowResolution_ = 1024; // what ShadowResolution 0 stands for this frame (see Tick)
 };
 
 } // namespace sp::sensors
