@@ -49,7 +49,7 @@ struct Renderer::Draw {
     bool holdsEye;                                    // the bounding sphere holds the eye (a floor, a room)
     std::array<std::optional<TextureId>, 3> textures; // base colour, roughness-metallic, normal
     ShadowReach::Kind reach = ShadowReach::Kind::Whole; // which shaded programs draw it, and where
-    std::size_t part = 0;                               // Part: its rectangles, in Renderer::parts_
+    std::size_t part = 0;                               // Part: its rectangles, in Renderer::parts_; else 0
     // Draws of one batch are drawn by one instanced call: same program, mesh, submesh and textures (and
     // whether they hold the eye, so that floors still go last); a draw in parts is a batch of its own.
     // Numbered in visibleDraws().
@@ -411,11 +411,14 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
         ShadowReach reach;
         if (receivers != nullptr)
             reach = receivers->reach(scene, instance);
-        active_->stats.unshadowedInstances += reach.kind == ShadowReach::Kind::None ? 1 : 0;
-        active_->stats.splitInstances += reach.kind == ShadowReach::Kind::Part ? 1 : 0;
-        const std::size_t part = parts_.size();
-        if (reach.kind == ShadowReach::Kind::Part)
+        const ShadowReach::Kind kind = reach.kind; // read before its rectangles move to parts_
+        active_->stats.unshadowedInstances += kind == ShadowReach::Kind::None ? 1 : 0;
+        active_->stats.splitInstances += kind == ShadowReach::Kind::Part ? 1 : 0;
+        std::size_t part = 0;
+        if (kind == ShadowReach::Kind::Part) {
+            part = parts_.size();
             parts_.push_back(std::move(reach));
+        }
         for (std::size_t slot = 0; slot < instance.materials.size(); ++slot) {
             const Material& material = scene.material(instance.materials[slot]);
             const unsigned features =
@@ -430,7 +433,7 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
                  distance,
                  centreDistance <= radius,
                  {material.baseColorTexture, material.roughnessMetallicTexture, material.normalTexture},
-                 reach.kind,
+                 kind,
                  part});
         }
     });
@@ -444,14 +447,12 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
     using BatchKey = std::tuple<unsigned, MeshId, std::size_t, bool, std::array<std::optional<TextureId>, 3>,
                                 ShadowReach::Kind, std::size_t>;
     std::map<BatchKey, std::size_t> batches;
-    for (Draw& draw : draws) {
-        const std::size_t part = draw.reach == ShadowReach::Kind::Part ? draw.part : 0;
+    for (Draw& draw : draws)
         draw.batch = batches
                          .try_emplace({draw.features, draw.mesh, draw.slot, draw.holdsEye, draw.textures,
-                                       draw.reach, part},
+                                       draw.reach, draw.part},
                                       batches.size())
                          .first->second;
-    }
     std::stable_sort(draws.begin(), draws.end(),
                      [](const Draw& a, const Draw& b) { return a.batch < b.batch; });
     active_->stats.drawnInstances += drawn;
@@ -496,13 +497,13 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
 
     // One instanced draw call per batch (consecutive draws of one batch: see visibleDraws()), or for a
     // batch in parts one per rectangle, scissored.
-    const ShaderProgram* current = nullptr;
+    // The program is looked up (its key composed) only when the features or the lookups change.
+    std::optional<std::pair<unsigned, bool>> current;
     const auto use = [&](unsigned features, bool lookups) {
-        ShaderProgram& program = surfaceProgram(targets, shade, features, lookups ? lights : unshadowed);
-        if (&program != current) {
-            program.use();
-            current = &program;
-        }
+        if (current == std::pair(features, lookups))
+            return;
+        surfaceProgram(targets, shade, features, lookups ? lights : unshadowed).use();
+        current = std::pair(features, lookups);
     };
     for (std::size_t first = 0, last = 0; first < draws.size(); first = last) {
         const Draw& draw = draws[first];
