@@ -143,9 +143,9 @@ void Engine::executeFrame() {
     // playing has only the worlds create_world() made.)
     std::exception_ptr failure;
     ticking_ = true;
-    for (UWorld* world : GetWorlds()) {
+    const auto each = [&](UWorld* world, auto&& step) {
         try {
-            world->Tick(settings_.fixedDeltaSeconds);
+            step(world);
         } catch (const std::exception& e) {
             if (failure)
                 SP_LOG("execute_frame(): world '", world->GetName(), "' also failed: ", e.what());
@@ -155,7 +155,13 @@ void Engine::executeFrame() {
             if (!failure)
                 failure = std::current_exception();
         }
-    }
+    };
+    const std::vector<UWorld*> worlds = GetWorlds();
+    for (UWorld* world : worlds)
+        each(world, [&](UWorld* w) { w->Tick(settings_.fixedDeltaSeconds); });
+    // Then what is done for all worlds at once (one render batch of every world's cameras, say).
+    for (UWorld* world : worlds)
+        each(world, [](UWorld* w) { w->NotifyWorldsTicked(); });
     ticking_ = false;
     if (failure)
         std::rethrow_exception(failure);

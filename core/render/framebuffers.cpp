@@ -23,10 +23,15 @@ GLenum formatOf(Target target) {
     }
 }
 
-GLuint makeTexture(GLenum format, int width, int height) {
+GLuint makeTexture(GLenum format, int width, int height, int layers) {
     GLuint texture = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-    glTextureStorage2D(texture, 1, format, width, height);
+    if (layers > 0) {
+        glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture);
+        glTextureStorage3D(texture, 1, format, width, height, layers);
+    } else {
+        glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+        glTextureStorage2D(texture, 1, format, width, height);
+    }
     glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -52,13 +57,18 @@ void Framebuffers::release() {
         return; // nothing allocated: no GL call, so a never-used target needs no context
     glDeleteFramebuffers(1, &surfaceFbo);
     glDeleteFramebuffers(1, &attributeFbo);
+    glDeleteFramebuffers(1, &readFbo_);
+    readFbo_ = 0;
     glDeleteTextures(GLsizei(textures_.size()), textures_.data());
-    glDeleteRenderbuffers(1, &depthBuffer_);
+    if (layers > 0)
+        glDeleteTextures(1, &depthBuffer_);
+    else
+        glDeleteRenderbuffers(1, &depthBuffer_);
     surfaceFbo = attributeFbo = depthBuffer_ = 0;
     textures_.fill(0);
     formats_.fill(0);
     surfaceTargets_ = attributeTargets_ = 0;
-    width = height = 0;
+    width = height = layers = 0;
 }
 
 unsigned Framebuffers::makeFramebuffer(TargetMask targets, bool depth, const char* what) {
@@ -74,7 +84,10 @@ unsigned Framebuffers::makeFramebuffer(TargetMask targets, bool depth, const cha
         ++count;
     }
     glNamedFramebufferDrawBuffers(fbo, count, drawBuffers);
-    if (depth)
+    if (depth && layers > 0)
+        glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depthBuffer_,
+                                  0); // every layer: a layered framebuffer
+    else if (depth)
         glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depthBuffer_);
     const GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
     SP_CHECK(status == GL_FRAMEBUFFER_COMPLETE, InvalidState, "Framebuffers::ensure(): the ", what,
@@ -82,11 +95,12 @@ unsigned Framebuffers::makeFramebuffer(TargetMask targets, bool depth, const cha
     return fbo;
 }
 
-void Framebuffers::ensure(int w, int h, const PassSet& passes) {
-    if (w != width || h != height)
+void Framebuffers::ensure(int w, int h, const PassSet& passes, int layerCount) {
+    if (w != width || h != height || layerCount != layers)
         release();
     width = w;
     height = h;
+    layers = layerCount;
     const TargetMask needed = passes.surfaceTargets | passes.attributeTargets;
     bool changed = passes.surfaceTargets != surfaceTargets_ || passes.attributeTargets != attributeTargets_;
     for (std::size_t t = 0; t < kTargetCount; ++t) {
@@ -96,13 +110,18 @@ void Framebuffers::ensure(int w, int h, const PassSet& passes) {
         if (textures_[t] != 0 && formats_[t] == format)
             continue;
         glDeleteTextures(1, &textures_[t]);
-        textures_[t] = makeTexture(format, w, h);
+        textures_[t] = makeTexture(format, w, h, layers);
         formats_[t] = format;
         changed = true;
     }
     if (passes.surface && depthBuffer_ == 0) {
-        glCreateRenderbuffers(1, &depthBuffer_);
-        glNamedRenderbufferStorage(depthBuffer_, GL_DEPTH_COMPONENT32F, w, h);
+        if (layers > 0) {
+            glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &depthBuffer_);
+            glTextureStorage3D(depthBuffer_, 1, GL_DEPTH_COMPONENT32F, w, h, layers);
+        } else {
+            glCreateRenderbuffers(1, &depthBuffer_);
+            glNamedRenderbufferStorage(depthBuffer_, GL_DEPTH_COMPONENT32F, w, h);
+        }
         changed = true;
     }
     if (!changed)
@@ -116,6 +135,17 @@ void Framebuffers::ensure(int w, int h, const PassSet& passes) {
         surfaceFbo = makeFramebuffer(surfaceTargets_, true, "surface");
     if (attributeTargets_ != 0)
         attributeFbo = makeFramebuffer(attributeTargets_, true, "attribute");
+}
+
+Framebuffers::Attachment Framebuffers::layerAttachment(Target target, int layer) {
+    const unsigned texture = textures_[static_cast<std::size_t>(target)];
+    SP_CHECK(layers > 0 && layer >= 0 && layer < layers && texture != 0, InvalidState,
+             "Framebuffers::layerAttachment(): no layer ", layer, " of target ", targetName(target), " in ",
+             layers, " layers");
+    if (readFbo_ == 0)
+        glCreateFramebuffers(1, &readFbo_);
+    glNamedFramebufferTextureLayer(readFbo_, GL_COLOR_ATTACHMENT0, texture, 0, layer);
+    return {readFbo_, 0};
 }
 
 Framebuffers::Attachment Framebuffers::attachment(Target target) const {

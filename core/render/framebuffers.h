@@ -3,7 +3,9 @@
 // the framebuffers of the surface and attribute passes, each attaching its targets in Target order and
 // both the one depth buffer (the attribute pass tests against the surface pass's depth).
 // Textures are allocated only for the targets the passes write and kept across frames while the size
-// and format fit. Needs a current context.
+// and format fit. With layers, every texture is an array of that many layers and the framebuffers are
+// layered: each view drawn into them picks its layer (gl_Layer), as the views sharing a page of
+// FramebufferAtlas do. Needs a current context.
 
 #include <array>
 
@@ -18,8 +20,9 @@ class Framebuffers {
     Framebuffers(const Framebuffers&) = delete;
     Framebuffers& operator=(const Framebuffers&) = delete;
 
-    // (Re)allocates what `passes` writes at width x height; keeps the textures that already fit.
-    void ensure(int width, int height, const PassSet& passes);
+    // (Re)allocates what `passes` writes at width x height (in `layers` layers; 0: plain 2D textures); keeps
+    // the textures that already fit.
+    void ensure(int width, int height, const PassSet& passes, int layers = 0);
     // The texture of a target, 0 when the last ensure() did not ask for it.
     unsigned texture(Target target) const { return textures_[static_cast<std::size_t>(target)]; }
     // Where a target can be read: the framebuffer that attaches it and the attachment index.
@@ -28,9 +31,13 @@ class Framebuffers {
         int index = -1;
     };
     Attachment attachment(Target target) const;
+    // Where a target's layer can be read (layered framebuffers): a framebuffer of its own with that layer
+    // attached, since reading a layered one reads its first layer.
+    Attachment layerAttachment(Target target, int layer);
 
     int width = 0;
     int height = 0;
+    int layers = 0; // 0: plain 2D textures
     unsigned surfaceFbo = 0;
     unsigned attributeFbo = 0;
 
@@ -40,7 +47,8 @@ class Framebuffers {
 
     std::array<unsigned, kTargetCount> textures_{};
     std::array<unsigned, kTargetCount> formats_{};
-    unsigned depthBuffer_ = 0;
+    unsigned depthBuffer_ = 0; // a renderbuffer, or with layers a depth texture array
+    unsigned readFbo_ = 0;     // layerAttachment()'s
     TargetMask surfaceTargets_ = 0;
     TargetMask attributeTargets_ = 0;
 };

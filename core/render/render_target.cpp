@@ -2,9 +2,11 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "core/base/error.h"
+#include "core/render/framebuffer_atlas.h"
 #include "core/render/framebuffers.h"
 #include "core/render/renderer.h"
 #include "core/render/shader_program.h"
@@ -49,11 +51,14 @@ ReadFormat readFormat(Modality modality) {
     SP_THROW(InvalidArgument, "readFormat(): bad modality ", int(modality));
 }
 
-// Starts glReadPixels of one modality into the bound pixel-pack buffer (offset 0) or, with none bound,
-// into `destination`.
-void readModality(const Framebuffers& fb, Modality modality, int width, int height, void* destination) {
-    const Framebuffers::Attachment source = fb.attachment(targetOf(modality));
+// Starts glReadPixels of one modality of the view `at` into the bound pixel-pack buffer (offset 0) or, with
+// none bound, into `destination`.
+void readModality(const FramebufferAtlas::Place& at, Modality modality, int width, int height,
+                  void* destination) {
     const ReadFormat format = readFormat(modality);
+    const Framebuffers::Attachment source =
+        at.layer >= 0 ? at.framebuffers->layerAttachment(targetOf(modality), at.layer)
+                      : at.framebuffers->attachment(targetOf(modality));
     glBindFramebuffer(GL_READ_FRAMEBUFFER, source.fbo);
     glReadBuffer(GL_COLOR_ATTACHMENT0 + source.index);
     glReadPixels(0, 0, width, height, format.format, format.type, destination);
@@ -63,14 +68,17 @@ void readModality(const Framebuffers& fb, Modality modality, int width, int heig
 // glReadPixels of one channel of the RG32UI ids target (GL_RED_INTEGER, GL_GREEN_INTEGER) takes NVIDIA's
 // driver 4-6 ms at 1920x1080 on an H200 where a float image of the same size takes 0.8 ms
 // (spear_render_bench); the copy costs a dispatch and moves the bytes once.
-void packIds(Renderer& renderer, const Framebuffers& fb, Modality modality, int width, int height,
+void packIds(Renderer& renderer, const FramebufferAtlas::Place& at, Modality modality, int width, int height,
              unsigned buffer) {
-    ShaderProgram& program = renderer.idChannelProgram();
+    const bool layered = at.layer >= 0;
+    ShaderProgram& program = renderer.idChannelProgram(layered);
     program.use();
     program.set("uChannel", modality == Modality::ObjectIds ? 0 : 1);
     glProgramUniform2i(program.id(), program.location("uSize"), width, height);
-    glBindImageTexture(shaders::kIdsImageUnit, fb.texture(Target::Ids), 0, GL_FALSE, 0, GL_READ_ONLY,
-                       GL_RG32UI);
+    if (layered)
+        program.set("uLayer", at.layer);
+    glBindImageTexture(shaders::kIdsImageUnit, at.framebuffers->texture(Target::Ids), 0,
+                       layered ? GL_TRUE : GL_FALSE, 0, GL_READ_ONLY, GL_RG32UI);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shaders::kPackedIdsBinding, buffer);
     const int group = shaders::kIdChannelGroupSize;
     glDispatchCompute(GLuint((width + group - 1) / group), GLuint((height + group - 1) / group), 1);
@@ -80,8 +88,16 @@ void packIds(Renderer& renderer, const Framebuffers& fb, Modality modality, int 
 
 } // namespace
 
+FramebufferAtlas::Place RenderTarget::place() const {
+    if (framebuffers_)
+        return {framebuffers_.get(), -1};
+    const FramebufferAtlas::Place layer = renderer_.atlas().place(this);
+    SP_CHECK(layer.framebuffers != nullptr, InvalidState, "RenderTarget: no frame has been rendered");
+    return layer;
+}
+
 RenderTarget::RenderTarget(Renderer& renderer, ModalitySet modalities, int latency)
-    : renderer_(renderer), latency_(latency), framebuffers_(std::make_unique<Framebuffers>()) {
+    : renderer_(renderer), latency_(latency) {
     SP_CHECK(latency >= 0 && latency <= kMaxLatency, InvalidArgument,
              "RenderTarget::RenderTarget(): latency must be 0, 1 or 2 frames, got ", latency);
     setModalities(modalities);
@@ -89,6 +105,7 @@ RenderTarget::RenderTarget(Renderer& renderer, ModalitySet modalities, int laten
 }
 
 RenderTarget::~RenderTarget() {
+    renderer_.atlas().release(this); // its layer, if it took one (a GL call only when its page goes)
     if (submitted_ == 0)
         return; // nothing allocated: no GL call
     for (Slot& slot : slots_) {
@@ -112,10 +129,57 @@ void RenderTarget::dropFence(Slot& slot) {
 }
 
 std::uint64_t RenderTarget::submit(const Scene& scene, const Camera& camera) {
-    camera.params.validate("RenderTarget::submit");
-    const PassSet passes = modalities_.requiredPasses(camera.params.shadows);
-    renderer_.render(scene, camera, passes, *framebuffers_);
+    const Submission submission{this, &scene, &camera};
+    return submitAll(std::span<const Submission>(&submission, 1)).front();
+}
 
+std::vector<std::uint64_t> RenderTarget::submitAll(std::span<const Submission> submissions) {
+    if (submissions.empty())
+        return {};
+    Renderer& renderer = submissions.front().target->renderer_;
+    std::vector<Renderer::View> views;
+    views.reserve(submissions.size());
+    for (const Submission& s : submissions) {
+        SP_CHECK(&s.target->renderer_ == &renderer, InvalidArgument,
+                 "RenderTarget::submitAll(): the targets belong to different renderers");
+        SP_CHECK(std::count_if(submissions.begin(), submissions.end(),
+                               [&](const Submission& other) { return other.target == s.target; }) == 1,
+                 InvalidArgument, "RenderTarget::submitAll(): a target is submitted twice in one batch");
+        s.camera->params.validate("RenderTarget::submit");
+    }
+    // Small views take layers of shared framebuffers, the rest framebuffers of their own; then the views are
+    // placed (taking a layer may give its page new framebuffers).
+    std::vector<PassSet> passes;
+    for (const Submission& s : submissions) {
+        passes.push_back(s.target->modalities_.requiredPasses(s.camera->params.shadows));
+        const int width = s.camera->params.width, height = s.camera->params.height;
+        if (renderer.atlas().suits(width, height)) {
+            renderer.atlas().acquire(s.target, width, height, passes.back());
+            s.target->framebuffers_.reset();
+        } else {
+            renderer.atlas().release(s.target);
+            if (!s.target->framebuffers_)
+                s.target->framebuffers_ = std::make_unique<Framebuffers>();
+            s.target->framebuffers_->ensure(width, height, passes.back());
+        }
+    }
+    for (std::size_t i = 0; i < submissions.size(); ++i) {
+        const Submission& s = submissions[i];
+        const FramebufferAtlas::Place at = s.target->place();
+        views.push_back({s.scene, s.camera, passes[i], at.framebuffers, at.layer});
+        if (at.layer >= 0)
+            renderer.atlas().drawing(*at.framebuffers);
+    }
+    renderer.render(views);
+    std::vector<std::uint64_t> numbers;
+    numbers.reserve(submissions.size());
+    for (const Submission& s : submissions)
+        numbers.push_back(s.target->queueReadback(*s.scene, *s.camera));
+    glFlush(); // one flush for the batch: the driver starts on all of it
+    return numbers;
+}
+
+std::uint64_t RenderTarget::queueReadback(const Scene& scene, const Camera& camera) {
     lastRead_ = nullptr; // latency 0's framebuffers take this frame: the last one cannot be read again
     const std::uint64_t frameNumber = ++submitted_;
     Slot& slot = slots_[frameNumber % slots_.size()];
@@ -139,16 +203,15 @@ std::uint64_t RenderTarget::submit(const Scene& scene, const Camera& camera) {
                 slot.capacity[m] = bytes;
             }
             if (packedOnGpu(modality)) {
-                packIds(renderer_, *framebuffers_, modality, slot.width, slot.height, slot.buffers[m]);
+                packIds(renderer_, place(), modality, slot.width, slot.height, slot.buffers[m]);
                 continue;
             }
             glBindBuffer(GL_PIXEL_PACK_BUFFER, slot.buffers[m]);
-            readModality(*framebuffers_, modality, slot.width, slot.height, nullptr);
+            readModality(place(), modality, slot.width, slot.height, nullptr);
         }
         glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     }
     slot.fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    glFlush();
     slot.pending = true;
     const GLenum error = glGetError();
     SP_CHECK(error == GL_NO_ERROR, InvalidState, "RenderTarget::submit(): GL error 0x", std::hex, error,
@@ -193,8 +256,11 @@ bool RenderTarget::packedOnGpu(Modality modality) const {
 }
 
 void RenderTarget::readNow(Modality modality, int width, int height, void* destination) {
+    const FramebufferAtlas::Place at = place();
     if (!packedOnGpu(modality)) {
-        readModality(*framebuffers_, modality, width, height, destination);
+        if (at.layer >= 0 && readStaged(at, modality, width, height, destination))
+            return;
+        readModality(at, modality, width, height, destination);
         return;
     }
     const std::size_t bytes = modalityByteSize(modality, width, height);
@@ -204,8 +270,30 @@ void RenderTarget::readNow(Modality modality, int width, int height, void* desti
         glNamedBufferData(idScratch_, GLsizeiptr(bytes), nullptr, GL_STREAM_READ);
         idScratchBytes_ = bytes;
     }
-    packIds(renderer_, *framebuffers_, modality, width, height, idScratch_);
+    packIds(renderer_, place(), modality, width, height, idScratch_);
     glGetNamedBufferSubData(idScratch_, 0, GLsizeiptr(bytes), destination);
+}
+
+bool RenderTarget::readStaged(const FramebufferAtlas::Place& at, Modality modality, int width, int height,
+                              void* destination) {
+    // Up to this much is copied at once (a page of sixteen 128 x 128 final_color views: 1 MiB).
+    constexpr std::size_t kMostStagedBytes = std::size_t(64) << 20;
+    FramebufferAtlas& atlas = renderer_.atlas();
+    FramebufferAtlas::Staged* staged = atlas.staged(*at.framebuffers, modality);
+    const std::size_t bytes = modalityByteSize(modality, width, height);
+    const int layers = at.framebuffers->layers;
+    if (staged == nullptr || bytes * std::size_t(layers) > kMostStagedBytes)
+        return false;
+    const std::uint64_t version = atlas.version(*at.framebuffers);
+    if (staged->version != version) {
+        staged->bytes.resize(bytes * std::size_t(layers));
+        const ReadFormat format = readFormat(modality);
+        glGetTextureSubImage(at.framebuffers->texture(targetOf(modality)), 0, 0, 0, 0, width, height, layers,
+                             format.format, format.type, GLsizei(staged->bytes.size()), staged->bytes.data());
+        staged->version = version;
+    }
+    std::memcpy(destination, staged->bytes.data() + bytes * std::size_t(at.layer), bytes);
+    return true;
 }
 
 std::optional<std::uint64_t> RenderTarget::read(Frame& frame) {

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/render/camera.h"
+#include "core/render/framebuffer_atlas.h"
 #include "core/render/image_buffer.h"
 #include "core/render/modality.h"
 #include "core/render/scene.h"
@@ -40,6 +41,15 @@ class RenderTarget {
 
     // Renders the passes the modalities need and queues their readback; returns the frame number.
     std::uint64_t submit(const Scene& scene, const Camera& camera);
+    // One target's frame of a batch.
+    struct Submission {
+        RenderTarget* target = nullptr;
+        const Scene* scene = nullptr;
+        const Camera* camera = nullptr;
+    };
+    // Submits a frame of each target (of one renderer, each at most once) as one batch (Renderer::render):
+    // the same frames as one submit() each, in fewer jobs for the driver. Returns their frame numbers.
+    static std::vector<std::uint64_t> submitAll(std::span<const Submission> submissions);
     // Reads the frame due (see the header comment) into `frame`, allocating one buffer per modality;
     // returns its frame number, or std::nullopt while priming or when it was already read.
     std::optional<std::uint64_t> read(Frame& frame);
@@ -71,6 +81,12 @@ class RenderTarget {
         std::array<unsigned, kModalityCount> buffers{};
         std::array<std::size_t, kModalityCount> capacity{};
     };
+    // Where the frames are drawn: a layer of the renderer's shared framebuffers (FramebufferAtlas) for a
+    // small view, framebuffers of its own otherwise.
+    FramebufferAtlas::Place place() const;
+    // After the frame is rendered: takes its slot, queues a longer ring's readback and the fence; returns the
+    // frame number.
+    std::uint64_t queueReadback(const Scene& scene, const Camera& camera);
     // The slot holding the frame due for reading, or null.
     Slot* dueSlot();
     void copyOut(Slot& slot, Modality modality, void* destination);
@@ -78,6 +94,10 @@ class RenderTarget {
     bool packedOnGpu(Modality modality) const;
     // Reads a modality of the frame the framebuffers hold into `destination` (latency 0).
     void readNow(Modality modality, int width, int height, void* destination);
+    // The same for a layer of a page, from the page's copy of all its layers (FramebufferAtlas::Staged);
+    // false when the page is too large to copy whole.
+    bool readStaged(const FramebufferAtlas::Place& at, Modality modality, int width, int height,
+                    void* destination);
     // Throws sp::InvalidArgument unless each view fits a modality `slot` was rendered with.
     static void checkViews(const Slot& slot, std::span<const OutputView> views);
     void dropFence(Slot& slot);
@@ -88,7 +108,7 @@ class RenderTarget {
     std::uint64_t submitted_ = 0;
     Slot* lastRead_ = nullptr; // the slot read since the last submit(), for readAgain()
     std::vector<Slot> slots_;
-    std::unique_ptr<Framebuffers> framebuffers_;
+    std::unique_ptr<Framebuffers> framebuffers_; // a large view's own (null while it holds a layer)
     unsigned idScratch_ = 0; // latency 0's id readback: the packed channel, then copied out
     std::size_t idScratchBytes_ = 0;
 };

@@ -8,16 +8,19 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <tuple>
 #include <vector>
 
 #include "core/base/error.h"
+#include "core/render/framebuffer_atlas.h"
 #include "core/render/framebuffers.h"
 #include "core/render/gpu_scene_cache.h"
 #include "core/render/instances.h"
 #include "core/render/shader_program.h"
 #include "core/render/shaders.h"
+#include "core/render/shadow_layers.h"
 #include "core/render/shadow_maps.h"
 #include "core/render/tone.h"
 
@@ -70,21 +73,37 @@ Renderer::Renderer(const GlContext& context)
         constantSlots_ =
             std::max(0, std::min(vertexOutputs, fragmentInputs) / 4 - 8 - shaders::kMaxShadowMaps - 1);
     }
-    shadow_ =
-        std::make_unique<ShaderProgram>("shadow", shaders::shadowVertex().c_str(), shaders::kShadowFragment);
+    // One layered framebuffer for the shadow maps of every scene, where the driver can choose the layer in
+    // the vertex shader (see shadow_layers.h).
+    setLayeredShadowMaps(epoxy_has_gl_extension("GL_ARB_shader_viewport_layer_array"));
     instances_ = std::make_unique<InstanceBuffer>();
     sharedUploads_ = std::make_unique<SharedUploads>();
     glCreateBuffers(1, &frameBlock_);
     glNamedBufferData(frameBlock_, sizeof(shaders::FrameBlock), nullptr, GL_DYNAMIC_DRAW);
     glCreateVertexArrays(1, &emptyVao_);
+    atlas_ = std::make_unique<FramebufferAtlas>(epoxy_has_gl_extension("GL_ARB_shader_viewport_layer_array"));
     // Readbacks of 3-channel and 16-bit images have rows that are not multiples of 4 bytes.
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
 }
 
-ShaderProgram& Renderer::idChannelProgram() {
-    if (!idChannel_)
-        idChannel_ = std::make_unique<ShaderProgram>("id channel", shaders::kIdChannelCompute);
-    return *idChannel_;
+bool Renderer::layeredShadowMaps() const {
+    return shadowLayers_->layered();
+}
+
+void Renderer::setLayeredShadowMaps(bool on) {
+    context_.makeCurrent();
+    scenes_.clear(); // their maps live in the layers
+    active_ = nullptr;
+    shadowLayers_ = std::make_unique<ShadowLayers>(on);
+    shadow_ = std::make_unique<ShaderProgram>("shadow", shaders::shadowVertex(on).c_str(),
+                                              shaders::kShadowFragment);
+}
+
+ShaderProgram& Renderer::idChannelProgram(bool layered) {
+    std::unique_ptr<ShaderProgram>& program = idChannel_[layered ? 1 : 0];
+    if (!program)
+        program = std::make_unique<ShaderProgram>("id channel", shaders::idChannelCompute(layered).c_str());
+    return *program;
 }
 
 Renderer::~Renderer() {
@@ -94,8 +113,9 @@ Renderer::~Renderer() {
     glDeleteVertexArrays(1, &emptyVao_);
 }
 
-Renderer::SceneState::SceneState(SharedUploads& shared)
-    : cache(std::make_unique<GpuSceneCache>(shared)), shadowMaps(std::make_unique<ShadowMaps>()) {}
+Renderer::SceneState::SceneState(SharedUploads& shared, ShadowLayers& layers, std::uint64_t sceneUid)
+    : cache(std::make_unique<GpuSceneCache>(shared)),
+      shadowMaps(std::make_unique<ShadowMaps>(layers, sceneUid)) {}
 Renderer::SceneState::~SceneState() = default;
 
 namespace {
@@ -159,7 +179,7 @@ void Renderer::releaseScene(const Scene& scene) {
 Renderer::SceneState& Renderer::stateFor(const Scene& scene) {
     auto& state = scenes_[scene.uid()];
     if (!state)
-        state = std::make_unique<SceneState>(*sharedUploads_);
+        state = std::make_unique<SceneState>(*sharedUploads_, *shadowLayers_, scene.uid());
     return *state;
 }
 Renderer::SceneState* Renderer::findState(std::uint64_t sceneUid) const {
@@ -180,40 +200,140 @@ void Renderer::endReadback(std::uint64_t sceneUid) {
 
 ShaderProgram& Renderer::surfaceProgram(TargetMask targets, bool forward, unsigned materialFeatures,
                                         const shaders::ShadingLayout& lights) {
+    const bool layered = viewLayer_ >= 0;
     const std::string key = std::string(forward ? "forward/" : "surface/") + std::to_string(targets) + "/" +
                             std::to_string(materialFeatures) + "/" +
-                            (forward ? lights.key() : "c" + std::to_string(lights.constantSlots));
+                            (forward ? lights.key() : "c" + std::to_string(lights.constantSlots)) +
+                            (layered ? "/layered" : "");
     auto& program = programs_[key];
     if (!program)
         program = std::make_unique<ShaderProgram>(
-            key, shaders::surfaceVertex(forward, lights).c_str(),
+            key, shaders::surfaceVertex(forward, lights, layered).c_str(),
             shaders::surfaceFragment(targets, forward, materialFeatures, lights).c_str());
     return *program;
 }
 
-void Renderer::render(const Scene& scene, const Camera& camera, const PassSet& passes, Framebuffers& fb) {
-    camera.params.validate("Renderer::render");
+void Renderer::render(std::span<const View> views) {
+    // The timers of earlier frames that finished; not those of this batch, which are not submitted yet: a
+    // software rasteriser answers whether such a query is done by running what is queued.
+    for (const View& view : views)
+        if (SceneState* state = findState(view.scene->uid()))
+            state->timers.collect();
+    // Segments of views whose scenes each want one shadow-map resolution: their maps are drawn first, then
+    // the views (a scene's maps exist at one resolution at a time).
+    std::size_t first = 0;
+    while (first < views.size()) {
+        std::map<std::uint64_t, int> resolutions; // by scene uid
+        std::size_t last = first;
+        for (; last < views.size(); ++last) {
+            const View& view = views[last];
+            view.camera->params.validate("Renderer::render");
+            if (!view.passes.shadow)
+                continue;
+            const auto [it, added] =
+                resolutions.try_emplace(view.scene->uid(), view.camera->params.shadowResolution);
+            if (!added && it->second != view.camera->params.shadowResolution)
+                break;
+        }
+        const std::span<const View> segment = views.subspan(first, last - first);
+        updateShadowMaps(segment);
+        const std::set<const Framebuffers*> cleared = clearPages(segment);
+        for (const View& view : segment) {
+            pageCleared_ = cleared.contains(view.framebuffers);
+            renderView(view);
+        }
+        pageCleared_ = false;
+        first = last;
+    }
+}
+
+std::set<const Framebuffers*> Renderer::clearPages(std::span<const View> views) {
+    // A page of shared framebuffers all of whose views are drawn now, to one background, is cleared whole:
+    // a clear of every layer costs a software rasteriser little, a drawn clear per layer as much as
+    // shading it (see clearTargets()). Another page's views clear their own layers.
+    std::map<const Framebuffers*, std::vector<const View*>> pages;
+    for (const View& view : views)
+        if (view.layer >= 0 && view.passes.surface)
+            pages[view.framebuffers].push_back(&view);
+    std::set<const Framebuffers*> cleared;
+    for (const auto& [fb, list] : pages) {
+        if (list.size() != atlas_->heldLayers(*fb))
+            continue;
+        const View& front = *list.front();
+        const TargetMask targets = front.passes.surfaceTargets;
+        const std::vector<std::array<float, 4>> values = clearValues(*front.scene, *front.camera, targets);
+        if (!std::all_of(list.begin(), list.end(), [&](const View* view) {
+                return clearValues(*view->scene, *view->camera, targets) == values;
+            }))
+            continue;
+        glBindFramebuffer(GL_FRAMEBUFFER, fb->surfaceFbo);
+        glViewport(0, 0, fb->width, fb->height);
+        glDepthMask(GL_TRUE);
+        clearBound(targets, values, true);
+        cleared.insert(fb);
+    }
+    return cleared;
+}
+
+void Renderer::updateShadowMaps(std::span<const View> views) {
+    glDisable(GL_CULL_FACE); // two-sided: imported meshes have unreliable winding
+    glDisable(GL_BLEND);
+    // Each scene once, its directional maps covering what its shadowed views see (see shadow_maps.h).
+    std::vector<std::size_t> firsts; // the first shadowed view of each scene, in order
+    std::map<std::uint64_t, Sphere> seen;
+    for (std::size_t i = 0; i < views.size(); ++i) {
+        const View& view = views[i];
+        if (!view.passes.shadow)
+            continue;
+        Sphere sphere;
+        view.scene->bounds(sphere.centre, sphere.radius, view.camera->frustumPlanes());
+        const auto [it, added] = seen.try_emplace(view.scene->uid(), sphere);
+        if (added)
+            firsts.push_back(i);
+        else
+            it->second = united(it->second, sphere);
+    }
+    for (std::size_t i = 0; i < views.size(); ++i) {
+        const View& view = views[i];
+        if (!view.passes.shadow)
+            continue;
+        SceneState& state = stateFor(*view.scene);
+        if (!std::binary_search(firsts.begin(), firsts.end(), i)) { // the scene's first view drew them
+            state.stats.shadowReuses += state.shadowMaps->infos().empty() ? 0 : 1;
+            continue;
+        }
+        const std::uint64_t meshUploads = state.cache->meshUploads();
+        state.timers.begin(Pass::Shadow);
+        const std::size_t rendered =
+            state.shadowMaps->render(*view.scene, view.camera->params.shadowResolution, *state.cache,
+                                     *shadow_, &seen[view.scene->uid()]);
+        state.timers.end();
+        state.stats.shadowPasses += rendered;
+        state.stats.shadowReuses += rendered == 0 && !state.shadowMaps->infos().empty() ? 1 : 0;
+        state.stats.meshUploads += state.cache->meshUploads() - meshUploads;
+    }
+}
+
+void Renderer::renderView(const View& view) {
+    const Scene& scene = *view.scene;
+    const Camera& camera = *view.camera;
+    const PassSet& passes = view.passes;
+    Framebuffers& fb = *view.framebuffers;
     active_ = &stateFor(scene);
     GpuSceneCache& cache = *active_->cache;
     const std::uint64_t meshUploads = cache.meshUploads(), textureUploads = cache.textureUploads();
-    fb.ensure(camera.params.width, camera.params.height, passes);
-    glDisable(GL_CULL_FACE); // two-sided: imported meshes have unreliable winding
+    viewLayer_ = view.layer;
+    SP_CHECK(camera.params.width == fb.width && camera.params.height == fb.height &&
+                 (view.layer < 0 ? fb.layers == 0 : view.layer < fb.layers),
+             InvalidArgument, "Renderer::render(): a ", camera.params.width, "x", camera.params.height,
+             " view in layer ", view.layer, " of ", fb.width, "x", fb.height, " framebuffers of ", fb.layers,
+             " layers");
+    glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
 
     std::vector<ShadowInfo> shadowInfos;
-    if (passes.shadow) {
-        active_->timers.begin(Pass::Shadow);
-        // The directional maps cover what this view sees (see shadow_maps.h).
-        Sphere seen;
-        const std::array<Eigen::Vector4d, 6> frustum = camera.frustumPlanes();
-        scene.bounds(seen.centre, seen.radius, frustum);
-        const std::size_t rendered =
-            active_->shadowMaps->render(scene, camera.params.shadowResolution, cache, *shadow_, &seen);
-        active_->timers.end();
-        active_->stats.shadowPasses += rendered;
-        active_->stats.shadowReuses += rendered == 0 && !active_->shadowMaps->infos().empty() ? 1 : 0;
+    if (passes.shadow)
         shadowInfos = active_->shadowMaps->infos();
-    }
     // The shading programs are specialised for the lights (see shaders.h): type, range, shadow layer.
     shaders::ShadingLayout lights;
     lights.constantSlots = constantSlots_;
@@ -247,14 +367,14 @@ void Renderer::render(const Scene& scene, const Camera& camera, const PassSet& p
     active_->stats.meshUploads += cache.meshUploads() - meshUploads;
     active_->stats.textureUploads += cache.textureUploads() - textureUploads;
     ++active_->stats.frames;
-    active_->timers.collect();
 }
 
 void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
                                 const std::vector<ShadowInfo>& shadows) {
     shaders::FrameBlock block;
     std::memset(&block, 0, sizeof block);
-    copy3(block.cameraPosition, camera.pose.translation().cast<float>(), 1.0f);
+    copy3(block.cameraPosition, camera.pose.translation().cast<float>(),
+          shadows.empty() ? 0.0f : float(active_->shadowMaps->firstLayer()));
     copy3(block.ambient, scene.environment().ambient, 0.0f);
     copy3(block.background, scene.environment().background, 1.0f);
     copy3(block.exposure, camera.params.exposure * camera.params.whiteBalance, 0.0f);
@@ -279,6 +399,7 @@ void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
         ++count;
     });
     block.counts[0] = count;
+    block.counts[1] = std::max(viewLayer_, 0); // the layer a layered program draws into
     glNamedBufferSubData(frameBlock_, 0, sizeof block, &block);
     glBindBufferBase(GL_UNIFORM_BUFFER, shaders::kFrameBlockBinding, frameBlock_);
 }
@@ -287,10 +408,10 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
                            const shaders::ShadingLayout& lights, const std::vector<Draw>& draws,
                            GpuSceneCache& cache, Framebuffers& fb) {
     beginPass(Pass::Surface, fb.surfaceFbo, fb, GL_LESS, true);
-    clearTargets(scene, camera, passes.surfaceTargets);
-    glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
-    if (!passes.lighting) // the material chunk still reads the camera position from the frame block
+    if (!passes.lighting) // the material chunk still reads the camera position (and the layer) from it
         uploadFrameBlock(scene, camera, {});
+    if (!pageCleared_) // else cleared with its page (clearPages())
+        clearTargets(scene, camera, passes.surfaceTargets, true);
     if (passes.lighting && passes.shadow && active_->shadowMaps->texture() != 0)
         glBindImageTexture(shaders::kShadowMapImageUnit, active_->shadowMaps->texture(), 0, GL_TRUE, 0,
                            GL_READ_ONLY, active_->shadowMaps->format());
@@ -311,10 +432,11 @@ void Renderer::drawVignettedBackground(TargetMask targets, ToneMap toneMap) {
                 location = count;
             ++count;
         }
-    auto& program =
-        programs_["background/" + std::to_string(location) + "/" + std::to_string(static_cast<int>(toneMap))];
+    const bool layered = viewLayer_ >= 0;
+    auto& program = programs_["background/" + std::to_string(location) + "/" +
+                              std::to_string(static_cast<int>(toneMap)) + (layered ? "/layered" : "")];
     if (!program)
-        program = std::make_unique<ShaderProgram>("background", shaders::kBackgroundVertex,
+        program = std::make_unique<ShaderProgram>("background", shaders::backgroundVertex(layered).c_str(),
                                                   shaders::backgroundFragment(location, toneMap).c_str());
     for (int i = 0; i < count; ++i)
         glColorMaski(GLuint(i), i == location, i == location, i == location, i == location);
@@ -336,7 +458,7 @@ void Renderer::attributePass(const Scene& scene, const Camera& camera, const Pas
     // surfaces tie (coincident instances), every tied fragment passes and the last drawn stays, while the
     // surface pass (GL_LESS) kept the first drawn: drawn in reverse order, the last here is the first there.
     beginPass(Pass::Attribute, fb.attributeFbo, fb, GL_LEQUAL, false);
-    clearTargets(scene, camera, passes.attributeTargets);
+    clearTargets(scene, camera, passes.attributeTargets, false);
     const std::vector<Draw> reversed(draws.rbegin(), draws.rend());
     shaders::ShadingLayout constantsOnly; // no shading: the camera position alone
     constantsOnly.constantSlots = constantSlots_;
@@ -356,19 +478,15 @@ void Renderer::beginPass(Pass pass, unsigned fbo, const Framebuffers& fb, unsign
     glDepthMask(depthWrite ? GL_TRUE : GL_FALSE);
 }
 
-void Renderer::clearTargets(const Scene& scene, const Camera& camera, TargetMask targets) {
-    // Clear values are what a background pixel of each modality reads.
+std::vector<std::array<float, 4>> Renderer::clearValues(const Scene& scene, const Camera& camera,
+                                                        TargetMask targets) {
+    // What a background pixel of each modality reads.
     const Eigen::Vector3f background = scene.environment().background;
-    int location = 0;
+    std::vector<std::array<float, 4>> values; // by location
     for (std::size_t t = 0; t < kTargetCount; ++t) {
         if ((targets & (TargetMask(1) << t)) == 0)
             continue;
         const auto target = static_cast<Target>(t);
-        if (target == Target::Ids) {
-            const GLuint zero[4] = {0, 0, 0, 0};
-            glClearBufferuiv(GL_COLOR, location++, zero);
-            continue;
-        }
         float value[4] = {0, 0, 0, 0};
         if (target == Target::Hdr || target == Target::SpecularResidual) { // the background is all residual
             copy3(value, background, 1.0f);
@@ -376,8 +494,56 @@ void Renderer::clearTargets(const Scene& scene, const Camera& camera, TargetMask
             const std::array<float, 4> final = backgroundFinal(scene.environment(), camera.params);
             std::copy(final.begin(), final.end(), value);
         }
-        glClearBufferfv(GL_COLOR, location++, value);
+        values.push_back({value[0], value[1], value[2], value[3]});
     }
+    return values;
+}
+
+void Renderer::clearBound(TargetMask targets, const std::vector<std::array<float, 4>>& values, bool depth) {
+    int location = 0;
+    for (std::size_t t = 0; t < kTargetCount; ++t) {
+        if ((targets & (TargetMask(1) << t)) == 0)
+            continue;
+        const GLuint zero[4] = {0, 0, 0, 0};
+        if (static_cast<Target>(t) == Target::Ids)
+            glClearBufferuiv(GL_COLOR, location, zero);
+        else
+            glClearBufferfv(GL_COLOR, location, values[std::size_t(location)].data());
+        ++location;
+    }
+    if (depth)
+        glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+}
+
+void Renderer::clearTargets(const Scene& scene, const Camera& camera, TargetMask targets, bool depth) {
+    const std::vector<std::array<float, 4>> values = clearValues(scene, camera, targets);
+    if (viewLayer_ < 0) {
+        clearBound(targets, values, depth);
+        return;
+    }
+    if (values.empty() && !depth)
+        return;
+    // A clear of layered framebuffers clears every layer: the view's layer is drawn instead, by a triangle
+    // covering it on the far plane (depth 1, as a clear leaves it).
+    auto& program = programs_["clear/" + std::to_string(targets)];
+    if (!program)
+        program = std::make_unique<ShaderProgram>("clear", shaders::backgroundVertex(true).c_str(),
+                                                  shaders::clearFragment(targets).c_str());
+    program->use();
+    if (!values.empty())
+        glProgramUniform4fv(program->id(), program->location("uClear"), GLsizei(values.size()),
+                            values.front().data());
+    GLint depthFunc = GL_LESS;
+    GLboolean depthWrite = GL_TRUE;
+    glGetIntegerv(GL_DEPTH_FUNC, &depthFunc);
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &depthWrite);
+    glDepthFunc(GL_ALWAYS);
+    glDepthMask(depth ? GL_TRUE : GL_FALSE);
+    glBindVertexArray(emptyVao_);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glDepthFunc(GLenum(depthFunc));
+    glDepthMask(depthWrite);
 }
 
 std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Camera& camera,

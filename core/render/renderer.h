@@ -13,6 +13,8 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <set>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -27,11 +29,13 @@
 namespace sp::render {
 
 class Framebuffers;
+class FramebufferAtlas;
 class GpuSceneCache;
 class InstanceBuffer;
 struct InstanceRecord;
 struct SharedUploads;
 class ShaderProgram;
+class ShadowLayers;
 class ShadowMaps;
 struct ShadowInfo;
 
@@ -73,14 +77,32 @@ class Renderer {
     // statistics (call when a Scene is destroyed).
     void releaseScene(const Scene& scene);
 
-    // Runs the passes into `framebuffers` (used by RenderTarget; see render_target.h for the public way).
-    void render(const Scene& scene, const Camera& camera, const PassSet& passes, Framebuffers& framebuffers);
+    // One view of a batch: the passes to run for `camera` in `scene`, into `framebuffers` (allocated for
+    // them at the camera's size), or with a layer, into that layer of layered ones.
+    struct View {
+        const Scene* scene = nullptr;
+        const Camera* camera = nullptr;
+        PassSet passes;
+        Framebuffers* framebuffers = nullptr;
+        int layer = -1;
+    };
+    // Runs the passes of each view into its framebuffers (used by RenderTarget; see render_target.h for the
+    // public way): first the shadow maps of every scene the views see (a scene's views share its maps, which
+    // cover what all of them see), then the views in order. A software rasteriser runs the work queued
+    // between two changes of the bound framebuffer as one job for its threads; with the maps in shared
+    // layers (shadow_layers.h) and small views in shared framebuffers (framebuffer_atlas.h), a batch of many
+    // small worlds costs a few jobs rather than two per world. Views of one scene that ask for different
+    // shadow-map resolutions split the batch where the second one comes.
+    void render(std::span<const View> views);
+    // The shared framebuffers small views are drawn in (RenderTarget takes its tiles there).
+    FramebufferAtlas& atlas() { return *atlas_; }
     // Bracket one modality's readback of a frame of scene `sceneUid` (RenderTarget): counted and timed in
     // that scene's statistics (not at all once the scene is released).
     void beginReadback(std::uint64_t sceneUid);
     void endReadback(std::uint64_t sceneUid);
-    // The compute program that copies one channel of the ids target (RenderTarget's id readback).
-    ShaderProgram& idChannelProgram();
+    // The compute program that copies one channel of the ids target (RenderTarget's id readback), of a
+    // layer of layered framebuffers or not.
+    ShaderProgram& idChannelProgram(bool layered);
     // Whether RenderTarget reads object and material ids through that compute copy rather than
     // glReadPixels of one channel: by default on hardware, where the driver's one-channel integer read is
     // slow; a CPU rasteriser converts on the CPU either way, and the dispatch only adds to it.
@@ -97,12 +119,17 @@ class Renderer {
     // Settable, so that tests render both ways; images are the same bit for bit.
     bool shadowReach() const { return shadowReach_; }
     void setShadowReach(bool on) { shadowReach_ = on; }
+    // Whether the shadow maps of all scenes are drawn in one layered framebuffer (see shadow_layers.h): by
+    // default wherever the driver offers ARB_shader_viewport_layer_array. Settable, so that tests render
+    // both ways (images are the same bit for bit); setting it drops what the renderer holds for its scenes.
+    bool layeredShadowMaps() const;
+    void setLayeredShadowMaps(bool on);
 
   private:
     struct Draw; // one submesh of a visible instance
     // What the renderer keeps for one scene.
     struct SceneState {
-        explicit SceneState(SharedUploads& shared);
+        SceneState(SharedUploads& shared, ShadowLayers& layers, std::uint64_t sceneUid);
         ~SceneState();
         std::unique_ptr<GpuSceneCache> cache;
         std::unique_ptr<ShadowMaps> shadowMaps;
@@ -111,8 +138,14 @@ class Renderer {
     };
 
     SceneState& stateFor(const Scene& scene);
+    // The shadow maps of the scenes of `views` (all of them compatible: see render()), each brought up to
+    // date once, for what its shadowed views see.
+    void updateShadowMaps(std::span<const View> views);
+    // The passes of one view after the shadow maps.
+    void renderView(const View& view);
     // The scene's state, or null when the renderer holds none for it.
     SceneState* findState(std::uint64_t sceneUid) const;
+    // A surface or attribute program; for layered framebuffers when the view being drawn has a layer.
     ShaderProgram& surfaceProgram(TargetMask targets, bool forward, unsigned materialFeatures,
                                   const shaders::ShadingLayout& lights);
     void uploadFrameBlock(const Scene& scene, const Camera& camera, const std::vector<ShadowInfo>& shadows);
@@ -127,8 +160,16 @@ class Renderer {
                        const std::vector<Draw>& draws, GpuSceneCache& cache, Framebuffers& fb);
     // Starts timing `pass` and binds `fbo` at the framebuffers' size with the given depth test and writes.
     void beginPass(Pass pass, unsigned fbo, const Framebuffers& fb, unsigned depthFunc, bool depthWrite);
-    // Clears the bound framebuffer's `targets` to what a background pixel of each modality reads.
-    void clearTargets(const Scene& scene, const Camera& camera, TargetMask targets);
+    // Clears the view's pixels of the bound framebuffer's `targets` to what a background pixel of each
+    // modality reads, and with `depth`, its depth to the far plane.
+    void clearTargets(const Scene& scene, const Camera& camera, TargetMask targets, bool depth);
+    // What clearTargets() writes, by draw-buffer location.
+    static std::vector<std::array<float, 4>> clearValues(const Scene& scene, const Camera& camera,
+                                                         TargetMask targets);
+    // Clears all of the bound framebuffer's `targets` to `values` (and its depth with `depth`).
+    static void clearBound(TargetMask targets, const std::vector<std::array<float, 4>>& values, bool depth);
+    // Clears the surface targets of the pages of shared framebuffers that `views` redraw whole; returns them.
+    std::set<const Framebuffers*> clearPages(std::span<const View> views);
     void drawAll(const Scene& scene, const Camera& camera, const std::vector<Draw>& draws, TargetMask targets,
                  bool shade, const shaders::ShadingLayout& lights, GpuSceneCache& cache);
     // Writes the vignetted background into final_color (one of `targets`) where no surface was drawn.
@@ -137,15 +178,19 @@ class Renderer {
     const GlContext& context_;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs_; // by variant key
     std::unique_ptr<ShaderProgram> shadow_;
-    std::unique_ptr<ShaderProgram> idChannel_; // made at the first id readback
+    std::unique_ptr<ShaderProgram> idChannel_[2]; // by layered; made at the first id readback
     bool packIdsOnGpu_ = true;
     int constantSlots_ = 0;
     bool shadowReach_ = false;
     std::unique_ptr<SharedUploads> sharedUploads_; // meshes and textures the scenes add under shared keys
+    std::unique_ptr<ShadowLayers> shadowLayers_;   // the scenes' shadow maps (before scenes_: they use it)
     std::map<std::uint64_t, std::unique_ptr<SceneState>> scenes_; // by Scene::uid()
     SceneState* active_ = nullptr;                                // the scene render() is drawing
-    std::unique_ptr<InstanceBuffer> instances_;                   // the surface passes' instance records
-    std::vector<InstanceRecord> records_;                         // scratch for them
+    int viewLayer_ = -1;       // the layer of the view render() is drawing (-1: framebuffers of its own)
+    bool pageCleared_ = false; // its surface targets were cleared with its page (clearPages())
+    std::unique_ptr<FramebufferAtlas> atlas_;
+    std::unique_ptr<InstanceBuffer> instances_; // the surface passes' instance records
+    std::vector<InstanceRecord> records_;       // scratch for them
     std::vector<ShadowReach> parts_; // the rectangles of the draws in parts, of the last visibleDraws()
     unsigned frameBlock_ = 0;
     unsigned emptyVao_ = 0; // bound for draws whose vertices come from gl_VertexID alone

@@ -135,8 +135,9 @@ float shadowFactor(const int layer, vec3 s) {
     vec2 cell = floor(t);
     vec2 f = t - cell;
     ivec2 c0 = max(ivec2(cell), 0), c1 = min(ivec2(cell) + 1, int(size) - 1);
-    vec4 d = vec4(imageLoad(uShadowMaps, ivec3(c0.x, c0.y, layer)).r, imageLoad(uShadowMaps, ivec3(c1.x, c0.y, layer)).r,
-                  imageLoad(uShadowMaps, ivec3(c0.x, c1.y, layer)).r, imageLoad(uShadowMaps, ivec3(c1.x, c1.y, layer)).r);
+    int z = firstShadowLayer() + layer; // the scene's maps are a run of layers of a shared array
+    vec4 d = vec4(imageLoad(uShadowMaps, ivec3(c0.x, c0.y, z)).r, imageLoad(uShadowMaps, ivec3(c1.x, c0.y, z)).r,
+                  imageLoad(uShadowMaps, ivec3(c0.x, c1.y, z)).r, imageLoad(uShadowMaps, ivec3(c1.x, c1.y, z)).r);
     vec4 lit = vec4(greaterThanEqual(d, vec4(s.z))); // lit where the point is not behind the map's depth
     // a + t (b - a) rather than mix(), which a driver may expand to a (1 - t) + b t: exactly 1.0 where all
     // four texels are lit, as a program without the lookups has it (see shadow_reach.h).
@@ -252,6 +253,7 @@ void main() {
     gl_Position = iModelViewProjection * p;
     SHADOW_CLIPS
     CONSTANT_COPIES
+    VIEW_LAYER
 }
 )glsl";
 
@@ -478,7 +480,8 @@ std::string constantCopies(const ShadingLayout& layout, const ConstantPlan& plan
 }
 
 // The fragment shader's accessors of the view's constants (cameraPosition(), ambientRadiance(),
-// exposureGains(), vignetteParams(), shadowSize(layer)), from the flat varyings or FrameBlock.
+// exposureGains(), vignetteParams(), shadowSize(layer), firstShadowLayer()), from the flat varyings or
+// FrameBlock.
 std::string constantAccessors(const ConstantPlan& plan) {
     const bool frame = plan.flat && plan.frameSlots >= 3, vignette = plan.flat && plan.frameSlots == 4;
     const bool sizes = plan.flat && plan.shadowSizes;
@@ -486,6 +489,7 @@ std::string constantAccessors(const ConstantPlan& plan) {
         return std::string(signature) + " { return " + value + "; }\n";
     };
     return accessor("vec3 cameraPosition()", plan.flat ? "fFrame[0].xyz" : "uCameraPosition.xyz") +
+           accessor("int firstShadowLayer()", plan.flat ? "int(fFrame[0].w)" : "int(uCameraPosition.w)") +
            accessor("vec3 ambientRadiance()", frame ? "fFrame[1].xyz" : "uAmbient.xyz") +
            accessor("vec3 exposureGains()", frame ? "fFrame[2].xyz" : "uExposure.xyz") +
            accessor("vec4 vignetteParams()", vignette ? "fFrame[3]" : "uVignette") +
@@ -577,10 +581,21 @@ std::string ShadingLayout::key() const {
     return key;
 }
 
-std::string shadowVertex() {
-    return "#version 450 core\n" + instanceAttributes() + R"glsl(
+std::string shadowVertex(bool layered) {
+    if (!layered)
+        return "#version 450 core\n" + instanceAttributes() + R"glsl(
 layout(location = 0) in vec3 aPosition;
 void main() { gl_Position = iModelViewProjection * vec4(aPosition, 1.0); }
+)glsl";
+    return "#version 450 core\n#extension GL_ARB_shader_viewport_layer_array : require\n" +
+           instanceAttributes() +
+           R"glsl(
+layout(location = 0) in vec3 aPosition;
+uniform int uLayer; // the map's layer of the layered framebuffer (ShadowLayers)
+void main() {
+    gl_Position = iModelViewProjection * vec4(aPosition, 1.0);
+    gl_Layer = uLayer;
+}
 )glsl";
 }
 
@@ -590,26 +605,47 @@ layout(location = 0) out float oDepth;
 void main() { oDepth = clamp(gl_FragCoord.z, 0.0, 1.0); } // clamped: see GL_DEPTH_CLAMP in shadow_maps.cpp
 )glsl";
 
-const char* const kIdChannelCompute = R"glsl(#version 450 core
-layout(local_size_x = 16, local_size_y = 16) in;
+std::string idChannelCompute(bool layered) {
+    std::string text = "#version 450 core\n";
+    text += layered ? "#define LAYERED\n" : "";
+    return text + R"glsl(layout(local_size_x = 16, local_size_y = 16) in;
+#ifdef LAYERED
+layout(binding = 1, rg32ui) uniform readonly uimage2DArray uIds;
+uniform int uLayer; // the view's layer of a page of shared framebuffers
+#else
 layout(binding = 1, rg32ui) uniform readonly uimage2D uIds;
+#endif
 layout(std430, binding = 0) writeonly buffer PackedIds { uint packedIds[]; };
 uniform int uChannel;
 uniform ivec2 uSize;
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (p.x >= uSize.x || p.y >= uSize.y) return;
+#ifdef LAYERED
+    packedIds[p.y * uSize.x + p.x] = imageLoad(uIds, ivec3(p, uLayer))[uChannel];
+#else
     packedIds[p.y * uSize.x + p.x] = imageLoad(uIds, p)[uChannel];
+#endif
 }
 )glsl";
+}
 
-const char* const kBackgroundVertex = R"glsl(#version 450 core
+std::string backgroundVertex(bool layered) {
+    std::string text = "#version 450 core\n";
+    if (layered)
+        text += std::string("#extension GL_ARB_shader_viewport_layer_array : require\n#define LAYERED\n") +
+                kFrameBlock;
+    return text + R"glsl(
 // One triangle covering the viewport, on the far plane (depth 1: it passes GL_LEQUAL where nothing was drawn).
 void main() {
     vec2 corner = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
     gl_Position = vec4(corner * 2.0 - 1.0, 1.0, 1.0);
+#ifdef LAYERED
+    gl_Layer = uCounts.y; // the view's layer of a page of shared framebuffers
+#endif
 }
 )glsl";
+}
 
 // "#define TONE_CURVE k" for kToneChunk.
 std::string toneCurveDefine(ToneMap toneMap) {
@@ -625,8 +661,28 @@ std::string backgroundFragment(int location, ToneMap toneMap) {
     return text + "void main() { oFinalColor = toneMapped(uBackground.xyz); }\n";
 }
 
-std::string surfaceVertex(bool forward, const ShadingLayout& lights) {
+std::string clearFragment(TargetMask targets) {
+    std::string text = "#version 450 core\nuniform vec4 uClear[" + std::to_string(kTargetCount) + "];\n";
+    std::string body;
+    int location = 0;
+    for (std::size_t t = 0; t < kTargetCount; ++t) {
+        if ((targets & (TargetMask(1) << t)) == 0)
+            continue;
+        const std::string index = std::to_string(location++);
+        const bool ids = static_cast<Target>(t) == Target::Ids;
+        text += "layout(location = " + index + ") out " + (ids ? "uvec4" : "vec4") + " o" + index + ";\n";
+        body += " o" + index + (ids ? " = uvec4(0u);" : " = uClear[" + index + "];");
+    }
+    return text + "void main() {" + body + " }\n";
+}
+
+std::string surfaceVertex(bool forward, const ShadingLayout& lights, bool layered) {
     std::string text = "#version 450 core\n";
+    if (layered) // the view's layer of a page of shared framebuffers
+        text += "#extension GL_ARB_shader_viewport_layer_array : require\n#define VIEW_LAYER gl_Layer = "
+                "uCounts.y;\n";
+    else
+        text += "#define VIEW_LAYER\n";
     text += kFrameBlock;
     text += instanceAttributes();
     const ConstantPlan plan = planConstants(forward, lights);

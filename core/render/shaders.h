@@ -22,17 +22,17 @@ inline constexpr int kMaxShadowMaps = 4; // must match MAX_SHADOWS in kFrameBloc
 
 // The image unit the shading reads shadow maps from (binding 0 in kShadingChunk).
 inline constexpr int kShadowMapImageUnit = 0;
-// The image unit and storage-buffer binding of the id-channel copy (kIdChannelCompute).
+// The image unit and storage-buffer binding of the id-channel copy (idChannelCompute()).
 inline constexpr int kIdsImageUnit = 1;
 inline constexpr int kPackedIdsBinding = 0;
 inline constexpr int kFrameBlockBinding = 0;
 
 // Per-frame constants of one view, shared by every program through one uniform buffer (std140).
 struct FrameBlock {
-    float cameraPosition[4];     // xyz
-    float ambient[4];            // xyz: uniform sky radiance
-    float background[4];         // xyz: hdr_color of background pixels
-    int counts[4];               // x = light count (informative: the programs are specialised)
+    float cameraPosition[4]; // xyz; w: the layer of the scene's first shadow map (ShadowLayers)
+    float ambient[4];        // xyz: uniform sky radiance
+    float background[4];     // xyz: hdr_color of background pixels
+    int counts[4]; // x = light count (informative: the programs are specialised), y = the view's layer
     float lightRadiance[16][4];  // xyz = colour * intensity
     float lightPosition[16][4];  // xyz, w = range (0 = unbounded)
     float lightDirection[16][4]; // xyz unit direction light travels
@@ -78,25 +78,33 @@ enum MaterialFeature : unsigned {
     kNormalTexture = 4,
 };
 
-// The shadow pass's vertex shader: instanced, the light projection in InstanceRecord's modelViewProjection.
-std::string shadowVertex();
+// The shadow pass's vertex shader: instanced, the light projection in InstanceRecord's modelViewProjection;
+// `layered`, it also sends each primitive to layer uLayer (ARB_shader_viewport_layer_array; see
+// ShadowLayers).
+std::string shadowVertex(bool layered);
 extern const char* const kShadowFragment;
 
-// Copies channel uChannel (0: object ids, 1: material ids) of the ids target's lower-left uSize pixels
+// Copies channel uChannel (0: object ids, 1: material ids) of the uSize pixels of the ids target from uOrigin
 // into a tightly packed uint buffer, in glReadPixels' row order; 16 x 16 work groups.
-extern const char* const kIdChannelCompute;
+// `layered`: of layer uLayer of an array (a page of shared framebuffers: see FramebufferAtlas).
+std::string idChannelCompute(bool layered);
 inline constexpr int kIdChannelGroupSize = 16;
 
 // The surface and attribute passes: rasterise every visible instance and write `targets` (a mask of
 // Target bits, in Target order at locations 0, 1, ...); when `forward`, shade each fragment as well (the
 // HDR, intrinsic and final colour targets).
-std::string surfaceVertex(bool forward, const ShadingLayout& lights);
+// `layered`: into the view's layer (FrameBlock's uCounts.y) of layered framebuffers (FramebufferAtlas).
+std::string surfaceVertex(bool forward, const ShadingLayout& lights, bool layered = false);
 std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialFeatures,
                             const ShadingLayout& lights);
 
 // The background of a vignetted final_color: a full-screen triangle on the far plane writing the tone-mapped,
 // vignetted background colour at draw buffer `location`, drawn after the surfaces where none was.
-extern const char* const kBackgroundVertex;
+// `layered`: into the view's layer (FrameBlock's uCounts.y) of layered framebuffers.
+std::string backgroundVertex(bool layered);
 std::string backgroundFragment(int location, ToneMap toneMap);
+// Writes uClear[i] into the i-th of `targets` (in Target order; zero into the ids target): a clear of one
+// view's layer of shared framebuffers, drawn with backgroundVertex(true) (see Renderer::clearTargets).
+std::string clearFragment(TargetMask targets);
 
 } // namespace sp::render::shaders

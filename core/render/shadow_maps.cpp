@@ -85,17 +85,6 @@ Sphere snapped(const Sphere& sphere) {
     return {sphere.centre, sphere.radius * 1.25}; // not reached for finite bounds; certainly holds it
 }
 
-// The smallest sphere holding both.
-Sphere united(const Sphere& a, const Sphere& b) {
-    if (a.holds(b))
-        return a;
-    if (b.holds(a))
-        return b;
-    const double distance = (b.centre - a.centre).norm();
-    const double radius = 0.5 * (distance + a.radius + b.radius);
-    return {a.centre + (b.centre - a.centre) * ((radius - a.radius) / distance), radius};
-}
-
 // A directional region kept for a new frame may be at most this much wider than what is seen: wider, its
 // texels are coarser than a fresh fit's by more than the snapping's own steps.
 constexpr double kLooseRegion = 1.4142135623730951;
@@ -106,36 +95,32 @@ std::uint64_t packed(InstanceId id) {
 
 } // namespace
 
-ShadowMaps::~ShadowMaps() {
-    glDeleteVertexArrays(1, &quadVao_);
-    glDeleteBuffers(2, quadBuffers_);
-    glDeleteFramebuffers(1, &fbo_);
-    glDeleteRenderbuffers(1, &depthBuffer_);
-    glDeleteTextures(1, &texture_);
+Sphere united(const Sphere& a, const Sphere& b) {
+    if (a.radius <= 0.0)
+        return b;
+    if (b.radius <= 0.0 || a.holds(b))
+        return a;
+    if (b.holds(a))
+        return b;
+    const double distance = (b.centre - a.centre).norm();
+    const double radius = 0.5 * (distance + a.radius + b.radius);
+    return {a.centre + (b.centre - a.centre) * ((radius - a.radius) / distance), radius};
 }
 
-void ShadowMaps::ensure(int resolution, unsigned format, int layers) {
-    if (resolution == resolution_ && format == format_ && layers <= layers_)
-        return;
+ShadowMaps::~ShadowMaps() {
+    layers_.release(owner_);
+    glDeleteVertexArrays(1, &quadVao_);
+    glDeleteBuffers(2, quadBuffers_);
+}
+
+void ShadowMaps::ensure(int resolution, unsigned format, int maps) {
     // As many layers as maps are drawn, not shaders::kMaxShadowMaps: a world with one sun holds one map
     // (at 2048 texels, 8 MB instead of 32; sixty-four worlds of an engine, 0.5 GB instead of 2).
-    layers = std::max(layers, layers_);
-    glDeleteFramebuffers(1, &fbo_);
-    glDeleteRenderbuffers(1, &depthBuffer_);
-    glDeleteTextures(1, &texture_);
-    // Read texel by texel with imageLoad and compared in the shader (see shadowFactor() in shaders.cpp).
-    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture_);
-    glTextureStorage3D(texture_, 1, format, resolution, resolution, layers);
-    glCreateRenderbuffers(1, &depthBuffer_);
-    glNamedRenderbufferStorage(depthBuffer_, format == GL_R16 ? GL_DEPTH_COMPONENT16 : GL_DEPTH_COMPONENT32F,
-                               resolution, resolution);
-    glCreateFramebuffers(1, &fbo_);
-    glNamedFramebufferRenderbuffer(fbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depthBuffer_);
-    glNamedFramebufferDrawBuffer(fbo_, GL_COLOR_ATTACHMENT0);
-    resolution_ = resolution;
-    format_ = format;
-    layers_ = layers;
-    lightSignature_.clear(); // new storage holds nothing yet: the next update draws in full
+    const ShadowLayers::Place before = layers_.place(owner_);
+    const ShadowLayers::Place now = layers_.acquire(owner_, resolution, format, maps);
+    if (now.first != before.first || now.count != before.count || now.resolution != before.resolution ||
+        now.format != before.format)
+        lightSignature_.clear(); // new layers hold nothing of this scene yet: the next update draws in full
 }
 
 void ShadowMaps::clearRects(const std::vector<Rect>& rects, int resolution) {
@@ -297,7 +282,7 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
                                ShaderProgram& depthProgram, const Sphere* seen) {
     std::vector<double> signature = shadowSignature(scene, resolution);
     update_ = {};
-    const bool sameScene = texture_ != 0 && signature == signature_;
+    const bool sameScene = layers_.place(owner_).first >= 0 && signature == signature_;
     bool directional = false, spot = false;
     scene.forEachLight([&](LightId, const Light& light) {
         directional = directional || (light.castShadows && light.type == LightType::Directional);
@@ -443,7 +428,6 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
                 stale[i].push_back(gone.footprints[i]);
     casters_ = std::move(casters);
 
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
     glViewport(0, 0, resolution, resolution);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
@@ -461,15 +445,24 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
         }
     } restoreState;
     depthProgram.use();
-    // The whole layer's depths to the far plane, and the depth buffer with them (clearRects() clears parts).
-    auto clear = [] {
+    const ShadowLayers::Place place = layers_.place(owner_);
+    // The whole layer's depths to the far plane, and the depth layer with them (clearRects() clears parts).
+    // In a layered framebuffer of several layers a clear would clear them all: the far square is drawn
+    // into this one instead, to the same values.
+    auto clear = [&] {
+        if (layers_.layered() && place.arrayLayers > 1) {
+            clearRects({Rect{0, 0, resolution, resolution}}, resolution);
+            return;
+        }
         const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f};
         glClearBufferfv(GL_COLOR, 0, far);
         glClearBufferfv(GL_DEPTH, 0, far);
     };
     for (std::size_t i = 0; i < infos.size(); ++i) {
         const ShadowInfo& info = infos[i];
-        glNamedFramebufferTextureLayer(fbo_, GL_COLOR_ATTACHMENT0, texture_, 0, info.layer);
+        layers_.bind(owner_, info.layer);
+        if (layers_.layered())
+            depthProgram.set("uLayer", place.first + info.layer);
         // A directional map covers a region, not the scene: casters nearer the light than its near plane are
         // drawn at depth 0 rather than clipped, since they still shadow the region.
         if (info.perspective)

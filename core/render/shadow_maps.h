@@ -17,10 +17,11 @@
 // A robot in a large still scene costs the texels it covers, not the whole map. The result equals a full
 // render bit for bit.
 //
-// The maps are a colour texture array holding each texel's depth (the depth test's own value, polygon
-// offset included), not a depth texture: the surface pass reads four texels with imageLoad, which a
+// The maps are layers of a colour texture array holding each texel's depth (the depth test's own value,
+// polygon offset included), not a depth texture: the surface pass reads four texels with imageLoad, which a
 // software rasteriser runs several times faster than a texture gather (see shadowFactor() in shaders.cpp).
-// The depth test runs against one depth buffer shared by the layers, cleared with each layer.
+// The arrays are shared by the scenes a Renderer draws (ShadowLayers), so that a batch of worlds draws all
+// its maps in one framebuffer.
 
 #include <algorithm>
 #include <cstdint>
@@ -33,6 +34,7 @@
 #include "core/render/instances.h"
 #include "core/render/scene.h"
 #include "core/render/shader_program.h"
+#include "core/render/shadow_layers.h"
 
 namespace sp::render {
 
@@ -43,10 +45,12 @@ struct Sphere {
     bool holds(const Sphere& other) const { return (other.centre - centre).norm() + other.radius <= radius; }
     bool operator==(const Sphere&) const = default;
 };
+// The smallest sphere holding both (an empty one adds nothing).
+Sphere united(const Sphere& a, const Sphere& b);
 
 struct ShadowInfo {
     int lightOrdinal = -1; // the light's position in the scene's light order
-    int layer = -1;
+    int layer = -1; // the map's number among the scene's (its layer is ShadowMaps::firstLayer() + this)
     Eigen::Matrix4f worldToClip = Eigen::Matrix4f::Identity();
     float texel = 0.0f; // world size of a texel (per metre of distance when perspective)
     bool perspective = false;
@@ -64,7 +68,8 @@ struct ShadowUpdate {
 
 class ShadowMaps {
   public:
-    ShadowMaps() = default;
+    // The maps of the scene `owner` (its Scene::uid()), in layers of `layers`.
+    ShadowMaps(ShadowLayers& layers, std::uint64_t owner) : layers_(layers), owner_(owner) {}
     ~ShadowMaps();
     ShadowMaps(const ShadowMaps&) = delete;
     ShadowMaps& operator=(const ShadowMaps&) = delete;
@@ -82,9 +87,11 @@ class ShadowMaps {
     // Where each map is, as of the last render().
     const std::vector<ShadowInfo>& infos() const { return infos_; }
     const ShadowUpdate& lastUpdate() const { return update_; }
-    unsigned texture() const { return texture_; }
-    // The texture's format: GL_R16 (unsigned normalised) when every map is orthographic, else GL_R32F.
-    unsigned format() const { return format_; }
+    // The texture array holding the maps (0: none), the layer of the first map, and the format:
+    // GL_R16 (unsigned normalised) when every map is orthographic, else GL_R32F.
+    unsigned texture() const { return layers_.place(owner_).texture; }
+    int firstLayer() const { return layers_.place(owner_).first; }
+    unsigned format() const { return layers_.place(owner_).format; }
 
   private:
     // A rectangle of texels [x0, x1) x [y0, y1); empty when x0 >= x1.
@@ -124,8 +131,8 @@ class ShadowMaps {
     // of the depth program (already in use) rather than a scissored clear each: a software rasteriser runs
     // such a clear apart from the draws queued before it, and each cost more than the draws it served.
     void clearRects(const std::vector<Rect>& rects, int resolution);
-    // (Re)allocates the maps' storage for `layers` maps (at least as many as before) when anything changed.
-    void ensure(int resolution, unsigned format, int layers);
+    // Takes `maps` layers of the arrays of `resolution` x `format` maps (see ShadowLayers).
+    void ensure(int resolution, unsigned format, int maps);
     // Draws `casters` into the bound layer with the depth program in use.
     void draw(const Scene& scene, const std::vector<const Instance*>& casters, const ShadowInfo& info,
               const Eigen::Matrix4d& lightProjection, const Eigen::Vector3d& lightPosition,
@@ -133,13 +140,9 @@ class ShadowMaps {
     Rect footprint(const Scene& scene, const Instance& instance, const Eigen::Matrix4d& lightProjection,
                    int resolution) const;
 
-    unsigned texture_ = 0;
-    unsigned depthBuffer_ = 0; // the depth test's buffer, one layer's worth
-    unsigned fbo_ = 0;
+    ShadowLayers& layers_;
+    std::uint64_t owner_;
     unsigned quadVao_ = 0, quadBuffers_[2] = {0, 0}; // a unit square (clearRects)
-    int resolution_ = 0;
-    unsigned format_ = 0;
-    int layers_ = 0;
     bool warnedTooMany_ = false;
     std::vector<ShadowInfo> infos_;
     ShadowUpdate update_;

@@ -5,6 +5,7 @@
 #include <bit>
 #include <cstring>
 #include <map>
+#include <utility>
 
 #include "core/base/error.h"
 #include "core/pathtrace/path_tracer.h"
@@ -206,13 +207,40 @@ struct RenderSubsystem::Gl {
     Gl(const Gl&) = delete;
     Gl& operator=(const Gl&) = delete;
 
+    // A camera's render of this frame, queued by its world's tick.
+    struct Queued {
+        const RenderSubsystem* owner = nullptr;
+        sp::render::RenderTarget* target = nullptr;
+        const sp::render::Scene* scene = nullptr;
+        sp::render::Camera camera;
+        std::uint64_t frame = 0; // the frame number its world recorded
+    };
+    // Renders what the worlds queued, as one batch (sp::render::RenderTarget::submitAll): once every world
+    // ticked (OnWorldsTicked), or earlier when something needs a queued frame or a world ticks again.
+    void runQueued() {
+        if (queued.empty())
+            return;
+        const std::vector<Queued> batch = std::exchange(queued, {});
+        std::vector<sp::render::RenderTarget::Submission> submissions;
+        submissions.reserve(batch.size());
+        for (const Queued& q : batch)
+            submissions.push_back({q.target, q.scene, &q.camera});
+        context->makeCurrent();
+        const std::vector<std::uint64_t> numbers = sp::render::RenderTarget::submitAll(submissions);
+        for (std::size_t i = 0; i < batch.size(); ++i)
+            SP_CHECK(numbers[i] == batch[i].frame, sp::InvalidState, "RenderSubsystem: frame ", numbers[i],
+                     " of a camera was recorded as frame ", batch[i].frame);
+    }
+
     std::unique_ptr<sp::render::GlContext> context; // logs the EGL device it chose, once per engine
     std::unique_ptr<sp::render::Renderer> renderer;
+    std::vector<Queued> queued;
 };
 
 RenderSubsystem::~RenderSubsystem() {
     if (!gl_)
         return;
+    std::erase_if(gl_->queued, [&](const Gl::Queued& q) { return q.owner == this; });
     gl_->context->makeCurrent(); // this world's GL objects go: its targets, then its scene's state
     cameras_.clear();
     if (scene_)
@@ -234,9 +262,15 @@ void RenderSubsystem::Tick(double /*deltaSeconds*/) {
     for (const auto& [sequence, camera] : cameraComponents_.items())
         cameras.push_back(camera);
 
-    // Render targets of destroyed cameras go (with the context current, as they hold GL objects).
-    if (gl_)
+    // Render targets of destroyed cameras go (with the context current, as they hold GL objects), after this
+    // world's renders of an earlier frame are done, if they are still queued (a world without a host whose
+    // last frame failed after its tick). What other worlds queued this frame waits for OnWorldsTicked.
+    if (gl_) {
+        if (std::any_of(gl_->queued.begin(), gl_->queued.end(),
+                        [&](const Gl::Queued& q) { return q.owner == this; }))
+            gl_->runQueued();
         gl_->context->makeCurrent();
+    }
     for (auto it = cameras_.begin(); it != cameras_.end();) {
         const bool alive = std::any_of(cameras.begin(), cameras.end(), [&](const UCameraSensorComponent* c) {
             return c->GetHandle() == it->first;
@@ -307,7 +341,9 @@ void RenderSubsystem::submit(UCameraSensorComponent& camera, int sizedShadowReso
     } else if (state.target->modalities() != modalities) {
         state.target->setModalities(modalities);
     }
-    const std::uint64_t number = state.target->submit(scene_->scene(), renderCamera);
+    // Rendered with every world's cameras once all worlds ticked (OnWorldsTicked).
+    const std::uint64_t number = state.target->submittedFrames() + 1;
+    gl_->queued.push_back({this, state.target.get(), &scene_->scene(), renderCamera, number});
     std::shared_ptr<const TracedImages> traced;
     if (camera.Renderer == ECameraRenderer::PathTraced &&
         std::any_of(kTracedModalities.begin(), kTracedModalities.end(),
@@ -381,7 +417,14 @@ void RenderSubsystem::restartAccumulation(UCameraSensorComponent& camera) {
     cameraState(camera).accumulation = {};
 }
 
+void RenderSubsystem::OnWorldsTicked() {
+    if (gl_)
+        gl_->runQueued();
+}
+
 const RenderSubsystem::PendingFrame* RenderSubsystem::dueFrame(UCameraSensorComponent& camera) const {
+    if (gl_)
+        gl_->runQueued(); // a read within the frame (a later subsystem of this world)
     auto it = cameras_.find(camera.GetHandle());
     if (it == cameras_.end() || !it->second->target)
         return nullptr;
@@ -558,6 +601,7 @@ FRenderStats RenderSubsystem::stats() const {
     FRenderStats result;
     if (!gl_)
         return result;
+    gl_->runQueued(); // counts this frame's renders
     // stats() collects timer queries, which needs the context current.
     gl_->context->makeCurrent();
     const sp::render::RenderStats stats = gl_->renderer->stats(scene_->scene().uid());

@@ -7,9 +7,12 @@
 // has a camera (worlds without cameras never touch EGL). Every frame, after the actors and physics ticked:
 //   1. syncs the render scene with what it tracks: static mesh components (mesh, one material per slot,
 //      world transform, visibility), light components and the sky light;
-//   2. submits one render per camera sensor into that camera's render target (latency ring).
-// read_pixels() then reads the due frame. Object ids are one per (component, material slot), assigned
-// from a counter that never repeats, so they are stable while the component lives and never reused.
+//   2. queues one render per camera sensor into that camera's render target (latency ring).
+// Once every world ticked, the queued renders of all worlds run as one batch (OnWorldsTicked; see
+// sp::render::Renderer::render): shadow maps first, then the views, so that a software rasteriser gets a
+// few jobs a frame rather than two per world. read_pixels() then reads the due frame. Object ids are one per
+// (component, material slot), assigned from a counter that never repeats, so they are stable while the
+// component lives and never reused.
 
 #include <cstdint>
 #include <deque>
@@ -55,6 +58,9 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     ~RenderSubsystem() override;
 
     void Tick(double deltaSeconds) override;
+    // Renders the cameras every world of the engine queued this frame, as one batch (the first world to be
+    // told does it for all).
+    void OnWorldsTicked() override;
     // Registration: the render scene and the camera list follow the world as things begin and end play.
     void OnActorBeginPlay(AActor& actor) override;
     void OnActorEndPlay(AActor& actor) override;

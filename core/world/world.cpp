@@ -366,4 +366,11 @@ void UWorld::Tick(double deltaSeconds) {
         subsystems_[i].subsystem->Tick(deltaSeconds);
     timeSeconds_ += deltaSeconds;
     ++frameCount_;
+    if (host_ == nullptr)
+        NotifyWorldsTicked();
+}
+
+void UWorld::NotifyWorldsTicked() {
+    for (size_t i = 0; i < subsystems_.size(); ++i)
+        subsystems_[i].subsystem->OnWorldsTicked();
 }

@@ -149,8 +149,10 @@ class UWorld : public UObject {
     SPFUNCTION()
     bool is_playing() const;
 
-    // Advances every actor by one fixed step.
+    // Advances every actor by one fixed step, then the subsystems; a world without a host then tells them
+    // that the frame's worlds ticked (WorldSubsystem::OnWorldsTicked), as the host does after all its worlds.
     void Tick(double deltaSeconds);
+    void NotifyWorldsTicked();
 
     // The world's subsystem of type T (constructed as T(UWorld&) on first use).
     template <typename T> T& GetSubsystem() {

@@ -15,6 +15,10 @@ class WorldSubsystem {
     virtual ~WorldSubsystem() = default;
     // Called once per frame after every actor has ticked.
     virtual void Tick(double /*deltaSeconds*/) {}
+    // Called once per frame after every world of the host ticked (for a world without a host, right after
+    // its own tick): for work cheaper done for all worlds at once, such as the render subsystems' one batch
+    // of every world's cameras.
+    virtual void OnWorldsTicked() {}
 
     // The world's actors and components as they begin play (spawned, loaded, added to an actor in play) and
     // end it (destroyed, unloaded), so that a subsystem mirrors the world by registration rather than by

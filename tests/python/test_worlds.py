@@ -4,8 +4,11 @@ render scene; names are unique; destroyed worlds leave stale handles. Every test
 from __future__ import annotations
 
 import collections
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 import pytest
 
 import spear
@@ -74,6 +77,49 @@ def test_each_world_renders_its_own_scene(instance: spear.Instance) -> None:
         empty, walled = (camera.read_pixels()["depth"] for camera in cameras)
     assert np.all(empty == 0.0)  # nothing in view: background
     assert np.allclose(walled, 2.95, atol=1e-3)  # the wall's front face, 3 m - 0.05 m
+
+
+def shadowed_scene(world: spear.UWorld, height: float) -> spear.UCameraSensorComponent:
+    """drop_cube() under a shadow-casting sun, and a 32 x 24 camera looking down at it."""
+    drop_cube(world, height)
+    sun = world.spawn_actor(uclass=spear.ADirectionalLight, name="Sun", rotation=spear.FRotator(Pitch=-50.0, Yaw=30.0))
+    sun.LightComponent.Intensity = 3.0
+    camera = world.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera", location=spear.FVector(X=-4.0, Z=3.0),
+                               rotation=spear.FRotator(Pitch=-30.0)).CameraSensor
+    camera.Width, camera.Height = 32, 24
+    camera.Modalities = [spear.ECameraModality.FinalColor, spear.ECameraModality.Depth,
+                         spear.ECameraModality.ObjectIds]
+    return camera
+
+
+def test_a_worlds_images_do_not_depend_on_the_worlds_drawn_with_it(
+    make_instance: Callable[..., spear.Instance],
+) -> None:
+    # The worlds' cameras are drawn as one batch (shared framebuffers and shadow-map layers): a world's frames
+    # equal, bit for bit, those of the same world alone in an engine of its own, as its cube falls and its
+    # shadow moves.
+    def frames(instance: spear.Instance, heights: tuple[float, ...]) -> list[list[dict[str, NDArray[Any]]]]:
+        worlds = [instance.create_world(name=f"Env{i}") for i in range(len(heights))]
+        with instance.begin_frame():
+            cameras = [shadowed_scene(world, height) for world, height in zip(worlds, heights)]
+        shot = []
+        for _ in range(4):
+            with instance.end_frame():
+                shot.append([{name: np.asarray(image) for name, image in camera.read_pixels().items()}
+                             for camera in cameras])
+            with instance.begin_frame():
+                pass
+        with instance.end_frame():
+            pass
+        return shot
+
+    together = frames(make_instance(), (1.5, 2.5, 3.5))
+    alone = frames(make_instance(), (2.5,))
+    for frame, (batched, single) in enumerate(zip(together, alone)):
+        for name in ("final_color", "depth", "object_ids"):
+            assert np.array_equal(batched[1][name], single[0][name]), f"{name}, frame {frame}"
+    assert not np.array_equal(together[3][0]["final_color"], together[3][2]["final_color"])  # other scenes
+    assert not np.array_equal(together[0][1]["final_color"], together[3][1]["final_color"])  # the cube fell
 
 
 def test_worlds_share_the_uploads_of_built_in_shapes_and_count_their_own_frames(instance: spear.Instance) -> None:

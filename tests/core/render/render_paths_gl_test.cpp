@@ -445,5 +445,114 @@ TEST_F(RenderPathsGlTest, LatencyZeroReadsAFrameOnceAndLatencyOneMatchesIt) {
     EXPECT_TRUE(std::equal(da.begin(), da.end(), db.begin()));
 }
 
+TEST_F(RenderPathsGlTest, ABatchOfScenesRendersWhatEachRendersAlone) {
+    // Worlds drawn as one batch (RenderTarget::submitAll) share framebuffers, one tile each, and keep their
+    // shadow maps in layers of shared arrays:
+    // a sun's (16-bit) and a spot light's (32-bit float, another array), a world with two suns (two layers),
+    // a box moving in each every frame (the maps redrawn in parts), and a world joining at the third frame
+    // (the array grows, keeping the others' maps). Every frame of every world equals what a renderer of its
+    // own draws for that world alone, bit for bit, with the maps in one layered framebuffer or attached
+    // layer by layer; and each target reads back the frame number it was given.
+    std::vector<std::unique_ptr<Scene>> scenes;
+    std::vector<InstanceId> movers;
+    for (int i = 0; i < 3; ++i) {
+        auto scene = std::make_unique<Scene>();
+        buildShapesScene(*scene);
+        if (i == 1)
+            addSpotAndPointLights(*scene);
+        if (i == 2) {
+            Light second;
+            second.direction = Eigen::Vector3d(0.3, 0.6, -1.0);
+            scene->addLight(second);
+        }
+        const MeshId box = scene->addMesh(primitives::box({0.3f, 0.3f, 0.3f}));
+        const MaterialId red = scene->addMaterial(makeMaterial({0.7f, 0.12f, 0.1f}, 0.5f, 0.0f));
+        Instance mover{box, {red}, {40}};
+        mover.transform.translation() = Eigen::Vector3d(0.6 - 0.5 * i, -0.4 + 0.3 * i, 0.9); // its own shadow
+        movers.push_back(scene->addInstance(mover));
+        scenes.push_back(std::move(scene));
+    }
+    const Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 64, 48, 60.0);
+    const bool byDefault = renderer().layeredShadowMaps();
+    for (const bool layered : {true, false}) {
+        // Batched, the small views are tiles of one framebuffer (cleared by drawing, a surface and an
+        // attribute pass); alone, each fills framebuffers of its own (cleared by glClear).
+        const ModalitySet modalities =
+            layered ? ModalitySet::all() : ModalitySet{Modality::FinalColor, Modality::Depth};
+        renderer().setLayeredShadowMaps(layered);
+        std::vector<std::unique_ptr<Renderer>> alone; // a renderer per world: its maps alone in its arrays
+        std::vector<std::unique_ptr<RenderTarget>> batched, single;
+        for (std::size_t i = 0; i < scenes.size(); ++i) {
+            alone.push_back(std::make_unique<Renderer>(*context_));
+            batched.push_back(std::make_unique<RenderTarget>(renderer(), modalities, 0));
+            single.push_back(std::make_unique<RenderTarget>(*alone.back(), modalities, 0));
+        }
+        for (int frame = 0; frame < 4; ++frame) {
+            const std::size_t worlds = frame < 2 ? 2 : 3;
+            std::vector<RenderTarget::Submission> batch;
+            for (std::size_t i = 0; i < worlds; ++i) {
+                Eigen::Affine3d transform = scenes[i]->instance(movers[i]).transform;
+                transform.translation() += Eigen::Vector3d(0.15, 0.1, 0.0);
+                scenes[i]->setTransform(movers[i], transform);
+                batch.push_back({batched[i].get(), scenes[i].get(), &camera});
+            }
+            const std::vector<std::uint64_t> numbers = RenderTarget::submitAll(batch);
+            for (std::size_t i = 0; i < worlds; ++i) {
+                Frame together, apart;
+                ASSERT_EQ(batched[i]->read(together), numbers[i]);
+                ASSERT_TRUE(single[i]->render(*scenes[i], camera, apart).has_value());
+                for (Modality m : modalities.list()) {
+                    const ImageBuffer &x = together.get(m), &y = apart.get(m);
+                    EXPECT_TRUE(std::equal(x.bytes.begin(), x.bytes.end(), y.bytes.begin()))
+                        << modalityName(m) << ", world " << i << ", frame " << frame << ", layered "
+                        << layered;
+                }
+            }
+        }
+        single.clear();
+        alone.clear();
+        context_->makeCurrent();
+    }
+    renderer().setLayeredShadowMaps(byDefault);
+}
+
+TEST_F(RenderPathsGlTest, AFrameWaitingInATileSurvivesItsFramebuffersGrowing) {
+    // A latency-0 frame not read yet stays in its tile while other targets of its size take tiles of the same
+    // framebuffers, which grow (moving the tiles) to hold them all.
+    Scene scene;
+    buildShapesScene(scene);
+    const Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 40, 30, 60.0);
+    const Camera other = cameraLookingAt({-2.0, 3.0, 1.5}, {0, 0, 0.3}, 40, 30, 70.0);
+    const ModalitySet modalities{Modality::FinalColor, Modality::ObjectIds};
+    Frame expected;
+    {
+        Renderer alone(*context_);
+        RenderTarget target(alone, modalities, 0);
+        ASSERT_TRUE(target.render(scene, camera, expected).has_value());
+    }
+    context_->makeCurrent();
+    const std::size_t pages = renderer().atlas().pages();
+    RenderTarget waiting(renderer(), modalities, 0);
+    waiting.submit(scene, camera);
+    std::vector<std::unique_ptr<RenderTarget>> others;
+    std::vector<RenderTarget::Submission> batch;
+    for (int i = 0; i < 6; ++i) {
+        others.push_back(std::make_unique<RenderTarget>(renderer(), modalities, 0));
+        batch.push_back({others.back().get(), &scene, &other});
+    }
+    RenderTarget::submitAll(batch);
+    EXPECT_EQ(renderer().atlas().pages(), pages + 1) << "the seven 40x30 views share one page";
+    Frame frame;
+    ASSERT_TRUE(waiting.read(frame).has_value());
+    for (Modality m : modalities.list()) {
+        const ImageBuffer &x = frame.get(m), &y = expected.get(m);
+        EXPECT_TRUE(std::equal(x.bytes.begin(), x.bytes.end(), y.bytes.begin())) << modalityName(m);
+    }
+    Frame another;
+    ASSERT_TRUE(others[3]->read(another).has_value());
+    EXPECT_GT(difference(another.get(Modality::FinalColor), frame.get(Modality::FinalColor)).first, 0)
+        << "the other views show another picture";
+}
+
 } // namespace
 } // namespace sp::render::test

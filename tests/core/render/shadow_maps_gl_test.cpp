@@ -21,7 +21,11 @@ constexpr int kResolution = 256;
 
 class ShadowMapsGlTest : public GlTest {
   protected:
-    ShadowMapsGlTest() : depth_("shadow test", shaders::shadowVertex().c_str(), shaders::kShadowFragment) {}
+    ShadowMapsGlTest()
+        : layered_(epoxy_has_gl_extension("GL_ARB_shader_viewport_layer_array")), layers_(layered_),
+          depth_("shadow test", shaders::shadowVertex(layered_).c_str(), shaders::kShadowFragment) {}
+
+    std::uint64_t nextOwner() { return ++owners_; }
 
     // Every layer a render of `scene` fills, as floats.
     std::vector<float> layers(ShadowMaps& maps, const Scene& scene, const Sphere* seen = nullptr) {
@@ -29,8 +33,9 @@ class ShadowMapsGlTest : public GlTest {
         std::vector<float> values;
         for (const ShadowInfo& info : maps.infos()) {
             std::vector<float> layer(std::size_t(kResolution) * kResolution);
-            glGetTextureSubImage(maps.texture(), 0, 0, 0, info.layer, kResolution, kResolution, 1, GL_RED,
-                                 GL_FLOAT, GLsizei(layer.size() * sizeof(float)), layer.data());
+            glGetTextureSubImage(maps.texture(), 0, 0, 0, maps.firstLayer() + info.layer, kResolution,
+                                 kResolution, 1, GL_RED, GL_FLOAT, GLsizei(layer.size() * sizeof(float)),
+                                 layer.data());
             values.insert(values.end(), layer.begin(), layer.end());
         }
         return values;
@@ -40,7 +45,8 @@ class ShadowMapsGlTest : public GlTest {
     void expectSameAsFresh(ShadowMaps& maps, const Scene& scene, const char* step,
                            const Sphere* seen = nullptr) {
         const std::vector<float> kept = layers(maps, scene, seen);
-        ShadowMaps fresh;
+        ShadowLayers freshLayers(layered_); // storage of its own: the maps' layers are as in a new renderer
+        ShadowMaps fresh(freshLayers, 1);
         const std::vector<float> expected = layers(fresh, scene, seen);
         ASSERT_EQ(kept.size(), expected.size()) << step;
         ASSERT_FALSE(kept.empty()) << step;
@@ -58,8 +64,8 @@ class ShadowMapsGlTest : public GlTest {
         const int x = int((clip.x() * 0.5f + 0.5f) * kResolution),
                   y = int((clip.y() * 0.5f + 0.5f) * kResolution);
         float value = -1.0f;
-        glGetTextureSubImage(maps.texture(), 0, x, y, info.layer, 1, 1, 1, GL_RED, GL_FLOAT, sizeof(value),
-                             &value);
+        glGetTextureSubImage(maps.texture(), 0, x, y, maps.firstLayer() + info.layer, 1, 1, 1, GL_RED,
+                             GL_FLOAT, sizeof(value), &value);
         return value;
     }
 
@@ -91,6 +97,9 @@ class ShadowMapsGlTest : public GlTest {
         return ids;
     }
 
+    bool layered_;
+    ShadowLayers layers_;
+    std::uint64_t owners_ = 0;
     SharedUploads uploads_;
     GpuSceneCache cache_{uploads_};
     ShaderProgram depth_;
@@ -100,7 +109,7 @@ TEST_F(ShadowMapsGlTest, AnyHistoryOfUpdatesGivesTheMapsOfAFreshRender) {
     Scene scene;
     buildShapesScene(scene); // ground, box, sphere, cylinder under a sun
     const std::vector<InstanceId> ids = instanceIds(scene);
-    ShadowMaps maps;
+    ShadowMaps maps(layers_, nextOwner());
     expectSameAsFresh(maps, scene, "first update");
     // Moves longer than the box's footprint: where it was must be drawn again from the still casters.
     moveBy(scene, ids[1], {1.5, 0.0, 0.0});
@@ -125,7 +134,7 @@ TEST_F(ShadowMapsGlTest, SpotLightMapsKeepFullDepthPrecisionAndTheSameGuarantee)
     Scene scene;
     buildSpotScene(scene);
     const InstanceId id = addBoxes(scene, 0.3f, {{0.5, 0.5, 0.15}}, 77)[0];
-    ShadowMaps maps;
+    ShadowMaps maps(layers_, nextOwner());
     expectSameAsFresh(maps, scene, "first update");
     EXPECT_EQ(maps.format(), unsigned(GL_R32F)); // perspective depth is not linear
     moveBy(scene, id, {0.8, 0.0, 0.0});
@@ -140,7 +149,7 @@ TEST_F(ShadowMapsGlTest, OneObjectMovingInAStillSceneRedrawsOnlyItsNeighbourhood
     buildShapesScene(scene);
     addBoxes(scene, 0.4f, {{3.6, 3.6, 0.2}}); // in a corner of the ground, far from the sphere
     const std::vector<InstanceId> ids = instanceIds(scene);
-    ShadowMaps maps;
+    ShadowMaps maps(layers_, nextOwner());
     maps.render(scene, kResolution, cache_, depth_);
     EXPECT_EQ(maps.format(), unsigned(GL_R16)); // orthographic maps only
     moveBy(scene, ids[2], {0.05, 0.0, 0.0});    // the sphere starts moving: only around it is drawn again
@@ -165,7 +174,7 @@ TEST_F(ShadowMapsGlTest, CastersStoppingStartingAndLeavingAreRedrawnWhereTheyWer
     Scene scene;
     buildShapesScene(scene);
     const std::vector<InstanceId> ids = instanceIds(scene); // ground, box, sphere, cylinder
-    ShadowMaps maps;
+    ShadowMaps maps(layers_, nextOwner());
     expectSameAsFresh(maps, scene, "first update");
     moveBy(scene, ids[1], {0.3, 0.0, 0.0});
     expectSameAsFresh(maps, scene, "the box moved");
@@ -193,7 +202,7 @@ TEST_F(ShadowMapsGlTest, CastersFarApartAreRedrawnInRectanglesOfTheirOwn) {
     buildShapesScene(scene);
     const std::vector<InstanceId> boxes = addBoxes(scene, 0.3f, {{-3.4, -3.4, 0.15}, {3.4, 3.4, 0.15}});
     const InstanceId first = boxes[0], second = boxes[1];
-    ShadowMaps maps;
+    ShadowMaps maps(layers_, nextOwner());
     expectSameAsFresh(maps, scene, "first update");
     for (int step = 0; step < 3; ++step) {
         moveBy(scene, first, {0.05, 0.0, 0.0});
@@ -216,7 +225,7 @@ TEST_F(ShadowMapsGlTest, HundredsOfMovingCastersAreRedrawnInOneRectangle) {
     for (int i = 0; i < 210; ++i)
         grid.emplace_back(-3.5 + 0.5 * (i % 15), -3.5 + 0.5 * (i / 15), 1.5);
     const std::vector<InstanceId> boxes = addBoxes(scene, 0.1f, grid, 100);
-    ShadowMaps maps;
+    ShadowMaps maps(layers_, nextOwner());
     expectSameAsFresh(maps, scene, "first update");
     for (const InstanceId id : boxes)
         moveBy(scene, id, {0.02, 0.0, 0.0});
@@ -229,7 +238,7 @@ TEST_F(ShadowMapsGlTest, StorageHoldsOnlyTheMapsDrawn) {
     // One sun, one layer; a second shadowed light grows the storage, and the maps still equal a fresh render.
     Scene scene;
     buildShapesScene(scene);
-    ShadowMaps maps;
+    ShadowMaps maps(layers_, nextOwner());
     expectSameAsFresh(maps, scene, "one sun");
     auto layers = [&] {
         GLint depth = 0;
@@ -251,17 +260,18 @@ TEST_F(ShadowMapsGlTest, ObjectsFarOutOfViewNeitherStretchNorRedrawTheDirectiona
     buildShapesScene(scene);
     Sphere seen;
     scene.bounds(seen.centre, seen.radius);
-    ShadowMaps before;
+    ShadowMaps before(layers_, nextOwner());
     const std::vector<float> expected = layers(before, scene, &seen);
     const InstanceId id = addBoxes(scene, 0.3f, {{300.0, -40.0, -500.0}})[0];
-    ShadowMaps maps;
+    ShadowMaps maps(layers_, nextOwner());
     EXPECT_EQ(layers(maps, scene, &seen), expected);
     EXPECT_EQ(maps.directionalRegion(), before.directionalRegion());
     moveBy(scene, id, {0.0, 0.0, -20.0});
     EXPECT_EQ(layers(maps, scene, &seen), expected);
     EXPECT_EQ(maps.lastUpdate().fullMaps, 0u);
     EXPECT_EQ(maps.lastUpdate().redrawnTexels, 0u) << "the fallen box is outside the map";
-    ShadowMaps whole; // fitted to the whole scene, the map would stretch to the fallen box
+    ShadowMaps whole(layers_,
+                     nextOwner()); // fitted to the whole scene, the map would stretch to the fallen box
     layers(whole, scene);
     EXPECT_GT(whole.directionalRegion().radius, 100.0);
 }
@@ -275,7 +285,7 @@ TEST_F(ShadowMapsGlTest, ACasterTowardsTheLightFarBeyondTheRegionStillShadowsIt)
     const Eigen::Vector3d towardsSun = -Eigen::Vector3d(-0.4, -0.5, -1.0).normalized();
     addBoxes(scene, 0.2f, {patch + 30.0 * towardsSun});
     const Sphere seen{patch, 0.5};
-    ShadowMaps maps;
+    ShadowMaps maps(layers_, nextOwner());
     ASSERT_GT(maps.render(scene, kResolution, cache_, depth_, &seen), 0u);
     ASSERT_LT(maps.directionalRegion().radius, 1.0);
     EXPECT_EQ(depthAt(maps, patch), 0.0f) << "the high box's shadow";
@@ -287,7 +297,7 @@ TEST_F(ShadowMapsGlTest, TheDirectionalRegionIsKeptWhileItHoldsWhatIsSeenAndShar
     buildShapesScene(scene);
     const std::vector<InstanceId> ids = instanceIds(scene);
     const Sphere view{{0.0, 0.0, 0.3}, 2.0};
-    ShadowMaps maps;
+    ShadowMaps maps(layers_, nextOwner());
     ASSERT_GT(maps.render(scene, kResolution, cache_, depth_, &view), 0u);
     const Sphere fitted = maps.directionalRegion();
     EXPECT_TRUE(fitted.holds(view));
@@ -323,7 +333,7 @@ TEST_F(ShadowMapsGlTest, AnObjectNearTheFloatLimitTurnsShadowsOffInsteadOfHangin
     Scene scene;
     buildShapesScene(scene);
     addBoxes(scene, 1.0f, {{1e300, 0.0, 0.0}});
-    ShadowMaps maps;
+    ShadowMaps maps(layers_, nextOwner());
     EXPECT_EQ(maps.render(scene, kResolution, cache_, depth_), 0u);
     EXPECT_TRUE(maps.infos().empty());
     Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 32, 24, 60.0);
