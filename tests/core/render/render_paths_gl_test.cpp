@@ -516,7 +516,41 @@ TEST_F(RenderPathsGlTest, ABatchOfScenesRendersWhatEachRendersAlone) {
     renderer().setLayeredShadowMaps(byDefault);
 }
 
-TEST_F(RenderPathsGlTest, AFrameWaitingInATileSurvivesItsFramebuffersGrowing) {
+TEST_F(RenderPathsGlTest, ViewsOfOneSceneAskingForOtherShadowResolutionsSplitTheBatch) {
+    // A scene's maps exist at one resolution at a time: a second view asking for another one starts a new
+    // part of the batch, after the first view was drawn with its own maps. Each view equals its render alone.
+    Scene scene;
+    buildShapesScene(scene);
+    Camera fine = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 48, 36, 60.0);
+    fine.params.shadowResolution = 1024;
+    Camera coarse = cameraLookingAt({-2.5, 3.0, 1.8}, {0, 0, 0.3}, 48, 36, 70.0);
+    coarse.params.shadowResolution = 128;
+    const ModalitySet modalities{Modality::FinalColor};
+    Frame expectedFine, expectedCoarse;
+    {
+        Renderer alone(*context_);
+        RenderTarget target(alone, modalities, 0);
+        ASSERT_TRUE(target.render(scene, fine, expectedFine).has_value());
+        Renderer other(*context_);
+        RenderTarget second(other, modalities, 0);
+        ASSERT_TRUE(second.render(scene, coarse, expectedCoarse).has_value());
+    }
+    context_->makeCurrent();
+    renderer().resetStats();
+    RenderTarget a(renderer(), modalities, 0), b(renderer(), modalities, 0);
+    const RenderTarget::Submission batch[] = {{&a, &scene, &fine}, {&b, &scene, &coarse}};
+    RenderTarget::submitAll(batch);
+    EXPECT_EQ(renderer().stats(scene.uid()).shadowPasses, 2u) << "drawn at 1024 texels, then at 128";
+    Frame gotFine, gotCoarse;
+    ASSERT_TRUE(a.read(gotFine).has_value());
+    ASSERT_TRUE(b.read(gotCoarse).has_value());
+    EXPECT_EQ(difference(gotFine.get(Modality::FinalColor), expectedFine.get(Modality::FinalColor)).first, 0);
+    EXPECT_EQ(difference(gotCoarse.get(Modality::FinalColor), expectedCoarse.get(Modality::FinalColor)).first,
+              0);
+    EXPECT_GT(difference(gotFine.get(Modality::FinalColor), gotCoarse.get(Modality::FinalColor)).first, 0);
+}
+
+TEST_F(RenderPathsGlTest, AFrameWaitingInALayerSurvivesItsFramebuffersGrowing) {
     // A latency-0 frame not read yet stays in its tile while other targets of its size take tiles of the same
     // framebuffers, which grow (moving the tiles) to hold them all.
     Scene scene;
