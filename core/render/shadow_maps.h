@@ -1,13 +1,15 @@
 #pragma once
-// Shadow maps of directional and spot lights, one layer of a depth texture array each. Spot maps are
-// perspective over the cone. Point lights cast no shadows. Needs a current context.
+// Shadow maps of directional and spot lights, one layer each of texture arrays the renderer's scenes share
+// (ShadowLayers). Spot maps are perspective over the cone. Point lights cast no shadows. Needs a current
+// context.
 //
 // Directional maps are orthographic over a region fitted to what the camera sees (the bounding sphere of
 // the instances in its frustum), not to the whole scene: objects that fall or roll far out of view neither
 // stretch the map (costing texels and detail where the camera looks) nor force it to be redrawn. The region
 // is snapped (radius to steps of 2^(1/4), centre to 1/16 of it) and kept while it holds what is seen and is
 // not much larger, so a moving camera or moving objects rarely change it, and the views of one frame share
-// it: a view seeing beyond the region of an earlier view of the same frame widens it to hold both. Casters
+// it: a batch of views (Renderer::render) asks once for what all of them see, and a view seeing beyond the
+// region of an earlier view of the same frame, submitted apart, widens it to hold both. Casters
 // between the light and the region are drawn however far (depth clamping), so they still shadow it.
 //
 // Casters that did not change since the previous update are still: while the lights' projections stay the
