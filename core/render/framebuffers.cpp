@@ -84,9 +84,8 @@ unsigned Framebuffers::makeFramebuffer(TargetMask targets, bool depth, const cha
         ++count;
     }
     glNamedFramebufferDrawBuffers(fbo, count, drawBuffers);
-    if (depth && layers > 0)
-        glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depthBuffer_,
-                                  0); // every layer: a layered framebuffer
+    if (depth && layers > 0) // every layer: a layered framebuffer
+        glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depthBuffer_, 0);
     else if (depth)
         glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depthBuffer_);
     const GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);

@@ -73,15 +73,16 @@ Renderer::Renderer(const GlContext& context)
         constantSlots_ =
             std::max(0, std::min(vertexOutputs, fragmentInputs) / 4 - 8 - shaders::kMaxShadowMaps - 1);
     }
-    // One layered framebuffer for the shadow maps of every scene, where the driver can choose the layer in
-    // the vertex shader (see shadow_layers.h).
-    setLayeredShadowMaps(epoxy_has_gl_extension("GL_ARB_shader_viewport_layer_array"));
+    // Where the driver can choose the layer in the vertex shader, the shadow maps of every scene are drawn in
+    // one layered framebuffer (shadow_layers.h) and small views share layered ones (framebuffer_atlas.h).
+    const bool layered = epoxy_has_gl_extension("GL_ARB_shader_viewport_layer_array");
+    setLayeredShadowMaps(layered);
     instances_ = std::make_unique<InstanceBuffer>();
     sharedUploads_ = std::make_unique<SharedUploads>();
     glCreateBuffers(1, &frameBlock_);
     glNamedBufferData(frameBlock_, sizeof(shaders::FrameBlock), nullptr, GL_DYNAMIC_DRAW);
     glCreateVertexArrays(1, &emptyVao_);
-    atlas_ = std::make_unique<FramebufferAtlas>(epoxy_has_gl_extension("GL_ARB_shader_viewport_layer_array"));
+    atlas_ = std::make_unique<FramebufferAtlas>(layered);
     // Readbacks of 3-channel and 16-bit images have rows that are not multiples of 4 bytes.
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
 }
