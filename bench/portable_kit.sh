@@ -9,7 +9,10 @@
 #   bash bench/run_portable.sh [FRAMES] [PNG_DIR]       # there, in a checkout holding BUILD/portable.tar.xz
 #
 # The C and C++ runtimes, EGL and OpenGL are left to the host: its GPU driver provides EGL through
-# libglvnd, and its C++ runtime is at least as new as the one the kit was built against.
+# libglvnd, and its C++ runtime is at least as new as the one the kit was built against. Some GPU hosts
+# carry the driver's vendor library (libEGL_nvidia) without libglvnd's dispatcher, so the kit keeps
+# this machine's libglvnd (libEGL.so.1, libOpenGL.so.0, libGLdispatch.so.0) in glvnd/, which run_portable.sh puts on
+# the library path only where the host has none.
 set -euo pipefail
 
 with_python=0
@@ -33,7 +36,10 @@ collect_libraries() {
 }
 
 rm -rf "$kit" "$kit.tar.xz"
-mkdir -p "$kit/bin" "$kit/lib"
+mkdir -p "$kit/bin" "$kit/lib" "$kit/glvnd"
+for library in libEGL.so.1 libOpenGL.so.0 libGLdispatch.so.0; do
+    objcopy --strip-debug "$(readlink -f "/usr/lib/x86_64-linux-gnu/$library")" "$kit/glvnd/$library"
+done
 for program in "${programs[@]}"; do
     if [[ ! -x $program ]]; then
         echo "portable_kit: $program is missing: build the project first (cmake --build $build)" >&2

@@ -18,6 +18,10 @@ if [[ -n $png_dir ]]; then
     mkdir -p "$png_dir"
 fi
 export LD_LIBRARY_PATH=$PWD/$kit/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH} SPEAR_SERVER=$PWD/$kit/bin/spear-server
+if ! ldconfig -p | grep -q 'libEGL\.so\.1 '; then # the driver's vendor library without libglvnd
+    echo "run_portable: this host has no libEGL.so.1; using the kit's libglvnd ($kit/glvnd)"
+    LD_LIBRARY_PATH=$PWD/$kit/glvnd:$LD_LIBRARY_PATH
+fi
 transports=(--no-inprocess)
 python=python3
 if [[ -x $kit/python/bin/python3.11 ]]; then
