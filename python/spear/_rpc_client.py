@@ -7,10 +7,9 @@ in-process engine raises.
 
 from __future__ import annotations
 
-import contextlib
 import itertools
 import warnings
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Sequence
 import os
 import select
 import shutil
@@ -84,13 +83,9 @@ class RpcConnection:
 
     # -- requests ------------------------------------------------------------------------------
 
-    @contextlib.contextmanager
-    def deferred(self, discard: bool) -> Iterator[None]:
-        previous, self._deferring = self._deferring, discard
-        try:
-            yield
-        finally:
-            self._deferring = previous
+    def deferred(self, discard: bool) -> _Deferring:
+        """Queues the calls made inside the block (call_async / send_async) instead of sending them."""
+        return _Deferring(self, discard)
 
     def flush(self) -> None:
         """Sends every queued call in one message and resolves their futures."""
@@ -290,6 +285,24 @@ class RpcConnection:
             pass
 
 
+class _Deferring:
+    """RpcConnection.deferred()'s block, as a class: it is entered once per queued call, and a generator-based
+    context manager costs several times as much."""
+
+    __slots__ = ("_connection", "_discard", "_previous")
+
+    def __init__(self, connection: RpcConnection, discard: bool) -> None:
+        self._connection = connection
+        self._discard = discard
+        self._previous: bool | None = None
+
+    def __enter__(self) -> None:
+        self._previous, self._connection._deferring = self._connection._deferring, self._discard
+
+    def __exit__(self, *exc: object) -> None:
+        self._connection._deferring = self._previous
+
+
 def _unchanged(value: Any) -> Any:
     return value
 
@@ -309,7 +322,7 @@ def _encode_fields(op: str, fields: dict[str, Any], segments: OutgoingSegments) 
                 encoded[key] = arguments
             else:
                 where = context
-                encoded[key] = encode(value, segments)
+                encoded[key] = value if type(value) is str else encode(value, segments)  # the names, unchanged
     except ValueRefused as error:
         raise errors.InvalidArgumentError(f"{where}: {error}") from None
     return encoded

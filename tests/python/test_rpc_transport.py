@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import mmap
+import dataclasses
 import os
 import socket
 import stat
@@ -12,12 +13,14 @@ import sys
 import time
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
 
 import spear
 import spear._engine
+from spear import _wire
 from spear._rpc_client import LaunchedServer, RpcConnection, find_server_binary
 
 
@@ -365,6 +368,33 @@ def test_a_full_reply_buffer_pool_does_not_churn() -> None:
         assert all(b.size >= size * 8 for b in pool._buffers.values())  # noqa: SLF001
     finally:
         pool.close()
+
+
+class _InlineSegments:
+    """What encode() reads of a message's segments when no array is sent: no owner to check objects against."""
+
+    owner = None
+    inline = True
+
+
+def test_a_struct_type_met_before_is_encoded_and_refused_as_the_first_time() -> None:
+    # encode() remembers the struct types it met, and their field names, so that later values skip its
+    # checks: a later value must encode to the same message and be refused for the same faults.
+    segments: Any = _InlineSegments()
+    progress = spear.FMoviePipelineProgress(FramesTotal=10, FramesRendered=3, ElapsedSeconds=0.5)
+    first = _wire.encode(progress, segments)
+    assert first == {field.name: getattr(progress, field.name) for field in dataclasses.fields(progress)}
+    assert _wire.encode(progress, segments) == first
+    assert spear.FMoviePipelineProgress in _wire._STRUCT_FIELDS  # the later values took the remembered path
+    with pytest.raises(_wire.ValueRefused, match=r"^integer 1180591620717411303424 is too large$"):
+        _wire.encode(spear.FMoviePipelineProgress(FramesTotal=2**70), segments)
+    with pytest.raises(_wire.ValueTooDeep):
+        _wire.encode(progress, segments, _wire.MAX_VALUE_DEPTH)
+    configuration = spear.FMoviePipelineConfiguration(Modalities=[spear.ECameraModality.Depth])
+    for _ in range(2):  # a field that is not plain (a list of enums) is encoded as before, by name
+        modalities = _wire.encode(configuration, segments)["Modalities"]
+        assert [item.code for item in modalities] == [_wire.EXT_ENUM]
+        assert modalities[0].data.endswith(b"ECameraModality")
 
 
 def test_an_engine_refuses_the_objects_of_another() -> None:
