@@ -383,6 +383,7 @@ class VectorEnv(Generic[ActionT]):
         n = self.num_envs
         observations = {key: np.zeros((n, *space.shape), dtype=space.dtype)
                         for key, space in self.single_observation_space.items()}
+        expected = [(key, space.shape, np.dtype(space.dtype)) for key, space in self.single_observation_space.items()]
         rewards = np.zeros(n, dtype=np.float32)
         terminated = np.zeros(n, dtype=np.bool_)
         truncated = np.zeros(n, dtype=np.bool_)
@@ -393,14 +394,17 @@ class VectorEnv(Generic[ActionT]):
                 infos[i] = {"error": self.failed[i]}
                 continue
             result = results[i]
-            for key, space in self.single_observation_space.items():
-                value = result.observation.get(key)
-                dtype = np.dtype(space.dtype)
-                if value is None or np.shape(value) != space.shape or np.asarray(value).dtype != dtype:
+            for key, shape, dtype in expected:
+                value: Any = result.observation.get(key)
+                # An array (what cameras and most observations are) is checked by its attributes; anything
+                # else by what numpy makes of it.
+                fits = (value.shape == shape and value.dtype == dtype if isinstance(value, np.ndarray)
+                        else value is not None and np.shape(value) == shape and np.asarray(value).dtype == dtype)
+                if not fits:
                     got = ("nothing" if value is None
                            else f"shape {np.shape(value)} {np.asarray(value).dtype}")
                     raise InvalidArgumentError(f"VectorEnv: environment {i} observed {got} for '{key}', its "
-                                               f"observation_space says shape {space.shape} {dtype}")
+                                               f"observation_space says shape {shape} {dtype}")
                 observations[key][i] = value
             infos[i] = dict(result.info)
             if plan[i][0]:

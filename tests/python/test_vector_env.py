@@ -136,6 +136,32 @@ def test_camera_images_stack_per_world(instance: spear.Instance) -> None:
             assert np.allclose(depth[i], 2.0 + i, atol=1e-3)
 
 
+def test_an_observation_that_is_not_an_array_is_checked_and_stacked_as_numpy_reads_it(
+        instance: spear.Instance) -> None:
+    # Arrays are checked by their attributes; anything else (a list from untyped code) by what numpy makes of it.
+    class Listed(Slide):
+        def observe(self, world: spear.UWorld) -> StepResult:
+            position = super().observe(world).observation["position"]
+            return StepResult(observation={"position": [float(v) for v in position]})  # type: ignore[dict-item]
+
+    stacked = []
+    for make in (lambda: Listed(0), lambda: Slide(0)):
+        with VectorEnv.in_worlds(make, num_envs=1, instance=instance) as envs:
+            stacked.append(envs.reset(seed=1)[0]["position"])
+    assert stacked[0].dtype == stacked[1].dtype and np.array_equal(stacked[0], stacked[1])
+
+    class Short(Slide):
+        def observe(self, world: spear.UWorld) -> StepResult:
+            position = super().observe(world).observation["position"]
+            return StepResult(observation={"position": [float(v) for v in position[:2]]})  # type: ignore[dict-item]
+
+    with VectorEnv.in_worlds(lambda: Short(0), num_envs=1, instance=instance) as envs:
+        with pytest.raises(spear.InvalidArgumentError,
+                           match=r"^VectorEnv: environment 0 observed shape \(2,\) float64 for 'position', its "
+                                 r"observation_space says shape \(3,\) float64$"):
+            envs.reset()
+
+
 def test_misuse_is_refused_with_the_reason(instance: spear.Instance) -> None:
     with VectorEnv.in_worlds(numbered(), num_envs=2, instance=instance) as envs:
         with pytest.raises(spear.InvalidStateError, match=r"^VectorEnv.step\(\): call reset\(\) first$"):
