@@ -4,13 +4,18 @@ spear-server per core, and over a Dask LocalCluster with one worker per core; ea
 independent single-world spear-server processes stepped one after another in the same run (what a user without
 spear.vector writes).
 
-    PYTHONPATH=python /usr/bin/python3 bench/bench_vector.py [--counts 1 4 16 64] [--steps 30]
+    PYTHONPATH=python /usr/bin/python3 bench/bench_vector.py [--counts 1 4 16 64] [--steps 30] [--rounds 1]
+
+With --rounds K every column is measured K times, the columns taking turns, and a cell shows the median rate
+and the median of the rounds' ratios to the same round's floor, with their range: the floor drifts with the
+machine's state, so a ratio is only taken within a round.
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import statistics
 import sys
 import time
 from collections.abc import Callable, Mapping
@@ -91,11 +96,22 @@ def measured(make: Callable[[], list[VectorEnv[NDArray[np.float32]]]], steps: in
             e.close()
 
 
+def cell(rates: list[float], floors: list[float]) -> str:
+    """A column's median rate and its ratio to the floor (the median of each round's ratio, and their range
+    when there were several rounds); "-" for a column not measured."""
+    if not rates:
+        return "-"
+    ratios = [rate / floor for rate, floor in zip(rates, floors)]
+    spread = f"; {min(ratios):.1f}–{max(ratios):.1f}" if len(ratios) > 1 else ""
+    return f"{statistics.median(rates):.0f} ({statistics.median(ratios):.1f}×{spread})"
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=(__doc__ or "").split("\n\n")[0])
     parser.add_argument("--counts", type=int, nargs="+", default=[1, 4, 16, 64])
     parser.add_argument("--steps", type=int, default=30)
     parser.add_argument("--no-dask", action="store_true", help="skip the Dask column (for a Python without Dask)")
+    parser.add_argument("--rounds", type=int, default=1, help="measure every column this many times, in turns")
     args = parser.parse_args()
     cores = os.cpu_count() or 1
     client: Any = None
@@ -107,27 +123,33 @@ def main() -> None:
         cluster = distributed.LocalCluster(n_workers=cores, threads_per_worker=1, processes=True,
                                            dashboard_address=None, silence_logs=40)
         client = distributed.Client(cluster)
+    if args.rounds < 1:
+        parser.error(f"--rounds must be at least 1, got {args.rounds}")
     print(f"{cores} cores; environment steps per second (physics + one {SIZE}x{SIZE} colour camera each), "
-          f"{args.steps} timed steps after 3 warm-up steps")
+          f"{args.steps} timed steps after 3 warm-up steps"
+          + (f"; medians of {args.rounds} rounds, ratios to each round's floor with their range" if args.rounds > 1
+             else ""))
     print("| N | floor: N single-world servers, one after another | worlds in one process | "
           f"one server per core ({cores}) | Dask LocalCluster ({cores} workers) |")
     print("|---:|---:|---:|---:|---:|")
     try:
         for n in args.counts:
-            floor = measured(lambda: [VectorEnv.on_servers(Push, num_servers=1) for _ in range(n)], args.steps)
-            worlds = measured(lambda: [VectorEnv.in_worlds(Push, num_envs=n)], args.steps)
             servers = min(cores, n)
-            per_core = measured(lambda: [VectorEnv.on_servers(Push, num_servers=servers,
-                                                              worlds_per_server=n // servers)], args.steps)
-            dask_cell = "-"
-            if client is not None:
-                with spear.distributed.Servers(client) as dask_servers:
-                    on_dask = measured(lambda: [VectorEnv.on_servers(
-                        Push, num_servers=servers, worlds_per_server=n // servers,
-                        servers=dask_servers.addresses[:servers], token=dask_servers.token)], args.steps)
-                dask_cell = f"{on_dask:.0f} ({on_dask / floor:.1f}×)"
-            print(f"| {n} | {floor:.0f} | {worlds:.0f} ({worlds / floor:.1f}×) | {per_core:.0f} ({per_core / floor:.1f}×) "
-                  f"| {dask_cell} |", flush=True)
+            columns: dict[str, list[float]] = {"floor": [], "worlds": [], "servers": [], "dask": []}
+            for _ in range(args.rounds):
+                columns["floor"].append(measured(
+                    lambda: [VectorEnv.on_servers(Push, num_servers=1) for _ in range(n)], args.steps))
+                columns["worlds"].append(measured(lambda: [VectorEnv.in_worlds(Push, num_envs=n)], args.steps))
+                columns["servers"].append(measured(lambda: [VectorEnv.on_servers(
+                    Push, num_servers=servers, worlds_per_server=n // servers)], args.steps))
+                if client is not None:
+                    with spear.distributed.Servers(client) as dask_servers:
+                        columns["dask"].append(measured(lambda: [VectorEnv.on_servers(
+                            Push, num_servers=servers, worlds_per_server=n // servers,
+                            servers=dask_servers.addresses[:servers], token=dask_servers.token)], args.steps))
+            floors = columns["floor"]
+            cells = [cell(columns[key], floors) for key in ("worlds", "servers", "dask")]
+            print(f"| {n} | {statistics.median(floors):.0f} | {' | '.join(cells)} |", flush=True)
     finally:
         if client is not None:
             client.close()
