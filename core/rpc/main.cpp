@@ -95,7 +95,7 @@ void watchParent(pid_t parent) {
 // Keeps the memory a frame frees for the next frame. A software rasteriser (llvmpipe) allocates its
 // per-frame triangle bins and frees them when the frame is drawn; glibc hands what lies free at the top of
 // the heap back to the system each time, so every frame faults those pages in again and the kernel zeroes
-// them. A still scene of 4000 instances at 64 x 64 over RPC: 30-32 -> 17-19 ms a frame (BENCHMARKS.md). The
+// them. A still scene of 4000 instances at 64 x 64 over RPC: 37-47 -> 23-29 ms a frame (BENCHMARKS.md). The
 // server's process is ours to tune; the environment's MALLOC_TRIM_THRESHOLD_ / MALLOC_MMAP_THRESHOLD_, when
 // set, win. Both thresholds are set, because setting one makes glibc stop adapting the other: blocks of up
 // to 32 MiB (a 1080p frame's readback included) come from the heap and stay there when freed.

@@ -165,8 +165,9 @@ def encode(value: Any, segments: OutgoingSegments, depth: int = 0) -> Any:
         for name in names:  # the plain fields of a struct (an FVector's floats) without a call each
             item = getattr(value, name)
             plain = type(item)
-            fields[name] = item if plain is float or plain is int and -(2**63) <= item < 2**63 or plain is str \
-                or plain is bool or item is None else encode(item, segments, depth + 1)
+            is_plain = (plain is float or plain is str or plain is bool or item is None
+                        or (plain is int and -(2**63) <= item < 2**63))
+            fields[name] = item if is_plain else encode(item, segments, depth + 1)
         return fields
     if kind in _OBJECT_TYPES:
         return _encode_object(value, segments)
