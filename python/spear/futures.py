@@ -7,6 +7,7 @@ run at once and the future is already resolved. Either way, call get() in the en
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable
 from typing import Any, Generic, TypeVar
 
@@ -67,12 +68,19 @@ class ImmediateCaller:
 
     def __getattr__(self, name: str) -> Callable[..., Any]:
         method = getattr(self._target, name)
+        if self._discard:
+            def send(**kwargs: Any) -> None:
+                try:
+                    method(**kwargs)
+                except Exception as error:  # noqa: BLE001 - nobody waits for it: a warning, as over RPC
+                    warnings.warn(f"send_async call failed: {error}", RuntimeWarning, stacklevel=2)
+
+            return send
 
         def call(**kwargs: Any) -> Any:
             try:
-                result = Future.resolved(method(**kwargs))
+                return Future.resolved(method(**kwargs))
             except Exception as error:  # noqa: BLE001 - delivered through the future, as over RPC
-                result = Future.failed(error)
-            return None if self._discard else result
+                return Future.failed(error)
 
         return call

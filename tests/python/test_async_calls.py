@@ -62,3 +62,19 @@ def test_synchronous_calls_see_the_effects_of_earlier_queued_ones(instance: spea
         assert game.get_actor_count() == 0
     with instance.end_frame():
         pass
+
+
+def test_a_failed_send_async_call_is_a_warning_and_the_rest_still_run(instance: spear.Instance) -> None:
+    # Nobody waits for a send_async call, so its error is not lost silently either: both transports warn
+    # with the engine's message, and the calls around it run.
+    game = instance.get_game()
+    with pytest.warns(RuntimeWarning) as warned:
+        with instance.begin_frame():
+            actor = game.spawn_actor(uclass=spear.AActor)
+            game.send_async.destroy_actor(actor=None)  # type: ignore[arg-type]
+            game.send_async.destroy_actor(actor=actor)
+        with instance.end_frame():
+            destroyed = not actor.is_valid()
+    assert destroyed
+    messages = [str(w.message) for w in warned if str(w.message).startswith("send_async call failed:")]
+    assert messages == ["send_async call failed: UWorld.destroy_actor(): argument 'actor' must not be None"]
