@@ -159,16 +159,7 @@ def encode(value: Any, segments: OutgoingSegments, depth: int = 0) -> Any:
         return value
     names = _STRUCT_FIELDS.get(kind)
     if names is not None:
-        if depth >= MAX_VALUE_DEPTH:
-            raise ValueTooDeep(f"a value has lists or dicts nested deeper than {MAX_VALUE_DEPTH} levels")
-        fields = {}
-        for name in names:  # the plain fields of a struct (an FVector's floats) without a call each
-            item = getattr(value, name)
-            plain = type(item)
-            is_plain = (plain is float or plain is str or plain is bool or item is None
-                        or (plain is int and -(2**63) <= item < 2**63))
-            fields[name] = item if is_plain else encode(item, segments, depth + 1)
-        return fields
+        return _encode_struct(value, names, segments, depth)
     if kind in _OBJECT_TYPES:
         return _encode_object(value, segments)
     if isinstance(value, (bool, str, float)):
@@ -198,7 +189,7 @@ def encode(value: Any, segments: OutgoingSegments, depth: int = 0) -> Any:
         raise ValueTooDeep(f"a value has lists or dicts nested deeper than {MAX_VALUE_DEPTH} levels")
     if is_struct:
         names = _STRUCT_FIELDS.setdefault(kind, tuple(f.name for f in dataclasses.fields(value)))
-        return {name: encode(getattr(value, name), segments, depth + 1) for name in names}
+        return _encode_struct(value, names, segments, depth)
     if is_sequence:
         return [encode(item, segments, depth + 1) for item in value]
     if isinstance(value, dict):
@@ -206,6 +197,20 @@ def encode(value: Any, segments: OutgoingSegments, depth: int = 0) -> Any:
             raise ValueRefused("dict keys must be str")
         return {key: encode(item, segments, depth + 1) for key, item in value.items()}
     raise ValueRefused(f"cannot pass a value of type '{type(value).__name__}'")
+
+
+def _encode_struct(value: Any, names: tuple[str, ...], segments: OutgoingSegments, depth: int) -> dict[str, Any]:
+    """An engine struct as a dict of its fields; its plain fields (an FVector's floats) without a call each."""
+    if depth >= MAX_VALUE_DEPTH:
+        raise ValueTooDeep(f"a value has lists or dicts nested deeper than {MAX_VALUE_DEPTH} levels")
+    fields = {}
+    for name in names:
+        item = getattr(value, name)
+        plain = type(item)
+        is_plain = (plain is float or plain is str or plain is bool or item is None
+                    or (plain is int and -(2**63) <= item < 2**63))
+        fields[name] = item if is_plain else encode(item, segments, depth + 1)
+    return fields
 
 
 def _encode_object(value: SpObject, segments: OutgoingSegments) -> msgpack.ExtType:
