@@ -113,6 +113,8 @@ def main() -> None:
     parser.add_argument("--no-dask", action="store_true", help="skip the Dask column (for a Python without Dask)")
     parser.add_argument("--rounds", type=int, default=1, help="measure every column this many times, in turns")
     args = parser.parse_args()
+    if args.rounds < 1:
+        parser.error(f"--rounds must be at least 1, got {args.rounds}")
     cores = os.cpu_count() or 1
     client: Any = None
     cluster: Any = None
@@ -123,8 +125,6 @@ def main() -> None:
         cluster = distributed.LocalCluster(n_workers=cores, threads_per_worker=1, processes=True,
                                            dashboard_address=None, silence_logs=40)
         client = distributed.Client(cluster)
-    if args.rounds < 1:
-        parser.error(f"--rounds must be at least 1, got {args.rounds}")
     print(f"{cores} cores; environment steps per second (physics + one {SIZE}x{SIZE} colour camera each), "
           f"{args.steps} timed steps after 3 warm-up steps"
           + (f"; medians of {args.rounds} rounds, ratios to each round's floor with their range" if args.rounds > 1

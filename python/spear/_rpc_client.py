@@ -8,7 +8,6 @@ in-process engine raises.
 from __future__ import annotations
 
 import itertools
-import warnings
 from collections.abc import Callable, Sequence
 import os
 import select
@@ -30,7 +29,7 @@ from spear._rpc_types import convert, convert_result_tuple
 from spear._type_code import TypeCode
 from spear._segments import remove_orphaned_segments
 from spear._wire import OutgoingSegments, ValueRefused, encode, pack_frame, unpack_body
-from spear.futures import Future
+from spear.futures import Future, warn_send_failed
 
 _ERRORS: dict[str, type[errors.SpearError]] = {
     "InvalidArgumentError": errors.InvalidArgumentError,
@@ -111,7 +110,7 @@ class RpcConnection:
                 continue
             if future is None:
                 if isinstance(result, errors.SpearError) and failure is None:
-                    warnings.warn(f"send_async call failed: {result}", RuntimeWarning, stacklevel=3)
+                    warn_send_failed(result, stacklevel=3)
                 continue
             if isinstance(result, errors.SpearError):
                 future._set(error=result)

@@ -57,6 +57,11 @@ class Future(Generic[T]):
         self._value, self._error = value, error
 
 
+def warn_send_failed(error: BaseException, stacklevel: int) -> None:
+    """Reports the error of a send_async call, which nobody waits for: a warning on both transports."""
+    warnings.warn(f"send_async call failed: {error}", RuntimeWarning, stacklevel=stacklevel + 1)
+
+
 class ImmediateCaller:
     """obj.call_async in-process: runs the call now and returns a resolved future."""
 
@@ -73,7 +78,7 @@ class ImmediateCaller:
                 try:
                     method(**kwargs)
                 except Exception as error:  # noqa: BLE001 - nobody waits for it: a warning, as over RPC
-                    warnings.warn(f"send_async call failed: {error}", RuntimeWarning, stacklevel=2)
+                    warn_send_failed(error, stacklevel=2)
 
             return send
 
