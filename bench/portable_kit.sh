@@ -23,7 +23,7 @@ fi
 build=${1:-build}
 kit=$build/portable
 programs=(python/spear/bin/spear-server "$build/bench/spear_mujoco_cosim_peer" "$build/bench/spear_mujoco_peer"
-          "$build/core/render/bench/spear_render_bench")
+          "$build/core/render/bench/spear_render_bench" "$build/core/render/bench/spear_shading_probe")
 host_provided='^(linux-vdso|ld-linux|libc|libm|libdl|libpthread|librt|libgcc_s|libstdc\+\+|libEGL|libGL|libGLX|libGLdispatch|libOpenGL|libresolv|libutil|libanl|libnss_[a-z]*)\.'
 
 # Copies the libraries `binary` loads (through its RPATH too) into the kit, but those the host provides.

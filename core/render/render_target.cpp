@@ -8,6 +8,7 @@
 #include "core/base/error.h"
 #include "core/render/framebuffer_atlas.h"
 #include "core/render/framebuffers.h"
+#include "core/render/parallel_copy.h"
 #include "core/render/renderer.h"
 #include "core/render/shader_program.h"
 #include "core/render/shaders.h"
@@ -189,10 +190,12 @@ std::uint64_t RenderTarget::queueReadback(const Scene& scene, const Camera& came
     slot.width = camera.params.width;
     slot.height = camera.params.height;
     slot.modalities = modalities_;
-    // Latency 0 reads straight from the framebuffers into the caller's memory when the frame is read
-    // (and not at all if it never is); a longer ring copies into pixel-buffer objects now, so that the
-    // framebuffers can take the next frames while this one waits.
-    if (latency_ > 0) {
+    // A longer ring copies into pixel-buffer objects now, so that the framebuffers can take the next frames
+    // while this one waits; so does latency 0 on a GPU (stagesReadback()), whose copy engine then moves
+    // this view out while the next one is drawn. Otherwise latency 0 reads straight from the framebuffers
+    // into the caller's memory when the frame is read (and not at all if it never is).
+    slot.staged = stagesReadback();
+    if (slot.staged) {
         for (Modality modality : modalities_.list()) {
             const auto m = static_cast<std::size_t>(modality);
             const std::size_t bytes = modalityByteSize(modality, slot.width, slot.height);
@@ -236,7 +239,7 @@ RenderTarget::Slot* RenderTarget::dueSlot() {
 
 void RenderTarget::copyOut(Slot& slot, Modality modality, void* destination) {
     renderer_.beginReadback(slot.sceneUid);
-    if (latency_ == 0) { // the framebuffers still hold this frame: no staging copy but the ids'
+    if (!slot.staged) { // latency 0: the framebuffers still hold this frame, read straight into `destination`
         readNow(modality, slot.width, slot.height, destination);
         renderer_.endReadback(slot.sceneUid);
         return;
@@ -246,9 +249,13 @@ void RenderTarget::copyOut(Slot& slot, Modality modality, void* destination) {
     const void* mapped = glMapNamedBufferRange(slot.buffers[m], 0, GLsizeiptr(bytes), GL_MAP_READ_BIT);
     SP_CHECK(mapped != nullptr, InvalidState, "RenderTarget::read(): cannot map the ", modalityName(modality),
              " readback buffer");
-    std::memcpy(destination, mapped, bytes);
+    parallelCopy(destination, mapped, bytes, renderer_.readbackThreads());
     glUnmapNamedBuffer(slot.buffers[m]);
     renderer_.endReadback(slot.sceneUid);
+}
+
+bool RenderTarget::stagesReadback() const {
+    return latency_ > 0 || (renderer_.stagedReadback() && framebuffers_ != nullptr);
 }
 
 bool RenderTarget::packedOnGpu(Modality modality) const {
@@ -328,8 +335,9 @@ std::optional<std::uint64_t> RenderTarget::readAgain(std::span<const OutputView>
     if (lastRead_ == nullptr)
         return std::nullopt;
     checkViews(*lastRead_, views);
-    // Latency 0 reads the framebuffers, which hold the frame until the next submit; a longer ring reads
-    // the slot's pixel-buffer objects, which hold it until the slot is reused.
+    // A frame read straight from the framebuffers (latency 0) is read from them again, as they hold it
+    // until the next submit; a staged one from the slot's pixel-buffer objects, which hold it until the
+    // slot is reused.
     for (const OutputView& view : views)
         copyOut(*lastRead_, view.modality, view.data);
     return lastRead_->frameNumber;

@@ -74,6 +74,8 @@ class RenderTarget {
         std::uint64_t frameNumber = 0;
         std::uint64_t sceneUid = 0; // the scene rendered, whose statistics count the readback
         bool pending = false;
+        bool staged =
+            false; // its readback was queued into `buffers` at submit (else: latency 0's direct read)
         int width = 0;
         int height = 0;
         ModalitySet modalities;
@@ -87,6 +89,10 @@ class RenderTarget {
     // After the frame is rendered: takes its slot, queues a longer ring's readback and the fence; returns the
     // frame number.
     std::uint64_t queueReadback(const Scene& scene, const Camera& camera);
+    // Whether this frame's readback is queued into the slot's pixel-buffer objects at submit: always with
+    // a longer ring, at latency 0 where Renderer::stagedReadback() asks for it and the view has
+    // framebuffers of its own (a layer of a shared page is read with its page: readStaged()).
+    bool stagesReadback() const;
     // The slot holding the frame due for reading, or null.
     Slot* dueSlot();
     void copyOut(Slot& slot, Modality modality, void* destination);

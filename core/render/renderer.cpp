@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -18,6 +19,7 @@
 #include "core/render/framebuffers.h"
 #include "core/render/gpu_scene_cache.h"
 #include "core/render/instances.h"
+#include "core/render/parallel_copy.h"
 #include "core/render/shader_program.h"
 #include "core/render/shaders.h"
 #include "core/render/shadow_layers.h"
@@ -62,6 +64,14 @@ struct Renderer::Draw {
 Renderer::Renderer(const GlContext& context)
     : context_(context), packIdsOnGpu_(!context.report().software), shadowReach_(context.report().software) {
     context_.makeCurrent();
+    stagedReadback_ = !context.report().software;
+    if (const char* env = std::getenv("SPEAR_READBACK")) {
+        const std::string mode = env;
+        SP_CHECK(mode == "staged" || mode == "direct", InvalidArgument,
+                 "Renderer::Renderer(): SPEAR_READBACK must be 'staged' or 'direct', got '", mode, "'");
+        stagedReadback_ = mode == "staged";
+    }
+    readbackThreads_ = defaultCopyThreads();
     if (context.report().software) {
         // What the surface programs' own varyings leave of the smaller of the two limits (see
         // shaders::ShadingLayout::constantSlots), in vec4s: 8 per-vertex and per-instance varyings and up to

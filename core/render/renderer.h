@@ -108,6 +108,18 @@ class Renderer {
     // slow; a CPU rasteriser converts on the CPU either way, and the dispatch only adds to it.
     bool packIdsOnGpu() const { return packIdsOnGpu_; }
     void setPackIdsOnGpu(bool on) { packIdsOnGpu_ = on; }
+    // Whether a latency-0 view with framebuffers of its own queues its readback into pixel-buffer objects
+    // when it is submitted, as a longer ring does, rather than reading the framebuffers when it is read: by
+    // default on hardware, where the GPU then copies the image out while it draws the next view and the
+    // read copies it from there on several threads; a CPU rasteriser would only copy it twice.
+    // SPEAR_READBACK=staged|direct overrides the default. Settable, so that tests read both ways; the bytes
+    // are the same.
+    bool stagedReadback() const { return stagedReadback_; }
+    void setStagedReadback(bool on) { stagedReadback_ = on; }
+    // The threads a read splits its copy out of a pixel-buffer object across (parallelCopy()); by default
+    // defaultCopyThreads().
+    int readbackThreads() const { return readbackThreads_; }
+    void setReadbackThreads(int threads) { readbackThreads_ = std::max(1, threads); }
     // The flat varyings the surface programs may spend on the per-view constants their fragments read
     // (shaders::ShadingLayout::constantSlots): what the driver's varying limits leave on a software
     // rasteriser, 0 on a GPU. Settable, so that tests render both ways; images are the same bit for bit.
@@ -180,6 +192,8 @@ class Renderer {
     std::unique_ptr<ShaderProgram> shadow_;
     std::unique_ptr<ShaderProgram> idChannel_[2]; // by layered; made at the first id readback
     bool packIdsOnGpu_ = true;
+    bool stagedReadback_ = false;
+    int readbackThreads_ = 1;
     int constantSlots_ = 0;
     bool shadowReach_ = false;
     std::unique_ptr<SharedUploads> sharedUploads_; // meshes and textures the scenes add under shared keys

@@ -3,8 +3,12 @@
 // with N boxes, a shadowed sun and a spot light.
 //
 //   spear_render_bench [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--ids compute|driver]
-//                      [--constant-slots N] [--modalities a,b,...]...
-//   (--shadows 0: off; each --modalities adds one set, e.g. final_color,depth,normal,object_ids;
+//                      [--constant-slots N] [--readback staged|direct] [--copy-threads N]
+//                      [--sizes WxH,...] [--views N] [--only-given] [--modalities a,b,...]...
+//   (--shadows 0: off; each --modalities adds one set, e.g. final_color,depth,normal,object_ids, and
+//   --only-given times those alone; --views N renders a rig of N views 0.3 m apart, submitted together
+//   and read one after another; --readback: how latency 0 reads a large view, default the renderer's
+//   choice for the device (Renderer::stagedReadback()), --copy-threads the threads its copy is split across;
 //   --ids: how object and material ids are read back, default the renderer's choice for the device;
 //   --constant-slots: flat varyings for the view's constants, 0 to read them all from the uniform buffer,
 //   default the renderer's choice: see Renderer::constantSlots())
@@ -17,6 +21,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -85,8 +90,9 @@ Camera makeCamera(int width, int height, int boxes, int shadowResolution) {
 } // namespace
 
 int main(int argc, char** argv) {
-    int boxes = 64, frames = 10, shadows = 2048, constantSlots = -1;
-    std::string pngDir, ids;
+    int boxes = 64, frames = 10, shadows = 2048, constantSlots = -1, copyThreads = 0, views = 1;
+    bool onlyGiven = false;
+    std::string pngDir, ids, readback, sizesArg = "256x256,1920x1080";
     // The sets timed: a label and the modalities.
     std::vector<std::pair<std::string, ModalitySet>> sets = {
         {"final_color", ModalitySet{Modality::FinalColor}}, {"all (14)", ModalitySet::all()}};
@@ -104,6 +110,17 @@ int main(int argc, char** argv) {
             ids = argv[++i];
         else if (!std::strcmp(argv[i], "--constant-slots") && i + 1 < argc)
             constantSlots = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--readback") && i + 1 < argc &&
+                 (!std::strcmp(argv[i + 1], "staged") || !std::strcmp(argv[i + 1], "direct")))
+            readback = argv[++i];
+        else if (!std::strcmp(argv[i], "--copy-threads") && i + 1 < argc)
+            copyThreads = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc)
+            sizesArg = argv[++i];
+        else if (!std::strcmp(argv[i], "--views") && i + 1 < argc)
+            views = std::max(1, std::atoi(argv[++i]));
+        else if (!std::strcmp(argv[i], "--only-given"))
+            onlyGiven = true;
         else if (!std::strcmp(argv[i], "--modalities") && i + 1 < argc) {
             const std::string list = argv[++i];
             std::vector<std::string> names;
@@ -118,10 +135,25 @@ int main(int argc, char** argv) {
             std::fprintf(
                 stderr,
                 "usage: %s [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--ids compute|driver] "
-                "[--constant-slots N] [--modalities a,b,...]\n",
+                "[--constant-slots N] [--readback staged|direct] [--copy-threads N] [--sizes WxH,...] "
+                "[--views N] [--only-given] [--modalities a,b,...]\n",
                 argv[0]);
             return 2;
         }
+    }
+    if (onlyGiven)
+        sets.erase(sets.begin(), sets.begin() + 2);
+    std::vector<std::pair<int, int>> sizes;
+    for (std::string rest = sizesArg; !rest.empty();) {
+        const std::size_t comma = rest.find(',');
+        const std::string size = rest.substr(0, comma);
+        rest = comma == std::string::npos ? std::string() : rest.substr(comma + 1);
+        int width = 0, height = 0;
+        if (std::sscanf(size.c_str(), "%dx%d", &width, &height) != 2 || width <= 0 || height <= 0) {
+            std::fprintf(stderr, "%s: --sizes wants WxH[,WxH...], got '%s'\n", argv[0], size.c_str());
+            return 2;
+        }
+        sizes.emplace_back(width, height);
     }
     GlContext context;
     Renderer renderer(context);
@@ -129,29 +161,48 @@ int main(int argc, char** argv) {
         renderer.setPackIdsOnGpu(ids == "compute");
     if (constantSlots >= 0)
         renderer.setConstantSlots(constantSlots);
+    if (!readback.empty())
+        renderer.setStagedReadback(readback == "staged");
+    if (copyThreads > 0)
+        renderer.setReadbackThreads(copyThreads);
     Scene scene;
     buildScene(scene, boxes);
     std::printf(
-        "device: %s (%s), %d boxes, shadow maps %d, ids read by %s, %d constant slots, %d timed frames "
-        "after 3 warm-up frames\n",
+        "device: %s (%s), %d boxes, shadow maps %d, ids read by %s, %d constant slots, latency-0 readback "
+        "%s, copies on %d thread(s), %d view(s), %d timed frames after 3 warm-up frames\n",
         context.report().renderer.c_str(), context.report().kind.c_str(), boxes, shadows,
-        renderer.packIdsOnGpu() ? "compute" : "driver", renderer.constantSlots(), frames);
+        renderer.packIdsOnGpu() ? "compute" : "driver", renderer.constantSlots(),
+        renderer.stagedReadback() ? "staged" : "direct", renderer.readbackThreads(), views, frames);
     std::printf(
         "%-10s %-12s %-8s %10s   per pass, ms/frame: shadow surface lighting readback (GL timer / CPU)\n",
         "size", "modalities", "latency", "ms/frame");
-    const std::pair<int, int> sizes[] = {{256, 256}, {1920, 1080}};
     for (auto [width, height] : sizes) {
-        Camera camera = makeCamera(width, height, boxes, shadows);
+        // The views of a rig: the first at the bench's camera, the others 0.3 m apart to its right.
+        std::vector<Camera> cameras(std::size_t(views), makeCamera(width, height, boxes, shadows));
+        for (std::size_t v = 1; v < cameras.size(); ++v)
+            cameras[v].pose.translation() -= 0.3 * double(v) * cameras[v].pose.linear().col(1);
         for (const auto& [label, modalities] : sets) {
             for (int latency = 0; latency <= RenderTarget::kMaxLatency; ++latency) {
-                RenderTarget target(renderer, modalities, latency);
-                Frame frame;
+                std::vector<std::unique_ptr<RenderTarget>> targets;
+                std::vector<RenderTarget::Submission> submissions;
+                for (const Camera& camera : cameras) {
+                    targets.push_back(std::make_unique<RenderTarget>(renderer, modalities, latency));
+                    submissions.push_back({targets.back().get(), &scene, &camera});
+                }
+                std::vector<Frame> viewFrames(cameras.size());
+                // One frame of the rig: every view submitted in one batch, then each read.
+                auto renderFrame = [&] {
+                    RenderTarget::submitAll(submissions);
+                    for (std::size_t v = 0; v < targets.size(); ++v)
+                        targets[v]->read(viewFrames[v]);
+                };
+                Frame& frame = viewFrames.front();
                 for (int i = 0; i < 3; ++i)
-                    target.render(scene, camera, frame);
+                    renderFrame();
                 renderer.resetStats();
                 const auto start = std::chrono::steady_clock::now();
                 for (int i = 0; i < frames; ++i)
-                    target.render(scene, camera, frame);
+                    renderFrame();
                 const double ms =
                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                         .count() /

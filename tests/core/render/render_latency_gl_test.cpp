@@ -2,7 +2,9 @@
 // each frame once; readAgain() reads that frame again until the next submit; reads into caller memory
 // check sizes before writing.
 
+#include <algorithm>
 #include <cstring>
+#include <string_view>
 
 #include "core/render/image_buffer.h"
 #include "gl_fixture.h"
@@ -189,6 +191,60 @@ TEST_F(RenderTargetGlTest, FramesKeepTheSizeTheyWereRenderedWith) {
     EXPECT_EQ(frame.get(Modality::Depth).width, 8);
     EXPECT_NEAR(frame.get(Modality::Depth).at(4, 4), 3.0f, 1e-4f);
     EXPECT_EQ(frame.get(Modality::ObjectIds).uintAt(4, 4), 1004u);
+}
+
+TEST_F(RenderTargetGlTest, StagedLatencyZeroReadsTheSameBytesAsDirect) {
+    // Latency 0 of a view with framebuffers of its own (over 512 x 512 pixels) queues its readback into
+    // pixel-buffer objects at submit where Renderer::stagedReadback() asks for it (on a GPU by default):
+    // forced both ways here, with the copy out split across 4 threads (normal: 4 MB, over the 2 MiB at
+    // which parallelCopy() splits), the ids through the compute copy, then read again.
+    mesh_ = scene_.addMesh(primitives::sphere(2.0f, 24, 12));
+    scene_.setInstance(instance_, {mesh_, {material_}, {7}});
+    scene_.addLight({});
+    camera_ = cameraLookingAt({-9, 2, 1}, {0, 0, 0}, 700, 500);
+    const bool stagedByDefault = renderer().stagedReadback(), packByDefault = renderer().packIdsOnGpu();
+    const int threadsByDefault = renderer().readbackThreads();
+    renderer().setReadbackThreads(4);
+    renderer().setPackIdsOnGpu(true);
+    const ModalitySet modalities{Modality::FinalColor, Modality::Depth, Modality::Normal,
+                                 Modality::ObjectIds};
+    std::vector<std::uint8_t> read[2][4], again[2][4];
+    for (int staged = 0; staged < 2; ++staged) {
+        renderer().setStagedReadback(staged == 1);
+        RenderTarget target(renderer(), modalities, 0);
+        for (int k = 0; k < 2; ++k) { // the second frame reuses the slot's buffers
+            target.submit(scene_, camera_);
+            std::vector<OutputView> views;
+            for (std::size_t m = 0; m < 4; ++m) {
+                const Modality modality = modalities.list()[m];
+                read[staged][m].assign(modalityByteSize(modality, 700, 500), 0);
+                views.push_back({modality, read[staged][m].data(), read[staged][m].size()});
+            }
+            ASSERT_EQ(target.read(views), std::uint64_t(k + 1)) << "staged " << staged;
+        }
+        std::vector<OutputView> views;
+        for (std::size_t m = 0; m < 4; ++m) {
+            const Modality modality = modalities.list()[m];
+            again[staged][m].assign(modalityByteSize(modality, 700, 500), 0);
+            views.push_back({modality, again[staged][m].data(), again[staged][m].size()});
+        }
+        ASSERT_EQ(target.readAgain(views), 2u) << "staged " << staged;
+    }
+    renderer().setStagedReadback(stagedByDefault);
+    renderer().setPackIdsOnGpu(packByDefault);
+    renderer().setReadbackThreads(threadsByDefault);
+    for (std::size_t m = 0; m < 4; ++m) {
+        const std::string_view name = modalityName(modalities.list()[m]);
+        EXPECT_EQ(read[1][m], read[0][m]) << name;
+        EXPECT_EQ(again[1][m], read[1][m]) << name << " read again";
+        EXPECT_EQ(again[0][m], read[0][m]) << name << " read again, direct";
+    }
+    const std::vector<Modality> list = modalities.list();
+    const auto idsAt = std::size_t(std::find(list.begin(), list.end(), Modality::ObjectIds) - list.begin());
+    ASSERT_LT(idsAt, list.size());
+    const auto* ids = reinterpret_cast<const std::uint32_t*>(read[1][idsAt].data());
+    EXPECT_EQ(ids[250 * 700 + 350], 7u) << "the sphere is in the middle of the view";
+    EXPECT_EQ(ids[0], 0u) << "background in the corner";
 }
 
 TEST_F(RenderTargetGlTest, BadLatencyIsRejected) {
