@@ -15,6 +15,8 @@
 //
 // --png writes the 256x256 and 1920x1080 final_color images of the scene, to look at.
 
+#include <epoxy/gl.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -211,6 +213,20 @@ int main(int argc, char** argv) {
                 for (const PassTime& pass : renderer.stats().passTimes)
                     std::printf(" %6.2f/%-6.2f", pass.samples ? pass.gpuMs / double(pass.samples) : 0.0,
                                 pass.cpuMs / frames);
+                if (latency == 0 && epoxy_has_gl_extension("GL_ARB_pipeline_statistics_query")) {
+                    // Fragment shader runs of one more frame (the still scene's shadow maps are reused, so
+                    // they are the surface passes'), per pixel of the views: overdraw and quad overshading.
+                    GLuint query = 0;
+                    glGenQueries(1, &query);
+                    glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, query);
+                    renderFrame();
+                    glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
+                    GLuint64 invocations = 0;
+                    glGetQueryObjectui64v(query, GL_QUERY_RESULT, &invocations);
+                    glDeleteQueries(1, &query);
+                    std::printf("  fragment shader runs per pixel %.2f",
+                                double(invocations) / (double(width) * height * double(views)));
+                }
                 std::printf("\n");
                 std::fflush(stdout);
                 if (!pngDir.empty() && label == "final_color" && latency == 0) {

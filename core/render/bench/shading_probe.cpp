@@ -4,11 +4,12 @@
 // compute shaders on all of them; the ratio says what shading in compute (a visibility or thin G-buffer
 // pass, then a compute lighting pass) could gain on a given device before building it.
 //
-//   spear_shading_probe [--frames F] [--lights L] [--width W] [--height H]
+//   spear_shading_probe [--frames F] [--lights L] [--width W] [--height H] [--quad PX]
 //
 // The shading is the surface pass's in kind: L lights, each a GGX specular and Lambertian term behind four
 // shadow-map loads (a 2048x2048 R16 layer), the sky term, ACES and the sRGB curve, on a surface made up
-// from the pixel's position.
+// from the pixel's position. Then the cost of covering the image in each output format a G-buffer might use
+// (outputCosts()).
 
 #include <epoxy/gl.h>
 
@@ -132,10 +133,101 @@ template <typename Pass> Timing measure(int frames, Pass pass) {
     return timing;
 }
 
+// What covering the image costs the rasteriser per output format: a full-screen triangle, then a grid of
+// quads `quad` pixels wide (two triangles each) against a cleared depth buffer (test LESS, writes on), each
+// writing a value that varies by pixel (a constant would let the hardware compress it). A G-buffer pass pays
+// about this for its targets before any shading.
+struct OutputFormat {
+    const char* name;
+    GLenum internal;
+    int bytes;
+    const char* type;  // the GLSL output type
+    const char* value; // the GLSL value written, from the uint hash h
+};
+
+void outputCosts(int frames, int width, int height, int quad) {
+    const OutputFormat formats[] = {
+        {"RGBA8", GL_RGBA8, 4, "vec4", "unpackUnorm4x8(h)"},
+        {"R32F", GL_R32F, 4, "float", "float(h & 0xffffu)"},
+        {"R32UI", GL_R32UI, 4, "uint", "h"},
+        {"RG32UI", GL_RG32UI, 8, "uvec2", "uvec2(h, h * 747796405u)"},
+        {"RGBA16F", GL_RGBA16F, 8, "vec4", "unpackUnorm4x8(h)"},
+        {"RGBA32UI", GL_RGBA32UI, 16, "uvec4", "uvec4(h, h * 747796405u, h ^ 0x9e3779b9u, h >> 3)"},
+        {"RGBA32F", GL_RGBA32F, 16, "vec4", "unpackUnorm4x8(h)"},
+    };
+    const std::string gridVertex = R"glsl(#version 450 core
+uniform ivec2 uCells;
+uniform vec2 uCell; // a quad's size in clip units
+void main() {
+    // Six vertices a quad, one quad an instance, row by row; depth grows with the quad so that the
+    // depth test passes (drawn front to back, as the surface pass draws).
+    ivec2 cell = ivec2(gl_InstanceID % uCells.x, gl_InstanceID / uCells.x);
+    const vec2 corners[6] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
+    vec2 p = (vec2(cell) + corners[gl_VertexID]) * uCell - 1.0;
+    gl_Position = vec4(p, 0.5 * float(gl_InstanceID) / float(uCells.x * uCells.y), 1.0);
+}
+)glsl";
+    GLuint depth = 0, vao = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &depth);
+    glTextureStorage2D(depth, 1, GL_DEPTH32F_STENCIL8, width, height);
+    glCreateVertexArrays(1, &vao);
+    const int cellsX = (width + quad - 1) / quad, cellsY = (height + quad - 1) / quad;
+    std::printf("%-10s %6s %22s %22s %22s\n", "format", "bytes", "full screen", "+ depth test",
+                ("quads of " + std::to_string(quad) + " px + depth").c_str());
+    for (const OutputFormat& format : formats) {
+        GLuint target = 0, fbo = 0;
+        glCreateTextures(GL_TEXTURE_2D, 1, &target);
+        glTextureStorage2D(target, 1, format.internal, width, height);
+        glCreateFramebuffers(1, &fbo);
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
+        glNamedFramebufferTexture(fbo, GL_DEPTH_STENCIL_ATTACHMENT, depth, 0);
+        const std::string fragment = std::string("#version 450 core\nlayout(location = 0) out ") +
+                                     format.type +
+                                     " oValue;\nvoid main() {\n    uvec2 c = uvec2(gl_FragCoord.xy);\n"
+                                     "    uint h = (c.x * 73856093u) ^ (c.y * 19349663u);\n    oValue = " +
+                                     format.value + ";\n}\n";
+        ShaderProgram full("probe output", kFullScreenVertex, fragment.c_str());
+        ShaderProgram grid("probe grid", gridVertex.c_str(), fragment.c_str());
+        glProgramUniform2i(grid.id(), grid.location("uCells"), cellsX, cellsY);
+        grid.set("uCell",
+                 Eigen::Vector2f(2.0f * float(quad) / float(width), 2.0f * float(quad) / float(height)));
+        Timing timings[3];
+        for (int mode = 0; mode < 3; ++mode)
+            timings[mode] = measure(frames, [&] {
+                glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+                glViewport(0, 0, width, height);
+                glBindVertexArray(vao);
+                if (mode == 0) {
+                    glDisable(GL_DEPTH_TEST);
+                } else {
+                    glEnable(GL_DEPTH_TEST);
+                    glDepthFunc(GL_LESS);
+                    glDepthMask(GL_TRUE);
+                    glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+                }
+                if (mode < 2) {
+                    full.use();
+                    glDrawArrays(GL_TRIANGLES, 0, 3);
+                } else {
+                    grid.use();
+                    glDrawArraysInstanced(GL_TRIANGLES, 0, 6, cellsX * cellsY);
+                }
+            });
+        glDisable(GL_DEPTH_TEST);
+        std::printf("%-10s %6d %10.3f / %9.3f %10.3f / %9.3f %10.3f / %9.3f\n", format.name, format.bytes,
+                    timings[0].gpuMs, timings[0].wallMs, timings[1].gpuMs, timings[1].wallMs,
+                    timings[2].gpuMs, timings[2].wallMs);
+        glDeleteFramebuffers(1, &fbo);
+        glDeleteTextures(1, &target);
+    }
+    glDeleteVertexArrays(1, &vao);
+    glDeleteTextures(1, &depth);
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
-    int frames = 200, lights = 2, width = 1920, height = 1080;
+    int frames = 200, lights = 2, width = 1920, height = 1080, quad = 32;
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--frames") && i + 1 < argc)
             frames = std::max(1, std::atoi(argv[++i]));
@@ -145,8 +237,11 @@ int main(int argc, char** argv) {
             width = std::max(1, std::atoi(argv[++i]));
         else if (!std::strcmp(argv[i], "--height") && i + 1 < argc)
             height = std::max(1, std::atoi(argv[++i]));
+        else if (!std::strcmp(argv[i], "--quad") && i + 1 < argc)
+            quad = std::max(1, std::atoi(argv[++i]));
         else {
-            std::fprintf(stderr, "usage: %s [--frames F] [--lights L] [--width W] [--height H]\n", argv[0]);
+            std::fprintf(stderr, "usage: %s [--frames F] [--lights L] [--width W] [--height H] [--quad PX]\n",
+                         argv[0]);
             return 2;
         }
     }
@@ -199,6 +294,8 @@ int main(int argc, char** argv) {
     std::printf("%-28s %10.3f / %9.3f %10.3f / %9.3f\n", "shading alone (difference)",
                 results[1][0].gpuMs - results[0][0].gpuMs, results[1][0].wallMs - results[0][0].wallMs,
                 results[1][1].gpuMs - results[0][1].gpuMs, results[1][1].wallMs - results[0][1].wallMs);
+    std::printf("\n");
+    outputCosts(frames, width, height, quad);
     const GLenum error = glGetError();
     if (error != GL_NO_ERROR) {
         std::fprintf(stderr, "GL error 0x%x\n", error);
