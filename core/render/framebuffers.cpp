@@ -15,6 +15,7 @@ GLenum formatOf(Target target) {
     case Target::Depth:
         return GL_R32F;
     case Target::Ids:
+    case Target::GBuffer:
         return GL_RG32UI; // never filtered or blended
     case Target::FinalColor:
         return GL_RGBA8;
@@ -60,10 +61,7 @@ void Framebuffers::release() {
     glDeleteFramebuffers(1, &readFbo_);
     readFbo_ = 0;
     glDeleteTextures(GLsizei(textures_.size()), textures_.data());
-    if (layers > 0)
-        glDeleteTextures(1, &depthBuffer_);
-    else
-        glDeleteRenderbuffers(1, &depthBuffer_);
+    glDeleteTextures(1, &depthBuffer_);
     surfaceFbo = attributeFbo = depthBuffer_ = 0;
     textures_.fill(0);
     formats_.fill(0);
@@ -84,10 +82,8 @@ unsigned Framebuffers::makeFramebuffer(TargetMask targets, bool depth, const cha
         ++count;
     }
     glNamedFramebufferDrawBuffers(fbo, count, drawBuffers);
-    if (depth && layers > 0) // every layer: a layered framebuffer
+    if (depth) // with layers, every layer: a layered framebuffer
         glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depthBuffer_, 0);
-    else if (depth)
-        glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depthBuffer_);
     const GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
     SP_CHECK(status == GL_FRAMEBUFFER_COMPLETE, InvalidState, "Framebuffers::ensure(): the ", what,
              " framebuffer is incomplete (status 0x", std::hex, status, ")");
@@ -117,9 +113,8 @@ void Framebuffers::ensure(int w, int h, const PassSet& passes, int layerCount) {
         if (layers > 0) {
             glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &depthBuffer_);
             glTextureStorage3D(depthBuffer_, 1, GL_DEPTH_COMPONENT32F, w, h, layers);
-        } else {
-            glCreateRenderbuffers(1, &depthBuffer_);
-            glNamedRenderbufferStorage(depthBuffer_, GL_DEPTH_COMPONENT32F, w, h);
+        } else { // a texture, which the compute lighting pass reads (PassSet::computeLighting)
+            depthBuffer_ = makeTexture(GL_DEPTH_COMPONENT32F, w, h, 0);
         }
         changed = true;
     }

@@ -25,6 +25,8 @@ class Framebuffers {
     void ensure(int width, int height, const PassSet& passes, int layers = 0);
     // The texture of a target, 0 when the last ensure() did not ask for it.
     unsigned texture(Target target) const { return textures_[static_cast<std::size_t>(target)]; }
+    // The depth texture of the surface pass (with layers, an array), 0 before one was drawn.
+    unsigned depthTexture() const { return depthBuffer_; }
     // Where a target can be read: the framebuffer that attaches it and the attachment index.
     struct Attachment {
         unsigned fbo = 0;
@@ -47,7 +49,7 @@ class Framebuffers {
 
     std::array<unsigned, kTargetCount> textures_{};
     std::array<unsigned, kTargetCount> formats_{};
-    unsigned depthBuffer_ = 0; // a renderbuffer, or with layers a depth texture array
+    unsigned depthBuffer_ = 0; // a depth texture (with layers, an array)
     unsigned readFbo_ = 0;     // layerAttachment()'s
     TargetMask surfaceTargets_ = 0;
     TargetMask attributeTargets_ = 0;

@@ -36,7 +36,7 @@ void configureInstanceAttributes(unsigned vao) {
     floats(kInstanceMaterial, offsetof(InstanceRecord, material));
     floats(kInstanceEmissive, offsetof(InstanceRecord, emissive));
     glEnableVertexArrayAttrib(vao, kInstanceIds);
-    glVertexArrayAttribIFormat(vao, kInstanceIds, 2, GL_UNSIGNED_INT, GLuint(offsetof(InstanceRecord, ids)));
+    glVertexArrayAttribIFormat(vao, kInstanceIds, 4, GL_UNSIGNED_INT, GLuint(offsetof(InstanceRecord, ids)));
     glVertexArrayAttribBinding(vao, kInstanceIds, kInstanceBinding);
     glVertexArrayBindingDivisor(vao, kInstanceBinding, 1);
 }

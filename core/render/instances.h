@@ -33,7 +33,7 @@ struct InstanceRecord {
     float baseColor[4];            // rgba factor
     float material[4];             // roughness, metallic, ambient occlusion, 0
     float emissive[4];             // rgb, 0
-    std::uint32_t ids[4];          // object id, material id, 0, 0
+    std::uint32_t ids[4];          // object id, material id, the record's index (Target::GBuffer), 0
 
     void setModelViewProjection(const Eigen::Matrix4d& matrix);
     void setModel(const Eigen::Matrix4d& model, const Eigen::Matrix4d& modelToCamera);
@@ -55,6 +55,8 @@ class InstanceBuffer {
 
     void upload(const std::vector<InstanceRecord>& records);
     void bind(unsigned vao) const;
+    // The buffer holding the records (from offset 0), which the compute lighting pass reads as storage.
+    unsigned buffer() const { return buffer_; }
 
   private:
     unsigned buffer_ = 0;

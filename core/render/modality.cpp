@@ -165,7 +165,7 @@ std::string_view targetName(Target target) {
                                                                        "Params",      "Ids",
                                                                        "Hdr",         "DiffuseIllumination",
                                                                        "DiffuseOnly", "SpecularResidual",
-                                                                       "FinalColor"};
+                                                                       "FinalColor",  "GBuffer"};
     const auto index = static_cast<std::size_t>(target);
     SP_CHECK(index < kTargetCount, InvalidArgument, "targetName(): bad target value ", index);
     return kNames[index];

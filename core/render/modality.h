@@ -76,8 +76,11 @@ enum class Target : std::uint8_t {
     DiffuseOnly,         // RGBA16F
     SpecularResidual,    // RGBA16F
     FinalColor,          // RGBA8 tone-mapped sRGB
+    // RG32UI: the octahedral shading normal (two snorm16) and the draw's InstanceRecord; a surface pass whose
+    // shading runs in a compute pass writes it instead of shading (PassSet::computeLighting). No modality.
+    GBuffer,
 };
-inline constexpr std::size_t kTargetCount = 11;
+inline constexpr std::size_t kTargetCount = 12;
 using TargetMask = std::uint32_t;
 inline constexpr TargetMask targetBit(Target target) {
     return TargetMask(1) << static_cast<unsigned>(target);
@@ -101,6 +104,9 @@ struct PassSet {
     bool tonemap = false;            // exposure, tone curve, sRGB encoding (fused into the shading)
     TargetMask surfaceTargets = 0;   // written by the surface pass, attached in Target order
     TargetMask attributeTargets = 0; // written by the attribute pass, attached in Target order
+    // The surface pass writes Target::GBuffer for untextured materials and a compute pass shades those
+    // pixels (Renderer::planComputeLighting()); never set by requiredPasses().
+    bool computeLighting = false;
 
     bool operator==(const PassSet&) const = default;
 };

@@ -159,6 +159,7 @@ std::vector<std::uint64_t> RenderTarget::submitAll(std::span<const Submission> s
             s.target->framebuffers_.reset();
         } else {
             renderer.atlas().release(s.target);
+            renderer.planComputeLighting(passes.back());
             if (!s.target->framebuffers_)
                 s.target->framebuffers_ = std::make_unique<Framebuffers>();
             s.target->framebuffers_->ensure(width, height, passes.back());

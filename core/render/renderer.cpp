@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -72,6 +73,13 @@ Renderer::Renderer(const GlContext& context)
         stagedReadback_ = mode == "staged";
     }
     readbackThreads_ = defaultCopyThreads();
+    computeLighting_ = !context.report().software;
+    if (const char* env = std::getenv("SPEAR_LIGHTING")) {
+        const std::string mode = env;
+        SP_CHECK(mode == "compute" || mode == "forward", InvalidArgument,
+                 "Renderer::Renderer(): SPEAR_LIGHTING must be 'compute' or 'forward', got '", mode, "'");
+        computeLighting_ = mode == "compute";
+    }
     if (context.report().software) {
         // What the surface programs' own varyings leave of the smaller of the two limits (see
         // shaders::ShadingLayout::constantSlots), in vec4s: 8 per-vertex and per-instance varyings and up to
@@ -426,8 +434,11 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
     if (passes.lighting && passes.shadow && active_->shadowMaps->texture() != 0)
         glBindImageTexture(shaders::kShadowMapImageUnit, active_->shadowMaps->texture(), 0, GL_TRUE, 0,
                            GL_READ_ONLY, active_->shadowMaps->format());
-    drawAll(scene, camera, draws, passes.surfaceTargets, passes.lighting, lights, cache);
-    if (lights.vignette && (passes.surfaceTargets & targetBit(Target::FinalColor)) != 0)
+    drawAll(scene, camera, draws, passes.surfaceTargets, passes.lighting, lights, cache,
+            passes.computeLighting);
+    if (passes.computeLighting)
+        lightInCompute(camera, passes, lights, fb);
+    else if (lights.vignette && (passes.surfaceTargets & targetBit(Target::FinalColor)) != 0)
         drawVignettedBackground(passes.surfaceTargets, lights.toneMap);
     active_->timers.end();
     ++active_->stats.surfacePasses;
@@ -516,9 +527,10 @@ void Renderer::clearBound(TargetMask targets, const std::vector<std::array<float
         if ((targets & (TargetMask(1) << t)) == 0)
             continue;
         const GLuint zero[4] = {0, 0, 0, 0};
-        if (static_cast<Target>(t) == Target::Ids)
+        const auto target = static_cast<Target>(t);
+        if (target == Target::Ids)
             glClearBufferuiv(GL_COLOR, location, zero);
-        else
+        else if (target != Target::GBuffer) // read only where the depth buffer holds a surface: not cleared
             glClearBufferfv(GL_COLOR, location, values[std::size_t(location)].data());
         ++location;
     }
@@ -638,7 +650,7 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
 
 void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vector<Draw>& draws,
                        TargetMask targets, bool shade, const shaders::ShadingLayout& lights,
-                       GpuSceneCache& cache) {
+                       GpuSceneCache& cache, bool computeLighting) {
     // The projection is flipped vertically so that GL's bottom row holds image row 0 and glReadPixels
     // returns the top image row first; depth and ids are unaffected.
     const Eigen::Matrix4d worldToCamera = camera.pose.inverse(Eigen::Isometry).matrix();
@@ -662,7 +674,8 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
         record.emissive[3] = 0.0f;
         record.ids[0] = instance.objectIds[draw.slot];
         record.ids[1] = scene.materialIdValue(materialId);
-        record.ids[2] = record.ids[3] = 0;
+        record.ids[2] = std::uint32_t(i); // the G-buffer's name for the draw (compute lighting)
+        record.ids[3] = 0;
     }
     instances_->upload(records_);
 
@@ -676,11 +689,20 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
     // batch in parts one per rectangle, scissored.
     // The program is looked up (its key composed) only when the features or the lookups change.
     std::optional<std::pair<unsigned, bool>> current;
+    // With compute lighting, an untextured material writes the G-buffer and leaves the shaded targets to the
+    // compute pass (masked here, so that nothing is stored for them); a textured one is shaded here.
+    const TargetMask shadedTargets = targets & (targetBit(Target::FinalColor) | targetBit(Target::Hdr));
+    bool masked = false;
     const auto use = [&](unsigned features, bool lookups) {
         if (current == std::pair(features, lookups))
             return;
-        surfaceProgram(targets, shade, features, lookups ? lights : unshadowed).use();
+        const bool deferred = computeLighting && features == 0;
+        surfaceProgram(targets, shade && !deferred, features, lookups ? lights : unshadowed).use();
         current = std::pair(features, lookups);
+        if (computeLighting && deferred != masked) {
+            maskTargets(targets, shadedTargets, deferred);
+            masked = deferred;
+        }
     };
     for (std::size_t first = 0, last = 0; first < draws.size(); first = last) {
         const Draw& draw = draws[first];
@@ -717,7 +739,71 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
         }
         glDisable(GL_SCISSOR_TEST);
     }
+    if (masked)
+        maskTargets(targets, shadedTargets, false);
     glBindVertexArray(0);
+}
+
+void Renderer::maskTargets(TargetMask targets, TargetMask masked, bool mask) {
+    int location = 0;
+    for (std::size_t t = 0; t < kTargetCount; ++t) {
+        if ((targets & (TargetMask(1) << t)) == 0)
+            continue;
+        const GLboolean write = mask && (masked & (TargetMask(1) << t)) != 0 ? GL_FALSE : GL_TRUE;
+        glColorMaski(GLuint(location++), write, write, write, write);
+    }
+}
+
+void Renderer::planComputeLighting(PassSet& passes) const {
+    constexpr TargetMask kShaded = targetBit(Target::Hdr) | targetBit(Target::DiffuseIllumination) |
+                                   targetBit(Target::DiffuseOnly) | targetBit(Target::SpecularResidual) |
+                                   targetBit(Target::FinalColor);
+    constexpr TargetMask kComputed = targetBit(Target::Hdr) | targetBit(Target::FinalColor);
+    passes.computeLighting = false;
+    passes.surfaceTargets &= ~targetBit(Target::GBuffer);
+    // One surface pass that shades only colour (the intrinsic images keep the forward pass's exact
+    // float16 rounding) and has a draw buffer left for the G-buffer.
+    if (!computeLighting_ || !passes.lighting || passes.attributeTargets != 0 ||
+        (passes.surfaceTargets & kShaded & ~kComputed) != 0 ||
+        std::popcount(passes.surfaceTargets) + 1 > kMaxDrawTargets)
+        return;
+    passes.surfaceTargets |= targetBit(Target::GBuffer);
+    passes.computeLighting = true;
+}
+
+void Renderer::lightInCompute(const Camera& camera, const PassSet& passes,
+                              const shaders::ShadingLayout& lights, const Framebuffers& fb) {
+    const TargetMask stored =
+        passes.surfaceTargets & (targetBit(Target::FinalColor) | targetBit(Target::Hdr));
+    auto& program = programs_["lighting/" + std::to_string(stored) + "/" + lights.key()];
+    if (!program)
+        program = std::make_unique<ShaderProgram>("compute lighting",
+                                                  shaders::computeLighting(stored, lights).c_str());
+    program->use();
+    // Clip space to the world position relative to the camera, composed in double precision: the inverse of
+    // the projection (flipped as drawn) times the camera's rotation.
+    Eigen::Matrix4d view = camera.viewMatrix();
+    view.block<3, 1>(0, 3).setZero();
+    const Eigen::Matrix4f clipToOffset = (camera.projectionMatrix(true) * view).inverse().cast<float>();
+    program->set("uClipToOffset", clipToOffset);
+    glProgramUniform2i(program->id(), program->location("uSize"), fb.width, fb.height);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shaders::kRecordsBinding, instances_->buffer());
+    glBindTextureUnit(shaders::kDepthTextureUnit, fb.depthTexture());
+    glBindImageTexture(shaders::kGBufferImageUnit, fb.texture(Target::GBuffer), 0, GL_FALSE, 0, GL_READ_ONLY,
+                       GL_RG32UI);
+    if ((stored & targetBit(Target::FinalColor)) != 0)
+        glBindImageTexture(shaders::kFinalColorImageUnit, fb.texture(Target::FinalColor), 0, GL_FALSE, 0,
+                           GL_WRITE_ONLY, GL_RGBA8);
+    if ((stored & targetBit(Target::Hdr)) != 0)
+        glBindImageTexture(shaders::kHdrImageUnit, fb.texture(Target::Hdr), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                           GL_RGBA16F);
+    const int group = shaders::kComputeLightingGroupSize;
+    glDispatchCompute(GLuint((fb.width + group - 1) / group), GLuint((fb.height + group - 1) / group), 1);
+    // Image stores are incoherent: the readback (glReadPixels, a texture copy) and the next frame's draws
+    // into these targets must see them.
+    glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                    GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shaders::kRecordsBinding, 0);
 }
 
 } // namespace sp::render

@@ -120,6 +120,18 @@ class Renderer {
     // defaultCopyThreads().
     int readbackThreads() const { return readbackThreads_; }
     void setReadbackThreads(int threads) { readbackThreads_ = std::max(1, threads); }
+    // Whether a view that shades only colour (final_color, hdr_color, with any unshaded targets) and has
+    // framebuffers of its own is shaded by a compute pass over a G-buffer (Target::GBuffer: normal and
+    // draw, 8 bytes a pixel) rather than in its fragments: by default on hardware, where fragment shaders
+    // run on the few units a data-centre GPU keeps for graphics and compute shaders on all of them
+    // (spear_shading_probe: the same shading 25-150 times cheaper on an H100). Materials with textures are
+    // still shaded in their fragments. On llvmpipe the compute pass costs more than the fragments it spares.
+    // SPEAR_LIGHTING=compute|forward overrides the default. Settable, so that tests render both ways;
+    // images agree within the tolerance of per-pixel shadow coordinates and a 16-bit normal.
+    bool computeLighting() const { return computeLighting_; }
+    void setComputeLighting(bool on) { computeLighting_ = on; }
+    // Adds the G-buffer and the compute pass to `passes` where computeLighting() applies (see above).
+    void planComputeLighting(PassSet& passes) const;
     // The flat varyings the surface programs may spend on the per-view constants their fragments read
     // (shaders::ShadingLayout::constantSlots): what the driver's varying limits leave on a software
     // rasteriser, 0 on a GPU. Settable, so that tests render both ways; images are the same bit for bit.
@@ -182,8 +194,14 @@ class Renderer {
     static void clearBound(TargetMask targets, const std::vector<std::array<float, 4>>& values, bool depth);
     // Clears the surface targets of the pages of shared framebuffers that `views` redraw whole; returns them.
     std::set<const Framebuffers*> clearPages(std::span<const View> views);
+    // Sets the colour write masks of `targets`' draw buffers: off for those in `masked` when `mask`, else on.
+    static void maskTargets(TargetMask targets, TargetMask masked, bool mask);
+    // The compute lighting pass of a view whose surface pass wrote the G-buffer (PassSet::computeLighting).
+    void lightInCompute(const Camera& camera, const PassSet& passes, const shaders::ShadingLayout& lights,
+                        const Framebuffers& fb);
     void drawAll(const Scene& scene, const Camera& camera, const std::vector<Draw>& draws, TargetMask targets,
-                 bool shade, const shaders::ShadingLayout& lights, GpuSceneCache& cache);
+                 bool shade, const shaders::ShadingLayout& lights, GpuSceneCache& cache,
+                 bool computeLighting = false);
     // Writes the vignetted background into final_color (one of `targets`) where no surface was drawn.
     void drawVignettedBackground(TargetMask targets, ToneMap toneMap);
 
@@ -193,6 +211,7 @@ class Renderer {
     std::unique_ptr<ShaderProgram> idChannel_[2]; // by layered; made at the first id readback
     bool packIdsOnGpu_ = true;
     bool stagedReadback_ = false;
+    bool computeLighting_ = false;
     int readbackThreads_ = 1;
     int constantSlots_ = 0;
     bool shadowReach_ = false;

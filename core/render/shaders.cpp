@@ -45,6 +45,7 @@ flat in vec4 vBaseColor;
 flat in vec4 vMaterial; // roughness, metallic, ambient occlusion
 flat in vec3 vEmissive;
 flat in uvec2 vIds;     // object id, material id
+flat in uint vRecord;   // the draw's InstanceRecord (Target::GBuffer)
 layout(binding = 0) uniform sampler2D uBaseColorTexture;
 layout(binding = 1) uniform sampler2D uRoughnessMetallicTexture;
 layout(binding = 2) uniform sampler2D uNormalTexture;
@@ -84,6 +85,22 @@ void evaluateSurface(out vec3 n, out vec3 base, out float roughness, out float m
     roughness *= rm.g;
     metallic *= rm.b;
 #endif
+}
+)glsl";
+
+// Octahedral unit vectors (Cigolle et al. 2014): the G-buffer's normal in two snorm16, within 1e-4 rad.
+const char* const kOctahedralChunk = R"glsl(
+vec2 signNotZero(vec2 v) { return vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0); }
+uint octEncode(vec3 n) {
+    vec2 e = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
+    if (n.z < 0.0) e = (1.0 - abs(e.yx)) * signNotZero(e);
+    return packSnorm2x16(e);
+}
+vec3 octDecode(uint bits) {
+    vec2 e = unpackSnorm2x16(bits);
+    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * signNotZero(n.xy);
+    return normalize(n);
 }
 )glsl";
 
@@ -183,7 +200,11 @@ void accumulate(Surface s, vec3 l, vec3 e, float nol, inout vec3 irradiance, ino
 )glsl";
 
 // Exposure, tone curve (ACES: Narkowicz's fit; Reinhard; linear clamp, TONE_CURVE 0, 1, 2) and the sRGB OETF.
+// PIXEL_CENTRE is the pixel's window position (gl_FragCoord.xy unless a compute pass defines it).
 const char* const kToneChunk = R"glsl(
+#ifndef PIXEL_CENTRE
+#define PIXEL_CENTRE gl_FragCoord.xy
+#endif
 vec3 aces(vec3 x) {
     return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
 }
@@ -200,7 +221,7 @@ vec4 toneMapped(vec3 hdr) {
 #ifdef VIGNETTE
     // The cos^4 falloff of the pixel's ray (tone.h, Vignette); row 0 of the image is GL's bottom row.
     vec4 vignette = vignetteParams();
-    vec2 d = (gl_FragCoord.xy - vignette.zw) / vignette.y;
+    vec2 d = (PIXEL_CENTRE - vignette.zw) / vignette.y;
     float cos2 = 1.0 / (1.0 + dot(d, d));
     x *= 1.0 + (cos2 * cos2 - 1.0) * vignette.x;
 #endif
@@ -231,6 +252,7 @@ flat out vec4 vBaseColor;
 flat out vec4 vMaterial;
 flat out vec3 vEmissive;
 flat out uvec2 vIds;
+flat out uint vRecord;
 // The attribute pass draws the geometry again against the surface pass's depth, with another program:
 // both must compute the same depth bit for bit.
 invariant gl_Position;
@@ -249,7 +271,8 @@ void main() {
     vBaseColor = iBaseColor;
     vMaterial = iMaterial;
     vEmissive = iEmissive.rgb;
-    vIds = iIds;
+    vIds = iIds.xy;
+    vRecord = iIds.z;
     gl_Position = iModelViewProjection * p;
     SHADOW_CLIPS
     CONSTANT_COPIES
@@ -280,6 +303,13 @@ void main() {
 #ifdef OUT_Ids
     oIds = vIds;
 #endif
+#ifdef OUT_GBuffer
+#ifdef FORWARD
+    oGBuffer = uvec2(0u, 0xffffffffu); // shaded here (a textured material): the compute pass skips it
+#else
+    oGBuffer = uvec2(octEncode(n), vRecord);
+#endif
+#endif
 #ifdef FORWARD
 #ifdef EXACT_INTRINSICS
     // Shade with the inputs as the float16 targets store them (see toHalf()).
@@ -302,7 +332,7 @@ std::string instanceAttributes() {
            "vec4 iModelRow0;\n" + at(kInstanceModelRows + 1) + "vec4 iModelRow1;\n" +
            at(kInstanceModelRows + 2) + "vec4 iModelRow2;\n" + at(kInstanceDepthRow) + "vec4 iDepthRow;\n" +
            at(kInstanceBaseColor) + "vec4 iBaseColor;\n" + at(kInstanceMaterial) + "vec4 iMaterial;\n" +
-           at(kInstanceEmissive) + "vec4 iEmissive;\n" + at(kInstanceIds) + "uvec2 iIds;\n";
+           at(kInstanceEmissive) + "vec4 iEmissive;\n" + at(kInstanceIds) + "uvec4 iIds;\n";
 }
 
 // "#define OUT_<Target>" and "layout(location = k) out <type> o<Target>;" for each target in the mask,
@@ -315,7 +345,9 @@ std::string outputs(TargetMask targets) {
             continue;
         const auto target = static_cast<Target>(t);
         const std::string name(targetName(target));
-        const char* type = target == Target::Ids ? "uvec2" : target == Target::Depth ? "float" : "vec4";
+        const char* type = target == Target::Ids || target == Target::GBuffer ? "uvec2"
+                           : target == Target::Depth                          ? "float"
+                                                                              : "vec4";
         text += "#define OUT_" + name + "\nlayout(location = " + std::to_string(location++) + ") out " +
                 type + " o" + name + ";\n";
     }
@@ -498,8 +530,11 @@ std::string constantAccessors(const ConstantPlan& plan) {
 }
 
 // shade(): the shading of one surface point by the layout's lights, unrolled with each light's type,
-// range and shadow layer fixed, and the sky term.
-std::string shadeFunction(const ShadingLayout& layout, const ConstantPlan& plan) {
+// range and shadow layer fixed, and the sky term. The shadow-map coordinates are the vertex shader's,
+// interpolated (shadowClips()), or with `perPixelShadows` (the compute lighting pass, which has no vertices)
+// computed here the same way from the point and its normal.
+std::string shadeFunction(const ShadingLayout& layout, const ConstantPlan& plan,
+                          bool perPixelShadows = false) {
     std::string text = R"glsl(
 Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float ao, vec3 emissive) {
     Surface s;
@@ -537,7 +572,14 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
             }
         }
         text += "        float nol = dot(n, l);\n        if (nol > 0.0) {\n";
-        if (light.shadowLayer >= 0) {
+        if (light.shadowLayer >= 0 && perPixelShadows) {
+            // n faces the light here (nol > 0), as the vertex shader turns it.
+            const std::string layer = std::to_string(light.shadowLayer);
+            text += "            vec4 c = offsetShadowClip(" + layer + ", p, n, " +
+                    shadowTexel(light, "dist") + ");\n            vec3 sc = (c.xyz + c.w) * 0.5;\n";
+            text += "            e *= shadowFactor(" + layer + ", " +
+                    (light.type == LightType::Directional ? "sc" : "sc / c.w") + ");\n";
+        } else if (light.shadowLayer >= 0) {
             const std::string layer = std::to_string(light.shadowLayer);
             // The vertex shader interpolates the offset point's coordinates (see shadowClips()): only a
             // spot light's need the perspective division here.
@@ -676,6 +718,73 @@ std::string clearFragment(TargetMask targets) {
     return text + "void main() {" + body + " }\n";
 }
 
+std::string computeLighting(TargetMask targets, const ShadingLayout& lights) {
+    std::string text =
+        "#version 450 core\nlayout(local_size_x = " + std::to_string(kComputeLightingGroupSize) +
+        ", local_size_y = " + std::to_string(kComputeLightingGroupSize) + ") in;\n";
+    text += std::string("#define SHADOW_FORMAT ") + (lights.floatShadowMaps ? "r32f" : "r16") + "\n";
+    if (lights.vignette)
+        text += "#define VIGNETTE\n";
+    if ((targets & targetBit(Target::FinalColor)) != 0)
+        text += "#define STORE_FinalColor\n"; // not OUT_*: those name fragment outputs (writeShaded())
+    if ((targets & targetBit(Target::Hdr)) != 0)
+        text += "#define STORE_Hdr\n";
+    text += toneCurveDefine(lights.toneMap);
+    text += kFrameBlock;
+    ConstantPlan plan; // every constant from FrameBlock
+    plan.lightSlot.assign(lights.lights.size(), -1);
+    text += constantAccessors(plan);
+    // InstanceRecord (instances.h) in std430: 192 bytes, every field at its C++ offset.
+    text += "struct Record {\n    float mvp[16];\n    float modelRows[12];\n    float depthRow[4];\n"
+            "    vec4 baseColor;\n    vec4 material;\n    vec4 emissive;\n    uvec4 ids;\n};\n";
+    text += "layout(std430, binding = " + std::to_string(kRecordsBinding) +
+            ") readonly buffer Records { Record records[]; };\n";
+    text += "layout(binding = " + std::to_string(kDepthTextureUnit) + ") uniform sampler2D uDepthBuffer;\n";
+    text += "layout(binding = " + std::to_string(kGBufferImageUnit) +
+            ", rg32ui) uniform readonly uimage2D uGBuffer;\n";
+    text += "layout(binding = " + std::to_string(kFinalColorImageUnit) +
+            ", rgba8) uniform writeonly image2D uFinalColor;\n";
+    text +=
+        "layout(binding = " + std::to_string(kHdrImageUnit) + ", rgba16f) uniform writeonly image2D uHdr;\n";
+    text +=
+        R"glsl(uniform mat4 uClipToOffset; // clip space -> world position minus the camera's (float precision)
+uniform ivec2 uSize;
+vec2 gPixelCentre;
+#define PIXEL_CENTRE gPixelCentre
+)glsl";
+    text += kOctahedralChunk;
+    text += kShadingChunk;
+    text += shadeFunction(lights, plan, true);
+    text += kToneChunk;
+    return text + R"glsl(
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (pixel.x >= uSize.x || pixel.y >= uSize.y) return;
+    gPixelCentre = vec2(pixel) + 0.5;
+    float z = texelFetch(uDepthBuffer, pixel, 0).r;
+    if (z >= 1.0) { // background: cleared, but for a vignetted final_color (see backgroundFragment())
+#if defined(VIGNETTE) && defined(STORE_FinalColor)
+        imageStore(uFinalColor, pixel, toneMapped(uBackground.xyz));
+#endif
+        return;
+    }
+    uvec2 g = imageLoad(uGBuffer, pixel).xy;
+    if (g.y == 0xffffffffu) return; // shaded by its fragment
+    vec4 offset = uClipToOffset * vec4(gPixelCentre / vec2(uSize) * 2.0 - 1.0, z * 2.0 - 1.0, 1.0);
+    vec3 p = cameraPosition() + offset.xyz / offset.w;
+    vec4 material = records[g.y].material;
+    Shaded s = shade(p, octDecode(g.x), records[g.y].baseColor.rgb, material.x, material.y, material.z,
+                     records[g.y].emissive.rgb);
+#ifdef STORE_Hdr
+    imageStore(uHdr, pixel, vec4(s.hdr, 1.0));
+#endif
+#ifdef STORE_FinalColor
+    imageStore(uFinalColor, pixel, toneMapped(s.hdr));
+#endif
+}
+)glsl";
+}
+
 std::string surfaceVertex(bool forward, const ShadingLayout& lights, bool layered) {
     std::string text = "#version 450 core\n";
     if (layered) // the view's layer of a page of shared framebuffers
@@ -716,6 +825,8 @@ std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialF
     text += constantAccessors(plan);
     text += shadowClipDeclarations(forward, lights, "in");
     text += kMaterialChunk;
+    if ((targets & targetBit(Target::GBuffer)) != 0)
+        text += kOctahedralChunk;
     if (forward) {
         text += std::string("#define SHADOW_FORMAT ") + (lights.floatShadowMaps ? "r32f" : "r16") + "\n";
         if (lights.vignette)

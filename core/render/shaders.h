@@ -107,4 +107,18 @@ std::string backgroundFragment(int location, ToneMap toneMap);
 // view's layer of shared framebuffers, drawn with backgroundVertex(true) (see Renderer::clearTargets).
 std::string clearFragment(TargetMask targets);
 
+// The compute lighting pass (PassSet::computeLighting): for each pixel whose G-buffer names a draw (not the
+// background, not a pixel its fragment shaded), the world position from the depth buffer, the normal and
+// the draw's material from the G-buffer and its InstanceRecord, shaded as the forward pass shades (shadow
+// coordinates per pixel) into `targets` (FinalColor and/or Hdr) as images. Work groups of
+// kComputeLightingGroupSize squared.
+std::string computeLighting(TargetMask targets, const ShadingLayout& lights);
+inline constexpr int kComputeLightingGroupSize = 8;
+// Its bindings: the records (storage buffer), the depth texture, the G-buffer and the output images.
+inline constexpr int kRecordsBinding = 1;
+inline constexpr int kDepthTextureUnit = 3;
+inline constexpr int kGBufferImageUnit = 2;
+inline constexpr int kFinalColorImageUnit = 3;
+inline constexpr int kHdrImageUnit = 4;
+
 } // namespace sp::render::shaders

@@ -193,6 +193,86 @@ TEST_F(RenderPathsGlTest, ShadingWithoutLookupsWhereNoShadowReachesRendersTheSam
     EXPECT_GT(largest, 0);
 }
 
+TEST_F(RenderPathsGlTest, ComputeLightingAgreesWithShadingInTheFragments) {
+    // The shapes scene under a shadowed sun and spot light and a ranged point light, with a textured box
+    // (shaded in its fragments either way) beside the untextured shapes (shaded by the compute pass when it
+    // is on), views larger than a shared page (512 x 512) so that they have framebuffers of their own.
+    // Colour alone; colour with depth and ids (unshaded targets beside the G-buffer); hdr_color; a
+    // vignetted final_color with Reinhard's curve, whose background the compute pass writes. The images
+    // agree but for the pixels where a shadow's edge or a face's edge falls: the compute pass computes
+    // shadow-map coordinates per pixel where the fragments interpolate the vertices', and reads the normal
+    // back from 16 bits; the unshaded targets are the same bit for bit.
+    Scene scene;
+    buildShapesScene(scene);
+    addSpotAndPointLights(scene);
+    std::vector<std::uint8_t> rgba(4 * 4 * 4);
+    for (std::size_t i = 0; i < rgba.size(); ++i)
+        rgba[i] = i % 4 == 3 ? 255 : std::uint8_t(40 + 13 * i);
+    Material textured = makeMaterial({1.0f, 1.0f, 1.0f}, 0.6f, 0.0f);
+    textured.baseColorTexture = scene.addTexture(TextureImage::fromPixels(4, 4, rgba));
+    Instance crate{scene.addMesh(primitives::box({0.5f, 0.5f, 0.5f})), {scene.addMaterial(textured)}, {9}};
+    crate.transform.translation() = Eigen::Vector3d(-1.3, 0.9, 0.25);
+    scene.addInstance(crate);
+    Camera camera = cameraLookingAt({3.2, -3.0, 2.4}, {0.0, 0.0, 0.3}, 640, 560, 60.0);
+    camera.params.shadowResolution = 1024;
+    Camera vignetted = camera;
+    vignetted.params.vignetteIntensity = 0.6f;
+    vignetted.params.toneMap = ToneMap::Reinhard;
+    const std::pair<ModalitySet, const Camera*> cases[] = {
+        {{Modality::FinalColor}, &camera},
+        {{Modality::FinalColor, Modality::Depth, Modality::ObjectIds}, &camera},
+        {{Modality::HdrColor}, &camera},
+        {{Modality::FinalColor}, &vignetted},
+    };
+    const bool byDefault = renderer().computeLighting();
+    for (const auto& [modalities, view] : cases) {
+        Frame frames[2];
+        for (int compute = 0; compute < 2; ++compute) {
+            renderer().setComputeLighting(compute == 1);
+            PassSet passes = modalities.requiredPasses(true);
+            renderer().planComputeLighting(passes);
+            EXPECT_EQ(passes.computeLighting, compute == 1);
+            RenderTarget target(renderer(), modalities, 0);
+            target.render(scene, *view, frames[compute]);
+        }
+        renderer().setComputeLighting(byDefault);
+        for (Modality m : modalities.list()) {
+            const ImageBuffer &forward = frames[0].get(m), &computed = frames[1].get(m);
+            if (m == Modality::Depth || m == Modality::ObjectIds) {
+                EXPECT_TRUE(std::equal(forward.bytes.begin(), forward.bytes.end(), computed.bytes.begin()))
+                    << modalityName(m);
+                continue;
+            }
+            // Per channel: how many differ by more than 2 of 255 (final_color) or by more than 1% and 1e-3
+            // (hdr_color), and the mean difference.
+            std::size_t far = 0, channels = 0;
+            double sum = 0.0;
+            for (int y = 0; y < forward.height; ++y)
+                for (int x = 0; x < forward.width; ++x)
+                    for (int c = 0; c < 3; ++c, ++channels) {
+                        const double a = forward.at(x, y, c), b = computed.at(x, y, c);
+                        const double d = std::abs(a - b);
+                        sum += d;
+                        far += m == Modality::FinalColor ? d > 2.0 : d > 1e-3 + 0.01 * std::abs(a);
+                    }
+            EXPECT_LT(double(far) / double(channels), 0.005) << modalityName(m);
+            EXPECT_LT(sum / double(channels), m == Modality::FinalColor ? 0.1 : 1e-3) << modalityName(m);
+            // The textured crate is shaded in its fragments either way: the same there.
+            const Eigen::Vector3d crateAt = view->project(Eigen::Vector3d(-1.3, 0.9, 0.5));
+            const int cx = int(crateAt.x()), cy = int(crateAt.y());
+            for (int c = 0; c < 3; ++c)
+                EXPECT_EQ(forward.at(cx, cy, c), computed.at(cx, cy, c))
+                    << modalityName(m) << " on the crate";
+        }
+        // The vignetted background is darker in the corner than in the middle, as the forward pass draws it.
+        if (view == &vignetted) {
+            const ImageBuffer& image = frames[1].get(Modality::FinalColor);
+            EXPECT_EQ(image.at(0, 0, 2), frames[0].get(Modality::FinalColor).at(0, 0, 2));
+            EXPECT_LT(image.at(0, 0, 2), image.at(320, 5, 2));
+        }
+    }
+}
+
 TEST_F(RenderPathsGlTest, AttributePassKeepsTheSurfacePassesFragmentWhereSurfacesTie) {
     // Two instances in the same place, different ids and materials: the surface pass keeps the first drawn
     // (GL_LESS); the attribute pass must write that one's ids and base colour, not the second's.
