@@ -9,7 +9,8 @@
 // The shading is the surface pass's in kind: L lights, each a GGX specular and Lambertian term behind four
 // shadow-map loads (a 2048x2048 R16 layer), the sky term, ACES and the sRGB curve, on a surface made up
 // from the pixel's position. Then the cost of covering the image in each output format a G-buffer might use
-// (outputCosts()).
+// (outputCosts()), against the depth buffer the surface pass uses (D32F) and, for the G-buffer's format,
+// against others.
 
 #include <epoxy/gl.h>
 
@@ -136,7 +137,23 @@ template <typename Pass> Timing measure(int frames, Pass pass) {
 // What covering the image costs the rasteriser per output format: a full-screen triangle, then a grid of
 // quads `quad` pixels wide (two triangles each) against a cleared depth buffer (test LESS, writes on), each
 // writing a value that varies by pixel (a constant would let the hardware compress it). A G-buffer pass pays
-// about this for its targets before any shading.
+// about this for its targets before any shading. With `formats` every format, else the G-buffer's alone
+// (to compare depth formats).
+const char* depthName(GLenum format) {
+    switch (format) {
+    case GL_DEPTH_COMPONENT32F:
+        return "D32F";
+    case GL_DEPTH32F_STENCIL8:
+        return "D32F_S8";
+    case GL_DEPTH_COMPONENT24:
+        return "D24";
+    case GL_DEPTH24_STENCIL8:
+        return "D24_S8";
+    default:
+        return "D16";
+    }
+}
+
 struct OutputFormat {
     const char* name;
     GLenum internal;
@@ -145,8 +162,8 @@ struct OutputFormat {
     const char* value; // the GLSL value written, from the uint hash h
 };
 
-void outputCosts(int frames, int width, int height, int quad) {
-    const OutputFormat formats[] = {
+void outputCosts(int frames, int width, int height, int quad, GLenum depthFormat, bool formats) {
+    const OutputFormat kFormats[] = {
         {"RGBA8", GL_RGBA8, 4, "vec4", "unpackUnorm4x8(h)"},
         {"R32F", GL_R32F, 4, "float", "float(h & 0xffffu)"},
         {"R32UI", GL_R32UI, 4, "uint", "h"},
@@ -169,18 +186,22 @@ void main() {
 )glsl";
     GLuint depth = 0, vao = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &depth);
-    glTextureStorage2D(depth, 1, GL_DEPTH32F_STENCIL8, width, height);
+    glTextureStorage2D(depth, 1, depthFormat, width, height);
     glCreateVertexArrays(1, &vao);
     const int cellsX = (width + quad - 1) / quad, cellsY = (height + quad - 1) / quad;
-    std::printf("%-10s %6s %22s %22s %22s\n", "format", "bytes", "full screen", "+ depth test",
-                ("quads of " + std::to_string(quad) + " px + depth").c_str());
-    for (const OutputFormat& format : formats) {
+    std::printf("%-10s %6s %22s %22s %22s   (depth buffer %s)\n", "format", "bytes", "full screen",
+                "+ depth test", ("quads of " + std::to_string(quad) + " px + depth").c_str(),
+                depthName(depthFormat));
+    for (const OutputFormat& format : kFormats) {
+        if (!formats && format.internal != GL_RG32UI)
+            continue; // the depth formats' table: the G-buffer's format alone
         GLuint target = 0, fbo = 0;
         glCreateTextures(GL_TEXTURE_2D, 1, &target);
         glTextureStorage2D(target, 1, format.internal, width, height);
         glCreateFramebuffers(1, &fbo);
         glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
-        glNamedFramebufferTexture(fbo, GL_DEPTH_STENCIL_ATTACHMENT, depth, 0);
+        const bool stencil = depthFormat == GL_DEPTH32F_STENCIL8 || depthFormat == GL_DEPTH24_STENCIL8;
+        glNamedFramebufferTexture(fbo, stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT, depth, 0);
         const std::string fragment = std::string("#version 450 core\nlayout(location = 0) out ") +
                                      format.type +
                                      " oValue;\nvoid main() {\n    uvec2 c = uvec2(gl_FragCoord.xy);\n"
@@ -203,7 +224,8 @@ void main() {
                     glEnable(GL_DEPTH_TEST);
                     glDepthFunc(GL_LESS);
                     glDepthMask(GL_TRUE);
-                    glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+                    const GLfloat far = 1.0f;
+                    glClearBufferfv(GL_DEPTH, 0, &far);
                 }
                 if (mode < 2) {
                     full.use();
@@ -295,7 +317,10 @@ int main(int argc, char** argv) {
                 results[1][0].gpuMs - results[0][0].gpuMs, results[1][0].wallMs - results[0][0].wallMs,
                 results[1][1].gpuMs - results[0][1].gpuMs, results[1][1].wallMs - results[0][1].wallMs);
     std::printf("\n");
-    outputCosts(frames, width, height, quad);
+    outputCosts(frames, width, height, quad, GL_DEPTH_COMPONENT32F, true); // the surface pass's depth format
+    for (GLenum depth :
+         {GL_DEPTH32F_STENCIL8, GL_DEPTH_COMPONENT24, GL_DEPTH24_STENCIL8, GL_DEPTH_COMPONENT16})
+        outputCosts(frames, width, height, quad, depth, false);
     const GLenum error = glGetError();
     if (error != GL_NO_ERROR) {
         std::fprintf(stderr, "GL error 0x%x\n", error);
