@@ -264,6 +264,20 @@ TEST_F(RenderPathsGlTest, ComputeLightingAgreesWithShadingInTheFragments) {
                 EXPECT_EQ(forward.at(cx, cy, c), computed.at(cx, cy, c))
                     << modalityName(m) << " on the crate";
         }
+        // A longer ring reads the same compute-lit frame (the readback waits for the image stores).
+        if (view == &camera && modalities.size() == 1) {
+            renderer().setComputeLighting(true);
+            RenderTarget ring(renderer(), modalities, 1);
+            Frame later;
+            ring.submit(scene, *view);
+            ring.submit(scene, *view);
+            ASSERT_EQ(ring.read(later), 1u);
+            renderer().setComputeLighting(byDefault);
+            const Modality m = modalities.list().front();
+            EXPECT_TRUE(std::equal(later.get(m).bytes.begin(), later.get(m).bytes.end(),
+                                   frames[1].get(m).bytes.begin()))
+                << modalityName(m) << " at latency 1";
+        }
         // The vignetted background is darker in the corner than in the middle, as the forward pass draws it.
         if (view == &vignetted) {
             const ImageBuffer& image = frames[1].get(Modality::FinalColor);
