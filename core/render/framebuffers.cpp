@@ -15,8 +15,9 @@ GLenum formatOf(Target target) {
     case Target::Depth:
         return GL_R32F;
     case Target::Ids:
-    case Target::GBuffer:
         return GL_RG32UI; // never filtered or blended
+    case Target::GBuffer:
+        return GL_R32UI;
     case Target::FinalColor:
         return GL_RGBA8;
     default:

@@ -76,8 +76,9 @@ enum class Target : std::uint8_t {
     DiffuseOnly,         // RGBA16F
     SpecularResidual,    // RGBA16F
     FinalColor,          // RGBA8 tone-mapped sRGB
-    // RG32UI: the octahedral shading normal (two snorm16) and the draw's InstanceRecord; a surface pass whose
-    // shading runs in a compute pass writes it instead of shading (PassSet::computeLighting). No modality.
+    // R32UI: the octahedral shading normal and the draw's InstanceRecord (shaders::kGBufferChunk); a surface
+    // pass whose shading runs in a compute pass writes it instead of shading (PassSet::computeLighting). No
+    // modality.
     GBuffer,
 };
 inline constexpr std::size_t kTargetCount = 12;

@@ -688,17 +688,18 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
     // One instanced draw call per batch (consecutive draws of one batch: see visibleDraws()), or for a
     // batch in parts one per rectangle, scissored.
     // The program is looked up (its key composed) only when the features or the lookups change.
-    std::optional<std::pair<unsigned, bool>> current;
+    std::optional<std::tuple<unsigned, bool, bool>> current;
     // With compute lighting, an untextured material writes the G-buffer and leaves the shaded targets to the
-    // compute pass (masked here, so that nothing is stored for them); a textured one is shaded here.
+    // compute pass (masked here, so that nothing is stored for them); a textured one, or a batch past the
+    // records the G-buffer can name, is shaded here.
     const TargetMask shadedTargets = targets & (targetBit(Target::FinalColor) | targetBit(Target::Hdr));
     bool masked = false;
-    const auto use = [&](unsigned features, bool lookups) {
-        if (current == std::pair(features, lookups))
+    const auto use = [&](unsigned features, bool lookups, bool named) {
+        const bool deferred = computeLighting && features == 0 && named;
+        if (current == std::tuple(features, lookups, deferred))
             return;
-        const bool deferred = computeLighting && features == 0;
         surfaceProgram(targets, shade && !deferred, features, lookups ? lights : unshadowed).use();
-        current = std::pair(features, lookups);
+        current = std::tuple(features, lookups, deferred);
         if (computeLighting && deferred != masked) {
             maskTargets(targets, shadedTargets, deferred);
             masked = deferred;
@@ -723,7 +724,7 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
             ++active_->stats.drawCalls;
         };
         if (!shade || draw.reach != ShadowReach::Kind::Part) {
-            use(draw.features, draw.reach != ShadowReach::Kind::None);
+            use(draw.features, draw.reach != ShadowReach::Kind::None, last <= shaders::kGBufferRecords);
             drawBatch();
             continue;
         }
@@ -731,7 +732,7 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
         glEnable(GL_SCISSOR_TEST);
         const ShadowReach& reach = parts_[draw.part];
         for (const bool lookups : {false, true}) {
-            use(draw.features, lookups);
+            use(draw.features, lookups, last <= shaders::kGBufferRecords);
             for (const PixelRect& rect : lookups ? reach.shadowed : reach.unshadowed) {
                 glScissor(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0);
                 drawBatch();
@@ -790,7 +791,7 @@ void Renderer::lightInCompute(const Camera& camera, const PassSet& passes,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shaders::kRecordsBinding, instances_->buffer());
     glBindTextureUnit(shaders::kDepthTextureUnit, fb.depthTexture());
     glBindImageTexture(shaders::kGBufferImageUnit, fb.texture(Target::GBuffer), 0, GL_FALSE, 0, GL_READ_ONLY,
-                       GL_RG32UI);
+                       GL_R32UI);
     if ((stored & targetBit(Target::FinalColor)) != 0)
         glBindImageTexture(shaders::kFinalColorImageUnit, fb.texture(Target::FinalColor), 0, GL_FALSE, 0,
                            GL_WRITE_ONLY, GL_RGBA8);

@@ -122,12 +122,12 @@ class Renderer {
     void setReadbackThreads(int threads) { readbackThreads_ = std::max(1, threads); }
     // Whether a view that shades only colour (final_color, hdr_color, with any unshaded targets) and has
     // framebuffers of its own is shaded by a compute pass over a G-buffer (Target::GBuffer: normal and
-    // draw, 8 bytes a pixel) rather than in its fragments: by default on hardware, where fragment shaders
+    // draw, 4 bytes a pixel) rather than in its fragments: by default on hardware, where fragment shaders
     // run on the few units a data-centre GPU keeps for graphics and compute shaders on all of them
     // (spear_shading_probe: the same shading 25-150 times cheaper on an H100). Materials with textures are
     // still shaded in their fragments. On llvmpipe the compute pass costs more than the fragments it spares.
     // SPEAR_LIGHTING=compute|forward overrides the default. Settable, so that tests render both ways;
-    // images agree within the tolerance of per-pixel shadow coordinates and a 16-bit normal.
+    // images agree within the tolerance of per-pixel shadow coordinates and an 11-bit normal.
     bool computeLighting() const { return computeLighting_; }
     void setComputeLighting(bool on) { computeLighting_ = on; }
     // Adds the G-buffer and the compute pass to `passes` where computeLighting() applies (see above).

@@ -88,16 +88,19 @@ void evaluateSurface(out vec3 n, out vec3 base, out float roughness, out float m
 }
 )glsl";
 
-// Octahedral unit vectors (Cigolle et al. 2014): the G-buffer's normal in two snorm16, within 1e-4 rad.
-const char* const kOctahedralChunk = R"glsl(
+// The G-buffer texel (Target::GBuffer, R32UI): the shading normal in octahedral form (Cigolle et al. 2014),
+// two 11-bit signed coordinates in bits 0-21 (within 0.05 degrees), and the draw's record in bits 22-31; all
+// ones marks a pixel its fragment shaded (kGBufferRecords).
+const char* const kGBufferChunk = R"glsl(
 vec2 signNotZero(vec2 v) { return vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0); }
-uint octEncode(vec3 n) {
+uint gbufferEncode(vec3 n, uint record) {
     vec2 e = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
     if (n.z < 0.0) e = (1.0 - abs(e.yx)) * signNotZero(e);
-    return packSnorm2x16(e);
+    uvec2 q = uvec2(round(clamp(e, -1.0, 1.0) * 1023.0) + 1023.0); // 0 .. 2046
+    return q.x | (q.y << 11) | (record << 22);
 }
-vec3 octDecode(uint bits) {
-    vec2 e = unpackSnorm2x16(bits);
+vec3 gbufferNormal(uint bits) {
+    vec2 e = (vec2(bits & 0x7ffu, (bits >> 11) & 0x7ffu) - 1023.0) / 1023.0;
     vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
     if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * signNotZero(n.xy);
     return normalize(n);
@@ -305,9 +308,9 @@ void main() {
 #endif
 #ifdef OUT_GBuffer
 #ifdef FORWARD
-    oGBuffer = uvec2(0u, 0xffffffffu); // shaded here (a textured material): the compute pass skips it
+    oGBuffer = 0xffffffffu; // shaded here (a textured material, or past kGBufferRecords): the compute pass skips it
 #else
-    oGBuffer = uvec2(octEncode(n), vRecord);
+    oGBuffer = gbufferEncode(n, vRecord);
 #endif
 #endif
 #ifdef FORWARD
@@ -345,9 +348,10 @@ std::string outputs(TargetMask targets) {
             continue;
         const auto target = static_cast<Target>(t);
         const std::string name(targetName(target));
-        const char* type = target == Target::Ids || target == Target::GBuffer ? "uvec2"
-                           : target == Target::Depth                          ? "float"
-                                                                              : "vec4";
+        const char* type = target == Target::Ids       ? "uvec2"
+                           : target == Target::GBuffer ? "uint"
+                           : target == Target::Depth   ? "float"
+                                                       : "vec4";
         text += "#define OUT_" + name + "\nlayout(location = " + std::to_string(location++) + ") out " +
                 type + " o" + name + ";\n";
     }
@@ -741,7 +745,7 @@ std::string computeLighting(TargetMask targets, const ShadingLayout& lights) {
             ") readonly buffer Records { Record records[]; };\n";
     text += "layout(binding = " + std::to_string(kDepthTextureUnit) + ") uniform sampler2D uDepthBuffer;\n";
     text += "layout(binding = " + std::to_string(kGBufferImageUnit) +
-            ", rg32ui) uniform readonly uimage2D uGBuffer;\n";
+            ", r32ui) uniform readonly uimage2D uGBuffer;\n";
     text += "layout(binding = " + std::to_string(kFinalColorImageUnit) +
             ", rgba8) uniform writeonly image2D uFinalColor;\n";
     text +=
@@ -752,7 +756,7 @@ uniform ivec2 uSize;
 vec2 gPixelCentre;
 #define PIXEL_CENTRE gPixelCentre
 )glsl";
-    text += kOctahedralChunk;
+    text += kGBufferChunk;
     text += kShadingChunk;
     text += shadeFunction(lights, plan, true);
     text += kToneChunk;
@@ -768,13 +772,14 @@ void main() {
 #endif
         return;
     }
-    uvec2 g = imageLoad(uGBuffer, pixel).xy;
-    if (g.y == 0xffffffffu) return; // shaded by its fragment
+    uint g = imageLoad(uGBuffer, pixel).x;
+    if (g == 0xffffffffu) return; // shaded by its fragment
+    uint record = g >> 22;
     vec4 offset = uClipToOffset * vec4(gPixelCentre / vec2(uSize) * 2.0 - 1.0, z * 2.0 - 1.0, 1.0);
     vec3 p = cameraPosition() + offset.xyz / offset.w;
-    vec4 material = records[g.y].material;
-    Shaded s = shade(p, octDecode(g.x), records[g.y].baseColor.rgb, material.x, material.y, material.z,
-                     records[g.y].emissive.rgb);
+    vec4 material = records[record].material;
+    Shaded s = shade(p, gbufferNormal(g), records[record].baseColor.rgb, material.x, material.y, material.z,
+                     records[record].emissive.rgb);
 #ifdef STORE_Hdr
     imageStore(uHdr, pixel, vec4(s.hdr, 1.0));
 #endif
@@ -826,7 +831,7 @@ std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialF
     text += shadowClipDeclarations(forward, lights, "in");
     text += kMaterialChunk;
     if ((targets & targetBit(Target::GBuffer)) != 0)
-        text += kOctahedralChunk;
+        text += kGBufferChunk;
     if (forward) {
         text += std::string("#define SHADOW_FORMAT ") + (lights.floatShadowMaps ? "r32f" : "r16") + "\n";
         if (lights.vignette)

@@ -8,6 +8,7 @@
 // takes; a software rasteriser (Mesa's llvmpipe) runs both sides of every branch under a mask, so a
 // loop over lights or an `if (hasTexture)` costs as if every light and texture were always there.
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -114,6 +115,9 @@ std::string clearFragment(TargetMask targets);
 // kComputeLightingGroupSize squared.
 std::string computeLighting(TargetMask targets, const ShadingLayout& lights);
 inline constexpr int kComputeLightingGroupSize = 8;
+// The draws of a view the G-buffer can name (10 bits, all ones reserved): later ones are shaded in their
+// fragments.
+inline constexpr std::size_t kGBufferRecords = 1023;
 // Its bindings: the records (storage buffer), the depth texture, the G-buffer and the output images.
 inline constexpr int kRecordsBinding = 1;
 inline constexpr int kDepthTextureUnit = 3;

@@ -287,6 +287,54 @@ TEST_F(RenderPathsGlTest, ComputeLightingAgreesWithShadingInTheFragments) {
     }
 }
 
+TEST_F(RenderPathsGlTest, DrawsPastWhatTheGBufferCanNameAreShadedInTheirFragments) {
+    // The G-buffer names 1023 draws of a view (shaders::kGBufferRecords): 900 small boxes (one batch, lit by
+    // the compute pass) and 300 small spheres after them (a batch past the limit, shaded in its fragments)
+    // on a grid under a shadowed sun. The image agrees with fragment shading, and a sphere is the same bit
+    // for bit.
+    Scene scene;
+    const MeshId box = scene.addMesh(primitives::box({0.1f, 0.1f, 0.1f}));
+    const MeshId sphere = scene.addMesh(primitives::sphere(0.06f, 12, 6));
+    const MaterialId red = scene.addMaterial(makeMaterial({0.7f, 0.12f, 0.1f}, 0.5f, 0.0f));
+    const MaterialId blue = scene.addMaterial(makeMaterial({0.1f, 0.25f, 0.7f}, 0.3f, 0.0f));
+    for (int i = 0; i < 1200; ++i) {
+        Instance instance{i < 900 ? box : sphere, {i < 900 ? red : blue}, {std::uint32_t(i + 1)}};
+        instance.transform.translation() = Eigen::Vector3d(0.2 * (i % 40) - 4.0, 0.2 * (i / 40) - 3.0, 0.0);
+        scene.addInstance(instance);
+    }
+    Light sun;
+    sun.direction = Eigen::Vector3d(-0.4, -0.5, -1.0);
+    sun.intensity = 3.0f;
+    scene.addLight(sun);
+    const Camera camera = cameraLookingAt({0.0, -1.0, 9.0}, {0.0, 0.0, 0.0}, 640, 560, 60.0);
+    const bool byDefault = renderer().computeLighting();
+    Frame frames[2];
+    for (int compute = 0; compute < 2; ++compute) {
+        renderer().setComputeLighting(compute == 1);
+        RenderTarget target(renderer(), {Modality::FinalColor, Modality::ObjectIds}, 0);
+        target.render(scene, camera, frames[compute]);
+    }
+    renderer().setComputeLighting(byDefault);
+    const ImageBuffer &forward = frames[0].get(Modality::FinalColor),
+                      &computed = frames[1].get(Modality::FinalColor);
+    const auto [largest, mean] = difference(forward, computed);
+    EXPECT_LT(mean, 0.1);
+    int spheres = 0, boxes = 0;
+    for (int y = 0; y < forward.height; ++y)
+        for (int x = 0; x < forward.width; ++x) {
+            const std::uint32_t id = frames[1].get(Modality::ObjectIds).uintAt(x, y);
+            if (id > 900) {
+                ++spheres;
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_EQ(forward.at(x, y, c), computed.at(x, y, c)) << "sphere pixel " << x << ", " << y;
+            } else if (id > 0) {
+                ++boxes;
+            }
+        }
+    EXPECT_GT(spheres, 1000);
+    EXPECT_GT(boxes, 1000);
+}
+
 TEST_F(RenderPathsGlTest, AttributePassKeepsTheSurfacePassesFragmentWhereSurfacesTie) {
     // Two instances in the same place, different ids and materials: the surface pass keeps the first drawn
     // (GL_LESS); the attribute pass must write that one's ids and base colour, not the second's.
