@@ -44,6 +44,18 @@ void copy3(float (&out)[4], const Eigen::Vector3f& v, float w) {
     out[3] = w;
 }
 
+// An on/off setting: `variable`'s value, `on` or `off`, or `byDefault` when it is not set; anything else
+// throws sp::InvalidArgument naming the variable and the value.
+bool switchFromEnvironment(const char* variable, const char* on, const char* off, bool byDefault) {
+    const char* env = std::getenv(variable);
+    if (env == nullptr)
+        return byDefault;
+    const std::string value = env;
+    SP_CHECK(value == on || value == off, InvalidArgument, "Renderer::Renderer(): ", variable, " must be '",
+             on, "' or '", off, "', got '", value, "'");
+    return value == on;
+}
+
 } // namespace
 
 struct Renderer::Draw {
@@ -65,21 +77,11 @@ struct Renderer::Draw {
 Renderer::Renderer(const GlContext& context)
     : context_(context), packIdsOnGpu_(!context.report().software), shadowReach_(context.report().software) {
     context_.makeCurrent();
-    stagedReadback_ = !context.report().software;
-    if (const char* env = std::getenv("SPEAR_READBACK")) {
-        const std::string mode = env;
-        SP_CHECK(mode == "staged" || mode == "direct", InvalidArgument,
-                 "Renderer::Renderer(): SPEAR_READBACK must be 'staged' or 'direct', got '", mode, "'");
-        stagedReadback_ = mode == "staged";
-    }
+    // The GPU paths, on by default where the context is a GPU's (see their setters).
+    const bool hardware = !context.report().software;
+    stagedReadback_ = switchFromEnvironment("SPEAR_READBACK", "staged", "direct", hardware);
     readbackThreads_ = defaultCopyThreads();
-    computeLighting_ = !context.report().software;
-    if (const char* env = std::getenv("SPEAR_LIGHTING")) {
-        const std::string mode = env;
-        SP_CHECK(mode == "compute" || mode == "forward", InvalidArgument,
-                 "Renderer::Renderer(): SPEAR_LIGHTING must be 'compute' or 'forward', got '", mode, "'");
-        computeLighting_ = mode == "compute";
-    }
+    computeLighting_ = switchFromEnvironment("SPEAR_LIGHTING", "compute", "forward", hardware);
     if (context.report().software) {
         // What the surface programs' own varyings leave of the smaller of the two limits (see
         // shaders::ShadingLayout::constantSlots), in vec4s: 8 per-vertex and per-instance varyings and up to

@@ -287,6 +287,33 @@ TEST_F(RenderPathsGlTest, ComputeLightingAgreesWithShadingInTheFragments) {
     }
 }
 
+TEST_F(RenderPathsGlTest, TheGpuPathSwitchesAreReadFromTheEnvironmentAndCheckedThere) {
+    // SPEAR_LIGHTING and SPEAR_READBACK override the device's defaults; a value that is neither choice is
+    // refused naming the variable and the value.
+    GlContext& context = *context_;
+    ::setenv("SPEAR_LIGHTING", "compute", 1);
+    ::setenv("SPEAR_READBACK", "direct", 1);
+    {
+        Renderer forced(context);
+        EXPECT_TRUE(forced.computeLighting());
+        EXPECT_FALSE(forced.stagedReadback());
+    }
+    ::setenv("SPEAR_LIGHTING", "deferred", 1);
+    try {
+        Renderer refused(context);
+        ADD_FAILURE() << "SPEAR_LIGHTING=deferred was accepted";
+    } catch (const InvalidArgument& e) {
+        EXPECT_STREQ(e.what(),
+                     "Renderer::Renderer(): SPEAR_LIGHTING must be 'compute' or 'forward', got 'deferred'");
+    }
+    ::unsetenv("SPEAR_LIGHTING");
+    ::unsetenv("SPEAR_READBACK");
+    Renderer byDefault(context);
+    EXPECT_EQ(byDefault.computeLighting(), !context.report().software);
+    EXPECT_EQ(byDefault.stagedReadback(), !context.report().software);
+    context.makeCurrent(); // the fixture's renderer goes on in the same context
+}
+
 TEST_F(RenderPathsGlTest, DrawsPastWhatTheGBufferCanNameAreShadedInTheirFragments) {
     // The G-buffer names 1023 draws of a view (shaders::kGBufferRecords): 900 small boxes (one batch, lit by
     // the compute pass) and 300 small spheres after them (a batch past the limit, shaded in its fragments)
