@@ -278,6 +278,24 @@ TEST_F(RenderPathsGlTest, ComputeLightingAgreesWithShadingInTheFragments) {
                                    frames[1].get(m).bytes.begin()))
                 << modalityName(m) << " at latency 1";
         }
+        // One target moving between the paths as its modalities change: colour alone (compute), colour with
+        // an intrinsic image (fragments), colour alone again, the same as the first.
+        if (view == &camera && modalities.size() == 1 && modalities.contains(Modality::FinalColor)) {
+            renderer().setComputeLighting(true);
+            RenderTarget moving(renderer(), modalities, 0);
+            Frame first, between, again;
+            moving.render(scene, *view, first);
+            moving.setModalities({Modality::FinalColor, Modality::DiffuseOnly});
+            moving.render(scene, *view, between);
+            moving.setModalities(modalities);
+            moving.render(scene, *view, again);
+            renderer().setComputeLighting(byDefault);
+            const ImageBuffer &a = first.get(Modality::FinalColor), &b = again.get(Modality::FinalColor);
+            EXPECT_TRUE(std::equal(a.bytes.begin(), a.bytes.end(), b.bytes.begin()))
+                << "back to compute lighting";
+            EXPECT_LT(difference(a, between.get(Modality::FinalColor)).second, 0.1)
+                << "through the fragments";
+        }
         // The vignetted background is darker in the corner than in the middle, as the forward pass draws it.
         if (view == &vignetted) {
             const ImageBuffer& image = frames[1].get(Modality::FinalColor);
