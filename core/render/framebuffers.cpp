@@ -111,12 +111,9 @@ void Framebuffers::ensure(int w, int h, const PassSet& passes, int layerCount) {
         changed = true;
     }
     if (passes.surface && depthBuffer_ == 0) {
-        if (layers > 0) {
-            glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &depthBuffer_);
-            glTextureStorage3D(depthBuffer_, 1, GL_DEPTH_COMPONENT32F, w, h, layers);
-        } else { // a texture, which the compute lighting pass reads (PassSet::computeLighting)
-            depthBuffer_ = makeTexture(GL_DEPTH_COMPONENT32F, w, h, 0);
-        }
+        // A texture, which the compute lighting pass reads (PassSet::computeLighting()); with layers, an
+        // array.
+        depthBuffer_ = makeTexture(GL_DEPTH_COMPONENT32F, w, h, layers);
         changed = true;
     }
     if (!changed)

@@ -189,10 +189,7 @@ PassSet ModalitySet::requiredPasses(bool shadowsEnabled) const {
     }
     // The shaded targets go to the surface pass (only it shades), then the others in Target order
     // while draw buffers are left; the rest to the attribute pass.
-    constexpr TargetMask kShaded = targetBit(Target::Hdr) | targetBit(Target::DiffuseIllumination) |
-                                   targetBit(Target::DiffuseOnly) | targetBit(Target::SpecularResidual) |
-                                   targetBit(Target::FinalColor);
-    passes.surfaceTargets = requested & kShaded;
+    passes.surfaceTargets = requested & kShadedTargets;
     for (std::size_t t = 0; t < kTargetCount; ++t) {
         const TargetMask bit = TargetMask(1) << t;
         if ((requested & bit) == 0 || (passes.surfaceTargets & bit) != 0)

@@ -77,8 +77,8 @@ enum class Target : std::uint8_t {
     SpecularResidual,    // RGBA16F
     FinalColor,          // RGBA8 tone-mapped sRGB
     // R32UI: the octahedral shading normal and the draw's InstanceRecord (shaders::kGBufferChunk); a surface
-    // pass whose shading runs in a compute pass writes it instead of shading (PassSet::computeLighting). No
-    // modality.
+    // pass whose shading runs in a compute pass writes it instead of shading (PassSet::computeLighting()).
+    // No modality.
     GBuffer,
 };
 inline constexpr std::size_t kTargetCount = 12;
@@ -86,6 +86,10 @@ using TargetMask = std::uint32_t;
 inline constexpr TargetMask targetBit(Target target) {
     return TargetMask(1) << static_cast<unsigned>(target);
 }
+// The targets only a shading pass writes: colour and the intrinsic images.
+inline constexpr TargetMask kShadedTargets =
+    targetBit(Target::Hdr) | targetBit(Target::DiffuseIllumination) | targetBit(Target::DiffuseOnly) |
+    targetBit(Target::SpecularResidual) | targetBit(Target::FinalColor);
 // The target a modality is read from (roughness, metallic and AO share Params; both id kinds share Ids).
 Target targetOf(Modality modality);
 std::string_view targetName(Target target);
@@ -105,11 +109,11 @@ struct PassSet {
     bool tonemap = false;            // exposure, tone curve, sRGB encoding (fused into the shading)
     TargetMask surfaceTargets = 0;   // written by the surface pass, attached in Target order
     TargetMask attributeTargets = 0; // written by the attribute pass, attached in Target order
-    // The surface pass writes Target::GBuffer for untextured materials and a compute pass shades those
-    // pixels (Renderer::planComputeLighting()); never set by requiredPasses().
-    bool computeLighting = false;
 
     bool operator==(const PassSet&) const = default;
+    // Whether the surface pass writes Target::GBuffer for untextured materials and a compute pass shades
+    // those pixels (Renderer::planComputeLighting() adds it; requiredPasses() never does).
+    bool computeLighting() const { return (surfaceTargets & targetBit(Target::GBuffer)) != 0; }
 };
 
 class ModalitySet {

@@ -74,8 +74,8 @@ class RenderTarget {
         std::uint64_t frameNumber = 0;
         std::uint64_t sceneUid = 0; // the scene rendered, whose statistics count the readback
         bool pending = false;
-        bool staged =
-            false; // its readback was queued into `buffers` at submit (else: latency 0's direct read)
+        // Its readback was queued into `buffers` at submit (else: latency 0's direct read).
+        bool staged = false;
         int width = 0;
         int height = 0;
         ModalitySet modalities;

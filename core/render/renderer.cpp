@@ -44,6 +44,9 @@ void copy3(float (&out)[4], const Eigen::Vector3f& v, float w) {
     out[3] = w;
 }
 
+// The targets the compute lighting pass stores (Renderer::planComputeLighting()).
+constexpr TargetMask kComputeLit = targetBit(Target::FinalColor) | targetBit(Target::Hdr);
+
 // An on/off setting: `variable`'s value, `on` or `off`, or `byDefault` when it is not set; anything else
 // throws sp::InvalidArgument naming the variable and the value.
 bool switchFromEnvironment(const char* variable, const char* on, const char* off, bool byDefault) {
@@ -436,9 +439,8 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
     if (passes.lighting && passes.shadow && active_->shadowMaps->texture() != 0)
         glBindImageTexture(shaders::kShadowMapImageUnit, active_->shadowMaps->texture(), 0, GL_TRUE, 0,
                            GL_READ_ONLY, active_->shadowMaps->format());
-    drawAll(scene, camera, draws, passes.surfaceTargets, passes.lighting, lights, cache,
-            passes.computeLighting);
-    if (passes.computeLighting)
+    drawAll(scene, camera, draws, passes.surfaceTargets, passes.lighting, lights, cache);
+    if (passes.computeLighting())
         lightInCompute(camera, passes, lights, fb);
     else if (lights.vignette && (passes.surfaceTargets & targetBit(Target::FinalColor)) != 0)
         drawVignettedBackground(passes.surfaceTargets, lights.toneMap);
@@ -652,7 +654,7 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
 
 void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vector<Draw>& draws,
                        TargetMask targets, bool shade, const shaders::ShadingLayout& lights,
-                       GpuSceneCache& cache, bool computeLighting) {
+                       GpuSceneCache& cache) {
     // The projection is flipped vertically so that GL's bottom row holds image row 0 and glReadPixels
     // returns the top image row first; depth and ids are unaffected.
     const Eigen::Matrix4d worldToCamera = camera.pose.inverse(Eigen::Isometry).matrix();
@@ -694,7 +696,8 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
     // With compute lighting, an untextured material writes the G-buffer and leaves the shaded targets to the
     // compute pass (masked here, so that nothing is stored for them); a textured one, or a batch past the
     // records the G-buffer can name, is shaded here.
-    const TargetMask shadedTargets = targets & (targetBit(Target::FinalColor) | targetBit(Target::Hdr));
+    const bool computeLighting = (targets & targetBit(Target::GBuffer)) != 0;
+    const TargetMask shadedTargets = targets & kComputeLit;
     bool masked = false;
     const auto use = [&](unsigned features, bool lookups, bool named) {
         const bool deferred = computeLighting && features == 0 && named;
@@ -758,26 +761,19 @@ void Renderer::maskTargets(TargetMask targets, TargetMask masked, bool mask) {
 }
 
 void Renderer::planComputeLighting(PassSet& passes) const {
-    constexpr TargetMask kShaded = targetBit(Target::Hdr) | targetBit(Target::DiffuseIllumination) |
-                                   targetBit(Target::DiffuseOnly) | targetBit(Target::SpecularResidual) |
-                                   targetBit(Target::FinalColor);
-    constexpr TargetMask kComputed = targetBit(Target::Hdr) | targetBit(Target::FinalColor);
-    passes.computeLighting = false;
     passes.surfaceTargets &= ~targetBit(Target::GBuffer);
     // One surface pass that shades only colour (the intrinsic images keep the forward pass's exact
     // float16 rounding) and has a draw buffer left for the G-buffer.
     if (!computeLighting_ || !passes.lighting || passes.attributeTargets != 0 ||
-        (passes.surfaceTargets & kShaded & ~kComputed) != 0 ||
+        (passes.surfaceTargets & kShadedTargets & ~kComputeLit) != 0 ||
         std::popcount(passes.surfaceTargets) + 1 > kMaxDrawTargets)
         return;
     passes.surfaceTargets |= targetBit(Target::GBuffer);
-    passes.computeLighting = true;
 }
 
 void Renderer::lightInCompute(const Camera& camera, const PassSet& passes,
                               const shaders::ShadingLayout& lights, const Framebuffers& fb) {
-    const TargetMask stored =
-        passes.surfaceTargets & (targetBit(Target::FinalColor) | targetBit(Target::Hdr));
+    const TargetMask stored = passes.surfaceTargets & kComputeLit;
     auto& program = programs_["lighting/" + std::to_string(stored) + "/" + lights.key()];
     if (!program)
         program = std::make_unique<ShaderProgram>("compute lighting",

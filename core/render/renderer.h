@@ -196,12 +196,11 @@ class Renderer {
     std::set<const Framebuffers*> clearPages(std::span<const View> views);
     // Sets the colour write masks of `targets`' draw buffers: off for those in `masked` when `mask`, else on.
     static void maskTargets(TargetMask targets, TargetMask masked, bool mask);
-    // The compute lighting pass of a view whose surface pass wrote the G-buffer (PassSet::computeLighting).
+    // The compute lighting pass of a view whose surface pass wrote the G-buffer (PassSet::computeLighting()).
     void lightInCompute(const Camera& camera, const PassSet& passes, const shaders::ShadingLayout& lights,
                         const Framebuffers& fb);
     void drawAll(const Scene& scene, const Camera& camera, const std::vector<Draw>& draws, TargetMask targets,
-                 bool shade, const shaders::ShadingLayout& lights, GpuSceneCache& cache,
-                 bool computeLighting = false);
+                 bool shade, const shaders::ShadingLayout& lights, GpuSceneCache& cache);
     // Writes the vignetted background into final_color (one of `targets`) where no surface was drawn.
     void drawVignettedBackground(TargetMask targets, ToneMap toneMap);
 

@@ -108,7 +108,7 @@ std::string backgroundFragment(int location, ToneMap toneMap);
 // view's layer of shared framebuffers, drawn with backgroundVertex(true) (see Renderer::clearTargets).
 std::string clearFragment(TargetMask targets);
 
-// The compute lighting pass (PassSet::computeLighting): for each pixel whose G-buffer names a draw (not the
+// The compute lighting pass (PassSet::computeLighting()): for each pixel whose G-buffer names a draw (not the
 // background, not a pixel its fragment shaded), the world position from the depth buffer, the normal and
 // the draw's material from the G-buffer and its InstanceRecord, shaded as the forward pass shades (shadow
 // coordinates per pixel) into `targets` (FinalColor and/or Hdr) as images. Work groups of

@@ -231,7 +231,7 @@ TEST_F(RenderPathsGlTest, ComputeLightingAgreesWithShadingInTheFragments) {
             renderer().setComputeLighting(compute == 1);
             PassSet passes = modalities.requiredPasses(true);
             renderer().planComputeLighting(passes);
-            EXPECT_EQ(passes.computeLighting, compute == 1);
+            EXPECT_EQ(passes.computeLighting(), compute == 1);
             RenderTarget target(renderer(), modalities, 0);
             target.render(scene, *view, frames[compute]);
         }
