@@ -576,20 +576,18 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
             }
         }
         text += "        float nol = dot(n, l);\n        if (nol > 0.0) {\n";
-        if (light.shadowLayer >= 0 && perPixelShadows) {
-            // n faces the light here (nol > 0), as the vertex shader turns it.
+        if (light.shadowLayer >= 0) {
             const std::string layer = std::to_string(light.shadowLayer);
-            text += "            vec4 c = offsetShadowClip(" + layer + ", p, n, " +
-                    shadowTexel(light, "dist") + ");\n            vec3 sc = (c.xyz + c.w) * 0.5;\n";
-            text += "            e *= shadowFactor(" + layer + ", " +
-                    (light.type == LightType::Directional ? "sc" : "sc / c.w") + ");\n";
-        } else if (light.shadowLayer >= 0) {
-            const std::string layer = std::to_string(light.shadowLayer);
-            // The vertex shader interpolates the offset point's coordinates (see shadowClips()): only a
-            // spot light's need the perspective division here.
-            const std::string coordinates = light.type == LightType::Directional
-                                                ? "vShadowClip" + layer + ".xyz"
-                                                : "vShadowClip" + layer + ".xyz / vShadowClip" + layer + ".w";
+            // The offset point's coordinates; only a spot light's need the perspective division here.
+            std::string clip = "vShadowClip" + layer; // the vertex shader's, interpolated (see shadowClips())
+            if (perPixelShadows) { // n faces the light here (nol > 0), as the vertex shader turns it
+                text += "            vec4 c = offsetShadowClip(" + layer + ", p, n, " +
+                        shadowTexel(light, "dist") +
+                        ");\n            vec4 sc = vec4((c.xyz + c.w) * 0.5, c.w);\n";
+                clip = "sc";
+            }
+            const std::string coordinates =
+                light.type == LightType::Directional ? clip + ".xyz" : clip + ".xyz / " + clip + ".w";
             text += "            e *= shadowFactor(" + layer + ", " + coordinates + ");\n";
         }
         text += "            accumulate(s, l, e, nol, irradiance, specular);\n        }\n    }\n";
@@ -698,6 +696,13 @@ std::string toneCurveDefine(ToneMap toneMap) {
     return "#define TONE_CURVE " + std::to_string(static_cast<int>(toneMap)) + "\n";
 }
 
+// The defines of the shading and tone chunks for a layout: the shadow maps' image format, the vignette and
+// the tone curve.
+std::string shadingDefines(const ShadingLayout& lights) {
+    return std::string("#define SHADOW_FORMAT ") + (lights.floatShadowMaps ? "r32f" : "r16") + "\n" +
+           (lights.vignette ? "#define VIGNETTE\n" : "") + toneCurveDefine(lights.toneMap);
+}
+
 std::string backgroundFragment(int location, ToneMap toneMap) {
     std::string text = "#version 450 core\n#define VIGNETTE\n" + toneCurveDefine(toneMap);
     text += "layout(location = " + std::to_string(location) + ") out vec4 oFinalColor;\n";
@@ -726,14 +731,11 @@ std::string computeLighting(TargetMask targets, const ShadingLayout& lights) {
     std::string text =
         "#version 450 core\nlayout(local_size_x = " + std::to_string(kComputeLightingGroupSize) +
         ", local_size_y = " + std::to_string(kComputeLightingGroupSize) + ") in;\n";
-    text += std::string("#define SHADOW_FORMAT ") + (lights.floatShadowMaps ? "r32f" : "r16") + "\n";
-    if (lights.vignette)
-        text += "#define VIGNETTE\n";
+    text += shadingDefines(lights);
     if ((targets & targetBit(Target::FinalColor)) != 0)
         text += "#define STORE_FinalColor\n"; // not OUT_*: those name fragment outputs (writeShaded())
     if ((targets & targetBit(Target::Hdr)) != 0)
         text += "#define STORE_Hdr\n";
-    text += toneCurveDefine(lights.toneMap);
     text += kFrameBlock;
     ConstantPlan plan; // every constant from FrameBlock
     plan.lightSlot.assign(lights.lights.size(), -1);
@@ -833,10 +835,7 @@ std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialF
     if ((targets & targetBit(Target::GBuffer)) != 0)
         text += kGBufferChunk;
     if (forward) {
-        text += std::string("#define SHADOW_FORMAT ") + (lights.floatShadowMaps ? "r32f" : "r16") + "\n";
-        if (lights.vignette)
-            text += "#define VIGNETTE\n";
-        text += toneCurveDefine(lights.toneMap);
+        text += shadingDefines(lights);
         text += kShadingChunk;
         text += shadeFunction(lights, plan);
         text += kToneChunk;
