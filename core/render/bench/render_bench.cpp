@@ -73,6 +73,17 @@ void buildScene(Scene& scene, int boxes) {
     scene.setEnvironment({{0.1f, 0.12f, 0.15f}, {0.3f, 0.35f, 0.45f}});
 }
 
+// The items of "a,b,c".
+std::vector<std::string> commaSeparated(const std::string& list) {
+    std::vector<std::string> items;
+    for (std::string rest = list; !rest.empty();) {
+        const std::size_t comma = rest.find(',');
+        items.push_back(rest.substr(0, comma));
+        rest = comma == std::string::npos ? std::string() : rest.substr(comma + 1);
+    }
+    return items;
+}
+
 Camera makeCamera(int width, int height, int boxes, int shadowResolution) {
     const double extent = 0.6 * std::ceil(std::sqrt(double(boxes))) + 2.0;
     Camera camera;
@@ -125,13 +136,7 @@ int main(int argc, char** argv) {
             onlyGiven = true;
         else if (!std::strcmp(argv[i], "--modalities") && i + 1 < argc) {
             const std::string list = argv[++i];
-            std::vector<std::string> names;
-            for (std::string rest = list; !rest.empty();) {
-                const std::size_t comma = rest.find(',');
-                names.push_back(rest.substr(0, comma));
-                rest = comma == std::string::npos ? std::string() : rest.substr(comma + 1);
-            }
-            const ModalitySet set = ModalitySet::fromNames(names); // throws on an unknown name
+            const ModalitySet set = ModalitySet::fromNames(commaSeparated(list)); // throws on an unknown name
             sets.emplace_back(list, set);
         } else {
             std::fprintf(
@@ -146,10 +151,7 @@ int main(int argc, char** argv) {
     if (onlyGiven)
         sets.erase(sets.begin(), sets.begin() + 2);
     std::vector<std::pair<int, int>> sizes;
-    for (std::string rest = sizesArg; !rest.empty();) {
-        const std::size_t comma = rest.find(',');
-        const std::string size = rest.substr(0, comma);
-        rest = comma == std::string::npos ? std::string() : rest.substr(comma + 1);
+    for (const std::string& size : commaSeparated(sizesArg)) {
         int width = 0, height = 0;
         if (std::sscanf(size.c_str(), "%dx%d", &width, &height) != 2 || width <= 0 || height <= 0) {
             std::fprintf(stderr, "%s: --sizes wants WxH[,WxH...], got '%s'\n", argv[0], size.c_str());

@@ -208,38 +208,35 @@ TEST_F(RenderTargetGlTest, StagedLatencyZeroReadsTheSameBytesAsDirect) {
     renderer().setPackIdsOnGpu(true);
     const ModalitySet modalities{Modality::FinalColor, Modality::Depth, Modality::Normal,
                                  Modality::ObjectIds};
+    const std::vector<Modality> list = modalities.list();
     std::vector<std::uint8_t> read[2][4], again[2][4];
+    // Zeroed buffers of each modality's size, and the views that write into them.
+    const auto viewsInto = [&](std::vector<std::uint8_t>(&buffers)[4]) {
+        std::vector<OutputView> views;
+        for (std::size_t m = 0; m < 4; ++m) {
+            buffers[m].assign(modalityByteSize(list[m], 700, 500), 0);
+            views.push_back({list[m], buffers[m].data(), buffers[m].size()});
+        }
+        return views;
+    };
     for (int staged = 0; staged < 2; ++staged) {
         renderer().setStagedReadback(staged == 1);
         RenderTarget target(renderer(), modalities, 0);
         for (int k = 0; k < 2; ++k) { // the second frame reuses the slot's buffers
             target.submit(scene_, camera_);
-            std::vector<OutputView> views;
-            for (std::size_t m = 0; m < 4; ++m) {
-                const Modality modality = modalities.list()[m];
-                read[staged][m].assign(modalityByteSize(modality, 700, 500), 0);
-                views.push_back({modality, read[staged][m].data(), read[staged][m].size()});
-            }
-            ASSERT_EQ(target.read(views), std::uint64_t(k + 1)) << "staged " << staged;
+            ASSERT_EQ(target.read(viewsInto(read[staged])), std::uint64_t(k + 1)) << "staged " << staged;
         }
-        std::vector<OutputView> views;
-        for (std::size_t m = 0; m < 4; ++m) {
-            const Modality modality = modalities.list()[m];
-            again[staged][m].assign(modalityByteSize(modality, 700, 500), 0);
-            views.push_back({modality, again[staged][m].data(), again[staged][m].size()});
-        }
-        ASSERT_EQ(target.readAgain(views), 2u) << "staged " << staged;
+        ASSERT_EQ(target.readAgain(viewsInto(again[staged])), 2u) << "staged " << staged;
     }
     renderer().setStagedReadback(stagedByDefault);
     renderer().setPackIdsOnGpu(packByDefault);
     renderer().setReadbackThreads(threadsByDefault);
     for (std::size_t m = 0; m < 4; ++m) {
-        const std::string_view name = modalityName(modalities.list()[m]);
+        const std::string_view name = modalityName(list[m]);
         EXPECT_EQ(read[1][m], read[0][m]) << name;
         EXPECT_EQ(again[1][m], read[1][m]) << name << " read again";
         EXPECT_EQ(again[0][m], read[0][m]) << name << " read again, direct";
     }
-    const std::vector<Modality> list = modalities.list();
     const auto idsAt = std::size_t(std::find(list.begin(), list.end(), Modality::ObjectIds) - list.begin());
     ASSERT_LT(idsAt, list.size());
     const auto* ids = reinterpret_cast<const std::uint32_t*>(read[1][idsAt].data());
