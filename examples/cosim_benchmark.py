@@ -19,6 +19,14 @@ The workload (bench/mujoco_cosim_peer.cpp runs the same one in MuJoCo alone, for
   (0, 0, 0.2); view 0 is at the rig, view 1 0.3 m to its right; horizontal FOV 60 degrees.
 The time of a frame is from the start of its begin_frame block until every view's final_color is in a
 numpy array, physics included; 10 warm-up frames are not counted.
+
+--breakdown also prints where a frame's time went, per frame on average: `calls` (the begin_frame block:
+forces and the rig's move queued or sent), `tick` (leaving that block: the engine runs the calls, steps
+physics and submits the render), `read` (the views' read_pixels, waiting for the GPU included) and `end`
+(leaving end_frame); then, inside tick, the world's own CPU times from get_frame_timings (physics, and
+rendering: gathering the views and issuing their GPU work); then the renderer's times from GetRenderStats:
+shadow and surface passes by GL timer queries (the device's clock, overlapping the above) and the CPU's
+readback wait and copy.
 """
 
 from __future__ import annotations
@@ -29,7 +37,7 @@ import math
 import os
 import sys
 import time
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -60,6 +68,7 @@ class Result:
     physics: str
     ms_per_frame: float
     device: str
+    phases: dict[str, float] = field(default_factory=dict)  # --breakdown: milliseconds per frame by phase
 
 
 def grid_position(i: int, n: int) -> tuple[float, float]:
@@ -176,7 +185,7 @@ def configure(camera: spear.UCameraSensorComponent, width: int, height: int) -> 
 
 
 def run(instance: spear.Instance, *, objects: int, views: int, width: int, height: int, frames: int,
-        physics: str, png: Path | None) -> Result:
+        physics: str, png: Path | None, breakdown: bool = False) -> Result:
     game = instance.get_game()
     rig: spear.AActor
     bodies: list[spear.UStaticMeshComponent] = []
@@ -205,9 +214,14 @@ def run(instance: spear.Instance, *, objects: int, views: int, width: int, heigh
     images: list[NDArray[np.uint8]] = []
     started = 0.0
     report_every = max(1, frames // 10)
+    phases = Phases() if breakdown else None
     for frame in range(WARMUP_FRAMES + frames):
         if frame == WARMUP_FRAMES:
+            if phases is not None:
+                phases.sums = dict.fromkeys(phases.sums, 0.0)  # the warm-up frames are not counted
             started = time.perf_counter()
+        if phases is not None:
+            phases.mark("begin")
         with instance.begin_frame():
             if mujoco is not None:  # one call sets the forces, one steps MuJoCo and moves every actor
                 mujoco.send_async.SetForces(Forces=forces(objects, frame))
@@ -219,6 +233,10 @@ def run(instance: spear.Instance, *, objects: int, views: int, width: int, heigh
                 half = BASELINE / 2
                 location = spear.FVector(location.X + half * right[0], location.Y + half * right[1], location.Z)
             rig.send_async.K2_SetActorLocationAndRotation(NewLocation=location, NewRotation=rotation)
+            if phases is not None:
+                phases.mark("calls")
+        if phases is not None:
+            phases.mark("tick")
         with instance.end_frame():
             images = []
             for camera in cameras:
@@ -226,18 +244,57 @@ def run(instance: spear.Instance, *, objects: int, views: int, width: int, heigh
                 if "final_color" not in pixels:
                     raise spear.InvalidStateError("cosim_benchmark: a view rendered no final_color")
                 images.append(pixels["final_color"])
+            if phases is not None:
+                phases.mark("read")
+                if frame == WARMUP_FRAMES - 1:  # the totals before the timed frames
+                    phases.before = cameras[0].GetRenderStats()
+                    phases.world_before = game.get_frame_timings()
+        if phases is not None:
+            phases.mark("end")
         done = frame + 1 - WARMUP_FRAMES
         if done > 0 and (done % report_every == 0 or done == frames):
             elapsed = time.perf_counter() - started
             print(f"  N={objects} views={views}: {done}/{frames} frames, {1000 * elapsed / done:.1f} ms/frame",
                   file=sys.stderr, flush=True)
     elapsed = time.perf_counter() - started
+    measured: dict[str, float] = {}
+    if phases is not None:  # the totals after them, read before another frame renders
+        with instance.begin_frame():
+            measured = phases.finish(game.get_frame_timings(), cameras[0].GetRenderStats(), frames)
+        with instance.end_frame():
+            pass
     if png is not None and images:
         from PIL import Image  # type: ignore[import]  # Debian ships no Pillow stubs
         png.parent.mkdir(parents=True, exist_ok=True)
         Image.fromarray(images[0][:, :, :3]).save(png)
     return Result(objects, views, width, height, frames, instance.transport, physics,
-                  1000.0 * elapsed / frames, f"{device.Kind}: {device.Renderer}")
+                  1000.0 * elapsed / frames, f"{device.Kind}: {device.Renderer}", measured)
+
+
+class Phases:
+    """--breakdown: the wall-clock time between marks, summed per phase over the timed frames, and the
+    renderer's pass times over the same frames (GetRenderStats totals, taken before and after)."""
+
+    def __init__(self) -> None:
+        self.sums: dict[str, float] = {"calls": 0.0, "tick": 0.0, "read": 0.0, "end": 0.0}
+        self.last = 0.0
+        self.before = spear.FRenderStats()
+        self.world_before = spear.FFrameTimings()
+
+    def mark(self, phase: str) -> None:
+        now = time.perf_counter()
+        if phase in self.sums and self.last:
+            self.sums[phase] += now - self.last
+        self.last = now
+
+    def finish(self, world: spear.FFrameTimings, after: spear.FRenderStats, frames: int) -> dict[str, float]:
+        result = {phase: 1000.0 * total / frames for phase, total in self.sums.items()}
+        result["physics"] = (world.PhysicsMs - self.world_before.PhysicsMs) / frames
+        result["rendering"] = (world.RenderingMs - self.world_before.RenderingMs) / frames
+        result["gpu shadow"] = (after.ShadowMs - self.before.ShadowMs) / frames
+        result["gpu surface"] = (after.SurfaceMs - self.before.SurfaceMs) / frames
+        result["readback"] = (after.ReadbackMs - self.before.ReadbackMs) / frames
+        return result
 
 
 def table(results: list[Result]) -> str:
@@ -255,6 +312,16 @@ def table(results: list[Result]) -> str:
     return "\n".join(lines)
 
 
+def breakdown_table(results: list[Result]) -> str:
+    """--breakdown: one row per cell, milliseconds per frame by phase."""
+    names = list(results[0].phases)
+    lines = ["| cell | frame | " + " | ".join(names) + " |", "|---|---:|" + "---:|" * len(names)]
+    for r in results:
+        lines.append(f"| N={r.objects}, {r.views} view{'s' if r.views > 1 else ''} | {r.ms_per_frame:.2f} | "
+                     + " | ".join(f"{r.phases[name]:.2f}" for name in names) + " |")
+    return "\n".join(lines)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--objects", type=int, nargs="+", default=[4, 16, 64], help="dynamic objects (N)")
@@ -266,6 +333,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--physics", choices=["bullet", "mujoco"], default="bullet")
     parser.add_argument("--json", type=Path, default=None, help="also write the results as JSON")
     parser.add_argument("--png", type=Path, default=None, help="write view 0 of the last frame of each cell here")
+    parser.add_argument("--breakdown", action="store_true", help="also print where a frame's time went, by phase")
     args = parser.parse_args(argv)
 
     results: list[Result] = []
@@ -277,12 +345,14 @@ def main(argv: list[str] | None = None) -> int:
             try:
                 png = None if args.png is None else args.png / f"cosim_n{objects}_v{views}.png"
                 results.append(run(instance, objects=objects, views=views, width=args.width, height=args.height,
-                                   frames=args.frames, physics=args.physics, png=png))
+                                   frames=args.frames, physics=args.physics, png=png, breakdown=args.breakdown))
             finally:
                 instance.close()
             print(f"N={objects}, {views} view(s): {results[-1].ms_per_frame:.1f} ms/frame", file=sys.stderr)
     print(f"device: {results[0].device}")
     print(table(results))
+    if args.breakdown:
+        print(breakdown_table(results))
     if args.json is not None:
         args.json.write_text(json.dumps([asdict(r) for r in results], indent=2) + "\n")
     return 0

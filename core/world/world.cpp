@@ -1,6 +1,7 @@
 #include "core/world/world.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "core/base/error.h"
@@ -12,6 +13,33 @@
 #include "core/world/pawn.h"
 #include "core/world/physics_subsystem.h"
 #include "core/world/scene_io.h"
+
+namespace {
+
+// Milliseconds between laps, for FFrameTimings.
+class Stopwatch {
+  public:
+    double lap() {
+        const auto now = std::chrono::steady_clock::now();
+        const double ms = std::chrono::duration<double, std::milli>(now - last_).count();
+        last_ = now;
+        return ms;
+    }
+
+  private:
+    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+// The stage a subsystem's time is counted in, by its tick order (see sp::world::tick_order).
+double& stageOf(FFrameTimings& timings, int tickOrder) {
+    if (tickOrder == sp::world::tick_order::kPhysics)
+        return timings.PhysicsMs;
+    if (tickOrder == sp::world::tick_order::kRendering)
+        return timings.RenderingMs;
+    return timings.OtherMs;
+}
+
+} // namespace
 
 UWorld::UWorld() {
     InitObject("World", this);
@@ -343,6 +371,7 @@ void UWorld::inject_input_for_actor(AActor* actor, const std::string& input_acti
 
 void UWorld::Tick(double deltaSeconds) {
     ticking_ = true;
+    Stopwatch watch;
     try {
         // Index loop: an actor spawned during the tick is appended and ticks from the next frame.
         const size_t count = actors_.size();
@@ -361,16 +390,23 @@ void UWorld::Tick(double deltaSeconds) {
     ticking_ = false;
     for (AActor* actor : std::exchange(pendingDestroy_, {}))
         destroy_actor(actor);
+    timings_.ActorsMs += watch.lap();
     // Index loop: a subsystem may create another one while ticking.
-    for (size_t i = 0; i < subsystems_.size(); ++i)
+    for (size_t i = 0; i < subsystems_.size(); ++i) {
         subsystems_[i].subsystem->Tick(deltaSeconds);
+        stageOf(timings_, subsystems_[i].tickOrder) += watch.lap();
+    }
     timeSeconds_ += deltaSeconds;
     ++frameCount_;
+    ++timings_.Frames;
     if (host_ == nullptr)
         NotifyWorldsTicked();
 }
 
 void UWorld::NotifyWorldsTicked() {
-    for (size_t i = 0; i < subsystems_.size(); ++i)
+    Stopwatch watch;
+    for (size_t i = 0; i < subsystems_.size(); ++i) {
         subsystems_[i].subsystem->OnWorldsTicked();
+        stageOf(timings_, subsystems_[i].tickOrder) += watch.lap();
+    }
 }

@@ -14,6 +14,7 @@
 #include "core/reflect/class_ref.h"
 #include "core/reflect/sp_array.h"
 #include "core/world/actor.h"
+#include "core/world/frame_timings.h"
 #include "core/world/hit_result.h"
 #include "core/world/primitive_component.h"
 #include "core/world/world_host.h"
@@ -110,6 +111,11 @@ class UWorld : public UObject {
     /// Returns the number of frames this world has ticked.
     SPFUNCTION()
     int64_t get_frame_count() const { return frameCount_; }
+
+    /// Returns the CPU time this world's frames took by stage (actors, physics, rendering, the rest), summed
+    /// since it began: subtract two readings for a span of frames.
+    SPFUNCTION()
+    FFrameTimings get_frame_timings() const { return timings_; }
 
     /// Traces the segment start -> end against every collision body; returns true on a hit, with the hit,
     /// and the actor and component that were hit (None when nothing was hit).
@@ -253,6 +259,7 @@ class UWorld : public UObject {
     mutable std::map<std::string, int> nameCounters_; // per name prefix; never reused
     double timeSeconds_ = 0.0;
     int64_t frameCount_ = 0;
+    FFrameTimings timings_;
     bool ticking_ = false;
     bool isEditorWorld_ = false;
     std::vector<AActor*> pendingDestroy_;

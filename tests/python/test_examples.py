@@ -51,9 +51,15 @@ def test_cosim_benchmark_prints_table3_and_lands_images(transport: str, physics:
     results = tmp_path / "results.json"
     result = run_example("cosim_benchmark.py", "--objects", "4", "--views", "1", "2", "--width", "96", "--height",
                          "64", "--frames", "3", "--physics", physics, "--json", str(results), "--png",
-                         str(tmp_path), *TRANSPORTS[transport])
+                         str(tmp_path), "--breakdown", *TRANSPORTS[transport])
     assert result.returncode == 0, result.stdout + result.stderr
     lines = result.stdout.splitlines()
+    head = lines.index("| cell | frame | calls | tick | read | end | physics | rendering | gpu shadow | gpu surface "
+                       "| readback |")
+    for row, cell in zip(lines[head + 2:head + 4], ("N=4, 1 view", "N=4, 2 views")):
+        values = [float(v) for v in row.strip("| ").split(" | ")[1:]]
+        assert row.startswith(f"| {cell} | ") and len(values) == 10 and min(values) >= 0.0, row
+        assert sum(values[1:5]) <= values[0] * 1.05  # the phases split the frame
     assert lines[1] == "| simulator | N=4, 1 view | N=4, 2 views |"
     assert lines[3].startswith(f"| spear ({'rpc' if transport == 'rpc' else 'inprocess'}, {physics}, 96x64) | ")
     assert lines[4].startswith("| UnrealCV+ (paper, RTX 4090 laptop) | 279.4 | 528.5 |")

@@ -157,6 +157,34 @@ def test_frames_advance_time_with_a_fixed_step(instance: spear.Instance) -> None
         assert game.get_frame_count() == 4
 
 
+def test_frame_timings_count_each_stage_of_the_frames(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        empty = game.get_frame_timings()
+        assert empty == spear.FFrameTimings()  # nothing ticked yet
+        cube = game.spawn_actor(uclass=spear.AStaticMeshActor, location=spear.FVector(Z=2.0))
+        cube.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        cube.StaticMeshComponent.SetSimulatePhysics(bSimulate=True)
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor, location=spear.FVector(X=-5.0, Z=1.0))
+        camera.CameraSensor.Width, camera.CameraSensor.Height = 16, 16
+    with instance.end_frame():
+        pass
+    with instance.begin_frame():
+        before = game.get_frame_timings()
+    with instance.end_frame():
+        pass
+    instance.step(num_frames=3)
+    with instance.begin_frame():
+        after = game.get_frame_timings()
+    with instance.end_frame():
+        pass
+    assert after.Frames - before.Frames == 4
+    assert after.PhysicsMs > before.PhysicsMs  # a body fell
+    assert after.RenderingMs > before.RenderingMs  # a camera rendered
+    for stage in ("ActorsMs", "PhysicsMs", "RenderingMs", "OtherMs"):
+        assert getattr(after, stage) >= getattr(before, stage) >= 0.0, stage
+
+
 def test_properties_read_write_with_types(instance: spear.Instance) -> None:
     game = instance.get_game()
     with instance.begin_frame():

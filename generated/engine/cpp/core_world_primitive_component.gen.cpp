@@ -15,6 +15,7 @@
 #include "core/world/actor_component.h"
 #include "core/world/character.h"
 #include "core/world/controller.h"
+#include "core/world/frame_timings.h"
 #include "core/world/game_mode.h"
 #include "core/world/gameplay_statics.h"
 #include "core/world/hit_result.h"

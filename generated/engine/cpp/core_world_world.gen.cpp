@@ -15,6 +15,7 @@
 #include "core/world/actor_component.h"
 #include "core/world/character.h"
 #include "core/world/controller.h"
+#include "core/world/frame_timings.h"
 #include "core/world/game_mode.h"
 #include "core/world/gameplay_statics.h"
 #include "core/world/hit_result.h"
@@ -255,6 +256,16 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             false,
             true,
             [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_get_frame_count<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "get_frame_timings",
+            "Returns the CPU time this world's frames took by stage (actors, physics, rendering, the rest), summed\nsince it began: subtract two readings for a span of frames.",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FFrameTimings"),
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_get_frame_timings<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "line_trace_single",

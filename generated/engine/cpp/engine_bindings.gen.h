@@ -22,6 +22,7 @@
 #include "core/world/actor_component.h"
 #include "core/world/character.h"
 #include "core/world/controller.h"
+#include "core/world/frame_timings.h"
 #include "core/world/game_mode.h"
 #include "core/world/gameplay_statics.h"
 #include "core/world/hit_result.h"
@@ -463,6 +464,25 @@ template <> struct type_caster<FCameraPixels> {
         if (v.specular_residual.value().data)
             d["specular_residual"] = sp::pybind::Bridge<sp::reflect::SpArray<sp::reflect::Half>>::out(v.specular_residual);
         return d.release();
+    }
+};
+
+template <> struct type_caster<FFrameTimings> {
+    PYBIND11_TYPE_CASTER(FFrameTimings, const_name("FFrameTimings"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FFrameTimings");
+        if (!isinstance(src, cls))
+            return false;
+        value.Frames = sp::pybind::Bridge<int64_t>::in(src.attr("Frames").cast<sp::pybind::Bridge<int64_t>::Py>(), "FFrameTimings.Frames");
+        value.ActorsMs = sp::pybind::Bridge<double>::in(src.attr("ActorsMs").cast<sp::pybind::Bridge<double>::Py>(), "FFrameTimings.ActorsMs");
+        value.PhysicsMs = sp::pybind::Bridge<double>::in(src.attr("PhysicsMs").cast<sp::pybind::Bridge<double>::Py>(), "FFrameTimings.PhysicsMs");
+        value.RenderingMs = sp::pybind::Bridge<double>::in(src.attr("RenderingMs").cast<sp::pybind::Bridge<double>::Py>(), "FFrameTimings.RenderingMs");
+        value.OtherMs = sp::pybind::Bridge<double>::in(src.attr("OtherMs").cast<sp::pybind::Bridge<double>::Py>(), "FFrameTimings.OtherMs");
+        return true;
+    }
+    static handle cast(const FFrameTimings& v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FFrameTimings");
+        return cls(sp::pybind::Bridge<int64_t>::out(v.Frames), sp::pybind::Bridge<double>::out(v.ActorsMs), sp::pybind::Bridge<double>::out(v.PhysicsMs), sp::pybind::Bridge<double>::out(v.RenderingMs), sp::pybind::Bridge<double>::out(v.OtherMs)).release();
     }
 };
 

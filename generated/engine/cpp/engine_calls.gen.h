@@ -20,6 +20,7 @@
 #include "core/world/actor_component.h"
 #include "core/world/character.h"
 #include "core/world/controller.h"
+#include "core/world/frame_timings.h"
 #include "core/world/game_mode.h"
 #include "core/world/gameplay_statics.h"
 #include "core/world/hit_result.h"
@@ -1702,6 +1703,55 @@ struct FCameraPixelsCalls {
     template <typename Call> static void set_specular_residual(Self* self, const typename Call::Input& value) {
         self->specular_residual = Call::template input<sp::reflect::SpArray<sp::reflect::Half>>(value, "FCameraPixels.specular_residual");
         sp::reflect::notifyPropertyChanged(self, "specular_residual");
+    }
+};
+
+struct FFrameTimingsCalls {
+    using Self = FFrameTimings;
+
+    template <typename Call> static typename Call::Result get_Frames(const Self* self) {
+        const auto& value = self->Frames;
+        return Call::template result<int64_t>(value);
+    }
+    template <typename Call> static void set_Frames(Self* self, const typename Call::Input& value) {
+        self->Frames = Call::template input<int64_t>(value, "FFrameTimings.Frames");
+        sp::reflect::notifyPropertyChanged(self, "Frames");
+    }
+
+    template <typename Call> static typename Call::Result get_ActorsMs(const Self* self) {
+        const auto& value = self->ActorsMs;
+        return Call::template result<double>(value);
+    }
+    template <typename Call> static void set_ActorsMs(Self* self, const typename Call::Input& value) {
+        self->ActorsMs = Call::template input<double>(value, "FFrameTimings.ActorsMs");
+        sp::reflect::notifyPropertyChanged(self, "ActorsMs");
+    }
+
+    template <typename Call> static typename Call::Result get_PhysicsMs(const Self* self) {
+        const auto& value = self->PhysicsMs;
+        return Call::template result<double>(value);
+    }
+    template <typename Call> static void set_PhysicsMs(Self* self, const typename Call::Input& value) {
+        self->PhysicsMs = Call::template input<double>(value, "FFrameTimings.PhysicsMs");
+        sp::reflect::notifyPropertyChanged(self, "PhysicsMs");
+    }
+
+    template <typename Call> static typename Call::Result get_RenderingMs(const Self* self) {
+        const auto& value = self->RenderingMs;
+        return Call::template result<double>(value);
+    }
+    template <typename Call> static void set_RenderingMs(Self* self, const typename Call::Input& value) {
+        self->RenderingMs = Call::template input<double>(value, "FFrameTimings.RenderingMs");
+        sp::reflect::notifyPropertyChanged(self, "RenderingMs");
+    }
+
+    template <typename Call> static typename Call::Result get_OtherMs(const Self* self) {
+        const auto& value = self->OtherMs;
+        return Call::template result<double>(value);
+    }
+    template <typename Call> static void set_OtherMs(Self* self, const typename Call::Input& value) {
+        self->OtherMs = Call::template input<double>(value, "FFrameTimings.OtherMs");
+        sp::reflect::notifyPropertyChanged(self, "OtherMs");
     }
 };
 
@@ -5557,6 +5607,16 @@ struct UWorldCalls {
         const Self* self = Call::template object<const Self>(target, "UWorld.get_frame_count()");
         auto result = self->get_frame_count();
         return Call::template result<int64_t>(result);
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_get_frame_timings(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 0> kParams{};
+        const Call call(args, "UWorld.get_frame_timings()", kParams);
+        const Self* self = Call::template object<const Self>(target, "UWorld.get_frame_timings()");
+        auto result = self->get_frame_timings();
+        sp::reflect::checkResultFields(result, "UWorld.get_frame_timings()");
+        return Call::template result<FFrameTimings>(result);
     }
 
     template <typename Call, typename Target>

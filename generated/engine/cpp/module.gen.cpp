@@ -3509,6 +3509,13 @@ void spear_bind_engine(py::module_& m) {
             },
             "get_frame_count(self) -> int\n\nReturns the number of frames this world has ticked.");
         cls.def(
+            "get_frame_timings",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_get_frame_timings<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
+            },
+            "get_frame_timings(self) -> FFrameTimings\n\nReturns the CPU time this world's frames took by stage (actors, physics, rendering, the rest), summed\nsince it began: subtract two readings for a span of frames.");
+        cls.def(
             "line_trace_single",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& start, const PyArg& end, const py::kwargs& extra) -> py::object {
                 // The parameters in order; the array lives until the call returns.

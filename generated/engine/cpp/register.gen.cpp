@@ -15,6 +15,7 @@
 #include "core/world/actor_component.h"
 #include "core/world/character.h"
 #include "core/world/controller.h"
+#include "core/world/frame_timings.h"
 #include "core/world/game_mode.h"
 #include "core/world/gameplay_statics.h"
 #include "core/world/hit_result.h"
@@ -77,6 +78,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(ATriggerSphere::StaticClass());
     registry.add(AWheeledVehiclePawn::StaticClass());
     registry.add(FCameraPixels::StaticClass());
+    registry.add(FFrameTimings::StaticClass());
     registry.add(FVector::StaticClass());
     registry.add(FHitResult::StaticClass());
     registry.add(FLensDistortion::StaticClass());
@@ -158,6 +160,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(FLensDistortion::StaticClass());
     registry.remove(FHitResult::StaticClass());
     registry.remove(FVector::StaticClass());
+    registry.remove(FFrameTimings::StaticClass());
     registry.remove(FCameraPixels::StaticClass());
     registry.remove(AWheeledVehiclePawn::StaticClass());
     registry.remove(ATriggerSphere::StaticClass());
@@ -199,4 +202,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "8f61a0daaa97d853"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "4000b506cbc99bf2"; }

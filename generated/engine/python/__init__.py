@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "8f61a0daaa97d853"
+API_HASH = "4000b506cbc99bf2"

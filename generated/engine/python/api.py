@@ -62,6 +62,7 @@ __all__ = [
     "EPathFollowingStatus",
     "ESplineCoordinateSpace",
     "FCameraPixels",
+    "FFrameTimings",
     "FHitResult",
     "FLensDistortion",
     "FLinearColor",
@@ -230,6 +231,20 @@ class FCameraPixels(TypedDict, total=False):
     diffuse_illumination: NDArray[np.float16]
     diffuse_only: NDArray[np.float16]
     specular_residual: NDArray[np.float16]
+
+
+@dataclass
+class FFrameTimings:
+    """The CPU time a world's frames took, by stage, summed over the frames since the world began (take two and
+    subtract for a span). GPU time is the renderer's (UCameraSensorComponent.GetRenderStats()).
+    """
+
+    __sp_class__: ClassVar[str] = "FFrameTimings"
+    Frames: int = 0
+    ActorsMs: float = 0.0
+    PhysicsMs: float = 0.0
+    RenderingMs: float = 0.0
+    OtherMs: float = 0.0
 
 
 @dataclass

@@ -55,6 +55,7 @@ __all__ = [
     "EPathFollowingStatus",
     "ESplineCoordinateSpace",
     "FCameraPixels",
+    "FFrameTimings",
     "FHitResult",
     "FLensDistortion",
     "FLinearColor",
@@ -291,6 +292,20 @@ class FCameraPixels(TypedDict, total=False):
     diffuse_illumination: NDArray[np.float16]
     diffuse_only: NDArray[np.float16]
     specular_residual: NDArray[np.float16]
+
+
+@dataclass
+class FFrameTimings:
+    """The CPU time a world's frames took, by stage, summed over the frames since the world began (take two and
+    subtract for a span). GPU time is the renderer's (UCameraSensorComponent.GetRenderStats()).
+    """
+
+    __sp_class__: ClassVar[str]
+    Frames: int = 0
+    ActorsMs: float = 0.0
+    PhysicsMs: float = 0.0
+    RenderingMs: float = 0.0
+    OtherMs: float = 0.0
 
 
 @dataclass
@@ -4607,6 +4622,8 @@ class UWorldAsync(UObjectAsync):
 
     def get_frame_count(self) -> Future[int]: ...
 
+    def get_frame_timings(self) -> Future[FFrameTimings]: ...
+
     def line_trace_single(self, *, start: FVector, end: FVector) -> Future[UWorld.line_trace_singleResult]: ...
 
     def inject_input_for_actor(self, *, actor: AActor, input_action_name: str, value: FVector) -> Future[None]: ...
@@ -4664,6 +4681,8 @@ class UWorldSend(UObjectSend):
     def get_time_seconds(self) -> None: ...
 
     def get_frame_count(self) -> None: ...
+
+    def get_frame_timings(self) -> None: ...
 
     def line_trace_single(self, *, start: FVector, end: FVector) -> None: ...
 
@@ -4778,6 +4797,11 @@ class UWorld(UObject):
 
     def get_frame_count(self) -> int:
         """Returns the number of frames this world has ticked."""
+
+    def get_frame_timings(self) -> FFrameTimings:
+        """Returns the CPU time this world's frames took by stage (actors, physics, rendering, the rest), summed
+        since it began: subtract two readings for a span of frames.
+        """
 
     class line_trace_singleResult(NamedTuple):
         ReturnValue: bool

@@ -20,7 +20,7 @@ from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
 from . import type_codes as _t
-from .api import ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESplineCoordinateSpace, FCameraPixels, FHitResult, FLensDistortion, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
+from .api import ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESplineCoordinateSpace, FCameraPixels, FFrameTimings, FHitResult, FLensDistortion, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
 
@@ -2215,6 +2215,9 @@ class UWorld(UObject, api.UWorld):
 
     def get_frame_count(self) -> int:
         return cast("int", self._sp_call("UWorld", "get_frame_count", {}, _t.T_int))
+
+    def get_frame_timings(self) -> FFrameTimings:
+        return cast("FFrameTimings", self._sp_call("UWorld", "get_frame_timings", {}, _t.T_FFrameTimings))
 
     def line_trace_single(self, *, start: FVector, end: FVector) -> api.UWorld.line_trace_singleResult:
         return cast("api.UWorld.line_trace_singleResult", self._sp_call("UWorld", "line_trace_single", {"start": start, "end": end}, _t.T_bool, api.UWorld.line_trace_singleResult))

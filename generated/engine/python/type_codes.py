@@ -26,6 +26,7 @@ T_EPCGGenerationMode = TypeCode("enum", "EPCGGenerationMode")
 T_EPathFollowingRequestResult = TypeCode("enum", "EPathFollowingRequestResult")
 T_EPathFollowingStatus = TypeCode("enum", "EPathFollowingStatus")
 T_FCameraPixels = TypeCode("struct", "FCameraPixels")
+T_FFrameTimings = TypeCode("struct", "FFrameTimings")
 T_FHitResult = TypeCode("struct", "FHitResult")
 T_FLensDistortion = TypeCode("struct", "FLensDistortion")
 T_FLinearColor = TypeCode("struct", "FLinearColor")
@@ -103,6 +104,7 @@ FIELD_TYPES: dict[str, dict[str, TypeCode]] = {
     "ARecastNavMesh.FindPathsResult": {"PathPoints": T_array_float64, "PathStarts": T_array_int64, "Lengths": T_array_float64, "Results": T_array_uint8},
     "ARecastNavMesh.ProjectPointToNavigationResult": {"ReturnValue": T_bool, "ProjectedLocation": T_FVector},
     "FCameraPixels": {"final_color": T_array_uint8, "hdr_color": T_array_float16, "depth": T_array_float32, "position": T_array_float32, "normal": T_array_float32, "object_ids": T_array_uint32, "material_ids": T_array_uint32, "base_color": T_array_float16, "roughness": T_array_float16, "metallic": T_array_float16, "material_ao": T_array_float16, "diffuse_illumination": T_array_float16, "diffuse_only": T_array_float16, "specular_residual": T_array_float16},
+    "FFrameTimings": {"Frames": T_int, "ActorsMs": T_float, "PhysicsMs": T_float, "RenderingMs": T_float, "OtherMs": T_float},
     "FHitResult": {"bBlockingHit": T_bool, "Location": T_FVector, "ImpactPoint": T_FVector, "ImpactNormal": T_FVector, "Normal": T_FVector, "Distance": T_float, "Time": T_float, "TraceStart": T_FVector, "TraceEnd": T_FVector},
     "FLensDistortion": {"K1": T_float, "K2": T_float, "K3": T_float, "P1": T_float, "P2": T_float},
     "FLinearColor": {"R": T_float, "G": T_float, "B": T_float, "A": T_float},
