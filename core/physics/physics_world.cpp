@@ -164,8 +164,9 @@ BodyId PhysicsWorld::addBody(const BodyDesc& desc) {
     record.shape = detail::buildCollisionShape(desc.shape);
     record.source = desc.shape;
     record.overlapOnly = desc.overlapOnly;
-    SP_CHECK(!simulated || !record.shape.concave, InvalidArgument, fn, ": a ", desc.shape.type(),
-             " shape cannot be simulated; make the body Static, or Movable with simulatePhysics = false");
+    SP_CHECK(!simulated || !record.shape.staticOnly, InvalidArgument, fn, ": a ", desc.shape.type(),
+             desc.shape.type() == ShapeType::Box ? " shape off the body's origin" : " shape",
+             " cannot be simulated; make the body Static, or Movable with simulatePhysics = false");
     record.tag = desc.tag;
     record.mobility = desc.mobility;
     record.simulate = desc.simulatePhysics;
@@ -317,7 +318,7 @@ void PhysicsWorld::setMobility(BodyId id, Mobility mobility) {
     if (record.mobility == mobility)
         return;
     if (mobility == Mobility::Movable && record.simulate) {
-        SP_CHECK(!record.shape.concave, InvalidState, fn, ": body ", id,
+        SP_CHECK(!record.shape.staticOnly, InvalidState, fn, ": body ", id,
                  " has a shape that cannot be simulated; call setSimulatePhysics(false) first");
         SP_CHECK(record.mass > 0.0, InvalidState, fn, ": body ", id, " has mass ", record.mass,
                  "; set a mass > 0 (setMass) before making it a simulated Movable body");
@@ -338,8 +339,8 @@ void PhysicsWorld::setSimulatePhysics(BodyId id, bool simulate) {
     if (record.simulate == simulate)
         return;
     if (simulate && record.mobility == Mobility::Movable) {
-        SP_CHECK(!record.shape.concave, InvalidState, fn, ": body ", id,
-                 " has a plane or triangle mesh shape, which cannot be simulated");
+        SP_CHECK(!record.shape.staticOnly, InvalidState, fn, ": body ", id,
+                 " has a shape that cannot be simulated (a plane, a triangle mesh or a box off its origin)");
         SP_CHECK(record.mass > 0.0, InvalidState, fn, ": body ", id, " has mass ", record.mass,
                  "; set a mass > 0 (setMass) before simulating it");
     }

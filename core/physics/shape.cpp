@@ -49,11 +49,13 @@ std::ostream& operator<<(std::ostream& out, ShapeType type) {
     return out << "ShapeType(" << int(type) << ')';
 }
 
-Shape Shape::box(const Eigen::Vector3d& halfExtents) {
+Shape Shape::box(const Eigen::Vector3d& halfExtents, const Eigen::Vector3d& centre) {
     SP_CHECK(isPositive(halfExtents.x()) && isPositive(halfExtents.y()) && isPositive(halfExtents.z()),
              InvalidArgument, "Shape::box(): half extents ", Vec{halfExtents}, " must all be > 0");
+    SP_CHECK(centre.allFinite(), InvalidArgument, "Shape::box(): centre ", Vec{centre}, " is not finite");
     Shape shape(ShapeType::Box);
     shape.halfExtents_ = halfExtents;
+    shape.centre_ = centre;
     return shape;
 }
 

@@ -22,8 +22,11 @@ std::ostream& operator<<(std::ostream& out, ShapeType type);
 // be static, or movable without simulation).
 class Shape {
   public:
-    // A box with the given half extents in metres (each > 0).
-    static Shape box(const Eigen::Vector3d& halfExtents);
+    // A box with the given half extents in metres (each > 0), its centre at `centre` in the body's frame. A
+    // box off the body's origin suits static geometry (a floor slab under a flat mesh's face) and cannot be
+    // simulated: a simulated body turns about its origin.
+    static Shape box(const Eigen::Vector3d& halfExtents,
+                     const Eigen::Vector3d& centre = Eigen::Vector3d::Zero());
     // A sphere of the given radius in metres (> 0).
     static Shape sphere(double radius);
     // A capsule along Z: a segment of length 2 * halfLength capped by hemispheres of the given radius,
@@ -49,6 +52,8 @@ class Shape {
     const Eigen::Vector3d& scale() const { return scale_; }
     // Box half extents before scaling; zero for other shapes.
     const Eigen::Vector3d& halfExtents() const { return halfExtents_; }
+    // Box centre before scaling; zero for other shapes.
+    const Eigen::Vector3d& centre() const { return centre_; }
     // Sphere, capsule or cylinder radius before scaling; zero for other shapes.
     double radius() const { return radius_; }
     // Capsule halfLength or cylinder halfHeight before scaling; zero for other shapes.
@@ -74,6 +79,7 @@ class Shape {
     ShapeType type_;
     Eigen::Vector3d scale_ = Eigen::Vector3d::Ones();
     Eigen::Vector3d halfExtents_ = Eigen::Vector3d::Zero();
+    Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
     double radius_ = 0.0;
     double halfHeight_ = 0.0;
     Eigen::Vector3d normal_ = Eigen::Vector3d::Zero();

@@ -179,7 +179,8 @@ void appendTriangles(const Shape& shape, const Eigen::Isometry3d& pose, const Ei
     const Eigen::Vector3d& scale = shape.scale();
     switch (shape.type()) {
     case ShapeType::Box:
-        appendBox(shape.halfExtents().cwiseProduct(scale), pose, out);
+        appendBox(shape.halfExtents().cwiseProduct(scale),
+                  pose * Eigen::Translation3d(shape.centre().cwiseProduct(scale)), out);
         return;
     case ShapeType::Sphere:
         appendRevolved(capsuleProfile(shape.radius() * scale.x(), 0.0), pose, out);

@@ -26,8 +26,12 @@ UPrimitiveComponent* componentOfTag(uint64_t tag) {
     return dynamic_cast<UPrimitiveComponent*>(reflect::ObjectTable::find(handle));
 }
 
-// Thin shapes (a Plane mesh used as a box, a flat cylinder) get this half thickness instead of zero.
+// Thin shapes (a flat cylinder, a flat mesh's bounds as a box) get this half thickness instead of zero.
 constexpr double kMinHalfExtent = 1e-3;
+// A Plane collides as a slab this thick under its face, in metres whatever the scale: box-box and
+// sphere-box contacts are exact and several times cheaper than a triangle's, and a slab is harder to tunnel
+// through. Its back face stands this far behind the plane.
+constexpr double kPlaneSlabThickness = 0.01;
 
 physics::Shape makeShape(ECollisionPrimitive primitive, const Eigen::Vector3d& halfExtents,
                          const Eigen::Vector3d& scale, const std::string& mesh) {
@@ -48,9 +52,8 @@ physics::Shape makeShape(ECollisionPrimitive primitive, const Eigen::Vector3d& h
     case ECollisionPrimitive::Cylinder:
         return physics::Shape::cylinder(std::max(he.x(), he.y()), he.z()).scaled(scale);
     case ECollisionPrimitive::Plane: {
-        std::vector<Eigen::Vector3d> vertices{
-            {-he.x(), -he.y(), 0.0}, {he.x(), -he.y(), 0.0}, {he.x(), he.y(), 0.0}, {-he.x(), he.y(), 0.0}};
-        return physics::Shape::triangleMesh(std::move(vertices), {0, 1, 2, 0, 2, 3}).scaled(scale);
+        const double half = 0.5 * kPlaneSlabThickness / scale.z(); // before the scale, which is applied after
+        return physics::Shape::box({he.x(), he.y(), half}, {0.0, 0.0, -half}).scaled(scale);
     }
     default:
         return physics::Shape::box(he).scaled(scale);

@@ -55,6 +55,30 @@ def test_bodies_fall_and_rest_on_the_floor_at_their_analytic_height(instance: sp
         assert cube.StaticMeshComponent.GetPhysicsLinearVelocity().Z == pytest.approx(0.0, abs=1e-2)
 
 
+def test_a_plane_mesh_is_a_thin_slab_under_its_face(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        ground = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Ground", location=spear.FVector(Z=1.0))
+        ground.StaticMeshComponent.SetStaticMesh(NewMesh=PLANE)
+        ground.SetActorScale3D(NewScale3D=spear.FVector(10, 10, 3))  # the slab's thickness ignores the Z scale
+        cube = spawn_body(game, "Cube", CUBE, spear.FVector(0, 0, 3), spear.FVector(0.5, 0.5, 0.5))
+        ball = spawn_body(game, "Ball", SPHERE, spear.FVector(2, 0, 3), spear.FVector(0.4, 0.4, 0.4))
+    with instance.end_frame():
+        pass
+    instance.step(num_frames=180)
+    with instance.begin_frame():
+        assert cube.GetActorLocation().Z == pytest.approx(1.25, abs=1e-3)
+        assert ball.GetActorLocation().Z == pytest.approx(1.2, abs=1e-3)
+        down = game.line_trace_single(start=spear.FVector(-2, 0, 10), end=spear.FVector(-2, 0, -10))
+        assert down.actor == ground and down.hit.Location.Z == pytest.approx(1.0, abs=1e-9)
+        up = game.line_trace_single(start=spear.FVector(-2, 0, -10), end=spear.FVector(-2, 0, 10))
+        assert up.actor == ground and up.hit.Location.Z == pytest.approx(0.99, abs=1e-9)  # its back face
+        beside = game.line_trace_single(start=spear.FVector(6, 0, 10), end=spear.FVector(6, 0, -10))
+        assert not beside.ReturnValue  # the slab ends with the plane
+    with instance.end_frame():
+        pass
+
+
 def test_free_fall_follows_gravity(instance: spear.Instance) -> None:
     game = instance.get_game()
     with instance.begin_frame():

@@ -5,6 +5,7 @@
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
 #include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
 #include <BulletCollision/CollisionShapes/btCapsuleShape.h>
+#include <BulletCollision/CollisionShapes/btCompoundShape.h>
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #include <BulletCollision/CollisionShapes/btCylinderShape.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
@@ -53,7 +54,7 @@ BuiltShape buildConvexHull(const Shape& shape) {
 
 BuiltShape buildTriangleMesh(const Shape& shape) {
     BuiltShape built;
-    built.concave = true;
+    built.staticOnly = true;
     built.vertices.reserve(shape.points().size() * 3);
     for (const Eigen::Vector3d& p : shape.scaledPoints())
         built.vertices.insert(built.vertices.end(), {p.x(), p.y(), p.z()});
@@ -84,7 +85,19 @@ BuiltShape buildCollisionShape(const Shape& shape) {
         const Eigen::Vector3d half = shape.halfExtents().cwiseProduct(scale);
         auto box = std::make_unique<btBoxShape>(toBullet(half));
         box->setMargin(marginFor(half.minCoeff()));
-        built.shape = std::move(box);
+        const Eigen::Vector3d centre = shape.centre().cwiseProduct(scale);
+        if (centre.isZero()) {
+            built.shape = std::move(box);
+            return built;
+        }
+        // Off the origin: a compound of one child, which Bullet collides as the box itself (box-box and
+        // sphere-box contacts, not a triangle's).
+        built.child = std::move(box);
+        auto compound = std::make_unique<btCompoundShape>(false, 1);
+        compound->addChildShape(btTransform(btQuaternion::getIdentity(), toBullet(centre)),
+                                built.child.get());
+        built.shape = std::move(compound);
+        built.staticOnly = true;
         return built;
     }
     case ShapeType::Sphere:
@@ -106,7 +119,7 @@ BuiltShape buildCollisionShape(const Shape& shape) {
     case ShapeType::Plane:
         built.shape =
             std::make_unique<btStaticPlaneShape>(toBullet(shape.scaledNormal()), shape.scaledOffset());
-        built.concave = true;
+        built.staticOnly = true;
         return built;
     case ShapeType::ConvexHull:
         return buildConvexHull(shape);

@@ -17,9 +17,11 @@ struct BuiltShape {
     std::vector<btScalar> vertices;
     std::vector<int> indices;
     std::unique_ptr<btTriangleIndexVertexArray> mesh;
+    std::unique_ptr<btCollisionShape> child; // a compound shape's one child, which it points to
     std::unique_ptr<btCollisionShape> shape;
-    // Planes and triangle meshes: Bullet can collide them but not simulate them (no inertia).
-    bool concave = false;
+    // Planes, triangle meshes and boxes off the body's origin: Bullet can collide them but they cannot be
+    // simulated (no inertia, or none about the origin the body turns about).
+    bool staticOnly = false;
 };
 
 // Builds the shape with its scale baked into the geometry, so that Bullet's margins stay exact: the

@@ -31,6 +31,26 @@ TEST(PhysicsDynamicsTest, BoxComesToRestAtItsHalfExtent) {
     EXPECT_NEAR(pose.linear()(2, 2), 1.0, 1e-6);
 }
 
+TEST(PhysicsDynamicsTest, ShapesRestOnABoxOffItsOriginAtItsTopFace) {
+    // A floor slab whose top face is the body's origin plane, scaled and placed as a flat mesh's collision
+    // is.
+    PhysicsWorld world;
+    BodyDesc floor;
+    floor.shape = Shape::box({0.5, 0.5, 0.25}, {0, 0, -0.25}).scaled({20, 20, 0.02});
+    floor.mobility = Mobility::Static;
+    floor.pose = at(0, 0, 1.0);
+    world.addBody(floor);
+    const BodyId box = world.addBody(dynamicBody(Shape::box({0.5, 0.3, 0.2}), 0, 0, 2.0));
+    const BodyId sphere = world.addBody(dynamicBody(Shape::sphere(0.25), 3, 0, 2.0));
+    run(world, 3.0);
+    EXPECT_NEAR(world.getPose(box).translation().z(), 1.2, kRestTolerance);
+    EXPECT_NEAR(world.getPose(sphere).translation().z(), 1.25, kRestTolerance);
+    // Its bottom face is 0.01 m below: a ray from underneath stops there.
+    const auto hit = world.raycast({0, 0, 0}, {0, 0, 5});
+    ASSERT_TRUE(hit);
+    EXPECT_NEAR(hit->point.z(), 0.99, 1e-9);
+}
+
 TEST(PhysicsDynamicsTest, SphereComesToRestAtItsRadius) {
     PhysicsWorld world;
     addFloor(world);

@@ -134,6 +134,11 @@ TEST(PhysicsWorldTest, AddBodyRejectsBadFieldsNamingTheValue) {
     expectThrowMessage<InvalidArgument>(
         [&] { world.addBody(desc); }, "PhysicsWorld::addBody(): a Plane shape cannot be simulated; make the "
                                       "body Static, or Movable with simulatePhysics = false");
+    desc.shape = Shape::box({1, 1, 1}, {0, 0, -1});
+    expectThrowMessage<InvalidArgument>(
+        [&] { world.addBody(desc); },
+        "PhysicsWorld::addBody(): a Box shape off the body's origin cannot be "
+        "simulated; make the body Static, or Movable with simulatePhysics = false");
     EXPECT_EQ(world.bodyCount(), 1u);
 }
 

@@ -35,6 +35,10 @@ bool isClosedAndConsistent(const TriangleSoup& soup) {
     return true;
 }
 
+Eigen::Isometry3d at(double x, double y, double z) {
+    return Eigen::Isometry3d(Eigen::Translation3d(x, y, z));
+}
+
 TriangleSoup trianglesOf(const Shape& shape, const Eigen::Isometry3d& pose = Eigen::Isometry3d::Identity()) {
     TriangleSoup soup;
     appendTriangles(shape, pose, Eigen::AlignedBox3d(), soup);
@@ -47,6 +51,14 @@ TEST(TrianglesTest, BoxIsClosedOutwardAndExact) {
     EXPECT_NEAR(signedVolume(soup), 8.0 * 2 * 2 * 3, 1e-9);
     EXPECT_TRUE(
         soup.bounds().isApprox(Eigen::AlignedBox3d(Eigen::Vector3d(-2, -2, -3), Eigen::Vector3d(2, 2, 3))));
+}
+
+TEST(TrianglesTest, ABoxOffItsOriginKeepsItsScaledCentre) {
+    const TriangleSoup soup =
+        trianglesOf(Shape::box({1, 2, 0.5}, {0, 0, -0.5}).scaled({2, 1, 2}), at(1, 0, 0));
+    EXPECT_NEAR(signedVolume(soup), 4.0 * 4.0 * 2.0, 1e-9);
+    EXPECT_TRUE(
+        soup.bounds().isApprox(Eigen::AlignedBox3d(Eigen::Vector3d(-1, -2, -2), Eigen::Vector3d(3, 2, 0))));
 }
 
 TEST(TrianglesTest, RoundShapesAreClosedOutwardAndCloseToTheirVolume) {
