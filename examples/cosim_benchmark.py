@@ -68,7 +68,7 @@ class Result:
     physics: str
     ms_per_frame: float
     device: str
-    phases: dict[str, float] = field(default_factory=dict)  # --breakdown: milliseconds per frame by phase
+    phases: dict[str, float] = field(default_factory=dict[str, float])  # --breakdown: milliseconds per frame by phase
 
 
 def grid_position(i: int, n: int) -> tuple[float, float]:
