@@ -40,6 +40,10 @@ class Engine final : public world::WorldHost {
         bool editor = false;
         // A scene file loaded into the editor world (editor mode) or the game world; empty for none.
         std::string scene{};
+        // Threads stepping the worlds' physics at once when the engine has several worlds; 0: the
+        // SPEAR_PHYSICS_THREADS environment variable when set, else half the machine's hardware threads. A
+        // world's results do not depend on it (each world steps alone on one thread).
+        int physicsThreads = 0;
     };
 
     Engine();

@@ -266,13 +266,19 @@ void PhysicsSubsystem::writeBack() {
     }
 }
 
-void PhysicsSubsystem::Tick(double deltaSeconds) {
-    PhysicsHooks* hooks = world_.FindSubsystem<PhysicsHooks>();
-    if (hooks)
+void PhysicsSubsystem::Tick(double /*deltaSeconds*/) {
+    if (PhysicsHooks* hooks = world_.FindSubsystem<PhysicsHooks>())
         hooks->beforeStep();
     syncAll();
+}
+
+void PhysicsSubsystem::StepConcurrently(double deltaSeconds) {
     physicsWorld_.step(deltaSeconds);
+}
+
+void PhysicsSubsystem::FinishTick(double /*deltaSeconds*/) {
     writeBack();
+    PhysicsHooks* hooks = world_.FindSubsystem<PhysicsHooks>();
     if (hooks && hooks->afterStep())
         syncAll(); // a character's capsule moved: its sensor body follows before overlaps are found
     updateOverlapEvents();

@@ -36,8 +36,13 @@ class PhysicsSubsystem : public WorldSubsystem {
     // hooks (and a sync, as they move things), then the overlap events.
     ~PhysicsSubsystem() override;
 
-    // Syncs, steps the physics world by deltaSeconds and writes simulated poses back.
+    // A frame: Tick() runs the pre-physics hooks and syncs, StepConcurrently() steps the physics world by
+    // deltaSeconds (touching only this world's bodies, so worlds step on several threads at once), and
+    // FinishTick() writes the simulated poses back, runs the post-physics hooks and the overlap events.
     void Tick(double deltaSeconds) override;
+    bool HasConcurrentStep() const override { return true; }
+    void StepConcurrently(double deltaSeconds) override;
+    void FinishTick(double deltaSeconds) override;
 
     // Registration, as the world tells of components entering and leaving play: each primitive component
     // gets a body (its first one makes the subsystem; see UPrimitiveComponent::BeginPlay).

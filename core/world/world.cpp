@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <utility>
 
 #include "core/base/error.h"
 #include "core/base/regular_file.h"
@@ -370,6 +371,14 @@ void UWorld::inject_input_for_actor(AActor* actor, const std::string& input_acti
 }
 
 void UWorld::Tick(double deltaSeconds) {
+    if (BeginTick(deltaSeconds))
+        StepConcurrently(deltaSeconds);
+    EndTick(deltaSeconds);
+}
+
+bool UWorld::BeginTick(double deltaSeconds) {
+    splitAt_ = nullptr;
+    subsystemsTicked_ = false;
     ticking_ = true;
     Stopwatch watch;
     try {
@@ -393,7 +402,43 @@ void UWorld::Tick(double deltaSeconds) {
     timings_.ActorsMs += watch.lap();
     // Index loop: a subsystem may create another one while ticking.
     for (size_t i = 0; i < subsystems_.size(); ++i) {
-        subsystems_[i].subsystem->Tick(deltaSeconds);
+        sp::world::WorldSubsystem& subsystem = *subsystems_[i].subsystem;
+        subsystem.Tick(deltaSeconds);
+        if (subsystem.HasConcurrentStep()) {
+            splitAt_ = &subsystem;
+            splitMs_ = watch.lap();
+            return true;
+        }
+        stageOf(timings_, subsystems_[i].tickOrder) += watch.lap();
+    }
+    subsystemsTicked_ = true;
+    return false;
+}
+
+void UWorld::StepConcurrently(double deltaSeconds) {
+    SP_CHECK(splitAt_, sp::InvalidState, "UWorld::StepConcurrently(): BeginTick() stopped at no step");
+    Stopwatch watch;
+    splitAt_->StepConcurrently(deltaSeconds);
+    splitMs_ += watch.lap();
+}
+
+void UWorld::EndTick(double deltaSeconds) {
+    Stopwatch watch;
+    size_t next = std::exchange(subsystemsTicked_, false) ? subsystems_.size() : 0;
+    if (sp::world::WorldSubsystem* split = std::exchange(splitAt_, nullptr)) {
+        while (subsystems_[next].subsystem.get() != split)
+            ++next;
+        split->FinishTick(deltaSeconds);
+        stageOf(timings_, subsystems_[next].tickOrder) += splitMs_ + watch.lap();
+        ++next;
+    }
+    for (size_t i = next; i < subsystems_.size(); ++i) {
+        sp::world::WorldSubsystem& subsystem = *subsystems_[i].subsystem;
+        subsystem.Tick(deltaSeconds);
+        if (subsystem.HasConcurrentStep()) { // only the first one's step runs with other worlds'
+            subsystem.StepConcurrently(deltaSeconds);
+            subsystem.FinishTick(deltaSeconds);
+        }
         stageOf(timings_, subsystems_[i].tickOrder) += watch.lap();
     }
     timeSeconds_ += deltaSeconds;

@@ -158,6 +158,14 @@ class UWorld : public UObject {
     // Advances every actor by one fixed step, then the subsystems; a world without a host then tells them
     // that the frame's worlds ticked (WorldSubsystem::OnWorldsTicked), as the host does after all its worlds.
     void Tick(double deltaSeconds);
+    // The same in three parts, for a host stepping several worlds' physics at once: BeginTick() ticks the
+    // actors and the subsystems up to the one with a concurrent step (WorldSubsystem::HasConcurrentStep),
+    // its Tick() included, and returns whether it stopped there; StepConcurrently() runs that step (touching
+    // only this world, so worlds may run it on several threads at once); EndTick() finishes that subsystem
+    // and ticks the rest. After a part throws, the frame of this world is over (the later parts are not run).
+    bool BeginTick(double deltaSeconds);
+    void StepConcurrently(double deltaSeconds);
+    void EndTick(double deltaSeconds);
     void NotifyWorldsTicked();
 
     // The world's subsystem of type T (constructed as T(UWorld&) on first use).
@@ -260,6 +268,11 @@ class UWorld : public UObject {
     double timeSeconds_ = 0.0;
     int64_t frameCount_ = 0;
     FFrameTimings timings_;
+    // BeginTick -> EndTick: the subsystem whose concurrent step split the tick, and the time spent so far in
+    // it.
+    sp::world::WorldSubsystem* splitAt_ = nullptr;
+    double splitMs_ = 0.0;
+    bool subsystemsTicked_ = false; // BeginTick ticked every subsystem: EndTick has none left
     bool ticking_ = false;
     bool isEditorWorld_ = false;
     std::vector<AActor*> pendingDestroy_;

@@ -15,6 +15,13 @@ class WorldSubsystem {
     virtual ~WorldSubsystem() = default;
     // Called once per frame after every actor has ticked.
     virtual void Tick(double /*deltaSeconds*/) {}
+    // A subsystem whose frame holds work that touches nothing outside its own world (a physics step) splits
+    // it out, so that an engine with several worlds runs every world's such work at once on several threads:
+    // Tick() then does the part before, StepConcurrently() the work, FinishTick() the part after. A world
+    // ticking on its own runs the three in a row. At most one subsystem of a world has such a step.
+    virtual bool HasConcurrentStep() const { return false; }
+    virtual void StepConcurrently(double /*deltaSeconds*/) {}
+    virtual void FinishTick(double /*deltaSeconds*/) {}
     // Called once per frame after every world of the host ticked (for a world without a host, right after
     // its own tick): for work cheaper done for all worlds at once, such as the render subsystems' one batch
     // of every world's cameras.

@@ -1,7 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "core/base/error.h"
 #include "core/engine/engine.h"
@@ -103,6 +106,96 @@ TEST(Engine, EveryWorldTicksWhenOneThrowsAndTheFirstErrorPropagates) {
     engine.endFrame();
     EXPECT_EQ(engine.GetGameWorld().get_frame_count(), 1);
     EXPECT_EQ(healthy.get_frame_count(), 1); // ticked after the failing world
+}
+
+namespace {
+// Four worlds of bodies pushed about on a floor, stepped 90 frames with `threads` physics threads; returns
+// every body's final pose, world by world.
+std::vector<FTransform> pushedBodies(int threads) {
+    Engine::Settings settings;
+    settings.physicsThreads = threads;
+    Engine engine(settings);
+    std::vector<UStaticMeshComponent*> bodies;
+    engine.beginFrame();
+    for (int w = 0; w < 4; ++w) {
+        UWorld& world = engine.CreateWorld("Env" + std::to_string(w));
+        auto* floor = static_cast<AStaticMeshActor*>(
+            world.spawn_actor(&AStaticMeshActor::StaticClass(), {}, {}, "Floor"));
+        floor->StaticMeshComponent->SetStaticMesh("/Engine/BasicShapes/Plane");
+        floor->SetActorScale3D({20, 20, 1});
+        for (int k = 0; k < 6; ++k) {
+            auto* body = static_cast<AStaticMeshActor*>(
+                world.spawn_actor(&AStaticMeshActor::StaticClass(), {0.7 * k - 2.0, 0.3 * w, 0.5 + 0.4 * k},
+                                  {}, "Body" + std::to_string(k)));
+            body->StaticMeshComponent->SetStaticMesh(k % 2 ? "/Engine/BasicShapes/Sphere"
+                                                           : "/Engine/BasicShapes/Cube");
+            body->StaticMeshComponent->SetSimulatePhysics(true);
+            bodies.push_back(body->StaticMeshComponent);
+        }
+    }
+    engine.executeFrame();
+    engine.beginEndFrame();
+    engine.endFrame();
+    for (int frame = 0; frame < 90; ++frame) {
+        engine.beginFrame();
+        for (size_t i = 0; i < bodies.size(); ++i)
+            bodies[i]->AddForce(
+                {3.0 * std::cos(0.1 * frame + double(i)), 3.0 * std::sin(0.1 * frame + double(i)), 0});
+        engine.executeFrame();
+        engine.beginEndFrame();
+        engine.endFrame();
+    }
+    std::vector<FTransform> poses;
+    for (UStaticMeshComponent* body : bodies)
+        poses.push_back(body->GetComponentTransform());
+    return poses;
+}
+
+// A subsystem with a concurrent step that fails, standing for a physics step that throws.
+struct FailingStep : sp::world::WorldSubsystem {
+    static constexpr int kTickOrder = 0;
+    explicit FailingStep(UWorld&) {}
+    bool HasConcurrentStep() const override { return true; }
+    void StepConcurrently(double) override { throw sp::InvalidState("a failing step"); }
+};
+} // namespace
+
+TEST(Engine, WorldsStepPhysicsAtOnceWithTheResultsOfOneThread) {
+    const std::vector<FTransform> serial = pushedBodies(1);
+    const std::vector<FTransform> parallel = pushedBodies(4);
+    ASSERT_EQ(serial.size(), parallel.size());
+    for (size_t i = 0; i < serial.size(); ++i)
+        EXPECT_TRUE(serial[i] == parallel[i]) << "body " << i; // bit for bit: a world steps alone
+    EXPECT_NE(serial[0].Translation.X, -2.0) << "the bodies moved";
+}
+
+TEST(Engine, AFailingConcurrentStepEndsOnlyItsWorldsFrame) {
+    Engine::Settings settings;
+    settings.physicsThreads = 4;
+    Engine engine(settings);
+    UWorld& failing = engine.CreateWorld("Failing");
+    UWorld& healthy = engine.CreateWorld("Healthy");
+    failing.GetSubsystem<FailingStep>();
+    engine.beginFrame();
+    try {
+        engine.executeFrame();
+        FAIL() << "expected the step's error";
+    } catch (const sp::InvalidState& e) {
+        EXPECT_STREQ(e.what(), "a failing step");
+    }
+    engine.beginEndFrame();
+    engine.endFrame();
+    EXPECT_EQ(failing.get_frame_count(), 0);
+    EXPECT_EQ(healthy.get_frame_count(), 1);
+    EXPECT_EQ(engine.GetGameWorld().get_frame_count(), 1);
+    try {
+        Engine::Settings bad;
+        bad.physicsThreads = -1;
+        Engine refused(bad);
+        FAIL();
+    } catch (const sp::InvalidArgument& e) {
+        EXPECT_STREQ(e.what(), "Engine(): physicsThreads must be >= 0, got -1");
+    }
 }
 
 TEST(Engine, SharedObjectsLiveWhileAWorldHoldsThem) {
