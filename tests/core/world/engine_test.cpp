@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <memory>
 #include <string>
@@ -196,6 +197,29 @@ TEST(Engine, AFailingConcurrentStepEndsOnlyItsWorldsFrame) {
     } catch (const sp::InvalidArgument& e) {
         EXPECT_STREQ(e.what(), "Engine(): physicsThreads must be >= 0, got -1");
     }
+}
+
+TEST(Engine, PhysicsThreadsComeFromTheEnvironmentAndAreCheckedThere) {
+    ::setenv("SPEAR_PHYSICS_THREADS", "3", 1);
+    EXPECT_EQ(Engine().GetSettings().physicsThreads, 3);
+    for (const char* bad : {"0", "two", "2x", ""}) {
+        ::setenv("SPEAR_PHYSICS_THREADS", bad, 1);
+        try {
+            Engine refused;
+            ADD_FAILURE() << "accepted '" << bad << "'";
+        } catch (const sp::InvalidArgument& e) {
+            EXPECT_EQ(std::string(e.what()),
+                      std::string("Engine(): SPEAR_PHYSICS_THREADS must be a whole number >= 1, got '") +
+                          bad + "'");
+        }
+    }
+    ::unsetenv("SPEAR_PHYSICS_THREADS");
+    EXPECT_GE(Engine().GetSettings().physicsThreads, 1);
+    Engine::Settings given;
+    given.physicsThreads = 5; // a setting made in code wins over the environment
+    ::setenv("SPEAR_PHYSICS_THREADS", "2", 1);
+    EXPECT_EQ(Engine(given).GetSettings().physicsThreads, 5);
+    ::unsetenv("SPEAR_PHYSICS_THREADS");
 }
 
 TEST(Engine, SharedObjectsLiveWhileAWorldHoldsThem) {
