@@ -426,8 +426,10 @@ void UWorld::EndTick(double deltaSeconds) {
     Stopwatch watch;
     size_t next = std::exchange(subsystemsTicked_, false) ? subsystems_.size() : 0;
     if (sp::world::WorldSubsystem* split = std::exchange(splitAt_, nullptr)) {
-        while (subsystems_[next].subsystem.get() != split)
+        while (next < subsystems_.size() && subsystems_[next].subsystem.get() != split)
             ++next;
+        SP_CHECK(next < subsystems_.size(), sp::InvalidState,
+                 "UWorld::EndTick(): the subsystem whose step split the tick is gone");
         split->FinishTick(deltaSeconds);
         stageOf(timings_, subsystems_[next].tickOrder) += splitMs_ + watch.lap();
         ++next;
