@@ -1,5 +1,7 @@
 #include "core/physics/shape.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "core/base/error.h"
@@ -34,6 +36,11 @@ TEST(ShapeTest, RejectsBadDimensionsWithTheValue) {
             Shape::box({1, 0, 1});
         },
         "Shape::box(): half extents (1, 0, 1) must all be > 0");
+    expectThrowMessage<InvalidArgument>(
+        [] {
+            Shape::box({1, 1, 1}, {0, std::nan(""), 0});
+        },
+        "Shape::box(): centre (0, nan, 0) is not finite");
     expectThrowMessage<InvalidArgument>([] { Shape::sphere(-2); }, "Shape::sphere(): radius -2 must be > 0");
     expectThrowMessage<InvalidArgument>([] { Shape::capsule(1, -1); },
                                         "Shape::capsule(): halfLength -1 must be >= 0");
