@@ -272,8 +272,9 @@ def run(instance: spear.Instance, *, objects: int, views: int, width: int, heigh
 
 
 class Phases:
-    """--breakdown: the wall-clock time between marks, summed per phase over the timed frames, and the
-    renderer's pass times over the same frames (GetRenderStats totals, taken before and after)."""
+    """--breakdown: the wall-clock time between marks, summed per phase over the timed frames, and the world's
+    stage times and the renderer's pass times over the same frames (get_frame_timings and GetRenderStats
+    totals, taken before and after)."""
 
     def __init__(self) -> None:
         self.sums: dict[str, float] = {"calls": 0.0, "tick": 0.0, "read": 0.0, "end": 0.0}
