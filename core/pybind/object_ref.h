@@ -57,6 +57,14 @@ template <typename T> py::object makeWrapper(reflect::ObjectHandle handle) {
 
 // repr, equality and hashing by handle, and `_sp_handle` for the dynamic API; on the root class only.
 std::string describeHandle(reflect::ObjectHandle handle, const char* pythonClass);
+// spear.futures.ImmediateCaller, looked up once: importing it on every call_async / send_async cost as much
+// as the call it wraps. Never released, so that no Python object is freed after the interpreter is gone.
+inline py::handle immediateCaller() {
+    static const py::object* const type =
+        new py::object(py::module_::import("spear.futures").attr("ImmediateCaller"));
+    return *type;
+}
+
 template <typename R> void bindObjectBasics(py::class_<R>& cls) {
     cls.def_property_readonly("_sp_handle", [](const R& self) {
         return std::make_pair(self.handle.index, self.handle.generation);
@@ -80,14 +88,10 @@ template <typename R> void bindObjectBasics(py::class_<R>& cls) {
         "True while the object exists; False once it was destroyed.");
     // In-process, asynchronous calls run at once and return resolved futures (spear.futures).
     cls.def_property_readonly(
-        "call_async",
-        [](py::object self) { return py::module_::import("spear.futures").attr("ImmediateCaller")(self); },
+        "call_async", [](py::object self) { return immediateCaller()(self); },
         "The same functions, asynchronous: each returns a Future.");
     cls.def_property_readonly(
-        "send_async",
-        [](py::object self) {
-            return py::module_::import("spear.futures").attr("ImmediateCaller")(self, true);
-        },
+        "send_async", [](py::object self) { return immediateCaller()(self, true); },
         "The same functions, fire and forget.");
 }
 
