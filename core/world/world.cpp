@@ -378,7 +378,6 @@ void UWorld::Tick(double deltaSeconds) {
 
 bool UWorld::BeginTick(double deltaSeconds) {
     splitAt_ = nullptr;
-    subsystemsTicked_ = false;
     ticking_ = true;
     Stopwatch watch;
     try {
@@ -411,7 +410,6 @@ bool UWorld::BeginTick(double deltaSeconds) {
         }
         stageOf(timings_, subsystems_[i].tickOrder) += watch.lap();
     }
-    subsystemsTicked_ = true;
     return false;
 }
 
@@ -424,8 +422,9 @@ void UWorld::StepConcurrently(double deltaSeconds) {
 
 void UWorld::EndTick(double deltaSeconds) {
     Stopwatch watch;
-    size_t next = std::exchange(subsystemsTicked_, false) ? subsystems_.size() : 0;
+    size_t next = subsystems_.size(); // BeginTick ticked them all, unless a step split the tick
     if (sp::world::WorldSubsystem* split = std::exchange(splitAt_, nullptr)) {
+        next = 0;
         while (next < subsystems_.size() && subsystems_[next].subsystem.get() != split)
             ++next;
         SP_CHECK(next < subsystems_.size(), sp::InvalidState,

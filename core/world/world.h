@@ -272,7 +272,6 @@ class UWorld : public UObject {
     // it.
     sp::world::WorldSubsystem* splitAt_ = nullptr;
     double splitMs_ = 0.0;
-    bool subsystemsTicked_ = false; // BeginTick ticked every subsystem: EndTick has none left
     bool ticking_ = false;
     bool isEditorWorld_ = false;
     std::vector<AActor*> pendingDestroy_;
