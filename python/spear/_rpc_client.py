@@ -28,7 +28,7 @@ from spear._reply_buffers import ReplyBuffers
 from spear._rpc_types import convert, convert_result_tuple
 from spear._type_code import TypeCode
 from spear._segments import remove_orphaned_segments
-from spear._wire import OutgoingSegments, ValueRefused, encode, pack_frame, unpack_body
+from spear._wire import OutgoingSegments, ValueRefused, _object_ext, encode, pack_frame, unpack_body
 from spear.futures import Future, warn_send_failed
 
 _ERRORS: dict[str, type[errors.SpearError]] = {
@@ -68,6 +68,7 @@ class RpcConnection:
         # Calls waiting for the next message: (call, its future or None, result conversion, critical). A
         # critical call (a frame operation) stops the rest of its batch when it fails, and its error is raised.
         self._queue: list[tuple[dict[str, Any], Future[Any] | None, Callable[[Any], Any], bool]] = []
+        self._queue_segments: OutgoingSegments | None = None  # those the queued calls' arguments went into
         self._reply_buffers = ReplyBuffers()
         # Their names go when the connection is closed, or when it is collected without being closed.
         self._buffers_cleanup = weakref.finalize(self, self._reply_buffers.close)
@@ -101,9 +102,19 @@ class RpcConnection:
     def _send_queue(self, last: dict[str, Any] | None) -> Any:
         """Sends the queued calls, then `last` if given, in one message; returns the result of `last`."""
         queue, self._queue = self._queue, []
-        calls = [call for call, _, _, _ in queue] + ([last] if last is not None else [])
+        segments, self._queue_segments = self._queue_segments, None
+        if segments is None:
+            segments = self._segments()
+        calls = [call for call, _, _, _ in queue]  # encoded when they were queued
+        refused: dict[int, errors.SpearError] = {}
+        if last is not None:
+            try:
+                calls.append(_encode_fields(str(last.get("op", "")), last, segments))
+            except errors.InvalidArgumentError as error:
+                refused[len(calls)] = error
+                calls.append({"op": "echo"})  # keeps the positions of the replies
         critical = [i for i, entry in enumerate(queue) if entry[3]]
-        results = self.batch(calls, critical=critical)
+        results = self._batch_encoded(calls, critical, segments, refused)
         failure = next((results[i] for i in critical if isinstance(results[i], errors.SpearError)), None)
         for (_, future, convert_result, is_critical), result in zip(queue, results):
             if is_critical:
@@ -127,15 +138,33 @@ class RpcConnection:
             raise results[-1]
         return results[-1]
 
-    def _queue_call(self, call: dict[str, Any], convert_result: Callable[[Any], Any]) -> Any:
+    def _queue_call(self, call: dict[str, Any], arguments: str,
+                    convert_result: Callable[[Any], Any] | None) -> Any:
+        """Queues a call, its arguments (the field named `arguments`) encoded now: a value the caller changes
+        after queueing it (a struct it reuses, an array it fills again) travels as it was at the call, as
+        in-process, where the call runs at once. A value the wire cannot carry fails this call alone: a
+        warning for send_async, an error in the future for call_async, as in-process."""
+        if self._queue_segments is None:
+            self._queue_segments = self._segments()
+        try:
+            call[arguments] = _encode_field(call["op"], call, arguments, call[arguments], self._queue_segments)
+        except errors.InvalidArgumentError as error:
+            if self._deferring:
+                # At the caller's line (through the queueing caller, the proxy's method and _sp_call, call).
+                warn_send_failed(error, stacklevel=6)
+                return None
+            return Future.failed(error)
         future: Future[Any] | None = None if self._deferring else Future(self.flush)
-        self._queue.append((call, future, convert_result, False))
+        self._queue.append((call, future, convert_result or _unchanged, False))
         return future
+
+    def _segments(self) -> OutgoingSegments:
+        return OutgoingSegments(self._reply_buffers, inline=self.address.startswith("tcp:"), owner=self)
 
     def request(self, op: str, **fields: Any) -> Any:
         if self._queue:  # queued calls run first, in the order they were made, in the same message
             return self._send_queue({"op": op, **fields})
-        segments = OutgoingSegments(self._reply_buffers, inline=self.address.startswith("tcp:"), owner=self)
+        segments = self._segments()
         reply: Any = None
         try:
             message = {"id": next(self._ids), "op": op, **_encode_fields(op, fields, segments)}
@@ -150,17 +179,22 @@ class RpcConnection:
         one of the `critical` positions fails, the server runs none of the calls after it."""
         if self._queue:
             self.flush()
-        segments = OutgoingSegments(self._reply_buffers, inline=self.address.startswith("tcp:"), owner=self)
-        reply: Any = None
+        segments = self._segments()
         refused: dict[int, errors.SpearError] = {}  # calls refused before sending, by position
+        encoded = []
+        for i, call in enumerate(calls):
+            try:
+                encoded.append(_encode_fields(str(call.get("op", "")), call, segments))
+            except errors.InvalidArgumentError as error:
+                refused[i] = error
+                encoded.append({"op": "echo"})  # keeps the positions of the replies
+        return self._batch_encoded(encoded, critical, segments, refused)
+
+    def _batch_encoded(self, encoded: list[dict[str, Any]], critical: Sequence[int], segments: OutgoingSegments,
+                       refused: dict[int, errors.SpearError]) -> list[Any]:
+        """Sends encoded calls in one message; their segments are released once the reply has arrived."""
+        reply: Any = None
         try:
-            encoded = []
-            for i, call in enumerate(calls):
-                try:
-                    encoded.append(_encode_fields(str(call.get("op", "")), call, segments))
-                except errors.InvalidArgumentError as error:
-                    refused[i] = error
-                    encoded.append({"op": "echo"})  # keeps the positions of the replies
             message: dict[str, Any] = {"id": next(self._ids), "op": "batch", "calls": encoded}
             if critical:
                 message["critical"] = list(critical)
@@ -168,12 +202,15 @@ class RpcConnection:
         finally:
             segments.release()
             self._settle_buffers(reply, batch=True)
-        results = []
-        for i, item in enumerate(self._result(reply)):
-            try:
-                results.append(refused[i] if i in refused else self._result(item))
-            except errors.SpearError as error:
-                results.append(error)
+        results: list[Any] = []
+        for item in self._result(reply):
+            if "error" in item:
+                kind, text = item["error"]
+                results.append(_ERRORS.get(kind, errors.SpearError)(text))
+            else:
+                results.append(item["ok"])
+        for i, error in refused.items():
+            results[i] = error
         return results
 
     def _settle_buffers(self, reply: Any, batch: bool) -> None:
@@ -232,6 +269,11 @@ class RpcConnection:
 
     def call(self, handle: tuple[int, int], function: str, args: dict[str, Any], result_type: TypeCode,
              context: str = "", result_tuple: Any = None) -> Any:
+        if self._deferring is not None:  # the object reference made at once: it is this connection's own handle
+            call = {"op": "call", "object": _object_ext(handle[0], handle[1]), "function": function, "args": args,
+                    "context": context}
+            return self._queue_call(call, "args", None if self._deferring else _ResultConversion(
+                self, result_type, result_tuple))
         return self._call({"object": _HandleRef(handle)}, function, args, result_type, context, result_tuple)
 
     def call_static(self, class_name: str, function: str, args: dict[str, Any], result_type: TypeCode,
@@ -241,15 +283,11 @@ class RpcConnection:
 
     def _call(self, target: dict[str, Any], function: str, args: dict[str, Any], result_type: TypeCode,
               context: str, result_tuple: Any) -> Any:
-        def typed(value: Any) -> Any:
-            if result_tuple is not None:
-                return convert_result_tuple(value, result_tuple, self)
-            return convert(value, result_type, self)
-
+        convert_result = _ResultConversion(self, result_type, result_tuple)
         call = {**target, "function": function, "args": args, "context": context}
         if self._deferring is not None:
-            return self._queue_call({"op": "call", **call}, typed)
-        return typed(self.request("call", **call))
+            return self._queue_call({"op": "call", **call}, "args", convert_result)
+        return convert_result(self.request("call", **call))
 
     def get_property(self, handle: tuple[int, int], name: str, result_type: TypeCode, context: str = "") -> Any:
         value = self.request("get", object=_HandleRef(handle), property=name, context=context)
@@ -263,11 +301,11 @@ class RpcConnection:
 
     def call_sp_func(self, handle: tuple[int, int], name: str, arrays: dict[str, Any], unreal_objs: dict[str, str],
                      info: str, finish: Callable[[Any], Any], context: str = "") -> Any:
-        call = {"object": _HandleRef(handle), "name": name, "arrays": arrays, "unreal_objs": unreal_objs,
-                "info": info, "context": context}
-        if self._deferring is not None:
-            return self._queue_call({"op": "sp_func", **call}, finish)
-        return finish(self.request("sp_func", **call))
+        call = {"name": name, "arrays": arrays, "unreal_objs": unreal_objs, "info": info, "context": context}
+        if self._deferring is not None:  # its other fields are names (unreal_objs: names as text)
+            return self._queue_call({"op": "sp_func", "object": _object_ext(handle[0], handle[1]), **call}, "arrays",
+                                    finish)
+        return finish(self.request("sp_func", object=_HandleRef(handle), **call))
 
     def sp_func_names(self, handle: tuple[int, int], context: str = "") -> list[str]:
         return list(self.request("sp_func_names", object=_HandleRef(handle), context=context))
@@ -277,6 +315,8 @@ class RpcConnection:
         return other is self or getattr(other, "engine", None) == self.engine
 
     def close(self) -> None:
+        if self._queue_segments is not None:  # calls queued and never sent
+            self._queue_segments.release()
         self._buffers_cleanup()
         try:
             self._socket.close()
@@ -306,25 +346,42 @@ def _unchanged(value: Any) -> Any:
     return value
 
 
+class _ResultConversion:
+    """A queued call's result conversion (to the declared type), as a small object instead of a closure."""
+
+    __slots__ = ("_connection", "_type", "_tuple")
+
+    def __init__(self, connection: RpcConnection, result_type: TypeCode, result_tuple: Any) -> None:
+        self._connection, self._type, self._tuple = connection, result_type, result_tuple
+
+    def __call__(self, value: Any) -> Any:
+        if self._tuple is not None:
+            return convert_result_tuple(value, self._tuple, self._connection)
+        return convert(value, self._type, self._connection)
+
+
 def _encode_fields(op: str, fields: dict[str, Any], segments: OutgoingSegments) -> dict[str, Any]:
     """A request's fields, encoded. A value the wire cannot carry is refused naming the function, and for a
     typed call the argument, as the in-process engine names it."""
-    where = context = _context(op, fields)
-    encoded: dict[str, Any] = {}
+    return {key: _encode_field(op, fields, key, value, segments) for key, value in fields.items()}
+
+
+def _encode_field(op: str, fields: dict[str, Any], key: str, value: Any, segments: OutgoingSegments) -> Any:
+    if type(value) is str:
+        return value  # the names, unchanged
+    context = fields.get("context")
+    if key == "args" and context and isinstance(value, dict):  # a typed call's arguments, each named
+        arguments: dict[str, Any] = {}
+        for name, item in value.items():
+            try:
+                arguments[name] = encode(item, segments)
+            except ValueRefused as error:
+                raise errors.InvalidArgumentError(f"{context}: argument '{name}': {error}") from None
+        return arguments
     try:
-        for key, value in fields.items():
-            if key == "args" and fields.get("context") and isinstance(value, dict):
-                arguments: dict[str, Any] = {}
-                for name, item in value.items():
-                    where = f"{context}: argument '{name}'"
-                    arguments[name] = encode(item, segments)
-                encoded[key] = arguments
-            else:
-                where = context
-                encoded[key] = value if type(value) is str else encode(value, segments)  # the names, unchanged
+        return encode(value, segments)
     except ValueRefused as error:
-        raise errors.InvalidArgumentError(f"{where}: {error}") from None
-    return encoded
+        raise errors.InvalidArgumentError(f"{_context(op, fields)}: {error}") from None
 
 
 def _context(op: str, fields: dict[str, Any]) -> str:

@@ -125,18 +125,31 @@ class ObjectProxy(SpObject):
 
 
 class _DeferredCaller:
+    """obj.call_async / obj.send_async over RPC: its attributes are the object's functions, queued."""
+
     __slots__ = ("_proxy", "_discard")
 
     def __init__(self, proxy: ObjectProxy, discard: bool) -> None:
         self._proxy = proxy
         self._discard = discard
 
-    def __getattr__(self, name: str) -> Any:
-        method = getattr(self._proxy, name)
-        client = self._proxy._sp_client
+    # __getattribute__ rather than __getattr__: every name is a function of the object, and the failed normal
+    # lookup that precedes __getattr__ costs as much as the rest of queueing a call.
+    def __getattribute__(self, name: str) -> Any:
+        if name.startswith("__"):
+            return object.__getattribute__(self, name)
+        proxy = _caller_proxy(self)
+        method = getattr(proxy, name)
+        client = proxy._sp_client
+        discard = _caller_discard(self)
 
         def call(**kwargs: Any) -> Any:
-            with client.deferred(self._discard):
+            with client.deferred(discard):
                 return method(**kwargs)
 
         return call
+
+
+# The slots' descriptors, read without going through __getattribute__.
+_caller_proxy: Callable[[_DeferredCaller], ObjectProxy] = vars(_DeferredCaller)["_proxy"].__get__
+_caller_discard: Callable[[_DeferredCaller], bool] = vars(_DeferredCaller)["_discard"].__get__

@@ -78,3 +78,37 @@ def test_a_failed_send_async_call_is_a_warning_and_the_rest_still_run(instance: 
     assert destroyed
     messages = [str(w.message) for w in warned if str(w.message).startswith("send_async call failed:")]
     assert messages == ["send_async call failed: UWorld.destroy_actor(): argument 'actor' must not be None"]
+
+
+def test_queued_calls_take_their_arguments_as_they_were_at_the_call(instance: spear.Instance) -> None:
+    # In-process a queued call runs at once; over RPC its arguments are encoded when it is queued. Either way a
+    # struct the caller reuses and changes afterwards does not change the calls already made.
+    game = instance.get_game()
+    with instance.begin_frame():
+        actors = [game.spawn_actor(uclass=spear.AStaticMeshActor) for _ in range(3)]
+        where = spear.FVector()
+        moved = []
+        for i, actor in enumerate(actors):
+            where.X = float(i + 1)
+            moved.append(actor.call_async.SetActorLocation(NewLocation=where))
+        where.X = 100.0
+    with instance.end_frame():
+        assert all(future.get() is True for future in moved)
+        assert [actor.GetActorLocation().X for actor in actors] == [1.0, 2.0, 3.0]
+
+
+def test_an_argument_that_cannot_be_sent_fails_its_call_alone(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with pytest.warns(RuntimeWarning) as warned:
+        with instance.begin_frame():
+            actor = game.spawn_actor(uclass=spear.AStaticMeshActor)
+            actor.send_async.SetActorLocation(NewLocation=object())  # type: ignore[arg-type]
+            refused = actor.call_async.SetActorLocation(NewLocation=object())  # type: ignore[arg-type]
+            actor.send_async.SetActorLocation(NewLocation=spear.FVector(X=4.0))
+        with instance.end_frame():
+            with pytest.raises(TypeError, match="SetActorLocation"):
+                refused.get()
+            location = actor.GetActorLocation()
+    assert location == spear.FVector(X=4.0)
+    failed = [str(w.message) for w in warned if str(w.message).startswith("send_async call failed:")]
+    assert len(failed) == 1 and "SetActorLocation" in failed[0]
