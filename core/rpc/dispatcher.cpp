@@ -20,7 +20,9 @@ namespace sp::rpc {
 using reflect::Value;
 
 namespace {
-reflect::ObjectBase& requireObject(const Request& request, const std::string& context) {
+constexpr size_t kSmallReply = 256;
+
+reflect::ObjectBase& requireObject(const Request& request, std::string_view context) {
     Value handle = unpack(request.require("object", context), context);
     SP_CHECK(handle.is<reflect::ObjectHandle>(), InvalidArgument, context,
              ": 'object' must be an object reference");
@@ -135,8 +137,9 @@ bool Dispatcher::handleOne(const msgpack::object& message, Session& session, msg
     if (id && (id->type == msgpack::type::ARRAY || id->type == msgpack::type::MAP))
         id = nullptr;
     // Built aside and appended whole: an error halfway through packing a result (a shared-memory segment
-    // that cannot be made, say) becomes an error reply instead of a truncated one.
-    msgpack::sbuffer built;
+    // that cannot be made, say) becomes an error reply instead of a truncated one. Small at first: most
+    // replies are a few bytes (msgpack-c's default is 8 KiB, allocated for each call of a batch).
+    msgpack::sbuffer built(kSmallReply);
     msgpack::packer<msgpack::sbuffer> out(&built);
     try {
         const Request request(message);
@@ -187,12 +190,18 @@ bool Dispatcher::handleOne(const msgpack::object& message, Session& session, msg
         const size_t openedBefore = opened ? opened->size() : 0;
         const uint64_t faultsBefore = truncationFaults();
         Value result = execute(request, session);
-        msgpack::sbuffer okBody;
-        msgpack::packer<msgpack::sbuffer> okOut(&okBody);
-        pack(okOut, result, toShm);
+        // {"id", "ok"}, and "kept" when the request's arrays stay with the engine: that is known only once
+        // the result is packed and gone, so the map's header is written for two and corrected then.
+        const size_t header = built.size();
+        out.pack_map(2);
+        out.pack(std::string("id"));
+        id ? out.pack(*id) : out.pack_nil();
+        out.pack(std::string("ok"));
+        pack(out, result, toShm);
         // A segment shrank while this request read or wrote it: the server survived (shared_memory.h), but
         // what it read or wrote there is lost, so the request fails.
-        SP_CHECK(truncationFaults() == faultsBefore, InvalidArgument, request.context(request.op() + "()"),
+        SP_CHECK(truncationFaults() == faultsBefore, InvalidArgument,
+                 request.context(std::string(request.op()) + "()"),
                  ": a shared-memory segment was truncated while the server used it; its contents are lost");
         result = Value(); // the request's values are gone now: what still maps a segment was kept
         std::vector<std::string> kept;
@@ -201,12 +210,8 @@ bool Dispatcher::handleOne(const msgpack::object& message, Session& session, msg
             if (auto alive = entry.segment.lock(); alive && alive.use_count() - 1 > entry.othersHolding)
                 kept.push_back(entry.name);
         }
-        out.pack_map(kept.empty() ? 2 : 3);
-        out.pack(std::string("id"));
-        id ? out.pack(*id) : out.pack_nil();
-        out.pack(std::string("ok"));
-        built.write(okBody.data(), okBody.size());
         if (!kept.empty()) {
+            built.data()[header] = char(0x83); // fixmap of 3 (pack_map(2) wrote 0x82)
             out.pack(std::string("kept"));
             out.pack(kept);
         }
@@ -354,11 +359,13 @@ Value Dispatcher::frame(const Request& request, Session& session) {
 // call {object|class, function, args}; call_typed (the dynamic API) also returns the declared types, so the
 // client can build the same Python types the typed proxies do.
 Value Dispatcher::call(const Request& request, Session&) {
-    const std::string& op = request.op();
-    const std::string function = request.string("function", op);
+    const std::string_view op = request.op();
+    const std::string_view function = request.text("function", op);
     // Typed proxies name the member as the in-process bindings do ("AActor.GetName()"), so that messages are
-    // the same on both transports.
-    const std::string context = request.context("call_function('" + function + "')");
+    // the same on both transports. Views into the message: a batch of calls builds no strings.
+    std::string fallback;
+    const std::string_view context =
+        request.context(fallback, [&] { return "call_function('" + std::string(function) + "')"; });
     // A static function names its class instead of an object ("class": "UGameplayStatics").
     const bool isStatic = request.field("class") != nullptr;
     reflect::ObjectBase* object = isStatic ? nullptr : &requireObject(request, context);
@@ -388,7 +395,7 @@ Value Dispatcher::call(const Request& request, Session&) {
 
 // get / get_typed {object, property}; set {object, property, value}.
 Value Dispatcher::property(const Request& request, Session&) {
-    const std::string& op = request.op();
+    const std::string_view op = request.op();
     const std::string name = request.string("property", op);
     const std::string context =
         request.context((op == "set" ? "set_property('" : "get_property('") + name + "')");
@@ -445,7 +452,7 @@ Value Dispatcher::spFuncNames(const Request& request, Session&) {
 
 // is_valid / describe {object}: about an object reference that may be stale.
 Value Dispatcher::objectQuery(const Request& request, Session&) {
-    const std::string& op = request.op();
+    const std::string_view op = request.op();
     Value handle = unpack(request.require("object", op), op);
     SP_CHECK(handle.is<reflect::ObjectHandle>(), InvalidArgument, op,
              "(): 'object' must be an object reference");

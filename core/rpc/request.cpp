@@ -18,17 +18,26 @@ const msgpack::object* mapField(const msgpack::object& map, std::string_view nam
 
 Request::Request(const msgpack::object& message) {
     SP_CHECK(message.type == msgpack::type::MAP, InvalidArgument, "request: expected a map");
-    fields_.reserve(message.via.map.size);
     for (uint32_t i = 0; i < message.via.map.size; ++i) {
         const auto& kv = message.via.map.ptr[i];
         if (kv.key.type == msgpack::type::STR)
-            fields_.emplace_back(std::string_view(kv.key.via.str.ptr, kv.key.via.str.size), &kv.val);
+            add({std::string_view(kv.key.via.str.ptr, kv.key.via.str.size), &kv.val});
     }
-    op_ = string("op", "request");
+    op_ = text("op", "request");
+}
+
+void Request::add(Field entry) {
+    if (inlineCount_ < kInlineFields)
+        inline_[inlineCount_++] = entry;
+    else
+        more_.push_back(entry);
 }
 
 const msgpack::object* Request::field(std::string_view name) const {
-    for (const auto& [key, value] : fields_)
+    for (size_t i = 0; i < inlineCount_; ++i)
+        if (inline_[i].first == name)
+            return inline_[i].second;
+    for (const auto& [key, value] : more_)
         if (key == name)
             return value;
     return nullptr;
@@ -40,17 +49,22 @@ const msgpack::object& Request::require(std::string_view name, std::string_view 
     return *value;
 }
 
-std::string Request::string(std::string_view name, std::string_view where) const {
+std::string_view Request::text(std::string_view name, std::string_view where) const {
     const msgpack::object& value = require(name, where);
     SP_CHECK(value.type == msgpack::type::STR, InvalidArgument, where, "(): '", name, "' must be a string");
-    return std::string(value.via.str.ptr, value.via.str.size);
+    return std::string_view(value.via.str.ptr, value.via.str.size);
+}
+
+std::string_view Request::givenContext() const {
+    const msgpack::object* given = field("context");
+    if (given && given->type == msgpack::type::STR)
+        return std::string_view(given->via.str.ptr, given->via.str.size);
+    return {};
 }
 
 std::string Request::context(std::string fallback) const {
-    const msgpack::object* given = field("context");
-    if (given && given->type == msgpack::type::STR && given->via.str.size > 0)
-        return std::string(given->via.str.ptr, given->via.str.size);
-    return fallback;
+    const std::string_view given = givenContext();
+    return given.empty() ? fallback : std::string(given);
 }
 
 } // namespace sp::rpc
