@@ -29,7 +29,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "python"))
 
 import spear  # noqa: E402
-from spear.vector import Box, StepResult, VectorEnv  # noqa: E402
+from spear.vector import Box, CameraImage, StepResult, VectorEnv  # noqa: E402
 
 SIZE = 128
 
@@ -67,9 +67,8 @@ class Push:
 
     def observe(self, world: spear.UWorld) -> StepResult:
         assert self.camera is not None
-        pixels = self.camera.read_pixels()
-        assert "final_color" in pixels
-        return StepResult(observation={"final_color": pixels["final_color"]})
+        # Read by VectorEnv with the other environments' cameras of the same engine, in one call.
+        return StepResult(observation={"final_color": CameraImage(self.camera)})
 
 
 def rate(envs: list[VectorEnv[NDArray[np.float32]]], steps: int) -> float:

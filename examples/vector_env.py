@@ -25,7 +25,7 @@ from numpy.typing import NDArray
 from PIL import Image  # type: ignore[import]  # Debian ships no Pillow stubs
 
 import spear
-from spear.vector import Box, StepResult, VectorEnv
+from spear.vector import Box, CameraImage, StepResult, VectorEnv
 
 SIZE = 96  # camera pixels per side
 HORIZON = 200  # steps before an episode is truncated
@@ -95,9 +95,8 @@ class PushPuck:
         assert self.puck is not None and self.goal is not None and self.camera is not None
         puck, goal = self.puck.GetActorLocation(), self.goal.GetActorLocation()
         distance = math.hypot(puck.X - goal.X, puck.Y - goal.Y)
-        pixels = self.camera.read_pixels()
-        assert "final_color" in pixels  # the camera renders it every frame (latency 0)
-        return StepResult(observation={"final_color": pixels["final_color"], "puck": np.array([puck.X, puck.Y])},
+        # The image is read by VectorEnv, with the other environments' cameras of the same engine, in one call.
+        return StepResult(observation={"final_color": CameraImage(self.camera), "puck": np.array([puck.X, puck.Y])},
                           reward=-distance, terminated=distance < 0.3, truncated=self.steps >= HORIZON)
 
 

@@ -15,6 +15,11 @@ Auto-reset follows the "next step" convention: an environment whose step ended i
 truncated) is reset during the following step() instead of acting; that step returns its first observation,
 reward 0, terminated and truncated False, and info["reset"] True.
 
+An observation that is a camera's image is best returned as CameraImage(camera, modality) instead of the array
+observe() would read: VectorEnv then reads the images of every environment of an engine in one call
+(UCameraSensorComponent.read_pixels_stacked: one round trip over RPC, no read per environment), straight into
+the stacked observation.
+
 A server that goes away is reported once (a warning naming the environments it held); its environments stay
 failed: their observations are zeros, truncated is True, info["error"] holds the error, and `failed` maps their
 indices to it. The other environments keep running.
@@ -135,11 +140,21 @@ class Discrete:
 # -- one environment ---------------------------------------------------------------------------------------
 
 
+@dataclass(frozen=True)
+class CameraImage:
+    """An observation that is one modality of a camera's images (the frame read at the end of the step). Returned
+    by observe() in place of the array: VectorEnv reads the cameras of all the environments of one engine
+    together, in one read_pixels_stacked call, instead of one read_pixels per environment."""
+
+    camera: api.UCameraSensorComponent
+    modality: str = "final_color"  # a key of the camera's read_pixels() result
+
+
 @dataclass
 class StepResult:
     """What an environment observes at the end of a frame."""
 
-    observation: dict[str, NDArray[Any]]
+    observation: dict[str, NDArray[Any] | CameraImage]
     reward: float = 0.0
     terminated: bool = False  # the episode reached a terminal state
     truncated: bool = False  # the episode was cut short (a time limit)
@@ -371,6 +386,7 @@ class VectorEnv(Generic[ActionT]):
         with instance.end_frame():
             for i in group.indices:
                 results[i] = self._envs[i].observe(self._worlds[i])
+            _read_cameras(results)
         return results
 
     def _fail(self, group: _Group, error: BaseException) -> None:
@@ -415,6 +431,35 @@ class VectorEnv(Generic[ActionT]):
                 truncated[i] = result.truncated
             self._needs_reset[i] = bool(terminated[i] or truncated[i])
         return observations, rewards, terminated, truncated, infos
+
+
+def _read_cameras(results: dict[int, StepResult]) -> None:
+    """Replaces the CameraImage observations of one engine's environments by their images: the cameras each
+    observation key names are read in one read_pixels_stacked call (one per distinct list of cameras, so keys
+    that are modalities of the same cameras share it), and each environment gets its row of the stack."""
+    wanted: dict[str, list[tuple[int, CameraImage]]] = {}
+    for i, result in results.items():
+        for key, value in result.observation.items():
+            if isinstance(value, CameraImage):
+                wanted.setdefault(key, []).append((i, value))
+    stacks: list[tuple[list[api.UCameraSensorComponent], api.FCameraPixels]] = []
+    for key, images in wanted.items():
+        cameras = [image.camera for _, image in images]
+        stack = next((pixels for read, pixels in stacks if read == cameras), None)
+        if stack is None:
+            try:
+                # Called on the first camera, so that its engine (in-process, or its server) reads them all.
+                stack = cameras[0].read_pixels_stacked(Cameras=cameras)
+            except InvalidArgumentError as error:  # cameras of different sizes or modalities
+                raise InvalidArgumentError(f"VectorEnv: the cameras of observation '{key}' cannot be read together: "
+                                           f"{error}") from None
+            stacks.append((cameras, stack))
+        for row, (i, image) in enumerate(images):
+            stacked: Any = stack.get(image.modality)
+            if stacked is None:  # the camera is priming (Latency > 0) or does not render that modality
+                del results[i].observation[key]  # observed nothing: the stacking says so, naming the key
+            else:
+                results[i].observation[key] = stacked[row]
 
 
 def _release(slots: Sequence[tuple[Instance, api.UWorld]], instances: Sequence[Instance]) -> None:

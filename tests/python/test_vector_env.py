@@ -15,7 +15,7 @@ import pytest
 from numpy.typing import NDArray
 
 import spear
-from spear.vector import Box, StepResult, VectorEnv
+from spear.vector import Box, CameraImage, StepResult, VectorEnv
 
 CUBE = "/Engine/BasicShapes/Cube"
 
@@ -134,6 +134,69 @@ def test_camera_images_stack_per_world(instance: spear.Instance) -> None:
         assert depth.shape == (3, 12, 16) and depth.dtype == np.float32
         for i in range(3):
             assert np.allclose(depth[i], 2.0 + i, atol=1e-3)
+
+
+class Looks:
+    """A camera facing a wall at 2 + index metres; observes its depth (and colour) as CameraImage, or, with
+    read=True, by reading the camera itself."""
+
+    observation_space: Mapping[str, Box] = {"depth": Box((12, 16), np.float32, 0.0),
+                                            "color": Box((12, 16, 4), np.uint8, 0, 255)}
+    action_space = Box((1,), np.float32)
+
+    def __init__(self, index: int, *, read: bool = False, width: int = 16,
+                 modality: str = "depth") -> None:
+        self.index, self.read, self.width, self.modality = index, read, width, modality
+        self.camera: spear.UCameraSensorComponent | None = None
+
+    def reset(self, world: spear.UWorld, seed: int) -> None:
+        wall = world.spawn_actor(uclass=spear.AStaticMeshActor, location=spear.FVector(X=2.05 + self.index))
+        wall.StaticMeshComponent.SetStaticMesh(NewMesh=CUBE)
+        wall.SetActorScale3D(NewScale3D=spear.FVector(0.1, 10, 10))
+        self.camera = world.spawn_actor(uclass=spear.ACameraSensorActor).CameraSensor
+        self.camera.Width, self.camera.Height = self.width, 12
+        self.camera.Modalities = [spear.ECameraModality.Depth, spear.ECameraModality.FinalColor]
+
+    def act(self, world: spear.UWorld, action: Any) -> None:
+        pass
+
+    def observe(self, world: spear.UWorld) -> StepResult:
+        assert self.camera is not None
+        if self.read:
+            pixels = self.camera.read_pixels()
+            return StepResult(observation={"depth": pixels["depth"], "color": pixels["final_color"]})
+        return StepResult(observation={"depth": CameraImage(self.camera, self.modality),
+                                       "color": CameraImage(self.camera)})
+
+
+def test_camera_images_are_read_together_and_equal_each_cameras_own_read(instance: spear.Instance) -> None:
+    counter = itertools.count()
+    with VectorEnv.in_worlds(lambda: Looks(next(counter)), num_envs=3, instance=instance, prefix="a") as envs:
+        together, _ = envs.reset(seed=1)
+    counter = itertools.count()
+    with VectorEnv.in_worlds(lambda: Looks(next(counter), read=True), num_envs=3, instance=instance,
+                             prefix="b") as envs:
+        one_by_one, _ = envs.reset(seed=1)
+    assert together["depth"].shape == (3, 12, 16) and together["color"].shape == (3, 12, 16, 4)
+    for i in range(3):
+        assert np.allclose(together["depth"][i], 2.0 + i, atol=1e-3)
+    assert np.array_equal(together["depth"], one_by_one["depth"])
+    assert np.array_equal(together["color"], one_by_one["color"])
+
+
+def test_camera_images_that_cannot_be_read_together_are_refused_naming_the_observation(
+        instance: spear.Instance) -> None:
+    counter = itertools.count()
+    with VectorEnv.in_worlds(lambda: Looks(next(counter), width=16 + next(counter)), num_envs=2,
+                             instance=instance) as envs:
+        with pytest.raises(spear.InvalidArgumentError,
+                           match=r"^VectorEnv: the cameras of observation 'depth' cannot be read together: "
+                                 r"UCameraSensorComponent\.read_pixels_stacked\(\): Cameras\[1\] "):
+            envs.reset()
+    with VectorEnv.in_worlds(lambda: Looks(0, modality="normal"), num_envs=2, instance=instance) as envs:
+        with pytest.raises(spear.InvalidArgumentError,
+                           match=r"^VectorEnv: environment 0 observed nothing for 'depth', its observation_space "):
+            envs.reset()
 
 
 def test_an_observation_that_is_not_an_array_is_checked_and_stacked_as_numpy_reads_it(
