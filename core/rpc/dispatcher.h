@@ -58,6 +58,8 @@ class Dispatcher {
                 const ArrayToSharedMemory& toShm);
     // The client of `session` is gone: a frame it left open is aborted, so that other clients can go on.
     void endSession(Session& session);
+    // The session whose frame is open (it began it and has not ended it), or nullptr.
+    const Session* frameOwner() const { return frameOwner_; }
 
     // Which libraries load_plugin may open. Loading runs the library's code (its static constructors run
     // inside dlopen(), before any check that it is a plugin), so a client that could name any file could run

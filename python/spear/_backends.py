@@ -143,9 +143,12 @@ class RpcBackend:
     def frame(self, action: str) -> None:
         # A frame's begin travels with the first message of its block, and the calls queued in a block travel
         # with the operation that closes it: a frame whose blocks only queue calls (send_async) and read
-        # results costs three round trips (begin + calls + execute, begin_end + the first read, end).
+        # results costs three messages (begin + calls + execute, begin_end + the first read, end), and the
+        # client waits for two: the end's reply is read before the next request (its error raised there).
         self.connection.queue_frame(action)
-        if action not in ("begin", "begin_end"):
+        if action == "end":
+            self.connection.post()
+        elif action not in ("begin", "begin_end"):
             self.connection.flush()
 
     def frame_count(self) -> int:

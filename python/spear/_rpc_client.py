@@ -63,7 +63,11 @@ class RpcConnection:
                                               f"got {address!r}")
         self._socket.settimeout(timeout)
         self._ids = itertools.count(1)
-        self.messages_sent = 0  # round trips so far (batches count once)
+        self.messages_sent = 0  # messages so far (batches count once)
+        # A posted message (a frame's end) whose reply is still unread: read before the next request.
+        self._posted: list[dict[str, Any]] | None = None
+        # The engine's frame state after the last frame operation this connection saw succeed (its reply says).
+        self._frame_state: str | None = None
         self._deferring: bool | None = None  # None: calls run now; else queued (True: result discarded)
         # Calls waiting for the next message: (call, its future or None, result conversion, critical). A
         # critical call (a frame operation) stops the rest of its batch when it fails, and its error is raised.
@@ -91,6 +95,68 @@ class RpcConnection:
         """Sends every queued call in one message and resolves their futures."""
         if self._queue:
             self._send_queue(None)
+        else:
+            self._read_posted()
+
+    def post(self) -> None:
+        """Sends the queue without waiting for its reply when it holds frame operations only (a frame's end, the
+        last message of a frame): its reply is read before the next request, so that the caller goes on while
+        the server answers. Anything else in the queue is sent as flush() sends it."""
+        actions = [call.get("action") if critical else None for call, _, _, critical in self._queue]
+        # Only an end that cannot fail is posted: the engine is inside this connection's end_frame (its opening
+        # went with a read and succeeded), or between its frame's execution and end_frame. Misuse (end_frame
+        # without a frame) is raised by end_frame itself, as in-process.
+        safe = ((actions == ["end"] and self._frame_state == "inside end_frame") or
+                (actions == ["begin_end", "end"] and self._frame_state == "between begin_frame and end_frame"))
+        if not safe:
+            self.flush()
+            return
+        self._read_posted()
+        queue, self._queue = self._queue, []
+        if self._queue_segments is not None:  # none was made for frame operations; released all the same
+            self._queue_segments.release()
+            self._queue_segments = None
+        calls = [call for call, _, _, _ in queue]
+        # No reply buffers offered (the reply is read later, and carries no arrays) and no dropped ones named:
+        # those go with the next request, whose reply settles them.
+        message = {"id": next(self._ids), "op": "batch", "calls": calls, "critical": list(range(len(calls)))}
+        self.messages_sent += 1
+        try:
+            self._socket.sendall(pack_frame(message))
+        except OSError as error:
+            self.close()
+            raise ConnectionLost(f"the connection to the spear server at {self.address} was lost: {error}") from None
+        self._posted = calls
+        self._frame_state = None  # known again once the reply is read
+
+    def _read_posted(self) -> None:
+        """Reads the reply to the posted message, if any; raises the error of a frame operation in it (the
+        queue, whose calls would act on a frame that did not end, is dropped then: their futures fail)."""
+        if self._posted is None:
+            return
+        calls, self._posted = self._posted, None
+        try:
+            (length,) = struct.unpack("<I", self._receive(4))
+            reply = unpack_body(self._receive(length))
+        except OSError as error:
+            self.close()
+            raise ConnectionLost(f"the connection to the spear server at {self.address} was lost: {error}") from None
+        for item in self._result(reply):
+            if "error" in item:
+                kind, text = item["error"]
+                failure = _ERRORS.get(kind, errors.SpearError)(text)
+                self._drop_queue(failure)
+                raise failure
+            self._frame_state = item["ok"]["state"]
+
+    def _drop_queue(self, error: errors.SpearError) -> None:
+        queue, self._queue = self._queue, []
+        if self._queue_segments is not None:
+            self._queue_segments.release()
+            self._queue_segments = None
+        for _, future, _, _ in queue:
+            if future is not None:
+                future._set(error=error)
 
     def queue_frame(self, action: str) -> None:
         """Queues a frame operation ahead of the calls that follow it: it travels with the next message, so
@@ -101,6 +167,7 @@ class RpcConnection:
 
     def _send_queue(self, last: dict[str, Any] | None) -> Any:
         """Sends the queued calls, then `last` if given, in one message; returns the result of `last`."""
+        self._read_posted()
         queue, self._queue = self._queue, []
         segments, self._queue_segments = self._queue_segments, None
         if segments is None:
@@ -116,6 +183,8 @@ class RpcConnection:
         critical = [i for i, entry in enumerate(queue) if entry[3]]
         results = self._batch_encoded(calls, critical, segments, refused)
         failure = next((results[i] for i in critical if isinstance(results[i], errors.SpearError)), None)
+        if failure is None and critical:
+            self._frame_state = results[critical[-1]]["state"]
         for (_, future, convert_result, is_critical), result in zip(queue, results):
             if is_critical:
                 continue
@@ -164,6 +233,7 @@ class RpcConnection:
     def request(self, op: str, **fields: Any) -> Any:
         if self._queue:  # queued calls run first, in the order they were made, in the same message
             return self._send_queue({"op": op, **fields})
+        self._read_posted()
         segments = self._segments()
         reply: Any = None
         try:
@@ -177,8 +247,7 @@ class RpcConnection:
     def batch(self, calls: list[dict[str, Any]], *, critical: Sequence[int] = ()) -> list[Any]:
         """Sends many requests in one message; returns each result, or the exception it raised. When a call at
         one of the `critical` positions fails, the server runs none of the calls after it."""
-        if self._queue:
-            self.flush()
+        self.flush()
         segments = self._segments()
         refused: dict[int, errors.SpearError] = {}  # calls refused before sending, by position
         encoded = []

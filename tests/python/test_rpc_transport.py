@@ -444,3 +444,50 @@ def test_two_connections_to_one_server_share_its_objects(server: LaunchedServer)
     finally:
         first.close()
         second.close()
+
+
+def test_clients_taking_turns_see_each_others_frames_ended(server: LaunchedServer) -> None:
+    # A frame's end is sent without waiting for its reply (read before the client's next request); the server
+    # serves the client whose frame is open first, so another client's frame that follows at once is not
+    # refused as overlapping it.
+    first, second = spear.Instance(server=server.address), spear.Instance(server=server.address)
+    try:
+        with first.begin_frame():
+            actor = first.get_game().spawn_actor(uclass=spear.AActor, name="Turns")
+        with first.end_frame():
+            pass
+        connection = first._backend.connection  # type: ignore[attr-defined]
+        for turn in range(200):
+            instance = first if turn % 2 == 0 else second
+            with instance.begin_frame():
+                pass
+            with instance.end_frame():
+                if turn % 4 < 2:  # with a read in the block, and without
+                    assert instance.get_game().find_actor_by_name(name="Turns") == actor
+            if instance is first:
+                assert connection._posted is not None  # noqa: SLF001 - the end went without a wait
+        assert first.frame_count == second.frame_count == 201
+    finally:
+        first.close()
+        second.close()
+
+
+def test_an_end_that_failed_after_it_was_sent_is_raised_by_the_next_request(server: LaunchedServer) -> None:
+    first, second = spear.Instance(server=server.address), RpcConnection(server.address)
+    try:
+        with first.begin_frame():
+            pass
+        with first.end_frame():
+            first.get_game()  # the end_frame's opening goes with this request
+            second.request("frame", action="end")  # another client ends the frame under it
+        with pytest.raises(spear.InvalidStateError, match=r"^end_frame\(\): the engine is idle, expected inside "
+                                                          r"end_frame$"):
+            with first.begin_frame():
+                first.get_game().send_async.spawn_actor(uclass=spear.AActor, name="Dropped")
+        with first.begin_frame():  # the engine and the connection go on
+            pass
+        with first.end_frame():
+            assert first.get_game().find_actor_by_name(name="Dropped") is None
+    finally:
+        first.close()
+        second.close()
