@@ -64,8 +64,8 @@ class RpcConnection:
         self._socket.settimeout(timeout)
         self._ids = itertools.count(1)
         self.messages_sent = 0  # messages so far (batches count once)
-        # A posted message (a frame's end) whose reply is still unread: read before the next request.
-        self._posted: list[dict[str, Any]] | None = None
+        # A posted message (a frame's end) has a reply still unread: it is read before the next request.
+        self._posted = False
         # The engine's frame state after the last frame operation this connection saw succeed (its reply says).
         self._frame_state: str | None = None
         self._deferring: bool | None = None  # None: calls run now; else queued (True: result discarded)
@@ -126,15 +126,15 @@ class RpcConnection:
         except OSError as error:
             self.close()
             raise ConnectionLost(f"the connection to the spear server at {self.address} was lost: {error}") from None
-        self._posted = calls
+        self._posted = True
         self._frame_state = None  # known again once the reply is read
 
     def _read_posted(self) -> None:
         """Reads the reply to the posted message, if any; raises the error of a frame operation in it (the
         queue, whose calls would act on a frame that did not end, is dropped then: their futures fail)."""
-        if self._posted is None:
+        if not self._posted:
             return
-        calls, self._posted = self._posted, None
+        self._posted = False
         try:
             (length,) = struct.unpack("<I", self._receive(4))
             reply = unpack_body(self._receive(length))

@@ -465,7 +465,7 @@ def test_clients_taking_turns_see_each_others_frames_ended(server: LaunchedServe
                 if turn % 4 < 2:  # with a read in the block, and without
                     assert instance.get_game().find_actor_by_name(name="Turns") == actor
             if instance is first:
-                assert connection._posted is not None  # noqa: SLF001 - the end went without a wait
+                assert connection._posted  # noqa: SLF001 - the end went without a wait
         assert first.frame_count == second.frame_count == 201
     finally:
         first.close()
