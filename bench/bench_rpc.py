@@ -1,6 +1,11 @@
 """The RPC transport against its floors, measured in the same run on the same machine.
 
-    PYTHONPATH=python /usr/bin/python3 bench/bench_rpc.py
+    PYTHONPATH=python /usr/bin/python3 bench/bench_rpc.py [--cpu N]
+
+--cpu N runs this process, the server and the echo process on CPU N only. On a virtual machine a process
+waking another on a different vCPU can cost tens of microseconds, and where the scheduler happens to put
+the processes then decides a round trip's time more than the protocol does (BENCHMARKS.md, "RPC
+transport"); on one CPU both the floor and spear pay only their own work.
 
 - an empty call's round trip vs a raw Unix-socket ping-pong of the same message size (a Python echo
   process with no msgpack and no engine: the least a Python client can pay per round trip);
@@ -72,7 +77,15 @@ def raw_ping_pong_us(message_bytes: int, rounds: int, directory: str) -> float:
 
 
 def main() -> None:
+    import argparse
     import tempfile
+
+    parser = argparse.ArgumentParser(description=(__doc__ or "").split("\n\n")[0])
+    parser.add_argument("--cpu", type=int, help="run everything on this CPU (inherited by the processes started)")
+    options = parser.parse_args()
+    if options.cpu is not None:
+        os.sched_setaffinity(0, {options.cpu})
+        print(f"pinned to CPU {options.cpu}")
 
     rounds = 2000
     with spear.Instance(server="launch") as instance, tempfile.TemporaryDirectory() as tmp:
