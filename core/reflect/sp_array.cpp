@@ -1,5 +1,7 @@
 #include "core/reflect/sp_array.h"
 
+#include "core/base/recycled_blocks.h"
+
 namespace sp::reflect {
 
 namespace {
@@ -51,7 +53,12 @@ ArrayValue allocateOnHeap(DType dtype, const std::vector<int64_t>& shape, ArrayF
     value.dtype = dtype;
     value.shape = shape;
     const size_t bytes = value.byteSize() == 0 ? 1 : value.byteSize();
-    auto storage = std::shared_ptr<char[]>(fill == ArrayFill::Zeroed ? new char[bytes]() : new char[bytes]);
+    // Storage written whole before it is read (a camera's frame) is recycled when large: see
+    // recycled_blocks.h.
+    auto storage =
+        fill == ArrayFill::Overwritten && bytes >= kMinRecycledBlockBytes
+            ? takeRecycledBlock(bytes)
+            : std::shared_ptr<char[]>(fill == ArrayFill::Zeroed ? new char[bytes]() : new char[bytes]);
     value.data = storage.get();
     value.owner = std::move(storage);
     return value;
