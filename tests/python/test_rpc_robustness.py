@@ -613,3 +613,17 @@ def test_a_token_file_keeps_the_token_off_the_command_line(tmp_path: Path) -> No
         connection = RpcConnection(address, token="fr0m-env")
         assert connection.request("echo", value=3) == 3
         connection.close()
+
+
+def test_a_server_gone_after_a_frame_ended_is_reported_by_the_next_request() -> None:
+    # The end of a frame is sent without waiting for its reply; a server that dies then is found out by the
+    # next request, which reads that reply first.
+    with spear.Instance(server="launch") as instance:
+        with instance.begin_frame():
+            pass
+        with instance.end_frame():
+            instance.get_game()
+        os.kill(instance.server_pid, signal.SIGKILL)
+        with pytest.raises(spear.ConnectionLostError, match="spear server"):
+            with instance.begin_frame():
+                pass
