@@ -192,6 +192,10 @@ class _Group:
     indices: list[int]
 
 
+# One engine's frame: each environment's result, and the camera observations read together, per key: the
+# environments in row order and the stack (VectorEnv._frame).
+_Observed = tuple[dict[int, StepResult], dict[str, tuple[list[int], NDArray[Any]]]]
+
 # (observations, rewards, terminated, truncated, infos) of one step; the public signatures spell it out (pyright's
 # --verifytypes counts a module-level alias of a numpy array type as unknown).
 _Batch = tuple[dict[str, NDArray[Any]], NDArray[np.float32], NDArray[np.bool_], NDArray[np.bool_], list[dict[str, Any]]]
@@ -343,7 +347,7 @@ class VectorEnv(Generic[ActionT]):
 
     def _run(self, plan: dict[int, tuple[bool, Any]]) -> _Batch:
         groups = [g for g in self._groups if g.indices[0] not in self.failed]
-        outcomes: dict[int, dict[int, StepResult] | ConnectionLostError] = {}
+        outcomes: dict[int, _Observed | ConnectionLostError] = {}
         pooled = {id(g): self._pool.submit(self._guarded, g, plan) for g in groups
                   if self._pool is not None and g.instance.transport == "rpc"}
         try:
@@ -357,23 +361,30 @@ class VectorEnv(Generic[ActionT]):
         for key, future in pooled.items():
             outcomes[key] = future.result()  # an error other than a lost server propagates
         results: dict[int, StepResult] = {}
+        stacks: dict[str, tuple[list[int], NDArray[Any]]] = {}
         for group in groups:
             outcome = outcomes[id(group)]
             if isinstance(outcome, ConnectionLostError):
                 self._fail(group, outcome)
             else:
-                results.update(outcome)
-        return self._stack(plan, results)
+                results.update(outcome[0])
+                # In-process only: over RPC a stack is a view of the connection's shared memory, which an
+                # observation kept for long (a replay buffer) would hold on to, one mapping each.
+                stacks = outcome[1] if len(groups) == 1 and group.instance.transport == "inprocess" else {}
+        # A camera observation read for every environment in one stack, in environment order, is that stack.
+        whole = {key: stack for key, (indices, stack) in stacks.items() if indices == list(range(self.num_envs))}
+        return self._stack(plan, results, whole)
 
-    def _guarded(self, group: _Group, plan: dict[int, tuple[bool, Any]]) -> dict[int, StepResult] | ConnectionLostError:
+    def _guarded(self, group: _Group, plan: dict[int, tuple[bool, Any]]) -> _Observed | ConnectionLostError:
         """The group's frame, or the error that says its server went away (any other error propagates)."""
         try:
             return self._frame(group, plan)
         except ConnectionLostError as error:
             return error
 
-    def _frame(self, group: _Group, plan: dict[int, tuple[bool, Any]]) -> dict[int, StepResult]:
-        """One frame of one engine: its environments act or reset, the engine ticks, they observe."""
+    def _frame(self, group: _Group, plan: dict[int, tuple[bool, Any]]) -> _Observed:
+        """One frame of one engine: its environments act or reset, the engine ticks, they observe; the results,
+        and the camera observations read together (see _read_cameras)."""
         instance = group.instance
         with instance.begin_frame():
             for i in group.indices:
@@ -386,8 +397,8 @@ class VectorEnv(Generic[ActionT]):
         with instance.end_frame():
             for i in group.indices:
                 results[i] = self._envs[i].observe(self._worlds[i])
-            _read_cameras(results)
-        return results
+            stacks = _read_cameras(results)
+        return results, stacks
 
     def _fail(self, group: _Group, error: BaseException) -> None:
         for i in group.indices:
@@ -395,11 +406,20 @@ class VectorEnv(Generic[ActionT]):
         _log.warning("environments %s failed and are left out from now on (%d of %d keep running): %s",
                      group.indices, self.num_envs - len(self.failed), self.num_envs, error)
 
-    def _stack(self, plan: dict[int, tuple[bool, Any]], results: dict[int, StepResult]) -> _Batch:
+    def _stack(self, plan: dict[int, tuple[bool, Any]], results: dict[int, StepResult],
+               whole: Mapping[str, NDArray[Any]]) -> _Batch:
+        """The step's batch; `whole`: observations already stacked for every environment (a camera stack, in
+        environment order), used as they are when they fit the space, instead of copied row by row."""
         n = self.num_envs
-        observations = {key: np.zeros((n, *space.shape), dtype=space.dtype)
-                        for key, space in self.single_observation_space.items()}
-        expected = [(key, space.shape, np.dtype(space.dtype)) for key, space in self.single_observation_space.items()]
+        observations: dict[str, NDArray[Any]] = {}
+        expected = []
+        for key, space in self.single_observation_space.items():
+            stack = whole.get(key)
+            if stack is not None and stack.shape == (n, *space.shape) and stack.dtype == np.dtype(space.dtype):
+                observations[key] = stack  # its rows are the environments' observations: nothing to check or copy
+            else:
+                observations[key] = np.zeros((n, *space.shape), dtype=space.dtype)
+                expected.append((key, space.shape, np.dtype(space.dtype)))
         rewards = np.zeros(n, dtype=np.float32)
         terminated = np.zeros(n, dtype=np.bool_)
         truncated = np.zeros(n, dtype=np.bool_)
@@ -433,16 +453,18 @@ class VectorEnv(Generic[ActionT]):
         return observations, rewards, terminated, truncated, infos
 
 
-def _read_cameras(results: dict[int, StepResult]) -> None:
+def _read_cameras(results: dict[int, StepResult]) -> dict[str, tuple[list[int], NDArray[Any]]]:
     """Replaces the CameraImage observations of one engine's environments by their images: the cameras each
     observation key names are read in one read_pixels_stacked call (one per distinct list of cameras, so keys
-    that are modalities of the same cameras share it), and each environment gets its row of the stack."""
+    that are modalities of the same cameras share it), and each environment gets its row of the stack.
+    Returns, per key read so, the environments in row order and the stack."""
     wanted: dict[str, list[tuple[int, CameraImage]]] = {}
     for i, result in results.items():
         for key, value in result.observation.items():
             if isinstance(value, CameraImage):
                 wanted.setdefault(key, []).append((i, value))
     stacks: list[tuple[list[api.UCameraSensorComponent], api.FCameraPixels]] = []
+    read: dict[str, tuple[list[int], NDArray[Any]]] = {}
     for key, images in wanted.items():
         cameras = [image.camera for _, image in images]
         stack = next((pixels for read, pixels in stacks if read == cameras), None)
@@ -454,12 +476,16 @@ def _read_cameras(results: dict[int, StepResult]) -> None:
                 raise InvalidArgumentError(f"VectorEnv: the cameras of observation '{key}' cannot be read together: "
                                            f"{error}") from None
             stacks.append((cameras, stack))
+        stacked: Any = stack.get(images[0][1].modality)
+        if all(image.modality == images[0][1].modality for _, image in images) and stacked is not None:
+            read[key] = ([i for i, _ in images], stacked)
         for row, (i, image) in enumerate(images):
-            stacked: Any = stack.get(image.modality)
+            stacked = stack.get(image.modality)
             if stacked is None:  # the camera is priming (Latency > 0) or does not render that modality
                 del results[i].observation[key]  # observed nothing: the stacking says so, naming the key
             else:
                 results[i].observation[key] = stacked[row]
+    return read
 
 
 def _release(slots: Sequence[tuple[Instance, api.UWorld]], instances: Sequence[Instance]) -> None:
