@@ -47,8 +47,8 @@ std::shared_ptr<char[]> takeRecycledBlock(std::size_t bytes) {
     {
         Pool& p = pool();
         std::lock_guard lock(p.mutex);
-        for (auto it = p.kept.rbegin(); it != p.kept.rend();
-             ++it) // the newest: its pages are likeliest cached
+        // From the newest: its pages are the likeliest to be in the caches still.
+        for (auto it = p.kept.rbegin(); it != p.kept.rend(); ++it)
             if (it->first == bytes) {
                 block = it->second;
                 p.keptBytes -= bytes;

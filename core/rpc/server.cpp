@@ -461,12 +461,11 @@ void Server::run() {
         // end (it reads it before its next request), so another client may already have sent its next
         // frame's begin, causally after that end, when both are read in one round: in connection order, the
         // begin could run first and be refused because the frame is still open.
-        size_t first = 2;
+        std::vector<size_t> order; // positions in fds
         for (size_t i = 2; i < fds.size(); ++i)
-            if (&connections_[i - 2]->session == dispatcher_.frameOwner())
-                first = i;
-        for (size_t k = 0; k + 2 < fds.size(); ++k) {
-            const size_t i = k == 0 ? first : (k + 2 <= first ? k + 1 : k + 2);
+            order.insert(
+                &connections_[i - 2]->session == dispatcher_.frameOwner() ? order.begin() : order.end(), i);
+        for (const size_t i : order) {
             const short revents = fds[i].revents;
             if (!revents)
                 continue;
