@@ -415,7 +415,8 @@ class VectorEnv(Generic[ActionT]):
         expected = []
         for key, space in self.single_observation_space.items():
             stack = whole.get(key)
-            if stack is not None and stack.shape == (n, *space.shape) and stack.dtype == np.dtype(space.dtype):
+            if (stack is not None and stack.shape == (n, *space.shape) and stack.dtype == np.dtype(space.dtype)
+                    and all(stack is not taken for taken in observations.values())):  # two keys, two arrays
                 observations[key] = stack  # its rows are the environments' observations: nothing to check or copy
             else:
                 observations[key] = np.zeros((n, *space.shape), dtype=space.dtype)
@@ -467,7 +468,7 @@ def _read_cameras(results: dict[int, StepResult]) -> dict[str, tuple[list[int], 
     read: dict[str, tuple[list[int], NDArray[Any]]] = {}
     for key, images in wanted.items():
         cameras = [image.camera for _, image in images]
-        stack = next((pixels for read, pixels in stacks if read == cameras), None)
+        stack = next((pixels for listed, pixels in stacks if listed == cameras), None)
         if stack is None:
             try:
                 # Called on the first camera, so that its engine (in-process, or its server) reads them all.

@@ -187,6 +187,23 @@ def test_camera_images_are_read_together_and_equal_each_cameras_own_read(instanc
         assert together["depth"].flags.owndata and together["color"].flags.owndata
 
 
+def test_two_observations_of_one_camera_image_are_two_arrays(instance: spear.Instance) -> None:
+    class Twice(Looks):
+        observation_space: Mapping[str, Box] = {"a": Looks.observation_space["color"],
+                                                "b": Looks.observation_space["color"]}
+
+        def observe(self, world: spear.UWorld) -> StepResult:
+            assert self.camera is not None
+            return StepResult(observation={"a": CameraImage(self.camera), "b": CameraImage(self.camera)})
+
+    counter = itertools.count()
+    with VectorEnv.in_worlds(lambda: Twice(next(counter)), num_envs=2, instance=instance) as envs:
+        observations, _ = envs.reset(seed=1)
+    assert observations["a"] is not observations["b"] and np.array_equal(observations["a"], observations["b"])
+    observations["a"][...] = 0  # the user's to change: the other is not
+    assert observations["b"].any()
+
+
 def test_camera_images_that_cannot_be_read_together_are_refused_naming_the_observation(
         instance: spear.Instance) -> None:
     counter = itertools.count()
