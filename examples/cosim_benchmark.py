@@ -7,13 +7,15 @@ fixed path, the images landing in numpy arrays, latency 0.
     PYTHONPATH=python /usr/bin/python3 examples/cosim_benchmark.py --server launch  # over RPC
     PYTHONPATH=python /usr/bin/python3 examples/cosim_benchmark.py --physics mujoco # MuJoCo steps, spear renders
                                         # (the mujoco_interop plugin, built with spear when MuJoCo is installed)
+    PYTHONPATH=python /usr/bin/python3 examples/cosim_benchmark.py --forces batched # one add_forces call a frame
 
 The workload (bench/mujoco_cosim_peer.cpp runs the same one in MuJoCo alone, for comparison):
 - frame dt 1/60 s, physics in 4 substeps of 1/240 s;
 - a static 40 x 40 m ground; N objects on a 0.8 m grid, boxes (even i) and spheres (odd i) of 0.3 m,
   1 kg, friction 0.8;
 - at frame k (t = k/60) object i is pushed by 4 N * (cos(1.5 t + 2 pi i / N), sin(1.5 t + 2 pi i / N), 0)
-  for the whole frame, sent with the asynchronous API (one message per frame over RPC);
+  for the whole frame, sent with the asynchronous API (one message per frame over RPC): one AddForce per
+  object as the paper does, or with --forces batched all of them in one UWorld.add_forces call;
 - one shadow-casting sun (2048-texel shadow map) and a uniform sky;
 - the rig circles the scene at radius 0.4 * ceil(sqrt(N)) + 5 m, 2.5 m high, 0.3 rad/s, looking at
   (0, 0, 0.2); view 0 is at the rig, view 1 0.3 m to its right; horizontal FOV 60 degrees.
@@ -68,6 +70,7 @@ class Result:
     physics: str
     ms_per_frame: float
     device: str
+    forces: str = "each"  # one AddForce per object, or "batched": one add_forces call
     phases: dict[str, float] = field(default_factory=dict[str, float])  # --breakdown: milliseconds per frame by phase
 
 
@@ -185,7 +188,7 @@ def configure(camera: spear.UCameraSensorComponent, width: int, height: int) -> 
 
 
 def run(instance: spear.Instance, *, objects: int, views: int, width: int, height: int, frames: int,
-        physics: str, png: Path | None, breakdown: bool = False) -> Result:
+        physics: str, png: Path | None, breakdown: bool = False, batched_forces: bool = False) -> Result:
     game = instance.get_game()
     rig: spear.AActor
     bodies: list[spear.UStaticMeshComponent] = []
@@ -226,8 +229,11 @@ def run(instance: spear.Instance, *, objects: int, views: int, width: int, heigh
             if mujoco is not None:  # one call sets the forces, one steps MuJoCo and moves every actor
                 mujoco.send_async.SetForces(Forces=forces(objects, frame))
                 mujoco.send_async.Step(NumSteps=4)
-            for i, body in enumerate(bodies):
-                body.send_async.AddForce(Force=force(i, objects, frame))
+            if batched_forces and bodies:
+                game.send_async.add_forces(components=bodies, forces=forces(objects, frame)[1:])
+            else:
+                for i, body in enumerate(bodies):
+                    body.send_async.AddForce(Force=force(i, objects, frame))
             location, rotation, right = rig_pose(objects, frame)
             if views == 2:  # the rig's centre is half a baseline right of view 0
                 half = BASELINE / 2
@@ -268,7 +274,8 @@ def run(instance: spear.Instance, *, objects: int, views: int, width: int, heigh
         png.parent.mkdir(parents=True, exist_ok=True)
         Image.fromarray(images[0][:, :, :3]).save(png)
     return Result(objects, views, width, height, frames, instance.transport, physics,
-                  1000.0 * elapsed / frames, f"{device.Kind}: {device.Renderer}", measured)
+                  1000.0 * elapsed / frames, f"{device.Kind}: {device.Renderer}",
+                  forces="batched" if batched_forces and bodies else "each", phases=measured)
 
 
 class Phases:
@@ -305,7 +312,8 @@ def table(results: list[Result]) -> str:
     lines = [f"| simulator | {head} |", "|---|" + "---:|" * len(columns)]
     first = results[0]
     ours = {(r.objects, r.views): r.ms_per_frame for r in results}
-    label = f"spear ({first.transport}, {first.physics}, {first.width}x{first.height})"
+    batched = ", batched forces" if first.forces == "batched" else ""
+    label = f"spear ({first.transport}, {first.physics}{batched}, {first.width}x{first.height})"
     lines.append(f"| {label} | " + " | ".join(f"{ours[(n, v)]:.1f}" for v, n in columns) + " |")
     for name, cells in PAPER_TABLE3.items():
         lines.append(f"| {name} (paper, RTX 4090 laptop) | "
@@ -335,6 +343,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--json", type=Path, default=None, help="also write the results as JSON")
     parser.add_argument("--png", type=Path, default=None, help="write view 0 of the last frame of each cell here")
     parser.add_argument("--breakdown", action="store_true", help="also print where a frame's time went, by phase")
+    parser.add_argument("--forces", choices=["each", "batched"], default="each",
+                        help="one AddForce per object (the paper's way), or one add_forces call for all")
     args = parser.parse_args(argv)
 
     results: list[Result] = []
@@ -346,7 +356,8 @@ def main(argv: list[str] | None = None) -> int:
             try:
                 png = None if args.png is None else args.png / f"cosim_n{objects}_v{views}.png"
                 results.append(run(instance, objects=objects, views=views, width=args.width, height=args.height,
-                                   frames=args.frames, physics=args.physics, png=png, breakdown=args.breakdown))
+                                   frames=args.frames, physics=args.physics, png=png, breakdown=args.breakdown,
+                                   batched_forces=args.forces == "batched"))
             finally:
                 instance.close()
             print(f"N={objects}, {views} view(s): {results[-1].ms_per_frame:.1f} ms/frame", file=sys.stderr)

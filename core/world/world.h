@@ -100,6 +100,15 @@ class UWorld : public UObject {
     void set_actor_locations(const std::vector<AActor*>& actors,
                              const sp::reflect::SpArray<double>& locations);
 
+    /// Pushes each component with the matching row of forces, an (N, 3) float64 array in newtons in the world
+    /// frame, for this frame, as AddForce does one component at a time (bAccelChange: the rows are
+    /// accelerations, scaled by each component's mass). The components may be in any of the engine's worlds.
+    /// All or none: a component that cannot take a force (None, not in play, not simulating physics) is an
+    /// error naming its index, and no force is applied.
+    SPFUNCTION()
+    void add_forces(const std::vector<UPrimitiveComponent*>& components,
+                    const sp::reflect::SpArray<double>& forces, bool bAccelChange = false);
+
     /// Returns the number of actors in the world.
     SPFUNCTION()
     int get_actor_count() const { return int(actors_.size()); }

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import spear
@@ -275,3 +276,52 @@ def test_mesh_files_collide_as_convex_hulls_when_simulated_and_as_triangles_othe
         assert hit.ReturnValue and hit.actor == floor and abs(hit.hit.Location.Z - 1.0) < 1e-6
     with instance.end_frame():
         pass
+
+
+def test_add_forces_pushes_many_components_as_add_force_does_one_at_a_time(instance: spear.Instance) -> None:
+    # Two rows of cubes in two worlds: one row pushed by AddForce each, the other by one add_forces call.
+    game = instance.get_game()
+    other = instance.create_world(name="Other")
+    forces = np.array([[3.0, 0.0, 0.0], [0.0, -2.0, 1.0], [1.5, 1.5, 0.0]])
+    with instance.begin_frame():
+        rows = []
+        for world in (game, other):
+            spawn_floor(world)
+            rows.append([spawn_body(world, f"Cube{i}", CUBE, spear.FVector(3.0 * i, 0, 0.5)).StaticMeshComponent
+                         for i in range(3)])
+    with instance.end_frame():
+        pass
+    for frame in range(20):
+        with instance.begin_frame():
+            for component, force in zip(rows[0], forces * (frame + 1)):
+                component.AddForce(Force=spear.FVector(*force), bAccelChange=frame % 2 == 1)
+            # Across worlds: the engine's worlds take one call.
+            game.add_forces(components=rows[1], forces=forces * (frame + 1), bAccelChange=frame % 2 == 1)
+        with instance.end_frame():
+            pass
+    with instance.begin_frame():
+        one_by_one = [c.GetComponentLocation() for c in rows[0]]
+        batched = [c.GetComponentLocation() for c in rows[1]]
+    with instance.end_frame():
+        pass
+    assert one_by_one == batched  # the same operations: bit for bit
+    assert one_by_one[0].X > 0.1 and one_by_one[1].Y < -0.1
+
+
+def test_add_forces_is_all_or_nothing_naming_the_component(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        spawn_floor(game)
+        pushed = spawn_body(game, "Pushed", CUBE, spear.FVector(0, 0, 0.5)).StaticMeshComponent
+        resting = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Resting")
+        resting.StaticMeshComponent.SetStaticMesh(NewMesh=CUBE)
+        with pytest.raises(spear.InvalidStateError,
+                           match=r"^UWorld\.add_forces\(\): components\[1\]: UPrimitiveComponent\.AddForce\(\): "
+                                 r"UStaticMeshComponent .StaticMeshComponent. is not simulating physics"):
+            game.add_forces(components=[pushed, resting.StaticMeshComponent], forces=np.full((2, 3), 100.0))
+        with pytest.raises(spear.InvalidArgumentError,
+                           match=r"^UWorld\.add_forces\(\): forces must have shape \(1, 3\), got \(3,\)$"):
+            game.add_forces(components=[pushed], forces=np.zeros(3))
+    with instance.end_frame():
+        velocity = pushed.GetPhysicsLinearVelocity()  # resting: nothing pushed it (100 N would give 1.7 m/s)
+        assert max(abs(velocity.X), abs(velocity.Y), abs(velocity.Z)) < 1e-3

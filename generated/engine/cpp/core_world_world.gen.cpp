@@ -228,6 +228,19 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
             [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_set_actor_locations<ValueCall>(self, args); },
         });
         t.functions.push_back({
+            "add_forces",
+            "Pushes each component with the matching row of forces, an (N, 3) float64 array in newtons in the world\nframe, for this frame, as AddForce does one component at a time (bAccelChange: the rows are\naccelerations, scaled by each component's mass). The components may be in any of the engine's worlds.\nAll or none: a component that cannot take a force (None, not in play, not simulating physics) is an\nerror naming its index, and no force is applied.",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"components", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UPrimitiveComponent")), false, false},
+                {"forces", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"), false, false},
+                {"bAccelChange", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_add_forces<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
             "get_actor_count",
             "Returns the number of actors in the world.",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),

@@ -5583,6 +5583,22 @@ struct UWorldCalls {
     }
 
     template <typename Call, typename Target>
+    static typename Call::Result call_add_forces(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 3> kParams{{
+            {"components", "UWorld.add_forces(): argument 'components'", true},
+            {"forces", "UWorld.add_forces(): argument 'forces'", true},
+            {"bAccelChange", "UWorld.add_forces(): argument 'bAccelChange'", false},
+        }};
+        const Call call(args, "UWorld.add_forces()", kParams);
+        Self* self = Call::template object<Self>(target, "UWorld.add_forces()");
+        std::vector<UPrimitiveComponent*> componentsArg = call.template arg<std::vector<UPrimitiveComponent*>>(0);
+        sp::reflect::SpArray<double> forcesArg = call.template arg<sp::reflect::SpArray<double>>(1);
+        bool bAccelChangeArg = call.given(2) ? call.template arg<bool>(2) : bool(false);
+        self->add_forces(componentsArg, forcesArg, bAccelChangeArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
     static typename Call::Result call_get_actor_count(const Target& target, typename Call::Args args) {
         static constexpr std::array<sp::reflect::ParamDesc, 0> kParams{};
         const Call call(args, "UWorld.get_actor_count()", kParams);

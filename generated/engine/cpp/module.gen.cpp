@@ -3488,6 +3488,16 @@ void spear_bind_engine(py::module_& m) {
             py::arg("locations") = sp::pybind::missingArgument(),
             "set_actor_locations(self, *, actors: Sequence[AActor], locations: NDArray[np.float64]) -> None\n\nMoves each actor to the matching row of locations, an (N, 3) float64 array (one call for many actors,\nin any of the engine's worlds).");
         cls.def(
+            "add_forces",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& components, const PyArg& forces, const PyArg& bAccelChange, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_add_forces<PyCall>(self, {positional, extra, std::array<const PyArg*, 3>{&components, &forces, &bAccelChange}, true});
+            },
+            py::arg("components") = sp::pybind::missingArgument(),
+            py::arg("forces") = sp::pybind::missingArgument(),
+            py::arg("bAccelChange") = sp::pybind::missingArgument(),
+            "add_forces(self, *, components: Sequence[UPrimitiveComponent], forces: NDArray[np.float64], bAccelChange: bool = ...) -> None\n\nPushes each component with the matching row of forces, an (N, 3) float64 array in newtons in the world\nframe, for this frame, as AddForce does one component at a time (bAccelChange: the rows are\naccelerations, scaled by each component's mass). The components may be in any of the engine's worlds.\nAll or none: a component that cannot take a force (None, not in play, not simulating physics) is an\nerror naming its index, and no force is applied.");
+        cls.def(
             "get_actor_count",
             [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
                 // The parameters in order; the array lives until the call returns.

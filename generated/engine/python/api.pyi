@@ -4616,6 +4616,8 @@ class UWorldAsync(UObjectAsync):
 
     def set_actor_locations(self, *, actors: Sequence[AActor], locations: NDArray[np.float64]) -> Future[None]: ...
 
+    def add_forces(self, *, components: Sequence[UPrimitiveComponent], forces: NDArray[np.float64], bAccelChange: bool = False) -> Future[None]: ...
+
     def get_actor_count(self) -> Future[int]: ...
 
     def get_time_seconds(self) -> Future[float]: ...
@@ -4675,6 +4677,8 @@ class UWorldSend(UObjectSend):
     def get_actor_locations(self, *, actors: Sequence[AActor]) -> None: ...
 
     def set_actor_locations(self, *, actors: Sequence[AActor], locations: NDArray[np.float64]) -> None: ...
+
+    def add_forces(self, *, components: Sequence[UPrimitiveComponent], forces: NDArray[np.float64], bAccelChange: bool = False) -> None: ...
 
     def get_actor_count(self) -> None: ...
 
@@ -4787,6 +4791,14 @@ class UWorld(UObject):
     def set_actor_locations(self, *, actors: Sequence[AActor], locations: NDArray[np.float64]) -> None:
         """Moves each actor to the matching row of locations, an (N, 3) float64 array (one call for many actors,
         in any of the engine's worlds).
+        """
+
+    def add_forces(self, *, components: Sequence[UPrimitiveComponent], forces: NDArray[np.float64], bAccelChange: bool = False) -> None:
+        """Pushes each component with the matching row of forces, an (N, 3) float64 array in newtons in the world
+        frame, for this frame, as AddForce does one component at a time (bAccelChange: the rows are
+        accelerations, scaled by each component's mass). The components may be in any of the engine's worlds.
+        All or none: a component that cannot take a force (None, not in play, not simulating physics) is an
+        error naming its index, and no force is applied.
         """
 
     def get_actor_count(self) -> int:

@@ -2207,6 +2207,9 @@ class UWorld(UObject, api.UWorld):
     def set_actor_locations(self, *, actors: Sequence[api.AActor], locations: NDArray[np.float64]) -> None:
         return cast(None, self._sp_call("UWorld", "set_actor_locations", {"actors": actors, "locations": locations}, _t.T_void))  # a Future when queued by call_async
 
+    def add_forces(self, *, components: Sequence[api.UPrimitiveComponent], forces: NDArray[np.float64], bAccelChange: bool = _DEFAULT) -> None:
+        return cast(None, self._sp_call("UWorld", "add_forces", {"components": components, "forces": forces, "bAccelChange": bAccelChange}, _t.T_void))  # a Future when queued by call_async
+
     def get_actor_count(self) -> int:
         return cast("int", self._sp_call("UWorld", "get_actor_count", {}, _t.T_int))
 
