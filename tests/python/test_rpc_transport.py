@@ -428,48 +428,49 @@ def test_an_engine_refuses_the_objects_of_another() -> None:
             engine.close()
 
 
-def test_two_connections_to_one_server_share_its_objects(server: LaunchedServer) -> None:
+@pytest.fixture
+def two_clients(server: LaunchedServer) -> Iterator[tuple[spear.Instance, spear.Instance]]:
+    """Two instances connected to one server: the same engine."""
     first, second = spear.Instance(server=server.address), spear.Instance(server=server.address)
-    try:
-        with first.begin_frame():
-            actor = first.get_game().spawn_actor(uclass=spear.AStaticMeshActor, name="Shared")
-        with first.end_frame():
-            pass
-        with second.begin_frame():
-            game = second.get_game()
-            assert game.find_actor_by_name(name="Shared") == actor  # the same engine: the same object
-            game.set_actor_locations(actors=[actor], locations=np.array([[1.0, 2.0, 3.0]]))
-        with second.end_frame():
-            pass
-    finally:
-        first.close()
-        second.close()
+    yield first, second
+    first.close()
+    second.close()
 
 
-def test_clients_taking_turns_see_each_others_frames_ended(server: LaunchedServer) -> None:
+def test_two_connections_to_one_server_share_its_objects(two_clients: tuple[spear.Instance, spear.Instance]) -> None:
+    first, second = two_clients
+    with first.begin_frame():
+        actor = first.get_game().spawn_actor(uclass=spear.AStaticMeshActor, name="Shared")
+    with first.end_frame():
+        pass
+    with second.begin_frame():
+        game = second.get_game()
+        assert game.find_actor_by_name(name="Shared") == actor  # the same engine: the same object
+        game.set_actor_locations(actors=[actor], locations=np.array([[1.0, 2.0, 3.0]]))
+    with second.end_frame():
+        pass
+
+
+def test_clients_taking_turns_see_each_others_frames_ended(two_clients: tuple[spear.Instance, spear.Instance]) -> None:
     # A frame's end is sent without waiting for its reply (read before the client's next request); the server
     # serves the client whose frame is open first, so another client's frame that follows at once is not
     # refused as overlapping it.
-    first, second = spear.Instance(server=server.address), spear.Instance(server=server.address)
-    try:
-        with first.begin_frame():
-            actor = first.get_game().spawn_actor(uclass=spear.AActor, name="Turns")
-        with first.end_frame():
+    first, second = two_clients
+    with first.begin_frame():
+        actor = first.get_game().spawn_actor(uclass=spear.AActor, name="Turns")
+    with first.end_frame():
+        pass
+    connection = first._backend.connection  # type: ignore[attr-defined]
+    for turn in range(200):
+        instance = first if turn % 2 == 0 else second
+        with instance.begin_frame():
             pass
-        connection = first._backend.connection  # type: ignore[attr-defined]
-        for turn in range(200):
-            instance = first if turn % 2 == 0 else second
-            with instance.begin_frame():
-                pass
-            with instance.end_frame():
-                if turn % 4 < 2:  # with a read in the block, and without
-                    assert instance.get_game().find_actor_by_name(name="Turns") == actor
-            if instance is first:
-                assert connection._posted  # noqa: SLF001 - the end went without a wait
-        assert first.frame_count == second.frame_count == 201
-    finally:
-        first.close()
-        second.close()
+        with instance.end_frame():
+            if turn % 4 < 2:  # with a read in the block, and without
+                assert instance.get_game().find_actor_by_name(name="Turns") == actor
+        if instance is first:
+            assert connection._posted  # noqa: SLF001 - the end went without a wait
+    assert first.frame_count == second.frame_count == 201
 
 
 def test_an_end_that_failed_after_it_was_sent_is_raised_by_the_next_request(server: LaunchedServer) -> None:
