@@ -24,7 +24,10 @@ from numpy.typing import NDArray
 
 from spear._segments import segment_name
 
-MAX_BUFFERS = 8
+# As many buffers as the server maps for one client (kMaxBuffers in core/rpc/reply_buffers.h): a camera's 14
+# modalities held by the caller while the next frame's 14 are read take 28. With 8, six arrays of such a frame
+# went through fresh segments, each page faulted in on both sides (1080p over RPC: 246-254 -> 198-211 ms a frame).
+MAX_BUFFERS = 32
 MAX_BYTES = 512 << 20
 
 
