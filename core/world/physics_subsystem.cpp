@@ -118,6 +118,15 @@ bool PhysicsSubsystem::isRegistered(const UPrimitiveComponent& component) const 
     return index_.contains(&component);
 }
 
+PhysicsSubsystem& PhysicsSubsystem::of(const UPrimitiveComponent& component, const char* function) {
+    UWorld* world = component.GetWorld();
+    PhysicsSubsystem* physics = world ? world->FindSubsystem<PhysicsSubsystem>() : nullptr;
+    SP_CHECK(physics && physics->isRegistered(component), InvalidState, "UPrimitiveComponent.", function,
+             "(): ", component.GetDebugName(),
+             " is not in play (its actor has not begun play or has ended it)");
+    return *physics;
+}
+
 PhysicsSubsystem::Entry& PhysicsSubsystem::entryFor(const UPrimitiveComponent& component,
                                                     const char* function) {
     auto it = index_.find(&component);

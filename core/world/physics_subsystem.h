@@ -49,6 +49,9 @@ class PhysicsSubsystem : public WorldSubsystem {
     void OnComponentBeginPlay(UActorComponent& component) override;
     void OnComponentEndPlay(UActorComponent& component) override;
     bool isRegistered(const UPrimitiveComponent& component) const;
+    // The physics subsystem of the component's world; InvalidState, naming UPrimitiveComponent.<function>(),
+    // when the component is not in play.
+    static PhysicsSubsystem& of(const UPrimitiveComponent& component, const char* function);
 
     // Brings every body in line with its component (shape, mobility, material, mass, pose).
     void syncAll();

@@ -12,17 +12,6 @@
 namespace {
 constexpr double kDegreesPerRadian = 180.0 / std::numbers::pi;
 
-// The physics subsystem of the component's world; InvalidState when the component is not in play.
-sp::world::PhysicsSubsystem& physicsOf(const UPrimitiveComponent& component, const char* function) {
-    UWorld* world = component.GetWorld();
-    sp::world::PhysicsSubsystem* physics =
-        world ? world->FindSubsystem<sp::world::PhysicsSubsystem>() : nullptr;
-    SP_CHECK(physics && physics->isRegistered(component), sp::InvalidState, "UPrimitiveComponent.", function,
-             "(): ", component.GetDebugName(),
-             " is not in play (its actor has not begun play or has ended it)");
-    return *physics;
-}
-
 bool isInPlay(const UPrimitiveComponent& component) {
     const AActor* owner = component.GetOwner();
     return owner && owner->HasBegunPlay() && component.GetWorld();
@@ -64,8 +53,8 @@ void UPrimitiveComponent::SetSimulatePhysics(bool bSimulate) {
         SP_CHECK(MassInKg > 0.0, sp::InvalidState,
                  "UPrimitiveComponent.SetSimulatePhysics(): ", GetDebugName(), " has mass ", MassInKg,
                  " kg; set MassInKg > 0 first");
-        const sp::physics::BodyId body =
-            physicsOf(*this, "SetSimulatePhysics").syncComponent(*this, "SetSimulatePhysics");
+        const sp::physics::BodyId body = sp::world::PhysicsSubsystem::of(*this, "SetSimulatePhysics")
+                                             .syncComponent(*this, "SetSimulatePhysics");
         SP_CHECK(body.isSet(), sp::InvalidState, "UPrimitiveComponent.SetSimulatePhysics(): ", GetDebugName(),
                  " has no collision (no mesh, or CollisionPrimitive is NoCollision)");
         const ECollisionPrimitive primitive = CollisionPrimitive == ECollisionPrimitive::FromMesh
@@ -81,7 +70,7 @@ void UPrimitiveComponent::SetSimulatePhysics(bool bSimulate) {
 bool UPrimitiveComponent::IsSimulatingPhysics() const {
     if (!isInPlay(*this))
         return false;
-    auto& physics = physicsOf(*this, "IsSimulatingPhysics");
+    auto& physics = sp::world::PhysicsSubsystem::of(*this, "IsSimulatingPhysics");
     const sp::physics::BodyId body = physics.syncComponent(*this, "IsSimulatingPhysics");
     return body.isSet() && physics.GetPhysicsWorld().isSimulatingPhysics(body);
 }
@@ -121,25 +110,25 @@ void UPrimitiveComponent::SetAngularDamping(double NewAngularDamping) {
 }
 
 void UPrimitiveComponent::AddForce(const FVector& Force, bool bAccelChange) {
-    auto& physics = physicsOf(*this, "AddForce");
+    auto& physics = sp::world::PhysicsSubsystem::of(*this, "AddForce");
     const sp::physics::BodyId body = physics.requireSimulatedBody(*this, "AddForce");
     physics.GetPhysicsWorld().applyForce(body, Force.toEigen() * (bAccelChange ? MassInKg : 1.0));
 }
 
 void UPrimitiveComponent::AddTorqueInRadians(const FVector& Torque) {
-    auto& physics = physicsOf(*this, "AddTorqueInRadians");
+    auto& physics = sp::world::PhysicsSubsystem::of(*this, "AddTorqueInRadians");
     physics.GetPhysicsWorld().applyTorque(physics.requireSimulatedBody(*this, "AddTorqueInRadians"),
                                           Torque.toEigen());
 }
 
 void UPrimitiveComponent::AddImpulse(const FVector& Impulse, bool bVelChange) {
-    auto& physics = physicsOf(*this, "AddImpulse");
+    auto& physics = sp::world::PhysicsSubsystem::of(*this, "AddImpulse");
     const sp::physics::BodyId body = physics.requireSimulatedBody(*this, "AddImpulse");
     physics.GetPhysicsWorld().applyImpulse(body, Impulse.toEigen() * (bVelChange ? MassInKg : 1.0));
 }
 
 void UPrimitiveComponent::SetPhysicsLinearVelocity(const FVector& NewVel, bool bAddToCurrent) {
-    auto& physics = physicsOf(*this, "SetPhysicsLinearVelocity");
+    auto& physics = sp::world::PhysicsSubsystem::of(*this, "SetPhysicsLinearVelocity");
     const sp::physics::BodyId body = physics.requireSimulatedBody(*this, "SetPhysicsLinearVelocity");
     auto& world = physics.GetPhysicsWorld();
     world.setLinearVelocity(
@@ -149,13 +138,13 @@ void UPrimitiveComponent::SetPhysicsLinearVelocity(const FVector& NewVel, bool b
 FVector UPrimitiveComponent::GetPhysicsLinearVelocity() const {
     if (!isInPlay(*this))
         return {};
-    auto& physics = physicsOf(*this, "GetPhysicsLinearVelocity");
+    auto& physics = sp::world::PhysicsSubsystem::of(*this, "GetPhysicsLinearVelocity");
     const sp::physics::BodyId body = physics.syncComponent(*this, "GetPhysicsLinearVelocity");
     return body.isSet() ? FVector::fromEigen(physics.GetPhysicsWorld().getLinearVelocity(body)) : FVector{};
 }
 
 void UPrimitiveComponent::SetPhysicsAngularVelocityInDegrees(const FVector& NewAngVel, bool bAddToCurrent) {
-    auto& physics = physicsOf(*this, "SetPhysicsAngularVelocityInDegrees");
+    auto& physics = sp::world::PhysicsSubsystem::of(*this, "SetPhysicsAngularVelocityInDegrees");
     const sp::physics::BodyId body =
         physics.requireSimulatedBody(*this, "SetPhysicsAngularVelocityInDegrees");
     auto& world = physics.GetPhysicsWorld();
@@ -167,7 +156,7 @@ void UPrimitiveComponent::SetPhysicsAngularVelocityInDegrees(const FVector& NewA
 FVector UPrimitiveComponent::GetPhysicsAngularVelocityInDegrees() const {
     if (!isInPlay(*this))
         return {};
-    auto& physics = physicsOf(*this, "GetPhysicsAngularVelocityInDegrees");
+    auto& physics = sp::world::PhysicsSubsystem::of(*this, "GetPhysicsAngularVelocityInDegrees");
     const sp::physics::BodyId body = physics.syncComponent(*this, "GetPhysicsAngularVelocityInDegrees");
     return body.isSet()
                ? FVector::fromEigen(physics.GetPhysicsWorld().getAngularVelocity(body) * kDegreesPerRadian)
@@ -177,14 +166,14 @@ FVector UPrimitiveComponent::GetPhysicsAngularVelocityInDegrees() const {
 bool UPrimitiveComponent::IsAnyRigidBodyAwake() const {
     if (!isInPlay(*this))
         return false;
-    auto& physics = physicsOf(*this, "IsAnyRigidBodyAwake");
+    auto& physics = sp::world::PhysicsSubsystem::of(*this, "IsAnyRigidBodyAwake");
     const sp::physics::BodyId body = physics.syncComponent(*this, "IsAnyRigidBodyAwake");
     return body.isSet() && physics.GetPhysicsWorld().isAwake(body);
 }
 
 std::vector<UPrimitiveComponent*> UPrimitiveComponent::GetOverlappingComponents() const {
     constexpr const char* kFunction = "GetOverlappingComponents";
-    return physicsOf(*this, kFunction).overlappingComponents(*this, kFunction);
+    return sp::world::PhysicsSubsystem::of(*this, kFunction).overlappingComponents(*this, kFunction);
 }
 
 std::vector<AActor*> UPrimitiveComponent::GetOverlappingActors(TSubclassOf<AActor> ClassFilter) const {
@@ -215,9 +204,10 @@ bool UPrimitiveComponent::IsOverlappingActor(const AActor* Other) const {
 }
 
 std::vector<UPrimitiveComponent*> UPrimitiveComponent::GetBeginOverlaps() const {
-    return physicsOf(*this, "GetBeginOverlaps").beganOverlaps(*this, "GetBeginOverlaps");
+    return sp::world::PhysicsSubsystem::of(*this, "GetBeginOverlaps")
+        .beganOverlaps(*this, "GetBeginOverlaps");
 }
 
 std::vector<UPrimitiveComponent*> UPrimitiveComponent::GetEndOverlaps() const {
-    return physicsOf(*this, "GetEndOverlaps").endedOverlaps(*this, "GetEndOverlaps");
+    return sp::world::PhysicsSubsystem::of(*this, "GetEndOverlaps").endedOverlaps(*this, "GetEndOverlaps");
 }

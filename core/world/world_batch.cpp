@@ -60,13 +60,9 @@ void UWorld::add_forces(const std::vector<UPrimitiveComponent*>& components,
     for (size_t i = 0; i < components.size(); ++i) {
         SP_CHECK(components[i], sp::InvalidArgument, "UWorld.add_forces(): components[", i, "] is None");
         try {
-            UWorld* world = components[i]->GetWorld();
-            auto* physics = world ? world->FindSubsystem<sp::world::PhysicsSubsystem>() : nullptr;
-            SP_CHECK(physics && physics->isRegistered(*components[i]), sp::InvalidState,
-                     components[i]->GetDebugName(),
-                     " is not in play (its actor has not begun play or has ended it)");
-            bodies.emplace_back(&physics->GetPhysicsWorld(),
-                                physics->requireSimulatedBody(*components[i], "AddForce"));
+            auto& physics = sp::world::PhysicsSubsystem::of(*components[i], "AddForce");
+            bodies.emplace_back(&physics.GetPhysicsWorld(),
+                                physics.requireSimulatedBody(*components[i], "AddForce"));
         } catch (const std::exception&) {
             sp::rethrowWithPrefix("UWorld.add_forces(): components[" + std::to_string(i) + "]: ");
         }
