@@ -200,8 +200,9 @@ bool Dispatcher::handleOne(const msgpack::object& message, Session& session, msg
         pack(out, result, toShm);
         // A segment shrank while this request read or wrote it: the server survived (shared_memory.h), but
         // what it read or wrote there is lost, so the request fails.
+        std::string fallback;
         SP_CHECK(truncationFaults() == faultsBefore, InvalidArgument,
-                 request.context(std::string(request.op()) + "()"),
+                 request.context(fallback, [&] { return std::string(request.op()) + "()"; }),
                  ": a shared-memory segment was truncated while the server used it; its contents are lost");
         result = Value(); // the request's values are gone now: what still maps a segment was kept
         std::vector<std::string> kept;
@@ -397,8 +398,9 @@ Value Dispatcher::call(const Request& request, Session&) {
 Value Dispatcher::property(const Request& request, Session&) {
     const std::string_view op = request.op();
     const std::string name = request.string("property", op);
-    const std::string context =
-        request.context((op == "set" ? "set_property('" : "get_property('") + name + "')");
+    std::string fallback;
+    const std::string_view context = request.context(
+        fallback, [&] { return (op == "set" ? "set_property('" : "get_property('") + name + "')"; });
     reflect::ObjectBase& object = requireObject(request, context);
     const reflect::PropertyInfo* property = object.GetClass().findProperty(name);
     SP_CHECK(property, NotFound, context, ": class '", object.GetClass().name, "' has no property '", name,
@@ -432,7 +434,9 @@ Value Dispatcher::unloadPlugin(const Request& request, Session&) {
 
 Value Dispatcher::spFunc(const Request& request, Session&) {
     const std::string name = request.string("name", request.op());
-    const std::string context = request.context("call_sp_func('" + name + "')");
+    std::string fallback;
+    const std::string_view context =
+        request.context(fallback, [&] { return "call_sp_func('" + name + "')"; });
     reflect::ObjectBase& object = requireObject(request, context);
     Value::Dict bundle;
     for (const char* key : {"arrays", "unreal_objs", "info"})
@@ -443,7 +447,9 @@ Value Dispatcher::spFunc(const Request& request, Session&) {
 }
 
 Value Dispatcher::spFuncNames(const Request& request, Session&) {
-    reflect::ObjectBase& object = requireObject(request, request.context("get_sp_func_names()"));
+    std::string fallback;
+    reflect::ObjectBase& object =
+        requireObject(request, request.context(fallback, [] { return std::string("get_sp_func_names()"); }));
     Value::List names;
     for (std::string& name : spfunc::funcNames(object))
         names.emplace_back(std::move(name));

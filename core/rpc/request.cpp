@@ -62,9 +62,4 @@ std::string_view Request::givenContext() const {
     return {};
 }
 
-std::string Request::context(std::string fallback) const {
-    const std::string_view given = givenContext();
-    return given.empty() ? fallback : std::string(given);
-}
-
 } // namespace sp::rpc

@@ -33,10 +33,8 @@ class Request {
         return std::string(text(name, where));
     }
     // The context a client names the request by ("AMyActor.my_sp_func()", as the in-process bindings
-    // would), or `fallback`.
-    std::string context(std::string fallback) const;
-    // The same, without building the fallback unless the client gave none: it is made by `fallback()` into
-    // `storage`, and the view is of the message or of `storage`.
+    // would), or the one `fallback()` makes into `storage` when the client gave none (built only then: a
+    // batch of calls builds no strings); the view is of the message or of `storage`.
     template <class Fallback> std::string_view context(std::string& storage, Fallback&& fallback) const {
         if (const std::string_view given = givenContext(); !given.empty())
             return given;
