@@ -20,7 +20,7 @@ import threading
 import time
 import weakref
 from pathlib import Path
-from typing import Any
+from typing import Any, NoReturn
 
 from spear import _logging, _progress, errors
 from spear._object import SpObject
@@ -112,20 +112,14 @@ class RpcConnection:
             self.flush()
             return
         self._read_posted()
-        queue, self._queue = self._queue, []
-        if self._queue_segments is not None:  # none was made for frame operations; released all the same
-            self._queue_segments.release()
-            self._queue_segments = None
+        queue, segments = self._take_queue()
+        if segments is not None:  # none was made for frame operations; released all the same
+            segments.release()
         calls = [call for call, _, _, _ in queue]
         # No reply buffers offered (the reply is read later, and carries no arrays) and no dropped ones named:
         # those go with the next request, whose reply settles them.
-        message = {"id": next(self._ids), "op": "batch", "calls": calls, "critical": list(range(len(calls)))}
-        self.messages_sent += 1
-        try:
-            self._socket.sendall(pack_frame(message))
-        except OSError as error:
-            self.close()
-            raise ConnectionLost(f"the connection to the spear server at {self.address} was lost: {error}") from None
+        self._send(pack_frame({"id": next(self._ids), "op": "batch", "calls": calls,
+                               "critical": list(range(len(calls)))}))
         self._posted = True
         self._frame_state = None  # known again once the reply is read
 
@@ -135,25 +129,24 @@ class RpcConnection:
         if not self._posted:
             return
         self._posted = False
-        try:
-            (length,) = struct.unpack("<I", self._receive(4))
-            reply = unpack_body(self._receive(length))
-        except OSError as error:
-            self.close()
-            raise ConnectionLost(f"the connection to the spear server at {self.address} was lost: {error}") from None
-        for item in self._result(reply):
+        for item in self._result(self._read_reply(None)):
             if "error" in item:
-                kind, text = item["error"]
-                failure = _ERRORS.get(kind, errors.SpearError)(text)
+                failure = self._error(item)
                 self._drop_queue(failure)
                 raise failure
             self._frame_state = item["ok"]["state"]
 
-    def _drop_queue(self, error: errors.SpearError) -> None:
+    def _take_queue(self) -> tuple[list[tuple[dict[str, Any], Future[Any] | None, Callable[[Any], Any], bool]],
+                                   OutgoingSegments | None]:
+        """The queued calls and the segments their arguments went into, leaving the queue empty."""
         queue, self._queue = self._queue, []
-        if self._queue_segments is not None:
-            self._queue_segments.release()
-            self._queue_segments = None
+        segments, self._queue_segments = self._queue_segments, None
+        return queue, segments
+
+    def _drop_queue(self, error: errors.SpearError) -> None:
+        queue, segments = self._take_queue()
+        if segments is not None:
+            segments.release()
         for _, future, _, _ in queue:
             if future is not None:
                 future._set(error=error)
@@ -168,18 +161,13 @@ class RpcConnection:
     def _send_queue(self, last: dict[str, Any] | None) -> Any:
         """Sends the queued calls, then `last` if given, in one message; returns the result of `last`."""
         self._read_posted()
-        queue, self._queue = self._queue, []
-        segments, self._queue_segments = self._queue_segments, None
+        queue, segments = self._take_queue()
         if segments is None:
             segments = self._segments()
         calls = [call for call, _, _, _ in queue]  # encoded when they were queued
         refused: dict[int, errors.SpearError] = {}
         if last is not None:
-            try:
-                calls.append(_encode_fields(str(last.get("op", "")), last, segments))
-            except errors.InvalidArgumentError as error:
-                refused[len(calls)] = error
-                calls.append({"op": "echo"})  # keeps the positions of the replies
+            _encode_call(last, segments, calls, refused)
         critical = [i for i, entry in enumerate(queue) if entry[3]]
         results = self._batch_encoded(calls, critical, segments, refused)
         failure = next((results[i] for i in critical if isinstance(results[i], errors.SpearError)), None)
@@ -250,13 +238,9 @@ class RpcConnection:
         self.flush()
         segments = self._segments()
         refused: dict[int, errors.SpearError] = {}  # calls refused before sending, by position
-        encoded = []
-        for i, call in enumerate(calls):
-            try:
-                encoded.append(_encode_fields(str(call.get("op", "")), call, segments))
-            except errors.InvalidArgumentError as error:
-                refused[i] = error
-                encoded.append({"op": "echo"})  # keeps the positions of the replies
+        encoded: list[dict[str, Any]] = []
+        for call in calls:
+            _encode_call(call, segments, encoded, refused)
         return self._batch_encoded(encoded, critical, segments, refused)
 
     def _batch_encoded(self, encoded: list[dict[str, Any]], critical: Sequence[int], segments: OutgoingSegments,
@@ -271,13 +255,7 @@ class RpcConnection:
         finally:
             segments.release()
             self._settle_buffers(reply, batch=True)
-        results: list[Any] = []
-        for item in self._result(reply):
-            if "error" in item:
-                kind, text = item["error"]
-                results.append(_ERRORS.get(kind, errors.SpearError)(text))
-            else:
-                results.append(item["ok"])
+        results = [self._error(item) if "error" in item else item["ok"] for item in self._result(reply)]
         for i, error in refused.items():
             results[i] = error
         return results
@@ -306,16 +284,28 @@ class RpcConnection:
         return message
 
     def _round_trip(self, frame: bytes) -> Any:
+        self._send(frame)
+        return self._read_reply(self._reply_buffers)
+
+    def _send(self, frame: bytes) -> None:
         self.messages_sent += 1
         try:
             self._socket.sendall(frame)
-            header = self._receive(4)
-            (length,) = struct.unpack("<I", header)
-            return unpack_body(self._receive(length), self._reply_buffers)
         except OSError as error:
-            # A late reply could still arrive into buffers reused since: the connection is done.
-            self.close()
-            raise ConnectionLost(f"the connection to the spear server at {self.address} was lost: {error}") from None
+            self._lost(error)
+
+    def _read_reply(self, buffers: ReplyBuffers | None) -> Any:
+        """The next reply; `buffers`: the reply buffers its request offered (None: it offered none)."""
+        try:
+            (length,) = struct.unpack("<I", self._receive(4))
+            return unpack_body(self._receive(length), buffers)
+        except OSError as error:
+            self._lost(error)
+
+    def _lost(self, error: OSError) -> NoReturn:
+        # A late reply could still arrive into buffers reused since: the connection is done.
+        self.close()
+        raise ConnectionLost(f"the connection to the spear server at {self.address} was lost: {error}") from None
 
     def _receive(self, size: int) -> bytes:
         chunks, remaining = [], size
@@ -330,9 +320,14 @@ class RpcConnection:
     @staticmethod
     def _result(reply: dict[str, Any]) -> Any:
         if "error" in reply:
-            kind, message = reply["error"]
-            raise _ERRORS.get(kind, errors.SpearError)(message)
+            raise RpcConnection._error(reply)
         return reply["ok"]
+
+    @staticmethod
+    def _error(reply: dict[str, Any]) -> errors.SpearError:
+        """A failed reply's error, as the spear.errors class the server named."""
+        kind, message = reply["error"]
+        return _ERRORS.get(kind, errors.SpearError)(message)
 
     # -- RpcClient protocol --------------------------------------------------------------------
 
@@ -427,6 +422,17 @@ class _ResultConversion:
         if self._tuple is not None:
             return convert_result_tuple(value, self._tuple, self._connection)
         return convert(value, self._type, self._connection)
+
+
+def _encode_call(call: dict[str, Any], segments: OutgoingSegments, encoded: list[dict[str, Any]],
+                 refused: dict[int, errors.SpearError]) -> None:
+    """Appends a request of a batch, encoded; one refused before sending leaves its error at its position and an
+    echo in its place, which keeps the positions of the replies."""
+    try:
+        encoded.append(_encode_fields(str(call.get("op", "")), call, segments))
+    except errors.InvalidArgumentError as error:
+        refused[len(encoded)] = error
+        encoded.append({"op": "echo"})
 
 
 def _encode_fields(op: str, fields: dict[str, Any], segments: OutgoingSegments) -> dict[str, Any]:
