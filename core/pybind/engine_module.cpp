@@ -14,6 +14,7 @@
 
 #include "core/base/asset_path.h"
 #include "core/base/log.h"
+#include "core/base/process_memory.h"
 #include "core/base/progress.h"
 #include "core/engine/engine.h"
 #include "core/imageio/exr.h"
@@ -163,6 +164,10 @@ PYBIND11_MODULE(_spear_engine, m) {
     using sp::engine::Engine;
     py::class_<Engine>(m, "Engine", "The engine: its worlds and the frame loop.")
         .def(py::init([](double fixedDeltaSeconds, bool editor, std::string scene) {
+                 // The same allocator settings as spear-server's (core/base/process_memory.h): the Python
+                 // process that runs an engine is a simulator's process; the environment's MALLOC_*
+                 // thresholds, when set, win.
+                 sp::keepFreedMemory();
                  return std::make_unique<Engine>(
                      Engine::Settings{fixedDeltaSeconds, editor, std::move(scene)});
              }),

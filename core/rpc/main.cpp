@@ -22,7 +22,6 @@
 // Prints "spear-server: listening on <address>" once it accepts connections (clients that launch a
 // server wait for that line), and exits cleanly on SIGTERM, SIGINT or a client's shutdown request.
 
-#include <malloc.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -41,6 +40,7 @@
 
 #include "core/base/asset_path.h"
 #include "core/base/error.h"
+#include "core/base/process_memory.h"
 #include "core/base/regular_file.h"
 #include "core/plugin/plugin_loader.h"
 #include "core/rpc/server.h"
@@ -92,24 +92,11 @@ void watchParent(pid_t parent) {
     }).detach();
 }
 
-// Keeps the memory a frame frees for the next frame. A software rasteriser (llvmpipe) allocates its
-// per-frame triangle bins and frees them when the frame is drawn; glibc hands what lies free at the top of
-// the heap back to the system each time, so every frame faults those pages in again and the kernel zeroes
-// them. A still scene of 4000 instances at 64 x 64 over RPC: 37-47 -> 23-29 ms a frame (BENCHMARKS.md). The
-// server's process is ours to tune; the environment's MALLOC_TRIM_THRESHOLD_ / MALLOC_MMAP_THRESHOLD_, when
-// set, win. Both thresholds are set, because setting one makes glibc stop adapting the other: blocks of up
-// to 32 MiB (a 1080p frame's readback included) come from the heap and stay there when freed.
-void keepFreedMemory() {
-    if (std::getenv("MALLOC_TRIM_THRESHOLD_") || std::getenv("MALLOC_MMAP_THRESHOLD_"))
-        return;
-    mallopt(M_MMAP_THRESHOLD, 32 << 20);
-    mallopt(M_TRIM_THRESHOLD, 128 << 20);
-}
-
 } // namespace
 
 int main(int argc, char** argv) {
-    keepFreedMemory();
+    // The server's process is ours to tune (core/base/process_memory.h).
+    sp::keepFreedMemory();
     sp::rpc::ServerOptions options;
     sp::engine::Engine::Settings settings;
     std::vector<std::string> plugins;
