@@ -3,6 +3,10 @@ RPC) and MuJoCo running the same workload alone (bench/mujoco_cosim_peer.cpp: mj
 mjr_readPixels), one cell after the other in the same run, on the same device.
 
     PYTHONPATH=python /usr/bin/python3 bench/bench_cosim.py --build-dir build [--frames 1000] [--write]
+    PYTHONPATH=python /usr/bin/python3 bench/bench_cosim.py --objects 256 --views 1 --sizes 3840x2160 640x480
+
+The cells are every --views x --objects at each of --sizes (default: Table 3's 1920x1080), then Table 3's
+256x256 cell (N = 64, one view) unless --sizes already holds that size.
 
 --write replaces the Table 3 section of BENCHMARKS.md (between its cosim markers) with the results.
 """
@@ -54,12 +58,25 @@ def spear_cell(example: ModuleType, server: str | None, objects: int, views: int
     return float(result.ms_per_frame)
 
 
+def size(text: str) -> tuple[int, int]:
+    """WxH, as --sizes takes it."""
+    try:
+        width, height = (int(part) for part in text.lower().split("x"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"a size is WIDTHxHEIGHT, like 1920x1080; got '{text}'") from None
+    if width < 1 or height < 1:
+        raise argparse.ArgumentTypeError(f"a size must be at least 1x1; got '{text}'")
+    return width, height
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build-dir", type=Path, default=ROOT / "build")
     parser.add_argument("--frames", type=int, default=1000)
     parser.add_argument("--objects", type=int, nargs="+", default=[4, 16, 64])
     parser.add_argument("--views", type=int, nargs="+", default=[1, 2])
+    parser.add_argument("--sizes", type=size, nargs="+", default=[(1920, 1080)], metavar="WxH",
+                        help="image sizes of the grid of cells (default: 1920x1080)")
     parser.add_argument("--no-rpc", action="store_true", help="in-process only")
     parser.add_argument("--no-inprocess", action="store_true",
                         help="over RPC only: for a Python that cannot load the in-process module (another "
@@ -79,7 +96,9 @@ def main() -> int:
         parser.error(f"{peer} is missing: build it with `cmake --build {args.build_dir} --target "
                      "spear_mujoco_cosim_peer` (needs Debian's libmujoco-dev)")
     example = load_example()
-    cells = [(n, v, 1920, 1080) for v in args.views for n in args.objects] + [(64, 1, 256, 256)]
+    cells = [(n, v, w, h) for w, h in args.sizes for v in args.views for n in args.objects]
+    if (256, 256) not in args.sizes:
+        cells.append((64, 1, 256, 256))
     rows = []
     device = ""
     for objects, views, width, height in cells:
@@ -118,8 +137,13 @@ def main() -> int:
         lines.append(
             f"| N={objects}, {views} view{'s' if views > 1 else ''}, {width}x{height} | {ms(inprocess)} | "
             f"{ms(rpc)} | {peer_ms:.1f} | {versus} | {ratio(rpc, inprocess)} | {reference} |")
+    # The command that reproduces this table: the options that choose its cells included where not the default.
+    grid = "".join(f" --{name} {' '.join(values)}" for name, values, default in (
+        ("objects", [str(n) for n in args.objects], ["4", "16", "64"]),
+        ("views", [str(v) for v in args.views], ["1", "2"]),
+        ("sizes", [f"{w}x{h}" for w, h in args.sizes], ["1920x1080"])) if values != default)
     command = ("PYTHONPATH=python /usr/bin/python3 bench/bench_cosim.py --build-dir build "
-               f"--frames {args.frames}{' --no-rpc' if args.no_rpc else ''}"
+               f"--frames {args.frames}{grid}{' --no-rpc' if args.no_rpc else ''}"
                f"{' --no-inprocess' if args.no_inprocess else ''} --write")
     text = section("cosim", command, [
         f"Device: {device} ({platform.machine()}, {args.frames} timed frames per cell after 10 warm-up frames; "
