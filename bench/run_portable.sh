@@ -2,7 +2,8 @@
 # Runs the renderer and Table 3 benchmarks from the portable kit (bench/portable_kit.sh) on a host without
 # the build's Python: the renderer alone (spear_render_bench, per-pass GL timer queries), then Table 3
 # beside MuJoCo: in-process and over RPC when the kit carries its Python (portable_kit.sh --python), else
-# over RPC only, driven by the host's python3 (numpy and msgpack needed).
+# over RPC only, driven by the host's python3 (numpy and msgpack needed); with the kit's Python, last the
+# vectorised environments at N = 16 (bench_vector.py, three rounds, without Dask).
 #
 #   bash bench/run_portable.sh [FRAMES] [PNG_DIR]     # in the checkout's root, build/portable.tar.xz present
 set -euo pipefail
@@ -47,3 +48,8 @@ echo "== Table 3 beside MuJoCo, $frames frames per cell"
 PYTHONPATH=python${PYTHONPATH:+:$PYTHONPATH} "$python" bench/bench_cosim.py ${transports[@]+"${transports[@]}"} \
     --peer-dir "$kit/bin" \
     --frames "$frames" ${png_dir:+--png-dir "$png_dir"}
+if [[ ${#transports[@]} -eq 0 ]]; then # the in-process column needs the kit's Python
+    echo "== vectorised environments, N = 16, $((frames / 5)) steps, 3 rounds"
+    PYTHONPATH=python${PYTHONPATH:+:$PYTHONPATH} "$python" bench/bench_vector.py --counts 16 --rounds 3 \
+        --steps $((frames / 5)) --no-dask
+fi
