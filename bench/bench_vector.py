@@ -5,6 +5,7 @@ independent single-world spear-server processes stepped one after another in the
 spear.vector writes).
 
     PYTHONPATH=python /usr/bin/python3 bench/bench_vector.py [--counts 1 4 16 64] [--steps 30] [--rounds 1]
+                                                             [--size 128]
 
 With --rounds K every column is measured K times, the columns taking turns, and a cell shows the median rate
 and the median of the rounds' ratios to the same round's floor, with their range: the floor drifts with the
@@ -14,6 +15,7 @@ machine's state, so a ratio is only taken within a round.
 from __future__ import annotations
 
 import argparse
+import functools
 import os
 import statistics
 import sys
@@ -31,16 +33,17 @@ sys.path.insert(0, str(ROOT / "python"))
 import spear  # noqa: E402
 from spear.vector import Box, CameraImage, StepResult, VectorEnv  # noqa: E402
 
-SIZE = 128
+SIZE = 128  # the camera's side in pixels (--size)
 
 
 class Push:
-    """A cube on a floor under a sun, pushed along X; an overhead 128 x 128 colour camera."""
+    """A cube on a floor under a sun, pushed along X; an overhead SIZE x SIZE colour camera."""
 
-    observation_space: Mapping[str, Box] = {"final_color": Box((SIZE, SIZE, 4), np.uint8, 0, 255)}
     action_space = Box((1,), np.float32, -1.0, 1.0)
 
-    def __init__(self) -> None:
+    def __init__(self, size: int = SIZE) -> None:
+        self.size = size
+        self.observation_space: Mapping[str, Box] = {"final_color": Box((size, size, 4), np.uint8, 0, 255)}
         self.cube: spear.AStaticMeshActor | None = None
         self.camera: spear.UCameraSensorComponent | None = None
 
@@ -58,7 +61,7 @@ class Push:
             camera = world.spawn_actor(uclass=spear.ACameraSensorActor, location=spear.FVector(Z=6.0),
                                        rotation=spear.FRotator(Pitch=-90.0))
             self.camera = camera.CameraSensor
-            self.camera.Width, self.camera.Height = SIZE, SIZE
+            self.camera.Width, self.camera.Height = self.size, self.size
             self.camera.Modalities = [spear.ECameraModality.FinalColor]
 
     def act(self, world: spear.UWorld, action: NDArray[np.float32]) -> None:
@@ -111,9 +114,13 @@ def main() -> None:
     parser.add_argument("--steps", type=int, default=30)
     parser.add_argument("--no-dask", action="store_true", help="skip the Dask column (for a Python without Dask)")
     parser.add_argument("--rounds", type=int, default=1, help="measure every column this many times, in turns")
+    parser.add_argument("--size", type=int, default=SIZE, help="each camera's width and height in pixels")
     args = parser.parse_args()
     if args.rounds < 1:
         parser.error(f"--rounds must be at least 1, got {args.rounds}")
+    if args.size < 1:
+        parser.error(f"--size must be at least 1, got {args.size}")
+    make_env = functools.partial(Push, args.size)
     cores = os.cpu_count() or 1
     client: Any = None
     cluster: Any = None
@@ -124,7 +131,7 @@ def main() -> None:
         cluster = distributed.LocalCluster(n_workers=cores, threads_per_worker=1, processes=True,
                                            dashboard_address=None, silence_logs=40)
         client = distributed.Client(cluster)
-    print(f"{cores} cores; environment steps per second (physics + one {SIZE}x{SIZE} colour camera each), "
+    print(f"{cores} cores; environment steps per second (physics + one {args.size}x{args.size} colour camera each), "
           f"{args.steps} timed steps after 3 warm-up steps"
           + (f"; medians of {args.rounds} rounds, ratios to each round's floor with their range" if args.rounds > 1
              else ""))
@@ -137,14 +144,14 @@ def main() -> None:
             columns: dict[str, list[float]] = {"floor": [], "worlds": [], "servers": [], "dask": []}
             for _ in range(args.rounds):
                 columns["floor"].append(measured(
-                    lambda: [VectorEnv.on_servers(Push, num_servers=1) for _ in range(n)], args.steps))
-                columns["worlds"].append(measured(lambda: [VectorEnv.in_worlds(Push, num_envs=n)], args.steps))
+                    lambda: [VectorEnv.on_servers(make_env, num_servers=1) for _ in range(n)], args.steps))
+                columns["worlds"].append(measured(lambda: [VectorEnv.in_worlds(make_env, num_envs=n)], args.steps))
                 columns["servers"].append(measured(lambda: [VectorEnv.on_servers(
-                    Push, num_servers=servers, worlds_per_server=n // servers)], args.steps))
+                    make_env, num_servers=servers, worlds_per_server=n // servers)], args.steps))
                 if client is not None:
                     with spear.distributed.Servers(client) as dask_servers:
                         columns["dask"].append(measured(lambda: [VectorEnv.on_servers(
-                            Push, num_servers=servers, worlds_per_server=n // servers,
+                            make_env, num_servers=servers, worlds_per_server=n // servers,
                             servers=dask_servers.addresses[:servers], token=dask_servers.token)], args.steps))
             floors = columns["floor"]
             cells = [cell(columns[key], floors) for key in ("worlds", "servers", "dask")]
