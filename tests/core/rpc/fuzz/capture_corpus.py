@@ -1,7 +1,7 @@
 """Captures the seed corpus of spear_rpc_fuzz: the request bodies a typical client session sends to a
 launched spear-server (hello, frames, spawning, properties, calls, static calls, batches, arrays, camera reads,
-describe, scene save and load, cars, characters and AI moves, triggers, splines, streaming levels), one file
-per request, in the order sent.
+describe, scene save and load, cars, characters and AI moves, triggers, splines, streaming levels, batched
+forces, stacked camera reads, a frame's posted end), one file per request, in the order sent.
 
     PYTHONPATH=python /usr/bin/python3 tests/core/rpc/fuzz/capture_corpus.py tests/core/rpc/fuzz/corpus
 
@@ -22,13 +22,14 @@ from spear._rpc_client import RpcConnection
 
 def main(out: Path) -> int:
     bodies: list[bytes] = []
-    original = RpcConnection._round_trip
+    original = RpcConnection._send
 
-    def recording(self: RpcConnection, frame: bytes) -> Any:
+    def recording(self: RpcConnection, frame: bytes) -> None:
+        # Every message sent, the posted ones (a frame's end sent without waiting) included.
         bodies.append(frame[4:])  # without the 4-byte length
-        return original(self, frame)
+        original(self, frame)
 
-    RpcConnection._round_trip = recording  # type: ignore[assignment]
+    RpcConnection._send = recording  # type: ignore[method-assign]
     instance = spear.Instance(server="launch")
     game = instance.get_game()
     # Scene files first: loading one replaces every actor, and the handles of those spawned below must stay
@@ -97,12 +98,17 @@ def main(out: Path) -> int:
     with instance.end_frame():
         car.GetWheelState(WheelIndex=0)
         trigger.CollisionComponent.GetBeginOverlaps()
+    with instance.begin_frame():  # many bodies pushed in one call; cameras read together
+        game.send_async.add_forces(components=[mesh], forces=np.array([[0.0, 1.0, 0.0]]))
+        game.add_forces(components=[mesh], forces=np.array([[1.0, 0.0, 0.0]]), bAccelChange=True)
+    with instance.end_frame():
+        camera.read_pixels_stacked(Cameras=[camera])
     connection: Any = instance._backend  # the dynamic API and the transport's diagnostics, by hand
     client = getattr(connection, "connection", None)
     if client is not None:
         client.request("echo", value={"list": [1, 2.5, "x", None, True], "array": np.arange(12, dtype=np.float32)})
     instance.close()
-    RpcConnection._round_trip = original  # type: ignore[assignment]
+    RpcConnection._send = original  # type: ignore[method-assign]
 
     out.mkdir(parents=True, exist_ok=True)
     for old in out.glob("*.msgpack"):
