@@ -11,8 +11,9 @@ namespace sp {
 
 // Sets glibc's mmap threshold to 32 MiB and its trim threshold to 128 MiB, once per process, unless the
 // environment names either (MALLOC_MMAP_THRESHOLD_ / MALLOC_TRIM_THRESHOLD_: the user's choice wins). Both
-// are set because setting one makes glibc stop adapting the other; these are about where glibc's own
-// adaptation ends up after a large block is freed (a 32 MiB ceiling, trimming at twice it), reached at once.
+// are set because setting one makes glibc stop adapting the other. glibc's own adaptation, once a 32 MiB
+// block is freed, ends at blocks of up to 32 MiB from the heap and trimming past 64 MiB free; this reaches
+// that at once and keeps up to 128 MiB, a frame's worth of a large scene's bins and readback arrays.
 // Returns whether this call or an earlier one set them.
 bool keepFreedMemory();
 
