@@ -37,6 +37,10 @@ class Instance:
     server: None runs the engine in this process; "launch" starts a spear-server process for this
     instance (stopped by close()); "unix:PATH" or "tcp:HOST:PORT" connects to a running server
     (token: the server's TCP token).
+
+    In this process, the first engine sets glibc's mmap and trim thresholds to 32 and 128 MiB, as spear-server
+    does for its own, so that a frame's freed memory is kept for the next one; MALLOC_MMAP_THRESHOLD_ or
+    MALLOC_TRIM_THRESHOLD_ in the environment, when set, win (README, "The camera sensor").
     """
 
     def __init__(self, *, server: str | None = None, token: str | None = None,
