@@ -171,6 +171,35 @@ std::string_view targetName(Target target) {
     return kNames[index];
 }
 
+TargetMask ModalitySet::targets() const {
+    TargetMask mask = 0;
+    for (Modality m : list())
+        mask |= targetBit(targetOf(m));
+    return mask;
+}
+
+ModalityPlan planModalities(const ModalitySet& modalities, bool softwareRasteriser) {
+    const ModalityPlan plan{modalities, {}};
+    if (!softwareRasteriser || std::popcount(modalities.targets()) <= kMaxDrawTargets)
+        return plan;
+    const bool diffuse = modalities.contains(Modality::DiffuseOnly);
+    const bool residual = modalities.contains(Modality::SpecularResidual);
+    if (!diffuse && !residual)
+        return plan;
+    ModalityPlan derived{modalities, {}};
+    // diffuse_only's inputs; specular_residual needs diffuse_only's value, so those inputs too.
+    derived.rendered.remove(Modality::DiffuseOnly).remove(Modality::SpecularResidual);
+    derived.rendered.add(Modality::BaseColor).add(Modality::Metallic).add(Modality::DiffuseIllumination);
+    if (diffuse)
+        derived.derived.add(Modality::DiffuseOnly);
+    if (residual) {
+        derived.rendered.add(Modality::HdrColor);
+        derived.derived.add(Modality::SpecularResidual);
+    }
+    // Only when it spares targets (a set that asked for neither input would render more).
+    return std::popcount(derived.rendered.targets()) < std::popcount(modalities.targets()) ? derived : plan;
+}
+
 PassSet ModalitySet::requiredPasses(bool shadowsEnabled) const {
     PassSet passes;
     TargetMask requested = 0;

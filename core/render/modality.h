@@ -134,11 +134,26 @@ class ModalitySet {
     std::vector<std::string> names() const;
     // Passes needed to produce every modality in the set (shadow decided by the caller's camera).
     PassSet requiredPasses(bool shadowsEnabled) const;
+    // The targets the set's modalities are read from.
+    TargetMask targets() const;
 
     bool operator==(const ModalitySet&) const = default;
 
   private:
     std::bitset<kModalityCount> bits_;
 };
+
+// How a frame of a modality set is made: the modalities rendered, and those computed on the CPU from them
+// (derived_images.h). A software rasteriser pays for every target it writes, so where the set needs more
+// targets than one pass can write, diffuse_only and specular_residual are computed from base colour,
+// metallic, diffuse illumination and HDR colour instead of rendered, when that leaves fewer targets (all 14
+// modalities: 9 targets instead of 11, the attribute pass writing the ids alone). A GPU writes targets nearly
+// for free: there (softwareRasteriser false), and for smaller sets, everything is rendered.
+struct ModalityPlan {
+    ModalitySet rendered;
+    ModalitySet derived;
+    bool operator==(const ModalityPlan&) const = default;
+};
+ModalityPlan planModalities(const ModalitySet& modalities, bool softwareRasteriser);
 
 } // namespace sp::render

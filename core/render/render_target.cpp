@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "core/base/error.h"
+#include "core/render/derived_images.h"
 #include "core/render/framebuffer_atlas.h"
 #include "core/render/framebuffers.h"
 #include "core/render/parallel_copy.h"
@@ -152,7 +153,9 @@ std::vector<std::uint64_t> RenderTarget::submitAll(std::span<const Submission> s
     // placed (taking a layer may give its page new framebuffers).
     std::vector<PassSet> passes;
     for (const Submission& s : submissions) {
-        passes.push_back(s.target->modalities_.requiredPasses(s.camera->params.shadows));
+        s.target->plan_ = renderer.derivesOnCpu() ? planModalities(s.target->modalities_, true)
+                                                  : ModalityPlan{s.target->modalities_, {}};
+        passes.push_back(s.target->plan_.rendered.requiredPasses(s.camera->params.shadows));
         const int width = s.camera->params.width, height = s.camera->params.height;
         if (renderer.atlas().suits(width, height)) {
             renderer.atlas().acquire(s.target, width, height, passes.back());
@@ -191,13 +194,14 @@ std::uint64_t RenderTarget::queueReadback(const Scene& scene, const Camera& came
     slot.width = camera.params.width;
     slot.height = camera.params.height;
     slot.modalities = modalities_;
+    slot.plan = plan_;
     // A longer ring copies into pixel-buffer objects now, so that the framebuffers can take the next frames
     // while this one waits; so does latency 0 on a GPU (stagesReadback()), whose copy engine then moves
     // this view out while the next one is drawn. Otherwise latency 0 reads straight from the framebuffers
     // into the caller's memory when the frame is read (and not at all if it never is).
     slot.staged = stagesReadback();
     if (slot.staged) {
-        for (Modality modality : modalities_.list()) {
+        for (Modality modality : plan_.rendered.list()) {
             const auto m = static_cast<std::size_t>(modality);
             const std::size_t bytes = modalityByteSize(modality, slot.width, slot.height);
             if (slot.buffers[m] == 0)
@@ -253,6 +257,41 @@ void RenderTarget::copyOut(Slot& slot, Modality modality, void* destination) {
     parallelCopy(destination, mapped, bytes, renderer_.readbackThreads());
     glUnmapNamedBuffer(slot.buffers[m]);
     renderer_.endReadback(slot.sceneUid);
+}
+
+void RenderTarget::readViews(Slot& slot, std::span<const OutputView> views) {
+    for (const OutputView& view : views)
+        if (!slot.plan.derived.contains(view.modality))
+            copyOut(slot, view.modality, view.data);
+    // diffuse_only before specular_residual, which is computed from it.
+    for (Modality computed : {Modality::DiffuseOnly, Modality::SpecularResidual})
+        for (const OutputView& view : views)
+            if (view.modality == computed && slot.plan.derived.contains(computed))
+                derive(slot, computed, view.data, views);
+}
+
+void RenderTarget::derive(Slot& slot, Modality modality, void* destination,
+                          std::span<const OutputView> read) {
+    const std::size_t pixels = std::size_t(slot.width) * std::size_t(slot.height);
+    // An input's pixels: the view this read filled with it, else a scratch read of it.
+    const auto input = [&](Modality in) -> const std::uint16_t* {
+        for (const OutputView& view : read)
+            if (view.modality == in && (!slot.plan.derived.contains(in) || in == Modality::DiffuseOnly))
+                return static_cast<const std::uint16_t*>(view.data);
+        std::vector<std::uint16_t>& scratch = deriveScratch_[static_cast<std::size_t>(in)];
+        scratch.resize(modalityByteSize(in, slot.width, slot.height) / sizeof(std::uint16_t));
+        if (in == Modality::DiffuseOnly)
+            derive(slot, in, scratch.data(), read);
+        else
+            copyOut(slot, in, scratch.data());
+        return scratch.data();
+    };
+    auto* out = static_cast<std::uint16_t*>(destination);
+    if (modality == Modality::DiffuseOnly)
+        computeDiffuseOnly(input(Modality::BaseColor), input(Modality::Metallic),
+                           input(Modality::DiffuseIllumination), out, pixels);
+    else
+        computeSpecularResidual(input(Modality::HdrColor), input(Modality::DiffuseOnly), out, pixels);
 }
 
 bool RenderTarget::stagesReadback() const {
@@ -312,8 +351,12 @@ std::optional<std::uint64_t> RenderTarget::read(Frame& frame) {
     frame.frameNumber = slot->frameNumber;
     frame.width = slot->width;
     frame.height = slot->height;
-    for (Modality modality : slot->modalities.list())
-        copyOut(*slot, modality, frame.prepare(modality, slot->width, slot->height).bytes.data());
+    std::vector<OutputView> views;
+    for (Modality modality : slot->modalities.list()) {
+        ImageBuffer& image = frame.prepare(modality, slot->width, slot->height);
+        views.push_back({modality, image.bytes.data(), image.bytes.size()});
+    }
+    readViews(*slot, views);
     dropFence(*slot);
     lastRead_ = slot;
     return frame.frameNumber;
@@ -339,8 +382,7 @@ std::optional<std::uint64_t> RenderTarget::readAgain(std::span<const OutputView>
     // A frame read straight from the framebuffers (latency 0) is read from them again, as they hold it
     // until the next submit; a staged one from the slot's pixel-buffer objects, which hold it until the
     // slot is reused.
-    for (const OutputView& view : views)
-        copyOut(*lastRead_, view.modality, view.data);
+    readViews(*lastRead_, views);
     return lastRead_->frameNumber;
 }
 
@@ -351,8 +393,7 @@ std::optional<std::uint64_t> RenderTarget::read(std::span<const OutputView> view
     Slot* slot = dueSlot();
     if (slot == nullptr)
         return std::nullopt;
-    for (const OutputView& view : views)
-        copyOut(*slot, view.modality, view.data);
+    readViews(*slot, views);
     const std::uint64_t number = slot->frameNumber;
     dropFence(*slot);
     lastRead_ = slot;

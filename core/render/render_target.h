@@ -78,7 +78,8 @@ class RenderTarget {
         bool staged = false;
         int width = 0;
         int height = 0;
-        ModalitySet modalities;
+        ModalitySet modalities; // as asked for (what the frame can be read as)
+        ModalityPlan plan;      // rendered, and computed from those when read (ModalitySet::planFor())
         void* fence = nullptr;
         std::array<unsigned, kModalityCount> buffers{};
         std::array<std::size_t, kModalityCount> capacity{};
@@ -96,6 +97,11 @@ class RenderTarget {
     // The slot holding the frame due for reading, or null.
     Slot* dueSlot();
     void copyOut(Slot& slot, Modality modality, void* destination);
+    // Reads `views` of the slot's frame: the rendered modalities first, then those computed from them (from
+    // the views just read where they hold the inputs, else from scratch reads).
+    void readViews(Slot& slot, std::span<const OutputView> views);
+    // A computed modality (slot.plan.derived) into `destination`; `read`: the views already filled.
+    void derive(Slot& slot, Modality modality, void* destination, std::span<const OutputView> read);
     // Whether `modality` is read through the renderer's compute copy (Renderer::packIdsOnGpu()).
     bool packedOnGpu(Modality modality) const;
     // Reads a modality of the frame the framebuffers hold into `destination` (latency 0).
@@ -110,6 +116,7 @@ class RenderTarget {
 
     Renderer& renderer_;
     ModalitySet modalities_;
+    ModalityPlan plan_; // of modalities_, as the last submit made it
     int latency_;
     std::uint64_t submitted_ = 0;
     Slot* lastRead_ = nullptr; // the slot read since the last submit(), for readAgain()
@@ -117,6 +124,8 @@ class RenderTarget {
     std::unique_ptr<Framebuffers> framebuffers_; // a large view's own (null while it holds a layer)
     unsigned idScratch_ = 0; // latency 0's id readback: the packed channel, then copied out
     std::size_t idScratchBytes_ = 0;
+    // The inputs of computed modalities that were not asked for themselves, by modality.
+    std::array<std::vector<std::uint16_t>, kModalityCount> deriveScratch_;
 };
 
 } // namespace sp::render

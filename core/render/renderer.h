@@ -116,6 +116,12 @@ class Renderer {
     // are the same.
     bool stagedReadback() const { return stagedReadback_; }
     void setStagedReadback(bool on) { stagedReadback_ = on; }
+    // Whether RenderTarget computes the modalities that other modalities define on the CPU when a set
+    // needs more targets than one pass writes (planModalities()): by default on a software rasteriser,
+    // which pays for every target it writes. SPEAR_INTRINSICS=cpu|rendered overrides the default. Settable,
+    // so that tests compare both ways.
+    bool derivesOnCpu() const { return derivesOnCpu_; }
+    void setDerivesOnCpu(bool on) { derivesOnCpu_ = on; }
     // The threads a read splits its copy out of a pixel-buffer object across (parallelCopy()); by default
     // defaultCopyThreads().
     int readbackThreads() const { return readbackThreads_; }
@@ -205,6 +211,7 @@ class Renderer {
     void drawVignettedBackground(TargetMask targets, ToneMap toneMap);
 
     const GlContext& context_;
+    bool derivesOnCpu_ = false;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs_; // by variant key
     std::unique_ptr<ShaderProgram> shadow_;
     std::unique_ptr<ShaderProgram> idChannel_[2]; // by layered; made at the first id readback

@@ -89,6 +89,43 @@ TEST(ModalityTest, TargetsPastTheDrawBuffersGoToTheAttributePass) {
     EXPECT_EQ(plain.attributeTargets, 0u);
 }
 
+TEST(ModalityTest, ASoftwareRasteriserComputesTheIntrinsicsThatOtherModalitiesDefine) {
+    // All 14 on a software rasteriser: diffuse_only and specular_residual come from the images read, so
+    // nine targets are drawn instead of eleven, and the attribute pass writes the ids alone.
+    const ModalityPlan all = planModalities(ModalitySet::all(), true);
+    EXPECT_EQ(all.derived, (ModalitySet{Modality::DiffuseOnly, Modality::SpecularResidual}));
+    EXPECT_FALSE(all.rendered.contains(Modality::DiffuseOnly) ||
+                 all.rendered.contains(Modality::SpecularResidual));
+    EXPECT_EQ(std::popcount(all.rendered.targets()), 9);
+    EXPECT_EQ(all.rendered.requiredPasses(true).attributeTargets, targetBit(Target::Ids));
+    // On a GPU, and for sets one pass writes, everything is rendered.
+    EXPECT_EQ(planModalities(ModalitySet::all(), false), (ModalityPlan{ModalitySet::all(), {}}));
+    const ModalitySet intrinsics{Modality::HdrColor,    Modality::BaseColor,
+                                 Modality::Metallic,    Modality::DiffuseIllumination,
+                                 Modality::DiffuseOnly, Modality::SpecularResidual};
+    EXPECT_EQ(planModalities(intrinsics, true), (ModalityPlan{intrinsics, {}}));
+    // specular_residual alone beside many attributes: its inputs (diffuse_only's among them) are rendered,
+    // diffuse_only is not returned.
+    ModalitySet residual = ModalitySet::all();
+    residual.remove(Modality::DiffuseOnly);
+    const ModalityPlan plan = planModalities(residual, true);
+    EXPECT_EQ(plan.derived, ModalitySet{Modality::SpecularResidual});
+    EXPECT_TRUE(plan.rendered.contains(Modality::BaseColor) && plan.rendered.contains(Modality::Metallic));
+    // When computing would draw more targets than it spares, the set is rendered: position, normal, depth,
+    // ids, final colour, HDR colour, diffuse illumination, diffuse only and specular residual (9 targets)
+    // would need base colour and the parameters (10).
+    const ModalitySet without{Modality::Position,
+                              Modality::Normal,
+                              Modality::Depth,
+                              Modality::ObjectIds,
+                              Modality::FinalColor,
+                              Modality::HdrColor,
+                              Modality::DiffuseIllumination,
+                              Modality::DiffuseOnly,
+                              Modality::SpecularResidual};
+    EXPECT_EQ(planModalities(without, true), (ModalityPlan{without, {}}));
+}
+
 TEST(ModalityTest, HalfFloatRoundTrips) {
     for (float v : {0.0f, 1.0f, -2.5f, 0.1f, 1000.0f, 6.1e-5f, 65504.0f})
         EXPECT_NEAR(halfToFloat(floatToHalf(v)), v, std::abs(v) * 1e-3f + 1e-7f) << v;

@@ -70,8 +70,66 @@ TEST_F(RenderIntrinsicsGlTest, IdentitiesHoldPerPixelInOnePass) {
 }
 
 TEST_F(RenderIntrinsicsGlTest, IdentitiesHoldPerPixelWithAnAttributePass) {
-    // Base colour, metallic and the ids come from the attribute pass, the rest from the surface pass.
-    expectIdentitiesPerPixel(renderer(), ModalitySet::all(), true);
+    // Rendered (as on a GPU): base colour, metallic and the ids come from the attribute pass, the rest from
+    // the surface pass. Computed on the CPU (a software rasteriser's default): diffuse_only and
+    // specular_residual from the images read.
+    const bool byDefault = renderer().derivesOnCpu();
+    for (const bool derive : {false, true}) {
+        SCOPED_TRACE(derive ? "computed on the CPU" : "rendered");
+        renderer().setDerivesOnCpu(derive);
+        expectIdentitiesPerPixel(renderer(), ModalitySet::all(), true);
+    }
+    renderer().setDerivesOnCpu(byDefault);
+}
+
+TEST_F(RenderIntrinsicsGlTest, ComputedIntrinsicsMatchRenderedOnesToAFloat16Step) {
+    Scene scene;
+    buildShapesScene(scene);
+    Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 61, 37); // pixels not a multiple of 8
+    const bool byDefault = renderer().derivesOnCpu();
+    Frame frames[2];
+    for (const bool derive : {false, true}) {
+        renderer().setDerivesOnCpu(derive);
+        RenderTarget target(renderer(), ModalitySet::all(), derive ? 1 : 0); // the staged path, too
+        for (int i = 0; i < 2; ++i) // latency 1: the second submit's read returns the first frame
+            target.submit(scene, camera);
+        ASSERT_TRUE(target.read(frames[derive ? 1 : 0]).has_value());
+    }
+    renderer().setDerivesOnCpu(byDefault);
+    // One float16 step of the larger magnitude: the shader rounds once from float32, the CPU from the
+    // rounded hdr_color and diffuse_only.
+    const auto step = [](float a, float b) {
+        return std::max(std::abs(a), std::abs(b)) * (1.0f / 1024.0f) + 1e-6f;
+    };
+    for (Modality computed : {Modality::DiffuseOnly, Modality::SpecularResidual})
+        for (int y = 0; y < 37; ++y)
+            for (int x = 0; x < 61; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    const float rendered = frames[0].get(computed).at(x, y, c);
+                    const float cpu = frames[1].get(computed).at(x, y, c);
+                    ASSERT_NEAR(cpu, rendered,
+                                2.0f * step(rendered, frames[1].get(Modality::HdrColor).at(x, y, c)))
+                        << modalityName(computed) << " at " << x << "," << y << " c" << c;
+                }
+}
+
+TEST_F(RenderIntrinsicsGlTest, AComputedModalityReadAloneOrAgainIsTheSame) {
+    Scene scene;
+    buildShapesScene(scene);
+    Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 24, 16);
+    const bool byDefault = renderer().derivesOnCpu();
+    renderer().setDerivesOnCpu(true);
+    RenderTarget target(renderer(), ModalitySet::all(), 0);
+    Frame all;
+    target.render(scene, camera, all);
+    // Read again, alone: its inputs come from scratch reads instead of the views read beside it.
+    for (Modality computed : {Modality::SpecularResidual, Modality::DiffuseOnly}) {
+        std::vector<std::byte> alone(modalityByteSize(computed, 24, 16));
+        const OutputView view{computed, alone.data(), alone.size()};
+        ASSERT_TRUE(target.readAgain(std::span<const OutputView>(&view, 1)).has_value());
+        EXPECT_EQ(alone, all.get(computed).bytes) << modalityName(computed);
+    }
+    renderer().setDerivesOnCpu(byDefault);
 }
 
 TEST_F(RenderIntrinsicsGlTest, WhiteLambertianUnderANormalSunHasUnitIllumination) {

@@ -306,16 +306,27 @@ TEST_F(RenderPathsGlTest, ComputeLightingAgreesWithShadingInTheFragments) {
 }
 
 TEST_F(RenderPathsGlTest, TheGpuPathSwitchesAreReadFromTheEnvironmentAndCheckedThere) {
-    // SPEAR_LIGHTING and SPEAR_READBACK override the device's defaults; a value that is neither choice is
-    // refused naming the variable and the value.
+    // SPEAR_LIGHTING, SPEAR_READBACK and SPEAR_INTRINSICS override the device's defaults; a value that is
+    // neither choice is refused naming the variable and the value.
     GlContext& context = *context_;
     ::setenv("SPEAR_LIGHTING", "compute", 1);
     ::setenv("SPEAR_READBACK", "direct", 1);
+    ::setenv("SPEAR_INTRINSICS", "rendered", 1);
     {
         Renderer forced(context);
         EXPECT_TRUE(forced.computeLighting());
         EXPECT_FALSE(forced.stagedReadback());
+        EXPECT_FALSE(forced.derivesOnCpu());
     }
+    ::setenv("SPEAR_INTRINSICS", "gpu", 1);
+    try {
+        Renderer refused(context);
+        ADD_FAILURE() << "SPEAR_INTRINSICS=gpu was accepted";
+    } catch (const InvalidArgument& e) {
+        EXPECT_STREQ(e.what(),
+                     "Renderer::Renderer(): SPEAR_INTRINSICS must be 'cpu' or 'rendered', got 'gpu'");
+    }
+    ::unsetenv("SPEAR_INTRINSICS");
     ::setenv("SPEAR_LIGHTING", "deferred", 1);
     try {
         Renderer refused(context);
@@ -329,6 +340,7 @@ TEST_F(RenderPathsGlTest, TheGpuPathSwitchesAreReadFromTheEnvironmentAndCheckedT
     Renderer byDefault(context);
     EXPECT_EQ(byDefault.computeLighting(), !context.report().software);
     EXPECT_EQ(byDefault.stagedReadback(), !context.report().software);
+    EXPECT_EQ(byDefault.derivesOnCpu(), context.report().software);
     context.makeCurrent(); // the fixture's renderer goes on in the same context
 }
 

@@ -1,0 +1,94 @@
+#include "core/render/derived_images.h"
+
+#include <immintrin.h>
+
+#include "core/render/image_buffer.h"
+
+namespace sp::render {
+
+namespace {
+
+// Eight float16 values at `source` as float32, and back (rounded to nearest even).
+__attribute__((target("avx2,f16c"))) __m256 load8(const std::uint16_t* source) {
+    return _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(source)));
+}
+__attribute__((target("avx2,f16c"))) void store8(std::uint16_t* destination, __m256 values) {
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(destination),
+                     _mm256_cvtps_ph(values, _MM_FROUND_TO_NEAREST_INT));
+}
+
+// Eight pixels at a time: their 24 channels are three vectors of eight, and each pixel's (1 - metallic) is
+// spread over its three channels with permutes.
+__attribute__((target("avx2,f16c"))) std::size_t diffuseOnlyF16c(const std::uint16_t* base,
+                                                                 const std::uint16_t* metallic,
+                                                                 const std::uint16_t* illumination,
+                                                                 std::uint16_t* out, std::size_t pixels) {
+    const __m256 one = _mm256_set1_ps(1.0f);
+    const __m256i spread[3] = {_mm256_setr_epi32(0, 0, 0, 1, 1, 1, 2, 2),
+                               _mm256_setr_epi32(2, 3, 3, 3, 4, 4, 4, 5),
+                               _mm256_setr_epi32(5, 5, 6, 6, 6, 7, 7, 7)};
+    std::size_t p = 0;
+    for (; p + 8 <= pixels; p += 8) {
+        const __m256 dielectric = _mm256_sub_ps(one, load8(metallic + p));
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::size_t at = 3 * p + 8 * k;
+            const __m256 weighted =
+                _mm256_mul_ps(load8(base + at), _mm256_permutevar8x32_ps(dielectric, spread[k]));
+            store8(out + at, _mm256_mul_ps(weighted, load8(illumination + at)));
+        }
+    }
+    return p;
+}
+
+// Eight pixels at a time: the 32 channels of HDR colour (RGBA) are packed into 24 (RGB) with permutes and
+// blends, then diffuse_only is taken from them.
+__attribute__((target("avx2,f16c"))) std::size_t specularResidualF16c(const std::uint16_t* hdr,
+                                                                      const std::uint16_t* diffuse,
+                                                                      std::uint16_t* out,
+                                                                      std::size_t pixels) {
+    const __m256i first = _mm256_setr_epi32(0, 1, 2, 4, 5, 6, 0, 1);  // h0's rgb rgb, then h1's r g
+    const __m256i second = _mm256_setr_epi32(2, 4, 5, 6, 0, 1, 2, 4); // h1's b rgb, then h2's rgb r
+    const __m256i third = _mm256_setr_epi32(5, 6, 0, 1, 2, 4, 5, 6);  // h2's g b, then h3's rgb rgb
+    std::size_t p = 0;
+    for (; p + 8 <= pixels; p += 8) {
+        const __m256 h0 = load8(hdr + 4 * p), h1 = load8(hdr + 4 * p + 8), h2 = load8(hdr + 4 * p + 16),
+                     h3 = load8(hdr + 4 * p + 24);
+        const __m256 rgb[3] = {
+            _mm256_blend_ps(_mm256_permutevar8x32_ps(h0, first), _mm256_permutevar8x32_ps(h1, first), 0xc0),
+            _mm256_blend_ps(_mm256_permutevar8x32_ps(h1, second), _mm256_permutevar8x32_ps(h2, second), 0xf0),
+            _mm256_blend_ps(_mm256_permutevar8x32_ps(h2, third), _mm256_permutevar8x32_ps(h3, third), 0xfc)};
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::size_t at = 3 * p + 8 * k;
+            store8(out + at, _mm256_sub_ps(rgb[k], load8(diffuse + at)));
+        }
+    }
+    return p;
+}
+
+bool hasF16c() {
+    static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("f16c");
+    return has;
+}
+
+} // namespace
+
+void computeDiffuseOnly(const std::uint16_t* base, const std::uint16_t* metallic,
+                        const std::uint16_t* illumination, std::uint16_t* out, std::size_t pixels) {
+    const std::size_t done = hasF16c() ? diffuseOnlyF16c(base, metallic, illumination, out, pixels) : 0;
+    for (std::size_t p = done; p < pixels; ++p) {
+        const float dielectric = 1.0f - halfToFloat(metallic[p]);
+        for (std::size_t c = 0; c < 3; ++c)
+            out[3 * p + c] =
+                floatToHalf(halfToFloat(base[3 * p + c]) * dielectric * halfToFloat(illumination[3 * p + c]));
+    }
+}
+
+void computeSpecularResidual(const std::uint16_t* hdr, const std::uint16_t* diffuse, std::uint16_t* out,
+                             std::size_t pixels) {
+    const std::size_t done = hasF16c() ? specularResidualF16c(hdr, diffuse, out, pixels) : 0;
+    for (std::size_t p = done; p < pixels; ++p)
+        for (std::size_t c = 0; c < 3; ++c)
+            out[3 * p + c] = floatToHalf(halfToFloat(hdr[4 * p + c]) - halfToFloat(diffuse[3 * p + c]));
+}
+
+} // namespace sp::render
