@@ -1,13 +1,16 @@
 #include "core/render/derived_images.h"
 
-#include <immintrin.h>
-
 #include "core/render/image_buffer.h"
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 namespace sp::render {
 
 namespace {
 
+#if defined(__x86_64__)
 // Eight float16 values at `source` as float32, and back (rounded to nearest even).
 __attribute__((target("avx2,f16c"))) __m256 load8(const std::uint16_t* source) {
     return _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(source)));
@@ -69,6 +72,18 @@ bool hasF16c() {
     static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("f16c");
     return has;
 }
+#else // elsewhere the scalar loops do it all
+std::size_t diffuseOnlyF16c(const std::uint16_t*, const std::uint16_t*, const std::uint16_t*, std::uint16_t*,
+                            std::size_t) {
+    return 0;
+}
+std::size_t specularResidualF16c(const std::uint16_t*, const std::uint16_t*, std::uint16_t*, std::size_t) {
+    return 0;
+}
+bool hasF16c() {
+    return false;
+}
+#endif
 
 } // namespace
 
