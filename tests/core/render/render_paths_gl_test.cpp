@@ -318,23 +318,21 @@ TEST_F(RenderPathsGlTest, TheGpuPathSwitchesAreReadFromTheEnvironmentAndCheckedT
         EXPECT_FALSE(forced.stagedReadback());
         EXPECT_FALSE(forced.derivesOnCpu());
     }
-    ::setenv("SPEAR_INTRINSICS", "gpu", 1);
-    try {
-        Renderer refused(context);
-        ADD_FAILURE() << "SPEAR_INTRINSICS=gpu was accepted";
-    } catch (const InvalidArgument& e) {
-        EXPECT_STREQ(e.what(),
-                     "Renderer::Renderer(): SPEAR_INTRINSICS must be 'cpu' or 'rendered', got 'gpu'");
-    }
+    // A variable set to a value that is neither choice: the renderer is refused, naming both.
+    const auto expectRefused = [&](const char* variable, const char* value, const char* message) {
+        ::setenv(variable, value, 1);
+        try {
+            Renderer refused(context);
+            ADD_FAILURE() << variable << "=" << value << " was accepted";
+        } catch (const InvalidArgument& e) {
+            EXPECT_STREQ(e.what(), message);
+        }
+    };
+    expectRefused("SPEAR_INTRINSICS", "gpu",
+                  "Renderer::Renderer(): SPEAR_INTRINSICS must be 'cpu' or 'rendered', got 'gpu'");
     ::unsetenv("SPEAR_INTRINSICS");
-    ::setenv("SPEAR_LIGHTING", "deferred", 1);
-    try {
-        Renderer refused(context);
-        ADD_FAILURE() << "SPEAR_LIGHTING=deferred was accepted";
-    } catch (const InvalidArgument& e) {
-        EXPECT_STREQ(e.what(),
-                     "Renderer::Renderer(): SPEAR_LIGHTING must be 'compute' or 'forward', got 'deferred'");
-    }
+    expectRefused("SPEAR_LIGHTING", "deferred",
+                  "Renderer::Renderer(): SPEAR_LIGHTING must be 'compute' or 'forward', got 'deferred'");
     ::unsetenv("SPEAR_LIGHTING");
     ::unsetenv("SPEAR_READBACK");
     Renderer byDefault(context);
