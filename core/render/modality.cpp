@@ -202,13 +202,12 @@ ModalityPlan planModalities(const ModalitySet& modalities, bool softwareRasteris
 
 PassSet ModalitySet::requiredPasses(bool shadowsEnabled) const {
     PassSet passes;
-    TargetMask requested = 0;
     for (Modality m : list()) {
         passes.surface = true;
         passes.lighting = passes.lighting || needsLighting(m);
         passes.tonemap = passes.tonemap || m == Modality::FinalColor;
-        requested |= targetBit(targetOf(m));
     }
+    const TargetMask requested = targets();
     passes.shadow = passes.lighting && shadowsEnabled;
     if (!passes.surface)
         return passes;

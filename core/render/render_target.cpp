@@ -153,8 +153,7 @@ std::vector<std::uint64_t> RenderTarget::submitAll(std::span<const Submission> s
     // placed (taking a layer may give its page new framebuffers).
     std::vector<PassSet> passes;
     for (const Submission& s : submissions) {
-        s.target->plan_ = renderer.derivesOnCpu() ? planModalities(s.target->modalities_, true)
-                                                  : ModalityPlan{s.target->modalities_, {}};
+        s.target->plan_ = planModalities(s.target->modalities_, renderer.derivesOnCpu());
         passes.push_back(s.target->plan_.rendered.requiredPasses(s.camera->params.shadows));
         const int width = s.camera->params.width, height = s.camera->params.height;
         if (renderer.atlas().suits(width, height)) {
@@ -273,10 +272,11 @@ void RenderTarget::readViews(Slot& slot, std::span<const OutputView> views) {
 void RenderTarget::derive(Slot& slot, Modality modality, void* destination,
                           std::span<const OutputView> read) {
     const std::size_t pixels = std::size_t(slot.width) * std::size_t(slot.height);
-    // An input's pixels: the view this read filled with it, else a scratch read of it.
+    // An input's pixels: the view this read filled with it (readViews() computes diffuse_only before
+    // specular_residual), else a scratch read of it.
     const auto input = [&](Modality in) -> const std::uint16_t* {
         for (const OutputView& view : read)
-            if (view.modality == in && (!slot.plan.derived.contains(in) || in == Modality::DiffuseOnly))
+            if (view.modality == in)
                 return static_cast<const std::uint16_t*>(view.data);
         std::vector<std::uint16_t>& scratch = deriveScratch_[static_cast<std::size_t>(in)];
         scratch.resize(modalityByteSize(in, slot.width, slot.height) / sizeof(std::uint16_t));

@@ -79,7 +79,7 @@ class RenderTarget {
         int width = 0;
         int height = 0;
         ModalitySet modalities; // as asked for (what the frame can be read as)
-        ModalityPlan plan;      // rendered, and computed from those when read (ModalitySet::planFor())
+        ModalityPlan plan;      // rendered, and computed from those when read (planModalities())
         void* fence = nullptr;
         std::array<unsigned, kModalityCount> buffers{};
         std::array<std::size_t, kModalityCount> capacity{};

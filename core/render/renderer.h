@@ -211,13 +211,13 @@ class Renderer {
     void drawVignettedBackground(TargetMask targets, ToneMap toneMap);
 
     const GlContext& context_;
-    bool derivesOnCpu_ = false;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs_; // by variant key
     std::unique_ptr<ShaderProgram> shadow_;
     std::unique_ptr<ShaderProgram> idChannel_[2]; // by layered; made at the first id readback
     bool packIdsOnGpu_ = true;
     bool stagedReadback_ = false;
     bool computeLighting_ = false;
+    bool derivesOnCpu_ = false;
     int readbackThreads_ = 1;
     int constantSlots_ = 0;
     bool shadowReach_ = false;
