@@ -8,7 +8,9 @@ the processes then decides a round trip's time more than the protocol does (BENC
 transport"); on one CPU both the floor and spear pay only their own work.
 
 - an empty call's round trip vs a raw Unix-socket ping-pong of the same message size (a Python echo
-  process with no msgpack and no engine: the least a Python client can pay per round trip);
+  process with no msgpack and no engine: the least a Python client can pay per round trip); as spear's
+  client and server poll their sockets for a while before they sleep (SPEAR_RPC_SPIN_US), so do the
+  floor's two sides, and the ping-pong that sleeps at once is printed beside it for what a wake-up costs;
 - 10,000 calls in one frame, queued with call_async (one message), vs the same calls made one by one;
 - a 1920x1080 RGBA frame from the engine into numpy (read_pixels of a frame already rendered) vs one
   memcpy of the same bytes;
@@ -18,6 +20,7 @@ transport"); on one CPU both the floor and spear pay only their own work.
 from __future__ import annotations
 
 import os
+import select
 import socket
 import struct
 import subprocess
@@ -31,13 +34,18 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "python"))
 
 import spear  # noqa: E402
-from spear._rpc_client import RpcConnection  # noqa: E402
+from spear._rpc_client import RpcConnection, spin_seconds  # noqa: E402
 
+# The echo polls for up to argv[2] seconds before it sleeps in recv, as spear's server does (spin_poll.h).
 ECHO = """
-import socket, struct, sys
+import os, select, socket, struct, sys, time
 s = socket.socket(socket.AF_UNIX); s.bind(sys.argv[1]); s.listen(1); print("ready", flush=True)
 c, _ = s.accept()
+readable = select.poll(); readable.register(c, select.POLLIN); spin = float(sys.argv[2])
 while True:
+    deadline = time.perf_counter() + spin
+    while spin and not readable.poll(0) and time.perf_counter() < deadline:
+        os.sched_yield()
     h = c.recv(4, socket.MSG_WAITALL)
     if len(h) < 4: break
     n = struct.unpack("<I", h)[0]
@@ -55,18 +63,24 @@ def best(fn, repeat: int = 5) -> float:  # type: ignore[no-untyped-def]
     return min(times)
 
 
-def raw_ping_pong_us(message_bytes: int, rounds: int, directory: str) -> float:
-    path = os.path.join(directory, "echo.sock")
-    echo = subprocess.Popen([sys.executable, "-c", ECHO, path], stdout=subprocess.PIPE, text=True)
+def raw_ping_pong_us(message_bytes: int, rounds: int, directory: str, spin: float) -> float:
+    """A round trip to a Python echo process; both sides poll for up to `spin` seconds before they sleep."""
+    path = os.path.join(directory, f"echo-{spin}.sock")
+    echo = subprocess.Popen([sys.executable, "-c", ECHO, path, str(spin)], stdout=subprocess.PIPE, text=True)
     assert echo.stdout is not None
     echo.stdout.readline()
     sock = socket.socket(socket.AF_UNIX)
     sock.connect(path)
     frame = struct.pack("<I", message_bytes) + b"x" * message_bytes
+    readable = select.poll()
+    readable.register(sock, select.POLLIN)
 
     def run() -> None:
         for _ in range(rounds):
             sock.sendall(frame)
+            deadline = time.perf_counter() + spin
+            while spin and not readable.poll(0) and time.perf_counter() < deadline:
+                os.sched_yield()
             header = sock.recv(4, socket.MSG_WAITALL)
             sock.recv(struct.unpack("<I", header)[0], socket.MSG_WAITALL)
 
@@ -102,14 +116,22 @@ def main() -> None:
 
         call_frame = pack_frame({"id": 1, "op": "call", "object": encode(_HandleRef((1, 0)), OutgoingSegments()),
                                  "function": "GetName", "args": {}, "context": "UObject.GetName()"})
-        floor_us = raw_ping_pong_us(len(call_frame) - 4, rounds, tmp)
+        # The floor does what spear does: with spear polling before it sleeps (SPEAR_RPC_SPIN_US), so does
+        # the floor; the sleeping ping-pong shows what a wake-up costs on this machine.
+        spin = spin_seconds()
+        sleeping_us = raw_ping_pong_us(len(call_frame) - 4, rounds, tmp, 0.0)
+        floor_us = raw_ping_pong_us(len(call_frame) - 4, rounds, tmp, spin) if spin else sleeping_us
         echo_us = best(lambda: [connection.request("echo", value=None) for _ in range(rounds)]) / rounds * 1e6
         with instance.begin_frame():
             call_us = best(lambda: [actor.GetName() for _ in range(rounds)]) / rounds * 1e6
         with instance.end_frame():
             pass
         print(f"round trip, {len(call_frame)}-byte request")
-        print(f"  raw Unix-socket ping-pong (floor)   {floor_us:8.1f} us")
+        if spin:
+            print(f"  raw ping-pong, sleeping in recv     {sleeping_us:8.1f} us")
+            print(f"  raw ping-pong, polling {spin * 1e6:4.0f} us first {floor_us:8.1f} us   (floor, as spear)")
+        else:
+            print(f"  raw Unix-socket ping-pong (floor)   {floor_us:8.1f} us")
         print(f"  echo op (transport + dispatch)      {echo_us:8.1f} us   {echo_us / floor_us:5.2f}x floor")
         print(f"  typed call actor.GetName()          {call_us:8.1f} us   {call_us / floor_us:5.2f}x floor")
 

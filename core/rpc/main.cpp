@@ -19,6 +19,9 @@
 // --file-root / allows any path (launch passes it, for the same reason as --allow-remote-plugin-load). The
 // server's own --scene and --plugin are not confined.
 //
+// SPEAR_RPC_SPIN_US (microseconds, default 100) is how long the server polls its sockets before it sleeps
+// (spin_poll.h); a client that launches the server passes its own setting on through the environment.
+//
 // Prints "spear-server: listening on <address>" once it accepts connections (clients that launch a
 // server wait for that line), and exits cleanly on SIGTERM, SIGINT or a client's shutdown request.
 
@@ -44,6 +47,7 @@
 #include "core/base/regular_file.h"
 #include "core/plugin/plugin_loader.h"
 #include "core/rpc/server.h"
+#include "core/rpc/spin_poll.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
@@ -154,6 +158,7 @@ int main(int argc, char** argv) {
         if (!tokenFile.empty())
             options.token = readTokenFile(tokenFile);
         options.plugins = plugins;
+        options.spin = sp::rpc::spinFromEnvironment();
         // Before the engine: its scene may name the plugins' classes.
         for (const std::string& path : plugins)
             sp::plugin::load(path);

@@ -24,6 +24,7 @@
 #include "core/base/error.h"
 #include "core/base/log.h"
 #include "core/plugin/plugin_loader.h"
+#include "core/rpc/spin_poll.h"
 
 namespace sp::rpc {
 
@@ -450,7 +451,7 @@ void Server::run() {
                 events |= POLLOUT;
             fds.push_back({connection->fd, events, 0});
         }
-        if (::poll(fds.data(), fds.size(), msUntilHelloDeadline()) < 0) {
+        if (pollSpinning(fds.data(), fds.size(), msUntilHelloDeadline(), options_.spin) < 0) {
             if (errno == EINTR)
                 continue;
             break;

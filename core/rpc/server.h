@@ -42,6 +42,9 @@ struct ServerOptions {
     // single reply waits whatever its size: only replies queued behind another count against a client.)
     size_t maxQueuedReplyBytes = size_t(64) << 20;
     size_t maxQueuedReplies = 256;
+    // How long the server polls its sockets without sleeping before it sleeps in poll() (spin_poll.h);
+    // spear-server takes it from SPEAR_RPC_SPIN_US.
+    std::chrono::microseconds spin{100};
 };
 
 class Server {

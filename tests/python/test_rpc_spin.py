@@ -1,0 +1,66 @@
+"""Client and server poll their sockets briefly before they sleep (SPEAR_RPC_SPIN_US; core/rpc/spin_poll.h):
+the setting is checked by both, and the transport behaves the same polling or sleeping."""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+import pytest
+
+import spear
+from spear._rpc_client import spin_seconds
+
+REFUSAL = r"SPEAR_RPC_SPIN_US must be a whole number of microseconds from 0 to 10000, got 'abc'"
+
+
+def test_the_client_refuses_a_bad_setting_by_name(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("SPEAR_RPC_SPIN_US", "abc")
+    with pytest.raises(spear.InvalidArgumentError, match=rf"Instance\(\): {REFUSAL}"):
+        spin_seconds()
+    for bad in ("-1", "10001", "1.5", "", "٣"):
+        monkeypatch.setenv("SPEAR_RPC_SPIN_US", bad)
+        with pytest.raises(spear.InvalidArgumentError, match="SPEAR_RPC_SPIN_US"):
+            spin_seconds()
+
+
+def test_a_launched_server_refuses_a_bad_setting_by_name(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("SPEAR_RPC_SPIN_US", "abc")
+    with pytest.raises(spear.InvalidArgumentError, match=rf"spear-server: {REFUSAL}"):
+        spear.Instance(server="launch")
+
+
+def test_the_budget_and_none_on_one_cpu(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("SPEAR_RPC_SPIN_US", "250")
+    saved = os.sched_getaffinity(0)
+    if len(saved) > 1:
+        assert spin_seconds() == pytest.approx(250e-6)
+    os.sched_setaffinity(0, {min(saved)})
+    try:
+        assert spin_seconds() == 0.0
+    finally:
+        os.sched_setaffinity(0, saved)
+
+
+def frame_of_calls(spin: str, monkeypatch: pytest.MonkeyPatch) -> tuple[str, list[bool], np.ndarray]:
+    """Calls one by one and queued, a frame and a camera read over RPC, with both sides' budget `spin`."""
+    monkeypatch.setenv("SPEAR_RPC_SPIN_US", spin)
+    with spear.Instance(server="launch") as instance:
+        game = instance.get_game()
+        with instance.begin_frame():
+            actor = game.spawn_actor(uclass=spear.AActor, name="Probe")
+            camera = game.spawn_actor(uclass=spear.ACameraSensorActor).CameraSensor
+            camera.Width, camera.Height = 64, 48
+            camera.Modalities = [spear.ECameraModality.FinalColor]
+            name = actor.GetName()
+            futures = [actor.call_async.ActorHasTag(Tag="t") for _ in range(50)]
+        with instance.end_frame():
+            image = camera.read_pixels()["final_color"]
+        return name, [future.get() for future in futures], image
+
+
+def test_polling_and_sleeping_behave_the_same(monkeypatch: pytest.MonkeyPatch) -> None:
+    sleeping = frame_of_calls("0", monkeypatch)
+    polling = frame_of_calls("10000", monkeypatch)
+    assert sleeping[:2] == polling[:2] == ("Probe", [False] * 50)
+    np.testing.assert_array_equal(sleeping[2], polling[2])
