@@ -52,7 +52,8 @@ def spin_seconds() -> float:
     5-50 us when the server runs on another CPU, more than a short call's own work; a reply to a short
     call comes within microseconds, so the client polls first (yielding its CPU to anything else runnable)
     and sleeps only when nothing came. None where this process may run on one CPU only: there the polling
-    would keep the CPU from the very server it waits for.
+    would keep the CPU from the very server it waits for. (A client polls on the main thread only: see
+    _poll_briefly.)
     """
     text = os.environ.get("SPEAR_RPC_SPIN_US")
     microseconds = _SPIN_DEFAULT_US
@@ -335,8 +336,13 @@ class RpcConnection:
         raise ConnectionLost(f"the connection to the spear server at {self.address} was lost: {error}") from None
 
     def _poll_briefly(self) -> None:
-        """Returns when the socket has a reply to read or the spin budget is spent (spin_seconds)."""
-        if self._spin:
+        """Returns when the socket has a reply to read or the spin budget is spent (spin_seconds).
+
+        On the main thread only: each turn of the loop takes the GIL back, so threads polling side by side
+        (VectorEnv's, one per server) would keep those with work to do from it (on a 16-core host, 16 servers
+        stepped from 16 threads lost a third of their steps per second).
+        """
+        if self._spin and threading.current_thread() is threading.main_thread():
             poll, deadline = self._readable.poll, time.perf_counter() + self._spin
             while not poll(0) and time.perf_counter() < deadline:
                 os.sched_yield()

@@ -4,12 +4,15 @@ the setting is checked by both, and the transport behaves the same polling or sl
 from __future__ import annotations
 
 import os
+from concurrent.futures import ThreadPoolExecutor
+from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 import pytest
 
 import spear
-from spear._rpc_client import spin_seconds
+from spear._rpc_client import LaunchedServer, RpcConnection, spin_seconds
 
 REFUSAL = r"SPEAR_RPC_SPIN_US must be a whole number of microseconds from 0 to 10000, got 'abc'"
 
@@ -42,7 +45,7 @@ def test_the_budget_and_none_on_one_cpu(monkeypatch: pytest.MonkeyPatch) -> None
         os.sched_setaffinity(0, saved)
 
 
-def frame_of_calls(spin: str, monkeypatch: pytest.MonkeyPatch) -> tuple[str, list[bool], np.ndarray]:
+def frame_of_calls(spin: str, monkeypatch: pytest.MonkeyPatch) -> tuple[str, list[bool], NDArray[np.uint8]]:
     """Calls one by one and queued, a frame and a camera read over RPC, with both sides' budget `spin`."""
     monkeypatch.setenv("SPEAR_RPC_SPIN_US", spin)
     with spear.Instance(server="launch") as instance:
@@ -64,3 +67,35 @@ def test_polling_and_sleeping_behave_the_same(monkeypatch: pytest.MonkeyPatch) -
     polling = frame_of_calls("10000", monkeypatch)
     assert sleeping[:2] == polling[:2] == ("Probe", [False] * 50)
     np.testing.assert_array_equal(sleeping[2], polling[2])
+
+
+class CountingPoll:
+    """A connection's readiness poll, counting the times it is asked."""
+
+    def __init__(self, wrapped: Any) -> None:
+        self.wrapped, self.calls = wrapped, 0
+
+    def poll(self, timeout: int) -> list[tuple[int, int]]:
+        self.calls += 1
+        result: list[tuple[int, int]] = self.wrapped.poll(timeout)
+        return result
+
+
+def test_only_the_main_thread_polls(monkeypatch: pytest.MonkeyPatch) -> None:
+    # Threads polling side by side would fight over the GIL (VectorEnv drives each server from a thread).
+    monkeypatch.setenv("SPEAR_RPC_SPIN_US", "10000")
+    if spin_seconds() == 0.0:
+        pytest.skip("this process may run on one CPU only, where nothing polls")
+    server = LaunchedServer(fixed_delta_seconds=1 / 60)
+    try:
+        connection = RpcConnection(server.address)
+        counting = CountingPoll(connection._readable)
+        connection._readable = counting  # type: ignore[assignment]
+        with ThreadPoolExecutor(1) as pool:
+            assert pool.submit(connection.request, "echo", value=1).result() == 1
+        assert counting.calls == 0
+        assert connection.request("echo", value=2) == 2
+        assert counting.calls >= 1
+        connection.close()
+    finally:
+        server.close()
