@@ -81,8 +81,12 @@ class RenderTarget {
         ModalitySet modalities; // as asked for (what the frame can be read as)
         ModalityPlan plan;      // rendered, and computed from those when read (planModalities())
         void* fence = nullptr;
+        // The pixel-buffer objects a staged readback lands in, by modality: immutable storage in the
+        // client's memory, mapped for reading once when made (persistent, coherent), so that a read copies
+        // out of `mapped` without mapping each time.
         std::array<unsigned, kModalityCount> buffers{};
         std::array<std::size_t, kModalityCount> capacity{};
+        std::array<const void*, kModalityCount> mapped{};
     };
     // Where the frames are drawn: a layer of the renderer's shared framebuffers (FramebufferAtlas) for a
     // small view, framebuffers of its own otherwise.
