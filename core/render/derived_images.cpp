@@ -1,5 +1,8 @@
 #include "core/render/derived_images.h"
 
+#include <algorithm>
+
+#include "core/base/parallel.h"
 #include "core/render/image_buffer.h"
 
 #if defined(__x86_64__)
@@ -104,6 +107,34 @@ void computeSpecularResidual(const std::uint16_t* hdr, const std::uint16_t* diff
     for (std::size_t p = done; p < pixels; ++p)
         for (std::size_t c = 0; c < 3; ++c)
             out[3 * p + c] = floatToHalf(halfToFloat(hdr[4 * p + c]) - halfToFloat(diffuse[3 * p + c]));
+}
+
+void computePositionFromDepth(const float* depth, const Camera& camera, float* out) {
+    const int width = camera.params.width, height = camera.params.height;
+    const double focal = camera.focalLengthPixels();
+    const Eigen::Matrix3d axes = camera.pose.linear(); // columns: forward, left, up (Camera::project())
+    const Eigen::Vector3d origin = camera.pose.translation();
+    // A pixel's centre ray, (1, (W/2 - u - 0.5) / f, (H/2 - v - 0.5) / f) in the camera's body frame, is a
+    // row's first ray plus a step per column.
+    const Eigen::Vector3d step = -axes.col(1) / focal;
+    const int bands = std::max(1, std::min(height, 2 * hardwareThreads())); // rows of the image, in turn
+    const auto rows = [&](int band) {
+        for (int v = height * band / bands; v < height * (band + 1) / bands; ++v) {
+            const Eigen::Vector3d first = axes.col(0) + axes.col(1) * ((0.5 * width - 0.5) / focal) +
+                                          axes.col(2) * ((0.5 * height - v - 0.5) / focal);
+            const float* in = depth + std::size_t(v) * std::size_t(width);
+            float* row = out + 3 * std::size_t(v) * std::size_t(width);
+            for (int u = 0; u < width; ++u) {
+                const double d = in[u];
+                const Eigen::Vector3d point =
+                    d == 0.0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(origin + d * (first + u * step));
+                row[3 * u] = float(point.x());
+                row[3 * u + 1] = float(point.y());
+                row[3 * u + 2] = float(point.z());
+            }
+        }
+    };
+    parallelFor(bands, hardwareThreads(), rows);
 }
 
 } // namespace sp::render

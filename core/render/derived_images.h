@@ -1,16 +1,19 @@
 #pragma once
-// The intrinsic images that are defined by other modalities, computed on the CPU from those images as read
-// back (modality.h): diffuse_only = base_color * (1 - metallic) * diffuse_illumination, and
-// specular_residual = hdr_color.rgb - diffuse_only. A software rasteriser writes every target of every pixel
-// at a cost (about 4 ms a target at 1080p on two cores), and with all 14 modalities these two are what
-// keeps base colour and the PBR parameters out of the surface pass's eight draw buffers; computing them here
-// spares two targets and most of the attribute pass (planModalities()).
+// The modalities that are defined by other modalities, computed on the CPU from those images as read back
+// (modality.h): diffuse_only = base_color * (1 - metallic) * diffuse_illumination, specular_residual =
+// hdr_color.rgb - diffuse_only, and position = the point `depth` metres along the optical axis on the
+// pixel's centre ray. A software rasteriser writes every target of every pixel at a cost (about 4 ms a
+// target at 1080p on two cores), and with all 14 modalities these three are what keeps the targets within
+// the surface pass's eight draw buffers; computing them here spares three targets and the attribute pass
+// (planModalities()).
 //
-// float16 in and out, computed in float32 as the shader does (the same products in the same order), rounded
-// to nearest even. Uses F16C where the CPU has it.
+// The intrinsics: float16 in and out, computed in float32 as the shader does (the same products in the same
+// order), rounded to nearest even; F16C where the CPU has it.
 
 #include <cstddef>
 #include <cstdint>
+
+#include "core/render/camera.h"
 
 namespace sp::render {
 
@@ -20,5 +23,10 @@ void computeDiffuseOnly(const std::uint16_t* base, const std::uint16_t* metallic
 // out (pixels x 3) = hdr (pixels x 4, its first three channels) - diffuse (pixels x 3).
 void computeSpecularResidual(const std::uint16_t* hdr, const std::uint16_t* diffuse, std::uint16_t* out,
                              std::size_t pixels);
+// out (height x width x 3, float32) = the world point on each pixel's centre ray at depth (height x width)
+// metres along `camera`'s optical axis, computed in double precision and rounded once; 0 where depth is 0
+// (the background). The rasterised position is the same point interpolated in float32 across the
+// triangle: the two agree within float32 rounding of the coordinates (render_intrinsics_gl_test.cpp).
+void computePositionFromDepth(const float* depth, const Camera& camera, float* out);
 
 } // namespace sp::render

@@ -179,25 +179,38 @@ TargetMask ModalitySet::targets() const {
 }
 
 ModalityPlan planModalities(const ModalitySet& modalities, bool softwareRasteriser) {
-    const ModalityPlan plan{modalities, {}};
-    if (!softwareRasteriser || std::popcount(modalities.targets()) <= kMaxDrawTargets)
+    ModalityPlan plan{modalities, {}};
+    if (!softwareRasteriser)
         return plan;
+    // Each step is taken while the plan needs more targets than one pass writes, and kept only where it
+    // spares targets (a set that asked for none of a computed modality's inputs would render more).
+    const auto targetCount = [](const ModalityPlan& p) { return std::popcount(p.rendered.targets()); };
     const bool diffuse = modalities.contains(Modality::DiffuseOnly);
     const bool residual = modalities.contains(Modality::SpecularResidual);
-    if (!diffuse && !residual)
-        return plan;
-    ModalityPlan derived{modalities, {}};
-    // diffuse_only's inputs; specular_residual needs diffuse_only's value, so those inputs too.
-    derived.rendered.remove(Modality::DiffuseOnly).remove(Modality::SpecularResidual);
-    derived.rendered.add(Modality::BaseColor).add(Modality::Metallic).add(Modality::DiffuseIllumination);
-    if (diffuse)
-        derived.derived.add(Modality::DiffuseOnly);
-    if (residual) {
-        derived.rendered.add(Modality::HdrColor);
-        derived.derived.add(Modality::SpecularResidual);
+    if (targetCount(plan) > kMaxDrawTargets && (diffuse || residual)) {
+        ModalityPlan candidate = plan;
+        // diffuse_only's inputs; specular_residual needs diffuse_only's value, so those inputs too.
+        candidate.rendered.remove(Modality::DiffuseOnly).remove(Modality::SpecularResidual);
+        candidate.rendered.add(Modality::BaseColor)
+            .add(Modality::Metallic)
+            .add(Modality::DiffuseIllumination);
+        if (diffuse)
+            candidate.derived.add(Modality::DiffuseOnly);
+        if (residual) {
+            candidate.rendered.add(Modality::HdrColor);
+            candidate.derived.add(Modality::SpecularResidual);
+        }
+        if (targetCount(candidate) < targetCount(plan))
+            plan = candidate;
     }
-    // Only when it spares targets (a set that asked for neither input would render more).
-    return std::popcount(derived.rendered.targets()) < std::popcount(modalities.targets()) ? derived : plan;
+    if (targetCount(plan) > kMaxDrawTargets && modalities.contains(Modality::Position)) {
+        ModalityPlan candidate = plan;
+        candidate.rendered.remove(Modality::Position).add(Modality::Depth); // the point at that depth
+        candidate.derived.add(Modality::Position);
+        if (targetCount(candidate) < targetCount(plan))
+            plan = candidate;
+    }
+    return plan;
 }
 
 PassSet ModalitySet::requiredPasses(bool shadowsEnabled) const {

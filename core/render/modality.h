@@ -146,9 +146,10 @@ class ModalitySet {
 // How a frame of a modality set is made: the modalities rendered, and those computed on the CPU from them
 // (derived_images.h). A software rasteriser pays for every target it writes, so where the set needs more
 // targets than one pass can write, diffuse_only and specular_residual are computed from base colour,
-// metallic, diffuse illumination and HDR colour instead of rendered, when that leaves fewer targets (all 14
-// modalities: 9 targets instead of 11, the attribute pass writing the ids alone). A GPU writes targets nearly
-// for free: there (softwareRasteriser false), and for smaller sets, everything is rendered.
+// metallic, diffuse illumination and HDR colour instead of rendered, and then, if the set still needs more,
+// position from depth and the camera, each when that leaves fewer targets (all 14 modalities: 8 targets
+// instead of 11, one pass). A GPU writes targets nearly for free: there (softwareRasteriser false), and for
+// smaller sets, everything is rendered.
 struct ModalityPlan {
     ModalitySet rendered;
     ModalitySet derived;

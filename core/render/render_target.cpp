@@ -193,6 +193,7 @@ std::uint64_t RenderTarget::queueReadback(const Scene& scene, const Camera& came
     slot.sceneUid = scene.uid();
     slot.width = camera.params.width;
     slot.height = camera.params.height;
+    slot.camera = camera;
     slot.modalities = modalities_;
     slot.plan = plan_;
     // A longer ring copies into pixel-buffer objects now, so that the framebuffers can take the next frames
@@ -267,7 +268,7 @@ void RenderTarget::readViews(Slot& slot, std::span<const OutputView> views) {
         if (!slot.plan.derived.contains(view.modality))
             copyOut(slot, view.modality, view.data);
     // diffuse_only before specular_residual, which is computed from it.
-    for (Modality computed : {Modality::DiffuseOnly, Modality::SpecularResidual})
+    for (Modality computed : {Modality::DiffuseOnly, Modality::SpecularResidual, Modality::Position})
         for (const OutputView& view : views)
             if (view.modality == computed && slot.plan.derived.contains(computed))
                 derive(slot, computed, view.data, views);
@@ -278,24 +279,36 @@ void RenderTarget::derive(Slot& slot, Modality modality, void* destination,
     const std::size_t pixels = std::size_t(slot.width) * std::size_t(slot.height);
     // An input's pixels: the view this read filled with it (readViews() computes diffuse_only before
     // specular_residual), else a scratch read of it.
-    const auto input = [&](Modality in) -> const std::uint16_t* {
+    const auto input = [&](Modality in) -> const void* {
         for (const OutputView& view : read)
             if (view.modality == in)
-                return static_cast<const std::uint16_t*>(view.data);
-        std::vector<std::uint16_t>& scratch = deriveScratch_[static_cast<std::size_t>(in)];
-        scratch.resize(modalityByteSize(in, slot.width, slot.height) / sizeof(std::uint16_t));
+                return view.data;
+        std::vector<std::uint32_t>& scratch = deriveScratch_[static_cast<std::size_t>(in)];
+        scratch.resize((modalityByteSize(in, slot.width, slot.height) + 3) / sizeof(std::uint32_t));
         if (in == Modality::DiffuseOnly)
             derive(slot, in, scratch.data(), read);
         else
             copyOut(slot, in, scratch.data());
         return scratch.data();
     };
-    auto* out = static_cast<std::uint16_t*>(destination);
-    if (modality == Modality::DiffuseOnly)
-        computeDiffuseOnly(input(Modality::BaseColor), input(Modality::Metallic),
-                           input(Modality::DiffuseIllumination), out, pixels);
-    else
-        computeSpecularResidual(input(Modality::HdrColor), input(Modality::DiffuseOnly), out, pixels);
+    const auto half = [&](Modality in) { return static_cast<const std::uint16_t*>(input(in)); };
+    switch (modality) {
+    case Modality::DiffuseOnly:
+        computeDiffuseOnly(half(Modality::BaseColor), half(Modality::Metallic),
+                           half(Modality::DiffuseIllumination), static_cast<std::uint16_t*>(destination),
+                           pixels);
+        return;
+    case Modality::SpecularResidual:
+        computeSpecularResidual(half(Modality::HdrColor), half(Modality::DiffuseOnly),
+                                static_cast<std::uint16_t*>(destination), pixels);
+        return;
+    case Modality::Position:
+        computePositionFromDepth(static_cast<const float*>(input(Modality::Depth)), slot.camera,
+                                 static_cast<float*>(destination));
+        return;
+    default:
+        SP_THROW(InvalidState, "RenderTarget::read(): ", modalityName(modality), " is not computed");
+    }
 }
 
 bool RenderTarget::stagesReadback() const {

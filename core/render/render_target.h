@@ -78,6 +78,7 @@ class RenderTarget {
         bool staged = false;
         int width = 0;
         int height = 0;
+        Camera camera;          // the frame's (position is computed from its depth and this camera)
         ModalitySet modalities; // as asked for (what the frame can be read as)
         ModalityPlan plan;      // rendered, and computed from those when read (planModalities())
         void* fence = nullptr;
@@ -128,8 +129,8 @@ class RenderTarget {
     std::unique_ptr<Framebuffers> framebuffers_; // a large view's own (null while it holds a layer)
     unsigned idScratch_ = 0; // latency 0's id readback: the packed channel, then copied out
     std::size_t idScratchBytes_ = 0;
-    // The inputs of computed modalities that were not asked for themselves, by modality.
-    std::array<std::vector<std::uint16_t>, kModalityCount> deriveScratch_;
+    // The inputs of computed modalities that were not asked for themselves, by modality (raw bytes).
+    std::array<std::vector<std::uint32_t>, kModalityCount> deriveScratch_;
 };
 
 } // namespace sp::render

@@ -85,7 +85,7 @@ Renderer::Renderer(const GlContext& context)
     stagedReadback_ = switchFromEnvironment("SPEAR_READBACK", "staged", "direct", hardware);
     readbackThreads_ = defaultCopyThreads();
     computeLighting_ = switchFromEnvironment("SPEAR_LIGHTING", "compute", "forward", hardware);
-    derivesOnCpu_ = switchFromEnvironment("SPEAR_INTRINSICS", "cpu", "rendered", !hardware);
+    derivesOnCpu_ = switchFromEnvironment("SPEAR_DERIVED_MODALITIES", "cpu", "rendered", !hardware);
     if (context.report().software) {
         // What the surface programs' own varyings leave of the smaller of the two limits (see
         // shaders::ShadingLayout::constantSlots), in vec4s: 8 per-vertex and per-instance varyings and up to

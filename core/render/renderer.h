@@ -118,8 +118,8 @@ class Renderer {
     void setStagedReadback(bool on) { stagedReadback_ = on; }
     // Whether RenderTarget computes the modalities that other modalities define on the CPU when a set
     // needs more targets than one pass writes (planModalities()): by default on a software rasteriser,
-    // which pays for every target it writes. SPEAR_INTRINSICS=cpu|rendered overrides the default. Settable,
-    // so that tests compare both ways.
+    // which pays for every target it writes. SPEAR_DERIVED_MODALITIES=cpu|rendered overrides the default.
+    // Settable, so that tests compare both ways.
     bool derivesOnCpu() const { return derivesOnCpu_; }
     void setDerivesOnCpu(bool on) { derivesOnCpu_ = on; }
     // The threads a read splits its copy out of a pixel-buffer object across (parallelCopy()); by default

@@ -56,3 +56,43 @@ INSTANTIATE_TEST_SUITE_P(PixelCounts, DerivedImages, ::testing::Values(0, 1, 7, 
 
 } // namespace
 } // namespace sp::render
+
+namespace sp::render {
+namespace {
+
+// Each computed point lies on its pixel's centre ray at the pixel's depth: the camera projects it back to
+// that pixel's centre and depth; the background (depth 0) is 0.
+TEST(PositionFromDepth, EachPointProjectsBackToItsPixelCentreAtItsDepth) {
+    Camera camera;
+    camera.params.width = 37; // odd sizes: the centre falls inside a pixel, not on its edge
+    camera.params.height = 23;
+    camera.params.hfovDeg = 70.0;
+    camera.pose = Eigen::Translation3d(12.5, -40.25, 3.0) * Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()) *
+                  Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY());
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> metres(0.1f, 400.0f);
+    const std::size_t pixels = 37 * 23;
+    std::vector<float> depth(pixels);
+    for (std::size_t p = 0; p < pixels; ++p)
+        depth[p] = p % 5 == 0 ? 0.0f : metres(random);
+    std::vector<float> position(3 * pixels, -1.0f);
+    computePositionFromDepth(depth.data(), camera, position.data());
+    for (int v = 0; v < 23; ++v)
+        for (int u = 0; u < 37; ++u) {
+            const std::size_t p = std::size_t(v) * 37 + std::size_t(u);
+            const Eigen::Vector3d point(position[3 * p], position[3 * p + 1], position[3 * p + 2]);
+            if (depth[p] == 0.0f) {
+                EXPECT_EQ(point, Eigen::Vector3d::Zero()) << u << "," << v;
+                continue;
+            }
+            // Rounded once to float32: within a few ulps of the point's coordinates, which reach 440 m.
+            const Eigen::Vector3d back = camera.project(point);
+            const double ulps = 4.0 * 440.0 * 6e-8;
+            EXPECT_NEAR(back.z(), depth[p], ulps) << u << "," << v;
+            EXPECT_NEAR(back.x(), u + 0.5, ulps * camera.focalLengthPixels() / depth[p]) << u << "," << v;
+            EXPECT_NEAR(back.y(), v + 0.5, ulps * camera.focalLengthPixels() / depth[p]) << u << "," << v;
+        }
+}
+
+} // namespace
+} // namespace sp::render

@@ -90,14 +90,22 @@ TEST(ModalityTest, TargetsPastTheDrawBuffersGoToTheAttributePass) {
 }
 
 TEST(ModalityTest, ASoftwareRasteriserComputesTheIntrinsicsThatOtherModalitiesDefine) {
-    // All 14 on a software rasteriser: diffuse_only and specular_residual come from the images read, so
-    // nine targets are drawn instead of eleven, and the attribute pass writes the ids alone.
+    // All 14 on a software rasteriser: diffuse_only and specular_residual come from the images read, and
+    // position from depth, so eight targets are drawn instead of eleven, in one pass.
     const ModalityPlan all = planModalities(ModalitySet::all(), true);
-    EXPECT_EQ(all.derived, (ModalitySet{Modality::DiffuseOnly, Modality::SpecularResidual}));
+    EXPECT_EQ(all.derived,
+              (ModalitySet{Modality::DiffuseOnly, Modality::SpecularResidual, Modality::Position}));
     EXPECT_FALSE(all.rendered.contains(Modality::DiffuseOnly) ||
-                 all.rendered.contains(Modality::SpecularResidual));
-    EXPECT_EQ(std::popcount(all.rendered.targets()), 9);
-    EXPECT_EQ(all.rendered.requiredPasses(true).attributeTargets, targetBit(Target::Ids));
+                 all.rendered.contains(Modality::SpecularResidual) ||
+                 all.rendered.contains(Modality::Position));
+    EXPECT_TRUE(all.rendered.contains(Modality::Depth));
+    EXPECT_EQ(std::popcount(all.rendered.targets()), 8);
+    EXPECT_EQ(all.rendered.requiredPasses(true).attributeTargets, 0u);
+    // Once the intrinsics are computed, a set that fits one pass keeps its position rendered: all but depth.
+    ModalitySet noDepth = ModalitySet::all();
+    noDepth.remove(Modality::Depth);
+    EXPECT_EQ(planModalities(noDepth, true).derived,
+              (ModalitySet{Modality::DiffuseOnly, Modality::SpecularResidual}));
     // On a GPU, and for sets one pass writes, everything is rendered.
     EXPECT_EQ(planModalities(ModalitySet::all(), false), (ModalityPlan{ModalitySet::all(), {}}));
     const ModalitySet intrinsics{Modality::HdrColor,    Modality::BaseColor,
@@ -105,15 +113,16 @@ TEST(ModalityTest, ASoftwareRasteriserComputesTheIntrinsicsThatOtherModalitiesDe
                                  Modality::DiffuseOnly, Modality::SpecularResidual};
     EXPECT_EQ(planModalities(intrinsics, true), (ModalityPlan{intrinsics, {}}));
     // specular_residual alone beside many attributes: its inputs (diffuse_only's among them) are rendered,
-    // diffuse_only is not returned.
+    // diffuse_only is not returned (and position still needs a target too many).
     ModalitySet residual = ModalitySet::all();
     residual.remove(Modality::DiffuseOnly);
     const ModalityPlan plan = planModalities(residual, true);
-    EXPECT_EQ(plan.derived, ModalitySet{Modality::SpecularResidual});
+    EXPECT_EQ(plan.derived, (ModalitySet{Modality::SpecularResidual, Modality::Position}));
     EXPECT_TRUE(plan.rendered.contains(Modality::BaseColor) && plan.rendered.contains(Modality::Metallic));
-    // When computing would draw more targets than it spares, the set is rendered: position, normal, depth,
-    // ids, final colour, HDR colour, diffuse illumination, diffuse only and specular residual (9 targets)
-    // would need base colour and the parameters (10).
+    // When computing the intrinsics would draw more targets than it spares, they are rendered: position,
+    // normal, depth, ids, final colour, HDR colour, diffuse illumination, diffuse only and specular residual
+    // (9 targets) would need base colour and the parameters (10). Position from the depth the set has
+    // spares one, so that set is drawn in one pass.
     const ModalitySet without{Modality::Position,
                               Modality::Normal,
                               Modality::Depth,
@@ -123,7 +132,9 @@ TEST(ModalityTest, ASoftwareRasteriserComputesTheIntrinsicsThatOtherModalitiesDe
                               Modality::DiffuseIllumination,
                               Modality::DiffuseOnly,
                               Modality::SpecularResidual};
-    EXPECT_EQ(planModalities(without, true), (ModalityPlan{without, {}}));
+    ModalitySet withoutPosition = without;
+    withoutPosition.remove(Modality::Position);
+    EXPECT_EQ(planModalities(without, true), (ModalityPlan{withoutPosition, {Modality::Position}}));
 }
 
 TEST(ModalityTest, HalfFloatRoundTrips) {

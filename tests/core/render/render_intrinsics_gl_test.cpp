@@ -113,6 +113,43 @@ TEST_F(RenderIntrinsicsGlTest, ComputedIntrinsicsMatchRenderedOnesToAFloat16Step
                 }
 }
 
+TEST_F(RenderIntrinsicsGlTest, ComputedPositionMatchesTheRasterisedOne) {
+    // The same point, rasterised (interpolated in float32 across its triangle) or computed from depth on
+    // its pixel's centre ray (in double, rounded once): within float32 rounding of the coordinates.
+    Scene scene;
+    buildShapesScene(scene);
+    Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 61, 37);
+    const bool byDefault = renderer().derivesOnCpu();
+    Frame frames[2];
+    for (const bool derive : {false, true}) {
+        renderer().setDerivesOnCpu(derive);
+        RenderTarget target(renderer(), ModalitySet::all(), derive ? 1 : 0);
+        for (int i = 0; i < 2; ++i)
+            target.submit(scene, camera);
+        ASSERT_TRUE(target.read(frames[derive ? 1 : 0]).has_value());
+    }
+    renderer().setDerivesOnCpu(byDefault);
+    int geometry = 0;
+    for (int y = 0; y < 37; ++y)
+        for (int x = 0; x < 61; ++x) {
+            const float depth = frames[1].get(Modality::Depth).at(x, y);
+            ASSERT_EQ(depth, frames[0].get(Modality::Depth).at(x, y)) << x << "," << y;
+            geometry += depth > 0.0f;
+            for (int c = 0; c < 3; ++c) {
+                const float rendered = frames[0].get(Modality::Position).at(x, y, c);
+                const float cpu = frames[1].get(Modality::Position).at(x, y, c);
+                if (depth == 0.0f) { // the background: 0 either way
+                    ASSERT_EQ(cpu, 0.0f) << x << "," << y;
+                    ASSERT_EQ(rendered, 0.0f) << x << "," << y;
+                    continue;
+                }
+                // A few float32 steps of the distance from the camera (about 4 m here; 2.6e-6 m measured).
+                ASSERT_NEAR(cpu, rendered, 2e-6f * depth + 1e-6f) << x << "," << y << " c" << c;
+            }
+        }
+    EXPECT_GT(geometry, 61 * 37 / 4);
+}
+
 TEST_F(RenderIntrinsicsGlTest, AComputedModalityReadAloneOrAgainIsTheSame) {
     Scene scene;
     buildShapesScene(scene);
@@ -123,7 +160,7 @@ TEST_F(RenderIntrinsicsGlTest, AComputedModalityReadAloneOrAgainIsTheSame) {
     Frame all;
     target.render(scene, camera, all);
     // Read again, alone: its inputs come from scratch reads instead of the views read beside it.
-    for (Modality computed : {Modality::SpecularResidual, Modality::DiffuseOnly}) {
+    for (Modality computed : {Modality::SpecularResidual, Modality::DiffuseOnly, Modality::Position}) {
         std::vector<std::byte> alone(modalityByteSize(computed, 24, 16));
         const OutputView view{computed, alone.data(), alone.size()};
         ASSERT_TRUE(target.readAgain(std::span<const OutputView>(&view, 1)).has_value());

@@ -33,6 +33,10 @@ TEST_F(RenderPathsGlTest, AttributePassAgreesWithOnePass) {
     Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 96, 64, 60.0);
     ASSERT_NE(ModalitySet::all().requiredPasses(true).attributeTargets, 0u);
 
+    // Rendered, as on a GPU: a software rasteriser computes position and the intrinsics instead, in one
+    // pass (render_intrinsics_gl_test.cpp).
+    const bool byDefault = renderer().derivesOnCpu();
+    renderer().setDerivesOnCpu(false);
     renderer().resetStats();
     RenderTarget everything(renderer(), ModalitySet::all(), 0);
     RenderTarget colour(renderer(), {Modality::FinalColor, Modality::HdrColor, Modality::Depth}, 0);
@@ -43,6 +47,7 @@ TEST_F(RenderPathsGlTest, AttributePassAgreesWithOnePass) {
     everything.render(scene, camera, all);
     colour.render(scene, camera, a);
     plain.render(scene, camera, b);
+    renderer().setDerivesOnCpu(byDefault);
     EXPECT_EQ(renderer().stats().surfacePasses, 3u);
     EXPECT_EQ(renderer().stats().attributePasses, 1u);
 
@@ -306,12 +311,12 @@ TEST_F(RenderPathsGlTest, ComputeLightingAgreesWithShadingInTheFragments) {
 }
 
 TEST_F(RenderPathsGlTest, TheGpuPathSwitchesAreReadFromTheEnvironmentAndCheckedThere) {
-    // SPEAR_LIGHTING, SPEAR_READBACK and SPEAR_INTRINSICS override the device's defaults; a value that is
-    // neither choice is refused naming the variable and the value.
+    // SPEAR_LIGHTING, SPEAR_READBACK and SPEAR_DERIVED_MODALITIES override the device's defaults; a value
+    // that is neither choice is refused naming the variable and the value.
     GlContext& context = *context_;
     ::setenv("SPEAR_LIGHTING", "compute", 1);
     ::setenv("SPEAR_READBACK", "direct", 1);
-    ::setenv("SPEAR_INTRINSICS", "rendered", 1);
+    ::setenv("SPEAR_DERIVED_MODALITIES", "rendered", 1);
     {
         Renderer forced(context);
         EXPECT_TRUE(forced.computeLighting());
@@ -328,9 +333,9 @@ TEST_F(RenderPathsGlTest, TheGpuPathSwitchesAreReadFromTheEnvironmentAndCheckedT
             EXPECT_STREQ(e.what(), message);
         }
     };
-    expectRefused("SPEAR_INTRINSICS", "gpu",
-                  "Renderer::Renderer(): SPEAR_INTRINSICS must be 'cpu' or 'rendered', got 'gpu'");
-    ::unsetenv("SPEAR_INTRINSICS");
+    expectRefused("SPEAR_DERIVED_MODALITIES", "gpu",
+                  "Renderer::Renderer(): SPEAR_DERIVED_MODALITIES must be 'cpu' or 'rendered', got 'gpu'");
+    ::unsetenv("SPEAR_DERIVED_MODALITIES");
     expectRefused("SPEAR_LIGHTING", "deferred",
                   "Renderer::Renderer(): SPEAR_LIGHTING must be 'compute' or 'forward', got 'deferred'");
     ::unsetenv("SPEAR_LIGHTING");
