@@ -71,8 +71,8 @@ TEST_F(RenderIntrinsicsGlTest, IdentitiesHoldPerPixelInOnePass) {
 
 TEST_F(RenderIntrinsicsGlTest, IdentitiesHoldPerPixelWithAnAttributePass) {
     // Rendered (as on a GPU): base colour, metallic and the ids come from the attribute pass, the rest from
-    // the surface pass. Computed on the CPU (a software rasteriser's default): diffuse_only and
-    // specular_residual from the images read.
+    // the surface pass. Computed on the CPU (a software rasteriser's default): diffuse_only,
+    // specular_residual and position from the images read, all drawn in one pass.
     const bool byDefault = renderer().derivesOnCpu();
     for (const bool derive : {false, true}) {
         SCOPED_TRACE(derive ? "computed on the CPU" : "rendered");
