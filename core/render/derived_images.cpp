@@ -117,7 +117,7 @@ void computePositionFromDepth(const float* depth, const Camera& camera, float* o
     // A pixel's centre ray, (1, (W/2 - u - 0.5) / f, (H/2 - v - 0.5) / f) in the camera's body frame, is a
     // row's first ray plus a step per column.
     const Eigen::Vector3d step = -axes.col(1) / focal;
-    const int bands = std::max(1, std::min(height, 2 * hardwareThreads())); // rows of the image, in turn
+    const int bands = std::max(1, std::min(height, 2 * hardwareThreads())); // bands of rows, two a thread
     const auto rows = [&](int band) {
         for (int v = height * band / bands; v < height * (band + 1) / bands; ++v) {
             const Eigen::Vector3d first = axes.col(0) + axes.col(1) * ((0.5 * width - 0.5) / focal) +
