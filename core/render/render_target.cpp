@@ -191,8 +191,6 @@ std::uint64_t RenderTarget::queueReadback(const Scene& scene, const Camera& came
     dropFence(slot); // an unread frame N + 1 submits old is dropped
     slot.frameNumber = frameNumber;
     slot.sceneUid = scene.uid();
-    slot.width = camera.params.width;
-    slot.height = camera.params.height;
     slot.camera = camera;
     slot.modalities = modalities_;
     slot.plan = plan_;
@@ -204,7 +202,7 @@ std::uint64_t RenderTarget::queueReadback(const Scene& scene, const Camera& came
     if (slot.staged) {
         for (Modality modality : plan_.rendered.list()) {
             const auto m = static_cast<std::size_t>(modality);
-            const std::size_t bytes = modalityByteSize(modality, slot.width, slot.height);
+            const std::size_t bytes = modalityByteSize(modality, slot.width(), slot.height());
             if (slot.capacity[m] != bytes) {
                 // Mapped once for good: on an NVIDIA H100, mapping and unmapping each buffer at every read
                 // cost all 14 modalities at latency 1 a fifth of their frame (14.4-15.1 against 11.6 ms).
@@ -219,11 +217,11 @@ std::uint64_t RenderTarget::queueReadback(const Scene& scene, const Camera& came
                 slot.capacity[m] = bytes;
             }
             if (packedOnGpu(modality)) {
-                packIds(renderer_, place(), modality, slot.width, slot.height, slot.buffers[m]);
+                packIds(renderer_, place(), modality, slot.width(), slot.height(), slot.buffers[m]);
                 continue;
             }
             glBindBuffer(GL_PIXEL_PACK_BUFFER, slot.buffers[m]);
-            readModality(place(), modality, slot.width, slot.height, nullptr);
+            readModality(place(), modality, slot.width(), slot.height(), nullptr);
         }
         glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     }
@@ -253,12 +251,12 @@ RenderTarget::Slot* RenderTarget::dueSlot() {
 void RenderTarget::copyOut(Slot& slot, Modality modality, void* destination) {
     renderer_.beginReadback(slot.sceneUid);
     if (!slot.staged) { // latency 0: the framebuffers still hold this frame, read straight into `destination`
-        readNow(modality, slot.width, slot.height, destination);
+        readNow(modality, slot.width(), slot.height(), destination);
         renderer_.endReadback(slot.sceneUid);
         return;
     }
     const auto m = static_cast<std::size_t>(modality);
-    parallelCopy(destination, slot.mapped[m], modalityByteSize(modality, slot.width, slot.height),
+    parallelCopy(destination, slot.mapped[m], modalityByteSize(modality, slot.width(), slot.height()),
                  renderer_.readbackThreads());
     renderer_.endReadback(slot.sceneUid);
 }
@@ -276,7 +274,7 @@ void RenderTarget::readViews(Slot& slot, std::span<const OutputView> views) {
 
 void RenderTarget::derive(Slot& slot, Modality modality, void* destination,
                           std::span<const OutputView> read) {
-    const std::size_t pixels = std::size_t(slot.width) * std::size_t(slot.height);
+    const std::size_t pixels = std::size_t(slot.width()) * std::size_t(slot.height());
     // An input's pixels: the view this read filled with it (readViews() computes diffuse_only before
     // specular_residual), else a scratch read of it.
     const auto input = [&](Modality in) -> const void* {
@@ -284,7 +282,7 @@ void RenderTarget::derive(Slot& slot, Modality modality, void* destination,
             if (view.modality == in)
                 return view.data;
         std::vector<std::uint32_t>& scratch = deriveScratch_[static_cast<std::size_t>(in)];
-        scratch.resize((modalityByteSize(in, slot.width, slot.height) + 3) / sizeof(std::uint32_t));
+        scratch.resize((modalityByteSize(in, slot.width(), slot.height()) + 3) / sizeof(std::uint32_t));
         if (in == Modality::DiffuseOnly)
             derive(slot, in, scratch.data(), read);
         else
@@ -366,11 +364,11 @@ std::optional<std::uint64_t> RenderTarget::read(Frame& frame) {
         return std::nullopt;
     frame.retain(slot->modalities); // reuses buffers across frames of the same size
     frame.frameNumber = slot->frameNumber;
-    frame.width = slot->width;
-    frame.height = slot->height;
+    frame.width = slot->width();
+    frame.height = slot->height();
     std::vector<OutputView> views;
     for (Modality modality : slot->modalities.list()) {
-        ImageBuffer& image = frame.prepare(modality, slot->width, slot->height);
+        ImageBuffer& image = frame.prepare(modality, slot->width(), slot->height());
         views.push_back({modality, image.bytes.data(), image.bytes.size()});
     }
     readViews(*slot, views);
@@ -383,10 +381,10 @@ void RenderTarget::checkViews(const Slot& slot, std::span<const OutputView> view
     for (const OutputView& view : views) {
         SP_CHECK(slot.modalities.contains(view.modality), InvalidArgument, "RenderTarget::read(): frame ",
                  slot.frameNumber, " was not rendered with modality '", modalityName(view.modality), "'");
-        const std::size_t expected = modalityByteSize(view.modality, slot.width, slot.height);
+        const std::size_t expected = modalityByteSize(view.modality, slot.width(), slot.height());
         SP_CHECK(view.data != nullptr && view.size == expected, InvalidArgument,
                  "RenderTarget::read(): the view for '", modalityName(view.modality), "' has ", view.size,
-                 " bytes, expected ", expected, " (", slot.height, "x", slot.width, "x",
+                 " bytes, expected ", expected, " (", slot.height(), "x", slot.width(), "x",
                  modalityInfo(view.modality).channels, " ", dtypeName(modalityInfo(view.modality).dtype),
                  ")");
     }

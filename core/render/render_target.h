@@ -76,9 +76,9 @@ class RenderTarget {
         bool pending = false;
         // Its readback was queued into `buffers` at submit (else: latency 0's direct read).
         bool staged = false;
-        int width = 0;
-        int height = 0;
-        Camera camera;          // the frame's (position is computed from its depth and this camera)
+        Camera camera; // the frame's (position is computed from its depth and this camera)
+        int width() const { return camera.params.width; }
+        int height() const { return camera.params.height; }
         ModalitySet modalities; // as asked for (what the frame can be read as)
         ModalityPlan plan;      // rendered, and computed from those when read (planModalities())
         void* fence = nullptr;
