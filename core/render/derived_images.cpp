@@ -1,6 +1,7 @@
 #include "core/render/derived_images.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/base/parallel.h"
 #include "core/render/image_buffer.h"
@@ -75,6 +76,54 @@ bool hasF16c() {
     static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("f16c");
     return has;
 }
+
+// The eight floats of a shuffle of two vectors' pairs (0 1 4 5 | 2 3 6 7 of the pixels) in pixel order.
+__attribute__((target("avx2"))) __m256 inPixelOrder(__m256 v) {
+    return _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(v), 0xd8));
+}
+
+// Eight pixels at a time, with the scalar loop's operations in the same order (no fused multiply-adds):
+// the same floats.
+__attribute__((target("avx2"))) std::size_t decodeOctahedralAvx2(const float* encoded, float* out,
+                                                                 std::size_t pixels) {
+    const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
+    const __m256 signBit = _mm256_set1_ps(-0.0f);
+    std::size_t p = 0;
+    alignas(32) float xs[8], ys[8], zs[8];
+    for (; p + 8 <= pixels; p += 8) {
+        const __m256 a = _mm256_loadu_ps(encoded + 2 * p), b = _mm256_loadu_ps(encoded + 2 * p + 8);
+        __m256 x = inPixelOrder(_mm256_shuffle_ps(a, b, 0x88)),
+               y = inPixelOrder(_mm256_shuffle_ps(a, b, 0xdd));
+        const __m256 ax = _mm256_andnot_ps(signBit, x), ay = _mm256_andnot_ps(signBit, y);
+        const __m256 z = _mm256_sub_ps(_mm256_sub_ps(one, ax), ay);
+        // Folded where z < 0: ((1 - |y|) sign x, (1 - |x|) sign y), a zero's sign taken as +.
+        const __m256 folded = _mm256_cmp_ps(z, zero, _CMP_LT_OQ);
+        const __m256 sx = _mm256_blendv_ps(one, _mm256_set1_ps(-1.0f), _mm256_cmp_ps(x, zero, _CMP_LT_OQ));
+        const __m256 sy = _mm256_blendv_ps(one, _mm256_set1_ps(-1.0f), _mm256_cmp_ps(y, zero, _CMP_LT_OQ));
+        const __m256 fx = _mm256_mul_ps(_mm256_sub_ps(one, ay), sx);
+        const __m256 fy = _mm256_mul_ps(_mm256_sub_ps(one, ax), sy);
+        x = _mm256_blendv_ps(x, fx, folded);
+        y = _mm256_blendv_ps(y, fy, folded);
+        const __m256 length = _mm256_sqrt_ps(
+            _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(x, x), _mm256_mul_ps(y, y)), _mm256_mul_ps(z, z)));
+        // Not a surface where |x| > 1 (kNoOctahedralNormal) or the value is not a number: zero.
+        const __m256 surface = _mm256_cmp_ps(ax, one, _CMP_LE_OQ);
+        _mm256_store_ps(xs, _mm256_and_ps(surface, _mm256_div_ps(x, length)));
+        _mm256_store_ps(ys, _mm256_and_ps(surface, _mm256_div_ps(y, length)));
+        _mm256_store_ps(zs, _mm256_and_ps(surface, _mm256_div_ps(z, length)));
+        float* row = out + 3 * p;
+        for (int i = 0; i < 8; ++i) {
+            row[3 * i] = xs[i];
+            row[3 * i + 1] = ys[i];
+            row[3 * i + 2] = zs[i];
+        }
+    }
+    return p;
+}
+bool hasAvx2() {
+    static const bool has = __builtin_cpu_supports("avx2");
+    return has;
+}
 #else // elsewhere the scalar loops do it all
 std::size_t diffuseOnlyF16c(const std::uint16_t*, const std::uint16_t*, const std::uint16_t*, std::uint16_t*,
                             std::size_t) {
@@ -84,6 +133,12 @@ std::size_t specularResidualF16c(const std::uint16_t*, const std::uint16_t*, std
     return 0;
 }
 bool hasF16c() {
+    return false;
+}
+std::size_t decodeOctahedralAvx2(const float*, float*, std::size_t) {
+    return 0;
+}
+bool hasAvx2() {
     return false;
 }
 #endif
@@ -135,6 +190,37 @@ void computePositionFromDepth(const float* depth, const Camera& camera, float* o
         }
     };
     parallelFor(bands, hardwareThreads(), rows);
+}
+
+void decodeOctahedralNormals(const float* encoded, float* out, std::size_t pixels) {
+    // Bands of whole groups of eight pixels, two a thread.
+    const std::size_t bands =
+        std::max<std::size_t>(1, std::min<std::size_t>(pixels / 4096, 2 * hardwareThreads()));
+    const std::size_t per = (pixels / bands + 7) / 8 * 8;
+    const auto band = [&](int index) {
+        const std::size_t first = std::min(pixels, per * std::size_t(index));
+        const std::size_t count = index + 1 == int(bands) ? pixels - first : std::min(per, pixels - first);
+        const float* in = encoded + 2 * first;
+        float* at = out + 3 * first;
+        const std::size_t done = hasAvx2() ? decodeOctahedralAvx2(in, at, count) : 0;
+        for (std::size_t p = done; p < count; ++p) {
+            float x = in[2 * p], y = in[2 * p + 1];
+            const float ax = std::abs(x), ay = std::abs(y);
+            const float z = 1.0f - ax - ay;
+            if (z < 0.0f) {
+                const float fx = (1.0f - ay) * (x < 0.0f ? -1.0f : 1.0f);
+                const float fy = (1.0f - ax) * (y < 0.0f ? -1.0f : 1.0f);
+                x = fx;
+                y = fy;
+            }
+            const float length = std::sqrt(x * x + y * y + z * z);
+            const bool surface = ax <= 1.0f; // else kNoOctahedralNormal, or not a number
+            at[3 * p] = surface ? x / length : 0.0f;
+            at[3 * p + 1] = surface ? y / length : 0.0f;
+            at[3 * p + 2] = surface ? z / length : 0.0f;
+        }
+    };
+    parallelFor(int(bands), hardwareThreads(), band);
 }
 
 } // namespace sp::render

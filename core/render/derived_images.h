@@ -14,6 +14,7 @@
 #include <cstdint>
 
 #include "core/render/camera.h"
+#include "core/render/modality.h"
 
 namespace sp::render {
 
@@ -28,5 +29,11 @@ void computeSpecularResidual(const std::uint16_t* hdr, const std::uint16_t* diff
 // (the background). The rasterised position is the same point interpolated in float32 across the
 // triangle: the two agree within float32 rounding of the coordinates (render_intrinsics_gl_test.cpp).
 void computePositionFromDepth(const float* depth, const Camera& camera, float* out);
+
+// out (pixels x 3, float32) = the unit normals whose octahedral coordinates a compact normal target holds
+// (encoded: pixels x 2, the shaders' normalTarget()), in float32; (0, 0, 0) where it holds
+// kNoOctahedralNormal (the background), as a float normal target is cleared. Within a few units in the last
+// place of the normal the shader encoded (derived_images_test.cpp).
+void decodeOctahedralNormals(const float* encoded, float* out, std::size_t pixels);
 
 } // namespace sp::render

@@ -17,6 +17,7 @@ PassSet FramebufferAtlas::passesOf(const Key& key) {
     passes.surface = key.surface;
     passes.surfaceTargets = key.surfaceTargets;
     passes.attributeTargets = key.attributeTargets;
+    passes.compactTargets = key.compactTargets;
     return passes;
 }
 
@@ -66,7 +67,8 @@ FramebufferAtlas::Place FramebufferAtlas::acquire(const void* owner, int width, 
                                                   const PassSet& passes) {
     SP_CHECK(suits(width, height), InvalidArgument, "FramebufferAtlas::acquire(): a ", width, "x", height,
              " view does not share framebuffers");
-    const Key key{width, height, passes.surfaceTargets, passes.attributeTargets, passes.surface};
+    const Key key{
+        width, height, passes.surfaceTargets, passes.attributeTargets, passes.surface, passes.compactTargets};
     if (const auto it = held_.find(owner); it != held_.end() && it->second.key == key)
         return place(owner);
     release(owner);

@@ -72,6 +72,7 @@ class FramebufferAtlas {
         int width = 0, height = 0;
         TargetMask surfaceTargets = 0, attributeTargets = 0;
         bool surface = false;
+        bool compactTargets = false;
         auto operator<=>(const Key&) const = default;
     };
     struct Page {

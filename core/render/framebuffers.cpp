@@ -7,7 +7,11 @@
 namespace sp::render {
 namespace {
 
-GLenum formatOf(Target target) {
+GLenum formatOf(Target target, bool compact) {
+    if (compact && target == Target::Normal)
+        return GL_RG32F;
+    if (compact && (kHalfTargets & targetBit(target)) != 0)
+        return GL_RGBA16UI;
     switch (target) {
     case Target::Position:
     case Target::Normal:
@@ -102,7 +106,7 @@ void Framebuffers::ensure(int w, int h, const PassSet& passes, int layerCount) {
     for (std::size_t t = 0; t < kTargetCount; ++t) {
         if ((needed & (TargetMask(1) << t)) == 0)
             continue; // kept for when the modalities come back; freed with the size
-        const GLenum format = formatOf(static_cast<Target>(t));
+        const GLenum format = formatOf(static_cast<Target>(t), passes.compactTargets);
         if (textures_[t] != 0 && formats_[t] == format)
             continue;
         glDeleteTextures(1, &textures_[t]);

@@ -64,6 +64,8 @@ std::size_t modalityByteSize(Modality modality, int width, int height);
 Modality modalityFromName(std::string_view name);
 
 // The colour targets a frame can write, each one texture of the camera's framebuffers.
+// Formats are the float ones; compact targets (PassSet::compactTargets) hold the float16 ones' bits in
+// RGBA16UI and the normal in RG32F (octahedral).
 enum class Target : std::uint8_t {
     Position,            // RGBA32F world position, w = 1 on geometry (0 = background)
     Normal,              // RGBA32F world normal
@@ -86,6 +88,11 @@ using TargetMask = std::uint32_t;
 inline constexpr TargetMask targetBit(Target target) {
     return TargetMask(1) << static_cast<unsigned>(target);
 }
+// The targets of float16 modalities (RGBA16F, or RGBA16UI when compact).
+inline constexpr TargetMask kHalfTargets = targetBit(Target::BaseColor) | targetBit(Target::Params) |
+                                           targetBit(Target::Hdr) | targetBit(Target::DiffuseIllumination) |
+                                           targetBit(Target::DiffuseOnly) |
+                                           targetBit(Target::SpecularResidual);
 // The targets only a shading pass writes: colour and the intrinsic images.
 inline constexpr TargetMask kShadedTargets =
     targetBit(Target::Hdr) | targetBit(Target::DiffuseIllumination) | targetBit(Target::DiffuseOnly) |
@@ -109,12 +116,20 @@ struct PassSet {
     bool tonemap = false;            // exposure, tone curve, sRGB encoding (fused into the shading)
     TargetMask surfaceTargets = 0;   // written by the surface pass, attached in Target order
     TargetMask attributeTargets = 0; // written by the attribute pass, attached in Target order
+    // The compact encoding (Renderer::compactTargets()): the float16 targets are RGBA16UI holding float16
+    // bits (packHalf2x16) and the normal is RG32F, its octahedral coordinates; the readback returns the same
+    // values, the normal decoded on the CPU. A software rasteriser stores integers and two channels for far
+    // less than float16 conversions and four channels.
+    bool compactTargets = false;
 
     bool operator==(const PassSet&) const = default;
     // Whether the surface pass writes Target::GBuffer for untextured materials and a compute pass shades
     // those pixels (Renderer::planComputeLighting() adds it; requiredPasses() never does).
     bool computeLighting() const { return (surfaceTargets & targetBit(Target::GBuffer)) != 0; }
 };
+
+// What a compact normal target holds where no surface is: outside the octahedral square [-1, 1]^2.
+inline constexpr float kNoOctahedralNormal = 2.0f;
 
 class ModalitySet {
   public:
@@ -153,6 +168,7 @@ class ModalitySet {
 struct ModalityPlan {
     ModalitySet rendered;
     ModalitySet derived;
+    bool compactTargets = false; // rendered into compact targets (PassSet::compactTargets)
     bool operator==(const ModalityPlan&) const = default;
 };
 ModalityPlan planModalities(const ModalitySet& modalities, bool softwareRasteriser);

@@ -23,7 +23,24 @@ struct ReadFormat {
     GLenum type;
 };
 
-ReadFormat readFormat(Modality modality) {
+ReadFormat readFormat(Modality modality, bool compact) {
+    if (compact && modality == Modality::Normal)
+        return {GL_RG, GL_FLOAT}; // the octahedral coordinates, decoded on the CPU
+    if (compact && (kHalfTargets & targetBit(targetOf(modality))) != 0) {
+        // The float16 bits, as 16-bit integers: the same channels.
+        switch (readFormat(modality, false).format) {
+        case GL_RGBA:
+            return {GL_RGBA_INTEGER, GL_UNSIGNED_SHORT};
+        case GL_RGB:
+            return {GL_RGB_INTEGER, GL_UNSIGNED_SHORT};
+        case GL_RED:
+            return {GL_RED_INTEGER, GL_UNSIGNED_SHORT};
+        case GL_GREEN:
+            return {GL_GREEN_INTEGER, GL_UNSIGNED_SHORT};
+        default:
+            return {GL_BLUE_INTEGER, GL_UNSIGNED_SHORT};
+        }
+    }
     switch (modality) {
     case Modality::FinalColor:
         return {GL_RGBA, GL_UNSIGNED_BYTE};
@@ -53,11 +70,18 @@ ReadFormat readFormat(Modality modality) {
     SP_THROW(InvalidArgument, "readFormat(): bad modality ", int(modality));
 }
 
+// The bytes a readback of the modality moves: the image's, but for a compact target's encoded normals.
+std::size_t readBytes(Modality modality, bool compact, int width, int height) {
+    if (compact && modality == Modality::Normal)
+        return std::size_t(width) * std::size_t(height) * 2 * sizeof(float);
+    return modalityByteSize(modality, width, height);
+}
+
 // Starts glReadPixels of one modality of the view `at` into the bound pixel-pack buffer (offset 0) or, with
 // none bound, into `destination`.
-void readModality(const FramebufferAtlas::Place& at, Modality modality, int width, int height,
+void readModality(const FramebufferAtlas::Place& at, Modality modality, bool compact, int width, int height,
                   void* destination) {
-    const ReadFormat format = readFormat(modality);
+    const ReadFormat format = readFormat(modality, compact);
     const Framebuffers::Attachment source =
         at.layer >= 0 ? at.framebuffers->layerAttachment(targetOf(modality), at.layer)
                       : at.framebuffers->attachment(targetOf(modality));
@@ -155,7 +179,9 @@ std::vector<std::uint64_t> RenderTarget::submitAll(std::span<const Submission> s
     std::vector<PassSet> passes;
     for (const Submission& s : submissions) {
         s.target->plan_ = planModalities(s.target->modalities_, renderer.derivesOnCpu());
+        s.target->plan_.compactTargets = renderer.compactTargets();
         passes.push_back(s.target->plan_.rendered.requiredPasses(s.camera->params.shadows));
+        passes.back().compactTargets = s.target->plan_.compactTargets;
         const int width = s.camera->params.width, height = s.camera->params.height;
         if (renderer.atlas().suits(width, height)) {
             renderer.atlas().acquire(s.target, width, height, passes.back());
@@ -202,7 +228,7 @@ std::uint64_t RenderTarget::queueReadback(const Scene& scene, const Camera& came
     if (slot.staged) {
         for (Modality modality : plan_.rendered.list()) {
             const auto m = static_cast<std::size_t>(modality);
-            const std::size_t bytes = modalityByteSize(modality, slot.width(), slot.height());
+            const std::size_t bytes = readBytes(modality, plan_.compactTargets, slot.width(), slot.height());
             if (slot.capacity[m] != bytes) {
                 // Mapped once for good: on an NVIDIA H100, mapping and unmapping each buffer at every read
                 // cost all 14 modalities at latency 1 a fifth of their frame (14.4-15.1 against 11.6 ms).
@@ -221,7 +247,7 @@ std::uint64_t RenderTarget::queueReadback(const Scene& scene, const Camera& came
                 continue;
             }
             glBindBuffer(GL_PIXEL_PACK_BUFFER, slot.buffers[m]);
-            readModality(place(), modality, slot.width(), slot.height(), nullptr);
+            readModality(place(), modality, plan_.compactTargets, slot.width(), slot.height(), nullptr);
         }
         glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     }
@@ -250,14 +276,27 @@ RenderTarget::Slot* RenderTarget::dueSlot() {
 
 void RenderTarget::copyOut(Slot& slot, Modality modality, void* destination) {
     renderer_.beginReadback(slot.sceneUid);
+    const bool compact = slot.plan.compactTargets;
+    const std::size_t pixels = std::size_t(slot.width()) * std::size_t(slot.height());
+    const bool decode = compact && modality == Modality::Normal; // octahedral coordinates to unit vectors
     if (!slot.staged) { // latency 0: the framebuffers still hold this frame, read straight into `destination`
-        readNow(modality, slot.width(), slot.height(), destination);
+        if (!decode) {
+            readNow(modality, compact, slot.width(), slot.height(), destination);
+        } else {
+            normalScratch_.resize(2 * pixels);
+            readNow(modality, compact, slot.width(), slot.height(), normalScratch_.data());
+            decodeOctahedralNormals(normalScratch_.data(), static_cast<float*>(destination), pixels);
+        }
         renderer_.endReadback(slot.sceneUid);
         return;
     }
     const auto m = static_cast<std::size_t>(modality);
-    parallelCopy(destination, slot.mapped[m], modalityByteSize(modality, slot.width(), slot.height()),
-                 renderer_.readbackThreads());
+    if (decode)
+        decodeOctahedralNormals(static_cast<const float*>(slot.mapped[m]), static_cast<float*>(destination),
+                                pixels);
+    else
+        parallelCopy(destination, slot.mapped[m], modalityByteSize(modality, slot.width(), slot.height()),
+                     renderer_.readbackThreads());
     renderer_.endReadback(slot.sceneUid);
 }
 
@@ -317,12 +356,12 @@ bool RenderTarget::packedOnGpu(Modality modality) const {
     return (modality == Modality::ObjectIds || modality == Modality::MaterialIds) && renderer_.packIdsOnGpu();
 }
 
-void RenderTarget::readNow(Modality modality, int width, int height, void* destination) {
+void RenderTarget::readNow(Modality modality, bool compact, int width, int height, void* destination) {
     const FramebufferAtlas::Place at = place();
     if (!packedOnGpu(modality)) {
-        if (at.layer >= 0 && readStaged(at, modality, width, height, destination))
+        if (at.layer >= 0 && readStaged(at, modality, compact, width, height, destination))
             return;
-        readModality(at, modality, width, height, destination);
+        readModality(at, modality, compact, width, height, destination);
         return;
     }
     const std::size_t bytes = modalityByteSize(modality, width, height);
@@ -336,20 +375,20 @@ void RenderTarget::readNow(Modality modality, int width, int height, void* desti
     glGetNamedBufferSubData(idScratch_, 0, GLsizeiptr(bytes), destination);
 }
 
-bool RenderTarget::readStaged(const FramebufferAtlas::Place& at, Modality modality, int width, int height,
-                              void* destination) {
+bool RenderTarget::readStaged(const FramebufferAtlas::Place& at, Modality modality, bool compact, int width,
+                              int height, void* destination) {
     // Up to this much is copied at once (a page of sixteen 128 x 128 final_color views: 1 MiB).
     constexpr std::size_t kMostStagedBytes = std::size_t(64) << 20;
     FramebufferAtlas& atlas = renderer_.atlas();
     FramebufferAtlas::Staged* staged = atlas.staged(*at.framebuffers, modality);
-    const std::size_t bytes = modalityByteSize(modality, width, height);
+    const std::size_t bytes = readBytes(modality, compact, width, height);
     const int layers = at.framebuffers->layers;
     if (staged == nullptr || bytes * std::size_t(layers) > kMostStagedBytes)
         return false;
     const std::uint64_t version = atlas.version(*at.framebuffers);
     if (staged->version != version) {
         staged->bytes.resize(bytes * std::size_t(layers));
-        const ReadFormat format = readFormat(modality);
+        const ReadFormat format = readFormat(modality, compact);
         glGetTextureSubImage(at.framebuffers->texture(targetOf(modality)), 0, 0, 0, 0, width, height, layers,
                              format.format, format.type, GLsizei(staged->bytes.size()), staged->bytes.data());
         staged->version = version;

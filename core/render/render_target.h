@@ -109,11 +109,12 @@ class RenderTarget {
     void derive(Slot& slot, Modality modality, void* destination, std::span<const OutputView> read);
     // Whether `modality` is read through the renderer's compute copy (Renderer::packIdsOnGpu()).
     bool packedOnGpu(Modality modality) const;
-    // Reads a modality of the frame the framebuffers hold into `destination` (latency 0).
-    void readNow(Modality modality, int width, int height, void* destination);
+    // Reads a modality of the frame the framebuffers hold into `destination` (latency 0); from `compact`
+    // targets, the normal as its octahedral coordinates (two floats a pixel).
+    void readNow(Modality modality, bool compact, int width, int height, void* destination);
     // The same for a layer of a page, from the page's copy of all its layers (FramebufferAtlas::Staged);
     // false when the page is too large to copy whole.
-    bool readStaged(const FramebufferAtlas::Place& at, Modality modality, int width, int height,
+    bool readStaged(const FramebufferAtlas::Place& at, Modality modality, bool compact, int width, int height,
                     void* destination);
     // Throws sp::InvalidArgument unless each view fits a modality `slot` was rendered with.
     static void checkViews(const Slot& slot, std::span<const OutputView> views);
@@ -131,6 +132,7 @@ class RenderTarget {
     std::size_t idScratchBytes_ = 0;
     // The inputs of computed modalities that were not asked for themselves, by modality (raw bytes).
     std::array<std::vector<std::uint32_t>, kModalityCount> deriveScratch_;
+    std::vector<float> normalScratch_; // latency 0's encoded normals of compact targets, before decoding
 };
 
 } // namespace sp::render

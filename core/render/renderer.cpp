@@ -19,6 +19,7 @@
 #include "core/render/framebuffer_atlas.h"
 #include "core/render/framebuffers.h"
 #include "core/render/gpu_scene_cache.h"
+#include "core/render/image_buffer.h"
 #include "core/render/instances.h"
 #include "core/render/parallel_copy.h"
 #include "core/render/shader_program.h"
@@ -86,6 +87,7 @@ Renderer::Renderer(const GlContext& context)
     readbackThreads_ = defaultCopyThreads();
     computeLighting_ = switchFromEnvironment("SPEAR_LIGHTING", "compute", "forward", hardware);
     derivesOnCpu_ = switchFromEnvironment("SPEAR_DERIVED_MODALITIES", "cpu", "rendered", !hardware);
+    compactTargets_ = switchFromEnvironment("SPEAR_TARGET_FORMATS", "compact", "float", !hardware);
     if (context.report().software) {
         // What the surface programs' own varyings leave of the smaller of the two limits (see
         // shaders::ShadingLayout::constantSlots), in vec4s: 8 per-vertex and per-instance varyings and up to
@@ -229,12 +231,12 @@ ShaderProgram& Renderer::surfaceProgram(TargetMask targets, bool forward, unsign
     const std::string key = std::string(forward ? "forward/" : "surface/") + std::to_string(targets) + "/" +
                             std::to_string(materialFeatures) + "/" +
                             (forward ? lights.key() : "c" + std::to_string(lights.constantSlots)) +
-                            (layered ? "/layered" : "");
+                            (layered ? "/layered" : "") + (viewCompact_ ? "/compact" : "");
     auto& program = programs_[key];
     if (!program)
         program = std::make_unique<ShaderProgram>(
             key, shaders::surfaceVertex(forward, lights, layered).c_str(),
-            shaders::surfaceFragment(targets, forward, materialFeatures, lights).c_str());
+            shaders::surfaceFragment(targets, forward, materialFeatures, lights, viewCompact_).c_str());
     return *program;
 }
 
@@ -294,7 +296,7 @@ std::set<const Framebuffers*> Renderer::clearPages(std::span<const View> views) 
         glBindFramebuffer(GL_FRAMEBUFFER, fb->surfaceFbo);
         glViewport(0, 0, fb->width, fb->height);
         glDepthMask(GL_TRUE);
-        clearBound(targets, values, true);
+        clearBound(targets, values, true, front.passes.compactTargets);
         cleared.insert(fb);
     }
     return cleared;
@@ -348,6 +350,7 @@ void Renderer::renderView(const View& view) {
     GpuSceneCache& cache = *active_->cache;
     const std::uint64_t meshUploads = cache.meshUploads(), textureUploads = cache.textureUploads();
     viewLayer_ = view.layer;
+    viewCompact_ = passes.compactTargets;
     SP_CHECK(camera.params.width == fb.width && camera.params.height == fb.height &&
                  (view.layer < 0 ? fb.layers == 0 : view.layer < fb.layers),
              InvalidArgument, "Renderer::render(): a ", camera.params.width, "x", camera.params.height,
@@ -526,17 +529,28 @@ std::vector<std::array<float, 4>> Renderer::clearValues(const Scene& scene, cons
     return values;
 }
 
-void Renderer::clearBound(TargetMask targets, const std::vector<std::array<float, 4>>& values, bool depth) {
+void Renderer::clearBound(TargetMask targets, const std::vector<std::array<float, 4>>& values, bool depth,
+                          bool compact) {
     int location = 0;
     for (std::size_t t = 0; t < kTargetCount; ++t) {
         if ((targets & (TargetMask(1) << t)) == 0)
             continue;
         const GLuint zero[4] = {0, 0, 0, 0};
         const auto target = static_cast<Target>(t);
-        if (target == Target::Ids)
+        const std::array<float, 4>& value = values[std::size_t(location)];
+        if (target == Target::Ids) {
             glClearBufferuiv(GL_COLOR, location, zero);
-        else if (target != Target::GBuffer) // read only where the depth buffer holds a surface: not cleared
-            glClearBufferfv(GL_COLOR, location, values[std::size_t(location)].data());
+        } else if (compact && (kHalfTargets & targetBit(target)) != 0) {
+            const GLuint bits[4] = {floatToHalf(value[0]), floatToHalf(value[1]), floatToHalf(value[2]),
+                                    floatToHalf(value[3])};
+            glClearBufferuiv(GL_COLOR, location, bits);
+        } else if (compact && target == Target::Normal) {
+            const GLfloat none[4] = {kNoOctahedralNormal, kNoOctahedralNormal, 0, 0};
+            glClearBufferfv(GL_COLOR, location, none);
+        } else if (target !=
+                   Target::GBuffer) { // read only where the depth buffer holds a surface: not cleared
+            glClearBufferfv(GL_COLOR, location, value.data());
+        }
         ++location;
     }
     if (depth)
@@ -546,17 +560,17 @@ void Renderer::clearBound(TargetMask targets, const std::vector<std::array<float
 void Renderer::clearTargets(const Scene& scene, const Camera& camera, TargetMask targets, bool depth) {
     const std::vector<std::array<float, 4>> values = clearValues(scene, camera, targets);
     if (viewLayer_ < 0) {
-        clearBound(targets, values, depth);
+        clearBound(targets, values, depth, viewCompact_);
         return;
     }
     if (values.empty() && !depth)
         return;
     // A clear of layered framebuffers clears every layer: the view's layer is drawn instead, by a triangle
     // covering it on the far plane (depth 1, as a clear leaves it).
-    auto& program = programs_["clear/" + std::to_string(targets)];
+    auto& program = programs_["clear/" + std::to_string(targets) + (viewCompact_ ? "/compact" : "")];
     if (!program)
         program = std::make_unique<ShaderProgram>("clear", shaders::backgroundVertex(true).c_str(),
-                                                  shaders::clearFragment(targets).c_str());
+                                                  shaders::clearFragment(targets, viewCompact_).c_str());
     program->use();
     if (!values.empty())
         glProgramUniform4fv(program->id(), program->location("uClear"), GLsizei(values.size()),
@@ -765,7 +779,8 @@ void Renderer::planComputeLighting(PassSet& passes) const {
     passes.surfaceTargets &= ~targetBit(Target::GBuffer);
     // One surface pass that shades only colour (the intrinsic images keep the forward pass's exact
     // float16 rounding) and has a draw buffer left for the G-buffer.
-    if (!computeLighting_ || !passes.lighting || passes.attributeTargets != 0 ||
+    // Its image stores write float formats: not into compact targets.
+    if (!computeLighting_ || passes.compactTargets || !passes.lighting || passes.attributeTargets != 0 ||
         (passes.surfaceTargets & kShadedTargets & ~kComputeLit) != 0 ||
         std::popcount(passes.surfaceTargets) + 1 > kMaxDrawTargets)
         return;

@@ -122,6 +122,15 @@ class Renderer {
     // Settable, so that tests compare both ways.
     bool derivesOnCpu() const { return derivesOnCpu_; }
     void setDerivesOnCpu(bool on) { derivesOnCpu_ = on; }
+    // Whether views render into compact targets (PassSet::compactTargets: float16 targets as RGBA16UI holding
+    // float16 bits, the normal as two octahedral coordinates): by default on a software rasteriser, whose
+    // fragment stores cost least for 32-bit and integer channels (all 14 modalities at 1080p on llvmpipe:
+    // core/render/README.md). The images read are the same, up to a float16 rounding and the normal's
+    // decoding (a few units in the last place of float32). Views computed in compute lighting keep float
+    // targets. SPEAR_TARGET_FORMATS=compact|float overrides the default. Settable, so that tests compare
+    // both.
+    bool compactTargets() const { return compactTargets_; }
+    void setCompactTargets(bool on) { compactTargets_ = on; }
     // The threads a read splits its copy out of a pixel-buffer object across (parallelCopy()); by default
     // defaultCopyThreads().
     int readbackThreads() const { return readbackThreads_; }
@@ -197,7 +206,9 @@ class Renderer {
     static std::vector<std::array<float, 4>> clearValues(const Scene& scene, const Camera& camera,
                                                          TargetMask targets);
     // Clears all of the bound framebuffer's `targets` to `values` (and its depth with `depth`).
-    static void clearBound(TargetMask targets, const std::vector<std::array<float, 4>>& values, bool depth);
+    // `compact`: they are compact targets (PassSet::compactTargets), given the encoded values.
+    static void clearBound(TargetMask targets, const std::vector<std::array<float, 4>>& values, bool depth,
+                           bool compact);
     // Clears the surface targets of the pages of shared framebuffers that `views` redraw whole; returns them.
     std::set<const Framebuffers*> clearPages(std::span<const View> views);
     // Sets the colour write masks of `targets`' draw buffers: off for those in `masked` when `mask`, else on.
@@ -218,6 +229,7 @@ class Renderer {
     bool stagedReadback_ = false;
     bool computeLighting_ = false;
     bool derivesOnCpu_ = false;
+    bool compactTargets_ = false;
     int readbackThreads_ = 1;
     int constantSlots_ = 0;
     bool shadowReach_ = false;
@@ -226,6 +238,7 @@ class Renderer {
     std::map<std::uint64_t, std::unique_ptr<SceneState>> scenes_; // by Scene::uid()
     SceneState* active_ = nullptr;                                // the scene render() is drawing
     int viewLayer_ = -1;       // the layer of the view render() is drawing (-1: framebuffers of its own)
+    bool viewCompact_ = false; // its targets are compact (PassSet::compactTargets)
     bool pageCleared_ = false; // its surface targets were cleared with its page (clearPages())
     std::unique_ptr<FramebufferAtlas> atlas_;
     std::unique_ptr<InstanceBuffer> instances_; // the surface passes' instance records

@@ -174,16 +174,16 @@ struct Shaded {
 // The HDR and intrinsic targets of a shaded point.
 void writeShaded(Shaded s) {
 #ifdef OUT_Hdr
-    oHdr = vec4(s.hdr, 1.0);
+    oHdr = halfTarget(vec4(s.hdr, 1.0));
 #endif
 #ifdef OUT_DiffuseIllumination
-    oDiffuseIllumination = vec4(s.diffuseIllumination, 1.0);
+    oDiffuseIllumination = halfTarget(vec4(s.diffuseIllumination, 1.0));
 #endif
 #ifdef OUT_DiffuseOnly
-    oDiffuseOnly = vec4(s.diffuseOnly, 1.0);
+    oDiffuseOnly = halfTarget(vec4(s.diffuseOnly, 1.0));
 #endif
 #ifdef OUT_SpecularResidual
-    oSpecularResidual = vec4(s.hdr - s.diffuseOnly, 1.0);
+    oSpecularResidual = halfTarget(vec4(s.hdr - s.diffuseOnly, 1.0));
 #endif
 }
 
@@ -292,16 +292,16 @@ void main() {
     oPosition = vec4(vWorldPosition, 1.0);
 #endif
 #ifdef OUT_Normal
-    oNormal = vec4(n, 0.0);
+    oNormal = normalTarget(n);
 #endif
 #ifdef OUT_Depth
     oDepth = vDepth;
 #endif
 #ifdef OUT_BaseColor
-    oBaseColor = vec4(base, 1.0);
+    oBaseColor = halfTarget(vec4(base, 1.0));
 #endif
 #ifdef OUT_Params
-    oParams = vec4(roughness, metallic, vMaterial.z, 0.0);
+    oParams = halfTarget(vec4(roughness, metallic, vMaterial.z, 0.0));
 #endif
 #ifdef OUT_Ids
     oIds = vIds;
@@ -338,20 +338,51 @@ std::string instanceAttributes() {
            at(kInstanceEmissive) + "vec4 iEmissive;\n" + at(kInstanceIds) + "uvec4 iIds;\n";
 }
 
+// What a float16 target and the normal target store of a value: halfTarget() and normalTarget().
+const char* const kFloatEncodings = R"glsl(
+vec4 halfTarget(vec4 v) { return v; }
+vec4 normalTarget(vec3 n) { return vec4(n, 0.0); }
+)glsl";
+// Compact targets (PassSet::compactTargets): a float16 target holds its channels' float16 bits, as
+// packHalf2x16 rounds them; the normal target a unit vector's octahedral coordinates
+// (decodeOctahedralNormals()), the lower hemisphere folded over the diagonals.
+const char* const kCompactEncodings = R"glsl(
+uvec4 halfTarget(vec4 v) {
+    uvec2 p = uvec2(packHalf2x16(v.xy), packHalf2x16(v.zw));
+    return uvec4(p.x & 0xffffu, p.x >> 16, p.y & 0xffffu, p.y >> 16);
+}
+vec2 normalTarget(vec3 n) {
+    vec2 p = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
+    return n.z >= 0.0 ? p : (1.0 - abs(p.yx)) * vec2(p.x >= 0.0 ? 1.0 : -1.0, p.y >= 0.0 ? 1.0 : -1.0);
+}
+)glsl";
+
+// The GLSL type of a target's fragment output.
+const char* outputType(Target target, bool compact) {
+    if (target == Target::Ids)
+        return "uvec2";
+    if (target == Target::GBuffer)
+        return "uint";
+    if (target == Target::Depth)
+        return "float";
+    if (compact && target == Target::Normal)
+        return "vec2";
+    if (compact && (kHalfTargets & targetBit(target)) != 0)
+        return "uvec4";
+    return "vec4";
+}
+
 // "#define OUT_<Target>" and "layout(location = k) out <type> o<Target>;" for each target in the mask,
-// at consecutive locations in Target order (the order Framebuffers attaches them in).
-std::string outputs(TargetMask targets) {
-    std::string text;
+// at consecutive locations in Target order (the order Framebuffers attaches them in), and the encodings.
+std::string outputs(TargetMask targets, bool compact) {
+    std::string text = compact ? kCompactEncodings : kFloatEncodings;
     int location = 0;
     for (std::size_t t = 0; t < kTargetCount; ++t) {
         if ((targets & (TargetMask(1) << t)) == 0)
             continue;
         const auto target = static_cast<Target>(t);
         const std::string name(targetName(target));
-        const char* type = target == Target::Ids       ? "uvec2"
-                           : target == Target::GBuffer ? "uint"
-                           : target == Target::Depth   ? "float"
-                                                       : "vec4";
+        const char* type = outputType(target, compact);
         text += "#define OUT_" + name + "\nlayout(location = " + std::to_string(location++) + ") out " +
                 type + " o" + name + ";\n";
     }
@@ -712,17 +743,29 @@ std::string backgroundFragment(int location, ToneMap toneMap) {
     return text + "void main() { oFinalColor = toneMapped(uBackground.xyz); }\n";
 }
 
-std::string clearFragment(TargetMask targets) {
+std::string clearFragment(TargetMask targets, bool compact) {
     std::string text = "#version 450 core\nuniform vec4 uClear[" + std::to_string(kTargetCount) + "];\n";
+    text += compact ? kCompactEncodings : kFloatEncodings;
     std::string body;
     int location = 0;
     for (std::size_t t = 0; t < kTargetCount; ++t) {
         if ((targets & (TargetMask(1) << t)) == 0)
             continue;
+        const auto target = static_cast<Target>(t);
         const std::string index = std::to_string(location++);
-        const bool ids = static_cast<Target>(t) == Target::Ids;
-        text += "layout(location = " + index + ") out " + (ids ? "uvec4" : "vec4") + " o" + index + ";\n";
-        body += " o" + index + (ids ? " = uvec4(0u);" : " = uClear[" + index + "];");
+        std::string value = "uClear[" + index + "]";
+        if (target == Target::Ids)
+            value = "uvec2(0u)";
+        else if (target == Target::GBuffer) // read only where the depth holds a surface (see clearBound())
+            value = "0u";
+        else if (target == Target::Depth)
+            value += ".x";
+        else if (compact && target == Target::Normal)
+            value = "vec2(" + std::to_string(kNoOctahedralNormal) + ")";
+        else if ((kHalfTargets & targetBit(target)) != 0)
+            value = "halfTarget(" + value + ")";
+        text += "layout(location = " + index + ") out " + outputType(target, compact) + " o" + index + ";\n";
+        body += " o" + index + " = " + value + ";";
     }
     return text + "void main() {" + body + " }\n";
 }
@@ -810,7 +853,7 @@ std::string surfaceVertex(bool forward, const ShadingLayout& lights, bool layere
 }
 
 std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialFeatures,
-                            const ShadingLayout& lights) {
+                            const ShadingLayout& lights, bool compact) {
     std::string text = "#version 450 core\n";
     // Depth-test before the shader (it writes no depth and discards nothing), so hidden fragments never
     // run it: with draws front to back, shading; against the surface pass's depth, the attribute pass.
@@ -825,7 +868,7 @@ std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialF
         text += "#define HAS_ROUGHNESS_METALLIC_TEXTURE\n";
     if (materialFeatures & kNormalTexture)
         text += "#define HAS_NORMAL_TEXTURE\n";
-    text += outputs(targets);
+    text += outputs(targets, compact);
     text += kFrameBlock;
     const ConstantPlan plan = planConstants(forward, lights);
     text += constantDeclarations(plan, "in");

@@ -96,8 +96,9 @@ inline constexpr int kIdChannelGroupSize = 16;
 // HDR, intrinsic and final colour targets).
 // `layered`: into the view's layer (FrameBlock's uCounts.y) of layered framebuffers (FramebufferAtlas).
 std::string surfaceVertex(bool forward, const ShadingLayout& lights, bool layered = false);
+// `compact`: into compact targets (PassSet::compactTargets).
 std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialFeatures,
-                            const ShadingLayout& lights);
+                            const ShadingLayout& lights, bool compact = false);
 
 // The background of a vignetted final_color: a full-screen triangle on the far plane writing the tone-mapped,
 // vignetted background colour at draw buffer `location`, drawn after the surfaces where none was.
@@ -106,7 +107,7 @@ std::string backgroundVertex(bool layered);
 std::string backgroundFragment(int location, ToneMap toneMap);
 // Writes uClear[i] into the i-th of `targets` (in Target order; zero into the ids target): a clear of one
 // view's layer of shared framebuffers, drawn with backgroundVertex(true) (see Renderer::clearTargets).
-std::string clearFragment(TargetMask targets);
+std::string clearFragment(TargetMask targets, bool compact = false);
 
 // The compute lighting pass (PassSet::computeLighting()): for each pixel whose G-buffer names a draw (not the
 // background, not a pixel its fragment shaded), the world position from the depth buffer, the normal and

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -52,7 +55,56 @@ TEST_P(DerivedImages, SpecularResidualIsHdrLessDiffuse) {
         }
 }
 
-INSTANTIATE_TEST_SUITE_P(PixelCounts, DerivedImages, ::testing::Values(0, 1, 7, 8, 9, 16, 61 * 37));
+// A unit normal's octahedral coordinates as the shaders' normalTarget() computes them, in float32.
+std::array<float, 2> octahedral(const Eigen::Vector3f& n) {
+    const float l1 = std::abs(n.x()) + std::abs(n.y()) + std::abs(n.z());
+    const float x = n.x() / l1, y = n.y() / l1;
+    if (n.z() >= 0.0f)
+        return {x, y};
+    return {(1.0f - std::abs(y)) * (x >= 0.0f ? 1.0f : -1.0f),
+            (1.0f - std::abs(x)) * (y >= 0.0f ? 1.0f : -1.0f)};
+}
+
+// Every direction comes back within a few float32 ulps, the axes and the folds' edges exactly; the
+// background (kNoOctahedralNormal) and a value that is not a number come back as the zero vector.
+TEST_P(DerivedImages, OctahedralNormalsDecodeToTheUnitVectorsEncoded) {
+    const std::size_t pixels = GetParam();
+    std::mt19937 random(13);
+    std::normal_distribution<float> gauss;
+    const std::vector<Eigen::Vector3f> exact{{0, 0, 1},  {0, 0, -1}, {1, 0, 0},
+                                             {-1, 0, 0}, {0, 1, 0},  {0, -1, 0}};
+    std::vector<Eigen::Vector3f> normals(pixels);
+    std::vector<float> encoded(2 * pixels);
+    for (std::size_t p = 0; p < pixels; ++p) {
+        Eigen::Vector3f n(gauss(random), gauss(random), gauss(random));
+        if (p % 11 < exact.size())
+            n = exact[p % 11];
+        else if (p % 11 == 6)
+            n.z() = 0.0f; // on the equator, where the lower hemisphere folds
+        normals[p] = n.normalized();
+        const auto xy = octahedral(normals[p]);
+        encoded[2 * p] = xy[0];
+        encoded[2 * p + 1] = xy[1];
+        if (p % 11 == 7) {
+            encoded[2 * p] = encoded[2 * p + 1] = kNoOctahedralNormal;
+            normals[p].setZero();
+        } else if (p % 11 == 8) {
+            encoded[2 * p] = std::numeric_limits<float>::quiet_NaN();
+            normals[p].setZero();
+        }
+    }
+    std::vector<float> out(3 * pixels, -5.0f);
+    decodeOctahedralNormals(encoded.data(), out.data(), pixels);
+    for (std::size_t p = 0; p < pixels; ++p) {
+        const Eigen::Vector3f decoded(out[3 * p], out[3 * p + 1], out[3 * p + 2]);
+        if (p % 11 < exact.size() || p % 11 == 7 || p % 11 == 8)
+            ASSERT_EQ(decoded, normals[p]) << "pixel " << p;
+        else
+            ASSERT_LE((decoded - normals[p]).cwiseAbs().maxCoeff(), 4e-7f) << "pixel " << p;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(PixelCounts, DerivedImages, ::testing::Values(0, 1, 7, 8, 9, 16, 61 * 37, 1 << 16));
 
 } // namespace
 } // namespace sp::render

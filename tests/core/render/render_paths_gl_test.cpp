@@ -3,7 +3,10 @@
 // are culled without changing the image, and latency 0 reads straight from the framebuffers.
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdlib>
+#include <string>
 
 #include "core/render/image_buffer.h"
 #include "gl_fixture.h"
@@ -311,17 +314,19 @@ TEST_F(RenderPathsGlTest, ComputeLightingAgreesWithShadingInTheFragments) {
 }
 
 TEST_F(RenderPathsGlTest, TheGpuPathSwitchesAreReadFromTheEnvironmentAndCheckedThere) {
-    // SPEAR_LIGHTING, SPEAR_READBACK and SPEAR_DERIVED_MODALITIES override the device's defaults; a value
-    // that is neither choice is refused naming the variable and the value.
+    // SPEAR_LIGHTING, SPEAR_READBACK, SPEAR_DERIVED_MODALITIES and SPEAR_TARGET_FORMATS override the device's
+    // defaults; a value that is neither choice is refused naming the variable and the value.
     GlContext& context = *context_;
     ::setenv("SPEAR_LIGHTING", "compute", 1);
     ::setenv("SPEAR_READBACK", "direct", 1);
     ::setenv("SPEAR_DERIVED_MODALITIES", "rendered", 1);
+    ::setenv("SPEAR_TARGET_FORMATS", "float", 1);
     {
         Renderer forced(context);
         EXPECT_TRUE(forced.computeLighting());
         EXPECT_FALSE(forced.stagedReadback());
         EXPECT_FALSE(forced.derivesOnCpu());
+        EXPECT_FALSE(forced.compactTargets());
     }
     // A variable set to a value that is neither choice: the renderer is refused, naming both.
     const auto expectRefused = [&](const char* variable, const char* value, const char* message) {
@@ -336,6 +341,9 @@ TEST_F(RenderPathsGlTest, TheGpuPathSwitchesAreReadFromTheEnvironmentAndCheckedT
     expectRefused("SPEAR_DERIVED_MODALITIES", "gpu",
                   "Renderer::Renderer(): SPEAR_DERIVED_MODALITIES must be 'cpu' or 'rendered', got 'gpu'");
     ::unsetenv("SPEAR_DERIVED_MODALITIES");
+    expectRefused("SPEAR_TARGET_FORMATS", "half",
+                  "Renderer::Renderer(): SPEAR_TARGET_FORMATS must be 'compact' or 'float', got 'half'");
+    ::unsetenv("SPEAR_TARGET_FORMATS");
     expectRefused("SPEAR_LIGHTING", "deferred",
                   "Renderer::Renderer(): SPEAR_LIGHTING must be 'compute' or 'forward', got 'deferred'");
     ::unsetenv("SPEAR_LIGHTING");
@@ -344,6 +352,7 @@ TEST_F(RenderPathsGlTest, TheGpuPathSwitchesAreReadFromTheEnvironmentAndCheckedT
     EXPECT_EQ(byDefault.computeLighting(), !context.report().software);
     EXPECT_EQ(byDefault.stagedReadback(), !context.report().software);
     EXPECT_EQ(byDefault.derivesOnCpu(), context.report().software);
+    EXPECT_EQ(byDefault.compactTargets(), context.report().software);
     context.makeCurrent(); // the fixture's renderer goes on in the same context
 }
 
@@ -645,6 +654,75 @@ TEST_F(RenderPathsGlTest, LatencyZeroReadsAFrameOnceAndLatencyOneMatchesIt) {
     EXPECT_EQ(difference(a.get(Modality::FinalColor), b.get(Modality::FinalColor)).first, 0);
     const auto da = a.get(Modality::Depth).as<float>(), db = b.get(Modality::Depth).as<float>();
     EXPECT_TRUE(std::equal(da.begin(), da.end(), db.begin()));
+}
+
+// Compact targets (float16 targets holding their bits in 16-bit integers, the normal as octahedral
+// coordinates) read the same images as float targets: every modality, at latency 0 and 1, in a layer of a
+// shared page and in framebuffers of its own, with position and the intrinsics computed on the CPU and all
+// rendered (with the attribute pass). The float16 images differ by the rounding: packHalf2x16 rounds to
+// nearest, as the CPU does (floatToHalf()), where llvmpipe's float16 framebuffers truncate, so a value is
+// the same or one unit in the last place larger; the normal is within a few float32 ulps; the rest is the
+// same bit for bit.
+TEST_F(RenderPathsGlTest, CompactTargetsReadTheSameImagesAsFloatTargets) {
+    Scene scene;
+    buildShapesScene(scene);
+    addSpotAndPointLights(scene);
+    const bool compactByDefault = renderer().compactTargets(), derivesByDefault = renderer().derivesOnCpu();
+    for (const bool derives : {true, false})
+        for (const int latency : {0, 1})
+            for (const int width : {96, 640}) { // a layer of a page; framebuffers of its own
+                const Camera camera =
+                    cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, width, width * 2 / 3, 60.0);
+                std::array<Frame, 2> frames;
+                for (const bool compact : {false, true}) {
+                    renderer().setCompactTargets(compact);
+                    renderer().setDerivesOnCpu(derives);
+                    RenderTarget target(renderer(), ModalitySet::all(), latency);
+                    for (int i = 0; i <= latency; ++i)
+                        target.submit(scene, camera);
+                    ASSERT_TRUE(target.read(frames[compact ? 1 : 0]).has_value());
+                }
+                const std::string where = std::string(derives ? "computed" : "rendered") + ", latency " +
+                                          std::to_string(latency) + ", " + std::to_string(width) + " wide: ";
+                const Frame& compact = frames[1];
+                for (Modality m : ModalitySet::all().list()) {
+                    const ImageBuffer &a = frames[0].get(m), &b = compact.get(m);
+                    ASSERT_EQ(a.bytes.size(), b.bytes.size());
+                    if (m == Modality::Normal) {
+                        const auto x = a.as<float>(), y = b.as<float>();
+                        float largest = 0.0f;
+                        std::size_t zeros = 0;
+                        for (std::size_t i = 0; i < x.size(); ++i) {
+                            largest = std::max(largest, std::abs(x[i] - y[i]));
+                            zeros += y[i] == 0.0f && x[i] == 0.0f;
+                        }
+                        EXPECT_LE(largest, 5e-7f) << where << "normal";
+                        EXPECT_GT(zeros, x.size() / 10) << where << "the background's normal is zero in both";
+                    } else if (modalityInfo(m).dtype != DType::Float16) {
+                        EXPECT_TRUE(std::equal(a.bytes.begin(), a.bytes.end(), b.bytes.begin()))
+                            << where << modalityName(m);
+                    } else if (!(derives &&
+                                 (m == Modality::DiffuseOnly || m == Modality::SpecularResidual))) {
+                        // (Computed ones follow their inputs' rounding: derived_images_test.cpp.)
+                        const auto x = a.as<std::uint16_t>(), y = b.as<std::uint16_t>();
+                        for (std::size_t i = 0; i < x.size(); ++i) {
+                            const int up = int(y[i] & 0x7fff) - int(x[i] & 0x7fff); // in magnitude
+                            ASSERT_TRUE((x[i] & 0x8000) == (y[i] & 0x8000) && (up == 0 || up == 1))
+                                << where << modalityName(m) << " value " << i << ": " << x[i] << " and "
+                                << y[i];
+                        }
+                    }
+                }
+                // The ground's base colour (0.6, 0.6, 0.55) is the material's, rounded to nearest.
+                const auto ids = compact.get(Modality::ObjectIds).as<std::uint32_t>();
+                const auto base = compact.get(Modality::BaseColor).as<std::uint16_t>();
+                const std::size_t ground = std::size_t(std::find(ids.begin(), ids.end(), 1u) - ids.begin());
+                ASSERT_LT(ground, ids.size()) << where << "the ground is in view";
+                EXPECT_EQ(base[3 * ground], floatToHalf(0.6f)) << where;
+                EXPECT_EQ(base[3 * ground + 2], floatToHalf(0.55f)) << where;
+            }
+    renderer().setCompactTargets(compactByDefault);
+    renderer().setDerivesOnCpu(derivesByDefault);
 }
 
 TEST_F(RenderPathsGlTest, ABatchOfScenesRendersWhatEachRendersAlone) {
