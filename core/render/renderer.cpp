@@ -86,7 +86,6 @@ Renderer::Renderer(const GlContext& context)
     stagedReadback_ = switchFromEnvironment("SPEAR_READBACK", "staged", "direct", hardware);
     readbackThreads_ = defaultCopyThreads();
     computeLighting_ = switchFromEnvironment("SPEAR_LIGHTING", "compute", "forward", hardware);
-    depthPrepass_ = switchFromEnvironment("SPEAR_DEPTH_PREPASS", "on", "off", !hardware);
     derivesOnCpu_ = switchFromEnvironment("SPEAR_DERIVED_MODALITIES", "cpu", "rendered", !hardware);
     compactTargets_ = switchFromEnvironment("SPEAR_TARGET_FORMATS", "compact", "float", !hardware);
     if (context.report().software) {
@@ -154,7 +153,6 @@ void add(RenderStats& total, const RenderStats& s) {
     total.shadowReuses += s.shadowReuses;
     total.surfacePasses += s.surfacePasses;
     total.attributePasses += s.attributePasses;
-    total.depthPrepasses += s.depthPrepasses;
     total.lightingPasses += s.lightingPasses;
     total.tonemapPasses += s.tonemapPasses;
     total.readbacks += s.readbacks;
@@ -225,19 +223,6 @@ void Renderer::beginReadback(std::uint64_t sceneUid) {
 void Renderer::endReadback(std::uint64_t sceneUid) {
     if (SceneState* state = findState(sceneUid))
         state->timers.end();
-}
-
-ShaderProgram& Renderer::depthProgram(int constantSlots) {
-    const bool layered = viewLayer_ >= 0;
-    shaders::ShadingLayout constantsOnly; // no shading: the camera position alone
-    constantsOnly.constantSlots = constantSlots;
-    const std::string key = "depth/c" + std::to_string(constantSlots) + (layered ? "/layered" : "");
-    auto& program = programs_[key];
-    if (!program)
-        program = std::make_unique<ShaderProgram>(
-            key, shaders::surfaceVertex(false, constantsOnly, layered).c_str(),
-            shaders::depthOnlyFragment().c_str());
-    return *program;
 }
 
 ShaderProgram& Renderer::surfaceProgram(TargetMask targets, bool forward, unsigned materialFeatures,
@@ -458,25 +443,7 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
     if (passes.lighting && passes.shadow && active_->shadowMaps->texture() != 0)
         glBindImageTexture(shaders::kShadowMapImageUnit, active_->shadowMaps->texture(), 0, GL_TRUE, 0,
                            GL_READ_ONLY, active_->shadowMaps->format());
-    // With a depth pre-pass the shading pass runs each pixel's shader once, for the surface left in front:
-    // depth first (no colour writes, an empty fragment shader), then the shading at equal depth without
-    // depth writes. Drawn in reverse order, so that where surfaces tie the first drawn is shaded last, as
-    // a single pass (GL_LESS) keeps it.
-    const bool prepass = depthPrepass_ && passes.lighting && !passes.computeLighting();
-    if (prepass) {
-        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-        drawAll(scene, camera, draws, passes.surfaceTargets, false, lights, cache, true);
-        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        glDepthFunc(GL_LEQUAL);
-        glDepthMask(GL_FALSE);
-        const std::vector<Draw> reversed(draws.rbegin(), draws.rend());
-        drawAll(scene, camera, reversed, passes.surfaceTargets, true, lights, cache);
-        glDepthFunc(GL_LESS);
-        glDepthMask(GL_TRUE);
-        ++active_->stats.depthPrepasses;
-    } else {
-        drawAll(scene, camera, draws, passes.surfaceTargets, passes.lighting, lights, cache);
-    }
+    drawAll(scene, camera, draws, passes.surfaceTargets, passes.lighting, lights, cache);
     if (passes.computeLighting())
         lightInCompute(camera, passes, lights, fb);
     else if (lights.vignette && (passes.surfaceTargets & targetBit(Target::FinalColor)) != 0)
@@ -702,7 +669,7 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
 
 void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vector<Draw>& draws,
                        TargetMask targets, bool shade, const shaders::ShadingLayout& lights,
-                       GpuSceneCache& cache, bool depthOnly) {
+                       GpuSceneCache& cache) {
     // The projection is flipped vertically so that GL's bottom row holds image row 0 and glReadPixels
     // returns the top image row first; depth and ids are unaffected.
     const Eigen::Matrix4d worldToCamera = camera.pose.inverse(Eigen::Isometry).matrix();
@@ -748,12 +715,6 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
     const TargetMask shadedTargets = targets & kComputeLit;
     bool masked = false;
     const auto use = [&](unsigned features, bool lookups, bool named) {
-        if (depthOnly) {
-            if (!current)
-                depthProgram(lights.constantSlots).use();
-            current = std::tuple(0u, false, false);
-            return;
-        }
         const bool deferred = computeLighting && features == 0 && named;
         if (current == std::tuple(features, lookups, deferred))
             return;

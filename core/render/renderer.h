@@ -46,7 +46,6 @@ struct RenderStats {
     std::uint64_t shadowReuses = 0;    // frames whose shadow maps were reused unchanged
     std::uint64_t surfacePasses = 0;   // surface passes (shading or not)
     std::uint64_t attributePasses = 0; // attribute passes (targets past the surface pass's 8)
-    std::uint64_t depthPrepasses = 0;  // surface passes that drew depth first (Renderer::depthPrepass())
     std::uint64_t lightingPasses = 0;  // frames that shaded
     std::uint64_t tonemapPasses = 0;   // frames that tone-mapped (fused into the shading)
     std::uint64_t readbacks = 0;       // one per modality read back
@@ -132,14 +131,6 @@ class Renderer {
     // both.
     bool compactTargets() const { return compactTargets_; }
     void setCompactTargets(bool on) { compactTargets_ = on; }
-    // Whether a shading surface pass draws depth first and then shades only the surface left in front of
-    // each pixel: by default on a software rasteriser, where a fragment of the shader costs far more than
-    // one of depth alone and a frame of boxes shades many pixels more than once (1080p, 64 boxes, the
-    // renderer alone: core/render/README.md). Not with compute lighting, which shades once per pixel
-    // already. The images are the same. SPEAR_DEPTH_PREPASS=on|off overrides the default. Settable, so that
-    // tests compare both.
-    bool depthPrepass() const { return depthPrepass_; }
-    void setDepthPrepass(bool on) { depthPrepass_ = on; }
     // The threads a read splits its copy out of a pixel-buffer object across (parallelCopy()); by default
     // defaultCopyThreads().
     int readbackThreads() const { return readbackThreads_; }
@@ -225,13 +216,8 @@ class Renderer {
     // The compute lighting pass of a view whose surface pass wrote the G-buffer (PassSet::computeLighting()).
     void lightInCompute(const Camera& camera, const PassSet& passes, const shaders::ShadingLayout& lights,
                         const Framebuffers& fb);
-    // `depthOnly`: depth alone, with depthProgram() (the colour writes masked by the caller).
     void drawAll(const Scene& scene, const Camera& camera, const std::vector<Draw>& draws, TargetMask targets,
-                 bool shade, const shaders::ShadingLayout& lights, GpuSceneCache& cache,
-                 bool depthOnly = false);
-    // The depth pre-pass's program: the surface programs' vertex shader (the same depth, bit for bit) and an
-    // empty fragment shader; for layered framebuffers when the view being drawn has a layer.
-    ShaderProgram& depthProgram(int constantSlots);
+                 bool shade, const shaders::ShadingLayout& lights, GpuSceneCache& cache);
     // Writes the vignetted background into final_color (one of `targets`) where no surface was drawn.
     void drawVignettedBackground(TargetMask targets, ToneMap toneMap);
 
@@ -244,7 +230,6 @@ class Renderer {
     bool computeLighting_ = false;
     bool derivesOnCpu_ = false;
     bool compactTargets_ = false;
-    bool depthPrepass_ = false;
     int readbackThreads_ = 1;
     int constantSlots_ = 0;
     bool shadowReach_ = false;

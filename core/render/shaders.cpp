@@ -743,10 +743,6 @@ std::string backgroundFragment(int location, ToneMap toneMap) {
     return text + "void main() { oFinalColor = toneMapped(uBackground.xyz); }\n";
 }
 
-std::string depthOnlyFragment() {
-    return "#version 450 core\nlayout(early_fragment_tests) in;\nvoid main() {}\n";
-}
-
 std::string clearFragment(TargetMask targets, bool compact) {
     std::string text = "#version 450 core\nuniform vec4 uClear[" + std::to_string(kTargetCount) + "];\n";
     text += compact ? kCompactEncodings : kFloatEncodings;

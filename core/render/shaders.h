@@ -100,9 +100,6 @@ std::string surfaceVertex(bool forward, const ShadingLayout& lights, bool layere
 std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialFeatures,
                             const ShadingLayout& lights, bool compact = false);
 
-// The depth pre-pass's fragment shader: nothing but the depth the rasteriser writes.
-std::string depthOnlyFragment();
-
 // The background of a vignetted final_color: a full-screen triangle on the far plane writing the tone-mapped,
 // vignetted background colour at draw buffer `location`, drawn after the surfaces where none was.
 // `layered`: into the view's layer (FrameBlock's uCounts.y) of layered framebuffers.

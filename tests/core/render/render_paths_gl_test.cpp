@@ -314,22 +314,19 @@ TEST_F(RenderPathsGlTest, ComputeLightingAgreesWithShadingInTheFragments) {
 }
 
 TEST_F(RenderPathsGlTest, TheGpuPathSwitchesAreReadFromTheEnvironmentAndCheckedThere) {
-    // SPEAR_LIGHTING, SPEAR_READBACK, SPEAR_DERIVED_MODALITIES, SPEAR_TARGET_FORMATS and SPEAR_DEPTH_PREPASS
-    // override the device's defaults; a value that is neither choice is refused naming the variable and the
-    // value.
+    // SPEAR_LIGHTING, SPEAR_READBACK, SPEAR_DERIVED_MODALITIES and SPEAR_TARGET_FORMATS override the device's
+    // defaults; a value that is neither choice is refused naming the variable and the value.
     GlContext& context = *context_;
     ::setenv("SPEAR_LIGHTING", "compute", 1);
     ::setenv("SPEAR_READBACK", "direct", 1);
     ::setenv("SPEAR_DERIVED_MODALITIES", "rendered", 1);
     ::setenv("SPEAR_TARGET_FORMATS", "float", 1);
-    ::setenv("SPEAR_DEPTH_PREPASS", "off", 1);
     {
         Renderer forced(context);
         EXPECT_TRUE(forced.computeLighting());
         EXPECT_FALSE(forced.stagedReadback());
         EXPECT_FALSE(forced.derivesOnCpu());
         EXPECT_FALSE(forced.compactTargets());
-        EXPECT_FALSE(forced.depthPrepass());
     }
     // A variable set to a value that is neither choice: the renderer is refused, naming both.
     const auto expectRefused = [&](const char* variable, const char* value, const char* message) {
@@ -347,9 +344,6 @@ TEST_F(RenderPathsGlTest, TheGpuPathSwitchesAreReadFromTheEnvironmentAndCheckedT
     expectRefused("SPEAR_TARGET_FORMATS", "half",
                   "Renderer::Renderer(): SPEAR_TARGET_FORMATS must be 'compact' or 'float', got 'half'");
     ::unsetenv("SPEAR_TARGET_FORMATS");
-    expectRefused("SPEAR_DEPTH_PREPASS", "yes",
-                  "Renderer::Renderer(): SPEAR_DEPTH_PREPASS must be 'on' or 'off', got 'yes'");
-    ::unsetenv("SPEAR_DEPTH_PREPASS");
     expectRefused("SPEAR_LIGHTING", "deferred",
                   "Renderer::Renderer(): SPEAR_LIGHTING must be 'compute' or 'forward', got 'deferred'");
     ::unsetenv("SPEAR_LIGHTING");
@@ -359,7 +353,6 @@ TEST_F(RenderPathsGlTest, TheGpuPathSwitchesAreReadFromTheEnvironmentAndCheckedT
     EXPECT_EQ(byDefault.stagedReadback(), !context.report().software);
     EXPECT_EQ(byDefault.derivesOnCpu(), context.report().software);
     EXPECT_EQ(byDefault.compactTargets(), context.report().software);
-    EXPECT_EQ(byDefault.depthPrepass(), context.report().software);
     context.makeCurrent(); // the fixture's renderer goes on in the same context
 }
 
@@ -436,91 +429,6 @@ TEST_F(RenderPathsGlTest, AttributePassKeepsTheSurfacePassesFragmentWhereSurface
         const ImageBuffer &x = all.get(m), &y = one.get(m);
         EXPECT_TRUE(std::equal(x.bytes.begin(), x.bytes.end(), y.bytes.begin())) << modalityName(m);
     }
-}
-
-// A depth pre-pass shades each pixel once, for the surface in front, and the images are those of one pass:
-// every modality, rendered and computed, in a layer of a page and in framebuffers of its own, with textures
-// (whose mip levels come from derivatives across a pixel's neighbours) and two coincident boxes, of which
-// the one drawn first must stay in front. The one exception: where two triangles of one mesh meet at one
-// depth (a box's edge seen along its crease), one pass keeps the first and the shading pass, at equal
-// depth, the last; the pixel shows the other face of the same object, at the same depth to 1e-5.
-TEST_F(RenderPathsGlTest, ADepthPrepassShadesTheSameImagesAsOnePass) {
-    Scene scene;
-    buildShapesScene(scene);
-    addSpotAndPointLights(scene);
-    MeshId box = scene.addMesh(primitives::box({1.0f, 1.0f, 1.0f}));
-    for (std::uint32_t id : {50u, 60u}) {
-        Instance twin{box, {scene.addMaterial(makeMaterial({id / 100.0f, 0.2f, 0.2f}, 0.5f, 0.0f))}, {id}};
-        twin.transform.translation() = Eigen::Vector3d(-1.0, 1.0, 0.5);
-        scene.addInstance(twin);
-    }
-    std::vector<std::uint8_t> checker, bumps;
-    for (int y = 0; y < 16; ++y)
-        for (int x = 0; x < 16; ++x) {
-            const bool odd = ((x / 2) + (y / 2)) % 2 == 1;
-            checker.insert(checker.end(), {std::uint8_t(odd ? 230 : 40), std::uint8_t(16 * x), 90, 255});
-            bumps.insert(bumps.end(),
-                         {std::uint8_t(128 + 6 * (x - 8)), std::uint8_t(128 + 6 * (y - 8)), 230, 255});
-        }
-    Material textured = makeMaterial({1.0f, 1.0f, 1.0f}, 0.6f, 0.0f);
-    textured.baseColorTexture =
-        scene.addTexture(TextureImage::fromPixels(16, 16, checker), TextureEncoding::Srgb);
-    textured.normalTexture =
-        scene.addTexture(TextureImage::fromPixels(16, 16, bumps), TextureEncoding::Linear);
-    Instance crate{box, {scene.addMaterial(textured)}, {70}};
-    crate.transform = Eigen::Translation3d(1.0, 1.2, 0.5) * Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ());
-    scene.addInstance(crate);
-
-    const bool prepassByDefault = renderer().depthPrepass(), derivesByDefault = renderer().derivesOnCpu();
-    for (const bool derives : {true, false})
-        for (const int width : {96, 640}) { // a layer of a page; framebuffers of its own
-            const Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, width, width * 2 / 3, 60.0);
-            std::array<Frame, 2> frames;
-            for (const bool prepass : {false, true}) {
-                renderer().setDepthPrepass(prepass);
-                renderer().setDerivesOnCpu(derives);
-                renderer().resetStats();
-                RenderTarget target(renderer(), ModalitySet::all(), 0);
-                ASSERT_TRUE(target.render(scene, camera, frames[prepass ? 1 : 0]).has_value());
-                EXPECT_EQ(renderer().stats().depthPrepasses, prepass ? 1u : 0u);
-            }
-            const std::string where =
-                std::string(derives ? "computed" : "rendered") + ", " + std::to_string(width) + " wide: ";
-            // Pixels where any modality differs.
-            const std::size_t pixels = std::size_t(width) * std::size_t(width * 2 / 3);
-            std::vector<bool> differs(pixels, false);
-            for (Modality m : ModalitySet::all().list()) {
-                const ImageBuffer &a = frames[0].get(m), &b = frames[1].get(m);
-                ASSERT_EQ(a.bytes.size(), b.bytes.size());
-                const std::size_t stride = a.bytes.size() / pixels;
-                for (std::size_t p = 0; p < pixels; ++p)
-                    if (!std::equal(a.bytes.begin() + p * stride, a.bytes.begin() + (p + 1) * stride,
-                                    b.bytes.begin() + p * stride))
-                        differs[p] = true;
-            }
-            const auto ids0 = frames[0].get(Modality::ObjectIds).as<std::uint32_t>();
-            const auto ids1 = frames[1].get(Modality::ObjectIds).as<std::uint32_t>();
-            const auto depth0 = frames[0].get(Modality::Depth).as<float>();
-            const auto depth1 = frames[1].get(Modality::Depth).as<float>();
-            std::size_t count = 0;
-            for (std::size_t p = 0; p < pixels; ++p) {
-                if (!differs[p])
-                    continue;
-                ++count;
-                EXPECT_EQ(ids0[p], ids1[p]) << where << "pixel " << p << " shows another object";
-                EXPECT_NEAR(depth0[p], depth1[p], 1e-5f * depth0[p]) << where << "pixel " << p;
-            }
-            EXPECT_LE(count, pixels / 10000) << where << "pixels where a crease ties";
-            const auto ids = frames[1].get(Modality::ObjectIds).as<std::uint32_t>();
-            EXPECT_NE(std::find(ids.begin(), ids.end(), 50u), ids.end())
-                << where << "the first twin is in front";
-            EXPECT_EQ(std::find(ids.begin(), ids.end(), 60u), ids.end())
-                << where << "the second is behind it";
-            EXPECT_NE(std::find(ids.begin(), ids.end(), 70u), ids.end())
-                << where << "the textured box is in view";
-        }
-    renderer().setDepthPrepass(prepassByDefault);
-    renderer().setDerivesOnCpu(derivesByDefault);
 }
 
 TEST_F(RenderPathsGlTest, ShadowMapsAreReusedUntilSomethingMoves) {
