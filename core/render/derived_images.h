@@ -14,7 +14,6 @@
 #include <cstdint>
 
 #include "core/render/camera.h"
-#include "core/render/modality.h"
 
 namespace sp::render {
 
@@ -32,8 +31,8 @@ void computePositionFromDepth(const float* depth, const Camera& camera, float* o
 
 // out (pixels x 3, float32) = the unit normals whose octahedral coordinates a compact normal target holds
 // (encoded: pixels x 2, the shaders' normalTarget()), in float32; (0, 0, 0) where it holds
-// kNoOctahedralNormal (the background), as a float normal target is cleared. Within a few units in the last
-// place of the normal the shader encoded (derived_images_test.cpp).
+// kNoOctahedralNormal (modality.h: the background), as a float normal target is cleared. Within a few units
+// in the last place of the normal the shader encoded (derived_images_test.cpp).
 void decodeOctahedralNormals(const float* encoded, float* out, std::size_t pixels);
 
 } // namespace sp::render

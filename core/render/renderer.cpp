@@ -547,8 +547,8 @@ void Renderer::clearBound(TargetMask targets, const std::vector<std::array<float
         } else if (compact && target == Target::Normal) {
             const GLfloat none[4] = {kNoOctahedralNormal, kNoOctahedralNormal, 0, 0};
             glClearBufferfv(GL_COLOR, location, none);
-        } else if (target !=
-                   Target::GBuffer) { // read only where the depth buffer holds a surface: not cleared
+        } else if (target != Target::GBuffer) {
+            // (The G-buffer is read only where the depth buffer holds a surface: not cleared.)
             glClearBufferfv(GL_COLOR, location, value.data());
         }
         ++location;
