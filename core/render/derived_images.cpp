@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
+#include "core/base/error.h"
 #include "core/base/parallel.h"
 #include "core/render/image_buffer.h"
 
@@ -221,6 +223,39 @@ void decodeOctahedralNormals(const float* encoded, float* out, std::size_t pixel
         }
     };
     parallelFor(int(bands), hardwareThreads(), band);
+}
+
+void lookUpMaterials(const std::uint32_t* record, std::span<const DrawMaterial> draws, std::size_t pixels,
+                     const MaterialImages& out) {
+    // Record 0 is the background: an entry of zeros in front of the draws.
+    std::vector<DrawMaterial> table(draws.size() + 1);
+    std::copy(draws.begin(), draws.end(), table.begin() + 1);
+    std::size_t bad = pixels; // the first pixel whose record is past the draws
+    for (std::size_t p = 0; p < pixels; ++p) {
+        std::uint32_t r = record[p];
+        if (r >= table.size()) {
+            bad = std::min(bad, p);
+            r = 0;
+        }
+        const DrawMaterial& m = table[r];
+        if (out.objectIds != nullptr)
+            out.objectIds[p] = m.objectId;
+        if (out.materialIds != nullptr)
+            out.materialIds[p] = m.materialId;
+        if (out.baseColor != nullptr) {
+            out.baseColor[3 * p] = m.baseColor[0];
+            out.baseColor[3 * p + 1] = m.baseColor[1];
+            out.baseColor[3 * p + 2] = m.baseColor[2];
+        }
+        if (out.roughness != nullptr)
+            out.roughness[p] = m.roughness;
+        if (out.metallic != nullptr)
+            out.metallic[p] = m.metallic;
+        if (out.ambientOcclusion != nullptr)
+            out.ambientOcclusion[p] = m.ambientOcclusion;
+    }
+    SP_CHECK(bad == pixels, InvalidState, "lookUpMaterials(): pixel ", bad, " holds record ", record[bad],
+             ", past the ", draws.size(), " draws");
 }
 
 } // namespace sp::render

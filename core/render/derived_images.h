@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 
 #include "core/render/camera.h"
 
@@ -34,5 +35,28 @@ void computePositionFromDepth(const float* depth, const Camera& camera, float* o
 // kNoOctahedralNormal (modality.h: the background), as a float normal target is cleared. Within a few units
 // in the last place of the normal the shader encoded (derived_images_test.cpp).
 void decodeOctahedralNormals(const float* encoded, float* out, std::size_t pixels);
+
+// What a draw gives every pixel of its surface when its material has no base colour or roughness-metallic
+// texture: its ids, and its material's factors as the float16 targets would hold them (rounded to nearest).
+struct DrawMaterial {
+    std::uint32_t objectId = 0, materialId = 0;
+    std::uint16_t baseColor[3] = {0, 0, 0};
+    std::uint16_t roughness = 0, metallic = 0, ambientOcclusion = 0;
+};
+// The images lookUpMaterials() fills, each null where not wanted: ids (pixels x 1), base colour (pixels x 3)
+// and the parameters (pixels x 1 each).
+struct MaterialImages {
+    std::uint32_t* objectIds = nullptr;
+    std::uint32_t* materialIds = nullptr;
+    std::uint16_t* baseColor = nullptr;
+    std::uint16_t* roughness = nullptr;
+    std::uint16_t* metallic = nullptr;
+    std::uint16_t* ambientOcclusion = nullptr;
+};
+// Each pixel's material modalities from the draw Target::Record names: record k > 0 gives draws[k - 1]'s,
+// 0 (no surface) zeros, as the rendered targets are cleared. Throws sp::InvalidState naming the pixel when
+// a record is past the draws.
+void lookUpMaterials(const std::uint32_t* record, std::span<const DrawMaterial> draws, std::size_t pixels,
+                     const MaterialImages& out);
 
 } // namespace sp::render

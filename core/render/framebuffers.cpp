@@ -21,6 +21,7 @@ GLenum formatOf(Target target, bool compact) {
     case Target::Ids:
         return GL_RG32UI; // never filtered or blended
     case Target::GBuffer:
+    case Target::Record:
         return GL_R32UI;
     case Target::FinalColor:
         return GL_RGBA8;

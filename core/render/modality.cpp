@@ -165,7 +165,8 @@ std::string_view targetName(Target target) {
                                                                        "Params",      "Ids",
                                                                        "Hdr",         "DiffuseIllumination",
                                                                        "DiffuseOnly", "SpecularResidual",
-                                                                       "FinalColor",  "GBuffer"};
+                                                                       "FinalColor",  "Record",
+                                                                       "GBuffer"};
     const auto index = static_cast<std::size_t>(target);
     SP_CHECK(index < kTargetCount, InvalidArgument, "targetName(): bad target value ", index);
     return kNames[index];
@@ -178,13 +179,22 @@ TargetMask ModalitySet::targets() const {
     return mask;
 }
 
-ModalityPlan planModalities(const ModalitySet& modalities, bool softwareRasteriser) {
-    ModalityPlan plan{modalities, {}};
+ModalitySet materialModalities() {
+    return {Modality::BaseColor,  Modality::Roughness, Modality::Metallic,
+            Modality::MaterialAo, Modality::ObjectIds, Modality::MaterialIds};
+}
+
+TargetMask ModalityPlan::targets() const {
+    return rendered.targets() | (lookedUp.empty() ? 0 : targetBit(Target::Record));
+}
+
+ModalityPlan planModalities(const ModalitySet& modalities, bool softwareRasteriser, bool untexturedSurfaces) {
+    ModalityPlan plan{modalities, {}, {}};
     if (!softwareRasteriser)
         return plan;
     // Each step is taken while the plan needs more targets than one pass writes, and kept only where it
     // spares targets (a set that asked for none of a computed modality's inputs would render more).
-    const auto targetCount = [](const ModalityPlan& p) { return std::popcount(p.rendered.targets()); };
+    const auto targetCount = [](const ModalityPlan& p) { return std::popcount(p.targets()); };
     const bool diffuse = modalities.contains(Modality::DiffuseOnly);
     const bool residual = modalities.contains(Modality::SpecularResidual);
     if (targetCount(plan) > kMaxDrawTargets && (diffuse || residual)) {
@@ -208,6 +218,19 @@ ModalityPlan planModalities(const ModalitySet& modalities, bool softwareRasteris
         candidate.rendered.remove(Modality::Position).add(Modality::Depth); // the point at that depth
         candidate.derived.add(Modality::Position);
         if (targetCount(candidate) < targetCount(plan))
+            plan = candidate;
+    }
+    // The material modalities from the draw (its inputs to the intrinsics too), whenever that spares a
+    // target and fits one pass: one R32UI target for up to three of base colour, parameters and ids.
+    if (untexturedSurfaces) {
+        ModalityPlan candidate = plan;
+        for (Modality m : materialModalities().list())
+            if (plan.rendered.contains(m)) {
+                candidate.rendered.remove(m);
+                candidate.lookedUp.add(m);
+            }
+        if (!candidate.lookedUp.empty() && targetCount(candidate) < targetCount(plan) &&
+            targetCount(candidate) <= kMaxDrawTargets)
             plan = candidate;
     }
     return plan;

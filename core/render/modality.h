@@ -78,12 +78,15 @@ enum class Target : std::uint8_t {
     DiffuseOnly,         // RGBA16F
     SpecularResidual,    // RGBA16F
     FinalColor,          // RGBA8 tone-mapped sRGB
+    // R32UI: 1 + the index of the draw whose surface the pixel shows, in the view's draw list; 0 where none.
+    // The material modalities are looked up from it (ModalityPlan::lookedUp). No modality.
+    Record,
     // R32UI: the octahedral shading normal and the draw's InstanceRecord (shaders::kGBufferChunk); a surface
     // pass whose shading runs in a compute pass writes it instead of shading (PassSet::computeLighting()).
     // No modality.
     GBuffer,
 };
-inline constexpr std::size_t kTargetCount = 12;
+inline constexpr std::size_t kTargetCount = 13;
 using TargetMask = std::uint32_t;
 inline constexpr TargetMask targetBit(Target target) {
     return TargetMask(1) << static_cast<unsigned>(target);
@@ -165,12 +168,22 @@ class ModalitySet {
 // position from depth and the camera, each when that leaves fewer targets (all 14 modalities: 8 targets
 // instead of 11, one pass). A GPU writes targets nearly for free: there (softwareRasteriser false), and for
 // smaller sets, everything is rendered.
+// Where no material has a base colour or roughness-metallic texture (`untexturedSurfaces`), a software
+// rasteriser also looks the material modalities (base colour, roughness, metallic, AO, both ids) up from the
+// draw that left each pixel's surface, which Target::Record names, when that writes fewer targets: all 14
+// modalities then draw 6 targets instead of 8 (derived_images.h, lookUpMaterials()).
 struct ModalityPlan {
     ModalitySet rendered;
     ModalitySet derived;
+    ModalitySet lookedUp;        // from the draw's material (Target::Record)
     bool compactTargets = false; // rendered into compact targets (PassSet::compactTargets)
     bool operator==(const ModalityPlan&) const = default;
+    // The targets the plan draws: its rendered modalities', and Target::Record for the looked-up ones.
+    TargetMask targets() const;
 };
-ModalityPlan planModalities(const ModalitySet& modalities, bool softwareRasteriser);
+ModalityPlan planModalities(const ModalitySet& modalities, bool softwareRasteriser,
+                            bool untexturedSurfaces = false);
+// The modalities a draw's material gives every pixel of it (ModalityPlan::lookedUp).
+ModalitySet materialModalities();
 
 } // namespace sp::render

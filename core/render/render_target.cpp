@@ -79,15 +79,21 @@ std::size_t readBytes(Modality modality, bool compact, int width, int height) {
 
 // Starts glReadPixels of one modality of the view `at` into the bound pixel-pack buffer (offset 0) or, with
 // none bound, into `destination`.
-void readModality(const FramebufferAtlas::Place& at, Modality modality, bool compact, int width, int height,
-                  void* destination) {
-    const ReadFormat format = readFormat(modality, compact);
-    const Framebuffers::Attachment source =
-        at.layer >= 0 ? at.framebuffers->layerAttachment(targetOf(modality), at.layer)
-                      : at.framebuffers->attachment(targetOf(modality));
+void readTarget(const FramebufferAtlas::Place& at, Target target, ReadFormat format, int width, int height,
+                void* destination) {
+    const Framebuffers::Attachment source = at.layer >= 0 ? at.framebuffers->layerAttachment(target, at.layer)
+                                                          : at.framebuffers->attachment(target);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, source.fbo);
     glReadBuffer(GL_COLOR_ATTACHMENT0 + source.index);
     glReadPixels(0, 0, width, height, format.format, format.type, destination);
+}
+void readModality(const FramebufferAtlas::Place& at, Modality modality, bool compact, int width, int height,
+                  void* destination) {
+    readTarget(at, targetOf(modality), readFormat(modality, compact), width, height, destination);
+}
+// The same for Target::Record (R32UI).
+void readRecord(const FramebufferAtlas::Place& at, int width, int height, void* destination) {
+    readTarget(at, Target::Record, {GL_RED_INTEGER, GL_UNSIGNED_INT}, width, height, destination);
 }
 
 // Copies one id channel into `buffer` (width x height uint32, glReadPixels' row order) with a compute pass.
@@ -178,10 +184,15 @@ std::vector<std::uint64_t> RenderTarget::submitAll(std::span<const Submission> s
     // placed (taking a layer may give its page new framebuffers).
     std::vector<PassSet> passes;
     for (const Submission& s : submissions) {
-        s.target->plan_ = planModalities(s.target->modalities_, renderer.derivesOnCpu());
-        s.target->plan_.compactTargets = renderer.compactTargets();
-        passes.push_back(s.target->plan_.rendered.requiredPasses(s.camera->params.shadows));
-        passes.back().compactTargets = s.target->plan_.compactTargets;
+        ModalityPlan& plan = s.target->plan_;
+        plan = planModalities(s.target->modalities_, renderer.derivesOnCpu(), !s.scene->hasSurfaceTextures());
+        plan.compactTargets = renderer.compactTargets();
+        passes.push_back(plan.rendered.requiredPasses(s.camera->params.shadows));
+        passes.back().compactTargets = plan.compactTargets;
+        if (!plan.lookedUp.empty()) { // planned to fit the surface pass
+            passes.back().surface = true;
+            passes.back().surfaceTargets |= targetBit(Target::Record);
+        }
         const int width = s.camera->params.width, height = s.camera->params.height;
         if (renderer.atlas().suits(width, height)) {
             renderer.atlas().acquire(s.target, width, height, passes.back());
@@ -197,7 +208,8 @@ std::vector<std::uint64_t> RenderTarget::submitAll(std::span<const Submission> s
     for (std::size_t i = 0; i < submissions.size(); ++i) {
         const Submission& s = submissions[i];
         const FramebufferAtlas::Place at = s.target->place();
-        views.push_back({s.scene, s.camera, passes[i], at.framebuffers, at.layer});
+        views.push_back({s.scene, s.camera, passes[i], at.framebuffers, at.layer,
+                         s.target->plan_.lookedUp.empty() ? nullptr : &s.target->drawMaterials_});
         if (at.layer >= 0)
             renderer.atlas().drawing(*at.framebuffers);
     }
@@ -220,34 +232,44 @@ std::uint64_t RenderTarget::queueReadback(const Scene& scene, const Camera& came
     slot.camera = camera;
     slot.modalities = modalities_;
     slot.plan = plan_;
+    slot.materials.swap(drawMaterials_); // what this frame's Target::Record names
     // A longer ring copies into pixel-buffer objects now, so that the framebuffers can take the next frames
     // while this one waits; so does latency 0 on a GPU (stagesReadback()), whose copy engine then moves
     // this view out while the next one is drawn. Otherwise latency 0 reads straight from the framebuffers
     // into the caller's memory when the frame is read (and not at all if it never is).
     slot.staged = stagesReadback();
     if (slot.staged) {
+        // A buffer of `bytes` for slot.buffers[m], mapped once for good: on an NVIDIA H100, mapping and
+        // unmapping each buffer at every read cost all 14 modalities at latency 1 a fifth of their frame
+        // (14.4-15.1 against 11.6 ms).
+        const auto bufferFor = [&](std::size_t m, std::size_t bytes, std::string_view what) {
+            if (slot.capacity[m] == bytes)
+                return;
+            glDeleteBuffers(1, &slot.buffers[m]); // storage cannot be resized (0 is ignored)
+            glCreateBuffers(1, &slot.buffers[m]);
+            constexpr GLbitfield kMapping = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+            glNamedBufferStorage(slot.buffers[m], GLsizeiptr(bytes), nullptr,
+                                 kMapping | GL_CLIENT_STORAGE_BIT);
+            slot.mapped[m] = glMapNamedBufferRange(slot.buffers[m], 0, GLsizeiptr(bytes), kMapping);
+            SP_CHECK(slot.mapped[m] != nullptr, InvalidState, "RenderTarget::submit(): cannot map the ", what,
+                     " readback buffer of ", bytes, " bytes");
+            slot.capacity[m] = bytes;
+        };
         for (Modality modality : plan_.rendered.list()) {
             const auto m = static_cast<std::size_t>(modality);
-            const std::size_t bytes = readBytes(modality, plan_.compactTargets, slot.width(), slot.height());
-            if (slot.capacity[m] != bytes) {
-                // Mapped once for good: on an NVIDIA H100, mapping and unmapping each buffer at every read
-                // cost all 14 modalities at latency 1 a fifth of their frame (14.4-15.1 against 11.6 ms).
-                glDeleteBuffers(1, &slot.buffers[m]); // storage cannot be resized (0 is ignored)
-                glCreateBuffers(1, &slot.buffers[m]);
-                constexpr GLbitfield kMapping = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
-                glNamedBufferStorage(slot.buffers[m], GLsizeiptr(bytes), nullptr,
-                                     kMapping | GL_CLIENT_STORAGE_BIT);
-                slot.mapped[m] = glMapNamedBufferRange(slot.buffers[m], 0, GLsizeiptr(bytes), kMapping);
-                SP_CHECK(slot.mapped[m] != nullptr, InvalidState, "RenderTarget::submit(): cannot map the ",
-                         modalityName(modality), " readback buffer of ", bytes, " bytes");
-                slot.capacity[m] = bytes;
-            }
+            bufferFor(m, readBytes(modality, plan_.compactTargets, slot.width(), slot.height()),
+                      modalityName(modality));
             if (packedOnGpu(modality)) {
                 packIds(renderer_, place(), modality, slot.width(), slot.height(), slot.buffers[m]);
                 continue;
             }
             glBindBuffer(GL_PIXEL_PACK_BUFFER, slot.buffers[m]);
             readModality(place(), modality, plan_.compactTargets, slot.width(), slot.height(), nullptr);
+        }
+        if (!plan_.lookedUp.empty()) {
+            bufferFor(kRecordBuffer, std::size_t(slot.width()) * std::size_t(slot.height()) * 4, "record");
+            glBindBuffer(GL_PIXEL_PACK_BUFFER, slot.buffers[kRecordBuffer]);
+            readRecord(place(), slot.width(), slot.height(), nullptr);
         }
         glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     }
@@ -302,13 +324,53 @@ void RenderTarget::copyOut(Slot& slot, Modality modality, void* destination) {
 
 void RenderTarget::readViews(Slot& slot, std::span<const OutputView> views) {
     for (const OutputView& view : views)
-        if (!slot.plan.derived.contains(view.modality))
+        if (!slot.plan.derived.contains(view.modality) && !slot.plan.lookedUp.contains(view.modality))
             copyOut(slot, view.modality, view.data);
+    if (!slot.plan.lookedUp.empty())
+        lookUp(slot, views);
     // diffuse_only before specular_residual, which is computed from it.
     for (Modality computed : {Modality::DiffuseOnly, Modality::SpecularResidual, Modality::Position})
         for (const OutputView& view : views)
             if (view.modality == computed && slot.plan.derived.contains(computed))
                 derive(slot, computed, view.data, views);
+}
+
+void RenderTarget::lookUp(Slot& slot, std::span<const OutputView> views) {
+    const std::size_t pixels = std::size_t(slot.width()) * std::size_t(slot.height());
+    // Each looked-up modality into its view, or into scratch where a computed modality asked for needs it
+    // (diffuse_only: base colour and metallic), or nowhere.
+    ModalitySet needed;
+    for (const OutputView& view : views)
+        if (slot.plan.derived.contains(view.modality) && view.modality != Modality::Position)
+            needed.add(Modality::BaseColor).add(Modality::Metallic); // the intrinsics' material inputs
+    const auto into = [&](Modality m) -> void* {
+        if (!slot.plan.lookedUp.contains(m))
+            return nullptr;
+        for (const OutputView& view : views)
+            if (view.modality == m)
+                return view.data;
+        if (!needed.contains(m))
+            return nullptr;
+        std::vector<std::uint32_t>& scratch = deriveScratch_[static_cast<std::size_t>(m)];
+        scratch.resize((modalityByteSize(m, slot.width(), slot.height()) + 3) / sizeof(std::uint32_t));
+        return scratch.data();
+    };
+    MaterialImages out;
+    out.objectIds = static_cast<std::uint32_t*>(into(Modality::ObjectIds));
+    out.materialIds = static_cast<std::uint32_t*>(into(Modality::MaterialIds));
+    out.baseColor = static_cast<std::uint16_t*>(into(Modality::BaseColor));
+    out.roughness = static_cast<std::uint16_t*>(into(Modality::Roughness));
+    out.metallic = static_cast<std::uint16_t*>(into(Modality::Metallic));
+    out.ambientOcclusion = static_cast<std::uint16_t*>(into(Modality::MaterialAo));
+    renderer_.beginReadback(slot.sceneUid);
+    const std::uint32_t* record = static_cast<const std::uint32_t*>(slot.mapped[kRecordBuffer]);
+    if (!slot.staged) { // latency 0: from the framebuffers
+        recordScratch_.resize(pixels);
+        readRecord(place(), slot.width(), slot.height(), recordScratch_.data());
+        record = recordScratch_.data();
+    }
+    lookUpMaterials(record, slot.materials, pixels, out);
+    renderer_.endReadback(slot.sceneUid);
 }
 
 void RenderTarget::derive(Slot& slot, Modality modality, void* destination,
@@ -321,6 +383,8 @@ void RenderTarget::derive(Slot& slot, Modality modality, void* destination,
             if (view.modality == in)
                 return view.data;
         std::vector<std::uint32_t>& scratch = deriveScratch_[static_cast<std::size_t>(in)];
+        if (slot.plan.lookedUp.contains(in))
+            return scratch.data(); // filled by lookUp()
         scratch.resize((modalityByteSize(in, slot.width(), slot.height()) + 3) / sizeof(std::uint32_t));
         if (in == Modality::DiffuseOnly)
             derive(slot, in, scratch.data(), read);

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/render/camera.h"
+#include "core/render/derived_images.h"
 #include "core/render/framebuffer_atlas.h"
 #include "core/render/image_buffer.h"
 #include "core/render/modality.h"
@@ -85,10 +86,14 @@ class RenderTarget {
         // The pixel-buffer objects a staged readback lands in, by modality: immutable storage in the
         // client's memory, mapped for reading once when made (persistent, coherent), so that a read copies
         // out of `mapped` without mapping each time.
-        std::array<unsigned, kModalityCount> buffers{};
-        std::array<std::size_t, kModalityCount> capacity{};
-        std::array<const void*, kModalityCount> mapped{};
+        // (One more, kRecordBuffer, for Target::Record.)
+        std::array<unsigned, kModalityCount + 1> buffers{};
+        std::array<std::size_t, kModalityCount + 1> capacity{};
+        std::array<const void*, kModalityCount + 1> mapped{};
+        // What Target::Record names, when the plan looks modalities up (ModalityPlan::lookedUp).
+        std::vector<DrawMaterial> materials;
     };
+    static constexpr std::size_t kRecordBuffer = kModalityCount;
     // Where the frames are drawn: a layer of the renderer's shared framebuffers (FramebufferAtlas) for a
     // small view, framebuffers of its own otherwise.
     FramebufferAtlas::Place place() const;
@@ -105,6 +110,9 @@ class RenderTarget {
     // Reads `views` of the slot's frame: the rendered modalities first, then those computed from them (from
     // the views just read where they hold the inputs, else from scratch reads).
     void readViews(Slot& slot, std::span<const OutputView> views);
+    // Fills the views of looked-up modalities (ModalityPlan::lookedUp), and the scratch of those the
+    // computed modalities need, from Target::Record and the slot's draw materials.
+    void lookUp(Slot& slot, std::span<const OutputView> views);
     // A computed modality (slot.plan.derived) into `destination`; `read`: the views already filled.
     void derive(Slot& slot, Modality modality, void* destination, std::span<const OutputView> read);
     // Whether `modality` is read through the renderer's compute copy (Renderer::packIdsOnGpu()).
@@ -133,6 +141,8 @@ class RenderTarget {
     // The inputs of computed modalities that were not asked for themselves, by modality (raw bytes).
     std::array<std::vector<std::uint32_t>, kModalityCount> deriveScratch_;
     std::vector<float> normalScratch_; // latency 0's encoded normals of compact targets, before decoding
+    std::vector<DrawMaterial> drawMaterials_;  // the renderer's for the frame being submitted
+    std::vector<std::uint32_t> recordScratch_; // latency 0's Target::Record, before the lookups
 };
 
 } // namespace sp::render

@@ -351,6 +351,7 @@ void Renderer::renderView(const View& view) {
     const std::uint64_t meshUploads = cache.meshUploads(), textureUploads = cache.textureUploads();
     viewLayer_ = view.layer;
     viewCompact_ = passes.compactTargets;
+    viewMaterials_ = view.materials;
     SP_CHECK(camera.params.width == fb.width && camera.params.height == fb.height &&
                  (view.layer < 0 ? fb.layers == 0 : view.layer < fb.layers),
              InvalidArgument, "Renderer::render(): a ", camera.params.width, "x", camera.params.height,
@@ -538,7 +539,7 @@ void Renderer::clearBound(TargetMask targets, const std::vector<std::array<float
         const GLuint zero[4] = {0, 0, 0, 0};
         const auto target = static_cast<Target>(t);
         const std::array<float, 4>& value = values[std::size_t(location)];
-        if (target == Target::Ids) {
+        if (target == Target::Ids || target == Target::Record) {
             glClearBufferuiv(GL_COLOR, location, zero);
         } else if (compact && (kHalfTargets & targetBit(target)) != 0) {
             const GLuint bits[4] = {floatToHalf(value[0]), floatToHalf(value[1]), floatToHalf(value[2]),
@@ -697,6 +698,22 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
         record.ids[3] = 0;
     }
     instances_->upload(records_);
+    // What Target::Record's pixels name: each draw's ids and untextured material factors, rounded as the
+    // float16 targets round them.
+    if (viewMaterials_ != nullptr && (targets & targetBit(Target::Record)) != 0) {
+        viewMaterials_->resize(draws.size());
+        for (std::size_t i = 0; i < draws.size(); ++i) {
+            const InstanceRecord& record = records_[i];
+            DrawMaterial& m = (*viewMaterials_)[i];
+            m.objectId = record.ids[0];
+            m.materialId = record.ids[1];
+            for (int c = 0; c < 3; ++c)
+                m.baseColor[c] = floatToHalf(record.baseColor[c]);
+            m.roughness = floatToHalf(record.material[0]);
+            m.metallic = floatToHalf(record.material[1]);
+            m.ambientOcclusion = floatToHalf(record.material[2]);
+        }
+    }
 
     // What the shaded programs draw where no shadow falls: the same lights, no shadow-map lookups.
     shaders::ShadingLayout unshadowed = lights;

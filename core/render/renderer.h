@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/render/camera.h"
+#include "core/render/derived_images.h"
 #include "core/render/gl_context.h"
 #include "core/render/modality.h"
 #include "core/render/pass_timers.h"
@@ -85,6 +86,8 @@ class Renderer {
         PassSet passes;
         Framebuffers* framebuffers = nullptr;
         int layer = -1;
+        // When its surface pass writes Target::Record: given the materials of the draws it names.
+        std::vector<DrawMaterial>* materials = nullptr;
     };
     // Runs the passes of each view into its framebuffers (used by RenderTarget; see render_target.h for the
     // public way): first the shadow maps of every scene the views see (a scene's views share its maps, which
@@ -239,6 +242,7 @@ class Renderer {
     SceneState* active_ = nullptr;                                // the scene render() is drawing
     int viewLayer_ = -1;       // the layer of the view render() is drawing (-1: framebuffers of its own)
     bool viewCompact_ = false; // its targets are compact (PassSet::compactTargets)
+    std::vector<DrawMaterial>* viewMaterials_ = nullptr; // its View::materials
     bool pageCleared_ = false; // its surface targets were cleared with its page (clearPages())
     std::unique_ptr<FramebufferAtlas> atlas_;
     std::unique_ptr<InstanceBuffer> instances_; // the surface passes' instance records

@@ -127,6 +127,14 @@ std::uint32_t Scene::materialIdValue(MaterialId id) const {
     return m.id != 0 ? m.id : id.index + 1;
 }
 
+bool Scene::hasSurfaceTextures() const {
+    bool found = false;
+    materials_.forEach([&](MaterialId, const Material& m) {
+        found = found || m.baseColorTexture.has_value() || m.roughnessMetallicTexture.has_value();
+    });
+    return found;
+}
+
 LightId Scene::addLight(const Light& light) {
     light.validate("Scene::addLight");
     SP_CHECK(lights_.size() < kMaxLights, InvalidState, "Scene::addLight(): the scene already has ",

@@ -45,7 +45,7 @@ flat in vec4 vBaseColor;
 flat in vec4 vMaterial; // roughness, metallic, ambient occlusion
 flat in vec3 vEmissive;
 flat in uvec2 vIds;     // object id, material id
-flat in uint vRecord;   // the draw's InstanceRecord (Target::GBuffer)
+flat in uint vRecord;   // the draw's InstanceRecord (Target::GBuffer, Target::Record)
 layout(binding = 0) uniform sampler2D uBaseColorTexture;
 layout(binding = 1) uniform sampler2D uRoughnessMetallicTexture;
 layout(binding = 2) uniform sampler2D uNormalTexture;
@@ -306,6 +306,9 @@ void main() {
 #ifdef OUT_Ids
     oIds = vIds;
 #endif
+#ifdef OUT_Record
+    oRecord = vRecord + 1u;
+#endif
 #ifdef OUT_GBuffer
 #ifdef FORWARD
     oGBuffer = 0xffffffffu; // shaded here (a textured material, or past kGBufferRecords): the compute pass skips it
@@ -361,7 +364,7 @@ vec2 normalTarget(vec3 n) {
 const char* outputType(Target target, bool compact) {
     if (target == Target::Ids)
         return "uvec2";
-    if (target == Target::GBuffer)
+    if (target == Target::GBuffer || target == Target::Record)
         return "uint";
     if (target == Target::Depth)
         return "float";
@@ -756,7 +759,7 @@ std::string clearFragment(TargetMask targets, bool compact) {
         std::string value = "uClear[" + index + "]";
         if (target == Target::Ids)
             value = "uvec2(0u)";
-        else if (target == Target::GBuffer) // read only where the depth holds a surface (see clearBound())
+        else if (target == Target::GBuffer || target == Target::Record) // (none: 0)
             value = "0u";
         else if (target == Target::Depth)
             value += ".x";

@@ -7,8 +7,10 @@
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
+#include "core/base/error.h"
 #include "core/render/derived_images.h"
 #include "core/render/image_buffer.h"
 
@@ -101,6 +103,45 @@ TEST_P(DerivedImages, OctahedralNormalsDecodeToTheUnitVectorsEncoded) {
             ASSERT_EQ(decoded, normals[p]) << "pixel " << p;
         else
             ASSERT_LE((decoded - normals[p]).cwiseAbs().maxCoeff(), 4e-7f) << "pixel " << p;
+    }
+}
+
+// Each pixel gets its draw's ids and factors, the background (record 0) zeros, and only the images asked
+// for are written; a record past the draws is refused naming the pixel.
+TEST_P(DerivedImages, MaterialsAreLookedUpFromTheRecordedDraw) {
+    const std::size_t pixels = GetParam();
+    const std::vector<DrawMaterial> draws{{7, 70, {0x3c00, 0x3800, 0x3400}, 0x3a00, 0x0000, 0x3bff},
+                                          {8, 80, {0x2e66, 0x0001, 0x7bff}, 0x3266, 0x3c00, 0x3c00}};
+    std::vector<std::uint32_t> record(pixels);
+    for (std::size_t p = 0; p < pixels; ++p)
+        record[p] = std::uint32_t(p % 3); // background, first draw, second draw
+    std::vector<std::uint32_t> objectIds(pixels, 99), materialIds(pixels, 99);
+    std::vector<std::uint16_t> base(3 * pixels, 9), roughness(pixels, 9), ao(pixels, 9);
+    MaterialImages out;
+    out.objectIds = objectIds.data();
+    out.materialIds = materialIds.data();
+    out.baseColor = base.data();
+    out.roughness = roughness.data();
+    out.ambientOcclusion = ao.data(); // no metallic asked for
+    lookUpMaterials(record.data(), draws, pixels, out);
+    for (std::size_t p = 0; p < pixels; ++p) {
+        const DrawMaterial expected = record[p] == 0 ? DrawMaterial{} : draws[record[p] - 1];
+        ASSERT_EQ(objectIds[p], expected.objectId) << p;
+        ASSERT_EQ(materialIds[p], expected.materialId) << p;
+        for (std::size_t c = 0; c < 3; ++c)
+            ASSERT_EQ(base[3 * p + c], expected.baseColor[c]) << p;
+        ASSERT_EQ(roughness[p], expected.roughness) << p;
+        ASSERT_EQ(ao[p], expected.ambientOcclusion) << p;
+    }
+    if (pixels < 2)
+        return;
+    record[pixels - 1] = 3;
+    try {
+        lookUpMaterials(record.data(), draws, pixels, out);
+        FAIL() << "a record past the draws was accepted";
+    } catch (const InvalidState& e) {
+        EXPECT_EQ(std::string(e.what()), "lookUpMaterials(): pixel " + std::to_string(pixels - 1) +
+                                             " holds record 3, past the 2 draws");
     }
 }
 

@@ -107,11 +107,11 @@ TEST(ModalityTest, ASoftwareRasteriserComputesTheIntrinsicsThatOtherModalitiesDe
     EXPECT_EQ(planModalities(noDepth, true).derived,
               (ModalitySet{Modality::DiffuseOnly, Modality::SpecularResidual}));
     // On a GPU, and for sets one pass writes, everything is rendered.
-    EXPECT_EQ(planModalities(ModalitySet::all(), false), (ModalityPlan{ModalitySet::all(), {}}));
+    EXPECT_EQ(planModalities(ModalitySet::all(), false), (ModalityPlan{ModalitySet::all(), {}, {}}));
     const ModalitySet intrinsics{Modality::HdrColor,    Modality::BaseColor,
                                  Modality::Metallic,    Modality::DiffuseIllumination,
                                  Modality::DiffuseOnly, Modality::SpecularResidual};
-    EXPECT_EQ(planModalities(intrinsics, true), (ModalityPlan{intrinsics, {}}));
+    EXPECT_EQ(planModalities(intrinsics, true), (ModalityPlan{intrinsics, {}, {}}));
     // specular_residual alone beside many attributes: its inputs (diffuse_only's among them) are rendered,
     // diffuse_only is not returned (and position still needs a target too many).
     ModalitySet residual = ModalitySet::all();
@@ -134,7 +134,33 @@ TEST(ModalityTest, ASoftwareRasteriserComputesTheIntrinsicsThatOtherModalitiesDe
                               Modality::SpecularResidual};
     ModalitySet withoutPosition = without;
     withoutPosition.remove(Modality::Position);
-    EXPECT_EQ(planModalities(without, true), (ModalityPlan{withoutPosition, {Modality::Position}}));
+    EXPECT_EQ(planModalities(without, true), (ModalityPlan{withoutPosition, {Modality::Position}, {}}));
+}
+
+// Where no surface is textured, a software rasteriser looks the material modalities up from the draw
+// (Target::Record) whenever that draws fewer targets in one pass; never on a GPU or with textures.
+TEST(ModalityTest, MaterialModalitiesAreLookedUpWhereThatSparesTargets) {
+    const ModalityPlan all = planModalities(ModalitySet::all(), true, true);
+    EXPECT_EQ(all.lookedUp, materialModalities());
+    EXPECT_EQ(all.derived,
+              (ModalitySet{Modality::DiffuseOnly, Modality::SpecularResidual, Modality::Position}));
+    EXPECT_EQ(all.targets(), targetBit(Target::FinalColor) | targetBit(Target::Hdr) |
+                                 targetBit(Target::Depth) | targetBit(Target::Normal) |
+                                 targetBit(Target::DiffuseIllumination) | targetBit(Target::Record));
+    EXPECT_TRUE(planModalities(ModalitySet::all(), true, false).lookedUp.empty()) << "textured surfaces";
+    EXPECT_TRUE(planModalities(ModalitySet::all(), false, true).lookedUp.empty()) << "a GPU";
+    // Base colour and ids (two targets) become one; one of them alone, or beside colour, spares nothing.
+    const ModalitySet two{Modality::BaseColor, Modality::ObjectIds};
+    EXPECT_EQ(planModalities(two, true, true), (ModalityPlan{{}, {}, two}));
+    EXPECT_TRUE(planModalities({Modality::FinalColor, Modality::ObjectIds, Modality::MaterialIds}, true, true)
+                    .lookedUp.empty());
+    EXPECT_TRUE(planModalities({Modality::Roughness, Modality::Metallic}, true, true).lookedUp.empty());
+    // Colour, depth, normal, ids and base colour: ids and base colour from the draw.
+    const ModalityPlan dataset = planModalities(
+        {Modality::FinalColor, Modality::Depth, Modality::Normal, Modality::ObjectIds, Modality::BaseColor},
+        true, true);
+    EXPECT_EQ(dataset.lookedUp, (ModalitySet{Modality::ObjectIds, Modality::BaseColor}));
+    EXPECT_EQ(std::popcount(dataset.targets()), 4);
 }
 
 TEST(ModalityTest, HalfFloatRoundTrips) {

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <set>
 #include <string>
 
 #include "core/render/image_buffer.h"
@@ -429,6 +430,77 @@ TEST_F(RenderPathsGlTest, AttributePassKeepsTheSurfacePassesFragmentWhereSurface
         const ImageBuffer &x = all.get(m), &y = one.get(m);
         EXPECT_TRUE(std::equal(x.bytes.begin(), x.bytes.end(), y.bytes.begin())) << modalityName(m);
     }
+}
+
+// Where no surface is textured, a software rasteriser reads the material modalities (base colour, the
+// parameters, both ids) from the draw each pixel's Target::Record names: the same images, bit for bit, as
+// rendering them (compact targets round float16 as the lookup does), at latency 0 and 1, in a layer of a
+// page and in framebuffers of its own, with two coincident boxes of which the first drawn stays in front.
+// A base colour texture turns the lookups off: its box then shows the texture's checker.
+TEST_F(RenderPathsGlTest, MaterialModalitiesLookedUpFromTheDrawMatchTheRenderedOnes) {
+    Scene scene;
+    buildShapesScene(scene);
+    addSpotAndPointLights(scene);
+    MeshId box = scene.addMesh(primitives::box({1.0f, 1.0f, 1.0f}));
+    for (std::uint32_t id : {50u, 60u}) {
+        Material m = makeMaterial({id / 100.0f, 0.2f, 0.2f}, 0.1f * float(id) / 60.0f, 0.4f);
+        m.ambientOcclusion = 0.7f;
+        Instance twin{box, {scene.addMaterial(m)}, {id}};
+        twin.transform.translation() = Eigen::Vector3d(-1.0, 1.0, 0.5);
+        scene.addInstance(twin);
+    }
+    const bool derivesByDefault = renderer().derivesOnCpu(), compactByDefault = renderer().compactTargets();
+    renderer().setCompactTargets(true);
+    const ModalitySet materials = materialModalities();
+    for (const int latency : {0, 1})
+        for (const int width : {96, 640}) { // a layer of a page; framebuffers of its own
+            const Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, width, width * 2 / 3, 60.0);
+            std::array<Frame, 2> frames; // looked up, rendered
+            for (const bool derives : {true, false}) {
+                renderer().setDerivesOnCpu(derives);
+                RenderTarget target(renderer(), ModalitySet::all(), latency);
+                for (int i = 0; i <= latency; ++i)
+                    target.submit(scene, camera);
+                ASSERT_TRUE(target.read(frames[derives ? 0 : 1]).has_value());
+            }
+            const std::string where =
+                "latency " + std::to_string(latency) + ", " + std::to_string(width) + " wide: ";
+            for (Modality m : materials.list()) {
+                const ImageBuffer &a = frames[0].get(m), &b = frames[1].get(m);
+                EXPECT_TRUE(std::equal(a.bytes.begin(), a.bytes.end(), b.bytes.begin()))
+                    << where << modalityName(m);
+            }
+            const auto ids = frames[0].get(Modality::ObjectIds).as<std::uint32_t>();
+            EXPECT_NE(std::find(ids.begin(), ids.end(), 50u), ids.end())
+                << where << "the first twin is in front";
+            EXPECT_EQ(std::find(ids.begin(), ids.end(), 60u), ids.end())
+                << where << "the second is behind it";
+        }
+
+    // A checker base colour texture on one box: rendered, so its pixels differ.
+    std::vector<std::uint8_t> checker;
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x)
+            checker.insert(checker.end(), {std::uint8_t((x / 4 + y / 4) % 2 ? 230 : 20), 128, 128, 255});
+    Material textured = makeMaterial({1.0f, 1.0f, 1.0f}, 0.6f, 0.0f);
+    textured.baseColorTexture =
+        scene.addTexture(TextureImage::fromPixels(16, 16, checker), TextureEncoding::Linear);
+    Instance crate{box, {scene.addMaterial(textured)}, {70}};
+    crate.transform.translation() = Eigen::Vector3d(1.0, 1.2, 0.5);
+    scene.addInstance(crate);
+    renderer().setDerivesOnCpu(true);
+    RenderTarget target(renderer(), ModalitySet::all(), 0);
+    Frame frame;
+    ASSERT_TRUE(target.render(scene, cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 640, 426, 60.0), frame));
+    const auto ids = frame.get(Modality::ObjectIds).as<std::uint32_t>();
+    const auto base = frame.get(Modality::BaseColor).as<std::uint16_t>();
+    std::set<std::uint16_t> reds;
+    for (std::size_t p = 0; p < ids.size(); ++p)
+        if (ids[p] == 70u)
+            reds.insert(base[3 * p]);
+    EXPECT_GT(reds.size(), 1u) << "the textured box's base colour varies across it";
+    renderer().setDerivesOnCpu(derivesByDefault);
+    renderer().setCompactTargets(compactByDefault);
 }
 
 TEST_F(RenderPathsGlTest, ShadowMapsAreReusedUntilSomethingMoves) {
