@@ -188,7 +188,8 @@ TargetMask ModalityPlan::targets() const {
     return rendered.targets() | (lookedUp.empty() ? 0 : targetBit(Target::Record));
 }
 
-ModalityPlan planModalities(const ModalitySet& modalities, bool softwareRasteriser, bool untexturedSurfaces) {
+ModalityPlan planModalities(const ModalitySet& modalities, bool softwareRasteriser,
+                            const ModalitySet& uniform) {
     ModalityPlan plan{modalities, {}, {}};
     if (!softwareRasteriser)
         return plan;
@@ -220,12 +221,12 @@ ModalityPlan planModalities(const ModalitySet& modalities, bool softwareRasteris
         if (targetCount(candidate) < targetCount(plan))
             plan = candidate;
     }
-    // The material modalities from the draw (its inputs to the intrinsics too), whenever that spares a
-    // target and fits one pass: one R32UI target for up to three of base colour, parameters and ids.
-    if (untexturedSurfaces) {
+    // The uniform material modalities from the draw (its inputs to the intrinsics too), whenever that spares
+    // a target and fits one pass: one R32UI target for up to three of base colour, parameters and ids.
+    {
         ModalityPlan candidate = plan;
-        for (Modality m : materialModalities().list())
-            if (plan.rendered.contains(m)) {
+        for (Modality m : uniform.list())
+            if (plan.rendered.contains(m) && materialModalities().contains(m)) {
                 candidate.rendered.remove(m);
                 candidate.lookedUp.add(m);
             }

@@ -168,10 +168,11 @@ class ModalitySet {
 // position from depth and the camera, each when that leaves fewer targets (all 14 modalities: 8 targets
 // instead of 11, one pass). A GPU writes targets nearly for free: there (softwareRasteriser false), and for
 // smaller sets, everything is rendered.
-// Where no material has a base colour or roughness-metallic texture (`untexturedSurfaces`), a software
-// rasteriser also looks the material modalities (base colour, roughness, metallic, AO, both ids) up from the
-// draw that left each pixel's surface, which Target::Record names, when that writes fewer targets: all 14
-// modalities then draw 6 targets instead of 8 (derived_images.h, lookUpMaterials()).
+// A software rasteriser also looks the modalities a draw gives all its pixels (`uniform`: both ids and AO
+// always, base colour where no material has a base colour texture, roughness and metallic where none has a
+// roughness-metallic texture) up from the draw that left each pixel's surface, which Target::Record names,
+// when that writes fewer targets: all 14 modalities then draw 6 targets instead of 8 without textures, 7 with
+// either kind (derived_images.h, lookUpMaterials()).
 struct ModalityPlan {
     ModalitySet rendered;
     ModalitySet derived;
@@ -182,8 +183,9 @@ struct ModalityPlan {
     TargetMask targets() const;
 };
 ModalityPlan planModalities(const ModalitySet& modalities, bool softwareRasteriser,
-                            bool untexturedSurfaces = false);
-// The modalities a draw's material gives every pixel of it (ModalityPlan::lookedUp).
+                            const ModalitySet& uniform = {});
+// The modalities a draw's material gives every pixel of it where no texture varies them
+// (ModalityPlan::lookedUp).
 ModalitySet materialModalities();
 
 } // namespace sp::render

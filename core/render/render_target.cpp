@@ -185,7 +185,13 @@ std::vector<std::uint64_t> RenderTarget::submitAll(std::span<const Submission> s
     std::vector<PassSet> passes;
     for (const Submission& s : submissions) {
         ModalityPlan& plan = s.target->plan_;
-        plan = planModalities(s.target->modalities_, renderer.derivesOnCpu(), !s.scene->hasSurfaceTextures());
+        ModalitySet uniform = materialModalities();
+        const Scene::TexturedFactors textured = s.scene->texturedFactors();
+        if (textured.baseColor)
+            uniform.remove(Modality::BaseColor);
+        if (textured.roughnessMetallic)
+            uniform.remove(Modality::Roughness).remove(Modality::Metallic);
+        plan = planModalities(s.target->modalities_, renderer.derivesOnCpu(), uniform);
         plan.compactTargets = renderer.compactTargets();
         passes.push_back(plan.rendered.requiredPasses(s.camera->params.shadows));
         passes.back().compactTargets = plan.compactTargets;

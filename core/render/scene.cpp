@@ -127,12 +127,13 @@ std::uint32_t Scene::materialIdValue(MaterialId id) const {
     return m.id != 0 ? m.id : id.index + 1;
 }
 
-bool Scene::hasSurfaceTextures() const {
-    bool found = false;
+Scene::TexturedFactors Scene::texturedFactors() const {
+    TexturedFactors textured;
     materials_.forEach([&](MaterialId, const Material& m) {
-        found = found || m.baseColorTexture.has_value() || m.roughnessMetallicTexture.has_value();
+        textured.baseColor = textured.baseColor || m.baseColorTexture.has_value();
+        textured.roughnessMetallic = textured.roughnessMetallic || m.roughnessMetallicTexture.has_value();
     });
-    return found;
+    return textured;
 }
 
 LightId Scene::addLight(const Light& light) {

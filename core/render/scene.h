@@ -91,9 +91,13 @@ class Scene {
     const Material& material(MaterialId id) const;
     // The value written to material_ids for this material.
     std::uint32_t materialIdValue(MaterialId id) const;
-    // Whether some material has a base colour or roughness-metallic texture: whether base colour, roughness
-    // and metallic can vary across an instance (else its material's factors hold for every pixel of it).
-    bool hasSurfaceTextures() const;
+    // Which of a material's factors some material of the scene multiplies by a texture: those can vary across
+    // an instance; the others are its material's factors at every pixel of it.
+    struct TexturedFactors {
+        bool baseColor = false;
+        bool roughnessMetallic = false;
+    };
+    TexturedFactors texturedFactors() const;
 
     LightId addLight(const Light& light); // sp::InvalidState beyond kMaxLights
     void setLight(LightId id, const Light& light);

@@ -137,28 +137,45 @@ TEST(ModalityTest, ASoftwareRasteriserComputesTheIntrinsicsThatOtherModalitiesDe
     EXPECT_EQ(planModalities(without, true), (ModalityPlan{withoutPosition, {Modality::Position}, {}}));
 }
 
-// Where no surface is textured, a software rasteriser looks the material modalities up from the draw
-// (Target::Record) whenever that draws fewer targets in one pass; never on a GPU or with textures.
+// A software rasteriser looks the material modalities each draw gives all its pixels up from the draw
+// (Target::Record) whenever that draws fewer targets in one pass; never on a GPU, and base colour, roughness
+// and metallic only where no texture varies them.
 TEST(ModalityTest, MaterialModalitiesAreLookedUpWhereThatSparesTargets) {
-    const ModalityPlan all = planModalities(ModalitySet::all(), true, true);
+    const ModalitySet untextured = materialModalities();
+    const ModalityPlan all = planModalities(ModalitySet::all(), true, untextured);
     EXPECT_EQ(all.lookedUp, materialModalities());
     EXPECT_EQ(all.derived,
               (ModalitySet{Modality::DiffuseOnly, Modality::SpecularResidual, Modality::Position}));
     EXPECT_EQ(all.targets(), targetBit(Target::FinalColor) | targetBit(Target::Hdr) |
                                  targetBit(Target::Depth) | targetBit(Target::Normal) |
                                  targetBit(Target::DiffuseIllumination) | targetBit(Target::Record));
-    EXPECT_TRUE(planModalities(ModalitySet::all(), true, false).lookedUp.empty()) << "textured surfaces";
-    EXPECT_TRUE(planModalities(ModalitySet::all(), false, true).lookedUp.empty()) << "a GPU";
+    EXPECT_TRUE(planModalities(ModalitySet::all(), true).lookedUp.empty()) << "nothing uniform";
+    EXPECT_TRUE(planModalities(ModalitySet::all(), false, untextured).lookedUp.empty()) << "a GPU";
+    // A base colour texture: the parameters and ids from the draw, base colour drawn (7 targets).
+    ModalitySet noBase = untextured;
+    noBase.remove(Modality::BaseColor);
+    const ModalityPlan textured = planModalities(ModalitySet::all(), true, noBase);
+    EXPECT_EQ(textured.lookedUp, noBase);
+    EXPECT_TRUE(textured.rendered.contains(Modality::BaseColor));
+    EXPECT_EQ(std::popcount(textured.targets()), 7);
+    // A roughness-metallic texture: base colour, AO and ids from the draw; the parameters drawn (7 targets).
+    ModalitySet noParams = untextured;
+    noParams.remove(Modality::Roughness).remove(Modality::Metallic);
+    const ModalityPlan rm = planModalities(ModalitySet::all(), true, noParams);
+    EXPECT_EQ(rm.lookedUp, noParams);
+    EXPECT_TRUE(rm.rendered.contains(Modality::Roughness) && rm.rendered.contains(Modality::Metallic));
+    EXPECT_EQ(std::popcount(rm.targets()), 7);
     // Base colour and ids (two targets) become one; one of them alone, or beside colour, spares nothing.
     const ModalitySet two{Modality::BaseColor, Modality::ObjectIds};
-    EXPECT_EQ(planModalities(two, true, true), (ModalityPlan{{}, {}, two}));
-    EXPECT_TRUE(planModalities({Modality::FinalColor, Modality::ObjectIds, Modality::MaterialIds}, true, true)
-                    .lookedUp.empty());
-    EXPECT_TRUE(planModalities({Modality::Roughness, Modality::Metallic}, true, true).lookedUp.empty());
+    EXPECT_EQ(planModalities(two, true, untextured), (ModalityPlan{{}, {}, two}));
+    EXPECT_TRUE(
+        planModalities({Modality::FinalColor, Modality::ObjectIds, Modality::MaterialIds}, true, untextured)
+            .lookedUp.empty());
+    EXPECT_TRUE(planModalities({Modality::Roughness, Modality::Metallic}, true, untextured).lookedUp.empty());
     // Colour, depth, normal, ids and base colour: ids and base colour from the draw.
     const ModalityPlan dataset = planModalities(
         {Modality::FinalColor, Modality::Depth, Modality::Normal, Modality::ObjectIds, Modality::BaseColor},
-        true, true);
+        true, untextured);
     EXPECT_EQ(dataset.lookedUp, (ModalitySet{Modality::ObjectIds, Modality::BaseColor}));
     EXPECT_EQ(std::popcount(dataset.targets()), 4);
 }

@@ -436,7 +436,8 @@ TEST_F(RenderPathsGlTest, AttributePassKeepsTheSurfacePassesFragmentWhereSurface
 // parameters, both ids) from the draw each pixel's Target::Record names: the same images, bit for bit, as
 // rendering them (compact targets round float16 as the lookup does), at latency 0 and 1, in a layer of a
 // page and in framebuffers of its own, with two coincident boxes of which the first drawn stays in front.
-// A base colour texture turns the lookups off: its box then shows the texture's checker.
+// A base colour texture leaves base colour drawn (its box shows the texture's checker) and the rest looked
+// up.
 TEST_F(RenderPathsGlTest, MaterialModalitiesLookedUpFromTheDrawMatchTheRenderedOnes) {
     Scene scene;
     buildShapesScene(scene);
@@ -488,10 +489,19 @@ TEST_F(RenderPathsGlTest, MaterialModalitiesLookedUpFromTheDrawMatchTheRenderedO
     Instance crate{box, {scene.addMaterial(textured)}, {70}};
     crate.transform.translation() = Eigen::Vector3d(1.0, 1.2, 0.5);
     scene.addInstance(crate);
-    renderer().setDerivesOnCpu(true);
-    RenderTarget target(renderer(), ModalitySet::all(), 0);
-    Frame frame;
-    ASSERT_TRUE(target.render(scene, cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 640, 426, 60.0), frame));
+    std::array<Frame, 2> frames; // base colour drawn and the rest looked up; all drawn
+    for (const bool derives : {true, false}) {
+        renderer().setDerivesOnCpu(derives);
+        RenderTarget target(renderer(), ModalitySet::all(), 0);
+        ASSERT_TRUE(target.render(scene, cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 640, 426, 60.0),
+                                  frames[derives ? 0 : 1]));
+    }
+    for (Modality m : materials.list()) {
+        const ImageBuffer &a = frames[0].get(m), &b = frames[1].get(m);
+        EXPECT_TRUE(std::equal(a.bytes.begin(), a.bytes.end(), b.bytes.begin()))
+            << "textured: " << modalityName(m);
+    }
+    const Frame& frame = frames[0];
     const auto ids = frame.get(Modality::ObjectIds).as<std::uint32_t>();
     const auto base = frame.get(Modality::BaseColor).as<std::uint16_t>();
     std::set<std::uint16_t> reds;
