@@ -88,14 +88,22 @@ void evaluateSurface(out vec3 n, out vec3 base, out float roughness, out float m
 }
 )glsl";
 
+// A unit vector's octahedral coordinates (Cigolle et al. 2014): the lower hemisphere folded over the
+// diagonals. The G-buffer quantises them; a compact normal target holds them (decodeOctahedralNormals()).
+const char* const kOctahedralChunk = R"glsl(
+vec2 signNotZero(vec2 v) { return vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0); }
+vec2 octahedral(vec3 n) {
+    vec2 e = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
+    return n.z < 0.0 ? (1.0 - abs(e.yx)) * signNotZero(e) : e;
+}
+)glsl";
+
 // The G-buffer texel (Target::GBuffer, R32UI): the shading normal in octahedral form (Cigolle et al. 2014),
 // two 11-bit signed coordinates in bits 0-21 (within 0.05 degrees), and the draw's record in bits 22-31; all
 // ones marks a pixel its fragment shaded (kGBufferRecords).
 const char* const kGBufferChunk = R"glsl(
-vec2 signNotZero(vec2 v) { return vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0); }
 uint gbufferEncode(vec3 n, uint record) {
-    vec2 e = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
-    if (n.z < 0.0) e = (1.0 - abs(e.yx)) * signNotZero(e);
+    vec2 e = octahedral(n);
     uvec2 q = uvec2(round(clamp(e, -1.0, 1.0) * 1023.0) + 1023.0); // 0 .. 2046
     return q.x | (q.y << 11) | (record << 22);
 }
@@ -347,18 +355,19 @@ vec4 halfTarget(vec4 v) { return v; }
 vec4 normalTarget(vec3 n) { return vec4(n, 0.0); }
 )glsl";
 // Compact targets (PassSet::compactTargets): a float16 target holds its channels' float16 bits, as
-// packHalf2x16 rounds them; the normal target a unit vector's octahedral coordinates
-// (decodeOctahedralNormals()), the lower hemisphere folded over the diagonals.
+// packHalf2x16 rounds them; the normal target a unit vector's octahedral coordinates.
 const char* const kCompactEncodings = R"glsl(
 uvec4 halfTarget(vec4 v) {
     uvec2 p = uvec2(packHalf2x16(v.xy), packHalf2x16(v.zw));
     return uvec4(p.x & 0xffffu, p.x >> 16, p.y & 0xffffu, p.y >> 16);
 }
-vec2 normalTarget(vec3 n) {
-    vec2 p = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
-    return n.z >= 0.0 ? p : (1.0 - abs(p.yx)) * vec2(p.x >= 0.0 ? 1.0 : -1.0, p.y >= 0.0 ? 1.0 : -1.0);
-}
+vec2 normalTarget(vec3 n) { return octahedral(n); }
 )glsl";
+
+// halfTarget() and normalTarget() for float or compact targets, and what they use.
+std::string encodings(bool compact) {
+    return std::string(kOctahedralChunk) + (compact ? kCompactEncodings : kFloatEncodings);
+}
 
 // The GLSL type of a target's fragment output.
 const char* outputType(Target target, bool compact) {
@@ -378,7 +387,7 @@ const char* outputType(Target target, bool compact) {
 // "#define OUT_<Target>" and "layout(location = k) out <type> o<Target>;" for each target in the mask,
 // at consecutive locations in Target order (the order Framebuffers attaches them in), and the encodings.
 std::string outputs(TargetMask targets, bool compact) {
-    std::string text = compact ? kCompactEncodings : kFloatEncodings;
+    std::string text = encodings(compact);
     int location = 0;
     for (std::size_t t = 0; t < kTargetCount; ++t) {
         if ((targets & (TargetMask(1) << t)) == 0)
@@ -748,7 +757,7 @@ std::string backgroundFragment(int location, ToneMap toneMap) {
 
 std::string clearFragment(TargetMask targets, bool compact) {
     std::string text = "#version 450 core\nuniform vec4 uClear[" + std::to_string(kTargetCount) + "];\n";
-    text += compact ? kCompactEncodings : kFloatEncodings;
+    text += encodings(compact);
     std::string body;
     int location = 0;
     for (std::size_t t = 0; t < kTargetCount; ++t) {
@@ -804,6 +813,7 @@ uniform ivec2 uSize;
 vec2 gPixelCentre;
 #define PIXEL_CENTRE gPixelCentre
 )glsl";
+    text += kOctahedralChunk;
     text += kGBufferChunk;
     text += kShadingChunk;
     text += shadeFunction(lights, plan, true);
@@ -879,7 +889,7 @@ std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialF
     text += shadowClipDeclarations(forward, lights, "in");
     text += kMaterialChunk;
     if ((targets & targetBit(Target::GBuffer)) != 0)
-        text += kGBufferChunk;
+        text += kGBufferChunk; // after outputs(), which gives it octahedral()
     if (forward) {
         text += shadingDefines(lights);
         text += kShadingChunk;
