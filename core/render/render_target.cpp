@@ -341,6 +341,12 @@ void RenderTarget::readViews(Slot& slot, std::span<const OutputView> views) {
                 derive(slot, computed, view.data, views);
 }
 
+void* RenderTarget::scratchFor(const Slot& slot, Modality modality) {
+    std::vector<std::uint32_t>& scratch = deriveScratch_[static_cast<std::size_t>(modality)];
+    scratch.resize((modalityByteSize(modality, slot.width(), slot.height()) + 3) / sizeof(std::uint32_t));
+    return scratch.data();
+}
+
 void RenderTarget::lookUp(Slot& slot, std::span<const OutputView> views) {
     const std::size_t pixels = std::size_t(slot.width()) * std::size_t(slot.height());
     // Each looked-up modality into its view, or into scratch where a computed modality asked for needs it
@@ -355,11 +361,7 @@ void RenderTarget::lookUp(Slot& slot, std::span<const OutputView> views) {
         for (const OutputView& view : views)
             if (view.modality == m)
                 return view.data;
-        if (!needed.contains(m))
-            return nullptr;
-        std::vector<std::uint32_t>& scratch = deriveScratch_[static_cast<std::size_t>(m)];
-        scratch.resize((modalityByteSize(m, slot.width(), slot.height()) + 3) / sizeof(std::uint32_t));
-        return scratch.data();
+        return needed.contains(m) ? scratchFor(slot, m) : nullptr;
     };
     MaterialImages out;
     out.objectIds = static_cast<std::uint32_t*>(into(Modality::ObjectIds));
@@ -388,15 +390,14 @@ void RenderTarget::derive(Slot& slot, Modality modality, void* destination,
         for (const OutputView& view : read)
             if (view.modality == in)
                 return view.data;
-        std::vector<std::uint32_t>& scratch = deriveScratch_[static_cast<std::size_t>(in)];
+        void* scratch = scratchFor(slot, in);
         if (slot.plan.lookedUp.contains(in))
-            return scratch.data(); // filled by lookUp()
-        scratch.resize((modalityByteSize(in, slot.width(), slot.height()) + 3) / sizeof(std::uint32_t));
+            return scratch; // filled by lookUp()
         if (in == Modality::DiffuseOnly)
-            derive(slot, in, scratch.data(), read);
+            derive(slot, in, scratch, read);
         else
-            copyOut(slot, in, scratch.data());
-        return scratch.data();
+            copyOut(slot, in, scratch);
+        return scratch;
     };
     const auto half = [&](Modality in) { return static_cast<const std::uint16_t*>(input(in)); };
     switch (modality) {

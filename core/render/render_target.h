@@ -113,6 +113,8 @@ class RenderTarget {
     // Fills the views of looked-up modalities (ModalityPlan::lookedUp), and the scratch of those the
     // computed modalities need, from Target::Record and the slot's draw materials.
     void lookUp(Slot& slot, std::span<const OutputView> views);
+    // The scratch image of a modality not asked for that a computed one needs, sized for the slot's frame.
+    void* scratchFor(const Slot& slot, Modality modality);
     // A computed modality (slot.plan.derived) into `destination`; `read`: the views already filled.
     void derive(Slot& slot, Modality modality, void* destination, std::span<const OutputView> read);
     // Whether `modality` is read through the renderer's compute copy (Renderer::packIdsOnGpu()).
