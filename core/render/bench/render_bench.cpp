@@ -5,13 +5,15 @@
 //   spear_render_bench [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--ids compute|driver]
 //                      [--constant-slots N] [--readback staged|direct] [--copy-threads N]
 //                      [--sizes WxH,...] [--views N] [--only-given] [--modalities a,b,...]...
+//                      [--textured base|all]
 //   (--shadows 0: off; each --modalities adds one set, e.g. final_color,depth,normal,object_ids, and
 //   --only-given times those alone; --views N renders a rig of N views 0.3 m apart, submitted together
 //   and read one after another; --readback: how latency 0 reads a large view, default the renderer's
 //   choice for the device (Renderer::stagedReadback()), --copy-threads the threads its copy is split across;
 //   --ids: how object and material ids are read back, default the renderer's choice for the device;
 //   --constant-slots: flat varyings for the view's constants, 0 to read them all from the uniform buffer,
-//   default the renderer's choice: see Renderer::constantSlots())
+//   default the renderer's choice: see Renderer::constantSlots(); --textured: every box's base colour, and
+//   with `all` its roughness and metallic too, multiplied by a checker texture)
 //
 // --png writes the 256x256 and 1920x1080 final_color images of the scene, to look at.
 
@@ -40,8 +42,28 @@ namespace {
 
 using namespace sp::render;
 
-void buildScene(Scene& scene, int boxes) {
+// A width x width checker of two grey levels (`dark` and 255), 8 squares a side.
+TextureImage checker(int width, std::uint8_t dark) {
+    std::vector<std::uint8_t> rgba(std::size_t(width) * std::size_t(width) * 4);
+    for (int y = 0; y < width; ++y)
+        for (int x = 0; x < width; ++x) {
+            const std::uint8_t level = ((x * 8 / width) + (y * 8 / width)) % 2 == 0 ? dark : 255;
+            std::uint8_t* texel = rgba.data() + (std::size_t(y) * std::size_t(width) + std::size_t(x)) * 4;
+            texel[0] = texel[1] = texel[2] = level;
+            texel[3] = 255;
+        }
+    return TextureImage::fromPixels(width, width, std::move(rgba));
+}
+
+// `textured`: "" (flat materials), "base" (each box's base colour times a checker) or "all" (also its
+// roughness and metallic, glTF's green and blue channels).
+void buildScene(Scene& scene, int boxes, const std::string& textured) {
     MeshId ground = scene.addMesh(primitives::plane(40, 40));
+    std::optional<TextureId> baseTexture, roughnessMetallicTexture;
+    if (!textured.empty())
+        baseTexture = scene.addTexture(checker(64, 96));
+    if (textured == "all")
+        roughnessMetallicTexture = scene.addTexture(checker(64, 128), TextureEncoding::Linear);
     MeshId box = scene.addMesh(primitives::box({0.6f, 0.6f, 0.6f}));
     Material groundMaterial;
     groundMaterial.baseColor = {0.55f, 0.55f, 0.5f, 1.0f};
@@ -54,6 +76,8 @@ void buildScene(Scene& scene, int boxes) {
                        0.2f + 0.6f * float((i * 53) % 5) / 4.0f, 1.0f};
         m.roughness = 0.2f + 0.7f * float(i % 4) / 3.0f;
         m.metallic = i % 5 == 0 ? 1.0f : 0.0f;
+        m.baseColorTexture = baseTexture;
+        m.roughnessMetallicTexture = roughnessMetallicTexture;
         Instance instance{box, {scene.addMaterial(m)}, {std::uint32_t(2 + i)}};
         instance.transform = Eigen::Translation3d(1.2 * (i % side) - 0.6 * side,
                                                   1.2 * (i / side) - 0.6 * side, 0.3 + 0.4 * (i % 3)) *
@@ -105,7 +129,7 @@ Camera makeCamera(int width, int height, int boxes, int shadowResolution) {
 int main(int argc, char** argv) {
     int boxes = 64, frames = 10, shadows = 2048, constantSlots = -1, copyThreads = 0, views = 1;
     bool onlyGiven = false;
-    std::string pngDir, ids, readback, sizesArg = "256x256,1920x1080";
+    std::string pngDir, ids, readback, textured, sizesArg = "256x256,1920x1080";
     // The sets timed: a label and the modalities.
     std::vector<std::pair<std::string, ModalitySet>> sets = {
         {"final_color", ModalitySet{Modality::FinalColor}}, {"all (14)", ModalitySet::all()}};
@@ -121,6 +145,9 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--ids") && i + 1 < argc &&
                  (!std::strcmp(argv[i + 1], "compute") || !std::strcmp(argv[i + 1], "driver")))
             ids = argv[++i];
+        else if (!std::strcmp(argv[i], "--textured") && i + 1 < argc &&
+                 (!std::strcmp(argv[i + 1], "base") || !std::strcmp(argv[i + 1], "all")))
+            textured = argv[++i];
         else if (!std::strcmp(argv[i], "--constant-slots") && i + 1 < argc)
             constantSlots = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--readback") && i + 1 < argc &&
@@ -143,7 +170,7 @@ int main(int argc, char** argv) {
                 stderr,
                 "usage: %s [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--ids compute|driver] "
                 "[--constant-slots N] [--readback staged|direct] [--copy-threads N] [--sizes WxH,...] "
-                "[--views N] [--only-given] [--modalities a,b,...]\n",
+                "[--views N] [--only-given] [--modalities a,b,...] [--textured base|all]\n",
                 argv[0]);
             return 2;
         }
@@ -170,13 +197,16 @@ int main(int argc, char** argv) {
     if (copyThreads > 0)
         renderer.setReadbackThreads(copyThreads);
     Scene scene;
-    buildScene(scene, boxes);
+    buildScene(scene, boxes, textured);
     std::printf(
         "device: %s (%s), %d boxes, shadow maps %d, ids read by %s, %d constant slots, latency-0 readback "
-        "%s, copies on %d thread(s), %d view(s), %d timed frames after 3 warm-up frames\n",
+        "%s, copies on %d thread(s), %d view(s), %d timed frames after 3 warm-up frames%s\n",
         context.report().renderer.c_str(), context.report().kind.c_str(), boxes, shadows,
         renderer.packIdsOnGpu() ? "compute" : "driver", renderer.constantSlots(),
-        renderer.stagedReadback() ? "staged" : "direct", renderer.readbackThreads(), views, frames);
+        renderer.stagedReadback() ? "staged" : "direct", renderer.readbackThreads(), views, frames,
+        textured.empty()     ? ""
+        : textured == "base" ? ", boxes with base-colour textures"
+                             : ", boxes with base-colour and roughness-metallic textures");
     std::printf(
         "%-10s %-12s %-8s %10s   per pass, ms/frame: shadow surface lighting readback (GL timer / CPU)\n",
         "size", "modalities", "latency", "ms/frame");
