@@ -646,10 +646,12 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
                  part});
         }
     });
-    // By program, front to back; then each draw joins the batch of the nearest draw it batches with, so a
-    // batch is drawn where its nearest member was (still roughly front to back), its members front to back.
+    // Front to back, whatever their programs; then each draw joins the batch of the nearest draw it batches
+    // with, so a batch is drawn where its nearest member was (still roughly front to back), its members front
+    // to back. (Grouping by program first drew an untextured floor before every textured object above it:
+    // on llvmpipe, a 1080p frame of 64 textured boxes took 2.7 ms more for the floor's hidden fragments.)
     std::sort(draws.begin(), draws.end(), [](const Draw& a, const Draw& b) {
-        return a.features != b.features ? a.features < b.features : a.distance < b.distance;
+        return a.distance != b.distance ? a.distance < b.distance : a.features < b.features;
     });
     // Batches numbered in order of their nearest draw, through a map of what a batch shares (a scene of many
     // distinct meshes has many batches).
