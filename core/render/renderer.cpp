@@ -163,6 +163,7 @@ void add(RenderStats& total, const RenderStats& s) {
     total.culledInstances += s.culledInstances;
     total.unshadowedInstances += s.unshadowedInstances;
     total.splitInstances += s.splitInstances;
+    total.constantSlotPasses += s.constantSlotPasses;
     for (std::size_t p = 0; p < kPassCount; ++p) {
         total.passTimes[p].gpuMs += s.passTimes[p].gpuMs;
         total.passTimes[p].cpuMs += s.passTimes[p].cpuMs;
@@ -387,6 +388,12 @@ void Renderer::renderView(const View& view) {
         if (shadowReach_ && passes.lighting && !shadowInfos.empty())
             receivers.emplace(scene, camera, fb.width, fb.height, shadowInfos);
         const std::vector<Draw> draws = visibleDraws(scene, camera, receivers ? &*receivers : nullptr);
+        std::uint64_t triangles = 0;
+        for (const Draw& draw : draws)
+            triangles += scene.mesh(draw.mesh).submeshes[draw.slot].indexCount / 3;
+        viewConstantSlots_ = viewConstantSlots(triangles, std::uint64_t(fb.width) * std::uint64_t(fb.height));
+        lights.constantSlots = viewConstantSlots_;
+        active_->stats.constantSlotPasses += viewConstantSlots_ > 0 ? 1 : 0;
         surfacePass(scene, camera, passes, lights, draws, cache, fb);
         if (passes.attributeTargets != 0)
             attributePass(scene, camera, passes, draws, cache, fb);
@@ -492,7 +499,7 @@ void Renderer::attributePass(const Scene& scene, const Camera& camera, const Pas
     clearTargets(scene, camera, passes.attributeTargets, false);
     const std::vector<Draw> reversed(draws.rbegin(), draws.rend());
     shaders::ShadingLayout constantsOnly; // no shading: the camera position alone
-    constantsOnly.constantSlots = constantSlots_;
+    constantsOnly.constantSlots = viewConstantSlots_;
     drawAll(scene, camera, reversed, passes.attributeTargets, false, constantsOnly, cache);
     glDepthMask(GL_TRUE);
     active_->timers.end();

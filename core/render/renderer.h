@@ -52,11 +52,12 @@ struct RenderStats {
     std::uint64_t readbacks = 0;       // one per modality read back
     std::uint64_t meshUploads = 0;
     std::uint64_t textureUploads = 0;
-    std::uint64_t drawnInstances = 0;             // instances drawn by surface passes
-    std::uint64_t drawCalls = 0;                  // instanced draw calls of surface and attribute passes
-    std::uint64_t culledInstances = 0;            // instances outside the view, not drawn
-    std::uint64_t unshadowedInstances = 0;        // shaded without shadow lookups: no shadow reaches them
-    std::uint64_t splitInstances = 0;             // shaded in parts: lookups only where a shadow can fall
+    std::uint64_t drawnInstances = 0;      // instances drawn by surface passes
+    std::uint64_t drawCalls = 0;           // instanced draw calls of surface and attribute passes
+    std::uint64_t culledInstances = 0;     // instances outside the view, not drawn
+    std::uint64_t unshadowedInstances = 0; // shaded without shadow lookups: no shadow reaches them
+    std::uint64_t splitInstances = 0;      // shaded in parts: lookups only where a shadow can fall
+    std::uint64_t constantSlotPasses = 0;  // surface passes whose fragments read constants from flat varyings
     std::array<PassTime, kPassCount> passTimes{}; // by Pass
 };
 
@@ -155,6 +156,20 @@ class Renderer {
     // rasteriser, 0 on a GPU. Settable, so that tests render both ways; images are the same bit for bit.
     int constantSlots() const { return constantSlots_; }
     void setConstantSlots(int slots) { constantSlots_ = std::max(0, slots); }
+    // A view spends them only where it has at least kPixelsPerConstantTriangle pixels for each triangle it
+    // draws (viewConstantSlots()): a flat varying is paid for per triangle and saves per pixel, so a view of
+    // finely tessellated meshes reads its constants from the uniform buffer (on llvmpipe, 64 spheres of
+    // 1,024 triangles each at 640x480: 29-32 against 19-28 ms a frame; of 16,384 at 1080p: 188-194 against
+    // 167-175 ms), while Table 3's 256x256 view of 64 objects (27 pixels a triangle) keeps them (2.5-2.7
+    // against 2.7-3.2 ms without). Off, a view spends them whatever it draws, so that tests render both ways.
+    bool adaptiveConstantSlots() const { return adaptiveConstantSlots_; }
+    void setAdaptiveConstantSlots(bool on) { adaptiveConstantSlots_ = on; }
+    static constexpr std::uint64_t kPixelsPerConstantTriangle = 16;
+    // The constant slots of a view of `pixels` pixels drawing `triangles` triangles: constantSlots() or 0.
+    int viewConstantSlots(std::uint64_t triangles, std::uint64_t pixels) const {
+        return !adaptiveConstantSlots_ || pixels >= kPixelsPerConstantTriangle * triangles ? constantSlots_
+                                                                                           : 0;
+    }
     // Whether the surface pass shades what no shadow can reach without shadow-map lookups, and a large
     // instance a shadow falls on in part in scissored parts (see shadow_reach.h): by default on a software
     // rasteriser, where the lookups are a fifth of a shaded pixel; a GPU would only pay for more draws.
@@ -235,6 +250,8 @@ class Renderer {
     bool compactTargets_ = false;
     int readbackThreads_ = 1;
     int constantSlots_ = 0;
+    bool adaptiveConstantSlots_ = true;
+    int viewConstantSlots_ = 0; // of the view render() is drawing (viewConstantSlots())
     bool shadowReach_ = false;
     std::unique_ptr<SharedUploads> sharedUploads_; // meshes and textures the scenes add under shared keys
     std::unique_ptr<ShadowLayers> shadowLayers_;   // the scenes' shadow maps (before scenes_: they use it)

@@ -5,7 +5,7 @@
 //   spear_render_bench [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--ids compute|driver]
 //                      [--constant-slots N] [--readback staged|direct] [--copy-threads N]
 //                      [--sizes WxH,...] [--views N] [--only-given] [--modalities a,b,...]...
-//                      [--textured base|all]
+//                      [--textured base|all] [--spheres SEGMENTS]
 //   (--shadows 0: off; each --modalities adds one set, e.g. final_color,depth,normal,object_ids, and
 //   --only-given times those alone; --views N renders a rig of N views 0.3 m apart, submitted together
 //   and read one after another; --readback: how latency 0 reads a large view, default the renderer's
@@ -13,7 +13,8 @@
 //   --ids: how object and material ids are read back, default the renderer's choice for the device;
 //   --constant-slots: flat varyings for the view's constants, 0 to read them all from the uniform buffer,
 //   default the renderer's choice: see Renderer::constantSlots(); --textured: every box's base colour, and
-//   with `all` its roughness and metallic too, multiplied by a checker texture)
+//   with `all` its roughness and metallic too, multiplied by a checker texture; --spheres: the objects are
+//   spheres of SEGMENTS segments around, SEGMENTS^2 triangles each, instead of boxes)
 //
 // --png writes the 256x256 and 1920x1080 final_color images of the scene, to look at.
 
@@ -57,14 +58,18 @@ TextureImage checker(int width, std::uint8_t dark) {
 
 // `textured`: "" (flat materials), "base" (each box's base colour times a checker) or "all" (also its
 // roughness and metallic, glTF's green and blue channels).
-void buildScene(Scene& scene, int boxes, const std::string& textured) {
+// `sphereSegments` > 0: the objects are spheres of that many segments around (and half as many rings), a
+// scene of finely tessellated meshes, instead of boxes.
+void buildScene(Scene& scene, int boxes, const std::string& textured, int sphereSegments) {
     MeshId ground = scene.addMesh(primitives::plane(40, 40));
     std::optional<TextureId> baseTexture, roughnessMetallicTexture;
     if (!textured.empty())
         baseTexture = scene.addTexture(checker(64, 96));
     if (textured == "all")
         roughnessMetallicTexture = scene.addTexture(checker(64, 128), TextureEncoding::Linear);
-    MeshId box = scene.addMesh(primitives::box({0.6f, 0.6f, 0.6f}));
+    MeshId box = scene.addMesh(
+        sphereSegments > 0 ? primitives::sphere(0.35f, sphereSegments, std::max(2, sphereSegments / 2))
+                           : primitives::box({0.6f, 0.6f, 0.6f}));
     Material groundMaterial;
     groundMaterial.baseColor = {0.55f, 0.55f, 0.5f, 1.0f};
     groundMaterial.roughness = 0.9f;
@@ -127,7 +132,7 @@ Camera makeCamera(int width, int height, int boxes, int shadowResolution) {
 } // namespace
 
 int main(int argc, char** argv) {
-    int boxes = 64, frames = 10, shadows = 2048, constantSlots = -1, copyThreads = 0, views = 1;
+    int boxes = 64, frames = 10, shadows = 2048, constantSlots = -1, copyThreads = 0, views = 1, spheres = 0;
     bool onlyGiven = false;
     std::string pngDir, ids, readback, textured, sizesArg = "256x256,1920x1080";
     // The sets timed: a label and the modalities.
@@ -145,6 +150,8 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--ids") && i + 1 < argc &&
                  (!std::strcmp(argv[i + 1], "compute") || !std::strcmp(argv[i + 1], "driver")))
             ids = argv[++i];
+        else if (!std::strcmp(argv[i], "--spheres") && i + 1 < argc)
+            spheres = std::max(3, std::atoi(argv[++i]));
         else if (!std::strcmp(argv[i], "--textured") && i + 1 < argc &&
                  (!std::strcmp(argv[i + 1], "base") || !std::strcmp(argv[i + 1], "all")))
             textured = argv[++i];
@@ -170,7 +177,8 @@ int main(int argc, char** argv) {
                 stderr,
                 "usage: %s [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--ids compute|driver] "
                 "[--constant-slots N] [--readback staged|direct] [--copy-threads N] [--sizes WxH,...] "
-                "[--views N] [--only-given] [--modalities a,b,...] [--textured base|all]\n",
+                "[--views N] [--only-given] [--modalities a,b,...] [--textured base|all] [--spheres "
+                "SEGMENTS]\n",
                 argv[0]);
             return 2;
         }
@@ -197,7 +205,7 @@ int main(int argc, char** argv) {
     if (copyThreads > 0)
         renderer.setReadbackThreads(copyThreads);
     Scene scene;
-    buildScene(scene, boxes, textured);
+    buildScene(scene, boxes, textured, spheres);
     std::printf(
         "device: %s (%s), %d boxes, shadow maps %d, ids read by %s, %d constant slots, latency-0 readback "
         "%s, copies on %d thread(s), %d view(s), %d timed frames after 3 warm-up frames%s\n",

@@ -100,6 +100,7 @@ TEST_F(RenderPathsGlTest, ConstantsInFlatVaryingsRenderTheSameImagesAsUniformRea
     const int byDefault = renderer().constantSlots();
     // fFrame (4), fShadowSizes (1) and the sun (2): the spot, point and fill lights read the uniform buffer.
     const int budgets[] = {0, 7, std::max(byDefault, 16)};
+    renderer().setAdaptiveConstantSlots(false); // these small views would spend none on their triangles
     std::vector<Frame> frames(std::size(budgets)), colours(std::size(budgets)), plains(std::size(budgets));
     for (std::size_t i = 0; i < std::size(budgets); ++i) {
         renderer().setConstantSlots(budgets[i]);
@@ -111,6 +112,7 @@ TEST_F(RenderPathsGlTest, ConstantsInFlatVaryingsRenderTheSameImagesAsUniformRea
         colour.render(scene, plain, plains[i]);
     }
     renderer().setConstantSlots(byDefault);
+    renderer().setAdaptiveConstantSlots(true);
     auto same = [](const ImageBuffer& x, const ImageBuffer& y) {
         return x.bytes.size() == y.bytes.size() &&
                std::equal(x.bytes.begin(), x.bytes.end(), y.bytes.begin());
@@ -124,6 +126,44 @@ TEST_F(RenderPathsGlTest, ConstantsInFlatVaryingsRenderTheSameImagesAsUniformRea
         EXPECT_TRUE(same(plains[0].get(Modality::FinalColor), plains[i].get(Modality::FinalColor)))
             << "final_color without vignette, slots " << budgets[i];
     }
+}
+
+TEST_F(RenderPathsGlTest, ViewsOfManyTrianglesPerPixelReadTheirConstantsFromTheUniformBuffer) {
+    // With a budget of slots, a view spends them only where it has kPixelsPerConstantTriangle pixels for each
+    // triangle it draws: the same scene seen large spends them, seen small (or as finely tessellated spheres)
+    // reads the uniform buffer; the images are the same as with the budget spent whatever the view draws.
+    EXPECT_EQ(renderer().viewConstantSlots(10, 16 * 10), renderer().constantSlots());
+    EXPECT_EQ(renderer().viewConstantSlots(10, 16 * 10 - 1), 0);
+    Scene scene;
+    buildShapesScene(scene);
+    const MeshId fine = scene.addMesh(primitives::sphere(0.3f, 64, 32)); // 4,096 triangles
+    scene.addInstance({fine, {scene.addMaterial(makeMaterial({0.3f, 0.5f, 0.8f}, 0.4f, 0.0f))}, {40}});
+    const int byDefault = renderer().constantSlots();
+    renderer().setConstantSlots(std::max(byDefault, 16));
+    const Camera large = cameraLookingAt({-2.6, 2.9, 1.8}, {0, 0, 0.3}, 1600, 1200, 60.0);
+    const Camera small = cameraLookingAt({-2.6, 2.9, 1.8}, {0, 0, 0.3}, 96, 64, 60.0);
+    std::vector<Frame> adaptive(2), spent(2);
+    std::vector<std::uint64_t> passes;
+    for (int on = 1; on >= 0; --on) {
+        renderer().setAdaptiveConstantSlots(on == 1);
+        int v = 0;
+        for (const Camera* camera : {&large, &small}) {
+            RenderTarget target(renderer(), {Modality::FinalColor, Modality::Normal, Modality::ObjectIds}, 0);
+            const std::uint64_t before = renderer().stats(scene.uid()).constantSlotPasses;
+            target.render(scene, *camera, (on == 1 ? adaptive : spent)[std::size_t(v++)]);
+            passes.push_back(renderer().stats(scene.uid()).constantSlotPasses - before);
+        }
+    }
+    renderer().setConstantSlots(byDefault);
+    renderer().setAdaptiveConstantSlots(true);
+    EXPECT_EQ(passes, (std::vector<std::uint64_t>{1, 0, 1, 1})) << "large, small; adaptive, then spent";
+    for (std::size_t v = 0; v < 2; ++v)
+        for (Modality m : {Modality::FinalColor, Modality::Normal, Modality::ObjectIds}) {
+            const ImageBuffer &x = adaptive[v].get(m), &y = spent[v].get(m);
+            EXPECT_TRUE(x.bytes.size() == y.bytes.size() &&
+                        std::equal(x.bytes.begin(), x.bytes.end(), y.bytes.begin()))
+                << modalityName(m) << (v == 0 ? ", large view" : ", small view");
+        }
 }
 
 TEST_F(RenderPathsGlTest, ShadingWithoutLookupsWhereNoShadowReachesRendersTheSameImages) {
