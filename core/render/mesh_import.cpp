@@ -18,6 +18,7 @@
 #include "core/base/progress.h"
 #include "core/base/regular_file.h"
 #include "core/render/content_key.h"
+#include "core/render/mesh_lods.h"
 
 namespace sp::render {
 namespace {
@@ -172,7 +173,16 @@ ImportedMesh importMesh(const std::string& userPath) {
 
 ImportedMeshIds addToScene(Scene& scene, const ImportedMesh& imported, bool shared) {
     ImportedMeshIds ids;
-    ids.mesh = scene.addMesh(imported.mesh, shared ? contentKey(imported.mesh) : std::string());
+    const std::string key = shared ? contentKey(imported.mesh) : std::string();
+    ids.mesh = scene.addMesh(imported.mesh, key);
+    // A finely tessellated mesh gets coarser levels, drawn where it is small in the image (mesh_lods.h).
+    std::vector<MeshLod> lods;
+    for (auto& [level, error] : simplifiedLods(scene.mesh(ids.mesh)))
+        lods.push_back(
+            {scene.addMesh(std::move(level), key.empty() ? key : key + "@lod" + std::to_string(lods.size())),
+             error});
+    if (!lods.empty())
+        scene.setMeshLods(ids.mesh, std::move(lods));
     auto texture = [&](const TextureImage& image, TextureEncoding encoding) {
         return scene.addTexture(image, encoding, shared ? contentKey(image, encoding) : std::string());
     };

@@ -5,7 +5,7 @@
 //   spear_render_bench [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--ids compute|driver]
 //                      [--constant-slots N] [--readback staged|direct] [--copy-threads N]
 //                      [--sizes WxH,...] [--views N] [--only-given] [--modalities a,b,...]...
-//                      [--textured base|all] [--spheres SEGMENTS]
+//                      [--textured base|all] [--spheres SEGMENTS] [--no-lods]
 //   (--shadows 0: off; each --modalities adds one set, e.g. final_color,depth,normal,object_ids, and
 //   --only-given times those alone; --views N renders a rig of N views 0.3 m apart, submitted together
 //   and read one after another; --readback: how latency 0 reads a large view, default the renderer's
@@ -14,7 +14,8 @@
 //   --constant-slots: flat varyings for the view's constants, 0 to read them all from the uniform buffer,
 //   default the renderer's choice: see Renderer::constantSlots(); --textured: every box's base colour, and
 //   with `all` its roughness and metallic too, multiplied by a checker texture; --spheres: the objects are
-//   spheres of SEGMENTS segments around, SEGMENTS^2 triangles each, instead of boxes)
+//   spheres of SEGMENTS segments around, SEGMENTS^2 triangles each, instead of boxes, with the levels of
+//   detail an imported mesh gets unless --no-lods)
 //
 // --png writes the 256x256 and 1920x1080 final_color images of the scene, to look at.
 
@@ -33,6 +34,7 @@
 
 #include "core/render/gl_context.h"
 #include "core/render/image_buffer.h"
+#include "core/render/mesh_lods.h"
 #include "core/render/primitives.h"
 #include "core/render/render_target.h"
 #include "core/render/renderer.h"
@@ -60,7 +62,7 @@ TextureImage checker(int width, std::uint8_t dark) {
 // roughness and metallic, glTF's green and blue channels).
 // `sphereSegments` > 0: the objects are spheres of that many segments around (and half as many rings), a
 // scene of finely tessellated meshes, instead of boxes.
-void buildScene(Scene& scene, int boxes, const std::string& textured, int sphereSegments) {
+void buildScene(Scene& scene, int boxes, const std::string& textured, int sphereSegments, bool lods) {
     MeshId ground = scene.addMesh(primitives::plane(40, 40));
     std::optional<TextureId> baseTexture, roughnessMetallicTexture;
     if (!textured.empty())
@@ -70,6 +72,13 @@ void buildScene(Scene& scene, int boxes, const std::string& textured, int sphere
     MeshId box = scene.addMesh(
         sphereSegments > 0 ? primitives::sphere(0.35f, sphereSegments, std::max(2, sphereSegments / 2))
                            : primitives::box({0.6f, 0.6f, 0.6f}));
+    // The levels of detail an imported mesh gets (mesh_lods.h), unless --no-lods.
+    if (lods) {
+        std::vector<MeshLod> levels;
+        for (auto& [level, error] : simplifiedLods(scene.mesh(box)))
+            levels.push_back({scene.addMesh(std::move(level)), error});
+        scene.setMeshLods(box, std::move(levels));
+    }
     Material groundMaterial;
     groundMaterial.baseColor = {0.55f, 0.55f, 0.5f, 1.0f};
     groundMaterial.roughness = 0.9f;
@@ -133,7 +142,7 @@ Camera makeCamera(int width, int height, int boxes, int shadowResolution) {
 
 int main(int argc, char** argv) {
     int boxes = 64, frames = 10, shadows = 2048, constantSlots = -1, copyThreads = 0, views = 1, spheres = 0;
-    bool onlyGiven = false;
+    bool onlyGiven = false, lods = true;
     std::string pngDir, ids, readback, textured, sizesArg = "256x256,1920x1080";
     // The sets timed: a label and the modalities.
     std::vector<std::pair<std::string, ModalitySet>> sets = {
@@ -150,6 +159,8 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--ids") && i + 1 < argc &&
                  (!std::strcmp(argv[i + 1], "compute") || !std::strcmp(argv[i + 1], "driver")))
             ids = argv[++i];
+        else if (!std::strcmp(argv[i], "--no-lods"))
+            lods = false;
         else if (!std::strcmp(argv[i], "--spheres") && i + 1 < argc)
             spheres = std::max(3, std::atoi(argv[++i]));
         else if (!std::strcmp(argv[i], "--textured") && i + 1 < argc &&
@@ -178,7 +189,7 @@ int main(int argc, char** argv) {
                 "usage: %s [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--ids compute|driver] "
                 "[--constant-slots N] [--readback staged|direct] [--copy-threads N] [--sizes WxH,...] "
                 "[--views N] [--only-given] [--modalities a,b,...] [--textured base|all] [--spheres "
-                "SEGMENTS]\n",
+                "SEGMENTS] [--no-lods]\n",
                 argv[0]);
             return 2;
         }
@@ -205,7 +216,7 @@ int main(int argc, char** argv) {
     if (copyThreads > 0)
         renderer.setReadbackThreads(copyThreads);
     Scene scene;
-    buildScene(scene, boxes, textured, spheres);
+    buildScene(scene, boxes, textured, spheres, lods);
     std::printf(
         "device: %s (%s), %d boxes, shadow maps %d, ids read by %s, %d constant slots, latency-0 readback "
         "%s, copies on %d thread(s), %d view(s), %d timed frames after 3 warm-up frames%s\n",
