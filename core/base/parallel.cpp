@@ -155,6 +155,26 @@ void parallelFor(int count, int threads, const std::function<void(int)>& task) {
         runInline(count, task);
 }
 
+void parallelRanges(std::size_t count, std::size_t granularity, std::size_t least, int parts, int threads,
+                    const std::function<void(std::size_t, std::size_t)>& task) {
+    granularity = std::max<std::size_t>(granularity, 1);
+    const std::size_t most = count / std::max<std::size_t>(least, 1);
+    const std::size_t ranges =
+        std::max<std::size_t>(1, std::min<std::size_t>(std::size_t(std::max(parts, 1)), most));
+    if (ranges == 1) {
+        if (count > 0)
+            task(0, count);
+        return;
+    }
+    const std::size_t size = ((count + ranges - 1) / ranges + granularity - 1) / granularity * granularity;
+    parallelFor(int(ranges), threads, [&](int range) {
+        const std::size_t begin = std::min(count, size * std::size_t(range));
+        const std::size_t end = std::size_t(range) + 1 == ranges ? count : std::min(count, begin + size);
+        if (begin < end)
+            task(begin, end);
+    });
+}
+
 int hardwareThreads() {
     return std::max(1, int(std::thread::hardware_concurrency()));
 }

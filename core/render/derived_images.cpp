@@ -174,9 +174,9 @@ void computePositionFromDepth(const float* depth, const Camera& camera, float* o
     // A pixel's centre ray, (1, (W/2 - u - 0.5) / f, (H/2 - v - 0.5) / f) in the camera's body frame, is a
     // row's first ray plus a step per column.
     const Eigen::Vector3d step = -axes.col(1) / focal;
-    const int bands = std::max(1, std::min(height, 2 * hardwareThreads())); // bands of rows, two a thread
-    const auto rows = [&](int band) {
-        for (int v = height * band / bands; v < height * (band + 1) / bands; ++v) {
+    // Bands of rows, two a thread.
+    const auto rows = [&](std::size_t firstRow, std::size_t endRow) {
+        for (int v = int(firstRow); v < int(endRow); ++v) {
             const Eigen::Vector3d first = axes.col(0) + axes.col(1) * ((0.5 * width - 0.5) / focal) +
                                           axes.col(2) * ((0.5 * height - v - 0.5) / focal);
             const float* in = depth + std::size_t(v) * std::size_t(width);
@@ -191,17 +191,13 @@ void computePositionFromDepth(const float* depth, const Camera& camera, float* o
             }
         }
     };
-    parallelFor(bands, hardwareThreads(), rows);
+    parallelRanges(std::size_t(height), 1, 1, 2 * hardwareThreads(), hardwareThreads(), rows);
 }
 
 void decodeOctahedralNormals(const float* encoded, float* out, std::size_t pixels) {
-    // Bands of whole groups of eight pixels, two a thread.
-    const std::size_t bands =
-        std::max<std::size_t>(1, std::min<std::size_t>(pixels / 4096, 2 * hardwareThreads()));
-    const std::size_t per = (pixels / bands + 7) / 8 * 8;
-    const auto band = [&](int index) {
-        const std::size_t first = std::min(pixels, per * std::size_t(index));
-        const std::size_t count = index + 1 == int(bands) ? pixels - first : std::min(per, pixels - first);
+    // Bands of whole groups of eight pixels (the vector width), two a thread.
+    const auto band = [&](std::size_t first, std::size_t end) {
+        const std::size_t count = end - first;
         const float* in = encoded + 2 * first;
         float* at = out + 3 * first;
         const std::size_t done = hasAvx2() ? decodeOctahedralAvx2(in, at, count) : 0;
@@ -222,7 +218,7 @@ void decodeOctahedralNormals(const float* encoded, float* out, std::size_t pixel
             at[3 * p + 2] = surface ? z / length : 0.0f;
         }
     };
-    parallelFor(int(bands), hardwareThreads(), band);
+    parallelRanges(pixels, 8, 4096, 2 * hardwareThreads(), hardwareThreads(), band);
 }
 
 void lookUpMaterials(const std::uint32_t* record, std::span<const DrawMaterial> draws, std::size_t pixels,

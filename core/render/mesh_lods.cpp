@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 
 #include "core/base/parallel.h"
 
@@ -121,17 +122,18 @@ float deviation(const MeshData& mesh, const std::vector<std::uint32_t>& level, c
         dropped[index] = 1;
     for (std::uint32_t index : level)
         dropped[index] = 0;
-    constexpr int kParts = 16;
-    std::vector<float> largest(kParts, 0.0f);
-    const std::size_t vertices = mesh.positions.size();
-    parallelFor(kParts, hardwareThreads(), [&](int part) {
-        float& found = largest[std::size_t(part)];
-        for (std::size_t v = vertices * std::size_t(part) / kParts;
-             v < vertices * std::size_t(part + 1) / kParts; ++v)
-            if (dropped[v] != 0)
-                found = std::max(found, nearest(mesh.positions[v], found));
-    });
-    return std::sqrt(*std::max_element(largest.begin(), largest.end()));
+    std::mutex merging;
+    float largest = 0.0f;
+    parallelRanges(mesh.positions.size(), 1, 1024, 4 * hardwareThreads(), hardwareThreads(),
+                   [&](std::size_t begin, std::size_t end) {
+                       float found = 0.0f;
+                       for (std::size_t v = begin; v < end; ++v)
+                           if (dropped[v] != 0)
+                               found = std::max(found, nearest(mesh.positions[v], found));
+                       const std::lock_guard<std::mutex> lock(merging);
+                       largest = std::max(largest, found);
+                   });
+    return std::sqrt(largest);
 }
 
 } // namespace

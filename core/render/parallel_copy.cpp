@@ -20,15 +20,11 @@ void parallelCopy(void* destination, const void* source, std::size_t bytes, int 
         std::memcpy(destination, source, bytes);
         return;
     }
-    const int parts = int(std::min<std::size_t>(std::size_t(threads), bytes / (kSplitBytes / 2)));
-    const std::size_t size =
-        (bytes / std::size_t(parts) + kPartAlignment - 1) / kPartAlignment * kPartAlignment;
-    parallelFor(parts, parts, [&](int part) {
-        const std::size_t begin = std::min(bytes, size * std::size_t(part));
-        const std::size_t end = part + 1 == parts ? bytes : std::min(bytes, begin + size);
-        std::memcpy(static_cast<char*>(destination) + begin, static_cast<const char*>(source) + begin,
-                    end - begin);
-    });
+    parallelRanges(bytes, kPartAlignment, kSplitBytes / 2, threads, threads,
+                   [&](std::size_t begin, std::size_t end) {
+                       std::memcpy(static_cast<char*>(destination) + begin,
+                                   static_cast<const char*>(source) + begin, end - begin);
+                   });
 }
 
 int defaultCopyThreads() {

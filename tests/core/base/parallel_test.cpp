@@ -31,6 +31,35 @@ TEST(ParallelFor, RunsEveryTaskOnceOnSeveralThreads) {
     EXPECT_TRUE(threads.contains(std::this_thread::get_id())); // the caller takes tasks too
 }
 
+TEST(ParallelRanges, CoverEveryItemOnceInRangesOnTheirBoundaries) {
+    // 10,000 items in up to 6 ranges starting at multiples of 64, of at least 100 items: each item once.
+    struct Case {
+        std::size_t count, granularity, least;
+        int parts;
+        std::size_t ranges; // expected
+    };
+    for (const Case& c : {Case{10000, 64, 100, 6, 6}, Case{10000, 64, 4000, 6, 2}, Case{150, 8, 100, 6, 1},
+                          Case{0, 8, 1, 4, 0}, Case{7, 1, 1, 16, 7}}) {
+        std::vector<std::atomic<int>> seen(c.count);
+        std::mutex mutex;
+        std::vector<std::pair<std::size_t, std::size_t>> ranges;
+        parallelRanges(c.count, c.granularity, c.least, c.parts, 4, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t i = begin; i < end; ++i)
+                ++seen[i];
+            std::lock_guard lock(mutex);
+            ranges.emplace_back(begin, end);
+        });
+        const std::string label = "count " + std::to_string(c.count) + ", least " + std::to_string(c.least);
+        for (const auto& count : seen)
+            EXPECT_EQ(count, 1) << label;
+        EXPECT_EQ(ranges.size(), c.ranges) << label;
+        for (const auto& [begin, end] : ranges) {
+            EXPECT_EQ(begin % c.granularity, 0u) << label;
+            EXPECT_LT(begin, end) << label;
+        }
+    }
+}
+
 TEST(ParallelFor, OneThreadOrOneTaskRunsInOrderOnTheCaller) {
     std::vector<int> order;
     parallelFor(5, 1, [&](int i) { order.push_back(i); });
