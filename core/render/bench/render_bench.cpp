@@ -5,7 +5,7 @@
 //   spear_render_bench [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--ids compute|driver]
 //                      [--constant-slots N] [--readback staged|direct] [--copy-threads N]
 //                      [--sizes WxH,...] [--views N] [--only-given] [--modalities a,b,...]...
-//                      [--textured base|all] [--spheres SEGMENTS] [--no-lods]
+//                      [--textured base|all] [--spheres SEGMENTS] [--no-lods] [--point-lights N]
 //   (--shadows 0: off; each --modalities adds one set, e.g. final_color,depth,normal,object_ids, and
 //   --only-given times those alone; --views N renders a rig of N views 0.3 m apart, submitted together
 //   and read one after another; --readback: how latency 0 reads a large view, default the renderer's
@@ -15,7 +15,7 @@
 //   default the renderer's choice: see Renderer::constantSlots(); --textured: every box's base colour, and
 //   with `all` its roughness and metallic too, multiplied by a checker texture; --spheres: the objects are
 //   spheres of SEGMENTS segments around, SEGMENTS^2 triangles each, instead of boxes, with the levels of
-//   detail an imported mesh gets unless --no-lods)
+//   detail an imported mesh gets unless --no-lods; --point-lights: N unshadowed point lights more)
 //
 // --png writes the 256x256 and 1920x1080 final_color images of the scene, to look at.
 
@@ -62,7 +62,8 @@ TextureImage checker(int width, std::uint8_t dark) {
 // roughness and metallic, glTF's green and blue channels).
 // `sphereSegments` > 0: the objects are spheres of that many segments around (and half as many rings), a
 // scene of finely tessellated meshes, instead of boxes.
-void buildScene(Scene& scene, int boxes, const std::string& textured, int sphereSegments, bool lods) {
+void buildScene(Scene& scene, int boxes, const std::string& textured, int sphereSegments, bool lods,
+                int pointLights) {
     MeshId ground = scene.addMesh(primitives::plane(40, 40));
     std::optional<TextureId> baseTexture, roughnessMetallicTexture;
     if (!textured.empty())
@@ -108,6 +109,17 @@ void buildScene(Scene& scene, int boxes, const std::string& textured, int sphere
     spot.direction = Eigen::Vector3d(0.2, 0.1, -1);
     spot.intensity = 30.0f;
     scene.addLight(spot);
+    // --point-lights: unshadowed point lights of 8 m range in a ring 3 m up.
+    for (int i = 0; i < pointLights; ++i) {
+        Light point;
+        point.type = LightType::Point;
+        const double angle = 2.0 * M_PI * i / pointLights;
+        point.position = Eigen::Vector3d(4.0 * std::cos(angle), 4.0 * std::sin(angle), 3.0);
+        point.intensity = 8.0f;
+        point.range = 8.0f;
+        point.castShadows = false;
+        scene.addLight(point);
+    }
     scene.setEnvironment({{0.1f, 0.12f, 0.15f}, {0.3f, 0.35f, 0.45f}});
 }
 
@@ -141,7 +153,8 @@ Camera makeCamera(int width, int height, int boxes, int shadowResolution) {
 } // namespace
 
 int main(int argc, char** argv) {
-    int boxes = 64, frames = 10, shadows = 2048, constantSlots = -1, copyThreads = 0, views = 1, spheres = 0;
+    int boxes = 64, frames = 10, shadows = 2048, constantSlots = -1, copyThreads = 0, views = 1, spheres = 0,
+        pointLights = 0;
     bool onlyGiven = false, lods = true;
     std::string pngDir, ids, readback, textured, sizesArg = "256x256,1920x1080";
     // The sets timed: a label and the modalities.
@@ -159,6 +172,8 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--ids") && i + 1 < argc &&
                  (!std::strcmp(argv[i + 1], "compute") || !std::strcmp(argv[i + 1], "driver")))
             ids = argv[++i];
+        else if (!std::strcmp(argv[i], "--point-lights") && i + 1 < argc)
+            pointLights = std::max(0, std::atoi(argv[++i]));
         else if (!std::strcmp(argv[i], "--no-lods"))
             lods = false;
         else if (!std::strcmp(argv[i], "--spheres") && i + 1 < argc)
@@ -189,7 +204,7 @@ int main(int argc, char** argv) {
                 "usage: %s [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--ids compute|driver] "
                 "[--constant-slots N] [--readback staged|direct] [--copy-threads N] [--sizes WxH,...] "
                 "[--views N] [--only-given] [--modalities a,b,...] [--textured base|all] [--spheres "
-                "SEGMENTS] [--no-lods]\n",
+                "SEGMENTS] [--no-lods] [--point-lights N]\n",
                 argv[0]);
             return 2;
         }
@@ -216,7 +231,7 @@ int main(int argc, char** argv) {
     if (copyThreads > 0)
         renderer.setReadbackThreads(copyThreads);
     Scene scene;
-    buildScene(scene, boxes, textured, spheres, lods);
+    buildScene(scene, boxes, textured, spheres, lods, pointLights);
     std::printf(
         "device: %s (%s), %d boxes, shadow maps %d, ids read by %s, %d constant slots, latency-0 readback "
         "%s, copies on %d thread(s), %d view(s), %d timed frames after 3 warm-up frames%s\n",
