@@ -176,11 +176,19 @@ ImportedMeshIds addToScene(Scene& scene, const ImportedMesh& imported, bool shar
     const std::string key = shared ? contentKey(imported.mesh) : std::string();
     ids.mesh = scene.addMesh(imported.mesh, key);
     // A finely tessellated mesh gets coarser levels, drawn where it is small in the image (mesh_lods.h).
+    // (Reported as progress: a mesh of a million triangles takes about a second.)
     std::vector<MeshLod> lods;
-    for (auto& [level, error] : simplifiedLods(scene.mesh(ids.mesh)))
+    const MeshData& full = scene.mesh(ids.mesh);
+    const double expected = std::max(1.0, std::floor(std::log2(double(full.indices.size() / 3) / 512.0)));
+    base::Progress progress("addToScene(): levels of detail of " + (full.name.empty() ? "a mesh" : full.name),
+                            expected);
+    // Shared meshes share their levels too (sharedLods(): made once per process).
+    const std::shared_ptr<const MeshLevels> levels =
+        key.empty() ? std::make_shared<const MeshLevels>(simplifiedLods(full, [&] { progress.advance(); }))
+                    : sharedLods(key, full, [&] { progress.advance(); });
+    for (const auto& [level, error] : *levels)
         lods.push_back(
-            {scene.addMesh(std::move(level), key.empty() ? key : key + "@lod" + std::to_string(lods.size())),
-             error});
+            {scene.addMesh(level, key.empty() ? key : key + "@lod" + std::to_string(lods.size())), error});
     if (!lods.empty())
         scene.setMeshLods(ids.mesh, std::move(lods));
     auto texture = [&](const TextureImage& image, TextureEncoding encoding) {

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <list>
+#include <map>
 #include <mutex>
 
 #include "core/base/parallel.h"
@@ -138,7 +140,8 @@ float deviation(const MeshData& mesh, const std::vector<std::uint32_t>& level, c
 
 } // namespace
 
-std::vector<std::pair<MeshData, float>> simplifiedLods(const MeshData& mesh) {
+std::vector<std::pair<MeshData, float>> simplifiedLods(const MeshData& mesh,
+                                                       const std::function<void()>& levelDone) {
     std::vector<std::pair<MeshData, float>> lods;
     const std::size_t triangles = mesh.indices.size() / 3;
     if (triangles < kLeastLodTriangles)
@@ -195,8 +198,68 @@ std::vector<std::pair<MeshData, float>> simplifiedLods(const MeshData& mesh) {
         currentSubmeshes = level.submeshes;
         compact(mesh, std::move(indices), level);
         lods.emplace_back(std::move(level), previousError);
+        if (levelDone)
+            levelDone();
     }
     return lods;
+}
+
+namespace {
+
+// The bytes a mesh's levels hold.
+std::size_t bytesOf(const MeshLevels& levels) {
+    std::size_t bytes = 0;
+    for (const auto& [level, error] : levels)
+        bytes += level.positions.size() * (sizeof(Eigen::Vector3f) * 2 + sizeof(Eigen::Vector2f)) +
+                 level.indices.size() * sizeof(std::uint32_t);
+    return bytes;
+}
+
+struct LodCache {
+    std::mutex mutex;
+    std::list<std::string> recent; // most recently used first
+    struct Entry {
+        std::shared_ptr<const MeshLevels> levels;
+        std::size_t bytes;
+        std::list<std::string>::iterator at;
+    };
+    std::map<std::string, Entry, std::less<>> entries;
+    std::size_t bytes = 0;
+};
+
+LodCache& lodCache() {
+    static LodCache cache;
+    return cache;
+}
+
+} // namespace
+
+std::shared_ptr<const MeshLevels> sharedLods(const std::string& key, const MeshData& mesh,
+                                             const std::function<void()>& levelDone) {
+    LodCache& cache = lodCache();
+    {
+        const std::lock_guard<std::mutex> lock(cache.mutex);
+        if (auto it = cache.entries.find(key); it != cache.entries.end()) {
+            cache.recent.splice(cache.recent.begin(), cache.recent, it->second.at);
+            return it->second.levels;
+        }
+    }
+    // Made outside the lock: another world's import of another mesh need not wait for this one.
+    auto levels = std::make_shared<const MeshLevels>(simplifiedLods(mesh, levelDone));
+    const std::lock_guard<std::mutex> lock(cache.mutex);
+    if (auto it = cache.entries.find(key); it != cache.entries.end())
+        return it->second.levels; // made meanwhile by another caller
+    const std::size_t bytes = bytesOf(*levels);
+    cache.recent.push_front(key);
+    cache.entries.emplace(key, LodCache::Entry{levels, bytes, cache.recent.begin()});
+    cache.bytes += bytes;
+    while (cache.bytes > kLodCacheBytes && cache.recent.size() > 1) { // the newest stays, however large
+        const auto oldest = cache.entries.find(cache.recent.back());
+        cache.bytes -= oldest->second.bytes;
+        cache.entries.erase(oldest);
+        cache.recent.pop_back();
+    }
+    return levels;
 }
 
 } // namespace sp::render

@@ -4,6 +4,9 @@
 // GL.
 
 #include <cstddef>
+#include <functional>
+#include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -19,11 +22,20 @@ inline constexpr float kMostLodError = 0.25f;
 // The levels of a validated mesh from fine to coarse, each with its MeshLod::relativeError (how far its
 // surface moved: the largest distance from a vertex of the mesh to the level's triangles, as a fraction of
 // the mesh's bounding radius; never decreasing): each has about half the triangles of the one before it,
-// every submesh simplified on its
-// own, with the edges it shares with other submeshes kept where they are (no cracks between materials) and
-// no submesh emptied. Levels stop when one saves under a fifth of its predecessor's triangles or its bound
-// passes kMostLodError; none for meshes of under kLeastLodTriangles triangles. A level holds only the
-// vertices it uses, with their normals and uvs.
-std::vector<std::pair<MeshData, float>> simplifiedLods(const MeshData& mesh);
+// every submesh simplified on its own, with the edges it shares with other submeshes kept where they are
+// (no cracks between materials) and no submesh emptied. Levels stop when one saves under a fifth of its
+// predecessor's triangles or its bound passes kMostLodError; none for meshes of under kLeastLodTriangles
+// triangles. A level holds only the vertices it uses, with their normals and uvs. `levelDone` (if set) is
+// called as each level is made.
+std::vector<std::pair<MeshData, float>> simplifiedLods(const MeshData& mesh,
+                                                       const std::function<void()>& levelDone = {});
+
+// simplifiedLods() of a mesh whose content `key` names (contentKey()), made once per process while they stay
+// among the most recently used kLodCacheBytes: the worlds of a vectorised environment that import one asset
+// share its levels instead of each simplifying it again (a million triangles: about 2 s each).
+using MeshLevels = std::vector<std::pair<MeshData, float>>;
+std::shared_ptr<const MeshLevels> sharedLods(const std::string& key, const MeshData& mesh,
+                                             const std::function<void()>& levelDone = {});
+inline constexpr std::size_t kLodCacheBytes = std::size_t(256) << 20;
 
 } // namespace sp::render

@@ -112,6 +112,23 @@ TEST(MeshLods, SubmeshesKeepTheirBorderAndStayNonEmpty) {
     }
 }
 
+TEST(MeshLods, SharedLevelsAreMadeOncePerProcess) {
+    // The second ask for a key gets the levels the first made, without simplifying again; another key
+    // (another content) its own.
+    const MeshData sphere = validated(primitives::sphere(0.5f, 96, 48));
+    const MeshData other = validated(primitives::sphere(0.5f, 80, 40));
+    int made = 0;
+    const auto first = sharedLods("test:sphere96", sphere, [&] { ++made; });
+    const int madeFirst = made;
+    const auto again = sharedLods("test:sphere96", sphere, [&] { ++made; });
+    EXPECT_GT(madeFirst, 0);
+    EXPECT_EQ(made, madeFirst) << "not made again";
+    EXPECT_EQ(first.get(), again.get());
+    const auto another = sharedLods("test:sphere80", other);
+    EXPECT_NE(another.get(), first.get());
+    EXPECT_NE(another->front().first.indices.size(), first->front().first.indices.size());
+}
+
 TEST(MeshLods, ImportedFineMeshesGetLevelsInTheScene) {
     // An OBJ sphere of 9,216 triangles added to a scene comes with its levels; a box does not.
     const std::filesystem::path dir = std::filesystem::path(SPEAR_RENDER_TEST_OUTPUT_DIR) / "import" / "lods";
@@ -125,8 +142,9 @@ TEST(MeshLods, ImportedFineMeshesGetLevelsInTheScene) {
             obj << "f " << sphere.indices[t] + 1 << " " << sphere.indices[t + 1] + 1 << " "
                 << sphere.indices[t + 2] + 1 << "\n";
     }
-    Scene scene;
-    const ImportedMeshIds ids = addToScene(scene, importMesh((dir / "sphere.obj").string()), true);
+    Scene scene, second;
+    const ImportedMesh imported = importMesh((dir / "sphere.obj").string());
+    const ImportedMeshIds ids = addToScene(scene, imported, true);
     const std::vector<MeshLod>& lods = scene.meshLods(ids.mesh);
     ASSERT_GE(lods.size(), 3u);
     EXPECT_LT(scene.mesh(lods.back().mesh).indices.size() * 8, scene.mesh(ids.mesh).indices.size());
@@ -134,6 +152,13 @@ TEST(MeshLods, ImportedFineMeshesGetLevelsInTheScene) {
     const double radiusInPixels = 20.0 / 2.0 * std::sqrt(3.0);
     EXPECT_NE(scene.lodFor(ids.mesh, radiusInPixels), ids.mesh);
     EXPECT_EQ(scene.lodFor(ids.mesh, 100.0 * radiusInPixels), ids.mesh);
+    // A second scene importing it (another world) gets the same levels, made once (sharedLods()).
+    const ImportedMeshIds again = addToScene(second, imported, true);
+    ASSERT_EQ(second.meshLods(again.mesh).size(), lods.size());
+    for (std::size_t i = 0; i < lods.size(); ++i) {
+        EXPECT_EQ(second.meshLods(again.mesh)[i].relativeError, lods[i].relativeError);
+        EXPECT_EQ(second.mesh(second.meshLods(again.mesh)[i].mesh).indices, scene.mesh(lods[i].mesh).indices);
+    }
 }
 
 } // namespace
