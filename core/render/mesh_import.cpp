@@ -8,7 +8,11 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 
@@ -16,6 +20,7 @@
 #include "core/base/error.h"
 #include "core/base/log.h"
 #include "core/base/progress.h"
+#include "core/base/recent_cache.h"
 #include "core/base/regular_file.h"
 #include "core/render/content_key.h"
 #include "core/render/mesh_lods.h"
@@ -26,10 +31,13 @@ namespace {
 // Assimp opens the files a mesh refers to (an OBJ's material library, a glTF's buffers) by path, with
 // fopen: one that names a FIFO would block the engine for good. Those go through the same checks as the
 // mesh file itself (core/base/regular_file.h); one that fails is reported as missing.
+// It also lists them, for the import cache (importMesh()).
 class RegularFilesOnly : public Assimp::DefaultIOSystem {
   public:
+    explicit RegularFilesOnly(std::vector<std::string>& opened) : opened_(opened) {}
     Assimp::IOStream* Open(const char* file, const char* mode) override {
         if (mode && mode[0] == 'r') {
+            opened_.push_back(file);
             try {
                 checkRegularFile(file, "importMesh()", "referenced file");
             } catch (const Error& error) {
@@ -39,10 +47,20 @@ class RegularFilesOnly : public Assimp::DefaultIOSystem {
         }
         return Assimp::DefaultIOSystem::Open(file, mode);
     }
+
+  private:
+    std::vector<std::string>& opened_;
+};
+
+// What an import reads from: the mesh file's folder (textures are named relative to it), and the files read
+// or looked for, for the import cache.
+struct Reading {
+    std::filesystem::path directory;
+    std::vector<std::string> files;
 };
 
 std::optional<TextureImage> readTexture(const aiScene* scene, const aiMaterial* material, aiTextureType type,
-                                        unsigned index, const std::filesystem::path& directory) {
+                                        unsigned index, Reading& reading) {
     aiString path;
     if (material->GetTexture(type, index, &path) != AI_SUCCESS)
         return std::nullopt;
@@ -59,7 +77,8 @@ std::optional<TextureImage> readTexture(const aiScene* scene, const aiMaterial* 
             }
             return TextureImage::fromPixels(int(embedded->mWidth), int(embedded->mHeight), std::move(rgba));
         }
-        return TextureImage::load((directory / name).string());
+        reading.files.push_back((reading.directory / name).string()); // looked for, there or not
+        return TextureImage::load((reading.directory / name).string());
     } catch (const Error& error) {
         // Assets with broken texture references are common; the material keeps its factors.
         SP_LOG("importMesh(): skipping texture '", name, "': ", error.what());
@@ -67,8 +86,7 @@ std::optional<TextureImage> readTexture(const aiScene* scene, const aiMaterial* 
     }
 }
 
-ImportedMaterial readMaterial(const aiScene* scene, const aiMaterial* source,
-                              const std::filesystem::path& dir) {
+ImportedMaterial readMaterial(const aiScene* scene, const aiMaterial* source, Reading& dir) {
     ImportedMaterial out;
     out.name = source->GetName().C_Str();
     aiColor4D color;
@@ -113,16 +131,54 @@ class ReportProgress : public Assimp::ProgressHandler {
   private:
     base::Progress& progress_;
 };
-} // namespace
 
-ImportedMesh importMesh(const std::string& userPath) {
-    // Outside a server's file roots nothing is told about the file, not even whether it exists.
-    const std::string path = resolveUserPath(findAsset(userPath), "importMesh()", "mesh file");
-    SP_CHECK(std::filesystem::exists(path) && !std::filesystem::is_directory(path), NotFound,
-             "importMesh(): no such file '", userPath, "'");
-    checkRegularFile(path, "importMesh()", "mesh file"); // a FIFO or device: a clear error, not a hang
+// A file as an import found it: which file (device, inode), its size and its modification and change times
+// to the nanosecond, or its absence.
+struct FileStamp {
+    std::string path;
+    bool exists = false;
+    std::array<std::int64_t, 7> identity{};
+    bool operator==(const FileStamp&) const = default;
+};
+
+FileStamp stampOf(const std::string& path) {
+    FileStamp stamp{path};
+    struct stat status {};
+    if (::stat(path.c_str(), &status) != 0 || !S_ISREG(status.st_mode))
+        return stamp;
+    stamp.exists = true;
+    stamp.identity = {std::int64_t(status.st_dev),          std::int64_t(status.st_ino),
+                      std::int64_t(status.st_size),         std::int64_t(status.st_mtim.tv_sec),
+                      std::int64_t(status.st_mtim.tv_nsec), std::int64_t(status.st_ctim.tv_sec),
+                      std::int64_t(status.st_ctim.tv_nsec)};
+    return stamp;
+}
+
+// An imported mesh and every file its import read or looked for (the mesh, a material library, buffers,
+// textures): the same while none of them changed.
+struct CachedImport {
+    ImportedMesh imported;
+    std::vector<FileStamp> files;
+};
+
+std::size_t bytesOf(const ImportedMesh& imported) {
+    const MeshData& mesh = imported.mesh;
+    std::size_t bytes = mesh.positions.size() * (2 * sizeof(Eigen::Vector3f) + sizeof(Eigen::Vector2f)) +
+                        mesh.indices.size() * sizeof(std::uint32_t);
+    for (const ImportedMaterial& material : imported.materials)
+        for (const auto* texture :
+             {&material.baseColorTexture, &material.roughnessMetallicTexture, &material.normalTexture})
+            bytes += *texture ? (*texture)->rgba.size() : 0;
+    return bytes;
+}
+
+std::atomic<std::uint64_t> gFilesRead{0};
+
+// Reads the mesh file at `path` (resolved and checked) with assimp, listing what it read in `reading`.
+ImportedMesh readMeshFile(const std::string& path, const std::string& userPath, Reading& reading) {
+    ++gFilesRead;
     Assimp::Importer importer;
-    importer.SetIOHandler(new RegularFilesOnly); // the importer owns it
+    importer.SetIOHandler(new RegularFilesOnly(reading.files)); // the importer owns it
     base::Progress progress("importMesh(): " + std::filesystem::path(path).filename().string(), 1.0);
     importer.SetProgressHandler(new ReportProgress(progress)); // the importer owns it
     // Baking node transforms also joins meshes that share a material: one submesh per material group.
@@ -134,7 +190,7 @@ ImportedMesh importMesh(const std::string& userPath) {
 
     ImportedMesh out;
     out.mesh.name = std::filesystem::path(path).stem().string();
-    const std::filesystem::path directory = std::filesystem::path(path).parent_path();
+    reading.directory = std::filesystem::path(path).parent_path();
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
         const aiMesh* mesh = scene->mMeshes[m];
         if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
@@ -162,12 +218,45 @@ ImportedMesh importMesh(const std::string& userPath) {
             continue;
         out.mesh.submeshes.push_back(submesh);
         out.materials.push_back(mesh->mMaterialIndex < scene->mNumMaterials
-                                    ? readMaterial(scene, scene->mMaterials[mesh->mMaterialIndex], directory)
+                                    ? readMaterial(scene, scene->mMaterials[mesh->mMaterialIndex], reading)
                                     : ImportedMaterial{});
     }
     SP_CHECK(!out.mesh.submeshes.empty(), InvalidArgument, "importMesh(): '", path,
              "' contains no triangles");
     out.mesh.validate("importMesh");
+    return out;
+}
+
+} // namespace
+
+std::uint64_t meshFilesRead() {
+    return gFilesRead;
+}
+
+ImportedMesh importMesh(const std::string& userPath) {
+    // Outside a server's file roots nothing is told about the file, not even whether it exists.
+    const std::string path = resolveUserPath(findAsset(userPath), "importMesh()", "mesh file");
+    SP_CHECK(std::filesystem::exists(path) && !std::filesystem::is_directory(path), NotFound,
+             "importMesh(): no such file '", userPath, "'");
+    checkRegularFile(path, "importMesh()", "mesh file"); // a FIFO or device: a clear error, not a hang
+    // The physics' collision shape and each world's render scene import a file: read once while none of the
+    // files its import read changed.
+    static base::RecentCache<CachedImport> cache(kImportCacheBytes);
+    if (const std::shared_ptr<const CachedImport> cached = cache.find(path))
+        if (std::all_of(cached->files.begin(), cached->files.end(),
+                        [](const FileStamp& file) { return stampOf(file.path) == file; }))
+            return cached->imported;
+    const FileStamp before = stampOf(path);
+    Reading reading;
+    ImportedMesh out = readMeshFile(path, userPath, reading);
+    auto entry = std::make_shared<CachedImport>();
+    entry->files.push_back(before);
+    for (const std::string& file : reading.files)
+        entry->files.push_back(stampOf(file));
+    if (stampOf(path) == before) { // else it changed while read: not kept
+        entry->imported = out;
+        cache.insert(path, std::move(entry), bytesOf(out));
+    }
     return out;
 }
 

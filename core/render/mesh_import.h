@@ -3,6 +3,8 @@
 // whose submeshes are the file's material groups (node transforms baked in), plus a basic PBR material
 // per submesh. No GL.
 
+#include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,8 +31,14 @@ struct ImportedMesh {
 };
 
 // Reads a mesh file. Throws sp::NotFound naming the path when it does not exist, sp::InvalidArgument
-// when assimp cannot read it (unsupported format, corrupt data) or it holds no triangles.
+// when assimp cannot read it (unsupported format, corrupt data) or it holds no triangles. A file read before
+// is taken from a process-wide cache (the most recently used kImportCacheBytes) while it and every file
+// its import read or looked for (material library, buffers, textures) keep their size and modification
+// time: physics and each world's renderer import a file, and a large one reads for seconds.
 ImportedMesh importMesh(const std::string& path);
+inline constexpr std::size_t kImportCacheBytes = std::size_t(256) << 20;
+// The mesh files importMesh() has read in this process (not those it took from its cache).
+std::uint64_t meshFilesRead();
 
 // Handles of an imported mesh added to a scene.
 struct ImportedMeshIds {

@@ -5,11 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <list>
-#include <map>
 #include <mutex>
 
 #include "core/base/parallel.h"
+#include "core/base/recent_cache.h"
 
 namespace sp::render {
 namespace {
@@ -215,51 +214,17 @@ std::size_t bytesOf(const MeshLevels& levels) {
     return bytes;
 }
 
-struct LodCache {
-    std::mutex mutex;
-    std::list<std::string> recent; // most recently used first
-    struct Entry {
-        std::shared_ptr<const MeshLevels> levels;
-        std::size_t bytes;
-        std::list<std::string>::iterator at;
-    };
-    std::map<std::string, Entry, std::less<>> entries;
-    std::size_t bytes = 0;
-};
-
-LodCache& lodCache() {
-    static LodCache cache;
-    return cache;
-}
-
 } // namespace
 
 std::shared_ptr<const MeshLevels> sharedLods(const std::string& key, const MeshData& mesh,
                                              const std::function<void()>& levelDone) {
-    LodCache& cache = lodCache();
-    {
-        const std::lock_guard<std::mutex> lock(cache.mutex);
-        if (auto it = cache.entries.find(key); it != cache.entries.end()) {
-            cache.recent.splice(cache.recent.begin(), cache.recent, it->second.at);
-            return it->second.levels;
-        }
-    }
-    // Made outside the lock: another world's import of another mesh need not wait for this one.
+    static base::RecentCache<MeshLevels> cache(kLodCacheBytes);
+    if (auto levels = cache.find(key))
+        return levels;
+    // Made outside the cache's lock: another world's import of another mesh need not wait for this one (two
+    // worlds making the same levels at once both make them; one set is kept).
     auto levels = std::make_shared<const MeshLevels>(simplifiedLods(mesh, levelDone));
-    const std::lock_guard<std::mutex> lock(cache.mutex);
-    if (auto it = cache.entries.find(key); it != cache.entries.end())
-        return it->second.levels; // made meanwhile by another caller
-    const std::size_t bytes = bytesOf(*levels);
-    cache.recent.push_front(key);
-    cache.entries.emplace(key, LodCache::Entry{levels, bytes, cache.recent.begin()});
-    cache.bytes += bytes;
-    while (cache.bytes > kLodCacheBytes && cache.recent.size() > 1) { // the newest stays, however large
-        const auto oldest = cache.entries.find(cache.recent.back());
-        cache.bytes -= oldest->second.bytes;
-        cache.entries.erase(oldest);
-        cache.recent.pop_back();
-    }
-    return levels;
+    return cache.insert(key, levels, bytesOf(*levels));
 }
 
 } // namespace sp::render

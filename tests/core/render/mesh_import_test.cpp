@@ -116,6 +116,40 @@ TEST_F(MeshImportTest, CorruptOrUnsupportedIsInvalidArgument) {
     EXPECT_THROW(importMesh(write("empty.obj", "# nothing here\n")), InvalidArgument);
 }
 
+TEST_F(MeshImportTest, AFileReadBeforeComesFromTheCacheUntilAFileItReadChanges) {
+    // The OBJ and its material library: read once; the same again while neither changes; read afresh when
+    // the library changes (a new colour), when the OBJ is replaced by another file, and refused once gone.
+    write("two.mtl", kMtl);
+    const std::string obj = write("two.obj", kObj);
+    const std::uint64_t before = meshFilesRead();
+    const ImportedMesh first = importMesh(obj);
+    const ImportedMesh again = importMesh(obj);
+    EXPECT_EQ(meshFilesRead(), before + 1);
+    EXPECT_EQ(again.mesh.indices, first.mesh.indices);
+    ASSERT_EQ(again.materials.size(), first.materials.size());
+    for (std::size_t m = 0; m < first.materials.size(); ++m)
+        EXPECT_EQ(again.materials[m].material.baseColor, first.materials[m].material.baseColor);
+
+    std::string mtl = kMtl;
+    // (A longer file: two writes within one tick of the kernel's file clock could keep size and times.)
+    mtl.replace(mtl.find("Kd 0.8 0.1 0.1"), 14, "Kd 0.1 0.8 0.1\n# recoloured");
+    write("two.mtl", mtl);
+    const ImportedMesh recoloured = importMesh(obj);
+    EXPECT_EQ(meshFilesRead(), before + 2) << "the material library changed";
+    bool green = false;
+    for (const ImportedMaterial& material : recoloured.materials)
+        green = green || (material.name == "red" && material.material.baseColor.y() > 0.7f);
+    EXPECT_TRUE(green);
+
+    const std::filesystem::path replacement = dir_ / "replacement.obj";
+    std::ofstream(replacement) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::filesystem::rename(replacement, obj); // another file under the same name
+    EXPECT_EQ(importMesh(obj).mesh.indices.size(), 3u);
+    EXPECT_EQ(meshFilesRead(), before + 3);
+    std::filesystem::remove(obj);
+    EXPECT_THROW(importMesh(obj), NotFound);
+}
+
 class MeshImportGlTest : public test::GlTest {};
 
 TEST_F(MeshImportGlTest, ImportedObjRendersWithPerSlotIds) {
