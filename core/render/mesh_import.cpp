@@ -86,7 +86,7 @@ std::optional<TextureImage> readTexture(const aiScene* scene, const aiMaterial* 
     }
 }
 
-ImportedMaterial readMaterial(const aiScene* scene, const aiMaterial* source, Reading& dir) {
+ImportedMaterial readMaterial(const aiScene* scene, const aiMaterial* source, Reading& reading) {
     ImportedMaterial out;
     out.name = source->GetName().C_Str();
     aiColor4D color;
@@ -106,12 +106,12 @@ ImportedMaterial readMaterial(const aiScene* scene, const aiMaterial* source, Re
     out.material.baseColor = out.material.baseColor.cwiseMax(0.0f);
     out.material.emissive = out.material.emissive.cwiseMax(0.0f);
 
-    out.baseColorTexture = readTexture(scene, source, aiTextureType_BASE_COLOR, 0, dir);
+    out.baseColorTexture = readTexture(scene, source, aiTextureType_BASE_COLOR, 0, reading);
     if (!out.baseColorTexture)
-        out.baseColorTexture = readTexture(scene, source, aiTextureType_DIFFUSE, 0, dir);
+        out.baseColorTexture = readTexture(scene, source, aiTextureType_DIFFUSE, 0, reading);
     out.roughnessMetallicTexture =
-        readTexture(scene, source, AI_MATKEY_GLTF_PBRMETALLICROUGHNESS_METALLICROUGHNESS_TEXTURE, dir);
-    out.normalTexture = readTexture(scene, source, aiTextureType_NORMALS, 0, dir);
+        readTexture(scene, source, AI_MATKEY_GLTF_PBRMETALLICROUGHNESS_METALLICROUGHNESS_TEXTURE, reading);
+    out.normalTexture = readTexture(scene, source, aiTextureType_NORMALS, 0, reading);
     return out;
 }
 
