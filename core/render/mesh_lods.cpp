@@ -139,9 +139,8 @@ float deviation(const MeshData& mesh, const std::vector<std::uint32_t>& level, c
 
 } // namespace
 
-std::vector<std::pair<MeshData, float>> simplifiedLods(const MeshData& mesh,
-                                                       const std::function<void()>& levelDone) {
-    std::vector<std::pair<MeshData, float>> lods;
+MeshLevels simplifiedLods(const MeshData& mesh, const std::function<void()>& levelDone) {
+    MeshLevels lods;
     const std::size_t triangles = mesh.indices.size() / 3;
     if (triangles < kLeastLodTriangles)
         return lods;

@@ -388,9 +388,11 @@ void Renderer::renderView(const View& view) {
         if (shadowReach_ && passes.lighting && !shadowInfos.empty())
             receivers.emplace(scene, camera, fb.width, fb.height, shadowInfos);
         const std::vector<Draw> draws = visibleDraws(scene, camera, receivers ? &*receivers : nullptr);
+        // The triangles drawn are counted only where there are slots to spend (not on a GPU).
         std::uint64_t triangles = 0;
-        for (const Draw& draw : draws)
-            triangles += scene.mesh(draw.mesh).submeshes[draw.slot].indexCount / 3;
+        if (constantSlots_ > 0 && adaptiveConstantSlots_)
+            for (const Draw& draw : draws)
+                triangles += scene.mesh(draw.mesh).submeshes[draw.slot].indexCount / 3;
         viewConstantSlots_ = viewConstantSlots(triangles, std::uint64_t(fb.width) * std::uint64_t(fb.height));
         lights.constantSlots = viewConstantSlots_;
         active_->stats.constantSlotPasses += viewConstantSlots_ > 0 ? 1 : 0;
