@@ -430,10 +430,13 @@ void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
     int count = 0;
     scene.forEachLight([&](LightId, const Light& light) {
         copy3(block.lightRadiance[count], light.color * light.intensity, 0.0f);
-        copy3(block.lightPosition[count], light.position.cast<float>(), light.range);
+        copy3(block.lightPosition[count], light.position.cast<float>(),
+              light.range > 0.0f ? 1.0f / light.range : 0.0f);
         copy3(block.lightDirection[count], light.direction.normalized().cast<float>(), 0.0f);
-        block.lightCone[count][0] = std::cos(light.innerConeDeg * float(M_PI) / 180.0f);
-        block.lightCone[count][1] = std::cos(light.outerConeDeg * float(M_PI) / 180.0f);
+        const float cosInner = std::cos(light.innerConeDeg * float(M_PI) / 180.0f);
+        const float cosOuter = std::cos(light.outerConeDeg * float(M_PI) / 180.0f);
+        block.lightCone[count][0] = cosOuter;
+        block.lightCone[count][1] = 1.0f / std::max(cosInner - cosOuter, 1e-4f);
         ++count;
     });
     block.counts[0] = count;

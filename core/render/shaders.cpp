@@ -123,12 +123,6 @@ const float PI = 3.14159265358979;
 // Depths, compared in shadowFactor(); SHADOW_FORMAT is the maps' image format (see ShadowMaps).
 layout(binding = 0, SHADOW_FORMAT) uniform readonly image2DArray uShadowMaps;
 
-float dGgx(float noh, float a) {
-    float a2 = a * a;
-    float d = noh * noh * (a2 - 1.0) + 1.0;
-    return a2 / (PI * d * d);
-}
-float g1Schlick(float nox, float k) { return nox / (nox * (1.0 - k) + k); }
 vec3 fSchlick(vec3 f0, float voh) {
     float m = 1.0 - voh, m2 = m * m;
     return f0 + (1.0 - f0) * (m2 * m2 * m);
@@ -197,16 +191,24 @@ void writeShaded(Shaded s) {
 
 struct Surface {
     vec3 p, n, v, f0;
-    float nov, a, k;
+    float nov, a2, k;
+    float specularScale; // a2 / (4 PI (nov (1 - k) + k)): see accumulate()
 };
 
-// Adds one light of irradiance e (at normal incidence) from direction l: D * G * F / (4 nol nov),
-// times the irradiance e * nol.
+// Adds one light of irradiance e (at normal incidence) from direction l: D * G * F / (4 nol nov), times
+// the irradiance e * nol. With D = a2 / (PI d^2), d = noh^2 (a2 - 1) + 1, and G the product of
+// g1Schlick(nol) and g1Schlick(nov), the nol and nov cancel:
+//   D * G / (4 nov) = specularScale * nol / (d^2 (nol (1 - k) + k)),
+// specularScale = a2 / (4 PI (nov (1 - k) + k)) being the point's (see shade()). One division a light
+// instead of six: a software rasteriser's divisions share one unit and were the shading's costliest
+// instructions.
 void accumulate(Surface s, vec3 l, vec3 e, float nol, inout vec3 irradiance, inout vec3 specular) {
     irradiance += e * nol;
     vec3 h = normalize(s.v + l);
     float noh = max(dot(s.n, h), 0.0), voh = max(dot(s.v, h), 0.0);
-    specular += dGgx(noh, s.a) * g1Schlick(nol, s.k) * g1Schlick(s.nov, s.k) * fSchlick(s.f0, voh) / (4.0 * s.nov) * e;
+    float d = noh * noh * (s.a2 - 1.0) + 1.0;
+    float dg = s.specularScale * nol / (d * d * (nol * (1.0 - s.k) + s.k));
+    specular += dg * fSchlick(s.f0, voh) * e;
 }
 )glsl";
 
@@ -462,8 +464,9 @@ struct ConstantPlan {
     int lightSlots = 0;         // fLights elements
 };
 
-// fLights elements of a light: radiance (and a spot's cos(inner) in w), then a directional light's
-// direction, or a point or spot light's position and range, then a spot's direction and cos(outer).
+// fLights elements of a light: radiance (and a spot's cos(outer) in w), then a directional light's
+// direction, or a point or spot light's position and 1 / range, then a spot's direction and
+// 1 / (cos(inner) - cos(outer)) (FrameBlock's values, element for element).
 int lightSlotCount(LightType type) {
     return type == LightType::Spot ? 3 : 2;
 }
@@ -488,10 +491,10 @@ ConstantPlan planConstants(bool forward, const ShadingLayout& layout) {
     return plan;
 }
 
-// The GLSL expressions for one light's constants (vec3 radiance, position, direction; float range; vec2
-// cos(inner), cos(outer)), from fLights or FrameBlock.
+// The GLSL expressions for one light's constants (vec3 radiance, position, direction; float 1 / range;
+// vec2 cos(outer), 1 / (cos(inner) - cos(outer)): see FrameBlock), from fLights or FrameBlock.
 struct LightTerms {
-    std::string radiance, position, range, direction, cone;
+    std::string radiance, position, inverseRange, direction, cone;
 };
 
 LightTerms lightTerms(const ShadingLayout& layout, const ConstantPlan& plan, std::size_t i) {
@@ -590,8 +593,10 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
     s.v = normalize(cameraPosition() - p);
     s.nov = max(dot(n, s.v), 1e-4);
     s.f0 = mix(vec3(0.04), base, metallic);
-    s.a = max(roughness * roughness, 0.002);
-    s.k = (roughness + 1.0) * (roughness + 1.0) / 8.0;
+    float a = max(roughness * roughness, 0.002);
+    s.a2 = a * a;
+    s.k = (roughness + 1.0) * (roughness + 1.0) * 0.125;
+    s.specularScale = s.a2 / (4.0 * PI * (s.nov * (1.0 - s.k) + s.k));
     vec3 irradiance = vec3(0.0), specular = vec3(0.0);
 )glsl";
     for (std::size_t i = 0; i < layout.lights.size(); ++i) {
@@ -602,19 +607,21 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
             text += "        vec3 l = -" + terms.direction + ";\n";
             text += "        vec3 e = " + terms.radiance + ";\n";
         } else {
+            // One division (the inverse distance) where l = d / dist and e = radiance / dist^2 took six.
             text += "        vec3 d = " + terms.position + " - p;\n";
             text += "        float dist = length(d);\n";
-            text += "        vec3 l = d / max(dist, 1e-6);\n";
-            text += "        vec3 e = " + terms.radiance + " / max(dist * dist, 1e-4);\n";
-            if (light.ranged) { // windowed inverse square: (1 - (d / range)^4)^2
-                text += "        float r = dist / " + terms.range + ";\n";
+            text += "        float inverse = 1.0 / max(dist, 1e-6);\n";
+            text += "        vec3 l = d * inverse;\n";
+            text += "        vec3 e = " + terms.radiance + " * min(inverse * inverse, 1e4);\n";
+            if (light.ranged) { // windowed inverse square: (1 - (d / range)^4)^2; the term holds 1 / range
+                text += "        float r = dist * " + terms.inverseRange + ";\n";
                 text += "        float w = clamp(1.0 - r * r * r * r, 0.0, 1.0);\n";
                 text += "        e *= w * w;\n";
             }
-            if (light.type == LightType::Spot) {
+            if (light.type == LightType::Spot) { // cone: cos(outer), 1 / (cos(inner) - cos(outer))
                 text += "        vec2 cone = " + terms.cone + ";\n";
                 text += "        float t = clamp((dot(-l, " + terms.direction +
-                        ") - cone.y) / max(cone.x - cone.y, 1e-4), 0.0, 1.0);\n";
+                        ") - cone.x) * cone.y, 0.0, 1.0);\n";
                 text += "        e *= t * t;\n";
             }
         }
@@ -636,7 +643,7 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
         text += "            accumulate(s, l, e, nol, irradiance, specular);\n        }\n    }\n";
     }
     text += R"glsl(    Shaded result;
-    result.diffuseIllumination = toHalf(irradiance / PI + ambientRadiance() * ao);
+    result.diffuseIllumination = toHalf(irradiance * (1.0 / PI) + ambientRadiance() * ao);
     result.diffuseOnly = base * (1.0 - metallic) * result.diffuseIllumination;
     result.hdr = result.diffuseOnly + specular + envBrdfApprox(s.f0, roughness, s.nov) * ambientRadiance() * ao + emissive;
     return result;

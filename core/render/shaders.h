@@ -35,9 +35,10 @@ struct FrameBlock {
     float background[4];     // xyz: hdr_color of background pixels
     int counts[4]; // x = light count (informative: the programs are specialised), y = the view's layer
     float lightRadiance[16][4];  // xyz = colour * intensity
-    float lightPosition[16][4];  // xyz, w = range (0 = unbounded)
+    // Reciprocals rather than the values the shading would divide by (see accumulate() in shaders.cpp).
+    float lightPosition[16][4];  // xyz, w = 1 / range (0 = unbounded)
     float lightDirection[16][4]; // xyz unit direction light travels
-    float lightCone[16][4];      // x = cos(inner), y = cos(outer)
+    float lightCone[16][4];      // x = cos(outer), y = 1 / max(cos(inner) - cos(outer), 1e-4)
     float shadowMatrix[4][16];   // world -> light clip, column-major
     float shadowParams[4][4]; // x = world texel size (per metre of distance for a spot light), y = resolution
     float backgroundFinal[4]; // rgba: final_color of background pixels (tone-mapped on the CPU side)
