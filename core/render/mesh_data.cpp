@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include "core/base/error.h"
@@ -128,6 +130,44 @@ bool MeshData::convex() const {
             return false;
     }
     return true;
+}
+
+float MeshData::windingSpread() const {
+    double largest = 0.0; // tan of the largest angle
+    for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+        const Eigen::Vector3d a = positions[indices[t]].cast<double>();
+        const Eigen::Vector3d ab = positions[indices[t + 1]].cast<double>() - a;
+        const Eigen::Vector3d ac = positions[indices[t + 2]].cast<double>() - a;
+        const Eigen::Vector3d winding = ab.cross(ac);
+        // Degenerate within float precision (a sphere's pole, where sin(pi) is not 0 in float): its winding
+        // is rounding, and it covers no pixel (nor would its screen derivatives say anything there).
+        if (winding.norm() <= 1e-7 * std::max(ab.squaredNorm(), ac.squaredNorm()))
+            continue;
+        const Eigen::Vector3d unit = winding.normalized();
+        for (std::size_t v = t; v < t + 3; ++v) {
+            const Eigen::Vector3d normal = normals[indices[v]].cast<double>();
+            const double length = normal.norm();
+            const double cosine = length > 0.0 ? unit.dot(normal) / length : 0.0;
+            if (!(cosine > 1e-6))
+                return std::numeric_limits<float>::infinity();
+            largest = std::max(largest, std::sqrt(std::max(0.0, 1.0 - cosine * cosine)) / cosine);
+        }
+    }
+    return float(largest);
+}
+
+bool windingTurnsNormals(float spread, const Eigen::Matrix3d& linear) {
+    if (!std::isfinite(spread))
+        return false;
+    const double determinant = linear.determinant();
+    if (!std::isfinite(determinant) || determinant == 0.0)
+        return false; // draws nothing; no need to decide
+    if (spread == 0.0f)
+        return true;
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+    solver.computeDirect(linear.transpose() * linear, Eigen::EigenvaluesOnly);
+    const Eigen::Vector3d squares = solver.eigenvalues(); // the singular values squared, ascending
+    return squares(0) > 0.0 && double(spread) * (squares(2) / squares(0) - 1.0) < 1.0;
 }
 
 bool MeshData::faceted() const {

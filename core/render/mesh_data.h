@@ -47,7 +47,23 @@ struct MeshData {
     // faces. A convex, faceted surface cannot shadow itself (see shadow_reach.h); a smooth-shaded one can,
     // where its facets turn from the light before its normals do.
     bool faceted() const;
+    // How far the vertex normals lean from the normals their triangles' windings give ((b - a) x (c - a)):
+    // the tangent of the largest angle between a vertex normal and its triangle's winding normal, 0 for a
+    // mesh shaded flat and wound as its normals face; +infinity where a vertex normal does not lean to its
+    // triangle's winding side (inward windings, flipped normals). Triangles degenerate within float
+    // precision are left out: they cover no pixel. Where it is finite, every fragment's
+    // interpolated normal lies on the side its triangle is wound towards, so the rasteriser's facing tells
+    // which way to turn it to the camera (see windingTurnsNormals()).
+    float windingSpread() const;
     static constexpr std::size_t kConvexCheckLimit = 16u << 20;
 };
+
+// Whether a mesh of windingSpread() `spread` drawn with `linear` (the instance's transform's linear part)
+// keeps every vertex normal on its triangle's winding side, so that the rasteriser's facing turns its
+// normals as screen derivatives of the position would. Normals and windings both turn by the cofactor of
+// `linear`; for unit normals u (a vertex's) and w (its triangle's) at angle t, that keeps u's image on w's
+// image's side while tan(t) (k^2 - 1) < 2, k the condition number of `linear` (half of it kept here, for
+// rounding). A flat mesh keeps it under any invertible transform; a smooth one under near-uniform scales.
+bool windingTurnsNormals(float spread, const Eigen::Matrix3d& linear);
 
 } // namespace sp::render

@@ -163,6 +163,7 @@ void add(RenderStats& total, const RenderStats& s) {
     total.culledInstances += s.culledInstances;
     total.unshadowedInstances += s.unshadowedInstances;
     total.splitInstances += s.splitInstances;
+    total.windingFacedInstances += s.windingFacedInstances;
     total.constantSlotPasses += s.constantSlotPasses;
     for (std::size_t p = 0; p < kPassCount; ++p) {
         total.passTimes[p].gpuMs += s.passTimes[p].gpuMs;
@@ -629,6 +630,8 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
                                                         : std::numeric_limits<double>::max() / 2 - radius;
         const double nearest = std::max(centreDistance - radius, camera.params.nearClip);
         const MeshId mesh = scene.lodFor(instance.mesh, radius * focal / nearest);
+        const bool facing =
+            facingFromWinding_ && windingTurnsNormals(scene.meshWindingSpread(mesh), instance.transform.linear());
         ShadowReach reach;
         if (receivers != nullptr)
             reach = receivers->reach(scene, instance);
@@ -640,12 +643,14 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
             part = parts_.size();
             parts_.push_back(std::move(reach));
         }
+        bool windingFaced = false;
         for (std::size_t slot = 0; slot < instance.materials.size(); ++slot) {
             const Material& material = scene.material(instance.materials[slot]);
             const unsigned features =
                 (material.baseColorTexture ? shaders::kBaseColorTexture : 0u) |
                 (material.roughnessMetallicTexture ? shaders::kRoughnessMetallicTexture : 0u) |
-                (material.normalTexture ? shaders::kNormalTexture : 0u);
+                (material.normalTexture ? shaders::kNormalTexture : facing ? shaders::kFacingFromWinding : 0u);
+            windingFaced = windingFaced || (features & shaders::kFacingFromWinding) != 0;
             draws.push_back(
                 {&instance,
                  mesh,
@@ -657,6 +662,7 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
                  kind,
                  part});
         }
+        active_->stats.windingFacedInstances += windingFaced ? 1 : 0;
     });
     // Front to back, whatever their programs; then each draw joins the batch of the nearest draw it batches
     // with, so a batch is drawn where its nearest member was (still roughly front to back), its members front
@@ -747,7 +753,7 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
     const TargetMask shadedTargets = targets & kComputeLit;
     bool masked = false;
     const auto use = [&](unsigned features, bool lookups, bool named) {
-        const bool deferred = computeLighting && features == 0 && named;
+        const bool deferred = computeLighting && (features & shaders::kTextureFeatures) == 0 && named;
         if (current == std::tuple(features, lookups, deferred))
             return;
         surfaceProgram(targets, shade && !deferred, features, lookups ? lights : unshadowed).use();

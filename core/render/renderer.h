@@ -57,6 +57,7 @@ struct RenderStats {
     std::uint64_t culledInstances = 0;     // instances outside the view, not drawn
     std::uint64_t unshadowedInstances = 0; // shaded without shadow lookups: no shadow reaches them
     std::uint64_t splitInstances = 0;      // shaded in parts: lookups only where a shadow can fall
+    std::uint64_t windingFacedInstances = 0; // normals turned by the rasteriser's facing (kFacingFromWinding)
     std::uint64_t constantSlotPasses = 0;  // surface passes whose fragments read constants from flat varyings
     std::array<PassTime, kPassCount> passTimes{}; // by Pass
 };
@@ -176,6 +177,11 @@ class Renderer {
     // Settable, so that tests render both ways; images are the same bit for bit.
     bool shadowReach() const { return shadowReach_; }
     void setShadowReach(bool on) { shadowReach_ = on; }
+    // Whether draws whose normals lie on their triangles' winding side turn them to the camera by the
+    // rasteriser's facing rather than by screen derivatives (shaders::kFacingFromWinding): on by default.
+    // Settable, so that tests render both ways; images are the same but where a triangle is seen edge-on.
+    bool facingFromWinding() const { return facingFromWinding_; }
+    void setFacingFromWinding(bool on) { facingFromWinding_ = on; }
     // Whether the shadow maps of all scenes are drawn in one layered framebuffer (see shadow_layers.h): by
     // default wherever the driver offers ARB_shader_viewport_layer_array. Settable, so that tests render
     // both ways (images are the same bit for bit); setting it drops what the renderer holds for its scenes.
@@ -253,6 +259,7 @@ class Renderer {
     bool adaptiveConstantSlots_ = true;
     int viewConstantSlots_ = 0; // of the view render() is drawing (viewConstantSlots())
     bool shadowReach_ = false;
+    bool facingFromWinding_ = true;
     std::unique_ptr<SharedUploads> sharedUploads_; // meshes and textures the scenes add under shared keys
     std::unique_ptr<ShadowLayers> shadowLayers_;   // the scenes' shadow maps (before scenes_: they use it)
     std::map<std::uint64_t, std::unique_ptr<SceneState>> scenes_; // by Scene::uid()

@@ -15,10 +15,18 @@ Scene::Scene() : uid_(gNextSceneUid++) {}
 
 MeshId Scene::addMesh(MeshData mesh, std::string sharedKey) {
     mesh.validate("Scene::addMesh");
-    MeshEntry entry{std::move(mesh), nextRevision_++, {}, {}, false, {}, std::move(sharedKey)};
+    MeshEntry entry;
+    entry.data = std::move(mesh);
+    entry.revision = nextRevision_++;
+    entry.sharedKey = std::move(sharedKey);
+    describe(entry);
+    return meshes_.insert(std::move(entry));
+}
+
+void Scene::describe(MeshEntry& entry) {
     entry.data.bounds(entry.min, entry.max);
     entry.convexFaceted = entry.data.faceted() && entry.data.convex(); // faceted() first: it is cheap
-    return meshes_.insert(std::move(entry));
+    entry.windingSpread = entry.data.windingSpread();
 }
 
 void Scene::updateMesh(MeshId id, MeshData mesh) {
@@ -32,8 +40,7 @@ void Scene::updateMesh(MeshId id, MeshData mesh) {
     entry.data = std::move(mesh);
     entry.revision = nextRevision_++;
     entry.sharedKey.clear();
-    entry.data.bounds(entry.min, entry.max);
-    entry.convexFaceted = entry.data.faceted() && entry.data.convex(); // faceted() first: it is cheap
+    describe(entry);
 }
 
 void Scene::removeMesh(MeshId id) {
@@ -60,6 +67,9 @@ const std::string& Scene::meshSharedKey(MeshId id) const {
 }
 bool Scene::meshConvexFaceted(MeshId id) const {
     return meshes_.get(id, "Scene::meshConvexFaceted").convexFaceted;
+}
+float Scene::meshWindingSpread(MeshId id) const {
+    return meshes_.get(id, "Scene::meshWindingSpread").windingSpread;
 }
 
 TextureId Scene::addTexture(TextureImage image, TextureEncoding encoding, std::string sharedKey) {

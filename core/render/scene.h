@@ -65,6 +65,8 @@ class Scene {
     const std::string& meshSharedKey(MeshId id) const;
     // MeshData::convex() and faceted(), computed when the mesh was added or updated: it cannot shadow itself.
     bool meshConvexFaceted(MeshId id) const;
+    // MeshData::windingSpread(), computed when the mesh was added or updated.
+    float meshWindingSpread(MeshId id) const;
     // Levels of detail of a mesh, from finer to coarser (increasing relativeError); each has the mesh's
     // submesh count. A mesh that is some chain's level cannot be removed while that chain names it.
     void setMeshLods(MeshId id, std::vector<MeshLod> lods);
@@ -140,9 +142,12 @@ class Scene {
         std::uint64_t revision = 0;
         Eigen::Vector3f min, max;
         bool convexFaceted = false;
+        float windingSpread = 0.0f;
         std::vector<MeshLod> lods;
         std::string sharedKey;
     };
+    // The entry's bounds and what its shape allows (convexFaceted, windingSpread), from its data.
+    static void describe(MeshEntry& entry);
     struct TextureEntry {
         TextureImage image;
         TextureEncoding encoding;

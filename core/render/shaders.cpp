@@ -53,12 +53,20 @@ layout(binding = 2) uniform sampler2D uNormalTexture;
 void evaluateSurface(out vec3 n, out vec3 base, out float roughness, out float metallic) {
     // Two-sided shading that does not trust the mesh's winding: the geometric normal is turned towards
     // the camera and the shading normal follows it.
+#if defined(FACING_FROM_WINDING) && !defined(HAS_NORMAL_TEXTURE)
+    // The normals lie on their triangles' winding side (MeshData::windingSpread()), so the triangle's facing
+    // says the same, without derivatives. The surface passes draw with a vertically flipped projection, which
+    // makes a triangle wound towards the camera back-facing.
+    n = normalize(vNormal);
+    if (gl_FrontFacing) n = -n;
+#else
     vec3 dpdx = dFdx(vWorldPosition), dpdy = dFdy(vWorldPosition);
     vec3 geometric = cross(dpdx, dpdy);
     vec3 toCamera = cameraPosition() - vWorldPosition;
     if (dot(geometric, toCamera) < 0.0) geometric = -geometric;
     n = normalize(vNormal);
     if (dot(n, geometric) < 0.0) n = -n;
+#endif
 #ifdef HAS_NORMAL_TEXTURE
     {
         // Cotangent frame (Schueler 2013) from screen derivatives (no tangent attribute needed).
@@ -888,6 +896,8 @@ std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialF
         text += "#define HAS_ROUGHNESS_METALLIC_TEXTURE\n";
     if (materialFeatures & kNormalTexture)
         text += "#define HAS_NORMAL_TEXTURE\n";
+    if (materialFeatures & kFacingFromWinding)
+        text += "#define FACING_FROM_WINDING\n";
     text += outputs(targets, compact);
     text += kFrameBlock;
     const ConstantPlan plan = planConstants(forward, lights);

@@ -1,5 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Geometry>
+
 #include "core/base/error.h"
 #include "core/render/mesh_data.h"
 #include "core/render/primitives.h"
@@ -78,6 +83,53 @@ TEST(MeshDataTest, ConvexAndFacetedMeshesAreToldApart) {
     EXPECT_TRUE(primitives::box({2.0f, 1.0f, 0.1f}).faceted());
     EXPECT_TRUE(primitives::plane(8, 8).faceted());
     EXPECT_FALSE(primitives::sphere(0.45f, 32, 16).faceted());
+}
+
+// The mesh with each triangle wound the other way, its normals unchanged.
+MeshData rewound(MeshData mesh) {
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+        std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
+    return mesh;
+}
+
+TEST(MeshDataTest, WindingSpreadTellsHowFarNormalsLeanFromTheirTrianglesWinding) {
+    // Shaded flat and wound outward: the normals are the windings' own.
+    EXPECT_LT(primitives::box({2.0f, 1.0f, 0.1f}).windingSpread(), 1e-5f);
+    EXPECT_LT(primitives::plane(8, 8).windingSpread(), 1e-5f);
+    // Smooth: a vertex normal leans from its triangles' planes by about half the angle between facets
+    // (11.25 degrees for 16 segments; the pole triangles lean most).
+    const float sphere = primitives::sphere(0.45f, 16, 8).windingSpread();
+    EXPECT_GT(sphere, std::tan(0.1f));
+    EXPECT_LT(sphere, std::tan(0.5f));
+    EXPECT_LT(primitives::sphere(0.45f, 64, 32).windingSpread(), sphere);
+    // Wound inward, or one normal flipped: the facing says nothing.
+    EXPECT_TRUE(std::isinf(rewound(primitives::box()).windingSpread()));
+    MeshData flipped = primitives::sphere(0.45f, 16, 8);
+    flipped.normals[5] = -flipped.normals[5];
+    EXPECT_TRUE(std::isinf(flipped.windingSpread()));
+    EXPECT_EQ(MeshData().windingSpread(), 0.0f);
+}
+
+TEST(MeshDataTest, WindingTurnsNormalsUnderTransformsThatKeepThemOnTheirWindingsSide) {
+    const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
+    const Eigen::Matrix3d rotated = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
+    const Eigen::Matrix3d squashed = Eigen::Vector3d(40.0, 40.0, 0.01).asDiagonal();
+    const Eigen::Matrix3d mirrored = Eigen::Vector3d(-1.0, 1.0, 1.0).asDiagonal() * rotated;
+    const float tan20 = std::tan(20.0f * float(M_PI) / 180.0f);
+    // Flat meshes: any invertible transform.
+    EXPECT_TRUE(windingTurnsNormals(0.0f, squashed));
+    EXPECT_TRUE(windingTurnsNormals(0.0f, mirrored));
+    // Smooth meshes: rotations, uniform scales and mirrors; scales as uneven as the bound allows, not more
+    // (tan 20 degrees (k^2 - 1) < 1: k up to 1.93).
+    EXPECT_TRUE(windingTurnsNormals(tan20, identity));
+    EXPECT_TRUE(windingTurnsNormals(tan20, 3.0 * rotated));
+    EXPECT_TRUE(windingTurnsNormals(tan20, mirrored));
+    EXPECT_TRUE(windingTurnsNormals(tan20, Eigen::Vector3d(1.9, 1.0, 1.0).asDiagonal() * rotated));
+    EXPECT_FALSE(windingTurnsNormals(tan20, Eigen::Vector3d(2.0, 1.0, 1.0).asDiagonal() * rotated));
+    EXPECT_FALSE(windingTurnsNormals(tan20, squashed));
+    // Nothing to turn by: a mesh whose normals leave their windings' side, or a transform that flattens it.
+    EXPECT_FALSE(windingTurnsNormals(std::numeric_limits<float>::infinity(), identity));
+    EXPECT_FALSE(windingTurnsNormals(0.0f, Eigen::Vector3d(1.0, 1.0, 0.0).asDiagonal()));
 }
 
 TEST(PrimitivesTest, TubeRingsSitAtTheRadiusAroundThePath) {

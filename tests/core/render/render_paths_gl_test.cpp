@@ -128,6 +128,62 @@ TEST_F(RenderPathsGlTest, ConstantsInFlatVaryingsRenderTheSameImagesAsUniformRea
     }
 }
 
+TEST_F(RenderPathsGlTest, NormalsTurnedByFacingRenderTheImagesScreenDerivativesRender) {
+    // Where a draw's normals lie on its triangles' winding side, the rasteriser's facing turns them to the
+    // camera instead of a geometric normal from screen derivatives. Both turn the same interpolated normal,
+    // so every modality is the same but where the derivatives' normal is too short to tell (a triangle seen
+    // edge-on): from above and from under the ground, with a mirrored box, a mirrored sphere, a stretched
+    // sphere (past the bound: derivatives) and a box wound inward (derivatives).
+    Scene scene;
+    buildShapesScene(scene);
+    addSpotAndPointLights(scene);
+    const MaterialId green = scene.addMaterial(makeMaterial({0.2f, 0.6f, 0.25f}, 0.35f, 0.0f));
+    const MeshId box = scene.addMesh(primitives::box({0.4f, 0.3f, 0.5f}));
+    const MeshId sphere = scene.addMesh(primitives::sphere(0.25f, 32, 16));
+    MeshData inward = primitives::box({0.35f, 0.35f, 0.35f});
+    for (std::size_t t = 0; t + 2 < inward.indices.size(); t += 3)
+        std::swap(inward.indices[t + 1], inward.indices[t + 2]);
+    const MeshId inwardBox = scene.addMesh(std::move(inward));
+    const auto place = [&](MeshId mesh, std::uint32_t id, const Eigen::Vector3d& at, const Eigen::Vector3d& scale) {
+        Instance instance{mesh, {green}, {id}};
+        instance.transform = Eigen::Translation3d(at) * Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()) *
+                             Eigen::Scaling(scale);
+        scene.addInstance(instance);
+    };
+    place(box, 20, {-1.0, 0.9, 0.25}, {-1.0, 1.0, 1.0});
+    place(sphere, 21, {-1.2, -0.2, 0.6}, {-1.2, -1.2, 1.2});
+    place(sphere, 22, {0.6, -1.4, 0.3}, {4.0, 1.0, 1.0});
+    place(inwardBox, 23, {1.4, 0.7, 0.2}, {1.0, 1.0, 1.0});
+    const Camera cameras[] = {cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 128, 96, 60.0),
+                              cameraLookingAt({-2.0, 2.5, -1.5}, {0, 0, 0.0}, 128, 96, 60.0)};
+    for (const Camera& camera : cameras) {
+        Frame frames[2];
+        std::uint64_t faced[2] = {};
+        for (const bool facing : {false, true}) {
+            renderer().setFacingFromWinding(facing);
+            renderer().resetStats();
+            RenderTarget target(renderer(), ModalitySet::all(), 0);
+            target.render(scene, camera, frames[facing]);
+            faced[facing] = renderer().stats().windingFacedInstances;
+        }
+        renderer().setFacingFromWinding(true);
+        EXPECT_EQ(faced[0], 0u);
+        // All but the stretched sphere and the inward box (those in view: the ground, the three shapes, the
+        // mirrored box and sphere).
+        EXPECT_EQ(faced[1], renderer().stats().drawnInstances - 2);
+        for (Modality m : ModalitySet::all().list()) {
+            const auto& a = frames[0].get(m).bytes;
+            const auto& b = frames[1].get(m).bytes;
+            ASSERT_EQ(a.size(), b.size()) << modalityName(m);
+            const std::size_t pixel = a.size() / (128 * 96);
+            std::size_t differing = 0;
+            for (std::size_t i = 0; i < a.size(); i += pixel)
+                differing += std::equal(a.begin() + i, a.begin() + i + pixel, b.begin() + i) ? 0 : 1;
+            EXPECT_LE(differing, 128u * 96u / 500u) << modalityName(m) << ": pixels that differ";
+        }
+    }
+}
+
 TEST_F(RenderPathsGlTest, ViewsOfManyTrianglesPerPixelReadTheirConstantsFromTheUniformBuffer) {
     // With a budget of slots, a view spends them only where it has kPixelsPerConstantTriangle pixels for each
     // triangle it draws: the same scene seen large spends them, seen small (or as finely tessellated spheres)
