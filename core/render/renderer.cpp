@@ -630,8 +630,8 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
                                                         : std::numeric_limits<double>::max() / 2 - radius;
         const double nearest = std::max(centreDistance - radius, camera.params.nearClip);
         const MeshId mesh = scene.lodFor(instance.mesh, radius * focal / nearest);
-        const bool facing =
-            facingFromWinding_ && windingTurnsNormals(scene.meshWindingSpread(mesh), instance.transform.linear());
+        const bool facing = facingFromWinding_ &&
+                            windingTurnsNormals(scene.meshWindingSpread(mesh), instance.transform.linear());
         ShadowReach reach;
         if (receivers != nullptr)
             reach = receivers->reach(scene, instance);
@@ -649,7 +649,9 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
             const unsigned features =
                 (material.baseColorTexture ? shaders::kBaseColorTexture : 0u) |
                 (material.roughnessMetallicTexture ? shaders::kRoughnessMetallicTexture : 0u) |
-                (material.normalTexture ? shaders::kNormalTexture : facing ? shaders::kFacingFromWinding : 0u);
+                (material.normalTexture ? shaders::kNormalTexture
+                 : facing               ? shaders::kFacingFromWinding
+                                        : 0u);
             windingFaced = windingFaced || (features & shaders::kFacingFromWinding) != 0;
             draws.push_back(
                 {&instance,

@@ -52,13 +52,13 @@ struct RenderStats {
     std::uint64_t readbacks = 0;       // one per modality read back
     std::uint64_t meshUploads = 0;
     std::uint64_t textureUploads = 0;
-    std::uint64_t drawnInstances = 0;      // instances drawn by surface passes
-    std::uint64_t drawCalls = 0;           // instanced draw calls of surface and attribute passes
-    std::uint64_t culledInstances = 0;     // instances outside the view, not drawn
-    std::uint64_t unshadowedInstances = 0; // shaded without shadow lookups: no shadow reaches them
-    std::uint64_t splitInstances = 0;      // shaded in parts: lookups only where a shadow can fall
+    std::uint64_t drawnInstances = 0;        // instances drawn by surface passes
+    std::uint64_t drawCalls = 0;             // instanced draw calls of surface and attribute passes
+    std::uint64_t culledInstances = 0;       // instances outside the view, not drawn
+    std::uint64_t unshadowedInstances = 0;   // shaded without shadow lookups: no shadow reaches them
+    std::uint64_t splitInstances = 0;        // shaded in parts: lookups only where a shadow can fall
     std::uint64_t windingFacedInstances = 0; // normals turned by the rasteriser's facing (kFacingFromWinding)
-    std::uint64_t constantSlotPasses = 0;  // surface passes whose fragments read constants from flat varyings
+    std::uint64_t constantSlotPasses = 0; // surface passes whose fragments read constants from flat varyings
     std::array<PassTime, kPassCount> passTimes{}; // by Pass
 };
 

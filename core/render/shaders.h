@@ -34,7 +34,7 @@ struct FrameBlock {
     float ambient[4];        // xyz: uniform sky radiance
     float background[4];     // xyz: hdr_color of background pixels
     int counts[4]; // x = light count (informative: the programs are specialised), y = the view's layer
-    float lightRadiance[16][4];  // xyz = colour * intensity
+    float lightRadiance[16][4]; // xyz = colour * intensity
     // Reciprocals rather than the values the shading would divide by (see accumulate() in shaders.cpp).
     float lightPosition[16][4];  // xyz, w = 1 / range (0 = unbounded)
     float lightDirection[16][4]; // xyz unit direction light travels
@@ -82,7 +82,8 @@ enum MaterialFeature : unsigned {
     kTextureFeatures = 7,
     // The draw's normals lie on their triangles' winding side (windingTurnsNormals() in mesh_data.h): the
     // rasteriser's facing turns them, instead of a geometric normal from screen derivatives of the position
-    // (on llvmpipe 5% of a 1080p final_color frame). Not with a normal texture, whose frame needs them anyway.
+    // (on llvmpipe 5% of a 1080p final_color frame). Not with a normal texture, whose frame needs them
+    // anyway.
     kFacingFromWinding = 8,
 };
 

@@ -144,7 +144,8 @@ TEST_F(RenderPathsGlTest, NormalsTurnedByFacingRenderTheImagesScreenDerivativesR
     for (std::size_t t = 0; t + 2 < inward.indices.size(); t += 3)
         std::swap(inward.indices[t + 1], inward.indices[t + 2]);
     const MeshId inwardBox = scene.addMesh(std::move(inward));
-    const auto place = [&](MeshId mesh, std::uint32_t id, const Eigen::Vector3d& at, const Eigen::Vector3d& scale) {
+    const auto place = [&](MeshId mesh, std::uint32_t id, const Eigen::Vector3d& at,
+                           const Eigen::Vector3d& scale) {
         Instance instance{mesh, {green}, {id}};
         instance.transform = Eigen::Translation3d(at) * Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()) *
                              Eigen::Scaling(scale);
