@@ -4,6 +4,7 @@ mjr_readPixels), one cell after the other in the same run, on the same device.
 
     PYTHONPATH=python /usr/bin/python3 bench/bench_cosim.py --build-dir build [--frames 1000] [--write]
     PYTHONPATH=python /usr/bin/python3 bench/bench_cosim.py --objects 256 --views 1 --sizes 3840x2160 640x480
+    PYTHONPATH=python /usr/bin/python3 bench/bench_cosim.py --no-shadows    # the sun casts none, on both sides
 
 The cells are every --views x --objects at each of --sizes (default: Table 3's 1920x1080), then Table 3's
 256x256 cell (N = 64, one view) unless --sizes already holds that size.
@@ -39,20 +40,21 @@ def load_example() -> ModuleType:
     return module
 
 
-def mujoco(peer: Path, objects: int, views: int, width: int, height: int, frames: int) -> dict[str, Any]:
+def mujoco(peer: Path, objects: int, views: int, width: int, height: int, frames: int,
+           shadows: bool) -> dict[str, Any]:
     completed = subprocess.run([str(peer), "--objects", str(objects), "--views", str(views), "--width", str(width),
-                                "--height", str(height), "--frames", str(frames)],
+                                "--height", str(height), "--frames", str(frames), "--shadows", str(int(shadows))],
                                check=True, capture_output=True, text=True)
     result: dict[str, Any] = json.loads(completed.stdout.strip().splitlines()[-1])
     return result
 
 
 def spear_cell(example: ModuleType, server: str | None, objects: int, views: int, width: int, height: int,
-               frames: int, png: Path | None) -> float:
+               frames: int, png: Path | None, shadows: bool) -> float:
     instance = spear.Instance(server=server, fixed_delta_seconds=example.FRAME_DT)
     try:
         result = example.run(instance, objects=objects, views=views, width=width, height=height, frames=frames,
-                             physics="bullet", png=png)
+                             physics="bullet", png=png, shadows=shadows)
     finally:
         instance.close()
     return float(result.ms_per_frame)
@@ -86,11 +88,14 @@ def main() -> int:
     parser.add_argument("--png-dir", type=Path, default=None,
                         help="write view 0 of each cell's last frame here "
                         "(cosim_N<objects>_<views>v_<size>_<transport>.png)")
+    parser.add_argument("--no-shadows", action="store_true", help="the sun casts no shadows, on both sides")
     parser.add_argument("--write", action="store_true", help="update the Table 3 section of BENCHMARKS.md")
     args = parser.parse_args()
 
     if args.no_rpc and args.no_inprocess:
         parser.error("--no-rpc and --no-inprocess leave nothing to measure")
+    if args.write and args.no_shadows:
+        parser.error("--write records Table 3's workload, which has shadows: leave out --no-shadows")
     peer = (args.peer_dir or args.build_dir / "bench") / "spear_mujoco_cosim_peer"
     if not peer.exists():
         parser.error(f"{peer} is missing: build it with `cmake --build {args.build_dir} --target "
@@ -103,15 +108,15 @@ def main() -> int:
     device = ""
     for objects, views, width, height in cells:
         print(f"cell: N={objects}, {views} view(s), {width}x{height}", file=sys.stderr, flush=True)
-        peer_result = mujoco(peer, objects, views, width, height, args.frames)
+        peer_result = mujoco(peer, objects, views, width, height, args.frames, not args.no_shadows)
         def png(transport: str) -> Path | None:
             stem = f"cosim_N{objects}_{views}v_{width}x{height}_{transport}"
             return None if args.png_dir is None else args.png_dir / f"{stem}.png"
 
         inprocess = None if args.no_inprocess else spear_cell(example, None, objects, views, width, height,
-                                                              args.frames, png("inprocess"))
+                                                              args.frames, png("inprocess"), not args.no_shadows)
         rpc = None if args.no_rpc else spear_cell(example, "launch", objects, views, width, height, args.frames,
-                                                  png("rpc"))
+                                                  png("rpc"), not args.no_shadows)
         device = str(peer_result.get("device", ""))
         rows.append((objects, views, width, height, inprocess, rpc, float(peer_result["ms_per_frame"])))
 
@@ -144,10 +149,13 @@ def main() -> int:
         ("sizes", [f"{w}x{h}" for w, h in args.sizes], ["1920x1080"])) if values != default)
     command = ("PYTHONPATH=python /usr/bin/python3 bench/bench_cosim.py --build-dir build "
                f"--frames {args.frames}{grid}{' --no-rpc' if args.no_rpc else ''}"
-               f"{' --no-inprocess' if args.no_inprocess else ''} --write")
+               f"{' --no-inprocess' if args.no_inprocess else ''}"
+               f"{' --no-shadows' if args.no_shadows else ' --write'}")
+    lighting = ("the sun casts no shadows on either side" if args.no_shadows
+                else "MuJoCo renders RGB with its own shadows")
     text = section("cosim", command, [
         f"Device: {device} ({platform.machine()}, {args.frames} timed frames per cell after 10 warm-up frames; "
-        "MuJoCo renders RGB with its own shadows, no MSAA).",
+        f"{lighting}, no MSAA).",
         "",
         *lines,
     ])

@@ -1,7 +1,8 @@
 // MuJoCo as the peer of the co-simulation benchmark (Table 3; spear's side is examples/cosim_benchmark.py):
 // MuJoCo steps the dynamics and its own renderer draws every frame, offscreen through EGL with no window.
 //
-//   spear_mujoco_cosim_peer [--objects N] [--views 1|2] [--width W] [--height H] [--frames F] [--png PATH]
+//   spear_mujoco_cosim_peer [--objects N] [--views 1|2] [--width W] [--height H] [--frames F] [--shadows 0|1]
+//                           [--png PATH]
 //
 // The workload, identical on both sides:
 // - frames of 1/60 s, physics in 4 substeps of 1/240 s (4 mj_step per frame);
@@ -11,7 +12,8 @@
 //   1 kg, friction 0.8, colours from (i*37)%11, (i*17)%7, (i*53)%5;
 // - at frame k (t = k/60), object i is pushed at its centre of mass for the whole frame by
 //   4 N * (cos(1.5 t + 2 pi i/N), sin(1.5 t + 2 pi i/N), 0) (xfrc_applied);
-// - one directional sun along (-0.5, -0.3, -1) with a 2048^2 shadow map, ambient (0.1, 0.12, 0.15), no MSAA;
+// - one directional sun along (-0.5, -0.3, -1) with a 2048^2 shadow map (none with --shadows 0), ambient
+//   (0.1, 0.12, 0.15), no MSAA;
 // - a camera rig at (R cos 0.3t, R sin 0.3t, 2.5), R = 0.4 side + 5, looking at (0, 0, 0.2); with --views 2
 //   a second view 0.3 m to the right of the first, looking parallel; 60 degree horizontal field of view;
 // - per frame: set the forces, move the rig, step 4 times, then for each view mjv_updateScene, mjr_render
@@ -48,6 +50,7 @@ constexpr double kViewOffset = 0.3;   // view 1 sits this far right of view 0, m
 
 struct Options {
     int objects = 4, views = 1, width = 1920, height = 1080, frames = 1000;
+    bool shadows = true;
     std::string png;
 };
 
@@ -72,8 +75,8 @@ std::string sceneXml(const Options& options) {
         "<worldbody>"
         "<geom name=\"ground\" type=\"plane\" size=\"20 20 0.1\" rgba=\"0.55 0.55 0.5 1\" "
         "friction=\"0.8 0.005 0.0001\"/>"
-        "<light name=\"sun\" directional=\"true\" castshadow=\"true\" pos=\"0 0 10\" dir=\"-0.5 -0.3 -1\"/>",
-        kFrameSeconds / kSubsteps, options.width, options.height);
+        "<light name=\"sun\" directional=\"true\" castshadow=\"%s\" pos=\"0 0 10\" dir=\"-0.5 -0.3 -1\"/>",
+        kFrameSeconds / kSubsteps, options.width, options.height, options.shadows ? "true" : "false");
     std::string xml = buffer;
     const int side = gridSide(options.objects);
     for (int i = 0; i < options.objects; ++i) {
@@ -96,7 +99,7 @@ Options parseOptions(int argc, char** argv) {
     Options options;
     const char* usage =
         "usage: spear_mujoco_cosim_peer [--objects N] [--views 1|2] [--width W] [--height H] [--frames F] "
-        "[--png PATH]";
+        "[--shadows 0|1] [--png PATH]";
     for (int i = 1; i < argc; ++i) {
         const std::string flag = argv[i];
         if (i + 1 >= argc)
@@ -120,6 +123,8 @@ Options parseOptions(int argc, char** argv) {
             options.height = int(number);
         else if (flag == "--frames")
             options.frames = int(number);
+        else if (flag == "--shadows" && number <= 1)
+            options.shadows = number == 1;
         else
             fail(usage);
     }

@@ -8,6 +8,7 @@ fixed path, the images landing in numpy arrays, latency 0.
     PYTHONPATH=python /usr/bin/python3 examples/cosim_benchmark.py --physics mujoco # MuJoCo steps, spear renders
                                         # (the mujoco_interop plugin, built with spear when MuJoCo is installed)
     PYTHONPATH=python /usr/bin/python3 examples/cosim_benchmark.py --forces batched # one add_forces call a frame
+    PYTHONPATH=python /usr/bin/python3 examples/cosim_benchmark.py --no-shadows     # the sun casts none
 
 The workload (bench/mujoco_cosim_peer.cpp runs the same one in MuJoCo alone, for comparison):
 - frame dt 1/60 s, physics in 4 substeps of 1/240 s;
@@ -16,7 +17,7 @@ The workload (bench/mujoco_cosim_peer.cpp runs the same one in MuJoCo alone, for
 - at frame k (t = k/60) object i is pushed by 4 N * (cos(1.5 t + 2 pi i / N), sin(1.5 t + 2 pi i / N), 0)
   for the whole frame, sent with the asynchronous API (one message per frame over RPC): one AddForce per
   object as the paper does, or with --forces batched all of them in one UWorld.add_forces call;
-- one shadow-casting sun (2048-texel shadow map) and a uniform sky;
+- one shadow-casting sun (2048-texel shadow map; with --no-shadows, none) and a uniform sky;
 - the rig circles the scene at radius 0.4 * ceil(sqrt(N)) + 5 m, 2.5 m high, 0.3 rad/s, looking at
   (0, 0, 0.2); view 0 is at the rig, view 1 0.3 m to its right; horizontal FOV 60 degrees.
 The time of a frame is from the start of its begin_frame block until every view's final_color is in a
@@ -104,18 +105,19 @@ def rig_pose(n: int, frame: int) -> tuple[spear.FVector, spear.FRotator, tuple[f
     return spear.FVector(*eye), rotation, right
 
 
-def add_lights(game: spear.UWorld) -> None:
-    """The sun, shining along (-0.5, -0.3, -1) with shadows, and a uniform sky."""
+def add_lights(game: spear.UWorld, shadows: bool = True) -> None:
+    """The sun, shining along (-0.5, -0.3, -1), with shadows unless told, and a uniform sky."""
     sun = game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun", rotation=spear.FRotator(
         Pitch=-math.degrees(math.atan2(1.0, math.hypot(0.5, 0.3))), Yaw=math.degrees(math.atan2(-0.3, -0.5))))
     sun.LightComponent.Intensity = 3.0
+    sun.LightComponent.bCastShadows = shadows
     sky = game.spawn_actor(uclass=spear.ASkyLight, name="Sky")
     sky.SkyLightComponent.SkyColor = spear.FLinearColor(0.1, 0.12, 0.15, 1.0)
     sky.SkyLightComponent.Intensity = 1.0  # the peer's ambient term, (0.1, 0.12, 0.15)
     sky.SkyLightComponent.BackgroundColor = spear.FLinearColor(0.3, 0.35, 0.45, 1.0)
 
 
-def build_scene(game: spear.UWorld, n: int) -> list[spear.UStaticMeshComponent]:
+def build_scene(game: spear.UWorld, n: int, shadows: bool = True) -> list[spear.UStaticMeshComponent]:
     library = game.spawn_actor(uclass=spear.AMaterialLibrary, name="Materials")
     library.SetMaterial(Name="Ground", Material=spear.FMaterialDesc(
         BaseColor=spear.FLinearColor(0.55, 0.55, 0.5, 1.0), Roughness=0.9))
@@ -137,7 +139,7 @@ def build_scene(game: spear.UWorld, n: int) -> list[spear.UStaticMeshComponent]:
         mesh.SetMassOverrideInKg(MassInKg=1.0)
         mesh.SetSimulatePhysics(bSimulate=True)
         bodies.append(mesh)
-    add_lights(game)
+    add_lights(game, shadows)
     return bodies
 
 
@@ -156,7 +158,7 @@ def mjcf(n: int) -> str:
             + "".join(bodies) + "</worldbody></mujoco>")
 
 
-def build_mujoco_scene(instance: spear.Instance, game: spear.UWorld, n: int) -> Any:
+def build_mujoco_scene(instance: spear.Instance, game: spear.UWorld, n: int, shadows: bool = True) -> Any:
     """MuJoCo owns the dynamics (the mujoco_interop plugin); spear renders the actors it moves."""
     build = Path(os.environ.get("SPEAR_PLUGIN_DIR", Path(__file__).resolve().parent.parent / "build" / "python"))
     if not (build / "mujoco_interop").is_dir():
@@ -167,7 +169,7 @@ def build_mujoco_scene(instance: spear.Instance, game: spear.UWorld, n: int) -> 
     # The plugin's classes are typed by its own stubs (examples/mujoco_interop); here they are used by name.
     scene: Any = game.spawn_actor(uclass="AMujocoScene", name="Mujoco")
     scene.LoadMjcfString(Xml=mjcf(n))
-    add_lights(game)
+    add_lights(game, shadows)
     return scene
 
 
@@ -188,16 +190,17 @@ def configure(camera: spear.UCameraSensorComponent, width: int, height: int) -> 
 
 
 def run(instance: spear.Instance, *, objects: int, views: int, width: int, height: int, frames: int,
-        physics: str, png: Path | None, breakdown: bool = False, batched_forces: bool = False) -> Result:
+        physics: str, png: Path | None, breakdown: bool = False, batched_forces: bool = False,
+        shadows: bool = True) -> Result:
     game = instance.get_game()
     rig: spear.AActor
     bodies: list[spear.UStaticMeshComponent] = []
     mujoco: Any = None
     with instance.begin_frame():
         if physics == "mujoco":
-            mujoco = build_mujoco_scene(instance, game, objects)
+            mujoco = build_mujoco_scene(instance, game, objects, shadows)
         else:
-            bodies = build_scene(game, objects)
+            bodies = build_scene(game, objects, shadows)
         location, rotation, _ = rig_pose(objects, 0)
         if views == 1:
             single = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Rig", location=location, rotation=rotation)
@@ -345,6 +348,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--breakdown", action="store_true", help="also print where a frame's time went, by phase")
     parser.add_argument("--forces", choices=["each", "batched"], default="each",
                         help="one AddForce per object (the paper's way), or one add_forces call for all")
+    parser.add_argument("--no-shadows", action="store_true", help="the sun casts no shadows")
     args = parser.parse_args(argv)
 
     results: list[Result] = []
@@ -357,7 +361,7 @@ def main(argv: list[str] | None = None) -> int:
                 png = None if args.png is None else args.png / f"cosim_n{objects}_v{views}.png"
                 results.append(run(instance, objects=objects, views=views, width=args.width, height=args.height,
                                    frames=args.frames, physics=args.physics, png=png, breakdown=args.breakdown,
-                                   batched_forces=args.forces == "batched"))
+                                   batched_forces=args.forces == "batched", shadows=not args.no_shadows))
             finally:
                 instance.close()
             print(f"N={objects}, {views} view(s): {results[-1].ms_per_frame:.1f} ms/frame", file=sys.stderr)
