@@ -218,6 +218,11 @@ struct FRenderStats {
     /// under a few objects, on a software rasteriser).
     SPPROPERTY()
     int64_t SplitInstances = 0;
+    /// Instances whose normals are turned to the camera by the rasteriser's facing rather than by screen
+    /// derivatives: those whose mesh normals lean to their triangles' winding side under the instance's
+    /// scale (the built-in shapes, most imported meshes; images are the same either way).
+    SPPROPERTY()
+    int64_t WindingFacedInstances = 0;
     /// Draw calls of surface passes: one per batch of visible instances sharing a mesh, material
     /// textures and program (instanced), so many copies of one object cost one call.
     SPPROPERTY()

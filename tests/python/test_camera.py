@@ -266,6 +266,28 @@ def test_copies_of_one_mesh_are_drawn_in_one_call_with_their_own_ids(instance: s
     assert set(np.unique(ids)) - {0} == expected  # each cube's pixels carry its own id
 
 
+def test_normals_are_turned_by_the_rasterisers_facing_where_the_mesh_and_its_scale_allow(
+        instance: spear.Instance) -> None:
+    # A cube's normals are its faces' own, under any scale; a sphere stretched four times along one axis leans
+    # its smooth normals past what its triangles' windings vouch for, so its fragments take screen derivatives.
+    game = instance.get_game()
+    with instance.begin_frame():
+        shapes = (("Cube", 0.6, spear.FVector(0.3, 0.5, 0.2)), ("Sphere", -0.6, spear.FVector(0.3, 1.2, 0.3)))
+        for shape, y, scale in shapes:
+            actor = game.spawn_actor(uclass=spear.AStaticMeshActor, location=spear.FVector(X=4.0, Y=y, Z=0.0))
+            actor.StaticMeshComponent.CollisionPrimitive = spear.ECollisionPrimitive.NoCollision  # a stretched sphere
+            actor.StaticMeshComponent.SetStaticMesh(NewMesh=f"/Engine/BasicShapes/{shape}")
+            actor.StaticMeshComponent.SetRelativeScale3D(NewScale3D=scale)
+        camera = spawn_camera(game, [M.FinalColor, M.Normal], 96, 48)
+    with instance.end_frame():
+        pixels = camera.read_pixels()
+        stats = camera.GetRenderStats()
+    assert stats.DrawnInstances == 2 and stats.WindingFacedInstances == 1, stats
+    normal = pixels["normal"]
+    # Both face the camera, which looks along +X (+Y is left: the cube is left of the centre, the sphere right).
+    assert normal[24, 35, 0] < -0.9 and normal[24, 61, 0] < -0.9, (normal[24, 35], normal[24, 61])
+
+
 @pytest.mark.parametrize("distance", [1.0, 3.0, 8.0, 20.0])
 def test_a_round_shape_drawn_at_a_coarser_level_of_detail_keeps_its_outline(instance: spear.Instance,
                                                                             distance: float) -> None:

@@ -533,6 +533,16 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             },
         });
         t.properties.push_back({
+            "WindingFacedInstances",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
+            "Instances whose normals are turned to the camera by the rasteriser's facing rather than by screen\nderivatives: those whose mesh normals lean to their triangles' winding side under the instance's\nscale (the built-in shapes, most imported meshes; images are the same either way).",
+            false,
+            [](const void* self) { return Calls::get_WindingFacedInstances<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_WindingFacedInstances<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
             "DrawCalls",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Draw calls of surface passes: one per batch of visible instances sharing a mesh, material\ntextures and program (instanced), so many copies of one object cost one call.",

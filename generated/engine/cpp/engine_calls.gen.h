@@ -2397,6 +2397,15 @@ struct FRenderStatsCalls {
         sp::reflect::notifyPropertyChanged(self, "SplitInstances");
     }
 
+    template <typename Call> static typename Call::Result get_WindingFacedInstances(const Self* self) {
+        const auto& value = self->WindingFacedInstances;
+        return Call::template result<int64_t>(value);
+    }
+    template <typename Call> static void set_WindingFacedInstances(Self* self, const typename Call::Input& value) {
+        self->WindingFacedInstances = Call::template input<int64_t>(value, "FRenderStats.WindingFacedInstances");
+        sp::reflect::notifyPropertyChanged(self, "WindingFacedInstances");
+    }
+
     template <typename Call> static typename Call::Result get_DrawCalls(const Self* self) {
         const auto& value = self->DrawCalls;
         return Call::template result<int64_t>(value);

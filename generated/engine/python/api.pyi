@@ -447,6 +447,7 @@ class FRenderStats:
     CulledInstances: int = 0
     UnshadowedInstances: int = 0
     SplitInstances: int = 0
+    WindingFacedInstances: int = 0
     DrawCalls: int = 0
     MeshUploads: int = 0
     TextureUploads: int = 0
