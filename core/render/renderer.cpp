@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/base/error.h"
+#include "core/base/log.h"
 #include "core/render/framebuffer_atlas.h"
 #include "core/render/framebuffers.h"
 #include "core/render/gpu_scene_cache.h"
@@ -164,6 +165,7 @@ void add(RenderStats& total, const RenderStats& s) {
     total.unshadowedInstances += s.unshadowedInstances;
     total.splitInstances += s.splitInstances;
     total.windingFacedInstances += s.windingFacedInstances;
+    total.lightsLeftOut += s.lightsLeftOut;
     total.constantSlotPasses += s.constantSlotPasses;
     for (std::size_t p = 0; p < kPassCount; ++p) {
         total.passTimes[p].gpuMs += s.passTimes[p].gpuMs;
@@ -365,23 +367,26 @@ void Renderer::renderView(const View& view) {
     std::vector<ShadowInfo> shadowInfos;
     if (passes.shadow)
         shadowInfos = active_->shadowMaps->infos();
-    // The shading programs are specialised for the lights (see shaders.h): type, range, shadow layer.
+    // The shading programs are specialised for the lights the view shades (see shaders.h): type, range,
+    // shadow layer.
     shaders::ShadingLayout lights;
     lights.constantSlots = constantSlots_;
+    std::vector<ViewLight> shaded;
     if (passes.lighting) {
-        scene.forEachLight([&](LightId, const Light& light) {
+        shaded = viewLights(scene, camera);
+        for (const ViewLight& light : shaded) {
             shaders::LightSlot slot;
-            slot.type = light.type;
-            slot.ranged = light.type != LightType::Directional && light.range > 0.0f;
+            slot.type = light.light->type;
+            slot.ranged = light.light->type != LightType::Directional && light.light->range > 0.0f;
             for (const ShadowInfo& info : shadowInfos)
-                if (info.lightOrdinal == int(lights.lights.size()))
+                if (info.lightOrdinal == light.ordinal)
                     slot.shadowLayer = info.layer;
             lights.lights.push_back(slot);
-        });
+        }
         lights.floatShadowMaps = !shadowInfos.empty() && active_->shadowMaps->format() == GL_R32F;
         lights.vignette = camera.params.vignetteIntensity > 0.0f;
         lights.toneMap = camera.params.toneMap;
-        uploadFrameBlock(scene, camera, shadowInfos);
+        uploadFrameBlock(scene, camera, shadowInfos, shaded);
     }
     if (passes.surface) {
         // Where no shadow can fall, the shading programs skip the lookups (see shadow_reach.h).
@@ -408,8 +413,45 @@ void Renderer::renderView(const View& view) {
     ++active_->stats.frames;
 }
 
+std::vector<Renderer::ViewLight> Renderer::viewLights(const Scene& scene, const Camera& camera) {
+    // A light of finite range whose sphere of influence misses the view frustum lights no point the view
+    // sees (its windowed falloff is exactly 0 past the range), so it is left out: a house of many rooms
+    // shades, in each view, the lights of the rooms it sees.
+    const std::array<Eigen::Vector4d, 6> planes = camera.frustumPlanes();
+    const Eigen::Vector3d eye = camera.pose.translation();
+    std::vector<ViewLight> reaching;
+    int ordinal = -1;
+    scene.forEachLight([&](LightId, const Light& light) {
+        ++ordinal;
+        const bool ranged = light.type != LightType::Directional && light.range > 0.0f;
+        // A margin over the range, for the float arithmetic of the shading.
+        const double reach = 1.001 * double(light.range) + 1e-3;
+        if (ranged && !Scene::reachesInside(planes, light.position, reach))
+            return;
+        const double distance = ranged ? std::max(0.0, (light.position - eye).norm() - reach) : -1.0;
+        reaching.push_back({&light, ordinal, distance});
+    });
+    if (reaching.size() <= std::size_t(shaders::kMaxLights))
+        return reaching;
+    // More than a program shades: the nearest (the unbounded first), in the scene's order.
+    std::vector<ViewLight> kept = reaching;
+    std::stable_sort(kept.begin(), kept.end(),
+                     [](const ViewLight& a, const ViewLight& b) { return a.distance < b.distance; });
+    kept.resize(std::size_t(shaders::kMaxLights));
+    std::sort(kept.begin(), kept.end(),
+              [](const ViewLight& a, const ViewLight& b) { return a.ordinal < b.ordinal; });
+    active_->stats.lightsLeftOut += reaching.size() - kept.size();
+    if (!warnedLightsLeftOut_) {
+        warnedLightsLeftOut_ = true;
+        SP_LOG("Renderer: a view reaches ", reaching.size(), " lights; it shades the ", shaders::kMaxLights,
+               " nearest (RenderStats::lightsLeftOut counts the rest)");
+    }
+    return kept;
+}
+
 void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
-                                const std::vector<ShadowInfo>& shadows) {
+                                const std::vector<ShadowInfo>& shadows,
+                                const std::vector<ViewLight>& lights) {
     shaders::FrameBlock block;
     std::memset(&block, 0, sizeof block);
     copy3(block.cameraPosition, camera.pose.translation().cast<float>(),
@@ -429,7 +471,8 @@ void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
         block.shadowParams[info.layer][1] = float(camera.params.shadowResolution);
     }
     int count = 0;
-    scene.forEachLight([&](LightId, const Light& light) {
+    for (const ViewLight& shaded : lights) {
+        const Light& light = *shaded.light;
         copy3(block.lightRadiance[count], light.color * light.intensity, 0.0f);
         copy3(block.lightPosition[count], light.position.cast<float>(),
               light.range > 0.0f ? 1.0f / light.range : 0.0f);
@@ -439,7 +482,7 @@ void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
         block.lightCone[count][0] = cosOuter;
         block.lightCone[count][1] = 1.0f / std::max(cosInner - cosOuter, 1e-4f);
         ++count;
-    });
+    }
     block.counts[0] = count;
     block.counts[1] = std::max(viewLayer_, 0); // the layer a layered program draws into
     glNamedBufferSubData(frameBlock_, 0, sizeof block, &block);
@@ -451,7 +494,7 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
                            GpuSceneCache& cache, Framebuffers& fb) {
     beginPass(Pass::Surface, fb.surfaceFbo, fb, GL_LESS, true);
     if (!passes.lighting) // the material chunk still reads the camera position (and the layer) from it
-        uploadFrameBlock(scene, camera, {});
+        uploadFrameBlock(scene, camera, {}, {});
     if (!pageCleared_) // else cleared with its page (clearPages())
         clearTargets(scene, camera, passes.surfaceTargets, true);
     if (passes.lighting && passes.shadow && active_->shadowMaps->texture() != 0)

@@ -58,6 +58,8 @@ struct RenderStats {
     std::uint64_t unshadowedInstances = 0;   // shaded without shadow lookups: no shadow reaches them
     std::uint64_t splitInstances = 0;        // shaded in parts: lookups only where a shadow can fall
     std::uint64_t windingFacedInstances = 0; // normals turned by the rasteriser's facing (kFacingFromWinding)
+    std::uint64_t lightsLeftOut =
+        0; // lights reaching a view past the shaders::kMaxLights it shades (the farthest)
     std::uint64_t constantSlotPasses = 0; // surface passes whose fragments read constants from flat varyings
     std::array<PassTime, kPassCount> passTimes{}; // by Pass
 };
@@ -211,7 +213,18 @@ class Renderer {
     // A surface or attribute program; for layered framebuffers when the view being drawn has a layer.
     ShaderProgram& surfaceProgram(TargetMask targets, bool forward, unsigned materialFeatures,
                                   const shaders::ShadingLayout& lights);
-    void uploadFrameBlock(const Scene& scene, const Camera& camera, const std::vector<ShadowInfo>& shadows);
+    // A light a view shades: the scene's light, its position in the scene's order (ShadowInfo::lightOrdinal)
+    // and how far the view is from where it reaches (-1 for an unbounded light).
+    struct ViewLight {
+        const Light* light = nullptr;
+        int ordinal = -1;
+        double distance = 0.0;
+    };
+    // The lights that reach the view's frustum, in the scene's order, at most shaders::kMaxLights (the
+    // nearest, counted in RenderStats::lightsLeftOut past that).
+    std::vector<ViewLight> viewLights(const Scene& scene, const Camera& camera);
+    void uploadFrameBlock(const Scene& scene, const Camera& camera, const std::vector<ShadowInfo>& shadows,
+                          const std::vector<ViewLight>& lights);
     // The submeshes of the instances in view, grouped by program and front to back within a group; with
     // `receivers`, each knows where shadows reach it (the parts of those drawn in parts go to parts_).
     std::vector<Draw> visibleDraws(const Scene& scene, const Camera& camera,
@@ -260,6 +273,7 @@ class Renderer {
     int viewConstantSlots_ = 0; // of the view render() is drawing (viewConstantSlots())
     bool shadowReach_ = false;
     bool facingFromWinding_ = true;
+    bool warnedLightsLeftOut_ = false;
     std::unique_ptr<SharedUploads> sharedUploads_; // meshes and textures the scenes add under shared keys
     std::unique_ptr<ShadowLayers> shadowLayers_;   // the scenes' shadow maps (before scenes_: they use it)
     std::map<std::uint64_t, std::unique_ptr<SceneState>> scenes_; // by Scene::uid()

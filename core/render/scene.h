@@ -49,7 +49,8 @@ struct Environment {
 
 class Scene {
   public:
-    static constexpr std::size_t kMaxLights = 16;
+    // A view shades at most shaders::kMaxLights of them: those whose range reaches it (Renderer::viewLights).
+    static constexpr std::size_t kMaxLights = 4096;
 
     Scene();
 

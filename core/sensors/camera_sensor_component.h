@@ -223,6 +223,10 @@ struct FRenderStats {
     /// scale (the built-in shapes, most imported meshes; images are the same either way).
     SPPROPERTY()
     int64_t WindingFacedInstances = 0;
+    /// Lights whose range reaches a view past the 16 a view shades: the farthest are left out (lights whose
+    /// range misses the view are left out always, and not counted: they light nothing it sees).
+    SPPROPERTY()
+    int64_t LightsLeftOut = 0;
     /// Draw calls of surface passes: one per batch of visible instances sharing a mesh, material
     /// textures and program (instanced), so many copies of one object cost one call.
     SPPROPERTY()

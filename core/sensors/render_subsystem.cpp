@@ -618,6 +618,7 @@ FRenderStats RenderSubsystem::stats() const {
     result.UnshadowedInstances = int64_t(stats.unshadowedInstances);
     result.SplitInstances = int64_t(stats.splitInstances);
     result.WindingFacedInstances = int64_t(stats.windingFacedInstances);
+    result.LightsLeftOut = int64_t(stats.lightsLeftOut);
     result.DrawCalls = int64_t(stats.drawCalls);
     result.MeshUploads = int64_t(stats.meshUploads);
     result.TextureUploads = int64_t(stats.textureUploads);

@@ -199,6 +199,45 @@ def lit_room(game: spear.UWorld) -> None:
     sky.SkyLightComponent.Intensity = 0.2
 
 
+def test_a_world_of_many_lamps_shades_in_each_view_those_that_reach_it(instance: spear.Instance) -> None:
+    # 40 lamps of 4 m range, 35 behind the camera or far to its sides, then 5 before it: a view shades the
+    # lamps whose range reaches it (16 at most), whatever their number and order in the world, so the 35
+    # change nothing, and destroying them leaves the image as it was, bit for bit; destroying one it sees
+    # does not.
+    game = instance.get_game()
+    with instance.begin_frame():
+        floor = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Floor")
+        floor.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Plane")
+        floor.SetActorScale3D(NewScale3D=spear.FVector(200.0, 200.0, 1.0))
+        seen, unseen = [], []
+        for i in range(40):
+            if i < 35:
+                location = spear.FVector(X=-20.0 - 8.0 * (i % 5), Y=-60.0 + 20.0 * (i // 5), Z=1.5)
+            else:
+                j = i - 35
+                location = spear.FVector(X=3.0 + 2.5 * j, Y=1.5 * (j % 3 - 1), Z=1.5)
+            lamp = game.spawn_actor(uclass=spear.APointLight, location=location)
+            lamp.LightComponent.AttenuationRadius = 4.0
+            (unseen if i < 35 else seen).append(lamp)
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor, location=spear.FVector(X=-2.0, Z=3.0),
+                                  rotation=spear.FRotator(Pitch=-30.0)).CameraSensor
+        camera.Width, camera.Height, camera.FOV = 64, 48, 60.0
+        camera.Modalities = [M.FinalColor, M.HdrColor]
+    with instance.end_frame():
+        pass
+    images = []
+    for destroyed in (None, unseen, seen[:1]):
+        with instance.begin_frame():
+            for lamp in destroyed or []:
+                game.destroy_actor(actor=lamp)
+        with instance.end_frame():
+            images.append(camera.read_pixels())
+            assert camera.GetRenderStats().LightsLeftOut == 0
+    for key in ("final_color", "hdr_color"):
+        assert np.array_equal(images[0][key], images[1][key]), key
+        assert not np.array_equal(images[1][key], images[2][key]), key
+
+
 def test_intrinsic_decomposition_holds_per_pixel(instance: spear.Instance) -> None:
     game = instance.get_game()
     with instance.begin_frame():

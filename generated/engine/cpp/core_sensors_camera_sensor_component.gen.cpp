@@ -543,6 +543,16 @@ const sp::reflect::TypeInfo& FRenderStats::StaticClass() {
             },
         });
         t.properties.push_back({
+            "LightsLeftOut",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
+            "Lights whose range reaches a view past the 16 a view shades: the farthest are left out (lights whose\nrange misses the view are left out always, and not counted: they light nothing it sees).",
+            false,
+            [](const void* self) { return Calls::get_LightsLeftOut<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_LightsLeftOut<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
             "DrawCalls",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Draw calls of surface passes: one per batch of visible instances sharing a mesh, material\ntextures and program (instanced), so many copies of one object cost one call.",

@@ -2406,6 +2406,15 @@ struct FRenderStatsCalls {
         sp::reflect::notifyPropertyChanged(self, "WindingFacedInstances");
     }
 
+    template <typename Call> static typename Call::Result get_LightsLeftOut(const Self* self) {
+        const auto& value = self->LightsLeftOut;
+        return Call::template result<int64_t>(value);
+    }
+    template <typename Call> static void set_LightsLeftOut(Self* self, const typename Call::Input& value) {
+        self->LightsLeftOut = Call::template input<int64_t>(value, "FRenderStats.LightsLeftOut");
+        sp::reflect::notifyPropertyChanged(self, "LightsLeftOut");
+    }
+
     template <typename Call> static typename Call::Result get_DrawCalls(const Self* self) {
         const auto& value = self->DrawCalls;
         return Call::template result<int64_t>(value);

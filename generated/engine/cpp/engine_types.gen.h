@@ -44,5 +44,5 @@ __attribute__((visibility("default"))) const char* spear_register_engine_types_a
 
 // The same hash as a constant: a plugin compiled against these headers records the engine's.
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "764a96dc07291632";
+inline constexpr char kApiHash[] = "c9564e56db115d4e";
 } // namespace sp::generated::engine

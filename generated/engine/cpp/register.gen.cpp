@@ -202,4 +202,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "764a96dc07291632"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "c9564e56db115d4e"; }

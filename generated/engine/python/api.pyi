@@ -448,6 +448,7 @@ class FRenderStats:
     UnshadowedInstances: int = 0
     SplitInstances: int = 0
     WindingFacedInstances: int = 0
+    LightsLeftOut: int = 0
     DrawCalls: int = 0
     MeshUploads: int = 0
     TextureUploads: int = 0

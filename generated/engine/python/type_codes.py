@@ -113,7 +113,7 @@ FIELD_TYPES: dict[str, dict[str, TypeCode]] = {
     "FMoviePipelineProgress": {"FramesTotal": T_int, "FramesRendered": T_int, "FramesWriting": T_int, "FramesSkipped": T_int, "ElapsedSeconds": T_float, "EstimatedSecondsLeft": T_float},
     "FQuat": {"X": T_float, "Y": T_float, "Z": T_float, "W": T_float},
     "FRenderDeviceInfo": {"Kind": T_str, "DeviceIndex": T_int, "DeviceCount": T_int, "Vendor": T_str, "Renderer": T_str, "Version": T_str},
-    "FRenderStats": {"Frames": T_int, "ShadowPasses": T_int, "ShadowReuses": T_int, "SurfacePasses": T_int, "AttributePasses": T_int, "LightingPasses": T_int, "TonemapPasses": T_int, "Readbacks": T_int, "DrawnInstances": T_int, "CulledInstances": T_int, "UnshadowedInstances": T_int, "SplitInstances": T_int, "WindingFacedInstances": T_int, "DrawCalls": T_int, "MeshUploads": T_int, "TextureUploads": T_int, "ShadowMs": T_float, "SurfaceMs": T_float, "AttributeMs": T_float, "ReadbackMs": T_float},
+    "FRenderStats": {"Frames": T_int, "ShadowPasses": T_int, "ShadowReuses": T_int, "SurfacePasses": T_int, "AttributePasses": T_int, "LightingPasses": T_int, "TonemapPasses": T_int, "Readbacks": T_int, "DrawnInstances": T_int, "CulledInstances": T_int, "UnshadowedInstances": T_int, "SplitInstances": T_int, "WindingFacedInstances": T_int, "LightsLeftOut": T_int, "DrawCalls": T_int, "MeshUploads": T_int, "TextureUploads": T_int, "ShadowMs": T_float, "SurfaceMs": T_float, "AttributeMs": T_float, "ReadbackMs": T_float},
     "FRotator": {"Pitch": T_float, "Yaw": T_float, "Roll": T_float},
     "FTransform": {"Translation": T_FVector, "Rotation": T_FQuat, "Scale3D": T_FVector},
     "FVector": {"X": T_float, "Y": T_float, "Z": T_float},
