@@ -21,6 +21,8 @@ struct Light {
     float outerConeDeg = 45.0f; // spot: zero outside this half-angle
     bool castShadows = true;    // directional and spot lights; point lights never cast shadows
 
+    // A point or spot light of finite range: it adds exactly nothing past `range`.
+    bool ranged() const { return type != LightType::Directional && range > 0.0f; }
     // Throws sp::InvalidArgument naming the bad field.
     void validate(const char* function) const;
 };

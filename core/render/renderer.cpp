@@ -377,7 +377,7 @@ void Renderer::renderView(const View& view) {
         for (const ViewLight& light : shaded) {
             shaders::LightSlot slot;
             slot.type = light.light->type;
-            slot.ranged = light.light->type != LightType::Directional && light.light->range > 0.0f;
+            slot.ranged = light.light->ranged();
             for (const ShadowInfo& info : shadowInfos)
                 if (info.lightOrdinal == light.ordinal)
                     slot.shadowLayer = info.layer;
@@ -423,30 +423,29 @@ std::vector<Renderer::ViewLight> Renderer::viewLights(const Scene& scene, const 
     int ordinal = -1;
     scene.forEachLight([&](LightId, const Light& light) {
         ++ordinal;
-        const bool ranged = light.type != LightType::Directional && light.range > 0.0f;
         // A margin over the range, for the float arithmetic of the shading.
         const double reach = 1.001 * double(light.range) + 1e-3;
-        if (ranged && !Scene::reachesInside(planes, light.position, reach))
+        if (light.ranged() && !Scene::reachesInside(planes, light.position, reach))
             return;
-        const double distance = ranged ? std::max(0.0, (light.position - eye).norm() - reach) : -1.0;
+        const double distance = light.ranged() ? std::max(0.0, (light.position - eye).norm() - reach) : -1.0;
         reaching.push_back({&light, ordinal, distance});
     });
     if (reaching.size() <= std::size_t(shaders::kMaxLights))
         return reaching;
     // More than a program shades: the nearest (the unbounded first), in the scene's order.
-    std::vector<ViewLight> kept = reaching;
-    std::stable_sort(kept.begin(), kept.end(),
+    const std::size_t reached = reaching.size();
+    std::stable_sort(reaching.begin(), reaching.end(),
                      [](const ViewLight& a, const ViewLight& b) { return a.distance < b.distance; });
-    kept.resize(std::size_t(shaders::kMaxLights));
-    std::sort(kept.begin(), kept.end(),
+    reaching.resize(std::size_t(shaders::kMaxLights));
+    std::sort(reaching.begin(), reaching.end(),
               [](const ViewLight& a, const ViewLight& b) { return a.ordinal < b.ordinal; });
-    active_->stats.lightsLeftOut += reaching.size() - kept.size();
+    active_->stats.lightsLeftOut += reached - reaching.size();
     if (!warnedLightsLeftOut_) {
         warnedLightsLeftOut_ = true;
-        SP_LOG("Renderer: a view reaches ", reaching.size(), " lights; it shades the ", shaders::kMaxLights,
+        SP_LOG("Renderer: a view reaches ", reached, " lights; it shades the ", shaders::kMaxLights,
                " nearest (RenderStats::lightsLeftOut counts the rest)");
     }
-    return kept;
+    return reaching;
 }
 
 void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,

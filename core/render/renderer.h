@@ -58,8 +58,7 @@ struct RenderStats {
     std::uint64_t unshadowedInstances = 0;   // shaded without shadow lookups: no shadow reaches them
     std::uint64_t splitInstances = 0;        // shaded in parts: lookups only where a shadow can fall
     std::uint64_t windingFacedInstances = 0; // normals turned by the rasteriser's facing (kFacingFromWinding)
-    std::uint64_t lightsLeftOut =
-        0; // lights reaching a view past the shaders::kMaxLights it shades (the farthest)
+    std::uint64_t lightsLeftOut = 0;         // lights reaching a view past the 16 it shades (the farthest)
     std::uint64_t constantSlotPasses = 0; // surface passes whose fragments read constants from flat varyings
     std::array<PassTime, kPassCount> passTimes{}; // by Pass
 };

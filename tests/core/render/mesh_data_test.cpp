@@ -8,6 +8,7 @@
 #include "core/base/error.h"
 #include "core/render/mesh_data.h"
 #include "core/render/primitives.h"
+#include "test_scenes.h"
 
 namespace sp::render {
 namespace {
@@ -85,13 +86,6 @@ TEST(MeshDataTest, ConvexAndFacetedMeshesAreToldApart) {
     EXPECT_FALSE(primitives::sphere(0.45f, 32, 16).faceted());
 }
 
-// The mesh with each triangle wound the other way, its normals unchanged.
-MeshData rewound(MeshData mesh) {
-    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
-        std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
-    return mesh;
-}
-
 TEST(MeshDataTest, WindingSpreadTellsHowFarNormalsLeanFromTheirTrianglesWinding) {
     // Shaded flat and wound outward: the normals are the windings' own.
     EXPECT_LT(primitives::box({2.0f, 1.0f, 0.1f}).windingSpread(), 1e-5f);
@@ -103,7 +97,7 @@ TEST(MeshDataTest, WindingSpreadTellsHowFarNormalsLeanFromTheirTrianglesWinding)
     EXPECT_LT(sphere, std::tan(0.5f));
     EXPECT_LT(primitives::sphere(0.45f, 64, 32).windingSpread(), sphere);
     // Wound inward, or one normal flipped: the facing says nothing.
-    EXPECT_TRUE(std::isinf(rewound(primitives::box()).windingSpread()));
+    EXPECT_TRUE(std::isinf(test::rewound(primitives::box()).windingSpread()));
     MeshData flipped = primitives::sphere(0.45f, 16, 8);
     flipped.normals[5] = -flipped.normals[5];
     EXPECT_TRUE(std::isinf(flipped.windingSpread()));

@@ -140,10 +140,7 @@ TEST_F(RenderPathsGlTest, NormalsTurnedByFacingRenderTheImagesScreenDerivativesR
     const MaterialId green = scene.addMaterial(makeMaterial({0.2f, 0.6f, 0.25f}, 0.35f, 0.0f));
     const MeshId box = scene.addMesh(primitives::box({0.4f, 0.3f, 0.5f}));
     const MeshId sphere = scene.addMesh(primitives::sphere(0.25f, 32, 16));
-    MeshData inward = primitives::box({0.35f, 0.35f, 0.35f});
-    for (std::size_t t = 0; t + 2 < inward.indices.size(); t += 3)
-        std::swap(inward.indices[t + 1], inward.indices[t + 2]);
-    const MeshId inwardBox = scene.addMesh(std::move(inward));
+    const MeshId inwardBox = scene.addMesh(rewound(primitives::box({0.35f, 0.35f, 0.35f})));
     const auto place = [&](MeshId mesh, std::uint32_t id, const Eigen::Vector3d& at,
                            const Eigen::Vector3d& scale) {
         Instance instance{mesh, {green}, {id}};

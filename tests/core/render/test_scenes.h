@@ -1,6 +1,8 @@
 #pragma once
 // Small scenes shared by the golden, intrinsics and latency tests.
 
+#include <utility>
+
 #include "core/render/camera.h"
 #include "core/render/primitives.h"
 #include "core/render/scene.h"
@@ -28,6 +30,13 @@ inline Material makeMaterial(Eigen::Vector3f color, float roughness, float metal
     m.roughness = roughness;
     m.metallic = metallic;
     return m;
+}
+
+// The mesh with each triangle wound the other way, its normals unchanged.
+inline MeshData rewound(MeshData mesh) {
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+        std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
+    return mesh;
 }
 
 // Ground, a box, a metallic sphere and a cylinder; a directional sun with shadows and a sky term.
