@@ -161,6 +161,37 @@ struct PathTracer::Impl {
             rtcReleaseDevice(device);
     }
 
+    // Builds the geometry again when the scene's changed (or it is another scene).
+    void sync(const render::Scene& scene) {
+        if (const std::uint64_t geometry = geometryHash(scene);
+            !rtcScene || geometry != geometrySignature || scene.uid() != builtFor) {
+            build(scene);
+            geometrySignature = geometry;
+            builtFor = scene.uid();
+        }
+    }
+
+    // The first surface along a ray: its distance (infinity for none) and whether the ray meets its back
+    // (the side its winding faces away from).
+    float firstHit(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, bool& back,
+                   std::uint64_t& rays) const {
+        ++rays;
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        RTCRayHit hit{};
+        hit.ray.org_x = origin.x(), hit.ray.org_y = origin.y(), hit.ray.org_z = origin.z();
+        hit.ray.dir_x = direction.x(), hit.ray.dir_y = direction.y(), hit.ray.dir_z = direction.z();
+        hit.ray.tnear = 0.0f;
+        hit.ray.tfar = std::numeric_limits<float>::infinity();
+        hit.ray.mask = kCameraRays;
+        hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(rtcScene, &context, &hit);
+        back = hit.hit.geomID != RTC_INVALID_GEOMETRY_ID &&
+               Eigen::Vector3f(hit.hit.Ng_x, hit.hit.Ng_y, hit.hit.Ng_z).dot(direction) > 0.0f;
+        return hit.hit.geomID == RTC_INVALID_GEOMETRY_ID ? std::numeric_limits<float>::infinity()
+                                                         : hit.ray.tfar;
+    }
+
     // What the geometry is built from (the scene's process-unique id left out: see imageHash()).
     static std::uint64_t geometryHash(const render::Scene& scene) {
         Hasher h;
@@ -235,9 +266,8 @@ struct PathTracer::Impl {
         ++builds;
     }
 
-    // Everything an image depends on: the geometry, materials, lights, sky, camera and bounces.
-    std::uint64_t imageHash(const render::Scene& scene, const render::Camera& camera,
-                            const Settings& settings) const {
+    // Everything the light in the scene depends on: the geometry, materials, lights and sky.
+    std::uint64_t lightingHash(const render::Scene& scene) const {
         Hasher h;
         h.add(geometrySignature);
         for (const Shape& shape : shapes)
@@ -273,6 +303,14 @@ struct PathTracer::Impl {
         h.add(lights);
         h.matrix(scene.environment().ambient);
         h.matrix(scene.environment().background);
+        return h.value;
+    }
+
+    // Everything an image depends on: the light in the scene, the camera and the bounces.
+    std::uint64_t imageHash(const render::Scene& scene, const render::Camera& camera,
+                            const Settings& settings) const {
+        Hasher h;
+        h.add(lightingHash(scene));
         h.matrix(camera.pose.matrix());
         h.add(camera.params.width);
         h.add(camera.params.height);
@@ -304,13 +342,14 @@ struct PathTracer::Impl {
 
     // One path's estimate of the radiance arriving at `origin` from `direction` (a primary ray, clipped to
     // [tnear, tfar]), with its intrinsic parts (see PathSample).
-    PathSample trace(const render::Scene& scene, const render::Camera& camera, Eigen::Vector3f origin,
-                     Eigen::Vector3f direction, float tnear, float tfar, const Settings& settings,
-                     Random& random, std::uint64_t& rays) const {
+    // `shadows`: lights cast shadows (a camera's bShadows, as the rasteriser's shadow maps); `missed`: what a
+    // primary ray that hits nothing brings back (a camera's background, a probe's sky).
+    PathSample trace(const render::Scene& scene, bool shadows, const Eigen::Vector3f& missed,
+                     Eigen::Vector3f origin, Eigen::Vector3f direction, float tnear, float tfar,
+                     const Settings& settings, Random& random, std::uint64_t& rays) const {
         const render::Environment& environment = scene.environment();
         const bool sky = environment.ambient.maxCoeff() > 0.0f;
         PathSample out;
-        const bool shadows = camera.params.shadows; // lights' shadows, as the rasteriser's shadow maps
         // Light reflected at the first surface splits by lobe. What arrives there along direction l is
         // weighted by f cos / pdf for hdr_color, by its diffuse lobe's share for diffuse_only and by a white
         // Lambertian's (cos / pi / pdf) for diffuse_illumination; `first*` hold these for the first bounce's
@@ -347,7 +386,7 @@ struct PathTracer::Impl {
             ++rays;
             if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
                 if (depth == 0) {
-                    out.hdr += environment.background;
+                    out.hdr += missed;
                 } else if (sky) { // the BSDF's share of the sky (multiple importance sampling)
                     const float weight = bsdfPdf * bsdfPdf / (bsdfPdf * bsdfPdf + skyPdf * skyPdf);
                     throughFirst(environment.ambient * weight);
@@ -491,12 +530,7 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
     camera.params.validate("PathTracer::render");
     settings.validate("PathTracer::render");
     Impl& impl = *impl_;
-    if (const std::uint64_t geometry = Impl::geometryHash(scene);
-        !impl.rtcScene || geometry != impl.geometrySignature || scene.uid() != impl.builtFor) {
-        impl.build(scene);
-        impl.geometrySignature = geometry;
-        impl.builtFor = scene.uid();
-    }
+    impl.sync(scene);
     // What the image depends on; it also seeds the random numbers, so it leaves out the scene's
     // process-unique id: the same scene and view give the same image in every run.
     const std::uint64_t signature = impl.imageHash(scene, camera, settings);
@@ -551,8 +585,8 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
                     const Eigen::Vector3f direction = (rotation * toFocus).normalized();
                     const float axial = toFocus.x() / toFocus.norm(); // cosine to the optical axis
                     const PathSample path =
-                        impl.trace(scene, camera, eye + rotation * lens, direction,
-                                   float(camera.params.nearClip) / axial,
+                        impl.trace(scene, camera.params.shadows, scene.environment().background,
+                                   eye + rotation * lens, direction, float(camera.params.nearClip) / axial,
                                    float(camera.params.farClip) / axial, settings, random, traced);
                     if (path.hdr.allFinite() && path.diffuseOnly.allFinite() &&
                         path.diffuseIllumination.allFinite())
@@ -576,6 +610,84 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
     progress.set(double(height));
     image.samples += std::uint64_t(settings.samplesPerPixel);
     impl.lastRays = rays;
+}
+
+std::uint64_t PathTracer::lightingSignature(const render::Scene& scene) {
+    impl_->sync(scene);
+    return impl_->lightingHash(scene);
+}
+
+void PathTracer::lightProbes(const render::Scene& scene, render::IrradianceVolume& volume,
+                             std::span<const std::size_t> probes, int rays, const Settings& settings) {
+    SP_CHECK(rays >= 1 && rays <= 65536, InvalidArgument, "PathTracer::lightProbes(): rays ", rays,
+             " is out of range [1, 65536]");
+    settings.validate("PathTracer::lightProbes");
+    for (std::size_t index : probes)
+        SP_CHECK(index < volume.probes.size(), InvalidArgument, "PathTracer::lightProbes(): probe ", index,
+                 " is not in a volume of ", volume.probes.size());
+    Impl& impl = *impl_;
+    impl.sync(scene);
+    const std::uint64_t signature = impl.lightingHash(scene);
+    const Eigen::Vector3f sky = scene.environment().ambient;
+    const float spacing = float(volume.spacing);
+    std::atomic<std::size_t> next{0};
+    std::atomic<std::uint64_t> traced{0};
+    auto work = [&] {
+        std::uint64_t count = 0;
+        for (std::size_t k = next++; k < probes.size(); k = next++) {
+            const std::size_t index = probes[k];
+            const int x = int(index % std::size_t(volume.counts.x()));
+            const int y = int(index / std::size_t(volume.counts.x()) % std::size_t(volume.counts.y()));
+            const int z = int(index / (std::size_t(volume.counts.x()) * std::size_t(volume.counts.y())));
+            const Eigen::Vector3f origin = volume.position(x, y, z).cast<float>();
+            Random random{signature ^ (std::uint64_t(index) * 0x9E3779B97F4A7C15ull)};
+            // Directions on a spherical Fibonacci lattice (even over the sphere), turned by a random angle
+            // per probe so that neighbouring probes do not share the lattice's pattern.
+            const float turn = 2.0f * kPi * random.next();
+            Eigen::Vector3f constant = Eigen::Vector3f::Zero();
+            Eigen::Matrix3f linear = Eigen::Matrix3f::Zero();
+            int backs = 0;
+            for (int i = 0; i < rays; ++i) {
+                const float cz = 1.0f - (2.0f * float(i) + 1.0f) / float(rays);
+                const float r = std::sqrt(std::max(0.0f, 1.0f - cz * cz));
+                const float phi = turn + float(i) * 2.39996323f; // the golden angle
+                const Eigen::Vector3f direction(r * std::cos(phi), r * std::sin(phi), cz);
+                bool back = false;
+                impl.firstHit(origin, direction, back, count);
+                backs += back ? 1 : 0;
+                const PathSample path =
+                    impl.trace(scene, true, sky, origin, direction, 0.0f,
+                               std::numeric_limits<float>::infinity(), settings, random, count);
+                if (!path.hdr.allFinite())
+                    continue;
+                // Bands 0 and 1 of the radiance, turned into those of the irradiance over pi (Ramamoorthi and
+                // Hanrahan 2001: A0 = pi, A1 = 2 pi / 3): the mean radiance, and 2 x its first moment.
+                constant += path.hdr;
+                linear += 2.0f * path.hdr * direction.transpose();
+            }
+            render::IrradianceProbe& probe = volume.probes[index];
+            probe.constant = constant / float(rays);
+            probe.linear = linear / float(rays);
+            const bool inside = 4 * backs > rays;
+            for (int axis = 0; axis < 6; ++axis) {
+                Eigen::Vector3f direction = Eigen::Vector3f::Zero();
+                direction[axis / 2] = axis % 2 == 0 ? -1.0f : 1.0f;
+                bool back = false;
+                const float distance = impl.firstHit(origin, direction, back, count) / spacing;
+                probe.freeDistance[std::size_t(axis)] =
+                    inside ? 0.0f : std::min(distance, render::IrradianceVolume::kMaxFreeDistance);
+            }
+        }
+        traced += count;
+    };
+    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    {
+        std::vector<std::jthread> pool; // joined on the way out, even when starting one throws
+        for (unsigned t = 1; t < threads; ++t)
+            pool.emplace_back(work);
+        work();
+    }
+    impl.lastRays = traced;
 }
 
 std::uint64_t PathTracer::lastRays() const {

@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "core/render/camera.h"
@@ -61,6 +62,19 @@ class PathTracer {
     // on every hardware thread.
     void render(const render::Scene& scene, const render::Camera& camera, const Settings& settings,
                 Accumulation& image);
+
+    // Lights the probes of `volume` named by `probes` (IrradianceVolume::index()) as this renderer sees
+    // `scene`: each probe's constant and linear terms (IrradianceProbe) from `rays` path-traced estimates of
+    // the radiance arriving from directions spread evenly over the sphere (settings.maxBounces bounces after
+    // the first surface; lights cast shadows; rays that leave the scene bring back the sky,
+    // Environment::ambient), and its free distances from one ray along each axis. A probe whose rays meet the
+    // back of a surface first more than a quarter of the time is inside geometry: its free distances are 0.
+    // The random numbers are seeded from the scene's light (lightingSignature()) and the probe's index, so
+    // the same scene gives the same probes in every run. Runs on every hardware thread.
+    void lightProbes(const render::Scene& scene, render::IrradianceVolume& volume,
+                     std::span<const std::size_t> probes, int rays, const Settings& settings);
+    // What the light in `scene` depends on: geometry, materials, lights and sky; not the camera.
+    std::uint64_t lightingSignature(const render::Scene& scene);
 
     // Geometry (re)builds so far: one whenever an instance, a mesh or a transform changed.
     std::uint64_t builds() const;

@@ -33,6 +33,9 @@ struct CameraParams {
     // Natural vignetting of final_color, in [0, 1]: a pixel's exposure is scaled by
     // mix(1, cos^4(angle of its ray to the optical axis), vignetteIntensity) (tone.h, Vignette).
     float vignetteIntensity = 0.0f;
+    // Indirect light from the scene's irradiance volume where it has one (Scene::setIrradianceVolume);
+    // false shades with the environment's uniform ambient term instead.
+    bool globalIllumination = true;
 
     void validate(const char* function) const;
 };

@@ -166,6 +166,7 @@ void add(RenderStats& total, const RenderStats& s) {
     total.splitInstances += s.splitInstances;
     total.windingFacedInstances += s.windingFacedInstances;
     total.lightsLeftOut += s.lightsLeftOut;
+    total.irradianceUploads += s.irradianceUploads;
     total.constantSlotPasses += s.constantSlotPasses;
     for (std::size_t p = 0; p < kPassCount; ++p) {
         total.passTimes[p].gpuMs += s.passTimes[p].gpuMs;
@@ -386,6 +387,7 @@ void Renderer::renderView(const View& view) {
         lights.floatShadowMaps = !shadowInfos.empty() && active_->shadowMaps->format() == GL_R32F;
         lights.vignette = camera.params.vignetteIntensity > 0.0f;
         lights.toneMap = camera.params.toneMap;
+        lights.irradianceVolume = camera.params.globalIllumination && bindIrradianceVolume(scene);
         uploadFrameBlock(scene, camera, shadowInfos, shaded);
     }
     if (passes.surface) {
@@ -448,6 +450,38 @@ std::vector<Renderer::ViewLight> Renderer::viewLights(const Scene& scene, const 
     return reaching;
 }
 
+bool Renderer::bindIrradianceVolume(const Scene& scene) {
+    const IrradianceVolume* volume = scene.irradianceVolume().get();
+    if (volume == nullptr)
+        return false;
+    SceneState& state = *active_;
+    if (!state.irradiance || state.irradianceSource != volume ||
+        state.irradianceRevision != volume->revision) {
+        const std::vector<std::uint32_t> texels = volume->packed();
+        const Eigen::Vector3i size(2 * volume->counts.x(), volume->counts.y(), volume->counts.z());
+        // A new texture when the size changed (immutable storage), else the texels replaced in place.
+        GLint width = 0, height = 0, depth = 0;
+        if (state.irradiance) {
+            glGetTextureLevelParameteriv(state.irradiance->name, 0, GL_TEXTURE_WIDTH, &width);
+            glGetTextureLevelParameteriv(state.irradiance->name, 0, GL_TEXTURE_HEIGHT, &height);
+            glGetTextureLevelParameteriv(state.irradiance->name, 0, GL_TEXTURE_DEPTH, &depth);
+        }
+        if (!state.irradiance || Eigen::Vector3i(width, height, depth) != size) {
+            state.irradiance = std::make_unique<GpuTexture>();
+            glCreateTextures(GL_TEXTURE_3D, 1, &state.irradiance->name);
+            glTextureStorage3D(state.irradiance->name, 1, GL_RGBA32UI, size.x(), size.y(), size.z());
+        }
+        glTextureSubImage3D(state.irradiance->name, 0, 0, 0, 0, size.x(), size.y(), size.z(), GL_RGBA_INTEGER,
+                            GL_UNSIGNED_INT, texels.data());
+        state.irradianceSource = volume;
+        state.irradianceRevision = volume->revision;
+        ++state.stats.irradianceUploads;
+    }
+    glBindImageTexture(shaders::kIrradianceImageUnit, state.irradiance->name, 0, GL_TRUE, 0, GL_READ_ONLY,
+                       GL_RGBA32UI);
+    return true;
+}
+
 void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
                                 const std::vector<ShadowInfo>& shadows,
                                 const std::vector<ViewLight>& lights) {
@@ -456,6 +490,9 @@ void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
     copy3(block.cameraPosition, camera.pose.translation().cast<float>(),
           shadows.empty() ? 0.0f : float(active_->shadowMaps->firstLayer()));
     copy3(block.ambient, scene.environment().ambient, 0.0f);
+    if (const IrradianceVolume* volume = scene.irradianceVolume().get();
+        volume && camera.params.globalIllumination)
+        copy3(block.irradianceVolume, volume->origin.cast<float>(), float(1.0 / volume->spacing));
     copy3(block.background, scene.environment().background, 1.0f);
     copy3(block.exposure, camera.params.exposure * camera.params.whiteBalance, 0.0f);
     block.vignette[0] = camera.params.vignetteIntensity;

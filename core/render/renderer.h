@@ -32,6 +32,7 @@ namespace sp::render {
 class Framebuffers;
 class FramebufferAtlas;
 class GpuSceneCache;
+struct GpuTexture;
 class InstanceBuffer;
 struct InstanceRecord;
 struct SharedUploads;
@@ -59,6 +60,7 @@ struct RenderStats {
     std::uint64_t splitInstances = 0;        // shaded in parts: lookups only where a shadow can fall
     std::uint64_t windingFacedInstances = 0; // normals turned by the rasteriser's facing (kFacingFromWinding)
     std::uint64_t lightsLeftOut = 0;         // lights reaching a view past the 16 it shades (the farthest)
+    std::uint64_t irradianceUploads = 0;     // irradiance volumes uploaded (a new one, or new probe values)
     std::uint64_t constantSlotPasses = 0; // surface passes whose fragments read constants from flat varyings
     std::array<PassTime, kPassCount> passTimes{}; // by Pass
 };
@@ -197,6 +199,10 @@ class Renderer {
         ~SceneState();
         std::unique_ptr<GpuSceneCache> cache;
         std::unique_ptr<ShadowMaps> shadowMaps;
+        // The scene's irradiance volume as uploaded (a 3D texture), and which one and revision it holds.
+        std::unique_ptr<GpuTexture> irradiance;
+        const IrradianceVolume* irradianceSource = nullptr;
+        std::uint64_t irradianceRevision = 0;
         RenderStats stats;
         PassTimers timers; // stats() collects finished timer queries
     };
@@ -222,6 +228,9 @@ class Renderer {
     // The lights that reach the view's frustum, in the scene's order, at most shaders::kMaxLights (the
     // nearest, counted in RenderStats::lightsLeftOut past that).
     std::vector<ViewLight> viewLights(const Scene& scene, const Camera& camera);
+    // Uploads the scene's irradiance volume when it changed and binds it for the shading programs; false when
+    // the scene has none.
+    bool bindIrradianceVolume(const Scene& scene);
     void uploadFrameBlock(const Scene& scene, const Camera& camera, const std::vector<ShadowInfo>& shadows,
                           const std::vector<ViewLight>& lights);
     // The submeshes of the instances in view, grouped by program and front to back within a group; with

@@ -201,6 +201,12 @@ void Scene::setTransform(InstanceId id, const Eigen::Affine3d& transform) {
     slot.transform = transform;
 }
 
+void Scene::setIrradianceVolume(std::shared_ptr<const IrradianceVolume> volume) {
+    if (volume)
+        volume->validate("Scene::setIrradianceVolume");
+    irradianceVolume_ = std::move(volume);
+}
+
 void Scene::removeInstance(InstanceId id) {
     instances_.remove(id, "Scene::removeInstance");
 }

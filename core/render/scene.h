@@ -4,6 +4,7 @@
 // re-uploading a mesh or texture only when its revision changed.
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "core/render/handles.h"
+#include "core/render/irradiance_volume.h"
 #include "core/render/light.h"
 #include "core/render/material.h"
 #include "core/render/mesh_data.h"
@@ -116,6 +118,12 @@ class Scene {
     void setEnvironment(const Environment& environment) { environment_ = environment; }
     const Environment& environment() const { return environment_; }
 
+    // Indirect light for the rasteriser (irradiance_volume.h): with one, the shading blends its probes in
+    // place of the environment's uniform ambient term; null (the default) shades with the ambient term.
+    // Validated here; the renderer uploads it again whenever the pointer or its revision changes.
+    void setIrradianceVolume(std::shared_ptr<const IrradianceVolume> volume);
+    const std::shared_ptr<const IrradianceVolume>& irradianceVolume() const { return irradianceVolume_; }
+
     std::size_t meshCount() const { return meshes_.size(); }
     std::size_t textureCount() const { return textures_.size(); }
     std::size_t materialCount() const { return materials_.size(); }
@@ -163,6 +171,7 @@ class Scene {
     SlotMap<Light, LightId> lights_;
     SlotMap<Instance, InstanceId> instances_;
     Environment environment_;
+    std::shared_ptr<const IrradianceVolume> irradianceVolume_;
     std::uint64_t uid_;
     std::uint64_t nextRevision_ = 1;
 };

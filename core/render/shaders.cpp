@@ -3,6 +3,7 @@
 #include <array>
 
 #include "core/render/instances.h"
+#include "core/render/irradiance_volume.h"
 
 namespace sp::render::shaders {
 namespace {
@@ -25,6 +26,7 @@ layout(std140, binding = 0) uniform FrameBlock {
     vec4 uBackgroundFinal;
     vec4 uExposure;
     vec4 uVignette;
+    vec4 uIrradianceVolume; // xyz: world position of probe (0, 0, 0); w: 1 / spacing
 };
 // The light-clip position of p moved 1.5 shadow-map texels along n (turned towards the light), so that a
 // surface does not shadow itself (per vertex: see shadowClips()).
@@ -174,6 +176,48 @@ float shadowFactor(const int layer, vec3 s) {
     float near = lit.x + f.x * (lit.y - lit.x), far = lit.z + f.x * (lit.w - lit.z);
     return near + f.y * (far - near);
 }
+
+#ifdef IRRADIANCE_VOLUME
+// The irradiance probes (IrradianceVolume::packed(): two texels per probe along x) and their blend at a
+// point, mirrored by IrradianceVolume::radiance(), which says why each weight is there. Image loads, not
+// texel fetches: llvmpipe runs a sampler's general path for every fetched pixel (see shadowFactor()).
+layout(binding = IRRADIANCE_IMAGE_UNIT, rgba32ui) uniform readonly uimage3D uIrradianceProbes;
+void irradianceBlend(vec3 p, vec3 n, out vec3 constant, out mat3 linear) {
+    ivec3 counts = imageSize(uIrradianceProbes) / ivec3(2, 1, 1);
+    vec3 g = clamp((p - uIrradianceVolume.xyz) * uIrradianceVolume.w + n * IRRADIANCE_NORMAL_OFFSET, vec3(0.0),
+                   vec3(counts - 1));
+    ivec3 base = min(ivec3(g), counts - 2);
+    vec3 f = g - vec3(base);
+    constant = vec3(0.0);
+    linear = mat3(0.0);
+    float total = 0.0;
+    for (int i = 0; i < 8; ++i) {
+        ivec3 o = ivec3(i & 1, (i >> 1) & 1, i >> 2);
+        ivec3 c = base + o;
+        vec3 t = mix(1.0 - f, f, vec3(o));
+        vec3 d = g - vec3(c); // from the probe to the point, in cells
+        uvec4 a = imageLoad(uIrradianceProbes, ivec3(2 * c.x, c.y, c.z));
+        uvec4 b = imageLoad(uIrradianceProbes, ivec3(2 * c.x + 1, c.y, c.z));
+        vec4 free0 = unpackUnorm4x8(b.z) * IRRADIANCE_MAX_FREE;
+        vec2 free1 = unpackUnorm4x8(b.w).xy * IRRADIANCE_MAX_FREE;
+        vec3 reach = mix(vec3(free0.x, free0.z, free1.x), vec3(free0.y, free0.w, free1.y),
+                         greaterThanEqual(d, vec3(0.0)));
+        vec3 excess = abs(d) - reach;
+        float visible = clamp(1.0 - 4.0 * max(max(excess.x, excess.y), excess.z), 0.0, 1.0);
+        float len = length(d);
+        float front = (len > 1e-4 ? dot(-d, n) / len : 1.0) * 0.5 + 0.5;
+        float w = t.x * t.y * t.z * (visible * (front * front + 0.2) + 1e-3);
+        vec2 h0 = unpackHalf2x16(a.x), h1 = unpackHalf2x16(a.y), h2 = unpackHalf2x16(a.z);
+        vec2 h3 = unpackHalf2x16(a.w), h4 = unpackHalf2x16(b.x), h5 = unpackHalf2x16(b.y);
+        constant += w * vec3(h0, h1.x);
+        linear += w * mat3(vec3(h1.y, h2), vec3(h3, h4.x), vec3(h4.y, h5));
+        total += w;
+    }
+    float inverse = 1.0 / total;
+    constant *= inverse;
+    linear *= inverse;
+}
+#endif
 
 struct Shaded {
     vec3 hdr;                 // linear radiance towards the camera
@@ -651,9 +695,19 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
         text += "            accumulate(s, l, e, nol, irradiance, specular);\n        }\n    }\n";
     }
     text += R"glsl(    Shaded result;
-    result.diffuseIllumination = toHalf(irradiance * (1.0 / PI) + ambientRadiance() * ao);
+#ifdef IRRADIANCE_VOLUME
+    // Indirect light from the probes: the diffuse term for n, the specular one for the mirror direction.
+    vec3 volumeConstant;
+    mat3 volumeLinear;
+    irradianceBlend(p, n, volumeConstant, volumeLinear);
+    vec3 ambientDiffuse = max(volumeConstant + volumeLinear * n, 0.0);
+    vec3 ambientSpecular = max(volumeConstant + volumeLinear * reflect(-s.v, n), 0.0);
+#else
+    vec3 ambientDiffuse = ambientRadiance(), ambientSpecular = ambientDiffuse;
+#endif
+    result.diffuseIllumination = toHalf(irradiance * (1.0 / PI) + ambientDiffuse * ao);
     result.diffuseOnly = base * (1.0 - metallic) * result.diffuseIllumination;
-    result.hdr = result.diffuseOnly + specular + envBrdfApprox(s.f0, roughness, s.nov) * ambientRadiance() * ao + emissive;
+    result.hdr = result.diffuseOnly + specular + envBrdfApprox(s.f0, roughness, s.nov) * ambientSpecular * ao + emissive;
     return result;
 }
 )glsl";
@@ -680,6 +734,8 @@ std::string ShadingLayout::key() const {
     key += ".t" + std::to_string(static_cast<int>(toneMap));
     if (constantSlots > 0)
         key += ".c" + std::to_string(constantSlots);
+    if (irradianceVolume)
+        key += ".g";
     return key;
 }
 
@@ -757,8 +813,14 @@ std::string toneCurveDefine(ToneMap toneMap) {
 // The defines of the shading and tone chunks for a layout: the shadow maps' image format, the vignette and
 // the tone curve.
 std::string shadingDefines(const ShadingLayout& lights) {
-    return std::string("#define SHADOW_FORMAT ") + (lights.floatShadowMaps ? "r32f" : "r16") + "\n" +
-           (lights.vignette ? "#define VIGNETTE\n" : "") + toneCurveDefine(lights.toneMap);
+    std::string text = std::string("#define SHADOW_FORMAT ") + (lights.floatShadowMaps ? "r32f" : "r16") +
+                       "\n" + (lights.vignette ? "#define VIGNETTE\n" : "") + toneCurveDefine(lights.toneMap);
+    if (lights.irradianceVolume)
+        text += "#define IRRADIANCE_VOLUME\n#define IRRADIANCE_IMAGE_UNIT " +
+                std::to_string(kIrradianceImageUnit) + "\n#define IRRADIANCE_NORMAL_OFFSET " +
+                std::to_string(IrradianceVolume::kNormalOffset) + "\n#define IRRADIANCE_MAX_FREE " +
+                std::to_string(IrradianceVolume::kMaxFreeDistance) + "\n";
+    return text;
 }
 
 std::string backgroundFragment(int location, ToneMap toneMap) {

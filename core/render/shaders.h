@@ -44,6 +44,7 @@ struct FrameBlock {
     float backgroundFinal[4]; // rgba: final_color of background pixels (tone-mapped on the CPU side)
     float exposure[4];        // xyz: exposure times the white balance gains
     float vignette[4];        // x = intensity, y = focal length in pixels, zw = the image centre in pixels
+    float irradianceVolume[4]; // xyz: world position of the volume's probe (0, 0, 0); w: 1 / spacing
 };
 
 // One light of a shading variant.
@@ -69,6 +70,9 @@ struct ShadingLayout {
     // took 23% less time. GPUs read uniform buffers at no cost, so hardware contexts keep them
     // (Renderer::constantSlots()).
     int constantSlots = 0;
+    // The scene has an irradiance volume (irradiance_volume.h): the shading blends its probes where it
+    // otherwise adds the uniform ambient term.
+    bool irradianceVolume = false;
     // A short text naming the layout, for program caches ("D0.S1r.P").
     std::string key() const;
 };
@@ -133,5 +137,7 @@ inline constexpr int kDepthTextureUnit = 3;
 inline constexpr int kGBufferImageUnit = 2;
 inline constexpr int kFinalColorImageUnit = 3;
 inline constexpr int kHdrImageUnit = 4;
+// The image unit of the irradiance probes (IrradianceVolume::packed()), read by every shading program.
+inline constexpr int kIrradianceImageUnit = 5;
 
 } // namespace sp::render::shaders

@@ -1,0 +1,242 @@
+// The rasteriser's global illumination: the irradiance volume's blend (no GL), probes lit by the path tracer,
+// and the rasteriser shading with them against the path tracer's own images: a furnace (a white object in a
+// uniform sky reflects the sky), a closed white room lit from inside, no sunlight leaking into a closed room,
+// and the bound on the updates a change takes to reach every probe.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "core/base/error.h"
+#include "core/pathtrace/irradiance_probes.h"
+#include "core/pathtrace/path_tracer.h"
+#include "core/render/render_target.h"
+#include "gl_fixture.h"
+#include "test_scenes.h"
+
+namespace sp::pathtrace {
+namespace {
+
+using render::Camera;
+using render::IrradianceProbe;
+using render::IrradianceVolume;
+using render::Light;
+using render::LightType;
+using render::Scene;
+
+IrradianceVolume uniformVolume(const Eigen::Vector3f& radiance) {
+    IrradianceVolume volume;
+    volume.counts = {3, 3, 3};
+    IrradianceProbe probe;
+    probe.constant = radiance;
+    probe.freeDistance.fill(IrradianceVolume::kMaxFreeDistance);
+    volume.probes.assign(27, probe);
+    return volume;
+}
+
+TEST(IrradianceVolumeTest, UniformProbesGiveTheirRadianceEverywhere) {
+    const IrradianceVolume volume = uniformVolume({0.5f, 1.0f, 2.0f});
+    for (const Eigen::Vector3d& p : {Eigen::Vector3d(0.3, 1.2, 0.7), Eigen::Vector3d(-5.0, 9.0, 0.0)})
+        for (const Eigen::Vector3f& n : {Eigen::Vector3f(0, 0, 1), Eigen::Vector3f(0.6f, -0.8f, 0.0f)})
+            EXPECT_TRUE(volume.radiance(p, n).isApprox(Eigen::Vector3f(0.5f, 1.0f, 2.0f), 1e-5f));
+    EXPECT_EQ(volume.packed().size(), 27u * 8u);
+}
+
+TEST(IrradianceVolumeTest, APointSeesOnlyTheProbesWhoseFreeBoxHoldsIt) {
+    // Two layers of probes along X with a wall between them (x = 0.5): the left probes see 1, the right 9.
+    IrradianceVolume volume = uniformVolume({1.0f, 1.0f, 1.0f});
+    volume.counts = {2, 2, 2};
+    volume.probes.resize(8);
+    for (int z = 0; z < 2; ++z)
+        for (int y = 0; y < 2; ++y) {
+            IrradianceProbe& left = volume.probes[volume.index(0, y, z)];
+            IrradianceProbe& right = volume.probes[volume.index(1, y, z)];
+            left.freeDistance[1] = 0.5f;  // +X: the wall
+            right.freeDistance[0] = 0.5f; // -X: the wall
+            right.constant = Eigen::Vector3f::Constant(9.0f);
+        }
+    // A point on the left face of the wall, facing left, sees the left probes alone.
+    EXPECT_NEAR(volume.radiance({0.49, 0.5, 0.5}, {-1.0f, 0.0f, 0.0f}).x(), 1.0f, 0.02f);
+    EXPECT_NEAR(volume.radiance({0.51, 0.5, 0.5}, {1.0f, 0.0f, 0.0f}).x(), 9.0f, 0.2f);
+}
+
+TEST(IrradianceVolumeTest, BadVolumesAreRefusedWithTheField) {
+    IrradianceVolume volume = uniformVolume({1.0f, 1.0f, 1.0f});
+    volume.counts = {1, 3, 9};
+    EXPECT_THROW(
+        try { volume.validate("test"); } catch (const InvalidArgument& e) {
+            EXPECT_NE(std::string(e.what()).find("counts[0] must be in [2, 256], got 1"), std::string::npos);
+            throw;
+        },
+        InvalidArgument);
+    volume = uniformVolume({1.0f, 1.0f, 1.0f});
+    volume.spacing = 0.0;
+    EXPECT_THROW(volume.validate("test"), InvalidArgument);
+    volume = uniformVolume({1.0f, 1.0f, 1.0f});
+    volume.probes[4].constant.x() = NAN;
+    Scene scene;
+    EXPECT_THROW(scene.setIrradianceVolume(std::make_shared<IrradianceVolume>(volume)), InvalidArgument);
+    ProbeSettings settings;
+    settings.rays = 0;
+    EXPECT_THROW(settings.validate("test"), InvalidArgument);
+}
+
+class IrradianceProbesGlTest : public render::test::GlTest {
+  protected:
+    // Mean of channel c over the pixels of `image` (an ImageBuffer of float16 or float32 channels).
+    static double mean(const render::ImageBuffer& image, int c = 0) {
+        double sum = 0.0;
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x)
+                sum += image.at(x, y, c);
+        return sum / (image.width * image.height);
+    }
+    static double mean(const Accumulation& image, const std::vector<double>& sums) {
+        double sum = 0.0;
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x)
+                sum += image.mean(sums, x, y, 0);
+        return sum / (image.width * image.height);
+    }
+    // diffuse_illumination of the rasteriser with the scene's volume (or without, `gi` false).
+    render::Frame raster(const Scene& scene, Camera camera, bool gi = true) {
+        camera.params.globalIllumination = gi;
+        render::RenderTarget target(renderer(),
+                                    {render::Modality::DiffuseIllumination, render::Modality::HdrColor}, 0);
+        render::Frame frame;
+        target.render(scene, camera, frame);
+        return frame;
+    }
+    // A closed room (inside 4 x 3 x 2.5 m, walls 0.2 m thick) of a white diffuse material, a point light
+    // inside; optionally a strong sun outside.
+    static render::LightId buildClosedRoom(Scene& scene, bool sun) {
+        const render::MaterialId white =
+            scene.addMaterial(render::test::makeMaterial({0.8f, 0.8f, 0.8f}, 1.0f, 0.0f));
+        const auto slab = [&](Eigen::Vector3f size, Eigen::Vector3d centre) {
+            render::Instance instance{scene.addMesh(render::primitives::box(size)), {white}, {1}};
+            instance.transform = Eigen::Translation3d(centre);
+            scene.addInstance(instance);
+        };
+        const float t = 0.2f;
+        slab({4.0f + 2 * t, 3.0f + 2 * t, t}, {0.0, 0.0, -t / 2});      // floor
+        slab({4.0f + 2 * t, 3.0f + 2 * t, t}, {0.0, 0.0, 2.5 + t / 2}); // ceiling
+        slab({t, 3.0f, 2.5f}, {2.0 + t / 2, 0.0, 1.25});                // walls
+        slab({t, 3.0f, 2.5f}, {-2.0 - t / 2, 0.0, 1.25});
+        slab({4.0f + 2 * t, t, 2.5f}, {0.0, 1.5 + t / 2, 1.25});
+        slab({4.0f + 2 * t, t, 2.5f}, {0.0, -1.5 - t / 2, 1.25});
+        Light lamp;
+        lamp.type = LightType::Point;
+        lamp.position = {0.5, 0.3, 2.2};
+        lamp.intensity = 10.0f;
+        const render::LightId id = scene.addLight(lamp);
+        if (sun) {
+            Light light;
+            light.direction = Eigen::Vector3d(0.4, 0.3, -1.0).normalized();
+            light.intensity = 100.0f;
+            scene.addLight(light);
+        }
+        scene.setEnvironment({{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}});
+        return id;
+    }
+    static Camera roomCamera() {
+        return render::test::cameraLookingAt({-1.8, -1.3, 1.8}, {1.0, 0.8, 0.6}, 48, 32, 90.0);
+    }
+    PathTracer tracer_;
+};
+
+TEST_F(IrradianceProbesGlTest, AWhiteObjectInAUniformSkyReflectsTheSky) {
+    // Furnace: every probe sees radiance 1 from everywhere (the sky, or the white sphere reflecting it), so
+    // the rasterised sphere's white-surface radiance is 1 where it had the sky term's 1 before; so does the
+    // path tracer's.
+    Scene scene;
+    const render::MaterialId white =
+        scene.addMaterial(render::test::makeMaterial({1.0f, 1.0f, 1.0f}, 1.0f, 0.0f));
+    scene.addInstance({scene.addMesh(render::primitives::sphere(0.5f, 64, 32)), {white}, {1}});
+    scene.setEnvironment({{1.0f, 1.0f, 1.0f}, {1.0f, 1.0f, 1.0f}});
+    IrradianceProbes probes;
+    scene.setIrradianceVolume(probes.update(scene, tracer_, {}));
+    ASSERT_NE(scene.irradianceVolume(), nullptr);
+    const Camera camera = lookingAlong({-3.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, 16, 16, 8.0);
+    const render::Frame frame = raster(scene, camera);
+    const render::ImageBuffer& illumination = frame.get(render::Modality::DiffuseIllumination);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x)
+            EXPECT_NEAR(illumination.at(x, y, 0), 1.0f, 0.05f) << x << ", " << y;
+}
+
+TEST_F(IrradianceProbesGlTest, AClosedRoomLitFromInsideMatchesThePathTracer) {
+    Scene scene;
+    buildClosedRoom(scene, false);
+    const Camera camera = roomCamera();
+    // A probe's paths bounce maxBounces times after the surface it sees, which is itself a bounce for the
+    // points that blend it: the reference bounces once more.
+    ProbeSettings settings;
+    settings.maxBounces = 4;
+    Accumulation traced;
+    tracer_.render(scene, camera, {256, settings.maxBounces + 1}, traced);
+    const double reference = mean(traced, traced.diffuseIlluminationSum);
+
+    IrradianceProbes probes;
+    scene.setIrradianceVolume(probes.update(scene, tracer_, settings));
+    const double withProbes = mean(raster(scene, camera).get(render::Modality::DiffuseIllumination));
+    const double without = mean(raster(scene, camera, false).get(render::Modality::DiffuseIllumination));
+    // Direct light alone falls well short of the reference; with the probes within 5 % of it.
+    EXPECT_LT(without, 0.75 * reference);
+    EXPECT_NEAR(withProbes / reference, 1.0, 0.05)
+        << "raster " << withProbes << ", path traced " << reference;
+    std::cout << "closed room, diffuse_illumination: path traced " << reference << ", raster " << withProbes
+              << " with probes, " << without << " without\n";
+}
+
+TEST_F(IrradianceProbesGlTest, SunlightOutsideAClosedRoomDoesNotLeakIn) {
+    // The same room with a sun 10x the lamp outside: the inside must look as it did without the sun.
+    Scene dark, sunny;
+    buildClosedRoom(dark, false);
+    buildClosedRoom(sunny, true);
+    IrradianceProbes a, b;
+    dark.setIrradianceVolume(a.update(dark, tracer_, {}));
+    sunny.setIrradianceVolume(b.update(sunny, tracer_, {}));
+    const Camera camera = roomCamera();
+    const double inside = mean(raster(dark, camera).get(render::Modality::DiffuseIllumination));
+    const double withSun = mean(raster(sunny, camera).get(render::Modality::DiffuseIllumination));
+    EXPECT_NEAR(withSun / inside, 1.0, 0.05) << "without the sun " << inside << ", with it " << withSun;
+}
+
+TEST_F(IrradianceProbesGlTest, AChangeReachesEveryProbeWithinTheStatedUpdates) {
+    Scene scene;
+    const render::LightId lampId = buildClosedRoom(scene, false);
+    ProbeSettings settings;
+    settings.rays = 16;
+    settings.probesPerFrame = 40;
+    IrradianceProbes probes;
+    std::shared_ptr<const IrradianceVolume> first = probes.update(scene, tracer_, settings);
+    EXPECT_EQ(probes.litLastUpdate(), first->probes.size());
+    // A still scene lights nothing more and keeps its volume.
+    EXPECT_EQ(probes.update(scene, tracer_, settings), first);
+    EXPECT_EQ(probes.litLastUpdate(), 0u);
+
+    // The lamp moves: after framesToSettle() updates the volume is what lighting it from scratch gives.
+    const int bound = probes.framesToSettle();
+    EXPECT_EQ(bound, int((first->probes.size() + 39) / 40));
+    Light lamp = scene.light(lampId);
+    lamp.position = {-1.0, -0.5, 1.0};
+    scene.setLight(lampId, lamp);
+    std::shared_ptr<const IrradianceVolume> latest;
+    for (int i = 0; i < bound; ++i) {
+        latest = probes.update(scene, tracer_, settings);
+        EXPECT_GT(probes.litLastUpdate(), 0u) << i;
+    }
+    IrradianceProbes fresh;
+    const std::shared_ptr<const IrradianceVolume> expected = fresh.update(scene, tracer_, settings);
+    ASSERT_EQ(latest->probes.size(), expected->probes.size());
+    for (std::size_t i = 0; i < expected->probes.size(); ++i) {
+        EXPECT_EQ(latest->probes[i].constant, expected->probes[i].constant) << i;
+        EXPECT_EQ(latest->probes[i].linear, expected->probes[i].linear) << i;
+    }
+    probes.update(scene, tracer_, settings);
+    EXPECT_EQ(probes.litLastUpdate(), 0u);
+}
+
+} // namespace
+} // namespace sp::pathtrace
