@@ -191,7 +191,8 @@ def configure(camera: spear.UCameraSensorComponent, width: int, height: int) -> 
 
 def run(instance: spear.Instance, *, objects: int, views: int, width: int, height: int, frames: int,
         physics: str, png: Path | None, breakdown: bool = False, batched_forces: bool = False,
-        shadows: bool = True) -> Result:
+        shadows: bool = True,
+        global_illumination: spear.EGlobalIlluminationQuality = spear.EGlobalIlluminationQuality.Medium) -> Result:
     game = instance.get_game()
     rig: spear.AActor
     bodies: list[spear.UStaticMeshComponent] = []
@@ -213,6 +214,7 @@ def run(instance: spear.Instance, *, objects: int, views: int, width: int, heigh
             rig = stereo
         for camera in cameras:
             configure(camera, width, height)
+            camera.GlobalIlluminationQuality = global_illumination
         device = cameras[0].get_render_device_info()
     with instance.end_frame():
         pass
@@ -349,6 +351,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--forces", choices=["each", "batched"], default="each",
                         help="one AddForce per object (the paper's way), or one add_forces call for all")
     parser.add_argument("--no-shadows", action="store_true", help="the sun casts no shadows")
+    parser.add_argument("--global-illumination", default="Medium",
+                        choices=[q.name for q in spear.EGlobalIlluminationQuality],
+                        help="the cameras' GlobalIlluminationQuality (Medium: the default)")
     args = parser.parse_args(argv)
 
     results: list[Result] = []
@@ -361,7 +366,8 @@ def main(argv: list[str] | None = None) -> int:
                 png = None if args.png is None else args.png / f"cosim_n{objects}_v{views}.png"
                 results.append(run(instance, objects=objects, views=views, width=args.width, height=args.height,
                                    frames=args.frames, physics=args.physics, png=png, breakdown=args.breakdown,
-                                   batched_forces=args.forces == "batched", shadows=not args.no_shadows))
+                                   batched_forces=args.forces == "batched", shadows=not args.no_shadows,
+                                   global_illumination=spear.EGlobalIlluminationQuality[args.global_illumination]))
             finally:
                 instance.close()
             print(f"N={objects}, {views} view(s): {results[-1].ms_per_frame:.1f} ms/frame", file=sys.stderr)

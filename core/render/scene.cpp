@@ -202,7 +202,7 @@ void Scene::setTransform(InstanceId id, const Eigen::Affine3d& transform) {
 }
 
 void Scene::setIrradianceVolume(std::shared_ptr<const IrradianceVolume> volume) {
-    if (volume)
+    if (volume && volume != irradianceVolume_) // the same volume again (every frame while still) was checked
         volume->validate("Scene::setIrradianceVolume");
     irradianceVolume_ = std::move(volume);
 }

@@ -74,6 +74,24 @@ enum class ECameraRenderer : uint8_t {
     PathTraced = 1,
 };
 
+/// How much indirect light a rasterised camera shows: the world's irradiance probes (a grid over the scene,
+/// lit by the path tracer's rays, blended per pixel; core/render/README.md, "Global illumination"). The
+/// names follow Unreal's scalability levels (sg.GlobalIlluminationQuality). A world lights its probes at the
+/// highest quality any of its rasterised cameras asks for.
+SPENUM()
+enum class EGlobalIlluminationQuality : uint8_t {
+    /// No indirect light: the sky light's uniform ambient term alone, as before global illumination.
+    Off = 0,
+    /// Probes 1 m apart (at most 16 along an axis), 128 rays each, 2 bounces.
+    Low = 1,
+    /// Probes 0.5 m apart (at most 24 along an axis), 256 rays each, 3 bounces.
+    Medium = 2,
+    /// Probes 0.35 m apart (at most 32 along an axis), 512 rays each, 4 bounces.
+    High = 3,
+    /// Probes 0.25 m apart (at most 48 along an axis), 1024 rays each, 4 bounces.
+    Epic = 4,
+};
+
 /// Brown–Conrady lens distortion in OpenCV's convention (radial K1, K2, K3; tangential P1, P2): all zero is a
 /// pinhole. See UCameraSensorComponent.LensDistortion.
 SPSTRUCT()
@@ -347,6 +365,13 @@ class UCameraSensorComponent : public USceneComponent {
     /// are always rasterised).
     SPPROPERTY()
     ECameraRenderer Renderer = ECameraRenderer::Raster;
+
+    /// The rasteriser's indirect light (global illumination): on by default. A world's probes are lit in full
+    /// on the first frame a camera asks for them; when the scene changes, the probes least recently lit are
+    /// lit again, a budget per frame, so that a change reaches every probe within a bounded number of frames
+    /// (core/render/README.md).
+    SPPROPERTY()
+    EGlobalIlluminationQuality GlobalIlluminationQuality = EGlobalIlluminationQuality::Medium;
 
     /// Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating.
     SPPROPERTY(Setter = SetSamplesPerPixel)

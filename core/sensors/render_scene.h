@@ -71,6 +71,10 @@ class RenderScene {
     void sync();
 
     const sp::render::Scene& scene() const { return scene_; }
+    // The rasteriser's indirect light (RenderSubsystem lights it from the scene; null: none).
+    void setIrradianceVolume(std::shared_ptr<const sp::render::IrradianceVolume> volume) {
+        scene_.setIrradianceVolume(std::move(volume));
+    }
     std::optional<ObjectIdInfo> objectIdInfo(std::uint32_t id) const;
     // 0 when the slot has no id (not rendered yet, or out of range).
     std::uint32_t objectId(sp::reflect::ObjectHandle component, int slot) const;

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/base/error.h"
+#include "core/pathtrace/irradiance_probes.h"
 #include "core/pathtrace/path_tracer.h"
 #include "core/render/camera.h"
 #include "core/render/gl_context.h"
@@ -69,7 +70,26 @@ sp::render::CameraParams cameraParams(const UCameraSensorComponent& camera, int 
     params.toneMap = static_cast<sp::render::ToneMap>(camera.ToneCurve);
     params.shadows = camera.bShadows;
     params.shadowResolution = camera.ShadowResolution != 0 ? camera.ShadowResolution : sizedResolution;
+    params.globalIllumination = camera.GlobalIlluminationQuality != EGlobalIlluminationQuality::Off;
     return params;
+}
+
+// The probes of each quality (EGlobalIlluminationQuality's documentation; core/render/README.md): spacing,
+// probes along an axis at most, rays per probe, bounces, probes lit per frame after a change.
+sp::pathtrace::ProbeSettings probeSettings(EGlobalIlluminationQuality quality) {
+    switch (quality) {
+    case EGlobalIlluminationQuality::Off:
+    case EGlobalIlluminationQuality::Low:
+        return {1.0, 16, 128, 2, 64};
+    case EGlobalIlluminationQuality::Medium:
+        return {0.5, 24, 256, 3, 64};
+    case EGlobalIlluminationQuality::High:
+        return {0.35, 32, 512, 4, 128};
+    case EGlobalIlluminationQuality::Epic:
+        return {0.25, 48, 1024, 4, 256};
+    }
+    throw sp::InvalidArgument("probeSettings(): EGlobalIlluminationQuality " + std::to_string(int(quality)) +
+                              " is not a quality");
 }
 
 std::string joined(const std::vector<std::string>& names) {
@@ -282,6 +302,7 @@ void RenderSubsystem::Tick(double /*deltaSeconds*/) {
 
     ensureRenderer();
     scene_->sync();
+    updateIndirectLight(cameras);
     // ShadowResolution 0: one size for the frame's shadowed cameras, from the longest side among them, so
     // that they share the maps (a size per camera would draw them again for each) and a 128-pixel camera
     // does not redraw a 1024-texel map's worth around every moving object (16 worlds of Table 3's pushed
@@ -294,6 +315,25 @@ void RenderSubsystem::Tick(double /*deltaSeconds*/) {
     for (UCameraSensorComponent* camera : cameras)
         if (!camera->renderSuspended())
             submit(*camera, sized);
+}
+
+void RenderSubsystem::updateIndirectLight(const std::vector<UCameraSensorComponent*>& cameras) {
+    // The highest quality any rasterised camera that shades asks for; Off when none does.
+    EGlobalIlluminationQuality quality = EGlobalIlluminationQuality::Off;
+    for (const UCameraSensorComponent* camera : cameras)
+        if (!camera->renderSuspended() && camera->Renderer == ECameraRenderer::Raster &&
+            toModalitySet(camera->Modalities).requiredPasses(camera->bShadows).lighting)
+            quality = std::max(quality, camera->GlobalIlluminationQuality);
+    if (quality == EGlobalIlluminationQuality::Off) {
+        scene_->setIrradianceVolume(nullptr);
+        probes_.reset();
+        return;
+    }
+    if (!tracer_)
+        tracer_ = std::make_unique<sp::pathtrace::PathTracer>();
+    if (!probes_)
+        probes_ = std::make_unique<sp::pathtrace::IrradianceProbes>();
+    scene_->setIrradianceVolume(probes_->update(scene_->scene(), *tracer_, probeSettings(quality)));
 }
 
 RenderSubsystem::CameraState& RenderSubsystem::cameraState(UCameraSensorComponent& camera) {

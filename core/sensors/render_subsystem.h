@@ -42,6 +42,7 @@ class Scene;
 } // namespace sp::render
 
 namespace sp::pathtrace {
+class IrradianceProbes;
 class PathTracer;
 } // namespace sp::pathtrace
 
@@ -113,6 +114,9 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     struct Gl; // the GL context and renderer, shared with the engine's other worlds
 
     void ensureRenderer();
+    // Lights the render scene's irradiance probes for the frame's rasterised cameras (none asking: no
+    // volume).
+    void updateIndirectLight(const std::vector<UCameraSensorComponent*>& cameras);
     const PendingFrame* dueFrame(UCameraSensorComponent& camera) const;
     CameraState& cameraState(UCameraSensorComponent& camera);
     // Renders the camera's frame; `sizedShadowResolution` stands for its ShadowResolution 0 (see Tick).
@@ -127,9 +131,10 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     // Destruction order matters: the targets and the scene's GPU data go before this world lets go of
     // the shared renderer (the destructor releases them first, with the context current).
     std::shared_ptr<Gl> gl_;
-    std::unique_ptr<RenderScene> scene_;                 // from construction, to be told of what begins play
-    std::unique_ptr<sp::pathtrace::PathTracer> tracer_;  // started by the first path-traced camera
-    PlayOrder<UCameraSensorComponent> cameraComponents_; // the world's cameras in play
+    std::unique_ptr<RenderScene> scene_;                // from construction, to be told of what begins play
+    std::unique_ptr<sp::pathtrace::PathTracer> tracer_; // started by the first path-traced camera or probes
+    std::unique_ptr<sp::pathtrace::IrradianceProbes> probes_; // while a camera asks for indirect light
+    PlayOrder<UCameraSensorComponent> cameraComponents_;      // the world's cameras in play
     std::map<sp::reflect::ObjectHandle, std::unique_ptr<CameraState>> cameras_;
 };
 

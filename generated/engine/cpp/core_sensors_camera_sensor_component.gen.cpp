@@ -89,6 +89,21 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraToneCurv
     return info;
 }
 
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EGlobalIlluminationQuality>() {
+    static const sp::reflect::EnumInfo info{
+        "EGlobalIlluminationQuality",
+        "How much indirect light a rasterised camera shows: the world's irradiance probes (a grid over the scene,\nlit by the path tracer's rays, blended per pixel; core/render/README.md, \"Global illumination\"). The\nnames follow Unreal's scalability levels (sg.GlobalIlluminationQuality). A world lights its probes at the\nhighest quality any of its rasterised cameras asks for.",
+        {
+            {"Off", 0},
+            {"Low", 1},
+            {"Medium", 2},
+            {"High", 3},
+            {"Epic", 4},
+        },
+    };
+    return info;
+}
+
 // -- FCameraPixels ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
@@ -831,6 +846,16 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             [](const void* self) { return Calls::get_Renderer<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
                 Calls::set_Renderer<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "GlobalIlluminationQuality",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EGlobalIlluminationQuality"),
+            "The rasteriser's indirect light (global illumination): on by default. A world's probes are lit in full\non the first frame a camera asks for them; when the scene changes, the probes least recently lit are\nlit again, a budget per frame, so that a change reaches every probe within a bounded number of frames\n(core/render/README.md).",
+            false,
+            [](const void* self) { return Calls::get_GlobalIlluminationQuality<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_GlobalIlluminationQuality<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({

@@ -277,6 +277,21 @@ template <> struct type_caster<EComponentMobility> {
     }
 };
 
+template <> struct type_caster<EGlobalIlluminationQuality> {
+    PYBIND11_TYPE_CASTER(EGlobalIlluminationQuality, const_name("EGlobalIlluminationQuality"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EGlobalIlluminationQuality");
+        if (!isinstance(src, cls))
+            return false;
+        value = static_cast<EGlobalIlluminationQuality>(src.cast<int64_t>());
+        return true;
+    }
+    static handle cast(EGlobalIlluminationQuality v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EGlobalIlluminationQuality");
+        return cls(static_cast<int64_t>(v)).release();
+    }
+};
+
 template <> struct type_caster<EMoviePipelineJobStatus> {
     PYBIND11_TYPE_CASTER(EMoviePipelineJobStatus, const_name("EMoviePipelineJobStatus"));
     bool load(handle src, bool) {

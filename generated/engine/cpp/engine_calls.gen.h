@@ -3498,6 +3498,15 @@ struct UCameraSensorComponentCalls {
         sp::reflect::notifyPropertyChanged(self, "Renderer");
     }
 
+    template <typename Call> static typename Call::Result get_GlobalIlluminationQuality(const Self* self) {
+        const auto& value = self->GlobalIlluminationQuality;
+        return Call::template result<EGlobalIlluminationQuality>(value);
+    }
+    template <typename Call> static void set_GlobalIlluminationQuality(Self* self, const typename Call::Input& value) {
+        self->GlobalIlluminationQuality = Call::template input<EGlobalIlluminationQuality>(value, "UCameraSensorComponent.GlobalIlluminationQuality");
+        sp::reflect::notifyPropertyChanged(self, "GlobalIlluminationQuality");
+    }
+
     template <typename Call> static typename Call::Result get_SamplesPerPixel(const Self* self) {
         const auto& value = self->SamplesPerPixel;
         return Call::template result<int32_t>(value);

@@ -19,6 +19,7 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraRenderer
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraToneCurve>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECollisionPrimitive>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EComponentMobility>();
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EGlobalIlluminationQuality>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EMoviePipelineJobStatus>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ENavigationQueryResult>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPCGGenerationMode>();
@@ -44,5 +45,5 @@ __attribute__((visibility("default"))) const char* spear_register_engine_types_a
 
 // The same hash as a constant: a plugin compiled against these headers records the engine's.
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "c9564e56db115d4e";
+inline constexpr char kApiHash[] = "c76b85932aea3d93";
 } // namespace sp::generated::engine

@@ -1912,6 +1912,13 @@ void spear_bind_engine(py::module_& m) {
             },
             "The renderer of final_color, hdr_color and the intrinsic images (geometric and material modalities\nare always rasterised).");
         cls.def_property(
+            "GlobalIlluminationQuality",
+            [](const Ref<Self>& self) { return Calls::get_GlobalIlluminationQuality<PyCall>(self.get<Self>("UCameraSensorComponent.GlobalIlluminationQuality")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_GlobalIlluminationQuality<PyCall>(self.get<Self>("UCameraSensorComponent.GlobalIlluminationQuality"), value);
+            },
+            "The rasteriser's indirect light (global illumination): on by default. A world's probes are lit in full\non the first frame a camera asks for them; when the scene changes, the probes least recently lit are\nlit again, a budget per frame, so that a change reaches every probe within a bounded number of frames\n(core/render/README.md).");
+        cls.def_property(
             "SamplesPerPixel",
             [](const Ref<Self>& self) { return Calls::get_SamplesPerPixel<PyCall>(self.get<Self>("UCameraSensorComponent.SamplesPerPixel")); },
             [](const Ref<Self>& self, const PyArg& value) {

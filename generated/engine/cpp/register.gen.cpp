@@ -44,6 +44,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(sp::reflect::StaticEnum<ECameraToneCurve>());
     registry.add(sp::reflect::StaticEnum<ECollisionPrimitive>());
     registry.add(sp::reflect::StaticEnum<EComponentMobility>());
+    registry.add(sp::reflect::StaticEnum<EGlobalIlluminationQuality>());
     registry.add(sp::reflect::StaticEnum<EMoviePipelineJobStatus>());
     registry.add(sp::reflect::StaticEnum<ENavigationQueryResult>());
     registry.add(sp::reflect::StaticEnum<EPCGGenerationMode>());
@@ -195,6 +196,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<EPCGGenerationMode>());
     registry.remove(sp::reflect::StaticEnum<ENavigationQueryResult>());
     registry.remove(sp::reflect::StaticEnum<EMoviePipelineJobStatus>());
+    registry.remove(sp::reflect::StaticEnum<EGlobalIlluminationQuality>());
     registry.remove(sp::reflect::StaticEnum<EComponentMobility>());
     registry.remove(sp::reflect::StaticEnum<ECollisionPrimitive>());
     registry.remove(sp::reflect::StaticEnum<ECameraToneCurve>());
@@ -202,4 +204,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "c9564e56db115d4e"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "c76b85932aea3d93"; }

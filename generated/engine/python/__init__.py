@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "c9564e56db115d4e"
+API_HASH = "c76b85932aea3d93"

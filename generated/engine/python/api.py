@@ -55,6 +55,7 @@ __all__ = [
     "ECameraToneCurve",
     "ECollisionPrimitive",
     "EComponentMobility",
+    "EGlobalIlluminationQuality",
     "EMoviePipelineJobStatus",
     "ENavigationQueryResult",
     "EPCGGenerationMode",
@@ -159,6 +160,20 @@ class EComponentMobility(enum.IntEnum):
     Static = 0
     Stationary = 1
     Movable = 2
+
+
+class EGlobalIlluminationQuality(enum.IntEnum):
+    """How much indirect light a rasterised camera shows: the world's irradiance probes (a grid over the scene,
+    lit by the path tracer's rays, blended per pixel; core/render/README.md, "Global illumination"). The
+    names follow Unreal's scalability levels (sg.GlobalIlluminationQuality). A world lights its probes at the
+    highest quality any of its rasterised cameras asks for.
+    """
+
+    Off = 0
+    Low = 1
+    Medium = 2
+    High = 3
+    Epic = 4
 
 
 class EMoviePipelineJobStatus(enum.IntEnum):

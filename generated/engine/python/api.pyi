@@ -48,6 +48,7 @@ __all__ = [
     "ECameraToneCurve",
     "ECollisionPrimitive",
     "EComponentMobility",
+    "EGlobalIlluminationQuality",
     "EMoviePipelineJobStatus",
     "ENavigationQueryResult",
     "EPCGGenerationMode",
@@ -195,6 +196,25 @@ class EComponentMobility(enum.IntEnum):
     """Does not move but its lighting may change."""
     Movable = 2
     """Free to move."""
+
+
+class EGlobalIlluminationQuality(enum.IntEnum):
+    """How much indirect light a rasterised camera shows: the world's irradiance probes (a grid over the scene,
+    lit by the path tracer's rays, blended per pixel; core/render/README.md, "Global illumination"). The
+    names follow Unreal's scalability levels (sg.GlobalIlluminationQuality). A world lights its probes at the
+    highest quality any of its rasterised cameras asks for.
+    """
+
+    Off = 0
+    """No indirect light: the sky light's uniform ambient term alone, as before global illumination."""
+    Low = 1
+    """Probes 1 m apart (at most 16 along an axis), 128 rays each, 2 bounces."""
+    Medium = 2
+    """Probes 0.5 m apart (at most 24 along an axis), 256 rays each, 3 bounces."""
+    High = 3
+    """Probes 0.35 m apart (at most 32 along an axis), 512 rays each, 4 bounces."""
+    Epic = 4
+    """Probes 0.25 m apart (at most 48 along an axis), 1024 rays each, 4 bounces."""
 
 
 class EMoviePipelineJobStatus(enum.IntEnum):
@@ -3041,6 +3061,17 @@ class UCameraSensorComponent(USceneComponent):
 
     @Renderer.setter
     def Renderer(self, value: ECameraRenderer) -> None: ...
+
+    @property
+    def GlobalIlluminationQuality(self) -> EGlobalIlluminationQuality:
+        """The rasteriser's indirect light (global illumination): on by default. A world's probes are lit in full
+        on the first frame a camera asks for them; when the scene changes, the probes least recently lit are
+        lit again, a budget per frame, so that a change reaches every probe within a bounded number of frames
+        (core/render/README.md).
+        """
+
+    @GlobalIlluminationQuality.setter
+    def GlobalIlluminationQuality(self, value: EGlobalIlluminationQuality) -> None: ...
 
     @property
     def SamplesPerPixel(self) -> int:

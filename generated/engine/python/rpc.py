@@ -20,7 +20,7 @@ from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
 from . import type_codes as _t
-from .api import ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESplineCoordinateSpace, FCameraPixels, FFrameTimings, FHitResult, FLensDistortion, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
+from .api import ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EGlobalIlluminationQuality, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESplineCoordinateSpace, FCameraPixels, FFrameTimings, FHitResult, FLensDistortion, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
 
@@ -1320,6 +1320,14 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
     @Renderer.setter
     def Renderer(self, value: ECameraRenderer) -> None:
         self._sp_set("UCameraSensorComponent", "Renderer", value)
+
+    @property
+    def GlobalIlluminationQuality(self) -> EGlobalIlluminationQuality:
+        return cast("EGlobalIlluminationQuality", self._sp_get("UCameraSensorComponent", "GlobalIlluminationQuality", _t.T_EGlobalIlluminationQuality))
+
+    @GlobalIlluminationQuality.setter
+    def GlobalIlluminationQuality(self, value: EGlobalIlluminationQuality) -> None:
+        self._sp_set("UCameraSensorComponent", "GlobalIlluminationQuality", value)
 
     @property
     def SamplesPerPixel(self) -> int:

@@ -1,0 +1,122 @@
+"""The rasteriser's global illumination (UCameraSensorComponent.GlobalIlluminationQuality): on by default, a
+closed room lit from inside as bright as the path tracer says, no sunlight leaking through its walls, a moved
+lamp reaching the image, and bad values refused; both transports."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import spear
+from test_camera import spawn_camera
+
+M = spear.ECameraModality
+Q = spear.EGlobalIlluminationQuality
+
+
+def _closed_room(game: spear.UWorld, sun: bool) -> spear.APointLight:
+    """A closed white room (inside 4 x 3 x 2.5 m, walls 0.2 m) with a lamp inside; optionally a sun outside."""
+    library = game.spawn_actor(uclass=spear.AMaterialLibrary, name="Library")
+    library.SetMaterial(Name="White", Material=spear.FMaterialDesc(
+        BaseColor=spear.FLinearColor(R=0.8, G=0.8, B=0.8, A=1.0), Roughness=1.0))
+    t = 0.2
+    for name, location, scale in [("Floor", (0.0, 0.0, -t / 2), (4.4, 3.4, t)),
+                                  ("Ceiling", (0.0, 0.0, 2.5 + t / 2), (4.4, 3.4, t)),
+                                  ("WallN", (2.0 + t / 2, 0.0, 1.25), (t, 3.0, 2.5)),
+                                  ("WallS", (-2.0 - t / 2, 0.0, 1.25), (t, 3.0, 2.5)),
+                                  ("WallW", (0.0, 1.5 + t / 2, 1.25), (4.4, t, 2.5)),
+                                  ("WallE", (0.0, -1.5 - t / 2, 1.25), (4.4, t, 2.5))]:
+        actor = game.spawn_actor(uclass=spear.AStaticMeshActor, name=name, location=spear.FVector(*location))
+        actor.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        actor.StaticMeshComponent.SetRelativeScale3D(NewScale3D=spear.FVector(*scale))
+        actor.StaticMeshComponent.SetMaterial(ElementIndex=0, Material="White")
+    lamp = game.spawn_actor(uclass=spear.APointLight, name="Lamp", location=spear.FVector(0.5, 0.3, 2.2))
+    lamp.LightComponent.Intensity = 10.0
+    if sun:
+        game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun",
+                         rotation=spear.FRotator(Pitch=-60.0, Yaw=30.0)).LightComponent.Intensity = 100.0
+    return lamp
+
+
+def _room_camera(game: spear.UWorld, quality: spear.EGlobalIlluminationQuality, name: str = "Camera"
+                 ) -> spear.UCameraSensorComponent:
+    camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name=name, location=spear.FVector(-1.8, -1.3, 1.8),
+                              rotation=spear.FRotator(Pitch=-15.0, Yaw=30.0)).CameraSensor
+    camera.Width, camera.Height, camera.FOV = 48, 32, 90.0
+    camera.Modalities = [M.DiffuseIllumination]
+    camera.GlobalIlluminationQuality = quality
+    return camera
+
+
+def _mean_illumination(camera: spear.UCameraSensorComponent) -> float:
+    pixels = camera.read_pixels()
+    assert "diffuse_illumination" in pixels
+    return float(pixels["diffuse_illumination"].astype(np.float64).mean())
+
+
+def test_global_illumination_is_on_by_default(instance: spear.Instance) -> None:
+    with instance.begin_frame():
+        camera = spawn_camera(instance.get_game(), [M.FinalColor])
+        assert camera.GlobalIlluminationQuality == Q.Medium
+    with instance.end_frame():
+        pass
+
+
+def test_a_closed_room_lit_from_inside_is_as_bright_as_the_path_tracer_says(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        _closed_room(game, sun=False)
+        cameras = {q: _room_camera(game, q, q.name) for q in (Q.Off, Q.Medium)}
+        traced = _room_camera(game, Q.Off, "Traced")
+        traced.Renderer = spear.ECameraRenderer.PathTraced
+        traced.SamplesPerPixel = 64
+        traced.MaxBounces = 4  # the probes' 3 bounces after the surface they see, and that one
+    with instance.end_frame():
+        means = {q: _mean_illumination(c) for q, c in cameras.items()}
+        reference = _mean_illumination(traced)
+    assert means[Q.Off] < 0.75 * reference  # direct light and a constant sky term fall short
+    assert means[Q.Medium] == pytest.approx(reference, rel=0.08), (means, reference)
+
+
+def test_sunlight_outside_a_closed_room_does_not_leak_in(make_instance: object) -> None:
+    means = []
+    for sun in (False, True):
+        instance = make_instance()  # type: ignore[operator]
+        assert isinstance(instance, spear.Instance)
+        game = instance.get_game()
+        with instance.begin_frame():
+            _closed_room(game, sun)
+            camera = _room_camera(game, Q.Medium)
+        with instance.end_frame():
+            means.append(_mean_illumination(camera))
+    assert means[1] == pytest.approx(means[0], rel=0.05)
+
+
+def test_a_moved_lamp_reaches_the_indirect_light_within_the_stated_frames(instance: spear.Instance) -> None:
+    # Medium lights 64 probes a frame after a change; the room's grid has fewer than 64 x 30 probes.
+    game = instance.get_game()
+    with instance.begin_frame():
+        lamp = _closed_room(game, sun=False)
+        camera = _room_camera(game, Q.Medium)
+    with instance.end_frame():
+        before = _mean_illumination(camera)
+    with instance.begin_frame():
+        lamp.LightComponent.Intensity = 40.0
+    with instance.end_frame():
+        pass
+    for _ in range(30):
+        with instance.begin_frame():
+            pass
+        with instance.end_frame():
+            after = _mean_illumination(camera)
+    assert after == pytest.approx(4.0 * before, rel=0.03)
+
+
+def test_a_bad_quality_is_refused(instance: spear.Instance) -> None:
+    with instance.begin_frame():
+        camera = spawn_camera(instance.get_game(), [M.FinalColor])
+        with pytest.raises(TypeError, match="GlobalIlluminationQuality"):
+            camera.GlobalIlluminationQuality = 7  # type: ignore[assignment]
+        assert camera.GlobalIlluminationQuality == Q.Medium
+    with instance.end_frame():
+        pass
