@@ -366,12 +366,13 @@ class UCameraSensorComponent : public USceneComponent {
     SPPROPERTY()
     ECameraRenderer Renderer = ECameraRenderer::Raster;
 
-    /// The rasteriser's indirect light (global illumination): on by default. A world's probes are lit in full
-    /// on the first frame a camera asks for them; when the scene changes, the probes least recently lit are
-    /// lit again, a budget per frame, so that a change reaches every probe within a bounded number of frames
-    /// (core/render/README.md).
+    /// The rasteriser's indirect light (global illumination). A world's probes are lit in full on the first
+    /// frame a camera asks for them; when the scene changes, the probes least recently lit are lit again, a
+    /// budget per frame, so that a change reaches every probe within a bounded number of frames
+    /// (core/render/README.md). Off by default until its per-pixel blend fits the frame budget of a software
+    /// rasteriser (Medium: about 55 ms more per 1080p frame on llvmpipe; BENCHMARKS.md).
     SPPROPERTY()
-    EGlobalIlluminationQuality GlobalIlluminationQuality = EGlobalIlluminationQuality::Medium;
+    EGlobalIlluminationQuality GlobalIlluminationQuality = EGlobalIlluminationQuality::Off;
 
     /// Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating.
     SPPROPERTY(Setter = SetSamplesPerPixel)

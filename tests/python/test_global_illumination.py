@@ -1,4 +1,4 @@
-"""The rasteriser's global illumination (UCameraSensorComponent.GlobalIlluminationQuality): on by default, a
+"""The rasteriser's global illumination (UCameraSensorComponent.GlobalIlluminationQuality): off by default, a
 closed room lit from inside as bright as the path tracer says, no sunlight leaking through its walls, a moved
 lamp reaching the image, and bad values refused; both transports."""
 
@@ -54,10 +54,11 @@ def _mean_illumination(camera: spear.UCameraSensorComponent) -> float:
     return float(pixels["diffuse_illumination"].astype(np.float64).mean())
 
 
-def test_global_illumination_is_on_by_default(instance: spear.Instance) -> None:
+def test_global_illumination_is_off_by_default(instance: spear.Instance) -> None:
+    # Off until its per-pixel blend fits a software rasteriser's frame budget (core/render/README.md).
     with instance.begin_frame():
         camera = spawn_camera(instance.get_game(), [M.FinalColor])
-        assert camera.GlobalIlluminationQuality == Q.Medium
+        assert camera.GlobalIlluminationQuality == Q.Off
     with instance.end_frame():
         pass
 
@@ -117,6 +118,6 @@ def test_a_bad_quality_is_refused(instance: spear.Instance) -> None:
         camera = spawn_camera(instance.get_game(), [M.FinalColor])
         with pytest.raises(TypeError, match="GlobalIlluminationQuality"):
             camera.GlobalIlluminationQuality = 7  # type: ignore[assignment]
-        assert camera.GlobalIlluminationQuality == Q.Medium
+        assert camera.GlobalIlluminationQuality == Q.Off
     with instance.end_frame():
         pass

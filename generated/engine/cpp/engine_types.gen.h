@@ -45,5 +45,5 @@ __attribute__((visibility("default"))) const char* spear_register_engine_types_a
 
 // The same hash as a constant: a plugin compiled against these headers records the engine's.
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "c76b85932aea3d93";
+inline constexpr char kApiHash[] = "c59c8ccee055edc2";
 } // namespace sp::generated::engine
