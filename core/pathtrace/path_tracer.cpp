@@ -136,6 +136,15 @@ Eigen::Vector3f lightIrradiance(const render::Light& light, const Eigen::Vector3
     return e;
 }
 
+// Runs `work` on every hardware thread, the caller's included, and returns when all are done.
+template <typename Work> void onEveryThread(Work& work) {
+    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::jthread> pool; // joined on the way out, even when starting one throws
+    for (unsigned t = 1; t < threads; ++t)
+        pool.emplace_back(work);
+    work();
+}
+
 } // namespace
 
 void Settings::validate(const char* function) const {
@@ -600,13 +609,7 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
         }
         rays += traced;
     };
-    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-    {
-        std::vector<std::jthread> pool; // joined on the way out, even when starting one throws
-        for (unsigned t = 1; t < threads; ++t)
-            pool.emplace_back(work);
-        work();
-    }
+    onEveryThread(work);
     progress.set(double(height));
     image.samples += std::uint64_t(settings.samplesPerPixel);
     impl.lastRays = rays;
@@ -680,13 +683,7 @@ void PathTracer::lightProbes(const render::Scene& scene, render::IrradianceVolum
         }
         traced += count;
     };
-    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-    {
-        std::vector<std::jthread> pool; // joined on the way out, even when starting one throws
-        for (unsigned t = 1; t < threads; ++t)
-            pool.emplace_back(work);
-        work();
-    }
+    onEveryThread(work);
     impl.lastRays = traced;
 }
 
