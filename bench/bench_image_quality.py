@@ -1,0 +1,242 @@
+"""Image quality of the rasteriser against the project's own path tracer, on the default scene and two more.
+
+For each scene, one pose: the rasterised final_color (each global-illumination quality asked for) against a
+path-traced reference of --reference samples per pixel at the same pose and exposure. Printed per scene and
+quality, over the pixels that show geometry (depth > 0):
+  - mean luminance ratio (raster / reference) and mean relative luminance error;
+  - SSIM of final_color (scikit-image, Debian's python3-skimage);
+  - crushed pixels (every channel below 8/255) in raster and in the reference;
+and, once per scene, the path tracer's relative RMSE at 64 spp against the reference.
+
+    PYTHONPATH=python /usr/bin/python3 bench/bench_image_quality.py [--width 320 --height 240]
+        [--reference 1024] [--qualities Off,Medium] [--scenes apartment,yard,closed_room] [--out out/iq]
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+import time
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+from numpy.typing import NDArray
+
+import spear
+
+ROOT = Path(__file__).resolve().parent.parent
+APARTMENT = ROOT / "assets" / "scenes" / "apartment.json"
+CUBE = "/Engine/BasicShapes/Cube"
+
+Pose = tuple[spear.FVector, spear.FRotator]
+
+
+def box(game: spear.UWorld, name: str, location: tuple[float, float, float], scale: tuple[float, float, float],
+        color: tuple[float, float, float], roughness: float = 0.8) -> None:
+    library = game.find_actor_by_name(name="Materials")
+    if library is None:
+        library = game.spawn_actor(uclass=spear.AMaterialLibrary, name="Materials")
+    assert isinstance(library, spear.AMaterialLibrary)
+    library.SetMaterial(Name=name, Material=spear.FMaterialDesc(BaseColor=spear.FLinearColor(*color, 1.0),
+                                                                Roughness=roughness))
+    actor = game.spawn_actor(uclass=spear.AStaticMeshActor, name=name, location=spear.FVector(*location))
+    mesh = actor.StaticMeshComponent
+    mesh.SetStaticMesh(NewMesh=CUBE)
+    mesh.SetRelativeScale3D(NewScale3D=spear.FVector(*scale))
+    mesh.SetMaterial(ElementIndex=0, Material=name)
+
+
+def apartment(game: spear.UWorld) -> Pose:
+    game.load_scene(path=str(APARTMENT))
+    return spear.FVector(-2.6, -1.6, 1.7), spear.FRotator(Pitch=-18.0, Yaw=22.0)
+
+
+def yard(game: spear.UWorld) -> Pose:
+    """Outdoors: a sun low enough to leave faces in shade, a blue sky light, a ground and a few blocks."""
+    box(game, "Ground", (0.0, 0.0, -0.05), (40.0, 40.0, 0.1), (0.35, 0.33, 0.3), 0.95)
+    box(game, "House", (3.0, 1.0, 1.5), (4.0, 3.0, 3.0), (0.75, 0.7, 0.62))
+    box(game, "Shed", (0.5, -3.0, 0.75), (1.5, 1.5, 1.5), (0.55, 0.25, 0.15))
+    box(game, "Wall", (-1.0, 2.5, 0.5), (0.2, 4.0, 1.0), (0.6, 0.6, 0.6))
+    box(game, "Crate", (-0.5, -0.5, 0.3), (0.6, 0.6, 0.6), (0.4, 0.5, 0.3))
+    sun = game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun",
+                           rotation=spear.FRotator(Pitch=-35.0, Yaw=-60.0))
+    sun.LightComponent.Intensity = 3.0
+    sky = game.spawn_actor(uclass=spear.ASkyLight, name="Sky")
+    sky.SkyLightComponent.SkyColor = spear.FLinearColor(0.35, 0.45, 0.6, 1.0)
+    sky.SkyLightComponent.Intensity = 1.0
+    sky.SkyLightComponent.BackgroundColor = spear.FLinearColor(0.35, 0.45, 0.6, 1.0)
+    return spear.FVector(-7.0, -5.0, 2.5), spear.FRotator(Pitch=-12.0, Yaw=35.0)
+
+
+def closed_room(game: spear.UWorld) -> Pose:
+    """A closed white room lit by one lamp, with a sun outside that must not leak in."""
+    t = 0.2
+    for name, location, scale in [("Floor", (0.0, 0.0, -t / 2), (4.4, 3.4, t)),
+                                  ("Ceiling", (0.0, 0.0, 2.5 + t / 2), (4.4, 3.4, t)),
+                                  ("WallN", (2.0 + t / 2, 0.0, 1.25), (t, 3.0, 2.5)),
+                                  ("WallS", (-2.0 - t / 2, 0.0, 1.25), (t, 3.0, 2.5)),
+                                  ("WallW", (0.0, 1.5 + t / 2, 1.25), (4.4, t, 2.5)),
+                                  ("WallE", (0.0, -1.5 - t / 2, 1.25), (4.4, t, 2.5))]:
+        box(game, name, location, scale, (0.8, 0.8, 0.8), 1.0)
+    box(game, "Block", (0.6, 0.4, 0.4), (0.8, 0.8, 0.8), (0.7, 0.2, 0.15))
+    lamp = game.spawn_actor(uclass=spear.APointLight, name="Lamp", location=spear.FVector(-0.5, -0.3, 2.2))
+    lamp.LightComponent.Intensity = 10.0
+    sun = game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun",
+                           rotation=spear.FRotator(Pitch=-50.0, Yaw=30.0))
+    sun.LightComponent.Intensity = 30.0
+    return spear.FVector(-1.8, -1.3, 1.8), spear.FRotator(Pitch=-20.0, Yaw=35.0)
+
+
+SCENES: dict[str, Callable[[spear.UWorld], Pose]] = {"apartment": apartment, "yard": yard,
+                                                     "closed_room": closed_room}
+EXPOSURE = {"apartment": 0.6, "yard": 1.0, "closed_room": 1.0}
+
+
+def luminance(rgb: NDArray[np.float64]) -> NDArray[np.float64]:
+    result: NDArray[np.float64] = 0.2126 * rgb[..., 0] + 0.7152 * rgb[..., 1] + 0.0722 * rgb[..., 2]
+    return result
+
+
+def srgb_to_linear(image: NDArray[np.uint8]) -> NDArray[np.float64]:
+    c = image[..., :3].astype(np.float64) / 255.0
+    return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+
+
+class Scene:
+    """One scene in its own engine: a camera per quality and a path-traced one, all at one pose."""
+
+    def __init__(self, name: str, width: int, height: int, qualities: list[spear.EGlobalIlluminationQuality]):
+        self.instance = spear.Instance()
+        self.game = self.instance.get_game()
+        self.width, self.height = width, height
+        with self.instance.begin_frame():
+            self.pose = SCENES[name](self.game)
+            for actor in self.game.find_actors_by_class(uclass=spear.AStaticMeshActor):
+                if actor.StaticMeshComponent.bSimulatePhysics:  # still, for the path tracer to accumulate
+                    actor.StaticMeshComponent.SetSimulatePhysics(bSimulate=False)
+            self.cameras = {q: self.camera(f"Raster{q.name}", width, height, q, name) for q in qualities}
+        with self.instance.end_frame():
+            pass
+
+    def camera(self, label: str, width: int, height: int, quality: spear.EGlobalIlluminationQuality,
+               scene: str) -> spear.UCameraSensorComponent:
+        actor = self.game.spawn_actor(uclass=spear.ACameraSensorActor, name=label, location=self.pose[0],
+                                      rotation=self.pose[1])
+        camera = actor.CameraSensor
+        camera.Width, camera.Height, camera.FOV = width, height, 75.0
+        camera.Modalities = [spear.ECameraModality.FinalColor, spear.ECameraModality.Depth]
+        camera.ShadowResolution = 2048
+        camera.Exposure = EXPOSURE[scene]
+        camera.GlobalIlluminationQuality = quality
+        return camera
+
+    def frame(self) -> None:
+        with self.instance.begin_frame():
+            pass
+        with self.instance.end_frame():
+            pass
+
+    def raster(self, camera: spear.UCameraSensorComponent) -> tuple[NDArray[np.uint8], NDArray[np.float32]]:
+        pixels = camera.read_pixels()
+        assert "final_color" in pixels and "depth" in pixels
+        return pixels["final_color"], pixels["depth"]
+
+    def traced(self, samples: int, label: str) -> NDArray[np.uint8]:
+        """final_color of a path-traced camera at the pose after `samples` samples per pixel."""
+        with self.instance.begin_frame():
+            camera = self.camera(label, self.width, self.height, spear.EGlobalIlluminationQuality.Off, "")
+            camera.Modalities = [spear.ECameraModality.FinalColor]
+            camera.Renderer = spear.ECameraRenderer.PathTraced
+            camera.SamplesPerPixel = min(64, samples)
+            camera.MaxBounces = 6
+        with self.instance.end_frame():
+            pass
+        start = time.monotonic()
+        while camera.GetAccumulatedSamples() < samples:
+            with self.instance.begin_frame():
+                camera.SamplesPerPixel = min(64, samples - camera.GetAccumulatedSamples())
+            with self.instance.end_frame():
+                pass
+            print(f"  {label}: {camera.GetAccumulatedSamples()}/{samples} spp, {time.monotonic() - start:.0f} s",
+                  file=sys.stderr)
+        pixels = camera.read_pixels()
+        assert "final_color" in pixels
+        image = pixels["final_color"]
+        with self.instance.begin_frame():
+            camera.Modalities = []
+        with self.instance.end_frame():
+            pass
+        return image
+
+    def close(self) -> None:
+        self.instance.close()
+
+
+def ssim(a: NDArray[np.uint8], b: NDArray[np.uint8]) -> float:
+    structural_similarity = importlib.import_module("skimage.metrics").structural_similarity  # untyped
+    return float(structural_similarity(a[..., :3], b[..., :3], channel_axis=2, data_range=255))
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
+    parser.add_argument("--width", type=int, default=320)
+    parser.add_argument("--height", type=int, default=240)
+    parser.add_argument("--reference", type=int, default=1024, help="path-traced samples per pixel")
+    parser.add_argument("--qualities", default="Off,Medium")
+    parser.add_argument("--scenes", default="apartment,yard,closed_room")
+    parser.add_argument("--out", default=None, help="a folder for the images (PNG)")
+    args = parser.parse_args()
+    try:
+        importlib.import_module("skimage")
+    except ImportError:
+        sys.exit("bench_image_quality.py needs scikit-image: sudo apt-get install python3-skimage")
+    qualities = [spear.EGlobalIlluminationQuality[q] for q in args.qualities.split(",")]
+    rows: list[tuple[str, str, float, float, float, float, float, float]] = []
+    noise: list[tuple[str, float]] = []
+    for name in args.scenes.split(","):
+        print(f"{name}:", file=sys.stderr)
+        scene = Scene(name, args.width, args.height, qualities)
+        scene.frame()
+        reference = scene.traced(args.reference, "Reference")
+        noisy = scene.traced(64, "Traced64")
+        ref_linear = srgb_to_linear(reference)
+        ref_lum = luminance(ref_linear)
+        for quality, camera in scene.cameras.items():
+            start = time.monotonic()
+            scene.frame()
+            elapsed = time.monotonic() - start
+            color, depth = scene.raster(camera)
+            geometry = depth > 0
+            lum = luminance(srgb_to_linear(color))
+            ratio = float(lum[geometry].mean() / max(ref_lum[geometry].mean(), 1e-9))
+            relative = float((np.abs(lum - ref_lum)[geometry] / np.maximum(ref_lum[geometry], 1e-3)).mean())
+            crushed = float((color[..., :3].max(axis=2) < 8)[geometry].mean())
+            crushed_ref = float((reference[..., :3].max(axis=2) < 8)[geometry].mean())
+            rows.append((name, quality.name, ratio, relative, ssim(color, reference), crushed, crushed_ref,
+                         elapsed))
+            if args.out:
+                from PIL import Image  # type: ignore[import]
+                out = Path(args.out)
+                out.mkdir(parents=True, exist_ok=True)
+                Image.fromarray(np.ascontiguousarray(color[..., :3])).save(out / f"{name}_{quality.name}.png")
+                Image.fromarray(np.ascontiguousarray(reference[..., :3])).save(out / f"{name}_reference.png")
+        noisy_lum = luminance(srgb_to_linear(noisy))
+        rmse = float(np.sqrt(((noisy_lum - ref_lum) ** 2).mean()) / max(ref_lum.mean(), 1e-9))
+        print(f"  path tracer, 64 spp against {args.reference}: relative RMSE {rmse:.3f}", file=sys.stderr)
+        noise.append((name, rmse))
+        scene.close()
+
+    print("| scene | quality | luminance ratio | mean rel. error | SSIM | crushed raster | crushed ref. | frame s |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|")
+    for n, q, ratio, rel, s, cr, crr, t in rows:
+        print(f"| {n} | {q} | {ratio:.2f} | {rel:.2f} | {s:.3f} | {cr:.1%} | {crr:.1%} | {t:.2f} |")
+    print()
+    print(f"| scene | path tracer at 64 spp: relative RMSE against {args.reference} spp |")
+    print("|---|---:|")
+    for n, rmse in noise:
+        print(f"| {n} | {rmse:.3f} |")
+
+if __name__ == "__main__":
+    main()
