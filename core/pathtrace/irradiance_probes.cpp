@@ -1,10 +1,12 @@
 #include "core/pathtrace/irradiance_probes.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numeric>
 
 #include "core/base/error.h"
+#include "core/base/log.h"
 
 namespace sp::pathtrace {
 namespace {
@@ -41,8 +43,9 @@ int IrradianceProbes::framesToSettle() const {
 }
 
 void IrradianceProbes::place(const Eigen::AlignedBox3d& box, const ProbeSettings& settings) {
-    // A quarter more each side, so that a moving thing leaving the box re-places the grid rarely.
-    const Eigen::Vector3d margin = 0.25 * box.sizes();
+    // A quarter of the largest side more on each side, so that a moving thing leaving the box re-places the
+    // grid rarely (of the largest side: a flat scene's box has no height to take a quarter of).
+    const Eigen::Vector3d margin = Eigen::Vector3d::Constant(0.25 * box.sizes().maxCoeff());
     covered_ = Eigen::AlignedBox3d(box.min() - margin, box.max() + margin);
     const double extent = covered_.sizes().maxCoeff();
     double spacing = settings.spacing;
@@ -98,7 +101,12 @@ IrradianceProbes::update(const render::Scene& scene, PathTracer& tracer, const P
     }
     Settings trace;
     trace.maxBounces = settings.maxBounces;
+    const auto start = std::chrono::steady_clock::now();
     tracer.lightProbes(scene, lit_, stale, settings.rays, trace);
+    if (placed) // what the first frame (and a scene outgrowing its grid) costs, once
+        SP_LOG("irradiance probes: ", lit_.counts.x(), "x", lit_.counts.y(), "x", lit_.counts.z(), " probes ",
+               lit_.spacing, " m apart, lit in ",
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), " s");
     for (std::size_t i : stale) {
         litFor_[i] = signature;
         litAt_[i] = updates_;

@@ -3,14 +3,14 @@
 // probes with the path tracer's own estimator (PathTracer::lightProbes), so that the rasteriser's indirect
 // light is the reference renderer's, blurred to the probe spacing.
 //
-// The grid covers the visible instances' bounding box with a margin, its lattice offset from round
-// coordinates (a probe exactly on a floor or wall sees half its rays end at distance 0). It is placed again,
-// and every probe lit, only when the scene outgrows it (the box grows by a quarter each side, so a thing
-// flying away does not re-place it every frame) or the settings change. Otherwise, when the light changed
-// (geometry, materials, lights, sky: PathTracer::lightingSignature), each update lights the
-// `probesPerFrame` probes lit longest ago: a change reaches every probe within framesToSettle() updates,
-// and a still scene costs nothing. Probes inside geometry take the mean of their lit neighbours, so that a
-// point whose every visible probe is hidden still blends something near.
+// The grid covers the visible instances' bounding box with a margin (a quarter of its largest side), its
+// lattice offset from round coordinates (a probe exactly on a floor or wall sees half its rays end at
+// distance 0). It is placed again, and every probe lit, only when the scene outgrows it (the margin grows
+// with the box, so a thing flying away does not re-place it every frame) or the settings change. Otherwise,
+// when the light changed (geometry, materials, lights, sky: PathTracer::lightingSignature), each update
+// lights the `probesPerFrame` probes lit longest ago: a change reaches every probe within framesToSettle()
+// updates, and a still scene costs nothing. Probes inside geometry take the mean of their lit neighbours, so
+// that a point whose every visible probe is hidden still blends something near.
 
 #include <cstdint>
 #include <memory>

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <thread>
 
 #include "core/base/error.h"
@@ -69,12 +70,29 @@ struct PathSample {
     Eigen::Vector3f diffuseIllumination = Eigen::Vector3f::Zero();
 };
 
-// One instance's triangles in world space, with what shading needs at a hit.
-struct Shape {
-    std::vector<Eigen::Vector3f> normals; // world
+// One mesh's triangles in its own space, built once per revision and instanced by every instance of it: a
+// moving object costs the top level's rebuild, not its triangles'.
+struct MeshShape {
+    RTCScene scene = nullptr;
+    std::vector<Eigen::Vector3f> normals; // mesh space
     std::vector<Eigen::Vector2f> uvs;
-    std::vector<std::uint32_t> indices;        // the submeshes' triangles, in submesh order
-    std::vector<std::uint32_t> slots;          // each triangle's material slot
+    std::vector<std::uint32_t> indices; // the submeshes' triangles, in submesh order
+    std::vector<std::uint32_t> slots;   // each triangle's material slot
+    std::uint64_t revision = 0;
+    std::uint64_t usedBy = 0; // the last top-level build that instanced it
+    MeshShape() = default;
+    MeshShape(const MeshShape&) = delete;
+    MeshShape& operator=(const MeshShape&) = delete;
+    ~MeshShape() {
+        if (scene)
+            rtcReleaseScene(scene);
+    }
+};
+
+// One visible instance: its mesh and what turns the mesh's normals into the world's.
+struct Shape {
+    const MeshShape* mesh = nullptr;
+    Eigen::Matrix3f normalMatrix;              // inverse transpose of the instance's linear part
     std::vector<render::MaterialId> materials; // one per submesh
 };
 
@@ -161,9 +179,12 @@ struct PathTracer::Impl {
     std::uint64_t builtFor = 0;          // the uid of the scene it was built from
     std::uint64_t builds = 0;
     std::uint64_t lastRays = 0;
-    std::vector<Shape> shapes; // by geometry id
+    std::vector<Shape> shapes; // by instance geometry id in rtcScene
+    // Mesh scenes by (MeshId index, generation); those no build instanced lately are released.
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::unique_ptr<MeshShape>> meshShapes;
 
     ~Impl() {
+        meshShapes.clear();
         if (rtcScene)
             rtcReleaseScene(rtcScene);
         if (device)
@@ -196,7 +217,9 @@ struct PathTracer::Impl {
         hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(rtcScene, &context, &hit);
         back = hit.hit.geomID != RTC_INVALID_GEOMETRY_ID &&
-               Eigen::Vector3f(hit.hit.Ng_x, hit.hit.Ng_y, hit.hit.Ng_z).dot(direction) > 0.0f;
+               (shapes[hit.hit.instID[0]].normalMatrix *
+                Eigen::Vector3f(hit.hit.Ng_x, hit.hit.Ng_y, hit.hit.Ng_z))
+                       .dot(direction) > 0.0f;
         return hit.hit.geomID == RTC_INVALID_GEOMETRY_ID ? std::numeric_limits<float>::infinity()
                                                          : hit.ray.tfar;
     }
@@ -220,59 +243,82 @@ struct PathTracer::Impl {
         return h.value;
     }
 
-    void build(const render::Scene& scene) {
-        if (rtcScene)
-            rtcReleaseScene(rtcScene);
-        shapes.clear();
-        rtcScene = rtcNewScene(device);
-        // Robust triangle tests: no rays slipping through shared edges of a closed room.
-        rtcSetSceneFlags(rtcScene, RTC_SCENE_FLAG_ROBUST);
-        scene.forEachInstance([&](render::InstanceId, const render::Instance& instance) {
-            if (!instance.visible)
-                return;
-            const render::MeshData& mesh = scene.mesh(instance.mesh);
-            const Eigen::Affine3f transform = instance.transform.cast<float>();
-            const Eigen::Matrix3f normalMatrix = transform.linear().inverse().transpose();
-            Shape shape;
-            shape.normals.reserve(mesh.normals.size());
-            for (const Eigen::Vector3f& n : mesh.normals)
-                shape.normals.push_back((normalMatrix * n).normalized());
-            shape.uvs = mesh.uvs;
-            // The triangles the rasteriser draws: those of the submeshes, each with its material slot.
-            for (std::size_t slot = 0; slot < mesh.submeshes.size(); ++slot) {
-                const render::Submesh& sub = mesh.submeshes[slot];
-                shape.indices.insert(shape.indices.end(), mesh.indices.begin() + sub.firstIndex,
-                                     mesh.indices.begin() + sub.firstIndex + sub.indexCount / 3 * 3);
-                shape.slots.resize(shape.indices.size() / 3, std::uint32_t(slot));
-            }
-            shape.materials = instance.materials;
-            if (shape.indices.empty())
-                return;
-
+    // The mesh scene of `id`, built when it is new or its revision changed.
+    const MeshShape& meshShape(const render::Scene& scene, render::MeshId id) {
+        std::unique_ptr<MeshShape>& entry = meshShapes[{id.index, id.generation}];
+        const std::uint64_t revision = scene.meshRevision(id);
+        if (entry && entry->revision == revision) {
+            entry->usedBy = builds;
+            return *entry;
+        }
+        entry = std::make_unique<MeshShape>();
+        entry->revision = revision;
+        entry->usedBy = builds;
+        const render::MeshData& mesh = scene.mesh(id);
+        entry->normals = mesh.normals;
+        entry->uvs = mesh.uvs;
+        // The triangles the rasteriser draws: those of the submeshes, each with its material slot.
+        for (std::size_t slot = 0; slot < mesh.submeshes.size(); ++slot) {
+            const render::Submesh& sub = mesh.submeshes[slot];
+            entry->indices.insert(entry->indices.end(), mesh.indices.begin() + sub.firstIndex,
+                                  mesh.indices.begin() + sub.firstIndex + sub.indexCount / 3 * 3);
+            entry->slots.resize(entry->indices.size() / 3, std::uint32_t(slot));
+        }
+        entry->scene = rtcNewScene(device);
+        rtcSetSceneFlags(entry->scene, RTC_SCENE_FLAG_ROBUST);
+        if (!entry->indices.empty()) {
             RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
             SP_CHECK(geometry != nullptr, InvalidState,
                      "PathTracer: Embree could not create a geometry (error ", int(rtcGetDeviceError(device)),
                      ")");
-            // Every ray sees the instance; shadow rays only when it casts shadows (kShadowRays).
-            rtcSetGeometryMask(geometry, instance.castShadows ? kCameraRays | kShadowRays : kCameraRays);
             auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
                                                                          RTC_FORMAT_FLOAT3, 3 * sizeof(float),
                                                                          mesh.positions.size()));
-            for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-                const Eigen::Vector3f p = transform * mesh.positions[i];
-                std::memcpy(vertices + 3 * i, p.data(), 3 * sizeof(float));
-            }
+            for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+                std::memcpy(vertices + 3 * i, mesh.positions[i].data(), 3 * sizeof(float));
             auto* indices = static_cast<unsigned*>(
                 rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                        3 * sizeof(unsigned), shape.indices.size() / 3));
-            std::memcpy(indices, shape.indices.data(), shape.indices.size() * sizeof(unsigned));
+                                        3 * sizeof(unsigned), entry->indices.size() / 3));
+            std::memcpy(indices, entry->indices.data(), entry->indices.size() * sizeof(unsigned));
+            rtcCommitGeometry(geometry);
+            rtcAttachGeometry(entry->scene, geometry);
+            rtcReleaseGeometry(geometry);
+        }
+        rtcCommitScene(entry->scene);
+        return *entry;
+    }
+
+    // The top level: one instance of its mesh scene per visible instance, with its transform.
+    void build(const render::Scene& scene) {
+        ++builds;
+        if (rtcScene)
+            rtcReleaseScene(rtcScene);
+        shapes.clear();
+        rtcScene = rtcNewScene(device);
+        rtcSetSceneFlags(rtcScene, RTC_SCENE_FLAG_ROBUST);
+        scene.forEachInstance([&](render::InstanceId, const render::Instance& instance) {
+            if (!instance.visible)
+                return;
+            const MeshShape& mesh = meshShape(scene, instance.mesh);
+            if (mesh.indices.empty())
+                return;
+            const Eigen::Affine3f transform = instance.transform.cast<float>();
+            RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+            SP_CHECK(geometry != nullptr, InvalidState,
+                     "PathTracer: Embree could not create an instance (error ",
+                     int(rtcGetDeviceError(device)), ")");
+            rtcSetGeometryInstancedScene(geometry, mesh.scene);
+            const Eigen::Matrix<float, 3, 4> columns = transform.matrix().topRows<3>();
+            rtcSetGeometryTransform(geometry, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, columns.data());
+            // Every ray sees the instance; shadow rays only when it casts shadows (kShadowRays).
+            rtcSetGeometryMask(geometry, instance.castShadows ? kCameraRays | kShadowRays : kCameraRays);
             rtcCommitGeometry(geometry);
             rtcAttachGeometryByID(rtcScene, geometry, unsigned(shapes.size()));
             rtcReleaseGeometry(geometry);
-            shapes.push_back(std::move(shape));
+            shapes.push_back({&mesh, transform.linear().inverse().transpose(), instance.materials});
         });
         rtcCommitScene(rtcScene);
-        ++builds;
+        std::erase_if(meshShapes, [&](const auto& entry) { return entry.second->usedBy + 8 < builds; });
     }
 
     // Everything the light in the scene depends on: the geometry, materials, lights and sky.
@@ -403,27 +449,31 @@ struct PathTracer::Impl {
                 break;
             }
 
-            const Shape& shape = shapes[hit.hit.geomID];
+            const Shape& shape = shapes[hit.hit.instID[0]];
+            const MeshShape& mesh = *shape.mesh;
             const std::uint32_t triangle = hit.hit.primID;
-            const std::uint32_t i0 = shape.indices[3 * triangle], i1 = shape.indices[3 * triangle + 1],
-                                i2 = shape.indices[3 * triangle + 2];
+            const std::uint32_t i0 = mesh.indices[3 * triangle], i1 = mesh.indices[3 * triangle + 1],
+                                i2 = mesh.indices[3 * triangle + 2];
             const float u = hit.hit.u, v = hit.hit.v, w = 1.0f - u - v;
             const Eigen::Vector3f p = origin + direction * hit.ray.tfar;
             const Eigen::Vector3f toViewer = -direction;
             // Two-sided, as the rasteriser: the geometric normal faces the viewer, the shading normal
             // follows.
-            Eigen::Vector3f ng = Eigen::Vector3f(hit.hit.Ng_x, hit.hit.Ng_y, hit.hit.Ng_z).normalized();
+            // Embree gives an instance's hit normal in the mesh's space.
+            Eigen::Vector3f ng =
+                (shape.normalMatrix * Eigen::Vector3f(hit.hit.Ng_x, hit.hit.Ng_y, hit.hit.Ng_z)).normalized();
             if (ng.dot(toViewer) < 0.0f)
                 ng = -ng;
             Eigen::Vector3f n =
-                (shape.normals[i0] * w + shape.normals[i1] * u + shape.normals[i2] * v).normalized();
+                (shape.normalMatrix * (mesh.normals[i0] * w + mesh.normals[i1] * u + mesh.normals[i2] * v))
+                    .normalized();
             if (!n.allFinite())
                 n = ng;
             if (n.dot(ng) < 0.0f)
                 n = -n;
-            const Eigen::Vector2f uv = shape.uvs[i0] * w + shape.uvs[i1] * u + shape.uvs[i2] * v;
+            const Eigen::Vector2f uv = mesh.uvs[i0] * w + mesh.uvs[i1] * u + mesh.uvs[i2] * v;
 
-            const render::Material& material = scene.material(shape.materials[shape.slots[triangle]]);
+            const render::Material& material = scene.material(shape.materials[mesh.slots[triangle]]);
             SurfacePoint s{n, material.baseColor.head<3>(), material.roughness, material.metallic};
             if (material.baseColorTexture)
                 s.base =

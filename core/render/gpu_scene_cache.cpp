@@ -117,6 +117,20 @@ const GpuMesh& GpuSceneCache::mesh(const Scene& scene, MeshId id) {
     return *slot.gpu;
 }
 
+const GpuMesh& GpuSceneCache::refined(const Scene& scene, MeshId id, int times) {
+    const MeshData& data = scene.mesh(id); // throws for a stale id
+    const std::uint64_t revision = scene.meshRevision(id);
+    Refined& entry = refined_[{id.index, times}];
+    if (!entry.gpu || entry.generation != id.generation || entry.revision != revision) {
+        entry.gpu = std::make_unique<GpuMesh>();
+        upload(*entry.gpu, data.subdivided(times));
+        entry.generation = id.generation;
+        entry.revision = revision;
+        ++meshUploads_;
+    }
+    return *entry.gpu;
+}
+
 unsigned GpuSceneCache::texture(const Scene& scene, TextureId id) {
     const TextureImage& image = scene.texture(id); // throws for a stale id
     if (id.index >= textures_.size())

@@ -54,7 +54,11 @@ class GpuSceneCache {
 
     // The GPU mesh for `id`, uploading it first when needed. Throws sp::StaleObject for a removed id.
     const GpuMesh& mesh(const Scene& scene, MeshId id);
+    // The GPU mesh of `id` subdivided `times` times (MeshData::subdivided()), made and uploaded when first
+    // asked for; a scene's other revision or generation of the mesh replaces it.
+    const GpuMesh& refined(const Scene& scene, MeshId id, int times);
     // GL texture name for `id`, uploading (with mipmaps) first when needed.
+
     unsigned texture(const Scene& scene, TextureId id);
 
     // Uploads this cache made (a shared upload counts in the cache that made it).
@@ -71,6 +75,12 @@ class GpuSceneCache {
     SharedUploads& shared_;
     std::vector<Slot<GpuMesh>> meshes_;      // by MeshId::index
     std::vector<Slot<GpuTexture>> textures_; // by TextureId::index
+    struct Refined {
+        std::uint32_t generation = 0;
+        std::uint64_t revision = 0;
+        std::unique_ptr<GpuMesh> gpu;
+    };
+    std::map<std::pair<std::uint32_t, int>, Refined> refined_; // by (MeshId::index, times)
     std::uint64_t meshUploads_ = 0;
     std::uint64_t textureUploads_ = 0;
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -182,6 +183,52 @@ bool MeshData::faceted() const {
                 return false;
     }
     return true;
+}
+
+float MeshData::longestEdge() const {
+    float longest = 0.0f;
+    for (std::size_t t = 0; t + 2 < indices.size(); t += 3)
+        for (int e = 0; e < 3; ++e)
+            longest = std::max(longest, (positions[indices[t + std::size_t(e)]] -
+                                         positions[indices[t + std::size_t((e + 1) % 3)]])
+                                            .norm());
+    return longest;
+}
+
+MeshData MeshData::subdivided(int times) const {
+    MeshData mesh = *this;
+    for (int k = 0; k < times; ++k) {
+        MeshData next;
+        next.positions = mesh.positions;
+        next.normals = mesh.normals;
+        next.uvs = mesh.uvs;
+        next.indices.reserve(mesh.indices.size() * 4);
+        // One midpoint per edge, whichever triangle asks first.
+        std::unordered_map<std::uint64_t, std::uint32_t> midpoints;
+        const auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
+            const std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+            const auto [it, added] = midpoints.try_emplace(key, std::uint32_t(next.positions.size()));
+            if (added) {
+                next.positions.push_back(0.5f * (mesh.positions[a] + mesh.positions[b]));
+                const Eigen::Vector3f n = mesh.normals[a] + mesh.normals[b];
+                next.normals.push_back(n.squaredNorm() > 1e-12f ? n.normalized() : mesh.normals[a]);
+                next.uvs.push_back(0.5f * (mesh.uvs[a] + mesh.uvs[b]));
+            }
+            return it->second;
+        };
+        for (const Submesh& sub : mesh.submeshes) {
+            const std::uint32_t first = std::uint32_t(next.indices.size());
+            const std::uint32_t end = sub.firstIndex + sub.indexCount / 3 * 3;
+            for (std::uint32_t t = sub.firstIndex; t < end; t += 3) {
+                const std::uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
+                const std::uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+                next.indices.insert(next.indices.end(), {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca});
+            }
+            next.submeshes.push_back({first, std::uint32_t(next.indices.size()) - first});
+        }
+        mesh = std::move(next);
+    }
+    return mesh;
 }
 
 } // namespace sp::render

@@ -56,6 +56,14 @@ struct MeshData {
     // which way to turn it to the camera (see windingTurnsNormals()).
     float windingSpread() const;
     static constexpr std::size_t kConvexCheckLimit = 16u << 20;
+
+    // The longest triangle edge, in mesh-local metres.
+    float longestEdge() const;
+    // Every triangle split into four at its edges' midpoints, `times` times over (shared edges split once,
+    // so no cracks); normals (renormalised) and uvs interpolated, submeshes kept in order. The surface is
+    // the same; what changes is where vertices are: the rasteriser's per-vertex indirect light needs them
+    // no further apart than its probes (see Renderer::refineLevel()). Needs a validated mesh.
+    MeshData subdivided(int times) const;
 };
 
 // Whether a mesh of windingSpread() `spread` drawn with `linear` (the instance's transform's linear part)

@@ -77,6 +77,7 @@ struct Renderer::Draw {
     // whether they hold the eye, so that floors still go last); a draw in parts is a batch of its own.
     // Numbered in visibleDraws().
     std::size_t batch = 0;
+    int refine = 0; // subdivisions of the mesh drawn (per-vertex indirect light: Renderer::refineLevel())
 };
 
 Renderer::Renderer(const GlContext& context)
@@ -87,6 +88,7 @@ Renderer::Renderer(const GlContext& context)
     stagedReadback_ = switchFromEnvironment("SPEAR_READBACK", "staged", "direct", hardware);
     readbackThreads_ = defaultCopyThreads();
     computeLighting_ = switchFromEnvironment("SPEAR_LIGHTING", "compute", "forward", hardware);
+    vertexIrradiance_ = switchFromEnvironment("SPEAR_IRRADIANCE_BLEND", "vertex", "pixel", !hardware);
     derivesOnCpu_ = switchFromEnvironment("SPEAR_DERIVED_MODALITIES", "cpu", "rendered", !hardware);
     compactTargets_ = switchFromEnvironment("SPEAR_TARGET_FORMATS", "compact", "float", !hardware);
     if (context.report().software) {
@@ -372,6 +374,7 @@ void Renderer::renderView(const View& view) {
     // shadow layer.
     shaders::ShadingLayout lights;
     lights.constantSlots = constantSlots_;
+    viewRefineSpacing_ = 0.0;
     std::vector<ViewLight> shaded;
     if (passes.lighting) {
         shaded = viewLights(scene, camera);
@@ -387,7 +390,12 @@ void Renderer::renderView(const View& view) {
         lights.floatShadowMaps = !shadowInfos.empty() && active_->shadowMaps->format() == GL_R32F;
         lights.vignette = camera.params.vignetteIntensity > 0.0f;
         lights.toneMap = camera.params.toneMap;
-        lights.irradianceVolume = camera.params.globalIllumination && bindIrradianceVolume(scene);
+        if (camera.params.globalIllumination && bindIrradianceVolume(scene)) {
+            lights.irradiance =
+                vertexIrradiance_ ? shaders::IrradianceBlend::PerVertex : shaders::IrradianceBlend::PerPixel;
+            if (vertexIrradiance_)
+                viewRefineSpacing_ = scene.irradianceVolume()->spacing;
+        }
         uploadFrameBlock(scene, camera, shadowInfos, shaded);
     }
     if (passes.surface) {
@@ -400,7 +408,7 @@ void Renderer::renderView(const View& view) {
         std::uint64_t triangles = 0;
         if (constantSlots_ > 0 && adaptiveConstantSlots_)
             for (const Draw& draw : draws)
-                triangles += scene.mesh(draw.mesh).submeshes[draw.slot].indexCount / 3;
+                triangles += (scene.mesh(draw.mesh).submeshes[draw.slot].indexCount / 3) << (2 * draw.refine);
         viewConstantSlots_ = viewConstantSlots(triangles, std::uint64_t(fb.width) * std::uint64_t(fb.height));
         lights.constantSlots = viewConstantSlots_;
         active_->stats.constantSlotPasses += viewConstantSlots_ > 0 ? 1 : 0;
@@ -470,6 +478,10 @@ bool Renderer::bindIrradianceVolume(const Scene& scene) {
             state.irradiance = std::make_unique<GpuTexture>();
             glCreateTextures(GL_TEXTURE_3D, 1, &state.irradiance->name);
             glTextureStorage3D(state.irradiance->name, 1, GL_RGBA32UI, size.x(), size.y(), size.z());
+            // Integer texels are fetched, never filtered (a vertex shader's texelFetch needs a complete
+            // texture).
+            glTextureParameteri(state.irradiance->name, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTextureParameteri(state.irradiance->name, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         }
         glTextureSubImage3D(state.irradiance->name, 0, 0, 0, 0, size.x(), size.y(), size.z(), GL_RGBA_INTEGER,
                             GL_UNSIGNED_INT, texels.data());
@@ -479,6 +491,7 @@ bool Renderer::bindIrradianceVolume(const Scene& scene) {
     }
     glBindImageTexture(shaders::kIrradianceImageUnit, state.irradiance->name, 0, GL_TRUE, 0, GL_READ_ONLY,
                        GL_RGBA32UI);
+    glBindTextureUnit(shaders::kIrradianceTextureUnit, state.irradiance->name);
     return true;
 }
 
@@ -681,6 +694,16 @@ void Renderer::clearTargets(const Scene& scene, const Camera& camera, TargetMask
     glDepthMask(depthWrite);
 }
 
+int Renderer::refineLevel(double edge, double spacing, std::size_t triangles) {
+    int level = 0;
+    while (level < kMaxRefine && edge > 2.0 * spacing && triangles * 4 <= 65536) {
+        edge *= 0.5;
+        triangles *= 4;
+        ++level;
+    }
+    return level;
+}
+
 std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Camera& camera,
                                                    const ShadowReceivers* receivers) {
     const std::array<Eigen::Vector4d, 6> planes = camera.frustumPlanes();
@@ -722,6 +745,13 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
             part = parts_.size();
             parts_.push_back(std::move(reach));
         }
+        int refine = 0;
+        if (viewRefineSpacing_ > 0.0) {
+            const Eigen::Matrix3d linear = instance.transform.linear();
+            const double scale = linear.colwise().norm().maxCoeff();
+            refine = refineLevel(double(scene.meshLongestEdge(mesh)) * scale, viewRefineSpacing_,
+                                 scene.mesh(mesh).indices.size() / 3);
+        }
         bool windingFaced = false;
         for (std::size_t slot = 0; slot < instance.materials.size(); ++slot) {
             const Material& material = scene.material(instance.materials[slot]);
@@ -742,6 +772,7 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
                  {material.baseColorTexture, material.roughnessMetallicTexture, material.normalTexture},
                  kind,
                  part});
+            draws.back().refine = refine;
         }
         active_->stats.windingFacedInstances += windingFaced ? 1 : 0;
     });
@@ -756,12 +787,12 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
     // Batches numbered in order of their nearest draw, through a map of what a batch shares (a scene of many
     // distinct meshes has many batches).
     using BatchKey = std::tuple<unsigned, MeshId, std::size_t, bool, std::array<std::optional<TextureId>, 3>,
-                                ShadowReach::Kind, std::size_t>;
+                                ShadowReach::Kind, std::size_t, int>;
     std::map<BatchKey, std::size_t> batches;
     for (Draw& draw : draws)
         draw.batch = batches
                          .try_emplace({draw.features, draw.mesh, draw.slot, draw.holdsEye, draw.textures,
-                                       draw.reach, draw.part},
+                                       draw.reach, draw.part, draw.refine},
                                       batches.size())
                          .first->second;
     std::stable_sort(draws.begin(), draws.end(),
@@ -848,7 +879,8 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
         const Draw& draw = draws[first];
         for (last = first + 1; last < draws.size() && draws[last].batch == draw.batch;)
             ++last;
-        const GpuMesh& mesh = cache.mesh(scene, draw.mesh);
+        const GpuMesh& mesh =
+            draw.refine > 0 ? cache.refined(scene, draw.mesh, draw.refine) : cache.mesh(scene, draw.mesh);
         instances_->bind(mesh.vao);
         glBindVertexArray(mesh.vao);
         for (int t = 0; t < 3; ++t)

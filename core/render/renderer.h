@@ -153,6 +153,17 @@ class Renderer {
     // images agree within the tolerance of per-pixel shadow coordinates and an 11-bit normal.
     bool computeLighting() const { return computeLighting_; }
     void setComputeLighting(bool on) { computeLighting_ = on; }
+    // Where the shading blends a scene's irradiance volume (shaders::IrradianceBlend): at the vertices of
+    // meshes subdivided to the probe spacing (a software rasteriser: a 1080p frame's per-pixel blend cost
+    // llvmpipe 86 ms, spear_render_bench --gi), or per pixel (a GPU). SPEAR_IRRADIANCE_BLEND=vertex|pixel
+    // overrides the default.
+    bool vertexIrradiance() const { return vertexIrradiance_; }
+    void setVertexIrradiance(bool on) { vertexIrradiance_ = on; }
+    // How many times a mesh whose longest edge is `edge` metres in the world (scale included), with
+    // `triangles` triangles, is subdivided for per-vertex indirect light on probes `spacing` apart: until its
+    // edges are no longer than the spacing, at most kMaxRefine times and 65,536 triangles.
+    static int refineLevel(double edge, double spacing, std::size_t triangles);
+    static constexpr int kMaxRefine = 6;
     // Adds the G-buffer and the compute pass to `passes` where computeLighting() applies (see above).
     void planComputeLighting(PassSet& passes) const;
     // The flat varyings the surface programs may spend on the per-view constants their fragments read
@@ -273,6 +284,8 @@ class Renderer {
     bool packIdsOnGpu_ = true;
     bool stagedReadback_ = false;
     bool computeLighting_ = false;
+    bool vertexIrradiance_ = false;
+    double viewRefineSpacing_ = 0.0; // the probe spacing the view's meshes are subdivided to; 0: none
     bool derivesOnCpu_ = false;
     bool compactTargets_ = false;
     int readbackThreads_ = 1;

@@ -27,6 +27,7 @@ void Scene::describe(MeshEntry& entry) {
     entry.data.bounds(entry.min, entry.max);
     entry.convexFaceted = entry.data.faceted() && entry.data.convex(); // faceted() first: it is cheap
     entry.windingSpread = entry.data.windingSpread();
+    entry.longestEdge = entry.data.longestEdge();
 }
 
 void Scene::updateMesh(MeshId id, MeshData mesh) {
@@ -70,6 +71,10 @@ bool Scene::meshConvexFaceted(MeshId id) const {
 }
 float Scene::meshWindingSpread(MeshId id) const {
     return meshes_.get(id, "Scene::meshWindingSpread").windingSpread;
+}
+
+float Scene::meshLongestEdge(MeshId id) const {
+    return meshes_.get(id, "Scene::meshLongestEdge").longestEdge;
 }
 
 TextureId Scene::addTexture(TextureImage image, TextureEncoding encoding, std::string sharedKey) {

@@ -70,6 +70,8 @@ class Scene {
     bool meshConvexFaceted(MeshId id) const;
     // MeshData::windingSpread(), computed when the mesh was added or updated.
     float meshWindingSpread(MeshId id) const;
+    // MeshData::longestEdge(), computed when the mesh was added or updated.
+    float meshLongestEdge(MeshId id) const;
     // Levels of detail of a mesh, from finer to coarser (increasing relativeError); each has the mesh's
     // submesh count. A mesh that is some chain's level cannot be removed while that chain names it.
     void setMeshLods(MeshId id, std::vector<MeshLod> lods);
@@ -152,6 +154,7 @@ class Scene {
         Eigen::Vector3f min, max;
         bool convexFaceted = false;
         float windingSpread = 0.0f;
+        float longestEdge = 0.0f;
         std::vector<MeshLod> lods;
         std::string sharedKey;
     };

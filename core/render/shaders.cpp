@@ -125,6 +125,57 @@ vec3 gbufferNormal(uint bits) {
 }
 )glsl";
 
+const char* const kIrradianceChunk = R"glsl(
+// The irradiance probes (IrradianceVolume::packed(): two texels per probe along x) and their blend at a
+// point, mirrored by IrradianceVolume::radiance(), which says why each weight is there. In fragment and compute
+// shaders, image loads rather than texel fetches: llvmpipe runs a sampler's general path for every fetched
+// pixel (see shadowFactor()); a vertex shader, where images are optional, fetches texels.
+#ifdef PROBES_BY_TEXTURE
+layout(binding = IRRADIANCE_TEXTURE_UNIT) uniform usampler3D uIrradianceProbes;
+#define PROBE_SIZE textureSize(uIrradianceProbes, 0)
+#define PROBE_LOAD(c) texelFetch(uIrradianceProbes, c, 0)
+#else
+layout(binding = IRRADIANCE_IMAGE_UNIT, rgba32ui) uniform readonly uimage3D uIrradianceProbes;
+#define PROBE_SIZE imageSize(uIrradianceProbes)
+#define PROBE_LOAD(c) imageLoad(uIrradianceProbes, c)
+#endif
+void irradianceBlend(vec3 p, vec3 n, out vec3 constant, out mat3 linear) {
+    ivec3 counts = PROBE_SIZE / ivec3(2, 1, 1);
+    vec3 g = clamp((p - uIrradianceVolume.xyz) * uIrradianceVolume.w + n * IRRADIANCE_NORMAL_OFFSET, vec3(0.0),
+                   vec3(counts - 1));
+    ivec3 base = min(ivec3(g), counts - 2);
+    vec3 f = g - vec3(base);
+    constant = vec3(0.0);
+    linear = mat3(0.0);
+    float total = 0.0;
+    for (int i = 0; i < 8; ++i) {
+        ivec3 o = ivec3(i & 1, (i >> 1) & 1, i >> 2);
+        ivec3 c = base + o;
+        vec3 t = mix(1.0 - f, f, vec3(o));
+        vec3 d = g - vec3(c); // from the probe to the point, in cells
+        uvec4 a = PROBE_LOAD(ivec3(2 * c.x, c.y, c.z));
+        uvec4 b = PROBE_LOAD(ivec3(2 * c.x + 1, c.y, c.z));
+        vec4 free0 = unpackUnorm4x8(b.z) * IRRADIANCE_MAX_FREE;
+        vec2 free1 = unpackUnorm4x8(b.w).xy * IRRADIANCE_MAX_FREE;
+        vec3 reach = mix(vec3(free0.x, free0.z, free1.x), vec3(free0.y, free0.w, free1.y),
+                         greaterThanEqual(d, vec3(0.0)));
+        vec3 excess = abs(d) - reach;
+        float visible = clamp(1.0 - 4.0 * max(max(excess.x, excess.y), excess.z), 0.0, 1.0);
+        float len = length(d);
+        float front = (len > 1e-4 ? dot(-d, n) / len : 1.0) * 0.5 + 0.5;
+        float w = t.x * t.y * t.z * (visible * (front * front + 0.2) + 1e-3);
+        vec2 h0 = unpackHalf2x16(a.x), h1 = unpackHalf2x16(a.y), h2 = unpackHalf2x16(a.z);
+        vec2 h3 = unpackHalf2x16(a.w), h4 = unpackHalf2x16(b.x), h5 = unpackHalf2x16(b.y);
+        constant += w * vec3(h0, h1.x);
+        linear += w * mat3(vec3(h1.y, h2), vec3(h3, h4.x), vec3(h4.y, h5));
+        total += w;
+    }
+    float inverse = 1.0 / total;
+    constant *= inverse;
+    linear *= inverse;
+}
+)glsl";
+
 // Karis 2013 ("Real shading in Unreal Engine 4"): GGX distribution, Smith-Schlick visibility with
 // k = (roughness + 1)^2 / 8, Schlick Fresnel with the spherical Gaussian exponent; the ambient sky term
 // uses Karis' analytic environment BRDF approximation.
@@ -177,47 +228,6 @@ float shadowFactor(const int layer, vec3 s) {
     return near + f.y * (far - near);
 }
 
-#ifdef IRRADIANCE_VOLUME
-// The irradiance probes (IrradianceVolume::packed(): two texels per probe along x) and their blend at a
-// point, mirrored by IrradianceVolume::radiance(), which says why each weight is there. Image loads, not
-// texel fetches: llvmpipe runs a sampler's general path for every fetched pixel (see shadowFactor()).
-layout(binding = IRRADIANCE_IMAGE_UNIT, rgba32ui) uniform readonly uimage3D uIrradianceProbes;
-void irradianceBlend(vec3 p, vec3 n, out vec3 constant, out mat3 linear) {
-    ivec3 counts = imageSize(uIrradianceProbes) / ivec3(2, 1, 1);
-    vec3 g = clamp((p - uIrradianceVolume.xyz) * uIrradianceVolume.w + n * IRRADIANCE_NORMAL_OFFSET, vec3(0.0),
-                   vec3(counts - 1));
-    ivec3 base = min(ivec3(g), counts - 2);
-    vec3 f = g - vec3(base);
-    constant = vec3(0.0);
-    linear = mat3(0.0);
-    float total = 0.0;
-    for (int i = 0; i < 8; ++i) {
-        ivec3 o = ivec3(i & 1, (i >> 1) & 1, i >> 2);
-        ivec3 c = base + o;
-        vec3 t = mix(1.0 - f, f, vec3(o));
-        vec3 d = g - vec3(c); // from the probe to the point, in cells
-        uvec4 a = imageLoad(uIrradianceProbes, ivec3(2 * c.x, c.y, c.z));
-        uvec4 b = imageLoad(uIrradianceProbes, ivec3(2 * c.x + 1, c.y, c.z));
-        vec4 free0 = unpackUnorm4x8(b.z) * IRRADIANCE_MAX_FREE;
-        vec2 free1 = unpackUnorm4x8(b.w).xy * IRRADIANCE_MAX_FREE;
-        vec3 reach = mix(vec3(free0.x, free0.z, free1.x), vec3(free0.y, free0.w, free1.y),
-                         greaterThanEqual(d, vec3(0.0)));
-        vec3 excess = abs(d) - reach;
-        float visible = clamp(1.0 - 4.0 * max(max(excess.x, excess.y), excess.z), 0.0, 1.0);
-        float len = length(d);
-        float front = (len > 1e-4 ? dot(-d, n) / len : 1.0) * 0.5 + 0.5;
-        float w = t.x * t.y * t.z * (visible * (front * front + 0.2) + 1e-3);
-        vec2 h0 = unpackHalf2x16(a.x), h1 = unpackHalf2x16(a.y), h2 = unpackHalf2x16(a.z);
-        vec2 h3 = unpackHalf2x16(a.w), h4 = unpackHalf2x16(b.x), h5 = unpackHalf2x16(b.y);
-        constant += w * vec3(h0, h1.x);
-        linear += w * mat3(vec3(h1.y, h2), vec3(h3, h4.x), vec3(h4.y, h5));
-        total += w;
-    }
-    float inverse = 1.0 / total;
-    constant *= inverse;
-    linear *= inverse;
-}
-#endif
 
 struct Shaded {
     vec3 hdr;                 // linear radiance towards the camera
@@ -339,6 +349,9 @@ void main() {
     vIds = iIds.xy;
     vRecord = iIds.z;
     gl_Position = iModelViewProjection * p;
+#ifdef VERTEX_IRRADIANCE
+    irradianceBlend(vWorldPosition, normalize(vNormal), vVolumeConstant, vVolumeLinear);
+#endif
     SHADOW_CLIPS
     CONSTANT_COPIES
     VIEW_LAYER
@@ -527,7 +540,9 @@ ConstantPlan planConstants(bool forward, const ShadingLayout& layout) {
     ConstantPlan plan;
     plan.frameSlots = !forward ? 1 : layout.vignette ? 4 : 3;
     plan.shadowSizes = forward && !shadowLayers(layout).empty();
-    int left = layout.constantSlots - plan.frameSlots - (plan.shadowSizes ? 1 : 0);
+    // Per-vertex indirect light takes four varyings of the budget (vVolumeConstant, vVolumeLinear).
+    const int volume = forward && layout.irradiance == IrradianceBlend::PerVertex ? 4 : 0;
+    int left = layout.constantSlots - plan.frameSlots - (plan.shadowSizes ? 1 : 0) - volume;
     plan.flat = left >= 0;
     plan.lightSlot.assign(layout.lights.size(), -1);
     if (!plan.flat || !forward)
@@ -695,11 +710,17 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
         text += "            accumulate(s, l, e, nol, irradiance, specular);\n        }\n    }\n";
     }
     text += R"glsl(    Shaded result;
-#ifdef IRRADIANCE_VOLUME
-    // Indirect light from the probes: the diffuse term for n, the specular one for the mirror direction.
+#if defined(IRRADIANCE_VOLUME) || defined(VERTEX_IRRADIANCE)
+    // Indirect light from the probes: the diffuse term for n, the specular one for the mirror direction;
+    // blended here, or at the vertices and interpolated (VERTEX_IRRADIANCE, see surfaceVertex()).
+#ifdef VERTEX_IRRADIANCE
+    vec3 volumeConstant = vVolumeConstant;
+    mat3 volumeLinear = vVolumeLinear;
+#else
     vec3 volumeConstant;
     mat3 volumeLinear;
     irradianceBlend(p, n, volumeConstant, volumeLinear);
+#endif
     vec3 ambientDiffuse = max(volumeConstant + volumeLinear * n, 0.0);
     vec3 ambientSpecular = max(volumeConstant + volumeLinear * reflect(-s.v, n), 0.0);
 #else
@@ -734,8 +755,8 @@ std::string ShadingLayout::key() const {
     key += ".t" + std::to_string(static_cast<int>(toneMap));
     if (constantSlots > 0)
         key += ".c" + std::to_string(constantSlots);
-    if (irradianceVolume)
-        key += ".g";
+    if (irradiance != IrradianceBlend::None)
+        key += irradiance == IrradianceBlend::PerPixel ? ".g" : ".gv";
     return key;
 }
 
@@ -810,16 +831,25 @@ std::string toneCurveDefine(ToneMap toneMap) {
     return "#define TONE_CURVE " + std::to_string(static_cast<int>(toneMap)) + "\n";
 }
 
+// irradianceBlend() and its constants, for the fragment or compute shading (`byTexture` false) or a vertex
+// shader (texel fetches).
+std::string irradianceChunk(bool byTexture) {
+    return std::string(byTexture ? "#define PROBES_BY_TEXTURE\n" : "") + "#define IRRADIANCE_IMAGE_UNIT " +
+           std::to_string(kIrradianceImageUnit) + "\n#define IRRADIANCE_TEXTURE_UNIT " +
+           std::to_string(kIrradianceTextureUnit) + "\n#define IRRADIANCE_NORMAL_OFFSET " +
+           std::to_string(IrradianceVolume::kNormalOffset) + "\n#define IRRADIANCE_MAX_FREE " +
+           std::to_string(IrradianceVolume::kMaxFreeDistance) + "\n" + kIrradianceChunk;
+}
+
 // The defines of the shading and tone chunks for a layout: the shadow maps' image format, the vignette and
 // the tone curve.
 std::string shadingDefines(const ShadingLayout& lights) {
     std::string text = std::string("#define SHADOW_FORMAT ") + (lights.floatShadowMaps ? "r32f" : "r16") +
                        "\n" + (lights.vignette ? "#define VIGNETTE\n" : "") + toneCurveDefine(lights.toneMap);
-    if (lights.irradianceVolume)
-        text += "#define IRRADIANCE_VOLUME\n#define IRRADIANCE_IMAGE_UNIT " +
-                std::to_string(kIrradianceImageUnit) + "\n#define IRRADIANCE_NORMAL_OFFSET " +
-                std::to_string(IrradianceVolume::kNormalOffset) + "\n#define IRRADIANCE_MAX_FREE " +
-                std::to_string(IrradianceVolume::kMaxFreeDistance) + "\n";
+    if (lights.irradiance == IrradianceBlend::PerPixel)
+        text += "#define IRRADIANCE_VOLUME\n";
+    else if (lights.irradiance == IrradianceBlend::PerVertex)
+        text += "#define VERTEX_IRRADIANCE\n";
     return text;
 }
 
@@ -893,6 +923,8 @@ vec2 gPixelCentre;
     text += kOctahedralChunk;
     text += kGBufferChunk;
     text += kShadingChunk;
+    if (lights.irradiance == IrradianceBlend::PerPixel)
+        text += irradianceChunk(false);
     text += shadeFunction(lights, plan, true);
     text += kToneChunk;
     return text + R"glsl(
@@ -939,6 +971,9 @@ std::string surfaceVertex(bool forward, const ShadingLayout& lights, bool layere
     text += "#define CONSTANT_COPIES" + constantCopies(lights, plan) + "\n";
     text += shadowClipDeclarations(forward, lights, "out");
     text += constantDeclarations(plan, "out");
+    if (forward && lights.irradiance == IrradianceBlend::PerVertex)
+        text += "#define VERTEX_IRRADIANCE\n" + irradianceChunk(true) +
+                "out vec3 vVolumeConstant;\nout mat3 vVolumeLinear;\n";
     return text + kSurfaceVertex;
 }
 
@@ -972,6 +1007,10 @@ std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialF
     if (forward) {
         text += shadingDefines(lights);
         text += kShadingChunk;
+        if (lights.irradiance == IrradianceBlend::PerPixel)
+            text += irradianceChunk(false);
+        else if (lights.irradiance == IrradianceBlend::PerVertex)
+            text += "in vec3 vVolumeConstant;\nin mat3 vVolumeLinear;\n";
         text += shadeFunction(lights, plan);
         text += kToneChunk;
     }

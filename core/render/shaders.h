@@ -47,6 +47,11 @@ struct FrameBlock {
     float irradianceVolume[4]; // xyz: world position of the volume's probe (0, 0, 0); w: 1 / spacing
 };
 
+// Where the shading blends the irradiance probes: not at all, per pixel (sixteen image loads a pixel: cheap
+// on a GPU, most of a 1080p frame on llvmpipe), or per vertex, interpolated, on meshes subdivided until their
+// vertices are no further apart than the probes (Renderer::refineLevel()).
+enum class IrradianceBlend { None, PerPixel, PerVertex };
+
 // One light of a shading variant.
 struct LightSlot {
     LightType type = LightType::Directional;
@@ -70,9 +75,9 @@ struct ShadingLayout {
     // took 23% less time. GPUs read uniform buffers at no cost, so hardware contexts keep them
     // (Renderer::constantSlots()).
     int constantSlots = 0;
-    // The scene has an irradiance volume (irradiance_volume.h): the shading blends its probes where it
-    // otherwise adds the uniform ambient term.
-    bool irradianceVolume = false;
+    // Whether the shading blends the scene's irradiance volume (irradiance_volume.h) where it otherwise adds
+    // the uniform ambient term, and where (Renderer::vertexIrradiance()).
+    IrradianceBlend irradiance = IrradianceBlend::None;
     // A short text naming the layout, for program caches ("D0.S1r.P").
     std::string key() const;
 };
@@ -139,5 +144,7 @@ inline constexpr int kFinalColorImageUnit = 3;
 inline constexpr int kHdrImageUnit = 4;
 // The image unit of the irradiance probes (IrradianceVolume::packed()), read by every shading program.
 inline constexpr int kIrradianceImageUnit = 5;
+// The texture unit a vertex shader fetches them from (per-vertex blending).
+inline constexpr int kIrradianceTextureUnit = 6;
 
 } // namespace sp::render::shaders

@@ -80,13 +80,13 @@ sp::pathtrace::ProbeSettings probeSettings(EGlobalIlluminationQuality quality) {
     switch (quality) {
     case EGlobalIlluminationQuality::Off:
     case EGlobalIlluminationQuality::Low:
-        return {1.0, 16, 128, 2, 64};
+        return {1.0, 16, 128, 2, 32};
     case EGlobalIlluminationQuality::Medium:
-        return {0.5, 24, 256, 3, 64};
+        return {0.5, 24, 256, 3, 32};
     case EGlobalIlluminationQuality::High:
-        return {0.35, 32, 512, 4, 128};
+        return {0.35, 32, 512, 4, 64};
     case EGlobalIlluminationQuality::Epic:
-        return {0.25, 48, 1024, 4, 256};
+        return {0.25, 48, 1024, 4, 128};
     }
     throw sp::InvalidArgument("probeSettings(): EGlobalIlluminationQuality " + std::to_string(int(quality)) +
                               " is not a quality");

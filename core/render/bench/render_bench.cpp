@@ -5,7 +5,7 @@
 //   spear_render_bench [--boxes N] [--frames F] [--shadows RES] [--png DIR] [--ids compute|driver]
 //                      [--constant-slots N] [--readback staged|direct] [--copy-threads N]
 //                      [--sizes WxH,...] [--views N] [--only-given] [--modalities a,b,...]...
-//                      [--textured base|all] [--spheres SEGMENTS] [--no-lods] [--point-lights N]
+//                      [--textured base|all] [--spheres SEGMENTS] [--no-lods] [--point-lights N] [--gi]
 //   (--shadows 0: off; each --modalities adds one set, e.g. final_color,depth,normal,object_ids, and
 //   --only-given times those alone; --views N renders a rig of N views 0.3 m apart, submitted together
 //   and read one after another; --readback: how latency 0 reads a large view, default the renderer's
@@ -15,7 +15,9 @@
 //   default the renderer's choice: see Renderer::constantSlots(); --textured: every box's base colour, and
 //   with `all` its roughness and metallic too, multiplied by a checker texture; --spheres: the objects are
 //   spheres of SEGMENTS segments around, SEGMENTS^2 triangles each, instead of boxes, with the levels of
-//   detail an imported mesh gets unless --no-lods; --point-lights: N unshadowed point lights more)
+//   detail an imported mesh gets unless --no-lods; --point-lights: N unshadowed point lights more; --gi: an
+//   irradiance volume of 24 x 24 x 4 probes over the ground, of varied values, blended by the shading: its
+//   cost alone, no probe lighting)
 //
 // --png writes the 256x256 and 1920x1080 final_color images of the scene, to look at.
 
@@ -155,7 +157,7 @@ Camera makeCamera(int width, int height, int boxes, int shadowResolution) {
 int main(int argc, char** argv) {
     int boxes = 64, frames = 10, shadows = 2048, constantSlots = -1, copyThreads = 0, views = 1, spheres = 0,
         pointLights = 0;
-    bool onlyGiven = false, lods = true;
+    bool onlyGiven = false, lods = true, gi = false;
     std::string pngDir, ids, readback, textured, sizesArg = "256x256,1920x1080";
     // The sets timed: a label and the modalities.
     std::vector<std::pair<std::string, ModalitySet>> sets = {
@@ -174,6 +176,8 @@ int main(int argc, char** argv) {
             ids = argv[++i];
         else if (!std::strcmp(argv[i], "--point-lights") && i + 1 < argc)
             pointLights = std::max(0, std::atoi(argv[++i]));
+        else if (!std::strcmp(argv[i], "--gi"))
+            gi = true;
         else if (!std::strcmp(argv[i], "--no-lods"))
             lods = false;
         else if (!std::strcmp(argv[i], "--spheres") && i + 1 < argc)
@@ -232,6 +236,20 @@ int main(int argc, char** argv) {
         renderer.setReadbackThreads(copyThreads);
     Scene scene;
     buildScene(scene, boxes, textured, spheres, lods, pointLights);
+    if (gi) {
+        auto volume = std::make_shared<IrradianceVolume>();
+        volume->counts = {24, 24, 4};
+        volume->spacing = 40.0 / 23.0;
+        volume->origin = {-20.0, -20.0, -0.3};
+        volume->probes.resize(std::size_t(volume->counts.prod()));
+        for (std::size_t i = 0; i < volume->probes.size(); ++i) {
+            IrradianceProbe& probe = volume->probes[i];
+            probe.constant = Eigen::Vector3f(0.2f + 0.01f * float(i % 7), 0.2f, 0.25f);
+            probe.linear.col(2) = Eigen::Vector3f::Constant(0.05f);
+            probe.freeDistance.fill(i % 5 == 0 ? 0.5f : IrradianceVolume::kMaxFreeDistance);
+        }
+        scene.setIrradianceVolume(std::move(volume));
+    }
     std::printf(
         "device: %s (%s), %d boxes, shadow maps %d, ids read by %s, %d constant slots, latency-0 readback "
         "%s, copies on %d thread(s), %d view(s), %d timed frames after 3 warm-up frames%s\n",

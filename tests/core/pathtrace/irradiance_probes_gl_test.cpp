@@ -158,11 +158,15 @@ TEST_F(IrradianceProbesGlTest, AWhiteObjectInAUniformSkyReflectsTheSky) {
     scene.setIrradianceVolume(probes.update(scene, tracer_, {}));
     ASSERT_NE(scene.irradianceVolume(), nullptr);
     const Camera camera = lookingAlong({-3.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, 16, 16, 8.0);
-    const render::Frame frame = raster(scene, camera);
-    const render::ImageBuffer& illumination = frame.get(render::Modality::DiffuseIllumination);
-    for (int y = 0; y < 16; ++y)
-        for (int x = 0; x < 16; ++x)
-            EXPECT_NEAR(illumination.at(x, y, 0), 1.0f, 0.05f) << x << ", " << y;
+    for (bool vertex : {false, true}) {
+        renderer().setVertexIrradiance(vertex);
+        const render::Frame frame = raster(scene, camera);
+        const render::ImageBuffer& illumination = frame.get(render::Modality::DiffuseIllumination);
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x)
+                EXPECT_NEAR(illumination.at(x, y, 0), 1.0f, 0.05f)
+                    << x << ", " << y << ", per vertex " << vertex;
+    }
 }
 
 TEST_F(IrradianceProbesGlTest, AClosedRoomLitFromInsideMatchesThePathTracer) {
@@ -179,14 +183,48 @@ TEST_F(IrradianceProbesGlTest, AClosedRoomLitFromInsideMatchesThePathTracer) {
 
     IrradianceProbes probes;
     scene.setIrradianceVolume(probes.update(scene, tracer_, settings));
-    const double withProbes = mean(raster(scene, camera).get(render::Modality::DiffuseIllumination));
     const double without = mean(raster(scene, camera, false).get(render::Modality::DiffuseIllumination));
-    // Direct light alone falls well short of the reference; with the probes within 5 % of it.
+    // Direct light alone falls well short of the reference; with the probes within 5 % of it, blended per
+    // pixel or per vertex.
     EXPECT_LT(without, 0.75 * reference);
-    EXPECT_NEAR(withProbes / reference, 1.0, 0.05)
-        << "raster " << withProbes << ", path traced " << reference;
-    std::cout << "closed room, diffuse_illumination: path traced " << reference << ", raster " << withProbes
-              << " with probes, " << without << " without\n";
+    for (bool vertex : {false, true}) {
+        renderer().setVertexIrradiance(vertex);
+        const double withProbes = mean(raster(scene, camera).get(render::Modality::DiffuseIllumination));
+        EXPECT_NEAR(withProbes / reference, 1.0, 0.05)
+            << "raster " << withProbes << ", path traced " << reference << ", per vertex " << vertex;
+        std::cout << "closed room, diffuse_illumination: path traced " << reference << ", raster "
+                  << withProbes << " with probes blended per " << (vertex ? "vertex" : "pixel") << ", "
+                  << without << " without\n";
+    }
+}
+
+TEST_F(IrradianceProbesGlTest, PerVertexBlendingLeavesTheExactModalitiesAsTheyWere) {
+    // Per-vertex indirect light draws meshes subdivided to the probe spacing: the surface is the same, so ids
+    // are equal and depth within float rounding of the view without indirect light.
+    Scene scene;
+    buildClosedRoom(scene, false);
+    IrradianceProbes probes;
+    scene.setIrradianceVolume(probes.update(scene, tracer_, {}));
+    renderer().setVertexIrradiance(true);
+    Camera camera = roomCamera();
+    render::Frame frames[2];
+    for (int gi = 0; gi < 2; ++gi) {
+        camera.params.globalIllumination = gi == 1;
+        render::RenderTarget target(
+            renderer(), {render::Modality::HdrColor, render::Modality::Depth, render::Modality::ObjectIds},
+            0);
+        target.render(scene, camera, frames[gi]);
+    }
+    const render::ImageBuffer& depth0 = frames[0].get(render::Modality::Depth);
+    const render::ImageBuffer& depth1 = frames[1].get(render::Modality::Depth);
+    int differentIds = 0;
+    for (int y = 0; y < depth0.height; ++y)
+        for (int x = 0; x < depth0.width; ++x) {
+            EXPECT_NEAR(depth1.at(x, y), depth0.at(x, y), 1e-5f * depth0.at(x, y)) << x << ", " << y;
+            differentIds += frames[0].get(render::Modality::ObjectIds).at(x, y) !=
+                            frames[1].get(render::Modality::ObjectIds).at(x, y);
+        }
+    EXPECT_EQ(differentIds, 0);
 }
 
 TEST_F(IrradianceProbesGlTest, SunlightOutsideAClosedRoomDoesNotLeakIn) {
@@ -198,9 +236,13 @@ TEST_F(IrradianceProbesGlTest, SunlightOutsideAClosedRoomDoesNotLeakIn) {
     dark.setIrradianceVolume(a.update(dark, tracer_, {}));
     sunny.setIrradianceVolume(b.update(sunny, tracer_, {}));
     const Camera camera = roomCamera();
-    const double inside = mean(raster(dark, camera).get(render::Modality::DiffuseIllumination));
-    const double withSun = mean(raster(sunny, camera).get(render::Modality::DiffuseIllumination));
-    EXPECT_NEAR(withSun / inside, 1.0, 0.05) << "without the sun " << inside << ", with it " << withSun;
+    for (bool vertex : {false, true}) {
+        renderer().setVertexIrradiance(vertex);
+        const double inside = mean(raster(dark, camera).get(render::Modality::DiffuseIllumination));
+        const double withSun = mean(raster(sunny, camera).get(render::Modality::DiffuseIllumination));
+        EXPECT_NEAR(withSun / inside, 1.0, 0.05)
+            << "without the sun " << inside << ", with it " << withSun << ", per vertex " << vertex;
+    }
 }
 
 TEST_F(IrradianceProbesGlTest, AChangeReachesEveryProbeWithinTheStatedUpdates) {

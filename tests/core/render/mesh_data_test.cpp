@@ -141,5 +141,46 @@ TEST(PrimitivesTest, TubeRingsSitAtTheRadiusAroundThePath) {
     EXPECT_THROW(primitives::tube(path, 0.0f), InvalidArgument);
 }
 
+TEST(MeshDataTest, SubdividingKeepsTheSurfaceAndSharesEdgeMidpoints) {
+    // A unit box of 24 vertices, 12 triangles, one submesh; twice subdivided: 16 times the triangles, the
+    // same bounds, the same area, every vertex on the box, every normal unit and every face's normal its
+    // face's (a box is faceted: its faces share no vertices, so no normal is averaged across an edge).
+    MeshData box = primitives::box();
+    box.validate("test");
+    const MeshData twice = box.subdivided(2);
+    EXPECT_EQ(twice.indices.size(), box.indices.size() * 16);
+    ASSERT_EQ(twice.submeshes.size(), 1u);
+    EXPECT_EQ(twice.submeshes[0].indexCount, twice.indices.size());
+    Eigen::Vector3f min, max;
+    twice.bounds(min, max);
+    EXPECT_TRUE(min.isApprox(Eigen::Vector3f::Constant(-0.5f)) &&
+                max.isApprox(Eigen::Vector3f::Constant(0.5f)));
+    const auto area = [](const MeshData& m) {
+        double sum = 0.0;
+        for (std::size_t t = 0; t < m.indices.size(); t += 3)
+            sum += 0.5 * double((m.positions[m.indices[t + 1]] - m.positions[m.indices[t]])
+                                    .cross(m.positions[m.indices[t + 2]] - m.positions[m.indices[t]])
+                                    .norm());
+        return sum;
+    };
+    EXPECT_NEAR(area(twice), 6.0, 1e-5);
+    for (std::size_t i = 0; i < twice.positions.size(); ++i) {
+        EXPECT_NEAR(twice.positions[i].cwiseAbs().maxCoeff(), 0.5f, 1e-6f) << i;
+        EXPECT_NEAR(twice.normals[i].norm(), 1.0f, 1e-5f) << i;
+        EXPECT_NEAR(twice.normals[i].cwiseAbs().maxCoeff(), 1.0f, 1e-6f) << i;
+    }
+    // Each face of 2 triangles becomes a 5 x 5 grid of vertices: shared edges split once.
+    EXPECT_EQ(twice.positions.size(), 6u * 25u);
+    EXPECT_NEAR(twice.longestEdge(), box.longestEdge() / 4.0f, 1e-6f);
+    // Two submeshes stay two, in order.
+    MeshData two = box;
+    two.submeshes = {{0, 18}, {18, 18}};
+    const MeshData once = two.subdivided(1);
+    ASSERT_EQ(once.submeshes.size(), 2u);
+    EXPECT_EQ(once.submeshes[0].firstIndex, 0u);
+    EXPECT_EQ(once.submeshes[0].indexCount, 72u);
+    EXPECT_EQ(once.submeshes[1].firstIndex, 72u);
+}
+
 } // namespace
 } // namespace sp::render
