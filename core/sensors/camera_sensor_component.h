@@ -369,8 +369,8 @@ class UCameraSensorComponent : public USceneComponent {
     /// The rasteriser's indirect light (global illumination). A world's probes are lit in full on the first
     /// frame a camera asks for them; when the scene changes, the probes least recently lit are lit again, a
     /// budget per frame, so that a change reaches every probe within a bounded number of frames
-    /// (core/render/README.md). Off by default until its per-pixel blend fits the frame budget of a software
-    /// rasteriser (Medium: about 55 ms more per 1080p frame on llvmpipe; BENCHMARKS.md).
+    /// (core/render/README.md). Off by default until it fits Table 3's frame budget on a software rasteriser
+    /// (Medium: 4-6 ms more per 1080p frame on llvmpipe; BENCHMARKS.md).
     SPPROPERTY()
     EGlobalIlluminationQuality GlobalIlluminationQuality = EGlobalIlluminationQuality::Off;
 

@@ -45,5 +45,5 @@ __attribute__((visibility("default"))) const char* spear_register_engine_types_a
 
 // The same hash as a constant: a plugin compiled against these headers records the engine's.
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "c59c8ccee055edc2";
+inline constexpr char kApiHash[] = "86f722bb60d67b17";
 } // namespace sp::generated::engine

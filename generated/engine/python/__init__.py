@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "c59c8ccee055edc2"
+API_HASH = "86f722bb60d67b17"
