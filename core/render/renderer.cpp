@@ -89,6 +89,9 @@ Renderer::Renderer(const GlContext& context)
     readbackThreads_ = defaultCopyThreads();
     computeLighting_ = switchFromEnvironment("SPEAR_LIGHTING", "compute", "forward", hardware);
     vertexIrradiance_ = switchFromEnvironment("SPEAR_IRRADIANCE_BLEND", "vertex", "pixel", !hardware);
+    GLint vertexImages = 0;
+    glGetIntegerv(GL_MAX_VERTEX_IMAGE_UNIFORMS, &vertexImages);
+    vertexProbeImages_ = vertexImages > 0;
     derivesOnCpu_ = switchFromEnvironment("SPEAR_DERIVED_MODALITIES", "cpu", "rendered", !hardware);
     compactTargets_ = switchFromEnvironment("SPEAR_TARGET_FORMATS", "compact", "float", !hardware);
     if (context.report().software) {
@@ -393,6 +396,7 @@ void Renderer::renderView(const View& view) {
         if (camera.params.globalIllumination && bindIrradianceVolume(scene)) {
             lights.irradiance =
                 vertexIrradiance_ ? shaders::IrradianceBlend::PerVertex : shaders::IrradianceBlend::PerPixel;
+            lights.vertexProbeImages = vertexProbeImages_;
             if (vertexIrradiance_)
                 viewRefineSpacing_ = scene.irradianceVolume()->spacing;
         }

@@ -285,6 +285,7 @@ class Renderer {
     bool stagedReadback_ = false;
     bool computeLighting_ = false;
     bool vertexIrradiance_ = false;
+    bool vertexProbeImages_ = false; // the driver allows image loads in vertex shaders
     double viewRefineSpacing_ = 0.0; // the probe spacing the view's meshes are subdivided to; 0: none
     bool derivesOnCpu_ = false;
     bool compactTargets_ = false;

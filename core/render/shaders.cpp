@@ -756,7 +756,7 @@ std::string ShadingLayout::key() const {
     if (constantSlots > 0)
         key += ".c" + std::to_string(constantSlots);
     if (irradiance != IrradianceBlend::None)
-        key += irradiance == IrradianceBlend::PerPixel ? ".g" : ".gv";
+        key += irradiance == IrradianceBlend::PerPixel ? ".g" : vertexProbeImages ? ".gvi" : ".gv";
     return key;
 }
 
@@ -972,7 +972,7 @@ std::string surfaceVertex(bool forward, const ShadingLayout& lights, bool layere
     text += shadowClipDeclarations(forward, lights, "out");
     text += constantDeclarations(plan, "out");
     if (forward && lights.irradiance == IrradianceBlend::PerVertex)
-        text += "#define VERTEX_IRRADIANCE\n" + irradianceChunk(true) +
+        text += "#define VERTEX_IRRADIANCE\n" + irradianceChunk(!lights.vertexProbeImages) +
                 "out vec3 vVolumeConstant;\nout mat3 vVolumeLinear;\n";
     return text + kSurfaceVertex;
 }

@@ -94,7 +94,8 @@ def test_sunlight_outside_a_closed_room_does_not_leak_in(make_instance: object) 
 
 
 def test_a_moved_lamp_reaches_the_indirect_light_within_the_stated_frames(instance: spear.Instance) -> None:
-    # Medium lights 64 probes a frame after a change; the room's grid has fewer than 64 x 30 probes.
+    # Medium lights 32 probes a frame after a change; the room's grid (its box and a quarter of its longest side
+    # around it, 0.5 m apart: 14 x 12 x 11 probes) has fewer than 32 x 64.
     game = instance.get_game()
     with instance.begin_frame():
         lamp = _closed_room(game, sun=False)
@@ -105,7 +106,7 @@ def test_a_moved_lamp_reaches_the_indirect_light_within_the_stated_frames(instan
         lamp.LightComponent.Intensity = 40.0
     with instance.end_frame():
         pass
-    for _ in range(30):
+    for _ in range(64):
         with instance.begin_frame():
             pass
         with instance.end_frame():
