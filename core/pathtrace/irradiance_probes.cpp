@@ -14,6 +14,8 @@ namespace {
 // The lattice's offset from multiples of the spacing, in cells: walls and floors are usually placed at
 // round coordinates, and a probe on a surface sees half its rays end at distance 0.
 constexpr double kLatticeOffset = 0.37;
+// Instances whose bounding radius is under this fraction of the spacing are invisible to the probes.
+constexpr double kSmallFraction = 0.5;
 
 bool inside(const render::IrradianceProbe& probe) {
     return std::all_of(probe.freeDistance.begin(), probe.freeDistance.end(),
@@ -85,7 +87,10 @@ IrradianceProbes::update(const render::Scene& scene, PathTracer& tracer, const P
         settings_ = settings;
         place(box, settings);
     }
-    const std::uint64_t signature = tracer.lightingSignature(scene);
+    // Instances under half a spacing in radius are invisible to the probes: lit by them, but a small thing
+    // moving (a ball, a robot's part) does not make every probe stale.
+    const double cutoff = kSmallFraction * lit_.spacing;
+    const std::uint64_t signature = tracer.lightingSignature(scene, cutoff);
     // The probes to light: every one on a new grid, else those lit for another scene, longest ago first.
     std::vector<std::size_t> stale;
     for (std::size_t i = 0; i < lit_.probes.size(); ++i)
@@ -102,7 +107,7 @@ IrradianceProbes::update(const render::Scene& scene, PathTracer& tracer, const P
     Settings trace;
     trace.maxBounces = settings.maxBounces;
     const auto start = std::chrono::steady_clock::now();
-    tracer.lightProbes(scene, lit_, stale, settings.rays, trace);
+    tracer.lightProbes(scene, lit_, stale, settings.rays, trace, cutoff);
     if (placed) // what the first frame (and a scene outgrowing its grid) costs, once
         SP_LOG("irradiance probes: ", lit_.counts.x(), "x", lit_.counts.y(), "x", lit_.counts.z(), " probes ",
                lit_.spacing, " m apart, lit in ",

@@ -7,10 +7,11 @@
 // lattice offset from round coordinates (a probe exactly on a floor or wall sees half its rays end at
 // distance 0). It is placed again, and every probe lit, only when the scene outgrows it (the margin grows
 // with the box, so a thing flying away does not re-place it every frame) or the settings change. Otherwise,
-// when the light changed (geometry, materials, lights, sky: PathTracer::lightingSignature), each update
-// lights the `probesPerFrame` probes lit longest ago: a change reaches every probe within framesToSettle()
-// updates, and a still scene costs nothing. Probes inside geometry take the mean of their lit neighbours, so
-// that a point whose every visible probe is hidden still blends something near.
+// when the light changed (geometry, materials, lights, sky: PathTracer::lightingSignature; instances under
+// half a spacing in bounding radius are invisible to the probes, so small things moving change nothing), each
+// update lights the `probesPerFrame` probes lit longest ago: a change reaches every probe within
+// framesToSettle() updates, and a still scene costs nothing. Probes inside geometry take the mean of their
+// lit neighbours, so that a point whose every visible probe is hidden still blends something near.
 
 #include <cstdint>
 #include <memory>

@@ -21,7 +21,9 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 // Geometry mask bits: every instance is seen by camera and bounce rays, shadow-casting ones by shadow rays.
-constexpr unsigned kCameraRays = 1u, kShadowRays = 2u;
+// Probe rays (PathTracer::lightProbes) see only the instances at least the probes' cutoff in radius: small
+// things that move do not relight every probe.
+constexpr unsigned kCameraRays = 1u, kShadowRays = 2u, kProbeRays = 4u, kProbeShadowRays = 8u;
 
 // FNV-1a over the bytes of what an image depends on.
 struct Hasher {
@@ -94,6 +96,7 @@ struct Shape {
     const MeshShape* mesh = nullptr;
     Eigen::Matrix3f normalMatrix;              // inverse transpose of the instance's linear part
     std::vector<render::MaterialId> materials; // one per submesh
+    bool probed = true;                        // probe rays see it (not smaller than the probe cutoff)
 };
 
 std::array<float, 256> srgbTable() {
@@ -176,7 +179,10 @@ struct PathTracer::Impl {
     RTCDevice device = nullptr;
     RTCScene rtcScene = nullptr;
     std::uint64_t geometrySignature = 0; // of the built geometry (geometryHash())
-    std::uint64_t builtFor = 0;          // the uid of the scene it was built from
+    std::uint64_t probeGeometrySignature =
+        0;                      // of what probe rays see of it (geometryHash(scene, probeCutoff))
+    double probeCutoff = 0.0;   // the bounding radius below which probe rays see no instance
+    std::uint64_t builtFor = 0; // the uid of the scene it was built from
     std::uint64_t builds = 0;
     std::uint64_t lastRays = 0;
     std::vector<Shape> shapes; // by instance geometry id in rtcScene
@@ -193,17 +199,22 @@ struct PathTracer::Impl {
 
     // Builds the geometry again when the scene's changed (or it is another scene).
     void sync(const render::Scene& scene) {
-        if (const std::uint64_t geometry = geometryHash(scene);
-            !rtcScene || geometry != geometrySignature || scene.uid() != builtFor) {
+        Hasher withCutoff;
+        withCutoff.add(geometryHash(scene, 0.0));
+        withCutoff.add(probeCutoff);
+        if (!rtcScene || withCutoff.value != builtSignature || scene.uid() != builtFor) {
             build(scene);
-            geometrySignature = geometry;
+            geometrySignature = geometryHash(scene, 0.0);
+            probeGeometrySignature = geometryHash(scene, probeCutoff);
+            builtSignature = withCutoff.value;
             builtFor = scene.uid();
         }
     }
+    std::uint64_t builtSignature = 0; // the geometry and the probe cutoff it was built for
 
     // The first surface along a ray: its distance (infinity for none) and whether the ray meets its back
     // (the side its winding faces away from).
-    float firstHit(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, bool& back,
+    float firstHit(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, unsigned mask, bool& back,
                    std::uint64_t& rays) const {
         ++rays;
         RTCIntersectContext context;
@@ -213,7 +224,7 @@ struct PathTracer::Impl {
         hit.ray.dir_x = direction.x(), hit.ray.dir_y = direction.y(), hit.ray.dir_z = direction.z();
         hit.ray.tnear = 0.0f;
         hit.ray.tfar = std::numeric_limits<float>::infinity();
-        hit.ray.mask = kCameraRays;
+        hit.ray.mask = mask;
         hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(rtcScene, &context, &hit);
         back = hit.hit.geomID != RTC_INVALID_GEOMETRY_ID &&
@@ -224,11 +235,12 @@ struct PathTracer::Impl {
                                                          : hit.ray.tfar;
     }
 
-    // What the geometry is built from (the scene's process-unique id left out: see imageHash()).
-    static std::uint64_t geometryHash(const render::Scene& scene) {
+    // What the geometry is built from (the scene's process-unique id left out: see imageHash()), of the
+    // instances at least `cutoff` in bounding radius.
+    static std::uint64_t geometryHash(const render::Scene& scene, double cutoff) {
         Hasher h;
         scene.forEachInstance([&](render::InstanceId, const render::Instance& instance) {
-            if (!instance.visible)
+            if (!instance.visible || (cutoff > 0.0 && boundingRadius(scene, instance) < cutoff))
                 return;
             h.add(instance.castShadows);
             h.add(instance.mesh.index);
@@ -288,6 +300,13 @@ struct PathTracer::Impl {
         return *entry;
     }
 
+    static double boundingRadius(const render::Scene& scene, const render::Instance& instance) {
+        Eigen::Vector3d centre;
+        double radius = 0.0;
+        scene.boundingSphere(instance, centre, radius);
+        return radius;
+    }
+
     // The top level: one instance of its mesh scene per visible instance, with its transform.
     void build(const render::Scene& scene) {
         ++builds;
@@ -310,22 +329,29 @@ struct PathTracer::Impl {
             rtcSetGeometryInstancedScene(geometry, mesh.scene);
             const Eigen::Matrix<float, 3, 4> columns = transform.matrix().topRows<3>();
             rtcSetGeometryTransform(geometry, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, columns.data());
-            // Every ray sees the instance; shadow rays only when it casts shadows (kShadowRays).
-            rtcSetGeometryMask(geometry, instance.castShadows ? kCameraRays | kShadowRays : kCameraRays);
+            // Every camera ray sees the instance; shadow rays only when it casts shadows; probe rays only
+            // when it is not smaller than their cutoff.
+            const bool probed = probeCutoff <= 0.0 || boundingRadius(scene, instance) >= probeCutoff;
+            rtcSetGeometryMask(geometry, kCameraRays | (instance.castShadows ? kShadowRays : 0u) |
+                                             (probed ? kProbeRays : 0u) |
+                                             (probed && instance.castShadows ? kProbeShadowRays : 0u));
             rtcCommitGeometry(geometry);
             rtcAttachGeometryByID(rtcScene, geometry, unsigned(shapes.size()));
             rtcReleaseGeometry(geometry);
-            shapes.push_back({&mesh, transform.linear().inverse().transpose(), instance.materials});
+            shapes.push_back({&mesh, transform.linear().inverse().transpose(), instance.materials, probed});
         });
         rtcCommitScene(rtcScene);
         std::erase_if(meshShapes, [&](const auto& entry) { return entry.second->usedBy + 8 < builds; });
     }
 
     // Everything the light in the scene depends on: the geometry, materials, lights and sky.
-    std::uint64_t lightingHash(const render::Scene& scene) const {
+    // `probes`: what probe rays see (the instances not smaller than the cutoff).
+    std::uint64_t lightingHash(const render::Scene& scene, bool probes = false) const {
         Hasher h;
-        h.add(geometrySignature);
-        for (const Shape& shape : shapes)
+        h.add(probes ? probeGeometrySignature : geometrySignature);
+        for (const Shape& shape : shapes) {
+            if (probes && !shape.probed)
+                continue;
             for (render::MaterialId id : shape.materials) {
                 const render::Material& m = scene.material(id);
                 h.matrix(m.baseColor);
@@ -340,6 +366,7 @@ struct PathTracer::Impl {
                         h.add(~0u);
                     }
             }
+        }
         // A world adds its lights again every frame, in no fixed order: the lights count as a set.
         std::uint64_t lights = 0;
         scene.forEachLight([&](render::LightId, const render::Light& light) {
@@ -380,7 +407,7 @@ struct PathTracer::Impl {
     }
 
     bool occluded(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, float distance,
-                  std::uint64_t& rays) const {
+                  unsigned mask, std::uint64_t& rays) const {
         ++rays;
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
@@ -390,7 +417,7 @@ struct PathTracer::Impl {
         ray.tnear = 0.0f;
         // Short of the light itself, which may sit on a surface or inside a lamp's mesh.
         ray.tfar = std::isinf(distance) ? distance : distance * (1.0f - 1e-4f);
-        ray.mask = kShadowRays;
+        ray.mask = mask;
         rtcOccluded1(rtcScene, &context, &ray);
         return ray.tfar < 0.0f;
     }
@@ -399,9 +426,13 @@ struct PathTracer::Impl {
     // [tnear, tfar]), with its intrinsic parts (see PathSample).
     // `shadows`: lights cast shadows (a camera's bShadows, as the rasteriser's shadow maps); `missed`: what a
     // primary ray that hits nothing brings back (a camera's background, a probe's sky).
+    // `probe`: a probe's path, whose rays see only the instances not smaller than the probe cutoff.
     PathSample trace(const render::Scene& scene, bool shadows, const Eigen::Vector3f& missed,
                      Eigen::Vector3f origin, Eigen::Vector3f direction, float tnear, float tfar,
-                     const Settings& settings, Random& random, std::uint64_t& rays) const {
+                     const Settings& settings, Random& random, std::uint64_t& rays,
+                     bool probe = false) const {
+        const unsigned rayMask = probe ? kProbeRays : kCameraRays,
+                       shadowMask = probe ? kProbeShadowRays : kShadowRays;
         const render::Environment& environment = scene.environment();
         const bool sky = environment.ambient.maxCoeff() > 0.0f;
         PathSample out;
@@ -435,7 +466,7 @@ struct PathTracer::Impl {
             hit.ray.dir_x = direction.x(), hit.ray.dir_y = direction.y(), hit.ray.dir_z = direction.z();
             hit.ray.tnear = tnear;
             hit.ray.tfar = tfar;
-            hit.ray.mask = kCameraRays;
+            hit.ray.mask = rayMask;
             hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
             rtcIntersect1(rtcScene, &context, &hit);
             ++rays;
@@ -503,7 +534,7 @@ struct PathTracer::Impl {
                 const float nol = n.dot(l);
                 if (nol <= 0.0f || ng.dot(l) <= 0.0f || e.maxCoeff() <= 0.0f)
                     return;
-                if (shadows && light.castShadows && occluded(above, l, distance, rays))
+                if (shadows && light.castShadows && occluded(above, l, distance, shadowMask, rays))
                     return;
                 const Eigen::Vector3f f = evaluate(s, toViewer, l);
                 if (depth == 0)
@@ -516,7 +547,7 @@ struct PathTracer::Impl {
                 const Eigen::Vector3f l = cosineDirection(n, random.next(), random.next());
                 const float nol = n.dot(l);
                 if (nol > 0.0f && ng.dot(l) > 0.0f &&
-                    !occluded(above, l, std::numeric_limits<float>::infinity(), rays)) {
+                    !occluded(above, l, std::numeric_limits<float>::infinity(), shadowMask, rays)) {
                     const float pdfSky = nol / kPi, pdfBsdf = pdf(s, toViewer, l);
                     // At the last vertex no BSDF ray follows, so the sky sample takes the whole estimate.
                     const float weight =
@@ -665,13 +696,15 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
     impl.lastRays = rays;
 }
 
-std::uint64_t PathTracer::lightingSignature(const render::Scene& scene) {
+std::uint64_t PathTracer::lightingSignature(const render::Scene& scene, double ignoreBelowRadius) {
+    impl_->probeCutoff = ignoreBelowRadius;
     impl_->sync(scene);
-    return impl_->lightingHash(scene);
+    return impl_->lightingHash(scene, true);
 }
 
 void PathTracer::lightProbes(const render::Scene& scene, render::IrradianceVolume& volume,
-                             std::span<const std::size_t> probes, int rays, const Settings& settings) {
+                             std::span<const std::size_t> probes, int rays, const Settings& settings,
+                             double ignoreBelowRadius) {
     SP_CHECK(rays >= 1 && rays <= 65536, InvalidArgument, "PathTracer::lightProbes(): rays ", rays,
              " is out of range [1, 65536]");
     settings.validate("PathTracer::lightProbes");
@@ -679,8 +712,9 @@ void PathTracer::lightProbes(const render::Scene& scene, render::IrradianceVolum
         SP_CHECK(index < volume.probes.size(), InvalidArgument, "PathTracer::lightProbes(): probe ", index,
                  " is not in a volume of ", volume.probes.size());
     Impl& impl = *impl_;
+    impl.probeCutoff = ignoreBelowRadius;
     impl.sync(scene);
-    const std::uint64_t signature = impl.lightingHash(scene);
+    const std::uint64_t signature = impl.lightingHash(scene, true);
     const Eigen::Vector3f sky = scene.environment().ambient;
     const float spacing = float(volume.spacing);
     std::atomic<std::size_t> next{0};
@@ -706,11 +740,11 @@ void PathTracer::lightProbes(const render::Scene& scene, render::IrradianceVolum
                 const float phi = turn + float(i) * 2.39996323f; // the golden angle
                 const Eigen::Vector3f direction(r * std::cos(phi), r * std::sin(phi), cz);
                 bool back = false;
-                impl.firstHit(origin, direction, back, count);
+                impl.firstHit(origin, direction, kProbeRays, back, count);
                 backs += back ? 1 : 0;
                 const PathSample path =
                     impl.trace(scene, true, sky, origin, direction, 0.0f,
-                               std::numeric_limits<float>::infinity(), settings, random, count);
+                               std::numeric_limits<float>::infinity(), settings, random, count, true);
                 if (!path.hdr.allFinite())
                     continue;
                 // Bands 0 and 1 of the radiance, turned into those of the irradiance over pi (Ramamoorthi and
@@ -726,7 +760,7 @@ void PathTracer::lightProbes(const render::Scene& scene, render::IrradianceVolum
                 Eigen::Vector3f direction = Eigen::Vector3f::Zero();
                 direction[axis / 2] = axis % 2 == 0 ? -1.0f : 1.0f;
                 bool back = false;
-                const float distance = impl.firstHit(origin, direction, back, count) / spacing;
+                const float distance = impl.firstHit(origin, direction, kProbeRays, back, count) / spacing;
                 probe.freeDistance[std::size_t(axis)] =
                     inside ? 0.0f : std::min(distance, render::IrradianceVolume::kMaxFreeDistance);
             }

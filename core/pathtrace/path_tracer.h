@@ -70,11 +70,15 @@ class PathTracer {
     // Environment::ambient), and its free distances from one ray along each axis. A probe whose rays meet the
     // back of a surface first more than a quarter of the time is inside geometry: its free distances are 0.
     // The random numbers are seeded from the scene's light (lightingSignature()) and the probe's index, so
-    // the same scene gives the same probes in every run. Runs on every hardware thread.
+    // the same scene gives the same probes in every run. Runs on every hardware thread. Instances whose
+    // bounding radius is under `ignoreBelowRadius` are invisible to the probes' rays (lit by the probes, they
+    // neither block nor bounce light for them), so that small things moving do not make every probe stale.
     void lightProbes(const render::Scene& scene, render::IrradianceVolume& volume,
-                     std::span<const std::size_t> probes, int rays, const Settings& settings);
-    // What the light in `scene` depends on: geometry, materials, lights and sky; not the camera.
-    std::uint64_t lightingSignature(const render::Scene& scene);
+                     std::span<const std::size_t> probes, int rays, const Settings& settings,
+                     double ignoreBelowRadius = 0.0);
+    // What the light the probes see in `scene` depends on: geometry (of the instances not under
+    // `ignoreBelowRadius`), materials, lights and sky; not the camera.
+    std::uint64_t lightingSignature(const render::Scene& scene, double ignoreBelowRadius = 0.0);
 
     // Geometry (re)builds so far: one whenever an instance, a mesh or a transform changed.
     std::uint64_t builds() const;

@@ -227,6 +227,30 @@ TEST_F(IrradianceProbesGlTest, PerVertexBlendingLeavesTheExactModalitiesAsTheyWe
     EXPECT_EQ(differentIds, 0);
 }
 
+TEST_F(IrradianceProbesGlTest, SmallThingsMovingLeaveTheProbesAsTheyAre) {
+    // Instances under half a probe spacing in radius are invisible to the probes: moving one (a ball rolling)
+    // makes no probe stale; moving a large one does.
+    Scene scene;
+    buildClosedRoom(scene, false);
+    const render::MaterialId grey =
+        scene.addMaterial(render::test::makeMaterial({0.5f, 0.5f, 0.5f}, 0.8f, 0.0f));
+    const render::MeshId box = scene.addMesh(render::primitives::box());
+    render::Instance small{box, {grey}, {7}}, large{box, {grey}, {8}};
+    small.transform = Eigen::Translation3d(0.5, 0.5, 0.1) * Eigen::Scaling(0.2);
+    large.transform = Eigen::Translation3d(-1.0, 0.0, 0.5) * Eigen::Scaling(1.0);
+    const render::InstanceId smallId = scene.addInstance(small), largeId = scene.addInstance(large);
+    IrradianceProbes probes;
+    ProbeSettings settings;
+    settings.rays = 16;
+    probes.update(scene, tracer_, settings); // 0.5 m apart: the cutoff is 0.25 m, the small box's radius 0.17
+    scene.setTransform(smallId, Eigen::Translation3d(0.8, 0.2, 0.1) * Eigen::Scaling(0.2));
+    probes.update(scene, tracer_, settings);
+    EXPECT_EQ(probes.litLastUpdate(), 0u);
+    scene.setTransform(largeId, Eigen::Translation3d(-0.5, 0.0, 0.5) * Eigen::Scaling(1.0));
+    probes.update(scene, tracer_, settings);
+    EXPECT_EQ(probes.litLastUpdate(), std::size_t(settings.probesPerFrame));
+}
+
 TEST_F(IrradianceProbesGlTest, SunlightOutsideAClosedRoomDoesNotLeakIn) {
     // The same room with a sun 10x the lamp outside: the inside must look as it did without the sun.
     Scene dark, sunny;
