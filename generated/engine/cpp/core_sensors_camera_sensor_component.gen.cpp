@@ -851,7 +851,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.properties.push_back({
             "GlobalIlluminationQuality",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EGlobalIlluminationQuality"),
-            "The rasteriser's indirect light (global illumination). A world's probes are lit in full on the first\nframe a camera asks for them; when the scene changes, the probes least recently lit are lit again, a\nbudget per frame, so that a change reaches every probe within a bounded number of frames\n(core/render/README.md). Off by default until it fits Table 3's frame budget on a software rasteriser\n(Medium: 4-6 ms more per 1080p frame on llvmpipe; BENCHMARKS.md).",
+            "The rasteriser's indirect light (global illumination). A world's probes are lit in full on the first\nframe a camera asks for them; when the scene changes, the probes least recently lit are lit again, a\nbudget per frame, so that a change reaches every probe within a bounded number of frames\n(core/render/README.md). Off by default until it fits Table 3's frame budget on a software rasteriser\nwith room to spare (Medium: 2-3 ms more per 1080p frame on llvmpipe; BENCHMARKS.md).",
             false,
             [](const void* self) { return Calls::get_GlobalIlluminationQuality<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {

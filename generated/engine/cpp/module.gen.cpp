@@ -1917,7 +1917,7 @@ void spear_bind_engine(py::module_& m) {
             [](const Ref<Self>& self, const PyArg& value) {
                 Calls::set_GlobalIlluminationQuality<PyCall>(self.get<Self>("UCameraSensorComponent.GlobalIlluminationQuality"), value);
             },
-            "The rasteriser's indirect light (global illumination). A world's probes are lit in full on the first\nframe a camera asks for them; when the scene changes, the probes least recently lit are lit again, a\nbudget per frame, so that a change reaches every probe within a bounded number of frames\n(core/render/README.md). Off by default until it fits Table 3's frame budget on a software rasteriser\n(Medium: 4-6 ms more per 1080p frame on llvmpipe; BENCHMARKS.md).");
+            "The rasteriser's indirect light (global illumination). A world's probes are lit in full on the first\nframe a camera asks for them; when the scene changes, the probes least recently lit are lit again, a\nbudget per frame, so that a change reaches every probe within a bounded number of frames\n(core/render/README.md). Off by default until it fits Table 3's frame budget on a software rasteriser\nwith room to spare (Medium: 2-3 ms more per 1080p frame on llvmpipe; BENCHMARKS.md).");
         cls.def_property(
             "SamplesPerPixel",
             [](const Ref<Self>& self) { return Calls::get_SamplesPerPixel<PyCall>(self.get<Self>("UCameraSensorComponent.SamplesPerPixel")); },

@@ -3068,7 +3068,7 @@ class UCameraSensorComponent(USceneComponent):
         frame a camera asks for them; when the scene changes, the probes least recently lit are lit again, a
         budget per frame, so that a change reaches every probe within a bounded number of frames
         (core/render/README.md). Off by default until it fits Table 3's frame budget on a software rasteriser
-        (Medium: 4-6 ms more per 1080p frame on llvmpipe; BENCHMARKS.md).
+        with room to spare (Medium: 2-3 ms more per 1080p frame on llvmpipe; BENCHMARKS.md).
         """
 
     @GlobalIlluminationQuality.setter
