@@ -110,7 +110,7 @@ class Scene:
     def __init__(self, name: str, width: int, height: int, qualities: list[spear.EGlobalIlluminationQuality]):
         self.instance = spear.Instance()
         self.game = self.instance.get_game()
-        self.width, self.height = width, height
+        self.width, self.height, self.name = width, height, name
         with self.instance.begin_frame():
             self.pose = SCENES[name](self.game)
             for actor in self.game.find_actors_by_class(uclass=spear.AStaticMeshActor):
@@ -139,36 +139,39 @@ class Scene:
             pass
 
     def raster(self, camera: spear.UCameraSensorComponent) -> tuple[NDArray[np.uint8], NDArray[np.float32]]:
-        pixels = camera.read_pixels()
+        """A frame, and the camera's images of it."""
+        with self.instance.begin_frame():
+            pass
+        with self.instance.end_frame():
+            pixels = camera.read_pixels()
         assert "final_color" in pixels and "depth" in pixels
         return pixels["final_color"], pixels["depth"]
 
     def traced(self, samples: int, label: str) -> NDArray[np.uint8]:
         """final_color of a path-traced camera at the pose after `samples` samples per pixel."""
         with self.instance.begin_frame():
-            camera = self.camera(label, self.width, self.height, spear.EGlobalIlluminationQuality.Off, "")
+            camera = self.camera(label, self.width, self.height, spear.EGlobalIlluminationQuality.Off, self.name)
             camera.Modalities = [spear.ECameraModality.FinalColor]
             camera.Renderer = spear.ECameraRenderer.PathTraced
             camera.SamplesPerPixel = min(64, samples)
             camera.MaxBounces = 6
-        with self.instance.end_frame():
-            pass
         start = time.monotonic()
-        while camera.GetAccumulatedSamples() < samples:
+        with self.instance.end_frame():
+            done = camera.GetAccumulatedSamples()
+            pixels = camera.read_pixels()
+        while done < samples:
             with self.instance.begin_frame():
-                camera.SamplesPerPixel = min(64, samples - camera.GetAccumulatedSamples())
+                camera.SamplesPerPixel = min(64, samples - done)
             with self.instance.end_frame():
-                pass
-            print(f"  {label}: {camera.GetAccumulatedSamples()}/{samples} spp, {time.monotonic() - start:.0f} s",
-                  file=sys.stderr)
-        pixels = camera.read_pixels()
-        assert "final_color" in pixels
-        image = pixels["final_color"]
+                done = camera.GetAccumulatedSamples()
+                pixels = camera.read_pixels()
+            print(f"  {label}: {done}/{samples} spp, {time.monotonic() - start:.0f} s", file=sys.stderr)
         with self.instance.begin_frame():
-            camera.Modalities = []
+            camera.Modalities = []  # done: the next frames trace nothing more
         with self.instance.end_frame():
             pass
-        return image
+        assert "final_color" in pixels
+        return pixels["final_color"]
 
     def close(self) -> None:
         self.instance.close()
@@ -205,9 +208,8 @@ def main() -> None:
         ref_lum = luminance(ref_linear)
         for quality, camera in scene.cameras.items():
             start = time.monotonic()
-            scene.frame()
-            elapsed = time.monotonic() - start
             color, depth = scene.raster(camera)
+            elapsed = time.monotonic() - start
             geometry = depth > 0
             lum = luminance(srgb_to_linear(color))
             ratio = float(lum[geometry].mean() / max(ref_lum[geometry].mean(), 1e-9))

@@ -1,13 +1,14 @@
 """The default scene rendered by the rasteriser and by the reference path tracer, side by side in one PNG.
 
-Two cameras at one pose: one rasterises (direct light, shadow maps, a constant sky term), the other
+Two cameras at one pose: one rasterises (direct light, shadow maps, and indirect light from the world's
+irradiance probes: GlobalIlluminationQuality, --global-illumination Off for the constant sky term alone), the other
 path traces (ECameraRenderer.PathTraced: global illumination, accumulated over frames while nothing moves).
 The scene's simulated objects are frozen first (a moving object restarts the accumulation, as it should),
 then frames are stepped until the path-traced camera has --samples samples per pixel; progress is printed
 as they accumulate.
 
     PYTHONPATH=python /usr/bin/python3 examples/raster_vs_path_traced.py [--out out/raster_vs_path_traced.png]
-        [--samples 64] [--server launch]
+        [--samples 64] [--global-illumination Medium] [--server launch]
 """
 
 # Debian 12's Pillow (9.4) has no annotations: strict pyright would flag every use of it.
@@ -65,6 +66,9 @@ def main() -> None:
     parser.add_argument("--samples", type=int, default=64, help="path-traced samples per pixel in all")
     parser.add_argument("--per-frame", type=int, default=8, help="samples per pixel added each frame")
     parser.add_argument("--bounces", type=int, default=4, help="indirect bounces")
+    parser.add_argument("--global-illumination", default="Medium",
+                        choices=[q.name for q in spear.EGlobalIlluminationQuality],
+                        help="the raster camera's GlobalIlluminationQuality")
     parser.add_argument("--server", default=None, help='None: in-process; "launch", "unix:PATH" or "tcp:HOST:PORT"')
     args = parser.parse_args()
 
@@ -74,6 +78,7 @@ def main() -> None:
         game.load_scene(path=args.scene)
         frozen = freeze(game)
         raster = spawn_camera(game, "Raster", args.width, args.height)
+        raster.GlobalIlluminationQuality = spear.EGlobalIlluminationQuality[args.global_illumination]
         traced = spawn_camera(game, "PathTraced", args.width, args.height)
         traced.MaxBounces = args.bounces
     with instance.end_frame():
