@@ -68,6 +68,14 @@ Eigen::Vector3f lensPoint(Random& random, float radius) {
 // (diffuse_only) with what a white Lambertian surface there would reflect (diffuse_illumination).
 struct PathSample {
     Eigen::Vector3f hdr = Eigen::Vector3f::Zero();
+    // The first surface: base colour, shading normal, distance along the ray, instance + 1 (0: none).
+    Eigen::Vector3f albedo = Eigen::Vector3f::Zero();
+    Eigen::Vector3f normal = Eigen::Vector3f::Zero();
+    float depth = 0.0f;
+    std::uint32_t instance = 0;
+    // The part of hdr the analytic lights give the first surface directly (and its emission, or the
+    // background): sharp and nearly noiseless, so the denoiser filters only the rest.
+    Eigen::Vector3f direct = Eigen::Vector3f::Zero();
     Eigen::Vector3f diffuseOnly = Eigen::Vector3f::Zero();
     Eigen::Vector3f diffuseIllumination = Eigen::Vector3f::Zero();
 };
@@ -310,6 +318,8 @@ struct PathTracer::Impl {
     // The top level: one instance of its mesh scene per visible instance, with its transform.
     void build(const render::Scene& scene) {
         ++builds;
+        if (scene.uid() != builtFor) // mesh handles and revisions are another scene's
+            meshShapes.clear();
         if (rtcScene)
             rtcReleaseScene(rtcScene);
         shapes.clear();
@@ -473,6 +483,7 @@ struct PathTracer::Impl {
             if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
                 if (depth == 0) {
                     out.hdr += missed;
+                    out.direct += missed;
                 } else if (sky) { // the BSDF's share of the sky (multiple importance sampling)
                     const float weight = bsdfPdf * bsdfPdf / (bsdfPdf * bsdfPdf + skyPdf * skyPdf);
                     throughFirst(environment.ambient * weight);
@@ -519,9 +530,14 @@ struct PathTracer::Impl {
                 s.roughness *= rm.y();
                 s.metallic *= rm.z();
             }
-            if (depth == 0)
+            if (depth == 0) {
                 out.hdr += material.emissive; // emitted, not reflected: part of the specular residual
-            else
+                out.direct += material.emissive;
+                out.albedo = s.base;
+                out.normal = n;
+                out.depth = hit.ray.tfar;
+                out.instance = hit.hit.instID[0] + 1;
+            } else
                 throughFirst(material.emissive);
             const Eigen::Vector3f fd = diffuse(s);
 
@@ -537,9 +553,10 @@ struct PathTracer::Impl {
                 if (shadows && light.castShadows && occluded(above, l, distance, shadowMask, rays))
                     return;
                 const Eigen::Vector3f f = evaluate(s, toViewer, l);
-                if (depth == 0)
+                if (depth == 0) {
                     reflectFirst(e, f, fd, nol);
-                else
+                    out.direct += f.cwiseProduct(e) * nol;
+                } else
                     throughFirst(f.cwiseProduct(e) * nol);
             });
             const bool last = depth >= settings.maxBounces;
@@ -631,6 +648,11 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
         image.sum.assign(std::size_t(width) * height * 3, 0.0);
         image.diffuseOnlySum.assign(image.sum.size(), 0.0);
         image.diffuseIlluminationSum.assign(image.sum.size(), 0.0);
+        image.albedoSum.assign(image.sum.size(), 0.0);
+        image.directSum.assign(image.sum.size(), 0.0);
+        image.normalSum.assign(image.sum.size(), 0.0);
+        image.depthSum.assign(std::size_t(width) * height, 0.0);
+        image.ids.assign(std::size_t(width) * height, 0);
         image.samples = 0;
         image.signature = signature;
     }
@@ -685,6 +707,15 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
                             diffuseOnly[c] += path.diffuseOnly[c];
                             diffuseIllumination[c] += path.diffuseIllumination[c];
                         }
+                    for (int c = 0; c < 3; ++c) {
+                        image.albedoSum[at + std::size_t(c)] += path.albedo[c];
+                        if (path.direct.allFinite() && path.hdr.allFinite())
+                            image.directSum[at + std::size_t(c)] += path.direct[c];
+                        image.normalSum[at + std::size_t(c)] += path.normal[c];
+                    }
+                    image.depthSum[at / 3] += path.depth;
+                    if (index == 0)
+                        image.ids[at / 3] = path.instance;
                 }
             }
         }

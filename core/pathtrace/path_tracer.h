@@ -40,8 +40,13 @@ struct Accumulation {
     std::vector<double> sum;                    // hdr_color RGB sums, (height, width, 3), row 0 = top
     std::vector<double> diffuseOnlySum;         // likewise
     std::vector<double> diffuseIlluminationSum; // likewise
-    std::uint64_t samples = 0;                  // per pixel
-    std::uint64_t signature = 0;                // of the scene, camera and settings the samples were taken of
+    // What the paths' first surfaces were, for the denoiser (denoise.h): base colour and normal sums (H, W,
+    // 3), distance sums (H, W), and the instance (+ 1; 0: nothing) the first sample of each pixel met.
+    std::vector<double> albedoSum, normalSum, depthSum;
+    std::vector<double> directSum; // the analytic lights' direct light and emission (H, W, 3): not filtered
+    std::vector<std::uint32_t> ids;
+    std::uint64_t samples = 0;   // per pixel
+    std::uint64_t signature = 0; // of the scene, camera and settings the samples were taken of
     // The mean of channel c of pixel (x, y) of `sums` (one of the three above).
     float mean(const std::vector<double>& sums, int x, int y, int c) const {
         return samples == 0 ? 0.0f : float(sums[(std::size_t(y) * width + x) * 3 + c] / double(samples));

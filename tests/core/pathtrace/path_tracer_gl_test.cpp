@@ -51,6 +51,22 @@ class PathTracerGlTest : public render::test::GlTest {
     PathTracer tracer_;
 };
 
+TEST_F(PathTracerGlTest, OneTracerRendersTwoScenesAsTwoTracersWould) {
+    // The meshes are kept per scene: the same handles in another scene are other meshes.
+    Scene sphere, box;
+    addSphere(sphere, material({0.8f, 0.8f, 0.8f}, 0.6f, 0.0f));
+    const render::MaterialId grey = box.addMaterial(material({0.8f, 0.8f, 0.8f}, 0.6f, 0.0f));
+    box.addInstance({box.addMesh(render::primitives::box({0.3f, 0.3f, 0.3f})), {grey}, {1}});
+    for (Scene* scene : {&sphere, &box})
+        scene->setEnvironment({{1.0f, 1.0f, 1.0f}, {0.0f, 0.0f, 0.0f}});
+    Accumulation first, second, alone;
+    tracer_.render(sphere, sphereCamera(), {4, 1}, first);
+    tracer_.render(box, sphereCamera(), {4, 1}, second);
+    PathTracer fresh;
+    fresh.render(box, sphereCamera(), {4, 1}, alone);
+    EXPECT_EQ(second.sum, alone.sum);
+}
+
 TEST_F(PathTracerGlTest, AConvexDiffuseObjectInAUniformSkyReflectsBaseTimesSky) {
     // Furnace: every pixel of the sphere sees base x sky from its diffuse lobe, plus the specular lobe's
     // share, which is the same for any dielectric base (F0 = 0.04): the difference of two bases is exact.

@@ -1,0 +1,129 @@
+#include "core/pathtrace/denoise.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/base/error.h"
+
+namespace sp::pathtrace {
+namespace {
+
+// Albedo below this is treated as this when dividing it out (a black surface's lighting is not knowable
+// from its colour).
+constexpr float kAlbedoFloor = 0.02f;
+// A pass's luminance tolerance, relative to the pixels' luminance, halving each pass.
+constexpr float kLuminanceTolerance = 1.0f;
+// Depth tolerance per pixel of tap distance, relative to the depth.
+constexpr float kDepthTolerance = 0.05f;
+constexpr float kNormalPower = 32.0f;
+
+float luminance(const float* c) {
+    return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
+}
+
+} // namespace
+
+std::vector<float> denoise(std::span<const float> color, const DenoiseGuides& guides, int passes) {
+    const std::size_t pixels = std::size_t(guides.width) * std::size_t(guides.height);
+    SP_CHECK(guides.width > 0 && guides.height > 0, InvalidArgument, "denoise(): the image is ", guides.width,
+             "x", guides.height);
+    SP_CHECK(passes >= 1 && passes <= 8, InvalidArgument, "denoise(): passes ", passes,
+             " is out of range [1, 8]");
+    SP_CHECK(color.size() == pixels * 3, InvalidArgument, "denoise(): color has ", color.size(),
+             " values for ", pixels, " pixels of 3");
+    SP_CHECK(guides.albedo.size() == pixels * 3, InvalidArgument, "denoise(): albedo has ",
+             guides.albedo.size(), " values for ", pixels, " pixels of 3");
+    SP_CHECK(guides.normal.size() == pixels * 3, InvalidArgument, "denoise(): normal has ",
+             guides.normal.size(), " values for ", pixels, " pixels of 3");
+    SP_CHECK(guides.depth.size() == pixels, InvalidArgument, "denoise(): depth has ", guides.depth.size(),
+             " values for ", pixels, " pixels");
+    SP_CHECK(guides.ids.size() == pixels, InvalidArgument, "denoise(): ids has ", guides.ids.size(),
+             " values for ", pixels, " pixels");
+
+    // The lighting: colour over albedo.
+    std::vector<float> current(pixels * 3), next(pixels * 3);
+    for (std::size_t i = 0; i < pixels * 3; ++i)
+        current[i] = color[i] / std::max(guides.albedo[i], kAlbedoFloor);
+
+    constexpr float kernel[5] = {1.0f / 16, 1.0f / 4, 3.0f / 8, 1.0f / 4, 1.0f / 16};
+    const int width = guides.width, height = guides.height;
+    for (int pass = 0; pass < passes; ++pass) {
+        const int step = 1 << pass;
+        const float tolerance = kLuminanceTolerance / float(1 << pass);
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+                const float* cp = &current[p * 3];
+                if (guides.ids[p] == 0) { // background: kept as it is, and no tap for others
+                    std::copy(cp, cp + 3, &next[p * 3]);
+                    continue;
+                }
+                const float* np = &guides.normal[p * 3];
+                const float zp = guides.depth[p], lp = luminance(cp);
+                float sum[3] = {0.0f, 0.0f, 0.0f}, total = 0.0f;
+                for (int dy = -2; dy <= 2; ++dy) {
+                    const int qy = y + dy * step;
+                    if (qy < 0 || qy >= height)
+                        continue;
+                    for (int dx = -2; dx <= 2; ++dx) {
+                        const int qx = x + dx * step;
+                        if (qx < 0 || qx >= width)
+                            continue;
+                        const std::size_t q = std::size_t(qy) * std::size_t(width) + std::size_t(qx);
+                        if (guides.ids[q] != guides.ids[p])
+                            continue;
+                        const float* cq = &current[q * 3];
+                        const float* nq = &guides.normal[q * 3];
+                        const float facing = std::max(0.0f, np[0] * nq[0] + np[1] * nq[1] + np[2] * nq[2]);
+                        const float taps = float(std::max(std::abs(dx), std::abs(dy)) * step);
+                        const float depth =
+                            std::abs(zp - guides.depth[q]) / (kDepthTolerance * zp * taps + 1e-4f);
+                        const float light =
+                            std::abs(lp - luminance(cq)) / (tolerance * 0.5f * (lp + luminance(cq)) + 1e-4f);
+                        const float w = kernel[dx + 2] * kernel[dy + 2] * std::pow(facing, kNormalPower) *
+                                        std::exp(-depth - light * light);
+                        for (int c = 0; c < 3; ++c)
+                            sum[c] += w * cq[c];
+                        total += w;
+                    }
+                }
+                for (int c = 0; c < 3; ++c) // total > 0: the pixel itself is a tap of weight > 0
+                    next[p * 3 + std::size_t(c)] = total > 0.0f ? sum[c] / total : cp[c];
+            }
+        std::swap(current, next);
+    }
+    for (std::size_t i = 0; i < pixels * 3; ++i)
+        current[i] =
+            guides.ids[i / 3] == 0 ? color[i] : current[i] * std::max(guides.albedo[i], kAlbedoFloor);
+    return current;
+}
+
+std::vector<float> denoise(const Accumulation& image, int passes) {
+    const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height);
+    SP_CHECK(image.samples > 0 && image.sum.size() == pixels * 3 && image.albedoSum.size() == pixels * 3 &&
+                 image.directSum.size() == pixels * 3 && image.ids.size() == pixels,
+             InvalidArgument, "denoise(): the accumulation holds no samples of a ", image.width, "x",
+             image.height, " image");
+    const double scale = 1.0 / double(image.samples);
+    std::vector<float> color(pixels * 3), albedo(pixels * 3), normal(pixels * 3), depth(pixels);
+    for (std::size_t p = 0; p < pixels; ++p) {
+        double length = 0.0;
+        for (std::size_t c = 0; c < 3; ++c) {
+            color[p * 3 + c] = float((image.sum[p * 3 + c] - image.directSum[p * 3 + c]) * scale);
+            albedo[p * 3 + c] = float(image.albedoSum[p * 3 + c] * scale);
+            length += image.normalSum[p * 3 + c] * image.normalSum[p * 3 + c];
+        }
+        length = std::sqrt(length);
+        for (std::size_t c = 0; c < 3; ++c)
+            normal[p * 3 + c] = length > 0.0 ? float(image.normalSum[p * 3 + c] / length) : 0.0f;
+        depth[p] = float(image.depthSum[p] * scale);
+    }
+    // The lights' direct light stays as it is (sharp shadows); the rest (sky, indirect) is filtered.
+    std::vector<float> out =
+        denoise(color, {image.width, image.height, albedo, normal, depth, image.ids}, passes);
+    for (std::size_t i = 0; i < out.size(); ++i)
+        out[i] += float(image.directSum[i] * scale);
+    return out;
+}
+
+} // namespace sp::pathtrace
