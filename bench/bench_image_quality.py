@@ -6,7 +6,8 @@ quality, over the pixels that show geometry (depth > 0):
   - mean luminance ratio (raster / reference) and mean relative luminance error;
   - SSIM of final_color (scikit-image, Debian's python3-skimage);
   - crushed pixels (every channel below 8/255) in raster and in the reference;
-and, once per scene, the path tracer's relative RMSE at 64 spp against the reference.
+and, once per scene, the path tracer's relative RMSE at 64 spp against the reference, raw and denoised
+(bPathTracingEnableDenoiser).
 
     PYTHONPATH=python /usr/bin/python3 bench/bench_image_quality.py [--width 320 --height 240]
         [--reference 1024] [--qualities Off,Medium] [--scenes apartment,yard,closed_room] [--out out/iq]
@@ -147,7 +148,7 @@ class Scene:
         assert "final_color" in pixels and "depth" in pixels
         return pixels["final_color"], pixels["depth"]
 
-    def traced(self, samples: int, label: str) -> NDArray[np.uint8]:
+    def traced(self, samples: int, label: str, denoise: bool = False) -> NDArray[np.uint8]:
         """final_color of a path-traced camera at the pose after `samples` samples per pixel."""
         with self.instance.begin_frame():
             camera = self.camera(label, self.width, self.height, spear.EGlobalIlluminationQuality.Off, self.name)
@@ -155,6 +156,7 @@ class Scene:
             camera.Renderer = spear.ECameraRenderer.PathTraced
             camera.SamplesPerPixel = min(64, samples)
             camera.MaxBounces = 6
+            camera.bPathTracingEnableDenoiser = denoise
         start = time.monotonic()
         with self.instance.end_frame():
             done = camera.GetAccumulatedSamples()
@@ -197,13 +199,14 @@ def main() -> None:
         sys.exit("bench_image_quality.py needs scikit-image: sudo apt-get install python3-skimage")
     qualities = [spear.EGlobalIlluminationQuality[q] for q in args.qualities.split(",")]
     rows: list[tuple[str, str, float, float, float, float, float, float]] = []
-    noise: list[tuple[str, float]] = []
+    noise: list[tuple[str, float, float]] = []
     for name in args.scenes.split(","):
         print(f"{name}:", file=sys.stderr)
         scene = Scene(name, args.width, args.height, qualities)
         scene.frame()
         reference = scene.traced(args.reference, "Reference")
         noisy = scene.traced(64, "Traced64")
+        denoised = scene.traced(64, "Traced64Denoised", denoise=True)
         ref_linear = srgb_to_linear(reference)
         ref_lum = luminance(ref_linear)
         for quality, camera in scene.cameras.items():
@@ -224,10 +227,11 @@ def main() -> None:
                 out.mkdir(parents=True, exist_ok=True)
                 Image.fromarray(np.ascontiguousarray(color[..., :3])).save(out / f"{name}_{quality.name}.png")
                 Image.fromarray(np.ascontiguousarray(reference[..., :3])).save(out / f"{name}_reference.png")
-        noisy_lum = luminance(srgb_to_linear(noisy))
-        rmse = float(np.sqrt(((noisy_lum - ref_lum) ** 2).mean()) / max(ref_lum.mean(), 1e-9))
-        print(f"  path tracer, 64 spp against {args.reference}: relative RMSE {rmse:.3f}", file=sys.stderr)
-        noise.append((name, rmse))
+        rmse = [float(np.sqrt(((luminance(srgb_to_linear(image)) - ref_lum) ** 2).mean()) / max(ref_lum.mean(), 1e-9))
+                for image in (noisy, denoised)]
+        print(f"  path tracer, 64 spp against {args.reference}: relative RMSE {rmse[0]:.3f}, denoised {rmse[1]:.3f}",
+              file=sys.stderr)
+        noise.append((name, rmse[0], rmse[1]))
         scene.close()
 
     print("| scene | quality | luminance ratio | mean rel. error | SSIM | crushed raster | crushed ref. | frame s |")
@@ -235,10 +239,10 @@ def main() -> None:
     for n, q, ratio, rel, s, cr, crr, t in rows:
         print(f"| {n} | {q} | {ratio:.2f} | {rel:.2f} | {s:.3f} | {cr:.1%} | {crr:.1%} | {t:.2f} |")
     print()
-    print(f"| scene | path tracer at 64 spp: relative RMSE against {args.reference} spp |")
-    print("|---|---:|")
-    for n, rmse in noise:
-        print(f"| {n} | {rmse:.3f} |")
+    print(f"| scene | path tracer at 64 spp: relative RMSE against {args.reference} spp | denoised |")
+    print("|---|---:|---:|")
+    for n, raw, filtered in noise:
+        print(f"| {n} | {raw:.3f} | {filtered:.3f} |")
 
 if __name__ == "__main__":
     main()

@@ -378,6 +378,13 @@ class UCameraSensorComponent : public USceneComponent {
     SPPROPERTY(Setter = SetSamplesPerPixel)
     int32_t SamplesPerPixel = 4;
 
+    /// Path tracing: denoise final_color and hdr_color (an edge-avoiding à-trous wavelet filter guided by the
+    /// first surfaces' albedo, normal, distance and object; the lights' direct light is kept as it is; see
+    /// core/pathtrace/denoise.h). The intrinsic images (diffuse_illumination, diffuse_only,
+    /// specular_residual) stay unfiltered, the unbiased reference. Unreal's name; off by default.
+    SPPROPERTY()
+    bool bPathTracingEnableDenoiser = false;
+
     /// Path tracing: indirect bounces after the first hit, in [0, 64] (0: direct light and sky only).
     SPPROPERTY(Setter = SetMaxBounces)
     int32_t MaxBounces = 4;

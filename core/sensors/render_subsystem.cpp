@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/base/error.h"
+#include "core/pathtrace/denoise.h"
 #include "core/pathtrace/irradiance_probes.h"
 #include "core/pathtrace/path_tracer.h"
 #include "core/render/camera.h"
@@ -405,6 +406,11 @@ std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponen
     tracer_->render(scene_->scene(), renderCamera, {camera.SamplesPerPixel, camera.MaxBounces},
                     state.accumulation);
     const sp::pathtrace::Accumulation& image = state.accumulation;
+    // final_color and hdr_color denoised when asked for; the intrinsic images stay unfiltered.
+    std::vector<float> denoised;
+    if (camera.bPathTracingEnableDenoiser && (modalities.contains(sp::render::Modality::FinalColor) ||
+                                              modalities.contains(sp::render::Modality::HdrColor)))
+        denoised = sp::pathtrace::denoise(image);
     auto traced = std::make_shared<TracedImages>();
     traced->samples = image.samples;
     // The pixel's vignetting (1 without), as the surface shader applies it to final_color.
@@ -421,7 +427,10 @@ std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponen
             for (int x = 0; x < image.width; ++x) {
                 const std::size_t pixel = (std::size_t(y) * image.width + x) * std::size_t(channels);
                 for (int c = 0; c < 3; ++c) {
-                    const float hdr = image.mean(x, y, c);
+                    const float raw = image.mean(x, y, c);
+                    const float hdr = denoised.empty()
+                                          ? raw
+                                          : denoised[(std::size_t(y) * image.width + x) * 3 + std::size_t(c)];
                     switch (modality) {
                     case sp::render::Modality::FinalColor:
                         final[pixel + c] = std::uint8_t(
@@ -438,9 +447,9 @@ std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponen
                     case sp::render::Modality::DiffuseOnly:
                         half[pixel + c] = sp::render::floatToHalf(image.mean(image.diffuseOnlySum, x, y, c));
                         break;
-                    default: // SpecularResidual: what hdr_color holds beyond diffuse_only
+                    default: // SpecularResidual: what the unfiltered hdr_color holds beyond diffuse_only
                         half[pixel + c] =
-                            sp::render::floatToHalf(hdr - image.mean(image.diffuseOnlySum, x, y, c));
+                            sp::render::floatToHalf(raw - image.mean(image.diffuseOnlySum, x, y, c));
                         break;
                     }
                 }

@@ -869,6 +869,16 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
         });
         t.properties.push_back({
+            "bPathTracingEnableDenoiser",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
+            "Path tracing: denoise final_color and hdr_color (an edge-avoiding à-trous wavelet filter guided by the\nfirst surfaces' albedo, normal, distance and object; the lights' direct light is kept as it is; see\ncore/pathtrace/denoise.h). The intrinsic images (diffuse_illumination, diffuse_only,\nspecular_residual) stay unfiltered, the unbiased reference. Unreal's name; off by default.",
+            false,
+            [](const void* self) { return Calls::get_bPathTracingEnableDenoiser<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_bPathTracingEnableDenoiser<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
             "MaxBounces",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Path tracing: indirect bounces after the first hit, in [0, 64] (0: direct light and sky only).",

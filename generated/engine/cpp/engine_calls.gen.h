@@ -3516,6 +3516,15 @@ struct UCameraSensorComponentCalls {
         sp::reflect::notifyPropertyChanged(self, "SamplesPerPixel");
     }
 
+    template <typename Call> static typename Call::Result get_bPathTracingEnableDenoiser(const Self* self) {
+        const auto& value = self->bPathTracingEnableDenoiser;
+        return Call::template result<bool>(value);
+    }
+    template <typename Call> static void set_bPathTracingEnableDenoiser(Self* self, const typename Call::Input& value) {
+        self->bPathTracingEnableDenoiser = Call::template input<bool>(value, "UCameraSensorComponent.bPathTracingEnableDenoiser");
+        sp::reflect::notifyPropertyChanged(self, "bPathTracingEnableDenoiser");
+    }
+
     template <typename Call> static typename Call::Result get_MaxBounces(const Self* self) {
         const auto& value = self->MaxBounces;
         return Call::template result<int32_t>(value);

@@ -45,5 +45,5 @@ __attribute__((visibility("default"))) const char* spear_register_engine_types_a
 
 // The same hash as a constant: a plugin compiled against these headers records the engine's.
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "2bb4b33a1026c51d";
+inline constexpr char kApiHash[] = "09cc8a4670107f89";
 } // namespace sp::generated::engine

@@ -1926,6 +1926,13 @@ void spear_bind_engine(py::module_& m) {
             },
             "Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating.");
         cls.def_property(
+            "bPathTracingEnableDenoiser",
+            [](const Ref<Self>& self) { return Calls::get_bPathTracingEnableDenoiser<PyCall>(self.get<Self>("UCameraSensorComponent.bPathTracingEnableDenoiser")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_bPathTracingEnableDenoiser<PyCall>(self.get<Self>("UCameraSensorComponent.bPathTracingEnableDenoiser"), value);
+            },
+            "Path tracing: denoise final_color and hdr_color (an edge-avoiding à-trous wavelet filter guided by the\nfirst surfaces' albedo, normal, distance and object; the lights' direct light is kept as it is; see\ncore/pathtrace/denoise.h). The intrinsic images (diffuse_illumination, diffuse_only,\nspecular_residual) stay unfiltered, the unbiased reference. Unreal's name; off by default.");
+        cls.def_property(
             "MaxBounces",
             [](const Ref<Self>& self) { return Calls::get_MaxBounces<PyCall>(self.get<Self>("UCameraSensorComponent.MaxBounces")); },
             [](const Ref<Self>& self, const PyArg& value) {

@@ -204,4 +204,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "2bb4b33a1026c51d"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "09cc8a4670107f89"; }

@@ -3082,6 +3082,17 @@ class UCameraSensorComponent(USceneComponent):
     def SamplesPerPixel(self, value: int) -> None: ...
 
     @property
+    def bPathTracingEnableDenoiser(self) -> bool:
+        """Path tracing: denoise final_color and hdr_color (an edge-avoiding à-trous wavelet filter guided by the
+        first surfaces' albedo, normal, distance and object; the lights' direct light is kept as it is; see
+        core/pathtrace/denoise.h). The intrinsic images (diffuse_illumination, diffuse_only,
+        specular_residual) stay unfiltered, the unbiased reference. Unreal's name; off by default.
+        """
+
+    @bPathTracingEnableDenoiser.setter
+    def bPathTracingEnableDenoiser(self, value: bool) -> None: ...
+
+    @property
     def MaxBounces(self) -> int:
         """Path tracing: indirect bounces after the first hit, in [0, 64] (0: direct light and sky only)."""
 

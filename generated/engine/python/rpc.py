@@ -1338,6 +1338,14 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
         self._sp_set("UCameraSensorComponent", "SamplesPerPixel", value)
 
     @property
+    def bPathTracingEnableDenoiser(self) -> bool:
+        return cast("bool", self._sp_get("UCameraSensorComponent", "bPathTracingEnableDenoiser", _t.T_bool))
+
+    @bPathTracingEnableDenoiser.setter
+    def bPathTracingEnableDenoiser(self, value: bool) -> None:
+        self._sp_set("UCameraSensorComponent", "bPathTracingEnableDenoiser", value)
+
+    @property
     def MaxBounces(self) -> int:
         return cast("int", self._sp_get("UCameraSensorComponent", "MaxBounces", _t.T_int))
 
