@@ -78,8 +78,8 @@ struct ShadingLayout {
     // Whether the shading blends the scene's irradiance volume (irradiance_volume.h) where it otherwise adds
     // the uniform ambient term, and where (Renderer::vertexIrradiance()).
     IrradianceBlend irradiance = IrradianceBlend::None;
-    // Per vertex: the vertex shader loads the probes as an image (cheaper than a texel fetch on llvmpipe, whose
-    // sampler path is general), where the driver allows images in vertex shaders (GL 4.5 need not).
+    // Per vertex: the vertex shader loads the probes as an image (cheaper than a texel fetch on llvmpipe,
+    // whose sampler path is general), where the driver allows images in vertex shaders (GL 4.5 need not).
     bool vertexProbeImages = false;
     // A short text naming the layout, for program caches ("D0.S1r.P").
     std::string key() const;
