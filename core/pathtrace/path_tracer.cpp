@@ -207,12 +207,13 @@ struct PathTracer::Impl {
 
     // Builds the geometry again when the scene's changed (or it is another scene).
     void sync(const render::Scene& scene) {
+        const std::uint64_t geometry = geometryHash(scene, 0.0);
         Hasher withCutoff;
-        withCutoff.add(geometryHash(scene, 0.0));
+        withCutoff.add(geometry);
         withCutoff.add(probeCutoff);
         if (!rtcScene || withCutoff.value != builtSignature || scene.uid() != builtFor) {
             build(scene);
-            geometrySignature = geometryHash(scene, 0.0);
+            geometrySignature = geometry;
             probeGeometrySignature = geometryHash(scene, probeCutoff);
             builtSignature = withCutoff.value;
             builtFor = scene.uid();
