@@ -6,6 +6,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "closed_room.h"
 #include "core/base/error.h"
 #include "core/pathtrace/denoise.h"
 #include "core/pathtrace/path_tracer.h"
@@ -67,29 +68,15 @@ render::Scene twoBoxes() {
 
 class DenoiseTest : public render::test::GlTest {};
 
-// A closed white room lit by a lamp: most of its light is indirect, the path tracer's noise.
+// The shared closed room (closed_room.h) with a red block in it: most of its light is indirect, the path
+// tracer's noise.
 render::Scene closedRoom() {
     render::Scene scene;
-    const auto white = scene.addMaterial(render::test::makeMaterial({0.8f, 0.8f, 0.8f}, 1.0f, 0.0f));
+    test::buildClosedRoom(scene, false);
     const auto red = scene.addMaterial(render::test::makeMaterial({0.7f, 0.15f, 0.1f}, 0.8f, 0.0f));
-    const auto slab = [&](Eigen::Vector3f size, Eigen::Vector3d centre, render::MaterialId material) {
-        render::Instance instance{scene.addMesh(render::primitives::box(size)), {material}, {1}};
-        instance.transform = Eigen::Translation3d(centre);
-        scene.addInstance(instance);
-    };
-    slab({4.4f, 3.4f, 0.2f}, {0.0, 0.0, -0.1}, white);
-    slab({4.4f, 3.4f, 0.2f}, {0.0, 0.0, 2.6}, white);
-    slab({0.2f, 3.0f, 2.5f}, {2.1, 0.0, 1.25}, white);
-    slab({0.2f, 3.0f, 2.5f}, {-2.1, 0.0, 1.25}, white);
-    slab({4.4f, 0.2f, 2.5f}, {0.0, 1.6, 1.25}, white);
-    slab({4.4f, 0.2f, 2.5f}, {0.0, -1.6, 1.25}, white);
-    slab({0.8f, 0.8f, 0.8f}, {0.6, 0.4, 0.4}, red);
-    render::Light lamp;
-    lamp.type = render::LightType::Point;
-    lamp.position = {-0.5, -0.3, 2.2};
-    lamp.intensity = 10.0f;
-    scene.addLight(lamp);
-    scene.setEnvironment({{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}});
+    render::Instance block{scene.addMesh(render::primitives::box({0.8f, 0.8f, 0.8f})), {red}, {2}};
+    block.transform = Eigen::Translation3d(0.6, 0.4, 0.4);
+    scene.addInstance(block);
     return scene;
 }
 
@@ -103,8 +90,7 @@ TEST_F(DenoiseTest, FewSamplesComeCloserToTheConvergedImage) {
         render::Camera camera;
         double most;
     } cases[] = {
-        {"closed room", closedRoom(),
-         render::test::cameraLookingAt({-1.8, -1.3, 1.8}, {1.0, 0.8, 0.6}, 48, 32, 90.0), 0.5},
+        {"closed room", closedRoom(), test::closedRoomCamera(), 0.5},
         {"two boxes outdoors", twoBoxes(),
          render::test::cameraLookingAt({-3.5, -1.0, 2.0}, {0.0, 0.0, 0.4}, 48, 36, 60.0), 1.0},
     };

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "closed_room.h"
 #include "core/base/error.h"
 #include "core/pathtrace/irradiance_probes.h"
 #include "core/pathtrace/path_tracer.h"
@@ -108,40 +109,6 @@ class IrradianceProbesGlTest : public render::test::GlTest {
         target.render(scene, camera, frame);
         return frame;
     }
-    // A closed room (inside 4 x 3 x 2.5 m, walls 0.2 m thick) of a white diffuse material, a point light
-    // inside; optionally a strong sun outside.
-    static render::LightId buildClosedRoom(Scene& scene, bool sun) {
-        const render::MaterialId white =
-            scene.addMaterial(render::test::makeMaterial({0.8f, 0.8f, 0.8f}, 1.0f, 0.0f));
-        const auto slab = [&](Eigen::Vector3f size, Eigen::Vector3d centre) {
-            render::Instance instance{scene.addMesh(render::primitives::box(size)), {white}, {1}};
-            instance.transform = Eigen::Translation3d(centre);
-            scene.addInstance(instance);
-        };
-        const float t = 0.2f;
-        slab({4.0f + 2 * t, 3.0f + 2 * t, t}, {0.0, 0.0, -t / 2});      // floor
-        slab({4.0f + 2 * t, 3.0f + 2 * t, t}, {0.0, 0.0, 2.5 + t / 2}); // ceiling
-        slab({t, 3.0f, 2.5f}, {2.0 + t / 2, 0.0, 1.25});                // walls
-        slab({t, 3.0f, 2.5f}, {-2.0 - t / 2, 0.0, 1.25});
-        slab({4.0f + 2 * t, t, 2.5f}, {0.0, 1.5 + t / 2, 1.25});
-        slab({4.0f + 2 * t, t, 2.5f}, {0.0, -1.5 - t / 2, 1.25});
-        Light lamp;
-        lamp.type = LightType::Point;
-        lamp.position = {0.5, 0.3, 2.2};
-        lamp.intensity = 10.0f;
-        const render::LightId id = scene.addLight(lamp);
-        if (sun) {
-            Light light;
-            light.direction = Eigen::Vector3d(0.4, 0.3, -1.0).normalized();
-            light.intensity = 100.0f;
-            scene.addLight(light);
-        }
-        scene.setEnvironment({{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}});
-        return id;
-    }
-    static Camera roomCamera() {
-        return render::test::cameraLookingAt({-1.8, -1.3, 1.8}, {1.0, 0.8, 0.6}, 48, 32, 90.0);
-    }
     PathTracer tracer_;
 };
 
@@ -171,8 +138,8 @@ TEST_F(IrradianceProbesGlTest, AWhiteObjectInAUniformSkyReflectsTheSky) {
 
 TEST_F(IrradianceProbesGlTest, AClosedRoomLitFromInsideMatchesThePathTracer) {
     Scene scene;
-    buildClosedRoom(scene, false);
-    const Camera camera = roomCamera();
+    test::buildClosedRoom(scene, false);
+    const Camera camera = test::closedRoomCamera();
     // A probe's paths bounce maxBounces times after the surface it sees, which is itself a bounce for the
     // points that blend it: the reference bounces once more.
     ProbeSettings settings;
@@ -202,11 +169,11 @@ TEST_F(IrradianceProbesGlTest, PerVertexBlendingLeavesTheExactModalitiesAsTheyWe
     // Per-vertex indirect light draws meshes subdivided to the probe spacing: the surface is the same, so ids
     // are equal and depth within float rounding of the view without indirect light.
     Scene scene;
-    buildClosedRoom(scene, false);
+    test::buildClosedRoom(scene, false);
     IrradianceProbes probes;
     scene.setIrradianceVolume(probes.update(scene, tracer_, {}));
     renderer().setVertexIrradiance(true);
-    Camera camera = roomCamera();
+    Camera camera = test::closedRoomCamera();
     render::Frame frames[2];
     for (int gi = 0; gi < 2; ++gi) {
         camera.params.globalIllumination = gi == 1;
@@ -231,7 +198,7 @@ TEST_F(IrradianceProbesGlTest, SmallThingsMovingLeaveTheProbesAsTheyAre) {
     // Instances under half a probe spacing in radius are invisible to the probes: moving one (a ball rolling)
     // makes no probe stale; moving a large one does.
     Scene scene;
-    buildClosedRoom(scene, false);
+    test::buildClosedRoom(scene, false);
     const render::MaterialId grey =
         scene.addMaterial(render::test::makeMaterial({0.5f, 0.5f, 0.5f}, 0.8f, 0.0f));
     const render::MeshId box = scene.addMesh(render::primitives::box());
@@ -254,12 +221,12 @@ TEST_F(IrradianceProbesGlTest, SmallThingsMovingLeaveTheProbesAsTheyAre) {
 TEST_F(IrradianceProbesGlTest, SunlightOutsideAClosedRoomDoesNotLeakIn) {
     // The same room with a sun 10x the lamp outside: the inside must look as it did without the sun.
     Scene dark, sunny;
-    buildClosedRoom(dark, false);
-    buildClosedRoom(sunny, true);
+    test::buildClosedRoom(dark, false);
+    test::buildClosedRoom(sunny, true);
     IrradianceProbes a, b;
     dark.setIrradianceVolume(a.update(dark, tracer_, {}));
     sunny.setIrradianceVolume(b.update(sunny, tracer_, {}));
-    const Camera camera = roomCamera();
+    const Camera camera = test::closedRoomCamera();
     for (bool vertex : {false, true}) {
         renderer().setVertexIrradiance(vertex);
         const double inside = mean(raster(dark, camera).get(render::Modality::DiffuseIllumination));
@@ -271,7 +238,7 @@ TEST_F(IrradianceProbesGlTest, SunlightOutsideAClosedRoomDoesNotLeakIn) {
 
 TEST_F(IrradianceProbesGlTest, AChangeReachesEveryProbeWithinTheStatedUpdates) {
     Scene scene;
-    const render::LightId lampId = buildClosedRoom(scene, false);
+    const render::LightId lampId = test::buildClosedRoom(scene, false);
     ProbeSettings settings;
     settings.rays = 16;
     settings.probesPerFrame = 40;
