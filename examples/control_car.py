@@ -53,9 +53,8 @@ def build_track(game: spear.UWorld) -> tuple[spear.AStaticMeshActor, spear.AStat
         crates.append(crate)
     sun = game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun", rotation=spear.FRotator(Pitch=-50.0, Yaw=-30.0))
     sun.LightComponent.Intensity = 3.0
-    sky = game.spawn_actor(uclass=spear.ASkyLight, name="Sky")
-    sky.SkyLightComponent.SkyColor = spear.FLinearColor(0.12, 0.14, 0.18, 1.0)
-    sky.SkyLightComponent.BackgroundColor = spear.FLinearColor(0.45, 0.55, 0.7, 1.0)
+    # A clear sky for the sun: the background, and the light on the sides the sun does not reach.
+    game.spawn_actor(uclass=spear.ASkyAtmosphere, name="Sky")
     return crates[0], crates[1]
 
 

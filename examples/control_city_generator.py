@@ -77,8 +77,8 @@ def main() -> None:
         ground.SetActorScale3D(NewScale3D=spear.FVector(260.0, 140.0, 1.0))
         sun = game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun", rotation=spear.FRotator(Pitch=-70.0, Yaw=-60.0))
         sun.LightComponent.Intensity = 3.0
-        sky = game.spawn_actor(uclass=spear.ASkyLight, name="Sky")
-        sky.SkyLightComponent.SkyColor = spear.FLinearColor(0.15, 0.17, 0.2, 1.0)
+        # A clear sky for the sun: the background, and the light on the sides the sun does not reach.
+        game.spawn_actor(uclass=spear.ASkyAtmosphere, name="Sky")
 
         lay_roads(game, "SPEAR", pitch=34.0)
         city = game.spawn_actor(uclass=spear.APCGVolume, name="City", location=spear.FVector(80.0, 19.2, 10.0))

@@ -49,8 +49,8 @@ def build_yard(game: spear.UWorld) -> None:
         wall.SetActorScale3D(NewScale3D=spear.FVector(sx, sy, 2.0))
     sun = game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun", rotation=spear.FRotator(Pitch=-55.0, Yaw=30.0))
     sun.LightComponent.Intensity = 3.0
-    sky = game.spawn_actor(uclass=spear.ASkyLight, name="Sky")
-    sky.SkyLightComponent.SkyColor = spear.FLinearColor(0.12, 0.14, 0.18, 1.0)
+    # A clear sky for that sun: the background, and the light on the sides the sun does not reach.
+    game.spawn_actor(uclass=spear.ASkyAtmosphere, name="Sky")
     # Navigation is built inside this volume: the yard within the fence.
     bounds = game.spawn_actor(uclass=spear.ANavMeshBoundsVolume, name="NavBounds", location=spear.FVector(Z=0.5))
     bounds.BoxComponent.SetBoxExtent(InBoxExtent=spear.FVector(12.5, 8.5, 2.0))

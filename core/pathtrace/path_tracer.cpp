@@ -396,6 +396,8 @@ struct PathTracer::Impl {
         h.add(lights);
         h.matrix(scene.environment().ambient);
         h.matrix(scene.environment().background);
+        h.add(scene.environment().map ? scene.environment().map->uid() : 0);
+        h.matrix(scene.environment().mapScale);
         return h.value;
     }
 
@@ -445,7 +447,8 @@ struct PathTracer::Impl {
         const unsigned rayMask = probe ? kProbeRays : kCameraRays,
                        shadowMask = probe ? kProbeShadowRays : kShadowRays;
         const render::Environment& environment = scene.environment();
-        const bool sky = environment.ambient.maxCoeff() > 0.0f;
+        const render::EnvironmentMap* map = environment.map.get();
+        const bool sky = map != nullptr || environment.ambient.maxCoeff() > 0.0f;
         PathSample out;
         // Light reflected at the first surface splits by lobe. What arrives there along direction l is
         // weighted by f cos / pdf for hdr_color, by its diffuse lobe's share for diffuse_only and by a white
@@ -482,12 +485,13 @@ struct PathTracer::Impl {
             rtcIntersect1(rtcScene, &context, &hit);
             ++rays;
             if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
-                if (depth == 0) {
-                    out.hdr += missed;
-                    out.direct += missed;
+                if (depth == 0) { // an environment map is the background too
+                    const Eigen::Vector3f background = map ? environment.radiance(direction) : missed;
+                    out.hdr += background;
+                    out.direct += background;
                 } else if (sky) { // the BSDF's share of the sky (multiple importance sampling)
                     const float weight = bsdfPdf * bsdfPdf / (bsdfPdf * bsdfPdf + skyPdf * skyPdf);
-                    throughFirst(environment.ambient * weight);
+                    throughFirst(environment.radiance(direction) * weight);
                 }
                 break;
             }
@@ -562,19 +566,29 @@ struct PathTracer::Impl {
             });
             const bool last = depth >= settings.maxBounces;
             if (sky) {
-                const Eigen::Vector3f l = cosineDirection(n, random.next(), random.next());
+                // A uniform sky is drawn by cosine, a map by its luminance (a bright sun in a photograph is
+                // found by its rays, not by chance).
+                Eigen::Vector3f l;
+                float pdfSky = 0.0f;
+                if (map) {
+                    pdfSky = map->sample(random.next(), random.next(), l);
+                } else {
+                    l = cosineDirection(n, random.next(), random.next());
+                    pdfSky = n.dot(l) / kPi;
+                }
                 const float nol = n.dot(l);
-                if (nol > 0.0f && ng.dot(l) > 0.0f &&
+                if (pdfSky > 0.0f && nol > 0.0f && ng.dot(l) > 0.0f &&
                     !occluded(above, l, std::numeric_limits<float>::infinity(), shadowMask, rays)) {
-                    const float pdfSky = nol / kPi, pdfBsdf = pdf(s, toViewer, l);
+                    const float pdfBsdf = pdf(s, toViewer, l);
                     // At the last vertex no BSDF ray follows, so the sky sample takes the whole estimate.
                     const float weight =
                         last ? 1.0f : pdfSky * pdfSky / (pdfSky * pdfSky + pdfBsdf * pdfBsdf);
                     const Eigen::Vector3f f = evaluate(s, toViewer, l);
+                    const Eigen::Vector3f arriving = environment.radiance(l);
                     if (depth == 0)
-                        reflectFirst(environment.ambient, f, fd, nol / pdfSky * weight);
+                        reflectFirst(arriving, f, fd, nol / pdfSky * weight);
                     else
-                        throughFirst(f.cwiseProduct(environment.ambient) * (nol / pdfSky * weight));
+                        throughFirst(f.cwiseProduct(arriving) * (nol / pdfSky * weight));
                 }
             }
             if (last)
@@ -587,7 +601,7 @@ struct PathTracer::Impl {
             if (!(bsdfPdf > 0.0f))
                 break;
             const float nol = n.dot(l);
-            skyPdf = nol / kPi;
+            skyPdf = map ? map->pdf(l) : nol / kPi;
             if (depth == 0) {
                 firstTotal = evaluate(s, toViewer, l) * (nol / bsdfPdf);
                 firstDiffuse = fd * (nol / bsdfPdf);

@@ -172,6 +172,7 @@ void add(RenderStats& total, const RenderStats& s) {
     total.windingFacedInstances += s.windingFacedInstances;
     total.lightsLeftOut += s.lightsLeftOut;
     total.irradianceUploads += s.irradianceUploads;
+    total.environmentUploads += s.environmentUploads;
     total.constantSlotPasses += s.constantSlotPasses;
     for (std::size_t p = 0; p < kPassCount; ++p) {
         total.passTimes[p].gpuMs += s.passTimes[p].gpuMs;
@@ -400,6 +401,7 @@ void Renderer::renderView(const View& view) {
             if (vertexIrradiance_)
                 viewRefineSpacing_ = scene.irradianceVolume()->spacing;
         }
+        lights.environmentMap = bindEnvironment(scene);
         uploadFrameBlock(scene, camera, shadowInfos, shaded);
     }
     if (passes.surface) {
@@ -499,6 +501,53 @@ bool Renderer::bindIrradianceVolume(const Scene& scene) {
     return true;
 }
 
+bool Renderer::bindEnvironment(const Scene& scene) {
+    const EnvironmentMap* map = scene.environment().map.get();
+    if (map == nullptr)
+        return false;
+    SceneState& state = *active_;
+    if (state.environmentUid != map->uid()) {
+        // Half floats hold a sky's and a photograph's range (to 65504) at a quarter of a float's bandwidth.
+        auto upload = [](GpuTexture& texture, const std::vector<const RadianceImage*>& levels, int storage) {
+            glCreateTextures(GL_TEXTURE_2D, 1, &texture.name);
+            glTextureStorage2D(texture.name, storage, GL_RGBA16F, levels[0]->width, levels[0]->height);
+            std::vector<float> texels;
+            for (std::size_t level = 0; level < levels.size(); ++level) {
+                const RadianceImage& image = *levels[level];
+                texels.resize(image.texels.size() * 4);
+                for (std::size_t i = 0; i < image.texels.size(); ++i) {
+                    const Eigen::Vector3f c = image.texels[i].cwiseMin(65000.0f);
+                    texels[4 * i] = c.x(), texels[4 * i + 1] = c.y(), texels[4 * i + 2] = c.z();
+                    texels[4 * i + 3] = 1.0f;
+                }
+                glTextureSubImage2D(texture.name, GLint(level), 0, 0, image.width, image.height, GL_RGBA,
+                                    GL_FLOAT, texels.data());
+            }
+            // Around the horizon the map wraps; at the poles it stops.
+            glTextureParameteri(texture.name, GL_TEXTURE_WRAP_S, GL_REPEAT);
+            glTextureParameteri(texture.name, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+            glTextureParameteri(texture.name, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+            glTextureParameteri(texture.name, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        };
+        std::vector<const RadianceImage*> chain;
+        for (const RadianceImage& level : map->specularLevels())
+            chain.push_back(&level);
+        state.environmentSpecular = std::make_unique<GpuTexture>();
+        upload(*state.environmentSpecular, chain, int(chain.size()));
+        // The full map with mipmaps, so that a wide map seen by a small image is averaged, not sampled.
+        state.environmentBackground = std::make_unique<GpuTexture>();
+        upload(*state.environmentBackground, {&map->full()},
+               int(std::floor(std::log2(double(map->full().width)))) + 1);
+        glGenerateTextureMipmap(state.environmentBackground->name);
+        state.environmentUid = map->uid();
+        state.environmentBackgroundWidth = map->full().width;
+        ++state.stats.environmentUploads;
+    }
+    glBindTextureUnit(shaders::kEnvironmentSpecularUnit, state.environmentSpecular->name);
+    glBindTextureUnit(shaders::kEnvironmentBackgroundUnit, state.environmentBackground->name);
+    return true;
+}
+
 void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
                                 const std::vector<ShadowInfo>& shadows,
                                 const std::vector<ViewLight>& lights) {
@@ -511,6 +560,12 @@ void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
         volume && camera.params.globalIllumination)
         copy3(block.irradianceVolume, volume->origin.cast<float>(), float(1.0 / volume->spacing));
     copy3(block.background, scene.environment().background, 1.0f);
+    if (const EnvironmentMap* map = scene.environment().map.get()) {
+        for (std::size_t i = 0; i < 9; ++i)
+            copy3(block.skyDiffuse[i],
+                  map->diffuseCoefficients()[i].cwiseProduct(scene.environment().mapScale), 0.0f);
+        copy3(block.environment, scene.environment().mapScale, float(EnvironmentMap::kSpecularLevels - 1));
+    }
     copy3(block.exposure, camera.params.exposure * camera.params.whiteBalance, 0.0f);
     block.vignette[0] = camera.params.vignetteIntensity;
     block.vignette[1] = float(camera.focalLengthPixels());
@@ -556,6 +611,8 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
     drawAll(scene, camera, draws, passes.surfaceTargets, passes.lighting, lights, cache);
     if (passes.computeLighting())
         lightInCompute(camera, passes, lights, fb);
+    else if (lights.environmentMap)
+        drawEnvironmentBackground(camera, fb, passes.surfaceTargets, lights.toneMap);
     else if (lights.vignette && (passes.surfaceTargets & targetBit(Target::FinalColor)) != 0)
         drawVignettedBackground(passes.surfaceTargets, lights.toneMap);
     active_->timers.end();
@@ -588,6 +645,54 @@ void Renderer::drawVignettedBackground(TargetMask targets, ToneMap toneMap) {
     glBindVertexArray(0);
     for (int i = 0; i < count; ++i)
         glColorMaski(GLuint(i), GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+}
+
+namespace {
+
+// Clip space to the world position relative to the camera, composed in double precision: the inverse of the
+// projection (flipped as drawn) times the camera's rotation.
+Eigen::Matrix4f clipToOffset(const Camera& camera) {
+    Eigen::Matrix4d view = camera.viewMatrix();
+    view.block<3, 1>(0, 3).setZero();
+    return (camera.projectionMatrix(true) * view).inverse().cast<float>();
+}
+
+// The level of the background texture whose texels are about a pixel wide at the image's centre.
+float backgroundLod(const Camera& camera, int mapWidth) {
+    const double texelsPerRadian = double(mapWidth) / (2.0 * 3.14159265358979);
+    return float(std::max(0.0, std::log2(texelsPerRadian / camera.focalLengthPixels())));
+}
+
+} // namespace
+
+void Renderer::drawEnvironmentBackground(const Camera& camera, const Framebuffers& fb, TargetMask targets,
+                                         ToneMap toneMap) {
+    constexpr TargetMask kBackgroundTargets =
+        targetBit(Target::Hdr) | targetBit(Target::SpecularResidual) | targetBit(Target::FinalColor);
+    if ((targets & kBackgroundTargets) == 0)
+        return;
+    const bool layered = viewLayer_ >= 0;
+    auto& program = programs_["environment background/" + std::to_string(targets) + "/" +
+                              std::to_string(static_cast<int>(toneMap)) + (viewCompact_ ? "/compact" : "") +
+                              (layered ? "/layered" : "")];
+    if (!program)
+        program = std::make_unique<ShaderProgram>(
+            "environment background", shaders::backgroundVertex(layered).c_str(),
+            shaders::environmentBackgroundFragment(targets, toneMap, viewCompact_).c_str());
+    program->use();
+    program->set("uClipToOffset", clipToOffset(camera));
+    glProgramUniform2f(program->id(), program->location("uSize"), float(fb.width), float(fb.height));
+    glProgramUniform1f(program->id(), program->location("uBackgroundLod"),
+                       backgroundLod(camera, active_->environmentBackgroundWidth));
+    maskTargets(targets, targets & ~kBackgroundTargets, true);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    glBindVertexArray(emptyVao_);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    maskTargets(targets, targets & ~kBackgroundTargets, false);
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
 }
@@ -950,12 +1055,10 @@ void Renderer::lightInCompute(const Camera& camera, const PassSet& passes,
         program = std::make_unique<ShaderProgram>("compute lighting",
                                                   shaders::computeLighting(stored, lights).c_str());
     program->use();
-    // Clip space to the world position relative to the camera, composed in double precision: the inverse of
-    // the projection (flipped as drawn) times the camera's rotation.
-    Eigen::Matrix4d view = camera.viewMatrix();
-    view.block<3, 1>(0, 3).setZero();
-    const Eigen::Matrix4f clipToOffset = (camera.projectionMatrix(true) * view).inverse().cast<float>();
-    program->set("uClipToOffset", clipToOffset);
+    program->set("uClipToOffset", clipToOffset(camera));
+    if (lights.environmentMap)
+        glProgramUniform1f(program->id(), program->location("uBackgroundLod"),
+                           backgroundLod(camera, active_->environmentBackgroundWidth));
     glProgramUniform2i(program->id(), program->location("uSize"), fb.width, fb.height);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shaders::kRecordsBinding, instances_->buffer());
     glBindTextureUnit(shaders::kDepthTextureUnit, fb.depthTexture());

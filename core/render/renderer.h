@@ -61,6 +61,7 @@ struct RenderStats {
     std::uint64_t windingFacedInstances = 0; // normals turned by the rasteriser's facing (kFacingFromWinding)
     std::uint64_t lightsLeftOut = 0;         // lights reaching a view past the 16 it shades (the farthest)
     std::uint64_t irradianceUploads = 0;     // irradiance volumes uploaded (a new one, or new probe values)
+    std::uint64_t environmentUploads = 0;    // environment maps uploaded (a new map)
     std::uint64_t constantSlotPasses = 0; // surface passes whose fragments read constants from flat varyings
     std::array<PassTime, kPassCount> passTimes{}; // by Pass
 };
@@ -214,6 +215,11 @@ class Renderer {
         std::unique_ptr<GpuTexture> irradiance;
         const IrradianceVolume* irradianceSource = nullptr;
         std::uint64_t irradianceRevision = 0;
+        // The scene's environment map as uploaded (its prefiltered chain and its full map, for the
+        // background) and which map that is (EnvironmentMap::uid()).
+        std::unique_ptr<GpuTexture> environmentSpecular, environmentBackground;
+        std::uint64_t environmentUid = 0;
+        int environmentBackgroundWidth = 0;
         RenderStats stats;
         PassTimers timers; // stats() collects finished timer queries
     };
@@ -242,6 +248,9 @@ class Renderer {
     // Uploads the scene's irradiance volume when it changed and binds it for the shading programs; false when
     // the scene has none.
     bool bindIrradianceVolume(const Scene& scene);
+    // Uploads the scene's environment map when it is a new one and binds it for the shading and background
+    // programs; false when the scene has none.
+    bool bindEnvironment(const Scene& scene);
     void uploadFrameBlock(const Scene& scene, const Camera& camera, const std::vector<ShadowInfo>& shadows,
                           const std::vector<ViewLight>& lights);
     // The submeshes of the instances in view, grouped by program and front to back within a group; with
@@ -276,6 +285,10 @@ class Renderer {
                  bool shade, const shaders::ShadingLayout& lights, GpuSceneCache& cache);
     // Writes the vignetted background into final_color (one of `targets`) where no surface was drawn.
     void drawVignettedBackground(TargetMask targets, ToneMap toneMap);
+    // Writes the environment map seen along each pixel's ray into hdr_color, specular_residual and
+    // final_color (those of `targets`) where no surface was drawn.
+    void drawEnvironmentBackground(const Camera& camera, const Framebuffers& fb, TargetMask targets,
+                                   ToneMap toneMap);
 
     const GlContext& context_;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs_; // by variant key

@@ -11,6 +11,7 @@
 
 #include <Eigen/Geometry>
 
+#include "core/render/environment_map.h"
 #include "core/render/handles.h"
 #include "core/render/irradiance_volume.h"
 #include "core/render/light.h"
@@ -43,10 +44,23 @@ struct Instance {
     bool castShadows = true;
 };
 
-// Light that does not come from analytic lights: a uniform sky.
+// Light that does not come from analytic lights: a uniform sky, or an environment map (an HDR panorama,
+// an analytic sky), which then also fills the pixels that hit no geometry.
 struct Environment {
-    Eigen::Vector3f ambient{0.03f, 0.03f, 0.03f}; // uniform sky radiance lighting every surface
-    Eigen::Vector3f background{0.0f, 0.0f, 0.0f}; // hdr_color of pixels that hit no geometry
+    Environment() = default;
+    // A uniform sky.
+    Environment(const Eigen::Vector3f& ambient_, const Eigen::Vector3f& background_)
+        : ambient(ambient_), background(background_) {}
+
+    Eigen::Vector3f ambient{0.03f, 0.03f, 0.03f}; // uniform sky radiance lighting every surface (no map)
+    Eigen::Vector3f background{0.0f, 0.0f, 0.0f}; // hdr_color of pixels that hit no geometry (no map)
+    std::shared_ptr<const EnvironmentMap> map;    // radiance from every direction, times mapScale
+    Eigen::Vector3f mapScale{1.0f, 1.0f, 1.0f};
+
+    // The radiance arriving from unit direction `direction`.
+    Eigen::Vector3f radiance(const Eigen::Vector3f& direction) const {
+        return map ? Eigen::Vector3f(map->radiance(direction).cwiseProduct(mapScale)) : ambient;
+    }
 };
 
 class Scene {

@@ -27,6 +27,8 @@ layout(std140, binding = 0) uniform FrameBlock {
     vec4 uExposure;
     vec4 uVignette;
     vec4 uIrradianceVolume; // xyz: world position of probe (0, 0, 0); w: 1 / spacing
+    vec4 uSkyDiffuse[9];    // the environment map's irradiance / pi, spherical harmonics up to band 2
+    vec4 uEnvironment;      // xyz: the map's scale; w: its prefiltered chain's last level
 };
 // The light-clip position of p moved 1.5 shadow-map texels along n (turned towards the light), so that a
 // surface does not shadow itself (per vertex: see shadowClips()).
@@ -173,6 +175,29 @@ void irradianceBlend(vec3 p, vec3 n, out vec3 constant, out mat3 linear) {
     float inverse = 1.0 / total;
     constant *= inverse;
     linear *= inverse;
+}
+)glsl";
+
+// The environment map (environment_map.h): directions to its equirectangular coordinates (row 0 the zenith,
+// the centre column +X, clockwise seen from above), the diffuse term from its spherical harmonics
+// (Ramamoorthi and Hanrahan 2001) and the specular term from its chain prefiltered by roughness (Karis 2013).
+const char* const kEnvironmentChunk = R"glsl(
+layout(binding = ENVIRONMENT_SPECULAR_UNIT) uniform sampler2D uEnvironmentSpecular;
+vec2 environmentUv(vec3 d) {
+    const float INV_PI = 0.318309886183791;
+    return vec2(0.5 - atan(d.y, d.x) * (0.5 * INV_PI), acos(clamp(d.z, -1.0, 1.0)) * INV_PI);
+}
+vec3 skyDiffuse(vec3 n) {
+    vec3 r = uSkyDiffuse[0].xyz * 0.282095 +
+             (uSkyDiffuse[1].xyz * n.y + uSkyDiffuse[2].xyz * n.z + uSkyDiffuse[3].xyz * n.x) * 0.488603 +
+             (uSkyDiffuse[4].xyz * (n.x * n.y) + uSkyDiffuse[5].xyz * (n.y * n.z) +
+              uSkyDiffuse[7].xyz * (n.x * n.z)) * 1.092548 +
+             uSkyDiffuse[6].xyz * (0.315392 * (3.0 * n.z * n.z - 1.0)) +
+             uSkyDiffuse[8].xyz * (0.546274 * (n.x * n.x - n.y * n.y));
+    return max(r, 0.0);
+}
+vec3 skySpecular(vec3 r, float roughness) {
+    return textureLod(uEnvironmentSpecular, environmentUv(r), roughness * uEnvironment.w).rgb * uEnvironment.xyz;
 }
 )glsl";
 
@@ -723,6 +748,8 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
 #endif
     vec3 ambientDiffuse = max(volumeConstant + volumeLinear * n, 0.0);
     vec3 ambientSpecular = max(volumeConstant + volumeLinear * reflect(-s.v, n), 0.0);
+#elif defined(ENVIRONMENT_MAP)
+    vec3 ambientDiffuse = skyDiffuse(n), ambientSpecular = skySpecular(reflect(-s.v, n), roughness);
 #else
     vec3 ambientDiffuse = ambientRadiance(), ambientSpecular = ambientDiffuse;
 #endif
@@ -757,6 +784,8 @@ std::string ShadingLayout::key() const {
         key += ".c" + std::to_string(constantSlots);
     if (irradiance != IrradianceBlend::None)
         key += irradiance == IrradianceBlend::PerPixel ? ".g" : vertexProbeImages ? ".gvi" : ".gv";
+    if (environmentMap)
+        key += ".e";
     return key;
 }
 
@@ -850,7 +879,15 @@ std::string shadingDefines(const ShadingLayout& lights) {
         text += "#define IRRADIANCE_VOLUME\n";
     else if (lights.irradiance == IrradianceBlend::PerVertex)
         text += "#define VERTEX_IRRADIANCE\n";
+    if (lights.environmentMap)
+        text += "#define ENVIRONMENT_MAP\n";
     return text;
+}
+
+// The environment chunk and its texture unit (after FrameBlock).
+std::string environmentChunk() {
+    return "#define ENVIRONMENT_SPECULAR_UNIT " + std::to_string(kEnvironmentSpecularUnit) + "\n" +
+           kEnvironmentChunk;
 }
 
 std::string backgroundFragment(int location, ToneMap toneMap) {
@@ -860,6 +897,37 @@ std::string backgroundFragment(int location, ToneMap toneMap) {
     text += constantAccessors(ConstantPlan{});
     text += kToneChunk;
     return text + "void main() { oFinalColor = toneMapped(uBackground.xyz); }\n";
+}
+
+std::string environmentBackgroundFragment(TargetMask targets, ToneMap toneMap, bool compact) {
+    std::string text = "#version 450 core\n#define VIGNETTE\n" + toneCurveDefine(toneMap);
+    text += encodings(compact);
+    text += kFrameBlock;
+    text += constantAccessors(ConstantPlan{});
+    text += kToneChunk;
+    text += environmentChunk();
+    text += "layout(binding = " + std::to_string(kEnvironmentBackgroundUnit) +
+            ") uniform sampler2D uEnvironmentBackground;\n"
+            "uniform mat4 uClipToOffset;\nuniform vec2 uSize;\nuniform float uBackgroundLod;\n";
+    std::string body;
+    int location = 0;
+    for (std::size_t t = 0; t < kTargetCount; ++t) {
+        if ((targets & (TargetMask(1) << t)) == 0)
+            continue;
+        const auto target = static_cast<Target>(t);
+        const std::string index = std::to_string(location++);
+        text += "layout(location = " + index + ") out " + outputType(target, compact) + " o" + index + ";\n";
+        if (target == Target::Hdr || target == Target::SpecularResidual)
+            body += "    o" + index + " = halfTarget(vec4(c, 1.0));\n";
+        else if (target == Target::FinalColor)
+            body += "    o" + index + " = toneMapped(c);\n";
+    }
+    return text + R"glsl(void main() {
+    vec4 o = uClipToOffset * vec4(gl_FragCoord.xy / uSize * 2.0 - 1.0, 1.0, 1.0);
+    vec3 c = textureLod(uEnvironmentBackground, environmentUv(normalize(o.xyz / o.w)), uBackgroundLod).rgb *
+             uEnvironment.xyz;
+)glsl" + body +
+           "}\n";
 }
 
 std::string clearFragment(TargetMask targets, bool compact) {
@@ -925,6 +993,9 @@ vec2 gPixelCentre;
     text += kShadingChunk;
     if (lights.irradiance == IrradianceBlend::PerPixel)
         text += irradianceChunk(false);
+    if (lights.environmentMap)
+        text += environmentChunk() + "layout(binding = " + std::to_string(kEnvironmentBackgroundUnit) +
+                ") uniform sampler2D uEnvironmentBackground;\nuniform float uBackgroundLod;\n";
     text += shadeFunction(lights, plan, true);
     text += kToneChunk;
     return text + R"glsl(
@@ -934,7 +1005,17 @@ void main() {
     gPixelCentre = vec2(pixel) + 0.5;
     float z = texelFetch(uDepthBuffer, pixel, 0).r;
     if (z >= 1.0) { // background: cleared, but for a vignetted final_color (see backgroundFragment())
-#if defined(VIGNETTE) && defined(STORE_FinalColor)
+#ifdef ENVIRONMENT_MAP // or an environment map's (see environmentBackgroundFragment())
+        vec4 o = uClipToOffset * vec4(gPixelCentre / vec2(uSize) * 2.0 - 1.0, 1.0, 1.0);
+        vec3 c = textureLod(uEnvironmentBackground, environmentUv(normalize(o.xyz / o.w)), uBackgroundLod).rgb *
+                 uEnvironment.xyz;
+#ifdef STORE_Hdr
+        imageStore(uHdr, pixel, vec4(c, 1.0));
+#endif
+#ifdef STORE_FinalColor
+        imageStore(uFinalColor, pixel, toneMapped(c));
+#endif
+#elif defined(VIGNETTE) && defined(STORE_FinalColor)
         imageStore(uFinalColor, pixel, toneMapped(uBackground.xyz));
 #endif
         return;
@@ -1011,6 +1092,8 @@ std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialF
             text += irradianceChunk(false);
         else if (lights.irradiance == IrradianceBlend::PerVertex)
             text += "in vec3 vVolumeConstant;\nin mat3 vVolumeLinear;\n";
+        if (lights.environmentMap)
+            text += environmentChunk();
         text += shadeFunction(lights, plan);
         text += kToneChunk;
     }

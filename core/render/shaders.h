@@ -45,6 +45,9 @@ struct FrameBlock {
     float exposure[4];        // xyz: exposure times the white balance gains
     float vignette[4];        // x = intensity, y = focal length in pixels, zw = the image centre in pixels
     float irradianceVolume[4]; // xyz: world position of the volume's probe (0, 0, 0); w: 1 / spacing
+    // The environment map's diffuse term (EnvironmentMap::diffuseCoefficients() times its scale), xyz each.
+    float skyDiffuse[9][4];
+    float environment[4]; // xyz: the map's scale; w: the prefiltered chain's last level
 };
 
 // Where the shading blends the irradiance probes: not at all, per pixel (sixteen image loads a pixel: cheap
@@ -81,6 +84,10 @@ struct ShadingLayout {
     // Per vertex: the vertex shader loads the probes as an image (cheaper than a texel fetch on llvmpipe,
     // whose sampler path is general), where the driver allows images in vertex shaders (GL 4.5 need not).
     bool vertexProbeImages = false;
+    // The sky term comes from the scene's environment map (environment_map.h): diffuse from its spherical
+    // harmonics, specular from its prefiltered chain; the background from the map (drawBackground()). The
+    // irradiance volume, where blended, still gives both terms: its probes saw the map.
+    bool environmentMap = false;
     // A short text naming the layout, for program caches ("D0.S1r.P").
     std::string key() const;
 };
@@ -125,6 +132,11 @@ std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialF
 // `layered`: into the view's layer (FrameBlock's uCounts.y) of layered framebuffers.
 std::string backgroundVertex(bool layered);
 std::string backgroundFragment(int location, ToneMap toneMap);
+// The background of a scene with an environment map: the map seen along each pixel's ray (uClipToOffset as
+// in computeLighting(), uSize, uBackgroundLod: the background texture's level) into hdr_color and
+// specular_residual (all of a background pixel is residual) and, tone-mapped, final_color, at their locations
+// among `targets`; drawn after the surfaces where none was.
+std::string environmentBackgroundFragment(TargetMask targets, ToneMap toneMap, bool compact);
 // Writes uClear[i] into the i-th of `targets` (in Target order; zero into the ids target): a clear of one
 // view's layer of shared framebuffers, drawn with backgroundVertex(true) (see Renderer::clearTargets).
 std::string clearFragment(TargetMask targets, bool compact = false);
@@ -149,5 +161,9 @@ inline constexpr int kHdrImageUnit = 4;
 inline constexpr int kIrradianceImageUnit = 5;
 // The texture unit a vertex shader fetches them from (per-vertex blending).
 inline constexpr int kIrradianceTextureUnit = 6;
+// The texture units of the environment map: its prefiltered chain (the specular term) and the full map (the
+// background).
+inline constexpr int kEnvironmentSpecularUnit = 7;
+inline constexpr int kEnvironmentBackgroundUnit = 8;
 
 } // namespace sp::render::shaders

@@ -7,6 +7,7 @@
 #include "core/render/content_key.h"
 #include "core/render/mesh_import.h"
 #include "core/render/primitives.h"
+#include "core/sensors/sky_atmosphere_component.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
 #include "core/world/light_component.h"
@@ -121,6 +122,8 @@ void RenderScene::track(UActorComponent& component) {
         lightComponents_.add(light);
     else if (const auto* sky = dynamic_cast<const USkyLightComponent*>(&component))
         skies_.add(sky);
+    else if (const auto* atmosphere = dynamic_cast<const USkyAtmosphereComponent*>(&component))
+        atmospheres_.add(atmosphere);
 }
 
 void RenderScene::untrack(UActorComponent& component) {
@@ -132,6 +135,8 @@ void RenderScene::untrack(UActorComponent& component) {
         lightComponents_.remove(light);
     else if (const auto* sky = dynamic_cast<const USkyLightComponent*>(&component))
         skies_.remove(sky);
+    else if (const auto* atmosphere = dynamic_cast<const USkyAtmosphereComponent*>(&component))
+        atmospheres_.remove(atmosphere);
 }
 
 void RenderScene::sync() {
@@ -200,13 +205,17 @@ void RenderScene::sync() {
         lights_.pop_back();
     }
 
-    sp::render::Environment environment;
-    if (!skies_.items().empty()) { // the first sky light in play
-        const USkyLightComponent* sky = skies_.items().begin()->second;
-        environment.ambient = rgb(sky->SkyColor) * sky->Intensity;
-        environment.background = rgb(sky->BackgroundColor);
-    }
-    scene_.setEnvironment(environment);
+    // The first sky light and atmosphere in play; the sun is the first visible directional light.
+    const ULightComponent* sun = nullptr;
+    for (const auto& [sequence, light] : lightComponents_.items())
+        if (light->bVisible && dynamic_cast<const UDirectionalLightComponent*>(light) != nullptr) {
+            sun = light;
+            break;
+        }
+    scene_.setEnvironment(
+        sky_.update(skies_.items().empty() ? nullptr : skies_.items().begin()->second,
+                    atmospheres_.items().empty() ? nullptr : atmospheres_.items().begin()->second, sun,
+                    [this](const std::string& key, const std::string& message) { logOnce(key, message); }));
 }
 
 void RenderScene::syncMesh(UStaticMeshComponent& component,

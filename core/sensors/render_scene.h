@@ -18,11 +18,13 @@
 #include "core/reflect/value.h"
 #include "core/render/scene.h"
 #include "core/sensors/material_library.h"
+#include "core/sensors/sky_environment.h"
 
 class AActor;
 class AMaterialLibrary;
 class UActorComponent;
 class ULightComponent;
+class USkyAtmosphereComponent;
 class USkyLightComponent;
 class UStaticMeshComponent;
 class USplineComponent;
@@ -124,6 +126,8 @@ class RenderScene {
     PlayOrder<const USplineComponent> splines_;
     PlayOrder<const ULightComponent> lightComponents_;
     PlayOrder<const USkyLightComponent> skies_;
+    PlayOrder<const USkyAtmosphereComponent> atmospheres_;
+    SkyEnvironment sky_;
 
     sp::render::Scene scene_;
     std::map<std::string, MeshEntry> meshes_;

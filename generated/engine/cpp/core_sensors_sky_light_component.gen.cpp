@@ -8,6 +8,7 @@
 #include "core/sensors/camera_sensor_component.h"
 #include "core/sensors/material_library.h"
 #include "core/sensors/movie_pipeline_queue.h"
+#include "core/sensors/sky_atmosphere_component.h"
 #include "core/sensors/spot_light_component.h"
 #include "core/spfunc/sp_func_component.h"
 #include "core/world/actor.h"
@@ -39,6 +40,18 @@
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
+
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ESkyLightSourceType>() {
+    static const sp::reflect::EnumInfo info{
+        "ESkyLightSourceType",
+        "Where a sky light's light comes from (UE's ESkyLightSourceType).",
+        {
+            {"SLS_CapturedScene", 0},
+            {"SLS_SpecifiedCubemap", 1},
+        },
+    };
+    return info;
+}
 
 // -- ASkyLight ----------------------------------------------------------------------------------
 
@@ -78,7 +91,7 @@ const sp::reflect::TypeInfo& USkyLightComponent::StaticClass() {
         using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "USkyLightComponent";
-        t.doc = "Uniform sky light: ambient radiance on every surface, and the colour of pixels that hit nothing.";
+        t.doc = "Sky light: ambient radiance on every surface, and the colour of pixels that hit nothing.";
         t.kind = sp::reflect::TypeInfo::Kind::Class;
         t.parent = &USceneComponent::StaticClass();
         t.isAbstract = false;
@@ -86,7 +99,7 @@ const sp::reflect::TypeInfo& USkyLightComponent::StaticClass() {
         t.properties.push_back({
             "SkyColor",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FLinearColor"),
-            "Linear RGB radiance of the uniform sky, multiplied by Intensity.",
+            "Linear RGB radiance of the uniform sky, multiplied by Intensity; the tint of a captured sky or a\nCubemap.",
             false,
             [](const void* self) { return Calls::get_SkyColor<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
@@ -96,7 +109,7 @@ const sp::reflect::TypeInfo& USkyLightComponent::StaticClass() {
         t.properties.push_back({
             "Intensity",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
-            "Multiplier of SkyColor.",
+            "Multiplier of SkyColor, and of a captured sky or Cubemap: 1 shows those as they are (the default,\n0.03, suits the uniform sky). At least 0.",
             false,
             [](const void* self) { return Calls::get_Intensity<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
@@ -106,12 +119,75 @@ const sp::reflect::TypeInfo& USkyLightComponent::StaticClass() {
         t.properties.push_back({
             "BackgroundColor",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FLinearColor"),
-            "Linear HDR colour of the pixels that hit no geometry.",
+            "Linear HDR colour of the pixels that hit no geometry under the uniform sky (a captured sky or a\nCubemap is its own background).",
             false,
             [](const void* self) { return Calls::get_BackgroundColor<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
                 Calls::set_BackgroundColor<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
+        });
+        t.properties.push_back({
+            "SourceType",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "ESkyLightSourceType"),
+            "The light's source: the world's sky (default) or Cubemap.",
+            false,
+            [](const void* self) { return Calls::get_SourceType<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_SourceType<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "Cubemap",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
+            "An equirectangular HDR panorama in linear RGB (an OpenEXR file, width twice its height, the zenith at\nthe top, the image's centre looking along +X), used when SourceType is SLS_SpecifiedCubemap: a path,\nrelative ones found as assets are (\"assets/environments/...\"). Setting a file that does not exist\nraises; one that cannot be read is logged and the uniform sky lights the world instead.",
+            false,
+            [](const void* self) { return Calls::get_Cubemap<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_Cubemap<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "SourceCubemapAngle",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
+            "Turns the sky about the up axis, in degrees; positive turns it to the left (counter-clockwise seen\nfrom above).",
+            false,
+            [](const void* self) { return Calls::get_SourceCubemapAngle<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_SourceCubemapAngle<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.functions.push_back({
+            "SetIntensity",
+            "Sets Intensity (>= 0, finite).",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"NewIntensity", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetIntensity<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "SetCubemap",
+            "Sets Cubemap: \"\" or an existing .exr file.",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"NewCubemap", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetCubemap<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "SetSourceCubemapAngle",
+            "Sets SourceCubemapAngle (degrees, finite).",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"NewAngle", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetSourceCubemapAngle<ValueCall>(self, args); },
         });
         return t;
     }();

@@ -15,6 +15,7 @@
 #include "core/sensors/camera_sensor_component.h"
 #include "core/sensors/material_library.h"
 #include "core/sensors/movie_pipeline_queue.h"
+#include "core/sensors/sky_atmosphere_component.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
 #include "core/spfunc/sp_func_component.h"
@@ -102,6 +103,9 @@ template <> struct Ref<APointLight> : Ref<AActor> {
 template <> struct Ref<ARecastNavMesh> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
+template <> struct Ref<ASkyAtmosphere> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
 template <> struct Ref<ASkyLight> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
@@ -176,6 +180,9 @@ template <> struct Ref<UPCGComponent> : Ref<UActorComponent> {
 };
 template <> struct Ref<UPointLightComponent> : Ref<ULightComponent> {
     using Ref<ULightComponent>::Ref;
+};
+template <> struct Ref<USkyAtmosphereComponent> : Ref<USceneComponent> {
+    using Ref<USceneComponent>::Ref;
 };
 template <> struct Ref<USkyLightComponent> : Ref<USceneComponent> {
     using Ref<USceneComponent>::Ref;
@@ -363,6 +370,21 @@ template <> struct type_caster<EPathFollowingStatus> {
     }
     static handle cast(EPathFollowingStatus v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EPathFollowingStatus");
+        return cls(static_cast<int64_t>(v)).release();
+    }
+};
+
+template <> struct type_caster<ESkyLightSourceType> {
+    PYBIND11_TYPE_CASTER(ESkyLightSourceType, const_name("ESkyLightSourceType"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ESkyLightSourceType");
+        if (!isinstance(src, cls))
+            return false;
+        value = static_cast<ESkyLightSourceType>(src.cast<int64_t>());
+        return true;
+    }
+    static handle cast(ESkyLightSourceType v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ESkyLightSourceType");
         return cls(static_cast<int64_t>(v)).release();
     }
 };

@@ -13,6 +13,7 @@
 #include "core/sensors/camera_sensor_component.h"
 #include "core/sensors/material_library.h"
 #include "core/sensors/movie_pipeline_queue.h"
+#include "core/sensors/sky_atmosphere_component.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
 #include "core/spfunc/sp_func_component.h"
@@ -1273,6 +1274,16 @@ struct ARecastNavMeshCalls {
         Self* self = Call::template object<Self>(target, "ARecastNavMesh.GetNavMeshTriangles()");
         auto result = self->GetNavMeshTriangles();
         return Call::template result<sp::reflect::SpArray<double>>(result);
+    }
+};
+
+struct ASkyAtmosphereCalls {
+    using Self = ASkyAtmosphere;
+
+    template <typename Call> static typename Call::Result get_SkyAtmosphereComponent(const Self* self) {
+        const auto& value = self->SkyAtmosphereComponent;
+        sp::reflect::checkNotNull(value, "ASkyAtmosphere.SkyAtmosphereComponent");
+        return Call::template result<USkyAtmosphereComponent*>(value);
     }
 };
 
@@ -4986,6 +4997,52 @@ struct UPointLightComponentCalls {
     }
 };
 
+struct USkyAtmosphereComponentCalls {
+    using Self = USkyAtmosphereComponent;
+
+    template <typename Call> static typename Call::Result get_Turbidity(const Self* self) {
+        const auto& value = self->Turbidity;
+        return Call::template result<float>(value);
+    }
+    template <typename Call> static void set_Turbidity(Self* self, const typename Call::Input& value) {
+        self->SetTurbidity(Call::template input<float>(value, "USkyAtmosphereComponent.Turbidity"));
+        sp::reflect::notifyPropertyChanged(self, "Turbidity");
+    }
+
+    template <typename Call> static typename Call::Result get_GroundAlbedo(const Self* self) {
+        const auto& value = self->GroundAlbedo;
+        return Call::template result<FLinearColor>(value);
+    }
+    template <typename Call> static void set_GroundAlbedo(Self* self, const typename Call::Input& value) {
+        self->SetGroundAlbedo(Call::template input<FLinearColor>(value, "USkyAtmosphereComponent.GroundAlbedo"));
+        sp::reflect::notifyPropertyChanged(self, "GroundAlbedo");
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetTurbidity(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewTurbidity", "USkyAtmosphereComponent.SetTurbidity(): argument 'NewTurbidity'", true},
+        }};
+        const Call call(args, "USkyAtmosphereComponent.SetTurbidity()", kParams);
+        Self* self = Call::template object<Self>(target, "USkyAtmosphereComponent.SetTurbidity()");
+        float NewTurbidityArg = call.template arg<float>(0);
+        self->SetTurbidity(NewTurbidityArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetGroundAlbedo(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewAlbedo", "USkyAtmosphereComponent.SetGroundAlbedo(): argument 'NewAlbedo'", true},
+        }};
+        const Call call(args, "USkyAtmosphereComponent.SetGroundAlbedo()", kParams);
+        Self* self = Call::template object<Self>(target, "USkyAtmosphereComponent.SetGroundAlbedo()");
+        FLinearColor NewAlbedoArg = call.template arg<FLinearColor>(0);
+        self->SetGroundAlbedo(NewAlbedoArg);
+        return Call::none();
+    }
+};
+
 struct USkyLightComponentCalls {
     using Self = USkyLightComponent;
 
@@ -5003,7 +5060,7 @@ struct USkyLightComponentCalls {
         return Call::template result<float>(value);
     }
     template <typename Call> static void set_Intensity(Self* self, const typename Call::Input& value) {
-        self->Intensity = Call::template input<float>(value, "USkyLightComponent.Intensity");
+        self->SetIntensity(Call::template input<float>(value, "USkyLightComponent.Intensity"));
         sp::reflect::notifyPropertyChanged(self, "Intensity");
     }
 
@@ -5014,6 +5071,69 @@ struct USkyLightComponentCalls {
     template <typename Call> static void set_BackgroundColor(Self* self, const typename Call::Input& value) {
         self->BackgroundColor = Call::template input<FLinearColor>(value, "USkyLightComponent.BackgroundColor");
         sp::reflect::notifyPropertyChanged(self, "BackgroundColor");
+    }
+
+    template <typename Call> static typename Call::Result get_SourceType(const Self* self) {
+        const auto& value = self->SourceType;
+        return Call::template result<ESkyLightSourceType>(value);
+    }
+    template <typename Call> static void set_SourceType(Self* self, const typename Call::Input& value) {
+        self->SourceType = Call::template input<ESkyLightSourceType>(value, "USkyLightComponent.SourceType");
+        sp::reflect::notifyPropertyChanged(self, "SourceType");
+    }
+
+    template <typename Call> static typename Call::Result get_Cubemap(const Self* self) {
+        const auto& value = self->Cubemap;
+        return Call::template result<std::string>(value);
+    }
+    template <typename Call> static void set_Cubemap(Self* self, const typename Call::Input& value) {
+        self->SetCubemap(Call::template input<std::string>(value, "USkyLightComponent.Cubemap"));
+        sp::reflect::notifyPropertyChanged(self, "Cubemap");
+    }
+
+    template <typename Call> static typename Call::Result get_SourceCubemapAngle(const Self* self) {
+        const auto& value = self->SourceCubemapAngle;
+        return Call::template result<float>(value);
+    }
+    template <typename Call> static void set_SourceCubemapAngle(Self* self, const typename Call::Input& value) {
+        self->SetSourceCubemapAngle(Call::template input<float>(value, "USkyLightComponent.SourceCubemapAngle"));
+        sp::reflect::notifyPropertyChanged(self, "SourceCubemapAngle");
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetIntensity(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewIntensity", "USkyLightComponent.SetIntensity(): argument 'NewIntensity'", true},
+        }};
+        const Call call(args, "USkyLightComponent.SetIntensity()", kParams);
+        Self* self = Call::template object<Self>(target, "USkyLightComponent.SetIntensity()");
+        float NewIntensityArg = call.template arg<float>(0);
+        self->SetIntensity(NewIntensityArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetCubemap(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewCubemap", "USkyLightComponent.SetCubemap(): argument 'NewCubemap'", true},
+        }};
+        const Call call(args, "USkyLightComponent.SetCubemap()", kParams);
+        Self* self = Call::template object<Self>(target, "USkyLightComponent.SetCubemap()");
+        std::string NewCubemapArg = call.template arg<std::string>(0);
+        self->SetCubemap(NewCubemapArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetSourceCubemapAngle(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewAngle", "USkyLightComponent.SetSourceCubemapAngle(): argument 'NewAngle'", true},
+        }};
+        const Call call(args, "USkyLightComponent.SetSourceCubemapAngle()", kParams);
+        Self* self = Call::template object<Self>(target, "USkyLightComponent.SetSourceCubemapAngle()");
+        float NewAngleArg = call.template arg<float>(0);
+        self->SetSourceCubemapAngle(NewAngleArg);
+        return Call::none();
     }
 };
 

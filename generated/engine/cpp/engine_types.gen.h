@@ -7,6 +7,7 @@
 
 #include "core/sensors/camera_sensor_component.h"
 #include "core/sensors/movie_pipeline_queue.h"
+#include "core/sensors/sky_light_component.h"
 #include "core/world/controller.h"
 #include "core/world/navigation_system.h"
 #include "core/world/pcg_component.h"
@@ -25,6 +26,7 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ENavigationQuer
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPCGGenerationMode>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPathFollowingRequestResult>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPathFollowingStatus>();
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ESkyLightSourceType>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ESplineCoordinateSpace>();
 
 // The module's entry points, with C linkage so that a plugin's shared library can be opened with dlopen()
@@ -45,5 +47,5 @@ __attribute__((visibility("default"))) const char* spear_register_engine_types_a
 
 // The same hash as a constant: a plugin compiled against these headers records the engine's.
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "09cc8a4670107f89";
+inline constexpr char kApiHash[] = "94a09c6eae74c597";
 } // namespace sp::generated::engine

@@ -989,6 +989,19 @@ void spear_bind_engine(py::module_& m) {
             "GetNavMeshTriangles(self) -> NDArray[np.float64]\n\nReturns the mesh's surface as triangles, a (T, 3, 3) array of corners (for drawing a map).");
     }
     {
+        using Self = ASkyAtmosphere;
+        using Calls = sp::generated::engine::ASkyAtmosphereCalls;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "ASkyAtmosphere", "An actor with the sky atmosphere as its root.");
+        cls.attr("__sp_class__") = "ASkyAtmosphere";
+        sp::pybind::useBareTypeName(cls);
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "SkyAtmosphereComponent",
+            [](const Ref<Self>& self) { return Calls::get_SkyAtmosphereComponent<PyCall>(self.get<Self>("ASkyAtmosphere.SkyAtmosphereComponent")); },
+            "The sky atmosphere (also the root component).");
+        sp::pybind::nameProperties(cls);
+    }
+    {
         using Self = ASkyLight;
         using Calls = sp::generated::engine::ASkyLightCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "ASkyLight", "An actor with the sky light as its root.");
@@ -3041,9 +3054,48 @@ void spear_bind_engine(py::module_& m) {
         sp::pybind::nameProperties(cls);
     }
     {
+        using Self = USkyAtmosphereComponent;
+        using Calls = sp::generated::engine::USkyAtmosphereComponentCalls;
+        py::class_<Ref<Self>, Ref<USceneComponent>> cls(m, "USkyAtmosphereComponent", "An analytic clear sky for the world's sun.");
+        cls.attr("__sp_class__") = "USkyAtmosphereComponent";
+        sp::pybind::useBareTypeName(cls);
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "Turbidity",
+            [](const Ref<Self>& self) { return Calls::get_Turbidity<PyCall>(self.get<Self>("USkyAtmosphereComponent.Turbidity")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_Turbidity<PyCall>(self.get<Self>("USkyAtmosphereComponent.Turbidity"), value);
+            },
+            "Haze of the air (the model's turbidity): 2 very clear, 3 clear (the default), 6 hazy, 10 very hazy;\nin [1.7, 10], the model's range.");
+        cls.def_property(
+            "GroundAlbedo",
+            [](const Ref<Self>& self) { return Calls::get_GroundAlbedo<PyCall>(self.get<Self>("USkyAtmosphereComponent.GroundAlbedo")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_GroundAlbedo<PyCall>(self.get<Self>("USkyAtmosphereComponent.GroundAlbedo"), value);
+            },
+            "Linear RGB albedo of the ground below the horizon, in [0, 1], lit by the sun and the sky.");
+        sp::pybind::nameProperties(cls);
+        cls.def(
+            "SetTurbidity",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewTurbidity, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetTurbidity<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewTurbidity}, true});
+            },
+            py::arg("NewTurbidity") = sp::pybind::missingArgument(),
+            "SetTurbidity(self, *, NewTurbidity: float) -> None\n\nSets Turbidity (in [1.7, 10]).");
+        cls.def(
+            "SetGroundAlbedo",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewAlbedo, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetGroundAlbedo<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewAlbedo}, true});
+            },
+            py::arg("NewAlbedo") = sp::pybind::missingArgument(),
+            "SetGroundAlbedo(self, *, NewAlbedo: FLinearColor) -> None\n\nSets GroundAlbedo (each of R, G, B in [0, 1]).");
+    }
+    {
         using Self = USkyLightComponent;
         using Calls = sp::generated::engine::USkyLightComponentCalls;
-        py::class_<Ref<Self>, Ref<USceneComponent>> cls(m, "USkyLightComponent", "Uniform sky light: ambient radiance on every surface, and the colour of pixels that hit nothing.");
+        py::class_<Ref<Self>, Ref<USceneComponent>> cls(m, "USkyLightComponent", "Sky light: ambient radiance on every surface, and the colour of pixels that hit nothing.");
         cls.attr("__sp_class__") = "USkyLightComponent";
         sp::pybind::useBareTypeName(cls);
         sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
@@ -3053,22 +3105,67 @@ void spear_bind_engine(py::module_& m) {
             [](const Ref<Self>& self, const PyArg& value) {
                 Calls::set_SkyColor<PyCall>(self.get<Self>("USkyLightComponent.SkyColor"), value);
             },
-            "Linear RGB radiance of the uniform sky, multiplied by Intensity.");
+            "Linear RGB radiance of the uniform sky, multiplied by Intensity; the tint of a captured sky or a\nCubemap.");
         cls.def_property(
             "Intensity",
             [](const Ref<Self>& self) { return Calls::get_Intensity<PyCall>(self.get<Self>("USkyLightComponent.Intensity")); },
             [](const Ref<Self>& self, const PyArg& value) {
                 Calls::set_Intensity<PyCall>(self.get<Self>("USkyLightComponent.Intensity"), value);
             },
-            "Multiplier of SkyColor.");
+            "Multiplier of SkyColor, and of a captured sky or Cubemap: 1 shows those as they are (the default,\n0.03, suits the uniform sky). At least 0.");
         cls.def_property(
             "BackgroundColor",
             [](const Ref<Self>& self) { return Calls::get_BackgroundColor<PyCall>(self.get<Self>("USkyLightComponent.BackgroundColor")); },
             [](const Ref<Self>& self, const PyArg& value) {
                 Calls::set_BackgroundColor<PyCall>(self.get<Self>("USkyLightComponent.BackgroundColor"), value);
             },
-            "Linear HDR colour of the pixels that hit no geometry.");
+            "Linear HDR colour of the pixels that hit no geometry under the uniform sky (a captured sky or a\nCubemap is its own background).");
+        cls.def_property(
+            "SourceType",
+            [](const Ref<Self>& self) { return Calls::get_SourceType<PyCall>(self.get<Self>("USkyLightComponent.SourceType")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_SourceType<PyCall>(self.get<Self>("USkyLightComponent.SourceType"), value);
+            },
+            "The light's source: the world's sky (default) or Cubemap.");
+        cls.def_property(
+            "Cubemap",
+            [](const Ref<Self>& self) { return Calls::get_Cubemap<PyCall>(self.get<Self>("USkyLightComponent.Cubemap")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_Cubemap<PyCall>(self.get<Self>("USkyLightComponent.Cubemap"), value);
+            },
+            "An equirectangular HDR panorama in linear RGB (an OpenEXR file, width twice its height, the zenith at\nthe top, the image's centre looking along +X), used when SourceType is SLS_SpecifiedCubemap: a path,\nrelative ones found as assets are (\"assets/environments/...\"). Setting a file that does not exist\nraises; one that cannot be read is logged and the uniform sky lights the world instead.");
+        cls.def_property(
+            "SourceCubemapAngle",
+            [](const Ref<Self>& self) { return Calls::get_SourceCubemapAngle<PyCall>(self.get<Self>("USkyLightComponent.SourceCubemapAngle")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_SourceCubemapAngle<PyCall>(self.get<Self>("USkyLightComponent.SourceCubemapAngle"), value);
+            },
+            "Turns the sky about the up axis, in degrees; positive turns it to the left (counter-clockwise seen\nfrom above).");
         sp::pybind::nameProperties(cls);
+        cls.def(
+            "SetIntensity",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewIntensity, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetIntensity<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewIntensity}, true});
+            },
+            py::arg("NewIntensity") = sp::pybind::missingArgument(),
+            "SetIntensity(self, *, NewIntensity: float) -> None\n\nSets Intensity (>= 0, finite).");
+        cls.def(
+            "SetCubemap",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewCubemap, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetCubemap<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewCubemap}, true});
+            },
+            py::arg("NewCubemap") = sp::pybind::missingArgument(),
+            "SetCubemap(self, *, NewCubemap: str) -> None\n\nSets Cubemap: \"\" or an existing .exr file.");
+        cls.def(
+            "SetSourceCubemapAngle",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewAngle, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetSourceCubemapAngle<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewAngle}, true});
+            },
+            py::arg("NewAngle") = sp::pybind::missingArgument(),
+            "SetSourceCubemapAngle(self, *, NewAngle: float) -> None\n\nSets SourceCubemapAngle (degrees, finite).");
     }
     {
         using Self = USpFuncComponent;

@@ -8,6 +8,7 @@
 #include "core/sensors/camera_sensor_component.h"
 #include "core/sensors/material_library.h"
 #include "core/sensors/movie_pipeline_queue.h"
+#include "core/sensors/sky_atmosphere_component.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
 #include "core/spfunc/sp_func_component.h"
@@ -50,6 +51,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(sp::reflect::StaticEnum<EPCGGenerationMode>());
     registry.add(sp::reflect::StaticEnum<EPathFollowingRequestResult>());
     registry.add(sp::reflect::StaticEnum<EPathFollowingStatus>());
+    registry.add(sp::reflect::StaticEnum<ESkyLightSourceType>());
     registry.add(sp::reflect::StaticEnum<ESplineCoordinateSpace>());
     registry.add(UObject::StaticClass());
     registry.add(AActor::StaticClass());
@@ -70,6 +72,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(APlayerStart::StaticClass());
     registry.add(APointLight::StaticClass());
     registry.add(ARecastNavMesh::StaticClass());
+    registry.add(ASkyAtmosphere::StaticClass());
     registry.add(ASkyLight::StaticClass());
     registry.add(ASplineActor::StaticClass());
     registry.add(ASpotLight::StaticClass());
@@ -111,6 +114,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(UNavigationSystemV1::StaticClass());
     registry.add(UPCGComponent::StaticClass());
     registry.add(UPointLightComponent::StaticClass());
+    registry.add(USkyAtmosphereComponent::StaticClass());
     registry.add(USkyLightComponent::StaticClass());
     registry.add(USpFuncComponent::StaticClass());
     registry.add(USphereComponent::StaticClass());
@@ -130,6 +134,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(USphereComponent::StaticClass());
     registry.remove(USpFuncComponent::StaticClass());
     registry.remove(USkyLightComponent::StaticClass());
+    registry.remove(USkyAtmosphereComponent::StaticClass());
     registry.remove(UPointLightComponent::StaticClass());
     registry.remove(UPCGComponent::StaticClass());
     registry.remove(UNavigationSystemV1::StaticClass());
@@ -171,6 +176,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(ASpotLight::StaticClass());
     registry.remove(ASplineActor::StaticClass());
     registry.remove(ASkyLight::StaticClass());
+    registry.remove(ASkyAtmosphere::StaticClass());
     registry.remove(ARecastNavMesh::StaticClass());
     registry.remove(APointLight::StaticClass());
     registry.remove(APlayerStart::StaticClass());
@@ -191,6 +197,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(AActor::StaticClass());
     registry.remove(UObject::StaticClass());
     registry.remove(sp::reflect::StaticEnum<ESplineCoordinateSpace>());
+    registry.remove(sp::reflect::StaticEnum<ESkyLightSourceType>());
     registry.remove(sp::reflect::StaticEnum<EPathFollowingStatus>());
     registry.remove(sp::reflect::StaticEnum<EPathFollowingRequestResult>());
     registry.remove(sp::reflect::StaticEnum<EPCGGenerationMode>());
@@ -204,4 +211,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "09cc8a4670107f89"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "94a09c6eae74c597"; }

@@ -40,6 +40,7 @@ __all__ = [
     "APlayerStart",
     "APointLight",
     "ARecastNavMesh",
+    "ASkyAtmosphere",
     "ASkyLight",
     "ASplineActor",
     "ASpotLight",
@@ -61,6 +62,7 @@ __all__ = [
     "EPCGGenerationMode",
     "EPathFollowingRequestResult",
     "EPathFollowingStatus",
+    "ESkyLightSourceType",
     "ESplineCoordinateSpace",
     "FCameraPixels",
     "FFrameTimings",
@@ -96,6 +98,7 @@ __all__ = [
     "UPrimitiveComponent",
     "USceneComponent",
     "UShapeComponent",
+    "USkyAtmosphereComponent",
     "USkyLightComponent",
     "USpFuncComponent",
     "USphereComponent",
@@ -220,6 +223,13 @@ class EPathFollowingStatus(enum.IntEnum):
     Waiting = 1
     Paused = 2
     Moving = 3
+
+
+class ESkyLightSourceType(enum.IntEnum):
+    """Where a sky light's light comes from (UE's ESkyLightSourceType)."""
+
+    SLS_CapturedScene = 0
+    SLS_SpecifiedCubemap = 1
 
 
 class ESplineCoordinateSpace(enum.IntEnum):
@@ -849,6 +859,25 @@ class ARecastNavMesh(AActor):
         ProjectedLocation: FVector
 
 
+class ASkyAtmosphereAsync(AActorAsync):
+    """ASkyAtmosphere's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class ASkyAtmosphereSend(AActorSend):
+    """ASkyAtmosphere's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class ASkyAtmosphere(AActor):
+    """An actor with the sky atmosphere as its root."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "ASkyAtmosphere"
+
+
 class ASkyLightAsync(AActorAsync):
     """ASkyLight's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
 
@@ -1382,6 +1411,25 @@ class UPointLightComponent(ULightComponent):
     __sp_class__: ClassVar[str] = "UPointLightComponent"
 
 
+class USkyAtmosphereComponentAsync(USceneComponentAsync):
+    """USkyAtmosphereComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class USkyAtmosphereComponentSend(USceneComponentSend):
+    """USkyAtmosphereComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class USkyAtmosphereComponent(USceneComponent):
+    """An analytic clear sky for the world's sun."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "USkyAtmosphereComponent"
+
+
 class USkyLightComponentAsync(USceneComponentAsync):
     """USkyLightComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
 
@@ -1395,7 +1443,7 @@ class USkyLightComponentSend(USceneComponentSend):
 
 
 class USkyLightComponent(USceneComponent):
-    """Uniform sky light: ambient radiance on every surface, and the colour of pixels that hit nothing."""
+    """Sky light: ambient radiance on every surface, and the colour of pixels that hit nothing."""
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "USkyLightComponent"

@@ -33,6 +33,7 @@ __all__ = [
     "APlayerStart",
     "APointLight",
     "ARecastNavMesh",
+    "ASkyAtmosphere",
     "ASkyLight",
     "ASplineActor",
     "ASpotLight",
@@ -54,6 +55,7 @@ __all__ = [
     "EPCGGenerationMode",
     "EPathFollowingRequestResult",
     "EPathFollowingStatus",
+    "ESkyLightSourceType",
     "ESplineCoordinateSpace",
     "FCameraPixels",
     "FFrameTimings",
@@ -89,6 +91,7 @@ __all__ = [
     "UPrimitiveComponent",
     "USceneComponent",
     "UShapeComponent",
+    "USkyAtmosphereComponent",
     "USkyLightComponent",
     "USpFuncComponent",
     "USphereComponent",
@@ -284,6 +287,15 @@ class EPathFollowingStatus(enum.IntEnum):
     """Paused (not used yet)."""
     Moving = 3
     """Moving to its goal."""
+
+
+class ESkyLightSourceType(enum.IntEnum):
+    """Where a sky light's light comes from (UE's ESkyLightSourceType)."""
+
+    SLS_CapturedScene = 0
+    """The world's sky: its ASkyAtmosphere's when it has one, else the uniform SkyColor."""
+    SLS_SpecifiedCubemap = 1
+    """The HDR panorama named by Cubemap."""
 
 
 class ESplineCoordinateSpace(enum.IntEnum):
@@ -1776,6 +1788,34 @@ class ARecastNavMesh(AActor):
 
     def GetNavMeshTriangles(self) -> NDArray[np.float64]:
         """Returns the mesh's surface as triangles, a (T, 3, 3) array of corners (for drawing a map)."""
+
+
+class ASkyAtmosphereAsync(AActorAsync):
+    """ASkyAtmosphere's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class ASkyAtmosphereSend(AActorSend):
+    """ASkyAtmosphere's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
+class ASkyAtmosphere(AActor):
+    """An actor with the sky atmosphere as its root."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> ASkyAtmosphereAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> ASkyAtmosphereSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def SkyAtmosphereComponent(self) -> USkyAtmosphereComponent:
+        """The sky atmosphere (also the root component)."""
 
 
 class ASkyLightAsync(AActorAsync):
@@ -4216,18 +4256,80 @@ class UPointLightComponent(ULightComponent):
     def AttenuationRadius(self, value: float) -> None: ...
 
 
+class USkyAtmosphereComponentAsync(USceneComponentAsync):
+    """USkyAtmosphereComponent's functions, called asynchronously: each returns a Future."""
+
+    def SetTurbidity(self, *, NewTurbidity: float) -> Future[None]: ...
+
+    def SetGroundAlbedo(self, *, NewAlbedo: FLinearColor) -> Future[None]: ...
+
+
+class USkyAtmosphereComponentSend(USceneComponentSend):
+    """USkyAtmosphereComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetTurbidity(self, *, NewTurbidity: float) -> None: ...
+
+    def SetGroundAlbedo(self, *, NewAlbedo: FLinearColor) -> None: ...
+
+
+class USkyAtmosphereComponent(USceneComponent):
+    """An analytic clear sky for the world's sun."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> USkyAtmosphereComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> USkyAtmosphereComponentSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def Turbidity(self) -> float:
+        """Haze of the air (the model's turbidity): 2 very clear, 3 clear (the default), 6 hazy, 10 very hazy;
+        in [1.7, 10], the model's range.
+        """
+
+    @Turbidity.setter
+    def Turbidity(self, value: float) -> None: ...
+
+    @property
+    def GroundAlbedo(self) -> FLinearColor:
+        """Linear RGB albedo of the ground below the horizon, in [0, 1], lit by the sun and the sky."""
+
+    @GroundAlbedo.setter
+    def GroundAlbedo(self, value: FLinearColor) -> None: ...
+
+    def SetTurbidity(self, *, NewTurbidity: float) -> None:
+        """Sets Turbidity (in [1.7, 10])."""
+
+    def SetGroundAlbedo(self, *, NewAlbedo: FLinearColor) -> None:
+        """Sets GroundAlbedo (each of R, G, B in [0, 1])."""
+
+
 class USkyLightComponentAsync(USceneComponentAsync):
     """USkyLightComponent's functions, called asynchronously: each returns a Future."""
-    ...
+
+    def SetIntensity(self, *, NewIntensity: float) -> Future[None]: ...
+
+    def SetCubemap(self, *, NewCubemap: str) -> Future[None]: ...
+
+    def SetSourceCubemapAngle(self, *, NewAngle: float) -> Future[None]: ...
 
 
 class USkyLightComponentSend(USceneComponentSend):
     """USkyLightComponent's functions, sent without waiting for a result (fire and forget)."""
-    ...
+
+    def SetIntensity(self, *, NewIntensity: float) -> None: ...
+
+    def SetCubemap(self, *, NewCubemap: str) -> None: ...
+
+    def SetSourceCubemapAngle(self, *, NewAngle: float) -> None: ...
 
 
 class USkyLightComponent(USceneComponent):
-    """Uniform sky light: ambient radiance on every surface, and the colour of pixels that hit nothing."""
+    """Sky light: ambient radiance on every surface, and the colour of pixels that hit nothing."""
 
     __sp_class__: ClassVar[str]
 
@@ -4241,24 +4343,66 @@ class USkyLightComponent(USceneComponent):
 
     @property
     def SkyColor(self) -> FLinearColor:
-        """Linear RGB radiance of the uniform sky, multiplied by Intensity."""
+        """Linear RGB radiance of the uniform sky, multiplied by Intensity; the tint of a captured sky or a
+        Cubemap.
+        """
 
     @SkyColor.setter
     def SkyColor(self, value: FLinearColor) -> None: ...
 
     @property
     def Intensity(self) -> float:
-        """Multiplier of SkyColor."""
+        """Multiplier of SkyColor, and of a captured sky or Cubemap: 1 shows those as they are (the default,
+        0.03, suits the uniform sky). At least 0.
+        """
 
     @Intensity.setter
     def Intensity(self, value: float) -> None: ...
 
     @property
     def BackgroundColor(self) -> FLinearColor:
-        """Linear HDR colour of the pixels that hit no geometry."""
+        """Linear HDR colour of the pixels that hit no geometry under the uniform sky (a captured sky or a
+        Cubemap is its own background).
+        """
 
     @BackgroundColor.setter
     def BackgroundColor(self, value: FLinearColor) -> None: ...
+
+    @property
+    def SourceType(self) -> ESkyLightSourceType:
+        """The light's source: the world's sky (default) or Cubemap."""
+
+    @SourceType.setter
+    def SourceType(self, value: ESkyLightSourceType) -> None: ...
+
+    @property
+    def Cubemap(self) -> str:
+        """An equirectangular HDR panorama in linear RGB (an OpenEXR file, width twice its height, the zenith at
+        the top, the image's centre looking along +X), used when SourceType is SLS_SpecifiedCubemap: a path,
+        relative ones found as assets are ("assets/environments/..."). Setting a file that does not exist
+        raises; one that cannot be read is logged and the uniform sky lights the world instead.
+        """
+
+    @Cubemap.setter
+    def Cubemap(self, value: str) -> None: ...
+
+    @property
+    def SourceCubemapAngle(self) -> float:
+        """Turns the sky about the up axis, in degrees; positive turns it to the left (counter-clockwise seen
+        from above).
+        """
+
+    @SourceCubemapAngle.setter
+    def SourceCubemapAngle(self, value: float) -> None: ...
+
+    def SetIntensity(self, *, NewIntensity: float) -> None:
+        """Sets Intensity (>= 0, finite)."""
+
+    def SetCubemap(self, *, NewCubemap: str) -> None:
+        """Sets Cubemap: "" or an existing .exr file."""
+
+    def SetSourceCubemapAngle(self, *, NewAngle: float) -> None:
+        """Sets SourceCubemapAngle (degrees, finite)."""
 
 
 class USpFuncComponentAsync(UActorComponentAsync):

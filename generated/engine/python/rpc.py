@@ -20,7 +20,7 @@ from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
 from . import type_codes as _t
-from .api import ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EGlobalIlluminationQuality, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESplineCoordinateSpace, FCameraPixels, FFrameTimings, FHitResult, FLensDistortion, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
+from .api import ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EGlobalIlluminationQuality, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESkyLightSourceType, ESplineCoordinateSpace, FCameraPixels, FFrameTimings, FHitResult, FLensDistortion, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
 
@@ -644,6 +644,17 @@ class ARecastNavMesh(AActor, api.ARecastNavMesh):
 
 
 _register_proxy(ARecastNavMesh)
+
+
+class ASkyAtmosphere(AActor, api.ASkyAtmosphere):
+    __slots__ = ()
+
+    @property
+    def SkyAtmosphereComponent(self) -> api.USkyAtmosphereComponent:
+        return cast("api.USkyAtmosphereComponent", self._sp_get("ASkyAtmosphere", "SkyAtmosphereComponent", _t.T_USkyAtmosphereComponent))
+
+
+_register_proxy(ASkyAtmosphere)
 
 
 class ASkyLight(AActor, api.ASkyLight):
@@ -1918,6 +1929,35 @@ class UPointLightComponent(ULightComponent, api.UPointLightComponent):
 _register_proxy(UPointLightComponent)
 
 
+class USkyAtmosphereComponent(USceneComponent, api.USkyAtmosphereComponent):
+    __slots__ = ()
+
+    @property
+    def Turbidity(self) -> float:
+        return cast("float", self._sp_get("USkyAtmosphereComponent", "Turbidity", _t.T_float))
+
+    @Turbidity.setter
+    def Turbidity(self, value: float) -> None:
+        self._sp_set("USkyAtmosphereComponent", "Turbidity", value)
+
+    @property
+    def GroundAlbedo(self) -> FLinearColor:
+        return cast("FLinearColor", self._sp_get("USkyAtmosphereComponent", "GroundAlbedo", _t.T_FLinearColor))
+
+    @GroundAlbedo.setter
+    def GroundAlbedo(self, value: FLinearColor) -> None:
+        self._sp_set("USkyAtmosphereComponent", "GroundAlbedo", value)
+
+    def SetTurbidity(self, *, NewTurbidity: float) -> None:
+        return cast(None, self._sp_call("USkyAtmosphereComponent", "SetTurbidity", {"NewTurbidity": NewTurbidity}, _t.T_void))  # a Future when queued by call_async
+
+    def SetGroundAlbedo(self, *, NewAlbedo: FLinearColor) -> None:
+        return cast(None, self._sp_call("USkyAtmosphereComponent", "SetGroundAlbedo", {"NewAlbedo": NewAlbedo}, _t.T_void))  # a Future when queued by call_async
+
+
+_register_proxy(USkyAtmosphereComponent)
+
+
 class USkyLightComponent(USceneComponent, api.USkyLightComponent):
     __slots__ = ()
 
@@ -1944,6 +1984,39 @@ class USkyLightComponent(USceneComponent, api.USkyLightComponent):
     @BackgroundColor.setter
     def BackgroundColor(self, value: FLinearColor) -> None:
         self._sp_set("USkyLightComponent", "BackgroundColor", value)
+
+    @property
+    def SourceType(self) -> ESkyLightSourceType:
+        return cast("ESkyLightSourceType", self._sp_get("USkyLightComponent", "SourceType", _t.T_ESkyLightSourceType))
+
+    @SourceType.setter
+    def SourceType(self, value: ESkyLightSourceType) -> None:
+        self._sp_set("USkyLightComponent", "SourceType", value)
+
+    @property
+    def Cubemap(self) -> str:
+        return cast("str", self._sp_get("USkyLightComponent", "Cubemap", _t.T_str))
+
+    @Cubemap.setter
+    def Cubemap(self, value: str) -> None:
+        self._sp_set("USkyLightComponent", "Cubemap", value)
+
+    @property
+    def SourceCubemapAngle(self) -> float:
+        return cast("float", self._sp_get("USkyLightComponent", "SourceCubemapAngle", _t.T_float))
+
+    @SourceCubemapAngle.setter
+    def SourceCubemapAngle(self, value: float) -> None:
+        self._sp_set("USkyLightComponent", "SourceCubemapAngle", value)
+
+    def SetIntensity(self, *, NewIntensity: float) -> None:
+        return cast(None, self._sp_call("USkyLightComponent", "SetIntensity", {"NewIntensity": NewIntensity}, _t.T_void))  # a Future when queued by call_async
+
+    def SetCubemap(self, *, NewCubemap: str) -> None:
+        return cast(None, self._sp_call("USkyLightComponent", "SetCubemap", {"NewCubemap": NewCubemap}, _t.T_void))  # a Future when queued by call_async
+
+    def SetSourceCubemapAngle(self, *, NewAngle: float) -> None:
+        return cast(None, self._sp_call("USkyLightComponent", "SetSourceCubemapAngle", {"NewAngle": NewAngle}, _t.T_void))  # a Future when queued by call_async
 
 
 _register_proxy(USkyLightComponent)

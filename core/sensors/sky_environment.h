@@ -1,0 +1,43 @@
+#pragma once
+// SkyEnvironment: the render environment (sp::render::Environment) of a world's sky light, sky atmosphere and
+// sun, keeping the environment maps it made (an HDR panorama read from its file, an analytic sky) while what
+// they were made from stays the same, so that a still sky costs nothing per frame and a moving sun one new
+// sky (some tens of milliseconds: the sky, its spherical harmonics and prefiltered chain).
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/render/scene.h"
+
+class ULightComponent;
+class USkyAtmosphereComponent;
+class USkyLightComponent;
+
+namespace sp::sensors {
+
+class SkyEnvironment {
+  public:
+    // Logs a message once per key (RenderScene::logOnce).
+    using Log = std::function<void(const std::string& key, const std::string& message)>;
+
+    // The environment for the first sky light and atmosphere in play (either may be null) and the sun (the
+    // first visible directional light, or null). A panorama that cannot be read is logged, and the uniform
+    // sky lights the world instead.
+    sp::render::Environment update(const USkyLightComponent* sky, const USkyAtmosphereComponent* atmosphere,
+                                   const ULightComponent* sun, const Log& log);
+
+  private:
+    std::shared_ptr<const sp::render::EnvironmentMap> panorama(const std::string& file, float angle,
+                                                               const Log& log);
+    std::shared_ptr<const sp::render::EnvironmentMap> atmosphereSky(const USkyAtmosphereComponent& atmosphere,
+                                                                    const ULightComponent* sun, float angle,
+                                                                    const Log& log);
+
+    std::shared_ptr<const sp::render::EnvironmentMap> panorama_, sky_;
+    std::string panoramaKey_;
+    std::vector<float> skyKey_;
+};
+
+} // namespace sp::sensors

@@ -1,0 +1,34 @@
+#include "core/sensors/sky_light_component.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include "core/base/asset_path.h"
+#include "core/base/error.h"
+
+void USkyLightComponent::SetIntensity(float NewIntensity) {
+    sp::checkSetting(std::isfinite(NewIntensity) && NewIntensity >= 0.0f, "USkyLightComponent", "Intensity",
+                     ">= 0", NewIntensity);
+    Intensity = NewIntensity;
+}
+
+void USkyLightComponent::SetCubemap(const std::string& NewCubemap) {
+    if (!NewCubemap.empty()) {
+        const std::filesystem::path path(NewCubemap);
+        std::string extension = path.extension().string();
+        for (char& c : extension)
+            c = char(std::tolower(static_cast<unsigned char>(c)));
+        SP_CHECK(extension == ".exr", sp::InvalidArgument,
+                 "USkyLightComponent.Cubemap must be an OpenEXR file (.exr), got '", NewCubemap, "'");
+        std::error_code error;
+        SP_CHECK(std::filesystem::is_regular_file(sp::findAsset(NewCubemap), error), sp::NotFound,
+                 "USkyLightComponent.Cubemap: no file '", NewCubemap,
+                 "' (searched the working directory and ", "the asset folders)");
+    }
+    Cubemap = NewCubemap;
+}
+
+void USkyLightComponent::SetSourceCubemapAngle(float NewAngle) {
+    sp::checkSetting(std::isfinite(NewAngle), "USkyLightComponent", "SourceCubemapAngle", "finite", NewAngle);
+    SourceCubemapAngle = NewAngle;
+}
