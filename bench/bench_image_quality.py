@@ -7,10 +7,11 @@ quality, over the pixels that show geometry (depth > 0):
   - SSIM of final_color (scikit-image, Debian's python3-skimage);
   - crushed pixels (every channel below 8/255) in raster and in the reference;
 and, once per scene, the path tracer's relative RMSE at 64 spp against the reference, raw and denoised
-(bPathTracingEnableDenoiser).
+(bPathTracingEnableDenoiser), and the rasteriser's aliasing: the mean and 99th-percentile difference of
+final_color against the same view supersampled 4 x 4.
 
     PYTHONPATH=python /usr/bin/python3 bench/bench_image_quality.py [--width 320 --height 240]
-        [--reference 1024] [--qualities Off,Medium] [--scenes apartment,yard,closed_room] [--out out/iq]
+        [--reference 1024] [--qualities Off,Medium] [--scenes apartment,yard,closed_room,sky_yard,park_yard] [--out out/iq]
 """
 
 from __future__ import annotations
@@ -54,8 +55,9 @@ def apartment(game: spear.UWorld) -> Pose:
     return spear.FVector(-2.6, -1.6, 1.7), spear.FRotator(Pitch=-18.0, Yaw=22.0)
 
 
-def yard(game: spear.UWorld) -> Pose:
-    """Outdoors: a sun low enough to leave faces in shade, a blue sky light, a ground and a few blocks."""
+def yard(game: spear.UWorld, sky: str = "uniform") -> Pose:
+    """Outdoors: a sun low enough to leave faces in shade, a ground and a few blocks, under a uniform blue sky
+    light, the analytic sky (ASkyAtmosphere) or an HDR panorama (assets/environments/park.exr)."""
     box(game, "Ground", (0.0, 0.0, -0.05), (40.0, 40.0, 0.1), (0.35, 0.33, 0.3), 0.95)
     box(game, "House", (3.0, 1.0, 1.5), (4.0, 3.0, 3.0), (0.75, 0.7, 0.62))
     box(game, "Shed", (0.5, -3.0, 0.75), (1.5, 1.5, 1.5), (0.55, 0.25, 0.15))
@@ -64,10 +66,17 @@ def yard(game: spear.UWorld) -> Pose:
     sun = game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun",
                            rotation=spear.FRotator(Pitch=-35.0, Yaw=-60.0))
     sun.LightComponent.Intensity = 3.0
-    sky = game.spawn_actor(uclass=spear.ASkyLight, name="Sky")
-    sky.SkyLightComponent.SkyColor = spear.FLinearColor(0.35, 0.45, 0.6, 1.0)
-    sky.SkyLightComponent.Intensity = 1.0
-    sky.SkyLightComponent.BackgroundColor = spear.FLinearColor(0.35, 0.45, 0.6, 1.0)
+    if sky == "atmosphere":
+        game.spawn_actor(uclass=spear.ASkyAtmosphere, name="Atmosphere")
+    else:
+        light = game.spawn_actor(uclass=spear.ASkyLight, name="Sky").SkyLightComponent
+        light.Intensity = 1.0
+        if sky == "panorama":
+            light.SourceType = spear.ESkyLightSourceType.SLS_SpecifiedCubemap
+            light.Cubemap = "assets/environments/park.exr"
+        else:
+            light.SkyColor = spear.FLinearColor(0.35, 0.45, 0.6, 1.0)
+            light.BackgroundColor = spear.FLinearColor(0.35, 0.45, 0.6, 1.0)
     return spear.FVector(-7.0, -5.0, 2.5), spear.FRotator(Pitch=-12.0, Yaw=35.0)
 
 
@@ -90,9 +99,10 @@ def closed_room(game: spear.UWorld) -> Pose:
     return spear.FVector(-1.8, -1.3, 1.8), spear.FRotator(Pitch=-20.0, Yaw=35.0)
 
 
-SCENES: dict[str, Callable[[spear.UWorld], Pose]] = {"apartment": apartment, "yard": yard,
-                                                     "closed_room": closed_room}
-EXPOSURE = {"apartment": 0.6, "yard": 1.0, "closed_room": 1.0}
+SCENES: dict[str, Callable[[spear.UWorld], Pose]] = {
+    "apartment": apartment, "yard": yard, "closed_room": closed_room,
+    "sky_yard": lambda game: yard(game, "atmosphere"), "park_yard": lambda game: yard(game, "panorama")}
+EXPOSURE = {"apartment": 0.6, "yard": 1.0, "closed_room": 1.0, "sky_yard": 1.0, "park_yard": 0.5}
 
 
 def luminance(rgb: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -148,6 +158,22 @@ class Scene:
         assert "final_color" in pixels and "depth" in pixels
         return pixels["final_color"], pixels["depth"]
 
+    def aliasing(self, quality: spear.EGlobalIlluminationQuality) -> tuple[float, float]:
+        """final_color against the same view rendered 4 x 4 times larger and averaged down (in linear light):
+        the mean and 99th-percentile difference over all pixels, in 8-bit steps."""
+        with self.instance.begin_frame():
+            large = self.camera("Supersampled", 4 * self.width, 4 * self.height, quality, self.name)
+        color, _ = self.raster(self.cameras[quality])
+        big, _ = self.raster(large)
+        linear = srgb_to_linear(big).reshape(self.height, 4, self.width, 4, 3).mean(axis=(1, 3))
+        encoded = np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1 / 2.4) - 0.055)
+        difference = np.abs(color[..., :3].astype(np.float64) - np.round(255.0 * np.clip(encoded, 0.0, 1.0)))
+        with self.instance.begin_frame():
+            large.Modalities = []
+        with self.instance.end_frame():
+            pass
+        return float(difference.mean()), float(np.percentile(difference, 99))
+
     def traced(self, samples: int, label: str, denoise: bool = False) -> NDArray[np.uint8]:
         """final_color of a path-traced camera at the pose after `samples` samples per pixel."""
         with self.instance.begin_frame():
@@ -190,7 +216,7 @@ def main() -> None:
     parser.add_argument("--height", type=int, default=240)
     parser.add_argument("--reference", type=int, default=1024, help="path-traced samples per pixel")
     parser.add_argument("--qualities", default="Off,Medium")
-    parser.add_argument("--scenes", default="apartment,yard,closed_room")
+    parser.add_argument("--scenes", default="apartment,yard,closed_room,sky_yard,park_yard")
     parser.add_argument("--out", default=None, help="a folder for the images (PNG)")
     args = parser.parse_args()
     try:
@@ -200,6 +226,7 @@ def main() -> None:
     qualities = [spear.EGlobalIlluminationQuality[q] for q in args.qualities.split(",")]
     rows: list[tuple[str, str, float, float, float, float, float, float]] = []
     noise: list[tuple[str, float, float]] = []
+    aliasing: list[tuple[str, float, float]] = []
     for name in args.scenes.split(","):
         print(f"{name}:", file=sys.stderr)
         scene = Scene(name, args.width, args.height, qualities)
@@ -232,6 +259,7 @@ def main() -> None:
         print(f"  path tracer, 64 spp against {args.reference}: relative RMSE {rmse[0]:.3f}, denoised {rmse[1]:.3f}",
               file=sys.stderr)
         noise.append((name, rmse[0], rmse[1]))
+        aliasing.append((name, *scene.aliasing(qualities[0])))
         scene.close()
 
     print("| scene | quality | luminance ratio | mean rel. error | SSIM | crushed raster | crushed ref. | frame s |")
@@ -243,6 +271,11 @@ def main() -> None:
     print("|---|---:|---:|")
     for n, raw, filtered in noise:
         print(f"| {n} | {raw:.3f} | {filtered:.3f} |")
+    print()
+    print("| scene | aliasing: final_color against 4x4 supersampled, mean (/255) | 99th percentile (/255) |")
+    print("|---|---:|---:|")
+    for n, mean, p99 in aliasing:
+        print(f"| {n} | {mean:.2f} | {p99:.1f} |")
 
 if __name__ == "__main__":
     main()

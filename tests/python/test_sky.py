@@ -4,6 +4,8 @@ transports."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 import pytest
 from numpy.typing import NDArray
@@ -40,9 +42,17 @@ def _outdoor(game: spear.UWorld, atmosphere: bool, source: spear.ESkyLightSource
     return camera
 
 
-def _luminance(hdr: NDArray[np.float16]) -> NDArray[np.float64]:
-    rgb = hdr[..., :3].astype(np.float64)
-    return 0.2126 * rgb[..., 0] + 0.7152 * rgb[..., 1] + 0.0722 * rgb[..., 2]
+def _luminance(image: NDArray[Any]) -> NDArray[np.float64]:
+    rgb = image[..., :3].astype(np.float64)
+    result: NDArray[np.float64] = 0.2126 * rgb[..., 0] + 0.7152 * rgb[..., 1] + 0.0722 * rgb[..., 2]
+    return result
+
+
+def _linear(final: NDArray[Any]) -> NDArray[np.float64]:
+    """final_color's sRGB-encoded values in linear light."""
+    c = final[..., :3].astype(np.float64) / 255.0
+    result: NDArray[np.float64] = np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+    return result
 
 
 def _render(instance: spear.Instance, atmosphere: bool, source: spear.ESkyLightSourceType | None = None,
@@ -87,7 +97,9 @@ def test_the_sky_lights_a_convex_object_alike_in_both_renderers(instance: spear.
             uclass=spear.ACameraSensorActor, name="Traced", location=spear.FVector(4.0, 0.0, 1.0),
             rotation=spear.FRotator(Yaw=180.0)).CameraSensor
         traced.Width, traced.Height, traced.FOV = raster.Width, raster.Height, raster.FOV
-        traced.Modalities = [M.HdrColor, M.ObjectIds]
+        for camera in (raster, traced):
+            camera.Modalities = [M.HdrColor, M.FinalColor, M.ObjectIds]
+            camera.Exposure = 1.5  # the same exposure: the same final_color (the tone curve is shared)
         traced.Renderer = spear.ECameraRenderer.PathTraced
         traced.SamplesPerPixel = 64
     with instance.end_frame():
@@ -95,6 +107,8 @@ def test_the_sky_lights_a_convex_object_alike_in_both_renderers(instance: spear.
     face = a["object_ids"] != 0
     ratio = _luminance(a["hdr_color"])[face].mean() / _luminance(b["hdr_color"])[face].mean()
     assert ratio == pytest.approx(1.0, abs=0.08)
+    final = [_luminance(_linear(p["final_color"]))[face].mean() for p in (a, b)]
+    assert final[0] / final[1] == pytest.approx(1.0, abs=0.08)
     sky = a["object_ids"] == 0
     assert _luminance(a["hdr_color"])[sky].mean() == pytest.approx(_luminance(b["hdr_color"])[sky].mean(), rel=0.03)
 
