@@ -163,6 +163,8 @@ class Scene:
         the mean and 99th-percentile difference over all pixels, in 8-bit steps."""
         with self.instance.begin_frame():
             large = self.camera("Supersampled", 4 * self.width, 4 * self.height, quality, self.name)
+        with self.instance.end_frame():
+            pass
         color, _ = self.raster(self.cameras[quality])
         big, _ = self.raster(large)
         linear = srgb_to_linear(big).reshape(self.height, 4, self.width, 4, 3).mean(axis=(1, 3))

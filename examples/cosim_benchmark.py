@@ -192,7 +192,7 @@ def configure(camera: spear.UCameraSensorComponent, width: int, height: int) -> 
 def run(instance: spear.Instance, *, objects: int, views: int, width: int, height: int, frames: int,
         physics: str, png: Path | None, breakdown: bool = False, batched_forces: bool = False,
         shadows: bool = True,
-        global_illumination: spear.EGlobalIlluminationQuality = spear.EGlobalIlluminationQuality.Medium) -> Result:
+        global_illumination: spear.EGlobalIlluminationQuality = spear.EGlobalIlluminationQuality.Off) -> Result:
     game = instance.get_game()
     rig: spear.AActor
     bodies: list[spear.UStaticMeshComponent] = []
@@ -351,9 +351,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--forces", choices=["each", "batched"], default="each",
                         help="one AddForce per object (the paper's way), or one add_forces call for all")
     parser.add_argument("--no-shadows", action="store_true", help="the sun casts no shadows")
-    parser.add_argument("--global-illumination", default="Medium",
+    parser.add_argument("--global-illumination", default="Off",
                         choices=[q.name for q in spear.EGlobalIlluminationQuality],
-                        help="the cameras' GlobalIlluminationQuality (Medium: the default)")
+                        help="the cameras' GlobalIlluminationQuality (Off: the camera's default)")
     args = parser.parse_args(argv)
 
     results: list[Result] = []

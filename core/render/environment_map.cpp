@@ -26,13 +26,17 @@ float luminance(const Eigen::Vector3f& c) {
 
 // Bilinear lookup at texture coordinates (u wraps around, v is clamped), texel centres at (i + 0.5) / size.
 Eigen::Vector3f bilinear(const RadianceImage& image, float u, float v) {
+    u -= std::floor(u); // [0, 1), so that x below is in [-0.5, width - 0.5)
     const float x = u * float(image.width) - 0.5f,
                 y = std::clamp(v * float(image.height) - 0.5f, 0.0f, float(image.height - 1));
     const float fx = std::floor(x), fy = std::floor(y);
     const float tx = x - fx, ty = y - fy;
     const int y0 = int(fy), y1 = std::min(y0 + 1, image.height - 1);
-    auto wrap = [&](int i) { return ((i % image.width) + image.width) % image.width; };
-    const int x0 = wrap(int(fx)), x1 = wrap(int(fx) + 1);
+    int x0 = std::min(int(fx), image.width - 1), x1 = x0 + 1;
+    if (x0 < 0)
+        x0 += image.width;
+    if (x1 >= image.width)
+        x1 -= image.width;
     return (image.at(x0, y0) * (1.0f - tx) + image.at(x1, y0) * tx) * (1.0f - ty) +
            (image.at(x0, y1) * (1.0f - tx) + image.at(x1, y1) * tx) * ty;
 }
@@ -111,11 +115,37 @@ float radicalInverse(std::uint32_t i) {
 // the lighting map at the level whose texels are about one sample's solid angle (Colbert and Krivanek 2007,
 // "GPU-Based Importance Sampling"), so that few samples do not alias.
 RadianceImage prefiltered(const std::vector<RadianceImage>& pyramid, int level) {
-    constexpr int kSamples = 64;
+    // Few samples suffice where each reads the pyramid level of its own solid angle (the level of roughness
+    // 0.2, the largest, is most of the time: a moving sun makes a new map every frame).
+    constexpr int kSamples = 32;
     const float roughness = float(level) / float(EnvironmentMap::kSpecularLevels - 1);
-    const float a = roughness * roughness;
+    const float a = roughness * roughness, a2 = a * a;
     const int width = pyramid[0].width >> level, height = pyramid[0].height >> level;
     const float texelAngle = 4.0f * kPi / float(pyramid[0].width * pyramid[0].height);
+    // The samples are the same about every texel's direction: their directions in the texel's frame (the
+    // half vector's mirror of the view, which is the normal) and the pyramid level each reads, made once.
+    struct Sample {
+        Eigen::Vector3f l; // in the frame whose z is the texel's direction
+        float nol;
+        int lod;
+    };
+    std::vector<Sample> samples;
+    float weight = 0.0f;
+    for (int i = 0; i < kSamples; ++i) {
+        const Eigen::Vector3f h =
+            ggxHalfVector((float(i) + 0.5f) / float(kSamples), radicalInverse(std::uint32_t(i)), a);
+        const Eigen::Vector3f l = 2.0f * h.z() * h - Eigen::Vector3f::UnitZ();
+        if (l.z() <= 0.0f)
+            continue;
+        // With n = v the sample's density per steradian is D(h) / 4.
+        const float denominator = h.z() * h.z() * (a2 - 1.0f) + 1.0f;
+        const float d = a2 / std::max(kPi * denominator * denominator, 1e-12f);
+        const float sampleAngle = 1.0f / (float(kSamples) * std::max(d * 0.25f, 1e-12f));
+        const int lod = std::clamp(int(std::lround(0.5f * std::log2(sampleAngle / texelAngle) + 1.0f)), 0,
+                                   int(pyramid.size()) - 1);
+        samples.push_back({l, l.z(), lod});
+        weight += l.z();
+    }
     RadianceImage out{width, height, std::vector<Eigen::Vector3f>(std::size_t(width) * std::size_t(height))};
     parallelFor(height, hardwareThreads(), [&](int y) {
         for (int x = 0; x < width; ++x) {
@@ -125,26 +155,10 @@ RadianceImage prefiltered(const std::vector<RadianceImage>& pyramid, int level) 
                 std::abs(n.z()) < 0.999f ? Eigen::Vector3f::UnitZ() : Eigen::Vector3f::UnitX();
             const Eigen::Vector3f tx = helper.cross(n).normalized(), ty = n.cross(tx);
             Eigen::Vector3f sum = Eigen::Vector3f::Zero();
-            float weight = 0.0f;
-            for (int i = 0; i < kSamples; ++i) {
-                const Eigen::Vector3f hl =
-                    ggxHalfVector((float(i) + 0.5f) / float(kSamples), radicalInverse(std::uint32_t(i)), a);
-                const Eigen::Vector3f h = tx * hl.x() + ty * hl.y() + n * hl.z();
-                const Eigen::Vector3f l = 2.0f * n.dot(h) * h - n;
-                const float nol = n.dot(l);
-                if (nol <= 0.0f)
-                    continue;
-                // With n = v the sample's density per steradian is D(h) / 4.
-                const float noh = hl.z(), a2 = a * a;
-                const float denominator = noh * noh * (a2 - 1.0f) + 1.0f;
-                const float d = a2 / std::max(kPi * denominator * denominator, 1e-12f);
-                const float sampleAngle = 1.0f / (float(kSamples) * std::max(d * 0.25f, 1e-12f));
-                const int lod =
-                    std::clamp(int(std::lround(0.5f * std::log2(sampleAngle / texelAngle) + 1.0f)), 0,
-                               int(pyramid.size()) - 1);
-                const Eigen::Vector2f uv = EnvironmentMap::toUv(l);
-                sum += bilinear(pyramid[std::size_t(lod)], uv.x(), uv.y()) * nol;
-                weight += nol;
+            for (const Sample& sample : samples) {
+                const Eigen::Vector2f uv =
+                    EnvironmentMap::toUv(tx * sample.l.x() + ty * sample.l.y() + n * sample.l.z());
+                sum += bilinear(pyramid[std::size_t(sample.lod)], uv.x(), uv.y()) * sample.nol;
             }
             out.texels[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
                 weight > 0.0f ? Eigen::Vector3f(sum / weight) : Eigen::Vector3f::Zero();

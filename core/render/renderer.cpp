@@ -683,7 +683,7 @@ void Renderer::drawEnvironmentBackground(const Camera& camera, const Framebuffer
             shaders::environmentBackgroundFragment(targets, toneMap, viewCompact_).c_str());
     program->use();
     program->set("uClipToOffset", clipToOffset(camera));
-    glProgramUniform2f(program->id(), program->location("uSize"), float(fb.width), float(fb.height));
+    glProgramUniform2i(program->id(), program->location("uSize"), fb.width, fb.height);
     glProgramUniform1f(program->id(), program->location("uBackgroundLod"),
                        backgroundLod(camera, active_->environmentBackgroundWidth));
     maskTargets(targets, targets & ~kBackgroundTargets, true);

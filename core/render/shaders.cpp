@@ -1,6 +1,8 @@
 #include "core/render/shaders.h"
 
 #include <array>
+#include <functional>
+#include <utility>
 
 #include "core/render/instances.h"
 #include "core/render/irradiance_volume.h"
@@ -198,6 +200,19 @@ vec3 skyDiffuse(vec3 n) {
 }
 vec3 skySpecular(vec3 r, float roughness) {
     return textureLod(uEnvironmentSpecular, environmentUv(r), roughness * uEnvironment.w).rgb * uEnvironment.xyz;
+}
+)glsl";
+
+// The environment map along the ray through a pixel (window coordinates of its centre), for the passes that
+// draw the background: they declare uClipToOffset (clip space to the world position relative to the camera)
+// and uSize (the framebuffer's size); uBackgroundLod is the full map's level whose texels are about a pixel.
+const char* const kEnvironmentBackgroundChunk = R"glsl(
+layout(binding = ENVIRONMENT_BACKGROUND_UNIT) uniform sampler2D uEnvironmentBackground;
+uniform float uBackgroundLod;
+vec3 backgroundRadiance(vec2 pixelCentre) {
+    vec4 o = uClipToOffset * vec4(pixelCentre / vec2(uSize) * 2.0 - 1.0, 1.0, 1.0);
+    return textureLod(uEnvironmentBackground, environmentUv(normalize(o.xyz / o.w)), uBackgroundLod).rgb *
+           uEnvironment.xyz;
 }
 )glsl";
 
@@ -884,10 +899,34 @@ std::string shadingDefines(const ShadingLayout& lights) {
     return text;
 }
 
-// The environment chunk and its texture unit (after FrameBlock).
-std::string environmentChunk() {
-    return "#define ENVIRONMENT_SPECULAR_UNIT " + std::to_string(kEnvironmentSpecularUnit) + "\n" +
-           kEnvironmentChunk;
+// The environment chunk and its texture unit (after FrameBlock), and with `background` the background's.
+std::string environmentChunk(bool background = false) {
+    std::string text = "#define ENVIRONMENT_SPECULAR_UNIT " + std::to_string(kEnvironmentSpecularUnit) +
+                       "\n" + kEnvironmentChunk;
+    if (background)
+        text += "#define ENVIRONMENT_BACKGROUND_UNIT " + std::to_string(kEnvironmentBackgroundUnit) + "\n" +
+                kEnvironmentBackgroundChunk;
+    return text;
+}
+
+// Fragment outputs of `targets` at consecutive locations in Target order, named o0, o1, ..., and the body
+// that assigns each the GLSL expression `value` gives it (an empty one leaves the output unassigned).
+std::pair<std::string, std::string>
+locatedOutputs(TargetMask targets, bool compact,
+               const std::function<std::string(Target, const std::string&)>& value) {
+    std::string declarations, body;
+    int location = 0;
+    for (std::size_t t = 0; t < kTargetCount; ++t) {
+        if ((targets & (TargetMask(1) << t)) == 0)
+            continue;
+        const auto target = static_cast<Target>(t);
+        const std::string index = std::to_string(location++);
+        declarations +=
+            "layout(location = " + index + ") out " + outputType(target, compact) + " o" + index + ";\n";
+        if (const std::string v = value(target, index); !v.empty())
+            body += " o" + index + " = " + v + ";";
+    }
+    return {declarations, body};
 }
 
 std::string backgroundFragment(int location, ToneMap toneMap) {
@@ -905,56 +944,36 @@ std::string environmentBackgroundFragment(TargetMask targets, ToneMap toneMap, b
     text += kFrameBlock;
     text += constantAccessors(ConstantPlan{});
     text += kToneChunk;
-    text += environmentChunk();
-    text += "layout(binding = " + std::to_string(kEnvironmentBackgroundUnit) +
-            ") uniform sampler2D uEnvironmentBackground;\n"
-            "uniform mat4 uClipToOffset;\nuniform vec2 uSize;\nuniform float uBackgroundLod;\n";
-    std::string body;
-    int location = 0;
-    for (std::size_t t = 0; t < kTargetCount; ++t) {
-        if ((targets & (TargetMask(1) << t)) == 0)
-            continue;
-        const auto target = static_cast<Target>(t);
-        const std::string index = std::to_string(location++);
-        text += "layout(location = " + index + ") out " + outputType(target, compact) + " o" + index + ";\n";
-        if (target == Target::Hdr || target == Target::SpecularResidual)
-            body += "    o" + index + " = halfTarget(vec4(c, 1.0));\n";
-        else if (target == Target::FinalColor)
-            body += "    o" + index + " = toneMapped(c);\n";
-    }
-    return text + R"glsl(void main() {
-    vec4 o = uClipToOffset * vec4(gl_FragCoord.xy / uSize * 2.0 - 1.0, 1.0, 1.0);
-    vec3 c = textureLod(uEnvironmentBackground, environmentUv(normalize(o.xyz / o.w)), uBackgroundLod).rgb *
-             uEnvironment.xyz;
-)glsl" + body +
-           "}\n";
+    text += "uniform mat4 uClipToOffset;\nuniform ivec2 uSize;\n" + environmentChunk(true);
+    const auto [declarations, body] = locatedOutputs(targets, compact, [](Target target, const std::string&) {
+        if (target == Target::Hdr ||
+            target == Target::SpecularResidual) // all of a background pixel is residual
+            return std::string("halfTarget(vec4(c, 1.0))");
+        return std::string(target == Target::FinalColor ? "toneMapped(c)" : "");
+    });
+    return text + declarations + "void main() { vec3 c = backgroundRadiance(gl_FragCoord.xy);" + body +
+           " }\n";
 }
 
 std::string clearFragment(TargetMask targets, bool compact) {
     std::string text = "#version 450 core\nuniform vec4 uClear[" + std::to_string(kTargetCount) + "];\n";
     text += encodings(compact);
-    std::string body;
-    int location = 0;
-    for (std::size_t t = 0; t < kTargetCount; ++t) {
-        if ((targets & (TargetMask(1) << t)) == 0)
-            continue;
-        const auto target = static_cast<Target>(t);
-        const std::string index = std::to_string(location++);
-        std::string value = "uClear[" + index + "]";
-        if (target == Target::Ids)
-            value = "uvec2(0u)";
-        else if (target == Target::GBuffer || target == Target::Record) // (none: 0)
-            value = "0u";
-        else if (target == Target::Depth)
-            value += ".x";
-        else if (compact && target == Target::Normal)
-            value = "vec2(" + std::to_string(kNoOctahedralNormal) + ")";
-        else if ((kHalfTargets & targetBit(target)) != 0)
-            value = "halfTarget(" + value + ")";
-        text += "layout(location = " + index + ") out " + outputType(target, compact) + " o" + index + ";\n";
-        body += " o" + index + " = " + value + ";";
-    }
-    return text + "void main() {" + body + " }\n";
+    const auto [declarations, body] =
+        locatedOutputs(targets, compact, [&](Target target, const std::string& index) {
+            if (target == Target::Ids)
+                return std::string("uvec2(0u)");
+            if (target == Target::GBuffer || target == Target::Record) // (none: 0)
+                return std::string("0u");
+            const std::string value = "uClear[" + index + "]";
+            if (target == Target::Depth)
+                return value + ".x";
+            if (compact && target == Target::Normal)
+                return "vec2(" + std::to_string(kNoOctahedralNormal) + ")";
+            if ((kHalfTargets & targetBit(target)) != 0)
+                return "halfTarget(" + value + ")";
+            return value;
+        });
+    return text + declarations + "void main() {" + body + " }\n";
 }
 
 std::string computeLighting(TargetMask targets, const ShadingLayout& lights) {
@@ -994,8 +1013,7 @@ vec2 gPixelCentre;
     if (lights.irradiance == IrradianceBlend::PerPixel)
         text += irradianceChunk(false);
     if (lights.environmentMap)
-        text += environmentChunk() + "layout(binding = " + std::to_string(kEnvironmentBackgroundUnit) +
-                ") uniform sampler2D uEnvironmentBackground;\nuniform float uBackgroundLod;\n";
+        text += environmentChunk(true);
     text += shadeFunction(lights, plan, true);
     text += kToneChunk;
     return text + R"glsl(
@@ -1006,9 +1024,7 @@ void main() {
     float z = texelFetch(uDepthBuffer, pixel, 0).r;
     if (z >= 1.0) { // background: cleared, but for a vignetted final_color (see backgroundFragment())
 #ifdef ENVIRONMENT_MAP // or an environment map's (see environmentBackgroundFragment())
-        vec4 o = uClipToOffset * vec4(gPixelCentre / vec2(uSize) * 2.0 - 1.0, 1.0, 1.0);
-        vec3 c = textureLod(uEnvironmentBackground, environmentUv(normalize(o.xyz / o.w)), uBackgroundLod).rgb *
-                 uEnvironment.xyz;
+        vec3 c = backgroundRadiance(gPixelCentre);
 #ifdef STORE_Hdr
         imageStore(uHdr, pixel, vec4(c, 1.0));
 #endif
