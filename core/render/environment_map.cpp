@@ -170,7 +170,7 @@ RadianceImage prefiltered(const std::vector<RadianceImage>& pyramid, int level) 
 } // namespace
 
 Eigen::Vector2f EnvironmentMap::toUv(const Eigen::Vector3f& direction) {
-    const float phi = std::atan2(direction.y(), direction.x());
+    const float phi = std::atan2(direction.y(), direction.x()); // 0 straight up or down, as the shaders
     float u = 0.5f - phi / (2.0f * kPi);
     u -= std::floor(u);
     const float v = std::acos(std::clamp(direction.z(), -1.0f, 1.0f)) / kPi;
@@ -289,8 +289,14 @@ float EnvironmentMap::sample(float u1, float u2, Eigen::Vector3f& direction) con
                              kLightingWidth - 1);
     const float columnMass = cdf[x + 1] - cdf[x];
     const float fx = columnMass > 0.0f ? std::clamp((columnTarget - cdf[x]) / columnMass, 0.0f, 1.0f) : 0.5f;
-    direction = fromUv((float(x) + fx) / float(kLightingWidth), (float(y) + fy) / float(kLightingHeight));
-    return pdf(direction);
+    const float v = (float(y) + fy) / float(kLightingHeight);
+    direction = fromUv((float(x) + fx) / float(kLightingWidth), v);
+    // The drawn texel's density (the direction, looked up again, may round into a neighbour at its edge).
+    const float sinTheta = std::sin(kPi * v);
+    if (sinTheta <= 0.0f)
+        return 0.0f;
+    return density_[std::size_t(y) * kLightingWidth + std::size_t(x)] * float(kLightingWidth) *
+           float(kLightingHeight) / (2.0f * kPi * kPi * sinTheta);
 }
 
 float EnvironmentMap::pdf(const Eigen::Vector3f& direction) const {

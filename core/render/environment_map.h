@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -29,6 +30,11 @@ struct RadianceImage {
 
     const Eigen::Vector3f& at(int x, int y) const { return texels[std::size_t(y) * std::size_t(width) + x]; }
 };
+
+// The linear RGB of a Radiance RGBE file (.hdr, flat or run-length encoded; decoded by stb_image beside the
+// textures, texture_image.cpp), row 0 at the top. Throws sp::NotFound when there is no such file and
+// sp::InvalidArgument, naming `function`, when it is not one or cannot be decoded.
+RadianceImage readRadianceHdr(const std::string& path, const char* function);
 
 class EnvironmentMap {
   public:

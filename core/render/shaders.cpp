@@ -187,7 +187,9 @@ const char* const kEnvironmentChunk = R"glsl(
 layout(binding = ENVIRONMENT_SPECULAR_UNIT) uniform sampler2D uEnvironmentSpecular;
 vec2 environmentUv(vec3 d) {
     const float INV_PI = 0.318309886183791;
-    return vec2(0.5 - atan(d.y, d.x) * (0.5 * INV_PI), acos(clamp(d.z, -1.0, 1.0)) * INV_PI);
+    // atan(0, 0) is undefined in GLSL: straight up or down (a mirror floor seen from above) reads u = 0.5.
+    return vec2(0.5 - atan(d.y, abs(d.x) + abs(d.y) > 0.0 ? d.x : 1.0) * (0.5 * INV_PI),
+                acos(clamp(d.z, -1.0, 1.0)) * INV_PI);
 }
 vec3 skyDiffuse(vec3 n) {
     vec3 r = uSkyDiffuse[0].xyz * 0.282095 +
@@ -210,7 +212,8 @@ const char* const kEnvironmentBackgroundChunk = R"glsl(
 layout(binding = ENVIRONMENT_BACKGROUND_UNIT) uniform sampler2D uEnvironmentBackground;
 uniform float uBackgroundLod;
 vec3 backgroundRadiance(vec2 pixelCentre) {
-    vec4 o = uClipToOffset * vec4(pixelCentre / vec2(uSize) * 2.0 - 1.0, 1.0, 1.0);
+    // Through the point on the near plane: at the far plane w is a difference of nearly equal terms.
+    vec4 o = uClipToOffset * vec4(pixelCentre / vec2(uSize) * 2.0 - 1.0, -1.0, 1.0);
     return textureLod(uEnvironmentBackground, environmentUv(normalize(o.xyz / o.w)), uBackgroundLod).rgb *
            uEnvironment.xyz;
 }

@@ -17,7 +17,8 @@ constexpr float kTwilightDegrees = 6.0f;
 
 void SkyParameters::validate(const char* function) const {
     SP_CHECK(sunDirection.allFinite() && sunDirection.norm() > 1e-6f, InvalidArgument, function,
-             ": the sun's direction must be finite and non-zero");
+             ": the sun's direction must be finite and non-zero, got (", sunDirection.x(), ", ",
+             sunDirection.y(), ", ", sunDirection.z(), ")");
     SP_CHECK(sunIrradiance.allFinite() && sunIrradiance.minCoeff() >= 0.0f, InvalidArgument, function,
              ": the sun's colour times intensity must be finite and non-negative, got (", sunIrradiance.x(),
              ", ", sunIrradiance.y(), ", ", sunIrradiance.z(), ")");

@@ -6,6 +6,7 @@
 #define STB_IMAGE_STATIC
 #define STBI_ONLY_PNG
 #define STBI_ONLY_JPEG
+#define STBI_ONLY_HDR
 #define STBI_FAILURE_USERMSG
 #include <stb_image.h>
 #define STB_IMAGE_WRITE_IMPLEMENTATION
@@ -15,6 +16,7 @@
 #include "core/base/asset_path.h"
 #include "core/base/error.h"
 #include "core/base/regular_file.h"
+#include "core/render/environment_map.h"
 
 namespace sp::render {
 
@@ -49,6 +51,27 @@ TextureImage TextureImage::fromPixels(int width, int height, std::vector<std::ui
     image.height = height;
     image.rgba = std::move(rgba);
     image.source = "<memory>";
+    return image;
+}
+
+RadianceImage readRadianceHdr(const std::string& path, const char* function) {
+    const std::string found = findAsset(path);
+    SP_CHECK(std::filesystem::exists(found) && !std::filesystem::is_directory(found), NotFound, function,
+             ": no such file '", path, "'");
+    const std::string bytes = readRegularFile(found, function, "Radiance HDR image");
+    const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+    SP_CHECK(stbi_is_hdr_from_memory(data, static_cast<int>(bytes.size())) != 0, InvalidArgument, function,
+             ": '", path, "' is not a Radiance HDR (.hdr) file");
+    int width = 0, height = 0, channels = 0;
+    float* pixels =
+        stbi_loadf_from_memory(data, static_cast<int>(bytes.size()), &width, &height, &channels, 3);
+    SP_CHECK(pixels != nullptr, InvalidArgument, function, ": cannot decode '", path,
+             "': ", stbi_failure_reason());
+    RadianceImage image{width, height,
+                        std::vector<Eigen::Vector3f>(std::size_t(width) * std::size_t(height))};
+    for (std::size_t i = 0; i < image.texels.size(); ++i)
+        image.texels[i] = Eigen::Vector3f(pixels[3 * i], pixels[3 * i + 1], pixels[3 * i + 2]);
+    stbi_image_free(pixels);
     return image;
 }
 

@@ -1,9 +1,12 @@
 #include "core/sensors/sky_environment.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <map>
+#include <mutex>
 
 #include "core/base/asset_path.h"
 #include "core/base/error.h"
@@ -72,7 +75,12 @@ sp::render::Environment SkyEnvironment::update(const USkyLightComponent* sky,
         else
             map = panorama(sky->Cubemap, angle, log);
     } else if (atmosphere) {
-        map = atmosphereSky(*atmosphere, sun, angle, log);
+        // Not turned: the sky is the sun's, where the sun is. Tinted by the sky light's colour but not scaled
+        // by its Intensity, the uniform sky's radiance (0.03 by default), so that a default sky light does
+        // not dim the sky its sun makes; the sun light's intensity sets the sky's brightness.
+        environment.map = atmosphereSky(*atmosphere, sun, log);
+        environment.mapScale = sky ? rgb(sky->SkyColor) : Eigen::Vector3f::Ones();
+        return environment;
     }
     if (map) {
         environment.map = std::move(map);
@@ -95,9 +103,25 @@ std::shared_ptr<const sp::render::EnvironmentMap> SkyEnvironment::panorama(const
         return panorama_;
     panoramaKey_ = key;
     panorama_.reset();
+    // The worlds of a vectorised environment name the same file: one map (read, prefiltered, sampled) serves
+    // them all while any holds it.
+    static std::mutex mutex;
+    static std::map<std::string, std::weak_ptr<const sp::render::EnvironmentMap>> shared;
+    std::lock_guard lock(mutex);
+    std::erase_if(shared, [](const auto& entry) { return entry.second.expired(); });
+    if (auto it = shared.find(key); it != shared.end()) {
+        panorama_ = it->second.lock();
+        return panorama_;
+    }
     try {
-        panorama_ = std::make_shared<const sp::render::EnvironmentMap>(readPanorama(path), angle,
-                                                                       "USkyLightComponent.Cubemap");
+        std::string extension = std::filesystem::path(path).extension().string();
+        for (char& c : extension)
+            c = char(std::tolower(static_cast<unsigned char>(c)));
+        panorama_ = std::make_shared<const sp::render::EnvironmentMap>(
+            extension == ".hdr" ? sp::render::readRadianceHdr(path, "USkyLightComponent.Cubemap")
+                                : readPanorama(path),
+            angle, "USkyLightComponent.Cubemap");
+        shared[key] = panorama_;
     } catch (const sp::Error& e) {
         log("cubemap:" + key, std::string("RenderSubsystem: the sky light's Cubemap '") + file +
                                   "' is not used (the uniform sky lights the world): " + e.what());
@@ -107,7 +131,7 @@ std::shared_ptr<const sp::render::EnvironmentMap> SkyEnvironment::panorama(const
 
 std::shared_ptr<const sp::render::EnvironmentMap>
 SkyEnvironment::atmosphereSky(const USkyAtmosphereComponent& atmosphere, const ULightComponent* sun,
-                              float angle, const Log& log) {
+                              const Log& log) {
     sp::render::SkyParameters parameters;
     parameters.turbidity = atmosphere.Turbidity;
     parameters.groundAlbedo = rgb(atmosphere.GroundAlbedo);
@@ -120,22 +144,16 @@ SkyEnvironment::atmosphereSky(const USkyAtmosphereComponent& atmosphere, const U
             "the world); its sky is black");
         parameters.sunIrradiance.setZero();
     }
-    const std::vector<float> key = {parameters.sunDirection.x(),
-                                    parameters.sunDirection.y(),
-                                    parameters.sunDirection.z(),
-                                    parameters.sunIrradiance.x(),
-                                    parameters.sunIrradiance.y(),
-                                    parameters.sunIrradiance.z(),
-                                    parameters.turbidity,
-                                    parameters.groundAlbedo.x(),
-                                    parameters.groundAlbedo.y(),
-                                    parameters.groundAlbedo.z(),
-                                    angle};
+    const std::vector<float> key = {parameters.sunDirection.x(),  parameters.sunDirection.y(),
+                                    parameters.sunDirection.z(),  parameters.sunIrradiance.x(),
+                                    parameters.sunIrradiance.y(), parameters.sunIrradiance.z(),
+                                    parameters.turbidity,         parameters.groundAlbedo.x(),
+                                    parameters.groundAlbedo.y(),  parameters.groundAlbedo.z()};
     if (sky_ && key == skyKey_)
         return sky_;
     skyKey_ = key;
     sky_ = std::make_shared<const sp::render::EnvironmentMap>(
-        sp::render::PreethamSky(parameters).image(kSkyWidth, kSkyHeight), angle, "USkyAtmosphereComponent");
+        sp::render::PreethamSky(parameters).image(kSkyWidth, kSkyHeight), 0.0f, "USkyAtmosphereComponent");
     return sky_;
 }
 

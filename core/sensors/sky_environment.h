@@ -31,9 +31,8 @@ class SkyEnvironment {
   private:
     std::shared_ptr<const sp::render::EnvironmentMap> panorama(const std::string& file, float angle,
                                                                const Log& log);
-    std::shared_ptr<const sp::render::EnvironmentMap> atmosphereSky(const USkyAtmosphereComponent& atmosphere,
-                                                                    const ULightComponent* sun, float angle,
-                                                                    const Log& log);
+    std::shared_ptr<const sp::render::EnvironmentMap>
+    atmosphereSky(const USkyAtmosphereComponent& atmosphere, const ULightComponent* sun, const Log& log);
 
     std::shared_ptr<const sp::render::EnvironmentMap> panorama_, sky_;
     std::string panoramaKey_;

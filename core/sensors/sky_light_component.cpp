@@ -18,8 +18,9 @@ void USkyLightComponent::SetCubemap(const std::string& NewCubemap) {
         std::string extension = path.extension().string();
         for (char& c : extension)
             c = char(std::tolower(static_cast<unsigned char>(c)));
-        SP_CHECK(extension == ".exr", sp::InvalidArgument,
-                 "USkyLightComponent.Cubemap must be an OpenEXR file (.exr), got '", NewCubemap, "'");
+        SP_CHECK(extension == ".exr" || extension == ".hdr", sp::InvalidArgument,
+                 "USkyLightComponent.Cubemap must be an OpenEXR (.exr) or Radiance HDR (.hdr) file, got '",
+                 NewCubemap, "'");
         std::error_code error;
         SP_CHECK(std::filesystem::is_regular_file(sp::findAsset(NewCubemap), error), sp::NotFound,
                  "USkyLightComponent.Cubemap: no file '", NewCubemap,

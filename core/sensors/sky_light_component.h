@@ -29,8 +29,9 @@ class USkyLightComponent : public USceneComponent {
     SPPROPERTY()
     FLinearColor SkyColor{1.0f, 1.0f, 1.0f, 1.0f};
 
-    /// Multiplier of SkyColor, and of a captured sky or Cubemap: 1 shows those as they are (the default,
-    /// 0.03, suits the uniform sky). At least 0.
+    /// Multiplier of SkyColor for the uniform sky, and of a Cubemap (1 shows it as it is; the default, 0.03,
+    /// suits the uniform sky). A captured ASkyAtmosphere is not scaled: its sun sets its brightness. At least
+    /// 0.
     SPPROPERTY(Setter = SetIntensity)
     float Intensity = 0.03f;
 
@@ -43,22 +44,23 @@ class USkyLightComponent : public USceneComponent {
     SPPROPERTY()
     ESkyLightSourceType SourceType = ESkyLightSourceType::SLS_CapturedScene;
 
-    /// An equirectangular HDR panorama in linear RGB (an OpenEXR file, width twice its height, the zenith at
-    /// the top, the image's centre looking along +X), used when SourceType is SLS_SpecifiedCubemap: a path,
+    /// An equirectangular HDR panorama in linear RGB (an OpenEXR .exr or Radiance .hdr file, width twice its
+    /// height, the zenith at the top, the image's centre looking along +X), used when SourceType is
+    /// SLS_SpecifiedCubemap: a path,
     /// relative ones found as assets are ("assets/environments/..."). Setting a file that does not exist
     /// raises; one that cannot be read is logged and the uniform sky lights the world instead.
     SPPROPERTY(Setter = SetCubemap)
     std::string Cubemap;
 
-    /// Turns the sky about the up axis, in degrees; positive turns it to the left (counter-clockwise seen
-    /// from above).
+    /// Turns the Cubemap about the up axis, in degrees; positive turns it to the left (counter-clockwise seen
+    /// from above). An ASkyAtmosphere's sky is not turned: it follows its sun.
     SPPROPERTY(Setter = SetSourceCubemapAngle)
     float SourceCubemapAngle = 0.0f;
 
     /// Sets Intensity (>= 0, finite).
     SPFUNCTION()
     void SetIntensity(float NewIntensity);
-    /// Sets Cubemap: "" or an existing .exr file.
+    /// Sets Cubemap: "" or an existing .exr or .hdr file.
     SPFUNCTION()
     void SetCubemap(const std::string& NewCubemap);
     /// Sets SourceCubemapAngle (degrees, finite).

@@ -4,6 +4,7 @@ transports."""
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -31,7 +32,8 @@ def _outdoor(game: spear.UWorld, atmosphere: bool, source: spear.ESkyLightSource
         game.spawn_actor(uclass=spear.ASkyAtmosphere, name="Atmosphere")
     if source is not None:
         sky = game.spawn_actor(uclass=spear.ASkyLight, name="Sky").SkyLightComponent
-        sky.Intensity = 1.0
+        if source == S.SLS_SpecifiedCubemap:
+            sky.Intensity = 1.0  # the panorama as it is
         sky.SourceType = source
         if source == S.SLS_SpecifiedCubemap:
             sky.Cubemap = PARK
@@ -81,6 +83,16 @@ def test_the_sky_atmosphere_lights_the_faces_away_from_the_sun_and_is_the_backgr
     assert float(np.abs(unlit["hdr_color"][:4, :, :3].astype(np.float64)).max()) == 0.0  # black without a sky
 
 
+def test_a_default_sky_light_captures_the_atmosphere_as_bright_as_it_is(instance: spear.Instance) -> None:
+    # The sky light's Intensity (0.03 by default) is the uniform sky's radiance: it does not dim the sky the
+    # atmosphere's sun makes, which the sky light captures as it is.
+    alone = _render(instance, atmosphere=True)
+    captured = _render(instance, atmosphere=True, source=S.SLS_CapturedScene, world="Captured")
+    for pixels in (alone, captured):
+        assert _luminance(pixels["hdr_color"])[pixels["object_ids"] == 0].mean() > 0.05
+    assert np.array_equal(alone["hdr_color"], captured["hdr_color"])
+
+
 def test_a_cubemap_lights_the_world_and_is_its_background(instance: spear.Instance) -> None:
     pixels = _render(instance, atmosphere=False, source=S.SLS_SpecifiedCubemap)
     hdr, ids = pixels["hdr_color"].astype(np.float64), pixels["object_ids"]
@@ -88,6 +100,20 @@ def test_a_cubemap_lights_the_world_and_is_its_background(instance: spear.Instan
     assert background.min() > 0.0 and background.std() > 0.01  # a photograph, not a colour
     assert float(_luminance(pixels["hdr_color"])[ids != 0].mean()) > 0.05
     assert np.isfinite(hdr).all()
+
+
+def test_a_radiance_hdr_panorama_is_read(instance: spear.Instance, tmp_path: Path) -> None:
+    # A flat RGBE file of 16 x 8 texels of radiance 0.5 (mantissa 128, exponent 128): the background is 0.5.
+    path = tmp_path / "grey.hdr"
+    path.write_bytes(b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8 +X 16\n" + bytes([128, 128, 128, 128]) * 128)
+    with instance.begin_frame():
+        camera = _outdoor(instance.get_game(), atmosphere=False)
+        sky = instance.get_game().spawn_actor(uclass=spear.ASkyLight, name="Panorama").SkyLightComponent
+        sky.SourceType, sky.Intensity, sky.Cubemap = S.SLS_SpecifiedCubemap, 1.0, str(path)
+    with instance.end_frame():
+        pixels = camera.read_pixels()
+    background = pixels["hdr_color"][..., :3][pixels["object_ids"] == 0].astype(np.float64)
+    assert background == pytest.approx(np.full_like(background, 0.5), abs=1e-3)
 
 
 def test_the_sky_lights_a_convex_object_alike_in_both_renderers(instance: spear.Instance) -> None:
@@ -128,7 +154,8 @@ def test_sky_settings_out_of_range_are_refused(instance: spear.Instance) -> None
             sky.Intensity = -1.0
         with pytest.raises(spear.NotFoundError, match=r"USkyLightComponent.Cubemap: no file 'missing.exr'"):
             sky.Cubemap = "missing.exr"
-        with pytest.raises(spear.InvalidArgumentError, match=r"Cubemap must be an OpenEXR file \(.exr\), got 'a.png'"):
+        with pytest.raises(spear.InvalidArgumentError,
+                           match=r"Cubemap must be an OpenEXR \(.exr\) or Radiance HDR \(.hdr\) file, got 'a.png'"):
             sky.Cubemap = "a.png"
         with pytest.raises(TypeError, match="SourceType"):
             sky.SourceType = 5  # type: ignore[assignment]

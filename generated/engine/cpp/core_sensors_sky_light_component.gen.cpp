@@ -109,7 +109,7 @@ const sp::reflect::TypeInfo& USkyLightComponent::StaticClass() {
         t.properties.push_back({
             "Intensity",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
-            "Multiplier of SkyColor, and of a captured sky or Cubemap: 1 shows those as they are (the default,\n0.03, suits the uniform sky). At least 0.",
+            "Multiplier of SkyColor for the uniform sky, and of a Cubemap (1 shows it as it is; the default, 0.03,\nsuits the uniform sky). A captured ASkyAtmosphere is not scaled: its sun sets its brightness. At least\n0.",
             false,
             [](const void* self) { return Calls::get_Intensity<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
@@ -139,7 +139,7 @@ const sp::reflect::TypeInfo& USkyLightComponent::StaticClass() {
         t.properties.push_back({
             "Cubemap",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
-            "An equirectangular HDR panorama in linear RGB (an OpenEXR file, width twice its height, the zenith at\nthe top, the image's centre looking along +X), used when SourceType is SLS_SpecifiedCubemap: a path,\nrelative ones found as assets are (\"assets/environments/...\"). Setting a file that does not exist\nraises; one that cannot be read is logged and the uniform sky lights the world instead.",
+            "An equirectangular HDR panorama in linear RGB (an OpenEXR .exr or Radiance .hdr file, width twice its\nheight, the zenith at the top, the image's centre looking along +X), used when SourceType is\nSLS_SpecifiedCubemap: a path,\nrelative ones found as assets are (\"assets/environments/...\"). Setting a file that does not exist\nraises; one that cannot be read is logged and the uniform sky lights the world instead.",
             false,
             [](const void* self) { return Calls::get_Cubemap<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
@@ -149,7 +149,7 @@ const sp::reflect::TypeInfo& USkyLightComponent::StaticClass() {
         t.properties.push_back({
             "SourceCubemapAngle",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
-            "Turns the sky about the up axis, in degrees; positive turns it to the left (counter-clockwise seen\nfrom above).",
+            "Turns the Cubemap about the up axis, in degrees; positive turns it to the left (counter-clockwise seen\nfrom above). An ASkyAtmosphere's sky is not turned: it follows its sun.",
             false,
             [](const void* self) { return Calls::get_SourceCubemapAngle<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
@@ -169,7 +169,7 @@ const sp::reflect::TypeInfo& USkyLightComponent::StaticClass() {
         });
         t.functions.push_back({
             "SetCubemap",
-            "Sets Cubemap: \"\" or an existing .exr file.",
+            "Sets Cubemap: \"\" or an existing .exr or .hdr file.",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
                 {"NewCubemap", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},

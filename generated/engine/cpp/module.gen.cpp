@@ -3112,7 +3112,7 @@ void spear_bind_engine(py::module_& m) {
             [](const Ref<Self>& self, const PyArg& value) {
                 Calls::set_Intensity<PyCall>(self.get<Self>("USkyLightComponent.Intensity"), value);
             },
-            "Multiplier of SkyColor, and of a captured sky or Cubemap: 1 shows those as they are (the default,\n0.03, suits the uniform sky). At least 0.");
+            "Multiplier of SkyColor for the uniform sky, and of a Cubemap (1 shows it as it is; the default, 0.03,\nsuits the uniform sky). A captured ASkyAtmosphere is not scaled: its sun sets its brightness. At least\n0.");
         cls.def_property(
             "BackgroundColor",
             [](const Ref<Self>& self) { return Calls::get_BackgroundColor<PyCall>(self.get<Self>("USkyLightComponent.BackgroundColor")); },
@@ -3133,14 +3133,14 @@ void spear_bind_engine(py::module_& m) {
             [](const Ref<Self>& self, const PyArg& value) {
                 Calls::set_Cubemap<PyCall>(self.get<Self>("USkyLightComponent.Cubemap"), value);
             },
-            "An equirectangular HDR panorama in linear RGB (an OpenEXR file, width twice its height, the zenith at\nthe top, the image's centre looking along +X), used when SourceType is SLS_SpecifiedCubemap: a path,\nrelative ones found as assets are (\"assets/environments/...\"). Setting a file that does not exist\nraises; one that cannot be read is logged and the uniform sky lights the world instead.");
+            "An equirectangular HDR panorama in linear RGB (an OpenEXR .exr or Radiance .hdr file, width twice its\nheight, the zenith at the top, the image's centre looking along +X), used when SourceType is\nSLS_SpecifiedCubemap: a path,\nrelative ones found as assets are (\"assets/environments/...\"). Setting a file that does not exist\nraises; one that cannot be read is logged and the uniform sky lights the world instead.");
         cls.def_property(
             "SourceCubemapAngle",
             [](const Ref<Self>& self) { return Calls::get_SourceCubemapAngle<PyCall>(self.get<Self>("USkyLightComponent.SourceCubemapAngle")); },
             [](const Ref<Self>& self, const PyArg& value) {
                 Calls::set_SourceCubemapAngle<PyCall>(self.get<Self>("USkyLightComponent.SourceCubemapAngle"), value);
             },
-            "Turns the sky about the up axis, in degrees; positive turns it to the left (counter-clockwise seen\nfrom above).");
+            "Turns the Cubemap about the up axis, in degrees; positive turns it to the left (counter-clockwise seen\nfrom above). An ASkyAtmosphere's sky is not turned: it follows its sun.");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetIntensity",
@@ -3157,7 +3157,7 @@ void spear_bind_engine(py::module_& m) {
                 return Calls::call_SetCubemap<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewCubemap}, true});
             },
             py::arg("NewCubemap") = sp::pybind::missingArgument(),
-            "SetCubemap(self, *, NewCubemap: str) -> None\n\nSets Cubemap: \"\" or an existing .exr file.");
+            "SetCubemap(self, *, NewCubemap: str) -> None\n\nSets Cubemap: \"\" or an existing .exr or .hdr file.");
         cls.def(
             "SetSourceCubemapAngle",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewAngle, const py::kwargs& extra) -> py::object {

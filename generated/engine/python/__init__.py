@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "94a09c6eae74c597"
+API_HASH = "46cb0f5a86929e88"

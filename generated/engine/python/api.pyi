@@ -4352,8 +4352,9 @@ class USkyLightComponent(USceneComponent):
 
     @property
     def Intensity(self) -> float:
-        """Multiplier of SkyColor, and of a captured sky or Cubemap: 1 shows those as they are (the default,
-        0.03, suits the uniform sky). At least 0.
+        """Multiplier of SkyColor for the uniform sky, and of a Cubemap (1 shows it as it is; the default, 0.03,
+        suits the uniform sky). A captured ASkyAtmosphere is not scaled: its sun sets its brightness. At least
+        0.
         """
 
     @Intensity.setter
@@ -4377,8 +4378,9 @@ class USkyLightComponent(USceneComponent):
 
     @property
     def Cubemap(self) -> str:
-        """An equirectangular HDR panorama in linear RGB (an OpenEXR file, width twice its height, the zenith at
-        the top, the image's centre looking along +X), used when SourceType is SLS_SpecifiedCubemap: a path,
+        """An equirectangular HDR panorama in linear RGB (an OpenEXR .exr or Radiance .hdr file, width twice its
+        height, the zenith at the top, the image's centre looking along +X), used when SourceType is
+        SLS_SpecifiedCubemap: a path,
         relative ones found as assets are ("assets/environments/..."). Setting a file that does not exist
         raises; one that cannot be read is logged and the uniform sky lights the world instead.
         """
@@ -4388,8 +4390,8 @@ class USkyLightComponent(USceneComponent):
 
     @property
     def SourceCubemapAngle(self) -> float:
-        """Turns the sky about the up axis, in degrees; positive turns it to the left (counter-clockwise seen
-        from above).
+        """Turns the Cubemap about the up axis, in degrees; positive turns it to the left (counter-clockwise seen
+        from above). An ASkyAtmosphere's sky is not turned: it follows its sun.
         """
 
     @SourceCubemapAngle.setter
@@ -4399,7 +4401,7 @@ class USkyLightComponent(USceneComponent):
         """Sets Intensity (>= 0, finite)."""
 
     def SetCubemap(self, *, NewCubemap: str) -> None:
-        """Sets Cubemap: "" or an existing .exr file."""
+        """Sets Cubemap: "" or an existing .exr or .hdr file."""
 
     def SetSourceCubemapAngle(self, *, NewAngle: float) -> None:
         """Sets SourceCubemapAngle (degrees, finite)."""

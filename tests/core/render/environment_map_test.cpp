@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <random>
+#include <string>
 
 #include "core/base/error.h"
 #include "core/render/environment_map.h"
@@ -112,6 +114,34 @@ TEST(EnvironmentMapTest, ImportanceSamplingIntegratesTheMap) {
         sum += map.radiance(d).x() / pdf;
     }
     EXPECT_NEAR(sum / kSamples / exact, 1.0, 0.05);
+}
+
+TEST(EnvironmentMapTest, ReadsRadianceHdrFiles) {
+    // A flat (not run-length encoded) RGBE file, 8 x 4: radiance 1 (mantissa 128, exponent 129) on the top
+    // row, 0.5 (exponent 128) below it, a colour (0.5, 1, 255 / 128) on the third row, 0 on the last.
+    const std::string path = testing::TempDir() + "spear_environment_map_test.hdr";
+    std::string bytes = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n";
+    const unsigned char rows[4][4] = {
+        {128, 128, 128, 129}, {128, 128, 128, 128}, {64, 128, 255, 129}, {0, 0, 0, 0}};
+    for (const auto& rgbe : rows)
+        for (int x = 0; x < 8; ++x)
+            bytes.append(reinterpret_cast<const char*>(rgbe), 4);
+    std::ofstream(path, std::ios::binary) << bytes;
+    const RadianceImage image = readRadianceHdr(path, "Loader");
+    ASSERT_EQ(image.width, 8);
+    ASSERT_EQ(image.height, 4);
+    EXPECT_TRUE(image.at(3, 0).isApprox(Eigen::Vector3f::Ones(), 1e-6f));
+    EXPECT_TRUE(image.at(5, 1).isApprox(Eigen::Vector3f::Constant(0.5f), 1e-6f));
+    EXPECT_TRUE(image.at(0, 2).isApprox(Eigen::Vector3f(0.5f, 1.0f, 255.0f / 128.0f), 1e-6f));
+    EXPECT_EQ(image.at(7, 3), Eigen::Vector3f::Zero());
+    EXPECT_THROW(readRadianceHdr(testing::TempDir() + "no_such_file.hdr", "Loader"), NotFound);
+    std::ofstream(path, std::ios::binary) << "not an image";
+    try {
+        readRadianceHdr(path, "Loader");
+        FAIL();
+    } catch (const InvalidArgument& e) {
+        EXPECT_EQ(std::string(e.what()), "Loader: '" + path + "' is not a Radiance HDR (.hdr) file");
+    }
 }
 
 TEST(EnvironmentMapTest, RefusesWhatIsNotAnEquirectangularRadianceMap) {
