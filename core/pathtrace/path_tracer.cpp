@@ -181,6 +181,8 @@ void Settings::validate(const char* function) const {
              ": samplesPerPixel ", samplesPerPixel, " is out of range [1, 65536]");
     SP_CHECK(maxBounces >= 0 && maxBounces <= 64, InvalidArgument, function, ": maxBounces ", maxBounces,
              " is out of range [0, 64]");
+    SP_CHECK(std::isfinite(maxPathIntensity) && maxPathIntensity >= 0.0f, InvalidArgument, function,
+             ": maxPathIntensity ", maxPathIntensity, " must be finite and >= 0");
 }
 
 struct PathTracer::Impl {
@@ -416,6 +418,7 @@ struct PathTracer::Impl {
         h.add(camera.params.apertureRadius);
         h.add(camera.params.focusDistance);
         h.add(settings.maxBounces);
+        h.add(settings.maxPathIntensity);
         return h.value;
     }
 
@@ -466,7 +469,11 @@ struct PathTracer::Impl {
         };
         // Radiance `x` arriving at the first surface along the first bounce's direction, after `throughput`.
         auto throughFirst = [&](const Eigen::Vector3f& x) {
-            const Eigen::Vector3f arriving = throughput.cwiseProduct(x);
+            Eigen::Vector3f arriving = throughput.cwiseProduct(x);
+            // Firefly control: a rare path that finds a small bright emitter, brought down to the limit in
+            // proportion (its colour kept).
+            if (settings.maxPathIntensity > 0.0f && arriving.maxCoeff() > settings.maxPathIntensity)
+                arriving *= settings.maxPathIntensity / arriving.maxCoeff();
             out.hdr += firstTotal.cwiseProduct(arriving);
             out.diffuseOnly += firstDiffuse.cwiseProduct(arriving);
             out.diffuseIllumination += firstWhite.cwiseProduct(arriving);

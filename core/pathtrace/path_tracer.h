@@ -24,8 +24,16 @@
 namespace sp::pathtrace {
 
 struct Settings {
+    Settings() = default;
+    Settings(int samples, int bounces, float maxIntensity = 0.0f)
+        : samplesPerPixel(samples), maxBounces(bounces), maxPathIntensity(maxIntensity) {}
+
     int samplesPerPixel = 4; // samples added per render() call, in [1, 65536]
     int maxBounces = 4;      // indirect bounces after the first hit, in [0, 64] (0: direct light only)
+    // Firefly control: the radiance a path brings back to its first surface from beyond it (bounced light,
+    // not the first surface's own direct light), scaled down so that no channel exceeds this; 0 (the default)
+    // clamps nothing and keeps the estimate unbiased. Finite, >= 0.
+    float maxPathIntensity = 0.0f;
     // Throws sp::InvalidArgument naming the bad field.
     void validate(const char* function) const;
 };

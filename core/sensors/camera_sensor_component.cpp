@@ -107,6 +107,12 @@ void UCameraSensorComponent::SetMaxBounces(int32_t NewMaxBounces) {
     MaxBounces = NewMaxBounces;
 }
 
+void UCameraSensorComponent::SetPathTracingMaxPathIntensity(float NewIntensity) {
+    sp::checkSetting(std::isfinite(NewIntensity) && NewIntensity >= 0.0f, "UCameraSensorComponent",
+                     "PathTracingMaxPathIntensity", ">= 0", NewIntensity);
+    PathTracingMaxPathIntensity = NewIntensity;
+}
+
 sp::render::LensModel UCameraSensorComponent::lensModel() const {
     // The renderer's own focal length, so that K is the projection the images were made with.
     sp::render::Camera camera;

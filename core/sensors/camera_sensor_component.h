@@ -389,6 +389,13 @@ class UCameraSensorComponent : public USceneComponent {
     SPPROPERTY(Setter = SetMaxBounces)
     int32_t MaxBounces = 4;
 
+    /// Path tracing, firefly control (Unreal's name): the light a path brings back to the first surface from
+    /// beyond it is scaled down so that no channel exceeds this radiance; the first surface's direct light
+    /// is kept. 0 (the default) clamps nothing: the unbiased reference. Fewer bright speckles at few samples,
+    /// a little energy lost from small bright sources. Finite, >= 0.
+    SPPROPERTY(Setter = SetPathTracingMaxPathIntensity)
+    float PathTracingMaxPathIntensity = 0.0f;
+
     // Settings are checked when they are set, on either transport, so that a bad value is refused with
     // the property's name and range instead of failing every later frame.
 
@@ -473,6 +480,9 @@ class UCameraSensorComponent : public USceneComponent {
     /// Sets SamplesPerPixel, in [1, 65536].
     SPFUNCTION()
     void SetSamplesPerPixel(int32_t NewSamplesPerPixel);
+    /// Sets PathTracingMaxPathIntensity (finite, >= 0; 0 clamps nothing).
+    SPFUNCTION()
+    void SetPathTracingMaxPathIntensity(float NewIntensity);
     /// Sets MaxBounces, in [0, 64].
     SPFUNCTION()
     void SetMaxBounces(int32_t NewMaxBounces);

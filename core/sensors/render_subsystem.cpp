@@ -403,7 +403,8 @@ std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponen
                                                            CameraState& state) {
     if (!tracer_)
         tracer_ = std::make_unique<sp::pathtrace::PathTracer>();
-    tracer_->render(scene_->scene(), renderCamera, {camera.SamplesPerPixel, camera.MaxBounces},
+    tracer_->render(scene_->scene(), renderCamera,
+                    {camera.SamplesPerPixel, camera.MaxBounces, camera.PathTracingMaxPathIntensity},
                     state.accumulation);
     const sp::pathtrace::Accumulation& image = state.accumulation;
     // final_color and hdr_color denoised when asked for; the intrinsic images stay unfiltered.

@@ -150,3 +150,19 @@ def test_the_path_tracer_denoiser_brings_few_samples_closer_to_many(instance: sp
 
     assert rmse(denoised["hdr_color"]) < 0.6 * rmse(raw["hdr_color"])
     assert np.array_equal(raw["diffuse_only"], denoised["diffuse_only"])
+
+
+def test_the_path_tracers_firefly_clamp_is_off_by_default_and_refuses_bad_values(instance: spear.Instance) -> None:
+    with instance.begin_frame():
+        camera = spawn_camera(instance.get_game(), [M.HdrColor])
+        assert camera.PathTracingMaxPathIntensity == 0.0  # the unbiased reference
+        for bad in (-1.0, float("nan")):
+            with pytest.raises(spear.InvalidArgumentError,
+                               match=r"UCameraSensorComponent.PathTracingMaxPathIntensity must be >= 0, got"):
+                camera.PathTracingMaxPathIntensity = bad
+        camera.PathTracingMaxPathIntensity = 10.0
+        camera.Renderer = spear.ECameraRenderer.PathTraced
+    with instance.end_frame():
+        pixels = camera.read_pixels()
+        assert camera.PathTracingMaxPathIntensity == 10.0
+    assert np.isfinite(pixels["hdr_color"].astype(np.float64)).all()

@@ -889,6 +889,16 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
                 Calls::set_MaxBounces<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
+        t.properties.push_back({
+            "PathTracingMaxPathIntensity",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
+            "Path tracing, firefly control (Unreal's name): the light a path brings back to the first surface from\nbeyond it is scaled down so that no channel exceeds this radiance; the first surface's direct light\nis kept. 0 (the default) clamps nothing: the unbiased reference. Fewer bright speckles at few samples,\na little energy lost from small bright sources. Finite, >= 0.",
+            false,
+            [](const void* self) { return Calls::get_PathTracingMaxPathIntensity<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_PathTracingMaxPathIntensity<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
         t.functions.push_back({
             "SetWidth",
             "Sets Width in pixels, in [1, 16384].",
@@ -1151,6 +1161,17 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             false,
             false,
             [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetSamplesPerPixel<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "SetPathTracingMaxPathIntensity",
+            "Sets PathTracingMaxPathIntensity (finite, >= 0; 0 clamps nothing).",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"NewIntensity", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetPathTracingMaxPathIntensity<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetMaxBounces",

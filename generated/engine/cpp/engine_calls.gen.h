@@ -3545,6 +3545,15 @@ struct UCameraSensorComponentCalls {
         sp::reflect::notifyPropertyChanged(self, "MaxBounces");
     }
 
+    template <typename Call> static typename Call::Result get_PathTracingMaxPathIntensity(const Self* self) {
+        const auto& value = self->PathTracingMaxPathIntensity;
+        return Call::template result<float>(value);
+    }
+    template <typename Call> static void set_PathTracingMaxPathIntensity(Self* self, const typename Call::Input& value) {
+        self->SetPathTracingMaxPathIntensity(Call::template input<float>(value, "UCameraSensorComponent.PathTracingMaxPathIntensity"));
+        sp::reflect::notifyPropertyChanged(self, "PathTracingMaxPathIntensity");
+    }
+
     template <typename Call, typename Target>
     static typename Call::Result call_SetWidth(const Target& target, typename Call::Args args) {
         static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
@@ -3825,6 +3834,18 @@ struct UCameraSensorComponentCalls {
         Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetSamplesPerPixel()");
         int32_t NewSamplesPerPixelArg = call.template arg<int32_t>(0);
         self->SetSamplesPerPixel(NewSamplesPerPixelArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetPathTracingMaxPathIntensity(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewIntensity", "UCameraSensorComponent.SetPathTracingMaxPathIntensity(): argument 'NewIntensity'", true},
+        }};
+        const Call call(args, "UCameraSensorComponent.SetPathTracingMaxPathIntensity()", kParams);
+        Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetPathTracingMaxPathIntensity()");
+        float NewIntensityArg = call.template arg<float>(0);
+        self->SetPathTracingMaxPathIntensity(NewIntensityArg);
         return Call::none();
     }
 

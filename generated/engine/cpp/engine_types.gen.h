@@ -47,5 +47,5 @@ __attribute__((visibility("default"))) const char* spear_register_engine_types_a
 
 // The same hash as a constant: a plugin compiled against these headers records the engine's.
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "46cb0f5a86929e88";
+inline constexpr char kApiHash[] = "5c5ea5acbef06dca";
 } // namespace sp::generated::engine

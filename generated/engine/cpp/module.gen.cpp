@@ -1952,6 +1952,13 @@ void spear_bind_engine(py::module_& m) {
                 Calls::set_MaxBounces<PyCall>(self.get<Self>("UCameraSensorComponent.MaxBounces"), value);
             },
             "Path tracing: indirect bounces after the first hit, in [0, 64] (0: direct light and sky only).");
+        cls.def_property(
+            "PathTracingMaxPathIntensity",
+            [](const Ref<Self>& self) { return Calls::get_PathTracingMaxPathIntensity<PyCall>(self.get<Self>("UCameraSensorComponent.PathTracingMaxPathIntensity")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_PathTracingMaxPathIntensity<PyCall>(self.get<Self>("UCameraSensorComponent.PathTracingMaxPathIntensity"), value);
+            },
+            "Path tracing, firefly control (Unreal's name): the light a path brings back to the first surface from\nbeyond it is scaled down so that no channel exceeds this radiance; the first surface's direct light\nis kept. 0 (the default) clamps nothing: the unbiased reference. Fewer bright speckles at few samples,\na little energy lost from small bright sources. Finite, >= 0.");
         sp::pybind::nameProperties(cls);
         cls.def(
             "SetWidth",
@@ -2144,6 +2151,14 @@ void spear_bind_engine(py::module_& m) {
             },
             py::arg("NewSamplesPerPixel") = sp::pybind::missingArgument(),
             "SetSamplesPerPixel(self, *, NewSamplesPerPixel: int) -> None\n\nSets SamplesPerPixel, in [1, 65536].");
+        cls.def(
+            "SetPathTracingMaxPathIntensity",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewIntensity, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetPathTracingMaxPathIntensity<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewIntensity}, true});
+            },
+            py::arg("NewIntensity") = sp::pybind::missingArgument(),
+            "SetPathTracingMaxPathIntensity(self, *, NewIntensity: float) -> None\n\nSets PathTracingMaxPathIntensity (finite, >= 0; 0 clamps nothing).");
         cls.def(
             "SetMaxBounces",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewMaxBounces, const py::kwargs& extra) -> py::object {

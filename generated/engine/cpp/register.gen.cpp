@@ -211,4 +211,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "46cb0f5a86929e88"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "5c5ea5acbef06dca"; }

@@ -2824,6 +2824,8 @@ class UCameraSensorComponentAsync(USceneComponentAsync):
 
     def SetSamplesPerPixel(self, *, NewSamplesPerPixel: int) -> Future[None]: ...
 
+    def SetPathTracingMaxPathIntensity(self, *, NewIntensity: float) -> Future[None]: ...
+
     def SetMaxBounces(self, *, NewMaxBounces: int) -> Future[None]: ...
 
     def GetIntrinsicMatrix(self) -> Future[NDArray[np.float64]]: ...
@@ -2903,6 +2905,8 @@ class UCameraSensorComponentSend(USceneComponentSend):
     def SetLatency(self, *, NewLatency: int) -> None: ...
 
     def SetSamplesPerPixel(self, *, NewSamplesPerPixel: int) -> None: ...
+
+    def SetPathTracingMaxPathIntensity(self, *, NewIntensity: float) -> None: ...
 
     def SetMaxBounces(self, *, NewMaxBounces: int) -> None: ...
 
@@ -3139,6 +3143,17 @@ class UCameraSensorComponent(USceneComponent):
     @MaxBounces.setter
     def MaxBounces(self, value: int) -> None: ...
 
+    @property
+    def PathTracingMaxPathIntensity(self) -> float:
+        """Path tracing, firefly control (Unreal's name): the light a path brings back to the first surface from
+        beyond it is scaled down so that no channel exceeds this radiance; the first surface's direct light
+        is kept. 0 (the default) clamps nothing: the unbiased reference. Fewer bright speckles at few samples,
+        a little energy lost from small bright sources. Finite, >= 0.
+        """
+
+    @PathTracingMaxPathIntensity.setter
+    def PathTracingMaxPathIntensity(self, value: float) -> None: ...
+
     def SetWidth(self, *, NewWidth: int) -> None:
         """Sets Width in pixels, in [1, 16384]."""
 
@@ -3226,6 +3241,9 @@ class UCameraSensorComponent(USceneComponent):
 
     def SetSamplesPerPixel(self, *, NewSamplesPerPixel: int) -> None:
         """Sets SamplesPerPixel, in [1, 65536]."""
+
+    def SetPathTracingMaxPathIntensity(self, *, NewIntensity: float) -> None:
+        """Sets PathTracingMaxPathIntensity (finite, >= 0; 0 clamps nothing)."""
 
     def SetMaxBounces(self, *, NewMaxBounces: int) -> None:
         """Sets MaxBounces, in [0, 64]."""

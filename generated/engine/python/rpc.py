@@ -1364,6 +1364,14 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
     def MaxBounces(self, value: int) -> None:
         self._sp_set("UCameraSensorComponent", "MaxBounces", value)
 
+    @property
+    def PathTracingMaxPathIntensity(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "PathTracingMaxPathIntensity", _t.T_float))
+
+    @PathTracingMaxPathIntensity.setter
+    def PathTracingMaxPathIntensity(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "PathTracingMaxPathIntensity", value)
+
     def SetWidth(self, *, NewWidth: int) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetWidth", {"NewWidth": NewWidth}, _t.T_void))  # a Future when queued by call_async
 
@@ -1435,6 +1443,9 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     def SetSamplesPerPixel(self, *, NewSamplesPerPixel: int) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetSamplesPerPixel", {"NewSamplesPerPixel": NewSamplesPerPixel}, _t.T_void))  # a Future when queued by call_async
+
+    def SetPathTracingMaxPathIntensity(self, *, NewIntensity: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetPathTracingMaxPathIntensity", {"NewIntensity": NewIntensity}, _t.T_void))  # a Future when queued by call_async
 
     def SetMaxBounces(self, *, NewMaxBounces: int) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetMaxBounces", {"NewMaxBounces": NewMaxBounces}, _t.T_void))  # a Future when queued by call_async

@@ -155,6 +155,43 @@ TEST_F(PathTracerGlTest, DirectLightOfALambertianPlaneMatchesTheRasteriser) {
             }
 }
 
+TEST_F(PathTracerGlTest, MaxPathIntensityTradesFirefliesForBias) {
+    // A white floor lit only by a small, very bright emissive ball, which only bounce rays find: at 16
+    // samples a few pixels catch it (fireflies), so two independent images differ a lot. Clamping what a path
+    // brings back makes them agree far better, at the cost of light taken away; 0 clamps nothing (the same
+    // sums as the default settings).
+    Scene scene;
+    const render::MaterialId floor = scene.addMaterial(material({1.0f, 1.0f, 1.0f}, 1.0f, 0.0f));
+    scene.addInstance({scene.addMesh(render::primitives::plane(10.0f, 10.0f)), {floor}, {1}});
+    Material glow = material({0.0f, 0.0f, 0.0f}, 1.0f, 0.0f);
+    glow.emissive = Eigen::Vector3f::Constant(500.0f);
+    render::Instance ball{
+        scene.addMesh(render::primitives::sphere(0.1f, 16, 8)), {scene.addMaterial(glow)}, {2}};
+    ball.transform.translation() = Eigen::Vector3d(0.0, 0.0, 1.0);
+    scene.addInstance(ball);
+    scene.setEnvironment({{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}});
+    const Camera camera = lookingAlong({0.0, -1.5, 0.8}, {0.0, 1.5, -0.8}, 16, 16, 60.0);
+    Camera other = camera; // the same view with other random numbers
+    other.params.farClip = 999.0;
+
+    auto spread = [&](const Settings& settings) {
+        Accumulation a, b;
+        tracer_.render(scene, camera, settings, a);
+        tracer_.render(scene, other, settings, b);
+        return rmsDifference(a, b);
+    };
+    EXPECT_LT(spread({16, 1, 20.0f}), 0.5 * spread({16, 1}));
+    Accumulation clamped, unclamped, defaults;
+    tracer_.render(scene, other, {1024, 1, 20.0f}, clamped);
+    tracer_.render(scene, other, {1024, 1}, unclamped);
+    EXPECT_LT(mean(clamped), mean(unclamped)); // light is only ever taken away
+    PathTracer a, b;
+    a.render(scene, camera, {16, 1, 0.0f}, clamped);
+    b.render(scene, camera, Settings(16, 1), defaults);
+    EXPECT_EQ(clamped.sum, defaults.sum);
+    EXPECT_THROW(tracer_.render(scene, camera, {16, 1, -1.0f}, clamped), InvalidArgument);
+}
+
 TEST_F(PathTracerGlTest, ErrorFallsAsOneOverTheSquareRootOfSamples) {
     // Rough surfaces, so that the error is the estimator's spread rather than a few rare bright paths.
     Scene scene;
