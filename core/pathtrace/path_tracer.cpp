@@ -84,7 +84,8 @@ struct PathSample {
 // moving object costs the top level's rebuild, not its triangles'.
 struct MeshShape {
     RTCScene scene = nullptr;
-    std::vector<Eigen::Vector3f> normals; // mesh space
+    std::vector<Eigen::Vector3f> positions; // mesh space (a normal map's tangent frame)
+    std::vector<Eigen::Vector3f> normals;   // mesh space
     std::vector<Eigen::Vector2f> uvs;
     std::vector<std::uint32_t> indices; // the submeshes' triangles, in submesh order
     std::vector<std::uint32_t> slots;   // each triangle's material slot
@@ -103,6 +104,7 @@ struct MeshShape {
 struct Shape {
     const MeshShape* mesh = nullptr;
     Eigen::Matrix3f normalMatrix;              // inverse transpose of the instance's linear part
+    Eigen::Matrix3f linear;                    // the instance's linear part
     std::vector<render::MaterialId> materials; // one per submesh
     bool probed = true;                        // probe rays see it (not smaller than the probe cutoff)
 };
@@ -278,6 +280,7 @@ struct PathTracer::Impl {
         entry->revision = revision;
         entry->usedBy = builds;
         const render::MeshData& mesh = scene.mesh(id);
+        entry->positions = mesh.positions;
         entry->normals = mesh.normals;
         entry->uvs = mesh.uvs;
         // The triangles the rasteriser draws: those of the submeshes, each with its material slot.
@@ -351,7 +354,8 @@ struct PathTracer::Impl {
             rtcCommitGeometry(geometry);
             rtcAttachGeometryByID(rtcScene, geometry, unsigned(shapes.size()));
             rtcReleaseGeometry(geometry);
-            shapes.push_back({&mesh, transform.linear().inverse().transpose(), instance.materials, probed});
+            shapes.push_back({&mesh, transform.linear().inverse().transpose(), transform.linear(),
+                              instance.materials, probed});
         });
         rtcCommitScene(rtcScene);
         std::erase_if(meshShapes, [&](const auto& entry) { return entry.second->usedBy + 8 < builds; });
@@ -371,7 +375,7 @@ struct PathTracer::Impl {
                 h.add(m.roughness);
                 h.add(m.metallic);
                 h.matrix(m.emissive);
-                for (const auto& texture : {m.baseColorTexture, m.roughnessMetallicTexture})
+                for (const auto& texture : {m.baseColorTexture, m.roughnessMetallicTexture, m.normalTexture})
                     if (texture) {
                         h.add(texture->index);
                         h.add(texture->generation);
@@ -536,6 +540,27 @@ struct PathTracer::Impl {
                                                           render::TextureEncoding::Srgb,
                                                       uv)
                                             .head<3>());
+            if (material.normalTexture) { // the rasteriser's normal mapping (kMaterialChunk), per triangle
+                // Its cotangent frame (Schueler 2013) from the triangle's edges where the rasteriser takes
+                // screen derivatives: the same surface gradients of u and v.
+                const Eigen::Vector3f e1 = shape.linear * (mesh.positions[i1] - mesh.positions[i0]),
+                                      e2 = shape.linear * (mesh.positions[i2] - mesh.positions[i0]);
+                const Eigen::Vector2f d1 = mesh.uvs[i1] - mesh.uvs[i0], d2 = mesh.uvs[i2] - mesh.uvs[i0];
+                const Eigen::Vector3f p2perp = e2.cross(n), p1perp = n.cross(e1);
+                const Eigen::Vector3f t = p2perp * d1.x() + p1perp * d2.x(),
+                                      b = p2perp * d1.y() + p1perp * d2.y();
+                const float orientation = n.dot(e1.cross(e2)) < 0.0f ? -1.0f : 1.0f;
+                const float scale =
+                    orientation / std::sqrt(std::max(std::max(t.squaredNorm(), b.squaredNorm()), 1e-20f));
+                const Eigen::Vector3f m =
+                    sampleTexture(scene.texture(*material.normalTexture), false, uv).head<3>() * 2.0f -
+                    Eigen::Vector3f::Ones();
+                // Green points up in the image, towards decreasing v.
+                const Eigen::Vector3f mapped =
+                    (t * (scale * m.x()) - b * (scale * m.y()) + n * m.z()).normalized();
+                if (mapped.allFinite() && mapped.dot(ng) > 0.0f)
+                    s.n = n = mapped;
+            }
             if (material.roughnessMetallicTexture) {
                 const Eigen::Vector4f rm =
                     sampleTexture(scene.texture(*material.roughnessMetallicTexture), false, uv);
