@@ -34,6 +34,20 @@ class PathTracerGlTest : public render::test::GlTest {
         return id;
     }
     static Camera sphereCamera() { return lookingAlong({-3.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, 16, 16, 8.0); }
+    // A 40 m plane of material `id` under a shadowless sun travelling along `sunDirection`, no sky; the view
+    // of it (24x16, no shadows).
+    static Camera planeUnderSun(Scene& scene, render::MaterialId id, const Eigen::Vector3d& sunDirection) {
+        scene.addInstance({scene.addMesh(render::primitives::plane(40.0f, 40.0f)), {id}, {1}});
+        Light sun;
+        sun.direction = sunDirection.normalized();
+        sun.intensity = 3.0f;
+        sun.castShadows = false;
+        scene.addLight(sun);
+        scene.setEnvironment({{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}});
+        Camera camera = lookingAlong({-2.0, 0.0, 1.5}, {1.0, 0.0, -0.6}, 24, 16, 50.0);
+        camera.params.shadows = false;
+        return camera;
+    }
     // The mean over the image of channel 0.
     static double mean(const Accumulation& image) {
         double sum = 0.0;
@@ -123,15 +137,7 @@ TEST_F(PathTracerGlTest, DirectLightOfALambertianPlaneMatchesTheRasteriser) {
     // the same light, so their hdr_color agree (the path tracer's is a mean over jittered pixel areas).
     Scene scene;
     const render::MaterialId id = scene.addMaterial(material({0.5f, 0.4f, 0.3f}, 0.9f, 0.0f));
-    scene.addInstance({scene.addMesh(render::primitives::plane(40.0f, 40.0f)), {id}, {1}});
-    Light sun;
-    sun.direction = Eigen::Vector3d(0.3, 0.2, -1.0).normalized();
-    sun.intensity = 3.0f;
-    sun.castShadows = false;
-    scene.addLight(sun);
-    scene.setEnvironment({{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}});
-    Camera camera = lookingAlong({-2.0, 0.0, 1.5}, {1.0, 0.0, -0.6}, 24, 16, 50.0);
-    camera.params.shadows = false;
+    const Camera camera = planeUnderSun(scene, id, {0.3, 0.2, -1.0});
 
     render::RenderTarget target(
         renderer(),
@@ -206,15 +212,7 @@ TEST_F(PathTracerGlTest, NormalMapsTurnTheShadingAsTheRasterisersDo) {
     mapped.normalTexture =
         scene.addTexture(render::TextureImage::fromPixels(4, 4, texels), render::TextureEncoding::Linear);
     const render::MaterialId id = scene.addMaterial(mapped);
-    scene.addInstance({scene.addMesh(render::primitives::plane(40.0f, 40.0f)), {id}, {1}});
-    Light sun;
-    sun.direction = Eigen::Vector3d(0.6, 0.3, -1.0).normalized();
-    sun.intensity = 3.0f;
-    sun.castShadows = false;
-    scene.addLight(sun);
-    scene.setEnvironment({{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}});
-    Camera camera = lookingAlong({-2.0, 0.0, 1.5}, {1.0, 0.0, -0.6}, 24, 16, 50.0);
-    camera.params.shadows = false;
+    const Camera camera = planeUnderSun(scene, id, {0.6, 0.3, -1.0});
 
     render::RenderTarget target(renderer(), {render::Modality::HdrColor}, 0);
     render::Frame frame;
