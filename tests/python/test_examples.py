@@ -239,3 +239,19 @@ def test_movie_render_queue_renders_the_camera_move_to_files_and_resumes(transpo
     result = run_example("movie_render_queue.py", *args)  # run again: resumes
     assert result.returncode == 0, result.stdout + result.stderr
     assert "rendered 1 frames, skipped 5 already written" in result.stdout
+
+
+@pytest.mark.parametrize("transport", TRANSPORTS)
+def test_sky_and_environment_lights_the_shaded_faces_and_writes_four_skies(transport: str, tmp_path: Path) -> None:
+    out = tmp_path / "skies.png"
+    result = run_example("sky_and_environment.py", "--out", str(out), "--width", "96", "--height", "64",
+                         *TRANSPORTS[transport])
+    assert result.returncode == 0, result.stdout + result.stderr
+    shade = {m.group(1).strip(): (float(m.group(2)), float(m.group(3))) for m in re.finditer(
+        r"^(.+?)\s+shaded faces ([0-9.]+), background ([0-9.]+)", result.stdout, re.MULTILINE)}
+    assert len(shade) == 4, result.stdout
+    uniform, atmosphere = shade["default uniform sky"], shade["ASkyAtmosphere"]
+    assert atmosphere[0] > 2.0 * uniform[0]  # the sky lights what the sun does not
+    assert uniform[1] == 0.0 and atmosphere[1] > 0.0 and shade["HDR panorama (park.exr)"][1] > 0.0
+    image = Image.open(out)
+    assert image.size == (192, 128) and len(set(image.convert("RGB").getdata())) > 100
