@@ -635,16 +635,18 @@ void Renderer::drawVignettedBackground(TargetMask targets, ToneMap toneMap) {
     if (!program)
         program = std::make_unique<ShaderProgram>("background", shaders::backgroundVertex(layered).c_str(),
                                                   shaders::backgroundFragment(location, toneMap).c_str());
-    for (int i = 0; i < count; ++i)
-        glColorMaski(GLuint(i), i == location, i == location, i == location, i == location);
+    program->use();
+    drawOnFarPlane(targets, targetBit(Target::FinalColor));
+}
+
+void Renderer::drawOnFarPlane(TargetMask targets, TargetMask written) {
+    maskTargets(targets, targets & ~written, true);
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
-    program->use();
     glBindVertexArray(emptyVao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
-    for (int i = 0; i < count; ++i)
-        glColorMaski(GLuint(i), GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    maskTargets(targets, targets & ~written, false);
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
 }
@@ -686,15 +688,7 @@ void Renderer::drawEnvironmentBackground(const Camera& camera, const Framebuffer
     glProgramUniform2i(program->id(), program->location("uSize"), fb.width, fb.height);
     glProgramUniform1f(program->id(), program->location("uBackgroundLod"),
                        backgroundLod(camera, active_->environmentBackgroundWidth));
-    maskTargets(targets, targets & ~kBackgroundTargets, true);
-    glDepthFunc(GL_LEQUAL);
-    glDepthMask(GL_FALSE);
-    glBindVertexArray(emptyVao_);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindVertexArray(0);
-    maskTargets(targets, targets & ~kBackgroundTargets, false);
-    glDepthMask(GL_TRUE);
-    glDepthFunc(GL_LESS);
+    drawOnFarPlane(targets, targets & kBackgroundTargets);
 }
 
 void Renderer::attributePass(const Scene& scene, const Camera& camera, const PassSet& passes,

@@ -285,6 +285,9 @@ class Renderer {
                  bool shade, const shaders::ShadingLayout& lights, GpuSceneCache& cache);
     // Writes the vignetted background into final_color (one of `targets`) where no surface was drawn.
     void drawVignettedBackground(TargetMask targets, ToneMap toneMap);
+    // Draws a triangle covering the view on the far plane with the bound program, into the draw buffers of
+    // `written` (among `targets`, the bound framebuffer's) and only where no surface was drawn.
+    void drawOnFarPlane(TargetMask targets, TargetMask written);
     // Writes the environment map seen along each pixel's ray into hdr_color, specular_residual and
     // final_color (those of `targets`) where no surface was drawn.
     void drawEnvironmentBackground(const Camera& camera, const Framebuffers& fb, TargetMask targets,
