@@ -55,10 +55,8 @@ TextureImage TextureImage::fromPixels(int width, int height, std::vector<std::ui
 }
 
 RadianceImage readRadianceHdr(const std::string& path, const char* function) {
-    const std::string found = findAsset(path);
-    SP_CHECK(std::filesystem::exists(found) && !std::filesystem::is_directory(found), NotFound, function,
-             ": no such file '", path, "'");
-    const std::string bytes = readRegularFile(found, function, "Radiance HDR image");
+    // readRegularFile throws sp::NotFound for a missing file (or a directory).
+    const std::string bytes = readRegularFile(findAsset(path), function, "Radiance HDR image");
     const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
     SP_CHECK(stbi_is_hdr_from_memory(data, static_cast<int>(bytes.size())) != 0, InvalidArgument, function,
              ": '", path, "' is not a Radiance HDR (.hdr) file");

@@ -7,6 +7,7 @@
 #include "core/render/content_key.h"
 #include "core/render/mesh_import.h"
 #include "core/render/primitives.h"
+#include "core/sensors/linear_color.h"
 #include "core/sensors/sky_atmosphere_component.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
@@ -59,10 +60,6 @@ std::vector<std::pair<sp::render::MeshData, float>> basicShapeLods(std::string_v
                               float(0.5 * (1.0 - std::cos(angle)) / halfDiagonal));
     }
     return lods;
-}
-
-Eigen::Vector3f rgb(const FLinearColor& color) {
-    return {color.R, color.G, color.B};
 }
 
 // Mesh-to-world, scale included (FTransform::toIsometry drops the scale).

@@ -13,6 +13,7 @@
 #include "core/imageio/exr.h"
 #include "core/render/image_buffer.h"
 #include "core/render/sky_model.h"
+#include "core/sensors/linear_color.h"
 #include "core/sensors/sky_atmosphere_component.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/world/light_component.h"
@@ -22,10 +23,6 @@ namespace {
 
 // An analytic sky is smooth: this many texels show it without visible steps and make it in milliseconds.
 constexpr int kSkyWidth = 512, kSkyHeight = 256;
-
-Eigen::Vector3f rgb(const FLinearColor& c) {
-    return {c.R, c.G, c.B};
-}
 
 // The RGB radiance of an EXR panorama (half or float R, G, B and perhaps A channels).
 sp::render::RadianceImage readPanorama(const std::string& path) {
@@ -58,6 +55,13 @@ sp::render::RadianceImage readPanorama(const std::string& path) {
 }
 
 } // namespace
+
+std::string cubemapExtension(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    for (char& c : extension)
+        c = char(std::tolower(static_cast<unsigned char>(c)));
+    return extension;
+}
 
 sp::render::Environment SkyEnvironment::update(const USkyLightComponent* sky,
                                                const USkyAtmosphereComponent* atmosphere,
@@ -114,12 +118,9 @@ std::shared_ptr<const sp::render::EnvironmentMap> SkyEnvironment::panorama(const
         return panorama_;
     }
     try {
-        std::string extension = std::filesystem::path(path).extension().string();
-        for (char& c : extension)
-            c = char(std::tolower(static_cast<unsigned char>(c)));
         panorama_ = std::make_shared<const sp::render::EnvironmentMap>(
-            extension == ".hdr" ? sp::render::readRadianceHdr(path, "USkyLightComponent.Cubemap")
-                                : readPanorama(path),
+            cubemapExtension(path) == ".hdr" ? sp::render::readRadianceHdr(path, "USkyLightComponent.Cubemap")
+                                             : readPanorama(path),
             angle, "USkyLightComponent.Cubemap");
         shared[key] = panorama_;
     } catch (const sp::Error& e) {

@@ -17,6 +17,10 @@ class USkyLightComponent;
 
 namespace sp::sensors {
 
+// A Cubemap path's extension in lower case (".exr", ".hdr", ...): the format the setter admits and the loader
+// reads.
+std::string cubemapExtension(const std::string& path);
+
 class SkyEnvironment {
   public:
     // Logs a message once per key (RenderScene::logOnce).

@@ -5,6 +5,7 @@
 
 #include "core/base/asset_path.h"
 #include "core/base/error.h"
+#include "core/sensors/sky_environment.h"
 
 void USkyLightComponent::SetIntensity(float NewIntensity) {
     sp::checkSetting(std::isfinite(NewIntensity) && NewIntensity >= 0.0f, "USkyLightComponent", "Intensity",
@@ -14,10 +15,7 @@ void USkyLightComponent::SetIntensity(float NewIntensity) {
 
 void USkyLightComponent::SetCubemap(const std::string& NewCubemap) {
     if (!NewCubemap.empty()) {
-        const std::filesystem::path path(NewCubemap);
-        std::string extension = path.extension().string();
-        for (char& c : extension)
-            c = char(std::tolower(static_cast<unsigned char>(c)));
+        const std::string extension = sp::sensors::cubemapExtension(NewCubemap);
         SP_CHECK(extension == ".exr" || extension == ".hdr", sp::InvalidArgument,
                  "USkyLightComponent.Cubemap must be an OpenEXR (.exr) or Radiance HDR (.hdr) file, got '",
                  NewCubemap, "'");
