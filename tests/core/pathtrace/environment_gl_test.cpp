@@ -46,13 +46,9 @@ class EnvironmentGlTest : public render::test::GlTest {
     static Camera sphereCamera() { return lookingAlong({-3.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, 16, 16, 8.0); }
 
     render::Frame raster(const Scene& scene, const Camera& camera) {
-        render::RenderTarget target(
-            renderer(),
-            {render::Modality::HdrColor, render::Modality::DiffuseIllumination, render::Modality::ObjectIds},
-            0);
-        render::Frame frame;
-        target.render(scene, camera, frame);
-        return frame;
+        return renderFrame(
+            scene, camera,
+            {render::Modality::HdrColor, render::Modality::DiffuseIllumination, render::Modality::ObjectIds});
     }
     PathTracer tracer_;
 };

@@ -103,11 +103,8 @@ class IrradianceProbesGlTest : public render::test::GlTest {
     // diffuse_illumination of the rasteriser with the scene's volume (or without, `gi` false).
     render::Frame raster(const Scene& scene, Camera camera, bool gi = true) {
         camera.params.globalIllumination = gi;
-        render::RenderTarget target(renderer(),
-                                    {render::Modality::DiffuseIllumination, render::Modality::HdrColor}, 0);
-        render::Frame frame;
-        target.render(scene, camera, frame);
-        return frame;
+        return renderFrame(scene, camera,
+                           {render::Modality::DiffuseIllumination, render::Modality::HdrColor});
     }
     PathTracer tracer_;
 };

@@ -139,12 +139,9 @@ TEST_F(PathTracerGlTest, DirectLightOfALambertianPlaneMatchesTheRasteriser) {
     const render::MaterialId id = scene.addMaterial(material({0.5f, 0.4f, 0.3f}, 0.9f, 0.0f));
     const Camera camera = planeUnderSun(scene, id, {0.3, 0.2, -1.0});
 
-    render::RenderTarget target(
-        renderer(),
-        {render::Modality::HdrColor, render::Modality::DiffuseIllumination, render::Modality::DiffuseOnly},
-        0);
-    render::Frame frame;
-    target.render(scene, camera, frame);
+    const render::Frame frame = renderFrame(
+        scene, camera,
+        {render::Modality::HdrColor, render::Modality::DiffuseIllumination, render::Modality::DiffuseOnly});
     Accumulation traced;
     tracer_.render(scene, camera, {64, 0}, traced);
     const render::ImageBuffer& raster = frame.get(render::Modality::HdrColor);
@@ -214,9 +211,7 @@ TEST_F(PathTracerGlTest, NormalMapsTurnTheShadingAsTheRasterisersDo) {
     const render::MaterialId id = scene.addMaterial(mapped);
     const Camera camera = planeUnderSun(scene, id, {0.6, 0.3, -1.0});
 
-    render::RenderTarget target(renderer(), {render::Modality::HdrColor}, 0);
-    render::Frame frame;
-    target.render(scene, camera, frame);
+    const render::Frame frame = renderFrame(scene, camera, {render::Modality::HdrColor});
     Accumulation traced, flat;
     tracer_.render(scene, camera, {64, 0}, traced);
     Material plain = mapped;

@@ -26,6 +26,14 @@ class GlTest : public ::testing::Test {
     }
     Renderer& renderer() { return *renderer_; }
 
+    // One frame of `modalities` of `scene` seen by `camera`, rendered and read at once (latency 0).
+    Frame renderFrame(const Scene& scene, const Camera& camera, ModalitySet modalities) {
+        RenderTarget target(renderer(), modalities, 0);
+        Frame frame;
+        target.render(scene, camera, frame);
+        return frame;
+    }
+
     // A camera at `position` looking along world direction `forward` (Z up).
     static Camera lookingAlong(const Eigen::Vector3d& position, const Eigen::Vector3d& forward, int width,
                                int height, double hfovDeg = 60.0) {
