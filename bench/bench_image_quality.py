@@ -7,8 +7,8 @@ quality, over the pixels that show geometry (depth > 0):
   - SSIM of final_color (scikit-image, Debian's python3-skimage);
   - crushed pixels (every channel below 8/255) in raster and in the reference;
 and, once per scene, the path tracer's relative RMSE at 64 spp against the reference, raw and denoised
-(bPathTracingEnableDenoiser), and the rasteriser's aliasing: the mean and 99th-percentile difference of
-final_color against the same view supersampled 4 x 4.
+(bPathTracingEnableDenoiser), and the rasteriser's aliasing with each AntiAliasingMethod: the mean and
+99th-percentile difference of final_color against the same view supersampled 4 x 4.
 
     PYTHONPATH=python /usr/bin/python3 bench/bench_image_quality.py [--width 320 --height 240]
         [--reference 1024] [--qualities Off,Medium] [--scenes apartment,yard,closed_room,sky_yard,park_yard] [--out out/iq]
@@ -158,23 +158,36 @@ class Scene:
         assert "final_color" in pixels and "depth" in pixels
         return pixels["final_color"], pixels["depth"]
 
-    def aliasing(self, quality: spear.EGlobalIlluminationQuality) -> tuple[float, float]:
-        """final_color against the same view rendered 4 x 4 times larger and averaged down (in linear light):
-        the mean and 99th-percentile difference over all pixels, in 8-bit steps."""
+    def aliasing(self, quality: spear.EGlobalIlluminationQuality) -> dict[str, tuple[float, float]]:
+        """final_color, with each anti-aliasing method, against the same view rendered 4 x 4 times larger without
+        any and averaged down (in linear light): the mean and 99th-percentile difference over all pixels, in
+        8-bit steps."""
+        camera = self.cameras[quality]
         with self.instance.begin_frame():
             large = self.camera("Supersampled", 4 * self.width, 4 * self.height, quality, self.name)
+            large.AntiAliasingMethod = spear.EAntiAliasingMethod.AAM_None
         with self.instance.end_frame():
             pass
-        color, _ = self.raster(self.cameras[quality])
         big, _ = self.raster(large)
         linear = srgb_to_linear(big).reshape(self.height, 4, self.width, 4, 3).mean(axis=(1, 3))
         encoded = np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1 / 2.4) - 0.055)
-        difference = np.abs(color[..., :3].astype(np.float64) - np.round(255.0 * np.clip(encoded, 0.0, 1.0)))
+        reference = np.round(255.0 * np.clip(encoded, 0.0, 1.0))
+        result: dict[str, tuple[float, float]] = {}
+        default = camera.AntiAliasingMethod
+        for method in spear.EAntiAliasingMethod:
+            with self.instance.begin_frame():
+                camera.AntiAliasingMethod = method
+            with self.instance.end_frame():
+                pass
+            color, _ = self.raster(camera)
+            difference = np.abs(color[..., :3].astype(np.float64) - reference)
+            result[method.name] = (float(difference.mean()), float(np.percentile(difference, 99)))
         with self.instance.begin_frame():
+            camera.AntiAliasingMethod = default
             large.Modalities = []
         with self.instance.end_frame():
             pass
-        return float(difference.mean()), float(np.percentile(difference, 99))
+        return result
 
     def traced(self, samples: int, label: str, denoise: bool = False) -> NDArray[np.uint8]:
         """final_color of a path-traced camera at the pose after `samples` samples per pixel."""
@@ -228,7 +241,7 @@ def main() -> None:
     qualities = [spear.EGlobalIlluminationQuality[q] for q in args.qualities.split(",")]
     rows: list[tuple[str, str, float, float, float, float, float, float]] = []
     noise: list[tuple[str, float, float]] = []
-    aliasing: list[tuple[str, float, float]] = []
+    aliasing: list[tuple[str, dict[str, tuple[float, float]]]] = []
     for name in args.scenes.split(","):
         print(f"{name}:", file=sys.stderr)
         scene = Scene(name, args.width, args.height, qualities)
@@ -261,7 +274,7 @@ def main() -> None:
         print(f"  path tracer, 64 spp against {args.reference}: relative RMSE {rmse[0]:.3f}, denoised {rmse[1]:.3f}",
               file=sys.stderr)
         noise.append((name, rmse[0], rmse[1]))
-        aliasing.append((name, *scene.aliasing(qualities[0])))
+        aliasing.append((name, scene.aliasing(qualities[0])))
         scene.close()
 
     print("| scene | quality | luminance ratio | mean rel. error | SSIM | crushed raster | crushed ref. | frame s |")
@@ -274,10 +287,11 @@ def main() -> None:
     for n, raw, filtered in noise:
         print(f"| {n} | {raw:.3f} | {filtered:.3f} |")
     print()
-    print("| scene | aliasing: final_color against 4x4 supersampled, mean (/255) | 99th percentile (/255) |")
-    print("|---|---:|---:|")
-    for n, mean, p99 in aliasing:
-        print(f"| {n} | {mean:.2f} | {p99:.1f} |")
+    methods = [m.name for m in spear.EAntiAliasingMethod]
+    print("| scene | " + " | ".join(f"{m}: mean / p99 (/255)" for m in methods) + " |")
+    print("|---|" + "---:|" * len(methods))
+    for n, by_method in aliasing:
+        print(f"| {n} | " + " | ".join(f"{by_method[m][0]:.2f} / {by_method[m][1]:.1f}" for m in methods) + " |")
 
 if __name__ == "__main__":
     main()

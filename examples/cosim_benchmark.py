@@ -192,7 +192,8 @@ def configure(camera: spear.UCameraSensorComponent, width: int, height: int) -> 
 def run(instance: spear.Instance, *, objects: int, views: int, width: int, height: int, frames: int,
         physics: str, png: Path | None, breakdown: bool = False, batched_forces: bool = False,
         shadows: bool = True,
-        global_illumination: spear.EGlobalIlluminationQuality = spear.EGlobalIlluminationQuality.Off) -> Result:
+        global_illumination: spear.EGlobalIlluminationQuality = spear.EGlobalIlluminationQuality.Off,
+        anti_aliasing: spear.EAntiAliasingMethod = spear.EAntiAliasingMethod.AAM_FXAA) -> Result:
     game = instance.get_game()
     rig: spear.AActor
     bodies: list[spear.UStaticMeshComponent] = []
@@ -215,6 +216,7 @@ def run(instance: spear.Instance, *, objects: int, views: int, width: int, heigh
         for camera in cameras:
             configure(camera, width, height)
             camera.GlobalIlluminationQuality = global_illumination
+            camera.AntiAliasingMethod = anti_aliasing
         device = cameras[0].get_render_device_info()
     with instance.end_frame():
         pass
@@ -354,6 +356,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--global-illumination", default="Off",
                         choices=[q.name for q in spear.EGlobalIlluminationQuality],
                         help="the cameras' GlobalIlluminationQuality (Off: the camera's default)")
+    parser.add_argument("--anti-aliasing", default="AAM_FXAA", choices=[m.name for m in spear.EAntiAliasingMethod],
+                        help="the cameras' AntiAliasingMethod (AAM_FXAA: the camera's default)")
     args = parser.parse_args(argv)
 
     results: list[Result] = []
@@ -367,7 +371,8 @@ def main(argv: list[str] | None = None) -> int:
                 results.append(run(instance, objects=objects, views=views, width=args.width, height=args.height,
                                    frames=args.frames, physics=args.physics, png=png, breakdown=args.breakdown,
                                    batched_forces=args.forces == "batched", shadows=not args.no_shadows,
-                                   global_illumination=spear.EGlobalIlluminationQuality[args.global_illumination]))
+                                   global_illumination=spear.EGlobalIlluminationQuality[args.global_illumination],
+                                   anti_aliasing=spear.EAntiAliasingMethod[args.anti_aliasing]))
             finally:
                 instance.close()
             print(f"N={objects}, {views} view(s): {results[-1].ms_per_frame:.1f} ms/frame", file=sys.stderr)

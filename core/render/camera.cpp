@@ -26,6 +26,8 @@ void CameraParams::validate(const char* function) const {
              "(): focusDistance must be finite and > 0, got ", focusDistance);
     SP_CHECK(vignetteIntensity >= 0.0f && vignetteIntensity <= 1.0f, InvalidArgument, function,
              "(): vignetteIntensity must be in [0, 1], got ", vignetteIntensity);
+    SP_CHECK(msaaSamples == 2 || msaaSamples == 4 || msaaSamples == 8, InvalidArgument, function,
+             "(): msaaSamples must be 2, 4 or 8, got ", msaaSamples);
 }
 
 std::string toneMapName(ToneMap toneMap) {

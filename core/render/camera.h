@@ -13,6 +13,17 @@ namespace sp::render {
 
 enum class ToneMap { Aces, Reinhard, Linear };
 
+// Anti-aliasing of final_color. The exact modalities (depth, ids, normals, ...) are never filtered.
+enum class AntiAliasing {
+    None,
+    // FXAA on the CPU as final_color is read back (fxaa.h): edges found and blended by their luma.
+    Fxaa,
+    // Multisampling: the shaded modalities (final_color, hdr_color, the intrinsic images) are drawn with
+    // msaaSamples coverage samples a pixel and averaged (final_color in linear light); the exact modalities
+    // are drawn apart, single-sampled (PassSet::samples).
+    Msaa,
+};
+
 // Settings of one camera; validate() throws sp::InvalidArgument naming the bad field.
 struct CameraParams {
     int width = 640;         // pixels
@@ -36,6 +47,12 @@ struct CameraParams {
     // Indirect light from the scene's irradiance volume where it has one (Scene::setIrradianceVolume);
     // false shades with the environment's uniform ambient term instead.
     bool globalIllumination = true;
+    // Anti-aliasing of final_color (none by default here: a library renders exactly what it is asked; the
+    // engine's camera sensor turns FXAA on).
+    AntiAliasing antiAliasing = AntiAliasing::None;
+    // Samples a pixel with AntiAliasing::Msaa: 2, 4 or 8 (at most what the device offers:
+    // Renderer::maxSamples(), 4 on llvmpipe).
+    int msaaSamples = 4;
 
     void validate(const char* function) const;
 };

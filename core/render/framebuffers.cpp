@@ -59,7 +59,20 @@ Framebuffers::~Framebuffers() {
     release();
 }
 
+void Framebuffers::releaseMultisampled() {
+    if (multisampleFbo == 0 && multisampledDepth_ == 0)
+        return;
+    glDeleteFramebuffers(1, &multisampleFbo);
+    glDeleteTextures(GLsizei(multisampled_.size()), multisampled_.data());
+    glDeleteTextures(1, &multisampledDepth_);
+    multisampleFbo = multisampledDepth_ = 0;
+    multisampled_.fill(0);
+    multisampledTargets_ = 0;
+    samples = 1;
+}
+
 void Framebuffers::release() {
+    releaseMultisampled();
     if (surfaceFbo == 0 && attributeFbo == 0 && depthBuffer_ == 0)
         return; // nothing allocated: no GL call, so a never-used target needs no context
     glDeleteFramebuffers(1, &surfaceFbo);
@@ -121,6 +134,7 @@ void Framebuffers::ensure(int w, int h, const PassSet& passes, int layerCount) {
         depthBuffer_ = makeTexture(GL_DEPTH_COMPONENT32F, w, h, layers);
         changed = true;
     }
+    ensureMultisampled(passes);
     if (!changed)
         return;
     glDeleteFramebuffers(1, &surfaceFbo);
@@ -132,6 +146,43 @@ void Framebuffers::ensure(int w, int h, const PassSet& passes, int layerCount) {
         surfaceFbo = makeFramebuffer(surfaceTargets_, true, "surface");
     if (attributeTargets_ != 0)
         attributeFbo = makeFramebuffer(attributeTargets_, true, "attribute");
+}
+
+void Framebuffers::ensureMultisampled(const PassSet& passes) {
+    if (passes.samples <= 1) {
+        releaseMultisampled();
+        return;
+    }
+    SP_CHECK(layers == 0, InvalidArgument, "Framebuffers::ensure(): multisampled targets cannot be layered");
+    if (multisampleFbo != 0 && samples == passes.samples && multisampledTargets_ == passes.surfaceTargets)
+        return;
+    releaseMultisampled();
+    const auto make = [&](GLenum format) {
+        GLuint texture = 0;
+        glCreateTextures(GL_TEXTURE_2D_MULTISAMPLE, 1, &texture);
+        // Fixed sample locations: every pixel's samples sit alike, so a resolve weighs them alike.
+        glTextureStorage2DMultisample(texture, passes.samples, format, width, height, GL_TRUE);
+        return texture;
+    };
+    glCreateFramebuffers(1, &multisampleFbo);
+    GLenum drawBuffers[kTargetCount];
+    int count = 0;
+    for (std::size_t t = 0; t < kTargetCount; ++t) {
+        if ((passes.surfaceTargets & (TargetMask(1) << t)) == 0)
+            continue;
+        multisampled_[t] = make(formatOf(static_cast<Target>(t), false));
+        glNamedFramebufferTexture(multisampleFbo, GL_COLOR_ATTACHMENT0 + count, multisampled_[t], 0);
+        drawBuffers[count] = GL_COLOR_ATTACHMENT0 + count;
+        ++count;
+    }
+    glNamedFramebufferDrawBuffers(multisampleFbo, count, drawBuffers);
+    multisampledDepth_ = make(GL_DEPTH_COMPONENT32F);
+    glNamedFramebufferTexture(multisampleFbo, GL_DEPTH_ATTACHMENT, multisampledDepth_, 0);
+    const GLenum status = glCheckNamedFramebufferStatus(multisampleFbo, GL_FRAMEBUFFER);
+    SP_CHECK(status == GL_FRAMEBUFFER_COMPLETE, InvalidState, "Framebuffers::ensure(): the ", passes.samples,
+             "-sample framebuffer is incomplete (status 0x", std::hex, status, ")");
+    samples = passes.samples;
+    multisampledTargets_ = passes.surfaceTargets;
 }
 
 Framebuffers::Attachment Framebuffers::layerAttachment(Target target, int layer) {

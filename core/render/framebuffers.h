@@ -5,7 +5,8 @@
 // Textures are allocated only for the targets the passes write and kept across frames while the size
 // and format fit. With layers, every texture is an array of that many layers and the framebuffers are
 // layered: each view drawn into them picks its layer (gl_Layer), as the views sharing a page of
-// FramebufferAtlas do. Needs a current context.
+// FramebufferAtlas do. With multisampling (PassSet::samples > 1; never layered), the shaded targets also
+// have multisampled copies, drawn by the surface pass and resolved into them. Needs a current context.
 
 #include <array>
 
@@ -37,20 +38,34 @@ class Framebuffers {
     // attached, since reading a layered one reads its first layer.
     Attachment layerAttachment(Target target, int layer);
 
+    // The multisampled texture of a shaded target (PassSet::samples > 1), 0 when there is none.
+    unsigned multisampleTexture(Target target) const {
+        return multisampled_[static_cast<std::size_t>(target)];
+    }
+
     int width = 0;
     int height = 0;
     int layers = 0; // 0: plain 2D textures
     unsigned surfaceFbo = 0;
     unsigned attributeFbo = 0;
+    // With PassSet::samples > 1: the multisampled framebuffer the surface pass draws in (its targets' and a
+    // depth buffer's multisampled copies, attached as surfaceFbo attaches the targets), and its samples.
+    unsigned multisampleFbo = 0;
+    int samples = 1;
 
   private:
     void release();
+    void releaseMultisampled();
+    void ensureMultisampled(const PassSet& passes);
     unsigned makeFramebuffer(TargetMask targets, bool depth, const char* what);
 
     std::array<unsigned, kTargetCount> textures_{};
     std::array<unsigned, kTargetCount> formats_{};
     unsigned depthBuffer_ = 0; // a depth texture (with layers, an array)
     unsigned readFbo_ = 0;     // layerAttachment()'s
+    std::array<unsigned, kTargetCount> multisampled_{};
+    unsigned multisampledDepth_ = 0;
+    TargetMask multisampledTargets_ = 0;
     TargetMask surfaceTargets_ = 0;
     TargetMask attributeTargets_ = 0;
 };

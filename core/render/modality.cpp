@@ -267,4 +267,15 @@ PassSet ModalitySet::requiredPasses(bool shadowsEnabled) const {
     return passes;
 }
 
+PassSet multisampled(PassSet passes, int samples) {
+    if (samples <= 1 || !passes.lighting)
+        return passes;
+    const TargetMask all = passes.surfaceTargets | passes.attributeTargets;
+    passes.surfaceTargets = all & kShadedTargets;
+    passes.attributeTargets = all & ~kShadedTargets;
+    passes.compactTargets = false;
+    passes.samples = samples;
+    return passes;
+}
+
 } // namespace sp::render

@@ -124,12 +124,22 @@ struct PassSet {
     // values, the normal decoded on the CPU. A software rasteriser stores integers and two channels for far
     // less than float16 conversions and four channels.
     bool compactTargets = false;
+    // Coverage samples a pixel of the shaded targets (1: none). Above 1 (multisampled(): CameraParams' MSAA),
+    // the surface pass draws only the shaded targets, into multisampled copies of them that it then resolves
+    // into them, and the attribute pass draws the other targets single-sampled with a depth buffer of its
+    // own: the exact modalities stay one value a pixel, the surface at its centre.
+    int samples = 1;
 
     bool operator==(const PassSet&) const = default;
     // Whether the surface pass writes Target::GBuffer for untextured materials and a compute pass shades
     // those pixels (Renderer::planComputeLighting() adds it; requiredPasses() never does).
     bool computeLighting() const { return (surfaceTargets & targetBit(Target::GBuffer)) != 0; }
 };
+
+// `passes` drawn with `samples` coverage samples a pixel (see PassSet::samples): the shaded targets in the
+// surface pass, the others in the attribute pass, in float targets (a multisampled resolve averages floats).
+// Passes that shade nothing, or samples of 1, are returned as they are.
+PassSet multisampled(PassSet passes, int samples);
 
 // What a compact normal target holds where no surface is: outside the octahedral square [-1, 1]^2.
 inline constexpr float kNoOctahedralNormal = 2.0f;

@@ -9,6 +9,7 @@
 #include "core/render/derived_images.h"
 #include "core/render/framebuffer_atlas.h"
 #include "core/render/framebuffers.h"
+#include "core/render/fxaa.h"
 #include "core/render/parallel_copy.h"
 #include "core/render/renderer.h"
 #include "core/render/shader_program.h"
@@ -191,16 +192,22 @@ std::vector<std::uint64_t> RenderTarget::submitAll(std::span<const Submission> s
             uniform.remove(Modality::BaseColor);
         if (textured.roughnessMetallic)
             uniform.remove(Modality::Roughness).remove(Modality::Metallic);
-        plan = planModalities(s.target->modalities_, renderer.derivesOnCpu(), uniform);
-        plan.compactTargets = renderer.compactTargets();
+        // Multisampled, every modality is drawn (none computed on the CPU from others: diffuse_only from the
+        // exact base colour and the averaged illumination would not be the average of the samples' products).
+        const bool msaa = s.camera->params.antiAliasing == AntiAliasing::Msaa;
+        plan = planModalities(s.target->modalities_, renderer.derivesOnCpu() && !msaa, uniform);
+        plan.compactTargets = renderer.compactTargets() && !msaa;
         passes.push_back(plan.rendered.requiredPasses(s.camera->params.shadows));
         passes.back().compactTargets = plan.compactTargets;
         if (!plan.lookedUp.empty()) { // planned to fit the surface pass
             passes.back().surface = true;
             passes.back().surfaceTargets |= targetBit(Target::Record);
         }
+        if (msaa)
+            passes.back() =
+                multisampled(passes.back(), std::min(s.camera->params.msaaSamples, renderer.maxSamples()));
         const int width = s.camera->params.width, height = s.camera->params.height;
-        if (renderer.atlas().suits(width, height)) {
+        if (passes.back().samples == 1 && renderer.atlas().suits(width, height)) {
             renderer.atlas().acquire(s.target, width, height, passes.back());
             s.target->framebuffers_.reset();
         } else {
@@ -315,6 +322,7 @@ void RenderTarget::copyOut(Slot& slot, Modality modality, void* destination) {
             readNow(modality, compact, slot.width(), slot.height(), normalScratch_.data());
             decodeOctahedralNormals(normalScratch_.data(), static_cast<float*>(destination), pixels);
         }
+        antiAlias(slot, modality, destination);
         renderer_.endReadback(slot.sceneUid);
         return;
     }
@@ -325,7 +333,13 @@ void RenderTarget::copyOut(Slot& slot, Modality modality, void* destination) {
     else
         parallelCopy(destination, slot.mapped[m], modalityByteSize(modality, slot.width(), slot.height()),
                      renderer_.readbackThreads());
+    antiAlias(slot, modality, destination);
     renderer_.endReadback(slot.sceneUid);
+}
+
+void RenderTarget::antiAlias(const Slot& slot, Modality modality, void* image) {
+    if (modality == Modality::FinalColor && slot.camera.params.antiAliasing == AntiAliasing::Fxaa)
+        fxaa(static_cast<std::uint8_t*>(image), slot.width(), slot.height(), defaultFxaaThreads());
 }
 
 void RenderTarget::readViews(Slot& slot, std::span<const OutputView> views) {

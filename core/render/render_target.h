@@ -107,6 +107,8 @@ class RenderTarget {
     // The slot holding the frame due for reading, or null.
     Slot* dueSlot();
     void copyOut(Slot& slot, Modality modality, void* destination);
+    // Filters final_color as read into `image` where the frame's camera asks for FXAA (fxaa.h).
+    static void antiAlias(const Slot& slot, Modality modality, void* image);
     // Reads `views` of the slot's frame: the rendered modalities first, then those computed from them (from
     // the views just read where they hold the inputs, else from scratch reads).
     void readViews(Slot& slot, std::span<const OutputView> views);

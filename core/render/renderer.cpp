@@ -94,6 +94,11 @@ Renderer::Renderer(const GlContext& context)
     vertexProbeImages_ = vertexImages > 0;
     derivesOnCpu_ = switchFromEnvironment("SPEAR_DERIVED_MODALITIES", "cpu", "rendered", !hardware);
     compactTargets_ = switchFromEnvironment("SPEAR_TARGET_FORMATS", "compact", "float", !hardware);
+    GLint samples = 1, colorSamples = 1, depthSamples = 1;
+    glGetIntegerv(GL_MAX_SAMPLES, &samples);
+    glGetIntegerv(GL_MAX_COLOR_TEXTURE_SAMPLES, &colorSamples);
+    glGetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES, &depthSamples);
+    maxSamples_ = std::max(1, std::min({samples, colorSamples, depthSamples}));
     if (context.report().software) {
         // What the surface programs' own varyings leave of the smaller of the two limits (see
         // shaders::ShadingLayout::constantSlots), in vec4s: 8 per-vertex and per-instance varyings and up to
@@ -600,7 +605,8 @@ void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
 void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassSet& passes,
                            const shaders::ShadingLayout& lights, const std::vector<Draw>& draws,
                            GpuSceneCache& cache, Framebuffers& fb) {
-    beginPass(Pass::Surface, fb.surfaceFbo, fb, GL_LESS, true);
+    const bool multisampled = passes.samples > 1;
+    beginPass(Pass::Surface, multisampled ? fb.multisampleFbo : fb.surfaceFbo, fb, GL_LESS, true);
     if (!passes.lighting) // the material chunk still reads the camera position (and the layer) from it
         uploadFrameBlock(scene, camera, {}, {});
     if (!pageCleared_) // else cleared with its page (clearPages())
@@ -615,8 +621,31 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
         drawEnvironmentBackground(camera, fb, passes.surfaceTargets, lights.toneMap);
     else if (lights.vignette && (passes.surfaceTargets & targetBit(Target::FinalColor)) != 0)
         drawVignettedBackground(passes.surfaceTargets, lights.toneMap);
+    if (multisampled)
+        resolveSamples(passes, fb);
     active_->timers.end();
     ++active_->stats.surfacePasses;
+}
+
+void Renderer::resolveSamples(const PassSet& passes, const Framebuffers& fb) {
+    auto& program =
+        programs_["resolve/" + std::to_string(passes.surfaceTargets) + "/" + std::to_string(passes.samples)];
+    if (!program)
+        program = std::make_unique<ShaderProgram>(
+            "resolve", shaders::backgroundVertex(false).c_str(),
+            shaders::resolveFragment(passes.surfaceTargets, passes.samples).c_str());
+    program->use();
+    int unit = 0;
+    for (std::size_t t = 0; t < kTargetCount; ++t)
+        if ((passes.surfaceTargets & (TargetMask(1) << t)) != 0)
+            glBindTextureUnit(GLuint(shaders::kResolveTextureUnit + unit++),
+                              fb.multisampleTexture(static_cast<Target>(t)));
+    glBindFramebuffer(GL_FRAMEBUFFER, fb.surfaceFbo);
+    glDisable(GL_DEPTH_TEST);
+    glBindVertexArray(emptyVao_);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glEnable(GL_DEPTH_TEST);
 }
 
 void Renderer::drawVignettedBackground(TargetMask targets, ToneMap toneMap) {
@@ -693,14 +722,24 @@ void Renderer::drawEnvironmentBackground(const Camera& camera, const Framebuffer
 
 void Renderer::attributePass(const Scene& scene, const Camera& camera, const PassSet& passes,
                              const std::vector<Draw>& draws, GpuSceneCache& cache, Framebuffers& fb) {
+    shaders::ShadingLayout constantsOnly; // no shading: the camera position alone
+    constantsOnly.constantSlots = viewConstantSlots_;
+    if (passes.samples > 1) {
+        // The surface pass drew multisampled: the exact targets are drawn as a surface pass that shades
+        // nothing draws them, with the single-sampled depth buffer.
+        beginPass(Pass::Attribute, fb.attributeFbo, fb, GL_LESS, true);
+        clearTargets(scene, camera, passes.attributeTargets, true);
+        drawAll(scene, camera, draws, passes.attributeTargets, false, constantsOnly, cache);
+        active_->timers.end();
+        ++active_->stats.attributePasses;
+        return;
+    }
     // The surface pass's depth, kept: a fragment passes only where it is the one the surface pass left. Where
     // surfaces tie (coincident instances), every tied fragment passes and the last drawn stays, while the
     // surface pass (GL_LESS) kept the first drawn: drawn in reverse order, the last here is the first there.
     beginPass(Pass::Attribute, fb.attributeFbo, fb, GL_LEQUAL, false);
     clearTargets(scene, camera, passes.attributeTargets, false);
     const std::vector<Draw> reversed(draws.rbegin(), draws.rend());
-    shaders::ShadingLayout constantsOnly; // no shading: the camera position alone
-    constantsOnly.constantSlots = viewConstantSlots_;
     drawAll(scene, camera, reversed, passes.attributeTargets, false, constantsOnly, cache);
     glDepthMask(GL_TRUE);
     active_->timers.end();
@@ -1035,7 +1074,7 @@ void Renderer::planComputeLighting(PassSet& passes) const {
     // float16 rounding) and has a draw buffer left for the G-buffer.
     // Its image stores write float formats: not into compact targets.
     if (!computeLighting_ || passes.compactTargets || !passes.lighting || passes.attributeTargets != 0 ||
-        (passes.surfaceTargets & kShadedTargets & ~kComputeLit) != 0 ||
+        passes.samples > 1 || (passes.surfaceTargets & kShadedTargets & ~kComputeLit) != 0 ||
         std::popcount(passes.surfaceTargets) + 1 > kMaxDrawTargets)
         return;
     passes.surfaceTargets |= targetBit(Target::GBuffer);

@@ -202,6 +202,9 @@ class Renderer {
     // both ways (images are the same bit for bit); setting it drops what the renderer holds for its scenes.
     bool layeredShadowMaps() const;
     void setLayeredShadowMaps(bool on);
+    // The most coverage samples a pixel multisampled targets can have here (GL_MAX_SAMPLES and the colour and
+    // depth texture limits; 4 on llvmpipe); a camera asking for more gets these.
+    int maxSamples() const { return maxSamples_; }
 
   private:
     struct Draw; // one submesh of a visible instance
@@ -262,6 +265,9 @@ class Renderer {
                      GpuSceneCache& cache, Framebuffers& fb);
     void attributePass(const Scene& scene, const Camera& camera, const PassSet& passes,
                        const std::vector<Draw>& draws, GpuSceneCache& cache, Framebuffers& fb);
+    // Averages the multisampled copies of the shaded targets into them (PassSet::samples > 1): final_color in
+    // linear light, the others as they are.
+    void resolveSamples(const PassSet& passes, const Framebuffers& fb);
     // Starts timing `pass` and binds `fbo` at the framebuffers' size with the given depth test and writes.
     void beginPass(Pass pass, unsigned fbo, const Framebuffers& fb, unsigned depthFunc, bool depthWrite);
     // Clears the view's pixels of the bound framebuffer's `targets` to what a background pixel of each
@@ -298,6 +304,7 @@ class Renderer {
     std::unique_ptr<ShaderProgram> shadow_;
     std::unique_ptr<ShaderProgram> idChannel_[2]; // by layered; made at the first id readback
     bool packIdsOnGpu_ = true;
+    int maxSamples_ = 1;
     bool stagedReadback_ = false;
     bool computeLighting_ = false;
     bool vertexIrradiance_ = false;

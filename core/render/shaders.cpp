@@ -958,6 +958,47 @@ std::string environmentBackgroundFragment(TargetMask targets, ToneMap toneMap, b
            " }\n";
 }
 
+std::string resolveFragment(TargetMask targets, int samples) {
+    std::string text = "#version 450 core\n#define SAMPLES " + std::to_string(samples) + "\n";
+    text += R"glsl(
+vec3 srgbToLinear(vec3 c) {
+    return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
+}
+vec3 linearToSrgb(vec3 c) {
+    return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
+}
+)glsl";
+    int unit = 0;
+    for (std::size_t t = 0; t < kTargetCount; ++t)
+        if ((targets & (TargetMask(1) << t)) != 0) {
+            text += "layout(binding = " + std::to_string(kResolveTextureUnit + unit) +
+                    ") uniform sampler2DMS uS" + std::to_string(unit) + ";\n";
+            ++unit;
+        }
+    const auto [declarations, body] =
+        locatedOutputs(targets, false, [](Target target, const std::string& index) {
+            const std::string sampler = "uS" + index;
+            if (target == Target::FinalColor)
+                return "finalAverage(" + sampler + ", p)";
+            return "average(" + sampler + ", p)";
+        });
+    text += R"glsl(
+vec4 average(sampler2DMS s, ivec2 p) {
+    vec4 sum = vec4(0.0);
+    for (int i = 0; i < SAMPLES; ++i)
+        sum += texelFetch(s, p, i);
+    return sum / float(SAMPLES);
+}
+vec4 finalAverage(sampler2DMS s, ivec2 p) {
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < SAMPLES; ++i)
+        sum += srgbToLinear(texelFetch(s, p, i).rgb);
+    return vec4(linearToSrgb(sum / float(SAMPLES)), 1.0);
+}
+)glsl";
+    return text + declarations + "void main() { ivec2 p = ivec2(gl_FragCoord.xy);" + body + " }\n";
+}
+
 std::string clearFragment(TargetMask targets, bool compact) {
     std::string text = "#version 450 core\nuniform vec4 uClear[" + std::to_string(kTargetCount) + "];\n";
     text += encodings(compact);

@@ -137,6 +137,12 @@ std::string backgroundFragment(int location, ToneMap toneMap);
 // specular_residual (all of a background pixel is residual) and, tone-mapped, final_color, at their locations
 // among `targets`; drawn after the surfaces where none was.
 std::string environmentBackgroundFragment(TargetMask targets, ToneMap toneMap, bool compact);
+// The resolve of multisampled shaded targets (PassSet::samples > 1): the average of each pixel's `samples`
+// samples of each of `targets` (read from texture units kResolveTextureUnit + i, in Target order) into the
+// same location; final_color's samples are averaged in linear light, as a camera's pixel (and a supersampled
+// view) averages light, and encoded again.
+inline constexpr int kResolveTextureUnit = 16;
+std::string resolveFragment(TargetMask targets, int samples);
 // Writes uClear[i] into the i-th of `targets` (in Target order; zero into the ids target): a clear of one
 // view's layer of shared framebuffers, drawn with backgroundVertex(true) (see Renderer::clearTargets).
 std::string clearFragment(TargetMask targets, bool compact = false);

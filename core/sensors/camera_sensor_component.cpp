@@ -153,6 +153,12 @@ void UCameraSensorComponent::SetFocusDistance(double NewFocusDistance) {
     FocusDistance = NewFocusDistance;
 }
 
+void UCameraSensorComponent::SetMSAASampleCount(int32_t NewMSAASampleCount) {
+    sp::checkSetting(NewMSAASampleCount == 2 || NewMSAASampleCount == 4 || NewMSAASampleCount == 8,
+                     "UCameraSensorComponent", "MSAASampleCount", "2, 4 or 8", NewMSAASampleCount);
+    MSAASampleCount = NewMSAASampleCount;
+}
+
 void UCameraSensorComponent::SetVignetteIntensity(float NewVignetteIntensity) {
     sp::checkSetting(NewVignetteIntensity >= 0.0f && NewVignetteIntensity <= 1.0f, "UCameraSensorComponent",
                      "VignetteIntensity", "in [0, 1]", NewVignetteIntensity);

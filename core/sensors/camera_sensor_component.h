@@ -74,6 +74,22 @@ enum class ECameraRenderer : uint8_t {
     PathTraced = 1,
 };
 
+/// How a rasterised camera's final_color is anti-aliased (Unreal's names and values). The exact modalities
+/// (depth, position, normal, ids, material inputs) are never filtered: one exact value per pixel, at its
+/// centre.
+SPENUM()
+enum class EAntiAliasingMethod : uint8_t {
+    /// None: each pixel shows the surface at its centre.
+    AAM_None = 0,
+    /// Fast approximate anti-aliasing (Lottes 2009): edges found by their luma and blended along their
+    /// staircase, in linear light, as the image is read back (core/render/fxaa.h).
+    AAM_FXAA = 1,
+    /// Multisampling: final_color, hdr_color and the intrinsic images are drawn with MSAASampleCount
+    /// coverage samples a pixel and averaged (final_color in linear light). The exact modalities are drawn
+    /// in a pass of their own. Best at silhouettes; on a software rasteriser it costs about twice a frame.
+    AAM_MSAA = 3,
+};
+
 /// How much indirect light a rasterised camera shows: the world's irradiance probes (a grid over the scene,
 /// lit by the path tracer's rays, blended per pixel; core/render/README.md, "Global illumination"). The
 /// names follow Unreal's scalability levels (sg.GlobalIlluminationQuality). A world lights its probes at the
@@ -374,6 +390,16 @@ class UCameraSensorComponent : public USceneComponent {
     SPPROPERTY()
     EGlobalIlluminationQuality GlobalIlluminationQuality = EGlobalIlluminationQuality::Off;
 
+    /// Anti-aliasing of the rasterised final_color; FXAA by default. The path tracer's pixels average rays
+    /// spread over the pixel, so its images need none and take none.
+    SPPROPERTY()
+    EAntiAliasingMethod AntiAliasingMethod = EAntiAliasingMethod::AAM_FXAA;
+
+    /// Coverage samples a pixel with AAM_MSAA: 2, 4 or 8 (Unreal's r.MSAACount); a device offering fewer
+    /// (llvmpipe: 4) draws its most.
+    SPPROPERTY(Setter = SetMSAASampleCount)
+    int32_t MSAASampleCount = 4;
+
     /// Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating.
     SPPROPERTY(Setter = SetSamplesPerPixel)
     int32_t SamplesPerPixel = 4;
@@ -461,6 +487,10 @@ class UCameraSensorComponent : public USceneComponent {
     /// Sets FocusDistance in metres (> 0 and finite).
     SPFUNCTION()
     void SetFocusDistance(double NewFocusDistance);
+    /// Sets MSAASampleCount: 2, 4 or 8.
+    SPFUNCTION()
+    void SetMSAASampleCount(int32_t NewMSAASampleCount);
+
     /// Sets VignetteIntensity, in [0, 1].
     SPFUNCTION()
     void SetVignetteIntensity(float NewVignetteIntensity);

@@ -72,6 +72,15 @@ sp::render::CameraParams cameraParams(const UCameraSensorComponent& camera, int 
     params.shadows = camera.bShadows;
     params.shadowResolution = camera.ShadowResolution != 0 ? camera.ShadowResolution : sizedResolution;
     params.globalIllumination = camera.GlobalIlluminationQuality != EGlobalIlluminationQuality::Off;
+    // (The path tracer's pixels average rays spread over them: none.)
+    params.antiAliasing = sp::render::AntiAliasing::None;
+    if (camera.Renderer == ECameraRenderer::Raster &&
+        camera.AntiAliasingMethod == EAntiAliasingMethod::AAM_FXAA)
+        params.antiAliasing = sp::render::AntiAliasing::Fxaa;
+    if (camera.Renderer == ECameraRenderer::Raster &&
+        camera.AntiAliasingMethod == EAntiAliasingMethod::AAM_MSAA)
+        params.antiAliasing = sp::render::AntiAliasing::Msaa;
+    params.msaaSamples = camera.MSAASampleCount;
     return params;
 }
 

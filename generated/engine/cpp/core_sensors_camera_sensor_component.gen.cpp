@@ -41,6 +41,19 @@
 #include "generated/engine/cpp/engine_calls.gen.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EAntiAliasingMethod>() {
+    static const sp::reflect::EnumInfo info{
+        "EAntiAliasingMethod",
+        "How a rasterised camera's final_color is anti-aliased (Unreal's names and values). The exact modalities\n(depth, position, normal, ids, material inputs) are never filtered: one exact value per pixel, at its\ncentre.",
+        {
+            {"AAM_None", 0},
+            {"AAM_FXAA", 1},
+            {"AAM_MSAA", 3},
+        },
+    };
+    return info;
+}
+
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraModality>() {
     static const sp::reflect::EnumInfo info{
         "ECameraModality",
@@ -860,6 +873,26 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
         });
         t.properties.push_back({
+            "AntiAliasingMethod",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EAntiAliasingMethod"),
+            "Anti-aliasing of the rasterised final_color; FXAA by default. The path tracer's pixels average rays\nspread over the pixel, so its images need none and take none.",
+            false,
+            [](const void* self) { return Calls::get_AntiAliasingMethod<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_AntiAliasingMethod<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "MSAASampleCount",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
+            "Coverage samples a pixel with AAM_MSAA: 2, 4 or 8 (Unreal's r.MSAACount); a device offering fewer\n(llvmpipe: 4) draws its most.",
+            false,
+            [](const void* self) { return Calls::get_MSAASampleCount<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_MSAASampleCount<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
             "SamplesPerPixel",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating.",
@@ -1096,6 +1129,17 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             false,
             false,
             [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetFocusDistance<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "SetMSAASampleCount",
+            "Sets MSAASampleCount: 2, 4 or 8.",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"NewMSAASampleCount", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetMSAASampleCount<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetVignetteIntensity",

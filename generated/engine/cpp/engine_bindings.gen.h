@@ -209,6 +209,21 @@ template <> struct Ref<UWorld> : Ref<UObject> {
 
 namespace pybind11::detail {
 
+template <> struct type_caster<EAntiAliasingMethod> {
+    PYBIND11_TYPE_CASTER(EAntiAliasingMethod, const_name("EAntiAliasingMethod"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EAntiAliasingMethod");
+        if (!isinstance(src, cls))
+            return false;
+        value = static_cast<EAntiAliasingMethod>(src.cast<int64_t>());
+        return true;
+    }
+    static handle cast(EAntiAliasingMethod v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EAntiAliasingMethod");
+        return cls(static_cast<int64_t>(v)).release();
+    }
+};
+
 template <> struct type_caster<ECameraModality> {
     PYBIND11_TYPE_CASTER(ECameraModality, const_name("ECameraModality"));
     bool load(handle src, bool) {

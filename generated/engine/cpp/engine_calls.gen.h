@@ -3518,6 +3518,24 @@ struct UCameraSensorComponentCalls {
         sp::reflect::notifyPropertyChanged(self, "GlobalIlluminationQuality");
     }
 
+    template <typename Call> static typename Call::Result get_AntiAliasingMethod(const Self* self) {
+        const auto& value = self->AntiAliasingMethod;
+        return Call::template result<EAntiAliasingMethod>(value);
+    }
+    template <typename Call> static void set_AntiAliasingMethod(Self* self, const typename Call::Input& value) {
+        self->AntiAliasingMethod = Call::template input<EAntiAliasingMethod>(value, "UCameraSensorComponent.AntiAliasingMethod");
+        sp::reflect::notifyPropertyChanged(self, "AntiAliasingMethod");
+    }
+
+    template <typename Call> static typename Call::Result get_MSAASampleCount(const Self* self) {
+        const auto& value = self->MSAASampleCount;
+        return Call::template result<int32_t>(value);
+    }
+    template <typename Call> static void set_MSAASampleCount(Self* self, const typename Call::Input& value) {
+        self->SetMSAASampleCount(Call::template input<int32_t>(value, "UCameraSensorComponent.MSAASampleCount"));
+        sp::reflect::notifyPropertyChanged(self, "MSAASampleCount");
+    }
+
     template <typename Call> static typename Call::Result get_SamplesPerPixel(const Self* self) {
         const auto& value = self->SamplesPerPixel;
         return Call::template result<int32_t>(value);
@@ -3765,6 +3783,18 @@ struct UCameraSensorComponentCalls {
         Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetFocusDistance()");
         double NewFocusDistanceArg = call.template arg<double>(0);
         self->SetFocusDistance(NewFocusDistanceArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetMSAASampleCount(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewMSAASampleCount", "UCameraSensorComponent.SetMSAASampleCount(): argument 'NewMSAASampleCount'", true},
+        }};
+        const Call call(args, "UCameraSensorComponent.SetMSAASampleCount()", kParams);
+        Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetMSAASampleCount()");
+        int32_t NewMSAASampleCountArg = call.template arg<int32_t>(0);
+        self->SetMSAASampleCount(NewMSAASampleCountArg);
         return Call::none();
     }
 

@@ -15,6 +15,7 @@
 #include "core/world/scene_component.h"
 #include "core/world/spline_component.h"
 
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EAntiAliasingMethod>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraModality>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraRenderer>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraToneCurve>();
@@ -47,5 +48,5 @@ __attribute__((visibility("default"))) const char* spear_register_engine_types_a
 
 // The same hash as a constant: a plugin compiled against these headers records the engine's.
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "5c5ea5acbef06dca";
+inline constexpr char kApiHash[] = "a744d39ed016d6b6";
 } // namespace sp::generated::engine

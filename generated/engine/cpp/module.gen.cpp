@@ -1932,6 +1932,20 @@ void spear_bind_engine(py::module_& m) {
             },
             "The rasteriser's indirect light (global illumination). A world's probes are lit in full on the first\nframe a camera asks for them; when the scene changes, the probes least recently lit are lit again, a\nbudget per frame, so that a change reaches every probe within a bounded number of frames\n(core/render/README.md). Off by default until it fits Table 3's frame budget on a software rasteriser\nwith room to spare (Medium: 2-3 ms more per 1080p frame on llvmpipe; BENCHMARKS.md).");
         cls.def_property(
+            "AntiAliasingMethod",
+            [](const Ref<Self>& self) { return Calls::get_AntiAliasingMethod<PyCall>(self.get<Self>("UCameraSensorComponent.AntiAliasingMethod")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_AntiAliasingMethod<PyCall>(self.get<Self>("UCameraSensorComponent.AntiAliasingMethod"), value);
+            },
+            "Anti-aliasing of the rasterised final_color; FXAA by default. The path tracer's pixels average rays\nspread over the pixel, so its images need none and take none.");
+        cls.def_property(
+            "MSAASampleCount",
+            [](const Ref<Self>& self) { return Calls::get_MSAASampleCount<PyCall>(self.get<Self>("UCameraSensorComponent.MSAASampleCount")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_MSAASampleCount<PyCall>(self.get<Self>("UCameraSensorComponent.MSAASampleCount"), value);
+            },
+            "Coverage samples a pixel with AAM_MSAA: 2, 4 or 8 (Unreal's r.MSAACount); a device offering fewer\n(llvmpipe: 4) draws its most.");
+        cls.def_property(
             "SamplesPerPixel",
             [](const Ref<Self>& self) { return Calls::get_SamplesPerPixel<PyCall>(self.get<Self>("UCameraSensorComponent.SamplesPerPixel")); },
             [](const Ref<Self>& self, const PyArg& value) {
@@ -2104,6 +2118,14 @@ void spear_bind_engine(py::module_& m) {
             },
             py::arg("NewFocusDistance") = sp::pybind::missingArgument(),
             "SetFocusDistance(self, *, NewFocusDistance: float) -> None\n\nSets FocusDistance in metres (> 0 and finite).");
+        cls.def(
+            "SetMSAASampleCount",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewMSAASampleCount, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetMSAASampleCount<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewMSAASampleCount}, true});
+            },
+            py::arg("NewMSAASampleCount") = sp::pybind::missingArgument(),
+            "SetMSAASampleCount(self, *, NewMSAASampleCount: int) -> None\n\nSets MSAASampleCount: 2, 4 or 8.");
         cls.def(
             "SetVignetteIntensity",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewVignetteIntensity, const py::kwargs& extra) -> py::object {

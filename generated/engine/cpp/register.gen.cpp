@@ -40,6 +40,7 @@
 
 extern "C" void spear_register_engine_types() {
     auto& registry = sp::reflect::Registry::get();
+    registry.add(sp::reflect::StaticEnum<EAntiAliasingMethod>());
     registry.add(sp::reflect::StaticEnum<ECameraModality>());
     registry.add(sp::reflect::StaticEnum<ECameraRenderer>());
     registry.add(sp::reflect::StaticEnum<ECameraToneCurve>());
@@ -209,6 +210,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraToneCurve>());
     registry.remove(sp::reflect::StaticEnum<ECameraRenderer>());
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
+    registry.remove(sp::reflect::StaticEnum<EAntiAliasingMethod>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "5c5ea5acbef06dca"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "a744d39ed016d6b6"; }

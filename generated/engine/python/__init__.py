@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "5c5ea5acbef06dca"
+API_HASH = "a744d39ed016d6b6"

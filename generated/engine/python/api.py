@@ -51,6 +51,7 @@ __all__ = [
     "AWheeledVehiclePawn",
     "BP_Axes",
     "BP_Crate",
+    "EAntiAliasingMethod",
     "ECameraModality",
     "ECameraRenderer",
     "ECameraToneCurve",
@@ -107,6 +108,17 @@ __all__ = [
     "UStaticMeshComponent",
     "UWorld",
 ]
+
+
+class EAntiAliasingMethod(enum.IntEnum):
+    """How a rasterised camera's final_color is anti-aliased (Unreal's names and values). The exact modalities
+    (depth, position, normal, ids, material inputs) are never filtered: one exact value per pixel, at its
+    centre.
+    """
+
+    AAM_None = 0
+    AAM_FXAA = 1
+    AAM_MSAA = 3
 
 
 class ECameraModality(enum.IntEnum):

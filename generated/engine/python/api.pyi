@@ -44,6 +44,7 @@ __all__ = [
     "AWheeledVehiclePawn",
     "BP_Axes",
     "BP_Crate",
+    "EAntiAliasingMethod",
     "ECameraModality",
     "ECameraRenderer",
     "ECameraToneCurve",
@@ -106,6 +107,25 @@ _AActorT = TypeVar("_AActorT", bound="AActor")
 _UActorComponentT = TypeVar("_UActorComponentT", bound="UActorComponent")
 
 _UObjectT = TypeVar("_UObjectT", bound="UObject")
+
+
+class EAntiAliasingMethod(enum.IntEnum):
+    """How a rasterised camera's final_color is anti-aliased (Unreal's names and values). The exact modalities
+    (depth, position, normal, ids, material inputs) are never filtered: one exact value per pixel, at its
+    centre.
+    """
+
+    AAM_None = 0
+    """None: each pixel shows the surface at its centre."""
+    AAM_FXAA = 1
+    """Fast approximate anti-aliasing (Lottes 2009): edges found by their luma and blended along their
+    staircase, in linear light, as the image is read back (core/render/fxaa.h).
+    """
+    AAM_MSAA = 3
+    """Multisampling: final_color, hdr_color and the intrinsic images are drawn with MSAASampleCount
+    coverage samples a pixel and averaged (final_color in linear light). The exact modalities are drawn
+    in a pass of their own. Best at silhouettes; on a software rasteriser it costs about twice a frame.
+    """
 
 
 class ECameraModality(enum.IntEnum):
@@ -2812,6 +2832,8 @@ class UCameraSensorComponentAsync(USceneComponentAsync):
 
     def SetFocusDistance(self, *, NewFocusDistance: float) -> Future[None]: ...
 
+    def SetMSAASampleCount(self, *, NewMSAASampleCount: int) -> Future[None]: ...
+
     def SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> Future[None]: ...
 
     def SetWhiteBalanceTemperature(self, *, NewWhiteBalanceTemperature: float) -> Future[None]: ...
@@ -2893,6 +2915,8 @@ class UCameraSensorComponentSend(USceneComponentSend):
     def SetApertureFNumber(self, *, NewApertureFNumber: float) -> None: ...
 
     def SetFocusDistance(self, *, NewFocusDistance: float) -> None: ...
+
+    def SetMSAASampleCount(self, *, NewMSAASampleCount: int) -> None: ...
 
     def SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> None: ...
 
@@ -3119,6 +3143,24 @@ class UCameraSensorComponent(USceneComponent):
     def GlobalIlluminationQuality(self, value: EGlobalIlluminationQuality) -> None: ...
 
     @property
+    def AntiAliasingMethod(self) -> EAntiAliasingMethod:
+        """Anti-aliasing of the rasterised final_color; FXAA by default. The path tracer's pixels average rays
+        spread over the pixel, so its images need none and take none.
+        """
+
+    @AntiAliasingMethod.setter
+    def AntiAliasingMethod(self, value: EAntiAliasingMethod) -> None: ...
+
+    @property
+    def MSAASampleCount(self) -> int:
+        """Coverage samples a pixel with AAM_MSAA: 2, 4 or 8 (Unreal's r.MSAACount); a device offering fewer
+        (llvmpipe: 4) draws its most.
+        """
+
+    @MSAASampleCount.setter
+    def MSAASampleCount(self, value: int) -> None: ...
+
+    @property
     def SamplesPerPixel(self) -> int:
         """Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating."""
 
@@ -3221,6 +3263,9 @@ class UCameraSensorComponent(USceneComponent):
 
     def SetFocusDistance(self, *, NewFocusDistance: float) -> None:
         """Sets FocusDistance in metres (> 0 and finite)."""
+
+    def SetMSAASampleCount(self, *, NewMSAASampleCount: int) -> None:
+        """Sets MSAASampleCount: 2, 4 or 8."""
 
     def SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> None:
         """Sets VignetteIntensity, in [0, 1]."""

@@ -20,7 +20,7 @@ from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
 from . import type_codes as _t
-from .api import ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EGlobalIlluminationQuality, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESkyLightSourceType, ESplineCoordinateSpace, FCameraPixels, FFrameTimings, FHitResult, FLensDistortion, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
+from .api import EAntiAliasingMethod, ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EGlobalIlluminationQuality, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESkyLightSourceType, ESplineCoordinateSpace, FCameraPixels, FFrameTimings, FHitResult, FLensDistortion, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
 
@@ -1341,6 +1341,22 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
         self._sp_set("UCameraSensorComponent", "GlobalIlluminationQuality", value)
 
     @property
+    def AntiAliasingMethod(self) -> EAntiAliasingMethod:
+        return cast("EAntiAliasingMethod", self._sp_get("UCameraSensorComponent", "AntiAliasingMethod", _t.T_EAntiAliasingMethod))
+
+    @AntiAliasingMethod.setter
+    def AntiAliasingMethod(self, value: EAntiAliasingMethod) -> None:
+        self._sp_set("UCameraSensorComponent", "AntiAliasingMethod", value)
+
+    @property
+    def MSAASampleCount(self) -> int:
+        return cast("int", self._sp_get("UCameraSensorComponent", "MSAASampleCount", _t.T_int))
+
+    @MSAASampleCount.setter
+    def MSAASampleCount(self, value: int) -> None:
+        self._sp_set("UCameraSensorComponent", "MSAASampleCount", value)
+
+    @property
     def SamplesPerPixel(self) -> int:
         return cast("int", self._sp_get("UCameraSensorComponent", "SamplesPerPixel", _t.T_int))
 
@@ -1425,6 +1441,9 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     def SetFocusDistance(self, *, NewFocusDistance: float) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetFocusDistance", {"NewFocusDistance": NewFocusDistance}, _t.T_void))  # a Future when queued by call_async
+
+    def SetMSAASampleCount(self, *, NewMSAASampleCount: int) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetMSAASampleCount", {"NewMSAASampleCount": NewMSAASampleCount}, _t.T_void))  # a Future when queued by call_async
 
     def SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetVignetteIntensity", {"NewVignetteIntensity": NewVignetteIntensity}, _t.T_void))  # a Future when queued by call_async

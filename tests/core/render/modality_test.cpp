@@ -49,6 +49,24 @@ TEST(ModalityTest, OnlyNeededPassesAreRequired) {
     EXPECT_FALSE(ModalitySet().requiredPasses(true).surface);
 }
 
+TEST(ModalityTest, MultisampledPassesDrawTheShadedTargetsApartFromTheExactOnes) {
+    PassSet common =
+        ModalitySet{Modality::FinalColor, Modality::Depth, Modality::ObjectIds}.requiredPasses(true);
+    common.compactTargets = true;
+    const PassSet split = multisampled(common, 4);
+    EXPECT_EQ(split.samples, 4);
+    EXPECT_FALSE(split.compactTargets);
+    EXPECT_EQ(split.surfaceTargets, targetBit(Target::FinalColor));
+    EXPECT_EQ(split.attributeTargets, targetBit(Target::Depth) | targetBit(Target::Ids));
+    const PassSet all = multisampled(ModalitySet::all().requiredPasses(true), 8);
+    EXPECT_EQ(all.surfaceTargets, kShadedTargets);
+    EXPECT_EQ(all.surfaceTargets | all.attributeTargets, ModalitySet::all().targets());
+    // Nothing shaded, or one sample: unchanged.
+    const PassSet ids = ModalitySet{Modality::ObjectIds}.requiredPasses(true);
+    EXPECT_EQ(multisampled(ids, 4), ids);
+    EXPECT_EQ(multisampled(common, 1), common);
+}
+
 TEST(ModalityTest, OnePassWhenTheTargetsFitTheDrawBuffers) {
     // Colour, depth, normals and both ids: four targets.
     const PassSet common = ModalitySet{Modality::FinalColor, Modality::Depth, Modality::Normal,

@@ -1,4 +1,5 @@
-"""Negative typing case: a misspelled modality is a type error, as a dict key and as an enum member."""
+"""Negative typing case: a misspelled modality is a type error, as a dict key and as an enum member; so are an
+anti-aliasing method given as a number and one spear does not have."""
 
 # pyright: standard
 # (negative cases are checked as most pyright and Pylance users run it; strict reports more)
@@ -14,3 +15,5 @@ def misuse(camera: spear.UCameraSensorComponent) -> None:
     camera.Modalities = [spear.ECameraModality.Dept]  # E: "Type[ECameraModality]" has no attribute "Dept"  [attr-defined]  # P: reportAttributeAccessIssue: Cannot access attribute "Dept" for class "type[ECameraModality]" / Attribute "Dept" is unknown
     camera.Modalities = ["depth"]  # E: List item 0 has incompatible type "str"; expected "ECameraModality"  [list-item]  # P: reportAttributeAccessIssue: Cannot assign to attribute "Modalities" for class "UCameraSensorComponent" / "Literal['depth']" is not assignable to "ECameraModality"
     camera.CameraSensor  # E: "UCameraSensorComponent" has no attribute "CameraSensor"  [attr-defined]  # P: reportAttributeAccessIssue: Cannot access attribute "CameraSensor" for class "UCameraSensorComponent" / Attribute "CameraSensor" is unknown
+    camera.AntiAliasingMethod = 3  # E: Incompatible types in assignment (expression has type "int", variable has type "EAntiAliasingMethod")  [assignment]  # P: reportAttributeAccessIssue: Cannot assign to attribute "AntiAliasingMethod" for class "UCameraSensorComponent" / "Literal[3]" is not assignable to "EAntiAliasingMethod"
+    camera.AntiAliasingMethod = spear.EAntiAliasingMethod.AAM_TSR  # E: "Type[EAntiAliasingMethod]" has no attribute "AAM_TSR"  [attr-defined]  # P: reportAttributeAccessIssue: Cannot access attribute "AAM_TSR" for class "type[EAntiAliasingMethod]" / Attribute "AAM_TSR" is unknown

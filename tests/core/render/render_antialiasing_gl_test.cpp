@@ -1,0 +1,169 @@
+// Anti-aliasing (CameraParams::antiAliasing): the exact modalities stay bit for bit what a camera without it
+// reads; FXAA changes final_color at the silhouettes, the same whether read from the readback buffer
+// (latency 1) or the framebuffers (latency 0); MSAA brings final_color close to a supersampled view and
+// keeps hdr_color = diffuse_only + specular_residual.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <utility>
+
+#include "core/base/error.h"
+#include "core/render/image_buffer.h"
+#include "gl_fixture.h"
+#include "test_scenes.h"
+
+namespace sp::render::test {
+namespace {
+
+class RenderAntiAliasingGlTest : public GlTest {};
+
+const ModalitySet kModalities{Modality::FinalColor, Modality::Depth, Modality::Normal, Modality::ObjectIds};
+
+TEST_F(RenderAntiAliasingGlTest, FxaaFiltersFinalColorAtSilhouettesAndLeavesExactModalitiesExact) {
+    Scene scene;
+    buildShapesScene(scene);
+    Camera plain = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 160, 120, 60.0);
+    Camera filtered = plain;
+    filtered.params.antiAliasing = AntiAliasing::Fxaa;
+    const Frame a = renderFrame(scene, plain, kModalities), b = renderFrame(scene, filtered, kModalities);
+
+    for (Modality m : {Modality::Depth, Modality::Normal, Modality::ObjectIds})
+        EXPECT_EQ(a.get(m).bytes, b.get(m).bytes) << modalityName(m);
+
+    // Changed pixels, and how many of them lie within a pixel of an object's silhouette.
+    const auto ids = a.get(Modality::ObjectIds).as<std::uint32_t>();
+    const auto x = a.get(Modality::FinalColor).as<std::uint8_t>(),
+               y = b.get(Modality::FinalColor).as<std::uint8_t>();
+    const int w = plain.params.width, h = plain.params.height;
+    const auto id = [&](int u, int v) {
+        return ids[std::size_t(std::clamp(v, 0, h - 1)) * std::size_t(w) +
+                   std::size_t(std::clamp(u, 0, w - 1))];
+    };
+    int changed = 0, atSilhouettes = 0;
+    for (int v = 0; v < h; ++v)
+        for (int u = 0; u < w; ++u) {
+            const std::size_t i = 4 * (std::size_t(v) * std::size_t(w) + std::size_t(u));
+            EXPECT_EQ(y[i + 3], 255);
+            if (x[i] == y[i] && x[i + 1] == y[i + 1] && x[i + 2] == y[i + 2])
+                continue;
+            ++changed;
+            bool silhouette = false;
+            for (int dv = -1; dv <= 1; ++dv)
+                for (int du = -1; du <= 1; ++du)
+                    silhouette = silhouette || id(u + du, v + dv) != id(u, v);
+            atSilhouettes += silhouette ? 1 : 0;
+        }
+    EXPECT_GT(changed, 100);
+    // The rest are shadow edges and the sphere's highlight.
+    EXPECT_GT(atSilhouettes, changed * 6 / 10) << changed << " changed";
+}
+
+TEST_F(RenderAntiAliasingGlTest, FxaaGivesOneImageWhateverTheLatency) {
+    Scene scene;
+    buildShapesScene(scene);
+    // A small view drawn in a layer of shared framebuffers, and one with framebuffers of its own.
+    for (auto [width, height] : {std::pair{160, 120}, std::pair{640, 480}}) {
+        Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, width, height, 60.0);
+        camera.params.antiAliasing = AntiAliasing::Fxaa;
+        const Frame direct = renderFrame(scene, camera, kModalities);
+        RenderTarget staged(renderer(), kModalities, 1);
+        Frame frame;
+        staged.submit(scene, camera);
+        staged.submit(scene, camera);
+        ASSERT_TRUE(staged.read(frame).has_value());
+        EXPECT_EQ(frame.get(Modality::FinalColor).bytes, direct.get(Modality::FinalColor).bytes)
+            << width << "x" << height;
+    }
+}
+
+// Mean difference of final_color from the same view rendered 4 x 4 times larger and averaged down in linear
+// light, in 8-bit steps.
+double supersampledError(const ImageBuffer& color, const ImageBuffer& large, int width, int height) {
+    const auto linear = [](std::uint8_t v) {
+        const double c = v / 255.0;
+        return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+    };
+    const auto a = color.as<std::uint8_t>(), b = large.as<std::uint8_t>();
+    double sum = 0.0;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                double mean = 0.0;
+                for (int j = 0; j < 4; ++j)
+                    for (int i = 0; i < 4; ++i)
+                        mean += linear(b[4 * ((std::size_t(4 * y + j)) * std::size_t(4 * width) +
+                                              std::size_t(4 * x + i)) +
+                                         std::size_t(c)]);
+                mean /= 16.0;
+                const double encoded =
+                    mean <= 0.0031308 ? 12.92 * mean : 1.055 * std::pow(mean, 1 / 2.4) - 0.055;
+                sum +=
+                    std::abs(255.0 * encoded -
+                             a[4 * (std::size_t(y) * std::size_t(width) + std::size_t(x)) + std::size_t(c)]);
+            }
+    return sum / (3.0 * width * height);
+}
+
+TEST_F(RenderAntiAliasingGlTest, MsaaLeavesEveryExactModalityExactAndBringsFinalColorCloseToSupersampling) {
+    Scene scene;
+    buildShapesScene(scene);
+    Camera plain = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 96, 64, 60.0);
+    Camera multisampled = plain;
+    multisampled.params.antiAliasing = AntiAliasing::Msaa;
+    Camera large = plain;
+    large.params.width *= 4;
+    large.params.height *= 4;
+    // Every modality rendered in float targets, as a multisampled frame renders them, so that the exact ones
+    // compare bit for bit.
+    const bool derives = renderer().derivesOnCpu(), compact = renderer().compactTargets();
+    renderer().setDerivesOnCpu(false);
+    renderer().setCompactTargets(false);
+    const Frame a = renderFrame(scene, plain, ModalitySet::all());
+    const Frame big = renderFrame(scene, large, {Modality::FinalColor});
+    renderer().setDerivesOnCpu(derives);
+    renderer().setCompactTargets(compact);
+    renderer().resetStats();
+    const Frame b = renderFrame(scene, multisampled, ModalitySet::all());
+    EXPECT_EQ(renderer().stats().surfacePasses, 1u);
+    EXPECT_EQ(renderer().stats().attributePasses, 1u);
+
+    for (Modality m :
+         {Modality::Depth, Modality::Position, Modality::Normal, Modality::ObjectIds, Modality::MaterialIds,
+          Modality::BaseColor, Modality::Roughness, Modality::Metallic, Modality::MaterialAo})
+        EXPECT_EQ(a.get(m).bytes, b.get(m).bytes) << modalityName(m);
+    const double before =
+        supersampledError(a.get(Modality::FinalColor), big.get(Modality::FinalColor), 96, 64);
+    const double after =
+        supersampledError(b.get(Modality::FinalColor), big.get(Modality::FinalColor), 96, 64);
+    EXPECT_LT(after, 0.6 * before) << before << " -> " << after;
+
+    // The resolve averages each shaded target alike: hdr_color is still diffuse_only + specular_residual.
+    const auto hdr = b.get(Modality::HdrColor).as<std::uint16_t>();
+    const auto diffuse = b.get(Modality::DiffuseOnly).as<std::uint16_t>();
+    const auto residual = b.get(Modality::SpecularResidual).as<std::uint16_t>();
+    double largest = 0.0;
+    for (std::size_t p = 0; p < std::size_t(96 * 64); ++p)
+        for (std::size_t c = 0; c < 3; ++c) {
+            const double h = halfToFloat(hdr[4 * p + c]), d = halfToFloat(diffuse[3 * p + c]),
+                         r = halfToFloat(residual[3 * p + c]);
+            largest = std::max(largest, std::abs(h - d - r) / std::max(1.0, std::abs(h)));
+        }
+    EXPECT_LT(largest, 4e-3);
+}
+
+TEST_F(RenderAntiAliasingGlTest, MsaaTakesTheDevicesMostSamplesAndRefusesOtherCounts) {
+    Scene scene;
+    buildShapesScene(scene);
+    Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 64, 48, 60.0);
+    camera.params.antiAliasing = AntiAliasing::Msaa;
+    camera.params.msaaSamples = 8; // llvmpipe offers 4
+    ASSERT_GE(renderer().maxSamples(), 1);
+    const Frame frame = renderFrame(scene, camera, {Modality::FinalColor});
+    EXPECT_EQ(frame.get(Modality::FinalColor).bytes.size(), std::size_t(64 * 48 * 4));
+    camera.params.msaaSamples = 3;
+    EXPECT_THROW(renderFrame(scene, camera, {Modality::FinalColor}), InvalidArgument);
+}
+
+} // namespace
+} // namespace sp::render::test

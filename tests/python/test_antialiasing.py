@@ -1,0 +1,102 @@
+"""Anti-aliasing of final_color (UCameraSensorComponent.AntiAliasingMethod): FXAA by default and MSAA, each
+closer to a supersampled view than no anti-aliasing, the exact modalities untouched, and bad settings refused;
+both transports."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pytest
+from numpy.typing import NDArray
+
+import spear
+
+M = spear.ECameraModality
+A = spear.EAntiAliasingMethod
+
+
+def _scene(game: spear.UWorld) -> None:
+    """Boxes on a ground under a sun: silhouettes at every slope."""
+    game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun",
+                     rotation=spear.FRotator(Pitch=-50.0, Yaw=30.0)).LightComponent.Intensity = 3.0
+    for name, location, scale, yaw in [("Ground", (0.0, 0.0, -0.05), (20.0, 20.0, 0.1), 0.0),
+                                       ("Box", (0.5, 0.3, 0.5), (1.0, 1.0, 1.0), 27.0),
+                                       ("Post", (-0.6, -0.9, 0.8), (0.2, 0.2, 1.6), 10.0)]:
+        actor = game.spawn_actor(uclass=spear.AStaticMeshActor, name=name, location=spear.FVector(*location),
+                                 rotation=spear.FRotator(Yaw=yaw))
+        actor.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        actor.StaticMeshComponent.SetRelativeScale3D(NewScale3D=spear.FVector(*scale))
+
+
+def _camera(game: spear.UWorld, name: str, scale: int, method: spear.EAntiAliasingMethod | None
+            ) -> spear.UCameraSensorComponent:
+    camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name=name, location=spear.FVector(-4.0, -2.0, 2.0),
+                              rotation=spear.FRotator(Pitch=-20.0, Yaw=25.0)).CameraSensor
+    camera.Width, camera.Height, camera.FOV = 96 * scale, 64 * scale, 60.0
+    camera.Modalities = [M.FinalColor, M.Depth, M.ObjectIds]
+    if method is not None:
+        camera.AntiAliasingMethod = method
+    return camera
+
+
+def _linear(final: NDArray[Any]) -> NDArray[np.float64]:
+    c = final[..., :3].astype(np.float64) / 255.0
+    result: NDArray[np.float64] = np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+    return result
+
+
+def test_fxaa_is_the_default_and_brings_final_color_closer_to_a_supersampled_view(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        _scene(game)
+        default = _camera(game, "Default", 1, None)
+        plain = _camera(game, "Plain", 1, A.AAM_None)
+        large = _camera(game, "Large", 4, A.AAM_None)
+        assert default.AntiAliasingMethod == A.AAM_FXAA
+    with instance.end_frame():
+        filtered, aliased, big = default.read_pixels(), plain.read_pixels(), large.read_pixels()
+
+    # The exact modalities are the unfiltered camera's, bit for bit.
+    assert np.array_equal(filtered["depth"], aliased["depth"])
+    assert np.array_equal(filtered["object_ids"], aliased["object_ids"])
+    # final_color: the 4 x 4 supersampled view averaged down in linear light is the reference.
+    reference = _linear(big["final_color"]).reshape(64, 4, 96, 4, 3).mean(axis=(1, 3))
+    error = [float(np.abs(_linear(p["final_color"]) - reference).mean()) for p in (aliased, filtered)]
+    assert error[1] < 0.8 * error[0], error
+    assert not np.array_equal(filtered["final_color"], aliased["final_color"])
+
+
+def test_msaa_comes_closest_to_a_supersampled_view(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        _scene(game)
+        cameras = {method: _camera(game, method.name, 1, method) for method in A}
+        cameras[A.AAM_MSAA].Modalities = [M.FinalColor, M.Depth, M.ObjectIds, M.HdrColor]
+        large = _camera(game, "Large", 4, A.AAM_None)
+    with instance.end_frame():
+        pixels = {method: camera.read_pixels() for method, camera in cameras.items()}
+        big = large.read_pixels()
+    reference = _linear(big["final_color"]).reshape(64, 4, 96, 4, 3).mean(axis=(1, 3))
+    error = {method: float(np.abs(_linear(p["final_color"]) - reference).mean()) for method, p in pixels.items()}
+    assert error[A.AAM_MSAA] < 0.6 * error[A.AAM_None], error
+    assert error[A.AAM_MSAA] < error[A.AAM_FXAA], error
+    none, msaa = pixels[A.AAM_None], pixels[A.AAM_MSAA]
+    assert np.array_equal(msaa["object_ids"], none["object_ids"])
+    assert np.allclose(msaa["depth"], none["depth"], rtol=0, atol=0)
+    assert msaa["hdr_color"].dtype == np.float16 and msaa["hdr_color"].shape == (64, 96, 4)
+
+
+def test_bad_settings_are_refused(instance: spear.Instance) -> None:
+    with instance.begin_frame():
+        camera = _camera(instance.get_game(), "Camera", 1, None)
+        with pytest.raises(TypeError, match="AntiAliasingMethod"):
+            camera.AntiAliasingMethod = 2  # type: ignore[assignment]
+        assert camera.AntiAliasingMethod == A.AAM_FXAA
+        with pytest.raises(spear.InvalidArgumentError, match=r"MSAASampleCount must be 2, 4 or 8, got 3"):
+            camera.MSAASampleCount = 3
+        assert camera.MSAASampleCount == 4
+        camera.MSAASampleCount = 8  # more than llvmpipe offers: its most
+        camera.AntiAliasingMethod = A.AAM_MSAA
+    with instance.end_frame():
+        assert camera.read_pixels()["final_color"].shape == (64, 96, 4)
