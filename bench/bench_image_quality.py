@@ -166,6 +166,7 @@ class Scene:
         with self.instance.begin_frame():
             large = self.camera("Supersampled", 4 * self.width, 4 * self.height, quality, self.name)
             large.AntiAliasingMethod = spear.EAntiAliasingMethod.AAM_None
+            default = camera.AntiAliasingMethod
         with self.instance.end_frame():
             pass
         big, _ = self.raster(large)
@@ -173,7 +174,6 @@ class Scene:
         encoded = np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1 / 2.4) - 0.055)
         reference = np.round(255.0 * np.clip(encoded, 0.0, 1.0))
         result: dict[str, tuple[float, float]] = {}
-        default = camera.AntiAliasingMethod
         for method in spear.EAntiAliasingMethod:
             with self.instance.begin_frame():
                 camera.AntiAliasingMethod = method
