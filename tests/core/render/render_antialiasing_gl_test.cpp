@@ -20,12 +20,18 @@ class RenderAntiAliasingGlTest : public GlTest {};
 
 const ModalitySet kModalities{Modality::FinalColor, Modality::Depth, Modality::Normal, Modality::ObjectIds};
 
+// The shapes scene's view of every test here, at a size and with an anti-aliasing setting.
+Camera shapesView(int width, int height, AntiAliasing antiAliasing) {
+    Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, width, height, 60.0);
+    camera.params.antiAliasing = antiAliasing;
+    return camera;
+}
+
 TEST_F(RenderAntiAliasingGlTest, FxaaFiltersFinalColorAtSilhouettesAndLeavesExactModalitiesExact) {
     Scene scene;
     buildShapesScene(scene);
-    Camera plain = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 160, 120, 60.0);
-    Camera filtered = plain;
-    filtered.params.antiAliasing = AntiAliasing::Fxaa;
+    const Camera plain = shapesView(160, 120, AntiAliasing::None),
+                 filtered = shapesView(160, 120, AntiAliasing::Fxaa);
     const Frame a = renderFrame(scene, plain, kModalities), b = renderFrame(scene, filtered, kModalities);
 
     for (Modality m : {Modality::Depth, Modality::Normal, Modality::ObjectIds})
@@ -64,8 +70,7 @@ TEST_F(RenderAntiAliasingGlTest, FxaaGivesOneImageWhateverTheLatency) {
     buildShapesScene(scene);
     // A small view drawn in a layer of shared framebuffers, and one with framebuffers of its own.
     for (auto [width, height] : {std::pair{160, 120}, std::pair{640, 480}}) {
-        Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, width, height, 60.0);
-        camera.params.antiAliasing = AntiAliasing::Fxaa;
+        const Camera camera = shapesView(width, height, AntiAliasing::Fxaa);
         const Frame direct = renderFrame(scene, camera, kModalities);
         RenderTarget staged(renderer(), kModalities, 1);
         Frame frame;
@@ -108,12 +113,9 @@ double supersampledError(const ImageBuffer& color, const ImageBuffer& large, int
 TEST_F(RenderAntiAliasingGlTest, MsaaLeavesEveryExactModalityExactAndBringsFinalColorCloseToSupersampling) {
     Scene scene;
     buildShapesScene(scene);
-    Camera plain = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 96, 64, 60.0);
-    Camera multisampled = plain;
-    multisampled.params.antiAliasing = AntiAliasing::Msaa;
-    Camera large = plain;
-    large.params.width *= 4;
-    large.params.height *= 4;
+    const Camera plain = shapesView(96, 64, AntiAliasing::None),
+                 multisampled = shapesView(96, 64, AntiAliasing::Msaa);
+    const Camera large = shapesView(4 * 96, 4 * 64, AntiAliasing::None);
     // Every modality rendered in float targets, as a multisampled frame renders them, so that the exact ones
     // compare bit for bit.
     const bool derives = renderer().derivesOnCpu(), compact = renderer().compactTargets();
@@ -155,8 +157,7 @@ TEST_F(RenderAntiAliasingGlTest, MsaaLeavesEveryExactModalityExactAndBringsFinal
 TEST_F(RenderAntiAliasingGlTest, MsaaTakesTheDevicesMostSamplesAndRefusesOtherCounts) {
     Scene scene;
     buildShapesScene(scene);
-    Camera camera = cameraLookingAt({3.2, -2.4, 2.2}, {0, 0, 0.3}, 64, 48, 60.0);
-    camera.params.antiAliasing = AntiAliasing::Msaa;
+    Camera camera = shapesView(64, 48, AntiAliasing::Msaa);
     camera.params.msaaSamples = 8; // llvmpipe offers 4
     ASSERT_GE(renderer().maxSamples(), 1);
     const Frame frame = renderFrame(scene, camera, {Modality::FinalColor});
