@@ -86,8 +86,8 @@ enum class EAntiAliasingMethod : uint8_t {
     AAM_FXAA = 1,
     /// Multisampling: final_color, hdr_color and the intrinsic images are drawn with MSAASampleCount
     /// coverage samples a pixel and averaged (final_color in linear light). The exact modalities are drawn
-    /// in a pass of their own. Best at silhouettes; on a software rasteriser a frame costs about three times as
-    /// much (llvmpipe: Table 3's 1080p view of 64 objects, 25 -> 78-88 ms), on a GPU little.
+    /// in a pass of their own. Best at silhouettes; on a software rasteriser a frame costs about three
+    /// times as much (llvmpipe: Table 3's 1080p view of 64 objects, 25 -> 78-88 ms), on a GPU little.
     AAM_MSAA = 3,
 };
 

@@ -213,4 +213,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<EAntiAliasingMethod>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "4e0921e4df3b98ae"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "debabaf1af4cba66"; }

@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "4e0921e4df3b98ae"
+API_HASH = "debabaf1af4cba66"

@@ -124,8 +124,8 @@ class EAntiAliasingMethod(enum.IntEnum):
     AAM_MSAA = 3
     """Multisampling: final_color, hdr_color and the intrinsic images are drawn with MSAASampleCount
     coverage samples a pixel and averaged (final_color in linear light). The exact modalities are drawn
-    in a pass of their own. Best at silhouettes; on a software rasteriser a frame costs about three times as
-    much (llvmpipe: Table 3's 1080p view of 64 objects, 25 -> 78-88 ms), on a GPU little.
+    in a pass of their own. Best at silhouettes; on a software rasteriser a frame costs about three
+    times as much (llvmpipe: Table 3's 1080p view of 64 objects, 25 -> 78-88 ms), on a GPU little.
     """
 
 
