@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/base/parallel.h"
+#include "core/render/tone.h"
 
 namespace sp::render {
 namespace {
@@ -29,10 +30,8 @@ constexpr std::size_t kLeastPixelsPerPart = 64 * 1024;
 const std::array<float, 256>& decodeTable() {
     static const std::array<float, 256> table = [] {
         std::array<float, 256> t{};
-        for (int i = 0; i < 256; ++i) {
-            const float c = float(i) / 255.0f;
-            t[std::size_t(i)] = c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-        }
+        for (int i = 0; i < 256; ++i)
+            t[std::size_t(i)] = float(srgbDecode(i / 255.0));
         return t;
     }();
     return table;
@@ -45,12 +44,8 @@ constexpr int kEncodeSteps = 4096;
 const std::array<std::uint8_t, kEncodeSteps + 1>& encodeTable() {
     static const std::array<std::uint8_t, kEncodeSteps + 1> table = [] {
         std::array<std::uint8_t, kEncodeSteps + 1> t{};
-        for (int i = 0; i <= kEncodeSteps; ++i) {
-            const double linear = double(i) / kEncodeSteps;
-            const double c =
-                linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
-            t[std::size_t(i)] = std::uint8_t(std::lround(std::clamp(c, 0.0, 1.0) * 255.0));
-        }
+        for (int i = 0; i <= kEncodeSteps; ++i)
+            t[std::size_t(i)] = std::uint8_t(std::lround(srgbEncode(double(i) / kEncodeSteps) * 255.0));
         return t;
     }();
     return table;

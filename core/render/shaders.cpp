@@ -319,20 +319,24 @@ void accumulate(Surface s, vec3 l, vec3 e, float nol, inout vec3 irradiance, ino
 
 // Exposure, tone curve (ACES: Narkowicz's fit; Reinhard; linear clamp, TONE_CURVE 0, 1, 2) and the sRGB OETF.
 // PIXEL_CENTRE is the pixel's window position (gl_FragCoord.xy unless a compute pass defines it).
-const char* const kToneChunk = R"glsl(
-#ifndef PIXEL_CENTRE
-#define PIXEL_CENTRE gl_FragCoord.xy
-#endif
-vec3 aces(vec3 x) {
-    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
-}
 // The sRGB OETF; above the linear segment, 1.055 c^(1/2.4) - 0.055 is fitted with square roots (within
-// 0.25 of one 8-bit step), which cost a software rasteriser far less than pow().
+// 0.25 of one 8-bit step), which cost a software rasteriser far less than pow(). Used by the tone curve and
+// the multisampled resolve, so that both encode final_color alike.
+const char* const kSrgbEncodeChunk = R"glsl(
 vec3 srgbEncode(vec3 c) {
     c = clamp(c, 0.0, 1.0);
     vec3 s1 = sqrt(c), s2 = sqrt(s1), s3 = sqrt(s2);
     vec3 curve = 0.662002687 * s1 + 0.684122060 * s2 - 0.323583601 * s3 - 0.0225411470 * c;
     return mix(c * 12.92, curve, step(vec3(0.0031308), c));
+}
+)glsl";
+
+const std::string kToneChunk = std::string(kSrgbEncodeChunk) + R"glsl(
+#ifndef PIXEL_CENTRE
+#define PIXEL_CENTRE gl_FragCoord.xy
+#endif
+vec3 aces(vec3 x) {
+    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
 }
 vec4 toneMapped(vec3 hdr) {
     vec3 x = max(hdr, 0.0) * exposureGains();
@@ -960,12 +964,10 @@ std::string environmentBackgroundFragment(TargetMask targets, ToneMap toneMap, b
 
 std::string resolveFragment(TargetMask targets, int samples) {
     std::string text = "#version 450 core\n#define SAMPLES " + std::to_string(samples) + "\n";
+    text += kSrgbEncodeChunk;
     text += R"glsl(
 vec3 srgbToLinear(vec3 c) {
     return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
-}
-vec3 linearToSrgb(vec3 c) {
-    return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
 }
 )glsl";
     int unit = 0;
@@ -993,7 +995,7 @@ vec4 finalAverage(sampler2DMS s, ivec2 p) {
     vec3 sum = vec3(0.0);
     for (int i = 0; i < SAMPLES; ++i)
         sum += srgbToLinear(texelFetch(s, p, i).rgb);
-    return vec4(linearToSrgb(sum / float(SAMPLES)), 1.0);
+    return vec4(srgbEncode(sum / float(SAMPLES)), 1.0);
 }
 )glsl";
     return text + declarations + "void main() { ivec2 p = ivec2(gl_FragCoord.xy);" + body + " }\n";

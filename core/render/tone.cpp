@@ -57,8 +57,16 @@ float toneMapChannel(float hdr, int channel, const CameraParams& params) {
     case ToneMap::Linear:
         break;
     }
-    const double c = std::clamp(mapped, 0.0, 1.0);
-    return float(c < 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055);
+    return float(srgbEncode(mapped));
+}
+
+double srgbEncode(double linear) {
+    const double c = std::clamp(linear, 0.0, 1.0);
+    return c < 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+}
+
+double srgbDecode(double encoded) {
+    return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
 }
 
 } // namespace sp::render

@@ -11,6 +11,11 @@ namespace sp::render {
 // exposure and white balance, the tone curve, sRGB.
 float toneMapChannel(float hdr, int channel, const CameraParams& params);
 
+// The exact sRGB OETF of a linear value clamped to [0, 1], and its inverse (an encoded value in [0, 1] to
+// linear).
+double srgbEncode(double linear);
+double srgbDecode(double encoded);
+
 // The per-channel gains that balance a camera for light of colour temperature `kelvin` (in [2000, 25000]):
 // a grey lit by a black body at that temperature comes out grey. Relative to 6500 K (which gives 1, 1, 1),
 // from the Planckian locus (Kim et al.'s cubic fit) in linear sRGB, scaled so that a grey keeps its

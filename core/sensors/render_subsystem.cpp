@@ -75,11 +75,10 @@ sp::render::CameraParams cameraParams(const UCameraSensorComponent& camera, int 
     // (The path tracer's pixels average rays spread over them: none.)
     params.antiAliasing = sp::render::AntiAliasing::None;
     if (camera.Renderer == ECameraRenderer::Raster &&
-        camera.AntiAliasingMethod == EAntiAliasingMethod::AAM_FXAA)
-        params.antiAliasing = sp::render::AntiAliasing::Fxaa;
-    if (camera.Renderer == ECameraRenderer::Raster &&
-        camera.AntiAliasingMethod == EAntiAliasingMethod::AAM_MSAA)
-        params.antiAliasing = sp::render::AntiAliasing::Msaa;
+        camera.AntiAliasingMethod != EAntiAliasingMethod::AAM_None)
+        params.antiAliasing = camera.AntiAliasingMethod == EAntiAliasingMethod::AAM_FXAA
+                                  ? sp::render::AntiAliasing::Fxaa
+                                  : sp::render::AntiAliasing::Msaa;
     params.msaaSamples = camera.MSAASampleCount;
     return params;
 }
