@@ -220,10 +220,22 @@ struct PathTracer::Impl {
             geometrySignature = geometry;
             probeGeometrySignature = geometryHash(scene, probeCutoff);
             builtSignature = withCutoff.value;
+            builtCutoff = probeCutoff;
             builtFor = scene.uid();
         }
     }
     std::uint64_t builtSignature = 0; // the geometry and the probe cutoff it was built for
+    double builtCutoff = -1.0;        // the probe cutoff of the built masks
+
+    // What probe rays need: the instances at least the cutoff in radius as they are now. Smaller ones keep
+    // whatever transform the last build gave them, masked away from probe rays, so a ball rolling (or 64
+    // objects pushed every step, Table 3) costs no rebuild of every instance each frame.
+    void syncForProbes(const render::Scene& scene) {
+        if (rtcScene && scene.uid() == builtFor && builtCutoff == probeCutoff &&
+            geometryHash(scene, probeCutoff) == probeGeometrySignature)
+            return;
+        sync(scene);
+    }
 
     // The first surface along a ray: its distance (infinity for none) and whether the ray meets its back
     // (the side its winding faces away from).
@@ -776,7 +788,7 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
 
 std::uint64_t PathTracer::lightingSignature(const render::Scene& scene, double ignoreBelowRadius) {
     impl_->probeCutoff = ignoreBelowRadius;
-    impl_->sync(scene);
+    impl_->syncForProbes(scene);
     return impl_->lightingHash(scene, true);
 }
 
@@ -791,7 +803,7 @@ void PathTracer::lightProbes(const render::Scene& scene, render::IrradianceVolum
                  " is not in a volume of ", volume.probes.size());
     Impl& impl = *impl_;
     impl.probeCutoff = ignoreBelowRadius;
-    impl.sync(scene);
+    impl.syncForProbes(scene);
     const std::uint64_t signature = impl.lightingHash(scene, true);
     const Eigen::Vector3f sky = scene.environment().ambient;
     const float spacing = float(volume.spacing);

@@ -207,12 +207,25 @@ TEST_F(IrradianceProbesGlTest, SmallThingsMovingLeaveTheProbesAsTheyAre) {
     ProbeSettings settings;
     settings.rays = 16;
     probes.update(scene, tracer_, settings); // 0.5 m apart: the cutoff is 0.25 m, the small box's radius 0.17
+    const std::uint64_t builds = tracer_.builds();
     scene.setTransform(smallId, Eigen::Translation3d(0.8, 0.2, 0.1) * Eigen::Scaling(0.2));
     probes.update(scene, tracer_, settings);
     EXPECT_EQ(probes.litLastUpdate(), 0u);
+    EXPECT_EQ(tracer_.builds(), builds); // nor does it rebuild the rays' geometry
     scene.setTransform(largeId, Eigen::Translation3d(-0.5, 0.0, 0.5) * Eigen::Scaling(1.0));
     probes.update(scene, tracer_, settings);
     EXPECT_EQ(probes.litLastUpdate(), std::size_t(settings.probesPerFrame));
+    EXPECT_EQ(tracer_.builds(), builds + 1);
+    // A camera sees the small box where it now is: a path-traced image brings the geometry up to date.
+    scene.setTransform(smallId, Eigen::Translation3d(0.2, 0.6, 0.1) * Eigen::Scaling(0.2));
+    probes.update(scene, tracer_, settings);
+    const Camera camera = test::closedRoomCamera();
+    Accumulation shared, fresh;
+    tracer_.render(scene, camera, {1, 1}, shared);
+    PathTracer other;
+    other.render(scene, camera, {1, 1}, fresh);
+    EXPECT_EQ(shared.ids, fresh.ids);
+    EXPECT_EQ(shared.sum, fresh.sum);
 }
 
 TEST_F(IrradianceProbesGlTest, SunlightOutsideAClosedRoomDoesNotLeakIn) {
