@@ -192,7 +192,7 @@ def configure(camera: spear.UCameraSensorComponent, width: int, height: int) -> 
 def run(instance: spear.Instance, *, objects: int, views: int, width: int, height: int, frames: int,
         physics: str, png: Path | None, breakdown: bool = False, batched_forces: bool = False,
         shadows: bool = True,
-        global_illumination: spear.EGlobalIlluminationQuality = spear.EGlobalIlluminationQuality.Off,
+        global_illumination: spear.EGlobalIlluminationQuality | None = None,
         anti_aliasing: spear.EAntiAliasingMethod = spear.EAntiAliasingMethod.AAM_FXAA) -> Result:
     game = instance.get_game()
     rig: spear.AActor
@@ -215,7 +215,8 @@ def run(instance: spear.Instance, *, objects: int, views: int, width: int, heigh
             rig = stereo
         for camera in cameras:
             configure(camera, width, height)
-            camera.GlobalIlluminationQuality = global_illumination
+            if global_illumination is not None:  # else the camera's default
+                camera.GlobalIlluminationQuality = global_illumination
             camera.AntiAliasingMethod = anti_aliasing
         device = cameras[0].get_render_device_info()
     with instance.end_frame():
@@ -353,9 +354,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--forces", choices=["each", "batched"], default="each",
                         help="one AddForce per object (the paper's way), or one add_forces call for all")
     parser.add_argument("--no-shadows", action="store_true", help="the sun casts no shadows")
-    parser.add_argument("--global-illumination", default="Off",
+    parser.add_argument("--global-illumination", default=None,
                         choices=[q.name for q in spear.EGlobalIlluminationQuality],
-                        help="the cameras' GlobalIlluminationQuality (Off: the camera's default)")
+                        help="the cameras' GlobalIlluminationQuality (default: the camera's, Medium)")
     parser.add_argument("--anti-aliasing", default="AAM_FXAA", choices=[m.name for m in spear.EAntiAliasingMethod],
                         help="the cameras' AntiAliasingMethod (AAM_FXAA: the camera's default)")
     args = parser.parse_args(argv)
@@ -371,7 +372,8 @@ def main(argv: list[str] | None = None) -> int:
                 results.append(run(instance, objects=objects, views=views, width=args.width, height=args.height,
                                    frames=args.frames, physics=args.physics, png=png, breakdown=args.breakdown,
                                    batched_forces=args.forces == "batched", shadows=not args.no_shadows,
-                                   global_illumination=spear.EGlobalIlluminationQuality[args.global_illumination],
+                                   global_illumination=(None if args.global_illumination is None else
+                                                        spear.EGlobalIlluminationQuality[args.global_illumination]),
                                    anti_aliasing=spear.EAntiAliasingMethod[args.anti_aliasing]))
             finally:
                 instance.close()

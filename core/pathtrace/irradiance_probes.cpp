@@ -16,6 +16,9 @@ namespace {
 constexpr double kLatticeOffset = 0.37;
 // Instances whose bounding radius is under this fraction of the spacing are invisible to the probes.
 constexpr double kSmallFraction = 0.5;
+// How far from the origin (m) the grid reaches: its probes start float rays, which Embree refuses beyond
+// about 1.8e18 (a million kilometres is past any scene).
+constexpr double kMaxReach = 1e9;
 
 bool inside(const render::IrradianceProbe& probe) {
     return std::all_of(probe.freeDistance.begin(), probe.freeDistance.end(),
@@ -68,15 +71,27 @@ void IrradianceProbes::place(const Eigen::AlignedBox3d& box, const ProbeSettings
     litAt_.assign(lit_.probes.size(), 0);
 }
 
-std::shared_ptr<const render::IrradianceVolume>
-IrradianceProbes::update(const render::Scene& scene, PathTracer& tracer, const ProbeSettings& settings) {
+std::shared_ptr<const render::IrradianceVolume> IrradianceProbes::update(const render::Scene& scene,
+                                                                         PathTracer& tracer,
+                                                                         const ProbeSettings& settings,
+                                                                         const Eigen::AlignedBox3d& around) {
     settings.validate("IrradianceProbes::update");
     ++updates_;
     litLastUpdate_ = 0;
+    // The grid covers the visible instances within `around`, and only what its float rays can reach: an
+    // instance further out than kMaxReach (or with a non-finite box) is lit by the nearest probes but does
+    // not stretch the grid to where no ray can start.
     Eigen::AlignedBox3d box;
     scene.forEachInstance([&](render::InstanceId, const render::Instance& instance) {
-        if (instance.visible)
-            box.extend(scene.boundingBox(instance));
+        if (!instance.visible)
+            return;
+        Eigen::AlignedBox3d bounds = scene.boundingBox(instance);
+        if (!around.isEmpty())
+            bounds = bounds.intersection(around);
+        if (!bounds.isEmpty() && bounds.min().allFinite() && bounds.max().allFinite() &&
+            bounds.min().cwiseAbs().maxCoeff() <= kMaxReach &&
+            bounds.max().cwiseAbs().maxCoeff() <= kMaxReach)
+            box.extend(bounds);
     });
     if (box.isEmpty()) {
         volume_.reset();
@@ -88,9 +103,10 @@ IrradianceProbes::update(const render::Scene& scene, PathTracer& tracer, const P
         place(box, settings);
     }
     // Instances under half a spacing in radius are invisible to the probes: lit by them, but a small thing
-    // moving (a ball, a robot's part) does not make every probe stale.
-    const double cutoff = kSmallFraction * lit_.spacing;
-    const std::uint64_t signature = tracer.lightingSignature(scene, cutoff);
+    // moving (a ball, a robot's part) does not make every probe stale. Nor do things wholly outside the
+    // grid's region (one falling away from the scene) count.
+    const ProbeScope scope{kSmallFraction * lit_.spacing, covered_};
+    const std::uint64_t signature = tracer.lightingSignature(scene, scope);
     // The probes to light: every one on a new grid, else those lit for another scene, longest ago first.
     std::vector<std::size_t> stale;
     for (std::size_t i = 0; i < lit_.probes.size(); ++i)
@@ -107,7 +123,7 @@ IrradianceProbes::update(const render::Scene& scene, PathTracer& tracer, const P
     Settings trace;
     trace.maxBounces = settings.maxBounces;
     const auto start = std::chrono::steady_clock::now();
-    tracer.lightProbes(scene, lit_, stale, settings.rays, trace, cutoff);
+    tracer.lightProbes(scene, lit_, stale, settings.rays, trace, scope);
     if (placed) // what the first frame (and a scene outgrowing its grid) costs, once
         SP_LOG("irradiance probes: ", lit_.counts.x(), "x", lit_.counts.y(), "x", lit_.counts.z(), " probes ",
                lit_.spacing, " m apart, lit in ",

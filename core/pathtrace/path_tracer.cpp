@@ -192,8 +192,8 @@ struct PathTracer::Impl {
     RTCScene rtcScene = nullptr;
     std::uint64_t geometrySignature = 0; // of the built geometry (geometryHash())
     std::uint64_t probeGeometrySignature =
-        0;                      // of what probe rays see of it (geometryHash(scene, probeCutoff))
-    double probeCutoff = 0.0;   // the bounding radius below which probe rays see no instance
+        0;                      // of what probe rays see of it (geometryHash(scene, &probeScope))
+    ProbeScope probeScope;      // what probe rays see
     std::uint64_t builtFor = 0; // the uid of the scene it was built from
     std::uint64_t builds = 0;
     std::uint64_t lastRays = 0;
@@ -211,28 +211,24 @@ struct PathTracer::Impl {
 
     // Builds the geometry again when the scene's changed (or it is another scene).
     void sync(const render::Scene& scene) {
-        const std::uint64_t geometry = geometryHash(scene, 0.0);
-        Hasher withCutoff;
-        withCutoff.add(geometry);
-        withCutoff.add(probeCutoff);
-        if (!rtcScene || withCutoff.value != builtSignature || scene.uid() != builtFor) {
+        const std::uint64_t geometry = geometryHash(scene, nullptr);
+        if (!rtcScene || geometry != geometrySignature || !(builtScope == probeScope) ||
+            scene.uid() != builtFor) {
             build(scene);
             geometrySignature = geometry;
-            probeGeometrySignature = geometryHash(scene, probeCutoff);
-            builtSignature = withCutoff.value;
-            builtCutoff = probeCutoff;
+            probeGeometrySignature = geometryHash(scene, &probeScope);
+            builtScope = probeScope;
             builtFor = scene.uid();
         }
     }
-    std::uint64_t builtSignature = 0; // the geometry and the probe cutoff it was built for
-    double builtCutoff = -1.0;        // the probe cutoff of the built masks
+    ProbeScope builtScope; // the probe scope of the built masks
 
-    // What probe rays need: the instances at least the cutoff in radius as they are now. Smaller ones keep
-    // whatever transform the last build gave them, masked away from probe rays, so a ball rolling (or 64
-    // objects pushed every step, Table 3) costs no rebuild of every instance each frame.
+    // What probe rays need: what the scope leaves of the scene, as it is now. The rest keeps whatever
+    // transform the last build gave it, masked away from probe rays, so a ball rolling (or 64 objects pushed
+    // every step, Table 3) costs no rebuild of every instance each frame.
     void syncForProbes(const render::Scene& scene) {
-        if (rtcScene && scene.uid() == builtFor && builtCutoff == probeCutoff &&
-            geometryHash(scene, probeCutoff) == probeGeometrySignature)
+        if (rtcScene && scene.uid() == builtFor && builtScope == probeScope &&
+            geometryHash(scene, &probeScope) == probeGeometrySignature)
             return;
         sync(scene);
     }
@@ -261,11 +257,11 @@ struct PathTracer::Impl {
     }
 
     // What the geometry is built from (the scene's process-unique id left out: see imageHash()), of the
-    // instances at least `cutoff` in bounding radius.
-    static std::uint64_t geometryHash(const render::Scene& scene, double cutoff) {
+    // instances `scope` sees (null: all of them).
+    static std::uint64_t geometryHash(const render::Scene& scene, const ProbeScope* scope) {
         Hasher h;
         scene.forEachInstance([&](render::InstanceId, const render::Instance& instance) {
-            if (!instance.visible || (cutoff > 0.0 && boundingRadius(scene, instance) < cutoff))
+            if (!instance.visible || (scope && !scope->sees(scene, instance)))
                 return;
             h.add(instance.castShadows);
             h.add(instance.mesh.index);
@@ -326,13 +322,6 @@ struct PathTracer::Impl {
         return *entry;
     }
 
-    static double boundingRadius(const render::Scene& scene, const render::Instance& instance) {
-        Eigen::Vector3d centre;
-        double radius = 0.0;
-        scene.boundingSphere(instance, centre, radius);
-        return radius;
-    }
-
     // The top level: one instance of its mesh scene per visible instance, with its transform.
     void build(const render::Scene& scene) {
         ++builds;
@@ -359,7 +348,7 @@ struct PathTracer::Impl {
             rtcSetGeometryTransform(geometry, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, columns.data());
             // Every camera ray sees the instance; shadow rays only when it casts shadows; probe rays only
             // when it is not smaller than their cutoff.
-            const bool probed = probeCutoff <= 0.0 || boundingRadius(scene, instance) >= probeCutoff;
+            const bool probed = probeScope.sees(scene, instance);
             rtcSetGeometryMask(geometry, kCameraRays | (instance.castShadows ? kShadowRays : 0u) |
                                              (probed ? kProbeRays : 0u) |
                                              (probed && instance.castShadows ? kProbeShadowRays : 0u));
@@ -414,7 +403,7 @@ struct PathTracer::Impl {
         h.add(lights);
         h.matrix(scene.environment().ambient);
         h.matrix(scene.environment().background);
-        h.add(scene.environment().map ? scene.environment().map->uid() : 0);
+        h.add(scene.environment().map ? scene.environment().map->contentHash() : 0);
         h.matrix(scene.environment().mapScale);
         return h.value;
     }
@@ -673,6 +662,17 @@ struct PathTracer::Impl {
     }
 };
 
+bool ProbeScope::sees(const render::Scene& scene, const render::Instance& instance) const {
+    if (ignoreBelowRadius > 0.0) {
+        Eigen::Vector3d centre;
+        double radius = 0.0;
+        scene.boundingSphere(instance, centre, radius);
+        if (radius < ignoreBelowRadius)
+            return false;
+    }
+    return within.isEmpty() || within.intersects(scene.boundingBox(instance));
+}
+
 PathTracer::PathTracer() : impl_(std::make_unique<Impl>()) {
     impl_->device = rtcNewDevice(nullptr);
     SP_CHECK(impl_->device != nullptr, InvalidState, "PathTracer: Embree could not start (error ",
@@ -786,15 +786,15 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
     impl.lastRays = rays;
 }
 
-std::uint64_t PathTracer::lightingSignature(const render::Scene& scene, double ignoreBelowRadius) {
-    impl_->probeCutoff = ignoreBelowRadius;
+std::uint64_t PathTracer::lightingSignature(const render::Scene& scene, const ProbeScope& scope) {
+    impl_->probeScope = scope;
     impl_->syncForProbes(scene);
     return impl_->lightingHash(scene, true);
 }
 
 void PathTracer::lightProbes(const render::Scene& scene, render::IrradianceVolume& volume,
                              std::span<const std::size_t> probes, int rays, const Settings& settings,
-                             double ignoreBelowRadius) {
+                             const ProbeScope& scope) {
     SP_CHECK(rays >= 1 && rays <= 65536, InvalidArgument, "PathTracer::lightProbes(): rays ", rays,
              " is out of range [1, 65536]");
     settings.validate("PathTracer::lightProbes");
@@ -802,7 +802,7 @@ void PathTracer::lightProbes(const render::Scene& scene, render::IrradianceVolum
         SP_CHECK(index < volume.probes.size(), InvalidArgument, "PathTracer::lightProbes(): probe ", index,
                  " is not in a volume of ", volume.probes.size());
     Impl& impl = *impl_;
-    impl.probeCutoff = ignoreBelowRadius;
+    impl.probeScope = scope;
     impl.syncForProbes(scene);
     const std::uint64_t signature = impl.lightingHash(scene, true);
     const Eigen::Vector3f sky = scene.environment().ambient;

@@ -62,6 +62,21 @@ struct Accumulation {
     float mean(int x, int y, int c) const { return mean(sum, x, y, c); }
 };
 
+// What the probes' rays see of a scene: not the instances whose bounding radius is under
+// `ignoreBelowRadius` (lit by the probes, they neither block nor bounce light for them, so that small things
+// moving do not make every probe stale), nor those wholly outside `within` (the grid's region; empty: all
+// of space), so that a thing falling away out there does not either.
+struct ProbeScope {
+    double ignoreBelowRadius = 0.0;
+    Eigen::AlignedBox3d within;
+    bool operator==(const ProbeScope& other) const {
+        return ignoreBelowRadius == other.ignoreBelowRadius && within.min() == other.within.min() &&
+               within.max() == other.within.max();
+    }
+    // Whether the probes' rays see `instance` (a visible one).
+    bool sees(const render::Scene& scene, const render::Instance& instance) const;
+};
+
 class PathTracer {
   public:
     // Starts an Embree device; throws sp::InvalidState when it cannot.
@@ -83,15 +98,14 @@ class PathTracer {
     // Environment::ambient), and its free distances from one ray along each axis. A probe whose rays meet the
     // back of a surface first more than a quarter of the time is inside geometry: its free distances are 0.
     // The random numbers are seeded from the scene's light (lightingSignature()) and the probe's index, so
-    // the same scene gives the same probes in every run. Runs on every hardware thread. Instances whose
-    // bounding radius is under `ignoreBelowRadius` are invisible to the probes' rays (lit by the probes, they
-    // neither block nor bounce light for them), so that small things moving do not make every probe stale.
+    // the same scene gives the same probes in every run. Runs on every hardware thread. The rays see what
+    // `scope` leaves of the scene.
     void lightProbes(const render::Scene& scene, render::IrradianceVolume& volume,
                      std::span<const std::size_t> probes, int rays, const Settings& settings,
-                     double ignoreBelowRadius = 0.0);
-    // What the light the probes see in `scene` depends on: geometry (of the instances not under
-    // `ignoreBelowRadius`), materials, lights and sky; not the camera.
-    std::uint64_t lightingSignature(const render::Scene& scene, double ignoreBelowRadius = 0.0);
+                     const ProbeScope& scope = {});
+    // What the light the probes see in `scene` depends on: geometry (what `scope` leaves of it), materials,
+    // lights and sky; not the camera.
+    std::uint64_t lightingSignature(const render::Scene& scene, const ProbeScope& scope = {});
 
     // Geometry (re)builds so far: one whenever an instance, a mesh or a transform changed.
     std::uint64_t builds() const;

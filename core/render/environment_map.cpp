@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -198,6 +199,14 @@ EnvironmentMap::EnvironmentMap(RadianceImage radiance, float yawDegrees, const c
              yawDegrees);
     full_ = turned(std::move(radiance), yawDegrees);
     lighting_ = resampled(full_, kLightingWidth, kLightingHeight);
+    // FNV-1a over the turned map's float bits, four bytes at a time: about what the validation above costs.
+    contentHash_ = 0xcbf29ce484222325ull ^ (std::uint64_t(full_.width) << 32 | std::uint32_t(full_.height));
+    for (const Eigen::Vector3f& texel : full_.texels)
+        for (int c = 0; c < 3; ++c) {
+            std::uint32_t bits = 0;
+            std::memcpy(&bits, &texel[c], sizeof bits);
+            contentHash_ = (contentHash_ ^ bits) * 0x100000001b3ull;
+        }
 
     // Spherical harmonics of the radiance, then of the irradiance (the clamped cosine's bands: pi, 2 pi / 3,
     // pi / 4), divided by pi.

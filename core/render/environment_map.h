@@ -73,6 +73,9 @@ class EnvironmentMap {
 
     // Unique to this map in the process (caches key on it; a map never changes once made).
     std::uint64_t uid() const { return uid_; }
+    // A hash of the radiance (after the turn): equal for maps made alike, in any world and any run, so that
+    // what is seeded from the light (the path tracer's samples, the probes) is too.
+    std::uint64_t contentHash() const { return contentHash_; }
 
     // The map's texture coordinates of a direction (u in [0, 1) from the left, v in [0, 1] from the top)
     // and back.
@@ -90,6 +93,7 @@ class EnvironmentMap {
     std::vector<float> columnCdf_; // kLightingHeight * (kLightingWidth + 1)
     std::vector<float> density_;   // each texel's probability (of the lighting map)
     std::uint64_t uid_ = 0;
+    std::uint64_t contentHash_ = 0;
 };
 
 } // namespace sp::render

@@ -122,11 +122,21 @@ const GpuMesh& GpuSceneCache::refined(const Scene& scene, MeshId id, int times) 
     const std::uint64_t revision = scene.meshRevision(id);
     Refined& entry = refined_[{id.index, times}];
     if (!entry.gpu || entry.generation != id.generation || entry.revision != revision) {
-        entry.gpu = std::make_unique<GpuMesh>();
-        upload(*entry.gpu, data.subdivided(times));
+        auto make = [&] {
+            auto gpu = std::make_shared<GpuMesh>();
+            upload(*gpu, data.subdivided(times));
+            return gpu;
+        };
+        // An asset's mesh is the same in every world, and so is its subdivision: one upload for all.
+        if (const std::string& key = scene.meshSharedKey(id); !key.empty()) {
+            entry.gpu =
+                sharedUpload(shared_.meshes, key + "#subdivided" + std::to_string(times), meshUploads_, make);
+        } else {
+            entry.gpu = make();
+            ++meshUploads_;
+        }
         entry.generation = id.generation;
         entry.revision = revision;
-        ++meshUploads_;
     }
     return *entry.gpu;
 }

@@ -55,7 +55,8 @@ class GpuSceneCache {
     // The GPU mesh for `id`, uploading it first when needed. Throws sp::StaleObject for a removed id.
     const GpuMesh& mesh(const Scene& scene, MeshId id);
     // The GPU mesh of `id` subdivided `times` times (MeshData::subdivided()), made and uploaded when first
-    // asked for; a scene's other revision or generation of the mesh replaces it.
+    // asked for (shared between scenes as the mesh itself is); a scene's other revision or generation of the
+    // mesh replaces it.
     const GpuMesh& refined(const Scene& scene, MeshId id, int times);
     // GL texture name for `id`, uploading (with mipmaps) first when needed.
 
@@ -78,7 +79,7 @@ class GpuSceneCache {
     struct Refined {
         std::uint32_t generation = 0;
         std::uint64_t revision = 0;
-        std::unique_ptr<GpuMesh> gpu;
+        std::shared_ptr<GpuMesh> gpu; // this scene's own, or one under a shared key
     };
     std::map<std::pair<std::uint32_t, int>, Refined> refined_; // by (MeshId::index, times)
     std::uint64_t meshUploads_ = 0;

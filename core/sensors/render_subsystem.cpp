@@ -83,8 +83,12 @@ sp::render::CameraParams cameraParams(const UCameraSensorComponent& camera, int 
     return params;
 }
 
+// How far from the cameras that ask for indirect light (m) the probes' grid reaches.
+constexpr double kIndirectLightReach = 50.0;
+
 // The probes of each quality (EGlobalIlluminationQuality's documentation; core/render/README.md): spacing,
 // probes along an axis at most, rays per probe, bounces, probes lit per frame after a change.
+
 sp::pathtrace::ProbeSettings probeSettings(EGlobalIlluminationQuality quality) {
     switch (quality) {
     case EGlobalIlluminationQuality::Off:
@@ -342,7 +346,16 @@ void RenderSubsystem::updateIndirectLight(const std::vector<UCameraSensorCompone
         tracer_ = std::make_unique<sp::pathtrace::PathTracer>();
     if (!probes_)
         probes_ = std::make_unique<sp::pathtrace::IrradianceProbes>();
-    scene_->setIrradianceVolume(probes_->update(scene_->scene(), *tracer_, probeSettings(quality)));
+    // The probes cover the scene within kIndirectLightReach of those cameras: what lies further out adds
+    // little light to what they see, and a thing falling away there must not stretch the grid.
+    Eigen::AlignedBox3d around;
+    for (const UCameraSensorComponent* camera : cameras)
+        if (!camera->renderSuspended() && camera->Renderer == ECameraRenderer::Raster &&
+            camera->GlobalIlluminationQuality != EGlobalIlluminationQuality::Off)
+            around.extend(camera->GetComponentTransform().toIsometry().translation());
+    around.min().array() -= kIndirectLightReach;
+    around.max().array() += kIndirectLightReach;
+    scene_->setIrradianceVolume(probes_->update(scene_->scene(), *tracer_, probeSettings(quality), around));
 }
 
 RenderSubsystem::CameraState& RenderSubsystem::cameraState(UCameraSensorComponent& camera) {

@@ -39,13 +39,15 @@ def _closed_room(game: spear.UWorld, sun: bool) -> spear.APointLight:
     return lamp
 
 
-def _room_camera(game: spear.UWorld, quality: spear.EGlobalIlluminationQuality, name: str = "Camera"
+def _room_camera(game: spear.UWorld, quality: spear.EGlobalIlluminationQuality | None, name: str = "Camera"
                  ) -> spear.UCameraSensorComponent:
+    """A camera in the closed room seeing diffuse_illumination; quality None leaves the camera's default."""
     camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name=name, location=spear.FVector(-1.8, -1.3, 1.8),
                               rotation=spear.FRotator(Pitch=-15.0, Yaw=30.0)).CameraSensor
     camera.Width, camera.Height, camera.FOV = 48, 32, 90.0
     camera.Modalities = [M.DiffuseIllumination]
-    camera.GlobalIlluminationQuality = quality
+    if quality is not None:
+        camera.GlobalIlluminationQuality = quality
     return camera
 
 
@@ -55,13 +57,20 @@ def _mean_illumination(camera: spear.UCameraSensorComponent) -> float:
     return float(pixels["diffuse_illumination"].astype(np.float64).mean())
 
 
-def test_global_illumination_is_off_by_default(instance: spear.Instance) -> None:
-    # Off until its per-pixel blend fits a software rasteriser's frame budget (core/render/README.md).
+def test_global_illumination_is_on_by_default(instance: spear.Instance) -> None:
+    # Medium, as Unreal's cameras have global illumination on (core/render/README.md): a default camera in the
+    # closed room lit from inside sees the indirect light a camera asking for Medium sees.
+    game = instance.get_game()
     with instance.begin_frame():
-        camera = spawn_camera(instance.get_game(), [M.FinalColor])
-        assert camera.GlobalIlluminationQuality == Q.Off
+        _closed_room(game, sun=False)
+        default = _room_camera(game, None, "Default")
+        assert default.GlobalIlluminationQuality == Q.Medium
+        cameras = {q: _room_camera(game, q, q.name) for q in (Q.Off, Q.Medium)}
     with instance.end_frame():
-        pass
+        seen = _mean_illumination(default)
+        means = {q: _mean_illumination(c) for q, c in cameras.items()}
+    assert seen == means[Q.Medium]
+    assert seen > 1.3 * means[Q.Off], (seen, means)
 
 
 def test_a_closed_room_lit_from_inside_is_as_bright_as_the_path_tracer_says(instance: spear.Instance) -> None:
@@ -120,7 +129,7 @@ def test_a_bad_quality_is_refused(instance: spear.Instance) -> None:
         camera = spawn_camera(instance.get_game(), [M.FinalColor])
         with pytest.raises(TypeError, match="GlobalIlluminationQuality"):
             camera.GlobalIlluminationQuality = 7  # type: ignore[assignment]
-        assert camera.GlobalIlluminationQuality == Q.Off
+        assert camera.GlobalIlluminationQuality == Q.Medium  # the default, unchanged
     with instance.end_frame():
         pass
 

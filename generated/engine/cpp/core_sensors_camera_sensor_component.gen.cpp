@@ -106,7 +106,7 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraToneCurv
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EGlobalIlluminationQuality>() {
     static const sp::reflect::EnumInfo info{
         "EGlobalIlluminationQuality",
-        "How much indirect light a rasterised camera shows: the world's irradiance probes (a grid over the scene,\nlit by the path tracer's rays, blended per pixel; core/render/README.md, \"Global illumination\"). The\nnames follow Unreal's scalability levels (sg.GlobalIlluminationQuality). A world lights its probes at the\nhighest quality any of its rasterised cameras asks for.",
+        "How much indirect light a rasterised camera shows: the world's irradiance probes (a grid over the scene,\nlit by the path tracer's rays, blended per pixel on a GPU and per vertex on a software rasteriser;\ncore/render/README.md, \"Global illumination\"). The names follow Unreal's scalability levels\n(sg.GlobalIlluminationQuality). A world lights its probes at the highest quality any of its rasterised\ncameras asks for.",
         {
             {"Off", 0},
             {"Low", 1},
@@ -865,7 +865,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         t.properties.push_back({
             "GlobalIlluminationQuality",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EGlobalIlluminationQuality"),
-            "The rasteriser's indirect light (global illumination). A world's probes are lit in full on the first\nframe a camera asks for them; when the scene changes, the probes least recently lit are lit again, a\nbudget per frame, so that a change reaches every probe within a bounded number of frames\n(core/render/README.md). Off by default until it fits Table 3's frame budget on a software rasteriser\nwith room to spare (Medium: 2-3 ms more per 1080p frame on llvmpipe; BENCHMARKS.md).",
+            "The rasteriser's indirect light (global illumination). A world's probes are lit in full on the first\nframe a camera asks for them; when the scene changes, the probes least recently lit are lit again, a\nbudget per frame, so that a change reaches every probe within a bounded number of frames\n(core/render/README.md). Medium by default, as Unreal's cameras have global illumination on: about\n1.6 ms more per 1080p frame of Table 3 on llvmpipe (BENCHMARKS.md); Off gives the sky light's uniform\nterm alone.",
             false,
             [](const void* self) { return Calls::get_GlobalIlluminationQuality<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {

@@ -48,5 +48,5 @@ __attribute__((visibility("default"))) const char* spear_register_engine_types_a
 
 // The same hash as a constant: a plugin compiled against these headers records the engine's.
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "debabaf1af4cba66";
+inline constexpr char kApiHash[] = "0f3a2babe81e276b";
 } // namespace sp::generated::engine

@@ -1930,7 +1930,7 @@ void spear_bind_engine(py::module_& m) {
             [](const Ref<Self>& self, const PyArg& value) {
                 Calls::set_GlobalIlluminationQuality<PyCall>(self.get<Self>("UCameraSensorComponent.GlobalIlluminationQuality"), value);
             },
-            "The rasteriser's indirect light (global illumination). A world's probes are lit in full on the first\nframe a camera asks for them; when the scene changes, the probes least recently lit are lit again, a\nbudget per frame, so that a change reaches every probe within a bounded number of frames\n(core/render/README.md). Off by default until it fits Table 3's frame budget on a software rasteriser\nwith room to spare (Medium: 2-3 ms more per 1080p frame on llvmpipe; BENCHMARKS.md).");
+            "The rasteriser's indirect light (global illumination). A world's probes are lit in full on the first\nframe a camera asks for them; when the scene changes, the probes least recently lit are lit again, a\nbudget per frame, so that a change reaches every probe within a bounded number of frames\n(core/render/README.md). Medium by default, as Unreal's cameras have global illumination on: about\n1.6 ms more per 1080p frame of Table 3 on llvmpipe (BENCHMARKS.md); Off gives the sky light's uniform\nterm alone.");
         cls.def_property(
             "AntiAliasingMethod",
             [](const Ref<Self>& self) { return Calls::get_AntiAliasingMethod<PyCall>(self.get<Self>("UCameraSensorComponent.AntiAliasingMethod")); },

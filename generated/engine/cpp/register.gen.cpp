@@ -213,4 +213,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<EAntiAliasingMethod>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "debabaf1af4cba66"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "0f3a2babe81e276b"; }

@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "debabaf1af4cba66"
+API_HASH = "0f3a2babe81e276b"

@@ -179,9 +179,10 @@ class EComponentMobility(enum.IntEnum):
 
 class EGlobalIlluminationQuality(enum.IntEnum):
     """How much indirect light a rasterised camera shows: the world's irradiance probes (a grid over the scene,
-    lit by the path tracer's rays, blended per pixel; core/render/README.md, "Global illumination"). The
-    names follow Unreal's scalability levels (sg.GlobalIlluminationQuality). A world lights its probes at the
-    highest quality any of its rasterised cameras asks for.
+    lit by the path tracer's rays, blended per pixel on a GPU and per vertex on a software rasteriser;
+    core/render/README.md, "Global illumination"). The names follow Unreal's scalability levels
+    (sg.GlobalIlluminationQuality). A world lights its probes at the highest quality any of its rasterised
+    cameras asks for.
     """
 
     Off = 0

@@ -224,13 +224,16 @@ class EComponentMobility(enum.IntEnum):
 
 class EGlobalIlluminationQuality(enum.IntEnum):
     """How much indirect light a rasterised camera shows: the world's irradiance probes (a grid over the scene,
-    lit by the path tracer's rays, blended per pixel; core/render/README.md, "Global illumination"). The
-    names follow Unreal's scalability levels (sg.GlobalIlluminationQuality). A world lights its probes at the
-    highest quality any of its rasterised cameras asks for.
+    lit by the path tracer's rays, blended per pixel on a GPU and per vertex on a software rasteriser;
+    core/render/README.md, "Global illumination"). The names follow Unreal's scalability levels
+    (sg.GlobalIlluminationQuality). A world lights its probes at the highest quality any of its rasterised
+    cameras asks for.
     """
 
     Off = 0
-    """No indirect light: the sky light's uniform ambient term alone, as before global illumination."""
+    """No indirect light: the sky's term alone (the sky light's uniform radiance, or the spherical harmonics
+    of its map or of the sky atmosphere), with no occlusion by the scene.
+    """
     Low = 1
     """Probes 1 m apart (at most 16 along an axis), 128 rays each, 2 bounces."""
     Medium = 2
@@ -3136,8 +3139,9 @@ class UCameraSensorComponent(USceneComponent):
         """The rasteriser's indirect light (global illumination). A world's probes are lit in full on the first
         frame a camera asks for them; when the scene changes, the probes least recently lit are lit again, a
         budget per frame, so that a change reaches every probe within a bounded number of frames
-        (core/render/README.md). Off by default until it fits Table 3's frame budget on a software rasteriser
-        with room to spare (Medium: 2-3 ms more per 1080p frame on llvmpipe; BENCHMARKS.md).
+        (core/render/README.md). Medium by default, as Unreal's cameras have global illumination on: about
+        1.6 ms more per 1080p frame of Table 3 on llvmpipe (BENCHMARKS.md); Off gives the sky light's uniform
+        term alone.
         """
 
     @GlobalIlluminationQuality.setter

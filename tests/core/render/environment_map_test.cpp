@@ -1,6 +1,7 @@
 // The environment map against closed forms: its coordinates, a uniform map's terms (a white Lambertian
 // surface reflects the map's radiance: the furnace), the hemisphere sky whose irradiance is exactly
-// linear in the normal, the turn about the up axis, and importance sampling that integrates the map.
+// linear in the normal, the turn about the up axis, the content hash, and importance sampling that integrates
+// the map.
 
 #include <gtest/gtest.h>
 
@@ -89,6 +90,20 @@ TEST(EnvironmentMapTest, SourceAngleTurnsThePanoramaToTheLeft) {
     const EnvironmentMap turned(filled(256, 128, patch), 90.0f, "test");
     EXPECT_NEAR(turned.radiance(Eigen::Vector3f::UnitY()).x(), 10.0f, 0.01f);
     EXPECT_NEAR(turned.radiance(Eigen::Vector3f::UnitX()).x(), 0.1f, 0.01f);
+}
+
+TEST(EnvironmentMapTest, MapsMadeAlikeHashAlikeAndAnyChangeShows) {
+    // What the path tracer seeds its samples with: the radiance, not which object holds it.
+    auto sky = [](const Eigen::Vector3f& d) -> Eigen::Vector3f {
+        return Eigen::Vector3f(0.2f, 0.3f, 0.5f) * (1.5f + d.z() + 0.5f * d.x());
+    };
+    const EnvironmentMap a(filled(64, 32, sky), 0.0f, "test"), b(filled(64, 32, sky), 0.0f, "test");
+    EXPECT_NE(a.uid(), b.uid());
+    EXPECT_EQ(a.contentHash(), b.contentHash());
+    RadianceImage brighter = filled(64, 32, sky);
+    brighter.texels[100].x() += 1e-3f;
+    EXPECT_NE(EnvironmentMap(std::move(brighter), 0.0f, "test").contentHash(), a.contentHash());
+    EXPECT_NE(EnvironmentMap(filled(64, 32, sky), 45.0f, "test").contentHash(), a.contentHash());
 }
 
 TEST(EnvironmentMapTest, ImportanceSamplingIntegratesTheMap) {
