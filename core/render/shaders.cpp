@@ -397,7 +397,19 @@ void main() {
     vRecord = iIds.z;
     gl_Position = iModelViewProjection * p;
 #ifdef VERTEX_IRRADIANCE
-    irradianceBlend(vWorldPosition, normalize(vNormal), vVolumeConstant, vVolumeLinear);
+    {
+        // The probes' light for the normal and the mirror direction of the side the camera sees, evaluated
+        // here and interpolated: two varyings rather than the blend's four (the probes hold bands 0 and 1,
+        // smooth over a probe spacing, so what a pixel's own normal would add is second order).
+        vec3 toCamera = uCameraPosition.xyz - vWorldPosition;
+        vec3 n = normalize(vNormal);
+        if (dot(n, toCamera) < 0.0) n = -n;
+        vec3 constant;
+        mat3 linear;
+        irradianceBlend(vWorldPosition, n, constant, linear);
+        vAmbientDiffuse = max(constant + linear * n, 0.0);
+        vAmbientSpecular = max(constant + linear * reflect(-normalize(toCamera), n), 0.0);
+    }
 #endif
     SHADOW_CLIPS
     CONSTANT_COPIES
@@ -587,8 +599,8 @@ ConstantPlan planConstants(bool forward, const ShadingLayout& layout) {
     ConstantPlan plan;
     plan.frameSlots = !forward ? 1 : layout.vignette ? 4 : 3;
     plan.shadowSizes = forward && !shadowLayers(layout).empty();
-    // Per-vertex indirect light takes four varyings of the budget (vVolumeConstant, vVolumeLinear).
-    const int volume = forward && layout.irradiance == IrradianceBlend::PerVertex ? 4 : 0;
+    // Per-vertex indirect light takes two varyings of the budget (vAmbientDiffuse, vAmbientSpecular).
+    const int volume = forward && layout.irradiance == IrradianceBlend::PerVertex ? 2 : 0;
     int left = layout.constantSlots - plan.frameSlots - (plan.shadowSizes ? 1 : 0) - volume;
     plan.flat = left >= 0;
     plan.lightSlot.assign(layout.lights.size(), -1);
@@ -761,15 +773,14 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
     // Indirect light from the probes: the diffuse term for n, the specular one for the mirror direction;
     // blended here, or at the vertices and interpolated (VERTEX_IRRADIANCE, see surfaceVertex()).
 #ifdef VERTEX_IRRADIANCE
-    vec3 volumeConstant = vVolumeConstant;
-    mat3 volumeLinear = vVolumeLinear;
+    vec3 ambientDiffuse = vAmbientDiffuse, ambientSpecular = vAmbientSpecular;
 #else
     vec3 volumeConstant;
     mat3 volumeLinear;
     irradianceBlend(p, n, volumeConstant, volumeLinear);
-#endif
     vec3 ambientDiffuse = max(volumeConstant + volumeLinear * n, 0.0);
     vec3 ambientSpecular = max(volumeConstant + volumeLinear * reflect(-s.v, n), 0.0);
+#endif
 #elif defined(ENVIRONMENT_MAP)
     vec3 ambientDiffuse = skyDiffuse(n), ambientSpecular = skySpecular(reflect(-s.v, n), roughness);
 #else
@@ -1116,7 +1127,7 @@ std::string surfaceVertex(bool forward, const ShadingLayout& lights, bool layere
     text += constantDeclarations(plan, "out");
     if (forward && lights.irradiance == IrradianceBlend::PerVertex)
         text += "#define VERTEX_IRRADIANCE\n" + irradianceChunk(!lights.vertexProbeImages) +
-                "out vec3 vVolumeConstant;\nout mat3 vVolumeLinear;\n";
+                "out vec3 vAmbientDiffuse;\nout vec3 vAmbientSpecular;\n";
     return text + kSurfaceVertex;
 }
 
@@ -1153,7 +1164,7 @@ std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialF
         if (lights.irradiance == IrradianceBlend::PerPixel)
             text += irradianceChunk(false);
         else if (lights.irradiance == IrradianceBlend::PerVertex)
-            text += "in vec3 vVolumeConstant;\nin mat3 vVolumeLinear;\n";
+            text += "in vec3 vAmbientDiffuse;\nin vec3 vAmbientSpecular;\n";
         if (lights.environmentMap)
             text += environmentChunk();
         text += shadeFunction(lights, plan);

@@ -228,6 +228,15 @@ TEST_F(IrradianceProbesGlTest, SmallThingsMovingLeaveTheProbesAsTheyAre) {
     EXPECT_EQ(shared.sum, fresh.sum);
 }
 
+// Adds a grey box of side `size` at `at` with object id `id` to `scene`.
+render::InstanceId addGreyBox(Scene& scene, const Eigen::Vector3d& at, double size, std::uint32_t id) {
+    const render::MaterialId grey =
+        scene.addMaterial(render::test::makeMaterial({0.5f, 0.5f, 0.5f}, 0.8f, 0.0f));
+    render::Instance box{scene.addMesh(render::primitives::box()), {grey}, {id}};
+    box.transform = Eigen::Translation3d(at) * Eigen::Scaling(size);
+    return scene.addInstance(box);
+}
+
 TEST_F(IrradianceProbesGlTest, AnInstanceBeyondTheRaysReachLeavesTheGridWhereTheSceneIs) {
     // A thing placed at 1e176 m (a mistyped exponent) would put the probes where no float ray can start.
     Scene scene;
@@ -237,11 +246,7 @@ TEST_F(IrradianceProbesGlTest, AnInstanceBeyondTheRaysReachLeavesTheGridWhereThe
     settings.rays = 16;
     const auto room = probes.update(scene, tracer_, settings);
     ASSERT_NE(room, nullptr);
-    const render::MaterialId grey =
-        scene.addMaterial(render::test::makeMaterial({0.5f, 0.5f, 0.5f}, 0.8f, 0.0f));
-    render::Instance far{scene.addMesh(render::primitives::box()), {grey}, {9}};
-    far.transform = Eigen::Translation3d(1e176, 0.0, 0.0) * Eigen::Scaling(1.0);
-    scene.addInstance(far);
+    addGreyBox(scene, {1e176, 0.0, 0.0}, 1.0, 9);
     const auto volume = probes.update(scene, tracer_, settings);
     ASSERT_NE(volume, nullptr);
     EXPECT_EQ(volume->spacing, room->spacing);
@@ -258,17 +263,13 @@ TEST_F(IrradianceProbesGlTest, AThingFallingAwayBeyondTheCamerasReachLeavesTheGr
     const Eigen::AlignedBox3d around(Eigen::Vector3d::Constant(-50.0), Eigen::Vector3d::Constant(50.0));
     const auto room = probes.update(scene, tracer_, settings, around);
     ASSERT_NE(room, nullptr);
-    const render::MaterialId grey =
-        scene.addMaterial(render::test::makeMaterial({0.5f, 0.5f, 0.5f}, 0.8f, 0.0f));
-    render::Instance ball{scene.addMesh(render::primitives::box()), {grey}, {9}};
-    ball.transform = Eigen::Translation3d(-150.0, 80.0, -400.0) * Eigen::Scaling(1.0);
-    const render::InstanceId id = scene.addInstance(ball);
+    const render::InstanceId id = addGreyBox(scene, {-150.0, 80.0, -400.0}, 1.0, 9);
     for (double z : {-400.0, -430.0, -460.0}) {
         scene.setTransform(id, Eigen::Translation3d(-150.0, 80.0, z) * Eigen::Scaling(1.0));
         const auto volume = probes.update(scene, tracer_, settings, around);
         EXPECT_EQ(volume, room) << "at z = " << z; // nothing lit again, the same volume
     }
-    // Without a region the grid stretches to the ball (what `around` is for).
+    // Without a region the grid stretches to the box (what `around` is for).
     const auto stretched = probes.update(scene, tracer_, settings);
     ASSERT_NE(stretched, nullptr);
     EXPECT_GT(stretched->spacing, room->spacing);
