@@ -78,18 +78,17 @@ std::shared_ptr<const render::IrradianceVolume> IrradianceProbes::update(const r
     settings.validate("IrradianceProbes::update");
     ++updates_;
     litLastUpdate_ = 0;
-    // The grid covers the visible instances within `around`, and only what its float rays can reach: an
-    // instance further out than kMaxReach (or with a non-finite box) is lit by the nearest probes but does
-    // not stretch the grid to where no ray can start.
+    // The grid covers the visible instances that reach into `around` (whole: a ground the cameras move over
+    // keeps one grid, rather than one that follows them and is lit again each time it moves), and only what
+    // its float rays can reach: an instance further out than kMaxReach (or with a non-finite box) is lit by
+    // the nearest probes but does not stretch the grid to where no ray can start.
     Eigen::AlignedBox3d box;
     scene.forEachInstance([&](render::InstanceId, const render::Instance& instance) {
         if (!instance.visible)
             return;
-        Eigen::AlignedBox3d bounds = scene.boundingBox(instance);
-        if (!around.isEmpty())
-            bounds = bounds.intersection(around);
-        if (!bounds.isEmpty() && bounds.min().allFinite() && bounds.max().allFinite() &&
-            bounds.min().cwiseAbs().maxCoeff() <= kMaxReach &&
+        const Eigen::AlignedBox3d bounds = scene.boundingBox(instance);
+        if ((around.isEmpty() || bounds.intersects(around)) && bounds.min().allFinite() &&
+            bounds.max().allFinite() && bounds.min().cwiseAbs().maxCoeff() <= kMaxReach &&
             bounds.max().cwiseAbs().maxCoeff() <= kMaxReach)
             box.extend(bounds);
     });

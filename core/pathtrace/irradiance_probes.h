@@ -37,9 +37,9 @@ class IrradianceProbes {
   public:
     // Brings the volume up to date with `scene` (see the header comment) and returns it, to be set on the
     // scene; the same pointer while nothing changed, a new one when probes were lit. Null for a scene with
-    // nothing visible. The grid covers the visible instances within `around` (the region the cameras that
-    // ask for indirect light can use; an empty box: the whole scene), so a thing falling away out there (off
-    // the ground in a long run) neither coarsens the grid nor re-places it as it falls.
+    // nothing visible. The grid covers the visible instances that reach into `around` (the region the
+    // cameras that ask for indirect light can use; an empty box: the whole scene), so a thing falling away
+    // wholly out of it (off the ground in a long run) neither coarsens the grid nor re-places it as it falls.
     std::shared_ptr<const render::IrradianceVolume> update(const render::Scene& scene, PathTracer& tracer,
                                                            const ProbeSettings& settings,
                                                            const Eigen::AlignedBox3d& around = {});

@@ -88,7 +88,6 @@ constexpr double kIndirectLightReach = 50.0;
 
 // The probes of each quality (EGlobalIlluminationQuality's documentation; core/render/README.md): spacing,
 // probes along an axis at most, rays per probe, bounces, probes lit per frame after a change.
-
 sp::pathtrace::ProbeSettings probeSettings(EGlobalIlluminationQuality quality) {
     switch (quality) {
     case EGlobalIlluminationQuality::Off:
@@ -346,8 +345,8 @@ void RenderSubsystem::updateIndirectLight(const std::vector<UCameraSensorCompone
         tracer_ = std::make_unique<sp::pathtrace::PathTracer>();
     if (!probes_)
         probes_ = std::make_unique<sp::pathtrace::IrradianceProbes>();
-    // The probes cover the scene within kIndirectLightReach of those cameras: what lies further out adds
-    // little light to what they see, and a thing falling away there must not stretch the grid.
+    // The probes cover what reaches within kIndirectLightReach of those cameras: what lies wholly further out
+    // adds little light to what they see, and a thing falling away there must not stretch the grid.
     Eigen::AlignedBox3d around;
     for (const UCameraSensorComponent* camera : cameras)
         if (!camera->renderSuspended() && camera->Renderer == ECameraRenderer::Raster &&

@@ -275,6 +275,28 @@ TEST_F(IrradianceProbesGlTest, AThingFallingAwayBeyondTheCamerasReachLeavesTheGr
     EXPECT_GT(stretched->spacing, room->spacing);
 }
 
+TEST_F(IrradianceProbesGlTest, AGroundTheCamerasMoveOverKeepsOneGrid) {
+    // A 200 m ground reaches into the cameras' region wherever they go: it counts whole, so the grid stays.
+    Scene scene;
+    const render::MaterialId grey =
+        scene.addMaterial(render::test::makeMaterial({0.5f, 0.5f, 0.5f}, 0.8f, 0.0f));
+    render::Instance ground{scene.addMesh(render::primitives::box()), {grey}, {1}};
+    ground.transform = Eigen::Translation3d(0.0, 0.0, -0.05) * Eigen::Scaling(200.0, 200.0, 0.1);
+    scene.addInstance(ground);
+    IrradianceProbes probes;
+    ProbeSettings settings;
+    settings.rays = 16;
+    const auto first = probes.update(
+        scene, tracer_, settings, {Eigen::Vector3d(-60.0, -50.0, -48.0), Eigen::Vector3d(40.0, 50.0, 52.0)});
+    ASSERT_NE(first, nullptr);
+    for (double x : {-20.0, 0.0, 35.0})
+        EXPECT_EQ(
+            probes.update(scene, tracer_, settings,
+                          {Eigen::Vector3d(x - 50.0, -50.0, -48.0), Eigen::Vector3d(x + 50.0, 50.0, 52.0)}),
+            first)
+            << "cameras at x = " << x;
+}
+
 TEST_F(IrradianceProbesGlTest, SunlightOutsideAClosedRoomDoesNotLeakIn) {
     // The same room with a sun 10x the lamp outside: the inside must look as it did without the sun.
     Scene dark, sunny;
