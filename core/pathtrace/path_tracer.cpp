@@ -322,6 +322,18 @@ struct PathTracer::Impl {
         return *entry;
     }
 
+    // Whether rays can be traced into an instance with `transform`: finite, each axis scaled by 1e-6 to 1e9
+    // and not collapsed by shear, placed within 1e9 m, so that a ray from anywhere within reach stays a
+    // valid float ray in the instance's own space (Embree refuses beyond about 1.8e18). A scale of 0 or a
+    // position of 1e176 m (the RPC fuzzer's) is drawn by no ray.
+    static bool traceable(const Eigen::Affine3f& transform) {
+        if (!transform.matrix().allFinite() || transform.translation().cwiseAbs().maxCoeff() > 1e9f)
+            return false;
+        const Eigen::Vector3f scales = transform.linear().colwise().norm();
+        return scales.minCoeff() >= 1e-6f && scales.maxCoeff() <= 1e9f &&
+               std::abs(transform.linear().determinant()) >= 1e-18f;
+    }
+
     // The top level: one instance of its mesh scene per visible instance, with its transform.
     void build(const render::Scene& scene) {
         ++builds;
@@ -339,6 +351,8 @@ struct PathTracer::Impl {
             if (mesh.indices.empty())
                 return;
             const Eigen::Affine3f transform = instance.transform.cast<float>();
+            if (!traceable(transform))
+                return; // nothing a float ray could meet (or Embree accept in the instance's space)
             RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
             SP_CHECK(geometry != nullptr, InvalidState,
                      "PathTracer: Embree could not create an instance (error ",

@@ -252,6 +252,13 @@ TEST_F(IrradianceProbesGlTest, AnInstanceBeyondTheRaysReachLeavesTheGridWhereThe
     EXPECT_EQ(volume->spacing, room->spacing);
     EXPECT_EQ(volume->counts, room->counts);
     EXPECT_TRUE(volume->origin.allFinite());
+    // Nor does it, or a box scaled to nothing, stop the path tracer: no ray meets either.
+    addGreyBox(scene, {0.5, 0.5, 0.5}, 0.0, 10);
+    Accumulation image;
+    tracer_.render(scene, test::closedRoomCamera(), {1, 1}, image);
+    EXPECT_EQ(image.samples, 1u);
+    for (double value : image.sum)
+        ASSERT_TRUE(std::isfinite(value));
 }
 
 TEST_F(IrradianceProbesGlTest, AThingFallingAwayBeyondTheCamerasReachLeavesTheGridAsItWas) {
