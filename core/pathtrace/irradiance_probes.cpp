@@ -16,9 +16,6 @@ namespace {
 constexpr double kLatticeOffset = 0.37;
 // Instances whose bounding radius is under this fraction of the spacing are invisible to the probes.
 constexpr double kSmallFraction = 0.5;
-// How far from the origin (m) the grid reaches: its probes start float rays, which Embree refuses beyond
-// about 1.8e18 (a million kilometres is past any scene).
-constexpr double kMaxReach = 1e9;
 
 bool inside(const render::IrradianceProbe& probe) {
     return std::all_of(probe.freeDistance.begin(), probe.freeDistance.end(),
@@ -80,16 +77,16 @@ std::shared_ptr<const render::IrradianceVolume> IrradianceProbes::update(const r
     litLastUpdate_ = 0;
     // The grid covers the visible instances that reach into `around` (whole: a ground the cameras move over
     // keeps one grid, rather than one that follows them and is lit again each time it moves), and only what
-    // its float rays can reach: an instance further out than kMaxReach (or with a non-finite box) is lit by
-    // the nearest probes but does not stretch the grid to where no ray can start.
+    // its float rays can reach: an instance further out than kMaxTraceableReach (or with a non-finite box) is
+    // lit by the nearest probes but does not stretch the grid to where no ray can start.
     Eigen::AlignedBox3d box;
     scene.forEachInstance([&](render::InstanceId, const render::Instance& instance) {
         if (!instance.visible)
             return;
         const Eigen::AlignedBox3d bounds = scene.boundingBox(instance);
         if ((around.isEmpty() || bounds.intersects(around)) && bounds.min().allFinite() &&
-            bounds.max().allFinite() && bounds.min().cwiseAbs().maxCoeff() <= kMaxReach &&
-            bounds.max().cwiseAbs().maxCoeff() <= kMaxReach)
+            bounds.max().allFinite() && bounds.min().cwiseAbs().maxCoeff() <= kMaxTraceableReach &&
+            bounds.max().cwiseAbs().maxCoeff() <= kMaxTraceableReach)
             box.extend(bounds);
     });
     if (box.isEmpty()) {

@@ -323,11 +323,12 @@ struct PathTracer::Impl {
     }
 
     // Whether rays can be traced into an instance with `transform`: finite, each axis scaled by 1e-6 to 1e9
-    // and not collapsed by shear, placed within 1e9 m, so that a ray from anywhere within reach stays a
-    // valid float ray in the instance's own space (Embree refuses beyond about 1.8e18). A scale of 0 or a
-    // position of 1e176 m (the RPC fuzzer's) is drawn by no ray.
+    // and not collapsed by shear, placed within kMaxTraceableReach, so that a ray from anywhere within reach
+    // stays a valid float ray in the instance's own space. A scale of 0 or a position of 1e176 m (the RPC
+    // fuzzer's) is drawn by no ray.
     static bool traceable(const Eigen::Affine3f& transform) {
-        if (!transform.matrix().allFinite() || transform.translation().cwiseAbs().maxCoeff() > 1e9f)
+        if (!transform.matrix().allFinite() ||
+            transform.translation().cwiseAbs().maxCoeff() > float(kMaxTraceableReach))
             return false;
         const Eigen::Vector3f scales = transform.linear().colwise().norm();
         return scales.minCoeff() >= 1e-6f && scales.maxCoeff() <= 1e9f &&

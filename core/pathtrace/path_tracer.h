@@ -62,6 +62,10 @@ struct Accumulation {
     float mean(int x, int y, int c) const { return mean(sum, x, y, c); }
 };
 
+// How far from the origin (m) anything is traced: rays start as floats, which Embree refuses beyond about
+// 1.8e18, and an instance's own space must keep them valid (a million kilometres is past any scene).
+constexpr double kMaxTraceableReach = 1e9;
+
 // What the probes' rays see of a scene: not the instances whose bounding radius is under
 // `ignoreBelowRadius` (lit by the probes, they neither block nor bounce light for them, so that small things
 // moving do not make every probe stale), nor those wholly outside `within` (the grid's region; empty: all

@@ -332,10 +332,16 @@ void RenderSubsystem::Tick(double /*deltaSeconds*/) {
 void RenderSubsystem::updateIndirectLight(const std::vector<UCameraSensorComponent*>& cameras) {
     // The highest quality any rasterised camera that shades asks for; Off when none does.
     EGlobalIlluminationQuality quality = EGlobalIlluminationQuality::Off;
+    // The probes cover what reaches within kIndirectLightReach of those cameras: what lies wholly further out
+    // adds little light to what they see, and a thing falling away there must not stretch the grid.
+    Eigen::AlignedBox3d around;
     for (const UCameraSensorComponent* camera : cameras)
         if (!camera->renderSuspended() && camera->Renderer == ECameraRenderer::Raster &&
-            toModalitySet(camera->Modalities).requiredPasses(camera->bShadows).lighting)
+            camera->GlobalIlluminationQuality != EGlobalIlluminationQuality::Off &&
+            toModalitySet(camera->Modalities).requiredPasses(camera->bShadows).lighting) {
             quality = std::max(quality, camera->GlobalIlluminationQuality);
+            around.extend(camera->GetComponentTransform().toIsometry().translation());
+        }
     if (quality == EGlobalIlluminationQuality::Off) {
         scene_->setIrradianceVolume(nullptr);
         probes_.reset();
@@ -345,13 +351,6 @@ void RenderSubsystem::updateIndirectLight(const std::vector<UCameraSensorCompone
         tracer_ = std::make_unique<sp::pathtrace::PathTracer>();
     if (!probes_)
         probes_ = std::make_unique<sp::pathtrace::IrradianceProbes>();
-    // The probes cover what reaches within kIndirectLightReach of those cameras: what lies wholly further out
-    // adds little light to what they see, and a thing falling away there must not stretch the grid.
-    Eigen::AlignedBox3d around;
-    for (const UCameraSensorComponent* camera : cameras)
-        if (!camera->renderSuspended() && camera->Renderer == ECameraRenderer::Raster &&
-            camera->GlobalIlluminationQuality != EGlobalIlluminationQuality::Off)
-            around.extend(camera->GetComponentTransform().toIsometry().translation());
     around.min().array() -= kIndirectLightReach;
     around.max().array() += kIndirectLightReach;
     scene_->setIrradianceVolume(probes_->update(scene_->scene(), *tracer_, probeSettings(quality), around));
