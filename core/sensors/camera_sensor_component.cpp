@@ -59,6 +59,44 @@ void UCameraSensorComponent::SetExposure(float NewExposure) {
                      "> 0 and finite", NewExposure);
     Exposure = NewExposure;
 }
+void UCameraSensorComponent::SetAutoExposureBias(float NewBias) {
+    sp::checkSetting(NewBias >= -15.0f && NewBias <= 15.0f, "UCameraSensorComponent", "AutoExposureBias",
+                     "in [-15, 15] f-stops", NewBias);
+    AutoExposureBias = NewBias;
+}
+void UCameraSensorComponent::SetAutoExposureMinBrightness(float NewMinBrightness) {
+    sp::checkSetting(NewMinBrightness >= -20.0f && NewMinBrightness <= 40.0f, "UCameraSensorComponent",
+                     "AutoExposureMinBrightness", "in [-20, 40] EV100", NewMinBrightness);
+    AutoExposureMinBrightness = NewMinBrightness;
+}
+void UCameraSensorComponent::SetAutoExposureMaxBrightness(float NewMaxBrightness) {
+    sp::checkSetting(NewMaxBrightness >= -20.0f && NewMaxBrightness <= 40.0f, "UCameraSensorComponent",
+                     "AutoExposureMaxBrightness", "in [-20, 40] EV100", NewMaxBrightness);
+    AutoExposureMaxBrightness = NewMaxBrightness;
+}
+void UCameraSensorComponent::SetAutoExposureSpeedUp(float NewSpeed) {
+    sp::checkSetting(NewSpeed > 0.0f && NewSpeed <= 100.0f, "UCameraSensorComponent", "AutoExposureSpeedUp",
+                     "in (0, 100] f-stops per second", NewSpeed);
+    AutoExposureSpeedUp = NewSpeed;
+}
+void UCameraSensorComponent::SetAutoExposureSpeedDown(float NewSpeed) {
+    sp::checkSetting(NewSpeed > 0.0f && NewSpeed <= 100.0f, "UCameraSensorComponent", "AutoExposureSpeedDown",
+                     "in (0, 100] f-stops per second", NewSpeed);
+    AutoExposureSpeedDown = NewSpeed;
+}
+void UCameraSensorComponent::SetAutoExposureLowPercent(float NewPercent) {
+    sp::checkSetting(NewPercent >= 0.0f && NewPercent < 100.0f, "UCameraSensorComponent",
+                     "AutoExposureLowPercent", "in [0, 100)", NewPercent);
+    AutoExposureLowPercent = NewPercent;
+}
+void UCameraSensorComponent::SetAutoExposureHighPercent(float NewPercent) {
+    sp::checkSetting(NewPercent > 0.0f && NewPercent <= 100.0f, "UCameraSensorComponent",
+                     "AutoExposureHighPercent", "in (0, 100]", NewPercent);
+    AutoExposureHighPercent = NewPercent;
+}
+void UCameraSensorComponent::ResetAutoExposure() {
+    subsystemOf(*this, "ResetAutoExposure").resetAutoExposure(*this);
+}
 void UCameraSensorComponent::SetSensorWidth(double NewSensorWidth) {
     sp::checkSetting(NewSensorWidth > 0.0 && std::isfinite(NewSensorWidth), "UCameraSensorComponent",
                      "SensorWidth", "> 0 and finite", NewSensorWidth);

@@ -74,6 +74,23 @@ enum class ECameraRenderer : uint8_t {
     PathTraced = 1,
 };
 
+/// How a camera sets the exposure of final_color (Unreal's names and values). The automatic methods meter the
+/// view's luminance and show it as middle grey: Exposure = 0.18 * 2^AutoExposureBias / L for a metered
+/// luminance L (cd/m^2, read as EV100 = log2(L * 100 / 12.5) and clamped to [AutoExposureMinBrightness,
+/// AutoExposureMaxBrightness]), adapting to a change at AutoExposureSpeedUp / AutoExposureSpeedDown. A
+/// camera's first frame, and the first after ResetAutoExposure(), is exposed for what it shows.
+SPENUM()
+enum class EAutoExposureMethod : uint8_t {
+    /// The mean log luminance of the pixels between the AutoExposureLowPercent and AutoExposureHighPercent
+    /// percentiles: the darkest and brightest parts (a lamp, the sun, a black sky) leave it unmoved.
+    AEM_Histogram = 0,
+    /// The mean log luminance of every pixel.
+    AEM_Basic = 1,
+    /// Exposure exactly as set (the default): the same scene always gives the same pixels, so a dataset's
+    /// views stay comparable.
+    AEM_Manual = 2,
+};
+
 /// How a rasterised camera's final_color is anti-aliased (Unreal's names and values). The exact modalities
 /// (depth, position, normal, ids, material inputs) are never filtered: one exact value per pixel, at its
 /// centre.
@@ -319,6 +336,43 @@ class UCameraSensorComponent : public USceneComponent {
     SPPROPERTY(Setter = SetExposure)
     float Exposure = 1.0f;
 
+    /// Whether final_color's exposure is Exposure as set (AEM_Manual, the default) or metered from the view
+    /// (EAutoExposureMethod). GetAppliedExposure() tells the exposure a frame was shown at.
+    SPPROPERTY()
+    EAutoExposureMethod AutoExposureMethod = EAutoExposureMethod::AEM_Manual;
+
+    /// Automatic exposure: f-stops to brighten (> 0) or darken (< 0) the metered exposure, in [-15, 15].
+    SPPROPERTY(Setter = SetAutoExposureBias)
+    float AutoExposureBias = 0.0f;
+
+    /// Automatic exposure: the darkest scene, as EV100, the camera adapts to (darker ones show darker), in
+    /// [-20, 40]; it must not exceed AutoExposureMaxBrightness when the camera renders.
+    SPPROPERTY(Setter = SetAutoExposureMinBrightness)
+    float AutoExposureMinBrightness = -10.0f;
+
+    /// Automatic exposure: the brightest scene, as EV100, the camera adapts to, in [-20, 40].
+    SPPROPERTY(Setter = SetAutoExposureMaxBrightness)
+    float AutoExposureMaxBrightness = 20.0f;
+
+    /// Automatic exposure: how fast the camera adapts to a scene turned brighter, in f-stops per second of
+    /// world time (half the way in 1 / speed seconds), in (0, 100].
+    SPPROPERTY(Setter = SetAutoExposureSpeedUp)
+    float AutoExposureSpeedUp = 3.0f;
+
+    /// Automatic exposure: how fast the camera adapts to a scene turned darker, in f-stops per second, in
+    /// (0, 100].
+    SPPROPERTY(Setter = SetAutoExposureSpeedDown)
+    float AutoExposureSpeedDown = 1.0f;
+
+    /// AEM_Histogram: the darkest percent of the pixels left out of the metering, in [0, 100) and below
+    /// AutoExposureHighPercent when the camera renders.
+    SPPROPERTY(Setter = SetAutoExposureLowPercent)
+    float AutoExposureLowPercent = 10.0f;
+
+    /// AEM_Histogram: the percentile above which the brightest pixels are left out, in (0, 100].
+    SPPROPERTY(Setter = SetAutoExposureHighPercent)
+    float AutoExposureHighPercent = 90.0f;
+
     /// The colour temperature in kelvin the camera is balanced for, in [2000, 25000]: light of this
     /// temperature renders neutral in final_color (hdr_color is unchanged). 6500 (daylight) leaves colours as
     /// they are; 3200 suits tungsten light (the image turns bluer), 10000 shade (warmer).
@@ -447,6 +501,36 @@ class UCameraSensorComponent : public USceneComponent {
     /// Sets Exposure (> 0 and finite).
     SPFUNCTION()
     void SetExposure(float NewExposure);
+    /// Sets AutoExposureBias in f-stops, in [-15, 15].
+    SPFUNCTION()
+    void SetAutoExposureBias(float NewBias);
+    /// Sets AutoExposureMinBrightness as EV100, in [-20, 40].
+    SPFUNCTION()
+    void SetAutoExposureMinBrightness(float NewMinBrightness);
+    /// Sets AutoExposureMaxBrightness as EV100, in [-20, 40].
+    SPFUNCTION()
+    void SetAutoExposureMaxBrightness(float NewMaxBrightness);
+    /// Sets AutoExposureSpeedUp in f-stops per second, in (0, 100].
+    SPFUNCTION()
+    void SetAutoExposureSpeedUp(float NewSpeed);
+    /// Sets AutoExposureSpeedDown in f-stops per second, in (0, 100].
+    SPFUNCTION()
+    void SetAutoExposureSpeedDown(float NewSpeed);
+    /// Sets AutoExposureLowPercent, in [0, 100).
+    SPFUNCTION()
+    void SetAutoExposureLowPercent(float NewPercent);
+    /// Sets AutoExposureHighPercent, in (0, 100].
+    SPFUNCTION()
+    void SetAutoExposureHighPercent(float NewPercent);
+    /// Makes the next frame's automatic exposure that of what it shows, with no adaptation from the frames
+    /// before (Unreal's camera cut): for views that do not follow one another, such as a dataset's random
+    /// poses.
+    SPFUNCTION()
+    void ResetAutoExposure();
+    /// Returns the exposure the frame last read was shown at (final_color's multiplier of hdr_color before
+    /// the tone curve): Exposure with AEM_Manual, the metered one otherwise; 0 before a frame was read.
+    SPFUNCTION()
+    float GetAppliedExposure() const { return appliedExposure_; }
     /// Sets SensorWidth in millimetres (> 0 and finite); FOV is kept.
     SPFUNCTION()
     void SetSensorWidth(double NewSensorWidth);
@@ -596,6 +680,7 @@ class UCameraSensorComponent : public USceneComponent {
     // Set by the RenderSubsystem when read_pixels() reads a frame.
     void setPixelsFrame(int64_t frame) { pixelsFrame_ = frame; }
     void setAccumulatedSamples(int64_t samples) { accumulatedSamples_ = samples; }
+    void setAppliedExposure(float exposure) { appliedExposure_ = exposure; }
     // Set by a render job for an engine frame whose output frame is already written: the world does not
     // render this camera in that frame.
     void setRenderSuspended(bool suspended) { renderSuspended_ = suspended; }
@@ -604,5 +689,6 @@ class UCameraSensorComponent : public USceneComponent {
   private:
     int64_t pixelsFrame_ = -1;
     int64_t accumulatedSamples_ = 0;
+    float appliedExposure_ = 0.0f;
     bool renderSuspended_ = false;
 };

@@ -11,12 +11,14 @@
 #include "core/pathtrace/denoise.h"
 #include "core/pathtrace/irradiance_probes.h"
 #include "core/pathtrace/path_tracer.h"
+#include "core/render/auto_exposure.h"
 #include "core/render/camera.h"
 #include "core/render/gl_context.h"
 #include "core/render/lens.h"
 #include "core/render/render_target.h"
 #include "core/render/renderer.h"
 #include "core/render/tone.h"
+#include "core/sensors/camera_exposure.h"
 #include "core/sensors/render_scene.h"
 #include "core/world/world.h"
 
@@ -36,7 +38,7 @@ sp::render::ModalitySet toModalitySet(const std::vector<ECameraModality>& modali
 // its fields, which the Python user never sees).
 // `sizedResolution` stands for ShadowResolution 0 (see RenderSubsystem::Tick).
 sp::render::CameraParams cameraParams(const UCameraSensorComponent& camera, int sizedResolution) {
-    const std::string who = "UCameraSensorComponent " + camera.GetDebugName() + ": ";
+    const std::string who = camera.GetDebugName() + ": ";
     SP_CHECK(camera.Width > 0 && camera.Width <= 16384, sp::InvalidArgument, who,
              "Width must be in [1, 16384], got ", camera.Width);
     SP_CHECK(camera.Height > 0 && camera.Height <= 16384, sp::InvalidArgument, who,
@@ -185,6 +187,7 @@ struct RenderSubsystem::PendingFrame {
     int width = 0;
     int height = 0;
     sp::render::ModalitySet modalities;
+    sp::render::CameraParams params;            // as rendered: its exposure, and the lens source's size
     std::shared_ptr<const TracedImages> traced; // replaces rasterised images when set
     // Set for a lens camera: the frame was rendered as the remap's pinhole source (sourceWidth x
     // sourceHeight) and is read through it into width x height images.
@@ -204,6 +207,9 @@ struct RenderSubsystem::CameraState {
     // The lens remap of the camera's current lens and size (rebuilt when either changes).
     std::shared_ptr<const sp::render::LensRemap> lens;
     sp::render::LensModel lensModel;
+    CameraExposure exposure;
+    // A cut's metering view (meterView()): a small hdr_color render of what the camera is about to show.
+    std::unique_ptr<sp::render::RenderTarget> meterTarget;
 };
 
 RenderSubsystem::RenderSubsystem(UWorld& world) : world_(world), scene_(std::make_unique<RenderScene>()) {}
@@ -401,23 +407,56 @@ void RenderSubsystem::submit(UCameraSensorComponent& camera, int sizedShadowReso
     } else if (state.target->modalities() != modalities) {
         state.target->setModalities(modalities);
     }
+    const bool traces = camera.Renderer == ECameraRenderer::PathTraced &&
+                        std::any_of(kTracedModalities.begin(), kTracedModalities.end(),
+                                    [&](sp::render::Modality m) { return modalities.contains(m); });
+    // A path-traced camera meters its own image (trace()); a rasterised one adapts to its last read frame.
+    if (!traces && modalities.contains(sp::render::Modality::FinalColor))
+        renderCamera.params.exposure = state.exposure.exposureFor(
+            camera, world_.get_time_seconds(), [&] { return meterView(camera, renderCamera, state); });
     // Rendered with every world's cameras once all worlds ticked (OnWorldsTicked).
     const std::uint64_t number = state.target->submittedFrames() + 1;
     gl_->queued.push_back({this, state.target.get(), &scene_->scene(), renderCamera, number});
     std::shared_ptr<const TracedImages> traced;
-    if (camera.Renderer == ECameraRenderer::PathTraced &&
-        std::any_of(kTracedModalities.begin(), kTracedModalities.end(),
-                    [&](sp::render::Modality m) { return modalities.contains(m); }))
+    if (traces)
         traced = trace(camera, renderCamera, modalities, state);
     // The world's frame counter advances after its subsystems tick, so this frame is count + 1.
     state.pending.push_back({number, world_.get_frame_count() + 1, camera.Width, camera.Height, modalities,
-                             std::move(traced), state.lens});
+                             renderCamera.params, std::move(traced), state.lens});
     while (state.pending.size() > std::size_t(camera.Latency) + 1)
         state.pending.pop_front();
 }
 
+double RenderSubsystem::meterView(const UCameraSensorComponent& camera,
+                                  const sp::render::Camera& renderCamera, CameraState& state) {
+    // At most 128 pixels wide: the metering samples no more (auto_exposure.h), and the render costs little.
+    sp::render::Camera view = renderCamera;
+    if (view.params.width > 128) {
+        view.params.height = std::max(1, int(std::lround(128.0 * view.params.height / view.params.width)));
+        view.params.width = 128;
+    }
+    view.params.antiAliasing = sp::render::AntiAliasing::None;
+    const sp::render::ModalitySet hdr{sp::render::Modality::HdrColor};
+    if (!state.meterTarget)
+        state.meterTarget = std::make_unique<sp::render::RenderTarget>(*gl_->renderer, hdr, 0);
+    std::vector<std::uint16_t> pixels(std::size_t(view.params.width) * std::size_t(view.params.height) * 4);
+    const sp::render::OutputView output{sp::render::Modality::HdrColor, pixels.data(),
+                                        pixels.size() * sizeof(std::uint16_t)};
+    const sp::render::RenderTarget::Submission submission{state.meterTarget.get(), &scene_->scene(), &view};
+    sp::render::RenderTarget::submitAll({&submission, 1});
+    SP_CHECK(state.meterTarget->read({&output, 1}).has_value(), sp::InvalidState,
+             "RenderSubsystem::meterView(): the metering view of ", camera.GetDebugName(),
+             " was not rendered");
+    return sp::render::meterHdrHalf(pixels.data(), view.params.width, view.params.height,
+                                    meteringSettings(camera));
+}
+
+void RenderSubsystem::resetAutoExposure(UCameraSensorComponent& camera) {
+    cameraState(camera).exposure.reset();
+}
+
 std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponent& camera,
-                                                           const sp::render::Camera& renderCamera,
+                                                           sp::render::Camera& renderCamera,
                                                            const sp::render::ModalitySet& modalities,
                                                            CameraState& state) {
     if (!tracer_)
@@ -431,6 +470,23 @@ std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponen
     if (camera.bPathTracingEnableDenoiser && (modalities.contains(sp::render::Modality::FinalColor) ||
                                               modalities.contains(sp::render::Modality::HdrColor)))
         denoised = sp::pathtrace::denoise(image);
+    if (modalities.contains(sp::render::Modality::FinalColor)) {
+        // Automatic exposure meters the image it tone-maps (denoised when it is).
+        std::optional<double> ev;
+        if (camera.AutoExposureMethod != EAutoExposureMethod::AEM_Manual) {
+            std::vector<float> hdr(denoised.begin(), denoised.end());
+            if (hdr.empty()) {
+                const double scale = image.samples > 0 ? 1.0 / double(image.samples) : 0.0;
+                hdr.resize(image.sum.size());
+                std::transform(image.sum.begin(), image.sum.end(), hdr.begin(),
+                               [&](double sum) { return float(sum * scale); });
+            }
+            ev = sp::render::meterHdr(hdr.data(), image.width, image.height, 3, meteringSettings(camera));
+            state.exposure.metered(*ev);
+        }
+        renderCamera.params.exposure =
+            state.exposure.exposureFor(camera, world_.get_time_seconds(), [&] { return *ev; });
+    }
     auto traced = std::make_shared<TracedImages>();
     traced->samples = image.samples;
     // The pixel's vignetting (1 without), as the surface shader applies it to final_color.
@@ -547,6 +603,15 @@ bool RenderSubsystem::readInto(UCameraSensorComponent& camera,
         if (read) {
             state.pixelsFrame = due.worldFrame;
             state.lastRead = due;
+            // A rasterised final_color is what the automatic exposure adapts to (at its rendered size).
+            if (!due.traced && camera.AutoExposureMethod != EAutoExposureMethod::AEM_Manual)
+                for (const sp::render::OutputView& view : readViews)
+                    if (view.modality == sp::render::Modality::FinalColor) {
+                        const sp::render::FinalColorMetering metering = sp::render::meterFinalColor(
+                            static_cast<const std::uint8_t*>(view.data), due.params.width, due.params.height,
+                            due.params, meteringSettings(camera));
+                        state.exposure.metered(metering.ev100, metering.exact);
+                    }
         }
         auto end = std::find_if(state.pending.begin(), state.pending.end(),
                                 [&](const PendingFrame& f) { return f.submit == due.submit; });
@@ -574,6 +639,7 @@ bool RenderSubsystem::readInto(UCameraSensorComponent& camera,
                         sp::render::dtypeSize(info.dtype) * std::size_t(info.channels));
         }
     camera.setAccumulatedSamples(traced ? std::int64_t(traced->samples) : 0);
+    camera.setAppliedExposure(read && state.lastRead ? state.lastRead->params.exposure : 0.0f);
     camera.setPixelsFrame(read ? state.pixelsFrame : -1);
     return read;
 }

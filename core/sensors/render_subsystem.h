@@ -102,6 +102,10 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     // moved since the last one.
     void restartAccumulation(UCameraSensorComponent& camera);
 
+    // Makes the camera's next frame a cut for its automatic exposure
+    // (UCameraSensorComponent::ResetAutoExposure).
+    void resetAutoExposure(UCameraSensorComponent& camera);
+
     // Starts the GL context and renderer if they are not running yet.
     FRenderDeviceInfo deviceInfo();
     // The renderer this world draws with (shared by the engine's worlds); null before its first render.
@@ -118,13 +122,18 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     // volume).
     void updateIndirectLight(const std::vector<UCameraSensorComponent*>& cameras);
     const PendingFrame* dueFrame(UCameraSensorComponent& camera) const;
+    // The EV100 that what `renderCamera` is about to show meters: a small hdr_color render of it, now (a cut
+    // of the camera's automatic exposure).
+    double meterView(const UCameraSensorComponent& camera, const sp::render::Camera& renderCamera,
+                     CameraState& state);
     CameraState& cameraState(UCameraSensorComponent& camera);
     // Renders the camera's frame; `sizedShadowResolution` stands for its ShadowResolution 0 (see Tick).
     void submit(UCameraSensorComponent& camera, int sizedShadowResolution);
     // Adds the camera's path-traced samples of this frame and returns the images of `modalities` that the
     // path tracer makes.
+    // Sets renderCamera's exposure (the camera's automatic exposure meters the traced image).
     std::shared_ptr<const TracedImages> trace(UCameraSensorComponent& camera,
-                                              const sp::render::Camera& renderCamera,
+                                              sp::render::Camera& renderCamera,
                                               const sp::render::ModalitySet& modalities, CameraState& state);
 
     UWorld& world_;

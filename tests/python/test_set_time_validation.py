@@ -40,6 +40,16 @@ CAMERA_CASES = [
     ("Exposure", math.nan, 1.0, "UCameraSensorComponent.Exposure must be > 0 and finite, got nan"),
     ("ShadowResolution", 8, 0, "UCameraSensorComponent.ShadowResolution must be 0 or in [16, 8192], got 8"),
     ("Latency", 3, 0, "UCameraSensorComponent.Latency must be 0, 1 or 2, got 3"),
+    ("AutoExposureBias", 16.0, 0.0, "UCameraSensorComponent.AutoExposureBias must be in [-15, 15] f-stops, got 16"),
+    ("AutoExposureMinBrightness", math.nan, -10.0,
+     "UCameraSensorComponent.AutoExposureMinBrightness must be in [-20, 40] EV100, got nan"),
+    ("AutoExposureMaxBrightness", 41.0, 20.0,
+     "UCameraSensorComponent.AutoExposureMaxBrightness must be in [-20, 40] EV100, got 41"),
+    ("AutoExposureSpeedUp", 0.0, 3.0, "UCameraSensorComponent.AutoExposureSpeedUp must be in (0, 100] f-stops per second, got 0"),
+    ("AutoExposureSpeedDown", math.inf, 1.0,
+     "UCameraSensorComponent.AutoExposureSpeedDown must be in (0, 100] f-stops per second, got inf"),
+    ("AutoExposureLowPercent", 100.0, 10.0, "UCameraSensorComponent.AutoExposureLowPercent must be in [0, 100), got 100"),
+    ("AutoExposureHighPercent", -1.0, 90.0, "UCameraSensorComponent.AutoExposureHighPercent must be in (0, 100], got -1"),
 ]
 
 

@@ -54,6 +54,19 @@ template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EAntiAliasingMe
     return info;
 }
 
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EAutoExposureMethod>() {
+    static const sp::reflect::EnumInfo info{
+        "EAutoExposureMethod",
+        "How a camera sets the exposure of final_color (Unreal's names and values). The automatic methods meter the\nview's luminance and show it as middle grey: Exposure = 0.18 * 2^AutoExposureBias / L for a metered\nluminance L (cd/m^2, read as EV100 = log2(L * 100 / 12.5) and clamped to [AutoExposureMinBrightness,\nAutoExposureMaxBrightness]), adapting to a change at AutoExposureSpeedUp / AutoExposureSpeedDown. A\ncamera's first frame, and the first after ResetAutoExposure(), is exposed for what it shows.",
+        {
+            {"AEM_Histogram", 0},
+            {"AEM_Basic", 1},
+            {"AEM_Manual", 2},
+        },
+    };
+    return info;
+}
+
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraModality>() {
     static const sp::reflect::EnumInfo info{
         "ECameraModality",
@@ -733,6 +746,86 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
         });
         t.properties.push_back({
+            "AutoExposureMethod",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EAutoExposureMethod"),
+            "Whether final_color's exposure is Exposure as set (AEM_Manual, the default) or metered from the view\n(EAutoExposureMethod). GetAppliedExposure() tells the exposure a frame was shown at.",
+            false,
+            [](const void* self) { return Calls::get_AutoExposureMethod<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_AutoExposureMethod<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "AutoExposureBias",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
+            "Automatic exposure: f-stops to brighten (> 0) or darken (< 0) the metered exposure, in [-15, 15].",
+            false,
+            [](const void* self) { return Calls::get_AutoExposureBias<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_AutoExposureBias<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "AutoExposureMinBrightness",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
+            "Automatic exposure: the darkest scene, as EV100, the camera adapts to (darker ones show darker), in\n[-20, 40]; it must not exceed AutoExposureMaxBrightness when the camera renders.",
+            false,
+            [](const void* self) { return Calls::get_AutoExposureMinBrightness<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_AutoExposureMinBrightness<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "AutoExposureMaxBrightness",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
+            "Automatic exposure: the brightest scene, as EV100, the camera adapts to, in [-20, 40].",
+            false,
+            [](const void* self) { return Calls::get_AutoExposureMaxBrightness<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_AutoExposureMaxBrightness<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "AutoExposureSpeedUp",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
+            "Automatic exposure: how fast the camera adapts to a scene turned brighter, in f-stops per second of\nworld time (half the way in 1 / speed seconds), in (0, 100].",
+            false,
+            [](const void* self) { return Calls::get_AutoExposureSpeedUp<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_AutoExposureSpeedUp<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "AutoExposureSpeedDown",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
+            "Automatic exposure: how fast the camera adapts to a scene turned darker, in f-stops per second, in\n(0, 100].",
+            false,
+            [](const void* self) { return Calls::get_AutoExposureSpeedDown<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_AutoExposureSpeedDown<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "AutoExposureLowPercent",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
+            "AEM_Histogram: the darkest percent of the pixels left out of the metering, in [0, 100) and below\nAutoExposureHighPercent when the camera renders.",
+            false,
+            [](const void* self) { return Calls::get_AutoExposureLowPercent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_AutoExposureLowPercent<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "AutoExposureHighPercent",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
+            "AEM_Histogram: the percentile above which the brightest pixels are left out, in (0, 100].",
+            false,
+            [](const void* self) { return Calls::get_AutoExposureHighPercent<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_AutoExposureHighPercent<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
             "WhiteBalanceTemperature",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "The colour temperature in kelvin the camera is balanced for, in [2000, 25000]: light of this\ntemperature renders neutral in final_color (hdr_color is unchanged). 6500 (daylight) leaves colours as\nthey are; 3200 suits tungsten light (the image turns bluer), 10000 shade (warmer).",
@@ -997,6 +1090,103 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             false,
             false,
             [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetExposure<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "SetAutoExposureBias",
+            "Sets AutoExposureBias in f-stops, in [-15, 15].",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"NewBias", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetAutoExposureBias<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "SetAutoExposureMinBrightness",
+            "Sets AutoExposureMinBrightness as EV100, in [-20, 40].",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"NewMinBrightness", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetAutoExposureMinBrightness<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "SetAutoExposureMaxBrightness",
+            "Sets AutoExposureMaxBrightness as EV100, in [-20, 40].",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"NewMaxBrightness", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetAutoExposureMaxBrightness<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "SetAutoExposureSpeedUp",
+            "Sets AutoExposureSpeedUp in f-stops per second, in (0, 100].",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"NewSpeed", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetAutoExposureSpeedUp<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "SetAutoExposureSpeedDown",
+            "Sets AutoExposureSpeedDown in f-stops per second, in (0, 100].",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"NewSpeed", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetAutoExposureSpeedDown<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "SetAutoExposureLowPercent",
+            "Sets AutoExposureLowPercent, in [0, 100).",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"NewPercent", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetAutoExposureLowPercent<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "SetAutoExposureHighPercent",
+            "Sets AutoExposureHighPercent, in (0, 100].",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"NewPercent", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetAutoExposureHighPercent<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "ResetAutoExposure",
+            "Makes the next frame's automatic exposure that of what it shows, with no adaptation from the frames\nbefore (Unreal's camera cut): for views that do not follow one another, such as a dataset's random\nposes.",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_ResetAutoExposure<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "GetAppliedExposure",
+            "Returns the exposure the frame last read was shown at (final_color's multiplier of hdr_color before\nthe tone curve): Exposure with AEM_Manual, the metered one otherwise; 0 before a frame was read.",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetAppliedExposure<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetSensorWidth",

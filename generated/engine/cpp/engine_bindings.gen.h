@@ -224,6 +224,21 @@ template <> struct type_caster<EAntiAliasingMethod> {
     }
 };
 
+template <> struct type_caster<EAutoExposureMethod> {
+    PYBIND11_TYPE_CASTER(EAutoExposureMethod, const_name("EAutoExposureMethod"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EAutoExposureMethod");
+        if (!isinstance(src, cls))
+            return false;
+        value = static_cast<EAutoExposureMethod>(src.cast<int64_t>());
+        return true;
+    }
+    static handle cast(EAutoExposureMethod v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EAutoExposureMethod");
+        return cls(static_cast<int64_t>(v)).release();
+    }
+};
+
 template <> struct type_caster<ECameraModality> {
     PYBIND11_TYPE_CASTER(ECameraModality, const_name("ECameraModality"));
     bool load(handle src, bool) {

@@ -3392,6 +3392,78 @@ struct UCameraSensorComponentCalls {
         sp::reflect::notifyPropertyChanged(self, "Exposure");
     }
 
+    template <typename Call> static typename Call::Result get_AutoExposureMethod(const Self* self) {
+        const auto& value = self->AutoExposureMethod;
+        return Call::template result<EAutoExposureMethod>(value);
+    }
+    template <typename Call> static void set_AutoExposureMethod(Self* self, const typename Call::Input& value) {
+        self->AutoExposureMethod = Call::template input<EAutoExposureMethod>(value, "UCameraSensorComponent.AutoExposureMethod");
+        sp::reflect::notifyPropertyChanged(self, "AutoExposureMethod");
+    }
+
+    template <typename Call> static typename Call::Result get_AutoExposureBias(const Self* self) {
+        const auto& value = self->AutoExposureBias;
+        return Call::template result<float>(value);
+    }
+    template <typename Call> static void set_AutoExposureBias(Self* self, const typename Call::Input& value) {
+        self->SetAutoExposureBias(Call::template input<float>(value, "UCameraSensorComponent.AutoExposureBias"));
+        sp::reflect::notifyPropertyChanged(self, "AutoExposureBias");
+    }
+
+    template <typename Call> static typename Call::Result get_AutoExposureMinBrightness(const Self* self) {
+        const auto& value = self->AutoExposureMinBrightness;
+        return Call::template result<float>(value);
+    }
+    template <typename Call> static void set_AutoExposureMinBrightness(Self* self, const typename Call::Input& value) {
+        self->SetAutoExposureMinBrightness(Call::template input<float>(value, "UCameraSensorComponent.AutoExposureMinBrightness"));
+        sp::reflect::notifyPropertyChanged(self, "AutoExposureMinBrightness");
+    }
+
+    template <typename Call> static typename Call::Result get_AutoExposureMaxBrightness(const Self* self) {
+        const auto& value = self->AutoExposureMaxBrightness;
+        return Call::template result<float>(value);
+    }
+    template <typename Call> static void set_AutoExposureMaxBrightness(Self* self, const typename Call::Input& value) {
+        self->SetAutoExposureMaxBrightness(Call::template input<float>(value, "UCameraSensorComponent.AutoExposureMaxBrightness"));
+        sp::reflect::notifyPropertyChanged(self, "AutoExposureMaxBrightness");
+    }
+
+    template <typename Call> static typename Call::Result get_AutoExposureSpeedUp(const Self* self) {
+        const auto& value = self->AutoExposureSpeedUp;
+        return Call::template result<float>(value);
+    }
+    template <typename Call> static void set_AutoExposureSpeedUp(Self* self, const typename Call::Input& value) {
+        self->SetAutoExposureSpeedUp(Call::template input<float>(value, "UCameraSensorComponent.AutoExposureSpeedUp"));
+        sp::reflect::notifyPropertyChanged(self, "AutoExposureSpeedUp");
+    }
+
+    template <typename Call> static typename Call::Result get_AutoExposureSpeedDown(const Self* self) {
+        const auto& value = self->AutoExposureSpeedDown;
+        return Call::template result<float>(value);
+    }
+    template <typename Call> static void set_AutoExposureSpeedDown(Self* self, const typename Call::Input& value) {
+        self->SetAutoExposureSpeedDown(Call::template input<float>(value, "UCameraSensorComponent.AutoExposureSpeedDown"));
+        sp::reflect::notifyPropertyChanged(self, "AutoExposureSpeedDown");
+    }
+
+    template <typename Call> static typename Call::Result get_AutoExposureLowPercent(const Self* self) {
+        const auto& value = self->AutoExposureLowPercent;
+        return Call::template result<float>(value);
+    }
+    template <typename Call> static void set_AutoExposureLowPercent(Self* self, const typename Call::Input& value) {
+        self->SetAutoExposureLowPercent(Call::template input<float>(value, "UCameraSensorComponent.AutoExposureLowPercent"));
+        sp::reflect::notifyPropertyChanged(self, "AutoExposureLowPercent");
+    }
+
+    template <typename Call> static typename Call::Result get_AutoExposureHighPercent(const Self* self) {
+        const auto& value = self->AutoExposureHighPercent;
+        return Call::template result<float>(value);
+    }
+    template <typename Call> static void set_AutoExposureHighPercent(Self* self, const typename Call::Input& value) {
+        self->SetAutoExposureHighPercent(Call::template input<float>(value, "UCameraSensorComponent.AutoExposureHighPercent"));
+        sp::reflect::notifyPropertyChanged(self, "AutoExposureHighPercent");
+    }
+
     template <typename Call> static typename Call::Result get_WhiteBalanceTemperature(const Self* self) {
         const auto& value = self->WhiteBalanceTemperature;
         return Call::template result<double>(value);
@@ -3642,6 +3714,108 @@ struct UCameraSensorComponentCalls {
         float NewExposureArg = call.template arg<float>(0);
         self->SetExposure(NewExposureArg);
         return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetAutoExposureBias(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewBias", "UCameraSensorComponent.SetAutoExposureBias(): argument 'NewBias'", true},
+        }};
+        const Call call(args, "UCameraSensorComponent.SetAutoExposureBias()", kParams);
+        Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetAutoExposureBias()");
+        float NewBiasArg = call.template arg<float>(0);
+        self->SetAutoExposureBias(NewBiasArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetAutoExposureMinBrightness(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewMinBrightness", "UCameraSensorComponent.SetAutoExposureMinBrightness(): argument 'NewMinBrightness'", true},
+        }};
+        const Call call(args, "UCameraSensorComponent.SetAutoExposureMinBrightness()", kParams);
+        Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetAutoExposureMinBrightness()");
+        float NewMinBrightnessArg = call.template arg<float>(0);
+        self->SetAutoExposureMinBrightness(NewMinBrightnessArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetAutoExposureMaxBrightness(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewMaxBrightness", "UCameraSensorComponent.SetAutoExposureMaxBrightness(): argument 'NewMaxBrightness'", true},
+        }};
+        const Call call(args, "UCameraSensorComponent.SetAutoExposureMaxBrightness()", kParams);
+        Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetAutoExposureMaxBrightness()");
+        float NewMaxBrightnessArg = call.template arg<float>(0);
+        self->SetAutoExposureMaxBrightness(NewMaxBrightnessArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetAutoExposureSpeedUp(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewSpeed", "UCameraSensorComponent.SetAutoExposureSpeedUp(): argument 'NewSpeed'", true},
+        }};
+        const Call call(args, "UCameraSensorComponent.SetAutoExposureSpeedUp()", kParams);
+        Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetAutoExposureSpeedUp()");
+        float NewSpeedArg = call.template arg<float>(0);
+        self->SetAutoExposureSpeedUp(NewSpeedArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetAutoExposureSpeedDown(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewSpeed", "UCameraSensorComponent.SetAutoExposureSpeedDown(): argument 'NewSpeed'", true},
+        }};
+        const Call call(args, "UCameraSensorComponent.SetAutoExposureSpeedDown()", kParams);
+        Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetAutoExposureSpeedDown()");
+        float NewSpeedArg = call.template arg<float>(0);
+        self->SetAutoExposureSpeedDown(NewSpeedArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetAutoExposureLowPercent(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewPercent", "UCameraSensorComponent.SetAutoExposureLowPercent(): argument 'NewPercent'", true},
+        }};
+        const Call call(args, "UCameraSensorComponent.SetAutoExposureLowPercent()", kParams);
+        Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetAutoExposureLowPercent()");
+        float NewPercentArg = call.template arg<float>(0);
+        self->SetAutoExposureLowPercent(NewPercentArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetAutoExposureHighPercent(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewPercent", "UCameraSensorComponent.SetAutoExposureHighPercent(): argument 'NewPercent'", true},
+        }};
+        const Call call(args, "UCameraSensorComponent.SetAutoExposureHighPercent()", kParams);
+        Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetAutoExposureHighPercent()");
+        float NewPercentArg = call.template arg<float>(0);
+        self->SetAutoExposureHighPercent(NewPercentArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_ResetAutoExposure(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 0> kParams{};
+        const Call call(args, "UCameraSensorComponent.ResetAutoExposure()", kParams);
+        Self* self = Call::template object<Self>(target, "UCameraSensorComponent.ResetAutoExposure()");
+        self->ResetAutoExposure();
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_GetAppliedExposure(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 0> kParams{};
+        const Call call(args, "UCameraSensorComponent.GetAppliedExposure()", kParams);
+        const Self* self = Call::template object<const Self>(target, "UCameraSensorComponent.GetAppliedExposure()");
+        auto result = self->GetAppliedExposure();
+        return Call::template result<float>(result);
     }
 
     template <typename Call, typename Target>

@@ -16,6 +16,7 @@
 #include "core/world/spline_component.h"
 
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EAntiAliasingMethod>();
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EAutoExposureMethod>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraModality>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraRenderer>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECameraToneCurve>();
@@ -48,5 +49,5 @@ __attribute__((visibility("default"))) const char* spear_register_engine_types_a
 
 // The same hash as a constant: a plugin compiled against these headers records the engine's.
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "0f3a2babe81e276b";
+inline constexpr char kApiHash[] = "c812e7824724e9fa";
 } // namespace sp::generated::engine

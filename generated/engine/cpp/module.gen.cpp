@@ -1834,6 +1834,62 @@ void spear_bind_engine(py::module_& m) {
             },
             "Linear multiplier of HDR radiance before the tone curve (SetExposureValue and SetPhysicalExposure\nset it from photographic settings).");
         cls.def_property(
+            "AutoExposureMethod",
+            [](const Ref<Self>& self) { return Calls::get_AutoExposureMethod<PyCall>(self.get<Self>("UCameraSensorComponent.AutoExposureMethod")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_AutoExposureMethod<PyCall>(self.get<Self>("UCameraSensorComponent.AutoExposureMethod"), value);
+            },
+            "Whether final_color's exposure is Exposure as set (AEM_Manual, the default) or metered from the view\n(EAutoExposureMethod). GetAppliedExposure() tells the exposure a frame was shown at.");
+        cls.def_property(
+            "AutoExposureBias",
+            [](const Ref<Self>& self) { return Calls::get_AutoExposureBias<PyCall>(self.get<Self>("UCameraSensorComponent.AutoExposureBias")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_AutoExposureBias<PyCall>(self.get<Self>("UCameraSensorComponent.AutoExposureBias"), value);
+            },
+            "Automatic exposure: f-stops to brighten (> 0) or darken (< 0) the metered exposure, in [-15, 15].");
+        cls.def_property(
+            "AutoExposureMinBrightness",
+            [](const Ref<Self>& self) { return Calls::get_AutoExposureMinBrightness<PyCall>(self.get<Self>("UCameraSensorComponent.AutoExposureMinBrightness")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_AutoExposureMinBrightness<PyCall>(self.get<Self>("UCameraSensorComponent.AutoExposureMinBrightness"), value);
+            },
+            "Automatic exposure: the darkest scene, as EV100, the camera adapts to (darker ones show darker), in\n[-20, 40]; it must not exceed AutoExposureMaxBrightness when the camera renders.");
+        cls.def_property(
+            "AutoExposureMaxBrightness",
+            [](const Ref<Self>& self) { return Calls::get_AutoExposureMaxBrightness<PyCall>(self.get<Self>("UCameraSensorComponent.AutoExposureMaxBrightness")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_AutoExposureMaxBrightness<PyCall>(self.get<Self>("UCameraSensorComponent.AutoExposureMaxBrightness"), value);
+            },
+            "Automatic exposure: the brightest scene, as EV100, the camera adapts to, in [-20, 40].");
+        cls.def_property(
+            "AutoExposureSpeedUp",
+            [](const Ref<Self>& self) { return Calls::get_AutoExposureSpeedUp<PyCall>(self.get<Self>("UCameraSensorComponent.AutoExposureSpeedUp")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_AutoExposureSpeedUp<PyCall>(self.get<Self>("UCameraSensorComponent.AutoExposureSpeedUp"), value);
+            },
+            "Automatic exposure: how fast the camera adapts to a scene turned brighter, in f-stops per second of\nworld time (half the way in 1 / speed seconds), in (0, 100].");
+        cls.def_property(
+            "AutoExposureSpeedDown",
+            [](const Ref<Self>& self) { return Calls::get_AutoExposureSpeedDown<PyCall>(self.get<Self>("UCameraSensorComponent.AutoExposureSpeedDown")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_AutoExposureSpeedDown<PyCall>(self.get<Self>("UCameraSensorComponent.AutoExposureSpeedDown"), value);
+            },
+            "Automatic exposure: how fast the camera adapts to a scene turned darker, in f-stops per second, in\n(0, 100].");
+        cls.def_property(
+            "AutoExposureLowPercent",
+            [](const Ref<Self>& self) { return Calls::get_AutoExposureLowPercent<PyCall>(self.get<Self>("UCameraSensorComponent.AutoExposureLowPercent")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_AutoExposureLowPercent<PyCall>(self.get<Self>("UCameraSensorComponent.AutoExposureLowPercent"), value);
+            },
+            "AEM_Histogram: the darkest percent of the pixels left out of the metering, in [0, 100) and below\nAutoExposureHighPercent when the camera renders.");
+        cls.def_property(
+            "AutoExposureHighPercent",
+            [](const Ref<Self>& self) { return Calls::get_AutoExposureHighPercent<PyCall>(self.get<Self>("UCameraSensorComponent.AutoExposureHighPercent")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_AutoExposureHighPercent<PyCall>(self.get<Self>("UCameraSensorComponent.AutoExposureHighPercent"), value);
+            },
+            "AEM_Histogram: the percentile above which the brightest pixels are left out, in (0, 100].");
+        cls.def_property(
             "WhiteBalanceTemperature",
             [](const Ref<Self>& self) { return Calls::get_WhiteBalanceTemperature<PyCall>(self.get<Self>("UCameraSensorComponent.WhiteBalanceTemperature")); },
             [](const Ref<Self>& self, const PyArg& value) {
@@ -2022,6 +2078,76 @@ void spear_bind_engine(py::module_& m) {
             },
             py::arg("NewExposure") = sp::pybind::missingArgument(),
             "SetExposure(self, *, NewExposure: float) -> None\n\nSets Exposure (> 0 and finite).");
+        cls.def(
+            "SetAutoExposureBias",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewBias, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetAutoExposureBias<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewBias}, true});
+            },
+            py::arg("NewBias") = sp::pybind::missingArgument(),
+            "SetAutoExposureBias(self, *, NewBias: float) -> None\n\nSets AutoExposureBias in f-stops, in [-15, 15].");
+        cls.def(
+            "SetAutoExposureMinBrightness",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewMinBrightness, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetAutoExposureMinBrightness<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewMinBrightness}, true});
+            },
+            py::arg("NewMinBrightness") = sp::pybind::missingArgument(),
+            "SetAutoExposureMinBrightness(self, *, NewMinBrightness: float) -> None\n\nSets AutoExposureMinBrightness as EV100, in [-20, 40].");
+        cls.def(
+            "SetAutoExposureMaxBrightness",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewMaxBrightness, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetAutoExposureMaxBrightness<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewMaxBrightness}, true});
+            },
+            py::arg("NewMaxBrightness") = sp::pybind::missingArgument(),
+            "SetAutoExposureMaxBrightness(self, *, NewMaxBrightness: float) -> None\n\nSets AutoExposureMaxBrightness as EV100, in [-20, 40].");
+        cls.def(
+            "SetAutoExposureSpeedUp",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewSpeed, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetAutoExposureSpeedUp<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewSpeed}, true});
+            },
+            py::arg("NewSpeed") = sp::pybind::missingArgument(),
+            "SetAutoExposureSpeedUp(self, *, NewSpeed: float) -> None\n\nSets AutoExposureSpeedUp in f-stops per second, in (0, 100].");
+        cls.def(
+            "SetAutoExposureSpeedDown",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewSpeed, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetAutoExposureSpeedDown<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewSpeed}, true});
+            },
+            py::arg("NewSpeed") = sp::pybind::missingArgument(),
+            "SetAutoExposureSpeedDown(self, *, NewSpeed: float) -> None\n\nSets AutoExposureSpeedDown in f-stops per second, in (0, 100].");
+        cls.def(
+            "SetAutoExposureLowPercent",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewPercent, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetAutoExposureLowPercent<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewPercent}, true});
+            },
+            py::arg("NewPercent") = sp::pybind::missingArgument(),
+            "SetAutoExposureLowPercent(self, *, NewPercent: float) -> None\n\nSets AutoExposureLowPercent, in [0, 100).");
+        cls.def(
+            "SetAutoExposureHighPercent",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewPercent, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetAutoExposureHighPercent<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewPercent}, true});
+            },
+            py::arg("NewPercent") = sp::pybind::missingArgument(),
+            "SetAutoExposureHighPercent(self, *, NewPercent: float) -> None\n\nSets AutoExposureHighPercent, in (0, 100].");
+        cls.def(
+            "ResetAutoExposure",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_ResetAutoExposure<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
+            },
+            "ResetAutoExposure(self) -> None\n\nMakes the next frame's automatic exposure that of what it shows, with no adaptation from the frames\nbefore (Unreal's camera cut): for views that do not follow one another, such as a dataset's random\nposes.");
+        cls.def(
+            "GetAppliedExposure",
+            [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_GetAppliedExposure<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
+            },
+            "GetAppliedExposure(self) -> float\n\nReturns the exposure the frame last read was shown at (final_color's multiplier of hdr_color before\nthe tone curve): Exposure with AEM_Manual, the metered one otherwise; 0 before a frame was read.");
         cls.def(
             "SetSensorWidth",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& NewSensorWidth, const py::kwargs& extra) -> py::object {

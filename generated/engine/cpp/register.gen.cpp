@@ -41,6 +41,7 @@
 extern "C" void spear_register_engine_types() {
     auto& registry = sp::reflect::Registry::get();
     registry.add(sp::reflect::StaticEnum<EAntiAliasingMethod>());
+    registry.add(sp::reflect::StaticEnum<EAutoExposureMethod>());
     registry.add(sp::reflect::StaticEnum<ECameraModality>());
     registry.add(sp::reflect::StaticEnum<ECameraRenderer>());
     registry.add(sp::reflect::StaticEnum<ECameraToneCurve>());
@@ -210,7 +211,8 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<ECameraToneCurve>());
     registry.remove(sp::reflect::StaticEnum<ECameraRenderer>());
     registry.remove(sp::reflect::StaticEnum<ECameraModality>());
+    registry.remove(sp::reflect::StaticEnum<EAutoExposureMethod>());
     registry.remove(sp::reflect::StaticEnum<EAntiAliasingMethod>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "0f3a2babe81e276b"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "c812e7824724e9fa"; }

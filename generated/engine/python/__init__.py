@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "0f3a2babe81e276b"
+API_HASH = "c812e7824724e9fa"

@@ -52,6 +52,7 @@ __all__ = [
     "BP_Axes",
     "BP_Crate",
     "EAntiAliasingMethod",
+    "EAutoExposureMethod",
     "ECameraModality",
     "ECameraRenderer",
     "ECameraToneCurve",
@@ -119,6 +120,19 @@ class EAntiAliasingMethod(enum.IntEnum):
     AAM_None = 0
     AAM_FXAA = 1
     AAM_MSAA = 3
+
+
+class EAutoExposureMethod(enum.IntEnum):
+    """How a camera sets the exposure of final_color (Unreal's names and values). The automatic methods meter the
+    view's luminance and show it as middle grey: Exposure = 0.18 * 2^AutoExposureBias / L for a metered
+    luminance L (cd/m^2, read as EV100 = log2(L * 100 / 12.5) and clamped to [AutoExposureMinBrightness,
+    AutoExposureMaxBrightness]), adapting to a change at AutoExposureSpeedUp / AutoExposureSpeedDown. A
+    camera's first frame, and the first after ResetAutoExposure(), is exposed for what it shows.
+    """
+
+    AEM_Histogram = 0
+    AEM_Basic = 1
+    AEM_Manual = 2
 
 
 class ECameraModality(enum.IntEnum):

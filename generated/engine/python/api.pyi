@@ -45,6 +45,7 @@ __all__ = [
     "BP_Axes",
     "BP_Crate",
     "EAntiAliasingMethod",
+    "EAutoExposureMethod",
     "ECameraModality",
     "ECameraRenderer",
     "ECameraToneCurve",
@@ -126,6 +127,26 @@ class EAntiAliasingMethod(enum.IntEnum):
     coverage samples a pixel and averaged (final_color in linear light). The exact modalities are drawn
     in a pass of their own. Best at silhouettes; on a software rasteriser a frame costs about three
     times as much (llvmpipe: Table 3's 1080p view of 64 objects, 25 -> 78-88 ms), on a GPU little.
+    """
+
+
+class EAutoExposureMethod(enum.IntEnum):
+    """How a camera sets the exposure of final_color (Unreal's names and values). The automatic methods meter the
+    view's luminance and show it as middle grey: Exposure = 0.18 * 2^AutoExposureBias / L for a metered
+    luminance L (cd/m^2, read as EV100 = log2(L * 100 / 12.5) and clamped to [AutoExposureMinBrightness,
+    AutoExposureMaxBrightness]), adapting to a change at AutoExposureSpeedUp / AutoExposureSpeedDown. A
+    camera's first frame, and the first after ResetAutoExposure(), is exposed for what it shows.
+    """
+
+    AEM_Histogram = 0
+    """The mean log luminance of the pixels between the AutoExposureLowPercent and AutoExposureHighPercent
+    percentiles: the darkest and brightest parts (a lamp, the sun, a black sky) leave it unmoved.
+    """
+    AEM_Basic = 1
+    """The mean log luminance of every pixel."""
+    AEM_Manual = 2
+    """Exposure exactly as set (the default): the same scene always gives the same pixels, so a dataset's
+    views stay comparable.
     """
 
 
@@ -2812,6 +2833,24 @@ class UCameraSensorComponentAsync(USceneComponentAsync):
 
     def SetExposure(self, *, NewExposure: float) -> Future[None]: ...
 
+    def SetAutoExposureBias(self, *, NewBias: float) -> Future[None]: ...
+
+    def SetAutoExposureMinBrightness(self, *, NewMinBrightness: float) -> Future[None]: ...
+
+    def SetAutoExposureMaxBrightness(self, *, NewMaxBrightness: float) -> Future[None]: ...
+
+    def SetAutoExposureSpeedUp(self, *, NewSpeed: float) -> Future[None]: ...
+
+    def SetAutoExposureSpeedDown(self, *, NewSpeed: float) -> Future[None]: ...
+
+    def SetAutoExposureLowPercent(self, *, NewPercent: float) -> Future[None]: ...
+
+    def SetAutoExposureHighPercent(self, *, NewPercent: float) -> Future[None]: ...
+
+    def ResetAutoExposure(self) -> Future[None]: ...
+
+    def GetAppliedExposure(self) -> Future[float]: ...
+
     def SetSensorWidth(self, *, NewSensorWidth: float) -> Future[None]: ...
 
     def SetFocalLength(self, *, FocalLength: float) -> Future[None]: ...
@@ -2895,6 +2934,24 @@ class UCameraSensorComponentSend(USceneComponentSend):
     def SetFarClip(self, *, NewFarClip: float) -> None: ...
 
     def SetExposure(self, *, NewExposure: float) -> None: ...
+
+    def SetAutoExposureBias(self, *, NewBias: float) -> None: ...
+
+    def SetAutoExposureMinBrightness(self, *, NewMinBrightness: float) -> None: ...
+
+    def SetAutoExposureMaxBrightness(self, *, NewMaxBrightness: float) -> None: ...
+
+    def SetAutoExposureSpeedUp(self, *, NewSpeed: float) -> None: ...
+
+    def SetAutoExposureSpeedDown(self, *, NewSpeed: float) -> None: ...
+
+    def SetAutoExposureLowPercent(self, *, NewPercent: float) -> None: ...
+
+    def SetAutoExposureHighPercent(self, *, NewPercent: float) -> None: ...
+
+    def ResetAutoExposure(self) -> None: ...
+
+    def GetAppliedExposure(self) -> None: ...
 
     def SetSensorWidth(self, *, NewSensorWidth: float) -> None: ...
 
@@ -3021,6 +3078,72 @@ class UCameraSensorComponent(USceneComponent):
 
     @Exposure.setter
     def Exposure(self, value: float) -> None: ...
+
+    @property
+    def AutoExposureMethod(self) -> EAutoExposureMethod:
+        """Whether final_color's exposure is Exposure as set (AEM_Manual, the default) or metered from the view
+        (EAutoExposureMethod). GetAppliedExposure() tells the exposure a frame was shown at.
+        """
+
+    @AutoExposureMethod.setter
+    def AutoExposureMethod(self, value: EAutoExposureMethod) -> None: ...
+
+    @property
+    def AutoExposureBias(self) -> float:
+        """Automatic exposure: f-stops to brighten (> 0) or darken (< 0) the metered exposure, in [-15, 15]."""
+
+    @AutoExposureBias.setter
+    def AutoExposureBias(self, value: float) -> None: ...
+
+    @property
+    def AutoExposureMinBrightness(self) -> float:
+        """Automatic exposure: the darkest scene, as EV100, the camera adapts to (darker ones show darker), in
+        [-20, 40]; it must not exceed AutoExposureMaxBrightness when the camera renders.
+        """
+
+    @AutoExposureMinBrightness.setter
+    def AutoExposureMinBrightness(self, value: float) -> None: ...
+
+    @property
+    def AutoExposureMaxBrightness(self) -> float:
+        """Automatic exposure: the brightest scene, as EV100, the camera adapts to, in [-20, 40]."""
+
+    @AutoExposureMaxBrightness.setter
+    def AutoExposureMaxBrightness(self, value: float) -> None: ...
+
+    @property
+    def AutoExposureSpeedUp(self) -> float:
+        """Automatic exposure: how fast the camera adapts to a scene turned brighter, in f-stops per second of
+        world time (half the way in 1 / speed seconds), in (0, 100].
+        """
+
+    @AutoExposureSpeedUp.setter
+    def AutoExposureSpeedUp(self, value: float) -> None: ...
+
+    @property
+    def AutoExposureSpeedDown(self) -> float:
+        """Automatic exposure: how fast the camera adapts to a scene turned darker, in f-stops per second, in
+        (0, 100].
+        """
+
+    @AutoExposureSpeedDown.setter
+    def AutoExposureSpeedDown(self, value: float) -> None: ...
+
+    @property
+    def AutoExposureLowPercent(self) -> float:
+        """AEM_Histogram: the darkest percent of the pixels left out of the metering, in [0, 100) and below
+        AutoExposureHighPercent when the camera renders.
+        """
+
+    @AutoExposureLowPercent.setter
+    def AutoExposureLowPercent(self, value: float) -> None: ...
+
+    @property
+    def AutoExposureHighPercent(self) -> float:
+        """AEM_Histogram: the percentile above which the brightest pixels are left out, in (0, 100]."""
+
+    @AutoExposureHighPercent.setter
+    def AutoExposureHighPercent(self, value: float) -> None: ...
 
     @property
     def WhiteBalanceTemperature(self) -> float:
@@ -3218,6 +3341,38 @@ class UCameraSensorComponent(USceneComponent):
 
     def SetExposure(self, *, NewExposure: float) -> None:
         """Sets Exposure (> 0 and finite)."""
+
+    def SetAutoExposureBias(self, *, NewBias: float) -> None:
+        """Sets AutoExposureBias in f-stops, in [-15, 15]."""
+
+    def SetAutoExposureMinBrightness(self, *, NewMinBrightness: float) -> None:
+        """Sets AutoExposureMinBrightness as EV100, in [-20, 40]."""
+
+    def SetAutoExposureMaxBrightness(self, *, NewMaxBrightness: float) -> None:
+        """Sets AutoExposureMaxBrightness as EV100, in [-20, 40]."""
+
+    def SetAutoExposureSpeedUp(self, *, NewSpeed: float) -> None:
+        """Sets AutoExposureSpeedUp in f-stops per second, in (0, 100]."""
+
+    def SetAutoExposureSpeedDown(self, *, NewSpeed: float) -> None:
+        """Sets AutoExposureSpeedDown in f-stops per second, in (0, 100]."""
+
+    def SetAutoExposureLowPercent(self, *, NewPercent: float) -> None:
+        """Sets AutoExposureLowPercent, in [0, 100)."""
+
+    def SetAutoExposureHighPercent(self, *, NewPercent: float) -> None:
+        """Sets AutoExposureHighPercent, in (0, 100]."""
+
+    def ResetAutoExposure(self) -> None:
+        """Makes the next frame's automatic exposure that of what it shows, with no adaptation from the frames
+        before (Unreal's camera cut): for views that do not follow one another, such as a dataset's random
+        poses.
+        """
+
+    def GetAppliedExposure(self) -> float:
+        """Returns the exposure the frame last read was shown at (final_color's multiplier of hdr_color before
+        the tone curve): Exposure with AEM_Manual, the metered one otherwise; 0 before a frame was read.
+        """
 
     def SetSensorWidth(self, *, NewSensorWidth: float) -> None:
         """Sets SensorWidth in millimetres (> 0 and finite); FOV is kept."""

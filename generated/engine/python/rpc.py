@@ -20,7 +20,7 @@ from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
 from . import type_codes as _t
-from .api import EAntiAliasingMethod, ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EGlobalIlluminationQuality, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESkyLightSourceType, ESplineCoordinateSpace, FCameraPixels, FFrameTimings, FHitResult, FLensDistortion, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
+from .api import EAntiAliasingMethod, EAutoExposureMethod, ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EGlobalIlluminationQuality, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESkyLightSourceType, ESplineCoordinateSpace, FCameraPixels, FFrameTimings, FHitResult, FLensDistortion, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
 
@@ -1229,6 +1229,70 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
         self._sp_set("UCameraSensorComponent", "Exposure", value)
 
     @property
+    def AutoExposureMethod(self) -> EAutoExposureMethod:
+        return cast("EAutoExposureMethod", self._sp_get("UCameraSensorComponent", "AutoExposureMethod", _t.T_EAutoExposureMethod))
+
+    @AutoExposureMethod.setter
+    def AutoExposureMethod(self, value: EAutoExposureMethod) -> None:
+        self._sp_set("UCameraSensorComponent", "AutoExposureMethod", value)
+
+    @property
+    def AutoExposureBias(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "AutoExposureBias", _t.T_float))
+
+    @AutoExposureBias.setter
+    def AutoExposureBias(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "AutoExposureBias", value)
+
+    @property
+    def AutoExposureMinBrightness(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "AutoExposureMinBrightness", _t.T_float))
+
+    @AutoExposureMinBrightness.setter
+    def AutoExposureMinBrightness(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "AutoExposureMinBrightness", value)
+
+    @property
+    def AutoExposureMaxBrightness(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "AutoExposureMaxBrightness", _t.T_float))
+
+    @AutoExposureMaxBrightness.setter
+    def AutoExposureMaxBrightness(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "AutoExposureMaxBrightness", value)
+
+    @property
+    def AutoExposureSpeedUp(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "AutoExposureSpeedUp", _t.T_float))
+
+    @AutoExposureSpeedUp.setter
+    def AutoExposureSpeedUp(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "AutoExposureSpeedUp", value)
+
+    @property
+    def AutoExposureSpeedDown(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "AutoExposureSpeedDown", _t.T_float))
+
+    @AutoExposureSpeedDown.setter
+    def AutoExposureSpeedDown(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "AutoExposureSpeedDown", value)
+
+    @property
+    def AutoExposureLowPercent(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "AutoExposureLowPercent", _t.T_float))
+
+    @AutoExposureLowPercent.setter
+    def AutoExposureLowPercent(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "AutoExposureLowPercent", value)
+
+    @property
+    def AutoExposureHighPercent(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "AutoExposureHighPercent", _t.T_float))
+
+    @AutoExposureHighPercent.setter
+    def AutoExposureHighPercent(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "AutoExposureHighPercent", value)
+
+    @property
     def WhiteBalanceTemperature(self) -> float:
         return cast("float", self._sp_get("UCameraSensorComponent", "WhiteBalanceTemperature", _t.T_float))
 
@@ -1405,6 +1469,33 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     def SetExposure(self, *, NewExposure: float) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetExposure", {"NewExposure": NewExposure}, _t.T_void))  # a Future when queued by call_async
+
+    def SetAutoExposureBias(self, *, NewBias: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetAutoExposureBias", {"NewBias": NewBias}, _t.T_void))  # a Future when queued by call_async
+
+    def SetAutoExposureMinBrightness(self, *, NewMinBrightness: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetAutoExposureMinBrightness", {"NewMinBrightness": NewMinBrightness}, _t.T_void))  # a Future when queued by call_async
+
+    def SetAutoExposureMaxBrightness(self, *, NewMaxBrightness: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetAutoExposureMaxBrightness", {"NewMaxBrightness": NewMaxBrightness}, _t.T_void))  # a Future when queued by call_async
+
+    def SetAutoExposureSpeedUp(self, *, NewSpeed: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetAutoExposureSpeedUp", {"NewSpeed": NewSpeed}, _t.T_void))  # a Future when queued by call_async
+
+    def SetAutoExposureSpeedDown(self, *, NewSpeed: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetAutoExposureSpeedDown", {"NewSpeed": NewSpeed}, _t.T_void))  # a Future when queued by call_async
+
+    def SetAutoExposureLowPercent(self, *, NewPercent: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetAutoExposureLowPercent", {"NewPercent": NewPercent}, _t.T_void))  # a Future when queued by call_async
+
+    def SetAutoExposureHighPercent(self, *, NewPercent: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetAutoExposureHighPercent", {"NewPercent": NewPercent}, _t.T_void))  # a Future when queued by call_async
+
+    def ResetAutoExposure(self) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "ResetAutoExposure", {}, _t.T_void))  # a Future when queued by call_async
+
+    def GetAppliedExposure(self) -> float:
+        return cast("float", self._sp_call("UCameraSensorComponent", "GetAppliedExposure", {}, _t.T_float))
 
     def SetSensorWidth(self, *, NewSensorWidth: float) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetSensorWidth", {"NewSensorWidth": NewSensorWidth}, _t.T_void))  # a Future when queued by call_async

@@ -16,6 +16,7 @@ T_APlayerController_or_None = TypeCode("object", "APlayerController", optional=T
 T_ARecastNavMesh = TypeCode("object", "ARecastNavMesh")
 T_ARecastNavMesh_or_None = TypeCode("object", "ARecastNavMesh", optional=True)
 T_EAntiAliasingMethod = TypeCode("enum", "EAntiAliasingMethod")
+T_EAutoExposureMethod = TypeCode("enum", "EAutoExposureMethod")
 T_ECameraModality = TypeCode("enum", "ECameraModality")
 T_ECameraRenderer = TypeCode("enum", "ECameraRenderer")
 T_ECameraToneCurve = TypeCode("enum", "ECameraToneCurve")

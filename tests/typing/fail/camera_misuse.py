@@ -1,5 +1,5 @@
 """Negative typing case: a misspelled modality is a type error, as a dict key and as an enum member; so are an
-anti-aliasing method given as a number and one spear does not have."""
+anti-aliasing method given as a number and one spear does not have, and an exposure method given as a string."""
 
 # pyright: standard
 # (negative cases are checked as most pyright and Pylance users run it; strict reports more)
@@ -17,3 +17,5 @@ def misuse(camera: spear.UCameraSensorComponent) -> None:
     camera.CameraSensor  # E: "UCameraSensorComponent" has no attribute "CameraSensor"  [attr-defined]  # P: reportAttributeAccessIssue: Cannot access attribute "CameraSensor" for class "UCameraSensorComponent" / Attribute "CameraSensor" is unknown
     camera.AntiAliasingMethod = 3  # E: Incompatible types in assignment (expression has type "int", variable has type "EAntiAliasingMethod")  [assignment]  # P: reportAttributeAccessIssue: Cannot assign to attribute "AntiAliasingMethod" for class "UCameraSensorComponent" / "Literal[3]" is not assignable to "EAntiAliasingMethod"
     camera.AntiAliasingMethod = spear.EAntiAliasingMethod.AAM_TSR  # E: "Type[EAntiAliasingMethod]" has no attribute "AAM_TSR"  [attr-defined]  # P: reportAttributeAccessIssue: Cannot access attribute "AAM_TSR" for class "type[EAntiAliasingMethod]" / Attribute "AAM_TSR" is unknown
+    camera.AutoExposureMethod = "Histogram"  # E: Incompatible types in assignment (expression has type "str", variable has type "EAutoExposureMethod")  [assignment]  # P: reportAttributeAccessIssue: Cannot assign to attribute "AutoExposureMethod" for class "UCameraSensorComponent" / "Literal['Histogram']" is not assignable to "EAutoExposureMethod"
+    camera.ResetAutoExposure(Instant=True)  # E: Unexpected keyword argument "Instant" for "ResetAutoExposure" of "UCameraSensorComponent"  [call-arg]  # P: reportCallIssue: No parameter named "Instant"

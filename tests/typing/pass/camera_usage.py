@@ -17,6 +17,9 @@ def camera_pixels(instance: spear.Instance) -> None:
         assert_type(camera, spear.UCameraSensorComponent)
         camera.Modalities = [spear.ECameraModality.FinalColor, spear.ECameraModality.Depth]
         camera.ToneCurve = spear.ECameraToneCurve.Reinhard
+        camera.AutoExposureMethod = spear.EAutoExposureMethod.AEM_Histogram
+        camera.AutoExposureBias = 0.5
+        camera.ResetAutoExposure()
         rig = game.spawn_actor(uclass=spear.AStereoCameraRig)
         assert_type(rig.LeftCamera, spear.UCameraSensorComponent)
     with instance.end_frame():
@@ -32,3 +35,4 @@ def camera_pixels(instance: spear.Instance) -> None:
         assert_type(info.Actor, spear.AActor | None)
         assert_type(info.MaterialSlot, int)
         assert_type(camera.get_render_device_info().Renderer, str)
+        assert_type(camera.GetAppliedExposure(), float)
