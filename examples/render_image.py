@@ -158,7 +158,9 @@ def main() -> None:
         camera.Width, camera.Height, camera.FOV = WIDTH, HEIGHT, 75.0
         camera.Modalities = list(spear.ECameraModality)  # all 14
         camera.ShadowResolution = 2048
-        camera.Exposure = 0.6  # a sunlit white room: expose for the walls
+        # Metered from the view (the first frame is exposed for what it shows): the sunlit walls, the lamp
+        # and the shade need no hand-set Exposure.
+        camera.AutoExposureMethod = spear.EAutoExposureMethod.AEM_Histogram
         device = camera.get_render_device_info()
         print(f"rendering on EGL {device.Kind}: {device.Renderer} ({device.Vendor}, OpenGL {device.Version})")
 
@@ -171,6 +173,7 @@ def main() -> None:
         names = sorted({camera.GetObjectIdInfo(ObjectId=i).Actor.GetName() for i in visible})  # type: ignore[union-attr]
         print(f"{len(visible)} object ids visible: {', '.join(names)}")
         print(f"depth range {pixels['depth'][pixels['depth'] > 0].min():.2f} .. {pixels['depth'].max():.2f} m")
+        print(f"automatic exposure: {camera.GetAppliedExposure():.3f}")
 
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
