@@ -102,7 +102,9 @@ def closed_room(game: spear.UWorld) -> Pose:
 SCENES: dict[str, Callable[[spear.UWorld], Pose]] = {
     "apartment": apartment, "yard": yard, "closed_room": closed_room,
     "sky_yard": lambda game: yard(game, "atmosphere"), "park_yard": lambda game: yard(game, "panorama")}
-EXPOSURE = {"apartment": 0.6, "yard": 1.0, "closed_room": 1.0, "sky_yard": 1.0, "park_yard": 0.5}
+# Each scene's one exposure for both renderers: the apartment's is what automatic exposure (AEM_Histogram)
+# meters for its view, so that neither image is clipped.
+EXPOSURE = {"apartment": 0.07, "yard": 1.0, "closed_room": 1.0, "sky_yard": 1.0, "park_yard": 0.5}
 
 
 def luminance(rgb: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -54,7 +54,7 @@ def main() -> None:
         print(f"player 0: {player.GetName()} possesses {pawn.GetName()} at ({start.X:.2f}, {start.Y:.2f}, {start.Z:.2f})")
         camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="PlayerCamera")
         camera.CameraSensor.Width, camera.CameraSensor.Height, camera.CameraSensor.FOV = WIDTH, HEIGHT, 80.0
-        camera.CameraSensor.Exposure = 0.6
+        camera.CameraSensor.AutoExposureMethod = spear.EAutoExposureMethod.AEM_Histogram
         follow_view(player, camera)
     with instance.end_frame():
         pass

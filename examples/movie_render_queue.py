@@ -72,7 +72,8 @@ def main() -> None:
     with instance.begin_frame():
         game.load_scene(path=args.scene)
         camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="MovieCamera").CameraSensor
-        camera.FOV, camera.ShadowResolution, camera.Exposure = 75.0, 2048, 0.6
+        camera.FOV, camera.ShadowResolution = 75.0, 2048
+        camera.AutoExposureMethod = spear.EAutoExposureMethod.AEM_Histogram  # metered, adapting as the camera moves
         if args.path_traced:
             camera.Renderer = spear.ECameraRenderer.PathTraced
         locations, rotations = camera_move(args.frames)

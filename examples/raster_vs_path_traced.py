@@ -37,7 +37,8 @@ def spawn_camera(game: spear.UWorld, name: str, width: int, height: int) -> spea
     camera.Width, camera.Height, camera.FOV = width, height, 75.0
     camera.Modalities = [spear.ECameraModality.FinalColor]
     camera.ShadowResolution = 2048
-    camera.Exposure = 0.6  # a sunlit white room: expose for the walls
+    # One exposure for both halves, so that they compare: what automatic exposure meters for this view.
+    camera.Exposure = 0.07
     return camera
 
 

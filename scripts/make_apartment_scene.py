@@ -86,6 +86,22 @@ def material(rgb: tuple[float, float, float], roughness: float, metallic: float 
             "Metallic": metallic}
 
 
+# The window in the north wall (the one the default camera faces): its span along Y and its sill and lintel
+# heights. The afternoon sun (see "Sun" below) comes through it onto the floor and the table.
+WINDOW_Y, WINDOW_Z = (-0.5, 1.1), (0.9, 2.2)
+
+
+def north_wall_with_window() -> list[dict[str, Any]]:
+    """The north wall as four slabs around an open window (below, above, and either side of it)."""
+    x, (y0, y1), (z0, z1) = W / 2 + T / 2, WINDOW_Y, WINDOW_Z
+    return [
+        mesh("Below", CUBE, PLASTER, (x, 0, z0 / 2), (T, D, z0)),
+        mesh("Above", CUBE, PLASTER, (x, 0, (z1 + H) / 2), (T, D, H - z1)),
+        mesh("Left", CUBE, PLASTER, (x, (y1 + D / 2) / 2, (z0 + z1) / 2), (T, D / 2 - y1, z1 - z0)),
+        mesh("Right", CUBE, PLASTER, (x, (y0 - D / 2) / 2, (z0 + z1) / 2), (T, y0 + D / 2, z1 - z0)),
+    ]
+
+
 def apartment() -> dict[str, Any]:
     # The scene carries its own materials: the renderer looks slot names up in an AMaterialLibrary.
     library = {"name": "Materials", "class": "AMaterialLibrary", "properties": {"Materials": {
@@ -99,7 +115,7 @@ def apartment() -> dict[str, Any]:
         library,
         mesh_actor("Floor", [mesh("Floor", CUBE, WOOD, (0, 0, -T / 2), (W, D, T))], ["structure"]),
         mesh_actor("Ceiling", [mesh("Ceiling", CUBE, PLASTER, (0, 0, H + T / 2), (W, D, T))], ["structure"]),
-        mesh_actor("WallNorth", [mesh("W", CUBE, PLASTER, (W / 2 + T / 2, 0, H / 2), (T, D, H))], ["structure"]),
+        mesh_actor("WallNorth", north_wall_with_window(), ["structure"]),
         mesh_actor("WallSouth", [mesh("W", CUBE, PLASTER, (-W / 2 - T / 2, 0, H / 2), (T, D, H))], ["structure"]),
         mesh_actor("WallWest", [mesh("W", CUBE, PLASTER, (0, D / 2 + T / 2, H / 2), (W, T, H))], ["structure"]),
         mesh_actor("WallEast", [mesh("W", CUBE, TILE, (0, -D / 2 - T / 2, H / 2), (W, T, H))], ["structure"]),
@@ -124,8 +140,10 @@ def apartment() -> dict[str, Any]:
                                  static=False, simulate=True, mass=0.4)], ["prop"]),
         mesh_actor("Box", [mesh("Box", CUBE, WOOD, (1.0, 1.0, 0.85), (0.2, 0.2, 0.2),
                                 static=False, simulate=True, mass=1.5)], ["prop"]),
+        # The sun shines in through the window (travelling towards -X), and the sky atmosphere is what the
+        # window shows and the light of the sky that comes in with it.
         light("Sun", "ADirectionalLight", "UDirectionalLightComponent", (0.0, 0.0, 5.0),
-              {"RelativeRotation": {"Pitch": -50.0, "Yaw": 30.0, "Roll": 0.0}, "Intensity": 3.0,
+              {"RelativeRotation": {"Pitch": -50.0, "Yaw": 200.0, "Roll": 0.0}, "Intensity": 25.0,
                "LightColor": {"R": 1.0, "G": 0.96875, "B": 0.875, "A": 1.0}}),
         light("CeilingLamp", "APointLight", "UPointLightComponent", (0.0, 0.0, H - 0.2),
               {"Intensity": 80.0, "AttenuationRadius": 8.0,
@@ -133,6 +151,9 @@ def apartment() -> dict[str, Any]:
         light("ReadingLamp", "APointLight", "UPointLightComponent", (-2.6, 2.1, 1.7),
               {"Intensity": 20.0, "AttenuationRadius": 4.0, "bCastShadows": False,
                "LightColor": {"R": 1.0, "G": 0.75, "B": 0.5, "A": 1.0}}),
+        {"name": "Sky", "class": "ASkyAtmosphere", "properties": {"Tags": ["sky"]}, "components": [
+            {"name": "SkyAtmosphereComponent", "class": "USkyAtmosphereComponent", "attach_parent": None,
+             "properties": {"Turbidity": 3.0}}]},
     ]
     return {"format": "spear.scene", "version": 1, "actors": actors}
 

@@ -25,7 +25,7 @@ def test_the_default_scene_loads_and_saves_byte_identical(
         lights = game.find_actors_by_tag(tag="light")
         assert {type(light).__name__ for light in lights} == {"ADirectionalLight", "APointLight"}
         sun = game.find_actor_by_class(uclass=spear.ADirectionalLight)
-        assert sun is not None and sun.LightComponent.Intensity == 3.0
+        assert sun is not None and sun.LightComponent.Intensity == 25.0
         meshes = game.find_actors_by_class(uclass=spear.AStaticMeshActor)
         materials = {m for a in meshes for c in game.get_components_by_class(actor=a, uclass=spear.UStaticMeshComponent)
                      for m in c.Materials}
