@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <numeric>
 #include <vector>
 
@@ -28,10 +29,6 @@ template <typename Visit> void forSamples(int width, int height, Visit&& visit) 
     for (int y = (height % stride) / 2 + stride / 2; y < height; y += stride)
         for (int x = (width % stride) / 2 + stride / 2; x < width; x += stride)
             visit(x, y);
-}
-
-double luminanceOf(double r, double g, double b) {
-    return 0.2126 * r + 0.7152 * g + 0.0722 * b;
 }
 
 // The metered EV100 of the samples' EV100s (each already clamped to the settings' range).
@@ -104,6 +101,10 @@ void MeteringSettings::validate(const char* function) const {
              maxEv100);
 }
 
+double luminanceOf(double r, double g, double b) {
+    return 0.2126 * r + 0.7152 * g + 0.0722 * b;
+}
+
 double ev100FromLuminance(double luminance) {
     return std::log2(luminance) + kLog2MeterScale;
 }
@@ -116,23 +117,32 @@ double exposureForEv100(double ev100, double biasStops) {
     return kMiddleGrey * std::exp2(biasStops) / luminanceFromEv100(ev100);
 }
 
-double meterHdr(const float* rgb, int width, int height, int stride, const MeteringSettings& settings) {
+double meterLuminance(int width, int height, const std::function<double(int x, int y)>& luminanceAt,
+                      const MeteringSettings& settings) {
     std::vector<double> ev;
-    forSamples(width, height, [&](int x, int y) {
-        const float* p = rgb + (std::size_t(y) * std::size_t(width) + std::size_t(x)) * std::size_t(stride);
-        ev.push_back(clampedEv(luminanceOf(p[0], p[1], p[2]), settings));
-    });
+    forSamples(width, height, [&](int x, int y) { ev.push_back(clampedEv(luminanceAt(x, y), settings)); });
     return metered(ev, settings);
 }
 
+double meterHdr(const float* rgb, int width, int height, int stride, const MeteringSettings& settings) {
+    return meterLuminance(
+        width, height,
+        [&](int x, int y) {
+            const float* p =
+                rgb + (std::size_t(y) * std::size_t(width) + std::size_t(x)) * std::size_t(stride);
+            return luminanceOf(p[0], p[1], p[2]);
+        },
+        settings);
+}
+
 double meterHdrHalf(const std::uint16_t* rgba, int width, int height, const MeteringSettings& settings) {
-    std::vector<double> ev;
-    forSamples(width, height, [&](int x, int y) {
-        const std::uint16_t* p = rgba + (std::size_t(y) * std::size_t(width) + std::size_t(x)) * 4;
-        ev.push_back(
-            clampedEv(luminanceOf(halfToFloat(p[0]), halfToFloat(p[1]), halfToFloat(p[2])), settings));
-    });
-    return metered(ev, settings);
+    return meterLuminance(
+        width, height,
+        [&](int x, int y) {
+            const std::uint16_t* p = rgba + (std::size_t(y) * std::size_t(width) + std::size_t(x)) * 4;
+            return luminanceOf(halfToFloat(p[0]), halfToFloat(p[1]), halfToFloat(p[2]));
+        },
+        settings);
 }
 
 FinalColorMetering meterFinalColor(const std::uint8_t* rgba, int width, int height,
@@ -142,20 +152,23 @@ FinalColorMetering meterFinalColor(const std::uint8_t* rgba, int width, int heig
     for (int c = 0; c < 3; ++c)
         gain[std::size_t(c)] =
             1.0 / std::max(1e-30, double(params.exposure) * double(params.whiteBalance[c]));
-    std::vector<double> ev;
-    std::size_t bright = 0, dark = 0;
-    forSamples(width, height, [&](int x, int y) {
-        const std::uint8_t* p = rgba + (std::size_t(y) * std::size_t(width) + std::size_t(x)) * 4;
-        bright += std::max({p[0], p[1], p[2]}) == 255;
-        dark += std::max({p[0], p[1], p[2]}) == 0;
-        ev.push_back(clampedEv(
-            luminanceOf(linear[p[0]] * gain[0], linear[p[1]] * gain[1], linear[p[2]] * gain[2]), settings));
-    });
+    std::size_t samples = 0, bright = 0, dark = 0;
+    const double ev = meterLuminance(
+        width, height,
+        [&](int x, int y) {
+            const std::uint8_t* p = rgba + (std::size_t(y) * std::size_t(width) + std::size_t(x)) * 4;
+            const std::uint8_t top = std::max({p[0], p[1], p[2]});
+            ++samples;
+            bright += top == 255;
+            dark += top == 0;
+            return luminanceOf(linear[p[0]] * gain[0], linear[p[1]] * gain[1], linear[p[2]] * gain[2]);
+        },
+        settings);
     const bool histogram = settings.mode == MeteringMode::Histogram;
-    const double n = double(std::max<std::size_t>(ev.size(), 1));
+    const double n = double(std::max<std::size_t>(samples, 1));
     const bool exact = double(bright) / n <= (histogram ? 1.0 - settings.highPercent / 100.0 : 0.02) &&
                        double(dark) / n <= (histogram ? settings.lowPercent / 100.0 : 0.02);
-    return {metered(ev, settings), exact};
+    return {ev, exact};
 }
 
 double adaptEv100(double current, double target, double seconds, double speedUp, double speedDown) {

@@ -5,6 +5,7 @@
 // HDR render of the view), the path tracer its own HDR image; core/render/README.md says why.
 
 #include <cstdint>
+#include <functional>
 
 #include "core/render/camera.h"
 
@@ -38,8 +39,14 @@ double luminanceFromEv100(double ev100);
 constexpr double kMiddleGrey = 0.18;
 double exposureForEv100(double ev100, double biasStops);
 
-// The EV100 a linear HDR image meters: its pixels' luminance (Rec. 709 weights) on a grid of at most about
-// 16384 samples. `rgb` holds `stride` floats a pixel, red, green, blue first.
+// The luminance of linear RGB (Rec. 709 weights).
+double luminanceOf(double r, double g, double b);
+
+// The EV100 a view meters from its pixels' luminance, luminanceAt(x, y), taken on a grid of at most about
+// 16384 pixels (every metering below is this one with its own pixels).
+double meterLuminance(int width, int height, const std::function<double(int x, int y)>& luminanceAt,
+                      const MeteringSettings& settings);
+// The same for a linear HDR image: `rgb` holds `stride` floats a pixel, red, green, blue first.
 double meterHdr(const float* rgb, int width, int height, int stride, const MeteringSettings& settings);
 // The same for an RGBA float16 image (hdr_color).
 double meterHdrHalf(const std::uint16_t* rgba, int width, int height, const MeteringSettings& settings);

@@ -470,18 +470,21 @@ std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponen
     if (camera.bPathTracingEnableDenoiser && (modalities.contains(sp::render::Modality::FinalColor) ||
                                               modalities.contains(sp::render::Modality::HdrColor)))
         denoised = sp::pathtrace::denoise(image);
+    // Channel c of pixel (x, y) of the image final_color and hdr_color show.
+    const auto shownAt = [&](int x, int y, int c) {
+        return denoised.empty() ? image.mean(x, y, c)
+                                : denoised[(std::size_t(y) * image.width + x) * 3 + std::size_t(c)];
+    };
     if (modalities.contains(sp::render::Modality::FinalColor)) {
         // Automatic exposure meters the image it tone-maps (denoised when it is).
         std::optional<double> ev;
         if (camera.AutoExposureMethod != EAutoExposureMethod::AEM_Manual) {
-            std::vector<float> hdr(denoised.begin(), denoised.end());
-            if (hdr.empty()) {
-                const double scale = image.samples > 0 ? 1.0 / double(image.samples) : 0.0;
-                hdr.resize(image.sum.size());
-                std::transform(image.sum.begin(), image.sum.end(), hdr.begin(),
-                               [&](double sum) { return float(sum * scale); });
-            }
-            ev = sp::render::meterHdr(hdr.data(), image.width, image.height, 3, meteringSettings(camera));
+            ev = sp::render::meterLuminance(
+                image.width, image.height,
+                [&](int x, int y) {
+                    return sp::render::luminanceOf(shownAt(x, y, 0), shownAt(x, y, 1), shownAt(x, y, 2));
+                },
+                meteringSettings(camera));
             state.exposure.metered(*ev);
         }
         renderCamera.params.exposure =
@@ -504,9 +507,7 @@ std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponen
                 const std::size_t pixel = (std::size_t(y) * image.width + x) * std::size_t(channels);
                 for (int c = 0; c < 3; ++c) {
                     const float raw = image.mean(x, y, c);
-                    const float hdr = denoised.empty()
-                                          ? raw
-                                          : denoised[(std::size_t(y) * image.width + x) * 3 + std::size_t(c)];
+                    const float hdr = shownAt(x, y, c);
                     switch (modality) {
                     case sp::render::Modality::FinalColor:
                         final[pixel + c] = std::uint8_t(
