@@ -139,20 +139,31 @@ Eigen::Vector4f sampleTexture(const render::TextureImage& image, bool srgb, cons
            (texel(i, j + 1) * (1 - tx) + texel(i + 1, j + 1) * tx) * ty;
 }
 
-Eigen::Vector3f lightIrradiance(const render::Light& light, const Eigen::Vector3f& p, Eigen::Vector3f& l,
-                                float& distance) {
+// The irradiance at p, at normal incidence, from `light` along the direction l to it (a rect light: to a
+// point of it drawn uniformly by u1, u2, so that this is an estimate), and its distance.
+Eigen::Vector3f lightIrradiance(const render::Light& light, const Eigen::Vector3f& p, float u1, float u2,
+                                Eigen::Vector3f& l, float& distance) {
     const Eigen::Vector3f radiance = light.color * light.intensity;
     if (light.type == render::LightType::Directional) {
         l = -light.direction.cast<float>().normalized();
         distance = std::numeric_limits<float>::infinity();
         return radiance;
     }
-    const Eigen::Vector3f d = light.position.cast<float>() - p;
+    Eigen::Vector3f d = light.position.cast<float>() - p;
+    const float centreDistance = d.norm();
+    float cosine = 1.0f; // at the light, of its normal and the way to p: a rect is a Lambertian emitter
+    if (light.type == render::LightType::Rect) {
+        // Uniform on the rectangle (pdf 1 / area): radiance * area * cos / d^2 = intensity * cos / d^2.
+        d +=
+            (light.right * ((u1 - 0.5) * light.width) + light.up * ((u2 - 0.5) * light.height)).cast<float>();
+        cosine =
+            std::max(0.0f, -d.dot(light.direction.cast<float>().normalized()) / std::max(d.norm(), 1e-6f));
+    }
     distance = d.norm();
     l = d / std::max(distance, 1e-6f);
-    Eigen::Vector3f e = radiance / std::max(distance * distance, 1e-4f);
-    if (light.range > 0.0f) { // the rasteriser's window: (1 - (d / range)^4)^2
-        const float r = distance / light.range;
+    Eigen::Vector3f e = radiance * (cosine / std::max(distance * distance, 1e-4f));
+    if (light.range > 0.0f) { // the rasteriser's window: (1 - (d / range)^4)^2, of the light's centre
+        const float r = centreDistance / light.range;
         const float w = std::clamp(1.0f - r * r * r * r, 0.0f, 1.0f);
         e *= w * w;
     }
@@ -413,6 +424,10 @@ struct PathTracer::Impl {
             l.add(light.innerConeDeg);
             l.add(light.outerConeDeg);
             l.add(light.castShadows);
+            l.matrix(light.right);
+            l.matrix(light.up);
+            l.add(light.width);
+            l.add(light.height);
             lights += l.value;
         });
         h.add(lights);
@@ -599,7 +614,10 @@ struct PathTracer::Impl {
             scene.forEachLight([&](render::LightId, const render::Light& light) {
                 Eigen::Vector3f l;
                 float distance = 0.0f;
-                const Eigen::Vector3f e = lightIrradiance(light, p, l, distance);
+                float u1 = 0.5f, u2 = 0.5f; // drawn only for an area light: the others keep their sequence
+                if (light.type == render::LightType::Rect)
+                    u1 = random.next(), u2 = random.next();
+                const Eigen::Vector3f e = lightIrradiance(light, p, u1, u2, l, distance);
                 const float nol = n.dot(l);
                 if (nol <= 0.0f || ng.dot(l) <= 0.0f || e.maxCoeff() <= 0.0f)
                     return;

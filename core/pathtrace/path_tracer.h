@@ -4,14 +4,14 @@
 // (base colour and its texture, roughness/metallic and their texture, emissive), lights and sky.
 //
 // Multi-bounce global illumination, unbiased up to the bounce limit: at every vertex, next-event estimation
-// of each analytic light (directional, point, spot: delta lights, one shadow ray each) and of the uniform sky
-// (a cosine-weighted direction, combined with the BSDF-sampled ray by multiple importance sampling, power
-// heuristic); the surface model is the rasteriser's (bsdf.h). Russian roulette after three bounces. Images
-// accumulate across calls while the scene, the camera and maxBounces stay the same, so a still view
-// converges; any change anywhere in the scene restarts them. Point lights cast shadows here (the rasteriser
-// has no point light shadow maps); instances that do not cast shadows are invisible to shadow rays only.
-// Primary rays that leave the scene show the environment's background, as in the rasteriser; rays
-// that leave it after a bounce bring back its ambient (sky) radiance. Normal maps are not used yet.
+// of each analytic light (directional, point, spot: delta lights, one shadow ray each; rect: one point of its
+// area) and of the sky (combined with the BSDF-sampled ray by multiple importance sampling, power
+// heuristic); the surface model is the rasteriser's (bsdf.h), normal maps included. Russian roulette after
+// three bounces. Images accumulate across calls while the scene, the camera and maxBounces stay the same, so
+// a still view converges; any change anywhere in the scene restarts them. Point and rect lights cast shadows
+// here (the rasteriser has no shadow maps for them); instances that do not cast shadows are invisible to
+// shadow rays only. Primary rays that leave the scene show the environment's background, as in the
+// rasteriser; rays that leave it after a bounce bring back the sky's radiance.
 
 #include <cstdint>
 #include <memory>

@@ -22,6 +22,20 @@ void Light::validate(const char* function) const {
         SP_CHECK(innerConeDeg >= 0.0f && innerConeDeg <= outerConeDeg, InvalidArgument, function,
                  "(): innerConeDeg must be in [0, outerConeDeg=", outerConeDeg, "], got ", innerConeDeg);
     }
+    if (type == LightType::Rect) {
+        // Large enough that intensity / area stays finite in float.
+        SP_CHECK(std::isfinite(width) && width >= 1e-6f, InvalidArgument, function,
+                 "(): width must be finite and >= 1e-6 m, got ", width);
+        SP_CHECK(std::isfinite(height) && height >= 1e-6f, InvalidArgument, function,
+                 "(): height must be finite and >= 1e-6 m, got ", height);
+        const Eigen::Vector3d n = direction.normalized();
+        SP_CHECK(right.allFinite() && up.allFinite() && std::abs(right.norm() - 1.0) < 1e-3 &&
+                     std::abs(up.norm() - 1.0) < 1e-3 && std::abs(right.dot(up)) < 1e-3 &&
+                     std::abs(right.dot(n)) < 1e-3 && std::abs(up.dot(n)) < 1e-3,
+                 InvalidArgument, function,
+                 "(): right and up must be unit vectors perpendicular to each other and to direction, got (",
+                 right.transpose(), ") and (", up.transpose(), ")");
+    }
 }
 
 } // namespace sp::render

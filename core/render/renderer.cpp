@@ -594,6 +594,17 @@ void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
         const float cosOuter = std::cos(light.outerConeDeg * float(M_PI) / 180.0f);
         block.lightCone[count][0] = cosOuter;
         block.lightCone[count][1] = 1.0f / std::max(cosInner - cosOuter, 1e-4f);
+        if (light.type == LightType::Rect) {
+            // Radiance and the half extents, the second turned so that their cross product is the direction
+            // the panel shines (see rectLight() in shaders.cpp).
+            copy3(block.lightRadiance[count], light.color * light.rectRadiance(), 0.0f);
+            const Eigen::Vector3d halfRight = light.right * (0.5 * light.width);
+            Eigen::Vector3d halfUp = light.up * (0.5 * light.height);
+            if (halfRight.cross(halfUp).dot(light.direction) < 0.0)
+                halfUp = -halfUp;
+            copy3(block.lightDirection[count], halfRight.cast<float>(), 0.0f);
+            copy3(block.lightCone[count], halfUp.cast<float>(), 0.0f);
+        }
         ++count;
     }
     block.counts[0] = count;

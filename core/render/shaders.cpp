@@ -307,13 +307,65 @@ struct Surface {
 // specularScale = a2 / (4 PI (nov (1 - k) + k)) being the point's (see shade()). One division a light
 // instead of six: a software rasteriser's divisions share one unit and were the shading's costliest
 // instructions.
-void accumulate(Surface s, vec3 l, vec3 e, float nol, inout vec3 irradiance, inout vec3 specular) {
-    irradiance += e * nol;
+void accumulateSpecular(Surface s, vec3 l, vec3 e, float nol, inout vec3 specular) {
     vec3 h = normalize(s.v + l);
     float noh = max(dot(s.n, h), 0.0), voh = max(dot(s.v, h), 0.0);
     float d = noh * noh * (s.a2 - 1.0) + 1.0;
     float dg = s.specularScale * nol / (d * d * (nol * (1.0 - s.k) + s.k));
     specular += dg * fSchlick(s.f0, voh) * e;
+}
+void accumulate(Surface s, vec3 l, vec3 e, float nol, inout vec3 irradiance, inout vec3 specular) {
+    irradiance += e * nol;
+    accumulateSpecular(s, l, e, nol, specular);
+}
+
+// A rect light of radiance `radiance` whose corners are c +- ex +- ey from the point (c its centre), shining
+// along cross(ex, ey). Its diffuse term is exact: the cosine-weighted solid angle of the rectangle clipped to
+// the surface's horizon (Lambert's formula for a polygon), so that soft light falls off as the path tracer's
+// does. Its specular term is a point light at the rectangle's point nearest the mirror ray, the lobe
+// widened by the light's size and scaled to keep its energy (Karis 2013, "representative point").
+void rectLight(Surface s, vec3 c, vec3 ex, vec3 ey, vec3 radiance, inout vec3 irradiance, inout vec3 specular) {
+    vec3 nl = normalize(cross(ex, ey));
+    if (dot(c, nl) >= 0.0)
+        return; // behind the panel: it shines one way
+    vec3 corners[4] = vec3[4](c - ex - ey, c + ex - ey, c + ex + ey, c - ex + ey);
+    vec3 clipped[5];
+    int count = 0;
+    for (int i = 0; i < 4; ++i) { // Sutherland-Hodgman against the horizon plane
+        vec3 a = corners[i], b = corners[(i + 1) & 3];
+        float da = dot(a, s.n), db = dot(b, s.n);
+        if (da > 0.0)
+            clipped[count++] = a;
+        if ((da > 0.0) != (db > 0.0))
+            clipped[count++] = a + (b - a) * (da / (da - db));
+    }
+    float cosineSolidAngle = 0.0;
+    for (int i = 0; i < count; ++i) { // each edge's angle (atan2: exact for small ones) times its normal's cosine
+        vec3 a = clipped[i], b = clipped[i + 1 < count ? i + 1 : 0];
+        vec3 g = cross(a, b);
+        float len = length(g);
+        if (len > 0.0)
+            cosineSolidAngle += atan(len, dot(a, b)) * dot(g, s.n) / len;
+    }
+    irradiance += radiance * abs(0.5 * cosineSolidAngle);
+
+    vec3 r = reflect(-s.v, s.n);
+    float rn = dot(r, nl);
+    vec3 q = rn < -1e-4 ? r * (dot(c, nl) / rn) : c; // the mirror ray meets the panel's plane at q
+    vec3 offset = q - c;
+    q = c + ex * clamp(dot(offset, ex) / dot(ex, ex), -1.0, 1.0) + ey * clamp(dot(offset, ey) / dot(ey, ey), -1.0, 1.0);
+    float alpha = sqrt(s.a2);
+    q = mix(q, c, s.a2); // a wide lobe sees the whole panel, not its brightest point: towards the centre
+    float dist2 = max(dot(q, q), 1e-8);
+    float dist = sqrt(dist2);
+    vec3 l = q / dist;
+    float nol = dot(s.n, l), cosLight = -dot(l, nl);
+    if (nol > 0.0 && cosLight > 0.0) {
+        float area = 4.0 * length(ex) * length(ey);
+        float widened = min(alpha + sqrt(area / PI) / (2.0 * dist), 1.0);
+        float energy = (alpha / widened) * (alpha / widened);
+        accumulateSpecular(s, l, radiance * (area * cosLight / max(dist2, 1e-4) * energy), nol, specular);
+    }
 }
 )glsl";
 
@@ -589,10 +641,10 @@ struct ConstantPlan {
 };
 
 // fLights elements of a light: radiance (and a spot's cos(outer) in w), then a directional light's
-// direction, or a point or spot light's position and 1 / range, then a spot's direction and
-// 1 / (cos(inner) - cos(outer)) (FrameBlock's values, element for element).
+// direction, or a point, spot or rect light's position and 1 / range, then a spot's direction and
+// 1 / (cos(inner) - cos(outer)), or a rect's two half extents (FrameBlock's values, element for element).
 int lightSlotCount(LightType type) {
-    return type == LightType::Spot ? 3 : 2;
+    return type == LightType::Rect ? 4 : type == LightType::Spot ? 3 : 2;
 }
 
 ConstantPlan planConstants(bool forward, const ShadingLayout& layout) {
@@ -621,22 +673,30 @@ ConstantPlan planConstants(bool forward, const ShadingLayout& layout) {
 // vec2 cos(outer), 1 / (cos(inner) - cos(outer)): see FrameBlock), from fLights or FrameBlock.
 struct LightTerms {
     std::string radiance, position, inverseRange, direction, cone;
+    std::string halfUp; // a rect light's (its half right is `direction`)
 };
 
 LightTerms lightTerms(const ShadingLayout& layout, const ConstantPlan& plan, std::size_t i) {
     const int k = plan.lightSlot[i];
     if (k < 0) {
         const std::string at = "[" + std::to_string(i) + "]";
-        return {"uLightRadiance" + at + ".xyz", "uLightPosition" + at + ".xyz", "uLightPosition" + at + ".w",
-                "uLightDirection" + at + ".xyz", "uLightCone" + at + ".xy"};
+        return {"uLightRadiance" + at + ".xyz",  "uLightPosition" + at + ".xyz", "uLightPosition" + at + ".w",
+                "uLightDirection" + at + ".xyz", "uLightCone" + at + ".xy",      "uLightCone" + at + ".xyz"};
     }
     auto slot = [](int element, const char* swizzle) {
         return "fLights[" + std::to_string(element) + "]." + swizzle;
     };
     if (layout.lights[i].type == LightType::Directional)
-        return {slot(k, "xyz"), "", "", slot(k + 1, "xyz"), ""};
-    return {slot(k, "xyz"), slot(k + 1, "xyz"), slot(k + 1, "w"), slot(k + 2, "xyz"),
-            "vec2(" + slot(k, "w") + ", " + slot(k + 2, "w") + ")"};
+        return {slot(k, "xyz"), "", "", slot(k + 1, "xyz"), "", ""};
+    if (layout.lights[i].type == LightType::Rect)
+        return {slot(k, "xyz"),    slot(k + 1, "xyz"), slot(k + 1, "w"), slot(k + 2, "xyz"), "",
+                slot(k + 3, "xyz")};
+    return {slot(k, "xyz"),
+            slot(k + 1, "xyz"),
+            slot(k + 1, "w"),
+            slot(k + 2, "xyz"),
+            "vec2(" + slot(k, "w") + ", " + slot(k + 2, "w") + ")",
+            ""};
 }
 
 // The flat varyings of a plan ("out" in the vertex shader, "in" in the fragment shader).
@@ -681,6 +741,10 @@ std::string constantCopies(const ShadingLayout& layout, const ConstantPlan& plan
             text += slot(0) + "vec4(uLightRadiance" + at + ".xyz, uLightCone" + at + ".x);" + slot(1) +
                     "uLightPosition" + at + ";" + slot(2) + "vec4(uLightDirection" + at + ".xyz, uLightCone" +
                     at + ".y);";
+            break;
+        case LightType::Rect:
+            text += slot(0) + "uLightRadiance" + at + ";" + slot(1) + "uLightPosition" + at + ";" + slot(2) +
+                    "uLightDirection" + at + ";" + slot(3) + "uLightCone" + at + ";";
             break;
         }
     }
@@ -729,6 +793,18 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
         const LightSlot& light = layout.lights[i];
         const LightTerms terms = lightTerms(layout, plan, i);
         text += "    {\n";
+        if (light.type == LightType::Rect) { // its own shading, unshadowed (see rectLight())
+            text += "        vec3 c = " + terms.position + " - p;\n";
+            text += "        vec3 e = " + terms.radiance + ";\n";
+            if (light.ranged) { // the window of its centre's distance, as a point light's
+                text += "        float r = length(c) * " + terms.inverseRange + ";\n";
+                text += "        float w = clamp(1.0 - r * r * r * r, 0.0, 1.0);\n";
+                text += "        e *= w * w;\n";
+            }
+            text += "        rectLight(s, c, " + terms.direction + ", " + terms.halfUp +
+                    ", e, irradiance, specular);\n    }\n";
+            continue;
+        }
         if (light.type == LightType::Directional) {
             text += "        vec3 l = -" + terms.direction + ";\n";
             text += "        vec3 e = " + terms.radiance + ";\n";

@@ -331,7 +331,7 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
     std::vector<Eigen::Vector3d> positions;
     scene.forEachLight([&](LightId, const Light& light) {
         ++ordinal;
-        if (!light.castShadows || light.type == LightType::Point)
+        if (!light.castShadows || light.type == LightType::Point || light.type == LightType::Rect)
             return;
         if (infos.size() >= std::size_t(shaders::kMaxShadowMaps)) {
             ++skipped;

@@ -8,6 +8,7 @@
 #include "core/render/mesh_import.h"
 #include "core/render/primitives.h"
 #include "core/sensors/linear_color.h"
+#include "core/sensors/rect_light_component.h"
 #include "core/sensors/sky_atmosphere_component.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
@@ -87,6 +88,14 @@ sp::render::Light toRenderLight(const ULightComponent& component) {
     } else if (const auto* point = dynamic_cast<const UPointLightComponent*>(&component)) {
         light.type = sp::render::LightType::Point;
         light.range = point->AttenuationRadius;
+    } else if (const auto* rect = dynamic_cast<const URectLightComponent*>(&component)) {
+        // Its size is its own: the component's scale does not stretch it (as in Unreal).
+        light.type = sp::render::LightType::Rect;
+        light.range = rect->AttenuationRadius;
+        light.right = component.GetRightVector().toEigen();
+        light.up = component.GetUpVector().toEigen();
+        light.width = rect->SourceWidth;
+        light.height = rect->SourceHeight;
     } else {
         light.type = sp::render::LightType::Directional;
     }

@@ -8,6 +8,7 @@
 #include "core/sensors/camera_sensor_component.h"
 #include "core/sensors/material_library.h"
 #include "core/sensors/movie_pipeline_queue.h"
+#include "core/sensors/rect_light_component.h"
 #include "core/sensors/sky_atmosphere_component.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/spfunc/sp_func_component.h"

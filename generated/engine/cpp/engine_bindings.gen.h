@@ -15,6 +15,7 @@
 #include "core/sensors/camera_sensor_component.h"
 #include "core/sensors/material_library.h"
 #include "core/sensors/movie_pipeline_queue.h"
+#include "core/sensors/rect_light_component.h"
 #include "core/sensors/sky_atmosphere_component.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
@@ -103,6 +104,9 @@ template <> struct Ref<APointLight> : Ref<AActor> {
 template <> struct Ref<ARecastNavMesh> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
+template <> struct Ref<ARectLight> : Ref<AActor> {
+    using Ref<AActor>::Ref;
+};
 template <> struct Ref<ASkyAtmosphere> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
@@ -179,6 +183,9 @@ template <> struct Ref<UPCGComponent> : Ref<UActorComponent> {
     using Ref<UActorComponent>::Ref;
 };
 template <> struct Ref<UPointLightComponent> : Ref<ULightComponent> {
+    using Ref<ULightComponent>::Ref;
+};
+template <> struct Ref<URectLightComponent> : Ref<ULightComponent> {
     using Ref<ULightComponent>::Ref;
 };
 template <> struct Ref<USkyAtmosphereComponent> : Ref<USceneComponent> {

@@ -13,6 +13,7 @@
 #include "core/sensors/camera_sensor_component.h"
 #include "core/sensors/material_library.h"
 #include "core/sensors/movie_pipeline_queue.h"
+#include "core/sensors/rect_light_component.h"
 #include "core/sensors/sky_atmosphere_component.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
@@ -1274,6 +1275,16 @@ struct ARecastNavMeshCalls {
         Self* self = Call::template object<Self>(target, "ARecastNavMesh.GetNavMeshTriangles()");
         auto result = self->GetNavMeshTriangles();
         return Call::template result<sp::reflect::SpArray<double>>(result);
+    }
+};
+
+struct ARectLightCalls {
+    using Self = ARectLight;
+
+    template <typename Call> static typename Call::Result get_LightComponent(const Self* self) {
+        const auto& value = self->LightComponent;
+        sp::reflect::checkNotNull(value, "ARectLight.LightComponent");
+        return Call::template result<URectLightComponent*>(value);
     }
 };
 
@@ -5219,6 +5230,61 @@ struct UPointLightComponentCalls {
     template <typename Call> static void set_AttenuationRadius(Self* self, const typename Call::Input& value) {
         self->AttenuationRadius = Call::template input<float>(value, "UPointLightComponent.AttenuationRadius");
         sp::reflect::notifyPropertyChanged(self, "AttenuationRadius");
+    }
+};
+
+struct URectLightComponentCalls {
+    using Self = URectLightComponent;
+
+    template <typename Call> static typename Call::Result get_SourceWidth(const Self* self) {
+        const auto& value = self->SourceWidth;
+        return Call::template result<float>(value);
+    }
+    template <typename Call> static void set_SourceWidth(Self* self, const typename Call::Input& value) {
+        self->SetSourceWidth(Call::template input<float>(value, "URectLightComponent.SourceWidth"));
+        sp::reflect::notifyPropertyChanged(self, "SourceWidth");
+    }
+
+    template <typename Call> static typename Call::Result get_SourceHeight(const Self* self) {
+        const auto& value = self->SourceHeight;
+        return Call::template result<float>(value);
+    }
+    template <typename Call> static void set_SourceHeight(Self* self, const typename Call::Input& value) {
+        self->SetSourceHeight(Call::template input<float>(value, "URectLightComponent.SourceHeight"));
+        sp::reflect::notifyPropertyChanged(self, "SourceHeight");
+    }
+
+    template <typename Call> static typename Call::Result get_AttenuationRadius(const Self* self) {
+        const auto& value = self->AttenuationRadius;
+        return Call::template result<float>(value);
+    }
+    template <typename Call> static void set_AttenuationRadius(Self* self, const typename Call::Input& value) {
+        self->AttenuationRadius = Call::template input<float>(value, "URectLightComponent.AttenuationRadius");
+        sp::reflect::notifyPropertyChanged(self, "AttenuationRadius");
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetSourceWidth(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewWidth", "URectLightComponent.SetSourceWidth(): argument 'NewWidth'", true},
+        }};
+        const Call call(args, "URectLightComponent.SetSourceWidth()", kParams);
+        Self* self = Call::template object<Self>(target, "URectLightComponent.SetSourceWidth()");
+        float NewWidthArg = call.template arg<float>(0);
+        self->SetSourceWidth(NewWidthArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetSourceHeight(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewHeight", "URectLightComponent.SetSourceHeight(): argument 'NewHeight'", true},
+        }};
+        const Call call(args, "URectLightComponent.SetSourceHeight()", kParams);
+        Self* self = Call::template object<Self>(target, "URectLightComponent.SetSourceHeight()");
+        float NewHeightArg = call.template arg<float>(0);
+        self->SetSourceHeight(NewHeightArg);
+        return Call::none();
     }
 };
 

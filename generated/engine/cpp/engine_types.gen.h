@@ -49,5 +49,5 @@ __attribute__((visibility("default"))) const char* spear_register_engine_types_a
 
 // The same hash as a constant: a plugin compiled against these headers records the engine's.
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "c812e7824724e9fa";
+inline constexpr char kApiHash[] = "a4349b0d70e3ab62";
 } // namespace sp::generated::engine

@@ -989,6 +989,19 @@ void spear_bind_engine(py::module_& m) {
             "GetNavMeshTriangles(self) -> NDArray[np.float64]\n\nReturns the mesh's surface as triangles, a (T, 3, 3) array of corners (for drawing a map).");
     }
     {
+        using Self = ARectLight;
+        using Calls = sp::generated::engine::ARectLightCalls;
+        py::class_<Ref<Self>, Ref<AActor>> cls(m, "ARectLight", "An actor with a rect light as its root.");
+        cls.attr("__sp_class__") = "ARectLight";
+        sp::pybind::useBareTypeName(cls);
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property_readonly(
+            "LightComponent",
+            [](const Ref<Self>& self) { return Calls::get_LightComponent<PyCall>(self.get<Self>("ARectLight.LightComponent")); },
+            "The light (also the root component); it faces along the actor's forward axis.");
+        sp::pybind::nameProperties(cls);
+    }
+    {
         using Self = ASkyAtmosphere;
         using Calls = sp::generated::engine::ASkyAtmosphereCalls;
         py::class_<Ref<Self>, Ref<AActor>> cls(m, "ASkyAtmosphere", "An actor with the sky atmosphere as its root.");
@@ -3215,6 +3228,52 @@ void spear_bind_engine(py::module_& m) {
             },
             "Distance in metres beyond which the light has no effect.");
         sp::pybind::nameProperties(cls);
+    }
+    {
+        using Self = URectLightComponent;
+        using Calls = sp::generated::engine::URectLightComponentCalls;
+        py::class_<Ref<Self>, Ref<ULightComponent>> cls(m, "URectLightComponent", "A rectangular area light facing the component's forward axis (UE's URectLightComponent, sizes in metres).");
+        cls.attr("__sp_class__") = "URectLightComponent";
+        sp::pybind::useBareTypeName(cls);
+        sp::pybind::registerWrapper(Self::StaticClass(), &sp::pybind::makeWrapper<Self>, cls);
+        cls.def_property(
+            "SourceWidth",
+            [](const Ref<Self>& self) { return Calls::get_SourceWidth<PyCall>(self.get<Self>("URectLightComponent.SourceWidth")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_SourceWidth<PyCall>(self.get<Self>("URectLightComponent.SourceWidth"), value);
+            },
+            "Width in metres of the rectangle, along the component's right (+Y) axis (> 0).");
+        cls.def_property(
+            "SourceHeight",
+            [](const Ref<Self>& self) { return Calls::get_SourceHeight<PyCall>(self.get<Self>("URectLightComponent.SourceHeight")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_SourceHeight<PyCall>(self.get<Self>("URectLightComponent.SourceHeight"), value);
+            },
+            "Height in metres of the rectangle, along the component's up (+Z) axis (> 0).");
+        cls.def_property(
+            "AttenuationRadius",
+            [](const Ref<Self>& self) { return Calls::get_AttenuationRadius<PyCall>(self.get<Self>("URectLightComponent.AttenuationRadius")); },
+            [](const Ref<Self>& self, const PyArg& value) {
+                Calls::set_AttenuationRadius<PyCall>(self.get<Self>("URectLightComponent.AttenuationRadius"), value);
+            },
+            "Distance in metres beyond which the light has no effect (0: unbounded).");
+        sp::pybind::nameProperties(cls);
+        cls.def(
+            "SetSourceWidth",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewWidth, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetSourceWidth<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewWidth}, true});
+            },
+            py::arg("NewWidth") = sp::pybind::missingArgument(),
+            "SetSourceWidth(self, *, NewWidth: float) -> None\n\nSets SourceWidth (metres, finite, >= 1e-6).");
+        cls.def(
+            "SetSourceHeight",
+            [](const Ref<Self>& self, const py::args& positional, const PyArg& NewHeight, const py::kwargs& extra) -> py::object {
+                // The parameters in order; the array lives until the call returns.
+                return Calls::call_SetSourceHeight<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewHeight}, true});
+            },
+            py::arg("NewHeight") = sp::pybind::missingArgument(),
+            "SetSourceHeight(self, *, NewHeight: float) -> None\n\nSets SourceHeight (metres, finite, >= 1e-6).");
     }
     {
         using Self = USkyAtmosphereComponent;

@@ -8,6 +8,7 @@
 #include "core/sensors/camera_sensor_component.h"
 #include "core/sensors/material_library.h"
 #include "core/sensors/movie_pipeline_queue.h"
+#include "core/sensors/rect_light_component.h"
 #include "core/sensors/sky_atmosphere_component.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
@@ -74,6 +75,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(APlayerStart::StaticClass());
     registry.add(APointLight::StaticClass());
     registry.add(ARecastNavMesh::StaticClass());
+    registry.add(ARectLight::StaticClass());
     registry.add(ASkyAtmosphere::StaticClass());
     registry.add(ASkyLight::StaticClass());
     registry.add(ASplineActor::StaticClass());
@@ -116,6 +118,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(UNavigationSystemV1::StaticClass());
     registry.add(UPCGComponent::StaticClass());
     registry.add(UPointLightComponent::StaticClass());
+    registry.add(URectLightComponent::StaticClass());
     registry.add(USkyAtmosphereComponent::StaticClass());
     registry.add(USkyLightComponent::StaticClass());
     registry.add(USpFuncComponent::StaticClass());
@@ -137,6 +140,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(USpFuncComponent::StaticClass());
     registry.remove(USkyLightComponent::StaticClass());
     registry.remove(USkyAtmosphereComponent::StaticClass());
+    registry.remove(URectLightComponent::StaticClass());
     registry.remove(UPointLightComponent::StaticClass());
     registry.remove(UPCGComponent::StaticClass());
     registry.remove(UNavigationSystemV1::StaticClass());
@@ -179,6 +183,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(ASplineActor::StaticClass());
     registry.remove(ASkyLight::StaticClass());
     registry.remove(ASkyAtmosphere::StaticClass());
+    registry.remove(ARectLight::StaticClass());
     registry.remove(ARecastNavMesh::StaticClass());
     registry.remove(APointLight::StaticClass());
     registry.remove(APlayerStart::StaticClass());
@@ -215,4 +220,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<EAntiAliasingMethod>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "c812e7824724e9fa"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "a4349b0d70e3ab62"; }

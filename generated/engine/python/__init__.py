@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "c812e7824724e9fa"
+API_HASH = "a4349b0d70e3ab62"

@@ -40,6 +40,7 @@ __all__ = [
     "APlayerStart",
     "APointLight",
     "ARecastNavMesh",
+    "ARectLight",
     "ASkyAtmosphere",
     "ASkyLight",
     "ASplineActor",
@@ -98,6 +99,7 @@ __all__ = [
     "UPCGComponent",
     "UPointLightComponent",
     "UPrimitiveComponent",
+    "URectLightComponent",
     "USceneComponent",
     "UShapeComponent",
     "USkyAtmosphereComponent",
@@ -886,6 +888,25 @@ class ARecastNavMesh(AActor):
         ProjectedLocation: FVector
 
 
+class ARectLightAsync(AActorAsync):
+    """ARectLight's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class ARectLightSend(AActorSend):
+    """ARectLight's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class ARectLight(AActor):
+    """An actor with a rect light as its root."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "ARectLight"
+
+
 class ASkyAtmosphereAsync(AActorAsync):
     """ASkyAtmosphere's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
 
@@ -1436,6 +1457,25 @@ class UPointLightComponent(ULightComponent):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UPointLightComponent"
+
+
+class URectLightComponentAsync(ULightComponentAsync):
+    """URectLightComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class URectLightComponentSend(ULightComponentSend):
+    """URectLightComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class URectLightComponent(ULightComponent):
+    """A rectangular area light facing the component's forward axis (UE's URectLightComponent, sizes in metres)."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "URectLightComponent"
 
 
 class USkyAtmosphereComponentAsync(USceneComponentAsync):

@@ -33,6 +33,7 @@ __all__ = [
     "APlayerStart",
     "APointLight",
     "ARecastNavMesh",
+    "ARectLight",
     "ASkyAtmosphere",
     "ASkyLight",
     "ASplineActor",
@@ -91,6 +92,7 @@ __all__ = [
     "UPCGComponent",
     "UPointLightComponent",
     "UPrimitiveComponent",
+    "URectLightComponent",
     "USceneComponent",
     "UShapeComponent",
     "USkyAtmosphereComponent",
@@ -1833,6 +1835,34 @@ class ARecastNavMesh(AActor):
 
     def GetNavMeshTriangles(self) -> NDArray[np.float64]:
         """Returns the mesh's surface as triangles, a (T, 3, 3) array of corners (for drawing a map)."""
+
+
+class ARectLightAsync(AActorAsync):
+    """ARectLight's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class ARectLightSend(AActorSend):
+    """ARectLight's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
+class ARectLight(AActor):
+    """An actor with a rect light as its root."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> ARectLightAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> ARectLightSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def LightComponent(self) -> URectLightComponent:
+        """The light (also the root component); it faces along the actor's forward axis."""
 
 
 class ASkyAtmosphereAsync(AActorAsync):
@@ -4477,6 +4507,63 @@ class UPointLightComponent(ULightComponent):
 
     @AttenuationRadius.setter
     def AttenuationRadius(self, value: float) -> None: ...
+
+
+class URectLightComponentAsync(ULightComponentAsync):
+    """URectLightComponent's functions, called asynchronously: each returns a Future."""
+
+    def SetSourceWidth(self, *, NewWidth: float) -> Future[None]: ...
+
+    def SetSourceHeight(self, *, NewHeight: float) -> Future[None]: ...
+
+
+class URectLightComponentSend(ULightComponentSend):
+    """URectLightComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetSourceWidth(self, *, NewWidth: float) -> None: ...
+
+    def SetSourceHeight(self, *, NewHeight: float) -> None: ...
+
+
+class URectLightComponent(ULightComponent):
+    """A rectangular area light facing the component's forward axis (UE's URectLightComponent, sizes in metres)."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> URectLightComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> URectLightComponentSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def SourceWidth(self) -> float:
+        """Width in metres of the rectangle, along the component's right (+Y) axis (> 0)."""
+
+    @SourceWidth.setter
+    def SourceWidth(self, value: float) -> None: ...
+
+    @property
+    def SourceHeight(self) -> float:
+        """Height in metres of the rectangle, along the component's up (+Z) axis (> 0)."""
+
+    @SourceHeight.setter
+    def SourceHeight(self, value: float) -> None: ...
+
+    @property
+    def AttenuationRadius(self) -> float:
+        """Distance in metres beyond which the light has no effect (0: unbounded)."""
+
+    @AttenuationRadius.setter
+    def AttenuationRadius(self, value: float) -> None: ...
+
+    def SetSourceWidth(self, *, NewWidth: float) -> None:
+        """Sets SourceWidth (metres, finite, >= 1e-6)."""
+
+    def SetSourceHeight(self, *, NewHeight: float) -> None:
+        """Sets SourceHeight (metres, finite, >= 1e-6)."""
 
 
 class USkyAtmosphereComponentAsync(USceneComponentAsync):

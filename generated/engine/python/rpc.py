@@ -646,6 +646,17 @@ class ARecastNavMesh(AActor, api.ARecastNavMesh):
 _register_proxy(ARecastNavMesh)
 
 
+class ARectLight(AActor, api.ARectLight):
+    __slots__ = ()
+
+    @property
+    def LightComponent(self) -> api.URectLightComponent:
+        return cast("api.URectLightComponent", self._sp_get("ARectLight", "LightComponent", _t.T_URectLightComponent))
+
+
+_register_proxy(ARectLight)
+
+
 class ASkyAtmosphere(AActor, api.ASkyAtmosphere):
     __slots__ = ()
 
@@ -2048,6 +2059,43 @@ class UPointLightComponent(ULightComponent, api.UPointLightComponent):
 
 
 _register_proxy(UPointLightComponent)
+
+
+class URectLightComponent(ULightComponent, api.URectLightComponent):
+    __slots__ = ()
+
+    @property
+    def SourceWidth(self) -> float:
+        return cast("float", self._sp_get("URectLightComponent", "SourceWidth", _t.T_float))
+
+    @SourceWidth.setter
+    def SourceWidth(self, value: float) -> None:
+        self._sp_set("URectLightComponent", "SourceWidth", value)
+
+    @property
+    def SourceHeight(self) -> float:
+        return cast("float", self._sp_get("URectLightComponent", "SourceHeight", _t.T_float))
+
+    @SourceHeight.setter
+    def SourceHeight(self, value: float) -> None:
+        self._sp_set("URectLightComponent", "SourceHeight", value)
+
+    @property
+    def AttenuationRadius(self) -> float:
+        return cast("float", self._sp_get("URectLightComponent", "AttenuationRadius", _t.T_float))
+
+    @AttenuationRadius.setter
+    def AttenuationRadius(self, value: float) -> None:
+        self._sp_set("URectLightComponent", "AttenuationRadius", value)
+
+    def SetSourceWidth(self, *, NewWidth: float) -> None:
+        return cast(None, self._sp_call("URectLightComponent", "SetSourceWidth", {"NewWidth": NewWidth}, _t.T_void))  # a Future when queued by call_async
+
+    def SetSourceHeight(self, *, NewHeight: float) -> None:
+        return cast(None, self._sp_call("URectLightComponent", "SetSourceHeight", {"NewHeight": NewHeight}, _t.T_void))  # a Future when queued by call_async
+
+
+_register_proxy(URectLightComponent)
 
 
 class USkyAtmosphereComponent(USceneComponent, api.USkyAtmosphereComponent):

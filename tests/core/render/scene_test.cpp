@@ -78,6 +78,21 @@ TEST(SceneTest, LightLimitAndValidation) {
     EXPECT_THROW(other.addLight(spot), InvalidArgument);
 }
 
+TEST(SceneTest, RectLightsNeedASizeAndAFrameAcrossTheirDirection) {
+    Scene scene;
+    Light rect;
+    rect.type = LightType::Rect;
+    rect.direction = Eigen::Vector3d(1.0, 0.0, 0.0);
+    scene.addLight(rect); // the default frame: right +Y, up +Z
+    Light flat = rect;
+    flat.height = 0.0f;
+    EXPECT_THROW(scene.addLight(flat), InvalidArgument);
+    Light skew = rect;
+    skew.right = Eigen::Vector3d(1.0, 0.0, 0.0); // along the direction: no rectangle across it
+    EXPECT_THROW(scene.addLight(skew), InvalidArgument);
+    EXPECT_FLOAT_EQ(rect.rectRadiance(), rect.intensity / (rect.width * rect.height));
+}
+
 TEST(SceneTest, BoundsCoverTransformedInstances) {
     Scene scene;
     MeshId mesh = scene.addMesh(primitives::box({2, 2, 2}));

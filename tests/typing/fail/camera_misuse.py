@@ -1,5 +1,6 @@
 """Negative typing case: a misspelled modality is a type error, as a dict key and as an enum member; so are an
-anti-aliasing method given as a number and one spear does not have, and an exposure method given as a string."""
+anti-aliasing method given as a number and one spear does not have, an exposure method given as a string, a
+rect light's size given as a string and a size property it does not have."""
 
 # pyright: standard
 # (negative cases are checked as most pyright and Pylance users run it; strict reports more)
@@ -9,7 +10,7 @@ from __future__ import annotations
 import spear
 
 
-def misuse(camera: spear.UCameraSensorComponent) -> None:
+def misuse(camera: spear.UCameraSensorComponent, panel: spear.URectLightComponent) -> None:
     px = camera.read_pixels()
     px["dept"]  # E: TypedDict "FCameraPixels" has no key "dept"  [typeddict-item]  # P: reportGeneralTypeIssues: Could not access item in TypedDict / "dept" is not a defined key in "FCameraPixels"
     camera.Modalities = [spear.ECameraModality.Dept]  # E: "Type[ECameraModality]" has no attribute "Dept"  [attr-defined]  # P: reportAttributeAccessIssue: Cannot access attribute "Dept" for class "type[ECameraModality]" / Attribute "Dept" is unknown
@@ -19,3 +20,5 @@ def misuse(camera: spear.UCameraSensorComponent) -> None:
     camera.AntiAliasingMethod = spear.EAntiAliasingMethod.AAM_TSR  # E: "Type[EAntiAliasingMethod]" has no attribute "AAM_TSR"  [attr-defined]  # P: reportAttributeAccessIssue: Cannot access attribute "AAM_TSR" for class "type[EAntiAliasingMethod]" / Attribute "AAM_TSR" is unknown
     camera.AutoExposureMethod = "Histogram"  # E: Incompatible types in assignment (expression has type "str", variable has type "EAutoExposureMethod")  [assignment]  # P: reportAttributeAccessIssue: Cannot assign to attribute "AutoExposureMethod" for class "UCameraSensorComponent" / "Literal['Histogram']" is not assignable to "EAutoExposureMethod"
     camera.ResetAutoExposure(Instant=True)  # E: Unexpected keyword argument "Instant" for "ResetAutoExposure" of "UCameraSensorComponent"  [call-arg]  # P: reportCallIssue: No parameter named "Instant"
+    panel.SetSourceWidth(NewWidth="1.2")  # E: Argument "NewWidth" to "SetSourceWidth" of "URectLightComponent" has incompatible type "str"; expected "float"  [arg-type]  # P: reportArgumentType: Argument of type "Literal['1.2']" cannot be assigned to parameter "NewWidth" of type "float" in function "SetSourceWidth" / "Literal['1.2']" is not assignable to "float"
+    panel.SourceLength = 1.0  # E: "URectLightComponent" has no attribute "SourceLength"  [attr-defined]  # P: reportAttributeAccessIssue: Cannot assign to attribute "SourceLength" for class "URectLightComponent" / Attribute "SourceLength" is unknown

@@ -20,6 +20,10 @@ def camera_pixels(instance: spear.Instance) -> None:
         camera.AutoExposureMethod = spear.EAutoExposureMethod.AEM_Histogram
         camera.AutoExposureBias = 0.5
         camera.ResetAutoExposure()
+        panel = game.spawn_actor(uclass=spear.ARectLight).LightComponent
+        assert_type(panel, spear.URectLightComponent)
+        panel.SetSourceWidth(NewWidth=1.2)
+        panel.SourceHeight = 0.5
         rig = game.spawn_actor(uclass=spear.AStereoCameraRig)
         assert_type(rig.LeftCamera, spear.UCameraSensorComponent)
     with instance.end_frame():
