@@ -15,6 +15,7 @@
 #include "core/base/log.h"
 #include "core/base/progress.h"
 #include "core/pathtrace/bsdf.h"
+#include "core/pathtrace/emitters.h"
 
 namespace sp::pathtrace {
 namespace {
@@ -105,6 +106,7 @@ struct Shape {
     const MeshShape* mesh = nullptr;
     Eigen::Matrix3f normalMatrix;              // inverse transpose of the instance's linear part
     Eigen::Matrix3f linear;                    // the instance's linear part
+    Eigen::Vector3f translation;               // and its translation
     std::vector<render::MaterialId> materials; // one per submesh
     bool probed = true;                        // probe rays see it (not smaller than the probe cutoff)
 };
@@ -209,6 +211,8 @@ struct PathTracer::Impl {
     std::uint64_t builds = 0;
     std::uint64_t lastRays = 0;
     std::vector<Shape> shapes; // by instance geometry id in rtcScene
+    Emitters emitters;         // the emissive triangles of `shapes`
+    std::uint64_t emittersKey = 0;
     // Mesh scenes by (MeshId index, generation); those no build instanced lately are released.
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::unique_ptr<MeshShape>> meshShapes;
 
@@ -382,10 +386,37 @@ struct PathTracer::Impl {
             rtcAttachGeometryByID(rtcScene, geometry, unsigned(shapes.size()));
             rtcReleaseGeometry(geometry);
             shapes.push_back({&mesh, transform.linear().inverse().transpose(), transform.linear(),
-                              instance.materials, probed});
+                              transform.translation(), instance.materials, probed});
         });
         rtcCommitScene(rtcScene);
         std::erase_if(meshShapes, [&](const auto& entry) { return entry.second->usedBy + 8 < builds; });
+    }
+
+    // The emissive triangles again when the geometry was rebuilt or a material's emission changed.
+    void syncEmitters(const render::Scene& scene) {
+        Hasher h;
+        h.add(builds);
+        for (const Shape& shape : shapes)
+            for (render::MaterialId id : shape.materials)
+                h.matrix(scene.material(id).emissive);
+        if (h.value == emittersKey)
+            return;
+        emittersKey = h.value;
+        emitters.clear();
+        for (std::uint32_t i = 0; i < shapes.size(); ++i) {
+            const Shape& shape = shapes[i];
+            const MeshShape& mesh = *shape.mesh;
+            for (std::size_t t = 0; t < mesh.slots.size(); ++t) {
+                const Eigen::Vector3f& radiance = scene.material(shape.materials[mesh.slots[t]]).emissive;
+                if (radiance.maxCoeff() <= 0.0f)
+                    continue;
+                auto world = [&](std::uint32_t v) {
+                    return Eigen::Vector3f(shape.linear * mesh.positions[v] + shape.translation);
+                };
+                emitters.add(i, world(mesh.indices[3 * t]), world(mesh.indices[3 * t + 1]),
+                             world(mesh.indices[3 * t + 2]), radiance);
+            }
+        }
     }
 
     // Everything the light in the scene depends on: the geometry, materials, lights and sky.
@@ -605,8 +636,14 @@ struct PathTracer::Impl {
                 out.normal = n;
                 out.depth = hit.ray.tfar;
                 out.instance = hit.hit.instID[0] + 1;
-            } else
-                throughFirst(material.emissive);
+            } else if (material.emissive.maxCoeff() > 0.0f) {
+                // The BSDF's share of an emitter the last vertex also sampled (multiple importance sampling):
+                // the density with which it would have drawn this point, per solid angle there.
+                const float t = hit.ray.tfar, cosine = ng.dot(toViewer);
+                const float pdfLight = emitters.pdfArea(material.emissive) * t * t / std::max(cosine, 1e-6f);
+                throughFirst(material.emissive *
+                             (bsdfPdf * bsdfPdf / (bsdfPdf * bsdfPdf + pdfLight * pdfLight)));
+            }
             const Eigen::Vector3f fd = diffuse(s);
 
             // Shadow and bounce rays leave from just above the surface, on the viewer's side.
@@ -631,6 +668,24 @@ struct PathTracer::Impl {
                     throughFirst(f.cwiseProduct(e) * nol);
             });
             const bool last = depth >= settings.maxBounces;
+            if (!emitters.empty()) { // one point of an emissive surface
+                const EmitterSample e = emitters.sample(random.next(), random.next(), random.next());
+                const Eigen::Vector3f d = e.point - above;
+                const float distance2 = d.squaredNorm(), distance = std::sqrt(distance2);
+                const Eigen::Vector3f l = d / std::max(distance, 1e-12f);
+                const float nol = n.dot(l), cosine = std::abs(e.normal.dot(l));
+                if ((!probe || shapes[e.shape].probed) && nol > 0.0f && ng.dot(l) > 0.0f && cosine > 1e-6f &&
+                    !occluded(above, l, distance, shadowMask, rays)) {
+                    const float pdfLight = e.pdfArea * distance2 / cosine, pdfBsdf = pdf(s, toViewer, l);
+                    const float weight =
+                        last ? 1.0f : pdfLight * pdfLight / (pdfLight * pdfLight + pdfBsdf * pdfBsdf);
+                    const Eigen::Vector3f f = evaluate(s, toViewer, l);
+                    if (depth == 0)
+                        reflectFirst(e.radiance, f, fd, nol / pdfLight * weight);
+                    else
+                        throughFirst(f.cwiseProduct(e.radiance) * (nol / pdfLight * weight));
+                }
+            }
             if (sky) {
                 // A uniform sky is drawn by cosine, a map by its luminance (a bright sun in a photograph is
                 // found by its rays, not by chance).
@@ -730,6 +785,7 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
     settings.validate("PathTracer::render");
     Impl& impl = *impl_;
     impl.sync(scene);
+    impl.syncEmitters(scene);
     // What the image depends on; it also seeds the random numbers, so it leaves out the scene's
     // process-unique id: the same scene and view give the same image in every run.
     const std::uint64_t signature = impl.imageHash(scene, camera, settings);
@@ -837,6 +893,7 @@ void PathTracer::lightProbes(const render::Scene& scene, render::IrradianceVolum
     Impl& impl = *impl_;
     impl.probeScope = scope;
     impl.syncForProbes(scene);
+    impl.syncEmitters(scene);
     const std::uint64_t signature = impl.lightingHash(scene, true);
     const Eigen::Vector3f sky = scene.environment().ambient;
     const float spacing = float(volume.spacing);
