@@ -1,4 +1,5 @@
 #include "core/pathtrace/bsdf.h"
+#include "core/render/luminance.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,10 +8,6 @@ namespace sp::pathtrace {
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
-
-float luminance(const Eigen::Vector3f& c) {
-    return 0.2126f * c.x() + 0.7152f * c.y() + 0.0722f * c.z();
-}
 
 Eigen::Vector3f specularColor(const SurfacePoint& s) {
     return Eigen::Vector3f::Constant(0.04f) * (1.0f - s.metallic) + s.base * s.metallic;
@@ -28,8 +25,8 @@ float dGgx(float noh, float a) {
 
 // The probability of drawing from the specular lobe: its share of the albedo estimate, within [0.1, 0.9].
 float specularProbability(const SurfacePoint& s) {
-    const float diffuse = luminance(s.base) * (1.0f - s.metallic);
-    const float specular = luminance(specularColor(s));
+    const float diffuse = render::luminance(s.base) * (1.0f - s.metallic);
+    const float specular = render::luminance(specularColor(s));
     return std::clamp(specular / std::max(specular + diffuse, 1e-6f), 0.1f, 0.9f);
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/base/error.h"
+#include "core/render/luminance.h"
 
 namespace sp::pathtrace {
 namespace {
@@ -18,7 +19,7 @@ constexpr float kDepthTolerance = 0.05f;
 constexpr float kNormalPower = 32.0f;
 
 float luminance(const float* c) {
-    return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
+    return render::luminance(c[0], c[1], c[2]);
 }
 
 } // namespace

@@ -9,6 +9,7 @@
 
 #include "core/base/error.h"
 #include "core/render/image_buffer.h"
+#include "core/render/luminance.h"
 #include "core/render/tone.h"
 
 namespace sp::render {
@@ -102,7 +103,7 @@ void MeteringSettings::validate(const char* function) const {
 }
 
 double luminanceOf(double r, double g, double b) {
-    return 0.2126 * r + 0.7152 * g + 0.0722 * b;
+    return luminance(r, g, b);
 }
 
 double ev100FromLuminance(double luminance) {

@@ -10,6 +10,7 @@
 
 #include "core/base/error.h"
 #include "core/base/parallel.h"
+#include "core/render/luminance.h"
 
 namespace sp::render {
 namespace {
@@ -19,10 +20,6 @@ constexpr float kPi = 3.14159265358979f;
 std::uint64_t nextUid() {
     static std::atomic<std::uint64_t> counter{0};
     return ++counter;
-}
-
-float luminance(const Eigen::Vector3f& c) {
-    return 0.2126f * c.x() + 0.7152f * c.y() + 0.0722f * c.z();
 }
 
 // Bilinear lookup at texture coordinates (u wraps around, v is clamped), texel centres at (i + 0.5) / size.

@@ -5,6 +5,7 @@
 
 #include "core/base/error.h"
 #include "core/base/parallel.h"
+#include "core/render/luminance.h"
 
 namespace sp::render {
 namespace {
@@ -89,9 +90,7 @@ PreethamSky::PreethamSky(const SkyParameters& parameters) {
     }
 
     // The sun light's luminance sets the scale (its colour tints only the direct light and the ground).
-    const float sunLuminance = 0.2126f * parameters.sunIrradiance.x() +
-                               0.7152f * parameters.sunIrradiance.y() +
-                               0.0722f * parameters.sunIrradiance.z();
+    const float sunLuminance = luminance(parameters.sunIrradiance);
     scale_ = sunLuminance / kSolarIlluminance * fade;
 
     // The ground: Lambertian, lit by the sun and by the sky's irradiance on a horizontal surface.

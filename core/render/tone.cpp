@@ -1,4 +1,5 @@
 #include "core/render/tone.h"
+#include "core/render/luminance.h"
 
 #include <algorithm>
 #include <cmath>
@@ -27,8 +28,7 @@ Eigen::Vector3d planckianRgb(double t) {
 
 Eigen::Vector3f whiteBalanceGains(double kelvin) {
     const Eigen::Vector3d gains = planckianRgb(6500.0).cwiseQuotient(planckianRgb(kelvin));
-    const double luminance = gains.dot(Eigen::Vector3d(0.2126, 0.7152, 0.0722));
-    return (gains / luminance).cast<float>();
+    return (gains / luminance(gains)).cast<float>();
 }
 
 Vignette::Vignette(const CameraParams& params)
