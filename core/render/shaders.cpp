@@ -588,12 +588,15 @@ std::vector<int> shadowLayers(const ShadingLayout& lights) {
     return layers;
 }
 
-// "out vec4 vShadowClipK;" (or "in") for each layer a forward variant samples: only those are interpolated.
+// "out vec4 vShadowClipK;" (or "in") for each directional light's layer a forward variant samples: only
+// those are interpolated (see shadowClips()).
 std::string shadowClipDeclarations(bool forward, const ShadingLayout& lights, const char* direction) {
     std::string text;
     if (forward)
-        for (int layer : shadowLayers(lights))
-            text += std::string(direction) + " vec4 vShadowClip" + std::to_string(layer) + ";\n";
+        for (const LightSlot& light : lights.lights)
+            if (light.shadowLayer >= 0 && light.type == LightType::Directional)
+                text +=
+                    std::string(direction) + " vec4 vShadowClip" + std::to_string(light.shadowLayer) + ";\n";
     return text;
 }
 
@@ -604,15 +607,18 @@ std::string shadowTexel(const LightSlot& light, const std::string& distance) {
     return light.type == LightType::Directional ? texel : texel + " * " + distance;
 }
 
-// The forward vertex shader's shadow-map coordinates for each shadowed light, in homogeneous form
-// (x, y, z already mapped to [0, 1] times w): the vertex moved 1.5 texels along its normal, turned
-// towards the light, then projected. Interpolating them is exact for a directional light (affine) and
-// for a spot light (projective, divided per fragment), and spares every fragment a matrix product.
+// The forward vertex shader's shadow-map coordinates for each shadowed directional light, in homogeneous
+// form (x, y, z already mapped to [0, 1] times w): the vertex moved 1.5 texels along its normal, turned
+// towards the light, then projected. Interpolating them is exact (the offset is the same everywhere, the
+// projection affine) and spares every fragment a matrix product. A spot or rect light's texel, and so the
+// offset, grows with the distance to the light, which is not affine: interpolated across a large triangle
+// (a wall or a floor of 12 triangles) the offset of its far corners carried the points near the light past
+// their casters, and their shadows vanished. Their coordinates are computed per fragment (shade()).
 std::string shadowClips(const ShadingLayout& lights) {
     std::string text;
     for (std::size_t i = 0; i < lights.lights.size(); ++i) {
         const LightSlot& light = lights.lights[i];
-        if (light.shadowLayer < 0)
+        if (light.shadowLayer < 0 || light.type != LightType::Directional)
             continue;
         const std::string at = "[" + std::to_string(i) + "]", layer = std::to_string(light.shadowLayer);
         const std::string toLight = light.type == LightType::Directional
@@ -793,13 +799,21 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
         const LightSlot& light = layout.lights[i];
         const LightTerms terms = lightTerms(layout, plan, i);
         text += "    {\n";
-        if (light.type == LightType::Rect) { // its own shading, unshadowed (see rectLight())
+        if (light.type == LightType::Rect) { // its own shading (see rectLight())
             text += "        vec3 c = " + terms.position + " - p;\n";
+            text += "        float dist = length(c);\n";
             text += "        vec3 e = " + terms.radiance + ";\n";
             if (light.ranged) { // the window of its centre's distance, as a point light's
-                text += "        float r = length(c) * " + terms.inverseRange + ";\n";
+                text += "        float r = dist * " + terms.inverseRange + ";\n";
                 text += "        float w = clamp(1.0 - r * r * r * r, 0.0, 1.0);\n";
                 text += "        e *= w * w;\n";
+            }
+            if (light.shadowLayer >= 0) { // as a spot light's map, from the panel's centre
+                const std::string layer = std::to_string(light.shadowLayer);
+                // Per fragment, as a spot light's (see shadowClips()); the normal turned towards the light.
+                text += "        vec4 sc = offsetShadowClip(" + layer + ", p, dot(n, c) < 0.0 ? -n : n, " +
+                        shadowTexel(light, "dist") + ");\n";
+                text += "        e *= shadowFactor(" + layer + ", (sc.xyz / sc.w + 1.0) * 0.5);\n";
             }
             text += "        rectLight(s, c, " + terms.direction + ", " + terms.halfUp +
                     ", e, irradiance, specular);\n    }\n";
@@ -832,7 +846,8 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
             const std::string layer = std::to_string(light.shadowLayer);
             // The offset point's coordinates; only a spot light's need the perspective division here.
             std::string clip = "vShadowClip" + layer; // the vertex shader's, interpolated (see shadowClips())
-            if (perPixelShadows) { // n faces the light here (nol > 0), as the vertex shader turns it
+            // A spot light's per fragment (see shadowClips()); n faces the light here (nol > 0).
+            if (perPixelShadows || light.type != LightType::Directional) {
                 text += "            vec4 c = offsetShadowClip(" + layer + ", p, n, " +
                         shadowTexel(light, "dist") +
                         ");\n            vec4 sc = vec4((c.xyz + c.w) * 0.5, c.w);\n";

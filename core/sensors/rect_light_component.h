@@ -3,7 +3,8 @@
 // SourceWidth along its right (+Y) axis and SourceHeight along its up (+Z) axis; and the actor that holds
 // one. Like Unreal's, the light itself is not seen by the camera (give it an emissive mesh to show the
 // panel). Both renderers light with the whole rectangle: soft light and wide highlights where a point light
-// gives hard ones. The path tracer shadows it; the rasteriser does not (as with point lights).
+// gives hard ones. The path tracer's shadows are soft; the rasteriser's come from a shadow map seen from the
+// panel's centre, so they are hard.
 
 #include "core/world/actor.h"
 #include "core/world/light_component.h"

@@ -1,5 +1,5 @@
 """Rect lights (URectLightComponent, ARectLight): a one-sided Lambertian panel that both renderers light with
-its whole area, on both transports. The wall they light is checked against the exact form factor of a
+its whole area and shadows it, on both transports. The wall they light is checked against the exact form factor of a
 rectangle parallel to it, so the rasteriser's closed form and the path tracer's samples are each held to
 the same physics, not only to each other."""
 
@@ -134,9 +134,10 @@ def test_a_rect_lights_highlight_on_metal_has_the_path_tracers_energy(
     assert means[0] == pytest.approx(means[1], rel=0.08)
 
 
-def test_a_rect_light_is_shadowed_in_the_path_tracer(instance: spear.Instance) -> None:
+@pytest.mark.parametrize("traced", [False, True], ids=["raster", "path traced"])
+def test_a_rect_light_casts_shadows(instance: spear.Instance, traced: bool) -> None:
     # A board between the panel and the wall leaves a shadow on the wall: less light than the form factor
-    # says (the rasteriser does not shadow rect lights, as it does not point lights).
+    # says (the path tracer's soft, from the whole panel; the rasteriser's from its centre's shadow map).
     game = instance.get_game()
     with instance.begin_frame():
         _panel_scene(game)
@@ -144,7 +145,7 @@ def test_a_rect_light_is_shadowed_in_the_path_tracer(instance: spear.Instance) -
                                  location=spear.FVector(X=WALL_X - 0.4, Y=0.3, Z=-0.2))
         board.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
         board.SetActorScale3D(NewScale3D=spear.FVector(X=0.02, Y=0.6, Z=0.6))
-        camera = _camera(game, True)
+        camera = _camera(game, traced)
     with instance.end_frame():
         pixels = camera.read_pixels()
     expected = expected_illumination(pixels["position"], 0.3, -0.2)
@@ -172,3 +173,35 @@ def test_bad_rect_light_sizes_are_refused(instance: spear.Instance, name: str, v
         assert (light.SourceWidth, light.SourceHeight) == pytest.approx((0.64, 0.64))
     with instance.end_frame():
         pass
+
+
+def test_a_spot_light_shadows_a_wall_of_few_triangles(instance: spear.Instance) -> None:
+    # A spot light's shadow-map coordinates were interpolated from the vertices with an offset that grows
+    # with the distance to the light: across a wall of two triangles per face, the far corners' offset carried
+    # the points near the light past the board, and its shadow vanished. The ring of the wall around the
+    # board that the camera sees is in the board's shadow (the spot is a point: dark, bar the 1.5-texel edge).
+    game = instance.get_game()
+    results = []
+    for board in (False, True):
+        with instance.begin_frame():
+            if not board:
+                _panel_scene(game).LightComponent.Intensity = 0.0
+                spot = game.spawn_actor(uclass=spear.ASpotLight, name="Spot",
+                                        location=spear.FVector(X=WALL_X - PANEL_GAP, Y=0.3, Z=-0.2))
+                spot.LightComponent.OuterConeAngle, spot.LightComponent.InnerConeAngle = 80.0, 70.0
+                camera = _camera(game, False)
+                camera.Width, camera.Height = 48, 36
+            else:
+                blocker = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Board",
+                                           location=spear.FVector(X=WALL_X - 0.4, Y=0.3, Z=-0.2))
+                blocker.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+                blocker.SetActorScale3D(NewScale3D=spear.FVector(X=0.02, Y=0.6, Z=0.6))
+        with instance.end_frame():
+            results.append(camera.read_pixels())
+    position = results[1]["position"]
+    # The umbra reaches 0.6 m from the board's axis; 0.15 m short of that the offset plays no part.
+    ring = ((np.abs(position[..., 0] - WALL_X) < 0.01) & (np.abs(position[..., 1] - 0.3) < 0.45)
+            & (np.abs(position[..., 2] + 0.2) < 0.45))
+    assert ring.sum() >= 30
+    lit, shadowed = (r["diffuse_illumination"][..., 0].astype(np.float64)[ring] for r in results)
+    assert shadowed.mean() < 0.1 * lit.mean()
