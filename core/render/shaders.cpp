@@ -37,6 +37,15 @@ layout(std140, binding = 0) uniform FrameBlock {
 vec4 offsetShadowClip(const int layer, vec3 p, vec3 n, float texel) {
     return uShadowMatrix[layer] * vec4(p + n * (1.5 * texel), 1.0);
 }
+// The same for a perspective map (spot and rect lights), whose texel grows with the depth along the light's
+// axis, which its clip w is: `texel` per metre of that depth. The depth is affine in p, so over a flat
+// triangle the offset point's clip coordinates are too, and interpolating them from the vertices is exact
+// (the distance to the light is not: interpolated across a wall of two triangles, its far corners' offset
+// carried the points near the light past their casters, and their shadows vanished).
+vec4 offsetPerspectiveShadowClip(const int layer, vec3 p, vec3 n, float texel) {
+    vec4 c = uShadowMatrix[layer] * vec4(p, 1.0);
+    return c + uShadowMatrix[layer] * vec4(n * (1.5 * texel * c.w), 0.0);
+}
 )glsl";
 
 // Material inputs of one submesh and the surface they give a fragment: base colour, roughness and
@@ -588,47 +597,43 @@ std::vector<int> shadowLayers(const ShadingLayout& lights) {
     return layers;
 }
 
-// "out vec4 vShadowClipK;" (or "in") for each directional light's layer a forward variant samples: only
-// those are interpolated (see shadowClips()).
+// "out vec4 vShadowClipK;" (or "in") for each layer a forward variant samples: only those are interpolated.
 std::string shadowClipDeclarations(bool forward, const ShadingLayout& lights, const char* direction) {
     std::string text;
     if (forward)
-        for (const LightSlot& light : lights.lights)
-            if (light.shadowLayer >= 0 && light.type == LightType::Directional)
-                text +=
-                    std::string(direction) + " vec4 vShadowClip" + std::to_string(light.shadowLayer) + ";\n";
+        for (int layer : shadowLayers(lights))
+            text += std::string(direction) + " vec4 vShadowClip" + std::to_string(layer) + ";\n";
     return text;
 }
 
-// The GLSL for the world size of a shadow-map texel at a point `distance` (a GLSL expression) from the
-// light: a spot light's texel grows with the distance, a directional light's is fixed.
-std::string shadowTexel(const LightSlot& light, const std::string& distance) {
-    const std::string texel = "uShadowParams[" + std::to_string(light.shadowLayer) + "].x";
-    return light.type == LightType::Directional ? texel : texel + " * " + distance;
+// The GLSL for the offset clip coordinates of the point p (with normal n turned towards the light) in a
+// light's shadow map: a directional light's texel is fixed, a spot or rect light's grows with the depth
+// (uShadowParams[layer].x: per metre).
+std::string offsetShadowClipCall(const LightSlot& light, const std::string& p, const std::string& n) {
+    const std::string layer = std::to_string(light.shadowLayer);
+    return std::string(light.type == LightType::Directional ? "offsetShadowClip("
+                                                            : "offsetPerspectiveShadowClip(") +
+           layer + ", " + p + ", " + n + ", uShadowParams[" + layer + "].x)";
 }
 
-// The forward vertex shader's shadow-map coordinates for each shadowed directional light, in homogeneous
-// form (x, y, z already mapped to [0, 1] times w): the vertex moved 1.5 texels along its normal, turned
-// towards the light, then projected. Interpolating them is exact (the offset is the same everywhere, the
-// projection affine) and spares every fragment a matrix product. A spot or rect light's texel, and so the
-// offset, grows with the distance to the light, which is not affine: interpolated across a large triangle
-// (a wall or a floor of 12 triangles) the offset of its far corners carried the points near the light past
-// their casters, and their shadows vanished. Their coordinates are computed per fragment (shade()).
+// The forward vertex shader's shadow-map coordinates for each shadowed light, in homogeneous form
+// (x, y, z already mapped to [0, 1] times w): the vertex moved 1.5 texels along its normal, turned
+// towards the light, then projected. Interpolating them is exact over a flat triangle for a directional light
+// (affine) and for a spot or rect light (projective, divided per fragment; its offset grows with the depth,
+// which is affine too: offsetPerspectiveShadowClip()), and spares every fragment a matrix product.
 std::string shadowClips(const ShadingLayout& lights) {
     std::string text;
     for (std::size_t i = 0; i < lights.lights.size(); ++i) {
         const LightSlot& light = lights.lights[i];
-        if (light.shadowLayer < 0 || light.type != LightType::Directional)
+        if (light.shadowLayer < 0)
             continue;
         const std::string at = "[" + std::to_string(i) + "]", layer = std::to_string(light.shadowLayer);
         const std::string toLight = light.type == LightType::Directional
                                         ? "-uLightDirection" + at + ".xyz"
                                         : "uLightPosition" + at + ".xyz - vWorldPosition";
-        const std::string texel = shadowTexel(light, "length(l)");
         text += " { vec3 l = " + toLight +
-                "; vec3 n = normalize(vNormal); if (dot(n, l) < 0.0) n = -n;"
-                " vec4 c = offsetShadowClip(" +
-                layer + ", vWorldPosition, n, " + texel + "); vShadowClip" + layer +
+                "; vec3 n = normalize(vNormal); if (dot(n, l) < 0.0) n = -n; vec4 c = " +
+                offsetShadowClipCall(light, "vWorldPosition", "n") + "; vShadowClip" + layer +
                 " = vec4((c.xyz + c.w) * 0.5, c.w); }";
     }
     return text;
@@ -810,10 +815,14 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
             }
             if (light.shadowLayer >= 0) { // as a spot light's map, from the panel's centre
                 const std::string layer = std::to_string(light.shadowLayer);
-                // Per fragment, as a spot light's (see shadowClips()); the normal turned towards the light.
-                text += "        vec4 sc = offsetShadowClip(" + layer + ", p, dot(n, c) < 0.0 ? -n : n, " +
-                        shadowTexel(light, "dist") + ");\n";
-                text += "        e *= shadowFactor(" + layer + ", (sc.xyz / sc.w + 1.0) * 0.5);\n";
+                std::string clip = "vShadowClip" + layer; // the vertex shader's, interpolated
+                if (perPixelShadows) { // the normal turned towards the light, as the vertex shader turns it
+                    text +=
+                        "        vec4 sc = " + offsetShadowClipCall(light, "p", "dot(n, c) < 0.0 ? -n : n") +
+                        ";\n        sc = vec4((sc.xyz + sc.w) * 0.5, sc.w);\n";
+                    clip = "sc";
+                }
+                text += "        e *= shadowFactor(" + layer + ", " + clip + ".xyz / " + clip + ".w);\n";
             }
             text += "        rectLight(s, c, " + terms.direction + ", " + terms.halfUp +
                     ", e, irradiance, specular);\n    }\n";
@@ -846,11 +855,9 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
             const std::string layer = std::to_string(light.shadowLayer);
             // The offset point's coordinates; only a spot light's need the perspective division here.
             std::string clip = "vShadowClip" + layer; // the vertex shader's, interpolated (see shadowClips())
-            // A spot light's per fragment (see shadowClips()); n faces the light here (nol > 0).
-            if (perPixelShadows || light.type != LightType::Directional) {
-                text += "            vec4 c = offsetShadowClip(" + layer + ", p, n, " +
-                        shadowTexel(light, "dist") +
-                        ");\n            vec4 sc = vec4((c.xyz + c.w) * 0.5, c.w);\n";
+            if (perPixelShadows) { // n faces the light here (nol > 0), as the vertex shader turns it
+                text += "            vec4 c = " + offsetShadowClipCall(light, "p", "n") +
+                        ";\n            vec4 sc = vec4((c.xyz + c.w) * 0.5, c.w);\n";
                 clip = "sc";
             }
             const std::string coordinates =
