@@ -9,23 +9,18 @@ import numpy as np
 import pytest
 
 import spear
-from test_camera import spawn_camera, spawn_wall
-from test_rect_light import INTENSITY, PANEL, PANEL_GAP, WALL_X, expected_illumination
+from test_camera import spawn_camera
+from test_rect_light import INTENSITY, PANEL, PANEL_GAP, WALL_X, dark_room_wall, expected_illumination
 
 M = spear.ECameraModality
 
 
 def _glowing_panel_scene(game: spear.UWorld, radiance: float) -> None:
     """The rect light test's wall and panel, the panel a plane mesh emitting `radiance` (black otherwise)."""
-    library = game.spawn_actor(uclass=spear.AMaterialLibrary, name="Library")
-    library.SetMaterial(Name="Matte", Material=spear.FMaterialDesc(
-        BaseColor=spear.FLinearColor(R=1.0, G=1.0, B=1.0, A=1.0), Roughness=1.0))
+    library = dark_room_wall(game)
     library.SetMaterial(Name="Glow", Material=spear.FMaterialDesc(
         BaseColor=spear.FLinearColor(R=0.0, G=0.0, B=0.0, A=1.0),
         Emissive=spear.FLinearColor(R=radiance, G=radiance, B=radiance, A=1.0)))
-    spawn_wall(game, WALL_X, material="Matte")
-    sky = game.spawn_actor(uclass=spear.ASkyLight, name="Sky")
-    sky.SkyLightComponent.Intensity = 0.0
     # A plane faces +Z; pitched a quarter turn it faces the wall (emission is two-sided).
     panel = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Panel",
                              location=spear.FVector(X=WALL_X - PANEL_GAP, Y=0.3, Z=-0.2),

@@ -28,7 +28,8 @@ def _corner(x: NDArray[np.float64], y: NDArray[np.float64], c: float) -> NDArray
     over the point (odd in x and in y, so that rectangles add up by inclusion and exclusion)."""
     X, Y = x / c, y / c
     a, b = np.sqrt(1.0 + X * X), np.sqrt(1.0 + Y * Y)
-    return (X / a * np.arctan(Y / a) + Y / b * np.arctan(X / b)) / (2.0 * math.pi)
+    form: NDArray[np.float64] = (X / a * np.arctan(Y / a) + Y / b * np.arctan(X / b)) / (2.0 * math.pi)
+    return form
 
 
 def expected_illumination(position: NDArray[np.float32], centre_y: float, centre_z: float) -> NDArray[np.float64]:
@@ -44,15 +45,21 @@ def expected_illumination(position: NDArray[np.float32], centre_y: float, centre
     return radiance * form
 
 
-def _panel_scene(game: spear.UWorld, yaw: float = 0.0) -> spear.ARectLight:
-    """A white wall, no sky, and a rect light 0.8 m in front of it, off the camera's axis; yaw 0 faces the
-    wall, 180 turns its back to it."""
+def dark_room_wall(game: spear.UWorld) -> spear.AMaterialLibrary:
+    """A matte white wall at WALL_X and no sky light; the library, for more materials."""
     library = game.spawn_actor(uclass=spear.AMaterialLibrary, name="Library")
     library.SetMaterial(Name="Matte", Material=spear.FMaterialDesc(
         BaseColor=spear.FLinearColor(R=1.0, G=1.0, B=1.0, A=1.0), Roughness=1.0))
     spawn_wall(game, WALL_X, material="Matte")
     sky = game.spawn_actor(uclass=spear.ASkyLight, name="Sky")
     sky.SkyLightComponent.Intensity = 0.0
+    return library
+
+
+def _panel_scene(game: spear.UWorld, yaw: float = 0.0) -> spear.ARectLight:
+    """The dark room's wall and a rect light 0.8 m in front of it, off the camera's axis; yaw 0 faces the
+    wall, 180 turns its back to it."""
+    dark_room_wall(game)
     panel = game.spawn_actor(uclass=spear.ARectLight, name="Panel",
                              location=spear.FVector(X=WALL_X - PANEL_GAP, Y=0.3, Z=-0.2),
                              rotation=spear.FRotator(Yaw=yaw))
