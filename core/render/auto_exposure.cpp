@@ -102,10 +102,6 @@ void MeteringSettings::validate(const char* function) const {
              maxEv100);
 }
 
-double luminanceOf(double r, double g, double b) {
-    return luminance(r, g, b);
-}
-
 double ev100FromLuminance(double luminance) {
     return std::log2(luminance) + kLog2MeterScale;
 }
@@ -131,7 +127,7 @@ double meterHdr(const float* rgb, int width, int height, int stride, const Meter
         [&](int x, int y) {
             const float* p =
                 rgb + (std::size_t(y) * std::size_t(width) + std::size_t(x)) * std::size_t(stride);
-            return luminanceOf(p[0], p[1], p[2]);
+            return luminance<double>(p[0], p[1], p[2]);
         },
         settings);
 }
@@ -141,7 +137,7 @@ double meterHdrHalf(const std::uint16_t* rgba, int width, int height, const Mete
         width, height,
         [&](int x, int y) {
             const std::uint16_t* p = rgba + (std::size_t(y) * std::size_t(width) + std::size_t(x)) * 4;
-            return luminanceOf(halfToFloat(p[0]), halfToFloat(p[1]), halfToFloat(p[2]));
+            return luminance<double>(halfToFloat(p[0]), halfToFloat(p[1]), halfToFloat(p[2]));
         },
         settings);
 }
@@ -162,7 +158,7 @@ FinalColorMetering meterFinalColor(const std::uint8_t* rgba, int width, int heig
             ++samples;
             bright += top == 255;
             dark += top == 0;
-            return luminanceOf(linear[p[0]] * gain[0], linear[p[1]] * gain[1], linear[p[2]] * gain[2]);
+            return luminance(linear[p[0]] * gain[0], linear[p[1]] * gain[1], linear[p[2]] * gain[2]);
         },
         settings);
     const bool histogram = settings.mode == MeteringMode::Histogram;

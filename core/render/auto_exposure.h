@@ -39,9 +39,6 @@ double luminanceFromEv100(double ev100);
 constexpr double kMiddleGrey = 0.18;
 double exposureForEv100(double ev100, double biasStops);
 
-// The luminance of linear RGB (Rec. 709 weights).
-double luminanceOf(double r, double g, double b);
-
 // The EV100 a view meters from its pixels' luminance, luminanceAt(x, y), taken on a grid of at most about
 // 16384 pixels (every metering below is this one with its own pixels).
 double meterLuminance(int width, int height, const std::function<double(int x, int y)>& luminanceAt,

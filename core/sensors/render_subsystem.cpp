@@ -15,6 +15,7 @@
 #include "core/render/camera.h"
 #include "core/render/gl_context.h"
 #include "core/render/lens.h"
+#include "core/render/luminance.h"
 #include "core/render/render_target.h"
 #include "core/render/renderer.h"
 #include "core/render/tone.h"
@@ -482,7 +483,8 @@ std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponen
             ev = sp::render::meterLuminance(
                 image.width, image.height,
                 [&](int x, int y) {
-                    return sp::render::luminanceOf(shownAt(x, y, 0), shownAt(x, y, 1), shownAt(x, y, 2));
+                    return sp::render::luminance<double>(shownAt(x, y, 0), shownAt(x, y, 1),
+                                                         shownAt(x, y, 2));
                 },
                 meteringSettings(camera));
             state.exposure.metered(*ev);
