@@ -180,6 +180,12 @@ Eigen::Vector3f lightIrradiance(const render::Light& light, const Eigen::Vector3
     return e;
 }
 
+// The multiple importance sampling weight of a sample drawn with density `chosen` where another strategy
+// would have drawn it with density `other` (Veach's power heuristic, exponent 2).
+float powerHeuristic(float chosen, float other) {
+    return chosen * chosen / (chosen * chosen + other * other);
+}
+
 // Runs `work` on every hardware thread, the caller's included, and returns when all are done.
 template <typename Work> void onEveryThread(Work& work) {
     const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
@@ -563,7 +569,7 @@ struct PathTracer::Impl {
                     out.hdr += background;
                     out.direct += background;
                 } else if (sky) { // the BSDF's share of the sky (multiple importance sampling)
-                    const float weight = bsdfPdf * bsdfPdf / (bsdfPdf * bsdfPdf + skyPdf * skyPdf);
+                    const float weight = powerHeuristic(bsdfPdf, skyPdf);
                     throughFirst(environment.radiance(direction) * weight);
                 }
                 break;
@@ -641,8 +647,7 @@ struct PathTracer::Impl {
                 // the density with which it would have drawn this point, per solid angle there.
                 const float t = hit.ray.tfar, cosine = ng.dot(toViewer);
                 const float pdfLight = emitters.pdfArea(material.emissive) * t * t / std::max(cosine, 1e-6f);
-                throughFirst(material.emissive *
-                             (bsdfPdf * bsdfPdf / (bsdfPdf * bsdfPdf + pdfLight * pdfLight)));
+                throughFirst(material.emissive * powerHeuristic(bsdfPdf, pdfLight));
             }
             const Eigen::Vector3f fd = diffuse(s);
 
@@ -677,8 +682,7 @@ struct PathTracer::Impl {
                 if ((!probe || shapes[e.shape].probed) && nol > 0.0f && ng.dot(l) > 0.0f && cosine > 1e-6f &&
                     !occluded(above, l, distance, shadowMask, rays)) {
                     const float pdfLight = e.pdfArea * distance2 / cosine, pdfBsdf = pdf(s, toViewer, l);
-                    const float weight =
-                        last ? 1.0f : pdfLight * pdfLight / (pdfLight * pdfLight + pdfBsdf * pdfBsdf);
+                    const float weight = last ? 1.0f : powerHeuristic(pdfLight, pdfBsdf);
                     const Eigen::Vector3f f = evaluate(s, toViewer, l);
                     if (depth == 0)
                         reflectFirst(e.radiance, f, fd, nol / pdfLight * weight);
@@ -702,8 +706,7 @@ struct PathTracer::Impl {
                     !occluded(above, l, std::numeric_limits<float>::infinity(), shadowMask, rays)) {
                     const float pdfBsdf = pdf(s, toViewer, l);
                     // At the last vertex no BSDF ray follows, so the sky sample takes the whole estimate.
-                    const float weight =
-                        last ? 1.0f : pdfSky * pdfSky / (pdfSky * pdfSky + pdfBsdf * pdfBsdf);
+                    const float weight = last ? 1.0f : powerHeuristic(pdfSky, pdfBsdf);
                     const Eigen::Vector3f f = evaluate(s, toViewer, l);
                     const Eigen::Vector3f arriving = environment.radiance(l);
                     if (depth == 0)
