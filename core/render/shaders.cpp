@@ -780,6 +780,30 @@ std::string constantAccessors(const ConstantPlan& plan) {
                     sizes ? "fShadowSizes[layer]" : "uShadowParams[layer].y");
 }
 
+// The GLSL that scales a point, spot or rect light's irradiance e by its range window, (1 - (d / range)^4)^2,
+// of the distance `dist` (the light's terms hold 1 / range).
+std::string rangeWindow(const LightTerms& terms, const std::string& indent) {
+    return indent + "float r = dist * " + terms.inverseRange + ";\n" + indent +
+           "float w = clamp(1.0 - r * r * r * r, 0.0, 1.0);\n" + indent + "e *= w * w;\n";
+}
+
+// The GLSL that scales e by a shadowed light's shadow factor at p: from the vertex shader's interpolated
+// coordinates (see shadowClips()), or with `perPixelShadows` computed here the same way, `n` being the GLSL
+// for the normal turned towards the light. Only a perspective map's coordinates need the division by w.
+std::string shadowLookup(const LightSlot& light, bool perPixelShadows, const std::string& n,
+                         const std::string& indent) {
+    const std::string layer = std::to_string(light.shadowLayer);
+    std::string text, clip = "vShadowClip" + layer;
+    if (perPixelShadows) {
+        text = indent + "vec4 sc = " + offsetShadowClipCall(light, "p", n) + ";\n" + indent +
+               "sc = vec4((sc.xyz + sc.w) * 0.5, sc.w);\n";
+        clip = "sc";
+    }
+    const std::string coordinates =
+        light.type == LightType::Directional ? clip + ".xyz" : clip + ".xyz / " + clip + ".w";
+    return text + indent + "e *= shadowFactor(" + layer + ", " + coordinates + ");\n";
+}
+
 // shade(): the shading of one surface point by the layout's lights, unrolled with each light's type,
 // range and shadow layer fixed, and the sky term. The shadow-map coordinates are the vertex shader's,
 // interpolated (shadowClips()), or with `perPixelShadows` (the compute lighting pass, which has no vertices)
@@ -808,22 +832,10 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
             text += "        vec3 c = " + terms.position + " - p;\n";
             text += "        float dist = length(c);\n";
             text += "        vec3 e = " + terms.radiance + ";\n";
-            if (light.ranged) { // the window of its centre's distance, as a point light's
-                text += "        float r = dist * " + terms.inverseRange + ";\n";
-                text += "        float w = clamp(1.0 - r * r * r * r, 0.0, 1.0);\n";
-                text += "        e *= w * w;\n";
-            }
-            if (light.shadowLayer >= 0) { // as a spot light's map, from the panel's centre
-                const std::string layer = std::to_string(light.shadowLayer);
-                std::string clip = "vShadowClip" + layer; // the vertex shader's, interpolated
-                if (perPixelShadows) { // the normal turned towards the light, as the vertex shader turns it
-                    text +=
-                        "        vec4 sc = " + offsetShadowClipCall(light, "p", "dot(n, c) < 0.0 ? -n : n") +
-                        ";\n        sc = vec4((sc.xyz + sc.w) * 0.5, sc.w);\n";
-                    clip = "sc";
-                }
-                text += "        e *= shadowFactor(" + layer + ", " + clip + ".xyz / " + clip + ".w);\n";
-            }
+            if (light.ranged) // the window of its centre's distance, as a point light's
+                text += rangeWindow(terms, "        ");
+            if (light.shadowLayer >= 0) // as a spot light's map, from the panel's centre
+                text += shadowLookup(light, perPixelShadows, "(dot(n, c) < 0.0 ? -n : n)", "        ");
             text += "        rectLight(s, c, " + terms.direction + ", " + terms.halfUp +
                     ", e, irradiance, specular);\n    }\n";
             continue;
@@ -838,11 +850,8 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
             text += "        float inverse = 1.0 / max(dist, 1e-6);\n";
             text += "        vec3 l = d * inverse;\n";
             text += "        vec3 e = " + terms.radiance + " * min(inverse * inverse, 1e4);\n";
-            if (light.ranged) { // windowed inverse square: (1 - (d / range)^4)^2; the term holds 1 / range
-                text += "        float r = dist * " + terms.inverseRange + ";\n";
-                text += "        float w = clamp(1.0 - r * r * r * r, 0.0, 1.0);\n";
-                text += "        e *= w * w;\n";
-            }
+            if (light.ranged) // windowed inverse square
+                text += rangeWindow(terms, "        ");
             if (light.type == LightType::Spot) { // cone: cos(outer), 1 / (cos(inner) - cos(outer))
                 text += "        vec2 cone = " + terms.cone + ";\n";
                 text += "        float t = clamp((dot(-l, " + terms.direction +
@@ -851,19 +860,8 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
             }
         }
         text += "        float nol = dot(n, l);\n        if (nol > 0.0) {\n";
-        if (light.shadowLayer >= 0) {
-            const std::string layer = std::to_string(light.shadowLayer);
-            // The offset point's coordinates; only a spot light's need the perspective division here.
-            std::string clip = "vShadowClip" + layer; // the vertex shader's, interpolated (see shadowClips())
-            if (perPixelShadows) { // n faces the light here (nol > 0), as the vertex shader turns it
-                text += "            vec4 c = " + offsetShadowClipCall(light, "p", "n") +
-                        ";\n            vec4 sc = vec4((c.xyz + c.w) * 0.5, c.w);\n";
-                clip = "sc";
-            }
-            const std::string coordinates =
-                light.type == LightType::Directional ? clip + ".xyz" : clip + ".xyz / " + clip + ".w";
-            text += "            e *= shadowFactor(" + layer + ", " + coordinates + ");\n";
-        }
+        if (light.shadowLayer >= 0) // n faces the light here (nol > 0), as the vertex shader turns it
+            text += shadowLookup(light, perPixelShadows, "n", "            ");
         text += "            accumulate(s, l, e, nol, irradiance, specular);\n        }\n    }\n";
     }
     text += R"glsl(    Shaded result;
