@@ -26,18 +26,19 @@ sp::render::MeteringSettings meteringSettings(const UCameraSensorComponent& came
     return settings;
 }
 
-float CameraExposure::exposureFor(const UCameraSensorComponent& camera, double now,
-                                  const std::function<double()>& meterView) {
+float CameraExposure::exposureFor(
+    const UCameraSensorComponent& camera, double now,
+    const std::function<double(const sp::render::MeteringSettings&)>& meterView) {
     if (camera.AutoExposureMethod == EAutoExposureMethod::AEM_Manual) {
         reset();
         return camera.Exposure;
     }
     const sp::render::MeteringSettings settings = meteringSettings(camera);
     if (!adapted_) {
-        adapted_ = meterView();
+        adapted_ = meterView(settings);
     } else if (metered_) {
         if (!exact_)
-            metered(meterView());
+            metered(meterView(settings));
         adapted_ = sp::render::adaptEv100(*adapted_, *metered_, now - lastTime_, camera.AutoExposureSpeedUp,
                                           camera.AutoExposureSpeedDown);
     }

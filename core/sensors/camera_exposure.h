@@ -21,9 +21,10 @@ class CameraExposure {
   public:
     // The exposure of the camera's frame about to render at world time `now` (seconds): its Exposure with
     // AEM_Manual (which also forgets the adaptation: turning a method on again is a cut); else the metered
-    // one, from the adaptation or, at a cut, from meterView() (the EV100 the view about to render meters).
+    // one, from the adaptation or, at a cut, from meterView(settings) (the EV100 the view about to render
+    // meters with the camera's metering settings).
     float exposureFor(const UCameraSensorComponent& camera, double now,
-                      const std::function<double()>& meterView);
+                      const std::function<double(const sp::render::MeteringSettings&)>& meterView);
     // What a frame of the camera metered (EV100), read back after it rendered; not `exact` when its pixels
     // clipped too much to tell (sp::render::meterFinalColor): the next frame meters its view instead.
     void metered(double ev100, bool exact = true) {

@@ -414,7 +414,9 @@ void RenderSubsystem::submit(UCameraSensorComponent& camera, int sizedShadowReso
     // A path-traced camera meters its own image (trace()); a rasterised one adapts to its last read frame.
     if (!traces && modalities.contains(sp::render::Modality::FinalColor))
         renderCamera.params.exposure = state.exposure.exposureFor(
-            camera, world_.get_time_seconds(), [&] { return meterView(camera, renderCamera, state); });
+            camera, world_.get_time_seconds(), [&](const sp::render::MeteringSettings& settings) {
+                return meterView(camera, renderCamera, state, settings);
+            });
     // Rendered with every world's cameras once all worlds ticked (OnWorldsTicked).
     const std::uint64_t number = state.target->submittedFrames() + 1;
     gl_->queued.push_back({this, state.target.get(), &scene_->scene(), renderCamera, number});
@@ -429,7 +431,8 @@ void RenderSubsystem::submit(UCameraSensorComponent& camera, int sizedShadowReso
 }
 
 double RenderSubsystem::meterView(const UCameraSensorComponent& camera,
-                                  const sp::render::Camera& renderCamera, CameraState& state) {
+                                  const sp::render::Camera& renderCamera, CameraState& state,
+                                  const sp::render::MeteringSettings& settings) {
     // At most 128 pixels wide: the metering samples no more (auto_exposure.h), and the render costs little.
     sp::render::Camera view = renderCamera;
     if (view.params.width > 128) {
@@ -448,8 +451,7 @@ double RenderSubsystem::meterView(const UCameraSensorComponent& camera,
     SP_CHECK(state.meterTarget->read({&output, 1}).has_value(), sp::InvalidState,
              "RenderSubsystem::meterView(): the metering view of ", camera.GetDebugName(),
              " was not rendered");
-    return sp::render::meterHdrHalf(pixels.data(), view.params.width, view.params.height,
-                                    meteringSettings(camera));
+    return sp::render::meterHdrHalf(pixels.data(), view.params.width, view.params.height, settings);
 }
 
 void RenderSubsystem::resetAutoExposure(UCameraSensorComponent& camera) {
@@ -489,8 +491,8 @@ std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponen
                 meteringSettings(camera));
             state.exposure.metered(*ev);
         }
-        renderCamera.params.exposure =
-            state.exposure.exposureFor(camera, world_.get_time_seconds(), [&] { return *ev; });
+        renderCamera.params.exposure = state.exposure.exposureFor(
+            camera, world_.get_time_seconds(), [&](const sp::render::MeteringSettings&) { return *ev; });
     }
     auto traced = std::make_shared<TracedImages>();
     traced->samples = image.samples;

@@ -36,6 +36,7 @@ class UStaticMeshComponent;
 namespace sp::render {
 struct Camera;
 class GlContext;
+struct MeteringSettings;
 class Renderer;
 class RenderTarget;
 class Scene;
@@ -122,10 +123,10 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     // volume).
     void updateIndirectLight(const std::vector<UCameraSensorComponent*>& cameras);
     const PendingFrame* dueFrame(UCameraSensorComponent& camera) const;
-    // The EV100 that what `renderCamera` is about to show meters: a small hdr_color render of it, now (a cut
-    // of the camera's automatic exposure).
+    // The EV100 that what `renderCamera` is about to show meters with `settings`: a small hdr_color render of
+    // it, now (a cut of the camera's automatic exposure).
     double meterView(const UCameraSensorComponent& camera, const sp::render::Camera& renderCamera,
-                     CameraState& state);
+                     CameraState& state, const sp::render::MeteringSettings& settings);
     CameraState& cameraState(UCameraSensorComponent& camera);
     // Renders the camera's frame; `sizedShadowResolution` stands for its ShadowResolution 0 (see Tick).
     void submit(UCameraSensorComponent& camera, int sizedShadowResolution);
