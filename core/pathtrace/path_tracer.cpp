@@ -16,6 +16,7 @@
 #include "core/base/progress.h"
 #include "core/pathtrace/bsdf.h"
 #include "core/pathtrace/emitters.h"
+#include "core/render/box_uv.h"
 
 namespace sp::pathtrace {
 namespace {
@@ -439,6 +440,7 @@ struct PathTracer::Impl {
                 h.add(m.roughness);
                 h.add(m.metallic);
                 h.matrix(m.emissive);
+                h.add(m.textureSize);
                 for (const auto& texture : {m.baseColorTexture, m.roughnessMetallicTexture, m.normalTexture})
                     if (texture) {
                         h.add(texture->index);
@@ -597,9 +599,29 @@ struct PathTracer::Impl {
                 n = ng;
             if (n.dot(ng) < 0.0f)
                 n = -n;
-            const Eigen::Vector2f uv = mesh.uvs[i0] * w + mesh.uvs[i1] * u + mesh.uvs[i2] * v;
-
             const render::Material& material = scene.material(shape.materials[mesh.slots[triangle]]);
+            // The texture coordinates of the hit and of the triangle's corners (for the normal map's frame):
+            // the mesh's, or the object's scaled box axes' (box_uv.h), the axis the hit's normal chooses.
+            Eigen::Vector2f uv, uv0, uv1, uv2;
+            if (material.textureSize > 0.0f && material.hasTextures()) {
+                const Eigen::Vector3f scale = shape.linear.colwise().norm();
+                const Eigen::Vector3f normal =
+                    (mesh.normals[i0] * w + mesh.normals[i1] * u + mesh.normals[i2] * v).cwiseQuotient(scale);
+                const auto [along, down] = render::boxAxes(normal);
+                const float inverse = 1.0f / material.textureSize;
+                const auto project = [&](const Eigen::Vector3f& position) {
+                    const Eigen::Vector3f q = position.cwiseProduct(scale);
+                    return Eigen::Vector2f(along.dot(q), down.dot(q)) * inverse;
+                };
+                uv0 = project(mesh.positions[i0]);
+                uv1 = project(mesh.positions[i1]);
+                uv2 = project(mesh.positions[i2]);
+            } else {
+                uv0 = mesh.uvs[i0];
+                uv1 = mesh.uvs[i1];
+                uv2 = mesh.uvs[i2];
+            }
+            uv = uv0 * w + uv1 * u + uv2 * v;
             SurfacePoint s{n, material.baseColor.head<3>(), material.roughness, material.metallic};
             if (material.baseColorTexture)
                 s.base =
@@ -613,7 +635,7 @@ struct PathTracer::Impl {
                 // screen derivatives: the same surface gradients of u and v.
                 const Eigen::Vector3f e1 = shape.linear * (mesh.positions[i1] - mesh.positions[i0]),
                                       e2 = shape.linear * (mesh.positions[i2] - mesh.positions[i0]);
-                const Eigen::Vector2f d1 = mesh.uvs[i1] - mesh.uvs[i0], d2 = mesh.uvs[i2] - mesh.uvs[i0];
+                const Eigen::Vector2f d1 = uv1 - uv0, d2 = uv2 - uv0;
                 const Eigen::Vector3f p2perp = e2.cross(n), p1perp = n.cross(e1);
                 const Eigen::Vector3f t = p2perp * d1.x() + p1perp * d2.x(),
                                       b = p2perp * d1.y() + p1perp * d2.y();

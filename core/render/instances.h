@@ -31,7 +31,7 @@ struct InstanceRecord {
     float modelRows[12];           // rows 0-2 of mesh -> world
     float depthRow[4];             // row 0 of mesh -> camera: the distance along the optical axis
     float baseColor[4];            // rgba factor
-    float material[4];             // roughness, metallic, ambient occlusion, 0
+    float material[4];             // roughness, metallic, ambient occlusion, 1 / textureSize (0: mesh uvs)
     float emissive[4];             // rgb, 0
     std::uint32_t ids[4];          // object id, material id, the record's index (Target::GBuffer), 0
 

@@ -19,7 +19,12 @@ struct Material {
     std::optional<TextureId> baseColorTexture;          // sRGB; multiplies baseColor
     std::optional<TextureId> roughnessMetallicTexture;  // glTF layout: G = roughness, B = metallic (multiply)
     std::optional<TextureId> normalTexture;             // tangent-space normal map (OpenGL convention, +Y up)
-    std::uint32_t id = 0;                               // value in material_ids; 0 = handle index + 1
+    // Metres one repeat of the textures covers, projected on the object's scaled box axes (box_uv.h); 0: the
+    // textures follow the mesh's own uvs.
+    float textureSize = 0.0f;
+    std::uint32_t id = 0; // value in material_ids; 0 = handle index + 1
+
+    bool hasTextures() const { return baseColorTexture || roughnessMetallicTexture || normalTexture; }
 
     // Throws sp::InvalidArgument naming the bad field.
     void validate(const char* function) const;

@@ -251,7 +251,9 @@ ShaderProgram& Renderer::surfaceProgram(TargetMask targets, bool forward, unsign
     auto& program = programs_[key];
     if (!program)
         program = std::make_unique<ShaderProgram>(
-            key, shaders::surfaceVertex(forward, lights, layered).c_str(),
+            key,
+            shaders::surfaceVertex(forward, lights, layered, (materialFeatures & shaders::kBoxUv) != 0)
+                .c_str(),
             shaders::surfaceFragment(targets, forward, materialFeatures, lights, viewCompact_).c_str());
     return *program;
 }
@@ -913,7 +915,8 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
                 (material.roughnessMetallicTexture ? shaders::kRoughnessMetallicTexture : 0u) |
                 (material.normalTexture ? shaders::kNormalTexture
                  : facing               ? shaders::kFacingFromWinding
-                                        : 0u);
+                                        : 0u) |
+                (material.textureSize > 0.0f && material.hasTextures() ? shaders::kBoxUv : 0u);
             windingFaced = windingFaced || (features & shaders::kFacingFromWinding) != 0;
             draws.push_back(
                 {&instance,
@@ -975,7 +978,7 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
         record.material[0] = material.roughness;
         record.material[1] = material.metallic;
         record.material[2] = material.ambientOcclusion;
-        record.material[3] = 0.0f;
+        record.material[3] = material.textureSize > 0.0f ? 1.0f / material.textureSize : 0.0f;
         std::copy(material.emissive.data(), material.emissive.data() + 3, record.emissive);
         record.emissive[3] = 0.0f;
         record.ids[0] = instance.objectIds[draw.slot];

@@ -57,15 +57,38 @@ in vec3 vNormal;
 in vec2 vUv;
 // The instance's material factors and ids (InstanceRecord), the same for every fragment of it.
 flat in vec4 vBaseColor;
-flat in vec4 vMaterial; // roughness, metallic, ambient occlusion
+flat in vec4 vMaterial; // roughness, metallic, ambient occlusion, 1 / texture size (kBoxUv)
 flat in vec3 vEmissive;
 flat in uvec2 vIds;     // object id, material id
 flat in uint vRecord;   // the draw's InstanceRecord (Target::GBuffer, Target::Record)
 layout(binding = 0) uniform sampler2D uBaseColorTexture;
 layout(binding = 1) uniform sampler2D uRoughnessMetallicTexture;
 layout(binding = 2) uniform sampler2D uNormalTexture;
+#ifdef HAS_BOX_UV
+// The material's textures repeat every 1 / vMaterial.w metres on the object's scaled box axes (box_uv.h).
+in vec3 vBoxPosition;
+in vec3 vBoxNormal;
+// box_uv.h's boxAxes(), choosing the same axis with the same signs: the directions u and v run along.
+mat2x3 boxAxes(vec3 n) {
+    vec3 a = abs(n);
+    if (a.z >= a.x && a.z >= a.y) return mat2x3(vec3(0.0, n.z < 0.0 ? 1.0 : -1.0, 0.0), vec3(-1.0, 0.0, 0.0));
+    if (a.x >= a.y) return mat2x3(vec3(0.0, n.x < 0.0 ? -1.0 : 1.0, 0.0), vec3(0.0, 0.0, -1.0));
+    return mat2x3(vec3(n.y < 0.0 ? 1.0 : -1.0, 0.0, 0.0), vec3(0.0, 0.0, -1.0));
+}
+#endif
 
 void evaluateSurface(out vec3 n, out vec3 base, out float roughness, out float metallic) {
+#ifdef HAS_BOX_UV
+    // The gradients come from the position, which is continuous where the projection's axis changes (a box's
+    // edge): the uvs' own would jump there and pick the coarsest mip level for the pixels along it.
+    mat2x3 axes = boxAxes(vBoxNormal);
+    vec2 uv = vBoxPosition * axes * vMaterial.w;
+    vec2 duvdx = dFdx(vBoxPosition) * axes * vMaterial.w, duvdy = dFdy(vBoxPosition) * axes * vMaterial.w;
+#define SURFACE_TEXTURE(t) textureGrad(t, uv, duvdx, duvdy)
+#else
+    vec2 uv = vUv;
+#define SURFACE_TEXTURE(t) texture(t, uv)
+#endif
     // Two-sided shading that does not trust the mesh's winding: the geometric normal is turned towards
     // the camera and the shading normal follows it.
 #if defined(FACING_FROM_WINDING) && !defined(HAS_NORMAL_TEXTURE)
@@ -85,26 +108,28 @@ void evaluateSurface(out vec3 n, out vec3 base, out float roughness, out float m
 #ifdef HAS_NORMAL_TEXTURE
     {
         // Cotangent frame (Schueler 2013) from screen derivatives (no tangent attribute needed).
-        vec2 duvdx = dFdx(vUv), duvdy = dFdy(vUv);
+#ifndef HAS_BOX_UV
+        vec2 duvdx = dFdx(uv), duvdy = dFdy(uv);
+#endif
         vec3 dp2perp = cross(dpdy, n), dp1perp = cross(n, dpdx);
         vec3 t = dp2perp * duvdx.x + dp1perp * duvdy.x;
         vec3 b = dp2perp * duvdx.y + dp1perp * duvdy.y;
         // t and b are the surface gradients of u and v up to 1 / dot(n, dpdx x dpdy); keep that sign,
         // which flips with the vertical projection flip and with the side the surface is seen from.
         float scale = sign(dot(n, cross(dpdx, dpdy))) * inversesqrt(max(max(dot(t, t), dot(b, b)), 1e-20));
-        vec3 m = texture(uNormalTexture, vUv).xyz * 2.0 - 1.0;
+        vec3 m = SURFACE_TEXTURE(uNormalTexture).xyz * 2.0 - 1.0;
         // Green points up in the image, i.e. towards decreasing v with the top-left uv origin.
         n = normalize(mat3(t * scale, -b * scale, n) * m);
     }
 #endif
     base = vBaseColor.rgb;
 #ifdef HAS_BASE_COLOR_TEXTURE
-    base *= texture(uBaseColorTexture, vUv).rgb;
+    base *= SURFACE_TEXTURE(uBaseColorTexture).rgb;
 #endif
     roughness = vMaterial.x;
     metallic = vMaterial.y;
 #ifdef HAS_ROUGHNESS_METALLIC_TEXTURE
-    vec4 rm = texture(uRoughnessMetallicTexture, vUv);
+    vec4 rm = SURFACE_TEXTURE(uRoughnessMetallicTexture);
     roughness *= rm.g;
     metallic *= rm.b;
 #endif
@@ -436,6 +461,10 @@ flat out vec4 vMaterial;
 flat out vec3 vEmissive;
 flat out uvec2 vIds;
 flat out uint vRecord;
+#ifdef HAS_BOX_UV
+out vec3 vBoxPosition;
+out vec3 vBoxNormal;
+#endif
 // The attribute pass draws the geometry again against the surface pass's depth, with another program:
 // both must compute the same depth bit for bit.
 invariant gl_Position;
@@ -451,6 +480,12 @@ void main() {
     vec3 c2 = vec3(iModelRow0.z, iModelRow1.z, iModelRow2.z);
     vNormal = mat3(cross(c1, c2), cross(c2, c0), cross(c0, c1)) * aNormal;
     vUv = aUv;
+#ifdef HAS_BOX_UV
+    // The object's scaled frame (box_uv.h): its own axes, in metres.
+    vec3 scale = vec3(length(c0), length(c1), length(c2));
+    vBoxPosition = aPosition * scale;
+    vBoxNormal = aNormal / scale;
+#endif
     vBaseColor = iBaseColor;
     vMaterial = iMaterial;
     vEmissive = iEmissive.rgb;
@@ -1207,8 +1242,10 @@ void main() {
 )glsl";
 }
 
-std::string surfaceVertex(bool forward, const ShadingLayout& lights, bool layered) {
+std::string surfaceVertex(bool forward, const ShadingLayout& lights, bool layered, bool boxUv) {
     std::string text = "#version 450 core\n";
+    if (boxUv)
+        text += "#define HAS_BOX_UV\n";
     if (layered) // the view's layer of a page of shared framebuffers
         text += "#extension GL_ARB_shader_viewport_layer_array : require\n#define VIEW_LAYER gl_Layer = "
                 "uCounts.y;\n";
@@ -1245,6 +1282,8 @@ std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialF
         text += "#define HAS_NORMAL_TEXTURE\n";
     if (materialFeatures & kFacingFromWinding)
         text += "#define FACING_FROM_WINDING\n";
+    if (materialFeatures & kBoxUv)
+        text += "#define HAS_BOX_UV\n";
     text += outputs(targets, compact);
     text += kFrameBlock;
     const ConstantPlan plan = planConstants(forward, lights);

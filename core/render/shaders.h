@@ -104,6 +104,8 @@ enum MaterialFeature : unsigned {
     // (on llvmpipe 5% of a 1080p final_color frame). Not with a normal texture, whose frame needs them
     // anyway.
     kFacingFromWinding = 8,
+    // The textures are projected on the object's scaled box axes (Material::textureSize, box_uv.h).
+    kBoxUv = 16,
 };
 
 // The shadow pass's vertex shader: instanced, the light projection in InstanceRecord's modelViewProjection;
@@ -122,7 +124,9 @@ inline constexpr int kIdChannelGroupSize = 16;
 // Target bits, in Target order at locations 0, 1, ...); when `forward`, shade each fragment as well (the
 // HDR, intrinsic and final colour targets).
 // `layered`: into the view's layer (FrameBlock's uCounts.y) of layered framebuffers (FramebufferAtlas).
-std::string surfaceVertex(bool forward, const ShadingLayout& lights, bool layered = false);
+// `boxUv`: with the object's scaled position and normal for kBoxUv materials.
+std::string surfaceVertex(bool forward, const ShadingLayout& lights, bool layered = false,
+                          bool boxUv = false);
 // `compact`: into compact targets (PassSet::compactTargets).
 std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialFeatures,
                             const ShadingLayout& lights, bool compact = false);

@@ -1,6 +1,7 @@
 #include "core/sensors/material_library.h"
 
 #include <array>
+#include <cmath>
 #include <string_view>
 
 namespace sp::sensors {
@@ -45,7 +46,30 @@ const std::array<std::pair<std::string_view, FMaterialDesc>, 16>& builtins() {
     return table;
 }
 
+bool nonNegative(const FLinearColor& c) {
+    return std::isfinite(c.R) && std::isfinite(c.G) && std::isfinite(c.B) && c.R >= 0.0f && c.G >= 0.0f &&
+           c.B >= 0.0f;
+}
+
+bool unit(float value) {
+    return value >= 0.0f && value <= 1.0f;
+}
+
 } // namespace
+
+void checkMaterial(const FMaterialDesc& m, const std::string& context) {
+    SP_CHECK(nonNegative(m.BaseColor), InvalidArgument, context, ": BaseColor must be finite and >= 0, got (",
+             m.BaseColor.R, ", ", m.BaseColor.G, ", ", m.BaseColor.B, ")");
+    SP_CHECK(unit(m.Roughness), InvalidArgument, context, ": Roughness must be in [0, 1], got ", m.Roughness);
+    SP_CHECK(unit(m.Metallic), InvalidArgument, context, ": Metallic must be in [0, 1], got ", m.Metallic);
+    SP_CHECK(unit(m.AmbientOcclusion), InvalidArgument, context, ": AmbientOcclusion must be in [0, 1], got ",
+             m.AmbientOcclusion);
+    SP_CHECK(nonNegative(m.Emissive), InvalidArgument, context, ": Emissive must be finite and >= 0, got (",
+             m.Emissive.R, ", ", m.Emissive.G, ", ", m.Emissive.B, ")");
+    SP_CHECK(m.TextureSize == 0.0f || (std::isfinite(m.TextureSize) && m.TextureSize >= 1e-6f),
+             InvalidArgument, context,
+             ": TextureSize must be 0 (the mesh's uvs) or finite and >= 1e-6 m, got ", m.TextureSize);
+}
 
 const FMaterialDesc* builtinMaterial(const std::string& fullName) {
     std::string_view name = fullName;
@@ -68,6 +92,7 @@ std::vector<std::string> builtinMaterialNames() {
 
 void AMaterialLibrary::SetMaterial(const std::string& Name, const FMaterialDesc& Material) {
     SP_CHECK(!Name.empty(), sp::InvalidArgument, "AMaterialLibrary.SetMaterial(): Name must not be empty");
+    sp::sensors::checkMaterial(Material, "AMaterialLibrary.SetMaterial(): material '" + Name + "'");
     Materials[Name] = Material;
 }
 

@@ -42,6 +42,11 @@ struct FMaterialDesc {
     /// Path of a tangent-space normal map, OpenGL convention ("" for none).
     SPPROPERTY()
     std::string NormalTexture;
+    /// Metres one repeat of the textures covers, as UE's WorldAlignedTexture's TextureSize but on the
+    /// object's own axes and scale, so that textures keep one size across boxes of any scale and stay on a
+    /// moving object: each face takes the plane of the axis it faces. 0 (the default): the mesh's uvs.
+    SPPROPERTY()
+    float TextureSize = 0.0f;
 
     friend bool operator==(const FMaterialDesc&, const FMaterialDesc&) = default;
 };
@@ -74,5 +79,8 @@ namespace sp::sensors {
 // The built-in material called name (with or without "/Engine/Materials/"), or nullptr.
 const FMaterialDesc* builtinMaterial(const std::string& name);
 std::vector<std::string> builtinMaterialNames();
+
+// Throws sp::InvalidArgument naming the first field of `material` out of range, after `context`.
+void checkMaterial(const FMaterialDesc& material, const std::string& context);
 
 } // namespace sp::sensors

@@ -396,6 +396,7 @@ sp::render::MaterialId RenderScene::materialFor(const std::string& rawName,
     material.roughnessMetallicTexture =
         textureFor(desc.RoughnessMetallicTexture, sp::render::TextureEncoding::Linear);
     material.normalTexture = textureFor(desc.NormalTexture, sp::render::TextureEncoding::Linear);
+    material.textureSize = desc.TextureSize;
     material.validate(("material '" + name + "'").c_str());
     if (it != materials_.end()) { // changed: same handle and material id, new parameters
         material.id = it->second.value;

@@ -199,6 +199,16 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
                 Calls::set_NormalTexture<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
+        t.properties.push_back({
+            "TextureSize",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
+            "Metres one repeat of the textures covers, as UE's WorldAlignedTexture's TextureSize but on the\nobject's own axes and scale, so that textures keep one size across boxes of any scale and stay on a\nmoving object: each face takes the plane of the axis it faces. 0 (the default): the mesh's uvs.",
+            false,
+            [](const void* self) { return Calls::get_TextureSize<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_TextureSize<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
         return t;
     }();
     return info;

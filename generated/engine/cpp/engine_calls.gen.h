@@ -2056,6 +2056,15 @@ struct FMaterialDescCalls {
         self->NormalTexture = Call::template input<std::string>(value, "FMaterialDesc.NormalTexture");
         sp::reflect::notifyPropertyChanged(self, "NormalTexture");
     }
+
+    template <typename Call> static typename Call::Result get_TextureSize(const Self* self) {
+        const auto& value = self->TextureSize;
+        return Call::template result<float>(value);
+    }
+    template <typename Call> static void set_TextureSize(Self* self, const typename Call::Input& value) {
+        self->TextureSize = Call::template input<float>(value, "FMaterialDesc.TextureSize");
+        sp::reflect::notifyPropertyChanged(self, "TextureSize");
+    }
 };
 
 struct FMoviePipelineConfigurationCalls {

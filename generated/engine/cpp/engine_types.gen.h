@@ -49,5 +49,5 @@ __attribute__((visibility("default"))) const char* spear_register_engine_types_a
 
 // The same hash as a constant: a plugin compiled against these headers records the engine's.
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "a4349b0d70e3ab62";
+inline constexpr char kApiHash[] = "e439c9c82a600b06";
 } // namespace sp::generated::engine

@@ -220,4 +220,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<EAntiAliasingMethod>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "a4349b0d70e3ab62"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "e439c9c82a600b06"; }

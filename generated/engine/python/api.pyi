@@ -451,6 +451,7 @@ class FMaterialDesc:
     BaseColorTexture: str = ""
     RoughnessMetallicTexture: str = ""
     NormalTexture: str = ""
+    TextureSize: float = 0.0
 
 
 @dataclass
