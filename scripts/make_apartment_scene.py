@@ -1,4 +1,5 @@
-"""Writes assets/scenes/apartment.json, the built-in default scene: a furnished room of basic shapes.
+"""Writes assets/scenes/apartment.json, the built-in default scene: a furnished room of basic shapes with
+textured PBR materials (scripts/make_apartment_textures.py).
 
 The scene is described here as plain data, loaded into an engine and saved back through the reflection
 registry, so the committed file is in canonical form (every property, declaration order): loading it
@@ -77,13 +78,25 @@ def light(name: str, cls: str, component_cls: str, location: tuple[float, float,
 
 
 W, D, H, T = 6.0, 5.0, 2.8, 0.1  # room width (X), depth (Y), height, wall thickness
-WOOD, PLASTER, FABRIC, METAL, TILE = (f"/Game/Materials/{m}" for m in
-                                      ("M_WoodFloor", "M_Plaster", "M_Fabric", "M_Metal", "M_CeramicTile"))
+WOOD, PLASTER, FABRIC, METAL, TILE, OAK, CLOTH = (
+    f"/Game/Materials/{m}" for m in
+    ("M_WoodFloor", "M_Plaster", "M_Fabric", "M_Metal", "M_CeramicTile", "M_Oak", "M_Cloth"))
 
 
 def material(rgb: tuple[float, float, float], roughness: float, metallic: float = 0.0) -> dict[str, Any]:
     return {"BaseColor": {"R": rgb[0], "G": rgb[1], "B": rgb[2], "A": 1.0}, "Roughness": roughness,
             "Metallic": metallic}
+
+
+def textured(maps: str, size: float, *, roughness: bool = True) -> dict[str, Any]:
+    """A material whose maps (scripts/make_apartment_textures.py: assets/textures/<maps>_*.png) carry its
+    colour, and its roughness where it varies, repeating every `size` metres on every box, whatever its scale
+    (FMaterialDesc.TextureSize). The factors are white and 1: the maps are the values."""
+    found = {"BaseColorTexture": f"/Game/textures/{maps}_color.png",
+             "NormalTexture": f"/Game/textures/{maps}_normal.png", "TextureSize": size}
+    if roughness:
+        found["RoughnessMetallicTexture"] = f"/Game/textures/{maps}_rm.png"
+    return {**material((1.0, 1.0, 1.0), 1.0 if roughness else 0.9), **found}
 
 
 # The window in the north wall (the one the default camera faces): its span along Y and its sill and lintel
@@ -105,11 +118,13 @@ def north_wall_with_window() -> list[dict[str, Any]]:
 def apartment() -> dict[str, Any]:
     # The scene carries its own materials: the renderer looks slot names up in an AMaterialLibrary.
     library = {"name": "Materials", "class": "AMaterialLibrary", "properties": {"Materials": {
-        WOOD: material((0.36, 0.2, 0.09), 0.55),
-        PLASTER: material((0.82, 0.8, 0.76), 0.9),
-        FABRIC: material((0.2, 0.3, 0.45), 0.95),
+        WOOD: textured("wood_floor", 1.2),  # 15 cm planks
+        OAK: textured("wood_floor", 2.4),  # the furniture's boards: 30 cm
+        PLASTER: textured("plaster", 1.0, roughness=False),
+        FABRIC: textured("fabric", 0.15),  # a 5 mm weave
+        CLOTH: material((0.2, 0.3, 0.45), 0.95),  # the round things' (a box projection would seam them)
         METAL: material((0.75, 0.75, 0.78), 0.3, metallic=1.0),
-        TILE: material((0.55, 0.62, 0.6), 0.25),
+        TILE: textured("ceramic_tile", 0.6),  # 15 cm tiles
     }}, "components": []}
     actors = [
         library,
@@ -120,7 +135,7 @@ def apartment() -> dict[str, Any]:
         mesh_actor("WallWest", [mesh("W", CUBE, PLASTER, (0, D / 2 + T / 2, H / 2), (W, T, H))], ["structure"]),
         mesh_actor("WallEast", [mesh("W", CUBE, TILE, (0, -D / 2 - T / 2, H / 2), (W, T, H))], ["structure"]),
         mesh_actor("Rug", [mesh("Rug", PLANE, FABRIC, (0.5, 0.0, 0.001), (2.4, 1.6, 1.0))], ["decor"]),
-        mesh_actor("TableTop", [mesh("Top", CUBE, WOOD, (1.2, 1.0, 0.725), (1.4, 0.8, 0.05))], ["furniture"]),
+        mesh_actor("TableTop", [mesh("Top", CUBE, OAK, (1.2, 1.0, 0.725), (1.4, 0.8, 0.05))], ["furniture"]),
         mesh_actor("TableLegs", [
             mesh("Leg0", CYLINDER, METAL, (0.6, 0.7, 0.35), (0.06, 0.06, 0.7)),
             mesh("Leg1", CYLINDER, METAL, (1.8, 0.7, 0.35), (0.06, 0.06, 0.7)),
@@ -131,14 +146,14 @@ def apartment() -> dict[str, Any]:
             mesh("Base", CUBE, FABRIC, (-1.8, -1.6, 0.225), (2.0, 0.9, 0.45)),
             mesh("Back", CUBE, FABRIC, (-1.8, -2.0, 0.65), (2.0, 0.15, 0.5)),
         ], ["furniture"]),
-        mesh_actor("Shelf", [mesh("Shelf", CUBE, WOOD, (2.75, -1.5, 0.9), (0.4, 1.2, 1.8))], ["furniture"]),
+        mesh_actor("Shelf", [mesh("Shelf", CUBE, OAK, (2.75, -1.5, 0.9), (0.4, 1.2, 1.8))], ["furniture"]),
         mesh_actor("FloorLamp", [
             mesh("Pole", CYLINDER, METAL, (-2.6, 2.1, 0.8), (0.05, 0.05, 1.6)),
-            mesh("Shade", SPHERE, FABRIC, (-2.6, 2.1, 1.7), (0.35, 0.35, 0.35)),
+            mesh("Shade", SPHERE, CLOTH, (-2.6, 2.1, 1.7), (0.35, 0.35, 0.35)),
         ], ["furniture"]),
-        mesh_actor("Ball", [mesh("Ball", SPHERE, FABRIC, (0.0, 0.5, 0.15), (0.3, 0.3, 0.3),
+        mesh_actor("Ball", [mesh("Ball", SPHERE, CLOTH, (0.0, 0.5, 0.15), (0.3, 0.3, 0.3),
                                  static=False, simulate=True, mass=0.4)], ["prop"]),
-        mesh_actor("Box", [mesh("Box", CUBE, WOOD, (1.0, 1.0, 0.85), (0.2, 0.2, 0.2),
+        mesh_actor("Box", [mesh("Box", CUBE, OAK, (1.0, 1.0, 0.85), (0.2, 0.2, 0.2),
                                 static=False, simulate=True, mass=1.5)], ["prop"]),
         # The sun shines in through the window (travelling towards -X), and the sky atmosphere is what the
         # window shows and the light of the sky that comes in with it.

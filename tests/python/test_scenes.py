@@ -5,6 +5,8 @@ from __future__ import annotations
 import json
 import os
 import re
+import subprocess
+import sys
 from collections.abc import Callable
 from pathlib import Path
 
@@ -215,3 +217,10 @@ def test_a_world_of_gameplay_actors_loads_and_saves_byte_identical(instance: spe
         assert isinstance(loaded, spear.AWheeledVehiclePawn) and loaded.MaxSteerAngle == 30.0
     with instance.end_frame():
         pass
+
+
+def test_the_default_scene_textures_are_what_their_script_makes() -> None:
+    # The committed maps are generated, not edited: the script compares their pixels with what it makes now.
+    script = ROOT / "scripts" / "make_apartment_textures.py"
+    result = subprocess.run([sys.executable, str(script), "--check"], capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
