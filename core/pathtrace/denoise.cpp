@@ -1,7 +1,9 @@
 #include "core/pathtrace/denoise.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 
 #include "core/base/error.h"
 #include "core/render/luminance.h"
@@ -17,9 +19,46 @@ constexpr float kLuminanceTolerance = 1.0f;
 // Depth tolerance per pixel of tap distance, relative to the depth.
 constexpr float kDepthTolerance = 0.05f;
 constexpr float kNormalPower = 32.0f;
+// A pixel whose lighting is more than this many times its third brightest neighbour's (of its instance) is
+// a firefly: a rare path (a caustic of the sun off glossy metal) that the luminance test would otherwise keep
+// from its neighbours in every pass, leaving a white speck. The third: at 64 samples such paths are common
+// enough that specks touch, and a feature of the lighting is seldom one pixel wide.
+constexpr float kFireflyRatio = 2.0f;
+constexpr int kFireflyRank = 3;
 
 float luminance(const float* c) {
     return render::luminance(c[0], c[1], c[2]);
+}
+
+// Scales each firefly of `lighting` down to its neighbours (the kFireflyRank-th brightest in the 3 x 3
+// around it, of its instance). A bright feature two pixels wide has enough neighbours as bright and is kept;
+// so is a pixel with too few neighbours of its instance to be measured against. Biased, as clamping is: the
+// energy of the rare path is dropped rather than spread.
+void removeFireflies(std::vector<float>& lighting, const DenoiseGuides& guides) {
+    const std::vector<float> source = lighting;
+    const int width = guides.width, height = guides.height;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+            if (guides.ids[p] == 0)
+                continue;
+            std::array<float, 8> around{};
+            int count = 0;
+            for (int qy = std::max(y - 1, 0); qy <= std::min(y + 1, height - 1); ++qy)
+                for (int qx = std::max(x - 1, 0); qx <= std::min(x + 1, width - 1); ++qx) {
+                    const std::size_t q = std::size_t(qy) * std::size_t(width) + std::size_t(qx);
+                    if (q != p && guides.ids[q] == guides.ids[p])
+                        around[std::size_t(count++)] = luminance(&source[q * 3]);
+                }
+            if (count < kFireflyRank)
+                continue;
+            std::nth_element(around.begin(), around.begin() + (kFireflyRank - 1), around.begin() + count,
+                             std::greater<>());
+            const float reference = around[kFireflyRank - 1], own = luminance(&source[p * 3]);
+            if (own > kFireflyRatio * reference)
+                for (int c = 0; c < 3; ++c)
+                    lighting[p * 3 + std::size_t(c)] *= reference / own;
+        }
 }
 
 } // namespace
@@ -45,6 +84,7 @@ std::vector<float> denoise(std::span<const float> color, const DenoiseGuides& gu
     std::vector<float> current(pixels * 3), next(pixels * 3);
     for (std::size_t i = 0; i < pixels * 3; ++i)
         current[i] = color[i] / std::max(guides.albedo[i], kAlbedoFloor);
+    removeFireflies(current, guides);
 
     constexpr float kernel[5] = {1.0f / 16, 1.0f / 4, 3.0f / 8, 1.0f / 4, 1.0f / 16};
     const int width = guides.width, height = guides.height;

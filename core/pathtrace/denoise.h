@@ -4,11 +4,12 @@
 // by what the first surface of each pixel's paths was: its albedo, normal, distance and instance.
 //
 // The colour is divided by the albedo first and multiplied back after, so textures and colour edges stay
-// sharp and only the lighting is smoothed. Each pass blurs with a 5 x 5 B3-spline kernel whose taps are
-// 2^pass pixels apart, each tap weighted by how alike the two pixels' guides are: nothing across instances
-// (ids) or the background, little across creases (normals) and depth steps, and little across lighting
-// differences larger than the noise (luminance, with a tolerance that halves each pass). It is biased,
-// as every denoiser is: the unfiltered image stays the reference.
+// sharp and only the lighting is smoothed. Fireflies (a pixel over twice as bright as its third brightest
+// neighbour of its instance) are scaled down to that neighbour first. Each pass blurs with a 5 x 5 B3-spline
+// kernel whose taps are 2^pass pixels apart, each tap weighted by how alike the two pixels' guides are:
+// nothing across instances (ids) or the background, little across creases (normals) and depth steps, and
+// little across lighting differences larger than the noise (luminance, with a tolerance that halves each
+// pass). It is biased, as every denoiser is: the unfiltered image stays the reference.
 
 #include <cstdint>
 #include <span>

@@ -133,6 +133,30 @@ TEST_F(DenoiseTest, NothingIsBlurredAcrossInstances) {
     }
 }
 
+TEST_F(DenoiseTest, AFireflyIsRemovedAndABrightFeatureOfTwoPixelsKept) {
+    // Even light of 1, a single pixel of 200 (one rare path's sample) and a stripe two pixels wide of 8.
+    const int width = 24, height = 24;
+    std::vector<float> color(std::size_t(width * height * 3), 1.0f), albedo(color.size(), 0.5f),
+        normal(color.size()), depth(std::size_t(width * height), 2.0f);
+    std::vector<std::uint32_t> ids(std::size_t(width * height), 1);
+    const auto at = [&](int x, int y) { return std::size_t(y * width + x) * 3; };
+    for (std::size_t p = 0; p < ids.size(); ++p)
+        normal[p * 3 + 2] = 1.0f;
+    for (int c = 0; c < 3; ++c) {
+        color[at(5, 5) + std::size_t(c)] = 200.0f;
+        for (int x = 0; x < width; ++x)
+            for (int y : {15, 16})
+                color[at(x, y) + std::size_t(c)] = 8.0f;
+    }
+    const std::vector<float> out = denoise(color, {width, height, albedo, normal, depth, ids});
+    for (int y = 2; y <= 8; ++y)
+        for (int x = 2; x <= 8; ++x)
+            EXPECT_LT(out[at(x, y)], 1.5f) << x << ", " << y; // no speck, and not spread around it either
+    for (int x = 0; x < width; ++x)
+        for (int y : {15, 16})
+            EXPECT_GT(out[at(x, y)], 6.0f) << x << ", " << y;
+}
+
 TEST_F(DenoiseTest, GuidesOfTheWrongSizeAreRefusedByName) {
     std::vector<float> color(12), albedo(12), normal(9), depth(4);
     std::vector<std::uint32_t> ids(4);
