@@ -603,19 +603,14 @@ struct PathTracer::Impl {
             // The texture coordinates of the hit and of the triangle's corners (for the normal map's frame):
             // the mesh's, or the object's scaled box axes' (box_uv.h), the axis the hit's normal chooses.
             Eigen::Vector2f uv, uv0, uv1, uv2;
-            if (material.textureSize > 0.0f && material.hasTextures()) {
+            if (material.boxUv()) {
                 const Eigen::Vector3f scale = shape.linear.colwise().norm();
                 const Eigen::Vector3f normal =
                     (mesh.normals[i0] * w + mesh.normals[i1] * u + mesh.normals[i2] * v).cwiseQuotient(scale);
-                const auto [along, down] = render::boxAxes(normal);
                 const float inverse = 1.0f / material.textureSize;
-                const auto project = [&](const Eigen::Vector3f& position) {
-                    const Eigen::Vector3f q = position.cwiseProduct(scale);
-                    return Eigen::Vector2f(along.dot(q), down.dot(q)) * inverse;
-                };
-                uv0 = project(mesh.positions[i0]);
-                uv1 = project(mesh.positions[i1]);
-                uv2 = project(mesh.positions[i2]);
+                uv0 = render::boxUv(mesh.positions[i0].cwiseProduct(scale), normal, inverse);
+                uv1 = render::boxUv(mesh.positions[i1].cwiseProduct(scale), normal, inverse);
+                uv2 = render::boxUv(mesh.positions[i2].cwiseProduct(scale), normal, inverse);
             } else {
                 uv0 = mesh.uvs[i0];
                 uv1 = mesh.uvs[i1];

@@ -25,6 +25,8 @@ struct Material {
     std::uint32_t id = 0; // value in material_ids; 0 = handle index + 1
 
     bool hasTextures() const { return baseColorTexture || roughnessMetallicTexture || normalTexture; }
+    // Whether the textures are projected on the object's box axes (box_uv.h) rather than the mesh's uvs.
+    bool boxUv() const { return textureSize > 0.0f && hasTextures(); }
 
     // Throws sp::InvalidArgument naming the bad field.
     void validate(const char* function) const;

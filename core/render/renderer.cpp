@@ -916,7 +916,7 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
                 (material.normalTexture ? shaders::kNormalTexture
                  : facing               ? shaders::kFacingFromWinding
                                         : 0u) |
-                (material.textureSize > 0.0f && material.hasTextures() ? shaders::kBoxUv : 0u);
+                (material.boxUv() ? shaders::kBoxUv : 0u);
             windingFaced = windingFaced || (features & shaders::kFacingFromWinding) != 0;
             draws.push_back(
                 {&instance,

@@ -1,7 +1,5 @@
 #include "core/render/texture_image.h"
 
-#include <filesystem>
-
 #define STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_STATIC
 #define STBI_ONLY_PNG
@@ -22,13 +20,10 @@ namespace sp::render {
 
 TextureImage TextureImage::load(const std::string& path) {
     // Found as every asset is (asset_path.h): a /Game/ name or a path relative to the assets' folders loads
-    // from any working directory.
-    const std::string found = findAsset(path);
-    SP_CHECK(std::filesystem::exists(found) && !std::filesystem::is_directory(found), NotFound,
-             "TextureImage::load(): no such file '", path, "'");
-    // Read here rather than by stb_image's fopen: a regular file of bounded size only, never a FIFO or
-    // a device that would block or never end (core/base/regular_file.h).
-    const std::string bytes = readRegularFile(found, "TextureImage::load()", "texture");
+    // from any working directory. Read here rather than by stb_image's fopen: a regular file of bounded size
+    // only, never a FIFO or a device that would block or never end, and a missing one (or a directory) is
+    // sp::NotFound (core/base/regular_file.h).
+    const std::string bytes = readRegularFile(findAsset(path), "TextureImage::load()", "texture");
     return decode(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(), path);
 }
 
