@@ -52,6 +52,14 @@ def spawn_camera(
     return camera
 
 
+def path_trace(camera: spear.UCameraSensorComponent, samples: int, max_bounces: int) -> spear.UCameraSensorComponent:
+    """`camera`, switched to the path tracer with `samples` per pixel and at most `max_bounces` bounces."""
+    camera.Renderer = spear.ECameraRenderer.PathTraced
+    camera.SamplesPerPixel = samples
+    camera.MaxBounces = max_bounces
+    return camera
+
+
 @pytest.mark.parametrize("every", [False, True], ids=["three", "all 14"])
 def test_depth_position_normal_of_a_plane_match_the_geometry(instance: spear.Instance, every: bool) -> None:
     # With all 14 modalities a software rasteriser computes position from depth and the camera (one pass, no

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import spear
-from test_camera import spawn_camera
+from test_camera import path_trace, spawn_camera
 from test_rect_light import INTENSITY, PANEL, PANEL_GAP, WALL_X, dark_room_wall, expected_illumination
 
 M = spear.ECameraModality
@@ -37,10 +37,7 @@ def test_an_emissive_panel_gives_a_wall_its_form_factor(instance: spear.Instance
     game = instance.get_game()
     with instance.begin_frame():
         _glowing_panel_scene(game, INTENSITY / (PANEL[0] * PANEL[1]))
-        camera = spawn_camera(game, [M.DiffuseIllumination, M.Position], 24, 18, 50.0)
-        camera.Renderer = spear.ECameraRenderer.PathTraced
-        camera.SamplesPerPixel = 256
-        camera.MaxBounces = bounces
+        camera = path_trace(spawn_camera(game, [M.DiffuseIllumination, M.Position], 24, 18, 50.0), 256, bounces)
     with instance.end_frame():
         pixels = camera.read_pixels()
     position = pixels["position"]
@@ -61,10 +58,7 @@ def test_a_small_bright_emitter_converges_without_fireflies(instance: spear.Inst
         panel = game.find_actor_by_name(name="Panel")
         assert panel is not None
         panel.SetActorScale3D(NewScale3D=spear.FVector(X=0.1, Y=0.1, Z=1.0))
-        camera = spawn_camera(game, [M.DiffuseIllumination, M.Position], 24, 18, 50.0)
-        camera.Renderer = spear.ECameraRenderer.PathTraced
-        camera.SamplesPerPixel = 64
-        camera.MaxBounces = 2
+        camera = path_trace(spawn_camera(game, [M.DiffuseIllumination, M.Position], 24, 18, 50.0), 64, 2)
     with instance.end_frame():
         pixels = camera.read_pixels()
     wall = np.abs(pixels["position"][..., 0] - WALL_X) < 0.01

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import spear
-from test_camera import aces_srgb, spawn_camera
+from test_camera import aces_srgb, path_trace, spawn_camera
 
 M = spear.ECameraModality
 
@@ -32,10 +32,7 @@ def _sphere_in_sky(game: spear.UWorld, base: float) -> spear.AStaticMeshActor:
 def _traced_camera(game: spear.UWorld, modalities: list[spear.ECameraModality], samples: int
                    ) -> spear.UCameraSensorComponent:
     """A path-traced 16 x 16 camera 3 m from the origin along -X, its 8 degree view filled by the sphere."""
-    camera = spawn_camera(game, modalities, 16, 16, 8.0)
-    camera.Renderer = spear.ECameraRenderer.PathTraced
-    camera.SamplesPerPixel = samples
-    camera.MaxBounces = 2
+    camera = path_trace(spawn_camera(game, modalities, 16, 16, 8.0), samples, 2)
     camera.GetOwner().SetActorLocation(NewLocation=spear.FVector(X=-3.0))  # type: ignore[union-attr]
     return camera
 

@@ -13,7 +13,7 @@ import pytest
 from numpy.typing import NDArray
 
 import spear
-from test_camera import spawn_camera, spawn_wall
+from test_camera import path_trace, spawn_camera, spawn_wall
 
 M = spear.ECameraModality
 
@@ -75,9 +75,7 @@ def _camera(game: spear.UWorld, traced: bool) -> spear.UCameraSensorComponent:
     camera = spawn_camera(game, [M.DiffuseIllumination, M.Position], 24, 18, 50.0)
     camera.GlobalIlluminationQuality = spear.EGlobalIlluminationQuality.Off
     if traced:
-        camera.Renderer = spear.ECameraRenderer.PathTraced
-        camera.SamplesPerPixel = 256
-        camera.MaxBounces = 0
+        path_trace(camera, 256, 0)
     return camera
 
 

@@ -13,7 +13,7 @@ from numpy.typing import NDArray
 from PIL import Image  # type: ignore[import]  # Debian ships no Pillow stubs
 
 import spear
-from test_camera import spawn_camera, spawn_wall
+from test_camera import path_trace, spawn_camera, spawn_wall
 
 M = spear.ECameraModality
 ROOT = Path(__file__).resolve().parents[2]
@@ -112,10 +112,7 @@ def test_the_path_tracer_projects_textures_as_the_rasteriser(instance: spear.Ins
         sky.SkyLightComponent.SkyColor = spear.FLinearColor(R=1.0, G=1.0, B=1.0, A=1.0)
         sky.SkyLightComponent.Intensity = 1.0
         # Pixels of 9 cm on the wall, so that most lie inside one cell (a traced pixel averages its area).
-        camera = spawn_camera(game, [M.HdrColor, M.Position], 64, 48, 60.0)
-        camera.Renderer = spear.ECameraRenderer.PathTraced
-        camera.SamplesPerPixel = 16
-        camera.MaxBounces = 0
+        camera = path_trace(spawn_camera(game, [M.HdrColor, M.Position], 64, 48, 60.0), 16, 0)
     with instance.end_frame():
         pixels = camera.read_pixels()
     hdr = pixels["hdr_color"][..., 0].astype(np.float64)
