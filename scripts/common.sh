@@ -7,7 +7,8 @@ PYTHON=/usr/bin/python3
 BUILD_DIR="${SPEAR_BUILD_DIR:-$ROOT/build}"
 export PYTHONPATH="$ROOT/python${PYTHONPATH:+:$PYTHONPATH}"
 
-say() { printf '\n\033[1m== %s\033[0m\n' "$*"; }
+# Each stage says how long the script has run, so a slow stage shows in any log.
+say() { printf '\n\033[1m== [%dm%02ds] %s\033[0m\n' $((SECONDS / 60)) $((SECONDS % 60)) "$*"; }
 
 install_dependencies() {
     local missing=()
