@@ -19,6 +19,7 @@ GLenum formatOf(Target target, bool compact) {
     case Target::Depth:
         return GL_R32F;
     case Target::Ids:
+    case Target::GBufferMaterial:
         return GL_RG32UI; // never filtered or blended
     case Target::GBuffer:
     case Target::Record:

@@ -166,7 +166,7 @@ std::string_view targetName(Target target) {
                                                                        "Hdr",         "DiffuseIllumination",
                                                                        "DiffuseOnly", "SpecularResidual",
                                                                        "FinalColor",  "Record",
-                                                                       "GBuffer"};
+                                                                       "GBuffer",     "GBufferMaterial"};
     const auto index = static_cast<std::size_t>(target);
     SP_CHECK(index < kTargetCount, InvalidArgument, "targetName(): bad target value ", index);
     return kNames[index];

@@ -85,8 +85,12 @@ enum class Target : std::uint8_t {
     // pass whose shading runs in a compute pass writes it instead of shading (PassSet::computeLighting()).
     // No modality.
     GBuffer,
+    // RG32UI: a textured material's base colour, roughness and metallic at the pixel (shaders::
+    // kGBufferMaterialChunk), written beside Target::GBuffer by a textured draw whose shading runs in the
+    // compute pass; read there where the draw's record says so. No modality.
+    GBufferMaterial,
 };
-inline constexpr std::size_t kTargetCount = 13;
+inline constexpr std::size_t kTargetCount = 14;
 using TargetMask = std::uint32_t;
 inline constexpr TargetMask targetBit(Target target) {
     return TargetMask(1) << static_cast<unsigned>(target);
@@ -131,8 +135,9 @@ struct PassSet {
     int samples = 1;
 
     bool operator==(const PassSet&) const = default;
-    // Whether the surface pass writes Target::GBuffer for untextured materials and a compute pass shades
-    // those pixels (Renderer::planComputeLighting() adds it; requiredPasses() never does).
+    // Whether the surface pass writes Target::GBuffer (and, with room for it, Target::GBufferMaterial for
+    // textured materials) and a compute pass shades those pixels (Renderer::planComputeLighting() adds them;
+    // requiredPasses() never does).
     bool computeLighting() const { return (surfaceTargets & targetBit(Target::GBuffer)) != 0; }
 };
 

@@ -46,6 +46,13 @@ void copy3(float (&out)[4], const Eigen::Vector3f& v, float w) {
     out[3] = w;
 }
 
+// Whether a surface pass writing `targets` leaves its shading to the compute pass: where it was planned
+// (Renderer::planComputeLighting()) and the irradiance is not blended at the vertices, which a compute pass
+// has none of (then every fragment shades, as without it).
+bool lightsInCompute(TargetMask targets, const shaders::ShadingLayout& lights) {
+    return (targets & targetBit(Target::GBuffer)) != 0 &&
+           lights.irradiance != shaders::IrradianceBlend::PerVertex;
+}
 // The targets the compute lighting pass stores (Renderer::planComputeLighting()).
 constexpr TargetMask kComputeLit = targetBit(Target::FinalColor) | targetBit(Target::Hdr);
 
@@ -628,7 +635,7 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
         glBindImageTexture(shaders::kShadowMapImageUnit, active_->shadowMaps->texture(), 0, GL_TRUE, 0,
                            GL_READ_ONLY, active_->shadowMaps->format());
     drawAll(scene, camera, draws, passes.surfaceTargets, passes.lighting, lights, cache);
-    if (passes.computeLighting())
+    if (lightsInCompute(passes.surfaceTargets, lights))
         lightInCompute(camera, passes, lights, fb);
     else if (lights.environmentMap)
         drawEnvironmentBackground(camera, fb, passes.surfaceTargets, lights.toneMap);
@@ -682,13 +689,13 @@ void Renderer::drawVignettedBackground(TargetMask targets, ToneMap toneMap) {
 }
 
 void Renderer::drawOnFarPlane(TargetMask targets, TargetMask written) {
-    maskTargets(targets, targets & ~written, true);
+    maskTargets(targets, targets & ~written);
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
     glBindVertexArray(emptyVao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
-    maskTargets(targets, targets & ~written, false);
+    maskTargets(targets, 0);
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
 }
@@ -808,7 +815,7 @@ void Renderer::clearBound(TargetMask targets, const std::vector<std::array<float
         } else if (compact && target == Target::Normal) {
             const GLfloat none[4] = {kNoOctahedralNormal, kNoOctahedralNormal, 0, 0};
             glClearBufferfv(GL_COLOR, location, none);
-        } else if (target != Target::GBuffer) {
+        } else if (target != Target::GBuffer && target != Target::GBufferMaterial) {
             // (The G-buffer is read only where the depth buffer holds a surface: not cleared.)
             glClearBufferfv(GL_COLOR, location, value.data());
         }
@@ -984,7 +991,8 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
         record.ids[0] = instance.objectIds[draw.slot];
         record.ids[1] = scene.materialIdValue(materialId);
         record.ids[2] = std::uint32_t(i); // the G-buffer's name for the draw (compute lighting)
-        record.ids[3] = 0;
+        // Bit 0: the material is textured, so its pixels' factors are in Target::GBufferMaterial.
+        record.ids[3] = (draw.features & shaders::kTextureFeatures) != 0 ? 1u : 0u;
     }
     instances_->upload(records_);
     // What Target::Record's pixels name: each draw's ids and untextured material factors, rounded as the
@@ -1014,21 +1022,26 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
     // batch in parts one per rectangle, scissored.
     // The program is looked up (its key composed) only when the features or the lookups change.
     std::optional<std::tuple<unsigned, bool, bool>> current;
-    // With compute lighting, an untextured material writes the G-buffer and leaves the shaded targets to the
-    // compute pass (masked here, so that nothing is stored for them); a textured one, or a batch past the
-    // records the G-buffer can name, is shaded here.
-    const bool computeLighting = (targets & targetBit(Target::GBuffer)) != 0;
-    const TargetMask shadedTargets = targets & kComputeLit;
-    bool masked = false;
+    // With compute lighting, a material writes the G-buffer (a textured one its factors at the pixel in the
+    // material target as well) and leaves the shaded targets to the compute pass (masked here, so that
+    // nothing is stored for them); a batch past the records the G-buffer can name, or a textured one when the
+    // pass had no room for the material target, is shaded here. A target a draw does not write is masked too:
+    // an unassigned output is undefined, and storing it costs as much as a real one.
+    const bool computeLighting = lightsInCompute(targets, lights);
+    const bool materialTarget = (targets & targetBit(Target::GBufferMaterial)) != 0;
+    TargetMask masked = 0;
     const auto use = [&](unsigned features, bool lookups, bool named) {
-        const bool deferred = computeLighting && (features & shaders::kTextureFeatures) == 0 && named;
+        const bool textured = (features & shaders::kTextureFeatures) != 0;
+        const bool deferred = computeLighting && named && (!textured || materialTarget);
         if (current == std::tuple(features, lookups, deferred))
             return;
         surfaceProgram(targets, shade && !deferred, features, lookups ? lights : unshadowed).use();
         current = std::tuple(features, lookups, deferred);
-        if (computeLighting && deferred != masked) {
-            maskTargets(targets, shadedTargets, deferred);
-            masked = deferred;
+        const TargetMask mask = (deferred ? targets & kComputeLit : 0) |
+                                (deferred && textured ? 0 : targets & targetBit(Target::GBufferMaterial));
+        if (mask != masked) {
+            maskTargets(targets, mask);
+            masked = mask;
         }
     };
     for (std::size_t first = 0, last = 0; first < draws.size(); first = last) {
@@ -1067,23 +1080,23 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
         }
         glDisable(GL_SCISSOR_TEST);
     }
-    if (masked)
-        maskTargets(targets, shadedTargets, false);
+    if (masked != 0)
+        maskTargets(targets, 0);
     glBindVertexArray(0);
 }
 
-void Renderer::maskTargets(TargetMask targets, TargetMask masked, bool mask) {
+void Renderer::maskTargets(TargetMask targets, TargetMask masked) {
     int location = 0;
     for (std::size_t t = 0; t < kTargetCount; ++t) {
         if ((targets & (TargetMask(1) << t)) == 0)
             continue;
-        const GLboolean write = mask && (masked & (TargetMask(1) << t)) != 0 ? GL_FALSE : GL_TRUE;
+        const GLboolean write = (masked & (TargetMask(1) << t)) != 0 ? GL_FALSE : GL_TRUE;
         glColorMaski(GLuint(location++), write, write, write, write);
     }
 }
 
 void Renderer::planComputeLighting(PassSet& passes) const {
-    passes.surfaceTargets &= ~targetBit(Target::GBuffer);
+    passes.surfaceTargets &= ~(targetBit(Target::GBuffer) | targetBit(Target::GBufferMaterial));
     // One surface pass that shades only colour (the intrinsic images keep the forward pass's exact
     // float16 rounding) and has a draw buffer left for the G-buffer.
     // Its image stores write float formats: not into compact targets.
@@ -1092,15 +1105,20 @@ void Renderer::planComputeLighting(PassSet& passes) const {
         std::popcount(passes.surfaceTargets) + 1 > kMaxDrawTargets)
         return;
     passes.surfaceTargets |= targetBit(Target::GBuffer);
+    // Textured materials too, where a draw buffer is left for their factors (else their fragments shade).
+    if (std::popcount(passes.surfaceTargets) + 1 <= kMaxDrawTargets)
+        passes.surfaceTargets |= targetBit(Target::GBufferMaterial);
 }
 
 void Renderer::lightInCompute(const Camera& camera, const PassSet& passes,
                               const shaders::ShadingLayout& lights, const Framebuffers& fb) {
     const TargetMask stored = passes.surfaceTargets & kComputeLit;
-    auto& program = programs_["lighting/" + std::to_string(stored) + "/" + lights.key()];
+    const bool materials = (passes.surfaceTargets & targetBit(Target::GBufferMaterial)) != 0;
+    auto& program =
+        programs_["lighting/" + std::to_string(stored) + (materials ? "/m/" : "/") + lights.key()];
     if (!program)
-        program = std::make_unique<ShaderProgram>("compute lighting",
-                                                  shaders::computeLighting(stored, lights).c_str());
+        program = std::make_unique<ShaderProgram>(
+            "compute lighting", shaders::computeLighting(stored, lights, materials).c_str());
     program->use();
     program->set("uClipToOffset", clipToOffset(camera));
     if (lights.environmentMap)
@@ -1111,6 +1129,9 @@ void Renderer::lightInCompute(const Camera& camera, const PassSet& passes,
     glBindTextureUnit(shaders::kDepthTextureUnit, fb.depthTexture());
     glBindImageTexture(shaders::kGBufferImageUnit, fb.texture(Target::GBuffer), 0, GL_FALSE, 0, GL_READ_ONLY,
                        GL_R32UI);
+    if (materials)
+        glBindImageTexture(shaders::kGBufferMaterialImageUnit, fb.texture(Target::GBufferMaterial), 0,
+                           GL_FALSE, 0, GL_READ_ONLY, GL_RG32UI);
     if ((stored & targetBit(Target::FinalColor)) != 0)
         glBindImageTexture(shaders::kFinalColorImageUnit, fb.texture(Target::FinalColor), 0, GL_FALSE, 0,
                            GL_WRITE_ONLY, GL_RGBA8);

@@ -146,10 +146,12 @@ class Renderer {
     void setReadbackThreads(int threads) { readbackThreads_ = std::max(1, threads); }
     // Whether a view that shades only colour (final_color, hdr_color, with any unshaded targets) and has
     // framebuffers of its own is shaded by a compute pass over a G-buffer (Target::GBuffer: normal and
-    // draw, 4 bytes a pixel) rather than in its fragments: by default on hardware, where fragment shaders
-    // run on the few units a data-centre GPU keeps for graphics and compute shaders on all of them
-    // (spear_shading_probe: the same shading 25-150 times cheaper on an H100). Materials with textures are
-    // still shaded in their fragments. On llvmpipe the compute pass costs more than the fragments it spares.
+    // draw, 4 bytes a pixel; Target::GBufferMaterial: a textured material's factors, 8 more where one is
+    // drawn) rather than in its fragments: by default on hardware, where fragment shaders run on the few
+    // units a data-centre GPU keeps for graphics and compute shaders on all of them (spear_shading_probe: the
+    // same shading 25-150 times cheaper on an H100). On llvmpipe the compute pass costs more than the
+    // fragments it spares. With the irradiance blended at the vertices (vertexIrradiance()), the fragments
+    // shade.
     // SPEAR_LIGHTING=compute|forward overrides the default. Settable, so that tests render both ways;
     // images agree within the tolerance of per-pixel shadow coordinates and an 11-bit normal.
     bool computeLighting() const { return computeLighting_; }
@@ -282,8 +284,8 @@ class Renderer {
                            bool compact);
     // Clears the surface targets of the pages of shared framebuffers that `views` redraw whole; returns them.
     std::set<const Framebuffers*> clearPages(std::span<const View> views);
-    // Sets the colour write masks of `targets`' draw buffers: off for those in `masked` when `mask`, else on.
-    static void maskTargets(TargetMask targets, TargetMask masked, bool mask);
+    // Sets the colour write masks of `targets`' draw buffers: off for those in `masked`, on for the others.
+    static void maskTargets(TargetMask targets, TargetMask masked);
     // The compute lighting pass of a view whose surface pass wrote the G-buffer (PassSet::computeLighting()).
     void lightInCompute(const Camera& camera, const PassSet& passes, const shaders::ShadingLayout& lights,
                         const Framebuffers& fb);

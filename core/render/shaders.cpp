@@ -163,6 +163,22 @@ vec3 gbufferNormal(uint bits) {
 }
 )glsl";
 
+// The G-buffer's material texel (Target::GBufferMaterial, RG32UI) of a textured draw: the base colour's
+// square root, then roughness, in x and metallic in y, 8 bits each. The square root spends the bits where the
+// eye does, like sRGB's curve (steps under 1% relative above 0.1), for one sqrt and one multiply instead of
+// its pow() each way.
+const char* const kGBufferMaterialChunk = R"glsl(
+uvec2 gbufferMaterialEncode(vec3 base, float roughness, float metallic) {
+    return uvec2(packUnorm4x8(vec4(sqrt(clamp(base, 0.0, 1.0)), roughness)), packUnorm4x8(vec4(metallic)));
+}
+void gbufferMaterialDecode(uvec2 bits, out vec3 base, out float roughness, out float metallic) {
+    vec4 a = unpackUnorm4x8(bits.x);
+    base = a.rgb * a.rgb;
+    roughness = a.a;
+    metallic = unpackUnorm4x8(bits.y).x;
+}
+)glsl";
+
 const char* const kIrradianceChunk = R"glsl(
 // The irradiance probes (IrradianceVolume::packed(): two texels per probe along x) and their blend at a
 // point, mirrored by IrradianceVolume::radiance(), which says why each weight is there. In fragment and compute
@@ -541,10 +557,13 @@ void main() {
 #endif
 #ifdef OUT_GBuffer
 #ifdef FORWARD
-    oGBuffer = 0xffffffffu; // shaded here (a textured material, or past kGBufferRecords): the compute pass skips it
+    oGBuffer = 0xffffffffu; // shaded here (past kGBufferRecords, or no room for the material): the compute pass skips it
 #else
     oGBuffer = gbufferEncode(n, vRecord);
 #endif
+#endif
+#if defined(OUT_GBufferMaterial) && !defined(FORWARD) && defined(TEXTURED)
+    oGBufferMaterial = gbufferMaterialEncode(base, roughness, metallic);
 #endif
 #ifdef FORWARD
 #ifdef EXACT_INTRINSICS
@@ -593,7 +612,7 @@ std::string encodings(bool compact) {
 
 // The GLSL type of a target's fragment output.
 const char* outputType(Target target, bool compact) {
-    if (target == Target::Ids)
+    if (target == Target::Ids || target == Target::GBufferMaterial)
         return "uvec2";
     if (target == Target::GBuffer || target == Target::Record)
         return "uint";
@@ -1148,7 +1167,7 @@ std::string clearFragment(TargetMask targets, bool compact) {
     text += encodings(compact);
     const auto [declarations, body] =
         locatedOutputs(targets, compact, [&](Target target, const std::string& index) {
-            if (target == Target::Ids)
+            if (target == Target::Ids || target == Target::GBufferMaterial)
                 return std::string("uvec2(0u)");
             if (target == Target::GBuffer || target == Target::Record) // (none: 0)
                 return std::string("0u");
@@ -1164,7 +1183,7 @@ std::string clearFragment(TargetMask targets, bool compact) {
     return text + declarations + "void main() {" + body + " }\n";
 }
 
-std::string computeLighting(TargetMask targets, const ShadingLayout& lights) {
+std::string computeLighting(TargetMask targets, const ShadingLayout& lights, bool materials) {
     std::string text =
         "#version 450 core\nlayout(local_size_x = " + std::to_string(kComputeLightingGroupSize) +
         ", local_size_y = " + std::to_string(kComputeLightingGroupSize) + ") in;\n";
@@ -1185,6 +1204,9 @@ std::string computeLighting(TargetMask targets, const ShadingLayout& lights) {
     text += "layout(binding = " + std::to_string(kDepthTextureUnit) + ") uniform sampler2D uDepthBuffer;\n";
     text += "layout(binding = " + std::to_string(kGBufferImageUnit) +
             ", r32ui) uniform readonly uimage2D uGBuffer;\n";
+    if (materials)
+        text += "#define GBUFFER_MATERIAL\nlayout(binding = " + std::to_string(kGBufferMaterialImageUnit) +
+                ", rg32ui) uniform readonly uimage2D uGBufferMaterial;\n";
     text += "layout(binding = " + std::to_string(kFinalColorImageUnit) +
             ", rgba8) uniform writeonly image2D uFinalColor;\n";
     text +=
@@ -1197,6 +1219,7 @@ vec2 gPixelCentre;
 )glsl";
     text += kOctahedralChunk;
     text += kGBufferChunk;
+    text += kGBufferMaterialChunk;
     text += kShadingChunk;
     if (lights.irradiance == IrradianceBlend::PerPixel)
         text += irradianceChunk(false);
@@ -1230,8 +1253,13 @@ void main() {
     vec4 offset = uClipToOffset * vec4(gPixelCentre / vec2(uSize) * 2.0 - 1.0, z * 2.0 - 1.0, 1.0);
     vec3 p = cameraPosition() + offset.xyz / offset.w;
     vec4 material = records[record].material;
-    Shaded s = shade(p, gbufferNormal(g), records[record].baseColor.rgb, material.x, material.y, material.z,
-                     records[record].emissive.rgb);
+    vec3 base = records[record].baseColor.rgb;
+    float roughness = material.x, metallic = material.y;
+#ifdef GBUFFER_MATERIAL
+    if ((records[record].ids.w & 1u) != 0u) // a textured material's, at this pixel
+        gbufferMaterialDecode(imageLoad(uGBufferMaterial, pixel).xy, base, roughness, metallic);
+#endif
+    Shaded s = shade(p, gbufferNormal(g), base, roughness, metallic, material.z, records[record].emissive.rgb);
 #ifdef STORE_Hdr
     imageStore(uHdr, pixel, vec4(s.hdr, 1.0));
 #endif
@@ -1280,6 +1308,8 @@ std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialF
         text += "#define HAS_ROUGHNESS_METALLIC_TEXTURE\n";
     if (materialFeatures & kNormalTexture)
         text += "#define HAS_NORMAL_TEXTURE\n";
+    if (materialFeatures & kTextureFeatures)
+        text += "#define TEXTURED\n";
     if (materialFeatures & kFacingFromWinding)
         text += "#define FACING_FROM_WINDING\n";
     if (materialFeatures & kBoxUv)
@@ -1293,6 +1323,8 @@ std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialF
     text += kMaterialChunk;
     if ((targets & targetBit(Target::GBuffer)) != 0)
         text += kGBufferChunk; // after outputs(), which gives it octahedral()
+    if ((targets & targetBit(Target::GBufferMaterial)) != 0)
+        text += kGBufferMaterialChunk;
     if (forward) {
         text += shadingDefines(lights);
         text += kShadingChunk;

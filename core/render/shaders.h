@@ -156,7 +156,8 @@ std::string clearFragment(TargetMask targets, bool compact = false);
 // the draw's material from the G-buffer and its InstanceRecord, shaded as the forward pass shades (shadow
 // coordinates per pixel) into `targets` (FinalColor and/or Hdr) as images. Work groups of
 // kComputeLightingGroupSize squared.
-std::string computeLighting(TargetMask targets, const ShadingLayout& lights);
+// `materials`: textured draws wrote Target::GBufferMaterial, read where a record's ids.w has bit 0.
+std::string computeLighting(TargetMask targets, const ShadingLayout& lights, bool materials);
 inline constexpr int kComputeLightingGroupSize = 8;
 // The draws of a view the G-buffer can name (10 bits, all ones reserved): later ones are shaded in their
 // fragments.
@@ -167,6 +168,7 @@ inline constexpr int kDepthTextureUnit = 3;
 inline constexpr int kGBufferImageUnit = 2;
 inline constexpr int kFinalColorImageUnit = 3;
 inline constexpr int kHdrImageUnit = 4;
+inline constexpr int kGBufferMaterialImageUnit = 6;
 // The image unit of the irradiance probes (IrradianceVolume::packed()), read by every shading program.
 inline constexpr int kIrradianceImageUnit = 5;
 // The texture unit a vertex shader fetches them from (per-vertex blending).

@@ -191,6 +191,52 @@ TEST_F(IrradianceProbesGlTest, PerVertexBlendingLeavesTheExactModalitiesAsTheyWe
     EXPECT_EQ(differentIds, 0);
 }
 
+TEST_F(IrradianceProbesGlTest, ComputeLightingBlendsTheProbesPerPixelAndLeavesVertexBlendingToTheFragments) {
+    // The compute pass has no vertices to blend probes at: with per-vertex blending (llvmpipe's default), a
+    // view planned for it is shaded in its fragments, the same image as without it; per pixel, it shades and
+    // agrees with the fragments. (Before, the compute program failed to compile there.) A view larger than a
+    // shared page, so that it has framebuffers of its own.
+    Scene scene;
+    test::buildClosedRoom(scene, false);
+    IrradianceProbes probes;
+    scene.setIrradianceVolume(probes.update(scene, tracer_, {}));
+    Camera camera = test::closedRoomCamera();
+    camera.params.width = 640;
+    camera.params.height = 560;
+    // Float targets: compact ones (llvmpipe's default) keep a view in its fragments.
+    const bool computeByDefault = renderer().computeLighting(),
+               vertexByDefault = renderer().vertexIrradiance(),
+               compactByDefault = renderer().compactTargets();
+    renderer().setCompactTargets(false);
+    for (bool vertex : {true, false}) {
+        renderer().setVertexIrradiance(vertex);
+        render::Frame frames[2];
+        for (int compute = 0; compute < 2; ++compute) {
+            renderer().setComputeLighting(compute == 1);
+            frames[compute] = renderFrame(scene, camera, {render::Modality::HdrColor});
+        }
+        const render::ImageBuffer &forward = frames[0].get(render::Modality::HdrColor),
+                                  &computed = frames[1].get(render::Modality::HdrColor);
+        if (vertex) {
+            EXPECT_TRUE(std::equal(forward.bytes.begin(), forward.bytes.end(), computed.bytes.begin()));
+            continue;
+        }
+        double sum = 0.0, difference = 0.0;
+        for (int y = 0; y < forward.height; ++y)
+            for (int x = 0; x < forward.width; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    sum += forward.at(x, y, c);
+                    difference += std::abs(forward.at(x, y, c) - computed.at(x, y, c));
+                }
+        EXPECT_LT(difference / sum, 0.01) << "per pixel";
+        // ... and it is the compute pass's image: its 22-bit normal differs from the fragments' somewhere.
+        EXPECT_GT(difference, 0.0) << "per pixel";
+    }
+    renderer().setComputeLighting(computeByDefault);
+    renderer().setVertexIrradiance(vertexByDefault);
+    renderer().setCompactTargets(compactByDefault);
+}
+
 TEST_F(IrradianceProbesGlTest, SmallThingsMovingLeaveTheProbesAsTheyAre) {
     // Instances under half a probe spacing in radius are invisible to the probes: moving one (a ball rolling)
     // makes no probe stale; moving a large one does.

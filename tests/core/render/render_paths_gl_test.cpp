@@ -298,13 +298,15 @@ TEST_F(RenderPathsGlTest, ShadingWithoutLookupsWhereNoShadowReachesRendersTheSam
 
 TEST_F(RenderPathsGlTest, ComputeLightingAgreesWithShadingInTheFragments) {
     // The shapes scene under a shadowed sun and spot light and a ranged point light, with a textured box
-    // (shaded in its fragments either way) beside the untextured shapes (shaded by the compute pass when it
-    // is on), views larger than a shared page (512 x 512) so that they have framebuffers of their own.
-    // Colour alone; colour with depth and ids (unshaded targets beside the G-buffer); hdr_color; a
-    // vignetted final_color with Reinhard's curve, whose background the compute pass writes. The images
-    // agree but for the pixels where a shadow's edge or a face's edge falls: the compute pass computes
+    // beside the untextured shapes (all shaded by the compute pass when it is on), views larger than a shared
+    // page (512 x 512) so that they have framebuffers of their own. Colour alone; colour with depth and ids
+    // (unshaded targets beside the G-buffer); hdr_color; a vignetted final_color with Reinhard's curve, whose
+    // background the compute pass writes; colour with six material and geometry modalities, which leave a
+    // draw buffer for the G-buffer but none for the textured box's material (shaded in its fragments). The
+    // images agree but for the pixels where a shadow's edge or a face's edge falls: the compute pass computes
     // shadow-map coordinates per pixel where the fragments interpolate the vertices', and reads the normal
-    // back from 16 bits; the unshaded targets are the same bit for bit.
+    // back from 22 bits and a textured material from 8 bits a channel; the unshaded targets are the same bit
+    // for bit.
     Scene scene;
     buildShapesScene(scene);
     addSpotAndPointLights(scene);
@@ -326,22 +328,32 @@ TEST_F(RenderPathsGlTest, ComputeLightingAgreesWithShadingInTheFragments) {
         {{Modality::FinalColor, Modality::Depth, Modality::ObjectIds}, &camera},
         {{Modality::HdrColor}, &camera},
         {{Modality::FinalColor}, &vignetted},
+        {{Modality::FinalColor, Modality::Position, Modality::Normal, Modality::Depth, Modality::BaseColor,
+          Modality::Roughness, Modality::ObjectIds},
+         &camera},
     };
-    const bool byDefault = renderer().computeLighting();
+    // Float targets: the compute pass stores floats, so compact targets (llvmpipe's default) keep a view in
+    // its fragments.
+    const bool byDefault = renderer().computeLighting(), compactByDefault = renderer().compactTargets();
+    renderer().setCompactTargets(false);
     for (const auto& [modalities, view] : cases) {
         Frame frames[2];
+        bool materialTarget = false;
         for (int compute = 0; compute < 2; ++compute) {
             renderer().setComputeLighting(compute == 1);
             PassSet passes = modalities.requiredPasses(true);
             renderer().planComputeLighting(passes);
             EXPECT_EQ(passes.computeLighting(), compute == 1);
+            materialTarget =
+                (passes.surfaceTargets & render::targetBit(render::Target::GBufferMaterial)) != 0;
+            EXPECT_EQ(materialTarget, compute == 1 && modalities.size() < 7);
             RenderTarget target(renderer(), modalities, 0);
             target.render(scene, *view, frames[compute]);
         }
         renderer().setComputeLighting(byDefault);
         for (Modality m : modalities.list()) {
             const ImageBuffer &forward = frames[0].get(m), &computed = frames[1].get(m);
-            if (m == Modality::Depth || m == Modality::ObjectIds) {
+            if (m != Modality::FinalColor && m != Modality::HdrColor) {
                 EXPECT_TRUE(std::equal(forward.bytes.begin(), forward.bytes.end(), computed.bytes.begin()))
                     << modalityName(m);
                 continue;
@@ -360,12 +372,17 @@ TEST_F(RenderPathsGlTest, ComputeLightingAgreesWithShadingInTheFragments) {
                     }
             EXPECT_LT(double(far) / double(channels), 0.005) << modalityName(m);
             EXPECT_LT(sum / double(channels), m == Modality::FinalColor ? 0.1 : 1e-3) << modalityName(m);
-            // The textured crate is shaded in its fragments either way: the same there.
+            // The textured crate: from its material texel, within what 8 bits a channel round (a step of
+            // base colour's square root moves final_color by at most 1 of 255 here); in its fragments where
+            // the pass had no room for the texel, by a program that also writes the G-buffer, which the
+            // shader compiler may round differently in the last bit.
             const Eigen::Vector3d crateAt = view->project(Eigen::Vector3d(-1.3, 0.9, 0.5));
             const int cx = int(crateAt.x()), cy = int(crateAt.y());
             for (int c = 0; c < 3; ++c)
-                EXPECT_EQ(forward.at(cx, cy, c), computed.at(cx, cy, c))
-                    << modalityName(m) << " on the crate";
+                EXPECT_NEAR(forward.at(cx, cy, c), computed.at(cx, cy, c),
+                            m == Modality::FinalColor ? 1.0 : 0.01 * forward.at(cx, cy, c) + 1e-3)
+                    << modalityName(m) << " on the crate, "
+                    << (materialTarget ? "compute-lit" : "in its fragments");
         }
         // A longer ring reads the same compute-lit frame (the readback waits for the image stores).
         if (view == &camera && modalities.size() == 1) {
@@ -406,6 +423,7 @@ TEST_F(RenderPathsGlTest, ComputeLightingAgreesWithShadingInTheFragments) {
             EXPECT_LT(image.at(0, 0, 2), image.at(320, 5, 2));
         }
     }
+    renderer().setCompactTargets(compactByDefault);
 }
 
 TEST_F(RenderPathsGlTest, TheGpuPathSwitchesAreReadFromTheEnvironmentAndCheckedThere) {
@@ -471,7 +489,9 @@ TEST_F(RenderPathsGlTest, DrawsPastWhatTheGBufferCanNameAreShadedInTheirFragment
     sun.intensity = 3.0f;
     scene.addLight(sun);
     const Camera camera = cameraLookingAt({0.0, -1.0, 9.0}, {0.0, 0.0, 0.0}, 640, 560, 60.0);
-    const bool byDefault = renderer().computeLighting();
+    // Float targets: compact ones (llvmpipe's default) keep a view in its fragments.
+    const bool byDefault = renderer().computeLighting(), compactByDefault = renderer().compactTargets();
+    renderer().setCompactTargets(false);
     Frame frames[2];
     for (int compute = 0; compute < 2; ++compute) {
         renderer().setComputeLighting(compute == 1);
@@ -479,6 +499,7 @@ TEST_F(RenderPathsGlTest, DrawsPastWhatTheGBufferCanNameAreShadedInTheirFragment
         target.render(scene, camera, frames[compute]);
     }
     renderer().setComputeLighting(byDefault);
+    renderer().setCompactTargets(compactByDefault);
     const ImageBuffer &forward = frames[0].get(Modality::FinalColor),
                       &computed = frames[1].get(Modality::FinalColor);
     const auto [largest, mean] = difference(forward, computed);
