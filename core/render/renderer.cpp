@@ -126,6 +126,11 @@ Renderer::Renderer(const GlContext& context)
     glCreateBuffers(1, &frameBlock_);
     glNamedBufferData(frameBlock_, sizeof(shaders::FrameBlock), nullptr, GL_DYNAMIC_DRAW);
     glCreateVertexArrays(1, &emptyVao_);
+    anisotropySupported_ = epoxy_gl_version() >= 46 ||
+                           epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic") ||
+                           epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic");
+    setAnisotropicFiltering(switchFromEnvironment("SPEAR_TEXTURE_FILTER", "anisotropic", "trilinear",
+                                                  hardware && anisotropySupported_));
     atlas_ = std::make_unique<FramebufferAtlas>(layered);
     // Readbacks of 3-channel and 16-bit images have rows that are not multiples of 4 bytes.
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -156,6 +161,24 @@ Renderer::~Renderer() {
     scenes_.clear();
     glDeleteBuffers(1, &frameBlock_);
     glDeleteVertexArrays(1, &emptyVao_);
+    glDeleteSamplers(1, &textureSampler_);
+}
+
+void Renderer::setAnisotropicFiltering(bool on) {
+    SP_CHECK(!on || anisotropySupported_, InvalidArgument,
+             "Renderer::setAnisotropicFiltering(): this context has no anisotropic filtering "
+             "(GL 4.6 or GL_ARB_texture_filter_anisotropic)");
+    context_.makeCurrent();
+    if (textureSampler_ == 0) {
+        glCreateSamplers(1, &textureSampler_);
+        glSamplerParameteri(textureSampler_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glSamplerParameteri(textureSampler_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glSamplerParameteri(textureSampler_, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        glSamplerParameteri(textureSampler_, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    }
+    if (anisotropySupported_)
+        glSamplerParameterf(textureSampler_, GL_TEXTURE_MAX_ANISOTROPY, on ? kMaxAnisotropy : 1.0f);
+    anisotropicFiltering_ = on;
 }
 
 Renderer::SceneState::SceneState(SharedUploads& shared, ShadowLayers& layers, std::uint64_t sceneUid)
@@ -1053,8 +1076,10 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
         instances_->bind(mesh.vao);
         glBindVertexArray(mesh.vao);
         for (int t = 0; t < 3; ++t)
-            if (draw.textures[std::size_t(t)])
+            if (draw.textures[std::size_t(t)]) {
                 glBindTextureUnit(GLuint(t), cache.texture(scene, *draw.textures[std::size_t(t)]));
+                glBindSampler(GLuint(t), textureSampler_);
+            }
         const Submesh& sub = mesh.submeshes[draw.slot];
         const auto drawBatch = [&] {
             glDrawElementsInstancedBaseInstance(
@@ -1083,6 +1108,8 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
     if (masked != 0)
         maskTargets(targets, 0);
     glBindVertexArray(0);
+    for (GLuint t = 0; t < 3; ++t) // other passes sample these units with their textures' own filtering
+        glBindSampler(t, 0);
 }
 
 void Renderer::maskTargets(TargetMask targets, TargetMask masked) {

@@ -1,15 +1,18 @@
 // Anti-aliasing (CameraParams::antiAliasing): the exact modalities stay bit for bit what a camera without it
 // reads; FXAA changes final_color at the silhouettes, the same whether read from the readback buffer
 // (latency 1) or the framebuffers (latency 0); MSAA brings final_color close to a supersampled view and
-// keeps hdr_color = diffuse_only + specular_residual.
+// keeps hdr_color = diffuse_only + specular_residual. Anisotropic texture filtering keeps a floor's texture
+// where trilinear filtering blurs it away at a grazing angle.
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <iostream>
 #include <utility>
 
 #include "core/base/error.h"
 #include "core/render/image_buffer.h"
+#include "core/render/primitives.h"
 #include "gl_fixture.h"
 #include "test_scenes.h"
 
@@ -164,6 +167,85 @@ TEST_F(RenderAntiAliasingGlTest, MsaaTakesTheDevicesMostSamplesAndRefusesOtherCo
     EXPECT_EQ(frame.get(Modality::FinalColor).bytes.size(), std::size_t(64 * 48 * 4));
     camera.params.msaaSamples = 3;
     EXPECT_THROW(renderFrame(scene, camera, {Modality::FinalColor}), InvalidArgument);
+}
+
+TEST_F(RenderAntiAliasingGlTest,
+       AnisotropicFilteringBringsAGrazingFloorCloserToSupersamplingAndLeavesIdsAndDepth) {
+    // A 40 m floor of 1 m black and white squares (a 16 x 16 texture, 4 texels a square, repeating every 4
+    // m), seen along it from 1.5 m up. Far away a pixel's footprint on the floor is long and thin: trilinear
+    // filtering takes the mip level of its long side and greys the squares out; anisotropic filtering
+    // samples along it. Against the same view rendered 4 x 4 larger and averaged down, its far floor is
+    // closer. The geometry is the same: depth and ids bit for bit.
+    Scene scene;
+    std::vector<std::uint8_t> checker(16 * 16 * 4);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x)
+            for (int c = 0; c < 4; ++c)
+                checker[std::size_t(4 * (16 * y + x) + c)] = c == 3 || (x / 4 + y / 4) % 2 == 0 ? 255 : 0;
+    Material floor = makeMaterial({1.0f, 1.0f, 1.0f}, 1.0f, 0.0f);
+    floor.baseColorTexture = scene.addTexture(TextureImage::fromPixels(16, 16, checker));
+    floor.textureSize = 4.0f;
+    Instance instance{scene.addMesh(primitives::box({40.0f, 40.0f, 0.1f})), {scene.addMaterial(floor)}, {1}};
+    instance.transform.translation() = Eigen::Vector3d(0.0, 0.0, -0.05);
+    scene.addInstance(instance);
+    Light sun;
+    sun.direction = Eigen::Vector3d(0.2, 0.1, -1.0).normalized();
+    scene.addLight(sun);
+    const int width = 128, height = 96;
+    const Camera camera = cameraLookingAt({-19.0, 0.0, 1.5}, {-9.0, 0.0, 0.0}, width, height, 60.0);
+    const Camera large = cameraLookingAt({-19.0, 0.0, 1.5}, {-9.0, 0.0, 0.0}, 4 * width, 4 * height, 60.0);
+    const bool byDefault = renderer().anisotropicFiltering();
+    renderer().setAnisotropicFiltering(false);
+    const Frame supersampled = renderFrame(scene, large, {Modality::HdrColor});
+    Frame frames[2];
+    for (int anisotropic = 0; anisotropic < 2; ++anisotropic) {
+        renderer().setAnisotropicFiltering(anisotropic == 1);
+        frames[anisotropic] =
+            renderFrame(scene, camera, {Modality::HdrColor, Modality::Depth, Modality::ObjectIds});
+    }
+    renderer().setAnisotropicFiltering(byDefault);
+    for (Modality m : {Modality::Depth, Modality::ObjectIds})
+        EXPECT_EQ(frames[0].get(m).bytes, frames[1].get(m).bytes) << modalityName(m);
+    // The mean difference over the far half of the floor (the rows between the horizon and the middle).
+    const ImageBuffer& reference = supersampled.get(Modality::HdrColor);
+    const auto error = [&](const ImageBuffer& image) {
+        double sum = 0.0;
+        int count = 0;
+        for (int y = 0; y < height / 2; ++y)
+            for (int x = 0; x < width; ++x) {
+                if (frames[0].get(Modality::ObjectIds).at(x, y) == 0)
+                    continue; // the sky
+                double average = 0.0;
+                for (int j = 0; j < 4; ++j)
+                    for (int i = 0; i < 4; ++i)
+                        average += reference.at(4 * x + i, 4 * y + j, 0) / 16.0;
+                sum += std::abs(image.at(x, y, 0) - average);
+                ++count;
+            }
+        return sum / std::max(count, 1);
+    };
+    const double trilinear = error(frames[0].get(Modality::HdrColor)),
+                 anisotropic = error(frames[1].get(Modality::HdrColor));
+    EXPECT_LT(anisotropic, 0.8 * trilinear) << "trilinear " << trilinear << ", anisotropic " << anisotropic;
+    std::cout << "grazing floor, mean difference from 4 x 4 supersampling: trilinear " << trilinear
+              << ", anisotropic " << anisotropic << "\n";
+}
+
+TEST_F(RenderAntiAliasingGlTest, AnisotropicFilteringIsOnByDefaultOnHardwareAndSetFromTheEnvironment) {
+    GlContext& context = *context_;
+    ::setenv("SPEAR_TEXTURE_FILTER", "anisotropic", 1);
+    EXPECT_TRUE(Renderer(context).anisotropicFiltering());
+    ::setenv("SPEAR_TEXTURE_FILTER", "bilinear", 1);
+    try {
+        Renderer refused(context);
+        ADD_FAILURE() << "SPEAR_TEXTURE_FILTER=bilinear was accepted";
+    } catch (const InvalidArgument& e) {
+        EXPECT_STREQ(e.what(), "Renderer::Renderer(): SPEAR_TEXTURE_FILTER must be 'anisotropic' or "
+                               "'trilinear', got 'bilinear'");
+    }
+    ::unsetenv("SPEAR_TEXTURE_FILTER");
+    EXPECT_EQ(Renderer(context).anisotropicFiltering(), !context.report().software);
+    context.makeCurrent(); // the fixture's renderer goes on in the same context
 }
 
 } // namespace
