@@ -91,6 +91,11 @@ CASES: list[tuple[str, Callable[[Scene], object], str | None, str]] = [
      "AActor.SetActorScale3D(): argument 'NewScale3D': FVector.X must be a float, got str 'a'"),
     ("struct given another struct", lambda s: s.cube.SetActorScale3D(NewScale3D=spear.FRotator()),  # type: ignore[arg-type]
      "InvalidArgumentError", "AActor.SetActorScale3D(): argument 'NewScale3D': FVector has no field 'Pitch'"),
+    ("struct value refuses an unknown field", lambda s: setattr(s.cube.GetActorLocation(), "x", 5.0),
+     "AttributeError", "'FVector' object has no attribute 'x'"),
+    ("struct value within a struct refuses an unknown field",
+     lambda s: setattr(s.cube.GetActorTransform().Translation, "Translation", 5.0),
+     "AttributeError", "'FVector' object has no attribute 'Translation'"),
     # numbers, bools, strings
     ("int given bool", lambda s: setattr(s.camera, "Width", True),
      "InvalidArgumentError", "UCameraSensorComponent.Width must be an int, got bool True"),

@@ -287,7 +287,7 @@ class FCameraPixels(TypedDict, total=False):
     specular_residual: NDArray[np.float16]
 
 
-@dataclass
+@dataclass(slots=True)
 class FFrameTimings:
     """The CPU time a world's frames took, by stage, summed over the frames since the world began (take two and
     subtract for a span). GPU time is the renderer's (UCameraSensorComponent.GetRenderStats()).
@@ -301,7 +301,7 @@ class FFrameTimings:
     OtherMs: float = 0.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FVector:
     """A vector in 3-D space (metres for positions)."""
 
@@ -311,7 +311,7 @@ class FVector:
     Z: float = 0.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FHitResult:
     """The result of a trace: whether it hit, and where."""
 
@@ -327,7 +327,7 @@ class FHitResult:
     TraceEnd: FVector = field(default_factory=FVector)
 
 
-@dataclass
+@dataclass(slots=True)
 class FLensDistortion:
     """Brown–Conrady lens distortion in OpenCV's convention (radial K1, K2, K3; tangential P1, P2): all zero is a
     pinhole. See UCameraSensorComponent.LensDistortion.
@@ -341,7 +341,7 @@ class FLensDistortion:
     P2: float = 0.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FLinearColor:
     """A linear-space colour with alpha; components usually in [0, 1], HDR values may exceed 1."""
 
@@ -352,7 +352,7 @@ class FLinearColor:
     A: float = 1.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FMaterialDesc:
     """A PBR metallic-roughness material (glTF / UE conventions, linear colours)."""
 
@@ -368,7 +368,7 @@ class FMaterialDesc:
     TextureSize: float = 0.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FMoviePipelineConfiguration:
     """What a render job renders, and where its files go."""
 
@@ -385,7 +385,7 @@ class FMoviePipelineConfiguration:
     bOverwriteExisting: bool = False
 
 
-@dataclass
+@dataclass(slots=True)
 class FMoviePipelineProgress:
     """How far a render job is."""
 
@@ -398,7 +398,7 @@ class FMoviePipelineProgress:
     EstimatedSecondsLeft: float = -1.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FQuat:
     """A unit quaternion."""
 
@@ -409,7 +409,7 @@ class FQuat:
     W: float = 1.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FRenderDeviceInfo:
     """Which EGL device renders this world, and what OpenGL reports about itself."""
 
@@ -422,7 +422,7 @@ class FRenderDeviceInfo:
     Version: str = ""
 
 
-@dataclass
+@dataclass(slots=True)
 class FRenderStats:
     """How often each render pass ran in this world since its renderer started (all cameras together), and
     what the passes cost (see core/render/README.md, "Passes and timings").
@@ -452,7 +452,7 @@ class FRenderStats:
     ReadbackMs: float = 0.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FRotator:
     """An orientation as Euler angles in degrees."""
 
@@ -462,7 +462,7 @@ class FRotator:
     Roll: float = 0.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FTransform:
     """Translation, rotation and non-uniform scale, applied as scale, then rotation, then translation."""
 
@@ -472,7 +472,7 @@ class FTransform:
     Scale3D: FVector = field(default_factory=lambda: FVector(1.0, 1.0, 1.0))
 
 
-@dataclass
+@dataclass(slots=True)
 class FVector2D:
     """A vector in 2-D space."""
 
@@ -481,7 +481,7 @@ class FVector2D:
     Y: float = 0.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FWheelState:
     """The state of one wheel of a wheeled vehicle after the last physics step."""
 

@@ -373,7 +373,7 @@ class FCameraPixels(TypedDict, total=False):
     specular_residual: NDArray[np.float16]
 
 
-@dataclass
+@dataclass(slots=True)
 class FFrameTimings:
     """The CPU time a world's frames took, by stage, summed over the frames since the world began (take two and
     subtract for a span). GPU time is the renderer's (UCameraSensorComponent.GetRenderStats()).
@@ -387,7 +387,7 @@ class FFrameTimings:
     OtherMs: float = 0.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FVector:
     """A vector in 3-D space (metres for positions)."""
 
@@ -397,7 +397,7 @@ class FVector:
     Z: float = 0.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FHitResult:
     """The result of a trace: whether it hit, and where."""
 
@@ -413,7 +413,7 @@ class FHitResult:
     TraceEnd: FVector = field(default_factory=FVector)
 
 
-@dataclass
+@dataclass(slots=True)
 class FLensDistortion:
     """Brown–Conrady lens distortion in OpenCV's convention (radial K1, K2, K3; tangential P1, P2): all zero is a
     pinhole. See UCameraSensorComponent.LensDistortion.
@@ -427,7 +427,7 @@ class FLensDistortion:
     P2: float = 0.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FLinearColor:
     """A linear-space colour with alpha; components usually in [0, 1], HDR values may exceed 1."""
 
@@ -438,7 +438,7 @@ class FLinearColor:
     A: float = 1.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FMaterialDesc:
     """A PBR metallic-roughness material (glTF / UE conventions, linear colours)."""
 
@@ -454,7 +454,7 @@ class FMaterialDesc:
     TextureSize: float = 0.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FMoviePipelineConfiguration:
     """What a render job renders, and where its files go."""
 
@@ -471,7 +471,7 @@ class FMoviePipelineConfiguration:
     bOverwriteExisting: bool = False
 
 
-@dataclass
+@dataclass(slots=True)
 class FMoviePipelineProgress:
     """How far a render job is."""
 
@@ -484,7 +484,7 @@ class FMoviePipelineProgress:
     EstimatedSecondsLeft: float = -1.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FQuat:
     """A unit quaternion."""
 
@@ -495,7 +495,7 @@ class FQuat:
     W: float = 1.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FRenderDeviceInfo:
     """Which EGL device renders this world, and what OpenGL reports about itself."""
 
@@ -508,7 +508,7 @@ class FRenderDeviceInfo:
     Version: str = ""
 
 
-@dataclass
+@dataclass(slots=True)
 class FRenderStats:
     """How often each render pass ran in this world since its renderer started (all cameras together), and
     what the passes cost (see core/render/README.md, "Passes and timings").
@@ -538,7 +538,7 @@ class FRenderStats:
     ReadbackMs: float = 0.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FRotator:
     """An orientation as Euler angles in degrees."""
 
@@ -548,7 +548,7 @@ class FRotator:
     Roll: float = 0.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FTransform:
     """Translation, rotation and non-uniform scale, applied as scale, then rotation, then translation."""
 
@@ -558,7 +558,7 @@ class FTransform:
     Scale3D: FVector = field(default_factory=lambda: FVector(1.0, 1.0, 1.0))
 
 
-@dataclass
+@dataclass(slots=True)
 class FVector2D:
     """A vector in 2-D space."""
 
@@ -567,7 +567,7 @@ class FVector2D:
     Y: float = 0.0
 
 
-@dataclass
+@dataclass(slots=True)
 class FWheelState:
     """The state of one wheel of a wheeled vehicle after the last physics step."""
 

@@ -51,7 +51,7 @@ class FImages(TypedDict, total=False):
     depth: NDArray[np.float32]
 
 
-@dataclass
+@dataclass(slots=True)
 class FSample:
     """A sample with nested struct, enum and container fields."""
 

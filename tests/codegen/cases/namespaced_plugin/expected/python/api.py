@@ -37,7 +37,7 @@ class EGait(enum.IntEnum):
     Run = 1
 
 
-@dataclass
+@dataclass(slots=True)
 class FGaitSettings:
     """A robot's tuning."""
 

@@ -32,7 +32,7 @@ class EGait(enum.IntEnum):
     """Runs."""
 
 
-@dataclass
+@dataclass(slots=True)
 class FGaitSettings:
     """A robot's tuning."""
 

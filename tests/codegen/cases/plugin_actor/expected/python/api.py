@@ -35,7 +35,7 @@ class EPluginMood(enum.IntEnum):
     Friendly = 1
 
 
-@dataclass
+@dataclass(slots=True)
 class FPluginSettings:
     """A plugin struct holding an engine struct."""
 

@@ -32,7 +32,7 @@ class EPluginMood(enum.IntEnum):
     """Comes closer."""
 
 
-@dataclass
+@dataclass(slots=True)
 class FPluginSettings:
     """A plugin struct holding an engine struct."""
 
