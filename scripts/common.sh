@@ -7,8 +7,13 @@ PYTHON=/usr/bin/python3
 BUILD_DIR="${SPEAR_BUILD_DIR:-$ROOT/build}"
 export PYTHONPATH="$ROOT/python${PYTHONPATH:+:$PYTHONPATH}"
 
-# Each stage says how long the script has run, so a slow stage shows in any log.
-say() { printf '\n\033[1m== [%dm%02ds] %s\033[0m\n' $((SECONDS / 60)) $((SECONDS % 60)) "$*"; }
+# Each stage says how long the script has run (test.sh's own time through the sanitizer script it calls),
+# so a slow stage shows in any log.
+export SPEAR_SCRIPT_START="${SPEAR_SCRIPT_START:-$(date +%s)}"
+say() {
+    local elapsed=$(($(date +%s) - SPEAR_SCRIPT_START))
+    printf '\n\033[1m== [%dm%02ds] %s\033[0m\n' $((elapsed / 60)) $((elapsed % 60)) "$*"
+}
 
 install_dependencies() {
     local missing=()
