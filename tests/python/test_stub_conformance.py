@@ -34,9 +34,15 @@ def blueprint_classes() -> list[str]:
     return [n for n in stub_classes() if hasattr(getattr(api, n, None), "__sp_asset__")]
 
 
+def is_struct(cls: ast.ClassDef) -> bool:
+    """A struct's stub class: decorated @dataclass or @dataclass(...)."""
+    return any(isinstance(d, ast.Name) and d.id == "dataclass" or
+               isinstance(d, ast.Call) and isinstance(d.func, ast.Name) and d.func.id == "dataclass"
+               for d in cls.decorator_list)
+
+
 def object_classes() -> list[str]:
-    return [n for n, c in stub_classes().items() if not n.endswith(("Async", "Send")) and not any(
-        isinstance(d, ast.Name) and d.id == "dataclass" for d in c.decorator_list) and not any(
+    return [n for n, c in stub_classes().items() if not n.endswith(("Async", "Send")) and not is_struct(c) and not any(
         isinstance(b, ast.Attribute) and b.attr == "IntEnum" or isinstance(b, ast.Name) and b.id == "TypedDict"
         for b in c.bases) and n not in blueprint_classes()]
 
@@ -130,15 +136,20 @@ def test_root_class_implements_what_spobject_declares() -> None:
 
 
 def test_structs_and_enums_are_shared_python_types() -> None:
+    structs = 0
     for name, cls in stub_classes().items():
         if name.endswith(("Async", "Send")):
             continue
         runtime = getattr(spear, name)
-        if any(isinstance(d, ast.Name) and d.id == "dataclass" for d in cls.decorator_list):
+        if is_struct(cls):
+            structs += 1
+            # Slotted, so that a misspelt field is refused (the stub says so too, for type checkers).
+            assert "__slots__" in runtime.__dict__ and not hasattr(runtime(), "__dict__"), name
             stub_fields = [n.target.id for n in cls.body if isinstance(n, ast.AnnAssign) and isinstance(n.target, ast.Name)
                            and n.target.id != "__sp_class__"]
             assert list(runtime.__dataclass_fields__)[1:] == stub_fields or [
                 f for f in runtime.__dataclass_fields__ if f != "__sp_class__"] == stub_fields
+    assert structs >= 10, "the stub's structs were not recognised"
 
 
 @pytest.mark.parametrize("name", blueprint_classes())
