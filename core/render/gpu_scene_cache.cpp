@@ -35,10 +35,8 @@ void upload(GpuTexture& gpu, const TextureImage& image, TextureEncoding encoding
     glTextureSubImage2D(gpu.name, 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE,
                         image.rgba.data());
     glGenerateTextureMipmap(gpu.name);
-    glTextureParameteri(gpu.name, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTextureParameteri(gpu.name, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(gpu.name, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTextureParameteri(gpu.name, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    // Filtering and wrapping are the renderer's texture sampler's, bound with the texture for every draw
+    // (Renderer::anisotropicFiltering()).
 }
 
 // The upload under `key`, made (and counted in `uploads`) by `make` when no cache holds one.

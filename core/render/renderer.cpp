@@ -1108,8 +1108,6 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
     if (masked != 0)
         maskTargets(targets, 0);
     glBindVertexArray(0);
-    for (GLuint t = 0; t < 3; ++t) // other passes sample these units with their textures' own filtering
-        glBindSampler(t, 0);
 }
 
 void Renderer::maskTargets(TargetMask targets, TargetMask masked) {

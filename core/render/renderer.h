@@ -343,8 +343,8 @@ class Renderer {
     std::vector<ShadowReach> parts_; // the rectangles of the draws in parts, of the last visibleDraws()
     unsigned frameBlock_ = 0;
     unsigned emptyVao_ = 0; // bound for draws whose vertices come from gl_VertexID alone
-    // The material textures' sampler (anisotropicFiltering()), bound with them: it overrides their own
-    // trilinear filtering.
+    // The material textures' sampler (anisotropicFiltering()), bound with them for every draw: their only
+    // filtering and wrapping (texture units 0-2 hold nothing else).
     unsigned textureSampler_ = 0;
     bool anisotropySupported_ = false;
     bool anisotropicFiltering_ = false;
