@@ -1,7 +1,5 @@
 #include "core/render/material.h"
 
-#include <cmath>
-
 #include "core/base/error.h"
 
 namespace sp::render {
@@ -17,11 +15,8 @@ void Material::validate(const char* function) const {
              "(): ambientOcclusion must be in [0, 1], got ", ambientOcclusion);
     SP_CHECK(emissive.allFinite() && (emissive.array() >= 0.0f).all(), InvalidArgument, function,
              "(): emissive must be finite and >= 0, got (", emissive.transpose(), ")");
-    // A texture smaller than a micrometre would alias to noise at any distance; the bound also keeps its
-    // inverse, which the renderers use, finite.
-    SP_CHECK(textureSize == 0.0f || (std::isfinite(textureSize) && textureSize >= 1e-6f), InvalidArgument,
-             function, "(): textureSize must be 0 (the mesh's uvs) or finite and >= 1e-6 m, got ",
-             textureSize);
+    SP_CHECK(validTextureSize(textureSize), InvalidArgument, function,
+             "(): textureSize must be 0 (the mesh's uvs) or finite and >= 1e-6 m, got ", textureSize);
 }
 
 } // namespace sp::render

@@ -1,6 +1,7 @@
 #pragma once
 // PBR metallic-roughness material (glTF / UE4 conventions). Pure logic, no GL.
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 
@@ -27,6 +28,12 @@ struct Material {
     bool hasTextures() const { return baseColorTexture || roughnessMetallicTexture || normalTexture; }
     // Whether the textures are projected on the object's box axes (box_uv.h) rather than the mesh's uvs.
     bool boxUv() const { return textureSize > 0.0f && hasTextures(); }
+    // What validate() accepts as a texture size (so does the engine's AMaterialLibrary): 0, or finite and at
+    // least a micrometre. A smaller texture would alias to noise at any distance; the bound also keeps its
+    // inverse, which the renderers use, finite.
+    static bool validTextureSize(float metres) {
+        return metres == 0.0f || (std::isfinite(metres) && metres >= 1e-6f);
+    }
 
     // Throws sp::InvalidArgument naming the bad field.
     void validate(const char* function) const;

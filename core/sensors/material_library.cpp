@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string_view>
 
+#include "core/render/material.h"
+
 namespace sp::sensors {
 namespace {
 
@@ -66,8 +68,7 @@ void checkMaterial(const FMaterialDesc& m, const std::string& context) {
              m.AmbientOcclusion);
     SP_CHECK(nonNegative(m.Emissive), InvalidArgument, context, ": Emissive must be finite and >= 0, got (",
              m.Emissive.R, ", ", m.Emissive.G, ", ", m.Emissive.B, ")");
-    SP_CHECK(m.TextureSize == 0.0f || (std::isfinite(m.TextureSize) && m.TextureSize >= 1e-6f),
-             InvalidArgument, context,
+    SP_CHECK(sp::render::Material::validTextureSize(m.TextureSize), InvalidArgument, context,
              ": TextureSize must be 0 (the mesh's uvs) or finite and >= 1e-6 m, got ", m.TextureSize);
 }
 
