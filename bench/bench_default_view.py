@@ -25,6 +25,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "python"))
 
 import spear  # noqa: E402
+from bench_image_quality import apartment  # noqa: E402  (the scene and its pose)
 
 SWITCHES = ("SPEAR_LIGHTING", "SPEAR_IRRADIANCE_BLEND", "SPEAR_TARGET_FORMATS", "SPEAR_TEXTURE_FILTER")
 
@@ -39,9 +40,8 @@ def main() -> None:
     instance = spear.Instance()
     game = instance.get_game()
     with instance.begin_frame():
-        game.load_scene(path=str(ROOT / "assets" / "scenes" / "apartment.json"))
-        actor = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera",
-                                 location=spear.FVector(-2.6, -1.6, 1.7), rotation=spear.FRotator(Pitch=-18.0, Yaw=22.0))
+        location, rotation = apartment(game)
+        actor = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera", location=location, rotation=rotation)
         camera = actor.CameraSensor
         camera.Width, camera.Height, camera.FOV = args.width, args.height, 75.0
         camera.Modalities = [spear.ECameraModality.FinalColor]
@@ -61,7 +61,7 @@ def main() -> None:
         for _ in range(args.frames):
             frame += 1
             with instance.begin_frame():
-                actor.SetActorLocation(NewLocation=spear.FVector(-2.6 + 0.001 * frame, -1.6, 1.7))
+                actor.SetActorLocation(NewLocation=spear.FVector(location.X + 0.001 * frame, location.Y, location.Z))
             with instance.end_frame():
                 camera.read_pixels()
         print(f"  loop {loop + 1}: {(time.perf_counter() - start) * 1e3 / args.frames:.1f} ms a frame", flush=True)
