@@ -79,16 +79,19 @@ def main(argv: list[str] | None = None) -> int:
     if args.command == "check":
         stale = emit.check(outputs, args.out)
         if stale:
-            print("generated files are stale (run the build or `python3 -m codegen generate`):", file=sys.stderr)
+            print("generated files are stale or orphaned (run the build or `python3 -m codegen generate`):",
+                  file=sys.stderr)
             for rel in stale:
                 print(f"  {args.out / rel}", file=sys.stderr)
             return 1
         print(f"codegen: {len(outputs)} generated files of module '{args.module}' are up to date")
         return 0
-    changed = emit.write(outputs, args.out)
+    removed = emit.orphans(outputs, args.out)
+    changed = [rel for rel in emit.write(outputs, args.out) if rel not in removed]
     elapsed = time.perf_counter() - started
+    gone = f", {len(removed)} orphaned files removed" if removed else ""
     print(f"codegen: module '{args.module}': {len(module.classes)} classes, {len(module.enums)} enums, "
-          f"{len(changed)} of {len(outputs)} files changed ({elapsed:.2f} s)")
+          f"{len(changed)} of {len(outputs)} files changed{gone} ({elapsed:.2f} s)")
     if args.stamp:
         args.stamp.parent.mkdir(parents=True, exist_ok=True)
         args.stamp.write_text("")

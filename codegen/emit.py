@@ -155,9 +155,26 @@ def render(module: Module, layout: OutputLayout | None = None) -> dict[str, str]
     return out
 
 
+def orphans(outputs: dict[str, str], root: Path) -> list[str]:
+    """Generated C++ files (*.gen.cpp, *.gen.h) beside the outputs that the module no longer produces: those
+    of a header that was renamed, moved or dropped from the module. The generator owns those folders."""
+    folders = {Path(rel).parent for rel in outputs if rel.endswith(".gen.cpp")}
+    found = []
+    for folder in sorted(folders):
+        for path in sorted((root / folder).glob("*.gen.*")):
+            rel = (folder / path.name).as_posix()
+            if path.name.endswith((".gen.cpp", ".gen.h")) and rel not in outputs:
+                found.append(rel)
+    return found
+
+
 def write(outputs: dict[str, str], root: Path) -> list[str]:
-    """Writes outputs whose content changed (so that unchanged files keep their timestamps)."""
+    """Writes outputs whose content changed (so that unchanged files keep their timestamps) and removes the
+    orphans of headers the module no longer has."""
     changed = []
+    for rel in orphans(outputs, root):
+        (root / rel).unlink()
+        changed.append(rel)
     for rel, text in sorted(outputs.items()):
         path = root / rel
         if path.exists() and path.read_text() == text:
@@ -171,8 +188,8 @@ def write(outputs: dict[str, str], root: Path) -> list[str]:
 
 
 def check(outputs: dict[str, str], root: Path) -> list[str]:
-    """The outputs whose committed copy differs from what the generator produces now."""
-    stale = []
+    """The outputs whose committed copy differs from what the generator produces now, and the orphans."""
+    stale = orphans(outputs, root)
     for rel, text in sorted(outputs.items()):
         path = root / rel
         if not path.exists() or path.read_text() != text:

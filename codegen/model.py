@@ -99,13 +99,13 @@ class Enum:
 
 @dataclass(frozen=True)
 class Blueprint:
-    """A data-defined class: an asset naming a native parent (core/world/blueprint.h)."""
+    """A data-defined class: an asset naming a native parent (core/scene/blueprint.h)."""
 
     name: str
     parent: str
     doc: str
     asset: str  # relative to the project root
-    functions: tuple[Function, ...] = ()  # the functions it declares (core/world/blueprint_functions.h)
+    functions: tuple[Function, ...] = ()  # the functions it declares (core/scene/blueprint_functions.h)
 
 
 @dataclass(frozen=True)

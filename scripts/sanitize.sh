@@ -12,7 +12,7 @@ FUZZ_RUNS="${1:-200000}"
 # -O1 without debug information: the sanitizers' recommended level, and the quickest instrumented build
 # (reports still name functions; rebuild with -g added to FLAGS for file:line). The build type is one
 # CMake has no flags for, so FLAGS are all there is: an empty one would become the project's default,
-# RelWithDebInfo, whose -O2 -g doubled every instrumented compile (core/world/scene_io.cpp: 16 -> 32 s).
+# RelWithDebInfo, whose -O2 -g doubled every instrumented compile (core/scene/scene_io.cpp: 16 -> 32 s).
 FLAGS="-O1 -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 
 say "sanitize: configuring and building in $ASAN_DIR (ASan + UBSan)"

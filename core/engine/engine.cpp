@@ -10,7 +10,9 @@
 #include "core/base/error.h"
 #include "core/base/log.h"
 #include "core/base/parallel.h"
-#include "core/world/scene_io.h"
+#include "core/base/regular_file.h"
+#include "core/scene/scene_io.h"
+#include "core/scene/streaming_levels.h"
 
 namespace sp::engine {
 
@@ -79,16 +81,16 @@ void Engine::play() {
     // Streaming levels keep the files the editor world resolved (a relative path in the scene means its
     // folder, which the copy does not know), and those loaded in the editor are loaded in play.
     const std::string context = "UWorld.play(): copying the editor world";
-    world::SceneJson scene = world::saveScene(*editorWorld_);
+    scene::SceneJson scene = scene::saveScene(*editorWorld_);
     scene.erase("levels");
-    world::loadScene(*game, scene, context, "");
+    scene::loadScene(*game, scene, context, "");
     std::vector<UWorld::StreamingLevel> levels = editorWorld_->GetStreamingLevels();
     for (UWorld::StreamingLevel& level : levels)
         level.loaded = false;
     game->SetStreamingLevels(std::move(levels));
     for (const UWorld::StreamingLevel& level : editorWorld_->GetStreamingLevels())
         if (level.loaded)
-            game->LoadStreamLevel(level.name, context);
+            sp::scene::loadStreamLevel(*game, level.name, context);
     gameWorld_ = std::move(game);
 }
 
@@ -246,6 +248,18 @@ void Engine::abortFrame() {
         }
     }
     state_ = FrameState::Idle;
+}
+
+void Engine::loadScene(UWorld& world, const std::string& path, const std::string& function) {
+    // Its streaming levels and meshes are relative to the file the name resolved to (core/base/asset_path.h),
+    // which may be in an asset folder rather than the working directory.
+    scene::loadScene(world, scene::readSceneFile(path, function), function + ": scene '" + path + "'",
+                     scene::sceneFolder(path));
+}
+
+void Engine::saveScene(const UWorld& world, const std::string& path, const std::string& function) {
+    const std::string text = scene::sceneToString(scene::saveScene(world));
+    writeRegularFile(path, text, function, "scene file"); // never a FIFO or a device
 }
 
 std::shared_ptr<void> Engine::shared(std::string_view key,

@@ -62,6 +62,9 @@ class Engine final : public world::WorldHost {
     void stop() override;
     bool IsPlaying() const override { return editorWorld_ && gameWorld_; }
     // One object per key for all of this engine's worlds, alive while a world holds it (WorldHost).
+    // Scene files, read and written by sp::scene (WorldHost).
+    void loadScene(UWorld& world, const std::string& path, const std::string& function) override;
+    void saveScene(const UWorld& world, const std::string& path, const std::string& function) override;
     std::shared_ptr<void> shared(std::string_view key,
                                  const std::function<std::shared_ptr<void>()>& make) override;
 

@@ -39,7 +39,7 @@ struct ClassArg {
 };
 
 // The Python class that stands for `type`: its registered class, or for a blueprint (a class defined by data,
-// core/world/blueprint.h) a subclass of its native class's API class carrying __sp_class__ = its name.
+// core/scene/blueprint.h) a subclass of its native class's API class carrying __sp_class__ = its name.
 py::object pythonClassFor(const reflect::TypeInfo& type);
 
 // Fills `value` from None, a class name, or a class carrying __sp_class__; false for anything else.

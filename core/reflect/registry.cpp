@@ -68,6 +68,12 @@ const TypeInfo& Registry::getClass(std::string_view name, std::string_view conte
     return *type;
 }
 
+const TypeInfo& Registry::loadClass(const std::string& asset, std::string_view context) const {
+    SP_CHECK(loader_, InvalidState, context, ": no class loader is installed to load '", asset,
+             "' (the engine installs the blueprint loader)");
+    return loader_(asset, context);
+}
+
 std::vector<const TypeInfo*> Registry::types() const {
     std::vector<const TypeInfo*> result;
     for (const auto& [name, type] : types_)

@@ -27,7 +27,7 @@ class Registry {
     const EnumInfo* findEnum(std::string_view name) const;
     // Throws NotFound: "<context>: class 'AFoo' is not registered".
     // With `asset`, a class that is not registered yet is loaded from that file by the class loader
-    // (blueprints: the engine installs sp::world::loadBlueprint).
+    // (blueprints: the engine installs sp::scene::loadBlueprint).
     const TypeInfo& getClass(std::string_view name, std::string_view context,
                              const std::string& asset = "") const;
 
@@ -37,6 +37,9 @@ class Registry {
 
     using ClassLoader = const TypeInfo& (*)(const std::string& asset, std::string_view context);
     void setClassLoader(ClassLoader loader) { loader_ = loader; }
+    // Loads the class asset at `asset` with the class loader (UWorld.load_class); InvalidState naming
+    // `context` when none is installed (a registry used without an engine).
+    const TypeInfo& loadClass(const std::string& asset, std::string_view context) const;
 
     std::vector<const TypeInfo*> types() const; // sorted by name
     std::vector<const EnumInfo*> enums() const;

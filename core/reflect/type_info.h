@@ -45,7 +45,7 @@ struct FunctionInfo {
     bool isConst = false;
     // Converts `args` (by parameter name) to C++ values, calls, and returns the result: the return value,
     // or, when the function has out-parameters, a dict with "ReturnValue" and one entry per out-parameter.
-    // Generated functions are plain functions; a blueprint's (core/world/blueprint_functions.h) carry the
+    // Generated functions are plain functions; a blueprint's (core/scene/blueprint_functions.h) carry the
     // steps they run.
     std::function<Value(void* self, const CallArgs& args)> invoke;
 };
@@ -66,7 +66,7 @@ class TypeInfo {
     std::vector<FunctionInfo> functions;
     ObjectBase* (*create)() = nullptr; // classes that can be instantiated; owned by the caller
     std::string asset;                 // a data-defined class: the file it was loaded from
-    // Set only for a data-defined class (a blueprint, core/world/blueprint.h), which has no generated code:
+    // Set only for a data-defined class (a blueprint, core/scene/blueprint.h), which has no generated code:
     // its objects are created by its native class, report this class (ObjectBase::SetDataDefinedClass), and
     // get their data-defined defaults from `initialize` once they are placed.
     std::function<void(ObjectBase&)> initialize;

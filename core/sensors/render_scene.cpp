@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/base/log.h"
+#include "core/procedural/spline_component.h"
 #include "core/render/content_key.h"
 #include "core/render/mesh_import.h"
 #include "core/render/primitives.h"
@@ -13,7 +14,6 @@
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
 #include "core/world/light_component.h"
-#include "core/world/spline_component.h"
 #include "core/world/static_mesh_component.h"
 #include "core/world/world.h"
 

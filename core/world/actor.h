@@ -2,6 +2,7 @@
 // AActor: an object placed in a world, made of components. Its transform is its root component's.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -123,6 +124,10 @@ class AActor : public UObject {
     // Just before and just after every physics step, for actors registered with sp::world::PhysicsHooks.
     virtual void PrePhysicsTick() {}
     virtual void PostPhysicsTick() {}
+    // Where input injected into this actor goes when it has no UInputComponent of its own
+    // (UWorld.inject_input_for_actor): nullopt for nowhere; a controller names the pawn it possesses, null
+    // when it possesses none. Virtual because the gameplay framework sits above this library.
+    virtual std::optional<const AActor*> GetInputForwardTarget() const { return std::nullopt; }
     bool HasBegunPlay() const { return begunPlay_; }
     void SetWorldForComponents();
     // Set by UWorld when a streaming level loads the actor.

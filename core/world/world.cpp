@@ -3,17 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include "core/base/error.h"
-#include "core/base/regular_file.h"
 #include "core/reflect/registry.h"
-#include "core/world/blueprint.h"
-#include "core/world/controller.h"
 #include "core/world/input_component.h"
-#include "core/world/pawn.h"
+#include "core/world/new_object.h"
 #include "core/world/physics_subsystem.h"
-#include "core/world/scene_io.h"
 
 namespace {
 
@@ -193,17 +190,18 @@ void UWorld::AddActors(std::vector<std::unique_ptr<AActor>> actors) {
         actors_.push_back(std::move(actor));
 }
 
+sp::world::WorldHost& UWorld::assetHost(const char* function) const {
+    SP_CHECK(host_, sp::InvalidState, "UWorld.", function, "(): ", GetName(),
+             " belongs to no engine, which reads and writes scene files");
+    return *host_;
+}
+
 void UWorld::load_scene(const std::string& path) {
-    const std::string function = "UWorld.load_scene()";
-    // Its streaming levels and meshes are relative to the file the name resolved to (core/base/asset_path.h),
-    // which may be in an asset folder rather than the working directory.
-    sp::world::loadScene(*this, sp::world::readSceneFile(path, function), function + ": scene '" + path + "'",
-                         sp::world::sceneFolder(path));
+    assetHost("load_scene").loadScene(*this, path, "UWorld.load_scene()");
 }
 
 void UWorld::save_scene(const std::string& path) const {
-    const std::string text = sp::world::sceneToString(sp::world::saveScene(*this));
-    sp::writeRegularFile(path, text, "UWorld.save_scene()", "scene file"); // never a FIFO or a device
+    assetHost("save_scene").saveScene(*this, path, "UWorld.save_scene()");
 }
 
 sp::world::WorldHost& UWorld::editorHost(const char* function) const {
@@ -337,7 +335,7 @@ const UClass* UWorld::load_class(TSubclassOf<UObject> uclass, const std::string&
     SP_CHECK(!name.empty(), sp::InvalidArgument, function, ": name is empty");
     const UClass* type = sp::reflect::Registry::get().findType(name);
     if (!type || type->kind != UClass::Kind::Class || name.ends_with(".json"))
-        type = &sp::world::loadBlueprint(name, function);
+        type = &sp::reflect::Registry::get().loadClass(name, function);
     SP_CHECK(type->isChildOf(*uclass.Get()), sp::InvalidArgument, function, ": class '", type->name,
              "' (from '", name, "') does not derive from ", uclass->name);
     return type;
@@ -360,13 +358,13 @@ void UWorld::inject_input_for_actor(AActor* actor, const std::string& input_acti
              value.Y, ", ", value.Z, ") of action '", input_action_name, "' is not finite");
     auto* input = static_cast<UInputComponent*>(actor->GetComponentByClass(&UInputComponent::StaticClass()));
     // A controller has no input of its own here: what a player's input moves is its pawn.
-    const auto* controller = dynamic_cast<const AController*>(actor);
-    const APawn* pawn = controller && !input ? controller->K2_GetPawn() : nullptr;
-    if (pawn)
-        input = static_cast<UInputComponent*>(pawn->GetComponentByClass(&UInputComponent::StaticClass()));
+    const std::optional<const AActor*> forwardTo = input ? std::nullopt : actor->GetInputForwardTarget();
+    if (forwardTo && *forwardTo)
+        input =
+            static_cast<UInputComponent*>((*forwardTo)->GetComponentByClass(&UInputComponent::StaticClass()));
     SP_CHECK(input, sp::InvalidArgument, "UWorld.inject_input_for_actor(): ", actor->GetDebugName(),
-             controller && !pawn ? " possesses no pawn" : " has no UInputComponent", " to receive action '",
-             input_action_name, "'");
+             forwardTo && !*forwardTo ? " possesses no pawn" : " has no UInputComponent",
+             " to receive action '", input_action_name, "'");
     input->InjectAction(input_action_name, value);
 }
 

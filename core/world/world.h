@@ -77,7 +77,7 @@ class UWorld : public UObject {
     std::map<std::string, UActorComponent*>
     get_components_by_class_as_dict(AActor* actor, TSubclassOf<UActorComponent> uclass) const;
 
-    /// Loads the blueprint asset at path name (a JSON file, see core/world/blueprint.h) once and returns its
+    /// Loads the blueprint asset at path name (a JSON file, see core/scene/blueprint.h) once and returns its
     /// class, named after the file ("BP_Axes"), which must derive from uclass; name may also name a class.
     SPFUNCTION(DeterminesOutputType = uclass, NotNull)
     const UClass* load_class(TSubclassOf<UObject> uclass, const std::string& name);
@@ -136,7 +136,7 @@ class UWorld : public UObject {
     SPFUNCTION()
     void inject_input_for_actor(AActor* actor, const std::string& input_action_name, const FVector& value);
 
-    /// Replaces every actor of this world by those of the scene file at path (see core/world/scene_io.h).
+    /// Replaces every actor of this world by those of the scene file at path (see core/scene/scene_io.h).
     SPFUNCTION()
     void load_scene(const std::string& path);
 
@@ -212,14 +212,11 @@ class UWorld : public UObject {
         bool loaded = false;
         bool operator==(const StreamingLevel&) const = default;
     };
+    // What loads and unloads them reads scene files: sp::scene::loadStreamLevel
+    // (core/scene/streaming_levels.h).
     const std::vector<StreamingLevel>& GetStreamingLevels() const { return levels_; }
+    std::vector<StreamingLevel>& GetStreamingLevels() { return levels_; }
     void SetStreamingLevels(std::vector<StreamingLevel> levels) { levels_ = std::move(levels); }
-    // Loads a declared level (or, for a name no level has, the scene file at that path, as a level of
-    // that name): its actors join the world, its references resolve within it, and its names may not be
-    // in use. Nothing happens for a loaded level. `function` names the caller in messages.
-    void LoadStreamLevel(const std::string& name, const std::string& function);
-    // Destroys the actors a level loaded (their handles go stale, naming the level).
-    void UnloadStreamLevel(const std::string& name, const std::string& function);
 
     void SetEditorWorld(bool isEditorWorld) { isEditorWorld_ = isEditorWorld; }
     // Called by actors as they and their components begin and end play; tells every subsystem (see
@@ -262,6 +259,7 @@ class UWorld : public UObject {
     }
     std::string uniqueActorName(const UClass& type) const;
     sp::world::WorldHost& editorHost(const char* function) const;
+    sp::world::WorldHost& assetHost(const char* function) const;
 
     std::vector<SubsystemEntry> subsystems_; // sorted by tick order; destroyed after the actors
 

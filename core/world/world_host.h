@@ -1,11 +1,15 @@
 #pragma once
 // WorldHost: what a world asks of the engine that owns it (sp::engine::Engine implements it). The world
 // library knows only this, so that the engine, which registers every reflected type (the world's, the
-// sensors', the SpFuncs'), can sit above it without a dependency cycle.
+// sensors', the SpFuncs') and links the libraries above the world (scene files, the gameplay framework),
+// can sit above it without a dependency cycle.
 
 #include <functional>
 #include <memory>
+#include <string>
 #include <string_view>
+
+class UWorld;
 
 namespace sp::world {
 
@@ -18,6 +22,11 @@ class WorldHost {
     virtual void play() = 0;
     virtual void stop() = 0;
     virtual bool IsPlaying() const = 0;
+    // Scene files are read and written by the engine, which links the library for them (sp::scene, above
+    // this one), as UE's UEngine loads maps: UWorld.load_scene and save_scene forward here. (Blueprints
+    // load through the registry's class loader, which the engine installs.) `function` names the caller.
+    virtual void loadScene(UWorld& world, const std::string& path, const std::string& function) = 0;
+    virtual void saveScene(const UWorld& world, const std::string& path, const std::string& function) = 0;
     // An object the host's worlds share under `key` (the renderer's GL context, say): the first world to
     // ask makes it with `make`, later ones get the same object while any world still holds it. A host that
     // shares nothing returns what `make` makes.

@@ -1,10 +1,10 @@
-"""Python classes for blueprints: engine classes defined by data at run time (core/world/blueprint.h).
+"""Python classes for blueprints: engine classes defined by data at run time (core/scene/blueprint.h).
 
 A blueprint has no generated Python class, so UWorld.load_class() returns one made here: a subclass of its
 native class's API class (so it types and checks as, e.g., type[AActor]) whose __sp_class__ is the
 blueprint's name, which makes it work as uclass= on both transports. One class per blueprint name.
 
-The functions a blueprint declares (core/world/blueprint_functions.h) are called by attribute on its objects,
+The functions a blueprint declares (core/scene/blueprint_functions.h) are called by attribute on its objects,
 `crate.Launch(Speed=3.0)`, on either transport: the objects are of the native class, so the attribute
 fallback (spear._spfunc.sp_func_getattr) asks function_caller() first. The generator types them in the
 blueprint's stub class.

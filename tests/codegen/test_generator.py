@@ -88,6 +88,24 @@ def test_committed_engine_bindings_are_current(tmp_path: Path) -> None:
     assert result.returncode == 0, result.stderr + "\nregenerate with the build and commit generated/"
 
 
+def test_a_moved_header_leaves_no_orphaned_output(tmp_path: Path) -> None:
+    """A header moved to another folder changes its registry file's name: generate removes the old file, and
+    check reports one left behind, so that a build never compiles a stale copy beside the new one."""
+    header = "tests/codegen/cases/all_types/input.h"
+    assert run_codegen("generate", "all_types", tmp_path, [header]).returncode == 0
+    cpp = tmp_path / "all_types" / "cpp"
+    orphan = cpp / "core_old_place_input.gen.cpp"
+    shutil.copy(cpp / "tests_codegen_cases_all_types_input.gen.cpp", orphan)
+    checked = run_codegen("check", "all_types", tmp_path, [header])
+    assert checked.returncode == 1
+    assert "all_types/cpp/core_old_place_input.gen.cpp" in checked.stderr
+    generated = run_codegen("generate", "all_types", tmp_path, [header])
+    assert generated.returncode == 0, generated.stderr
+    assert "1 orphaned files removed" in generated.stdout
+    assert not orphan.exists()
+    assert run_codegen("check", "all_types", tmp_path, [header]).returncode == 0
+
+
 def test_listed_outputs_are_the_generated_files(tmp_path: Path) -> None:
     listed = run_codegen("list-outputs", "engine", tmp_path, engine_headers())
     assert listed.returncode == 0

@@ -4,6 +4,16 @@
 #include "core/world/world.h"
 
 // Every header of the module: types used in signatures must be complete here.
+#include "core/gameplay/character.h"
+#include "core/gameplay/controller.h"
+#include "core/gameplay/game_mode.h"
+#include "core/gameplay/gameplay_statics.h"
+#include "core/gameplay/kinematic_vehicle.h"
+#include "core/gameplay/navigation_system.h"
+#include "core/gameplay/pawn.h"
+#include "core/gameplay/wheeled_vehicle.h"
+#include "core/procedural/pcg_component.h"
+#include "core/procedural/spline_component.h"
 #include "core/sensors/camera_sensor_actor.h"
 #include "core/sensors/camera_sensor_component.h"
 #include "core/sensors/material_library.h"
@@ -15,28 +25,18 @@
 #include "core/spfunc/sp_func_component.h"
 #include "core/world/actor.h"
 #include "core/world/actor_component.h"
-#include "core/world/character.h"
-#include "core/world/controller.h"
 #include "core/world/frame_timings.h"
-#include "core/world/game_mode.h"
-#include "core/world/gameplay_statics.h"
 #include "core/world/hit_result.h"
 #include "core/world/input_component.h"
-#include "core/world/kinematic_vehicle.h"
 #include "core/world/light_actors.h"
 #include "core/world/light_component.h"
 #include "core/world/math.h"
-#include "core/world/navigation_system.h"
 #include "core/world/object.h"
-#include "core/world/pawn.h"
-#include "core/world/pcg_component.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
 #include "core/world/shape_components.h"
-#include "core/world/spline_component.h"
 #include "core/world/static_mesh_actor.h"
 #include "core/world/static_mesh_component.h"
-#include "core/world/wheeled_vehicle.h"
 #include "core/reflect/codec.h"
 #include "core/reflect/invoke.h"
 #include "generated/engine/cpp/engine_calls.gen.h"
@@ -185,7 +185,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         });
         t.functions.push_back({
             "load_class",
-            "Loads the blueprint asset at path name (a JSON file, see core/world/blueprint.h) once and returns its\nclass, named after the file (\"BP_Axes\"), which must derive from uclass; name may also name a class.",
+            "Loads the blueprint asset at path name (a JSON file, see core/scene/blueprint.h) once and returns its\nclass, named after the file (\"BP_Axes\"), which must derive from uclass; name may also name a class.",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "UObject"),
             {
                 {"uclass", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "UObject"), false, false},
@@ -312,7 +312,7 @@ const sp::reflect::TypeInfo& UWorld::StaticClass() {
         });
         t.functions.push_back({
             "load_scene",
-            "Replaces every actor of this world by those of the scene file at path (see core/world/scene_io.h).",
+            "Replaces every actor of this world by those of the scene file at path (see core/scene/scene_io.h).",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
                 {"path", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},

@@ -5,15 +5,15 @@
 
 #include "core/reflect/type_info.h"
 
+#include "core/gameplay/controller.h"
+#include "core/gameplay/navigation_system.h"
+#include "core/procedural/pcg_component.h"
+#include "core/procedural/spline_component.h"
 #include "core/sensors/camera_sensor_component.h"
 #include "core/sensors/movie_pipeline_queue.h"
 #include "core/sensors/sky_light_component.h"
-#include "core/world/controller.h"
-#include "core/world/navigation_system.h"
-#include "core/world/pcg_component.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
-#include "core/world/spline_component.h"
 
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EAntiAliasingMethod>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EAutoExposureMethod>();
@@ -49,5 +49,5 @@ __attribute__((visibility("default"))) const char* spear_register_engine_types_a
 
 // The same hash as a constant: a plugin compiled against these headers records the engine's.
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "e439c9c82a600b06";
+inline constexpr char kApiHash[] = "054fb3da69552913";
 } // namespace sp::generated::engine

@@ -3794,7 +3794,7 @@ void spear_bind_engine(py::module_& m) {
             },
             py::arg("uclass") = sp::pybind::missingArgument(),
             py::arg("name") = sp::pybind::missingArgument(),
-            "load_class(self, *, uclass: type[UObject] | str, name: str) -> type[UObject]\n\nLoads the blueprint asset at path name (a JSON file, see core/world/blueprint.h) once and returns its\nclass, named after the file (\"BP_Axes\"), which must derive from uclass; name may also name a class.");
+            "load_class(self, *, uclass: type[UObject] | str, name: str) -> type[UObject]\n\nLoads the blueprint asset at path name (a JSON file, see core/scene/blueprint.h) once and returns its\nclass, named after the file (\"BP_Axes\"), which must derive from uclass; name may also name a class.");
         cls.def(
             "get_default_object",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& uclass, const py::kwargs& extra) -> py::object {
@@ -3884,7 +3884,7 @@ void spear_bind_engine(py::module_& m) {
                 return Calls::call_load_scene<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&path}, true});
             },
             py::arg("path") = sp::pybind::missingArgument(),
-            "load_scene(self, *, path: str) -> None\n\nReplaces every actor of this world by those of the scene file at path (see core/world/scene_io.h).");
+            "load_scene(self, *, path: str) -> None\n\nReplaces every actor of this world by those of the scene file at path (see core/scene/scene_io.h).");
         cls.def(
             "save_scene",
             [](const Ref<Self>& self, const py::args& positional, const PyArg& path, const py::kwargs& extra) -> py::object {

@@ -4,6 +4,16 @@
 #include "core/reflect/registry.h"
 #include "generated/engine/cpp/engine_types.gen.h"
 
+#include "core/gameplay/character.h"
+#include "core/gameplay/controller.h"
+#include "core/gameplay/game_mode.h"
+#include "core/gameplay/gameplay_statics.h"
+#include "core/gameplay/kinematic_vehicle.h"
+#include "core/gameplay/navigation_system.h"
+#include "core/gameplay/pawn.h"
+#include "core/gameplay/wheeled_vehicle.h"
+#include "core/procedural/pcg_component.h"
+#include "core/procedural/spline_component.h"
 #include "core/sensors/camera_sensor_actor.h"
 #include "core/sensors/camera_sensor_component.h"
 #include "core/sensors/material_library.h"
@@ -15,28 +25,18 @@
 #include "core/spfunc/sp_func_component.h"
 #include "core/world/actor.h"
 #include "core/world/actor_component.h"
-#include "core/world/character.h"
-#include "core/world/controller.h"
 #include "core/world/frame_timings.h"
-#include "core/world/game_mode.h"
-#include "core/world/gameplay_statics.h"
 #include "core/world/hit_result.h"
 #include "core/world/input_component.h"
-#include "core/world/kinematic_vehicle.h"
 #include "core/world/light_actors.h"
 #include "core/world/light_component.h"
 #include "core/world/math.h"
-#include "core/world/navigation_system.h"
 #include "core/world/object.h"
-#include "core/world/pawn.h"
-#include "core/world/pcg_component.h"
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
 #include "core/world/shape_components.h"
-#include "core/world/spline_component.h"
 #include "core/world/static_mesh_actor.h"
 #include "core/world/static_mesh_component.h"
-#include "core/world/wheeled_vehicle.h"
 #include "core/world/world.h"
 
 extern "C" void spear_register_engine_types() {
@@ -220,4 +220,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(sp::reflect::StaticEnum<EAntiAliasingMethod>());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "e439c9c82a600b06"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "054fb3da69552913"; }

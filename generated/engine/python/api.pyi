@@ -5332,7 +5332,7 @@ class UWorld(UObject):
         """Routes a continuous input action with the given value to actor's UInputComponent for the next tick."""
 
     def load_scene(self, *, path: str) -> None:
-        """Replaces every actor of this world by those of the scene file at path (see core/world/scene_io.h)."""
+        """Replaces every actor of this world by those of the scene file at path (see core/scene/scene_io.h)."""
 
     def save_scene(self, *, path: str) -> None:
         """Writes every actor and component of this world, with every reflected property, to a scene file."""
