@@ -29,20 +29,17 @@ function(spear_add_plugin name)
   spear_generate(MODULE ${name} ROOT ${CMAKE_CURRENT_SOURCE_DIR} OUT_DIR ${CMAKE_CURRENT_BINARY_DIR}/generated
                  PYTHON_OUT ${package_dir} PACKAGE ${name} HEADERS ${headers}
                  INCLUDE_DIRS ${SPEAR_SOURCE_DIR} ${eigen_includes} ${ARG_INCLUDE_DIRS} OUT_VAR outputs)
+  # Per reflected header, a registry file (<stem>.gen.cpp, in the plugin library) and bindings
+  # (<stem>.bind.gen.cpp, in its Python module, with module.gen.cpp calling them).
   set(registry ${outputs})
   list(FILTER registry INCLUDE REGEX "\\.gen\\.cpp$")
-  list(FILTER registry EXCLUDE REGEX "module\\.gen\\.cpp$")
+  list(FILTER registry EXCLUDE REGEX "/(module|[^/]*\\.bind)\\.gen\\.cpp$")
   set(bindings ${outputs})
-  list(FILTER bindings INCLUDE REGEX "module\\.gen\\.cpp$")
+  list(FILTER bindings INCLUDE REGEX "/(module|[^/]*\\.bind)\\.gen\\.cpp$")
 
   # The plugin itself: its sources and generated registry, over the engine's shared library.
   add_library(${name} SHARED ${ARG_SOURCES} ${registry})
   add_dependencies(${name} spear_codegen_${name})
-  # The registry files each include every header of the plugin (and the engine's they use): compiled as one
-  # unity file, those are parsed once (as core/engine does for the engine's, six files at a time). They
-  # define no file-local names, so they cannot clash.
-  set_source_files_properties(${registry} PROPERTIES UNITY_GROUP registry)
-  set_target_properties(${name} PROPERTIES UNITY_BUILD ON UNITY_BUILD_MODE GROUP)
   target_include_directories(${name} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}
                              ${ARG_INCLUDE_DIRS})
   target_link_libraries(${name} PUBLIC spear::spear_core)

@@ -1,4 +1,4 @@
-"""Command line: python3 -m codegen generate|check|list-outputs|dump-ir ..."""
+"""Command line: python3 -m codegen generate|check|list-outputs|dump-ir|watch ..."""
 
 from __future__ import annotations
 
@@ -16,7 +16,8 @@ from codegen.scanner import ScanOptions, scan
 
 def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="python3 -m codegen", description=__doc__)
-    p.add_argument("command", choices=["generate", "check", "list-outputs", "dump-ir"])
+    p.add_argument("command", choices=["generate", "check", "list-outputs", "dump-ir", "watch"],
+                   help="watch: generate, then again whenever a header or blueprint changes (Ctrl-C stops)")
     p.add_argument("--module", required=True, help="module name, e.g. engine")
     p.add_argument("--root", type=Path, required=True, help="project root; header paths are relative to it")
     p.add_argument("--out", type=Path, required=True, help="output root (generated/)")
@@ -60,6 +61,12 @@ def main(argv: list[str] | None = None) -> int:
         if not h.is_file():
             print(f"{h}: error: header not found", file=sys.stderr)
             return 1
+    if args.command == "watch":
+        return _watch(args, root, headers, layout)
+    return _run(args, root, headers, layout)
+
+
+def _run(args: argparse.Namespace, root: Path, headers: list[Path], layout: emit.OutputLayout) -> int:
     started = time.perf_counter()
     try:
         module = scan(args.module, headers, ScanOptions(root=root, include_dirs=tuple(args.include_dir),
@@ -96,3 +103,34 @@ def main(argv: list[str] | None = None) -> int:
         args.stamp.parent.mkdir(parents=True, exist_ok=True)
         args.stamp.write_text("")
     return 0
+
+
+def _watched(args: argparse.Namespace, root: Path, headers: list[Path]) -> dict[Path, int]:
+    """What a regeneration reads that a user edits: the headers and the blueprint assets, by mtime."""
+    paths = list(headers)
+    if args.blueprint_dir:
+        directory = args.blueprint_dir if args.blueprint_dir.is_absolute() else root / args.blueprint_dir
+        paths += sorted(directory.glob("*.json"))
+    return {p: p.stat().st_mtime_ns for p in paths if p.exists()}
+
+
+def _watch(args: argparse.Namespace, root: Path, headers: list[Path], layout: emit.OutputLayout) -> int:
+    """Regenerates on save: the stubs follow the headers while the C++ is left to the build. A header that
+    does not parse is reported (file:line) and watching goes on."""
+    args.command = "generate"
+    seen = _watched(args, root, headers)
+    _run(args, root, headers, layout)
+    print(f"codegen: watching {len(seen)} files of module '{args.module}' (Ctrl-C to stop)", flush=True)
+    try:
+        while True:
+            time.sleep(0.25)
+            now = _watched(args, root, headers)
+            if now != seen:
+                changed = sorted({p.name for p in now.keys() ^ seen.keys()} |
+                                 {p.name for p in now if p in seen and now[p] != seen[p]})
+                seen = now
+                print(f"codegen: changed: {', '.join(changed)}", flush=True)
+                _run(args, root, headers, layout)
+                sys.stdout.flush()
+    except KeyboardInterrupt:
+        return 0

@@ -75,8 +75,16 @@ class OutputLayout:
         return f"generated/{self.module}/cpp/{self.module}_bindings.gen.h"
 
     @property
-    def calls_header(self) -> str:
-        return f"generated/{self.module}/cpp/{self.module}_calls.gen.h"
+    def api_header(self) -> str:
+        return f"generated/{self.module}/cpp/{self.module}_api.gen.h"
+
+    def header_calls(self, header: str) -> str:
+        """A reflected header's declarations and call bodies (its registry and bindings include it)."""
+        return f"generated/{self.module}/cpp/{naming.header_stem(header)}.gen.h"
+
+    def header_bindings(self, header: str) -> str:
+        """A reflected header's handle types and type casters, for pybind11 code using its types."""
+        return f"generated/{self.module}/cpp/{naming.header_stem(header)}.bindings.gen.h"
 
     @property
     def imported_bindings(self) -> list[str]:
@@ -85,9 +93,10 @@ class OutputLayout:
         return [] if self.module == naming.ENGINE_MODULE else [OutputLayout(naming.ENGINE_MODULE).bindings_header]
 
     @property
-    def imported_types(self) -> list[str]:
-        """The engine's types header, for a plugin: it carries the engine API hash the plugin records."""
-        return [] if self.module == naming.ENGINE_MODULE else [OutputLayout(naming.ENGINE_MODULE).enums_header]
+    def imported_api(self) -> list[str]:
+        """The engine's whole API header, for a plugin: its classes derive from the engine's, its functions
+        take the engine's enums, and it records the engine API hash it was compiled against."""
+        return [] if self.module == naming.ENGINE_MODULE else [OutputLayout(naming.ENGINE_MODULE).api_header]
 
     @property
     def register_fn(self) -> str:
@@ -98,8 +107,11 @@ class OutputLayout:
         return f"spear_unregister_{self.module}_types"
 
     def cpp_files(self, module: Module) -> list[str]:
-        files = [f"{self.cpp_dir}/{naming.registry_file(h)}" for h in module.headers]
-        files += [f"{self.cpp_dir}/{self.module}_{kind}.gen.h" for kind in ("types", "bindings", "calls")]
+        files = []
+        for h in module.headers:
+            stem = f"{self.cpp_dir}/{naming.header_stem(h)}"
+            files += [f"{stem}.gen.cpp", f"{stem}.gen.h", f"{stem}.bindings.gen.h", f"{stem}.bind.gen.cpp"]
+        files += [f"{self.cpp_dir}/{self.module}_{kind}.gen.h" for kind in ("types", "bindings", "api")]
         return files + [f"{self.cpp_dir}/register.gen.cpp", f"{self.cpp_dir}/module.gen.cpp"]
 
     def python_files(self) -> list[str]:
@@ -118,31 +130,49 @@ def render(module: Module, layout: OutputLayout | None = None) -> dict[str, str]
     env = _env()
     layout = layout or OutputLayout(module.name)
     common = {"banner": BANNER, "module": module.name, "enums_header": layout.enums_header,
-              "bindings_header": layout.bindings_header, "calls_header": layout.calls_header,
-              "imported_types": layout.imported_types, "imported_bindings": layout.imported_bindings,
+              "bindings_header": layout.bindings_header, "imported_api": layout.imported_api,
+              "imported_bindings": layout.imported_bindings,
               "register_fn": layout.register_fn, "unregister_fn": layout.unregister_fn,
               "api_hash": pyviews.api_hash(module), "api_module": layout.api_module,
               "engine_package": naming.ENGINE_PACKAGE}
     enums = [cppviews.enum_view(e) for e in module.enums]
     ordered = [cppviews.class_view(c) for c in naming.topo_classes(module)]
+    position = {c.name: i for i, c in enumerate(ordered)}
+    deps = naming.header_deps(module)
+    definition_deps = naming.header_deps(module, definitions_only=True)
     out: dict[str, str] = {}
+    # Per header: its declarations and call bodies, registry, handle types and casters, and bindings. Each
+    # includes only the headers whose types it uses (naming.header_deps), so that an edit to one header
+    # recompiles its own generated code and that of the headers using its types, not the module's.
     for header, classes in naming.classes_by_header(module).items():
-        out[f"{layout.cpp_dir}/{naming.registry_file(header)}"] = env.get_template("registry.gen.cpp.j2").render(
-            header=header, all_headers=[h for h in module.headers if h != header],
-            classes=[cppviews.class_view(c) for c in classes],
-            enums=[cppviews.enum_view(e) for e in module.enums if e.header == header], **common,
+        views = sorted((cppviews.class_view(c) for c in classes), key=lambda v: position[v.name])
+        own_enums = [cppviews.enum_view(e) for e in module.enums if e.header == header]
+        used_enums = [cppviews.enum_view(e) for e in module.enums if e.header in deps[header] or e.header == header]
+        per_header = {"header": header, "classes": views, "header_calls": layout.header_calls(header),
+                      "header_bindings": layout.header_bindings(header)}
+        stem = f"{layout.cpp_dir}/{naming.header_stem(header)}"
+        out[f"{stem}.gen.h"] = env.get_template("header_calls.gen.h.j2").render(
+            deps=deps[header], **{**per_header, "enums": used_enums}, **common,
         )
-    out[f"{layout.cpp_dir}/{module.name}_types.gen.h"] = env.get_template("enums.gen.h.j2").render(
-        enums=enums, enum_headers=sorted({e.header for e in module.enums}), **common,
-    )
+        out[f"{stem}.gen.cpp"] = env.get_template("registry.gen.cpp.j2").render(
+            **{**per_header, "classes": [cppviews.class_view(c) for c in classes], "enums": own_enums}, **common,
+        )
+        out[f"{stem}.bindings.gen.h"] = env.get_template("header_bindings.gen.h.j2").render(
+            deps_bindings=[layout.header_bindings(h) for h in definition_deps[header]],
+            **{**per_header, "enums": own_enums}, **common,
+        )
+        out[f"{stem}.bind.gen.cpp"] = env.get_template("header_bind.gen.cpp.j2").render(
+            deps_bindings=[layout.header_bindings(h) for h in deps[header]], **per_header, **common,
+        )
+    out[f"{layout.cpp_dir}/{module.name}_types.gen.h"] = env.get_template("enums.gen.h.j2").render(**common)
     out[f"{layout.cpp_dir}/{module.name}_bindings.gen.h"] = env.get_template("bindings.gen.h.j2").render(
-        headers=module.headers, classes=ordered, enums=enums, **common,
+        header_bindings=[layout.header_bindings(h) for h in module.headers], **common,
     )
-    out[f"{layout.cpp_dir}/{module.name}_calls.gen.h"] = env.get_template("calls.gen.h.j2").render(
-        headers=module.headers, classes=ordered, **common,
+    out[f"{layout.cpp_dir}/{module.name}_api.gen.h"] = env.get_template("api.gen.h.j2").render(
+        header_calls=[layout.header_calls(h) for h in module.headers], **common,
     )
     out[f"{layout.cpp_dir}/register.gen.cpp"] = env.get_template("register.gen.cpp.j2").render(
-        headers=module.headers, enums=enums, classes=ordered, **common,
+        enums=enums, classes=ordered, **common,
     )
     out[f"{layout.cpp_dir}/module.gen.cpp"] = env.get_template("pybind_module.gen.cpp.j2").render(
         classes=ordered, **common,
@@ -175,7 +205,8 @@ def write(outputs: dict[str, str], root: Path) -> list[str]:
     for rel in orphans(outputs, root):
         (root / rel).unlink()
         changed.append(rel)
-    for rel, text in sorted(outputs.items()):
+    # The typed API first: an editor sees new members while the C++ still builds.
+    for rel, text in sorted(outputs.items(), key=lambda item: (not item[0].endswith((".py", ".pyi")), item[0])):
         path = root / rel
         if path.exists() and path.read_text() == text:
             continue

@@ -167,6 +167,50 @@ def classes_by_header(module: Module) -> dict[str, list[Class]]:
     return result
 
 
+def header_deps(module: Module, *, definitions_only: bool = False) -> dict[str, list[str]]:
+    """For each header, the module's other headers whose types its classes use (parents, properties,
+    parameters, results, struct fields), transitively, in module order. A header's generated code includes
+    only these: an edit to one header recompiles the generated code of the headers that use its types, not
+    the module's.
+
+    definitions_only: only the headers whose generated definitions this header's must follow (its classes'
+    parents, its structs' struct and enum fields). Those never form a cycle, so the bindings headers include
+    each other along them."""
+    declared = {c.name: c.header for c in module.classes} | {e.name: e.header for e in module.enums}
+    direct: dict[str, set[str]] = {h: set() for h in module.headers}
+
+    def add(header: str, t: TypeRef) -> None:
+        if t.kind in ("enum", "struct", "object", "class") and t.name in declared:
+            direct[header].add(declared[t.name])
+        for a in t.args:
+            add(header, a)
+
+    for c in module.classes:
+        if c.parent in declared:
+            direct[c.header].add(declared[c.parent])
+        for p in c.properties:
+            if not definitions_only or c.kind == "struct":
+                add(c.header, p.type)
+        if definitions_only:
+            continue
+        for f in c.functions:
+            add(c.header, f.returns)
+            for q in f.params:
+                add(c.header, q.type)
+    result: dict[str, list[str]] = {}
+    for header in module.headers:
+        seen: set[str] = set()
+        todo = list(direct[header])
+        while todo:
+            h = todo.pop()
+            if h not in seen:
+                seen.add(h)
+                todo.extend(direct[h])
+        seen.discard(header)
+        result[header] = [h for h in module.headers if h in seen]
+    return result
+
+
 def topo_classes(module: Module) -> list[Class]:
     """Classes with every parent before its children (pybind11 needs bases registered first), and every
     struct after the structs its fields hold (Python dataclass defaults refer to them)."""

@@ -42,7 +42,7 @@ template <typename T> void checkNotNone(const T& argument, std::string_view cont
 }
 
 // -- Generated call bodies ----------------------------------------------------------------------------
-// Each reflected function, property getter and setter has one generated body (<module>_calls.gen.h), a
+// Each reflected function, property getter and setter has one generated body (<header stem>.gen.h), a
 // template over the boundary it is reached through: ValueCall here (the registry: dynamic calls and the RPC
 // server) or sp::pybind::PyCall (the in-process bindings). The body checks the call, decodes arguments,
 // calls, checks the result and notifies property changes; the boundary only converts values in and out.

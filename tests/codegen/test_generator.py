@@ -262,8 +262,53 @@ add_custom_target(everything ALL DEPENDS spear_codegen_plugin_actor)
     assert listed == produced
     assert str(plugin / "python/plugin_actor/api.pyi") in listed
     assert str(plugin / "generated/plugin_actor/cpp/plugin_actor_bindings.gen.h") in listed
-    module_cpp = (plugin / "generated/plugin_actor/cpp/module.gen.cpp").read_text()
-    assert '#include "generated/engine/cpp/engine_bindings.gen.h"' in module_cpp
-    assert '"plugin_actor.api"' in (plugin / "generated/plugin_actor/cpp/plugin_actor_bindings.gen.h").read_text()
+    bindings = (plugin / "generated/plugin_actor/cpp/include_plugin_actor.bindings.gen.h").read_text()
+    assert '#include "generated/engine/cpp/engine_bindings.gen.h"' in bindings
+    assert '"plugin_actor.api"' in bindings
+    calls = (plugin / "generated/plugin_actor/cpp/include_plugin_actor.gen.h").read_text()
+    assert '#include "generated/engine/cpp/engine_api.gen.h"' in calls
     reflection = Module.from_json((plugin / "generated/plugin_actor/reflection.json").read_text())
     assert reflection.headers == ("include/plugin_actor.h",), "header paths are relative to ROOT"
+
+
+def test_watch_regenerates_the_stubs_when_a_header_is_saved(tmp_path: Path) -> None:
+    """`codegen watch` (scripts/codegen.sh watch): the stubs follow a saved header at once; a header that
+    does not parse is reported with file:line and watching goes on."""
+    import subprocess
+    import time
+
+    header = tmp_path / "thing.h"
+    body = ('#pragma once\n#include "core/reflect/macros.h"\n#include "core/world/actor.h"\n\n'
+            "/// A thing.\nSPCLASS()\nclass AThing : public AActor {\n    SP_GENERATED_BODY()\n  public:\n%s};\n")
+    header.write_text(body % "")
+    command = [sys.executable, "-m", "codegen", "watch", "--module", "watched", "--root", str(tmp_path),
+               "--out", str(tmp_path / "out"), "--include-dir", str(ROOT), "--include-dir", "/usr/include/eigen3",
+               "thing.h"]
+    watcher = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    stubs = tmp_path / "out/watched/python/api.pyi"
+    assert watcher.stdout is not None
+
+    def wait_for(text: str) -> str:
+        lines = []
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline:
+            line = watcher.stdout.readline()  # type: ignore[union-attr]
+            lines.append(line)
+            if text in line:
+                return line
+        raise AssertionError(f"no '{text}' from codegen watch:\n{''.join(lines)}")
+
+    try:
+        wait_for("watching 1 files")
+        assert "def Twice" not in stubs.read_text()
+        time.sleep(0.05)  # a new mtime even on coarse clocks
+        header.write_text(body % "    /// Twice.\n    SPFUNCTION()\n    int Twice(int Value) const { return 2 * Value; }\n")
+        wait_for("changed: thing.h")
+        wait_for("codegen: module 'watched'")
+        assert "def Twice(self, *, Value: int) -> int" in stubs.read_text()
+        header.write_text(body % "    SPFUNCTION()\n    int Broken(\n")
+        assert "thing.h:" in wait_for("thing.h:")
+        assert watcher.poll() is None, "a header that does not parse must not stop the watcher"
+    finally:
+        watcher.terminate()
+        watcher.wait(timeout=10)

@@ -180,3 +180,33 @@ def test_type_codes_spelled_for_cpp_and_python() -> None:
     # Each element is defined before the codes that hold it.
     names = [typecodes.py_name(c) for c in typecodes.constants({code})]
     assert names == ["T_UThing", "T_list_of_UThing", "T_dict_of_list_of_UThing"]
+
+
+def test_header_deps_follow_the_types_each_header_uses() -> None:
+    """A header's generated code includes the headers of the types its classes use, transitively; the
+    definitions-only deps (parents, struct fields) are what the bindings headers include each other along."""
+    from codegen.model import Class, Enum, EnumEntry, Module
+
+    vec = TypeRef(kind="struct", cpp="FVec", name="FVec")
+    mood = TypeRef(kind="enum", cpp="EMood", name="EMood")
+    actor = TypeRef(kind="object", cpp="AThing *", name="AThing")
+    module = Module(
+        name="m", headers=("a.h", "b.h", "c.h", "d.h"),
+        classes=(
+            Class(name="FVec", cpp_name="FVec", kind="struct", header="a.h", doc="",
+                  properties=(Property(name="X", doc="", type=mood),)),
+            Class(name="AThing", cpp_name="AThing", kind="class", header="b.h", doc=""),
+            Class(name="APawnish", cpp_name="APawnish", kind="class", header="c.h", doc="", parent="AThing",
+                  parent_cpp="AThing",
+                  functions=(Function(name="Move", doc="", returns=TypeRef(kind="void", cpp="void"),
+                                      params=(Param(name="To", type=vec, cpp_decl="const FVec &"),)),)),
+            Class(name="ALonely", cpp_name="ALonely", kind="class", header="d.h", doc="",
+                  properties=(Property(name="Target", doc="", type=actor),)),
+        ),
+        enums=(Enum(name="EMood", cpp_name="EMood", header="d.h", doc="",
+                    entries=(EnumEntry(name="Calm", value=0, doc=""),)),),
+    )
+    assert naming.header_deps(module) == {"a.h": ["b.h", "d.h"], "b.h": [], "c.h": ["a.h", "b.h", "d.h"],
+                                          "d.h": ["b.h"]}
+    assert naming.header_deps(module, definitions_only=True) == {"a.h": ["d.h"], "b.h": [], "c.h": ["b.h"],
+                                                                 "d.h": []}
