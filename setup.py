@@ -68,7 +68,8 @@ class BuildWithCMake(build_py):
         """What a plugin author builds against (spear.get_cmake_dir()): the CMake package, the engine's headers
         (generated ones included), and the generator with its templates, laid out as in the checkout."""
         shutil.rmtree(sdk, ignore_errors=True)
-        files = [*ROOT.glob("core/**/*.h"), *ROOT.glob("generated/engine/cpp/*.h"), *ROOT.glob("codegen/*.py"),
+        files = [*ROOT.glob("core/**/*.h"), *ROOT.glob("generated/engine/cpp/*.h"),
+                 ROOT / "generated/engine/reflection.json", *ROOT.glob("codegen/*.py"),
                  *ROOT.glob("templates/*.j2"), *ROOT.glob("cmake/Spear*.cmake"), ROOT / "cmake/plugin_module.cpp.in"]
         for file in files:
             target = sdk / file.relative_to(ROOT)

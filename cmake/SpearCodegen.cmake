@@ -83,12 +83,18 @@ function(spear_generate)
     set(blueprint_args --blueprint-dir ${blueprint_dir})
     file(GLOB blueprints CONFIGURE_DEPENDS ${blueprint_dir}/*.json)
   endif()
+  # A plugin's generated code includes the engine's generated files for the engine types it uses, chosen
+  # from the engine's IR: a change to the engine's API regenerates it.
+  set(engine_ir "")
+  if(NOT ARG_MODULE STREQUAL "engine" AND EXISTS ${SPEAR_SOURCE_DIR}/generated/engine/reflection.json)
+    set(engine_ir ${SPEAR_SOURCE_DIR}/generated/engine/reflection.json)
+  endif()
   set(stamp ${CMAKE_CURRENT_BINARY_DIR}/${ARG_MODULE}.codegen.stamp)
   add_custom_command(
     OUTPUT ${stamp}
     BYPRODUCTS ${outputs}
     COMMAND ${codegen} generate ${common} ${blueprint_args} --stamp ${stamp} ${headers}
-    DEPENDS ${headers} ${templates} ${generator_sources} ${blueprints}
+    DEPENDS ${headers} ${templates} ${generator_sources} ${blueprints} ${engine_ir}
     WORKING_DIRECTORY ${SPEAR_SOURCE_DIR}
     COMMENT "spear codegen: module ${ARG_MODULE}"
     VERBATIM)

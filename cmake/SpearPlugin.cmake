@@ -37,6 +37,18 @@ function(spear_add_plugin name)
   set(bindings ${outputs})
   list(FILTER bindings INCLUDE REGEX "/(module|[^/]*\\.bind)\\.gen\\.cpp$")
 
+  # Its in-process Python bindings. Defined before the library, so that ninja (which starts work in the
+  # order it finds it) compiles the binding files, the longest after a header edit, first: the loop from
+  # an edit to a usable module is the longest compile, not that compile after the others.
+  set(SPEAR_PLUGIN_NAME ${name})
+  configure_file(${SPEAR_SOURCE_DIR}/cmake/plugin_module.cpp.in ${CMAKE_CURRENT_BINARY_DIR}/${name}_module.cpp
+                 @ONLY)
+  pybind11_add_module(_${name} MODULE ${CMAKE_CURRENT_BINARY_DIR}/${name}_module.cpp ${bindings})
+  target_link_libraries(_${name} PRIVATE ${name} spear::spear_pybind)
+  # pybind11 and the bridge, parsed once for all the plugin's binding files (a header's: 8.0 -> 6.1 s).
+  target_precompile_headers(_${name} PRIVATE <pybind11/pybind11.h> <array> <core/pybind/bridge.h>)
+  set_target_properties(_${name} PROPERTIES LIBRARY_OUTPUT_DIRECTORY $<1:${package_dir}>)
+
   # The plugin itself: its sources and generated registry, over the engine's shared library.
   add_library(${name} SHARED ${ARG_SOURCES} ${registry})
   add_dependencies(${name} spear_codegen_${name})
@@ -45,13 +57,5 @@ function(spear_add_plugin name)
   target_link_libraries(${name} PUBLIC spear::spear_core)
   # $<1:...>: the package directory itself, also with multi-config generators (no per-config subfolder).
   set_target_properties(${name} PROPERTIES LIBRARY_OUTPUT_DIRECTORY $<1:${package_dir}>)
-
-  # Its in-process Python bindings.
-  set(SPEAR_PLUGIN_NAME ${name})
-  configure_file(${SPEAR_SOURCE_DIR}/cmake/plugin_module.cpp.in ${CMAKE_CURRENT_BINARY_DIR}/${name}_module.cpp
-                 @ONLY)
-  pybind11_add_module(_${name} MODULE ${CMAKE_CURRENT_BINARY_DIR}/${name}_module.cpp ${bindings})
-  target_link_libraries(_${name} PRIVATE ${name} spear::spear_pybind)
-  set_target_properties(_${name} PROPERTIES LIBRARY_OUTPUT_DIRECTORY $<1:${package_dir}>)
   file(WRITE ${package_dir}/py.typed "")
 endfunction()

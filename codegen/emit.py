@@ -87,16 +87,14 @@ class OutputLayout:
         return f"generated/{self.module}/cpp/{naming.header_stem(header)}.bindings.gen.h"
 
     @property
-    def imported_bindings(self) -> list[str]:
-        """Bindings headers of the modules this one builds on: a plugin binds subclasses of engine classes
-        and passes engine structs, so it needs the engine's Ref<T> specialisations and type casters."""
-        return [] if self.module == naming.ENGINE_MODULE else [OutputLayout(naming.ENGINE_MODULE).bindings_header]
+    def api_hash_header(self) -> str:
+        return f"generated/{self.module}/cpp/{self.module}_api_hash.gen.h"
 
     @property
-    def imported_api(self) -> list[str]:
-        """The engine's whole API header, for a plugin: its classes derive from the engine's, its functions
-        take the engine's enums, and it records the engine API hash it was compiled against."""
-        return [] if self.module == naming.ENGINE_MODULE else [OutputLayout(naming.ENGINE_MODULE).api_header]
+    def imports_engine(self) -> bool:
+        """A plugin builds on the engine: its classes derive from the engine's, its functions take the
+        engine's structs and enums, and it records the engine API hash it was compiled against."""
+        return self.module != naming.ENGINE_MODULE
 
     @property
     def register_fn(self) -> str:
@@ -111,7 +109,7 @@ class OutputLayout:
         for h in module.headers:
             stem = f"{self.cpp_dir}/{naming.header_stem(h)}"
             files += [f"{stem}.gen.cpp", f"{stem}.gen.h", f"{stem}.bindings.gen.h", f"{stem}.bind.gen.cpp"]
-        files += [f"{self.cpp_dir}/{self.module}_{kind}.gen.h" for kind in ("types", "bindings", "api")]
+        files += [f"{self.cpp_dir}/{self.module}_{kind}.gen.h" for kind in ("types", "bindings", "api", "api_hash")]
         return files + [f"{self.cpp_dir}/register.gen.cpp", f"{self.cpp_dir}/module.gen.cpp"]
 
     def python_files(self) -> list[str]:
@@ -123,15 +121,46 @@ class OutputLayout:
 
 # -- rendering -------------------------------------------------------------------------------------
 
+ENGINE_IR = TEMPLATES.parent / "generated" / naming.ENGINE_MODULE / "reflection.json"
+
+
+class _Imports:
+    """What a plugin header's generated code includes of the engine's: the generated files of the engine
+    headers whose types it uses (naming.imported_headers, from the engine's reflection.json beside the
+    generator), or, without that file, the engine's whole API and bindings headers."""
+
+    def __init__(self, module: Module, layout: OutputLayout) -> None:
+        self.engine = OutputLayout(naming.ENGINE_MODULE)
+        self.active = layout.imports_engine
+        self.narrow = self.active and ENGINE_IR.is_file()
+        if self.narrow:
+            engine = Module.from_json(ENGINE_IR.read_text())
+            self.used = naming.imported_headers(module, engine)
+            self.defined = naming.imported_headers(module, engine, definitions_only=True)
+
+    def calls(self, header: str) -> list[str]:
+        if not self.active:
+            return []
+        return [self.engine.header_calls(h) for h in self.used[header]] if self.narrow else [self.engine.api_header]
+
+    def bindings(self, header: str, *, definitions_only: bool) -> list[str]:
+        if not self.active:
+            return []
+        if not self.narrow:
+            return [self.engine.bindings_header]
+        return [self.engine.header_bindings(h) for h in (self.defined if definitions_only else self.used)[header]]
+
+
 def render(module: Module, layout: OutputLayout | None = None) -> dict[str, str]:
     """All outputs of a module: path (relative to the output root, see OutputLayout) -> text."""
     from codegen import pyviews  # Python-side views live beside the C++ ones
 
     env = _env()
     layout = layout or OutputLayout(module.name)
+    imports = _Imports(module, layout)
     common = {"banner": BANNER, "module": module.name, "enums_header": layout.enums_header,
-              "bindings_header": layout.bindings_header, "imported_api": layout.imported_api,
-              "imported_bindings": layout.imported_bindings,
+              "bindings_header": layout.bindings_header,
+              "imported_hash": [OutputLayout(naming.ENGINE_MODULE).api_hash_header] if layout.imports_engine else [],
               "register_fn": layout.register_fn, "unregister_fn": layout.unregister_fn,
               "api_hash": pyviews.api_hash(module), "api_module": layout.api_module,
               "engine_package": naming.ENGINE_PACKAGE}
@@ -152,17 +181,19 @@ def render(module: Module, layout: OutputLayout | None = None) -> dict[str, str]
                       "header_bindings": layout.header_bindings(header)}
         stem = f"{layout.cpp_dir}/{naming.header_stem(header)}"
         out[f"{stem}.gen.h"] = env.get_template("header_calls.gen.h.j2").render(
-            deps=deps[header], **{**per_header, "enums": used_enums}, **common,
+            deps=deps[header], imported_calls=imports.calls(header), **{**per_header, "enums": used_enums}, **common,
         )
         out[f"{stem}.gen.cpp"] = env.get_template("registry.gen.cpp.j2").render(
             **{**per_header, "classes": [cppviews.class_view(c) for c in classes], "enums": own_enums}, **common,
         )
         out[f"{stem}.bindings.gen.h"] = env.get_template("header_bindings.gen.h.j2").render(
-            deps_bindings=[layout.header_bindings(h) for h in definition_deps[header]],
+            deps_bindings=imports.bindings(header, definitions_only=True) +
+            [layout.header_bindings(h) for h in definition_deps[header]],
             **{**per_header, "enums": own_enums}, **common,
         )
         out[f"{stem}.bind.gen.cpp"] = env.get_template("header_bind.gen.cpp.j2").render(
-            deps_bindings=[layout.header_bindings(h) for h in deps[header]], **per_header, **common,
+            deps_bindings=imports.bindings(header, definitions_only=False) +
+            [layout.header_bindings(h) for h in deps[header]], **per_header, **common,
         )
     out[f"{layout.cpp_dir}/{module.name}_types.gen.h"] = env.get_template("enums.gen.h.j2").render(**common)
     out[f"{layout.cpp_dir}/{module.name}_bindings.gen.h"] = env.get_template("bindings.gen.h.j2").render(
@@ -171,6 +202,7 @@ def render(module: Module, layout: OutputLayout | None = None) -> dict[str, str]
     out[f"{layout.cpp_dir}/{module.name}_api.gen.h"] = env.get_template("api.gen.h.j2").render(
         header_calls=[layout.header_calls(h) for h in module.headers], **common,
     )
+    out[f"{layout.cpp_dir}/{module.name}_api_hash.gen.h"] = env.get_template("api_hash.gen.h.j2").render(**common)
     out[f"{layout.cpp_dir}/register.gen.cpp"] = env.get_template("register.gen.cpp.j2").render(
         enums=enums, classes=ordered, **common,
     )

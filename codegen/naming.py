@@ -167,6 +167,32 @@ def classes_by_header(module: Module) -> dict[str, list[Class]]:
     return result
 
 
+def types_used(module: Module, *, definitions_only: bool = False) -> dict[str, set[str]]:
+    """For each header, the reflected type names its classes use: parents, properties, parameters, results
+    (definitions_only: parents and struct fields only), whichever module declares them."""
+    used: dict[str, set[str]] = {h: set() for h in module.headers}
+
+    def add(header: str, t: TypeRef) -> None:
+        if t.kind in ("enum", "struct", "object", "class") and t.name:
+            used[header].add(t.name)
+        for a in t.args:
+            add(header, a)
+
+    for c in module.classes:
+        if c.parent:
+            used[c.header].add(c.parent)
+        for p in c.properties:
+            if not definitions_only or c.kind == "struct":
+                add(c.header, p.type)
+        if definitions_only:
+            continue
+        for f in c.functions:
+            add(c.header, f.returns)
+            for q in f.params:
+                add(c.header, q.type)
+    return used
+
+
 def header_deps(module: Module, *, definitions_only: bool = False) -> dict[str, list[str]]:
     """For each header, the module's other headers whose types its classes use (parents, properties,
     parameters, results, struct fields), transitively, in module order. A header's generated code includes
@@ -177,37 +203,35 @@ def header_deps(module: Module, *, definitions_only: bool = False) -> dict[str, 
     parents, its structs' struct and enum fields). Those never form a cycle, so the bindings headers include
     each other along them."""
     declared = {c.name: c.header for c in module.classes} | {e.name: e.header for e in module.enums}
-    direct: dict[str, set[str]] = {h: set() for h in module.headers}
+    direct = {h: {declared[name] for name in names if name in declared}
+              for h, names in types_used(module, definitions_only=definitions_only).items()}
+    return {header: [h for h in closure(module, direct, direct[header] - {header}) if h != header]
+            for header in module.headers}
 
-    def add(header: str, t: TypeRef) -> None:
-        if t.kind in ("enum", "struct", "object", "class") and t.name in declared:
-            direct[header].add(declared[t.name])
-        for a in t.args:
-            add(header, a)
 
-    for c in module.classes:
-        if c.parent in declared:
-            direct[c.header].add(declared[c.parent])
-        for p in c.properties:
-            if not definitions_only or c.kind == "struct":
-                add(c.header, p.type)
-        if definitions_only:
-            continue
-        for f in c.functions:
-            add(c.header, f.returns)
-            for q in f.params:
-                add(c.header, q.type)
-    result: dict[str, list[str]] = {}
-    for header in module.headers:
-        seen: set[str] = set()
-        todo = list(direct[header])
-        while todo:
-            h = todo.pop()
-            if h not in seen:
-                seen.add(h)
-                todo.extend(direct[h])
-        seen.discard(header)
-        result[header] = [h for h in module.headers if h in seen]
+def closure(module: Module, direct: dict[str, set[str]], start: set[str]) -> list[str]:
+    """The headers reachable from `start` through `direct`, in module order."""
+    seen: set[str] = set()
+    todo = list(start)
+    while todo:
+        h = todo.pop()
+        if h not in seen:
+            seen.add(h)
+            todo.extend(direct.get(h, ()))
+    return [h for h in module.headers if h in seen]
+
+
+def imported_headers(module: Module, imported: Module, *, definitions_only: bool = False) -> dict[str, list[str]]:
+    """For each header of `module` (a plugin), the headers of `imported` (the engine) whose types it uses,
+    with theirs (header_deps of `imported`), so that a plugin's generated code includes the engine's
+    generated code for those headers only."""
+    declared = {c.name: c.header for c in imported.classes} | {e.name: e.header for e in imported.enums}
+    deps = header_deps(imported, definitions_only=definitions_only)
+    direct = {h: set(deps[h]) for h in imported.headers}
+    result = {}
+    for header, names in types_used(module, definitions_only=definitions_only).items():
+        start = {declared[name] for name in names if name in declared}
+        result[header] = closure(imported, direct, start | {d for h in start for d in deps[h]})
     return result
 
 

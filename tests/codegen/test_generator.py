@@ -263,10 +263,13 @@ add_custom_target(everything ALL DEPENDS spear_codegen_plugin_actor)
     assert str(plugin / "python/plugin_actor/api.pyi") in listed
     assert str(plugin / "generated/plugin_actor/cpp/plugin_actor_bindings.gen.h") in listed
     bindings = (plugin / "generated/plugin_actor/cpp/include_plugin_actor.bindings.gen.h").read_text()
-    assert '#include "generated/engine/cpp/engine_bindings.gen.h"' in bindings
+    # The engine's generated files for the engine types the plugin uses, not the engine's whole API.
+    assert '#include "generated/engine/cpp/core_world_actor.bindings.gen.h"' in bindings
+    assert "engine_bindings.gen.h" not in bindings
     assert '"plugin_actor.api"' in bindings
     calls = (plugin / "generated/plugin_actor/cpp/include_plugin_actor.gen.h").read_text()
-    assert '#include "generated/engine/cpp/engine_api.gen.h"' in calls
+    assert '#include "generated/engine/cpp/core_world_actor.gen.h"' in calls
+    assert "core_sensors_camera_sensor_component" not in calls
     reflection = Module.from_json((plugin / "generated/plugin_actor/reflection.json").read_text())
     assert reflection.headers == ("include/plugin_actor.h",), "header paths are relative to ROOT"
 

@@ -5,7 +5,7 @@
 
 #include "core/reflect/registry.h"
 #include "generated/all_types/cpp/all_types_types.gen.h"
-#include "generated/engine/cpp/engine_api.gen.h"
+#include "generated/engine/cpp/engine_api_hash.gen.h"
 
 namespace sp::generated::all_types {
 const sp::reflect::EnumInfo& enumInfo_EChannel();

@@ -13,7 +13,15 @@
 
 #include "core/reflect/invoke.h"
 #include "core/reflect/type_info.h"
-#include "generated/engine/cpp/engine_api.gen.h"
+#include "generated/engine/cpp/core_world_actor.gen.h"
+#include "generated/engine/cpp/core_world_actor_component.gen.h"
+#include "generated/engine/cpp/core_world_frame_timings.gen.h"
+#include "generated/engine/cpp/core_world_hit_result.gen.h"
+#include "generated/engine/cpp/core_world_math.gen.h"
+#include "generated/engine/cpp/core_world_object.gen.h"
+#include "generated/engine/cpp/core_world_primitive_component.gen.h"
+#include "generated/engine/cpp/core_world_scene_component.gen.h"
+#include "generated/engine/cpp/core_world_world.gen.h"
 #include "tests/codegen/cases/all_types/input.h"
 
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EChannel>();

@@ -5,7 +5,7 @@
 
 #include "core/reflect/registry.h"
 #include "generated/namespaced_plugin/cpp/namespaced_plugin_types.gen.h"
-#include "generated/engine/cpp/engine_api.gen.h"
+#include "generated/engine/cpp/engine_api_hash.gen.h"
 
 namespace sp::generated::namespaced_plugin {
 const sp::reflect::EnumInfo& enumInfo_EGait();

@@ -5,7 +5,7 @@
 
 #include "core/reflect/registry.h"
 #include "generated/plugin_actor/cpp/plugin_actor_types.gen.h"
-#include "generated/engine/cpp/engine_api.gen.h"
+#include "generated/engine/cpp/engine_api_hash.gen.h"
 
 namespace sp::generated::plugin_actor {
 const sp::reflect::EnumInfo& enumInfo_EPluginMood();

@@ -10,6 +10,15 @@
 
 #include <array>
 
+#include "generated/engine/cpp/core_world_actor.bindings.gen.h"
+#include "generated/engine/cpp/core_world_actor_component.bindings.gen.h"
+#include "generated/engine/cpp/core_world_frame_timings.bindings.gen.h"
+#include "generated/engine/cpp/core_world_hit_result.bindings.gen.h"
+#include "generated/engine/cpp/core_world_math.bindings.gen.h"
+#include "generated/engine/cpp/core_world_object.bindings.gen.h"
+#include "generated/engine/cpp/core_world_primitive_component.bindings.gen.h"
+#include "generated/engine/cpp/core_world_scene_component.bindings.gen.h"
+#include "generated/engine/cpp/core_world_world.bindings.gen.h"
 #include "generated/plugin_actor/cpp/tests_codegen_cases_plugin_actor_input.bindings.gen.h"
 
 namespace py = pybind11;

@@ -10,7 +10,9 @@
 #include <pybind11/pybind11.h>
 
 #include "core/pybind/bridge.h"
-#include "generated/engine/cpp/engine_bindings.gen.h"
+#include "generated/engine/cpp/core_world_actor.bindings.gen.h"
+#include "generated/engine/cpp/core_world_math.bindings.gen.h"
+#include "generated/engine/cpp/core_world_object.bindings.gen.h"
 #include "generated/plugin_actor/cpp/tests_codegen_cases_plugin_actor_input.gen.h"
 
 namespace sp::pybind {
