@@ -186,9 +186,14 @@ bool fits(const Value& value, const TypeCode& type) {
         return value.is<Value::Dict>();
     case Kind::Object:
         return value.is<reflect::ObjectHandle>();
-    default:
-        return false;
+    case Kind::Void:
+    case Kind::Class:
+    case Kind::Array:
+    case Kind::List:
+    case Kind::Dict:
+        return false; // no parameter has these types: parseType() gives none of them
     }
+    return false; // not a Kind (every kind is a case above, so a new one is a -Wswitch error here)
 }
 
 Value run(const Definition& definition, reflect::ObjectBase& self, const reflect::CallArgs& args) {
