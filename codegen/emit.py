@@ -177,23 +177,24 @@ def render(module: Module, layout: OutputLayout | None = None) -> dict[str, str]
         views = sorted((cppviews.class_view(c) for c in classes), key=lambda v: position[v.name])
         own_enums = [cppviews.enum_view(e) for e in module.enums if e.header == header]
         used_enums = [cppviews.enum_view(e) for e in module.enums if e.header in deps[header] or e.header == header]
-        per_header = {"header": header, "classes": views, "header_calls": layout.header_calls(header),
-                      "header_bindings": layout.header_bindings(header)}
+        per_header: dict[str, object] = {"header": header, "header_calls": layout.header_calls(header),
+                                         "header_bindings": layout.header_bindings(header)}
         stem = f"{layout.cpp_dir}/{naming.header_stem(header)}"
         out[f"{stem}.gen.h"] = env.get_template("header_calls.gen.h.j2").render(
-            deps=deps[header], imported_calls=imports.calls(header), **{**per_header, "enums": used_enums}, **common,
+            deps=deps[header], imported_calls=imports.calls(header), classes=views, enums=used_enums, **per_header,
+            **common,
         )
         out[f"{stem}.gen.cpp"] = env.get_template("registry.gen.cpp.j2").render(
-            **{**per_header, "classes": [cppviews.class_view(c) for c in classes], "enums": own_enums}, **common,
+            classes=[cppviews.class_view(c) for c in classes], enums=own_enums, **per_header, **common,
         )
         out[f"{stem}.bindings.gen.h"] = env.get_template("header_bindings.gen.h.j2").render(
             deps_bindings=imports.bindings(header, definitions_only=True) +
             [layout.header_bindings(h) for h in definition_deps[header]],
-            **{**per_header, "enums": own_enums}, **common,
+            classes=views, enums=own_enums, **per_header, **common,
         )
         out[f"{stem}.bind.gen.cpp"] = env.get_template("header_bind.gen.cpp.j2").render(
             deps_bindings=imports.bindings(header, definitions_only=False) +
-            [layout.header_bindings(h) for h in deps[header]], **per_header, **common,
+            [layout.header_bindings(h) for h in deps[header]], classes=views, **per_header, **common,
         )
     out[f"{layout.cpp_dir}/{module.name}_types.gen.h"] = env.get_template("enums.gen.h.j2").render(**common)
     out[f"{layout.cpp_dir}/{module.name}_bindings.gen.h"] = env.get_template("bindings.gen.h.j2").render(

@@ -200,8 +200,9 @@ def header_deps(module: Module, *, definitions_only: bool = False) -> dict[str, 
     the module's.
 
     definitions_only: only the headers whose generated definitions this header's must follow (its classes'
-    parents, its structs' struct and enum fields). Those never form a cycle, so the bindings headers include
-    each other along them."""
+    parents, its structs' struct and enum fields). Between types those cannot form a cycle, so the bindings
+    headers include each other along them (headers whose types need each other's so would be a compile
+    error, not a silent misorder)."""
     declared = {c.name: c.header for c in module.classes} | {e.name: e.header for e in module.enums}
     direct = {h: {declared[name] for name in names if name in declared}
               for h, names in types_used(module, definitions_only=definitions_only).items()}
