@@ -10,11 +10,15 @@ from __future__ import annotations
 import dataclasses
 import json
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Any, Literal, get_args
 
+# The kinds of value that cross the boundary: the one list. The C++ enum sp::reflect::TypeCode::Kind has
+# these, capitalised, in this order, and spear._type_code.Kind spells them as here (the runtime package
+# cannot import the generator); tests/codegen/test_type_model.py holds both to it.
 TypeKind = Literal[
-    "void", "bool", "int", "float", "str", "enum", "struct", "object", "class", "list", "dict", "array"
+    "void", "bool", "int", "float", "str", "enum", "struct", "object", "class", "array", "list", "dict"
 ]
+KINDS: tuple[TypeKind, ...] = get_args(TypeKind)
 
 
 @dataclass(frozen=True)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from codegen.model import Class, Function, Module, Param, Property, TypeKind, TypeRef
+from codegen.model import KINDS, Class, Function, Module, Param, Property, TypeKind, TypeRef
 
 
 @dataclass(frozen=True)
@@ -53,10 +53,8 @@ def of_result(f: Function) -> TypeCode:
 
 # -- C++ -------------------------------------------------------------------------------------------
 
-_CPP_KINDS = {
-    "void": "Void", "bool": "Bool", "int": "Int", "float": "Float", "str": "Str", "enum": "Enum",
-    "struct": "Struct", "object": "Object", "class": "Class", "array": "Array", "list": "List", "dict": "Dict",
-}
+# sp::reflect::TypeCode::Kind's enumerators are the model's kinds capitalised (model.KINDS).
+_CPP_KINDS = {kind: kind.capitalize() for kind in KINDS}
 
 
 def cpp(code: TypeCode) -> str:

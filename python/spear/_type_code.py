@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from typing import Any, Literal, NamedTuple
 
-# The generator's type model (codegen/model.py TypeKind).
+# The generator's type model, spelled as codegen/model.py's TypeKind (held to it by a test).
 Kind = Literal["void", "bool", "int", "float", "str", "enum", "struct", "object", "class", "array", "list", "dict"]
 
 

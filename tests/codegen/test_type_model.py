@@ -210,3 +210,29 @@ def test_header_deps_follow_the_types_each_header_uses() -> None:
                                           "d.h": ["b.h"]}
     assert naming.header_deps(module, definitions_only=True) == {"a.h": ["d.h"], "b.h": [], "c.h": ["b.h"],
                                                                  "d.h": []}
+
+
+def test_value_kinds_are_one_list() -> None:
+    """codegen/model.py's TypeKind is the list of value kinds: the C++ enum (read with libclang, as the
+    generator reads headers) holds them capitalised in the same order, and the runtime package's Kind
+    spells them the same."""
+    import typing
+
+    from codegen.model import KINDS
+
+    root = Path(__file__).resolve().parents[2]
+    sys.path.insert(0, str(root / "python"))
+    from spear._type_code import Kind
+
+    assert typing.get_args(Kind) == KINDS
+    index = ci.Index.create()
+    unit = index.parse(str(root / "core/reflect/type_code.h"), args=["-x", "c++", "-std=c++20", f"-I{root}"])
+
+    def children(cursors: list[ci.Cursor], name: str) -> list[ci.Cursor]:
+        return [c for cursor in cursors for c in cursor.get_children() if c.spelling == name]
+
+    structs = children(children(children([unit.cursor], "sp"), "reflect"), "TypeCode")
+    (kind,) = children([c for c in structs if c.is_definition()], "Kind")
+    enumerators = [c.spelling for c in kind.get_children()]
+    assert enumerators == [kind.capitalize() for kind in KINDS]
+    assert {typecodes.cpp(typecodes.TypeCode(kind)).split("::")[-1].rstrip(")") for kind in KINDS} == set(enumerators)
