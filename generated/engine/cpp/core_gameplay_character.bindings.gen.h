@@ -24,7 +24,3 @@ template <> struct Ref<UCharacterMovementComponent> : Ref<UActorComponent> {
     using Ref<UActorComponent>::Ref;
 };
 } // namespace sp::pybind
-
-namespace pybind11::detail {
-
-} // namespace pybind11::detail

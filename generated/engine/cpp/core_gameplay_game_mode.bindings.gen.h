@@ -22,7 +22,3 @@ template <> struct Ref<APlayerStart> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
 } // namespace sp::pybind
-
-namespace pybind11::detail {
-
-} // namespace pybind11::detail

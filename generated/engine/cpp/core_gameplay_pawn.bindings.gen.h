@@ -22,7 +22,3 @@ template <> struct Ref<ADefaultPawn> : Ref<APawn> {
     using Ref<APawn>::Ref;
 };
 } // namespace sp::pybind
-
-namespace pybind11::detail {
-
-} // namespace pybind11::detail

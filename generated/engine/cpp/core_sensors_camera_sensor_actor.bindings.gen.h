@@ -25,7 +25,3 @@ template <> struct Ref<AStereoCameraRig> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
 } // namespace sp::pybind
-
-namespace pybind11::detail {
-
-} // namespace pybind11::detail

@@ -25,7 +25,3 @@ template <> struct Ref<URectLightComponent> : Ref<ULightComponent> {
     using Ref<ULightComponent>::Ref;
 };
 } // namespace sp::pybind
-
-namespace pybind11::detail {
-
-} // namespace pybind11::detail

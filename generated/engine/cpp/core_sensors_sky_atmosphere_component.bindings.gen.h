@@ -24,7 +24,3 @@ template <> struct Ref<USkyAtmosphereComponent> : Ref<USceneComponent> {
     using Ref<USceneComponent>::Ref;
 };
 } // namespace sp::pybind
-
-namespace pybind11::detail {
-
-} // namespace pybind11::detail

@@ -25,7 +25,3 @@ template <> struct Ref<USpotLightComponent> : Ref<UPointLightComponent> {
     using Ref<UPointLightComponent>::Ref;
 };
 } // namespace sp::pybind
-
-namespace pybind11::detail {
-
-} // namespace pybind11::detail

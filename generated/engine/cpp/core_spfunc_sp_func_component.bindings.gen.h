@@ -19,7 +19,3 @@ template <> struct Ref<USpFuncComponent> : Ref<UActorComponent> {
     using Ref<UActorComponent>::Ref;
 };
 } // namespace sp::pybind
-
-namespace pybind11::detail {
-
-} // namespace pybind11::detail

@@ -18,7 +18,3 @@ template <> struct Ref<AActor> : Ref<UObject> {
     using Ref<UObject>::Ref;
 };
 } // namespace sp::pybind
-
-namespace pybind11::detail {
-
-} // namespace pybind11::detail

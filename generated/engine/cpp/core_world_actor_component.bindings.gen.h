@@ -18,7 +18,3 @@ template <> struct Ref<UActorComponent> : Ref<UObject> {
     using Ref<UObject>::Ref;
 };
 } // namespace sp::pybind
-
-namespace pybind11::detail {
-
-} // namespace pybind11::detail

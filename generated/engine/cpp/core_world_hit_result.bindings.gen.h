@@ -13,9 +13,6 @@
 #include "generated/engine/cpp/core_world_math.bindings.gen.h"
 #include "generated/engine/cpp/core_world_hit_result.gen.h"
 
-namespace sp::pybind {
-} // namespace sp::pybind
-
 namespace pybind11::detail {
 
 template <> struct type_caster<FHitResult> {

@@ -26,7 +26,3 @@ template <> struct Ref<UPointLightComponent> : Ref<ULightComponent> {
     using Ref<ULightComponent>::Ref;
 };
 } // namespace sp::pybind
-
-namespace pybind11::detail {
-
-} // namespace pybind11::detail

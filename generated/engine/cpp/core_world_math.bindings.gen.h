@@ -12,9 +12,6 @@
 #include "core/pybind/bridge.h"
 #include "generated/engine/cpp/core_world_math.gen.h"
 
-namespace sp::pybind {
-} // namespace sp::pybind
-
 namespace pybind11::detail {
 
 template <> struct type_caster<FVector> {

@@ -17,7 +17,3 @@ template <> struct Ref<UObject> : RefBase {
     using RefBase::RefBase;
 };
 } // namespace sp::pybind
-
-namespace pybind11::detail {
-
-} // namespace pybind11::detail

@@ -37,7 +37,3 @@ template <> struct Ref<USphereComponent> : Ref<UShapeComponent> {
     using Ref<UShapeComponent>::Ref;
 };
 } // namespace sp::pybind
-
-namespace pybind11::detail {
-
-} // namespace pybind11::detail

@@ -19,7 +19,3 @@ template <> struct Ref<AStaticMeshActor> : Ref<AActor> {
     using Ref<AActor>::Ref;
 };
 } // namespace sp::pybind
-
-namespace pybind11::detail {
-
-} // namespace pybind11::detail

@@ -21,7 +21,3 @@ template <> struct Ref<UStaticMeshComponent> : Ref<UPrimitiveComponent> {
     using Ref<UPrimitiveComponent>::Ref;
 };
 } // namespace sp::pybind
-
-namespace pybind11::detail {
-
-} // namespace pybind11::detail
