@@ -227,10 +227,24 @@ def test_blueprint_functions_queue_with_call_async(instance: spear.Instance) -> 
     with instance.end_frame():
         pass
     with instance.begin_frame():
-        future = crate.call_async.Launch(Speed=1.0)  # type: ignore[attr-defined]  # call_async is not typed for blueprints
+        future = crate.call_async.Launch(Speed=1.0)
         assert future.get() == crate.GetActorLocation()
     with instance.end_frame():
         pass
+
+
+def test_blueprint_functions_are_sent_with_send_async(instance: spear.Instance) -> None:
+    # Typed in BP_CrateSend; nobody waits for the result, and the call still runs in the frame.
+    game = instance.get_game()
+    with instance.begin_frame():
+        crate = game.spawn_actor(uclass=spear.BP_Crate, location=spear.FVector(Z=2.0))
+    with instance.end_frame():
+        pass
+    with instance.begin_frame():
+        crate.send_async.Nudge(Velocity=spear.FVector(X=3.0))
+    with instance.end_frame():
+        velocity = crate.StaticMeshComponent.GetPhysicsLinearVelocity()
+    assert velocity.X == pytest.approx(3.0, abs=1e-6)
 
 
 def test_blueprint_functions_are_checked_when_the_asset_loads(instance: spear.Instance, tmp_path: Path) -> None:

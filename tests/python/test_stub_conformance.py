@@ -160,8 +160,13 @@ def test_blueprint_stub_class_matches_its_asset(name: str) -> None:
 
     document = json.loads((Path(api.__file__).resolve().parents[3] / getattr(api, name).__sp_asset__).read_text())
     declared = {f["name"]: [(p["name"], "default" in p) for p in f.get("params", [])] for f in document["functions"]}
-    methods = {node.name: stub_signature(node) for node in stub_classes()[name].body
-               if isinstance(node, ast.FunctionDef)}
-    assert methods == declared
-    parent = stub_classes()[name].bases[0]
-    assert isinstance(parent, ast.Name) and parent.id == document["parent"]
+    def methods(cls: str) -> dict[str, list[tuple[str, bool]]]:
+        return {node.name: stub_signature(node) for node in stub_classes()[cls].body
+                if isinstance(node, ast.FunctionDef) and node.name not in ("call_async", "send_async")}
+
+    # The class, and its asynchronous and fire-and-forget views (call_async, send_async), each over its
+    # parent's.
+    for cls, base in ((name, ""), (f"{name}Async", "Async"), (f"{name}Send", "Send")):
+        assert methods(cls) == declared, cls
+        parent = stub_classes()[cls].bases[0]
+        assert isinstance(parent, ast.Name) and parent.id == document["parent"] + base

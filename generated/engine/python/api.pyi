@@ -5357,8 +5357,32 @@ BP_Axes: type[AActor]
 """Coordinate axes: three thin 1 m bars along X (red), Y (green) and Z (blue) from the actor's origin."""
 
 
+class BP_CrateAsync(AStaticMeshActorAsync):
+    """BP_Crate's functions, called asynchronously: each returns a Future."""
+
+    def Launch(self, *, Speed: float = 5.0) -> Future[FVector]: ...
+
+    def Nudge(self, *, Velocity: FVector) -> Future[None]: ...
+
+
+class BP_CrateSend(AStaticMeshActorSend):
+    """BP_Crate's functions, sent without waiting for a result (fire and forget)."""
+
+    def Launch(self, *, Speed: float = 5.0) -> None: ...
+
+    def Nudge(self, *, Velocity: FVector) -> None: ...
+
+
 class BP_Crate(AStaticMeshActor):
     """A 0.5 m wooden crate of 12 kg that falls and tumbles under physics."""
+
+    @property
+    def call_async(self) -> BP_CrateAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> BP_CrateSend:
+        """The same functions, fire and forget."""
 
     def Launch(self, *, Speed: float = 5.0) -> FVector:
         """Throws the crate straight up at Speed m/s and spins it; returns where it was thrown from."""

@@ -14,6 +14,8 @@ def misuse(instance: spear.Instance) -> None:
     crate = game.spawn_actor(uclass=spear.BP_Crate)
     crate.Launch(Speed="fast")  # E: Argument "Speed" to "Launch" of "BP_Crate" has incompatible type "str"; expected "float"  [arg-type]  # P: reportArgumentType: Argument of type "Literal['fast']" cannot be assigned to parameter "Speed" of type "float" in function "Launch" / "Literal['fast']" is not assignable to "float"
     crate.Nudge()  # E: Missing named argument "Velocity" for "Nudge" of "BP_Crate"  [call-arg]  # P: reportCallIssue: Argument missing for parameter "Velocity"
+    crate.call_async.Launch(Speed="fast")  # E: Argument "Speed" to "Launch" of "BP_CrateAsync" has incompatible type "str"; expected "float"  [arg-type]  # P: reportArgumentType: Argument of type "Literal['fast']" cannot be assigned to parameter "Speed" of type "float" in function "Launch" / "Literal['fast']" is not assignable to "float"
+    crate.send_async.Nudge()  # E: Missing named argument "Velocity" for "Nudge" of "BP_CrateSend"  [call-arg]  # P: reportCallIssue: Argument missing for parameter "Velocity"
     crate.Lunch()  # E: "BP_Crate" has no attribute "Lunch"; maybe "Launch"?  [attr-defined]  # P: reportAttributeAccessIssue: Cannot access attribute "Lunch" for class "BP_Crate" / Attribute "Lunch" is unknown
     plain = game.spawn_actor(uclass=spear.AStaticMeshActor)
     plain.Launch()  # E: "AStaticMeshActor" has no attribute "Launch"  [attr-defined]  # P: reportAttributeAccessIssue: Cannot access attribute "Launch" for class "AStaticMeshActor" / Attribute "Launch" is unknown

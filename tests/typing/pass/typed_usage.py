@@ -105,5 +105,8 @@ def blueprint_functions(instance: spear.Instance) -> None:
         assert_type(crate.Launch(), spear.FVector)
         crate.Nudge(Velocity=spear.FVector(X=1.0))
         assert_type(crate.StaticMeshComponent, spear.UStaticMeshComponent)  # the parent's members stay
+        assert_type(crate.call_async.Launch(Speed=1.0), Future[spear.FVector])  # and asynchronously
+        assert_type(crate.call_async.GetActorLocation(), Future[spear.FVector])
+        crate.send_async.Nudge(Velocity=spear.FVector(Z=1.0))
     with instance.end_frame():
         pass
