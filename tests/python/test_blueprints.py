@@ -219,13 +219,18 @@ def test_blueprint_functions_are_typed_methods_of_its_objects(instance: spear.In
         crate.Launch()
 
 
-def test_blueprint_functions_queue_with_call_async(instance: spear.Instance) -> None:
-    # Over RPC the call goes through the proxy's typed call, so call_async queues it and returns a Future.
-    game = instance.get_game()
+def crate_in_play(instance: spear.Instance) -> spear.BP_Crate:
+    """A BP_Crate spawned 2 m up, one frame into play."""
     with instance.begin_frame():
-        crate = game.spawn_actor(uclass=spear.BP_Crate, location=spear.FVector(Z=2.0))
+        crate = instance.get_game().spawn_actor(uclass=spear.BP_Crate, location=spear.FVector(Z=2.0))
     with instance.end_frame():
         pass
+    return crate
+
+
+def test_blueprint_functions_queue_with_call_async(instance: spear.Instance) -> None:
+    # Over RPC the call goes through the proxy's typed call, so call_async queues it and returns a Future.
+    crate = crate_in_play(instance)
     with instance.begin_frame():
         future = crate.call_async.Launch(Speed=1.0)
         assert future.get() == crate.GetActorLocation()
@@ -235,11 +240,7 @@ def test_blueprint_functions_queue_with_call_async(instance: spear.Instance) -> 
 
 def test_blueprint_functions_are_sent_with_send_async(instance: spear.Instance) -> None:
     # Typed in BP_CrateSend; nobody waits for the result, and the call still runs in the frame.
-    game = instance.get_game()
-    with instance.begin_frame():
-        crate = game.spawn_actor(uclass=spear.BP_Crate, location=spear.FVector(Z=2.0))
-    with instance.end_frame():
-        pass
+    crate = crate_in_play(instance)
     with instance.begin_frame():
         crate.send_async.Nudge(Velocity=spear.FVector(X=3.0))
     with instance.end_frame():
