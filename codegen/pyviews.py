@@ -100,7 +100,7 @@ class BlueprintView:
     doc: str  # after a `Name: type[Parent]` line (a blueprint without functions)
     class_doc: str  # inside its stub class (a blueprint with functions)
     functions: tuple[FunctionView, ...]
-    function_types: str  # {name: result TypeCode} for spear._blueprint.declare, "" when there are none
+    function_types: str  # {name: (result TypeCode, ((param, required), ...))} for spear._blueprint.declare; "" for none
 
 
 @dataclass(frozen=True)
@@ -214,10 +214,15 @@ def _function_view(c: Class, f: Function, enums: set[str], rpc: naming.Qualifier
 
 
 def _function_types(b: Blueprint) -> str:
-    """The result type of each function a blueprint declares, as api.py spells it for _declare_blueprint."""
+    """The result type and the parameters (name, required) of each function a blueprint declares, as api.py
+    spells them for _declare_blueprint: a call that does not fit is refused in Python with a TypeError, as the
+    generated bindings refuse one to a C++ function."""
     if not b.functions:
         return ""
-    items = [f'"{f.name}": _{typecodes.py_value(typecodes.of_result(f))}' for f in b.functions]
+    items = []
+    for f in b.functions:
+        params = "".join(f'("{p.name}", {p.default_cpp is None}), ' for p in f.params)
+        items.append(f'"{f.name}": (_{typecodes.py_value(typecodes.of_result(f))}, ({params.rstrip(" ")}))')
     return "{" + ", ".join(items) + "}"
 
 

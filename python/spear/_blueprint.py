@@ -19,12 +19,15 @@ from typing import Any
 from spear._object import SpObject
 from spear._type_code import TypeCode
 
+# A function's result type and its parameters, each (name, required), in order.
+Signature = tuple[TypeCode, tuple[tuple[str, bool], ...]]
+
 _CLASSES: dict[str, type[SpObject]] = {}
-_FUNCTIONS: dict[str, dict[str, TypeCode]] = {}  # blueprint name -> its functions' result types
+_FUNCTIONS: dict[str, dict[str, Signature]] = {}  # blueprint name -> its functions
 
 
 def declare(name: str, parent: type[SpObject], asset: str, doc: str,
-            functions: Mapping[str, TypeCode] | None = None) -> type[SpObject]:
+            functions: Mapping[str, Signature] | None = None) -> type[SpObject]:
     """A blueprint class the generator found an asset for (api.py): typed as its parent's class, and
     loaded from `asset` (relative to the project root) the first time it is used as uclass=. In a checkout
     that is a file of the checkout; in an installed package the engine finds it on its asset search path
@@ -53,16 +56,57 @@ def function_caller(obj: Any, name: str) -> Callable[..., Any] | None:
     # RPC by a direct request rather than a typed call, so that call_async never queues the question.
     class_name = obj.GetClassName() if client is None else client.request(
         "call", object=obj, function="GetClassName", args={})
-    result_type = _FUNCTIONS.get(class_name, {}).get(name)
-    if result_type is None:
+    signature = _FUNCTIONS.get(class_name, {}).get(name)
+    if signature is None:
         return None
+    result_type, params = signature
+    function = f"{class_name}.{name}()"
     if client is None:
         from spear import _inprocess
 
         native = _inprocess.module()
-        return lambda **kwargs: native.call_function(uobject=obj, function=name, args=kwargs)
-    owner = class_name
-    return lambda **kwargs: obj._sp_call(owner, name, kwargs, result_type)
+
+        def call_in_process(*args: Any, **kwargs: Any) -> Any:
+            check_call(function, args, kwargs, params)
+            return native.call_function(uobject=obj, function=name, args=kwargs)
+
+        return call_in_process
+
+    def call_over_rpc(*args: Any, **kwargs: Any) -> Any:
+        check_call(function, args, kwargs, params)
+        return obj._sp_call(class_name, name, kwargs, result_type)
+
+    return call_over_rpc
+
+
+def _plural(count: int, word: str) -> str:
+    return f"{count} {word}" if count == 1 else f"{count} {word}s"
+
+
+def check_call(function: str, args: tuple[Any, ...], kwargs: Mapping[str, Any],
+               params: tuple[tuple[str, bool], ...]) -> None:
+    """Refuses a call that does not fit the function's keyword-only parameters with Python's TypeError, in
+    the words the generated bindings use for a C++ function (core/pybind/bridge.cpp, checkCall), in the
+    order CPython checks: an unexpected keyword, then positional arguments, then missing ones."""
+    names = [param for param, _ in params]
+    for key in kwargs:
+        if key not in names:
+            raise TypeError(f"{function} got an unexpected keyword argument '{key}'")
+    given = sum(1 for param in names if param in kwargs)
+    if args:
+        count = len(args) + 1  # and the object itself
+        message = f"{function} takes 1 positional argument but {count}"
+        if given:
+            message += (f" positional argument{'' if count == 1 else 's'} "
+                        f"(and {_plural(given, 'keyword-only argument')})")
+        raise TypeError(message + (" was given" if count == 1 and not given else " were given"))
+    missing = [f"'{param}'" for param, required in params if required and param not in kwargs]
+    if missing:
+        names_text = missing[0]
+        for i in range(1, len(missing)):
+            names_text += (", " if len(missing) > 2 else " ") + ("and " if i + 1 == len(missing) else "")
+            names_text += missing[i]
+        raise TypeError(f"{function} missing {_plural(len(missing), 'required keyword-only argument')}: {names_text}")
 
 
 def blueprint_class(name: str, native: str) -> type[SpObject]:

@@ -206,8 +206,15 @@ def test_blueprint_functions_are_typed_methods_of_its_objects(instance: spear.In
         assert hasattr(crate, "Nudge") and not hasattr(plain, "Nudge")
         with pytest.raises(spear.InvalidArgumentError, match=r"^BP_Crate\.Launch\(\): argument 'Speed' must be float"):
             crate.Launch(Speed="fast")  # type: ignore[arg-type]  # what mypy refuses, the engine refuses too
-        with pytest.raises(spear.InvalidArgumentError, match=r"^BP_Crate\.Nudge\(\): missing argument 'Velocity'"):
+        # A call that does not fit the signature is Python's TypeError, in the words a C++ function's gives.
+        with pytest.raises(TypeError, match=r"^BP_Crate\.Nudge\(\) missing 1 required keyword-only argument: 'Velocity'$"):
             crate.Nudge()  # type: ignore[call-arg]
+        with pytest.raises(TypeError, match=r"^BP_Crate\.Launch\(\) got an unexpected keyword argument 'Sped'$"):
+            crate.Launch(Sped=1.0)  # type: ignore[call-arg]
+        with pytest.raises(TypeError, match=r"^BP_Crate\.Launch\(\) takes 1 positional argument but 2 were given$"):
+            crate.Launch(1.0)  # type: ignore[misc]
+        with pytest.raises(TypeError, match=r"^AActor\.SetActorLocation\(\) takes 1 positional argument but 2 were given$"):
+            crate.SetActorLocation(spear.FVector())  # type: ignore[misc]  # the same words as a C++ function's
         with pytest.raises(spear.NotFoundError, match=r"class 'AStaticMeshActor' has no function 'Launch'"):
             instance.call_function(uobject=plain, function="Launch", args={})
     with instance.end_frame():

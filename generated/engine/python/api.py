@@ -1645,4 +1645,4 @@ from spear._type_code import TypeCode as _TypeCode  # noqa: E402
 BP_Axes = _declare_blueprint("BP_Axes", AActor, "assets/blueprints/BP_Axes.json", "Coordinate axes: three thin 1 m bars along X (red), Y (green) and Z (blue) from the actor's origin.")
 
 BP_Crate = _declare_blueprint("BP_Crate", AStaticMeshActor, "assets/blueprints/BP_Crate.json", 'A 0.5 m wooden crate of 12 kg that falls and tumbles under physics.',
-                              {"Launch": _TypeCode("struct", "FVector"), "Nudge": _TypeCode("void")})
+                              {"Launch": (_TypeCode("struct", "FVector"), (("Speed", False),)), "Nudge": (_TypeCode("void"), (("Velocity", True),))})
