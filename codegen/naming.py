@@ -156,10 +156,6 @@ def header_stem(header: str) -> str:
     return re.sub(r"[^A-Za-z0-9]", "_", header.rsplit(".", 1)[0])
 
 
-def registry_file(header: str) -> str:
-    return f"{header_stem(header)}.gen.cpp"
-
-
 def classes_by_header(module: Module) -> dict[str, list[Class]]:
     result: dict[str, list[Class]] = {h: [] for h in module.headers}
     for c in module.classes:
@@ -206,7 +202,7 @@ def header_deps(module: Module, *, definitions_only: bool = False) -> dict[str, 
     declared = {c.name: c.header for c in module.classes} | {e.name: e.header for e in module.enums}
     direct = {h: {declared[name] for name in names if name in declared}
               for h, names in types_used(module, definitions_only=definitions_only).items()}
-    return {header: [h for h in closure(module, direct, direct[header] - {header}) if h != header]
+    return {header: [h for h in closure(module, direct, direct[header]) if h != header]
             for header in module.headers}
 
 
@@ -231,8 +227,7 @@ def imported_headers(module: Module, imported: Module, *, definitions_only: bool
     direct = {h: set(deps[h]) for h in imported.headers}
     result = {}
     for header, names in types_used(module, definitions_only=definitions_only).items():
-        start = {declared[name] for name in names if name in declared}
-        result[header] = closure(imported, direct, start | {d for h in start for d in deps[h]})
+        result[header] = closure(imported, direct, {declared[name] for name in names if name in declared})
     return result
 
 
