@@ -77,6 +77,10 @@ float pdf(const SurfacePoint& s, const Eigen::Vector3f& v, const Eigen::Vector3f
     return ps * dGgx(noh, alpha(s)) * noh / (4.0f * voh) + (1.0f - ps) * nol / kPi;
 }
 
+float sampledRoughness(const SurfacePoint& s, float u0) {
+    return u0 < specularProbability(s) ? s.roughness : 1.0f;
+}
+
 bool sample(const SurfacePoint& s, const Eigen::Vector3f& v, float u0, float u1, float u2,
             Eigen::Vector3f& l) {
     if (u0 < specularProbability(s)) {

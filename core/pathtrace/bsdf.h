@@ -32,6 +32,10 @@ float pdf(const SurfacePoint& s, const Eigen::Vector3f& v, const Eigen::Vector3f
 bool sample(const SurfacePoint& s, const Eigen::Vector3f& v, float u0, float u1, float u2,
             Eigen::Vector3f& l);
 
+// The roughness of the lobe sample() draws from with u0: the specular lobe's, or 1 for the diffuse lobe
+// (path regularisation: what later surfaces of the path are roughened to).
+float sampledRoughness(const SurfacePoint& s, float u0);
+
 // A direction drawn with density cos(theta) / pi about n, from u0, u1 in [0, 1).
 Eigen::Vector3f cosineDirection(const Eigen::Vector3f& n, float u0, float u1);
 

@@ -493,6 +493,7 @@ struct PathTracer::Impl {
         h.add(camera.params.focusDistance);
         h.add(settings.maxBounces);
         h.add(settings.maxPathIntensity);
+        h.add(settings.approximateCaustics);
         return h.value;
     }
 
@@ -553,6 +554,7 @@ struct PathTracer::Impl {
             out.diffuseIllumination += firstWhite.cwiseProduct(arriving);
         };
         float bsdfPdf = 0.0f, skyPdf = 0.0f; // of the last bounce's direction
+        float pathRoughness = 0.0f; // the roughest lobe the path has come through (approximateCaustics)
         for (int depth = 0;; ++depth) {
             RTCIntersectContext context;
             rtcInitIntersectContext(&context);
@@ -652,6 +654,8 @@ struct PathTracer::Impl {
                 s.roughness *= rm.y();
                 s.metallic *= rm.z();
             }
+            if (settings.approximateCaustics)
+                s.roughness = std::max(s.roughness, pathRoughness);
             if (depth == 0) {
                 out.hdr += material.emissive; // emitted, not reflected: part of the specular residual
                 out.direct += material.emissive;
@@ -736,8 +740,10 @@ struct PathTracer::Impl {
                 break;
 
             Eigen::Vector3f l;
-            if (!sample(s, toViewer, random.next(), random.next(), random.next(), l) || ng.dot(l) <= 0.0f)
+            const float lobe = random.next();
+            if (!sample(s, toViewer, lobe, random.next(), random.next(), l) || ng.dot(l) <= 0.0f)
                 break;
+            pathRoughness = std::max(pathRoughness, sampledRoughness(s, lobe));
             bsdfPdf = pdf(s, toViewer, l);
             if (!(bsdfPdf > 0.0f))
                 break;

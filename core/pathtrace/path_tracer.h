@@ -25,8 +25,9 @@ namespace sp::pathtrace {
 
 struct Settings {
     Settings() = default;
-    Settings(int samples, int bounces, float maxIntensity = 0.0f)
-        : samplesPerPixel(samples), maxBounces(bounces), maxPathIntensity(maxIntensity) {}
+    Settings(int samples, int bounces, float maxIntensity = 0.0f, bool caustics = false)
+        : samplesPerPixel(samples), maxBounces(bounces), maxPathIntensity(maxIntensity),
+          approximateCaustics(caustics) {}
 
     int samplesPerPixel = 4; // samples added per render() call, in [1, 65536]
     int maxBounces = 4;      // indirect bounces after the first hit, in [0, 64] (0: direct light only)
@@ -34,6 +35,14 @@ struct Settings {
     // not the first surface's own direct light), scaled down so that no channel exceeds this; 0 (the default)
     // clamps nothing and keeps the estimate unbiased. Finite, >= 0.
     float maxPathIntensity = 0.0f;
+    // Path regularisation (Unreal's r.PathTracing.ApproximateCaustics; off here, so that the reference stays
+    // unbiased unless asked): each
+    // surface a path meets after its first is at least as rough as the lobes it was reached through (a
+    // diffuse lobe counts as roughness 1), so light that a glossy floor or a metal leg reflects from the
+    // sun onto a wall arrives as a smooth glow instead of as speckles that take tens of thousands of
+    // samples to average out. What the camera sees directly, and through mirrors, stays sharp; caustics
+    // are blurred (a bias).
+    bool approximateCaustics = false;
     // Throws sp::InvalidArgument naming the bad field.
     void validate(const char* function) const;
 };

@@ -465,7 +465,8 @@ std::shared_ptr<const TracedImages> RenderSubsystem::trace(UCameraSensorComponen
     if (!tracer_)
         tracer_ = std::make_unique<sp::pathtrace::PathTracer>();
     tracer_->render(scene_->scene(), renderCamera,
-                    {camera.SamplesPerPixel, camera.MaxBounces, camera.PathTracingMaxPathIntensity},
+                    {camera.SamplesPerPixel, camera.MaxBounces, camera.PathTracingMaxPathIntensity,
+                     camera.bPathTracingApproximateCaustics},
                     state.accumulation);
     const sp::pathtrace::Accumulation& image = state.accumulation;
     // final_color and hdr_color denoised when asked for; the intrinsic images stay unfiltered.

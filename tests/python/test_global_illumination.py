@@ -175,3 +175,4 @@ def test_the_path_tracers_firefly_clamp_is_off_by_default_and_refuses_bad_values
         pixels = camera.read_pixels()
         assert camera.PathTracingMaxPathIntensity == 10.0
     assert np.isfinite(pixels["hdr_color"].astype(np.float64)).all()
+

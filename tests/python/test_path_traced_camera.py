@@ -79,6 +79,27 @@ def test_a_still_view_accumulates_and_a_change_restarts(instance: spear.Instance
     assert (pixels["final_color"][..., 3] == 255).all()
 
 
+
+def test_approximate_caustics_is_off_by_default_and_restarts_the_image_when_set(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        _sphere_in_sky(game, 0.8)
+        camera = _traced_camera(game, [M.HdrColor], 2)
+        assert camera.bPathTracingApproximateCaustics is False  # the unbiased reference
+    with instance.end_frame():
+        pass
+    samples = []
+    for frame in range(3):
+        with instance.begin_frame():
+            if frame == 1:  # another estimate: the samples so far no longer count
+                camera.bPathTracingApproximateCaustics = True
+        with instance.end_frame():
+            pixels = camera.read_pixels()
+            samples.append(camera.GetAccumulatedSamples())
+            assert camera.bPathTracingApproximateCaustics is (frame >= 1)
+    assert samples == [4, 2, 4]
+    assert np.isfinite(pixels["hdr_color"].astype(np.float64)).all()
+
 def test_geometric_modalities_are_the_rasterisers(instance: spear.Instance) -> None:
     game = instance.get_game()
     with instance.begin_frame():

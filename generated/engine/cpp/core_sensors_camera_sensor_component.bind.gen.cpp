@@ -273,6 +273,13 @@ void bind_UCameraSensorComponent(py::module_& m) {
             Calls::set_PathTracingMaxPathIntensity<PyCall>(self.get<Self>("UCameraSensorComponent.PathTracingMaxPathIntensity"), value);
         },
         "Path tracing, firefly control (Unreal's name): the light a path brings back to the first surface from\nbeyond it is scaled down so that no channel exceeds this radiance; the first surface's direct light\nis kept. 0 (the default) clamps nothing: the unbiased reference. Fewer bright speckles at few samples,\na little energy lost from small bright sources. Finite, >= 0.");
+    cls.def_property(
+        "bPathTracingApproximateCaustics",
+        [](const Ref<Self>& self) { return Calls::get_bPathTracingApproximateCaustics<PyCall>(self.get<Self>("UCameraSensorComponent.bPathTracingApproximateCaustics")); },
+        [](const Ref<Self>& self, const PyArg& value) {
+            Calls::set_bPathTracingApproximateCaustics<PyCall>(self.get<Self>("UCameraSensorComponent.bPathTracingApproximateCaustics"), value);
+        },
+        "Path tracing, path regularisation (Unreal's r.PathTracing.ApproximateCaustics): a surface met after a\ndiffuse or rough bounce is shaded at least that rough, so light a polished metal reflects from a lamp\nor the sun onto a wall is found by the lamp's own samples instead of by chance: fewer speckles at few\nsamples (a third less spread in core/pathtrace's test). What the camera sees directly and in mirrors\nstays sharp; caustics are blurred, a bias. Off by default, unlike Unreal: the unbiased reference.");
     sp::pybind::nameProperties(cls);
     cls.def(
         "SetWidth",

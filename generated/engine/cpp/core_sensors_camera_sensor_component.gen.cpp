@@ -989,6 +989,16 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
                 Calls::set_PathTracingMaxPathIntensity<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
+        t.properties.push_back({
+            "bPathTracingApproximateCaustics",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
+            "Path tracing, path regularisation (Unreal's r.PathTracing.ApproximateCaustics): a surface met after a\ndiffuse or rough bounce is shaded at least that rough, so light a polished metal reflects from a lamp\nor the sun onto a wall is found by the lamp's own samples instead of by chance: fewer speckles at few\nsamples (a third less spread in core/pathtrace's test). What the camera sees directly and in mirrors\nstays sharp; caustics are blurred, a bias. Off by default, unlike Unreal: the unbiased reference.",
+            false,
+            [](const void* self) { return Calls::get_bPathTracingApproximateCaustics<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_bPathTracingApproximateCaustics<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
         t.functions.push_back({
             "SetWidth",
             "Sets Width in pixels, in [1, 16384].",

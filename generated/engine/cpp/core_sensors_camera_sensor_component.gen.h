@@ -774,6 +774,15 @@ struct UCameraSensorComponentCalls {
         sp::reflect::notifyPropertyChanged(self, "PathTracingMaxPathIntensity");
     }
 
+    template <typename Call> static typename Call::Result get_bPathTracingApproximateCaustics(const Self* self) {
+        const auto& value = self->bPathTracingApproximateCaustics;
+        return Call::template result<bool>(value);
+    }
+    template <typename Call> static void set_bPathTracingApproximateCaustics(Self* self, const typename Call::Input& value) {
+        self->bPathTracingApproximateCaustics = Call::template input<bool>(value, "UCameraSensorComponent.bPathTracingApproximateCaustics");
+        sp::reflect::notifyPropertyChanged(self, "bPathTracingApproximateCaustics");
+    }
+
     template <typename Call, typename Target>
     static typename Call::Result call_SetWidth(const Target& target, typename Call::Args args) {
         static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{

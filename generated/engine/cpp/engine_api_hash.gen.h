@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "054fb3da69552913";
+inline constexpr char kApiHash[] = "6cf6434c7398c4b6";
 } // namespace sp::generated::engine

@@ -1463,6 +1463,14 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
     def PathTracingMaxPathIntensity(self, value: float) -> None:
         self._sp_set("UCameraSensorComponent", "PathTracingMaxPathIntensity", value)
 
+    @property
+    def bPathTracingApproximateCaustics(self) -> bool:
+        return cast("bool", self._sp_get("UCameraSensorComponent", "bPathTracingApproximateCaustics", _t.T_bool))
+
+    @bPathTracingApproximateCaustics.setter
+    def bPathTracingApproximateCaustics(self, value: bool) -> None:
+        self._sp_set("UCameraSensorComponent", "bPathTracingApproximateCaustics", value)
+
     def SetWidth(self, *, NewWidth: int) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetWidth", {"NewWidth": NewWidth}, _t.T_void))  # a Future when queued by call_async
 
