@@ -213,10 +213,11 @@ TEST_F(PathTracerGlTest, MaxPathIntensityTradesFirefliesForBias) {
 
 TEST_F(PathTracerGlTest, ApproximateCausticsTurnTheCausticIntoAGlowThatKeepsItsLight) {
     // The same caustic with path regularisation: the metal, met after the floor's diffuse bounce, is shaded
-    // as rough, so the emitter samples from it find the lamp instead of bounce rays finding it by chance. What
-    // is left is the chance of the floor's bounce meeting the metal ball: two independent 16-sample images
-    // differ about a third less than exact ones (0.64x when written), and the converged image keeps most of
-    // the light (the caustic is spread, not removed: the metal reflects what it did, over a wider lobe).
+    // as rough, so the emitter samples from it find the lamp instead of bounce rays finding it by chance.
+    // What is left is the chance of the floor's bounce meeting the metal ball: two independent 16-sample
+    // images differ about a third less than exact ones (0.64x when written), and the converged image keeps
+    // most of the light (the caustic is spread, not removed: the metal reflects what it did, over a wider
+    // lobe).
     Scene scene;
     const auto [camera, other] = causticScene(scene);
     auto spread = [&](const Settings& settings) {
