@@ -109,13 +109,13 @@ Renderer::Renderer(const GlContext& context)
     if (context.report().software) {
         // What the surface programs' own varyings leave of the smaller of the two limits (see
         // shaders::ShadingLayout::constantSlots), in vec4s: 8 per-vertex and per-instance varyings and up to
-        // one light-space position per shadow map; one more is kept back for gl_Position, which some
-        // drivers count among the outputs.
+        // one light-space position per projected shadow map; one more is kept back for gl_Position, which
+        // some drivers count among the outputs.
         GLint vertexOutputs = 0, fragmentInputs = 0;
         glGetIntegerv(GL_MAX_VERTEX_OUTPUT_COMPONENTS, &vertexOutputs);
         glGetIntegerv(GL_MAX_FRAGMENT_INPUT_COMPONENTS, &fragmentInputs);
-        constantSlots_ =
-            std::max(0, std::min(vertexOutputs, fragmentInputs) / 4 - 8 - shaders::kMaxShadowMaps - 1);
+        constantSlots_ = std::max(0, std::min(vertexOutputs, fragmentInputs) / 4 - 8 -
+                                         shaders::kMaxProjectedShadowMaps - 1);
     }
     // Where the driver can choose the layer in the vertex shader, the shadow maps of every scene are drawn in
     // one layered framebuffer (shadow_layers.h) and small views share layered ones (framebuffer_atlas.h).
@@ -424,8 +424,8 @@ void Renderer::renderView(const View& view) {
             slot.type = light.light->type;
             slot.ranged = light.light->ranged();
             for (const ShadowInfo& info : shadowInfos)
-                if (info.lightOrdinal == light.ordinal)
-                    slot.shadowLayer = info.layer;
+                if (info.lightOrdinal == light.ordinal && slot.shadowLayer < 0)
+                    slot.shadowLayer = info.layer; // a point light's first face
             lights.lights.push_back(slot);
         }
         lights.floatShadowMaps = !shadowInfos.empty() && active_->shadowMaps->format() == GL_R32F;

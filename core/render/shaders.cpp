@@ -13,7 +13,7 @@ namespace {
 // The per-view constants (FrameBlock in shaders.h, std140: every array element is a vec4 or mat4).
 const char* const kFrameBlock = R"glsl(
 #define MAX_LIGHTS 16
-#define MAX_SHADOWS 4
+#define MAX_SHADOWS 16
 layout(std140, binding = 0) uniform FrameBlock {
     vec4 uCameraPosition;
     vec4 uAmbient;
@@ -304,9 +304,8 @@ vec3 toHalf(vec3 v) {
 // llvmpipe runs a sampler's general path (wrap modes, formats, filtering state) for every gathered pixel,
 // and the loads cost far less (spear_render_bench, 1080p final_color with a shadowed sun and spot light:
 // 38-40 -> 35-37 ms, 33-35 with 16-bit maps); on a GPU both are a few instructions.
-float shadowFactor(const int layer, vec3 s) {
+float shadowTap(const int layer, float size, vec3 s) {
     if (any(lessThan(s, vec3(0.0))) || any(greaterThan(s, vec3(1.0)))) return 1.0;
-    float size = shadowSize(layer);
     vec2 t = s.xy * size - 0.5;
     vec2 cell = floor(t);
     vec2 f = t - cell;
@@ -319,6 +318,18 @@ float shadowFactor(const int layer, vec3 s) {
     // four texels are lit, as a program without the lookups has it (see shadow_reach.h).
     float near = lit.x + f.x * (lit.y - lit.x), far = lit.z + f.x * (lit.w - lit.z);
     return near + f.y * (far - near);
+}
+float shadowFactor(const int layer, vec3 s) { return shadowTap(layer, shadowSize(layer), s); }
+// A point light's shadow at p (n turned towards the light): its maps are the six faces of a cube around it,
+// +x, -x, +y, -y, +z, -z from layer `first`; the face is the one along the major axis of p - light, and
+// its coordinates are computed here (a triangle may span faces, so the vertex shader cannot interpolate
+// them). Every map has the resolution of the first (ShadowMaps), so the size is read there.
+float pointShadowFactor(const int first, vec3 light, vec3 p, vec3 n) {
+    vec3 q = p - light, a = abs(q);
+    int face = a.x >= a.y && a.x >= a.z ? (q.x >= 0.0 ? 0 : 1) : a.y >= a.z ? (q.y >= 0.0 ? 2 : 3) : (q.z >= 0.0 ? 4 : 5);
+    int layer = first + face;
+    vec4 c = offsetPerspectiveShadowClip(layer, p, n, uShadowParams[layer].x);
+    return shadowTap(layer, shadowSize(0), (c.xyz / c.w) * 0.5 + 0.5);
 }
 
 
@@ -642,11 +653,12 @@ std::string outputs(TargetMask targets, bool compact) {
     return text;
 }
 
-// The shadow-map layers a layout samples.
+// The shadow-map layers a layout samples through the vertex shader's interpolated coordinates (a point
+// light's faces are looked up per pixel: pointShadowFactor()).
 std::vector<int> shadowLayers(const ShadingLayout& lights) {
     std::vector<int> layers;
     for (const LightSlot& light : lights.lights)
-        if (light.shadowLayer >= 0)
+        if (light.shadowLayer >= 0 && light.type != LightType::Point)
             layers.push_back(light.shadowLayer);
     return layers;
 }
@@ -679,7 +691,7 @@ std::string shadowClips(const ShadingLayout& lights) {
     std::string text;
     for (std::size_t i = 0; i < lights.lights.size(); ++i) {
         const LightSlot& light = lights.lights[i];
-        if (light.shadowLayer < 0)
+        if (light.shadowLayer < 0 || light.type == LightType::Point)
             continue;
         const std::string at = "[" + std::to_string(i) + "]", layer = std::to_string(light.shadowLayer);
         const std::string toLight = light.type == LightType::Directional
@@ -914,7 +926,10 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
             }
         }
         text += "        float nol = dot(n, l);\n        if (nol > 0.0) {\n";
-        if (light.shadowLayer >= 0) // n faces the light here (nol > 0), as the vertex shader turns it
+        if (light.shadowLayer >= 0 && light.type == LightType::Point) // n faces the light (nol > 0)
+            text += "            e *= pointShadowFactor(" + std::to_string(light.shadowLayer) + ", " +
+                    terms.position + ", p, n);\n";
+        else if (light.shadowLayer >= 0) // n faces the light here (nol > 0), as the vertex shader turns it
             text += shadowLookup(light, perPixelShadows, "n", "            ");
         text += "            accumulate(s, l, e, nol, irradiance, specular);\n        }\n    }\n";
     }

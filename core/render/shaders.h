@@ -18,8 +18,11 @@
 
 namespace sp::render::shaders {
 
-inline constexpr int kMaxLights = 16;    // must match MAX_LIGHTS in kFrameBlock
-inline constexpr int kMaxShadowMaps = 4; // must match MAX_SHADOWS in kFrameBlock
+inline constexpr int kMaxLights = 16;     // must match MAX_LIGHTS in kFrameBlock
+inline constexpr int kMaxShadowMaps = 16; // must match MAX_SHADOWS in kFrameBlock
+// Of those, the maps of directional, spot and rect lights, whose coordinates the vertex shader interpolates
+// (a varying each): they hold the first layers. A point light's six cube faces follow, looked up per pixel.
+inline constexpr int kMaxProjectedShadowMaps = 4;
 
 // The image unit the shading reads shadow maps from (binding 0 in kShadingChunk).
 inline constexpr int kShadowMapImageUnit = 0;
@@ -36,14 +39,15 @@ struct FrameBlock {
     int counts[4]; // x = light count (informative: the programs are specialised), y = the view's layer
     float lightRadiance[16][4]; // xyz = colour * intensity
     // Reciprocals rather than the values the shading would divide by (see accumulate() in shaders.cpp).
-    float lightPosition[16][4];  // xyz, w = 1 / range (0 = unbounded)
-    float lightDirection[16][4]; // xyz unit direction light travels
-    float lightCone[16][4];      // x = cos(outer), y = 1 / max(cos(inner) - cos(outer), 1e-4)
-    float shadowMatrix[4][16];   // world -> light clip, column-major
-    float shadowParams[4][4]; // x = world texel size (per metre of distance for a spot light), y = resolution
-    float backgroundFinal[4]; // rgba: final_color of background pixels (tone-mapped on the CPU side)
-    float exposure[4];        // xyz: exposure times the white balance gains
-    float vignette[4];        // x = intensity, y = focal length in pixels, zw = the image centre in pixels
+    float lightPosition[16][4];             // xyz, w = 1 / range (0 = unbounded)
+    float lightDirection[16][4];            // xyz unit direction light travels
+    float lightCone[16][4];                 // x = cos(outer), y = 1 / max(cos(inner) - cos(outer), 1e-4)
+    float shadowMatrix[kMaxShadowMaps][16]; // world -> light clip, column-major
+    float shadowParams[kMaxShadowMaps][4];  // x = world texel size (per metre of distance when perspective),
+                                            // y = resolution
+    float backgroundFinal[4];  // rgba: final_color of background pixels (tone-mapped on the CPU side)
+    float exposure[4];         // xyz: exposure times the white balance gains
+    float vignette[4];         // x = intensity, y = focal length in pixels, zw = the image centre in pixels
     float irradianceVolume[4]; // xyz: world position of the volume's probe (0, 0, 0); w: 1 / spacing
     // The environment map's diffuse term (EnvironmentMap::diffuseCoefficients() times its scale), xyz each.
     float skyDiffuse[9][4];
@@ -58,7 +62,7 @@ enum class IrradianceBlend { None, PerPixel, PerVertex };
 // One light of a shading variant.
 struct LightSlot {
     LightType type = LightType::Directional;
-    int shadowLayer = -1; // layer of the shadow map array, -1 for none
+    int shadowLayer = -1; // layer of the shadow map array (a point light's first of six), -1 for none
     bool ranged = false;  // point or spot light with a finite AttenuationRadius
 
     bool operator==(const LightSlot&) const = default;

@@ -220,16 +220,31 @@ ShadowMaps::Rect ShadowMaps::footprint(const Scene& scene, const Instance& insta
         x0 = ((clip.x() - rx) * 0.5 + 0.5) * resolution, x1 = ((clip.x() + rx) * 0.5 + 0.5) * resolution;
         y0 = ((clip.y() - ry) * 0.5 + 0.5) * resolution, y1 = ((clip.y() + ry) * 0.5 + 0.5) * resolution;
     }
+    // A perspective map: nothing of it when the sphere lies wholly outside one of the frustum's side planes
+    // (x or y beyond +-w; a point light's faces see their sixth of the space around it).
+    for (int side = 0; side < 4 && !orthographic; ++side) {
+        const Eigen::RowVector4d plane =
+            lightProjection.row(3) + (side % 2 == 0 ? -1.0 : 1.0) * lightProjection.row(side / 2);
+        if (plane * centre.homogeneous() < -radius * plane.head<3>().norm())
+            return {};
+    }
+    int behind = 0;
     for (int corner = 0; corner < 8 && !orthographic; ++corner) {
         const Eigen::Vector3d offset((corner & 1) ? radius : -radius, (corner & 2) ? radius : -radius,
                                      (corner & 4) ? radius : -radius);
         const Eigen::Vector4d clip = lightProjection * (centre + offset).homogeneous();
-        if (clip.w() <= 1e-9)
-            return whole; // reaches behind a spot light: no bounded footprint
+        if (clip.w() <= 1e-9) {
+            ++behind;
+            continue;
+        }
         const double x = (clip.x() / clip.w() * 0.5 + 0.5) * resolution;
         const double y = (clip.y() / clip.w() * 0.5 + 0.5) * resolution;
         x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
     }
+    if (behind == 8)
+        return {}; // wholly behind the light's map (another face of a point light's cube): not in it
+    if (behind > 0)
+        return whole; // reaches behind a spot light: no bounded footprint
     // Two texels of margin for rasterisation rules and the polygon offset.
     auto clampTo = [&](double v) { return int(std::clamp(v, 0.0, double(resolution))); };
     return {clampTo(std::floor(x0) - 2), clampTo(std::floor(y0) - 2), clampTo(std::ceil(x1) + 2),
@@ -286,8 +301,7 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
     bool directional = false, spot = false;
     scene.forEachLight([&](LightId, const Light& light) {
         directional = directional || (light.castShadows && light.type == LightType::Directional);
-        spot =
-            spot || (light.castShadows && (light.type == LightType::Spot || light.type == LightType::Rect));
+        spot = spot || (light.castShadows && light.type != LightType::Directional);
     });
     Sphere region;
     if (directional) {
@@ -327,56 +341,85 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
         return 0;
     }
     int skipped = 0;
-    int ordinal = -1;
     std::vector<Eigen::Matrix4d> projections;
     std::vector<Eigen::Vector3d> positions;
+    // A map of `light` (the scene's `ordinal`-th) seen along `forward` over `halfAngle` from its position.
+    auto perspectiveMap = [&](ShadowInfo& info, const Light& light, const Eigen::Vector3d& forward,
+                              double halfAngle) {
+        const double farClip = (light.position - centre).norm() + radius;
+        const double nearClip = std::max(0.02, farClip * 1e-3);
+        projections.push_back(perspective(halfAngle, nearClip, farClip) * lookAlong(light.position, forward));
+        info.texel = float(2.0 * std::tan(halfAngle) / resolution);
+        info.perspective = true;
+    };
+    auto add = [&](ShadowInfo info, const Light& light) {
+        positions.push_back(light.position);
+        info.worldToClip = projections.back().cast<float>();
+        info.layer = static_cast<int>(infos.size());
+        infos.push_back(info);
+        lightSignature.insert(lightSignature.end(), projections.back().data(),
+                              projections.back().data() + 16);
+        lightSignature.insert(lightSignature.end(),
+                              {light.position.x(), light.position.y(), light.position.z()});
+    };
+    // Directional, spot and rect lights first: their maps take the first layers, whose coordinates the
+    // vertex shader interpolates (shaders::kMaxProjectedShadowMaps); then the point lights' cubes.
+    int ordinal = -1;
     scene.forEachLight([&](LightId, const Light& light) {
         ++ordinal;
         if (!light.castShadows || light.type == LightType::Point)
             return;
-        if (infos.size() >= std::size_t(shaders::kMaxShadowMaps)) {
+        if (infos.size() >= std::size_t(shaders::kMaxProjectedShadowMaps)) {
             ++skipped;
             return;
         }
         ShadowInfo info;
         info.lightOrdinal = ordinal;
-        info.layer = static_cast<int>(infos.size());
         const Eigen::Vector3d forward = light.direction.normalized();
-        Eigen::Matrix4d projection;
-        Eigen::Matrix4d view;
         if (light.type == LightType::Directional) {
             if (region_.radius <= 0.0)
                 return; // the view sees nothing: no map
-            view = lookAlong(region_.centre - forward * (2.0 * region_.radius), forward);
-            projection = orthographic(region_.radius, 0.0, 4.0 * region_.radius);
+            projections.push_back(orthographic(region_.radius, 0.0, 4.0 * region_.radius) *
+                                  lookAlong(region_.centre - forward * (2.0 * region_.radius), forward));
             info.texel = float(2.0 * region_.radius / resolution);
         } else {
             if (radius <= 0.0)
                 return; // the scene has no bounds a map could cover
             // A rect light shines over a hemisphere: its map, seen from its centre, covers the 75 degrees
             // about its normal that carry 93 % of its light (sin^2 75); points further out are unshadowed.
-            const double halfAngle = light.type == LightType::Rect
-                                         ? 75.0 * M_PI / 180.0
-                                         : std::min(light.outerConeDeg * M_PI / 180.0 + 0.05, 1.5);
-            const double farClip = (light.position - centre).norm() + radius;
-            const double nearClip = std::max(0.02, farClip * 1e-3);
-            view = lookAlong(light.position, forward);
-            projection = perspective(halfAngle, nearClip, farClip);
-            info.texel = float(2.0 * std::tan(halfAngle) / resolution);
-            info.perspective = true;
+            perspectiveMap(info, light, forward,
+                           light.type == LightType::Rect
+                               ? 75.0 * M_PI / 180.0
+                               : std::min(light.outerConeDeg * M_PI / 180.0 + 0.05, 1.5));
         }
-        projections.push_back(projection * view);
-        positions.push_back(light.position);
-        info.worldToClip = projections.back().cast<float>();
-        infos.push_back(info);
-        lightSignature.insert(lightSignature.end(), projections.back().data(),
-                              projections.back().data() + 16);
-        lightSignature.insert(lightSignature.end(),
-                              {light.position.x(), light.position.y(), light.position.z()});
+        add(info, light);
+    });
+    ordinal = -1;
+    scene.forEachLight([&](LightId, const Light& light) {
+        ++ordinal;
+        if (!light.castShadows || light.type != LightType::Point || radius <= 0.0)
+            return;
+        if (infos.size() + 6 > std::size_t(shaders::kMaxShadowMaps)) {
+            ++skipped;
+            return;
+        }
+        // Six faces, +x, -x, +y, -y, +z, -z (the order pointShadowFactor() in shaders.cpp picks them in),
+        // each a little wider than 90 degrees, so that a point near an edge, moved by the normal offset and
+        // read by the bilinear tap, still lies inside the face its direction chooses.
+        ShadowInfo info;
+        info.lightOrdinal = ordinal;
+        for (int face = 0; face < 6; ++face) {
+            Eigen::Vector3d forward = Eigen::Vector3d::Zero();
+            forward[face / 2] = face % 2 == 0 ? 1.0 : -1.0;
+            perspectiveMap(info, light, forward, std::atan(1.0 + 8.0 / resolution));
+            add(info, light);
+        }
     });
     if (skipped > 0 && !warnedTooMany_) {
-        SP_LOG("render: ", skipped, " shadow-casting light(s) beyond the first ", shaders::kMaxShadowMaps,
-               " are rendered without shadows");
+        SP_LOG("render: ", skipped, " shadow-casting light(s) beyond the shadow maps' capacity (",
+               shaders::kMaxProjectedShadowMaps, " directional, spot or rect lights and ",
+               shaders::kMaxShadowMaps,
+               " maps in all, a point light taking six) are rendered without shadows");
         warnedTooMany_ = true;
     }
     if (infos.empty()) {

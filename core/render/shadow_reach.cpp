@@ -35,6 +35,10 @@ ShadowReceivers::ShadowReceivers(const Scene& scene, const Camera& camera, int w
         for (const ShadowInfo& map : maps) {
             if (map.lightOrdinal != ordinal)
                 continue;
+            if (light.type == LightType::Point && !lights_.empty() && lights_.back().allAround &&
+                lights_.back().apex == light.position &&
+                lights_.back().range == (light.ranged() ? double(light.range) : 0.0))
+                continue; // a point light's six faces are one light here: the cone from its position
             ShadowLight shadowLight;
             shadowLight.directional = !map.perspective;
             if (shadowLight.directional) {
@@ -49,6 +53,8 @@ ShadowReceivers::ShadowReceivers(const Scene& scene, const Camera& camera, int w
                     1.0 + 2.0 * kReachTexels / std::max(1, camera.params.shadowResolution);
                 shadowLight.apex = light.position;
                 shadowLight.margin = kReachTexels * double(map.texel); // a texel per metre of distance
+                shadowLight.range = light.ranged() ? double(light.range) : 0.0;
+                shadowLight.allAround = light.type == LightType::Point;
             }
             lights_.push_back(shadowLight);
         }
@@ -96,9 +102,15 @@ Eigen::AlignedBox3d ShadowReceivers::darkened(const ShadowLight& light, const Ei
                                               const Eigen::AlignedBox3d& receiver) {
     if (light.directional)
         return sweptAway(light.direction, widened(caster, light.margin), receiver);
-    if (outsideMap(light, caster))
+    if (!light.allAround && outsideMap(light, caster))
         return {};
-    return coneBeyond(light.apex, light.margin, caster, receiver);
+    const Eigen::AlignedBox3d region = coneBeyond(light.apex, light.margin, caster, receiver);
+    if (light.range <= 0.0 || region.isEmpty())
+        return region;
+    // A light of finite range adds nothing past it, so nothing there is darker for its shadow (a point
+    // light's cube reaches all around it: without this its shadows would reach every receiver).
+    const Eigen::Vector3d reach = Eigen::Vector3d::Constant(light.range);
+    return region.intersection(Eigen::AlignedBox3d(light.apex - reach, light.apex + reach));
 }
 
 bool ShadowReceivers::outsideMap(const ShadowLight& light, const Eigen::AlignedBox3d& caster) {

@@ -84,6 +84,10 @@ class ShadowReceivers {
         double margin = 0.0;                                  // directional: metres; spot: radians
         Eigen::Matrix4d worldToClip = Eigen::Matrix4d::Identity(); // spot: the map's projection
         double clipReach = 1.0; // spot: the map's frustum widened by the reach, in clip x / w
+        double range =
+            0.0; // point, spot or rect light of finite range: it lights nothing beyond (0: no limit)
+        bool allAround =
+            false; // a point light: its cube of maps sees every direction (no frustum to be out of)
     };
     // Whether a caster box lies wholly outside a spot map's frustum (so it is not in the map).
     static bool outsideMap(const ShadowLight& light, const Eigen::AlignedBox3d& caster);

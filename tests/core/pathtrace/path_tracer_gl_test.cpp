@@ -235,6 +235,62 @@ TEST_F(PathTracerGlTest, ApproximateCausticsTurnTheCausticIntoAGlowThatKeepsItsL
     EXPECT_FALSE(Settings().approximateCaustics); // the unbiased estimate unless asked
 }
 
+TEST_F(PathTracerGlTest, PointLightShadowsInTheRasteriserFallWhereThePathTracersDo) {
+    // A lamp (a point light) 1.5 m over a floor, a box on the floor beside it and a wall on the far side of
+    // the box: the box shadows the floor and the wall, as in the path tracer, whose shadow rays are exact.
+    // The rasteriser looks the shadows up in a cube of six maps around the lamp, some of whose faces' seams
+    // cross the floor. Direct light only, no sky: a shadow is black.
+    Scene scene;
+    const render::MaterialId grey = scene.addMaterial(material({0.6f, 0.6f, 0.6f}, 0.9f, 0.0f));
+    scene.addInstance({scene.addMesh(render::primitives::plane(6.0f, 6.0f)), {grey}, {1}});
+    render::Instance box{
+        scene.addMesh(render::primitives::box(Eigen::Vector3f::Constant(0.5f))), {grey}, {2}};
+    box.transform.translation() = Eigen::Vector3d(0.8, 0.0, 0.25);
+    scene.addInstance(box);
+    render::Instance wall{
+        scene.addMesh(render::primitives::box(Eigen::Vector3f(0.1f, 3.0f, 2.0f))), {grey}, {3}};
+    wall.transform.translation() = Eigen::Vector3d(2.0, 0.0, 1.0);
+    scene.addInstance(wall);
+    Light lamp;
+    lamp.type = LightType::Point;
+    lamp.position = Eigen::Vector3d(-0.6, 0.0, 1.5);
+    lamp.intensity = 4.0f;
+    lamp.castShadows = true;
+    const render::LightId lampId = scene.addLight(lamp);
+    scene.setEnvironment({{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}});
+    Camera camera = lookingAlong({0.3, -3.0, 2.0}, {1.2, 3.0, -1.7}, 64, 48, 60.0);
+    camera.params.shadowResolution = 1024;
+
+    const render::Frame frame = renderFrame(scene, camera, {render::Modality::HdrColor});
+    const render::ImageBuffer& raster = frame.get(render::Modality::HdrColor);
+    Accumulation traced;
+    tracer_.render(scene, camera, {64, 0}, traced);
+    Light unshadowed = lamp;
+    unshadowed.castShadows = false;
+    scene.setLight(lampId, unshadowed);
+    const render::Frame withoutShadows = renderFrame(scene, camera, {render::Modality::HdrColor});
+    const render::ImageBuffer& lit = withoutShadows.get(render::Modality::HdrColor);
+
+    // Where the path tracer's lamp casts a shadow (dark there, lit by the same lamp without shadows), the
+    // rasteriser's is dark; where the path tracer's lamp lights, the rasteriser's shadows take nothing away
+    // but along the shadows' edges (a map's texel against a pixel's jittered samples).
+    int cast = 0, dark = 0, lighted = 0, kept = 0;
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 64; ++x) {
+            const float expected = traced.mean(x, y, 0);
+            if (expected < 1e-4f && lit.at(x, y, 0) > 1e-2f) {
+                ++cast;
+                dark += raster.at(x, y, 0) < 1e-3f;
+            } else if (expected > 1e-3f) {
+                ++lighted;
+                kept += std::abs(raster.at(x, y, 0) - lit.at(x, y, 0)) <= 0.02f * lit.at(x, y, 0);
+            }
+        }
+    EXPECT_GT(cast, 64 * 48 / 25) << "the shadows are in view";
+    EXPECT_GT(dark, cast * 9 / 10) << dark << " of " << cast;
+    EXPECT_GT(kept, lighted * 97 / 100) << kept << " of " << lighted;
+}
+
 TEST_F(PathTracerGlTest, NormalMapsTurnTheShadingAsTheRasterisersDo) {
     // A rough plane whose normal map tilts every normal 30 degrees towards +u, under a shadowless sun: the
     // direct light depends on the mapped normal, and the path tracer's matches the rasteriser's per pixel

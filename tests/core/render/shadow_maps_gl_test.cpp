@@ -144,6 +144,54 @@ TEST_F(ShadowMapsGlTest, SpotLightMapsKeepFullDepthPrecisionAndTheSameGuarantee)
     EXPECT_EQ(maps.lastUpdate().fullMaps, 0u);
 }
 
+TEST_F(ShadowMapsGlTest, APointLightHasACubeOfSixMapsAfterTheProjectedOnesAndTheSameGuarantee) {
+    // The spot scene (a spot light and a point light) with the point light casting shadows, and a sun added
+    // after them: the sun's and the spot's maps take the first layers (the vertex shader interpolates their
+    // coordinates), the point light's six faces follow, each a perspective map from the lamp. A crate moving
+    // near the lamp leaves the maps equal to a fresh render's, and a face it is wholly behind is not redrawn.
+    Scene scene;
+    buildSpotScene(scene);
+    Light sun;
+    sun.direction = Eigen::Vector3d(0.3, 0.2, -1.0);
+    scene.addLight(sun);
+    Eigen::Vector3d lamp = Eigen::Vector3d::Zero();
+    scene.forEachLight([&](LightId id, const Light& light) {
+        if (light.type != LightType::Point)
+            return;
+        Light shadowed = light;
+        shadowed.castShadows = true;
+        scene.setLight(id, shadowed);
+        lamp = light.position;
+    });
+    const InstanceId id = addBoxes(scene, 0.3f, {lamp + Eigen::Vector3d(0.0, 0.0, -0.6)}, 77)[0];
+    ShadowMaps maps(layers_, nextOwner());
+    expectSameAsFresh(maps, scene, "first update");
+    ASSERT_EQ(maps.infos().size(), 8u);
+    EXPECT_EQ(maps.infos()[0].lightOrdinal, 0); // the spot light
+    EXPECT_EQ(maps.infos()[1].lightOrdinal, 2); // the sun
+    for (int face = 0; face < 6; ++face) {
+        const ShadowInfo& info = maps.infos()[std::size_t(2 + face)];
+        EXPECT_EQ(info.lightOrdinal, 1);
+        EXPECT_EQ(info.layer, 2 + face);
+        EXPECT_TRUE(info.perspective);
+        // The face looks along its axis: the point one metre from the lamp that way is at its centre.
+        Eigen::Vector3d along = Eigen::Vector3d::Zero();
+        along[face / 2] = face % 2 == 0 ? 1.0 : -1.0;
+        const Eigen::Vector4f clip = info.worldToClip * (lamp + along).cast<float>().homogeneous();
+        EXPECT_GT(clip.w(), 0.0f) << face;
+        EXPECT_NEAR(clip.x() / clip.w(), 0.0f, 1e-4f) << face;
+        EXPECT_NEAR(clip.y() / clip.w(), 0.0f, 1e-4f) << face;
+    }
+    moveBy(scene, id, {0.2, 0.0, 0.0});
+    expectSameAsFresh(maps, scene, "the crate moved under the lamp");
+    EXPECT_EQ(maps.lastUpdate().fullMaps, 0u);
+    // Redrawn: where the crate is in the spot's, the sun's and the lamp's downward face; the other five faces
+    // see nothing of it (those it is wholly behind, above all, are not redrawn whole).
+    EXPECT_LE(maps.lastUpdate().redrawnRects, 3u);
+    moveBy(scene, id, {0.0, 0.3, 0.0});
+    expectSameAsFresh(maps, scene, "the crate moved again");
+}
+
 TEST_F(ShadowMapsGlTest, OneObjectMovingInAStillSceneRedrawsOnlyItsNeighbourhood) {
     Scene scene;
     buildShapesScene(scene);
