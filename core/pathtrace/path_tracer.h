@@ -8,8 +8,8 @@
 // area) and of the sky (combined with the BSDF-sampled ray by multiple importance sampling, power
 // heuristic); the surface model is the rasteriser's (bsdf.h), normal maps included. Russian roulette after
 // three bounces. Images accumulate across calls while the scene, the camera and maxBounces stay the same, so
-// a still view converges; any change anywhere in the scene restarts them. Point lights cast shadows here (the
-// rasteriser has no shadow maps for them), rect lights soft ones; instances that do not cast shadows are
+// a still view converges; any change anywhere in the scene restarts them. Point lights cast shadows (as the
+// rasteriser's cube maps do), rect lights soft ones; instances that do not cast shadows are
 // invisible to shadow rays only. Primary rays that leave the scene show the environment's background, as in
 // the rasteriser; rays that leave it after a bounce bring back the sky's radiance.
 

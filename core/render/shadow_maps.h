@@ -1,7 +1,7 @@
 #pragma once
-// Shadow maps of directional and spot lights, one layer each of texture arrays the renderer's scenes share
-// (ShadowLayers). Spot maps are perspective over the cone. Point lights cast no shadows. Needs a current
-// context.
+// Shadow maps of directional, spot and rect lights, one layer each of texture arrays the renderer's scenes
+// share (ShadowLayers), and of point lights, six each (a cube of perspective maps around the lamp, after the
+// others' layers). Spot maps are perspective over the cone. Needs a current context.
 //
 // Directional maps are orthographic over a region fitted to what the camera sees (the bounding sphere of
 // the instances in its frustum), not to the whole scene: objects that fall or roll far out of view neither
@@ -77,7 +77,8 @@ class ShadowMaps {
     ShadowMaps& operator=(const ShadowMaps&) = delete;
 
     // Brings the maps up to date for `scene` seen by a view: one for each of the first
-    // shaders::kMaxShadowMaps shadow-casting directional or spot lights (in handle order). `seen` is what
+    // shaders::kMaxProjectedShadowMaps shadow-casting directional, spot or rect lights (in handle order), then
+    // six for each shadow-casting point light while they fit in shaders::kMaxShadowMaps. `seen` is what
     // the directional maps must cover (Scene::bounds within the view's frustum); left out, the whole scene.
     // Returns how many maps were rendered: 0 when nothing that shapes them (lights, visible instances and
     // their meshes, the resolution, the directional region) changed since the last call, so the views of
