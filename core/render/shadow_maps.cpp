@@ -416,10 +416,10 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
         }
     });
     if (skipped > 0 && !warnedTooMany_) {
-        SP_LOG("render: ", skipped, " shadow-casting light(s) beyond the shadow maps' capacity (",
-               shaders::kMaxProjectedShadowMaps, " directional, spot or rect lights and ",
+        SP_LOG("render: ", skipped, " shadow-casting light(s) beyond the first ",
+               shaders::kMaxProjectedShadowMaps, " directional, spot or rect lights, or past ",
                shaders::kMaxShadowMaps,
-               " maps in all, a point light taking six) are rendered without shadows");
+               " maps in all (a point light takes six), are rendered without shadows");
         warnedTooMany_ = true;
     }
     if (infos.empty()) {
