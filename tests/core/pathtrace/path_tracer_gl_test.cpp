@@ -91,6 +91,14 @@ class PathTracerGlTest : public render::test::GlTest {
         other.params.farClip = 999.0;
         return {camera, other};
     }
+    // How far apart two independent images of `scene` are: the same view, `camera` and `other`, traced with
+    // different random numbers.
+    double spread(const Scene& scene, const Camera& camera, const Camera& other, const Settings& settings) {
+        Accumulation a, b;
+        tracer_.render(scene, camera, settings, a);
+        tracer_.render(scene, other, settings, b);
+        return rmsDifference(a, b);
+    }
     PathTracer tracer_;
 };
 
@@ -193,12 +201,7 @@ TEST_F(PathTracerGlTest, MaxPathIntensityTradesFirefliesForBias) {
     // clamps nothing (the same sums as the default settings).
     Scene scene;
     const auto [camera, other] = causticScene(scene);
-    auto spread = [&](const Settings& settings) {
-        Accumulation a, b;
-        tracer_.render(scene, camera, settings, a);
-        tracer_.render(scene, other, settings, b);
-        return rmsDifference(a, b);
-    };
+    auto spread = [&](const Settings& settings) { return this->spread(scene, camera, other, settings); };
     EXPECT_LT(spread({16, 2, 20.0f, false}), 0.5 * spread({16, 2, 0.0f, false}));
     Accumulation clamped, unclamped, defaults;
     tracer_.render(scene, other, {1024, 2, 20.0f, false}, clamped);
@@ -220,12 +223,7 @@ TEST_F(PathTracerGlTest, ApproximateCausticsTurnTheCausticIntoAGlowThatKeepsItsL
     // lobe).
     Scene scene;
     const auto [camera, other] = causticScene(scene);
-    auto spread = [&](const Settings& settings) {
-        Accumulation a, b;
-        tracer_.render(scene, camera, settings, a);
-        tracer_.render(scene, other, settings, b);
-        return rmsDifference(a, b);
-    };
+    auto spread = [&](const Settings& settings) { return this->spread(scene, camera, other, settings); };
     const double exact = spread({16, 2, 0.0f, false}), approximated = spread({16, 2, 0.0f, true});
     EXPECT_LT(approximated, 0.75 * exact) << approximated << " against " << exact;
     Accumulation converged, exactImage;
