@@ -153,7 +153,8 @@ struct FLensDistortion {
     friend bool operator==(const FLensDistortion&, const FLensDistortion&) = default;
 };
 
-/// The images of one frame, keyed by modality name; only the modalities the camera renders are present.
+/// The images of one frame, keyed by modality name; only the modalities the camera renders (its Modalities)
+/// are present.
 SPSTRUCT(TypedDict, Partial)
 struct FCameraPixels {
     SP_GENERATED_BODY()

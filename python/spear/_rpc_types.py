@@ -76,7 +76,13 @@ def convert(value: Any, type: TypeCode | None, client: RpcClient) -> Any:
         if cls is not None:  # a dataclass, or a TypedDict (a dict with typed values)
             fields = _field_types(cls)
             items = {k: convert(v, fields.get(k), client) for k, v in value.items()}
-            return cls(**items) if dataclasses.is_dataclass(cls) else items
+            if dataclasses.is_dataclass(cls):
+                return cls(**items)
+            if getattr(cls, "__total__", True):
+                return items
+            from spear._partial import PartialDict  # a partial TypedDict: missing keys say why
+
+            return PartialDict(cls, items)
         return {key: convert(item, element, client) for key, item in value.items()}
     if type is not None and type.kind == "enum" and isinstance(value, int) and not isinstance(value, bool):
         cls = _api_lookup(type.name)

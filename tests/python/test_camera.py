@@ -5,6 +5,7 @@ decomposition, latency, pass selection, lifetime and errors."""
 from __future__ import annotations
 
 import math
+import pickle
 import time
 from pathlib import Path
 
@@ -852,3 +853,26 @@ def test_a_lens_applies_alike_to_path_traced_buffered_and_stacked_reads(instance
         buffered.PrincipalPointOffset = spear.FVector2D()
     with instance.end_frame():
         np.testing.assert_array_equal(buffered.read_pixels()["depth"], a["depth"])
+
+
+def test_a_modality_not_rendered_or_misspelt_is_a_key_error_that_says_which(instance: spear.Instance) -> None:
+    """read_pixels() holds the modalities the camera renders; asking for another names what it holds and where
+    that comes from, and a misspelt key names the fields, with the same words on both transports. The result
+    is still a dict (`in`, get() and pickling work as on any dict)."""
+    game = instance.get_game()
+    with instance.begin_frame():
+        camera = spawn_camera(game, [M.FinalColor, M.Depth], 8, 6)
+    with instance.end_frame():
+        pixels = camera.read_pixels()
+    assert isinstance(pixels, dict) and sorted(pixels) == ["depth", "final_color"]
+    with pytest.raises(KeyError, match=r"'normal' is not in this FCameraPixels \(it holds 'final_color', 'depth'\)\. "
+                                       r"The images of one frame, .* the camera renders \(its Modalities\) are present"):
+        pixels["normal"]
+    with pytest.raises(KeyError, match=r"'normals' is not a field of FCameraPixels \(its fields: final_color, "
+                                       r"hdr_color, depth, position, normal,"):
+        pixels["normals"]  # type: ignore[typeddict-item]
+    assert "normal" not in pixels and pixels.get("normal") is None
+    copied = pickle.loads(pickle.dumps(pixels))
+    assert np.array_equal(copied["depth"], pixels["depth"])
+    with pytest.raises(KeyError, match="'normal' is not in this FCameraPixels"):
+        copied["normal"]

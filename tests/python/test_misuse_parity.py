@@ -176,6 +176,11 @@ CASES: list[tuple[str, Callable[[Scene], object], str | None, str]] = [
      "AttributeError", "'AStaticMeshActor' object has no attribute 'CustomTimeDilation'"),
     ("read-only property", lambda s: setattr(s.cube, "RootComponent", None),
      "AttributeError", "property 'RootComponent' of 'AStaticMeshActor' object has no setter"),
+    # the images of a frame: a key that is no modality (a modality not rendered: test_camera.py)
+    ("misspelt modality key", lambda s: s.camera.read_pixels()["normals"],  # type: ignore[typeddict-item]
+     "KeyError", "\"'normals' is not a field of FCameraPixels (its fields: final_color, hdr_color, depth, position, "
+     "normal, object_ids, material_ids, base_color, roughness, metallic, material_ao, diffuse_illumination, "
+     "diffuse_only, specular_residual)\""),
 ]
 
 

@@ -180,7 +180,10 @@ template <> struct type_caster<FCameraPixels> {
         return known == len(d);
     }
     static handle cast(const FCameraPixels& v, return_value_policy, handle) {
-        dict d;
+        // spear._partial.PartialDict: a dict whose missing keys say why they are missing, as over RPC.
+        static const object partial = module_::import("spear._partial").attr("PartialDict");
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FCameraPixels");
+        object d = partial(cls);
         if (v.final_color.value().data)
             d["final_color"] = sp::pybind::Bridge<sp::reflect::SpArray<uint8_t>>::out(v.final_color);
         if (v.hdr_color.value().data)

@@ -104,7 +104,7 @@ const sp::reflect::TypeInfo& FCameraPixels::StaticClass() {
         using sp::reflect::ValueCall;
         sp::reflect::TypeInfo t;
         t.name = "FCameraPixels";
-        t.doc = "The images of one frame, keyed by modality name; only the modalities the camera renders are present.";
+        t.doc = "The images of one frame, keyed by modality name; only the modalities the camera renders (its Modalities)\nare present.";
         t.kind = sp::reflect::TypeInfo::Kind::Struct;
         t.parent = nullptr;
         t.isAbstract = false;

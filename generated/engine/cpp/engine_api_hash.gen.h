@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "6cf6434c7398c4b6";
+inline constexpr char kApiHash[] = "9b8401e0691cb833";
 } // namespace sp::generated::engine

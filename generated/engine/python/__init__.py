@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "6cf6434c7398c4b6"
+API_HASH = "9b8401e0691cb833"

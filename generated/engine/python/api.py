@@ -269,7 +269,9 @@ class ESplineCoordinateSpace(enum.IntEnum):
 
 
 class FCameraPixels(TypedDict, total=False):
-    """The images of one frame, keyed by modality name; only the modalities the camera renders are present."""
+    """The images of one frame, keyed by modality name; only the modalities the camera renders (its Modalities)
+    are present.
+    """
 
     final_color: NDArray[np.uint8]
     hdr_color: NDArray[np.float16]

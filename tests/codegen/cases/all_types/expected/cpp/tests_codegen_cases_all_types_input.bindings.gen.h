@@ -84,7 +84,10 @@ template <> struct type_caster<FImages> {
         return known == len(d);
     }
     static handle cast(const FImages& v, return_value_policy, handle) {
-        dict d;
+        // spear._partial.PartialDict: a dict whose missing keys say why they are missing, as over RPC.
+        static const object partial = module_::import("spear._partial").attr("PartialDict");
+        static const object cls = sp::pybind::apiAttribute("spear._all_types.api", "FImages");
+        object d = partial(cls);
         if (v.color.value().data)
             d["color"] = sp::pybind::Bridge<sp::reflect::SpArray<uint8_t>>::out(v.color);
         if (v.depth.value().data)
