@@ -36,6 +36,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -51,9 +52,10 @@
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace {
-void usage() {
+// To stdout for --help (asked for: exit 0), to stderr for a command line it cannot run (exit 2).
+void usage(std::FILE* to = stderr) {
     std::fprintf(
-        stderr,
+        to,
         "usage: spear-server (--socket PATH | --port N (--token-file FILE | --token TOKEN) [--bind "
         "ADDRESS])\n"
         "                    [--mode game|editor] [--scene FILE] [--fixed-delta-seconds S]\n"
@@ -109,9 +111,22 @@ int main(int argc, char** argv) {
     pid_t exitWithParent = 0;
     if (const char* token = std::getenv("SPEAR_TOKEN"))
         options.token = token;
+    // The options that take a value: one given last without it is named, not taken for an unknown option.
+    static const std::set<std::string> kValued{
+        "--socket", "--port",  "--bind",   "--token",    "--token-file", "--fixed-delta-seconds",
+        "--mode",   "--scene", "--plugin", "--file-root"};
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         const bool hasValue = i + 1 < argc;
+        if (arg == "--help" || arg == "-h") {
+            usage(stdout);
+            return 0;
+        }
+        if (kValued.contains(arg) && !hasValue) {
+            std::fprintf(stderr, "spear-server: %s needs a value\n", arg.c_str());
+            usage();
+            return 2;
+        }
         if (arg == "--socket" && hasValue)
             options.socketPath = argv[++i];
         else if (arg == "--port" && hasValue)
@@ -146,11 +161,13 @@ int main(int argc, char** argv) {
             const char* launcher = std::getenv("SPEAR_PARENT_PID");
             exitWithParent = launcher ? pid_t(std::atol(launcher)) : ::getppid();
         } else {
+            std::fprintf(stderr, "spear-server: unknown option '%s'\n", arg.c_str());
             usage();
             return 2;
         }
     }
     if (options.socketPath.empty() && options.tcpPort < 0) {
+        std::fprintf(stderr, "spear-server: say where to listen: --socket PATH or --port N\n");
         usage();
         return 2;
     }

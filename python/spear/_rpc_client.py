@@ -77,15 +77,33 @@ class RpcConnection:
         remove_orphaned_segments()  # what a client and server killed together left behind
         self.address = address
         if address.startswith("unix:"):
+            path = address[len("unix:"):]
             self._socket = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
-            self._socket.connect(address[len("unix:"):])
+            try:
+                self._socket.connect(path)
+            except FileNotFoundError:
+                self._socket.close()
+                raise errors.NotFoundError(
+                    f"Instance(): no socket at {path!r}: start a server there (spear-server --socket {path}) "
+                    f"or let the instance start its own (server='launch')") from None
+            except ConnectionRefusedError:
+                self._socket.close()
+                raise ConnectionRefusedError(f"Instance(): nothing listens on the socket {path!r} (a server that "
+                                             f"exited leaves its socket file behind)") from None
         elif address.startswith("tcp:"):
             host, _, port = address[len("tcp:"):].rpartition(":")
-            self._socket = socket.create_connection((host, int(port)))
+            if not host or not port.isdigit() or int(port) > 65535:
+                raise errors.InvalidArgumentError(f"Instance(): a TCP server address is 'tcp:HOST:PORT' with a port "
+                                                  f"in [0, 65535], got {address!r}")
+            try:
+                self._socket = socket.create_connection((host, int(port)))
+            except ConnectionRefusedError:
+                raise ConnectionRefusedError(f"Instance(): nothing listens at {host}:{port} "
+                                             f"(spear-server --port {port} there?)") from None
             self._socket.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
         else:
-            raise errors.InvalidArgumentError(f"Instance(): server address must be 'unix:PATH' or 'tcp:HOST:PORT', "
-                                              f"got {address!r}")
+            raise errors.InvalidArgumentError(f"Instance(): server must be 'launch' (a server of its own), "
+                                              f"'unix:PATH' or 'tcp:HOST:PORT', got {address!r}")
         self._socket.settimeout(timeout)
         self._readable = select.poll()
         self._readable.register(self._socket, select.POLLIN)

@@ -492,3 +492,35 @@ def test_an_end_that_failed_after_it_was_sent_is_raised_by_the_next_request(serv
     finally:
         first.close()
         second.close()
+
+
+def test_a_server_address_that_leads_nowhere_says_where_and_what_to_do(tmp_path: Path) -> None:
+    missing = tmp_path / "no-server.sock"
+    with pytest.raises(spear.NotFoundError, match=rf"Instance\(\): no socket at '{missing}': start a server there "
+                                                   rf"\(spear-server --socket {missing}\) or .*server='launch'"):
+        spear.Instance(server=f"unix:{missing}")
+    stale = tmp_path / "stale.sock"  # a socket file nothing listens on, as an exited server leaves it
+    listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    listener.bind(str(stale))
+    listener.close()
+    with pytest.raises(ConnectionRefusedError, match=rf"nothing listens on the socket '{stale}'"):
+        spear.Instance(server=f"unix:{stale}")
+    for bad in ("tcp:localhost", "tcp:localhost:port", "tcp::5000", "tcp:localhost:70000"):
+        with pytest.raises(spear.InvalidArgumentError, match=r"'tcp:HOST:PORT' with a port in \[0, 65535\], got"):
+            spear.Instance(server=bad)
+    with pytest.raises(spear.InvalidArgumentError,
+                       match=r"server must be 'launch' \(a server of its own\), 'unix:PATH' or 'tcp:HOST:PORT', "
+                             r"got 'lanuch'"):
+        spear.Instance(server="lanuch")
+
+
+def test_spear_server_help_and_bad_command_lines_name_what_is_wrong() -> None:
+    binary = str(find_server_binary())
+    shown = subprocess.run([binary, "--help"], capture_output=True, text=True, timeout=60)
+    assert shown.returncode == 0 and shown.stdout.startswith("usage: spear-server") and shown.stderr == ""
+    for args, words in ((["--sockt", "/tmp/x"], "unknown option '--sockt'"),
+                        (["--socket"], "--socket needs a value"),
+                        ([], "say where to listen: --socket PATH or --port N")):
+        result = subprocess.run([binary, *args], capture_output=True, text=True, timeout=60)
+        assert result.returncode == 2, args
+        assert result.stderr.startswith(f"spear-server: {words}\n") and "usage: spear-server" in result.stderr, args
