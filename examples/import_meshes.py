@@ -77,9 +77,11 @@ def main() -> None:
                 location=spear.FVector(1.1 * math.cos(angle), 1.1 * math.sin(angle), 0.8 + 0.5 * i),
                 rotation=spear.FRotator(Pitch=35.0 * i, Yaw=50.0 * i, Roll=20.0 * i))
             mesh = body.StaticMeshComponent
-            # SetStaticMesh says whether the file could be read; the reason is in the engine's log.
-            if not mesh.SetStaticMesh(NewMesh=str(mesh_file)):
-                raise SystemExit(f"could not import {mesh_file}")
+            # A file that is missing or cannot be read raises NotFoundError or InvalidArgumentError, naming it.
+            try:
+                mesh.SetStaticMesh(NewMesh=str(mesh_file))
+            except (spear.NotFoundError, spear.InvalidArgumentError) as error:
+                raise SystemExit(f"could not import {mesh_file}: {error}") from None
             mesh.SetMaterial(ElementIndex=0, Material="Gold" if i % 2 else "Plastic")
             mesh.SetSimulatePhysics(bSimulate=True)
             bodies.append(body)

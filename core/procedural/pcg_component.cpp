@@ -251,8 +251,12 @@ void UPCGComponent::spawn(const std::vector<std::pair<sp::procedural::pcg::Place
             world.spawn_actor(ActorClass.Get(), FVector{placement.location.x(), placement.location.y(), base},
                               FRotator{0.0, placement.yawDegrees, 0.0}, name, {tag()});
         if (auto* mesh = dynamic_cast<AStaticMeshActor*>(actor)) {
-            SP_CHECK(mesh->StaticMeshComponent->SetStaticMesh(StaticMesh), sp::NotFound, function,
-                     ": StaticMesh '", StaticMesh, "' could not be loaded");
+            try {
+                mesh->StaticMeshComponent->SetStaticMesh(StaticMesh);
+            } catch (const sp::Error& error) { // said in this function's words, with the mesh's reason
+                SP_THROW(sp::NotFound, function, ": StaticMesh '", StaticMesh,
+                         "' could not be loaded: ", error.what());
+            }
             if (!Materials.empty())
                 mesh->StaticMeshComponent->SetMaterial(0, Materials[size_t(placement.variant)]);
         }

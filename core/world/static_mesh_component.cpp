@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <string_view>
 
+#include "core/base/asset_path.h"
 #include "core/base/error.h"
 #include "core/world/mesh_geometry.h"
 
@@ -29,12 +30,38 @@ const BasicShape* findBasicShape(std::string_view mesh) {
             return &shape;
     return nullptr;
 }
+
+// "/Engine/BasicShapes/Cube, /Engine/BasicShapes/Sphere, ...", for messages.
+std::string basicShapeNames() {
+    std::string names;
+    for (const auto& shape : kBasicShapes)
+        names += (names.empty() ? "" : ", ") + std::string(kBasicShapesPrefix) + std::string(shape.name);
+    return names;
+}
+
+// Where a relative file name is looked for (sp::findAsset), for messages.
+std::string searchedFolders(const std::string& name) {
+    if (std::filesystem::path(name).is_absolute())
+        return "";
+    std::string folders = "the working directory";
+    for (const std::string& folder : sp::assetSearchPath())
+        folders += ", " + folder;
+    return " (looked for in " + folders + ")";
+}
 } // namespace
 
 bool UStaticMeshComponent::SetStaticMesh(const std::string& NewMesh) {
-    if (!NewMesh.empty() && !findBasicShape(NewMesh) &&
-        !(sp::world::isMeshFile(NewMesh) && sp::world::findMeshGeometry(NewMesh)))
-        return false;
+    constexpr std::string_view kFunction = "UStaticMeshComponent.SetStaticMesh()";
+    if (!NewMesh.empty() && !findBasicShape(NewMesh)) {
+        SP_CHECK(sp::world::isMeshFile(NewMesh), sp::NotFound, kFunction, ": '", NewMesh,
+                 "' is not a built-in shape (", basicShapeNames(), ")");
+        try {
+            sp::world::loadMeshGeometry(NewMesh, kFunction); // found as importMesh() finds every asset
+        } catch (const sp::NotFound&) {
+            SP_THROW(sp::NotFound, kFunction, ": mesh file '", NewMesh, "' not found",
+                     searchedFolders(NewMesh));
+        }
+    }
     StaticMesh = NewMesh;
     return true;
 }

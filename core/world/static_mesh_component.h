@@ -20,7 +20,12 @@ class UStaticMeshComponent : public UPrimitiveComponent {
     SPPROPERTY()
     std::vector<std::string> Materials;
 
-    /// Sets the mesh asset; returns false when the name is not a known mesh.
+    /// Sets the mesh asset: a built-in shape (/Engine/BasicShapes/Cube, Sphere, Cylinder, Plane) or a mesh
+    /// file, found as every asset is (the working directory, then SPEAR_ASSET_PATH, then the built-in
+    /// assets). Returns true; raises NotFoundError naming the name and where it was looked for when there is
+    /// no such shape or file, InvalidArgumentError when the file cannot be read as a mesh or is outside the
+    /// server's file roots. (Setting the StaticMesh property itself does not check: scenes name meshes
+    /// relative to their own folder, resolved when they load.)
     SPFUNCTION()
     bool SetStaticMesh(const std::string& NewMesh);
 

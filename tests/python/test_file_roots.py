@@ -105,8 +105,11 @@ def test_meshes_outside_the_roots_are_not_loaded(confined: tuple[spear.Instance,
     mesh.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
     with instance.begin_frame():
         actor = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Mesh")
-        # As UE's, SetStaticMesh answers whether the mesh could be set.
-        assert actor.StaticMeshComponent.SetStaticMesh(NewMesh=str(mesh)) is False
+        # Refused, naming the roots and how to allow another folder; the mesh is kept as it was.
+        with pytest.raises(spear.InvalidArgumentError, match=r"SetStaticMesh\(\): mesh file '.*tri.obj' cannot be read: "
+                                                             r".* is outside the server's file roots"):
+            actor.StaticMeshComponent.SetStaticMesh(NewMesh=str(mesh))
+        assert actor.StaticMeshComponent.StaticMesh == ""
         os.replace(mesh, root / "tri.obj")
         assert actor.StaticMeshComponent.SetStaticMesh(NewMesh=str(root / "tri.obj")) is True
     with instance.end_frame():

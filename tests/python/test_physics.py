@@ -262,7 +262,10 @@ def test_mesh_files_collide_as_convex_hulls_when_simulated_and_as_triangles_othe
         body = spawn_body(game, "Octahedron", octahedron, spear.FVector(Z=2.0))
         extent = body.GetActorBounds(bOnlyCollidingComponents=True).BoxExtent  # from the file's vertices (float32)
         assert (extent.X, extent.Y, extent.Z) == pytest.approx((0.3, 0.3, 0.3), abs=1e-6)
-        assert not body.StaticMeshComponent.SetStaticMesh(NewMesh=str(tmp_path / "missing.obj"))
+        with pytest.raises(spear.NotFoundError, match=r"UStaticMeshComponent.SetStaticMesh\(\): mesh file '.*missing.obj' "
+                                                      r"not found$"):
+            body.StaticMeshComponent.SetStaticMesh(NewMesh=str(tmp_path / "missing.obj"))
+        assert body.StaticMeshComponent.StaticMesh == octahedron  # kept
     with instance.end_frame():
         pass
     instance.step(num_frames=180)

@@ -264,7 +264,12 @@ def test_out_parameters_come_back_as_named_tuple(instance: spear.Instance) -> No
         assert close(bounds.Origin, spear.FVector(0, 0, 1)) and close(bounds.BoxExtent, spear.FVector(1, 2, 3))
         origin, extent = actor.StaticMeshComponent.GetBounds()
         assert close(extent, spear.FVector(1, 2, 3))
-        assert not actor.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Teapot")
+        with pytest.raises(spear.NotFoundError, match=r"SetStaticMesh\(\): '/Engine/BasicShapes/Teapot' is not a built-in "
+                                                      r"shape \(/Engine/BasicShapes/Cube, /Engine/BasicShapes/Sphere, "):
+            actor.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Teapot")
+        with pytest.raises(spear.NotFoundError, match=r"SetStaticMesh\(\): mesh file 'meshes/no_such_mesh.ply' not found "
+                                                      r"\(looked for in the working directory, "):
+            actor.StaticMeshComponent.SetStaticMesh(NewMesh="meshes/no_such_mesh.ply")
 
 
 def test_keyword_only_and_argument_checks(instance: spear.Instance) -> None:

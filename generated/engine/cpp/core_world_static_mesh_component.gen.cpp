@@ -41,7 +41,7 @@ const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
         });
         t.functions.push_back({
             "SetStaticMesh",
-            "Sets the mesh asset; returns false when the name is not a known mesh.",
+            "Sets the mesh asset: a built-in shape (/Engine/BasicShapes/Cube, Sphere, Cylinder, Plane) or a mesh\nfile, found as every asset is (the working directory, then SPEAR_ASSET_PATH, then the built-in\nassets). Returns true; raises NotFoundError naming the name and where it was looked for when there is\nno such shape or file, InvalidArgumentError when the file cannot be read as a mesh or is outside the\nserver's file roots. (Setting the StaticMesh property itself does not check: scenes name meshes\nrelative to their own folder, resolved when they load.)",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
                 {"NewMesh", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},

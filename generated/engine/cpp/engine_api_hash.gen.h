@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "9b8401e0691cb833";
+inline constexpr char kApiHash[] = "a666d873428bc57f";
 } // namespace sp::generated::engine
