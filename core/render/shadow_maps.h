@@ -77,8 +77,8 @@ class ShadowMaps {
     ShadowMaps& operator=(const ShadowMaps&) = delete;
 
     // Brings the maps up to date for `scene` seen by a view: one for each of the first
-    // shaders::kMaxProjectedShadowMaps shadow-casting directional, spot or rect lights (in handle order), then
-    // six for each shadow-casting point light while they fit in shaders::kMaxShadowMaps. `seen` is what
+    // shaders::kMaxProjectedShadowMaps shadow-casting directional, spot or rect lights (in handle order),
+    // then six for each shadow-casting point light while they fit in shaders::kMaxShadowMaps. `seen` is what
     // the directional maps must cover (Scene::bounds within the view's frustum); left out, the whole scene.
     // Returns how many maps were rendered: 0 when nothing that shapes them (lights, visible instances and
     // their meshes, the resolution, the directional region) changed since the last call, so the views of
