@@ -253,8 +253,11 @@ void UPCGComponent::spawn(const std::vector<std::pair<sp::procedural::pcg::Place
         if (auto* mesh = dynamic_cast<AStaticMeshActor*>(actor)) {
             try {
                 mesh->StaticMeshComponent->SetStaticMesh(StaticMesh);
-            } catch (const sp::Error& error) { // said in this function's words, with the mesh's reason
+            } catch (const sp::NotFound& error) { // said in this function's words, with the mesh's reason
                 SP_THROW(sp::NotFound, function, ": StaticMesh '", StaticMesh,
+                         "' could not be loaded: ", error.what());
+            } catch (const sp::InvalidArgument& error) {
+                SP_THROW(sp::InvalidArgument, function, ": StaticMesh '", StaticMesh,
                          "' could not be loaded: ", error.what());
             }
             if (!Materials.empty())
