@@ -11,9 +11,13 @@ observe() reads the observation, reward and end of episode. A step is SPEAR's fr
 its environments act (or reset) inside begin_frame, the engine ticks all its worlds once, and the environments
 observe inside end_frame. Engines on separate servers step concurrently, one thread each waiting on its socket.
 
-Auto-reset follows the "next step" convention: an environment whose step ended its episode (terminated or
-truncated) is reset during the following step() instead of acting; that step returns its first observation,
-reward 0, terminated and truncated False, and info["reset"] True.
+The API is Gymnasium's vector API (1.x): single_observation_space and single_action_space are one environment's,
+observation_space and action_space the batched ones (a leading environment axis; a Discrete action becomes a
+MultiDiscrete), infos is a dict of arrays, one entry per environment, with a boolean mask "_key" saying which
+environments set "key", and metadata["autoreset_mode"] says the auto-reset mode: "NextStep", Gymnasium's
+AutoresetMode.NEXT_STEP (that enum itself when gymnasium is installed). An environment whose step ended its
+episode (terminated or truncated) is reset during the following step() instead of acting; that step returns
+its first observation, reward 0, terminated and truncated False, and infos["reset"] True for it.
 
 An observation that is a camera's image is best returned as CameraImage(camera, modality) instead of the array
 observe() would read: VectorEnv then reads the images of every environment of an engine in one call
@@ -21,13 +25,14 @@ observe() would read: VectorEnv then reads the images of every environment of an
 the stacked observation.
 
 A server that goes away is reported once (a warning naming the environments it held); its environments stay
-failed: their observations are zeros, truncated is True, info["error"] holds the error, and `failed` maps their
-indices to it. The other environments keep running.
+failed: their observations are zeros, truncated is True, infos["error"] holds the error in their rows, and
+`failed` maps their indices to it. The other environments keep running.
 """
 
 from __future__ import annotations
 
 import concurrent.futures
+import importlib
 import logging
 import math
 from collections.abc import Callable, Mapping, Sequence
@@ -137,6 +142,66 @@ class Discrete:
         return int(rng.integers(self.n))
 
 
+@dataclass(frozen=True)
+class MultiDiscrete:
+    """One integer per element, element i one of 0, ..., nvec[i] - 1 (what a batch of Discrete actions is)."""
+
+    nvec: tuple[int, ...]
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return (len(self.nvec),)
+
+    def contains(self, value: object) -> bool:
+        array = np.asarray(value)
+        return (array.shape == self.shape and np.issubdtype(array.dtype, np.integer)
+                and bool(np.all(array >= 0)) and bool(np.all(array < np.asarray(self.nvec))))
+
+    def sample(self, rng: np.random.Generator) -> NDArray[np.int64]:
+        return rng.integers(np.asarray(self.nvec, dtype=np.int64)).astype(np.int64)
+
+
+def _batched_box(space: Box, n: int) -> Box:
+    """`space` with a leading axis of n environments (per-element bounds repeated for each)."""
+    def bound(value: float | Sequence[float] | NDArray[Any]) -> float | NDArray[np.float64]:
+        return value if isinstance(value, float) else np.tile(np.asarray(value, dtype=np.float64), n)
+    return Box(shape=(n, *space.shape), dtype=space.dtype, low=bound(space.low), high=bound(space.high))
+
+
+def _autoreset_next_step() -> Any:
+    """Gymnasium's AutoresetMode.NEXT_STEP when gymnasium is installed, else its value, "NextStep"."""
+    try:
+        gymnasium_vector = importlib.import_module("gymnasium.vector")  # optional: not in Debian 12
+    except ImportError:
+        return "NextStep"
+    return gymnasium_vector.AutoresetMode.NEXT_STEP
+
+
+def _gathered(infos: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
+    """Gymnasium's vector infos from one dict per environment: for each key any environment set, an array with a
+    row per environment (numbers and bools in a numeric array, anything else in an object array; rows of the
+    environments that did not set it are zero or None) and "_key", a bool array of which environments set it."""
+    n = len(infos)
+    out: dict[str, Any] = {}
+    for key in dict.fromkeys(k for info in infos for k in info):  # first-seen order
+        mask = np.array([key in info for info in infos], dtype=np.bool_)
+        values = [info.get(key) for info in infos]
+        given = [v for v, m in zip(values, mask) if m]
+        if all(isinstance(v, (bool, np.bool_)) for v in given):
+            array: NDArray[Any] = np.array([bool(v) if m else False for v, m in zip(values, mask)], dtype=np.bool_)
+        elif all(isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
+                 for v in given):
+            array = np.zeros(n, dtype=np.result_type(*[np.asarray(v).dtype for v in given]))
+            array[mask] = given
+        else:
+            array = np.empty(n, dtype=object)
+            for i, value in enumerate(values):
+                array[i] = value
+        out[key] = array
+        out[f"_{key}"] = mask
+    return out
+
+
 # -- one environment ---------------------------------------------------------------------------------------
 
 
@@ -198,7 +263,7 @@ _Observed = tuple[dict[int, StepResult], dict[str, tuple[list[int], NDArray[Any]
 
 # (observations, rewards, terminated, truncated, infos) of one step; the public signatures spell it out (pyright's
 # --verifytypes counts a module-level alias of a numpy array type as unknown).
-_Batch = tuple[dict[str, NDArray[Any]], NDArray[np.float32], NDArray[np.bool_], NDArray[np.bool_], list[dict[str, Any]]]
+_Batch = tuple[dict[str, NDArray[Any]], NDArray[np.float32], NDArray[np.bool_], NDArray[np.bool_], dict[str, Any]]
 
 
 class VectorEnv(Generic[ActionT]):
@@ -219,6 +284,8 @@ class VectorEnv(Generic[ActionT]):
         """One environment's observation space (each array of a step has a leading environment axis more)."""
         self.single_action_space: Box | Discrete = self._envs[0].action_space
         """One environment's action space."""
+        self.metadata: dict[str, Any] = {"autoreset_mode": _autoreset_next_step()}
+        """Gymnasium's vector metadata: the auto-reset mode (see the module's documentation)."""
         for i, env in enumerate(self._envs):
             if (dict(env.observation_space) != self.single_observation_space
                     or env.action_space != self.single_action_space):
@@ -297,6 +364,19 @@ class VectorEnv(Generic[ActionT]):
         return len(self._envs)
 
     @property
+    def observation_space(self) -> dict[str, Box]:
+        """The batched observation space: each key's Box with a leading axis of num_envs environments."""
+        return {key: _batched_box(space, self.num_envs) for key, space in self.single_observation_space.items()}
+
+    @property
+    def action_space(self) -> Box | MultiDiscrete:
+        """The batched action space: a Box with a leading environment axis, or a MultiDiscrete for Discrete."""
+        space = self.single_action_space
+        if isinstance(space, Discrete):
+            return MultiDiscrete((space.n,) * self.num_envs)
+        return _batched_box(space, self.num_envs)
+
+    @property
     def envs(self) -> Sequence[Env[ActionT]]:
         """The environments, in index order."""
         return self._envs
@@ -306,7 +386,7 @@ class VectorEnv(Generic[ActionT]):
         """Each environment's world, in index order."""
         return self._worlds
 
-    def reset(self, *, seed: int | None = None) -> tuple[dict[str, NDArray[Any]], list[dict[str, Any]]]:
+    def reset(self, *, seed: int | None = None) -> tuple[dict[str, NDArray[Any]], dict[str, Any]]:
         """Starts an episode in every environment (environment i's seeds come from SeedSequence(seed) child i)."""
         children = np.random.SeedSequence(seed).spawn(self.num_envs)
         self._seeds = [np.random.default_rng(child) for child in children]
@@ -315,10 +395,11 @@ class VectorEnv(Generic[ActionT]):
         return observations, infos
 
     def step(self, actions: Sequence[ActionT] | NDArray[Any]) -> tuple[
-            dict[str, NDArray[Any]], NDArray[np.float32], NDArray[np.bool_], NDArray[np.bool_], list[dict[str, Any]]]:
+            dict[str, NDArray[Any]], NDArray[np.float32], NDArray[np.bool_], NDArray[np.bool_], dict[str, Any]]:
         """Applies actions[i] to environment i (resetting the ones whose episode ended last step) and returns
-        (observations, rewards, terminated, truncated, infos) with a leading environment axis; actions may be
-        a sequence or an array with a leading environment axis."""
+        (observations, rewards, terminated, truncated, infos) with a leading environment axis (infos as Gymnasium
+        gathers them: see the module's documentation); actions may be a sequence or an array with a leading
+        environment axis."""
         if not self._seeds:
             raise InvalidStateError("VectorEnv.step(): call reset() first")
         if len(actions) != self.num_envs:
@@ -451,7 +532,7 @@ class VectorEnv(Generic[ActionT]):
                 terminated[i] = result.terminated
                 truncated[i] = result.truncated
             self._needs_reset[i] = bool(terminated[i] or truncated[i])
-        return observations, rewards, terminated, truncated, infos
+        return observations, rewards, terminated, truncated, _gathered(infos)
 
 
 def _read_cameras(results: dict[int, StepResult]) -> dict[str, tuple[list[int], NDArray[Any]]]:

@@ -3,6 +3,8 @@ observations in environment order, next-step auto-reset, a dead server reported 
 
 from __future__ import annotations
 
+import importlib
+import importlib.util
 import itertools
 import logging
 import os
@@ -77,13 +79,50 @@ def test_observations_are_stacked_in_environment_order(worlds_env: VectorEnv[NDA
     observations, infos = worlds_env.reset(seed=7)
     assert observations["position"].shape == (3, 3)
     assert observations["position"][:, 0].tolist() == [0.0, 1.0, 2.0]
-    assert all(info["reset"] for info in infos)
+    assert infos["reset"].tolist() == [True, True, True] and infos["_reset"].all()
     actions = [np.array([0.5], np.float32)] * 3
     observations, rewards, terminated, truncated, infos = worlds_env.step(actions)
     assert observations["position"][:, 0].tolist() == [0.5, 1.5, 2.5]
     assert rewards.dtype == np.float32 and rewards.tolist() == [0.5, 1.5, 2.5]
     assert not terminated.any() and not truncated.any()
-    assert [info["steps"] for info in infos] == [1, 1, 1]
+    assert infos["steps"].tolist() == [1, 1, 1] and infos["_steps"].all()
+    assert "reset" not in infos  # no environment set it this step
+
+
+def test_the_vector_api_is_gymnasiums(worlds_env: VectorEnv[NDArray[np.float32]]) -> None:
+    """Gymnasium 1.x's vector API, checked against its documented shape (gymnasium is not in Debian 12): batched
+    spaces with a leading environment axis, infos as a dict of arrays with "_key" masks, the auto-reset mode in
+    metadata."""
+    single = worlds_env.single_observation_space["position"]
+    batched = worlds_env.observation_space["position"]
+    assert batched.shape == (3, *single.shape) and np.dtype(batched.dtype) == np.dtype(single.dtype)
+    low, high = batched.bounds()
+    assert (low == np.broadcast_to(single.bounds()[0], batched.shape)).all()
+    assert (high == np.broadcast_to(single.bounds()[1], batched.shape)).all()
+    action_space = worlds_env.action_space
+    assert isinstance(action_space, spear.vector.Box) and action_space.shape == (3, 1)
+    assert action_space.contains(np.zeros((3, 1), np.float32))
+    if importlib.util.find_spec("gymnasium") is None:
+        assert worlds_env.metadata["autoreset_mode"] == "NextStep"  # AutoresetMode.NEXT_STEP's value
+    else:
+        assert worlds_env.metadata["autoreset_mode"] is importlib.import_module("gymnasium.vector").AutoresetMode.NEXT_STEP
+    observations, infos = worlds_env.reset(seed=1)
+    assert all(batched_space.contains(observations[key]) for key, batched_space in worlds_env.observation_space.items())
+    assert infos["reset"].dtype == np.bool_ and infos["_reset"].dtype == np.bool_
+
+
+def test_infos_gather_as_gymnasium_does() -> None:
+    gathered = spear.vector._gathered([{"steps": 1, "name": "a"}, {}, {"steps": 3, "ok": True}])
+    assert gathered["steps"].tolist() == [1, 0, 3] and gathered["_steps"].tolist() == [True, False, True]
+    assert gathered["name"].dtype == object and gathered["name"].tolist() == ["a", None, None]
+    assert gathered["ok"].tolist() == [False, False, True] and gathered["_ok"].tolist() == [False, False, True]
+    assert list(gathered) == ["steps", "_steps", "name", "_name", "ok", "_ok"]
+
+
+def test_a_discrete_action_space_batches_to_multidiscrete() -> None:
+    space = spear.vector.MultiDiscrete((4, 4))
+    assert space.shape == (2,) and space.contains(np.array([0, 3])) and not space.contains(np.array([0, 4]))
+    assert space.contains(space.sample(np.random.default_rng(0)))
 
 
 def test_an_ended_episode_resets_on_the_next_step(worlds_env: VectorEnv[NDArray[np.float32]]) -> None:
@@ -97,7 +136,7 @@ def test_an_ended_episode_resets_on_the_next_step(worlds_env: VectorEnv[NDArray[
     observations, rewards, terminated, truncated, infos = worlds_env.step(push)  # reset instead of acting
     assert observations["position"][:, 0].tolist() == [0.0, 1.0, 2.0]
     assert rewards.tolist() == [0.0, 0.0, 0.0] and not terminated.any() and not truncated.any()
-    assert all(info.get("reset") for info in infos)
+    assert infos["reset"].all() and infos["_reset"].all()
     assert [env.resets for env in worlds_env.envs if isinstance(env, Slide)] == [2, 2, 2]
 
 
@@ -265,7 +304,8 @@ def test_a_dead_server_is_reported_and_the_others_keep_running(caplog: pytest.Lo
         with caplog.at_level(logging.WARNING, logger="spear"):
             observations, _, _, truncated, infos = envs.step(push)
         assert sorted(envs.failed) == [2, 3]
-        assert isinstance(infos[2]["error"], spear.ConnectionLostError)
+        assert isinstance(infos["error"][2], spear.ConnectionLostError)
+        assert infos["_error"].tolist() == [False, False, True, True] and infos["error"][0] is None
         assert truncated.tolist() == [False, False, True, True]
         assert observations["position"][:, 0].tolist() == [1.0, 2.0, 0.0, 0.0]
         assert "environments [2, 3] failed" in caplog.text and "2 of 4 keep running" in caplog.text
