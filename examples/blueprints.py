@@ -1,11 +1,12 @@
 """Blueprints: classes defined by asset files. Load one with load_class (SPEAR's call), spawn it like a
 native class, find its instances by class, and call the functions its asset declares.
 
-    PYTHONPATH=python /usr/bin/python3 examples/blueprints.py
+    PYTHONPATH=python /usr/bin/python3 examples/blueprints.py [--server launch]
 """
 
 from __future__ import annotations
 
+import argparse
 from pathlib import Path
 
 import spear
@@ -14,7 +15,9 @@ BLUEPRINTS = Path(__file__).resolve().parent.parent / "assets" / "blueprints"
 
 
 def main() -> None:
-    instance = spear.Instance()
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
+    parser.add_argument("--server", default=None, help='"launch", "unix:PATH" or "tcp:HOST:PORT" (default: in-process)')
+    instance = spear.Instance(server=parser.parse_args().server)
     game = instance.get_game()
 
     with instance.begin_frame():

@@ -1,22 +1,27 @@
 """Editor and game worlds: edit a persistent editor world, play a copy of it, stop, save the edit.
 
-    PYTHONPATH=python /usr/bin/python3 examples/editor_play.py [out.json]
+    PYTHONPATH=python /usr/bin/python3 examples/editor_play.py [out.json] [--server launch]
 """
 
 from __future__ import annotations
 
-import sys
+import argparse
 import tempfile
 from pathlib import Path
 
 import spear
 
-APARTMENT = Path(__file__).resolve().parent.parent / "assets" / "scenes" / "apartment.json"
+APARTMENT = "/Game/scenes/apartment"  # assets/scenes/apartment.json, found wherever spear is installed
 
 
 def main() -> None:
-    out = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(tempfile.gettempdir()) / "apartment_edited.json"
-    instance = spear.Instance(mode="editor", scene=APARTMENT)
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
+    parser.add_argument("out", nargs="?", type=Path, default=Path(tempfile.gettempdir()) / "apartment_edited.json",
+                        help="where to save the edited scene (default: %(default)s)")
+    parser.add_argument("--server", default=None, help='"launch", "unix:PATH" or "tcp:HOST:PORT" (default: in-process)')
+    args = parser.parse_args()
+    out: Path = args.out
+    instance = spear.Instance(mode="editor", scene=APARTMENT, server=args.server)
     editor = instance.get_editor()
 
     with instance.begin_frame():

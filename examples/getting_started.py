@@ -1,16 +1,20 @@
 """Getting started: create an engine, spawn actors by class, read and write reflected properties,
 call reflected functions and find actors by class (subclasses included).
 
-    PYTHONPATH=python /usr/bin/python3 examples/getting_started.py
+    PYTHONPATH=python /usr/bin/python3 examples/getting_started.py [--server launch]
 """
 
 from __future__ import annotations
+
+import argparse
 
 import spear
 
 
 def main() -> None:
-    instance = spear.Instance()
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
+    parser.add_argument("--server", default=None, help='"launch", "unix:PATH" or "tcp:HOST:PORT" (default: in-process)')
+    instance = spear.Instance(server=parser.parse_args().server)
     game = instance.get_game()
 
     with instance.begin_frame():

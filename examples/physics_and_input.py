@@ -1,20 +1,22 @@
 """Physics and input: load the default apartment scene, drop a crate onto the table, trace a ray down to
 find what it landed on, and drive a vehicle by injecting input actions into it alone.
 
-    PYTHONPATH=python /usr/bin/python3 examples/physics_and_input.py
+    PYTHONPATH=python /usr/bin/python3 examples/physics_and_input.py [--server launch]
 """
 
 from __future__ import annotations
 
-from pathlib import Path
+import argparse
 
 import spear
 
-APARTMENT = Path(__file__).resolve().parent.parent / "assets" / "scenes" / "apartment.json"
+APARTMENT = "/Game/scenes/apartment"  # assets/scenes/apartment.json, found wherever spear is installed
 
 
 def main() -> None:
-    instance = spear.Instance(scene=APARTMENT)
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
+    parser.add_argument("--server", default=None, help='"launch", "unix:PATH" or "tcp:HOST:PORT" (default: in-process)')
+    instance = spear.Instance(scene=APARTMENT, server=parser.parse_args().server)
     game = instance.get_game()
 
     with instance.begin_frame():

@@ -5,7 +5,7 @@ another scene file, and --room builds a small room from basic shapes here instea
 14 modalities in one frame; each is visualised (ids in random colours, depth and normals mapped, HDR
 images tone-mapped) and tiled into one PNG.
 
-    PYTHONPATH=python /usr/bin/python3 examples/render_image.py [--out out/render_image.png]
+    PYTHONPATH=python /usr/bin/python3 examples/render_image.py [--out out/render_image.png] [--server launch]
 """
 
 # Debian 12's Pillow (9.4) has no annotations: strict pyright would flag every use of it.
@@ -141,9 +141,10 @@ def main() -> None:
     parser.add_argument("--out", default="out/render_image.png", help="where to write the contact sheet")
     parser.add_argument("--scene", default=str(DEFAULT_SCENE), help="the scene file to render (default: %(default)s)")
     parser.add_argument("--room", action="store_true", help="build a room from basic shapes here instead")
+    parser.add_argument("--server", default=None, help='"launch", "unix:PATH" or "tcp:HOST:PORT" (default: in-process)')
     args = parser.parse_args()
 
-    instance = spear.Instance()
+    instance = spear.Instance(server=args.server)
     game = instance.get_game()
     with instance.begin_frame():
         if args.room:

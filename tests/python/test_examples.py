@@ -73,38 +73,43 @@ def test_cosim_benchmark_prints_table3_and_lands_images(transport: str, physics:
         assert len(set(image.getdata())) > 20  # ground, sky, shaded objects and their shadows
 
 
-def test_getting_started_spawns_queries_and_destroys() -> None:
-    result = run_example("getting_started.py")
+@pytest.mark.parametrize("transport", TRANSPORTS)
+def test_getting_started_spawns_queries_and_destroys(transport: str) -> None:
+    result = run_example("getting_started.py", *TRANSPORTS[transport])
     assert result.returncode == 0, result.stdout + result.stderr
     assert "after destroying Marker:" in result.stdout
     assert "using the destroyed actor raises StaleObjectError:" in result.stdout
 
 
-def test_physics_and_input_rests_the_crate_on_the_table() -> None:
-    result = run_example("physics_and_input.py")
+@pytest.mark.parametrize("transport", TRANSPORTS)
+def test_physics_and_input_rests_the_crate_on_the_table(transport: str) -> None:
+    result = run_example("physics_and_input.py", *TRANSPORTS[transport])
     assert result.returncode == 0, result.stdout + result.stderr
     resting = [line for line in result.stdout.splitlines() if line.startswith("crate rests at z = ")]
     assert len(resting) == 1, result.stdout
     assert 0.88 <= float(resting[0].split("z = ")[1].split(" m")[0]) <= 0.92  # table top 0.75 m + 0.15 m
 
 
-def test_editor_play_copies_the_world_and_saves_the_edit(tmp_path: Path) -> None:
+@pytest.mark.parametrize("transport", TRANSPORTS)
+def test_editor_play_copies_the_world_and_saves_the_edit(transport: str, tmp_path: Path) -> None:
     out = tmp_path / "edited.json"
-    result = run_example("editor_play.py", str(out))
+    result = run_example("editor_play.py", str(out), *TRANSPORTS[transport])
     assert result.returncode == 0, result.stdout + result.stderr
     assert "ball present: True" in result.stdout  # destroyed in the game copy only
     assert json.loads(out.read_text())  # written whole
 
 
-def test_blueprints_spawn_and_settle() -> None:
-    result = run_example("blueprints.py")
+@pytest.mark.parametrize("transport", TRANSPORTS)
+def test_blueprints_spawn_and_settle(transport: str) -> None:
+    result = run_example("blueprints.py", *TRANSPORTS[transport])
     assert result.returncode == 0, result.stdout + result.stderr
     assert "came to rest at Z = " in result.stdout
 
 
-def test_render_image_writes_the_contact_sheet(tmp_path: Path) -> None:
+@pytest.mark.parametrize("transport", TRANSPORTS)
+def test_render_image_writes_the_contact_sheet(transport: str, tmp_path: Path) -> None:
     out = tmp_path / "sheet.png"
-    result = run_example("render_image.py", "--out", str(out))
+    result = run_example("render_image.py", "--out", str(out), *TRANSPORTS[transport])
     assert result.returncode == 0, result.stdout + result.stderr
     assert "object ids visible:" in result.stdout
     image = Image.open(out)
@@ -272,3 +277,10 @@ def test_sky_and_environment_lights_the_shaded_faces_and_writes_four_skies(trans
     assert uniform[1] == 0.0 and atmosphere[1] > 0.0 and shade["HDR panorama (park.exr)"][1] > 0.0
     image = Image.open(out)
     assert image.size == (192, 128) and len(set(image.convert("RGB").getdata())) > 100
+
+
+def test_every_example_takes_server() -> None:
+    """Every example runs in-process or against a server: --server is among its options."""
+    for example in sorted((ROOT / "examples").glob("*.py")):
+        result = run_example(example.name, "--help")
+        assert result.returncode == 0 and "--server" in result.stdout, example.name
