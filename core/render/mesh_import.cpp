@@ -4,6 +4,7 @@
 #include <assimp/GltfMaterial.h>
 #include <assimp/Importer.hpp>
 #include <assimp/ProgressHandler.hpp>
+#include <assimp/config.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 
@@ -182,6 +184,11 @@ ImportedMesh readMeshFile(const std::string& path, const std::string& userPath, 
     base::Progress progress("importMesh(): " + std::filesystem::path(path).filename().string(), 1.0);
     importer.SetProgressHandler(new ReportProgress(progress)); // the importer owns it
     // Baking node transforms also joins meshes that share a material: one submesh per material group.
+    // A file without normals gets smooth ones only across edges under 60 degrees, and hard edges at sharper
+    // creases: a crate's faces are flat (smooth normals across a cube's edges shade it as a blob and make its
+    // faces shadow themselves), a scanned or tessellated curved surface stays smooth, its vertices shared (so
+    // that it still simplifies into levels of detail).
+    importer.SetPropertyFloat(AI_CONFIG_PP_GSN_MAX_SMOOTHING_ANGLE, 60.0f);
     const aiScene* scene = importer.ReadFile(
         path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
                   aiProcess_PreTransformVertices | aiProcess_FlipUVs | aiProcess_SortByPType);
@@ -190,6 +197,16 @@ ImportedMesh readMeshFile(const std::string& path, const std::string& userPath, 
 
     ImportedMesh out;
     out.mesh.name = std::filesystem::path(path).stem().string();
+    // glTF is Y-up (its spec: +Y up, +Z forward, metres); spear is Z-up, as Unreal: a quarter turn about X,
+    // (x, y, z) -> (x, -z, y), for positions and normals alike (a rotation: winding and handedness kept). The
+    // other formats carry no axis convention and are read as they are (OBJ, PLY, STL: Z-up, as written).
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    const bool yUp = extension == ".gltf" || extension == ".glb";
+    auto axes = [yUp](const aiVector3D& v) {
+        return yUp ? Eigen::Vector3f(v.x, -v.z, v.y) : Eigen::Vector3f(v.x, v.y, v.z);
+    };
     reading.directory = std::filesystem::path(path).parent_path();
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
         const aiMesh* mesh = scene->mMeshes[m];
@@ -197,10 +214,8 @@ ImportedMesh readMeshFile(const std::string& path, const std::string& userPath, 
             continue; // points and lines have no surface to render
         const auto base = static_cast<std::uint32_t>(out.mesh.positions.size());
         for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
-            const aiVector3D& p = mesh->mVertices[v];
-            out.mesh.positions.push_back({p.x, p.y, p.z});
-            const aiVector3D n = mesh->HasNormals() ? mesh->mNormals[v] : aiVector3D(0, 0, 1);
-            out.mesh.normals.push_back({n.x, n.y, n.z});
+            out.mesh.positions.push_back(axes(mesh->mVertices[v]));
+            out.mesh.normals.push_back(axes(mesh->HasNormals() ? mesh->mNormals[v] : aiVector3D(0, 0, 1)));
             const aiVector3D uv =
                 mesh->HasTextureCoords(0) ? mesh->mTextureCoords[0][v] : aiVector3D(0, 0, 0);
             out.mesh.uvs.push_back({uv.x, uv.y});

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <fstream>
 
@@ -96,8 +98,30 @@ TEST_F(MeshImportTest, GltfWithEmbeddedBufferAndPbrFactors) {
     EXPECT_NEAR(imported.materials[0].material.metallic, 1.0f, 1e-6f);
     EXPECT_NEAR(imported.materials[0].material.roughness, 0.25f, 1e-6f);
     EXPECT_NEAR(imported.materials[0].material.baseColor.y(), 0.8f, 1e-6f);
+    // glTF is Y-up, spear Z-up: (x, y, z) -> (x, -z, y). The triangle in glTF's z = 0 plane, moved 2 along
+    // glTF's +z (forward) by its node, stands upright in spear's y = -2 plane, its glTF +y edge pointing up.
     for (const Eigen::Vector3f& p : imported.mesh.positions)
-        EXPECT_NEAR(p.z(), 2.0f, 1e-6f); // the node translation is baked in
+        EXPECT_NEAR(p.y(), -2.0f, 1e-6f) << p.transpose(); // the node translation is baked in
+    float top = 0.0f;
+    for (const Eigen::Vector3f& p : imported.mesh.positions)
+        top = std::max(top, p.z());
+    EXPECT_NEAR(top, 1.0f, 1e-6f);
+    for (const Eigen::Vector3f& n : imported.mesh.normals) // glTF's +z face normal is spear's -y
+        EXPECT_NEAR(std::abs(n.y()), 1.0f, 1e-5f);
+}
+
+TEST_F(MeshImportTest, AFileWithoutNormalsGetsHardEdgesAtItsCreases) {
+    // A cube of eight shared corners and no normals: each face gets its own normal along an axis (corners
+    // split at the 90-degree edges), not the smooth average that would shade the cube as a blob. (A finely
+    // tessellated sphere stays smooth and shared: MeshLods.ImportedFineMeshesGetLevelsInTheScene.)
+    const std::string obj =
+        "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+        "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\nf 2 3 7 6\nf 1 5 8 4\n";
+    const ImportedMesh imported = importMesh(write("cube.obj", obj));
+    ASSERT_EQ(imported.mesh.indices.size(), 36u);
+    for (const Eigen::Vector3f& n : imported.mesh.normals)
+        EXPECT_NEAR(n.cwiseAbs().maxCoeff(), 1.0f, 1e-5f) << n.transpose(); // along an axis
+    EXPECT_GE(imported.mesh.positions.size(), 24u);                         // four corners a face
 }
 
 TEST_F(MeshImportTest, MissingFileIsNotFoundNamingThePath) {
