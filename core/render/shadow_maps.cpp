@@ -343,7 +343,7 @@ std::size_t ShadowMaps::render(const Scene& scene, int resolution, GpuSceneCache
     int skipped = 0;
     std::vector<Eigen::Matrix4d> projections;
     std::vector<Eigen::Vector3d> positions;
-    // A map of `light` (the scene's `ordinal`-th) seen along `forward` over `halfAngle` from its position.
+    // A perspective map of `light`, seen from its position along `forward` over `halfAngle`.
     auto perspectiveMap = [&](ShadowInfo& info, const Light& light, const Eigen::Vector3d& forward,
                               double halfAngle) {
         const double farClip = (light.position - centre).norm() + radius;

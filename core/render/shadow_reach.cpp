@@ -35,10 +35,6 @@ ShadowReceivers::ShadowReceivers(const Scene& scene, const Camera& camera, int w
         for (const ShadowInfo& map : maps) {
             if (map.lightOrdinal != ordinal)
                 continue;
-            if (light.type == LightType::Point && !lights_.empty() && lights_.back().allAround &&
-                lights_.back().apex == light.position &&
-                lights_.back().range == (light.ranged() ? double(light.range) : 0.0))
-                continue; // a point light's six faces are one light here: the cone from its position
             ShadowLight shadowLight;
             shadowLight.directional = !map.perspective;
             if (shadowLight.directional) {
@@ -57,6 +53,8 @@ ShadowReceivers::ShadowReceivers(const Scene& scene, const Camera& camera, int w
                 shadowLight.allAround = light.type == LightType::Point;
             }
             lights_.push_back(shadowLight);
+            if (shadowLight.allAround)
+                break; // a point light's six faces are one light here: the cone from its position
         }
         ++ordinal;
     });

@@ -8,6 +8,7 @@ import dataclasses
 import sys
 from typing import Any
 
+from spear._partial import PartialDict
 from spear._rpc_proxy import ObjectProxy, proxy_class, RpcClient
 from spear._type_code import TypeCode
 from spear._wire import ClassRef, ObjectRef
@@ -80,9 +81,7 @@ def convert(value: Any, type: TypeCode | None, client: RpcClient) -> Any:
                 return cls(**items)
             if getattr(cls, "__total__", True):
                 return items
-            from spear._partial import PartialDict  # a partial TypedDict: missing keys say why
-
-            return PartialDict(cls, items)
+            return PartialDict(cls, items)  # a partial TypedDict: missing keys say why
         return {key: convert(item, element, client) for key, item in value.items()}
     if type is not None and type.kind == "enum" and isinstance(value, int) and not isinstance(value, bool):
         cls = _api_lookup(type.name)
