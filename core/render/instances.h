@@ -32,7 +32,7 @@ struct InstanceRecord {
     float depthRow[4];             // row 0 of mesh -> camera: the distance along the optical axis
     float baseColor[4];            // rgba factor
     float material[4];             // roughness, metallic, ambient occlusion, 1 / textureSize (0: mesh uvs)
-    float emissive[4];             // rgb, 0
+    float emissive[4];             // rgb, the level of detail's shadow slack (Renderer::Draw::shadowSlack)
     std::uint32_t ids[4];          // object id, material id, the record's index (Target::GBuffer), 0
 
     void setModelViewProjection(const Eigen::Matrix4d& matrix);

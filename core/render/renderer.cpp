@@ -85,6 +85,9 @@ struct Renderer::Draw {
     // Numbered in visibleDraws().
     std::size_t batch = 0;
     int refine = 0; // subdivisions of the mesh drawn (per-vertex indirect light: Renderer::refineLevel())
+    // How far the level drawn may lie inside the full mesh the shadow maps hold, in metres
+    // (MeshLod::surfaceError): its shadow lookups are offset that much more, or it would shadow itself.
+    float shadowSlack = 0.0f;
 };
 
 Renderer::Renderer(const GlContext& context)
@@ -916,7 +919,8 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
         const double distance = centreDistance > radius ? centreDistance - radius
                                                         : std::numeric_limits<double>::max() / 2 - radius;
         const double nearest = std::max(centreDistance - radius, camera.params.nearClip);
-        const MeshId mesh = scene.lodFor(instance.mesh, radius * focal / nearest);
+        const MeshLod lod = scene.chooseLod(instance.mesh, radius * focal / nearest);
+        const MeshId mesh = lod.mesh;
         const bool facing = facingFromWinding_ &&
                             windingTurnsNormals(scene.meshWindingSpread(mesh), instance.transform.linear());
         ShadowReach reach;
@@ -959,6 +963,7 @@ std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Cam
                  kind,
                  part});
             draws.back().refine = refine;
+            draws.back().shadowSlack = float(lod.surfaceError * radius);
         }
         active_->stats.windingFacedInstances += windingFaced ? 1 : 0;
     });
@@ -1010,7 +1015,7 @@ void Renderer::drawAll(const Scene& scene, const Camera& camera, const std::vect
         record.material[2] = material.ambientOcclusion;
         record.material[3] = material.textureSize > 0.0f ? 1.0f / material.textureSize : 0.0f;
         std::copy(material.emissive.data(), material.emissive.data() + 3, record.emissive);
-        record.emissive[3] = 0.0f;
+        record.emissive[3] = draw.shadowSlack;
         record.ids[0] = instance.objectIds[draw.slot];
         record.ids[1] = scene.materialIdValue(materialId);
         record.ids[2] = std::uint32_t(i); // the G-buffer's name for the draw (compute lighting)

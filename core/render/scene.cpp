@@ -234,6 +234,8 @@ void Scene::setMeshLods(MeshId id, std::vector<MeshLod> lods) {
                  " after ", previous);
         previous = lod.relativeError;
     }
+    for (MeshLod& lod : lods)
+        lod.surfaceError = std::max(lod.surfaceError, lod.relativeError);
     entry.lods = std::move(lods);
 }
 
@@ -241,12 +243,12 @@ const std::vector<MeshLod>& Scene::meshLods(MeshId id) const {
     return meshes_.get(id, "Scene::meshLods").lods;
 }
 
-MeshId Scene::lodFor(MeshId id, double radiusInPixels) const {
-    MeshId chosen = id;
+MeshLod Scene::chooseLod(MeshId id, double radiusInPixels) const {
+    MeshLod chosen{id, 0.0f, 0.0f};
     for (const MeshLod& lod : meshes_.get(id, "Scene::lodFor").lods) {
         if (double(lod.relativeError) * radiusInPixels > 0.5)
             break;
-        chosen = lod.mesh;
+        chosen = lod;
     }
     return chosen;
 }

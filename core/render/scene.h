@@ -32,6 +32,11 @@ struct MeshLod {
     // The largest deviation of its outline from the full mesh's, as a fraction of the bounding radius: what
     // moves in an image (surface inside the outline may deviate more along the line of sight).
     float relativeError = 0.0f;
+    // The largest distance of its surface from the full mesh's, the same fraction: at least relativeError
+    // (setMeshLods() raises it to that), more where a face sags further along the line of sight than the
+    // outline does (a UV sphere's quads, at their centres). A point on a coarse level lies up to this far
+    // inside the surface the shadow maps were drawn from, so its shadow lookup is offset that much further.
+    float surfaceError = 0.0f;
 };
 
 // A placed mesh: one material and one object id per submesh slot.
@@ -92,7 +97,9 @@ class Scene {
     const std::vector<MeshLod>& meshLods(MeshId id) const;
     // The coarsest level of `id` whose error stays within half a pixel when the mesh's bounding radius
     // covers `radiusInPixels` pixels (or texels); `id` itself when it has no level that coarse.
-    MeshId lodFor(MeshId id, double radiusInPixels) const;
+    MeshId lodFor(MeshId id, double radiusInPixels) const { return chooseLod(id, radiusInPixels).mesh; }
+    // The same level with its errors ({id, 0, 0} for the mesh itself).
+    MeshLod chooseLod(MeshId id, double radiusInPixels) const;
     // World-space bounding sphere of an instance (its mesh's box, transformed; scale included).
     void boundingSphere(const Instance& instance, Eigen::Vector3d& centre, double& radius) const;
     // World-space axis-aligned box of an instance (its mesh's box, transformed).

@@ -33,18 +33,20 @@ layout(std140, binding = 0) uniform FrameBlock {
     vec4 uEnvironment;      // xyz: the map's scale; w: its prefiltered chain's last level
 };
 // The light-clip position of p moved 1.5 shadow-map texels along n (turned towards the light), so that a
-// surface does not shadow itself (per vertex: see shadowClips()).
-vec4 offsetShadowClip(const int layer, vec3 p, vec3 n, float texel) {
-    return uShadowMatrix[layer] * vec4(p + n * (1.5 * texel), 1.0);
+// surface does not shadow itself (per vertex: see shadowClips()), plus `slack` metres where the surface drawn
+// is a coarser level of detail than the maps' (InstanceRecord::emissive.w), whose faces lie up to that far
+// inside the full mesh.
+vec4 offsetShadowClip(const int layer, vec3 p, vec3 n, float texel, float slack) {
+    return uShadowMatrix[layer] * vec4(p + n * (1.5 * texel + slack), 1.0);
 }
 // The same for a perspective map (spot and rect lights), whose texel grows with the depth along the light's
 // axis, which its clip w is: `texel` per metre of that depth. The depth is affine in p, so over a flat
 // triangle the offset point's clip coordinates are too, and interpolating them from the vertices is exact
 // (the distance to the light is not: interpolated across a wall of two triangles, its far corners' offset
 // carried the points near the light past their casters, and their shadows vanished).
-vec4 offsetPerspectiveShadowClip(const int layer, vec3 p, vec3 n, float texel) {
+vec4 offsetPerspectiveShadowClip(const int layer, vec3 p, vec3 n, float texel, float slack) {
     vec4 c = uShadowMatrix[layer] * vec4(p, 1.0);
-    return c + uShadowMatrix[layer] * vec4(n * (1.5 * texel * c.w), 0.0);
+    return c + uShadowMatrix[layer] * vec4(n * (1.5 * texel * c.w + slack), 0.0);
 }
 )glsl";
 
@@ -58,7 +60,7 @@ in vec2 vUv;
 // The instance's material factors and ids (InstanceRecord), the same for every fragment of it.
 flat in vec4 vBaseColor;
 flat in vec4 vMaterial; // roughness, metallic, ambient occlusion, 1 / texture size (kBoxUv)
-flat in vec3 vEmissive;
+flat in vec4 vEmissive; // rgb, w: the shadow slack (offsetShadowClip())
 flat in uvec2 vIds;     // object id, material id
 flat in uint vRecord;   // the draw's InstanceRecord (Target::GBuffer, Target::Record)
 layout(binding = 0) uniform sampler2D uBaseColorTexture;
@@ -324,11 +326,11 @@ float shadowFactor(const int layer, vec3 s) { return shadowTap(layer, shadowSize
 // +x, -x, +y, -y, +z, -z from layer `first`; the face is the one along the major axis of p - light, and
 // its coordinates are computed here (a triangle may span faces, so the vertex shader cannot interpolate
 // them). Every map has the resolution of the first (ShadowMaps), so the size is read there.
-float pointShadowFactor(const int first, vec3 light, vec3 p, vec3 n) {
+float pointShadowFactor(const int first, vec3 light, vec3 p, vec3 n, float slack) {
     vec3 q = p - light, a = abs(q);
     int face = a.x >= a.y && a.x >= a.z ? (q.x >= 0.0 ? 0 : 1) : a.y >= a.z ? (q.y >= 0.0 ? 2 : 3) : (q.z >= 0.0 ? 4 : 5);
     int layer = first + face;
-    vec4 c = offsetPerspectiveShadowClip(layer, p, n, uShadowParams[layer].x);
+    vec4 c = offsetPerspectiveShadowClip(layer, p, n, uShadowParams[layer].x, slack);
     return shadowTap(layer, shadowSize(0), (c.xyz / c.w) * 0.5 + 0.5);
 }
 
@@ -485,7 +487,7 @@ out vec3 vNormal;
 out vec2 vUv;
 flat out vec4 vBaseColor;
 flat out vec4 vMaterial;
-flat out vec3 vEmissive;
+flat out vec4 vEmissive;
 flat out uvec2 vIds;
 flat out uint vRecord;
 #ifdef HAS_BOX_UV
@@ -515,7 +517,7 @@ void main() {
 #endif
     vBaseColor = iBaseColor;
     vMaterial = iMaterial;
-    vEmissive = iEmissive.rgb;
+    vEmissive = iEmissive;
     vIds = iIds.xy;
     vRecord = iIds.z;
     gl_Position = iModelViewProjection * p;
@@ -582,7 +584,7 @@ void main() {
     base = toHalf(base);
     metallic = unpackHalf2x16(packHalf2x16(vec2(metallic, 0.0))).x;
 #endif
-    Shaded s = shade(vWorldPosition, n, base, roughness, metallic, vMaterial.z, vEmissive);
+    Shaded s = shade(vWorldPosition, n, base, roughness, metallic, vMaterial.z, vEmissive.rgb, vEmissive.w);
     writeShaded(s);
 #ifdef OUT_FinalColor
     oFinalColor = toneMapped(s.hdr);
@@ -675,11 +677,12 @@ std::string shadowClipDeclarations(bool forward, const ShadingLayout& lights, co
 // The GLSL for the offset clip coordinates of the point p (with normal n turned towards the light) in a
 // light's shadow map: a directional light's texel is fixed, a spot or rect light's grows with the depth
 // (uShadowParams[layer].x: per metre).
-std::string offsetShadowClipCall(const LightSlot& light, const std::string& p, const std::string& n) {
+std::string offsetShadowClipCall(const LightSlot& light, const std::string& p, const std::string& n,
+                                 const std::string& slack) {
     const std::string layer = std::to_string(light.shadowLayer);
     return std::string(light.type == LightType::Directional ? "offsetShadowClip("
                                                             : "offsetPerspectiveShadowClip(") +
-           layer + ", " + p + ", " + n + ", uShadowParams[" + layer + "].x)";
+           layer + ", " + p + ", " + n + ", uShadowParams[" + layer + "].x, " + slack + ")";
 }
 
 // The forward vertex shader's shadow-map coordinates for each shadowed light, in homogeneous form
@@ -699,7 +702,7 @@ std::string shadowClips(const ShadingLayout& lights) {
                                         : "uLightPosition" + at + ".xyz - vWorldPosition";
         text += " { vec3 l = " + toLight +
                 "; vec3 n = normalize(vNormal); if (dot(n, l) < 0.0) n = -n; vec4 c = " +
-                offsetShadowClipCall(light, "vWorldPosition", "n") + "; vShadowClip" + layer +
+                offsetShadowClipCall(light, "vWorldPosition", "n", "iEmissive.w") + "; vShadowClip" + layer +
                 " = vec4((c.xyz + c.w) * 0.5, c.w); }";
     }
     return text;
@@ -861,7 +864,7 @@ std::string shadowLookup(const LightSlot& light, bool perPixelShadows, const std
     const std::string layer = std::to_string(light.shadowLayer);
     std::string text, clip = "vShadowClip" + layer;
     if (perPixelShadows) {
-        text = indent + "vec4 sc = " + offsetShadowClipCall(light, "p", n) + ";\n" + indent +
+        text = indent + "vec4 sc = " + offsetShadowClipCall(light, "p", n, "slack") + ";\n" + indent +
                "sc = vec4((sc.xyz + sc.w) * 0.5, sc.w);\n";
         clip = "sc";
     }
@@ -877,7 +880,7 @@ std::string shadowLookup(const LightSlot& light, bool perPixelShadows, const std
 std::string shadeFunction(const ShadingLayout& layout, const ConstantPlan& plan,
                           bool perPixelShadows = false) {
     std::string text = R"glsl(
-Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float ao, vec3 emissive) {
+Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float ao, vec3 emissive, float slack) {
     Surface s;
     s.p = p;
     s.n = n;
@@ -928,7 +931,7 @@ Shaded shade(vec3 p, vec3 n, vec3 base, float roughness, float metallic, float a
         text += "        float nol = dot(n, l);\n        if (nol > 0.0) {\n";
         if (light.shadowLayer >= 0 && light.type == LightType::Point) // n faces the light (nol > 0)
             text += "            e *= pointShadowFactor(" + std::to_string(light.shadowLayer) + ", " +
-                    terms.position + ", p, n);\n";
+                    terms.position + ", p, n, slack);\n";
         else if (light.shadowLayer >= 0) // n faces the light here (nol > 0), as the vertex shader turns it
             text += shadowLookup(light, perPixelShadows, "n", "            ");
         text += "            accumulate(s, l, e, nol, irradiance, specular);\n        }\n    }\n";
@@ -1274,7 +1277,8 @@ void main() {
     if ((records[record].ids.w & 1u) != 0u) // a textured material's, at this pixel
         gbufferMaterialDecode(imageLoad(uGBufferMaterial, pixel).xy, base, roughness, metallic);
 #endif
-    Shaded s = shade(p, gbufferNormal(g), base, roughness, metallic, material.z, records[record].emissive.rgb);
+    Shaded s = shade(p, gbufferNormal(g), base, roughness, metallic, material.z, records[record].emissive.rgb,
+                     records[record].emissive.w);
 #ifdef STORE_Hdr
     imageStore(uHdr, pixel, vec4(s.hdr, 1.0));
 #endif

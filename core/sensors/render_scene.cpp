@@ -40,25 +40,30 @@ std::optional<sp::render::MeshData> basicShape(std::string_view name) {
 
 // Coarser versions of the round built-in shapes, with the largest deviation of their outline from the round
 // one relative to the shape's bounding radius (half the diagonal of its unit box): a polygon of `segments`
-// sides sags by r (1 - cos(pi / segments)), for a UV sphere's outline as for a cylinder's sides. (A sphere's
-// quads sag about twice that at their centres, along the line of sight: depth, not the image, moves.)
+// sides sags by r (1 - cos(pi / segments)), for a UV sphere's outline as for a cylinder's sides. A sphere's
+// quads sag about twice that at their centres, r (1 - cos^2(pi / segments)), along the line of sight: depth,
+// not the image, moves, but a shadow lookup must clear it (MeshLod::surfaceError).
 // Levels close together, so that the one drawn (the coarsest within half a pixel) is near that bound: with
 // 24, 12 and 8 segments only, a sphere of 30 pixels drew 576 triangles where 324 keep within it, and on a
 // software rasteriser its small triangles cost far more than their pixels (Table 3, N = 64, 1080p: 15%).
-std::vector<std::pair<sp::render::MeshData, float>> basicShapeLods(std::string_view name) {
-    std::vector<std::pair<sp::render::MeshData, float>> lods;
+struct ShapeLevel {
+    sp::render::MeshData data;
+    float relativeError, surfaceError;
+};
+std::vector<ShapeLevel> basicShapeLods(std::string_view name) {
+    std::vector<ShapeLevel> lods;
     if (!name.starts_with(kBasicShapesPrefix))
         return lods;
     name.remove_prefix(kBasicShapesPrefix.size());
     const double halfDiagonal = 0.5 * std::sqrt(3.0);
     for (int segments : {40, 32, 28, 24, 20, 18, 16, 14, 12, 10, 8}) {
         const double angle = M_PI / segments;
+        const auto outline = float(0.5 * (1.0 - std::cos(angle)) / halfDiagonal);
         if (name == "Sphere")
-            lods.emplace_back(sp::render::primitives::sphere(0.5f, segments, segments / 2),
-                              float(0.5 * (1.0 - std::cos(angle)) / halfDiagonal));
+            lods.push_back({sp::render::primitives::sphere(0.5f, segments, segments / 2), outline,
+                            float(0.5 * (1.0 - std::cos(angle) * std::cos(angle)) / halfDiagonal)});
         else if (name == "Cylinder")
-            lods.emplace_back(sp::render::primitives::cylinder(0.5f, 1.0f, segments),
-                              float(0.5 * (1.0 - std::cos(angle)) / halfDiagonal));
+            lods.push_back({sp::render::primitives::cylinder(0.5f, 1.0f, segments), outline, outline});
     }
     return lods;
 }
@@ -318,10 +323,10 @@ const RenderScene::MeshEntry* RenderScene::meshFor(const std::string& name) {
     if (auto shape = basicShape(name)) { // the same in every world: uploaded once per renderer
         entry.mesh = scene_.addMesh(std::move(*shape), "shape:" + name);
         std::vector<sp::render::MeshLod> lods;
-        for (auto& [data, error] : basicShapeLods(name))
-            lods.push_back(
-                {scene_.addMesh(std::move(data), "shape:" + name + "@lod" + std::to_string(lods.size())),
-                 error});
+        for (ShapeLevel& level : basicShapeLods(name))
+            lods.push_back({scene_.addMesh(std::move(level.data),
+                                           "shape:" + name + "@lod" + std::to_string(lods.size())),
+                            level.relativeError, level.surfaceError});
         scene_.setMeshLods(entry.mesh, std::move(lods));
     } else {
         try {

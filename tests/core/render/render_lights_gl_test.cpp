@@ -111,5 +111,62 @@ TEST_F(RenderLightsGlTest, AViewReachedByMoreLightsThanAProgramShadesShadesTheNe
     EXPECT_TRUE(same(frames[0].get(Modality::FinalColor), frames[1].get(Modality::FinalColor)));
 }
 
+TEST_F(RenderLightsGlTest, ACoarseLevelOfDetailDoesNotShadowItself) {
+    // A sphere with the built-in shape's levels, small in a 160 x 120 view, under a shadowed point light:
+    // the view draws a coarse level whose quads lie inside the fine sphere the shadow maps hold (by up to
+    // MeshLod::surfaceError). Its lit side must be as bright as without the shadow (before the offset grew by
+    // that error, most of it was shadowed in a grid of facets: the default scene's ball at 320 x 240).
+    Scene scene;
+    const MeshId fine = scene.addMesh(primitives::sphere(0.5f, 48, 24));
+    const double halfDiagonal = 0.5 * std::sqrt(3.0);
+    std::vector<MeshLod> levels;
+    for (int segments : {32, 24, 16, 12, 8}) {
+        const double angle = M_PI / segments;
+        levels.push_back({scene.addMesh(primitives::sphere(0.5f, segments, segments / 2)),
+                          float(0.5 * (1.0 - std::cos(angle)) / halfDiagonal),
+                          float(0.5 * std::sin(angle) * std::sin(angle) / halfDiagonal)});
+    }
+    scene.setMeshLods(fine, levels);
+    const MaterialId white = scene.addMaterial(makeMaterial({0.8f, 0.8f, 0.8f}, 0.9f, 0.0f));
+    Instance ball{fine, {white}, {1}};
+    ball.transform = Eigen::Translation3d(0.0, 0.0, 0.5) * Eigen::Scaling(0.6);
+    scene.addInstance(ball);
+    Light lamp = pointLight({-1.0, -1.2, 2.2});
+    lamp.range = 0.0f;
+    lamp.castShadows = true;
+    const LightId lampId = scene.addLight(lamp);
+    Camera camera = cameraLookingAt({-4.0, -3.0, 2.0}, {0.0, 0.0, 0.5}, 160, 120, 40.0);
+    camera.params.shadowResolution = 2048;
+    // The level the view draws is a coarse one.
+    const double focal = 80.0 / std::tan(20.0 * M_PI / 180.0);
+    const double radius = 0.6 * halfDiagonal;
+    const double pixels =
+        radius * focal / ((camera.pose.translation() - Eigen::Vector3d(0, 0, 0.5)).norm() - radius);
+    const MeshId drawn = scene.chooseLod(fine, pixels).mesh;
+    ASSERT_GE(std::find_if(levels.begin(), levels.end(), [&](const MeshLod& l) { return l.mesh == drawn; }) -
+                  levels.begin(),
+              2);
+    Frame frames[2];
+    for (int i = 0; i < 2; ++i) {
+        lamp.castShadows = i == 0;
+        scene.setLight(lampId, lamp);
+        RenderTarget target(renderer(), {Modality::DiffuseIllumination, Modality::ObjectIds}, 0);
+        target.render(scene, camera, frames[i]);
+    }
+    const ImageBuffer& ids = frames[0].get(Modality::ObjectIds);
+    const ImageBuffer& shadowed = frames[0].get(Modality::DiffuseIllumination);
+    const ImageBuffer& open = frames[1].get(Modality::DiffuseIllumination);
+    int lit = 0, darkened = 0;
+    for (int y = 0; y < camera.params.height; ++y)
+        for (int x = 0; x < camera.params.width; ++x) {
+            if (ids.at(x, y) != 1.0f || open.at(x, y) < 0.05f)
+                continue; // not the ball, or its side away from the lamp
+            ++lit;
+            darkened += shadowed.at(x, y) < 0.97f * open.at(x, y) ? 1 : 0;
+        }
+    ASSERT_GT(lit, 300);
+    EXPECT_EQ(darkened, 0) << "of " << lit << " lit pixels";
+}
+
 } // namespace
 } // namespace sp::render::test
