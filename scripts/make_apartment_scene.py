@@ -90,12 +90,12 @@ def material(rgb: tuple[float, float, float], roughness: float, metallic: float 
 
 def textured(maps: str, size: float, *, roughness: bool = True) -> dict[str, Any]:
     """A material whose maps (scripts/make_apartment_textures.py: assets/textures/<maps>_*.png) carry its
-    colour, and its roughness where it varies, repeating every `size` metres on every box, whatever its scale
+    colour, and its roughness and ambient occlusion where they vary, repeating every `size` metres on every box, whatever its scale
     (FMaterialDesc.TextureSize). The factors are white and 1: the maps are the values."""
     found = {"BaseColorTexture": f"/Game/textures/{maps}_color.png",
              "NormalTexture": f"/Game/textures/{maps}_normal.png", "TextureSize": size}
-    if roughness:
-        found["RoughnessMetallicTexture"] = f"/Game/textures/{maps}_rm.png"
+    if roughness:  # one ORM map: occlusion in R, roughness in G, metallic in B
+        found["RoughnessMetallicTexture"] = found["OcclusionTexture"] = f"/Game/textures/{maps}_rm.png"
     return {**material((1.0, 1.0, 1.0), 1.0 if roughness else 0.9), **found}
 
 

@@ -4,7 +4,9 @@ the textures are the project's own (CC0, see assets/textures/README.md) and can 
 Every texture tiles (its noise is periodic, made by filtering white noise in the frequency domain), and each
 material has up to three maps in the glTF layout the renderers read (core/sensors/material_library.h):
   *_color.png   sRGB base colour (the material's BaseColor factor is white: the map is the albedo),
-  *_rm.png      linear, G = roughness, B = metallic (multiplying the Roughness and Metallic factors),
+  *_rm.png      linear, R = ambient occlusion, G = roughness, B = metallic (multiplying the AmbientOcclusion,
+                Roughness and Metallic factors; the scene names the file as both RoughnessMetallicTexture and
+                OcclusionTexture, glTF's and UE's ORM packing),
   *_normal.png  tangent-space normal map, OpenGL convention (green up), from a height field.
 Materials repeat them every FMaterialDesc.TextureSize metres (scripts/make_apartment_scene.py).
 
@@ -68,8 +70,20 @@ def normal_map(height: Array, strength: float) -> NDArray[np.uint8]:
     return unorm(n * 0.5 + 0.5)
 
 
-def rm_map(roughness: Array, metallic: float = 0.0) -> NDArray[np.uint8]:
-    return unorm(np.stack([np.zeros_like(roughness), roughness, np.full_like(roughness, metallic)], axis=-1))
+def occlusion(height: Array, radius: float, strength: float) -> Array:
+    """Ambient occlusion of a height field (pixels of height), as a cavity map: how far each texel lies below
+    the mean height of its surroundings (a periodic Gaussian of `radius` pixels), exp(-strength x depth). A
+    groove or the grout between tiles sees less of the sky than the faces beside it; a bump sees all of it."""
+    fy = frequencies(height.shape[0])[:, None]
+    fx = frequencies(height.shape[1])[None, :]
+    gaussian = np.exp(-2.0 * (np.pi * radius) ** 2 * (fx**2 + fy**2))
+    mean = np.fft.ifft2(np.fft.fft2(height) * gaussian).real
+    out: Array = np.exp(-strength * np.maximum(mean - height, 0.0))
+    return out
+
+
+def rm_map(roughness: Array, ao: Array, metallic: float = 0.0) -> NDArray[np.uint8]:
+    return unorm(np.stack([ao, roughness, np.full_like(roughness, metallic)], axis=-1))
 
 
 def groove(distance: Array, width: float) -> Array:
@@ -102,7 +116,8 @@ def wood_floor(rng: np.random.Generator) -> dict[str, NDArray[np.uint8]]:
     color = base[None, None, :] * darkness[..., None] * (1.0 - 0.6 * seams[..., None])
     roughness = np.clip(0.5 + 0.08 * grain + 0.1 * rings + 0.35 * seams, 0.0, 1.0)
     height = -2.0 * seams + 0.15 * rings
-    return {"color": srgb(color), "rm": rm_map(roughness), "normal": normal_map(height, 1.0)}
+    return {"color": srgb(color), "rm": rm_map(roughness, occlusion(height, 4.0, 0.35)),
+            "normal": normal_map(height, 1.0)}
 
 
 def plaster(rng: np.random.Generator) -> dict[str, NDArray[np.uint8]]:
@@ -134,7 +149,8 @@ def fabric(rng: np.random.Generator) -> dict[str, NDArray[np.uint8]]:
     base = np.array([0.16, 0.25, 0.4])
     color = base[None, None, :] * (0.8 + 0.3 * height + 0.06 * slub)[..., None]
     roughness = np.clip(0.92 + 0.05 * slub, 0.0, 1.0)
-    return {"color": srgb(color), "rm": rm_map(roughness), "normal": normal_map(height * 3.0, 0.5)}
+    return {"color": srgb(color), "rm": rm_map(roughness, occlusion(height * 3.0, 3.0, 0.25)),
+            "normal": normal_map(height * 3.0, 0.5)}
 
 
 def ceramic_tile(rng: np.random.Generator) -> dict[str, NDArray[np.uint8]]:
@@ -155,7 +171,8 @@ def ceramic_tile(rng: np.random.Generator) -> dict[str, NDArray[np.uint8]]:
     color = tile_colour * (1 - grout[..., None]) + grout_colour[None, None, :] * grout[..., None]
     roughness = 0.12 + 0.73 * grout
     height = 3.0 * np.sqrt(bevel) * (1 - grout) - 1.0 * grout
-    return {"color": srgb(color), "rm": rm_map(roughness), "normal": normal_map(height, 1.0)}
+    return {"color": srgb(color), "rm": rm_map(roughness, occlusion(height, 4.0, 0.35)),
+            "normal": normal_map(height, 1.0)}
 
 
 MATERIALS: dict[str, Callable[[np.random.Generator], dict[str, NDArray[np.uint8]]]] = {

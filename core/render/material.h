@@ -18,8 +18,10 @@ struct Material {
     float ambientOcclusion = 1.0f;                      // [0, 1], scales ambient light only
     Eigen::Vector3f emissive = Eigen::Vector3f::Zero(); // linear radiance added to hdr_color
     std::optional<TextureId> baseColorTexture;          // sRGB; multiplies baseColor
-    std::optional<TextureId> roughnessMetallicTexture;  // glTF layout: G = roughness, B = metallic (multiply)
-    std::optional<TextureId> normalTexture;             // tangent-space normal map (OpenGL convention, +Y up)
+    // R = ambient occlusion, G = roughness, B = metallic, multiplying the factors: glTF's occlusion and
+    // metallic-roughness maps packed (packOcclusionRoughnessMetallic(), which makes R 255 without occlusion).
+    std::optional<TextureId> roughnessMetallicTexture;
+    std::optional<TextureId> normalTexture; // tangent-space normal map (OpenGL convention, +Y up)
     // Metres one repeat of the textures covers, projected on the object's scaled box axes (box_uv.h); 0: the
     // textures follow the mesh's own uvs.
     float textureSize = 0.0f;

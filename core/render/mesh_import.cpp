@@ -113,6 +113,23 @@ ImportedMaterial readMaterial(const aiScene* scene, const aiMaterial* source, Re
         out.baseColorTexture = readTexture(scene, source, aiTextureType_DIFFUSE, 0, reading);
     out.roughnessMetallicTexture =
         readTexture(scene, source, AI_MATKEY_GLTF_PBRMETALLICROUGHNESS_METALLICROUGHNESS_TEXTURE, reading);
+    // glTF's occlusion map (assimp's glTF importer files it as a light map), packed into the texture's R.
+    std::optional<TextureImage> occlusion =
+        readTexture(scene, source, aiTextureType_AMBIENT_OCCLUSION, 0, reading);
+    if (!occlusion)
+        occlusion = readTexture(scene, source, aiTextureType_LIGHTMAP, 0, reading);
+    if (out.roughnessMetallicTexture || occlusion) {
+        try {
+            out.roughnessMetallicTexture = packOcclusionRoughnessMetallic(
+                out.roughnessMetallicTexture ? &*out.roughnessMetallicTexture : nullptr,
+                occlusion ? &*occlusion : nullptr);
+        } catch (const Error& error) { // maps of two sizes: the material keeps its metallic-roughness map
+            SP_LOG("importMesh(): skipping the occlusion map: ", error.what());
+            if (out.roughnessMetallicTexture)
+                out.roughnessMetallicTexture =
+                    packOcclusionRoughnessMetallic(&*out.roughnessMetallicTexture, nullptr);
+        }
+    }
     out.normalTexture = readTexture(scene, source, aiTextureType_NORMALS, 0, reading);
     return out;
 }

@@ -21,7 +21,7 @@ struct ImportedMaterial {
     std::string name;
     Material material; // texture ids unset
     std::optional<TextureImage> baseColorTexture;
-    std::optional<TextureImage> roughnessMetallicTexture;
+    std::optional<TextureImage> roughnessMetallicTexture; // with the occlusion map's R packed in (Material)
     std::optional<TextureImage> normalTexture;
 };
 

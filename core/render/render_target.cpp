@@ -191,7 +191,7 @@ std::vector<std::uint64_t> RenderTarget::submitAll(std::span<const Submission> s
         if (textured.baseColor)
             uniform.remove(Modality::BaseColor);
         if (textured.roughnessMetallic)
-            uniform.remove(Modality::Roughness).remove(Modality::Metallic);
+            uniform.remove(Modality::Roughness).remove(Modality::Metallic).remove(Modality::MaterialAo);
         // Multisampled, every modality is drawn (none computed on the CPU from others: diffuse_only from the
         // exact base colour and the averaged illumination would not be the average of the samples' products).
         const bool msaa = s.camera->params.antiAliasing == AntiAliasing::Msaa;

@@ -123,7 +123,7 @@ class Scene {
     // an instance; the others are its material's factors at every pixel of it.
     struct TexturedFactors {
         bool baseColor = false;
-        bool roughnessMetallic = false;
+        bool roughnessMetallic = false; // and ambient occlusion (the texture's R: Material)
     };
     TexturedFactors texturedFactors() const;
 

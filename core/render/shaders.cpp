@@ -79,7 +79,7 @@ mat2x3 boxAxes(vec3 n) {
 }
 #endif
 
-void evaluateSurface(out vec3 n, out vec3 base, out float roughness, out float metallic) {
+void evaluateSurface(out vec3 n, out vec3 base, out float roughness, out float metallic, out float ao) {
 #ifdef HAS_BOX_UV
     // The gradients come from the position, which is continuous where the projection's axis changes (a box's
     // edge): the uvs' own would jump there and pick the coarsest mip level for the pixels along it.
@@ -130,8 +130,10 @@ void evaluateSurface(out vec3 n, out vec3 base, out float roughness, out float m
 #endif
     roughness = vMaterial.x;
     metallic = vMaterial.y;
+    ao = vMaterial.z;
 #ifdef HAS_ROUGHNESS_METALLIC_TEXTURE
-    vec4 rm = SURFACE_TEXTURE(uRoughnessMetallicTexture);
+    vec4 rm = SURFACE_TEXTURE(uRoughnessMetallicTexture); // occlusion, roughness, metallic (Material)
+    ao *= rm.r;
     roughness *= rm.g;
     metallic *= rm.b;
 #endif
@@ -166,18 +168,20 @@ vec3 gbufferNormal(uint bits) {
 )glsl";
 
 // The G-buffer's material texel (Target::GBufferMaterial, RG32UI) of a textured draw: the base colour's
-// square root, then roughness, in x and metallic in y, 8 bits each. The square root spends the bits where the
-// eye does, like sRGB's curve (steps under 1% relative above 0.1), for one sqrt and one multiply instead of
-// its pow() each way.
+// square root, then roughness, in x and metallic and ambient occlusion in y, 8 bits each. The square root
+// spends the bits where the eye does, like sRGB's curve (steps under 1% relative above 0.1), for one sqrt and
+// one multiply instead of its pow() each way.
 const char* const kGBufferMaterialChunk = R"glsl(
-uvec2 gbufferMaterialEncode(vec3 base, float roughness, float metallic) {
-    return uvec2(packUnorm4x8(vec4(sqrt(clamp(base, 0.0, 1.0)), roughness)), packUnorm4x8(vec4(metallic)));
+uvec2 gbufferMaterialEncode(vec3 base, float roughness, float metallic, float ao) {
+    return uvec2(packUnorm4x8(vec4(sqrt(clamp(base, 0.0, 1.0)), roughness)),
+                 packUnorm4x8(vec4(metallic, ao, 0.0, 0.0)));
 }
-void gbufferMaterialDecode(uvec2 bits, out vec3 base, out float roughness, out float metallic) {
-    vec4 a = unpackUnorm4x8(bits.x);
+void gbufferMaterialDecode(uvec2 bits, out vec3 base, out float roughness, out float metallic, out float ao) {
+    vec4 a = unpackUnorm4x8(bits.x), b = unpackUnorm4x8(bits.y);
     base = a.rgb * a.rgb;
     roughness = a.a;
-    metallic = unpackUnorm4x8(bits.y).x;
+    metallic = b.x;
+    ao = b.y;
 }
 )glsl";
 
@@ -545,8 +549,8 @@ void main() {
 const char* const kSurfaceMain = R"glsl(
 void main() {
     vec3 n, base;
-    float roughness, metallic;
-    evaluateSurface(n, base, roughness, metallic);
+    float roughness, metallic, ao;
+    evaluateSurface(n, base, roughness, metallic, ao);
 #ifdef OUT_Position
     oPosition = vec4(vWorldPosition, 1.0);
 #endif
@@ -560,7 +564,7 @@ void main() {
     oBaseColor = halfTarget(vec4(base, 1.0));
 #endif
 #ifdef OUT_Params
-    oParams = halfTarget(vec4(roughness, metallic, vMaterial.z, 0.0));
+    oParams = halfTarget(vec4(roughness, metallic, ao, 0.0));
 #endif
 #ifdef OUT_Ids
     oIds = vIds;
@@ -576,7 +580,7 @@ void main() {
 #endif
 #endif
 #if defined(OUT_GBufferMaterial) && !defined(FORWARD) && defined(TEXTURED)
-    oGBufferMaterial = gbufferMaterialEncode(base, roughness, metallic);
+    oGBufferMaterial = gbufferMaterialEncode(base, roughness, metallic, ao);
 #endif
 #ifdef FORWARD
 #ifdef EXACT_INTRINSICS
@@ -584,7 +588,7 @@ void main() {
     base = toHalf(base);
     metallic = unpackHalf2x16(packHalf2x16(vec2(metallic, 0.0))).x;
 #endif
-    Shaded s = shade(vWorldPosition, n, base, roughness, metallic, vMaterial.z, vEmissive.rgb, vEmissive.w);
+    Shaded s = shade(vWorldPosition, n, base, roughness, metallic, ao, vEmissive.rgb, vEmissive.w);
     writeShaded(s);
 #ifdef OUT_FinalColor
     oFinalColor = toneMapped(s.hdr);
@@ -1272,12 +1276,12 @@ void main() {
     vec3 p = cameraPosition() + offset.xyz / offset.w;
     vec4 material = records[record].material;
     vec3 base = records[record].baseColor.rgb;
-    float roughness = material.x, metallic = material.y;
+    float roughness = material.x, metallic = material.y, ao = material.z;
 #ifdef GBUFFER_MATERIAL
     if ((records[record].ids.w & 1u) != 0u) // a textured material's, at this pixel
-        gbufferMaterialDecode(imageLoad(uGBufferMaterial, pixel).xy, base, roughness, metallic);
+        gbufferMaterialDecode(imageLoad(uGBufferMaterial, pixel).xy, base, roughness, metallic, ao);
 #endif
-    Shaded s = shade(p, gbufferNormal(g), base, roughness, metallic, material.z, records[record].emissive.rgb,
+    Shaded s = shade(p, gbufferNormal(g), base, roughness, metallic, ao, records[record].emissive.rgb,
                      records[record].emissive.w);
 #ifdef STORE_Hdr
     imageStore(uHdr, pixel, vec4(s.hdr, 1.0));

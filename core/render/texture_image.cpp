@@ -52,6 +52,29 @@ TextureImage TextureImage::fromPixels(int width, int height, std::vector<std::ui
     return image;
 }
 
+TextureImage packOcclusionRoughnessMetallic(const TextureImage* roughnessMetallic,
+                                            const TextureImage* occlusion) {
+    SP_CHECK(roughnessMetallic != nullptr || occlusion != nullptr, InvalidArgument,
+             "packOcclusionRoughnessMetallic(): neither a metallic-roughness nor an occlusion map");
+    if (roughnessMetallic != nullptr && occlusion != nullptr)
+        SP_CHECK(roughnessMetallic->width == occlusion->width &&
+                     roughnessMetallic->height == occlusion->height,
+                 InvalidArgument, "packOcclusionRoughnessMetallic(): the occlusion map '", occlusion->source,
+                 "' is ", occlusion->width, "x", occlusion->height, ", the metallic-roughness map '",
+                 roughnessMetallic->source, "' ", roughnessMetallic->width, "x", roughnessMetallic->height,
+                 "; pack them into one image of one size");
+    TextureImage packed = roughnessMetallic != nullptr ? *roughnessMetallic : *occlusion;
+    for (std::size_t i = 0; i < packed.rgba.size(); i += 4) {
+        packed.rgba[i] = occlusion != nullptr ? occlusion->rgba[i] : 255;
+        if (roughnessMetallic == nullptr)
+            packed.rgba[i + 1] = packed.rgba[i + 2] = 255;
+    }
+    if (roughnessMetallic != nullptr && occlusion != nullptr &&
+        occlusion->source != roughnessMetallic->source)
+        packed.source = roughnessMetallic->source + " + occlusion " + occlusion->source;
+    return packed;
+}
+
 RadianceImage readRadianceHdr(const std::string& path, const char* function) {
     // readRegularFile throws sp::NotFound for a missing file (or a directory).
     const std::string bytes = readRegularFile(findAsset(path), function, "Radiance HDR image");

@@ -22,6 +22,15 @@ struct TextureImage {
     static TextureImage fromPixels(int width, int height, std::vector<std::uint8_t> rgba);
 };
 
+// The one texture a Material's roughnessMetallicTexture is: glTF's occlusion map's R in R, its
+// metallic-roughness map's G (roughness) and B (metallic), the packing glTF files and UE's ORM textures
+// share. Either map may be absent: without an occlusion map R is 255 (nothing occluded, whatever the
+// metallic-roughness map held in its unused R); without a metallic-roughness map G and B are 255 (the
+// material's factors unscaled). Two maps must have one size; throws sp::InvalidArgument naming both
+// otherwise, and when neither is given.
+TextureImage packOcclusionRoughnessMetallic(const TextureImage* roughnessMetallic,
+                                            const TextureImage* occlusion);
+
 // Writes uint8 (height, width, channels) pixels as PNG; throws sp::InvalidState when writing fails.
 void writePng(const std::string& path, int width, int height, int channels, const std::uint8_t* pixels);
 

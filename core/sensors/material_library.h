@@ -27,7 +27,7 @@ struct FMaterialDesc {
     /// Metalness in [0, 1].
     SPPROPERTY()
     float Metallic = 0.0f;
-    /// Ambient occlusion in [0, 1]; scales the sky light only.
+    /// Ambient occlusion in [0, 1]; scales the ambient and indirect light only (times OcclusionTexture's R).
     SPPROPERTY()
     float AmbientOcclusion = 1.0f;
     /// Linear RGB radiance emitted by the surface (alpha unused).
@@ -39,6 +39,11 @@ struct FMaterialDesc {
     /// Path of a glTF-layout texture (G = roughness, B = metallic) multiplying the factors ("" for none).
     SPPROPERTY()
     std::string RoughnessMetallicTexture;
+    /// Path of a texture whose R channel multiplies AmbientOcclusion, glTF's occlusion map ("" for none):
+    /// often the same file as RoughnessMetallicTexture (an ORM map, occlusion in R); a separate one must have
+    /// its size. It darkens the ambient and indirect light in crevices too small for the irradiance probes.
+    SPPROPERTY()
+    std::string OcclusionTexture;
     /// Path of a tangent-space normal map, OpenGL convention ("" for none).
     SPPROPERTY()
     std::string NormalTexture;

@@ -373,6 +373,34 @@ std::optional<sp::render::TextureId> RenderScene::textureFor(const std::string& 
     }
 }
 
+std::optional<sp::render::TextureId>
+RenderScene::occlusionRoughnessMetallicFor(const std::string& roughnessMetallic,
+                                           const std::string& occlusion) {
+    if (roughnessMetallic.empty() && occlusion.empty())
+        return std::nullopt;
+    const std::string path = "orm:" + roughnessMetallic + "\n" + occlusion;
+    if (auto it = textures_.find(path); it != textures_.end())
+        return it->second;
+    try {
+        std::optional<sp::render::TextureImage> maps[2];
+        if (!roughnessMetallic.empty())
+            maps[0] = sp::render::TextureImage::load(roughnessMetallic);
+        if (!occlusion.empty())
+            maps[1] = occlusion == roughnessMetallic ? maps[0] : sp::render::TextureImage::load(occlusion);
+        sp::render::TextureImage image = sp::render::packOcclusionRoughnessMetallic(
+            maps[0] ? &*maps[0] : nullptr, maps[1] ? &*maps[1] : nullptr);
+        std::string key = sp::render::contentKey(image, sp::render::TextureEncoding::Linear);
+        sp::render::TextureId id =
+            scene_.addTexture(std::move(image), sp::render::TextureEncoding::Linear, std::move(key));
+        return textures_.emplace(path, id).first->second;
+    } catch (const sp::Error& error) {
+        logOnce("texture:" + path, "RenderSubsystem: texture '" +
+                                       (roughnessMetallic.empty() ? occlusion : roughnessMetallic) +
+                                       "' is not used: " + error.what());
+        return std::nullopt;
+    }
+}
+
 sp::render::MaterialId RenderScene::materialFor(const std::string& rawName,
                                                 const std::map<std::string, FMaterialDesc>& library) {
     const std::string name = rawName.empty() ? "Default" : rawName;
@@ -399,7 +427,7 @@ sp::render::MaterialId RenderScene::materialFor(const std::string& rawName,
     material.emissive = rgb(desc.Emissive);
     material.baseColorTexture = textureFor(desc.BaseColorTexture, sp::render::TextureEncoding::Srgb);
     material.roughnessMetallicTexture =
-        textureFor(desc.RoughnessMetallicTexture, sp::render::TextureEncoding::Linear);
+        occlusionRoughnessMetallicFor(desc.RoughnessMetallicTexture, desc.OcclusionTexture);
     material.normalTexture = textureFor(desc.NormalTexture, sp::render::TextureEncoding::Linear);
     material.textureSize = desc.TextureSize;
     material.validate(("material '" + name + "'").c_str());

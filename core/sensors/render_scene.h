@@ -119,6 +119,11 @@ class RenderScene {
                                        const std::map<std::string, FMaterialDesc>& library);
     std::optional<sp::render::TextureId> textureFor(const std::string& path,
                                                     sp::render::TextureEncoding encoding);
+    // The material's one texture of occlusion, roughness and metallic (sp::render::Material), from its
+    // RoughnessMetallicTexture and OcclusionTexture (either may be ""; none: nullopt), loaded and packed
+    // once.
+    std::optional<sp::render::TextureId> occlusionRoughnessMetallicFor(const std::string& roughnessMetallic,
+                                                                       const std::string& occlusion);
     void logOnce(const std::string& key, const std::string& message);
 
     PlayOrder<const AMaterialLibrary> libraries_;

@@ -152,3 +152,43 @@ def test_textures_named_under_game_load_from_any_working_directory(
     with instance.end_frame():
         base = camera.read_pixels()["base_color"].astype(np.float64)
     np.testing.assert_allclose(base.mean(axis=(0, 1)), expected.mean(axis=(0, 1)), rtol=0.03)
+
+
+@pytest.mark.parametrize("packed", [False, True], ids=["own file", "orm"])
+def test_an_occlusion_texture_multiplies_material_ao_and_the_ambient_light(
+        instance: spear.Instance, tmp_path: Path, packed: bool) -> None:
+    # The checker's cells occlude 0.2 and 0.9 in R (linear bytes), its own file or an ORM map's R beside
+    # roughness in G: material_ao is AmbientOcclusion times R, and under a sky light alone (all of it
+    # ambient) the diffuse illumination follows it. With no occlusion map R is not read: material_ao is the
+    # factor (the ORM map's file as RoughnessMetallicTexture only).
+    row, col = np.mgrid[0:64, 0:64]
+    occluded = np.where(((row // 32 + col // 32) % 2) == 0, 0.9, 0.2)
+    rgb = np.stack([np.round(occluded * 255), np.full_like(occluded, 255), np.zeros_like(occluded)], axis=-1)
+    path = tmp_path / "orm.png"
+    Image.fromarray(rgb.astype(np.uint8), "RGB").save(path)
+    game = instance.get_game()
+    with instance.begin_frame():
+        library = game.spawn_actor(uclass=spear.AMaterialLibrary, name="Library")
+        for name, occlusion in (("Occluded", str(path)), ("Plain", "")):
+            library.SetMaterial(Name=name, Material=spear.FMaterialDesc(
+                BaseColor=spear.FLinearColor(R=1.0, G=1.0, B=1.0, A=1.0), Roughness=1.0, AmbientOcclusion=0.5,
+                OcclusionTexture=occlusion, TextureSize=SIZE,
+                RoughnessMetallicTexture=str(path) if packed or name == "Plain" else ""))
+        wall = spawn_wall(game, 5.0, material="Occluded")
+        sky = game.spawn_actor(uclass=spear.ASkyLight, name="Sky")
+        sky.SkyLightComponent.SkyColor = spear.FLinearColor(R=1.0, G=1.0, B=1.0, A=1.0)
+        camera = spawn_camera(game, [M.MaterialAo, M.DiffuseIllumination, M.Position], 48, 36, 60.0)
+    with instance.end_frame():
+        pixels = camera.read_pixels()
+    ao = pixels["material_ao"].astype(np.float64)
+    irradiance = pixels["diffuse_illumination"][..., 0].astype(np.float64)
+    light, clear = expected_light(pixels["position"].astype(np.float32), (5.05, 0.0, 0.0))
+    assert np.median(ao[clear & light]) == pytest.approx(0.5 * 230 / 255, abs=0.01)
+    assert np.median(ao[clear & ~light]) == pytest.approx(0.5 * 51 / 255, abs=0.01)
+    ratio = np.median(irradiance[clear & ~light]) / np.median(irradiance[clear & light])
+    assert ratio == pytest.approx(51 / 230, rel=0.1)
+    with instance.begin_frame():
+        wall.StaticMeshComponent.SetMaterial(ElementIndex=0, Material="Plain")
+    with instance.end_frame():
+        plain = camera.read_pixels()["material_ao"].astype(np.float64)
+    np.testing.assert_allclose(plain, 0.5, atol=2e-3)

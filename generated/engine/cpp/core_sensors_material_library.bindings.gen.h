@@ -36,13 +36,14 @@ template <> struct type_caster<FMaterialDesc> {
         value.Emissive = sp::pybind::Bridge<FLinearColor>::in(src.attr("Emissive").cast<sp::pybind::Bridge<FLinearColor>::Py>(), "FMaterialDesc.Emissive");
         value.BaseColorTexture = sp::pybind::Bridge<std::string>::in(src.attr("BaseColorTexture").cast<sp::pybind::Bridge<std::string>::Py>(), "FMaterialDesc.BaseColorTexture");
         value.RoughnessMetallicTexture = sp::pybind::Bridge<std::string>::in(src.attr("RoughnessMetallicTexture").cast<sp::pybind::Bridge<std::string>::Py>(), "FMaterialDesc.RoughnessMetallicTexture");
+        value.OcclusionTexture = sp::pybind::Bridge<std::string>::in(src.attr("OcclusionTexture").cast<sp::pybind::Bridge<std::string>::Py>(), "FMaterialDesc.OcclusionTexture");
         value.NormalTexture = sp::pybind::Bridge<std::string>::in(src.attr("NormalTexture").cast<sp::pybind::Bridge<std::string>::Py>(), "FMaterialDesc.NormalTexture");
         value.TextureSize = sp::pybind::Bridge<float>::in(src.attr("TextureSize").cast<sp::pybind::Bridge<float>::Py>(), "FMaterialDesc.TextureSize");
         return true;
     }
     static handle cast(const FMaterialDesc& v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FMaterialDesc");
-        return cls(sp::pybind::Bridge<FLinearColor>::out(v.BaseColor), sp::pybind::Bridge<float>::out(v.Roughness), sp::pybind::Bridge<float>::out(v.Metallic), sp::pybind::Bridge<float>::out(v.AmbientOcclusion), sp::pybind::Bridge<FLinearColor>::out(v.Emissive), sp::pybind::Bridge<std::string>::out(v.BaseColorTexture), sp::pybind::Bridge<std::string>::out(v.RoughnessMetallicTexture), sp::pybind::Bridge<std::string>::out(v.NormalTexture), sp::pybind::Bridge<float>::out(v.TextureSize)).release();
+        return cls(sp::pybind::Bridge<FLinearColor>::out(v.BaseColor), sp::pybind::Bridge<float>::out(v.Roughness), sp::pybind::Bridge<float>::out(v.Metallic), sp::pybind::Bridge<float>::out(v.AmbientOcclusion), sp::pybind::Bridge<FLinearColor>::out(v.Emissive), sp::pybind::Bridge<std::string>::out(v.BaseColorTexture), sp::pybind::Bridge<std::string>::out(v.RoughnessMetallicTexture), sp::pybind::Bridge<std::string>::out(v.OcclusionTexture), sp::pybind::Bridge<std::string>::out(v.NormalTexture), sp::pybind::Bridge<float>::out(v.TextureSize)).release();
     }
 };
 

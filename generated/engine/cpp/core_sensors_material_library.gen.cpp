@@ -115,7 +115,7 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
         t.properties.push_back({
             "AmbientOcclusion",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
-            "Ambient occlusion in [0, 1]; scales the sky light only.",
+            "Ambient occlusion in [0, 1]; scales the ambient and indirect light only (times OcclusionTexture's R).",
             false,
             [](const void* self) { return Calls::get_AmbientOcclusion<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
@@ -150,6 +150,16 @@ const sp::reflect::TypeInfo& FMaterialDesc::StaticClass() {
             [](const void* self) { return Calls::get_RoughnessMetallicTexture<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
                 Calls::set_RoughnessMetallicTexture<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "OcclusionTexture",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
+            "Path of a texture whose R channel multiplies AmbientOcclusion, glTF's occlusion map (\"\" for none):\noften the same file as RoughnessMetallicTexture (an ORM map, occlusion in R); a separate one must have\nits size. It darkens the ambient and indirect light in crevices too small for the irradiance probes.",
+            false,
+            [](const void* self) { return Calls::get_OcclusionTexture<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_OcclusionTexture<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
         t.properties.push_back({

@@ -144,6 +144,15 @@ struct FMaterialDescCalls {
         sp::reflect::notifyPropertyChanged(self, "RoughnessMetallicTexture");
     }
 
+    template <typename Call> static typename Call::Result get_OcclusionTexture(const Self* self) {
+        const auto& value = self->OcclusionTexture;
+        return Call::template result<std::string>(value);
+    }
+    template <typename Call> static void set_OcclusionTexture(Self* self, const typename Call::Input& value) {
+        self->OcclusionTexture = Call::template input<std::string>(value, "FMaterialDesc.OcclusionTexture");
+        sp::reflect::notifyPropertyChanged(self, "OcclusionTexture");
+    }
+
     template <typename Call> static typename Call::Result get_NormalTexture(const Self* self) {
         const auto& value = self->NormalTexture;
         return Call::template result<std::string>(value);

@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "a666d873428bc57f";
+inline constexpr char kApiHash[] = "8168b1a862e58ea8";
 } // namespace sp::generated::engine

@@ -452,6 +452,7 @@ class FMaterialDesc:
     Emissive: FLinearColor = field(default_factory=lambda: FLinearColor(0.0, 0.0, 0.0, 1.0))
     BaseColorTexture: str = ""
     RoughnessMetallicTexture: str = ""
+    OcclusionTexture: str = ""
     NormalTexture: str = ""
     TextureSize: float = 0.0
 

@@ -110,6 +110,42 @@ TEST_F(MeshImportTest, GltfWithEmbeddedBufferAndPbrFactors) {
         EXPECT_NEAR(std::abs(n.y()), 1.0f, 1e-5f);
 }
 
+TEST_F(MeshImportTest, AGltfOcclusionMapIsPackedIntoTheMetallicRoughnessTexturesR) {
+    // glTF keeps occlusion (R) and metallic-roughness (G, B) in two textures, often one image; the renderer's
+    // material reads one texture with occlusion in R. A metallic-roughness map alone occludes nothing.
+    const std::uint8_t rm[4 * 4] = {9, 64, 191, 255, 9, 64, 191, 255, 9, 64, 191, 255, 9, 64, 191, 255};
+    const std::uint8_t ao[4 * 4] = {102, 0, 0, 255, 102, 0, 0, 255, 102, 0, 0, 255, 102, 0, 0, 255};
+    writePng((dir_ / "rm.png").string(), 2, 2, 4, rm);
+    writePng((dir_ / "ao.png").string(), 2, 2, 4, ao);
+    auto gltf = [](const std::string& occlusion) {
+        return R"({
+ "asset": {"version": "2.0"},
+ "scene": 0, "scenes": [{"nodes": [0]}],
+ "nodes": [{"mesh": 0}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 2}, "indices": 1, "material": 0}]}],
+ "materials": [{"pbrMetallicRoughness": {"metallicRoughnessTexture": {"index": 0}})" +
+               occlusion + R"(}],
+ "textures": [{"source": 0}, {"source": 1}],
+ "images": [{"uri": "rm.png"}, {"uri": "ao.png"}],
+ "buffers": [{"byteLength": 68, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAgD8="}],
+ "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6},
+                 {"buffer": 0, "byteOffset": 44, "byteLength": 24}],
+ "accessors": [
+  {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+  {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"},
+  {"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC2"}]
+})";
+    };
+    const ImportedMesh both = importMesh(write("both.gltf", gltf(R"(, "occlusionTexture": {"index": 1})")));
+    const ImportedMesh alone = importMesh(write("alone.gltf", gltf("")));
+    ASSERT_TRUE(both.materials.at(0).roughnessMetallicTexture.has_value());
+    ASSERT_TRUE(alone.materials.at(0).roughnessMetallicTexture.has_value());
+    const std::vector<std::uint8_t>& packed = both.materials[0].roughnessMetallicTexture->rgba;
+    const std::vector<std::uint8_t>& plain = alone.materials[0].roughnessMetallicTexture->rgba;
+    EXPECT_EQ((std::vector<int>{packed[0], packed[1], packed[2]}), (std::vector<int>{102, 64, 191}));
+    EXPECT_EQ((std::vector<int>{plain[0], plain[1], plain[2]}), (std::vector<int>{255, 64, 191}));
+}
+
 TEST_F(MeshImportTest, AFileWithoutNormalsGetsHardEdgesAtItsCreases) {
     // A cube of eight shared corners and no normals: each face gets its own normal along an axis (corners
     // split at the 90-degree edges), not the smooth average that would shade the cube as a blob. (A finely

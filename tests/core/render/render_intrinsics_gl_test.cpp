@@ -2,7 +2,13 @@
 // diffuse_only = base_color * (1 - metallic) * diffuse_illumination, and
 // hdr_color.rgb = diffuse_only + specular_residual, per pixel, within float16 rounding.
 
+#include <array>
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "core/render/image_buffer.h"
+#include "core/render/texture_image.h"
 #include "gl_fixture.h"
 #include "test_scenes.h"
 
@@ -307,19 +313,21 @@ TextureImage solid(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
     return TextureImage::fromPixels(4, 4, rgba);
 }
 
-TEST_F(RenderIntrinsicsGlTest, NormalAndRoughnessMetallicTextures) {
+TEST_F(RenderIntrinsicsGlTest, NormalAndOcclusionRoughnessMetallicTextures) {
     Scene scene;
     Material m;
     m.roughness = 1.0f;
     m.metallic = 1.0f;
+    m.ambientOcclusion = 0.5f;
     // Tangent-space (0.71, 0, 0.71): tilted 45 degrees towards the texture's +u, which the plane primitive
-    // maps to world +X. glTF layout for roughness (G) and metallic (B).
+    // maps to world +X. glTF layout for occlusion (R), roughness (G) and metallic (B).
     m.normalTexture = scene.addTexture(solid(218, 128, 218), TextureEncoding::Linear);
-    m.roughnessMetallicTexture = scene.addTexture(solid(0, 64, 191), TextureEncoding::Linear);
+    m.roughnessMetallicTexture = scene.addTexture(solid(102, 64, 191), TextureEncoding::Linear);
     const MaterialId material = scene.addMaterial(m);
     scene.addInstance({scene.addMesh(primitives::plane(50, 50)), {material}, {1}});
     Camera camera = cameraLookingAt({0, 0, 5}, {0.01, 0, 0}, 8, 8, 40.0);
-    RenderTarget target(renderer(), {Modality::Normal, Modality::Roughness, Modality::Metallic}, 0);
+    RenderTarget target(renderer(),
+                        {Modality::Normal, Modality::Roughness, Modality::Metallic, Modality::MaterialAo}, 0);
     Frame frame;
     target.render(scene, camera, frame);
     const ImageBuffer& normal = frame.get(Modality::Normal);
@@ -327,6 +335,8 @@ TEST_F(RenderIntrinsicsGlTest, NormalAndRoughnessMetallicTextures) {
     EXPECT_NEAR(normal.at(4, 4, 1), 0.0f, 0.02f);
     EXPECT_NEAR(normal.at(4, 4, 2), 0.707f, 0.02f);
     EXPECT_NEAR(frame.get(Modality::Roughness).at(4, 4), 64.0f / 255.0f, 2e-3f);
+    EXPECT_NEAR(frame.get(Modality::MaterialAo).at(4, 4), 0.5f * 102.0f / 255.0f,
+                2e-3f); // the factor times R
 
     // Green tilts towards the image's up, i.e. decreasing v, which the plane maps to world -Y.
     m.normalTexture = scene.addTexture(solid(128, 218, 218), TextureEncoding::Linear);
@@ -335,6 +345,34 @@ TEST_F(RenderIntrinsicsGlTest, NormalAndRoughnessMetallicTextures) {
     EXPECT_NEAR(frame.get(Modality::Normal).at(4, 4, 0), 0.0f, 0.02f);
     EXPECT_NEAR(frame.get(Modality::Normal).at(4, 4, 1), -0.707f, 0.02f);
     EXPECT_NEAR(frame.get(Modality::Metallic).at(4, 4), 191.0f / 255.0f, 2e-3f);
+}
+
+TEST(PackOcclusionRoughnessMetallic, PutsTheOcclusionInRAndLeavesWhatIsAbsentUnscaled) {
+    TextureImage rm = solid(0, 64, 191), ao = solid(102, 102, 102);
+    rm.source = "rm.png";
+    ao.source = "ao.png";
+    const TextureImage both = packOcclusionRoughnessMetallic(&rm, &ao);
+    const TextureImage rmOnly = packOcclusionRoughnessMetallic(&rm, nullptr);
+    const TextureImage aoOnly = packOcclusionRoughnessMetallic(nullptr, &ao);
+    const TextureImage self = packOcclusionRoughnessMetallic(&rm, &rm); // an ORM map named as both
+    for (const auto& [image, expected] :
+         std::vector<std::pair<const TextureImage*, std::array<int, 4>>>{{&both, {102, 64, 191, 255}},
+                                                                         {&rmOnly, {255, 64, 191, 255}},
+                                                                         {&aoOnly, {102, 255, 255, 255}},
+                                                                         {&self, {0, 64, 191, 255}}})
+        for (int c = 0; c < 4; ++c)
+            EXPECT_EQ(image->rgba[std::size_t(c)], expected[std::size_t(c)])
+                << image->source << " channel " << c;
+    TextureImage small = TextureImage::fromPixels(2, 2, std::vector<std::uint8_t>(16, 200));
+    small.source = "small.png";
+    try {
+        packOcclusionRoughnessMetallic(&rm, &small);
+        FAIL() << "maps of two sizes were packed";
+    } catch (const InvalidArgument& error) {
+        EXPECT_NE(std::string(error.what()).find("'small.png' is 2x2"), std::string::npos) << error.what();
+        EXPECT_NE(std::string(error.what()).find("'rm.png' 4x4"), std::string::npos) << error.what();
+    }
+    EXPECT_THROW(packOcclusionRoughnessMetallic(nullptr, nullptr), InvalidArgument);
 }
 
 TEST_F(RenderIntrinsicsGlTest, UpdatedMeshIsReuploaded) {
