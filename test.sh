@@ -21,7 +21,9 @@ ctest --test-dir "$BUILD_DIR" --output-on-failure -j 2
 say "test: Python API, generator and typing (pytest)"
 # The plugin tests build examples/plugin against this build (find_package(spear) in $BUILD_DIR).
 export SPEAR_BUILD_DIR="$BUILD_DIR"
-cd "$ROOT" && "$PYTHON" -m pytest -q tests
+# Files spread over up to four processes (pytest-xdist; a file's tests stay together, so its module fixtures
+# and the files it writes are its own): most tests wait on a server, a build or llvmpipe's threads.
+cd "$ROOT" && "$PYTHON" -m pytest -q -n "$(test_jobs)" --dist loadfile tests
 
 # Last, the untrusted-input surfaces again under AddressSanitizer + UndefinedBehaviorSanitizer (their own
 # build in build-asan/): C++ suites, a short fuzz run, and the RPC tests against an instrumented server.

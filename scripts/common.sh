@@ -15,6 +15,13 @@ say() {
     printf '\n\033[1m== [%dm%02ds] %s\033[0m\n' $((elapsed / 60)) $((elapsed % 60)) "$*"
 }
 
+# How many processes pytest spreads test files over: SPEAR_TEST_JOBS, else the cores up to four.
+test_jobs() {
+    local cores
+    cores=$(nproc)
+    echo "${SPEAR_TEST_JOBS:-$((cores < 4 ? cores : 4))}"
+}
+
 install_dependencies() {
     local missing=()
     while read -r pkg; do

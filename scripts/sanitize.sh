@@ -51,4 +51,4 @@ TESTS=(tests/python/test_rpc_transport.py tests/python/test_rpc_robustness.py te
 [[ "${SPEAR_SANITIZE_ALL:-0}" == 1 ]] && TESTS=(tests/python)
 say "sanitize: the Python tests on the RPC transport (${TESTS[*]}), against the instrumented spear-server"
 cd "$ROOT" && SPEAR_SERVER="$ASAN_DIR/package/bin/spear-server" SPEAR_BUILD_DIR="$BUILD_DIR" "$PYTHON" -m pytest -q \
-    -k "rpc or parity" "${TESTS[@]}"
+    -n "$(test_jobs)" --dist loadfile -k "rpc or parity" "${TESTS[@]}"

@@ -7,7 +7,7 @@
 // folder: the folder that holds spear's `assets/` (the checkout, or the installed package). UE's
 // `/Game/...` names are `assets/...` ("/Game/scenes/apartment" is assets/scenes/apartment.json; a name
 // without an extension gets `.json`). An absolute path is itself. A scene file's streaming levels and mesh
-// files named relative to it are looked for in its folder first (UStaticMeshComponent::GetMeshAsset()).
+// files named relative to it are looked for in its folder first (UStaticMeshComponent::SceneFolderScope).
 
 #include <string>
 #include <string_view>

@@ -251,6 +251,8 @@ void loadObjectProperties(reflect::ObjectBase& object, const Json& properties, c
                 continue;
             }
             property->set(&object, fromJson(json, property->type, actors));
+        } catch (const NotFound& error) { // a file it names (a mesh): the kind a missing file has everywhere
+            SP_THROW(NotFound, where, ": property '", name, "': ", error.what());
         } catch (const Error& error) {
             SP_THROW(InvalidArgument, where, ": property '", name, "': ", error.what());
         }
@@ -307,7 +309,7 @@ namespace {
 // Checks the document's header and builds its actors, with their components, attachments and properties,
 // outside the world. `inWorld`: the names must not be used by the world's actors either.
 // `directory` is the scene file's folder (empty for a document not read from a file): the meshes it names
-// by relative paths are looked for there first (UStaticMeshComponent::GetMeshAsset()).
+// by relative paths are looked for there first (UStaticMeshComponent::SceneFolderScope).
 std::vector<std::unique_ptr<AActor>> stageActors(UWorld& world, const Json& scene, const std::string& root,
                                                  bool inWorld, const std::string& directory) {
     SP_CHECK(scene.is_object(), InvalidArgument, root, ": expected a JSON object, got ", jsonKind(scene));
@@ -388,7 +390,9 @@ std::vector<std::unique_ptr<AActor>> stageActors(UWorld& world, const Json& scen
         progress.advance();
     }
 
-    // 2. Properties, now that every reference target exists.
+    // 2. Properties, now that every reference target exists; a relative mesh file is looked for in the
+    // scene's folder first (UStaticMeshComponent::SetStaticMesh()).
+    const UStaticMeshComponent::SceneFolderScope meshFolder(directory);
     for (size_t i = 0; i < actorList.size(); ++i) {
         progress.advance();
         const Json& entry = actorList[i];
@@ -402,9 +406,6 @@ std::vector<std::unique_ptr<AActor>> stageActors(UWorld& world, const Json& scen
                 loadObjectProperties(*component, c["properties"], byName,
                                      wheres[i] + ": component '" + componentName + "'");
         }
-        for (UActorComponent* component : actor.K2_GetComponents())
-            if (auto* mesh = dynamic_cast<UStaticMeshComponent*>(component))
-                mesh->ResolveMeshAgainst(directory);
     }
 
     return staged;

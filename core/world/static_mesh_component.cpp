@@ -39,30 +39,58 @@ std::string basicShapeNames() {
     return names;
 }
 
-// Where a relative file name is looked for (sp::findAsset), for messages.
+// The folder of the scene file this thread is loading (UStaticMeshComponent::SceneFolderScope), or "".
+thread_local std::string tSceneFolder;
+
+// `name` in the loading scene's folder when it is a relative name of a file there, else "".
+std::string inSceneFolder(const std::string& name) {
+    const std::filesystem::path path(name);
+    if (tSceneFolder.empty() || path.is_absolute())
+        return "";
+    std::error_code error;
+    const std::filesystem::path candidate = (std::filesystem::path(tSceneFolder) / path).lexically_normal();
+    return std::filesystem::is_regular_file(candidate, error) ? candidate.string() : "";
+}
+
+// Where a relative file name is looked for (sp::findAsset, after the loading scene's folder), for messages.
 std::string searchedFolders(const std::string& name) {
     if (std::filesystem::path(name).is_absolute())
         return "";
-    std::string folders = "the working directory";
+    std::string folders = tSceneFolder.empty() ? "" : "the scene's folder " + tSceneFolder + ", ";
+    folders += "the working directory";
     for (const std::string& folder : sp::assetSearchPath())
         folders += ", " + folder;
     return " (looked for in " + folders + ")";
 }
 } // namespace
 
+UStaticMeshComponent::SceneFolderScope::SceneFolderScope(std::string folder)
+    : previous_(std::move(tSceneFolder)) {
+    tSceneFolder = std::move(folder);
+}
+
+UStaticMeshComponent::SceneFolderScope::~SceneFolderScope() {
+    tSceneFolder = std::move(previous_);
+}
+
 bool UStaticMeshComponent::SetStaticMesh(const std::string& NewMesh) {
     constexpr std::string_view kFunction = "UStaticMeshComponent.SetStaticMesh()";
+    std::string file; // the file in the loading scene's folder, if it is there
     if (!NewMesh.empty() && !findBasicShape(NewMesh)) {
         SP_CHECK(sp::world::isMeshFile(NewMesh), sp::NotFound, kFunction, ": '", NewMesh,
                  "' is not a built-in shape (", basicShapeNames(), ")");
+        file = inSceneFolder(NewMesh);
         try {
-            sp::world::loadMeshGeometry(NewMesh, kFunction); // found as importMesh() finds every asset
+            // Found as importMesh() finds every asset; loaded now, once, for bounds and physics.
+            sp::world::loadMeshGeometry(file.empty() ? NewMesh : file, kFunction);
         } catch (const sp::NotFound&) {
             SP_THROW(sp::NotFound, kFunction, ": mesh file '", NewMesh, "' not found",
                      searchedFolders(NewMesh));
         }
     }
     StaticMesh = NewMesh;
+    resolvedName_ = file.empty() ? std::string() : NewMesh;
+    resolvedFile_ = std::move(file);
     return true;
 }
 
@@ -76,20 +104,6 @@ void UStaticMeshComponent::SetMaterial(int ElementIndex, const std::string& Mate
 
 const std::string& UStaticMeshComponent::GetMeshAsset() const {
     return !resolvedFile_.empty() && resolvedName_ == StaticMesh ? resolvedFile_ : StaticMesh;
-}
-
-void UStaticMeshComponent::ResolveMeshAgainst(const std::string& folder) {
-    resolvedName_.clear();
-    resolvedFile_.clear();
-    const std::filesystem::path name(StaticMesh);
-    if (folder.empty() || !sp::world::isMeshFile(StaticMesh) || name.is_absolute())
-        return;
-    std::error_code error;
-    const std::filesystem::path candidate = (std::filesystem::path(folder) / name).lexically_normal();
-    if (std::filesystem::is_regular_file(candidate, error)) {
-        resolvedName_ = StaticMesh;
-        resolvedFile_ = candidate.string();
-    }
 }
 
 Eigen::AlignedBox3d UStaticMeshComponent::GetLocalBounds() const {

@@ -12,8 +12,8 @@ class UStaticMeshComponent : public UPrimitiveComponent {
     SP_GENERATED_BODY()
   public:
     /// The mesh asset: a built-in shape ("/Engine/BasicShapes/Cube", "Sphere", "Cylinder", "Plane") or a
-    /// file.
-    SPPROPERTY()
+    /// file. Setting it is SetStaticMesh(): a name that is neither raises NotFoundError.
+    SPPROPERTY(Setter = SetStaticMesh)
     std::string StaticMesh;
 
     /// One material asset per mesh slot; an empty entry uses the default material.
@@ -22,10 +22,9 @@ class UStaticMeshComponent : public UPrimitiveComponent {
 
     /// Sets the mesh asset: a built-in shape (/Engine/BasicShapes/Cube, Sphere, Cylinder, Plane) or a mesh
     /// file, found as every asset is (the working directory, then SPEAR_ASSET_PATH, then the built-in
-    /// assets). Returns true; raises NotFoundError naming the name and where it was looked for when there is
-    /// no such shape or file, InvalidArgumentError when the file cannot be read as a mesh or is outside the
-    /// server's file roots. (Setting the StaticMesh property itself does not check: scenes name meshes
-    /// relative to their own folder, resolved when they load.)
+    /// assets; while a scene file loads, its own folder first). Returns true; raises NotFoundError naming the
+    /// name and where it was looked for when there is no such shape or file, InvalidArgumentError when the
+    /// file cannot be read as a mesh or is outside the server's file roots. The mesh is kept as it was then.
     SPFUNCTION()
     bool SetStaticMesh(const std::string& NewMesh);
 
@@ -41,8 +40,19 @@ class UStaticMeshComponent : public UPrimitiveComponent {
     // itself (a built-in shape, or a file found through the asset search path, core/base/asset_path.h).
     // Assigning StaticMesh any other value drops the scene's folder.
     const std::string& GetMeshAsset() const;
-    // Called by the scene loader once StaticMesh was read from a scene file in `folder`.
-    void ResolveMeshAgainst(const std::string& folder);
+
+    // While one lives on this thread, SetStaticMesh() looks for a relative mesh file in `folder` first: the
+    // scene loader's (core/scene), for the folder of the scene file it reads.
+    class SceneFolderScope {
+      public:
+        explicit SceneFolderScope(std::string folder);
+        ~SceneFolderScope();
+        SceneFolderScope(const SceneFolderScope&) = delete;
+        SceneFolderScope& operator=(const SceneFolderScope&) = delete;
+
+      private:
+        std::string previous_;
+    };
 
   private:
     std::string resolvedName_; // the StaticMesh value resolvedFile_ was found for

@@ -159,3 +159,37 @@ def test_meshes_are_relative_to_the_scene_file_that_names_them(
         rows, columns = np.nonzero(ids == box_id)
         assert columns.max() - columns.min() + 1 == pytest.approx(4.3, abs=1)
         assert rows.max() - rows.min() + 1 == pytest.approx(8.5, abs=1)
+
+
+def test_a_missing_mesh_set_as_the_property_is_refused_and_the_mesh_kept(instance: spear.Instance) -> None:
+    # Assigning StaticMesh is SetStaticMesh(): a file that is nowhere is NotFoundError naming it and the
+    # folders searched, and the component keeps the mesh it had.
+    game = instance.get_game()
+    with instance.begin_frame():
+        actor = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Crate")
+        mesh = actor.StaticMeshComponent
+        mesh.StaticMesh = "/Engine/BasicShapes/Sphere"
+        with pytest.raises(spear.NotFoundError, match=(
+                r"UStaticMeshComponent\.SetStaticMesh\(\): mesh file 'meshes/misspelt\.ply' not found "
+                r"\(looked for in the working directory, .*\)")):
+            mesh.StaticMesh = "meshes/misspelt.ply"
+        with pytest.raises(spear.NotFoundError, match=r"'/Engine/BasicShapes/Cone' is not a built-in shape"):
+            mesh.StaticMesh = "/Engine/BasicShapes/Cone"
+        assert mesh.StaticMesh == "/Engine/BasicShapes/Sphere"
+
+
+def test_a_scene_naming_a_missing_mesh_is_refused_and_leaves_the_world_as_it_was(
+        tmp_path: Path, make_instance: Callable[..., spear.Instance]) -> None:
+    _mesh_scene(tmp_path / "bundle" / "scene.json", "meshes/chair.obj")  # no such file beside it or anywhere
+    instance = make_instance()
+    before = _actor_names(instance)
+    game = instance.get_game()
+    with instance.begin_frame():
+        with pytest.raises(spear.NotFoundError, match=(
+                r"scene\.json': actors\[0\] 'Box': component 'StaticMeshComponent': property 'StaticMesh': .*"
+                r"mesh file 'meshes/chair\.obj' not found \(looked for in the scene's folder .*bundle, "
+                r"the working directory")):
+            game.load_scene(path=str(tmp_path / "bundle" / "scene.json"))
+    with instance.end_frame():
+        pass
+    assert _actor_names(instance) == before

@@ -41,7 +41,7 @@ void bind_UStaticMeshComponent(py::module_& m) {
         [](const Ref<Self>& self, const PyArg& value) {
             Calls::set_StaticMesh<PyCall>(self.get<Self>("UStaticMeshComponent.StaticMesh"), value);
         },
-        "The mesh asset: a built-in shape (\"/Engine/BasicShapes/Cube\", \"Sphere\", \"Cylinder\", \"Plane\") or a\nfile.");
+        "The mesh asset: a built-in shape (\"/Engine/BasicShapes/Cube\", \"Sphere\", \"Cylinder\", \"Plane\") or a\nfile. Setting it is SetStaticMesh(): a name that is neither raises NotFoundError.");
     cls.def_property(
         "Materials",
         [](const Ref<Self>& self) { return Calls::get_Materials<PyCall>(self.get<Self>("UStaticMeshComponent.Materials")); },
@@ -57,7 +57,7 @@ void bind_UStaticMeshComponent(py::module_& m) {
             return Calls::call_SetStaticMesh<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewMesh}, true});
         },
         py::arg("NewMesh") = sp::pybind::missingArgument(),
-        "SetStaticMesh(self, *, NewMesh: str) -> bool\n\nSets the mesh asset: a built-in shape (/Engine/BasicShapes/Cube, Sphere, Cylinder, Plane) or a mesh\nfile, found as every asset is (the working directory, then SPEAR_ASSET_PATH, then the built-in\nassets). Returns true; raises NotFoundError naming the name and where it was looked for when there is\nno such shape or file, InvalidArgumentError when the file cannot be read as a mesh or is outside the\nserver's file roots. (Setting the StaticMesh property itself does not check: scenes name meshes\nrelative to their own folder, resolved when they load.)");
+        "SetStaticMesh(self, *, NewMesh: str) -> bool\n\nSets the mesh asset: a built-in shape (/Engine/BasicShapes/Cube, Sphere, Cylinder, Plane) or a mesh\nfile, found as every asset is (the working directory, then SPEAR_ASSET_PATH, then the built-in\nassets; while a scene file loads, its own folder first). Returns true; raises NotFoundError naming the\nname and where it was looked for when there is no such shape or file, InvalidArgumentError when the\nfile cannot be read as a mesh or is outside the server's file roots. The mesh is kept as it was then.");
     cls.def(
         "SetMaterial",
         [](const Ref<Self>& self, const py::args& positional, const PyArg& ElementIndex, const PyArg& Material, const py::kwargs& extra) -> py::object {

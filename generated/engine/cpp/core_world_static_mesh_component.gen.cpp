@@ -22,7 +22,7 @@ const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
         t.properties.push_back({
             "StaticMesh",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
-            "The mesh asset: a built-in shape (\"/Engine/BasicShapes/Cube\", \"Sphere\", \"Cylinder\", \"Plane\") or a\nfile.",
+            "The mesh asset: a built-in shape (\"/Engine/BasicShapes/Cube\", \"Sphere\", \"Cylinder\", \"Plane\") or a\nfile. Setting it is SetStaticMesh(): a name that is neither raises NotFoundError.",
             false,
             [](const void* self) { return Calls::get_StaticMesh<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
@@ -41,7 +41,7 @@ const sp::reflect::TypeInfo& UStaticMeshComponent::StaticClass() {
         });
         t.functions.push_back({
             "SetStaticMesh",
-            "Sets the mesh asset: a built-in shape (/Engine/BasicShapes/Cube, Sphere, Cylinder, Plane) or a mesh\nfile, found as every asset is (the working directory, then SPEAR_ASSET_PATH, then the built-in\nassets). Returns true; raises NotFoundError naming the name and where it was looked for when there is\nno such shape or file, InvalidArgumentError when the file cannot be read as a mesh or is outside the\nserver's file roots. (Setting the StaticMesh property itself does not check: scenes name meshes\nrelative to their own folder, resolved when they load.)",
+            "Sets the mesh asset: a built-in shape (/Engine/BasicShapes/Cube, Sphere, Cylinder, Plane) or a mesh\nfile, found as every asset is (the working directory, then SPEAR_ASSET_PATH, then the built-in\nassets; while a scene file loads, its own folder first). Returns true; raises NotFoundError naming the\nname and where it was looked for when there is no such shape or file, InvalidArgumentError when the\nfile cannot be read as a mesh or is outside the server's file roots. The mesh is kept as it was then.",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
                 {"NewMesh", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},

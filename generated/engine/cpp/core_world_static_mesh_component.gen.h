@@ -37,7 +37,7 @@ struct UStaticMeshComponentCalls {
         return Call::template result<std::string>(value);
     }
     template <typename Call> static void set_StaticMesh(Self* self, const typename Call::Input& value) {
-        self->StaticMesh = Call::template input<std::string>(value, "UStaticMeshComponent.StaticMesh");
+        self->SetStaticMesh(Call::template input<std::string>(value, "UStaticMeshComponent.StaticMesh"));
         sp::reflect::notifyPropertyChanged(self, "StaticMesh");
     }
 

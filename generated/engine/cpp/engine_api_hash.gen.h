@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "8168b1a862e58ea8";
+inline constexpr char kApiHash[] = "6b2ad46e17c584e5";
 } // namespace sp::generated::engine

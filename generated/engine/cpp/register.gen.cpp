@@ -278,4 +278,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::enumInfo_EAntiAliasingMethod());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "8168b1a862e58ea8"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "6b2ad46e17c584e5"; }

@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "8168b1a862e58ea8"
+API_HASH = "6b2ad46e17c584e5"

@@ -5048,7 +5048,7 @@ class UStaticMeshComponent(UPrimitiveComponent):
     @property
     def StaticMesh(self) -> str:
         """The mesh asset: a built-in shape ("/Engine/BasicShapes/Cube", "Sphere", "Cylinder", "Plane") or a
-        file.
+        file. Setting it is SetStaticMesh(): a name that is neither raises NotFoundError.
         """
 
     @StaticMesh.setter
@@ -5064,10 +5064,9 @@ class UStaticMeshComponent(UPrimitiveComponent):
     def SetStaticMesh(self, *, NewMesh: str) -> bool:
         """Sets the mesh asset: a built-in shape (/Engine/BasicShapes/Cube, Sphere, Cylinder, Plane) or a mesh
         file, found as every asset is (the working directory, then SPEAR_ASSET_PATH, then the built-in
-        assets). Returns true; raises NotFoundError naming the name and where it was looked for when there is
-        no such shape or file, InvalidArgumentError when the file cannot be read as a mesh or is outside the
-        server's file roots. (Setting the StaticMesh property itself does not check: scenes name meshes
-        relative to their own folder, resolved when they load.)
+        assets; while a scene file loads, its own folder first). Returns true; raises NotFoundError naming the
+        name and where it was looked for when there is no such shape or file, InvalidArgumentError when the
+        file cannot be read as a mesh or is outside the server's file roots. The mesh is kept as it was then.
         """
 
     def SetMaterial(self, *, ElementIndex: int, Material: str) -> None:
