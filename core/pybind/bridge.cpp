@@ -81,8 +81,14 @@ py::array arrayToNumpy(const reflect::ArrayValue& value) {
 }
 
 py::object pythonClassFor(const reflect::TypeInfo& type) {
-    if (!type.isDataDefined())
-        return pythonClassOf(type);
+    if (!type.isDataDefined()) {
+        // The API's class (spear.ADefaultPawn), as a class reference over RPC decodes to; the bound class
+        // where no API module names it.
+        static const py::object* const lookup =
+            new py::object(apiAttribute("spear._rpc_types", "api_lookup"));
+        py::object found = (*lookup)(type.name);
+        return found.is_none() ? pythonClassOf(type) : found;
+    }
     // Never released: a static py::object would be, after Python has shut down (a crash at exit).
     static const py::object* const blueprintClass =
         new py::object(apiAttribute("spear._blueprint", "blueprint_class"));

@@ -38,8 +38,10 @@ struct ClassArg {
     }
 };
 
-// The Python class that stands for `type`: its registered class, or for a blueprint (a class defined by data,
-// core/scene/blueprint.h) a subclass of its native class's API class carrying __sp_class__ = its name.
+// The Python class that stands for `type`: the API module's class of its name (spear.ADefaultPawn, what a
+// class reference decodes to over RPC too; its bound class when no API module has one), or for a blueprint (a
+// class defined by data, core/scene/blueprint.h) a subclass of its native class's API class carrying
+// __sp_class__ = its name.
 py::object pythonClassFor(const reflect::TypeInfo& type);
 
 // Fills `value` from None, a class name, or a class carrying __sp_class__; false for anything else.

@@ -5,6 +5,7 @@
 #include "core/base/error.h"
 #include "core/pybind/object_ref.h"
 #include "core/pybind/value_convert.h"
+#include "core/reflect/property_path.h"
 #include "core/reflect/registry.h"
 
 namespace sp::pybind {
@@ -25,46 +26,7 @@ reflect::ObjectBase& resolveArgument(py::handle object, std::string_view context
     return resolved;
 }
 
-namespace {
-
-std::vector<std::string> splitPath(const std::string& path) {
-    std::vector<std::string> parts;
-    size_t start = 0;
-    while (true) {
-        size_t dot = path.find('.', start);
-        parts.push_back(path.substr(start, dot - start));
-        if (dot == std::string::npos)
-            return parts;
-        start = dot + 1;
-    }
-}
-
-const reflect::PropertyInfo& findProperty(const reflect::TypeInfo& type, const std::string& name,
-                                          std::string_view context) {
-    const reflect::PropertyInfo* property = type.findProperty(name);
-    SP_CHECK(property, NotFound, context, ": class '", type.name, "' has no property '", name, "'");
-    return *property;
-}
-
-// Walks "Field.SubField" inside a struct value; returns the innermost value and its declared type.
-std::pair<Value*, const reflect::TypeCode*> walk(Value& root, const reflect::TypeCode& type,
-                                                 const std::vector<std::string>& parts,
-                                                 std::string_view context) {
-    Value* current = &root;
-    const reflect::TypeCode* currentType = &type;
-    for (size_t i = 1; i < parts.size(); ++i) {
-        const reflect::TypeInfo* info = currentType->kind == reflect::TypeCode::Kind::Struct
-                                            ? reflect::Registry::get().findType(currentType->name)
-                                            : nullptr;
-        SP_CHECK(info && current->is<Value::Dict>(), NotFound, context, ": '", parts[i - 1],
-                 "' is not a struct, so it has no field '", parts[i], "'");
-        const reflect::PropertyInfo& field = findProperty(*info, parts[i], context);
-        current = &current->as<Value::Dict>()[parts[i]];
-        currentType = &field.type;
-    }
-    return {current, currentType};
-}
-} // namespace
+namespace {} // namespace
 
 void bindDynamicAccess(py::module_& m, const char* apiModule) {
     m.def(
@@ -102,31 +64,22 @@ void bindDynamicAccess(py::module_& m, const char* apiModule) {
         [apiModule](py::handle uobject, const std::string& path) -> py::object {
             const std::string context = "get_property('" + path + "')";
             reflect::ObjectBase& object = resolveArgument(uobject, context);
-            auto parts = splitPath(path);
-            const reflect::PropertyInfo& property = findProperty(object.GetClass(), parts[0], context);
-            Value value = property.get(&object);
-            auto [leaf, type] = walk(value, property.type, parts, context);
-            return fromValue(*leaf, type, apiModule);
+            const reflect::PathValue found = reflect::getPath(object, path, context);
+            return fromValue(found.value, &found.type, apiModule);
         },
         py::kw_only(), py::arg("uobject"), py::arg("path"),
-        "Reads a reflected property by name or path ('RelativeLocation.Z').");
+        "Reads a reflected property by name or path (core/reflect/property_path.h: "
+        "'RootComponent.RelativeLocation.Z', 'Tags[1]').");
 
     m.def(
         "set_property",
         [](py::handle uobject, const std::string& path, py::handle value) {
             const std::string context = "set_property('" + path + "')";
             reflect::ObjectBase& object = resolveArgument(uobject, context);
-            auto parts = splitPath(path);
-            const reflect::PropertyInfo& property = findProperty(object.GetClass(), parts[0], context);
-            SP_CHECK(property.set, InvalidArgument, context, ": property '", property.name, "' of class '",
-                     object.GetClass().name, "' is read-only");
-            Value whole = property.get(&object);
-            auto [leaf, type] = walk(whole, property.type, parts, context);
-            *leaf = toValue(value, context);
-            property.set(&object, whole);
+            reflect::setPath(object, path, toValue(value, context), context);
         },
         py::kw_only(), py::arg("uobject"), py::arg("path"), py::arg("value"),
-        "Writes a reflected property by name or path ('RelativeLocation.Z').");
+        "Writes a reflected property by name or path (core/reflect/property_path.h).");
 
     m.def(
         "get_class_names",

@@ -129,7 +129,7 @@ py::object generic(const Value& value, const char* apiModule) {
             else if constexpr (std::is_same_v<T, reflect::ObjectHandle>)
                 return wrapObject(reflect::ObjectTable::find(v));
             else if constexpr (std::is_same_v<T, reflect::ClassName>)
-                return pythonClassOf(reflect::Registry::get().getClass(v.name, "fromValue()"));
+                return pythonClassFor(reflect::Registry::get().getClass(v.name, "fromValue()"));
             else if constexpr (std::is_same_v<T, reflect::ArrayValue>)
                 return arrayToNumpy(v);
             else if constexpr (std::is_same_v<T, reflect::EnumValue>)

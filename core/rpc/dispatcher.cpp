@@ -8,6 +8,7 @@
 #include "core/base/error.h"
 #include "core/plugin/plugin_loader.h"
 #include "core/reflect/object_base.h"
+#include "core/reflect/property_path.h"
 #include "core/reflect/registry.h"
 #include "core/reflect/type_info.h"
 #include "core/rpc/request.h"
@@ -394,7 +395,8 @@ Value Dispatcher::call(const Request& request, Session&) {
                              {"out_types", Value(std::move(outTypes))}});
 }
 
-// get / get_typed {object, property}; set {object, property, value}.
+// get / get_typed {object, property}; set {object, property, value}. `property` is a path
+// (core/reflect/property_path.h).
 Value Dispatcher::property(const Request& request, Session&) {
     const std::string_view op = request.op();
     const std::string name = request.string("property", op);
@@ -402,17 +404,14 @@ Value Dispatcher::property(const Request& request, Session&) {
     const std::string_view context = request.context(
         fallback, [&] { return (op == "set" ? "set_property('" : "get_property('") + name + "')"; });
     reflect::ObjectBase& object = requireObject(request, context);
-    const reflect::PropertyInfo* property = object.GetClass().findProperty(name);
-    SP_CHECK(property, NotFound, context, ": class '", object.GetClass().name, "' has no property '", name,
-             "'");
+    if (op == "set") {
+        reflect::setPath(object, name, unpack(request.require("value", op), context), context);
+        return Value();
+    }
+    reflect::PathValue found = reflect::getPath(object, name, context);
     if (op == "get")
-        return property->get(&object);
-    if (op == "get_typed")
-        return Value(Value::Dict{{"value", property->get(&object)}, {"type", property->type.toValue()}});
-    SP_CHECK(property->set, InvalidArgument, context, ": property '", name, "' of class '",
-             object.GetClass().name, "' is read-only");
-    property->set(&object, unpack(request.require("value", op), context));
-    return Value();
+        return std::move(found.value);
+    return Value(Value::Dict{{"value", std::move(found.value)}, {"type", found.type.toValue()}});
 }
 
 Value Dispatcher::loadPlugin(const Request& request, Session&) {

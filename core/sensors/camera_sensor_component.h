@@ -9,6 +9,10 @@
 // triple buffering) it returns the frame rendered N frames earlier; for the first N frames after the
 // camera starts (or changes Latency) there is none yet and read_pixels() returns an empty dict
 // (priming). GetPixelsFrame() tells which world frame the last read_pixels() result shows.
+//
+// read_pixels() returns the due frame whenever it is called: nothing renders between end_frame and the
+// next begin_frame, so inside `with instance.begin_frame():` of frame k + 1 it returns what end_frame of
+// frame k did (an agent's last observation), and before the camera's first frame an empty dict.
 
 #include <cstdint>
 #include <string>
@@ -635,7 +639,8 @@ class UCameraSensorComponent : public USceneComponent {
     SPFUNCTION()
     int64_t GetAccumulatedSamples() const { return accumulatedSamples_; }
 
-    /// Returns the images of the frame due (see the class notes on latency); an empty dict while priming.
+    /// Returns the images of the frame due (see the class notes on latency); an empty dict while priming or
+    /// before the camera's first frame. In begin_frame, the frame rendered at the end of the last one.
     SPFUNCTION()
     FCameraPixels read_pixels();
 

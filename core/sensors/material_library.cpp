@@ -97,6 +97,15 @@ void AMaterialLibrary::SetMaterial(const std::string& Name, const FMaterialDesc&
     Materials[Name] = Material;
 }
 
+void AMaterialLibrary::SetMaterials(const std::map<std::string, FMaterialDesc>& NewMaterials) {
+    for (const auto& [name, material] : NewMaterials) {
+        SP_CHECK(!name.empty(), sp::InvalidArgument,
+                 "AMaterialLibrary.SetMaterials(): a material name is empty");
+        sp::sensors::checkMaterial(material, "AMaterialLibrary.SetMaterials(): material '" + name + "'");
+    }
+    Materials = NewMaterials;
+}
+
 FMaterialDesc AMaterialLibrary::GetMaterial(const std::string& Name) const {
     if (auto it = Materials.find(Name); it != Materials.end())
         return it->second;

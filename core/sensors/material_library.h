@@ -61,9 +61,15 @@ SPCLASS()
 class AMaterialLibrary : public AActor {
     SP_GENERATED_BODY()
   public:
-    /// Materials by name; mesh components refer to them in their Materials list.
-    SPPROPERTY()
+    /// Materials by name; mesh components refer to them in their Materials list. Set through
+    /// SetMaterials(), which checks every entry as SetMaterial() does.
+    SPPROPERTY(Setter = SetMaterials)
     std::map<std::string, FMaterialDesc> Materials;
+
+    /// Replaces every material; raises InvalidArgumentError naming the first entry out of range (none is
+    /// changed then).
+    SPFUNCTION()
+    void SetMaterials(const std::map<std::string, FMaterialDesc>& NewMaterials);
 
     /// Defines (or replaces) the material called Name.
     SPFUNCTION()

@@ -3,7 +3,6 @@ it runs. Instance talks to either through this small interface."""
 
 from __future__ import annotations
 
-import dataclasses
 import importlib
 from typing import Any, Protocol
 
@@ -169,25 +168,12 @@ class RpcBackend:
     def get_property(self, uobject: Any, path: str) -> Any:
         from spear._rpc_types import convert
 
-        name, *rest = path.split(".")
-        typed = self.connection.request("get_typed", object=uobject, property=name)
-        value = convert(typed["value"], TypeCode.from_wire(typed["type"]), self.connection)
-        for part in rest:
-            value = _field(value, part, path)
-        return value
+        # The server walks the path (core/reflect/property_path.h), as the in-process engine does.
+        typed = self.connection.request("get_typed", object=uobject, property=path)
+        return convert(typed["value"], TypeCode.from_wire(typed["type"]), self.connection)
 
     def set_property(self, uobject: Any, path: str, value: Any) -> None:
-        name, *rest = path.split(".")
-        if rest:
-            whole = self.get_property(uobject, name)
-            target = whole
-            for part in rest[:-1]:
-                target = _field(target, part, path)
-            if not dataclasses.is_dataclass(target) or not hasattr(target, rest[-1]):
-                raise errors.NotFoundError(f"set_property('{path}'): '{rest[-1]}' is not a field here")
-            setattr(target, rest[-1], value)
-            value = whole
-        self.connection.request("set", object=uobject, property=name, value=value)
+        self.connection.request("set", object=uobject, property=path, value=value)
 
     def load_plugin(self, plugin: PluginPackage) -> list[str]:
         from spear._rpc_types import add_api_module
@@ -204,9 +190,3 @@ class RpcBackend:
         self.connection.close()
         if self._launched:
             self._launched.close()
-
-
-def _field(value: Any, name: str, path: str) -> Any:
-    if not dataclasses.is_dataclass(value) or not hasattr(value, name):
-        raise errors.NotFoundError(f"get_property('{path}'): '{name}' is not a field of {type(value).__name__}")
-    return getattr(value, name)

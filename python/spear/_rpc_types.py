@@ -31,7 +31,9 @@ def add_api_module(module: Any) -> None:
         _api_modules.append(module)
 
 
-def _api_lookup(name: str) -> Any:
+def api_lookup(name: str) -> Any:
+    """The class, struct or enum called `name` in the engine's API or a loaded plugin's, or None: what a class
+    reference names on either transport (core/pybind/bridge.cpp's pythonClassFor() asks here too)."""
     for module in _searched_modules():
         found = getattr(module, name, None)
         if found is not None:
@@ -63,7 +65,7 @@ def convert(value: Any, type: TypeCode | None, client: RpcClient) -> Any:
     if isinstance(value, ObjectRef):
         return _proxy(value, client, type.name if type is not None and type.kind == "object" else "")
     if isinstance(value, ClassRef):
-        found = _api_lookup(value.name)
+        found = api_lookup(value.name)
         if found is None and value.native:
             from spear._blueprint import blueprint_class
 
@@ -73,7 +75,7 @@ def convert(value: Any, type: TypeCode | None, client: RpcClient) -> Any:
     if isinstance(value, list):
         return [convert(item, element, client) for item in value]
     if isinstance(value, dict):
-        cls = _api_lookup(type.name) if type is not None and type.kind == "struct" else None
+        cls = api_lookup(type.name) if type is not None and type.kind == "struct" else None
         if cls is not None:  # a dataclass, or a TypedDict (a dict with typed values)
             fields = _field_types(cls)
             items = {k: convert(v, fields.get(k), client) for k, v in value.items()}
@@ -84,7 +86,7 @@ def convert(value: Any, type: TypeCode | None, client: RpcClient) -> Any:
             return PartialDict(cls, items)  # a partial TypedDict: missing keys say why
         return {key: convert(item, element, client) for key, item in value.items()}
     if type is not None and type.kind == "enum" and isinstance(value, int) and not isinstance(value, bool):
-        cls = _api_lookup(type.name)
+        cls = api_lookup(type.name)
         if cls is not None:
             return cls(value)
     return value

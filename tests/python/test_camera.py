@@ -294,6 +294,29 @@ def test_latency_returns_the_promised_frame(instance: spear.Instance, latency: i
             assert np.array_equal(camera.read_pixels()["depth"], px["depth"])  # reading twice: same frame
 
 
+def test_read_pixels_in_begin_frame_returns_the_frame_last_rendered_and_says_which(instance: spear.Instance) -> None:
+    # The rule: read_pixels() returns the camera's due frame whenever it is called. Nothing is rendered between
+    # end_frame and the next begin_frame, so in begin_frame of frame k+1 that is still frame k's (what a
+    # controller acting on its last observation reads); before the camera's first frame it is {} (as while
+    # priming). GetPixelsFrame() names the frame either way.
+    game = instance.get_game()
+    with instance.begin_frame():
+        wall = spawn_wall(game, 2.0)
+        camera = spawn_camera(game, [M.Depth])
+        assert camera.read_pixels() == {} and camera.GetPixelsFrame() == -1
+    with instance.end_frame():
+        rendered = camera.read_pixels()["depth"]
+        frame = game.get_frame_count()
+    with instance.begin_frame():
+        again = camera.read_pixels()
+        assert camera.GetPixelsFrame() == frame
+        np.testing.assert_array_equal(again["depth"], rendered)
+        wall.SetActorLocation(NewLocation=spear.FVector(X=3.05))  # shows in the frame this one renders
+    with instance.end_frame():
+        assert np.allclose(camera.read_pixels()["depth"], 3.0, rtol=1e-4)
+        assert camera.GetPixelsFrame() == frame + 1
+
+
 def test_copies_of_one_mesh_are_drawn_in_one_call_with_their_own_ids(instance: spear.Instance) -> None:
     game = instance.get_game()
     with instance.begin_frame():

@@ -147,7 +147,11 @@ def test_create_player_and_game_mode_classes(instance: spear.Instance) -> None:
     game = instance.get_game()
     with instance.begin_frame():
         mode = game.spawn_actor(uclass=spear.AGameModeBase)  # a world's own game mode is the one used
+        # A class reference reads back as the API's class itself, on both transports.
+        assert mode.DefaultPawnClass is spear.ADefaultPawn
+        assert instance.get_property(uobject=mode, path="DefaultPawnClass") is spear.ADefaultPawn
         mode.DefaultPawnClass = spear.APawn
+        assert mode.DefaultPawnClass is spear.APawn
         game.spawn_actor(uclass=spear.APlayerStart, location=spear.FVector(Z=1.0))
         game.spawn_actor(uclass=spear.APlayerStart, location=spear.FVector(Z=9.0)).PlayerStartTag = "high"
         assert spear.UGameplayStatics.GetGameMode(WorldContextObject=game) == mode

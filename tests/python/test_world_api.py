@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import pytest
 
@@ -330,6 +331,55 @@ def test_dynamic_access_goes_through_the_registry(instance: spear.Instance) -> N
             instance.set_property(uobject=comp, path="Mobility", value=3)
         instance.set_property(uobject=comp, path="Mobility", value=spear.EComponentMobility.Movable)
         assert comp.Mobility is spear.EComponentMobility.Movable
+
+
+def test_property_paths_reach_through_references_lists_and_dicts(instance: spear.Instance) -> None:
+    # One walk of the path, in the engine (core/reflect/property_path.h), for both transports: the same values
+    # and the same errors, each naming the segment that is not there.
+    game = instance.get_game()
+    with instance.begin_frame():
+        actor = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Crate")
+        actor.Tags = ["crate", "prop"]
+        actor.StaticMeshComponent.SetMaterial(ElementIndex=1, Material="Gold")
+        library = game.spawn_actor(uclass=spear.AMaterialLibrary, name="Library")
+        library.SetMaterial(Name="Red", Material=spear.FMaterialDesc(BaseColor=spear.FLinearColor(1.0, 0.0, 0.0, 1.0)))
+        get = lambda o, p: instance.get_property(uobject=o, path=p)  # noqa: E731
+        assert get(actor, "Tags[1]") == "prop"
+        assert get(actor, "StaticMeshComponent.Materials[1]") == "Gold"
+        assert get(actor, "RootComponent.RelativeScale3D.X") == 1.0
+        assert get(library, "Materials[Red].BaseColor") == spear.FLinearColor(1.0, 0.0, 0.0, 1.0)
+        assert get(library, "Materials['Red'].BaseColor.R") == 1.0
+        assert isinstance(get(actor, "RootComponent"), spear.UStaticMeshComponent)
+
+        instance.set_property(uobject=actor, path="StaticMeshComponent.RelativeScale3D.X", value=2.0)
+        instance.set_property(uobject=actor, path="RootComponent.RelativeLocation.Z", value=3.0)
+        instance.set_property(uobject=actor, path="Tags[0]", value="box")
+        instance.set_property(uobject=library, path="Materials[Blue]", value=spear.FMaterialDesc(Roughness=0.25))
+        assert actor.StaticMeshComponent.RelativeScale3D.X == 2.0 and actor.GetActorLocation().Z == 3.0
+        assert actor.Tags == ["box", "prop"]
+        assert library.GetMaterial(Name="Blue").Roughness == 0.25
+        # Written through the property's setter, so a bad value is refused as any write would refuse it.
+        with pytest.raises(spear.InvalidArgumentError, match=r"SetMaterials\(\): material 'Blue': Roughness must be in \[0, 1\], got 3"):
+            instance.set_property(uobject=library, path="Materials[Blue].Roughness", value=3.0)
+
+        for path, error, message in [
+            ("RootComponent.NoSuch", spear.NotFoundError,
+             r"class 'UStaticMeshComponent' has no property 'NoSuch' \(at 'RootComponent'\)"),
+            ("RootComponent.RelativeLocation.Q", spear.NotFoundError,
+             r"struct 'FVector' has no field 'Q' \(at 'RootComponent.RelativeLocation'\)"),
+            ("Tags[2]", spear.NotFoundError, r"'Tags' has 2 items, no \[2\]"),
+            ("Tags[first]", spear.InvalidArgumentError, r"'Tags' is a list, indexed by a number, not 'first'"),
+            ("Tags.Length", spear.NotFoundError, r"'Tags' is list\[str\], which has no field 'Length'"),
+            ("Tags[", spear.InvalidArgumentError, r"property path 'Tags\[' expects an index or key in \[\]"),
+        ]:
+            with pytest.raises(error, match=rf"^get_property\('{re.escape(path)}'\): {message}"):
+                get(actor, path)
+        with pytest.raises(spear.NotFoundError, match=r"'Materials' has no key 'Green' \(its keys: 'Blue', 'Red'\)"):
+            get(library, "Materials[Green].BaseColor")
+        with pytest.raises(spear.InvalidArgumentError,
+                           match=r"^set_property\('RootComponent'\): property 'RootComponent' of class "
+                                 r"'AStaticMeshActor' is read-only"):
+            instance.set_property(uobject=actor, path="RootComponent", value=None)
 
 
 def test_editor_world_needs_an_editor_instance(instance: spear.Instance) -> None:

@@ -593,7 +593,7 @@ void bind_UCameraSensorComponent(py::module_& m) {
             // The parameters in order; the array lives until the call returns.
             return Calls::call_read_pixels<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
         },
-        "read_pixels(self) -> FCameraPixels\n\nReturns the images of the frame due (see the class notes on latency); an empty dict while priming.");
+        "read_pixels(self) -> FCameraPixels\n\nReturns the images of the frame due (see the class notes on latency); an empty dict while priming or\nbefore the camera's first frame. In begin_frame, the frame rendered at the end of the last one.");
     // Static in C++: called on the class, with no object.
     cls.def_static(
         "read_pixels_stacked",

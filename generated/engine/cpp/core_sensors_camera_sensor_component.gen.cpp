@@ -1424,7 +1424,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.functions.push_back({
             "read_pixels",
-            "Returns the images of the frame due (see the class notes on latency); an empty dict while priming.",
+            "Returns the images of the frame due (see the class notes on latency); an empty dict while priming or\nbefore the camera's first frame. In begin_frame, the frame rendered at the end of the last one.",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FCameraPixels"),
             {
             },

@@ -41,8 +41,16 @@ void bind_AMaterialLibrary(py::module_& m) {
         [](const Ref<Self>& self, const PyArg& value) {
             Calls::set_Materials<PyCall>(self.get<Self>("AMaterialLibrary.Materials"), value);
         },
-        "Materials by name; mesh components refer to them in their Materials list.");
+        "Materials by name; mesh components refer to them in their Materials list. Set through\nSetMaterials(), which checks every entry as SetMaterial() does.");
     sp::pybind::nameProperties(cls);
+    cls.def(
+        "SetMaterials",
+        [](const Ref<Self>& self, const py::args& positional, const PyArg& NewMaterials, const py::kwargs& extra) -> py::object {
+            // The parameters in order; the array lives until the call returns.
+            return Calls::call_SetMaterials<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewMaterials}, true});
+        },
+        py::arg("NewMaterials") = sp::pybind::missingArgument(),
+        "SetMaterials(self, *, NewMaterials: dict[str, FMaterialDesc]) -> None\n\nReplaces every material; raises InvalidArgumentError naming the first entry out of range (none is\nchanged then).");
     cls.def(
         "SetMaterial",
         [](const Ref<Self>& self, const py::args& positional, const PyArg& Name, const PyArg& Material, const py::kwargs& extra) -> py::object {

@@ -22,12 +22,23 @@ const sp::reflect::TypeInfo& AMaterialLibrary::StaticClass() {
         t.properties.push_back({
             "Materials",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Dict, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FMaterialDesc")),
-            "Materials by name; mesh components refer to them in their Materials list.",
+            "Materials by name; mesh components refer to them in their Materials list. Set through\nSetMaterials(), which checks every entry as SetMaterial() does.",
             false,
             [](const void* self) { return Calls::get_Materials<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
                 Calls::set_Materials<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
+        });
+        t.functions.push_back({
+            "SetMaterials",
+            "Replaces every material; raises InvalidArgumentError naming the first entry out of range (none is\nchanged then).",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"NewMaterials", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Dict, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FMaterialDesc")), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetMaterials<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetMaterial",

@@ -37,8 +37,20 @@ struct AMaterialLibraryCalls {
         return Call::template result<std::map<std::string, FMaterialDesc>>(value);
     }
     template <typename Call> static void set_Materials(Self* self, const typename Call::Input& value) {
-        self->Materials = Call::template input<std::map<std::string, FMaterialDesc>>(value, "AMaterialLibrary.Materials");
+        self->SetMaterials(Call::template input<std::map<std::string, FMaterialDesc>>(value, "AMaterialLibrary.Materials"));
         sp::reflect::notifyPropertyChanged(self, "Materials");
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetMaterials(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewMaterials", "AMaterialLibrary.SetMaterials(): argument 'NewMaterials'", true},
+        }};
+        const Call call(args, "AMaterialLibrary.SetMaterials()", kParams);
+        Self* self = Call::template object<Self>(target, "AMaterialLibrary.SetMaterials()");
+        std::map<std::string, FMaterialDesc> NewMaterialsArg = call.template arg<std::map<std::string, FMaterialDesc>>(0);
+        self->SetMaterials(NewMaterialsArg);
+        return Call::none();
     }
 
     template <typename Call, typename Target>

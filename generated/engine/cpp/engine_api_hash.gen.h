@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "6b2ad46e17c584e5";
+inline constexpr char kApiHash[] = "7f4c0dd4a9b62181";
 } // namespace sp::generated::engine

@@ -1322,6 +1322,8 @@ class AKinematicVehicle(AActor):
 class AMaterialLibraryAsync(AActorAsync):
     """AMaterialLibrary's functions, called asynchronously: each returns a Future."""
 
+    def SetMaterials(self, *, NewMaterials: dict[str, FMaterialDesc]) -> Future[None]: ...
+
     def SetMaterial(self, *, Name: str, Material: FMaterialDesc) -> Future[None]: ...
 
     def GetMaterial(self, *, Name: str) -> Future[FMaterialDesc]: ...
@@ -1331,6 +1333,8 @@ class AMaterialLibraryAsync(AActorAsync):
 
 class AMaterialLibrarySend(AActorSend):
     """AMaterialLibrary's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetMaterials(self, *, NewMaterials: dict[str, FMaterialDesc]) -> None: ...
 
     def SetMaterial(self, *, Name: str, Material: FMaterialDesc) -> None: ...
 
@@ -1354,10 +1358,17 @@ class AMaterialLibrary(AActor):
 
     @property
     def Materials(self) -> dict[str, FMaterialDesc]:
-        """Materials by name; mesh components refer to them in their Materials list."""
+        """Materials by name; mesh components refer to them in their Materials list. Set through
+        SetMaterials(), which checks every entry as SetMaterial() does.
+        """
 
     @Materials.setter
     def Materials(self, value: dict[str, FMaterialDesc]) -> None: ...
+
+    def SetMaterials(self, *, NewMaterials: dict[str, FMaterialDesc]) -> None:
+        """Replaces every material; raises InvalidArgumentError naming the first entry out of range (none is
+        changed then).
+        """
 
     def SetMaterial(self, *, Name: str, Material: FMaterialDesc) -> None:
         """Defines (or replaces) the material called Name."""
@@ -3521,7 +3532,9 @@ class UCameraSensorComponent(USceneComponent):
         """
 
     def read_pixels(self) -> FCameraPixels:
-        """Returns the images of the frame due (see the class notes on latency); an empty dict while priming."""
+        """Returns the images of the frame due (see the class notes on latency); an empty dict while priming or
+        before the camera's first frame. In begin_frame, the frame rendered at the end of the last one.
+        """
 
     @staticmethod
     def read_pixels_stacked(*, Cameras: Sequence[UCameraSensorComponent]) -> FCameraPixels:

@@ -395,6 +395,9 @@ class AMaterialLibrary(AActor, api.AMaterialLibrary):
     def Materials(self, value: dict[str, FMaterialDesc]) -> None:
         self._sp_set("AMaterialLibrary", "Materials", value)
 
+    def SetMaterials(self, *, NewMaterials: dict[str, FMaterialDesc]) -> None:
+        return cast(None, self._sp_call("AMaterialLibrary", "SetMaterials", {"NewMaterials": NewMaterials}, _t.T_void))  # a Future when queued by call_async
+
     def SetMaterial(self, *, Name: str, Material: FMaterialDesc) -> None:
         return cast(None, self._sp_call("AMaterialLibrary", "SetMaterial", {"Name": Name, "Material": Material}, _t.T_void))  # a Future when queued by call_async
 

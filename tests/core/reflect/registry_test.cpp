@@ -4,6 +4,7 @@
 
 #include "core/base/error.h"
 #include "core/engine/engine.h"
+#include "core/reflect/property_path.h"
 #include "core/reflect/registry.h"
 #include "core/world/static_mesh_actor.h"
 
@@ -85,4 +86,34 @@ TEST_F(RegistryTest, PropertiesUseSettersAndRejectWrongTypes) {
     const PropertyInfo* rootProperty = AActor::StaticClass().findProperty("RootComponent");
     EXPECT_EQ(rootProperty->set, nullptr);
     EXPECT_TRUE(rootProperty->readOnly);
+}
+
+TEST_F(RegistryTest, PropertyPathsWalkReferencesListsAndStructsAndNameWhatIsMissing) {
+    sp::engine::Engine engine;
+    AActor* actor = engine.GetGameWorld().spawn_actor(&AStaticMeshActor::StaticClass());
+    actor->Tags = {"crate", "prop"};
+    EXPECT_EQ(getPath(*actor, "Tags[1]", "t").value.as<std::string>(), "prop");
+    const PathValue z = getPath(*actor, "RootComponent.RelativeLocation.Z", "t");
+    EXPECT_EQ(z.type.kind, TypeCode::Kind::Float);
+    setPath(*actor, "RootComponent.RelativeLocation.Z", Value(2.5), "t");
+    EXPECT_EQ(actor->RootComponent->RelativeLocation.Z, 2.5);
+    setPath(*actor, "Tags[0]", Value("box"), "t");
+    EXPECT_EQ(actor->Tags[0], "box");
+    auto message = [&](std::string_view path) {
+        try {
+            getPath(*actor, path, "get_property()");
+        } catch (const sp::Error& error) {
+            return std::string(error.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_EQ(message("Tags[2]"), "get_property(): 'Tags' has 2 items, no [2]");
+    EXPECT_EQ(message("RootComponent.Nope"),
+              "get_property(): class 'UStaticMeshComponent' has no property 'Nope' (at 'RootComponent')");
+    EXPECT_EQ(message("Tags[1].X"), "get_property(): 'Tags[1]' is str, which has no field 'X'");
+    // Malformed paths are refused where they go wrong, never read past their end.
+    for (std::string_view bad :
+         {"", ".", "Tags.", "Tags[", "Tags[]", "Tags[0", "Tags['0]", "Tags]", "Ta gs", "[0]"})
+        EXPECT_NE(message(bad).find("property path"), std::string::npos) << bad << ": " << message(bad);
+    EXPECT_THROW(setPath(*actor, "RootComponent", Value(), "t"), sp::InvalidArgument); // read-only
 }
