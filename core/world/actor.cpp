@@ -1,6 +1,7 @@
 #include "core/world/actor.h"
 
 #include <algorithm>
+#include <cctype>
 
 #include "core/base/error.h"
 #include "core/world/primitive_component.h"
@@ -61,6 +62,45 @@ UActorComponent* AActor::CreateComponent(const UClass& type, std::string name) {
     UActorComponent* raw = component.get();
     adoptComponent(std::move(component), std::move(name));
     return raw;
+}
+
+UActorComponent* AActor::AddComponentByClass(TSubclassOf<UActorComponent> ComponentClass,
+                                             const FTransform& RelativeTransform, const std::string& Name,
+                                             const std::string& AttachParent) {
+    constexpr std::string_view kFunction = "AActor.AddComponentByClass()";
+    const UClass* type = ComponentClass.Get();
+    SP_CHECK(type, sp::InvalidArgument, kFunction, ": ComponentClass is None");
+    SP_CHECK(type->create, sp::InvalidArgument, kFunction, ": class '", type->name,
+             "' cannot be created (it is abstract or defined by data)");
+    USceneComponent* parent = nullptr;
+    if (!AttachParent.empty()) {
+        parent = dynamic_cast<USceneComponent*>(FindComponentByName(AttachParent));
+        SP_CHECK(parent, sp::InvalidArgument, kFunction, ": AttachParent '", AttachParent,
+                 "' is not a scene component of ", GetDebugName());
+    }
+    std::string name = Name;
+    if (name.empty()) { // UE's names: the class's without its prefix letter, numbered after the first
+        const bool prefixed =
+            type->name.size() > 1 && std::isupper(static_cast<unsigned char>(type->name[1]));
+        const std::string base = prefixed ? type->name.substr(1) : type->name;
+        name = base;
+        for (int n = 1; FindComponentByName(name); ++n)
+            name = base + "_" + std::to_string(n);
+    }
+    SP_CHECK(!FindComponentByName(name), sp::InvalidArgument, kFunction, ": ", GetDebugName(),
+             " already has a component named '", name, "'");
+    UActorComponent* component = CreateComponent(*type, std::move(name));
+    if (auto* scene = dynamic_cast<USceneComponent*>(component)) {
+        if (parent && scene != RootComponent)
+            scene->AttachToComponent(parent, false);
+        scene->SetRelativeTransform(RelativeTransform);
+    }
+    return component;
+}
+
+void AActor::K2_DestroyComponent(UActorComponent* Component) {
+    SP_CHECK(Component, sp::InvalidArgument, "AActor.K2_DestroyComponent(): Component is None");
+    DestroyComponent(Component);
 }
 
 UActorComponent* AActor::FindComponentByName(std::string_view name) const {

@@ -102,6 +102,23 @@ class AActor : public UObject {
     SPFUNCTION(DeterminesOutputType = ComponentClass)
     UActorComponent* GetComponentByClass(TSubclassOf<UActorComponent> ComponentClass) const;
 
+    /// Adds a component of class ComponentClass to this actor at run time (UE's AddComponentByClass): a
+    /// camera on a spawned robot, a light on a car. Name "" names it after its class
+    /// ("CameraSensorComponent", then "CameraSensorComponent_1", ...). A scene component is attached to the
+    /// component called AttachParent ("" for the root; the root itself when the actor has none) at
+    /// RelativeTransform. It begins play at once when the actor has. Returns it, typed as ComponentClass;
+    /// raises InvalidArgumentError for a class that is not a component one or cannot be created, a Name taken
+    /// or an AttachParent that is not one of this actor's scene components.
+    SPFUNCTION(DeterminesOutputType = ComponentClass)
+    UActorComponent* AddComponentByClass(TSubclassOf<UActorComponent> ComponentClass,
+                                         const FTransform& RelativeTransform = FTransform(),
+                                         const std::string& Name = "", const std::string& AttachParent = "");
+
+    /// Destroys one of this actor's components (UE's K2_DestroyComponent); its handle is refused afterwards.
+    /// The root component cannot be destroyed while the actor lives.
+    SPFUNCTION()
+    void K2_DestroyComponent(UActorComponent* Component);
+
     // Creates a component owned by this actor. The first scene component becomes the root; later ones
     // are attached to the root. Use in constructors (like UE's CreateDefaultSubobject) or at run time.
     template <typename T> T* CreateDefaultSubobject(std::string name) {

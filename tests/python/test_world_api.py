@@ -408,3 +408,44 @@ def test_batched_locations_travel_as_numpy_arrays(instance: spear.Instance) -> N
             game.set_actor_locations(actors=actors, locations=targets.astype(np.float32))
         with pytest.raises(spear.InvalidArgumentError, match=r"locations must have shape \(4, 3\), got \(3,\)"):
             game.set_actor_locations(actors=actors, locations=np.zeros(3))
+
+
+def test_components_are_added_to_a_running_actor_and_work_at_once(instance: spear.Instance) -> None:
+    # A camera on a spawned robot, attached to its head, and a light on it: UE's AddComponentByClass, typed as
+    # the class asked for, named after it, attached where asked, working in the next frame.
+    game = instance.get_game()
+    with instance.begin_frame():
+        robot = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Robot", location=spear.FVector(X=1.0))
+        head = robot.AddComponentByClass(ComponentClass=spear.UStaticMeshComponent, Name="Head",
+                                         RelativeTransform=spear.FTransform(Translation=spear.FVector(Z=1.5)))
+        assert isinstance(head, spear.UStaticMeshComponent)
+        head.SetStaticMesh(NewMesh="/Engine/BasicShapes/Sphere")
+        camera = robot.AddComponentByClass(
+            ComponentClass=spear.UCameraSensorComponent, AttachParent="Head",
+            RelativeTransform=spear.FTransform(Translation=spear.FVector(X=0.5)))
+        assert isinstance(camera, spear.UCameraSensorComponent)  # typed: its own members without a cast
+        camera.Width, camera.Height = 16, 12
+        camera.Modalities = [spear.ECameraModality.Depth]
+        lamp = robot.AddComponentByClass(ComponentClass=spear.UPointLightComponent)
+        again = robot.AddComponentByClass(ComponentClass=spear.UPointLightComponent)
+        assert (camera.GetName(), lamp.GetName(), again.GetName()) == (
+            "CameraSensorComponent", "PointLightComponent", "PointLightComponent_1")
+        assert camera.GetAttachParent() == head
+        assert camera.GetComponentLocation() == spear.FVector(X=1.5, Z=1.5)
+        assert game.get_component_by_name(actor=robot, component_name="Head") == head
+    with instance.end_frame():
+        assert camera.read_pixels()["depth"].shape == (12, 16)
+    with instance.begin_frame():
+        robot.K2_DestroyComponent(Component=again)
+        assert [c.GetName() for c in robot.K2_GetComponents()] == [
+            "StaticMeshComponent", "Head", "CameraSensorComponent", "PointLightComponent"]
+        with pytest.raises(spear.StaleObjectError):
+            again.GetName()
+        with pytest.raises(spear.InvalidArgumentError, match=(
+                r"AActor\.AddComponentByClass\(\): AStaticMeshActor 'Robot' already has a component named 'Head'")):
+            robot.AddComponentByClass(ComponentClass=spear.USceneComponent, Name="Head")
+        with pytest.raises(spear.InvalidArgumentError, match=(
+                r"AttachParent 'Hand' is not a scene component of AStaticMeshActor 'Robot'")):
+            robot.AddComponentByClass(ComponentClass=spear.USceneComponent, AttachParent="Hand")
+        with pytest.raises(spear.InvalidArgumentError, match=r"the root component of AStaticMeshActor 'Robot'"):
+            robot.K2_DestroyComponent(Component=robot.StaticMeshComponent)

@@ -186,6 +186,25 @@ void bind_AActor(py::module_& m) {
         },
         py::arg("ComponentClass") = sp::pybind::missingArgument(),
         "GetComponentByClass(self, *, ComponentClass: type[UActorComponent] | str) -> UActorComponent | None\n\nReturns the first component of class ComponentClass (or a subclass), or None.");
+    cls.def(
+        "AddComponentByClass",
+        [](const Ref<Self>& self, const py::args& positional, const PyArg& ComponentClass, const PyArg& RelativeTransform, const PyArg& Name, const PyArg& AttachParent, const py::kwargs& extra) -> py::object {
+            // The parameters in order; the array lives until the call returns.
+            return Calls::call_AddComponentByClass<PyCall>(self, {positional, extra, std::array<const PyArg*, 4>{&ComponentClass, &RelativeTransform, &Name, &AttachParent}, true});
+        },
+        py::arg("ComponentClass") = sp::pybind::missingArgument(),
+        py::arg("RelativeTransform") = sp::pybind::missingArgument(),
+        py::arg("Name") = sp::pybind::missingArgument(),
+        py::arg("AttachParent") = sp::pybind::missingArgument(),
+        "AddComponentByClass(self, *, ComponentClass: type[UActorComponent] | str, RelativeTransform: FTransform = ..., Name: str = ..., AttachParent: str = ...) -> UActorComponent | None\n\nAdds a component of class ComponentClass to this actor at run time (UE's AddComponentByClass): a\ncamera on a spawned robot, a light on a car. Name \"\" names it after its class\n(\"CameraSensorComponent\", then \"CameraSensorComponent_1\", ...). A scene component is attached to the\ncomponent called AttachParent (\"\" for the root; the root itself when the actor has none) at\nRelativeTransform. It begins play at once when the actor has. Returns it, typed as ComponentClass;\nraises InvalidArgumentError for a class that is not a component one or cannot be created, a Name taken\nor an AttachParent that is not one of this actor's scene components.");
+    cls.def(
+        "K2_DestroyComponent",
+        [](const Ref<Self>& self, const py::args& positional, const PyArg& Component, const py::kwargs& extra) -> py::object {
+            // The parameters in order; the array lives until the call returns.
+            return Calls::call_K2_DestroyComponent<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Component}, true});
+        },
+        py::arg("Component") = sp::pybind::missingArgument(),
+        "K2_DestroyComponent(self, *, Component: UActorComponent) -> None\n\nDestroys one of this actor's components (UE's K2_DestroyComponent); its handle is refused afterwards.\nThe root component cannot be destroyed while the actor lives.");
 }
 
 } // namespace sp::generated::engine

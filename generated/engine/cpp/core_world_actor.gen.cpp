@@ -233,6 +233,31 @@ const sp::reflect::TypeInfo& AActor::StaticClass() {
             true,
             [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetComponentByClass<ValueCall>(self, args); },
         });
+        t.functions.push_back({
+            "AddComponentByClass",
+            "Adds a component of class ComponentClass to this actor at run time (UE's AddComponentByClass): a\ncamera on a spawned robot, a light on a car. Name \"\" names it after its class\n(\"CameraSensorComponent\", then \"CameraSensorComponent_1\", ...). A scene component is attached to the\ncomponent called AttachParent (\"\" for the root; the root itself when the actor has none) at\nRelativeTransform. It begins play at once when the actor has. Returns it, typed as ComponentClass;\nraises InvalidArgumentError for a class that is not a component one or cannot be created, a Name taken\nor an AttachParent that is not one of this actor's scene components.",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UActorComponent", true),
+            {
+                {"ComponentClass", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Class, "UActorComponent"), false, false},
+                {"RelativeTransform", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FTransform"), true, false},
+                {"Name", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), true, false},
+                {"AttachParent", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), true, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_AddComponentByClass<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "K2_DestroyComponent",
+            "Destroys one of this actor's components (UE's K2_DestroyComponent); its handle is refused afterwards.\nThe root component cannot be destroyed while the actor lives.",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"Component", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UActorComponent"), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_K2_DestroyComponent<ValueCall>(self, args); },
+        });
         return t;
     }();
     return info;

@@ -259,6 +259,38 @@ struct AActorCalls {
         auto result = self->GetComponentByClass(ComponentClassArg);
         return Call::template result<UActorComponent*>(result);
     }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_AddComponentByClass(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 4> kParams{{
+            {"ComponentClass", "AActor.AddComponentByClass(): argument 'ComponentClass'", true},
+            {"RelativeTransform", "AActor.AddComponentByClass(): argument 'RelativeTransform'", false},
+            {"Name", "AActor.AddComponentByClass(): argument 'Name'", false},
+            {"AttachParent", "AActor.AddComponentByClass(): argument 'AttachParent'", false},
+        }};
+        const Call call(args, "AActor.AddComponentByClass()", kParams);
+        Self* self = Call::template object<Self>(target, "AActor.AddComponentByClass()");
+        TSubclassOf<UActorComponent> ComponentClassArg = call.template arg<TSubclassOf<UActorComponent>>(0);
+        sp::reflect::checkNotNone(ComponentClassArg, "AActor.AddComponentByClass(): argument 'ComponentClass'");
+        FTransform RelativeTransformArg = call.given(1) ? call.template arg<FTransform>(1) : FTransform(FTransform());
+        std::string NameArg = call.given(2) ? call.template arg<std::string>(2) : std::string("");
+        std::string AttachParentArg = call.given(3) ? call.template arg<std::string>(3) : std::string("");
+        auto result = self->AddComponentByClass(ComponentClassArg, RelativeTransformArg, NameArg, AttachParentArg);
+        return Call::template result<UActorComponent*>(result);
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_K2_DestroyComponent(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"Component", "AActor.K2_DestroyComponent(): argument 'Component'", true},
+        }};
+        const Call call(args, "AActor.K2_DestroyComponent()", kParams);
+        Self* self = Call::template object<Self>(target, "AActor.K2_DestroyComponent()");
+        UActorComponent* ComponentArg = call.template arg<UActorComponent*>(0);
+        sp::reflect::checkNotNone(ComponentArg, "AActor.K2_DestroyComponent(): argument 'Component'");
+        self->K2_DestroyComponent(ComponentArg);
+        return Call::none();
+    }
 };
 
 } // namespace sp::generated::engine

@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "7f4c0dd4a9b62181";
+inline constexpr char kApiHash[] = "9993b70b10b9ed68";
 } // namespace sp::generated::engine

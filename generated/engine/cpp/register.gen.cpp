@@ -278,4 +278,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::enumInfo_EAntiAliasingMethod());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "7f4c0dd4a9b62181"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "9993b70b10b9ed68"; }

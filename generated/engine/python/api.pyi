@@ -675,6 +675,14 @@ class AActorAsync(UObjectAsync):
     @overload
     def GetComponentByClass(self, *, ComponentClass: str) -> Future[UActorComponent | None]: ...
 
+    @overload
+    def AddComponentByClass(self, *, ComponentClass: type[_UActorComponentT], RelativeTransform: FTransform = FTransform(), Name: str = "", AttachParent: str = "") -> Future[_UActorComponentT | None]: ...
+
+    @overload
+    def AddComponentByClass(self, *, ComponentClass: str, RelativeTransform: FTransform = FTransform(), Name: str = "", AttachParent: str = "") -> Future[UActorComponent | None]: ...
+
+    def K2_DestroyComponent(self, *, Component: UActorComponent) -> Future[None]: ...
+
 
 class AActorSend(UObjectSend):
     """AActor's functions, sent without waiting for a result (fire and forget)."""
@@ -714,6 +722,10 @@ class AActorSend(UObjectSend):
     def K2_GetComponents(self) -> None: ...
 
     def GetComponentByClass(self, *, ComponentClass: type[UActorComponent] | str) -> None: ...
+
+    def AddComponentByClass(self, *, ComponentClass: type[UActorComponent] | str, RelativeTransform: FTransform = FTransform(), Name: str = "", AttachParent: str = "") -> None: ...
+
+    def K2_DestroyComponent(self, *, Component: UActorComponent) -> None: ...
 
 
 class AActor(UObject):
@@ -803,6 +815,17 @@ class AActor(UObject):
 
     @overload
     def GetComponentByClass(self, *, ComponentClass: str) -> UActorComponent | None: ...
+
+    @overload
+    def AddComponentByClass(self, *, ComponentClass: type[_UActorComponentT], RelativeTransform: FTransform = FTransform(), Name: str = "", AttachParent: str = "") -> _UActorComponentT | None: ...
+
+    @overload
+    def AddComponentByClass(self, *, ComponentClass: str, RelativeTransform: FTransform = FTransform(), Name: str = "", AttachParent: str = "") -> UActorComponent | None: ...
+
+    def K2_DestroyComponent(self, *, Component: UActorComponent) -> None:
+        """Destroys one of this actor's components (UE's K2_DestroyComponent); its handle is refused afterwards.
+        The root component cannot be destroyed while the actor lives.
+        """
 
 
 class AControllerAsync(AActorAsync):

@@ -126,6 +126,18 @@ class AActor(UObject, api.AActor):
     def GetComponentByClass(self, *, ComponentClass: type[api.UActorComponent] | str) -> Any:
         return self._sp_call("AActor", "GetComponentByClass", {"ComponentClass": ComponentClass}, _t.T_UActorComponent_or_None)
 
+    @overload
+    def AddComponentByClass(self, *, ComponentClass: type[_UActorComponentT], RelativeTransform: FTransform = ..., Name: str = ..., AttachParent: str = ...) -> _UActorComponentT | None: ...
+
+    @overload
+    def AddComponentByClass(self, *, ComponentClass: str, RelativeTransform: FTransform = ..., Name: str = ..., AttachParent: str = ...) -> api.UActorComponent | None: ...
+
+    def AddComponentByClass(self, *, ComponentClass: type[api.UActorComponent] | str, RelativeTransform: FTransform = _DEFAULT, Name: str = _DEFAULT, AttachParent: str = _DEFAULT) -> Any:
+        return self._sp_call("AActor", "AddComponentByClass", {"ComponentClass": ComponentClass, "RelativeTransform": RelativeTransform, "Name": Name, "AttachParent": AttachParent}, _t.T_UActorComponent_or_None)
+
+    def K2_DestroyComponent(self, *, Component: api.UActorComponent) -> None:
+        return cast(None, self._sp_call("AActor", "K2_DestroyComponent", {"Component": Component}, _t.T_void))  # a Future when queued by call_async
+
 
 _register_proxy(AActor)
 
