@@ -2,7 +2,8 @@
 
 The queue (UMoviePipelineQueueEngineSubsystem, the paper's movie_render_queue: AllocateJob, SetConfiguration,
 RenderJob, IsRendering) renders one output frame per engine frame while this script steps frames and draws
-a progress bar from the job's progress. Files land in --out:
+a progress bar from the job's progress (redrawn in place on a terminal, a line per quarter of the job when
+piped). Files land in --out:
 
     final_color/0000.png ...                  8-bit sRGB (PNG)
     depth/, normal/, object_ids/ 0000.exr ... float32 and uint32, lossless (OpenEXR), as read_pixels() gives
@@ -53,6 +54,12 @@ def progress_bar(job: spear.UMoviePipelineExecutorJob) -> str:
     return f"render: [{'#' * filled}{'.' * (24 - filled)}] {done}/{p.FramesTotal} frames, {p.ElapsedSeconds:.1f} s{eta}"
 
 
+def quarters_done(job: spear.UMoviePipelineExecutorJob) -> int:
+    """How many quarters of the job are done (0 to 4)."""
+    p = job.GetProgress()
+    return 4 * (p.FramesRendered + p.FramesSkipped) // max(p.FramesTotal, 1)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
     parser.add_argument("--out", default="out/movie_render_queue")
@@ -87,12 +94,17 @@ def main() -> None:
     with instance.end_frame():
         pass
 
+    # On a terminal the bar redraws in place each frame; piped into a log it is a line at each quarter.
     interactive = sys.stderr.isatty()
+    logged = -1
     while True:
         with instance.begin_frame():
             pass
         with instance.end_frame():
-            print(progress_bar(job), end="\r" if interactive else "\n", file=sys.stderr)
+            quarter = quarters_done(job)
+            if interactive or quarter > logged or not queue.IsRendering():
+                print(progress_bar(job), end="\r" if interactive else "\n", file=sys.stderr)
+                logged = quarter
             if not queue.IsRendering():
                 status, error, progress = job.GetStatus(), job.GetErrorMessage(), job.GetProgress()
                 break

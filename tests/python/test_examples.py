@@ -232,6 +232,8 @@ def test_movie_render_queue_renders_the_camera_move_to_files_and_resumes(transpo
     result = run_example("movie_render_queue.py", *args)
     assert result.returncode == 0, result.stdout + result.stderr
     assert "render: [########################] 6/6 frames" in result.stderr  # the progress bar
+    bars = [line for line in result.stderr.splitlines() if line.startswith("render: [")]
+    assert 2 <= len(bars) <= 5, bars  # piped: a line at the start and per quarter, not one per frame
     assert "rendered 6 frames, skipped 0 already written" in result.stdout
     for modality, suffix in [("final_color", "png"), ("depth", "exr"), ("normal", "exr"), ("object_ids", "exr")]:
         assert sorted(p.name for p in (out / modality).iterdir()) == [f"{k:04d}.{suffix}" for k in range(6)]
