@@ -119,15 +119,14 @@ void intoElement(Walk& walk, const std::string& key, bool adding, std::string_vi
         walk.current = &list[index];
     } else if (walk.type.kind == TypeCode::Kind::Dict && walk.current->is<Value::Dict>()) {
         Value::Dict& dict = walk.current->as<Value::Dict>();
-        if (!adding || dict.count(key) != 0) {
-            auto found = dict.find(key);
+        if (!adding && dict.find(key) == dict.end()) {
             std::string keys;
             for (const auto& [name, item] : dict)
                 keys += (keys.empty() ? "" : ", ") + ("'" + name + "'");
-            SP_CHECK(found != dict.end(), NotFound, context, ": '", walk.shown, "' has no key '", key, "' (",
+            SP_THROW(NotFound, context, ": '", walk.shown, "' has no key '", key, "' (",
                      keys.empty() ? std::string("it is empty") : "its keys: " + keys, ")");
         }
-        walk.current = &dict[key];
+        walk.current = &dict[key]; // a write may add the key
     } else {
         SP_THROW(NotFound, context, ": '", walk.shown, "' is ", walk.type.spelling(),
                  ", not a list or dict, so it has no [", key, "]");
