@@ -130,6 +130,25 @@ sp::render::OutputView allocate(sp::reflect::SpArray<T>& array, sp::render::Moda
     return {modality, array.data(), sp::render::modalityByteSize(modality, width, height)};
 }
 
+// final_color without its alpha channel (UCameraSensorComponent::bFinalColorAlpha): (..., 4) -> (..., 3).
+void dropAlpha(sp::reflect::SpArray<std::uint8_t>& rgba) {
+    std::vector<int64_t> shape = rgba.getShape();
+    if (shape.empty() || shape.back() != 4)
+        return; // not read (the camera does not render final_color)
+    shape.back() = 3;
+    sp::reflect::SpArray<std::uint8_t> rgb;
+    rgb.resizeForOverwrite(shape);
+    const std::uint8_t* from = rgba.data();
+    std::uint8_t* to = rgb.data();
+    const auto pixels = std::size_t(rgb.getSize()) / 3;
+    for (std::size_t p = 0; p < pixels; ++p, from += 4, to += 3) {
+        to[0] = from[0];
+        to[1] = from[1];
+        to[2] = from[2];
+    }
+    rgba = std::move(rgb);
+}
+
 sp::render::OutputView allocate(FCameraPixels& pixels, sp::render::Modality modality, int width, int height,
                                 int count) {
     using M = sp::render::Modality;
@@ -656,7 +675,11 @@ FCameraPixels RenderSubsystem::readPixels(UCameraSensorComponent& camera) {
     if (const std::optional<FrameShape> shape = dueShape(camera))
         for (sp::render::Modality modality : shape->modalities.list())
             views.push_back(allocate(pixels, modality, shape->width, shape->height, 0));
-    return readInto(camera, views) ? pixels : FCameraPixels{};
+    if (!readInto(camera, views))
+        return {};
+    if (!camera.bFinalColorAlpha)
+        dropAlpha(pixels.final_color);
+    return pixels;
 }
 
 FCameraPixels RenderSubsystem::readPixelsStacked(const std::vector<UCameraSensorComponent*>& cameras,
@@ -682,6 +705,10 @@ FCameraPixels RenderSubsystem::readPixelsStacked(const std::vector<UCameraSensor
                      context, ": Cameras[", i, "] shows ", shape->width, "x", shape->height,
                      " images, Cameras[0] ", first.width, "x", first.height,
                      "; stacked cameras need one size");
+            SP_CHECK(cameras[i]->bFinalColorAlpha == cameras.front()->bFinalColorAlpha, sp::InvalidArgument,
+                     context, ": Cameras[", i, "] has bFinalColorAlpha ",
+                     cameras[i]->bFinalColorAlpha ? "True" : "False", ", Cameras[0] ",
+                     cameras.front()->bFinalColorAlpha ? "True" : "False", "; stacked cameras need one");
             SP_CHECK(shape->modalities == first.modalities, sp::InvalidArgument, context, ": Cameras[", i,
                      "] renders other modalities than Cameras[0] (", joined(shape->modalities.names()),
                      " against ", joined(first.modalities.names()), ")");
@@ -701,6 +728,8 @@ FCameraPixels RenderSubsystem::readPixelsStacked(const std::vector<UCameraSensor
         if (!shapes[i].first->readInto(*cameras[i], views))
             return {};
     }
+    if (!cameras.front()->bFinalColorAlpha)
+        dropAlpha(pixels.final_color);
     return pixels;
 }
 

@@ -317,6 +317,36 @@ def test_read_pixels_in_begin_frame_returns_the_frame_last_rendered_and_says_whi
         assert camera.GetPixelsFrame() == frame + 1
 
 
+def test_final_color_without_alpha_is_rgb_of_the_same_pixels(instance: spear.Instance) -> None:
+    # bFinalColorAlpha = False: (H, W, 3), the RGB of the (H, W, 4) image, for a model that takes RGB as it is;
+    # stacked reads too, and cameras that disagree are refused.
+    game = instance.get_game()
+    with instance.begin_frame():
+        spawn_wall(game, 3.0)
+        cameras = [spawn_camera(game, [M.FinalColor, M.Depth], 24, 16)]
+        cameras.append(game.spawn_actor(uclass=spear.ACameraSensorActor, name="Second").CameraSensor)
+        cameras[1].Width, cameras[1].Height, cameras[1].FOV = 24, 16, 60.0
+        cameras[1].Modalities = [M.FinalColor, M.Depth]
+    with instance.end_frame():
+        rgba = cameras[0].read_pixels()["final_color"]
+    with instance.begin_frame():
+        for camera in cameras:
+            camera.bFinalColorAlpha = False
+    with instance.end_frame():
+        rgb = cameras[0].read_pixels()["final_color"]
+        stacked = spear.UCameraSensorComponent.read_pixels_stacked(Cameras=cameras)["final_color"]
+    assert rgba.shape == (16, 24, 4) and rgb.shape == (16, 24, 3) and rgb.dtype == np.uint8
+    np.testing.assert_array_equal(rgb, rgba[..., :3])
+    assert stacked.shape == (2, 16, 24, 3)
+    np.testing.assert_array_equal(stacked[0], rgb)
+    with instance.begin_frame():
+        cameras[1].bFinalColorAlpha = True
+    with instance.end_frame():
+        with pytest.raises(spear.InvalidArgumentError, match=(
+                r"read_pixels_stacked\(\): Cameras\[1\] has bFinalColorAlpha True, Cameras\[0\] False")):
+            spear.UCameraSensorComponent.read_pixels_stacked(Cameras=cameras)
+
+
 def test_copies_of_one_mesh_are_drawn_in_one_call_with_their_own_ids(instance: spear.Instance) -> None:
     game = instance.get_game()
     with instance.begin_frame():

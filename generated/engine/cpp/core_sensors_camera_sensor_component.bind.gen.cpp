@@ -232,6 +232,13 @@ void bind_UCameraSensorComponent(py::module_& m) {
         },
         "The rasteriser's indirect light (global illumination). A world's probes are lit in full on the first\nframe a camera asks for them; when the scene changes, the probes least recently lit are lit again, a\nbudget per frame, so that a change reaches every probe within a bounded number of frames\n(core/render/README.md). Medium by default, as Unreal's cameras have global illumination on: about\n1.6 ms more per 1080p frame of Table 3 on llvmpipe (BENCHMARKS.md); Off gives the sky light's uniform\nterm alone.");
     cls.def_property(
+        "bFinalColorAlpha",
+        [](const Ref<Self>& self) { return Calls::get_bFinalColorAlpha<PyCall>(self.get<Self>("UCameraSensorComponent.bFinalColorAlpha")); },
+        [](const Ref<Self>& self, const PyArg& value) {
+            Calls::set_bFinalColorAlpha<PyCall>(self.get<Self>("UCameraSensorComponent.bFinalColorAlpha"), value);
+        },
+        "Whether final_color has an alpha channel: (H, W, 4) RGBA with alpha 255 (the default), or false for\n(H, W, 3) RGB, the shape a model takes as it is (read_pixels() and read_pixels_stacked(), both\ntransports; the alpha is dropped as the frame is read, one copy).");
+    cls.def_property(
         "AntiAliasingMethod",
         [](const Ref<Self>& self) { return Calls::get_AntiAliasingMethod<PyCall>(self.get<Self>("UCameraSensorComponent.AntiAliasingMethod")); },
         [](const Ref<Self>& self, const PyArg& value) {

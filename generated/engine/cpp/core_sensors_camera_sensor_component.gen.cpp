@@ -930,6 +930,16 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
         });
         t.properties.push_back({
+            "bFinalColorAlpha",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
+            "Whether final_color has an alpha channel: (H, W, 4) RGBA with alpha 255 (the default), or false for\n(H, W, 3) RGB, the shape a model takes as it is (read_pixels() and read_pixels_stacked(), both\ntransports; the alpha is dropped as the frame is read, one copy).",
+            false,
+            [](const void* self) { return Calls::get_bFinalColorAlpha<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_bFinalColorAlpha<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
             "AntiAliasingMethod",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EAntiAliasingMethod"),
             "Anti-aliasing of the rasterised final_color; FXAA by default. The path tracer's pixels average rays\nspread over the pixel, so its images need none and take none.",

@@ -720,6 +720,15 @@ struct UCameraSensorComponentCalls {
         sp::reflect::notifyPropertyChanged(self, "GlobalIlluminationQuality");
     }
 
+    template <typename Call> static typename Call::Result get_bFinalColorAlpha(const Self* self) {
+        const auto& value = self->bFinalColorAlpha;
+        return Call::template result<bool>(value);
+    }
+    template <typename Call> static void set_bFinalColorAlpha(Self* self, const typename Call::Input& value) {
+        self->bFinalColorAlpha = Call::template input<bool>(value, "UCameraSensorComponent.bFinalColorAlpha");
+        sp::reflect::notifyPropertyChanged(self, "bFinalColorAlpha");
+    }
+
     template <typename Call> static typename Call::Result get_AntiAliasingMethod(const Self* self) {
         const auto& value = self->AntiAliasingMethod;
         return Call::template result<EAntiAliasingMethod>(value);

@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "9993b70b10b9ed68";
+inline constexpr char kApiHash[] = "c619418fac582e73";
 } // namespace sp::generated::engine

@@ -3339,6 +3339,16 @@ class UCameraSensorComponent(USceneComponent):
     def GlobalIlluminationQuality(self, value: EGlobalIlluminationQuality) -> None: ...
 
     @property
+    def bFinalColorAlpha(self) -> bool:
+        """Whether final_color has an alpha channel: (H, W, 4) RGBA with alpha 255 (the default), or false for
+        (H, W, 3) RGB, the shape a model takes as it is (read_pixels() and read_pixels_stacked(), both
+        transports; the alpha is dropped as the frame is read, one copy).
+        """
+
+    @bFinalColorAlpha.setter
+    def bFinalColorAlpha(self, value: bool) -> None: ...
+
+    @property
     def AntiAliasingMethod(self) -> EAntiAliasingMethod:
         """Anti-aliasing of the rasterised final_color; FXAA by default. The path tracer's pixels average rays
         spread over the pixel, so its images need none and take none.

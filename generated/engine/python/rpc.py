@@ -1431,6 +1431,14 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
         self._sp_set("UCameraSensorComponent", "GlobalIlluminationQuality", value)
 
     @property
+    def bFinalColorAlpha(self) -> bool:
+        return cast("bool", self._sp_get("UCameraSensorComponent", "bFinalColorAlpha", _t.T_bool))
+
+    @bFinalColorAlpha.setter
+    def bFinalColorAlpha(self, value: bool) -> None:
+        self._sp_set("UCameraSensorComponent", "bFinalColorAlpha", value)
+
+    @property
     def AntiAliasingMethod(self) -> EAntiAliasingMethod:
         return cast("EAntiAliasingMethod", self._sp_get("UCameraSensorComponent", "AntiAliasingMethod", _t.T_EAntiAliasingMethod))
 
