@@ -43,8 +43,12 @@ std::vector<Segment> parse(std::string_view path, std::string_view context) {
                 at = close + 1;
             } else {
                 const std::size_t close = path.find(']', at);
-                if (close == std::string_view::npos || close == at)
+                if (close == at || at == path.size())
                     bad("expects an index or key in []");
+                if (close == std::string_view::npos) {
+                    at = path.size();
+                    bad("expects ']'");
+                }
                 key = std::string(path.substr(at, close - at));
                 at = close;
             }

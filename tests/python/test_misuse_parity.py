@@ -181,6 +181,25 @@ CASES: list[tuple[str, Callable[[Scene], object], str | None, str]] = [
      "KeyError", "\"'normals' is not a field of FCameraPixels (its fields: final_color, hdr_color, depth, position, "
      "normal, object_ids, material_ids, base_color, roughness, metallic, material_ao, diffuse_illumination, "
      "diffuse_only, specular_residual)\""),
+    # property paths (core/reflect/property_path.h) and checked writes
+    ("property path through a reference to a missing property",
+     lambda s: s.instance.get_property(uobject=s.cube, path="RootComponent.Colour"),
+     "NotFoundError",
+     "get_property('RootComponent.Colour'): class 'UStaticMeshComponent' has no property 'Colour' (at 'RootComponent')"),
+    ("property path past a list's end", lambda s: s.instance.set_property(uobject=s.cube, path="Tags[5]", value="x"),
+     "NotFoundError", "set_property('Tags[5]'): 'Tags' has 0 items, no [5]"),
+    ("property path that does not parse", lambda s: s.instance.get_property(uobject=s.cube, path="Tags[0"),
+     "InvalidArgumentError", "get_property('Tags[0'): property path 'Tags[0' expects ']' at character 7"),
+    ("material written through a path, out of range",
+     lambda s: s.instance.set_property(uobject=s.library, path="Materials[Bad]", value=spear.FMaterialDesc(Metallic=2.0)),
+     "InvalidArgumentError", "AMaterialLibrary.SetMaterials(): material 'Bad': Metallic must be in [0, 1], got 2"),
+    ("mesh property naming no shape", lambda s: setattr(s.cube.StaticMeshComponent, "StaticMesh", "/Engine/BasicShapes/Cone"),
+     "NotFoundError", "UStaticMeshComponent.SetStaticMesh(): '/Engine/BasicShapes/Cone' is not a built-in shape "
+     "(/Engine/BasicShapes/Cube, /Engine/BasicShapes/Sphere, /Engine/BasicShapes/Cylinder, /Engine/BasicShapes/Plane)"),
+    ("component added under a parent that is not there",
+     lambda s: s.cube.AddComponentByClass(ComponentClass=spear.USceneComponent, AttachParent="Arm"),
+     "InvalidArgumentError",
+     "AActor.AddComponentByClass(): AttachParent 'Arm' is not a scene component of AStaticMeshActor 'Cube'"),
 ]
 
 
