@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "core/base/log.h"
 #include "core/procedural/spline_component.h"
@@ -354,23 +355,29 @@ const RenderScene::MeshEntry* RenderScene::meshFor(const std::string& name) {
     return &meshes_.emplace(name, std::move(entry)).first->second;
 }
 
+std::optional<sp::render::TextureId>
+RenderScene::cachedTexture(const std::string& key, const std::string& shown,
+                           sp::render::TextureEncoding encoding,
+                           const std::function<sp::render::TextureImage()>& load) {
+    if (auto it = textures_.find(key); it != textures_.end())
+        return it->second;
+    try {
+        sp::render::TextureImage image = load();
+        // Keyed by its pixels and encoding, so that worlds loading the same image share its upload.
+        std::string content = sp::render::contentKey(image, encoding);
+        sp::render::TextureId id = scene_.addTexture(std::move(image), encoding, std::move(content));
+        return textures_.emplace(key, id).first->second;
+    } catch (const sp::Error& error) {
+        logOnce("texture:" + key, "RenderSubsystem: texture '" + shown + "' is not used: " + error.what());
+        return std::nullopt;
+    }
+}
+
 std::optional<sp::render::TextureId> RenderScene::textureFor(const std::string& path,
                                                              sp::render::TextureEncoding encoding) {
     if (path.empty())
         return std::nullopt;
-    if (auto it = textures_.find(path); it != textures_.end())
-        return it->second;
-    try {
-        sp::render::TextureImage image = sp::render::TextureImage::load(path);
-        // Keyed by its pixels and encoding, so that worlds loading the same image share its upload.
-        std::string key = sp::render::contentKey(image, encoding);
-        sp::render::TextureId id = scene_.addTexture(std::move(image), encoding, std::move(key));
-        return textures_.emplace(path, id).first->second;
-    } catch (const sp::Error& error) {
-        logOnce("texture:" + path,
-                std::string("RenderSubsystem: texture '") + path + "' is not used: " + error.what());
-        return std::nullopt;
-    }
+    return cachedTexture(path, path, encoding, [&] { return sp::render::TextureImage::load(path); });
 }
 
 std::optional<sp::render::TextureId>
@@ -378,27 +385,19 @@ RenderScene::occlusionRoughnessMetallicFor(const std::string& roughnessMetallic,
                                            const std::string& occlusion) {
     if (roughnessMetallic.empty() && occlusion.empty())
         return std::nullopt;
-    const std::string path = "orm:" + roughnessMetallic + "\n" + occlusion;
-    if (auto it = textures_.find(path); it != textures_.end())
-        return it->second;
-    try {
-        std::optional<sp::render::TextureImage> maps[2];
-        if (!roughnessMetallic.empty())
-            maps[0] = sp::render::TextureImage::load(roughnessMetallic);
-        if (!occlusion.empty())
-            maps[1] = occlusion == roughnessMetallic ? maps[0] : sp::render::TextureImage::load(occlusion);
-        sp::render::TextureImage image = sp::render::packOcclusionRoughnessMetallic(
-            maps[0] ? &*maps[0] : nullptr, maps[1] ? &*maps[1] : nullptr);
-        std::string key = sp::render::contentKey(image, sp::render::TextureEncoding::Linear);
-        sp::render::TextureId id =
-            scene_.addTexture(std::move(image), sp::render::TextureEncoding::Linear, std::move(key));
-        return textures_.emplace(path, id).first->second;
-    } catch (const sp::Error& error) {
-        logOnce("texture:" + path, "RenderSubsystem: texture '" +
-                                       (roughnessMetallic.empty() ? occlusion : roughnessMetallic) +
-                                       "' is not used: " + error.what());
-        return std::nullopt;
-    }
+    return cachedTexture(
+        "orm:" + roughnessMetallic + "\n" + occlusion,
+        roughnessMetallic.empty() ? occlusion : roughnessMetallic, sp::render::TextureEncoding::Linear, [&] {
+            std::optional<sp::render::TextureImage> maps[2];
+            if (!roughnessMetallic.empty())
+                maps[0] = sp::render::TextureImage::load(roughnessMetallic);
+            if (!occlusion.empty() && occlusion != roughnessMetallic)
+                maps[1] = sp::render::TextureImage::load(occlusion);
+            // An ORM map named as both is read once and is its own occlusion.
+            const sp::render::TextureImage* occluding =
+                maps[1] ? &*maps[1] : (!occlusion.empty() && maps[0] ? &*maps[0] : nullptr);
+            return sp::render::packOcclusionRoughnessMetallic(maps[0] ? &*maps[0] : nullptr, occluding);
+        });
 }
 
 sp::render::MaterialId RenderScene::materialFor(const std::string& rawName,

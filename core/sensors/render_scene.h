@@ -8,6 +8,7 @@
 // repeats (0 is the background).
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -117,6 +118,11 @@ class RenderScene {
     const MeshEntry* meshFor(const std::string& name);
     sp::render::MaterialId materialFor(const std::string& name,
                                        const std::map<std::string, FMaterialDesc>& library);
+    // The texture uploaded under `key` (made by `load` the first time; a failure is logged once, naming
+    // `shown`, and gives nullopt: the material keeps its factors).
+    std::optional<sp::render::TextureId> cachedTexture(const std::string& key, const std::string& shown,
+                                                       sp::render::TextureEncoding encoding,
+                                                       const std::function<sp::render::TextureImage()>& load);
     std::optional<sp::render::TextureId> textureFor(const std::string& path,
                                                     sp::render::TextureEncoding encoding);
     // The material's one texture of occlusion, roughness and metallic (sp::render::Material), from its

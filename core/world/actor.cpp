@@ -18,10 +18,11 @@ AActor::~AActor() {
     }
 }
 
-void AActor::adoptComponent(std::unique_ptr<UActorComponent> component, std::string name) {
+void AActor::adoptComponent(std::unique_ptr<UActorComponent> component, std::string name,
+                            std::string_view function) {
     for (const auto& existing : components_)
-        SP_CHECK(existing->GetName() != name, sp::InvalidArgument,
-                 "AActor.CreateComponent(): ", GetDebugName(), " already has a component named '", name, "'");
+        SP_CHECK(existing->GetName() != name, sp::InvalidArgument, function, ": ", GetDebugName(),
+                 " already has a component named '", name, "'");
     component->InitObject(std::move(name), GetWorld());
     component->SetOwner(this);
     if (auto* scene = dynamic_cast<USceneComponent*>(component.get())) {
@@ -54,13 +55,12 @@ void AActor::endComponentPlay(UActorComponent& component) {
     component.EndPlay();
 }
 
-UActorComponent* AActor::CreateComponent(const UClass& type, std::string name) {
-    SP_CHECK(type.isChildOf(UActorComponent::StaticClass()) && type.create, sp::InvalidArgument,
-             "AActor.CreateComponent(): class '", type.name,
-             "' is not a component class that can be created");
+UActorComponent* AActor::CreateComponent(const UClass& type, std::string name, std::string_view function) {
+    SP_CHECK(type.isChildOf(UActorComponent::StaticClass()) && type.create, sp::InvalidArgument, function,
+             ": class '", type.name, "' is not a component class that can be created");
     std::unique_ptr<UActorComponent> component(static_cast<UActorComponent*>(type.create()));
     UActorComponent* raw = component.get();
-    adoptComponent(std::move(component), std::move(name));
+    adoptComponent(std::move(component), std::move(name), function);
     return raw;
 }
 
@@ -70,8 +70,6 @@ UActorComponent* AActor::AddComponentByClass(TSubclassOf<UActorComponent> Compon
     constexpr std::string_view kFunction = "AActor.AddComponentByClass()";
     const UClass* type = ComponentClass.Get();
     SP_CHECK(type, sp::InvalidArgument, kFunction, ": ComponentClass is None");
-    SP_CHECK(type->create, sp::InvalidArgument, kFunction, ": class '", type->name,
-             "' cannot be created (it is abstract or defined by data)");
     USceneComponent* parent = nullptr;
     if (!AttachParent.empty()) {
         parent = dynamic_cast<USceneComponent*>(FindComponentByName(AttachParent));
@@ -87,9 +85,7 @@ UActorComponent* AActor::AddComponentByClass(TSubclassOf<UActorComponent> Compon
         for (int n = 1; FindComponentByName(name); ++n)
             name = base + "_" + std::to_string(n);
     }
-    SP_CHECK(!FindComponentByName(name), sp::InvalidArgument, kFunction, ": ", GetDebugName(),
-             " already has a component named '", name, "'");
-    UActorComponent* component = CreateComponent(*type, std::move(name));
+    UActorComponent* component = CreateComponent(*type, std::move(name), kFunction);
     if (auto* scene = dynamic_cast<USceneComponent*>(component)) {
         if (parent && scene != RootComponent)
             scene->AttachToComponent(parent, false);

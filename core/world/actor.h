@@ -125,10 +125,12 @@ class AActor : public UObject {
         static_assert(std::is_base_of_v<UActorComponent, T>);
         auto component = std::make_unique<T>();
         T* raw = component.get();
-        adoptComponent(std::move(component), std::move(name));
+        adoptComponent(std::move(component), std::move(name), "AActor.CreateComponent()");
         return raw;
     }
-    UActorComponent* CreateComponent(const UClass& type, std::string name);
+    // `function` names the caller in errors (a class that is no creatable component, a name taken).
+    UActorComponent* CreateComponent(const UClass& type, std::string name,
+                                     std::string_view function = "AActor.CreateComponent()");
     void DestroyComponent(UActorComponent* component);
     const std::vector<std::unique_ptr<UActorComponent>>& GetComponentList() const { return components_; }
     // The component called `name`, or null.
@@ -153,7 +155,8 @@ class AActor : public UObject {
     std::string GetDebugName() const override;
 
   private:
-    void adoptComponent(std::unique_ptr<UActorComponent> component, std::string name);
+    void adoptComponent(std::unique_ptr<UActorComponent> component, std::string name,
+                        std::string_view function);
     // A component's BeginPlay()/EndPlay(), and the world's subsystems told of it.
     void beginComponentPlay(UActorComponent& component);
     void endComponentPlay(UActorComponent& component);
