@@ -7,8 +7,9 @@ quality, over the pixels that show geometry (depth > 0):
   - SSIM of final_color (scikit-image, Debian's python3-skimage);
   - crushed pixels (every channel below 8/255) in raster and in the reference;
 and, once per scene, the path tracer's relative RMSE at 64 spp against the reference, raw and denoised
-(bPathTracingEnableDenoiser), and the rasteriser's aliasing with each AntiAliasingMethod: the mean and
-99th-percentile difference of final_color against the same view supersampled 4 x 4.
+(bPathTracingEnableDenoiser), and the rasteriser's aliasing with each AntiAliasingMethod, and with
+SpatialSampleCount 4, 8 and 16 (supersampling): the mean and 99th-percentile difference of
+final_color against the same view supersampled 4 x 4.
 
     PYTHONPATH=python /usr/bin/python3 bench/bench_image_quality.py [--width 320 --height 240]
         [--reference 1024] [--qualities Off,Medium] [--scenes apartment,yard,closed_room,sky_yard,park_yard] [--out out/iq]
@@ -27,6 +28,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 import spear
+
+# The anti-aliasing settings whose aliasing is measured: label, AntiAliasingMethod, SpatialSampleCount.
+ALIASING_SETTINGS = [(m.name, m, 1) for m in spear.EAntiAliasingMethod] + [
+    (f"SpatialSampleCount {n}", spear.EAntiAliasingMethod.AAM_None, n) for n in (4, 8, 16)]
 
 ROOT = Path(__file__).resolve().parent.parent
 APARTMENT = ROOT / "assets" / "scenes" / "apartment.json"
@@ -161,8 +166,8 @@ class Scene:
         return pixels["final_color"], pixels["depth"]
 
     def aliasing(self, quality: spear.EGlobalIlluminationQuality) -> dict[str, tuple[float, float]]:
-        """final_color, with each anti-aliasing method, against the same view rendered 4 x 4 times larger without
-        any and averaged down (in linear light): the mean and 99th-percentile difference over all pixels, in
+        """final_color, with each anti-aliasing method (ALIASING_SETTINGS), against the same view rendered 4 x 4 times
+        larger without any and averaged down (in linear light): the mean and 99th-percentile difference over all pixels, in
         8-bit steps."""
         camera = self.cameras[quality]
         with self.instance.begin_frame():
@@ -176,16 +181,18 @@ class Scene:
         encoded = np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1 / 2.4) - 0.055)
         reference = np.round(255.0 * np.clip(encoded, 0.0, 1.0))
         result: dict[str, tuple[float, float]] = {}
-        for method in spear.EAntiAliasingMethod:
+        for label, method, samples in ALIASING_SETTINGS:
             with self.instance.begin_frame():
                 camera.AntiAliasingMethod = method
+                camera.SpatialSampleCount = samples
             with self.instance.end_frame():
                 pass
             color, _ = self.raster(camera)
             difference = np.abs(color[..., :3].astype(np.float64) - reference)
-            result[method.name] = (float(difference.mean()), float(np.percentile(difference, 99)))
+            result[label] = (float(difference.mean()), float(np.percentile(difference, 99)))
         with self.instance.begin_frame():
             camera.AntiAliasingMethod = default
+            camera.SpatialSampleCount = 1
             large.Modalities = []
         with self.instance.end_frame():
             pass
@@ -289,7 +296,7 @@ def main() -> None:
     for n, raw, filtered in noise:
         print(f"| {n} | {raw:.3f} | {filtered:.3f} |")
     print()
-    methods = [m.name for m in spear.EAntiAliasingMethod]
+    methods = [label for label, _, _ in ALIASING_SETTINGS]
     print("| scene | " + " | ".join(f"{m}: mean / p99 (/255)" for m in methods) + " |")
     print("|---|" + "---:|" * len(methods))
     for n, by_method in aliasing:

@@ -1,10 +1,12 @@
 """One view with each anti-aliasing method beside a supersampled one: what AntiAliasingMethod does to edges.
 
-Thin posts, a slanted box and a fence against a bright sky, seen by four cameras at one pose: AAM_None, AAM_FXAA
-(the default), AAM_MSAA (MSAASampleCount 4) and, as the reference, AAM_None rendered 4 x 4 times larger and
-averaged down in linear light. It writes a sheet of the four (each crop magnified so that the pixels show) and
-prints each method's mean and 99th-percentile difference from the reference, in 8-bit steps. Depth and ids
-are the same under every method: only the colour is anti-aliased.
+Thin posts, a slanted box and a fence against a bright sky, seen by six cameras at one pose: AAM_None, AAM_FXAA
+(the default), AAM_MSAA (MSAASampleCount 4), SpatialSampleCount 4 and 16 (supersampling: that many passes, each
+pixel sampling another point of its square) and, as the reference, AAM_None rendered 17 x 17 times larger and
+averaged down in linear light (finer than any method's samples, and sharing none of their points: a 4 x 4
+reference holds MSAA's four points and would favour it). It writes a sheet of the six (each crop magnified so
+that the pixels show) and prints each method's mean and 99th-percentile difference from the reference, in
+8-bit steps. Depth and ids are the same under every method: only the colour is anti-aliased.
 
     PYTHONPATH=python /usr/bin/python3 examples/anti_aliasing.py [--out out/anti_aliasing.png]
         [--width 320 --height 240] [--server launch]
@@ -25,6 +27,8 @@ from PIL import Image, ImageDraw  # type: ignore[import]  # Debian ships no Pill
 import spear
 
 A = spear.EAntiAliasingMethod
+# The reference is the view rendered this many times larger along each axis and averaged down.
+REFERENCE_GRID = 17
 
 
 def scene(game: spear.UWorld) -> None:
@@ -49,8 +53,8 @@ def scene(game: spear.UWorld) -> None:
         actor.StaticMeshComponent.SetMaterial(ElementIndex=0, Material=material)
 
 
-def camera(game: spear.UWorld, name: str, width: int, height: int, method: spear.EAntiAliasingMethod
-           ) -> spear.UCameraSensorComponent:
+def camera(game: spear.UWorld, name: str, width: int, height: int, method: spear.EAntiAliasingMethod,
+           spatial_samples: int = 1) -> spear.UCameraSensorComponent:
     sensor = game.spawn_actor(uclass=spear.ACameraSensorActor, name=name, location=spear.FVector(-1.6, -3.6, 1.3),
                               rotation=spear.FRotator(Pitch=-6.0, Yaw=55.0)).CameraSensor
     sensor.Width, sensor.Height, sensor.FOV = width, height, 60.0
@@ -58,6 +62,7 @@ def camera(game: spear.UWorld, name: str, width: int, height: int, method: spear
     sensor.Modalities = [spear.ECameraModality.FinalColor, spear.ECameraModality.ObjectIds]
     sensor.AntiAliasingMethod = method
     sensor.MSAASampleCount = 4
+    sensor.SpatialSampleCount = spatial_samples
     return sensor
 
 
@@ -82,27 +87,30 @@ def main() -> None:
     args = parser.parse_args()
     width, height = args.width, args.height
 
-    methods = [A.AAM_None, A.AAM_FXAA, A.AAM_MSAA]
+    settings = [("AAM_None", A.AAM_None, 1), ("AAM_FXAA", A.AAM_FXAA, 1), ("AAM_MSAA", A.AAM_MSAA, 1),
+                ("SpatialSampleCount 4", A.AAM_None, 4), ("SpatialSampleCount 16", A.AAM_None, 16)]
+    n = REFERENCE_GRID
     with spear.Instance(server=args.server) as instance:
         game = instance.get_game()
         with instance.begin_frame():
             scene(game)
-            cameras = [camera(game, method.name, width, height, method) for method in methods]
-            large = camera(game, "Supersampled", 4 * width, 4 * height, A.AAM_None)
+            cameras = [camera(game, f"Camera{i}", width, height, method, samples)
+                       for i, (_, method, samples) in enumerate(settings)]
+            large = camera(game, "Supersampled", n * width, n * height, A.AAM_None)
         with instance.end_frame():
             pixels = [c.read_pixels() for c in cameras]
             big = large.read_pixels()
     assert "final_color" in big and "object_ids" in pixels[0]
-    reference = encode(linear(big["final_color"]).reshape(height, 4, width, 4, 3).mean(axis=(1, 3)))
+    reference = encode(linear(big["final_color"]).reshape(height, n, width, n, 3).mean(axis=(1, 3)))
     plain_ids = pixels[0]["object_ids"]
     images: list[NDArray[np.uint8]] = []
-    for method, p in zip(methods, pixels):
+    for (label, _, _), p in zip(settings, pixels):
         assert "final_color" in p and "object_ids" in p
         color = p["final_color"][..., :3]
         difference = np.abs(color.astype(np.float64) - reference.astype(np.float64))
         same_ids = np.array_equal(p["object_ids"], plain_ids)
-        print(f"{method.name:9s} mean {difference.mean():.2f}, 99th percentile {np.percentile(difference, 99):.1f} "
-              f"(/255, against 4x4 supersampled); ids as without anti-aliasing: {same_ids}")
+        print(f"{label:20s} mean {difference.mean():.2f}, 99th percentile {np.percentile(difference, 99):.1f} "
+              f"(/255, against {n}x{n} supersampled); ids as without anti-aliasing: {same_ids}")
         images.append(np.ascontiguousarray(color))
     images.append(reference)
 
@@ -110,9 +118,9 @@ def main() -> None:
     crop = (slice(height // 3, 2 * height // 3), slice(width // 3, 2 * width // 3))
     zoom = 3
     tile_w, tile_h = (width // 3) * zoom, (height // 3) * zoom
-    sheet = Image.new("RGB", (4 * tile_w, tile_h))
+    sheet = Image.new("RGB", (len(images) * tile_w, tile_h))
     draw = ImageDraw.Draw(sheet)
-    for i, (image, label) in enumerate(zip(images, [m.name for m in methods] + ["4x4 supersampled"])):
+    for i, (image, label) in enumerate(zip(images, [label for label, _, _ in settings] + [f"{n}x{n} supersampled"])):
         tile = Image.fromarray(np.ascontiguousarray(image[crop])).resize((tile_w, tile_h), Image.NEAREST)
         sheet.paste(tile, (i * tile_w, 0))
         draw.text((i * tile_w + 6, 4), label, fill=(255, 255, 255))

@@ -5,6 +5,7 @@
 // +Z is up (ROS REP-103 body frame); `pose` maps camera to world. Depth is the distance along +X.
 
 #include <array>
+#include <span>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -53,6 +54,14 @@ struct CameraParams {
     // Samples a pixel with AntiAliasing::Msaa: 2, 4 or 8 (at most what the device offers:
     // Renderer::maxSamples(), 4 on llvmpipe).
     int msaaSamples = 4;
+    // Spatial samples of the shaded modalities: 1 (none), 2, 4, 8 or 16. The shaded targets are drawn that
+    // many times, each time with every pixel sampling the scene at another point of its square
+    // (spatialSamplePattern()), and averaged (final_color in linear light): supersampling, which filters what
+    // multisampling cannot (shading, specular highlights, shadow edges, texture detail). Above 1 it stands in
+    // for Msaa's coverage samples (each moved pass multisampled would widen a pixel's footprint past its
+    // square); FXAA still filters the averaged image. The exact modalities are drawn apart: one value a
+    // pixel, at its centre (PassSet::spatialSamples).
+    int spatialSamples = 1;
 
     void validate(const char* function) const;
 };
@@ -63,6 +72,10 @@ std::string toneMapName(ToneMap toneMap);
 struct Camera {
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity(); // camera-to-world
     CameraParams params;
+    // Where in its square each pixel samples the scene, in pixels right and down from its centre (each in
+    // (-0.5, 0.5)): moves the projection (projectionMatrix()) by that much. Zero but for the renderer's
+    // spatial samples.
+    Eigen::Vector2d subpixelOffset = Eigen::Vector2d::Zero();
 
     // World-to-GL-eye matrix (GL eye looks along -Z with +Y up).
     Eigen::Matrix4d viewMatrix() const;
@@ -77,5 +90,11 @@ struct Camera {
     // and returns its depth along the optical axis.
     Eigen::Vector3d project(const Eigen::Vector3d& world) const;
 };
+
+// The points each pixel samples with CameraParams::spatialSamples `count` (1, 2, 4, 8 or 16), right and down
+// from its centre in pixels: the centre for 1; else one sample in each row and each column of a count x count
+// grid (edges near the horizontal and the vertical are resolved in count steps), spread over the square
+// (camera.cpp says which patterns).
+std::span<const Eigen::Vector2d> spatialSamplePattern(int count);
 
 } // namespace sp::render

@@ -72,8 +72,26 @@ void Framebuffers::releaseMultisampled() {
     samples = 1;
 }
 
+void Framebuffers::releaseSampleLayers() {
+    spatialSampled_.reset();
+    if (sampledTargets_ == 0)
+        return;
+    glDeleteTextures(GLsizei(sampleLayers_.size()), sampleLayers_.data());
+    sampleLayers_.fill(0);
+    sampledTargets_ = 0;
+    sampleCount_ = 0;
+}
+
+void Framebuffers::copySample(int sample) const {
+    for (std::size_t t = 0; t < kTargetCount; ++t)
+        if ((sampledTargets_ & (TargetMask(1) << t)) != 0)
+            glCopyImageSubData(spatialSampled_->texture(static_cast<Target>(t)), GL_TEXTURE_2D, 0, 0, 0, 0,
+                               sampleLayers_[t], GL_TEXTURE_2D_ARRAY, 0, 0, 0, sample, width, height, 1);
+}
+
 void Framebuffers::release() {
     releaseMultisampled();
+    releaseSampleLayers();
     if (surfaceFbo == 0 && attributeFbo == 0 && depthBuffer_ == 0)
         return; // nothing allocated: no GL call, so a never-used target needs no context
     glDeleteFramebuffers(1, &surfaceFbo);
@@ -134,6 +152,24 @@ void Framebuffers::ensure(int w, int h, const PassSet& passes, int layerCount) {
         // array.
         depthBuffer_ = makeTexture(GL_DEPTH_COMPONENT32F, w, h, layers);
         changed = true;
+    }
+    if (passes.spatialSamples > 1) {
+        SP_CHECK(layers == 0, InvalidArgument,
+                 "Framebuffers::ensure(): spatially sampled targets cannot be layered");
+        if (sampledTargets_ != passes.surfaceTargets || sampleCount_ != passes.spatialSamples) {
+            releaseSampleLayers();
+            for (std::size_t t = 0; t < kTargetCount; ++t)
+                if ((passes.surfaceTargets & (TargetMask(1) << t)) != 0)
+                    sampleLayers_[t] =
+                        makeTexture(formatOf(static_cast<Target>(t), false), w, h, passes.spatialSamples);
+            sampledTargets_ = passes.surfaceTargets;
+            sampleCount_ = passes.spatialSamples;
+        }
+        if (!spatialSampled_)
+            spatialSampled_ = std::make_unique<Framebuffers>();
+        spatialSampled_->ensure(w, h, spatialSampleSurface(passes));
+    } else {
+        releaseSampleLayers();
     }
     ensureMultisampled(passes);
     if (!changed)

@@ -6,9 +6,13 @@
 // and format fit. With layers, every texture is an array of that many layers and the framebuffers are
 // layered: each view drawn into them picks its layer (gl_Layer), as the views sharing a page of
 // FramebufferAtlas do. With multisampling (PassSet::samples > 1; never layered), the shaded targets also
-// have multisampled copies, drawn by the surface pass and resolved into them. Needs a current context.
+// have multisampled copies, drawn by the surface pass and resolved into them. With spatial samples
+// (PassSet::spatialSamples > 1; never layered), they have framebuffers of their own that each sample's pass
+// draws (spatialSampleSurface()), and arrays of a layer a sample that each pass is copied into and that are
+// averaged into them. Needs a current context.
 
 #include <array>
+#include <memory>
 
 #include "core/render/modality.h"
 
@@ -53,6 +57,14 @@ class Framebuffers {
     unsigned multisampleFbo = 0;
     int samples = 1;
 
+    // With PassSet::spatialSamples > 1: the framebuffers one spatial sample's pass draws the shaded targets
+    // in (see spatialSampleSurface()), else null; and the array of a shaded target's samples, a layer each
+    // (copied by copySample()), else 0.
+    Framebuffers* spatialSampled() const { return spatialSampled_.get(); }
+    unsigned sampleLayers(Target target) const { return sampleLayers_[static_cast<std::size_t>(target)]; }
+    // Copies what spatialSampled() holds of every shaded target into layer `sample` of sampleLayers().
+    void copySample(int sample) const;
+
   private:
     void release();
     void releaseMultisampled();
@@ -68,6 +80,11 @@ class Framebuffers {
     TargetMask multisampledTargets_ = 0;
     TargetMask surfaceTargets_ = 0;
     TargetMask attributeTargets_ = 0;
+    void releaseSampleLayers();
+    std::unique_ptr<Framebuffers> spatialSampled_;
+    std::array<unsigned, kTargetCount> sampleLayers_{};
+    TargetMask sampledTargets_ = 0;
+    int sampleCount_ = 0;
 };
 
 } // namespace sp::render

@@ -278,4 +278,22 @@ PassSet multisampled(PassSet passes, int samples) {
     return passes;
 }
 
+PassSet spatiallySampled(PassSet passes, int count) {
+    if (count <= 1 || !passes.lighting)
+        return passes;
+    const TargetMask all = passes.surfaceTargets | passes.attributeTargets;
+    passes.surfaceTargets = all & kShadedTargets;
+    passes.attributeTargets = all & ~kShadedTargets;
+    passes.compactTargets = false;
+    passes.samples = 1; // see PassSet::spatialSamples
+    passes.spatialSamples = count;
+    return passes;
+}
+
+PassSet spatialSampleSurface(PassSet passes) {
+    passes.attributeTargets = 0;
+    passes.spatialSamples = 1;
+    return passes;
+}
+
 } // namespace sp::render

@@ -133,6 +133,14 @@ struct PassSet {
     // into them, and the attribute pass draws the other targets single-sampled with a depth buffer of its
     // own: the exact modalities stay one value a pixel, the surface at its centre.
     int samples = 1;
+    // Spatial samples a pixel of the shaded targets (1: none; spatiallySampled():
+    // CameraParams::spatialSamples). Above 1, the surface pass of spatialSampleSurface(*this) draws the
+    // shaded targets once for each sample, with the pixels moved by its offset, into
+    // Framebuffers::spatialSampled(), each copied into its layer of Framebuffers::sampleLayers(), which are
+    // averaged into these; the attribute pass draws the other targets as with samples above 1. Never with
+    // samples above 1: the coverage samples of each moved pass would add their offsets to the sample's and
+    // widen a pixel's footprint past its square (blurring it).
+    int spatialSamples = 1;
 
     bool operator==(const PassSet&) const = default;
     // Whether the surface pass writes Target::GBuffer (and, with room for it, Target::GBufferMaterial for
@@ -145,6 +153,13 @@ struct PassSet {
 // surface pass, the others in the attribute pass, in float targets (a multisampled resolve averages floats).
 // Passes that shade nothing, or samples of 1, are returned as they are.
 PassSet multisampled(PassSet passes, int samples);
+// `passes` with their shaded targets drawn with `count` spatial samples a pixel (see
+// PassSet::spatialSamples): split as multisampled() splits them. Passes that shade nothing, or a count of 1,
+// are returned as they are.
+PassSet spatiallySampled(PassSet passes, int count);
+// The passes that draw one spatial sample of a spatially sampled PassSet's shaded targets: its surface pass,
+// shading only those targets, no attribute pass.
+PassSet spatialSampleSurface(PassSet passes);
 
 // What a compact normal target holds where no surface is: outside the octahedral square [-1, 1]^2.
 inline constexpr float kNoOctahedralNormal = 2.0f;

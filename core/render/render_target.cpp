@@ -192,11 +192,15 @@ std::vector<std::uint64_t> RenderTarget::submitAll(std::span<const Submission> s
             uniform.remove(Modality::BaseColor);
         if (textured.roughnessMetallic)
             uniform.remove(Modality::Roughness).remove(Modality::Metallic).remove(Modality::MaterialAo);
-        // Multisampled, every modality is drawn (none computed on the CPU from others: diffuse_only from the
-        // exact base colour and the averaged illumination would not be the average of the samples' products).
-        const bool msaa = s.camera->params.antiAliasing == AntiAliasing::Msaa;
-        plan = planModalities(s.target->modalities_, renderer.derivesOnCpu() && !msaa, uniform);
-        plan.compactTargets = renderer.compactTargets() && !msaa;
+        // Multisampled or spatially sampled, every modality is drawn (none computed on the CPU from others:
+        // diffuse_only from the exact base colour and the averaged illumination would not be the average of
+        // the samples' products).
+        // (Spatial samples stand in for MSAA's coverage samples: CameraParams::spatialSamples.)
+        const bool msaa =
+            s.camera->params.antiAliasing == AntiAliasing::Msaa && s.camera->params.spatialSamples == 1;
+        const bool averaged = msaa || s.camera->params.spatialSamples > 1;
+        plan = planModalities(s.target->modalities_, renderer.derivesOnCpu() && !averaged, uniform);
+        plan.compactTargets = renderer.compactTargets() && !averaged;
         passes.push_back(plan.rendered.requiredPasses(s.camera->params.shadows));
         passes.back().compactTargets = plan.compactTargets;
         if (!plan.lookedUp.empty()) { // planned to fit the surface pass
@@ -206,8 +210,10 @@ std::vector<std::uint64_t> RenderTarget::submitAll(std::span<const Submission> s
         if (msaa)
             passes.back() =
                 multisampled(passes.back(), std::min(s.camera->params.msaaSamples, renderer.maxSamples()));
+        passes.back() = spatiallySampled(passes.back(), s.camera->params.spatialSamples);
         const int width = s.camera->params.width, height = s.camera->params.height;
-        if (passes.back().samples == 1 && renderer.atlas().suits(width, height)) {
+        if (passes.back().samples == 1 && passes.back().spatialSamples == 1 &&
+            renderer.atlas().suits(width, height)) {
             renderer.atlas().acquire(s.target, width, height, passes.back());
             s.target->framebuffers_.reset();
         } else {

@@ -411,6 +411,11 @@ void Renderer::renderView(const View& view) {
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
 
+    // With spatial samples (PassSet::spatialSamples), the shaded targets are drawn once a sample, the pixels
+    // moved to its point, into framebuffers of their own, and averaged into these; the exact targets after,
+    // unmoved.
+    const bool sampled = passes.spatialSamples > 1;
+
     std::vector<ShadowInfo> shadowInfos;
     if (passes.shadow)
         shadowInfos = active_->shadowMaps->infos();
@@ -445,9 +450,12 @@ void Renderer::renderView(const View& view) {
         uploadFrameBlock(scene, camera, shadowInfos, shaded);
     }
     if (passes.surface) {
-        // Where no shadow can fall, the shading programs skip the lookups (see shadow_reach.h).
+        // Where no shadow can fall, the shading programs skip the lookups (see shadow_reach.h); not with
+        // spatial samples, whose pixels are not where the rectangles were found. (The frustum culls for the
+        // pixels unmoved: a sample sees at most half a pixel past the image's edge, through its outer
+        // pixels.)
         std::optional<ShadowReceivers> receivers;
-        if (shadowReach_ && passes.lighting && !shadowInfos.empty())
+        if (shadowReach_ && passes.lighting && !shadowInfos.empty() && !sampled)
             receivers.emplace(scene, camera, fb.width, fb.height, shadowInfos);
         const std::vector<Draw> draws = visibleDraws(scene, camera, receivers ? &*receivers : nullptr);
         // The triangles drawn are counted only where there are slots to spend (not on a GPU).
@@ -458,7 +466,19 @@ void Renderer::renderView(const View& view) {
         viewConstantSlots_ = viewConstantSlots(triangles, std::uint64_t(fb.width) * std::uint64_t(fb.height));
         lights.constantSlots = viewConstantSlots_;
         active_->stats.constantSlotPasses += viewConstantSlots_ > 0 ? 1 : 0;
-        surfacePass(scene, camera, passes, lights, draws, cache, fb);
+        if (sampled) {
+            const PassSet samplePasses = spatialSampleSurface(passes);
+            const std::span<const Eigen::Vector2d> pattern = spatialSamplePattern(passes.spatialSamples);
+            Camera moved = camera;
+            for (int sample = 0; sample < passes.spatialSamples; ++sample) {
+                moved.subpixelOffset = pattern[std::size_t(sample)];
+                surfacePass(scene, moved, samplePasses, lights, draws, cache, *fb.spatialSampled());
+                fb.copySample(sample);
+            }
+            resolveSamples(passes, fb);
+        } else {
+            surfacePass(scene, camera, passes, lights, draws, cache, fb);
+        }
         if (passes.attributeTargets != 0)
             attributePass(scene, camera, passes, draws, cache, fb);
     }
@@ -674,19 +694,24 @@ void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassS
 }
 
 void Renderer::resolveSamples(const PassSet& passes, const Framebuffers& fb) {
+    const int layers = passes.spatialSamples;
     auto& program =
-        programs_["resolve/" + std::to_string(passes.surfaceTargets) + "/" + std::to_string(passes.samples)];
+        programs_["resolve/" + std::to_string(passes.surfaceTargets) + "/" +
+                  (layers > 1 ? "layers " + std::to_string(layers) : std::to_string(passes.samples))];
     if (!program)
         program = std::make_unique<ShaderProgram>(
             "resolve", shaders::backgroundVertex(false).c_str(),
-            shaders::resolveFragment(passes.surfaceTargets, passes.samples).c_str());
+            shaders::resolveFragment(passes.surfaceTargets, passes.samples, layers).c_str());
     program->use();
     int unit = 0;
     for (std::size_t t = 0; t < kTargetCount; ++t)
-        if ((passes.surfaceTargets & (TargetMask(1) << t)) != 0)
+        if ((passes.surfaceTargets & (TargetMask(1) << t)) != 0) {
+            const Target target = static_cast<Target>(t);
             glBindTextureUnit(GLuint(shaders::kResolveTextureUnit + unit++),
-                              fb.multisampleTexture(static_cast<Target>(t)));
+                              layers > 1 ? fb.sampleLayers(target) : fb.multisampleTexture(target));
+        }
     glBindFramebuffer(GL_FRAMEBUFFER, fb.surfaceFbo);
+    glViewport(0, 0, fb.width, fb.height);
     glDisable(GL_DEPTH_TEST);
     glBindVertexArray(emptyVao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -770,9 +795,9 @@ void Renderer::attributePass(const Scene& scene, const Camera& camera, const Pas
                              const std::vector<Draw>& draws, GpuSceneCache& cache, Framebuffers& fb) {
     shaders::ShadingLayout constantsOnly; // no shading: the camera position alone
     constantsOnly.constantSlots = viewConstantSlots_;
-    if (passes.samples > 1) {
-        // The surface pass drew multisampled: the exact targets are drawn as a surface pass that shades
-        // nothing draws them, with the single-sampled depth buffer.
+    if (passes.samples > 1 || passes.spatialSamples > 1) {
+        // The surface pass drew multisampled or moved: the exact targets are drawn as a surface pass that
+        // shades nothing draws them, with a single-sampled depth buffer of their own.
         beginPass(Pass::Attribute, fb.attributeFbo, fb, GL_LESS, true);
         clearTargets(scene, camera, passes.attributeTargets, true);
         drawAll(scene, camera, draws, passes.attributeTargets, false, constantsOnly, cache);
@@ -1131,7 +1156,8 @@ void Renderer::planComputeLighting(PassSet& passes) const {
     // float16 rounding) and has a draw buffer left for the G-buffer.
     // Its image stores write float formats: not into compact targets.
     if (!computeLighting_ || passes.compactTargets || !passes.lighting || passes.attributeTargets != 0 ||
-        passes.samples > 1 || (passes.surfaceTargets & kShadedTargets & ~kComputeLit) != 0 ||
+        passes.samples > 1 || passes.spatialSamples > 1 ||
+        (passes.surfaceTargets & kShadedTargets & ~kComputeLit) != 0 ||
         std::popcount(passes.surfaceTargets) + 1 > kMaxDrawTargets)
         return;
     passes.surfaceTargets |= targetBit(Target::GBuffer);

@@ -275,8 +275,9 @@ class Renderer {
                      GpuSceneCache& cache, Framebuffers& fb);
     void attributePass(const Scene& scene, const Camera& camera, const PassSet& passes,
                        const std::vector<Draw>& draws, GpuSceneCache& cache, Framebuffers& fb);
-    // Averages the multisampled copies of the shaded targets into them (PassSet::samples > 1): final_color in
-    // linear light, the others as they are.
+    // Averages the multisampled copies of the shaded targets into them (PassSet::samples > 1), or their
+    // spatial samples (PassSet::spatialSamples > 1: the layers of Framebuffers::sampleLayers()):
+    // final_color in linear light, the others as they are.
     void resolveSamples(const PassSet& passes, const Framebuffers& fb);
     // Starts timing `pass` and binds `fbo` at the framebuffers' size with the given depth test and writes.
     void beginPass(Pass pass, unsigned fbo, const Framebuffers& fb, unsigned depthFunc, bool depthWrite);

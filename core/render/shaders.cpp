@@ -440,7 +440,7 @@ void rectLight(Surface s, vec3 c, vec3 ex, vec3 ey, vec3 radiance, inout vec3 ir
 // PIXEL_CENTRE is the pixel's window position (gl_FragCoord.xy unless a compute pass defines it).
 // The sRGB OETF; above the linear segment, 1.055 c^(1/2.4) - 0.055 is fitted with square roots (within
 // 0.25 of one 8-bit step), which cost a software rasteriser far less than pow(). Used by the tone curve and
-// the multisampled resolve, so that both encode final_color alike.
+// the background passes (the resolve encodes exactly: resolveFragment()).
 const char* const kSrgbEncodeChunk = R"glsl(
 vec3 srgbEncode(vec3 c) {
     c = clamp(c, 0.0, 1.0);
@@ -1145,19 +1145,32 @@ std::string environmentBackgroundFragment(TargetMask targets, ToneMap toneMap, b
            " }\n";
 }
 
-std::string resolveFragment(TargetMask targets, int samples) {
-    std::string text = "#version 450 core\n#define SAMPLES " + std::to_string(samples) + "\n";
-    text += kSrgbEncodeChunk;
+std::string resolveFragment(TargetMask targets, int samples, int layers) {
+    // FETCH(s, p, i): the i-th of the pixel's SAMPLES samples.
+    std::string text = "#version 450 core\n";
+    if (layers > 1)
+        text += "#define SAMPLES " + std::to_string(layers) +
+                "\n#define SAMPLER sampler2DArray\n#define FETCH(s, p, i) texelFetch(s, ivec3(p, i), 0)\n";
+    else
+        text += "#define SAMPLES " + std::to_string(samples) +
+                "\n#define SAMPLER sampler2DMS\n#define FETCH(s, p, i) texelFetch(s, p, i)\n";
+    // The exact curves both ways, not the shading's fitted encode: a resolve of resolves (spatial samples
+    // each multisampled) would otherwise add the fit's bias (up to a quarter step) at each, and one pass a
+    // frame pays little for pow().
     text += R"glsl(
 vec3 srgbToLinear(vec3 c) {
     return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
+}
+vec3 srgbEncode(vec3 c) {
+    c = clamp(c, 0.0, 1.0);
+    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
 }
 )glsl";
     int unit = 0;
     for (std::size_t t = 0; t < kTargetCount; ++t)
         if ((targets & (TargetMask(1) << t)) != 0) {
             text += "layout(binding = " + std::to_string(kResolveTextureUnit + unit) +
-                    ") uniform sampler2DMS uS" + std::to_string(unit) + ";\n";
+                    ") uniform SAMPLER uS" + std::to_string(unit) + ";\n";
             ++unit;
         }
     const auto [declarations, body] =
@@ -1168,16 +1181,16 @@ vec3 srgbToLinear(vec3 c) {
             return "average(" + sampler + ", p)";
         });
     text += R"glsl(
-vec4 average(sampler2DMS s, ivec2 p) {
+vec4 average(SAMPLER s, ivec2 p) {
     vec4 sum = vec4(0.0);
     for (int i = 0; i < SAMPLES; ++i)
-        sum += texelFetch(s, p, i);
+        sum += FETCH(s, p, i);
     return sum / float(SAMPLES);
 }
-vec4 finalAverage(sampler2DMS s, ivec2 p) {
+vec4 finalAverage(SAMPLER s, ivec2 p) {
     vec3 sum = vec3(0.0);
     for (int i = 0; i < SAMPLES; ++i)
-        sum += srgbToLinear(texelFetch(s, p, i).rgb);
+        sum += srgbToLinear(FETCH(s, p, i).rgb);
     return vec4(srgbEncode(sum / float(SAMPLES)), 1.0);
 }
 )glsl";

@@ -148,9 +148,10 @@ std::string environmentBackgroundFragment(TargetMask targets, ToneMap toneMap, b
 // The resolve of multisampled shaded targets (PassSet::samples > 1): the average of each pixel's `samples`
 // samples of each of `targets` (read from texture units kResolveTextureUnit + i, in Target order) into the
 // same location; final_color's samples are averaged in linear light, as a camera's pixel (and a supersampled
-// view) averages light, and encoded again.
+// view) averages light, and encoded again. With `layers` above 1, the samples are the layers of 2D array
+// textures instead (PassSet::spatialSamples), and `samples` is ignored.
 inline constexpr int kResolveTextureUnit = 16;
-std::string resolveFragment(TargetMask targets, int samples);
+std::string resolveFragment(TargetMask targets, int samples, int layers = 1);
 // Writes uClear[i] into the i-th of `targets` (in Target order; zero into the ids target): a clear of one
 // view's layer of shared framebuffers, drawn with backgroundVertex(true) (see Renderer::clearTargets).
 std::string clearFragment(TargetMask targets, bool compact = false);

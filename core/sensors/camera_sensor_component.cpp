@@ -197,6 +197,14 @@ void UCameraSensorComponent::SetMSAASampleCount(int32_t NewMSAASampleCount) {
     MSAASampleCount = NewMSAASampleCount;
 }
 
+void UCameraSensorComponent::SetSpatialSampleCount(int32_t NewSpatialSampleCount) {
+    const bool ok = NewSpatialSampleCount == 1 || NewSpatialSampleCount == 2 || NewSpatialSampleCount == 4 ||
+                    NewSpatialSampleCount == 8 || NewSpatialSampleCount == 16;
+    sp::checkSetting(ok, "UCameraSensorComponent", "SpatialSampleCount", "1, 2, 4, 8 or 16",
+                     NewSpatialSampleCount);
+    SpatialSampleCount = NewSpatialSampleCount;
+}
+
 void UCameraSensorComponent::SetVignetteIntensity(float NewVignetteIntensity) {
     sp::checkSetting(NewVignetteIntensity >= 0.0f && NewVignetteIntensity <= 1.0f, "UCameraSensorComponent",
                      "VignetteIntensity", "in [0, 1]", NewVignetteIntensity);

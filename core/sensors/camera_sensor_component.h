@@ -469,6 +469,17 @@ class UCameraSensorComponent : public USceneComponent {
     SPPROPERTY(Setter = SetMSAASampleCount)
     int32_t MSAASampleCount = 4;
 
+    /// Spatial samples a pixel of the rasterised colour (Unreal's Movie Render Queue anti-aliasing setting):
+    /// 1 (none), 2, 4, 8 or 16. final_color, hdr_color and the intrinsic images are drawn that many times,
+    /// each time with every pixel sampling another point of its square, and averaged (final_color in linear
+    /// light): supersampling, which filters shading, highlights, shadow edges and texture detail as well as
+    /// silhouettes. Above 1 it stands in for AAM_MSAA's coverage samples (multisampling each moved pass would
+    /// blur the pixel past its square); AAM_FXAA still filters the averaged image. The exact modalities stay
+    /// one value a pixel, at its centre. A frame costs about that many times as much to shade
+    /// (BENCHMARKS.md); the path tracer takes none (its SamplesPerPixel are spread over the pixel).
+    SPPROPERTY(Setter = SetSpatialSampleCount)
+    int32_t SpatialSampleCount = 1;
+
     /// Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating.
     SPPROPERTY(Setter = SetSamplesPerPixel)
     int32_t SamplesPerPixel = 4;
@@ -597,6 +608,9 @@ class UCameraSensorComponent : public USceneComponent {
     /// Sets MSAASampleCount: 2, 4 or 8.
     SPFUNCTION()
     void SetMSAASampleCount(int32_t NewMSAASampleCount);
+    /// Sets SpatialSampleCount: 1, 2, 4, 8 or 16.
+    SPFUNCTION()
+    void SetSpatialSampleCount(int32_t NewSpatialSampleCount);
 
     /// Sets VignetteIntensity, in [0, 1].
     SPFUNCTION()

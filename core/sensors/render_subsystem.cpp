@@ -83,6 +83,8 @@ sp::render::CameraParams cameraParams(const UCameraSensorComponent& camera, int 
                                   ? sp::render::AntiAliasing::Fxaa
                                   : sp::render::AntiAliasing::Msaa;
     params.msaaSamples = camera.MSAASampleCount;
+    if (camera.Renderer == ECameraRenderer::Raster)
+        params.spatialSamples = camera.SpatialSampleCount;
     return params;
 }
 
@@ -459,6 +461,7 @@ double RenderSubsystem::meterView(const UCameraSensorComponent& camera,
         view.params.width = 128;
     }
     view.params.antiAliasing = sp::render::AntiAliasing::None;
+    view.params.spatialSamples = 1;
     const sp::render::ModalitySet hdr{sp::render::Modality::HdrColor};
     if (!state.meterTarget)
         state.meterTarget = std::make_unique<sp::render::RenderTarget>(*gl_->renderer, hdr, 0);

@@ -1,6 +1,6 @@
 """Anti-aliasing of final_color (UCameraSensorComponent.AntiAliasingMethod): FXAA by default and MSAA, each
-closer to a supersampled view than no anti-aliasing, the exact modalities untouched, and bad settings refused;
-both transports."""
+closer to a supersampled view than no anti-aliasing; SpatialSampleCount (supersampling) closer still; the
+exact modalities untouched, and bad settings refused; both transports."""
 
 from __future__ import annotations
 
@@ -87,6 +87,33 @@ def test_msaa_comes_closest_to_a_supersampled_view(instance: spear.Instance) -> 
     assert msaa["hdr_color"].dtype == np.float16 and msaa["hdr_color"].shape == (64, 96, 4)
 
 
+def test_spatial_samples_come_closest_to_a_supersampled_view(instance: spear.Instance) -> None:
+    """Against the view 17 x 17 times larger averaged down: finer than any pattern, and sharing none of their
+    points (a 4 x 4 grid holds MSAA's four and would favour it)."""
+    game = instance.get_game()
+    with instance.begin_frame():
+        _scene(game)
+        cameras = {n: _camera(game, f"Sampled{n}", 1, A.AAM_None) for n in (1, 4, 16)}
+        for n, camera in cameras.items():
+            camera.SpatialSampleCount = n
+        cameras[16].Modalities = [M.FinalColor, M.Depth, M.ObjectIds, M.HdrColor]
+        msaa = _camera(game, "Msaa", 1, A.AAM_MSAA)
+        large = _camera(game, "Large", 17, A.AAM_None)
+        assert cameras[1].SpatialSampleCount == 1
+    with instance.end_frame():
+        pixels = {n: camera.read_pixels() for n, camera in cameras.items()}
+        multisampled, big = msaa.read_pixels(), large.read_pixels()
+    reference = _linear(big["final_color"]).reshape(64, 17, 96, 17, 3).mean(axis=(1, 3))
+    error = {n: float(np.abs(_linear(p["final_color"]) - reference).mean()) for n, p in pixels.items()}
+    error_msaa = float(np.abs(_linear(multisampled["final_color"]) - reference).mean())
+    assert error[16] < error[4] < error_msaa < error[1], (error, error_msaa)
+    assert error[16] < 0.5 * error_msaa, (error, error_msaa)
+    none, ss = pixels[1], pixels[16]
+    assert np.array_equal(ss["object_ids"], none["object_ids"])
+    assert np.array_equal(ss["depth"], none["depth"])
+    assert ss["final_color"].shape == (64, 96, 4) and ss["hdr_color"].shape == (64, 96, 4)
+
+
 def test_bad_settings_are_refused(instance: spear.Instance) -> None:
     with instance.begin_frame():
         camera = _camera(instance.get_game(), "Camera", 1, None)
@@ -96,7 +123,13 @@ def test_bad_settings_are_refused(instance: spear.Instance) -> None:
         with pytest.raises(spear.InvalidArgumentError, match=r"MSAASampleCount must be 2, 4 or 8, got 3"):
             camera.MSAASampleCount = 3
         assert camera.MSAASampleCount == 4
+        with pytest.raises(spear.InvalidArgumentError, match=r"SpatialSampleCount must be 1, 2, 4, 8 or 16, got 3"):
+            camera.SpatialSampleCount = 3
+        with pytest.raises(TypeError, match="SpatialSampleCount"):
+            camera.SpatialSampleCount = 4.0  # type: ignore[assignment]
+        assert camera.SpatialSampleCount == 1
         camera.MSAASampleCount = 8  # more than llvmpipe offers: its most
         camera.AntiAliasingMethod = A.AAM_MSAA
+        camera.SpatialSampleCount = 2  # each sample's pass multisampled
     with instance.end_frame():
         assert camera.read_pixels()["final_color"].shape == (64, 96, 4)

@@ -249,19 +249,22 @@ def test_movie_render_queue_renders_the_camera_move_to_files_and_resumes(transpo
 
 
 @pytest.mark.parametrize("transport", TRANSPORTS)
-def test_anti_aliasing_shows_each_method_and_msaa_comes_closest_to_supersampling(transport: str,
-                                                                                 tmp_path: Path) -> None:
+def test_anti_aliasing_shows_each_method_and_spatial_samples_come_closest(transport: str,
+                                                                                tmp_path: Path) -> None:
     out = tmp_path / "anti_aliasing.png"
     result = run_example("anti_aliasing.py", "--out", str(out), "--width", "160", "--height", "120",
                          *TRANSPORTS[transport])
     assert result.returncode == 0, result.stdout + result.stderr
     found = {m.group(1): (float(m.group(2)), float(m.group(3)), m.group(4)) for m in re.finditer(
-        r"^(AAM_\w+)\s+mean ([0-9.]+), 99th percentile ([0-9.]+) .*without anti-aliasing: (\w+)$", result.stdout,
-        re.MULTILINE)}
-    assert sorted(found) == ["AAM_FXAA", "AAM_MSAA", "AAM_None"], result.stdout
+        r"^(AAM_\w+|SpatialSampleCount \d+)\s+mean ([0-9.]+), 99th percentile ([0-9.]+) .*without anti-aliasing: "
+        r"(\w+)$", result.stdout, re.MULTILINE)}
+    assert sorted(found) == ["AAM_FXAA", "AAM_MSAA", "AAM_None", "SpatialSampleCount 16", "SpatialSampleCount 4"], result.stdout
     assert all(same == "True" for _, _, same in found.values())  # ids untouched
     assert found["AAM_MSAA"][0] < 0.6 * found["AAM_None"][0]
     assert found["AAM_FXAA"][0] < found["AAM_None"][0]
+    four, sixteen = found["SpatialSampleCount 4"], found["SpatialSampleCount 16"]
+    assert sixteen[0] < four[0] < found["AAM_MSAA"][0], result.stdout
+    assert sixteen[1] < found["AAM_MSAA"][1], result.stdout
     assert out.is_file() and out.stat().st_size > 0
 
 

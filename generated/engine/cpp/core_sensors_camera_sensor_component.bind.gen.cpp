@@ -253,6 +253,13 @@ void bind_UCameraSensorComponent(py::module_& m) {
         },
         "Coverage samples a pixel with AAM_MSAA: 2, 4 or 8 (Unreal's r.MSAACount); a device offering fewer\n(llvmpipe: 4) draws its most.");
     cls.def_property(
+        "SpatialSampleCount",
+        [](const Ref<Self>& self) { return Calls::get_SpatialSampleCount<PyCall>(self.get<Self>("UCameraSensorComponent.SpatialSampleCount")); },
+        [](const Ref<Self>& self, const PyArg& value) {
+            Calls::set_SpatialSampleCount<PyCall>(self.get<Self>("UCameraSensorComponent.SpatialSampleCount"), value);
+        },
+        "Spatial samples a pixel of the rasterised colour (Unreal's Movie Render Queue anti-aliasing setting):\n1 (none), 2, 4, 8 or 16. final_color, hdr_color and the intrinsic images are drawn that many times,\neach time with every pixel sampling another point of its square, and averaged (final_color in linear\nlight): supersampling, which filters shading, highlights, shadow edges and texture detail as well as\nsilhouettes. Above 1 it stands in for AAM_MSAA's coverage samples (multisampling each moved pass would\nblur the pixel past its square); AAM_FXAA still filters the averaged image. The exact modalities stay\none value a pixel, at its centre. A frame costs about that many times as much to shade\n(BENCHMARKS.md); the path tracer takes none (its SamplesPerPixel are spread over the pixel).");
+    cls.def_property(
         "SamplesPerPixel",
         [](const Ref<Self>& self) { return Calls::get_SamplesPerPixel<PyCall>(self.get<Self>("UCameraSensorComponent.SamplesPerPixel")); },
         [](const Ref<Self>& self, const PyArg& value) {
@@ -510,6 +517,14 @@ void bind_UCameraSensorComponent(py::module_& m) {
         },
         py::arg("NewMSAASampleCount") = sp::pybind::missingArgument(),
         "SetMSAASampleCount(self, *, NewMSAASampleCount: int) -> None\n\nSets MSAASampleCount: 2, 4 or 8.");
+    cls.def(
+        "SetSpatialSampleCount",
+        [](const Ref<Self>& self, const py::args& positional, const PyArg& NewSpatialSampleCount, const py::kwargs& extra) -> py::object {
+            // The parameters in order; the array lives until the call returns.
+            return Calls::call_SetSpatialSampleCount<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewSpatialSampleCount}, true});
+        },
+        py::arg("NewSpatialSampleCount") = sp::pybind::missingArgument(),
+        "SetSpatialSampleCount(self, *, NewSpatialSampleCount: int) -> None\n\nSets SpatialSampleCount: 1, 2, 4, 8 or 16.");
     cls.def(
         "SetVignetteIntensity",
         [](const Ref<Self>& self, const py::args& positional, const PyArg& NewVignetteIntensity, const py::kwargs& extra) -> py::object {

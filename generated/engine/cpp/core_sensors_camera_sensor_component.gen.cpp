@@ -960,6 +960,16 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
         });
         t.properties.push_back({
+            "SpatialSampleCount",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
+            "Spatial samples a pixel of the rasterised colour (Unreal's Movie Render Queue anti-aliasing setting):\n1 (none), 2, 4, 8 or 16. final_color, hdr_color and the intrinsic images are drawn that many times,\neach time with every pixel sampling another point of its square, and averaged (final_color in linear\nlight): supersampling, which filters shading, highlights, shadow edges and texture detail as well as\nsilhouettes. Above 1 it stands in for AAM_MSAA's coverage samples (multisampling each moved pass would\nblur the pixel past its square); AAM_FXAA still filters the averaged image. The exact modalities stay\none value a pixel, at its centre. A frame costs about that many times as much to shade\n(BENCHMARKS.md); the path tracer takes none (its SamplesPerPixel are spread over the pixel).",
+            false,
+            [](const void* self) { return Calls::get_SpatialSampleCount<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_SpatialSampleCount<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
             "SamplesPerPixel",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating.",
@@ -1314,6 +1324,17 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             false,
             false,
             [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetMSAASampleCount<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "SetSpatialSampleCount",
+            "Sets SpatialSampleCount: 1, 2, 4, 8 or 16.",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"NewSpatialSampleCount", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetSpatialSampleCount<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetVignetteIntensity",

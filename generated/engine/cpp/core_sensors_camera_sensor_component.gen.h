@@ -747,6 +747,15 @@ struct UCameraSensorComponentCalls {
         sp::reflect::notifyPropertyChanged(self, "MSAASampleCount");
     }
 
+    template <typename Call> static typename Call::Result get_SpatialSampleCount(const Self* self) {
+        const auto& value = self->SpatialSampleCount;
+        return Call::template result<int32_t>(value);
+    }
+    template <typename Call> static void set_SpatialSampleCount(Self* self, const typename Call::Input& value) {
+        self->SetSpatialSampleCount(Call::template input<int32_t>(value, "UCameraSensorComponent.SpatialSampleCount"));
+        sp::reflect::notifyPropertyChanged(self, "SpatialSampleCount");
+    }
+
     template <typename Call> static typename Call::Result get_SamplesPerPixel(const Self* self) {
         const auto& value = self->SamplesPerPixel;
         return Call::template result<int32_t>(value);
@@ -1117,6 +1126,18 @@ struct UCameraSensorComponentCalls {
         Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetMSAASampleCount()");
         int32_t NewMSAASampleCountArg = call.template arg<int32_t>(0);
         self->SetMSAASampleCount(NewMSAASampleCountArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetSpatialSampleCount(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewSpatialSampleCount", "UCameraSensorComponent.SetSpatialSampleCount(): argument 'NewSpatialSampleCount'", true},
+        }};
+        const Call call(args, "UCameraSensorComponent.SetSpatialSampleCount()", kParams);
+        Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetSpatialSampleCount()");
+        int32_t NewSpatialSampleCountArg = call.template arg<int32_t>(0);
+        self->SetSpatialSampleCount(NewSpatialSampleCountArg);
         return Call::none();
     }
 

@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "c619418fac582e73";
+inline constexpr char kApiHash[] = "7668cf860f718f41";
 } // namespace sp::generated::engine

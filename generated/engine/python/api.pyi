@@ -2945,6 +2945,8 @@ class UCameraSensorComponentAsync(USceneComponentAsync):
 
     def SetMSAASampleCount(self, *, NewMSAASampleCount: int) -> Future[None]: ...
 
+    def SetSpatialSampleCount(self, *, NewSpatialSampleCount: int) -> Future[None]: ...
+
     def SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> Future[None]: ...
 
     def SetWhiteBalanceTemperature(self, *, NewWhiteBalanceTemperature: float) -> Future[None]: ...
@@ -3046,6 +3048,8 @@ class UCameraSensorComponentSend(USceneComponentSend):
     def SetFocusDistance(self, *, NewFocusDistance: float) -> None: ...
 
     def SetMSAASampleCount(self, *, NewMSAASampleCount: int) -> None: ...
+
+    def SetSpatialSampleCount(self, *, NewSpatialSampleCount: int) -> None: ...
 
     def SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> None: ...
 
@@ -3367,6 +3371,21 @@ class UCameraSensorComponent(USceneComponent):
     def MSAASampleCount(self, value: int) -> None: ...
 
     @property
+    def SpatialSampleCount(self) -> int:
+        """Spatial samples a pixel of the rasterised colour (Unreal's Movie Render Queue anti-aliasing setting):
+        1 (none), 2, 4, 8 or 16. final_color, hdr_color and the intrinsic images are drawn that many times,
+        each time with every pixel sampling another point of its square, and averaged (final_color in linear
+        light): supersampling, which filters shading, highlights, shadow edges and texture detail as well as
+        silhouettes. Above 1 it stands in for AAM_MSAA's coverage samples (multisampling each moved pass would
+        blur the pixel past its square); AAM_FXAA still filters the averaged image. The exact modalities stay
+        one value a pixel, at its centre. A frame costs about that many times as much to shade
+        (BENCHMARKS.md); the path tracer takes none (its SamplesPerPixel are spread over the pixel).
+        """
+
+    @SpatialSampleCount.setter
+    def SpatialSampleCount(self, value: int) -> None: ...
+
+    @property
     def SamplesPerPixel(self) -> int:
         """Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating."""
 
@@ -3516,6 +3535,9 @@ class UCameraSensorComponent(USceneComponent):
 
     def SetMSAASampleCount(self, *, NewMSAASampleCount: int) -> None:
         """Sets MSAASampleCount: 2, 4 or 8."""
+
+    def SetSpatialSampleCount(self, *, NewSpatialSampleCount: int) -> None:
+        """Sets SpatialSampleCount: 1, 2, 4, 8 or 16."""
 
     def SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> None:
         """Sets VignetteIntensity, in [0, 1]."""

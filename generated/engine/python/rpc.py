@@ -1455,6 +1455,14 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
         self._sp_set("UCameraSensorComponent", "MSAASampleCount", value)
 
     @property
+    def SpatialSampleCount(self) -> int:
+        return cast("int", self._sp_get("UCameraSensorComponent", "SpatialSampleCount", _t.T_int))
+
+    @SpatialSampleCount.setter
+    def SpatialSampleCount(self, value: int) -> None:
+        self._sp_set("UCameraSensorComponent", "SpatialSampleCount", value)
+
+    @property
     def SamplesPerPixel(self) -> int:
         return cast("int", self._sp_get("UCameraSensorComponent", "SamplesPerPixel", _t.T_int))
 
@@ -1577,6 +1585,9 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     def SetMSAASampleCount(self, *, NewMSAASampleCount: int) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetMSAASampleCount", {"NewMSAASampleCount": NewMSAASampleCount}, _t.T_void))  # a Future when queued by call_async
+
+    def SetSpatialSampleCount(self, *, NewSpatialSampleCount: int) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetSpatialSampleCount", {"NewSpatialSampleCount": NewSpatialSampleCount}, _t.T_void))  # a Future when queued by call_async
 
     def SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetVignetteIntensity", {"NewVignetteIntensity": NewVignetteIntensity}, _t.T_void))  # a Future when queued by call_async

@@ -1,13 +1,16 @@
 // Anti-aliasing (CameraParams::antiAliasing): the exact modalities stay bit for bit what a camera without it
 // reads; FXAA changes final_color at the silhouettes, the same whether read from the readback buffer
 // (latency 1) or the framebuffers (latency 0); MSAA brings final_color close to a supersampled view and
-// keeps hdr_color = diffuse_only + specular_residual. Anisotropic texture filtering keeps a floor's texture
+// keeps hdr_color = diffuse_only + specular_residual; spatial samples (moved pixels, averaged) come closer
+// with each step and keep the exact modalities exact. Anisotropic texture filtering keeps a floor's texture
 // where trilinear filtering blurs it away at a grazing angle.
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <set>
+#include <string>
 #include <utility>
 
 #include "core/base/error.h"
@@ -85,9 +88,10 @@ TEST_F(RenderAntiAliasingGlTest, FxaaGivesOneImageWhateverTheLatency) {
     }
 }
 
-// Mean difference of final_color from the same view rendered 4 x 4 times larger and averaged down in linear
-// light, in 8-bit steps.
-double supersampledError(const ImageBuffer& color, const ImageBuffer& large, int width, int height) {
+// Mean difference of final_color from the same view rendered `factor` x `factor` times larger and averaged
+// down in linear light, in 8-bit steps.
+double supersampledError(const ImageBuffer& color, const ImageBuffer& large, int width, int height,
+                         int factor = 4) {
     const auto linear = [](std::uint8_t v) {
         const double c = v / 255.0;
         return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
@@ -98,12 +102,12 @@ double supersampledError(const ImageBuffer& color, const ImageBuffer& large, int
         for (int x = 0; x < width; ++x)
             for (int c = 0; c < 3; ++c) {
                 double mean = 0.0;
-                for (int j = 0; j < 4; ++j)
-                    for (int i = 0; i < 4; ++i)
-                        mean += linear(b[4 * ((std::size_t(4 * y + j)) * std::size_t(4 * width) +
-                                              std::size_t(4 * x + i)) +
+                for (int j = 0; j < factor; ++j)
+                    for (int i = 0; i < factor; ++i)
+                        mean += linear(b[4 * ((std::size_t(factor * y + j)) * std::size_t(factor * width) +
+                                              std::size_t(factor * x + i)) +
                                          std::size_t(c)]);
-                mean /= 16.0;
+                mean /= double(factor * factor);
                 const double encoded =
                     mean <= 0.0031308 ? 12.92 * mean : 1.055 * std::pow(mean, 1 / 2.4) - 0.055;
                 sum +=
@@ -167,6 +171,150 @@ TEST_F(RenderAntiAliasingGlTest, MsaaTakesTheDevicesMostSamplesAndRefusesOtherCo
     EXPECT_EQ(frame.get(Modality::FinalColor).bytes.size(), std::size_t(64 * 48 * 4));
     camera.params.msaaSamples = 3;
     EXPECT_THROW(renderFrame(scene, camera, {Modality::FinalColor}), InvalidArgument);
+}
+
+TEST_F(RenderAntiAliasingGlTest, SpatialSamplesAverageMovedPixelsAndLeaveExactModalitiesExact) {
+    Scene scene;
+    buildShapesScene(scene);
+    // Against the view rendered 16 x 16 times larger and averaged down: finer than any pattern here, and none
+    // of them is a subset of its samples (which would favour that one). In hdr_color, whose float16 steps are
+    // far finer than final_color's 8-bit ones (whose rounding alone differs by a quarter step on average).
+    const int n = 16;
+    const Camera plain = shapesView(96, 64, AntiAliasing::None);
+    const Camera large = shapesView(n * 96, n * 64, AntiAliasing::None);
+    const bool derives = renderer().derivesOnCpu(), compact = renderer().compactTargets();
+    renderer().setDerivesOnCpu(false);
+    renderer().setCompactTargets(false);
+    const Frame a = renderFrame(scene, plain, ModalitySet::all());
+    const Frame big = renderFrame(scene, large, {Modality::HdrColor});
+    renderer().setDerivesOnCpu(derives);
+    renderer().setCompactTargets(compact);
+    const ImageBuffer& reference = big.get(Modality::HdrColor);
+    const auto error = [&](const Frame& frame) {
+        const ImageBuffer& hdr = frame.get(Modality::HdrColor);
+        double sum = 0.0;
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 96; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    double mean = 0.0;
+                    for (int j = 0; j < n; ++j)
+                        for (int i = 0; i < n; ++i)
+                            mean += reference.at(n * x + i, n * y + j, c);
+                    sum += std::abs(hdr.at(x, y, c) - mean / (n * n));
+                }
+        return sum / (96 * 64 * 3);
+    };
+    const double aliased = error(a);
+
+    double previous = aliased;
+    for (int count : {2, 4, 8, 16}) {
+        Camera sampled = plain;
+        sampled.params.spatialSamples = count;
+        renderer().resetStats();
+        const Frame b = renderFrame(scene, sampled, ModalitySet::all());
+        EXPECT_EQ(renderer().stats().surfacePasses, std::uint64_t(count)); // one a sample
+        EXPECT_EQ(renderer().stats().attributePasses, 1u);
+        for (Modality m : {Modality::Depth, Modality::Position, Modality::Normal, Modality::ObjectIds,
+                           Modality::MaterialIds, Modality::BaseColor, Modality::Roughness,
+                           Modality::Metallic, Modality::MaterialAo})
+            EXPECT_EQ(a.get(m).bytes, b.get(m).bytes) << count << " samples, " << modalityName(m);
+        // Closer to the supersampled view with each doubling of the samples.
+        const double now = error(b);
+        std::cout << count << " spatial samples: mean difference " << now << " (none: " << aliased << ")\n";
+        EXPECT_LT(now, 0.8 * previous) << count << " samples";
+        previous = now;
+
+        // The resolve averages each shaded target alike: hdr_color is still diffuse_only + specular_residual.
+        const auto hdr = b.get(Modality::HdrColor).as<std::uint16_t>();
+        const auto diffuse = b.get(Modality::DiffuseOnly).as<std::uint16_t>();
+        const auto residual = b.get(Modality::SpecularResidual).as<std::uint16_t>();
+        double largest = 0.0;
+        for (std::size_t p = 0; p < std::size_t(96 * 64); ++p)
+            for (std::size_t c = 0; c < 3; ++c) {
+                const double h = halfToFloat(hdr[4 * p + c]), d = halfToFloat(diffuse[3 * p + c]),
+                             r = halfToFloat(residual[3 * p + c]);
+                largest = std::max(largest, std::abs(h - d - r) / std::max(1.0, std::abs(h)));
+            }
+        EXPECT_LT(largest, 4e-3) << count << " samples";
+    }
+}
+
+TEST_F(RenderAntiAliasingGlTest, ASubpixelOffsetMovesTheImageByThatMuch) {
+    // A pixel's centre moved by (dx, dy) shows what the unmoved camera shows at (x + dx, y + dy): on a floor
+    // seen at a slant, whose position is smooth in the image, the unmoved position plus its gradient times
+    // the offset (to second order in the offset).
+    Scene scene;
+    Instance floor{scene.addMesh(primitives::box({40.0f, 40.0f, 0.1f})),
+                   {scene.addMaterial(makeMaterial({0.5f, 0.5f, 0.5f}, 1.0f, 0.0f))},
+                   {1}};
+    floor.transform.translation() = Eigen::Vector3d(0.0, 0.0, -0.05);
+    scene.addInstance(floor);
+    Camera camera = cameraLookingAt({0.0, 0.0, 2.0}, {4.0, 1.0, 0.0}, 64, 48, 60.0);
+    const Frame unmoved = renderFrame(scene, camera, {Modality::Position});
+    const Eigen::Vector2d offset(0.25, -0.375);
+    camera.subpixelOffset = offset;
+    const Frame moved = renderFrame(scene, camera, {Modality::Position});
+    const ImageBuffer &p0 = unmoved.get(Modality::Position), &p1 = moved.get(Modality::Position);
+    double largest = 0.0, shift = 0.0;
+    for (int y = 30; y < 46; ++y)
+        for (int x = 8; x < 56; ++x)
+            for (int c = 0; c < 2; ++c) {
+                const double gx = (p0.at(x + 1, y, c) - p0.at(x - 1, y, c)) / 2.0,
+                             gy = (p0.at(x, y + 1, c) - p0.at(x, y - 1, c)) / 2.0;
+                const double expected = p0.at(x, y, c) + offset.x() * gx + offset.y() * gy;
+                largest = std::max(largest, std::abs(p1.at(x, y, c) - expected));
+                shift = std::max(shift, double(std::abs(p1.at(x, y, c) - p0.at(x, y, c))));
+            }
+    EXPECT_GT(shift, 0.02); // it moved
+    EXPECT_LT(largest, 0.1 * shift) << "moved up to " << shift;
+}
+
+TEST_F(RenderAntiAliasingGlTest, SpatialSamplesStandInForMultisamplingCombineWithFxaaAndRefuseOtherCounts) {
+    Scene scene;
+    buildShapesScene(scene);
+    const Frame reference = renderFrame(scene, shapesView(64, 48, AntiAliasing::None), kModalities);
+    Frame frames[3];
+    const AntiAliasing methods[3] = {AntiAliasing::None, AntiAliasing::Msaa, AntiAliasing::Fxaa};
+    for (int i = 0; i < 3; ++i) {
+        Camera camera = shapesView(64, 48, methods[i]);
+        camera.params.spatialSamples = 4;
+        frames[i] = renderFrame(scene, camera, kModalities);
+        EXPECT_EQ(frames[i].get(Modality::FinalColor).bytes.size(), std::size_t(64 * 48 * 4));
+        EXPECT_EQ(frames[i].get(Modality::ObjectIds).bytes, reference.get(Modality::ObjectIds).bytes);
+        EXPECT_EQ(frames[i].get(Modality::Depth).bytes, reference.get(Modality::Depth).bytes);
+    }
+    // Each moved pass single-sampled, with Msaa as without it; FXAA filters the average.
+    EXPECT_EQ(frames[1].get(Modality::FinalColor).bytes, frames[0].get(Modality::FinalColor).bytes);
+    EXPECT_NE(frames[2].get(Modality::FinalColor).bytes, frames[0].get(Modality::FinalColor).bytes);
+    Camera camera = shapesView(64, 48, AntiAliasing::None);
+    for (int count : {0, 3, 32}) {
+        camera.params.spatialSamples = count;
+        try {
+            renderFrame(scene, camera, {Modality::FinalColor});
+            ADD_FAILURE() << "spatialSamples " << count << " was accepted";
+        } catch (const InvalidArgument& e) {
+            EXPECT_NE(std::string(e.what()).find("spatialSamples must be 1, 2, 4, 8 or 16, got " +
+                                                 std::to_string(count)),
+                      std::string::npos)
+                << e.what();
+        }
+    }
+}
+
+TEST(SpatialSamplePattern, OneSampleInEachRowAndColumnInsideThePixel) {
+    for (int count : {1, 2, 4, 8, 16}) {
+        const auto pattern = spatialSamplePattern(count);
+        ASSERT_EQ(pattern.size(), std::size_t(count));
+        std::set<int> columns, rows;
+        for (const Eigen::Vector2d& p : pattern) {
+            EXPECT_TRUE(p.x() >= -0.5 && p.x() < 0.5 && p.y() >= -0.5 && p.y() < 0.5) << p.transpose();
+            columns.insert(int(std::floor((p.x() + 0.5) * count)));
+            rows.insert(int(std::floor((p.y() + 0.5) * count)));
+        }
+        EXPECT_EQ(columns.size(), std::size_t(count));
+        EXPECT_EQ(rows.size(), std::size_t(count));
+    }
+    EXPECT_THROW(spatialSamplePattern(3), InvalidArgument);
 }
 
 TEST_F(RenderAntiAliasingGlTest,
