@@ -9,10 +9,12 @@ quality, over the pixels that show geometry (depth > 0):
 and, once per scene, the path tracer's relative RMSE at 64 spp against the reference, raw and denoised
 (bPathTracingEnableDenoiser), and the rasteriser's aliasing with each AntiAliasingMethod, and with
 SpatialSampleCount 4, 8 and 16 (supersampling): the mean and 99th-percentile difference of
-final_color against the same view supersampled 4 x 4.
+final_color against the same view supersampled 4 x 4, and 17 x 17 (which holds none of the settings' sample
+points, as 4 x 4 holds MSAA's; --aliasing-grids).
 
     PYTHONPATH=python /usr/bin/python3 bench/bench_image_quality.py [--width 320 --height 240]
         [--reference 1024] [--qualities Off,Medium] [--scenes apartment,yard,closed_room,sky_yard,park_yard] [--out out/iq]
+        [--aliasing-grids 4,17] [--aliasing-only]
 """
 
 from __future__ import annotations
@@ -165,22 +167,38 @@ class Scene:
         assert "final_color" in pixels and "depth" in pixels
         return pixels["final_color"], pixels["depth"]
 
-    def aliasing(self, quality: spear.EGlobalIlluminationQuality) -> dict[str, tuple[float, float]]:
-        """final_color, with each anti-aliasing method (ALIASING_SETTINGS), against the same view rendered 4 x 4 times
-        larger without any and averaged down (in linear light): the mean and 99th-percentile difference over all pixels, in
-        8-bit steps."""
+    def aliasing(self, quality: spear.EGlobalIlluminationQuality,
+                 grids: list[int]) -> dict[int, dict[str, tuple[float, float]]]:
+        """final_color, with each anti-aliasing setting (ALIASING_SETTINGS), against the same view rendered n x n
+        times larger without any and averaged down (in linear light), for each n of `grids`: the mean and
+        99th-percentile difference over all pixels, in 8-bit steps. A grid holding a setting's sample points
+        favours it (4 x 4 holds MSAA's four); 17 x 17 holds none of them."""
         camera = self.cameras[quality]
+        references: dict[int, NDArray[np.float64]] = {}
+        for n in grids:
+            with self.instance.begin_frame():
+                large = self.camera(f"Supersampled{n}", n * self.width, n * self.height, quality, self.name)
+                large.AntiAliasingMethod = spear.EAntiAliasingMethod.AAM_None
+                large.Modalities = [spear.ECameraModality.FinalColor]
+            with self.instance.end_frame():
+                pass
+            with self.instance.begin_frame():
+                pass
+            with self.instance.end_frame():
+                pixels = large.read_pixels()
+            assert "final_color" in pixels
+            linear = srgb_to_linear(pixels["final_color"]).reshape(self.height, n, self.width, n, 3).mean(axis=(1, 3))
+            encoded = np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1 / 2.4) - 0.055)
+            references[n] = np.round(255.0 * np.clip(encoded, 0.0, 1.0))
+            with self.instance.begin_frame():
+                large.Modalities = []  # its targets freed
+            with self.instance.end_frame():
+                pass
         with self.instance.begin_frame():
-            large = self.camera("Supersampled", 4 * self.width, 4 * self.height, quality, self.name)
-            large.AntiAliasingMethod = spear.EAntiAliasingMethod.AAM_None
             default = camera.AntiAliasingMethod
         with self.instance.end_frame():
             pass
-        big, _ = self.raster(large)
-        linear = srgb_to_linear(big).reshape(self.height, 4, self.width, 4, 3).mean(axis=(1, 3))
-        encoded = np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1 / 2.4) - 0.055)
-        reference = np.round(255.0 * np.clip(encoded, 0.0, 1.0))
-        result: dict[str, tuple[float, float]] = {}
+        result: dict[int, dict[str, tuple[float, float]]] = {n: {} for n in grids}
         for label, method, samples in ALIASING_SETTINGS:
             with self.instance.begin_frame():
                 camera.AntiAliasingMethod = method
@@ -188,12 +206,12 @@ class Scene:
             with self.instance.end_frame():
                 pass
             color, _ = self.raster(camera)
-            difference = np.abs(color[..., :3].astype(np.float64) - reference)
-            result[label] = (float(difference.mean()), float(np.percentile(difference, 99)))
+            for n, reference in references.items():
+                difference = np.abs(color[..., :3].astype(np.float64) - reference)
+                result[n][label] = (float(difference.mean()), float(np.percentile(difference, 99)))
         with self.instance.begin_frame():
             camera.AntiAliasingMethod = default
             camera.SpatialSampleCount = 1
-            large.Modalities = []
         with self.instance.end_frame():
             pass
         return result
@@ -242,7 +260,11 @@ def main() -> None:
     parser.add_argument("--qualities", default="Off,Medium")
     parser.add_argument("--scenes", default="apartment,yard,closed_room,sky_yard,park_yard")
     parser.add_argument("--out", default=None, help="a folder for the images (PNG)")
+    parser.add_argument("--aliasing-grids", default="4,17",
+                        help="the supersampled references of the aliasing measure: n x n each")
+    parser.add_argument("--aliasing-only", action="store_true", help="measure the aliasing alone (no path tracing)")
     args = parser.parse_args()
+    grids = [int(n) for n in args.aliasing_grids.split(",")]
     try:
         importlib.import_module("skimage")
     except ImportError:
@@ -250,11 +272,15 @@ def main() -> None:
     qualities = [spear.EGlobalIlluminationQuality[q] for q in args.qualities.split(",")]
     rows: list[tuple[str, str, float, float, float, float, float, float]] = []
     noise: list[tuple[str, float, float]] = []
-    aliasing: list[tuple[str, dict[str, tuple[float, float]]]] = []
+    aliasing: list[tuple[str, dict[int, dict[str, tuple[float, float]]]]] = []
     for name in args.scenes.split(","):
         print(f"{name}:", file=sys.stderr)
         scene = Scene(name, args.width, args.height, qualities)
         scene.frame()
+        if args.aliasing_only:
+            aliasing.append((name, scene.aliasing(qualities[0], grids)))
+            scene.close()
+            continue
         reference = scene.traced(args.reference, "Reference")
         noisy = scene.traced(64, "Traced64")
         denoised = scene.traced(64, "Traced64Denoised", denoise=True)
@@ -283,7 +309,7 @@ def main() -> None:
         print(f"  path tracer, 64 spp against {args.reference}: relative RMSE {rmse[0]:.3f}, denoised {rmse[1]:.3f}",
               file=sys.stderr)
         noise.append((name, rmse[0], rmse[1]))
-        aliasing.append((name, scene.aliasing(qualities[0])))
+        aliasing.append((name, scene.aliasing(qualities[0], grids)))
         scene.close()
 
     print("| scene | quality | luminance ratio | mean rel. error | SSIM | crushed raster | crushed ref. | frame s |")
@@ -297,10 +323,14 @@ def main() -> None:
         print(f"| {n} | {raw:.3f} | {filtered:.3f} |")
     print()
     methods = [label for label, _, _ in ALIASING_SETTINGS]
-    print("| scene | " + " | ".join(f"{m}: mean / p99 (/255)" for m in methods) + " |")
-    print("|---|" + "---:|" * len(methods))
-    for n, by_method in aliasing:
-        print(f"| {n} | " + " | ".join(f"{by_method[m][0]:.2f} / {by_method[m][1]:.1f}" for m in methods) + " |")
+    for grid in grids:
+        print(f"\naliasing against the view supersampled {grid} x {grid}:")
+        print("| scene | " + " | ".join(f"{m}: mean / p99 (/255)" for m in methods) + " |")
+        print("|---|" + "---:|" * len(methods))
+        for name, by_grid in aliasing:
+            print(f"| {name} | " + " | ".join(f"{by_grid[grid][m][0]:.2f} / {by_grid[grid][m][1]:.1f}" for m in methods)
+                  + " |")
+
 
 if __name__ == "__main__":
     main()

@@ -467,14 +467,26 @@ void Renderer::renderView(const View& view) {
         lights.constantSlots = viewConstantSlots_;
         active_->stats.constantSlotPasses += viewConstantSlots_ > 0 ? 1 : 0;
         if (sampled) {
+            // Each sample stands for 1/N of the pixel: meshes are drawn at the level of detail of a pixel
+            // sqrt(N) times smaller, as a view that many times larger draws them (the attribute pass draws
+            // the camera's own levels, as without spatial samples).
+            const std::uint64_t culled = active_->stats.culledInstances; // counted once a view
+            const std::vector<Draw> finer =
+                visibleDraws(scene, camera, nullptr, std::sqrt(double(passes.spatialSamples)));
+            active_->stats.culledInstances = culled;
             const PassSet samplePasses = spatialSampleSurface(passes);
             const std::span<const Eigen::Vector2d> pattern = spatialSamplePattern(passes.spatialSamples);
             Camera moved = camera;
+            // Textures likewise are read log2 sqrt(N) levels finer: else the average of N samples of the
+            // pixel's own level blurs the texture twice.
+            glSamplerParameterf(textureSampler_, GL_TEXTURE_LOD_BIAS,
+                                float(-0.5 * std::log2(double(passes.spatialSamples))));
             for (int sample = 0; sample < passes.spatialSamples; ++sample) {
                 moved.subpixelOffset = pattern[std::size_t(sample)];
-                surfacePass(scene, moved, samplePasses, lights, draws, cache, *fb.spatialSampled());
+                surfacePass(scene, moved, samplePasses, lights, finer, cache, *fb.spatialSampled());
                 fb.copySample(sample);
             }
+            glSamplerParameterf(textureSampler_, GL_TEXTURE_LOD_BIAS, 0.0f);
             resolveSamples(passes, fb);
         } else {
             surfacePass(scene, camera, passes, lights, draws, cache, fb);
@@ -918,10 +930,10 @@ int Renderer::refineLevel(double edge, double spacing, std::size_t triangles) {
 }
 
 std::vector<Renderer::Draw> Renderer::visibleDraws(const Scene& scene, const Camera& camera,
-                                                   const ShadowReceivers* receivers) {
+                                                   const ShadowReceivers* receivers, double detail) {
     const std::array<Eigen::Vector4d, 6> planes = camera.frustumPlanes();
     const Eigen::Vector3d eye = camera.pose.translation();
-    const double focal = camera.focalLengthPixels();
+    const double focal = camera.focalLengthPixels() * detail;
 
     // Cull against the view frustum (bounding spheres); then draw each program's submeshes front to back.
     std::vector<Draw> draws;

@@ -267,9 +267,10 @@ class Renderer {
     void uploadFrameBlock(const Scene& scene, const Camera& camera, const std::vector<ShadowInfo>& shadows,
                           const std::vector<ViewLight>& lights);
     // The submeshes of the instances in view, grouped by program and front to back within a group; with
-    // `receivers`, each knows where shadows reach it (the parts of those drawn in parts go to parts_).
-    std::vector<Draw> visibleDraws(const Scene& scene, const Camera& camera,
-                                   const ShadowReceivers* receivers);
+    // `receivers`, each knows where shadows reach it (the parts of those drawn in parts go to parts_). The
+    // levels of detail are chosen for pixels `detail` times smaller than the camera's (spatial samples).
+    std::vector<Draw> visibleDraws(const Scene& scene, const Camera& camera, const ShadowReceivers* receivers,
+                                   double detail = 1.0);
     void surfacePass(const Scene& scene, const Camera& camera, const PassSet& passes,
                      const shaders::ShadingLayout& lights, const std::vector<Draw>& draws,
                      GpuSceneCache& cache, Framebuffers& fb);

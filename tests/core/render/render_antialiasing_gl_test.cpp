@@ -301,6 +301,54 @@ TEST_F(RenderAntiAliasingGlTest, SpatialSamplesStandInForMultisamplingCombineWit
     }
 }
 
+TEST_F(RenderAntiAliasingGlTest, SpatialSamplesReadTexturesAsAViewThatManyTimesLargerReadsThem) {
+    // A floor of 0.25 m black and white squares seen from 2 m up: past a few metres a square is under a
+    // pixel, and a pixel's own mip level is grey. Sixteen samples of that level would average grey to grey;
+    // read 2 levels finer (log2 sqrt(16)), as a view 4 x 4 times larger reads them, they average the squares
+    // they cover, as a view 16 x 16 times larger averaged down does.
+    Scene scene;
+    std::vector<std::uint8_t> checker(16 * 16 * 4);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x)
+            for (int c = 0; c < 4; ++c)
+                checker[std::size_t(4 * (16 * y + x) + c)] = c == 3 || (x / 2 + y / 2) % 2 == 0 ? 255 : 0;
+    Material floor = makeMaterial({1.0f, 1.0f, 1.0f}, 1.0f, 0.0f);
+    floor.baseColorTexture = scene.addTexture(TextureImage::fromPixels(16, 16, checker));
+    floor.textureSize = 2.0f;
+    Instance instance{scene.addMesh(primitives::box({40.0f, 40.0f, 0.1f})), {scene.addMaterial(floor)}, {1}};
+    instance.transform.translation() = Eigen::Vector3d(0.0, 0.0, -0.05);
+    scene.addInstance(instance);
+    Light sun;
+    sun.direction = Eigen::Vector3d(0.2, 0.1, -1.0).normalized();
+    scene.addLight(sun);
+    const int width = 96, height = 64, n = 16;
+    Camera camera = cameraLookingAt({-6.0, 0.0, 2.0}, {0.0, 0.0, 0.0}, width, height, 60.0);
+    const Camera large = cameraLookingAt({-6.0, 0.0, 2.0}, {0.0, 0.0, 0.0}, n * width, n * height, 60.0);
+    const bool byDefault = renderer().anisotropicFiltering();
+    renderer().setAnisotropicFiltering(false);
+    const Frame reference = renderFrame(scene, large, {Modality::HdrColor});
+    const Frame plain = renderFrame(scene, camera, {Modality::HdrColor});
+    camera.params.spatialSamples = 16;
+    const Frame sampled = renderFrame(scene, camera, {Modality::HdrColor});
+    renderer().setAnisotropicFiltering(byDefault);
+    const auto error = [&](const Frame& frame) {
+        double sum = 0.0;
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                double mean = 0.0;
+                for (int j = 0; j < n; ++j)
+                    for (int i = 0; i < n; ++i)
+                        mean += reference.get(Modality::HdrColor).at(n * x + i, n * y + j, 0);
+                sum += std::abs(frame.get(Modality::HdrColor).at(x, y, 0) - mean / (n * n));
+            }
+        return sum / (width * height);
+    };
+    const double none = error(plain), spatial = error(sampled);
+    std::cout << "checkered floor, mean difference from 16 x 16 supersampling: none " << none
+              << ", 16 spatial samples " << spatial << "\n";
+    EXPECT_LT(spatial, 0.3 * none);
+}
+
 TEST(SpatialSamplePattern, OneSampleInEachRowAndColumnInsideThePixel) {
     for (int count : {1, 2, 4, 8, 16}) {
         const auto pattern = spatialSamplePattern(count);
