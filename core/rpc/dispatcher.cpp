@@ -3,7 +3,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <random>
 
 #include "core/base/error.h"
 #include "core/plugin/plugin_loader.h"
@@ -128,6 +131,9 @@ void Dispatcher::endSession(Session& session) {
         engine_.abortFrame();
     if (frameOwner_ == &session)
         frameOwner_ = nullptr;
+    if (session.probe)
+        session.probe->unlink();
+    session.probe.reset();
 }
 
 bool Dispatcher::handleOne(const msgpack::object& message, Session& session, msgpack::sbuffer& reply,
@@ -262,6 +268,7 @@ const std::vector<Dispatcher::Route>& Dispatcher::routes() {
         {"is_valid", &Dispatcher::objectQuery},
         {"describe", &Dispatcher::objectQuery},
         {"echo", &Dispatcher::echo},
+        {"shm_proof", &Dispatcher::shmProof},
         {"shutdown", &Dispatcher::shutdown},
     };
     return table;
@@ -297,9 +304,40 @@ Value Dispatcher::hello(const Request& request, Session& session) {
                  apiHash_, "); the client's generated stubs come from a different engine build");
     }
     session.greeted = true;
-    return Value(Value::Dict{{"api_hash", Value(apiHash_)},
-                             {"pid", Value(int64_t(::getpid()))},
-                             {"reply_buffers", Value(bool(session.offerReplyBuffer))}});
+    Value::Dict reply{{"api_hash", Value(apiHash_)},
+                      {"pid", Value(int64_t(::getpid()))},
+                      {"reply_buffers", Value(bool(session.offerReplyBuffer))}};
+    // A segment holding a nonce only a client that can map the server's segments reads (shm_proof). Where
+    // none can be made (no /dev/shm), the reply names none and this connection's replies stay inline.
+    try {
+        std::random_device random;
+        std::string nonce;
+        for (int i = 0; i < 4; ++i) {
+            char word[9];
+            std::snprintf(word, sizeof(word), "%08x", unsigned(random()));
+            nonce += word;
+        }
+        auto probe = std::make_shared<SharedMemorySegment>(SharedMemorySegment::create(nonce.size()));
+        std::memcpy(probe->data(), nonce.data(), nonce.size());
+        if (session.probe)
+            session.probe->unlink();
+        session.probe = std::move(probe);
+        session.probeNonce = std::move(nonce);
+        reply["shm_probe"] = Value(session.probe->name());
+    } catch (const std::exception&) {
+    }
+    return Value(std::move(reply));
+}
+
+Value Dispatcher::shmProof(const Request& request, Session& session) {
+    const std::string nonce = request.string("nonce", "shm_proof");
+    const bool proven = session.probe && !nonce.empty() && sameSecret(nonce, session.probeNonce);
+    if (session.probe)
+        session.probe->unlink();
+    session.probe.reset();
+    session.probeNonce.clear();
+    session.sharedMemoryReplies = session.sharedMemoryReplies || proven;
+    return Value(session.sharedMemoryReplies);
 }
 
 Value Dispatcher::world(const Request& request, Session&) {

@@ -4,7 +4,11 @@
 //
 // Requests are msgpack maps {"id": n, "op": name, ...}; replies are {"id": n, "ok": value} or
 // {"id": n, "error": [type, message]}, where type names a class of spear.errors. Ops:
-//   hello {api_hash, token}       must come first; mismatched API hash or token closes the connection
+//   hello {api_hash, token}       must come first; mismatched API hash or token closes the connection. Its
+//                                 reply names "shm_probe", a shared-memory segment holding a nonce
+//   shm_proof {nonce}             the nonce the client read from the probe ("" if it could not map it):
+//                                 when it matches, large reply arrays travel through shared memory on this
+//                                 connection (Session::sharedMemoryReplies); until then they come inline
 //   world {kind}                  "game" (an editor world only exists in editor mode)
 //   worlds {action, name, object} create (name) | destroy (object) | list: worlds beside the game world
 //   frame {action}                begin | execute | begin_end | end | abort
@@ -23,12 +27,14 @@
 #include <msgpack.hpp>
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "core/engine/engine.h"
 #include "core/rpc/request.h"
+#include "core/rpc/shared_memory.h"
 #include "core/rpc/value_msgpack.h"
 
 namespace sp::rpc {
@@ -45,6 +51,13 @@ struct Session {
     std::function<void(const std::string& name)> dropReplyBuffer;
     // The client's pid when the kernel says it (Unix socket), else -1: only its segments are argument arrays.
     long peerPid = -1;
+    // Whether large reply arrays may travel through the server's shared memory: only once the client showed
+    // that it can map the server's segments (shm_proof), so that a client on another host, or with a /dev/shm
+    // of its own, gets them inline in the reply instead of a segment name it cannot open.
+    bool sharedMemoryReplies = false;
+    // The segment hello named and the nonce it holds, until the proof (or the end of the session) removes it.
+    std::shared_ptr<SharedMemorySegment> probe;
+    std::string probeNonce;
 };
 
 class Dispatcher {
@@ -92,6 +105,7 @@ class Dispatcher {
     reflect::Value spFuncNames(const Request& request, Session& session);
     reflect::Value objectQuery(const Request& request, Session& session);
     reflect::Value echo(const Request& request, Session& session);
+    reflect::Value shmProof(const Request& request, Session& session);
     reflect::Value shutdown(const Request& request, Session& session);
 
     static void readReplyBuffers(const msgpack::object& request, Session& session);

@@ -20,6 +20,7 @@
 #include <cstring>
 #include <deque>
 #include <filesystem>
+#include <optional>
 
 #include "core/base/error.h"
 #include "core/base/log.h"
@@ -83,6 +84,9 @@ struct Server::Connection {
     // The last reply ends the connection (a refused hello, a malformed first message): nothing more is
     // read, and the connection is dropped once the outbox is empty.
     bool closing = false;
+    // A refused hello's reply is not sent before then (Server::countTokenFailure).
+    std::chrono::steady_clock::time_point heldUntil{};
+    bool held() const { return std::chrono::steady_clock::now() < heldUntil; }
     Session session;
     // The client's buffers for large reply arrays (core/rpc/reply_buffers.h).
     std::unique_ptr<ReplyBuffers> replyBuffers = std::make_unique<ReplyBuffers>();
@@ -220,12 +224,6 @@ void Server::accept() {
     } else if (knownPeer)
         peerName = "uid " + std::to_string(peer.uid);
     const auto now = std::chrono::steady_clock::now();
-    // Refused without a word in the log: a client hammering the server must not fill its log (or block it on
-    // a stderr pipe nobody reads). countTokenFailure() said when the lockout began.
-    if (auto it = tokenFailures_.find(peerName); it != tokenFailures_.end() && now < it->second.lockedUntil) {
-        ::close(fd);
-        return;
-    }
     const size_t waiting = size_t(std::count_if(connections_.begin(), connections_.end(), [](const auto& c) {
         return c->fd >= 0 && !c->session.greeted;
     }));
@@ -311,14 +309,19 @@ bool Server::serve(Connection& connection) {
             return send(segment, clientBuffer);
         };
         {
-            reflect::ArrayAllocatorScope allocator(&allocateInSegment, &connection);
-            dispatcher_.handle(connection.inbox.data() + 4, length, connection.session, reply, toShm);
+            // Until the client has shown it maps the server's segments (Session::sharedMemoryReplies), arrays
+            // stay on the heap and the reply carries them inline.
+            const bool shared = connection.session.sharedMemoryReplies;
+            std::optional<reflect::ArrayAllocatorScope> allocator;
+            if (shared)
+                allocator.emplace(&allocateInSegment, &connection);
+            dispatcher_.handle(connection.inbox.data() + 4, length, connection.session, reply,
+                               shared ? ArrayToSharedMemory(toShm) : ArrayToSharedMemory());
         }
         if (connection.session.tokenRefused) {
             connection.session.tokenRefused = false;
-            countTokenFailure(connection.peer);
-        } else if (!greeted && connection.session.greeted)
-            tokenFailures_.erase(connection.peer); // the right token: the count starts again
+            connection.heldUntil = std::chrono::steady_clock::now() + countTokenFailure(connection.peer);
+        }
         // Arrays allocated in segments of the server's but not sent (kept by the engine for later) lose
         // their names now; their mappings live on with their owners.
         for (auto& [segment, clientBuffer] : connection.requestSegments)
@@ -341,30 +344,34 @@ bool Server::serve(Connection& connection) {
     return true;
 }
 
-void Server::countTokenFailure(const std::string& peer) {
+std::chrono::milliseconds Server::countTokenFailure(const std::string& peer) {
     const auto now = std::chrono::steady_clock::now();
-    if (tokenFailures_.size() >= 4096) // bounded: forget the peers whose lockout is over
+    if (tokenFailures_.size() >= 4096) // bounded: forget the peers whose last hold is over
         std::erase_if(tokenFailures_, [&](const auto& entry) { return entry.second.lockedUntil <= now; });
     TokenFailures& failures = tokenFailures_[peer];
     ++failures.count;
-    if (failures.count >= options_.tokenFailuresBeforeLockout) {
-        const int doublings = std::min(failures.count - options_.tokenFailuresBeforeLockout, 6);
-        const auto lockout = std::min(std::chrono::seconds(1 << doublings), std::chrono::seconds(60));
-        failures.lockedUntil = now + lockout;
-        SP_LOG("spear-server: ", failures.count, " wrong tokens in a row from ", peer,
-               "; its connections are refused for ", lockout.count(), " s");
-    }
+    if (failures.count <= options_.tokenFailuresBeforeLockout)
+        return std::chrono::milliseconds(0);
+    // Not reset by the right token: on loopback a guesser and the users it is guessing for are one peer.
+    const int doublings = std::min(failures.count - options_.tokenFailuresBeforeLockout - 1, 6);
+    const auto hold = std::min(std::chrono::seconds(1 << doublings), std::chrono::seconds(60));
+    failures.lockedUntil = now + hold;
+    // Once per doubling, so that a guesser cannot fill the log.
+    if (doublings < 6 || failures.count % 64 == 0)
+        SP_LOG("spear-server: ", failures.count, " wrong tokens from ", peer, "; each refusal is held for ",
+               hold.count(), " s (the right token is answered at once)");
+    return hold;
 }
 
 int Server::msUntilHelloDeadline() const {
     const auto now = std::chrono::steady_clock::now();
     int64_t soonest = -1;
     for (const auto& connection : connections_)
-        if (connection->fd >= 0 && !connection->session.greeted && !connection->closing) {
+        if (connection->fd >= 0 && ((!connection->session.greeted && !connection->closing) ||
+                                    (connection->closing && connection->held()))) {
+            const auto deadline = connection->closing ? connection->heldUntil : connection->helloDeadline;
             const int64_t left =
-                std::chrono::duration_cast<std::chrono::milliseconds>(connection->helloDeadline - now)
-                    .count() +
-                1;
+                std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now).count() + 1;
             soonest =
                 soonest < 0 ? std::max<int64_t>(left, 0) : std::min(soonest, std::max<int64_t>(left, 0));
         }
@@ -385,7 +392,7 @@ void Server::dropSilentBeforeHello() {
 bool Server::queueReply(Connection& connection, const char* data, size_t size) {
     // Straight to the socket when nothing waits before it (the usual case: a client reads each reply
     // before it sends its next request); the rest is queued, in order.
-    if (connection.outbox.empty() && !sendSome(connection.fd, data, size))
+    if (connection.outbox.empty() && !connection.held() && !sendSome(connection.fd, data, size))
         return false;
     if (size == 0)
         return true;
@@ -447,7 +454,7 @@ void Server::run() {
         for (const auto& connection : connections_) {
             // Reading while replies wait is what lets a client that never reads be found out (queueReply).
             short events = connection->closing ? 0 : POLLIN;
-            if (!connection->outbox.empty())
+            if (!connection->outbox.empty() && !connection->held())
                 events |= POLLOUT;
             fds.push_back({connection->fd, events, 0});
         }

@@ -33,9 +33,11 @@ struct ServerOptions {
     size_t maxMessageBytesBeforeHello = size_t(64) << 10;
     size_t maxConnectionsBeforeHello = 64;
     int helloTimeoutMs = 10000;
-    // A peer (TCP: its address) whose hello gave a wrong token this many times in a row has its next
-    // connections closed unread for a while, doubling with each further failure (1 s, 2 s, ... 60 s): a
-    // guessing client gets a few tries a minute instead of thousands a second.
+    // Past this many wrong tokens from a peer (TCP: its address), the refusal of each further wrong token is
+    // held back for a while before it is sent, doubling with each (1 s, 2 s, ... 60 s), its connection still
+    // counting against maxConnectionsBeforeHello: a guessing client gets a few tries a minute instead of
+    // thousands a second. The right token is answered at once: on loopback every local user is the same peer,
+    // and a guesser must not lock them out.
     int tokenFailuresBeforeLockout = 3;
     // A client's replies that it has not read yet are queued up to these limits; past either, the client
     // is dropped: one that sends requests and never reads must not stop the server for everyone. (A
@@ -69,9 +71,11 @@ class Server {
     bool flush(Connection& connection); // sends queued replies; false: drop the connection
     void flushBeforeExit();
     void drop(Connection& connection);
-    void countTokenFailure(const std::string& peer);
-    void dropSilentBeforeHello();     // connections past their hello deadline
-    int msUntilHelloDeadline() const; // for poll(): -1 while no connection waits for its hello
+    // Counts a wrong token from `peer`; returns how long its refusal is held back.
+    std::chrono::milliseconds countTokenFailure(const std::string& peer);
+    void dropSilentBeforeHello(); // connections past their hello deadline
+    // For poll(): until the next hello deadline or held refusal, -1 while there is none.
+    int msUntilHelloDeadline() const;
 
     ServerOptions options_;
     Dispatcher dispatcher_;

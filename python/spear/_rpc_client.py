@@ -28,7 +28,7 @@ from spear._reply_buffers import ReplyBuffers
 from spear._rpc_types import convert, convert_result_tuple
 from spear._type_code import TypeCode
 from spear._segments import remove_orphaned_segments
-from spear._wire import OutgoingSegments, ValueRefused, _object_ext, encode, pack_frame, unpack_body
+from spear._wire import OutgoingSegments, ValueRefused, _object_ext, encode, map_segment, pack_frame, unpack_body
 from spear.futures import Future, warn_send_failed
 
 _ERRORS: dict[str, type[errors.SpearError]] = {
@@ -129,6 +129,23 @@ class RpcConnection:
         self.engine: tuple[str, int] = (address, self.server_pid)
         if not hello.get("reply_buffers"):  # TCP: the server cannot tell which process offers buffers
             self._reply_buffers.close()
+        # Whether the server sends large reply arrays through shared memory: once this client has shown that it
+        # maps the server's segments; else (another host, a /dev/shm of its own) they come inline.
+        self.shared_memory = False
+        probe = hello.get("shm_probe")
+        if isinstance(probe, str):
+            self.shared_memory = self._prove_shared_memory(probe)
+
+    def _prove_shared_memory(self, name: str) -> bool:
+        """Reads the nonce of the segment hello named and sends it back (an empty one where the segment cannot be
+        mapped, so that the server removes it at once); the reply says whether shared memory is on."""
+        nonce = ""
+        try:
+            with map_segment(name, 32, unlink=True) as mapping:
+                nonce = bytes(mapping[:32]).decode("ascii", "replace")
+        except (OSError, ValueError):
+            pass
+        return bool(self.request("shm_proof", nonce=nonce))
 
     # -- requests ------------------------------------------------------------------------------
 
@@ -365,15 +382,17 @@ class RpcConnection:
             while not poll(0) and time.perf_counter() < deadline:
                 os.sched_yield()
 
-    def _receive(self, size: int) -> bytes:
-        chunks, remaining = [], size
-        while remaining:
-            chunk = self._socket.recv(min(remaining, 1 << 20))
-            if not chunk:
+    def _receive(self, size: int) -> bytearray:
+        # Into one buffer as it arrives: a reply carrying a frame inline (over TCP from another host) is copied
+        # once here, not once per chunk and again to join them.
+        buffer = bytearray(size)
+        view, received = memoryview(buffer), 0
+        while received < size:
+            count = self._socket.recv_into(view[received:], size - received)
+            if not count:
                 raise ConnectionLost(f"the spear server at {self.address} closed the connection")
-            chunks.append(chunk)
-            remaining -= len(chunk)
-        return b"".join(chunks)
+            received += count
+        return buffer
 
     @staticmethod
     def _result(reply: dict[str, Any]) -> Any:

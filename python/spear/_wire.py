@@ -260,7 +260,7 @@ def pack_frame(message: dict[str, Any]) -> bytes:
     return struct.pack("<I", len(body)) + body
 
 
-def unpack_body(body: bytes, buffers: ReplyBuffers | None = None) -> Any:
+def unpack_body(body: bytes | bytearray, buffers: ReplyBuffers | None = None) -> Any:
     """A reply; `buffers` are the reply buffers its request offered (spear._reply_buffers)."""
     if buffers is not None:
         buffers.begin_reply()

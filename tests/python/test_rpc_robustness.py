@@ -7,6 +7,7 @@ from __future__ import annotations
 import contextlib
 import os
 import re
+import select
 import signal
 import socket
 import struct
@@ -23,7 +24,7 @@ import pytest
 
 import spear
 import spear._engine
-from spear._rpc_client import ConnectionLost, LaunchedServer, RpcConnection, find_server_binary
+from spear._rpc_client import LaunchedServer, RpcConnection, find_server_binary
 
 DEPTH_ERROR = "a value has lists or dicts nested deeper than 64 levels"
 
@@ -595,17 +596,28 @@ def test_a_token_file_keeps_the_token_off_the_command_line(tmp_path: Path) -> No
         connection = RpcConnection(address, token="s3cret")
         assert connection.request("echo", value=1) == 1
         connection.close()
-        # Guessing is slowed down: after 3 wrong tokens in a row, the peer's connections are closed unread
-        # for a second (doubling with each further failure).
-        for _ in range(3):
+        # Guessing is slowed down: past 3 wrong tokens, each further refusal is held back (1 s, doubling), while
+        # the right token is answered at once: on loopback the guesser and every local user are one peer.
+        for _ in range(4):  # the fourth refusal comes after a second
             with pytest.raises(spear.InvalidArgumentError, match="^hello\\(\\): wrong or missing token$"):
                 RpcConnection(address, token="guess")
-        with pytest.raises((ConnectionLost, OSError)):
-            RpcConnection(address, token="s3cret")
-        time.sleep(1.2)
-        connection = RpcConnection(address, token="s3cret")
+        host, port = address.removeprefix("tcp:").rsplit(":", 1)
+        guesser = socket.create_connection((host, int(port)), timeout=30)
+        body = msgpack.packb({"op": "hello", "id": 1, "api_hash": spear._engine.API_HASH, "token": "guess"},
+                             use_bin_type=True)
+        guesser.sendall(struct.pack("<I", len(body)) + body)
+        readable = select.poll()
+        readable.register(guesser, select.POLLIN)
+        assert readable.poll(100) == []  # its refusal, the fifth, is held back for 2 s...
+        connection = RpcConnection(address, token="s3cret")  # ...while the right token gets in
         assert connection.request("echo", value=2) == 2
         connection.close()
+        assert readable.poll(0) == []  # still held
+        (length,) = struct.unpack("<I", guesser.recv(4, socket.MSG_WAITALL))  # then sent, and the connection closed
+        refusal = msgpack.unpackb(guesser.recv(length, socket.MSG_WAITALL), raw=False)
+        assert refusal["error"] == ["InvalidArgumentError", "hello(): wrong or missing token"]
+        assert guesser.recv(1) == b""
+        guesser.close()
     # SPEAR_TOKEN in the environment works as well (read by the client too).
     with started_by_hand("--port", "0", SPEAR_TOKEN="fr0m-env") as (_, address):
         with pytest.raises(spear.InvalidArgumentError, match="wrong or missing token"):
