@@ -19,6 +19,17 @@ std::vector<std::string>& roots() {
     static std::vector<std::string> value;
     return value;
 }
+std::vector<std::string>& readOnlyRoots() {
+    static std::vector<std::string> value;
+    return value;
+}
+
+std::string quotedList(const std::vector<std::string>& folders) {
+    std::string list;
+    for (const std::string& folder : folders)
+        list += (list.empty() ? "'" : ", '") + folder + "'";
+    return list;
+}
 
 // True when `path` (absolute, resolved) is `root` or below it.
 bool within(const std::string& path, const std::string& root) {
@@ -62,19 +73,22 @@ size_t openRegular(FileDescriptor& file, const std::string& path, std::string_vi
 }
 } // namespace
 
-void confineUserFiles(std::vector<std::string> newRoots) {
-    for (std::string& root : newRoots) {
-        std::error_code error;
-        const std::filesystem::path resolved = std::filesystem::canonical(root, error);
-        SP_CHECK(!error && std::filesystem::is_directory(resolved), NotFound,
-                 "confineUserFiles(): file root '", root, "' is not a directory");
-        root = resolved.string();
-    }
+void confineUserFiles(std::vector<std::string> newRoots, std::vector<std::string> newReadOnlyRoots) {
+    for (std::vector<std::string>* list : {&newRoots, &newReadOnlyRoots})
+        for (std::string& root : *list) {
+            std::error_code error;
+            const std::filesystem::path resolved = std::filesystem::canonical(root, error);
+            SP_CHECK(!error && std::filesystem::is_directory(resolved), NotFound,
+                     "confineUserFiles(): file root '", root, "' is not a directory");
+            root = resolved.string();
+        }
     roots() = std::move(newRoots);
+    readOnlyRoots() = std::move(newReadOnlyRoots);
 }
 
-std::string resolveUserPath(const std::string& path, std::string_view function, std::string_view what) {
-    if (roots().empty())
+std::string resolveUserPath(const std::string& path, std::string_view function, std::string_view what,
+                            FileAccess access) {
+    if (roots().empty() && readOnlyRoots().empty())
         return path;
     SP_CHECK(!path.empty(), InvalidArgument, function, ": ", what, " path is empty");
     // weakly_canonical: symbolic links and ".." of the part that exists are followed, the rest (a file to
@@ -82,15 +96,22 @@ std::string resolveUserPath(const std::string& path, std::string_view function, 
     std::error_code error;
     const std::string resolved =
         std::filesystem::weakly_canonical(std::filesystem::absolute(path, error), error).string();
-    const bool allowed = !error && std::any_of(roots().begin(), roots().end(), [&](const std::string& root) {
-        return within(resolved, root);
-    });
-    if (!allowed) {
-        std::string list;
-        for (const std::string& root : roots())
-            list += (list.empty() ? "'" : ", '") + root + "'";
+    const auto under = [&](const std::vector<std::string>& folders) {
+        return std::any_of(folders.begin(), folders.end(),
+                           [&](const std::string& root) { return within(resolved, root); });
+    };
+    const bool readOnly = !error && under(readOnlyRoots());
+    if (access == FileAccess::Write && readOnly)
+        SP_THROW(InvalidArgument, function, ": ", what, " '", path,
+                 "' is under a read-only asset folder of the server (", quotedList(readOnlyRoots()),
+                 "): clients read the assets, never write them; write under a --file-root folder ", "(",
+                 quotedList(roots()), ")");
+    if (error || !(under(roots()) || readOnly)) {
+        std::vector<std::string> all = roots();
+        all.insert(all.end(), readOnlyRoots().begin(), readOnlyRoots().end());
         SP_THROW(InvalidArgument, function, ": ", what, " '", path, "' is outside the server's file roots (",
-                 list, "); start spear-server with --file-root DIR to allow another folder");
+                 quotedList(access == FileAccess::Write ? roots() : all),
+                 "); start spear-server with --file-root DIR to allow another folder");
     }
     return resolved;
 }
@@ -126,7 +147,7 @@ size_t checkRegularFile(const std::string& path, std::string_view function, std:
 
 void writeRegularFile(const std::string& userPath, std::string_view contents, std::string_view function,
                       std::string_view what) {
-    const std::string path = resolveUserPath(userPath, function, what);
+    const std::string path = resolveUserPath(userPath, function, what, FileAccess::Write);
     // Only a regular file (or nothing) may be replaced: never a FIFO, a device or a socket. lstat: a
     // symbolic link is replaced itself, as rename() does, not the file it points to.
     struct stat existing {};

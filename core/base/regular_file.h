@@ -16,14 +16,17 @@ namespace sp {
 // and is confined to the file roots when a server has some (confineUserFiles); an engine file is named
 // by the server's own configuration (its command line, its plugin path) and is not.
 enum class FileScope { User, Engine };
+// What a user file is opened for: a file that is read may lie under any root, one that is written only
+// under a writable root and never under a read-only one (confineUserFiles).
+enum class FileAccess { Read, Write };
 
-// Confines user files to `roots`: a path must then resolve, symbolic links and ".." followed, to a root
-// or below one, and the resolved path is what is opened (a relative path is relative to the working
-// directory, as everywhere). An
-// empty list (the default, and always in-process: the user owns the process) allows any path. Set once,
-// before a server serves clients; a server's clients otherwise read and write whatever the server's user can
-// (/proc/self/..., keys).
-void confineUserFiles(std::vector<std::string> roots);
+// Confines user files to `roots` and `readOnlyRoots`: a path must then resolve, symbolic links and ".."
+// followed, to a root or below one, and the resolved path is what is opened (a relative path is relative to
+// the working directory, as everywhere). Files under `readOnlyRoots` (a server's built-in assets and asset
+// folders) are read, never written, even where a writable root holds them. Empty lists (the default, and
+// always in-process: the user owns the process) allow any path. Set once, before a server serves clients; a
+// server's clients otherwise read and write whatever the server's user can (/proc/self/..., keys).
+void confineUserFiles(std::vector<std::string> roots, std::vector<std::string> readOnlyRoots = {});
 
 // The largest user-named file the engine reads: far above any scene, blueprint, mesh or texture.
 inline constexpr size_t kMaxUserFileBytes = size_t(256) << 20;
@@ -42,8 +45,10 @@ size_t checkRegularFile(const std::string& path, std::string_view function, std:
 
 // The path to open for user file `path`: `path` itself when user files are not confined, else its
 // resolved form. Throws sp::InvalidArgument naming the function, the file and the roots when it is
-// outside them (before anything about the file, even whether it exists, is told).
-std::string resolveUserPath(const std::string& path, std::string_view function, std::string_view what);
+// outside them, or, to be written, outside the writable ones or under a read-only one (before anything
+// about the file, even whether it exists, is told).
+std::string resolveUserPath(const std::string& path, std::string_view function, std::string_view what,
+                            FileAccess access = FileAccess::Read);
 
 // Replaces the contents of the file at `path` (created owner-writable under the umask) with `contents`,
 // whole: they are written to a new file beside it that is then renamed over it, so a reader, or a crash

@@ -15,9 +15,10 @@
 //
 // Files that clients name (scenes, blueprints, meshes, textures, save_scene targets) must lie in a
 // --file-root folder (repeatable; default: the server's working directory; relative paths are relative to the
-// first) or among the built-in assets: a client otherwise reads and writes whatever the server's user can.
-// --file-root / allows any path (launch passes it, for the same reason as --allow-remote-plugin-load). The
-// server's own --scene and --plugin are not confined.
+// first) or among the built-in assets and SPEAR_ASSET_PATH's folders, which clients read but never write
+// (save_scene, render jobs): a client otherwise reads and writes whatever the server's user can.
+// --file-root / allows any path, assets included (launch passes it, for the same reason as
+// --allow-remote-plugin-load). The server's own --scene and --plugin are not confined.
 //
 // SPEAR_RPC_SPIN_US (microseconds, default 100) is how long the server polls its sockets before it sleeps
 // (spin_poll.h); a client that launches the server passes its own setting on through the environment.
@@ -28,6 +29,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
@@ -186,12 +188,21 @@ int main(int argc, char** argv) {
         sp::engine::Engine engine(settings);
         // After the engine has read the server's own --scene: from here on, paths come from clients. They
         // may read the built-in assets and the asset folders the server's user named (SPEAR_ASSET_PATH).
+        // They may write only under the file roots, and never into those asset folders.
         if (fileRoots.empty())
             fileRoots.push_back(std::filesystem::current_path().string());
+        std::vector<std::string> assetFolders;
         for (const std::string& folder : sp::assetSearchPath())
             if (std::filesystem::is_directory(folder))
-                fileRoots.push_back(folder == builtin ? folder + "/assets" : folder);
-        sp::confineUserFiles(fileRoots);
+                assetFolders.push_back(folder == builtin ? folder + "/assets" : folder);
+        // --file-root / confines nothing (a launched server's client is its user, as in-process): there the
+        // asset folders stay writable as they are in-process.
+        const bool unconfined = std::any_of(fileRoots.begin(), fileRoots.end(), [](const std::string& root) {
+            return std::filesystem::weakly_canonical(root) == "/";
+        });
+        if (unconfined)
+            fileRoots.insert(fileRoots.end(), assetFolders.begin(), assetFolders.end());
+        sp::confineUserFiles(fileRoots, unconfined ? std::vector<std::string>{} : assetFolders);
         sp::rpc::Server server(engine, options, spear_register_engine_types_api_hash());
         std::signal(SIGTERM, [](int) { sp::rpc::Server::stop(); });
         std::signal(SIGINT, [](int) { sp::rpc::Server::stop(); });

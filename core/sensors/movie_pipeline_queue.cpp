@@ -255,7 +255,7 @@ void MoviePipelineQueue::start(UMoviePipelineExecutorJob& job) {
 
     // The folders first: a job that cannot write fails before it touches the camera.
     const std::filesystem::path folder = std::filesystem::absolute(
-        resolveUserPath(run->configuration.OutputDirectory, function, "output folder"));
+        resolveUserPath(run->configuration.OutputDirectory, function, "output folder", FileAccess::Write));
     run->folder = folder.string();
     std::vector<std::string> folders{"camera"};
     for (ECameraModality modality : run->modalities)

@@ -37,8 +37,10 @@ def confined(tmp_path: Path) -> Iterator[tuple[spear.Instance, Path, int]]:
         server.wait(30)
 
 
-def outside_message(function: str, what: str, path: str, root: Path) -> str:
-    roots = f"'{root.resolve()}', '{ASSETS.resolve()}'"
+def outside_message(function: str, what: str, path: str, root: Path, *, write: bool = False) -> str:
+    """A path outside the roots: to be read, the file roots and the asset folders are named; to be written, the
+    file roots alone (clients never write the assets)."""
+    roots = f"'{root.resolve()}'" if write else f"'{root.resolve()}', '{ASSETS.resolve()}'"
     return (f"{function}: {what} '{path}' is outside the server's file roots ({roots}); start spear-server with "
             "--file-root DIR to allow another folder")
 
@@ -91,7 +93,7 @@ def test_save_scene_cannot_write_outside_the_roots(confined: tuple[spear.Instanc
         for path in ["/proc/self/comm", str(tmp_path / "elsewhere.json")]:
             with pytest.raises(spear.InvalidArgumentError) as error:
                 game.save_scene(path=path)
-            assert str(error.value) == outside_message("UWorld.save_scene()", "scene file", path, root)
+            assert str(error.value) == outside_message("UWorld.save_scene()", "scene file", path, root, write=True)
     with instance.end_frame():
         pass
     assert Path(f"/proc/{pid}/comm").read_text() == comm
@@ -176,7 +178,39 @@ def test_render_jobs_write_inside_the_roots_only(confined: tuple[spear.Instance,
         refused, kept = jobs
         assert refused.GetStatus() == spear.EMoviePipelineJobStatus.Failed
         assert refused.GetErrorMessage() == outside_message(
-            "UMoviePipelineQueueEngineSubsystem.RenderJob()", "output folder", str(outside), root)
+            "UMoviePipelineQueueEngineSubsystem.RenderJob()", "output folder", str(outside), root, write=True)
         assert kept.GetStatus() == spear.EMoviePipelineJobStatus.Finished
     assert not outside.exists()
     assert sorted(p.name for p in (root / "frames" / "depth").iterdir()) == ["0000.exr", "0001.exr"]
+
+
+def test_clients_read_the_built_in_assets_but_never_write_them(confined: tuple[spear.Instance, Path, int]) -> None:
+    instance, root, _ = confined
+    game = instance.get_game()
+    crate, apartment = ASSETS / "blueprints" / "BP_Crate.json", ASSETS / "scenes" / "apartment.json"
+    before = {path: path.read_bytes() for path in (crate, apartment)}
+    read_only = (f"is under a read-only asset folder of the server ('{ASSETS.resolve()}'): clients read the assets, "
+                 f"never write them; write under a --file-root folder ('{root.resolve()}')")
+    with instance.begin_frame():
+        game.load_scene(path=str(apartment))  # reading is fine
+        for path in (crate, apartment, ASSETS / "scenes" / "new.json"):
+            with pytest.raises(spear.InvalidArgumentError) as error:
+                game.save_scene(path=str(path))
+            assert str(error.value) == f"UWorld.save_scene(): scene file '{path}' {read_only}"
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera").CameraSensor
+        camera.Width, camera.Height = 16, 12
+        queue = spear.UMoviePipelineQueueEngineSubsystem.GetMoviePipelineQueueEngineSubsystem(WorldContextObject=game)
+        job = queue.AllocateJob(Camera=camera, JobName="into assets")
+        job.SetConfiguration(Configuration=spear.FMoviePipelineConfiguration(
+            OutputDirectory=str(ASSETS / "frames"), Modalities=[spear.ECameraModality.Depth], FrameEnd=1))
+        queue.RenderJob(Job=job)
+    with instance.end_frame():
+        pass
+    with instance.begin_frame():
+        pass
+    with instance.end_frame():
+        assert job.GetStatus() == spear.EMoviePipelineJobStatus.Failed
+        assert job.GetErrorMessage() == (f"UMoviePipelineQueueEngineSubsystem.RenderJob(): output folder "
+                                         f"'{ASSETS / 'frames'}' {read_only}")
+    assert {path: path.read_bytes() for path in before} == before
+    assert not (ASSETS / "frames").exists() and not (ASSETS / "scenes" / "new.json").exists()
