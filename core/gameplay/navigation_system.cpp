@@ -91,7 +91,9 @@ Eigen::AlignedBox3d ANavMeshBoundsVolume::worldBounds() const {
 
 // -- ARecastNavMesh ------------------------------------------------------------------------------------
 
-ARecastNavMesh::ARecastNavMesh() : mesh_(std::make_unique<sp::navigation::NavMesh>()), random_(0) {}
+ARecastNavMesh::ARecastNavMesh() : mesh_(std::make_unique<sp::navigation::NavMesh>()), random_(0) {
+    accepted_ = settings();
+}
 
 ARecastNavMesh::~ARecastNavMesh() = default;
 
@@ -103,6 +105,22 @@ void ARecastNavMesh::SetRandomSeed(int Seed) {
 void ARecastNavMesh::PostPropertyChanged(std::string_view propertyName) {
     if (propertyName == "RandomSeed")
         random_.seed(uint64_t(uint32_t(RandomSeed)));
+    // A setting is checked as it is set (with the others as they are), not at the next query: a refused one
+    // is undone, and the mesh stays as it was.
+    try {
+        sp::navigation::validate(settings(), "ARecastNavMesh." + std::string(propertyName));
+    } catch (const sp::InvalidArgument&) {
+        AgentRadius = accepted_.agentRadius;
+        AgentHeight = accepted_.agentHeight;
+        AgentMaxSlope = accepted_.maxSlopeDegrees;
+        AgentMaxStepHeight = accepted_.maxStepHeight;
+        CellSize = accepted_.cellSize;
+        CellHeight = accepted_.cellHeight;
+        TileSize = accepted_.tileSize;
+        MinRegionArea = accepted_.minRegionArea;
+        throw;
+    }
+    accepted_ = settings();
 }
 
 sp::navigation::NavMeshSettings ARecastNavMesh::settings() const {

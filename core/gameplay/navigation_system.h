@@ -189,6 +189,8 @@ class ARecastNavMesh : public AActor {
     // mesh's own).
     std::map<sp::physics::BodyId, sp::gameplay::NavigationSubsystem::Placed> builtBodies_;
     sp::navigation::NavMeshSettings builtSettings_;
+    // The settings as they were after the last change that passed validate(): a refused change is undone.
+    sp::navigation::NavMeshSettings accepted_;
     bool stale_ = true; // settings changed or a rebuild was asked for
     std::mt19937_64 random_;
     double lastBuildSeconds_ = 0.0;

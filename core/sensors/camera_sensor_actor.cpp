@@ -50,9 +50,14 @@ void AMultiViewCameraRig::SetRing(int32_t NumViews, double NewRadius) {
 
 void AMultiViewCameraRig::ConfigureCameras(int32_t Width, int32_t Height,
                                            const std::vector<ECameraModality>& Modalities) {
+    // Checked before any camera changes: a refused size leaves every camera as it was.
+    SP_CHECK(Width >= 1 && Width <= 16384, sp::InvalidArgument,
+             "AMultiViewCameraRig.ConfigureCameras(): Width must be in [1, 16384], got ", Width);
+    SP_CHECK(Height >= 1 && Height <= 16384, sp::InvalidArgument,
+             "AMultiViewCameraRig.ConfigureCameras(): Height must be in [1, 16384], got ", Height);
     for (UCameraSensorComponent* camera : Cameras) {
-        camera->Width = Width;
-        camera->Height = Height;
+        camera->SetWidth(Width);
+        camera->SetHeight(Height);
         camera->Modalities = Modalities;
     }
 }

@@ -596,6 +596,11 @@ def test_several_cameras_and_rigs(instance: spear.Instance) -> None:
         ring = game.spawn_actor(uclass=spear.AMultiViewCameraRig, name="Ring")
         ring.SetRing(NumViews=3, NewRadius=3.0)
         ring.ConfigureCameras(Width=15, Height=15, Modalities=[M.Depth])
+        # A bad size is refused before any camera changes.
+        with pytest.raises(spear.InvalidArgumentError,
+                           match=r"^AMultiViewCameraRig.ConfigureCameras\(\): Width must be in \[1, 16384\], got -1$"):
+            ring.ConfigureCameras(Width=-1, Height=-1, Modalities=[M.FinalColor])
+        assert all((c.Width, c.Height, c.Modalities) == (15, 15, [M.Depth]) for c in ring.Cameras)
         stereo = game.spawn_actor(uclass=spear.AStereoCameraRig, name="Stereo", location=spear.FVector(X=-4.0))
         stereo.Baseline = 0.5
         for cam in (stereo.LeftCamera, stereo.RightCamera):

@@ -160,9 +160,15 @@ def test_agent_profiles_and_errors(instance: spear.Instance) -> None:
         assert big.FindPath(Start=start, End=end).ReturnValue == Result.Fail
         assert small.FindPath(Start=start, End=end).ReturnValue == Result.Success
 
-        big.AgentMaxSlope = 95.0
-        with pytest.raises(spear.InvalidArgumentError, match=r"ARecastNavMesh.FindPath\(\) on .*BigNav.*: AgentMaxSlope = 95 must be in \(0, 90\) degrees"):
-            big.FindPath(Start=start, End=end)
+        # A bad setting is refused as it is set, and undone: the mesh stays as it was.
+        with pytest.raises(spear.InvalidArgumentError, match=r"^ARecastNavMesh.AgentMaxSlope: AgentMaxSlope = 95 must be in \(0, 90\) degrees"):
+            big.AgentMaxSlope = 95.0
+        with pytest.raises(spear.InvalidArgumentError, match=r"^ARecastNavMesh.CellSize: CellSize = nan must be a finite number > 0"):
+            big.CellSize = math.nan
+        with pytest.raises(spear.InvalidArgumentError, match=r"^ARecastNavMesh.TileSize: TileSize = 1e-09 must be at least 8 cells \(0.8 m at CellSize 0.1\)"):
+            big.TileSize = 1e-9
+        assert (big.AgentMaxSlope, big.CellSize, big.TileSize) == (45.0, 0.1, 12.8)
+        assert big.FindPath(Start=start, End=end).ReturnValue == Result.Fail
         with pytest.raises(spear.InvalidArgumentError, match=r"FindPaths\(\): StartPoints has 1 rows and EndPoints 2"):
             small.FindPaths(StartPoints=np.zeros((1, 3)), EndPoints=np.zeros((2, 3)))
         with pytest.raises(spear.InvalidArgumentError, match=r"GetRandomReachablePointsInRadius\(\): Origins\[0, 2\] = nan is not finite"):
