@@ -18,7 +18,7 @@ namespace pcg = sp::procedural::pcg;
 // kMaxSplineSegments + 1 points for very long ones.
 constexpr double kSplineStep = 0.25;
 constexpr int kMaxSplineSegments = 100'000;
-// The most placements (or scatter grid cells, ten times as many) one generation may lay out.
+// The most placements one generation may lay out.
 constexpr double kMaxPlacements = 1e6;
 
 Eigen::AlignedBox2d flat(const Eigen::AlignedBox3d& box) {
@@ -80,11 +80,14 @@ void UPCGComponent::checkScale(const Eigen::AlignedBox3d& box, const char* funct
     // Counted in doubles before anything is allocated: rules that would lay out millions are refused.
     const Eigen::Vector3d size = box.sizes();
     if (GenerationMode == EPCGGenerationMode::Scatter) {
+        // The work and memory follow MaxCount (scatter() stores only the cells it fills); the cells along an
+        // axis must fit its 64-bit cell keys.
         const double cell = Spacing / std::sqrt(2.0);
-        const double cells = std::ceil(size.x() / cell) * std::ceil(size.y() / cell);
-        SP_CHECK(cells <= 10.0 * kMaxPlacements && MaxCount <= kMaxPlacements, sp::InvalidArgument, function,
-                 ": Spacing = ", Spacing, " over a ", size.x(), " x ", size.y(),
-                 " m box, or MaxCount = ", MaxCount, ", asks for more than ", kMaxPlacements, " placements");
+        SP_CHECK(MaxCount <= kMaxPlacements, sp::InvalidArgument, function, ": MaxCount = ", MaxCount,
+                 " asks for more than ", kMaxPlacements, " placements");
+        SP_CHECK(size.x() / cell <= 2147483648.0 && size.y() / cell <= 2147483648.0, sp::InvalidArgument,
+                 function, ": Spacing = ", Spacing, " over a ", size.x(), " x ", size.y(),
+                 " m box makes more than 2^31 cells along a side");
     }
     if (GenerationMode == EPCGGenerationMode::CityBlocks) {
         const double pitch = BlockSize + StreetWidth;

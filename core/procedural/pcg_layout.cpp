@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 
 namespace sp::procedural::pcg {
 
@@ -63,12 +65,17 @@ std::vector<Placement> scatter(const Eigen::AlignedBox2d& area, const ScatterRul
     if (area.isEmpty() || rules.maxCount <= 0)
         return placed;
     // A grid of cells no wider than spacing / sqrt(2) holds at most one placement each, so a candidate only
-    // looks at the 5 x 5 cells around it.
+    // looks at the 5 x 5 cells around it. Only the cells that hold one are stored: the memory is bounded by
+    // MaxCount, however many cells the area has (the caller bounds the cells along an axis to 2^31).
     const double cell = rules.spacing > 0.0 ? rules.spacing / std::sqrt(2.0) : 1.0;
     const Eigen::Vector2d size = area.sizes();
-    const int columns = std::max(1, int(std::ceil(size.x() / cell))),
-              rows = std::max(1, int(std::ceil(size.y() / cell)));
-    std::vector<int> grid(size_t(columns) * size_t(rows), -1);
+    const std::int64_t columns = std::max<std::int64_t>(1, std::int64_t(std::ceil(size.x() / cell))),
+                       rows = std::max<std::int64_t>(1, std::int64_t(std::ceil(size.y() / cell)));
+    std::unordered_map<std::int64_t, int> grid; // y * columns + x -> its placement
+    const auto at = [&](std::int64_t x, std::int64_t y) {
+        const auto found = grid.find(y * columns + x);
+        return found == grid.end() ? -1 : found->second;
+    };
     const long attempts = 30L * rules.maxCount;
     for (long attempt = 0; attempt < attempts && int(placed.size()) < rules.maxCount; ++attempt) {
         const Eigen::Vector2d p(uniform(rng, area.min().x(), area.max().x()),
@@ -76,13 +83,15 @@ std::vector<Placement> scatter(const Eigen::AlignedBox2d& area, const ScatterRul
         if (std::any_of(exclusions.begin(), exclusions.end(),
                         [&](const Eigen::AlignedBox2d& box) { return box.contains(p); }))
             continue;
-        const int cx = std::min(columns - 1, int((p.x() - area.min().x()) / cell));
-        const int cy = std::min(rows - 1, int((p.y() - area.min().y()) / cell));
+        const std::int64_t cx = std::min(columns - 1, std::int64_t((p.x() - area.min().x()) / cell));
+        const std::int64_t cy = std::min(rows - 1, std::int64_t((p.y() - area.min().y()) / cell));
         bool fits = true;
         if (rules.spacing > 0.0) {
-            for (int y = std::max(0, cy - 2); fits && y <= std::min(rows - 1, cy + 2); ++y)
-                for (int x = std::max(0, cx - 2); fits && x <= std::min(columns - 1, cx + 2); ++x) {
-                    const int other = grid[size_t(y) * size_t(columns) + size_t(x)];
+            for (std::int64_t y = std::max<std::int64_t>(0, cy - 2); fits && y <= std::min(rows - 1, cy + 2);
+                 ++y)
+                for (std::int64_t x = std::max<std::int64_t>(0, cx - 2);
+                     fits && x <= std::min(columns - 1, cx + 2); ++x) {
+                    const int other = at(x, y);
                     fits =
                         other < 0 || (placed[size_t(other)].location.head<2>() - p).norm() >= rules.spacing;
                 }
@@ -94,7 +103,7 @@ std::vector<Placement> scatter(const Eigen::AlignedBox2d& area, const ScatterRul
         placement.yawDegrees = rules.randomYaw ? uniform(rng, 0.0, 360.0) : 0.0;
         placement.scale = Eigen::Vector3d::Constant(uniform(rng, rules.minScale, rules.maxScale));
         placement.variant = variantOf(rng, rules.variants);
-        grid[size_t(cy) * size_t(columns) + size_t(cx)] = int(placed.size());
+        grid[cy * columns + cx] = int(placed.size());
         placed.push_back(placement);
     }
     return placed;

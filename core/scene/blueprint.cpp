@@ -105,8 +105,8 @@ Json readBlueprintFile(const std::string& path, std::string_view function, const
     const std::string text = readRegularFile(path, function, "blueprint");
     try {
         return Json::parse(text);
-    } catch (const nlohmann::json::parse_error& error) {
-        SP_THROW(InvalidArgument, where, " is not valid JSON: ", jsonErrorWithoutContents(error));
+    } catch (const nlohmann::json::exception& error) { // a parse error, or a number out of range
+        SP_THROW(InvalidArgument, where, " is not valid JSON: ", jsonErrorWithoutContents(error, text));
     }
 }
 

@@ -1,5 +1,6 @@
 #include "core/scene/scene_io.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -482,8 +483,23 @@ std::vector<std::unique_ptr<AActor>> stageLevel(UWorld& world, const SceneJson& 
     return stageActors(world, scene, std::string(source), true, directory);
 }
 
-std::string jsonErrorWithoutContents(const nlohmann::json::parse_error& error) {
+std::string jsonErrorWithoutContents(const nlohmann::json::exception& error, std::string_view text) {
     std::string message = error.what();
+    // A number past a double's range (1e400): the library names the token, not where it is. Found again (the
+    // first number so spelt is where parsing stopped), it gives the line and column; the token is not echoed.
+    if (message.rfind("[json.exception.out_of_range.406] number overflow parsing '", 0) == 0) {
+        const std::size_t open = message.find('\'') + 1;
+        const std::string token = message.substr(open, message.rfind('\'') - open);
+        std::string where;
+        if (const std::size_t at = text.find(token); !token.empty() && at != std::string_view::npos) {
+            const std::string_view before = text.substr(0, at);
+            const std::size_t line = std::size_t(std::count(before.begin(), before.end(), '\n')) + 1;
+            const std::size_t lineStart = before.rfind('\n');
+            const std::size_t column = lineStart == std::string_view::npos ? at : at - lineStart - 1;
+            where = " at line " + std::to_string(line) + ", column " + std::to_string(column);
+        }
+        return "a number" + where + " is out of a double's range (at most about 1.8e308)";
+    }
     if (const std::size_t tag = message.find("] ");
         message.rfind("[json.exception", 0) == 0 && tag != std::string::npos)
         message.erase(0, tag + 2);
@@ -506,9 +522,9 @@ SceneJson readSceneFile(const std::string& path, std::string_view function) {
     const std::string text = readRegularFile(findAsset(path), function, "scene file");
     try {
         return Json::parse(text);
-    } catch (const nlohmann::json::parse_error& error) {
+    } catch (const nlohmann::json::exception& error) { // a parse error, or a number out of range
         SP_THROW(InvalidArgument, function, ": scene file '", path,
-                 "' is not valid JSON: ", jsonErrorWithoutContents(error));
+                 "' is not valid JSON: ", jsonErrorWithoutContents(error, text));
     }
 }
 

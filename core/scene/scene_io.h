@@ -43,8 +43,9 @@ SceneJson saveScene(const UWorld& world);
 
 // "parse error at line 3, column 7: syntax error while parsing value - invalid literal": the parser's
 // message without the text it last read, so that naming a file that is not JSON (a key, /etc/shadow)
-// tells where it stopped being JSON, never what the file holds.
-std::string jsonErrorWithoutContents(const nlohmann::json::parse_error& error);
+// tells where it stopped being JSON, never what the file holds. A number past a double's range ("1e400"),
+// which the parser reports by its text alone, is found in `text` for its line and column.
+std::string jsonErrorWithoutContents(const nlohmann::json::exception& error, std::string_view text);
 // The scene document as text (what save_scene writes): 2-space indent and a final newline.
 std::string sceneToString(const SceneJson& scene);
 // Replaces the world's actors and streaming levels by those of the scene document, and loads the levels

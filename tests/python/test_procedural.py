@@ -164,10 +164,17 @@ def test_bad_rules_are_refused_and_leave_nothing_behind(instance: spear.Instance
         with pytest.raises(spear.InvalidArgumentError, match=r"no ASplineActor has SplineTag 'PCGSpline'"):
             pcg.Generate()
         pcg.GenerationMode = Mode.Scatter
-        pcg.Spacing = 1e-4
-        with pytest.raises(spear.InvalidArgumentError, match=r"Spacing = 0.0001 over a 20 x 16 m box.*more than 1e\+06 placements"):
-            pcg.Generate()  # refused, not billions of grid cells
-        pcg.Spacing = 2.0
+        count = pcg.MaxCount
+        pcg.Spacing, pcg.MaxCount = 1e-4, 10  # 2.8e5 x 2.3e5 cells, but only the 10 filled are stored
+        pcg.Generate()
+        assert len(pcg.GetGeneratedActors()) == 10
+        pcg.Spacing = 1e-12
+        with pytest.raises(spear.InvalidArgumentError, match=r"Spacing = 1e-12 over a 20 x 16 m box makes more than 2\^31 cells along a side"):
+            pcg.Generate()  # refused: past the cells' 64-bit keys
+        pcg.Spacing, pcg.MaxCount = 2.0, 2_000_000
+        with pytest.raises(spear.InvalidArgumentError, match=r"MaxCount = 2000000 asks for more than 1e\+06 placements"):
+            pcg.Generate()
+        pcg.MaxCount = count
         pcg.GenerationMode = Mode.CityBlocks
         pcg.BlockSize, pcg.StreetWidth = 1e-9, 0.0
         with pytest.raises(spear.InvalidArgumentError, match=r"lots, more than 1e\+06"):

@@ -94,6 +94,12 @@ def test_missing_and_malformed_scenes_are_clear_errors(instance: spear.Instance,
             game.load_scene(path=str(tmp_path / "nowhere.json"))
         with pytest.raises(spear.InvalidArgumentError, match=r"scene file '.*bad.json' is not valid JSON"):
             game.load_scene(path=str(bad_json))
+        huge = tmp_path / "huge.json"
+        huge.write_text('{"format": "spear.scene",\n "version": 1e400, "actors": []}')
+        with pytest.raises(spear.InvalidArgumentError) as error:
+            game.load_scene(path=str(huge))
+        assert str(error.value) == (f"UWorld.load_scene(): scene file '{huge}' is not valid JSON: a number at line 2, "
+                                    "column 12 is out of a double's range (at most about 1.8e308)")
         with pytest.raises(spear.InvalidArgumentError,
                            match=r"actors\[2\] 'Ceiling': component 'StaticMeshComponent': property 'Mobility': "
                                  r"'Sideways' is not an entry of EComponentMobility"):
