@@ -7,6 +7,13 @@ namespace sp::base {
 
 namespace {
 std::atomic<ProgressSink> gSink{nullptr};
+BusyHook gBusyHook = nullptr; // (set and called on the one thread that runs the work)
+void* gBusyContext = nullptr;
+std::atomic<bool> gStopRequested{false};
+static_assert(std::atomic<bool>::is_always_lock_free); // requestStop() runs in signal handlers
+
+constexpr std::chrono::milliseconds kBusyAfter{1000};
+constexpr std::chrono::milliseconds kBusyInterval{50};
 
 constexpr std::chrono::milliseconds kQuietStart{500}; // work done sooner shows nothing
 constexpr std::chrono::milliseconds kInterval{100};
@@ -22,8 +29,21 @@ void setProgressSink(ProgressSink sink) {
     gSink.store(sink);
 }
 
+void setBusyHook(BusyHook hook, void* context) {
+    gBusyHook = hook;
+    gBusyContext = context;
+}
+
+void requestStop() {
+    gStopRequested.store(true);
+}
+
+bool stopRequested() {
+    return gStopRequested.load(std::memory_order_relaxed);
+}
+
 Progress::Progress(std::string task, double total)
-    : task_(std::move(task)), total_(total), start_(Clock::now()), last_(start_) {}
+    : task_(std::move(task)), total_(total), start_(Clock::now()), last_(start_), lastBusy_(start_) {}
 
 Progress::~Progress() {
     if (reported_ || Clock::now() - start_ >= kQuietStart)
@@ -33,6 +53,10 @@ Progress::~Progress() {
 void Progress::set(double done) {
     done_ = done;
     const Clock::time_point now = Clock::now();
+    if (gBusyHook && now - start_ >= kBusyAfter && now - lastBusy_ >= kBusyInterval) {
+        lastBusy_ = now;
+        gBusyHook(gBusyContext, task_, std::chrono::duration<double>(now - start_).count());
+    }
     if (now - start_ < kQuietStart || now - last_ < kInterval)
         return;
     last_ = now;

@@ -19,6 +19,20 @@ namespace sp::base {
 using ProgressSink = void (*)(std::string_view task, double done, double total, bool finished);
 void setProgressSink(ProgressSink sink);
 
+// What the host does while long work keeps its thread: called from Progress::set() on the thread that made
+// the Progress, once the work has run for a second, then every 50 ms (`seconds`: how long it has run). A
+// server answers its other clients there ("busy") instead of letting them wait unanswered
+// (core/rpc/server.cpp). Null: nothing. One hook per process, set and cleared by the thread that runs the
+// work.
+using BusyHook = void (*)(void* context, std::string_view task, double seconds);
+void setBusyHook(BusyHook hook, void* context);
+
+// A request to stop the process (a server's SIGTERM): long work that can be cut short checks stopRequested()
+// in its inner loops (every few milliseconds) and ends, leaving nothing half written, by throwing
+// sp::InvalidState. requestStop() is async-signal-safe.
+void requestStop();
+bool stopRequested();
+
 class Progress {
   public:
     Progress(std::string task, double total);
@@ -38,6 +52,7 @@ class Progress {
     double done_ = 0.0;
     Clock::time_point start_;
     Clock::time_point last_;
+    Clock::time_point lastBusy_;
     bool reported_ = false;
 };
 

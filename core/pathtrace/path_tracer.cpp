@@ -843,13 +843,21 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
                                 std::to_string(settings.samplesPerPixel) + " samples per pixel",
                             double(height));
     const std::thread::id caller = std::this_thread::get_id();
+    std::atomic<bool> stopped{false};
     auto work = [&] {
         std::uint64_t traced = 0;
         const bool reports = std::this_thread::get_id() == caller;
-        for (int y = nextRow++; y < height; y = nextRow++, ++rowsDone) {
-            if (reports)
-                progress.set(double(rowsDone.load()));
+        for (int y = nextRow++; y < height && !stopped; y = nextRow++, ++rowsDone) {
             for (int x = 0; x < width; ++x) {
+                // Each pixel: a row of a frame at thousands of samples per pixel takes seconds, and a stop
+                // (base::requestStop()) must end the frame within one; the caller's reports let the host
+                // answer others meanwhile (base::setBusyHook()).
+                if (base::stopRequested()) {
+                    stopped = true;
+                    break;
+                }
+                if (reports)
+                    progress.set(double(rowsDone.load()) + double(x) / double(width));
                 const std::size_t at = (std::size_t(y) * width + x) * 3;
                 double* sum = &image.sum[at];
                 double* diffuseOnly = &image.diffuseOnlySum[at];
@@ -896,6 +904,13 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
         rays += traced;
     };
     onEveryThread(work);
+    if (stopped) {
+        // Some pixels have this call's samples and others not: the accumulation starts again next time.
+        image.sum.clear();
+        image.samples = 0;
+        SP_THROW(InvalidState, "PathTracer::render(): stopped before the frame was traced: the process is "
+                               "shutting down");
+    }
     progress.set(double(height));
     image.samples += std::uint64_t(settings.samplesPerPixel);
     impl.lastRays = rays;

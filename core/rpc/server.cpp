@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <deque>
 #include <filesystem>
@@ -24,6 +25,7 @@
 
 #include "core/base/error.h"
 #include "core/base/log.h"
+#include "core/base/progress.h"
 #include "core/plugin/plugin_loader.h"
 #include "core/rpc/spin_poll.h"
 
@@ -198,6 +200,7 @@ std::string Server::address() const {
 }
 
 void Server::stop() {
+    base::requestStop(); // long work in progress (a path-traced frame) ends within a second
     const int fd = gWakeFd.load();
     if (fd >= 0) {
         const char byte = 1;
@@ -315,8 +318,21 @@ bool Server::serve(Connection& connection) {
             std::optional<reflect::ArrayAllocatorScope> allocator;
             if (shared)
                 allocator.emplace(&allocateInSegment, &connection);
+            // A request that keeps the engine busy for long (a path-traced frame at thousands of samples per
+            // pixel) does not leave the other clients unanswered meanwhile.
+            struct Busy {
+                Server* server;
+                const Connection* running;
+            } busy{this, &connection};
+            base::setBusyHook(
+                [](void* context, std::string_view task, double seconds) {
+                    auto* b = static_cast<Busy*>(context);
+                    b->server->answerBusy(*b->running, task, seconds);
+                },
+                &busy);
             dispatcher_.handle(connection.inbox.data() + 4, length, connection.session, reply,
                                shared ? ArrayToSharedMemory(toShm) : ArrayToSharedMemory());
+            base::setBusyHook(nullptr, nullptr);
         }
         if (connection.session.tokenRefused) {
             connection.session.tokenRefused = false;
@@ -342,6 +358,65 @@ bool Server::serve(Connection& connection) {
         }
     }
     return true;
+}
+
+void Server::answerBusy(const Connection& running, std::string_view task, double seconds) {
+    for (auto& connection : connections_) {
+        if (connection.get() == &running || connection->fd < 0 || connection->closing)
+            continue;
+        if (!connection->outbox.empty() && !flush(*connection)) {
+            drop(*connection);
+            continue;
+        }
+        char buffer[65536];
+        ssize_t received = 0;
+        while ((received = ::recv(connection->fd, buffer, sizeof(buffer), 0)) > 0)
+            connection->inbox.append(buffer, size_t(received));
+        // (Closed, or a message past the limits: the event loop finds out after the busy request.)
+        while (connection->inbox.size() >= 4) {
+            uint32_t length = 0;
+            std::memcpy(&length, connection->inbox.data(), 4);
+            const bool greeted = connection->session.greeted;
+            if (length > (greeted ? options_.maxMessageBytes : options_.maxMessageBytesBeforeHello) ||
+                connection->inbox.size() < 4 + size_t(length))
+                break;
+            msgpack::object_handle request;
+            const msgpack::object* id = nullptr;
+            try {
+                request = unpackBounded(connection->inbox.data() + 4, length);
+                id = mapField(request.get(), "id");
+            } catch (const std::exception&) {
+            }
+            msgpack::sbuffer reply;
+            reply.write("\0\0\0\0", 4);
+            msgpack::packer<msgpack::sbuffer> out(&reply);
+            out.pack_map(2);
+            out.pack(std::string("id"));
+            if (id && id->type != msgpack::type::ARRAY && id->type != msgpack::type::MAP)
+                out.pack(*id);
+            else
+                out.pack_nil();
+            out.pack(std::string("error"));
+            out.pack_array(2);
+            out.pack(std::string("InvalidStateError"));
+            char elapsed[32];
+            std::snprintf(elapsed, sizeof(elapsed), "%.1f", seconds);
+            out.pack("spear-server: busy: another client's request has kept the engine for " +
+                     std::string(elapsed) + " s (" + std::string(task) +
+                     "); this request was not run: send it again when that is done");
+            const uint32_t replyLength = uint32_t(reply.size() - 4);
+            std::memcpy(reply.data(), &replyLength, 4);
+            connection->inbox.erase(0, 4 + size_t(length));
+            if (!queueReply(*connection, reply.data(), reply.size())) {
+                drop(*connection);
+                break;
+            }
+            if (!greeted) { // its hello was not run: it connects again later
+                connection->closing = true;
+                break;
+            }
+        }
+    }
 }
 
 std::chrono::milliseconds Server::countTokenFailure(const std::string& peer) {

@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/rpc/dispatcher.h"
@@ -74,6 +75,9 @@ class Server {
     // Counts a wrong token from `peer`; returns how long its refusal is held back.
     std::chrono::milliseconds countTokenFailure(const std::string& peer);
     void dropSilentBeforeHello(); // connections past their hello deadline
+    // While `running`'s request keeps the engine's thread past a second (base::setBusyHook): the other
+    // clients' waiting replies are sent, and each request they send is answered "busy" without being run.
+    void answerBusy(const Connection& running, std::string_view task, double seconds);
     // For poll(): until the next hello deadline or held refusal, -1 while there is none.
     int msUntilHelloDeadline() const;
 

@@ -16,9 +16,11 @@ import sys
 import textwrap
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
+from numpy.typing import NDArray
 
 import spear
 from spear._rpc_client import RpcConnection, find_server_binary
@@ -41,7 +43,7 @@ def tcp_server() -> Iterator[str]:
         process.wait(10)
 
 
-def root_buffer(array: np.ndarray) -> object:
+def root_buffer(array: NDArray[Any]) -> object:
     base: object = array
     while isinstance(base, np.ndarray) and base.base is not None:
         base = base.base
