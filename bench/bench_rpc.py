@@ -14,7 +14,10 @@ transport"); on one CPU both the floor and spear pay only their own work.
 - 10,000 calls in one frame, queued with call_async (one message), vs the same calls made one by one;
 - a 1920x1080 RGBA frame from the engine into numpy (read_pixels of a frame already rendered) vs one
   memcpy of the same bytes;
-- read_pixels throughput (render + transfer) at latency 0, 1, 2.
+- read_pixels throughput (render + transfer) at latency 0, 1, 2;
+- the same 1920x1080 frame over TCP to a client that cannot map the server's shared memory (as on another
+  host: the reply carries it inline) vs a raw TCP socket sending the same bytes to a Python client that
+  receives them into one buffer.
 """
 
 from __future__ import annotations
@@ -34,7 +37,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "python"))
 
 import spear  # noqa: E402
-from spear._rpc_client import RpcConnection, spin_seconds  # noqa: E402
+from spear._rpc_client import RpcConnection, find_server_binary, spin_seconds  # noqa: E402
 
 # The echo polls for up to argv[2] seconds before it sleeps in recv, as spear's server does (spin_poll.h).
 ECHO = """
@@ -88,6 +91,68 @@ def raw_ping_pong_us(message_bytes: int, rounds: int, directory: str, spin: floa
     sock.close()
     echo.wait(5)
     return seconds / rounds * 1e6
+
+# Sends argv[2] bytes each time a 4-byte request arrives, over TCP: the floor of a frame sent inline.
+TCP_SENDER = """
+import socket, struct, sys
+s = socket.socket(); s.bind(("127.0.0.1", 0)); s.listen(1); print(s.getsockname()[1], flush=True)
+c, _ = s.accept(); c.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+payload = struct.pack("<I", int(sys.argv[2])) + bytes(int(sys.argv[2]))
+while len(c.recv(4, socket.MSG_WAITALL)) == 4:
+    c.sendall(payload)
+"""
+
+
+def tcp_frame_floor_s(size: int) -> float:
+    """A raw TCP round trip that brings `size` bytes into one buffer, best of a few."""
+    sender = subprocess.Popen([sys.executable, "-c", TCP_SENDER, "", str(size)], stdout=subprocess.PIPE, text=True)
+    try:
+        assert sender.stdout is not None
+        port = int(sender.stdout.readline())
+        sock = socket.create_connection(("127.0.0.1", port))
+        sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        buffer = bytearray(size)
+
+        def round_trip() -> None:
+            sock.sendall(b"\0\0\0\0")
+            (length,) = struct.unpack("<I", sock.recv(4, socket.MSG_WAITALL))
+            view, received = memoryview(buffer), 0
+            while received < length:
+                received += sock.recv_into(view[received:], length - received)
+            np.frombuffer(buffer, np.uint8)
+
+        result = best(round_trip, repeat=20)
+        sock.close()
+        return result
+    finally:
+        sender.wait(10)
+
+
+def tcp_inline_read_pixels_s() -> float:
+    """read_pixels of a rendered 1920x1080 frame over TCP by a client that did not prove it maps the server's
+    memory (as a client on another host): the reply carries the frame inline."""
+    token = "bench"
+    server = subprocess.Popen([str(find_server_binary()), "--port", "0", "--token", token, "--exit-with-parent"],
+                              stdout=subprocess.PIPE, text=True)
+    original = RpcConnection._prove_shared_memory
+    try:
+        assert server.stdout is not None
+        address = server.stdout.readline().strip().removeprefix("spear-server: listening on ")
+        RpcConnection._prove_shared_memory = lambda self, name: False  # type: ignore[assignment]
+        with spear.Instance(server=address, token=token) as instance:
+            assert not instance._backend.connection.shared_memory  # type: ignore[attr-defined]
+            with instance.begin_frame():
+                camera = instance.get_game().spawn_actor(uclass=spear.ACameraSensorActor).CameraSensor
+                camera.Width, camera.Height = 1920, 1080
+                camera.Modalities = [spear.ECameraModality.FinalColor]
+                camera.bShadows = False
+            with instance.end_frame():
+                camera.read_pixels()
+                return best(lambda: camera.read_pixels()["final_color"], repeat=20)
+    finally:
+        RpcConnection._prove_shared_memory = original  # type: ignore[assignment]
+        server.terminate()
+        server.wait(10)
 
 
 def main() -> None:
@@ -174,6 +239,10 @@ def main() -> None:
         print("1920x1080 RGBA frame into numpy (8.3 MB)")
         print(f"  one memcpy (floor)                  {memcpy_s * 1e3:8.2f} ms")
         print(f"  read_pixels over RPC                {transfer_s * 1e3:8.2f} ms   {transfer_s / memcpy_s:5.2f}x floor")
+        inline_s, tcp_floor_s = tcp_inline_read_pixels_s(), tcp_frame_floor_s(1920 * 1080 * 4)
+        print("the same frame over TCP, inline (a client that cannot map the server's memory)")
+        print(f"  raw TCP socket, same bytes (floor)  {tcp_floor_s * 1e3:8.2f} ms")
+        print(f"  read_pixels over TCP, inline        {inline_s * 1e3:8.2f} ms   {inline_s / tcp_floor_s:5.2f}x floor")
 
         print("read_pixels throughput at 256x256, final colour, render + transfer (llvmpipe)")
         with instance.begin_frame():
