@@ -301,7 +301,7 @@ bool Server::serve(Connection& connection) {
         auto send = [&](const std::shared_ptr<SharedMemorySegment>& segment, bool clientBuffer) {
             if (!clientBuffer)
                 connection.replySegments.push_back(segment);
-            return SharedArray{segment->name(), clientBuffer};
+            return SharedArray{segment->name(), clientBuffer, std::nullopt};
         };
         auto toShm = [&](const reflect::ArrayValue& array) {
             for (const auto& [segment, clientBuffer] : connection.requestSegments) // already there: no copy
@@ -310,6 +310,16 @@ bool Server::serve(Connection& connection) {
             auto [segment, clientBuffer] = connection.replySegment(array.byteSize());
             std::memcpy(segment->data(), array.data, array.byteSize());
             return send(segment, clientBuffer);
+        };
+        // A client that cannot map the server's memory gets large arrays in the reply's tail (kTailFlag),
+        // each copied once there instead of through msgpack.
+        std::string tail;
+        auto toTail = [&](const reflect::ArrayValue& array) {
+            tail.resize((tail.size() + kTailAlignment - 1) / kTailAlignment * kTailAlignment);
+            SharedArray placed;
+            placed.tail = tail.size();
+            tail.append(static_cast<const char*>(array.data), array.byteSize());
+            return placed;
         };
         {
             // Until the client has shown it maps the server's segments (Session::sharedMemoryReplies), arrays
@@ -331,7 +341,7 @@ bool Server::serve(Connection& connection) {
                 },
                 &busy);
             dispatcher_.handle(connection.inbox.data() + 4, length, connection.session, reply,
-                               shared ? ArrayToSharedMemory(toShm) : ArrayToSharedMemory());
+                               shared ? ArrayToSharedMemory(toShm) : ArrayToSharedMemory(toTail));
             base::setBusyHook(nullptr, nullptr);
         }
         if (connection.session.tokenRefused) {
@@ -347,10 +357,30 @@ bool Server::serve(Connection& connection) {
         connection.requestSegments.clear();
         connection.replyBuffers->endRequest();
         connection.inbox.erase(0, 4 + size_t(length));
-        const uint32_t replyLength = uint32_t(reply.size() - 4);
-        std::memcpy(reply.data(), &replyLength, 4);
-        if (!queueReply(connection, reply.data(), reply.size()))
-            return false;
+        uint32_t replyLength = uint32_t(reply.size() - 4);
+        if (!tail.empty()) {
+            // [length | kTailFlag][message length][message][padding][tail], the tail aligned from the byte
+            // after the length word (where the client's buffer starts).
+            const uint32_t messageLength = replyLength;
+            std::string framed(8, '\0');
+            std::memcpy(framed.data() + 4, &messageLength, 4);
+            framed.append(reply.data() + 4, messageLength);
+            framed.resize(4 + (4 + messageLength + kTailAlignment - 1) / kTailAlignment * kTailAlignment);
+            framed += tail;
+            if (framed.size() - 4 >= kTailFlag) {
+                SP_LOG("spear-server: dropping a client whose reply of ", framed.size(),
+                       " bytes is past the 2 GiB a frame can carry");
+                return false;
+            }
+            replyLength = uint32_t(framed.size() - 4) | kTailFlag;
+            std::memcpy(framed.data(), &replyLength, 4);
+            if (!queueReply(connection, framed.data(), framed.size()))
+                return false;
+        } else {
+            std::memcpy(reply.data(), &replyLength, 4);
+            if (!queueReply(connection, reply.data(), reply.size()))
+                return false;
+        }
         shutdown_ = shutdown_ || connection.session.shutdownRequested;
         if (connection.session.closeAfterReply) {
             connection.closing = true; // dropped once its last reply is out (run())

@@ -71,8 +71,13 @@ void packArray(msgpack::packer<msgpack::sbuffer>& out, const reflect::ArrayValue
     if (bytes >= kSharedMemoryThreshold && toShm) {
         const SharedArray shared = toShm(array);
         inner.pack_map(2);
-        inner.pack(std::string(shared.clientBuffer ? "buffer" : "shm"));
-        inner.pack(shared.name);
+        if (shared.tail) {
+            inner.pack(std::string("tail"));
+            inner.pack(*shared.tail);
+        } else {
+            inner.pack(std::string(shared.clientBuffer ? "buffer" : "shm"));
+            inner.pack(shared.name);
+        }
         inner.pack(std::string("size"));
         inner.pack(uint64_t(bytes));
     } else {

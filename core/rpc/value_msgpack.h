@@ -5,7 +5,8 @@
 //   2 class:  the class name (UTF-8)
 //   3 array:  a msgpack array [dtype, shape, payload], payload either the bytes (bin) or, for large
 //             arrays, a map {"shm": segment name, "size": bytes} naming a shared-memory segment (in
-//             replies also {"buffer": name, "size": bytes}, one of the client's reply buffers).
+//             replies also {"buffer": name, "size": bytes}, one of the client's reply buffers, or
+//             {"tail": offset, "size": bytes}, bytes after the message: see kTailFlag).
 //   4 enum:   i64 value (little endian), then the enum's name (UTF-8); sent by clients, so that an enum
 //             argument is told apart from an int. Replies carry enums as plain ints: the client knows each
 //             result's type from the generated API.
@@ -14,6 +15,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,11 +30,21 @@ enum ExtType : int8_t { kExtObject = 1, kExtClass = 2, kExtArray = 3, kExtEnum =
 inline constexpr size_t kSharedMemoryThreshold = 64 * 1024;
 
 // Where a large array of a reply is: a segment the server made ("shm": the client maps it and removes its
-// name), or one of the client's reply buffers ("buffer": core/rpc/reply_buffers.h).
+// name), one of the client's reply buffers ("buffer": core/rpc/reply_buffers.h), or, for a client that cannot
+// map the server's memory, the reply's tail ("tail": its offset there; see kTailFlag).
 struct SharedArray {
     std::string name;
     bool clientBuffer = false;
+    std::optional<uint64_t> tail;
 };
+
+// A reply frame whose length word has this bit set carries raw array bytes after its msgpack message: the
+// next 4 bytes are the message's length m, the message follows, and the tail starts at 4 + m rounded up to
+// kTailAlignment (counted from the byte after the length word), each array at its "tail" offset from there. A
+// large array then travels once, as it is, instead of being copied through msgpack on both sides. (Messages
+// are at most 1 GiB: the bit is free.)
+inline constexpr uint32_t kTailFlag = 0x80000000u;
+inline constexpr size_t kTailAlignment = 64;
 // Called for a large array: places its bytes in shared memory (unless they are there already).
 using ArrayToSharedMemory = std::function<SharedArray(const reflect::ArrayValue&)>;
 

@@ -28,7 +28,8 @@ from spear._reply_buffers import ReplyBuffers
 from spear._rpc_types import convert, convert_result_tuple
 from spear._type_code import TypeCode
 from spear._segments import remove_orphaned_segments
-from spear._wire import OutgoingSegments, ValueRefused, _object_ext, encode, map_segment, pack_frame, unpack_body
+from spear._wire import (TAIL_ALIGNMENT, TAIL_FLAG, OutgoingSegments, ValueRefused, _object_ext, encode, map_segment,
+                         pack_frame, unpack_body)
 from spear.futures import Future, warn_send_failed
 
 _ERRORS: dict[str, type[errors.SpearError]] = {
@@ -361,6 +362,11 @@ class RpcConnection:
         try:
             self._poll_briefly()
             (length,) = struct.unpack("<I", self._receive(4))
+            if length & TAIL_FLAG:  # large arrays after the message (a client that cannot map the server's memory)
+                body = self._receive(length & ~TAIL_FLAG)
+                (message_length,) = struct.unpack_from("<I", body)
+                return unpack_body(memoryview(body)[4:4 + message_length], buffers,
+                                   tail=(body, -(-(4 + message_length) // TAIL_ALIGNMENT) * TAIL_ALIGNMENT))
             return unpack_body(self._receive(length), buffers)
         except OSError as error:
             self._lost(error)

@@ -27,6 +27,11 @@ from spear._segments import segment_name
 
 EXT_OBJECT, EXT_CLASS, EXT_ARRAY, EXT_ENUM = 1, 2, 3, 4
 SHARED_MEMORY_THRESHOLD = 64 * 1024
+# A reply whose length word has TAIL_FLAG set carries its large arrays as raw bytes after the message (for a
+# client that cannot map the server's memory): the body is [message length][message][padding][tail], the tail
+# starting at 4 + message length rounded up to TAIL_ALIGNMENT (kTailFlag in core/rpc/value_msgpack.h).
+TAIL_FLAG = 0x80000000
+TAIL_ALIGNMENT = 64
 # Lists and dicts nest at most this deep in a value (kMaxValueDepth in core/reflect/value.h): the server
 # refuses deeper ones, and refusing them here keeps Python's recursion limit out of it.
 MAX_VALUE_DEPTH = 64
@@ -232,7 +237,8 @@ def _object_ext(index: int, generation: int) -> msgpack.ExtType:
     return msgpack.ExtType(EXT_OBJECT, struct.pack("<II", index, generation))
 
 
-def _ext_hook(code: int, data: bytes, buffers: ReplyBuffers | None = None) -> Any:
+def _ext_hook(code: int, data: bytes, buffers: ReplyBuffers | None = None,
+              tail: tuple[bytearray, int] | None = None) -> Any:
     if code == EXT_OBJECT:
         index, generation = struct.unpack_from("<II", data)
         return ObjectRef(index, generation, data[8:].decode())
@@ -241,6 +247,16 @@ def _ext_hook(code: int, data: bytes, buffers: ReplyBuffers | None = None) -> An
         return ClassRef(name, native)
     if code == EXT_ARRAY:
         dtype, shape, payload = msgpack.unpackb(data, raw=False)
+        if isinstance(payload, dict) and "tail" in payload:
+            if tail is None:
+                raise ValueError("a reply named its tail, but has none")
+            body, start = tail
+            count = int(np.prod(shape)) if shape else 1
+            offset = start + int(payload["tail"])
+            if offset + int(payload["size"]) > len(body):
+                raise ValueError("a reply's array runs past its tail")
+            # A view of the reply's own buffer, which no later reply reuses: no copy.
+            return np.frombuffer(body, dtype=np.dtype(dtype), count=count, offset=offset).reshape(shape)
         if isinstance(payload, dict) and "buffer" in payload:
             if buffers is None:
                 raise ValueError("a reply named a reply buffer, but none was offered")
@@ -260,13 +276,15 @@ def pack_frame(message: dict[str, Any]) -> bytes:
     return struct.pack("<I", len(body)) + body
 
 
-def unpack_body(body: bytes | bytearray, buffers: ReplyBuffers | None = None) -> Any:
-    """A reply; `buffers` are the reply buffers its request offered (spear._reply_buffers)."""
+def unpack_body(body: bytes | bytearray | memoryview, buffers: ReplyBuffers | None = None,
+                tail: tuple[bytearray, int] | None = None) -> Any:
+    """A reply; `buffers` are the reply buffers its request offered (spear._reply_buffers); `tail` the frame's
+    buffer and where its tail starts there, when the reply has one (TAIL_FLAG)."""
     if buffers is not None:
         buffers.begin_reply()
     hook: Callable[[int, bytes], Any] = _ext_hook
-    if buffers is not None:
-        hook = functools.partial(_ext_hook, buffers=buffers)
+    if buffers is not None or tail is not None:
+        hook = functools.partial(_ext_hook, buffers=buffers, tail=tail)
     try:
         return msgpack.unpackb(body, raw=False, ext_hook=hook, strict_map_key=False)
     finally:

@@ -44,7 +44,16 @@ class RawClient:
         self.sock.connect(server.address.removeprefix("unix:"))
         self.sock.settimeout(30)
         if hello:
-            assert "ok" in self.request({"op": "hello", "api_hash": spear._engine.API_HASH})
+            greeting = self.request({"op": "hello", "api_hash": spear._engine.API_HASH})
+            assert "ok" in greeting
+            # As spear's client does: it shows it maps the server's memory, so large replies travel through it.
+            probe = greeting["ok"].get("shm_probe")
+            if probe:
+                fd = os.open("/dev/shm" + probe, os.O_RDONLY)
+                nonce = os.read(fd, 32).decode()
+                os.close(fd)
+                os.unlink("/dev/shm" + probe)
+                assert self.request({"op": "shm_proof", "nonce": nonce})["ok"] is True
 
     def send(self, body: bytes) -> dict[str, Any]:
         self.sock.sendall(struct.pack("<I", len(body)) + body)
