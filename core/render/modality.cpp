@@ -267,13 +267,22 @@ PassSet ModalitySet::requiredPasses(bool shadowsEnabled) const {
     return passes;
 }
 
-PassSet multisampled(PassSet passes, int samples) {
-    if (samples <= 1 || !passes.lighting)
-        return passes;
+namespace {
+// The shaded targets in the surface pass and the exact ones in the attribute pass, in float targets: what
+// averaging samples (multisampled or spatial) needs.
+PassSet shadedApart(PassSet passes) {
     const TargetMask all = passes.surfaceTargets | passes.attributeTargets;
     passes.surfaceTargets = all & kShadedTargets;
     passes.attributeTargets = all & ~kShadedTargets;
     passes.compactTargets = false;
+    return passes;
+}
+} // namespace
+
+PassSet multisampled(PassSet passes, int samples) {
+    if (samples <= 1 || !passes.lighting)
+        return passes;
+    passes = shadedApart(passes);
     passes.samples = samples;
     return passes;
 }
@@ -281,10 +290,7 @@ PassSet multisampled(PassSet passes, int samples) {
 PassSet spatiallySampled(PassSet passes, int count) {
     if (count <= 1 || !passes.lighting)
         return passes;
-    const TargetMask all = passes.surfaceTargets | passes.attributeTargets;
-    passes.surfaceTargets = all & kShadedTargets;
-    passes.attributeTargets = all & ~kShadedTargets;
-    passes.compactTargets = false;
+    passes = shadedApart(passes);
     passes.samples = 1; // see PassSet::spatialSamples
     passes.spatialSamples = count;
     return passes;

@@ -33,6 +33,26 @@ Camera shapesView(int width, int height, AntiAliasing antiAliasing) {
     return camera;
 }
 
+// A 40 m floor under a sun, its texture 16 x 16 texels of black and white squares `texelsPerSquare` wide,
+// repeating every `textureSize` metres.
+void buildCheckeredFloor(Scene& scene, int texelsPerSquare, float textureSize) {
+    std::vector<std::uint8_t> checker(16 * 16 * 4);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x)
+            for (int c = 0; c < 4; ++c)
+                checker[std::size_t(4 * (16 * y + x) + c)] =
+                    c == 3 || (x / texelsPerSquare + y / texelsPerSquare) % 2 == 0 ? 255 : 0;
+    Material floor = makeMaterial({1.0f, 1.0f, 1.0f}, 1.0f, 0.0f);
+    floor.baseColorTexture = scene.addTexture(TextureImage::fromPixels(16, 16, checker));
+    floor.textureSize = textureSize;
+    Instance instance{scene.addMesh(primitives::box({40.0f, 40.0f, 0.1f})), {scene.addMaterial(floor)}, {1}};
+    instance.transform.translation() = Eigen::Vector3d(0.0, 0.0, -0.05);
+    scene.addInstance(instance);
+    Light sun;
+    sun.direction = Eigen::Vector3d(0.2, 0.1, -1.0).normalized();
+    scene.addLight(sun);
+}
+
 TEST_F(RenderAntiAliasingGlTest, FxaaFiltersFinalColorAtSilhouettesAndLeavesExactModalitiesExact) {
     Scene scene;
     buildShapesScene(scene);
@@ -117,6 +137,21 @@ double supersampledError(const ImageBuffer& color, const ImageBuffer& large, int
     return sum / (3.0 * width * height);
 }
 
+// The largest relative difference of hdr_color from diffuse_only + specular_residual in a 96 x 64 frame.
+double decompositionError(const Frame& frame) {
+    const auto hdr = frame.get(Modality::HdrColor).as<std::uint16_t>();
+    const auto diffuse = frame.get(Modality::DiffuseOnly).as<std::uint16_t>();
+    const auto residual = frame.get(Modality::SpecularResidual).as<std::uint16_t>();
+    double largest = 0.0;
+    for (std::size_t p = 0; p < std::size_t(96 * 64); ++p)
+        for (std::size_t c = 0; c < 3; ++c) {
+            const double h = halfToFloat(hdr[4 * p + c]), d = halfToFloat(diffuse[3 * p + c]),
+                         r = halfToFloat(residual[3 * p + c]);
+            largest = std::max(largest, std::abs(h - d - r) / std::max(1.0, std::abs(h)));
+        }
+    return largest;
+}
+
 TEST_F(RenderAntiAliasingGlTest, MsaaLeavesEveryExactModalityExactAndBringsFinalColorCloseToSupersampling) {
     Scene scene;
     buildShapesScene(scene);
@@ -148,17 +183,7 @@ TEST_F(RenderAntiAliasingGlTest, MsaaLeavesEveryExactModalityExactAndBringsFinal
     EXPECT_LT(after, 0.6 * before) << before << " -> " << after;
 
     // The resolve averages each shaded target alike: hdr_color is still diffuse_only + specular_residual.
-    const auto hdr = b.get(Modality::HdrColor).as<std::uint16_t>();
-    const auto diffuse = b.get(Modality::DiffuseOnly).as<std::uint16_t>();
-    const auto residual = b.get(Modality::SpecularResidual).as<std::uint16_t>();
-    double largest = 0.0;
-    for (std::size_t p = 0; p < std::size_t(96 * 64); ++p)
-        for (std::size_t c = 0; c < 3; ++c) {
-            const double h = halfToFloat(hdr[4 * p + c]), d = halfToFloat(diffuse[3 * p + c]),
-                         r = halfToFloat(residual[3 * p + c]);
-            largest = std::max(largest, std::abs(h - d - r) / std::max(1.0, std::abs(h)));
-        }
-    EXPECT_LT(largest, 4e-3);
+    EXPECT_LT(decompositionError(b), 4e-3);
 }
 
 TEST_F(RenderAntiAliasingGlTest, MsaaTakesTheDevicesMostSamplesAndRefusesOtherCounts) {
@@ -225,17 +250,7 @@ TEST_F(RenderAntiAliasingGlTest, SpatialSamplesAverageMovedPixelsAndLeaveExactMo
         previous = now;
 
         // The resolve averages each shaded target alike: hdr_color is still diffuse_only + specular_residual.
-        const auto hdr = b.get(Modality::HdrColor).as<std::uint16_t>();
-        const auto diffuse = b.get(Modality::DiffuseOnly).as<std::uint16_t>();
-        const auto residual = b.get(Modality::SpecularResidual).as<std::uint16_t>();
-        double largest = 0.0;
-        for (std::size_t p = 0; p < std::size_t(96 * 64); ++p)
-            for (std::size_t c = 0; c < 3; ++c) {
-                const double h = halfToFloat(hdr[4 * p + c]), d = halfToFloat(diffuse[3 * p + c]),
-                             r = halfToFloat(residual[3 * p + c]);
-                largest = std::max(largest, std::abs(h - d - r) / std::max(1.0, std::abs(h)));
-            }
-        EXPECT_LT(largest, 4e-3) << count << " samples";
+        EXPECT_LT(decompositionError(b), 4e-3) << count << " samples";
     }
 }
 
@@ -307,20 +322,7 @@ TEST_F(RenderAntiAliasingGlTest, SpatialSamplesReadTexturesAsAViewThatManyTimesL
     // read 2 levels finer (log2 sqrt(16)), as a view 4 x 4 times larger reads them, they average the squares
     // they cover, as a view 16 x 16 times larger averaged down does.
     Scene scene;
-    std::vector<std::uint8_t> checker(16 * 16 * 4);
-    for (int y = 0; y < 16; ++y)
-        for (int x = 0; x < 16; ++x)
-            for (int c = 0; c < 4; ++c)
-                checker[std::size_t(4 * (16 * y + x) + c)] = c == 3 || (x / 2 + y / 2) % 2 == 0 ? 255 : 0;
-    Material floor = makeMaterial({1.0f, 1.0f, 1.0f}, 1.0f, 0.0f);
-    floor.baseColorTexture = scene.addTexture(TextureImage::fromPixels(16, 16, checker));
-    floor.textureSize = 2.0f;
-    Instance instance{scene.addMesh(primitives::box({40.0f, 40.0f, 0.1f})), {scene.addMaterial(floor)}, {1}};
-    instance.transform.translation() = Eigen::Vector3d(0.0, 0.0, -0.05);
-    scene.addInstance(instance);
-    Light sun;
-    sun.direction = Eigen::Vector3d(0.2, 0.1, -1.0).normalized();
-    scene.addLight(sun);
+    buildCheckeredFloor(scene, 2, 2.0f);
     const int width = 96, height = 64, n = 16;
     Camera camera = cameraLookingAt({-6.0, 0.0, 2.0}, {0.0, 0.0, 0.0}, width, height, 60.0);
     const Camera large = cameraLookingAt({-6.0, 0.0, 2.0}, {0.0, 0.0, 0.0}, n * width, n * height, 60.0);
@@ -373,20 +375,7 @@ TEST_F(RenderAntiAliasingGlTest,
     // samples along it. Against the same view rendered 4 x 4 larger and averaged down, its far floor is
     // closer. The geometry is the same: depth and ids bit for bit.
     Scene scene;
-    std::vector<std::uint8_t> checker(16 * 16 * 4);
-    for (int y = 0; y < 16; ++y)
-        for (int x = 0; x < 16; ++x)
-            for (int c = 0; c < 4; ++c)
-                checker[std::size_t(4 * (16 * y + x) + c)] = c == 3 || (x / 4 + y / 4) % 2 == 0 ? 255 : 0;
-    Material floor = makeMaterial({1.0f, 1.0f, 1.0f}, 1.0f, 0.0f);
-    floor.baseColorTexture = scene.addTexture(TextureImage::fromPixels(16, 16, checker));
-    floor.textureSize = 4.0f;
-    Instance instance{scene.addMesh(primitives::box({40.0f, 40.0f, 0.1f})), {scene.addMaterial(floor)}, {1}};
-    instance.transform.translation() = Eigen::Vector3d(0.0, 0.0, -0.05);
-    scene.addInstance(instance);
-    Light sun;
-    sun.direction = Eigen::Vector3d(0.2, 0.1, -1.0).normalized();
-    scene.addLight(sun);
+    buildCheckeredFloor(scene, 4, 4.0f);
     const int width = 128, height = 96;
     const Camera camera = cameraLookingAt({-19.0, 0.0, 1.5}, {-9.0, 0.0, 0.0}, width, height, 60.0);
     const Camera large = cameraLookingAt({-19.0, 0.0, 1.5}, {-9.0, 0.0, 0.0}, 4 * width, 4 * height, 60.0);
