@@ -99,6 +99,17 @@ py::object apiAttribute(const char* module, const char* name) {
     return py::module_::import(module).attr(name);
 }
 
+py::object enumMember(const py::object& cls, const py::object& members, int64_t value) {
+    const auto key = py::reinterpret_steal<py::object>(PyLong_FromLongLong(value));
+    if (!key)
+        throw py::error_already_set();
+    if (PyObject* member = PyDict_GetItemWithError(members.ptr(), key.ptr())) // borrowed
+        return py::reinterpret_borrow<py::object>(member);
+    if (PyErr_Occurred())
+        throw py::error_already_set();
+    return cls(value);
+}
+
 const py::object& PyCall::resultTuple(const reflect::ResultTupleDesc& tuple) {
     // Keyed by the body's descriptor (one static per function), used with the GIL held (an import inside
     // apiAttribute may let another thread in, which at worst looks a class up twice). The classes are never

@@ -339,6 +339,12 @@ template <typename T> struct Bridge<reflect::SpArray<T>> {
 // Looks up a class of the generated API module (structs, enums, result tuples); cached by the caller.
 py::object apiAttribute(const char* module, const char* name);
 
+// The member of the enum class `cls` whose value is `value`, found in `members` (the class's
+// _value2member_map_, cached by the caller): a dict lookup instead of a call of the class, whose
+// EnumMeta.__call__ costs a typed enum read a few hundred nanoseconds. A value the enum lacks is left to the
+// call, which raises as it always has.
+py::object enumMember(const py::object& cls, const py::object& members, int64_t value);
+
 } // namespace sp::pybind
 #pragma GCC visibility pop
 

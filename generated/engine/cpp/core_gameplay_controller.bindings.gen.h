@@ -39,7 +39,8 @@ template <> struct type_caster<EPathFollowingRequestResult> {
     }
     static handle cast(EPathFollowingRequestResult v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EPathFollowingRequestResult");
-        return cls(static_cast<int64_t>(v)).release();
+        static const object members = cls.attr("_value2member_map_");
+        return sp::pybind::enumMember(cls, members, static_cast<int64_t>(v)).release();
     }
 };
 
@@ -54,7 +55,8 @@ template <> struct type_caster<EPathFollowingStatus> {
     }
     static handle cast(EPathFollowingStatus v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EPathFollowingStatus");
-        return cls(static_cast<int64_t>(v)).release();
+        static const object members = cls.attr("_value2member_map_");
+        return sp::pybind::enumMember(cls, members, static_cast<int64_t>(v)).release();
     }
 };
 

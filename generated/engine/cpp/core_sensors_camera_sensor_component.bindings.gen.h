@@ -34,7 +34,8 @@ template <> struct type_caster<EAntiAliasingMethod> {
     }
     static handle cast(EAntiAliasingMethod v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EAntiAliasingMethod");
-        return cls(static_cast<int64_t>(v)).release();
+        static const object members = cls.attr("_value2member_map_");
+        return sp::pybind::enumMember(cls, members, static_cast<int64_t>(v)).release();
     }
 };
 
@@ -49,7 +50,8 @@ template <> struct type_caster<EAutoExposureMethod> {
     }
     static handle cast(EAutoExposureMethod v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EAutoExposureMethod");
-        return cls(static_cast<int64_t>(v)).release();
+        static const object members = cls.attr("_value2member_map_");
+        return sp::pybind::enumMember(cls, members, static_cast<int64_t>(v)).release();
     }
 };
 
@@ -64,7 +66,8 @@ template <> struct type_caster<ECameraModality> {
     }
     static handle cast(ECameraModality v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ECameraModality");
-        return cls(static_cast<int64_t>(v)).release();
+        static const object members = cls.attr("_value2member_map_");
+        return sp::pybind::enumMember(cls, members, static_cast<int64_t>(v)).release();
     }
 };
 
@@ -79,7 +82,8 @@ template <> struct type_caster<ECameraRenderer> {
     }
     static handle cast(ECameraRenderer v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ECameraRenderer");
-        return cls(static_cast<int64_t>(v)).release();
+        static const object members = cls.attr("_value2member_map_");
+        return sp::pybind::enumMember(cls, members, static_cast<int64_t>(v)).release();
     }
 };
 
@@ -94,7 +98,8 @@ template <> struct type_caster<ECameraToneCurve> {
     }
     static handle cast(ECameraToneCurve v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ECameraToneCurve");
-        return cls(static_cast<int64_t>(v)).release();
+        static const object members = cls.attr("_value2member_map_");
+        return sp::pybind::enumMember(cls, members, static_cast<int64_t>(v)).release();
     }
 };
 
@@ -109,7 +114,8 @@ template <> struct type_caster<EGlobalIlluminationQuality> {
     }
     static handle cast(EGlobalIlluminationQuality v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EGlobalIlluminationQuality");
-        return cls(static_cast<int64_t>(v)).release();
+        static const object members = cls.attr("_value2member_map_");
+        return sp::pybind::enumMember(cls, members, static_cast<int64_t>(v)).release();
     }
 };
 

@@ -38,7 +38,8 @@ template <> struct type_caster<ESkyLightSourceType> {
     }
     static handle cast(ESkyLightSourceType v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "ESkyLightSourceType");
-        return cls(static_cast<int64_t>(v)).release();
+        static const object members = cls.attr("_value2member_map_");
+        return sp::pybind::enumMember(cls, members, static_cast<int64_t>(v)).release();
     }
 };
 

@@ -33,7 +33,8 @@ template <> struct type_caster<EComponentMobility> {
     }
     static handle cast(EComponentMobility v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EComponentMobility");
-        return cls(static_cast<int64_t>(v)).release();
+        static const object members = cls.attr("_value2member_map_");
+        return sp::pybind::enumMember(cls, members, static_cast<int64_t>(v)).release();
     }
 };
 

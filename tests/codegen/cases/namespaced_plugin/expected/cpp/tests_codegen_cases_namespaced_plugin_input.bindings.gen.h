@@ -36,7 +36,8 @@ template <> struct type_caster<acme::robots::EGait> {
     }
     static handle cast(acme::robots::EGait v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("namespaced_plugin.api", "EGait");
-        return cls(static_cast<int64_t>(v)).release();
+        static const object members = cls.attr("_value2member_map_");
+        return sp::pybind::enumMember(cls, members, static_cast<int64_t>(v)).release();
     }
 };
 

@@ -37,7 +37,8 @@ template <> struct type_caster<EPluginMood> {
     }
     static handle cast(EPluginMood v, return_value_policy, handle) {
         static const object cls = sp::pybind::apiAttribute("plugin_actor.api", "EPluginMood");
-        return cls(static_cast<int64_t>(v)).release();
+        static const object members = cls.attr("_value2member_map_");
+        return sp::pybind::enumMember(cls, members, static_cast<int64_t>(v)).release();
     }
 };
 
