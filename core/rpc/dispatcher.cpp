@@ -43,6 +43,8 @@ bool sameSecret(const std::string& given, const std::string& secret) {
     return difference == 0;
 }
 
+} // namespace
+
 void packError(msgpack::packer<msgpack::sbuffer>& out, const msgpack::object* id, const char* type,
                const std::string& message) {
     out.pack_map(2);
@@ -56,7 +58,6 @@ void packError(msgpack::packer<msgpack::sbuffer>& out, const msgpack::object* id
     out.pack(std::string(type));
     out.pack(message);
 }
-} // namespace
 
 void Dispatcher::handle(const char* data, size_t size, Session& session, msgpack::sbuffer& reply,
                         const ArrayToSharedMemory& toShm) {

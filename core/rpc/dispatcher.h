@@ -60,6 +60,10 @@ struct Session {
     std::string probeNonce;
 };
 
+// An error reply {"id": id (nil without one), "error": [type, message]}, `type` a spear.errors class name.
+void packError(msgpack::packer<msgpack::sbuffer>& out, const msgpack::object* id, const char* type,
+               const std::string& message);
+
 class Dispatcher {
   public:
     Dispatcher(engine::Engine& engine, std::string apiHash, std::string token)

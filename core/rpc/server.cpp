@@ -420,20 +420,14 @@ void Server::answerBusy(const Connection& running, std::string_view task, double
             msgpack::sbuffer reply;
             reply.write("\0\0\0\0", 4);
             msgpack::packer<msgpack::sbuffer> out(&reply);
-            out.pack_map(2);
-            out.pack(std::string("id"));
-            if (id && id->type != msgpack::type::ARRAY && id->type != msgpack::type::MAP)
-                out.pack(*id);
-            else
-                out.pack_nil();
-            out.pack(std::string("error"));
-            out.pack_array(2);
-            out.pack(std::string("InvalidStateError"));
+            if (id && (id->type == msgpack::type::ARRAY || id->type == msgpack::type::MAP))
+                id = nullptr; // echoed only as a scalar, as the dispatcher does
             char elapsed[32];
             std::snprintf(elapsed, sizeof(elapsed), "%.1f", seconds);
-            out.pack("spear-server: busy: another client's request has kept the engine for " +
-                     std::string(elapsed) + " s (" + std::string(task) +
-                     "); this request was not run: send it again when that is done");
+            packError(out, id, "InvalidStateError",
+                      "spear-server: busy: another client's request has kept the engine for " +
+                          std::string(elapsed) + " s (" + std::string(task) +
+                          "); this request was not run: send it again when that is done");
             const uint32_t replyLength = uint32_t(reply.size() - 4);
             std::memcpy(reply.data(), &replyLength, 4);
             connection->inbox.erase(0, 4 + size_t(length));
