@@ -110,6 +110,7 @@ struct Shape {
     Eigen::Vector3f translation;               // and its translation
     std::vector<render::MaterialId> materials; // one per submesh
     bool probed = true;                        // probe rays see it (not smaller than the probe cutoff)
+    bool castsShadows = true;                  // shadow rays (and lights' rays) see it
 };
 
 std::array<float, 256> srgbTable() {
@@ -179,6 +180,67 @@ Eigen::Vector3f lightIrradiance(const render::Light& light, const Eigen::Vector3
         e *= t * t;
     }
     return e;
+}
+
+// Light-vertex connections are drawn at surfaces at least this rough (smoother ones reflect a narrow lobe
+// that the bounce finds better).
+constexpr float kJoinedRoughness = 0.3f;
+
+// Light-vertex connections: the lights whose rays the path tracer follows to the first surface they light
+// and joins to a path's vertex (point and spot lights that cast shadows), each drawn in proportion to its
+// power. Indexed as Scene::forEachLight() visits the lights.
+struct LightVertices {
+    std::vector<const render::Light*> lights;
+    std::vector<float> chance; // of each light being drawn (0: never)
+    std::vector<float> cdf;    // running sum of `chance`
+    bool empty() const { return cdf.empty() || cdf.back() <= 0.0f; }
+};
+
+// The solid angle a point or spot light emits into.
+float emittedSolidAngle(const render::Light& light) {
+    if (light.type == render::LightType::Spot)
+        return 2.0f * kPi * (1.0f - std::cos(std::clamp(light.outerConeDeg, 0.0f, 180.0f) * kPi / 180.0f));
+    return 4.0f * kPi;
+}
+
+LightVertices lightVertices(const render::Scene& scene) {
+    LightVertices out;
+    double total = 0.0;
+    std::vector<double> power;
+    scene.forEachLight([&](render::LightId, const render::Light& light) {
+        const bool joins = light.castShadows &&
+                           (light.type == render::LightType::Point || light.type == render::LightType::Spot);
+        const double p = joins ? double(light.intensity) *
+                                     double(0.2126f * light.color.x() + 0.7152f * light.color.y() +
+                                            0.0722f * light.color.z()) *
+                                     double(emittedSolidAngle(light))
+                               : 0.0;
+        out.lights.push_back(&light);
+        power.push_back(std::isfinite(p) && p > 0.0 ? p : 0.0);
+        total += power.back();
+    });
+    double running = 0.0;
+    for (double p : power) {
+        out.chance.push_back(total > 0.0 ? float(p / total) : 0.0f);
+        running += total > 0.0 ? p / total : 0.0;
+        out.cdf.push_back(float(running));
+    }
+    return out;
+}
+
+// The density per unit area with which a light-vertex connection draws a point whose direction from the
+// light is `fromLight` (unit), at `distance` from it, on a surface whose cosine to that direction is
+// `cosine`: the light's chance, times the density of its rays' direction, times the area's solid angle.
+float lightVertexDensity(const LightVertices& table, std::size_t i, const Eigen::Vector3f& fromLight,
+                         float distance, float cosine) {
+    const render::Light& light = *table.lights[i];
+    if (table.chance[i] <= 0.0f)
+        return 0.0f;
+    if (light.type == render::LightType::Spot &&
+        fromLight.dot(light.direction.cast<float>().normalized()) <
+            std::cos(std::clamp(light.outerConeDeg, 0.0f, 180.0f) * kPi / 180.0f))
+        return 0.0f;
+    return table.chance[i] / emittedSolidAngle(light) * cosine / std::max(distance * distance, 1e-4f);
 }
 
 // The multiple importance sampling weight of a sample drawn with density `chosen` where another strategy
@@ -393,7 +455,7 @@ struct PathTracer::Impl {
             rtcAttachGeometryByID(rtcScene, geometry, unsigned(shapes.size()));
             rtcReleaseGeometry(geometry);
             shapes.push_back({&mesh, transform.linear().inverse().transpose(), transform.linear(),
-                              transform.translation(), instance.materials, probed});
+                              transform.translation(), instance.materials, probed, instance.castShadows});
         });
         rtcCommitScene(rtcScene);
         std::erase_if(meshShapes, [&](const auto& entry) { return entry.second->usedBy + 8 < builds; });
@@ -513,6 +575,176 @@ struct PathTracer::Impl {
         return ray.tfar < 0.0f;
     }
 
+    // A surface a ray met, as shading needs it: its position, geometric normal and shading normal (both
+    // facing the ray's origin: surfaces are two-sided, as in the rasteriser), material, and the material's
+    // values there (textures and normal map applied).
+    struct Surface {
+        Eigen::Vector3f p, ng, n;
+        SurfacePoint s;
+        const render::Material* material = nullptr;
+        std::uint32_t shape = 0; // index in `shapes`
+    };
+    // The surface the ray from `origin` along unit `direction` met (Embree's `hit`, found).
+    Surface surfaceAt(const render::Scene& scene, const RTCRayHit& hit, const Eigen::Vector3f& origin,
+                      const Eigen::Vector3f& direction) const {
+        Surface out;
+        out.shape = hit.hit.instID[0];
+        const Shape& shape = shapes[hit.hit.instID[0]];
+        const MeshShape& mesh = *shape.mesh;
+        const std::uint32_t triangle = hit.hit.primID;
+        const std::uint32_t i0 = mesh.indices[3 * triangle], i1 = mesh.indices[3 * triangle + 1],
+                            i2 = mesh.indices[3 * triangle + 2];
+        const float u = hit.hit.u, v = hit.hit.v, w = 1.0f - u - v;
+        const Eigen::Vector3f p = origin + direction * hit.ray.tfar;
+        out.p = p;
+        const Eigen::Vector3f toViewer = -direction;
+        // Two-sided, as the rasteriser: the geometric normal faces the viewer, the shading normal
+        // follows.
+        // Embree gives an instance's hit normal in the mesh's space.
+        Eigen::Vector3f ng =
+            (shape.normalMatrix * Eigen::Vector3f(hit.hit.Ng_x, hit.hit.Ng_y, hit.hit.Ng_z)).normalized();
+        if (ng.dot(toViewer) < 0.0f)
+            ng = -ng;
+        Eigen::Vector3f n =
+            (shape.normalMatrix * (mesh.normals[i0] * w + mesh.normals[i1] * u + mesh.normals[i2] * v))
+                .normalized();
+        if (!n.allFinite())
+            n = ng;
+        if (n.dot(ng) < 0.0f)
+            n = -n;
+        const render::Material& material = scene.material(shape.materials[mesh.slots[triangle]]);
+        // The texture coordinates of the hit and of the triangle's corners (for the normal map's frame):
+        // the mesh's, or the object's scaled box axes' (box_uv.h), the axis the hit's normal chooses.
+        Eigen::Vector2f uv, uv0, uv1, uv2;
+        if (material.boxUv()) {
+            const Eigen::Vector3f scale = shape.linear.colwise().norm();
+            const Eigen::Vector3f normal =
+                (mesh.normals[i0] * w + mesh.normals[i1] * u + mesh.normals[i2] * v).cwiseQuotient(scale);
+            const float inverse = 1.0f / material.textureSize;
+            uv0 = render::boxUv(mesh.positions[i0].cwiseProduct(scale), normal, inverse);
+            uv1 = render::boxUv(mesh.positions[i1].cwiseProduct(scale), normal, inverse);
+            uv2 = render::boxUv(mesh.positions[i2].cwiseProduct(scale), normal, inverse);
+        } else {
+            uv0 = mesh.uvs[i0];
+            uv1 = mesh.uvs[i1];
+            uv2 = mesh.uvs[i2];
+        }
+        uv = uv0 * w + uv1 * u + uv2 * v;
+        SurfacePoint s{n, material.baseColor.head<3>(), material.roughness, material.metallic};
+        if (material.baseColorTexture)
+            s.base = s.base.cwiseProduct(sampleTexture(scene.texture(*material.baseColorTexture),
+                                                       scene.textureEncoding(*material.baseColorTexture) ==
+                                                           render::TextureEncoding::Srgb,
+                                                       uv)
+                                             .head<3>());
+        if (material.normalTexture) { // the rasteriser's normal mapping (kMaterialChunk), per triangle
+            // Its cotangent frame (Schueler 2013) from the triangle's edges where the rasteriser takes
+            // screen derivatives: the same surface gradients of u and v.
+            const Eigen::Vector3f e1 = shape.linear * (mesh.positions[i1] - mesh.positions[i0]),
+                                  e2 = shape.linear * (mesh.positions[i2] - mesh.positions[i0]);
+            const Eigen::Vector2f d1 = uv1 - uv0, d2 = uv2 - uv0;
+            const Eigen::Vector3f p2perp = e2.cross(n), p1perp = n.cross(e1);
+            const Eigen::Vector3f t = p2perp * d1.x() + p1perp * d2.x(),
+                                  b = p2perp * d1.y() + p1perp * d2.y();
+            const float orientation = n.dot(e1.cross(e2)) < 0.0f ? -1.0f : 1.0f;
+            const float scale =
+                orientation / std::sqrt(std::max(std::max(t.squaredNorm(), b.squaredNorm()), 1e-20f));
+            const Eigen::Vector3f m =
+                sampleTexture(scene.texture(*material.normalTexture), false, uv).head<3>() * 2.0f -
+                Eigen::Vector3f::Ones();
+            // Green points up in the image, towards decreasing v.
+            const Eigen::Vector3f mapped =
+                (t * (scale * m.x()) - b * (scale * m.y()) + n * m.z()).normalized();
+            if (mapped.allFinite() && mapped.dot(ng) > 0.0f)
+                s.n = n = mapped;
+        }
+        if (material.roughnessMetallicTexture) {
+            const Eigen::Vector4f rm =
+                sampleTexture(scene.texture(*material.roughnessMetallicTexture), false, uv);
+            s.roughness *= rm.y();
+            s.metallic *= rm.z();
+        }
+        out.ng = ng;
+        out.n = n;
+        out.s = s;
+        out.material = &material;
+        return out;
+    }
+
+    // One light-vertex connection at the surface point `above` (normals n, ng, material s, viewed from
+    // `toViewer`, whose bounce draws direction l with density pdf(s, toViewer, l)): a light of `joins` drawn
+    // by its power, a ray of it drawn uniformly over what it lights, and the first shadow-casting surface y
+    // the ray meets; if y sees the point, `arrive(radiance, l, weight)` is given the lamp's light y reflects
+    // towards it along l, and the weight (cos / density, times the multiple importance sampling weight)
+    // by which the point reflects it.
+    template <typename Arrive>
+    void joinLightVertex(const render::Scene& scene, const LightVertices& joins, Random& random,
+                         std::uint64_t& rays, const Eigen::Vector3f& above, const Eigen::Vector3f& n,
+                         const Eigen::Vector3f& ng, const SurfacePoint& s, const Eigen::Vector3f& toViewer,
+                         const Settings& settings, Arrive&& arrive) const {
+        const float pick = random.next(), u1 = random.next(), u2 = random.next();
+        const std::size_t i = std::min<std::size_t>(
+            std::size_t(std::upper_bound(joins.cdf.begin(), joins.cdf.end(), pick) - joins.cdf.begin()),
+            joins.cdf.size() - 1);
+        if (joins.chance[i] <= 0.0f)
+            return;
+        const render::Light& light = *joins.lights[i];
+        // Uniform over the sphere, or over a spot light's outer cone.
+        const Eigen::Vector3f axis = light.type == render::LightType::Spot
+                                         ? Eigen::Vector3f(light.direction.cast<float>().normalized())
+                                         : Eigen::Vector3f::UnitZ();
+        const float lowest = light.type == render::LightType::Spot
+                                 ? std::cos(std::clamp(light.outerConeDeg, 0.0f, 180.0f) * kPi / 180.0f)
+                                 : -1.0f;
+        const float z = 1.0f - u1 * (1.0f - lowest), r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        Eigen::Vector3f t, b;
+        basis(axis, t, b);
+        const Eigen::Vector3f ray =
+            (t * (r * std::cos(2.0f * kPi * u2)) + b * (r * std::sin(2.0f * kPi * u2)) + axis * z)
+                .normalized();
+        const Eigen::Vector3f from = light.position.cast<float>();
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        RTCRayHit hit{};
+        hit.ray.org_x = from.x(), hit.ray.org_y = from.y(), hit.ray.org_z = from.z();
+        hit.ray.dir_x = ray.x(), hit.ray.dir_y = ray.y(), hit.ray.dir_z = ray.z();
+        hit.ray.tnear = 0.0f;
+        hit.ray.tfar = std::numeric_limits<float>::infinity();
+        hit.ray.mask = kShadowRays; // what the lamp's shadow rays see
+        hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(rtcScene, &context, &hit);
+        ++rays;
+        if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+            return;
+        Surface y = surfaceAt(scene, hit, from, ray);
+        if (settings.approximateCaustics) // as a bounce from this rough surface would have shaded it
+            y.s.roughness = std::max(y.s.roughness, s.roughness);
+        Eigen::Vector3f toLight;
+        float lightDistance = 0.0f;
+        const Eigen::Vector3f e = lightIrradiance(light, y.p, 0.5f, 0.5f, toLight, lightDistance);
+        const float lit = y.n.dot(toLight), facing = y.ng.dot(toLight);
+        if (lit <= 0.0f || facing <= 0.0f || e.maxCoeff() <= 0.0f)
+            return;
+        const Eigen::Vector3f yAbove = y.p + y.ng * (1e-4f * std::max(1.0f, y.p.cwiseAbs().maxCoeff()));
+        const Eigen::Vector3f d = yAbove - above;
+        const float distance2 = d.squaredNorm(), distance = std::sqrt(distance2);
+        if (!(distance > 0.0f))
+            return;
+        const Eigen::Vector3f l = d / distance;
+        const float nol = n.dot(l), cosine = -y.ng.dot(l);
+        if (nol <= 0.0f || ng.dot(l) <= 0.0f || cosine <= 1e-6f ||
+            occluded(above, l, distance, kCameraRays, rays))
+            return;
+        const float joined = lightVertexDensity(joins, i, -toLight, lightDistance, facing);
+        const float bounced = pdf(s, toViewer, l) * cosine / distance2;
+        if (!(joined > 0.0f))
+            return;
+        const Eigen::Vector3f reflected = evaluate(y.s, -l, toLight).cwiseProduct(e) * lit;
+        // Per solid angle at this point: the area density times distance^2 / cosine at y.
+        const float perSolidAngle = joined * distance2 / cosine;
+        arrive(reflected, l, nol / perSolidAngle * powerHeuristic(joined, bounced));
+    }
+
     // One path's estimate of the radiance arriving at `origin` from `direction` (a primary ray, clipped to
     // [tnear, tfar]), with its intrinsic parts (see PathSample).
     // `shadows`: lights cast shadows (a camera's bShadows, as the rasteriser's shadow maps); `missed`: what a
@@ -520,8 +752,8 @@ struct PathTracer::Impl {
     // `probe`: a probe's path, whose rays see only the instances not smaller than the probe cutoff.
     PathSample trace(const render::Scene& scene, bool shadows, const Eigen::Vector3f& missed,
                      Eigen::Vector3f origin, Eigen::Vector3f direction, float tnear, float tfar,
-                     const Settings& settings, Random& random, std::uint64_t& rays,
-                     bool probe = false) const {
+                     const Settings& settings, Random& random, std::uint64_t& rays, bool probe = false,
+                     const LightVertices* joins = nullptr) const {
         const unsigned rayMask = probe ? kProbeRays : kCameraRays,
                        shadowMask = probe ? kProbeShadowRays : kShadowRays;
         const render::Environment& environment = scene.environment();
@@ -554,6 +786,7 @@ struct PathTracer::Impl {
             out.diffuseIllumination += firstWhite.cwiseProduct(arriving);
         };
         float bsdfPdf = 0.0f, skyPdf = 0.0f; // of the last bounce's direction
+        bool joinedFrom = false; // the last vertex drew light-vertex connections (so this one's lamps share)
         float pathRoughness = 0.0f; // the roughest lobe the path has come through (approximateCaustics)
         for (int depth = 0;; ++depth) {
             RTCIntersectContext context;
@@ -579,81 +812,11 @@ struct PathTracer::Impl {
                 break;
             }
 
-            const Shape& shape = shapes[hit.hit.instID[0]];
-            const MeshShape& mesh = *shape.mesh;
-            const std::uint32_t triangle = hit.hit.primID;
-            const std::uint32_t i0 = mesh.indices[3 * triangle], i1 = mesh.indices[3 * triangle + 1],
-                                i2 = mesh.indices[3 * triangle + 2];
-            const float u = hit.hit.u, v = hit.hit.v, w = 1.0f - u - v;
-            const Eigen::Vector3f p = origin + direction * hit.ray.tfar;
-            const Eigen::Vector3f toViewer = -direction;
-            // Two-sided, as the rasteriser: the geometric normal faces the viewer, the shading normal
-            // follows.
-            // Embree gives an instance's hit normal in the mesh's space.
-            Eigen::Vector3f ng =
-                (shape.normalMatrix * Eigen::Vector3f(hit.hit.Ng_x, hit.hit.Ng_y, hit.hit.Ng_z)).normalized();
-            if (ng.dot(toViewer) < 0.0f)
-                ng = -ng;
-            Eigen::Vector3f n =
-                (shape.normalMatrix * (mesh.normals[i0] * w + mesh.normals[i1] * u + mesh.normals[i2] * v))
-                    .normalized();
-            if (!n.allFinite())
-                n = ng;
-            if (n.dot(ng) < 0.0f)
-                n = -n;
-            const render::Material& material = scene.material(shape.materials[mesh.slots[triangle]]);
-            // The texture coordinates of the hit and of the triangle's corners (for the normal map's frame):
-            // the mesh's, or the object's scaled box axes' (box_uv.h), the axis the hit's normal chooses.
-            Eigen::Vector2f uv, uv0, uv1, uv2;
-            if (material.boxUv()) {
-                const Eigen::Vector3f scale = shape.linear.colwise().norm();
-                const Eigen::Vector3f normal =
-                    (mesh.normals[i0] * w + mesh.normals[i1] * u + mesh.normals[i2] * v).cwiseQuotient(scale);
-                const float inverse = 1.0f / material.textureSize;
-                uv0 = render::boxUv(mesh.positions[i0].cwiseProduct(scale), normal, inverse);
-                uv1 = render::boxUv(mesh.positions[i1].cwiseProduct(scale), normal, inverse);
-                uv2 = render::boxUv(mesh.positions[i2].cwiseProduct(scale), normal, inverse);
-            } else {
-                uv0 = mesh.uvs[i0];
-                uv1 = mesh.uvs[i1];
-                uv2 = mesh.uvs[i2];
-            }
-            uv = uv0 * w + uv1 * u + uv2 * v;
-            SurfacePoint s{n, material.baseColor.head<3>(), material.roughness, material.metallic};
-            if (material.baseColorTexture)
-                s.base =
-                    s.base.cwiseProduct(sampleTexture(scene.texture(*material.baseColorTexture),
-                                                      scene.textureEncoding(*material.baseColorTexture) ==
-                                                          render::TextureEncoding::Srgb,
-                                                      uv)
-                                            .head<3>());
-            if (material.normalTexture) { // the rasteriser's normal mapping (kMaterialChunk), per triangle
-                // Its cotangent frame (Schueler 2013) from the triangle's edges where the rasteriser takes
-                // screen derivatives: the same surface gradients of u and v.
-                const Eigen::Vector3f e1 = shape.linear * (mesh.positions[i1] - mesh.positions[i0]),
-                                      e2 = shape.linear * (mesh.positions[i2] - mesh.positions[i0]);
-                const Eigen::Vector2f d1 = uv1 - uv0, d2 = uv2 - uv0;
-                const Eigen::Vector3f p2perp = e2.cross(n), p1perp = n.cross(e1);
-                const Eigen::Vector3f t = p2perp * d1.x() + p1perp * d2.x(),
-                                      b = p2perp * d1.y() + p1perp * d2.y();
-                const float orientation = n.dot(e1.cross(e2)) < 0.0f ? -1.0f : 1.0f;
-                const float scale =
-                    orientation / std::sqrt(std::max(std::max(t.squaredNorm(), b.squaredNorm()), 1e-20f));
-                const Eigen::Vector3f m =
-                    sampleTexture(scene.texture(*material.normalTexture), false, uv).head<3>() * 2.0f -
-                    Eigen::Vector3f::Ones();
-                // Green points up in the image, towards decreasing v.
-                const Eigen::Vector3f mapped =
-                    (t * (scale * m.x()) - b * (scale * m.y()) + n * m.z()).normalized();
-                if (mapped.allFinite() && mapped.dot(ng) > 0.0f)
-                    s.n = n = mapped;
-            }
-            if (material.roughnessMetallicTexture) {
-                const Eigen::Vector4f rm =
-                    sampleTexture(scene.texture(*material.roughnessMetallicTexture), false, uv);
-                s.roughness *= rm.y();
-                s.metallic *= rm.z();
-            }
+            const Surface surface = surfaceAt(scene, hit, origin, direction);
+            const Eigen::Vector3f p = surface.p, toViewer = -direction, ng = surface.ng;
+            Eigen::Vector3f n = surface.n;
+            SurfacePoint s = surface.s;
+            const render::Material& material = *surface.material;
             if (settings.approximateCaustics)
                 s.roughness = std::max(s.roughness, pathRoughness);
             if (depth == 0) {
@@ -671,10 +834,15 @@ struct PathTracer::Impl {
                 throughFirst(material.emissive * powerHeuristic(bsdfPdf, pdfLight));
             }
             const Eigen::Vector3f fd = diffuse(s);
-
             // Shadow and bounce rays leave from just above the surface, on the viewer's side.
             const Eigen::Vector3f above = p + ng * (1e-4f * std::max(1.0f, p.cwiseAbs().maxCoeff()));
+            // This surface's lamp light, as a bounce from the last vertex found it, is also what that
+            // vertex's light-vertex connection draws: the two are weighed against each other.
+            const bool shared = joinedFrom && shapes[surface.shape].castsShadows;
+            const float cosine = ng.dot(toViewer), travelled = hit.ray.tfar;
+            std::size_t lightIndex = 0;
             scene.forEachLight([&](render::LightId, const render::Light& light) {
+                const std::size_t index = lightIndex++;
                 Eigen::Vector3f l;
                 float distance = 0.0f;
                 float u1 = 0.5f, u2 = 0.5f; // drawn only for an area light: the others keep their sequence
@@ -690,8 +858,15 @@ struct PathTracer::Impl {
                 if (depth == 0) {
                     reflectFirst(e, f, fd, nol);
                     out.direct += f.cwiseProduct(e) * nol;
-                } else
-                    throughFirst(f.cwiseProduct(e) * nol);
+                } else {
+                    float weight = 1.0f;
+                    if (shared) {
+                        const float bounced = bsdfPdf * cosine / std::max(travelled * travelled, 1e-12f);
+                        weight = powerHeuristic(bounced,
+                                                lightVertexDensity(*joins, index, -l, distance, ng.dot(l)));
+                    }
+                    throughFirst(f.cwiseProduct(e) * (nol * weight));
+                }
             });
             const bool last = depth >= settings.maxBounces;
             if (!emitters.empty()) { // one point of an emissive surface
@@ -736,6 +911,22 @@ struct PathTracer::Impl {
                         throughFirst(f.cwiseProduct(arriving) * (nol / pdfSky * weight));
                 }
             }
+            // Light-vertex connections: a ray from a lamp to the first surface it lights (a hot spot on the
+            // ceiling over a bare bulb, most of a room's light, is found wherever the lamp's rays are),
+            // joined to this vertex: that surface's reflection of the lamp, arriving here. Weighed against
+            // the bounce below finding the same surface (and its lamp sample there).
+            const bool joinsHere =
+                joins && !last && !probe && shadows && !joins->empty() && s.roughness >= kJoinedRoughness;
+            if (joinsHere)
+                joinLightVertex(scene, *joins, random, rays, above, n, ng, s, toViewer, settings,
+                                [&](const Eigen::Vector3f& arriving, const Eigen::Vector3f& l, float weight) {
+                                    const Eigen::Vector3f f = evaluate(s, toViewer, l);
+                                    if (depth == 0)
+                                        reflectFirst(arriving, f, fd, weight);
+                                    else
+                                        throughFirst(f.cwiseProduct(arriving) * weight);
+                                });
+            joinedFrom = joinsHere;
             if (last)
                 break;
 
@@ -838,6 +1029,7 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
     const std::uint64_t firstSample = image.samples;
     std::atomic<int> nextRow{0}, rowsDone{0};
     std::atomic<std::uint64_t> rays{0};
+    const LightVertices joins = lightVertices(scene);
     // Reported by the calling thread only (Progress is not shared between threads).
     base::Progress progress("path tracing " + std::to_string(width) + "x" + std::to_string(height) + ", " +
                                 std::to_string(settings.samplesPerPixel) + " samples per pixel",
@@ -881,7 +1073,8 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
                     const PathSample path =
                         impl.trace(scene, camera.params.shadows, scene.environment().background,
                                    eye + rotation * lens, direction, float(camera.params.nearClip) / axial,
-                                   float(camera.params.farClip) / axial, settings, random, traced);
+                                   float(camera.params.farClip) / axial, settings, random, traced, false,
+                                   settings.lightConnections ? &joins : nullptr);
                     if (path.hdr.allFinite() && path.diffuseOnly.allFinite() &&
                         path.diffuseIllumination.allFinite())
                         for (int c = 0; c < 3; ++c) {

@@ -25,9 +25,10 @@ namespace sp::pathtrace {
 
 struct Settings {
     Settings() = default;
-    Settings(int samples, int bounces, float maxIntensity = 0.0f, bool caustics = false)
+    Settings(int samples, int bounces, float maxIntensity = 0.0f, bool caustics = false,
+             bool connections = true)
         : samplesPerPixel(samples), maxBounces(bounces), maxPathIntensity(maxIntensity),
-          approximateCaustics(caustics) {}
+          approximateCaustics(caustics), lightConnections(connections) {}
 
     int samplesPerPixel = 4; // samples added per render() call, in [1, 65536]
     int maxBounces = 4;      // indirect bounces after the first hit, in [0, 64] (0: direct light only)
@@ -43,6 +44,11 @@ struct Settings {
     // samples to average out. What the camera sees directly, and through mirrors, stays sharp; caustics
     // are blurred (a bias).
     bool approximateCaustics = false;
+    // Light-vertex connections: at each rough surface a path meets, a ray from a point or spot lamp (drawn
+    // by power) to the first surface it lights, joined to the path there, weighed against the bounce that
+    // would find the same light (multiple importance sampling). The light a lamp's hot spot on a ceiling
+    // throws into a room is found from the first samples. Unbiased; on by default; two more rays a vertex.
+    bool lightConnections = true;
     // Throws sp::InvalidArgument naming the bad field.
     void validate(const char* function) const;
 };
