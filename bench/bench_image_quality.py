@@ -216,10 +216,14 @@ class Scene:
             pass
         return result
 
-    def traced(self, samples: int, label: str, denoise: bool = False) -> NDArray[np.uint8]:
-        """final_color of a path-traced camera at the pose after `samples` samples per pixel."""
+    def traced(self, samples: int, label: str, denoise: bool = False, independent: bool = False) -> NDArray[np.uint8]:
+        """final_color of a path-traced camera at the pose after `samples` samples per pixel. `independent`: with
+        other random numbers than the other traced cameras (the path tracer seeds them from the view, so a
+        reference traced like the image it measures would share that image's samples and flatter it)."""
         with self.instance.begin_frame():
             camera = self.camera(label, self.width, self.height, spear.EGlobalIlluminationQuality.Off, self.name)
+            if independent:
+                camera.NearClip = 0.0501  # the same image (nothing is that near), other random numbers
             camera.Modalities = [spear.ECameraModality.FinalColor]
             camera.Renderer = spear.ECameraRenderer.PathTraced
             camera.SamplesPerPixel = min(64, samples)
@@ -281,7 +285,7 @@ def main() -> None:
             aliasing.append((name, scene.aliasing(qualities[0], grids)))
             scene.close()
             continue
-        reference = scene.traced(args.reference, "Reference")
+        reference = scene.traced(args.reference, "Reference", independent=True)
         noisy = scene.traced(64, "Traced64")
         denoised = scene.traced(64, "Traced64Denoised", denoise=True)
         ref_linear = srgb_to_linear(reference)

@@ -8,8 +8,13 @@
 // neighbour of its instance) are scaled down to that neighbour first. Each pass blurs with a 5 x 5 B3-spline
 // kernel whose taps are 2^pass pixels apart, each tap weighted by how alike the two pixels' guides are:
 // nothing across instances (ids) or the background, little across creases (normals) and depth steps, and
-// little across lighting differences larger than the noise (luminance, with a tolerance that halves each
-// pass). It is biased, as every denoiser is: the unfiltered image stays the reference.
+// little across lighting differences larger than the noise. How large the noise is comes, where the path
+// tracer measured it, from each pixel's own samples, as in SVGF (Schied et al., "Spatiotemporal
+// Variance-Guided Filtering", HPG 2017; its spatial part): the variance of the pixel's mean, blurred over its
+// 3 x 3 neighbours, scales the luminance test, and each pass carries the variance through its weights, so a
+// converged image is left nearly as it is and a noisy one smoothed. Without a measure (too few samples), a
+// tolerance relative to the luminance that halves each pass. It is biased, as every denoiser is: the
+// unfiltered image stays the reference.
 
 #include <cstdint>
 #include <span>
@@ -26,6 +31,9 @@ struct DenoiseGuides {
     std::span<const float> normal;      // unit, (height, width, 3); 0 where nothing was hit
     std::span<const float> depth;       // metres along the ray to the first surface, (height, width); 0: none
     std::span<const std::uint32_t> ids; // the first surface's instance + 1, (height, width); 0: background
+    // The variance of each pixel's mean lighting luminance (the colour over the albedo), (height, width);
+    // empty: not measured.
+    std::span<const float> variance = {};
 };
 
 // The filtered image of `color` (linear RGB, (height, width, 3)); `passes` in [1, 8] (5 reaches 31 pixels

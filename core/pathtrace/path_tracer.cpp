@@ -17,6 +17,7 @@
 #include "core/pathtrace/bsdf.h"
 #include "core/pathtrace/emitters.h"
 #include "core/render/box_uv.h"
+#include "core/render/luminance.h"
 
 namespace sp::pathtrace {
 namespace {
@@ -1015,6 +1016,7 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
         image.diffuseIlluminationSum.assign(image.sum.size(), 0.0);
         image.albedoSum.assign(image.sum.size(), 0.0);
         image.directSum.assign(image.sum.size(), 0.0);
+        image.indirectSquareSum.assign(std::size_t(width) * height, 0.0);
         image.normalSum.assign(image.sum.size(), 0.0);
         image.depthSum.assign(std::size_t(width) * height, 0.0);
         image.ids.assign(std::size_t(width) * height, 0);
@@ -1087,6 +1089,11 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
                         if (path.direct.allFinite() && path.hdr.allFinite())
                             image.directSum[at + std::size_t(c)] += path.direct[c];
                         image.normalSum[at + std::size_t(c)] += path.normal[c];
+                    }
+                    if (path.direct.allFinite() && path.hdr.allFinite()) {
+                        const Eigen::Vector3f indirect = path.hdr - path.direct;
+                        const double l = render::luminance<double>(indirect.x(), indirect.y(), indirect.z());
+                        image.indirectSquareSum[at / 3] += l * l;
                     }
                     image.depthSum[at / 3] += path.depth;
                     if (index == 0)

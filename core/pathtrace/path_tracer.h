@@ -67,6 +67,9 @@ struct Accumulation {
     // 3), distance sums (H, W), and the instance (+ 1; 0: nothing) the first sample of each pixel met.
     std::vector<double> albedoSum, normalSum, depthSum;
     std::vector<double> directSum; // the analytic lights' direct light and emission (H, W, 3): not filtered
+    // Sums of the square of each sample's luminance less its direct light (H, W): how noisy each pixel's
+    // filtered part is (the denoiser's edge-stopping scale).
+    std::vector<double> indirectSquareSum;
     std::vector<std::uint32_t> ids;
     std::uint64_t samples = 0;   // per pixel
     std::uint64_t signature = 0; // of the scene, camera and settings the samples were taken of
