@@ -1,5 +1,7 @@
 #include "core/pybind/bridge.h"
 
+#include <structmember.h>
+
 #include <cstring>
 #include <string>
 #include <unordered_map>
@@ -97,6 +99,50 @@ py::object pythonClassFor(const reflect::TypeInfo& type) {
 
 py::object apiAttribute(const char* module, const char* name) {
     return py::module_::import(module).attr(name);
+}
+
+SlotStruct::SlotStruct(const char* module, const char* name, std::initializer_list<const char*> fields)
+    : cls_(apiAttribute(module, name)), names_(fields) {
+    if (!PyType_Check(cls_.ptr()))
+        return;
+    auto* type = reinterpret_cast<PyTypeObject*>(cls_.ptr());
+    std::vector<Py_ssize_t> offsets;
+    for (const char* field : names_) {
+        // The class's own member descriptor for the field: a slot holding any object.
+        PyObject* descriptor = PyDict_GetItemString(type->tp_dict, field); // borrowed
+        if (!descriptor || !Py_IS_TYPE(descriptor, &PyMemberDescr_Type))
+            return;
+        const PyMemberDef* member = reinterpret_cast<PyMemberDescrObject*>(descriptor)->d_member;
+        if (member->type != T_OBJECT_EX || (member->flags & READONLY))
+            return;
+        offsets.push_back(member->offset);
+    }
+    offsets_ = std::move(offsets);
+}
+
+py::object SlotStruct::get(py::handle src, std::size_t i) const {
+    if (offsets_.empty())
+        return src.attr(names_[i]);
+    PyObject* value = *reinterpret_cast<PyObject**>(reinterpret_cast<char*>(src.ptr()) + offsets_[i]);
+    if (!value) {
+        PyErr_Format(PyExc_AttributeError, "'%s' object has no attribute '%s'", Py_TYPE(src.ptr())->tp_name,
+                     names_[i]);
+        throw py::error_already_set();
+    }
+    return py::reinterpret_borrow<py::object>(value);
+}
+
+py::object SlotStruct::fill(py::object* fields, std::size_t count) const {
+    auto* type = reinterpret_cast<PyTypeObject*>(cls_.ptr());
+    // Allocated empty (every slot null, as before __init__), then each slot given its field, as __init__'s
+    // assignments would.
+    auto object = py::reinterpret_steal<py::object>(type->tp_alloc(type, 0));
+    if (!object)
+        throw py::error_already_set();
+    for (std::size_t i = 0; i < count; ++i)
+        *reinterpret_cast<PyObject**>(reinterpret_cast<char*>(object.ptr()) + offsets_[i]) =
+            fields[i].release().ptr();
+    return object;
 }
 
 py::object enumMember(const py::object& cls, const py::object& members, int64_t value) {

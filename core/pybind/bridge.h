@@ -339,6 +339,44 @@ template <typename T> struct Bridge<reflect::SpArray<T>> {
 // Looks up a class of the generated API module (structs, enums, result tuples); cached by the caller.
 py::object apiAttribute(const char* module, const char* name);
 
+// A reflected struct's generated class (a dataclass with __slots__), whose fields are read and written in
+// their slots (each field's member descriptor gives its offset in the object), as its attribute access and
+// __init__ would, without their name lookups and the call: the struct a typed call returns or takes costs a
+// few stores instead of a Python function call (bench/bench_calls.py). A class whose fields are not all plain
+// object slots (one changed by hand, or another Python) is used through its attributes and constructor.
+class SlotStruct {
+  public:
+    // The class `name` of `module`, with its fields in declaration order (the constructor's order).
+    SlotStruct(const char* module, const char* name, std::initializer_list<const char*> fields);
+    // Whether `src` is an instance of the class (or of a subclass).
+    bool holds(py::handle src) const { return PyObject_IsInstance(src.ptr(), cls_.ptr()) == 1; }
+    // Field `i` of an instance; AttributeError, as attribute access, when it is unset.
+    py::object get(py::handle src, std::size_t i) const;
+    // A new instance with the fields `values`, in declaration order.
+    template <typename... Values> py::object make(Values&&... values) const {
+        if constexpr (sizeof...(Values) == 0) {
+            return cls_();
+        } else {
+            if (offsets_.empty())
+                return cls_(std::forward<Values>(values)...);
+            py::object fields[] = {asObject(std::forward<Values>(values))...};
+            return fill(fields, sizeof...(Values));
+        }
+    }
+
+  private:
+    template <typename V> static py::object asObject(V&& value) {
+        if constexpr (std::is_base_of_v<py::handle, std::decay_t<V>>)
+            return py::reinterpret_borrow<py::object>(value);
+        else
+            return py::cast(std::forward<V>(value));
+    }
+    py::object fill(py::object* fields, std::size_t count) const;
+    py::object cls_;
+    std::vector<const char*> names_;
+    std::vector<Py_ssize_t> offsets_; // of each field's slot; empty: through attributes and the constructor
+};
+
 // The member of the enum class `cls` whose value is `value`, found in `members` (the class's
 // _value2member_map_, cached by the caller): a dict lookup instead of a call of the class, whose
 // EnumMeta.__call__ costs a typed enum read a few hundred nanoseconds. A value the enum lacks is left to the

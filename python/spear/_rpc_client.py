@@ -228,7 +228,7 @@ class RpcConnection:
         if segments is None:
             segments = self._segments()
         calls = [call for call, _, _, _ in queue]  # encoded when they were queued
-        refused: dict[int, errors.SpearError] = {}
+        refused: dict[int, Exception] = {}
         if last is not None:
             _encode_call(last, segments, calls, refused)
         critical = [i for i, entry in enumerate(queue) if entry[3]]
@@ -254,7 +254,7 @@ class RpcConnection:
             raise failure
         if last is None:
             return None
-        if isinstance(results[-1], errors.SpearError):
+        if len(results) - 1 in refused or isinstance(results[-1], errors.SpearError):
             raise results[-1]
         return results[-1]
 
@@ -268,7 +268,7 @@ class RpcConnection:
             self._queue_segments = self._segments()
         try:
             call[arguments] = _encode_field(call["op"], call, arguments, call[arguments], self._queue_segments)
-        except errors.InvalidArgumentError as error:
+        except Exception as error:  # noqa: BLE001 - a value's own error (a struct's emptied field) is the call's
             if self._deferring:
                 # At the caller's line (through the queueing caller, the proxy's method and _sp_call, call).
                 warn_send_failed(error, stacklevel=6)
@@ -300,14 +300,14 @@ class RpcConnection:
         one of the `critical` positions fails, the server runs none of the calls after it."""
         self.flush()
         segments = self._segments()
-        refused: dict[int, errors.SpearError] = {}  # calls refused before sending, by position
+        refused: dict[int, Exception] = {}  # calls refused before sending, by position
         encoded: list[dict[str, Any]] = []
         for call in calls:
             _encode_call(call, segments, encoded, refused)
         return self._batch_encoded(encoded, critical, segments, refused)
 
     def _batch_encoded(self, encoded: list[dict[str, Any]], critical: Sequence[int], segments: OutgoingSegments,
-                       refused: dict[int, errors.SpearError]) -> list[Any]:
+                       refused: dict[int, Exception]) -> list[Any]:
         """Sends encoded calls in one message; their segments are released once the reply has arrived."""
         reply: Any = None
         try:
@@ -508,12 +508,14 @@ class _ResultConversion:
 
 
 def _encode_call(call: dict[str, Any], segments: OutgoingSegments, encoded: list[dict[str, Any]],
-                 refused: dict[int, errors.SpearError]) -> None:
+                 refused: dict[int, Exception]) -> None:
     """Appends a request of a batch, encoded; one refused before sending leaves its error at its position and an
-    echo in its place, which keeps the positions of the replies."""
+    echo in its place, which keeps the positions of the replies (and the calls queued before it, such as the
+    frame it runs in, go as they would have). Its error is what the value raised: the wire's refusal, or the
+    value's own (a struct's emptied field raises AttributeError here as in-process)."""
     try:
         encoded.append(_encode_fields(str(call.get("op", "")), call, segments))
-    except errors.InvalidArgumentError as error:
+    except Exception as error:  # noqa: BLE001 - raised for this call alone, after the batch
         refused[len(encoded)] = error
         encoded.append({"op": "echo"})
 

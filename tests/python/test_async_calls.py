@@ -112,3 +112,27 @@ def test_an_argument_that_cannot_be_sent_fails_its_call_alone(instance: spear.In
     assert location == spear.FVector(X=4.0)
     failed = [str(w.message) for w in warned if str(w.message).startswith("send_async call failed:")]
     assert len(failed) == 1 and "SetActorLocation" in failed[0]
+
+
+def test_a_struct_with_an_emptied_field_fails_its_call_alone_with_the_same_error(instance: spear.Instance) -> None:
+    # The struct's own AttributeError, on both transports and for every way of calling; the frame the call was
+    # the first of, and the calls after it, go on (over RPC the value is read while the frame's first message is
+    # built, which once lost the frame's begin with it).
+    game = instance.get_game()
+    with instance.begin_frame():
+        actor = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Emptied")
+    with instance.end_frame():
+        pass
+    emptied = spear.FVector(X=1.0, Y=2.0, Z=3.0)
+    del emptied.Z
+    with pytest.warns(RuntimeWarning, match="send_async call failed: 'FVector' object has no attribute 'Z'"):
+        with instance.begin_frame():
+            with pytest.raises(AttributeError, match="'FVector' object has no attribute 'Z'"):
+                actor.SetActorLocation(NewLocation=emptied)
+            actor.send_async.SetActorLocation(NewLocation=emptied)
+            refused = actor.call_async.SetActorLocation(NewLocation=emptied)
+            actor.send_async.SetActorLocation(NewLocation=spear.FVector(X=5.0))
+        with instance.end_frame():
+            with pytest.raises(AttributeError, match="'FVector' object has no attribute 'Z'"):
+                refused.get()
+            assert actor.GetActorLocation() == spear.FVector(X=5.0)

@@ -68,6 +68,17 @@ def _deep(levels: int) -> list[Any]:
 
 
 # (name, misuse, expected error type name or None for accepted, expected message)
+def _unset(value: spear.FVector, field: str) -> spear.FVector:
+    """`value` with its slot `field` emptied (as `del value.Y` leaves it)."""
+    delattr(value, field)
+    return value
+
+
+class _Vector(spear.FVector):
+    """A user's subclass of a struct's class: still that struct."""
+    __slots__ = ()
+
+
 CASES: list[tuple[str, Callable[[Scene], object], str | None, str]] = [
     # enums: only a value of the parameter's own enum
     ("enum given int", lambda s: setattr(s.cube.StaticMeshComponent, "Mobility", 2),
@@ -91,6 +102,10 @@ CASES: list[tuple[str, Callable[[Scene], object], str | None, str]] = [
      "AActor.SetActorScale3D(): argument 'NewScale3D': FVector.X must be a float, got str 'a'"),
     ("struct given another struct", lambda s: s.cube.SetActorScale3D(NewScale3D=spear.FRotator()),  # type: ignore[arg-type]
      "InvalidArgumentError", "AActor.SetActorScale3D(): argument 'NewScale3D': FVector has no field 'Pitch'"),
+    ("struct with an emptied field", lambda s: s.cube.SetActorScale3D(NewScale3D=_unset(spear.FVector(), "Y")),
+     "AttributeError", "'FVector' object has no attribute 'Y'"),
+    ("struct given a subclass of its class", lambda s: s.cube.SetActorScale3D(NewScale3D=_Vector(1.0, 2.0, 3.0)),
+     None, ""),
     ("struct value refuses an unknown field", lambda s: setattr(s.cube.GetActorLocation(), "x", 5.0),
      "AttributeError", "'FVector' object has no attribute 'x'"),
     ("struct value within a struct refuses an unknown field",

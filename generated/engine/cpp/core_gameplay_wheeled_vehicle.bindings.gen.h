@@ -26,21 +26,26 @@ namespace pybind11::detail {
 
 template <> struct type_caster<FWheelState> {
     PYBIND11_TYPE_CASTER(FWheelState, const_name("FWheelState"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("spear._engine.api", "FWheelState", {"bInContact", "Location", "ContactPoint", "SuspensionLength", "RotationInDegrees", "SteerAngleInDegrees"});
+        return *type;
+    }
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FWheelState");
-        if (!isinstance(src, cls))
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
             return false;
-        value.bInContact = sp::pybind::Bridge<bool>::in(src.attr("bInContact").cast<sp::pybind::Bridge<bool>::Py>(), "FWheelState.bInContact");
-        value.Location = sp::pybind::Bridge<FVector>::in(src.attr("Location").cast<sp::pybind::Bridge<FVector>::Py>(), "FWheelState.Location");
-        value.ContactPoint = sp::pybind::Bridge<FVector>::in(src.attr("ContactPoint").cast<sp::pybind::Bridge<FVector>::Py>(), "FWheelState.ContactPoint");
-        value.SuspensionLength = sp::pybind::Bridge<double>::in(src.attr("SuspensionLength").cast<sp::pybind::Bridge<double>::Py>(), "FWheelState.SuspensionLength");
-        value.RotationInDegrees = sp::pybind::Bridge<double>::in(src.attr("RotationInDegrees").cast<sp::pybind::Bridge<double>::Py>(), "FWheelState.RotationInDegrees");
-        value.SteerAngleInDegrees = sp::pybind::Bridge<double>::in(src.attr("SteerAngleInDegrees").cast<sp::pybind::Bridge<double>::Py>(), "FWheelState.SteerAngleInDegrees");
+        value.bInContact = sp::pybind::Bridge<bool>::in(type.get(src, 0).cast<sp::pybind::Bridge<bool>::Py>(), "FWheelState.bInContact");
+        value.Location = sp::pybind::Bridge<FVector>::in(type.get(src, 1).cast<sp::pybind::Bridge<FVector>::Py>(), "FWheelState.Location");
+        value.ContactPoint = sp::pybind::Bridge<FVector>::in(type.get(src, 2).cast<sp::pybind::Bridge<FVector>::Py>(), "FWheelState.ContactPoint");
+        value.SuspensionLength = sp::pybind::Bridge<double>::in(type.get(src, 3).cast<sp::pybind::Bridge<double>::Py>(), "FWheelState.SuspensionLength");
+        value.RotationInDegrees = sp::pybind::Bridge<double>::in(type.get(src, 4).cast<sp::pybind::Bridge<double>::Py>(), "FWheelState.RotationInDegrees");
+        value.SteerAngleInDegrees = sp::pybind::Bridge<double>::in(type.get(src, 5).cast<sp::pybind::Bridge<double>::Py>(), "FWheelState.SteerAngleInDegrees");
         return true;
     }
     static handle cast(const FWheelState& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FWheelState");
-        return cls(sp::pybind::Bridge<bool>::out(v.bInContact), sp::pybind::Bridge<FVector>::out(v.Location), sp::pybind::Bridge<FVector>::out(v.ContactPoint), sp::pybind::Bridge<double>::out(v.SuspensionLength), sp::pybind::Bridge<double>::out(v.RotationInDegrees), sp::pybind::Bridge<double>::out(v.SteerAngleInDegrees)).release();
+        return python().make(sp::pybind::Bridge<bool>::out(v.bInContact), sp::pybind::Bridge<FVector>::out(v.Location), sp::pybind::Bridge<FVector>::out(v.ContactPoint), sp::pybind::Bridge<double>::out(v.SuspensionLength), sp::pybind::Bridge<double>::out(v.RotationInDegrees), sp::pybind::Bridge<double>::out(v.SteerAngleInDegrees)).release();
     }
 };
 

@@ -224,75 +224,90 @@ template <> struct type_caster<FCameraPixels> {
 
 template <> struct type_caster<FLensDistortion> {
     PYBIND11_TYPE_CASTER(FLensDistortion, const_name("FLensDistortion"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("spear._engine.api", "FLensDistortion", {"K1", "K2", "K3", "P1", "P2"});
+        return *type;
+    }
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FLensDistortion");
-        if (!isinstance(src, cls))
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
             return false;
-        value.K1 = sp::pybind::Bridge<double>::in(src.attr("K1").cast<sp::pybind::Bridge<double>::Py>(), "FLensDistortion.K1");
-        value.K2 = sp::pybind::Bridge<double>::in(src.attr("K2").cast<sp::pybind::Bridge<double>::Py>(), "FLensDistortion.K2");
-        value.K3 = sp::pybind::Bridge<double>::in(src.attr("K3").cast<sp::pybind::Bridge<double>::Py>(), "FLensDistortion.K3");
-        value.P1 = sp::pybind::Bridge<double>::in(src.attr("P1").cast<sp::pybind::Bridge<double>::Py>(), "FLensDistortion.P1");
-        value.P2 = sp::pybind::Bridge<double>::in(src.attr("P2").cast<sp::pybind::Bridge<double>::Py>(), "FLensDistortion.P2");
+        value.K1 = sp::pybind::Bridge<double>::in(type.get(src, 0).cast<sp::pybind::Bridge<double>::Py>(), "FLensDistortion.K1");
+        value.K2 = sp::pybind::Bridge<double>::in(type.get(src, 1).cast<sp::pybind::Bridge<double>::Py>(), "FLensDistortion.K2");
+        value.K3 = sp::pybind::Bridge<double>::in(type.get(src, 2).cast<sp::pybind::Bridge<double>::Py>(), "FLensDistortion.K3");
+        value.P1 = sp::pybind::Bridge<double>::in(type.get(src, 3).cast<sp::pybind::Bridge<double>::Py>(), "FLensDistortion.P1");
+        value.P2 = sp::pybind::Bridge<double>::in(type.get(src, 4).cast<sp::pybind::Bridge<double>::Py>(), "FLensDistortion.P2");
         return true;
     }
     static handle cast(const FLensDistortion& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FLensDistortion");
-        return cls(sp::pybind::Bridge<double>::out(v.K1), sp::pybind::Bridge<double>::out(v.K2), sp::pybind::Bridge<double>::out(v.K3), sp::pybind::Bridge<double>::out(v.P1), sp::pybind::Bridge<double>::out(v.P2)).release();
+        return python().make(sp::pybind::Bridge<double>::out(v.K1), sp::pybind::Bridge<double>::out(v.K2), sp::pybind::Bridge<double>::out(v.K3), sp::pybind::Bridge<double>::out(v.P1), sp::pybind::Bridge<double>::out(v.P2)).release();
     }
 };
 
 template <> struct type_caster<FRenderDeviceInfo> {
     PYBIND11_TYPE_CASTER(FRenderDeviceInfo, const_name("FRenderDeviceInfo"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("spear._engine.api", "FRenderDeviceInfo", {"Kind", "DeviceIndex", "DeviceCount", "Vendor", "Renderer", "Version"});
+        return *type;
+    }
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FRenderDeviceInfo");
-        if (!isinstance(src, cls))
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
             return false;
-        value.Kind = sp::pybind::Bridge<std::string>::in(src.attr("Kind").cast<sp::pybind::Bridge<std::string>::Py>(), "FRenderDeviceInfo.Kind");
-        value.DeviceIndex = sp::pybind::Bridge<int32_t>::in(src.attr("DeviceIndex").cast<sp::pybind::Bridge<int32_t>::Py>(), "FRenderDeviceInfo.DeviceIndex");
-        value.DeviceCount = sp::pybind::Bridge<int32_t>::in(src.attr("DeviceCount").cast<sp::pybind::Bridge<int32_t>::Py>(), "FRenderDeviceInfo.DeviceCount");
-        value.Vendor = sp::pybind::Bridge<std::string>::in(src.attr("Vendor").cast<sp::pybind::Bridge<std::string>::Py>(), "FRenderDeviceInfo.Vendor");
-        value.Renderer = sp::pybind::Bridge<std::string>::in(src.attr("Renderer").cast<sp::pybind::Bridge<std::string>::Py>(), "FRenderDeviceInfo.Renderer");
-        value.Version = sp::pybind::Bridge<std::string>::in(src.attr("Version").cast<sp::pybind::Bridge<std::string>::Py>(), "FRenderDeviceInfo.Version");
+        value.Kind = sp::pybind::Bridge<std::string>::in(type.get(src, 0).cast<sp::pybind::Bridge<std::string>::Py>(), "FRenderDeviceInfo.Kind");
+        value.DeviceIndex = sp::pybind::Bridge<int32_t>::in(type.get(src, 1).cast<sp::pybind::Bridge<int32_t>::Py>(), "FRenderDeviceInfo.DeviceIndex");
+        value.DeviceCount = sp::pybind::Bridge<int32_t>::in(type.get(src, 2).cast<sp::pybind::Bridge<int32_t>::Py>(), "FRenderDeviceInfo.DeviceCount");
+        value.Vendor = sp::pybind::Bridge<std::string>::in(type.get(src, 3).cast<sp::pybind::Bridge<std::string>::Py>(), "FRenderDeviceInfo.Vendor");
+        value.Renderer = sp::pybind::Bridge<std::string>::in(type.get(src, 4).cast<sp::pybind::Bridge<std::string>::Py>(), "FRenderDeviceInfo.Renderer");
+        value.Version = sp::pybind::Bridge<std::string>::in(type.get(src, 5).cast<sp::pybind::Bridge<std::string>::Py>(), "FRenderDeviceInfo.Version");
         return true;
     }
     static handle cast(const FRenderDeviceInfo& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FRenderDeviceInfo");
-        return cls(sp::pybind::Bridge<std::string>::out(v.Kind), sp::pybind::Bridge<int32_t>::out(v.DeviceIndex), sp::pybind::Bridge<int32_t>::out(v.DeviceCount), sp::pybind::Bridge<std::string>::out(v.Vendor), sp::pybind::Bridge<std::string>::out(v.Renderer), sp::pybind::Bridge<std::string>::out(v.Version)).release();
+        return python().make(sp::pybind::Bridge<std::string>::out(v.Kind), sp::pybind::Bridge<int32_t>::out(v.DeviceIndex), sp::pybind::Bridge<int32_t>::out(v.DeviceCount), sp::pybind::Bridge<std::string>::out(v.Vendor), sp::pybind::Bridge<std::string>::out(v.Renderer), sp::pybind::Bridge<std::string>::out(v.Version)).release();
     }
 };
 
 template <> struct type_caster<FRenderStats> {
     PYBIND11_TYPE_CASTER(FRenderStats, const_name("FRenderStats"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("spear._engine.api", "FRenderStats", {"Frames", "ShadowPasses", "ShadowReuses", "SurfacePasses", "AttributePasses", "LightingPasses", "TonemapPasses", "Readbacks", "DrawnInstances", "CulledInstances", "UnshadowedInstances", "SplitInstances", "WindingFacedInstances", "LightsLeftOut", "DrawCalls", "MeshUploads", "TextureUploads", "ShadowMs", "SurfaceMs", "AttributeMs", "ReadbackMs"});
+        return *type;
+    }
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FRenderStats");
-        if (!isinstance(src, cls))
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
             return false;
-        value.Frames = sp::pybind::Bridge<int64_t>::in(src.attr("Frames").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.Frames");
-        value.ShadowPasses = sp::pybind::Bridge<int64_t>::in(src.attr("ShadowPasses").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.ShadowPasses");
-        value.ShadowReuses = sp::pybind::Bridge<int64_t>::in(src.attr("ShadowReuses").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.ShadowReuses");
-        value.SurfacePasses = sp::pybind::Bridge<int64_t>::in(src.attr("SurfacePasses").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.SurfacePasses");
-        value.AttributePasses = sp::pybind::Bridge<int64_t>::in(src.attr("AttributePasses").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.AttributePasses");
-        value.LightingPasses = sp::pybind::Bridge<int64_t>::in(src.attr("LightingPasses").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.LightingPasses");
-        value.TonemapPasses = sp::pybind::Bridge<int64_t>::in(src.attr("TonemapPasses").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.TonemapPasses");
-        value.Readbacks = sp::pybind::Bridge<int64_t>::in(src.attr("Readbacks").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.Readbacks");
-        value.DrawnInstances = sp::pybind::Bridge<int64_t>::in(src.attr("DrawnInstances").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.DrawnInstances");
-        value.CulledInstances = sp::pybind::Bridge<int64_t>::in(src.attr("CulledInstances").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.CulledInstances");
-        value.UnshadowedInstances = sp::pybind::Bridge<int64_t>::in(src.attr("UnshadowedInstances").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.UnshadowedInstances");
-        value.SplitInstances = sp::pybind::Bridge<int64_t>::in(src.attr("SplitInstances").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.SplitInstances");
-        value.WindingFacedInstances = sp::pybind::Bridge<int64_t>::in(src.attr("WindingFacedInstances").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.WindingFacedInstances");
-        value.LightsLeftOut = sp::pybind::Bridge<int64_t>::in(src.attr("LightsLeftOut").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.LightsLeftOut");
-        value.DrawCalls = sp::pybind::Bridge<int64_t>::in(src.attr("DrawCalls").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.DrawCalls");
-        value.MeshUploads = sp::pybind::Bridge<int64_t>::in(src.attr("MeshUploads").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.MeshUploads");
-        value.TextureUploads = sp::pybind::Bridge<int64_t>::in(src.attr("TextureUploads").cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.TextureUploads");
-        value.ShadowMs = sp::pybind::Bridge<double>::in(src.attr("ShadowMs").cast<sp::pybind::Bridge<double>::Py>(), "FRenderStats.ShadowMs");
-        value.SurfaceMs = sp::pybind::Bridge<double>::in(src.attr("SurfaceMs").cast<sp::pybind::Bridge<double>::Py>(), "FRenderStats.SurfaceMs");
-        value.AttributeMs = sp::pybind::Bridge<double>::in(src.attr("AttributeMs").cast<sp::pybind::Bridge<double>::Py>(), "FRenderStats.AttributeMs");
-        value.ReadbackMs = sp::pybind::Bridge<double>::in(src.attr("ReadbackMs").cast<sp::pybind::Bridge<double>::Py>(), "FRenderStats.ReadbackMs");
+        value.Frames = sp::pybind::Bridge<int64_t>::in(type.get(src, 0).cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.Frames");
+        value.ShadowPasses = sp::pybind::Bridge<int64_t>::in(type.get(src, 1).cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.ShadowPasses");
+        value.ShadowReuses = sp::pybind::Bridge<int64_t>::in(type.get(src, 2).cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.ShadowReuses");
+        value.SurfacePasses = sp::pybind::Bridge<int64_t>::in(type.get(src, 3).cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.SurfacePasses");
+        value.AttributePasses = sp::pybind::Bridge<int64_t>::in(type.get(src, 4).cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.AttributePasses");
+        value.LightingPasses = sp::pybind::Bridge<int64_t>::in(type.get(src, 5).cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.LightingPasses");
+        value.TonemapPasses = sp::pybind::Bridge<int64_t>::in(type.get(src, 6).cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.TonemapPasses");
+        value.Readbacks = sp::pybind::Bridge<int64_t>::in(type.get(src, 7).cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.Readbacks");
+        value.DrawnInstances = sp::pybind::Bridge<int64_t>::in(type.get(src, 8).cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.DrawnInstances");
+        value.CulledInstances = sp::pybind::Bridge<int64_t>::in(type.get(src, 9).cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.CulledInstances");
+        value.UnshadowedInstances = sp::pybind::Bridge<int64_t>::in(type.get(src, 10).cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.UnshadowedInstances");
+        value.SplitInstances = sp::pybind::Bridge<int64_t>::in(type.get(src, 11).cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.SplitInstances");
+        value.WindingFacedInstances = sp::pybind::Bridge<int64_t>::in(type.get(src, 12).cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.WindingFacedInstances");
+        value.LightsLeftOut = sp::pybind::Bridge<int64_t>::in(type.get(src, 13).cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.LightsLeftOut");
+        value.DrawCalls = sp::pybind::Bridge<int64_t>::in(type.get(src, 14).cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.DrawCalls");
+        value.MeshUploads = sp::pybind::Bridge<int64_t>::in(type.get(src, 15).cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.MeshUploads");
+        value.TextureUploads = sp::pybind::Bridge<int64_t>::in(type.get(src, 16).cast<sp::pybind::Bridge<int64_t>::Py>(), "FRenderStats.TextureUploads");
+        value.ShadowMs = sp::pybind::Bridge<double>::in(type.get(src, 17).cast<sp::pybind::Bridge<double>::Py>(), "FRenderStats.ShadowMs");
+        value.SurfaceMs = sp::pybind::Bridge<double>::in(type.get(src, 18).cast<sp::pybind::Bridge<double>::Py>(), "FRenderStats.SurfaceMs");
+        value.AttributeMs = sp::pybind::Bridge<double>::in(type.get(src, 19).cast<sp::pybind::Bridge<double>::Py>(), "FRenderStats.AttributeMs");
+        value.ReadbackMs = sp::pybind::Bridge<double>::in(type.get(src, 20).cast<sp::pybind::Bridge<double>::Py>(), "FRenderStats.ReadbackMs");
         return true;
     }
     static handle cast(const FRenderStats& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FRenderStats");
-        return cls(sp::pybind::Bridge<int64_t>::out(v.Frames), sp::pybind::Bridge<int64_t>::out(v.ShadowPasses), sp::pybind::Bridge<int64_t>::out(v.ShadowReuses), sp::pybind::Bridge<int64_t>::out(v.SurfacePasses), sp::pybind::Bridge<int64_t>::out(v.AttributePasses), sp::pybind::Bridge<int64_t>::out(v.LightingPasses), sp::pybind::Bridge<int64_t>::out(v.TonemapPasses), sp::pybind::Bridge<int64_t>::out(v.Readbacks), sp::pybind::Bridge<int64_t>::out(v.DrawnInstances), sp::pybind::Bridge<int64_t>::out(v.CulledInstances), sp::pybind::Bridge<int64_t>::out(v.UnshadowedInstances), sp::pybind::Bridge<int64_t>::out(v.SplitInstances), sp::pybind::Bridge<int64_t>::out(v.WindingFacedInstances), sp::pybind::Bridge<int64_t>::out(v.LightsLeftOut), sp::pybind::Bridge<int64_t>::out(v.DrawCalls), sp::pybind::Bridge<int64_t>::out(v.MeshUploads), sp::pybind::Bridge<int64_t>::out(v.TextureUploads), sp::pybind::Bridge<double>::out(v.ShadowMs), sp::pybind::Bridge<double>::out(v.SurfaceMs), sp::pybind::Bridge<double>::out(v.AttributeMs), sp::pybind::Bridge<double>::out(v.ReadbackMs)).release();
+        return python().make(sp::pybind::Bridge<int64_t>::out(v.Frames), sp::pybind::Bridge<int64_t>::out(v.ShadowPasses), sp::pybind::Bridge<int64_t>::out(v.ShadowReuses), sp::pybind::Bridge<int64_t>::out(v.SurfacePasses), sp::pybind::Bridge<int64_t>::out(v.AttributePasses), sp::pybind::Bridge<int64_t>::out(v.LightingPasses), sp::pybind::Bridge<int64_t>::out(v.TonemapPasses), sp::pybind::Bridge<int64_t>::out(v.Readbacks), sp::pybind::Bridge<int64_t>::out(v.DrawnInstances), sp::pybind::Bridge<int64_t>::out(v.CulledInstances), sp::pybind::Bridge<int64_t>::out(v.UnshadowedInstances), sp::pybind::Bridge<int64_t>::out(v.SplitInstances), sp::pybind::Bridge<int64_t>::out(v.WindingFacedInstances), sp::pybind::Bridge<int64_t>::out(v.LightsLeftOut), sp::pybind::Bridge<int64_t>::out(v.DrawCalls), sp::pybind::Bridge<int64_t>::out(v.MeshUploads), sp::pybind::Bridge<int64_t>::out(v.TextureUploads), sp::pybind::Bridge<double>::out(v.ShadowMs), sp::pybind::Bridge<double>::out(v.SurfaceMs), sp::pybind::Bridge<double>::out(v.AttributeMs), sp::pybind::Bridge<double>::out(v.ReadbackMs)).release();
     }
 };
 

@@ -25,25 +25,30 @@ namespace pybind11::detail {
 
 template <> struct type_caster<FMaterialDesc> {
     PYBIND11_TYPE_CASTER(FMaterialDesc, const_name("FMaterialDesc"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("spear._engine.api", "FMaterialDesc", {"BaseColor", "Roughness", "Metallic", "AmbientOcclusion", "Emissive", "BaseColorTexture", "RoughnessMetallicTexture", "OcclusionTexture", "NormalTexture", "TextureSize"});
+        return *type;
+    }
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FMaterialDesc");
-        if (!isinstance(src, cls))
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
             return false;
-        value.BaseColor = sp::pybind::Bridge<FLinearColor>::in(src.attr("BaseColor").cast<sp::pybind::Bridge<FLinearColor>::Py>(), "FMaterialDesc.BaseColor");
-        value.Roughness = sp::pybind::Bridge<float>::in(src.attr("Roughness").cast<sp::pybind::Bridge<float>::Py>(), "FMaterialDesc.Roughness");
-        value.Metallic = sp::pybind::Bridge<float>::in(src.attr("Metallic").cast<sp::pybind::Bridge<float>::Py>(), "FMaterialDesc.Metallic");
-        value.AmbientOcclusion = sp::pybind::Bridge<float>::in(src.attr("AmbientOcclusion").cast<sp::pybind::Bridge<float>::Py>(), "FMaterialDesc.AmbientOcclusion");
-        value.Emissive = sp::pybind::Bridge<FLinearColor>::in(src.attr("Emissive").cast<sp::pybind::Bridge<FLinearColor>::Py>(), "FMaterialDesc.Emissive");
-        value.BaseColorTexture = sp::pybind::Bridge<std::string>::in(src.attr("BaseColorTexture").cast<sp::pybind::Bridge<std::string>::Py>(), "FMaterialDesc.BaseColorTexture");
-        value.RoughnessMetallicTexture = sp::pybind::Bridge<std::string>::in(src.attr("RoughnessMetallicTexture").cast<sp::pybind::Bridge<std::string>::Py>(), "FMaterialDesc.RoughnessMetallicTexture");
-        value.OcclusionTexture = sp::pybind::Bridge<std::string>::in(src.attr("OcclusionTexture").cast<sp::pybind::Bridge<std::string>::Py>(), "FMaterialDesc.OcclusionTexture");
-        value.NormalTexture = sp::pybind::Bridge<std::string>::in(src.attr("NormalTexture").cast<sp::pybind::Bridge<std::string>::Py>(), "FMaterialDesc.NormalTexture");
-        value.TextureSize = sp::pybind::Bridge<float>::in(src.attr("TextureSize").cast<sp::pybind::Bridge<float>::Py>(), "FMaterialDesc.TextureSize");
+        value.BaseColor = sp::pybind::Bridge<FLinearColor>::in(type.get(src, 0).cast<sp::pybind::Bridge<FLinearColor>::Py>(), "FMaterialDesc.BaseColor");
+        value.Roughness = sp::pybind::Bridge<float>::in(type.get(src, 1).cast<sp::pybind::Bridge<float>::Py>(), "FMaterialDesc.Roughness");
+        value.Metallic = sp::pybind::Bridge<float>::in(type.get(src, 2).cast<sp::pybind::Bridge<float>::Py>(), "FMaterialDesc.Metallic");
+        value.AmbientOcclusion = sp::pybind::Bridge<float>::in(type.get(src, 3).cast<sp::pybind::Bridge<float>::Py>(), "FMaterialDesc.AmbientOcclusion");
+        value.Emissive = sp::pybind::Bridge<FLinearColor>::in(type.get(src, 4).cast<sp::pybind::Bridge<FLinearColor>::Py>(), "FMaterialDesc.Emissive");
+        value.BaseColorTexture = sp::pybind::Bridge<std::string>::in(type.get(src, 5).cast<sp::pybind::Bridge<std::string>::Py>(), "FMaterialDesc.BaseColorTexture");
+        value.RoughnessMetallicTexture = sp::pybind::Bridge<std::string>::in(type.get(src, 6).cast<sp::pybind::Bridge<std::string>::Py>(), "FMaterialDesc.RoughnessMetallicTexture");
+        value.OcclusionTexture = sp::pybind::Bridge<std::string>::in(type.get(src, 7).cast<sp::pybind::Bridge<std::string>::Py>(), "FMaterialDesc.OcclusionTexture");
+        value.NormalTexture = sp::pybind::Bridge<std::string>::in(type.get(src, 8).cast<sp::pybind::Bridge<std::string>::Py>(), "FMaterialDesc.NormalTexture");
+        value.TextureSize = sp::pybind::Bridge<float>::in(type.get(src, 9).cast<sp::pybind::Bridge<float>::Py>(), "FMaterialDesc.TextureSize");
         return true;
     }
     static handle cast(const FMaterialDesc& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FMaterialDesc");
-        return cls(sp::pybind::Bridge<FLinearColor>::out(v.BaseColor), sp::pybind::Bridge<float>::out(v.Roughness), sp::pybind::Bridge<float>::out(v.Metallic), sp::pybind::Bridge<float>::out(v.AmbientOcclusion), sp::pybind::Bridge<FLinearColor>::out(v.Emissive), sp::pybind::Bridge<std::string>::out(v.BaseColorTexture), sp::pybind::Bridge<std::string>::out(v.RoughnessMetallicTexture), sp::pybind::Bridge<std::string>::out(v.OcclusionTexture), sp::pybind::Bridge<std::string>::out(v.NormalTexture), sp::pybind::Bridge<float>::out(v.TextureSize)).release();
+        return python().make(sp::pybind::Bridge<FLinearColor>::out(v.BaseColor), sp::pybind::Bridge<float>::out(v.Roughness), sp::pybind::Bridge<float>::out(v.Metallic), sp::pybind::Bridge<float>::out(v.AmbientOcclusion), sp::pybind::Bridge<FLinearColor>::out(v.Emissive), sp::pybind::Bridge<std::string>::out(v.BaseColorTexture), sp::pybind::Bridge<std::string>::out(v.RoughnessMetallicTexture), sp::pybind::Bridge<std::string>::out(v.OcclusionTexture), sp::pybind::Bridge<std::string>::out(v.NormalTexture), sp::pybind::Bridge<float>::out(v.TextureSize)).release();
     }
 };
 

@@ -46,45 +46,55 @@ template <> struct type_caster<EMoviePipelineJobStatus> {
 
 template <> struct type_caster<FMoviePipelineConfiguration> {
     PYBIND11_TYPE_CASTER(FMoviePipelineConfiguration, const_name("FMoviePipelineConfiguration"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("spear._engine.api", "FMoviePipelineConfiguration", {"OutputDirectory", "Modalities", "Width", "Height", "SamplesPerPixel", "CameraLocations", "CameraRotations", "FrameStart", "FrameEnd", "bOverwriteExisting"});
+        return *type;
+    }
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FMoviePipelineConfiguration");
-        if (!isinstance(src, cls))
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
             return false;
-        value.OutputDirectory = sp::pybind::Bridge<std::string>::in(src.attr("OutputDirectory").cast<sp::pybind::Bridge<std::string>::Py>(), "FMoviePipelineConfiguration.OutputDirectory");
-        value.Modalities = sp::pybind::Bridge<std::vector<ECameraModality>>::in(src.attr("Modalities").cast<sp::pybind::Bridge<std::vector<ECameraModality>>::Py>(), "FMoviePipelineConfiguration.Modalities");
-        value.Width = sp::pybind::Bridge<int32_t>::in(src.attr("Width").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineConfiguration.Width");
-        value.Height = sp::pybind::Bridge<int32_t>::in(src.attr("Height").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineConfiguration.Height");
-        value.SamplesPerPixel = sp::pybind::Bridge<int32_t>::in(src.attr("SamplesPerPixel").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineConfiguration.SamplesPerPixel");
-        value.CameraLocations = sp::pybind::Bridge<std::vector<FVector>>::in(src.attr("CameraLocations").cast<sp::pybind::Bridge<std::vector<FVector>>::Py>(), "FMoviePipelineConfiguration.CameraLocations");
-        value.CameraRotations = sp::pybind::Bridge<std::vector<FRotator>>::in(src.attr("CameraRotations").cast<sp::pybind::Bridge<std::vector<FRotator>>::Py>(), "FMoviePipelineConfiguration.CameraRotations");
-        value.FrameStart = sp::pybind::Bridge<int32_t>::in(src.attr("FrameStart").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineConfiguration.FrameStart");
-        value.FrameEnd = sp::pybind::Bridge<int32_t>::in(src.attr("FrameEnd").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineConfiguration.FrameEnd");
-        value.bOverwriteExisting = sp::pybind::Bridge<bool>::in(src.attr("bOverwriteExisting").cast<sp::pybind::Bridge<bool>::Py>(), "FMoviePipelineConfiguration.bOverwriteExisting");
+        value.OutputDirectory = sp::pybind::Bridge<std::string>::in(type.get(src, 0).cast<sp::pybind::Bridge<std::string>::Py>(), "FMoviePipelineConfiguration.OutputDirectory");
+        value.Modalities = sp::pybind::Bridge<std::vector<ECameraModality>>::in(type.get(src, 1).cast<sp::pybind::Bridge<std::vector<ECameraModality>>::Py>(), "FMoviePipelineConfiguration.Modalities");
+        value.Width = sp::pybind::Bridge<int32_t>::in(type.get(src, 2).cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineConfiguration.Width");
+        value.Height = sp::pybind::Bridge<int32_t>::in(type.get(src, 3).cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineConfiguration.Height");
+        value.SamplesPerPixel = sp::pybind::Bridge<int32_t>::in(type.get(src, 4).cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineConfiguration.SamplesPerPixel");
+        value.CameraLocations = sp::pybind::Bridge<std::vector<FVector>>::in(type.get(src, 5).cast<sp::pybind::Bridge<std::vector<FVector>>::Py>(), "FMoviePipelineConfiguration.CameraLocations");
+        value.CameraRotations = sp::pybind::Bridge<std::vector<FRotator>>::in(type.get(src, 6).cast<sp::pybind::Bridge<std::vector<FRotator>>::Py>(), "FMoviePipelineConfiguration.CameraRotations");
+        value.FrameStart = sp::pybind::Bridge<int32_t>::in(type.get(src, 7).cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineConfiguration.FrameStart");
+        value.FrameEnd = sp::pybind::Bridge<int32_t>::in(type.get(src, 8).cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineConfiguration.FrameEnd");
+        value.bOverwriteExisting = sp::pybind::Bridge<bool>::in(type.get(src, 9).cast<sp::pybind::Bridge<bool>::Py>(), "FMoviePipelineConfiguration.bOverwriteExisting");
         return true;
     }
     static handle cast(const FMoviePipelineConfiguration& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FMoviePipelineConfiguration");
-        return cls(sp::pybind::Bridge<std::string>::out(v.OutputDirectory), sp::pybind::Bridge<std::vector<ECameraModality>>::out(v.Modalities), sp::pybind::Bridge<int32_t>::out(v.Width), sp::pybind::Bridge<int32_t>::out(v.Height), sp::pybind::Bridge<int32_t>::out(v.SamplesPerPixel), sp::pybind::Bridge<std::vector<FVector>>::out(v.CameraLocations), sp::pybind::Bridge<std::vector<FRotator>>::out(v.CameraRotations), sp::pybind::Bridge<int32_t>::out(v.FrameStart), sp::pybind::Bridge<int32_t>::out(v.FrameEnd), sp::pybind::Bridge<bool>::out(v.bOverwriteExisting)).release();
+        return python().make(sp::pybind::Bridge<std::string>::out(v.OutputDirectory), sp::pybind::Bridge<std::vector<ECameraModality>>::out(v.Modalities), sp::pybind::Bridge<int32_t>::out(v.Width), sp::pybind::Bridge<int32_t>::out(v.Height), sp::pybind::Bridge<int32_t>::out(v.SamplesPerPixel), sp::pybind::Bridge<std::vector<FVector>>::out(v.CameraLocations), sp::pybind::Bridge<std::vector<FRotator>>::out(v.CameraRotations), sp::pybind::Bridge<int32_t>::out(v.FrameStart), sp::pybind::Bridge<int32_t>::out(v.FrameEnd), sp::pybind::Bridge<bool>::out(v.bOverwriteExisting)).release();
     }
 };
 
 template <> struct type_caster<FMoviePipelineProgress> {
     PYBIND11_TYPE_CASTER(FMoviePipelineProgress, const_name("FMoviePipelineProgress"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("spear._engine.api", "FMoviePipelineProgress", {"FramesTotal", "FramesRendered", "FramesWriting", "FramesSkipped", "ElapsedSeconds", "EstimatedSecondsLeft"});
+        return *type;
+    }
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FMoviePipelineProgress");
-        if (!isinstance(src, cls))
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
             return false;
-        value.FramesTotal = sp::pybind::Bridge<int32_t>::in(src.attr("FramesTotal").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineProgress.FramesTotal");
-        value.FramesRendered = sp::pybind::Bridge<int32_t>::in(src.attr("FramesRendered").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineProgress.FramesRendered");
-        value.FramesWriting = sp::pybind::Bridge<int32_t>::in(src.attr("FramesWriting").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineProgress.FramesWriting");
-        value.FramesSkipped = sp::pybind::Bridge<int32_t>::in(src.attr("FramesSkipped").cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineProgress.FramesSkipped");
-        value.ElapsedSeconds = sp::pybind::Bridge<double>::in(src.attr("ElapsedSeconds").cast<sp::pybind::Bridge<double>::Py>(), "FMoviePipelineProgress.ElapsedSeconds");
-        value.EstimatedSecondsLeft = sp::pybind::Bridge<double>::in(src.attr("EstimatedSecondsLeft").cast<sp::pybind::Bridge<double>::Py>(), "FMoviePipelineProgress.EstimatedSecondsLeft");
+        value.FramesTotal = sp::pybind::Bridge<int32_t>::in(type.get(src, 0).cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineProgress.FramesTotal");
+        value.FramesRendered = sp::pybind::Bridge<int32_t>::in(type.get(src, 1).cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineProgress.FramesRendered");
+        value.FramesWriting = sp::pybind::Bridge<int32_t>::in(type.get(src, 2).cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineProgress.FramesWriting");
+        value.FramesSkipped = sp::pybind::Bridge<int32_t>::in(type.get(src, 3).cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineProgress.FramesSkipped");
+        value.ElapsedSeconds = sp::pybind::Bridge<double>::in(type.get(src, 4).cast<sp::pybind::Bridge<double>::Py>(), "FMoviePipelineProgress.ElapsedSeconds");
+        value.EstimatedSecondsLeft = sp::pybind::Bridge<double>::in(type.get(src, 5).cast<sp::pybind::Bridge<double>::Py>(), "FMoviePipelineProgress.EstimatedSecondsLeft");
         return true;
     }
     static handle cast(const FMoviePipelineProgress& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FMoviePipelineProgress");
-        return cls(sp::pybind::Bridge<int32_t>::out(v.FramesTotal), sp::pybind::Bridge<int32_t>::out(v.FramesRendered), sp::pybind::Bridge<int32_t>::out(v.FramesWriting), sp::pybind::Bridge<int32_t>::out(v.FramesSkipped), sp::pybind::Bridge<double>::out(v.ElapsedSeconds), sp::pybind::Bridge<double>::out(v.EstimatedSecondsLeft)).release();
+        return python().make(sp::pybind::Bridge<int32_t>::out(v.FramesTotal), sp::pybind::Bridge<int32_t>::out(v.FramesRendered), sp::pybind::Bridge<int32_t>::out(v.FramesWriting), sp::pybind::Bridge<int32_t>::out(v.FramesSkipped), sp::pybind::Bridge<double>::out(v.ElapsedSeconds), sp::pybind::Bridge<double>::out(v.EstimatedSecondsLeft)).release();
     }
 };
 

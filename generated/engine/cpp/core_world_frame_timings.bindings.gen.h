@@ -16,20 +16,25 @@ namespace pybind11::detail {
 
 template <> struct type_caster<FFrameTimings> {
     PYBIND11_TYPE_CASTER(FFrameTimings, const_name("FFrameTimings"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("spear._engine.api", "FFrameTimings", {"Frames", "ActorsMs", "PhysicsMs", "RenderingMs", "OtherMs"});
+        return *type;
+    }
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FFrameTimings");
-        if (!isinstance(src, cls))
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
             return false;
-        value.Frames = sp::pybind::Bridge<int64_t>::in(src.attr("Frames").cast<sp::pybind::Bridge<int64_t>::Py>(), "FFrameTimings.Frames");
-        value.ActorsMs = sp::pybind::Bridge<double>::in(src.attr("ActorsMs").cast<sp::pybind::Bridge<double>::Py>(), "FFrameTimings.ActorsMs");
-        value.PhysicsMs = sp::pybind::Bridge<double>::in(src.attr("PhysicsMs").cast<sp::pybind::Bridge<double>::Py>(), "FFrameTimings.PhysicsMs");
-        value.RenderingMs = sp::pybind::Bridge<double>::in(src.attr("RenderingMs").cast<sp::pybind::Bridge<double>::Py>(), "FFrameTimings.RenderingMs");
-        value.OtherMs = sp::pybind::Bridge<double>::in(src.attr("OtherMs").cast<sp::pybind::Bridge<double>::Py>(), "FFrameTimings.OtherMs");
+        value.Frames = sp::pybind::Bridge<int64_t>::in(type.get(src, 0).cast<sp::pybind::Bridge<int64_t>::Py>(), "FFrameTimings.Frames");
+        value.ActorsMs = sp::pybind::Bridge<double>::in(type.get(src, 1).cast<sp::pybind::Bridge<double>::Py>(), "FFrameTimings.ActorsMs");
+        value.PhysicsMs = sp::pybind::Bridge<double>::in(type.get(src, 2).cast<sp::pybind::Bridge<double>::Py>(), "FFrameTimings.PhysicsMs");
+        value.RenderingMs = sp::pybind::Bridge<double>::in(type.get(src, 3).cast<sp::pybind::Bridge<double>::Py>(), "FFrameTimings.RenderingMs");
+        value.OtherMs = sp::pybind::Bridge<double>::in(type.get(src, 4).cast<sp::pybind::Bridge<double>::Py>(), "FFrameTimings.OtherMs");
         return true;
     }
     static handle cast(const FFrameTimings& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FFrameTimings");
-        return cls(sp::pybind::Bridge<int64_t>::out(v.Frames), sp::pybind::Bridge<double>::out(v.ActorsMs), sp::pybind::Bridge<double>::out(v.PhysicsMs), sp::pybind::Bridge<double>::out(v.RenderingMs), sp::pybind::Bridge<double>::out(v.OtherMs)).release();
+        return python().make(sp::pybind::Bridge<int64_t>::out(v.Frames), sp::pybind::Bridge<double>::out(v.ActorsMs), sp::pybind::Bridge<double>::out(v.PhysicsMs), sp::pybind::Bridge<double>::out(v.RenderingMs), sp::pybind::Bridge<double>::out(v.OtherMs)).release();
     }
 };
 

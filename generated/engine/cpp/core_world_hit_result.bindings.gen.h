@@ -17,24 +17,29 @@ namespace pybind11::detail {
 
 template <> struct type_caster<FHitResult> {
     PYBIND11_TYPE_CASTER(FHitResult, const_name("FHitResult"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("spear._engine.api", "FHitResult", {"bBlockingHit", "Location", "ImpactPoint", "ImpactNormal", "Normal", "Distance", "Time", "TraceStart", "TraceEnd"});
+        return *type;
+    }
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FHitResult");
-        if (!isinstance(src, cls))
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
             return false;
-        value.bBlockingHit = sp::pybind::Bridge<bool>::in(src.attr("bBlockingHit").cast<sp::pybind::Bridge<bool>::Py>(), "FHitResult.bBlockingHit");
-        value.Location = sp::pybind::Bridge<FVector>::in(src.attr("Location").cast<sp::pybind::Bridge<FVector>::Py>(), "FHitResult.Location");
-        value.ImpactPoint = sp::pybind::Bridge<FVector>::in(src.attr("ImpactPoint").cast<sp::pybind::Bridge<FVector>::Py>(), "FHitResult.ImpactPoint");
-        value.ImpactNormal = sp::pybind::Bridge<FVector>::in(src.attr("ImpactNormal").cast<sp::pybind::Bridge<FVector>::Py>(), "FHitResult.ImpactNormal");
-        value.Normal = sp::pybind::Bridge<FVector>::in(src.attr("Normal").cast<sp::pybind::Bridge<FVector>::Py>(), "FHitResult.Normal");
-        value.Distance = sp::pybind::Bridge<double>::in(src.attr("Distance").cast<sp::pybind::Bridge<double>::Py>(), "FHitResult.Distance");
-        value.Time = sp::pybind::Bridge<double>::in(src.attr("Time").cast<sp::pybind::Bridge<double>::Py>(), "FHitResult.Time");
-        value.TraceStart = sp::pybind::Bridge<FVector>::in(src.attr("TraceStart").cast<sp::pybind::Bridge<FVector>::Py>(), "FHitResult.TraceStart");
-        value.TraceEnd = sp::pybind::Bridge<FVector>::in(src.attr("TraceEnd").cast<sp::pybind::Bridge<FVector>::Py>(), "FHitResult.TraceEnd");
+        value.bBlockingHit = sp::pybind::Bridge<bool>::in(type.get(src, 0).cast<sp::pybind::Bridge<bool>::Py>(), "FHitResult.bBlockingHit");
+        value.Location = sp::pybind::Bridge<FVector>::in(type.get(src, 1).cast<sp::pybind::Bridge<FVector>::Py>(), "FHitResult.Location");
+        value.ImpactPoint = sp::pybind::Bridge<FVector>::in(type.get(src, 2).cast<sp::pybind::Bridge<FVector>::Py>(), "FHitResult.ImpactPoint");
+        value.ImpactNormal = sp::pybind::Bridge<FVector>::in(type.get(src, 3).cast<sp::pybind::Bridge<FVector>::Py>(), "FHitResult.ImpactNormal");
+        value.Normal = sp::pybind::Bridge<FVector>::in(type.get(src, 4).cast<sp::pybind::Bridge<FVector>::Py>(), "FHitResult.Normal");
+        value.Distance = sp::pybind::Bridge<double>::in(type.get(src, 5).cast<sp::pybind::Bridge<double>::Py>(), "FHitResult.Distance");
+        value.Time = sp::pybind::Bridge<double>::in(type.get(src, 6).cast<sp::pybind::Bridge<double>::Py>(), "FHitResult.Time");
+        value.TraceStart = sp::pybind::Bridge<FVector>::in(type.get(src, 7).cast<sp::pybind::Bridge<FVector>::Py>(), "FHitResult.TraceStart");
+        value.TraceEnd = sp::pybind::Bridge<FVector>::in(type.get(src, 8).cast<sp::pybind::Bridge<FVector>::Py>(), "FHitResult.TraceEnd");
         return true;
     }
     static handle cast(const FHitResult& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FHitResult");
-        return cls(sp::pybind::Bridge<bool>::out(v.bBlockingHit), sp::pybind::Bridge<FVector>::out(v.Location), sp::pybind::Bridge<FVector>::out(v.ImpactPoint), sp::pybind::Bridge<FVector>::out(v.ImpactNormal), sp::pybind::Bridge<FVector>::out(v.Normal), sp::pybind::Bridge<double>::out(v.Distance), sp::pybind::Bridge<double>::out(v.Time), sp::pybind::Bridge<FVector>::out(v.TraceStart), sp::pybind::Bridge<FVector>::out(v.TraceEnd)).release();
+        return python().make(sp::pybind::Bridge<bool>::out(v.bBlockingHit), sp::pybind::Bridge<FVector>::out(v.Location), sp::pybind::Bridge<FVector>::out(v.ImpactPoint), sp::pybind::Bridge<FVector>::out(v.ImpactNormal), sp::pybind::Bridge<FVector>::out(v.Normal), sp::pybind::Bridge<double>::out(v.Distance), sp::pybind::Bridge<double>::out(v.Time), sp::pybind::Bridge<FVector>::out(v.TraceStart), sp::pybind::Bridge<FVector>::out(v.TraceEnd)).release();
     }
 };
 

@@ -16,104 +16,134 @@ namespace pybind11::detail {
 
 template <> struct type_caster<FVector> {
     PYBIND11_TYPE_CASTER(FVector, const_name("FVector"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("spear._engine.api", "FVector", {"X", "Y", "Z"});
+        return *type;
+    }
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FVector");
-        if (!isinstance(src, cls))
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
             return false;
-        value.X = sp::pybind::Bridge<double>::in(src.attr("X").cast<sp::pybind::Bridge<double>::Py>(), "FVector.X");
-        value.Y = sp::pybind::Bridge<double>::in(src.attr("Y").cast<sp::pybind::Bridge<double>::Py>(), "FVector.Y");
-        value.Z = sp::pybind::Bridge<double>::in(src.attr("Z").cast<sp::pybind::Bridge<double>::Py>(), "FVector.Z");
+        value.X = sp::pybind::Bridge<double>::in(type.get(src, 0).cast<sp::pybind::Bridge<double>::Py>(), "FVector.X");
+        value.Y = sp::pybind::Bridge<double>::in(type.get(src, 1).cast<sp::pybind::Bridge<double>::Py>(), "FVector.Y");
+        value.Z = sp::pybind::Bridge<double>::in(type.get(src, 2).cast<sp::pybind::Bridge<double>::Py>(), "FVector.Z");
         return true;
     }
     static handle cast(const FVector& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FVector");
-        return cls(sp::pybind::Bridge<double>::out(v.X), sp::pybind::Bridge<double>::out(v.Y), sp::pybind::Bridge<double>::out(v.Z)).release();
+        return python().make(sp::pybind::Bridge<double>::out(v.X), sp::pybind::Bridge<double>::out(v.Y), sp::pybind::Bridge<double>::out(v.Z)).release();
     }
 };
 
 template <> struct type_caster<FLinearColor> {
     PYBIND11_TYPE_CASTER(FLinearColor, const_name("FLinearColor"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("spear._engine.api", "FLinearColor", {"R", "G", "B", "A"});
+        return *type;
+    }
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FLinearColor");
-        if (!isinstance(src, cls))
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
             return false;
-        value.R = sp::pybind::Bridge<float>::in(src.attr("R").cast<sp::pybind::Bridge<float>::Py>(), "FLinearColor.R");
-        value.G = sp::pybind::Bridge<float>::in(src.attr("G").cast<sp::pybind::Bridge<float>::Py>(), "FLinearColor.G");
-        value.B = sp::pybind::Bridge<float>::in(src.attr("B").cast<sp::pybind::Bridge<float>::Py>(), "FLinearColor.B");
-        value.A = sp::pybind::Bridge<float>::in(src.attr("A").cast<sp::pybind::Bridge<float>::Py>(), "FLinearColor.A");
+        value.R = sp::pybind::Bridge<float>::in(type.get(src, 0).cast<sp::pybind::Bridge<float>::Py>(), "FLinearColor.R");
+        value.G = sp::pybind::Bridge<float>::in(type.get(src, 1).cast<sp::pybind::Bridge<float>::Py>(), "FLinearColor.G");
+        value.B = sp::pybind::Bridge<float>::in(type.get(src, 2).cast<sp::pybind::Bridge<float>::Py>(), "FLinearColor.B");
+        value.A = sp::pybind::Bridge<float>::in(type.get(src, 3).cast<sp::pybind::Bridge<float>::Py>(), "FLinearColor.A");
         return true;
     }
     static handle cast(const FLinearColor& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FLinearColor");
-        return cls(sp::pybind::Bridge<float>::out(v.R), sp::pybind::Bridge<float>::out(v.G), sp::pybind::Bridge<float>::out(v.B), sp::pybind::Bridge<float>::out(v.A)).release();
+        return python().make(sp::pybind::Bridge<float>::out(v.R), sp::pybind::Bridge<float>::out(v.G), sp::pybind::Bridge<float>::out(v.B), sp::pybind::Bridge<float>::out(v.A)).release();
     }
 };
 
 template <> struct type_caster<FQuat> {
     PYBIND11_TYPE_CASTER(FQuat, const_name("FQuat"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("spear._engine.api", "FQuat", {"X", "Y", "Z", "W"});
+        return *type;
+    }
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FQuat");
-        if (!isinstance(src, cls))
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
             return false;
-        value.X = sp::pybind::Bridge<double>::in(src.attr("X").cast<sp::pybind::Bridge<double>::Py>(), "FQuat.X");
-        value.Y = sp::pybind::Bridge<double>::in(src.attr("Y").cast<sp::pybind::Bridge<double>::Py>(), "FQuat.Y");
-        value.Z = sp::pybind::Bridge<double>::in(src.attr("Z").cast<sp::pybind::Bridge<double>::Py>(), "FQuat.Z");
-        value.W = sp::pybind::Bridge<double>::in(src.attr("W").cast<sp::pybind::Bridge<double>::Py>(), "FQuat.W");
+        value.X = sp::pybind::Bridge<double>::in(type.get(src, 0).cast<sp::pybind::Bridge<double>::Py>(), "FQuat.X");
+        value.Y = sp::pybind::Bridge<double>::in(type.get(src, 1).cast<sp::pybind::Bridge<double>::Py>(), "FQuat.Y");
+        value.Z = sp::pybind::Bridge<double>::in(type.get(src, 2).cast<sp::pybind::Bridge<double>::Py>(), "FQuat.Z");
+        value.W = sp::pybind::Bridge<double>::in(type.get(src, 3).cast<sp::pybind::Bridge<double>::Py>(), "FQuat.W");
         return true;
     }
     static handle cast(const FQuat& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FQuat");
-        return cls(sp::pybind::Bridge<double>::out(v.X), sp::pybind::Bridge<double>::out(v.Y), sp::pybind::Bridge<double>::out(v.Z), sp::pybind::Bridge<double>::out(v.W)).release();
+        return python().make(sp::pybind::Bridge<double>::out(v.X), sp::pybind::Bridge<double>::out(v.Y), sp::pybind::Bridge<double>::out(v.Z), sp::pybind::Bridge<double>::out(v.W)).release();
     }
 };
 
 template <> struct type_caster<FRotator> {
     PYBIND11_TYPE_CASTER(FRotator, const_name("FRotator"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("spear._engine.api", "FRotator", {"Pitch", "Yaw", "Roll"});
+        return *type;
+    }
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FRotator");
-        if (!isinstance(src, cls))
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
             return false;
-        value.Pitch = sp::pybind::Bridge<double>::in(src.attr("Pitch").cast<sp::pybind::Bridge<double>::Py>(), "FRotator.Pitch");
-        value.Yaw = sp::pybind::Bridge<double>::in(src.attr("Yaw").cast<sp::pybind::Bridge<double>::Py>(), "FRotator.Yaw");
-        value.Roll = sp::pybind::Bridge<double>::in(src.attr("Roll").cast<sp::pybind::Bridge<double>::Py>(), "FRotator.Roll");
+        value.Pitch = sp::pybind::Bridge<double>::in(type.get(src, 0).cast<sp::pybind::Bridge<double>::Py>(), "FRotator.Pitch");
+        value.Yaw = sp::pybind::Bridge<double>::in(type.get(src, 1).cast<sp::pybind::Bridge<double>::Py>(), "FRotator.Yaw");
+        value.Roll = sp::pybind::Bridge<double>::in(type.get(src, 2).cast<sp::pybind::Bridge<double>::Py>(), "FRotator.Roll");
         return true;
     }
     static handle cast(const FRotator& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FRotator");
-        return cls(sp::pybind::Bridge<double>::out(v.Pitch), sp::pybind::Bridge<double>::out(v.Yaw), sp::pybind::Bridge<double>::out(v.Roll)).release();
+        return python().make(sp::pybind::Bridge<double>::out(v.Pitch), sp::pybind::Bridge<double>::out(v.Yaw), sp::pybind::Bridge<double>::out(v.Roll)).release();
     }
 };
 
 template <> struct type_caster<FTransform> {
     PYBIND11_TYPE_CASTER(FTransform, const_name("FTransform"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("spear._engine.api", "FTransform", {"Translation", "Rotation", "Scale3D"});
+        return *type;
+    }
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FTransform");
-        if (!isinstance(src, cls))
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
             return false;
-        value.Translation = sp::pybind::Bridge<FVector>::in(src.attr("Translation").cast<sp::pybind::Bridge<FVector>::Py>(), "FTransform.Translation");
-        value.Rotation = sp::pybind::Bridge<FQuat>::in(src.attr("Rotation").cast<sp::pybind::Bridge<FQuat>::Py>(), "FTransform.Rotation");
-        value.Scale3D = sp::pybind::Bridge<FVector>::in(src.attr("Scale3D").cast<sp::pybind::Bridge<FVector>::Py>(), "FTransform.Scale3D");
+        value.Translation = sp::pybind::Bridge<FVector>::in(type.get(src, 0).cast<sp::pybind::Bridge<FVector>::Py>(), "FTransform.Translation");
+        value.Rotation = sp::pybind::Bridge<FQuat>::in(type.get(src, 1).cast<sp::pybind::Bridge<FQuat>::Py>(), "FTransform.Rotation");
+        value.Scale3D = sp::pybind::Bridge<FVector>::in(type.get(src, 2).cast<sp::pybind::Bridge<FVector>::Py>(), "FTransform.Scale3D");
         return true;
     }
     static handle cast(const FTransform& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FTransform");
-        return cls(sp::pybind::Bridge<FVector>::out(v.Translation), sp::pybind::Bridge<FQuat>::out(v.Rotation), sp::pybind::Bridge<FVector>::out(v.Scale3D)).release();
+        return python().make(sp::pybind::Bridge<FVector>::out(v.Translation), sp::pybind::Bridge<FQuat>::out(v.Rotation), sp::pybind::Bridge<FVector>::out(v.Scale3D)).release();
     }
 };
 
 template <> struct type_caster<FVector2D> {
     PYBIND11_TYPE_CASTER(FVector2D, const_name("FVector2D"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("spear._engine.api", "FVector2D", {"X", "Y"});
+        return *type;
+    }
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FVector2D");
-        if (!isinstance(src, cls))
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
             return false;
-        value.X = sp::pybind::Bridge<double>::in(src.attr("X").cast<sp::pybind::Bridge<double>::Py>(), "FVector2D.X");
-        value.Y = sp::pybind::Bridge<double>::in(src.attr("Y").cast<sp::pybind::Bridge<double>::Py>(), "FVector2D.Y");
+        value.X = sp::pybind::Bridge<double>::in(type.get(src, 0).cast<sp::pybind::Bridge<double>::Py>(), "FVector2D.X");
+        value.Y = sp::pybind::Bridge<double>::in(type.get(src, 1).cast<sp::pybind::Bridge<double>::Py>(), "FVector2D.Y");
         return true;
     }
     static handle cast(const FVector2D& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "FVector2D");
-        return cls(sp::pybind::Bridge<double>::out(v.X), sp::pybind::Bridge<double>::out(v.Y)).release();
+        return python().make(sp::pybind::Bridge<double>::out(v.X), sp::pybind::Bridge<double>::out(v.Y)).release();
     }
 };
 

@@ -99,19 +99,24 @@ template <> struct type_caster<FImages> {
 
 template <> struct type_caster<FSample> {
     PYBIND11_TYPE_CASTER(FSample, const_name("FSample"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("spear._all_types.api", "FSample", {"Where", "Channel", "Values", "Count"});
+        return *type;
+    }
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("spear._all_types.api", "FSample");
-        if (!isinstance(src, cls))
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
             return false;
-        value.Where = sp::pybind::Bridge<FVector>::in(src.attr("Where").cast<sp::pybind::Bridge<FVector>::Py>(), "FSample.Where");
-        value.Channel = sp::pybind::Bridge<EChannel>::in(src.attr("Channel").cast<sp::pybind::Bridge<EChannel>::Py>(), "FSample.Channel");
-        value.Values = sp::pybind::Bridge<std::vector<double>>::in(src.attr("Values").cast<sp::pybind::Bridge<std::vector<double>>::Py>(), "FSample.Values");
-        value.Count = sp::pybind::Bridge<int32_t>::in(src.attr("Count").cast<sp::pybind::Bridge<int32_t>::Py>(), "FSample.Count");
+        value.Where = sp::pybind::Bridge<FVector>::in(type.get(src, 0).cast<sp::pybind::Bridge<FVector>::Py>(), "FSample.Where");
+        value.Channel = sp::pybind::Bridge<EChannel>::in(type.get(src, 1).cast<sp::pybind::Bridge<EChannel>::Py>(), "FSample.Channel");
+        value.Values = sp::pybind::Bridge<std::vector<double>>::in(type.get(src, 2).cast<sp::pybind::Bridge<std::vector<double>>::Py>(), "FSample.Values");
+        value.Count = sp::pybind::Bridge<int32_t>::in(type.get(src, 3).cast<sp::pybind::Bridge<int32_t>::Py>(), "FSample.Count");
         return true;
     }
     static handle cast(const FSample& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("spear._all_types.api", "FSample");
-        return cls(sp::pybind::Bridge<FVector>::out(v.Where), sp::pybind::Bridge<EChannel>::out(v.Channel), sp::pybind::Bridge<std::vector<double>>::out(v.Values), sp::pybind::Bridge<int32_t>::out(v.Count)).release();
+        return python().make(sp::pybind::Bridge<FVector>::out(v.Where), sp::pybind::Bridge<EChannel>::out(v.Channel), sp::pybind::Bridge<std::vector<double>>::out(v.Values), sp::pybind::Bridge<int32_t>::out(v.Count)).release();
     }
 };
 

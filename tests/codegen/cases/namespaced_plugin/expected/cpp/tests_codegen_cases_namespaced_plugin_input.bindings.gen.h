@@ -43,17 +43,22 @@ template <> struct type_caster<acme::robots::EGait> {
 
 template <> struct type_caster<acme::robots::FGaitSettings> {
     PYBIND11_TYPE_CASTER(acme::robots::FGaitSettings, const_name("FGaitSettings"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("namespaced_plugin.api", "FGaitSettings", {"Stride", "Gait"});
+        return *type;
+    }
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("namespaced_plugin.api", "FGaitSettings");
-        if (!isinstance(src, cls))
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
             return false;
-        value.Stride = sp::pybind::Bridge<double>::in(src.attr("Stride").cast<sp::pybind::Bridge<double>::Py>(), "FGaitSettings.Stride");
-        value.Gait = sp::pybind::Bridge<acme::robots::EGait>::in(src.attr("Gait").cast<sp::pybind::Bridge<acme::robots::EGait>::Py>(), "FGaitSettings.Gait");
+        value.Stride = sp::pybind::Bridge<double>::in(type.get(src, 0).cast<sp::pybind::Bridge<double>::Py>(), "FGaitSettings.Stride");
+        value.Gait = sp::pybind::Bridge<acme::robots::EGait>::in(type.get(src, 1).cast<sp::pybind::Bridge<acme::robots::EGait>::Py>(), "FGaitSettings.Gait");
         return true;
     }
     static handle cast(const acme::robots::FGaitSettings& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("namespaced_plugin.api", "FGaitSettings");
-        return cls(sp::pybind::Bridge<double>::out(v.Stride), sp::pybind::Bridge<acme::robots::EGait>::out(v.Gait)).release();
+        return python().make(sp::pybind::Bridge<double>::out(v.Stride), sp::pybind::Bridge<acme::robots::EGait>::out(v.Gait)).release();
     }
 };
 

@@ -44,17 +44,22 @@ template <> struct type_caster<EPluginMood> {
 
 template <> struct type_caster<FPluginSettings> {
     PYBIND11_TYPE_CASTER(FPluginSettings, const_name("FPluginSettings"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("plugin_actor.api", "FPluginSettings", {"Home", "Mood"});
+        return *type;
+    }
     bool load(handle src, bool) {
-        static const object cls = sp::pybind::apiAttribute("plugin_actor.api", "FPluginSettings");
-        if (!isinstance(src, cls))
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
             return false;
-        value.Home = sp::pybind::Bridge<FVector>::in(src.attr("Home").cast<sp::pybind::Bridge<FVector>::Py>(), "FPluginSettings.Home");
-        value.Mood = sp::pybind::Bridge<EPluginMood>::in(src.attr("Mood").cast<sp::pybind::Bridge<EPluginMood>::Py>(), "FPluginSettings.Mood");
+        value.Home = sp::pybind::Bridge<FVector>::in(type.get(src, 0).cast<sp::pybind::Bridge<FVector>::Py>(), "FPluginSettings.Home");
+        value.Mood = sp::pybind::Bridge<EPluginMood>::in(type.get(src, 1).cast<sp::pybind::Bridge<EPluginMood>::Py>(), "FPluginSettings.Mood");
         return true;
     }
     static handle cast(const FPluginSettings& v, return_value_policy, handle) {
-        static const object cls = sp::pybind::apiAttribute("plugin_actor.api", "FPluginSettings");
-        return cls(sp::pybind::Bridge<FVector>::out(v.Home), sp::pybind::Bridge<EPluginMood>::out(v.Mood)).release();
+        return python().make(sp::pybind::Bridge<FVector>::out(v.Home), sp::pybind::Bridge<EPluginMood>::out(v.Mood)).release();
     }
 };
 
