@@ -318,21 +318,30 @@ struct PathTracer::Impl {
         sync(scene);
     }
 
-    // The first surface along a ray: its distance (infinity for none) and whether the ray meets its back
-    // (the side its winding faces away from).
-    float firstHit(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, unsigned mask, bool& back,
-                   std::uint64_t& rays) const {
+    // The closest hit of the ray from `origin` along `direction` within [tnear, tfar] among the instances
+    // `mask` sees (hit.hit.geomID RTC_INVALID_GEOMETRY_ID: none).
+    RTCRayHit intersect(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, float tnear,
+                        float tfar, unsigned mask, std::uint64_t& rays) const {
         ++rays;
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         RTCRayHit hit{};
         hit.ray.org_x = origin.x(), hit.ray.org_y = origin.y(), hit.ray.org_z = origin.z();
         hit.ray.dir_x = direction.x(), hit.ray.dir_y = direction.y(), hit.ray.dir_z = direction.z();
-        hit.ray.tnear = 0.0f;
-        hit.ray.tfar = std::numeric_limits<float>::infinity();
+        hit.ray.tnear = tnear;
+        hit.ray.tfar = tfar;
         hit.ray.mask = mask;
         hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(rtcScene, &context, &hit);
+        return hit;
+    }
+
+    // The first surface along a ray: its distance (infinity for none) and whether the ray meets its back
+    // (the side its winding faces away from).
+    float firstHit(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, unsigned mask, bool& back,
+                   std::uint64_t& rays) const {
+        const RTCRayHit hit =
+            intersect(origin, direction, 0.0f, std::numeric_limits<float>::infinity(), mask, rays);
         back = hit.hit.geomID != RTC_INVALID_GEOMETRY_ID &&
                (shapes[hit.hit.instID[0]].normalMatrix *
                 Eigen::Vector3f(hit.hit.Ng_x, hit.hit.Ng_y, hit.hit.Ng_z))
@@ -704,17 +713,9 @@ struct PathTracer::Impl {
             (t * (r * std::cos(2.0f * kPi * u2)) + b * (r * std::sin(2.0f * kPi * u2)) + axis * z)
                 .normalized();
         const Eigen::Vector3f from = light.position.cast<float>();
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        RTCRayHit hit{};
-        hit.ray.org_x = from.x(), hit.ray.org_y = from.y(), hit.ray.org_z = from.z();
-        hit.ray.dir_x = ray.x(), hit.ray.dir_y = ray.y(), hit.ray.dir_z = ray.z();
-        hit.ray.tnear = 0.0f;
-        hit.ray.tfar = std::numeric_limits<float>::infinity();
-        hit.ray.mask = kShadowRays; // what the lamp's shadow rays see
-        hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(rtcScene, &context, &hit);
-        ++rays;
+        // What the lamp's shadow rays see.
+        const RTCRayHit hit =
+            intersect(from, ray, 0.0f, std::numeric_limits<float>::infinity(), kShadowRays, rays);
         if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
             return;
         Surface y = surfaceAt(scene, hit, from, ray);
@@ -790,17 +791,7 @@ struct PathTracer::Impl {
         bool joinedFrom = false; // the last vertex drew light-vertex connections (so this one's lamps share)
         float pathRoughness = 0.0f; // the roughest lobe the path has come through (approximateCaustics)
         for (int depth = 0;; ++depth) {
-            RTCIntersectContext context;
-            rtcInitIntersectContext(&context);
-            RTCRayHit hit{};
-            hit.ray.org_x = origin.x(), hit.ray.org_y = origin.y(), hit.ray.org_z = origin.z();
-            hit.ray.dir_x = direction.x(), hit.ray.dir_y = direction.y(), hit.ray.dir_z = direction.z();
-            hit.ray.tnear = tnear;
-            hit.ray.tfar = tfar;
-            hit.ray.mask = rayMask;
-            hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            rtcIntersect1(rtcScene, &context, &hit);
-            ++rays;
+            const RTCRayHit hit = intersect(origin, direction, tnear, tfar, rayMask, rays);
             if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
                 if (depth == 0) { // an environment map is the background too
                     const Eigen::Vector3f background = map ? environment.radiance(direction) : missed;
