@@ -6,12 +6,14 @@
 // Multi-bounce global illumination, unbiased up to the bounce limit: at every vertex, next-event estimation
 // of each analytic light (directional, point, spot: delta lights, one shadow ray each; rect: one point of its
 // area) and of the sky (combined with the BSDF-sampled ray by multiple importance sampling, power
-// heuristic); the surface model is the rasteriser's (bsdf.h), normal maps included. Russian roulette after
-// three bounces. Images accumulate across calls while the scene, the camera and maxBounces stay the same, so
-// a still view converges; any change anywhere in the scene restarts them. Point lights cast shadows (as the
-// rasteriser's cube maps do), rect lights soft ones; instances that do not cast shadows are
-// invisible to shadow rays only. Primary rays that leave the scene show the environment's background, as in
-// the rasteriser; rays that leave it after a bounce bring back the sky's radiance.
+// heuristic); at every rough vertex a light-vertex connection (the surface a point or spot lamp's ray
+// lights, joined to the vertex: Settings::lightConnections); the surface model is the rasteriser's (bsdf.h),
+// normal maps included. Russian roulette after three bounces. Images accumulate across calls while the scene,
+// the camera and maxBounces stay the same, so a still view converges; any change anywhere in the scene
+// restarts them. Point lights cast shadows (as the rasteriser's cube maps do), rect lights soft ones;
+// instances that do not cast shadows are invisible to shadow rays only. Primary rays that leave the scene
+// show the environment's background, as in the rasteriser; rays that leave it after a bounce bring back the
+// sky's radiance.
 
 #include <cstdint>
 #include <memory>
