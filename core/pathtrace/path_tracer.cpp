@@ -194,15 +194,13 @@ struct LightVertices {
     std::vector<const render::Light*> lights;
     std::vector<float> chance; // of each light being drawn (0: never)
     std::vector<float> cdf;    // running sum of `chance`
+    // The cosine, to the light's axis, of the edge of what its rays light: a spot's outer cone, -1 for a
+    // point light (its rays are drawn uniformly over the directions whose cosine is above it).
+    std::vector<float> lowestCosine;
     bool empty() const { return cdf.empty() || cdf.back() <= 0.0f; }
+    // The solid angle light `i`'s rays are drawn over.
+    float solidAngle(std::size_t i) const { return 2.0f * kPi * (1.0f - lowestCosine[i]); }
 };
-
-// The solid angle a point or spot light emits into.
-float emittedSolidAngle(const render::Light& light) {
-    if (light.type == render::LightType::Spot)
-        return 2.0f * kPi * (1.0f - std::cos(std::clamp(light.outerConeDeg, 0.0f, 180.0f) * kPi / 180.0f));
-    return 4.0f * kPi;
-}
 
 LightVertices lightVertices(const render::Scene& scene) {
     LightVertices out;
@@ -211,12 +209,13 @@ LightVertices lightVertices(const render::Scene& scene) {
     scene.forEachLight([&](render::LightId, const render::Light& light) {
         const bool joins = light.castShadows &&
                            (light.type == render::LightType::Point || light.type == render::LightType::Spot);
-        const double p = joins ? double(light.intensity) *
-                                     double(0.2126f * light.color.x() + 0.7152f * light.color.y() +
-                                            0.0722f * light.color.z()) *
-                                     double(emittedSolidAngle(light))
-                               : 0.0;
         out.lights.push_back(&light);
+        out.lowestCosine.push_back(light.type == render::LightType::Spot
+                                       ? std::cos(std::clamp(light.outerConeDeg, 0.0f, 180.0f) * kPi / 180.0f)
+                                       : -1.0f);
+        const double p = joins ? double(light.intensity) * double(render::luminance(light.color)) *
+                                     double(out.solidAngle(out.lights.size() - 1))
+                               : 0.0;
         power.push_back(std::isfinite(p) && p > 0.0 ? p : 0.0);
         total += power.back();
     });
@@ -229,19 +228,18 @@ LightVertices lightVertices(const render::Scene& scene) {
     return out;
 }
 
-// The density per unit area with which a light-vertex connection draws a point whose direction from the
-// light is `fromLight` (unit), at `distance` from it, on a surface whose cosine to that direction is
-// `cosine`: the light's chance, times the density of its rays' direction, times the area's solid angle.
+// The density per unit area with which a light-vertex connection draws a point whose direction from light
+// `i` is `fromLight` (unit), at `distance` from it, on a surface whose cosine to that direction is `cosine`:
+// the light's chance, times the density of its rays' direction, times the area's solid angle.
 float lightVertexDensity(const LightVertices& table, std::size_t i, const Eigen::Vector3f& fromLight,
                          float distance, float cosine) {
     const render::Light& light = *table.lights[i];
     if (table.chance[i] <= 0.0f)
         return 0.0f;
     if (light.type == render::LightType::Spot &&
-        fromLight.dot(light.direction.cast<float>().normalized()) <
-            std::cos(std::clamp(light.outerConeDeg, 0.0f, 180.0f) * kPi / 180.0f))
+        fromLight.dot(light.direction.cast<float>().normalized()) < table.lowestCosine[i])
         return 0.0f;
-    return table.chance[i] / emittedSolidAngle(light) * cosine / std::max(distance * distance, 1e-4f);
+    return table.chance[i] / table.solidAngle(i) * cosine / std::max(distance * distance, 1e-4f);
 }
 
 // The multiple importance sampling weight of a sample drawn with density `chosen` where another strategy
@@ -703,10 +701,8 @@ struct PathTracer::Impl {
         const Eigen::Vector3f axis = light.type == render::LightType::Spot
                                          ? Eigen::Vector3f(light.direction.cast<float>().normalized())
                                          : Eigen::Vector3f::UnitZ();
-        const float lowest = light.type == render::LightType::Spot
-                                 ? std::cos(std::clamp(light.outerConeDeg, 0.0f, 180.0f) * kPi / 180.0f)
-                                 : -1.0f;
-        const float z = 1.0f - u1 * (1.0f - lowest), r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        const float z = 1.0f - u1 * (1.0f - joins.lowestCosine[i]),
+                    r = std::sqrt(std::max(0.0f, 1.0f - z * z));
         Eigen::Vector3f t, b;
         basis(axis, t, b);
         const Eigen::Vector3f ray =
@@ -1022,7 +1018,7 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
     const std::uint64_t firstSample = image.samples;
     std::atomic<int> nextRow{0}, rowsDone{0};
     std::atomic<std::uint64_t> rays{0};
-    const LightVertices joins = lightVertices(scene);
+    const LightVertices joins = settings.lightConnections ? lightVertices(scene) : LightVertices{};
     // Reported by the calling thread only (Progress is not shared between threads).
     base::Progress progress("path tracing " + std::to_string(width) + "x" + std::to_string(height) + ", " +
                                 std::to_string(settings.samplesPerPixel) + " samples per pixel",
@@ -1063,11 +1059,10 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
                     const Eigen::Vector3f toFocus = local * (focus / local.x()) - lens;
                     const Eigen::Vector3f direction = (rotation * toFocus).normalized();
                     const float axial = toFocus.x() / toFocus.norm(); // cosine to the optical axis
-                    const PathSample path =
-                        impl.trace(scene, camera.params.shadows, scene.environment().background,
-                                   eye + rotation * lens, direction, float(camera.params.nearClip) / axial,
-                                   float(camera.params.farClip) / axial, settings, random, traced, false,
-                                   settings.lightConnections ? &joins : nullptr);
+                    const PathSample path = impl.trace(
+                        scene, camera.params.shadows, scene.environment().background, eye + rotation * lens,
+                        direction, float(camera.params.nearClip) / axial,
+                        float(camera.params.farClip) / axial, settings, random, traced, false, &joins);
                     if (path.hdr.allFinite() && path.diffuseOnly.allFinite() &&
                         path.diffuseIllumination.allFinite())
                         for (int c = 0; c < 3; ++c) {
@@ -1077,13 +1072,13 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
                         }
                     for (int c = 0; c < 3; ++c) {
                         image.albedoSum[at + std::size_t(c)] += path.albedo[c];
-                        if (path.direct.allFinite() && path.hdr.allFinite())
-                            image.directSum[at + std::size_t(c)] += path.direct[c];
                         image.normalSum[at + std::size_t(c)] += path.normal[c];
                     }
                     if (path.direct.allFinite() && path.hdr.allFinite()) {
-                        const Eigen::Vector3f indirect = path.hdr - path.direct;
-                        const double l = render::luminance<double>(indirect.x(), indirect.y(), indirect.z());
+                        for (int c = 0; c < 3; ++c)
+                            image.directSum[at + std::size_t(c)] += path.direct[c];
+                        const double l =
+                            render::luminance(Eigen::Vector3d((path.hdr - path.direct).cast<double>()));
                         image.indirectSquareSum[at / 3] += l * l;
                     }
                     image.depthSum[at / 3] += path.depth;
