@@ -120,6 +120,13 @@ SlotStruct::SlotStruct(const char* module, const char* name, std::initializer_li
     offsets_ = std::move(offsets);
 }
 
+bool SlotStruct::holds(py::handle src) const {
+    const int result = PyObject_IsInstance(src.ptr(), cls_.ptr());
+    if (result < 0)
+        throw py::error_already_set();
+    return result == 1;
+}
+
 py::object SlotStruct::get(py::handle src, std::size_t i) const {
     if (offsets_.empty())
         return src.attr(names_[i]);

@@ -348,8 +348,9 @@ class SlotStruct {
   public:
     // The class `name` of `module`, with its fields in declaration order (the constructor's order).
     SlotStruct(const char* module, const char* name, std::initializer_list<const char*> fields);
-    // Whether `src` is an instance of the class (or of a subclass).
-    bool holds(py::handle src) const { return PyObject_IsInstance(src.ptr(), cls_.ptr()) == 1; }
+    // Whether `src` is an instance of the class (or of a subclass); an error isinstance raises propagates,
+    // as pybind11's isinstance() does.
+    bool holds(py::handle src) const;
     // Field `i` of an instance; AttributeError, as attribute access, when it is unset.
     py::object get(py::handle src, std::size_t i) const;
     // A new instance with the fields `values`, in declaration order.
