@@ -193,7 +193,8 @@ def run(instance: spear.Instance, *, objects: int, views: int, width: int, heigh
         physics: str, png: Path | None, breakdown: bool = False, batched_forces: bool = False,
         shadows: bool = True,
         global_illumination: spear.EGlobalIlluminationQuality | None = None,
-        anti_aliasing: spear.EAntiAliasingMethod = spear.EAntiAliasingMethod.AAM_FXAA) -> Result:
+        anti_aliasing: spear.EAntiAliasingMethod = spear.EAntiAliasingMethod.AAM_FXAA,
+        ambient_occlusion: float | None = None) -> Result:
     game = instance.get_game()
     rig: spear.AActor
     bodies: list[spear.UStaticMeshComponent] = []
@@ -218,6 +219,8 @@ def run(instance: spear.Instance, *, objects: int, views: int, width: int, heigh
             if global_illumination is not None:  # else the camera's default
                 camera.GlobalIlluminationQuality = global_illumination
             camera.AntiAliasingMethod = anti_aliasing
+            if ambient_occlusion is not None:  # else the camera's default
+                camera.AmbientOcclusionIntensity = ambient_occlusion
         device = cameras[0].get_render_device_info()
     with instance.end_frame():
         pass
@@ -359,6 +362,8 @@ def main(argv: list[str] | None = None) -> int:
                         help="the cameras' GlobalIlluminationQuality (default: the camera's, Medium)")
     parser.add_argument("--anti-aliasing", default="AAM_FXAA", choices=[m.name for m in spear.EAntiAliasingMethod],
                         help="the cameras' AntiAliasingMethod (AAM_FXAA: the camera's default)")
+    parser.add_argument("--ambient-occlusion", type=float, default=None,
+                        help="the cameras' AmbientOcclusionIntensity in [0, 1], 0 off (default: the camera's)")
     args = parser.parse_args(argv)
 
     results: list[Result] = []
@@ -374,7 +379,8 @@ def main(argv: list[str] | None = None) -> int:
                                    batched_forces=args.forces == "batched", shadows=not args.no_shadows,
                                    global_illumination=(None if args.global_illumination is None else
                                                         spear.EGlobalIlluminationQuality[args.global_illumination]),
-                                   anti_aliasing=spear.EAntiAliasingMethod[args.anti_aliasing]))
+                                   anti_aliasing=spear.EAntiAliasingMethod[args.anti_aliasing],
+                                   ambient_occlusion=args.ambient_occlusion))
             finally:
                 instance.close()
             print(f"N={objects}, {views} view(s): {results[-1].ms_per_frame:.1f} ms/frame", file=sys.stderr)

@@ -33,6 +33,10 @@ void CameraParams::validate(const char* function) const {
     SP_CHECK(spatialSamples == 1 || spatialSamples == 2 || spatialSamples == 4 || spatialSamples == 8 ||
                  spatialSamples == 16,
              InvalidArgument, function, "(): spatialSamples must be 1, 2, 4, 8 or 16, got ", spatialSamples);
+    SP_CHECK(ambientOcclusionIntensity >= 0.0f && ambientOcclusionIntensity <= 1.0f, InvalidArgument,
+             function, "(): ambientOcclusionIntensity must be in [0, 1], got ", ambientOcclusionIntensity);
+    SP_CHECK(ambientOcclusionRadius > 0.0f && ambientOcclusionRadius <= 100.0f, InvalidArgument, function,
+             "(): ambientOcclusionRadius must be in (0, 100] metres, got ", ambientOcclusionRadius);
 }
 
 std::string toneMapName(ToneMap toneMap) {

@@ -62,6 +62,11 @@ struct CameraParams {
     // square); FXAA still filters the averaged image. The exact modalities are drawn apart: one value a
     // pixel, at its centre (PassSet::spatialSamples).
     int spatialSamples = 1;
+    // Screen-space ambient occlusion of the indirect and sky light (screen_occlusion.h): how much of the
+    // occlusion found is applied, in [0, 1] (0, the default here: none, and its passes do not run), and how
+    // far from a point it looks for the surfaces that hide its hemisphere, metres in (0, 100].
+    float ambientOcclusionIntensity = 0.0f;
+    float ambientOcclusionRadius = 0.5f;
 
     void validate(const char* function) const;
 };

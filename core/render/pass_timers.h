@@ -11,8 +11,9 @@
 
 namespace sp::render {
 
-enum class Pass : std::uint8_t { Shadow, Surface, Attribute, Readback };
-inline constexpr std::size_t kPassCount = 4;
+// Occlusion: the screen-space ambient occlusion's passes (screen_occlusion.h), before the surface pass.
+enum class Pass : std::uint8_t { Shadow, Surface, Attribute, Readback, Occlusion };
+inline constexpr std::size_t kPassCount = 5;
 
 struct PassTime {
     double gpuMs = 0.0;        // sum of timer-query results collected so far

@@ -23,6 +23,7 @@
 #include "core/render/image_buffer.h"
 #include "core/render/instances.h"
 #include "core/render/parallel_copy.h"
+#include "core/render/screen_occlusion.h"
 #include "core/render/shader_program.h"
 #include "core/render/shaders.h"
 #include "core/render/shadow_layers.h"
@@ -212,6 +213,7 @@ void add(RenderStats& total, const RenderStats& s) {
     total.irradianceUploads += s.irradianceUploads;
     total.environmentUploads += s.environmentUploads;
     total.constantSlotPasses += s.constantSlotPasses;
+    total.occlusionPasses += s.occlusionPasses;
     for (std::size_t p = 0; p < kPassCount; ++p) {
         total.passTimes[p].gpuMs += s.passTimes[p].gpuMs;
         total.passTimes[p].cpuMs += s.passTimes[p].cpuMs;
@@ -447,6 +449,8 @@ void Renderer::renderView(const View& view) {
                 viewRefineSpacing_ = scene.irradianceVolume()->spacing;
         }
         lights.environmentMap = bindEnvironment(scene);
+        if (camera.params.ambientOcclusionIntensity > 0.0f && (passes.surfaceTargets & kShadedTargets) != 0)
+            lights.screenOcclusionScale = ScreenOcclusion::scaleFor(fb.width, fb.height);
         uploadFrameBlock(scene, camera, shadowInfos, shaded);
     }
     if (passes.surface) {
@@ -466,6 +470,10 @@ void Renderer::renderView(const View& view) {
         viewConstantSlots_ = viewConstantSlots(triangles, std::uint64_t(fb.width) * std::uint64_t(fb.height));
         lights.constantSlots = viewConstantSlots_;
         active_->stats.constantSlotPasses += viewConstantSlots_ > 0 ? 1 : 0;
+        if (lights.screenOcclusionScale > 0) {
+            screenOcclusionPass(scene, camera, draws, lights, cache);
+            uploadFrameBlock(scene, camera, shadowInfos, shaded);
+        }
         if (sampled) {
             // Each sample stands for 1/N of the pixel: meshes are drawn at the level of detail of a pixel
             // sqrt(N) times smaller, as a view that many times larger draws them (the attribute pass draws
@@ -676,8 +684,57 @@ void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
     }
     block.counts[0] = count;
     block.counts[1] = std::max(viewLayer_, 0); // the layer a layered program draws into
-    glNamedBufferSubData(frameBlock_, 0, sizeof block, &block);
+    glNamedBufferData(frameBlock_, sizeof block, &block, GL_DYNAMIC_DRAW);
     glBindBufferBase(GL_UNIFORM_BUFFER, shaders::kFrameBlockBinding, frameBlock_);
+}
+
+void Renderer::screenOcclusionPass(const Scene& scene, const Camera& camera, const std::vector<Draw>& draws,
+                                   const shaders::ShadingLayout& lights, GpuSceneCache& cache) {
+    std::unique_ptr<ScreenOcclusion>& occlusion =
+        screenOcclusion_[{camera.params.width, camera.params.height}];
+    if (!occlusion)
+        occlusion = std::make_unique<ScreenOcclusion>(camera.params.width, camera.params.height);
+    // The same view at the occlusion's resolution, at the pixels' centres, into plain framebuffers of its own
+    // (whatever the view's layer and target encoding).
+    Camera small = camera;
+    small.params.width = occlusion->width();
+    small.params.height = occlusion->height();
+    small.subpixelOffset = Eigen::Vector2d::Zero();
+    const int layer = viewLayer_;
+    const bool compact = viewCompact_;
+    viewLayer_ = -1;
+    viewCompact_ = false;
+    const std::uint64_t drawCalls = active_->stats.drawCalls; // those of surface and attribute passes
+    active_->timers.begin(Pass::Occlusion);
+    glBindFramebuffer(GL_FRAMEBUFFER, occlusion->depthFbo());
+    glViewport(0, 0, occlusion->width(), occlusion->height());
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    const float background[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    const float far = 1.0f;
+    glClearBufferfv(GL_COLOR, 0, background);
+    glClearBufferfv(GL_DEPTH, 0, &far);
+    uploadFrameBlock(scene, small, {}, {});
+    drawAll(scene, small, draws, targetBit(Target::Depth), false, lights, cache);
+    const auto program = [&](const char* name, const std::string& fragment) -> ShaderProgram& {
+        std::unique_ptr<ShaderProgram>& p = programs_[name];
+        if (!p)
+            p = std::make_unique<ShaderProgram>(name, shaders::backgroundVertex(false).c_str(),
+                                                fragment.c_str());
+        return *p;
+    };
+    occlusion->compute(program("screen occlusion", shaders::screenOcclusionFragment()),
+                       program("screen occlusion blur", shaders::screenOcclusionBlurFragment()),
+                       float(small.focalLengthPixels()), camera.params.ambientOcclusionRadius,
+                       camera.params.ambientOcclusionIntensity);
+    active_->timers.end();
+    active_->stats.drawCalls = drawCalls;
+    ++active_->stats.occlusionPasses;
+    viewLayer_ = layer;
+    viewCompact_ = compact;
+    glBindImageTexture(shaders::kScreenOcclusionUnit, occlusion->texture(), 0, GL_FALSE, 0, GL_READ_ONLY,
+                       GL_R8);
 }
 
 void Renderer::surfacePass(const Scene& scene, const Camera& camera, const PassSet& passes,

@@ -36,6 +36,7 @@ struct GpuTexture;
 class InstanceBuffer;
 struct InstanceRecord;
 struct SharedUploads;
+class ScreenOcclusion;
 class ShaderProgram;
 class ShadowLayers;
 class ShadowMaps;
@@ -62,6 +63,7 @@ struct RenderStats {
     std::uint64_t lightsLeftOut = 0;         // lights reaching a view past the 16 it shades (the farthest)
     std::uint64_t irradianceUploads = 0;     // irradiance volumes uploaded (a new one, or new probe values)
     std::uint64_t environmentUploads = 0;    // environment maps uploaded (a new map)
+    std::uint64_t occlusionPasses = 0;       // screen-space ambient occlusion computed (screen_occlusion.h)
     std::uint64_t constantSlotPasses = 0; // surface passes whose fragments read constants from flat varyings
     std::array<PassTime, kPassCount> passTimes{}; // by Pass
 };
@@ -271,6 +273,10 @@ class Renderer {
     // levels of detail are chosen for pixels `detail` times smaller than the camera's (spatial samples).
     std::vector<Draw> visibleDraws(const Scene& scene, const Camera& camera, const ShadowReceivers* receivers,
                                    double detail = 1.0);
+    // The view's screen-space ambient occlusion (screen_occlusion.h): its depth drawn alone, the occlusion
+    // and its blur, bound to shaders::kScreenOcclusionUnit for the surface pass. Replaces the FrameBlock.
+    void screenOcclusionPass(const Scene& scene, const Camera& camera, const std::vector<Draw>& draws,
+                             const shaders::ShadingLayout& lights, GpuSceneCache& cache);
     void surfacePass(const Scene& scene, const Camera& camera, const PassSet& passes,
                      const shaders::ShadingLayout& lights, const std::vector<Draw>& draws,
                      GpuSceneCache& cache, Framebuffers& fb);
@@ -313,6 +319,8 @@ class Renderer {
 
     const GlContext& context_;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs_; // by variant key
+    // The screen-space ambient occlusion's textures, by view size (views are drawn one after the other).
+    std::map<std::pair<int, int>, std::unique_ptr<ScreenOcclusion>> screenOcclusion_;
     std::unique_ptr<ShaderProgram> shadow_;
     std::unique_ptr<ShaderProgram> idChannel_[2]; // by layered; made at the first id readback
     bool packIdsOnGpu_ = true;

@@ -588,7 +588,8 @@ void main() {
     base = toHalf(base);
     metallic = unpackHalf2x16(packHalf2x16(vec2(metallic, 0.0))).x;
 #endif
-    Shaded s = shade(vWorldPosition, n, base, roughness, metallic, ao, vEmissive.rgb, vEmissive.w);
+    Shaded s = shade(vWorldPosition, n, base, roughness, metallic, ao * screenOcclusion(gl_FragCoord.xy, base),
+                     vEmissive.rgb, vEmissive.w);
     writeShaded(s);
 #ifdef OUT_FinalColor
     oFinalColor = toneMapped(s.hdr);
@@ -991,6 +992,8 @@ std::string ShadingLayout::key() const {
         key += irradiance == IrradianceBlend::PerPixel ? ".g" : vertexProbeImages ? ".gvi" : ".gv";
     if (environmentMap)
         key += ".e";
+    if (screenOcclusionScale > 0)
+        key += ".o" + std::to_string(screenOcclusionScale);
     return key;
 }
 
@@ -1075,6 +1078,22 @@ std::string irradianceChunk(bool byTexture) {
            std::to_string(IrradianceVolume::kMaxFreeDistance) + "\n" + kIrradianceChunk;
 }
 
+// The view's screen-space ambient occlusion at a pixel (its intensity applied), filtered from the texture
+// of ScreenOcclusion: rows run down the image there as in the shaded targets, whose projection is flipped
+// alike.
+// The light the occluders themselves reflect into the hidden part of the hemisphere makes up for some of it,
+// the more the brighter the surface (a white room's corners are barely darker): GTAO's multiple-bounce fit
+// for the albedo (Jimenez et al. 2016, section 5), here of its luminance.
+const char* const kScreenOcclusionChunk = R"glsl(
+layout(binding = SCREEN_OCCLUSION_UNIT, r8) readonly uniform image2D uScreenOcclusion;
+float screenOcclusion(vec2 pixel, vec3 albedo) {
+    float x = imageLoad(uScreenOcclusion, ivec2(pixel) / SCREEN_OCCLUSION_SCALE).r;
+    float rho = dot(albedo, vec3(0.2126, 0.7152, 0.0722));
+    float a = 2.0404 * rho - 0.3324, b = -4.7951 * rho + 0.6417, c = 2.7552 * rho + 0.6903;
+    return max(x, ((x * a + b) * x + c) * x);
+}
+)glsl";
+
 // The defines of the shading and tone chunks for a layout: the shadow maps' image format, the vignette and
 // the tone curve.
 std::string shadingDefines(const ShadingLayout& lights) {
@@ -1086,6 +1105,12 @@ std::string shadingDefines(const ShadingLayout& lights) {
         text += "#define VERTEX_IRRADIANCE\n";
     if (lights.environmentMap)
         text += "#define ENVIRONMENT_MAP\n";
+    if (lights.screenOcclusionScale > 0)
+        text += "#define SCREEN_OCCLUSION_UNIT " + std::to_string(kScreenOcclusionUnit) +
+                "\n#define SCREEN_OCCLUSION_SCALE " + std::to_string(lights.screenOcclusionScale) + "\n" +
+                kScreenOcclusionChunk;
+    else
+        text += "#define screenOcclusion(pixel, albedo) 1.0\n";
     return text;
 }
 
@@ -1294,8 +1319,8 @@ void main() {
     if ((records[record].ids.w & 1u) != 0u) // a textured material's, at this pixel
         gbufferMaterialDecode(imageLoad(uGBufferMaterial, pixel).xy, base, roughness, metallic, ao);
 #endif
-    Shaded s = shade(p, gbufferNormal(g), base, roughness, metallic, ao, records[record].emissive.rgb,
-                     records[record].emissive.w);
+    Shaded s = shade(p, gbufferNormal(g), base, roughness, metallic, ao * screenOcclusion(gPixelCentre, base),
+                     records[record].emissive.rgb, records[record].emissive.w);
 #ifdef STORE_Hdr
     imageStore(uHdr, pixel, vec4(s.hdr, 1.0));
 #endif
@@ -1374,6 +1399,153 @@ std::string surfaceFragment(TargetMask targets, bool forward, unsigned materialF
         text += kToneChunk;
     }
     return text + kSurfaceMain;
+}
+
+// GTAO (screen_occlusion.h). Positions are the camera's, x right and y down the image (its rows), z along the
+// optical axis: a texel's depth d at (texel + 0.5 - size / 2) * d / f. For each slice (a screen direction
+// turned by the pixel's place in a 4 x 4 pattern), the highest horizon on each side within the radius, as
+// the cosine of its angle to the view vector, samples past the radius fading to none; then the
+// cosine-weighted visible arc between the two horizons, clamped to the normal's hemisphere, by the paper's
+// closed form, weighted by the length of the normal projected into the slice. Over all slice directions an
+// open hemisphere sums to 1, but not slice by slice, and a pixel has two: their sum is divided by what it
+// would be open, so that a plane is unoccluded whichever of the pattern's angles the blur averages (it
+// leaves out texels across depth edges, and a floor at a grazing angle has them between its rows).
+std::string screenOcclusionFragment() {
+    return R"glsl(#version 450 core
+// Image loads: a software rasteriser's texel fetch takes its general sampler path, several times slower.
+layout(binding = 0, r32f) readonly uniform image2D uDepth; // metres along the optical axis, 0: background
+uniform vec3 uCamera; // focal length in texels, radius in metres, the largest radius in texels
+layout(location = 0) out float oOcclusion;
+const float PI = 3.14159265;
+const int SLICES = 2;
+const int STEPS = 4;
+// A 4 x 4 Bayer matrix: neighbouring texels take distant angles, and any 4 x 4 block takes all 16.
+const float ORDER[16] = float[16](0.0, 8.0, 2.0, 10.0, 12.0, 4.0, 14.0, 6.0, 3.0, 11.0, 1.0, 9.0, 15.0, 7.0, 13.0, 5.0);
+ivec2 gSize;
+
+vec3 position(ivec2 texel, float depth) {
+    return vec3((vec2(texel) + 0.5 - 0.5 * vec2(gSize)) * (depth / uCamera.x), depth);
+}
+// acos to within 7e-5 rad (Abramowitz and Stegun 4.4.45): a software rasteriser's acos is several times
+// the cost, and each slice takes three.
+float fastAcos(float x) {
+    float a = abs(x);
+    float r = sqrt(1.0 - a) * (1.5707288 + a * (-0.2121144 + a * (0.0742610 - 0.0187293 * a)));
+    return x < 0.0 ? PI - r : r;
+}
+float depthAt(ivec2 texel) {
+    return imageLoad(uDepth, clamp(texel, ivec2(0), gSize - 1)).r;
+}
+
+void main() {
+    gSize = imageSize(uDepth);
+    ivec2 texel = ivec2(gl_FragCoord.xy);
+    float d = depthAt(texel);
+    float radius = uCamera.y * uCamera.x / max(d, 1e-6); // texels
+    if (d <= 0.0 || radius < 1.0) { // the background, or a radius under a texel: nothing to find
+        oOcclusion = 1.0;
+        return;
+    }
+    radius = min(radius, uCamera.z);
+    vec3 p = position(texel, d);
+    // The normal from the depth: on each axis the neighbour nearer in depth, so as not to reach across an edge.
+    float left = depthAt(texel - ivec2(1, 0)), right = depthAt(texel + ivec2(1, 0));
+    float up = depthAt(texel - ivec2(0, 1)), down = depthAt(texel + ivec2(0, 1));
+    vec3 dx = abs(right - d) < abs(left - d) ? position(texel + ivec2(1, 0), right) - p
+                                             : p - position(texel - ivec2(1, 0), left);
+    vec3 dy = abs(down - d) < abs(up - d) ? position(texel + ivec2(0, 1), down) - p
+                                          : p - position(texel - ivec2(0, 1), up);
+    vec3 v = normalize(-p);
+    vec3 n = cross(dx, dy);
+    n = dot(n, n) > 0.0 ? normalize(n) : v;
+    if (dot(n, v) < 0.0)
+        n = -n;
+    float order = ORDER[(texel.x & 3) + 4 * (texel.y & 3)];
+    float angleOffset = (order + 0.5) / 16.0;
+    float stepOffset = fract(order * 0.3125 + 0.25); // another spread of the same 16 values
+    float radius2 = uCamera.y * uCamera.y;
+    float visibility = 0.0, open = 0.0;
+    for (int slice = 0; slice < SLICES; ++slice) {
+        float phi = (float(slice) + angleOffset) * (PI / float(SLICES));
+        vec3 direction = vec3(cos(phi), sin(phi), 0.0);
+        vec3 ortho = normalize(direction - dot(direction, v) * v);
+        vec3 axis = cross(ortho, v);
+        vec3 projected = n - axis * dot(n, axis);
+        float projectedLength = length(projected);
+        if (projectedLength < 1e-4)
+            continue;
+        float cosN = clamp(dot(projected, v) / projectedLength, -1.0, 1.0);
+        float angleN = (dot(projected, ortho) < 0.0 ? -1.0 : 1.0) * fastAcos(cosN);
+        float horizon[2];
+        for (int side = 0; side < 2; ++side) {
+            float highest = -1.0;
+            vec2 along = (side == 0 ? 1.0 : -1.0) * direction.xy;
+            for (int i = 0; i < STEPS; ++i) {
+                float distance = max(radius * (float(i) + stepOffset) / float(STEPS), float(i + 1));
+                ivec2 at = ivec2(floor(vec2(texel) + 0.5 + along * distance));
+                if (any(lessThan(at, ivec2(0))) || any(greaterThanEqual(at, gSize)))
+                    break;
+                float sampled = imageLoad(uDepth, at).r;
+                if (sampled <= 0.0)
+                    continue;
+                vec3 delta = position(at, sampled) - p;
+                float length2 = dot(delta, delta);
+                // A point on or under the tangent plane hides nothing; rounded to a texel's centre, off the
+                // slice, its angle would (on a floor at a grazing angle, a few percent).
+                float above = dot(delta, n);
+                if (above <= 0.0 || above * above <= 4e-4 * length2) // within 0.02 of its length
+                    continue;
+                float cosine = dot(delta, v) * inversesqrt(max(length2, 1e-12));
+                // Full weight to half the radius (squared), none past it: far surfaces occlude nothing.
+                float falloff = clamp(2.0 - 2.0 * length2 / radius2, 0.0, 1.0);
+                highest = max(highest, mix(-1.0, cosine, falloff));
+            }
+            horizon[side] = highest;
+        }
+        float h0 = angleN + max(-fastAcos(horizon[1]) - angleN, -0.5 * PI);
+        float h1 = angleN + min(fastAcos(horizon[0]) - angleN, 0.5 * PI);
+        float sinN = sin(angleN);
+        visibility += projectedLength * 0.25 *
+                      ((-cos(2.0 * h0 - angleN) + cosN + 2.0 * h0 * sinN) +
+                       (-cos(2.0 * h1 - angleN) + cosN + 2.0 * h1 * sinN));
+        open += projectedLength * (cosN + angleN * sinN); // the same with both horizons at the tangent plane
+    }
+    oOcclusion = open > 0.0 ? clamp(visibility / open, 0.0, 1.0) : 1.0;
+}
+)glsl";
+}
+
+// The blur of ScreenOcclusion: the 4 x 4 block around each texel (one of each of the pattern's angles), only
+// the texels within 10 % of its depth (a floor seen at a grazing angle changes by a few percent a texel; an
+// object's edge by more), then 1 - intensity * (1 - occlusion).
+std::string screenOcclusionBlurFragment() {
+    return R"glsl(#version 450 core
+layout(binding = 0, r32f) readonly uniform image2D uDepth;
+layout(binding = 1, r8) readonly uniform image2D uRaw;
+uniform float uIntensity;
+layout(location = 0) out float oOcclusion;
+
+void main() {
+    ivec2 size = imageSize(uRaw);
+    ivec2 texel = ivec2(gl_FragCoord.xy);
+    float d = imageLoad(uDepth, texel).r;
+    if (d <= 0.0) {
+        oOcclusion = 1.0;
+        return;
+    }
+    float sum = 0.0, weight = 0.0;
+    for (int y = -1; y <= 2; ++y)
+        for (int x = -1; x <= 2; ++x) {
+            ivec2 at = clamp(texel + ivec2(x, y), ivec2(0), size - 1);
+            float sampled = imageLoad(uDepth, at).r;
+            if (sampled > 0.0 && abs(sampled - d) < 0.1 * d) {
+                sum += imageLoad(uRaw, at).r;
+                weight += 1.0;
+            }
+        }
+    oOcclusion = 1.0 - uIntensity * (1.0 - sum / max(weight, 1.0));
+}
+)glsl";
 }
 
 } // namespace sp::render::shaders

@@ -92,6 +92,10 @@ struct ShadingLayout {
     // harmonics, specular from its prefiltered chain; the background from the map (drawBackground()). The
     // irradiance volume, where blended, still gives both terms: its probes saw the map.
     bool environmentMap = false;
+    // Screen-space ambient occlusion (screen_occlusion.h): 0 none, else the view pixels a side of one of its
+    // texels (ScreenOcclusion::scaleFor()); the indirect and sky light are scaled by it, read from
+    // kScreenOcclusionUnit.
+    int screenOcclusionScale = 0;
     // A short text naming the layout, for program caches ("D0.S1r.P").
     std::string key() const;
 };
@@ -182,5 +186,14 @@ inline constexpr int kIrradianceTextureUnit = 6;
 // background).
 inline constexpr int kEnvironmentSpecularUnit = 7;
 inline constexpr int kEnvironmentBackgroundUnit = 8;
+// The image unit of the view's screen-space ambient occlusion (ShadingLayout::screenOcclusionScale).
+inline constexpr int kScreenOcclusionUnit = 7;
+
+// The passes of ScreenOcclusion (screen_occlusion.h), drawn with backgroundVertex(false): the occlusion of
+// each texel from the depth pass's texture (unit 0; uCamera: focal length in texels, radius in metres, the
+// largest radius in texels), and its 4 x 4 depth-aware blur (the depth at unit 0, the occlusion at unit 1,
+// uIntensity).
+std::string screenOcclusionFragment();
+std::string screenOcclusionBlurFragment();
 
 } // namespace sp::render::shaders

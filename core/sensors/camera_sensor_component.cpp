@@ -205,6 +205,20 @@ void UCameraSensorComponent::SetSpatialSampleCount(int32_t NewSpatialSampleCount
     SpatialSampleCount = NewSpatialSampleCount;
 }
 
+void UCameraSensorComponent::SetAmbientOcclusionIntensity(float NewAmbientOcclusionIntensity) {
+    sp::checkSetting(NewAmbientOcclusionIntensity >= 0.0f && NewAmbientOcclusionIntensity <= 1.0f,
+                     "UCameraSensorComponent", "AmbientOcclusionIntensity", "in [0, 1]",
+                     NewAmbientOcclusionIntensity);
+    AmbientOcclusionIntensity = NewAmbientOcclusionIntensity;
+}
+
+void UCameraSensorComponent::SetAmbientOcclusionRadius(float NewAmbientOcclusionRadius) {
+    sp::checkSetting(NewAmbientOcclusionRadius > 0.0f && NewAmbientOcclusionRadius <= 100.0f,
+                     "UCameraSensorComponent", "AmbientOcclusionRadius", "in (0, 100] metres",
+                     NewAmbientOcclusionRadius);
+    AmbientOcclusionRadius = NewAmbientOcclusionRadius;
+}
+
 void UCameraSensorComponent::SetVignetteIntensity(float NewVignetteIntensity) {
     sp::checkSetting(NewVignetteIntensity >= 0.0f && NewVignetteIntensity <= 1.0f, "UCameraSensorComponent",
                      "VignetteIntensity", "in [0, 1]", NewVignetteIntensity);

@@ -83,8 +83,11 @@ sp::render::CameraParams cameraParams(const UCameraSensorComponent& camera, int 
                                   ? sp::render::AntiAliasing::Fxaa
                                   : sp::render::AntiAliasing::Msaa;
     params.msaaSamples = camera.MSAASampleCount;
-    if (camera.Renderer == ECameraRenderer::Raster)
+    if (camera.Renderer == ECameraRenderer::Raster) {
         params.spatialSamples = camera.SpatialSampleCount;
+        params.ambientOcclusionIntensity = camera.AmbientOcclusionIntensity;
+    }
+    params.ambientOcclusionRadius = camera.AmbientOcclusionRadius;
     return params;
 }
 

@@ -260,6 +260,20 @@ void bind_UCameraSensorComponent(py::module_& m) {
         },
         "Spatial samples a pixel of the rasterised colour (Unreal's Movie Render Queue anti-aliasing setting):\n1 (none), 2, 4, 8 or 16. final_color, hdr_color and the intrinsic images are drawn that many times,\neach time with every pixel sampling another point of its square, and averaged (final_color in linear\nlight): supersampling, which filters shading, highlights, shadow edges and texture detail as well as\nsilhouettes. Above 1 it stands in for AAM_MSAA's coverage samples (multisampling each moved pass would\nblur the pixel past its square); AAM_FXAA still filters the averaged image. The exact modalities stay\none value a pixel, at its centre. A frame costs about that many times as much to shade\n(BENCHMARKS.md); the path tracer takes none (its SamplesPerPixel are spread over the pixel).");
     cls.def_property(
+        "AmbientOcclusionIntensity",
+        [](const Ref<Self>& self) { return Calls::get_AmbientOcclusionIntensity<PyCall>(self.get<Self>("UCameraSensorComponent.AmbientOcclusionIntensity")); },
+        [](const Ref<Self>& self, const PyArg& value) {
+            Calls::set_AmbientOcclusionIntensity<PyCall>(self.get<Self>("UCameraSensorComponent.AmbientOcclusionIntensity"), value);
+        },
+        "Ambient occlusion of the rasterised indirect and sky light (Unreal's AmbientOcclusionIntensity):\nhow much of the occlusion found in the view's depth is applied, in [0, 1]; 0 (the default) turns it\noff. Ground-truth ambient occlusion (GTAO, Jimenez et al. 2016) darkens what the irradiance probes are\ntoo coarse for: corners, the floor under furniture and at an object's foot (core/render/README.md,\n\"Ambient occlusion\"); the lights' own light keeps its shadow maps, and the path tracer finds occlusion\nby itself. Off by default because a software rasteriser pays for it: a 640 x 480 view about 6 ms more\na frame, a 1080p one about 35 ms (llvmpipe, BENCHMARKS.md); on a GPU it costs little, and Unreal's\n0.5 is a good value.");
+    cls.def_property(
+        "AmbientOcclusionRadius",
+        [](const Ref<Self>& self) { return Calls::get_AmbientOcclusionRadius<PyCall>(self.get<Self>("UCameraSensorComponent.AmbientOcclusionRadius")); },
+        [](const Ref<Self>& self, const PyArg& value) {
+            Calls::set_AmbientOcclusionRadius<PyCall>(self.get<Self>("UCameraSensorComponent.AmbientOcclusionRadius"), value);
+        },
+        "How far from a point, in metres, the ambient occlusion looks for the surfaces that hide it (Unreal's\nAmbientOcclusionRadius, in centimetres there), in (0, 100].");
+    cls.def_property(
         "SamplesPerPixel",
         [](const Ref<Self>& self) { return Calls::get_SamplesPerPixel<PyCall>(self.get<Self>("UCameraSensorComponent.SamplesPerPixel")); },
         [](const Ref<Self>& self, const PyArg& value) {
@@ -525,6 +539,22 @@ void bind_UCameraSensorComponent(py::module_& m) {
         },
         py::arg("NewSpatialSampleCount") = sp::pybind::missingArgument(),
         "SetSpatialSampleCount(self, *, NewSpatialSampleCount: int) -> None\n\nSets SpatialSampleCount: 1, 2, 4, 8 or 16.");
+    cls.def(
+        "SetAmbientOcclusionIntensity",
+        [](const Ref<Self>& self, const py::args& positional, const PyArg& NewAmbientOcclusionIntensity, const py::kwargs& extra) -> py::object {
+            // The parameters in order; the array lives until the call returns.
+            return Calls::call_SetAmbientOcclusionIntensity<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewAmbientOcclusionIntensity}, true});
+        },
+        py::arg("NewAmbientOcclusionIntensity") = sp::pybind::missingArgument(),
+        "SetAmbientOcclusionIntensity(self, *, NewAmbientOcclusionIntensity: float) -> None\n\nSets AmbientOcclusionIntensity, in [0, 1].");
+    cls.def(
+        "SetAmbientOcclusionRadius",
+        [](const Ref<Self>& self, const py::args& positional, const PyArg& NewAmbientOcclusionRadius, const py::kwargs& extra) -> py::object {
+            // The parameters in order; the array lives until the call returns.
+            return Calls::call_SetAmbientOcclusionRadius<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&NewAmbientOcclusionRadius}, true});
+        },
+        py::arg("NewAmbientOcclusionRadius") = sp::pybind::missingArgument(),
+        "SetAmbientOcclusionRadius(self, *, NewAmbientOcclusionRadius: float) -> None\n\nSets AmbientOcclusionRadius in metres, in (0, 100].");
     cls.def(
         "SetVignetteIntensity",
         [](const Ref<Self>& self, const py::args& positional, const PyArg& NewVignetteIntensity, const py::kwargs& extra) -> py::object {

@@ -970,6 +970,26 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
         });
         t.properties.push_back({
+            "AmbientOcclusionIntensity",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
+            "Ambient occlusion of the rasterised indirect and sky light (Unreal's AmbientOcclusionIntensity):\nhow much of the occlusion found in the view's depth is applied, in [0, 1]; 0 (the default) turns it\noff. Ground-truth ambient occlusion (GTAO, Jimenez et al. 2016) darkens what the irradiance probes are\ntoo coarse for: corners, the floor under furniture and at an object's foot (core/render/README.md,\n\"Ambient occlusion\"); the lights' own light keeps its shadow maps, and the path tracer finds occlusion\nby itself. Off by default because a software rasteriser pays for it: a 640 x 480 view about 6 ms more\na frame, a 1080p one about 35 ms (llvmpipe, BENCHMARKS.md); on a GPU it costs little, and Unreal's\n0.5 is a good value.",
+            false,
+            [](const void* self) { return Calls::get_AmbientOcclusionIntensity<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_AmbientOcclusionIntensity<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "AmbientOcclusionRadius",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
+            "How far from a point, in metres, the ambient occlusion looks for the surfaces that hide it (Unreal's\nAmbientOcclusionRadius, in centimetres there), in (0, 100].",
+            false,
+            [](const void* self) { return Calls::get_AmbientOcclusionRadius<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_AmbientOcclusionRadius<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
             "SamplesPerPixel",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
             "Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating.",
@@ -1335,6 +1355,28 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             false,
             false,
             [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetSpatialSampleCount<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "SetAmbientOcclusionIntensity",
+            "Sets AmbientOcclusionIntensity, in [0, 1].",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"NewAmbientOcclusionIntensity", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetAmbientOcclusionIntensity<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "SetAmbientOcclusionRadius",
+            "Sets AmbientOcclusionRadius in metres, in (0, 100].",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"NewAmbientOcclusionRadius", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetAmbientOcclusionRadius<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetVignetteIntensity",

@@ -756,6 +756,24 @@ struct UCameraSensorComponentCalls {
         sp::reflect::notifyPropertyChanged(self, "SpatialSampleCount");
     }
 
+    template <typename Call> static typename Call::Result get_AmbientOcclusionIntensity(const Self* self) {
+        const auto& value = self->AmbientOcclusionIntensity;
+        return Call::template result<float>(value);
+    }
+    template <typename Call> static void set_AmbientOcclusionIntensity(Self* self, const typename Call::Input& value) {
+        self->SetAmbientOcclusionIntensity(Call::template input<float>(value, "UCameraSensorComponent.AmbientOcclusionIntensity"));
+        sp::reflect::notifyPropertyChanged(self, "AmbientOcclusionIntensity");
+    }
+
+    template <typename Call> static typename Call::Result get_AmbientOcclusionRadius(const Self* self) {
+        const auto& value = self->AmbientOcclusionRadius;
+        return Call::template result<float>(value);
+    }
+    template <typename Call> static void set_AmbientOcclusionRadius(Self* self, const typename Call::Input& value) {
+        self->SetAmbientOcclusionRadius(Call::template input<float>(value, "UCameraSensorComponent.AmbientOcclusionRadius"));
+        sp::reflect::notifyPropertyChanged(self, "AmbientOcclusionRadius");
+    }
+
     template <typename Call> static typename Call::Result get_SamplesPerPixel(const Self* self) {
         const auto& value = self->SamplesPerPixel;
         return Call::template result<int32_t>(value);
@@ -1138,6 +1156,30 @@ struct UCameraSensorComponentCalls {
         Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetSpatialSampleCount()");
         int32_t NewSpatialSampleCountArg = call.template arg<int32_t>(0);
         self->SetSpatialSampleCount(NewSpatialSampleCountArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetAmbientOcclusionIntensity(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewAmbientOcclusionIntensity", "UCameraSensorComponent.SetAmbientOcclusionIntensity(): argument 'NewAmbientOcclusionIntensity'", true},
+        }};
+        const Call call(args, "UCameraSensorComponent.SetAmbientOcclusionIntensity()", kParams);
+        Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetAmbientOcclusionIntensity()");
+        float NewAmbientOcclusionIntensityArg = call.template arg<float>(0);
+        self->SetAmbientOcclusionIntensity(NewAmbientOcclusionIntensityArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetAmbientOcclusionRadius(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewAmbientOcclusionRadius", "UCameraSensorComponent.SetAmbientOcclusionRadius(): argument 'NewAmbientOcclusionRadius'", true},
+        }};
+        const Call call(args, "UCameraSensorComponent.SetAmbientOcclusionRadius()", kParams);
+        Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetAmbientOcclusionRadius()");
+        float NewAmbientOcclusionRadiusArg = call.template arg<float>(0);
+        self->SetAmbientOcclusionRadius(NewAmbientOcclusionRadiusArg);
         return Call::none();
     }
 

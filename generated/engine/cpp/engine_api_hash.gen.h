@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "7668cf860f718f41";
+inline constexpr char kApiHash[] = "c28540973ff4f102";
 } // namespace sp::generated::engine

@@ -2947,6 +2947,10 @@ class UCameraSensorComponentAsync(USceneComponentAsync):
 
     def SetSpatialSampleCount(self, *, NewSpatialSampleCount: int) -> Future[None]: ...
 
+    def SetAmbientOcclusionIntensity(self, *, NewAmbientOcclusionIntensity: float) -> Future[None]: ...
+
+    def SetAmbientOcclusionRadius(self, *, NewAmbientOcclusionRadius: float) -> Future[None]: ...
+
     def SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> Future[None]: ...
 
     def SetWhiteBalanceTemperature(self, *, NewWhiteBalanceTemperature: float) -> Future[None]: ...
@@ -3050,6 +3054,10 @@ class UCameraSensorComponentSend(USceneComponentSend):
     def SetMSAASampleCount(self, *, NewMSAASampleCount: int) -> None: ...
 
     def SetSpatialSampleCount(self, *, NewSpatialSampleCount: int) -> None: ...
+
+    def SetAmbientOcclusionIntensity(self, *, NewAmbientOcclusionIntensity: float) -> None: ...
+
+    def SetAmbientOcclusionRadius(self, *, NewAmbientOcclusionRadius: float) -> None: ...
 
     def SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> None: ...
 
@@ -3386,6 +3394,30 @@ class UCameraSensorComponent(USceneComponent):
     def SpatialSampleCount(self, value: int) -> None: ...
 
     @property
+    def AmbientOcclusionIntensity(self) -> float:
+        """Ambient occlusion of the rasterised indirect and sky light (Unreal's AmbientOcclusionIntensity):
+        how much of the occlusion found in the view's depth is applied, in [0, 1]; 0 (the default) turns it
+        off. Ground-truth ambient occlusion (GTAO, Jimenez et al. 2016) darkens what the irradiance probes are
+        too coarse for: corners, the floor under furniture and at an object's foot (core/render/README.md,
+        "Ambient occlusion"); the lights' own light keeps its shadow maps, and the path tracer finds occlusion
+        by itself. Off by default because a software rasteriser pays for it: a 640 x 480 view about 6 ms more
+        a frame, a 1080p one about 35 ms (llvmpipe, BENCHMARKS.md); on a GPU it costs little, and Unreal's
+        0.5 is a good value.
+        """
+
+    @AmbientOcclusionIntensity.setter
+    def AmbientOcclusionIntensity(self, value: float) -> None: ...
+
+    @property
+    def AmbientOcclusionRadius(self) -> float:
+        """How far from a point, in metres, the ambient occlusion looks for the surfaces that hide it (Unreal's
+        AmbientOcclusionRadius, in centimetres there), in (0, 100].
+        """
+
+    @AmbientOcclusionRadius.setter
+    def AmbientOcclusionRadius(self, value: float) -> None: ...
+
+    @property
     def SamplesPerPixel(self) -> int:
         """Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating."""
 
@@ -3538,6 +3570,12 @@ class UCameraSensorComponent(USceneComponent):
 
     def SetSpatialSampleCount(self, *, NewSpatialSampleCount: int) -> None:
         """Sets SpatialSampleCount: 1, 2, 4, 8 or 16."""
+
+    def SetAmbientOcclusionIntensity(self, *, NewAmbientOcclusionIntensity: float) -> None:
+        """Sets AmbientOcclusionIntensity, in [0, 1]."""
+
+    def SetAmbientOcclusionRadius(self, *, NewAmbientOcclusionRadius: float) -> None:
+        """Sets AmbientOcclusionRadius in metres, in (0, 100]."""
 
     def SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> None:
         """Sets VignetteIntensity, in [0, 1]."""

@@ -1463,6 +1463,22 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
         self._sp_set("UCameraSensorComponent", "SpatialSampleCount", value)
 
     @property
+    def AmbientOcclusionIntensity(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "AmbientOcclusionIntensity", _t.T_float))
+
+    @AmbientOcclusionIntensity.setter
+    def AmbientOcclusionIntensity(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "AmbientOcclusionIntensity", value)
+
+    @property
+    def AmbientOcclusionRadius(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "AmbientOcclusionRadius", _t.T_float))
+
+    @AmbientOcclusionRadius.setter
+    def AmbientOcclusionRadius(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "AmbientOcclusionRadius", value)
+
+    @property
     def SamplesPerPixel(self) -> int:
         return cast("int", self._sp_get("UCameraSensorComponent", "SamplesPerPixel", _t.T_int))
 
@@ -1588,6 +1604,12 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     def SetSpatialSampleCount(self, *, NewSpatialSampleCount: int) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetSpatialSampleCount", {"NewSpatialSampleCount": NewSpatialSampleCount}, _t.T_void))  # a Future when queued by call_async
+
+    def SetAmbientOcclusionIntensity(self, *, NewAmbientOcclusionIntensity: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetAmbientOcclusionIntensity", {"NewAmbientOcclusionIntensity": NewAmbientOcclusionIntensity}, _t.T_void))  # a Future when queued by call_async
+
+    def SetAmbientOcclusionRadius(self, *, NewAmbientOcclusionRadius: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetAmbientOcclusionRadius", {"NewAmbientOcclusionRadius": NewAmbientOcclusionRadius}, _t.T_void))  # a Future when queued by call_async
 
     def SetVignetteIntensity(self, *, NewVignetteIntensity: float) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetVignetteIntensity", {"NewVignetteIntensity": NewVignetteIntensity}, _t.T_void))  # a Future when queued by call_async

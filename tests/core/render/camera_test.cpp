@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
+
 #include "core/base/error.h"
 #include "core/render/camera.h"
 #include "core/render/tone.h"
@@ -22,6 +25,29 @@ TEST(CameraTest, ValidateNamesTheBadField) {
     params = CameraParams();
     params.width = 0;
     EXPECT_THROW(params.validate("f"), InvalidArgument);
+}
+
+TEST(CameraTest, AmbientOcclusionSettingsAreChecked) {
+    const auto message = [](float intensity, float radius) -> std::string {
+        CameraParams params;
+        params.ambientOcclusionIntensity = intensity;
+        params.ambientOcclusionRadius = radius;
+        try {
+            params.validate("f");
+        } catch (const InvalidArgument& e) {
+            return e.what();
+        }
+        return "";
+    };
+    EXPECT_EQ(message(0.0f, 0.5f), "");
+    EXPECT_EQ(message(1.0f, 100.0f), "");
+    EXPECT_EQ(message(1.5f, 0.5f), "f(): ambientOcclusionIntensity must be in [0, 1], got 1.5");
+    EXPECT_EQ(message(-0.1f, 0.5f), "f(): ambientOcclusionIntensity must be in [0, 1], got -0.1");
+    EXPECT_EQ(message(std::nanf(""), 0.5f), "f(): ambientOcclusionIntensity must be in [0, 1], got nan");
+    EXPECT_EQ(message(0.5f, 0.0f), "f(): ambientOcclusionRadius must be in (0, 100] metres, got 0");
+    EXPECT_EQ(message(0.5f, 101.0f), "f(): ambientOcclusionRadius must be in (0, 100] metres, got 101");
+    EXPECT_EQ(message(0.5f, std::nanf("")),
+              "f(): ambientOcclusionRadius must be in (0, 100] metres, got nan");
 }
 
 TEST(CameraTest, ViewMatrixMapsBodyForwardToGlMinusZ) {
