@@ -13,7 +13,7 @@ final_color against the same view supersampled 4 x 4, and 17 x 17 (which holds n
 points, as 4 x 4 holds MSAA's; --aliasing-grids).
 
     PYTHONPATH=python /usr/bin/python3 bench/bench_image_quality.py [--width 320 --height 240]
-        [--reference 1024] [--qualities Off,Medium] [--scenes apartment,yard,closed_room,sky_yard,park_yard] [--out out/iq]
+        [--reference 1024] [--qualities Off,Medium] [--ambient-occlusion 0.5] [--scenes apartment,yard,closed_room,sky_yard,park_yard] [--out out/iq]
         [--aliasing-grids 4,17] [--aliasing-only]
 """
 
@@ -127,7 +127,8 @@ def srgb_to_linear(image: NDArray[np.uint8]) -> NDArray[np.float64]:
 class Scene:
     """One scene in its own engine: a camera per quality and a path-traced one, all at one pose."""
 
-    def __init__(self, name: str, width: int, height: int, qualities: list[spear.EGlobalIlluminationQuality]):
+    def __init__(self, name: str, width: int, height: int, qualities: list[spear.EGlobalIlluminationQuality],
+                 ambient_occlusion: float = 0.0):
         self.instance = spear.Instance()
         self.game = self.instance.get_game()
         self.width, self.height, self.name = width, height, name
@@ -137,6 +138,8 @@ class Scene:
                 if actor.StaticMeshComponent.bSimulatePhysics:  # still, for the path tracer to accumulate
                     actor.StaticMeshComponent.SetSimulatePhysics(bSimulate=False)
             self.cameras = {q: self.camera(f"Raster{q.name}", width, height, q, name) for q in qualities}
+            for camera in self.cameras.values():
+                camera.AmbientOcclusionIntensity = ambient_occlusion
         with self.instance.end_frame():
             pass
 
@@ -262,6 +265,8 @@ def main() -> None:
     parser.add_argument("--height", type=int, default=240)
     parser.add_argument("--reference", type=int, default=1024, help="path-traced samples per pixel")
     parser.add_argument("--qualities", default="Off,Medium")
+    parser.add_argument("--ambient-occlusion", type=float, default=0.0,
+                        help="the raster cameras' AmbientOcclusionIntensity (0: off, the camera's default)")
     parser.add_argument("--scenes", default="apartment,yard,closed_room,sky_yard,park_yard")
     parser.add_argument("--out", default=None, help="a folder for the images (PNG)")
     parser.add_argument("--aliasing-grids", default="4,17",
@@ -279,7 +284,7 @@ def main() -> None:
     aliasing: list[tuple[str, dict[int, dict[str, tuple[float, float]]]]] = []
     for name in args.scenes.split(","):
         print(f"{name}:", file=sys.stderr)
-        scene = Scene(name, args.width, args.height, qualities)
+        scene = Scene(name, args.width, args.height, qualities, args.ambient_occlusion)
         scene.frame()
         if args.aliasing_only:
             aliasing.append((name, scene.aliasing(qualities[0], grids)))

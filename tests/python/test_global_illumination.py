@@ -1,6 +1,7 @@
 """The rasteriser's global illumination (UCameraSensorComponent.GlobalIlluminationQuality): off by default, a
 closed room lit from inside as bright as the path tracer says, no sunlight leaking through its walls, a moved
-lamp reaching the image, and bad values refused; both transports."""
+lamp reaching the image, and bad values refused; screen-space ambient occlusion (AmbientOcclusionIntensity,
+off by default); both transports."""
 
 from __future__ import annotations
 
@@ -181,3 +182,50 @@ def test_the_path_tracers_firefly_clamp_is_off_by_default_and_refuses_bad_values
         assert camera.PathTracingMaxPathIntensity == 10.0
     assert np.isfinite(pixels["hdr_color"].astype(np.float64)).all()
 
+
+
+def test_ambient_occlusion_darkens_a_crates_foot_and_is_off_by_default(instance: spear.Instance) -> None:
+    # The sky light on a ground and a crate, no lights: with AmbientOcclusionIntensity the ground at the crate's
+    # foot is darker, the ground far from it is not, and the exact modalities do not change; off by default;
+    # bad values refused with the property's range.
+    game = instance.get_game()
+    with instance.begin_frame():
+        ground = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Ground")
+        ground.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Plane")
+        ground.SetActorScale3D(NewScale3D=spear.FVector(20.0, 20.0, 1.0))
+        crate = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Crate", location=spear.FVector(Z=0.5))
+        crate.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        game.spawn_actor(uclass=spear.ASkyLight, name="Sky").SkyLightComponent.Intensity = 1.0
+        cameras = []
+        for name in ("Plain", "Occluded"):
+            actor = game.spawn_actor(uclass=spear.ACameraSensorActor, name=name, location=spear.FVector(-3.0, -2.5, 2.2),
+                                     rotation=spear.FRotator(Pitch=-30.0, Yaw=40.0))
+            camera = actor.CameraSensor
+            camera.Width, camera.Height, camera.FOV = 96, 72, 60.0
+            camera.Modalities = [M.DiffuseIllumination, M.Position, M.ObjectIds, M.Depth]
+            camera.GlobalIlluminationQuality = Q.Off  # the sky's uniform term alone: all it scales
+            cameras.append(camera)
+        plain, occluded = cameras
+        assert plain.AmbientOcclusionIntensity == 0.0 and plain.AmbientOcclusionRadius == 0.5
+        occluded.AmbientOcclusionIntensity = 1.0
+        for prop, value, message in [("AmbientOcclusionIntensity", 1.5, r"AmbientOcclusionIntensity must be in \[0, 1\], got 1.5"),
+                                     ("AmbientOcclusionIntensity", -0.5, r"must be in \[0, 1\], got -0.5"),
+                                     ("AmbientOcclusionRadius", 0.0, r"AmbientOcclusionRadius must be in \(0, 100\] metres, got 0"),
+                                     ("AmbientOcclusionRadius", 200.0, r"must be in \(0, 100\] metres, got 200")]:
+            with pytest.raises(spear.InvalidArgumentError, match=message):
+                setattr(occluded, prop, value)
+        assert occluded.AmbientOcclusionIntensity == 1.0 and occluded.AmbientOcclusionRadius == 0.5
+    with instance.end_frame():
+        a, b = plain.read_pixels(), occluded.read_pixels()
+    np.testing.assert_array_equal(a["position"], b["position"])
+    np.testing.assert_array_equal(a["object_ids"], b["object_ids"])
+    np.testing.assert_array_equal(a["depth"], b["depth"])
+    ground_id = int(np.bincount(a["object_ids"].ravel()).argmax())  # the ground fills most of the view
+    on_ground = a["object_ids"] == ground_id
+    x, y = a["position"][..., 0], a["position"][..., 1]
+    distance = np.hypot(np.maximum(np.abs(x) - 0.5, 0.0), np.maximum(np.abs(y) - 0.5, 0.0))
+    ratio = b["diffuse_illumination"][..., 0].astype(np.float64) / a["diffuse_illumination"][..., 0].astype(np.float64)
+    near, far = on_ground & (distance < 0.1), on_ground & (distance > 0.6)
+    assert near.sum() > 5 and far.sum() > 1000
+    assert ratio[near].mean() < 0.95  # a light ground: the light its neighbours reflect makes up for some
+    assert ratio[far].min() > 0.99
