@@ -7,7 +7,7 @@
 // panel's centre, so they are hard.
 
 #include "core/world/actor.h"
-#include "core/world/light_component.h"
+#include "core/sensors/light_component.h"
 
 /// A rectangular area light facing the component's forward axis (UE's URectLightComponent, sizes in metres).
 SPCLASS()

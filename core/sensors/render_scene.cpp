@@ -14,7 +14,7 @@
 #include "core/sensors/sky_atmosphere_component.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
-#include "core/world/light_component.h"
+#include "core/sensors/light_component.h"
 #include "core/world/static_mesh_component.h"
 #include "core/world/world.h"
 

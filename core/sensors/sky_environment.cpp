@@ -16,7 +16,7 @@
 #include "core/sensors/linear_color.h"
 #include "core/sensors/sky_atmosphere_component.h"
 #include "core/sensors/sky_light_component.h"
-#include "core/world/light_component.h"
+#include "core/sensors/light_component.h"
 
 namespace sp::sensors {
 namespace {

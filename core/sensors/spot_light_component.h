@@ -1,9 +1,9 @@
 #pragma once
-// Spot lights: a point light (core/world/light_component.h) restricted to a cone around the component's
+// Spot lights: a point light (core/sensors/light_component.h) restricted to a cone around the component's
 // forward (+X) axis, and the actor that holds one.
 
 #include "core/world/actor.h"
-#include "core/world/light_component.h"
+#include "core/sensors/light_component.h"
 
 /// A point light restricted to a cone around the component's forward axis.
 SPCLASS()

@@ -10,11 +10,11 @@
 
 #include <array>
 
+#include "generated/engine/cpp/core_sensors_light_component.bindings.gen.h"
 #include "generated/engine/cpp/core_world_actor.bindings.gen.h"
 #include "generated/engine/cpp/core_world_actor_component.bindings.gen.h"
 #include "generated/engine/cpp/core_world_frame_timings.bindings.gen.h"
 #include "generated/engine/cpp/core_world_hit_result.bindings.gen.h"
-#include "generated/engine/cpp/core_world_light_component.bindings.gen.h"
 #include "generated/engine/cpp/core_world_math.bindings.gen.h"
 #include "generated/engine/cpp/core_world_object.bindings.gen.h"
 #include "generated/engine/cpp/core_world_primitive_component.bindings.gen.h"

@@ -13,11 +13,11 @@
 
 #include "core/reflect/invoke.h"
 #include "core/reflect/type_info.h"
+#include "core/sensors/light_component.h"
 #include "core/world/actor.h"
 #include "core/world/actor_component.h"
 #include "core/world/frame_timings.h"
 #include "core/world/hit_result.h"
-#include "core/world/light_component.h"
 #include "core/world/math.h"
 #include "core/world/object.h"
 #include "core/world/primitive_component.h"

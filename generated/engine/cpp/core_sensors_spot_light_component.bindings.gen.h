@@ -10,9 +10,9 @@
 #include <pybind11/pybind11.h>
 
 #include "core/pybind/bridge.h"
+#include "generated/engine/cpp/core_sensors_light_component.bindings.gen.h"
 #include "generated/engine/cpp/core_world_actor.bindings.gen.h"
 #include "generated/engine/cpp/core_world_actor_component.bindings.gen.h"
-#include "generated/engine/cpp/core_world_light_component.bindings.gen.h"
 #include "generated/engine/cpp/core_world_object.bindings.gen.h"
 #include "generated/engine/cpp/core_world_scene_component.bindings.gen.h"
 #include "generated/engine/cpp/core_sensors_spot_light_component.gen.h"

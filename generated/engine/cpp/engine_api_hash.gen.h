@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "c28540973ff4f102";
+inline constexpr char kApiHash[] = "3cbe608fef119989";
 } // namespace sp::generated::engine

@@ -278,4 +278,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::enumInfo_EAntiAliasingMethod());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "c28540973ff4f102"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "3cbe608fef119989"; }

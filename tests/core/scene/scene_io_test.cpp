@@ -3,7 +3,7 @@
 #include "core/base/error.h"
 #include "core/engine/engine.h"
 #include "core/scene/scene_io.h"
-#include "core/world/light_actors.h"
+#include "core/sensors/light_actors.h"
 #include "core/world/static_mesh_actor.h"
 
 TEST(SceneIoTest, SaveLoadSaveIsIdentical) {

@@ -9,7 +9,7 @@
 #include "core/sensors/render_subsystem.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
-#include "core/world/light_actors.h"
+#include "core/sensors/light_actors.h"
 #include "core/world/static_mesh_actor.h"
 
 namespace {

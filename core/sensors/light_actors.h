@@ -2,7 +2,7 @@
 // Light actors: an actor whose root component is a light.
 
 #include "core/world/actor.h"
-#include "core/world/light_component.h"
+#include "core/sensors/light_component.h"
 
 /// An actor with a directional light (the sun) as its root.
 SPCLASS()

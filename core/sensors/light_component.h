@@ -1,5 +1,6 @@
 #pragma once
-// Light components: plain reflected data that the renderer reads (colour, intensity, range). They have
+// Light components: plain reflected data that the renderer reads (colour, intensity, range), beside the
+// other lights of core/sensors (spot, rect, sky), whose render subsystem is what reads them. They have
 // no behaviour of their own; a light's position and direction come from its scene component transform
 // (a directional light shines along its forward, +X, axis).
 
