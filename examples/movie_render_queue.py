@@ -8,12 +8,14 @@ piped). Files land in --out:
     final_color/0000.png ...                  8-bit sRGB (PNG)
     depth/, normal/, object_ids/ 0000.exr ... float32 and uint32, lossless (OpenEXR), as read_pixels() gives
     camera/0000.json ...                      K, world-to-camera, pose and samples of each frame
+    final_color.mp4                           the colour frames as an H.264 video (--fps; --no-video skips it)
     preview.png                               every fifth frame's colour, side by side
 
 Running it again resumes: frames whose files are all there are skipped (--overwrite renders them again).
 
     PYTHONPATH=python /usr/bin/python3 examples/movie_render_queue.py [--out out/movie_render_queue]
-        [--frames 30] [--width 320 --height 240] [--path-traced --samples 16] [--overwrite] [--server launch]
+        [--frames 30] [--width 320 --height 240] [--path-traced --samples 16] [--overwrite] [--fps 30]
+        [--no-video] [--server launch]
 """
 
 # Debian 12's Pillow (9.4) has no annotations: strict pyright would flag every use of it.
@@ -70,6 +72,8 @@ def main() -> None:
     parser.add_argument("--path-traced", action="store_true", help="colour from the reference path tracer")
     parser.add_argument("--samples", type=int, default=16, help="path-traced samples per pixel of each frame")
     parser.add_argument("--overwrite", action="store_true", help="render frames whose files exist again")
+    parser.add_argument("--fps", type=float, default=30.0, help="the video's frames a second")
+    parser.add_argument("--no-video", action="store_true", help="write no final_color.mp4")
     parser.add_argument("--server", default=None, help='None: in-process; "launch", "unix:PATH" or "tcp:HOST:PORT"')
     args = parser.parse_args()
     out = Path(args.out).resolve()  # a server may run in another directory
@@ -89,7 +93,8 @@ def main() -> None:
         job.SetConfiguration(Configuration=spear.FMoviePipelineConfiguration(
             OutputDirectory=str(out), Modalities=[M.FinalColor, M.Depth, M.Normal, M.ObjectIds],
             Width=args.width, Height=args.height, SamplesPerPixel=args.samples, CameraLocations=locations,
-            CameraRotations=rotations, bOverwriteExisting=args.overwrite))
+            CameraRotations=rotations, bOverwriteExisting=args.overwrite, bWriteVideo=not args.no_video,
+            VideoFrameRate=args.fps))
         queue.RenderJob(Job=job)  # returns at once; the frames below do the work
     with instance.end_frame():
         pass
@@ -118,7 +123,8 @@ def main() -> None:
     frames = sorted((out / "final_color").glob("*.png"))[::5]
     strip = np.concatenate([np.asarray(Image.open(f))[..., :3] for f in frames], axis=1)
     Image.fromarray(strip).save(out / "preview.png")
-    print(f"wrote {out}/{{final_color,depth,normal,object_ids,camera}}/ and {out / 'preview.png'}")
+    video = "" if args.no_video else f", {out / 'final_color.mp4'}"
+    print(f"wrote {out}/{{final_color,depth,normal,object_ids,camera}}/{video} and {out / 'preview.png'}")
     instance.close()
 
 

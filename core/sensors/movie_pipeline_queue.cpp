@@ -16,8 +16,10 @@
 #include "core/imageio/exr.h"
 #include "core/imageio/file_writer.h"
 #include "core/imageio/png.h"
+#include "core/imageio/video.h"
 #include "core/render/image_buffer.h"
 #include "core/render/modality.h"
+#include "core/render/texture_image.h"
 #include "core/sensors/render_subsystem.h"
 #include "core/world/object_access.h"
 #include "core/world/world.h"
@@ -243,6 +245,11 @@ void MoviePipelineQueue::start(UMoviePipelineExecutorJob& job) {
     run->modalities = effectiveModalities(run->configuration, camera);
     SP_CHECK(!run->modalities.empty(), InvalidArgument, function, ": job '", job.JobName,
              "' renders no modality (its configuration and its camera list none)");
+    SP_CHECK(!run->configuration.bWriteVideo ||
+                 std::find(run->modalities.begin(), run->modalities.end(), ECameraModality::FinalColor) !=
+                     run->modalities.end(),
+             InvalidArgument, function, ": job '", job.JobName,
+             "' writes final_color as a video (bWriteVideo), but its camera does not render final_color");
     run->poses = !run->configuration.CameraLocations.empty();
     SP_CHECK(!run->poses || camera->Mobility != EComponentMobility::Static, InvalidState, function, ": job '",
              job.JobName, "' moves its camera through poses, but ", camera->GetDebugName(),
@@ -284,6 +291,15 @@ void MoviePipelineQueue::end(EMoviePipelineJobStatus status, std::string error) 
         if (status == EMoviePipelineJobStatus::Finished)
             status = EMoviePipelineJobStatus::Failed;
         error = active_->writeError;
+    }
+    if (status == EMoviePipelineJobStatus::Finished && active_->configuration.bWriteVideo) {
+        try {
+            writeVideo();
+        } catch (const std::exception& failure) {
+            SP_LOG("render job '", active_->job->JobName, "': ", failure.what());
+            status = EMoviePipelineJobStatus::Failed;
+            error = failure.what();
+        }
     }
     std::unique_ptr<Run> run = std::move(active_);
     FMoviePipelineProgress& progress = run->job->progress();
@@ -407,6 +423,24 @@ void MoviePipelineQueue::afterRender() {
     } catch (const std::exception& error) {
         fail(error);
     }
+}
+
+void MoviePipelineQueue::writeVideo() {
+    const Run& run = *active_;
+    const std::string function = "render job '" + run.job->JobName + "'";
+    const int32_t first = run.configuration.FrameStart;
+    const std::string file = (std::filesystem::path(run.folder) / "final_color.mp4").string();
+    std::optional<sp::imageio::Mp4Encoder> encoder;
+    sp::base::Progress progress(function + ": " + file, double(run.end - first));
+    for (int32_t frame = first; frame < run.end; ++frame) {
+        const sp::render::TextureImage image =
+            sp::render::TextureImage::load(imageFile(run.folder, sp::render::Modality::FinalColor, frame));
+        if (!encoder)
+            encoder.emplace(image.width, image.height, run.configuration.VideoFrameRate, function);
+        encoder->add({image.width, image.height, 4, sp::imageio::PixelType::UInt8, image.rgba.data()});
+        progress.advance(1.0);
+    }
+    sp::writeRegularFile(file, encoder->finish(), function, "video");
 }
 
 void MoviePipelineQueue::writeFrame(UCameraSensorComponent& camera) {
@@ -568,6 +602,13 @@ void UMoviePipelineExecutorJob::SetConfiguration(const FMoviePipelineConfigurati
             (c.FrameEnd == -1 && c.FrameStart < poses) || (c.FrameEnd > c.FrameStart && c.FrameEnd <= poses),
             sp::InvalidArgument, who, "frames [", c.FrameStart, ", ", c.FrameEnd == -1 ? poses : c.FrameEnd,
             ") are not a non-empty range within the ", poses, " poses");
+    SP_CHECK(c.VideoFrameRate > 0.0 && c.VideoFrameRate <= 1000.0, sp::InvalidArgument, who,
+             "VideoFrameRate must be in (0, 1000] frames a second, got ", c.VideoFrameRate);
+    SP_CHECK(!c.bWriteVideo || c.Modalities.empty() ||
+                 std::find(c.Modalities.begin(), c.Modalities.end(), ECameraModality::FinalColor) !=
+                     c.Modalities.end(),
+             sp::InvalidArgument, who,
+             "bWriteVideo writes final_color as a video, which Modalities leaves out");
     configuration_ = Configuration;
     status_ = EMoviePipelineJobStatus::Ready;
     error_.clear();

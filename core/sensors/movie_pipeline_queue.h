@@ -8,6 +8,7 @@
 //   <OutputDirectory>/<modality>/<frame>.png|.exr    e.g. out/final_color/0007.png, out/depth/0007.exr
 //   <OutputDirectory>/camera/<frame>.json             K, distortion, world-to-camera, pose, engine frame,
 //   samples
+//   <OutputDirectory>/final_color.mp4                 with bWriteVideo, once every frame is written
 //
 // RenderJob() only queues a job: the work proceeds in the engine, one output frame per engine frame, while
 // the client keeps stepping frames (each frame's images are those of that frame's world; a path-traced
@@ -96,6 +97,15 @@ struct FMoviePipelineConfiguration {
     /// interrupted job).
     SPPROPERTY()
     bool bOverwriteExisting = false;
+    /// Also write final_color as a video, <OutputDirectory>/final_color.mp4 (H.264, constant quality with no
+    /// visible loss; an odd width or height is padded by one repeated column or row), once every frame of the
+    /// job is written. It is made from the frames' PNG files, so the video of a resumed job has every frame.
+    /// final_color must be among the modalities.
+    SPPROPERTY()
+    bool bWriteVideo = false;
+    /// The video's frames a second, in (0, 1000].
+    SPPROPERTY()
+    double VideoFrameRate = 30.0;
 };
 
 /// How far a render job is.
@@ -272,6 +282,8 @@ class MoviePipelineQueue : public sp::world::WorldSubsystem {
     void writeFrame(UCameraSensorComponent& camera);
     // Counts the active run's frames the writer finished (and keeps the first error).
     void collectWritten();
+    // The active run's final_color frames, read back from their files, as <folder>/final_color.mp4.
+    void writeVideo();
 
     UWorld& world_;
     std::unique_ptr<UMoviePipelineQueueEngineSubsystem> object_;

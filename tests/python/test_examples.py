@@ -239,6 +239,8 @@ def test_movie_render_queue_renders_the_camera_move_to_files_and_resumes(transpo
         assert sorted(p.name for p in (out / modality).iterdir()) == [f"{k:04d}.{suffix}" for k in range(6)]
     assert json.loads((out / "camera" / "0005.json").read_text())["width"] == 64
     assert Image.open(out / "preview.png").size == (2 * 64, 48)  # frames 0 and 5
+    video = (out / "final_color.mp4").read_bytes()
+    assert video[4:8] == b"ftyp" and b"avc1" in video and "final_color.mp4 and" in result.stdout
     frames = [np.asarray(Image.open(out / "final_color" / f"{k:04d}.png")) for k in (0, 5)]
     assert frames[0].std() > 10 and not np.array_equal(frames[0], frames[1])  # the room, seen as the camera moves
 

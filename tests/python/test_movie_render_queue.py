@@ -1,6 +1,6 @@
 """The offline render queue (UMoviePipelineQueueEngineSubsystem): jobs render a camera through poses or
-through the running world's frames into PNG + EXR + camera JSON files, one output frame per engine frame,
-with progress, cancel, resume and clear errors; both transports."""
+through the running world's frames into PNG + EXR + camera JSON files (and final_color as an MP4 video), one
+output frame per engine frame, with progress, cancel, resume and clear errors; both transports."""
 
 from __future__ import annotations
 
@@ -174,6 +174,87 @@ def test_a_job_run_again_skips_the_frames_already_written(instance: spear.Instan
     with instance.begin_frame():
         progress = job.GetProgress()
         assert (progress.FramesTotal, progress.FramesRendered, progress.FramesSkipped) == (2, 2, 0)
+    with instance.end_frame():
+        pass
+
+
+def _mp4_video(path: Path) -> tuple[str, int, int, int]:
+    """(codec, frames, width, height) of an MP4 file's one video track, read from its boxes: the sample
+    entry of stsd and the sample count of stsz."""
+    data = path.read_bytes()
+    assert data[4:8] == b"ftyp"
+
+    def boxes(start: int, end: int) -> dict[bytes, tuple[int, int]]:
+        found: dict[bytes, tuple[int, int]] = {}
+        while start + 8 <= end:
+            size, kind = int.from_bytes(data[start:start + 4], "big"), data[start + 4:start + 8]
+            found.setdefault(kind, (start + 8, start + size))
+            start += size
+        return found
+
+    box = boxes(0, len(data))[b"moov"]
+    for kind in (b"trak", b"mdia", b"minf", b"stbl"):
+        box = boxes(*box)[kind]
+    table = boxes(*box)
+    entry = table[b"stsd"][0] + 8  # after version, flags and the entry count
+    codec = data[entry + 4:entry + 8].decode()
+    width, height = int.from_bytes(data[entry + 32:entry + 34], "big"), int.from_bytes(data[entry + 34:entry + 36], "big")
+    frames = int.from_bytes(data[table[b"stsz"][0] + 8:table[b"stsz"][0] + 12], "big")
+    return codec, frames, width, height
+
+
+def test_a_job_writes_final_color_as_a_video_of_every_frame(instance: spear.Instance, tmp_path: Path) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        camera = _scene(game)
+        queue = _queue(game)
+        job = queue.AllocateJob(Camera=camera, JobName="clip")
+        job.SetConfiguration(Configuration=_configuration(tmp_path, 5, Modalities=[M.FinalColor, M.Depth],
+                                                          Width=49, bWriteVideo=True, VideoFrameRate=10.0))
+        queue.RenderJob(Job=job)
+    with instance.end_frame():
+        pass
+    _render(instance, queue)
+    with instance.begin_frame():
+        assert job.GetStatus() == Status.Finished, job.GetErrorMessage()
+    with instance.end_frame():
+        pass
+    video = tmp_path / "final_color.mp4"
+    assert _mp4_video(video) == ("avc1", 5, 50, 32)  # an odd width padded by one column
+    first = video.stat().st_mtime_ns
+
+    # A job run again after a frame was lost renders that frame and writes the video again, of every frame.
+    (tmp_path / "final_color" / "0003.png").unlink()
+    with instance.begin_frame():
+        queue.RenderJob(Job=job)
+    with instance.end_frame():
+        pass
+    _render(instance, queue)
+    with instance.begin_frame():
+        assert job.GetStatus() == Status.Finished and job.GetProgress().FramesRendered == 1
+    with instance.end_frame():
+        pass
+    assert _mp4_video(video) == ("avc1", 5, 50, 32) and video.stat().st_mtime_ns != first
+
+    with instance.begin_frame():
+        with pytest.raises(InvalidArgumentError, match=r"bWriteVideo writes final_color as a video, which "
+                                                      r"Modalities leaves out"):
+            job.SetConfiguration(Configuration=_configuration(tmp_path, 5, Modalities=[M.Depth], bWriteVideo=True))
+        with pytest.raises(InvalidArgumentError, match=r"VideoFrameRate must be in \(0, 1000\] frames a second, "
+                                                      r"got 0"):
+            job.SetConfiguration(Configuration=_configuration(tmp_path, 5, VideoFrameRate=0.0))
+        # Modalities left to the camera: checked when the job starts, which fails it.
+        camera.Modalities = [M.Depth]
+        job.SetConfiguration(Configuration=_configuration(tmp_path / "depth_only", 2, Modalities=[],
+                                                          bWriteVideo=True))
+        queue.RenderJob(Job=job)
+    with instance.end_frame():
+        pass
+    _render(instance, queue)
+    with instance.begin_frame():
+        assert job.GetStatus() == Status.Failed
+        assert "job 'clip' writes final_color as a video (bWriteVideo), but its camera does not render " \
+               "final_color" in job.GetErrorMessage()
     with instance.end_frame():
         pass
 

@@ -49,7 +49,7 @@ template <> struct type_caster<FMoviePipelineConfiguration> {
     // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
     // py::object freed after Python has shut down would crash at exit).
     static const sp::pybind::SlotStruct& python() {
-        static const auto* const type = new sp::pybind::SlotStruct("spear._engine.api", "FMoviePipelineConfiguration", {"OutputDirectory", "Modalities", "Width", "Height", "SamplesPerPixel", "CameraLocations", "CameraRotations", "FrameStart", "FrameEnd", "bOverwriteExisting"});
+        static const auto* const type = new sp::pybind::SlotStruct("spear._engine.api", "FMoviePipelineConfiguration", {"OutputDirectory", "Modalities", "Width", "Height", "SamplesPerPixel", "CameraLocations", "CameraRotations", "FrameStart", "FrameEnd", "bOverwriteExisting", "bWriteVideo", "VideoFrameRate"});
         return *type;
     }
     bool load(handle src, bool) {
@@ -66,10 +66,12 @@ template <> struct type_caster<FMoviePipelineConfiguration> {
         value.FrameStart = sp::pybind::Bridge<int32_t>::in(type.get(src, 7).cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineConfiguration.FrameStart");
         value.FrameEnd = sp::pybind::Bridge<int32_t>::in(type.get(src, 8).cast<sp::pybind::Bridge<int32_t>::Py>(), "FMoviePipelineConfiguration.FrameEnd");
         value.bOverwriteExisting = sp::pybind::Bridge<bool>::in(type.get(src, 9).cast<sp::pybind::Bridge<bool>::Py>(), "FMoviePipelineConfiguration.bOverwriteExisting");
+        value.bWriteVideo = sp::pybind::Bridge<bool>::in(type.get(src, 10).cast<sp::pybind::Bridge<bool>::Py>(), "FMoviePipelineConfiguration.bWriteVideo");
+        value.VideoFrameRate = sp::pybind::Bridge<double>::in(type.get(src, 11).cast<sp::pybind::Bridge<double>::Py>(), "FMoviePipelineConfiguration.VideoFrameRate");
         return true;
     }
     static handle cast(const FMoviePipelineConfiguration& v, return_value_policy, handle) {
-        return python().make(sp::pybind::Bridge<std::string>::out(v.OutputDirectory), sp::pybind::Bridge<std::vector<ECameraModality>>::out(v.Modalities), sp::pybind::Bridge<int32_t>::out(v.Width), sp::pybind::Bridge<int32_t>::out(v.Height), sp::pybind::Bridge<int32_t>::out(v.SamplesPerPixel), sp::pybind::Bridge<std::vector<FVector>>::out(v.CameraLocations), sp::pybind::Bridge<std::vector<FRotator>>::out(v.CameraRotations), sp::pybind::Bridge<int32_t>::out(v.FrameStart), sp::pybind::Bridge<int32_t>::out(v.FrameEnd), sp::pybind::Bridge<bool>::out(v.bOverwriteExisting)).release();
+        return python().make(sp::pybind::Bridge<std::string>::out(v.OutputDirectory), sp::pybind::Bridge<std::vector<ECameraModality>>::out(v.Modalities), sp::pybind::Bridge<int32_t>::out(v.Width), sp::pybind::Bridge<int32_t>::out(v.Height), sp::pybind::Bridge<int32_t>::out(v.SamplesPerPixel), sp::pybind::Bridge<std::vector<FVector>>::out(v.CameraLocations), sp::pybind::Bridge<std::vector<FRotator>>::out(v.CameraRotations), sp::pybind::Bridge<int32_t>::out(v.FrameStart), sp::pybind::Bridge<int32_t>::out(v.FrameEnd), sp::pybind::Bridge<bool>::out(v.bOverwriteExisting), sp::pybind::Bridge<bool>::out(v.bWriteVideo), sp::pybind::Bridge<double>::out(v.VideoFrameRate)).release();
     }
 };
 

@@ -135,6 +135,26 @@ const sp::reflect::TypeInfo& FMoviePipelineConfiguration::StaticClass() {
                 Calls::set_bOverwriteExisting<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
+        t.properties.push_back({
+            "bWriteVideo",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
+            "Also write final_color as a video, <OutputDirectory>/final_color.mp4 (H.264, constant quality with no\nvisible loss; an odd width or height is padded by one repeated column or row), once every frame of the\njob is written. It is made from the frames' PNG files, so the video of a resumed job has every frame.\nfinal_color must be among the modalities.",
+            false,
+            [](const void* self) { return Calls::get_bWriteVideo<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_bWriteVideo<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "VideoFrameRate",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
+            "The video's frames a second, in (0, 1000].",
+            false,
+            [](const void* self) { return Calls::get_VideoFrameRate<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_VideoFrameRate<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
         return t;
     }();
     return info;

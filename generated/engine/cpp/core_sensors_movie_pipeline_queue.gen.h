@@ -129,6 +129,24 @@ struct FMoviePipelineConfigurationCalls {
         self->bOverwriteExisting = Call::template input<bool>(value, "FMoviePipelineConfiguration.bOverwriteExisting");
         sp::reflect::notifyPropertyChanged(self, "bOverwriteExisting");
     }
+
+    template <typename Call> static typename Call::Result get_bWriteVideo(const Self* self) {
+        const auto& value = self->bWriteVideo;
+        return Call::template result<bool>(value);
+    }
+    template <typename Call> static void set_bWriteVideo(Self* self, const typename Call::Input& value) {
+        self->bWriteVideo = Call::template input<bool>(value, "FMoviePipelineConfiguration.bWriteVideo");
+        sp::reflect::notifyPropertyChanged(self, "bWriteVideo");
+    }
+
+    template <typename Call> static typename Call::Result get_VideoFrameRate(const Self* self) {
+        const auto& value = self->VideoFrameRate;
+        return Call::template result<double>(value);
+    }
+    template <typename Call> static void set_VideoFrameRate(Self* self, const typename Call::Input& value) {
+        self->VideoFrameRate = Call::template input<double>(value, "FMoviePipelineConfiguration.VideoFrameRate");
+        sp::reflect::notifyPropertyChanged(self, "VideoFrameRate");
+    }
 };
 
 struct FMoviePipelineProgressCalls {

@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "3cbe608fef119989";
+inline constexpr char kApiHash[] = "eb06e5f5781f15ff";
 } // namespace sp::generated::engine

@@ -278,4 +278,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::enumInfo_EAntiAliasingMethod());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "3cbe608fef119989"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "eb06e5f5781f15ff"; }

@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "3cbe608fef119989"
+API_HASH = "eb06e5f5781f15ff"

@@ -386,6 +386,8 @@ class FMoviePipelineConfiguration:
     FrameStart: int = 0
     FrameEnd: int = -1
     bOverwriteExisting: bool = False
+    bWriteVideo: bool = False
+    VideoFrameRate: float = 30.0
 
 
 @dataclass(slots=True)

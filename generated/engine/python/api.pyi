@@ -472,6 +472,8 @@ class FMoviePipelineConfiguration:
     FrameStart: int = 0
     FrameEnd: int = -1
     bOverwriteExisting: bool = False
+    bWriteVideo: bool = False
+    VideoFrameRate: float = 30.0
 
 
 @dataclass(slots=True)

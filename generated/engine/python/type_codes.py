@@ -115,7 +115,7 @@ FIELD_TYPES: dict[str, dict[str, TypeCode]] = {
     "FLensDistortion": {"K1": T_float, "K2": T_float, "K3": T_float, "P1": T_float, "P2": T_float},
     "FLinearColor": {"R": T_float, "G": T_float, "B": T_float, "A": T_float},
     "FMaterialDesc": {"BaseColor": T_FLinearColor, "Roughness": T_float, "Metallic": T_float, "AmbientOcclusion": T_float, "Emissive": T_FLinearColor, "BaseColorTexture": T_str, "RoughnessMetallicTexture": T_str, "OcclusionTexture": T_str, "NormalTexture": T_str, "TextureSize": T_float},
-    "FMoviePipelineConfiguration": {"OutputDirectory": T_str, "Modalities": T_list_of_ECameraModality, "Width": T_int, "Height": T_int, "SamplesPerPixel": T_int, "CameraLocations": T_list_of_FVector, "CameraRotations": T_list_of_FRotator, "FrameStart": T_int, "FrameEnd": T_int, "bOverwriteExisting": T_bool},
+    "FMoviePipelineConfiguration": {"OutputDirectory": T_str, "Modalities": T_list_of_ECameraModality, "Width": T_int, "Height": T_int, "SamplesPerPixel": T_int, "CameraLocations": T_list_of_FVector, "CameraRotations": T_list_of_FRotator, "FrameStart": T_int, "FrameEnd": T_int, "bOverwriteExisting": T_bool, "bWriteVideo": T_bool, "VideoFrameRate": T_float},
     "FMoviePipelineProgress": {"FramesTotal": T_int, "FramesRendered": T_int, "FramesWriting": T_int, "FramesSkipped": T_int, "ElapsedSeconds": T_float, "EstimatedSecondsLeft": T_float},
     "FQuat": {"X": T_float, "Y": T_float, "Z": T_float, "W": T_float},
     "FRenderDeviceInfo": {"Kind": T_str, "DeviceIndex": T_int, "DeviceCount": T_int, "Vendor": T_str, "Renderer": T_str, "Version": T_str},
