@@ -9,20 +9,10 @@ namespace sp::render {
 namespace {
 
 constexpr std::array<ModalityInfo, kModalityCount> kInfos{{
-    {Modality::FinalColor, "final_color", DType::UInt8, 4},
-    {Modality::HdrColor, "hdr_color", DType::Float16, 4},
-    {Modality::Depth, "depth", DType::Float32, 1},
-    {Modality::Position, "position", DType::Float32, 3},
-    {Modality::Normal, "normal", DType::Float32, 3},
-    {Modality::ObjectIds, "object_ids", DType::UInt32, 1},
-    {Modality::MaterialIds, "material_ids", DType::UInt32, 1},
-    {Modality::BaseColor, "base_color", DType::Float16, 3},
-    {Modality::Roughness, "roughness", DType::Float16, 1},
-    {Modality::Metallic, "metallic", DType::Float16, 1},
-    {Modality::MaterialAo, "material_ao", DType::Float16, 1},
-    {Modality::DiffuseIllumination, "diffuse_illumination", DType::Float16, 3},
-    {Modality::DiffuseOnly, "diffuse_only", DType::Float16, 3},
-    {Modality::SpecularResidual, "specular_residual", DType::Float16, 3},
+#define SP_MODALITY_INFO(enumerator, name, dtype, channels)                                                  \
+    {Modality::enumerator, #name, DType::dtype, channels},
+    SP_RENDER_MODALITIES(SP_MODALITY_INFO)
+#undef SP_MODALITY_INFO
 }};
 
 bool needsLighting(Modality m) {

@@ -26,23 +26,35 @@
 
 namespace sp::render {
 
+// The modalities, listed once: enumerator, name (read_pixels()'s key), element type (DType) and channels.
+// Modality, its table (modalityInfo()) and kModalityCount are made from this list; the engine's reflected
+// ECameraModality and FCameraPixels, which the generator must read as plain declarations, are checked against
+// it entry by entry at compile time (core/sensors/render_subsystem.cpp), so a modality added here and not
+// there (or the other way round) fails the build naming it.
+#define SP_RENDER_MODALITIES(X)                                                                              \
+    X(FinalColor, final_color, UInt8, 4)                                                                     \
+    X(HdrColor, hdr_color, Float16, 4)                                                                       \
+    X(Depth, depth, Float32, 1)                                                                              \
+    X(Position, position, Float32, 3)                                                                        \
+    X(Normal, normal, Float32, 3)                                                                            \
+    X(ObjectIds, object_ids, UInt32, 1)                                                                      \
+    X(MaterialIds, material_ids, UInt32, 1)                                                                  \
+    X(BaseColor, base_color, Float16, 3)                                                                     \
+    X(Roughness, roughness, Float16, 1)                                                                      \
+    X(Metallic, metallic, Float16, 1)                                                                        \
+    X(MaterialAo, material_ao, Float16, 1)                                                                   \
+    X(DiffuseIllumination, diffuse_illumination, Float16, 3)                                                 \
+    X(DiffuseOnly, diffuse_only, Float16, 3)                                                                 \
+    X(SpecularResidual, specular_residual, Float16, 3)
+
 enum class Modality : std::uint8_t {
-    FinalColor,
-    HdrColor,
-    Depth,
-    Position,
-    Normal,
-    ObjectIds,
-    MaterialIds,
-    BaseColor,
-    Roughness,
-    Metallic,
-    MaterialAo,
-    DiffuseIllumination,
-    DiffuseOnly,
-    SpecularResidual,
+#define SP_MODALITY_ENUMERATOR(enumerator, name, dtype, channels) enumerator,
+    SP_RENDER_MODALITIES(SP_MODALITY_ENUMERATOR)
+#undef SP_MODALITY_ENUMERATOR
 };
-inline constexpr std::size_t kModalityCount = 14;
+#define SP_MODALITY_ONE(enumerator, name, dtype, channels) +1
+inline constexpr std::size_t kModalityCount = 0 SP_RENDER_MODALITIES(SP_MODALITY_ONE);
+#undef SP_MODALITY_ONE
 
 enum class DType : std::uint8_t { UInt8, UInt32, Float16, Float32 };
 

@@ -717,15 +717,15 @@ void Renderer::screenOcclusionPass(const Scene& scene, const Camera& camera, con
     glClearBufferfv(GL_DEPTH, 0, &far);
     uploadFrameBlock(scene, small, {}, {});
     drawAll(scene, small, draws, targetBit(Target::Depth), false, lights, cache);
-    const auto program = [&](const char* name, const std::string& fragment) -> ShaderProgram& {
+    const auto program = [&](const char* name, std::string (*fragment)()) -> ShaderProgram& {
         std::unique_ptr<ShaderProgram>& p = programs_[name];
         if (!p)
             p = std::make_unique<ShaderProgram>(name, shaders::backgroundVertex(false).c_str(),
-                                                fragment.c_str());
+                                                fragment().c_str());
         return *p;
     };
-    occlusion->compute(program("screen occlusion", shaders::screenOcclusionFragment()),
-                       program("screen occlusion blur", shaders::screenOcclusionBlurFragment()),
+    occlusion->compute(program("screen occlusion", shaders::screenOcclusionFragment),
+                       program("screen occlusion blur", shaders::screenOcclusionBlurFragment),
                        float(small.focalLengthPixels()), camera.params.ambientOcclusionRadius,
                        camera.params.ambientOcclusionIntensity);
     active_->timers.end();

@@ -5,6 +5,7 @@
 #include <bit>
 #include <cstring>
 #include <map>
+#include <type_traits>
 #include <utility>
 
 #include "core/base/error.h"
@@ -26,7 +27,24 @@
 namespace sp::sensors {
 namespace {
 
-static_assert(sp::render::kModalityCount == 14, "ECameraModality mirrors sp::render::Modality");
+// ECameraModality and FCameraPixels, which the generator reads as plain declarations, mirror the renderer's
+// one list of modalities (SP_RENDER_MODALITIES): each entry's enumerator has its value and each has a field
+// of its name and element type, or the build fails naming it. (That neither has more than the list is checked
+// from the registry: tests/core/sensors/camera_modalities_test.cpp.)
+template <sp::render::DType> struct ElementOf;
+template <> struct ElementOf<sp::render::DType::UInt8> { using type = uint8_t; };
+template <> struct ElementOf<sp::render::DType::UInt32> { using type = uint32_t; };
+template <> struct ElementOf<sp::render::DType::Float16> { using type = sp::reflect::Half; };
+template <> struct ElementOf<sp::render::DType::Float32> { using type = float; };
+#define SP_CHECK_CAMERA_MODALITY(enumerator, name, dtype, channels)                                          \
+    static_assert(static_cast<int>(ECameraModality::enumerator) ==                                           \
+                      static_cast<int>(sp::render::Modality::enumerator),                                    \
+                  "ECameraModality::" #enumerator " is not sp::render::Modality::" #enumerator);             \
+    static_assert(std::is_same_v<decltype(FCameraPixels::name),                                              \
+                                 sp::reflect::SpArray<ElementOf<sp::render::DType::dtype>::type>>,           \
+                  "FCameraPixels::" #name " is not an array of " #dtype);
+SP_RENDER_MODALITIES(SP_CHECK_CAMERA_MODALITY)
+#undef SP_CHECK_CAMERA_MODALITY
 
 sp::render::ModalitySet toModalitySet(const std::vector<ECameraModality>& modalities) {
     sp::render::ModalitySet set;
@@ -156,36 +174,12 @@ void dropAlpha(sp::reflect::SpArray<std::uint8_t>& rgba) {
 
 sp::render::OutputView allocate(FCameraPixels& pixels, sp::render::Modality modality, int width, int height,
                                 int count) {
-    using M = sp::render::Modality;
-    switch (modality) {
-    case M::FinalColor:
-        return allocate(pixels.final_color, modality, width, height, count);
-    case M::HdrColor:
-        return allocate(pixels.hdr_color, modality, width, height, count);
-    case M::Depth:
-        return allocate(pixels.depth, modality, width, height, count);
-    case M::Position:
-        return allocate(pixels.position, modality, width, height, count);
-    case M::Normal:
-        return allocate(pixels.normal, modality, width, height, count);
-    case M::ObjectIds:
-        return allocate(pixels.object_ids, modality, width, height, count);
-    case M::MaterialIds:
-        return allocate(pixels.material_ids, modality, width, height, count);
-    case M::BaseColor:
-        return allocate(pixels.base_color, modality, width, height, count);
-    case M::Roughness:
-        return allocate(pixels.roughness, modality, width, height, count);
-    case M::Metallic:
-        return allocate(pixels.metallic, modality, width, height, count);
-    case M::MaterialAo:
-        return allocate(pixels.material_ao, modality, width, height, count);
-    case M::DiffuseIllumination:
-        return allocate(pixels.diffuse_illumination, modality, width, height, count);
-    case M::DiffuseOnly:
-        return allocate(pixels.diffuse_only, modality, width, height, count);
-    case M::SpecularResidual:
-        return allocate(pixels.specular_residual, modality, width, height, count);
+    switch (modality) { // each modality's field of FCameraPixels, from the one list
+#define SP_ALLOCATE_MODALITY(enumerator, name, dtype, channels)                                              \
+    case sp::render::Modality::enumerator:                                                                   \
+        return allocate(pixels.name, modality, width, height, count);
+        SP_RENDER_MODALITIES(SP_ALLOCATE_MODALITY)
+#undef SP_ALLOCATE_MODALITY
     }
     SP_THROW(sp::InvalidArgument, "RenderSubsystem::readPixels(): unknown modality ", int(modality));
 }
