@@ -7,11 +7,11 @@ native class, find its instances by class, and call the functions its asset decl
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 
 import spear
 
-BLUEPRINTS = Path(__file__).resolve().parent.parent / "assets" / "blueprints"
+# By asset name, so the example runs from anywhere (a checkout or the installed package).
+BLUEPRINTS = "/Game/blueprints"
 
 
 def main() -> None:
@@ -22,8 +22,8 @@ def main() -> None:
 
     with instance.begin_frame():
         # load_class(uclass=C, name=path) is typed as type[C]: the blueprint's class, a subclass of C.
-        axes_class = game.load_class(uclass=spear.AActor, name=str(BLUEPRINTS / "BP_Axes.json"))
-        crate_class = game.load_class(uclass=spear.AStaticMeshActor, name=str(BLUEPRINTS / "BP_Crate.json"))
+        axes_class = game.load_class(uclass=spear.AActor, name=f"{BLUEPRINTS}/BP_Axes")
+        crate_class = game.load_class(uclass=spear.AStaticMeshActor, name=f"{BLUEPRINTS}/BP_Crate")
         print(f"loaded {axes_class.__name__} (a {axes_class.__mro__[1].__name__}) and {crate_class.__name__}")
 
         axes = game.spawn_actor(uclass=axes_class, name="Axes")

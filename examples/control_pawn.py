@@ -21,7 +21,8 @@ from PIL import Image  # type: ignore[import]  # Debian ships no Pillow stubs
 
 import spear
 
-APARTMENT = Path(__file__).resolve().parent.parent / "assets" / "scenes" / "apartment.json"
+# By asset name, so the example runs from anywhere (a checkout or the installed package).
+APARTMENT = "/Game/scenes/apartment"
 WIDTH, HEIGHT = 320, 240
 
 
@@ -41,7 +42,7 @@ def main() -> None:
     instance = spear.Instance(server=args.server)
     game = instance.get_game()
     with instance.begin_frame():
-        game.load_scene(path=str(APARTMENT))
+        game.load_scene(path=APARTMENT)
         # Player 0 starts here: the game framework starts on first use and spawns its pawn at this start.
         game.spawn_actor(uclass=spear.APlayerStart, location=spear.FVector(-2.6, -0.6, 1.4))
         player = spear.UGameplayStatics.GetPlayerController(WorldContextObject=game, PlayerIndex=0)

@@ -33,7 +33,9 @@ from PIL import Image  # type: ignore[import]  # Debian ships no Pillow stubs
 
 import spear
 
-DEFAULT_SCENE = Path(__file__).resolve().parent.parent / "assets" / "scenes" / "apartment.json"
+# By asset name: found in the working directory, SPEAR_ASSET_PATH or spear's own assets (a checkout or the
+# installed package), so the example runs from anywhere.
+DEFAULT_SCENE = "/Game/scenes/apartment"
 M = spear.ECameraModality
 
 
@@ -65,7 +67,7 @@ def quarters_done(job: spear.UMoviePipelineExecutorJob) -> int:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
     parser.add_argument("--out", default="out/movie_render_queue")
-    parser.add_argument("--scene", default=str(DEFAULT_SCENE))
+    parser.add_argument("--scene", default=DEFAULT_SCENE)
     parser.add_argument("--frames", type=int, default=30)
     parser.add_argument("--width", type=int, default=320)
     parser.add_argument("--height", type=int, default=240)

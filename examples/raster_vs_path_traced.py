@@ -27,7 +27,9 @@ from PIL import Image, ImageDraw  # type: ignore[import]  # Debian ships no Pill
 
 import spear
 
-DEFAULT_SCENE = Path(__file__).resolve().parent.parent / "assets" / "scenes" / "apartment.json"
+# By asset name: found in the working directory, SPEAR_ASSET_PATH or spear's own assets (a checkout or the
+# installed package), so the example runs from anywhere.
+DEFAULT_SCENE = "/Game/scenes/apartment"
 
 
 def spawn_camera(game: spear.UWorld, name: str, width: int, height: int) -> spear.UCameraSensorComponent:
@@ -61,7 +63,7 @@ def freeze(game: spear.UWorld) -> list[str]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
     parser.add_argument("--out", default="out/raster_vs_path_traced.png")
-    parser.add_argument("--scene", default=str(DEFAULT_SCENE))
+    parser.add_argument("--scene", default=DEFAULT_SCENE)
     parser.add_argument("--width", type=int, default=480)
     parser.add_argument("--height", type=int, default=360)
     parser.add_argument("--samples", type=int, default=64, help="path-traced samples per pixel in all")

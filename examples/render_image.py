@@ -26,7 +26,9 @@ import spear
 import spear.images
 
 WIDTH, HEIGHT = 480, 360
-DEFAULT_SCENE = Path(__file__).resolve().parent.parent / "assets" / "scenes" / "apartment.json"
+# By asset name: found in the working directory, SPEAR_ASSET_PATH or spear's own assets (a checkout or the
+# installed package), so the example runs from anywhere.
+DEFAULT_SCENE = "/Game/scenes/apartment"
 
 
 def box(
@@ -139,7 +141,7 @@ def contact_sheet(pixels: spear.FCameraPixels, order: list[str], columns: int = 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
     parser.add_argument("--out", default="out/render_image.png", help="where to write the contact sheet")
-    parser.add_argument("--scene", default=str(DEFAULT_SCENE), help="the scene file to render (default: %(default)s)")
+    parser.add_argument("--scene", default=DEFAULT_SCENE, help="the scene file to render (default: %(default)s)")
     parser.add_argument("--room", action="store_true", help="build a room from basic shapes here instead")
     parser.add_argument("--server", default=None, help='"launch", "unix:PATH" or "tcp:HOST:PORT" (default: in-process)')
     args = parser.parse_args()
