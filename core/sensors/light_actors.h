@@ -1,8 +1,8 @@
 #pragma once
 // Light actors: an actor whose root component is a light.
 
-#include "core/world/actor.h"
 #include "core/sensors/light_component.h"
+#include "core/world/actor.h"
 
 /// An actor with a directional light (the sun) as its root.
 SPCLASS()

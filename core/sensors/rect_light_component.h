@@ -6,8 +6,8 @@
 // gives hard ones. The path tracer's shadows are soft; the rasteriser's come from a shadow map seen from the
 // panel's centre, so they are hard.
 
-#include "core/world/actor.h"
 #include "core/sensors/light_component.h"
+#include "core/world/actor.h"
 
 /// A rectangular area light facing the component's forward axis (UE's URectLightComponent, sizes in metres).
 SPCLASS()

@@ -9,12 +9,12 @@
 #include "core/render/content_key.h"
 #include "core/render/mesh_import.h"
 #include "core/render/primitives.h"
+#include "core/sensors/light_component.h"
 #include "core/sensors/linear_color.h"
 #include "core/sensors/rect_light_component.h"
 #include "core/sensors/sky_atmosphere_component.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
-#include "core/sensors/light_component.h"
 #include "core/world/static_mesh_component.h"
 #include "core/world/world.h"
 

@@ -13,10 +13,10 @@
 #include "core/imageio/exr.h"
 #include "core/render/image_buffer.h"
 #include "core/render/sky_model.h"
+#include "core/sensors/light_component.h"
 #include "core/sensors/linear_color.h"
 #include "core/sensors/sky_atmosphere_component.h"
 #include "core/sensors/sky_light_component.h"
-#include "core/sensors/light_component.h"
 
 namespace sp::sensors {
 namespace {

@@ -2,8 +2,8 @@
 // Spot lights: a point light (core/sensors/light_component.h) restricted to a cone around the component's
 // forward (+X) axis, and the actor that holds one.
 
-#include "core/world/actor.h"
 #include "core/sensors/light_component.h"
+#include "core/world/actor.h"
 
 /// A point light restricted to a cone around the component's forward axis.
 SPCLASS()

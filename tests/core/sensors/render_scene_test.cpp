@@ -5,11 +5,11 @@
 
 #include "core/engine/engine.h"
 #include "core/sensors/camera_sensor_actor.h"
+#include "core/sensors/light_actors.h"
 #include "core/sensors/render_scene.h"
 #include "core/sensors/render_subsystem.h"
 #include "core/sensors/sky_light_component.h"
 #include "core/sensors/spot_light_component.h"
-#include "core/sensors/light_actors.h"
 #include "core/world/static_mesh_actor.h"
 
 namespace {
