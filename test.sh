@@ -23,6 +23,8 @@ say "test: Python API, generator and typing (pytest)"
 export SPEAR_BUILD_DIR="$BUILD_DIR"
 # Files spread over up to four processes (pytest-xdist; a file's tests stay together, so its module fixtures
 # and the files it writes are its own): most tests wait on a server, a build or llvmpipe's threads.
+# A crash of the engine in a test or an example it runs prints the Python stack it happened under.
+export PYTHONFAULTHANDLER=1
 cd "$ROOT" && "$PYTHON" -m pytest -q -n "$(test_jobs)" --dist loadfile tests
 
 # Last, the untrusted-input surfaces again under AddressSanitizer + UndefinedBehaviorSanitizer (their own
