@@ -8,14 +8,11 @@
 namespace sp::render {
 namespace {
 
-GLuint makeTexture(GLenum format, int width, int height, GLenum filter) {
+// Read and written as images only (image loads and framebuffer stores), so no sampler state.
+GLuint makeTexture(GLenum format, int width, int height) {
     GLuint texture = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &texture);
     glTextureStorage2D(texture, 1, format, width, height);
-    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, filter);
-    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, filter);
-    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     return texture;
 }
 
@@ -40,13 +37,13 @@ ScreenOcclusion::ScreenOcclusion(int viewWidth, int viewHeight) {
     const int scale = scaleFor(viewWidth, viewHeight);
     width_ = (viewWidth + scale - 1) / scale;
     height_ = (viewHeight + scale - 1) / scale;
-    depth_ = makeTexture(GL_R32F, width_, height_, GL_NEAREST);
+    depth_ = makeTexture(GL_R32F, width_, height_);
     glCreateRenderbuffers(1, &depthBuffer_);
     glNamedRenderbufferStorage(depthBuffer_, GL_DEPTH_COMPONENT32F, width_, height_);
     depthFbo_ = makeFramebuffer(depth_, depthBuffer_, "depth");
-    raw_ = makeTexture(GL_R8, width_, height_, GL_NEAREST);
+    raw_ = makeTexture(GL_R8, width_, height_);
     rawFbo_ = makeFramebuffer(raw_, 0, "occlusion");
-    occlusion_ = makeTexture(GL_R8, width_, height_, GL_NEAREST);
+    occlusion_ = makeTexture(GL_R8, width_, height_);
     occlusionFbo_ = makeFramebuffer(occlusion_, 0, "blurred occlusion");
     glCreateVertexArrays(1, &emptyVao_);
 }
