@@ -77,6 +77,11 @@ std::vector<ECameraModality> effectiveModalities(const FMoviePipelineConfigurati
     return camera->Modalities;
 }
 
+// Whether final_color is among `modalities` (what the video, bWriteVideo, is made of).
+bool hasFinalColor(const std::vector<ECameraModality>& modalities) {
+    return std::find(modalities.begin(), modalities.end(), ECameraModality::FinalColor) != modalities.end();
+}
+
 UCameraSensorComponent* findCamera(sp::reflect::ObjectHandle handle) {
     return dynamic_cast<UCameraSensorComponent*>(sp::reflect::ObjectTable::find(handle));
 }
@@ -245,10 +250,8 @@ void MoviePipelineQueue::start(UMoviePipelineExecutorJob& job) {
     run->modalities = effectiveModalities(run->configuration, camera);
     SP_CHECK(!run->modalities.empty(), InvalidArgument, function, ": job '", job.JobName,
              "' renders no modality (its configuration and its camera list none)");
-    SP_CHECK(!run->configuration.bWriteVideo ||
-                 std::find(run->modalities.begin(), run->modalities.end(), ECameraModality::FinalColor) !=
-                     run->modalities.end(),
-             InvalidArgument, function, ": job '", job.JobName,
+    SP_CHECK(!run->configuration.bWriteVideo || hasFinalColor(run->modalities), InvalidArgument, function,
+             ": job '", job.JobName,
              "' writes final_color as a video (bWriteVideo), but its camera does not render final_color");
     run->poses = !run->configuration.CameraLocations.empty();
     SP_CHECK(!run->poses || camera->Mobility != EComponentMobility::Static, InvalidState, function, ": job '",
@@ -604,9 +607,7 @@ void UMoviePipelineExecutorJob::SetConfiguration(const FMoviePipelineConfigurati
             ") are not a non-empty range within the ", poses, " poses");
     SP_CHECK(c.VideoFrameRate > 0.0 && c.VideoFrameRate <= 1000.0, sp::InvalidArgument, who,
              "VideoFrameRate must be in (0, 1000] frames a second, got ", c.VideoFrameRate);
-    SP_CHECK(!c.bWriteVideo || c.Modalities.empty() ||
-                 std::find(c.Modalities.begin(), c.Modalities.end(), ECameraModality::FinalColor) !=
-                     c.Modalities.end(),
+    SP_CHECK(!c.bWriteVideo || c.Modalities.empty() || sp::sensors::hasFinalColor(c.Modalities),
              sp::InvalidArgument, who,
              "bWriteVideo writes final_color as a video, which Modalities leaves out");
     configuration_ = Configuration;
