@@ -24,6 +24,7 @@
 #include "core/base/progress.h"
 #include "core/base/recent_cache.h"
 #include "core/base/regular_file.h"
+#include "core/render/assimp_reading.h"
 #include "core/render/content_key.h"
 #include "core/render/mesh_lods.h"
 
@@ -197,30 +198,24 @@ std::atomic<std::uint64_t> gFilesRead{0};
 ImportedMesh readMeshFile(const std::string& path, const std::string& userPath, Reading& reading) {
     ++gFilesRead;
     Assimp::Importer importer;
-    importer.SetIOHandler(new RegularFilesOnly(reading.files)); // the importer owns it
-    base::Progress progress("importMesh(): " + std::filesystem::path(path).filename().string(), 1.0);
-    importer.SetProgressHandler(new ReportProgress(progress)); // the importer owns it
     // Baking node transforms also joins meshes that share a material: one submesh per material group.
     // A file without normals gets smooth ones only across edges under 60 degrees, and hard edges at sharper
     // creases: a crate's faces are flat (smooth normals across a cube's edges shade it as a blob and make its
     // faces shadow themselves), a scanned or tessellated curved surface stays smooth, its vertices shared (so
     // that it still simplifies into levels of detail).
     importer.SetPropertyFloat(AI_CONFIG_PP_GSN_MAX_SMOOTHING_ANGLE, 60.0f);
-    const aiScene* scene = importer.ReadFile(
-        path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
-                  aiProcess_PreTransformVertices | aiProcess_FlipUVs | aiProcess_SortByPType);
-    SP_CHECK(scene != nullptr && !(scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE), InvalidArgument,
-             "importMesh(): cannot read '", userPath, "': ", importer.GetErrorString());
+    const aiScene* scene =
+        readWithAssimp(importer, path, userPath,
+                       aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
+                           aiProcess_PreTransformVertices | aiProcess_FlipUVs | aiProcess_SortByPType,
+                       reading.files, "importMesh");
 
     ImportedMesh out;
     out.mesh.name = std::filesystem::path(path).stem().string();
     // glTF is Y-up (its spec: +Y up, +Z forward, metres); spear is Z-up, as Unreal: a quarter turn about X,
     // (x, y, z) -> (x, -z, y), for positions and normals alike (a rotation: winding and handedness kept). The
     // other formats carry no axis convention and are read as they are (OBJ, PLY, STL: Z-up, as written).
-    std::string extension = std::filesystem::path(path).extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    const bool yUp = extension == ".gltf" || extension == ".glb";
+    const bool yUp = isYUpFormat(path);
     auto axes = [yUp](const aiVector3D& v) {
         return yUp ? Eigen::Vector3f(v.x, -v.z, v.y) : Eigen::Vector3f(v.x, v.y, v.z);
     };
@@ -260,6 +255,37 @@ ImportedMesh readMeshFile(const std::string& path, const std::string& userPath, 
 }
 
 } // namespace
+
+const aiScene* readWithAssimp(Assimp::Importer& importer, const std::string& path,
+                              const std::string& userPath, unsigned flags,
+                              std::vector<std::string>& filesRead, const char* function) {
+    importer.SetIOHandler(new RegularFilesOnly(filesRead)); // the importer owns it
+    base::Progress progress(std::string(function) + "(): " + std::filesystem::path(path).filename().string(),
+                            1.0);
+    importer.SetProgressHandler(new ReportProgress(progress)); // the importer owns it
+    const aiScene* scene = importer.ReadFile(path, flags);
+    importer.SetProgressHandler(nullptr); // the progress ends here; the handler must not outlive it
+    SP_CHECK(scene != nullptr && !(scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE), InvalidArgument, function,
+             "(): cannot read '", userPath, "': ", importer.GetErrorString());
+    return scene;
+}
+
+ImportedMaterial importMaterial(const aiScene& scene, unsigned index, const std::filesystem::path& directory,
+                                std::vector<std::string>& filesRead) {
+    if (index >= scene.mNumMaterials)
+        return {};
+    Reading reading{directory, {}};
+    ImportedMaterial out = readMaterial(&scene, scene.mMaterials[index], reading);
+    filesRead.insert(filesRead.end(), reading.files.begin(), reading.files.end());
+    return out;
+}
+
+bool isYUpFormat(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return extension == ".gltf" || extension == ".glb";
+}
 
 std::uint64_t meshFilesRead() {
     return gFilesRead;
