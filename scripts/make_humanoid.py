@@ -8,7 +8,7 @@ spine_01, ..., foot_r); near each joint a tube's vertices blend linearly between
 so elbows and knees bend without tearing. The clips are in place (no root motion): a character's movement moves
 the actor, the clip moves the limbs.
 
-Authored in spear's axes (Z up, X forward, Y right; a character faces +X, its left side is -Y) and written in
+Authored in spear's axes (Z up, X forward, Y left; a character faces +X, its left side is +Y) and written in
 glTF's (Y up): (x, y, z) -> (x, z, -y), which spear's importer turns back.
 
     /usr/bin/python3 scripts/make_humanoid.py            # writes the file
@@ -36,18 +36,18 @@ BONES: list[tuple[str, str | None, tuple[float, float, float]]] = [
     ("spine_02", "spine_01", (0.0, 0.0, 1.25)),
     ("neck_01", "spine_02", (0.0, 0.0, 1.47)),
     ("head", "neck_01", (0.0, 0.0, 1.57)),
-    ("upperarm_l", "spine_02", (0.0, -0.215, 1.43)),
-    ("lowerarm_l", "upperarm_l", (0.0, -0.225, 1.15)),
-    ("hand_l", "lowerarm_l", (0.0, -0.23, 0.90)),
-    ("upperarm_r", "spine_02", (0.0, 0.215, 1.43)),
-    ("lowerarm_r", "upperarm_r", (0.0, 0.225, 1.15)),
-    ("hand_r", "lowerarm_r", (0.0, 0.23, 0.90)),
-    ("thigh_l", "pelvis", (0.0, -0.10, 0.92)),
-    ("calf_l", "thigh_l", (0.0, -0.10, 0.50)),
-    ("foot_l", "calf_l", (0.0, -0.10, 0.09)),
-    ("thigh_r", "pelvis", (0.0, 0.10, 0.92)),
-    ("calf_r", "thigh_r", (0.0, 0.10, 0.50)),
-    ("foot_r", "calf_r", (0.0, 0.10, 0.09)),
+    ("upperarm_l", "spine_02", (0.0, 0.215, 1.43)),
+    ("lowerarm_l", "upperarm_l", (0.0, 0.225, 1.15)),
+    ("hand_l", "lowerarm_l", (0.0, 0.23, 0.90)),
+    ("upperarm_r", "spine_02", (0.0, -0.215, 1.43)),
+    ("lowerarm_r", "upperarm_r", (0.0, -0.225, 1.15)),
+    ("hand_r", "lowerarm_r", (0.0, -0.23, 0.90)),
+    ("thigh_l", "pelvis", (0.0, 0.10, 0.92)),
+    ("calf_l", "thigh_l", (0.0, 0.10, 0.50)),
+    ("foot_l", "calf_l", (0.0, 0.10, 0.09)),
+    ("thigh_r", "pelvis", (0.0, -0.10, 0.92)),
+    ("calf_r", "thigh_r", (0.0, -0.10, 0.50)),
+    ("foot_r", "calf_r", (0.0, -0.10, 0.09)),
 ]
 BONE_INDEX = {name: i for i, (name, _, _) in enumerate(BONES)}
 JOINT = {name: np.array(position) for name, _, position in BONES}
@@ -196,7 +196,7 @@ def body() -> Builder:
         shoulder, elbow, wrist = JOINT[f"upperarm_{side}"], JOINT[f"lowerarm_{side}"], JOINT[f"hand_{side}"]
         tube(b, [shoulder + z(0.02), elbow, wrist], [f"upperarm_{side}", f"lowerarm_{side}"],
              [(0.05, 0.055), (0.04, 0.045), (0.032, 0.035)], lambda f: SHIRT if f < 0.3 else SKIN, "spine_02")
-        tube(b, [wrist, wrist + np.array([0.0, 0.005 if side == "r" else -0.005, -0.16])], [f"hand_{side}"],
+        tube(b, [wrist, wrist + np.array([0.0, 0.005 if side == "l" else -0.005, -0.16])], [f"hand_{side}"],
              [(0.022, 0.04), (0.018, 0.03)], lambda f: SKIN, f"lowerarm_{side}")
         # Legs: hip to ankle; feet forward from behind the ankle.
         hip, knee, ankle = JOINT[f"thigh_{side}"], JOINT[f"calf_{side}"], JOINT[f"foot_{side}"]
@@ -254,7 +254,7 @@ def walk_like(stride: float, knee: float, arm: float, elbow: float, lean: float,
             bend = knee * max(0.0, math.sin(phase - 2.2)) + 0.1 * knee
             out[f"calf_{side}"] = (quat(LATERAL, bend), None)
             out[f"foot_{side}"] = (quat(LATERAL, -0.25 * stride * math.cos(phase)), None)
-            out[f"upperarm_{side}"] = (compose(quat(LATERAL, arm * ss), quat(FORWARD, -sign * 0.06)), None)
+            out[f"upperarm_{side}"] = (compose(quat(LATERAL, arm * ss), quat(FORWARD, sign * 0.06)), None)
             out[f"lowerarm_{side}"] = (quat(LATERAL, -elbow - 0.3 * elbow * max(0.0, -ss)), None)
         return out
     return pose
@@ -268,7 +268,7 @@ def idle(phi: float) -> dict[str, tuple[np.ndarray, np.ndarray | None]]:
         "head": (quat(VERTICAL, 0.25 * s), None),
     }
     for side, sign in (("l", 1.0), ("r", -1.0)):
-        out[f"upperarm_{side}"] = (compose(quat(LATERAL, 0.04 * c), quat(FORWARD, -sign * 0.08)), None)
+        out[f"upperarm_{side}"] = (compose(quat(LATERAL, 0.04 * c), quat(FORWARD, sign * 0.08)), None)
         out[f"lowerarm_{side}"] = (quat(LATERAL, -0.15 - 0.03 * s), None)
     return out
 

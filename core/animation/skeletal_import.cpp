@@ -24,7 +24,13 @@ Eigen::Affine3d toEigen(const aiMatrix4x4& m) {
     return Eigen::Affine3d(out);
 }
 
-// The file's axes turned into spear's (render::isYUpFormat()).
+Eigen::Affine3d conjugate(const Eigen::Affine3d& axes, const Eigen::Affine3d& m) {
+    return axes * m * axes.inverse();
+}
+
+// The file's axes turned into spear's (render::isYUpFormat()). Every transform of the skeleton and its clips
+// is taken into spear's axes by conjugation (axes * m * axes^-1), not only the top one: so a bone that a file
+// leaves unrotated is unrotated in spear too, and a camera attached to a head bone looks forward with +Z up.
 Eigen::Affine3d axesOf(const std::string& path) {
     Eigen::Affine3d axes = Eigen::Affine3d::Identity();
     if (render::isYUpFormat(path))
@@ -58,7 +64,7 @@ Skeleton readSkeleton(const aiScene& scene, const Eigen::Affine3d& axes, const s
             marked.insert(node);
     }
     Skeleton skeleton;
-    skeleton.rootTransform = axes * toEigen(scene.mRootNode->mTransformation);
+    skeleton.rootTransform = conjugate(axes, toEigen(scene.mRootNode->mTransformation));
     std::map<const aiNode*, int> index;
     std::vector<const aiNode*> stack;
     for (unsigned c = scene.mRootNode->mNumChildren; c-- > 0;)
@@ -72,7 +78,7 @@ Skeleton readSkeleton(const aiScene& scene, const Eigen::Affine3d& axes, const s
         skeleton.names.push_back(node->mName.C_Str());
         skeleton.parents.push_back(node->mParent == scene.mRootNode ? -1 : index.at(node->mParent));
         skeleton.bindLocal.push_back(
-            BoneTransform::fromMatrix(toEigen(node->mTransformation), "importSkeletalMesh"));
+            BoneTransform::fromMatrix(conjugate(axes, toEigen(node->mTransformation)), "importSkeletalMesh"));
         for (unsigned c = node->mNumChildren; c-- > 0;)
             stack.push_back(node->mChildren[c]);
     }
@@ -86,7 +92,7 @@ Skeleton readSkeleton(const aiScene& scene, const Eigen::Affine3d& axes, const s
         for (unsigned b = 0; b < scene.mMeshes[m]->mNumBones; ++b) {
             const aiBone* bone = scene.mMeshes[m]->mBones[b];
             skeleton.inverseBind[std::size_t(skeleton.find(bone->mName.C_Str()))] =
-                toEigen(bone->mOffsetMatrix) * axes.inverse();
+                conjugate(axes, toEigen(bone->mOffsetMatrix));
         }
     skeleton.validate("importSkeletalMesh");
     return skeleton;
@@ -94,8 +100,10 @@ Skeleton readSkeleton(const aiScene& scene, const Eigen::Affine3d& axes, const s
 
 // The file's clips for `skeleton`; a channel of a node that is not a bone is an error with `strict` (a
 // separate animation file), else left out (a skinned mesh file's own clips may move the mesh's node too).
-std::vector<AnimClip> readClips(const aiScene& scene, const Skeleton& skeleton, bool strict,
-                                const std::string& userPath, const char* function) {
+std::vector<AnimClip> readClips(const aiScene& scene, const Skeleton& skeleton, const Eigen::Affine3d& axes,
+                                bool strict, const std::string& userPath, const char* function) {
+    const Eigen::Matrix3d linear = axes.linear();
+    const Eigen::Quaterniond turn(linear);
     std::vector<AnimClip> clips;
     std::set<std::string> names;
     for (unsigned a = 0; a < scene.mNumAnimations; ++a) {
@@ -119,19 +127,22 @@ std::vector<AnimClip> readClips(const aiScene& scene, const Skeleton& skeleton, 
             for (unsigned k = 0; k < channel.mNumPositionKeys; ++k) {
                 const aiVectorKey& key = channel.mPositionKeys[k];
                 track.translations.times.push_back(key.mTime / ticks);
-                track.translations.values.emplace_back(key.mValue.x, key.mValue.y, key.mValue.z);
+                track.translations.values.push_back(
+                    linear * Eigen::Vector3d(key.mValue.x, key.mValue.y, key.mValue.z));
             }
             for (unsigned k = 0; k < channel.mNumRotationKeys; ++k) {
                 const aiQuatKey& key = channel.mRotationKeys[k];
                 track.rotations.times.push_back(key.mTime / ticks);
-                track.rotations.values.emplace_back(key.mValue.w, key.mValue.x, key.mValue.y, key.mValue.z);
-                if (track.rotations.values.back().norm() > 0.0)
-                    track.rotations.values.back().normalize();
+                Eigen::Quaterniond rotation(key.mValue.w, key.mValue.x, key.mValue.y, key.mValue.z);
+                if (rotation.norm() > 0.0) // a zero one stays zero, for validate() to refuse
+                    rotation = turn * rotation.normalized() * turn.conjugate();
+                track.rotations.values.push_back(rotation);
             }
             for (unsigned k = 0; k < channel.mNumScalingKeys; ++k) {
                 const aiVectorKey& key = channel.mScalingKeys[k];
                 track.scales.times.push_back(key.mTime / ticks);
-                track.scales.values.emplace_back(key.mValue.x, key.mValue.y, key.mValue.z);
+                track.scales.values.push_back(linear.cwiseAbs() *
+                                              Eigen::Vector3d(key.mValue.x, key.mValue.y, key.mValue.z));
             }
             clip.tracks.push_back(std::move(track));
         }
@@ -217,7 +228,7 @@ std::shared_ptr<const SkeletalMeshData> readSkeletalMesh(const std::string& path
              "' contains no triangles");
     mesh.validate("importSkeletalMesh");
     out->skin.validate(mesh.positions.size(), out->skeleton.size(), "importSkeletalMesh");
-    out->clips = readClips(*scene, out->skeleton, false, userPath, "importSkeletalMesh");
+    out->clips = readClips(*scene, out->skeleton, axes, false, userPath, "importSkeletalMesh");
     return out;
 }
 
@@ -259,7 +270,8 @@ std::vector<AnimClip> importAnimations(const std::string& userPath, const Skelet
     Assimp::Importer importer;
     std::vector<std::string> filesRead;
     const aiScene* scene = render::readWithAssimp(importer, path, userPath, 0, filesRead, "importAnimations");
-    std::vector<AnimClip> clips = readClips(*scene, skeleton, true, userPath, "importAnimations");
+    std::vector<AnimClip> clips =
+        readClips(*scene, skeleton, axesOf(path), true, userPath, "importAnimations");
     SP_CHECK(!clips.empty(), InvalidArgument, "importAnimations(): '", userPath, "' has no animation clip");
     return clips;
 }

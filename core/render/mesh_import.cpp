@@ -338,10 +338,17 @@ ImportedMeshIds addToScene(Scene& scene, const ImportedMesh& imported, bool shar
             {scene.addMesh(level, key.empty() ? key : key + "@lod" + std::to_string(lods.size())), error});
     if (!lods.empty())
         scene.setMeshLods(ids.mesh, std::move(lods));
+    ids.materials = addMaterialsToScene(scene, imported.materials, shared);
+    return ids;
+}
+
+std::vector<MaterialId> addMaterialsToScene(Scene& scene, const std::vector<ImportedMaterial>& materials,
+                                            bool shared) {
+    std::vector<MaterialId> ids;
     auto texture = [&](const TextureImage& image, TextureEncoding encoding) {
         return scene.addTexture(image, encoding, shared ? contentKey(image, encoding) : std::string());
     };
-    for (const ImportedMaterial& source : imported.materials) {
+    for (const ImportedMaterial& source : materials) {
         Material material = source.material;
         if (source.baseColorTexture)
             material.baseColorTexture = texture(*source.baseColorTexture, TextureEncoding::Srgb);
@@ -350,7 +357,7 @@ ImportedMeshIds addToScene(Scene& scene, const ImportedMesh& imported, bool shar
                 texture(*source.roughnessMetallicTexture, TextureEncoding::Linear);
         if (source.normalTexture)
             material.normalTexture = texture(*source.normalTexture, TextureEncoding::Linear);
-        ids.materials.push_back(scene.addMaterial(material));
+        ids.push_back(scene.addMaterial(material));
     }
     return ids;
 }

@@ -50,5 +50,8 @@ struct ImportedMeshIds {
 // under keys naming their content (content_key.h), so that a renderer drawing several scenes that import
 // the same asset uploads it once (Scene::addMesh).
 ImportedMeshIds addToScene(Scene& scene, const ImportedMesh& imported, bool shared = false);
+// Adds only the materials (and their textures), as addToScene does: one per entry of `materials`.
+std::vector<MaterialId> addMaterialsToScene(Scene& scene, const std::vector<ImportedMaterial>& materials,
+                                            bool shared = false);
 
 } // namespace sp::render

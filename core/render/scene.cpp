@@ -44,6 +44,19 @@ void Scene::updateMesh(MeshId id, MeshData mesh) {
     describe(entry);
 }
 
+void Scene::deformMesh(MeshId id, std::span<const Eigen::Vector3f> positions,
+                       std::span<const Eigen::Vector3f> normals) {
+    MeshEntry& entry = meshes_.get(id, "Scene::deformMesh");
+    SP_CHECK(positions.size() == entry.data.positions.size() && normals.size() == positions.size(),
+             InvalidArgument, "Scene::deformMesh(): ", id, " has ", entry.data.positions.size(),
+             " vertices, got ", positions.size(), " positions and ", normals.size(), " normals");
+    entry.data.positions.assign(positions.begin(), positions.end());
+    entry.data.normals.assign(normals.begin(), normals.end());
+    entry.revision = nextRevision_++;
+    entry.sharedKey.clear();
+    describe(entry); // smooth meshes skip the convexity test (faceted() first): bounds and two passes
+}
+
 void Scene::removeMesh(MeshId id) {
     meshes_.get(id, "Scene::removeMesh");
     instances_.forEach([&](InstanceId instanceId, const Instance& instance) {

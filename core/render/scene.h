@@ -81,6 +81,11 @@ class Scene {
     // draws (an engine's worlds). updateMesh drops the key: the mesh is this scene's own from then on.
     MeshId addMesh(MeshData mesh, std::string sharedKey = {});
     void updateMesh(MeshId id, MeshData mesh);
+    // Moves a mesh's vertices, keeping its triangles, uvs and submeshes (a skinned mesh posed): `positions`
+    // and `normals` (unit) have its vertex count. Bumps the revision, as updateMesh does, without copying the
+    // rest.
+    void deformMesh(MeshId id, std::span<const Eigen::Vector3f> positions,
+                    std::span<const Eigen::Vector3f> normals);
     void removeMesh(MeshId id); // sp::InvalidState while an instance uses it
     const MeshData& mesh(MeshId id) const;
     std::uint64_t meshRevision(MeshId id) const;

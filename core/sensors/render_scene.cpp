@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 
+#include "core/animation/skeletal_mesh_component.h"
 #include "core/base/log.h"
 #include "core/procedural/spline_component.h"
 #include "core/render/content_key.h"
@@ -128,6 +129,8 @@ void RenderScene::untrack(AActor& actor) {
 void RenderScene::track(UActorComponent& component) {
     if (auto* mesh = dynamic_cast<UStaticMeshComponent*>(&component))
         meshComponents_.add(mesh);
+    else if (auto* skinned = dynamic_cast<USkeletalMeshComponent*>(&component))
+        skinnedComponents_.add(skinned);
     else if (const auto* spline = dynamic_cast<const USplineComponent*>(&component))
         splines_.add(spline);
     else if (const auto* light = dynamic_cast<const ULightComponent*>(&component))
@@ -141,6 +144,8 @@ void RenderScene::track(UActorComponent& component) {
 void RenderScene::untrack(UActorComponent& component) {
     if (const auto* mesh = dynamic_cast<const UStaticMeshComponent*>(&component))
         meshComponents_.remove(mesh);
+    else if (const auto* skinned = dynamic_cast<const USkeletalMeshComponent*>(&component))
+        skinnedComponents_.remove(skinned);
     else if (const auto* spline = dynamic_cast<const USplineComponent*>(&component))
         splines_.remove(spline);
     else if (const auto* light = dynamic_cast<const ULightComponent*>(&component))
@@ -163,6 +168,10 @@ void RenderScene::sync() {
         alive.insert(mesh->GetHandle());
         syncMesh(*mesh, library);
     }
+    for (const auto& [sequence, mesh] : skinnedComponents_.items()) {
+        alive.insert(mesh->GetHandle());
+        syncSkinnedMesh(*mesh, library);
+    }
     // Components that are gone: their instance goes, and so do their ids (never reused).
     for (auto it = instances_.begin(); it != instances_.end();) {
         if (alive.count(it->first)) {
@@ -173,6 +182,10 @@ void RenderScene::sync() {
             scene_.removeInstance(it->second.instance);
         for (std::uint32_t id : it->second.ids)
             idInfo_.erase(id);
+        if (auto skinned = skinned_.find(it->first); skinned != skinned_.end()) {
+            removeSkinnedMesh(skinned->second);
+            skinned_.erase(skinned);
+        }
         it = instances_.erase(it);
     }
 
@@ -232,26 +245,35 @@ void RenderScene::sync() {
 
 void RenderScene::syncMesh(UStaticMeshComponent& component,
                            const std::map<std::string, FMaterialDesc>& library) {
-    InstanceEntry& entry = instances_[component.GetHandle()];
     const MeshEntry* mesh = component.StaticMesh.empty() ? nullptr : meshFor(component.GetMeshAsset());
     if (!mesh) { // no mesh (yet): nothing to draw, but ids already handed out stay
+        InstanceEntry& entry = instances_[component.GetHandle()];
         if (entry.instance.isSet())
             scene_.removeInstance(entry.instance);
         entry.instance = {};
         return;
     }
-    const std::size_t slots = scene_.mesh(mesh->mesh).submeshCount();
+    placeInstance(component, mesh->mesh, component.Materials, mesh->importedMaterials, mesh->importedNames,
+                  library);
+}
+
+void RenderScene::placeInstance(const UPrimitiveComponent& component, sp::render::MeshId mesh,
+                                const std::vector<std::string>& materialNames,
+                                const std::vector<sp::render::MaterialId>& imported,
+                                const std::vector<std::string>& importedNames,
+                                const std::map<std::string, FMaterialDesc>& library) {
+    InstanceEntry& entry = instances_[component.GetHandle()];
+    const std::size_t slots = scene_.mesh(mesh).submeshCount();
     sp::render::Instance instance;
-    instance.mesh = mesh->mesh;
+    instance.mesh = mesh;
     instance.transform = worldTransform(component);
     instance.visible = component.bVisible;
     for (std::size_t slot = 0; slot < slots; ++slot) {
-        const std::string name =
-            slot < component.Materials.size() ? component.Materials[slot] : std::string();
+        const std::string name = slot < materialNames.size() ? materialNames[slot] : std::string();
         std::string slotName = name;
-        if (name.empty() && slot < mesh->importedMaterials.size()) {
-            instance.materials.push_back(mesh->importedMaterials[slot]);
-            slotName = mesh->importedNames[slot];
+        if (name.empty() && slot < imported.size()) {
+            instance.materials.push_back(imported[slot]);
+            slotName = importedNames[slot];
         } else {
             instance.materials.push_back(materialFor(name, library));
             if (slotName.empty())
@@ -266,6 +288,60 @@ void RenderScene::syncMesh(UStaticMeshComponent& component,
         scene_.setInstance(entry.instance, instance);
     else
         entry.instance = scene_.addInstance(instance);
+}
+
+void RenderScene::syncSkinnedMesh(USkeletalMeshComponent& component,
+                                  const std::map<std::string, FMaterialDesc>& library) {
+    SkinnedEntry& skinned = skinned_[component.GetHandle()];
+    const std::shared_ptr<const sp::animation::SkeletalMeshData>& asset = component.GetAsset();
+    if (skinned.asset != asset) { // a new mesh (or none): the instance goes until the new mesh is made
+        InstanceEntry& entry = instances_[component.GetHandle()];
+        if (entry.instance.isSet())
+            scene_.removeInstance(entry.instance);
+        entry.instance = {};
+        removeSkinnedMesh(skinned);
+        skinned = SkinnedEntry{};
+        if (!asset)
+            return;
+        skinned.asset = asset;
+        // The component's own copy: its vertices move with its pose (never shared, never simplified).
+        skinned.mesh = scene_.addMesh(asset->mesh.mesh);
+        skinned.importedMaterials =
+            sp::render::addMaterialsToScene(scene_, asset->mesh.materials, /*shared=*/true);
+        for (const sp::render::MaterialId id : skinned.importedMaterials) {
+            sp::render::Material material = scene_.material(id);
+            material.id = nextMaterialValue_++;
+            scene_.setMaterial(id, material);
+        }
+        skinned.poseRevision = component.poseRevision() - 1; // posed below
+    }
+    if (!asset)
+        return;
+    if (skinned.poseRevision != component.poseRevision()) {
+        const sp::animation::SkeletalMeshData& data = *asset;
+        const std::vector<Eigen::Matrix4f> matrices =
+            sp::animation::skinningMatrices(component.componentSpaceTransforms(), data.skeleton.inverseBind);
+        sp::animation::skin(data.mesh.mesh.positions, data.mesh.mesh.normals, data.skin, matrices,
+                            skinned.positions, skinned.normals);
+        scene_.deformMesh(skinned.mesh, skinned.positions, skinned.normals);
+        skinned.poseRevision = component.poseRevision();
+    }
+    std::vector<std::string> importedNames;
+    for (std::size_t i = 0; i < asset->mesh.materials.size(); ++i)
+        importedNames.push_back(asset->mesh.materials[i].name.empty()
+                                    ? component.SkeletalMesh + "#" + std::to_string(i)
+                                    : asset->mesh.materials[i].name);
+    placeInstance(component, skinned.mesh, component.Materials, skinned.importedMaterials, importedNames,
+                  library);
+}
+
+void RenderScene::removeSkinnedMesh(SkinnedEntry& entry) {
+    if (!entry.asset)
+        return;
+    scene_.removeMesh(entry.mesh);
+    for (const sp::render::MaterialId id : entry.importedMaterials)
+        scene_.removeMaterial(id);
+    entry.asset.reset();
 }
 
 void RenderScene::syncDebugLine(const USplineComponent& spline) {

@@ -16,6 +16,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/animation/skeletal_import.h"
 #include "core/reflect/value.h"
 #include "core/render/scene.h"
 #include "core/sensors/material_library.h"
@@ -25,8 +26,10 @@ class AActor;
 class AMaterialLibrary;
 class UActorComponent;
 class ULightComponent;
+class UPrimitiveComponent;
 class USkyAtmosphereComponent;
 class USkyLightComponent;
+class USkeletalMeshComponent;
 class UStaticMeshComponent;
 class USplineComponent;
 
@@ -112,7 +115,25 @@ class RenderScene {
         std::uint32_t id = 0;
     };
 
+    // A posed skinned mesh: the component's own mesh, its vertices skinned again whenever the pose changed.
+    struct SkinnedEntry {
+        std::shared_ptr<const sp::animation::SkeletalMeshData> asset; // what `mesh` was made from
+        sp::render::MeshId mesh;
+        std::vector<sp::render::MaterialId> importedMaterials; // the file's, per submesh
+        std::uint64_t poseRevision = 0;
+        std::vector<Eigen::Vector3f> positions, normals; // skinning's output, kept for its storage
+    };
     void syncMesh(UStaticMeshComponent& component, const std::map<std::string, FMaterialDesc>& library);
+    void syncSkinnedMesh(USkeletalMeshComponent& component,
+                         const std::map<std::string, FMaterialDesc>& library);
+    void removeSkinnedMesh(SkinnedEntry& entry);
+    // The instance of a mesh component: its mesh drawn with one material per slot (an empty name: the file's
+    // own material for the slot, `imported`), ids handed out per slot.
+    void placeInstance(const UPrimitiveComponent& component, sp::render::MeshId mesh,
+                       const std::vector<std::string>& materialNames,
+                       const std::vector<sp::render::MaterialId>& imported,
+                       const std::vector<std::string>& importedNames,
+                       const std::map<std::string, FMaterialDesc>& library);
     void syncDebugLine(const USplineComponent& spline);
     void removeDebugLine(DebugLineEntry& entry);
     const MeshEntry* meshFor(const std::string& name);
@@ -134,6 +155,7 @@ class RenderScene {
 
     PlayOrder<const AMaterialLibrary> libraries_;
     PlayOrder<UStaticMeshComponent> meshComponents_;
+    PlayOrder<USkeletalMeshComponent> skinnedComponents_;
     PlayOrder<const USplineComponent> splines_;
     PlayOrder<const ULightComponent> lightComponents_;
     PlayOrder<const USkyLightComponent> skies_;
@@ -145,6 +167,7 @@ class RenderScene {
     std::map<std::string, MaterialEntry> materials_;
     std::map<std::string, sp::render::TextureId> textures_;
     std::map<sp::reflect::ObjectHandle, InstanceEntry> instances_;
+    std::map<sp::reflect::ObjectHandle, SkinnedEntry> skinned_;
     std::map<sp::reflect::ObjectHandle, DebugLineEntry> debugLines_;
     std::map<std::uint32_t, ObjectIdInfo> idInfo_;
     std::vector<sp::render::LightId> lights_;

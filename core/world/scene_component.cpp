@@ -94,7 +94,19 @@ FTransform USceneComponent::GetRelativeTransform() const {
 
 FTransform USceneComponent::GetComponentTransform() const {
     FTransform transform = GetRelativeTransform();
-    return parent_ ? transform.composedWith(parent_->GetComponentTransform()) : transform;
+    if (!parent_)
+        return transform;
+    return transform.composedWith(AttachSocketName.empty() || !parent_->DoesSocketExist(AttachSocketName)
+                                      ? parent_->GetComponentTransform()
+                                      : parent_->GetSocketTransform(AttachSocketName));
+}
+
+FTransform USceneComponent::GetSocketTransform(const std::string& /*InSocketName*/) const {
+    return GetComponentTransform();
+}
+
+bool USceneComponent::DoesSocketExist(const std::string& /*InSocketName*/) const {
+    return false;
 }
 
 FVector USceneComponent::GetComponentLocation() const {
@@ -137,8 +149,12 @@ FVector USceneComponent::GetUpVector() const {
     return FVector::fromEigen(GetComponentTransform().Rotation.toEigen() * Eigen::Vector3d::UnitZ());
 }
 
-void USceneComponent::AttachToComponent(USceneComponent* Parent, bool bKeepWorldTransform) {
+void USceneComponent::AttachToComponent(USceneComponent* Parent, bool bKeepWorldTransform,
+                                        const std::string& SocketName) {
     SP_CHECK(Parent, sp::InvalidArgument, "USceneComponent.AttachToComponent(): Parent is None");
+    SP_CHECK(SocketName.empty() || Parent->DoesSocketExist(SocketName), sp::NotFound,
+             "USceneComponent.AttachToComponent(): ", Parent->GetDebugName(), " has no socket '", SocketName,
+             "'");
     for (const USceneComponent* p = Parent; p; p = p->parent_)
         SP_CHECK(p != this, sp::InvalidArgument, "USceneComponent.AttachToComponent(): attaching ",
                  GetDebugName(), " to ", Parent->GetDebugName(), " would make a cycle");
@@ -147,8 +163,10 @@ void USceneComponent::AttachToComponent(USceneComponent* Parent, bool bKeepWorld
         std::erase(parent_->children_, this);
     parent_ = Parent;
     Parent->children_.push_back(this);
+    AttachSocketName = SocketName;
     if (bKeepWorldTransform) {
-        const FTransform relative = world.relativeTo(Parent->GetComponentTransform());
+        const FTransform relative = world.relativeTo(
+            SocketName.empty() ? Parent->GetComponentTransform() : Parent->GetSocketTransform(SocketName));
         RelativeLocation = relative.Translation;
         RelativeRotation = FRotator::fromQuaternion(relative.Rotation.toEigen());
         RelativeScale3D = relative.Scale3D;
@@ -161,6 +179,7 @@ void USceneComponent::DetachFromComponent(bool bKeepWorldTransform) {
     const FTransform world = GetComponentTransform();
     std::erase(parent_->children_, this);
     parent_ = nullptr;
+    AttachSocketName.clear();
     if (bKeepWorldTransform) {
         RelativeLocation = world.Translation;
         RelativeRotation = FRotator::fromQuaternion(world.Rotation.toEigen());

@@ -44,6 +44,11 @@ class USceneComponent : public UActorComponent {
     SPPROPERTY()
     bool bVisible = true;
 
+    /// The socket of the attach parent this component follows (a skeletal mesh's bone: a camera on a head);
+    /// empty: the parent itself. A name the parent does not have is followed as the parent itself.
+    SPPROPERTY()
+    std::string AttachSocketName;
+
     /// Sets the location relative to the attach parent; fails for a static component in play.
     SPFUNCTION()
     void SetRelativeLocation(const FVector& NewLocation);
@@ -112,13 +117,25 @@ class USceneComponent : public UActorComponent {
     SPFUNCTION()
     FVector GetUpVector() const;
 
-    /// Attaches this component to Parent; keeps the world transform when bKeepWorldTransform is true.
+    /// Attaches this component to Parent, following its socket SocketName when one is named (a skeletal
+    /// mesh's bone); keeps the world transform when bKeepWorldTransform is true. Raises NotFoundError when
+    /// Parent has no socket SocketName.
     SPFUNCTION()
-    void AttachToComponent(USceneComponent* Parent, bool bKeepWorldTransform = false);
+    void AttachToComponent(USceneComponent* Parent, bool bKeepWorldTransform = false,
+                           const std::string& SocketName = "");
 
     /// Detaches this component from its parent; keeps the world transform when bKeepWorldTransform is true.
     SPFUNCTION()
     void DetachFromComponent(bool bKeepWorldTransform = true);
+
+    /// Returns the world transform of socket InSocketName: the component's own for an empty name or a
+    /// component without sockets; a skeletal mesh's sockets are its bones.
+    SPFUNCTION()
+    virtual FTransform GetSocketTransform(const std::string& InSocketName) const;
+
+    /// Returns true when the component has a socket named InSocketName.
+    SPFUNCTION()
+    virtual bool DoesSocketExist(const std::string& InSocketName) const;
 
     /// Returns the component this one is attached to, or None.
     SPFUNCTION()

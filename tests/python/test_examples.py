@@ -117,6 +117,22 @@ def test_render_image_writes_the_contact_sheet(transport: str, tmp_path: Path) -
 
 
 @pytest.mark.parametrize("transport", TRANSPORTS)
+def test_animated_characters_walk_run_and_carry_a_head_camera(transport: str, tmp_path: Path) -> None:
+    out = tmp_path / "characters.png"
+    result = run_example("animated_characters.py", "--frames", "12", "--out", str(out), *TRANSPORTS[transport])
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "18 bones: root, pelvis, spine_01" in result.stdout
+    assert "clips: idle, walk, run" in result.stdout
+    assert "frame 12/12 (" in result.stdout
+    # 13 frames of 1/60 s into the 1.1 s walk (the set-up frame and 12 more).
+    assert "walker at 0.22 s of 'walk'" in result.stdout
+    assert "runner pose: 18 bones x 4 x 4" in result.stdout
+    image = Image.open(out)
+    assert image.size == (3 * 320, 4 * (240 + 20))
+    assert len(set(image.convert("RGB").getdata())) > 1000  # rendered rooms and people, not blank frames
+
+
+@pytest.mark.parametrize("transport", TRANSPORTS)
 def test_control_pawn_flies_the_player_and_hands_it_over(transport: str, tmp_path: Path) -> None:
     out = tmp_path / "views.png"
     result = run_example("control_pawn.py", "--frames", "40", "--out", str(out), *TRANSPORTS[transport])

@@ -69,6 +69,13 @@ void bind_USceneComponent(py::module_& m) {
             Calls::set_bVisible<PyCall>(self.get<Self>("USceneComponent.bVisible"), value);
         },
         "Whether the component is rendered.");
+    cls.def_property(
+        "AttachSocketName",
+        [](const Ref<Self>& self) { return Calls::get_AttachSocketName<PyCall>(self.get<Self>("USceneComponent.AttachSocketName")); },
+        [](const Ref<Self>& self, const PyArg& value) {
+            Calls::set_AttachSocketName<PyCall>(self.get<Self>("USceneComponent.AttachSocketName"), value);
+        },
+        "The socket of the attach parent this component follows (a skeletal mesh's bone: a camera on a head);\nempty: the parent itself. A name the parent does not have is followed as the parent itself.");
     sp::pybind::nameProperties(cls);
     cls.def(
         "SetRelativeLocation",
@@ -199,13 +206,14 @@ void bind_USceneComponent(py::module_& m) {
         "GetUpVector(self) -> FVector\n\nReturns the unit vector along the component's world-space Z axis.");
     cls.def(
         "AttachToComponent",
-        [](const Ref<Self>& self, const py::args& positional, const PyArg& Parent, const PyArg& bKeepWorldTransform, const py::kwargs& extra) -> py::object {
+        [](const Ref<Self>& self, const py::args& positional, const PyArg& Parent, const PyArg& bKeepWorldTransform, const PyArg& SocketName, const py::kwargs& extra) -> py::object {
             // The parameters in order; the array lives until the call returns.
-            return Calls::call_AttachToComponent<PyCall>(self, {positional, extra, std::array<const PyArg*, 2>{&Parent, &bKeepWorldTransform}, true});
+            return Calls::call_AttachToComponent<PyCall>(self, {positional, extra, std::array<const PyArg*, 3>{&Parent, &bKeepWorldTransform, &SocketName}, true});
         },
         py::arg("Parent") = sp::pybind::missingArgument(),
         py::arg("bKeepWorldTransform") = sp::pybind::missingArgument(),
-        "AttachToComponent(self, *, Parent: USceneComponent, bKeepWorldTransform: bool = ...) -> None\n\nAttaches this component to Parent; keeps the world transform when bKeepWorldTransform is true.");
+        py::arg("SocketName") = sp::pybind::missingArgument(),
+        "AttachToComponent(self, *, Parent: USceneComponent, bKeepWorldTransform: bool = ..., SocketName: str = ...) -> None\n\nAttaches this component to Parent, following its socket SocketName when one is named (a skeletal\nmesh's bone); keeps the world transform when bKeepWorldTransform is true. Raises NotFoundError when\nParent has no socket SocketName.");
     cls.def(
         "DetachFromComponent",
         [](const Ref<Self>& self, const py::args& positional, const PyArg& bKeepWorldTransform, const py::kwargs& extra) -> py::object {
@@ -214,6 +222,22 @@ void bind_USceneComponent(py::module_& m) {
         },
         py::arg("bKeepWorldTransform") = sp::pybind::missingArgument(),
         "DetachFromComponent(self, *, bKeepWorldTransform: bool = ...) -> None\n\nDetaches this component from its parent; keeps the world transform when bKeepWorldTransform is true.");
+    cls.def(
+        "GetSocketTransform",
+        [](const Ref<Self>& self, const py::args& positional, const PyArg& InSocketName, const py::kwargs& extra) -> py::object {
+            // The parameters in order; the array lives until the call returns.
+            return Calls::call_GetSocketTransform<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&InSocketName}, true});
+        },
+        py::arg("InSocketName") = sp::pybind::missingArgument(),
+        "GetSocketTransform(self, *, InSocketName: str) -> FTransform\n\nReturns the world transform of socket InSocketName: the component's own for an empty name or a\ncomponent without sockets; a skeletal mesh's sockets are its bones.");
+    cls.def(
+        "DoesSocketExist",
+        [](const Ref<Self>& self, const py::args& positional, const PyArg& InSocketName, const py::kwargs& extra) -> py::object {
+            // The parameters in order; the array lives until the call returns.
+            return Calls::call_DoesSocketExist<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&InSocketName}, true});
+        },
+        py::arg("InSocketName") = sp::pybind::missingArgument(),
+        "DoesSocketExist(self, *, InSocketName: str) -> bool\n\nReturns true when the component has a socket named InSocketName.");
     cls.def(
         "GetAttachParent",
         [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {

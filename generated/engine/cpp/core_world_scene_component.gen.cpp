@@ -82,6 +82,16 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
                 Calls::set_bVisible<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
+        t.properties.push_back({
+            "AttachSocketName",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
+            "The socket of the attach parent this component follows (a skeletal mesh's bone: a camera on a head);\nempty: the parent itself. A name the parent does not have is followed as the parent itself.",
+            false,
+            [](const void* self) { return Calls::get_AttachSocketName<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_AttachSocketName<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
         t.functions.push_back({
             "SetRelativeLocation",
             "Sets the location relative to the attach parent; fails for a static component in play.",
@@ -262,11 +272,12 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
         });
         t.functions.push_back({
             "AttachToComponent",
-            "Attaches this component to Parent; keeps the world transform when bKeepWorldTransform is true.",
+            "Attaches this component to Parent, following its socket SocketName when one is named (a skeletal\nmesh's bone); keeps the world transform when bKeepWorldTransform is true. Raises NotFoundError when\nParent has no socket SocketName.",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
                 {"Parent", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "USceneComponent"), false, false},
                 {"bKeepWorldTransform", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), true, false},
+                {"SocketName", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), true, false},
             },
             false,
             false,
@@ -282,6 +293,28 @@ const sp::reflect::TypeInfo& USceneComponent::StaticClass() {
             false,
             false,
             [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_DetachFromComponent<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "GetSocketTransform",
+            "Returns the world transform of socket InSocketName: the component's own for an empty name or a\ncomponent without sockets; a skeletal mesh's sockets are its bones.",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FTransform"),
+            {
+                {"InSocketName", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetSocketTransform<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "DoesSocketExist",
+            "Returns true when the component has a socket named InSocketName.",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
+            {
+                {"InSocketName", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_DoesSocketExist<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetAttachParent",

@@ -76,6 +76,15 @@ struct USceneComponentCalls {
         sp::reflect::notifyPropertyChanged(self, "bVisible");
     }
 
+    template <typename Call> static typename Call::Result get_AttachSocketName(const Self* self) {
+        const auto& value = self->AttachSocketName;
+        return Call::template result<std::string>(value);
+    }
+    template <typename Call> static void set_AttachSocketName(Self* self, const typename Call::Input& value) {
+        self->AttachSocketName = Call::template input<std::string>(value, "USceneComponent.AttachSocketName");
+        sp::reflect::notifyPropertyChanged(self, "AttachSocketName");
+    }
+
     template <typename Call, typename Target>
     static typename Call::Result call_SetRelativeLocation(const Target& target, typename Call::Args args) {
         static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
@@ -264,16 +273,18 @@ struct USceneComponentCalls {
 
     template <typename Call, typename Target>
     static typename Call::Result call_AttachToComponent(const Target& target, typename Call::Args args) {
-        static constexpr std::array<sp::reflect::ParamDesc, 2> kParams{{
+        static constexpr std::array<sp::reflect::ParamDesc, 3> kParams{{
             {"Parent", "USceneComponent.AttachToComponent(): argument 'Parent'", true},
             {"bKeepWorldTransform", "USceneComponent.AttachToComponent(): argument 'bKeepWorldTransform'", false},
+            {"SocketName", "USceneComponent.AttachToComponent(): argument 'SocketName'", false},
         }};
         const Call call(args, "USceneComponent.AttachToComponent()", kParams);
         Self* self = Call::template object<Self>(target, "USceneComponent.AttachToComponent()");
         USceneComponent* ParentArg = call.template arg<USceneComponent*>(0);
         sp::reflect::checkNotNone(ParentArg, "USceneComponent.AttachToComponent(): argument 'Parent'");
         bool bKeepWorldTransformArg = call.given(1) ? call.template arg<bool>(1) : bool(false);
-        self->AttachToComponent(ParentArg, bKeepWorldTransformArg);
+        std::string SocketNameArg = call.given(2) ? call.template arg<std::string>(2) : std::string("");
+        self->AttachToComponent(ParentArg, bKeepWorldTransformArg, SocketNameArg);
         return Call::none();
     }
 
@@ -287,6 +298,31 @@ struct USceneComponentCalls {
         bool bKeepWorldTransformArg = call.given(0) ? call.template arg<bool>(0) : bool(true);
         self->DetachFromComponent(bKeepWorldTransformArg);
         return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_GetSocketTransform(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"InSocketName", "USceneComponent.GetSocketTransform(): argument 'InSocketName'", true},
+        }};
+        const Call call(args, "USceneComponent.GetSocketTransform()", kParams);
+        const Self* self = Call::template object<const Self>(target, "USceneComponent.GetSocketTransform()");
+        std::string InSocketNameArg = call.template arg<std::string>(0);
+        auto result = self->GetSocketTransform(InSocketNameArg);
+        sp::reflect::checkResultFields(result, "USceneComponent.GetSocketTransform()");
+        return Call::template result<FTransform>(result);
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_DoesSocketExist(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"InSocketName", "USceneComponent.DoesSocketExist(): argument 'InSocketName'", true},
+        }};
+        const Call call(args, "USceneComponent.DoesSocketExist()", kParams);
+        const Self* self = Call::template object<const Self>(target, "USceneComponent.DoesSocketExist()");
+        std::string InSocketNameArg = call.template arg<std::string>(0);
+        auto result = self->DoesSocketExist(InSocketNameArg);
+        return Call::template result<bool>(result);
     }
 
     template <typename Call, typename Target>

@@ -3,6 +3,7 @@
 // bodies. Generated code includes only the headers' files it needs; this is for code written by hand.
 #pragma once
 
+#include "generated/engine/cpp/core_animation_skeletal_mesh_component.gen.h"
 #include "generated/engine/cpp/core_gameplay_character.gen.h"
 #include "generated/engine/cpp/core_gameplay_controller.gen.h"
 #include "generated/engine/cpp/core_gameplay_game_mode.gen.h"

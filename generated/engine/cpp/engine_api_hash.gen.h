@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "eb06e5f5781f15ff";
+inline constexpr char kApiHash[] = "516912d78e0d0a82";
 } // namespace sp::generated::engine

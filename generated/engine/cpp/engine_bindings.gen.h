@@ -5,6 +5,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include "generated/engine/cpp/core_animation_skeletal_mesh_component.bindings.gen.h"
 #include "generated/engine/cpp/core_gameplay_character.bindings.gen.h"
 #include "generated/engine/cpp/core_gameplay_controller.bindings.gen.h"
 #include "generated/engine/cpp/core_gameplay_game_mode.bindings.gen.h"

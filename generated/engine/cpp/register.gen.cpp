@@ -9,6 +9,7 @@
 namespace sp::generated::engine {
 const sp::reflect::EnumInfo& enumInfo_EAntiAliasingMethod();
 const sp::reflect::EnumInfo& enumInfo_EAutoExposureMethod();
+const sp::reflect::EnumInfo& enumInfo_EBoneSpaces();
 const sp::reflect::EnumInfo& enumInfo_ECameraModality();
 const sp::reflect::EnumInfo& enumInfo_ECameraRenderer();
 const sp::reflect::EnumInfo& enumInfo_ECameraToneCurve();
@@ -42,6 +43,7 @@ const sp::reflect::TypeInfo& typeInfo_APlayerStart();
 const sp::reflect::TypeInfo& typeInfo_APointLight();
 const sp::reflect::TypeInfo& typeInfo_ARecastNavMesh();
 const sp::reflect::TypeInfo& typeInfo_ARectLight();
+const sp::reflect::TypeInfo& typeInfo_ASkeletalMeshActor();
 const sp::reflect::TypeInfo& typeInfo_ASkyAtmosphere();
 const sp::reflect::TypeInfo& typeInfo_ASkyLight();
 const sp::reflect::TypeInfo& typeInfo_ASplineActor();
@@ -85,6 +87,7 @@ const sp::reflect::TypeInfo& typeInfo_UNavigationSystemV1();
 const sp::reflect::TypeInfo& typeInfo_UPCGComponent();
 const sp::reflect::TypeInfo& typeInfo_UPointLightComponent();
 const sp::reflect::TypeInfo& typeInfo_URectLightComponent();
+const sp::reflect::TypeInfo& typeInfo_USkeletalMeshComponent();
 const sp::reflect::TypeInfo& typeInfo_USkyAtmosphereComponent();
 const sp::reflect::TypeInfo& typeInfo_USkyLightComponent();
 const sp::reflect::TypeInfo& typeInfo_USpFuncComponent();
@@ -100,6 +103,7 @@ extern "C" void spear_register_engine_types() {
     auto& registry = sp::reflect::Registry::get();
     registry.add(gen::enumInfo_EAntiAliasingMethod());
     registry.add(gen::enumInfo_EAutoExposureMethod());
+    registry.add(gen::enumInfo_EBoneSpaces());
     registry.add(gen::enumInfo_ECameraModality());
     registry.add(gen::enumInfo_ECameraRenderer());
     registry.add(gen::enumInfo_ECameraToneCurve());
@@ -133,6 +137,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(gen::typeInfo_APointLight());
     registry.add(gen::typeInfo_ARecastNavMesh());
     registry.add(gen::typeInfo_ARectLight());
+    registry.add(gen::typeInfo_ASkeletalMeshActor());
     registry.add(gen::typeInfo_ASkyAtmosphere());
     registry.add(gen::typeInfo_ASkyLight());
     registry.add(gen::typeInfo_ASplineActor());
@@ -176,6 +181,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(gen::typeInfo_UPCGComponent());
     registry.add(gen::typeInfo_UPointLightComponent());
     registry.add(gen::typeInfo_URectLightComponent());
+    registry.add(gen::typeInfo_USkeletalMeshComponent());
     registry.add(gen::typeInfo_USkyAtmosphereComponent());
     registry.add(gen::typeInfo_USkyLightComponent());
     registry.add(gen::typeInfo_USpFuncComponent());
@@ -198,6 +204,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::typeInfo_USpFuncComponent());
     registry.remove(gen::typeInfo_USkyLightComponent());
     registry.remove(gen::typeInfo_USkyAtmosphereComponent());
+    registry.remove(gen::typeInfo_USkeletalMeshComponent());
     registry.remove(gen::typeInfo_URectLightComponent());
     registry.remove(gen::typeInfo_UPointLightComponent());
     registry.remove(gen::typeInfo_UPCGComponent());
@@ -241,6 +248,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::typeInfo_ASplineActor());
     registry.remove(gen::typeInfo_ASkyLight());
     registry.remove(gen::typeInfo_ASkyAtmosphere());
+    registry.remove(gen::typeInfo_ASkeletalMeshActor());
     registry.remove(gen::typeInfo_ARectLight());
     registry.remove(gen::typeInfo_ARecastNavMesh());
     registry.remove(gen::typeInfo_APointLight());
@@ -274,8 +282,9 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::enumInfo_ECameraToneCurve());
     registry.remove(gen::enumInfo_ECameraRenderer());
     registry.remove(gen::enumInfo_ECameraModality());
+    registry.remove(gen::enumInfo_EBoneSpaces());
     registry.remove(gen::enumInfo_EAutoExposureMethod());
     registry.remove(gen::enumInfo_EAntiAliasingMethod());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "eb06e5f5781f15ff"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "516912d78e0d0a82"; }

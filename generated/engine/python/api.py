@@ -41,6 +41,7 @@ __all__ = [
     "APointLight",
     "ARecastNavMesh",
     "ARectLight",
+    "ASkeletalMeshActor",
     "ASkyAtmosphere",
     "ASkyLight",
     "ASplineActor",
@@ -54,6 +55,7 @@ __all__ = [
     "BP_Crate",
     "EAntiAliasingMethod",
     "EAutoExposureMethod",
+    "EBoneSpaces",
     "ECameraModality",
     "ECameraRenderer",
     "ECameraToneCurve",
@@ -102,6 +104,7 @@ __all__ = [
     "URectLightComponent",
     "USceneComponent",
     "UShapeComponent",
+    "USkeletalMeshComponent",
     "USkyAtmosphereComponent",
     "USkyLightComponent",
     "USpFuncComponent",
@@ -135,6 +138,13 @@ class EAutoExposureMethod(enum.IntEnum):
     AEM_Histogram = 0
     AEM_Basic = 1
     AEM_Manual = 2
+
+
+class EBoneSpaces(enum.IntEnum):
+    """The space a bone's transform is given in."""
+
+    WorldSpace = 0
+    ComponentSpace = 1
 
 
 class ECameraModality(enum.IntEnum):
@@ -913,6 +923,25 @@ class ARectLight(AActor):
     __sp_class__: ClassVar[str] = "ARectLight"
 
 
+class ASkeletalMeshActorAsync(AActorAsync):
+    """ASkeletalMeshActor's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class ASkeletalMeshActorSend(AActorSend):
+    """ASkeletalMeshActor's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class ASkeletalMeshActor(AActor):
+    """An actor that shows one skeletal mesh (a character without a controller: a crowd member, a mannequin)."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "ASkeletalMeshActor"
+
+
 class ASkyAtmosphereAsync(AActorAsync):
     """ASkyAtmosphere's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
 
@@ -1482,6 +1511,25 @@ class URectLightComponent(ULightComponent):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "URectLightComponent"
+
+
+class USkeletalMeshComponentAsync(UPrimitiveComponentAsync):
+    """USkeletalMeshComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class USkeletalMeshComponentSend(UPrimitiveComponentSend):
+    """USkeletalMeshComponent's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class USkeletalMeshComponent(UPrimitiveComponent):
+    """A component that renders a skinned mesh, posed by an animation clip or by bone transforms."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "USkeletalMeshComponent"
 
 
 class USkyAtmosphereComponentAsync(USceneComponentAsync):

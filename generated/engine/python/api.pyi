@@ -34,6 +34,7 @@ __all__ = [
     "APointLight",
     "ARecastNavMesh",
     "ARectLight",
+    "ASkeletalMeshActor",
     "ASkyAtmosphere",
     "ASkyLight",
     "ASplineActor",
@@ -47,6 +48,7 @@ __all__ = [
     "BP_Crate",
     "EAntiAliasingMethod",
     "EAutoExposureMethod",
+    "EBoneSpaces",
     "ECameraModality",
     "ECameraRenderer",
     "ECameraToneCurve",
@@ -95,6 +97,7 @@ __all__ = [
     "URectLightComponent",
     "USceneComponent",
     "UShapeComponent",
+    "USkeletalMeshComponent",
     "USkyAtmosphereComponent",
     "USkyLightComponent",
     "USpFuncComponent",
@@ -150,6 +153,15 @@ class EAutoExposureMethod(enum.IntEnum):
     """Exposure exactly as set (the default): the same scene always gives the same pixels, so a dataset's
     views stay comparable.
     """
+
+
+class EBoneSpaces(enum.IntEnum):
+    """The space a bone's transform is given in."""
+
+    WorldSpace = 0
+    """The world's."""
+    ComponentSpace = 1
+    """The component's: what the bone is relative to the skeletal mesh component."""
 
 
 class ECameraModality(enum.IntEnum):
@@ -1905,6 +1917,34 @@ class ARectLight(AActor):
         """The light (also the root component); it faces along the actor's forward axis."""
 
 
+class ASkeletalMeshActorAsync(AActorAsync):
+    """ASkeletalMeshActor's functions, called asynchronously: each returns a Future."""
+    ...
+
+
+class ASkeletalMeshActorSend(AActorSend):
+    """ASkeletalMeshActor's functions, sent without waiting for a result (fire and forget)."""
+    ...
+
+
+class ASkeletalMeshActor(AActor):
+    """An actor that shows one skeletal mesh (a character without a controller: a crowd member, a mannequin)."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> ASkeletalMeshActorAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> ASkeletalMeshActorSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def SkeletalMeshComponent(self) -> USkeletalMeshComponent:
+        """The skeletal mesh component (also the root component)."""
+
+
 class ASkyAtmosphereAsync(AActorAsync):
     """ASkyAtmosphere's functions, called asynchronously: each returns a Future."""
     ...
@@ -2392,9 +2432,13 @@ class USceneComponentAsync(UActorComponentAsync):
 
     def GetUpVector(self) -> Future[FVector]: ...
 
-    def AttachToComponent(self, *, Parent: USceneComponent, bKeepWorldTransform: bool = False) -> Future[None]: ...
+    def AttachToComponent(self, *, Parent: USceneComponent, bKeepWorldTransform: bool = False, SocketName: str = "") -> Future[None]: ...
 
     def DetachFromComponent(self, *, bKeepWorldTransform: bool = True) -> Future[None]: ...
+
+    def GetSocketTransform(self, *, InSocketName: str) -> Future[FTransform]: ...
+
+    def DoesSocketExist(self, *, InSocketName: str) -> Future[bool]: ...
 
     def GetAttachParent(self) -> Future[USceneComponent | None]: ...
 
@@ -2438,9 +2482,13 @@ class USceneComponentSend(UActorComponentSend):
 
     def GetUpVector(self) -> None: ...
 
-    def AttachToComponent(self, *, Parent: USceneComponent, bKeepWorldTransform: bool = False) -> None: ...
+    def AttachToComponent(self, *, Parent: USceneComponent, bKeepWorldTransform: bool = False, SocketName: str = "") -> None: ...
 
     def DetachFromComponent(self, *, bKeepWorldTransform: bool = True) -> None: ...
+
+    def GetSocketTransform(self, *, InSocketName: str) -> None: ...
+
+    def DoesSocketExist(self, *, InSocketName: str) -> None: ...
 
     def GetAttachParent(self) -> None: ...
 
@@ -2495,6 +2543,15 @@ class USceneComponent(UActorComponent):
     @bVisible.setter
     def bVisible(self, value: bool) -> None: ...
 
+    @property
+    def AttachSocketName(self) -> str:
+        """The socket of the attach parent this component follows (a skeletal mesh's bone: a camera on a head);
+        empty: the parent itself. A name the parent does not have is followed as the parent itself.
+        """
+
+    @AttachSocketName.setter
+    def AttachSocketName(self, value: str) -> None: ...
+
     def SetRelativeLocation(self, *, NewLocation: FVector) -> None:
         """Sets the location relative to the attach parent; fails for a static component in play."""
 
@@ -2546,11 +2603,22 @@ class USceneComponent(UActorComponent):
     def GetUpVector(self) -> FVector:
         """Returns the unit vector along the component's world-space Z axis."""
 
-    def AttachToComponent(self, *, Parent: USceneComponent, bKeepWorldTransform: bool = False) -> None:
-        """Attaches this component to Parent; keeps the world transform when bKeepWorldTransform is true."""
+    def AttachToComponent(self, *, Parent: USceneComponent, bKeepWorldTransform: bool = False, SocketName: str = "") -> None:
+        """Attaches this component to Parent, following its socket SocketName when one is named (a skeletal
+        mesh's bone); keeps the world transform when bKeepWorldTransform is true. Raises NotFoundError when
+        Parent has no socket SocketName.
+        """
 
     def DetachFromComponent(self, *, bKeepWorldTransform: bool = True) -> None:
         """Detaches this component from its parent; keeps the world transform when bKeepWorldTransform is true."""
+
+    def GetSocketTransform(self, *, InSocketName: str) -> FTransform:
+        """Returns the world transform of socket InSocketName: the component's own for an empty name or a
+        component without sockets; a skeletal mesh's sockets are its bones.
+        """
+
+    def DoesSocketExist(self, *, InSocketName: str) -> bool:
+        """Returns true when the component has a socket named InSocketName."""
 
     def GetAttachParent(self) -> USceneComponent | None:
         """Returns the component this one is attached to, or None."""
@@ -4688,6 +4756,216 @@ class URectLightComponent(ULightComponent):
 
     def SetSourceHeight(self, *, NewHeight: float) -> None:
         """Sets SourceHeight (metres, finite, >= 1e-6)."""
+
+
+class USkeletalMeshComponentAsync(UPrimitiveComponentAsync):
+    """USkeletalMeshComponent's functions, called asynchronously: each returns a Future."""
+
+    def SetSkeletalMesh(self, *, NewMesh: str) -> Future[bool]: ...
+
+    def SetMaterial(self, *, ElementIndex: int, Material: str) -> Future[None]: ...
+
+    def GetNumBones(self) -> Future[int]: ...
+
+    def GetBoneName(self, *, BoneIndex: int) -> Future[str]: ...
+
+    def GetBoneIndex(self, *, BoneName: str) -> Future[int]: ...
+
+    def GetBoneTransform(self, *, BoneName: str, Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> Future[FTransform]: ...
+
+    def GetAnimationNames(self) -> Future[list[str]]: ...
+
+    def PlayAnimation(self, *, NewAnimToPlay: str, bLoop: bool) -> Future[None]: ...
+
+    def Play(self, *, bLoop: bool) -> Future[None]: ...
+
+    def Stop(self) -> Future[None]: ...
+
+    def IsPlaying(self) -> Future[bool]: ...
+
+    def SetPosition(self, *, InPos: float) -> Future[None]: ...
+
+    def GetPosition(self) -> Future[float]: ...
+
+    def GetPlayLength(self) -> Future[float]: ...
+
+    def SetPlayRate(self, *, Rate: float) -> Future[None]: ...
+
+    def GetPlayRate(self) -> Future[float]: ...
+
+    def SetAnimToPlay(self, *, NewAnimToPlay: str) -> Future[None]: ...
+
+    def GetBoneTransforms(self, *, Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> Future[NDArray[np.float64]]: ...
+
+    def SetBoneTransforms(self, *, Transforms: NDArray[np.float64], Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> Future[None]: ...
+
+
+class USkeletalMeshComponentSend(UPrimitiveComponentSend):
+    """USkeletalMeshComponent's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetSkeletalMesh(self, *, NewMesh: str) -> None: ...
+
+    def SetMaterial(self, *, ElementIndex: int, Material: str) -> None: ...
+
+    def GetNumBones(self) -> None: ...
+
+    def GetBoneName(self, *, BoneIndex: int) -> None: ...
+
+    def GetBoneIndex(self, *, BoneName: str) -> None: ...
+
+    def GetBoneTransform(self, *, BoneName: str, Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> None: ...
+
+    def GetAnimationNames(self) -> None: ...
+
+    def PlayAnimation(self, *, NewAnimToPlay: str, bLoop: bool) -> None: ...
+
+    def Play(self, *, bLoop: bool) -> None: ...
+
+    def Stop(self) -> None: ...
+
+    def IsPlaying(self) -> None: ...
+
+    def SetPosition(self, *, InPos: float) -> None: ...
+
+    def GetPosition(self) -> None: ...
+
+    def GetPlayLength(self) -> None: ...
+
+    def SetPlayRate(self, *, Rate: float) -> None: ...
+
+    def GetPlayRate(self) -> None: ...
+
+    def SetAnimToPlay(self, *, NewAnimToPlay: str) -> None: ...
+
+    def GetBoneTransforms(self, *, Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> None: ...
+
+    def SetBoneTransforms(self, *, Transforms: NDArray[np.float64], Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> None: ...
+
+
+class USkeletalMeshComponent(UPrimitiveComponent):
+    """A component that renders a skinned mesh, posed by an animation clip or by bone transforms."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> USkeletalMeshComponentAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> USkeletalMeshComponentSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def SkeletalMesh(self) -> str:
+        """The skeletal mesh asset: a skinned mesh file (glTF 2.0 skins; FBX where assimp reads it), found as
+        every asset is ("/Game/characters/humanoid.glb" is the built-in humanoid). Setting it is
+        SetSkeletalMesh().
+        """
+
+    @SkeletalMesh.setter
+    def SkeletalMesh(self, value: str) -> None: ...
+
+    @property
+    def Materials(self) -> list[str]:
+        """One material asset per mesh slot; an empty entry uses the file's own material for that slot."""
+
+    @Materials.setter
+    def Materials(self, value: list[str]) -> None: ...
+
+    @property
+    def AnimToPlay(self) -> str:
+        """The clip played from the start of play and by Play(): one of the mesh file's clips ("walk"), or
+        "<file>#<clip>" for a clip of another file made for the same skeleton. Empty: the bind pose.
+        PlayAnimation() sets it.
+        """
+
+    @AnimToPlay.setter
+    def AnimToPlay(self, value: str) -> None: ...
+
+    @property
+    def bLooping(self) -> bool:
+        """Whether the clip starts again from its beginning when it ends (else it holds its last pose and stops)."""
+
+    @bLooping.setter
+    def bLooping(self, value: bool) -> None: ...
+
+    @property
+    def PlayRate(self) -> float:
+        """Seconds of the clip per second of the world's time: 1 plays it as authored, negative backwards."""
+
+    @PlayRate.setter
+    def PlayRate(self, value: float) -> None: ...
+
+    def SetSkeletalMesh(self, *, NewMesh: str) -> bool:
+        """Sets the skeletal mesh asset. Returns true; raises NotFoundError naming the file when there is none,
+        InvalidArgumentError when it cannot be read or has no skeleton. The pose becomes the bind pose, and
+        the clip to play is looked up again in the new mesh's file.
+        """
+
+    def SetMaterial(self, *, ElementIndex: int, Material: str) -> None:
+        """Sets the material of one slot, growing the list as needed."""
+
+    def GetNumBones(self) -> int:
+        """Returns the number of bones of the skeleton (0 without a mesh)."""
+
+    def GetBoneName(self, *, BoneIndex: int) -> str:
+        """Returns the name of bone BoneIndex; raises InvalidArgumentError when there is no such bone."""
+
+    def GetBoneIndex(self, *, BoneName: str) -> int:
+        """Returns the index of the bone named BoneName, -1 when there is none (UE's INDEX_NONE)."""
+
+    def GetBoneTransform(self, *, BoneName: str, Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> FTransform:
+        """Returns the transform of bone BoneName in the current pose, in Space; raises NotFoundError naming the
+        bone when the skeleton has none of that name.
+        """
+
+    def GetAnimationNames(self) -> list[str]:
+        """Returns the names of the clips of the mesh's file, in the file's order."""
+
+    def PlayAnimation(self, *, NewAnimToPlay: str, bLoop: bool) -> None:
+        """Plays NewAnimToPlay (a clip name, as AnimToPlay) from its start; raises NotFoundError naming the clip
+        and those there are when there is no such clip, InvalidArgumentError when a file's clip is for another
+        skeleton.
+        """
+
+    def Play(self, *, bLoop: bool) -> None:
+        """Plays AnimToPlay from where it is (from its start when it had ended), looping when bLoop is true."""
+
+    def Stop(self) -> None:
+        """Stops the clip where it is: the pose stays."""
+
+    def IsPlaying(self) -> bool:
+        """Returns true while a clip plays."""
+
+    def SetPosition(self, *, InPos: float) -> None:
+        """Moves the clip to InPos seconds (clamped to its length) and poses the mesh there."""
+
+    def GetPosition(self) -> float:
+        """Returns where the clip is, in seconds."""
+
+    def GetPlayLength(self) -> float:
+        """Returns the length of the clip to play in seconds (0 without one)."""
+
+    def SetPlayRate(self, *, Rate: float) -> None:
+        """Sets PlayRate (finite)."""
+
+    def GetPlayRate(self) -> float:
+        """Returns PlayRate."""
+
+    def SetAnimToPlay(self, *, NewAnimToPlay: str) -> None:
+        """Sets AnimToPlay (checked as PlayAnimation() checks it) without playing it."""
+
+    def GetBoneTransforms(self, *, Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> NDArray[np.float64]:
+        """Returns every bone's transform in the current pose as a float64 array (bones, 4, 4) of homogeneous
+        matrices (column 3 the translation), in Space: the whole pose in one call.
+        """
+
+    def SetBoneTransforms(self, *, Transforms: NDArray[np.float64], Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> None:
+        """Poses the mesh with Transforms, a float64 array (bones, 4, 4) as GetBoneTransforms() returns, in
+        Space; the clip stops. Raises InvalidArgumentError, leaving the pose as it was, when the shape is not
+        (GetNumBones(), 4, 4), a value is not finite, a bottom row is not (0, 0, 0, 1) or a matrix scales an
+        axis to zero.
+        """
 
 
 class USkyAtmosphereComponentAsync(USceneComponentAsync):

@@ -20,7 +20,7 @@ from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
 from . import type_codes as _t
-from .api import EAntiAliasingMethod, EAutoExposureMethod, ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EGlobalIlluminationQuality, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESkyLightSourceType, ESplineCoordinateSpace, FCameraPixels, FFrameTimings, FHitResult, FLensDistortion, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
+from .api import EAntiAliasingMethod, EAutoExposureMethod, EBoneSpaces, ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EGlobalIlluminationQuality, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESkyLightSourceType, ESplineCoordinateSpace, FCameraPixels, FFrameTimings, FHitResult, FLensDistortion, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
 
@@ -672,6 +672,17 @@ class ARectLight(AActor, api.ARectLight):
 _register_proxy(ARectLight)
 
 
+class ASkeletalMeshActor(AActor, api.ASkeletalMeshActor):
+    __slots__ = ()
+
+    @property
+    def SkeletalMeshComponent(self) -> api.USkeletalMeshComponent:
+        return cast("api.USkeletalMeshComponent", self._sp_get("ASkeletalMeshActor", "SkeletalMeshComponent", _t.T_USkeletalMeshComponent))
+
+
+_register_proxy(ASkeletalMeshActor)
+
+
 class ASkyAtmosphere(AActor, api.ASkyAtmosphere):
     __slots__ = ()
 
@@ -957,6 +968,14 @@ class USceneComponent(UActorComponent, api.USceneComponent):
     def bVisible(self, value: bool) -> None:
         self._sp_set("USceneComponent", "bVisible", value)
 
+    @property
+    def AttachSocketName(self) -> str:
+        return cast("str", self._sp_get("USceneComponent", "AttachSocketName", _t.T_str))
+
+    @AttachSocketName.setter
+    def AttachSocketName(self, value: str) -> None:
+        self._sp_set("USceneComponent", "AttachSocketName", value)
+
     def SetRelativeLocation(self, *, NewLocation: FVector) -> None:
         return cast(None, self._sp_call("USceneComponent", "SetRelativeLocation", {"NewLocation": NewLocation}, _t.T_void))  # a Future when queued by call_async
 
@@ -1008,11 +1027,17 @@ class USceneComponent(UActorComponent, api.USceneComponent):
     def GetUpVector(self) -> FVector:
         return cast("FVector", self._sp_call("USceneComponent", "GetUpVector", {}, _t.T_FVector))
 
-    def AttachToComponent(self, *, Parent: api.USceneComponent, bKeepWorldTransform: bool = _DEFAULT) -> None:
-        return cast(None, self._sp_call("USceneComponent", "AttachToComponent", {"Parent": Parent, "bKeepWorldTransform": bKeepWorldTransform}, _t.T_void))  # a Future when queued by call_async
+    def AttachToComponent(self, *, Parent: api.USceneComponent, bKeepWorldTransform: bool = _DEFAULT, SocketName: str = _DEFAULT) -> None:
+        return cast(None, self._sp_call("USceneComponent", "AttachToComponent", {"Parent": Parent, "bKeepWorldTransform": bKeepWorldTransform, "SocketName": SocketName}, _t.T_void))  # a Future when queued by call_async
 
     def DetachFromComponent(self, *, bKeepWorldTransform: bool = _DEFAULT) -> None:
         return cast(None, self._sp_call("USceneComponent", "DetachFromComponent", {"bKeepWorldTransform": bKeepWorldTransform}, _t.T_void))  # a Future when queued by call_async
+
+    def GetSocketTransform(self, *, InSocketName: str) -> FTransform:
+        return cast("FTransform", self._sp_call("USceneComponent", "GetSocketTransform", {"InSocketName": InSocketName}, _t.T_FTransform))
+
+    def DoesSocketExist(self, *, InSocketName: str) -> bool:
+        return cast("bool", self._sp_call("USceneComponent", "DoesSocketExist", {"InSocketName": InSocketName}, _t.T_bool))
 
     def GetAttachParent(self) -> api.USceneComponent | None:
         return cast("api.USceneComponent | None", self._sp_call("USceneComponent", "GetAttachParent", {}, _t.T_USceneComponent_or_None))
@@ -2160,6 +2185,110 @@ class URectLightComponent(ULightComponent, api.URectLightComponent):
 
 
 _register_proxy(URectLightComponent)
+
+
+class USkeletalMeshComponent(UPrimitiveComponent, api.USkeletalMeshComponent):
+    __slots__ = ()
+
+    @property
+    def SkeletalMesh(self) -> str:
+        return cast("str", self._sp_get("USkeletalMeshComponent", "SkeletalMesh", _t.T_str))
+
+    @SkeletalMesh.setter
+    def SkeletalMesh(self, value: str) -> None:
+        self._sp_set("USkeletalMeshComponent", "SkeletalMesh", value)
+
+    @property
+    def Materials(self) -> list[str]:
+        return cast("list[str]", self._sp_get("USkeletalMeshComponent", "Materials", _t.T_list_of_str))
+
+    @Materials.setter
+    def Materials(self, value: list[str]) -> None:
+        self._sp_set("USkeletalMeshComponent", "Materials", value)
+
+    @property
+    def AnimToPlay(self) -> str:
+        return cast("str", self._sp_get("USkeletalMeshComponent", "AnimToPlay", _t.T_str))
+
+    @AnimToPlay.setter
+    def AnimToPlay(self, value: str) -> None:
+        self._sp_set("USkeletalMeshComponent", "AnimToPlay", value)
+
+    @property
+    def bLooping(self) -> bool:
+        return cast("bool", self._sp_get("USkeletalMeshComponent", "bLooping", _t.T_bool))
+
+    @bLooping.setter
+    def bLooping(self, value: bool) -> None:
+        self._sp_set("USkeletalMeshComponent", "bLooping", value)
+
+    @property
+    def PlayRate(self) -> float:
+        return cast("float", self._sp_get("USkeletalMeshComponent", "PlayRate", _t.T_float))
+
+    @PlayRate.setter
+    def PlayRate(self, value: float) -> None:
+        self._sp_set("USkeletalMeshComponent", "PlayRate", value)
+
+    def SetSkeletalMesh(self, *, NewMesh: str) -> bool:
+        return cast("bool", self._sp_call("USkeletalMeshComponent", "SetSkeletalMesh", {"NewMesh": NewMesh}, _t.T_bool))
+
+    def SetMaterial(self, *, ElementIndex: int, Material: str) -> None:
+        return cast(None, self._sp_call("USkeletalMeshComponent", "SetMaterial", {"ElementIndex": ElementIndex, "Material": Material}, _t.T_void))  # a Future when queued by call_async
+
+    def GetNumBones(self) -> int:
+        return cast("int", self._sp_call("USkeletalMeshComponent", "GetNumBones", {}, _t.T_int))
+
+    def GetBoneName(self, *, BoneIndex: int) -> str:
+        return cast("str", self._sp_call("USkeletalMeshComponent", "GetBoneName", {"BoneIndex": BoneIndex}, _t.T_str))
+
+    def GetBoneIndex(self, *, BoneName: str) -> int:
+        return cast("int", self._sp_call("USkeletalMeshComponent", "GetBoneIndex", {"BoneName": BoneName}, _t.T_int))
+
+    def GetBoneTransform(self, *, BoneName: str, Space: EBoneSpaces = _DEFAULT) -> FTransform:
+        return cast("FTransform", self._sp_call("USkeletalMeshComponent", "GetBoneTransform", {"BoneName": BoneName, "Space": Space}, _t.T_FTransform))
+
+    def GetAnimationNames(self) -> list[str]:
+        return cast("list[str]", self._sp_call("USkeletalMeshComponent", "GetAnimationNames", {}, _t.T_list_of_str))
+
+    def PlayAnimation(self, *, NewAnimToPlay: str, bLoop: bool) -> None:
+        return cast(None, self._sp_call("USkeletalMeshComponent", "PlayAnimation", {"NewAnimToPlay": NewAnimToPlay, "bLoop": bLoop}, _t.T_void))  # a Future when queued by call_async
+
+    def Play(self, *, bLoop: bool) -> None:
+        return cast(None, self._sp_call("USkeletalMeshComponent", "Play", {"bLoop": bLoop}, _t.T_void))  # a Future when queued by call_async
+
+    def Stop(self) -> None:
+        return cast(None, self._sp_call("USkeletalMeshComponent", "Stop", {}, _t.T_void))  # a Future when queued by call_async
+
+    def IsPlaying(self) -> bool:
+        return cast("bool", self._sp_call("USkeletalMeshComponent", "IsPlaying", {}, _t.T_bool))
+
+    def SetPosition(self, *, InPos: float) -> None:
+        return cast(None, self._sp_call("USkeletalMeshComponent", "SetPosition", {"InPos": InPos}, _t.T_void))  # a Future when queued by call_async
+
+    def GetPosition(self) -> float:
+        return cast("float", self._sp_call("USkeletalMeshComponent", "GetPosition", {}, _t.T_float))
+
+    def GetPlayLength(self) -> float:
+        return cast("float", self._sp_call("USkeletalMeshComponent", "GetPlayLength", {}, _t.T_float))
+
+    def SetPlayRate(self, *, Rate: float) -> None:
+        return cast(None, self._sp_call("USkeletalMeshComponent", "SetPlayRate", {"Rate": Rate}, _t.T_void))  # a Future when queued by call_async
+
+    def GetPlayRate(self) -> float:
+        return cast("float", self._sp_call("USkeletalMeshComponent", "GetPlayRate", {}, _t.T_float))
+
+    def SetAnimToPlay(self, *, NewAnimToPlay: str) -> None:
+        return cast(None, self._sp_call("USkeletalMeshComponent", "SetAnimToPlay", {"NewAnimToPlay": NewAnimToPlay}, _t.T_void))  # a Future when queued by call_async
+
+    def GetBoneTransforms(self, *, Space: EBoneSpaces = _DEFAULT) -> NDArray[np.float64]:
+        return cast("NDArray[np.float64]", self._sp_call("USkeletalMeshComponent", "GetBoneTransforms", {"Space": Space}, _t.T_array_float64))
+
+    def SetBoneTransforms(self, *, Transforms: NDArray[np.float64], Space: EBoneSpaces = _DEFAULT) -> None:
+        return cast(None, self._sp_call("USkeletalMeshComponent", "SetBoneTransforms", {"Transforms": Transforms, "Space": Space}, _t.T_void))  # a Future when queued by call_async
+
+
+_register_proxy(USkeletalMeshComponent)
 
 
 class USkyAtmosphereComponent(USceneComponent, api.USkyAtmosphereComponent):

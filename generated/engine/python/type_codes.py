@@ -67,6 +67,7 @@ T_UPrimitiveComponent_or_None = TypeCode("object", "UPrimitiveComponent", option
 T_URectLightComponent = TypeCode("object", "URectLightComponent")
 T_USceneComponent = TypeCode("object", "USceneComponent")
 T_USceneComponent_or_None = TypeCode("object", "USceneComponent", optional=True)
+T_USkeletalMeshComponent = TypeCode("object", "USkeletalMeshComponent")
 T_USkyAtmosphereComponent = TypeCode("object", "USkyAtmosphereComponent")
 T_USkyLightComponent = TypeCode("object", "USkyLightComponent")
 T_USphereComponent = TypeCode("object", "USphereComponent")

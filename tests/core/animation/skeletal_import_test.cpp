@@ -26,7 +26,11 @@ TEST(SkeletalImport, ReadsTheHumanoidsSkeletonSkinAndClips) {
     // In spear's axes (Z up): the joints where the script put them.
     const auto bind = s.componentSpace(s.bindLocal);
     EXPECT_TRUE(bind[std::size_t(head)].translation().isApprox(Eigen::Vector3d(0, 0, 1.57), 1e-5));
-    EXPECT_TRUE(bind[std::size_t(calf)].translation().isApprox(Eigen::Vector3d(0, -0.10, 0.50), 1e-5));
+    EXPECT_TRUE(bind[std::size_t(calf)].translation().isApprox(Eigen::Vector3d(0, 0.10, 0.50), 1e-5));
+    // glTF's Y-up axes are taken out of every bone, not only the top one: the file's unrotated bones are
+    // unrotated here (a camera on the head looks forward, +Z up).
+    EXPECT_TRUE(bind[std::size_t(head)].linear().isIdentity(1e-6));
+    EXPECT_TRUE(s.rootTransform.matrix().isIdentity(1e-12));
     // The bind pose skins every vertex onto itself.
     const auto matrices = skinningMatrices(bind, s.inverseBind);
     std::vector<Eigen::Vector3f> positions, normals;

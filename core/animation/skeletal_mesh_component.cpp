@@ -1,0 +1,298 @@
+#include "core/animation/skeletal_mesh_component.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/base/error.h"
+
+namespace {
+
+FTransform toTransform(const Eigen::Affine3d& matrix) {
+    const sp::animation::BoneTransform bone =
+        sp::animation::BoneTransform::fromMatrix(matrix, "USkeletalMeshComponent");
+    FTransform out;
+    out.Translation = FVector::fromEigen(bone.translation);
+    out.Rotation = FQuat::fromEigen(bone.rotation);
+    out.Scale3D = FVector::fromEigen(bone.scale);
+    return out;
+}
+
+std::string shapeText(const std::vector<int64_t>& shape) {
+    std::string out = "(";
+    for (std::size_t i = 0; i < shape.size(); ++i)
+        out += (i ? ", " : "") + std::to_string(shape[i]);
+    return out + (shape.size() == 1 ? ",)" : ")");
+}
+
+std::string joined(const std::vector<std::string>& names) {
+    std::string out;
+    for (const std::string& name : names)
+        out += (out.empty() ? "'" : ", '") + name + "'";
+    return out.empty() ? "none" : out;
+}
+
+} // namespace
+
+bool USkeletalMeshComponent::SetSkeletalMesh(const std::string& NewMesh) {
+    std::shared_ptr<const sp::animation::SkeletalMeshData> asset;
+    if (!NewMesh.empty())
+        asset = sp::animation::importSkeletalMesh(NewMesh); // NotFound, InvalidArgument: nothing changed
+    asset_ = std::move(asset);
+    SkeletalMesh = NewMesh;
+    otherClips_.reset();
+    clip_ = nullptr;
+    playing_ = false;
+    position_ = 0.0;
+    setPose(asset_ ? asset_->skeleton.bindLocal : sp::animation::Pose{});
+    if (!AnimToPlay.empty() && asset_) {
+        try {
+            clip_ = findClip(AnimToPlay, "USkeletalMeshComponent.SetSkeletalMesh");
+        } catch (const sp::Error&) { // the clip is not this mesh's: kept by name, posed as bound
+            clip_ = nullptr;
+        }
+    }
+    return true;
+}
+
+void USkeletalMeshComponent::SetMaterial(int ElementIndex, const std::string& Material) {
+    SP_CHECK(ElementIndex >= 0 && ElementIndex < 256, sp::InvalidArgument,
+             "USkeletalMeshComponent.SetMaterial(): ElementIndex ", ElementIndex,
+             " is out of range [0, 256)");
+    if (Materials.size() <= size_t(ElementIndex))
+        Materials.resize(size_t(ElementIndex) + 1);
+    Materials[size_t(ElementIndex)] = Material;
+}
+
+int USkeletalMeshComponent::GetNumBones() const {
+    return asset_ ? int(asset_->skeleton.size()) : 0;
+}
+
+std::string USkeletalMeshComponent::GetBoneName(int BoneIndex) const {
+    SP_CHECK(BoneIndex >= 0 && BoneIndex < GetNumBones(), sp::InvalidArgument,
+             "USkeletalMeshComponent.GetBoneName(): BoneIndex ", BoneIndex, " is out of range [0, ",
+             GetNumBones(), ")");
+    return asset_->skeleton.names[std::size_t(BoneIndex)];
+}
+
+int USkeletalMeshComponent::GetBoneIndex(const std::string& BoneName) const {
+    return asset_ ? asset_->skeleton.find(BoneName) : -1;
+}
+
+int USkeletalMeshComponent::boneOrThrow(const std::string& name, const char* function,
+                                        const char* what) const {
+    const int bone = GetBoneIndex(name);
+    SP_CHECK(bone >= 0, sp::NotFound, "USkeletalMeshComponent.", function, "(): ", GetDebugName(), " has no ",
+             what, " '", name, "'",
+             asset_ ? " (its skeleton's bones: " + joined(asset_->skeleton.names) + ")"
+                    : std::string(" (it has no SkeletalMesh)"));
+    return bone;
+}
+
+Eigen::Affine3d USkeletalMeshComponent::worldMatrix() const {
+    const FTransform world = GetComponentTransform();
+    Eigen::Affine3d matrix = Eigen::Affine3d::Identity();
+    matrix.translation() = world.Translation.toEigen();
+    matrix.linear() =
+        world.Rotation.toEigen().normalized().toRotationMatrix() * world.Scale3D.toEigen().asDiagonal();
+    return matrix;
+}
+
+FTransform USkeletalMeshComponent::GetBoneTransform(const std::string& BoneName, EBoneSpaces Space) const {
+    const int bone = boneOrThrow(BoneName, "GetBoneTransform", "bone");
+    const FTransform component = toTransform(componentSpace_[std::size_t(bone)]);
+    return Space == EBoneSpaces::ComponentSpace ? component : component.composedWith(GetComponentTransform());
+}
+
+FTransform USkeletalMeshComponent::GetSocketTransform(const std::string& InSocketName) const {
+    if (InSocketName.empty())
+        return GetComponentTransform();
+    boneOrThrow(InSocketName, "GetSocketTransform", "socket");
+    return GetBoneTransform(InSocketName, EBoneSpaces::WorldSpace);
+}
+
+bool USkeletalMeshComponent::DoesSocketExist(const std::string& InSocketName) const {
+    return GetBoneIndex(InSocketName) >= 0;
+}
+
+std::vector<std::string> USkeletalMeshComponent::GetAnimationNames() const {
+    std::vector<std::string> names;
+    if (asset_)
+        for (const sp::animation::AnimClip& clip : asset_->clips)
+            names.push_back(clip.name);
+    return names;
+}
+
+const sp::animation::AnimClip* USkeletalMeshComponent::findClip(const std::string& name,
+                                                                const char* function) {
+    if (name.empty())
+        return nullptr;
+    SP_CHECK(asset_, sp::InvalidState, function, "(): ", GetDebugName(), " has no SkeletalMesh to animate");
+    const std::size_t hash = name.rfind('#');
+    if (hash == std::string::npos) {
+        const sp::animation::AnimClip* clip = asset_->findClip(name);
+        SP_CHECK(clip, sp::NotFound, function, "(): '", SkeletalMesh, "' has no clip '", name,
+                 "' (its clips: ", joined(GetAnimationNames()),
+                 "; a clip of another file is '<file>#<clip>')");
+        return clip;
+    }
+    const std::string file = name.substr(0, hash), clipName = name.substr(hash + 1);
+    auto clips = std::make_shared<const std::vector<sp::animation::AnimClip>>(
+        sp::animation::importAnimations(file, asset_->skeleton));
+    for (const sp::animation::AnimClip& clip : *clips)
+        if (clip.name == clipName) {
+            otherClips_ = std::move(clips);
+            return &clip;
+        }
+    std::vector<std::string> names;
+    for (const sp::animation::AnimClip& clip : *clips)
+        names.push_back(clip.name);
+    SP_THROW(sp::NotFound, function, "(): '", file, "' has no clip '", clipName,
+             "' (its clips: ", joined(names), ")");
+}
+
+void USkeletalMeshComponent::SetAnimToPlay(const std::string& NewAnimToPlay) {
+    // Without a mesh yet (a scene file sets the clip before or after the mesh) the name is kept and checked
+    // when the mesh is set.
+    clip_ = asset_ ? findClip(NewAnimToPlay, "USkeletalMeshComponent.SetAnimToPlay") : nullptr;
+    AnimToPlay = NewAnimToPlay;
+    position_ = 0.0;
+    playing_ = false;
+}
+
+void USkeletalMeshComponent::PlayAnimation(const std::string& NewAnimToPlay, bool bLoop) {
+    SP_CHECK(!NewAnimToPlay.empty(), sp::InvalidArgument,
+             "USkeletalMeshComponent.PlayAnimation(): NewAnimToPlay is empty (Stop() stops a clip)");
+    clip_ = findClip(NewAnimToPlay, "USkeletalMeshComponent.PlayAnimation");
+    AnimToPlay = NewAnimToPlay;
+    bLooping = bLoop;
+    position_ = PlayRate < 0.0 ? clip_->duration : 0.0;
+    playing_ = true;
+    poseFromClip();
+}
+
+void USkeletalMeshComponent::Play(bool bLoop) {
+    SP_CHECK(clip_, sp::InvalidState, "USkeletalMeshComponent.Play(): ", GetDebugName(),
+             " has no clip to play (set AnimToPlay or call PlayAnimation())");
+    bLooping = bLoop;
+    if (!bLooping && (PlayRate >= 0.0 ? position_ >= clip_->duration : position_ <= 0.0))
+        position_ = PlayRate >= 0.0 ? 0.0 : clip_->duration; // it had ended: from the start again
+    playing_ = true;
+    poseFromClip();
+}
+
+void USkeletalMeshComponent::Stop() {
+    playing_ = false;
+}
+
+void USkeletalMeshComponent::SetPosition(double InPos) {
+    SP_CHECK(std::isfinite(InPos), sp::InvalidArgument, "USkeletalMeshComponent.SetPosition(): InPos is ",
+             InPos);
+    position_ = std::clamp(InPos, 0.0, GetPlayLength());
+    poseFromClip();
+}
+
+double USkeletalMeshComponent::GetPlayLength() const {
+    return clip_ ? clip_->duration : 0.0;
+}
+
+void USkeletalMeshComponent::SetPlayRate(double Rate) {
+    sp::checkSetting(std::isfinite(Rate), "USkeletalMeshComponent", "PlayRate", "finite", Rate);
+    PlayRate = Rate;
+}
+
+sp::reflect::SpArray<double> USkeletalMeshComponent::GetBoneTransforms(EBoneSpaces Space) const {
+    sp::reflect::SpArray<double> out("bone_transforms");
+    out.resize({int64_t(componentSpace_.size()), 4, 4});
+    const Eigen::Affine3d world =
+        Space == EBoneSpaces::WorldSpace ? worldMatrix() : Eigen::Affine3d::Identity();
+    double* data = out.data();
+    for (std::size_t bone = 0; bone < componentSpace_.size(); ++bone) {
+        const Eigen::Matrix4d m = (world * componentSpace_[bone]).matrix();
+        for (int row = 0; row < 4; ++row)
+            for (int column = 0; column < 4; ++column)
+                data[16 * bone + std::size_t(4 * row + column)] = m(row, column);
+    }
+    return out;
+}
+
+void USkeletalMeshComponent::SetBoneTransforms(const sp::reflect::SpArray<double>& Transforms,
+                                               EBoneSpaces Space) {
+    constexpr const char* kFunction = "USkeletalMeshComponent.SetBoneTransforms";
+    const auto& shape = Transforms.getShape();
+    const int64_t bones = GetNumBones();
+    SP_CHECK(asset_, sp::InvalidState, kFunction, "(): ", GetDebugName(), " has no SkeletalMesh to pose");
+    SP_CHECK(shape.size() == 3 && shape[0] == bones && shape[1] == 4 && shape[2] == 4, sp::InvalidArgument,
+             kFunction, "(): Transforms must have shape (", bones, ", 4, 4), got ", shapeText(shape));
+    const Eigen::Affine3d toComponent =
+        Space == EBoneSpaces::WorldSpace ? worldMatrix().inverse() : Eigen::Affine3d::Identity();
+    std::vector<Eigen::Affine3d> component(std::size_t(bones), Eigen::Affine3d::Identity());
+    const double* data = Transforms.data();
+    for (std::size_t bone = 0; bone < std::size_t(bones); ++bone) {
+        Eigen::Matrix4d m;
+        for (int row = 0; row < 4; ++row)
+            for (int column = 0; column < 4; ++column)
+                m(row, column) = data[16 * bone + std::size_t(4 * row + column)];
+        SP_CHECK(m.allFinite(), sp::InvalidArgument, kFunction, "(): Transforms[", bone, "] ('",
+                 asset_->skeleton.names[bone], "') is not finite");
+        SP_CHECK(m.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1), 1e-9), sp::InvalidArgument, kFunction,
+                 "(): Transforms[", bone, "] ('", asset_->skeleton.names[bone], "') has bottom row (",
+                 m(3, 0), ", ", m(3, 1), ", ", m(3, 2), ", ", m(3, 3), "), not (0, 0, 0, 1)");
+        component[bone] = toComponent * Eigen::Affine3d(m);
+    }
+    sp::animation::Pose local =
+        asset_->skeleton.localFromComponent(component, kFunction); // zero scales refused
+    playing_ = false;
+    setPose(std::move(local));
+}
+
+void USkeletalMeshComponent::setPose(sp::animation::Pose local) {
+    componentSpace_ = asset_ ? asset_->skeleton.componentSpace(local) : std::vector<Eigen::Affine3d>{};
+    ++poseRevision_;
+}
+
+void USkeletalMeshComponent::poseFromClip() {
+    if (asset_ && clip_)
+        setPose(clip_->sample(asset_->skeleton, position_));
+}
+
+Eigen::AlignedBox3d USkeletalMeshComponent::GetLocalBounds() const {
+    if (!asset_)
+        return {};
+    Eigen::Vector3f min, max;
+    asset_->mesh.mesh.bounds(min, max);
+    return {min.cast<double>(), max.cast<double>()};
+}
+
+ECollisionPrimitive USkeletalMeshComponent::GetMeshCollisionPrimitive() const {
+    // A posed mesh has no fixed shape to collide as; a character collides as its capsule (ACharacter), and a
+    // user may choose a primitive around the bind pose's bounds (CollisionPrimitive).
+    return ECollisionPrimitive::NoCollision;
+}
+
+void USkeletalMeshComponent::BeginPlay() {
+    if (clip_ && !playing_) {
+        position_ = PlayRate < 0.0 ? clip_->duration : 0.0;
+        playing_ = true;
+        poseFromClip();
+    }
+}
+
+void USkeletalMeshComponent::TickComponent(double deltaSeconds) {
+    if (!playing_ || !clip_)
+        return;
+    const double length = clip_->duration;
+    position_ += deltaSeconds * PlayRate;
+    if (length <= 0.0) {
+        position_ = 0.0;
+    } else if (position_ > length || position_ < 0.0) {
+        if (bLooping) {
+            position_ = std::fmod(position_, length);
+            if (position_ < 0.0)
+                position_ += length;
+        } else {
+            position_ = std::clamp(position_, 0.0, length);
+            playing_ = false; // it holds its last pose
+        }
+    }
+    poseFromClip();
+}

@@ -1,0 +1,227 @@
+"""Skeletal meshes (USkeletalMeshComponent, ASkeletalMeshActor): the built-in humanoid's skeleton, the bind pose
+rendering as the same file's static mesh does, clips playing, whole poses read and set as arrays, bones as
+sockets, and bad input refused with the pose left as it was; both transports."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from numpy.typing import NDArray
+
+import spear
+
+ROOT = Path(__file__).resolve().parents[2]
+HUMANOID = "/Game/characters/humanoid.glb"
+M = spear.ECameraModality
+WORLD, COMPONENT = spear.EBoneSpaces.WorldSpace, spear.EBoneSpaces.ComponentSpace
+
+
+def _character(game: spear.UWorld, name: str = "Person", x: float = 0.0) -> spear.USkeletalMeshComponent:
+    actor = game.spawn_actor(uclass=spear.ASkeletalMeshActor, name=name, location=spear.FVector(x, 0.0, 0.0))
+    mesh = actor.SkeletalMeshComponent
+    mesh.SetSkeletalMesh(NewMesh=HUMANOID)
+    return mesh
+
+
+def _front_camera(game: spear.UWorld, modalities: list[spear.ECameraModality], side: bool = False, size: int = 64
+                  ) -> spear.UCameraSensorComponent:
+    """A camera 4 m in front of a character at the origin looking back at it (it faces +X), or at its left side."""
+    location, yaw = ((0.0, 4.0, 1.0), -90.0) if side else ((4.0, 0.0, 1.0), 180.0)
+    camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera", location=spear.FVector(*location),
+                              rotation=spear.FRotator(Yaw=yaw)).CameraSensor
+    camera.Width, camera.Height, camera.FOV = size, size, 30.0
+    camera.Modalities = modalities
+    return camera
+
+
+def test_the_humanoid_is_what_its_script_makes() -> None:
+    # The committed character is generated, not edited: the script compares it with what it makes now.
+    script = ROOT / "scripts" / "make_humanoid.py"
+    result = subprocess.run([sys.executable, str(script), "--check"], capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stdout + result.stderr
+
+
+def test_the_humanoid_has_a_named_skeleton_and_clips(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        mesh = _character(game, x=2.0)
+        assert mesh.GetNumBones() == 18
+        assert mesh.GetBoneName(BoneIndex=0) == "root"
+        assert mesh.GetBoneIndex(BoneName="head") > 0
+        assert mesh.GetBoneIndex(BoneName="tail") == -1
+        assert mesh.GetAnimationNames() == ["idle", "walk", "run"]
+        head = mesh.GetBoneTransform(BoneName="head", Space=WORLD)
+        local = mesh.GetBoneTransform(BoneName="head", Space=COMPONENT)
+    with instance.end_frame():
+        pass
+    assert (head.Translation.X, head.Translation.Y, head.Translation.Z) == pytest.approx((2.0, 0.0, 1.57), abs=1e-5)
+    assert (local.Translation.X, local.Translation.Z) == pytest.approx((0.0, 1.57), abs=1e-5)
+
+
+def test_the_bind_pose_renders_as_the_static_mesh_of_the_same_file(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        skinned = _character(game)
+        # Large enough in the image that the static copy is drawn at full detail (imported static meshes get
+        # simplified levels for where they are small; a skinned mesh never does).
+        camera = _front_camera(game, [M.Depth, M.ObjectIds], size=256)
+    with instance.end_frame():
+        skinned_pixels = camera.read_pixels()
+    with instance.begin_frame():
+        skinned.bVisible = False
+        static = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Statue").StaticMeshComponent
+        static.SetStaticMesh(NewMesh=HUMANOID)
+    with instance.end_frame():
+        static_pixels = camera.read_pixels()
+    skinned_depth, static_depth = skinned_pixels["depth"], static_pixels["depth"]
+    assert (skinned_depth > 0).sum() > 5000  # the figure fills part of the view
+    assert np.array_equal(skinned_depth > 0, static_depth > 0)
+    # Within 2 mm (a pixel here is 8 mm across): the static copy's depth is its finest level's, which may still
+    # leave out vertices whose removal moves no outline by half a pixel.
+    assert np.abs(skinned_depth - static_depth).max() < 2e-3
+    ids = np.unique(skinned_pixels["object_ids"])
+    assert len(ids[ids != 0]) == 4  # skin, shirt, trousers, shoes: one id per material slot
+
+
+def _silhouette(camera: spear.UCameraSensorComponent) -> NDArray[np.bool_]:
+    return np.asarray(camera.read_pixels()["depth"] > 0)
+
+
+def test_a_playing_clip_moves_the_limbs_and_the_image(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        mesh = _character(game)
+        camera = _front_camera(game, [M.Depth], side=True)  # from the side: the legs swing across the view
+        bind_foot = mesh.GetBoneTransform(BoneName="foot_l", Space=COMPONENT).Translation
+    with instance.end_frame():
+        standing = _silhouette(camera)
+    with instance.begin_frame():
+        mesh.PlayAnimation(NewAnimToPlay="walk", bLoop=True)
+        assert mesh.IsPlaying() and mesh.GetPlayLength() == pytest.approx(1.1, abs=1e-3)
+    with instance.end_frame():
+        pass
+    for _ in range(16):  # 17 frames of 1/60 s: about a quarter of the 1.1 s cycle, the stride near its widest
+        with instance.begin_frame():
+            pass
+        with instance.end_frame():
+            pass
+    with instance.begin_frame():
+        position = mesh.GetPosition()
+        foot = mesh.GetBoneTransform(BoneName="foot_l", Space=COMPONENT).Translation
+    with instance.end_frame():
+        walking = _silhouette(camera)
+    assert position == pytest.approx(17 / 60, abs=1e-6)
+    assert abs(foot.X - bind_foot.X) > 0.1  # the left leg swung along the walking direction
+    assert (standing != walking).sum() > 40
+    # Stopped, the pose stays; SetPosition poses it at once; a looping clip wraps around.
+    with instance.begin_frame():
+        mesh.Stop()
+        held = mesh.GetBoneTransforms(Space=COMPONENT)
+    with instance.end_frame():
+        pass
+    with instance.begin_frame():
+        assert not mesh.IsPlaying()
+        assert np.array_equal(mesh.GetBoneTransforms(Space=COMPONENT), held)
+        mesh.SetPosition(InPos=0.0)
+        assert not np.allclose(mesh.GetBoneTransforms(Space=COMPONENT)[:, :3, 3], held[:, :3, 3], atol=1e-3)
+        mesh.PlayAnimation(NewAnimToPlay="run", bLoop=True)
+        mesh.SetPosition(InPos=0.69)
+    with instance.end_frame():
+        pass
+    with instance.begin_frame():
+        assert mesh.GetPosition() == pytest.approx(0.69 + 1 / 60 - 0.7, abs=1e-6)  # past the end: from the start
+    with instance.end_frame():
+        pass
+
+
+def test_a_whole_pose_is_read_and_set_as_one_array(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        mesh = _character(game, x=1.0)
+        pose = mesh.GetBoneTransforms(Space=COMPONENT)
+        world = mesh.GetBoneTransforms(Space=WORLD)
+    with instance.end_frame():
+        pass
+    assert pose.shape == (18, 4, 4) and pose.dtype == np.float64
+    assert np.allclose(world[:, :3, 3] - pose[:, :3, 3], [1.0, 0.0, 0.0])
+    # The head turned 90 degrees about Z, and its world pose set back: a round trip.
+    head = 5
+    turned = pose.copy()
+    turned[head, :3, :3] = turned[head, :3, :3] @ np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    with instance.begin_frame():
+        assert mesh.GetBoneName(BoneIndex=head) == "head"
+        mesh.SetBoneTransforms(Transforms=turned, Space=COMPONENT)
+        back = mesh.GetBoneTransforms(Space=COMPONENT)
+        mesh.SetBoneTransforms(Transforms=world, Space=WORLD)
+        restored = mesh.GetBoneTransforms(Space=COMPONENT)
+    with instance.end_frame():
+        pass
+    assert np.allclose(back, turned, atol=1e-9)
+    assert np.allclose(restored, pose, atol=1e-9)
+
+
+def test_a_camera_follows_a_bone_it_is_attached_to(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        mesh = _character(game)
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="HeadCamera").CameraSensor
+        camera.AttachToComponent(Parent=mesh, SocketName="head")
+        assert camera.AttachSocketName == "head"
+        before = camera.GetComponentLocation()
+        forward, up = camera.GetForwardVector(), camera.GetUpVector()
+        mesh.PlayAnimation(NewAnimToPlay="run", bLoop=True)
+        mesh.SetPosition(InPos=0.2)
+        during = camera.GetComponentLocation()
+        head = mesh.GetSocketTransform(InSocketName="head").Translation
+        with pytest.raises(spear.NotFoundError, match=r"has no socket 'hat'"):
+            camera.AttachToComponent(Parent=mesh, SocketName="hat")
+    with instance.end_frame():
+        pass
+    assert (before.X, before.Z) == pytest.approx((0.0, 1.57), abs=1e-5)
+    assert (forward.X, up.Z) == pytest.approx((1.0, 1.0), abs=1e-6)  # the bone's axes are the character's
+    assert (during.X, during.Y, during.Z) == pytest.approx((head.X, head.Y, head.Z), abs=1e-9)
+    assert abs(during.X - before.X) > 0.02  # running leans the upper body forward
+
+
+def test_bad_input_is_refused_and_the_pose_is_left_as_it_was(instance: spear.Instance, tmp_path: Path) -> None:
+    game = instance.get_game()
+    static_file = tmp_path / "triangle.obj"
+    static_file.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    with instance.begin_frame():
+        mesh = _character(game)
+        pose = mesh.GetBoneTransforms(Space=COMPONENT)
+        with pytest.raises(spear.InvalidArgumentError, match=r"Transforms must have shape \(18, 4, 4\), got \(17, 4, 4\)"):
+            mesh.SetBoneTransforms(Transforms=pose[1:], Space=COMPONENT)
+        broken = pose.copy()
+        broken[3, 0, 0] = np.nan
+        with pytest.raises(spear.InvalidArgumentError, match=r"Transforms\[3\] \('spine_02'\) is not finite"):
+            mesh.SetBoneTransforms(Transforms=broken, Space=COMPONENT)
+        broken = pose.copy()
+        broken[2, 3, 0] = 1.0
+        with pytest.raises(spear.InvalidArgumentError, match=r"has bottom row \(1, 0, 0, 1\)"):
+            mesh.SetBoneTransforms(Transforms=broken, Space=COMPONENT)
+        broken = pose.copy()
+        broken[4, :3, :3] = 0.0
+        with pytest.raises(spear.InvalidArgumentError, match=r"scales an axis to zero"):
+            mesh.SetBoneTransforms(Transforms=broken, Space=COMPONENT)
+        assert np.array_equal(mesh.GetBoneTransforms(Space=COMPONENT), pose)
+        with pytest.raises(spear.NotFoundError, match=r"has no bone 'tail' \(its skeleton's bones: 'root', 'pelvis'"):
+            mesh.GetBoneTransform(BoneName="tail", Space=WORLD)
+        with pytest.raises(spear.InvalidArgumentError, match=r"GetBoneName\(\): BoneIndex 18 is out of range \[0, 18\)"):
+            mesh.GetBoneName(BoneIndex=18)
+        with pytest.raises(spear.NotFoundError, match=r"has no clip 'dance' \(its clips: 'idle', 'walk', 'run'"):
+            mesh.PlayAnimation(NewAnimToPlay="dance", bLoop=True)
+        with pytest.raises(spear.InvalidArgumentError, match=r"has no skeleton"):
+            mesh.SetSkeletalMesh(NewMesh=str(static_file))
+        with pytest.raises(spear.NotFoundError, match=r"no such file 'missing.glb'"):
+            mesh.SetSkeletalMesh(NewMesh="missing.glb")
+        with pytest.raises(spear.InvalidArgumentError, match=r"PlayRate must be finite"):
+            mesh.SetPlayRate(Rate=float("inf"))
+        assert mesh.SkeletalMesh == HUMANOID and mesh.GetNumBones() == 18
+        assert np.array_equal(mesh.GetBoneTransforms(Space=COMPONENT), pose)
+    with instance.end_frame():
+        pass
