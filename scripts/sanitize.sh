@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The engine's untrusted-input surfaces under AddressSanitizer and UndefinedBehaviorSanitizer, in their own
-# build folder (build-asan): the C++ tests of core/base, core/reflect, core/rpc (files, values, messages)
+# The engine's untrusted-input surfaces under AddressSanitizer (everywhere) and UndefinedBehaviorSanitizer (where
+# it decodes input), in their own build folder (build-asan): the C++ tests of core/base, core/reflect, core/rpc (files, values, messages)
 # and core/physics, a run of the RPC fuzzer, and the Python RPC tests against an instrumented spear-server.
 # bash test.sh runs it last with a short fuzz run; RELIABILITY.md records longer runs.
 #   bash scripts/sanitize.sh [FUZZ_RUNS]     (default 200000)
@@ -13,11 +13,15 @@ FUZZ_RUNS="${1:-200000}"
 # (reports still name functions; rebuild with -g added to FLAGS for file:line). The build type is one
 # CMake has no flags for, so FLAGS are all there is: an empty one would become the project's default,
 # RelWithDebInfo, whose -O2 -g doubled every instrumented compile (core/scene/scene_io.cpp: 16 -> 32 s).
-FLAGS="-O1 -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
+# AddressSanitizer everywhere; UndefinedBehaviorSanitizer (SPEAR_UBSAN_FLAGS) in the parts that decode what a
+# client sends and in their tests, not in the renderer's (CMakeLists.txt says which and why).
+FLAGS="-O1 -fsanitize=address -fno-omit-frame-pointer"
+UBSAN_FLAGS="-fsanitize=undefined;-fno-sanitize-recover=undefined"
 
 say "sanitize: configuring and building in $ASAN_DIR (ASan + UBSan)"
 cmake -S "$ROOT" -B "$ASAN_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Sanitize -DPython3_EXECUTABLE="$PYTHON" \
     -DSPEAR_PACKAGE_DIR="$ASAN_DIR/package" -DCMAKE_CXX_FLAGS="$FLAGS" -DCMAKE_C_FLAGS="$FLAGS" \
+    -DSPEAR_UBSAN_FLAGS="$UBSAN_FLAGS" \
     -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
     -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
 cmake --build "$ASAN_DIR" -j "${SPEAR_JOBS:-2}" --target spear_base_tests spear_reflect_tests spear_rpc_tests spear_physics_tests spear_rpc_fuzz \
