@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The engine's untrusted-input surfaces under AddressSanitizer (everywhere) and UndefinedBehaviorSanitizer (where
-# it decodes input), in their own build folder (build-asan): the C++ tests of core/base, core/reflect, core/rpc (files, values, messages)
-# and core/physics, a run of the RPC fuzzer, and the Python RPC tests against an instrumented spear-server.
+# it decodes input), in their own build folder (build-asan): the C++ tests of core/base, core/reflect, core/rpc
+# (files, values, messages) and core/physics, a run of the RPC fuzzer, and the Python RPC tests against an
+# instrumented spear-server.
 # bash test.sh runs it last with a short fuzz run; RELIABILITY.md records longer runs.
 #   bash scripts/sanitize.sh [FUZZ_RUNS]     (default 200000)
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
