@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/base/error.h"
+#include "core/base/log.h"
 
 namespace {
 
@@ -39,17 +40,26 @@ bool USkeletalMeshComponent::SetSkeletalMesh(const std::string& NewMesh) {
         asset = sp::animation::importSkeletalMesh(NewMesh); // NotFound, InvalidArgument: nothing changed
     asset_ = std::move(asset);
     SkeletalMesh = NewMesh;
-    otherClips_.reset();
+    otherClips_.clear();
     clip_ = nullptr;
+    blendClips_.clear();
     playing_ = false;
     position_ = 0.0;
+    phase_ = 0.0;
     setPose(asset_ ? asset_->skeleton.bindLocal : sp::animation::Pose{});
+    // The clips named before are looked up in the new mesh; one it does not have is kept by name (and the
+    // mesh posed as bound), as a scene file may set the names before the mesh.
     if (!AnimToPlay.empty() && asset_) {
         try {
             clip_ = findClip(AnimToPlay, "USkeletalMeshComponent.SetSkeletalMesh");
-        } catch (const sp::Error&) { // the clip is not this mesh's: kept by name, posed as bound
+        } catch (const sp::Error&) {
             clip_ = nullptr;
         }
+    }
+    try {
+        resolveBlendSpace(BlendSpace, "USkeletalMeshComponent.SetSkeletalMesh");
+    } catch (const sp::Error&) {
+        blendClips_.clear();
     }
     return true;
 }
@@ -140,7 +150,7 @@ const sp::animation::AnimClip* USkeletalMeshComponent::findClip(const std::strin
         sp::animation::importAnimations(file, asset_->skeleton));
     for (const sp::animation::AnimClip& clip : *clips)
         if (clip.name == clipName) {
-            otherClips_ = std::move(clips);
+            otherClips_.push_back(std::move(clips));
             return &clip;
         }
     std::vector<std::string> names;
@@ -159,11 +169,100 @@ void USkeletalMeshComponent::SetAnimToPlay(const std::string& NewAnimToPlay) {
     playing_ = false;
 }
 
+void USkeletalMeshComponent::resolveBlendSpace(const std::vector<FBlendSample>& samples,
+                                               const char* function) {
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        SP_CHECK(std::isfinite(samples[i].SampleValue) &&
+                     (i == 0 || samples[i].SampleValue > samples[i - 1].SampleValue),
+                 sp::InvalidArgument, function, "(): BlendSpace[", i,
+                 "].SampleValue = ", samples[i].SampleValue,
+                 " must be finite and greater than the sample before it");
+        SP_CHECK(!samples[i].Animation.empty(), sp::InvalidArgument, function, "(): BlendSpace[", i,
+                 "].Animation is empty");
+    }
+    std::vector<const sp::animation::AnimClip*> clips;
+    if (asset_)
+        for (const FBlendSample& sample : samples)
+            clips.push_back(findClip(sample.Animation, function));
+    blendClips_ = std::move(clips);
+}
+
+void USkeletalMeshComponent::SetBlendSpace(const std::vector<FBlendSample>& Samples) {
+    resolveBlendSpace(Samples, "USkeletalMeshComponent.SetBlendSpace");
+    BlendSpace = Samples;
+    if (AnimationMode == EAnimationMode::AnimationBlendSpace && playing_)
+        poseFromBlendSpace();
+}
+
+void USkeletalMeshComponent::SetBlendSpaceInput(double Input) {
+    SP_CHECK(std::isfinite(Input), sp::InvalidArgument,
+             "USkeletalMeshComponent.SetBlendSpaceInput(): Input is ", Input);
+    SP_CHECK(!blendClips_.empty(), sp::InvalidState,
+             "USkeletalMeshComponent.SetBlendSpaceInput(): ", GetDebugName(),
+             BlendSpace.empty() ? " has an empty BlendSpace" : " has no SkeletalMesh to animate");
+    BlendSpaceInput = Input;
+    if (AnimationMode != EAnimationMode::AnimationBlendSpace || !playing_) {
+        AnimationMode = EAnimationMode::AnimationBlendSpace;
+        playing_ = true;
+    }
+    poseFromBlendSpace();
+}
+
+USkeletalMeshComponent::BlendPoint USkeletalMeshComponent::blendPoint() const {
+    BlendPoint point;
+    const std::size_t last = blendClips_.size() - 1;
+    const double input = BlendSpaceInput;
+    // Cycles a second of sample i's clip as authored.
+    auto cycles = [&](std::size_t i) {
+        return blendClips_[i]->duration > 0.0 ? 1.0 / blendClips_[i]->duration : 0.0;
+    };
+    if (input <= BlendSpace.front().SampleValue || last == 0) {
+        point.a = point.b = 0;
+    } else if (input >= BlendSpace[last].SampleValue) {
+        point.a = point.b = last;
+    } else {
+        while (point.b < last && BlendSpace[point.b].SampleValue < input)
+            ++point.b;
+        point.a = point.b - 1;
+        point.alpha = (input - BlendSpace[point.a].SampleValue) /
+                      (BlendSpace[point.b].SampleValue - BlendSpace[point.a].SampleValue);
+    }
+    point.rate = cycles(point.a) + point.alpha * (cycles(point.b) - cycles(point.a));
+    // Past the last sample the cycle quickens with the input, so that feet keep pace with the ground.
+    if (point.a == last && last > 0 && BlendSpace[last].SampleValue > 0.0 &&
+        input > BlendSpace[last].SampleValue)
+        point.rate *= input / BlendSpace[last].SampleValue;
+    return point;
+}
+
+std::vector<double> USkeletalMeshComponent::GetBlendSpaceWeights() const {
+    std::vector<double> weights(BlendSpace.size(), 0.0);
+    if (blendClips_.empty() || blendClips_.size() != BlendSpace.size())
+        return weights;
+    const BlendPoint point = blendPoint();
+    weights[point.a] += 1.0 - point.alpha;
+    weights[point.b] += point.alpha;
+    return weights;
+}
+
+void USkeletalMeshComponent::poseFromBlendSpace() {
+    if (!asset_ || blendClips_.empty())
+        return;
+    const BlendPoint point = blendPoint();
+    const sp::animation::AnimClip& a = *blendClips_[point.a];
+    const sp::animation::AnimClip& b = *blendClips_[point.b];
+    sp::animation::Pose pose = a.sample(asset_->skeleton, phase_ * a.duration);
+    if (point.alpha > 0.0)
+        pose = sp::animation::blend(pose, b.sample(asset_->skeleton, phase_ * b.duration), point.alpha);
+    setPose(std::move(pose));
+}
+
 void USkeletalMeshComponent::PlayAnimation(const std::string& NewAnimToPlay, bool bLoop) {
     SP_CHECK(!NewAnimToPlay.empty(), sp::InvalidArgument,
              "USkeletalMeshComponent.PlayAnimation(): NewAnimToPlay is empty (Stop() stops a clip)");
     clip_ = findClip(NewAnimToPlay, "USkeletalMeshComponent.PlayAnimation");
     AnimToPlay = NewAnimToPlay;
+    AnimationMode = EAnimationMode::AnimationSingleNode;
     bLooping = bLoop;
     position_ = PlayRate < 0.0 ? clip_->duration : 0.0;
     playing_ = true;
@@ -174,6 +273,7 @@ void USkeletalMeshComponent::Play(bool bLoop) {
     SP_CHECK(clip_, sp::InvalidState, "USkeletalMeshComponent.Play(): ", GetDebugName(),
              " has no clip to play (set AnimToPlay or call PlayAnimation())");
     bLooping = bLoop;
+    AnimationMode = EAnimationMode::AnimationSingleNode;
     if (!bLooping && (PlayRate >= 0.0 ? position_ >= clip_->duration : position_ <= 0.0))
         position_ = PlayRate >= 0.0 ? 0.0 : clip_->duration; // it had ended: from the start again
     playing_ = true;
@@ -211,6 +311,34 @@ sp::reflect::SpArray<double> USkeletalMeshComponent::GetBoneTransforms(EBoneSpac
         for (int row = 0; row < 4; ++row)
             for (int column = 0; column < 4; ++column)
                 data[16 * bone + std::size_t(4 * row + column)] = m(row, column);
+    }
+    return out;
+}
+
+sp::reflect::SpArray<double>
+USkeletalMeshComponent::GetBoneTransformsOfComponents(const std::vector<USkeletalMeshComponent*>& Components,
+                                                      EBoneSpaces Space) {
+    constexpr const char* kFunction = "USkeletalMeshComponent.GetBoneTransformsOfComponents";
+    const std::size_t bones =
+        Components.empty() || !Components[0] ? 0 : Components[0]->componentSpace_.size();
+    for (std::size_t i = 0; i < Components.size(); ++i) {
+        SP_CHECK(Components[i], sp::InvalidArgument, kFunction, "(): Components[", i, "] is None");
+        SP_CHECK(Components[i]->componentSpace_.size() == bones, sp::InvalidArgument, kFunction,
+                 "(): Components[", i, "] (", Components[i]->GetDebugName(), ") has ",
+                 Components[i]->componentSpace_.size(), " bones, Components[0] has ", bones);
+    }
+    sp::reflect::SpArray<double> out("bone_transforms");
+    out.resize({int64_t(Components.size()), int64_t(bones), 4, 4});
+    double* data = out.data();
+    for (const USkeletalMeshComponent* component : Components) {
+        const Eigen::Affine3d world =
+            Space == EBoneSpaces::WorldSpace ? component->worldMatrix() : Eigen::Affine3d::Identity();
+        for (const Eigen::Affine3d& bone : component->componentSpace_) {
+            const Eigen::Matrix4d m = (world * bone).matrix();
+            for (int row = 0; row < 4; ++row)
+                for (int column = 0; column < 4; ++column)
+                    *data++ = m(row, column);
+        }
     }
     return out;
 }
@@ -270,6 +398,20 @@ ECollisionPrimitive USkeletalMeshComponent::GetMeshCollisionPrimitive() const {
 }
 
 void USkeletalMeshComponent::BeginPlay() {
+    if (!asset_ && !SkeletalMesh.empty()) { // named but not loaded (a class's default, set as data)
+        try {
+            SetSkeletalMesh(SkeletalMesh);
+        } catch (const sp::Error& error) {
+            SP_LOG("USkeletalMeshComponent: ", GetDebugName(), " shows nothing: ", error.what());
+        }
+    }
+    if (AnimationMode == EAnimationMode::AnimationBlendSpace) {
+        if (!blendClips_.empty()) {
+            playing_ = true;
+            poseFromBlendSpace();
+        }
+        return;
+    }
     if (clip_ && !playing_) {
         position_ = PlayRate < 0.0 ? clip_->duration : 0.0;
         playing_ = true;
@@ -278,6 +420,15 @@ void USkeletalMeshComponent::BeginPlay() {
 }
 
 void USkeletalMeshComponent::TickComponent(double deltaSeconds) {
+    if (playing_ && AnimationMode == EAnimationMode::AnimationBlendSpace) {
+        if (blendClips_.empty())
+            return;
+        phase_ = std::fmod(phase_ + deltaSeconds * PlayRate * blendPoint().rate, 1.0);
+        if (phase_ < 0.0)
+            phase_ += 1.0;
+        poseFromBlendSpace();
+        return;
+    }
     if (!playing_ || !clip_)
         return;
     const double length = clip_->duration;

@@ -24,6 +24,31 @@ enum class EBoneSpaces : uint8_t {
     ComponentSpace = 1,
 };
 
+/// What poses a skeletal mesh component while it plays (UE's EAnimationMode, its two data-driven modes).
+SPENUM()
+enum class EAnimationMode : uint8_t {
+    /// One clip, AnimToPlay (PlayAnimation).
+    AnimationSingleNode = 0,
+    /// The blend space BlendSpace at BlendSpaceInput (SetBlendSpaceInput): what a character's walking drives.
+    AnimationBlendSpace = 1,
+};
+
+/// One clip of a one-dimensional blend space and the input at which it plays alone (UE's FBlendSample).
+SPSTRUCT()
+struct FBlendSample {
+    SP_GENERATED_BODY()
+
+    /// The clip, named as AnimToPlay names one.
+    SPPROPERTY()
+    std::string Animation;
+
+    /// The input at which this clip plays alone: for locomotion, the speed in m/s its feet move at.
+    SPPROPERTY()
+    double SampleValue = 0.0;
+
+    friend bool operator==(const FBlendSample&, const FBlendSample&) = default;
+};
+
 /// A component that renders a skinned mesh, posed by an animation clip or by bone transforms.
 SPCLASS()
 class USkeletalMeshComponent : public UPrimitiveComponent {
@@ -52,6 +77,22 @@ class USkeletalMeshComponent : public UPrimitiveComponent {
     /// Seconds of the clip per second of the world's time: 1 plays it as authored, negative backwards.
     SPPROPERTY(Setter = SetPlayRate)
     double PlayRate = 1.0;
+
+    /// What poses the mesh while it plays: one clip, or the blend space.
+    SPPROPERTY()
+    EAnimationMode AnimationMode = EAnimationMode::AnimationSingleNode;
+
+    /// A one-dimensional blend space (UE's UBlendSpace1D): clips by increasing SampleValue, all of them
+    /// cycles (idle, walk, run). At an input between two samples the pose blends their clips by where it
+    /// lies, both at the same fraction of their cycles (UE's sync groups: the feet stay in step); the cycle's
+    /// rate blends too, and past the last sample it grows with the input (running faster). Set through
+    /// SetBlendSpace(), which checks the clips.
+    SPPROPERTY(Setter = SetBlendSpace)
+    std::vector<FBlendSample> BlendSpace;
+
+    /// The blend space's input now (a speed in m/s for locomotion); SetBlendSpaceInput() sets it.
+    SPPROPERTY(ReadOnly)
+    double BlendSpaceInput = 0.0;
 
     /// Sets the skeletal mesh asset. Returns true; raises NotFoundError naming the file when there is none,
     /// InvalidArgumentError when it cannot be read or has no skeleton. The pose becomes the bind pose, and
@@ -130,6 +171,21 @@ class USkeletalMeshComponent : public UPrimitiveComponent {
     SPFUNCTION()
     double GetPlayRate() const { return PlayRate; }
 
+    /// Sets BlendSpace. Raises InvalidArgumentError when the sample values do not increase or are not finite,
+    /// NotFoundError naming a clip the mesh does not have (without a mesh yet, the clips are checked when it
+    /// is set).
+    SPFUNCTION()
+    void SetBlendSpace(const std::vector<FBlendSample>& Samples);
+
+    /// Plays the blend space at Input (finite): AnimationMode becomes AnimationBlendSpace and the mesh plays,
+    /// looping. Raises InvalidStateError when BlendSpace is empty or the mesh has none of its clips.
+    SPFUNCTION()
+    void SetBlendSpaceInput(double Input);
+
+    /// Returns the weight of each sample of BlendSpace in the pose now (they sum to 1 while it plays).
+    SPFUNCTION()
+    std::vector<double> GetBlendSpaceWeights() const;
+
     /// Sets AnimToPlay (checked as PlayAnimation() checks it) without playing it.
     SPFUNCTION()
     void SetAnimToPlay(const std::string& NewAnimToPlay);
@@ -138,6 +194,15 @@ class USkeletalMeshComponent : public UPrimitiveComponent {
     /// matrices (column 3 the translation), in Space: the whole pose in one call.
     SPFUNCTION()
     sp::reflect::SpArray<double> GetBoneTransforms(EBoneSpaces Space = EBoneSpaces::WorldSpace) const;
+
+    /// Returns every bone's transform of each of Components (all with the same number of bones) as one
+    /// float64 array (components, bones, 4, 4) in Space: a crowd's poses in one call and one array, which
+    /// over RPC is one reply (calling GetBoneTransforms per character sends one array each). Raises
+    /// InvalidArgumentError naming the first component whose bone count differs, or a None entry.
+    SPFUNCTION()
+    static sp::reflect::SpArray<double>
+    GetBoneTransformsOfComponents(const std::vector<USkeletalMeshComponent*>& Components,
+                                  EBoneSpaces Space = EBoneSpaces::WorldSpace);
 
     /// Poses the mesh with Transforms, a float64 array (bones, 4, 4) as GetBoneTransforms() returns, in
     /// Space; the clip stops. Raises InvalidArgumentError, leaving the pose as it was, when the shape is not
@@ -157,10 +222,23 @@ class USkeletalMeshComponent : public UPrimitiveComponent {
     const std::shared_ptr<const sp::animation::SkeletalMeshData>& GetAsset() const { return asset_; }
     const std::vector<Eigen::Affine3d>& componentSpaceTransforms() const { return componentSpace_; }
     std::uint64_t poseRevision() const { return poseRevision_; }
+    // Whether BlendSpace's clips were found in the mesh: SetBlendSpaceInput() can play it.
+    bool blendSpaceReady() const { return !blendClips_.empty(); }
 
   private:
     // The clip `name` names for this mesh (NotFound / InvalidArgument as PlayAnimation() says); null for "".
     const sp::animation::AnimClip* findClip(const std::string& name, const char* function);
+    // BlendSpace's clips for the mesh (none without a mesh).
+    void resolveBlendSpace(const std::vector<FBlendSample>& samples, const char* function);
+    // The two samples around BlendSpaceInput, the second's weight, and the cycles a second there.
+    struct BlendPoint {
+        std::size_t a = 0, b = 0;
+        double alpha = 0.0;
+        double rate = 0.0;
+    };
+    BlendPoint blendPoint() const;
+    // Poses the mesh with the blend space at phase_.
+    void poseFromBlendSpace();
     // Poses the mesh with `local` (a full pose of the skeleton).
     void setPose(sp::animation::Pose local);
     // Samples the clip at position_.
@@ -170,8 +248,11 @@ class USkeletalMeshComponent : public UPrimitiveComponent {
     int boneOrThrow(const std::string& name, const char* function, const char* what) const;
 
     std::shared_ptr<const sp::animation::SkeletalMeshData> asset_;
-    std::shared_ptr<const std::vector<sp::animation::AnimClip>> otherClips_; // a "<file>#<clip>"'s file's
-    const sp::animation::AnimClip* clip_ = nullptr; // AnimToPlay's, in asset_ or otherClips_
+    // The clips of other files that "<file>#<clip>" names brought in (kept while the mesh is).
+    std::vector<std::shared_ptr<const std::vector<sp::animation::AnimClip>>> otherClips_;
+    const sp::animation::AnimClip* clip_ = nullptr;          // AnimToPlay's, in asset_ or otherClips_
+    std::vector<const sp::animation::AnimClip*> blendClips_; // BlendSpace's, resolved
+    double phase_ = 0.0;                                     // the blend space's cycle, in [0, 1)
     double position_ = 0.0;
     bool playing_ = false;
     std::vector<Eigen::Affine3d> componentSpace_;

@@ -63,8 +63,12 @@ bool UCharacterMovementComponent::IsMovingOnGround() const {
 
 ACharacter::ACharacter() : APawn(NoDefaultRoot{}) {
     CapsuleComponent = CreateDefaultSubobject<UCapsuleComponent>("CapsuleComponent");
-    Mesh = CreateDefaultSubobject<UStaticMeshComponent>("Mesh");
-    Mesh->StaticMesh = "/Engine/BasicShapes/Cylinder";
+    Mesh = CreateDefaultSubobject<USkeletalMeshComponent>("Mesh");
+    // Named, not loaded: the file is read when play begins (a class default must not need the assets).
+    Mesh->SkeletalMesh = "/Game/characters/humanoid.glb";
+    Mesh->AnimationMode = EAnimationMode::AnimationBlendSpace;
+    // The humanoid's clips at the speeds their feet move at (walk: two 0.69 m steps in 1.1 s).
+    Mesh->BlendSpace = {{"idle", 0.0}, {"walk", 1.25}, {"run", 3.2}};
     Mesh->CollisionPrimitive = ECollisionPrimitive::NoCollision; // the capsule is the character's shape
     CharacterMovement = CreateDefaultSubobject<UCharacterMovementComponent>("CharacterMovement");
     InputComponent = CreateDefaultSubobject<UInputComponent>("InputComponent");
@@ -160,6 +164,7 @@ void ACharacter::Tick(double deltaSeconds) {
         physics.jumpCharacter(id);
         jumpPressed_ = false;
     }
+    animateBody(deltaSeconds);
 }
 
 void ACharacter::PrePhysicsTick() {
@@ -173,9 +178,34 @@ void ACharacter::PostPhysicsTick() {
     if (!(position == GetActorLocation()))
         CapsuleComponent->SetWorldLocation(position);
     placed_ = GetActorLocation();
-    // The visible body fills the capsule.
-    const FVector size{2.0 * CapsuleComponent->CapsuleRadius, 2.0 * CapsuleComponent->CapsuleRadius,
-                       2.0 * std::max(CapsuleComponent->CapsuleHalfHeight, CapsuleComponent->CapsuleRadius)};
-    if (!(Mesh->RelativeScale3D == size))
-        Mesh->SetRelativeScale3D(size);
+    // The body stands on the capsule's bottom.
+    const double feet = -std::max(CapsuleComponent->CapsuleHalfHeight, CapsuleComponent->CapsuleRadius);
+    if (Mesh->RelativeLocation.Z != feet || Mesh->RelativeLocation.X != 0.0 ||
+        Mesh->RelativeLocation.Y != 0.0)
+        Mesh->SetRelativeLocation(FVector{0.0, 0.0, feet});
+}
+
+void ACharacter::animateBody(double deltaSeconds) {
+    const Eigen::Vector3d location = GetActorLocation().toEigen();
+    const Eigen::Vector3d moved = location - lastLocation_;
+    lastLocation_ = location;
+    if (deltaSeconds <= 0.0 || !moved.allFinite())
+        return; // the first tick: no speed yet
+    // The horizontal speed, smoothed over about a tenth of a second: a step up or a stop does not snap the
+    // legs.
+    const Eigen::Vector3d velocity(moved.x() / deltaSeconds, moved.y() / deltaSeconds, 0.0);
+    speed_ += (velocity.norm() - speed_) * std::min(1.0, deltaSeconds / 0.1);
+    // Faces where it walks: the body turns (at up to 720 degrees a second) while the capsule, round, keeps
+    // the controller's rotation.
+    if (velocity.norm() > 0.2) {
+        const double heading = std::atan2(velocity.y(), velocity.x()) * 180.0 / std::numbers::pi;
+        const double relative =
+            std::remainder(heading - GetActorRotation().Yaw - Mesh->RelativeRotation.Yaw, 360.0);
+        const double turn = std::clamp(relative, -720.0 * deltaSeconds, 720.0 * deltaSeconds);
+        if (turn != 0.0)
+            Mesh->SetRelativeRotation(
+                FRotator{0.0, std::remainder(Mesh->RelativeRotation.Yaw + turn, 360.0), 0.0});
+    }
+    if (Mesh->AnimationMode == EAnimationMode::AnimationBlendSpace && Mesh->blendSpaceReady())
+        Mesh->SetBlendSpaceInput(speed_);
 }

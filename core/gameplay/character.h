@@ -7,13 +7,15 @@
 // "MoveRight" in [-1, 1] along the control rotation's yaw, "Turn" and "LookUp" turn the controller's view,
 // "Jump" > 0 jumps; AddMovementInput adds to the walk.
 
+#include <limits>
+
+#include "core/animation/skeletal_mesh_component.h"
 #include "core/gameplay/pawn.h"
 #include "core/physics/body_id.h"
 #include "core/physics/character.h"
 #include "core/world/actor_component.h"
 #include "core/world/input_component.h"
 #include "core/world/shape_components.h"
-#include "core/world/static_mesh_component.h"
 
 /// How a character walks, and how it is moving.
 SPCLASS()
@@ -73,9 +75,11 @@ class ACharacter : public APawn {
     SPPROPERTY(ReadOnly, NotNull)
     UCapsuleComponent* CapsuleComponent = nullptr;
 
-    /// The character's visible body (no collision of its own).
+    /// The character's visible body (no collision of its own): by default the built-in humanoid
+    /// (/Game/characters/humanoid.glb) with its feet at the capsule's bottom, playing a blend space of its
+    /// idle, walk and run clips by the speed it moves at, its body turned to where it walks.
     SPPROPERTY(ReadOnly, NotNull)
-    UStaticMeshComponent* Mesh = nullptr;
+    USkeletalMeshComponent* Mesh = nullptr;
 
     /// How the character walks.
     SPPROPERTY(ReadOnly, NotNull)
@@ -119,9 +123,15 @@ class ACharacter : public APawn {
 
   private:
     sp::physics::CharacterDesc describe() const;
+    // The body's animation from how the character moved since the last tick: the blend space's input (its
+    // horizontal speed) and the body's heading.
+    void animateBody(double deltaSeconds);
 
     mutable sp::physics::BodyId character_;
     // Where the capsule was put after the last step: a different location means someone moved it.
     mutable FVector placed_;
     bool jumpPressed_ = false;
+    // For the body's animation: where the character was at the last tick, and its smoothed horizontal speed.
+    Eigen::Vector3d lastLocation_ = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+    double speed_ = 0.0;
 };

@@ -81,7 +81,8 @@ std::shared_ptr<const render::IrradianceVolume> IrradianceProbes::update(const r
     // lit by the nearest probes but does not stretch the grid to where no ray can start.
     Eigen::AlignedBox3d box;
     scene.forEachInstance([&](render::InstanceId, const render::Instance& instance) {
-        if (!instance.visible)
+        if (!instance.visible ||
+            !instance.affectIndirectLighting) // what the probes do not see places no probe
             return;
         const Eigen::AlignedBox3d bounds = scene.boundingBox(instance);
         if ((around.isEmpty() || bounds.intersects(around)) && bounds.min().allFinite() &&

@@ -956,6 +956,8 @@ struct PathTracer::Impl {
 };
 
 bool ProbeScope::sees(const render::Scene& scene, const render::Instance& instance) const {
+    if (!instance.affectIndirectLighting)
+        return false;
     if (ignoreBelowRadius > 0.0) {
         Eigen::Vector3d centre;
         double radius = 0.0;

@@ -47,6 +47,10 @@ struct Instance {
     Eigen::Affine3d transform = Eigen::Affine3d::Identity(); // mesh-to-world (may scale)
     bool visible = true;
     bool castShadows = true;
+    // Whether the irradiance probes see it (UE's bAffectDynamicIndirectLighting): a mesh that changes shape
+    // every frame (a walking character) would have them relit and their ray geometry rebuilt every frame for
+    // light it barely changes; cameras, shadows and the path tracer's images still see it.
+    bool affectIndirectLighting = true;
 };
 
 // Light that does not come from analytic lights: a uniform sky, or an environment map (an HDR panorama,

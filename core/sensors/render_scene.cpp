@@ -1,6 +1,7 @@
 #include "core/sensors/render_scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 
@@ -9,6 +10,7 @@
 #include "core/procedural/spline_component.h"
 #include "core/render/content_key.h"
 #include "core/render/mesh_import.h"
+#include "core/render/mesh_lods.h"
 #include "core/render/primitives.h"
 #include "core/sensors/light_component.h"
 #include "core/sensors/linear_color.h"
@@ -261,13 +263,15 @@ void RenderScene::placeInstance(const UPrimitiveComponent& component, sp::render
                                 const std::vector<std::string>& materialNames,
                                 const std::vector<sp::render::MaterialId>& imported,
                                 const std::vector<std::string>& importedNames,
-                                const std::map<std::string, FMaterialDesc>& library) {
+                                const std::map<std::string, FMaterialDesc>& library,
+                                bool affectIndirectLighting) {
     InstanceEntry& entry = instances_[component.GetHandle()];
     const std::size_t slots = scene_.mesh(mesh).submeshCount();
     sp::render::Instance instance;
     instance.mesh = mesh;
     instance.transform = worldTransform(component);
     instance.visible = component.bVisible;
+    instance.affectIndirectLighting = affectIndirectLighting;
     for (std::size_t slot = 0; slot < slots; ++slot) {
         const std::string name = slot < materialNames.size() ? materialNames[slot] : std::string();
         std::string slotName = name;
@@ -306,6 +310,7 @@ void RenderScene::syncSkinnedMesh(USkeletalMeshComponent& component,
         skinned.asset = asset;
         // The component's own copy: its vertices move with its pose (never shared, never simplified).
         skinned.mesh = scene_.addMesh(asset->mesh.mesh);
+        addSkinnedLevels(skinned, asset->mesh.mesh);
         skinned.importedMaterials =
             sp::render::addMaterialsToScene(scene_, asset->mesh.materials, /*shared=*/true);
         for (const sp::render::MaterialId id : skinned.importedMaterials) {
@@ -324,6 +329,15 @@ void RenderScene::syncSkinnedMesh(USkeletalMeshComponent& component,
         sp::animation::skin(data.mesh.mesh.positions, data.mesh.mesh.normals, data.skin, matrices,
                             skinned.positions, skinned.normals);
         scene_.deformMesh(skinned.mesh, skinned.positions, skinned.normals);
+        for (SkinnedLevel& level : skinned.levels) {
+            level.positions.resize(level.vertices.size());
+            level.normals.resize(level.vertices.size());
+            for (std::size_t v = 0; v < level.vertices.size(); ++v) {
+                level.positions[v] = skinned.positions[level.vertices[v]];
+                level.normals[v] = skinned.normals[level.vertices[v]];
+            }
+            scene_.deformMesh(level.mesh, level.positions, level.normals);
+        }
         skinned.poseRevision = component.poseRevision();
     }
     std::vector<std::string> importedNames;
@@ -331,14 +345,56 @@ void RenderScene::syncSkinnedMesh(USkeletalMeshComponent& component,
         importedNames.push_back(asset->mesh.materials[i].name.empty()
                                     ? component.SkeletalMesh + "#" + std::to_string(i)
                                     : asset->mesh.materials[i].name);
+    // Not seen by the irradiance probes: a character changes shape every frame
+    // (Instance::affectIndirectLighting).
     placeInstance(component, skinned.mesh, component.Materials, skinned.importedMaterials, importedNames,
-                  library);
+                  library,
+                  /*affectIndirectLighting=*/false);
+}
+
+void RenderScene::addSkinnedLevels(SkinnedEntry& entry, const sp::render::MeshData& data) {
+    // The levels keep only the vertices they use, copied bit for bit: found again in the full mesh by their
+    // position, normal and uv, so that each level's vertices follow the full mesh's skinned ones.
+    const std::shared_ptr<const sp::render::MeshLevels> levels =
+        sp::render::sharedLods(sp::render::contentKey(data), data);
+    using VertexKey = std::array<float, 8>;
+    auto keyOf = [](const sp::render::MeshData& mesh, std::size_t v) {
+        return VertexKey{mesh.positions[v].x(), mesh.positions[v].y(), mesh.positions[v].z(),
+                         mesh.normals[v].x(),   mesh.normals[v].y(),   mesh.normals[v].z(),
+                         mesh.uvs[v].x(),       mesh.uvs[v].y()};
+    };
+    std::map<VertexKey, std::uint32_t> index;
+    for (std::size_t v = 0; v < data.positions.size(); ++v)
+        index.emplace(keyOf(data, v), std::uint32_t(v));
+    std::vector<sp::render::MeshLod> lods;
+    for (const auto& [level, error] : *levels) {
+        SkinnedLevel skinnedLevel;
+        for (std::size_t v = 0; v < level.positions.size(); ++v) {
+            const auto it = index.find(keyOf(level, v));
+            if (it == index.end()) { // a vertex the simplifier made: this level cannot follow the skin
+                logOnce("skinned-lods:" + data.name, "RenderSubsystem: skinned mesh '" + data.name +
+                                                         "' is drawn without levels of detail");
+                for (const SkinnedLevel& made : entry.levels)
+                    scene_.removeMesh(made.mesh);
+                entry.levels.clear();
+                return;
+            }
+            skinnedLevel.vertices.push_back(it->second);
+        }
+        skinnedLevel.mesh = scene_.addMesh(level);
+        lods.push_back({skinnedLevel.mesh, error});
+        entry.levels.push_back(std::move(skinnedLevel));
+    }
+    if (!lods.empty())
+        scene_.setMeshLods(entry.mesh, std::move(lods));
 }
 
 void RenderScene::removeSkinnedMesh(SkinnedEntry& entry) {
     if (!entry.asset)
         return;
-    scene_.removeMesh(entry.mesh);
+    scene_.removeMesh(entry.mesh); // before its levels, which it names
+    for (const SkinnedLevel& level : entry.levels)
+        scene_.removeMesh(level.mesh);
     for (const sp::render::MaterialId id : entry.importedMaterials)
         scene_.removeMaterial(id);
     entry.asset.reset();

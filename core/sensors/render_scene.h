@@ -115,10 +115,18 @@ class RenderScene {
         std::uint32_t id = 0;
     };
 
+    // A coarser level of a skinned mesh: its own mesh, whose vertices are some of the full mesh's
+    // (`vertices`: which), moved with them.
+    struct SkinnedLevel {
+        sp::render::MeshId mesh;
+        std::vector<std::uint32_t> vertices;
+        std::vector<Eigen::Vector3f> positions, normals;
+    };
     // A posed skinned mesh: the component's own mesh, its vertices skinned again whenever the pose changed.
     struct SkinnedEntry {
         std::shared_ptr<const sp::animation::SkeletalMeshData> asset; // what `mesh` was made from
         sp::render::MeshId mesh;
+        std::vector<SkinnedLevel> levels;                      // levels of detail, fine to coarse
         std::vector<sp::render::MaterialId> importedMaterials; // the file's, per submesh
         std::uint64_t poseRevision = 0;
         std::vector<Eigen::Vector3f> positions, normals; // skinning's output, kept for its storage
@@ -127,13 +135,16 @@ class RenderScene {
     void syncSkinnedMesh(USkeletalMeshComponent& component,
                          const std::map<std::string, FMaterialDesc>& library);
     void removeSkinnedMesh(SkinnedEntry& entry);
+    // Levels of detail for a skinned mesh made from `data`, as imported static meshes get (mesh_lods.h).
+    void addSkinnedLevels(SkinnedEntry& entry, const sp::render::MeshData& data);
     // The instance of a mesh component: its mesh drawn with one material per slot (an empty name: the file's
     // own material for the slot, `imported`), ids handed out per slot.
     void placeInstance(const UPrimitiveComponent& component, sp::render::MeshId mesh,
                        const std::vector<std::string>& materialNames,
                        const std::vector<sp::render::MaterialId>& imported,
                        const std::vector<std::string>& importedNames,
-                       const std::map<std::string, FMaterialDesc>& library);
+                       const std::map<std::string, FMaterialDesc>& library,
+                       bool affectIndirectLighting = true);
     void syncDebugLine(const USplineComponent& spline);
     void removeDebugLine(DebugLineEntry& entry);
     const MeshEntry* meshFor(const std::string& name);

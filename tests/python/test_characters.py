@@ -164,6 +164,25 @@ def test_a_whole_pose_is_read_and_set_as_one_array(instance: spear.Instance) -> 
     assert np.allclose(restored, pose, atol=1e-9)
 
 
+def test_a_crowds_poses_come_back_as_one_array(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        meshes = [_character(game, name=f"Person{i}", x=float(i)) for i in range(3)]
+        meshes[1].PlayAnimation(NewAnimToPlay="run", bLoop=True)
+        meshes[1].SetPosition(InPos=0.3)
+        crowd = spear.USkeletalMeshComponent.GetBoneTransformsOfComponents(Components=meshes, Space=WORLD)
+        each = [mesh.GetBoneTransforms(Space=WORLD) for mesh in meshes]
+        other = game.spawn_actor(uclass=spear.ASkeletalMeshActor, name="Empty").SkeletalMeshComponent  # no mesh
+        with pytest.raises(spear.InvalidArgumentError,
+                           match=r"GetBoneTransformsOfComponents\(\): Components\[1\] \(.*\) has 0 bones, Components\[0\] has 18"):
+            spear.USkeletalMeshComponent.GetBoneTransformsOfComponents(Components=[meshes[0], other], Space=WORLD)
+    with instance.end_frame():
+        pass
+    assert crowd.shape == (3, 18, 4, 4)
+    for i in range(3):
+        assert np.array_equal(crowd[i], each[i])
+
+
 def test_a_camera_follows_a_bone_it_is_attached_to(instance: spear.Instance) -> None:
     game = instance.get_game()
     with instance.begin_frame():
@@ -225,3 +244,68 @@ def test_bad_input_is_refused_and_the_pose_is_left_as_it_was(instance: spear.Ins
         assert np.array_equal(mesh.GetBoneTransforms(Space=COMPONENT), pose)
     with instance.end_frame():
         pass
+
+
+def test_a_blend_space_mixes_clips_by_its_input(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    samples = [spear.FBlendSample(Animation="idle", SampleValue=0.0),
+               spear.FBlendSample(Animation="walk", SampleValue=1.25),
+               spear.FBlendSample(Animation="run", SampleValue=3.2)]
+    with instance.begin_frame():
+        mesh = _character(game)
+        mesh.SetBlendSpace(Samples=samples)
+        mesh.SetBlendSpaceInput(Input=0.0)
+        assert mesh.AnimationMode == spear.EAnimationMode.AnimationBlendSpace and mesh.IsPlaying()
+        assert mesh.GetBlendSpaceWeights() == [1.0, 0.0, 0.0]
+        mesh.SetBlendSpaceInput(Input=2.225)  # half way from walking to running
+        assert mesh.GetBlendSpaceWeights() == pytest.approx([0.0, 0.5, 0.5])
+        mesh.SetBlendSpaceInput(Input=9.0)  # faster than the run: the run alone, quicker
+        assert mesh.GetBlendSpaceWeights() == [0.0, 0.0, 1.0]
+        with pytest.raises(spear.InvalidArgumentError, match=r"BlendSpace\[1\]\.SampleValue = 0 must be finite and greater"):
+            mesh.SetBlendSpace(Samples=[samples[0], spear.FBlendSample(Animation="walk", SampleValue=0.0)])
+        with pytest.raises(spear.NotFoundError, match=r"has no clip 'dance'"):
+            mesh.SetBlendSpace(Samples=[spear.FBlendSample(Animation="dance", SampleValue=0.0)])
+        assert mesh.BlendSpace == samples  # unchanged by the refused ones
+        mesh.PlayAnimation(NewAnimToPlay="walk", bLoop=True)  # one clip again
+        assert mesh.AnimationMode == spear.EAnimationMode.AnimationSingleNode
+    with instance.end_frame():
+        pass
+
+
+def test_a_character_is_a_humanoid_whose_legs_move_as_it_walks(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        floor = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Floor", location=spear.FVector(Z=-0.5))
+        floor.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
+        floor.SetActorScale3D(NewScale3D=spear.FVector(40.0, 40.0, 1.0))
+        character = game.spawn_actor(uclass=spear.ACharacter, name="Walker", location=spear.FVector(Z=0.95))
+        player = spear.UGameplayStatics.GetPlayerController(WorldContextObject=game, PlayerIndex=0)
+        assert player is not None
+        player.Possess(InPawn=character)
+    with instance.end_frame():
+        pass
+    instance.step(num_frames=20)
+    with instance.begin_frame():
+        body = character.Mesh
+        assert body.SkeletalMesh == HUMANOID and body.GetNumBones() == 18
+        feet = body.GetComponentLocation()
+        standing = body.GetBlendSpaceWeights()
+    with instance.end_frame():
+        pass
+    assert feet.Z == pytest.approx(0.0, abs=0.03)  # on the floor, at the capsule's bottom
+    assert standing[0] == pytest.approx(1.0)  # idle
+    for _ in range(40):  # walking along +Y at 1.25 m/s (the walk clip's own speed)
+        with instance.begin_frame():
+            character.CharacterMovement.MaxWalkSpeed = 1.25
+            game.inject_input_for_actor(actor=player, input_action_name="MoveRight", value=spear.FVector(X=-1.0))
+        with instance.end_frame():
+            pass
+    with instance.begin_frame():
+        walking = body.GetBlendSpaceWeights()
+        heading = body.GetComponentRotation().Yaw
+        foot = body.GetBoneTransform(BoneName="foot_l", Space=spear.EBoneSpaces.ComponentSpace).Translation
+    with instance.end_frame():
+        pass
+    assert walking[1] > 0.9  # the walk clip, at about its own speed
+    assert heading == pytest.approx(90.0, abs=2.0)  # the body turned to face +Y, where it walks
+    assert abs(foot.X) > 0.03 or foot.Z > 0.12  # a foot off its standing place

@@ -87,6 +87,24 @@ void bind_USkeletalMeshComponent(py::module_& m) {
             Calls::set_PlayRate<PyCall>(self.get<Self>("USkeletalMeshComponent.PlayRate"), value);
         },
         "Seconds of the clip per second of the world's time: 1 plays it as authored, negative backwards.");
+    cls.def_property(
+        "AnimationMode",
+        [](const Ref<Self>& self) { return Calls::get_AnimationMode<PyCall>(self.get<Self>("USkeletalMeshComponent.AnimationMode")); },
+        [](const Ref<Self>& self, const PyArg& value) {
+            Calls::set_AnimationMode<PyCall>(self.get<Self>("USkeletalMeshComponent.AnimationMode"), value);
+        },
+        "What poses the mesh while it plays: one clip, or the blend space.");
+    cls.def_property(
+        "BlendSpace",
+        [](const Ref<Self>& self) { return Calls::get_BlendSpace<PyCall>(self.get<Self>("USkeletalMeshComponent.BlendSpace")); },
+        [](const Ref<Self>& self, const PyArg& value) {
+            Calls::set_BlendSpace<PyCall>(self.get<Self>("USkeletalMeshComponent.BlendSpace"), value);
+        },
+        "A one-dimensional blend space (UE's UBlendSpace1D): clips by increasing SampleValue, all of them\ncycles (idle, walk, run). At an input between two samples the pose blends their clips by where it\nlies, both at the same fraction of their cycles (UE's sync groups: the feet stay in step); the cycle's\nrate blends too, and past the last sample it grows with the input (running faster). Set through\nSetBlendSpace(), which checks the clips.");
+    cls.def_property_readonly(
+        "BlendSpaceInput",
+        [](const Ref<Self>& self) { return Calls::get_BlendSpaceInput<PyCall>(self.get<Self>("USkeletalMeshComponent.BlendSpaceInput")); },
+        "The blend space's input now (a speed in m/s for locomotion); SetBlendSpaceInput() sets it.");
     sp::pybind::nameProperties(cls);
     cls.def(
         "SetSkeletalMesh",
@@ -213,6 +231,29 @@ void bind_USkeletalMeshComponent(py::module_& m) {
         },
         "GetPlayRate(self) -> float\n\nReturns PlayRate.");
     cls.def(
+        "SetBlendSpace",
+        [](const Ref<Self>& self, const py::args& positional, const PyArg& Samples, const py::kwargs& extra) -> py::object {
+            // The parameters in order; the array lives until the call returns.
+            return Calls::call_SetBlendSpace<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Samples}, true});
+        },
+        py::arg("Samples") = sp::pybind::missingArgument(),
+        "SetBlendSpace(self, *, Samples: list[FBlendSample]) -> None\n\nSets BlendSpace. Raises InvalidArgumentError when the sample values do not increase or are not finite,\nNotFoundError naming a clip the mesh does not have (without a mesh yet, the clips are checked when it\nis set).");
+    cls.def(
+        "SetBlendSpaceInput",
+        [](const Ref<Self>& self, const py::args& positional, const PyArg& Input, const py::kwargs& extra) -> py::object {
+            // The parameters in order; the array lives until the call returns.
+            return Calls::call_SetBlendSpaceInput<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&Input}, true});
+        },
+        py::arg("Input") = sp::pybind::missingArgument(),
+        "SetBlendSpaceInput(self, *, Input: float) -> None\n\nPlays the blend space at Input (finite): AnimationMode becomes AnimationBlendSpace and the mesh plays,\nlooping. Raises InvalidStateError when BlendSpace is empty or the mesh has none of its clips.");
+    cls.def(
+        "GetBlendSpaceWeights",
+        [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+            // The parameters in order; the array lives until the call returns.
+            return Calls::call_GetBlendSpaceWeights<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
+        },
+        "GetBlendSpaceWeights(self) -> list[float]\n\nReturns the weight of each sample of BlendSpace in the pose now (they sum to 1 while it plays).");
+    cls.def(
         "SetAnimToPlay",
         [](const Ref<Self>& self, const py::args& positional, const PyArg& NewAnimToPlay, const py::kwargs& extra) -> py::object {
             // The parameters in order; the array lives until the call returns.
@@ -228,6 +269,16 @@ void bind_USkeletalMeshComponent(py::module_& m) {
         },
         py::arg("Space") = sp::pybind::missingArgument(),
         "GetBoneTransforms(self, *, Space: EBoneSpaces = ...) -> NDArray[np.float64]\n\nReturns every bone's transform in the current pose as a float64 array (bones, 4, 4) of homogeneous\nmatrices (column 3 the translation), in Space: the whole pose in one call.");
+    // Static in C++: called on the class, with no object.
+    cls.def_static(
+        "GetBoneTransformsOfComponents",
+        [](const py::args& positional, const PyArg& Components, const PyArg& Space, const py::kwargs& extra) -> py::object {
+            // The parameters in order; the array lives until the call returns.
+            return Calls::call_GetBoneTransformsOfComponents<PyCall>({positional, extra, std::array<const PyArg*, 2>{&Components, &Space}, false});
+        },
+        py::arg("Components") = sp::pybind::missingArgument(),
+        py::arg("Space") = sp::pybind::missingArgument(),
+        "GetBoneTransformsOfComponents(*, Components: Sequence[USkeletalMeshComponent], Space: EBoneSpaces = ...) -> NDArray[np.float64]\n\nReturns every bone's transform of each of Components (all with the same number of bones) as one\nfloat64 array (components, bones, 4, 4) in Space: a crowd's poses in one call and one array, which\nover RPC is one reply (calling GetBoneTransforms per character sends one array each). Raises\nInvalidArgumentError naming the first component whose bone count differs, or a None entry.");
     cls.def(
         "SetBoneTransforms",
         [](const Ref<Self>& self, const py::args& positional, const PyArg& Transforms, const PyArg& Space, const py::kwargs& extra) -> py::object {

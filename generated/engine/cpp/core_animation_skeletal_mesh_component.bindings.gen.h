@@ -28,6 +28,22 @@ template <> struct Ref<USkeletalMeshComponent> : Ref<UPrimitiveComponent> {
 
 namespace pybind11::detail {
 
+template <> struct type_caster<EAnimationMode> {
+    PYBIND11_TYPE_CASTER(EAnimationMode, const_name("EAnimationMode"));
+    bool load(handle src, bool) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EAnimationMode");
+        if (!isinstance(src, cls))
+            return false;
+        value = static_cast<EAnimationMode>(src.cast<int64_t>());
+        return true;
+    }
+    static handle cast(EAnimationMode v, return_value_policy, handle) {
+        static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EAnimationMode");
+        static const object members = cls.attr("_value2member_map_");
+        return sp::pybind::enumMember(cls, members, static_cast<int64_t>(v)).release();
+    }
+};
+
 template <> struct type_caster<EBoneSpaces> {
     PYBIND11_TYPE_CASTER(EBoneSpaces, const_name("EBoneSpaces"));
     bool load(handle src, bool) {
@@ -41,6 +57,27 @@ template <> struct type_caster<EBoneSpaces> {
         static const object cls = sp::pybind::apiAttribute("spear._engine.api", "EBoneSpaces");
         static const object members = cls.attr("_value2member_map_");
         return sp::pybind::enumMember(cls, members, static_cast<int64_t>(v)).release();
+    }
+};
+
+template <> struct type_caster<FBlendSample> {
+    PYBIND11_TYPE_CASTER(FBlendSample, const_name("FBlendSample"));
+    // Its Python class, read and made through its slots (sp::pybind::SlotStruct); never released (a static
+    // py::object freed after Python has shut down would crash at exit).
+    static const sp::pybind::SlotStruct& python() {
+        static const auto* const type = new sp::pybind::SlotStruct("spear._engine.api", "FBlendSample", {"Animation", "SampleValue"});
+        return *type;
+    }
+    bool load(handle src, bool) {
+        const sp::pybind::SlotStruct& type = python();
+        if (!type.holds(src))
+            return false;
+        value.Animation = sp::pybind::Bridge<std::string>::in(type.get(src, 0).cast<sp::pybind::Bridge<std::string>::Py>(), "FBlendSample.Animation");
+        value.SampleValue = sp::pybind::Bridge<double>::in(type.get(src, 1).cast<sp::pybind::Bridge<double>::Py>(), "FBlendSample.SampleValue");
+        return true;
+    }
+    static handle cast(const FBlendSample& v, return_value_policy, handle) {
+        return python().make(sp::pybind::Bridge<std::string>::out(v.Animation), sp::pybind::Bridge<double>::out(v.SampleValue)).release();
     }
 };
 

@@ -5,6 +5,18 @@
 
 #include "core/reflect/codec.h"
 
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EAnimationMode>() {
+    static const sp::reflect::EnumInfo info{
+        "EAnimationMode",
+        "What poses a skeletal mesh component while it plays (UE's EAnimationMode, its two data-driven modes).",
+        {
+            {"AnimationSingleNode", 0},
+            {"AnimationBlendSpace", 1},
+        },
+    };
+    return info;
+}
+
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EBoneSpaces>() {
     static const sp::reflect::EnumInfo info{
         "EBoneSpaces",
@@ -45,6 +57,46 @@ const sp::reflect::TypeInfo& ASkeletalMeshActor::StaticClass() {
 }
 
 const sp::reflect::TypeInfo& ASkeletalMeshActor::GetClass() const { return StaticClass(); }
+
+// -- FBlendSample ----------------------------------------------------------------------------------
+
+const sp::reflect::TypeInfo& FBlendSample::StaticClass() {
+    static const sp::reflect::TypeInfo info = [] {
+        using Self = FBlendSample;
+        using Calls = sp::generated::engine::FBlendSampleCalls;
+        using sp::reflect::ValueCall;
+        sp::reflect::TypeInfo t;
+        t.name = "FBlendSample";
+        t.doc = "One clip of a one-dimensional blend space and the input at which it plays alone (UE's FBlendSample).";
+        t.kind = sp::reflect::TypeInfo::Kind::Struct;
+        t.parent = nullptr;
+        t.isAbstract = false;
+        t.properties.push_back({
+            "Animation",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
+            "The clip, named as AnimToPlay names one.",
+            false,
+            [](const void* self) { return Calls::get_Animation<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_Animation<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "SampleValue",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
+            "The input at which this clip plays alone: for locomotion, the speed in m/s its feet move at.",
+            false,
+            [](const void* self) { return Calls::get_SampleValue<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_SampleValue<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        return t;
+    }();
+    return info;
+}
+
+const sp::reflect::TypeInfo& FBlendSample::GetClass() const { return StaticClass(); }
 
 // -- USkeletalMeshComponent ----------------------------------------------------------------------------------
 
@@ -109,6 +161,34 @@ const sp::reflect::TypeInfo& USkeletalMeshComponent::StaticClass() {
             [](void* self, const sp::reflect::Value& value) {
                 Calls::set_PlayRate<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
+        });
+        t.properties.push_back({
+            "AnimationMode",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EAnimationMode"),
+            "What poses the mesh while it plays: one clip, or the blend space.",
+            false,
+            [](const void* self) { return Calls::get_AnimationMode<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_AnimationMode<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "BlendSpace",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FBlendSample")),
+            "A one-dimensional blend space (UE's UBlendSpace1D): clips by increasing SampleValue, all of them\ncycles (idle, walk, run). At an input between two samples the pose blends their clips by where it\nlies, both at the same fraction of their cycles (UE's sync groups: the feet stay in step); the cycle's\nrate blends too, and past the last sample it grows with the input (running faster). Set through\nSetBlendSpace(), which checks the clips.",
+            false,
+            [](const void* self) { return Calls::get_BlendSpace<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_BlendSpace<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "BlendSpaceInput",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
+            "The blend space's input now (a speed in m/s for locomotion); SetBlendSpaceInput() sets it.",
+            true,
+            [](const void* self) { return Calls::get_BlendSpaceInput<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            nullptr,
         });
         t.functions.push_back({
             "SetSkeletalMesh",
@@ -283,6 +363,38 @@ const sp::reflect::TypeInfo& USkeletalMeshComponent::StaticClass() {
             [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetPlayRate<ValueCall>(self, args); },
         });
         t.functions.push_back({
+            "SetBlendSpace",
+            "Sets BlendSpace. Raises InvalidArgumentError when the sample values do not increase or are not finite,\nNotFoundError naming a clip the mesh does not have (without a mesh yet, the clips are checked when it\nis set).",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"Samples", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FBlendSample")), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetBlendSpace<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "SetBlendSpaceInput",
+            "Plays the blend space at Input (finite): AnimationMode becomes AnimationBlendSpace and the mesh plays,\nlooping. Raises InvalidStateError when BlendSpace is empty or the mesh has none of its clips.",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"Input", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetBlendSpaceInput<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "GetBlendSpaceWeights",
+            "Returns the weight of each sample of BlendSpace in the pose now (they sum to 1 while it plays).",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float)),
+            {
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetBlendSpaceWeights<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
             "SetAnimToPlay",
             "Sets AnimToPlay (checked as PlayAnimation() checks it) without playing it.",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
@@ -305,6 +417,18 @@ const sp::reflect::TypeInfo& USkeletalMeshComponent::StaticClass() {
             [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetBoneTransforms<ValueCall>(self, args); },
         });
         t.functions.push_back({
+            "GetBoneTransformsOfComponents",
+            "Returns every bone's transform of each of Components (all with the same number of bones) as one\nfloat64 array (components, bones, 4, 4) in Space: a crowd's poses in one call and one array, which\nover RPC is one reply (calling GetBoneTransforms per character sends one array each). Raises\nInvalidArgumentError naming the first component whose bone count differs, or a None entry.",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"),
+            {
+                {"Components", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "USkeletalMeshComponent")), false, false},
+                {"Space", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Enum, "EBoneSpaces"), true, false},
+            },
+            true,
+            false,
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_GetBoneTransformsOfComponents<ValueCall>(args); },
+        });
+        t.functions.push_back({
             "SetBoneTransforms",
             "Poses the mesh with Transforms, a float64 array (bones, 4, 4) as GetBoneTransforms() returns, in\nSpace; the clip stops. Raises InvalidArgumentError, leaving the pose as it was, when the shape is not\n(GetNumBones(), 4, 4), a value is not finite, a bottom row is not (0, 0, 0, 1) or a matrix scales an\naxis to zero.",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
@@ -325,7 +449,9 @@ const sp::reflect::TypeInfo& USkeletalMeshComponent::GetClass() const { return S
 
 // What register.gen.cpp registers, reached without including this header there.
 namespace sp::generated::engine {
+const sp::reflect::EnumInfo& enumInfo_EAnimationMode() { return sp::reflect::StaticEnum<EAnimationMode>(); }
 const sp::reflect::EnumInfo& enumInfo_EBoneSpaces() { return sp::reflect::StaticEnum<EBoneSpaces>(); }
 const sp::reflect::TypeInfo& typeInfo_ASkeletalMeshActor() { return ASkeletalMeshActor::StaticClass(); }
+const sp::reflect::TypeInfo& typeInfo_FBlendSample() { return FBlendSample::StaticClass(); }
 const sp::reflect::TypeInfo& typeInfo_USkeletalMeshComponent() { return USkeletalMeshComponent::StaticClass(); }
 } // namespace sp::generated::engine

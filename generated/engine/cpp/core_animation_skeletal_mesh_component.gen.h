@@ -24,6 +24,7 @@
 #include "core/world/world.h"
 #include "core/animation/skeletal_mesh_component.h"
 
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EAnimationMode>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EBoneSpaces>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECollisionPrimitive>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EComponentMobility>();
@@ -37,6 +38,28 @@ struct ASkeletalMeshActorCalls {
         const auto& value = self->SkeletalMeshComponent;
         sp::reflect::checkNotNull(value, "ASkeletalMeshActor.SkeletalMeshComponent");
         return Call::template result<USkeletalMeshComponent*>(value);
+    }
+};
+
+struct FBlendSampleCalls {
+    using Self = FBlendSample;
+
+    template <typename Call> static typename Call::Result get_Animation(const Self* self) {
+        const auto& value = self->Animation;
+        return Call::template result<std::string>(value);
+    }
+    template <typename Call> static void set_Animation(Self* self, const typename Call::Input& value) {
+        self->Animation = Call::template input<std::string>(value, "FBlendSample.Animation");
+        sp::reflect::notifyPropertyChanged(self, "Animation");
+    }
+
+    template <typename Call> static typename Call::Result get_SampleValue(const Self* self) {
+        const auto& value = self->SampleValue;
+        return Call::template result<double>(value);
+    }
+    template <typename Call> static void set_SampleValue(Self* self, const typename Call::Input& value) {
+        self->SampleValue = Call::template input<double>(value, "FBlendSample.SampleValue");
+        sp::reflect::notifyPropertyChanged(self, "SampleValue");
     }
 };
 
@@ -86,6 +109,29 @@ struct USkeletalMeshComponentCalls {
     template <typename Call> static void set_PlayRate(Self* self, const typename Call::Input& value) {
         self->SetPlayRate(Call::template input<double>(value, "USkeletalMeshComponent.PlayRate"));
         sp::reflect::notifyPropertyChanged(self, "PlayRate");
+    }
+
+    template <typename Call> static typename Call::Result get_AnimationMode(const Self* self) {
+        const auto& value = self->AnimationMode;
+        return Call::template result<EAnimationMode>(value);
+    }
+    template <typename Call> static void set_AnimationMode(Self* self, const typename Call::Input& value) {
+        self->AnimationMode = Call::template input<EAnimationMode>(value, "USkeletalMeshComponent.AnimationMode");
+        sp::reflect::notifyPropertyChanged(self, "AnimationMode");
+    }
+
+    template <typename Call> static typename Call::Result get_BlendSpace(const Self* self) {
+        const auto& value = self->BlendSpace;
+        return Call::template result<std::vector<FBlendSample>>(value);
+    }
+    template <typename Call> static void set_BlendSpace(Self* self, const typename Call::Input& value) {
+        self->SetBlendSpace(Call::template input<std::vector<FBlendSample>>(value, "USkeletalMeshComponent.BlendSpace"));
+        sp::reflect::notifyPropertyChanged(self, "BlendSpace");
+    }
+
+    template <typename Call> static typename Call::Result get_BlendSpaceInput(const Self* self) {
+        const auto& value = self->BlendSpaceInput;
+        return Call::template result<double>(value);
     }
 
     template <typename Call, typename Target>
@@ -267,6 +313,39 @@ struct USkeletalMeshComponentCalls {
     }
 
     template <typename Call, typename Target>
+    static typename Call::Result call_SetBlendSpace(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"Samples", "USkeletalMeshComponent.SetBlendSpace(): argument 'Samples'", true},
+        }};
+        const Call call(args, "USkeletalMeshComponent.SetBlendSpace()", kParams);
+        Self* self = Call::template object<Self>(target, "USkeletalMeshComponent.SetBlendSpace()");
+        std::vector<FBlendSample> SamplesArg = call.template arg<std::vector<FBlendSample>>(0);
+        self->SetBlendSpace(SamplesArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetBlendSpaceInput(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"Input", "USkeletalMeshComponent.SetBlendSpaceInput(): argument 'Input'", true},
+        }};
+        const Call call(args, "USkeletalMeshComponent.SetBlendSpaceInput()", kParams);
+        Self* self = Call::template object<Self>(target, "USkeletalMeshComponent.SetBlendSpaceInput()");
+        double InputArg = call.template arg<double>(0);
+        self->SetBlendSpaceInput(InputArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_GetBlendSpaceWeights(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 0> kParams{};
+        const Call call(args, "USkeletalMeshComponent.GetBlendSpaceWeights()", kParams);
+        const Self* self = Call::template object<const Self>(target, "USkeletalMeshComponent.GetBlendSpaceWeights()");
+        auto result = self->GetBlendSpaceWeights();
+        return Call::template result<std::vector<double>>(result);
+    }
+
+    template <typename Call, typename Target>
     static typename Call::Result call_SetAnimToPlay(const Target& target, typename Call::Args args) {
         static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
             {"NewAnimToPlay", "USkeletalMeshComponent.SetAnimToPlay(): argument 'NewAnimToPlay'", true},
@@ -287,6 +366,18 @@ struct USkeletalMeshComponentCalls {
         const Self* self = Call::template object<const Self>(target, "USkeletalMeshComponent.GetBoneTransforms()");
         EBoneSpaces SpaceArg = call.given(0) ? call.template arg<EBoneSpaces>(0) : EBoneSpaces(EBoneSpaces::WorldSpace);
         auto result = self->GetBoneTransforms(SpaceArg);
+        return Call::template result<sp::reflect::SpArray<double>>(result);
+    }
+
+    template <typename Call> static typename Call::Result call_GetBoneTransformsOfComponents(typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 2> kParams{{
+            {"Components", "USkeletalMeshComponent.GetBoneTransformsOfComponents(): argument 'Components'", true},
+            {"Space", "USkeletalMeshComponent.GetBoneTransformsOfComponents(): argument 'Space'", false},
+        }};
+        const Call call(args, "USkeletalMeshComponent.GetBoneTransformsOfComponents()", kParams);
+        std::vector<USkeletalMeshComponent*> ComponentsArg = call.template arg<std::vector<USkeletalMeshComponent*>>(0);
+        EBoneSpaces SpaceArg = call.given(1) ? call.template arg<EBoneSpaces>(1) : EBoneSpaces(EBoneSpaces::WorldSpace);
+        auto result = Self::GetBoneTransformsOfComponents(ComponentsArg, SpaceArg);
         return Call::template result<sp::reflect::SpArray<double>>(result);
     }
 

@@ -10,6 +10,7 @@
 
 #include <array>
 
+#include "generated/engine/cpp/core_animation_skeletal_mesh_component.bindings.gen.h"
 #include "generated/engine/cpp/core_gameplay_controller.bindings.gen.h"
 #include "generated/engine/cpp/core_gameplay_pawn.bindings.gen.h"
 #include "generated/engine/cpp/core_world_actor.bindings.gen.h"
@@ -22,7 +23,6 @@
 #include "generated/engine/cpp/core_world_primitive_component.bindings.gen.h"
 #include "generated/engine/cpp/core_world_scene_component.bindings.gen.h"
 #include "generated/engine/cpp/core_world_shape_components.bindings.gen.h"
-#include "generated/engine/cpp/core_world_static_mesh_component.bindings.gen.h"
 #include "generated/engine/cpp/core_world_world.bindings.gen.h"
 #include "generated/engine/cpp/core_gameplay_character.bindings.gen.h"
 
@@ -47,7 +47,7 @@ void bind_ACharacter(py::module_& m) {
     cls.def_property_readonly(
         "Mesh",
         [](const Ref<Self>& self) { return Calls::get_Mesh<PyCall>(self.get<Self>("ACharacter.Mesh")); },
-        "The character's visible body (no collision of its own).");
+        "The character's visible body (no collision of its own): by default the built-in humanoid\n(/Game/characters/humanoid.glb) with its feet at the capsule's bottom, playing a blend space of its\nidle, walk and run clips by the speed it moves at, its body turned to where it walks.");
     cls.def_property_readonly(
         "CharacterMovement",
         [](const Ref<Self>& self) { return Calls::get_CharacterMovement<PyCall>(self.get<Self>("ACharacter.CharacterMovement")); },

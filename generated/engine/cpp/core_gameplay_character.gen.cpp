@@ -29,8 +29,8 @@ const sp::reflect::TypeInfo& ACharacter::StaticClass() {
         });
         t.properties.push_back({
             "Mesh",
-            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "UStaticMeshComponent"),
-            "The character's visible body (no collision of its own).",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Object, "USkeletalMeshComponent"),
+            "The character's visible body (no collision of its own): by default the built-in humanoid\n(/Game/characters/humanoid.glb) with its feet at the capsule's bottom, playing a blend space of its\nidle, walk and run clips by the speed it moves at, its body turned to where it walks.",
             true,
             [](const void* self) { return Calls::get_Mesh<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             nullptr,

@@ -13,6 +13,7 @@
 
 #include "core/reflect/invoke.h"
 #include "core/reflect/type_info.h"
+#include "core/animation/skeletal_mesh_component.h"
 #include "core/gameplay/controller.h"
 #include "core/gameplay/pawn.h"
 #include "core/world/actor.h"
@@ -25,10 +26,11 @@
 #include "core/world/primitive_component.h"
 #include "core/world/scene_component.h"
 #include "core/world/shape_components.h"
-#include "core/world/static_mesh_component.h"
 #include "core/world/world.h"
 #include "core/gameplay/character.h"
 
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EAnimationMode>();
+template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EBoneSpaces>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<ECollisionPrimitive>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EComponentMobility>();
 template <> const sp::reflect::EnumInfo& sp::reflect::StaticEnum<EPathFollowingRequestResult>();
@@ -48,7 +50,7 @@ struct ACharacterCalls {
     template <typename Call> static typename Call::Result get_Mesh(const Self* self) {
         const auto& value = self->Mesh;
         sp::reflect::checkNotNull(value, "ACharacter.Mesh");
-        return Call::template result<UStaticMeshComponent*>(value);
+        return Call::template result<USkeletalMeshComponent*>(value);
     }
 
     template <typename Call> static typename Call::Result get_CharacterMovement(const Self* self) {

@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "516912d78e0d0a82";
+inline constexpr char kApiHash[] = "c29c729cb3b3e8b4";
 } // namespace sp::generated::engine

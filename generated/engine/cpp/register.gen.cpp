@@ -7,6 +7,7 @@
 #include "generated/engine/cpp/engine_types.gen.h"
 
 namespace sp::generated::engine {
+const sp::reflect::EnumInfo& enumInfo_EAnimationMode();
 const sp::reflect::EnumInfo& enumInfo_EAntiAliasingMethod();
 const sp::reflect::EnumInfo& enumInfo_EAutoExposureMethod();
 const sp::reflect::EnumInfo& enumInfo_EBoneSpaces();
@@ -53,6 +54,7 @@ const sp::reflect::TypeInfo& typeInfo_AStereoCameraRig();
 const sp::reflect::TypeInfo& typeInfo_ATriggerBox();
 const sp::reflect::TypeInfo& typeInfo_ATriggerSphere();
 const sp::reflect::TypeInfo& typeInfo_AWheeledVehiclePawn();
+const sp::reflect::TypeInfo& typeInfo_FBlendSample();
 const sp::reflect::TypeInfo& typeInfo_FCameraPixels();
 const sp::reflect::TypeInfo& typeInfo_FFrameTimings();
 const sp::reflect::TypeInfo& typeInfo_FVector();
@@ -101,6 +103,7 @@ const sp::reflect::TypeInfo& typeInfo_UWorld();
 extern "C" void spear_register_engine_types() {
     namespace gen = sp::generated::engine;
     auto& registry = sp::reflect::Registry::get();
+    registry.add(gen::enumInfo_EAnimationMode());
     registry.add(gen::enumInfo_EAntiAliasingMethod());
     registry.add(gen::enumInfo_EAutoExposureMethod());
     registry.add(gen::enumInfo_EBoneSpaces());
@@ -147,6 +150,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(gen::typeInfo_ATriggerBox());
     registry.add(gen::typeInfo_ATriggerSphere());
     registry.add(gen::typeInfo_AWheeledVehiclePawn());
+    registry.add(gen::typeInfo_FBlendSample());
     registry.add(gen::typeInfo_FCameraPixels());
     registry.add(gen::typeInfo_FFrameTimings());
     registry.add(gen::typeInfo_FVector());
@@ -239,6 +243,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::typeInfo_FVector());
     registry.remove(gen::typeInfo_FFrameTimings());
     registry.remove(gen::typeInfo_FCameraPixels());
+    registry.remove(gen::typeInfo_FBlendSample());
     registry.remove(gen::typeInfo_AWheeledVehiclePawn());
     registry.remove(gen::typeInfo_ATriggerSphere());
     registry.remove(gen::typeInfo_ATriggerBox());
@@ -285,6 +290,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::enumInfo_EBoneSpaces());
     registry.remove(gen::enumInfo_EAutoExposureMethod());
     registry.remove(gen::enumInfo_EAntiAliasingMethod());
+    registry.remove(gen::enumInfo_EAnimationMode());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "516912d78e0d0a82"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "c29c729cb3b3e8b4"; }

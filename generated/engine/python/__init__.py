@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "516912d78e0d0a82"
+API_HASH = "c29c729cb3b3e8b4"

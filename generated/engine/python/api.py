@@ -53,6 +53,7 @@ __all__ = [
     "AWheeledVehiclePawn",
     "BP_Axes",
     "BP_Crate",
+    "EAnimationMode",
     "EAntiAliasingMethod",
     "EAutoExposureMethod",
     "EBoneSpaces",
@@ -69,6 +70,7 @@ __all__ = [
     "EPathFollowingStatus",
     "ESkyLightSourceType",
     "ESplineCoordinateSpace",
+    "FBlendSample",
     "FCameraPixels",
     "FFrameTimings",
     "FHitResult",
@@ -114,6 +116,13 @@ __all__ = [
     "UStaticMeshComponent",
     "UWorld",
 ]
+
+
+class EAnimationMode(enum.IntEnum):
+    """What poses a skeletal mesh component while it plays (UE's EAnimationMode, its two data-driven modes)."""
+
+    AnimationSingleNode = 0
+    AnimationBlendSpace = 1
 
 
 class EAntiAliasingMethod(enum.IntEnum):
@@ -276,6 +285,15 @@ class ESplineCoordinateSpace(enum.IntEnum):
 
     Local = 0
     World = 1
+
+
+@dataclass(slots=True)
+class FBlendSample:
+    """One clip of a one-dimensional blend space and the input at which it plays alone (UE's FBlendSample)."""
+
+    __sp_class__: ClassVar[str] = "FBlendSample"
+    Animation: str = ""
+    SampleValue: float = 0.0
 
 
 class FCameraPixels(TypedDict, total=False):
@@ -1530,6 +1548,7 @@ class USkeletalMeshComponent(UPrimitiveComponent):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "USkeletalMeshComponent"
+    GetBoneTransformsOfComponents = _StaticFunction("USkeletalMeshComponent", "GetBoneTransformsOfComponents", _t.T_array_float64)
 
 
 class USkyAtmosphereComponentAsync(USceneComponentAsync):

@@ -46,6 +46,7 @@ __all__ = [
     "AWheeledVehiclePawn",
     "BP_Axes",
     "BP_Crate",
+    "EAnimationMode",
     "EAntiAliasingMethod",
     "EAutoExposureMethod",
     "EBoneSpaces",
@@ -62,6 +63,7 @@ __all__ = [
     "EPathFollowingStatus",
     "ESkyLightSourceType",
     "ESplineCoordinateSpace",
+    "FBlendSample",
     "FCameraPixels",
     "FFrameTimings",
     "FHitResult",
@@ -113,6 +115,15 @@ _AActorT = TypeVar("_AActorT", bound="AActor")
 _UActorComponentT = TypeVar("_UActorComponentT", bound="UActorComponent")
 
 _UObjectT = TypeVar("_UObjectT", bound="UObject")
+
+
+class EAnimationMode(enum.IntEnum):
+    """What poses a skeletal mesh component while it plays (UE's EAnimationMode, its two data-driven modes)."""
+
+    AnimationSingleNode = 0
+    """One clip, AnimToPlay (PlayAnimation)."""
+    AnimationBlendSpace = 1
+    """The blend space BlendSpace at BlendSpaceInput (SetBlendSpaceInput): what a character's walking drives."""
 
 
 class EAntiAliasingMethod(enum.IntEnum):
@@ -364,6 +375,15 @@ class ESplineCoordinateSpace(enum.IntEnum):
     """The spline component's own space."""
     World = 1
     """World space."""
+
+
+@dataclass(slots=True)
+class FBlendSample:
+    """One clip of a one-dimensional blend space and the input at which it plays alone (UE's FBlendSample)."""
+
+    __sp_class__: ClassVar[str]
+    Animation: str = ""
+    SampleValue: float = 0.0
 
 
 class FCameraPixels(TypedDict, total=False):
@@ -1134,8 +1154,11 @@ class ACharacter(APawn):
         """The collision capsule (the root component); its size is the character's."""
 
     @property
-    def Mesh(self) -> UStaticMeshComponent:
-        """The character's visible body (no collision of its own)."""
+    def Mesh(self) -> USkeletalMeshComponent:
+        """The character's visible body (no collision of its own): by default the built-in humanoid
+        (/Game/characters/humanoid.glb) with its feet at the capsule's bottom, playing a blend space of its
+        idle, walk and run clips by the speed it moves at, its body turned to where it walks.
+        """
 
     @property
     def CharacterMovement(self) -> UCharacterMovementComponent:
@@ -4793,9 +4816,17 @@ class USkeletalMeshComponentAsync(UPrimitiveComponentAsync):
 
     def GetPlayRate(self) -> Future[float]: ...
 
+    def SetBlendSpace(self, *, Samples: list[FBlendSample]) -> Future[None]: ...
+
+    def SetBlendSpaceInput(self, *, Input: float) -> Future[None]: ...
+
+    def GetBlendSpaceWeights(self) -> Future[list[float]]: ...
+
     def SetAnimToPlay(self, *, NewAnimToPlay: str) -> Future[None]: ...
 
     def GetBoneTransforms(self, *, Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> Future[NDArray[np.float64]]: ...
+
+    def GetBoneTransformsOfComponents(self, *, Components: Sequence[USkeletalMeshComponent], Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> Future[NDArray[np.float64]]: ...
 
     def SetBoneTransforms(self, *, Transforms: NDArray[np.float64], Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> Future[None]: ...
 
@@ -4835,9 +4866,17 @@ class USkeletalMeshComponentSend(UPrimitiveComponentSend):
 
     def GetPlayRate(self) -> None: ...
 
+    def SetBlendSpace(self, *, Samples: list[FBlendSample]) -> None: ...
+
+    def SetBlendSpaceInput(self, *, Input: float) -> None: ...
+
+    def GetBlendSpaceWeights(self) -> None: ...
+
     def SetAnimToPlay(self, *, NewAnimToPlay: str) -> None: ...
 
     def GetBoneTransforms(self, *, Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> None: ...
+
+    def GetBoneTransformsOfComponents(self, *, Components: Sequence[USkeletalMeshComponent], Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> None: ...
 
     def SetBoneTransforms(self, *, Transforms: NDArray[np.float64], Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> None: ...
 
@@ -4896,6 +4935,29 @@ class USkeletalMeshComponent(UPrimitiveComponent):
     @PlayRate.setter
     def PlayRate(self, value: float) -> None: ...
 
+    @property
+    def AnimationMode(self) -> EAnimationMode:
+        """What poses the mesh while it plays: one clip, or the blend space."""
+
+    @AnimationMode.setter
+    def AnimationMode(self, value: EAnimationMode) -> None: ...
+
+    @property
+    def BlendSpace(self) -> list[FBlendSample]:
+        """A one-dimensional blend space (UE's UBlendSpace1D): clips by increasing SampleValue, all of them
+        cycles (idle, walk, run). At an input between two samples the pose blends their clips by where it
+        lies, both at the same fraction of their cycles (UE's sync groups: the feet stay in step); the cycle's
+        rate blends too, and past the last sample it grows with the input (running faster). Set through
+        SetBlendSpace(), which checks the clips.
+        """
+
+    @BlendSpace.setter
+    def BlendSpace(self, value: list[FBlendSample]) -> None: ...
+
+    @property
+    def BlendSpaceInput(self) -> float:
+        """The blend space's input now (a speed in m/s for locomotion); SetBlendSpaceInput() sets it."""
+
     def SetSkeletalMesh(self, *, NewMesh: str) -> bool:
         """Sets the skeletal mesh asset. Returns true; raises NotFoundError naming the file when there is none,
         InvalidArgumentError when it cannot be read or has no skeleton. The pose becomes the bind pose, and
@@ -4952,12 +5014,34 @@ class USkeletalMeshComponent(UPrimitiveComponent):
     def GetPlayRate(self) -> float:
         """Returns PlayRate."""
 
+    def SetBlendSpace(self, *, Samples: list[FBlendSample]) -> None:
+        """Sets BlendSpace. Raises InvalidArgumentError when the sample values do not increase or are not finite,
+        NotFoundError naming a clip the mesh does not have (without a mesh yet, the clips are checked when it
+        is set).
+        """
+
+    def SetBlendSpaceInput(self, *, Input: float) -> None:
+        """Plays the blend space at Input (finite): AnimationMode becomes AnimationBlendSpace and the mesh plays,
+        looping. Raises InvalidStateError when BlendSpace is empty or the mesh has none of its clips.
+        """
+
+    def GetBlendSpaceWeights(self) -> list[float]:
+        """Returns the weight of each sample of BlendSpace in the pose now (they sum to 1 while it plays)."""
+
     def SetAnimToPlay(self, *, NewAnimToPlay: str) -> None:
         """Sets AnimToPlay (checked as PlayAnimation() checks it) without playing it."""
 
     def GetBoneTransforms(self, *, Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> NDArray[np.float64]:
         """Returns every bone's transform in the current pose as a float64 array (bones, 4, 4) of homogeneous
         matrices (column 3 the translation), in Space: the whole pose in one call.
+        """
+
+    @staticmethod
+    def GetBoneTransformsOfComponents(*, Components: Sequence[USkeletalMeshComponent], Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> NDArray[np.float64]:
+        """Returns every bone's transform of each of Components (all with the same number of bones) as one
+        float64 array (components, bones, 4, 4) in Space: a crowd's poses in one call and one array, which
+        over RPC is one reply (calling GetBoneTransforms per character sends one array each). Raises
+        InvalidArgumentError naming the first component whose bone count differs, or a None entry.
         """
 
     def SetBoneTransforms(self, *, Transforms: NDArray[np.float64], Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> None:

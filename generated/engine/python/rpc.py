@@ -20,7 +20,7 @@ from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
 from . import type_codes as _t
-from .api import EAntiAliasingMethod, EAutoExposureMethod, EBoneSpaces, ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EGlobalIlluminationQuality, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESkyLightSourceType, ESplineCoordinateSpace, FCameraPixels, FFrameTimings, FHitResult, FLensDistortion, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
+from .api import EAnimationMode, EAntiAliasingMethod, EAutoExposureMethod, EBoneSpaces, ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EGlobalIlluminationQuality, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESkyLightSourceType, ESplineCoordinateSpace, FBlendSample, FCameraPixels, FFrameTimings, FHitResult, FLensDistortion, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
 
@@ -257,8 +257,8 @@ class ACharacter(APawn, api.ACharacter):
         return cast("api.UCapsuleComponent", self._sp_get("ACharacter", "CapsuleComponent", _t.T_UCapsuleComponent))
 
     @property
-    def Mesh(self) -> api.UStaticMeshComponent:
-        return cast("api.UStaticMeshComponent", self._sp_get("ACharacter", "Mesh", _t.T_UStaticMeshComponent))
+    def Mesh(self) -> api.USkeletalMeshComponent:
+        return cast("api.USkeletalMeshComponent", self._sp_get("ACharacter", "Mesh", _t.T_USkeletalMeshComponent))
 
     @property
     def CharacterMovement(self) -> api.UCharacterMovementComponent:
@@ -2230,6 +2230,26 @@ class USkeletalMeshComponent(UPrimitiveComponent, api.USkeletalMeshComponent):
     def PlayRate(self, value: float) -> None:
         self._sp_set("USkeletalMeshComponent", "PlayRate", value)
 
+    @property
+    def AnimationMode(self) -> EAnimationMode:
+        return cast("EAnimationMode", self._sp_get("USkeletalMeshComponent", "AnimationMode", _t.T_EAnimationMode))
+
+    @AnimationMode.setter
+    def AnimationMode(self, value: EAnimationMode) -> None:
+        self._sp_set("USkeletalMeshComponent", "AnimationMode", value)
+
+    @property
+    def BlendSpace(self) -> list[FBlendSample]:
+        return cast("list[FBlendSample]", self._sp_get("USkeletalMeshComponent", "BlendSpace", _t.T_list_of_FBlendSample))
+
+    @BlendSpace.setter
+    def BlendSpace(self, value: list[FBlendSample]) -> None:
+        self._sp_set("USkeletalMeshComponent", "BlendSpace", value)
+
+    @property
+    def BlendSpaceInput(self) -> float:
+        return cast("float", self._sp_get("USkeletalMeshComponent", "BlendSpaceInput", _t.T_float))
+
     def SetSkeletalMesh(self, *, NewMesh: str) -> bool:
         return cast("bool", self._sp_call("USkeletalMeshComponent", "SetSkeletalMesh", {"NewMesh": NewMesh}, _t.T_bool))
 
@@ -2277,6 +2297,15 @@ class USkeletalMeshComponent(UPrimitiveComponent, api.USkeletalMeshComponent):
 
     def GetPlayRate(self) -> float:
         return cast("float", self._sp_call("USkeletalMeshComponent", "GetPlayRate", {}, _t.T_float))
+
+    def SetBlendSpace(self, *, Samples: list[FBlendSample]) -> None:
+        return cast(None, self._sp_call("USkeletalMeshComponent", "SetBlendSpace", {"Samples": Samples}, _t.T_void))  # a Future when queued by call_async
+
+    def SetBlendSpaceInput(self, *, Input: float) -> None:
+        return cast(None, self._sp_call("USkeletalMeshComponent", "SetBlendSpaceInput", {"Input": Input}, _t.T_void))  # a Future when queued by call_async
+
+    def GetBlendSpaceWeights(self) -> list[float]:
+        return cast("list[float]", self._sp_call("USkeletalMeshComponent", "GetBlendSpaceWeights", {}, _t.T_list_of_float))
 
     def SetAnimToPlay(self, *, NewAnimToPlay: str) -> None:
         return cast(None, self._sp_call("USkeletalMeshComponent", "SetAnimToPlay", {"NewAnimToPlay": NewAnimToPlay}, _t.T_void))  # a Future when queued by call_async

@@ -15,6 +15,7 @@ T_APawn_or_None = TypeCode("object", "APawn", optional=True)
 T_APlayerController_or_None = TypeCode("object", "APlayerController", optional=True)
 T_ARecastNavMesh = TypeCode("object", "ARecastNavMesh")
 T_ARecastNavMesh_or_None = TypeCode("object", "ARecastNavMesh", optional=True)
+T_EAnimationMode = TypeCode("enum", "EAnimationMode")
 T_EAntiAliasingMethod = TypeCode("enum", "EAntiAliasingMethod")
 T_EAutoExposureMethod = TypeCode("enum", "EAutoExposureMethod")
 T_ECameraModality = TypeCode("enum", "ECameraModality")
@@ -29,6 +30,7 @@ T_EPCGGenerationMode = TypeCode("enum", "EPCGGenerationMode")
 T_EPathFollowingRequestResult = TypeCode("enum", "EPathFollowingRequestResult")
 T_EPathFollowingStatus = TypeCode("enum", "EPathFollowingStatus")
 T_ESkyLightSourceType = TypeCode("enum", "ESkyLightSourceType")
+T_FBlendSample = TypeCode("struct", "FBlendSample")
 T_FCameraPixels = TypeCode("struct", "FCameraPixels")
 T_FFrameTimings = TypeCode("struct", "FFrameTimings")
 T_FHitResult = TypeCode("struct", "FHitResult")
@@ -95,6 +97,7 @@ T_dict_of_FMaterialDesc = TypeCode("dict", element=T_FMaterialDesc)
 T_dict_of_UActorComponent = TypeCode("dict", element=T_UActorComponent)
 T_list_of_AActor = TypeCode("list", element=T_AActor)
 T_list_of_ECameraModality = TypeCode("list", element=T_ECameraModality)
+T_list_of_FBlendSample = TypeCode("list", element=T_FBlendSample)
 T_list_of_FRotator = TypeCode("list", element=T_FRotator)
 T_list_of_FVector = TypeCode("list", element=T_FVector)
 T_list_of_UActorComponent = TypeCode("list", element=T_UActorComponent)
@@ -102,6 +105,7 @@ T_list_of_UCameraSensorComponent = TypeCode("list", element=T_UCameraSensorCompo
 T_list_of_UMoviePipelineExecutorJob = TypeCode("list", element=T_UMoviePipelineExecutorJob)
 T_list_of_UPrimitiveComponent = TypeCode("list", element=T_UPrimitiveComponent)
 T_list_of_USceneComponent = TypeCode("list", element=T_USceneComponent)
+T_list_of_float = TypeCode("list", element=T_float)
 T_list_of_str = TypeCode("list", element=T_str)
 
 FIELD_TYPES: dict[str, dict[str, TypeCode]] = {
@@ -110,6 +114,7 @@ FIELD_TYPES: dict[str, dict[str, TypeCode]] = {
     "ARecastNavMesh.FindPathResult": {"ReturnValue": T_ENavigationQueryResult, "PathPoints": T_array_float64, "PathLength": T_float},
     "ARecastNavMesh.FindPathsResult": {"PathPoints": T_array_float64, "PathStarts": T_array_int64, "Lengths": T_array_float64, "Results": T_array_uint8},
     "ARecastNavMesh.ProjectPointToNavigationResult": {"ReturnValue": T_bool, "ProjectedLocation": T_FVector},
+    "FBlendSample": {"Animation": T_str, "SampleValue": T_float},
     "FCameraPixels": {"final_color": T_array_uint8, "hdr_color": T_array_float16, "depth": T_array_float32, "position": T_array_float32, "normal": T_array_float32, "object_ids": T_array_uint32, "material_ids": T_array_uint32, "base_color": T_array_float16, "roughness": T_array_float16, "metallic": T_array_float16, "material_ao": T_array_float16, "diffuse_illumination": T_array_float16, "diffuse_only": T_array_float16, "specular_residual": T_array_float16},
     "FFrameTimings": {"Frames": T_int, "ActorsMs": T_float, "PhysicsMs": T_float, "RenderingMs": T_float, "OtherMs": T_float},
     "FHitResult": {"bBlockingHit": T_bool, "Location": T_FVector, "ImpactPoint": T_FVector, "ImpactNormal": T_FVector, "Normal": T_FVector, "Distance": T_float, "Time": T_float, "TraceStart": T_FVector, "TraceEnd": T_FVector},
