@@ -13,6 +13,7 @@ import pytest
 from numpy.typing import NDArray
 
 import spear
+from test_character import course
 
 ROOT = Path(__file__).resolve().parents[2]
 HUMANOID = "/Game/characters/humanoid.glb"
@@ -274,17 +275,7 @@ def test_a_blend_space_mixes_clips_by_its_input(instance: spear.Instance) -> Non
 
 def test_a_character_is_a_humanoid_whose_legs_move_as_it_walks(instance: spear.Instance) -> None:
     game = instance.get_game()
-    with instance.begin_frame():
-        floor = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Floor", location=spear.FVector(Z=-0.5))
-        floor.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
-        floor.SetActorScale3D(NewScale3D=spear.FVector(40.0, 40.0, 1.0))
-        character = game.spawn_actor(uclass=spear.ACharacter, name="Walker", location=spear.FVector(Z=0.95))
-        player = spear.UGameplayStatics.GetPlayerController(WorldContextObject=game, PlayerIndex=0)
-        assert player is not None
-        player.Possess(InPawn=character)
-    with instance.end_frame():
-        pass
-    instance.step(num_frames=20)
+    character, player = course(instance, 0.3)  # standing at the origin; nothing in its way along +Y
     with instance.begin_frame():
         body = character.Mesh
         assert body.SkeletalMesh == HUMANOID and body.GetNumBones() == 18
