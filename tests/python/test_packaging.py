@@ -83,6 +83,8 @@ INSTALLED_EXAMPLES = [
      "out/side.png"),
     ("blueprints.py", [], "came to rest"),
     ("control_pawn.py", ["--frames", "8", "--out", "out/pawn.png"], "out/pawn.png"),
+    # The built-in humanoid (/Game/characters/humanoid.glb), its skeleton and clips.
+    ("animated_characters.py", ["--frames", "4", "--out", "out/characters.png"], "clips: idle, walk, run"),
 ]
 
 
