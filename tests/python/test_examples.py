@@ -133,6 +133,25 @@ def test_animated_characters_walk_run_and_carry_a_head_camera(transport: str, tm
 
 
 @pytest.mark.parametrize("transport", TRANSPORTS)
+def test_control_game_animation_walks_runs_and_stops_a_possessed_humanoid(transport: str, tmp_path: Path) -> None:
+    out = tmp_path / "game.png"
+    result = run_example("control_game_animation.py", "--frames", "60", "--out", str(out), *TRANSPORTS[transport])
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert ("its body: /Game/characters/humanoid.glb (18 bones), blend space idle at 0 m/s, walk at 1.25 m/s, "
+            "run at 3.2 m/s") in result.stdout
+    # Each phase's first line shows the pose the phase before it ended in (the speed is smoothed over 0.1 s):
+    # walking when the turn starts, running when the stop starts, standing idle at the end.
+    poses = {m[1]: {clip: float(w) for clip, w in re.findall(r"(\w+) ([\d.]+)", m[2])}
+             for m in re.finditer(r"frame (\d+/60) \w+: .*?, pose (.*)", result.stdout)}
+    assert poses["19/60"].get("walk", 0.0) > 0.9, result.stdout
+    assert poses["46/60"].get("run", 0.0) > 0.5, result.stdout
+    assert poses["60/60"].get("idle", 0.0) > 0.8, result.stdout
+    image = Image.open(out)
+    assert image.size == (4 * 320, 2 * (240 + 20))
+    assert len(set(image.convert("RGB").getdata())) > 1000
+
+
+@pytest.mark.parametrize("transport", TRANSPORTS)
 def test_control_pawn_flies_the_player_and_hands_it_over(transport: str, tmp_path: Path) -> None:
     out = tmp_path / "views.png"
     result = run_example("control_pawn.py", "--frames", "40", "--out", str(out), *TRANSPORTS[transport])
