@@ -312,15 +312,21 @@ def build() -> bytes:
     FLOAT, USHORT, UINT = 5126, 5123, 5125
     positions = np.array([gltf_vec(p) for p in b.positions], dtype=np.float32)
     normals = np.array([gltf_vec(n) for n in b.normals], dtype=np.float32)
-    attributes = {
-        "POSITION": add(positions, FLOAT, "VEC3", 34962, bounds=True),
-        "NORMAL": add(normals, FLOAT, "VEC3", 34962),
-        "JOINTS_0": add(np.array(b.joints, dtype=np.uint16), USHORT, "VEC4", 34962),
-        "WEIGHTS_0": add(np.array(b.weights, dtype=np.float32), FLOAT, "VEC4", 34962),
-    }
+    # One set of vertex arrays per primitive (material), holding only the vertices its triangles use: assimp's
+    # glTF importer (Debian's 5.2) gives wrong bone weights to the second and later primitives that share arrays.
+    joints = np.array(b.joints, dtype=np.uint16)
+    weights = np.array(b.weights, dtype=np.float32)
     primitives = []
     for m, triangles in enumerate(b.triangles):
-        indices = add(np.array(triangles, dtype=np.uint32).reshape(-1), UINT, "SCALAR", 34963)
+        corners = np.array(triangles, dtype=np.uint32).reshape(-1)
+        used, remapped = np.unique(corners, return_inverse=True)
+        attributes = {
+            "POSITION": add(positions[used], FLOAT, "VEC3", 34962, bounds=True),
+            "NORMAL": add(normals[used], FLOAT, "VEC3", 34962),
+            "JOINTS_0": add(joints[used], USHORT, "VEC4", 34962),
+            "WEIGHTS_0": add(weights[used], FLOAT, "VEC4", 34962),
+        }
+        indices = add(remapped.astype(np.uint32), UINT, "SCALAR", 34963)
         primitives.append({"attributes": attributes, "indices": indices, "material": m})
 
     # Nodes: the bones (translation from the parent's joint, no rotation in the bind pose), then the mesh.

@@ -39,6 +39,7 @@ bool USkeletalMeshComponent::SetSkeletalMesh(const std::string& NewMesh) {
     if (!NewMesh.empty())
         asset = sp::animation::importSkeletalMesh(NewMesh); // NotFound, InvalidArgument: nothing changed
     asset_ = std::move(asset);
+    bodyParts_.reset();
     SkeletalMesh = NewMesh;
     otherClips_.clear();
     clip_ = nullptr;
@@ -71,6 +72,38 @@ void USkeletalMeshComponent::SetMaterial(int ElementIndex, const std::string& Ma
     if (Materials.size() <= size_t(ElementIndex))
         Materials.resize(size_t(ElementIndex) + 1);
     Materials[size_t(ElementIndex)] = Material;
+}
+
+void USkeletalMeshComponent::SetBodyPartIds(bool bEnable) {
+    bBodyPartIds = bEnable;
+}
+
+const sp::render::MeshData* USkeletalMeshComponent::renderMesh() const {
+    if (!asset_)
+        return nullptr;
+    if (!bBodyPartIds)
+        return &asset_->mesh.mesh;
+    if (!bodyParts_) // the same for every component of this asset; a few milliseconds for the humanoid
+        bodyParts_ = std::make_shared<const sp::animation::BodyPartMesh>(
+            sp::animation::splitByBodyPart(asset_->mesh.mesh, asset_->skin));
+    return &bodyParts_->mesh;
+}
+
+std::uint32_t USkeletalMeshComponent::materialOfSlot(std::size_t slot) const {
+    if (!bBodyPartIds || !renderMesh())
+        return std::uint32_t(slot);
+    return slot < bodyParts_->materialOfSlot.size() ? bodyParts_->materialOfSlot[slot] : 0;
+}
+
+std::string USkeletalMeshComponent::GetBodyPartOfSlot(int MaterialSlot) const {
+    const sp::render::MeshData* mesh = renderMesh();
+    const int slots = mesh ? int(mesh->submeshCount()) : 0;
+    SP_CHECK(MaterialSlot >= 0 && MaterialSlot < slots, sp::InvalidArgument,
+             "USkeletalMeshComponent.GetBodyPartOfSlot(): MaterialSlot ", MaterialSlot,
+             " is out of range [0, ", slots, ")");
+    return bBodyPartIds
+               ? asset_->skeleton.names[std::size_t(bodyParts_->boneOfSlot[std::size_t(MaterialSlot)])]
+               : std::string();
 }
 
 int USkeletalMeshComponent::GetNumBones() const {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/animation/body_parts.h"
 #include "core/animation/skeletal_import.h"
 #include "core/reflect/sp_array.h"
 #include "core/world/actor.h"
@@ -64,6 +65,12 @@ class USkeletalMeshComponent : public UPrimitiveComponent {
     SPPROPERTY()
     std::vector<std::string> Materials;
 
+    /// Whether object_ids tells the body parts apart: the mesh is drawn as one slot per (material, bone),
+    /// each triangle with the bone that weighs most on its corners, each slot with its own object id
+    /// (GetBodyPartOfSlot() names the bone of a slot GetObjectIdInfo() returns). Off: one id per material.
+    SPPROPERTY(Setter = SetBodyPartIds)
+    bool bBodyPartIds = false;
+
     /// The clip played from the start of play and by Play(): one of the mesh file's clips ("walk"), or
     /// "<file>#<clip>" for a clip of another file made for the same skeleton. Empty: the bind pose.
     /// PlayAnimation() sets it.
@@ -103,6 +110,15 @@ class USkeletalMeshComponent : public UPrimitiveComponent {
     /// Sets the material of one slot, growing the list as needed.
     SPFUNCTION()
     void SetMaterial(int ElementIndex, const std::string& Material);
+
+    /// Sets bBodyPartIds.
+    SPFUNCTION()
+    void SetBodyPartIds(bool bEnable);
+
+    /// Returns the bone whose body part material slot MaterialSlot is drawn for while bBodyPartIds is set (""
+    /// while it is not: a slot is then a material). Raises InvalidArgumentError when there is no such slot.
+    SPFUNCTION()
+    std::string GetBodyPartOfSlot(int MaterialSlot) const;
 
     /// Returns the number of bones of the skeleton (0 without a mesh).
     SPFUNCTION()
@@ -220,6 +236,10 @@ class USkeletalMeshComponent : public UPrimitiveComponent {
     // For the renderer: the asset (null without a mesh), each bone's transform in the component's space now,
     // and a number that changes whenever those do.
     const std::shared_ptr<const sp::animation::SkeletalMeshData>& GetAsset() const { return asset_; }
+    // The mesh to draw in the bind pose (the asset's, or split by body part while bBodyPartIds is set) and,
+    // per slot of it, the asset's material slot. Null without a mesh.
+    const sp::render::MeshData* renderMesh() const;
+    std::uint32_t materialOfSlot(std::size_t slot) const;
     const std::vector<Eigen::Affine3d>& componentSpaceTransforms() const { return componentSpace_; }
     std::uint64_t poseRevision() const { return poseRevision_; }
     // Whether BlendSpace's clips were found in the mesh: SetBlendSpaceInput() can play it.
@@ -248,6 +268,7 @@ class USkeletalMeshComponent : public UPrimitiveComponent {
     int boneOrThrow(const std::string& name, const char* function, const char* what) const;
 
     std::shared_ptr<const sp::animation::SkeletalMeshData> asset_;
+    mutable std::shared_ptr<const sp::animation::BodyPartMesh> bodyParts_; // made on first use for asset_
     // The clips of other files that "<file>#<clip>" names brought in (kept while the mesh is).
     std::vector<std::shared_ptr<const std::vector<sp::animation::AnimClip>>> otherClips_;
     const sp::animation::AnimClip* clip_ = nullptr;          // AnimToPlay's, in asset_ or otherClips_

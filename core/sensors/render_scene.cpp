@@ -298,19 +298,29 @@ void RenderScene::syncSkinnedMesh(USkeletalMeshComponent& component,
                                   const std::map<std::string, FMaterialDesc>& library) {
     SkinnedEntry& skinned = skinned_[component.GetHandle()];
     const std::shared_ptr<const sp::animation::SkeletalMeshData>& asset = component.GetAsset();
-    if (skinned.asset != asset) { // a new mesh (or none): the instance goes until the new mesh is made
+    if (skinned.asset != asset || skinned.bodyParts != component.bBodyPartIds) {
+        // A new mesh (or none, or split otherwise): the instance goes until the new mesh is made (its slots,
+        // and so its object ids, may differ).
         InstanceEntry& entry = instances_[component.GetHandle()];
         if (entry.instance.isSet())
             scene_.removeInstance(entry.instance);
         entry.instance = {};
+        if (skinned.asset &&
+            skinned.bodyParts != component.bBodyPartIds) { // other slots: new ids (never reused)
+            for (std::uint32_t id : entry.ids)
+                idInfo_.erase(id);
+            entry.ids.clear();
+        }
         removeSkinnedMesh(skinned);
         skinned = SkinnedEntry{};
         if (!asset)
             return;
         skinned.asset = asset;
-        // The component's own copy: its vertices move with its pose (never shared, never simplified).
-        skinned.mesh = scene_.addMesh(asset->mesh.mesh);
-        addSkinnedLevels(skinned, asset->mesh.mesh);
+        skinned.bodyParts = component.bBodyPartIds;
+        // The component's own copy: its vertices move with its pose (never shared).
+        const sp::render::MeshData& bind = *component.renderMesh();
+        skinned.mesh = scene_.addMesh(bind);
+        addSkinnedLevels(skinned, bind);
         skinned.importedMaterials =
             sp::render::addMaterialsToScene(scene_, asset->mesh.materials, /*shared=*/true);
         for (const sp::render::MaterialId id : skinned.importedMaterials) {
@@ -340,15 +350,20 @@ void RenderScene::syncSkinnedMesh(USkeletalMeshComponent& component,
         }
         skinned.poseRevision = component.poseRevision();
     }
-    std::vector<std::string> importedNames;
-    for (std::size_t i = 0; i < asset->mesh.materials.size(); ++i)
-        importedNames.push_back(asset->mesh.materials[i].name.empty()
-                                    ? component.SkeletalMesh + "#" + std::to_string(i)
-                                    : asset->mesh.materials[i].name);
+    // Per slot of the drawn mesh, its material slot of the file (the same slot unless split by body part).
+    std::vector<std::string> materialNames, importedNames;
+    std::vector<sp::render::MaterialId> imported;
+    for (std::size_t slot = 0; slot < scene_.mesh(skinned.mesh).submeshCount(); ++slot) {
+        const std::uint32_t m = component.materialOfSlot(slot);
+        materialNames.push_back(m < component.Materials.size() ? component.Materials[m] : std::string());
+        imported.push_back(skinned.importedMaterials[m]);
+        importedNames.push_back(asset->mesh.materials[m].name.empty()
+                                    ? component.SkeletalMesh + "#" + std::to_string(m)
+                                    : asset->mesh.materials[m].name);
+    }
     // Not seen by the irradiance probes: a character changes shape every frame
     // (Instance::affectIndirectLighting).
-    placeInstance(component, skinned.mesh, component.Materials, skinned.importedMaterials, importedNames,
-                  library,
+    placeInstance(component, skinned.mesh, materialNames, imported, importedNames, library,
                   /*affectIndirectLighting=*/false);
 }
 

@@ -125,6 +125,7 @@ class RenderScene {
     // A posed skinned mesh: the component's own mesh, its vertices skinned again whenever the pose changed.
     struct SkinnedEntry {
         std::shared_ptr<const sp::animation::SkeletalMeshData> asset; // what `mesh` was made from
+        bool bodyParts = false;                                       // split by body part (bBodyPartIds)
         sp::render::MeshId mesh;
         std::vector<SkinnedLevel> levels;                      // levels of detail, fine to coarse
         std::vector<sp::render::MaterialId> importedMaterials; // the file's, per submesh

@@ -300,3 +300,32 @@ def test_a_character_is_a_humanoid_whose_legs_move_as_it_walks(instance: spear.I
     assert walking[1] > 0.9  # the walk clip, at about its own speed
     assert heading == pytest.approx(90.0, abs=2.0)  # the body turned to face +Y, where it walks
     assert abs(foot.X) > 0.03 or foot.Z > 0.12  # a foot off its standing place
+
+
+def test_body_part_ids_tell_the_parts_apart(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        mesh = _character(game)
+        camera = _front_camera(game, [M.ObjectIds], size=128)
+    with instance.end_frame():
+        by_material = np.unique(camera.read_pixels()["object_ids"])
+    with instance.begin_frame():
+        assert mesh.GetBodyPartOfSlot(MaterialSlot=0) == ""  # off: a slot is a material
+        mesh.bBodyPartIds = True
+    with instance.end_frame():
+        ids = camera.read_pixels()["object_ids"]
+    with instance.begin_frame():
+        parts: dict[str, int] = {}
+        for object_id in np.unique(ids):
+            found, actor, component, slot, material = camera.GetObjectIdInfo(ObjectId=int(object_id))
+            if found and isinstance(component, spear.USkeletalMeshComponent):
+                bone = component.GetBodyPartOfSlot(MaterialSlot=slot)
+                parts[bone] = parts.get(bone, 0) + int((ids == object_id).sum())
+        with pytest.raises(spear.InvalidArgumentError, match=r"GetBodyPartOfSlot\(\): MaterialSlot 999 is out of range"):
+            mesh.GetBodyPartOfSlot(MaterialSlot=999)
+    with instance.end_frame():
+        pass
+    assert len(by_material[by_material != 0]) == 4
+    # Seen from the front: the head, both hands, both feet and the trunk, each its own ids.
+    assert {"head", "hand_l", "hand_r", "foot_l", "foot_r", "spine_02", "thigh_l", "calf_r"} <= set(parts), parts
+    assert parts["head"] > 20 and parts["spine_02"] > parts["hand_l"]

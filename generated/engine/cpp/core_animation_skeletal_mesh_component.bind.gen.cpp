@@ -67,6 +67,13 @@ void bind_USkeletalMeshComponent(py::module_& m) {
         },
         "One material asset per mesh slot; an empty entry uses the file's own material for that slot.");
     cls.def_property(
+        "bBodyPartIds",
+        [](const Ref<Self>& self) { return Calls::get_bBodyPartIds<PyCall>(self.get<Self>("USkeletalMeshComponent.bBodyPartIds")); },
+        [](const Ref<Self>& self, const PyArg& value) {
+            Calls::set_bBodyPartIds<PyCall>(self.get<Self>("USkeletalMeshComponent.bBodyPartIds"), value);
+        },
+        "Whether object_ids tells the body parts apart: the mesh is drawn as one slot per (material, bone),\neach triangle with the bone that weighs most on its corners, each slot with its own object id\n(GetBodyPartOfSlot() names the bone of a slot GetObjectIdInfo() returns). Off: one id per material.");
+    cls.def_property(
         "AnimToPlay",
         [](const Ref<Self>& self) { return Calls::get_AnimToPlay<PyCall>(self.get<Self>("USkeletalMeshComponent.AnimToPlay")); },
         [](const Ref<Self>& self, const PyArg& value) {
@@ -123,6 +130,22 @@ void bind_USkeletalMeshComponent(py::module_& m) {
         py::arg("ElementIndex") = sp::pybind::missingArgument(),
         py::arg("Material") = sp::pybind::missingArgument(),
         "SetMaterial(self, *, ElementIndex: int, Material: str) -> None\n\nSets the material of one slot, growing the list as needed.");
+    cls.def(
+        "SetBodyPartIds",
+        [](const Ref<Self>& self, const py::args& positional, const PyArg& bEnable, const py::kwargs& extra) -> py::object {
+            // The parameters in order; the array lives until the call returns.
+            return Calls::call_SetBodyPartIds<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&bEnable}, true});
+        },
+        py::arg("bEnable") = sp::pybind::missingArgument(),
+        "SetBodyPartIds(self, *, bEnable: bool) -> None\n\nSets bBodyPartIds.");
+    cls.def(
+        "GetBodyPartOfSlot",
+        [](const Ref<Self>& self, const py::args& positional, const PyArg& MaterialSlot, const py::kwargs& extra) -> py::object {
+            // The parameters in order; the array lives until the call returns.
+            return Calls::call_GetBodyPartOfSlot<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&MaterialSlot}, true});
+        },
+        py::arg("MaterialSlot") = sp::pybind::missingArgument(),
+        "GetBodyPartOfSlot(self, *, MaterialSlot: int) -> str\n\nReturns the bone whose body part material slot MaterialSlot is drawn for while bBodyPartIds is set (\"\"\nwhile it is not: a slot is then a material). Raises InvalidArgumentError when there is no such slot.");
     cls.def(
         "GetNumBones",
         [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {

@@ -133,6 +133,16 @@ const sp::reflect::TypeInfo& USkeletalMeshComponent::StaticClass() {
             },
         });
         t.properties.push_back({
+            "bBodyPartIds",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
+            "Whether object_ids tells the body parts apart: the mesh is drawn as one slot per (material, bone),\neach triangle with the bone that weighs most on its corners, each slot with its own object id\n(GetBodyPartOfSlot() names the bone of a slot GetObjectIdInfo() returns). Off: one id per material.",
+            false,
+            [](const void* self) { return Calls::get_bBodyPartIds<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_bBodyPartIds<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
             "AnimToPlay",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
             "The clip played from the start of play and by Play(): one of the mesh file's clips (\"walk\"), or\n\"<file>#<clip>\" for a clip of another file made for the same skeleton. Empty: the bind pose.\nPlayAnimation() sets it.",
@@ -212,6 +222,28 @@ const sp::reflect::TypeInfo& USkeletalMeshComponent::StaticClass() {
             false,
             false,
             [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetMaterial<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "SetBodyPartIds",
+            "Sets bBodyPartIds.",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"bEnable", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetBodyPartIds<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "GetBodyPartOfSlot",
+            "Returns the bone whose body part material slot MaterialSlot is drawn for while bBodyPartIds is set (\"\"\nwhile it is not: a slot is then a material). Raises InvalidArgumentError when there is no such slot.",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
+            {
+                {"MaterialSlot", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
+            },
+            false,
+            true,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_GetBodyPartOfSlot<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "GetNumBones",

@@ -84,6 +84,15 @@ struct USkeletalMeshComponentCalls {
         sp::reflect::notifyPropertyChanged(self, "Materials");
     }
 
+    template <typename Call> static typename Call::Result get_bBodyPartIds(const Self* self) {
+        const auto& value = self->bBodyPartIds;
+        return Call::template result<bool>(value);
+    }
+    template <typename Call> static void set_bBodyPartIds(Self* self, const typename Call::Input& value) {
+        self->SetBodyPartIds(Call::template input<bool>(value, "USkeletalMeshComponent.bBodyPartIds"));
+        sp::reflect::notifyPropertyChanged(self, "bBodyPartIds");
+    }
+
     template <typename Call> static typename Call::Result get_AnimToPlay(const Self* self) {
         const auto& value = self->AnimToPlay;
         return Call::template result<std::string>(value);
@@ -158,6 +167,30 @@ struct USkeletalMeshComponentCalls {
         std::string MaterialArg = call.template arg<std::string>(1);
         self->SetMaterial(ElementIndexArg, MaterialArg);
         return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetBodyPartIds(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"bEnable", "USkeletalMeshComponent.SetBodyPartIds(): argument 'bEnable'", true},
+        }};
+        const Call call(args, "USkeletalMeshComponent.SetBodyPartIds()", kParams);
+        Self* self = Call::template object<Self>(target, "USkeletalMeshComponent.SetBodyPartIds()");
+        bool bEnableArg = call.template arg<bool>(0);
+        self->SetBodyPartIds(bEnableArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_GetBodyPartOfSlot(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"MaterialSlot", "USkeletalMeshComponent.GetBodyPartOfSlot(): argument 'MaterialSlot'", true},
+        }};
+        const Call call(args, "USkeletalMeshComponent.GetBodyPartOfSlot()", kParams);
+        const Self* self = Call::template object<const Self>(target, "USkeletalMeshComponent.GetBodyPartOfSlot()");
+        int32_t MaterialSlotArg = call.template arg<int32_t>(0);
+        auto result = self->GetBodyPartOfSlot(MaterialSlotArg);
+        return Call::template result<std::string>(result);
     }
 
     template <typename Call, typename Target>

@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "c29c729cb3b3e8b4";
+inline constexpr char kApiHash[] = "7bd7dd5b9f486e10";
 } // namespace sp::generated::engine

@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "c29c729cb3b3e8b4"
+API_HASH = "7bd7dd5b9f486e10"

@@ -4788,6 +4788,10 @@ class USkeletalMeshComponentAsync(UPrimitiveComponentAsync):
 
     def SetMaterial(self, *, ElementIndex: int, Material: str) -> Future[None]: ...
 
+    def SetBodyPartIds(self, *, bEnable: bool) -> Future[None]: ...
+
+    def GetBodyPartOfSlot(self, *, MaterialSlot: int) -> Future[str]: ...
+
     def GetNumBones(self) -> Future[int]: ...
 
     def GetBoneName(self, *, BoneIndex: int) -> Future[str]: ...
@@ -4837,6 +4841,10 @@ class USkeletalMeshComponentSend(UPrimitiveComponentSend):
     def SetSkeletalMesh(self, *, NewMesh: str) -> None: ...
 
     def SetMaterial(self, *, ElementIndex: int, Material: str) -> None: ...
+
+    def SetBodyPartIds(self, *, bEnable: bool) -> None: ...
+
+    def GetBodyPartOfSlot(self, *, MaterialSlot: int) -> None: ...
 
     def GetNumBones(self) -> None: ...
 
@@ -4912,6 +4920,16 @@ class USkeletalMeshComponent(UPrimitiveComponent):
     def Materials(self, value: list[str]) -> None: ...
 
     @property
+    def bBodyPartIds(self) -> bool:
+        """Whether object_ids tells the body parts apart: the mesh is drawn as one slot per (material, bone),
+        each triangle with the bone that weighs most on its corners, each slot with its own object id
+        (GetBodyPartOfSlot() names the bone of a slot GetObjectIdInfo() returns). Off: one id per material.
+        """
+
+    @bBodyPartIds.setter
+    def bBodyPartIds(self, value: bool) -> None: ...
+
+    @property
     def AnimToPlay(self) -> str:
         """The clip played from the start of play and by Play(): one of the mesh file's clips ("walk"), or
         "<file>#<clip>" for a clip of another file made for the same skeleton. Empty: the bind pose.
@@ -4966,6 +4984,14 @@ class USkeletalMeshComponent(UPrimitiveComponent):
 
     def SetMaterial(self, *, ElementIndex: int, Material: str) -> None:
         """Sets the material of one slot, growing the list as needed."""
+
+    def SetBodyPartIds(self, *, bEnable: bool) -> None:
+        """Sets bBodyPartIds."""
+
+    def GetBodyPartOfSlot(self, *, MaterialSlot: int) -> str:
+        """Returns the bone whose body part material slot MaterialSlot is drawn for while bBodyPartIds is set (""
+        while it is not: a slot is then a material). Raises InvalidArgumentError when there is no such slot.
+        """
 
     def GetNumBones(self) -> int:
         """Returns the number of bones of the skeleton (0 without a mesh)."""

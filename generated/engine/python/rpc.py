@@ -2207,6 +2207,14 @@ class USkeletalMeshComponent(UPrimitiveComponent, api.USkeletalMeshComponent):
         self._sp_set("USkeletalMeshComponent", "Materials", value)
 
     @property
+    def bBodyPartIds(self) -> bool:
+        return cast("bool", self._sp_get("USkeletalMeshComponent", "bBodyPartIds", _t.T_bool))
+
+    @bBodyPartIds.setter
+    def bBodyPartIds(self, value: bool) -> None:
+        self._sp_set("USkeletalMeshComponent", "bBodyPartIds", value)
+
+    @property
     def AnimToPlay(self) -> str:
         return cast("str", self._sp_get("USkeletalMeshComponent", "AnimToPlay", _t.T_str))
 
@@ -2255,6 +2263,12 @@ class USkeletalMeshComponent(UPrimitiveComponent, api.USkeletalMeshComponent):
 
     def SetMaterial(self, *, ElementIndex: int, Material: str) -> None:
         return cast(None, self._sp_call("USkeletalMeshComponent", "SetMaterial", {"ElementIndex": ElementIndex, "Material": Material}, _t.T_void))  # a Future when queued by call_async
+
+    def SetBodyPartIds(self, *, bEnable: bool) -> None:
+        return cast(None, self._sp_call("USkeletalMeshComponent", "SetBodyPartIds", {"bEnable": bEnable}, _t.T_void))  # a Future when queued by call_async
+
+    def GetBodyPartOfSlot(self, *, MaterialSlot: int) -> str:
+        return cast("str", self._sp_call("USkeletalMeshComponent", "GetBodyPartOfSlot", {"MaterialSlot": MaterialSlot}, _t.T_str))
 
     def GetNumBones(self) -> int:
         return cast("int", self._sp_call("USkeletalMeshComponent", "GetNumBones", {}, _t.T_int))

@@ -3,7 +3,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 
+#include "core/animation/body_parts.h"
 #include "core/animation/skeletal_import.h"
 #include "core/base/error.h"
 
@@ -31,6 +33,18 @@ TEST(SkeletalImport, ReadsTheHumanoidsSkeletonSkinAndClips) {
     // unrotated here (a camera on the head looks forward, +Z up).
     EXPECT_TRUE(bind[std::size_t(head)].linear().isIdentity(1e-6));
     EXPECT_TRUE(s.rootTransform.matrix().isIdentity(1e-12));
+    // Every vertex blends at most a bone and its parent (the script blends across joints only), so no weight
+    // went to the wrong vertex (Debian's assimp misplaces the weights of a glTF mesh's later primitives when
+    // they share vertex arrays: the script writes one set per primitive).
+    for (std::size_t v = 0; v < data->skin.bones.size(); ++v) {
+        const auto& bones = data->skin.bones[v];
+        const auto& weights = data->skin.weights[v];
+        for (int j = 1; j < kMaxInfluences; ++j)
+            if (weights[j] > 0.0f) {
+                ASSERT_TRUE(s.parents[bones[j]] == bones[0] || s.parents[bones[0]] == bones[j])
+                    << "vertex " << v << ": " << s.names[bones[0]] << " and " << s.names[bones[j]];
+            }
+    }
     // The bind pose skins every vertex onto itself.
     const auto matrices = skinningMatrices(bind, s.inverseBind);
     std::vector<Eigen::Vector3f> positions, normals;
@@ -58,6 +72,34 @@ TEST(SkeletalImport, ReadsTheHumanoidsSkeletonSkinAndClips) {
     EXPECT_GT((posed[std::size_t(foot)].translation() - bind[std::size_t(foot)].translation()).norm(), 0.1);
     // The same file again: the cached import.
     EXPECT_EQ(importSkeletalMesh(kHumanoid).get(), data.get());
+}
+
+TEST(BodyParts, EveryTriangleGoesToTheBoneWeighingMostOnItsCorners) {
+    const auto data = importSkeletalMesh(kHumanoid);
+    const render::MeshData& mesh = data->mesh.mesh;
+    const BodyPartMesh parts = splitByBodyPart(mesh, data->skin);
+    EXPECT_EQ(parts.mesh.positions.size(), mesh.positions.size()); // the same vertices, so the same skinning
+    EXPECT_EQ(parts.mesh.indices.size(), mesh.indices.size());
+    ASSERT_EQ(parts.materialOfSlot.size(), parts.mesh.submeshCount());
+    // Every bone that carries skin has a part (the root and the pelvis's joint to it may carry none).
+    std::set<int> bones(parts.boneOfSlot.begin(), parts.boneOfSlot.end());
+    for (const char* name :
+         {"head", "hand_l", "hand_r", "foot_l", "foot_r", "calf_l", "upperarm_r", "spine_02"})
+        EXPECT_TRUE(bones.count(data->skeleton.find(name))) << name;
+    // The head's triangles are all above the neck; the left foot's on the left (+Y), near the ground.
+    for (std::size_t slot = 0; slot < parts.mesh.submeshCount(); ++slot) {
+        const render::Submesh& submesh = parts.mesh.submeshes[slot];
+        const std::string& bone = data->skeleton.names[std::size_t(parts.boneOfSlot[slot])];
+        for (std::uint32_t i = submesh.firstIndex; i < submesh.firstIndex + submesh.indexCount; ++i) {
+            const Eigen::Vector3f& p = parts.mesh.positions[parts.mesh.indices[i]];
+            if (bone == "head") {
+                ASSERT_GT(p.z(), 1.5f);
+            }
+            if (bone == "foot_l") {
+                ASSERT_TRUE(p.y() > 0.0f && p.z() < 0.2f) << p.transpose();
+            }
+        }
+    }
 }
 
 TEST(SkeletalImport, ClipsFromAFileMatchTheSkeletonByName) {

@@ -32,5 +32,14 @@ def animate(instance: spear.Instance) -> None:
         camera.AttachToComponent(Parent=mesh, SocketName="head")
         assert_type(mesh.GetSocketTransform(InSocketName="head"), spear.FTransform)
         assert_type(camera.AttachSocketName, str)
+        mesh.bBodyPartIds = True  # object_ids per body part
+        assert_type(mesh.GetBodyPartOfSlot(MaterialSlot=0), str)
+        mesh.SetBlendSpace(Samples=[spear.FBlendSample(Animation="idle", SampleValue=0.0),
+                                    spear.FBlendSample(Animation="walk", SampleValue=1.25)])
+        mesh.SetBlendSpaceInput(Input=0.6)
+        assert_type(mesh.GetBlendSpaceWeights(), list[float])
+        crowd = spear.USkeletalMeshComponent.GetBoneTransformsOfComponents(Components=[mesh],
+                                                                          Space=spear.EBoneSpaces.WorldSpace)
+        assert_type(crowd, NDArray[np.float64])
     with instance.end_frame():
         pass
