@@ -185,6 +185,11 @@ void ACharacter::PostPhysicsTick() {
         Mesh->SetRelativeLocation(FVector{0.0, 0.0, feet});
 }
 
+namespace {
+// Metres a second past which a move between two ticks is a teleport, not a walk (a sprinter does 12).
+constexpr double kTeleportSpeed = 20.0;
+} // namespace
+
 void ACharacter::animateBody(double deltaSeconds) {
     const Eigen::Vector3d location = GetActorLocation().toEigen();
     const Eigen::Vector3d moved = location - lastLocation_;
@@ -194,6 +199,9 @@ void ACharacter::animateBody(double deltaSeconds) {
     // The horizontal speed, smoothed over about a tenth of a second: a step up or a stop does not snap the
     // legs.
     const Eigen::Vector3d velocity(moved.x() / deltaSeconds, moved.y() / deltaSeconds, 0.0);
+    // Faster than anything walks (a teleport, SetActorLocation): no speed to animate, no heading to turn to.
+    if (velocity.norm() > kTeleportSpeed)
+        return;
     speed_ += (velocity.norm() - speed_) * std::min(1.0, deltaSeconds / 0.1);
     // Faces where it walks: the body turns (at up to 720 degrees a second) while the capsule, round, keeps
     // the controller's rotation.

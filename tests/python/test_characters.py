@@ -298,6 +298,16 @@ def test_a_character_is_a_humanoid_whose_legs_move_as_it_walks(instance: spear.I
     with instance.end_frame():
         pass
     assert walking[1] > 0.9  # the walk clip, at about its own speed
+    with instance.begin_frame():
+        character.SetActorLocation(NewLocation=spear.FVector(-10.0, 10.0, 0.95))  # a teleport is no run
+    with instance.end_frame():
+        pass
+    with instance.begin_frame():
+        after_teleport = body.GetBlendSpaceWeights()
+        turned = body.GetComponentRotation().Yaw
+    with instance.end_frame():
+        pass
+    assert after_teleport[2] == 0.0 and turned == pytest.approx(heading, abs=2.0)
     assert heading == pytest.approx(90.0, abs=2.0)  # the body turned to face +Y, where it walks
     assert abs(foot.X) > 0.03 or foot.Z > 0.12  # a foot off its standing place
 
