@@ -438,6 +438,17 @@ def test_a_client_that_never_reads_its_replies_cannot_stop_the_server(server: La
 
 # -- shared memory after a crash ---------------------------------------------------------------------
 
+def wait_for_zombie(pid: int, timeout: float = 10.0) -> None:
+    """Waits until process `pid` has died and is left unreaped (state Z in /proc/<pid>/stat)."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        with open(f"/proc/{pid}/stat") as stat:
+            if stat.read().rsplit(")", 1)[1].split()[0] == "Z":
+                return
+        time.sleep(0.01)
+    raise AssertionError(f"process {pid} did not die within {timeout} s")
+
+
 def spear_segments(*pids: int) -> list[str]:
     return [n for n in os.listdir("/dev/shm") if any(n.startswith(f"spear-{pid}-") for pid in pids)]
 
@@ -462,9 +473,14 @@ def test_segments_of_a_client_and_server_killed_together_go_when_the_next_client
             process.send_signal(signal.SIGSTOP)
         for process in (client, doomed.process):
             process.kill()
-            process.wait()
+        # Dead but not yet reaped (zombies) their pids still exist, so that no spear process the other test
+        # workers start meanwhile sweeps their segments as orphans before they are counted.
+        for process in (client, doomed.process):
+            wait_for_zombie(process.pid)
         # The client's reply buffers at least: it had made them for the frames it read.
         assert spear_segments(client.pid, doomed.process.pid)
+        for process in (client, doomed.process):
+            process.wait()
         if next_client == "inprocess":
             spear.Instance().close()
         else:
