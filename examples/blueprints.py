@@ -66,6 +66,17 @@ def main() -> None:
     with instance.begin_frame():
         where = thrown.GetActorLocation()
         print(f"half a second later it is at X = {where.X:.2f}, Z = {where.Z:.2f}")
+        # A character class: BP_Walker is an ASkeletalMeshActor showing the built-in humanoid, walking from the
+        # start of play; its function Run (composed in the asset) switches it to the run clip.
+        walker = game.spawn_actor(uclass=spear.BP_Walker, location=spear.FVector(X=2.0), name="Walker")
+        body = walker.SkeletalMeshComponent
+        print(f"{walker.GetName()} is a {walker.GetClassName()}: {body.GetNumBones()} bones, playing "
+              f"'{body.AnimToPlay}'")
+    with instance.end_frame():
+        pass
+    with instance.begin_frame():
+        length = walker.Run(PlayRate=1.5)  # typed float: the run clip's length
+        print(f"{walker.GetName()} runs now ('{body.AnimToPlay}', {length:.2f} s a cycle, at {body.PlayRate}x)")
     with instance.end_frame():
         pass
 

@@ -104,6 +104,8 @@ def test_blueprints_spawn_and_settle(transport: str) -> None:
     result = run_example("blueprints.py", *TRANSPORTS[transport])
     assert result.returncode == 0, result.stdout + result.stderr
     assert "came to rest at Z = " in result.stdout
+    assert "Walker is a BP_Walker: 18 bones, playing 'walk'" in result.stdout
+    assert "Walker runs now ('run', 0.70 s a cycle, at 1.5x)" in result.stdout
 
 
 @pytest.mark.parametrize("transport", TRANSPORTS)

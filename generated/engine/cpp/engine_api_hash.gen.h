@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "7bd7dd5b9f486e10";
+inline constexpr char kApiHash[] = "6893b7990b88693f";
 } // namespace sp::generated::engine

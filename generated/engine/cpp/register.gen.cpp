@@ -293,4 +293,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::enumInfo_EAnimationMode());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "7bd7dd5b9f486e10"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "6893b7990b88693f"; }

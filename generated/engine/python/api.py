@@ -53,6 +53,7 @@ __all__ = [
     "AWheeledVehiclePawn",
     "BP_Axes",
     "BP_Crate",
+    "BP_Walker",
     "EAnimationMode",
     "EAntiAliasingMethod",
     "EAutoExposureMethod",
@@ -1718,3 +1719,6 @@ BP_Axes = _declare_blueprint("BP_Axes", AActor, "assets/blueprints/BP_Axes.json"
 
 BP_Crate = _declare_blueprint("BP_Crate", AStaticMeshActor, "assets/blueprints/BP_Crate.json", 'A 0.5 m wooden crate of 12 kg that falls and tumbles under physics.',
                               {"Launch": (_TypeCode("struct", "FVector"), (("Speed", False),)), "Nudge": (_TypeCode("void"), (("Velocity", True),))})
+
+BP_Walker = _declare_blueprint("BP_Walker", ASkeletalMeshActor, "assets/blueprints/BP_Walker.json", 'A walking humanoid (the built-in /Game/characters/humanoid.glb playing its walk clip), who can break into a run.',
+                              {"Run": (_TypeCode("float"), (("PlayRate", False),))})

@@ -46,6 +46,7 @@ __all__ = [
     "AWheeledVehiclePawn",
     "BP_Axes",
     "BP_Crate",
+    "BP_Walker",
     "EAnimationMode",
     "EAntiAliasingMethod",
     "EAutoExposureMethod",
@@ -5905,3 +5906,30 @@ class BP_Crate(AStaticMeshActor):
 
     def Nudge(self, *, Velocity: FVector) -> None:
         """Adds Velocity (m/s) to the crate's motion at once, whatever its mass."""
+
+
+class BP_WalkerAsync(ASkeletalMeshActorAsync):
+    """BP_Walker's functions, called asynchronously: each returns a Future."""
+
+    def Run(self, *, PlayRate: float = 1.0) -> Future[float]: ...
+
+
+class BP_WalkerSend(ASkeletalMeshActorSend):
+    """BP_Walker's functions, sent without waiting for a result (fire and forget)."""
+
+    def Run(self, *, PlayRate: float = 1.0) -> None: ...
+
+
+class BP_Walker(ASkeletalMeshActor):
+    """A walking humanoid (the built-in /Game/characters/humanoid.glb playing its walk clip), who can break into a run."""
+
+    @property
+    def call_async(self) -> BP_WalkerAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> BP_WalkerSend:
+        """The same functions, fire and forget."""
+
+    def Run(self, *, PlayRate: float = 1.0) -> float:
+        """Runs in place at PlayRate times the run clip's pace; returns the run clip's length in seconds."""
