@@ -249,14 +249,18 @@ void RenderScene::syncMesh(UStaticMeshComponent& component,
                            const std::map<std::string, FMaterialDesc>& library) {
     const MeshEntry* mesh = component.StaticMesh.empty() ? nullptr : meshFor(component.GetMeshAsset());
     if (!mesh) { // no mesh (yet): nothing to draw, but ids already handed out stay
-        InstanceEntry& entry = instances_[component.GetHandle()];
-        if (entry.instance.isSet())
-            scene_.removeInstance(entry.instance);
-        entry.instance = {};
+        removeInstanceOf(component.GetHandle());
         return;
     }
     placeInstance(component, mesh->mesh, component.Materials, mesh->importedMaterials, mesh->importedNames,
                   library);
+}
+
+void RenderScene::removeInstanceOf(sp::reflect::ObjectHandle component) {
+    InstanceEntry& entry = instances_[component];
+    if (entry.instance.isSet())
+        scene_.removeInstance(entry.instance);
+    entry.instance = {};
 }
 
 void RenderScene::placeInstance(const UPrimitiveComponent& component, sp::render::MeshId mesh,
@@ -301,10 +305,8 @@ void RenderScene::syncSkinnedMesh(USkeletalMeshComponent& component,
     if (skinned.asset != asset || skinned.bodyParts != component.bBodyPartIds) {
         // A new mesh (or none, or split otherwise): the instance goes until the new mesh is made (its slots,
         // and so its object ids, may differ).
+        removeInstanceOf(component.GetHandle());
         InstanceEntry& entry = instances_[component.GetHandle()];
-        if (entry.instance.isSet())
-            scene_.removeInstance(entry.instance);
-        entry.instance = {};
         if (skinned.asset &&
             skinned.bodyParts != component.bBodyPartIds) { // other slots: new ids (never reused)
             for (std::uint32_t id : entry.ids)
@@ -321,12 +323,12 @@ void RenderScene::syncSkinnedMesh(USkeletalMeshComponent& component,
         const sp::render::MeshData& bind = *component.renderMesh();
         skinned.mesh = scene_.addMesh(bind);
         addSkinnedLevels(skinned, bind);
-        skinned.importedMaterials =
-            sp::render::addMaterialsToScene(scene_, asset->mesh.materials, /*shared=*/true);
-        for (const sp::render::MaterialId id : skinned.importedMaterials) {
-            sp::render::Material material = scene_.material(id);
-            material.id = nextMaterialValue_++;
-            scene_.setMaterial(id, material);
+        const SkinnedMaterials& materials = skinnedMaterialsFor(asset, component.SkeletalMesh);
+        for (std::size_t slot = 0; slot < bind.submeshCount(); ++slot) {
+            const std::uint32_t fileSlot = component.materialOfSlot(slot);
+            skinned.fileSlots.push_back(fileSlot);
+            skinned.importedMaterials.push_back(materials.ids[fileSlot]);
+            skinned.importedNames.push_back(materials.names[fileSlot]);
         }
         skinned.poseRevision = component.poseRevision() - 1; // posed below
     }
@@ -350,20 +352,15 @@ void RenderScene::syncSkinnedMesh(USkeletalMeshComponent& component,
         }
         skinned.poseRevision = component.poseRevision();
     }
-    // Per slot of the drawn mesh, its material slot of the file (the same slot unless split by body part).
-    std::vector<std::string> materialNames, importedNames;
-    std::vector<sp::render::MaterialId> imported;
-    for (std::size_t slot = 0; slot < scene_.mesh(skinned.mesh).submeshCount(); ++slot) {
-        const std::uint32_t m = component.materialOfSlot(slot);
-        materialNames.push_back(m < component.Materials.size() ? component.Materials[m] : std::string());
-        imported.push_back(skinned.importedMaterials[m]);
-        importedNames.push_back(asset->mesh.materials[m].name.empty()
-                                    ? component.SkeletalMesh + "#" + std::to_string(m)
-                                    : asset->mesh.materials[m].name);
-    }
+    // The user's material per drawn slot: Materials names the file's slots.
+    std::vector<std::string> materialNames;
+    for (const std::uint32_t fileSlot : skinned.fileSlots)
+        materialNames.push_back(fileSlot < component.Materials.size() ? component.Materials[fileSlot]
+                                                                      : std::string());
     // Not seen by the irradiance probes: a character changes shape every frame
     // (Instance::affectIndirectLighting).
-    placeInstance(component, skinned.mesh, materialNames, imported, importedNames, library,
+    placeInstance(component, skinned.mesh, materialNames, skinned.importedMaterials, skinned.importedNames,
+                  library,
                   /*affectIndirectLighting=*/false);
 }
 
@@ -410,9 +407,25 @@ void RenderScene::removeSkinnedMesh(SkinnedEntry& entry) {
     scene_.removeMesh(entry.mesh); // before its levels, which it names
     for (const SkinnedLevel& level : entry.levels)
         scene_.removeMesh(level.mesh);
-    for (const sp::render::MaterialId id : entry.importedMaterials)
-        scene_.removeMaterial(id);
+    // Its materials are the file's, kept for every component that shows it (skinnedMaterialsFor()).
     entry.asset.reset();
+}
+
+const RenderScene::SkinnedMaterials&
+RenderScene::skinnedMaterialsFor(const std::shared_ptr<const sp::animation::SkeletalMeshData>& asset,
+                                 const std::string& fileName) {
+    if (auto it = skinnedMaterials_.find(asset.get()); it != skinnedMaterials_.end())
+        return it->second;
+    SkinnedMaterials materials{
+        asset, sp::render::addMaterialsToScene(scene_, asset->mesh.materials, /*shared=*/true), {}};
+    for (std::size_t i = 0; i < materials.ids.size(); ++i) {
+        sp::render::Material material = scene_.material(materials.ids[i]);
+        material.id = nextMaterialValue_++;
+        scene_.setMaterial(materials.ids[i], material);
+        const std::string& name = asset->mesh.materials[i].name;
+        materials.names.push_back(name.empty() ? fileName + "#" + std::to_string(i) : name);
+    }
+    return skinnedMaterials_.emplace(asset.get(), std::move(materials)).first->second;
 }
 
 void RenderScene::syncDebugLine(const USplineComponent& spline) {

@@ -127,8 +127,12 @@ class RenderScene {
         std::shared_ptr<const sp::animation::SkeletalMeshData> asset; // what `mesh` was made from
         bool bodyParts = false;                                       // split by body part (bBodyPartIds)
         sp::render::MeshId mesh;
-        std::vector<SkinnedLevel> levels;                      // levels of detail, fine to coarse
-        std::vector<sp::render::MaterialId> importedMaterials; // the file's, per submesh
+        std::vector<SkinnedLevel> levels; // levels of detail, fine to coarse
+        // Per slot of `mesh`: the file's material slot it is drawn with (the same slot unless split by body
+        // part), that material and its name.
+        std::vector<std::uint32_t> fileSlots;
+        std::vector<sp::render::MaterialId> importedMaterials;
+        std::vector<std::string> importedNames;
         std::uint64_t poseRevision = 0;
         std::vector<Eigen::Vector3f> positions, normals; // skinning's output, kept for its storage
     };
@@ -136,6 +140,18 @@ class RenderScene {
     void syncSkinnedMesh(USkeletalMeshComponent& component,
                          const std::map<std::string, FMaterialDesc>& library);
     void removeSkinnedMesh(SkinnedEntry& entry);
+    // A skinned mesh file's materials, added once for every component showing it (as meshFor() does for
+    // static meshes): the same material_ids value for every character's skin.
+    struct SkinnedMaterials {
+        std::shared_ptr<const sp::animation::SkeletalMeshData> asset; // kept alive: the key is its address
+        std::vector<sp::render::MaterialId> ids;                      // per material slot of the file
+        std::vector<std::string> names;
+    };
+    const SkinnedMaterials&
+    skinnedMaterialsFor(const std::shared_ptr<const sp::animation::SkeletalMeshData>& asset,
+                        const std::string& fileName);
+    // Removes the instance of `component` from the render scene; the ids it had stay its own.
+    void removeInstanceOf(sp::reflect::ObjectHandle component);
     // Levels of detail for a skinned mesh made from `data`, as imported static meshes get (mesh_lods.h).
     void addSkinnedLevels(SkinnedEntry& entry, const sp::render::MeshData& data);
     // The instance of a mesh component: its mesh drawn with one material per slot (an empty name: the file's
@@ -180,6 +196,7 @@ class RenderScene {
     std::map<std::string, sp::render::TextureId> textures_;
     std::map<sp::reflect::ObjectHandle, InstanceEntry> instances_;
     std::map<sp::reflect::ObjectHandle, SkinnedEntry> skinned_;
+    std::map<const sp::animation::SkeletalMeshData*, SkinnedMaterials> skinnedMaterials_;
     std::map<sp::reflect::ObjectHandle, DebugLineEntry> debugLines_;
     std::map<std::uint32_t, ObjectIdInfo> idInfo_;
     std::vector<sp::render::LightId> lights_;

@@ -339,3 +339,18 @@ def test_body_part_ids_tell_the_parts_apart(instance: spear.Instance) -> None:
     # Seen from the front: the head, both hands, both feet and the trunk, each its own ids.
     assert {"head", "hand_l", "hand_r", "foot_l", "foot_r", "spine_02", "thigh_l", "calf_r"} <= set(parts), parts
     assert parts["head"] > 20 and parts["spine_02"] > parts["hand_l"]
+
+
+def test_characters_share_their_files_materials(instance: spear.Instance) -> None:
+    # material_ids names a material, not a character: two humanoids show the file's four materials, not eight.
+    game = instance.get_game()
+    with instance.begin_frame():
+        _character(game, name="Left", x=0.0)
+        right = _character(game, name="Right", x=0.0)
+        right.GetOwner().SetActorLocation(NewLocation=spear.FVector(0.0, -0.6, 0.0))  # type: ignore[union-attr]
+        camera = _front_camera(game, [M.MaterialIds, M.ObjectIds], size=96)
+    with instance.end_frame():
+        pixels = camera.read_pixels()
+    materials, objects = np.unique(pixels["material_ids"]), np.unique(pixels["object_ids"])
+    assert len(materials[materials != 0]) == 4
+    assert len(objects[objects != 0]) == 8  # one id per (character, slot)
