@@ -333,18 +333,23 @@ void USkeletalMeshComponent::SetPlayRate(double Rate) {
     PlayRate = Rate;
 }
 
+double* USkeletalMeshComponent::writeBoneTransforms(EBoneSpaces Space, double* data) const {
+    // Row-major 4 x 4 matrices, bone after bone: numpy's layout of a (bones, 4, 4) float64 array.
+    const Eigen::Affine3d world =
+        Space == EBoneSpaces::WorldSpace ? worldMatrix() : Eigen::Affine3d::Identity();
+    for (const Eigen::Affine3d& bone : componentSpace_) {
+        const Eigen::Matrix4d m = (world * bone).matrix();
+        for (int row = 0; row < 4; ++row)
+            for (int column = 0; column < 4; ++column)
+                *data++ = m(row, column);
+    }
+    return data;
+}
+
 sp::reflect::SpArray<double> USkeletalMeshComponent::GetBoneTransforms(EBoneSpaces Space) const {
     sp::reflect::SpArray<double> out("bone_transforms");
     out.resize({int64_t(componentSpace_.size()), 4, 4});
-    const Eigen::Affine3d world =
-        Space == EBoneSpaces::WorldSpace ? worldMatrix() : Eigen::Affine3d::Identity();
-    double* data = out.data();
-    for (std::size_t bone = 0; bone < componentSpace_.size(); ++bone) {
-        const Eigen::Matrix4d m = (world * componentSpace_[bone]).matrix();
-        for (int row = 0; row < 4; ++row)
-            for (int column = 0; column < 4; ++column)
-                data[16 * bone + std::size_t(4 * row + column)] = m(row, column);
-    }
+    writeBoneTransforms(Space, out.data());
     return out;
 }
 
@@ -363,16 +368,8 @@ USkeletalMeshComponent::GetBoneTransformsOfComponents(const std::vector<USkeleta
     sp::reflect::SpArray<double> out("bone_transforms");
     out.resize({int64_t(Components.size()), int64_t(bones), 4, 4});
     double* data = out.data();
-    for (const USkeletalMeshComponent* component : Components) {
-        const Eigen::Affine3d world =
-            Space == EBoneSpaces::WorldSpace ? component->worldMatrix() : Eigen::Affine3d::Identity();
-        for (const Eigen::Affine3d& bone : component->componentSpace_) {
-            const Eigen::Matrix4d m = (world * bone).matrix();
-            for (int row = 0; row < 4; ++row)
-                for (int column = 0; column < 4; ++column)
-                    *data++ = m(row, column);
-        }
-    }
+    for (const USkeletalMeshComponent* component : Components)
+        data = component->writeBoneTransforms(Space, data);
     return out;
 }
 

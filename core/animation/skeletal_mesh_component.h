@@ -263,6 +263,9 @@ class USkeletalMeshComponent : public UPrimitiveComponent {
     void setPose(sp::animation::Pose local);
     // Samples the clip at position_.
     void poseFromClip();
+    // Writes every bone's transform in `Space` at `data` (16 doubles a bone); returns the end of what it
+    // wrote.
+    double* writeBoneTransforms(EBoneSpaces Space, double* data) const;
     // The component's world transform as a matrix (scale included).
     Eigen::Affine3d worldMatrix() const;
     int boneOrThrow(const std::string& name, const char* function, const char* what) const;
