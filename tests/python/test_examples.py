@@ -119,6 +119,21 @@ def test_render_image_writes_the_contact_sheet(transport: str, tmp_path: Path) -
 
 
 @pytest.mark.parametrize("transport", TRANSPORTS)
+def test_import_motion_plays_a_sequence_with_an_object_and_renders_body_parts(transport: str, tmp_path: Path) -> None:
+    out = tmp_path / "motion.png"
+    result = run_example("import_motion.py", "--out", str(out), *TRANSPORTS[transport])
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert ("/Game/motions/carry_case.npz: 60 frames at 30 fps (1.97 s), 18 bones of /Game/characters/humanoid.glb, "
+            "objects: Case") in result.stdout
+    assert "frame 60/60 (" in result.stdout
+    parts = result.stdout.split("body parts seen: ")[1].splitlines()[0].split(", ")
+    assert {"head", "pelvis", "thigh_l", "thigh_r", "foot_l", "foot_r"} <= set(parts), parts
+    image = Image.open(out)
+    assert image.size == (3 * 320, 4 * (240 + 16))
+    assert len(set(image.convert("RGB").getdata())) > 1000  # rendered frames, not blank ones
+
+
+@pytest.mark.parametrize("transport", TRANSPORTS)
 def test_animated_characters_walk_run_and_carry_a_head_camera(transport: str, tmp_path: Path) -> None:
     out = tmp_path / "characters.png"
     result = run_example("animated_characters.py", "--frames", "12", "--out", str(out), *TRANSPORTS[transport])

@@ -85,6 +85,8 @@ INSTALLED_EXAMPLES = [
     ("control_pawn.py", ["--frames", "8", "--out", "out/pawn.png"], "out/pawn.png"),
     # The built-in humanoid (/Game/characters/humanoid.glb), its skeleton and clips.
     ("animated_characters.py", ["--frames", "4", "--out", "out/characters.png"], "clips: idle, walk, run"),
+    # The built-in motion sequence (/Game/motions/carry_case.npz), found by spear.motion in the package.
+    ("import_motion.py", ["--out", "out/motion.png"], "objects: Case"),
 ]
 
 
