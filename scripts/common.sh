@@ -64,6 +64,18 @@ engine_codegen() {
         --include-dir /usr/include/eigen3 --blueprint-dir assets/blueprints "${headers[@]}")
 }
 
+# A unity build (each target's sources compiled as a few files that #include them, CMake's UNITY_BUILD) parses
+# the headers they share once per batch rather than once per source: a fresh build takes about half the time.
+# Fresh build folders get one (the first run on a new machine, CI); a folder configured before keeps what it has,
+# so a developer's incremental rebuilds stay per source. SPEAR_UNITY_BUILD=ON or OFF decides instead.
+unity_build_option() {
+    if [[ -n "${SPEAR_UNITY_BUILD:-}" ]]; then
+        echo "-DCMAKE_UNITY_BUILD=$SPEAR_UNITY_BUILD"
+    elif [[ ! -f "$1/CMakeCache.txt" ]]; then
+        echo "-DCMAKE_UNITY_BUILD=ON"
+    fi
+}
+
 build() {
     say "build: configuring and building in $BUILD_DIR"
     # Warnings are errors in the project's own code (not in Debian's headers): the tree builds clean.
@@ -72,7 +84,7 @@ build() {
     local generator=(-G Ninja)
     [[ -f "$BUILD_DIR/CMakeCache.txt" ]] && generator=()
     cmake -S "$ROOT" -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-        -DPython3_EXECUTABLE="$PYTHON" -DSPEAR_WERROR=ON >/dev/null
+        -DPython3_EXECUTABLE="$PYTHON" -DSPEAR_WERROR=ON $(unity_build_option "$BUILD_DIR") >/dev/null
     # Two jobs: the machines this runs on have two cores, and pybind11 translation units are large.
     cmake --build "$BUILD_DIR" -j "${SPEAR_JOBS:-2}"
 }

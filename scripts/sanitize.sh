@@ -22,7 +22,7 @@ UBSAN_FLAGS="-fsanitize=undefined;-fno-sanitize-recover=undefined"
 say "sanitize: configuring and building in $ASAN_DIR (ASan + UBSan)"
 cmake -S "$ROOT" -B "$ASAN_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Sanitize -DPython3_EXECUTABLE="$PYTHON" \
     -DSPEAR_PACKAGE_DIR="$ASAN_DIR/package" -DCMAKE_CXX_FLAGS="$FLAGS" -DCMAKE_C_FLAGS="$FLAGS" \
-    -DSPEAR_UBSAN_FLAGS="$UBSAN_FLAGS" \
+    -DSPEAR_UBSAN_FLAGS="$UBSAN_FLAGS" $(unity_build_option "$ASAN_DIR") \
     -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
     -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
 cmake --build "$ASAN_DIR" -j "${SPEAR_JOBS:-2}" --target spear_base_tests spear_reflect_tests spear_rpc_tests spear_physics_tests spear_rpc_fuzz \

@@ -7,11 +7,11 @@
 namespace sp::base {
 
 namespace {
-std::atomic<LogSink> gSink{nullptr};
+std::atomic<LogSink> gLogSink{nullptr};
 } // namespace
 
 void setLogSink(LogSink sink) {
-    gSink.store(sink);
+    gLogSink.store(sink);
 }
 
 void writeLogLine(std::string_view file, int line, std::string_view message) {
@@ -19,7 +19,7 @@ void writeLogLine(std::string_view file, int line, std::string_view message) {
     // Only the file's base name: full build paths make logs noisy and machine-specific.
     if (auto slash = file.rfind('/'); slash != std::string_view::npos)
         file.remove_prefix(slash + 1);
-    if (const LogSink sink = gSink.load()) {
+    if (const LogSink sink = gLogSink.load()) {
         sink(file, line, message);
         return;
     }

@@ -6,7 +6,7 @@
 namespace sp::base {
 
 namespace {
-std::atomic<ProgressSink> gSink{nullptr};
+std::atomic<ProgressSink> gProgressSink{nullptr};
 BusyHook gBusyHook = nullptr; // (set and called on the one thread that runs the work)
 void* gBusyContext = nullptr;
 std::atomic<bool> gStopRequested{false};
@@ -26,7 +26,7 @@ void writeToStderr(std::string_view task, double done, double total, bool finish
 } // namespace
 
 void setProgressSink(ProgressSink sink) {
-    gSink.store(sink);
+    gProgressSink.store(sink);
 }
 
 void setBusyHook(BusyHook hook, void* context) {
@@ -65,7 +65,7 @@ void Progress::set(double done) {
 
 void Progress::report(bool finished) {
     reported_ = true;
-    const ProgressSink sink = gSink.load();
+    const ProgressSink sink = gProgressSink.load();
     try {
         (sink ? sink : &writeToStderr)(task_, done_, total_, finished);
     } catch (...) { // progress is never worth failing the work for (and ~Progress must not throw)

@@ -8,15 +8,15 @@
 namespace sp {
 
 namespace {
-struct Pool {
+struct BlockPool {
     std::mutex mutex;
     std::deque<std::pair<std::size_t, char*>> kept; // oldest first
     std::size_t keptBytes = 0;
 };
 
 // Never destroyed: an array (a numpy array's storage, say) may be let go after static destructors ran.
-Pool& pool() {
-    static Pool* instance = new Pool;
+BlockPool& blockPool() {
+    static BlockPool* instance = new BlockPool;
     return *instance;
 }
 
@@ -27,7 +27,7 @@ void giveBack(char* block, std::size_t bytes) {
     }
     std::vector<char*> released;
     {
-        Pool& p = pool();
+        BlockPool& p = blockPool();
         std::lock_guard lock(p.mutex);
         p.kept.emplace_back(bytes, block);
         p.keptBytes += bytes;
@@ -45,7 +45,7 @@ void giveBack(char* block, std::size_t bytes) {
 std::shared_ptr<char[]> takeRecycledBlock(std::size_t bytes) {
     char* block = nullptr;
     {
-        Pool& p = pool();
+        BlockPool& p = blockPool();
         std::lock_guard lock(p.mutex);
         // From the newest: its pages are the likeliest to be in the caches still.
         for (auto it = p.kept.rbegin(); it != p.kept.rend(); ++it)
@@ -62,7 +62,7 @@ std::shared_ptr<char[]> takeRecycledBlock(std::size_t bytes) {
 }
 
 std::size_t recycledBytesKept() {
-    Pool& p = pool();
+    BlockPool& p = blockPool();
     std::lock_guard lock(p.mutex);
     return p.keptBytes;
 }

@@ -7,8 +7,6 @@
 namespace sp::pathtrace {
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
-
 Eigen::Vector3f specularColor(const SurfacePoint& s) {
     return Eigen::Vector3f::Constant(0.04f) * (1.0f - s.metallic) + s.base * s.metallic;
 }

@@ -5,9 +5,13 @@
 // Vectors are world-space units; `n` is the shading normal, `v` points away from the surface towards
 // the viewer, `l` towards the light. Pure logic.
 
+#include <numbers>
+
 #include <Eigen/Core>
 
 namespace sp::pathtrace {
+
+inline constexpr float kPi = std::numbers::pi_v<float>;
 
 struct SurfacePoint {
     Eigen::Vector3f n;

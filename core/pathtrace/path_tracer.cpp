@@ -22,7 +22,6 @@
 namespace sp::pathtrace {
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
 // Geometry mask bits: every instance is seen by camera and bounce rays, shadow-casting ones by shadow rays.
 // Probe rays (PathTracer::lightProbes) see only the instances at least the probes' cutoff in radius: small
 // things that move do not relight every probe.

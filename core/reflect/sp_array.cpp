@@ -20,15 +20,6 @@ ArrayAllocatorScope::~ArrayAllocatorScope() {
     gAllocatorContext = previousContext_;
 }
 
-namespace {
-std::string shapeText(const std::vector<int64_t>& shape) {
-    std::string text = "(";
-    for (size_t i = 0; i < shape.size(); ++i)
-        text += (i ? ", " : "") + (shape[i] < 0 ? std::string("*") : std::to_string(shape[i]));
-    return text + (shape.size() == 1 ? ",)" : ")");
-}
-} // namespace
-
 std::string SpArrayBase::describeShape() const {
     return value_.data ? shapeText(value_.shape) : std::string("None");
 }
@@ -37,7 +28,7 @@ void SpArrayBase::checkShape(std::initializer_list<int64_t> expected, std::strin
     bool ok = value_.data && value_.shape.size() == expected.size();
     for (size_t i = 0; ok && i < expected.size(); ++i)
         ok = expected.begin()[i] < 0 || expected.begin()[i] == value_.shape[i];
-    SP_CHECK(ok, InvalidArgument, what, " must have shape ", shapeText(std::vector<int64_t>(expected)),
+    SP_CHECK(ok, InvalidArgument, what, " must have shape ", shapeText(std::vector<int64_t>(expected), true),
              ", got ", describeShape());
 }
 

@@ -48,14 +48,13 @@ DType dtypeFromName(std::string_view name) {
     SP_THROW(InvalidArgument, "dtypeFromName(): unsupported dtype '", name, "'");
 }
 
-namespace {
-std::string shapeText(const std::vector<int64_t>& shape) {
+std::string shapeText(const std::vector<int64_t>& shape, bool negativeIsAny) {
     std::string text = "(";
     for (size_t i = 0; i < shape.size(); ++i)
-        text += (i ? ", " : "") + std::to_string(shape[i]);
+        text +=
+            (i ? ", " : "") + (negativeIsAny && shape[i] < 0 ? std::string("*") : std::to_string(shape[i]));
     return text + (shape.size() == 1 ? ",)" : ")");
 }
-} // namespace
 
 int64_t checkedElementCount(const std::vector<int64_t>& shape, std::string_view context) {
     for (int64_t extent : shape)

@@ -66,6 +66,10 @@ DType dtypeFromName(std::string_view name); // throws InvalidArgument for an unk
 int64_t checkedElementCount(const std::vector<int64_t>& shape, std::string_view context);
 size_t checkedByteSize(DType dtype, const std::vector<int64_t>& shape, std::string_view context);
 
+// A shape as Python writes it, "(2, 3)" or "(4,)"; with negativeIsAny, a negative extent is a pattern's "any
+// size" and is written "*".
+std::string shapeText(const std::vector<int64_t>& shape, bool negativeIsAny = false);
+
 // How deeply lists and dicts may nest in a Value built from outside (a Python object, a msgpack message).
 // Converting them recurses, so an unbounded depth lets a 20 KB message overflow the stack; no engine type
 // comes near this.

@@ -15,8 +15,6 @@
 namespace sp::render {
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
-
 std::uint64_t nextUid() {
     static std::atomic<std::uint64_t> counter{0};
     return ++counter;

@@ -15,12 +15,15 @@
 
 #include <array>
 #include <cstdint>
+#include <numbers>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 namespace sp::render {
+
+inline constexpr float kPi = std::numbers::pi_v<float>;
 
 // An RGB float image: row-major, `width` * `height` texels.
 struct RadianceImage {

@@ -10,7 +10,6 @@
 namespace sp::render {
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
 // Below the horizon the sky fades to black over this many degrees of sun depression.
 constexpr float kTwilightDegrees = 6.0f;
 

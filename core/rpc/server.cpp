@@ -34,10 +34,6 @@ namespace sp::rpc {
 namespace {
 std::atomic<int> gWakeFd{-1}; // write end of the self-pipe that stop() pokes
 
-std::string systemError() {
-    return std::strerror(errno);
-}
-
 // Sends what the socket takes now without waiting; false when the connection is broken.
 bool sendSome(int fd, const char*& data, size_t& size) {
     while (size > 0) {
@@ -154,7 +150,7 @@ Server::Server(engine::Engine& engine, ServerOptions options, std::string apiHas
                  "spear-server: bad bind address '", options_.bindAddress, "'");
         SP_CHECK(::bind(listenFd_, reinterpret_cast<sockaddr*>(&address), sizeof(address)) == 0, Error,
                  "spear-server: cannot bind ", options_.bindAddress, ":", options_.tcpPort, ": ",
-                 systemError());
+                 std::strerror(errno));
         socklen_t length = sizeof(address);
         ::getsockname(listenFd_, reinterpret_cast<sockaddr*>(&address), &length);
         boundPort_ = ntohs(address.sin_port);
@@ -170,9 +166,10 @@ Server::Server(engine::Engine& engine, ServerOptions options, std::string apiHas
         const mode_t previous = ::umask(0077);
         const int bound = ::bind(listenFd_, reinterpret_cast<sockaddr*>(&address), sizeof(address));
         ::umask(previous);
-        SP_CHECK(bound == 0, Error, "spear-server: cannot bind '", options_.socketPath, "': ", systemError());
+        SP_CHECK(bound == 0, Error, "spear-server: cannot bind '", options_.socketPath,
+                 "': ", std::strerror(errno));
     }
-    SP_CHECK(::listen(listenFd_, 16) == 0, Error, "spear-server: listen failed: ", systemError());
+    SP_CHECK(::listen(listenFd_, 16) == 0, Error, "spear-server: listen failed: ", std::strerror(errno));
     std::vector<std::string> allowed;
     for (const std::string& plugin : options_.plugins) {
         std::error_code error;
@@ -546,7 +543,7 @@ void Server::flushBeforeExit() {
 void Server::run() {
     int pipeFds[2];
     SP_CHECK(::pipe2(pipeFds, O_CLOEXEC | O_NONBLOCK) == 0, Error,
-             "spear-server: pipe failed: ", systemError());
+             "spear-server: pipe failed: ", std::strerror(errno));
     gWakeFd = pipeFds[1];
     while (!shutdown_) {
         std::vector<pollfd> fds{{pipeFds[0], POLLIN, 0}, {listenFd_, POLLIN, 0}};

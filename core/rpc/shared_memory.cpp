@@ -22,9 +22,6 @@
 namespace sp::rpc {
 
 namespace {
-std::string systemError() {
-    return std::strerror(errno);
-}
 
 // The truncation guard: the address ranges of every mapped segment, in a fixed table that the SIGBUS
 // handler can read without locks or allocation. Slots are claimed and released under a mutex, on the
@@ -94,7 +91,7 @@ std::string randomSuffix() {
     for (size_t got = 0; got < sizeof(bits);) {
         const ssize_t n = ::getrandom(reinterpret_cast<char*>(&bits) + got, sizeof(bits) - got, 0);
         SP_CHECK(n > 0 || errno == EINTR, Error,
-                 "SharedMemorySegment::create(): getrandom failed: ", systemError());
+                 "SharedMemorySegment::create(): getrandom failed: ", std::strerror(errno));
         got += n > 0 ? size_t(n) : 0;
     }
     char text[17];
@@ -137,9 +134,9 @@ SharedMemorySegment SharedMemorySegment::create(size_t size) {
     segment.size_ = size;
     int fd = ::shm_open(segment.name_.c_str(), O_CREAT | O_EXCL | O_RDWR, 0600);
     SP_CHECK(fd >= 0, Error, "SharedMemorySegment::create(): shm_open('", segment.name_,
-             "') failed: ", systemError());
+             "') failed: ", std::strerror(errno));
     if (::ftruncate(fd, off_t(size == 0 ? 1 : size)) != 0) {
-        const std::string error = systemError();
+        const std::string error = std::strerror(errno);
         ::close(fd);
         ::shm_unlink(segment.name_.c_str());
         SP_THROW(Error, "SharedMemorySegment::create(): cannot size '", segment.name_, "' to ", size,
@@ -151,7 +148,8 @@ SharedMemorySegment SharedMemorySegment::create(size_t size) {
     if (segment.data_ == MAP_FAILED) {
         segment.data_ = nullptr;
         ::shm_unlink(segment.name_.c_str());
-        SP_THROW(Error, "SharedMemorySegment::create(): mmap of ", size, " bytes failed: ", systemError());
+        SP_THROW(Error, "SharedMemorySegment::create(): mmap of ", size,
+                 " bytes failed: ", std::strerror(errno));
     }
     segment.guard_ = guardMapping(segment.data_, size == 0 ? 1 : size);
     return segment;
@@ -166,7 +164,7 @@ SharedMemorySegment SharedMemorySegment::open(const std::string& name, size_t si
     segment.unlinked_ = true; // the creator owns the name
     segment.fd_ = ::shm_open(name.c_str(), O_RDWR | O_CLOEXEC, 0);
     SP_CHECK(segment.fd_ >= 0, InvalidArgument, "SharedMemorySegment::open(): cannot open '", name,
-             "': ", systemError());
+             "': ", std::strerror(errno));
     struct stat info {};
     SP_CHECK(::fstat(segment.fd_, &info) == 0 && size_t(info.st_size) >= size, InvalidArgument,
              "SharedMemorySegment::open(): segment '", name, "' holds ", info.st_size, " bytes, fewer than ",
@@ -176,7 +174,7 @@ SharedMemorySegment SharedMemorySegment::open(const std::string& name, size_t si
     if (segment.data_ == MAP_FAILED) {
         segment.data_ = nullptr;
         SP_THROW(InvalidArgument, "SharedMemorySegment::open(): mmap of '", name,
-                 "' failed: ", systemError());
+                 "' failed: ", std::strerror(errno));
     }
     segment.guard_ = guardMapping(segment.data_, size == 0 ? 1 : size);
     return segment;

@@ -19,8 +19,8 @@ namespace {
 
 using Json = SceneJson;
 
-constexpr std::string_view kFormat = "spear.blueprint";
-constexpr int kVersion = 1;
+constexpr std::string_view kBlueprintFormat = "spear.blueprint";
+constexpr int kBlueprintVersion = 1;
 
 // A loaded blueprint: its registered class and the document its objects are initialised from. Blueprints
 // live as long as the process, because the registry and objects point at their classes.
@@ -132,11 +132,11 @@ const reflect::TypeInfo& loadBlueprint(const std::string& path, std::string_view
     SP_CHECK(document.is_object(), InvalidArgument, where, ": expected a JSON object, got ",
              document.type_name());
     const Json* format = optionalMember(document, "format");
-    SP_CHECK(format && *format == kFormat, InvalidArgument, where, ": 'format' must be \"", kFormat,
-             "\", got ", format ? format->dump() : "nothing");
+    SP_CHECK(format && *format == kBlueprintFormat, InvalidArgument, where, ": 'format' must be \"",
+             kBlueprintFormat, "\", got ", format ? format->dump() : "nothing");
     const Json* version = optionalMember(document, "version");
-    SP_CHECK(version && *version == kVersion, InvalidArgument, where, ": 'version' ",
-             version ? version->dump() : "(missing)", " is not supported (expected ", kVersion, ")");
+    SP_CHECK(version && *version == kBlueprintVersion, InvalidArgument, where, ": 'version' ",
+             version ? version->dump() : "(missing)", " is not supported (expected ", kBlueprintVersion, ")");
     const std::string parentName = stringMember(document, "parent", where);
     const reflect::TypeInfo* parent = reflect::Registry::get().findType(parentName);
     SP_CHECK(parent && parent->kind == reflect::TypeInfo::Kind::Class, InvalidArgument, where,

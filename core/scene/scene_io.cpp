@@ -24,8 +24,8 @@ namespace {
 using reflect::Value;
 using Json = SceneJson;
 
-constexpr std::string_view kFormat = "spear.scene";
-constexpr int kVersion = 1;
+constexpr std::string_view kSceneFormat = "spear.scene";
+constexpr int kSceneVersion = 1;
 
 // --- property types ---------------------------------------------------------------------------
 // Values are saved and loaded by their property's declared type (reflect::TypeCode).
@@ -288,8 +288,8 @@ SceneJson saveScene(const UWorld& world) {
         actors.push_back(std::move(entry));
     }
     Json scene = Json::object();
-    scene["format"] = kFormat;
-    scene["version"] = kVersion;
+    scene["format"] = kSceneFormat;
+    scene["version"] = kSceneVersion;
     scene["actors"] = std::move(actors);
     if (!world.GetStreamingLevels().empty()) {
         Json levels = Json::array();
@@ -315,11 +315,11 @@ std::vector<std::unique_ptr<AActor>> stageActors(UWorld& world, const Json& scen
                                                  bool inWorld, const std::string& directory) {
     SP_CHECK(scene.is_object(), InvalidArgument, root, ": expected a JSON object, got ", jsonKind(scene));
     const Json& format = member(scene, "format", root);
-    SP_CHECK(format == kFormat, InvalidArgument, root, ": 'format' must be \"", kFormat, "\", got ",
+    SP_CHECK(format == kSceneFormat, InvalidArgument, root, ": 'format' must be \"", kSceneFormat, "\", got ",
              format.dump());
     const Json& version = member(scene, "version", root);
-    SP_CHECK(version == kVersion, InvalidArgument, root, ": 'version' ", version.dump(),
-             " is not supported (expected ", kVersion, ")");
+    SP_CHECK(version == kSceneVersion, InvalidArgument, root, ": 'version' ", version.dump(),
+             " is not supported (expected ", kSceneVersion, ")");
     const Json& actorList = member(scene, "actors", root);
     SP_CHECK(actorList.is_array(), InvalidArgument, root, ": 'actors' must be a list, got ",
              jsonKind(actorList));

@@ -6,8 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include "physics_test_util.h"
+
 namespace sp::physics {
 namespace {
+
+using test::at;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -33,10 +37,6 @@ bool isClosedAndConsistent(const TriangleSoup& soup) {
         if (count != 1 || edges.count({edge.second, edge.first}) != 1)
             return false;
     return true;
-}
-
-Eigen::Isometry3d at(double x, double y, double z) {
-    return Eigen::Isometry3d(Eigen::Translation3d(x, y, z));
 }
 
 TriangleSoup trianglesOf(const Shape& shape, const Eigen::Isometry3d& pose = Eigen::Isometry3d::Identity()) {
