@@ -6,11 +6,16 @@
 
 #include "core/base/error.h"
 #include "core/gameplay/navigation_subsystem.h"
+#include "core/gameplay/point_arrays.h"
 #include "core/world/object_access.h"
 #include "core/world/world.h"
 
 namespace {
 
+using sp::gameplay::checkFinite;
+using sp::gameplay::rowOf;
+using sp::gameplay::rowsOf;
+using sp::gameplay::toArray;
 using sp::navigation::Path;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -30,38 +35,6 @@ ENavigationQueryResult resultOf(Path::Status status) {
         break;
     }
     return ENavigationQueryResult::Error;
-}
-
-void checkFinite(const FVector& v, const char* function, const char* name) {
-    SP_CHECK(v.isFinite(), sp::InvalidArgument, function, ": ", name, " (", v.X, ", ", v.Y, ", ", v.Z,
-             ") must be finite");
-}
-
-// Rows of an (N, 3) float64 array of finite values.
-int64_t rowsOf(const sp::reflect::SpArray<double>& points, const char* function, const char* name) {
-    points.checkShape({-1, 3}, std::string(function) + ": array '" + name + "'");
-    const double* data = points.data();
-    for (int64_t i = 0; i < points.getSize(); ++i)
-        SP_CHECK(std::isfinite(data[i]), sp::InvalidArgument, function, ": ", name, "[", i / 3, ", ", i % 3,
-                 "] = ", data[i], " is not finite");
-    return points.getShape()[0];
-}
-
-FVector rowOf(const sp::reflect::SpArray<double>& points, int64_t i) {
-    const double* p = points.data() + 3 * i;
-    return {p[0], p[1], p[2]};
-}
-
-sp::reflect::SpArray<double> toArray(const std::vector<Eigen::Vector3d>& points, const char* name) {
-    sp::reflect::SpArray<double> array(name);
-    array.resize({int64_t(points.size()), 3});
-    double* out = array.data();
-    for (const Eigen::Vector3d& p : points) {
-        *out++ = p.x();
-        *out++ = p.y();
-        *out++ = p.z();
-    }
-    return array;
 }
 
 ARecastNavMesh& navDataOf(UObject* context, ARecastNavMesh* navData, const char* function) {

@@ -12,6 +12,7 @@
 #include "generated/engine/cpp/core_gameplay_navigation_system.gen.h"
 #include "generated/engine/cpp/core_gameplay_pawn.gen.h"
 #include "generated/engine/cpp/core_gameplay_wheeled_vehicle.gen.h"
+#include "generated/engine/cpp/core_gameplay_zone_graph.gen.h"
 #include "generated/engine/cpp/core_procedural_pcg_component.gen.h"
 #include "generated/engine/cpp/core_procedural_spline_component.gen.h"
 #include "generated/engine/cpp/core_sensors_camera_sensor_actor.gen.h"

@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "6893b7990b88693f";
+inline constexpr char kApiHash[] = "8b8496798d7ca400";
 } // namespace sp::generated::engine

@@ -14,6 +14,7 @@
 #include "generated/engine/cpp/core_gameplay_navigation_system.bindings.gen.h"
 #include "generated/engine/cpp/core_gameplay_pawn.bindings.gen.h"
 #include "generated/engine/cpp/core_gameplay_wheeled_vehicle.bindings.gen.h"
+#include "generated/engine/cpp/core_gameplay_zone_graph.bindings.gen.h"
 #include "generated/engine/cpp/core_procedural_pcg_component.bindings.gen.h"
 #include "generated/engine/cpp/core_procedural_spline_component.bindings.gen.h"
 #include "generated/engine/cpp/core_sensors_camera_sensor_actor.bindings.gen.h"

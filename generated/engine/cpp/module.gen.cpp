@@ -36,6 +36,7 @@ void bind_AStereoCameraRig(pybind11::module_& m);
 void bind_ATriggerBox(pybind11::module_& m);
 void bind_ATriggerSphere(pybind11::module_& m);
 void bind_AWheeledVehiclePawn(pybind11::module_& m);
+void bind_AZoneGraphData(pybind11::module_& m);
 void bind_UActorComponent(pybind11::module_& m);
 void bind_USceneComponent(pybind11::module_& m);
 void bind_UPrimitiveComponent(pybind11::module_& m);
@@ -63,6 +64,7 @@ void bind_USplineComponent(pybind11::module_& m);
 void bind_USpotLightComponent(pybind11::module_& m);
 void bind_UStaticMeshComponent(pybind11::module_& m);
 void bind_UWorld(pybind11::module_& m);
+void bind_UZoneGraphSubsystem(pybind11::module_& m);
 } // namespace sp::generated::engine
 
 void spear_bind_engine(pybind11::module_& m) {
@@ -101,6 +103,7 @@ void spear_bind_engine(pybind11::module_& m) {
     gen::bind_ATriggerBox(m);
     gen::bind_ATriggerSphere(m);
     gen::bind_AWheeledVehiclePawn(m);
+    gen::bind_AZoneGraphData(m);
     gen::bind_UActorComponent(m);
     gen::bind_USceneComponent(m);
     gen::bind_UPrimitiveComponent(m);
@@ -128,4 +131,5 @@ void spear_bind_engine(pybind11::module_& m) {
     gen::bind_USpotLightComponent(m);
     gen::bind_UStaticMeshComponent(m);
     gen::bind_UWorld(m);
+    gen::bind_UZoneGraphSubsystem(m);
 }

@@ -24,6 +24,8 @@ const sp::reflect::EnumInfo& enumInfo_EPathFollowingRequestResult();
 const sp::reflect::EnumInfo& enumInfo_EPathFollowingStatus();
 const sp::reflect::EnumInfo& enumInfo_ESkyLightSourceType();
 const sp::reflect::EnumInfo& enumInfo_ESplineCoordinateSpace();
+const sp::reflect::EnumInfo& enumInfo_EZoneLaneDirection();
+const sp::reflect::EnumInfo& enumInfo_EZoneLaneLinkType();
 const sp::reflect::TypeInfo& typeInfo_UObject();
 const sp::reflect::TypeInfo& typeInfo_AActor();
 const sp::reflect::TypeInfo& typeInfo_AController();
@@ -54,6 +56,7 @@ const sp::reflect::TypeInfo& typeInfo_AStereoCameraRig();
 const sp::reflect::TypeInfo& typeInfo_ATriggerBox();
 const sp::reflect::TypeInfo& typeInfo_ATriggerSphere();
 const sp::reflect::TypeInfo& typeInfo_AWheeledVehiclePawn();
+const sp::reflect::TypeInfo& typeInfo_AZoneGraphData();
 const sp::reflect::TypeInfo& typeInfo_FBlendSample();
 const sp::reflect::TypeInfo& typeInfo_FCameraPixels();
 const sp::reflect::TypeInfo& typeInfo_FFrameTimings();
@@ -71,6 +74,8 @@ const sp::reflect::TypeInfo& typeInfo_FRotator();
 const sp::reflect::TypeInfo& typeInfo_FTransform();
 const sp::reflect::TypeInfo& typeInfo_FVector2D();
 const sp::reflect::TypeInfo& typeInfo_FWheelState();
+const sp::reflect::TypeInfo& typeInfo_FZoneGraphLaneLocation();
+const sp::reflect::TypeInfo& typeInfo_FZoneLaneDesc();
 const sp::reflect::TypeInfo& typeInfo_UActorComponent();
 const sp::reflect::TypeInfo& typeInfo_USceneComponent();
 const sp::reflect::TypeInfo& typeInfo_UPrimitiveComponent();
@@ -98,6 +103,7 @@ const sp::reflect::TypeInfo& typeInfo_USplineComponent();
 const sp::reflect::TypeInfo& typeInfo_USpotLightComponent();
 const sp::reflect::TypeInfo& typeInfo_UStaticMeshComponent();
 const sp::reflect::TypeInfo& typeInfo_UWorld();
+const sp::reflect::TypeInfo& typeInfo_UZoneGraphSubsystem();
 } // namespace sp::generated::engine
 
 extern "C" void spear_register_engine_types() {
@@ -120,6 +126,8 @@ extern "C" void spear_register_engine_types() {
     registry.add(gen::enumInfo_EPathFollowingStatus());
     registry.add(gen::enumInfo_ESkyLightSourceType());
     registry.add(gen::enumInfo_ESplineCoordinateSpace());
+    registry.add(gen::enumInfo_EZoneLaneDirection());
+    registry.add(gen::enumInfo_EZoneLaneLinkType());
     registry.add(gen::typeInfo_UObject());
     registry.add(gen::typeInfo_AActor());
     registry.add(gen::typeInfo_AController());
@@ -150,6 +158,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(gen::typeInfo_ATriggerBox());
     registry.add(gen::typeInfo_ATriggerSphere());
     registry.add(gen::typeInfo_AWheeledVehiclePawn());
+    registry.add(gen::typeInfo_AZoneGraphData());
     registry.add(gen::typeInfo_FBlendSample());
     registry.add(gen::typeInfo_FCameraPixels());
     registry.add(gen::typeInfo_FFrameTimings());
@@ -167,6 +176,8 @@ extern "C" void spear_register_engine_types() {
     registry.add(gen::typeInfo_FTransform());
     registry.add(gen::typeInfo_FVector2D());
     registry.add(gen::typeInfo_FWheelState());
+    registry.add(gen::typeInfo_FZoneGraphLaneLocation());
+    registry.add(gen::typeInfo_FZoneLaneDesc());
     registry.add(gen::typeInfo_UActorComponent());
     registry.add(gen::typeInfo_USceneComponent());
     registry.add(gen::typeInfo_UPrimitiveComponent());
@@ -194,12 +205,14 @@ extern "C" void spear_register_engine_types() {
     registry.add(gen::typeInfo_USpotLightComponent());
     registry.add(gen::typeInfo_UStaticMeshComponent());
     registry.add(gen::typeInfo_UWorld());
+    registry.add(gen::typeInfo_UZoneGraphSubsystem());
 }
 
 // In reverse order of registration: subclasses go before their parents.
 extern "C" void spear_unregister_engine_types() {
     namespace gen = sp::generated::engine;
     auto& registry = sp::reflect::Registry::get();
+    registry.remove(gen::typeInfo_UZoneGraphSubsystem());
     registry.remove(gen::typeInfo_UWorld());
     registry.remove(gen::typeInfo_UStaticMeshComponent());
     registry.remove(gen::typeInfo_USpotLightComponent());
@@ -227,6 +240,8 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::typeInfo_UPrimitiveComponent());
     registry.remove(gen::typeInfo_USceneComponent());
     registry.remove(gen::typeInfo_UActorComponent());
+    registry.remove(gen::typeInfo_FZoneLaneDesc());
+    registry.remove(gen::typeInfo_FZoneGraphLaneLocation());
     registry.remove(gen::typeInfo_FWheelState());
     registry.remove(gen::typeInfo_FVector2D());
     registry.remove(gen::typeInfo_FTransform());
@@ -244,6 +259,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::typeInfo_FFrameTimings());
     registry.remove(gen::typeInfo_FCameraPixels());
     registry.remove(gen::typeInfo_FBlendSample());
+    registry.remove(gen::typeInfo_AZoneGraphData());
     registry.remove(gen::typeInfo_AWheeledVehiclePawn());
     registry.remove(gen::typeInfo_ATriggerSphere());
     registry.remove(gen::typeInfo_ATriggerBox());
@@ -274,6 +290,8 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::typeInfo_AController());
     registry.remove(gen::typeInfo_AActor());
     registry.remove(gen::typeInfo_UObject());
+    registry.remove(gen::enumInfo_EZoneLaneLinkType());
+    registry.remove(gen::enumInfo_EZoneLaneDirection());
     registry.remove(gen::enumInfo_ESplineCoordinateSpace());
     registry.remove(gen::enumInfo_ESkyLightSourceType());
     registry.remove(gen::enumInfo_EPathFollowingStatus());
@@ -293,4 +311,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::enumInfo_EAnimationMode());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "6893b7990b88693f"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "8b8496798d7ca400"; }

@@ -51,6 +51,7 @@ __all__ = [
     "ATriggerBox",
     "ATriggerSphere",
     "AWheeledVehiclePawn",
+    "AZoneGraphData",
     "BP_Axes",
     "BP_Crate",
     "BP_Walker",
@@ -71,6 +72,8 @@ __all__ = [
     "EPathFollowingStatus",
     "ESkyLightSourceType",
     "ESplineCoordinateSpace",
+    "EZoneLaneDirection",
+    "EZoneLaneLinkType",
     "FBlendSample",
     "FCameraPixels",
     "FFrameTimings",
@@ -88,6 +91,8 @@ __all__ = [
     "FVector",
     "FVector2D",
     "FWheelState",
+    "FZoneGraphLaneLocation",
+    "FZoneLaneDesc",
     "UActorComponent",
     "UBoxComponent",
     "UCameraSensorComponent",
@@ -116,6 +121,7 @@ __all__ = [
     "USpotLightComponent",
     "UStaticMeshComponent",
     "UWorld",
+    "UZoneGraphSubsystem",
 ]
 
 
@@ -286,6 +292,22 @@ class ESplineCoordinateSpace(enum.IntEnum):
 
     Local = 0
     World = 1
+
+
+class EZoneLaneDirection(enum.IntEnum):
+    """Which way a lane runs along its road (UE's EZoneLaneDirection)."""
+
+    Forward = 0
+    Backward = 1
+
+
+class EZoneLaneLinkType(enum.IntEnum):
+    """Which of a lane's links (UE's EZoneLaneLinkType)."""
+
+    Outgoing = 0
+    Incoming = 1
+    AdjacentLeft = 2
+    AdjacentRight = 3
 
 
 @dataclass(slots=True)
@@ -526,6 +548,28 @@ class FWheelState:
     SuspensionLength: float = 0.0
     RotationInDegrees: float = 0.0
     SteerAngleInDegrees: float = 0.0
+
+
+@dataclass(slots=True)
+class FZoneGraphLaneLocation:
+    """A point on a lane (UE's FZoneGraphLaneLocation); LaneIndex is -1 when a query found none."""
+
+    __sp_class__: ClassVar[str] = "FZoneGraphLaneLocation"
+    LaneIndex: int = -1
+    DistanceAlongLane: float = 0.0
+    Position: FVector = field(default_factory=FVector)
+    Direction: FVector = field(default_factory=lambda: FVector(1.0, 0.0, 0.0))
+    Up: FVector = field(default_factory=lambda: FVector(0.0, 0.0, 1.0))
+
+
+@dataclass(slots=True)
+class FZoneLaneDesc:
+    """One lane of a road's cross-section (UE's FZoneLaneDesc)."""
+
+    __sp_class__: ClassVar[str] = "FZoneLaneDesc"
+    Tag: str = "Driving"
+    Width: float = 3.5
+    Direction: EZoneLaneDirection = EZoneLaneDirection.Forward
 
 
 class UObjectAsync:
@@ -1135,6 +1179,25 @@ class AWheeledVehiclePawn(APawn):
     __sp_class__: ClassVar[str] = "AWheeledVehiclePawn"
 
 
+class AZoneGraphDataAsync(AActorAsync):
+    """AZoneGraphData's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class AZoneGraphDataSend(AActorSend):
+    """AZoneGraphData's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class AZoneGraphData(AActor):
+    """How the world's roads become lanes, and the lane graph built from them (UE's AZoneGraphData)."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "AZoneGraphData"
+
+
 class UActorComponentAsync(UObjectAsync):
     """UActorComponent's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
 
@@ -1708,6 +1771,40 @@ class UWorld(UObject):
         hit: FHitResult
         actor: AActor | None
         component: UPrimitiveComponent | None
+
+
+class UZoneGraphSubsystemAsync(UObjectAsync):
+    """UZoneGraphSubsystem's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class UZoneGraphSubsystemSend(UObjectSend):
+    """UZoneGraphSubsystem's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class UZoneGraphSubsystem(UObject):
+    """The world's lanes (UE's UZoneGraphSubsystem): queries on its first AZoneGraphData."""
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "UZoneGraphSubsystem"
+    GetZoneGraphSubsystem = _StaticFunction("UZoneGraphSubsystem", "GetZoneGraphSubsystem", _t.T_UZoneGraphSubsystem)
+
+    class FindNearestLaneResult(NamedTuple):
+        ReturnValue: bool
+        OutLaneLocation: FZoneGraphLaneLocation
+        OutDistance: float
+
+    class FindNearestLanesResult(NamedTuple):
+        OutLaneIndices: NDArray[np.int64]
+        OutPositions: NDArray[np.float64]
+        OutDistancesAlongLane: NDArray[np.float64]
+
+    class GetAllLanePointsResult(NamedTuple):
+        OutPoints: NDArray[np.float64]
+        OutStarts: NDArray[np.int64]
 
 
 # Blueprints: classes defined by data (assets), typed as their native parent, or as a stub class of their

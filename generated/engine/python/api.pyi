@@ -44,6 +44,7 @@ __all__ = [
     "ATriggerBox",
     "ATriggerSphere",
     "AWheeledVehiclePawn",
+    "AZoneGraphData",
     "BP_Axes",
     "BP_Crate",
     "BP_Walker",
@@ -64,6 +65,8 @@ __all__ = [
     "EPathFollowingStatus",
     "ESkyLightSourceType",
     "ESplineCoordinateSpace",
+    "EZoneLaneDirection",
+    "EZoneLaneLinkType",
     "FBlendSample",
     "FCameraPixels",
     "FFrameTimings",
@@ -81,6 +84,8 @@ __all__ = [
     "FVector",
     "FVector2D",
     "FWheelState",
+    "FZoneGraphLaneLocation",
+    "FZoneLaneDesc",
     "UActorComponent",
     "UBoxComponent",
     "UCameraSensorComponent",
@@ -109,6 +114,7 @@ __all__ = [
     "USpotLightComponent",
     "UStaticMeshComponent",
     "UWorld",
+    "UZoneGraphSubsystem",
 ]
 
 _AActorT = TypeVar("_AActorT", bound="AActor")
@@ -378,6 +384,28 @@ class ESplineCoordinateSpace(enum.IntEnum):
     """World space."""
 
 
+class EZoneLaneDirection(enum.IntEnum):
+    """Which way a lane runs along its road (UE's EZoneLaneDirection)."""
+
+    Forward = 0
+    """Along the road spline's direction."""
+    Backward = 1
+    """Against it."""
+
+
+class EZoneLaneLinkType(enum.IntEnum):
+    """Which of a lane's links (UE's EZoneLaneLinkType)."""
+
+    Outgoing = 0
+    """The lanes it leads into."""
+    Incoming = 1
+    """The lanes that lead into it."""
+    AdjacentLeft = 2
+    """The lane beside it on its left that runs the same way (none, or one)."""
+    AdjacentRight = 3
+    """The lane beside it on its right that runs the same way (none, or one)."""
+
+
 @dataclass(slots=True)
 class FBlendSample:
     """One clip of a one-dimensional blend space and the input at which it plays alone (UE's FBlendSample)."""
@@ -616,6 +644,28 @@ class FWheelState:
     SuspensionLength: float = 0.0
     RotationInDegrees: float = 0.0
     SteerAngleInDegrees: float = 0.0
+
+
+@dataclass(slots=True)
+class FZoneGraphLaneLocation:
+    """A point on a lane (UE's FZoneGraphLaneLocation); LaneIndex is -1 when a query found none."""
+
+    __sp_class__: ClassVar[str]
+    LaneIndex: int = -1
+    DistanceAlongLane: float = 0.0
+    Position: FVector = field(default_factory=FVector)
+    Direction: FVector = field(default_factory=lambda: FVector(1.0, 0.0, 0.0))
+    Up: FVector = field(default_factory=lambda: FVector(0.0, 0.0, 1.0))
+
+
+@dataclass(slots=True)
+class FZoneLaneDesc:
+    """One lane of a road's cross-section (UE's FZoneLaneDesc)."""
+
+    __sp_class__: ClassVar[str]
+    Tag: str = "Driving"
+    Width: float = 3.5
+    Direction: EZoneLaneDirection = EZoneLaneDirection.Forward
 
 
 class UObjectAsync:
@@ -2367,6 +2417,76 @@ class AWheeledVehiclePawn(APawn):
 
     def GetWheelState(self, *, WheelIndex: int) -> FWheelState:
         """Returns the state of wheel WheelIndex (0 front left, 1 front right, 2 rear left, 3 rear right)."""
+
+
+class AZoneGraphDataAsync(AActorAsync):
+    """AZoneGraphData's functions, called asynchronously: each returns a Future."""
+
+    def SetLaneProfile(self, *, Profile: list[FZoneLaneDesc]) -> Future[None]: ...
+
+    def SetJunctionTolerance(self, *, Tolerance: float) -> Future[None]: ...
+
+    def RebuildGraph(self) -> Future[None]: ...
+
+
+class AZoneGraphDataSend(AActorSend):
+    """AZoneGraphData's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetLaneProfile(self, *, Profile: list[FZoneLaneDesc]) -> None: ...
+
+    def SetJunctionTolerance(self, *, Tolerance: float) -> None: ...
+
+    def RebuildGraph(self) -> None: ...
+
+
+class AZoneGraphData(AActor):
+    """How the world's roads become lanes, and the lane graph built from them (UE's AZoneGraphData)."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> AZoneGraphDataAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> AZoneGraphDataSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def RoadTag(self) -> str:
+        """Spline actors with this tag are roads (their splines the roads' centre lines)."""
+
+    @RoadTag.setter
+    def RoadTag(self, value: str) -> None: ...
+
+    @property
+    def LaneProfile(self) -> list[FZoneLaneDesc]:
+        """Every road's cross-section, from its right edge to its left edge looking along the spline. The
+        default: a sidewalk, a driving lane each way (right-hand traffic), a sidewalk: 2 + 3.5 + 3.5 + 2 m.
+        """
+
+    @LaneProfile.setter
+    def LaneProfile(self, value: list[FZoneLaneDesc]) -> None: ...
+
+    @property
+    def JunctionTolerance(self) -> float:
+        """A road's end within this many metres of another road joins it there (> 0)."""
+
+    @JunctionTolerance.setter
+    def JunctionTolerance(self, value: float) -> None: ...
+
+    def SetLaneProfile(self, *, Profile: list[FZoneLaneDesc]) -> None:
+        """Sets LaneProfile; raises InvalidArgumentError, leaving it as it was, for no lanes, a width not > 0 or
+        an empty tag.
+        """
+
+    def SetJunctionTolerance(self, *, Tolerance: float) -> None:
+        """Sets JunctionTolerance (> 0)."""
+
+    def RebuildGraph(self) -> None:
+        """Builds the lane graph now from the roads as they are. Raises InvalidArgumentError naming both roads
+        and the point when two roads cross without a junction (the graph stays as it was).
+        """
 
 
 class UActorComponentAsync(UObjectAsync):
@@ -5868,6 +5988,174 @@ class UWorld(UObject):
 
     def is_playing(self) -> bool:
         """Editor world only: returns true while a game world copied from this one is playing."""
+
+
+class UZoneGraphSubsystemAsync(UObjectAsync):
+    """UZoneGraphSubsystem's functions, called asynchronously: each returns a Future."""
+
+    def GetZoneGraphSubsystem(self, *, WorldContextObject: UObject) -> Future[UZoneGraphSubsystem]: ...
+
+    def GetZoneGraphData(self) -> Future[AZoneGraphData]: ...
+
+    def GetNumLanes(self) -> Future[int]: ...
+
+    def GetNumJunctions(self) -> Future[int]: ...
+
+    def GetLaneTags(self) -> Future[list[str]]: ...
+
+    def FindNearestLane(self, *, Location: FVector, MaxDistance: float, Tag: str) -> Future[UZoneGraphSubsystem.FindNearestLaneResult]: ...
+
+    def FindNearestLaneLocationByName(self, *, Location: FVector, TagName: str, MaxDistance: float = 50.0) -> Future[FZoneGraphLaneLocation]: ...
+
+    def FindNearestLanes(self, *, Locations: NDArray[np.float64], MaxDistance: float, Tag: str) -> Future[UZoneGraphSubsystem.FindNearestLanesResult]: ...
+
+    def GetLaneLength(self, *, LaneIndex: int) -> Future[float]: ...
+
+    def GetLaneWidth(self, *, LaneIndex: int) -> Future[float]: ...
+
+    def GetLaneTag(self, *, LaneIndex: int) -> Future[str]: ...
+
+    def GetLaneRoad(self, *, LaneIndex: int) -> Future[ASplineActor | None]: ...
+
+    def CalculateLocationAlongLane(self, *, LaneIndex: int, Distance: float) -> Future[FZoneGraphLaneLocation]: ...
+
+    def AdvanceLaneLocation(self, *, InLaneLocation: FZoneGraphLaneLocation, AdvanceDistance: float) -> Future[FZoneGraphLaneLocation]: ...
+
+    def GetLinkedLanes(self, *, LaneIndex: int, Type: EZoneLaneLinkType) -> Future[list[int]]: ...
+
+    def GetLanePoints(self, *, LaneIndex: int) -> Future[NDArray[np.float64]]: ...
+
+    def GetAllLanePoints(self) -> Future[UZoneGraphSubsystem.GetAllLanePointsResult]: ...
+
+
+class UZoneGraphSubsystemSend(UObjectSend):
+    """UZoneGraphSubsystem's functions, sent without waiting for a result (fire and forget)."""
+
+    def GetZoneGraphSubsystem(self, *, WorldContextObject: UObject) -> None: ...
+
+    def GetZoneGraphData(self) -> None: ...
+
+    def GetNumLanes(self) -> None: ...
+
+    def GetNumJunctions(self) -> None: ...
+
+    def GetLaneTags(self) -> None: ...
+
+    def FindNearestLane(self, *, Location: FVector, MaxDistance: float, Tag: str) -> None: ...
+
+    def FindNearestLaneLocationByName(self, *, Location: FVector, TagName: str, MaxDistance: float = 50.0) -> None: ...
+
+    def FindNearestLanes(self, *, Locations: NDArray[np.float64], MaxDistance: float, Tag: str) -> None: ...
+
+    def GetLaneLength(self, *, LaneIndex: int) -> None: ...
+
+    def GetLaneWidth(self, *, LaneIndex: int) -> None: ...
+
+    def GetLaneTag(self, *, LaneIndex: int) -> None: ...
+
+    def GetLaneRoad(self, *, LaneIndex: int) -> None: ...
+
+    def CalculateLocationAlongLane(self, *, LaneIndex: int, Distance: float) -> None: ...
+
+    def AdvanceLaneLocation(self, *, InLaneLocation: FZoneGraphLaneLocation, AdvanceDistance: float) -> None: ...
+
+    def GetLinkedLanes(self, *, LaneIndex: int, Type: EZoneLaneLinkType) -> None: ...
+
+    def GetLanePoints(self, *, LaneIndex: int) -> None: ...
+
+    def GetAllLanePoints(self) -> None: ...
+
+
+class UZoneGraphSubsystem(UObject):
+    """The world's lanes (UE's UZoneGraphSubsystem): queries on its first AZoneGraphData."""
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> UZoneGraphSubsystemAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> UZoneGraphSubsystemSend:
+        """The same functions, fire and forget."""
+
+    @staticmethod
+    def GetZoneGraphSubsystem(*, WorldContextObject: UObject) -> UZoneGraphSubsystem:
+        """Returns the zone graph subsystem of WorldContextObject's world."""
+
+    def GetZoneGraphData(self) -> AZoneGraphData:
+        """Returns the world's first AZoneGraphData, spawned (as "ZoneGraphData-Default") when it has none."""
+
+    def GetNumLanes(self) -> int:
+        """Returns the number of lanes (building the graph first if needed)."""
+
+    def GetNumJunctions(self) -> int:
+        """Returns the number of junctions."""
+
+    def GetLaneTags(self) -> list[str]:
+        """Returns the lane tags in use, in profile order."""
+
+    class FindNearestLaneResult(NamedTuple):
+        ReturnValue: bool
+        OutLaneLocation: FZoneGraphLaneLocation
+        OutDistance: float
+
+    def FindNearestLane(self, *, Location: FVector, MaxDistance: float, Tag: str) -> UZoneGraphSubsystem.FindNearestLaneResult:
+        """Finds the nearest point on a lane tagged Tag ("" for any) to Location within MaxDistance metres:
+        true with OutLaneLocation and OutDistance (metres from Location), or false when there is none. Raises
+        InvalidArgumentError for a tag no lane has (naming the tags there are).
+        """
+
+    def FindNearestLaneLocationByName(self, *, Location: FVector, TagName: str, MaxDistance: float = 50.0) -> FZoneGraphLaneLocation:
+        """The nearest location on a lane tagged TagName to Location within MaxDistance metres; LaneIndex -1 when
+        there is none (the form the paper's control_city_sample calls).
+        """
+
+    class FindNearestLanesResult(NamedTuple):
+        OutLaneIndices: NDArray[np.int64]
+        OutPositions: NDArray[np.float64]
+        OutDistancesAlongLane: NDArray[np.float64]
+
+    def FindNearestLanes(self, *, Locations: NDArray[np.float64], MaxDistance: float, Tag: str) -> UZoneGraphSubsystem.FindNearestLanesResult:
+        """Finds the nearest lane location for each row of Locations ((N, 3) float64) in one call:
+        OutLaneIndices (N,) int64 (-1 where none is within MaxDistance), OutPositions (N, 3) and
+        OutDistancesAlongLane (N,).
+        """
+
+    def GetLaneLength(self, *, LaneIndex: int) -> float:
+        """Returns the lane's length in metres."""
+
+    def GetLaneWidth(self, *, LaneIndex: int) -> float:
+        """Returns the lane's width in metres."""
+
+    def GetLaneTag(self, *, LaneIndex: int) -> str:
+        """Returns the lane's tag."""
+
+    def GetLaneRoad(self, *, LaneIndex: int) -> ASplineActor | None:
+        """Returns the road actor the lane runs along, or None for a connector through a junction or a U-turn."""
+
+    def CalculateLocationAlongLane(self, *, LaneIndex: int, Distance: float) -> FZoneGraphLaneLocation:
+        """Returns the location Distance metres along the lane (clamped to it)."""
+
+    def AdvanceLaneLocation(self, *, InLaneLocation: FZoneGraphLaneLocation, AdvanceDistance: float) -> FZoneGraphLaneLocation:
+        """Returns InLaneLocation moved AdvanceDistance metres along its lane (negative: back), stopping at the
+        lane's ends.
+        """
+
+    def GetLinkedLanes(self, *, LaneIndex: int, Type: EZoneLaneLinkType) -> list[int]:
+        """Returns the lanes linked to the lane by Type."""
+
+    def GetLanePoints(self, *, LaneIndex: int) -> NDArray[np.float64]:
+        """Returns the lane's centre line, an (N, 3) float64 array from its start to its end."""
+
+    class GetAllLanePointsResult(NamedTuple):
+        OutPoints: NDArray[np.float64]
+        OutStarts: NDArray[np.int64]
+
+    def GetAllLanePoints(self) -> UZoneGraphSubsystem.GetAllLanePointsResult:
+        """Returns every lane's centre line at once (for drawing a map): OutPoints (M, 3), lane i being rows
+        OutStarts[i] to OutStarts[i + 1] (an (N + 1,) int64 array).
+        """
 
 
 BP_Axes: type[AActor]

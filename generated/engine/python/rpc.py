@@ -20,7 +20,7 @@ from spear._rpc_proxy import register_proxy as _register_proxy
 
 from . import api
 from . import type_codes as _t
-from .api import EAnimationMode, EAntiAliasingMethod, EAutoExposureMethod, EBoneSpaces, ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EGlobalIlluminationQuality, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESkyLightSourceType, ESplineCoordinateSpace, FBlendSample, FCameraPixels, FFrameTimings, FHitResult, FLensDistortion, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState  # structs and enums are shared with the in-process API
+from .api import EAnimationMode, EAntiAliasingMethod, EAutoExposureMethod, EBoneSpaces, ECameraModality, ECameraRenderer, ECameraToneCurve, ECollisionPrimitive, EComponentMobility, EGlobalIlluminationQuality, EMoviePipelineJobStatus, ENavigationQueryResult, EPCGGenerationMode, EPathFollowingRequestResult, EPathFollowingStatus, ESkyLightSourceType, ESplineCoordinateSpace, EZoneLaneDirection, EZoneLaneLinkType, FBlendSample, FCameraPixels, FFrameTimings, FHitResult, FLensDistortion, FLinearColor, FMaterialDesc, FMoviePipelineConfiguration, FMoviePipelineProgress, FQuat, FRenderDeviceInfo, FRenderStats, FRotator, FTransform, FVector, FVector2D, FWheelState, FZoneGraphLaneLocation, FZoneLaneDesc  # structs and enums are shared with the in-process API
 
 _: Any = (np, NDArray)
 
@@ -894,6 +894,46 @@ class AWheeledVehiclePawn(APawn, api.AWheeledVehiclePawn):
 
 
 _register_proxy(AWheeledVehiclePawn)
+
+
+class AZoneGraphData(AActor, api.AZoneGraphData):
+    __slots__ = ()
+
+    @property
+    def RoadTag(self) -> str:
+        return cast("str", self._sp_get("AZoneGraphData", "RoadTag", _t.T_str))
+
+    @RoadTag.setter
+    def RoadTag(self, value: str) -> None:
+        self._sp_set("AZoneGraphData", "RoadTag", value)
+
+    @property
+    def LaneProfile(self) -> list[FZoneLaneDesc]:
+        return cast("list[FZoneLaneDesc]", self._sp_get("AZoneGraphData", "LaneProfile", _t.T_list_of_FZoneLaneDesc))
+
+    @LaneProfile.setter
+    def LaneProfile(self, value: list[FZoneLaneDesc]) -> None:
+        self._sp_set("AZoneGraphData", "LaneProfile", value)
+
+    @property
+    def JunctionTolerance(self) -> float:
+        return cast("float", self._sp_get("AZoneGraphData", "JunctionTolerance", _t.T_float))
+
+    @JunctionTolerance.setter
+    def JunctionTolerance(self, value: float) -> None:
+        self._sp_set("AZoneGraphData", "JunctionTolerance", value)
+
+    def SetLaneProfile(self, *, Profile: list[FZoneLaneDesc]) -> None:
+        return cast(None, self._sp_call("AZoneGraphData", "SetLaneProfile", {"Profile": Profile}, _t.T_void))  # a Future when queued by call_async
+
+    def SetJunctionTolerance(self, *, Tolerance: float) -> None:
+        return cast(None, self._sp_call("AZoneGraphData", "SetJunctionTolerance", {"Tolerance": Tolerance}, _t.T_void))  # a Future when queued by call_async
+
+    def RebuildGraph(self) -> None:
+        return cast(None, self._sp_call("AZoneGraphData", "RebuildGraph", {}, _t.T_void))  # a Future when queued by call_async
+
+
+_register_proxy(AZoneGraphData)
 
 
 class UActorComponent(UObject, api.UActorComponent):
@@ -2745,3 +2785,58 @@ class UWorld(UObject, api.UWorld):
 
 
 _register_proxy(UWorld)
+
+
+class UZoneGraphSubsystem(UObject, api.UZoneGraphSubsystem):
+    __slots__ = ()
+
+    def GetZoneGraphData(self) -> api.AZoneGraphData:
+        return cast("api.AZoneGraphData", self._sp_call("UZoneGraphSubsystem", "GetZoneGraphData", {}, _t.T_AZoneGraphData))
+
+    def GetNumLanes(self) -> int:
+        return cast("int", self._sp_call("UZoneGraphSubsystem", "GetNumLanes", {}, _t.T_int))
+
+    def GetNumJunctions(self) -> int:
+        return cast("int", self._sp_call("UZoneGraphSubsystem", "GetNumJunctions", {}, _t.T_int))
+
+    def GetLaneTags(self) -> list[str]:
+        return cast("list[str]", self._sp_call("UZoneGraphSubsystem", "GetLaneTags", {}, _t.T_list_of_str))
+
+    def FindNearestLane(self, *, Location: FVector, MaxDistance: float, Tag: str) -> api.UZoneGraphSubsystem.FindNearestLaneResult:
+        return cast("api.UZoneGraphSubsystem.FindNearestLaneResult", self._sp_call("UZoneGraphSubsystem", "FindNearestLane", {"Location": Location, "MaxDistance": MaxDistance, "Tag": Tag}, _t.T_bool, api.UZoneGraphSubsystem.FindNearestLaneResult))
+
+    def FindNearestLaneLocationByName(self, *, Location: FVector, TagName: str, MaxDistance: float = _DEFAULT) -> FZoneGraphLaneLocation:
+        return cast("FZoneGraphLaneLocation", self._sp_call("UZoneGraphSubsystem", "FindNearestLaneLocationByName", {"Location": Location, "TagName": TagName, "MaxDistance": MaxDistance}, _t.T_FZoneGraphLaneLocation))
+
+    def FindNearestLanes(self, *, Locations: NDArray[np.float64], MaxDistance: float, Tag: str) -> api.UZoneGraphSubsystem.FindNearestLanesResult:
+        return cast("api.UZoneGraphSubsystem.FindNearestLanesResult", self._sp_call("UZoneGraphSubsystem", "FindNearestLanes", {"Locations": Locations, "MaxDistance": MaxDistance, "Tag": Tag}, _t.T_void, api.UZoneGraphSubsystem.FindNearestLanesResult))
+
+    def GetLaneLength(self, *, LaneIndex: int) -> float:
+        return cast("float", self._sp_call("UZoneGraphSubsystem", "GetLaneLength", {"LaneIndex": LaneIndex}, _t.T_float))
+
+    def GetLaneWidth(self, *, LaneIndex: int) -> float:
+        return cast("float", self._sp_call("UZoneGraphSubsystem", "GetLaneWidth", {"LaneIndex": LaneIndex}, _t.T_float))
+
+    def GetLaneTag(self, *, LaneIndex: int) -> str:
+        return cast("str", self._sp_call("UZoneGraphSubsystem", "GetLaneTag", {"LaneIndex": LaneIndex}, _t.T_str))
+
+    def GetLaneRoad(self, *, LaneIndex: int) -> api.ASplineActor | None:
+        return cast("api.ASplineActor | None", self._sp_call("UZoneGraphSubsystem", "GetLaneRoad", {"LaneIndex": LaneIndex}, _t.T_ASplineActor_or_None))
+
+    def CalculateLocationAlongLane(self, *, LaneIndex: int, Distance: float) -> FZoneGraphLaneLocation:
+        return cast("FZoneGraphLaneLocation", self._sp_call("UZoneGraphSubsystem", "CalculateLocationAlongLane", {"LaneIndex": LaneIndex, "Distance": Distance}, _t.T_FZoneGraphLaneLocation))
+
+    def AdvanceLaneLocation(self, *, InLaneLocation: FZoneGraphLaneLocation, AdvanceDistance: float) -> FZoneGraphLaneLocation:
+        return cast("FZoneGraphLaneLocation", self._sp_call("UZoneGraphSubsystem", "AdvanceLaneLocation", {"InLaneLocation": InLaneLocation, "AdvanceDistance": AdvanceDistance}, _t.T_FZoneGraphLaneLocation))
+
+    def GetLinkedLanes(self, *, LaneIndex: int, Type: EZoneLaneLinkType) -> list[int]:
+        return cast("list[int]", self._sp_call("UZoneGraphSubsystem", "GetLinkedLanes", {"LaneIndex": LaneIndex, "Type": Type}, _t.T_list_of_int))
+
+    def GetLanePoints(self, *, LaneIndex: int) -> NDArray[np.float64]:
+        return cast("NDArray[np.float64]", self._sp_call("UZoneGraphSubsystem", "GetLanePoints", {"LaneIndex": LaneIndex}, _t.T_array_float64))
+
+    def GetAllLanePoints(self) -> api.UZoneGraphSubsystem.GetAllLanePointsResult:
+        return cast("api.UZoneGraphSubsystem.GetAllLanePointsResult", self._sp_call("UZoneGraphSubsystem", "GetAllLanePoints", {}, _t.T_void, api.UZoneGraphSubsystem.GetAllLanePointsResult))
+
+
+_register_proxy(UZoneGraphSubsystem)

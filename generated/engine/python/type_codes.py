@@ -15,6 +15,8 @@ T_APawn_or_None = TypeCode("object", "APawn", optional=True)
 T_APlayerController_or_None = TypeCode("object", "APlayerController", optional=True)
 T_ARecastNavMesh = TypeCode("object", "ARecastNavMesh")
 T_ARecastNavMesh_or_None = TypeCode("object", "ARecastNavMesh", optional=True)
+T_ASplineActor_or_None = TypeCode("object", "ASplineActor", optional=True)
+T_AZoneGraphData = TypeCode("object", "AZoneGraphData")
 T_EAnimationMode = TypeCode("enum", "EAnimationMode")
 T_EAntiAliasingMethod = TypeCode("enum", "EAntiAliasingMethod")
 T_EAutoExposureMethod = TypeCode("enum", "EAutoExposureMethod")
@@ -30,6 +32,7 @@ T_EPCGGenerationMode = TypeCode("enum", "EPCGGenerationMode")
 T_EPathFollowingRequestResult = TypeCode("enum", "EPathFollowingRequestResult")
 T_EPathFollowingStatus = TypeCode("enum", "EPathFollowingStatus")
 T_ESkyLightSourceType = TypeCode("enum", "ESkyLightSourceType")
+T_EZoneLaneDirection = TypeCode("enum", "EZoneLaneDirection")
 T_FBlendSample = TypeCode("struct", "FBlendSample")
 T_FCameraPixels = TypeCode("struct", "FCameraPixels")
 T_FFrameTimings = TypeCode("struct", "FFrameTimings")
@@ -47,6 +50,8 @@ T_FTransform = TypeCode("struct", "FTransform")
 T_FVector = TypeCode("struct", "FVector")
 T_FVector2D = TypeCode("struct", "FVector2D")
 T_FWheelState = TypeCode("struct", "FWheelState")
+T_FZoneGraphLaneLocation = TypeCode("struct", "FZoneGraphLaneLocation")
+T_FZoneLaneDesc = TypeCode("struct", "FZoneLaneDesc")
 T_UActorComponent = TypeCode("object", "UActorComponent")
 T_UActorComponent_or_None = TypeCode("object", "UActorComponent", optional=True)
 T_UBoxComponent = TypeCode("object", "UBoxComponent")
@@ -77,6 +82,7 @@ T_USplineComponent = TypeCode("object", "USplineComponent")
 T_USpotLightComponent = TypeCode("object", "USpotLightComponent")
 T_UStaticMeshComponent = TypeCode("object", "UStaticMeshComponent")
 T_UWorld_or_None = TypeCode("object", "UWorld", optional=True)
+T_UZoneGraphSubsystem = TypeCode("object", "UZoneGraphSubsystem")
 T_array_float16 = TypeCode("array", "float16")
 T_array_float32 = TypeCode("array", "float32")
 T_array_float64 = TypeCode("array", "float64")
@@ -100,12 +106,14 @@ T_list_of_ECameraModality = TypeCode("list", element=T_ECameraModality)
 T_list_of_FBlendSample = TypeCode("list", element=T_FBlendSample)
 T_list_of_FRotator = TypeCode("list", element=T_FRotator)
 T_list_of_FVector = TypeCode("list", element=T_FVector)
+T_list_of_FZoneLaneDesc = TypeCode("list", element=T_FZoneLaneDesc)
 T_list_of_UActorComponent = TypeCode("list", element=T_UActorComponent)
 T_list_of_UCameraSensorComponent = TypeCode("list", element=T_UCameraSensorComponent)
 T_list_of_UMoviePipelineExecutorJob = TypeCode("list", element=T_UMoviePipelineExecutorJob)
 T_list_of_UPrimitiveComponent = TypeCode("list", element=T_UPrimitiveComponent)
 T_list_of_USceneComponent = TypeCode("list", element=T_USceneComponent)
 T_list_of_float = TypeCode("list", element=T_float)
+T_list_of_int = TypeCode("list", element=T_int)
 T_list_of_str = TypeCode("list", element=T_str)
 
 FIELD_TYPES: dict[str, dict[str, TypeCode]] = {
@@ -131,6 +139,8 @@ FIELD_TYPES: dict[str, dict[str, TypeCode]] = {
     "FVector": {"X": T_float, "Y": T_float, "Z": T_float},
     "FVector2D": {"X": T_float, "Y": T_float},
     "FWheelState": {"bInContact": T_bool, "Location": T_FVector, "ContactPoint": T_FVector, "SuspensionLength": T_float, "RotationInDegrees": T_float, "SteerAngleInDegrees": T_float},
+    "FZoneGraphLaneLocation": {"LaneIndex": T_int, "DistanceAlongLane": T_float, "Position": T_FVector, "Direction": T_FVector, "Up": T_FVector},
+    "FZoneLaneDesc": {"Tag": T_str, "Width": T_float, "Direction": T_EZoneLaneDirection},
     "UCameraSensorComponent.GetObjectIdInfoResult": {"ReturnValue": T_bool, "Actor": T_AActor_or_None, "Component": T_UPrimitiveComponent_or_None, "MaterialSlot": T_int, "MaterialName": T_str},
     "UNavigationSystemV1.FindPathToLocationSynchronouslyResult": {"ReturnValue": T_ENavigationQueryResult, "PathPoints": T_array_float64, "PathLength": T_float},
     "UNavigationSystemV1.GetPathLengthResult": {"ReturnValue": T_ENavigationQueryResult, "PathLength": T_float},
@@ -139,4 +149,7 @@ FIELD_TYPES: dict[str, dict[str, TypeCode]] = {
     "UNavigationSystemV1.K2_ProjectPointToNavigationResult": {"ReturnValue": T_bool, "ProjectedLocation": T_FVector},
     "UPrimitiveComponent.GetBoundsResult": {"Origin": T_FVector, "BoxExtent": T_FVector},
     "UWorld.line_trace_singleResult": {"ReturnValue": T_bool, "hit": T_FHitResult, "actor": T_AActor_or_None, "component": T_UPrimitiveComponent_or_None},
+    "UZoneGraphSubsystem.FindNearestLaneResult": {"ReturnValue": T_bool, "OutLaneLocation": T_FZoneGraphLaneLocation, "OutDistance": T_float},
+    "UZoneGraphSubsystem.FindNearestLanesResult": {"OutLaneIndices": T_array_int64, "OutPositions": T_array_float64, "OutDistancesAlongLane": T_array_float64},
+    "UZoneGraphSubsystem.GetAllLanePointsResult": {"OutPoints": T_array_float64, "OutStarts": T_array_int64},
 }
