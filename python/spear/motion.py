@@ -40,15 +40,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from spear._engine.api import (AStaticMeshActor, ASkeletalMeshActor, EBoneSpaces, FQuat, FTransform, FVector,
-                               UWorld)
+                               USkeletalMeshComponent, UWorld)
 from spear.errors import InvalidArgumentError, NotFoundError
 
 __all__ = ["FORMAT", "VERSION", "MotionPlayer", "MotionSequence", "load_motion", "save_motion", "transform_of"]
 
 FORMAT = "spear.motion"
 VERSION = 1
-
-Matrices = NDArray[np.float64]
 
 
 @dataclass(frozen=True)
@@ -58,11 +56,11 @@ class MotionSequence:
     fps: float
     skeletal_mesh: str
     bone_names: tuple[str, ...]
-    bone_poses: Matrices  # (F, B, 4, 4)
-    root_poses: Matrices  # (F, 4, 4)
+    bone_poses: NDArray[np.float64]  # (F, B, 4, 4)
+    root_poses: NDArray[np.float64]  # (F, 4, 4)
     object_names: tuple[str, ...] = ()
     object_meshes: tuple[str, ...] = ()
-    object_poses: Matrices | None = None  # (F, O, 4, 4); None when there are no objects
+    object_poses: NDArray[np.float64] | None = None  # (F, O, 4, 4); None when there are no objects
 
     def __post_init__(self) -> None:
         _check(self, "MotionSequence")
@@ -233,11 +231,12 @@ class MotionPlayer:
 
     def __init__(self, game: UWorld, motion: MotionSequence, name: str = "MotionCharacter",
                  placement: NDArray[np.float64] | None = None) -> None:
-        self.motion = motion
-        self.placement = np.eye(4) if placement is None else np.asarray(placement, dtype=np.float64)
+        self.motion: MotionSequence = motion
+        self.placement: NDArray[np.float64] = (np.eye(4) if placement is None
+                                               else np.asarray(placement, dtype=np.float64))
         _check_matrices("MotionPlayer()", "placement", self.placement, (4, 4))
-        self.character = game.spawn_actor(uclass=ASkeletalMeshActor, name=name)
-        self.mesh = self.character.SkeletalMeshComponent
+        self.character: ASkeletalMeshActor = game.spawn_actor(uclass=ASkeletalMeshActor, name=name)
+        self.mesh: USkeletalMeshComponent = self.character.SkeletalMeshComponent
         self.mesh.SetSkeletalMesh(NewMesh=motion.skeletal_mesh)
         mesh_bones = [self.mesh.GetBoneName(BoneIndex=i) for i in range(self.mesh.GetNumBones())]
         index = {bone: i for i, bone in enumerate(motion.bone_names)}
