@@ -15,6 +15,9 @@ namespace sp::zonegraph {
 
 namespace {
 
+// Centre-line points closer than this to the line through their neighbours add nothing (metres).
+constexpr double kSimplifyTolerance = 0.0005;
+
 // A road's centre line with its arc lengths.
 struct Polyline {
     std::vector<Eigen::Vector3d> points;
@@ -60,6 +63,42 @@ struct Polyline {
     }
 };
 
+// The points of `points` that a line through them needs to stay within `tolerance` of them all
+// (Douglas-Peucker): a spline sampled every half metre along a straight street is two points again, and its
+// lanes one segment each.
+std::vector<Eigen::Vector3d> simplified(const std::vector<Eigen::Vector3d>& points, double tolerance) {
+    if (points.size() <= 2)
+        return points;
+    std::vector<bool> keep(points.size(), false);
+    keep.front() = keep.back() = true;
+    std::vector<std::pair<size_t, size_t>> spans{{0, points.size() - 1}};
+    while (!spans.empty()) {
+        const auto [first, last] = spans.back();
+        spans.pop_back();
+        const Eigen::Vector3d a = points[first], ab = points[last] - a;
+        const double len2 = ab.squaredNorm();
+        double farthest = 0.0;
+        size_t at = first;
+        for (size_t i = first + 1; i < last; ++i) {
+            const double t = len2 > 0.0 ? std::clamp((points[i] - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+            if (const double d = (a + t * ab - points[i]).norm(); d > farthest) {
+                farthest = d;
+                at = i;
+            }
+        }
+        if (farthest > tolerance) {
+            keep[at] = true;
+            spans.push_back({first, at});
+            spans.push_back({at, last});
+        }
+    }
+    std::vector<Eigen::Vector3d> kept;
+    for (size_t i = 0; i < points.size(); ++i)
+        if (keep[i])
+            kept.push_back(points[i]);
+    return kept;
+}
+
 Polyline polylineOf(const RoadInput& road) {
     SP_CHECK(!road.name.empty(), InvalidArgument, "LaneGraph::build(): a road has no name");
     Polyline line;
@@ -74,6 +113,7 @@ Polyline polylineOf(const RoadInput& road) {
     line.closed = line.points.size() >= 4 && (line.points.front() - line.points.back()).norm() < 1e-6;
     if (line.closed)
         line.points.back() = line.points.front();
+    line.points = simplified(line.points, kSimplifyTolerance);
     line.s.push_back(0.0);
     for (size_t i = 1; i < line.points.size(); ++i)
         line.s.push_back(line.s.back() + (line.points[i] - line.points[i - 1]).norm());
@@ -484,63 +524,78 @@ LaneLocation LaneGraph::advanced(const LaneLocation& location, double advance) c
     return locationAt(location.lane, location.distance + advance);
 }
 
+double LaneGraph::squaredDistanceToSegment(int lane, int segment, const Eigen::Vector3d& point) const {
+    const Lane& l = lanes_[lane];
+    const Eigen::Vector3d &a = l.points[segment - 1], &b = l.points[segment];
+    const Eigen::Vector3d ab = b - a;
+    const double len2 = ab.squaredNorm();
+    const double t = len2 > 0.0 ? std::clamp((point - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    return (a + t * ab - point).squaredNorm();
+}
+
 std::optional<LaneLocation> LaneGraph::nearestByScan(const Eigen::Vector3d& point, double maxDistance,
                                                      int tag) const {
-    std::optional<LaneLocation> best;
-    double bestDistance = maxDistance;
+    // Squared distances: the nearest is chosen on them, and the location made once for it.
+    double best = maxDistance * maxDistance;
+    std::array<int, 2> bestId{-1, -1};
     for (int l = 0; l < int(lanes_.size()); ++l) {
         if (tag >= 0 && lanes_[l].tag != tag)
             continue;
-        for (int i = 1; i < int(lanes_[l].points.size()); ++i) {
-            const LaneLocation location = locationOnSegment(l, i, point);
-            const double d = (location.position - point).norm();
-            if (d < bestDistance || (!best && d <= bestDistance)) {
-                bestDistance = d;
-                best = location;
+        for (int i = 1; i < int(lanes_[l].points.size()); ++i)
+            if (const double d2 = squaredDistanceToSegment(l, i, point);
+                d2 < best || (bestId[0] < 0 && d2 <= best)) {
+                best = d2;
+                bestId = {l, i};
             }
-        }
     }
-    return best;
+    if (bestId[0] < 0)
+        return std::nullopt;
+    return locationOnSegment(bestId[0], bestId[1], point);
 }
 
 std::optional<LaneLocation> LaneGraph::nearest(const Eigen::Vector3d& point, double maxDistance,
                                                int tag) const {
-    if (cells_.empty() || !point.allFinite())
+    if (cells_.empty() || !point.allFinite() || std::isnan(maxDistance))
         return std::nullopt;
-    std::optional<LaneLocation> best;
-    double bestDistance = maxDistance;
-    std::array<int, 2> bestId{0, 0};
+    double best = maxDistance * maxDistance;
+    std::array<int, 2> bestId{-1, -1};
     const Eigen::Vector2i centre = cellOf(point, cellSize_);
-    // Rings of cells round the point's cell; a ring r away is at least (r - 1) cells from the point, so the
-    // search stops once that is farther than the best so far (or than maxDistance), or past the grid.
+    // How far the point is from its own cell's nearest side: a cell r rings out is at least that plus r - 1
+    // cells away, so the search stops once that is farther than the best so far (or than maxDistance), or
+    // once it is past the grid.
+    const Eigen::Vector2d inCell = point.head<2>() - centre.cast<double>() * cellSize_;
+    const double margin = std::min({inCell.x(), inCell.y(), cellSize_ - inCell.x(), cellSize_ - inCell.y()});
     const int reach =
         std::max((maxCell_ - centre).cwiseAbs().maxCoeff(), (minCell_ - centre).cwiseAbs().maxCoeff());
     for (int ring = 0; ring <= reach; ++ring) {
-        if (ring >= 1 && (ring - 1) * cellSize_ > bestDistance)
-            break;
-        for (int x = centre.x() - ring; x <= centre.x() + ring; ++x)
-            for (int y = centre.y() - ring; y <= centre.y() + ring; ++y) {
-                if (std::max(std::abs(x - centre.x()), std::abs(y - centre.y())) != ring)
-                    continue; // inside the ring: seen already
+        if (ring >= 1) {
+            const double gap = margin + (ring - 1) * cellSize_;
+            if (gap * gap > best)
+                break;
+        }
+        for (int x = centre.x() - ring; x <= centre.x() + ring; ++x) {
+            // Inside the ring only its first and last rows: the rest was seen at smaller rings.
+            const int step = x == centre.x() - ring || x == centre.x() + ring ? 1 : std::max(2 * ring, 1);
+            for (int y = centre.y() - ring; y <= centre.y() + ring; y += step) {
                 const auto cell = cells_.find(cellKey(x, y));
                 if (cell == cells_.end())
                     continue;
                 for (const auto& id : cell->second) {
                     if (tag >= 0 && lanes_[id[0]].tag != tag)
                         continue;
-                    const LaneLocation location = locationOnSegment(id[0], id[1], point);
-                    const double d = (location.position - point).norm();
+                    const double d2 = squaredDistanceToSegment(id[0], id[1], point);
                     // Ties go to the first lane and segment, as the scan has it.
-                    if (d < bestDistance ||
-                        ((!best || d == bestDistance) && d <= bestDistance && (!best || id < bestId))) {
-                        bestDistance = d;
+                    if (d2 < best || (d2 == best && (bestId[0] < 0 || id < bestId))) {
+                        best = d2;
                         bestId = id;
-                        best = location;
                     }
                 }
             }
+        }
     }
-    return best;
+    if (bestId[0] < 0)
+        return std::nullopt;
+    return locationOnSegment(bestId[0], bestId[1], point);
 }
 
 } // namespace sp::zonegraph

@@ -112,6 +112,7 @@ class LaneGraph {
   private:
     void index();
     LaneLocation locationOnSegment(int lane, int segment, const Eigen::Vector3d& point) const;
+    double squaredDistanceToSegment(int lane, int segment, const Eigen::Vector3d& point) const;
 
     std::vector<Lane> lanes_;
     std::vector<Junction> junctions_;
