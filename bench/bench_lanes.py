@@ -20,6 +20,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import NDArray
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "python"))
@@ -42,7 +43,7 @@ def lay_grid(game: spear.UWorld, blocks: int) -> None:
                     CoordinateSpace=spear.ESplineCoordinateSpace.World)
 
 
-def measure(server: str | None, blocks: int, points: np.ndarray, single: int) -> tuple[int, float, float, float]:
+def measure(server: str | None, blocks: int, points: NDArray[np.float64], single: int) -> tuple[int, float, float, float]:
     """(lanes, build seconds, single queries/s, batched queries/s) on one transport."""
     instance = spear.Instance(server=server)
     game = instance.get_game()
