@@ -61,6 +61,7 @@ struct AZoneGraphData::Impl {
     // What the graph was built from: each road's handle, curve revision and transform, then the settings.
     std::vector<double> builtFrom;
     std::vector<sp::reflect::ObjectHandle> roads; // by the graph's road index
+    std::uint64_t revision = 0;
 };
 
 AZoneGraphData::AZoneGraphData() : impl_(std::make_unique<Impl>()) {
@@ -135,10 +136,15 @@ const zonegraph::LaneGraph& AZoneGraphData::graph(const char* function) {
         SP_THROW(sp::InvalidArgument, function, ": ", message);
     }
     impl_->builtFrom = std::move(key);
+    ++impl_->revision;
     impl_->roads.clear();
     for (ASplineActor* road : roads)
         impl_->roads.push_back(road->GetHandle());
     return *impl_->graph;
+}
+
+std::uint64_t AZoneGraphData::graphRevision() const {
+    return impl_->revision;
 }
 
 ASplineActor* AZoneGraphData::roadOf(int lane) const {

@@ -101,6 +101,17 @@ class AZoneGraphData : public AActor {
     /// A road's end within this many metres of another road joins it there (> 0).
     SPPROPERTY(Setter = SetJunctionTolerance)
     double JunctionTolerance = 1.0;
+    /// Whether cameras see the roads: a surface over the lanes and junctions, and lane markings (object ids
+    /// name this actor, with material slot 0 road, 1 sidewalk, 2 markings).
+    SPPROPERTY()
+    bool bDrawRoads = true;
+    /// The materials of the drawn road, sidewalks and markings (AMaterialLibrary names or built-in ones).
+    SPPROPERTY()
+    std::string RoadMaterial = "Asphalt";
+    SPPROPERTY()
+    std::string SidewalkMaterial = "Concrete";
+    SPPROPERTY()
+    std::string MarkingMaterial = "LaneMarking";
 
     /// Sets LaneProfile; raises InvalidArgumentError, leaving it as it was, for no lanes, a width not > 0 or
     /// an empty tag.
@@ -121,6 +132,8 @@ class AZoneGraphData : public AActor {
     const sp::zonegraph::LaneGraph& graph(const char* function);
     // The road actor a lane runs along (nullptr for a connector), as of the last build.
     ASplineActor* roadOf(int lane) const;
+    // Counts the graph's builds: whoever draws the lanes redraws them when it changed.
+    std::uint64_t graphRevision() const;
 
   private:
     struct Impl;

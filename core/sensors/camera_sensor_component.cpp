@@ -365,12 +365,17 @@ bool UCameraSensorComponent::GetObjectIdInfo(int64_t ObjectId, AActor*& Actor,
     auto info = subsystemOf(*this, "GetObjectIdInfo").objectIdInfo(uint32_t(ObjectId));
     if (!info)
         return false;
-    // A primitive's pixels, or a spline's debug line (whose component is no primitive: Component stays None).
-    auto* component = dynamic_cast<UActorComponent*>(sp::reflect::ObjectTable::find(info->component));
-    if (!component)
+    // A primitive's pixels, a spline's debug line (whose component is no primitive: Component stays None), or
+    // the drawn roads of an AZoneGraphData (an actor: no component).
+    sp::reflect::ObjectBase* object = sp::reflect::ObjectTable::find(info->component);
+    if (auto* actor = dynamic_cast<AActor*>(object)) {
+        Actor = actor;
+    } else if (auto* component = dynamic_cast<UActorComponent*>(object)) {
+        Component = dynamic_cast<UPrimitiveComponent*>(component);
+        Actor = component->GetOwner();
+    } else {
         return false;
-    Component = dynamic_cast<UPrimitiveComponent*>(component);
-    Actor = component->GetOwner();
+    }
     MaterialSlot = info->slot;
     MaterialName = info->materialName;
     return true;

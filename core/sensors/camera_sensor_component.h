@@ -706,7 +706,8 @@ class UCameraSensorComponent : public USceneComponent {
     std::vector<std::string> GetModalityNames() const;
 
     /// Looks up an object id of object_ids: the actor, the component and the material slot and name it
-    /// belongs to (a spline's debug line: its actor, Component None, material "DebugLine"); returns False
+    /// belongs to (a spline's debug line: its actor, Component None, material "DebugLine"; drawn roads: the
+    /// AZoneGraphData, Component None, slot 0 road, 1 sidewalk, 2 markings); returns False
     /// (and None, -1, "") for 0, an unknown id or a destroyed component.
     SPFUNCTION()
     bool GetObjectIdInfo(int64_t ObjectId, AActor*& Actor, UPrimitiveComponent*& Component,

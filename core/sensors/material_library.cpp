@@ -26,8 +26,8 @@ FMaterialDesc emissive() {
 }
 
 // Linear base colours of common surfaces (roughly measured albedos, not artistic sRGB values).
-const std::array<std::pair<std::string_view, FMaterialDesc>, 16>& builtins() {
-    static const std::array<std::pair<std::string_view, FMaterialDesc>, 16> table{{
+const std::array<std::pair<std::string_view, FMaterialDesc>, 19>& builtins() {
+    static const std::array<std::pair<std::string_view, FMaterialDesc>, 19> table{{
         {"Default", make(0.8f, 0.8f, 0.8f, 0.5f)},
         {"White", make(0.9f, 0.9f, 0.9f, 0.6f)},
         {"Black", make(0.02f, 0.02f, 0.02f, 0.5f)},
@@ -44,6 +44,10 @@ const std::array<std::pair<std::string_view, FMaterialDesc>, 16>& builtins() {
         {"Plastic", make(0.6f, 0.6f, 0.6f, 0.25f)},
         {"Mirror", make(0.97f, 0.97f, 0.97f, 0.02f, 1.0f)},
         {"Emissive", emissive()},
+        // The lanes' drawn road (AZoneGraphData): asphalt, concrete sidewalks, white paint.
+        {"Asphalt", make(0.06f, 0.06f, 0.065f, 0.9f)},
+        {"Concrete", make(0.45f, 0.44f, 0.42f, 0.85f)},
+        {"LaneMarking", make(0.8f, 0.8f, 0.75f, 0.6f)},
     }};
     return table;
 }

@@ -7,6 +7,7 @@
 
 #include "core/animation/skeletal_mesh_component.h"
 #include "core/base/log.h"
+#include "core/gameplay/zone_graph.h"
 #include "core/procedural/spline_component.h"
 #include "core/render/content_key.h"
 #include "core/render/mesh_import.h"
@@ -121,11 +122,15 @@ void RenderScene::logOnce(const std::string& key, const std::string& message) {
 void RenderScene::track(AActor& actor) {
     if (const auto* library = dynamic_cast<const AMaterialLibrary*>(&actor))
         libraries_.add(library);
+    else if (auto* roads = dynamic_cast<AZoneGraphData*>(&actor))
+        roadData_.add(roads);
 }
 
 void RenderScene::untrack(AActor& actor) {
     if (const auto* library = dynamic_cast<const AMaterialLibrary*>(&actor))
         libraries_.remove(library);
+    else if (const auto* roads = dynamic_cast<const AZoneGraphData*>(&actor))
+        roadData_.remove(roads);
 }
 
 void RenderScene::track(UActorComponent& component) {
@@ -205,6 +210,21 @@ void RenderScene::sync() {
         }
         removeDebugLine(it->second);
         it = debugLines_.erase(it);
+    }
+    std::set<sp::reflect::ObjectHandle> paved;
+    for (const auto& [sequence, data] : roadData_.items()) {
+        if (!data->bDrawRoads)
+            continue;
+        paved.insert(data->GetHandle());
+        syncRoads(*data, library);
+    }
+    for (auto it = roads_.begin(); it != roads_.end();) {
+        if (paved.count(it->first)) {
+            ++it;
+            continue;
+        }
+        removeRoads(it->second);
+        it = roads_.erase(it);
     }
 
     // The lights are set in place, in play order: removed and added again, they came back in the reverse

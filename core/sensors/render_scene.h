@@ -24,6 +24,7 @@
 
 class AActor;
 class AMaterialLibrary;
+class AZoneGraphData;
 class UActorComponent;
 class ULightComponent;
 class UPrimitiveComponent;
@@ -60,7 +61,7 @@ template <typename T> class PlayOrder {
 class RenderScene {
   public:
     struct ObjectIdInfo {
-        sp::reflect::ObjectHandle component;
+        sp::reflect::ObjectHandle component; // or, for drawn roads, their AZoneGraphData actor
         int slot = -1;
         std::string materialName;
     };
@@ -115,6 +116,14 @@ class RenderScene {
         std::uint32_t id = 0;
     };
 
+    // The drawn roads of an AZoneGraphData (render_scene_roads.cpp): one mesh of three slots.
+    struct RoadEntry {
+        sp::render::MeshId mesh;
+        sp::render::InstanceId instance;
+        std::uint64_t revision = 0; // the graph's the mesh was made from
+        std::uint32_t firstId = 0;  // the three slots' object ids, from here
+    };
+
     // A coarser level of a skinned mesh: its own mesh, whose vertices are some of the full mesh's
     // (`vertices`: which), moved with them.
     struct SkinnedLevel {
@@ -163,6 +172,8 @@ class RenderScene {
                        const std::map<std::string, FMaterialDesc>& library,
                        bool affectIndirectLighting = true);
     void syncDebugLine(const USplineComponent& spline);
+    void syncRoads(AZoneGraphData& data, const std::map<std::string, FMaterialDesc>& library);
+    void removeRoads(RoadEntry& entry);
     void removeDebugLine(DebugLineEntry& entry);
     const MeshEntry* meshFor(const std::string& name);
     sp::render::MaterialId materialFor(const std::string& name,
@@ -185,6 +196,8 @@ class RenderScene {
     PlayOrder<UStaticMeshComponent> meshComponents_;
     PlayOrder<USkeletalMeshComponent> skinnedComponents_;
     PlayOrder<const USplineComponent> splines_;
+    PlayOrder<AZoneGraphData> roadData_;
+    std::map<sp::reflect::ObjectHandle, RoadEntry> roads_;
     PlayOrder<const ULightComponent> lightComponents_;
     PlayOrder<const USkyLightComponent> skies_;
     PlayOrder<const USkyAtmosphereComponent> atmospheres_;

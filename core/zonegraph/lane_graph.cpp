@@ -258,6 +258,7 @@ LaneGraph LaneGraph::build(const std::vector<RoadInput>& roads, const RoadProfil
     }
 
     LaneGraph graph;
+    graph.profile_ = profile;
     // A place where two or more roads meet is a junction (numbered in the order of their first marks); a
     // place on one road only is that road's free end.
     std::map<int, std::vector<int>> marksOfPlace;
@@ -402,6 +403,8 @@ LaneGraph LaneGraph::build(const std::vector<RoadInput>& roads, const RoadProfil
             lane.width = desc.width;
             lane.tag = graph.tagIndex(desc.tag);
             lane.road = piece.road;
+            lane.piece = p;
+            lane.slot = int(&desc - profile.lanes.data());
             for (const double s : at) {
                 const Eigen::Vector3d right = line.direction(s).cross(Eigen::Vector3d::UnitZ());
                 lane.points.push_back(line.at(s) + offset * right);

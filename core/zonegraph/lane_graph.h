@@ -65,6 +65,9 @@ struct Lane {
     std::vector<int> next;     // lanes this one leads into (outgoing links)
     std::vector<int> prev;     // lanes that lead into this one (incoming links)
     int left = -1, right = -1; // the neighbouring lanes of the same piece that run the same way
+    int piece = -1; // the road piece a road lane is on (its lanes are consecutive, in profile order); -1 for
+                    // a connector
+    int slot = -1;  // the lane's place in the road profile (0: the right edge); -1 for a connector
 
     double length() const { return distances.back(); }
 };
@@ -93,6 +96,7 @@ class LaneGraph {
     const std::vector<Lane>& lanes() const { return lanes_; }
     const std::vector<Junction>& junctions() const { return junctions_; }
     const std::vector<std::string>& tagNames() const { return tagNames_; }
+    const RoadProfile& profile() const { return profile_; }
     // The tag's index, or -1 when no lane has it.
     int tagIndex(const std::string& name) const;
 
@@ -117,6 +121,7 @@ class LaneGraph {
     std::vector<Lane> lanes_;
     std::vector<Junction> junctions_;
     std::vector<std::string> tagNames_;
+    RoadProfile profile_;
     // The grid: each cell (of cellSize_ metres, on X and Y) lists the (lane, segment) pairs whose bounding
     // boxes overlap it.
     double cellSize_ = 8.0;

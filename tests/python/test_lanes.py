@@ -180,3 +180,44 @@ def test_scenes_save_the_roads_and_settings_that_rebuild_the_same_lanes(instance
         assert np.array_equal(again_starts, starts) and np.allclose(again, points, atol=1e-9)
     with instance.end_frame():
         pass
+
+
+def test_cameras_see_the_roads_with_their_own_ids(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        lanes = _t_junction(game)
+        data = lanes.GetZoneGraphData()
+        # Straight down onto Main, west of the junction: 46 m across at 40 m up.
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Above", location=spear.FVector(-20.0, 0.0, 40.0),
+                                  rotation=spear.FRotator(Pitch=-90.0)).CameraSensor
+        camera.Width, camera.Height, camera.FOV = 96, 96, 60.0
+        camera.Modalities = [spear.ECameraModality.ObjectIds]
+    with instance.end_frame():
+        ids = camera.read_pixels()["object_ids"]
+    slots: dict[str, int] = {}
+    with instance.begin_frame():
+        for object_id in np.unique(ids[ids != 0]):
+            found, actor, component, slot, material = camera.GetObjectIdInfo(ObjectId=int(object_id))
+            assert found and actor is not None and actor.GetName() == "ZoneGraphData-Default" and component is None
+            slots[f"{slot}:{material}"] = int((ids == object_id).sum())
+        data.RoadMaterial = "Red"
+    with instance.end_frame():
+        pass
+    # 11 m of road across 46 m of view: asphalt (7 m), the two sidewalks (4 m), a dashed centre line.
+    assert set(slots) == {"0:Asphalt", "1:Concrete", "2:LaneMarking"}, slots
+    assert slots["0:Asphalt"] > slots["1:Concrete"] > slots["2:LaneMarking"] > 0
+    assert 0.2 < (slots["0:Asphalt"] + slots["1:Concrete"]) / ids.size < 0.3
+    with instance.begin_frame():
+        pass
+    with instance.end_frame():
+        ids = camera.read_pixels()["object_ids"]
+    with instance.begin_frame():
+        found, _, _, slot, material = camera.GetObjectIdInfo(ObjectId=int(ids[48, 44]))  # 1.7 m off the centre line
+        assert found and (slot, material) == (0, "Red")  # the road's material, renamed
+        data.bDrawRoads = False
+    with instance.end_frame():
+        pass
+    with instance.begin_frame():
+        pass
+    with instance.end_frame():
+        assert not camera.read_pixels()["object_ids"].any()  # nothing drawn, nothing else in view

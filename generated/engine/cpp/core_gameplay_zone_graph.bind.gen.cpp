@@ -57,6 +57,34 @@ void bind_AZoneGraphData(py::module_& m) {
             Calls::set_JunctionTolerance<PyCall>(self.get<Self>("AZoneGraphData.JunctionTolerance"), value);
         },
         "A road's end within this many metres of another road joins it there (> 0).");
+    cls.def_property(
+        "bDrawRoads",
+        [](const Ref<Self>& self) { return Calls::get_bDrawRoads<PyCall>(self.get<Self>("AZoneGraphData.bDrawRoads")); },
+        [](const Ref<Self>& self, const PyArg& value) {
+            Calls::set_bDrawRoads<PyCall>(self.get<Self>("AZoneGraphData.bDrawRoads"), value);
+        },
+        "Whether cameras see the roads: a surface over the lanes and junctions, and lane markings (object ids\nname this actor, with material slot 0 road, 1 sidewalk, 2 markings).");
+    cls.def_property(
+        "RoadMaterial",
+        [](const Ref<Self>& self) { return Calls::get_RoadMaterial<PyCall>(self.get<Self>("AZoneGraphData.RoadMaterial")); },
+        [](const Ref<Self>& self, const PyArg& value) {
+            Calls::set_RoadMaterial<PyCall>(self.get<Self>("AZoneGraphData.RoadMaterial"), value);
+        },
+        "The materials of the drawn road, sidewalks and markings (AMaterialLibrary names or built-in ones).");
+    cls.def_property(
+        "SidewalkMaterial",
+        [](const Ref<Self>& self) { return Calls::get_SidewalkMaterial<PyCall>(self.get<Self>("AZoneGraphData.SidewalkMaterial")); },
+        [](const Ref<Self>& self, const PyArg& value) {
+            Calls::set_SidewalkMaterial<PyCall>(self.get<Self>("AZoneGraphData.SidewalkMaterial"), value);
+        },
+        "");
+    cls.def_property(
+        "MarkingMaterial",
+        [](const Ref<Self>& self) { return Calls::get_MarkingMaterial<PyCall>(self.get<Self>("AZoneGraphData.MarkingMaterial")); },
+        [](const Ref<Self>& self, const PyArg& value) {
+            Calls::set_MarkingMaterial<PyCall>(self.get<Self>("AZoneGraphData.MarkingMaterial"), value);
+        },
+        "");
     sp::pybind::nameProperties(cls);
     cls.def(
         "SetLaneProfile",

@@ -75,6 +75,46 @@ const sp::reflect::TypeInfo& AZoneGraphData::StaticClass() {
                 Calls::set_JunctionTolerance<ValueCall>(sp::reflect::selfCast<Self>(self), value);
             },
         });
+        t.properties.push_back({
+            "bDrawRoads",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
+            "Whether cameras see the roads: a surface over the lanes and junctions, and lane markings (object ids\nname this actor, with material slot 0 road, 1 sidewalk, 2 markings).",
+            false,
+            [](const void* self) { return Calls::get_bDrawRoads<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_bDrawRoads<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "RoadMaterial",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
+            "The materials of the drawn road, sidewalks and markings (AMaterialLibrary names or built-in ones).",
+            false,
+            [](const void* self) { return Calls::get_RoadMaterial<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_RoadMaterial<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "SidewalkMaterial",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
+            "",
+            false,
+            [](const void* self) { return Calls::get_SidewalkMaterial<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_SidewalkMaterial<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "MarkingMaterial",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
+            "",
+            false,
+            [](const void* self) { return Calls::get_MarkingMaterial<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_MarkingMaterial<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
         t.functions.push_back({
             "SetLaneProfile",
             "Sets LaneProfile; raises InvalidArgumentError, leaving it as it was, for no lanes, a width not > 0 or\nan empty tag.",

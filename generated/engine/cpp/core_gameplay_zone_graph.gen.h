@@ -63,6 +63,42 @@ struct AZoneGraphDataCalls {
         sp::reflect::notifyPropertyChanged(self, "JunctionTolerance");
     }
 
+    template <typename Call> static typename Call::Result get_bDrawRoads(const Self* self) {
+        const auto& value = self->bDrawRoads;
+        return Call::template result<bool>(value);
+    }
+    template <typename Call> static void set_bDrawRoads(Self* self, const typename Call::Input& value) {
+        self->bDrawRoads = Call::template input<bool>(value, "AZoneGraphData.bDrawRoads");
+        sp::reflect::notifyPropertyChanged(self, "bDrawRoads");
+    }
+
+    template <typename Call> static typename Call::Result get_RoadMaterial(const Self* self) {
+        const auto& value = self->RoadMaterial;
+        return Call::template result<std::string>(value);
+    }
+    template <typename Call> static void set_RoadMaterial(Self* self, const typename Call::Input& value) {
+        self->RoadMaterial = Call::template input<std::string>(value, "AZoneGraphData.RoadMaterial");
+        sp::reflect::notifyPropertyChanged(self, "RoadMaterial");
+    }
+
+    template <typename Call> static typename Call::Result get_SidewalkMaterial(const Self* self) {
+        const auto& value = self->SidewalkMaterial;
+        return Call::template result<std::string>(value);
+    }
+    template <typename Call> static void set_SidewalkMaterial(Self* self, const typename Call::Input& value) {
+        self->SidewalkMaterial = Call::template input<std::string>(value, "AZoneGraphData.SidewalkMaterial");
+        sp::reflect::notifyPropertyChanged(self, "SidewalkMaterial");
+    }
+
+    template <typename Call> static typename Call::Result get_MarkingMaterial(const Self* self) {
+        const auto& value = self->MarkingMaterial;
+        return Call::template result<std::string>(value);
+    }
+    template <typename Call> static void set_MarkingMaterial(Self* self, const typename Call::Input& value) {
+        self->MarkingMaterial = Call::template input<std::string>(value, "AZoneGraphData.MarkingMaterial");
+        sp::reflect::notifyPropertyChanged(self, "MarkingMaterial");
+    }
+
     template <typename Call, typename Target>
     static typename Call::Result call_SetLaneProfile(const Target& target, typename Call::Args args) {
         static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{

@@ -684,7 +684,7 @@ void bind_UCameraSensorComponent(py::module_& m) {
             return Calls::call_GetObjectIdInfo<PyCall>(self, {positional, extra, std::array<const PyArg*, 1>{&ObjectId}, true});
         },
         py::arg("ObjectId") = sp::pybind::missingArgument(),
-        "GetObjectIdInfo(self, *, ObjectId: int) -> GetObjectIdInfoResult\n\nLooks up an object id of object_ids: the actor, the component and the material slot and name it\nbelongs to (a spline's debug line: its actor, Component None, material \"DebugLine\"); returns False\n(and None, -1, \"\") for 0, an unknown id or a destroyed component.");
+        "GetObjectIdInfo(self, *, ObjectId: int) -> GetObjectIdInfoResult\n\nLooks up an object id of object_ids: the actor, the component and the material slot and name it\nbelongs to (a spline's debug line: its actor, Component None, material \"DebugLine\"; drawn roads: the\nAZoneGraphData, Component None, slot 0 road, 1 sidewalk, 2 markings); returns False\n(and None, -1, \"\") for 0, an unknown id or a destroyed component.");
     cls.def(
         "GetObjectId",
         [](const Ref<Self>& self, const py::args& positional, const PyArg& Component, const PyArg& MaterialSlot, const py::kwargs& extra) -> py::object {

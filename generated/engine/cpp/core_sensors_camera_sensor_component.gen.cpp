@@ -1549,7 +1549,7 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
         });
         t.functions.push_back({
             "GetObjectIdInfo",
-            "Looks up an object id of object_ids: the actor, the component and the material slot and name it\nbelongs to (a spline's debug line: its actor, Component None, material \"DebugLine\"); returns False\n(and None, -1, \"\") for 0, an unknown id or a destroyed component.",
+            "Looks up an object id of object_ids: the actor, the component and the material slot and name it\nbelongs to (a spline's debug line: its actor, Component None, material \"DebugLine\"; drawn roads: the\nAZoneGraphData, Component None, slot 0 road, 1 sidewalk, 2 markings); returns False\n(and None, -1, \"\") for 0, an unknown id or a destroyed component.",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
                 {"ObjectId", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},

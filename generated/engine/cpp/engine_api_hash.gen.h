@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "8b8496798d7ca400";
+inline constexpr char kApiHash[] = "7eed880baa2dd104";
 } // namespace sp::generated::engine

@@ -2475,6 +2475,36 @@ class AZoneGraphData(AActor):
     @JunctionTolerance.setter
     def JunctionTolerance(self, value: float) -> None: ...
 
+    @property
+    def bDrawRoads(self) -> bool:
+        """Whether cameras see the roads: a surface over the lanes and junctions, and lane markings (object ids
+        name this actor, with material slot 0 road, 1 sidewalk, 2 markings).
+        """
+
+    @bDrawRoads.setter
+    def bDrawRoads(self, value: bool) -> None: ...
+
+    @property
+    def RoadMaterial(self) -> str:
+        """The materials of the drawn road, sidewalks and markings (AMaterialLibrary names or built-in ones)."""
+
+    @RoadMaterial.setter
+    def RoadMaterial(self, value: str) -> None: ...
+
+    @property
+    def SidewalkMaterial(self) -> str:
+        ...
+
+    @SidewalkMaterial.setter
+    def SidewalkMaterial(self, value: str) -> None: ...
+
+    @property
+    def MarkingMaterial(self) -> str:
+        ...
+
+    @MarkingMaterial.setter
+    def MarkingMaterial(self, value: str) -> None: ...
+
     def SetLaneProfile(self, *, Profile: list[FZoneLaneDesc]) -> None:
         """Sets LaneProfile; raises InvalidArgumentError, leaving it as it was, for no lanes, a width not > 0 or
         an empty tag.
@@ -3869,7 +3899,8 @@ class UCameraSensorComponent(USceneComponent):
 
     def GetObjectIdInfo(self, *, ObjectId: int) -> UCameraSensorComponent.GetObjectIdInfoResult:
         """Looks up an object id of object_ids: the actor, the component and the material slot and name it
-        belongs to (a spline's debug line: its actor, Component None, material "DebugLine"); returns False
+        belongs to (a spline's debug line: its actor, Component None, material "DebugLine"; drawn roads: the
+        AZoneGraphData, Component None, slot 0 road, 1 sidewalk, 2 markings); returns False
         (and None, -1, "") for 0, an unknown id or a destroyed component.
         """
 

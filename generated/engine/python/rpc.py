@@ -923,6 +923,38 @@ class AZoneGraphData(AActor, api.AZoneGraphData):
     def JunctionTolerance(self, value: float) -> None:
         self._sp_set("AZoneGraphData", "JunctionTolerance", value)
 
+    @property
+    def bDrawRoads(self) -> bool:
+        return cast("bool", self._sp_get("AZoneGraphData", "bDrawRoads", _t.T_bool))
+
+    @bDrawRoads.setter
+    def bDrawRoads(self, value: bool) -> None:
+        self._sp_set("AZoneGraphData", "bDrawRoads", value)
+
+    @property
+    def RoadMaterial(self) -> str:
+        return cast("str", self._sp_get("AZoneGraphData", "RoadMaterial", _t.T_str))
+
+    @RoadMaterial.setter
+    def RoadMaterial(self, value: str) -> None:
+        self._sp_set("AZoneGraphData", "RoadMaterial", value)
+
+    @property
+    def SidewalkMaterial(self) -> str:
+        return cast("str", self._sp_get("AZoneGraphData", "SidewalkMaterial", _t.T_str))
+
+    @SidewalkMaterial.setter
+    def SidewalkMaterial(self, value: str) -> None:
+        self._sp_set("AZoneGraphData", "SidewalkMaterial", value)
+
+    @property
+    def MarkingMaterial(self) -> str:
+        return cast("str", self._sp_get("AZoneGraphData", "MarkingMaterial", _t.T_str))
+
+    @MarkingMaterial.setter
+    def MarkingMaterial(self, value: str) -> None:
+        self._sp_set("AZoneGraphData", "MarkingMaterial", value)
+
     def SetLaneProfile(self, *, Profile: list[FZoneLaneDesc]) -> None:
         return cast(None, self._sp_call("AZoneGraphData", "SetLaneProfile", {"Profile": Profile}, _t.T_void))  # a Future when queued by call_async
 

@@ -1,0 +1,178 @@
+#include "core/zonegraph/road_surface.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace sp::zonegraph {
+
+namespace {
+
+// The horizontal unit normal to the left of the polyline at each of its points (the mean of the segments'
+// there).
+std::vector<Eigen::Vector3d> leftNormals(const std::vector<Eigen::Vector3d>& points) {
+    std::vector<Eigen::Vector3d> normals(points.size(), Eigen::Vector3d::UnitY());
+    for (size_t i = 0; i < points.size(); ++i) {
+        Eigen::Vector3d d = points[std::min(i + 1, points.size() - 1)] - points[i > 0 ? i - 1 : 0];
+        d.z() = 0.0;
+        if (d.norm() > 0.0)
+            normals[i] = Eigen::Vector3d(-d.y(), d.x(), 0.0).normalized();
+    }
+    return normals;
+}
+
+// A strip of `width` along `points` (at least two), `lift` above them.
+void addStrip(SurfaceMesh& mesh, const std::vector<Eigen::Vector3d>& points, double width, double lift) {
+    if (points.size() < 2)
+        return;
+    const std::vector<Eigen::Vector3d> left = leftNormals(points);
+    const uint32_t first = uint32_t(mesh.positions.size());
+    for (size_t i = 0; i < points.size(); ++i) {
+        const Eigen::Vector3d p = points[i] + Eigen::Vector3d(0.0, 0.0, lift);
+        mesh.positions.push_back((p - 0.5 * width * left[i]).cast<float>()); // right edge
+        mesh.positions.push_back((p + 0.5 * width * left[i]).cast<float>()); // left edge
+    }
+    for (uint32_t i = 0; i + 1 < uint32_t(points.size()); ++i) {
+        const uint32_t r0 = first + 2 * i, l0 = r0 + 1, r1 = r0 + 2, l1 = r0 + 3;
+        mesh.indices.insert(mesh.indices.end(), {r0, r1, l1, r0, l1, l0});
+    }
+}
+
+// The part of a polyline between arc lengths a and b.
+std::vector<Eigen::Vector3d> between(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& s,
+                                     double a, double b) {
+    const auto at = [&](double d) {
+        const size_t i =
+            std::clamp<size_t>(std::upper_bound(s.begin(), s.end(), d) - s.begin(), 1, s.size() - 1);
+        const double span = s[i] - s[i - 1];
+        return Eigen::Vector3d(points[i - 1] +
+                               (span > 0.0 ? (d - s[i - 1]) / span : 0.0) * (points[i] - points[i - 1]));
+    };
+    std::vector<Eigen::Vector3d> part{at(a)};
+    for (size_t i = 0; i < points.size(); ++i)
+        if (s[i] > a && s[i] < b)
+            part.push_back(points[i]);
+    part.push_back(at(b));
+    return part;
+}
+
+void addLine(SurfaceMesh& mesh, const std::vector<Eigen::Vector3d>& line, bool dashed,
+             const SurfaceOptions& options) {
+    if (!dashed) {
+        addStrip(mesh, line, options.markingWidth, options.markingLift);
+        return;
+    }
+    std::vector<double> s{0.0};
+    for (size_t i = 1; i < line.size(); ++i)
+        s.push_back(s.back() + (line[i] - line[i - 1]).norm());
+    // Dashes centred on the line's length, so a piece's two ends look alike.
+    const double period = options.dash + options.gap;
+    const double start = std::fmod(std::fmod(0.5 * s.back() - 0.5 * options.dash, period) + period, period);
+    for (double a = start - period; a < s.back(); a += period) {
+        const double from = std::max(a, 0.0), to = std::min(a + options.dash, s.back());
+        if (to - from > 0.1)
+            addStrip(mesh, between(line, s, from, to), options.markingWidth, options.markingLift);
+    }
+}
+
+// The convex hull of points in XY (Andrew's monotone chain), counter-clockwise.
+std::vector<Eigen::Vector3d> convexHull(std::vector<Eigen::Vector3d> points) {
+    std::sort(points.begin(), points.end(), [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+        return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+    });
+    if (points.size() < 3)
+        return points;
+    const auto cross = [](const Eigen::Vector3d& o, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+        return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+    };
+    std::vector<Eigen::Vector3d> hull(2 * points.size());
+    size_t k = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+        while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0)
+            --k;
+        hull[k++] = points[i];
+    }
+    for (size_t i = points.size() - 1, lower = k + 1; i > 0; --i) {
+        while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i - 1]) <= 0.0)
+            --k;
+        hull[k++] = points[i - 1];
+    }
+    hull.resize(k - 1);
+    return hull;
+}
+
+} // namespace
+
+RoadSurface buildRoadSurface(const LaneGraph& graph, const SurfaceOptions& options) {
+    RoadSurface surface;
+    const int sidewalk = graph.tagIndex("Sidewalk");
+    const RoadProfile& profile = graph.profile();
+    // Road lanes, and each piece's lanes in profile order for the markings between them.
+    std::map<int, std::vector<int>> pieces;
+    std::map<int, std::vector<Eigen::Vector3d>> junctionCorners;
+    for (int l = 0; l < int(graph.lanes().size()); ++l) {
+        const Lane& lane = graph.lanes()[l];
+        if (lane.piece >= 0) {
+            addStrip(lane.tag == sidewalk ? surface.sidewalk : surface.road, lane.points, lane.width,
+                     options.lift);
+            pieces[lane.piece].push_back(l);
+        } else if (lane.junction >= 0 && lane.tag != sidewalk) {
+            // A driving connector's ends, edge to edge across the road lanes it joins (their directions: the
+            // connector's own sampled ends lean into its turn): the junction's patch holds them all.
+            const auto edges = [&](const Eigen::Vector3d& at, const Lane& road, bool atEnd) {
+                const size_t n = road.points.size();
+                Eigen::Vector3d d = atEnd ? Eigen::Vector3d(road.points[n - 1] - road.points[n - 2])
+                                          : Eigen::Vector3d(road.points[1] - road.points[0]);
+                d.z() = 0.0;
+                const Eigen::Vector3d side = d.norm() > 0.0 ? Eigen::Vector3d(-d.y(), d.x(), 0.0).normalized()
+                                                            : Eigen::Vector3d::UnitY();
+                junctionCorners[lane.junction].push_back(at + 0.5 * road.width * side);
+                junctionCorners[lane.junction].push_back(at - 0.5 * road.width * side);
+            };
+            if (lane.prev.size() == 1 && lane.next.size() == 1) {
+                edges(lane.points.front(), graph.lanes()[size_t(lane.prev[0])], true);
+                edges(lane.points.back(), graph.lanes()[size_t(lane.next[0])], false);
+            }
+        }
+    }
+    for (const auto& [junction, corners] : junctionCorners) {
+        const std::vector<Eigen::Vector3d> hull = convexHull(corners);
+        if (hull.size() < 3)
+            continue;
+        const Eigen::Vector3d lift(0.0, 0.0, options.lift);
+        const uint32_t centre = uint32_t(surface.road.positions.size());
+        surface.road.positions.push_back((graph.junctions()[junction].position + lift).cast<float>());
+        for (const Eigen::Vector3d& corner : hull)
+            surface.road.positions.push_back((corner + lift).cast<float>());
+        for (uint32_t i = 0; i < uint32_t(hull.size()); ++i)
+            surface.road.indices.insert(
+                surface.road.indices.end(),
+                {centre, centre + 1 + i, centre + 1 + (i + 1) % uint32_t(hull.size())});
+    }
+    // Markings on the lines between neighbouring lanes of a piece, in the road's direction.
+    for (const auto& [piece, lanes] : pieces) {
+        for (size_t k = 0; k + 1 < lanes.size(); ++k) {
+            const Lane &a = graph.lanes()[lanes[k]], &b = graph.lanes()[lanes[k + 1]];
+            const bool aDriving = a.tag != sidewalk, bDriving = b.tag != sidewalk;
+            if (!aDriving && !bDriving)
+                continue;
+            const bool aForward = profile.lanes[size_t(a.slot)].forward,
+                       bForward = profile.lanes[size_t(b.slot)].forward;
+            std::vector<Eigen::Vector3d> pa = a.points, pb = b.points;
+            if (!aForward)
+                std::reverse(pa.begin(), pa.end());
+            if (!bForward)
+                std::reverse(pb.begin(), pb.end());
+            if (pa.size() != pb.size())
+                continue;
+            // The line between them: their edges meet half a width from each centre line.
+            std::vector<Eigen::Vector3d> line(pa.size());
+            for (size_t i = 0; i < pa.size(); ++i)
+                line[i] = (b.width * pa[i] + a.width * pb[i]) / (a.width + b.width);
+            addLine(surface.markings, line, aDriving && bDriving, options);
+        }
+    }
+    return surface;
+}
+
+} // namespace sp::zonegraph

@@ -1,0 +1,51 @@
+#include "core/zonegraph/road_surface.h"
+
+#include <gtest/gtest.h>
+
+namespace sp::zonegraph {
+namespace {
+
+// The area of a mesh's triangles seen from above (counter-clockwise ones positive).
+double area(const SurfaceMesh& mesh) {
+    double total = 0.0;
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const Eigen::Vector3f &a = mesh.positions[mesh.indices[t]], &b = mesh.positions[mesh.indices[t + 1]],
+                              &c = mesh.positions[mesh.indices[t + 2]];
+        total += 0.5 * double((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+    }
+    return total;
+}
+
+TEST(RoadSurface, AStraightRoadIsAsphaltBetweenSidewalksWithItsLines) {
+    const LaneGraph graph =
+        LaneGraph::build({{"Main", {{0, 0, 0}, {90, 0, 0}}}}, RoadProfile::twoWayStreet());
+    const RoadSurface surface = buildRoadSurface(graph);
+    EXPECT_NEAR(area(surface.road), 7.0 * 90.0, 1e-3); // two 3.5 m lanes, faces up
+    EXPECT_NEAR(area(surface.sidewalk), 4.0 * 90.0, 1e-3);
+    // Solid lines between the driving lanes and the sidewalks; the centre line dashed, 3 m in every 9 m, its
+    // dashes centred on the road: 10 of them.
+    EXPECT_NEAR(area(surface.markings), 0.12 * (2.0 * 90.0 + 10.0 * 3.0), 1e-3);
+    for (const Eigen::Vector3f& p : surface.road.positions)
+        EXPECT_FLOAT_EQ(p.z(), 0.02f);
+    for (const Eigen::Vector3f& p : surface.markings.positions) {
+        EXPECT_FLOAT_EQ(p.z(), 0.03f);
+        EXPECT_TRUE(std::abs(p.y()) < 0.07f || std::abs(std::abs(p.y()) - 3.5f) < 0.07f) << p.transpose();
+    }
+}
+
+TEST(RoadSurface, AJunctionIsPavedBetweenItsRoads) {
+    const LaneGraph graph = LaneGraph::build({{"West", {{-50, 0, 0}, {0, 0, 0}}},
+                                              {"East", {{0, 0, 0}, {50, 0, 0}}},
+                                              {"South", {{0, -50, 0}, {0, 0, 0}}},
+                                              {"North", {{0, 0, 0}, {0, 50, 0}}}},
+                                             RoadProfile::twoWayStreet());
+    const RoadSurface surface = buildRoadSurface(graph);
+    // Four roads' asphalt stopping 5.5 m short of the centre, and the patch between: the square the driving
+    // connectors' ends span (7 m a side at 5.5 m out: corners at (+-5.5, +-3.5) and (+-3.5, +-5.5)).
+    const double roads = 4.0 * 7.0 * (50.0 - 5.5);
+    const double patch = 11.0 * 11.0 - 4.0 * 0.5 * 2.0 * 2.0; // an octagon: the square less four corners
+    EXPECT_NEAR(area(surface.road), roads + patch, 1e-2);
+}
+
+} // namespace
+} // namespace sp::zonegraph
