@@ -68,12 +68,12 @@ def main() -> None:
     game = instance.get_game()
     with instance.begin_frame():
         library = game.spawn_actor(uclass=spear.AMaterialLibrary, name="Materials")
-        for name, rgb in (("Asphalt", (0.12, 0.12, 0.13)), ("Concrete", (0.6, 0.6, 0.58)),
+        for name, rgb in (("Ground", (0.2, 0.26, 0.12)), ("Concrete", (0.6, 0.6, 0.58)),
                           ("Brick", (0.55, 0.3, 0.22)), ("Glass", (0.25, 0.35, 0.45))):
             library.SetMaterial(Name=name, Material=spear.FMaterialDesc(BaseColor=spear.FLinearColor(*rgb, 1.0), Roughness=0.7))
         ground = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Ground", location=spear.FVector(80.0, 19.2, -0.5))
         ground.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
-        ground.StaticMeshComponent.SetMaterial(ElementIndex=0, Material="Asphalt")
+        ground.StaticMeshComponent.SetMaterial(ElementIndex=0, Material="Ground")
         ground.SetActorScale3D(NewScale3D=spear.FVector(260.0, 140.0, 1.0))
         sun = game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun", rotation=spear.FRotator(Pitch=-70.0, Yaw=-60.0))
         sun.LightComponent.Intensity = 3.0
@@ -81,6 +81,14 @@ def main() -> None:
         game.spawn_actor(uclass=spear.ASkyAtmosphere, name="Sky")
 
         lay_roads(game, "SPEAR", pitch=34.0)
+        # The roads' lanes (UE's ZoneGraph), drawn as asphalt, sidewalks and lane markings: a lane each way and a
+        # sidewalk each side, as wide as the city keeps its buildings from the road (RoadWidth).
+        lanes = spear.UZoneGraphSubsystem.GetZoneGraphSubsystem(WorldContextObject=game)
+        lanes.GetZoneGraphData().LaneProfile = [
+            spear.FZoneLaneDesc(Tag="Sidewalk", Width=0.5), spear.FZoneLaneDesc(Tag="Driving", Width=1.5),
+            spear.FZoneLaneDesc(Tag="Driving", Width=1.5, Direction=spear.EZoneLaneDirection.Backward),
+            spear.FZoneLaneDesc(Tag="Sidewalk", Width=0.5, Direction=spear.EZoneLaneDirection.Backward)]
+        print(f"lanes: {lanes.GetNumLanes()} lanes, {lanes.GetNumJunctions()} junctions", flush=True)
         city = game.spawn_actor(uclass=spear.APCGVolume, name="City", location=spear.FVector(80.0, 19.2, 10.0))
         city.BoxComponent.SetBoxExtent(InBoxExtent=spear.FVector(88.0, 28.0, 12.0))
         pcg = city.PCGComponent
@@ -105,6 +113,7 @@ def main() -> None:
         for road in game.find_actors_by_tag(tag="Road"):
             game.destroy_actor(actor=road)
         lay_roads(game, "SPEAR", pitch=36.0)
+        print(f"lanes rebuilt: {lanes.GetNumLanes()} lanes, {lanes.GetNumJunctions()} junctions", flush=True)
         pcg.Generate()
         moved = pcg.GetGeneratedActors()
         print(f"roads moved: {len(moved)} buildings in {pcg.GetLastGenerationSeconds() * 1000:.0f} ms", flush=True)

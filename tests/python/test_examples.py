@@ -239,6 +239,11 @@ def test_control_city_generator_spells_spear_and_regenerates(transport: str, tmp
     generated = re.search(r"generated (\d+) buildings in \d+ ms around 13 road splines", result.stdout)
     assert generated and int(generated.group(1)) > 500, result.stdout
     assert "generate again with nothing changed: the same actors: True" in result.stdout
+    # The road splines' lanes: the letters' strokes meet at junctions (P, E, A and R), and moving the letters
+    # apart rebuilds the same lanes elsewhere.
+    lanes = re.search(r"lanes: (\d+) lanes, (\d+) junctions", result.stdout)
+    assert lanes and int(lanes.group(1)) > 100 and int(lanes.group(2)) >= 8, result.stdout
+    assert f"lanes rebuilt: {lanes.group(1)} lanes, {lanes.group(2)} junctions" in result.stdout
     for image_path in (out, tmp_path / "city_wide.png"):
         image = Image.open(image_path)
         assert image.size == (1280, 720)
