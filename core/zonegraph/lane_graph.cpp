@@ -15,6 +15,13 @@ namespace sp::zonegraph {
 
 namespace {
 
+// The parameter in [0, 1] of the point of segment ab nearest p.
+double nearestOnSegment(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& p) {
+    const Eigen::Vector3d ab = b - a;
+    const double len2 = ab.squaredNorm();
+    return len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+}
+
 // Centre-line points closer than this to the line through their neighbours add nothing (metres).
 constexpr double kSimplifyTolerance = 0.0005;
 
@@ -50,10 +57,8 @@ struct Polyline {
     std::pair<double, double> project(const Eigen::Vector3d& p) const {
         double bestS = 0.0, best = std::numeric_limits<double>::infinity();
         for (size_t i = 1; i < points.size(); ++i) {
-            const Eigen::Vector3d ab = points[i] - points[i - 1];
-            const double len2 = ab.squaredNorm();
-            const double t = len2 > 0.0 ? std::clamp((p - points[i - 1]).dot(ab) / len2, 0.0, 1.0) : 0.0;
-            const double d = (points[i - 1] + t * ab - p).norm();
+            const double t = nearestOnSegment(points[i - 1], points[i], p);
+            const double d = (points[i - 1] + t * (points[i] - points[i - 1]) - p).norm();
             if (d < best) {
                 best = d;
                 bestS = s[i - 1] + t * (s[i] - s[i - 1]);
@@ -75,13 +80,12 @@ std::vector<Eigen::Vector3d> simplified(const std::vector<Eigen::Vector3d>& poin
     while (!spans.empty()) {
         const auto [first, last] = spans.back();
         spans.pop_back();
-        const Eigen::Vector3d a = points[first], ab = points[last] - a;
-        const double len2 = ab.squaredNorm();
+        const Eigen::Vector3d &a = points[first], &b = points[last];
         double farthest = 0.0;
         size_t at = first;
         for (size_t i = first + 1; i < last; ++i) {
-            const double t = len2 > 0.0 ? std::clamp((points[i] - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-            if (const double d = (a + t * ab - points[i]).norm(); d > farthest) {
+            if (const double d = (a + nearestOnSegment(a, b, points[i]) * (b - a) - points[i]).norm();
+                d > farthest) {
                 farthest = d;
                 at = i;
             }
@@ -494,7 +498,7 @@ LaneLocation LaneGraph::locationOnSegment(int lane, int segment, const Eigen::Ve
     const Eigen::Vector3d &a = l.points[segment - 1], &b = l.points[segment];
     const Eigen::Vector3d ab = b - a;
     const double len2 = ab.squaredNorm();
-    const double t = len2 > 0.0 ? std::clamp((point - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    const double t = nearestOnSegment(a, b, point);
     LaneLocation location;
     location.lane = lane;
     location.distance = l.distances[segment - 1] + t * (l.distances[segment] - l.distances[segment - 1]);
@@ -530,10 +534,7 @@ LaneLocation LaneGraph::advanced(const LaneLocation& location, double advance) c
 double LaneGraph::squaredDistanceToSegment(int lane, int segment, const Eigen::Vector3d& point) const {
     const Lane& l = lanes_[lane];
     const Eigen::Vector3d &a = l.points[segment - 1], &b = l.points[segment];
-    const Eigen::Vector3d ab = b - a;
-    const double len2 = ab.squaredNorm();
-    const double t = len2 > 0.0 ? std::clamp((point - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-    return (a + t * ab - point).squaredNorm();
+    return (a + nearestOnSegment(a, b, point) * (b - a) - point).squaredNorm();
 }
 
 std::optional<LaneLocation> LaneGraph::nearestByScan(const Eigen::Vector3d& point, double maxDistance,
