@@ -187,41 +187,16 @@ void measure(Lane& lane) {
         lane.distances.push_back(lane.distances.back() + (lane.points[i] - lane.points[i - 1]).norm());
 }
 
-} // namespace
+struct Meetings {
+    std::vector<Junction> junctions;
+    std::vector<std::vector<std::pair<double, Node>>> cuts; // per road: (arc length, node)
+};
 
-double RoadProfile::totalWidth() const {
-    double total = 0.0;
-    for (const LaneDesc& lane : lanes)
-        total += lane.width;
-    return total;
-}
-
-RoadProfile RoadProfile::twoWayStreet() {
-    return {
-        {{"Sidewalk", 2.0, true}, {"Driving", 3.5, true}, {"Driving", 3.5, false}, {"Sidewalk", 2.0, false}}};
-}
-
-int LaneGraph::tagIndex(const std::string& name) const {
-    const auto found = std::find(tagNames_.begin(), tagNames_.end(), name);
-    return found == tagNames_.end() ? -1 : int(found - tagNames_.begin());
-}
-
-LaneGraph LaneGraph::build(const std::vector<RoadInput>& roads, const RoadProfile& profile,
-                           const BuildOptions& options) {
-    SP_CHECK(!profile.lanes.empty(), InvalidArgument, "LaneGraph::build(): the road profile has no lanes");
-    for (const LaneDesc& lane : profile.lanes) {
-        SP_CHECK(std::isfinite(lane.width) && lane.width > 0.0, InvalidArgument,
-                 "LaneGraph::build(): a lane's width must be > 0, got ", lane.width);
-        SP_CHECK(!lane.tag.empty(), InvalidArgument, "LaneGraph::build(): a lane has no tag");
-    }
-    SP_CHECK(std::isfinite(options.junctionTolerance) && options.junctionTolerance > 0.0, InvalidArgument,
-             "LaneGraph::build(): junctionTolerance must be > 0, got ", options.junctionTolerance);
-    std::vector<Polyline> lines;
-    for (const RoadInput& road : roads)
-        lines.push_back(polylineOf(road));
-    const double tolerance = options.junctionTolerance;
-
-    // Junction marks: each open road's ends, and where they touch another road.
+// Where roads meet: each open road's ends, and where they touch another road, joined into places; a place on
+// two or more roads is a junction, numbered in the order of its first mark; each road's cuts (arc length,
+// node).
+Meetings findMeetings(const std::vector<Polyline>& lines, double tolerance) {
+    Meetings found;
     struct Mark {
         int road;
         double s;
@@ -261,8 +236,6 @@ LaneGraph LaneGraph::build(const std::vector<RoadInput>& roads, const RoadProfil
         markCells[cellKey(cell.x(), cell.y())].push_back(i);
     }
 
-    LaneGraph graph;
-    graph.profile_ = profile;
     // A place where two or more roads meet is a junction (numbered in the order of their first marks); a
     // place on one road only is that road's free end.
     std::map<int, std::vector<int>> marksOfPlace;
@@ -272,7 +245,7 @@ LaneGraph LaneGraph::build(const std::vector<RoadInput>& roads, const RoadProfil
     for (auto& [root, members] : marksOfPlace)
         placesInOrder.push_back(std::move(members));
     std::sort(placesInOrder.begin(), placesInOrder.end());
-    std::vector<std::vector<std::pair<double, Node>>> cuts(lines.size()); // per road: (s, node)
+    found.cuts.resize(lines.size());
     for (const std::vector<int>& members : placesInOrder) {
         std::vector<int> roadsHere;
         Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -284,14 +257,20 @@ LaneGraph LaneGraph::build(const std::vector<RoadInput>& roads, const RoadProfil
         roadsHere.erase(std::unique(roadsHere.begin(), roadsHere.end()), roadsHere.end());
         Node node;
         if (roadsHere.size() >= 2) {
-            node = {Node::JunctionNode, int(graph.junctions_.size())};
-            graph.junctions_.push_back({sum / double(members.size()), roadsHere});
+            node = {Node::JunctionNode, int(found.junctions.size())};
+            found.junctions.push_back({sum / double(members.size()), roadsHere});
         }
         for (const int j : members)
-            cuts[marks[j].road].push_back({marks[j].s, node});
+            found.cuts[marks[j].road].push_back({marks[j].s, node});
     }
 
-    // Roads that cross away from any junction.
+    return found;
+}
+
+// Throws InvalidArgument naming both roads and the point where two roads cross away from any junction of
+// them.
+void checkCrossings(const std::vector<Polyline>& lines, const std::vector<RoadInput>& roads,
+                    const std::vector<Junction>& junctions, double tolerance) {
     constexpr double kCell = 8.0;
     std::unordered_map<uint64_t, std::vector<std::array<int, 2>>> roadCells;
     for (int r = 0; r < int(lines.size()); ++r)
@@ -310,8 +289,8 @@ LaneGraph LaneGraph::build(const std::vector<RoadInput>& roads, const RoadProfil
                     if (!t)
                         continue;
                     const Eigen::Vector3d at = a0 + *t * (a1 - a0);
-                    const bool atJunction = std::any_of(
-                        graph.junctions_.begin(), graph.junctions_.end(), [&](const Junction& junction) {
+                    const bool atJunction =
+                        std::any_of(junctions.begin(), junctions.end(), [&](const Junction& junction) {
                             return (junction.position - at).head<2>().norm() <= 3.0 * tolerance &&
                                    std::count(junction.roads.begin(), junction.roads.end(), r) &&
                                    std::count(junction.roads.begin(), junction.roads.end(), q);
@@ -322,8 +301,11 @@ LaneGraph LaneGraph::build(const std::vector<RoadInput>& roads, const RoadProfil
                 }
             });
         }
+}
 
-    // Pieces: each road cut at its junctions (a cut within the tolerance of another is the same cut).
+// Each road cut at its junctions into pieces (a cut within the tolerance of another is the same cut).
+std::vector<Piece> cutIntoPieces(const std::vector<Polyline>& lines,
+                                 std::vector<std::vector<std::pair<double, Node>>> cuts, double tolerance) {
     std::vector<Piece> pieces;
     for (int r = 0; r < int(lines.size()); ++r) {
         auto& list = cuts[r];
@@ -370,6 +352,51 @@ LaneGraph LaneGraph::build(const std::vector<RoadInput>& roads, const RoadProfil
         if (pieces[p].end.kind == Node::FreeEnd)
             pieces[p].end.index = 2 * p + 1;
     }
+
+    return pieces;
+}
+
+} // namespace
+
+double RoadProfile::totalWidth() const {
+    double total = 0.0;
+    for (const LaneDesc& lane : lanes)
+        total += lane.width;
+    return total;
+}
+
+RoadProfile RoadProfile::twoWayStreet() {
+    return {
+        {{"Sidewalk", 2.0, true}, {"Driving", 3.5, true}, {"Driving", 3.5, false}, {"Sidewalk", 2.0, false}}};
+}
+
+int LaneGraph::tagIndex(const std::string& name) const {
+    const auto found = std::find(tagNames_.begin(), tagNames_.end(), name);
+    return found == tagNames_.end() ? -1 : int(found - tagNames_.begin());
+}
+
+LaneGraph LaneGraph::build(const std::vector<RoadInput>& roads, const RoadProfile& profile,
+                           const BuildOptions& options) {
+    SP_CHECK(!profile.lanes.empty(), InvalidArgument, "LaneGraph::build(): the road profile has no lanes");
+    for (const LaneDesc& lane : profile.lanes) {
+        SP_CHECK(std::isfinite(lane.width) && lane.width > 0.0, InvalidArgument,
+                 "LaneGraph::build(): a lane's width must be > 0, got ", lane.width);
+        SP_CHECK(!lane.tag.empty(), InvalidArgument, "LaneGraph::build(): a lane has no tag");
+    }
+    SP_CHECK(std::isfinite(options.junctionTolerance) && options.junctionTolerance > 0.0, InvalidArgument,
+             "LaneGraph::build(): junctionTolerance must be > 0, got ", options.junctionTolerance);
+    std::vector<Polyline> lines;
+    for (const RoadInput& road : roads)
+        lines.push_back(polylineOf(road));
+    const double tolerance = options.junctionTolerance;
+
+    Meetings meetings = findMeetings(lines, tolerance);
+    checkCrossings(lines, roads, meetings.junctions, tolerance);
+    const std::vector<Piece> pieces = cutIntoPieces(lines, std::move(meetings.cuts), tolerance);
+
+    LaneGraph graph;
+    graph.profile_ = profile;
+    graph.junctions_ = std::move(meetings.junctions);
 
     // Tags in profile order.
     for (const LaneDesc& desc : profile.lanes)
