@@ -105,11 +105,14 @@ class AZoneGraphData : public AActor {
     /// name this actor, with material slot 0 road, 1 sidewalk, 2 markings).
     SPPROPERTY()
     bool bDrawRoads = true;
-    /// The materials of the drawn road, sidewalks and markings (AMaterialLibrary names or built-in ones).
+    /// The drawn road's material (over driving lanes and junctions): an AMaterialLibrary name or a built-in
+    /// one.
     SPPROPERTY()
     std::string RoadMaterial = "Asphalt";
+    /// The drawn sidewalks' material (lanes tagged "Sidewalk").
     SPPROPERTY()
     std::string SidewalkMaterial = "Concrete";
+    /// The lane markings' material.
     SPPROPERTY()
     std::string MarkingMaterial = "LaneMarking";
 

@@ -70,21 +70,21 @@ void bind_AZoneGraphData(py::module_& m) {
         [](const Ref<Self>& self, const PyArg& value) {
             Calls::set_RoadMaterial<PyCall>(self.get<Self>("AZoneGraphData.RoadMaterial"), value);
         },
-        "The materials of the drawn road, sidewalks and markings (AMaterialLibrary names or built-in ones).");
+        "The drawn road's material (over driving lanes and junctions): an AMaterialLibrary name or a built-in\none.");
     cls.def_property(
         "SidewalkMaterial",
         [](const Ref<Self>& self) { return Calls::get_SidewalkMaterial<PyCall>(self.get<Self>("AZoneGraphData.SidewalkMaterial")); },
         [](const Ref<Self>& self, const PyArg& value) {
             Calls::set_SidewalkMaterial<PyCall>(self.get<Self>("AZoneGraphData.SidewalkMaterial"), value);
         },
-        "");
+        "The drawn sidewalks' material (lanes tagged \"Sidewalk\").");
     cls.def_property(
         "MarkingMaterial",
         [](const Ref<Self>& self) { return Calls::get_MarkingMaterial<PyCall>(self.get<Self>("AZoneGraphData.MarkingMaterial")); },
         [](const Ref<Self>& self, const PyArg& value) {
             Calls::set_MarkingMaterial<PyCall>(self.get<Self>("AZoneGraphData.MarkingMaterial"), value);
         },
-        "");
+        "The lane markings' material.");
     sp::pybind::nameProperties(cls);
     cls.def(
         "SetLaneProfile",

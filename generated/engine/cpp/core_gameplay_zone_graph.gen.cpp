@@ -88,7 +88,7 @@ const sp::reflect::TypeInfo& AZoneGraphData::StaticClass() {
         t.properties.push_back({
             "RoadMaterial",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
-            "The materials of the drawn road, sidewalks and markings (AMaterialLibrary names or built-in ones).",
+            "The drawn road's material (over driving lanes and junctions): an AMaterialLibrary name or a built-in\none.",
             false,
             [](const void* self) { return Calls::get_RoadMaterial<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
@@ -98,7 +98,7 @@ const sp::reflect::TypeInfo& AZoneGraphData::StaticClass() {
         t.properties.push_back({
             "SidewalkMaterial",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
-            "",
+            "The drawn sidewalks' material (lanes tagged \"Sidewalk\").",
             false,
             [](const void* self) { return Calls::get_SidewalkMaterial<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {
@@ -108,7 +108,7 @@ const sp::reflect::TypeInfo& AZoneGraphData::StaticClass() {
         t.properties.push_back({
             "MarkingMaterial",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
-            "",
+            "The lane markings' material.",
             false,
             [](const void* self) { return Calls::get_MarkingMaterial<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {

@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "7eed880baa2dd104";
+inline constexpr char kApiHash[] = "0415c06401a466dc";
 } // namespace sp::generated::engine

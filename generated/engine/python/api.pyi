@@ -2486,21 +2486,23 @@ class AZoneGraphData(AActor):
 
     @property
     def RoadMaterial(self) -> str:
-        """The materials of the drawn road, sidewalks and markings (AMaterialLibrary names or built-in ones)."""
+        """The drawn road's material (over driving lanes and junctions): an AMaterialLibrary name or a built-in
+        one.
+        """
 
     @RoadMaterial.setter
     def RoadMaterial(self, value: str) -> None: ...
 
     @property
     def SidewalkMaterial(self) -> str:
-        ...
+        """The drawn sidewalks' material (lanes tagged "Sidewalk")."""
 
     @SidewalkMaterial.setter
     def SidewalkMaterial(self, value: str) -> None: ...
 
     @property
     def MarkingMaterial(self) -> str:
-        ...
+        """The lane markings' material."""
 
     @MarkingMaterial.setter
     def MarkingMaterial(self, value: str) -> None: ...
