@@ -110,7 +110,7 @@ const zonegraph::LaneGraph& AZoneGraphData::graph(const char* function) {
         }
     key.push_back(JunctionTolerance);
     for (const FZoneLaneDesc& lane : LaneProfile) {
-        key.insert(key.end(), {lane.Width, double(lane.Direction)});
+        key.insert(key.end(), {lane.Width, double(lane.Direction), double(lane.Tag.size())});
         key.insert(key.end(), lane.Tag.begin(), lane.Tag.end());
     }
     if (impl_->graph && key == impl_->builtFrom)

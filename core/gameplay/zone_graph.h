@@ -183,7 +183,7 @@ class UZoneGraphSubsystem : public UObject {
 
     /// Finds the nearest lane location for each row of Locations ((N, 3) float64) in one call:
     /// OutLaneIndices (N,) int64 (-1 where none is within MaxDistance), OutPositions (N, 3) and
-    /// OutDistancesAlongLane (N,).
+    /// OutDistancesAlongLane (N,) (NaN where none is).
     SPFUNCTION()
     void FindNearestLanes(const sp::reflect::SpArray<double>& Locations, double MaxDistance,
                           const std::string& Tag, sp::reflect::SpArray<int64_t>& OutLaneIndices,

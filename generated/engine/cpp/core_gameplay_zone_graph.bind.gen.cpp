@@ -188,7 +188,7 @@ void bind_UZoneGraphSubsystem(py::module_& m) {
         py::arg("Locations") = sp::pybind::missingArgument(),
         py::arg("MaxDistance") = sp::pybind::missingArgument(),
         py::arg("Tag") = sp::pybind::missingArgument(),
-        "FindNearestLanes(self, *, Locations: NDArray[np.float64], MaxDistance: float, Tag: str) -> FindNearestLanesResult\n\nFinds the nearest lane location for each row of Locations ((N, 3) float64) in one call:\nOutLaneIndices (N,) int64 (-1 where none is within MaxDistance), OutPositions (N, 3) and\nOutDistancesAlongLane (N,).");
+        "FindNearestLanes(self, *, Locations: NDArray[np.float64], MaxDistance: float, Tag: str) -> FindNearestLanesResult\n\nFinds the nearest lane location for each row of Locations ((N, 3) float64) in one call:\nOutLaneIndices (N,) int64 (-1 where none is within MaxDistance), OutPositions (N, 3) and\nOutDistancesAlongLane (N,) (NaN where none is).");
     cls.def(
         "GetLaneLength",
         [](const Ref<Self>& self, const py::args& positional, const PyArg& LaneIndex, const py::kwargs& extra) -> py::object {

@@ -368,7 +368,7 @@ const sp::reflect::TypeInfo& UZoneGraphSubsystem::StaticClass() {
         });
         t.functions.push_back({
             "FindNearestLanes",
-            "Finds the nearest lane location for each row of Locations ((N, 3) float64) in one call:\nOutLaneIndices (N,) int64 (-1 where none is within MaxDistance), OutPositions (N, 3) and\nOutDistancesAlongLane (N,).",
+            "Finds the nearest lane location for each row of Locations ((N, 3) float64) in one call:\nOutLaneIndices (N,) int64 (-1 where none is within MaxDistance), OutPositions (N, 3) and\nOutDistancesAlongLane (N,) (NaN where none is).",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
             {
                 {"Locations", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"), false, false},

@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "0415c06401a466dc";
+inline constexpr char kApiHash[] = "074f69f2505f5e86";
 } // namespace sp::generated::engine

@@ -311,4 +311,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::enumInfo_EAnimationMode());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "0415c06401a466dc"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "074f69f2505f5e86"; }

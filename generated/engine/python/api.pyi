@@ -6152,7 +6152,7 @@ class UZoneGraphSubsystem(UObject):
     def FindNearestLanes(self, *, Locations: NDArray[np.float64], MaxDistance: float, Tag: str) -> UZoneGraphSubsystem.FindNearestLanesResult:
         """Finds the nearest lane location for each row of Locations ((N, 3) float64) in one call:
         OutLaneIndices (N,) int64 (-1 where none is within MaxDistance), OutPositions (N, 3) and
-        OutDistancesAlongLane (N,).
+        OutDistancesAlongLane (N,) (NaN where none is).
         """
 
     def GetLaneLength(self, *, LaneIndex: int) -> float:
