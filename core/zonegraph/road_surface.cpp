@@ -139,15 +139,14 @@ RoadSurface buildRoadSurface(const LaneGraph& graph, const SurfaceOptions& optio
         const std::vector<Eigen::Vector3d> hull = convexHull(corners);
         if (hull.size() < 3)
             continue;
-        const Eigen::Vector3d lift(0.0, 0.0, options.lift);
-        const uint32_t centre = uint32_t(surface.road.positions.size());
-        surface.road.positions.push_back((graph.junctions()[junction].position + lift).cast<float>());
+        // A fan from the hull's first corner (convex: every triangle inside, counter-clockwise), at the
+        // height of the junction.
+        const double height = graph.junctions()[size_t(junction)].position.z() + options.lift;
+        const uint32_t first = uint32_t(surface.road.positions.size());
         for (const Eigen::Vector3d& corner : hull)
-            surface.road.positions.push_back((corner + lift).cast<float>());
-        for (uint32_t i = 0; i < uint32_t(hull.size()); ++i)
-            surface.road.indices.insert(
-                surface.road.indices.end(),
-                {centre, centre + 1 + i, centre + 1 + (i + 1) % uint32_t(hull.size())});
+            surface.road.positions.emplace_back(float(corner.x()), float(corner.y()), float(height));
+        for (uint32_t i = 1; i + 1 < uint32_t(hull.size()); ++i)
+            surface.road.indices.insert(surface.road.indices.end(), {first, first + i, first + i + 1});
     }
     // Markings on the lines between neighbouring lanes of a piece, in the road's direction.
     for (const auto& [piece, lanes] : pieces) {
