@@ -221,3 +221,26 @@ def test_cameras_see_the_roads_with_their_own_ids(instance: spear.Instance) -> N
         pass
     with instance.end_frame():
         assert not camera.read_pixels()["object_ids"].any()  # nothing drawn, nothing else in view
+
+
+def test_roads_that_make_no_lanes_leave_the_drawn_roads_as_they_were(instance: spear.Instance) -> None:
+    game = instance.get_game()
+    with instance.begin_frame():
+        lanes = _t_junction(game)
+        lanes.GetZoneGraphData()  # a world draws its roads once it has zone graph data
+        camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Above", location=spear.FVector(-20.0, 0.0, 40.0),
+                                  rotation=spear.FRotator(Pitch=-90.0)).CameraSensor
+        camera.Width, camera.Height, camera.FOV = 64, 64, 60.0
+        camera.Modalities = [spear.ECameraModality.ObjectIds]
+    with instance.end_frame():
+        before = camera.read_pixels()["object_ids"]
+    with instance.begin_frame():
+        _road(game, "Cross", (-20.0, -20.0), (-20.0, 20.0))  # across Main with no junction
+    with instance.end_frame():  # the frame renders: the roads as they were drawn
+        after = camera.read_pixels()["object_ids"]
+    assert before.any() and np.array_equal(before, after)
+    with instance.begin_frame():
+        with pytest.raises(spear.InvalidArgumentError, match="crosses road 'Cross'"):
+            lanes.GetNumLanes()  # the queries say why
+    with instance.end_frame():
+        pass
