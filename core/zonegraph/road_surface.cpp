@@ -101,6 +101,20 @@ std::vector<Eigen::Vector3d> convexHull(std::vector<Eigen::Vector3d> points) {
     return hull;
 }
 
+// Whether p is inside the counter-clockwise convex polygon `hull` (in XY).
+bool inside(const std::vector<Eigen::Vector3d>& hull, const Eigen::Vector3d& p) {
+    for (size_t i = 0; i < hull.size(); ++i) {
+        const Eigen::Vector3d &a = hull[i], &b = hull[(i + 1) % hull.size()];
+        if ((b.x() - a.x()) * (p.y() - a.y()) - (b.y() - a.y()) * (p.x() - a.x()) < 0.0)
+            return false;
+    }
+    return true;
+}
+
+// Sidewalks stand this much above the road (where a corner's sidewalk meets the junction's patch, the one
+// shows above the other rather than both flickering).
+constexpr double kCurb = 0.005;
+
 } // namespace
 
 RoadSurface buildRoadSurface(const LaneGraph& graph, const SurfaceOptions& options) {
@@ -110,13 +124,16 @@ RoadSurface buildRoadSurface(const LaneGraph& graph, const SurfaceOptions& optio
     // Road lanes, and each piece's lanes in profile order for the markings between them.
     std::map<int, std::vector<int>> pieces;
     std::map<int, std::vector<Eigen::Vector3d>> junctionCorners;
+    std::map<int, std::vector<int>> sidewalkTurns; // each junction's sidewalk connectors
     for (int l = 0; l < int(graph.lanes().size()); ++l) {
         const Lane& lane = graph.lanes()[l];
         if (lane.piece >= 0) {
             addStrip(lane.tag == sidewalk ? surface.sidewalk : surface.road, lane.points, lane.width,
-                     options.lift);
+                     options.lift + (lane.tag == sidewalk ? kCurb : 0.0));
             pieces[lane.piece].push_back(l);
-        } else if (lane.junction >= 0 && lane.tag != sidewalk) {
+        } else if (lane.junction >= 0 && lane.tag == sidewalk) {
+            sidewalkTurns[lane.junction].push_back(l);
+        } else if (lane.junction >= 0) {
             // A driving connector's ends, edge to edge across the road lanes it joins (their directions: the
             // connector's own sampled ends lean into its turn): the junction's patch holds them all.
             const auto edges = [&](const Eigen::Vector3d& at, const Lane& road, bool atEnd) {
@@ -147,6 +164,14 @@ RoadSurface buildRoadSurface(const LaneGraph& graph, const SurfaceOptions& optio
             surface.road.positions.emplace_back(float(corner.x()), float(corner.y()), float(height));
         for (uint32_t i = 1; i + 1 < uint32_t(hull.size()); ++i)
             surface.road.indices.insert(surface.road.indices.end(), {first, first + i, first + i + 1});
+        // The sidewalk round each corner: the sidewalk connectors whose centre lines keep off the patch (the
+        // ones across it would be crossings over the road).
+        for (const int l : sidewalkTurns[junction]) {
+            const Lane& turn = graph.lanes()[size_t(l)];
+            if (std::none_of(turn.points.begin(), turn.points.end(),
+                             [&](const Eigen::Vector3d& p) { return inside(hull, p); }))
+                addStrip(surface.sidewalk, turn.points, turn.width, options.lift + kCurb);
+        }
     }
     // Markings on the lines between neighbouring lanes of a piece, in the road's direction.
     for (const auto& [piece, lanes] : pieces) {

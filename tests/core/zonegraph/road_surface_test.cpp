@@ -45,6 +45,18 @@ TEST(RoadSurface, AJunctionIsPavedBetweenItsRoads) {
     const double roads = 4.0 * 7.0 * (50.0 - 5.5);
     const double patch = 11.0 * 11.0 - 4.0 * 0.5 * 2.0 * 2.0; // an octagon: the square less four corners
     EXPECT_NEAR(area(surface.road), roads + patch, 1e-2);
+    // Sidewalks along the roads, and round each of the four corners (the connectors between neighbouring
+    // roads' sidewalks); none across the junction's middle, where the road is.
+    const double along = 4.0 * 4.0 * (50.0 - 5.5);
+    EXPECT_GT(area(surface.sidewalk), along + 4.0 * 1.0);
+    EXPECT_LT(area(surface.sidewalk), along + 4.0 * 8.0);
+    for (size_t t = 0; t + 2 < surface.sidewalk.indices.size(); t += 3) {
+        const Eigen::Vector3f centroid = (surface.sidewalk.positions[surface.sidewalk.indices[t]] +
+                                          surface.sidewalk.positions[surface.sidewalk.indices[t + 1]] +
+                                          surface.sidewalk.positions[surface.sidewalk.indices[t + 2]]) /
+                                         3.0f;
+        EXPECT_FALSE(std::abs(centroid.x()) < 3.0f && std::abs(centroid.y()) < 3.0f) << centroid.transpose();
+    }
 }
 
 } // namespace
