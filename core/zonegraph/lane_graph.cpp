@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 
 #include "core/base/error.h"
+#include "core/zonegraph/polyline.h"
 
 namespace sp::zonegraph {
 
@@ -37,11 +38,7 @@ struct Polyline {
     Eigen::Vector3d at(double at) const {
         if (closed)
             at = std::fmod(std::fmod(at, length()) + length(), length());
-        at = std::clamp(at, 0.0, length());
-        const size_t i = std::min<size_t>(std::upper_bound(s.begin(), s.end(), at) - s.begin(), s.size() - 1);
-        const double span = s[i] - s[i - 1];
-        const double t = span > 0.0 ? (at - s[i - 1]) / span : 0.0;
-        return points[i - 1] + t * (points[i] - points[i - 1]);
+        return pointAtArcLength(points, s, at);
     }
 
     // The horizontal unit direction of the line at arc length `at`.
@@ -118,9 +115,7 @@ Polyline polylineOf(const RoadInput& road) {
     if (line.closed)
         line.points.back() = line.points.front();
     line.points = simplified(line.points, kSimplifyTolerance);
-    line.s.push_back(0.0);
-    for (size_t i = 1; i < line.points.size(); ++i)
-        line.s.push_back(line.s.back() + (line.points[i] - line.points[i - 1]).norm());
+    line.s = arcLengths(line.points);
     return line;
 }
 
@@ -182,9 +177,7 @@ std::vector<Eigen::Vector3d> bezier(const Eigen::Vector3d& p0, const Eigen::Vect
 }
 
 void measure(Lane& lane) {
-    lane.distances.assign(1, 0.0);
-    for (size_t i = 1; i < lane.points.size(); ++i)
-        lane.distances.push_back(lane.distances.back() + (lane.points[i] - lane.points[i - 1]).norm());
+    lane.distances = arcLengths(lane.points);
 }
 
 struct Meetings {

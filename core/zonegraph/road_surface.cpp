@@ -1,5 +1,7 @@
 #include "core/zonegraph/road_surface.h"
 
+#include "core/zonegraph/polyline.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -41,13 +43,7 @@ void addStrip(SurfaceMesh& mesh, const std::vector<Eigen::Vector3d>& points, dou
 // The part of a polyline between arc lengths a and b.
 std::vector<Eigen::Vector3d> between(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& s,
                                      double a, double b) {
-    const auto at = [&](double d) {
-        const size_t i =
-            std::clamp<size_t>(std::upper_bound(s.begin(), s.end(), d) - s.begin(), 1, s.size() - 1);
-        const double span = s[i] - s[i - 1];
-        return Eigen::Vector3d(points[i - 1] +
-                               (span > 0.0 ? (d - s[i - 1]) / span : 0.0) * (points[i] - points[i - 1]));
-    };
+    const auto at = [&](double d) { return pointAtArcLength(points, s, d); };
     std::vector<Eigen::Vector3d> part{at(a)};
     for (size_t i = 0; i < points.size(); ++i)
         if (s[i] > a && s[i] < b)
@@ -62,9 +58,7 @@ void addLine(SurfaceMesh& mesh, const std::vector<Eigen::Vector3d>& line, bool d
         addStrip(mesh, line, options.markingWidth, options.markingLift);
         return;
     }
-    std::vector<double> s{0.0};
-    for (size_t i = 1; i < line.size(); ++i)
-        s.push_back(s.back() + (line[i] - line[i - 1]).norm());
+    const std::vector<double> s = arcLengths(line);
     // Dashes centred on the line's length, so a piece's two ends look alike.
     const double period = options.dash + options.gap;
     const double start = std::fmod(std::fmod(0.5 * s.back() - 0.5 * options.dash, period) + period, period);
