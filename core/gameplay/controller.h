@@ -46,6 +46,9 @@ class AController : public AActor {
     virtual bool IsPlayerController() const { return false; }
 
     void EndPlay() override;
+    // True for a controller that sets its pawn's controls itself each frame (a vehicle it possesses then
+    // ignores its input actions).
+    virtual bool DrivesPawnDirectly() const { return false; }
     // Input injected into a controller moves its pawn.
     std::optional<const AActor*> GetInputForwardTarget() const override;
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/base/error.h"
+#include "core/gameplay/controller.h"
 #include "core/world/physics_hooks.h"
 #include "core/world/physics_subsystem.h"
 #include "core/world/world.h"
@@ -139,14 +140,23 @@ void AWheeledVehiclePawn::EndPlay() {
 
 void AWheeledVehiclePawn::Tick(double deltaSeconds) {
     APawn::Tick(deltaSeconds);
+    if (const AController* controller = GetController(); controller && controller->DrivesPawnDirectly())
+        return; // its controller sets the controls once every actor has ticked
+    const auto axis = [this](const char* action) { return InputComponent->GetActionValue(action).X; };
+    ApplyControls(axis("Throttle"), axis("Steer"), axis("Brake"), axis("Handbrake"));
+}
+
+void AWheeledVehiclePawn::ApplyControls(double throttle, double steer, double brake, double handbrake) {
     const sp::physics::BodyId body = vehicleBody("AWheeledVehiclePawn.Tick");
     if (!body.isSet())
         return; // a chassis that does not simulate does not drive
-    const auto axis = [this](const char* action, double low) {
-        return std::clamp(InputComponent->GetActionValue(action).X, low, 1.0);
+    const auto clamped = [](double value, double low) {
+        return std::isfinite(value) ? std::clamp(value, low, 1.0) : 0.0;
     };
-    const double throttle = axis("Throttle", -1.0), steer = axis("Steer", -1.0);
-    const double brake = axis("Brake", 0.0), handbrake = axis("Handbrake", 0.0);
+    throttle = clamped(throttle, -1.0);
+    steer = clamped(steer, -1.0);
+    brake = clamped(brake, 0.0);
+    handbrake = clamped(handbrake, 0.0);
     sp::physics::PhysicsWorld& world =
         GetWorld()->GetSubsystem<sp::world::PhysicsSubsystem>().GetPhysicsWorld();
     for (int i = 0; i < 4; ++i) {

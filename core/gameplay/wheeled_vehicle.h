@@ -134,6 +134,10 @@ class AWheeledVehiclePawn : public APawn {
     // Moves the wheel meshes to the simulated wheels.
     void PostPhysicsTick() override;
 
+    // Sets the controls for the next physics step (clamped as the input actions are): what Tick does from
+    // the input actions, and what a controller that drives the car directly calls after the actors ticked.
+    void ApplyControls(double throttle, double steer, double brake, double handbrake);
+
   private:
     // The vehicle as the properties describe it, for the chassis' current size.
     sp::physics::VehicleDesc describe() const;

@@ -43,7 +43,10 @@ zonegraph::RoadProfile profileOf(const std::vector<FZoneLaneDesc>& descs) {
     return profile;
 }
 
-FZoneGraphLaneLocation toLocation(const zonegraph::LaneLocation& location) {
+} // namespace
+
+FZoneGraphLaneLocation sp::gameplay::toLaneLocation(const zonegraph::LaneLocation& location) {
+
     FZoneGraphLaneLocation out;
     out.LaneIndex = location.lane;
     out.DistanceAlongLane = location.distance;
@@ -51,8 +54,6 @@ FZoneGraphLaneLocation toLocation(const zonegraph::LaneLocation& location) {
     out.Direction = FVector::fromEigen(location.direction);
     return out;
 }
-
-} // namespace
 
 // -- AZoneGraphData ---------------------------------------------------------------------------------------
 
@@ -161,7 +162,11 @@ ASplineActor* AZoneGraphData::roadOf(int lane) const {
 UZoneGraphSubsystem* UZoneGraphSubsystem::GetZoneGraphSubsystem(UObject* WorldContextObject) {
     UWorld& world =
         sp::world::worldOfContext(WorldContextObject, "UZoneGraphSubsystem.GetZoneGraphSubsystem()");
-    return &world.GetSubsystem<ZoneGraphWorldSubsystem>().system();
+    return &of(world);
+}
+
+UZoneGraphSubsystem& UZoneGraphSubsystem::of(UWorld& world) {
+    return world.GetSubsystem<ZoneGraphWorldSubsystem>().system();
 }
 
 AZoneGraphData* UZoneGraphSubsystem::GetZoneGraphData() {
@@ -225,7 +230,7 @@ bool UZoneGraphSubsystem::FindNearestLane(const FVector& Location, double MaxDis
     checkDistance(MaxDistance, kFunction, "MaxDistance");
     const zonegraph::LaneGraph& lanes = graph(kFunction);
     const auto found = lanes.nearest(Location.toEigen(), MaxDistance, tagOf(lanes, Tag, kFunction));
-    OutLaneLocation = found ? toLocation(*found) : FZoneGraphLaneLocation();
+    OutLaneLocation = found ? sp::gameplay::toLaneLocation(*found) : FZoneGraphLaneLocation();
     OutDistance = found ? (found->position - Location.toEigen()).norm() : 0.0;
     return found.has_value();
 }
@@ -238,7 +243,7 @@ FZoneGraphLaneLocation UZoneGraphSubsystem::FindNearestLaneLocationByName(const 
     checkDistance(MaxDistance, kFunction, "MaxDistance");
     const zonegraph::LaneGraph& lanes = graph(kFunction);
     const auto found = lanes.nearest(Location.toEigen(), MaxDistance, tagOf(lanes, TagName, kFunction));
-    return found ? toLocation(*found) : FZoneGraphLaneLocation();
+    return found ? sp::gameplay::toLaneLocation(*found) : FZoneGraphLaneLocation();
 }
 
 void UZoneGraphSubsystem::FindNearestLanes(const sp::reflect::SpArray<double>& Locations, double MaxDistance,
@@ -294,7 +299,8 @@ FZoneGraphLaneLocation UZoneGraphSubsystem::CalculateLocationAlongLane(int LaneI
     constexpr const char* kFunction = "UZoneGraphSubsystem.CalculateLocationAlongLane()";
     SP_CHECK(std::isfinite(Distance), sp::InvalidArgument, kFunction, ": Distance ", Distance,
              " is not finite");
-    return toLocation(graph(kFunction).locationAt(checkedLane(LaneIndex, kFunction), Distance));
+    return sp::gameplay::toLaneLocation(
+        graph(kFunction).locationAt(checkedLane(LaneIndex, kFunction), Distance));
 }
 
 FZoneGraphLaneLocation UZoneGraphSubsystem::AdvanceLaneLocation(const FZoneGraphLaneLocation& InLaneLocation,
@@ -305,7 +311,8 @@ FZoneGraphLaneLocation UZoneGraphSubsystem::AdvanceLaneLocation(const FZoneGraph
     SP_CHECK(std::isfinite(InLaneLocation.DistanceAlongLane), sp::InvalidArgument, kFunction,
              ": InLaneLocation.DistanceAlongLane ", InLaneLocation.DistanceAlongLane, " is not finite");
     const int lane = checkedLane(InLaneLocation.LaneIndex, kFunction);
-    return toLocation(graph(kFunction).locationAt(lane, InLaneLocation.DistanceAlongLane + AdvanceDistance));
+    return sp::gameplay::toLaneLocation(
+        graph(kFunction).locationAt(lane, InLaneLocation.DistanceAlongLane + AdvanceDistance));
 }
 
 std::vector<int> UZoneGraphSubsystem::GetLinkedLanes(int LaneIndex, EZoneLaneLinkType Type) {

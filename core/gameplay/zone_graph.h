@@ -229,7 +229,15 @@ class UZoneGraphSubsystem : public UObject {
     SPFUNCTION()
     void GetAllLanePoints(sp::reflect::SpArray<double>& OutPoints, sp::reflect::SpArray<int64_t>& OutStarts);
 
+    // The world's subsystem, for the engine's own code (no frame check: it runs inside the world's tick).
+    static UZoneGraphSubsystem& of(UWorld& world);
+
   private:
     const sp::zonegraph::LaneGraph& graph(const char* function);
     int checkedLane(int LaneIndex, const char* function);
 };
+
+namespace sp::gameplay {
+// A lane graph's location as the reflected struct.
+FZoneGraphLaneLocation toLaneLocation(const sp::zonegraph::LaneLocation& location);
+} // namespace sp::gameplay

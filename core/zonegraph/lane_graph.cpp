@@ -407,7 +407,7 @@ LaneGraph LaneGraph::build(const std::vector<RoadInput>& roads, const RoadProfil
         const Piece& piece = pieces[p];
         const Polyline& line = lines[piece.road];
         const double length = piece.to - piece.from;
-        const double trim = std::min(0.5 * total, 0.4 * length);
+        const double trim = std::min(0.5 * total + options.cornerRadius, 0.4 * length);
         const double from = piece.from + (piece.start.kind == Node::JunctionNode ? trim : 0.0);
         const double to = piece.to - (piece.end.kind == Node::JunctionNode ? trim : 0.0);
         // The centre line's arc lengths: the ends and every vertex between them.
@@ -557,8 +557,15 @@ double LaneGraph::squaredDistanceToSegment(int lane, int segment, const Eigen::V
     return (a + nearestOnSegment(a, b, point) * (b - a) - point).squaredNorm();
 }
 
+bool LaneGraph::runsAlong(int lane, int segment, const Eigen::Vector3d* heading) const {
+    if (!heading)
+        return true;
+    const Lane& l = lanes_[lane];
+    return (l.points[segment] - l.points[segment - 1]).head<2>().dot(heading->head<2>()) > 0.0;
+}
+
 std::optional<LaneLocation> LaneGraph::nearestByScan(const Eigen::Vector3d& point, double maxDistance,
-                                                     int tag) const {
+                                                     int tag, const Eigen::Vector3d* heading) const {
     // Squared distances: the nearest is chosen on them, and the location made once for it.
     double best = maxDistance * maxDistance;
     std::array<int, 2> bestId{-1, -1};
@@ -567,7 +574,7 @@ std::optional<LaneLocation> LaneGraph::nearestByScan(const Eigen::Vector3d& poin
             continue;
         for (int i = 1; i < int(lanes_[l].points.size()); ++i)
             if (const double d2 = squaredDistanceToSegment(l, i, point);
-                d2 < best || (bestId[0] < 0 && d2 <= best)) {
+                (d2 < best || (bestId[0] < 0 && d2 <= best)) && runsAlong(l, i, heading)) {
                 best = d2;
                 bestId = {l, i};
             }
@@ -577,8 +584,8 @@ std::optional<LaneLocation> LaneGraph::nearestByScan(const Eigen::Vector3d& poin
     return locationOnSegment(bestId[0], bestId[1], point);
 }
 
-std::optional<LaneLocation> LaneGraph::nearest(const Eigen::Vector3d& point, double maxDistance,
-                                               int tag) const {
+std::optional<LaneLocation> LaneGraph::nearest(const Eigen::Vector3d& point, double maxDistance, int tag,
+                                               const Eigen::Vector3d* heading) const {
     if (cells_.empty() || !point.allFinite() || std::isnan(maxDistance))
         return std::nullopt;
     double best = maxDistance * maxDistance;
@@ -605,7 +612,7 @@ std::optional<LaneLocation> LaneGraph::nearest(const Eigen::Vector3d& point, dou
                 if (cell == cells_.end())
                     continue;
                 for (const auto& id : cell->second) {
-                    if (tag >= 0 && lanes_[id[0]].tag != tag)
+                    if ((tag >= 0 && lanes_[id[0]].tag != tag) || !runsAlong(id[0], id[1], heading))
                         continue;
                     const double d2 = squaredDistanceToSegment(id[0], id[1], point);
                     // Ties go to the first lane and segment, as the scan has it.

@@ -6,12 +6,13 @@
 // Building: where a road ends on another road (at its end or anywhere along it) there is a junction; roads
 // are cut into pieces at their junctions, and each piece gets the profile's lanes side by side (offset from
 // the centre line to the right, looking along the road; a lane running against the road has its points
-// reversed). Lanes stop short of a junction by half the profile's width, and inside it every lane arriving
-// links to every lane of the same tag leaving on another piece, through a connector lane (a cubic curve from
-// the one's end to the other's start). At a road's free end the arriving lanes turn back onto the leaving
-// lanes of the same tag (a U-turn connector), and a closed road's lanes link end to start. Two roads that
-// cross with no junction are an error: where they meet is unknown (a bridge? a crossing?), so one must end
-// there. Deterministic: the same roads in the same order give the same lanes in the same order.
+// reversed). Lanes stop short of a junction by half the profile's width and a corner radius (room to turn),
+// and inside it every lane arriving links to every lane of the same tag leaving on another piece, through a
+// connector lane (a cubic curve from the one's end to the other's start). At a road's free end the arriving
+// lanes turn back onto the leaving lanes of the same tag (a U-turn connector), and a closed road's lanes link
+// end to start. Two roads that cross with no junction are an error: where they meet is unknown (a bridge? a
+// crossing?), so one must end there. Deterministic: the same roads in the same order give the same lanes in
+// the same order.
 //
 // World coordinates, metres, Z up; "right" of a direction d is d x Z. Pure logic: no engine objects.
 
@@ -51,6 +52,10 @@ struct RoadInput {
 struct BuildOptions {
     // A road end within this distance of another road joins it (metres).
     double junctionTolerance = 1.0;
+    // Lanes stop this much further from a junction than the roads' half width (metres), so that the tightest
+    // turn through it (the right turn from the rightmost lane) has about this radius plus the sidewalk's
+    // width: room for a car's turning circle (a 4.2 m car steering 35 degrees needs 3.7 m).
+    double cornerRadius = 3.0;
     // Connector lanes are sampled with this many segments.
     int connectorSegments = 8;
 };
@@ -106,17 +111,21 @@ class LaneGraph {
     LaneLocation advanced(const LaneLocation& location, double advance) const;
 
     // The nearest point on a lane to `point` within `maxDistance` metres (3-D distance to the lane's centre
-    // line), among lanes whose tag is `tag` (-1: any). None when there is none that near.
-    std::optional<LaneLocation> nearest(const Eigen::Vector3d& point, double maxDistance, int tag = -1) const;
+    // line), among lanes whose tag is `tag` (-1: any) and, given a heading, on segments that run within 90
+    // degrees of it on the ground (a car finds its own side of the road). None when there is none that near.
+    std::optional<LaneLocation> nearest(const Eigen::Vector3d& point, double maxDistance, int tag = -1,
+                                        const Eigen::Vector3d* heading = nullptr) const;
     // The same by scanning every segment of every lane: the reference the grid is tested and measured
     // against.
-    std::optional<LaneLocation> nearestByScan(const Eigen::Vector3d& point, double maxDistance,
-                                              int tag = -1) const;
+    std::optional<LaneLocation> nearestByScan(const Eigen::Vector3d& point, double maxDistance, int tag = -1,
+                                              const Eigen::Vector3d* heading = nullptr) const;
 
   private:
     void index();
     LaneLocation locationOnSegment(int lane, int segment, const Eigen::Vector3d& point) const;
     double squaredDistanceToSegment(int lane, int segment, const Eigen::Vector3d& point) const;
+    // Whether the segment runs within 90 degrees of `heading` (always, for no heading).
+    bool runsAlong(int lane, int segment, const Eigen::Vector3d* heading) const;
 
     std::vector<Lane> lanes_;
     std::vector<Junction> junctions_;

@@ -69,40 +69,40 @@ void addLine(SurfaceMesh& mesh, const std::vector<Eigen::Vector3d>& line, bool d
     }
 }
 
-// The convex hull of points in XY (Andrew's monotone chain), counter-clockwise.
-std::vector<Eigen::Vector3d> convexHull(std::vector<Eigen::Vector3d> points) {
-    std::sort(points.begin(), points.end(), [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-        return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-    });
-    if (points.size() < 3)
-        return points;
-    const auto cross = [](const Eigen::Vector3d& o, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-        return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+// A junction's corner sidewalks: the sidewalk connectors between neighbouring roads, round the block
+// between them. Around a junction a lane arriving on a road's right edge has the next road counter-clockwise
+// on its right (the corner it walks round); a sidewalk connector to any other road crosses a road.
+std::vector<int> cornerSidewalks(const LaneGraph& graph, const std::vector<int>& connectors,
+                                 const Eigen::Vector3d& centre) {
+    const auto bearing = [&](const Eigen::Vector3d& p) {
+        return std::atan2(p.y() - centre.y(), p.x() - centre.x());
     };
-    std::vector<Eigen::Vector3d> hull(2 * points.size());
-    size_t k = 0;
-    for (size_t i = 0; i < points.size(); ++i) {
-        while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0)
-            --k;
-        hull[k++] = points[i];
+    // Each piece's bearing from the centre, from its lanes' ends there.
+    std::map<int, Eigen::Vector3d> ends;
+    for (const int l : connectors) {
+        const Lane& lane = graph.lanes()[size_t(l)];
+        if (lane.prev.size() != 1 || lane.next.size() != 1)
+            continue;
+        const Lane &from = graph.lanes()[size_t(lane.prev[0])], &to = graph.lanes()[size_t(lane.next[0])];
+        ends.emplace(from.piece, from.points.back());
+        ends.emplace(to.piece, to.points.front());
     }
-    for (size_t i = points.size() - 1, lower = k + 1; i > 0; --i) {
-        while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i - 1]) <= 0.0)
-            --k;
-        hull[k++] = points[i - 1];
+    std::vector<std::pair<double, int>> around;
+    for (const auto& [piece, at] : ends)
+        around.emplace_back(bearing(at), piece);
+    std::sort(around.begin(), around.end());
+    std::map<int, int> nextCounterClockwise;
+    for (size_t i = 0; i < around.size(); ++i)
+        nextCounterClockwise[around[i].second] = around[(i + 1) % around.size()].second;
+    std::vector<int> corners;
+    for (const int l : connectors) {
+        const Lane& lane = graph.lanes()[size_t(l)];
+        if (lane.prev.size() == 1 && lane.next.size() == 1 &&
+            nextCounterClockwise[graph.lanes()[size_t(lane.prev[0])].piece] ==
+                graph.lanes()[size_t(lane.next[0])].piece)
+            corners.push_back(l);
     }
-    hull.resize(k - 1);
-    return hull;
-}
-
-// Whether p is inside the counter-clockwise convex polygon `hull` (in XY).
-bool inside(const std::vector<Eigen::Vector3d>& hull, const Eigen::Vector3d& p) {
-    for (size_t i = 0; i < hull.size(); ++i) {
-        const Eigen::Vector3d &a = hull[i], &b = hull[(i + 1) % hull.size()];
-        if ((b.x() - a.x()) * (p.y() - a.y()) - (b.y() - a.y()) * (p.x() - a.x()) < 0.0)
-            return false;
-    }
-    return true;
+    return corners;
 }
 
 // Sidewalks stand this much above the road (where a corner's sidewalk meets the junction's patch, the one
@@ -117,8 +117,8 @@ RoadSurface buildRoadSurface(const LaneGraph& graph, const SurfaceOptions& optio
     const RoadProfile& profile = graph.profile();
     // Road lanes, and each piece's lanes in profile order for the markings between them.
     std::map<int, std::vector<int>> pieces;
-    std::map<int, std::vector<Eigen::Vector3d>> junctionCorners;
-    std::map<int, std::vector<int>> sidewalkTurns; // each junction's sidewalk connectors
+    std::map<int, std::vector<Eigen::Vector3d>> junctionCorners; // each junction's patch boundary
+    std::map<int, std::vector<int>> sidewalkTurns;               // each junction's sidewalk connectors
     for (int l = 0; l < int(graph.lanes().size()); ++l) {
         const Lane& lane = graph.lanes()[l];
         if (lane.piece >= 0) {
@@ -146,26 +146,36 @@ RoadSurface buildRoadSurface(const LaneGraph& graph, const SurfaceOptions& optio
             }
         }
     }
-    for (const auto& [junction, corners] : junctionCorners) {
-        const std::vector<Eigen::Vector3d> hull = convexHull(corners);
-        if (hull.size() < 3)
-            continue;
-        // A fan from the hull's first corner (convex: every triangle inside, counter-clockwise), at the
-        // height of the junction.
-        const double height = graph.junctions()[size_t(junction)].position.z() + options.lift;
-        const uint32_t first = uint32_t(surface.road.positions.size());
-        for (const Eigen::Vector3d& corner : hull)
-            surface.road.positions.emplace_back(float(corner.x()), float(corner.y()), float(height));
-        for (uint32_t i = 1; i + 1 < uint32_t(hull.size()); ++i)
-            surface.road.indices.insert(surface.road.indices.end(), {first, first + i, first + i + 1});
-        // The sidewalk round each corner: the sidewalk connectors whose centre lines keep off the patch (the
-        // ones across it would be crossings over the road).
-        for (const int l : sidewalkTurns[junction]) {
+    // Each junction's patch: the road between the driving lanes' ends and the corner sidewalks' inner edges,
+    // a fan round the junction's centre through them in order of bearing (a junction is star-shaped from its
+    // centre: every road and corner faces it).
+    for (auto& [junction, boundary] : junctionCorners) {
+        const Eigen::Vector3d centre = graph.junctions()[size_t(junction)].position;
+        for (const int l : cornerSidewalks(graph, sidewalkTurns[junction], centre)) {
             const Lane& turn = graph.lanes()[size_t(l)];
-            if (std::none_of(turn.points.begin(), turn.points.end(),
-                             [&](const Eigen::Vector3d& p) { return inside(hull, p); }))
-                addStrip(surface.sidewalk, turn.points, turn.width, options.lift + kCurb);
+            addStrip(surface.sidewalk, turn.points, turn.width, options.lift + kCurb);
+            // Its inner edge (on its left: the corner turns right round the block) bounds the road.
+            const std::vector<Eigen::Vector3d> left = leftNormals(turn.points);
+            for (size_t i = 0; i < turn.points.size(); ++i)
+                boundary.push_back(turn.points[i] + 0.5 * turn.width * left[i]);
         }
+        const auto bearing = [&](const Eigen::Vector3d& p) {
+            return std::atan2(p.y() - centre.y(), p.x() - centre.x());
+        };
+        std::sort(boundary.begin(), boundary.end(), [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+            return bearing(a) < bearing(b);
+        });
+        if (boundary.size() < 3)
+            continue;
+        const double height = centre.z() + options.lift;
+        const uint32_t first = uint32_t(surface.road.positions.size());
+        surface.road.positions.emplace_back(float(centre.x()), float(centre.y()), float(height));
+        for (const Eigen::Vector3d& p : boundary)
+            surface.road.positions.emplace_back(float(p.x()), float(p.y()), float(height));
+        const uint32_t count = uint32_t(boundary.size());
+        for (uint32_t i = 0; i < count; ++i)
+            surface.road.indices.insert(surface.road.indices.end(),
+                                        {first, first + 1 + i, first + 1 + (i + 1) % count});
     }
     // Markings on the lines between neighbouring lanes of a piece, in the road's direction.
     for (const auto& [piece, lanes] : pieces) {

@@ -1,9 +1,9 @@
 #pragma once
 // The visible road: triangles over a lane graph's lanes and junctions, and its lane markings, for a renderer
-// to draw. Each road lane is a strip of its width along its centre line; each junction is the convex patch
-// that holds its driving connectors' ends, and its corners' sidewalks the sidewalk connectors that keep off
-// that patch (sidewalks stand 5 mm above the road, as a curb); markings are strips 12 cm wide, a few
-// centimetres above the surface, on the lines between a piece's lanes: dashed (3 m on, 6 m off) between
+// to draw. Each road lane is a strip of its width along its centre line; each junction's corners are the
+// sidewalk connectors between neighbouring roads, and its road the patch from the driving lanes' ends to the
+// corners' inner edges (sidewalks stand 5 mm above the road, as a curb); markings are strips 12 cm wide, a
+// few centimetres above the surface, on the lines between a piece's lanes: dashed (3 m on, 6 m off) between
 // driving lanes (a centre line where they run opposite ways), solid between a driving lane and any other. A
 // lane tagged "Sidewalk" is sidewalk, any other is road. World coordinates; every normal is +Z. Pure logic.
 

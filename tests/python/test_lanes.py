@@ -45,7 +45,7 @@ def test_road_splines_become_lanes_with_a_junction(instance: spear.Instance) -> 
         count = lanes.GetNumLanes()
         assert count > 12
         # Driving east on Main's west piece: the lane 1.75 m right of the centre line (-Y), ending short of the
-        # junction, leading straight on or left into Side.
+        # junction (half the road's 11 m width and a 3 m corner radius), leading straight on or left into Side.
         found, location, distance = lanes.FindNearestLane(Location=spear.FVector(-20.0, -2.0, 0.3), MaxDistance=5.0,
                                                           Tag="Driving")
         assert found and location.LaneIndex == 1
@@ -56,7 +56,7 @@ def test_road_splines_become_lanes_with_a_junction(instance: spear.Instance) -> 
         road = lanes.GetLaneRoad(LaneIndex=1)
         assert road is not None and road.GetName() == "Main"
         assert lanes.GetLaneTag(LaneIndex=1) == "Driving" and lanes.GetLaneWidth(LaneIndex=1) == 3.5
-        assert lanes.GetLaneLength(LaneIndex=1) == pytest.approx(50.0 - 5.5)
+        assert lanes.GetLaneLength(LaneIndex=1) == pytest.approx(50.0 - 8.5)
         leads = lanes.GetLinkedLanes(LaneIndex=1, Type=LINK.Outgoing)
         assert len(leads) == 2
         reached = set()

@@ -9,6 +9,7 @@
 #include "generated/engine/cpp/core_gameplay_game_mode.gen.h"
 #include "generated/engine/cpp/core_gameplay_gameplay_statics.gen.h"
 #include "generated/engine/cpp/core_gameplay_kinematic_vehicle.gen.h"
+#include "generated/engine/cpp/core_gameplay_lane_following.gen.h"
 #include "generated/engine/cpp/core_gameplay_navigation_system.gen.h"
 #include "generated/engine/cpp/core_gameplay_pawn.gen.h"
 #include "generated/engine/cpp/core_gameplay_wheeled_vehicle.gen.h"

@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "074f69f2505f5e86";
+inline constexpr char kApiHash[] = "b8856e690454c84c";
 } // namespace sp::generated::engine

@@ -11,6 +11,7 @@
 #include "generated/engine/cpp/core_gameplay_game_mode.bindings.gen.h"
 #include "generated/engine/cpp/core_gameplay_gameplay_statics.bindings.gen.h"
 #include "generated/engine/cpp/core_gameplay_kinematic_vehicle.bindings.gen.h"
+#include "generated/engine/cpp/core_gameplay_lane_following.bindings.gen.h"
 #include "generated/engine/cpp/core_gameplay_navigation_system.bindings.gen.h"
 #include "generated/engine/cpp/core_gameplay_pawn.bindings.gen.h"
 #include "generated/engine/cpp/core_gameplay_wheeled_vehicle.bindings.gen.h"

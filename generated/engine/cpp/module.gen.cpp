@@ -17,6 +17,7 @@ void bind_ADefaultPawn(pybind11::module_& m);
 void bind_ADirectionalLight(pybind11::module_& m);
 void bind_AGameModeBase(pybind11::module_& m);
 void bind_AKinematicVehicle(pybind11::module_& m);
+void bind_ALaneFollowingController(pybind11::module_& m);
 void bind_AMaterialLibrary(pybind11::module_& m);
 void bind_AMultiViewCameraRig(pybind11::module_& m);
 void bind_ANavMeshBoundsVolume(pybind11::module_& m);
@@ -84,6 +85,7 @@ void spear_bind_engine(pybind11::module_& m) {
     gen::bind_ADirectionalLight(m);
     gen::bind_AGameModeBase(m);
     gen::bind_AKinematicVehicle(m);
+    gen::bind_ALaneFollowingController(m);
     gen::bind_AMaterialLibrary(m);
     gen::bind_AMultiViewCameraRig(m);
     gen::bind_ANavMeshBoundsVolume(m);

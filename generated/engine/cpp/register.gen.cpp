@@ -37,6 +37,7 @@ const sp::reflect::TypeInfo& typeInfo_ADefaultPawn();
 const sp::reflect::TypeInfo& typeInfo_ADirectionalLight();
 const sp::reflect::TypeInfo& typeInfo_AGameModeBase();
 const sp::reflect::TypeInfo& typeInfo_AKinematicVehicle();
+const sp::reflect::TypeInfo& typeInfo_ALaneFollowingController();
 const sp::reflect::TypeInfo& typeInfo_AMaterialLibrary();
 const sp::reflect::TypeInfo& typeInfo_AMultiViewCameraRig();
 const sp::reflect::TypeInfo& typeInfo_ANavMeshBoundsVolume();
@@ -139,6 +140,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(gen::typeInfo_ADirectionalLight());
     registry.add(gen::typeInfo_AGameModeBase());
     registry.add(gen::typeInfo_AKinematicVehicle());
+    registry.add(gen::typeInfo_ALaneFollowingController());
     registry.add(gen::typeInfo_AMaterialLibrary());
     registry.add(gen::typeInfo_AMultiViewCameraRig());
     registry.add(gen::typeInfo_ANavMeshBoundsVolume());
@@ -279,6 +281,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::typeInfo_ANavMeshBoundsVolume());
     registry.remove(gen::typeInfo_AMultiViewCameraRig());
     registry.remove(gen::typeInfo_AMaterialLibrary());
+    registry.remove(gen::typeInfo_ALaneFollowingController());
     registry.remove(gen::typeInfo_AKinematicVehicle());
     registry.remove(gen::typeInfo_AGameModeBase());
     registry.remove(gen::typeInfo_ADirectionalLight());
@@ -311,4 +314,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::enumInfo_EAnimationMode());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "074f69f2505f5e86"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "b8856e690454c84c"; }

@@ -31,6 +31,7 @@ __all__ = [
     "ADirectionalLight",
     "AGameModeBase",
     "AKinematicVehicle",
+    "ALaneFollowingController",
     "AMaterialLibrary",
     "AMultiViewCameraRig",
     "ANavMeshBoundsVolume",
@@ -794,6 +795,30 @@ class AKinematicVehicle(AActor):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "AKinematicVehicle"
+
+
+class ALaneFollowingControllerAsync(AControllerAsync):
+    """ALaneFollowingController's functions, called asynchronously (typed in api.pyi; see spear.futures)."""
+
+    __slots__ = ()
+
+
+class ALaneFollowingControllerSend(AControllerSend):
+    """ALaneFollowingController's functions, fire and forget (typed in api.pyi)."""
+
+    __slots__ = ()
+
+
+class ALaneFollowingController(AController):
+    """An AI controller that drives its possessed AWheeledVehiclePawn along the world's lanes: it keeps to its
+    lane, picks a way at every junction and road end (at random, from RandomSeed), slows for curves, keeps a
+    gap to the car ahead, and waits at a junction while crossing traffic is in it. It drives through the
+    car's throttle, steering and brake, never by moving it. A car more than 6 m from every lane tagged LaneTag
+    (running its way) brakes and waits; possessing it by another controller (a player) takes it over.
+    """
+
+    __slots__ = ()
+    __sp_class__: ClassVar[str] = "ALaneFollowingController"
 
 
 class AMaterialLibraryAsync(AActorAsync):

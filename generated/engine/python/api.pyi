@@ -24,6 +24,7 @@ __all__ = [
     "ADirectionalLight",
     "AGameModeBase",
     "AKinematicVehicle",
+    "ALaneFollowingController",
     "AMaterialLibrary",
     "AMultiViewCameraRig",
     "ANavMeshBoundsVolume",
@@ -1428,6 +1429,135 @@ class AKinematicVehicle(AActor):
 
     @MaxYawRateInDegrees.setter
     def MaxYawRateInDegrees(self, value: float) -> None: ...
+
+
+class ALaneFollowingControllerAsync(AControllerAsync):
+    """ALaneFollowingController's functions, called asynchronously: each returns a Future."""
+
+    def SetTargetSpeed(self, *, NewSpeed: float) -> Future[None]: ...
+
+    def SetMinGap(self, *, NewGap: float) -> Future[None]: ...
+
+    def SetTimeGap(self, *, NewGap: float) -> Future[None]: ...
+
+    def GetLaneLocation(self) -> Future[FZoneGraphLaneLocation]: ...
+
+    def GetLateralOffset(self) -> Future[float]: ...
+
+    def GetGapAhead(self) -> Future[float]: ...
+
+    def IsWaitingAtJunction(self) -> Future[bool]: ...
+
+    def GetRoute(self) -> Future[list[int]]: ...
+
+
+class ALaneFollowingControllerSend(AControllerSend):
+    """ALaneFollowingController's functions, sent without waiting for a result (fire and forget)."""
+
+    def SetTargetSpeed(self, *, NewSpeed: float) -> None: ...
+
+    def SetMinGap(self, *, NewGap: float) -> None: ...
+
+    def SetTimeGap(self, *, NewGap: float) -> None: ...
+
+    def GetLaneLocation(self) -> None: ...
+
+    def GetLateralOffset(self) -> None: ...
+
+    def GetGapAhead(self) -> None: ...
+
+    def IsWaitingAtJunction(self) -> None: ...
+
+    def GetRoute(self) -> None: ...
+
+
+class ALaneFollowingController(AController):
+    """An AI controller that drives its possessed AWheeledVehiclePawn along the world's lanes: it keeps to its
+    lane, picks a way at every junction and road end (at random, from RandomSeed), slows for curves, keeps a
+    gap to the car ahead, and waits at a junction while crossing traffic is in it. It drives through the
+    car's throttle, steering and brake, never by moving it. A car more than 6 m from every lane tagged LaneTag
+    (running its way) brakes and waits; possessing it by another controller (a player) takes it over.
+    """
+
+    __sp_class__: ClassVar[str]
+
+    @property
+    def call_async(self) -> ALaneFollowingControllerAsync:
+        """The same functions, asynchronous: over RPC, queued and sent together at the end of the block."""
+
+    @property
+    def send_async(self) -> ALaneFollowingControllerSend:
+        """The same functions, fire and forget."""
+
+    @property
+    def TargetSpeed(self) -> float:
+        """Speed on a free, straight road, m/s (> 0)."""
+
+    @TargetSpeed.setter
+    def TargetSpeed(self, value: float) -> None: ...
+
+    @property
+    def MinGap(self) -> float:
+        """Bumper-to-bumper gap kept when stopped behind a car, metres (>= 0)."""
+
+    @MinGap.setter
+    def MinGap(self, value: float) -> None: ...
+
+    @property
+    def TimeGap(self) -> float:
+        """Headway kept behind a car at speed, seconds (>= 0)."""
+
+    @TimeGap.setter
+    def TimeGap(self, value: float) -> None: ...
+
+    @property
+    def LaneTag(self) -> str:
+        """The lanes it drives on (a lane tag of the world's AZoneGraphData)."""
+
+    @LaneTag.setter
+    def LaneTag(self, value: str) -> None: ...
+
+    @property
+    def RandomSeed(self) -> int:
+        """Seeds its choices of way at junctions (0: from its name), so a run repeats."""
+
+    @RandomSeed.setter
+    def RandomSeed(self, value: int) -> None: ...
+
+    @property
+    def bDriving(self) -> bool:
+        """False: it brakes and holds the car where it is."""
+
+    @bDriving.setter
+    def bDriving(self, value: bool) -> None: ...
+
+    def SetTargetSpeed(self, *, NewSpeed: float) -> None:
+        """Sets TargetSpeed (m/s, > 0)."""
+
+    def SetMinGap(self, *, NewGap: float) -> None:
+        """Sets MinGap (metres, >= 0)."""
+
+    def SetTimeGap(self, *, NewGap: float) -> None:
+        """Sets TimeGap (seconds, >= 0)."""
+
+    def GetLaneLocation(self) -> FZoneGraphLaneLocation:
+        """Returns where its car is on its lane as of the last frame (LaneIndex -1 while it is off the lanes or
+        has not driven yet).
+        """
+
+    def GetLateralOffset(self) -> float:
+        """Returns its car's distance from its lane's centre line in metres, left positive, as of the last frame."""
+
+    def GetGapAhead(self) -> float:
+        """Returns the bumper-to-bumper gap in metres to the car (or the stop line) ahead on its way, as of the
+        last frame; -1 when there is none within its view.
+        """
+
+    def IsWaitingAtJunction(self) -> bool:
+        """Returns true while it waits (or slows) for a junction that crossing traffic holds."""
+
+    def GetRoute(self) -> list[int]:
+        """Returns the lanes it will drive: the one it is on, then the ones it chose next."""
 
 
 class AMaterialLibraryAsync(AActorAsync):

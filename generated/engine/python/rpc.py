@@ -396,6 +396,85 @@ class AKinematicVehicle(AActor, api.AKinematicVehicle):
 _register_proxy(AKinematicVehicle)
 
 
+class ALaneFollowingController(AController, api.ALaneFollowingController):
+    __slots__ = ()
+
+    @property
+    def TargetSpeed(self) -> float:
+        return cast("float", self._sp_get("ALaneFollowingController", "TargetSpeed", _t.T_float))
+
+    @TargetSpeed.setter
+    def TargetSpeed(self, value: float) -> None:
+        self._sp_set("ALaneFollowingController", "TargetSpeed", value)
+
+    @property
+    def MinGap(self) -> float:
+        return cast("float", self._sp_get("ALaneFollowingController", "MinGap", _t.T_float))
+
+    @MinGap.setter
+    def MinGap(self, value: float) -> None:
+        self._sp_set("ALaneFollowingController", "MinGap", value)
+
+    @property
+    def TimeGap(self) -> float:
+        return cast("float", self._sp_get("ALaneFollowingController", "TimeGap", _t.T_float))
+
+    @TimeGap.setter
+    def TimeGap(self, value: float) -> None:
+        self._sp_set("ALaneFollowingController", "TimeGap", value)
+
+    @property
+    def LaneTag(self) -> str:
+        return cast("str", self._sp_get("ALaneFollowingController", "LaneTag", _t.T_str))
+
+    @LaneTag.setter
+    def LaneTag(self, value: str) -> None:
+        self._sp_set("ALaneFollowingController", "LaneTag", value)
+
+    @property
+    def RandomSeed(self) -> int:
+        return cast("int", self._sp_get("ALaneFollowingController", "RandomSeed", _t.T_int))
+
+    @RandomSeed.setter
+    def RandomSeed(self, value: int) -> None:
+        self._sp_set("ALaneFollowingController", "RandomSeed", value)
+
+    @property
+    def bDriving(self) -> bool:
+        return cast("bool", self._sp_get("ALaneFollowingController", "bDriving", _t.T_bool))
+
+    @bDriving.setter
+    def bDriving(self, value: bool) -> None:
+        self._sp_set("ALaneFollowingController", "bDriving", value)
+
+    def SetTargetSpeed(self, *, NewSpeed: float) -> None:
+        return cast(None, self._sp_call("ALaneFollowingController", "SetTargetSpeed", {"NewSpeed": NewSpeed}, _t.T_void))  # a Future when queued by call_async
+
+    def SetMinGap(self, *, NewGap: float) -> None:
+        return cast(None, self._sp_call("ALaneFollowingController", "SetMinGap", {"NewGap": NewGap}, _t.T_void))  # a Future when queued by call_async
+
+    def SetTimeGap(self, *, NewGap: float) -> None:
+        return cast(None, self._sp_call("ALaneFollowingController", "SetTimeGap", {"NewGap": NewGap}, _t.T_void))  # a Future when queued by call_async
+
+    def GetLaneLocation(self) -> FZoneGraphLaneLocation:
+        return cast("FZoneGraphLaneLocation", self._sp_call("ALaneFollowingController", "GetLaneLocation", {}, _t.T_FZoneGraphLaneLocation))
+
+    def GetLateralOffset(self) -> float:
+        return cast("float", self._sp_call("ALaneFollowingController", "GetLateralOffset", {}, _t.T_float))
+
+    def GetGapAhead(self) -> float:
+        return cast("float", self._sp_call("ALaneFollowingController", "GetGapAhead", {}, _t.T_float))
+
+    def IsWaitingAtJunction(self) -> bool:
+        return cast("bool", self._sp_call("ALaneFollowingController", "IsWaitingAtJunction", {}, _t.T_bool))
+
+    def GetRoute(self) -> list[int]:
+        return cast("list[int]", self._sp_call("ALaneFollowingController", "GetRoute", {}, _t.T_list_of_int))
+
+
+_register_proxy(ALaneFollowingController)
+
+
 class AMaterialLibrary(AActor, api.AMaterialLibrary):
     __slots__ = ()
 

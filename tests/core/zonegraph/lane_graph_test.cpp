@@ -82,10 +82,10 @@ TEST(LaneGraph, FourRoadsEndingTogetherMakeAFourWayJunction) {
     ASSERT_EQ(graph.junctions().size(), 1u);
     EXPECT_EQ(graph.junctions()[0].roads, (std::vector<int>{0, 1, 2, 3}));
     EXPECT_TRUE(graph.junctions()[0].position.isZero(1e-9));
-    // West's forward driving lane arrives at the junction, stopping half the road's width short of it, and
-    // leads into one connector to each other road's leaving driving lane.
+    // West's forward driving lane arrives at the junction, stopping half the road's width and the corner
+    // radius short of it, and leads into one connector to each other road's leaving driving lane.
     const Lane& arriving = graph.lanes()[1];
-    EXPECT_NEAR(arriving.points.back().x(), -5.5, 1e-9);
+    EXPECT_NEAR(arriving.points.back().x(), -(5.5 + BuildOptions().cornerRadius), 1e-9);
     ASSERT_EQ(arriving.next.size(), 3u);
     std::set<int> roads;
     for (const int c : arriving.next) {
@@ -97,7 +97,7 @@ TEST(LaneGraph, FourRoadsEndingTogetherMakeAFourWayJunction) {
         EXPECT_EQ(leaving.tag, graph.tagIndex("Driving"));
         EXPECT_TRUE(connector.points.back().isApprox(leaving.points.front()));
         EXPECT_NEAR((leaving.points.front() - graph.junctions()[0].position).head<2>().norm(),
-                    std::hypot(5.5, 1.75), 1e-9);
+                    std::hypot(5.5 + BuildOptions().cornerRadius, 1.75), 1e-9);
         roads.insert(leaving.road);
     }
     EXPECT_EQ(roads, (std::set<int>{1, 2, 3}));
@@ -199,8 +199,11 @@ TEST(LaneGraph, NearestLaneIsTheScansAnswer) {
         const double reach = i % 3 == 0 ? 4.0 : (i % 3 == 1 ? 30.0 : 1e9);
         const int tag =
             i % 4 == 0 ? graph.tagIndex("Sidewalk") : (i % 4 == 1 ? graph.tagIndex("Driving") : -1);
-        const auto byGrid = graph.nearest(point, reach, tag);
-        const auto byScan = graph.nearestByScan(point, reach, tag);
+        // Every fifth query wants a lane running its way (a car finding its side of the road).
+        const Eigen::Vector3d heading(std::cos(i * 0.7), std::sin(i * 0.7), 0.0);
+        const Eigen::Vector3d* way = i % 5 == 0 ? &heading : nullptr;
+        const auto byGrid = graph.nearest(point, reach, tag, way);
+        const auto byScan = graph.nearestByScan(point, reach, tag, way);
         ASSERT_EQ(byGrid.has_value(), byScan.has_value()) << i;
         if (!byGrid)
             continue;
@@ -212,6 +215,9 @@ TEST(LaneGraph, NearestLaneIsTheScansAnswer) {
             EXPECT_EQ(graph.lanes()[byGrid->lane].tag, tag);
         }
         EXPECT_LE((byGrid->position - point).norm(), reach);
+        if (way) {
+            EXPECT_GT(byGrid->direction.dot(heading), 0.0) << i;
+        }
     }
     EXPECT_GT(found, 2000);
     // Far from every lane: none, not an error.

@@ -40,16 +40,42 @@ TEST(RoadSurface, AJunctionIsPavedBetweenItsRoads) {
                                               {"North", {{0, 0, 0}, {0, 50, 0}}}},
                                              RoadProfile::twoWayStreet());
     const RoadSurface surface = buildRoadSurface(graph);
-    // Four roads' asphalt stopping 5.5 m short of the centre, and the patch between: the square the driving
-    // connectors' ends span (7 m a side at 5.5 m out: corners at (+-5.5, +-3.5) and (+-3.5, +-5.5)).
-    const double roads = 4.0 * 7.0 * (50.0 - 5.5);
-    const double patch = 11.0 * 11.0 - 4.0 * 0.5 * 2.0 * 2.0; // an octagon: the square less four corners
-    EXPECT_NEAR(area(surface.road), roads + patch, 1e-2);
+    // Four roads' asphalt stopping 8.5 m short of the centre (half the road's width and the corner radius),
+    // and the patch between, out to the driving lanes' ends (7 m wide at 8.5 m out) and the corner
+    // sidewalks' inner edges: the octagon with corners (+-8.5, +-3.5) and (+-3.5, +-8.5), less the slivers
+    // where a corner's sidewalk curves inside the octagon's diagonal side.
+    const double out = 5.5 + BuildOptions().cornerRadius;
+    const double roads = 4.0 * 7.0 * (50.0 - out);
+    const double octagon = 4.0 * out * out - 4.0 * 0.5 * (out - 3.5) * (out - 3.5);
+    EXPECT_LT(area(surface.road), roads + octagon);
+    EXPECT_GT(area(surface.road), roads + octagon - 4.0 * 8.0);
     // Sidewalks along the roads, and round each of the four corners (the connectors between neighbouring
-    // roads' sidewalks); none across the junction's middle, where the road is.
-    const double along = 4.0 * 4.0 * (50.0 - 5.5);
-    EXPECT_GT(area(surface.sidewalk), along + 4.0 * 1.0);
-    EXPECT_LT(area(surface.sidewalk), along + 4.0 * 8.0);
+    // roads' sidewalks: a quarter turn about 4 m round, 2 m wide); none across the junction's middle, where
+    // the road is.
+    const double along = 4.0 * 4.0 * (50.0 - out);
+    EXPECT_GT(area(surface.sidewalk), along + 4.0 * 9.0);
+    EXPECT_LT(area(surface.sidewalk), along + 4.0 * 16.0);
+    // The road and the sidewalks do not overlap: no road triangle's centroid lies in a sidewalk triangle.
+    const auto centroids = [](const SurfaceMesh& mesh) {
+        std::vector<Eigen::Vector2f> points;
+        for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+            points.push_back(((mesh.positions[mesh.indices[t]] + mesh.positions[mesh.indices[t + 1]] +
+                               mesh.positions[mesh.indices[t + 2]]) /
+                              3.0f)
+                                 .head<2>());
+        return points;
+    };
+    const auto edge = [](const Eigen::Vector2f& a, const Eigen::Vector2f& b, const Eigen::Vector2f& p) {
+        return (b.x() - a.x()) * (p.y() - a.y()) - (b.y() - a.y()) * (p.x() - a.x());
+    };
+    for (const Eigen::Vector2f& c : centroids(surface.road))
+        for (size_t t = 0; t + 2 < surface.sidewalk.indices.size(); t += 3) {
+            const Eigen::Vector2f a = surface.sidewalk.positions[surface.sidewalk.indices[t]].head<2>(),
+                                  b = surface.sidewalk.positions[surface.sidewalk.indices[t + 1]].head<2>(),
+                                  d = surface.sidewalk.positions[surface.sidewalk.indices[t + 2]].head<2>();
+            EXPECT_FALSE(edge(a, b, c) > 1e-4f && edge(b, d, c) > 1e-4f && edge(d, a, c) > 1e-4f)
+                << "road at " << c.transpose() << " under a sidewalk";
+        }
     for (size_t t = 0; t + 2 < surface.sidewalk.indices.size(); t += 3) {
         const Eigen::Vector3f centroid = (surface.sidewalk.positions[surface.sidewalk.indices[t]] +
                                           surface.sidewalk.positions[surface.sidewalk.indices[t + 1]] +
