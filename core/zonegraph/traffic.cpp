@@ -248,7 +248,7 @@ void Traffic::step(const std::vector<Driver*>& drivers, const std::vector<CarSta
         places.emplace_back(at ? at->lane : -1, at ? at->distance : 0.0);
     }
     findLeaders(drivers, everyone, places, looks);
-    claimJunctions(drivers, cars, looks);
+    claimJunctions(drivers, cars, places, looks);
     for (size_t i = 0; i < n; ++i)
         if (looks[i].onLanes)
             commands[i] = drive(*drivers[i], cars[i], looks[i]);
@@ -311,6 +311,7 @@ void Traffic::findLeaders(const std::vector<Driver*>& drivers, const std::vector
 }
 
 void Traffic::claimJunctions(const std::vector<Driver*>& drivers, const std::vector<CarState>& cars,
+                             const std::vector<std::pair<int, double>>& places,
                              std::vector<Look>& looks) const {
     const auto& lanes = graph_->lanes();
     // A connector stays claimed while it is on the route, and until the car's rear has left it.
@@ -328,6 +329,10 @@ void Traffic::claimJunctions(const std::vector<Driver*>& drivers, const std::vec
         for (int c : driver.claims)
             held.emplace_back(c, i);
     }
+    // A car nobody here drives holds the junction connector it is on: drivers wait for it as for each other.
+    for (size_t j = drivers.size(); j < places.size(); ++j)
+        if (places[j].first >= 0 && isJunctionConnector(lanes[size_t(places[j].first)]))
+            held.emplace_back(places[j].first, j);
 
     // Requests: each driver's first unclaimed connector within a stopping distance. The connector a car is on
     // is claimed whatever else holds one (it is there). A car asks only with nothing ahead of it short of the

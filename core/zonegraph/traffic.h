@@ -102,7 +102,7 @@ class Traffic {
     void findLeaders(const std::vector<Driver*>& drivers, const std::vector<CarState>& cars,
                      const std::vector<std::pair<int, double>>& places, std::vector<Look>& looks) const;
     void claimJunctions(const std::vector<Driver*>& drivers, const std::vector<CarState>& cars,
-                        std::vector<Look>& looks) const;
+                        const std::vector<std::pair<int, double>>& places, std::vector<Look>& looks) const;
     DriveCommand drive(Driver& driver, const CarState& car, Look& look) const;
     // Places the driver on its route from its car's position, or on the nearest lane; false when there is
     // none.

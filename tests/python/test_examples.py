@@ -186,6 +186,32 @@ def test_control_pawn_flies_the_player_and_hands_it_over(transport: str, tmp_pat
 
 
 @pytest.mark.parametrize("transport", TRANSPORTS)
+def test_control_city_sample_drives_traffic_on_lanes_and_hands_the_players_car_over(transport: str,
+                                                                                     tmp_path: Path) -> None:
+    out = tmp_path / "city"
+    result = run_example("control_city_sample.py", "--cars", "8", "--frames", "600", "--handover", "300",
+                         "--every", "60", "--out", str(out), *TRANSPORTS[transport])
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert re.search(r"lanes: \d+ lanes \(Sidewalk, Driving\), 20 junctions", result.stdout), result.stdout
+    assert "player 0 drives PlayerCar from lane " in result.stdout
+    # The player kept to its lane and stopped before the junction, then the autopilot took the car on.
+    stop = re.search(r"frame 300: the player's car stands at (-?[\d.]+) m/s, ([\d.]+) m before the junction",
+                     result.stdout)
+    assert stop, result.stdout
+    assert abs(float(stop.group(1))) < 0.3 and 1.0 < float(stop.group(2)) < 12.0
+    assert "frame 300: the player hands PlayerCar to the autopilot" in result.stdout
+    moved = re.search(r"traffic travelled (\d+) m on average, the player's car (\d+) m; no car was more than "
+                      r"([\d.]+) m off its lane's centre line", result.stdout)
+    assert moved, result.stdout
+    assert int(moved.group(1)) > 30 and int(moved.group(2)) > 15
+    assert float(moved.group(3)) < 1.75  # half a lane
+    assert len(list(out.glob("chase_*.png"))) == 10
+    assert Image.open(out / "map.png").size == (528, 408)
+    strip = Image.open(out.with_suffix(".png"))
+    assert strip.size[1] == 2 * 270 and strip.size[0] > 2 * 480
+
+
+@pytest.mark.parametrize("transport", TRANSPORTS)
 def test_control_car_drives_into_the_crate_and_writes_its_frames(transport: str, tmp_path: Path) -> None:
     out = tmp_path / "car"
     result = run_example("control_car.py", "--out", str(out), *TRANSPORTS[transport])

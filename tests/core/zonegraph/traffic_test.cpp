@@ -192,6 +192,55 @@ TEST(Traffic, ConnectorsThatCrossConflictAndOppositeStraightsDoNot) {
     EXPECT_TRUE(traffic.conflicts(eastToWest, connector(south, west)));
 }
 
+TEST(Traffic, ACarNobodyDrivesHoldsTheJunctionItIsIn) {
+    const std::vector<RoadInput> roads{
+        straight("East", {0, 0, 0}, {80, 0, 0}), straight("North", {0, 0, 0}, {0, 80, 0}),
+        straight("West", {0, 0, 0}, {-80, 0, 0}), straight("South", {0, 0, 0}, {0, -80, 0})};
+    const LaneGraph graph = LaneGraph::build(roads, RoadProfile::twoWayStreet());
+    const Traffic traffic(graph);
+    const int driving = graph.tagIndex("Driving");
+    const Eigen::Vector3d west(-1, 0, 0), south(0, -1, 0);
+    // The driver comes from the east and goes straight on, west; a car stands in the junction on its way
+    // south.
+    const int arriving = graph.nearest({30, 1.75, 0}, 1.0, driving, &west)->lane;
+    int across = -1;
+    for (int c : graph.lanes()[size_t(arriving)].next)
+        if (graph.lanes()[size_t(c)].points.back().x() < -5.0)
+            across = c;
+    ASSERT_GE(across, 0);
+    const int southbound = graph.nearest({-1.75, 30, 0}, 1.0, driving, &south)->lane;
+    int blocking = -1;
+    for (int c : graph.lanes()[size_t(southbound)].next)
+        if (traffic.conflicts(across, c))
+            blocking = c; // one of the southbound car's ways through that crosses or meets it
+    ASSERT_GE(blocking, 0);
+    const LaneLocation standing = graph.locationAt(blocking, graph.lanes()[size_t(blocking)].length() / 2.0);
+    CarState parked;
+    parked.position = standing.position;
+    parked.forward = standing.direction;
+
+    Driver driver;
+    driver.settings.tag = driving;
+    driver.route = {arriving, across};
+    Bicycle car = carAt(graph, arriving, graph.lanes()[size_t(arriving)].length() - 30.0);
+    std::vector<Driver*> drivers{&driver};
+    std::vector<DriveCommand> commands;
+    for (int frame = 0; frame < 60 * 15; ++frame) {
+        traffic.step(drivers, {car.state}, {parked}, commands);
+        car.apply(commands[0], 1.0 / 60.0);
+    }
+    // It waits at the junction's edge (8.5 m out, and its stop margin) while the car stands there...
+    EXPECT_TRUE(driver.waiting);
+    EXPECT_LT(car.state.speed, 0.05);
+    EXPECT_GT(car.state.position.x(), 8.5 + 1.0 + 2.1 - 0.1);
+    // ... and drives through once it has gone.
+    for (int frame = 0; frame < 60 * 10; ++frame) {
+        traffic.step(drivers, {car.state}, {}, commands);
+        car.apply(commands[0], 1.0 / 60.0);
+    }
+    EXPECT_LT(car.state.position.x(), -10.0);
+}
+
 TEST(Traffic, ACarFarFromEveryLaneBrakes) {
     const LaneGraph graph =
         LaneGraph::build({straight("Main", {0, 0, 0}, {100, 0, 0})}, RoadProfile::twoWayStreet());

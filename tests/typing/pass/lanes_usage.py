@@ -36,3 +36,17 @@ def drive_along(game: spear.UWorld) -> list[spear.FVector]:
     indices, positions, _ = lanes.FindNearestLanes(Locations=np.zeros((4, 3)), MaxDistance=5.0, Tag="Driving")
     assert indices.shape == (4,) and positions.shape == (4, 3)
     return route
+
+
+def traffic(game: spear.UWorld, car: spear.AWheeledVehiclePawn) -> tuple[float, list[int]]:
+    """An AI driver for a car, tuned and asked where it is."""
+    driver = game.spawn_actor(uclass=spear.ALaneFollowingController, name="Driver")
+    driver.TargetSpeed, driver.MinGap, driver.TimeGap = 9.0, 2.5, 1.5
+    driver.LaneTag, driver.RandomSeed, driver.bDriving = "Driving", 42, True
+    driver.Possess(InPawn=car)
+    at: spear.FZoneGraphLaneLocation = driver.GetLaneLocation()
+    waiting: bool = driver.IsWaitingAtJunction()
+    gap: float = driver.GetGapAhead()
+    route: list[int] = driver.GetRoute()
+    assert at.LaneIndex >= -1 and (waiting or not waiting)
+    return gap + driver.GetLateralOffset(), route
