@@ -52,7 +52,7 @@ TESTS=(tests/python/test_rpc_transport.py tests/python/test_rpc_robustness.py te
     tests/python/test_misuse_parity.py tests/python/test_set_time_validation.py tests/python/test_async_calls.py
     tests/python/test_process_memory.py tests/python/test_typed_results.py tests/python/test_world_api.py
     tests/python/test_scenes.py tests/python/test_blueprints.py tests/python/test_asset_path.py
-    tests/python/test_file_roots.py tests/python/test_lanes.py)
+    tests/python/test_file_roots.py tests/python/test_lanes.py tests/python/test_traffic.py)
 [[ "${SPEAR_SANITIZE_ALL:-0}" == 1 ]] && TESTS=(tests/python)
 say "sanitize: the Python tests on the RPC transport (${TESTS[*]}), against the instrumented spear-server"
 cd "$ROOT" && SPEAR_SERVER="$ASAN_DIR/package/bin/spear-server" SPEAR_BUILD_DIR="$BUILD_DIR" "$PYTHON" -m pytest -q \

@@ -50,10 +50,12 @@ class LaneTrafficSubsystem : public sp::world::WorldSubsystem {
                 controller ? dynamic_cast<AWheeledVehiclePawn*>(controller->K2_GetPawn()) : nullptr;
             if (!vehicle)
                 continue;
-            if (controller->bDriving)
+            if (controller->bDriving) {
                 driving.emplace_back(controller, vehicle);
-            else
+            } else {
+                controller->resetDriver(); // it says nothing about lanes while it only holds the brake
                 vehicle->ApplyControls(0.0, 0.0, 1.0, 0.0);
+            }
         }
         if (driving.empty())
             return;
@@ -64,11 +66,15 @@ class LaneTrafficSubsystem : public sp::world::WorldSubsystem {
                 if (traffic)
                     warnOnce("ALaneFollowingController: " + controller->GetName() +
                              " waits: no lane is tagged '" + controller->LaneTag + "'");
+                controller->resetDriver();
                 vehicle->ApplyControls(0.0, 0.0, 1.0, 0.0); // no lanes to follow: stop
                 continue;
             }
             zonegraph::Driver& driver = controller->driver();
-            driver.settings.tag = tag;
+            if (driver.settings.tag != tag) { // other lanes: a route on the old ones means nothing
+                controller->resetDriver();
+                driver.settings.tag = tag;
+            }
             drivers_.push_back(&driver);
             cars_.push_back(carState(*vehicle));
             driven_.push_back(vehicle);
@@ -191,12 +197,18 @@ sp::zonegraph::Driver& ALaneFollowingController::driver() {
     return driver_;
 }
 
+void ALaneFollowingController::OnPossess(APawn* /*pawn*/) {
+    resetDriver();
+}
+
 void ALaneFollowingController::resetDriver() {
     driver_.route.clear();
     driver_.claims.clear();
     driver_.distance = driver_.lateral = 0.0;
     driver_.waiting = false;
     driver_.gapAhead = std::numeric_limits<double>::infinity();
+    driver_.requested = -1;
+    driver_.requestFrames = 0;
 }
 
 FZoneGraphLaneLocation ALaneFollowingController::GetLaneLocation() const {

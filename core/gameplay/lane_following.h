@@ -81,6 +81,10 @@ class ALaneFollowingController : public AController {
     // Forgets the route (the lanes were rebuilt, or the car changed).
     void resetDriver();
 
+  protected:
+    // A new car starts from the lanes it is on, not the last car's route.
+    void OnPossess(APawn* pawn) override;
+
   private:
     sp::zonegraph::Driver driver_;
 };
