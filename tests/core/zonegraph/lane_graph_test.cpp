@@ -7,38 +7,14 @@
 #include <gtest/gtest.h>
 
 #include "core/base/error.h"
+#include "tests/core/zonegraph/test_roads.h"
 
 namespace sp::zonegraph {
 namespace {
 
-RoadInput straight(const std::string& name, Eigen::Vector3d a, Eigen::Vector3d b, int points = 2) {
-    RoadInput road{name, {}};
-    for (int i = 0; i < points; ++i)
-        road.points.push_back(a + (b - a) * (double(i) / (points - 1)));
-    return road;
-}
-
-RoadInput circle(const std::string& name, double radius, int points) {
-    RoadInput road{name, {}};
-    for (int i = 0; i <= points; ++i) {
-        const double a = 2.0 * M_PI * (i % points) / points;
-        road.points.emplace_back(radius * std::cos(a), radius * std::sin(a), 0.0);
-    }
-    return road;
-}
-
-// The street grid of a city: every street between two neighbouring intersections is its own road.
-std::vector<RoadInput> grid(int blocks, double block) {
-    std::vector<RoadInput> roads;
-    for (int i = 0; i <= blocks; ++i)
-        for (int j = 0; j < blocks; ++j) {
-            roads.push_back(straight("x" + std::to_string(i) + "_" + std::to_string(j),
-                                     {j * block, i * block, 0.0}, {(j + 1) * block, i * block, 0.0}, 5));
-            roads.push_back(straight("y" + std::to_string(i) + "_" + std::to_string(j),
-                                     {i * block, j * block, 0.0}, {i * block, (j + 1) * block, 0.0}, 5));
-        }
-    return roads;
-}
+using test::circle;
+using test::grid;
+using test::straight;
 
 const RoadProfile kStreet = RoadProfile::twoWayStreet();
 

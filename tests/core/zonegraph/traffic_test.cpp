@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/core/zonegraph/test_roads.h"
+
 namespace sp::zonegraph {
 namespace {
 
@@ -36,18 +38,9 @@ Bicycle carAt(const LaneGraph& graph, int lane, double distance) {
     return car;
 }
 
-RoadInput circle(const std::string& name, double radius, int points) {
-    RoadInput road{name, {}};
-    for (int i = 0; i <= points; ++i) {
-        const double a = 2.0 * M_PI * (i % points) / points;
-        road.points.emplace_back(radius * std::cos(a), radius * std::sin(a), 0.0);
-    }
-    return road;
-}
-
-RoadInput straight(const std::string& name, Eigen::Vector3d a, Eigen::Vector3d b) {
-    return RoadInput{name, {a, b}};
-}
+using test::circle;
+using test::fourWay;
+using test::straight;
 
 // Steps every car's driver and car together for `seconds` at 60 Hz; `watch` sees the cars after each step.
 template <typename Watch>
@@ -125,10 +118,7 @@ TEST(Traffic, ADriverStopsBehindAStandingCarAndKeepsItsGap) {
 
 TEST(Traffic, CarsFromFourSidesTakeTurnsThroughAJunctionWithoutTouching) {
     // Four roads meeting at the origin; a car 30 m out on each, all driving in at once.
-    const std::vector<RoadInput> roads{
-        straight("East", {0, 0, 0}, {80, 0, 0}), straight("North", {0, 0, 0}, {0, 80, 0}),
-        straight("West", {0, 0, 0}, {-80, 0, 0}), straight("South", {0, 0, 0}, {0, -80, 0})};
-    const LaneGraph graph = LaneGraph::build(roads, RoadProfile::twoWayStreet());
+    const LaneGraph graph = LaneGraph::build(fourWay(80.0), RoadProfile::twoWayStreet());
     ASSERT_EQ(graph.junctions().size(), 1u);
     const Traffic traffic(graph);
     // Opposite straight movements pass side by side; crossing ones conflict.
@@ -162,10 +152,7 @@ TEST(Traffic, CarsFromFourSidesTakeTurnsThroughAJunctionWithoutTouching) {
 }
 
 TEST(Traffic, ConnectorsThatCrossConflictAndOppositeStraightsDoNot) {
-    const std::vector<RoadInput> roads{
-        straight("East", {0, 0, 0}, {80, 0, 0}), straight("North", {0, 0, 0}, {0, 80, 0}),
-        straight("West", {0, 0, 0}, {-80, 0, 0}), straight("South", {0, 0, 0}, {0, -80, 0})};
-    const LaneGraph graph = LaneGraph::build(roads, RoadProfile::twoWayStreet());
+    const LaneGraph graph = LaneGraph::build(fourWay(80.0), RoadProfile::twoWayStreet());
     const Traffic traffic(graph);
     const int driving = graph.tagIndex("Driving");
     // The connector from the lane arriving along `from` that leaves along `to`.
@@ -193,10 +180,7 @@ TEST(Traffic, ConnectorsThatCrossConflictAndOppositeStraightsDoNot) {
 }
 
 TEST(Traffic, ACarNobodyDrivesHoldsTheJunctionItIsIn) {
-    const std::vector<RoadInput> roads{
-        straight("East", {0, 0, 0}, {80, 0, 0}), straight("North", {0, 0, 0}, {0, 80, 0}),
-        straight("West", {0, 0, 0}, {-80, 0, 0}), straight("South", {0, 0, 0}, {0, -80, 0})};
-    const LaneGraph graph = LaneGraph::build(roads, RoadProfile::twoWayStreet());
+    const LaneGraph graph = LaneGraph::build(fourWay(80.0), RoadProfile::twoWayStreet());
     const Traffic traffic(graph);
     const int driving = graph.tagIndex("Driving");
     const Eigen::Vector3d west(-1, 0, 0), south(0, -1, 0);
