@@ -100,14 +100,25 @@ const zonegraph::LaneGraph& AZoneGraphData::graph(const char* function) {
     // The roads in spawn order, and what they and the settings are now.
     std::vector<ASplineActor*> roads;
     std::vector<double> key;
+    key.reserve(impl_->builtFrom.size()); // the same size as last time, unless the roads changed
     for (AActor* actor : GetWorld()->find_actors_by_tag(RoadTag))
         if (auto* road = dynamic_cast<ASplineActor*>(actor)) {
             roads.push_back(road);
-            const FTransform t = road->SplineComponent->GetComponentTransform();
+            const USplineComponent& spline = *road->SplineComponent;
             key.insert(key.end(), {double(road->GetHandle().index), double(road->GetHandle().generation),
-                                   double(road->SplineComponent->curveRevision()), t.Translation.X,
-                                   t.Translation.Y, t.Translation.Z, t.Rotation.X, t.Rotation.Y, t.Rotation.Z,
-                                   t.Rotation.W, t.Scale3D.X, t.Scale3D.Y, t.Scale3D.Z});
+                                   double(spline.curveRevision())});
+            // Where the road is: its own transform as set, while nothing it is attached to can move it (no
+            // trigonometry: a query checks every road), else the transform composed through its parents.
+            if (!spline.GetAttachParent()) {
+                const FVector &l = spline.RelativeLocation, &s = spline.RelativeScale3D;
+                const FRotator& r = spline.RelativeRotation;
+                key.insert(key.end(), {0.0, l.X, l.Y, l.Z, r.Pitch, r.Yaw, r.Roll, s.X, s.Y, s.Z});
+            } else {
+                const FTransform t = spline.GetComponentTransform();
+                key.insert(key.end(),
+                           {1.0, t.Translation.X, t.Translation.Y, t.Translation.Z, t.Rotation.X,
+                            t.Rotation.Y, t.Rotation.Z, t.Rotation.W, t.Scale3D.X, t.Scale3D.Y, t.Scale3D.Z});
+            }
         }
     key.push_back(JunctionTolerance);
     for (const FZoneLaneDesc& lane : LaneProfile) {
@@ -170,10 +181,16 @@ UZoneGraphSubsystem& UZoneGraphSubsystem::of(UWorld& world) {
 }
 
 AZoneGraphData* UZoneGraphSubsystem::GetZoneGraphData() {
-    if (AActor* existing = GetWorld()->find_actor_by_class(&AZoneGraphData::StaticClass()))
-        return static_cast<AZoneGraphData*>(existing);
-    return static_cast<AZoneGraphData*>(GetWorld()->spawn_actor(&AZoneGraphData::StaticClass(), FVector(),
-                                                                FRotator(), "ZoneGraphData-Default"));
+    if (auto* known = dynamic_cast<AZoneGraphData*>(sp::reflect::ObjectTable::find(data_));
+        known && known->GetWorld() == GetWorld())
+        return known;
+    auto* data =
+        static_cast<AZoneGraphData*>(GetWorld()->find_actor_by_class(&AZoneGraphData::StaticClass()));
+    if (!data)
+        data = static_cast<AZoneGraphData*>(GetWorld()->spawn_actor(&AZoneGraphData::StaticClass(), FVector(),
+                                                                    FRotator(), "ZoneGraphData-Default"));
+    data_ = data->GetHandle();
+    return data;
 }
 
 const zonegraph::LaneGraph& UZoneGraphSubsystem::graph(const char* function) {

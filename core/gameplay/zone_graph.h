@@ -235,6 +235,10 @@ class UZoneGraphSubsystem : public UObject {
   private:
     const sp::zonegraph::LaneGraph& graph(const char* function);
     int checkedLane(int LaneIndex, const char* function);
+
+    // The AZoneGraphData GetZoneGraphData() found last: still the world's first while it lives (actors keep
+    // their spawn order), so a query does not look through every actor for it.
+    sp::reflect::ObjectHandle data_;
 };
 
 namespace sp::gameplay {

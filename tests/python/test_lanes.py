@@ -134,6 +134,15 @@ def test_changed_roads_rebuild_and_bad_input_is_refused(instance: spear.Instance
         found, location, _ = lanes.FindNearestLane(Location=spear.FVector(8.0, 20.0, 0.0), MaxDistance=3.0, Tag="Driving")
         assert found and location.Position.X == pytest.approx(10.0 - 1.75)
         assert location.Direction.Y == pytest.approx(-1.0)
+        # Attached to an actor that moves, Side moves with it although its own transform stays as it was.
+        carrier = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Carrier")
+        side.SplineComponent.AttachToComponent(Parent=carrier.StaticMeshComponent, bKeepWorldTransform=True)
+        carrier.SetActorLocation(NewLocation=spear.FVector(-4.0, 0.0, 0.0))
+        found, location, _ = lanes.FindNearestLane(Location=spear.FVector(4.0, 20.0, 0.0), MaxDistance=3.0, Tag="Driving")
+        assert found and location.Position.X == pytest.approx(6.0 - 1.75)
+        side.SplineComponent.DetachFromComponent()
+        carrier.SetActorLocation(NewLocation=spear.FVector(0.0, 0.0, 0.0))
+        side.SetActorLocation(NewLocation=spear.FVector(10.0, 0.0, 0.0))
         # A road across Main with no junction: refused naming both roads; the lanes stay as they were.
         _road(game, "Cross", (30.0, -20.0), (30.0, 20.0))
         with pytest.raises(spear.InvalidArgumentError) as raised:
