@@ -66,12 +66,7 @@ bool USkeletalMeshComponent::SetSkeletalMesh(const std::string& NewMesh) {
 }
 
 void USkeletalMeshComponent::SetMaterial(int ElementIndex, const std::string& Material) {
-    SP_CHECK(ElementIndex >= 0 && ElementIndex < 256, sp::InvalidArgument,
-             "USkeletalMeshComponent.SetMaterial(): ElementIndex ", ElementIndex,
-             " is out of range [0, 256)");
-    if (Materials.size() <= size_t(ElementIndex))
-        Materials.resize(size_t(ElementIndex) + 1);
-    Materials[size_t(ElementIndex)] = Material;
+    sp::world::setMaterialSlot(Materials, ElementIndex, Material, "USkeletalMeshComponent.SetMaterial()");
 }
 
 void USkeletalMeshComponent::SetBodyPartIds(bool bEnable) {

@@ -211,3 +211,12 @@ std::vector<UPrimitiveComponent*> UPrimitiveComponent::GetBeginOverlaps() const 
 std::vector<UPrimitiveComponent*> UPrimitiveComponent::GetEndOverlaps() const {
     return sp::world::PhysicsSubsystem::of(*this, "GetEndOverlaps").endedOverlaps(*this, "GetEndOverlaps");
 }
+
+void sp::world::setMaterialSlot(std::vector<std::string>& materials, int index, const std::string& material,
+                                const char* function) {
+    SP_CHECK(index >= 0 && index < 256, sp::InvalidArgument, function, ": ElementIndex ", index,
+             " is out of range [0, 256)");
+    if (materials.size() <= size_t(index))
+        materials.resize(size_t(index) + 1);
+    materials[size_t(index)] = material;
+}

@@ -4,6 +4,7 @@
 // reads them when it synchronises (before each physics step, raycast or physics call), so they may be
 // set through their setters, the registry or a scene file, before or during play.
 
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -187,3 +188,10 @@ class UPrimitiveComponent : public USceneComponent {
 
     void BeginPlay() override;
 };
+
+namespace sp::world {
+// A mesh component's SetMaterial (static and skeletal alike): sets slot `index` of `materials`, growing the
+// list as needed; an index outside [0, 256) is refused naming `function`.
+void setMaterialSlot(std::vector<std::string>& materials, int index, const std::string& material,
+                     const char* function);
+} // namespace sp::world

@@ -95,11 +95,7 @@ bool UStaticMeshComponent::SetStaticMesh(const std::string& NewMesh) {
 }
 
 void UStaticMeshComponent::SetMaterial(int ElementIndex, const std::string& Material) {
-    SP_CHECK(ElementIndex >= 0 && ElementIndex < 256, sp::InvalidArgument,
-             "UStaticMeshComponent.SetMaterial(): ElementIndex ", ElementIndex, " is out of range [0, 256)");
-    if (Materials.size() <= size_t(ElementIndex))
-        Materials.resize(size_t(ElementIndex) + 1);
-    Materials[size_t(ElementIndex)] = Material;
+    sp::world::setMaterialSlot(Materials, ElementIndex, Material, "UStaticMeshComponent.SetMaterial()");
 }
 
 const std::string& UStaticMeshComponent::GetMeshAsset() const {

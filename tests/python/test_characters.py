@@ -354,3 +354,22 @@ def test_characters_share_their_files_materials(instance: spear.Instance) -> Non
     materials, objects = np.unique(pixels["material_ids"]), np.unique(pixels["object_ids"])
     assert len(materials[materials != 0]) == 4
     assert len(objects[objects != 0]) == 8  # one id per (character, slot)
+
+
+def test_mesh_components_set_material_slots_alike(instance: spear.Instance) -> None:
+    """SetMaterial grows a static or a skeletal mesh component's slot list, and refuses a slot outside
+    [0, 256) naming the class, leaving the list as it was."""
+    game = instance.get_game()
+    with instance.begin_frame():
+        skeletal = _character(game)
+        box = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Box").StaticMeshComponent
+        for component, owner in ((skeletal, "USkeletalMeshComponent"), (box, "UStaticMeshComponent")):
+            component.SetMaterial(ElementIndex=2, Material="Paint")
+            assert component.Materials == ["", "", "Paint"]
+            for index in (-1, 256):
+                with pytest.raises(spear.InvalidArgumentError,
+                                   match=rf"^{owner}\.SetMaterial\(\): ElementIndex {index} is out of range \[0, 256\)$"):
+                    component.SetMaterial(ElementIndex=index, Material="Paint")
+            assert component.Materials == ["", "", "Paint"]
+    with instance.end_frame():
+        pass
