@@ -128,8 +128,10 @@ class LaneTrafficSubsystem : public sp::world::WorldSubsystem {
                      error.what());
             return nullptr;
         }
-        if (!traffic_ || revision_ != data->graphRevision() || &traffic_->graph() != graph) {
+        // The traffic refers to the graph: made again for another AZoneGraphData or another build of it.
+        if (!traffic_ || !(data_ == data->GetHandle()) || revision_ != data->graphRevision()) {
             traffic_.emplace(*graph);
+            data_ = data->GetHandle();
             revision_ = data->graphRevision();
             for (const sp::reflect::ObjectHandle& handle : controllers_)
                 if (auto* c = dynamic_cast<ALaneFollowingController*>(sp::reflect::ObjectTable::find(handle)))
@@ -142,6 +144,7 @@ class LaneTrafficSubsystem : public sp::world::WorldSubsystem {
     std::vector<sp::reflect::ObjectHandle> controllers_; // in the order they began play
     std::vector<sp::reflect::ObjectHandle> vehicles_;    // every car of the world
     std::optional<zonegraph::Traffic> traffic_;
+    sp::reflect::ObjectHandle data_; // the AZoneGraphData whose graph traffic_ drives on
     std::uint64_t revision_ = 0;
     std::set<std::string> warned_;
     // Per frame, kept to reuse their memory.

@@ -65,7 +65,8 @@ class ALaneFollowingController : public AController {
     SPFUNCTION()
     double GetGapAhead() const;
 
-    /// Returns true while it waits (or slows) for a junction that crossing traffic holds.
+    /// Returns true while it waits (or slows) at a junction: crossing traffic holds it, or there is no room
+    /// past it.
     SPFUNCTION()
     bool IsWaitingAtJunction() const { return driver_.waiting; }
 

@@ -134,7 +134,7 @@ void bind_ALaneFollowingController(py::module_& m) {
             // The parameters in order; the array lives until the call returns.
             return Calls::call_IsWaitingAtJunction<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
         },
-        "IsWaitingAtJunction(self) -> bool\n\nReturns true while it waits (or slows) for a junction that crossing traffic holds.");
+        "IsWaitingAtJunction(self) -> bool\n\nReturns true while it waits (or slows) at a junction: crossing traffic holds it, or there is no room\npast it.");
     cls.def(
         "GetRoute",
         [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {

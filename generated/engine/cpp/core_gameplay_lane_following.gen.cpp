@@ -144,7 +144,7 @@ const sp::reflect::TypeInfo& ALaneFollowingController::StaticClass() {
         });
         t.functions.push_back({
             "IsWaitingAtJunction",
-            "Returns true while it waits (or slows) for a junction that crossing traffic holds.",
+            "Returns true while it waits (or slows) at a junction: crossing traffic holds it, or there is no room\npast it.",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Bool),
             {
             },

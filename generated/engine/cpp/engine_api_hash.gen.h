@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "b8856e690454c84c";
+inline constexpr char kApiHash[] = "1982ead088e838af";
 } // namespace sp::generated::engine

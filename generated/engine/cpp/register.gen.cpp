@@ -314,4 +314,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::enumInfo_EAnimationMode());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "b8856e690454c84c"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "1982ead088e838af"; }

@@ -1554,7 +1554,9 @@ class ALaneFollowingController(AController):
         """
 
     def IsWaitingAtJunction(self) -> bool:
-        """Returns true while it waits (or slows) for a junction that crossing traffic holds."""
+        """Returns true while it waits (or slows) at a junction: crossing traffic holds it, or there is no room
+        past it.
+        """
 
     def GetRoute(self) -> list[int]:
         """Returns the lanes it will drive: the one it is on, then the ones it chose next."""
