@@ -90,13 +90,13 @@ def spawn_car(game: spear.UWorld, name: str, at: spear.FZoneGraphLaneLocation, p
     return car
 
 
-def place_traffic(game: spear.UWorld, lanes: spear.UZoneGraphSubsystem, count: int,
-                  rng: np.random.Generator) -> tuple[list[spear.AWheeledVehiclePawn], list[spear.ALaneFollowingController]]:
+def place_traffic(game: spear.UWorld, lanes: spear.UZoneGraphSubsystem, count: int, rng: np.random.Generator,
+                  keep_clear: spear.FVector) -> tuple[list[spear.AWheeledVehiclePawn], list[spear.ALaneFollowingController]]:
     """Cars at random points of the city moved onto the nearest driving lane (the paper's call), at least 15 m
-    apart, each with a driver of its own speed."""
+    apart and from `keep_clear`, each with a driver of its own speed."""
     cars: list[spear.AWheeledVehiclePawn] = []
     drivers: list[spear.ALaneFollowingController] = []
-    taken: list[spear.FVector] = []
+    taken: list[spear.FVector] = [keep_clear]
     while len(cars) < count:
         x, y = rng.uniform(0.0, COLUMNS * BLOCK), rng.uniform(0.0, ROWS * BLOCK)
         at = lanes.FindNearestLaneLocationByName(Location=spear.FVector(x, y, 0.0), TagName="Driving", MaxDistance=30.0)
@@ -196,11 +196,11 @@ def main() -> None:
     game = instance.get_game()
     with instance.begin_frame():
         lanes = build_city(game, args.seed)
-        cars, drivers = place_traffic(game, lanes, args.cars, rng)
         # The player's car: on the southern street, heading east, possessed by player 0.
         start = lanes.FindNearestLaneLocationByName(Location=spear.FVector(0.5 * BLOCK, 0.0, 0.0), TagName="Driving")
         if start.Direction.X < 0.0:  # the other way's lane: the one running east lies on the road's other side
             start = lanes.FindNearestLaneLocationByName(Location=spear.FVector(0.5 * BLOCK, -3.0, 0.0), TagName="Driving")
+        cars, drivers = place_traffic(game, lanes, args.cars, rng, keep_clear=start.Position)
         hero = spawn_car(game, "PlayerCar", start, 0)
         player = spear.UGameplayStatics.GetPlayerController(WorldContextObject=game, PlayerIndex=0)
         assert player is not None
