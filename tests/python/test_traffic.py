@@ -74,7 +74,8 @@ def test_a_car_keeps_to_its_lane_round_a_closed_road(instance: spear.Instance) -
             worst = max(worst, abs(lateral))
             speeds.append(speed)
         lanes_seen.add(location.LaneIndex)
-    # Within half a lane width (3.5 m) of the lane's centre all the way round, at its speed, on its own lane.
+    # Within half a lane width (1.75 m of the 3.5 m lane) of the lane's centre all the way round, with room to
+    # spare (under half of that), at its speed, on its own lane.
     assert worst < 1.75 / 2
     assert travelled > 262.0
     assert sum(speeds) / len(speeds) == pytest.approx(8.0, abs=0.8)
