@@ -7,6 +7,7 @@
 #include <numbers>
 #include <optional>
 #include <set>
+#include <unordered_set>
 #include <utility>
 
 #include "core/base/error.h"
@@ -83,9 +84,10 @@ class LaneTrafficSubsystem : public sp::world::WorldSubsystem {
             return;
         // Every other car (a player's, a parked one, one whose driver waits) is in the drivers' way.
         others_.clear();
+        const std::unordered_set<const AWheeledVehiclePawn*> driven(driven_.begin(), driven_.end());
         for (const sp::reflect::ObjectHandle& handle : vehicles_)
             if (auto* vehicle = dynamic_cast<AWheeledVehiclePawn*>(sp::reflect::ObjectTable::find(handle));
-                vehicle && std::find(driven_.begin(), driven_.end(), vehicle) == driven_.end())
+                vehicle && !driven.contains(vehicle))
                 others_.push_back(carState(*vehicle));
         traffic->step(drivers_, cars_, others_, commands_);
         for (size_t i = 0; i < driven_.size(); ++i)

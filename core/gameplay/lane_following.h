@@ -31,7 +31,7 @@ class ALaneFollowingController : public AController {
     /// Headway kept behind a car at speed, seconds (>= 0).
     SPPROPERTY(Setter = SetTimeGap)
     double TimeGap = 1.2;
-    /// The lanes it drives on (a lane tag of the world's AZoneGraphData).
+    /// The lanes it drives on (a lane tag of the world's AZoneGraphData; "": lanes of every tag).
     SPPROPERTY()
     std::string LaneTag = "Driving";
     /// Seeds its choices of way at junctions (0: from its name), so a run repeats.

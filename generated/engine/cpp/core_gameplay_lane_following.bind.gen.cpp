@@ -67,7 +67,7 @@ void bind_ALaneFollowingController(py::module_& m) {
         [](const Ref<Self>& self, const PyArg& value) {
             Calls::set_LaneTag<PyCall>(self.get<Self>("ALaneFollowingController.LaneTag"), value);
         },
-        "The lanes it drives on (a lane tag of the world's AZoneGraphData).");
+        "The lanes it drives on (a lane tag of the world's AZoneGraphData; \"\": lanes of every tag).");
     cls.def_property(
         "RandomSeed",
         [](const Ref<Self>& self) { return Calls::get_RandomSeed<PyCall>(self.get<Self>("ALaneFollowingController.RandomSeed")); },

@@ -52,7 +52,7 @@ const sp::reflect::TypeInfo& ALaneFollowingController::StaticClass() {
         t.properties.push_back({
             "LaneTag",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
-            "The lanes it drives on (a lane tag of the world's AZoneGraphData).",
+            "The lanes it drives on (a lane tag of the world's AZoneGraphData; \"\": lanes of every tag).",
             false,
             [](const void* self) { return Calls::get_LaneTag<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
             [](void* self, const sp::reflect::Value& value) {

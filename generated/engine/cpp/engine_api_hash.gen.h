@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "1982ead088e838af";
+inline constexpr char kApiHash[] = "078104124e8b1ec9";
 } // namespace sp::generated::engine

@@ -1512,7 +1512,7 @@ class ALaneFollowingController(AController):
 
     @property
     def LaneTag(self) -> str:
-        """The lanes it drives on (a lane tag of the world's AZoneGraphData)."""
+        """The lanes it drives on (a lane tag of the world's AZoneGraphData; "": lanes of every tag)."""
 
     @LaneTag.setter
     def LaneTag(self, value: str) -> None: ...
