@@ -16,13 +16,6 @@ namespace sp::zonegraph {
 
 namespace {
 
-// The parameter in [0, 1] of the point of segment ab nearest p.
-double nearestOnSegment(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& p) {
-    const Eigen::Vector3d ab = b - a;
-    const double len2 = ab.squaredNorm();
-    return len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-}
-
 // Centre-line points closer than this to the line through their neighbours add nothing (metres).
 constexpr double kSimplifyTolerance = 0.0005;
 

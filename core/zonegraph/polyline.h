@@ -26,4 +26,11 @@ inline Eigen::Vector3d pointAtArcLength(const std::vector<Eigen::Vector3d>& poin
     return points[i - 1] + (span > 0.0 ? (d - s[i - 1]) / span : 0.0) * (points[i] - points[i - 1]);
 }
 
+// The parameter in [0, 1] of the point of segment ab nearest p (on the ground or in space).
+template <typename Vector> double nearestOnSegment(const Vector& a, const Vector& b, const Vector& p) {
+    const Vector ab = b - a;
+    const double len2 = ab.squaredNorm();
+    return len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+}
+
 } // namespace sp::zonegraph

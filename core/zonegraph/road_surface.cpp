@@ -69,14 +69,16 @@ void addLine(SurfaceMesh& mesh, const std::vector<Eigen::Vector3d>& line, bool d
     }
 }
 
+// The bearing of p seen from a junction's centre, radians counter-clockwise from +X.
+double bearingFrom(const Eigen::Vector3d& centre, const Eigen::Vector3d& p) {
+    return std::atan2(p.y() - centre.y(), p.x() - centre.x());
+}
+
 // A junction's corner sidewalks: the sidewalk connectors between neighbouring roads, round the block
 // between them. Around a junction a lane arriving on a road's right edge has the next road counter-clockwise
 // on its right (the corner it walks round); a sidewalk connector to any other road crosses a road.
 std::vector<int> cornerSidewalks(const LaneGraph& graph, const std::vector<int>& connectors,
                                  const Eigen::Vector3d& centre) {
-    const auto bearing = [&](const Eigen::Vector3d& p) {
-        return std::atan2(p.y() - centre.y(), p.x() - centre.x());
-    };
     // Each piece's bearing from the centre, from its lanes' ends there.
     std::map<int, Eigen::Vector3d> ends;
     for (const int l : connectors) {
@@ -89,7 +91,7 @@ std::vector<int> cornerSidewalks(const LaneGraph& graph, const std::vector<int>&
     }
     std::vector<std::pair<double, int>> around;
     for (const auto& [piece, at] : ends)
-        around.emplace_back(bearing(at), piece);
+        around.emplace_back(bearingFrom(centre, at), piece);
     std::sort(around.begin(), around.end());
     std::map<int, int> nextCounterClockwise;
     for (size_t i = 0; i < around.size(); ++i)
@@ -159,11 +161,8 @@ RoadSurface buildRoadSurface(const LaneGraph& graph, const SurfaceOptions& optio
             for (size_t i = 0; i < turn.points.size(); ++i)
                 boundary.push_back(turn.points[i] + 0.5 * turn.width * left[i]);
         }
-        const auto bearing = [&](const Eigen::Vector3d& p) {
-            return std::atan2(p.y() - centre.y(), p.x() - centre.x());
-        };
         std::sort(boundary.begin(), boundary.end(), [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-            return bearing(a) < bearing(b);
+            return bearingFrom(centre, a) < bearingFrom(centre, b);
         });
         if (boundary.size() < 3)
             continue;

@@ -1,5 +1,7 @@
 #include "core/zonegraph/traffic.h"
 
+#include "core/zonegraph/polyline.h"
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -23,10 +25,7 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 }
 
 double pointToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    const Eigen::Vector2d ab = b - a;
-    const double len2 = ab.squaredNorm();
-    const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-    return (a + t * ab - p).norm();
+    return (a + nearestOnSegment(a, b, p) * (b - a) - p).norm();
 }
 
 // The distance between segments ab and cd on the ground: zero where they cross.
@@ -68,10 +67,8 @@ LaneLocation projectNear(const LaneGraph& graph, int laneIndex, const Eigen::Vec
         if (lane.distances[i] < low || lane.distances[i - 1] > high)
             continue;
         const Eigen::Vector3d &a = lane.points[i - 1], &b = lane.points[i];
-        const Eigen::Vector3d ab = b - a;
-        const double len2 = ab.squaredNorm();
-        const double t = len2 > 0.0 ? std::clamp((point - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-        const double d2 = (a + t * ab - point).squaredNorm();
+        const double t = nearestOnSegment(a, b, point);
+        const double d2 = (a + t * (b - a) - point).squaredNorm();
         if (d2 < best) {
             best = d2;
             bestDistance = lane.distances[i - 1] + t * (lane.distances[i] - lane.distances[i - 1]);
