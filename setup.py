@@ -89,7 +89,8 @@ setup(
     package_dir={"": "python"},
     packages=["spear", "spear._engine"],
     package_data={
-        "spear": ["py.typed", "*.pyi", "_spear_engine*.so", "bin/spear-server", "lib/*.so"],
+        "spear": ["py.typed", "*.pyi", "_spear_engine*.so", "bin/spear-server", "lib/*.so",
+                  "inspector/*.html", "inspector/*.css", "inspector/**/*.js"],
         "spear._engine": ["*.pyi"],
     },
     entry_points={"console_scripts": ["spear-server = spear._server_command:main"]},

@@ -4,6 +4,8 @@
 #   bash test.sh
 source "$(dirname "${BASH_SOURCE[0]}")/scripts/common.sh"
 install_dependencies
+# A browser for the inspector's end-to-end tests (tests/python/test_inspector_browser.py).
+install_dependencies "$ROOT/scripts/debian-test-packages.txt"
 install_pyright
 
 # Before the build, which regenerates generated/: the committed copy must already match the headers.

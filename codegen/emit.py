@@ -115,8 +115,14 @@ class OutputLayout:
     def python_files(self) -> list[str]:
         return [f"{self.py_dir}/{name}" for name in PYTHON_FILES]
 
+    def ts_files(self) -> list[str]:
+        """The typed TypeScript client (the browser inspector's), for the engine's own module only: its runtime
+        lives in this repository's inspector/."""
+        return [f"{self.module}/ts/api.gen.ts"] if self.module == naming.ENGINE_MODULE and not self.package_name else []
+
     def files(self, module: Module) -> list[str]:
-        return sorted(self.cpp_files(module) + self.python_files() + [f"{self.module}/reflection.json"])
+        return sorted(self.cpp_files(module) + self.python_files() + self.ts_files() +
+                      [f"{self.module}/reflection.json"])
 
 
 # -- rendering -------------------------------------------------------------------------------------
@@ -213,6 +219,10 @@ def render(module: Module, layout: OutputLayout | None = None) -> dict[str, str]
     py = pyviews.module_view(module)
     for name in PYTHON_FILES:
         out[f"{layout.py_dir}/{name}"] = env.get_template(f"{name}.j2").render(**{**py, **common})
+    if layout.ts_files():
+        from codegen import tsviews
+
+        out[layout.ts_files()[0]] = env.get_template("api.gen.ts.j2").render(**{**tsviews.module_view(module), **common})
     out[f"{module.name}/reflection.json"] = module.to_json()
     assert sorted(out) == layout.files(module), "OutputLayout.files() is out of date"
     return out

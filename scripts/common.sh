@@ -22,14 +22,17 @@ test_jobs() {
     echo "${SPEAR_TEST_JOBS:-$((cores < 4 ? cores : 4))}"
 }
 
+# Installs the Debian packages of a list (default: scripts/debian-packages.txt, what building and running need)
+# that are missing.
 install_dependencies() {
+    local list="${1:-$ROOT/scripts/debian-packages.txt}"
     local missing=()
     while read -r pkg; do
         [[ -z "$pkg" || "$pkg" == \#* ]] && continue
         dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || missing+=("$pkg")
-    done < "$ROOT/scripts/debian-packages.txt"
+    done < "$list"
     if ((${#missing[@]} == 0)); then
-        say "dependencies: all $(grep -cv '^#' "$ROOT/scripts/debian-packages.txt") Debian packages present"
+        say "dependencies: all $(grep -cv '^#' "$list") Debian packages of $(basename "$list") present"
         return
     fi
     say "dependencies: installing ${missing[*]}"
@@ -39,20 +42,37 @@ install_dependencies() {
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 }
 
-# pyright for the typing tests, from the npm registry, pinned by tests/typing/pyright/package-lock.json.
-install_pyright() {
-    local dir="$ROOT/tests/typing/pyright"
-    if ! command -v npm >/dev/null 2>&1; then
-        say "dependencies: installing nodejs and npm (for pyright)"
-        local sudo=""
-        [[ $(id -u) -ne 0 ]] && sudo="sudo"
-        $sudo apt-get update -qq
-        DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends nodejs npm
-    fi
-    if [[ ! -x "$dir/node_modules/.bin/pyright" || "$dir/package-lock.json" -nt "$dir/node_modules/.package-lock.json" ]]; then
-        say "dependencies: pyright (npm ci in tests/typing/pyright)"
+# Debian's node and npm, for the tools pinned from the npm registry: pyright (the typing tests) and tsc (the
+# inspector page).
+ensure_npm() {
+    command -v npm >/dev/null 2>&1 && return
+    say "dependencies: installing nodejs and npm"
+    local sudo=""
+    [[ $(id -u) -ne 0 ]] && sudo="sudo"
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends nodejs npm
+}
+
+# npm ci in folder $1 when its tool $2 (node_modules/.bin/$2) is missing or older than its package-lock.json.
+npm_ci_if_stale() {
+    local dir="$1" tool="$2"
+    if [[ ! -x "$dir/node_modules/.bin/$tool" || "$dir/package-lock.json" -nt "$dir/node_modules/.package-lock.json" ]]; then
+        say "dependencies: $tool (npm ci in ${dir#"$ROOT"/})"
         npm ci --prefix "$dir" --no-audit --no-fund --loglevel=error
     fi
+}
+
+# pyright for the typing tests, pinned by tests/typing/pyright/package-lock.json.
+install_pyright() {
+    ensure_npm
+    npm_ci_if_stale "$ROOT/tests/typing/pyright" pyright
+}
+
+# tsc for the inspector page and its generated client, pinned by inspector/package-lock.json (the build compiles
+# the page when it is there).
+install_typescript() {
+    ensure_npm
+    npm_ci_if_stale "$ROOT/inspector" tsc
 }
 
 # Runs the generator (`generate`, `check`, `dump-ir`) on the engine's reflected headers with the arguments the
@@ -77,6 +97,7 @@ unity_build_option() {
 }
 
 build() {
+    install_typescript
     say "build: configuring and building in $BUILD_DIR"
     # Warnings are errors in the project's own code (not in Debian's headers): the tree builds clean.
     # A folder configured before (by hand, with CMake's default generator) keeps its generator: CMake

@@ -276,7 +276,7 @@ std::shared_ptr<void> Engine::shared(std::string_view key,
 }
 
 void Engine::checkInFrame(std::string_view context) const {
-    SP_CHECK(IsInFrame(), InvalidState, context,
+    SP_CHECK(IsInFrame() || (inspections_ > 0 && !ticking_), InvalidState, context,
              ": called outside a frame; engine objects are used inside 'with instance.begin_frame():' or "
              "'with instance.end_frame():'");
 }

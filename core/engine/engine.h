@@ -93,8 +93,21 @@ class Engine final : public world::WorldHost {
 
     FrameState GetFrameState() const { return state_; }
     bool IsInFrame() const { return state_ == FrameState::BeginFrame || state_ == FrameState::EndFrame; }
-    // Throws InvalidState: "<context>: called outside a frame; use 'with instance.begin_frame():' ...".
+    // Throws InvalidState: "<context>: called outside a frame; use 'with instance.begin_frame():' ...",
+    // unless an Inspection is open.
     void checkInFrame(std::string_view context) const override;
+    // While one is alive, engine objects may be used outside a frame (not while the world ticks): the
+    // inspector's reads and edits of a paused simulation, which must not tick the world to look at it.
+    class Inspection {
+      public:
+        explicit Inspection(Engine& engine) : engine_(engine) { ++engine_.inspections_; }
+        ~Inspection() { --engine_.inspections_; }
+        Inspection(const Inspection&) = delete;
+        Inspection& operator=(const Inspection&) = delete;
+
+      private:
+        Engine& engine_;
+    };
     int64_t GetFrameCount() const { return frameCount_; }
 
     static std::string_view toString(FrameState state);
@@ -108,6 +121,7 @@ class Engine final : public world::WorldHost {
     std::unique_ptr<UWorld> gameWorld_;
     std::vector<std::unique_ptr<UWorld>> createdWorlds_;
     bool ticking_ = false; // inside executeFrame()'s ticks
+    int inspections_ = 0;  // open Inspection scopes
     FrameState state_ = FrameState::Idle;
     int64_t frameCount_ = 0;
 };

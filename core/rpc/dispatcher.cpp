@@ -35,15 +35,16 @@ reflect::ObjectBase& requireObject(const Request& request, std::string_view cont
     return object;
 }
 
-// Compares in time that depends on the lengths only, not on how many leading characters of a guess are right.
+} // namespace
+
 bool sameSecret(const std::string& given, const std::string& secret) {
+    if (secret.empty())
+        return false; // nothing to prove it against (and no length to compare in constant time)
     unsigned char difference = given.size() == secret.size() ? 0 : 1;
     for (size_t i = 0; i < given.size(); ++i)
         difference |= static_cast<unsigned char>(given[i] ^ secret[i % secret.size()]);
     return difference == 0;
 }
-
-} // namespace
 
 void packError(msgpack::packer<msgpack::sbuffer>& out, const msgpack::object* id, const char* type,
                const std::string& message) {
@@ -172,6 +173,15 @@ bool Dispatcher::handleOne(const msgpack::object& message, Session& session, msg
                     critical[at.via.u64] = true;
                 }
             }
+            // "between_frames": the calls may use engine objects outside a frame, without ticking the world
+            // (the inspector, looking at a paused simulation; Engine::Inspection).
+            std::optional<engine::Engine::Inspection> inspection;
+            if (const msgpack::object* between = request.field("between_frames")) {
+                SP_CHECK(between->type == msgpack::type::BOOLEAN, InvalidArgument,
+                         "batch(): 'between_frames' must be a bool");
+                if (between->via.boolean)
+                    inspection.emplace(engine_);
+            }
             out.pack_map(2);
             out.pack(std::string("id"));
             id ? out.pack(*id) : out.pack_nil();
@@ -294,7 +304,8 @@ Value Dispatcher::hello(const Request& request, Session& session) {
     const std::string given = token && token->type == msgpack::type::STR
                                   ? std::string(token->via.str.ptr, token->via.str.size)
                                   : "";
-    if (!token_.empty() && !sameSecret(given, token_)) {
+    const std::string& expected = session.browser ? session.requiredToken : token_;
+    if ((session.browser || !expected.empty()) && !sameSecret(given, expected)) {
         session.closeAfterReply = true;
         session.tokenRefused = true;
         SP_THROW(InvalidArgument, "hello(): wrong or missing token");
@@ -309,7 +320,10 @@ Value Dispatcher::hello(const Request& request, Session& session) {
                       {"pid", Value(int64_t(::getpid()))},
                       {"reply_buffers", Value(bool(session.offerReplyBuffer))}};
     // A segment holding a nonce only a client that can map the server's segments reads (shm_proof). Where
-    // none can be made (no /dev/shm), the reply names none and this connection's replies stay inline.
+    // none can be made (no /dev/shm), the reply names none and this connection's replies stay inline; a
+    // browser never maps one.
+    if (session.browser)
+        return Value(std::move(reply));
     try {
         std::random_device random;
         std::string nonce;

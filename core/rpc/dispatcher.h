@@ -16,10 +16,12 @@
 //   call {class, function, args}  invoke a static function of a class (no object)
 //   get {object, property}, set {object, property, value}
 //   is_valid {object}, describe {object}
-//   batch {calls: [request...], critical: [i...]}
+//   batch {calls: [request...], critical: [i...], between_frames}
 //                                 many calls in one message; one reply per call, in order; when a call
 //                                 at a critical position fails, the later ones are not run (their replies
-//                                 say so): a client sends a frame's begin with its block's calls
+//                                 say so): a client sends a frame's begin with its block's calls. With
+//                                 between_frames true, the calls may use objects outside a frame without
+//                                 ticking the world (the inspector's view of a paused simulation)
 //   echo {value}                  returns value (diagnostics; measures the transport alone)
 //   shutdown                      stop the server after replying
 // Any request may also carry "reply_buffers" and "dropped_buffers" (see Session).
@@ -55,10 +57,18 @@ struct Session {
     // that it can map the server's segments (shm_proof), so that a client on another host, or with a /dev/shm
     // of its own, gets them inline in the reply instead of a segment name it cannot open.
     bool sharedMemoryReplies = false;
+    // The inspector's connections (a browser, over WebSocket): hello must give requiredToken whatever the
+    // server's own token (a Unix socket server has none), and no shared-memory probe is offered.
+    bool browser = false;
+    std::string requiredToken;
     // The segment hello named and the nonce it holds, until the proof (or the end of the session) removes it.
     std::shared_ptr<SharedMemorySegment> probe;
     std::string probeNonce;
 };
+
+// Whether `given` is `secret` (never when `secret` is empty), compared in time that depends on the lengths
+// only, not on how many leading characters of a guess are right.
+bool sameSecret(const std::string& given, const std::string& secret);
 
 // An error reply {"id": id (nil without one), "error": [type, message]}, `type` a spear.errors class name.
 void packError(msgpack::packer<msgpack::sbuffer>& out, const msgpack::object* id, const char* type,

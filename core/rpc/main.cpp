@@ -6,6 +6,7 @@
 //                                                                           works too, but any local user
 //                                                                           can read a command line)
 //   spear-server --socket /tmp/spear.sock --mode editor --scene assets/scenes/apartment.json
+//   spear-server --socket /tmp/spear.sock --inspect 8080    (and a browser on the address it prints)
 //   spear-server --socket /tmp/spear.sock --plugin build/plugin/python/my_plugin/libmy_plugin.so
 //   SPEAR_PLUGIN_PATH=build/plugin/python spear-server --socket /tmp/spear.sock --plugin my_plugin
 //
@@ -23,6 +24,11 @@
 // SPEAR_RPC_SPIN_US (microseconds, default 100) is how long the server polls its sockets before it sleeps
 // (spin_poll.h); a client that launches the server passes its own setting on through the environment.
 //
+// --inspect PORT serves the inspector (a page in the browser over the same protocol; server.h) on loopback,
+// guarded by the TCP token or, on a Unix socket, by a token made for it; the page is in --inspect-root
+// (default: the inspector folder of the package, beside bin/). It prints "spear-server: inspector on
+// http://...?token=...".
+//
 // Prints "spear-server: listening on <address>" once it accepts connections (clients that launch a
 // server wait for that line), and exits cleanly on SIGTERM, SIGINT or a client's shutdown request.
 
@@ -38,6 +44,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <set>
 #include <sstream>
 #include <string>
@@ -62,7 +69,7 @@ void usage(std::FILE* to = stderr) {
         "ADDRESS])\n"
         "                    [--mode game|editor] [--scene FILE] [--fixed-delta-seconds S]\n"
         "                    [--plugin LIBRARY|NAME]... [--allow-remote-plugin-load] [--file-root DIR]...\n"
-        "                    [--exit-with-parent]\n"
+        "                    [--inspect PORT [--inspect-root DIR]] [--exit-with-parent]\n"
         "  The TCP token may also come from the SPEAR_TOKEN environment variable.\n");
 }
 
@@ -85,6 +92,18 @@ std::string readTokenFile(const std::string& path) {
     while (!token.empty() && (token.back() == '\n' || token.back() == '\r'))
         token.pop_back();
     SP_CHECK(!token.empty(), sp::InvalidArgument, "spear-server: --token-file '", path, "' is empty");
+    return token;
+}
+
+// 128 random bits in hex: the inspector's token where the server has none (a Unix socket).
+std::string randomToken() {
+    std::random_device random;
+    std::string token;
+    for (int i = 0; i < 4; ++i) {
+        char word[9];
+        std::snprintf(word, sizeof(word), "%08x", unsigned(random()));
+        token += word;
+    }
     return token;
 }
 
@@ -115,8 +134,8 @@ int main(int argc, char** argv) {
         options.token = token;
     // The options that take a value: one given last without it is named, not taken for an unknown option.
     static const std::set<std::string> kValued{
-        "--socket", "--port",  "--bind",   "--token",    "--token-file", "--fixed-delta-seconds",
-        "--mode",   "--scene", "--plugin", "--file-root"};
+        "--socket", "--port",  "--bind",   "--token",     "--token-file", "--fixed-delta-seconds",
+        "--mode",   "--scene", "--plugin", "--file-root", "--inspect",    "--inspect-root"};
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         const bool hasValue = i + 1 < argc;
@@ -157,6 +176,10 @@ int main(int argc, char** argv) {
             plugins.push_back(argv[++i]);
         else if (arg == "--file-root" && hasValue)
             fileRoots.push_back(argv[++i]);
+        else if (arg == "--inspect" && hasValue)
+            options.inspectPort = std::atoi(argv[++i]);
+        else if (arg == "--inspect-root" && hasValue)
+            options.inspectRoot = argv[++i];
         else if (arg == "--exit-with-parent") {
             // The launcher's pid when it says it (a launcher gone before this line ran left us to init or
             // a subreaper, whose pid getppid() would return), else the parent's now.
@@ -183,8 +206,14 @@ int main(int argc, char** argv) {
             sp::plugin::load(path);
         // Built-in assets: beside an installed package (spear/bin/spear-server, spear/assets), else the
         // checkout the server was built from. Before the engine, whose --scene may be one.
-        const std::string builtin = sp::useBuiltinAssetsOf(
-            std::filesystem::read_symlink("/proc/self/exe").parent_path().parent_path());
+        const std::filesystem::path package =
+            std::filesystem::read_symlink("/proc/self/exe").parent_path().parent_path();
+        const std::string builtin = sp::useBuiltinAssetsOf(package);
+        if (options.inspectPort >= 0) {
+            if (options.inspectRoot.empty())
+                options.inspectRoot = (package / "inspector").string();
+            options.inspectToken = options.token.empty() ? randomToken() : options.token;
+        }
         sp::engine::Engine engine(settings);
         // After the engine has read the server's own --scene: from here on, paths come from clients. They
         // may read the built-in assets and the asset folders the server's user named (SPEAR_ASSET_PATH).
@@ -210,6 +239,9 @@ int main(int argc, char** argv) {
         if (exitWithParent > 0)
             watchParent(exitWithParent);
         std::printf("spear-server: listening on %s\n", server.address().c_str());
+        if (!server.inspectAddress().empty())
+            std::printf("spear-server: inspector on %s?token=%s\n", server.inspectAddress().c_str(),
+                        options.inspectToken.c_str());
         std::fflush(stdout);
         server.run();
     } catch (const std::exception& e) {

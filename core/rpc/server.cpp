@@ -28,6 +28,7 @@
 #include "core/base/progress.h"
 #include "core/plugin/plugin_loader.h"
 #include "core/rpc/spin_poll.h"
+#include "core/rpc/web.h"
 
 namespace sp::rpc {
 
@@ -66,11 +67,38 @@ void removeStaleSocket(const std::string& path, const sockaddr_un& address) {
     SP_CHECK(!live, InvalidState, "spear-server: --socket '", path, "': another server is listening there");
     ::unlink(path.c_str());
 }
+
+// A TCP socket bound to address:port (0: a free one, written to boundPort).
+int listenTcp(const std::string& bindAddress, int port, int& boundPort) {
+    const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    SP_CHECK(fd >= 0, Error, "spear-server: socket failed: ", std::strerror(errno));
+    int one = 1;
+    ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one));
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_port = htons(uint16_t(port));
+    if (::inet_pton(AF_INET, bindAddress.c_str(), &address.sin_addr) != 1) {
+        ::close(fd);
+        SP_THROW(InvalidArgument, "spear-server: bad bind address '", bindAddress, "'");
+    }
+    if (::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address)) != 0) {
+        const int error = errno;
+        ::close(fd);
+        SP_THROW(Error, "spear-server: cannot bind ", bindAddress, ":", port, ": ", std::strerror(error));
+    }
+    socklen_t length = sizeof(address);
+    ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length);
+    boundPort = ntohs(address.sin_port);
+    return fd;
+}
 } // namespace
 
 struct Server::Connection {
     int fd = -1;
-    std::string peer; // TCP: the client's address; Unix socket: its user id (for token failures)
+    // The inspector's connections start as HTTP and either switch to WebSocket or close after one response.
+    enum class Transport { Socket, Http, WebSocket } transport = Transport::Socket;
+    std::string webInput; // bytes read but not yet decoded: an HTTP head, or WebSocket frames
+    std::string peer;     // TCP: the client's address; Unix socket: its user id (for token failures)
     std::chrono::steady_clock::time_point helloDeadline; // dropped if still not greeted then
     std::string inbox;
     // Replies the socket did not take yet, oldest first; the first is sent from outboxOffset on. The
@@ -140,20 +168,7 @@ Server::Server(engine::Engine& engine, ServerOptions options, std::string apiHas
     if (options_.tcpPort >= 0) {
         SP_CHECK(!options_.token.empty(), InvalidArgument,
                  "spear-server: TCP needs a token (--token or SPEAR_TOKEN)");
-        listenFd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-        int one = 1;
-        ::setsockopt(listenFd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one));
-        sockaddr_in address{};
-        address.sin_family = AF_INET;
-        address.sin_port = htons(uint16_t(options_.tcpPort));
-        SP_CHECK(::inet_pton(AF_INET, options_.bindAddress.c_str(), &address.sin_addr) == 1, InvalidArgument,
-                 "spear-server: bad bind address '", options_.bindAddress, "'");
-        SP_CHECK(::bind(listenFd_, reinterpret_cast<sockaddr*>(&address), sizeof(address)) == 0, Error,
-                 "spear-server: cannot bind ", options_.bindAddress, ":", options_.tcpPort, ": ",
-                 std::strerror(errno));
-        socklen_t length = sizeof(address);
-        ::getsockname(listenFd_, reinterpret_cast<sockaddr*>(&address), &length);
-        boundPort_ = ntohs(address.sin_port);
+        listenFd_ = listenTcp(options_.bindAddress, options_.tcpPort, boundPort_);
     } else {
         SP_CHECK(!options_.socketPath.empty() && options_.socketPath.size() < sizeof(sockaddr_un::sun_path),
                  InvalidArgument, "spear-server: bad socket path '", options_.socketPath, "'");
@@ -170,6 +185,14 @@ Server::Server(engine::Engine& engine, ServerOptions options, std::string apiHas
                  "': ", std::strerror(errno));
     }
     SP_CHECK(::listen(listenFd_, 16) == 0, Error, "spear-server: listen failed: ", std::strerror(errno));
+    if (options_.inspectPort >= 0) {
+        SP_CHECK(!options_.inspectToken.empty(), InvalidArgument, "spear-server: --inspect needs a token");
+        SP_CHECK(std::filesystem::is_regular_file(std::filesystem::path(options_.inspectRoot) / "index.html"),
+                 NotFound, "spear-server: --inspect: no inspector page at '", options_.inspectRoot,
+                 "/index.html' (build the inspector: cmake --build, with npm present)");
+        inspectFd_ = listenTcp(options_.bindAddress, options_.inspectPort, inspectBoundPort_);
+        SP_CHECK(::listen(inspectFd_, 16) == 0, Error, "spear-server: listen failed: ", std::strerror(errno));
+    }
     std::vector<std::string> allowed;
     for (const std::string& plugin : options_.plugins) {
         std::error_code error;
@@ -186,6 +209,8 @@ Server::~Server() {
             drop(*connection);
     if (listenFd_ >= 0)
         ::close(listenFd_);
+    if (inspectFd_ >= 0)
+        ::close(inspectFd_);
     if (options_.tcpPort < 0 && !options_.socketPath.empty())
         ::unlink(options_.socketPath.c_str());
 }
@@ -194,6 +219,12 @@ std::string Server::address() const {
     if (options_.tcpPort >= 0)
         return "tcp:" + options_.bindAddress + ":" + std::to_string(boundPort_);
     return "unix:" + options_.socketPath;
+}
+
+std::string Server::inspectAddress() const {
+    if (inspectFd_ < 0)
+        return {};
+    return "http://" + options_.bindAddress + ":" + std::to_string(inspectBoundPort_) + "/";
 }
 
 void Server::stop() {
@@ -205,19 +236,19 @@ void Server::stop() {
     }
 }
 
-void Server::accept() {
+void Server::accept(int listenFd, bool inspector) {
     sockaddr_in peerAddress{};
     socklen_t addressLength = sizeof(peerAddress);
-    const int fd = ::accept4(listenFd_, reinterpret_cast<sockaddr*>(&peerAddress), &addressLength,
+    const int fd = ::accept4(listenFd, reinterpret_cast<sockaddr*>(&peerAddress), &addressLength,
                              SOCK_CLOEXEC | SOCK_NONBLOCK);
     if (fd < 0)
         return;
     ucred peer{};
     socklen_t peerLength = sizeof(peer);
-    const bool knownPeer =
-        options_.tcpPort < 0 && ::getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &peer, &peerLength) == 0;
+    const bool tcp = inspector || options_.tcpPort >= 0;
+    const bool knownPeer = !tcp && ::getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &peer, &peerLength) == 0;
     std::string peerName = "unix";
-    if (options_.tcpPort >= 0) {
+    if (tcp) {
         char text[INET_ADDRSTRLEN] = "";
         ::inet_ntop(AF_INET, &peerAddress.sin_addr, text, sizeof(text));
         peerName = text;
@@ -235,7 +266,7 @@ void Server::accept() {
         return;
     }
     refusingBeforeHello_ = false;
-    if (options_.tcpPort >= 0) {
+    if (tcp) {
         int one = 1;
         ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof(one));
     }
@@ -243,6 +274,11 @@ void Server::accept() {
     connection->fd = fd;
     connection->peer = peerName;
     connection->helloDeadline = now + std::chrono::milliseconds(options_.helloTimeoutMs);
+    if (inspector) {
+        connection->transport = Connection::Transport::Http;
+        connection->session.requiredToken = options_.inspectToken;
+        connection->session.browser = true;
+    }
     // Reply buffers only on a Unix socket, where the kernel says which process the client is: the server then
     // accepts only that process's buffers (never another client's segments); over TCP, replies use the
     // server's own segments.
@@ -271,14 +307,143 @@ void Server::drop(Connection& connection) {
     connection.fd = -1;
 }
 
-bool Server::serve(Connection& connection) {
+bool Server::receive(Connection& connection) {
     char buffer[65536];
     const ssize_t received = ::recv(connection.fd, buffer, sizeof(buffer), 0);
     if (received < 0 && (errno == EINTR || errno == EAGAIN))
         return true;
     if (received <= 0)
         return false; // closed, or killed mid-call
-    connection.inbox.append(buffer, size_t(received));
+    if (connection.transport == Connection::Transport::Socket) {
+        connection.inbox.append(buffer, size_t(received));
+        return true;
+    }
+    return receiveWeb(connection, std::string_view(buffer, size_t(received)));
+}
+
+bool Server::receiveWeb(Connection& connection, std::string_view bytes) {
+    connection.webInput.append(bytes);
+    if (connection.transport == Connection::Transport::Http)
+        return serveHttp(connection);
+    const size_t limit =
+        connection.session.greeted ? options_.maxMessageBytes : options_.maxMessageBytesBeforeHello;
+    size_t at = 0;
+    try {
+        web::Frame frame;
+        while (!connection.closing) {
+            const size_t taken =
+                web::decodeFrame(std::string_view(connection.webInput).substr(at), limit + 4, frame);
+            if (taken == 0)
+                break;
+            at += taken;
+            if (frame.opcode == web::kBinary || frame.opcode == web::kContinuation) {
+                // A message holds the socket transport's bytes, so frames are just the stream in pieces.
+                connection.inbox += frame.payload;
+            } else if (frame.opcode == web::kPing) {
+                const std::string pong = web::frameHeader(web::kPong, frame.payload.size()) + frame.payload;
+                if (!queueBytes(connection, pong.data(), pong.size()))
+                    return false;
+            } else if (frame.opcode == web::kClose) {
+                const std::string close = web::frameHeader(web::kClose, 0);
+                connection.closing = true; // dropped once the answer is out
+                return queueBytes(connection, close.data(), close.size());
+            } else if (frame.opcode == web::kText) {
+                SP_LOG("spear-server: inspector: dropping a client that sent a text message (the protocol is "
+                       "binary msgpack)");
+                return false;
+            } // pongs are ignored
+        }
+    } catch (const std::exception& error) {
+        SP_LOG("spear-server: dropping an inspector client from ", connection.peer, ": ", error.what());
+        return false;
+    }
+    connection.webInput.erase(0, at);
+    return true;
+}
+
+bool Server::serveHttp(Connection& connection) {
+    std::optional<web::HttpRequest> request;
+    size_t consumed = 0;
+    auto respond = [&](int status, std::string_view reason, std::string_view body) {
+        const std::string bytes = web::response(status, reason, "text/plain; charset=utf-8", body);
+        connection.closing = true;
+        return queueBytes(connection, bytes.data(), bytes.size());
+    };
+    try {
+        request = web::parseRequest(connection.webInput, consumed);
+    } catch (const std::exception& error) {
+        return respond(400, "Bad Request", error.what());
+    }
+    if (!request)
+        return true; // the rest of the head is on its way
+    connection.webInput.erase(0, consumed);
+    if (request->method != "GET")
+        return respond(405, "Method Not Allowed", "spear-server: inspector: only GET");
+    if (web::isUpgrade(*request)) {
+        // A page of another site may open a WebSocket to loopback too: only the inspector's own page may (a
+        // browser always sends Origin; a client outside a browser sends none and must know the token anyway).
+        const std::string origin = request->header("origin");
+        if (!origin.empty() && origin != "http://" + request->header("host"))
+            return respond(403, "Forbidden",
+                           "spear-server: inspector: WebSocket from another origin ('" + origin + "')");
+        const std::string bytes = web::upgradeResponse(request->header("sec-websocket-key"));
+        connection.transport = Connection::Transport::WebSocket;
+        if (!queueBytes(connection, bytes.data(), bytes.size()))
+            return false;
+        if (connection.webInput.empty())
+            return true;
+        std::string rest;
+        rest.swap(connection.webInput); // frames sent right behind the handshake
+        return receiveWeb(connection, rest);
+    }
+    std::string path = request->path == "/" ? "/index.html" : request->path;
+    if (path == "/index.html") {
+        // The page itself needs the token (?token=): it is what a user opens; the scripts it loads are the
+        // same for everyone, and its WebSocket proves the token again in its hello.
+        if (!sameSecret(web::queryParameter(request->query, "token"), options_.inspectToken)) {
+            connection.heldUntil = std::chrono::steady_clock::now() + countTokenFailure(connection.peer);
+            return respond(403, "Forbidden",
+                           "spear-server: inspector: wrong or missing token; open the address spear-server "
+                           "printed (http://.../?token=...)");
+        }
+    }
+    // Only files under the inspector's folder, by a path without '..' or hidden names.
+    const bool plain = path.find("/.") == std::string::npos && path.find('\\') == std::string::npos &&
+                       path.find('\0') == std::string::npos;
+    const std::filesystem::path file = std::filesystem::path(options_.inspectRoot) / path.substr(1);
+    std::error_code error;
+    if (!plain || !std::filesystem::is_regular_file(file, error) ||
+        std::filesystem::file_size(file, error) > (size_t(16) << 20))
+        return respond(404, "Not Found", "spear-server: inspector: no file '" + path.substr(0, 200) + "'");
+    std::string body;
+    {
+        std::FILE* in = std::fopen(file.c_str(), "rb");
+        if (!in)
+            return respond(404, "Not Found",
+                           "spear-server: inspector: cannot read '" + path.substr(0, 200) + "'");
+        char chunk[65536];
+        size_t n = 0;
+        while ((n = std::fread(chunk, 1, sizeof(chunk), in)) > 0)
+            body.append(chunk, n);
+        std::fclose(in);
+    }
+    static const std::map<std::string, std::string> kTypes = {{".html", "text/html; charset=utf-8"},
+                                                              {".js", "text/javascript; charset=utf-8"},
+                                                              {".css", "text/css; charset=utf-8"},
+                                                              {".map", "application/json"},
+                                                              {".json", "application/json"},
+                                                              {".png", "image/png"},
+                                                              {".svg", "image/svg+xml"}};
+    const auto type = kTypes.find(file.extension().string());
+    const std::string bytes =
+        web::response(200, "OK", type == kTypes.end() ? "application/octet-stream" : type->second, body);
+    connection.closing = true;
+    return queueBytes(connection, bytes.data(), bytes.size());
+}
+
+bool Server::serve(Connection& connection) {
+    if (!receive(connection))
+        return false;
     while (connection.inbox.size() >= 4) {
         uint32_t length = 0;
         std::memcpy(&length, connection.inbox.data(), 4);
@@ -397,8 +562,17 @@ void Server::answerBusy(const Connection& running, std::string_view task, double
         }
         char buffer[65536];
         ssize_t received = 0;
-        while ((received = ::recv(connection->fd, buffer, sizeof(buffer), 0)) > 0)
-            connection->inbox.append(buffer, size_t(received));
+        bool broken = false;
+        while (!broken && (received = ::recv(connection->fd, buffer, sizeof(buffer), 0)) > 0) {
+            if (connection->transport == Connection::Transport::Socket)
+                connection->inbox.append(buffer, size_t(received));
+            else
+                broken = !receiveWeb(*connection, std::string_view(buffer, size_t(received)));
+        }
+        if (broken) {
+            drop(*connection);
+            continue;
+        }
         // (Closed, or a message past the limits: the event loop finds out after the busy request.)
         while (connection->inbox.size() >= 4) {
             uint32_t length = 0;
@@ -479,13 +653,23 @@ void Server::dropSilentBeforeHello() {
     for (auto& connection : connections_)
         if (connection->fd >= 0 && !connection->session.greeted && !connection->closing &&
             now >= connection->helloDeadline) {
-            SP_LOG("spear-server: dropping a client from ", connection->peer,
-                   " that did not say hello within ", options_.helloTimeoutMs, " ms");
+            if (connection->transport != Connection::Transport::Http) // a browser's idle spare connection
+                SP_LOG("spear-server: dropping a client from ", connection->peer,
+                       " that did not say hello within ", options_.helloTimeoutMs, " ms");
             drop(*connection);
         }
 }
 
 bool Server::queueReply(Connection& connection, const char* data, size_t size) {
+    if (connection.transport != Connection::Transport::WebSocket)
+        return queueBytes(connection, data, size);
+    // One binary message per reply; the copy costs little next to a browser's own work on it.
+    std::string framed = web::frameHeader(web::kBinary, size);
+    framed.append(data, size);
+    return queueBytes(connection, framed.data(), framed.size());
+}
+
+bool Server::queueBytes(Connection& connection, const char* data, size_t size) {
     // Straight to the socket when nothing waits before it (the usual case: a client reads each reply
     // before it sends its next request); the rest is queued, in order.
     if (connection.outbox.empty() && !connection.held() && !sendSome(connection.fd, data, size))
@@ -547,6 +731,9 @@ void Server::run() {
     gWakeFd = pipeFds[1];
     while (!shutdown_) {
         std::vector<pollfd> fds{{pipeFds[0], POLLIN, 0}, {listenFd_, POLLIN, 0}};
+        if (inspectFd_ >= 0)
+            fds.push_back({inspectFd_, POLLIN, 0});
+        const size_t first = fds.size(); // of the connections
         for (const auto& connection : connections_) {
             // Reading while replies wait is what lets a client that never reads be found out (queueReply).
             short events = connection->closing ? 0 : POLLIN;
@@ -566,14 +753,15 @@ void Server::run() {
         // frame's begin, causally after that end, when both are read in one round: in connection order, the
         // begin could run first and be refused because the frame is still open.
         std::vector<size_t> order; // positions in fds
-        for (size_t i = 2; i < fds.size(); ++i)
-            order.insert(
-                &connections_[i - 2]->session == dispatcher_.frameOwner() ? order.begin() : order.end(), i);
+        for (size_t i = first; i < fds.size(); ++i)
+            order.insert(&connections_[i - first]->session == dispatcher_.frameOwner() ? order.begin()
+                                                                                       : order.end(),
+                         i);
         for (const size_t i : order) {
             const short revents = fds[i].revents;
             if (!revents)
                 continue;
-            Connection& connection = *connections_[i - 2];
+            Connection& connection = *connections_[i - first];
             bool keep = true;
             if (revents & POLLOUT)
                 keep = flush(connection);
@@ -588,7 +776,9 @@ void Server::run() {
         // After the others: connections that went away in the meantime no longer count against the limit of
         // connections waiting for their hello.
         if (fds[1].revents & POLLIN)
-            accept();
+            accept(listenFd_, false);
+        if (inspectFd_ >= 0 && (fds[2].revents & POLLIN))
+            accept(inspectFd_, true);
         std::erase_if(connections_, [](const auto& connection) { return connection->fd < 0; });
     }
     flushBeforeExit();

@@ -48,6 +48,13 @@ struct ServerOptions {
     // How long the server polls its sockets without sleeping before it sleeps in poll() (spin_poll.h);
     // spear-server takes it from SPEAR_RPC_SPIN_US.
     std::chrono::microseconds spin{100};
+    // The inspector (spear-server --inspect PORT): a second TCP port, on loopback unless bindAddress says
+    // otherwise, where a browser loads the page in inspectRoot over HTTP and then speaks this protocol over a
+    // WebSocket (web.h). inspectToken guards both (the page's ?token=, its hello), whatever the transport of
+    // the main port: a Unix socket's owner-only permissions mean nothing to a browser's other tabs.
+    int inspectPort = -1; // 0 picks a free port
+    std::string inspectRoot;
+    std::string inspectToken;
 };
 
 class Server {
@@ -57,6 +64,8 @@ class Server {
 
     // Where clients connect: "unix:/path" or "tcp:127.0.0.1:port".
     std::string address() const;
+    // The inspector's page, "http://127.0.0.1:port/" (without the token), or "" without --inspect.
+    std::string inspectAddress() const;
     // Serves until a client asks for shutdown or stop() is called (also from a signal handler).
     void run();
     static void stop();
@@ -64,11 +73,18 @@ class Server {
     struct Connection; // one client: its socket, session and shared memory (server.cpp)
 
   private:
-    void accept();
-    bool serve(Connection& connection); // false: drop the connection
+    void accept(int listenFd, bool inspector);
+    // Reads what the socket has into the connection's inbox (through HTTP and WebSocket framing on the
+    // inspector's port); false: drop the connection.
+    bool receive(Connection& connection);
+    bool receiveWeb(Connection& connection, std::string_view bytes);
+    bool serveHttp(Connection& connection); // the page and its files, or the switch to WebSocket
+    bool serve(Connection& connection);     // false: drop the connection
     // Sends a reply now as far as the socket takes it, queueing the rest; false: drop the connection
     // (broken, or too many replies left unread).
     bool queueReply(Connection& connection, const char* data, size_t size);
+    // queueReply's bytes as they are, without the WebSocket framing of a reply (HTTP, control frames).
+    bool queueBytes(Connection& connection, const char* data, size_t size);
     bool flush(Connection& connection); // sends queued replies; false: drop the connection
     void flushBeforeExit();
     void drop(Connection& connection);
@@ -85,6 +101,8 @@ class Server {
     Dispatcher dispatcher_;
     int listenFd_ = -1;
     int boundPort_ = -1;
+    int inspectFd_ = -1;
+    int inspectBoundPort_ = -1;
     std::vector<std::unique_ptr<Connection>> connections_;
     bool shutdown_ = false;
     struct TokenFailures {

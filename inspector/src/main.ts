@@ -1,0 +1,156 @@
+// The inspector page: connects to spear-server with the token of its address (?token=), then keeps the outliner,
+// the camera view and the property panel in step with the engine. It runs frames itself only when asked (Step,
+// Run); while another client (a Python script) drives the frames it follows them, polling the frame count a few
+// times a second. Its requests look at the world between frames without ticking it (client.ts: betweenFrames).
+
+import { Outliner, readWorld } from "./outliner.js";
+import { PropertyPanel } from "./properties.js";
+import { SpearError } from "./spear/client.js";
+import { Viewport } from "./viewport.js";
+import {
+  API_HASH,
+  Connection,
+  UCameraSensorComponent,
+  UWorld,
+  type SpObject,
+} from "../../generated/engine/ts/api.gen.js";
+
+const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
+const POLL_MS = 250;
+
+function log(text: string, error = false): void {
+  const line = document.createElement("div");
+  line.textContent = `${new Date().toLocaleTimeString()} ${text}`;
+  if (error) line.className = "error";
+  const box = $("log");
+  box.prepend(line);
+  while (box.childElementCount > 200) box.lastElementChild!.remove();
+}
+
+function status(text: string, error = false): void {
+  const element = $("status");
+  element.textContent = text;
+  element.classList.toggle("error", error);
+}
+
+class Inspector {
+  private world: UWorld | null = null;
+  private frame = -1;
+  private actorCount = -1;
+  private running = false;
+  private busy = false;
+  readonly outliner: Outliner;
+  readonly panel: PropertyPanel;
+  readonly viewport: Viewport;
+
+  constructor(readonly connection: Connection) {
+    const select = (object: SpObject) => void this.select(object);
+    this.outliner = new Outliner($("outliner-tree"), $("outliner-search"), select);
+    this.panel = new PropertyPanel($("property-list"), select);
+    this.viewport = new Viewport($("viewport-canvas"), $("camera-select"), $("modality-select"), $("viewport-info"),
+                                 select);
+    $("step-button").addEventListener("click", () => void this.step());
+    $("run-button").addEventListener("click", () => this.toggleRun());
+  }
+
+  async start(): Promise<void> {
+    this.world = (await this.connection.send({ op: "world", kind: "game" })) as UWorld;
+    await this.poll(true);
+    document.body.dataset["ready"] = "true";
+    setInterval(() => void this.poll(false), POLL_MS);
+  }
+
+  async select(object: SpObject): Promise<void> {
+    this.outliner.select(object);
+    $("selected-name").textContent = this.outliner.all().find((n) => n.object.equals(object))?.name ?? object.key;
+    $("selected-class").textContent = object.className;
+    document.body.dataset["selected"] = object.key;
+    await this.panel.show(object);
+  }
+
+  /** Follows the engine: the outliner when actors come or go, the view and values when frames ran. */
+  private async poll(force: boolean): Promise<void> {
+    if (this.busy || this.world === null) return;
+    this.busy = true;
+    try {
+      const [state, count] = await Promise.all([
+        this.connection.send({ op: "frame", action: "state" }) as Promise<{ state: string; frame_count: number }>,
+        this.world.get_actor_count(),
+      ]);
+      $("frame-count").textContent = String(state.frame_count);
+      $("frame-owner").textContent = state.state === "idle" ? "" : `a frame is open (${state.state})`;
+      if (force || count !== this.actorCount) {
+        this.actorCount = count;
+        await this.readScene();
+      }
+      if (force || state.frame_count !== this.frame) {
+        this.frame = state.frame_count;
+        await Promise.all([this.viewport.draw(), this.panel.refresh()]);
+      }
+    } catch (error) {
+      log(String(error), true);
+    } finally {
+      this.busy = false;
+    }
+  }
+
+  private async readScene(): Promise<void> {
+    const nodes = await readWorld(this.world!);
+    this.outliner.show(nodes);
+    const cameras = nodes.flatMap((actor) =>
+      actor.children
+        .filter((c) => c.object instanceof UCameraSensorComponent)
+        .map((c) => ({ camera: c.object as UCameraSensorComponent, label: `${actor.name}.${c.name}` })),
+    );
+    this.viewport.setCameras(cameras);
+  }
+
+  /** One frame: begin, tick, end, as one message; refused while another client's frame is open. */
+  async step(): Promise<boolean> {
+    const actions = ["begin", "execute", "begin_end", "end"];
+    const replies = await this.connection.batch(
+      actions.map((action) => ({ op: "frame", action })),
+      { critical: [0, 1, 2, 3], betweenFrames: false },
+    );
+    const failed = replies.find((r) => r.error !== undefined);
+    if (failed !== undefined) {
+      log(`step: ${failed.error![0]}: ${failed.error![1]}`, true);
+      return false;
+    }
+    await this.poll(false);
+    return true;
+  }
+
+  private toggleRun(): void {
+    this.running = !this.running;
+    $("run-button").textContent = this.running ? "Pause" : "Run";
+    $("run-button").classList.toggle("active", this.running);
+    if (this.running) void this.run();
+  }
+
+  private async run(): Promise<void> {
+    while (this.running) {
+      // Paced by the round trips: the engine is never asked for the next frame before this one was shown.
+      if (!(await this.step())) await new Promise((resolve) => setTimeout(resolve, POLL_MS));
+      await new Promise((resolve) => requestAnimationFrame(resolve));
+    }
+  }
+}
+
+async function main(): Promise<void> {
+  const token = new URLSearchParams(location.search).get("token") ?? "";
+  let connection: Connection;
+  try {
+    connection = await Connection.open({ token, apiHash: API_HASH });
+  } catch (error) {
+    status(error instanceof SpearError ? `${error.type}: ${error.message}` : String(error), true);
+    return;
+  }
+  connection.onClose = (reason) => status(reason, true);
+  status("connected");
+  const inspector = new Inspector(connection);
+  (window as unknown as { spearInspector: Inspector }).spearInspector = inspector;
+  await inspector.start();
+}
+
+void main();

@@ -1,0 +1,99 @@
+// The outliner: the worlds' actors and their components as a tree, filtered by a search over names, classes and
+// tags. It reads the scene through the generated API (find_actors, K2_GetComponents, GetName, Tags), all of one
+// refresh in one round trip (the client batches calls made together).
+
+import { AActor, UActorComponent, UWorld, type SpObject } from "../../generated/engine/ts/api.gen.js";
+
+export interface OutlinerNode {
+  readonly object: SpObject;
+  readonly name: string;
+  readonly className: string;
+  readonly tags: readonly string[];
+  readonly children: readonly OutlinerNode[];
+}
+
+async function componentNode(component: UActorComponent): Promise<OutlinerNode> {
+  const [name, tags] = await Promise.all([component.GetName(), component.get("ComponentTags")]);
+  return { object: component, name, className: component.className, tags, children: [] };
+}
+
+async function actorNode(actor: AActor): Promise<OutlinerNode> {
+  const [name, tags, components] = await Promise.all([actor.GetName(), actor.get("Tags"), actor.K2_GetComponents()]);
+  const children = await Promise.all(components.map(componentNode));
+  return { object: actor, name, className: actor.className, tags, children };
+}
+
+/** Every actor of `world` with its components, in the world's order. */
+export async function readWorld(world: UWorld): Promise<OutlinerNode[]> {
+  const actors = await world.find_actors();
+  return Promise.all(actors.map(actorNode));
+}
+
+function matches(node: OutlinerNode, query: string): boolean {
+  const q = query.toLowerCase();
+  return node.name.toLowerCase().includes(q) || node.className.toLowerCase().includes(q) ||
+    node.tags.some((tag) => tag.toLowerCase().includes(q));
+}
+
+export class Outliner {
+  private nodes: readonly OutlinerNode[] = [];
+  private selected: SpObject | null = null;
+
+  constructor(
+    private readonly tree: HTMLElement,
+    private readonly search: HTMLInputElement,
+    private readonly onSelect: (object: SpObject) => void,
+  ) {
+    search.addEventListener("input", () => this.render());
+  }
+
+  /** Every node, actors and components, depth first. */
+  all(): OutlinerNode[] {
+    return this.nodes.flatMap((node) => [node, ...node.children]);
+  }
+
+  show(nodes: readonly OutlinerNode[]): void {
+    this.nodes = nodes;
+    this.render();
+  }
+
+  select(object: SpObject | null): void {
+    this.selected = object;
+    for (const element of this.tree.querySelectorAll<HTMLElement>(".item"))
+      element.classList.toggle("selected", object !== null && element.dataset["key"] === object.key);
+  }
+
+  private render(): void {
+    const query = this.search.value.trim();
+    this.tree.replaceChildren();
+    for (const actor of this.nodes) {
+      const children = actor.children.filter((c) => query === "" || matches(c, query));
+      if (query !== "" && !matches(actor, query) && children.length === 0) continue;
+      this.tree.append(this.item(actor));
+      if (children.length > 0) {
+        const box = document.createElement("div");
+        box.className = "children";
+        box.append(...children.map((c) => this.item(c)));
+        this.tree.append(box);
+      }
+    }
+    this.select(this.selected);
+  }
+
+  private item(node: OutlinerNode): HTMLElement {
+    const element = document.createElement("div");
+    element.className = "item";
+    element.dataset["key"] = node.object.key;
+    element.dataset["name"] = node.name;
+    element.dataset["class"] = node.className;
+    element.title = node.tags.length > 0 ? `tags: ${node.tags.join(", ")}` : node.className;
+    const name = document.createElement("span");
+    name.textContent = node.name;
+    const cls = document.createElement("span");
+    cls.className = "class";
+    cls.textContent = node.className;
+    element.append(name, cls);
+    element.addEventListener("click", () => this.onSelect(node.object));
+    return element;
+  }
+}

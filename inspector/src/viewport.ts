@@ -1,0 +1,119 @@
+// The camera view: any camera sensor of the scene, any of its 14 modalities (one it does not render yet is added
+// to its Modalities, an edit like any other, shown from the next frame on), drawn pixel for pixel on a canvas
+// from the same read_pixels() a Python script gets. A click reads object_ids under the pointer and selects the
+// actor that pixel shows (GetObjectIdInfo).
+
+import { toRgba } from "./colors.js";
+import { ECameraModality, UCameraSensorComponent, type SpObject } from "../../generated/engine/ts/api.gen.js";
+
+/** The modalities by their snake_case names (read_pixels' keys), in the enum's order. */
+export const MODALITIES: readonly [string, ECameraModality][] = Object.entries(ECameraModality).map(
+  ([name, value]) => [name.replace(/([a-z])([A-Z])/g, "$1_$2").toLowerCase(), value],
+);
+
+export class Viewport {
+  private cameras: UCameraSensorComponent[] = [];
+  private idImage: Uint32Array | null = null;
+  private idWidth = 0;
+  /** The world frame the canvas shows (GetPixelsFrame), -1 before any. */
+  shownFrame = -1;
+
+  constructor(
+    private readonly canvas: HTMLCanvasElement,
+    private readonly cameraSelect: HTMLSelectElement,
+    private readonly modalitySelect: HTMLSelectElement,
+    private readonly info: HTMLElement,
+    private readonly pick: (actor: SpObject) => void,
+  ) {
+    for (const [name] of MODALITIES) {
+      const option = document.createElement("option");
+      option.value = name;
+      option.textContent = name;
+      modalitySelect.append(option);
+    }
+    cameraSelect.addEventListener("change", () => void this.draw());
+    modalitySelect.addEventListener("change", () => void this.draw());
+    canvas.addEventListener("click", (event) => void this.click(event));
+  }
+
+  get camera(): UCameraSensorComponent | null {
+    return this.cameras[this.cameraSelect.selectedIndex] ?? null;
+  }
+
+  get modality(): string {
+    return this.modalitySelect.value;
+  }
+
+  /** The cameras to choose from, with their names (the selection is kept where it still exists). */
+  setCameras(cameras: readonly { camera: UCameraSensorComponent; label: string }[]): void {
+    const previous = this.camera;
+    this.cameras = cameras.map((c) => c.camera);
+    this.cameraSelect.replaceChildren(
+      ...cameras.map(({ camera, label }) => {
+        const option = document.createElement("option");
+        option.value = camera.key;
+        option.textContent = label;
+        return option;
+      }),
+    );
+    const kept = previous === null ? -1 : this.cameras.findIndex((c) => c.equals(previous));
+    this.cameraSelect.selectedIndex = kept >= 0 ? kept : 0;
+  }
+
+  /** Reads the chosen camera's last frame and draws the chosen modality. */
+  async draw(): Promise<void> {
+    const camera = this.camera;
+    if (camera === null) {
+      this.info.textContent = "no camera in the scene";
+      return;
+    }
+    const modality = this.modality;
+    const wanted = MODALITIES.find(([name]) => name === modality)![1];
+    const [pixels, frame, modalities] = await Promise.all([camera.read_pixels(), camera.GetPixelsFrame(),
+                                                           camera.get("Modalities")]);
+    if (!modalities.includes(wanted)) {
+      // Rendered from the next frame on: the camera's own edit, visible in its properties.
+      await camera.set("Modalities", [...modalities, wanted]);
+      this.info.textContent = `${modality}: added to the camera's modalities; shown from the next frame`;
+      return;
+    }
+    const array = (pixels as Record<string, unknown>)[modality] as Parameters<typeof toRgba>[1] | undefined;
+    const ids = pixels.object_ids;
+    this.idImage = ids ? (ids.data as Uint32Array) : null;
+    this.idWidth = ids ? ids.shape[1]! : 0;
+    if (array === undefined) {
+      this.info.textContent = frame < 0 ? "the camera has not rendered a frame yet: step one" : `${modality}: none`;
+      return;
+    }
+    const image = toRgba(modality, array);
+    this.canvas.width = image.width;
+    this.canvas.height = image.height;
+    this.canvas.getContext("2d")!.putImageData(image, 0, 0);
+    this.canvas.dataset["frame"] = String(frame);
+    this.canvas.dataset["modality"] = modality;
+    this.shownFrame = frame;
+    this.info.textContent = `${image.width}×${image.height} ${array.dtype}, frame ${frame}` +
+      (this.idImage === null ? " (add object_ids to pick by clicking)" : "");
+  }
+
+  private async click(event: MouseEvent): Promise<void> {
+    const camera = this.camera;
+    if (camera === null) return;
+    const bounds = this.canvas.getBoundingClientRect();
+    const x = Math.floor(((event.clientX - bounds.left) / bounds.width) * this.canvas.width);
+    const y = Math.floor(((event.clientY - bounds.top) / bounds.height) * this.canvas.height);
+    if (this.idImage === null) {
+      // Picking reads object_ids: the camera renders them from the next frame on.
+      const modalities = await camera.get("Modalities");
+      if (!modalities.includes(ECameraModality.ObjectIds))
+        await camera.set("Modalities", [...modalities, ECameraModality.ObjectIds]);
+      this.info.textContent = "object_ids added to the camera's modalities: click again after a frame";
+      return;
+    }
+    const id = this.idImage[y * this.idWidth + x] ?? 0;
+    this.canvas.dataset["pickedId"] = String(id);
+    const found = await camera.GetObjectIdInfo({ ObjectId: id });
+    if (found.ReturnValue && found.Actor !== null) this.pick(found.Actor);
+    else this.info.textContent = `pixel (${x}, ${y}): id ${id}, no object`;
+  }
+}
