@@ -24,6 +24,7 @@
 #include "core/pybind/errors.h"
 #include "core/pybind/object_ref.h"
 #include "core/pybind/value_convert.h"
+#include "core/rpc/server.h"
 #include "core/spfunc/sp_func_call.h"
 #include "core/world/object_access.h"
 
@@ -209,4 +210,26 @@ PYBIND11_MODULE(_spear_engine, m) {
         .def_property_readonly("frame_count", &Engine::GetFrameCount)
         .def_property_readonly("fixed_delta_seconds",
                                [](const Engine& e) { return e.GetSettings().fixedDeltaSeconds; });
+
+    // The browser inspector of an in-process engine: spear-server's Server with no main port, pumped by
+    // Instance between frames (the engine's thread is Python's: nothing else may touch the engine).
+    using sp::rpc::Server;
+    py::class_<Server>(m, "InspectorServer",
+                       "The browser inspector of an in-process engine (use Instance.inspect()).")
+        .def(py::init([](Engine& engine, int port, std::string root, std::string apiHash) {
+                 sp::rpc::ServerOptions options;
+                 options.inspectPort = port;
+                 options.inspectRoot = std::move(root);
+                 return std::make_unique<Server>(engine, std::move(options), std::move(apiHash));
+             }),
+             py::arg("engine"), py::arg("port"), py::arg("root"), py::arg("api_hash"), py::keep_alive<1, 2>())
+        .def_property_readonly("url", &Server::inspectUrl)
+        .def("open", &Server::openInspector, py::arg("port"))
+        // Pumped with the GIL held: the engine is Python's, and another Python thread must not call into it
+        // meanwhile. Waiting for a browser releases it.
+        .def(
+            "pump", [](Server& server) { server.pump(0); }, "Answers what the inspector's browsers sent.")
+        .def("wait_ready", &Server::waitReady, py::arg("timeout_ms"),
+             "Whether a browser sent something, waiting up to timeout_ms.",
+             py::call_guard<py::gil_scoped_release>());
 }

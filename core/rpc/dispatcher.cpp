@@ -267,6 +267,7 @@ const std::vector<Dispatcher::Route>& Dispatcher::routes() {
         {"world", &Dispatcher::world},
         {"worlds", &Dispatcher::worlds},
         {"frame", &Dispatcher::frame},
+        {"inspect", &Dispatcher::inspect},
         {"call", &Dispatcher::call},
         {"call_typed", &Dispatcher::call},
         {"get", &Dispatcher::property},
@@ -388,6 +389,15 @@ Value Dispatcher::worlds(const Request& request, Session&) {
     for (UWorld* world : engine_.GetWorlds())
         handles.emplace_back(world->GetHandle());
     return Value(std::move(handles));
+}
+
+Value Dispatcher::inspect(const Request& request, Session& session) {
+    (void)session;
+    const msgpack::object& port = request.require("port", "inspect");
+    SP_CHECK(port.type == msgpack::type::POSITIVE_INTEGER && port.via.u64 <= 65535, InvalidArgument,
+             "inspect(): port must be an int in [0, 65535]");
+    SP_CHECK(inspectHook_, InvalidState, "inspect(): this server does not serve the inspector");
+    return Value(inspectHook_(int(port.via.u64)));
 }
 
 Value Dispatcher::frame(const Request& request, Session& session) {

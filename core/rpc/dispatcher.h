@@ -23,6 +23,9 @@
 //                                 between_frames true, the calls may use objects outside a frame without
 //                                 ticking the world (the inspector's view of a paused simulation)
 //   echo {value}                  returns value (diagnostics; measures the transport alone)
+//   inspect {port}                starts the browser inspector on a TCP port of loopback (0: a free one) if
+//   it
+//                                 does not run; returns its address with the token ("http://...?token=...")
 //   shutdown                      stop the server after replying
 // Any request may also carry "reply_buffers" and "dropped_buffers" (see Session).
 
@@ -97,6 +100,9 @@ class Dispatcher {
         allowAnyPlugin_ = allowAny;
         allowedPlugins_ = std::move(allowed);
     }
+    // What the inspect op runs: starts the inspector on a port and returns its address with the token (the
+    // server's Server::openInspector). Without one, inspect is refused.
+    void setInspectHook(std::function<std::string(int port)> hook) { inspectHook_ = std::move(hook); }
 
   private:
     // Runs a parsed request (not a batch): hello, or, once greeted, the op's handler from routes().
@@ -121,6 +127,7 @@ class Dispatcher {
     reflect::Value echo(const Request& request, Session& session);
     reflect::Value shmProof(const Request& request, Session& session);
     reflect::Value shutdown(const Request& request, Session& session);
+    reflect::Value inspect(const Request& request, Session& session);
 
     static void readReplyBuffers(const msgpack::object& request, Session& session);
     // Handles one request (or batch), appending its reply; false when the reply is an error.
@@ -135,6 +142,7 @@ class Dispatcher {
     // The file load_plugin may open for `pathOrName` (see setPluginPolicy); throws InvalidState otherwise.
     std::string allowedPlugin(const std::string& pathOrName) const;
     const Session* frameOwner_ = nullptr; // the session that last moved the open frame
+    std::function<std::string(int)> inspectHook_;
 };
 
 } // namespace sp::rpc

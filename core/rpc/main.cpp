@@ -95,18 +95,6 @@ std::string readTokenFile(const std::string& path) {
     return token;
 }
 
-// 128 random bits in hex: the inspector's token where the server has none (a Unix socket).
-std::string randomToken() {
-    std::random_device random;
-    std::string token;
-    for (int i = 0; i < 4; ++i) {
-        char word[9];
-        std::snprintf(word, sizeof(word), "%08x", unsigned(random()));
-        token += word;
-    }
-    return token;
-}
-
 // A server launched by a client goes away with it, even if the client is killed: stopped (SIGTERM) once its
 // parent process is gone (it is no longer our parent). Polled, not PR_SET_PDEATHSIG, which fires when the
 // launching *thread* exits: a client that starts servers from worker threads would lose them with the
@@ -209,11 +197,8 @@ int main(int argc, char** argv) {
         const std::filesystem::path package =
             std::filesystem::read_symlink("/proc/self/exe").parent_path().parent_path();
         const std::string builtin = sp::useBuiltinAssetsOf(package);
-        if (options.inspectPort >= 0) {
-            if (options.inspectRoot.empty())
-                options.inspectRoot = (package / "inspector").string();
-            options.inspectToken = options.token.empty() ? randomToken() : options.token;
-        }
+        if (options.inspectRoot.empty()) // also for a client's inspect request
+            options.inspectRoot = (package / "inspector").string();
         sp::engine::Engine engine(settings);
         // After the engine has read the server's own --scene: from here on, paths come from clients. They
         // may read the built-in assets and the asset folders the server's user named (SPEAR_ASSET_PATH).
@@ -239,9 +224,8 @@ int main(int argc, char** argv) {
         if (exitWithParent > 0)
             watchParent(exitWithParent);
         std::printf("spear-server: listening on %s\n", server.address().c_str());
-        if (!server.inspectAddress().empty())
-            std::printf("spear-server: inspector on %s?token=%s\n", server.inspectAddress().c_str(),
-                        options.inspectToken.c_str());
+        if (!server.inspectUrl().empty())
+            std::printf("spear-server: inspector on %s\n", server.inspectUrl().c_str());
         std::fflush(stdout);
         server.run();
     } catch (const std::exception& e) {

@@ -22,6 +22,7 @@
 #include <deque>
 #include <filesystem>
 #include <optional>
+#include <random>
 
 #include "core/base/error.h"
 #include "core/base/log.h"
@@ -66,6 +67,18 @@ void removeStaleSocket(const std::string& path, const sockaddr_un& address) {
         ::close(probe);
     SP_CHECK(!live, InvalidState, "spear-server: --socket '", path, "': another server is listening there");
     ::unlink(path.c_str());
+}
+
+// 128 random bits in hex: the inspector's token where the server has none (a Unix socket, in-process).
+std::string randomToken() {
+    std::random_device random;
+    std::string token;
+    for (int i = 0; i < 4; ++i) {
+        char word[9];
+        std::snprintf(word, sizeof(word), "%08x", unsigned(random()));
+        token += word;
+    }
+    return token;
 }
 
 // A TCP socket bound to address:port (0: a free one, written to boundPort).
@@ -163,15 +176,22 @@ reflect::ArrayValue allocateInSegment(reflect::DType dtype, const std::vector<in
 
 Server::Server(engine::Engine& engine, ServerOptions options, std::string apiHash)
     : options_(std::move(options)), dispatcher_(engine, std::move(apiHash), options_.token) {
-    removeOrphanedSegments();
-    guardAgainstTruncation(); // a client shrinking a segment the server maps must not crash it
+    SP_CHECK(::pipe2(wakeFds_, O_CLOEXEC | O_NONBLOCK) == 0, Error,
+             "spear-server: pipe failed: ", std::strerror(errno));
+    dispatcher_.setInspectHook([this](int port) { return openInspector(port); });
+    const bool inspectorOnly = options_.tcpPort < 0 && options_.socketPath.empty();
+    if (!inspectorOnly) {
+        // (Shared memory is for the main port's clients; a browser never maps any.)
+        removeOrphanedSegments();
+        guardAgainstTruncation(); // a client shrinking a segment the server maps must not crash it
+    }
     if (options_.tcpPort >= 0) {
         SP_CHECK(!options_.token.empty(), InvalidArgument,
                  "spear-server: TCP needs a token (--token or SPEAR_TOKEN)");
         listenFd_ = listenTcp(options_.bindAddress, options_.tcpPort, boundPort_);
-    } else {
-        SP_CHECK(!options_.socketPath.empty() && options_.socketPath.size() < sizeof(sockaddr_un::sun_path),
-                 InvalidArgument, "spear-server: bad socket path '", options_.socketPath, "'");
+    } else if (!inspectorOnly) {
+        SP_CHECK(options_.socketPath.size() < sizeof(sockaddr_un::sun_path), InvalidArgument,
+                 "spear-server: bad socket path '", options_.socketPath, "'");
         listenFd_ = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
         sockaddr_un address{};
         address.sun_family = AF_UNIX;
@@ -184,15 +204,10 @@ Server::Server(engine::Engine& engine, ServerOptions options, std::string apiHas
         SP_CHECK(bound == 0, Error, "spear-server: cannot bind '", options_.socketPath,
                  "': ", std::strerror(errno));
     }
-    SP_CHECK(::listen(listenFd_, 16) == 0, Error, "spear-server: listen failed: ", std::strerror(errno));
-    if (options_.inspectPort >= 0) {
-        SP_CHECK(!options_.inspectToken.empty(), InvalidArgument, "spear-server: --inspect needs a token");
-        SP_CHECK(std::filesystem::is_regular_file(std::filesystem::path(options_.inspectRoot) / "index.html"),
-                 NotFound, "spear-server: --inspect: no inspector page at '", options_.inspectRoot,
-                 "/index.html' (build the inspector: cmake --build, with npm present)");
-        inspectFd_ = listenTcp(options_.bindAddress, options_.inspectPort, inspectBoundPort_);
-        SP_CHECK(::listen(inspectFd_, 16) == 0, Error, "spear-server: listen failed: ", std::strerror(errno));
-    }
+    if (listenFd_ >= 0)
+        SP_CHECK(::listen(listenFd_, 16) == 0, Error, "spear-server: listen failed: ", std::strerror(errno));
+    if (options_.inspectPort >= 0)
+        openInspector(options_.inspectPort);
     std::vector<std::string> allowed;
     for (const std::string& plugin : options_.plugins) {
         std::error_code error;
@@ -211,8 +226,38 @@ Server::~Server() {
         ::close(listenFd_);
     if (inspectFd_ >= 0)
         ::close(inspectFd_);
-    if (options_.tcpPort < 0 && !options_.socketPath.empty())
+    if (listenFd_ >= 0 && options_.tcpPort < 0 && !options_.socketPath.empty())
         ::unlink(options_.socketPath.c_str());
+    ::close(wakeFds_[0]);
+    ::close(wakeFds_[1]);
+}
+
+std::string Server::openInspector(int port) {
+    if (inspectFd_ >= 0) {
+        SP_CHECK(port == 0 || port == inspectBoundPort_, InvalidState,
+                 "inspect(): the inspector already listens on ", inspectAddress(), "; it serves one port");
+        return inspectUrl();
+    }
+    SP_CHECK(port >= 0 && port <= 65535, InvalidArgument, "inspect(): port must be in [0, 65535], got ",
+             port);
+    SP_CHECK(std::filesystem::is_regular_file(std::filesystem::path(options_.inspectRoot) / "index.html"),
+             NotFound, "inspect(): no inspector page at '", options_.inspectRoot,
+             "/index.html'; it is built with the engine when npm is present (bash run.sh installs it)");
+    if (options_.inspectToken.empty())
+        options_.inspectToken = options_.token.empty() ? randomToken() : options_.token;
+    inspectFd_ = listenTcp(options_.bindAddress, port, inspectBoundPort_);
+    if (::listen(inspectFd_, 16) != 0) {
+        const int error = errno;
+        ::close(inspectFd_);
+        inspectFd_ = -1;
+        SP_THROW(Error, "inspect(): listen failed: ", std::strerror(error));
+    }
+    options_.inspectPort = inspectBoundPort_;
+    return inspectUrl();
+}
+
+std::string Server::inspectUrl() const {
+    return inspectFd_ < 0 ? std::string() : inspectAddress() + "?token=" + options_.inspectToken;
 }
 
 std::string Server::address() const {
@@ -725,66 +770,78 @@ void Server::flushBeforeExit() {
 }
 
 void Server::run() {
-    int pipeFds[2];
-    SP_CHECK(::pipe2(pipeFds, O_CLOEXEC | O_NONBLOCK) == 0, Error,
-             "spear-server: pipe failed: ", std::strerror(errno));
-    gWakeFd = pipeFds[1];
-    while (!shutdown_) {
-        std::vector<pollfd> fds{{pipeFds[0], POLLIN, 0}, {listenFd_, POLLIN, 0}};
-        if (inspectFd_ >= 0)
-            fds.push_back({inspectFd_, POLLIN, 0});
-        const size_t first = fds.size(); // of the connections
-        for (const auto& connection : connections_) {
-            // Reading while replies wait is what lets a client that never reads be found out (queueReply).
-            short events = connection->closing ? 0 : POLLIN;
-            if (!connection->outbox.empty() && !connection->held())
-                events |= POLLOUT;
-            fds.push_back({connection->fd, events, 0});
-        }
-        if (pollSpinning(fds.data(), fds.size(), msUntilHelloDeadline(), options_.spin) < 0) {
-            if (errno == EINTR)
-                continue;
-            break;
-        }
-        if (fds[0].revents)
-            break;
-        // The client whose frame is open is served first. A client does not wait for the reply to a frame's
-        // end (it reads it before its next request), so another client may already have sent its next
-        // frame's begin, causally after that end, when both are read in one round: in connection order, the
-        // begin could run first and be refused because the frame is still open.
-        std::vector<size_t> order; // positions in fds
-        for (size_t i = first; i < fds.size(); ++i)
-            order.insert(&connections_[i - first]->session == dispatcher_.frameOwner() ? order.begin()
-                                                                                       : order.end(),
-                         i);
-        for (const size_t i : order) {
-            const short revents = fds[i].revents;
-            if (!revents)
-                continue;
-            Connection& connection = *connections_[i - first];
-            bool keep = true;
-            if (revents & POLLOUT)
-                keep = flush(connection);
-            if (keep && (revents & (POLLIN | POLLHUP | POLLERR)))
-                keep = connection.closing ? false : serve(connection);
-            if (keep && connection.closing && connection.outbox.empty())
-                keep = false; // its last reply is out
-            if (!keep)
-                drop(connection);
-        }
-        dropSilentBeforeHello();
-        // After the others: connections that went away in the meantime no longer count against the limit of
-        // connections waiting for their hello.
-        if (fds[1].revents & POLLIN)
-            accept(listenFd_, false);
-        if (inspectFd_ >= 0 && (fds[2].revents & POLLIN))
-            accept(inspectFd_, true);
-        std::erase_if(connections_, [](const auto& connection) { return connection->fd < 0; });
+    gWakeFd = wakeFds_[1];
+    while (!shutdown_ && pump(-1)) {
     }
     flushBeforeExit();
     gWakeFd = -1;
-    ::close(pipeFds[0]);
-    ::close(pipeFds[1]);
+}
+
+std::vector<pollfd> Server::pollSet() const {
+    // The wake pipe, the listening sockets, then one entry per connection (the order pump() relies on).
+    std::vector<pollfd> fds{{wakeFds_[0], POLLIN, 0}, {listenFd_, POLLIN, 0}, {inspectFd_, POLLIN, 0}};
+    for (const auto& connection : connections_) {
+        // Reading while replies wait is what lets a client that never reads be found out (queueReply).
+        short events = connection->closing ? 0 : POLLIN;
+        if (!connection->outbox.empty() && !connection->held())
+            events |= POLLOUT;
+        fds.push_back({connection->fd, events, 0});
+    }
+    return fds;
+}
+
+bool Server::waitReady(int timeoutMs) const {
+    std::vector<pollfd> fds = pollSet();
+    const int deadline = msUntilHelloDeadline();
+    const int timeout = deadline < 0 ? timeoutMs : std::min(deadline, timeoutMs);
+    return ::poll(fds.data(), fds.size(), timeout) > 0 || deadline == 0;
+}
+
+bool Server::pump(int timeoutMs) {
+    if (shutdown_)
+        return false;
+    std::vector<pollfd> fds = pollSet(); // (poll() ignores the entries of sockets that are not open: fd -1)
+    const size_t first = 3;              // the first connection's
+    int timeout = msUntilHelloDeadline();
+    if (timeoutMs >= 0)
+        timeout = timeout < 0 ? timeoutMs : std::min(timeout, timeoutMs);
+    if (pollSpinning(fds.data(), fds.size(), timeout,
+                     timeoutMs == 0 ? std::chrono::microseconds(0) : options_.spin) < 0)
+        return errno == EINTR;
+    if (fds[0].revents)
+        return false;
+    // The client whose frame is open is served first. A client does not wait for the reply to a frame's
+    // end (it reads it before its next request), so another client may already have sent its next
+    // frame's begin, causally after that end, when both are read in one round: in connection order, the
+    // begin could run first and be refused because the frame is still open.
+    std::vector<size_t> order; // positions in fds
+    for (size_t i = first; i < fds.size(); ++i)
+        order.insert(
+            &connections_[i - first]->session == dispatcher_.frameOwner() ? order.begin() : order.end(), i);
+    for (const size_t i : order) {
+        const short revents = fds[i].revents;
+        if (!revents)
+            continue;
+        Connection& connection = *connections_[i - first];
+        bool keep = true;
+        if (revents & POLLOUT)
+            keep = flush(connection);
+        if (keep && (revents & (POLLIN | POLLHUP | POLLERR)))
+            keep = connection.closing ? false : serve(connection);
+        if (keep && connection.closing && connection.outbox.empty())
+            keep = false; // its last reply is out
+        if (!keep)
+            drop(connection);
+    }
+    dropSilentBeforeHello();
+    // After the others: connections that went away in the meantime no longer count against the limit of
+    // connections waiting for their hello.
+    if (fds[1].revents & POLLIN)
+        accept(listenFd_, false);
+    if (fds[2].revents & POLLIN)
+        accept(inspectFd_, true);
+    std::erase_if(connections_, [](const auto& connection) { return connection->fd < 0; });
+    return !shutdown_;
 }
 
 } // namespace sp::rpc

@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include <poll.h>
+
 #include "core/rpc/dispatcher.h"
 #include "core/rpc/shared_memory.h"
 
@@ -48,31 +50,48 @@ struct ServerOptions {
     // How long the server polls its sockets without sleeping before it sleeps in poll() (spin_poll.h);
     // spear-server takes it from SPEAR_RPC_SPIN_US.
     std::chrono::microseconds spin{100};
-    // The inspector (spear-server --inspect PORT): a second TCP port, on loopback unless bindAddress says
-    // otherwise, where a browser loads the page in inspectRoot over HTTP and then speaks this protocol over a
-    // WebSocket (web.h). inspectToken guards both (the page's ?token=, its hello), whatever the transport of
-    // the main port: a Unix socket's owner-only permissions mean nothing to a browser's other tabs.
-    int inspectPort = -1; // 0 picks a free port
+    // The inspector (spear-server --inspect PORT, or a client's inspect request): a second TCP port, on
+    // loopback unless bindAddress says otherwise, where a browser loads the page in inspectRoot over HTTP and
+    // then speaks this protocol over a WebSocket (web.h). inspectToken guards both (the page's ?token=, its
+    // hello), whatever the transport of the main port: a Unix socket's owner-only permissions mean nothing to
+    // a browser's other tabs. Without one, the TCP token is used, else a random one is made.
+    int inspectPort = -1; // 0 picks a free port; -1: none until a client asks (Dispatcher's inspect op)
     std::string inspectRoot;
     std::string inspectToken;
 };
 
 class Server {
   public:
+    // With neither socketPath nor tcpPort, the server has no main port: it serves the inspector alone (an
+    // in-process engine's, pumped by its owner between frames).
     Server(engine::Engine& engine, ServerOptions options, std::string apiHash);
     ~Server();
+    Server(const Server&) = delete;
+    Server& operator=(const Server&) = delete;
 
     // Where clients connect: "unix:/path" or "tcp:127.0.0.1:port".
     std::string address() const;
     // The inspector's page, "http://127.0.0.1:port/" (without the token), or "" without --inspect.
     std::string inspectAddress() const;
+    // The page with its token ("http://127.0.0.1:port/?token=..."), or "" without an inspector.
+    std::string inspectUrl() const;
+    // Starts the inspector on `port` (0: a free one) unless it runs; returns inspectUrl(). Throws
+    // InvalidState for another port than the one it runs on, NotFound without the page.
+    std::string openInspector(int port);
     // Serves until a client asks for shutdown or stop() is called (also from a signal handler).
     void run();
+    // Serves what is ready within timeoutMs (0: only what is ready now; -1: waits for something), once;
+    // false once a client asked for shutdown. For an owner whose thread the engine is (an in-process engine).
+    bool pump(int timeoutMs);
+    // Whether something waits to be served (pump() would act), waiting up to timeoutMs; serves nothing, so an
+    // owner may wait without holding what guards its engine (Python's GIL) and pump() with it.
+    bool waitReady(int timeoutMs) const;
     static void stop();
 
     struct Connection; // one client: its socket, session and shared memory (server.cpp)
 
   private:
+    std::vector<pollfd> pollSet() const;
     void accept(int listenFd, bool inspector);
     // Reads what the socket has into the connection's inbox (through HTTP and WebSocket framing on the
     // inspector's port); false: drop the connection.
@@ -103,6 +122,7 @@ class Server {
     int boundPort_ = -1;
     int inspectFd_ = -1;
     int inspectBoundPort_ = -1;
+    int wakeFds_[2] = {-1, -1}; // the self-pipe stop() pokes (run() makes it the signal handler's)
     std::vector<std::unique_ptr<Connection>> connections_;
     bool shutdown_ = false;
     struct TokenFailures {

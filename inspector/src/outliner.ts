@@ -67,8 +67,10 @@ export class Outliner {
     const query = this.search.value.trim();
     this.tree.replaceChildren();
     for (const actor of this.nodes) {
-      const children = actor.children.filter((c) => query === "" || matches(c, query));
-      if (query !== "" && !matches(actor, query) && children.length === 0) continue;
+      // An actor that matches shows all its components; one that does not, those that match.
+      const shown = query === "" || matches(actor, query);
+      const children = shown ? actor.children : actor.children.filter((c) => matches(c, query));
+      if (!shown && children.length === 0) continue;
       this.tree.append(this.item(actor));
       if (children.length > 0) {
         const box = document.createElement("div");

@@ -30,7 +30,10 @@ function editing(element: Element): boolean {
 function numberEditor(value: unknown, readOnly: boolean, integer: boolean, commit: Commit): Editor {
   const element = input("number", String(value), readOnly);
   if (integer) element.step = "1";
-  element.addEventListener("change", () => commit(integer ? Math.trunc(Number(element.value)) : Number(element.value)));
+  element.addEventListener("change", () => {
+    if (element.value.trim() === "" || !Number.isFinite(Number(element.value))) return; // still being typed
+    commit(integer ? Math.trunc(Number(element.value)) : Number(element.value));
+  });
   return { element, update: (v, force) => (!force && editing(element)) || (element.value = String(v)) };
 }
 

@@ -35,6 +35,13 @@ class Backend(Protocol):
 
     def unload_plugin(self, name: str) -> None: ...
 
+    # The browser inspector: started on a port (0: a free one) if it does not run; returns its address with the
+    # token. serve_inspector() answers it while the script waits (in-process it is otherwise answered between
+    # frames).
+    def inspect(self, port: int) -> str: ...
+
+    def serve_inspector(self, seconds: float) -> None: ...
+
     def close(self) -> None: ...
 
 
@@ -50,6 +57,7 @@ class InProcessBackend:
         remove_orphaned_segments()
         self._module = _inprocess.module()
         self._engine: Any = self._module.Engine(fixed_delta_seconds=fixed_delta_seconds, editor=editor, scene=scene)
+        self._inspector: Any = None
 
     def world(self, kind: str) -> Any:
         if kind == "editor":
@@ -69,6 +77,10 @@ class InProcessBackend:
         return self._engine.get_worlds()
 
     def frame(self, action: str) -> None:
+        if action == "begin" and self._inspector is not None:
+            # Between frames, on the engine's own thread: what the inspector's browsers asked for since the last
+            # frame (a poll() when they asked nothing).
+            self._inspector.pump()
         getattr(self._engine, {"begin": "begin_frame", "execute": "execute_frame", "begin_end": "begin_end_frame",
                                "end": "end_frame", "abort": "abort_frame"}[action])()
 
@@ -100,7 +112,30 @@ class InProcessBackend:
         # The classes leave the registry; the bindings' code stays mapped (CPython cannot unload a module).
         self._module._unload_plugin(name)
 
+    def inspect(self, port: int) -> str:
+        from pathlib import Path
+
+        from spear._engine import API_HASH
+
+        if self._inspector is None:
+            root = Path(__file__).resolve().parent / "inspector"
+            self._inspector = self._module.InspectorServer(self._engine, port=port, root=str(root), api_hash=API_HASH)
+            return str(self._inspector.url)
+        return str(self._inspector.open(port))
+
+    def serve_inspector(self, seconds: float) -> None:
+        import time
+
+        if self._inspector is None:
+            raise errors.InvalidStateError("serve_inspector(): no inspector runs; call instance.inspect() first")
+        deadline = time.monotonic() + seconds
+        while (left := deadline - time.monotonic()) > 0:
+            # Waiting releases the GIL (other threads run); answering holds it, as any engine call does.
+            if self._inspector.wait_ready(int(min(left, 0.1) * 1000)):
+                self._inspector.pump()
+
     def close(self) -> None:
+        self._inspector = None  # before the engine it serves
         del self._engine
 
 
@@ -185,6 +220,14 @@ class RpcBackend:
 
     def unload_plugin(self, name: str) -> None:
         self.connection.request("unload_plugin", name=name)
+
+    def inspect(self, port: int) -> str:
+        return str(self.connection.request("inspect", port=port))
+
+    def serve_inspector(self, seconds: float) -> None:
+        import time
+
+        time.sleep(seconds)  # the server answers its browsers by itself
 
     def close(self) -> None:
         self.connection.close()

@@ -198,6 +198,25 @@ class Instance:
         """Unloads a plugin's classes; refused while objects of them are alive (destroy them first)."""
         self._open("unload_plugin").unload_plugin(name)
 
+    # -- the browser inspector -----------------------------------------------------------------
+
+    def inspect(self, *, port: int = 0) -> str:
+        """Serves the browser inspector of this engine on a TCP port of loopback (0: a free one) and returns the
+        address to open, with its token ("http://127.0.0.1:PORT/?token=..."): an outliner, the properties of
+        any object (editable), any camera's modalities and frame controls, on the engine this script drives.
+        Calling it again returns the same address. Over RPC the server answers the browser by itself; in-process
+        the engine answers it between frames (at each begin_frame) and during serve_inspector()."""
+        if not isinstance(port, int) or isinstance(port, bool) or not 0 <= port <= 65535:
+            raise InvalidArgumentError(f"inspect(): port must be an int in [0, 65535], got {port!r}")
+        return self._open("inspect").inspect(port)
+
+    def serve_inspector(self, *, seconds: float) -> None:
+        """Answers the inspector's browsers for `seconds` while the script has nothing else to do (at its end,
+        say, to leave the scene open for a look); in-process they are otherwise answered only between frames."""
+        if isinstance(seconds, bool) or not isinstance(seconds, (int, float)) or not seconds >= 0:
+            raise InvalidArgumentError(f"serve_inspector(): seconds must be a number >= 0, got {seconds!r}")
+        self._open("serve_inspector").serve_inspector(float(seconds))
+
     # -- lifetime ------------------------------------------------------------------------------
 
     def close(self) -> None:

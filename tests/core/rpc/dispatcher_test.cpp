@@ -125,3 +125,40 @@ TEST_F(DispatcherTest, ABatchRunsNothingAfterAFailedCriticalCall) {
     EXPECT_NE(send(dispatcher, session, frameBatch({5}, {})).find("names call positions below 0"),
               std::string::npos);
 }
+
+TEST_F(DispatcherTest, ABrowsersHelloNeedsTheInspectorsTokenWhereTheServerHasNone) {
+    // A Unix socket server has no token of its own; its inspector's connections still need theirs.
+    Session wrong;
+    wrong.browser = true;
+    wrong.requiredToken = "secret";
+    EXPECT_EQ(send(dispatcher, wrong, request("hello", {{"api_hash", "hash"}, {"token", "guess"}})),
+              "hello(): wrong or missing token");
+    EXPECT_TRUE(wrong.closeAfterReply);
+    EXPECT_TRUE(wrong.tokenRefused);
+    Session missing;
+    missing.browser = true;
+    missing.requiredToken = "secret";
+    EXPECT_EQ(send(dispatcher, missing, request("hello", {{"api_hash", "hash"}})),
+              "hello(): wrong or missing token");
+    Session right;
+    right.browser = true;
+    right.requiredToken = "secret";
+    EXPECT_EQ(send(dispatcher, right, request("hello", {{"api_hash", "hash"}, {"token", "secret"}})), "");
+    EXPECT_TRUE(right.greeted);
+    EXPECT_EQ(right.probe, nullptr); // a browser maps no shared memory: no probe was made for it
+}
+
+TEST_F(DispatcherTest, BetweenFramesMustBeABool) {
+    Session a = greeted();
+    msgpack::sbuffer out;
+    msgpack::packer<msgpack::sbuffer> packer(&out);
+    packer.pack_map(3);
+    packer.pack(std::string("op"));
+    packer.pack(std::string("batch"));
+    packer.pack(std::string("calls"));
+    packer.pack_array(0);
+    packer.pack(std::string("between_frames"));
+    packer.pack(1);
+    EXPECT_EQ(send(dispatcher, a, std::string(out.data(), out.size())),
+              "batch(): 'between_frames' must be a bool");
+}

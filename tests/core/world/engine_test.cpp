@@ -51,6 +51,26 @@ TEST(Engine, FrameStateMachine) {
     EXPECT_EQ(engine.GetGameWorld().get_frame_count(), 1);
 }
 
+TEST(Engine, AnInspectionUsesObjectsBetweenFramesWithoutTicking) {
+    Engine engine;
+    {
+        Engine::Inspection inspection(engine);
+        EXPECT_NO_THROW(engine.checkInFrame("f()"));
+        {
+            Engine::Inspection nested(engine);
+            EXPECT_NO_THROW(engine.checkInFrame("f()"));
+        }
+        EXPECT_NO_THROW(engine.checkInFrame("f()")); // the outer one is still open
+        engine.beginFrame();
+        engine.executeFrame(); // between the blocks of another client's frame too
+        EXPECT_NO_THROW(engine.checkInFrame("f()"));
+        engine.beginEndFrame();
+        engine.endFrame();
+    }
+    EXPECT_THROW(engine.checkInFrame("f()"), sp::InvalidState);
+    EXPECT_EQ(engine.GetFrameCount(), 1); // looking ticked nothing: only the frame that ran
+}
+
 TEST(Engine, AbortEndsTheFrameAndTicks) {
     Engine engine;
     engine.beginFrame();
