@@ -56,7 +56,11 @@ export function toRgba(modality: string, array: NDArray): ImageData {
     out[4 * i + 2] = b;
     out[4 * i + 3] = 255;
   };
-  if (modality === "final_color" && array.dtype === "uint8") {
+  if (modality === "final_color" && array.dtype === "uint8" && channels === 4) {
+    // Already RGBA bytes: one copy, made opaque (a camera may write coverage into alpha).
+    out.set(array.bytes.subarray(0, 4 * count));
+    for (let i = 3; i < out.length; i += 4) out[i] = 255;
+  } else if (modality === "final_color" && array.dtype === "uint8") {
     for (let i = 0; i < count; ++i) put(i, v[i * channels]!, v[i * channels + 1]!, v[i * channels + 2]!);
   } else if (modality === "object_ids" || modality === "material_ids") {
     for (let i = 0; i < count; ++i) put(i, ...idColor(v[i]!));

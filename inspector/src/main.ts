@@ -17,6 +17,9 @@ import {
 
 const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
 const POLL_MS = 250;
+// While another client drives the frames, the view follows at most this often: each image costs the browser
+// (on the machine the engine runs on, often) about 15 ms of CPU, which a frame loop on the same cores pays for.
+const FOLLOW_MS = 500;
 
 function log(text: string, error = false): void {
   const line = document.createElement("div");
@@ -36,6 +39,7 @@ function status(text: string, error = false): void {
 class Inspector {
   private world: UWorld | null = null;
   private frame = -1;
+  private lastDraw = 0;
   private actorCount = -1;
   private running = false;
   private busy = false;
@@ -68,29 +72,35 @@ class Inspector {
     await this.panel.show(object);
   }
 
-  /** Follows the engine: the outliner when actors come or go, the view and values when frames ran. */
-  private async poll(force: boolean): Promise<void> {
+  /** Follows the engine: the frame count; the view and values when frames ran (at most every FOLLOW_MS while
+   * another client drives them); the outliner when actors came or went. */
+  private async poll(readScene: boolean): Promise<void> {
     if (this.busy || this.world === null) return;
     this.busy = true;
     try {
-      const [state, count] = await Promise.all([
-        this.connection.send({ op: "frame", action: "state" }) as Promise<{ state: string; frame_count: number }>,
-        this.world.get_actor_count(),
-      ]);
-      $("frame-count").textContent = String(state.frame_count);
+      const state = (await this.connection.send({ op: "frame", action: "state" })) as { state: string; frame_count: number };
       $("frame-owner").textContent = state.state === "idle" ? "" : `a frame is open (${state.state})`;
-      if (force || count !== this.actorCount) {
-        this.actorCount = count;
-        await this.readScene();
-      }
-      if (force || state.frame_count !== this.frame) {
-        this.frame = state.frame_count;
-        await Promise.all([this.viewport.draw(), this.panel.refresh()]);
-      }
+      if (readScene || (state.frame_count !== this.frame && performance.now() - this.lastDraw >= FOLLOW_MS))
+        await this.show(state.frame_count, readScene);
+      else $("frame-count").textContent = String(state.frame_count);
     } catch (error) {
       log(String(error), true);
     } finally {
       this.busy = false;
+    }
+  }
+
+  /** Shows frame `frame`: its image and values, and the scene again when actors came or went (one round trip
+   * when they did not: the calls of one turn travel together). */
+  private async show(frame: number, readScene: boolean): Promise<void> {
+    this.frame = frame;
+    this.lastDraw = performance.now();
+    $("frame-count").textContent = String(frame);
+    const [count] = await Promise.all([this.world!.get_actor_count(), this.viewport.draw(), this.panel.refresh()]);
+    if (readScene || count !== this.actorCount) {
+      this.actorCount = count;
+      await this.readScene();
+      if (readScene) await this.viewport.draw(); // the cameras are known now
     }
   }
 
@@ -117,7 +127,8 @@ class Inspector {
       log(`step: ${failed.error![0]}: ${failed.error![1]}`, true);
       return false;
     }
-    await this.poll(false);
+    // A frame the page ran itself is shown at once; the end's reply says which it was.
+    await this.show((replies[3]!.ok as { frame_count: number }).frame_count, false);
     return true;
   }
 
@@ -132,7 +143,6 @@ class Inspector {
     while (this.running) {
       // Paced by the round trips: the engine is never asked for the next frame before this one was shown.
       if (!(await this.step())) await new Promise((resolve) => setTimeout(resolve, POLL_MS));
-      await new Promise((resolve) => requestAnimationFrame(resolve));
     }
   }
 }

@@ -17,6 +17,8 @@ export class Viewport {
   private idWidth = 0;
   /** The world frame the canvas shows (GetPixelsFrame), -1 before any. */
   shownFrame = -1;
+  /** Images drawn so far (bench/bench_inspector.py counts the frames a viewer sees by it). */
+  draws = 0;
 
   constructor(
     private readonly canvas: HTMLCanvasElement,
@@ -92,6 +94,7 @@ export class Viewport {
     this.canvas.dataset["frame"] = String(frame);
     this.canvas.dataset["modality"] = modality;
     this.shownFrame = frame;
+    this.draws += 1;
     this.info.textContent = `${image.width}×${image.height} ${array.dtype}, frame ${frame}` +
       (this.idImage === null ? " (add object_ids to pick by clicking)" : "");
   }
