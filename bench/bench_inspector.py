@@ -47,7 +47,7 @@ def browser() -> Any:
 
     options = webdriver.ChromeOptions()
     for argument in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1400,900"):
-        options.add_argument(argument)
+        options.add_argument(argument)  # type: ignore[no-untyped-call]  # unannotated in Debian's selenium 4.8
     return webdriver.Chrome(options=options)
 
 
@@ -75,7 +75,7 @@ def in_thread(instance: spear.Instance, work: Any) -> Any:
 
 
 def open_page(driver: Any, url: str) -> None:
-    from selenium.webdriver.support.ui import WebDriverWait
+    from selenium.webdriver.support.wait import WebDriverWait
 
     driver.get(url)
     WebDriverWait(driver, 60).until(lambda d: d.execute_script("return document.body.dataset.ready") == "true")

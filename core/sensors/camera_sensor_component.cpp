@@ -322,6 +322,10 @@ FCameraPixels UCameraSensorComponent::read_pixels() {
     return subsystemOf(*this, "read_pixels").readPixels(*this);
 }
 
+void UCameraSensorComponent::RenderNow() {
+    subsystemOf(*this, "RenderNow").renderNow(*this);
+}
+
 FCameraPixels
 UCameraSensorComponent::read_pixels_stacked(const std::vector<UCameraSensorComponent*>& Cameras) {
     return sp::sensors::RenderSubsystem::readPixelsStacked(Cameras,

@@ -686,6 +686,11 @@ class UCameraSensorComponent : public USceneComponent {
     SPFUNCTION()
     FCameraPixels read_pixels();
 
+    /// Renders this camera now, between frames, showing the world as it stands (nothing ticks): read_pixels()
+    /// returns it next (with Latency N, after N more). What the inspector's viewer shows of a paused world.
+    SPFUNCTION()
+    void RenderNow();
+
     /// Returns the images of several cameras' due frames (cameras of any worlds of one engine) in one call:
     /// each modality as one array with a leading camera axis, (len(Cameras), H, W[, C]), each camera's images
     /// read straight into its slice. The cameras must show frames of one size and the same modalities; an

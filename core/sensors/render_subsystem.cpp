@@ -351,7 +351,19 @@ void RenderSubsystem::Tick(double /*deltaSeconds*/) {
     const int sized = std::clamp(int(std::bit_ceil(unsigned(std::max(longest, 1)))), 256, 4096);
     for (UCameraSensorComponent* camera : cameras)
         if (!camera->renderSuspended())
-            submit(*camera, sized);
+            submit(*camera, sized, world_.get_frame_count() + 1); // the counter advances after the tick
+}
+
+void RenderSubsystem::renderNow(UCameraSensorComponent& camera) {
+    if (gl_)
+        gl_->runQueued(); // what a frame queued goes first, in order
+    ensureRenderer();
+    gl_->context->makeCurrent();
+    scene_->sync();
+    updateIndirectLight({&camera});
+    const int longest = std::max({camera.Width, camera.Height, 1});
+    submit(camera, std::clamp(int(std::bit_ceil(unsigned(longest))), 256, 4096), world_.get_frame_count());
+    gl_->runQueued();
 }
 
 void RenderSubsystem::updateIndirectLight(const std::vector<UCameraSensorComponent*>& cameras) {
@@ -388,7 +400,7 @@ RenderSubsystem::CameraState& RenderSubsystem::cameraState(UCameraSensorComponen
     return *state;
 }
 
-void RenderSubsystem::submit(UCameraSensorComponent& camera, int sizedShadowResolution) {
+void RenderSubsystem::submit(UCameraSensorComponent& camera, int sizedShadowResolution, int64_t shownFrame) {
     sp::render::Camera renderCamera;
     renderCamera.params = cameraParams(camera, sizedShadowResolution);
     renderCamera.pose = camera.GetComponentTransform().toIsometry();
@@ -441,9 +453,8 @@ void RenderSubsystem::submit(UCameraSensorComponent& camera, int sizedShadowReso
     std::shared_ptr<const TracedImages> traced;
     if (traces)
         traced = trace(camera, renderCamera, modalities, state);
-    // The world's frame counter advances after its subsystems tick, so this frame is count + 1.
-    state.pending.push_back({number, world_.get_frame_count() + 1, camera.Width, camera.Height, modalities,
-                             renderCamera.params, std::move(traced), state.lens});
+    state.pending.push_back({number, shownFrame, camera.Width, camera.Height, modalities, renderCamera.params,
+                             std::move(traced), state.lens});
     while (state.pending.size() > std::size_t(camera.Latency) + 1)
         state.pending.pop_front();
 }

@@ -74,6 +74,9 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     // The due frame of `camera` (see UCameraSensorComponent); empty while priming or before the first
     // render. Reading twice returns the same images.
     FCameraPixels readPixels(UCameraSensorComponent& camera);
+    // Renders `camera` at once, between frames: the world as it stands, as frame get_frame_count() (its
+    // latency ring advances as a frame's render would). UCameraSensorComponent::RenderNow.
+    void renderNow(UCameraSensorComponent& camera);
     // The due frames of cameras of any worlds, one array per modality with a leading camera axis, each
     // camera's images read into their slice (UCameraSensorComponent.read_pixels_stacked()).
     static FCameraPixels readPixelsStacked(const std::vector<UCameraSensorComponent*>& cameras,
@@ -128,8 +131,9 @@ class RenderSubsystem : public sp::world::WorldSubsystem {
     double meterView(const UCameraSensorComponent& camera, const sp::render::Camera& renderCamera,
                      CameraState& state, const sp::render::MeteringSettings& settings);
     CameraState& cameraState(UCameraSensorComponent& camera);
-    // Renders the camera's frame; `sizedShadowResolution` stands for its ShadowResolution 0 (see Tick).
-    void submit(UCameraSensorComponent& camera, int sizedShadowResolution);
+    // Renders the camera's frame, which shows world frame `shownFrame`; `sizedShadowResolution` stands for
+    // its ShadowResolution 0 (see Tick).
+    void submit(UCameraSensorComponent& camera, int sizedShadowResolution, int64_t shownFrame);
     // Adds the camera's path-traced samples of this frame and returns the images of `modalities` that the
     // path tracer makes.
     // Sets renderCamera's exposure (the camera's automatic exposure meters the traced image).

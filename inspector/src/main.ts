@@ -6,8 +6,10 @@
 import { Outliner, readWorld } from "./outliner.js";
 import { PropertyPanel } from "./properties.js";
 import { SpearError } from "./spear/client.js";
+import { Viewer, VIEWER_TAG } from "./viewer.js";
 import { Viewport } from "./viewport.js";
 import {
+  ACameraSensorActor,
   API_HASH,
   Connection,
   UCameraSensorComponent,
@@ -40,6 +42,7 @@ class Inspector {
   private world: UWorld | null = null;
   private frame = -1;
   private lastDraw = 0;
+  private existingViewer: ACameraSensorActor | null = null;
   private actorCount = -1;
   private running = false;
   private busy = false;
@@ -50,9 +53,13 @@ class Inspector {
   constructor(readonly connection: Connection) {
     const select = (object: SpObject) => void this.select(object);
     this.outliner = new Outliner($("outliner-tree"), $("outliner-search"), select);
-    this.panel = new PropertyPanel($("property-list"), select);
+    this.panel = new PropertyPanel($("property-list"), select, (object) => {
+      const node = this.outliner.all().find((n) => n.object.equals(object));
+      return node === undefined ? `${object.className} ${object.key}` : `${node.name} (${object.className})`;
+    });
     this.viewport = new Viewport($("viewport-canvas"), $("camera-select"), $("modality-select"), $("viewport-info"),
                                  select);
+    this.viewport.makeViewer = () => Viewer.of(this.world!, this.existingViewer, () => this.viewport.draw());
     $("step-button").addEventListener("click", () => void this.step());
     $("run-button").addEventListener("click", () => this.toggleRun());
   }
@@ -107,11 +114,16 @@ class Inspector {
   private async readScene(): Promise<void> {
     const nodes = await readWorld(this.world!);
     this.outliner.show(nodes);
-    const cameras = nodes.flatMap((actor) =>
-      actor.children
-        .filter((c) => c.object instanceof UCameraSensorComponent)
-        .map((c) => ({ camera: c.object as UCameraSensorComponent, label: `${actor.name}.${c.name}` })),
-    );
+    // The scene's cameras to choose from; a viewer a page made before is the viewer again, not one of them.
+    const viewer = nodes.find((actor) => actor.tags.includes(VIEWER_TAG) && actor.object instanceof ACameraSensorActor);
+    this.existingViewer = (viewer?.object as ACameraSensorActor | undefined) ?? null;
+    const cameras = nodes
+      .filter((actor) => actor !== viewer)
+      .flatMap((actor) =>
+        actor.children
+          .filter((c) => c.object instanceof UCameraSensorComponent)
+          .map((c) => ({ camera: c.object as UCameraSensorComponent, label: `${actor.name}.${c.name}` })),
+      );
     this.viewport.setCameras(cameras);
   }
 

@@ -102,6 +102,10 @@ function describe(value: unknown): string {
   return JSON.stringify(value, (_, v: unknown) => (v instanceof SpObject ? `${v.className} ${v.key}` : v));
 }
 
+/** How an object is named in the panel: its name from the outliner, else its class and handle. */
+export type NameOf = (object: SpObject) => string;
+let nameOf: NameOf = (object) => `${object.className} ${object.key}`;
+
 /** An editor for a value of `type`; `select` is how an object reference's link selects its object. */
 function valueEditor(type: TypeDesc, value: unknown, readOnly: boolean, commit: Commit,
                      select: (object: SpObject) => void): Editor {
@@ -142,7 +146,8 @@ function valueEditor(type: TypeDesc, value: unknown, readOnly: boolean, commit: 
         if (v instanceof SpObject) {
           const link = document.createElement("a");
           link.className = "object-link";
-          link.textContent = `${v.className} ${v.key}`;
+          link.textContent = nameOf(v);
+          link.title = `${v.className} ${v.key}`;
           link.addEventListener("click", () => select(v));
           element.append(link);
         } else element.textContent = "None";
@@ -167,7 +172,10 @@ export class PropertyPanel {
   constructor(
     private readonly list: HTMLElement,
     private readonly select: (object: SpObject) => void,
-  ) {}
+    names: NameOf,
+  ) {
+    nameOf = names;
+  }
 
   get selected(): SpObject | null {
     return this.object;

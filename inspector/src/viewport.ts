@@ -4,6 +4,7 @@
 // actor that pixel shows (GetObjectIdInfo).
 
 import { toRgba } from "./colors.js";
+import { Viewer } from "./viewer.js";
 import { ECameraModality, UCameraSensorComponent, type SpObject } from "../../generated/engine/ts/api.gen.js";
 
 /** The modalities by their snake_case names (read_pixels' keys), in the enum's order. */
@@ -11,8 +12,13 @@ export const MODALITIES: readonly [string, ECameraModality][] = Object.entries(E
   ([name, value]) => [name.replace(/([a-z])([A-Z])/g, "$1_$2").toLowerCase(), value],
 );
 
+const VIEWER_OPTION = "viewer";
+
 export class Viewport {
   private cameras: UCameraSensorComponent[] = [];
+  private viewer: Viewer | null = null;
+  /** Makes (or finds) the inspector's own camera, when the user first picks it (main.ts). */
+  makeViewer: (() => Promise<Viewer>) | null = null;
   private idImage: Uint32Array | null = null;
   private idWidth = 0;
   /** The world frame the canvas shows (GetPixelsFrame), -1 before any. */
@@ -33,13 +39,33 @@ export class Viewport {
       option.textContent = name;
       modalitySelect.append(option);
     }
-    cameraSelect.addEventListener("change", () => void this.draw());
+    cameraSelect.addEventListener("change", () => void this.choose());
     modalitySelect.addEventListener("change", () => void this.draw());
-    canvas.addEventListener("click", (event) => void this.click(event));
+    canvas.addEventListener("click", (event) => {
+      if (canvas.dataset["dragged"] === "true") canvas.dataset["dragged"] = "false"; // the end of an orbit
+      else void this.click(event);
+    });
+  }
+
+  get viewerChosen(): boolean {
+    return this.cameraSelect.value === VIEWER_OPTION;
   }
 
   get camera(): UCameraSensorComponent | null {
+    if (this.viewerChosen) return this.viewer?.camera ?? null;
     return this.cameras[this.cameraSelect.selectedIndex] ?? null;
+  }
+
+  /** The camera picked: the viewer is made the first time, and rendered at once (a paused world shows too). */
+  private async choose(): Promise<void> {
+    if (this.viewerChosen && this.viewer === null && this.makeViewer !== null) {
+      this.info.textContent = "making the viewer camera ...";
+      this.viewer = await this.makeViewer();
+      this.viewer.attach(this.canvas, () => this.viewerChosen);
+      await this.viewer.move();
+      return;
+    }
+    await this.draw();
   }
 
   get modality(): string {
@@ -50,6 +76,10 @@ export class Viewport {
   setCameras(cameras: readonly { camera: UCameraSensorComponent; label: string }[]): void {
     const previous = this.camera;
     this.cameras = cameras.map((c) => c.camera);
+    const wasViewer = this.viewerChosen;
+    const viewer = document.createElement("option");
+    viewer.value = VIEWER_OPTION;
+    viewer.textContent = "viewer (drag, wheel, WASD QE)";
     this.cameraSelect.replaceChildren(
       ...cameras.map(({ camera, label }) => {
         const option = document.createElement("option");
@@ -57,16 +87,17 @@ export class Viewport {
         option.textContent = label;
         return option;
       }),
+      viewer,
     );
     const kept = previous === null ? -1 : this.cameras.findIndex((c) => c.equals(previous));
-    this.cameraSelect.selectedIndex = kept >= 0 ? kept : 0;
+    this.cameraSelect.selectedIndex = wasViewer ? this.cameras.length : kept >= 0 ? kept : 0;
   }
 
   /** Reads the chosen camera's last frame and draws the chosen modality. */
   async draw(): Promise<void> {
     const camera = this.camera;
     if (camera === null) {
-      this.info.textContent = "no camera in the scene";
+      this.info.textContent = "no camera in the scene: pick the viewer to look around";
       return;
     }
     const modality = this.modality;

@@ -317,6 +317,28 @@ def test_read_pixels_in_begin_frame_returns_the_frame_last_rendered_and_says_whi
         assert camera.GetPixelsFrame() == frame + 1
 
 
+def test_render_now_shows_the_world_as_it_stands_without_a_frame(instance: spear.Instance) -> None:
+    # RenderNow() renders between frames (the inspector's viewer of a paused world): the next read_pixels()
+    # returns it, it shows the frame count as it stands, and nothing ticks.
+    game = instance.get_game()
+    with instance.begin_frame():
+        wall = spawn_wall(game, 2.0)
+        camera = spawn_camera(game, [M.Depth])
+        camera.RenderNow()  # before the camera's first frame, too
+        assert np.allclose(camera.read_pixels()["depth"], 2.0, rtol=1e-4)
+        assert camera.GetPixelsFrame() == 0
+    with instance.end_frame():
+        frame = game.get_frame_count()
+    with instance.begin_frame():
+        wall.SetActorLocation(NewLocation=spear.FVector(X=3.05))
+        camera.RenderNow()
+        assert np.allclose(camera.read_pixels()["depth"], 3.0, rtol=1e-4)
+        assert camera.GetPixelsFrame() == frame and game.get_frame_count() == frame
+    with instance.end_frame():
+        camera.read_pixels()
+        assert camera.GetPixelsFrame() == frame + 1  # the frame's own render comes after
+
+
 def test_final_color_without_alpha_is_rgb_of_the_same_pixels(instance: spear.Instance) -> None:
     # bFinalColorAlpha = False: (H, W, 3), the RGB of the (H, W, 4) image, for a model that takes RGB as it is;
     # stacked reads too, and cameras that disagree are refused.

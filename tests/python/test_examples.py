@@ -374,3 +374,15 @@ def test_every_example_takes_server() -> None:
     for example in sorted((ROOT / "examples").glob("*.py")):
         result = run_example(example.name, "--help")
         assert result.returncode == 0 and "--server" in result.stdout, example.name
+
+
+@pytest.mark.parametrize("transport", TRANSPORTS)
+def test_inspect_scene_serves_the_page_and_saves_its_screenshot(transport: str, tmp_path: Path) -> None:
+    pytest.importorskip("selenium", reason="python3-selenium is not installed (test.sh installs it)")
+    out = tmp_path / "inspector.png"
+    result = run_example("inspect_scene.py", "--seconds", "1", "--screenshot", str(out), *TRANSPORTS[transport])
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert re.search(r"inspect_scene: open http://127\.0\.0\.1:\d+/\?token=[0-9a-f]{32}", result.stdout)
+    assert re.search(r"inspect_scene: ran \d+ frames", result.stdout)
+    image = Image.open(out)
+    assert image.size[0] >= 1000 and len(set(image.convert("RGB").getdata())) > 1000  # the page with the camera's image

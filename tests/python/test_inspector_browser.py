@@ -7,6 +7,7 @@ from __future__ import annotations
 import concurrent.futures
 import os
 import shutil
+import time
 from collections.abc import Callable, Iterator
 from typing import Any, TypeVar
 
@@ -244,3 +245,44 @@ def test_clicking_a_pixel_selects_the_actor_it_shows(browser: Any, scene: tuple[
     picked, class_name = served(instance, click)
     assert int(picked) == crate_id
     assert class_name == "AStaticMeshActor"
+
+
+def test_the_viewer_orbits_and_renders_a_paused_world(browser: Any, scene: tuple[spear.Instance, Any, str]) -> None:
+    instance, _, url = scene
+    frames = instance.frame_count
+
+    def orbit() -> tuple[NDArray[np.uint8], NDArray[np.uint8], str]:
+        open_page(browser, url)
+        Select(browser.find_element(By.ID, "camera-select")).select_by_value("viewer")
+        canvas = browser.find_element(By.ID, "viewport-canvas")
+        WebDriverWait(browser, 60).until(lambda d: canvas.get_attribute("width") == "640")  # the viewer's image
+        before = canvas_rgb(browser)
+        drawn = browser.execute_script("return window.spearInspector.viewport.draws")
+        ActionChains(browser).click_and_hold(canvas).move_by_offset(60, 0).move_by_offset(60, 10).release().perform()
+        WebDriverWait(browser, 60).until(
+            lambda d: d.execute_script("return window.spearInspector.viewport.draws") > drawn + 1)
+        time.sleep(0.5)  # the last move's image
+        return before, canvas_rgb(browser), str(canvas.get_attribute("data-frame"))
+
+    before, after, shown = served(instance, orbit)
+    assert before.shape == (480, 640, 3)
+    assert np.abs(before.astype(int) - after.astype(int)).mean() > 5, "the view turned"
+    assert int(shown) == frames and instance.frame_count == frames  # rendered without a frame
+    with instance.begin_frame():
+        viewers = instance.get_game().find_actors_by_tag(tag="spear.inspector")
+        assert [v.GetName() for v in viewers] == ["InspectorViewer"]
+    with instance.end_frame():
+        pass
+
+    def again() -> int:  # a page opened later takes the same viewer
+        open_page(browser, url)
+        Select(browser.find_element(By.ID, "camera-select")).select_by_value("viewer")
+        WebDriverWait(browser, 60).until(
+            lambda d: d.execute_script("return window.spearInspector.viewport.draws") > 0)
+        return int(browser.execute_script("return window.spearInspector.viewport.draws"))
+
+    assert served(instance, again) > 0
+    with instance.begin_frame():
+        assert len(instance.get_game().find_actors_by_tag(tag="spear.inspector")) == 1
+    with instance.end_frame():
+        pass

@@ -646,6 +646,13 @@ void bind_UCameraSensorComponent(py::module_& m) {
             return Calls::call_read_pixels<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
         },
         "read_pixels(self) -> FCameraPixels\n\nReturns the images of the frame due (see the class notes on latency); an empty dict while priming or\nbefore the camera's first frame. In begin_frame, the frame rendered at the end of the last one.");
+    cls.def(
+        "RenderNow",
+        [](const Ref<Self>& self, const py::args& positional, const py::kwargs& extra) -> py::object {
+            // The parameters in order; the array lives until the call returns.
+            return Calls::call_RenderNow<PyCall>(self, {positional, extra, std::array<const PyArg*, 0>{}, true});
+        },
+        "RenderNow(self) -> None\n\nRenders this camera now, between frames, showing the world as it stands (nothing ticks): read_pixels()\nreturns it next (with Latency N, after N more). What the inspector's viewer shows of a paused world.");
     // Static in C++: called on the class, with no object.
     cls.def_static(
         "read_pixels_stacked",

@@ -1506,6 +1506,16 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_read_pixels<ValueCall>(self, args); },
         });
         t.functions.push_back({
+            "RenderNow",
+            "Renders this camera now, between frames, showing the world as it stands (nothing ticks): read_pixels()\nreturns it next (with Latency N, after N more). What the inspector's viewer shows of a paused world.",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_RenderNow<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
             "read_pixels_stacked",
             "Returns the images of several cameras' due frames (cameras of any worlds of one engine) in one call:\neach modality as one array with a leading camera axis, (len(Cameras), H, W[, C]), each camera's images\nread straight into its slice. The cameras must show frames of one size and the same modalities; an\nempty dict while any of them is priming.",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FCameraPixels"),

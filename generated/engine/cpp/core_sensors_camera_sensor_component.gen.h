@@ -1313,6 +1313,15 @@ struct UCameraSensorComponentCalls {
         return Call::template result<FCameraPixels>(result);
     }
 
+    template <typename Call, typename Target>
+    static typename Call::Result call_RenderNow(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 0> kParams{};
+        const Call call(args, "UCameraSensorComponent.RenderNow()", kParams);
+        Self* self = Call::template object<Self>(target, "UCameraSensorComponent.RenderNow()");
+        self->RenderNow();
+        return Call::none();
+    }
+
     template <typename Call> static typename Call::Result call_read_pixels_stacked(typename Call::Args args) {
         static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
             {"Cameras", "UCameraSensorComponent.read_pixels_stacked(): argument 'Cameras'", true},

@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "078104124e8b1ec9";
+inline constexpr char kApiHash[] = "99cf177012960cb3";
 } // namespace sp::generated::engine

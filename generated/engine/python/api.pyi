@@ -3353,6 +3353,8 @@ class UCameraSensorComponentAsync(USceneComponentAsync):
 
     def read_pixels(self) -> Future[FCameraPixels]: ...
 
+    def RenderNow(self) -> Future[None]: ...
+
     def read_pixels_stacked(self, *, Cameras: Sequence[UCameraSensorComponent]) -> Future[FCameraPixels]: ...
 
     def GetPixelsFrame(self) -> Future[int]: ...
@@ -3460,6 +3462,8 @@ class UCameraSensorComponentSend(USceneComponentSend):
     def GetAccumulatedSamples(self) -> None: ...
 
     def read_pixels(self) -> None: ...
+
+    def RenderNow(self) -> None: ...
 
     def read_pixels_stacked(self, *, Cameras: Sequence[UCameraSensorComponent]) -> None: ...
 
@@ -4005,6 +4009,11 @@ class UCameraSensorComponent(USceneComponent):
     def read_pixels(self) -> FCameraPixels:
         """Returns the images of the frame due (see the class notes on latency); an empty dict while priming or
         before the camera's first frame. In begin_frame, the frame rendered at the end of the last one.
+        """
+
+    def RenderNow(self) -> None:
+        """Renders this camera now, between frames, showing the world as it stands (nothing ticks): read_pixels()
+        returns it next (with Latency N, after N more). What the inspector's viewer shows of a paused world.
         """
 
     @staticmethod

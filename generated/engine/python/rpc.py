@@ -1823,6 +1823,9 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
     def read_pixels(self) -> FCameraPixels:
         return cast("FCameraPixels", self._sp_call("UCameraSensorComponent", "read_pixels", {}, _t.T_FCameraPixels))
 
+    def RenderNow(self) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "RenderNow", {}, _t.T_void))  # a Future when queued by call_async
+
     def GetPixelsFrame(self) -> int:
         return cast("int", self._sp_call("UCameraSensorComponent", "GetPixelsFrame", {}, _t.T_int))
 
