@@ -3,6 +3,8 @@
 #include <atomic>
 #include <cstdio>
 
+#include "core/base/listeners.h"
+
 namespace sp::base {
 
 namespace {
@@ -27,6 +29,21 @@ void writeToStderr(std::string_view task, double done, double total, bool finish
 
 void setProgressSink(ProgressSink sink) {
     gProgressSink.store(sink);
+}
+
+namespace {
+ListenerList<std::string_view, double, double, bool>& progressListeners() {
+    static ListenerList<std::string_view, double, double, bool> instance;
+    return instance;
+}
+} // namespace
+
+int addProgressListener(ProgressListener listener) {
+    return progressListeners().add(std::move(listener));
+}
+
+void removeProgressListener(int id) {
+    progressListeners().remove(id);
 }
 
 void setBusyHook(BusyHook hook, void* context) {
@@ -68,6 +85,7 @@ void Progress::report(bool finished) {
     const ProgressSink sink = gProgressSink.load();
     try {
         (sink ? sink : &writeToStderr)(task_, done_, total_, finished);
+        progressListeners().tell(task_, done_, total_, finished);
     } catch (...) { // progress is never worth failing the work for (and ~Progress must not throw)
     }
 }

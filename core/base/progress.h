@@ -8,6 +8,7 @@
 //   for (...) { ...; progress.advance(); }
 
 #include <chrono>
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -18,6 +19,10 @@ namespace sp::base {
 // (spear/_logging.py). `finished` is true once, last.
 using ProgressSink = void (*)(std::string_view task, double done, double total, bool finished);
 void setProgressSink(ProgressSink sink);
+// Who else hears reports besides the sink (the inspector's browsers), as log listeners hear lines (log.h).
+using ProgressListener = std::function<void(std::string_view task, double done, double total, bool finished)>;
+int addProgressListener(ProgressListener listener);
+void removeProgressListener(int id);
 
 // What the host does while long work keeps its thread: called from Progress::set() on the thread that made
 // the Progress, once the work has run for a second, then every 50 ms (`seconds`: how long it has run). A

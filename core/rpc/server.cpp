@@ -21,6 +21,8 @@
 #include <cstring>
 #include <deque>
 #include <filesystem>
+#include <map>
+#include <mutex>
 #include <optional>
 #include <random>
 
@@ -145,6 +147,59 @@ struct Server::Connection {
     }
 };
 
+// Log lines and progress reports, queued from whichever thread makes them while browsers are connected, and
+// sent to every greeted browser after each round of requests (a log line reaches a watching page within its
+// next poll, a quarter of a second). Bounded: a flood between two rounds keeps its first lines and says how
+// many more there were.
+struct Server::Broadcast {
+    static constexpr size_t kMaxLines = 200;
+    std::mutex mutex;
+    std::vector<std::string> messages; // framed: [length][msgpack]
+    size_t dropped = 0;
+    std::map<std::string, std::string> progress; // the latest report of each task, framed
+    std::atomic<int> browsers{0};
+
+    static std::string frame(const msgpack::sbuffer& body) {
+        std::string out(4, '\0');
+        const uint32_t length = uint32_t(body.size());
+        std::memcpy(out.data(), &length, 4);
+        out.append(body.data(), body.size());
+        return out;
+    }
+    void log(std::string_view file, int line, std::string_view message) {
+        if (browsers.load() == 0)
+            return;
+        msgpack::sbuffer body;
+        msgpack::packer<msgpack::sbuffer> out(&body);
+        out.pack_map(1);
+        out.pack(std::string("log"));
+        out.pack_array(3);
+        out.pack(file);
+        out.pack(line);
+        out.pack(message);
+        std::lock_guard lock(mutex);
+        if (messages.size() < kMaxLines)
+            messages.push_back(frame(body));
+        else
+            ++dropped;
+    }
+    void report(std::string_view task, double done, double total, bool finished) {
+        if (browsers.load() == 0)
+            return;
+        msgpack::sbuffer body;
+        msgpack::packer<msgpack::sbuffer> out(&body);
+        out.pack_map(1);
+        out.pack(std::string("progress"));
+        out.pack_array(4);
+        out.pack(task);
+        out.pack(done);
+        out.pack(total);
+        out.pack(finished);
+        std::lock_guard lock(mutex);
+        progress[std::string(task)] = frame(body);
+    }
+};
+
 namespace {
 // The ArrayAllocator installed while a request runs: new arrays (a camera's readback) are placed in
 // shared memory, which the reply then names instead of copying the bytes. Arrays the reply would carry
@@ -230,6 +285,10 @@ Server::~Server() {
         ::unlink(options_.socketPath.c_str());
     ::close(wakeFds_[0]);
     ::close(wakeFds_[1]);
+    if (logListener_)
+        base::removeLogListener(logListener_);
+    if (progressListener_)
+        base::removeProgressListener(progressListener_);
 }
 
 std::string Server::openInspector(int port) {
@@ -246,6 +305,15 @@ std::string Server::openInspector(int port) {
     if (options_.inspectToken.empty())
         options_.inspectToken = options_.token.empty() ? randomToken() : options_.token;
     inspectFd_ = listenTcp(options_.bindAddress, port, inspectBoundPort_);
+    broadcast_ = std::make_shared<Broadcast>();
+    logListener_ = base::addLogListener(
+        [broadcast = broadcast_](std::string_view file, int line, std::string_view message) {
+            broadcast->log(file, line, message);
+        });
+    progressListener_ = base::addProgressListener(
+        [broadcast = broadcast_](std::string_view task, double done, double total, bool finished) {
+            broadcast->report(task, done, total, finished);
+        });
     if (::listen(inspectFd_, 16) != 0) {
         const int error = errno;
         ::close(inspectFd_);
@@ -340,6 +408,8 @@ void Server::accept(int listenFd, bool inspector) {
 }
 
 void Server::drop(Connection& connection) {
+    if (connection.transport == Connection::Transport::WebSocket && connection.fd >= 0)
+        --broadcast_->browsers;
     dispatcher_.endSession(connection.session);
     for (auto& segment : connection.replySegments)
         segment->unlink();
@@ -433,6 +503,7 @@ bool Server::serveHttp(Connection& connection) {
                            "spear-server: inspector: WebSocket from another origin ('" + origin + "')");
         const std::string bytes = web::upgradeResponse(request->header("sec-websocket-key"));
         connection.transport = Connection::Transport::WebSocket;
+        ++broadcast_->browsers;
         if (!queueBytes(connection, bytes.data(), bytes.size()))
             return false;
         if (connection.webInput.empty())
@@ -598,6 +669,8 @@ bool Server::serve(Connection& connection) {
 }
 
 void Server::answerBusy(const Connection& running, std::string_view task, double seconds) {
+    if (broadcast_)
+        sendBroadcast(); // the long work's own progress, live
     for (auto& connection : connections_) {
         if (connection.get() == &running || connection->fd < 0 || connection->closing)
             continue;
@@ -800,6 +873,8 @@ bool Server::waitReady(int timeoutMs) const {
 bool Server::pump(int timeoutMs) {
     if (shutdown_)
         return false;
+    if (broadcast_)
+        sendBroadcast(); // what was logged since the last round (in-process: by the frames between two pumps)
     std::vector<pollfd> fds = pollSet(); // (poll() ignores the entries of sockets that are not open: fd -1)
     const size_t first = 3;              // the first connection's
     int timeout = msUntilHelloDeadline();
@@ -841,7 +916,42 @@ bool Server::pump(int timeoutMs) {
     if (fds[2].revents & POLLIN)
         accept(inspectFd_, true);
     std::erase_if(connections_, [](const auto& connection) { return connection->fd < 0; });
+    if (broadcast_)
+        sendBroadcast();
     return !shutdown_;
+}
+
+void Server::sendBroadcast() {
+    std::vector<std::string> messages;
+    {
+        std::lock_guard lock(broadcast_->mutex);
+        if (broadcast_->messages.empty() && broadcast_->progress.empty())
+            return;
+        messages.swap(broadcast_->messages);
+        for (auto& [task, message] : broadcast_->progress)
+            messages.push_back(std::move(message));
+        broadcast_->progress.clear();
+        if (broadcast_->dropped > 0) {
+            msgpack::sbuffer body;
+            msgpack::packer<msgpack::sbuffer> out(&body);
+            out.pack_map(1);
+            out.pack(std::string("log"));
+            out.pack_array(3);
+            out.pack(std::string("server.cpp"));
+            out.pack(__LINE__);
+            out.pack(std::to_string(broadcast_->dropped) + " more log lines were not sent to the inspector");
+            messages.push_back(Broadcast::frame(body));
+            broadcast_->dropped = 0;
+        }
+    }
+    for (auto& connection : connections_)
+        if (connection->fd >= 0 && connection->transport == Connection::Transport::WebSocket &&
+            connection->session.greeted && !connection->closing)
+            for (const std::string& message : messages)
+                if (!queueReply(*connection, message.data(), message.size())) {
+                    drop(*connection);
+                    break;
+                }
 }
 
 } // namespace sp::rpc

@@ -89,6 +89,7 @@ class Server {
     static void stop();
 
     struct Connection; // one client: its socket, session and shared memory (server.cpp)
+    struct Broadcast;  // log lines and progress for the inspector's browsers (server.cpp)
 
   private:
     std::vector<pollfd> pollSet() const;
@@ -123,6 +124,11 @@ class Server {
     int inspectFd_ = -1;
     int inspectBoundPort_ = -1;
     int wakeFds_[2] = {-1, -1}; // the self-pipe stop() pokes (run() makes it the signal handler's)
+    // What the engine logs and reports while browsers watch, sent to them after each round of requests.
+    std::shared_ptr<Broadcast> broadcast_;
+    int logListener_ = 0;
+    int progressListener_ = 0;
+    void sendBroadcast();
     std::vector<std::unique_ptr<Connection>> connections_;
     bool shutdown_ = false;
     struct TokenFailures {

@@ -169,6 +169,9 @@ async function main(): Promise<void> {
     return;
   }
   connection.onClose = (reason) => status(reason, true);
+  connection.onLog = (file, line, message) => log(`${file}:${line}: ${message}`);
+  connection.onProgress = (task, done, total, finished) =>
+    status(finished ? "connected" : `${task}: ${total > 0 ? Math.round((100 * done) / total) : done}%`);
   status("connected");
   const inspector = new Inspector(connection);
   (window as unknown as { spearInspector: Inspector }).spearInspector = inspector;

@@ -73,6 +73,7 @@ class WebSocketClient:
         head, _, self.buffer = self.buffer.partition(b"\r\n\r\n")
         self.status = int(head.split(b" ")[1]) if head else 0
         self.next_id = 1
+        self.pushes: list[dict[str, Any]] = []  # what the server sent unasked (log lines, progress)
 
     def _read(self, n: int) -> bytes:
         while len(self.buffer) < n:
@@ -100,15 +101,19 @@ class WebSocketClient:
         message = msgpack.packb({"id": self.next_id, "op": op, **fields}, use_bin_type=True)
         self.next_id += 1
         self.send_raw(frame(struct.pack("<I", len(message)) + message))
-        opcode, payload = self.receive_frame()
-        assert opcode == 2, f"expected a binary message, got opcode {opcode}"
-        word = struct.unpack_from("<I", payload)[0]
-        if word & 0x80000000:  # a reply with a tail: [word][message length][message]...
-            size = struct.unpack_from("<I", payload, 4)[0]
-            body = payload[8:8 + size]
-        else:
-            body = payload[4:4 + word]
-        return dict(msgpack.unpackb(body, raw=False, strict_map_key=False))
+        while True:
+            opcode, payload = self.receive_frame()
+            assert opcode == 2, f"expected a binary message, got opcode {opcode}"
+            word = struct.unpack_from("<I", payload)[0]
+            if word & 0x80000000:  # a reply with a tail: [word][message length][message]...
+                size = struct.unpack_from("<I", payload, 4)[0]
+                body = payload[8:8 + size]
+            else:
+                body = payload[4:4 + word]
+            reply = dict(msgpack.unpackb(body, raw=False, strict_map_key=False))
+            if "id" in reply:
+                return reply
+            self.pushes.append(reply)
 
     def hello(self, token: str | None = None) -> dict[str, Any]:
         return self.request("hello", api_hash=API_HASH, token=self.token if token is None else token)

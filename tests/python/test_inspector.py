@@ -5,9 +5,11 @@ tests/python/test_inspector_browser.py."""
 from __future__ import annotations
 
 import concurrent.futures
+import struct
 from collections.abc import Callable, Iterator
 from typing import Any, TypeVar
 
+import msgpack
 import pytest
 
 import spear
@@ -151,3 +153,40 @@ def test_inspect_and_serve_refuse_bad_arguments(make_instance: Callable[..., spe
         instance.inspect(port=1 if port != 1 else 2)
     with pytest.raises(InvalidArgumentError, match=r"serve_inspector\(\): seconds must be a number >= 0, got -1"):
         instance.serve_inspector(seconds=-1)
+
+
+def test_a_browser_hears_the_engines_log(make_instance: Callable[..., spear.Instance]) -> None:
+    instance = make_instance(scene="/Game/scenes/apartment")
+    url = instance.inspect(port=0)
+    client = served(instance, lambda: WebSocketClient(url))
+    served(instance, client.hello)
+    with instance.begin_frame():
+        instance.get_game().spawn_actor(uclass=spear.ACameraSensorActor, name="Cam")
+    with instance.end_frame():  # its first render lights the scene's irradiance probes, and says so
+        pass
+    served(instance, lambda: client.request("echo", value=0))
+    lines = [push["log"] for push in client.pushes if "log" in push]
+    assert any(file == "irradiance_probes.cpp" and message.startswith("irradiance probes: ")
+               for file, _, message in lines), lines
+    client.close()
+
+
+def test_a_browser_that_stops_reading_is_dropped_and_the_engine_goes_on(inspected: tuple[spear.Instance, str]) -> None:
+    instance, url = inspected
+
+    def flood() -> bool:
+        client = WebSocketClient(url)
+        client.hello()
+        # 100 echoes of 1 MB, none of their replies read: past the 64 MiB a client may leave unread.
+        message = msgpack.packb({"id": 1, "op": "echo", "value": "x" * (1 << 20)}, use_bin_type=True)
+        request = frame(struct.pack("<I", len(message)) + message)
+        try:
+            for _ in range(100):
+                client.send_raw(request)
+        except OSError:
+            pass  # dropped while still sending
+        return client.closed_by_server()
+
+    assert served(instance, flood)
+    instance.step()  # the engine goes on
+    assert served(instance, lambda: WebSocketClient(url).hello())["ok"]["api_hash"]

@@ -295,6 +295,10 @@ export class Connection {
   betweenFrames = true;
   /** Called once when the connection is gone. */
   onClose: ((reason: string) => void) | null = null;
+  /** The engine's log lines, as it writes them (file, line, message). */
+  onLog: ((file: string, line: number, message: string) => void) | null = null;
+  /** Progress of long work (a scene loading, a path-traced frame): the latest report of each task. */
+  onProgress: ((task: string, done: number, total: number, finished: boolean) => void) | null = null;
 
   private nextId = 1;
   private readonly pending = new Map<number, Pending>();
@@ -400,7 +404,14 @@ export class Connection {
       this.fail(`a malformed reply from spear-server: ${String(error)}`);
       return;
     }
-    const pending = reply.id === undefined ? undefined : this.pending.get(reply.id);
+    if (reply.id === undefined) {
+      // Not a reply: what the server sends browsers unasked (core/rpc/server.cpp, Broadcast).
+      const push = reply as { log?: [string, number, string]; progress?: [string, number, number, boolean] };
+      if (push.log !== undefined) this.onLog?.(...push.log);
+      if (push.progress !== undefined) this.onProgress?.(...push.progress);
+      return;
+    }
+    const pending = this.pending.get(reply.id);
     if (pending === undefined) return;
     this.pending.delete(reply.id!);
     if (reply.error !== undefined) pending.reject(new SpearError(reply.error[0], reply.error[1]));
