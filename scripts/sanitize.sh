@@ -26,7 +26,7 @@ cmake -S "$ROOT" -B "$ASAN_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Sanitize -DPython3_E
     -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
     -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
 cmake --build "$ASAN_DIR" -j "${SPEAR_JOBS:-2}" --target spear_base_tests spear_reflect_tests spear_rpc_tests spear_physics_tests spear_rpc_fuzz \
-    spear-server
+    spear-server $(cmake --build "$ASAN_DIR" --target help | grep -q spear_inspector && echo spear_inspector)
 
 # Leak checking is off: Mesa's llvmpipe and EGL keep process-lifetime allocations that are not ours.
 # handle_sigbus=0: SIGBUS is the engine's own to handle (core/rpc/shared_memory.h guards truncated
@@ -44,7 +44,7 @@ say "sanitize: spear_rpc_fuzz, $FUZZ_RUNS runs"
 # transports); every server these tests launch is the instrumented one. By default the suites of the
 # surfaces that take untrusted input: messages and transports, values refused by type and range, misuse,
 # asynchronous calls, shared memory, the files a client names (scenes, blueprints, asset paths, file roots),
-# and the lane queries' point arrays. SPEAR_SANITIZE_ALL=1 runs every test on the RPC transport instead: since global illumination
+# the lane queries' point arrays, and the inspector's HTTP and WebSocket framing. SPEAR_SANITIZE_ALL=1 runs every test on the RPC transport instead: since global illumination
 # became the default, each rendering test lights its probes with the instrumented path tracer, and that run
 # takes about ten minutes more (RELIABILITY.md).
 build
@@ -52,7 +52,8 @@ TESTS=(tests/python/test_rpc_transport.py tests/python/test_rpc_robustness.py te
     tests/python/test_misuse_parity.py tests/python/test_set_time_validation.py tests/python/test_async_calls.py
     tests/python/test_process_memory.py tests/python/test_typed_results.py tests/python/test_world_api.py
     tests/python/test_scenes.py tests/python/test_blueprints.py tests/python/test_asset_path.py
-    tests/python/test_file_roots.py tests/python/test_lanes.py tests/python/test_traffic.py)
+    tests/python/test_file_roots.py tests/python/test_lanes.py tests/python/test_traffic.py
+    tests/python/test_inspector.py)
 [[ "${SPEAR_SANITIZE_ALL:-0}" == 1 ]] && TESTS=(tests/python)
 say "sanitize: the Python tests on the RPC transport (${TESTS[*]}), against the instrumented spear-server"
 cd "$ROOT" && SPEAR_SERVER="$ASAN_DIR/package/bin/spear-server" SPEAR_BUILD_DIR="$BUILD_DIR" "$PYTHON" -m pytest -q \

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
 #include <string>
 
 #include "core/base/error.h"
@@ -152,6 +153,36 @@ TEST(Web, ServerFrameHeadersUseTheShortestLength) {
     EXPECT_EQ(uint8_t(large[7]), 0x01);
     EXPECT_EQ(uint8_t(large[8]), 0x11);
     EXPECT_EQ(uint8_t(large[9]), 0x70);
+}
+
+TEST(Web, ArbitraryBytesAreRefusedOrParsedNeverMisread) {
+    // What a hostile peer sends before any token is checked: random heads and frames, and mutations of valid
+    // ones.
+    std::mt19937 random(7);
+    const std::string head =
+        "GET /?token=x HTTP/1.1\r\nHost: a\r\nUpgrade: websocket\r\nSec-WebSocket-Key: k\r\n\r\n";
+    const std::string valid = clientFrame(0x82, std::string(300, 'p'));
+    for (int round = 0; round < 20000; ++round) {
+        std::string bytes = round % 2 ? head : valid;
+        for (int flips = int(random() % 4); flips >= 0; --flips)
+            bytes[random() % bytes.size()] = char(random());
+        if (round % 7 == 0)
+            bytes.resize(random() % (bytes.size() + 1));
+        size_t consumed = 0;
+        try {
+            if (auto request = parseRequest(bytes, consumed))
+                EXPECT_LE(consumed, bytes.size());
+        } catch (const InvalidArgument&) {
+        }
+        Frame frame;
+        try {
+            const size_t taken = decodeFrame(bytes, 1 << 16, frame);
+            EXPECT_LE(taken, bytes.size());
+            if (taken > 0)
+                EXPECT_LE(frame.payload.size(), taken);
+        } catch (const InvalidArgument&) {
+        }
+    }
 }
 
 } // namespace
