@@ -335,12 +335,31 @@ class Scanner:
             specifiers.has(spec, k) for k in ("ReadOnly", "BlueprintReadOnly", "VisibleAnywhere",
                                               "VisibleDefaultsOnly", "VisibleInstanceOnly")
         )
+        mapped = self._map(field, t, f"property '{owner}::{field.spelling}'")
+        self._check_range(field, owner, mapped.kind, spec)
         return Property(
             name=field.spelling, doc=clean_doc(field.raw_comment),
-            type=self._map(field, t, f"property '{owner}::{field.spelling}'"), read_only=read_only,
+            type=mapped, read_only=read_only,
             setter=specifiers.lookup(spec, "Setter"), specifiers=spec, default_cpp=self._initializer(field),
             not_null=specifiers.has(spec, "NotNull"),
         )
+
+    def _check_range(self, field: ci.Cursor, owner: str, kind: str, spec: tuple[tuple[str, str], ...]) -> None:
+        """ClampMin / ClampMax (the range editors offer; the setter still checks): numbers, on a number, in order."""
+        bounds = {}
+        for key in ("ClampMin", "ClampMax"):
+            value = specifiers.lookup(spec, key)
+            if value is None:
+                continue
+            if kind not in ("int", "float"):
+                raise self._error(field, f"{key} on '{owner}::{field.spelling}', which is not a number")
+            try:
+                bounds[key] = float(value)
+            except ValueError:
+                raise self._error(field, f"{key}={value} on '{owner}::{field.spelling}' is not a number") from None
+        if len(bounds) == 2 and bounds["ClampMin"] > bounds["ClampMax"]:
+            raise self._error(field, f"ClampMin {bounds['ClampMin']:g} > ClampMax {bounds['ClampMax']:g} on "
+                              f"'{owner}::{field.spelling}'")
 
     def _initializer(self, field: ci.Cursor) -> str | None:
         """The member initializer as written ("1.0", "{1.0, 1.0, 1.0}"), read from the source text.

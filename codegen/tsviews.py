@@ -7,7 +7,7 @@ from __future__ import annotations
 import json
 from dataclasses import dataclass
 
-from codegen import naming, pyviews
+from codegen import naming, pyviews, specifiers
 from codegen.model import Class, Function, Module, Param, Property, TypeRef
 
 RUNTIME = "../../../inspector/src/spear/client.js"
@@ -154,6 +154,19 @@ def _type_json(t: TypeRef) -> dict[str, object]:
     return out
 
 
+def _property_json(p: Property) -> dict[str, object]:
+    """A property as the inspector's panel needs it; "min"/"max" from ClampMin/ClampMax (the range its editor
+    offers; the engine's setter still checks every value)."""
+    out: dict[str, object] = {"name": p.name, "type": _type_json(p.type), "readOnly": p.read_only,
+                              "notNull": p.not_null, "doc": p.doc}
+    for key, field in (("ClampMin", "min"), ("ClampMax", "max")):
+        value = specifiers.lookup(p.specifiers, key)
+        if value is not None:
+            number = float(value)
+            out[field] = int(number) if number.is_integer() else number
+    return out
+
+
 def reflection_json(module: Module) -> str:
     """The reflection data the client encodes arguments with and the inspector builds its panels from: classes
     (parent, properties, functions' parameters), structs' fields, enums' entries. Compact, sorted JSON."""
@@ -166,8 +179,7 @@ def reflection_json(module: Module) -> str:
             continue
         classes[c.name] = {
             "parent": c.parent, "doc": c.doc, "abstract": c.abstract,
-            "properties": [{"name": p.name, "type": _type_json(p.type), "readOnly": p.read_only,
-                            "notNull": p.not_null, "doc": p.doc} for p in c.properties],
+            "properties": [_property_json(p) for p in c.properties],
             "functions": {f.name: {"static": f.is_static, "params": [
                 {"name": p.name, "type": _type_json(p.type), "optional": p.default_cpp is not None}
                 for p in naming.in_params(f)]} for f in c.functions},

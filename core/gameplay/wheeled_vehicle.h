@@ -80,7 +80,7 @@ class AWheeledVehiclePawn : public APawn {
     double MaxBrakeForce = 4000.0;
 
     /// Front wheels' steering angle in degrees at full steer, in [0, 80].
-    SPPROPERTY(Setter = SetMaxSteerAngle)
+    SPPROPERTY(Setter = SetMaxSteerAngle, meta = (ClampMin = 0, ClampMax = 80))
     double MaxSteerAngle = 35.0;
 
     /// Tyre radius in metres (> 0).

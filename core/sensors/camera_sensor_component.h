@@ -317,11 +317,11 @@ class UCameraSensorComponent : public USceneComponent {
     SP_GENERATED_BODY()
   public:
     /// Image width in pixels.
-    SPPROPERTY(Setter = SetWidth)
+    SPPROPERTY(Setter = SetWidth, meta = (ClampMin = 1, ClampMax = 16384))
     int32_t Width = 640;
 
     /// Image height in pixels.
-    SPPROPERTY(Setter = SetHeight)
+    SPPROPERTY(Setter = SetHeight, meta = (ClampMin = 1, ClampMax = 16384))
     int32_t Height = 480;
 
     /// Horizontal field of view in degrees, in (0, 180); square pixels.
@@ -347,16 +347,16 @@ class UCameraSensorComponent : public USceneComponent {
     EAutoExposureMethod AutoExposureMethod = EAutoExposureMethod::AEM_Manual;
 
     /// Automatic exposure: f-stops to brighten (> 0) or darken (< 0) the metered exposure, in [-15, 15].
-    SPPROPERTY(Setter = SetAutoExposureBias)
+    SPPROPERTY(Setter = SetAutoExposureBias, meta = (ClampMin = -15, ClampMax = 15))
     float AutoExposureBias = 0.0f;
 
     /// Automatic exposure: the darkest scene, as EV100, the camera adapts to (darker ones show darker), in
     /// [-20, 40]; it must not exceed AutoExposureMaxBrightness when the camera renders.
-    SPPROPERTY(Setter = SetAutoExposureMinBrightness)
+    SPPROPERTY(Setter = SetAutoExposureMinBrightness, meta = (ClampMin = -20, ClampMax = 40))
     float AutoExposureMinBrightness = -10.0f;
 
     /// Automatic exposure: the brightest scene, as EV100, the camera adapts to, in [-20, 40].
-    SPPROPERTY(Setter = SetAutoExposureMaxBrightness)
+    SPPROPERTY(Setter = SetAutoExposureMaxBrightness, meta = (ClampMin = -20, ClampMax = 40))
     float AutoExposureMaxBrightness = 20.0f;
 
     /// Automatic exposure: how fast the camera adapts to a scene turned brighter, in f-stops per second of
@@ -381,7 +381,7 @@ class UCameraSensorComponent : public USceneComponent {
     /// The colour temperature in kelvin the camera is balanced for, in [2000, 25000]: light of this
     /// temperature renders neutral in final_color (hdr_color is unchanged). 6500 (daylight) leaves colours as
     /// they are; 3200 suits tungsten light (the image turns bluer), 10000 shade (warmer).
-    SPPROPERTY(Setter = SetWhiteBalanceTemperature)
+    SPPROPERTY(Setter = SetWhiteBalanceTemperature, meta = (ClampMin = 2000, ClampMax = 25000))
     double WhiteBalanceTemperature = 6500.0;
 
     /// Sensor width in millimetres (> 0), relating FOV to a lens's focal length: 36 is full frame.
@@ -414,7 +414,7 @@ class UCameraSensorComponent : public USceneComponent {
     /// Natural vignetting of final_color, in [0, 1]: each pixel's exposure falls off as mix(1, cos^4 theta,
     /// VignetteIntensity), theta the angle of its ray to the optical axis (the cos^4 law of a lens); 0 (the
     /// default) is none. hdr_color, the scene's radiance, is not vignetted.
-    SPPROPERTY(Setter = SetVignetteIntensity)
+    SPPROPERTY(Setter = SetVignetteIntensity, meta = (ClampMin = 0, ClampMax = 1))
     float VignetteIntensity = 0.0f;
 
     /// The tone curve of final_color.
@@ -488,7 +488,7 @@ class UCameraSensorComponent : public USceneComponent {
     /// by itself. Off by default because a software rasteriser pays for it: a 640 x 480 view about 6 ms more
     /// a frame, a 1080p one about 35 ms (llvmpipe, BENCHMARKS.md); on a GPU it costs little, and Unreal's
     /// 0.5 is a good value.
-    SPPROPERTY(Setter = SetAmbientOcclusionIntensity)
+    SPPROPERTY(Setter = SetAmbientOcclusionIntensity, meta = (ClampMin = 0, ClampMax = 1))
     float AmbientOcclusionIntensity = 0.0f;
 
     /// How far from a point, in metres, the ambient occlusion looks for the surfaces that hide it (Unreal's
@@ -497,7 +497,7 @@ class UCameraSensorComponent : public USceneComponent {
     float AmbientOcclusionRadius = 0.5f;
 
     /// Path tracing: samples per pixel added each frame, in [1, 65536]; a still view keeps accumulating.
-    SPPROPERTY(Setter = SetSamplesPerPixel)
+    SPPROPERTY(Setter = SetSamplesPerPixel, meta = (ClampMin = 1, ClampMax = 65536))
     int32_t SamplesPerPixel = 4;
 
     /// Path tracing: denoise final_color and hdr_color (an edge-avoiding à-trous wavelet filter guided by the
@@ -508,7 +508,7 @@ class UCameraSensorComponent : public USceneComponent {
     bool bPathTracingEnableDenoiser = false;
 
     /// Path tracing: indirect bounces after the first hit, in [0, 64] (0: direct light and sky only).
-    SPPROPERTY(Setter = SetMaxBounces)
+    SPPROPERTY(Setter = SetMaxBounces, meta = (ClampMin = 0, ClampMax = 64))
     int32_t MaxBounces = 4;
 
     /// Path tracing, firefly control (Unreal's name): the light a path brings back to the first surface from

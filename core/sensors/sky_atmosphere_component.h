@@ -15,7 +15,7 @@ class USkyAtmosphereComponent : public USceneComponent {
   public:
     /// Haze of the air (the model's turbidity): 2 very clear, 3 clear (the default), 6 hazy, 10 very hazy;
     /// in [1.7, 10], the model's range.
-    SPPROPERTY(Setter = SetTurbidity)
+    SPPROPERTY(Setter = SetTurbidity, meta = (ClampMin = 1.7, ClampMax = 10))
     float Turbidity = 3.0f;
 
     /// Linear RGB albedo of the ground below the horizon, in [0, 1], lit by the sun and the sky.

@@ -59,15 +59,15 @@ class UPrimitiveComponent : public USceneComponent {
     double Friction = 0.5;
 
     /// Bounciness in [0, 1]; the two coefficients at a contact are multiplied.
-    SPPROPERTY(Setter = SetRestitution)
+    SPPROPERTY(Setter = SetRestitution, meta = (ClampMin = 0, ClampMax = 1))
     double Restitution = 0.0;
 
     /// Fraction of linear velocity lost per second, in [0, 1].
-    SPPROPERTY(Setter = SetLinearDamping)
+    SPPROPERTY(Setter = SetLinearDamping, meta = (ClampMin = 0, ClampMax = 1))
     double LinearDamping = 0.0;
 
     /// Fraction of angular velocity lost per second, in [0, 1].
-    SPPROPERTY(Setter = SetAngularDamping)
+    SPPROPERTY(Setter = SetAngularDamping, meta = (ClampMin = 0, ClampMax = 1))
     double AngularDamping = 0.0;
 
     /// Whether this component takes part in overlaps: two components overlap only when both have it set

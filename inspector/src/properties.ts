@@ -27,14 +27,55 @@ function editing(element: Element): boolean {
   return element.contains(document.activeElement);
 }
 
-function numberEditor(value: unknown, readOnly: boolean, integer: boolean, commit: Commit): Editor {
+interface Range {
+  readonly min?: number | undefined;
+  readonly max?: number | undefined;
+}
+
+function numberEditor(value: unknown, readOnly: boolean, integer: boolean, commit: Commit, range: Range = {}): Editor {
   const element = input("number", String(value), readOnly);
   if (integer) element.step = "1";
+  if (range.min !== undefined) element.min = String(range.min);
+  if (range.max !== undefined) element.max = String(range.max);
+  if (range.min === undefined && range.max === undefined) {
+    element.addEventListener("change", () => {
+      if (element.value.trim() === "" || !Number.isFinite(Number(element.value))) return; // still being typed
+      commit(integer ? Math.trunc(Number(element.value)) : Number(element.value));
+    });
+    return { element, update: (v, force) => (!force && editing(element)) || (element.value = String(v)) };
+  }
+  // A bounded number: its range beside it, and a slider where the range is one a hand can sweep.
+  const box = document.createElement("span");
+  box.className = "range";
+  box.title = `in [${range.min ?? "-inf"}, ${range.max ?? "inf"}]`;
+  box.append(element);
+  let slider: HTMLInputElement | null = null;
+  if (range.min !== undefined && range.max !== undefined && (!integer || range.max - range.min <= 100)) {
+    slider = input("range", String(value), readOnly);
+    slider.min = String(range.min);
+    slider.max = String(range.max);
+    slider.step = integer ? "1" : String((range.max - range.min) / 200);
+    slider.addEventListener("input", () => (element.value = slider!.value));
+    slider.addEventListener("change", () => commit(Number(slider!.value)));
+    box.append(slider);
+  } else {
+    const label = document.createElement("span");
+    label.className = "muted";
+    label.textContent = box.title;
+    box.append(label);
+  }
   element.addEventListener("change", () => {
     if (element.value.trim() === "" || !Number.isFinite(Number(element.value))) return; // still being typed
     commit(integer ? Math.trunc(Number(element.value)) : Number(element.value));
   });
-  return { element, update: (v, force) => (!force && editing(element)) || (element.value = String(v)) };
+  return {
+    element: box,
+    update: (v, force) => {
+      if (!force && editing(box)) return;
+      element.value = String(v);
+      if (slider !== null) slider.value = String(v);
+    },
+  };
 }
 
 function linearToHex(r: number, g: number, b: number): string {
@@ -108,7 +149,7 @@ let nameOf: NameOf = (object) => `${object.className} ${object.key}`;
 
 /** An editor for a value of `type`; `select` is how an object reference's link selects its object. */
 function valueEditor(type: TypeDesc, value: unknown, readOnly: boolean, commit: Commit,
-                     select: (object: SpObject) => void): Editor {
+                     select: (object: SpObject) => void, range: Range = {}): Editor {
   switch (type.kind) {
     case "bool": {
       const element = input("checkbox", "", readOnly);
@@ -118,7 +159,7 @@ function valueEditor(type: TypeDesc, value: unknown, readOnly: boolean, commit: 
     }
     case "int":
     case "float":
-      return numberEditor(value, readOnly, type.kind === "int", commit);
+      return numberEditor(value, readOnly, type.kind === "int", commit, range);
     case "str": {
       const element = input("text", String(value ?? ""), readOnly);
       element.addEventListener("change", () => commit(element.value));
@@ -155,14 +196,66 @@ function valueEditor(type: TypeDesc, value: unknown, readOnly: boolean, commit: 
       update(value);
       return { element, update };
     }
-    default: {
-      // Lists, dicts, classes and arrays are shown, not edited here.
-      const element = document.createElement("span");
-      element.className = "value";
-      element.textContent = describe(value);
-      return { element, update: (v) => (element.textContent = describe(v)) };
-    }
+    case "list":
+      if (["enum", "str", "int", "float", "bool"].includes(type.args![0]!.kind))
+        return listEditor(type.args![0]!, value as unknown[], readOnly, commit, select);
+      return shownOnly(value);
+    default:
+      return shownOnly(value);
   }
+}
+
+/** A value shown, not edited (dicts, classes, arrays, lists of structs or objects). */
+function shownOnly(value: unknown): Editor {
+  const element = document.createElement("span");
+  element.className = "value";
+  element.textContent = describe(value);
+  return { element, update: (v) => (element.textContent = describe(v)) };
+}
+
+/** A list of plain values (names, numbers, enums): an editor per item, a button to remove it, one to add one. */
+function listEditor(item: TypeDesc, value: unknown[], readOnly: boolean, commit: Commit,
+                    select: (object: SpObject) => void): Editor {
+  const element = document.createElement("div");
+  element.className = "list";
+  let items = [...(value ?? [])];
+  const fresh = (): unknown =>
+    item.kind === "enum" ? (getReflection().enums[item.name!]?.entries[0]?.value ?? 0)
+      : item.kind === "str" ? "" : item.kind === "bool" ? false : 0;
+  const render = () => {
+    element.replaceChildren();
+    items.forEach((current, i) => {
+      const row = document.createElement("div");
+      row.className = "item";
+      const editor = valueEditor(item, current, readOnly, (v) => commit((items = items.map((x, j) => (j === i ? v : x)))),
+                                 select);
+      row.append(editor.element);
+      if (!readOnly) {
+        const remove = document.createElement("button");
+        remove.textContent = "×";
+        remove.title = "remove";
+        remove.addEventListener("click", () => commit((items = items.filter((_, j) => j !== i))));
+        row.append(remove);
+      }
+      element.append(row);
+    });
+    if (!readOnly) {
+      const add = document.createElement("button");
+      add.textContent = "+";
+      add.title = "add an item";
+      add.addEventListener("click", () => commit((items = [...items, fresh()])));
+      element.append(add);
+    }
+  };
+  render();
+  return {
+    element,
+    update: (v, force) => {
+      if (!force && editing(element)) return;
+      items = [...((v as unknown[]) ?? [])];
+      render();
+    },
+  };
 }
 
 export class PropertyPanel {
@@ -250,7 +343,7 @@ export class PropertyPanel {
         })
         .finally(() => object.get(property.name).then((v) => editor.update(v, true), () => undefined));
     };
-    const editor = valueEditor(property.type, value, property.readOnly, commit, this.select);
+    const editor = valueEditor(property.type, value, property.readOnly, commit, this.select, property);
     this.editors.set(property.name, editor);
     cell.append(editor.element);
     row.append(name, cell, error);

@@ -286,3 +286,34 @@ def test_the_viewer_orbits_and_renders_a_paused_world(browser: Any, scene: tuple
         assert len(instance.get_game().find_actors_by_tag(tag="spear.inspector")) == 1
     with instance.end_frame():
         pass
+
+
+def test_lists_and_ranges_have_editors_of_their_own(browser: Any, scene: tuple[spear.Instance, Any, str]) -> None:
+    instance, camera, url = scene
+
+    def edit() -> tuple[str, str]:
+        open_page(browser, url)
+        browser.find_element(By.CSS_SELECTOR, '#outliner-tree .item[data-name="CameraSensor"]').click()
+        modalities = WebDriverWait(browser, 30).until(
+            lambda d: d.find_element(By.CSS_SELECTOR, '[data-property="Modalities"] .list'))
+        items = modalities.find_elements(By.CSS_SELECTOR, ".item select")
+        assert [Select(i).first_selected_option.text for i in items] == ["FinalColor", "Depth", "ObjectIds"]
+        modalities.find_element(By.CSS_SELECTOR, 'button[title="add an item"]').click()  # FinalColor, the first
+        WebDriverWait(browser, 30).until(
+            lambda d: len(d.find_elements(By.CSS_SELECTOR, '[data-property="Modalities"] .item')) == 4)
+        last = browser.find_elements(By.CSS_SELECTOR, '[data-property="Modalities"] .item select')[-1]
+        Select(last).select_by_visible_text("Normal")
+        WebDriverWait(browser, 30).until(lambda d: Select(
+            d.find_elements(By.CSS_SELECTOR, '[data-property="Modalities"] .item select')[-1]
+        ).first_selected_option.text == "Normal")
+        width = browser.find_element(By.CSS_SELECTOR, '[data-property="Width"] .range')
+        vignette = browser.find_element(By.CSS_SELECTOR, '[data-property="VignetteIntensity"] input[type=range]')
+        return str(width.get_attribute("title")), str(vignette.get_attribute("max"))
+
+    title, vignette_max = served(instance, edit)
+    assert title == "in [1, 16384]" and vignette_max == "1"  # ClampMin / ClampMax from the reflected header
+    with instance.begin_frame():
+        assert camera.CameraSensor.Modalities == [spear.ECameraModality.FinalColor, spear.ECameraModality.Depth,
+                                                  spear.ECameraModality.ObjectIds, spear.ECameraModality.Normal]
+    with instance.end_frame():
+        pass

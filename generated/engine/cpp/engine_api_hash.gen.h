@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "99cf177012960cb3";
+inline constexpr char kApiHash[] = "efac93655800e2d1";
 } // namespace sp::generated::engine

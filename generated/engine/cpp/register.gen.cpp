@@ -314,4 +314,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::enumInfo_EAnimationMode());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "99cf177012960cb3"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "efac93655800e2d1"; }

@@ -88,6 +88,9 @@ export interface PropertyDesc {
   readonly readOnly: boolean;
   readonly notNull: boolean;
   readonly doc: string;
+  /** The range an editor offers (ClampMin / ClampMax); the engine's setter checks values all the same. */
+  readonly min?: number;
+  readonly max?: number;
 }
 export interface FunctionDesc {
   readonly static: boolean;

@@ -170,16 +170,18 @@ TEST(Web, ArbitraryBytesAreRefusedOrParsedNeverMisread) {
             bytes.resize(random() % (bytes.size() + 1));
         size_t consumed = 0;
         try {
-            if (auto request = parseRequest(bytes, consumed))
+            if (auto request = parseRequest(bytes, consumed)) {
                 EXPECT_LE(consumed, bytes.size());
+            }
         } catch (const InvalidArgument&) {
         }
         Frame frame;
         try {
             const size_t taken = decodeFrame(bytes, 1 << 16, frame);
             EXPECT_LE(taken, bytes.size());
-            if (taken > 0)
+            if (taken > 0) {
                 EXPECT_LE(frame.payload.size(), taken);
+            }
         } catch (const InvalidArgument&) {
         }
     }
