@@ -39,11 +39,12 @@ function status(text: string, error = false): void {
 }
 
 class Inspector {
-  private world: UWorld | null = null;
+  private world: UWorld | null = null; // the game world (the one a viewer camera goes into)
+  private worlds: UWorld[] = [];
   private frame = -1;
   private lastDraw = 0;
   private existingViewer: ACameraSensorActor | null = null;
-  private actorCount = -1;
+  private actorCount = "";
   private running = false;
   private busy = false;
   readonly outliner: Outliner;
@@ -103,7 +104,7 @@ class Inspector {
     this.frame = frame;
     this.lastDraw = performance.now();
     $("frame-count").textContent = String(frame);
-    const [count] = await Promise.all([this.world!.get_actor_count(), this.viewport.draw(), this.panel.refresh()]);
+    const [count] = await Promise.all([this.countActors(), this.viewport.draw(), this.panel.refresh()]);
     if (readScene || count !== this.actorCount) {
       this.actorCount = count;
       await this.readScene();
@@ -111,9 +112,18 @@ class Inspector {
     }
   }
 
+  /** Actors in every world, and worlds: a change in either means the outliner reads the scene again. */
+  private async countActors(): Promise<string> {
+    const worlds = (await this.connection.send({ op: "worlds", action: "list" })) as UWorld[];
+    const counts = await Promise.all(worlds.map((w) => w.get_actor_count()));
+    this.worlds = worlds;
+    return worlds.map((w, i) => `${w.key}:${counts[i]}`).join(" ");
+  }
+
   private async readScene(): Promise<void> {
-    const nodes = await readWorld(this.world!);
-    this.outliner.show(nodes);
+    const worlds = await Promise.all((this.worlds.length > 0 ? this.worlds : [this.world!]).map(readWorld));
+    this.outliner.show(worlds);
+    const nodes = this.outliner.actors();
     // The scene's cameras to choose from; a viewer a page made before is the viewer again, not one of them.
     const viewer = nodes.find((actor) => actor.tags.includes(VIEWER_TAG) && actor.object instanceof ACameraSensorActor);
     this.existingViewer = (viewer?.object as ACameraSensorActor | undefined) ?? null;

@@ -1,5 +1,5 @@
-// The outliner: the worlds' actors and their components as a tree, filtered by a search over names, classes and
-// tags. It reads the scene through the generated API (find_actors, K2_GetComponents, GetName, Tags), all of one
+// The outliner: the engine's worlds (the game world, then those create_world made), their actors and the actors'
+// components as a tree, filtered by a search over names, classes and tags. It reads the scene through the generated API (find_actors, K2_GetComponents, GetName, Tags), all of one
 // refresh in one round trip (the client batches calls made together).
 
 import { AActor, UActorComponent, UWorld, type SpObject } from "../../generated/engine/ts/api.gen.js";
@@ -23,10 +23,10 @@ async function actorNode(actor: AActor): Promise<OutlinerNode> {
   return { object: actor, name, className: actor.className, tags, children };
 }
 
-/** Every actor of `world` with its components, in the world's order. */
-export async function readWorld(world: UWorld): Promise<OutlinerNode[]> {
-  const actors = await world.find_actors();
-  return Promise.all(actors.map(actorNode));
+/** A world with every actor of it and their components, in the world's order. */
+export async function readWorld(world: UWorld): Promise<OutlinerNode> {
+  const [name, actors] = await Promise.all([world.GetName(), world.find_actors()]);
+  return { object: world, name, className: world.className, tags: [], children: await Promise.all(actors.map(actorNode)) };
 }
 
 function matches(node: OutlinerNode, query: string): boolean {
@@ -47,9 +47,15 @@ export class Outliner {
     search.addEventListener("input", () => this.render());
   }
 
-  /** Every node, actors and components, depth first. */
+  /** Every node, worlds, actors and components, depth first. */
   all(): OutlinerNode[] {
-    return this.nodes.flatMap((node) => [node, ...node.children]);
+    const walk = (node: OutlinerNode): OutlinerNode[] => [node, ...node.children.flatMap(walk)];
+    return this.nodes.flatMap(walk);
+  }
+
+  /** The actors of every world, with their components. */
+  actors(): OutlinerNode[] {
+    return this.nodes.flatMap((world) => world.children);
   }
 
   show(nodes: readonly OutlinerNode[]): void {
@@ -66,25 +72,28 @@ export class Outliner {
   private render(): void {
     const query = this.search.value.trim();
     this.tree.replaceChildren();
-    for (const actor of this.nodes) {
-      // An actor that matches shows all its components; one that does not, those that match.
-      const shown = query === "" || matches(actor, query);
-      const children = shown ? actor.children : actor.children.filter((c) => matches(c, query));
-      if (!shown && children.length === 0) continue;
-      this.tree.append(this.item(actor));
-      if (children.length > 0) {
-        const box = document.createElement("div");
-        box.className = "children";
-        box.append(...children.map((c) => this.item(c)));
-        this.tree.append(box);
+    for (const world of this.nodes) {
+      this.tree.append(this.item(world, "world"));
+      for (const actor of world.children) {
+        // An actor that matches shows all its components; one that does not, those that match.
+        const shown = query === "" || matches(actor, query);
+        const children = shown ? actor.children : actor.children.filter((c) => matches(c, query));
+        if (!shown && children.length === 0) continue;
+        this.tree.append(this.item(actor, "actor"));
+        if (children.length > 0) {
+          const box = document.createElement("div");
+          box.className = "children";
+          box.append(...children.map((c) => this.item(c, "component")));
+          this.tree.append(box);
+        }
       }
     }
     this.select(this.selected);
   }
 
-  private item(node: OutlinerNode): HTMLElement {
+  private item(node: OutlinerNode, level: "world" | "actor" | "component"): HTMLElement {
     const element = document.createElement("div");
-    element.className = "item";
+    element.className = `item ${level}`;
     element.dataset["key"] = node.object.key;
     element.dataset["name"] = node.name;
     element.dataset["class"] = node.className;

@@ -124,8 +124,8 @@ def test_find_an_actor_and_edit_a_property(browser: Any, scene: tuple[spear.Inst
         browser.find_element(By.ID, "outliner-search").send_keys("cargo")  # by its tag
         items = browser.find_elements(By.CSS_SELECTOR, "#outliner-tree .item")
         names = [item.get_attribute("data-name") for item in items]
-        assert names[0] == "Crate" and "Floor" not in names
-        items[1].click()  # its StaticMeshComponent
+        assert names == ["World", "Crate", "StaticMeshComponent"]  # the world, its actor, the actor's component
+        items[2].click()
         WebDriverWait(browser, 30).until(
             lambda d: d.find_elements(By.CSS_SELECTOR, '[data-property="RelativeLocation"] input'))
         x = browser.find_element(By.CSS_SELECTOR, '[data-property="RelativeLocation"] input[type=number]')
@@ -317,3 +317,24 @@ def test_lists_and_ranges_have_editors_of_their_own(browser: Any, scene: tuple[s
                                                   spear.ECameraModality.ObjectIds, spear.ECameraModality.Normal]
     with instance.end_frame():
         pass
+
+
+def test_the_outliner_shows_every_world(browser: Any, scene: tuple[spear.Instance, Any, str]) -> None:
+    instance, _, url = scene
+    second = instance.create_world(name="Second")
+    with instance.begin_frame():
+        second.spawn_actor(uclass=spear.AStaticMeshActor, name="Elsewhere")
+    with instance.end_frame():
+        pass
+
+    def worlds() -> list[str]:
+        open_page(browser, url)
+        return [str(e.get_attribute("data-name")) for e in browser.find_elements(By.CSS_SELECTOR, "#outliner-tree .world")]
+
+    assert served(instance, worlds) == ["World", "Second"]
+
+    def found() -> list[str]:
+        browser.find_element(By.ID, "outliner-search").send_keys("Elsewhere")
+        return [str(e.get_attribute("data-name")) for e in browser.find_elements(By.CSS_SELECTOR, "#outliner-tree .item")]
+
+    assert served(instance, found) == ["World", "Second", "Elsewhere", "StaticMeshComponent"]
