@@ -37,6 +37,17 @@ reflect::ObjectBase& requireObject(const Request& request, std::string_view cont
 
 } // namespace
 
+std::string randomSecret() {
+    std::random_device random;
+    std::string secret;
+    for (int i = 0; i < 4; ++i) {
+        char word[9];
+        std::snprintf(word, sizeof(word), "%08x", unsigned(random()));
+        secret += word;
+    }
+    return secret;
+}
+
 bool sameSecret(const std::string& given, const std::string& secret) {
     if (secret.empty())
         return false; // nothing to prove it against (and no length to compare in constant time)
@@ -326,13 +337,7 @@ Value Dispatcher::hello(const Request& request, Session& session) {
     if (session.browser)
         return Value(std::move(reply));
     try {
-        std::random_device random;
-        std::string nonce;
-        for (int i = 0; i < 4; ++i) {
-            char word[9];
-            std::snprintf(word, sizeof(word), "%08x", unsigned(random()));
-            nonce += word;
-        }
+        const std::string nonce = randomSecret();
         auto probe = std::make_shared<SharedMemorySegment>(SharedMemorySegment::create(nonce.size()));
         std::memcpy(probe->data(), nonce.data(), nonce.size());
         if (session.probe)

@@ -69,6 +69,10 @@ struct Session {
     std::string probeNonce;
 };
 
+// 128 random bits from the system's source, in hex: a shared-memory probe's nonce, the inspector's token
+// where the server has none.
+std::string randomSecret();
+
 // Whether `given` is `secret` (never when `secret` is empty), compared in time that depends on the lengths
 // only, not on how many leading characters of a guess are right.
 bool sameSecret(const std::string& given, const std::string& secret);

@@ -24,7 +24,6 @@
 #include <map>
 #include <mutex>
 #include <optional>
-#include <random>
 
 #include "core/base/error.h"
 #include "core/base/log.h"
@@ -69,18 +68,6 @@ void removeStaleSocket(const std::string& path, const sockaddr_un& address) {
         ::close(probe);
     SP_CHECK(!live, InvalidState, "spear-server: --socket '", path, "': another server is listening there");
     ::unlink(path.c_str());
-}
-
-// 128 random bits in hex: the inspector's token where the server has none (a Unix socket, in-process).
-std::string randomToken() {
-    std::random_device random;
-    std::string token;
-    for (int i = 0; i < 4; ++i) {
-        char word[9];
-        std::snprintf(word, sizeof(word), "%08x", unsigned(random()));
-        token += word;
-    }
-    return token;
 }
 
 // A TCP socket bound to address:port (0: a free one, written to boundPort).
@@ -303,7 +290,7 @@ std::string Server::openInspector(int port) {
              NotFound, "inspect(): no inspector page at '", options_.inspectRoot,
              "/index.html'; it is built with the engine when npm is present (bash run.sh installs it)");
     if (options_.inspectToken.empty())
-        options_.inspectToken = options_.token.empty() ? randomToken() : options_.token;
+        options_.inspectToken = options_.token.empty() ? randomSecret() : options_.token;
     inspectFd_ = listenTcp(options_.bindAddress, port, inspectBoundPort_);
     broadcast_ = std::make_shared<Broadcast>();
     logListener_ = base::addLogListener(
