@@ -155,3 +155,29 @@ def test_a_plugin_builds_against_the_installed_package(installed: tuple[Path, Pa
                             str(ROOT / "examples" / "plugin" / "use_plugin.py")], cwd=work,
                            env={**env, "MYPYPATH": str(build / "python")}, capture_output=True, text=True)
     assert typed.returncode == 0, typed.stdout
+
+
+SERVE_INSPECTOR = """
+import concurrent.futures, sys, urllib.request
+import spear
+for server in (None, "launch"):
+    instance = spear.Instance(server=server)
+    url = instance.inspect(port=0)
+    def fetch(path: str) -> bytes:
+        return urllib.request.urlopen(url.split("?")[0] + path if path else url, timeout=30).read()
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:
+        page, script, client = (pool.submit(fetch, p) for p in ("", "inspector/src/main.js",
+                                                                  "generated/engine/ts/api.gen.js"))
+        while not (page.done() and script.done() and client.done()):
+            instance.serve_inspector(seconds=0.02)  # in-process the engine answers between frames, or here
+    print(instance.transport, b"<title>spear inspector</title>" in page.result(), len(script.result()) > 1000,
+          b"API_HASH" in client.result())
+    instance.close()
+"""
+
+
+def test_the_installed_package_serves_the_inspector(installed: tuple[Path, Path]) -> None:
+    venv_dir, work = installed
+    (work / "serve_inspector.py").write_text(SERVE_INSPECTOR)
+    lines = _run(installed, str(venv_dir / "bin" / "python"), "serve_inspector.py").splitlines()
+    assert lines == ["inprocess True True True", "rpc True True True"]
