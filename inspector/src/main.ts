@@ -112,12 +112,17 @@ class Inspector {
     }
   }
 
-  /** Actors in every world, and worlds: a change in either means the outliner reads the scene again. */
+  /** Actors in every world, and worlds: a change in either means the outliner reads the scene again. The worlds
+   * known so far are counted in the same message that lists them (a new world shows in the list, its count next
+   * time), so following the engine costs one round trip. */
   private async countActors(): Promise<string> {
-    const worlds = (await this.connection.send({ op: "worlds", action: "list" })) as UWorld[];
-    const counts = await Promise.all(worlds.map((w) => w.get_actor_count()));
+    const known = this.worlds.length > 0 ? this.worlds : [this.world!];
+    const [worlds, ...counts] = await Promise.all([
+      this.connection.call({ op: "worlds", action: "list" }) as Promise<UWorld[]>,
+      ...known.map((w) => w.get_actor_count().catch(() => -1)), // (a world destroyed since)
+    ]);
     this.worlds = worlds;
-    return worlds.map((w, i) => `${w.key}:${counts[i]}`).join(" ");
+    return worlds.map((w) => w.key).join(" ") + " / " + counts.join(" ");
   }
 
   private async readScene(): Promise<void> {
