@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every test: generator checks, C++ tests (CTest), Python API tests, codegen golden cases and typing
-# cases (pytest, which runs mypy --strict and pyright), a format check, and the sanitizer build's tests.
+# cases (pytest, which runs mypy --strict, pyright and tsc, and drives the inspector in headless chromium), a
+# format check, and the sanitizer build's tests.
 #   bash test.sh
 source "$(dirname "${BASH_SOURCE[0]}")/scripts/common.sh"
 install_dependencies
