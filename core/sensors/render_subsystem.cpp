@@ -314,6 +314,14 @@ void RenderSubsystem::ensureRenderer() {
     gl_->context->makeCurrent();
 }
 
+namespace {
+// ShadowResolution 0's map size for cameras whose longest side is `longest`: the next power of two, in [256,
+// 4096].
+int sizedShadowResolution(int longest) {
+    return std::clamp(int(std::bit_ceil(unsigned(std::max(longest, 1)))), 256, 4096);
+}
+} // namespace
+
 void RenderSubsystem::Tick(double /*deltaSeconds*/) {
     std::vector<UCameraSensorComponent*> cameras; // a snapshot: the frame's cameras, in play order
     for (const auto& [sequence, camera] : cameraComponents_.items())
@@ -348,7 +356,7 @@ void RenderSubsystem::Tick(double /*deltaSeconds*/) {
     for (const UCameraSensorComponent* camera : cameras)
         if (!camera->renderSuspended() && camera->bShadows)
             longest = std::max({longest, camera->Width, camera->Height});
-    const int sized = std::clamp(int(std::bit_ceil(unsigned(std::max(longest, 1)))), 256, 4096);
+    const int sized = sizedShadowResolution(longest);
     for (UCameraSensorComponent* camera : cameras)
         if (!camera->renderSuspended())
             submit(*camera, sized, world_.get_frame_count() + 1); // the counter advances after the tick
@@ -361,8 +369,7 @@ void RenderSubsystem::renderNow(UCameraSensorComponent& camera) {
     gl_->context->makeCurrent();
     scene_->sync();
     updateIndirectLight({&camera});
-    const int longest = std::max({camera.Width, camera.Height, 1});
-    submit(camera, std::clamp(int(std::bit_ceil(unsigned(longest))), 256, 4096), world_.get_frame_count());
+    submit(camera, sizedShadowResolution(std::max(camera.Width, camera.Height)), world_.get_frame_count());
     gl_->runQueued();
 }
 
