@@ -37,11 +37,11 @@ function numberEditor(value: unknown, readOnly: boolean, integer: boolean, commi
   if (integer) element.step = "1";
   if (range.min !== undefined) element.min = String(range.min);
   if (range.max !== undefined) element.max = String(range.max);
+  element.addEventListener("change", () => {
+    if (element.value.trim() === "" || !Number.isFinite(Number(element.value))) return; // still being typed
+    commit(integer ? Math.trunc(Number(element.value)) : Number(element.value));
+  });
   if (range.min === undefined && range.max === undefined) {
-    element.addEventListener("change", () => {
-      if (element.value.trim() === "" || !Number.isFinite(Number(element.value))) return; // still being typed
-      commit(integer ? Math.trunc(Number(element.value)) : Number(element.value));
-    });
     return { element, update: (v, force) => (!force && editing(element)) || (element.value = String(v)) };
   }
   // A bounded number: its range beside it, and a slider where the range is one a hand can sweep.
@@ -64,10 +64,6 @@ function numberEditor(value: unknown, readOnly: boolean, integer: boolean, commi
     label.textContent = box.title;
     box.append(label);
   }
-  element.addEventListener("change", () => {
-    if (element.value.trim() === "" || !Number.isFinite(Number(element.value))) return; // still being typed
-    commit(integer ? Math.trunc(Number(element.value)) : Number(element.value));
-  });
   return {
     element: box,
     update: (v, force) => {

@@ -98,11 +98,16 @@ export class Viewer {
     });
   }
 
-  /** The camera's location and rotation for the orbit. */
-  pose(): { location: FVector; rotation: FRotator } {
+  /** The unit vector the camera looks along (X forward, Z up, as the engine's rotators). */
+  private forward(): FVector {
     const p = this.pitch * RAD;
     const y = this.yaw * RAD;
-    const forward = { X: Math.cos(p) * Math.cos(y), Y: Math.cos(p) * Math.sin(y), Z: Math.sin(p) };
+    return { X: Math.cos(p) * Math.cos(y), Y: Math.cos(p) * Math.sin(y), Z: Math.sin(p) };
+  }
+
+  /** The camera's location and rotation for the orbit. */
+  pose(): { location: FVector; rotation: FRotator } {
+    const forward = this.forward();
     return {
       location: { X: this.pivot.X - forward.X * this.distance, Y: this.pivot.Y - forward.Y * this.distance,
                   Z: this.pivot.Z - forward.Z * this.distance },
@@ -113,11 +118,9 @@ export class Viewer {
   private fromPose(location: FVector, rotation: FRotator): void {
     this.yaw = rotation.Yaw;
     this.pitch = Math.min(Math.max(rotation.Pitch, -89), 89);
-    const p = this.pitch * RAD;
-    const y = this.yaw * RAD;
-    this.pivot = { X: location.X + Math.cos(p) * Math.cos(y) * this.distance,
-                   Y: location.Y + Math.cos(p) * Math.sin(y) * this.distance,
-                   Z: location.Z + Math.sin(p) * this.distance };
+    const forward = this.forward();
+    this.pivot = { X: location.X + forward.X * this.distance, Y: location.Y + forward.Y * this.distance,
+                   Z: location.Z + forward.Z * this.distance };
   }
 
   /** Moves the camera and renders it now; moves that come while one is on the way are merged into the next. */
