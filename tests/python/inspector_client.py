@@ -5,15 +5,30 @@ send what a browser never would (unmasked frames, another site's Origin)."""
 from __future__ import annotations
 
 import base64
+import concurrent.futures
 import os
 import socket
 import struct
-from typing import Any
+from collections.abc import Callable
+from typing import Any, TypeVar
 from urllib.parse import parse_qs, urlparse
 
 import msgpack
 
+import spear
 from spear._engine import API_HASH
+
+T = TypeVar("T")
+
+
+def served(instance: spear.Instance, work: Callable[[], T]) -> T:
+    """Runs `work` (a browser's side) in a thread while this one lets the engine answer it: in-process the engine
+    is this thread's, and answers its inspector between frames or in serve_inspector()."""
+    with concurrent.futures.ThreadPoolExecutor(1) as pool:
+        future = pool.submit(work)
+        while not future.done():
+            instance.serve_inspector(seconds=0.02)
+        return future.result()
 
 
 def split_url(url: str) -> tuple[str, int, str]:

@@ -4,10 +4,9 @@ tests/python/test_inspector_browser.py."""
 
 from __future__ import annotations
 
-import concurrent.futures
 import struct
 from collections.abc import Callable, Iterator
-from typing import Any, TypeVar
+from typing import Any
 
 import msgpack
 import pytest
@@ -15,25 +14,12 @@ import pytest
 import spear
 from spear.errors import InvalidArgumentError, InvalidStateError
 
-from inspector_client import WebSocketClient, frame, http_get, split_url
-
-T = TypeVar("T")
-
+from inspector_client import WebSocketClient, frame, http_get, served, split_url
 
 @pytest.fixture
 def inspected(make_instance: Callable[..., spear.Instance]) -> Iterator[tuple[spear.Instance, str]]:
     instance = make_instance()
     yield instance, instance.inspect(port=0)
-
-
-def served(instance: spear.Instance, work: Callable[[], T]) -> T:
-    """Runs `work` (a browser's side) in a thread while this one lets the engine answer it: in-process the engine
-    is this thread's, and answers its inspector between frames or in serve_inspector()."""
-    with concurrent.futures.ThreadPoolExecutor(1) as pool:
-        future = pool.submit(work)
-        while not future.done():
-            instance.serve_inspector(seconds=0.02)
-        return future.result()
 
 
 def test_the_page_needs_the_token(inspected: tuple[spear.Instance, str]) -> None:

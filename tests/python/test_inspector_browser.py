@@ -4,12 +4,11 @@ modality's image against what read_pixels() returns to Python."""
 
 from __future__ import annotations
 
-import concurrent.futures
 import os
 import shutil
 import time
 from collections.abc import Callable, Iterator
-from typing import Any, TypeVar
+from typing import Any
 
 import numpy as np
 import pytest
@@ -17,13 +16,15 @@ from numpy.typing import NDArray
 
 import spear
 
+from inspector_client import served
+
 webdriver = pytest.importorskip("selenium.webdriver", reason="python3-selenium is not installed (test.sh installs it)")
+from selenium.common.exceptions import StaleElementReferenceException  # noqa: E402
 from selenium.webdriver.common.action_chains import ActionChains  # noqa: E402
 from selenium.webdriver.common.by import By  # noqa: E402
 from selenium.webdriver.common.keys import Keys  # noqa: E402
 from selenium.webdriver.support.ui import Select, WebDriverWait  # noqa: E402
 
-T = TypeVar("T")
 CHROMEDRIVER = shutil.which("chromedriver")
 if CHROMEDRIVER is None and os.environ.get("CI") != "true":
     pytest.skip("no chromedriver (Debian's chromium-driver; test.sh installs it)", allow_module_level=True)
@@ -40,16 +41,6 @@ def browser() -> Iterator[Any]:
     driver = webdriver.Chrome(options=options)
     yield driver
     driver.quit()
-
-
-def served(instance: spear.Instance, work: Callable[[], T]) -> T:
-    """Runs the browser's side in a thread while this one lets the engine answer it (in-process the engine is
-    this thread's: it answers its inspector between frames or in serve_inspector())."""
-    with concurrent.futures.ThreadPoolExecutor(1) as pool:
-        future = pool.submit(work)
-        while not future.done():
-            instance.serve_inspector(seconds=0.02)
-        return future.result()
 
 
 @pytest.fixture
@@ -301,8 +292,12 @@ def test_lists_and_ranges_have_editors_of_their_own(browser: Any, scene: tuple[s
         modalities.find_element(By.CSS_SELECTOR, 'button[title="add an item"]').click()  # FinalColor, the first
         WebDriverWait(browser, 30).until(
             lambda d: len(d.find_elements(By.CSS_SELECTOR, '[data-property="Modalities"] .item')) == 4)
-        last = browser.find_elements(By.CSS_SELECTOR, '[data-property="Modalities"] .item select')[-1]
-        Select(last).select_by_visible_text("Normal")
+        def choose_normal(d: Any) -> bool:  # the list is drawn again once the engine's value comes back
+            Select(d.find_elements(By.CSS_SELECTOR, '[data-property="Modalities"] .item select')[-1]
+                   ).select_by_visible_text("Normal")
+            return True
+
+        WebDriverWait(browser, 30, ignored_exceptions=(StaleElementReferenceException,)).until(choose_normal)
         WebDriverWait(browser, 30).until(lambda d: Select(
             d.find_elements(By.CSS_SELECTOR, '[data-property="Modalities"] .item select')[-1]
         ).first_selected_option.text == "Normal")
