@@ -126,9 +126,10 @@ class InProcessBackend:
     def serve_inspector(self, seconds: float) -> None:
         import time
 
-        if self._inspector is None:
-            raise errors.InvalidStateError("serve_inspector(): no inspector runs; call instance.inspect() first")
         deadline = time.monotonic() + seconds
+        if self._inspector is None:  # nobody to answer: waits, as over RPC
+            time.sleep(seconds)
+            return
         while (left := deadline - time.monotonic()) > 0:
             # Waiting releases the GIL (other threads run); answering holds it, as any engine call does.
             if self._inspector.wait_ready(int(min(left, 0.1) * 1000)):
