@@ -25,8 +25,14 @@ cmake -S "$ROOT" -B "$ASAN_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Sanitize -DPython3_E
     -DSPEAR_UBSAN_FLAGS="$UBSAN_FLAGS" $(unity_build_option "$ASAN_DIR") \
     -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
     -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
+# The inspector page too where this configuration has it (node and tsc present), for test_inspector.py. The
+# target list is read whole before grep looks at it: `cmake ... | grep -q` under pipefail fails whenever grep
+# exits before cmake has written everything (SIGPIPE), which dropped the page at random.
+targets=$(cmake --build "$ASAN_DIR" --target help)
+inspector=()
+grep -q '^spear_inspector:' <<<"$targets" && inspector=(spear_inspector)
 cmake --build "$ASAN_DIR" -j "${SPEAR_JOBS:-2}" --target spear_base_tests spear_reflect_tests spear_rpc_tests spear_physics_tests spear_rpc_fuzz \
-    spear-server $(cmake --build "$ASAN_DIR" --target help | grep -q spear_inspector && echo spear_inspector)
+    spear-server "${inspector[@]}"
 
 # Leak checking is off: Mesa's llvmpipe and EGL keep process-lifetime allocations that are not ours.
 # handle_sigbus=0: SIGBUS is the engine's own to handle (core/rpc/shared_memory.h guards truncated
