@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from codegen import naming, specifiers, typecodes
-from codegen.model import Blueprint, Class, Function, Module, Property
+from codegen.model import Blueprint, Class, Function, Module, Param, Property
 
 
 @dataclass(frozen=True)
@@ -46,6 +46,7 @@ class FunctionView:
     overloads: tuple[OverloadView, ...]
     is_static: bool
     result_code: str  # the api.py constant of the result's TypeCode
+    param_spec: str  # ((param, required), ...) as a Python literal: how a static function checks its call
 
 
 @dataclass(frozen=True)
@@ -210,7 +211,13 @@ def _function_view(c: Class, f: Function, enums: set[str], rpc: naming.Qualifier
         overloads=tuple(overloads),
         is_static=f.is_static,
         result_code=typecodes.py_name(typecodes.of_result(f)),
+        param_spec=_param_spec(ins),
     )
+
+
+def _param_spec(params: list[Param]) -> str:
+    """((name, required), ...) as Python spells it: what spear._blueprint.check_call checks a call against."""
+    return "(" + "".join(f'("{p.name}", {p.default_cpp is None}), ' for p in params).rstrip(" ") + ")"
 
 
 def _function_types(b: Blueprint) -> str:
@@ -221,8 +228,7 @@ def _function_types(b: Blueprint) -> str:
         return ""
     items = []
     for f in b.functions:
-        params = "".join(f'("{p.name}", {p.default_cpp is None}), ' for p in f.params)
-        items.append(f'"{f.name}": (_{typecodes.py_value(typecodes.of_result(f))}, ({params.rstrip(" ")}))')
+        items.append(f'"{f.name}": (_{typecodes.py_value(typecodes.of_result(f))}, {_param_spec(list(f.params))})')
     return "{" + ", ".join(items) + "}"
 
 

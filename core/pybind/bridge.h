@@ -245,10 +245,10 @@ template <typename T> struct Bridge<std::map<std::string, T>> {
     }
 };
 
-// Calls: every generated function binding takes (*args, every parameter, **kwargs), each parameter
-// defaulting to missingArgument(), so that a call that does not fit is refused here with the TypeError
-// Python itself raises for the RPC proxy's signature (same words), and a left-out parameter takes its C++
-// default in the binding, as the registry does for an RPC call.
+// Calls: a generated function's entry point (fast_call.h) takes whatever Python passes and sorts keywords
+// into its parameters, missingArgument() where one is left out; a call that does not fit is refused here
+// (checkCall) with the TypeError Python itself raises for the RPC proxy's signature (same words), and a
+// left-out parameter takes its C++ default in the binding, as the registry does for an RPC call.
 py::handle missingArgument();
 inline bool isMissing(const PyArg& value) {
     return value.ptr() == missingArgument().ptr();

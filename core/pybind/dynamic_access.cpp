@@ -14,6 +14,8 @@ namespace py = ::pybind11;
 using reflect::Value;
 
 reflect::ObjectBase& resolveHandle(py::handle object, std::string_view context) {
+    if (const RefBase* ref = nativeRef(object))
+        return reflect::ObjectTable::resolve(ref->handle, context);
     SP_CHECK(py::hasattr(object, "_sp_handle"), InvalidArgument, context,
              ": expected an engine object, got '", std::string(py::str(object.get_type().attr("__name__"))),
              "'");

@@ -6,6 +6,8 @@ namespace sp::pybind {
 
 namespace {
 AccessCheck gAccessCheck = nullptr;
+// The root of the generated classes (UObject's), borrowed like every class here.
+PyTypeObject* gRootClass = nullptr;
 
 struct Wrapper {
     WrapFn wrap;
@@ -36,6 +38,27 @@ void checkAccess(reflect::ObjectBase& object, std::string_view context) {
 
 void registerWrapper(const reflect::TypeInfo& type, WrapFn wrap, py::handle pythonClass) {
     wrappers()[&type] = Wrapper{wrap, pythonClass};
+    if (!type.parent)
+        gRootClass = reinterpret_cast<PyTypeObject*>(pythonClass.ptr());
+}
+
+const RefBase& selfRef(PyObject* self) {
+    auto* instance = reinterpret_cast<py::detail::instance*>(self);
+    // Simple layout (one bound C++ base, as every generated class has): the value pointer is stored inline.
+    void* value = instance->simple_layout ? instance->simple_value_holder[0]
+                                          : py::detail::values_and_holders(instance).begin()->value_ptr();
+    if (!value)
+        throw py::type_error(std::string("'") + Py_TYPE(self)->tp_name +
+                             "' object was never initialised: a subclass's __init__ must call its base's");
+    // Every Ref<C> is a RefBase with no data of its own (the generated bindings assert it), so the value's
+    // address is its RefBase's.
+    return *static_cast<const RefBase*>(value);
+}
+
+const RefBase* nativeRef(py::handle object) {
+    if (!gRootClass || !PyObject_TypeCheck(object.ptr(), gRootClass))
+        return nullptr;
+    return &selfRef(object.ptr());
 }
 
 py::object wrapObject(const reflect::ObjectBase* object) {

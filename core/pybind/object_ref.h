@@ -44,6 +44,14 @@ struct RefBase {
 // Specialised by generated code: template <> struct Ref<AActor> : Ref<UObject> { ... };
 template <typename T> struct Ref;
 
+// The handle of `self`, an instance of a generated class (whose C++ value is a Ref<C>: a RefBase and nothing
+// else), read from the pybind11 instance. Throws TypeError for an instance whose C++ value was never made (a
+// subclass that skipped __init__). The caller knows `self` is such an instance (a method descriptor checked).
+const RefBase& selfRef(PyObject* self);
+// The handle of `object` if it is an instance of the generated classes (their root class's), without a Python
+// attribute lookup; nullptr for anything else (an RPC proxy, a number, ...).
+const RefBase* nativeRef(py::handle object);
+
 // Python wrappers: the most derived registered pybind11 class for an object's runtime class.
 using WrapFn = py::object (*)(reflect::ObjectHandle);
 void registerWrapper(const reflect::TypeInfo& type, WrapFn wrap, py::handle pythonClass);

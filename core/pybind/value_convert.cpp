@@ -36,6 +36,8 @@ void checkDepth(int depth, std::string_view context) {
 } // namespace
 
 reflect::ObjectHandle localHandle(py::handle object, std::string_view context) {
+    if (const RefBase* ref = nativeRef(object)) // one of this process's objects: no attribute lookups
+        return ref->handle;
     SP_CHECK(!py::hasattr(object, "_sp_client"), InvalidArgument, context, ": ",
              std::string(py::str(object.get_type().attr("__name__"))),
              " belongs to another engine (a different spear.Instance)");
@@ -79,6 +81,28 @@ Value toValueAt(py::handle object, std::string_view context, int depth) {
     static const py::object* const numpyScalar = new py::object(py::module_::import("numpy").attr("generic"));
     if (py::isinstance(object, *numpyScalar))
         return toValueAt(object.attr("item")(), context, depth);
+    // Lists, tuples and dicts before the attribute probes below: a failed lookup raises (and formats) an
+    // AttributeError.
+    const auto list = [&] {
+        checkDepth(depth, context);
+        Value::List items;
+        for (auto item : object)
+            items.push_back(toValueAt(item, context, depth + 1));
+        return Value(std::move(items));
+    };
+    if (PyList_Check(object.ptr()) || PyTuple_Check(object.ptr()))
+        return list();
+    if (PyDict_Check(object.ptr())) {
+        checkDepth(depth, context);
+        Value::Dict items;
+        for (auto [key, item] : py::reinterpret_borrow<py::dict>(object)) {
+            SP_CHECK(PyUnicode_Check(key.ptr()), InvalidArgument, context, ": dict keys must be str");
+            items.emplace(key.cast<std::string>(), toValueAt(item, context, depth + 1));
+        }
+        return Value(std::move(items));
+    }
+    if (const RefBase* ref = nativeRef(object))
+        return Value(ref->handle);
     if (py::hasattr(object, "_sp_handle"))
         return Value(localHandle(object, context));
     if (PyType_Check(object.ptr()) && py::hasattr(object, "__sp_class__"))
@@ -98,22 +122,8 @@ Value toValueAt(py::handle object, std::string_view context, int depth) {
         }
         return Value(std::move(fields));
     }
-    if (isSequence(object)) {
-        checkDepth(depth, context);
-        Value::List items;
-        for (auto item : object)
-            items.push_back(toValueAt(item, context, depth + 1));
-        return Value(std::move(items));
-    }
-    if (PyDict_Check(object.ptr())) {
-        checkDepth(depth, context);
-        Value::Dict items;
-        for (auto [key, item] : py::reinterpret_borrow<py::dict>(object)) {
-            SP_CHECK(PyUnicode_Check(key.ptr()), InvalidArgument, context, ": dict keys must be str");
-            items.emplace(key.cast<std::string>(), toValueAt(item, context, depth + 1));
-        }
-        return Value(std::move(items));
-    }
+    if (isSequence(object)) // any other sequence (collections.abc.Sequence)
+        return list();
     SP_THROW(InvalidArgument, context, ": cannot pass a value of type '",
              std::string(py::str(object.get_type().attr("__name__"))), "'");
 }

@@ -84,18 +84,20 @@ def _plural(count: int, word: str) -> str:
 
 
 def check_call(function: str, args: tuple[Any, ...], kwargs: Mapping[str, Any],
-               params: tuple[tuple[str, bool], ...]) -> None:
+               params: tuple[tuple[str, bool], ...], method: bool = True) -> None:
     """Refuses a call that does not fit the function's keyword-only parameters with Python's TypeError, in
     the words the generated bindings use for a C++ function (core/pybind/bridge.cpp, checkCall), in the
-    order CPython checks: an unexpected keyword, then positional arguments, then missing ones."""
+    order CPython checks: an unexpected keyword, then positional arguments, then missing ones. A method
+    counts its object as a positional argument, as Python does; a static function has none."""
     names = [param for param, _ in params]
     for key in kwargs:
         if key not in names:
             raise TypeError(f"{function} got an unexpected keyword argument '{key}'")
     given = sum(1 for param in names if param in kwargs)
     if args:
-        count = len(args) + 1  # and the object itself
-        message = f"{function} takes 1 positional argument but {count}"
+        takes = 1 if method else 0  # the object itself
+        count = len(args) + takes
+        message = f"{function} takes {_plural(takes, 'positional argument')} but {count}"
         if given:
             message += (f" positional argument{'' if count == 1 else 's'} "
                         f"(and {_plural(given, 'keyword-only argument')})")

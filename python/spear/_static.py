@@ -13,6 +13,7 @@ from __future__ import annotations
 from typing import Any
 
 from spear import errors
+from spear._blueprint import check_call
 from spear._object import SpObject
 from spear._type_code import TypeCode
 
@@ -20,12 +21,14 @@ from spear._type_code import TypeCode
 class StaticFunction:
     """A class attribute of the typed API standing for one static function of an engine class."""
 
-    __slots__ = ("_class_name", "_function", "_result_type", "_result_tuple_name")
+    __slots__ = ("_class_name", "_function", "_result_type", "_params", "_result_tuple_name")
 
-    def __init__(self, class_name: str, function: str, result_type: TypeCode, result_tuple_name: str | None = None) -> None:
+    def __init__(self, class_name: str, function: str, result_type: TypeCode, params: tuple[tuple[str, bool], ...],
+                 result_tuple_name: str | None = None) -> None:
         self._class_name = class_name
         self._function = function
         self._result_type = result_type
+        self._params = params  # (name, required) of each parameter, all keyword-only
         self._result_tuple_name = result_tuple_name
 
     @property
@@ -35,7 +38,10 @@ class StaticFunction:
     def __get__(self, obj: object, owner: type | None = None) -> Any:
         from spear._rpc_proxy import ObjectProxy
 
-        def call(**kwargs: Any) -> Any:
+        def call(*args: Any, **kwargs: Any) -> Any:
+            # Refused here, before routing, so that both transports raise Python's own TypeError (the
+            # server would answer a missing argument with InvalidArgumentError).
+            check_call(self.context, args, kwargs, self._params, method=False)
             if isinstance(obj, ObjectProxy):
                 return self._call_rpc(obj._sp_client, owner, kwargs)
             return self._call_routed(owner, kwargs)

@@ -1339,7 +1339,7 @@ class UCameraSensorComponent(USceneComponent):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UCameraSensorComponent"
-    read_pixels_stacked = _StaticFunction("UCameraSensorComponent", "read_pixels_stacked", _t.T_FCameraPixels)
+    read_pixels_stacked = _StaticFunction("UCameraSensorComponent", "read_pixels_stacked", _t.T_FCameraPixels, (("Cameras", True),))
 
     class GetObjectIdInfoResult(NamedTuple):
         ReturnValue: bool
@@ -1442,19 +1442,19 @@ class UGameplayStatics(UObject):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UGameplayStatics"
-    GetGameMode = _StaticFunction("UGameplayStatics", "GetGameMode", _t.T_AGameModeBase_or_None)
-    GetPlayerController = _StaticFunction("UGameplayStatics", "GetPlayerController", _t.T_APlayerController_or_None)
-    GetPlayerPawn = _StaticFunction("UGameplayStatics", "GetPlayerPawn", _t.T_APawn_or_None)
-    GetPlayerControllerID = _StaticFunction("UGameplayStatics", "GetPlayerControllerID", _t.T_int)
-    GetNumPlayerControllers = _StaticFunction("UGameplayStatics", "GetNumPlayerControllers", _t.T_int)
-    CreatePlayer = _StaticFunction("UGameplayStatics", "CreatePlayer", _t.T_APlayerController_or_None)
-    GetAllActorsOfClass = _StaticFunction("UGameplayStatics", "GetAllActorsOfClass", _t.T_list_of_AActor)
-    GetActorOfClass = _StaticFunction("UGameplayStatics", "GetActorOfClass", _t.T_AActor_or_None)
-    GetAllActorsWithTag = _StaticFunction("UGameplayStatics", "GetAllActorsWithTag", _t.T_list_of_AActor)
-    LoadStreamLevel = _StaticFunction("UGameplayStatics", "LoadStreamLevel", _t.T_void)
-    UnloadStreamLevel = _StaticFunction("UGameplayStatics", "UnloadStreamLevel", _t.T_void)
-    GetStreamingLevelNames = _StaticFunction("UGameplayStatics", "GetStreamingLevelNames", _t.T_list_of_str)
-    IsStreamingLevelLoaded = _StaticFunction("UGameplayStatics", "IsStreamingLevelLoaded", _t.T_bool)
+    GetGameMode = _StaticFunction("UGameplayStatics", "GetGameMode", _t.T_AGameModeBase_or_None, (("WorldContextObject", True),))
+    GetPlayerController = _StaticFunction("UGameplayStatics", "GetPlayerController", _t.T_APlayerController_or_None, (("WorldContextObject", True), ("PlayerIndex", True),))
+    GetPlayerPawn = _StaticFunction("UGameplayStatics", "GetPlayerPawn", _t.T_APawn_or_None, (("WorldContextObject", True), ("PlayerIndex", True),))
+    GetPlayerControllerID = _StaticFunction("UGameplayStatics", "GetPlayerControllerID", _t.T_int, (("Player", True),))
+    GetNumPlayerControllers = _StaticFunction("UGameplayStatics", "GetNumPlayerControllers", _t.T_int, (("WorldContextObject", True),))
+    CreatePlayer = _StaticFunction("UGameplayStatics", "CreatePlayer", _t.T_APlayerController_or_None, (("WorldContextObject", True), ("ControllerId", False), ("bSpawnPlayerController", False),))
+    GetAllActorsOfClass = _StaticFunction("UGameplayStatics", "GetAllActorsOfClass", _t.T_list_of_AActor, (("WorldContextObject", True), ("ActorClass", True),))
+    GetActorOfClass = _StaticFunction("UGameplayStatics", "GetActorOfClass", _t.T_AActor_or_None, (("WorldContextObject", True), ("ActorClass", True),))
+    GetAllActorsWithTag = _StaticFunction("UGameplayStatics", "GetAllActorsWithTag", _t.T_list_of_AActor, (("WorldContextObject", True), ("Tag", True),))
+    LoadStreamLevel = _StaticFunction("UGameplayStatics", "LoadStreamLevel", _t.T_void, (("WorldContextObject", True), ("LevelName", True), ("bMakeVisibleAfterLoad", False), ("bShouldBlockOnLoad", False),))
+    UnloadStreamLevel = _StaticFunction("UGameplayStatics", "UnloadStreamLevel", _t.T_void, (("WorldContextObject", True), ("LevelName", True), ("bShouldBlockOnUnload", False),))
+    GetStreamingLevelNames = _StaticFunction("UGameplayStatics", "GetStreamingLevelNames", _t.T_list_of_str, (("WorldContextObject", True),))
+    IsStreamingLevelLoaded = _StaticFunction("UGameplayStatics", "IsStreamingLevelLoaded", _t.T_bool, (("WorldContextObject", True), ("LevelName", True),))
 
 
 class UInputComponentAsync(UActorComponentAsync):
@@ -1514,7 +1514,7 @@ class UMoviePipelineQueueEngineSubsystem(UObject):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UMoviePipelineQueueEngineSubsystem"
-    GetMoviePipelineQueueEngineSubsystem = _StaticFunction("UMoviePipelineQueueEngineSubsystem", "GetMoviePipelineQueueEngineSubsystem", _t.T_UMoviePipelineQueueEngineSubsystem)
+    GetMoviePipelineQueueEngineSubsystem = _StaticFunction("UMoviePipelineQueueEngineSubsystem", "GetMoviePipelineQueueEngineSubsystem", _t.T_UMoviePipelineQueueEngineSubsystem, (("WorldContextObject", True),))
 
 
 class UNavigationSystemV1Async(UObjectAsync):
@@ -1534,12 +1534,12 @@ class UNavigationSystemV1(UObject):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UNavigationSystemV1"
-    GetNavigationSystem = _StaticFunction("UNavigationSystemV1", "GetNavigationSystem", _t.T_UNavigationSystemV1)
-    FindPathToLocationSynchronously = _StaticFunction("UNavigationSystemV1", "FindPathToLocationSynchronously", _t.T_ENavigationQueryResult, "FindPathToLocationSynchronouslyResult")
-    GetPathLength = _StaticFunction("UNavigationSystemV1", "GetPathLength", _t.T_ENavigationQueryResult, "GetPathLengthResult")
-    K2_GetRandomReachablePointInRadius = _StaticFunction("UNavigationSystemV1", "K2_GetRandomReachablePointInRadius", _t.T_bool, "K2_GetRandomReachablePointInRadiusResult")
-    K2_GetRandomLocationInNavigableRadius = _StaticFunction("UNavigationSystemV1", "K2_GetRandomLocationInNavigableRadius", _t.T_bool, "K2_GetRandomLocationInNavigableRadiusResult")
-    K2_ProjectPointToNavigation = _StaticFunction("UNavigationSystemV1", "K2_ProjectPointToNavigation", _t.T_bool, "K2_ProjectPointToNavigationResult")
+    GetNavigationSystem = _StaticFunction("UNavigationSystemV1", "GetNavigationSystem", _t.T_UNavigationSystemV1, (("WorldContextObject", True),))
+    FindPathToLocationSynchronously = _StaticFunction("UNavigationSystemV1", "FindPathToLocationSynchronously", _t.T_ENavigationQueryResult, (("WorldContextObject", True), ("PathStart", True), ("PathEnd", True), ("NavData", False),), "FindPathToLocationSynchronouslyResult")
+    GetPathLength = _StaticFunction("UNavigationSystemV1", "GetPathLength", _t.T_ENavigationQueryResult, (("WorldContextObject", True), ("PathStart", True), ("PathEnd", True), ("NavData", False),), "GetPathLengthResult")
+    K2_GetRandomReachablePointInRadius = _StaticFunction("UNavigationSystemV1", "K2_GetRandomReachablePointInRadius", _t.T_bool, (("WorldContextObject", True), ("Origin", True), ("Radius", True), ("NavData", False),), "K2_GetRandomReachablePointInRadiusResult")
+    K2_GetRandomLocationInNavigableRadius = _StaticFunction("UNavigationSystemV1", "K2_GetRandomLocationInNavigableRadius", _t.T_bool, (("WorldContextObject", True), ("Origin", True), ("Radius", True), ("NavData", False),), "K2_GetRandomLocationInNavigableRadiusResult")
+    K2_ProjectPointToNavigation = _StaticFunction("UNavigationSystemV1", "K2_ProjectPointToNavigation", _t.T_bool, (("WorldContextObject", True), ("Point", True), ("NavData", False), ("QueryExtent", False),), "K2_ProjectPointToNavigationResult")
 
     class FindPathToLocationSynchronouslyResult(NamedTuple):
         ReturnValue: ENavigationQueryResult
@@ -1637,7 +1637,7 @@ class USkeletalMeshComponent(UPrimitiveComponent):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "USkeletalMeshComponent"
-    GetBoneTransformsOfComponents = _StaticFunction("USkeletalMeshComponent", "GetBoneTransformsOfComponents", _t.T_array_float64)
+    GetBoneTransformsOfComponents = _StaticFunction("USkeletalMeshComponent", "GetBoneTransformsOfComponents", _t.T_array_float64, (("Components", True), ("Space", False),))
 
 
 class USkyAtmosphereComponentAsync(USceneComponentAsync):
@@ -1815,7 +1815,7 @@ class UZoneGraphSubsystem(UObject):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "UZoneGraphSubsystem"
-    GetZoneGraphSubsystem = _StaticFunction("UZoneGraphSubsystem", "GetZoneGraphSubsystem", _t.T_UZoneGraphSubsystem)
+    GetZoneGraphSubsystem = _StaticFunction("UZoneGraphSubsystem", "GetZoneGraphSubsystem", _t.T_UZoneGraphSubsystem, (("WorldContextObject", True),))
 
     class FindNearestLaneResult(NamedTuple):
         ReturnValue: bool

@@ -81,7 +81,7 @@ class AAllTypes(AActor):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "AAllTypes"
-    Histogram = _StaticFunction("AAllTypes", "Histogram", _t.T_dict_of_int)
+    Histogram = _StaticFunction("AAllTypes", "Histogram", _t.T_dict_of_int, (("Bytes", True), ("Bins", False),))
 
     class SplitResult(NamedTuple):
         ReturnValue: bool

@@ -63,7 +63,7 @@ class ABaseBot(AActor):
 
     __slots__ = ()
     __sp_class__: ClassVar[str] = "ABaseBot"
-    FleetSize = _StaticFunction("ABaseBot", "FleetSize", _t.T_int)
+    FleetSize = _StaticFunction("ABaseBot", "FleetSize", _t.T_int, (("Count", True), ("Spares", False),))
 
 
 class AWalkerBotAsync(ABaseBotAsync):
