@@ -12,6 +12,7 @@ install_pyright
 # Before the build, which regenerates generated/: the committed copy must already match the headers.
 say "check: committed generated/ matches the reflected headers"
 engine_codegen check
+(cd "$ROOT" && "$PYTHON" -m codegen.protocol check --root .)
 
 build
 

@@ -18,6 +18,7 @@
 #include "core/rpc/shared_memory.h"
 #include "core/spfunc/sp_func_call.h"
 #include "core/world/object_access.h"
+#include "generated/rpc/cpp/protocol.gen.h"
 
 namespace sp::rpc {
 
@@ -27,7 +28,7 @@ namespace {
 constexpr size_t kSmallReply = 256;
 
 reflect::ObjectBase& requireObject(const Request& request, std::string_view context) {
-    Value handle = unpack(request.require("object", context), context);
+    Value handle = unpack(request.require(protocol::field::kObject, context), context);
     SP_CHECK(handle.is<reflect::ObjectHandle>(), InvalidArgument, context,
              ": 'object' must be an object reference");
     reflect::ObjectBase& object = reflect::ObjectTable::resolve(handle.as<reflect::ObjectHandle>(), context);
@@ -60,12 +61,12 @@ bool sameSecret(const std::string& given, const std::string& secret) {
 void packError(msgpack::packer<msgpack::sbuffer>& out, const msgpack::object* id, const char* type,
                const std::string& message) {
     out.pack_map(2);
-    out.pack(std::string("id"));
+    out.pack(protocol::reply::kId);
     if (id)
         out.pack(*id);
     else
         out.pack_nil();
-    out.pack(std::string("error"));
+    out.pack(protocol::reply::kError);
     out.pack_array(2);
     out.pack(std::string(type));
     out.pack(message);
@@ -96,12 +97,12 @@ void Dispatcher::handle(const char* data, size_t size, Session& session, msgpack
 }
 
 void Dispatcher::readReplyBuffers(const msgpack::object& request, Session& session) {
-    if (const msgpack::object* dropped = mapField(request, "dropped_buffers");
+    if (const msgpack::object* dropped = mapField(request, protocol::field::kDroppedBuffers);
         dropped && dropped->type == msgpack::type::ARRAY && session.dropReplyBuffer)
         for (uint32_t i = 0; i < dropped->via.array.size; ++i)
             if (const msgpack::object& name = dropped->via.array.ptr[i]; name.type == msgpack::type::STR)
                 session.dropReplyBuffer(std::string(name.via.str.ptr, name.via.str.size));
-    if (const msgpack::object* offered = mapField(request, "reply_buffers");
+    if (const msgpack::object* offered = mapField(request, protocol::field::kReplyBuffers);
         offered && offered->type == msgpack::type::ARRAY && session.offerReplyBuffer)
         for (uint32_t i = 0; i < offered->via.array.size; ++i) {
             const msgpack::object& pair = offered->via.array.ptr[i];
@@ -151,7 +152,7 @@ void Dispatcher::endSession(Session& session) {
 
 bool Dispatcher::handleOne(const msgpack::object& message, Session& session, msgpack::sbuffer& reply,
                            const ArrayToSharedMemory& toShm, bool inBatch) {
-    const msgpack::object* id = mapField(message, "id");
+    const msgpack::object* id = mapField(message, protocol::field::kId);
     // The id is echoed as it came; packing a container recurses, so only a scalar is (a client's ids are
     // integers).
     if (id && (id->type == msgpack::type::ARRAY || id->type == msgpack::type::MAP))
@@ -163,17 +164,17 @@ bool Dispatcher::handleOne(const msgpack::object& message, Session& session, msg
     msgpack::packer<msgpack::sbuffer> out(&built);
     try {
         const Request request(message);
-        if (request.op() == "batch") {
+        if (request.op() == protocol::op::kBatch) {
             SP_CHECK(session.greeted, InvalidState, "batch(): say hello first");
             // Each level of batch is a C++ stack frame: nested batches could overflow the stack.
             SP_CHECK(!inBatch, InvalidArgument, "batch(): a batch may not contain a batch");
-            const msgpack::object& calls = request.require("calls", "batch");
+            const msgpack::object& calls = request.require(protocol::field::kCalls, protocol::op::kBatch);
             SP_CHECK(calls.type == msgpack::type::ARRAY, InvalidArgument, "batch(): 'calls' must be a list");
             // Calls the rest of the batch depends on (a client sends a frame's begin with the calls of its
             // block): when one fails, the calls after it are not run, so that they cannot act on a frame
             // that was never begun (or on another client's).
             std::vector<bool> critical(calls.via.array.size, false);
-            if (const msgpack::object* list = request.field("critical")) {
+            if (const msgpack::object* list = request.field(protocol::field::kCritical)) {
                 SP_CHECK(list->type == msgpack::type::ARRAY, InvalidArgument,
                          "batch(): 'critical' must be a list of call positions");
                 for (uint32_t i = 0; i < list->via.array.size; ++i) {
@@ -187,21 +188,21 @@ bool Dispatcher::handleOne(const msgpack::object& message, Session& session, msg
             // "between_frames": the calls may use engine objects outside a frame, without ticking the world
             // (the inspector, looking at a paused simulation; Engine::Inspection).
             std::optional<engine::Engine::Inspection> inspection;
-            if (const msgpack::object* between = request.field("between_frames")) {
+            if (const msgpack::object* between = request.field(protocol::field::kBetweenFrames)) {
                 SP_CHECK(between->type == msgpack::type::BOOLEAN, InvalidArgument,
                          "batch(): 'between_frames' must be a bool");
                 if (between->via.boolean)
                     inspection.emplace(engine_);
             }
             out.pack_map(2);
-            out.pack(std::string("id"));
+            out.pack(protocol::reply::kId);
             id ? out.pack(*id) : out.pack_nil();
-            out.pack(std::string("ok"));
+            out.pack(protocol::reply::kOk);
             out.pack_array(calls.via.array.size);
             int failedCritical = -1;
             for (uint32_t i = 0; i < calls.via.array.size; ++i) {
                 if (failedCritical >= 0) {
-                    const msgpack::object* callId = mapField(calls.via.array.ptr[i], "id");
+                    const msgpack::object* callId = mapField(calls.via.array.ptr[i], protocol::field::kId);
                     const bool scalar =
                         callId && callId->type != msgpack::type::ARRAY && callId->type != msgpack::type::MAP;
                     packError(out, scalar ? callId : nullptr, "InvalidStateError",
@@ -223,9 +224,9 @@ bool Dispatcher::handleOne(const msgpack::object& message, Session& session, msg
         // the result is packed and gone, so the map's header is written for two and corrected then.
         const size_t header = built.size();
         out.pack_map(2);
-        out.pack(std::string("id"));
+        out.pack(protocol::reply::kId);
         id ? out.pack(*id) : out.pack_nil();
-        out.pack(std::string("ok"));
+        out.pack(protocol::reply::kOk);
         pack(out, result, toShm);
         // A segment shrank while this request read or wrote it: the server survived (shared_memory.h), but
         // what it read or wrote there is lost, so the request fails.
@@ -242,7 +243,7 @@ bool Dispatcher::handleOne(const msgpack::object& message, Session& session, msg
         }
         if (!kept.empty()) {
             built.data()[header] = char(0x83); // fixmap of 3 (pack_map(2) wrote 0x82)
-            out.pack(std::string("kept"));
+            out.pack(protocol::reply::kKept);
             out.pack(kept);
         }
         reply.write(built.data(), built.size());
@@ -275,30 +276,37 @@ bool Dispatcher::handleOne(const msgpack::object& message, Session& session, msg
 
 const std::vector<Dispatcher::Route>& Dispatcher::routes() {
     static const std::vector<Route> table{
-        {"world", &Dispatcher::world},
-        {"worlds", &Dispatcher::worlds},
-        {"frame", &Dispatcher::frame},
-        {"inspect", &Dispatcher::inspect},
-        {"call", &Dispatcher::call},
-        {"call_typed", &Dispatcher::call},
-        {"get", &Dispatcher::property},
-        {"get_typed", &Dispatcher::property},
-        {"set", &Dispatcher::property},
-        {"load_plugin", &Dispatcher::loadPlugin},
-        {"unload_plugin", &Dispatcher::unloadPlugin},
-        {"sp_func", &Dispatcher::spFunc},
-        {"sp_func_names", &Dispatcher::spFuncNames},
-        {"is_valid", &Dispatcher::objectQuery},
-        {"describe", &Dispatcher::objectQuery},
-        {"echo", &Dispatcher::echo},
-        {"shm_proof", &Dispatcher::shmProof},
-        {"shutdown", &Dispatcher::shutdown},
+        {protocol::op::kWorld, &Dispatcher::world},
+        {protocol::op::kWorlds, &Dispatcher::worlds},
+        {protocol::op::kFrame, &Dispatcher::frame},
+        {protocol::op::kInspect, &Dispatcher::inspect},
+        {protocol::op::kCall, &Dispatcher::call},
+        {protocol::op::kCallTyped, &Dispatcher::call},
+        {protocol::op::kGet, &Dispatcher::property},
+        {protocol::op::kGetTyped, &Dispatcher::property},
+        {protocol::op::kSet, &Dispatcher::property},
+        {protocol::op::kLoadPlugin, &Dispatcher::loadPlugin},
+        {protocol::op::kUnloadPlugin, &Dispatcher::unloadPlugin},
+        {protocol::op::kSpFunc, &Dispatcher::spFunc},
+        {protocol::op::kSpFuncNames, &Dispatcher::spFuncNames},
+        {protocol::op::kIsValid, &Dispatcher::objectQuery},
+        {protocol::op::kDescribe, &Dispatcher::objectQuery},
+        {protocol::op::kEcho, &Dispatcher::echo},
+        {protocol::op::kShmProof, &Dispatcher::shmProof},
+        {protocol::op::kShutdown, &Dispatcher::shutdown},
     };
     return table;
 }
 
+std::vector<std::string_view> Dispatcher::handledOps() {
+    std::vector<std::string_view> ops{protocol::op::kHello, protocol::op::kBatch};
+    for (const Route& route : routes())
+        ops.push_back(route.op);
+    return ops;
+}
+
 Value Dispatcher::execute(const Request& request, Session& session) {
-    if (request.op() == "hello")
+    if (request.op() == protocol::op::kHello)
         return hello(request, session);
     if (!session.greeted) {
         session.closeAfterReply = true;
@@ -311,8 +319,8 @@ Value Dispatcher::execute(const Request& request, Session& session) {
 }
 
 Value Dispatcher::hello(const Request& request, Session& session) {
-    const std::string clientHash = request.string("api_hash", "hello");
-    const msgpack::object* token = request.field("token");
+    const std::string clientHash = request.string(protocol::field::kApiHash, protocol::op::kHello);
+    const msgpack::object* token = request.field(protocol::field::kToken);
     const std::string given = token && token->type == msgpack::type::STR
                                   ? std::string(token->via.str.ptr, token->via.str.size)
                                   : "";
@@ -328,9 +336,9 @@ Value Dispatcher::hello(const Request& request, Session& session) {
                  apiHash_, "); the client's generated stubs come from a different engine build");
     }
     session.greeted = true;
-    Value::Dict reply{{"api_hash", Value(apiHash_)},
-                      {"pid", Value(int64_t(::getpid()))},
-                      {"reply_buffers", Value(bool(session.offerReplyBuffer))}};
+    Value::Dict reply{{std::string(protocol::reply::kApiHash), Value(apiHash_)},
+                      {std::string(protocol::reply::kPid), Value(int64_t(::getpid()))},
+                      {std::string(protocol::reply::kReplyBuffers), Value(bool(session.offerReplyBuffer))}};
     // A segment holding a nonce only a client that can map the server's segments reads (shm_proof). Where
     // none can be made (no /dev/shm), the reply names none and this connection's replies stay inline; a
     // browser never maps one.
@@ -344,14 +352,14 @@ Value Dispatcher::hello(const Request& request, Session& session) {
             session.probe->unlink();
         session.probe = std::move(probe);
         session.probeNonce = std::move(nonce);
-        reply["shm_probe"] = Value(session.probe->name());
+        reply[std::string(protocol::reply::kShmProbe)] = Value(session.probe->name());
     } catch (const std::exception&) {
     }
     return Value(std::move(reply));
 }
 
 Value Dispatcher::shmProof(const Request& request, Session& session) {
-    const std::string nonce = request.string("nonce", "shm_proof");
+    const std::string nonce = request.string(protocol::field::kNonce, protocol::op::kShmProof);
     const bool proven = session.probe && !nonce.empty() && sameSecret(nonce, session.probeNonce);
     if (session.probe)
         session.probe->unlink();
@@ -362,10 +370,11 @@ Value Dispatcher::shmProof(const Request& request, Session& session) {
 }
 
 Value Dispatcher::world(const Request& request, Session&) {
-    const std::string kind = request.string("kind", "world");
-    if (kind == "game")
+    const std::string kind = request.string(protocol::field::kKind, protocol::op::kWorld);
+    if (kind == protocol::value::kGame)
         return Value(engine_.GetGameWorld().GetHandle());
-    SP_CHECK(kind == "editor", InvalidArgument, "world(): kind must be 'game' or 'editor', got '", kind, "'");
+    SP_CHECK(kind == protocol::value::kEditor, InvalidArgument,
+             "world(): kind must be 'game' or 'editor', got '", kind, "'");
     UWorld* editor = engine_.GetEditorWorld();
     SP_CHECK(editor, InvalidState,
              "get_editor(): this instance runs standalone and has no editor world; "
@@ -374,12 +383,13 @@ Value Dispatcher::world(const Request& request, Session&) {
 }
 
 Value Dispatcher::worlds(const Request& request, Session&) {
-    const std::string action = request.string("action", "worlds");
-    if (action == "create")
-        return Value(engine_.CreateWorld(request.string("name", "create_world")).GetHandle());
-    if (action == "destroy") {
+    const std::string action = request.string(protocol::field::kAction, protocol::op::kWorlds);
+    if (action == protocol::value::kCreate)
+        return Value(engine_.CreateWorld(request.string(protocol::field::kName, "create_world")).GetHandle());
+    if (action == protocol::value::kDestroy) {
         // Like create_world, any time the engine is not ticking: no frame needed.
-        const Value handle = unpack(request.require("object", "destroy_world"), "destroy_world()");
+        const Value handle =
+            unpack(request.require(protocol::field::kObject, "destroy_world"), "destroy_world()");
         SP_CHECK(handle.is<reflect::ObjectHandle>(), InvalidArgument,
                  "destroy_world(): 'object' must be an object reference");
         auto* world = dynamic_cast<UWorld*>(
@@ -388,7 +398,7 @@ Value Dispatcher::worlds(const Request& request, Session&) {
         engine_.DestroyWorld(*world);
         return Value();
     }
-    SP_CHECK(action == "list", InvalidArgument,
+    SP_CHECK(action == protocol::value::kList, InvalidArgument,
              "worlds(): action must be 'create', 'destroy' or 'list', got '", action, "'");
     Value::List handles;
     for (UWorld* world : engine_.GetWorlds())
@@ -398,7 +408,7 @@ Value Dispatcher::worlds(const Request& request, Session&) {
 
 Value Dispatcher::inspect(const Request& request, Session& session) {
     (void)session;
-    const msgpack::object& port = request.require("port", "inspect");
+    const msgpack::object& port = request.require(protocol::field::kPort, protocol::op::kInspect);
     SP_CHECK(port.type == msgpack::type::POSITIVE_INTEGER && port.via.u64 <= 65535, InvalidArgument,
              "inspect(): port must be an int in [0, 65535]");
     SP_CHECK(inspectHook_, InvalidState, "inspect(): this server does not serve the inspector");
@@ -406,50 +416,54 @@ Value Dispatcher::inspect(const Request& request, Session& session) {
 }
 
 Value Dispatcher::frame(const Request& request, Session& session) {
-    const std::string action = request.string("action", "frame");
-    if (action == "begin")
+    const std::string action = request.string(protocol::field::kAction, protocol::op::kFrame);
+    if (action == protocol::value::kBegin)
         engine_.beginFrame();
-    else if (action == "execute")
+    else if (action == protocol::value::kExecute)
         engine_.executeFrame();
-    else if (action == "begin_end")
+    else if (action == protocol::value::kBeginEnd)
         engine_.beginEndFrame();
-    else if (action == "end")
+    else if (action == protocol::value::kEnd)
         engine_.endFrame();
-    else if (action == "abort")
+    else if (action == protocol::value::kAbort)
         engine_.abortFrame();
-    else if (action != "state")
+    else if (action != protocol::value::kState)
         SP_THROW(InvalidArgument, "frame(): unknown action '", action, "'");
     // The client that last moved a frame owns it until it ends (see endSession).
-    if (action != "state")
+    if (action != protocol::value::kState)
         frameOwner_ = engine_.GetFrameState() == engine::Engine::FrameState::Idle ? nullptr : &session;
-    return Value(Value::Dict{{"state", Value(std::string(engine::Engine::toString(engine_.GetFrameState())))},
-                             {"frame_count", Value(engine_.GetFrameCount())}});
+    return Value(Value::Dict{{std::string(protocol::reply::kState),
+                              Value(std::string(engine::Engine::toString(engine_.GetFrameState())))},
+                             {std::string(protocol::reply::kFrameCount), Value(engine_.GetFrameCount())}});
 }
 
 // call {object|class, function, args}; call_typed (the dynamic API) also returns the declared types, so the
 // client can build the same Python types the typed proxies do.
 Value Dispatcher::call(const Request& request, Session&) {
     const std::string_view op = request.op();
-    const std::string_view function = request.text("function", op);
+    const std::string_view function = request.text(protocol::field::kFunction, op);
     // Typed proxies name the member as the in-process bindings do ("AActor.GetName()"), so that messages are
     // the same on both transports. Views into the message: a batch of calls builds no strings.
     std::string fallback;
     const std::string_view context =
         request.context(fallback, [&] { return "call_function('" + std::string(function) + "')"; });
     // A static function names its class instead of an object ("class": "UGameplayStatics").
-    const bool isStatic = request.field("class") != nullptr;
+    const bool isStatic = request.field(protocol::field::kClass) != nullptr;
     reflect::ObjectBase* object = isStatic ? nullptr : &requireObject(request, context);
     const reflect::TypeInfo& type =
-        isStatic ? reflect::Registry::get().getClass(request.string("class", context), context)
-                 : object->GetObjectClass(); // a blueprint's functions, then its native class's
+        isStatic
+            ? reflect::Registry::get().getClass(request.string(protocol::field::kClass, context), context)
+            : object->GetObjectClass(); // a blueprint's functions, then its native class's
     const reflect::FunctionInfo* info = type.findFunction(function);
     SP_CHECK(info, NotFound, context, ": class '", type.name, "' has no function '", function, "'");
     SP_CHECK(!isStatic || info->isStatic, InvalidArgument, context, ": '", type.name, ".", function,
              "' is not static; call it on an object");
-    Value args = request.field("args") ? unpack(*request.field("args"), context) : Value(Value::Dict{});
+    Value args = request.field(protocol::field::kArgs)
+                     ? unpack(*request.field(protocol::field::kArgs), context)
+                     : Value(Value::Dict{});
     SP_CHECK(args.is<Value::Dict>(), InvalidArgument, context, ": 'args' must be a map");
     Value result = info->invoke(object, args.as<Value::Dict>());
-    if (op == "call")
+    if (op == protocol::op::kCall)
         return result;
     // Declared types as data (reflect::TypeCode), by which the client builds typed results.
     Value::Dict outTypes;
@@ -458,55 +472,60 @@ Value Dispatcher::call(const Request& request, Session&) {
             outTypes.emplace(param.name, param.type.toValue());
     if (!outTypes.empty() && info->returnType.kind != reflect::TypeCode::Kind::Void)
         outTypes.emplace("ReturnValue", info->returnType.toValue());
-    return Value(Value::Dict{{"value", std::move(result)},
-                             {"type", info->returnType.toValue()},
-                             {"out_types", Value(std::move(outTypes))}});
+    return Value(Value::Dict{{std::string(protocol::reply::kValue), std::move(result)},
+                             {std::string(protocol::reply::kType), info->returnType.toValue()},
+                             {std::string(protocol::reply::kOutTypes), Value(std::move(outTypes))}});
 }
 
 // get / get_typed {object, property}; set {object, property, value}. `property` is a path
 // (core/reflect/property_path.h).
 Value Dispatcher::property(const Request& request, Session&) {
     const std::string_view op = request.op();
-    const std::string name = request.string("property", op);
+    const std::string name = request.string(protocol::field::kProperty, op);
     std::string fallback;
-    const std::string_view context = request.context(
-        fallback, [&] { return (op == "set" ? "set_property('" : "get_property('") + name + "')"; });
+    const std::string_view context = request.context(fallback, [&] {
+        return (op == protocol::op::kSet ? "set_property('" : "get_property('") + name + "')";
+    });
     reflect::ObjectBase& object = requireObject(request, context);
-    if (op == "set") {
-        reflect::setPath(object, name, unpack(request.require("value", op), context), context);
+    if (op == protocol::op::kSet) {
+        reflect::setPath(object, name, unpack(request.require(protocol::field::kValue, op), context),
+                         context);
         return Value();
     }
     reflect::PathValue found = reflect::getPath(object, name, context);
-    if (op == "get")
+    if (op == protocol::op::kGet)
         return std::move(found.value);
-    return Value(Value::Dict{{"value", std::move(found.value)}, {"type", found.type.toValue()}});
+    return Value(Value::Dict{{std::string(protocol::reply::kValue), std::move(found.value)},
+                             {std::string(protocol::reply::kType), found.type.toValue()}});
 }
 
 Value Dispatcher::loadPlugin(const Request& request, Session&) {
-    const std::string path = allowedPlugin(request.string("path", request.op()));
-    const msgpack::object* hash = request.field("api_hash");
+    const std::string path = allowedPlugin(request.string(protocol::field::kPath, request.op()));
+    const msgpack::object* hash = request.field(protocol::field::kApiHash);
     const auto& info = plugin::load(path, hash && hash->type == msgpack::type::STR
                                               ? std::string(hash->via.str.ptr, hash->via.str.size)
                                               : "");
     Value::List classes;
     for (const std::string& name : info.classes)
         classes.emplace_back(name);
-    return Value(Value::Dict{{"name", Value(info.name)}, {"classes", Value(std::move(classes))}});
+    return Value(Value::Dict{{std::string(protocol::reply::kName), Value(info.name)},
+                             {std::string(protocol::reply::kClasses), Value(std::move(classes))}});
 }
 
 Value Dispatcher::unloadPlugin(const Request& request, Session&) {
-    plugin::unload(request.string("name", request.op()));
+    plugin::unload(request.string(protocol::field::kName, request.op()));
     return Value();
 }
 
 Value Dispatcher::spFunc(const Request& request, Session&) {
-    const std::string name = request.string("name", request.op());
+    const std::string name = request.string(protocol::field::kName, request.op());
     std::string fallback;
     const std::string_view context =
         request.context(fallback, [&] { return "call_sp_func('" + name + "')"; });
     reflect::ObjectBase& object = requireObject(request, context);
     Value::Dict bundle;
-    for (const char* key : {"arrays", "unreal_objs", "info"})
+    for (const std::string_view key :
+         {protocol::field::kArrays, protocol::field::kUnrealObjs, protocol::field::kInfo})
         if (const msgpack::object* given = request.field(key))
             bundle.emplace(key, unpack(*given, context));
     return spfunc::toValue(
@@ -526,18 +545,19 @@ Value Dispatcher::spFuncNames(const Request& request, Session&) {
 // is_valid / describe {object}: about an object reference that may be stale.
 Value Dispatcher::objectQuery(const Request& request, Session&) {
     const std::string_view op = request.op();
-    Value handle = unpack(request.require("object", op), op);
+    Value handle = unpack(request.require(protocol::field::kObject, op), op);
     SP_CHECK(handle.is<reflect::ObjectHandle>(), InvalidArgument, op,
              "(): 'object' must be an object reference");
     const reflect::ObjectBase* object = reflect::ObjectTable::find(handle.as<reflect::ObjectHandle>());
-    if (op == "is_valid")
+    if (op == protocol::op::kIsValid)
         return Value(object != nullptr);
     return Value(object ? object->GetDebugName() : std::string());
 }
 
 // Returns its value: for diagnostics, and to measure the transport alone.
 Value Dispatcher::echo(const Request& request, Session&) {
-    return request.field("value") ? unpack(*request.field("value"), "echo()") : Value();
+    return request.field(protocol::field::kValue) ? unpack(*request.field(protocol::field::kValue), "echo()")
+                                                  : Value();
 }
 
 Value Dispatcher::shutdown(const Request&, Session& session) {

@@ -108,6 +108,9 @@ class Dispatcher {
     // server's Server::openInspector). Without one, inspect is refused.
     void setInspectHook(std::function<std::string(int port)> hook) { inspectHook_ = std::move(hook); }
 
+    // Every op the dispatcher answers (its routes, hello and batch); a test holds it to protocol.json's.
+    static std::vector<std::string_view> handledOps();
+
   private:
     // Runs a parsed request (not a batch): hello, or, once greeted, the op's handler from routes().
     reflect::Value execute(const Request& request, Session& session);

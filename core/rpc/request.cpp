@@ -1,6 +1,7 @@
 #include "core/rpc/request.h"
 
 #include "core/base/error.h"
+#include "generated/rpc/cpp/protocol.gen.h"
 
 namespace sp::rpc {
 
@@ -23,7 +24,7 @@ Request::Request(const msgpack::object& message) {
         if (kv.key.type == msgpack::type::STR)
             add({std::string_view(kv.key.via.str.ptr, kv.key.via.str.size), &kv.val});
     }
-    op_ = text("op", "request");
+    op_ = text(protocol::field::kOp, "request");
 }
 
 void Request::add(Field entry) {
@@ -56,7 +57,7 @@ std::string_view Request::text(std::string_view name, std::string_view where) co
 }
 
 std::string_view Request::givenContext() const {
-    const msgpack::object* given = field("context");
+    const msgpack::object* given = field(protocol::field::kContext);
     if (given && given->type == msgpack::type::STR)
         return std::string_view(given->via.str.ptr, given->via.str.size);
     return {};

@@ -32,6 +32,7 @@
 #include "core/plugin/plugin_loader.h"
 #include "core/rpc/spin_poll.h"
 #include "core/rpc/web.h"
+#include "generated/rpc/cpp/protocol.gen.h"
 
 namespace sp::rpc {
 
@@ -412,7 +413,7 @@ void Server::answerBusy(const Connection& running, std::string_view task, double
             const msgpack::object* id = nullptr;
             try {
                 request = unpackBounded(connection->inbox.data() + 4, length);
-                id = mapField(request.get(), "id");
+                id = mapField(request.get(), protocol::field::kId);
             } catch (const std::exception&) {
             }
             msgpack::sbuffer reply;

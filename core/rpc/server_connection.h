@@ -18,6 +18,7 @@
 #include "core/rpc/reply_buffers.h"
 #include "core/rpc/server.h"
 #include "core/rpc/shared_memory.h"
+#include "generated/rpc/cpp/protocol.gen.h"
 
 namespace sp::rpc {
 
@@ -90,7 +91,7 @@ struct Server::Broadcast {
         msgpack::sbuffer body;
         msgpack::packer<msgpack::sbuffer> out(&body);
         out.pack_map(1);
-        out.pack(std::string("log"));
+        out.pack(protocol::reply::kLog);
         out.pack_array(3);
         out.pack(file);
         out.pack(line);
@@ -107,7 +108,7 @@ struct Server::Broadcast {
         msgpack::sbuffer body;
         msgpack::packer<msgpack::sbuffer> out(&body);
         out.pack_map(1);
-        out.pack(std::string("progress"));
+        out.pack(protocol::reply::kProgress);
         out.pack_array(4);
         out.pack(task);
         out.pack(done);

@@ -20,6 +20,7 @@
 #include "core/base/progress.h"
 #include "core/rpc/server_connection.h"
 #include "core/rpc/web.h"
+#include "generated/rpc/cpp/protocol.gen.h"
 
 namespace sp::rpc {
 
@@ -227,7 +228,7 @@ void Server::sendBroadcast() {
             msgpack::sbuffer body;
             msgpack::packer<msgpack::sbuffer> out(&body);
             out.pack_map(1);
-            out.pack(std::string("log"));
+            out.pack(protocol::reply::kLog);
             out.pack_array(3);
             out.pack(std::string("server.cpp"));
             out.pack(__LINE__);

@@ -144,9 +144,9 @@ class Inspector {
 
   /** One frame: begin, tick, end, as one message; refused while another client's frame is open. */
   async step(): Promise<boolean> {
-    const actions = ["begin", "execute", "begin_end", "end"];
+    const actions = ["begin", "execute", "begin_end", "end"] as const;
     const replies = await this.connection.batch(
-      actions.map((action) => ({ op: "frame", action })),
+      actions.map((action) => ({ op: "frame", action }) as const),
       { critical: [0, 1, 2, 3], betweenFrames: false },
     );
     const failed = replies.find((r) => r.error !== undefined);

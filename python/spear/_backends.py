@@ -8,18 +8,20 @@ from typing import Any, Protocol
 
 from spear import errors
 from spear._plugins import PluginPackage
+from spear._protocol import FrameAction, WorldKind, WorldsAction
 from spear._type_code import TypeCode
 
 _WORLD = TypeCode("object", "UWorld")
 
 
+
 class Backend(Protocol):
-    def world(self, kind: str) -> Any: ...
+    def world(self, kind: WorldKind) -> Any: ...
 
     # action: "create" (name), "destroy" (world) or "list".
-    def worlds(self, action: str, *, name: str = "", world: Any = None) -> Any: ...
+    def worlds(self, action: WorldsAction, *, name: str = "", world: Any = None) -> Any: ...
 
-    def frame(self, action: str) -> None: ...
+    def frame(self, action: FrameAction) -> None: ...
 
     def frame_count(self) -> int: ...
 
@@ -59,7 +61,7 @@ class InProcessBackend:
         self._engine: Any = self._module.Engine(fixed_delta_seconds=fixed_delta_seconds, editor=editor, scene=scene)
         self._inspector: Any = None
 
-    def world(self, kind: str) -> Any:
+    def world(self, kind: WorldKind) -> Any:
         if kind == "editor":
             world = self._engine.get_editor_world()
             if world is None:
@@ -69,14 +71,14 @@ class InProcessBackend:
             return world
         return self._engine.get_game_world()
 
-    def worlds(self, action: str, *, name: str = "", world: Any = None) -> Any:
+    def worlds(self, action: WorldsAction, *, name: str = "", world: Any = None) -> Any:
         if action == "create":
             return self._engine.create_world(name=name)
         if action == "destroy":
             return self._engine.destroy_world(world=world)
         return self._engine.get_worlds()
 
-    def frame(self, action: str) -> None:
+    def frame(self, action: FrameAction) -> None:
         if action == "begin" and self._inspector is not None:
             # Between frames, on the engine's own thread: what the inspector's browsers asked for since the last
             # frame (a poll() when they asked nothing).
@@ -160,12 +162,12 @@ class RpcBackend:
                 self._launched.close()
             raise
 
-    def world(self, kind: str) -> Any:
+    def world(self, kind: WorldKind) -> Any:
         from spear._rpc_types import convert
 
         return convert(self.connection.request("world", kind=kind), _WORLD, self.connection)
 
-    def worlds(self, action: str, *, name: str = "", world: Any = None) -> Any:
+    def worlds(self, action: WorldsAction, *, name: str = "", world: Any = None) -> Any:
         from spear._rpc_types import convert
 
         if action == "create":
@@ -175,7 +177,7 @@ class RpcBackend:
         handles = self.connection.request("worlds", action="list")
         return [convert(handle, _WORLD, self.connection) for handle in handles]
 
-    def frame(self, action: str) -> None:
+    def frame(self, action: FrameAction) -> None:
         # A frame's begin travels with the first message of its block, and the calls queued in a block travel
         # with the operation that closes it: a frame whose blocks only queue calls (send_async) and read
         # results costs three messages (begin + calls + execute, begin_end + the first read, end), and the

@@ -24,6 +24,7 @@ from typing import Any, NoReturn
 
 from spear import _logging, _progress, errors
 from spear._object import SpObject
+from spear._protocol import BatchMessage, FrameAction, Requests, message
 from spear._reply_buffers import ReplyBuffers
 from spear._rpc_types import convert, convert_result_tuple
 from spear._type_code import TypeCode
@@ -68,8 +69,9 @@ def spin_seconds() -> float:
     return microseconds * 1e-6
 
 
-class RpcConnection:
-    """A connection to a spear server; implements the RpcClient protocol the generated proxies use."""
+class RpcConnection(Requests):
+    """A connection to a spear server; implements the RpcClient protocol the generated proxies use. Its
+    request(op, **fields) is typed per op by spear._protocol (generated from core/rpc/protocol.json)."""
 
     def __init__(self, address: str, *, token: str | None = None, timeout: float | None = None) -> None:
         from spear._engine import API_HASH
@@ -181,8 +183,8 @@ class RpcConnection:
         calls = [call for call, _, _, _ in queue]
         # No reply buffers offered (the reply is read later, and carries no arrays) and no dropped ones named:
         # those go with the next request, whose reply settles them.
-        self._send(pack_frame({"id": next(self._ids), "op": "batch", "calls": calls,
-                               "critical": list(range(len(calls)))}))
+        self._send(pack_frame(message({"id": next(self._ids), "op": "batch", "calls": calls,
+                                       "critical": list(range(len(calls)))})))
         self._posted = True
         self._frame_state = None  # known again once the reply is read
 
@@ -214,12 +216,12 @@ class RpcConnection:
             if future is not None:
                 future._set(error=error)
 
-    def queue_frame(self, action: str) -> None:
+    def queue_frame(self, action: FrameAction) -> None:
         """Queues a frame operation ahead of the calls that follow it: it travels with the next message, so
         a frame's begin and the calls of its block (and its execution) cost one round trip. When it fails,
         the calls after it do not run (they would act outside the frame, or in another client's) and its
         error is raised by the call that sent it."""
-        self._queue.append(({"op": "frame", "action": action}, None, _unchanged, True))
+        self._queue.append((message({"op": "frame", "action": action}), None, _unchanged, True))
 
     def _send_queue(self, last: dict[str, Any] | None) -> Any:
         """Sends the queued calls, then `last` if given, in one message; returns the result of `last`."""
@@ -281,15 +283,15 @@ class RpcConnection:
     def _segments(self) -> OutgoingSegments:
         return OutgoingSegments(self._reply_buffers, inline=self.address.startswith("tcp:"), owner=self)
 
-    def request(self, op: str, **fields: Any) -> Any:
+    def _request(self, op: str, fields: dict[str, Any]) -> Any:
         if self._queue:  # queued calls run first, in the order they were made, in the same message
             return self._send_queue({"op": op, **fields})
         self._read_posted()
         segments = self._segments()
         reply: Any = None
         try:
-            message = {"id": next(self._ids), "op": op, **_encode_fields(op, fields, segments)}
-            reply = self._round_trip(pack_frame(self._offer_buffers(message)))
+            outgoing = {"id": next(self._ids), "op": op, **_encode_fields(op, fields, segments)}
+            reply = self._round_trip(pack_frame(self._offer_buffers(outgoing)))
         finally:
             segments.release()
             self._settle_buffers(reply, batch=False)
@@ -311,10 +313,10 @@ class RpcConnection:
         """Sends encoded calls in one message; their segments are released once the reply has arrived."""
         reply: Any = None
         try:
-            message: dict[str, Any] = {"id": next(self._ids), "op": "batch", "calls": encoded}
+            batch: BatchMessage = {"id": next(self._ids), "op": "batch", "calls": encoded}
             if critical:
-                message["critical"] = list(critical)
-            reply = self._round_trip(pack_frame(self._offer_buffers(message)))
+                batch["critical"] = list(critical)
+            reply = self._round_trip(pack_frame(self._offer_buffers(message(batch))))
         finally:
             segments.release()
             self._settle_buffers(reply, batch=True)
@@ -417,8 +419,8 @@ class RpcConnection:
     def call(self, handle: tuple[int, int], function: str, args: dict[str, Any], result_type: TypeCode,
              context: str = "", result_tuple: Any = None) -> Any:
         if self._deferring is not None:  # the object reference made at once: it is this connection's own handle
-            call = {"op": "call", "object": _object_ext(handle[0], handle[1]), "function": function, "args": args,
-                    "context": context}
+            call = message({"op": "call", "object": _object_ext(handle[0], handle[1]), "function": function,
+                            "args": args, "context": context})
             return self._queue_call(call, "args", None if self._deferring else _ResultConversion(
                 self, result_type, result_tuple))
         return self._call({"object": _HandleRef(handle)}, function, args, result_type, context, result_tuple)
@@ -431,7 +433,7 @@ class RpcConnection:
     def _call(self, target: dict[str, Any], function: str, args: dict[str, Any], result_type: TypeCode,
               context: str, result_tuple: Any) -> Any:
         convert_result = _ResultConversion(self, result_type, result_tuple)
-        call = {**target, "function": function, "args": args, "context": context}
+        call: dict[str, Any] = {**target, "function": function, "args": args, "context": context}
         if self._deferring is not None:
             return self._queue_call({"op": "call", **call}, "args", convert_result)
         return convert_result(self.request("call", **call))
@@ -448,7 +450,8 @@ class RpcConnection:
 
     def call_sp_func(self, handle: tuple[int, int], name: str, arrays: dict[str, Any], unreal_objs: dict[str, str],
                      info: str, finish: Callable[[Any], Any], context: str = "") -> Any:
-        call = {"name": name, "arrays": arrays, "unreal_objs": unreal_objs, "info": info, "context": context}
+        call: dict[str, Any] = {"name": name, "arrays": arrays, "unreal_objs": unreal_objs, "info": info,
+                                "context": context}
         if self._deferring is not None:  # its other fields are names (unreal_objs: names as text)
             return self._queue_call({"op": "sp_func", "object": _object_ext(handle[0], handle[1]), **call}, "arrays",
                                     finish)
@@ -517,7 +520,7 @@ def _encode_call(call: dict[str, Any], segments: OutgoingSegments, encoded: list
         encoded.append(_encode_fields(str(call.get("op", "")), call, segments))
     except Exception as error:  # noqa: BLE001 - raised for this call alone, after the batch
         refused[len(encoded)] = error
-        encoded.append({"op": "echo"})
+        encoded.append(message({"op": "echo"}))
 
 
 def _encode_fields(op: str, fields: dict[str, Any], segments: OutgoingSegments) -> dict[str, Any]:

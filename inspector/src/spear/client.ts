@@ -7,6 +7,7 @@
 // round trip. With `betweenFrames`, calls may look at and edit the world while no frame is open, without
 // ticking it (the dispatcher's between_frames batch).
 
+import type { Message } from "../../../generated/rpc/ts/protocol.gen.js";
 import { decode, encode, Ext, EXT_ARRAY, EXT_CLASS, EXT_ENUM, EXT_OBJECT, type Packable } from "./msgpack.js";
 
 /** An error the engine (or the protocol) reported; `type` names the class, as spear.errors does in Python. */
@@ -276,7 +277,8 @@ export function callStatic<T>(connection: Connection, className: string, fn: str
   return connection.call({ op: "call", class: className, function: fn, args: encodeArgs(desc, args) }) as Promise<T>;
 }
 
-export type Request = { readonly op: string } & { readonly [field: string]: Packable };
+/** A request: one of the protocol's messages (generated from core/rpc/protocol.json). */
+export type Request = Message;
 
 interface Pending {
   resolve: (value: unknown) => void;

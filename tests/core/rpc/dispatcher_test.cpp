@@ -1,13 +1,18 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "core/rpc/dispatcher.h"
+#include "generated/rpc/cpp/protocol.gen.h"
 
 using sp::engine::Engine;
 using sp::rpc::Dispatcher;
 using sp::rpc::Session;
+namespace protocol = sp::rpc::protocol;
 
 namespace {
 // {"op": op, key: value, ...} with string values.
@@ -161,4 +166,15 @@ TEST_F(DispatcherTest, BetweenFramesMustBeABool) {
     packer.pack(1);
     EXPECT_EQ(send(dispatcher, a, std::string(out.data(), out.size())),
               "batch(): 'between_frames' must be a bool");
+}
+
+// The ops the dispatcher answers are exactly those of core/rpc/protocol.json, from which the Python and
+// TypeScript clients' request types are generated: an op added to one and not the other fails here.
+TEST(DispatcherProtocolTest, AnswersExactlyTheOpsOfTheProtocolSource) {
+    std::vector<std::string_view> handled = Dispatcher::handledOps();
+    std::vector<std::string_view> declared(protocol::kOps.begin(), protocol::kOps.end());
+    std::sort(handled.begin(), handled.end());
+    std::sort(declared.begin(), declared.end());
+    EXPECT_EQ(handled, declared);
+    EXPECT_EQ(std::adjacent_find(handled.begin(), handled.end()), handled.end()) << "an op routed twice";
 }

@@ -1,0 +1,1 @@
+../../generated/rpc/python/protocol.py
