@@ -39,6 +39,11 @@ namespace sp::rpc {
 namespace {
 std::atomic<int> gWakeFd{-1}; // write end of the self-pipe that stop() pokes
 
+// A frame whose memory is kept for the connection's next large one: one of at least this size (a camera's
+// image, inline), and not past this (a connection that once got a huge reply does not hold it for good).
+constexpr size_t kSpareFrameMin = size_t(1) << 20;
+constexpr size_t kSpareFrameMax = size_t(64) << 20;
+
 // Sends what the socket takes now without waiting; false when the connection is broken.
 bool sendSome(int fd, const char*& data, size_t& size) {
     while (size > 0) {
@@ -299,14 +304,16 @@ bool Server::serve(Connection& connection) {
             std::memcpy(segment->data(), array.data, array.byteSize());
             return send(segment, clientBuffer);
         };
-        // A client that cannot map the server's memory gets large arrays in the reply's tail (kTailFlag),
-        // each copied once there instead of through msgpack.
-        std::string tail;
+        // A client that cannot map the server's memory gets large arrays in the reply's tail (kTailFlag):
+        // placed now (kept alive by their owners), copied once, straight into the frame that is sent.
+        std::vector<std::pair<size_t, reflect::ArrayValue>> tail;
+        size_t tailSize = 0;
         auto toTail = [&](const reflect::ArrayValue& array) {
-            tail.resize((tail.size() + kTailAlignment - 1) / kTailAlignment * kTailAlignment);
+            tailSize = (tailSize + kTailAlignment - 1) / kTailAlignment * kTailAlignment;
             SharedArray placed;
-            placed.tail = tail.size();
-            tail.append(static_cast<const char*>(array.data), array.byteSize());
+            placed.tail = tailSize;
+            tail.emplace_back(tailSize, array);
+            tailSize += array.byteSize();
             return placed;
         };
         {
@@ -350,19 +357,32 @@ bool Server::serve(Connection& connection) {
             // [length | kTailFlag][message length][message][padding][tail], the tail aligned from the byte
             // after the length word (where the client's buffer starts).
             const uint32_t messageLength = replyLength;
-            std::string framed(8, '\0');
-            std::memcpy(framed.data() + 4, &messageLength, 4);
-            framed.append(reply.data() + 4, messageLength);
-            framed.resize(4 + (4 + messageLength + kTailAlignment - 1) / kTailAlignment * kTailAlignment);
-            framed += tail;
-            if (framed.size() - 4 >= kTailFlag) {
-                SP_LOG("spear-server: dropping a client whose reply of ", framed.size(),
+            const size_t tailStart =
+                4 + (4 + messageLength + kTailAlignment - 1) / kTailAlignment * kTailAlignment;
+            if (tailStart + tailSize - 4 >= kTailFlag) {
+                SP_LOG("spear-server: dropping a client whose reply of ", tailStart + tailSize,
                        " bytes is past the 2 GiB a frame can carry");
                 return false;
             }
-            replyLength = uint32_t(framed.size() - 4) | kTailFlag;
-            std::memcpy(framed.data(), &replyLength, 4);
-            if (!queueReply(connection, framed.data(), framed.size()))
+            // The last large frame's memory, if the socket has taken it: no fresh pages to fault in, and
+            // resizing it writes nothing where it does not grow. Every byte is then written once: the
+            // header, the message, the padding, the arrays.
+            std::string framed = std::move(connection.spareFrame);
+            framed.resize(tailStart + tailSize);
+            char* out = framed.data();
+            replyLength = uint32_t(tailStart + tailSize - 4) | kTailFlag;
+            std::memcpy(out, &replyLength, 4);
+            std::memcpy(out + 4, &messageLength, 4);
+            std::memcpy(out + 8, reply.data() + 4, messageLength);
+            std::memset(out + 8 + messageLength, 0, tailStart - 8 - messageLength);
+            size_t written = 0; // of the tail
+            for (const auto& [offset, array] : tail) {
+                std::memset(out + tailStart + written, 0, offset - written);
+                std::memcpy(out + tailStart + offset, array.data, array.byteSize());
+                written = offset + array.byteSize();
+            }
+            tail.clear();
+            if (!queueFrame(connection, std::move(framed)))
                 return false;
         } else {
             std::memcpy(reply.data(), &replyLength, 4);
@@ -497,6 +517,26 @@ bool Server::queueReply(Connection& connection, const char* data, size_t size) {
     return queueBytes(connection, framed.data(), framed.size());
 }
 
+bool Server::queueFrame(Connection& connection, std::string&& frame) {
+    if (connection.transport == Connection::Transport::WebSocket)
+        return queueReply(connection, frame.data(), frame.size());
+    // As queueBytes, but what the socket does not take now waits in the outbox as it is, not as a copy.
+    const char* data = frame.data();
+    size_t size = frame.size();
+    if (connection.outbox.empty() && !connection.held() && !sendSome(connection.fd, data, size))
+        return false;
+    if (size == 0) {
+        if (frame.size() >= kSpareFrameMin && frame.size() <= kSpareFrameMax)
+            connection.spareFrame = std::move(frame);
+        return true;
+    }
+    if (connection.outbox.empty())
+        connection.outboxOffset = frame.size() - size;
+    connection.outboxBytes += frame.size();
+    connection.outbox.push_back(std::move(frame));
+    return withinOutboxLimits(connection);
+}
+
 bool Server::queueBytes(Connection& connection, const char* data, size_t size) {
     // Straight to the socket when nothing waits before it (the usual case: a client reads each reply
     // before it sends its next request); the rest is queued, in order.
@@ -506,6 +546,10 @@ bool Server::queueBytes(Connection& connection, const char* data, size_t size) {
         return true;
     connection.outbox.emplace_back(data, size);
     connection.outboxBytes += size;
+    return withinOutboxLimits(connection);
+}
+
+bool Server::withinOutboxLimits(Connection& connection) {
     // One reply may wait whatever its size: a client reading a large reply is not misbehaving. It is the
     // replies behind it, those of requests sent without reading, that are bounded.
     if (connection.outbox.size() > 1 && (connection.outboxBytes > options_.maxQueuedReplyBytes ||
@@ -530,6 +574,8 @@ bool Server::flush(Connection& connection) {
         if (size > 0)
             return true; // the socket is full again
         connection.outboxBytes -= front.size();
+        if (front.size() >= kSpareFrameMin && front.size() <= kSpareFrameMax) // serves the next large frame
+            connection.spareFrame = std::move(connection.outbox.front());
         connection.outbox.pop_front();
         connection.outboxOffset = 0;
     }

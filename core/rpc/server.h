@@ -103,6 +103,10 @@ class Server {
     // Sends a reply now as far as the socket takes it, queueing the rest; false: drop the connection
     // (broken, or too many replies left unread).
     bool queueReply(Connection& connection, const char* data, size_t size);
+    // A reply built whole (with its arrays inline): what the socket does not take waits as it is, not copied.
+    bool queueFrame(Connection& connection, std::string&& frame);
+    // False (the client is to be dropped) when its unread replies are past the limits.
+    bool withinOutboxLimits(Connection& connection);
     // queueReply's bytes as they are, without the WebSocket framing of a reply (HTTP, control frames).
     bool queueBytes(Connection& connection, const char* data, size_t size);
     bool flush(Connection& connection); // sends queued replies; false: drop the connection

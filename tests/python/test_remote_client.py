@@ -142,3 +142,23 @@ def test_a_wrong_proof_keeps_replies_inline_and_leaves_no_segment(tcp_server: st
         assert connection.request("shm_proof", nonce="") is False  # a second try without a probe: still off
     finally:
         connection.close()
+
+
+def test_inline_replies_carry_several_arrays_exactly_reply_after_reply(tcp_server: str,
+                                                                        monkeypatch: pytest.MonkeyPatch) -> None:
+    """Arrays of odd sizes in one inline reply (each at its aligned place in the tail, padding between) and
+    replies that grow and shrink: the server builds each frame in the memory of the last one."""
+    monkeypatch.setattr(RpcConnection, "_prove_shared_memory", lambda self, name: False)
+    connection = RpcConnection(tcp_server, token=TOKEN)
+    try:
+        assert connection.shared_memory is False
+        rng = np.random.default_rng(7)
+        for sizes in [(70_001, 3, 1 << 20), (1 << 22, 65_537), (100_000,), (5_000_003, 9, 131_071)]:
+            arrays = [rng.integers(0, 255, size=n, dtype=np.uint8) for n in sizes]
+            arrays.append(rng.standard_normal(len(arrays) * 40_000))  # float64 beside the bytes
+            echoed = connection.request("echo", value=arrays)
+            assert len(echoed) == len(arrays)
+            for sent, got in zip(arrays, echoed):
+                assert got.dtype == sent.dtype and np.array_equal(got, sent)
+    finally:
+        connection.close()
