@@ -179,8 +179,8 @@ def main() -> None:
         from spear._wire import OutgoingSegments, encode, pack_frame
         from spear._rpc_client import _HandleRef
 
-        call_frame = pack_frame({"id": 1, "op": "call", "object": encode(_HandleRef((1, 0)), OutgoingSegments()),
-                                 "function": "GetName", "args": {}, "context": "UObject.GetName()"})
+        (call_frame,) = pack_frame({"id": 1, "op": "call", "object": encode(_HandleRef((1, 0)), OutgoingSegments()),
+                                    "function": "GetName", "args": {}, "context": "UObject.GetName()"})
         # The floor does what spear does: with spear polling before it sleeps (SPEAR_RPC_SPIN_US), so does
         # the floor; the sleeping ping-pong shows what a wake-up costs on this machine.
         spin = spin_seconds()

@@ -43,7 +43,7 @@ def request_bytes(arrays: dict[str, Any]) -> int:
                             "name": "echo", "arrays": encode(arrays, segments), "unreal_objs": {}, "info": ""})
     finally:
         segments.release()
-    return len(frame) - 4
+    return sum(len(part) for part in frame) - 4
 
 
 def measure(instance: spear.Instance, small: np.ndarray, image: np.ndarray) -> dict[str, float]:

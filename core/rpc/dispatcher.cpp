@@ -73,7 +73,7 @@ void packError(msgpack::packer<msgpack::sbuffer>& out, const msgpack::object* id
 }
 
 void Dispatcher::handle(const char* data, size_t size, Session& session, msgpack::sbuffer& reply,
-                        const ArrayToSharedMemory& toShm) {
+                        const ArrayToSharedMemory& toShm, const std::string_view* tail) {
     msgpack::object_handle handle;
     try {
         handle = unpackBounded(data, size);
@@ -93,6 +93,9 @@ void Dispatcher::handle(const char* data, size_t size, Session& session, msgpack
     OpenedSegments opened;
     OpenedSegmentsScope scope(opened);
     SegmentOwnerScope owner(session.peerPid);
+    std::optional<RequestTailScope> tailScope;
+    if (tail)
+        tailScope.emplace(*tail);
     handleOne(handle.get(), session, reply, toShm);
 }
 

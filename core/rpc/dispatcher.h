@@ -88,8 +88,10 @@ class Dispatcher {
 
     // Handles one encoded request and appends the encoded reply to `reply`. Never throws: malformed
     // input becomes an error reply (and, before a successful hello, closes the session).
+    // `tail`: the raw bytes after the message in a frame that has them (kTailFlag), where its large
+    // arguments are; nullptr for a frame without.
     void handle(const char* data, size_t size, Session& session, msgpack::sbuffer& reply,
-                const ArrayToSharedMemory& toShm);
+                const ArrayToSharedMemory& toShm, const std::string_view* tail = nullptr);
     // The client of `session` is gone: a frame it left open is aborted, so that other clients can go on.
     void endSession(Session& session);
     // The session whose frame is open (it began it and has not ended it), or nullptr.

@@ -276,8 +276,12 @@ bool Server::serve(Connection& connection) {
     if (!receive(connection))
         return false;
     while (connection.inbox.size() >= 4) {
-        uint32_t length = 0;
-        std::memcpy(&length, connection.inbox.data(), 4);
+        uint32_t word = 0;
+        std::memcpy(&word, connection.inbox.data(), 4);
+        // A frame with kTailFlag carries its large arguments raw after the message (a client without shared
+        // memory); the limits hold for the whole frame.
+        const bool tailed = (word & kTailFlag) != 0;
+        const uint32_t length = word & ~kTailFlag;
         const bool greeted = connection.session.greeted;
         if (length > (greeted ? options_.maxMessageBytes : options_.maxMessageBytesBeforeHello)) {
             SP_LOG("spear-server: dropping a client that announced a ", length, "-byte message",
@@ -286,6 +290,12 @@ bool Server::serve(Connection& connection) {
         }
         if (connection.inbox.size() < 4 + size_t(length))
             return true; // the rest is still on its way
+        std::string_view message;
+        std::string_view requestTail;
+        if (!splitFrame(std::string_view(connection.inbox).substr(4, length), tailed, message, requestTail)) {
+            SP_LOG("spear-server: dropping a client whose ", length, "-byte frame's message runs past it");
+            return false;
+        }
         for (auto& segment : connection.replySegments)
             segment->unlink();
         connection.replySegments.clear();
@@ -335,8 +345,9 @@ bool Server::serve(Connection& connection) {
                     b->server->answerBusy(*b->running, task, seconds);
                 },
                 &busy);
-            dispatcher_.handle(connection.inbox.data() + 4, length, connection.session, reply,
-                               shared ? ArrayToSharedMemory(toShm) : ArrayToSharedMemory(toTail));
+            dispatcher_.handle(message.data(), message.size(), connection.session, reply,
+                               shared ? ArrayToSharedMemory(toShm) : ArrayToSharedMemory(toTail),
+                               tailed ? &requestTail : nullptr);
             base::setBusyHook(nullptr, nullptr);
         }
         if (connection.session.tokenRefused) {
@@ -423,17 +434,23 @@ void Server::answerBusy(const Connection& running, std::string_view task, double
         }
         // (Closed, or a message past the limits: the event loop finds out after the busy request.)
         while (connection->inbox.size() >= 4) {
-            uint32_t length = 0;
-            std::memcpy(&length, connection->inbox.data(), 4);
+            uint32_t word = 0;
+            std::memcpy(&word, connection->inbox.data(), 4);
+            const uint32_t length = word & ~kTailFlag;
             const bool greeted = connection->session.greeted;
             if (length > (greeted ? options_.maxMessageBytes : options_.maxMessageBytesBeforeHello) ||
                 connection->inbox.size() < 4 + size_t(length))
                 break;
             msgpack::object_handle request;
             const msgpack::object* id = nullptr;
+            std::string_view message;
+            std::string_view tail;
             try {
-                request = unpackBounded(connection->inbox.data() + 4, length);
-                id = mapField(request.get(), protocol::field::kId);
+                if (splitFrame(std::string_view(connection->inbox).substr(4, length), (word & kTailFlag) != 0,
+                               message, tail)) {
+                    request = unpackBounded(message.data(), message.size());
+                    id = mapField(request.get(), protocol::field::kId);
+                }
             } catch (const std::exception&) {
             }
             msgpack::sbuffer reply;

@@ -17,7 +17,40 @@ using reflect::Value;
 namespace {
 thread_local OpenedSegments* gOpened = nullptr;
 thread_local long gSegmentOwner = -1;
+thread_local const std::string_view* gRequestTail = nullptr;
 } // namespace
+
+RequestTailScope::RequestTailScope(std::string_view tail) : tail_(tail), previous_(gRequestTail) {
+    gRequestTail = &tail_;
+}
+
+RequestTailScope::~RequestTailScope() {
+    gRequestTail = previous_;
+}
+
+const std::string_view* RequestTailScope::current() {
+    return gRequestTail;
+}
+
+bool splitFrame(std::string_view body, bool tailed, std::string_view& message, std::string_view& tail) {
+    if (!tailed) {
+        message = body;
+        tail = {};
+        return true;
+    }
+    uint32_t length = 0;
+    if (body.size() < 4)
+        return false;
+    std::memcpy(&length, body.data(), 4);
+    if (size_t(length) > body.size() - 4)
+        return false;
+    const size_t tailStart = (4 + size_t(length) + kTailAlignment - 1) / kTailAlignment * kTailAlignment;
+    if (tailStart > body.size())
+        return false;
+    message = body.substr(4, length);
+    tail = body.substr(tailStart);
+    return true;
+}
 
 SegmentOwnerScope::SegmentOwnerScope(long pid) : previous_(gSegmentOwner) {
     gSegmentOwner = pid;
@@ -109,12 +142,31 @@ reflect::ArrayValue unpackArray(const msgpack::object& body, std::string_view co
     SP_CHECK(payload.type == msgpack::type::MAP, InvalidArgument, context, ": malformed array payload");
     std::string name;
     uint64_t size = 0;
+    std::optional<uint64_t> tailOffset;
     for (uint32_t i = 0; i < payload.via.map.size; ++i) {
         const auto key = payload.via.map.ptr[i].key.as<std::string>();
         if (key == "shm")
             name = payload.via.map.ptr[i].val.as<std::string>();
         else if (key == "size")
             size = payload.via.map.ptr[i].val.as<uint64_t>();
+        else if (key == "tail")
+            tailOffset = payload.via.map.ptr[i].val.as<uint64_t>();
+    }
+    if (tailOffset) {
+        // Bytes after the message (kTailFlag), copied out: the message's buffer is gone once it is handled.
+        const std::string_view* tail = RequestTailScope::current();
+        SP_CHECK(tail, InvalidArgument, context,
+                 ": an array in the message's tail, but the message has none");
+        SP_CHECK(size == expected, InvalidArgument, context, ": array holds ", size,
+                 " bytes, its shape needs ", expected);
+        SP_CHECK(*tailOffset <= tail->size() && size <= tail->size() - *tailOffset, InvalidArgument, context,
+                 ": an array of ", size, " bytes at ", *tailOffset, " runs past the message's ", tail->size(),
+                 "-byte tail");
+        auto storage = std::shared_ptr<char[]>(new char[expected == 0 ? 1 : expected]);
+        std::memcpy(storage.get(), tail->data() + *tailOffset, expected);
+        array.data = storage.get();
+        array.owner = storage;
+        return array;
     }
     SP_CHECK(size == expected, InvalidArgument, context, ": shared-memory array holds ", size,
              " bytes, its shape needs ", expected);

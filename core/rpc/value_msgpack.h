@@ -6,7 +6,8 @@
 //   3 array:  a msgpack array [dtype, shape, payload], payload either the bytes (bin) or, for large
 //             arrays, a map {"shm": segment name, "size": bytes} naming a shared-memory segment (in
 //             replies also {"buffer": name, "size": bytes}, one of the client's reply buffers, or
-//             {"tail": offset, "size": bytes}, bytes after the message: see kTailFlag).
+//             {"tail": offset, "size": bytes}, bytes after the message: see kTailFlag; requests from a
+//             client without shared memory carry their large arrays the same way).
 //   4 enum:   i64 value (little endian), then the enum's name (UTF-8); sent by clients, so that an enum
 //             argument is told apart from an int. Replies carry enums as plain ints: the client knows each
 //             result's type from the generated API.
@@ -17,6 +18,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -38,11 +40,12 @@ struct SharedArray {
     std::optional<uint64_t> tail;
 };
 
-// A reply frame whose length word has this bit set carries raw array bytes after its msgpack message: the
+// A frame whose length word has this bit set carries raw array bytes after its msgpack message: the
 // next 4 bytes are the message's length m, the message follows, and the tail starts at 4 + m rounded up to
 // kTailAlignment (counted from the byte after the length word), each array at its "tail" offset from there. A
 // large array then travels once, as it is, instead of being copied through msgpack on both sides. (Messages
-// are at most 1 GiB: the bit is free.)
+// are at most 1 GiB: the bit is free.) Replies to a client that cannot map the server's memory use it, and so
+// do requests from such a client (over TCP, where the server opens no segment of the client's).
 inline constexpr uint32_t kTailFlag = 0x80000000u;
 inline constexpr size_t kTailAlignment = 64;
 // Called for a large array: places its bytes in shared memory (unless they are there already).
@@ -59,6 +62,27 @@ reflect::Value unpack(const msgpack::object& in, std::string_view context);
 // msgpack-c allocate 64 GiB of objects for them. (Its parser is iterative, so depth alone cannot overflow
 // the stack; the recursive conversions after it bound depth themselves.)
 msgpack::object_handle unpackBounded(const char* data, size_t size);
+
+// The tail of the request being decoded (kTailFlag), while a scope is alive on this thread: unpack() copies
+// an array named {"tail": offset, "size": bytes} from it, after checking that it lies inside. Outside a
+// scope, such an array is refused.
+class RequestTailScope {
+  public:
+    explicit RequestTailScope(std::string_view tail);
+    ~RequestTailScope();
+    RequestTailScope(const RequestTailScope&) = delete;
+    RequestTailScope& operator=(const RequestTailScope&) = delete;
+    // The innermost scope's tail, or nullptr outside any.
+    static const std::string_view* current();
+
+  private:
+    std::string_view tail_;
+    const std::string_view* previous_;
+};
+
+// A frame's parts: the msgpack message and, for a frame whose length word has kTailFlag, its tail. `body` is
+// what follows the length word. False when a tailed frame's own lengths do not fit inside it.
+bool splitFrame(std::string_view body, bool tailed, std::string_view& message, std::string_view& tail);
 
 class SharedMemorySegment;
 // The client-owned segments a request used, recorded while a scope is alive on this thread: those unpack()

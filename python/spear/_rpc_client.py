@@ -291,7 +291,7 @@ class RpcConnection(Requests):
         reply: Any = None
         try:
             outgoing = {"id": next(self._ids), "op": op, **_encode_fields(op, fields, segments)}
-            reply = self._round_trip(pack_frame(self._offer_buffers(outgoing)))
+            reply = self._round_trip(pack_frame(self._offer_buffers(outgoing), segments))
         finally:
             segments.release()
             self._settle_buffers(reply, batch=False)
@@ -316,7 +316,7 @@ class RpcConnection(Requests):
             batch: BatchMessage = {"id": next(self._ids), "op": "batch", "calls": encoded}
             if critical:
                 batch["critical"] = list(critical)
-            reply = self._round_trip(pack_frame(self._offer_buffers(message(batch))))
+            reply = self._round_trip(pack_frame(self._offer_buffers(message(batch)), segments))
         finally:
             segments.release()
             self._settle_buffers(reply, batch=True)
@@ -348,14 +348,15 @@ class RpcConnection(Requests):
                 message["dropped_buffers"] = dropped
         return message
 
-    def _round_trip(self, frame: bytes) -> Any:
+    def _round_trip(self, frame: list[bytes | memoryview]) -> Any:
         self._send(frame)
         return self._read_reply(self._reply_buffers)
 
-    def _send(self, frame: bytes) -> None:
+    def _send(self, frame: list[bytes | memoryview]) -> None:
         self.messages_sent += 1
         try:
-            self._socket.sendall(frame)
+            for part in frame:  # the message, then any arrays of its tail as they are (no copy)
+                self._socket.sendall(part)
         except OSError as error:
             self._lost(error)
 

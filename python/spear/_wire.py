@@ -87,8 +87,18 @@ class OutgoingSegments:
         self.owner = owner
         self._buffers = buffers
         # Over TCP the server cannot tell which process (or machine) a segment comes from, so it opens none:
-        # every argument array travels in the message itself.
+        # every argument array travels in the message's frame, the large ones raw in its tail (TAIL_FLAG),
+        # each at an aligned offset.
         self.inline = inline
+        self.tail: list[tuple[int, NDArray[Any]]] = []
+        self.tail_size = 0
+
+    def add_to_tail(self, data: NDArray[Any]) -> int:
+        """Places a contiguous array in the frame's tail; returns its offset there."""
+        offset = -(-self.tail_size // TAIL_ALIGNMENT) * TAIL_ALIGNMENT
+        self.tail.append((offset, data))
+        self.tail_size = offset + data.nbytes
+        return offset
 
     def create(self, data: NDArray[Any]) -> str:
         if self._buffers is not None:
@@ -125,6 +135,8 @@ def _encode_array(array: NDArray[Any], segments: OutgoingSegments) -> msgpack.Ex
     payload: Any
     if array.nbytes >= SHARED_MEMORY_THRESHOLD and not segments.inline:
         payload = {"shm": segments.create(array), "size": array.nbytes}
+    elif array.nbytes >= SHARED_MEMORY_THRESHOLD:  # raw after the message, not copied through msgpack
+        payload = {"tail": segments.add_to_tail(array), "size": array.nbytes}
     else:
         payload = array.tobytes()
     return msgpack.ExtType(EXT_ARRAY, msgpack.packb([dtype, list(array.shape), payload], use_bin_type=True))
@@ -271,9 +283,25 @@ def _ext_hook(code: int, data: bytes, buffers: ReplyBuffers | None = None,
     return msgpack.ExtType(code, data)
 
 
-def pack_frame(message: dict[str, Any]) -> bytes:
+def pack_frame(message: dict[str, Any], segments: OutgoingSegments | None = None) -> list[bytes | memoryview]:
+    """A message's frame, as the buffers to send in order: [length][message], or, when its arguments placed
+    arrays in the tail of `segments`, [length | TAIL_FLAG][message length][message][padding][tail]."""
     body: bytes = msgpack.packb(message, use_bin_type=True)
-    return struct.pack("<I", len(body)) + body
+    if segments is None or not segments.tail:
+        return [struct.pack("<I", len(body)) + body]
+    tail_start = -(-(4 + len(body)) // TAIL_ALIGNMENT) * TAIL_ALIGNMENT  # from the byte after the length word
+    length = tail_start + segments.tail_size
+    if length >= TAIL_FLAG:
+        raise ValueRefused(f"a message of {length} bytes is past the 2 GiB a frame can carry")
+    parts: list[bytes | memoryview] = [struct.pack("<II", length | TAIL_FLAG, len(body)) + body
+                                       + bytes(tail_start - 4 - len(body))]
+    written = 0
+    for offset, array in segments.tail:
+        if offset > written:
+            parts.append(bytes(offset - written))
+        parts.append(memoryview(array.reshape(-1).view(np.uint8)))  # type: ignore[arg-type]
+        written = offset + array.nbytes
+    return parts
 
 
 def unpack_body(body: bytes | bytearray | memoryview, buffers: ReplyBuffers | None = None,

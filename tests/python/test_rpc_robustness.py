@@ -164,6 +164,52 @@ def test_counts_beyond_the_message_are_refused_before_allocating(server: Launche
     still_serves(server)
 
 
+# -- arrays in a request's tail (TAIL_FLAG) -----------------------------------------------------------
+
+def tailed_frame(message: dict[str, Any], tail: bytes, *, claimed_message_length: int | None = None) -> bytes:
+    """[length | TAIL_FLAG][message length][message][padding][tail], as a client without shared memory sends."""
+    body = msgpack.packb(message, use_bin_type=True)
+    start = -(-(4 + len(body)) // 64) * 64
+    length = start + len(tail)
+    told = len(body) if claimed_message_length is None else claimed_message_length
+    return struct.pack("<II", length | 0x80000000, told) + body + bytes(start - 4 - len(body)) + tail
+
+
+def test_arrays_in_a_requests_tail_are_checked_against_it(server: LaunchedServer) -> None:
+    client = RawClient(server)
+    tail = bytes(range(256)) * 4
+
+    def echo(payload: dict[str, int], with_tail: bool = True) -> dict[str, Any]:
+        message = {"id": 1, "op": "echo", "value": array_ext("uint8", [payload["size"]], payload)}
+        if not with_tail:
+            return client.request(message)
+        client.sock.sendall(tailed_frame(message, tail))
+        (length,) = struct.unpack("<I", client._receive(4))
+        reply: dict[str, Any] = msgpack.unpackb(client._receive(length), raw=False, strict_map_key=False)
+        return reply
+
+    def refused(reply: dict[str, Any]) -> str:
+        assert reply["error"][0] == "InvalidArgumentError", reply
+        return str(reply["error"][1])
+
+    # Small enough to come back in the message: the bytes it names, copied out of the tail.
+    assert echo({"tail": 64, "size": 16})["ok"] == msgpack.ExtType(3, msgpack.packb(
+        ["uint8", [16], tail[64:80]], use_bin_type=True))
+    assert refused(echo({"tail": 1020, "size": 8})) == (
+        "echo(): an array of 8 bytes at 1020 runs past the message's 1024-byte tail")
+    assert refused(echo({"tail": 2**64 - 1, "size": 8})).endswith("runs past the message's 1024-byte tail")
+    assert refused(echo({"tail": 0, "size": 8}, with_tail=False)) == (
+        "echo(): an array in the message's tail, but the message has none")
+    still_serves(server)
+
+
+def test_a_tailed_frame_whose_message_runs_past_it_drops_only_that_client(server: LaunchedServer) -> None:
+    client = RawClient(server)
+    client.sock.sendall(tailed_frame({"id": 1, "op": "echo"}, b"x" * 100, claimed_message_length=10_000))
+    assert client.closed_by_server()
+    still_serves(server)
+
+
 # -- array shapes ------------------------------------------------------------------------------------
 
 def test_array_shapes_whose_size_wraps_around_are_refused(server: LaunchedServer) -> None:

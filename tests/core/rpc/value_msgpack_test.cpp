@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "core/base/error.h"
 #include "core/rpc/value_msgpack.h"
@@ -97,4 +100,84 @@ TEST(ValueMsgpack, EnumValuesKeepTheirEnumsName) {
     msgpack::packer<msgpack::sbuffer> replyPacker(&reply);
     sp::rpc::pack(replyPacker, Value(sp::reflect::EnumValue{"EComponentMobility", 2}), nullptr);
     EXPECT_EQ(std::string(reply.data(), reply.size()), std::string("\x02"));
+}
+
+namespace {
+// An array value (extension 3) whose payload is {"tail": offset, "size": bytes}: its bytes in the frame's
+// tail.
+std::string tailArrayValue(const std::string& dtype, const std::vector<int64_t>& shape, uint64_t offset,
+                           uint64_t bytes) {
+    msgpack::sbuffer body;
+    msgpack::packer<msgpack::sbuffer> inner(&body);
+    inner.pack_array(3);
+    inner.pack(dtype);
+    inner.pack(shape);
+    inner.pack_map(2);
+    inner.pack(std::string("tail"));
+    inner.pack(offset);
+    inner.pack(std::string("size"));
+    inner.pack(bytes);
+    msgpack::sbuffer out;
+    msgpack::packer<msgpack::sbuffer> packer(&out);
+    packer.pack_ext(body.size(), sp::rpc::kExtArray);
+    packer.pack_ext_body(body.data(), body.size());
+    return std::string(out.data(), out.size());
+}
+} // namespace
+
+TEST(ValueMsgpack, ArraysInARequestsTailAreCopiedFromInsideIt) {
+    std::string tail(256, '\0');
+    for (size_t i = 0; i < tail.size(); ++i)
+        tail[i] = char(i);
+    const std::string value = tailArrayValue("uint8", {2, 4}, 64, 8);
+    msgpack::object_handle handle = sp::rpc::unpackBounded(value.data(), value.size());
+    sp::reflect::ArrayValue array;
+    {
+        sp::rpc::RequestTailScope scope(tail);
+        array = sp::rpc::unpack(handle.get(), "f()").as<sp::reflect::ArrayValue>();
+    }
+    tail.assign(tail.size(), 'x'); // the message's buffer is reused: the array kept its own copy
+    ASSERT_EQ(array.byteSize(), 8u);
+    for (int i = 0; i < 8; ++i)
+        EXPECT_EQ(static_cast<const unsigned char*>(array.data)[i], 64 + i);
+}
+
+TEST(ValueMsgpack, ATailArrayOutsideItsTailOrWithoutOneIsRefused) {
+    const std::string tail(128, '\0');
+    const auto refused = [&](const std::string& value, bool withTail) {
+        std::optional<sp::rpc::RequestTailScope> scope;
+        if (withTail)
+            scope.emplace(tail);
+        return unpackError(value, "f()");
+    };
+    EXPECT_EQ(refused(tailArrayValue("uint8", {8}, 0, 8), false),
+              "f(): an array in the message's tail, but the message has none");
+    EXPECT_EQ(refused(tailArrayValue("uint8", {8}, 124, 8), true),
+              "f(): an array of 8 bytes at 124 runs past the message's 128-byte tail");
+    EXPECT_EQ(refused(tailArrayValue("uint8", {8}, ~uint64_t(0) - 2, 8), true),
+              "f(): an array of 8 bytes at 18446744073709551613 runs past the message's 128-byte tail");
+    EXPECT_EQ(refused(tailArrayValue("uint8", {8}, 0, 9), true),
+              "f(): array holds 9 bytes, its shape needs 8");
+}
+
+TEST(ValueMsgpack, AFramesOwnLengthsMustFitInsideIt) {
+    std::string_view message, tail;
+    // [message length 3][message "abc"][padding to 64][tail "TAIL"]
+    std::string body(4, '\0');
+    body[0] = 3;
+    body += "abc";
+    body.resize(sp::rpc::kTailAlignment, '\0');
+    body += "TAIL";
+    ASSERT_TRUE(sp::rpc::splitFrame(body, true, message, tail));
+    EXPECT_EQ(message, "abc");
+    EXPECT_EQ(tail, "TAIL");
+    ASSERT_TRUE(sp::rpc::splitFrame("plain", false, message, tail));
+    EXPECT_EQ(message, "plain");
+    EXPECT_TRUE(tail.empty());
+    EXPECT_FALSE(
+        sp::rpc::splitFrame(std::string_view("\x03\0", 2), true, message, tail)); // no room for a length
+    std::string past = body.substr(0, 8);
+    past[0] = 100; // a message longer than the frame
+    EXPECT_FALSE(sp::rpc::splitFrame(past, true, message, tail));
+    EXPECT_FALSE(sp::rpc::splitFrame(body.substr(0, 10), true, message, tail)); // its padding cut short
 }
