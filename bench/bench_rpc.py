@@ -128,6 +128,20 @@ def tcp_frame_floor_s(size: int) -> float:
         sender.wait(10)
 
 
+def inprocess_read_pixels_s() -> float:
+    """The same read of a rendered 1920x1080 frame in-process: the engine's own part of the rows above."""
+    with spear.Instance() as instance:
+        with instance.begin_frame():
+            camera = instance.get_game().spawn_actor(uclass=spear.ACameraSensorActor).CameraSensor
+            camera.Width, camera.Height = 1920, 1080
+            camera.Modalities = [spear.ECameraModality.FinalColor]
+            camera.bShadows = False
+            camera.AntiAliasingMethod = spear.EAntiAliasingMethod.AAM_None
+        with instance.end_frame():
+            camera.read_pixels()
+            return best(lambda: camera.read_pixels()["final_color"], repeat=20)
+
+
 def tcp_inline_read_pixels_s() -> float:
     """read_pixels of a rendered 1920x1080 frame over TCP by a client that did not prove it maps the server's
     memory (as a client on another host): the reply carries the frame inline."""
@@ -146,6 +160,7 @@ def tcp_inline_read_pixels_s() -> float:
                 camera.Width, camera.Height = 1920, 1080
                 camera.Modalities = [spear.ECameraModality.FinalColor]
                 camera.bShadows = False
+                camera.AntiAliasingMethod = spear.EAntiAliasingMethod.AAM_None  # as above: the transfer alone
             with instance.end_frame():
                 camera.read_pixels()
                 return best(lambda: camera.read_pixels()["final_color"], repeat=20)
@@ -230,15 +245,23 @@ def main() -> None:
             camera.Width, camera.Height = 1920, 1080
             camera.Modalities = [spear.ECameraModality.FinalColor]
             camera.bShadows = False
+            # FXAA (the default) runs on every read of a frame, as the image leaves the renderer: off, so that
+            # a later read of the frame is the transfer alone, which this row measures.
+            camera.AntiAliasingMethod = spear.EAntiAliasingMethod.AAM_None
         with instance.end_frame():
             camera.read_pixels()  # the first read performs the GPU readback; later reads of the frame only transfer
             transfer_s = best(lambda: camera.read_pixels()["final_color"], repeat=20)
-        frame = np.empty((1080, 1920, 4), np.uint8)
-        target = np.empty_like(frame)
+        # Real bytes (an untouched np.empty source reads the kernel's one zero page, which flatters the floor)
+        # into memory written before.
+        frame = np.full((1080, 1920, 4), 7, np.uint8)
+        target = np.zeros_like(frame)
         memcpy_s = best(lambda: np.copyto(target, frame), repeat=20)
         print("1920x1080 RGBA frame into numpy (8.3 MB)")
         print(f"  one memcpy (floor)                  {memcpy_s * 1e3:8.2f} ms")
         print(f"  read_pixels over RPC                {transfer_s * 1e3:8.2f} ms   {transfer_s / memcpy_s:5.2f}x floor")
+        inprocess_s = inprocess_read_pixels_s()
+        print(f"  read_pixels in-process              {inprocess_s * 1e3:8.2f} ms   {inprocess_s / memcpy_s:5.2f}x floor"
+              f"   (RPC {transfer_s / inprocess_s:4.2f}x in-process)")
         inline_s, tcp_floor_s = tcp_inline_read_pixels_s(), tcp_frame_floor_s(1920 * 1080 * 4)
         print("the same frame over TCP, inline (a client that cannot map the server's memory)")
         print(f"  raw TCP socket, same bytes (floor)  {tcp_floor_s * 1e3:8.2f} ms")

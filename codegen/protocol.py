@@ -31,6 +31,11 @@ _LITERAL = re.compile(r"'([a-z_]+)'")
 _NAME = re.compile(r"[a-z][a-z_]*")
 
 
+def _camel(name: str) -> str:
+    """snake_case -> CamelCase: "call_typed" -> "CallTyped"."""
+    return "".join(part.capitalize() for part in name.split("_"))
+
+
 class ProtocolError(Exception):
     """A malformed protocol source: the message names the file and the entry."""
 
@@ -64,11 +69,11 @@ class Field:
 
     @property
     def constant(self) -> str:
-        return "k" + "".join(part.capitalize() for part in self.name.split("_"))
+        return "k" + _camel(self.name)
 
     @property
     def title(self) -> str:
-        return "".join(part.capitalize() for part in self.name.split("_"))
+        return _camel(self.name)
 
     @property
     def keyword(self) -> bool:
@@ -85,11 +90,11 @@ class Op:
 
     @property
     def constant(self) -> str:
-        return "k" + "".join(part.capitalize() for part in self.name.split("_"))
+        return "k" + _camel(self.name)
 
     @property
     def title(self) -> str:
-        return "".join(part.capitalize() for part in self.name.split("_"))
+        return _camel(self.name)
 
 
 @dataclass(frozen=True)

@@ -61,6 +61,8 @@ def own_shm_namespace_permitted() -> str | None:
     return None
 
 
+# What a client on another host does (here and in test_two_hosts.py): large arrays both ways, every modality of a
+# 1080p camera, a typed call with array arguments and results; nothing of the server's shared memory.
 REMOTE_CLIENT = textwrap.dedent("""
     import os, sys
     import numpy as np
@@ -70,8 +72,10 @@ REMOTE_CLIENT = textwrap.dedent("""
     with spear.Instance(server=address, token=token) as instance:
         connection = instance._backend.connection
         assert connection.shared_memory is False
-        big = np.random.default_rng(1).integers(0, 255, size=100 * 1024, dtype=np.uint8)
-        assert np.array_equal(connection.request("echo", value=big), big)  # 100 KiB both ways
+        rng = np.random.default_rng(1)
+        for size in (100 * 1024, 8 * 1024 * 1024 + 3):  # large arguments and results, raw in the frames' tails
+            big = rng.integers(0, 255, size=size, dtype=np.uint8)
+            assert np.array_equal(connection.request("echo", value=big), big)
         game = instance.get_game()
         with instance.begin_frame():
             game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun")
@@ -87,7 +91,7 @@ REMOTE_CLIENT = textwrap.dedent("""
         color = pixels["final_color"]
         assert color.shape == (1080, 1920, 4) and int(color[540, 960, 3]) == 255
         assert int((pixels["object_ids"] != 0).sum()) > 1000  # the cube is in view
-        points = np.random.default_rng(2).uniform(0, 1000, size=(20000, 2))  # 320 KB in, 320 KB out
+        points = rng.uniform(0, 1000, size=(200000, 2))  # 3.2 MB in, 3.2 MB out
         with instance.begin_frame():
             undistorted = camera.UndistortPixels(Points=points)
         with instance.end_frame():

@@ -11,7 +11,6 @@ import os
 import shutil
 import subprocess
 import sys
-import textwrap
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -22,6 +21,7 @@ import pytest
 
 import spear
 from spear._rpc_client import RpcConnection, find_server_binary
+from test_remote_client import REMOTE_CLIENT
 
 TOKEN = "two-hosts-token"
 PYTHON_DIR = Path(spear.__file__).resolve().parent.parent
@@ -72,42 +72,6 @@ def other_host() -> Iterator[OtherHost]:
         _ip("link", "del", host_link)
 
 
-REMOTE_CLIENT = textwrap.dedent("""
-    import os, sys
-    import numpy as np
-    import spear
-    address, token = sys.argv[1], sys.argv[2]
-    assert os.listdir("/dev/shm") == [], "the other host's /dev/shm should start empty"
-    with spear.Instance(server=address, token=token) as instance:
-        connection = instance._backend.connection
-        assert connection.shared_memory is False
-        rng = np.random.default_rng(1)
-        for size in (100 * 1024, 8 * 1024 * 1024 + 3):  # large arguments and results, raw in the frames' tails
-            big = rng.integers(0, 255, size=size, dtype=np.uint8)
-            assert np.array_equal(connection.request("echo", value=big), big)
-        game = instance.get_game()
-        with instance.begin_frame():
-            game.spawn_actor(uclass=spear.ADirectionalLight, name="Sun")
-            cube = game.spawn_actor(uclass=spear.AStaticMeshActor, name="Cube",
-                                    location=spear.FVector(3.0, 0.0, 0.0))
-            cube.StaticMeshComponent.SetStaticMesh(NewMesh="/Engine/BasicShapes/Cube")
-            camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name="Camera").CameraSensor
-            camera.Width, camera.Height = 1920, 1080
-            camera.Modalities = list(spear.ECameraModality)
-        with instance.end_frame():
-            pixels = camera.read_pixels()
-        assert len(pixels) == len(list(spear.ECameraModality)), sorted(pixels)
-        assert pixels["final_color"].shape == (1080, 1920, 4)
-        assert int((pixels["object_ids"] != 0).sum()) > 1000  # the cube is in view
-        points = rng.uniform(0, 1000, size=(200000, 2))  # 3.2 MB in, 3.2 MB out
-        with instance.begin_frame():
-            undistorted = camera.UndistortPixels(Points=points)
-        with instance.end_frame():
-            pass
-        assert undistorted.shape == points.shape and np.allclose(undistorted, points)
-    assert os.listdir("/dev/shm") == [], os.listdir("/dev/shm")
-    print("remote client ok")
-""")
 
 
 def test_a_client_on_another_host_reads_every_modality_and_sends_large_arrays(other_host: OtherHost) -> None:

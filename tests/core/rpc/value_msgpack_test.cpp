@@ -26,6 +26,15 @@ std::string unpackError(const std::string& bytes, std::string_view context) {
     return "(nothing thrown)";
 }
 
+// An array value (extension 3) around its encoded [dtype, shape, payload].
+std::string arrayExtension(const msgpack::sbuffer& body) {
+    msgpack::sbuffer out;
+    msgpack::packer<msgpack::sbuffer> packer(&out);
+    packer.pack_ext(body.size(), sp::rpc::kExtArray);
+    packer.pack_ext_body(body.data(), body.size());
+    return std::string(out.data(), out.size());
+}
+
 // An array value (extension 3) of this dtype and shape whose payload holds `bytes` bytes.
 std::string arrayValue(const std::string& dtype, const std::vector<int64_t>& shape, size_t bytes) {
     msgpack::sbuffer body;
@@ -35,11 +44,7 @@ std::string arrayValue(const std::string& dtype, const std::vector<int64_t>& sha
     inner.pack(shape);
     inner.pack_bin(uint32_t(bytes));
     inner.pack_bin_body(std::string(bytes, '\0').data(), uint32_t(bytes));
-    msgpack::sbuffer out;
-    msgpack::packer<msgpack::sbuffer> packer(&out);
-    packer.pack_ext(body.size(), sp::rpc::kExtArray);
-    packer.pack_ext_body(body.data(), body.size());
-    return std::string(out.data(), out.size());
+    return arrayExtension(body);
 }
 } // namespace
 
@@ -117,11 +122,7 @@ std::string tailArrayValue(const std::string& dtype, const std::vector<int64_t>&
     inner.pack(offset);
     inner.pack(std::string("size"));
     inner.pack(bytes);
-    msgpack::sbuffer out;
-    msgpack::packer<msgpack::sbuffer> packer(&out);
-    packer.pack_ext(body.size(), sp::rpc::kExtArray);
-    packer.pack_ext_body(body.data(), body.size());
-    return std::string(out.data(), out.size());
+    return arrayExtension(body);
 }
 } // namespace
 
