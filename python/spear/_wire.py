@@ -250,7 +250,7 @@ def _object_ext(index: int, generation: int) -> msgpack.ExtType:
 
 
 def _ext_hook(code: int, data: bytes, buffers: ReplyBuffers | None = None,
-              tail: tuple[bytearray, int] | None = None) -> Any:
+              tail: tuple[memoryview, int] | None = None) -> Any:
     if code == EXT_OBJECT:
         index, generation = struct.unpack_from("<II", data)
         return ObjectRef(index, generation, data[8:].decode())
@@ -305,7 +305,7 @@ def pack_frame(message: dict[str, Any], segments: OutgoingSegments | None = None
 
 
 def unpack_body(body: bytes | bytearray | memoryview, buffers: ReplyBuffers | None = None,
-                tail: tuple[bytearray, int] | None = None) -> Any:
+                tail: tuple[memoryview, int] | None = None) -> Any:
     """A reply; `buffers` are the reply buffers its request offered (spear._reply_buffers); `tail` the frame's
     buffer and where its tail starts there, when the reply has one (TAIL_FLAG)."""
     if buffers is not None:
