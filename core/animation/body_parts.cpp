@@ -1,6 +1,7 @@
 #include "core/animation/body_parts.h"
 
 #include <map>
+#include <mutex>
 #include <utility>
 
 #include "core/base/error.h"
@@ -46,6 +47,23 @@ BodyPartMesh splitByBodyPart(const render::MeshData& mesh, const SkinWeights& sk
     }
     out.mesh.validate("splitByBodyPart");
     return out;
+}
+
+std::shared_ptr<const BodyPartMesh> sharedBodyParts(const std::shared_ptr<const SkeletalMeshData>& asset) {
+    // By the asset's identity (its control block, not its address, which a later asset may reuse), holding
+    // neither it nor its split: both go when the last component lets go of them.
+    static std::mutex mutex;
+    static std::map<std::weak_ptr<const SkeletalMeshData>, std::weak_ptr<const BodyPartMesh>,
+                    std::owner_less<>>
+        cache;
+    const std::lock_guard lock(mutex);
+    if (auto it = cache.find(asset); it != cache.end())
+        if (auto parts = it->second.lock())
+            return parts;
+    std::erase_if(cache, [](const auto& entry) { return entry.first.expired() || entry.second.expired(); });
+    auto parts = std::make_shared<const BodyPartMesh>(splitByBodyPart(asset->mesh.mesh, asset->skin));
+    cache[asset] = parts;
+    return parts;
 }
 
 } // namespace sp::animation

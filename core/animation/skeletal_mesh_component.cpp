@@ -78,9 +78,8 @@ const sp::render::MeshData* USkeletalMeshComponent::renderMesh() const {
         return nullptr;
     if (!bBodyPartIds)
         return &asset_->mesh.mesh;
-    if (!bodyParts_) // the same for every component of this asset; a few milliseconds for the humanoid
-        bodyParts_ = std::make_shared<const sp::animation::BodyPartMesh>(
-            sp::animation::splitByBodyPart(asset_->mesh.mesh, asset_->skin));
+    if (!bodyParts_) // the same for every component of this asset, made once for all of them
+        bodyParts_ = sp::animation::sharedBodyParts(asset_);
     return &bodyParts_->mesh;
 }
 

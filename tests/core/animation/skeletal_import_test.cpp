@@ -102,6 +102,21 @@ TEST(BodyParts, EveryTriangleGoesToTheBoneWeighingMostOnItsCorners) {
     }
 }
 
+TEST(BodyParts, EveryComponentOfAnAssetSharesOneSplitWhileItIsHeld) {
+    const auto data = importSkeletalMesh(kHumanoid);
+    auto first = sharedBodyParts(data);
+    EXPECT_EQ(sharedBodyParts(data), first); // a crowd's characters: made once
+    EXPECT_EQ(first->mesh.indices.size(), data->mesh.mesh.indices.size());
+    // Another asset (a copy of the same data) gets its own, even with the first one's split still held.
+    const auto other = std::make_shared<const SkeletalMeshData>(*data);
+    EXPECT_NE(sharedBodyParts(other), first);
+    // Once nothing holds a split, the next request makes it again (the cache keeps neither alive).
+    std::weak_ptr<const BodyPartMesh> gone = first;
+    first.reset();
+    EXPECT_TRUE(gone.expired());
+    EXPECT_NE(sharedBodyParts(data), nullptr);
+}
+
 TEST(SkeletalImport, ClipsFromAFileMatchTheSkeletonByName) {
     const auto data = importSkeletalMesh(kHumanoid);
     const std::vector<AnimClip> clips = importAnimations(kHumanoid, data->skeleton);
