@@ -220,16 +220,22 @@ def test_shared_memory_is_released_when_either_side_dies() -> None:
     assert not [n for n in os.listdir("/dev/shm") if n.startswith(f"spear-{launched.process.pid}-")]
     connection.close()
     launched.close()
-    # A client dies holding a request's array in a segment of its own: the next server start sweeps it.
+    # A client dies holding a request's array in a segment of its own: the next server start sweeps it. The
+    # client is killed only once its segment was seen: every client and server start sweeps the segments of
+    # dead processes, and another test's, running beside this one, may do it as soon as the client is gone.
     script = (
         "import os, sys, numpy as np; sys.path.insert(0, %r); from spear._wire import OutgoingSegments; "
-        "OutgoingSegments().create(np.ones(100000)); os._exit(0)" % str(Path(spear.__file__).parent.parent)
+        "print(OutgoingSegments().create(np.ones(100000)), flush=True); sys.stdin.read()"
+        % str(Path(spear.__file__).parent.parent)
     )
-    subprocess.run([sys.executable, "-c", script], check=True)
-    leftovers = [n for n in os.listdir("/dev/shm") if n.startswith("spear-")]
-    assert leftovers, "the dead client's segment should exist before the sweep"
+    client = subprocess.Popen([sys.executable, "-c", script], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    assert client.stdout is not None
+    name = client.stdout.readline().strip().lstrip("/")
+    assert name in os.listdir("/dev/shm"), "the client's segment should exist while it lives"
+    client.kill()
+    client.wait()
     LaunchedServer(fixed_delta_seconds=1 / 60).close()  # a server start removes segments of dead processes
-    assert not [n for n in os.listdir("/dev/shm") if n.startswith("spear-") and n in leftovers]
+    assert name not in os.listdir("/dev/shm")
 
 
 def test_replies_land_in_reply_buffers_that_never_change_under_the_user() -> None:
