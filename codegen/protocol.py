@@ -36,6 +36,20 @@ def _camel(name: str) -> str:
     return "".join(part.capitalize() for part in name.split("_"))
 
 
+class _Named:
+    """What the templates call a field or an op: "kCallTyped" in C++, "CallTyped" in Python and TypeScript."""
+
+    name: str
+
+    @property
+    def constant(self) -> str:
+        return "k" + _camel(self.name)
+
+    @property
+    def title(self) -> str:
+        return _camel(self.name)
+
+
 class ProtocolError(Exception):
     """A malformed protocol source: the message names the file and the entry."""
 
@@ -62,18 +76,10 @@ class FieldType:
 
 
 @dataclass(frozen=True)
-class Field:
+class Field(_Named):
     name: str
     type: FieldType
     doc: str
-
-    @property
-    def constant(self) -> str:
-        return "k" + _camel(self.name)
-
-    @property
-    def title(self) -> str:
-        return _camel(self.name)
 
     @property
     def keyword(self) -> bool:
@@ -82,19 +88,11 @@ class Field:
 
 
 @dataclass(frozen=True)
-class Op:
+class Op(_Named):
     name: str
     doc: str
     fields: tuple[Field, ...]
     reply: tuple[Field, ...]
-
-    @property
-    def constant(self) -> str:
-        return "k" + _camel(self.name)
-
-    @property
-    def title(self) -> str:
-        return _camel(self.name)
 
 
 @dataclass(frozen=True)
