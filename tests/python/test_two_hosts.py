@@ -21,7 +21,7 @@ import pytest
 
 import spear
 from spear._rpc_client import RpcConnection, find_server_binary
-from test_remote_client import REMOTE_CLIENT
+from test_remote_client import REMOTE_CLIENT, own_shm_namespace_permitted
 
 TOKEN = "two-hosts-token"
 PYTHON_DIR = Path(spear.__file__).resolve().parent.parent
@@ -49,6 +49,9 @@ def _ip(*args: str) -> subprocess.CompletedProcess[str]:
 def other_host() -> Iterator[OtherHost]:
     if shutil.which("ip") is None or shutil.which("unshare") is None:
         pytest.skip("no ip(8) or unshare(1) on this machine (iproute2, util-linux)")
+    why = own_shm_namespace_permitted()  # the other host's own /dev/shm
+    if why is not None:
+        pytest.skip(why)
     name = f"spear-{os.getpid()}"
     made = _ip("netns", "add", name)
     if made.returncode != 0:
