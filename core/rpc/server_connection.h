@@ -81,44 +81,36 @@ struct Server::Broadcast {
     std::map<std::string, std::string> progress; // the latest report of each task, framed
     std::atomic<int> browsers{0};
 
-    static std::string frame(const msgpack::sbuffer& body) {
-        std::string out(4, '\0');
+    // A framed message the server sends browsers unasked: {key: [fields...]} (protocol.json's "push").
+    template <typename... Fields> static std::string push(std::string_view key, const Fields&... fields) {
+        msgpack::sbuffer body;
+        msgpack::packer<msgpack::sbuffer> out(&body);
+        out.pack_map(1);
+        out.pack(key);
+        out.pack_array(sizeof...(fields));
+        (out.pack(fields), ...);
+        std::string framed(4, '\0');
         const uint32_t length = uint32_t(body.size());
-        std::memcpy(out.data(), &length, 4);
-        out.append(body.data(), body.size());
-        return out;
+        std::memcpy(framed.data(), &length, 4);
+        framed.append(body.data(), body.size());
+        return framed;
     }
     void log(std::string_view file, int line, std::string_view message) {
         if (browsers.load() == 0)
             return;
-        msgpack::sbuffer body;
-        msgpack::packer<msgpack::sbuffer> out(&body);
-        out.pack_map(1);
-        out.pack(protocol::reply::kLog);
-        out.pack_array(3);
-        out.pack(file);
-        out.pack(line);
-        out.pack(message);
+        std::string framed = push(protocol::reply::kLog, file, line, message);
         std::lock_guard lock(mutex);
         if (messages.size() < kMaxLines)
-            messages.push_back(frame(body));
+            messages.push_back(std::move(framed));
         else
             ++dropped;
     }
     void report(std::string_view task, double done, double total, bool finished) {
         if (browsers.load() == 0)
             return;
-        msgpack::sbuffer body;
-        msgpack::packer<msgpack::sbuffer> out(&body);
-        out.pack_map(1);
-        out.pack(protocol::reply::kProgress);
-        out.pack_array(4);
-        out.pack(task);
-        out.pack(done);
-        out.pack(total);
-        out.pack(finished);
+        std::string framed = push(protocol::reply::kProgress, task, done, total, finished);
         std::lock_guard lock(mutex);
-        progress[std::string(task)] = frame(body);
+        progress[std::string(task)] = std::move(framed);
     }
 };
 

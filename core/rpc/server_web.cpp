@@ -225,15 +225,9 @@ void Server::sendBroadcast() {
             messages.push_back(std::move(message));
         broadcast_->progress.clear();
         if (broadcast_->dropped > 0) {
-            msgpack::sbuffer body;
-            msgpack::packer<msgpack::sbuffer> out(&body);
-            out.pack_map(1);
-            out.pack(protocol::reply::kLog);
-            out.pack_array(3);
-            out.pack(std::string("server.cpp"));
-            out.pack(__LINE__);
-            out.pack(std::to_string(broadcast_->dropped) + " more log lines were not sent to the inspector");
-            messages.push_back(Broadcast::frame(body));
+            messages.push_back(Broadcast::push(
+                protocol::reply::kLog, std::string_view("server.cpp"), __LINE__,
+                std::to_string(broadcast_->dropped) + " more log lines were not sent to the inspector"));
             broadcast_->dropped = 0;
         }
     }
