@@ -44,6 +44,12 @@ std::atomic<int> gWakeFd{-1}; // write end of the self-pipe that stop() pokes
 constexpr size_t kSpareFrameMin = size_t(1) << 20;
 constexpr size_t kSpareFrameMax = size_t(64) << 20;
 
+// Keeps a sent frame's memory for the connection's next large frame, when it is such a frame.
+void keepAsSpare(std::string& spare, std::string&& sent) {
+    if (sent.size() >= kSpareFrameMin && sent.size() <= kSpareFrameMax)
+        spare = std::move(sent);
+}
+
 // Sends what the socket takes now without waiting; false when the connection is broken.
 bool sendSome(int fd, const char*& data, size_t& size) {
     while (size > 0) {
@@ -543,8 +549,7 @@ bool Server::queueFrame(Connection& connection, std::string&& frame) {
     if (connection.outbox.empty() && !connection.held() && !sendSome(connection.fd, data, size))
         return false;
     if (size == 0) {
-        if (frame.size() >= kSpareFrameMin && frame.size() <= kSpareFrameMax)
-            connection.spareFrame = std::move(frame);
+        keepAsSpare(connection.spareFrame, std::move(frame));
         return true;
     }
     if (connection.outbox.empty())
@@ -591,8 +596,7 @@ bool Server::flush(Connection& connection) {
         if (size > 0)
             return true; // the socket is full again
         connection.outboxBytes -= front.size();
-        if (front.size() >= kSpareFrameMin && front.size() <= kSpareFrameMax) // serves the next large frame
-            connection.spareFrame = std::move(connection.outbox.front());
+        keepAsSpare(connection.spareFrame, std::move(connection.outbox.front()));
         connection.outbox.pop_front();
         connection.outboxOffset = 0;
     }
