@@ -138,15 +138,22 @@ Shape Shape::triangleMesh(std::vector<Eigen::Vector3d> vertices, std::vector<uin
 Shape Shape::scaled(const Eigen::Vector3d& scale) const {
     SP_CHECK(isPositive(scale.x()) && isPositive(scale.y()) && isPositive(scale.z()), InvalidArgument,
              "Shape::scaled(): scale ", Vec{scale}, " must be > 0 on every axis");
-    const Eigen::Vector3d combined = scale_.cwiseProduct(scale);
-    // Bullet's sphere, capsule and cylinder keep one radius, so their cross-section must stay round.
-    if (type_ == ShapeType::Sphere)
-        SP_CHECK(combined.x() == combined.y() && combined.y() == combined.z(), InvalidArgument,
+    Eigen::Vector3d combined = scale_.cwiseProduct(scale);
+    // Bullet's sphere, capsule and cylinder keep one radius, so their cross-section must stay round. Equal
+    // within a relative 1e-6, then made equal: a scale read back from a rotated transform (a quaternion and a
+    // matrix's column norms) differs from 1 in its last bits, which is no request for an ellipsoid.
+    const auto same = [](double a, double b) { return std::abs(a - b) <= 1e-6 * std::max(a, b); };
+    if (type_ == ShapeType::Sphere) {
+        SP_CHECK(same(combined.x(), combined.y()) && same(combined.y(), combined.z()), InvalidArgument,
                  "Shape::scaled(): scale ", Vec{combined},
                  " is not uniform; a sphere takes a uniform scale only");
-    if (type_ == ShapeType::Capsule || type_ == ShapeType::Cylinder)
-        SP_CHECK(combined.x() == combined.y(), InvalidArgument, "Shape::scaled(): scale ", Vec{combined},
+        combined.setConstant(combined.x());
+    }
+    if (type_ == ShapeType::Capsule || type_ == ShapeType::Cylinder) {
+        SP_CHECK(same(combined.x(), combined.y()), InvalidArgument, "Shape::scaled(): scale ", Vec{combined},
                  " has x != y; a ", type_, " along Z needs the same scale on x and y");
+        combined.y() = combined.x();
+    }
     Shape result = *this;
     result.scale_ = combined;
     return result;

@@ -98,6 +98,10 @@ TEST(ShapeTest, ScaleComposesAndRespectsBulletLimits) {
         },
         "Shape::scaled(): scale (1, 2, 3) has x != y; a Cylinder along Z needs the same scale on x and y");
     EXPECT_EQ(Shape::capsule(1, 1).scaled({2, 2, 5}).scale(), Eigen::Vector3d(2, 2, 5));
+    // A scale read back from a rotated transform is uniform but for its last bits: taken as uniform, made so.
+    EXPECT_EQ(Shape::sphere(1).scaled({1, 1 + 1e-12, 1 - 1e-12}).scale(), Eigen::Vector3d(1, 1, 1));
+    EXPECT_EQ(Shape::capsule(1, 1).scaled({2, 2 * (1 + 1e-12), 5}).scale(), Eigen::Vector3d(2, 2, 5));
+    EXPECT_THROW(Shape::sphere(1).scaled({1, 1.0001, 1}), InvalidArgument);
     expectThrowMessage<InvalidArgument>(
         [] {
             Shape::box({1, 1, 1}).scaled({1, -1, 1});
