@@ -1,5 +1,7 @@
 #include "core/animation/skeletal_import.h"
 
+#include "core/animation/assimp_scene.h"
+
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -16,6 +18,7 @@
 #include "core/render/assimp_reading.h"
 
 namespace sp::animation {
+namespace detail {
 namespace {
 
 Eigen::Affine3d toEigen(const aiMatrix4x4& m) {
@@ -28,9 +31,8 @@ Eigen::Affine3d conjugate(const Eigen::Affine3d& axes, const Eigen::Affine3d& m)
     return axes * m * axes.inverse();
 }
 
-// The file's axes turned into spear's (render::isYUpFormat()). Every transform of the skeleton and its clips
-// is taken into spear's axes by conjugation (axes * m * axes^-1), not only the top one: so a bone that a file
-// leaves unrotated is unrotated in spear too, and a camera attached to a head bone looks forward with +Z up.
+} // namespace
+
 Eigen::Affine3d axesOf(const std::string& path) {
     Eigen::Affine3d axes = Eigen::Affine3d::Identity();
     if (render::isYUpFormat(path))
@@ -38,7 +40,11 @@ Eigen::Affine3d axesOf(const std::string& path) {
     return axes;
 }
 
-std::string resolve(const std::string& userPath, const char* function) {
+Eigen::Affine3d nodeMatrix(const aiNode& node, const Eigen::Affine3d& axes) {
+    return conjugate(axes, toEigen(node.mTransformation));
+}
+
+std::string resolveFile(const std::string& userPath, const char* function) {
     const std::string path = resolveUserPath(findAsset(userPath), function, "mesh file");
     SP_CHECK(std::filesystem::exists(path) && !std::filesystem::is_directory(path), NotFound, function,
              "(): no such file '", userPath, "'");
@@ -46,60 +52,6 @@ std::string resolve(const std::string& userPath, const char* function) {
     return path;
 }
 
-// The skeleton: every node that is a bone of some mesh, and every node above one (below the file's root),
-// parents before children, in the file's order.
-Skeleton readSkeleton(const aiScene& scene, const Eigen::Affine3d& axes, const std::string& userPath) {
-    std::set<std::string> boneNames;
-    for (unsigned m = 0; m < scene.mNumMeshes; ++m)
-        for (unsigned b = 0; b < scene.mMeshes[m]->mNumBones; ++b)
-            boneNames.insert(scene.mMeshes[m]->mBones[b]->mName.C_Str());
-    SP_CHECK(!boneNames.empty(), InvalidArgument, "importSkeletalMesh(): '", userPath,
-             "' has no skeleton (no mesh in it is skinned); show it with a UStaticMeshComponent");
-    std::set<const aiNode*> marked;
-    for (const std::string& name : boneNames) {
-        const aiNode* node = scene.mRootNode->FindNode(name.c_str());
-        SP_CHECK(node != nullptr, InvalidArgument, "importSkeletalMesh(): '", userPath, "' skins to bone '",
-                 name, "', which is no node of the file");
-        for (; node != nullptr && node != scene.mRootNode; node = node->mParent)
-            marked.insert(node);
-    }
-    Skeleton skeleton;
-    skeleton.rootTransform = conjugate(axes, toEigen(scene.mRootNode->mTransformation));
-    std::map<const aiNode*, int> index;
-    std::vector<const aiNode*> stack;
-    for (unsigned c = scene.mRootNode->mNumChildren; c-- > 0;)
-        stack.push_back(scene.mRootNode->mChildren[c]);
-    while (!stack.empty()) {
-        const aiNode* node = stack.back();
-        stack.pop_back();
-        if (!marked.count(node))
-            continue;
-        index[node] = int(skeleton.names.size());
-        skeleton.names.push_back(node->mName.C_Str());
-        skeleton.parents.push_back(node->mParent == scene.mRootNode ? -1 : index.at(node->mParent));
-        skeleton.bindLocal.push_back(
-            BoneTransform::fromMatrix(conjugate(axes, toEigen(node->mTransformation)), "importSkeletalMesh"));
-        for (unsigned c = node->mNumChildren; c-- > 0;)
-            stack.push_back(node->mChildren[c]);
-    }
-    // A bone's inverse bind transform is the file's, in spear's axes; a node above the bones gets the inverse
-    // of where the bind pose puts it (no vertex follows it).
-    const std::vector<Eigen::Affine3d> bind = skeleton.componentSpace(skeleton.bindLocal);
-    skeleton.inverseBind.resize(skeleton.size());
-    for (std::size_t i = 0; i < skeleton.size(); ++i)
-        skeleton.inverseBind[i] = bind[i].inverse();
-    for (unsigned m = 0; m < scene.mNumMeshes; ++m)
-        for (unsigned b = 0; b < scene.mMeshes[m]->mNumBones; ++b) {
-            const aiBone* bone = scene.mMeshes[m]->mBones[b];
-            skeleton.inverseBind[std::size_t(skeleton.find(bone->mName.C_Str()))] =
-                conjugate(axes, toEigen(bone->mOffsetMatrix));
-        }
-    skeleton.validate("importSkeletalMesh");
-    return skeleton;
-}
-
-// The file's clips for `skeleton`; a channel of a node that is not a bone is an error with `strict` (a
-// separate animation file), else left out (a skinned mesh file's own clips may move the mesh's node too).
 std::vector<AnimClip> readClips(const aiScene& scene, const Skeleton& skeleton, const Eigen::Affine3d& axes,
                                 bool strict, const std::string& userPath, const char* function) {
     const Eigen::Matrix3d linear = axes.linear();
@@ -152,6 +104,67 @@ std::vector<AnimClip> readClips(const aiScene& scene, const Skeleton& skeleton, 
     return clips;
 }
 
+} // namespace detail
+
+namespace {
+using detail::axesOf;
+using detail::conjugate;
+using detail::nodeMatrix;
+using detail::readClips;
+using detail::toEigen;
+
+// The skeleton: every node that is a bone of some mesh, and every node above one (below the file's root),
+// parents before children, in the file's order.
+Skeleton readSkeleton(const aiScene& scene, const Eigen::Affine3d& axes, const std::string& userPath) {
+    std::set<std::string> boneNames;
+    for (unsigned m = 0; m < scene.mNumMeshes; ++m)
+        for (unsigned b = 0; b < scene.mMeshes[m]->mNumBones; ++b)
+            boneNames.insert(scene.mMeshes[m]->mBones[b]->mName.C_Str());
+    SP_CHECK(!boneNames.empty(), InvalidArgument, "importSkeletalMesh(): '", userPath,
+             "' has no skeleton (no mesh in it is skinned); show it with a UStaticMeshComponent");
+    std::set<const aiNode*> marked;
+    for (const std::string& name : boneNames) {
+        const aiNode* node = scene.mRootNode->FindNode(name.c_str());
+        SP_CHECK(node != nullptr, InvalidArgument, "importSkeletalMesh(): '", userPath, "' skins to bone '",
+                 name, "', which is no node of the file");
+        for (; node != nullptr && node != scene.mRootNode; node = node->mParent)
+            marked.insert(node);
+    }
+    Skeleton skeleton;
+    skeleton.rootTransform = nodeMatrix(*scene.mRootNode, axes);
+    std::map<const aiNode*, int> index;
+    std::vector<const aiNode*> stack;
+    for (unsigned c = scene.mRootNode->mNumChildren; c-- > 0;)
+        stack.push_back(scene.mRootNode->mChildren[c]);
+    while (!stack.empty()) {
+        const aiNode* node = stack.back();
+        stack.pop_back();
+        if (!marked.count(node))
+            continue;
+        index[node] = int(skeleton.names.size());
+        skeleton.names.push_back(node->mName.C_Str());
+        skeleton.parents.push_back(node->mParent == scene.mRootNode ? -1 : index.at(node->mParent));
+        skeleton.bindLocal.push_back(
+            BoneTransform::fromMatrix(nodeMatrix(*node, axes), "importSkeletalMesh"));
+        for (unsigned c = node->mNumChildren; c-- > 0;)
+            stack.push_back(node->mChildren[c]);
+    }
+    // A bone's inverse bind transform is the file's, in spear's axes; a node above the bones gets the inverse
+    // of where the bind pose puts it (no vertex follows it).
+    const std::vector<Eigen::Affine3d> bind = skeleton.componentSpace(skeleton.bindLocal);
+    skeleton.inverseBind.resize(skeleton.size());
+    for (std::size_t i = 0; i < skeleton.size(); ++i)
+        skeleton.inverseBind[i] = bind[i].inverse();
+    for (unsigned m = 0; m < scene.mNumMeshes; ++m)
+        for (unsigned b = 0; b < scene.mMeshes[m]->mNumBones; ++b) {
+            const aiBone* bone = scene.mMeshes[m]->mBones[b];
+            skeleton.inverseBind[std::size_t(skeleton.find(bone->mName.C_Str()))] =
+                conjugate(axes, toEigen(bone->mOffsetMatrix));
+        }
+    skeleton.validate("importSkeletalMesh");
+    return skeleton;
+}
+
 std::shared_ptr<const SkeletalMeshData> readSkeletalMesh(const std::string& path,
                                                          const std::string& userPath) {
     Assimp::Importer importer;
@@ -169,7 +182,10 @@ std::shared_ptr<const SkeletalMeshData> readSkeletalMesh(const std::string& path
     const Eigen::Matrix3f linear = axes.linear().cast<float>();
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
         const aiMesh& source = *scene->mMeshes[m];
-        if (!(source.mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
+        // A mesh no bone deforms is a rigid object beside the character (a prop a motion file moves by its
+        // own node, motion_import.h), not part of it: drawn by the first bone, ignoring its node, it would
+        // float where the file does not put it.
+        if (!(source.mPrimitiveTypes & aiPrimitiveType_TRIANGLE) || source.mNumBones == 0)
             continue;
         const auto base = std::uint32_t(mesh.positions.size());
         // Each vertex's bones, heaviest first (at most four: aiProcess_LimitBoneWeights), weights summing
@@ -242,7 +258,7 @@ const AnimClip* SkeletalMeshData::findClip(const std::string& name) const {
 }
 
 std::shared_ptr<const SkeletalMeshData> importSkeletalMesh(const std::string& userPath) {
-    const std::string path = resolve(userPath, "importSkeletalMesh");
+    const std::string path = detail::resolveFile(userPath, "importSkeletalMesh");
     // Each component showing a character would otherwise read its file again.
     struct Cached {
         std::filesystem::file_time_type modified;
@@ -266,7 +282,7 @@ std::shared_ptr<const SkeletalMeshData> importSkeletalMesh(const std::string& us
 }
 
 std::vector<AnimClip> importAnimations(const std::string& userPath, const Skeleton& skeleton) {
-    const std::string path = resolve(userPath, "importAnimations");
+    const std::string path = detail::resolveFile(userPath, "importAnimations");
     Assimp::Importer importer;
     std::vector<std::string> filesRead;
     const aiScene* scene = render::readWithAssimp(importer, path, userPath, 0, filesRead, "importAnimations");

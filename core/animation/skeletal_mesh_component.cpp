@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/animation/motion_import.h"
 #include "core/base/error.h"
 #include "core/base/log.h"
 
@@ -470,4 +471,27 @@ void USkeletalMeshComponent::TickComponent(double deltaSeconds) {
         }
     }
     poseFromClip();
+}
+
+FMotionFile USkeletalMeshComponent::ReadMotionFile(const std::string& Filename, const std::string& Animation,
+                                                   double FrameRate) {
+    const sp::animation::ImportedMotion motion = sp::animation::importMotion(Filename, Animation, FrameRate);
+    FMotionFile out;
+    out.Animation = motion.clip;
+    out.FrameRate = motion.fps;
+    out.BoneNames = motion.boneNames;
+    out.ObjectNames = motion.objectNames;
+    const auto fill = [&](sp::reflect::SpArray<double>& array,
+                          const std::vector<std::vector<Eigen::Affine3d>>& frames, std::size_t count) {
+        array.resize({int64_t(motion.frames), int64_t(count), 4, 4});
+        double* data = array.data();
+        for (const auto& frame : frames)
+            for (const Eigen::Affine3d& transform : frame)
+                for (int row = 0; row < 4; ++row)
+                    for (int column = 0; column < 4; ++column)
+                        *data++ = transform.matrix()(row, column);
+    };
+    fill(out.BoneTransforms, motion.bones, motion.boneNames.size());
+    fill(out.ObjectTransforms, motion.objects, motion.objectNames.size());
+    return out;
 }

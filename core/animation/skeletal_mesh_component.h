@@ -50,6 +50,35 @@ struct FBlendSample {
     friend bool operator==(const FBlendSample&, const FBlendSample&) = default;
 };
 
+/// A human-object motion read from an animated file by USkeletalMeshComponent.ReadMotionFile(): one clip of a
+/// file holding a skinned character and the rigid objects it handles, sampled at FrameRate. A dict in Python
+/// (its arrays are numpy arrays).
+SPSTRUCT(TypedDict)
+struct FMotionFile {
+    SP_GENERATED_BODY()
+
+    /// The clip read.
+    SPPROPERTY()
+    std::string Animation;
+    /// Frames per second; frame f shows the clip at f / FrameRate seconds, the last at its end.
+    SPPROPERTY()
+    double FrameRate = 0.0;
+    /// The character's bones, in its skeleton's order (as GetBoneName() numbers them).
+    SPPROPERTY()
+    std::vector<std::string> BoneNames;
+    /// float64 (frames, bones, 4, 4): each bone in the character's component space
+    /// (EBoneSpaces.ComponentSpace), as SetBoneTransforms() takes them.
+    SPPROPERTY()
+    sp::reflect::SpArray<double> BoneTransforms{"bone_transforms"};
+    /// The rigid nodes with a mesh that the clip moves (the objects handled), by node name.
+    SPPROPERTY()
+    std::vector<std::string> ObjectNames;
+    /// float64 (frames, objects, 4, 4): each object's node in the file's space in spear's axes (metres, Z
+    /// up), the character's component at the origin.
+    SPPROPERTY()
+    sp::reflect::SpArray<double> ObjectTransforms{"object_transforms"};
+};
+
 /// A component that renders a skinned mesh, posed by an animation clip or by bone transforms.
 SPCLASS()
 class USkeletalMeshComponent : public UPrimitiveComponent {
@@ -219,6 +248,16 @@ class USkeletalMeshComponent : public UPrimitiveComponent {
     static sp::reflect::SpArray<double>
     GetBoneTransformsOfComponents(const std::vector<USkeletalMeshComponent*>& Components,
                                   EBoneSpaces Space = EBoneSpaces::WorldSpace);
+
+    /// Reads clip Animation ("": the file's only clip) of the animated file Filename (glTF 2.0; FBX where
+    /// assimp reads it) holding a skinned character and the rigid objects it handles, at FrameRate frames per
+    /// second from the clip's start to its end: the character's bones and each moved object's node, frame by
+    /// frame (spear.motion.import_motion() makes a motion sequence of it). Raises NotFoundError naming the
+    /// file, or the clip and those there are; InvalidArgumentError when the file has no skeleton or no clip,
+    /// or FrameRate is not positive or asks for more than a million frames.
+    SPFUNCTION()
+    static FMotionFile ReadMotionFile(const std::string& Filename, const std::string& Animation,
+                                      double FrameRate);
 
     /// Poses the mesh with Transforms, a float64 array (bones, 4, 4) as GetBoneTransforms() returns, in
     /// Space; the clip stops. Raises InvalidArgumentError, leaving the pose as it was, when the shape is not

@@ -26,6 +26,14 @@ The file (numpy's .npz, written by save_motion) holds, for F frames, B bones and
 Transforms are float64 homogeneous matrices (column 3 the translation, in metres; Z up), as
 USkeletalMeshComponent.GetBoneTransforms returns them. A dataset converts to this form once:
 its joints' world or parent-relative rotations composed into these matrices.
+
+A dataset that ships animated files (glTF 2.0, or FBX where assimp reads it: a skinned character and the
+rigid objects it handles, moved by one clip) is read straight from them by import_motion, through the open
+engine; each object's static mesh is named by the caller, as datasets ship objects' meshes on their own:
+
+    motion = spear.motion.import_motion("/data/humoto/carry_box.glb", animation="carry",
+                                        object_meshes={"box": "/data/humoto/objects/box.obj"}, fps=30.0)
+    spear.motion.save_motion(motion, "carry_box.npz")      # once; later runs load_motion() it
 """
 
 from __future__ import annotations
@@ -34,6 +42,7 @@ import os
 import zipfile
 from dataclasses import dataclass
 from pathlib import Path
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -43,7 +52,8 @@ from spear._engine.api import (AStaticMeshActor, ASkeletalMeshActor, EBoneSpaces
                                USkeletalMeshComponent, UWorld)
 from spear.errors import InvalidArgumentError, NotFoundError
 
-__all__ = ["FORMAT", "VERSION", "MotionPlayer", "MotionSequence", "load_motion", "save_motion", "transform_of"]
+__all__ = ["FORMAT", "VERSION", "MotionPlayer", "MotionSequence", "import_motion", "load_motion", "save_motion",
+           "transform_of"]
 
 FORMAT = "spear.motion"
 VERSION = 1
@@ -176,6 +186,40 @@ def load_motion(path: str | os.PathLike[str]) -> MotionSequence:
         return MotionSequence(**fields)
     except InvalidArgumentError as error:  # named for the file rather than for the constructor
         raise InvalidArgumentError(f"{where}: {str(error).removeprefix('MotionSequence: ')}") from None
+
+
+def import_motion(path: str | os.PathLike[str], *, animation: str = "", fps: float = 30.0,
+                  object_meshes: Mapping[str, str] | None = None) -> MotionSequence:
+    """Reads clip `animation` ("" for the file's only clip) of an animated file holding a skinned character and
+    the rigid objects it handles (glTF 2.0; FBX where assimp reads it), at `fps` frames per second from the
+    clip's start to its end, through the open engine (USkeletalMeshComponent.ReadMotionFile: the character's
+    bones in component space, each object's node in the file's space turned Z-up, the root at the origin).
+
+    The objects are the file's nodes with a mesh that no bone deforms and that the clip moves; `object_meshes`
+    names the static mesh asset to show for each, by node name. The character is the file itself (its skinned
+    meshes). Raises NotFoundError for a missing file or clip (naming the clips there are), InvalidArgumentError
+    for a file without skeleton or clip, a rate that is not positive, or an object without a mesh (naming it)
+    or a mesh for no object of the file."""
+    where = f"import_motion('{os.fspath(path)}')"
+    meshes = dict(object_meshes or {})
+    read = USkeletalMeshComponent.ReadMotionFile(Filename=os.fspath(path), Animation=animation, FrameRate=fps)
+    names = tuple(read["ObjectNames"])
+    missing = [name for name in names if name not in meshes]
+    if missing:
+        raise InvalidArgumentError(f"{where}: clip '{read['Animation']}' moves {', '.join(map(repr, missing))}: name "
+                                   f"the static mesh of each in object_meshes (e.g. {{{missing[0]!r}: "
+                                   "'/Game/objects/box.obj'})")
+    unknown = sorted(set(meshes) - set(names))
+    if unknown:
+        raise InvalidArgumentError(f"{where}: object_meshes names {', '.join(map(repr, unknown))}, which clip "
+                                   f"'{read['Animation']}' does not move (it moves "
+                                   f"{', '.join(map(repr, names)) or 'no object'})")
+    bones = np.ascontiguousarray(read["BoneTransforms"], dtype=np.float64)
+    return MotionSequence(fps=float(fps), skeletal_mesh=os.fspath(path), bone_names=tuple(read["BoneNames"]),
+                          bone_poses=bones, root_poses=np.tile(np.eye(4), (bones.shape[0], 1, 1)),
+                          object_names=names, object_meshes=tuple(meshes[name] for name in names),
+                          object_poses=np.ascontiguousarray(read["ObjectTransforms"], dtype=np.float64)
+                          if names else None)
 
 
 def save_motion(motion: MotionSequence, path: str | os.PathLike[str]) -> None:

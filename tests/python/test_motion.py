@@ -220,3 +220,126 @@ def test_a_sequence_for_another_skeleton_leaves_the_world_as_it_was(instance: sp
         pass
     assert str(raised.value) == ("MotionPlayer(): the sequence's bones do not match /Game/characters/humanoid.glb's: "
                                  "missing hand_r; not in the mesh hand_x")
+
+
+# -- motion straight from an animated file (glTF: the humanoid with boxes, tests/python/motion_files.py) ---------
+
+def _spear_axes(gltf: tuple[float, float, float]) -> NDArray[np.float64]:
+    """A glTF position (Y up) in spear's axes (Z up): (x, y, z) -> (x, -z, y)."""
+    x, y, z = gltf
+    return np.array([x, -z, y])
+
+
+def test_a_motion_file_reads_the_character_and_the_objects_the_clip_moves(instance: spear.Instance,
+                                                                            tmp_path: Path) -> None:
+    from motion_files import CASE_KEYS, CASE_TIMES, HELD_OFFSET, write_carry_glb
+
+    path = str(write_carry_glb(tmp_path / "carry.glb"))
+    game = instance.get_game()
+    with instance.begin_frame():
+        read = spear.USkeletalMeshComponent.ReadMotionFile(Filename=path, Animation="walk", FrameRate=10.0)
+        mesh = game.spawn_actor(uclass=spear.ASkeletalMeshActor, name="Reference").SkeletalMeshComponent
+        mesh.SetSkeletalMesh(NewMesh=path)
+        mesh_bones = [mesh.GetBoneName(BoneIndex=i) for i in range(mesh.GetNumBones())]
+        mesh.PlayAnimation(NewAnimToPlay="walk", bLoop=False)
+        poses = []
+        for frame in (0, 3, 11):  # the clip's start, between keys, its end (1.1 s)
+            mesh.SetPosition(InPos=frame / 10.0)
+            poses.append(mesh.GetBoneTransforms(Space=COMPONENT))
+        bounds = mesh.GetBounds()
+    with instance.end_frame():
+        pass
+    assert (read["Animation"], read["FrameRate"]) == ("walk", 10.0)
+    assert read["BoneNames"] == mesh_bones
+    assert read["BoneTransforms"].shape == (12, len(mesh_bones), 4, 4)  # 1.1 s at 10 frames/s, both ends
+    for frame, pose in zip((0, 3, 11), poses):
+        assert np.allclose(read["BoneTransforms"][frame], pose, atol=1e-9)
+    # The Floor is moved by nothing: not an object. The Case by its own keys, the Held box by the hand.
+    assert sorted(read["ObjectNames"]) == ["Case", "Held"]
+    objects = read["ObjectTransforms"]
+    assert objects.shape == (12, 2, 4, 4)
+    case, held = read["ObjectNames"].index("Case"), read["ObjectNames"].index("Held")
+    for frame in range(12):
+        t = frame / 10.0
+        k = 0 if t <= CASE_TIMES[1] else 1
+        w = (t - CASE_TIMES[k]) / (CASE_TIMES[k + 1] - CASE_TIMES[k])
+        gltf = (1 - w) * np.array(CASE_KEYS[k]) + w * np.array(CASE_KEYS[k + 1])
+        assert np.allclose(objects[frame, case, :3, 3], _spear_axes(tuple(gltf)), atol=1e-6), frame
+        assert np.allclose(objects[frame, case, :3, :3], np.eye(3), atol=1e-9)
+    hand = read["BoneNames"].index("hand_r")
+    offset = np.eye(4)
+    offset[:3, 3] = _spear_axes(HELD_OFFSET)
+    for frame, pose in zip((0, 3, 11), poses):
+        assert np.allclose(objects[frame, held], pose[hand] @ offset, atol=1e-6)
+    # The character is the skinned mesh alone: the boxes (the Floor 5 m below) are not drawn with it.
+    assert bounds.Origin.Z - bounds.BoxExtent.Z > -0.5
+
+
+def test_import_motion_makes_a_sequence_a_player_plays(instance: spear.Instance, tmp_path: Path) -> None:
+    from motion_files import write_carry_glb
+
+    path = str(write_carry_glb(tmp_path / "carry.glb"))
+    game = instance.get_game()
+    with instance.begin_frame():
+        motion = spear.motion.import_motion(path, animation="walk", fps=20.0,
+                                            object_meshes={"Case": "/Engine/BasicShapes/Cube",
+                                                           "Held": "/Engine/BasicShapes/Sphere"})
+        player = spear.motion.MotionPlayer(game, motion, name="Importer")
+    with instance.end_frame():
+        pass
+    assert (motion.frames, motion.fps, motion.skeletal_mesh) == (23, 20.0, path)
+    assert motion.object_meshes == tuple({"Case": "/Engine/BasicShapes/Cube", "Held": "/Engine/BasicShapes/Sphere"}[n]
+                                         for n in motion.object_names)
+    assert np.array_equal(motion.root_poses, np.tile(np.eye(4), (23, 1, 1)))
+    assert motion.object_poses is not None
+    with instance.begin_frame():
+        player.apply(7)
+    with instance.end_frame():
+        pass
+    with instance.begin_frame():
+        placed = [_matrix(actor.GetActorTransform()) for actor in player.objects]
+    with instance.end_frame():
+        pass
+    for matrix, expected in zip(placed, motion.object_poses[7]):
+        assert np.allclose(matrix, expected, atol=1e-6)
+    # Saved and loaded as any sequence.
+    save_motion(motion, tmp_path / "carry.npz")
+    loaded = load_motion(tmp_path / "carry.npz")
+    assert loaded.object_names == motion.object_names and np.array_equal(loaded.bone_poses, motion.bone_poses)
+
+
+def test_bad_motion_files_and_arguments_are_refused_naming_them(instance: spear.Instance, tmp_path: Path) -> None:
+    from motion_files import write_carry_glb
+
+    path = str(write_carry_glb(tmp_path / "carry.glb"))
+    read = spear.USkeletalMeshComponent.ReadMotionFile
+    with instance.begin_frame():
+        with pytest.raises(spear.NotFoundError, match=r"has no clip 'jump' \(it has 'idle', 'walk', 'run'\)"):
+            read(Filename=path, Animation="jump", FrameRate=30.0)
+        with pytest.raises(spear.InvalidArgumentError, match=r"has 3 clips \('idle', 'walk', 'run'\): name the one"):
+            read(Filename=path, Animation="", FrameRate=30.0)
+        for rate in (0.0, -1.0, math.inf, math.nan):
+            with pytest.raises(spear.InvalidArgumentError, match=r"importMotion\(\): FrameRate must be a positive"):
+                read(Filename=path, Animation="walk", FrameRate=rate)
+        with pytest.raises(spear.InvalidArgumentError, match=r"more than 1000000"):
+            read(Filename=path, Animation="walk", FrameRate=1e9)
+        with pytest.raises(spear.NotFoundError, match=r"no such file '.*nowhere.glb'"):
+            read(Filename=str(tmp_path / "nowhere.glb"), Animation="walk", FrameRate=30.0)
+        with pytest.raises(spear.InvalidArgumentError, match=r"has no skeleton"):
+            read(Filename=_static_mesh_file(tmp_path), Animation="", FrameRate=30.0)
+        with pytest.raises(spear.InvalidArgumentError, match=r"clip 'walk' moves '(Held|Case)'.*object_meshes"):
+            spear.motion.import_motion(path, animation="walk", object_meshes={"Case": "/Engine/BasicShapes/Cube"})
+        with pytest.raises(spear.InvalidArgumentError, match=r"object_meshes names 'Floor', which clip 'walk' does not"):
+            spear.motion.import_motion(path, animation="walk", object_meshes={
+                "Case": "/Engine/BasicShapes/Cube", "Held": "/Engine/BasicShapes/Cube", "Floor": "/Engine/BasicShapes/Cube"})
+        # The engine serves on.
+        assert read(Filename=path, Animation="idle", FrameRate=5.0)["Animation"] == "idle"
+    with instance.end_frame():
+        pass
+
+
+def _static_mesh_file(folder: Path) -> str:
+    """An OBJ triangle: a mesh file without a skeleton."""
+    path = folder / "triangle.obj"
+    path.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    return str(path)

@@ -222,6 +222,11 @@ void bind_USkeletalMeshComponent(py::module_& m) {
         cls, "GetBoneTransformsOfComponents", std::array<const char*, 2>{"Components", "Space"},
         [](const PyCallArgs& args) { return Calls::call_GetBoneTransformsOfComponents<PyCall>(args); },
         "GetBoneTransformsOfComponents(*, Components: Sequence[USkeletalMeshComponent], Space: EBoneSpaces = ...) -> NDArray[np.float64]\n\nReturns every bone's transform of each of Components (all with the same number of bones) as one\nfloat64 array (components, bones, 4, 4) in Space: a crowd's poses in one call and one array, which\nover RPC is one reply (calling GetBoneTransforms per character sends one array each). Raises\nInvalidArgumentError naming the first component whose bone count differs, or a None entry.");
+    // Static in C++: called on the class, with no object.
+    sp::pybind::defStatic(
+        cls, "ReadMotionFile", std::array<const char*, 3>{"Filename", "Animation", "FrameRate"},
+        [](const PyCallArgs& args) { return Calls::call_ReadMotionFile<PyCall>(args); },
+        "ReadMotionFile(*, Filename: str, Animation: str, FrameRate: float) -> FMotionFile\n\nReads clip Animation (\"\": the file's only clip) of the animated file Filename (glTF 2.0; FBX where\nassimp reads it) holding a skinned character and the rigid objects it handles, at FrameRate frames per\nsecond from the clip's start to its end: the character's bones and each moved object's node, frame by\nframe (spear.motion.import_motion() makes a motion sequence of it). Raises NotFoundError naming the\nfile, or the clip and those there are; InvalidArgumentError when the file has no skeleton or no clip,\nor FrameRate is not positive or asks for more than a million frames.");
     sp::pybind::defMethod(
         cls, "SetBoneTransforms", std::array<const char*, 2>{"Transforms", "Space"},
         [](const RefBase& self, const PyCallArgs& args) { return Calls::call_SetBoneTransforms<PyCall>(self, args); },

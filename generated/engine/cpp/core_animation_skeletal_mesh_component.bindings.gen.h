@@ -81,4 +81,52 @@ template <> struct type_caster<FBlendSample> {
     }
 };
 
+template <> struct type_caster<FMotionFile> {
+    PYBIND11_TYPE_CASTER(FMotionFile, const_name("FMotionFile"));
+    // A TypedDict: a plain dict with every field; an array field without data is an error.
+    bool load(handle src, bool) {
+        if (!PyDict_Check(src.ptr()))
+            return false;
+        dict d = reinterpret_borrow<dict>(src);
+        size_t known = 0; // a key that is not a field (or not a str) is left to the server's decoding to refuse
+        if (d.contains("Animation")) {
+            value.Animation = sp::pybind::Bridge<std::string>::in(d["Animation"].cast<sp::pybind::Bridge<std::string>::Py>(), "FMotionFile.Animation");
+            ++known;
+        }
+        if (d.contains("FrameRate")) {
+            value.FrameRate = sp::pybind::Bridge<double>::in(d["FrameRate"].cast<sp::pybind::Bridge<double>::Py>(), "FMotionFile.FrameRate");
+            ++known;
+        }
+        if (d.contains("BoneNames")) {
+            value.BoneNames = sp::pybind::Bridge<std::vector<std::string>>::in(d["BoneNames"].cast<sp::pybind::Bridge<std::vector<std::string>>::Py>(), "FMotionFile.BoneNames");
+            ++known;
+        }
+        if (d.contains("BoneTransforms")) {
+            value.BoneTransforms = sp::pybind::Bridge<sp::reflect::SpArray<double>>::in(d["BoneTransforms"].cast<sp::pybind::Bridge<sp::reflect::SpArray<double>>::Py>(), "FMotionFile.BoneTransforms");
+            ++known;
+        }
+        if (d.contains("ObjectNames")) {
+            value.ObjectNames = sp::pybind::Bridge<std::vector<std::string>>::in(d["ObjectNames"].cast<sp::pybind::Bridge<std::vector<std::string>>::Py>(), "FMotionFile.ObjectNames");
+            ++known;
+        }
+        if (d.contains("ObjectTransforms")) {
+            value.ObjectTransforms = sp::pybind::Bridge<sp::reflect::SpArray<double>>::in(d["ObjectTransforms"].cast<sp::pybind::Bridge<sp::reflect::SpArray<double>>::Py>(), "FMotionFile.ObjectTransforms");
+            ++known;
+        }
+        return known == len(d);
+    }
+    static handle cast(const FMotionFile& v, return_value_policy, handle) {
+        dict d;
+        d["Animation"] = sp::pybind::Bridge<std::string>::out(v.Animation);
+        d["FrameRate"] = sp::pybind::Bridge<double>::out(v.FrameRate);
+        d["BoneNames"] = sp::pybind::Bridge<std::vector<std::string>>::out(v.BoneNames);
+        sp::reflect::checkFieldSet(v.BoneTransforms.value(), "FMotionFile", "BoneTransforms");
+        d["BoneTransforms"] = sp::pybind::Bridge<sp::reflect::SpArray<double>>::out(v.BoneTransforms);
+        d["ObjectNames"] = sp::pybind::Bridge<std::vector<std::string>>::out(v.ObjectNames);
+        sp::reflect::checkFieldSet(v.ObjectTransforms.value(), "FMotionFile", "ObjectTransforms");
+        d["ObjectTransforms"] = sp::pybind::Bridge<sp::reflect::SpArray<double>>::out(v.ObjectTransforms);
+        return d.release();
+    }
+};
+
 } // namespace pybind11::detail

@@ -98,6 +98,87 @@ const sp::reflect::TypeInfo& FBlendSample::StaticClass() {
 
 const sp::reflect::TypeInfo& FBlendSample::GetClass() const { return StaticClass(); }
 
+// -- FMotionFile ----------------------------------------------------------------------------------
+
+const sp::reflect::TypeInfo& FMotionFile::StaticClass() {
+    static const sp::reflect::TypeInfo info = [] {
+        using Self = FMotionFile;
+        using Calls = sp::generated::engine::FMotionFileCalls;
+        using sp::reflect::ValueCall;
+        sp::reflect::TypeInfo t;
+        t.name = "FMotionFile";
+        t.doc = "A human-object motion read from an animated file by USkeletalMeshComponent.ReadMotionFile(): one clip of a\nfile holding a skinned character and the rigid objects it handles, sampled at FrameRate. A dict in Python\n(its arrays are numpy arrays).";
+        t.kind = sp::reflect::TypeInfo::Kind::Struct;
+        t.parent = nullptr;
+        t.isAbstract = false;
+        t.isCompleteDict = true;
+        t.properties.push_back({
+            "Animation",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str),
+            "The clip read.",
+            false,
+            [](const void* self) { return Calls::get_Animation<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_Animation<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "FrameRate",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
+            "Frames per second; frame f shows the clip at f / FrameRate seconds, the last at its end.",
+            false,
+            [](const void* self) { return Calls::get_FrameRate<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_FrameRate<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "BoneNames",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str)),
+            "The character's bones, in its skeleton's order (as GetBoneName() numbers them).",
+            false,
+            [](const void* self) { return Calls::get_BoneNames<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_BoneNames<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "BoneTransforms",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"),
+            "float64 (frames, bones, 4, 4): each bone in the character's component space\n(EBoneSpaces.ComponentSpace), as SetBoneTransforms() takes them.",
+            false,
+            [](const void* self) { return Calls::get_BoneTransforms<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_BoneTransforms<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "ObjectNames",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::List, sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str)),
+            "The rigid nodes with a mesh that the clip moves (the objects handled), by node name.",
+            false,
+            [](const void* self) { return Calls::get_ObjectNames<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_ObjectNames<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
+            "ObjectTransforms",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Array, "float64"),
+            "float64 (frames, objects, 4, 4): each object's node in the file's space in spear's axes (metres, Z\nup), the character's component at the origin.",
+            false,
+            [](const void* self) { return Calls::get_ObjectTransforms<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_ObjectTransforms<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        return t;
+    }();
+    return info;
+}
+
+const sp::reflect::TypeInfo& FMotionFile::GetClass() const { return StaticClass(); }
+
 // -- USkeletalMeshComponent ----------------------------------------------------------------------------------
 
 const sp::reflect::TypeInfo& USkeletalMeshComponent::StaticClass() {
@@ -461,6 +542,19 @@ const sp::reflect::TypeInfo& USkeletalMeshComponent::StaticClass() {
             [](void*, const sp::reflect::CallArgs& args) { return Calls::call_GetBoneTransformsOfComponents<ValueCall>(args); },
         });
         t.functions.push_back({
+            "ReadMotionFile",
+            "Reads clip Animation (\"\": the file's only clip) of the animated file Filename (glTF 2.0; FBX where\nassimp reads it) holding a skinned character and the rigid objects it handles, at FrameRate frames per\nsecond from the clip's start to its end: the character's bones and each moved object's node, frame by\nframe (spear.motion.import_motion() makes a motion sequence of it). Raises NotFoundError naming the\nfile, or the clip and those there are; InvalidArgumentError when the file has no skeleton or no clip,\nor FrameRate is not positive or asks for more than a million frames.",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Struct, "FMotionFile"),
+            {
+                {"Filename", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
+                {"Animation", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Str), false, false},
+                {"FrameRate", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+            },
+            true,
+            false,
+            [](void*, const sp::reflect::CallArgs& args) { return Calls::call_ReadMotionFile<ValueCall>(args); },
+        });
+        t.functions.push_back({
             "SetBoneTransforms",
             "Poses the mesh with Transforms, a float64 array (bones, 4, 4) as GetBoneTransforms() returns, in\nSpace; the clip stops. Raises InvalidArgumentError, leaving the pose as it was, when the shape is not\n(GetNumBones(), 4, 4), a value is not finite, a bottom row is not (0, 0, 0, 1) or a matrix scales an\naxis to zero.",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
@@ -485,5 +579,6 @@ const sp::reflect::EnumInfo& enumInfo_EAnimationMode() { return sp::reflect::Sta
 const sp::reflect::EnumInfo& enumInfo_EBoneSpaces() { return sp::reflect::StaticEnum<EBoneSpaces>(); }
 const sp::reflect::TypeInfo& typeInfo_ASkeletalMeshActor() { return ASkeletalMeshActor::StaticClass(); }
 const sp::reflect::TypeInfo& typeInfo_FBlendSample() { return FBlendSample::StaticClass(); }
+const sp::reflect::TypeInfo& typeInfo_FMotionFile() { return FMotionFile::StaticClass(); }
 const sp::reflect::TypeInfo& typeInfo_USkeletalMeshComponent() { return USkeletalMeshComponent::StaticClass(); }
 } // namespace sp::generated::engine

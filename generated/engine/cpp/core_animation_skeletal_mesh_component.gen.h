@@ -63,6 +63,64 @@ struct FBlendSampleCalls {
     }
 };
 
+struct FMotionFileCalls {
+    using Self = FMotionFile;
+
+    template <typename Call> static typename Call::Result get_Animation(const Self* self) {
+        const auto& value = self->Animation;
+        return Call::template result<std::string>(value);
+    }
+    template <typename Call> static void set_Animation(Self* self, const typename Call::Input& value) {
+        self->Animation = Call::template input<std::string>(value, "FMotionFile.Animation");
+        sp::reflect::notifyPropertyChanged(self, "Animation");
+    }
+
+    template <typename Call> static typename Call::Result get_FrameRate(const Self* self) {
+        const auto& value = self->FrameRate;
+        return Call::template result<double>(value);
+    }
+    template <typename Call> static void set_FrameRate(Self* self, const typename Call::Input& value) {
+        self->FrameRate = Call::template input<double>(value, "FMotionFile.FrameRate");
+        sp::reflect::notifyPropertyChanged(self, "FrameRate");
+    }
+
+    template <typename Call> static typename Call::Result get_BoneNames(const Self* self) {
+        const auto& value = self->BoneNames;
+        return Call::template result<std::vector<std::string>>(value);
+    }
+    template <typename Call> static void set_BoneNames(Self* self, const typename Call::Input& value) {
+        self->BoneNames = Call::template input<std::vector<std::string>>(value, "FMotionFile.BoneNames");
+        sp::reflect::notifyPropertyChanged(self, "BoneNames");
+    }
+
+    template <typename Call> static typename Call::Result get_BoneTransforms(const Self* self) {
+        const auto& value = self->BoneTransforms;
+        return Call::template result<sp::reflect::SpArray<double>>(value);
+    }
+    template <typename Call> static void set_BoneTransforms(Self* self, const typename Call::Input& value) {
+        self->BoneTransforms = Call::template input<sp::reflect::SpArray<double>>(value, "FMotionFile.BoneTransforms");
+        sp::reflect::notifyPropertyChanged(self, "BoneTransforms");
+    }
+
+    template <typename Call> static typename Call::Result get_ObjectNames(const Self* self) {
+        const auto& value = self->ObjectNames;
+        return Call::template result<std::vector<std::string>>(value);
+    }
+    template <typename Call> static void set_ObjectNames(Self* self, const typename Call::Input& value) {
+        self->ObjectNames = Call::template input<std::vector<std::string>>(value, "FMotionFile.ObjectNames");
+        sp::reflect::notifyPropertyChanged(self, "ObjectNames");
+    }
+
+    template <typename Call> static typename Call::Result get_ObjectTransforms(const Self* self) {
+        const auto& value = self->ObjectTransforms;
+        return Call::template result<sp::reflect::SpArray<double>>(value);
+    }
+    template <typename Call> static void set_ObjectTransforms(Self* self, const typename Call::Input& value) {
+        self->ObjectTransforms = Call::template input<sp::reflect::SpArray<double>>(value, "FMotionFile.ObjectTransforms");
+        sp::reflect::notifyPropertyChanged(self, "ObjectTransforms");
+    }
+};
+
 struct USkeletalMeshComponentCalls {
     using Self = USkeletalMeshComponent;
 
@@ -412,6 +470,21 @@ struct USkeletalMeshComponentCalls {
         EBoneSpaces SpaceArg = call.given(1) ? call.template arg<EBoneSpaces>(1) : EBoneSpaces(EBoneSpaces::WorldSpace);
         auto result = Self::GetBoneTransformsOfComponents(ComponentsArg, SpaceArg);
         return Call::template result<sp::reflect::SpArray<double>>(result);
+    }
+
+    template <typename Call> static typename Call::Result call_ReadMotionFile(typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 3> kParams{{
+            {"Filename", "USkeletalMeshComponent.ReadMotionFile(): argument 'Filename'", true},
+            {"Animation", "USkeletalMeshComponent.ReadMotionFile(): argument 'Animation'", true},
+            {"FrameRate", "USkeletalMeshComponent.ReadMotionFile(): argument 'FrameRate'", true},
+        }};
+        const Call call(args, "USkeletalMeshComponent.ReadMotionFile()", kParams);
+        std::string FilenameArg = call.template arg<std::string>(0);
+        std::string AnimationArg = call.template arg<std::string>(1);
+        double FrameRateArg = call.template arg<double>(2);
+        auto result = Self::ReadMotionFile(FilenameArg, AnimationArg, FrameRateArg);
+        sp::reflect::checkResultFields(result, "USkeletalMeshComponent.ReadMotionFile()");
+        return Call::template result<FMotionFile>(result);
     }
 
     template <typename Call, typename Target>

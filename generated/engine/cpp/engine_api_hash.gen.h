@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "efac93655800e2d1";
+inline constexpr char kApiHash[] = "26f874ccd1bd8427";
 } // namespace sp::generated::engine

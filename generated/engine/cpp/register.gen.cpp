@@ -66,6 +66,7 @@ const sp::reflect::TypeInfo& typeInfo_FHitResult();
 const sp::reflect::TypeInfo& typeInfo_FLensDistortion();
 const sp::reflect::TypeInfo& typeInfo_FLinearColor();
 const sp::reflect::TypeInfo& typeInfo_FMaterialDesc();
+const sp::reflect::TypeInfo& typeInfo_FMotionFile();
 const sp::reflect::TypeInfo& typeInfo_FMoviePipelineConfiguration();
 const sp::reflect::TypeInfo& typeInfo_FMoviePipelineProgress();
 const sp::reflect::TypeInfo& typeInfo_FQuat();
@@ -169,6 +170,7 @@ extern "C" void spear_register_engine_types() {
     registry.add(gen::typeInfo_FLensDistortion());
     registry.add(gen::typeInfo_FLinearColor());
     registry.add(gen::typeInfo_FMaterialDesc());
+    registry.add(gen::typeInfo_FMotionFile());
     registry.add(gen::typeInfo_FMoviePipelineConfiguration());
     registry.add(gen::typeInfo_FMoviePipelineProgress());
     registry.add(gen::typeInfo_FQuat());
@@ -253,6 +255,7 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::typeInfo_FQuat());
     registry.remove(gen::typeInfo_FMoviePipelineProgress());
     registry.remove(gen::typeInfo_FMoviePipelineConfiguration());
+    registry.remove(gen::typeInfo_FMotionFile());
     registry.remove(gen::typeInfo_FMaterialDesc());
     registry.remove(gen::typeInfo_FLinearColor());
     registry.remove(gen::typeInfo_FLensDistortion());
@@ -314,4 +317,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::enumInfo_EAnimationMode());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "efac93655800e2d1"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "26f874ccd1bd8427"; }

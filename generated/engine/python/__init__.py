@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "efac93655800e2d1"
+API_HASH = "26f874ccd1bd8427"

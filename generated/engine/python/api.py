@@ -82,6 +82,7 @@ __all__ = [
     "FLensDistortion",
     "FLinearColor",
     "FMaterialDesc",
+    "FMotionFile",
     "FMoviePipelineConfiguration",
     "FMoviePipelineProgress",
     "FQuat",
@@ -421,6 +422,20 @@ class FMaterialDesc:
     OcclusionTexture: str = ""
     NormalTexture: str = ""
     TextureSize: float = 0.0
+
+
+class FMotionFile(TypedDict):
+    """A human-object motion read from an animated file by USkeletalMeshComponent.ReadMotionFile(): one clip of a
+    file holding a skinned character and the rigid objects it handles, sampled at FrameRate. A dict in Python
+    (its arrays are numpy arrays).
+    """
+
+    Animation: str
+    FrameRate: float
+    BoneNames: list[str]
+    BoneTransforms: NDArray[np.float64]
+    ObjectNames: list[str]
+    ObjectTransforms: NDArray[np.float64]
 
 
 @dataclass(slots=True)
@@ -1638,6 +1653,7 @@ class USkeletalMeshComponent(UPrimitiveComponent):
     __slots__ = ()
     __sp_class__: ClassVar[str] = "USkeletalMeshComponent"
     GetBoneTransformsOfComponents = _StaticFunction("USkeletalMeshComponent", "GetBoneTransformsOfComponents", _t.T_array_float64, (("Components", True), ("Space", False),))
+    ReadMotionFile = _StaticFunction("USkeletalMeshComponent", "ReadMotionFile", _t.T_FMotionFile, (("Filename", True), ("Animation", True), ("FrameRate", True),))
 
 
 class USkyAtmosphereComponentAsync(USceneComponentAsync):

@@ -75,6 +75,7 @@ __all__ = [
     "FLensDistortion",
     "FLinearColor",
     "FMaterialDesc",
+    "FMotionFile",
     "FMoviePipelineConfiguration",
     "FMoviePipelineProgress",
     "FQuat",
@@ -517,6 +518,20 @@ class FMaterialDesc:
     OcclusionTexture: str = ""
     NormalTexture: str = ""
     TextureSize: float = 0.0
+
+
+class FMotionFile(TypedDict):
+    """A human-object motion read from an animated file by USkeletalMeshComponent.ReadMotionFile(): one clip of a
+    file holding a skinned character and the rigid objects it handles, sampled at FrameRate. A dict in Python
+    (its arrays are numpy arrays).
+    """
+
+    Animation: str
+    FrameRate: float
+    BoneNames: list[str]
+    BoneTransforms: NDArray[np.float64]
+    ObjectNames: list[str]
+    ObjectTransforms: NDArray[np.float64]
 
 
 @dataclass(slots=True)
@@ -5127,6 +5142,8 @@ class USkeletalMeshComponentAsync(UPrimitiveComponentAsync):
 
     def GetBoneTransformsOfComponents(self, *, Components: Sequence[USkeletalMeshComponent], Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> Future[NDArray[np.float64]]: ...
 
+    def ReadMotionFile(self, *, Filename: str, Animation: str, FrameRate: float) -> Future[FMotionFile]: ...
+
     def SetBoneTransforms(self, *, Transforms: NDArray[np.float64], Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> Future[None]: ...
 
 
@@ -5180,6 +5197,8 @@ class USkeletalMeshComponentSend(UPrimitiveComponentSend):
     def GetBoneTransforms(self, *, Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> None: ...
 
     def GetBoneTransformsOfComponents(self, *, Components: Sequence[USkeletalMeshComponent], Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> None: ...
+
+    def ReadMotionFile(self, *, Filename: str, Animation: str, FrameRate: float) -> None: ...
 
     def SetBoneTransforms(self, *, Transforms: NDArray[np.float64], Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> None: ...
 
@@ -5363,6 +5382,16 @@ class USkeletalMeshComponent(UPrimitiveComponent):
         float64 array (components, bones, 4, 4) in Space: a crowd's poses in one call and one array, which
         over RPC is one reply (calling GetBoneTransforms per character sends one array each). Raises
         InvalidArgumentError naming the first component whose bone count differs, or a None entry.
+        """
+
+    @staticmethod
+    def ReadMotionFile(*, Filename: str, Animation: str, FrameRate: float) -> FMotionFile:
+        """Reads clip Animation ("": the file's only clip) of the animated file Filename (glTF 2.0; FBX where
+        assimp reads it) holding a skinned character and the rigid objects it handles, at FrameRate frames per
+        second from the clip's start to its end: the character's bones and each moved object's node, frame by
+        frame (spear.motion.import_motion() makes a motion sequence of it). Raises NotFoundError naming the
+        file, or the clip and those there are; InvalidArgumentError when the file has no skeleton or no clip,
+        or FrameRate is not positive or asks for more than a million frames.
         """
 
     def SetBoneTransforms(self, *, Transforms: NDArray[np.float64], Space: EBoneSpaces = EBoneSpaces.WorldSpace) -> None:

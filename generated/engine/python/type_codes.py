@@ -40,6 +40,7 @@ T_FHitResult = TypeCode("struct", "FHitResult")
 T_FLensDistortion = TypeCode("struct", "FLensDistortion")
 T_FLinearColor = TypeCode("struct", "FLinearColor")
 T_FMaterialDesc = TypeCode("struct", "FMaterialDesc")
+T_FMotionFile = TypeCode("struct", "FMotionFile")
 T_FMoviePipelineConfiguration = TypeCode("struct", "FMoviePipelineConfiguration")
 T_FMoviePipelineProgress = TypeCode("struct", "FMoviePipelineProgress")
 T_FQuat = TypeCode("struct", "FQuat")
@@ -129,6 +130,7 @@ FIELD_TYPES: dict[str, dict[str, TypeCode]] = {
     "FLensDistortion": {"K1": T_float, "K2": T_float, "K3": T_float, "P1": T_float, "P2": T_float},
     "FLinearColor": {"R": T_float, "G": T_float, "B": T_float, "A": T_float},
     "FMaterialDesc": {"BaseColor": T_FLinearColor, "Roughness": T_float, "Metallic": T_float, "AmbientOcclusion": T_float, "Emissive": T_FLinearColor, "BaseColorTexture": T_str, "RoughnessMetallicTexture": T_str, "OcclusionTexture": T_str, "NormalTexture": T_str, "TextureSize": T_float},
+    "FMotionFile": {"Animation": T_str, "FrameRate": T_float, "BoneNames": T_list_of_str, "BoneTransforms": T_array_float64, "ObjectNames": T_list_of_str, "ObjectTransforms": T_array_float64},
     "FMoviePipelineConfiguration": {"OutputDirectory": T_str, "Modalities": T_list_of_ECameraModality, "Width": T_int, "Height": T_int, "SamplesPerPixel": T_int, "CameraLocations": T_list_of_FVector, "CameraRotations": T_list_of_FRotator, "FrameStart": T_int, "FrameEnd": T_int, "bOverwriteExisting": T_bool, "bWriteVideo": T_bool, "VideoFrameRate": T_float},
     "FMoviePipelineProgress": {"FramesTotal": T_int, "FramesRendered": T_int, "FramesWriting": T_int, "FramesSkipped": T_int, "ElapsedSeconds": T_float, "EstimatedSecondsLeft": T_float},
     "FQuat": {"X": T_float, "Y": T_float, "Z": T_float, "W": T_float},

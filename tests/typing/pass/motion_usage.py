@@ -38,3 +38,13 @@ def play(instance: spear.Instance, path: str) -> list[NDArray[np.uint32]]:
     transform: spear.FTransform = spear.motion.transform_of(motion.root_poses[0])
     assert transform.Scale3D.X > 0.0
     return ids
+
+
+def import_from_file(path: str) -> spear.motion.MotionSequence:
+    read: spear.FMotionFile = spear.USkeletalMeshComponent.ReadMotionFile(Filename=path, Animation="walk",
+                                                                          FrameRate=30.0)
+    poses: NDArray[np.float64] = read["BoneTransforms"]
+    objects: list[str] = read["ObjectNames"]
+    assert poses.shape[1] == len(read["BoneNames"]) and read["ObjectTransforms"].shape[1] == len(objects)
+    return spear.motion.import_motion(path, animation=read["Animation"], fps=read["FrameRate"],
+                                      object_meshes={name: "/Engine/BasicShapes/Cube" for name in objects})
