@@ -4,7 +4,6 @@
 #include <assimp/scene.h>
 
 #include <cmath>
-#include <map>
 #include <set>
 
 #include "core/animation/assimp_scene.h"
@@ -60,24 +59,7 @@ NodeTree nodeTree(const aiScene& scene, const Skeleton& character, const Eigen::
         stack.insert(stack.end(), node->mChildren, node->mChildren + node->mNumChildren);
     }
     NodeTree out;
-    out.tree.rootTransform = detail::nodeMatrix(*scene.mRootNode, axes);
-    std::map<const aiNode*, int> index;
-    for (unsigned c = scene.mRootNode->mNumChildren; c-- > 0;)
-        stack.push_back(scene.mRootNode->mChildren[c]);
-    while (!stack.empty()) { // parents before children, in the file's order
-        const aiNode* node = stack.back();
-        stack.pop_back();
-        if (!wanted.count(node))
-            continue;
-        index[node] = int(out.nodes.size());
-        out.nodes.push_back(node);
-        out.tree.names.push_back(node->mName.C_Str());
-        out.tree.parents.push_back(node->mParent == scene.mRootNode ? -1 : index.at(node->mParent));
-        out.tree.bindLocal.push_back(BoneTransform::fromMatrix(detail::nodeMatrix(*node, axes), kFunction));
-        out.tree.inverseBind.push_back(Eigen::Affine3d::Identity()); // nothing is skinned to this tree
-        for (unsigned c = node->mNumChildren; c-- > 0;)
-            stack.push_back(node->mChildren[c]);
-    }
+    out.tree = detail::treeOf(scene, wanted, axes, kFunction, &out.nodes);
     out.tree.validate(kFunction); // two nodes of one name would leave a channel ambiguous
     return out;
 }

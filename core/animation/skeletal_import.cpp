@@ -1,7 +1,5 @@
 #include "core/animation/skeletal_import.h"
 
-#include "core/animation/assimp_scene.h"
-
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -12,6 +10,7 @@
 #include <mutex>
 #include <set>
 
+#include "core/animation/assimp_scene.h"
 #include "core/base/asset_path.h"
 #include "core/base/error.h"
 #include "core/base/regular_file.h"
@@ -50,6 +49,32 @@ std::string resolveFile(const std::string& userPath, const char* function) {
              "(): no such file '", userPath, "'");
     checkRegularFile(path, function, "mesh file");
     return path;
+}
+
+Skeleton treeOf(const aiScene& scene, const std::set<const aiNode*>& nodes, const Eigen::Affine3d& axes,
+                const char* function, std::vector<const aiNode*>* order) {
+    Skeleton tree;
+    tree.rootTransform = nodeMatrix(*scene.mRootNode, axes);
+    std::map<const aiNode*, int> index;
+    std::vector<const aiNode*> stack;
+    for (unsigned c = scene.mRootNode->mNumChildren; c-- > 0;)
+        stack.push_back(scene.mRootNode->mChildren[c]);
+    while (!stack.empty()) { // depth first, children in the file's order
+        const aiNode* node = stack.back();
+        stack.pop_back();
+        if (!nodes.count(node))
+            continue;
+        index[node] = int(tree.names.size());
+        if (order != nullptr)
+            order->push_back(node);
+        tree.names.push_back(node->mName.C_Str());
+        tree.parents.push_back(node->mParent == scene.mRootNode ? -1 : index.at(node->mParent));
+        tree.bindLocal.push_back(BoneTransform::fromMatrix(nodeMatrix(*node, axes), function));
+        tree.inverseBind.push_back(Eigen::Affine3d::Identity());
+        for (unsigned c = node->mNumChildren; c-- > 0;)
+            stack.push_back(node->mChildren[c]);
+    }
+    return tree;
 }
 
 std::vector<AnimClip> readClips(const aiScene& scene, const Skeleton& skeleton, const Eigen::Affine3d& axes,
@@ -112,6 +137,7 @@ using detail::conjugate;
 using detail::nodeMatrix;
 using detail::readClips;
 using detail::toEigen;
+using detail::treeOf;
 
 // The skeleton: every node that is a bone of some mesh, and every node above one (below the file's root),
 // parents before children, in the file's order.
@@ -130,29 +156,10 @@ Skeleton readSkeleton(const aiScene& scene, const Eigen::Affine3d& axes, const s
         for (; node != nullptr && node != scene.mRootNode; node = node->mParent)
             marked.insert(node);
     }
-    Skeleton skeleton;
-    skeleton.rootTransform = nodeMatrix(*scene.mRootNode, axes);
-    std::map<const aiNode*, int> index;
-    std::vector<const aiNode*> stack;
-    for (unsigned c = scene.mRootNode->mNumChildren; c-- > 0;)
-        stack.push_back(scene.mRootNode->mChildren[c]);
-    while (!stack.empty()) {
-        const aiNode* node = stack.back();
-        stack.pop_back();
-        if (!marked.count(node))
-            continue;
-        index[node] = int(skeleton.names.size());
-        skeleton.names.push_back(node->mName.C_Str());
-        skeleton.parents.push_back(node->mParent == scene.mRootNode ? -1 : index.at(node->mParent));
-        skeleton.bindLocal.push_back(
-            BoneTransform::fromMatrix(nodeMatrix(*node, axes), "importSkeletalMesh"));
-        for (unsigned c = node->mNumChildren; c-- > 0;)
-            stack.push_back(node->mChildren[c]);
-    }
+    Skeleton skeleton = treeOf(scene, marked, axes, "importSkeletalMesh");
     // A bone's inverse bind transform is the file's, in spear's axes; a node above the bones gets the inverse
     // of where the bind pose puts it (no vertex follows it).
     const std::vector<Eigen::Affine3d> bind = skeleton.componentSpace(skeleton.bindLocal);
-    skeleton.inverseBind.resize(skeleton.size());
     for (std::size_t i = 0; i < skeleton.size(); ++i)
         skeleton.inverseBind[i] = bind[i].inverse();
     for (unsigned m = 0; m < scene.mNumMeshes; ++m)
