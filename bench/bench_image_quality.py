@@ -14,7 +14,10 @@ points, as 4 x 4 holds MSAA's; --aliasing-grids).
 
     PYTHONPATH=python /usr/bin/python3 bench/bench_image_quality.py [--width 320 --height 240]
         [--reference 1024] [--qualities Off,Medium] [--ambient-occlusion 0.5] [--scenes apartment,yard,closed_room,sky_yard,park_yard] [--out out/iq]
-        [--aliasing-grids 4,17] [--aliasing-only]
+        [--aliasing-grids 4,17] [--aliasing-only] [--max-anisotropy 8]
+
+--max-anisotropy sets the raster cameras' MaxAnisotropy (0: the renderer's default, trilinear on llvmpipe; 8:
+anisotropic texture filtering, a GPU's default).
 """
 
 from __future__ import annotations
@@ -128,7 +131,7 @@ class Scene:
     """One scene in its own engine: a camera per quality and a path-traced one, all at one pose."""
 
     def __init__(self, name: str, width: int, height: int, qualities: list[spear.EGlobalIlluminationQuality],
-                 ambient_occlusion: float = 0.0):
+                 ambient_occlusion: float = 0.0, max_anisotropy: int = 0):
         self.instance = spear.Instance()
         self.game = self.instance.get_game()
         self.width, self.height, self.name = width, height, name
@@ -140,6 +143,7 @@ class Scene:
             self.cameras = {q: self.camera(f"Raster{q.name}", width, height, q, name) for q in qualities}
             for camera in self.cameras.values():
                 camera.AmbientOcclusionIntensity = ambient_occlusion
+                camera.MaxAnisotropy = max_anisotropy
         with self.instance.end_frame():
             pass
 
@@ -162,9 +166,13 @@ class Scene:
             pass
 
     def raster(self, camera: spear.UCameraSensorComponent) -> tuple[NDArray[np.uint8], NDArray[np.float32]]:
-        """A frame, and the camera's images of it."""
+        """A frame, and the camera's images of it. The other raster cameras render nothing meanwhile: a world's
+        probes are lit at the highest GlobalIlluminationQuality of the cameras that shade, so with them all
+        shading every row would show the highest."""
         with self.instance.begin_frame():
-            pass
+            for other in self.cameras.values():
+                other.Modalities = ([spear.ECameraModality.FinalColor, spear.ECameraModality.Depth]
+                                    if other is camera else [])
         with self.instance.end_frame():
             pixels = camera.read_pixels()
         assert "final_color" in pixels and "depth" in pixels
@@ -267,6 +275,8 @@ def main() -> None:
     parser.add_argument("--qualities", default="Off,Medium")
     parser.add_argument("--ambient-occlusion", type=float, default=0.0,
                         help="the raster cameras' AmbientOcclusionIntensity (0: off, the camera's default)")
+    parser.add_argument("--max-anisotropy", type=int, default=0,
+                        help="the raster cameras' MaxAnisotropy (0: the renderer's default)")
     parser.add_argument("--scenes", default="apartment,yard,closed_room,sky_yard,park_yard")
     parser.add_argument("--out", default=None, help="a folder for the images (PNG)")
     parser.add_argument("--aliasing-grids", default="4,17",
@@ -284,7 +294,7 @@ def main() -> None:
     aliasing: list[tuple[str, dict[int, dict[str, tuple[float, float]]]]] = []
     for name in args.scenes.split(","):
         print(f"{name}:", file=sys.stderr)
-        scene = Scene(name, args.width, args.height, qualities, args.ambient_occlusion)
+        scene = Scene(name, args.width, args.height, qualities, args.ambient_occlusion, args.max_anisotropy)
         scene.frame()
         if args.aliasing_only:
             aliasing.append((name, scene.aliasing(qualities[0], grids)))

@@ -62,6 +62,9 @@ struct CameraParams {
     // square); FXAA still filters the averaged image. The exact modalities are drawn apart: one value a
     // pixel, at its centre (PassSet::spatialSamples).
     int spatialSamples = 1;
+    // Texture samples along a pixel's footprint at most (anisotropic filtering of the material textures): 1
+    // trilinear, up to 16; 0 takes the renderer's default (Renderer::anisotropicFiltering()).
+    int maxAnisotropy = 0;
     // Screen-space ambient occlusion of the indirect and sky light (screen_occlusion.h): how much of the
     // occlusion found is applied, in [0, 1] (0, the default here: none, and its passes do not run), and how
     // far from a point it looks for the surfaces that hide its hemisphere, metres in (0, 100].

@@ -412,6 +412,18 @@ void Renderer::renderView(const View& view) {
              " layers");
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
+    // The view's own texture filtering (CameraParams::maxAnisotropy), else the renderer's. A context without
+    // anisotropic filtering filters trilinearly whatever the view asks (said once).
+    const float anisotropy = camera.params.maxAnisotropy > 0 ? float(camera.params.maxAnisotropy)
+                             : anisotropicFiltering_         ? kMaxAnisotropy
+                                                             : 1.0f;
+    if (anisotropySupported_)
+        glSamplerParameterf(textureSampler_, GL_TEXTURE_MAX_ANISOTROPY, anisotropy);
+    else if (anisotropy > 1.0f && !anisotropyRefusalLogged_) {
+        anisotropyRefusalLogged_ = true;
+        SP_LOG("render: a view asked for anisotropic texture filtering, which this OpenGL context does not ",
+               "offer (GL 4.6 or GL_ARB_texture_filter_anisotropic): trilinear");
+    }
 
     // With spatial samples (PassSet::spatialSamples), the shaded targets are drawn once a sample, the pixels
     // moved to its point, into framebuffers of their own, and averaged into these; the exact targets after,

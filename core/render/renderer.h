@@ -167,7 +167,8 @@ class Renderer {
     // footprint) or trilinearly: by default on hardware, where it is all but free. On llvmpipe it doubled
     // a 1080p frame of the textured default scene (150 -> 400 ms) for a 12% lower mean aliasing error and the
     // same 99th percentile (BENCHMARKS.md). SPEAR_TEXTURE_FILTER=anisotropic|trilinear overrides the
-    // default; throws sp::InvalidArgument turning it on where the context has none.
+    // default; throws sp::InvalidArgument turning it on where the context has none. A view's
+    // CameraParams::maxAnisotropy, when not 0, takes the place of this default for that view.
     bool anisotropicFiltering() const { return anisotropicFiltering_; }
     void setAnisotropicFiltering(bool on);
     static constexpr float kMaxAnisotropy = 8.0f; // UE's r.MaxAnisotropy default
@@ -358,6 +359,7 @@ class Renderer {
     unsigned textureSampler_ = 0;
     bool anisotropySupported_ = false;
     bool anisotropicFiltering_ = false;
+    bool anisotropyRefusalLogged_ = false;
 };
 
 } // namespace sp::render

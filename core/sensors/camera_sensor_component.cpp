@@ -205,6 +205,12 @@ void UCameraSensorComponent::SetSpatialSampleCount(int32_t NewSpatialSampleCount
     SpatialSampleCount = NewSpatialSampleCount;
 }
 
+void UCameraSensorComponent::SetMaxAnisotropy(int32_t NewMaxAnisotropy) {
+    sp::checkSetting(NewMaxAnisotropy >= 0 && NewMaxAnisotropy <= 16, "UCameraSensorComponent",
+                     "MaxAnisotropy", "0 (the renderer's default) or in [1, 16]", NewMaxAnisotropy);
+    MaxAnisotropy = NewMaxAnisotropy;
+}
+
 void UCameraSensorComponent::SetAmbientOcclusionIntensity(float NewAmbientOcclusionIntensity) {
     sp::checkSetting(NewAmbientOcclusionIntensity >= 0.0f && NewAmbientOcclusionIntensity <= 1.0f,
                      "UCameraSensorComponent", "AmbientOcclusionIntensity", "in [0, 1]",

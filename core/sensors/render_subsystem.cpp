@@ -103,6 +103,7 @@ sp::render::CameraParams cameraParams(const UCameraSensorComponent& camera, int 
     params.msaaSamples = camera.MSAASampleCount;
     if (camera.Renderer == ECameraRenderer::Raster) {
         params.spatialSamples = camera.SpatialSampleCount;
+        params.maxAnisotropy = camera.MaxAnisotropy;
         params.ambientOcclusionIntensity = camera.AmbientOcclusionIntensity;
     }
     params.ambientOcclusionRadius = camera.AmbientOcclusionRadius;

@@ -268,6 +268,13 @@ void bind_UCameraSensorComponent(py::module_& m) {
         },
         "Spatial samples a pixel of the rasterised colour (Unreal's Movie Render Queue anti-aliasing setting):\n1 (none), 2, 4, 8 or 16. final_color, hdr_color and the intrinsic images are drawn that many times,\neach time with every pixel sampling another point of its square, and averaged (final_color in linear\nlight): supersampling, which filters shading, highlights, shadow edges and texture detail as well as\nsilhouettes. Above 1 it stands in for AAM_MSAA's coverage samples (multisampling each moved pass would\nblur the pixel past its square); AAM_FXAA still filters the averaged image. The exact modalities stay\none value a pixel, at its centre. A frame costs about that many times as much to shade\n(BENCHMARKS.md); the path tracer takes none (its SamplesPerPixel are spread over the pixel).");
     sp::pybind::defProperty(
+        cls, "MaxAnisotropy",
+        [](const RefBase& self) { return Calls::get_MaxAnisotropy<PyCall>(self.get<Self>("UCameraSensorComponent.MaxAnisotropy")); },
+        [](const RefBase& self, const PyArg& value) {
+            Calls::set_MaxAnisotropy<PyCall>(self.get<Self>("UCameraSensorComponent.MaxAnisotropy"), value);
+        },
+        "Anisotropic filtering of the material textures a rasterised view reads (Unreal's r.MaxAnisotropy): up\nto this many texture samples along a pixel's footprint where a surface is seen at a grazing angle (a\nfloor or a wall far along the view), where trilinear filtering blurs its texture. 1 filters\ntrilinearly; 2 to 16 anisotropically; 0 (the default) takes the renderer's default: 8 on a GPU, where\nit is all but free, 1 on a software rasteriser, where a textured frame costs about 2.4 times as much\nwith it (llvmpipe, BENCHMARKS.md). The default scene against the path tracer: SSIM 0.888 -> 0.906 at\nGlobalIlluminationQuality Medium, 0.910 -> 0.929 at Epic. The exact modalities are not filtered.");
+    sp::pybind::defProperty(
         cls, "AmbientOcclusionIntensity",
         [](const RefBase& self) { return Calls::get_AmbientOcclusionIntensity<PyCall>(self.get<Self>("UCameraSensorComponent.AmbientOcclusionIntensity")); },
         [](const RefBase& self, const PyArg& value) {
@@ -433,6 +440,10 @@ void bind_UCameraSensorComponent(py::module_& m) {
         cls, "SetSpatialSampleCount", std::array<const char*, 1>{"NewSpatialSampleCount"},
         [](const RefBase& self, const PyCallArgs& args) { return Calls::call_SetSpatialSampleCount<PyCall>(self, args); },
         "SetSpatialSampleCount(self, *, NewSpatialSampleCount: int) -> None\n\nSets SpatialSampleCount: 1, 2, 4, 8 or 16.");
+    sp::pybind::defMethod(
+        cls, "SetMaxAnisotropy", std::array<const char*, 1>{"NewMaxAnisotropy"},
+        [](const RefBase& self, const PyCallArgs& args) { return Calls::call_SetMaxAnisotropy<PyCall>(self, args); },
+        "SetMaxAnisotropy(self, *, NewMaxAnisotropy: int) -> None\n\nSets MaxAnisotropy: 0 (the renderer's default), or 1 to 16.");
     sp::pybind::defMethod(
         cls, "SetAmbientOcclusionIntensity", std::array<const char*, 1>{"NewAmbientOcclusionIntensity"},
         [](const RefBase& self, const PyCallArgs& args) { return Calls::call_SetAmbientOcclusionIntensity<PyCall>(self, args); },

@@ -970,6 +970,16 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
         });
         t.properties.push_back({
+            "MaxAnisotropy",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int),
+            "Anisotropic filtering of the material textures a rasterised view reads (Unreal's r.MaxAnisotropy): up\nto this many texture samples along a pixel's footprint where a surface is seen at a grazing angle (a\nfloor or a wall far along the view), where trilinear filtering blurs its texture. 1 filters\ntrilinearly; 2 to 16 anisotropically; 0 (the default) takes the renderer's default: 8 on a GPU, where\nit is all but free, 1 on a software rasteriser, where a textured frame costs about 2.4 times as much\nwith it (llvmpipe, BENCHMARKS.md). The default scene against the path tracer: SSIM 0.888 -> 0.906 at\nGlobalIlluminationQuality Medium, 0.910 -> 0.929 at Epic. The exact modalities are not filtered.",
+            false,
+            [](const void* self) { return Calls::get_MaxAnisotropy<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_MaxAnisotropy<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
             "AmbientOcclusionIntensity",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Ambient occlusion of the rasterised indirect and sky light (Unreal's AmbientOcclusionIntensity):\nhow much of the occlusion found in the view's depth is applied, in [0, 1]; 0 (the default) turns it\noff. Ground-truth ambient occlusion (GTAO, Jimenez et al. 2016) darkens what the irradiance probes are\ntoo coarse for: corners, the floor under furniture and at an object's foot (core/render/README.md,\n\"Ambient occlusion\"); the lights' own light keeps its shadow maps, and the path tracer finds occlusion\nby itself. Off by default because a software rasteriser pays for it: a 640 x 480 view about 6 ms more\na frame, a 1080p one about 35 ms (llvmpipe, BENCHMARKS.md); on a GPU it costs little, and Unreal's\n0.5 is a good value.",
@@ -1355,6 +1365,17 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             false,
             false,
             [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetSpatialSampleCount<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "SetMaxAnisotropy",
+            "Sets MaxAnisotropy: 0 (the renderer's default), or 1 to 16.",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"NewMaxAnisotropy", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Int), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetMaxAnisotropy<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetAmbientOcclusionIntensity",

@@ -756,6 +756,15 @@ struct UCameraSensorComponentCalls {
         sp::reflect::notifyPropertyChanged(self, "SpatialSampleCount");
     }
 
+    template <typename Call> static typename Call::Result get_MaxAnisotropy(const Self* self) {
+        const auto& value = self->MaxAnisotropy;
+        return Call::template result<int32_t>(value);
+    }
+    template <typename Call> static void set_MaxAnisotropy(Self* self, const typename Call::Input& value) {
+        self->SetMaxAnisotropy(Call::template input<int32_t>(value, "UCameraSensorComponent.MaxAnisotropy"));
+        sp::reflect::notifyPropertyChanged(self, "MaxAnisotropy");
+    }
+
     template <typename Call> static typename Call::Result get_AmbientOcclusionIntensity(const Self* self) {
         const auto& value = self->AmbientOcclusionIntensity;
         return Call::template result<float>(value);
@@ -1156,6 +1165,18 @@ struct UCameraSensorComponentCalls {
         Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetSpatialSampleCount()");
         int32_t NewSpatialSampleCountArg = call.template arg<int32_t>(0);
         self->SetSpatialSampleCount(NewSpatialSampleCountArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetMaxAnisotropy(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewMaxAnisotropy", "UCameraSensorComponent.SetMaxAnisotropy(): argument 'NewMaxAnisotropy'", true},
+        }};
+        const Call call(args, "UCameraSensorComponent.SetMaxAnisotropy()", kParams);
+        Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetMaxAnisotropy()");
+        int32_t NewMaxAnisotropyArg = call.template arg<int32_t>(0);
+        self->SetMaxAnisotropy(NewMaxAnisotropyArg);
         return Call::none();
     }
 

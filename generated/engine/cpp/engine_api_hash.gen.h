@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "26f874ccd1bd8427";
+inline constexpr char kApiHash[] = "330f92e6b0d5f8e2";
 } // namespace sp::generated::engine

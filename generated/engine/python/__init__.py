@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "26f874ccd1bd8427"
+API_HASH = "330f92e6b0d5f8e2"

@@ -1639,6 +1639,14 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
         self._sp_set("UCameraSensorComponent", "SpatialSampleCount", value)
 
     @property
+    def MaxAnisotropy(self) -> int:
+        return cast("int", self._sp_get("UCameraSensorComponent", "MaxAnisotropy", _t.T_int))
+
+    @MaxAnisotropy.setter
+    def MaxAnisotropy(self, value: int) -> None:
+        self._sp_set("UCameraSensorComponent", "MaxAnisotropy", value)
+
+    @property
     def AmbientOcclusionIntensity(self) -> float:
         return cast("float", self._sp_get("UCameraSensorComponent", "AmbientOcclusionIntensity", _t.T_float))
 
@@ -1780,6 +1788,9 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     def SetSpatialSampleCount(self, *, NewSpatialSampleCount: int) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetSpatialSampleCount", {"NewSpatialSampleCount": NewSpatialSampleCount}, _t.T_void))  # a Future when queued by call_async
+
+    def SetMaxAnisotropy(self, *, NewMaxAnisotropy: int) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetMaxAnisotropy", {"NewMaxAnisotropy": NewMaxAnisotropy}, _t.T_void))  # a Future when queued by call_async
 
     def SetAmbientOcclusionIntensity(self, *, NewAmbientOcclusionIntensity: float) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetAmbientOcclusionIntensity", {"NewAmbientOcclusionIntensity": NewAmbientOcclusionIntensity}, _t.T_void))  # a Future when queued by call_async

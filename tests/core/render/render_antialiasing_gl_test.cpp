@@ -416,6 +416,29 @@ TEST_F(RenderAntiAliasingGlTest,
               << ", anisotropic " << anisotropic << "\n";
 }
 
+TEST_F(RenderAntiAliasingGlTest, AViewsMaxAnisotropyTakesThePlaceOfTheRenderersDefault) {
+    // The grazing floor above: a view asking for 8 samples renders what the renderer's anisotropic default
+    // renders, one asking for 1 what its trilinear default renders, whatever the default; 0 follows it.
+    Scene scene;
+    buildCheckeredFloor(scene, 4, 4.0f);
+    Camera camera = cameraLookingAt({-19.0, 0.0, 1.5}, {-9.0, 0.0, 0.0}, 64, 48, 60.0);
+    const bool byDefault = renderer().anisotropicFiltering();
+    const auto render = [&](bool rendererDefault, int view) {
+        renderer().setAnisotropicFiltering(rendererDefault);
+        camera.params.maxAnisotropy = view;
+        return renderFrame(scene, camera, {Modality::HdrColor}).get(Modality::HdrColor).bytes;
+    };
+    const auto trilinear = render(false, 0), anisotropic = render(true, 0);
+    EXPECT_NE(trilinear, anisotropic);
+    EXPECT_EQ(render(false, 8), anisotropic);
+    EXPECT_EQ(render(true, 1), trilinear);
+    EXPECT_EQ(render(true, 0), anisotropic); // the view's choice did not stay with the renderer
+    EXPECT_EQ(render(false, 0), trilinear);
+    renderer().setAnisotropicFiltering(byDefault);
+    camera.params.maxAnisotropy = 17;
+    EXPECT_THROW(camera.params.validate("test"), InvalidArgument);
+}
+
 TEST_F(RenderAntiAliasingGlTest, AnisotropicFilteringIsOnByDefaultOnHardwareAndSetFromTheEnvironment) {
     GlContext& context = *context_;
     ::setenv("SPEAR_TEXTURE_FILTER", "anisotropic", 1);
