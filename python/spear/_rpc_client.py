@@ -47,6 +47,9 @@ _ERRORS: dict[str, type[errors.SpearError]] = {
 ConnectionLost = errors.ConnectionLostError  # the name this module has always raised
 
 _SPIN_DEFAULT_US, _SPIN_MAX_US = 100, 10_000  # as the server's (core/rpc/spin_poll.h)
+# A kind of request whose reply lately came within this many seconds is waited for by polling up to 1.25 times
+# that long, not only the SPEAR_RPC_SPIN_US budget (see RpcConnection._poll_briefly).
+_ADAPTIVE_SPIN_MAX = 2e-3
 
 
 def spin_seconds() -> float:
@@ -71,6 +74,22 @@ def spin_seconds() -> float:
     return microseconds * 1e-6
 
 
+def poll_budget(spin: float, expected: float | None) -> float:
+    """Seconds to poll for a reply before sleeping: the SPEAR_RPC_SPIN_US budget `spin` (none: no polling at
+    all), or 1.25 times the time replies of its kind took lately (`expected`) where that is within
+    _ADAPTIVE_SPIN_MAX."""
+    if not spin or expected is None or expected > _ADAPTIVE_SPIN_MAX:
+        return spin
+    return max(spin, 1.25 * expected)
+
+
+def _kind_of(calls: list[dict[str, Any]]) -> str:
+    """A request's kind for the adaptive polling: its calls' operations, frame actions and functions (the first
+    eight; a batch of more is told by its count too)."""
+    names = [str(call.get("action") or call.get("function") or call.get("op")) for call in calls[:8]]
+    return "batch:" + ",".join(names) + (f"+{len(calls)}" if len(calls) > 8 else "")
+
+
 class RpcConnection(Requests):
     """A connection to a spear server; implements the RpcClient protocol the generated proxies use. Its
     request(op, **fields) is typed per op by spear._protocol (generated from core/rpc/protocol.json)."""
@@ -79,6 +98,9 @@ class RpcConnection(Requests):
         from spear._engine import API_HASH
 
         self._spin = spin_seconds()
+        # How long replies to each kind of request took lately (seconds), and the kind now awaited.
+        self._reply_times: dict[str, float] = {}
+        self._awaited = ("", 0.0)  # (kind, when its request was sent)
         remove_orphaned_segments()  # what a client and server killed together left behind
         self.address = address
         if address.startswith("unix:"):
@@ -187,6 +209,7 @@ class RpcConnection(Requests):
         # those go with the next request, whose reply settles them.
         self._send(pack_frame(message({"id": next(self._ids), "op": "batch", "calls": calls,
                                        "critical": list(range(len(calls)))})))
+        self._awaited = (_kind_of(calls), time.perf_counter())
         self._posted = True
         self._frame_state = None  # known again once the reply is read
 
@@ -293,7 +316,7 @@ class RpcConnection(Requests):
         reply: Any = None
         try:
             outgoing = {"id": next(self._ids), "op": op, **_encode_fields(op, fields, segments)}
-            reply = self._round_trip(pack_frame(self._offer_buffers(outgoing), segments))
+            reply = self._round_trip(pack_frame(self._offer_buffers(outgoing), segments), op)
         finally:
             segments.release()
             self._settle_buffers(reply, batch=False)
@@ -318,7 +341,7 @@ class RpcConnection(Requests):
             batch: BatchMessage = {"id": next(self._ids), "op": "batch", "calls": encoded}
             if critical:
                 batch["critical"] = list(critical)
-            reply = self._round_trip(pack_frame(self._offer_buffers(message(batch)), segments))
+            reply = self._round_trip(pack_frame(self._offer_buffers(message(batch)), segments), _kind_of(encoded))
         finally:
             segments.release()
             self._settle_buffers(reply, batch=True)
@@ -350,8 +373,9 @@ class RpcConnection(Requests):
                 message["dropped_buffers"] = dropped
         return message
 
-    def _round_trip(self, frame: list[bytes | memoryview]) -> Any:
+    def _round_trip(self, frame: list[bytes | memoryview], kind: str) -> Any:
         self._send(frame)
+        self._awaited = (kind, time.perf_counter())
         return self._read_reply(self._reply_buffers)
 
     def _send(self, frame: list[bytes | memoryview]) -> None:
@@ -367,6 +391,7 @@ class RpcConnection(Requests):
         try:
             self._poll_briefly()
             (length,) = struct.unpack("<I", self._receive(4))
+            self._learn_reply_time()
             if length & TAIL_FLAG:  # large arrays after the message (a client that cannot map the server's memory)
                 body = self._receive(length & ~TAIL_FLAG)
                 (message_length,) = struct.unpack_from("<I", body)
@@ -387,11 +412,26 @@ class RpcConnection(Requests):
         On the main thread only: each turn of the loop takes the GIL back, so threads polling side by side
         (VectorEnv's, one per server) would keep those with work to do from it (on a 16-core host, 16 servers
         stepped from 16 threads lost a third of their steps per second).
+
+        A kind of request whose reply lately came within _ADAPTIVE_SPIN_MAX (a frame whose physics step takes
+        half a millisecond) is polled for up to 1.25 times as long as it took: sleeping, the process is woken by
+        the kernel when the reply comes, which on a virtual machine costs a tenth of a millisecond or more a
+        message. Longer work (a rendered frame) is slept through, the CPU left to the server's threads.
         """
         if self._spin and threading.current_thread() is threading.main_thread():
-            poll, deadline = self._readable.poll, time.perf_counter() + self._spin
+            kind, sent = self._awaited
+            poll, deadline = self._readable.poll, sent + poll_budget(self._spin, self._reply_times.get(kind))
             while not poll(0) and time.perf_counter() < deadline:
                 os.sched_yield()
+
+    def _learn_reply_time(self) -> None:
+        """Records how long the reply now being read took to come (a moving average per kind of request)."""
+        kind, sent = self._awaited
+        took = time.perf_counter() - sent
+        if len(self._reply_times) >= 256 and kind not in self._reply_times:
+            self._reply_times.clear()  # many kinds (calls of many functions, one at a time): start again
+        last = self._reply_times.get(kind)
+        self._reply_times[kind] = took if last is None else 0.5 * (last + took)
 
     def _receive(self, size: int) -> memoryview:
         # Into one buffer as it arrives: a reply carrying a frame inline (over TCP from another host) is copied

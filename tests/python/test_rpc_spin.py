@@ -99,3 +99,25 @@ def test_only_the_main_thread_polls(monkeypatch: pytest.MonkeyPatch) -> None:
         connection.close()
     finally:
         server.close()
+
+
+def test_replies_that_came_quickly_lately_are_polled_for_longer() -> None:
+    from spear._rpc_client import _ADAPTIVE_SPIN_MAX, poll_budget
+    assert poll_budget(100e-6, None) == pytest.approx(100e-6)  # nothing known yet: the budget
+    assert poll_budget(100e-6, 40e-6) == pytest.approx(100e-6)  # quicker than the budget
+    assert poll_budget(100e-6, 600e-6) == pytest.approx(750e-6)  # a physics step: polled through
+    assert poll_budget(100e-6, 2 * _ADAPTIVE_SPIN_MAX) == pytest.approx(100e-6)  # a rendered frame: slept through
+    assert poll_budget(0.0, 600e-6) == 0.0  # polling off (or one CPU): never
+
+
+def test_a_connection_learns_how_long_each_kind_of_request_takes() -> None:
+    with spear.Instance(server="launch") as instance:
+        game = instance.get_game()
+        for _ in range(3):
+            with instance.begin_frame():
+                game.find_actor_by_name(name="Nobody")
+            with instance.end_frame():
+                pass
+        times = instance._backend.connection._reply_times  # type: ignore[attr-defined]
+        assert times and all(0.0 < t < 10.0 for t in times.values()), times
+        assert any(kind.startswith("batch:begin") for kind in times), times
