@@ -316,7 +316,8 @@ class RpcConnection(Requests):
         reply: Any = None
         try:
             outgoing = {"id": next(self._ids), "op": op, **_encode_fields(op, fields, segments)}
-            reply = self._round_trip(pack_frame(self._offer_buffers(outgoing), segments), op)
+            reply = self._round_trip(pack_frame(self._offer_buffers(outgoing), segments),
+                                     f"{op}:{fields.get('function', '')}")
         finally:
             segments.release()
             self._settle_buffers(reply, batch=False)
