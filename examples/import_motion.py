@@ -3,12 +3,14 @@ rendered each frame: colour, body-part segmentation (one id per body part of the
 
 The sequence (spear.motion's .npz format: the character's bone poses, its root's and each handled object's
 trajectory) is the built-in /Game/motions/carry_case.npz, the humanoid walking with a case in its right hand
-(made by scripts/make_motion.py); --motion plays another file of that format, such as a dataset converted to it.
+(made by scripts/make_motion.py); --motion plays another file of that format, such as a dataset converted to it,
+or reads an animated glTF/FBX file straight (spear.motion.import_motion: its skinned character and the objects
+its clip moves, each shown with the static mesh --object-mesh NAME=MESH names, sampled at --fps).
 spear.motion.MotionPlayer spawns the character and the objects and, for each frame, poses the character
 (SetBoneTransforms, one array) and moves the objects; the engine renders that frame's camera images with them.
 
     PYTHONPATH=python /usr/bin/python3 examples/import_motion.py [--motion FILE] [--out out/import_motion.png]
-        [--server launch]
+        [--server launch] [--animation CLIP --fps 30 --object-mesh NAME=MESH ...]
 """
 
 # Debian 12's Pillow (9.4) has no annotations: strict pyright would flag every use of it.
@@ -44,16 +46,27 @@ def placement() -> NDArray[np.float64]:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
-    parser.add_argument("--motion", default="/Game/motions/carry_case.npz", help="a motion sequence (.npz) to play")
+    parser.add_argument("--motion", default="/Game/motions/carry_case.npz",
+                        help="a motion sequence (.npz), or an animated glTF/FBX file, to play")
+    parser.add_argument("--animation", default="", help="an animated file's clip (default: its only one)")
+    parser.add_argument("--fps", type=float, default=30.0, help="an animated file's frames per second")
+    parser.add_argument("--object-mesh", action="append", default=[], metavar="NAME=MESH",
+                        help="the static mesh of an object an animated file moves (once per object)")
     parser.add_argument("--out", default="out/import_motion.png", help="where to write the sheet of frames")
     parser.add_argument("--server", default=None, help='"launch", "unix:PATH" or "tcp:HOST:PORT" (default: in-process)')
     args = parser.parse_args()
 
-    motion = spear.motion.load_motion(args.motion)
+    animated = Path(args.motion).suffix.lower() in {".glb", ".gltf", ".fbx"}
+    if animated:  # read through the engine: started first, at the rate asked for
+        instance = spear.Instance(server=args.server, fixed_delta_seconds=1.0 / args.fps)
+        meshes = dict(pair.split("=", 1) for pair in args.object_mesh)
+        motion = spear.motion.import_motion(args.motion, animation=args.animation, fps=args.fps, object_meshes=meshes)
+    else:
+        motion = spear.motion.load_motion(args.motion)
+        instance = spear.Instance(server=args.server, fixed_delta_seconds=1.0 / motion.fps)
     print(f"{args.motion}: {motion.frames} frames at {motion.fps:g} fps ({motion.duration:.2f} s), "
           f"{len(motion.bone_names)} bones of {motion.skeletal_mesh}, objects: {', '.join(motion.object_names) or 'none'}")
 
-    instance = spear.Instance(server=args.server, fixed_delta_seconds=1.0 / motion.fps)
     game = instance.get_game()
     with instance.begin_frame():
         game.load_scene(path="/Game/scenes/apartment")

@@ -134,6 +134,23 @@ def test_import_motion_plays_a_sequence_with_an_object_and_renders_body_parts(tr
 
 
 @pytest.mark.parametrize("transport", TRANSPORTS)
+def test_import_motion_reads_an_animated_gltf_file(transport: str, tmp_path: Path) -> None:
+    from motion_files import write_carry_glb
+
+    gltf = write_carry_glb(tmp_path / "carry.glb")
+    result = run_example("import_motion.py", "--motion", str(gltf), "--animation", "walk", "--fps", "20",
+                         "--object-mesh", "Case=/Engine/BasicShapes/Cube",
+                         "--object-mesh", "Held=/Engine/BasicShapes/Sphere",
+                         "--out", str(tmp_path / "motion.png"), *TRANSPORTS[transport])
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert f"{gltf}: 23 frames at 20 fps (1.10 s), 18 bones of {gltf}, objects: " in result.stdout
+    assert "frame 23/23 (" in result.stdout
+    refused = run_example("import_motion.py", "--motion", str(gltf), "--animation", "walk",
+                          "--out", str(tmp_path / "refused.png"), *TRANSPORTS[transport])
+    assert refused.returncode != 0 and "name the static mesh of each in object_meshes" in refused.stderr
+
+
+@pytest.mark.parametrize("transport", TRANSPORTS)
 def test_animated_characters_walk_run_and_carry_a_head_camera(transport: str, tmp_path: Path) -> None:
     out = tmp_path / "characters.png"
     result = run_example("animated_characters.py", "--frames", "12", "--out", str(out), *TRANSPORTS[transport])
