@@ -19,6 +19,14 @@ FTransform toTransform(const Eigen::Affine3d& matrix) {
     return out;
 }
 
+// Writes `m` row after row (numpy's layout of a float64 (..., 4, 4) array); returns the next place to write.
+double* writeRowMajor(const Eigen::Matrix4d& m, double* data) {
+    for (int row = 0; row < 4; ++row)
+        for (int column = 0; column < 4; ++column)
+            *data++ = m(row, column);
+    return data;
+}
+
 std::string shapeText(const std::vector<int64_t>& shape) {
     std::string out = "(";
     for (std::size_t i = 0; i < shape.size(); ++i)
@@ -332,12 +340,8 @@ double* USkeletalMeshComponent::writeBoneTransforms(EBoneSpaces Space, double* d
     // Row-major 4 x 4 matrices, bone after bone: numpy's layout of a (bones, 4, 4) float64 array.
     const Eigen::Affine3d world =
         Space == EBoneSpaces::WorldSpace ? worldMatrix() : Eigen::Affine3d::Identity();
-    for (const Eigen::Affine3d& bone : componentSpace_) {
-        const Eigen::Matrix4d m = (world * bone).matrix();
-        for (int row = 0; row < 4; ++row)
-            for (int column = 0; column < 4; ++column)
-                *data++ = m(row, column);
-    }
+    for (const Eigen::Affine3d& bone : componentSpace_)
+        data = writeRowMajor((world * bone).matrix(), data);
     return data;
 }
 
@@ -487,9 +491,7 @@ FMotionFile USkeletalMeshComponent::ReadMotionFile(const std::string& Filename, 
         double* data = array.data();
         for (const auto& frame : frames)
             for (const Eigen::Affine3d& transform : frame)
-                for (int row = 0; row < 4; ++row)
-                    for (int column = 0; column < 4; ++column)
-                        *data++ = transform.matrix()(row, column);
+                data = writeRowMajor(transform.matrix(), data);
     };
     fill(out.BoneTransforms, motion.bones, motion.boneNames.size());
     fill(out.ObjectTransforms, motion.objects, motion.objectNames.size());
