@@ -382,9 +382,14 @@ def build() -> bytes:
         "bufferViews": buffer_views,
         "buffers": [{"byteLength": len(binary)}],
     }
+    return glb_bytes(document, binary)
+
+
+def glb_bytes(document: dict, binary: bytearray) -> bytes:  # type: ignore[type-arg]
+    """A binary glTF file of `document` (its JSON) and `binary` (its one buffer), each chunk padded to 4 bytes."""
     text = json.dumps(document, separators=(",", ":"), sort_keys=True).encode()
     text += b" " * (-len(text) % 4)
-    binary.extend(b"\0" * (-len(binary) % 4))
+    binary = binary + b"\0" * (-len(binary) % 4)
     total = 12 + 8 + len(text) + 8 + len(binary)
     return (struct.pack("<III", 0x46546C67, 2, total) + struct.pack("<II", len(text), 0x4E4F534A) + text
             + struct.pack("<II", len(binary), 0x004E4942) + bytes(binary))

@@ -6,11 +6,14 @@ from __future__ import annotations
 
 import json
 import struct
+import sys
 from pathlib import Path
 
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "scripts"))
+from make_humanoid import glb_bytes  # noqa: E402  (the humanoid's own GLB writer)
 HUMANOID = ROOT / "assets" / "characters" / "humanoid.glb"
 
 # The Case's keys in the walk clip, in glTF's axes (Y up): seconds and translations.
@@ -30,12 +33,8 @@ def _read_glb(path: Path) -> tuple[dict, bytearray]:  # type: ignore[type-arg]
 
 
 def _write_glb(path: Path, document: dict, binary: bytearray) -> None:  # type: ignore[type-arg]
-    binary += b"\0" * (-len(binary) % 4)
     document["buffers"][0]["byteLength"] = len(binary)
-    text = json.dumps(document).encode()
-    text += b" " * (-len(text) % 4)
-    body = struct.pack("<II", len(text), 0x4E4F534A) + text + struct.pack("<II", len(binary), 0x004E4942) + binary
-    path.write_bytes(struct.pack("<III", 0x46546C67, 2, 12 + len(body)) + body)
+    path.write_bytes(glb_bytes(document, binary))
 
 
 def _accessor(document: dict, binary: bytearray, array: np.ndarray, kind: str,  # type: ignore[type-arg]
