@@ -196,8 +196,9 @@ def import_motion(path: str | os.PathLike[str], *, animation: str = "", fps: flo
     bones in component space, each object's node in the file's space turned Z-up, the root at the origin).
 
     The objects are the file's nodes with a mesh that no bone deforms and that the clip moves; `object_meshes`
-    names the static mesh asset to show for each, by node name. The character is the file itself (its skinned
-    meshes). Raises NotFoundError for a missing file or clip (naming the clips there are), InvalidArgumentError
+    names the static mesh asset to show for each, by node name: a mesh in that node's own frame and size (the
+    object's mesh as the dataset ships it; a built-in shape is a metre across). The character is the file itself
+    (its skinned meshes). Raises NotFoundError for a missing file or clip (naming the clips there are), InvalidArgumentError
     for a file without skeleton or clip, a rate that is not positive, or an object without a mesh (naming it)
     or a mesh for no object of the file."""
     where = f"import_motion('{os.fspath(path)}')"
