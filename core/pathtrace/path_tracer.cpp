@@ -16,6 +16,7 @@
 #include "core/base/progress.h"
 #include "core/pathtrace/bsdf.h"
 #include "core/pathtrace/emitters.h"
+#include "core/pathtrace/sampler.h"
 #include "core/render/box_uv.h"
 #include "core/render/luminance.h"
 
@@ -42,22 +43,11 @@ struct Hasher {
     }
 };
 
-// SplitMix64: one stream per (pixel, sample), so that images do not depend on how rows meet threads.
-struct Random {
-    std::uint64_t state;
-    float next() {
-        std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        z ^= z >> 31;
-        return float(z >> 40) * (1.0f / 16777216.0f);
-    }
-};
-
 // A point of the aperture disc of `radius` (camera body frame: the disc spans +Y and +Z at X = 0), uniform
 // over its area by Shirley and Chiu's concentric mapping.
-Eigen::Vector3f lensPoint(Random& random, float radius) {
-    const float a = 2.0f * random.next() - 1.0f, b = 2.0f * random.next() - 1.0f;
+Eigen::Vector3f lensPoint(PathSampler& random, float radius) {
+    const auto [ua, ub] = random.next2();
+    const float a = 2.0f * ua - 1.0f, b = 2.0f * ub - 1.0f;
     if (a == 0.0f && b == 0.0f)
         return Eigen::Vector3f::Zero();
     const float quarter = 0.25f * float(M_PI);
@@ -685,11 +675,12 @@ struct PathTracer::Impl {
     // towards it along l, and the weight (cos / density, times the multiple importance sampling weight)
     // by which the point reflects it.
     template <typename Arrive>
-    void joinLightVertex(const render::Scene& scene, const LightVertices& joins, Random& random,
+    void joinLightVertex(const render::Scene& scene, const LightVertices& joins, PathSampler& random,
                          std::uint64_t& rays, const Eigen::Vector3f& above, const Eigen::Vector3f& n,
                          const Eigen::Vector3f& ng, const SurfacePoint& s, const Eigen::Vector3f& toViewer,
                          const Settings& settings, Arrive&& arrive) const {
-        const float pick = random.next(), u1 = random.next(), u2 = random.next();
+        const float pick = random.next();
+        const auto [u1, u2] = random.next2();
         const std::size_t i = std::min<std::size_t>(
             std::size_t(std::upper_bound(joins.cdf.begin(), joins.cdf.end(), pick) - joins.cdf.begin()),
             joins.cdf.size() - 1);
@@ -749,7 +740,7 @@ struct PathTracer::Impl {
     // `probe`: a probe's path, whose rays see only the instances not smaller than the probe cutoff.
     PathSample trace(const render::Scene& scene, bool shadows, const Eigen::Vector3f& missed,
                      Eigen::Vector3f origin, Eigen::Vector3f direction, float tnear, float tfar,
-                     const Settings& settings, Random& random, std::uint64_t& rays, bool probe = false,
+                     const Settings& settings, PathSampler& random, std::uint64_t& rays, bool probe = false,
                      const LightVertices* joins = nullptr) const {
         const unsigned rayMask = probe ? kProbeRays : kCameraRays,
                        shadowMask = probe ? kProbeShadowRays : kShadowRays;
@@ -832,10 +823,11 @@ struct PathTracer::Impl {
                 const std::size_t index = lightIndex++;
                 Eigen::Vector3f l;
                 float distance = 0.0f;
-                float u1 = 0.5f, u2 = 0.5f; // drawn only for an area light: the others keep their sequence
+                std::array<float, 2> u{0.5f, 0.5f}; // a point of an area light; the others need none
+
                 if (light.type == render::LightType::Rect)
-                    u1 = random.next(), u2 = random.next();
-                const Eigen::Vector3f e = lightIrradiance(light, p, u1, u2, l, distance);
+                    u = random.next2();
+                const Eigen::Vector3f e = lightIrradiance(light, p, u[0], u[1], l, distance);
                 const float nol = n.dot(l);
                 if (nol <= 0.0f || ng.dot(l) <= 0.0f || e.maxCoeff() <= 0.0f)
                     return;
@@ -856,8 +848,10 @@ struct PathTracer::Impl {
                 }
             });
             const bool last = depth >= settings.maxBounces;
-            if (!emitters.empty()) { // one point of an emissive surface
-                const EmitterSample e = emitters.sample(random.next(), random.next(), random.next());
+            if (!emitters.empty()) {              // one point of an emissive surface
+                const float pick = random.next(); // the triangle; then the point on it, stratified
+                const auto [u1, u2] = random.next2();
+                const EmitterSample e = emitters.sample(pick, u1, u2);
                 const Eigen::Vector3f d = e.point - above;
                 const float distance2 = d.squaredNorm(), distance = std::sqrt(distance2);
                 const Eigen::Vector3f l = d / std::max(distance, 1e-12f);
@@ -879,9 +873,11 @@ struct PathTracer::Impl {
                 Eigen::Vector3f l;
                 float pdfSky = 0.0f;
                 if (map) {
-                    pdfSky = map->sample(random.next(), random.next(), l);
+                    const auto [u1, u2] = random.next2();
+                    pdfSky = map->sample(u1, u2, l);
                 } else {
-                    l = cosineDirection(n, random.next(), random.next());
+                    const auto [u1, u2] = random.next2();
+                    l = cosineDirection(n, u1, u2);
                     pdfSky = n.dot(l) / kPi;
                 }
                 const float nol = n.dot(l);
@@ -919,7 +915,8 @@ struct PathTracer::Impl {
 
             Eigen::Vector3f l;
             const float lobe = random.next();
-            if (!sample(s, toViewer, lobe, random.next(), random.next(), l) || ng.dot(l) <= 0.0f)
+            const auto [u1, u2] = random.next2();
+            if (!sample(s, toViewer, lobe, u1, u2, l) || ng.dot(l) <= 0.0f)
                 break;
             pathRoughness = std::max(pathRoughness, sampledRoughness(s, lobe));
             bsdfPdf = pdf(s, toViewer, l);
@@ -1046,11 +1043,13 @@ void PathTracer::render(const render::Scene& scene, const render::Camera& camera
                 double* diffuseIllumination = &image.diffuseIlluminationSum[at];
                 for (int k = 0; k < settings.samplesPerPixel; ++k) {
                     const std::uint64_t index = firstSample + std::uint64_t(k);
-                    Random random{signature ^ ((std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x)) *
-                                                   0x9E3779B97F4A7C15ull +
-                                               index * 0xD1B54A32D192ED03ull)};
+                    PathSampler random(signature ^
+                                           (std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x)) *
+                                               0x9E3779B97F4A7C15ull,
+                                       index);
                     // Camera body frame: +X forward, +Y left, +Z up; pixel (u right, v down).
-                    const float u = float(x) + random.next(), v = float(y) + random.next();
+                    const auto [du, dv] = random.next2();
+                    const float u = float(x) + du, v = float(y) + dv;
                     const Eigen::Vector3f local(float(focal), -(u - 0.5f * float(width)),
                                                 -(v - 0.5f * float(height)));
                     // A thin lens: rays from a point of the aperture disc through the pixel's point on the
@@ -1135,10 +1134,10 @@ void PathTracer::lightProbes(const render::Scene& scene, render::IrradianceVolum
             const int y = int(index / std::size_t(volume.counts.x()) % std::size_t(volume.counts.y()));
             const int z = int(index / (std::size_t(volume.counts.x()) * std::size_t(volume.counts.y())));
             const Eigen::Vector3f origin = volume.position(x, y, z).cast<float>();
-            Random random{signature ^ (std::uint64_t(index) * 0x9E3779B97F4A7C15ull)};
+            const std::uint64_t seed = signature ^ (std::uint64_t(index) * 0x9E3779B97F4A7C15ull);
             // Directions on a spherical Fibonacci lattice (even over the sphere), turned by a random angle
             // per probe so that neighbouring probes do not share the lattice's pattern.
-            const float turn = 2.0f * kPi * random.next();
+            const float turn = 2.0f * kPi * PathSampler(~seed, 0).next();
             Eigen::Vector3f constant = Eigen::Vector3f::Zero();
             Eigen::Matrix3f linear = Eigen::Matrix3f::Zero();
             int backs = 0;
@@ -1150,6 +1149,9 @@ void PathTracer::lightProbes(const render::Scene& scene, render::IrradianceVolum
                 bool back = false;
                 impl.firstHit(origin, direction, kProbeRays, back, count);
                 backs += back ? 1 : 0;
+                // The rays are the probe's samples: what each draws after its first hit is stratified over
+                // them.
+                PathSampler random(seed, std::uint64_t(i));
                 const PathSample path =
                     impl.trace(scene, true, sky, origin, direction, 0.0f,
                                std::numeric_limits<float>::infinity(), settings, random, count, true);
