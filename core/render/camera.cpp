@@ -32,6 +32,8 @@ void CameraParams::validate(const char* function) const {
              "(): msaaSamples must be 2, 4 or 8, got ", msaaSamples);
     SP_CHECK(maxAnisotropy >= 0 && maxAnisotropy <= 16, InvalidArgument, function,
              "(): maxAnisotropy must be in [0, 16], got ", maxAnisotropy);
+    SP_CHECK(mipBias >= -2.0f && mipBias <= 2.0f, InvalidArgument, function,
+             "(): mipBias must be in [-2, 2], got ", mipBias);
     SP_CHECK(spatialSamples == 1 || spatialSamples == 2 || spatialSamples == 4 || spatialSamples == 8 ||
                  spatialSamples == 16,
              InvalidArgument, function, "(): spatialSamples must be 1, 2, 4, 8 or 16, got ", spatialSamples);

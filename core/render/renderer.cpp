@@ -424,6 +424,7 @@ void Renderer::renderView(const View& view) {
         SP_LOG("render: a view asked for anisotropic texture filtering, which this OpenGL context does not ",
                "offer (GL 4.6 or GL_ARB_texture_filter_anisotropic): trilinear");
     }
+    glSamplerParameterf(textureSampler_, GL_TEXTURE_LOD_BIAS, camera.params.mipBias);
 
     // With spatial samples (PassSet::spatialSamples), the shaded targets are drawn once a sample, the pixels
     // moved to its point, into framebuffers of their own, and averaged into these; the exact targets after,
@@ -500,13 +501,14 @@ void Renderer::renderView(const View& view) {
             // Textures likewise are read log2 sqrt(N) levels finer: else the average of N samples of the
             // pixel's own level blurs the texture twice.
             glSamplerParameterf(textureSampler_, GL_TEXTURE_LOD_BIAS,
-                                float(-0.5 * std::log2(double(passes.spatialSamples))));
+                                camera.params.mipBias -
+                                    float(0.5 * std::log2(double(passes.spatialSamples))));
             for (int sample = 0; sample < passes.spatialSamples; ++sample) {
                 moved.subpixelOffset = pattern[std::size_t(sample)];
                 surfacePass(scene, moved, samplePasses, lights, finer, cache, *fb.spatialSampled());
                 fb.copySample(sample);
             }
-            glSamplerParameterf(textureSampler_, GL_TEXTURE_LOD_BIAS, 0.0f);
+            glSamplerParameterf(textureSampler_, GL_TEXTURE_LOD_BIAS, camera.params.mipBias);
             resolveSamples(passes, fb);
         } else {
             surfacePass(scene, camera, passes, lights, draws, cache, fb);

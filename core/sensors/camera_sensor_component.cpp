@@ -211,6 +211,12 @@ void UCameraSensorComponent::SetMaxAnisotropy(int32_t NewMaxAnisotropy) {
     MaxAnisotropy = NewMaxAnisotropy;
 }
 
+void UCameraSensorComponent::SetMipMapLODBias(float NewMipMapLODBias) {
+    sp::checkSetting(NewMipMapLODBias >= -2.0f && NewMipMapLODBias <= 2.0f, "UCameraSensorComponent",
+                     "MipMapLODBias", "[-2, 2]", NewMipMapLODBias);
+    MipMapLODBias = NewMipMapLODBias;
+}
+
 void UCameraSensorComponent::SetAmbientOcclusionIntensity(float NewAmbientOcclusionIntensity) {
     sp::checkSetting(NewAmbientOcclusionIntensity >= 0.0f && NewAmbientOcclusionIntensity <= 1.0f,
                      "UCameraSensorComponent", "AmbientOcclusionIntensity", "in [0, 1]",

@@ -490,6 +490,18 @@ class UCameraSensorComponent : public USceneComponent {
     SPPROPERTY(Setter = SetMaxAnisotropy, meta = (ClampMin = 0, ClampMax = 16))
     int32_t MaxAnisotropy = 0;
 
+    /// Added to the mip level the material textures of a rasterised view are read at (Unreal's
+    /// r.MipMapLODBias), in levels, [-2, 2]: below 0 sharper, above 0 softer; 0 by default. Trilinear
+    /// filtering blurs a texture over about two pixels where the path tracer and a supersampled view show
+    /// the mean over each pixel's footprint: -1 comes closer on natural textures (the default scene against
+    /// the path tracer: SSIM 0.887 -> 0.909 at GlobalIlluminationQuality Medium; against a 17 x 17
+    /// supersampled view, closer with every anti-aliasing setting), but aliases more on high-contrast
+    /// patterns a few pixels across (a checkerboard's squares), hence 0 unless the scene's textures are
+    /// known (BENCHMARKS.md). With SpatialSampleCount N the samples read log2 sqrt(N) levels finer than
+    /// this. Depth and ids are not filtered.
+    SPPROPERTY(Setter = SetMipMapLODBias, meta = (ClampMin = -2, ClampMax = 2))
+    float MipMapLODBias = 0.0f;
+
     /// Ambient occlusion of the rasterised indirect and sky light (Unreal's AmbientOcclusionIntensity):
     /// how much of the occlusion found in the view's depth is applied, in [0, 1]; 0 (the default) turns it
     /// off. Ground-truth ambient occlusion (GTAO, Jimenez et al. 2016) darkens what the irradiance probes are
@@ -640,6 +652,9 @@ class UCameraSensorComponent : public USceneComponent {
     /// Sets MaxAnisotropy: 0 (the renderer's default), or 1 to 16.
     SPFUNCTION()
     void SetMaxAnisotropy(int32_t NewMaxAnisotropy);
+    /// Sets MipMapLODBias, in [-2, 2].
+    SPFUNCTION()
+    void SetMipMapLODBias(float NewMipMapLODBias);
     /// Sets AmbientOcclusionIntensity, in [0, 1].
     SPFUNCTION()
     void SetAmbientOcclusionIntensity(float NewAmbientOcclusionIntensity);

@@ -104,6 +104,7 @@ sp::render::CameraParams cameraParams(const UCameraSensorComponent& camera, int 
     if (camera.Renderer == ECameraRenderer::Raster) {
         params.spatialSamples = camera.SpatialSampleCount;
         params.maxAnisotropy = camera.MaxAnisotropy;
+        params.mipBias = camera.MipMapLODBias;
         params.ambientOcclusionIntensity = camera.AmbientOcclusionIntensity;
     }
     params.ambientOcclusionRadius = camera.AmbientOcclusionRadius;

@@ -1,7 +1,7 @@
 """Anti-aliasing of final_color (UCameraSensorComponent.AntiAliasingMethod): FXAA by default and MSAA, each
 closer to a supersampled view than no anti-aliasing; SpatialSampleCount (supersampling) closer still; the
-exact modalities untouched, and bad settings refused; anisotropic texture filtering (MaxAnisotropy); both
-transports."""
+exact modalities untouched, and bad settings refused; anisotropic texture filtering (MaxAnisotropy) and the
+textures' mip bias (MipMapLODBias); both transports."""
 
 from __future__ import annotations
 
@@ -179,5 +179,52 @@ def test_max_anisotropy_out_of_range_is_refused(instance: spear.Instance) -> Non
         with pytest.raises(TypeError, match="MaxAnisotropy"):
             camera.MaxAnisotropy = 2.5  # type: ignore[assignment]
         assert camera.MaxAnisotropy == 0
+    with instance.end_frame():
+        pass
+
+
+def test_a_finer_mip_level_brings_the_default_scenes_textures_closer_to_a_supersampled_view(
+        instance: spear.Instance) -> None:
+    """The default scene's plaster, planks and tiles: MipMapLODBias -1 nearer a 4 x 4 supersampled view (read at
+    bias 0) than the default, 0; depth and ids the same."""
+    from pathlib import Path
+
+    game = instance.get_game()
+    with instance.begin_frame():
+        game.load_scene(path=str(Path(__file__).resolve().parents[2] / "assets" / "scenes" / "apartment.json"))
+        cameras = {}
+        for name, scale, bias in [("Default", 1, None), ("Finer", 1, -1.0), ("Large", 4, 0.0)]:
+            camera = game.spawn_actor(uclass=spear.ACameraSensorActor, name=name,
+                                      location=spear.FVector(-2.6, -1.6, 1.7),
+                                      rotation=spear.FRotator(Pitch=-18.0, Yaw=22.0)).CameraSensor
+            camera.Width, camera.Height, camera.FOV = 96 * scale, 64 * scale, 75.0
+            camera.Modalities = [M.FinalColor, M.Depth, M.ObjectIds]
+            camera.AntiAliasingMethod = A.AAM_None
+            camera.GlobalIlluminationQuality = spear.EGlobalIlluminationQuality.Off
+            if bias is not None:
+                camera.MipMapLODBias = bias
+            cameras[name] = camera
+        assert cameras["Default"].MipMapLODBias == 0.0 and cameras["Finer"].MipMapLODBias == -1.0
+    with instance.end_frame():
+        pixels = {name: camera.read_pixels() for name, camera in cameras.items()}
+    reference = _linear(pixels["Large"]["final_color"]).reshape(64, 4, 96, 4, 3).mean(axis=(1, 3))
+    error = {name: float(np.abs(_linear(pixels[name]["final_color"]) - reference).mean())
+             for name in ("Default", "Finer")}
+    assert error["Finer"] < 0.95 * error["Default"], error
+    for key in ("depth", "object_ids"):
+        assert np.array_equal(pixels["Finer"][key], pixels["Default"][key])
+
+
+def test_mip_bias_out_of_range_is_refused(instance: spear.Instance) -> None:
+    with instance.begin_frame():
+        camera = _camera(instance.get_game(), "Camera", 1, None)
+        for bad in (-2.5, 3.0, float("nan")):
+            with pytest.raises(spear.InvalidArgumentError, match=r"MipMapLODBias must be \[-2, 2\], got "):
+                camera.MipMapLODBias = bad
+        with pytest.raises(TypeError, match="MipMapLODBias"):
+            camera.MipMapLODBias = "sharp"  # type: ignore[assignment]
+        assert camera.MipMapLODBias == 0.0
+        camera.MipMapLODBias = -2  # an int is a float
+        assert camera.MipMapLODBias == -2.0
     with instance.end_frame():
         pass

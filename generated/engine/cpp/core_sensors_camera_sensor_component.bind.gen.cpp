@@ -275,6 +275,13 @@ void bind_UCameraSensorComponent(py::module_& m) {
         },
         "Anisotropic filtering of the material textures a rasterised view reads (Unreal's r.MaxAnisotropy): up\nto this many texture samples along a pixel's footprint where a surface is seen at a grazing angle (a\nfloor or a wall far along the view), where trilinear filtering blurs its texture. 1 filters\ntrilinearly; 2 to 16 anisotropically; 0 (the default) takes the renderer's default: 8 on a GPU, where\nit is all but free, 1 on a software rasteriser, where a textured frame costs about 2.4 times as much\nwith it (llvmpipe, BENCHMARKS.md). The default scene against the path tracer: SSIM 0.888 -> 0.906 at\nGlobalIlluminationQuality Medium, 0.910 -> 0.929 at Epic. The exact modalities are not filtered.");
     sp::pybind::defProperty(
+        cls, "MipMapLODBias",
+        [](const RefBase& self) { return Calls::get_MipMapLODBias<PyCall>(self.get<Self>("UCameraSensorComponent.MipMapLODBias")); },
+        [](const RefBase& self, const PyArg& value) {
+            Calls::set_MipMapLODBias<PyCall>(self.get<Self>("UCameraSensorComponent.MipMapLODBias"), value);
+        },
+        "Added to the mip level the material textures of a rasterised view are read at (Unreal's\nr.MipMapLODBias), in levels, [-2, 2]: below 0 sharper, above 0 softer; 0 by default. Trilinear\nfiltering blurs a texture over about two pixels where the path tracer and a supersampled view show\nthe mean over each pixel's footprint: -1 comes closer on natural textures (the default scene against\nthe path tracer: SSIM 0.887 -> 0.909 at GlobalIlluminationQuality Medium; against a 17 x 17\nsupersampled view, closer with every anti-aliasing setting), but aliases more on high-contrast\npatterns a few pixels across (a checkerboard's squares), hence 0 unless the scene's textures are\nknown (BENCHMARKS.md). With SpatialSampleCount N the samples read log2 sqrt(N) levels finer than\nthis. Depth and ids are not filtered.");
+    sp::pybind::defProperty(
         cls, "AmbientOcclusionIntensity",
         [](const RefBase& self) { return Calls::get_AmbientOcclusionIntensity<PyCall>(self.get<Self>("UCameraSensorComponent.AmbientOcclusionIntensity")); },
         [](const RefBase& self, const PyArg& value) {
@@ -444,6 +451,10 @@ void bind_UCameraSensorComponent(py::module_& m) {
         cls, "SetMaxAnisotropy", std::array<const char*, 1>{"NewMaxAnisotropy"},
         [](const RefBase& self, const PyCallArgs& args) { return Calls::call_SetMaxAnisotropy<PyCall>(self, args); },
         "SetMaxAnisotropy(self, *, NewMaxAnisotropy: int) -> None\n\nSets MaxAnisotropy: 0 (the renderer's default), or 1 to 16.");
+    sp::pybind::defMethod(
+        cls, "SetMipMapLODBias", std::array<const char*, 1>{"NewMipMapLODBias"},
+        [](const RefBase& self, const PyCallArgs& args) { return Calls::call_SetMipMapLODBias<PyCall>(self, args); },
+        "SetMipMapLODBias(self, *, NewMipMapLODBias: float) -> None\n\nSets MipMapLODBias, in [-2, 2].");
     sp::pybind::defMethod(
         cls, "SetAmbientOcclusionIntensity", std::array<const char*, 1>{"NewAmbientOcclusionIntensity"},
         [](const RefBase& self, const PyCallArgs& args) { return Calls::call_SetAmbientOcclusionIntensity<PyCall>(self, args); },

@@ -980,6 +980,16 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             },
         });
         t.properties.push_back({
+            "MipMapLODBias",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
+            "Added to the mip level the material textures of a rasterised view are read at (Unreal's\nr.MipMapLODBias), in levels, [-2, 2]: below 0 sharper, above 0 softer; 0 by default. Trilinear\nfiltering blurs a texture over about two pixels where the path tracer and a supersampled view show\nthe mean over each pixel's footprint: -1 comes closer on natural textures (the default scene against\nthe path tracer: SSIM 0.887 -> 0.909 at GlobalIlluminationQuality Medium; against a 17 x 17\nsupersampled view, closer with every anti-aliasing setting), but aliases more on high-contrast\npatterns a few pixels across (a checkerboard's squares), hence 0 unless the scene's textures are\nknown (BENCHMARKS.md). With SpatialSampleCount N the samples read log2 sqrt(N) levels finer than\nthis. Depth and ids are not filtered.",
+            false,
+            [](const void* self) { return Calls::get_MipMapLODBias<ValueCall>(sp::reflect::selfCast<const Self>(self)); },
+            [](void* self, const sp::reflect::Value& value) {
+                Calls::set_MipMapLODBias<ValueCall>(sp::reflect::selfCast<Self>(self), value);
+            },
+        });
+        t.properties.push_back({
             "AmbientOcclusionIntensity",
             sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float),
             "Ambient occlusion of the rasterised indirect and sky light (Unreal's AmbientOcclusionIntensity):\nhow much of the occlusion found in the view's depth is applied, in [0, 1]; 0 (the default) turns it\noff. Ground-truth ambient occlusion (GTAO, Jimenez et al. 2016) darkens what the irradiance probes are\ntoo coarse for: corners, the floor under furniture and at an object's foot (core/render/README.md,\n\"Ambient occlusion\"); the lights' own light keeps its shadow maps, and the path tracer finds occlusion\nby itself. Off by default because a software rasteriser pays for it: a 640 x 480 view about 6 ms more\na frame, a 1080p one about 35 ms (llvmpipe, BENCHMARKS.md); on a GPU it costs little, and Unreal's\n0.5 is a good value.",
@@ -1376,6 +1386,17 @@ const sp::reflect::TypeInfo& UCameraSensorComponent::StaticClass() {
             false,
             false,
             [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetMaxAnisotropy<ValueCall>(self, args); },
+        });
+        t.functions.push_back({
+            "SetMipMapLODBias",
+            "Sets MipMapLODBias, in [-2, 2].",
+            sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Void),
+            {
+                {"NewMipMapLODBias", sp::reflect::TypeCode(sp::reflect::TypeCode::Kind::Float), false, false},
+            },
+            false,
+            false,
+            [](void* self, const sp::reflect::CallArgs& args) { return Calls::call_SetMipMapLODBias<ValueCall>(self, args); },
         });
         t.functions.push_back({
             "SetAmbientOcclusionIntensity",

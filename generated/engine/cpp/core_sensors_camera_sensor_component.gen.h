@@ -765,6 +765,15 @@ struct UCameraSensorComponentCalls {
         sp::reflect::notifyPropertyChanged(self, "MaxAnisotropy");
     }
 
+    template <typename Call> static typename Call::Result get_MipMapLODBias(const Self* self) {
+        const auto& value = self->MipMapLODBias;
+        return Call::template result<float>(value);
+    }
+    template <typename Call> static void set_MipMapLODBias(Self* self, const typename Call::Input& value) {
+        self->SetMipMapLODBias(Call::template input<float>(value, "UCameraSensorComponent.MipMapLODBias"));
+        sp::reflect::notifyPropertyChanged(self, "MipMapLODBias");
+    }
+
     template <typename Call> static typename Call::Result get_AmbientOcclusionIntensity(const Self* self) {
         const auto& value = self->AmbientOcclusionIntensity;
         return Call::template result<float>(value);
@@ -1177,6 +1186,18 @@ struct UCameraSensorComponentCalls {
         Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetMaxAnisotropy()");
         int32_t NewMaxAnisotropyArg = call.template arg<int32_t>(0);
         self->SetMaxAnisotropy(NewMaxAnisotropyArg);
+        return Call::none();
+    }
+
+    template <typename Call, typename Target>
+    static typename Call::Result call_SetMipMapLODBias(const Target& target, typename Call::Args args) {
+        static constexpr std::array<sp::reflect::ParamDesc, 1> kParams{{
+            {"NewMipMapLODBias", "UCameraSensorComponent.SetMipMapLODBias(): argument 'NewMipMapLODBias'", true},
+        }};
+        const Call call(args, "UCameraSensorComponent.SetMipMapLODBias()", kParams);
+        Self* self = Call::template object<Self>(target, "UCameraSensorComponent.SetMipMapLODBias()");
+        float NewMipMapLODBiasArg = call.template arg<float>(0);
+        self->SetMipMapLODBias(NewMipMapLODBiasArg);
         return Call::none();
     }
 

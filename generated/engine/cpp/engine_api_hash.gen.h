@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "330f92e6b0d5f8e2";
+inline constexpr char kApiHash[] = "3b110c2751f90eec";
 } // namespace sp::generated::engine

@@ -317,4 +317,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::enumInfo_EAnimationMode());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "330f92e6b0d5f8e2"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "3b110c2751f90eec"; }

@@ -3342,6 +3342,8 @@ class UCameraSensorComponentAsync(USceneComponentAsync):
 
     def SetMaxAnisotropy(self, *, NewMaxAnisotropy: int) -> Future[None]: ...
 
+    def SetMipMapLODBias(self, *, NewMipMapLODBias: float) -> Future[None]: ...
+
     def SetAmbientOcclusionIntensity(self, *, NewAmbientOcclusionIntensity: float) -> Future[None]: ...
 
     def SetAmbientOcclusionRadius(self, *, NewAmbientOcclusionRadius: float) -> Future[None]: ...
@@ -3453,6 +3455,8 @@ class UCameraSensorComponentSend(USceneComponentSend):
     def SetSpatialSampleCount(self, *, NewSpatialSampleCount: int) -> None: ...
 
     def SetMaxAnisotropy(self, *, NewMaxAnisotropy: int) -> None: ...
+
+    def SetMipMapLODBias(self, *, NewMipMapLODBias: float) -> None: ...
 
     def SetAmbientOcclusionIntensity(self, *, NewAmbientOcclusionIntensity: float) -> None: ...
 
@@ -3809,6 +3813,22 @@ class UCameraSensorComponent(USceneComponent):
     def MaxAnisotropy(self, value: int) -> None: ...
 
     @property
+    def MipMapLODBias(self) -> float:
+        """Added to the mip level the material textures of a rasterised view are read at (Unreal's
+        r.MipMapLODBias), in levels, [-2, 2]: below 0 sharper, above 0 softer; 0 by default. Trilinear
+        filtering blurs a texture over about two pixels where the path tracer and a supersampled view show
+        the mean over each pixel's footprint: -1 comes closer on natural textures (the default scene against
+        the path tracer: SSIM 0.887 -> 0.909 at GlobalIlluminationQuality Medium; against a 17 x 17
+        supersampled view, closer with every anti-aliasing setting), but aliases more on high-contrast
+        patterns a few pixels across (a checkerboard's squares), hence 0 unless the scene's textures are
+        known (BENCHMARKS.md). With SpatialSampleCount N the samples read log2 sqrt(N) levels finer than
+        this. Depth and ids are not filtered.
+        """
+
+    @MipMapLODBias.setter
+    def MipMapLODBias(self, value: float) -> None: ...
+
+    @property
     def AmbientOcclusionIntensity(self) -> float:
         """Ambient occlusion of the rasterised indirect and sky light (Unreal's AmbientOcclusionIntensity):
         how much of the occlusion found in the view's depth is applied, in [0, 1]; 0 (the default) turns it
@@ -3988,6 +4008,9 @@ class UCameraSensorComponent(USceneComponent):
 
     def SetMaxAnisotropy(self, *, NewMaxAnisotropy: int) -> None:
         """Sets MaxAnisotropy: 0 (the renderer's default), or 1 to 16."""
+
+    def SetMipMapLODBias(self, *, NewMipMapLODBias: float) -> None:
+        """Sets MipMapLODBias, in [-2, 2]."""
 
     def SetAmbientOcclusionIntensity(self, *, NewAmbientOcclusionIntensity: float) -> None:
         """Sets AmbientOcclusionIntensity, in [0, 1]."""

@@ -1647,6 +1647,14 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
         self._sp_set("UCameraSensorComponent", "MaxAnisotropy", value)
 
     @property
+    def MipMapLODBias(self) -> float:
+        return cast("float", self._sp_get("UCameraSensorComponent", "MipMapLODBias", _t.T_float))
+
+    @MipMapLODBias.setter
+    def MipMapLODBias(self, value: float) -> None:
+        self._sp_set("UCameraSensorComponent", "MipMapLODBias", value)
+
+    @property
     def AmbientOcclusionIntensity(self) -> float:
         return cast("float", self._sp_get("UCameraSensorComponent", "AmbientOcclusionIntensity", _t.T_float))
 
@@ -1791,6 +1799,9 @@ class UCameraSensorComponent(USceneComponent, api.UCameraSensorComponent):
 
     def SetMaxAnisotropy(self, *, NewMaxAnisotropy: int) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetMaxAnisotropy", {"NewMaxAnisotropy": NewMaxAnisotropy}, _t.T_void))  # a Future when queued by call_async
+
+    def SetMipMapLODBias(self, *, NewMipMapLODBias: float) -> None:
+        return cast(None, self._sp_call("UCameraSensorComponent", "SetMipMapLODBias", {"NewMipMapLODBias": NewMipMapLODBias}, _t.T_void))  # a Future when queued by call_async
 
     def SetAmbientOcclusionIntensity(self, *, NewAmbientOcclusionIntensity: float) -> None:
         return cast(None, self._sp_call("UCameraSensorComponent", "SetAmbientOcclusionIntensity", {"NewAmbientOcclusionIntensity": NewAmbientOcclusionIntensity}, _t.T_void))  # a Future when queued by call_async

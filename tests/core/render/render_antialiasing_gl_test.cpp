@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 #include <set>
 #include <string>
 #include <utility>
@@ -437,6 +438,44 @@ TEST_F(RenderAntiAliasingGlTest, AViewsMaxAnisotropyTakesThePlaceOfTheRenderersD
     renderer().setAnisotropicFiltering(byDefault);
     camera.params.maxAnisotropy = 17;
     EXPECT_THROW(camera.params.validate("test"), InvalidArgument);
+}
+
+TEST_F(RenderAntiAliasingGlTest, AViewsMipBiasChoosesTheLevelItsTexturesAreReadAt) {
+    // The floor of black and white squares, 2 texels each, seen from 3 m up and 4 m away: near the middle a
+    // square is a few pixels across and trilinear filtering (bias 0) greys it; a level finer (-1) keeps more
+    // of its contrast, a level coarser (+1) less. Per view: 0 again renders as before; depth and ids are the
+    // same bit for bit; a bias outside [-2, 2] (or NaN) is refused.
+    Scene scene;
+    buildCheckeredFloor(scene, 2, 1.0f);
+    const int width = 96, height = 64;
+    Camera camera = cameraLookingAt({-4.0, 0.0, 3.0}, {0.0, 0.0, 0.0}, width, height, 60.0);
+    EXPECT_EQ(camera.params.mipBias, 0.0f);
+    const auto render = [&](float bias) {
+        camera.params.mipBias = bias;
+        return renderFrame(scene, camera, {Modality::HdrColor, Modality::Depth, Modality::ObjectIds});
+    };
+    // The spread of the floor's brightness over the image: the squares' contrast.
+    const auto contrast = [&](const Frame& frame) {
+        const ImageBuffer& image = frame.get(Modality::HdrColor);
+        double sum = 0.0, squares = 0.0;
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                sum += image.at(x, y, 0);
+                squares += double(image.at(x, y, 0)) * image.at(x, y, 0);
+            }
+        const double n = double(width) * height, mean = sum / n;
+        return std::sqrt(std::max(squares / n - mean * mean, 0.0));
+    };
+    const Frame sharper = render(-1.0f), plain = render(0.0f), softer = render(1.0f);
+    EXPECT_GT(contrast(sharper), 1.1 * contrast(plain));
+    EXPECT_LT(contrast(softer), 0.9 * contrast(plain));
+    EXPECT_EQ(render(0.0f).get(Modality::HdrColor).bytes, plain.get(Modality::HdrColor).bytes);
+    for (Modality m : {Modality::Depth, Modality::ObjectIds})
+        EXPECT_EQ(sharper.get(m).bytes, plain.get(m).bytes) << modalityName(m);
+    for (float bad : {-2.5f, 2.5f, std::numeric_limits<float>::quiet_NaN()}) {
+        camera.params.mipBias = bad;
+        EXPECT_THROW(camera.params.validate("test"), InvalidArgument) << bad;
+    }
 }
 
 TEST_F(RenderAntiAliasingGlTest, AnisotropicFilteringIsOnByDefaultOnHardwareAndSetFromTheEnvironment) {

@@ -1,6 +1,7 @@
 """Negative typing case: a misspelled modality is a type error, as a dict key and as an enum member; so are an
 anti-aliasing method given as a number and one spear does not have, an exposure method given as a string, a
-rect light's size given as a string and a size property it does not have."""
+rect light's size given as a string and a size property it does not have, a fractional anisotropy and a
+mip bias given as a word."""
 
 # pyright: standard
 # (negative cases are checked as most pyright and Pylance users run it; strict reports more)
@@ -23,3 +24,4 @@ def misuse(camera: spear.UCameraSensorComponent, panel: spear.URectLightComponen
     panel.SetSourceWidth(NewWidth="1.2")  # E: Argument "NewWidth" to "SetSourceWidth" of "URectLightComponent" has incompatible type "str"; expected "float"  [arg-type]  # P: reportArgumentType: Argument of type "Literal['1.2']" cannot be assigned to parameter "NewWidth" of type "float" in function "SetSourceWidth" / "Literal['1.2']" is not assignable to "float"
     panel.SourceLength = 1.0  # E: "URectLightComponent" has no attribute "SourceLength"  [attr-defined]  # P: reportAttributeAccessIssue: Cannot assign to attribute "SourceLength" for class "URectLightComponent" / Attribute "SourceLength" is unknown
     camera.MaxAnisotropy = 2.5  # E: Incompatible types in assignment (expression has type "float", variable has type "int")  [assignment]  # P: reportAttributeAccessIssue: Cannot assign to attribute "MaxAnisotropy" for class "UCameraSensorComponent" / "float" is not assignable to "int"
+    camera.MipMapLODBias = "sharp"  # E: Incompatible types in assignment (expression has type "str", variable has type "float")  [assignment]  # P: reportAttributeAccessIssue: Cannot assign to attribute "MipMapLODBias" for class "UCameraSensorComponent" / "Literal['sharp']" is not assignable to "float"
