@@ -190,6 +190,13 @@ class Scene:
         99th-percentile difference over all pixels, in 8-bit steps. A grid holding a setting's sample points
         favours it (4 x 4 holds MSAA's four); 17 x 17 holds none of them."""
         camera = self.cameras[quality]
+        # The supersampled views render alone: with another quality's camera shading beside them, the world's
+        # probes would follow the highest quality, and the references would be lit otherwise than the view.
+        with self.instance.begin_frame():
+            for other in self.cameras.values():
+                other.Modalities = []
+        with self.instance.end_frame():
+            pass
         references: dict[int, NDArray[np.float64]] = {}
         for n in grids:
             with self.instance.begin_frame():
