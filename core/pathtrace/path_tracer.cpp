@@ -824,7 +824,6 @@ struct PathTracer::Impl {
                 Eigen::Vector3f l;
                 float distance = 0.0f;
                 std::array<float, 2> u{0.5f, 0.5f}; // a point of an area light; the others need none
-
                 if (light.type == render::LightType::Rect)
                     u = random.next2();
                 const Eigen::Vector3f e = lightIrradiance(light, p, u[0], u[1], l, distance);
@@ -848,8 +847,9 @@ struct PathTracer::Impl {
                 }
             });
             const bool last = depth >= settings.maxBounces;
-            if (!emitters.empty()) {              // one point of an emissive surface
-                const float pick = random.next(); // the triangle; then the point on it, stratified
+            if (!emitters.empty()) {
+                // One point of an emissive surface: a triangle by its power, then a point of it.
+                const float pick = random.next();
                 const auto [u1, u2] = random.next2();
                 const EmitterSample e = emitters.sample(pick, u1, u2);
                 const Eigen::Vector3f d = e.point - above;
