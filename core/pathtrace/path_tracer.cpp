@@ -674,11 +674,14 @@ struct PathTracer::Impl {
     // the ray meets; if y sees the point, `arrive(radiance, l, weight)` is given the lamp's light y reflects
     // towards it along l, and the weight (cos / density, times the multiple importance sampling weight)
     // by which the point reflects it.
+    // `rayMask` and `shadowMask`: what the path's own rays and the lamps' shadow rays see (a probe's see only
+    // the instances the probes see).
     template <typename Arrive>
     void joinLightVertex(const render::Scene& scene, const LightVertices& joins, PathSampler& random,
-                         std::uint64_t& rays, const Eigen::Vector3f& above, const Eigen::Vector3f& n,
-                         const Eigen::Vector3f& ng, const SurfacePoint& s, const Eigen::Vector3f& toViewer,
-                         const Settings& settings, Arrive&& arrive) const {
+                         std::uint64_t& rays, unsigned rayMask, unsigned shadowMask,
+                         const Eigen::Vector3f& above, const Eigen::Vector3f& n, const Eigen::Vector3f& ng,
+                         const SurfacePoint& s, const Eigen::Vector3f& toViewer, const Settings& settings,
+                         Arrive&& arrive) const {
         const float pick = random.next();
         const auto [u1, u2] = random.next2();
         const std::size_t i = std::min<std::size_t>(
@@ -701,7 +704,7 @@ struct PathTracer::Impl {
         const Eigen::Vector3f from = light.position.cast<float>();
         // What the lamp's shadow rays see.
         const RTCRayHit hit =
-            intersect(from, ray, 0.0f, std::numeric_limits<float>::infinity(), kShadowRays, rays);
+            intersect(from, ray, 0.0f, std::numeric_limits<float>::infinity(), shadowMask, rays);
         if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
             return;
         Surface y = surfaceAt(scene, hit, from, ray);
@@ -721,7 +724,7 @@ struct PathTracer::Impl {
         const Eigen::Vector3f l = d / distance;
         const float nol = n.dot(l), cosine = -y.ng.dot(l);
         if (nol <= 0.0f || ng.dot(l) <= 0.0f || cosine <= 1e-6f ||
-            occluded(above, l, distance, kCameraRays, rays))
+            occluded(above, l, distance, rayMask, rays))
             return;
         const float joined = lightVertexDensity(joins, i, -toLight, lightDistance, facing);
         const float bounced = pdf(s, toViewer, l) * cosine / distance2;
@@ -899,9 +902,10 @@ struct PathTracer::Impl {
             // joined to this vertex: that surface's reflection of the lamp, arriving here. Weighed against
             // the bounce below finding the same surface (and its lamp sample there).
             const bool joinsHere =
-                joins && !last && !probe && shadows && !joins->empty() && s.roughness >= kJoinedRoughness;
+                joins && !last && shadows && !joins->empty() && s.roughness >= kJoinedRoughness;
             if (joinsHere)
-                joinLightVertex(scene, *joins, random, rays, above, n, ng, s, toViewer, settings,
+                joinLightVertex(scene, *joins, random, rays, rayMask, shadowMask, above, n, ng, s, toViewer,
+                                settings,
                                 [&](const Eigen::Vector3f& arriving, const Eigen::Vector3f& l, float weight) {
                                     const Eigen::Vector3f f = evaluate(s, toViewer, l);
                                     if (depth == 0)
@@ -1124,6 +1128,9 @@ void PathTracer::lightProbes(const render::Scene& scene, render::IrradianceVolum
     const std::uint64_t signature = impl.lightingHash(scene, true);
     const Eigen::Vector3f sky = scene.environment().ambient;
     const float spacing = float(volume.spacing);
+    // The lamps' hot spots reach the probes through light-vertex connections too: found by bounce rays alone,
+    // each probe's few hits of a ceiling's hot spot left it noise of its own, blotches a few probes wide.
+    const LightVertices joins = settings.lightConnections ? lightVertices(scene) : LightVertices{};
     std::atomic<std::size_t> next{0};
     std::atomic<std::uint64_t> traced{0};
     auto work = [&] {
@@ -1154,7 +1161,7 @@ void PathTracer::lightProbes(const render::Scene& scene, render::IrradianceVolum
                 PathSampler random(seed, std::uint64_t(i));
                 const PathSample path =
                     impl.trace(scene, true, sky, origin, direction, 0.0f,
-                               std::numeric_limits<float>::infinity(), settings, random, count, true);
+                               std::numeric_limits<float>::infinity(), settings, random, count, true, &joins);
                 if (!path.hdr.allFinite())
                     continue;
                 // Bands 0 and 1 of the radiance, turned into those of the irradiance over pi (Ramamoorthi and
