@@ -70,7 +70,7 @@ struct CameraParams {
     // path tracer and a supersampled view compute); trilinear filtering at the level whose texels are a pixel
     // wide spreads each texel over its neighbours and blends in the next coarser level, about twice as wide.
     // A level finer (-1) matches natural textures better (the default scene: SSIM against the path tracer
-    // 0.887 -> 0.909, closer to a 17 x 17 supersampled view with every anti-aliasing setting), but a
+    // about 0.02 higher, closer to a 17 x 17 supersampled view with every anti-aliasing setting), but a
     // single sample of a finer level aliases on patterns a few pixels across (a checkerboard's squares: the
     // mean difference from supersampling doubles), hence 0, as in Unreal. Spatial samples read
     // log2 sqrt(N) levels finer than this.

@@ -485,8 +485,8 @@ class UCameraSensorComponent : public USceneComponent {
     /// floor or a wall far along the view), where trilinear filtering blurs its texture. 1 filters
     /// trilinearly; 2 to 16 anisotropically; 0 (the default) takes the renderer's default: 8 on a GPU, where
     /// it is all but free, 1 on a software rasteriser, where a textured frame costs about 2.4 times as much
-    /// with it (llvmpipe, BENCHMARKS.md). The default scene against the path tracer: SSIM 0.888 -> 0.906 at
-    /// GlobalIlluminationQuality Medium, 0.910 -> 0.929 at Epic. The exact modalities are not filtered.
+    /// with it (llvmpipe, BENCHMARKS.md). The default scene against the path tracer: SSIM about 0.02 higher
+    /// at every GlobalIlluminationQuality. The exact modalities are not filtered.
     SPPROPERTY(Setter = SetMaxAnisotropy, meta = (ClampMin = 0, ClampMax = 16))
     int32_t MaxAnisotropy = 0;
 
@@ -494,8 +494,8 @@ class UCameraSensorComponent : public USceneComponent {
     /// r.MipMapLODBias), in levels, [-2, 2]: below 0 sharper, above 0 softer; 0 by default. Trilinear
     /// filtering blurs a texture over about two pixels where the path tracer and a supersampled view show
     /// the mean over each pixel's footprint: -1 comes closer on natural textures (the default scene against
-    /// the path tracer: SSIM 0.887 -> 0.909 at GlobalIlluminationQuality Medium; against a 17 x 17
-    /// supersampled view, closer with every anti-aliasing setting), but aliases more on high-contrast
+    /// the path tracer: SSIM about 0.02 higher; against a 17 x 17 supersampled view, closer with every
+    /// anti-aliasing setting), but aliases more on high-contrast
     /// patterns a few pixels across (a checkerboard's squares), hence 0 unless the scene's textures are
     /// known (BENCHMARKS.md). With SpatialSampleCount N the samples read log2 sqrt(N) levels finer than
     /// this. Depth and ids are not filtered.

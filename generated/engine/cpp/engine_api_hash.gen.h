@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "3b110c2751f90eec";
+inline constexpr char kApiHash[] = "ac8505819db9e6a0";
 } // namespace sp::generated::engine
