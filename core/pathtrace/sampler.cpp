@@ -68,7 +68,7 @@ std::array<float, 2> PathSampler::pair(int which) {
 }
 
 float PathSampler::independent() {
-    return float(splitMix(stream_) >> 40) * (1.0f / 16777216.0f);
+    return fraction(std::uint32_t(splitMix(stream_) >> 32));
 }
 
 float PathSampler::next() {
