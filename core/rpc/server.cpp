@@ -12,10 +12,12 @@
 #include <poll.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/uio.h>
 #include <sys/un.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
@@ -25,6 +27,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <span>
 
 #include "core/base/error.h"
 #include "core/base/log.h"
@@ -64,6 +67,55 @@ bool sendSome(int fd, const char*& data, size_t& size) {
         size -= size_t(sent);
     }
     return true;
+}
+
+// Zero bytes for the padding before a tail's array (less than kTailAlignment of it).
+constexpr char kZeros[kTailAlignment] = {};
+
+// Sends `pieces` from byte `sent` of them on, what the socket takes now without waiting; advances `sent`;
+// false when the connection is broken.
+bool sendSomeGathered(int fd, std::span<const iovec> pieces, size_t& sent) {
+    while (true) {
+        std::array<iovec, 64> batch{};
+        size_t count = 0;
+        size_t skip = sent;
+        for (const iovec& piece : pieces) {
+            if (skip >= piece.iov_len) {
+                skip -= piece.iov_len;
+                continue;
+            }
+            if (count == batch.size())
+                break;
+            batch[count++] = {static_cast<char*>(piece.iov_base) + skip, piece.iov_len - skip};
+            skip = 0;
+        }
+        if (count == 0)
+            return true; // all of it
+        msghdr message{};
+        message.msg_iov = batch.data();
+        message.msg_iovlen = count;
+        const ssize_t n = ::sendmsg(fd, &message, MSG_NOSIGNAL | MSG_DONTWAIT);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK))
+            return true; // the client has not read enough yet
+        if (n <= 0)
+            return false;
+        sent += size_t(n);
+    }
+}
+
+// Copies `pieces` from byte `from` of them on into `out`.
+void gather(std::span<const iovec> pieces, size_t from, char* out) {
+    for (const iovec& piece : pieces) {
+        if (from >= piece.iov_len) {
+            from -= piece.iov_len;
+            continue;
+        }
+        std::memcpy(out, static_cast<const char*>(piece.iov_base) + from, piece.iov_len - from);
+        out += piece.iov_len - from;
+        from = 0;
+    }
 }
 
 // Makes way for the socket at `path`: only a socket that no server listens on any more is removed. Any
@@ -381,25 +433,24 @@ bool Server::serve(Connection& connection) {
                        " bytes is past the 2 GiB a frame can carry");
                 return false;
             }
-            // The last large frame's memory, if the socket has taken it: no fresh pages to fault in, and
-            // resizing it writes nothing where it does not grow. Every byte is then written once: the
-            // header, the message, the padding, the arrays.
-            std::string framed = std::move(connection.spareFrame);
-            framed.resize(tailStart + tailSize);
-            char* out = framed.data();
+            // The header, the message and its padding are written here; the arrays go from their own memory
+            // (sendmsg gathers them), copied only where the socket does not take them whole now.
+            std::string head(tailStart, '\0');
             replyLength = uint32_t(tailStart + tailSize - 4) | kTailFlag;
-            std::memcpy(out, &replyLength, 4);
-            std::memcpy(out + 4, &messageLength, 4);
-            std::memcpy(out + 8, reply.data() + 4, messageLength);
-            std::memset(out + 8 + messageLength, 0, tailStart - 8 - messageLength);
+            std::memcpy(head.data(), &replyLength, 4);
+            std::memcpy(head.data() + 4, &messageLength, 4);
+            std::memcpy(head.data() + 8, reply.data() + 4, messageLength);
+            std::vector<iovec> pieces{{head.data(), head.size()}};
             size_t written = 0; // of the tail
             for (const auto& [offset, array] : tail) {
-                std::memset(out + tailStart + written, 0, offset - written);
-                std::memcpy(out + tailStart + offset, array.data, array.byteSize());
+                if (offset > written)
+                    pieces.push_back({const_cast<char*>(kZeros), offset - written});
+                pieces.push_back({array.data, array.byteSize()});
                 written = offset + array.byteSize();
             }
+            const bool queued = queueGathered(connection, pieces);
             tail.clear();
-            if (!queueFrame(connection, std::move(framed)))
+            if (!queued)
                 return false;
         } else {
             std::memcpy(reply.data(), &replyLength, 4);
@@ -557,6 +608,25 @@ bool Server::queueFrame(Connection& connection, std::string&& frame) {
     connection.outboxBytes += frame.size();
     connection.outbox.push_back(std::move(frame));
     return withinOutboxLimits(connection);
+}
+
+bool Server::queueGathered(Connection& connection, std::span<const iovec> pieces) {
+    size_t total = 0;
+    for (const iovec& piece : pieces)
+        total += piece.iov_len;
+    size_t sent = 0;
+    if (connection.transport == Connection::Transport::Socket && connection.outbox.empty() &&
+        !connection.held() && !sendSomeGathered(connection.fd, pieces, sent))
+        return false;
+    if (sent == total)
+        return true;
+    // The rest is copied to wait in the outbox: an array may be the engine's own, which a later request
+    // (this client's or another's) could change before the socket takes it. Into the memory of the last
+    // such frame: a client reading a camera every frame gets no fresh pages.
+    std::string rest = std::move(connection.spareFrame);
+    rest.resize(total - sent);
+    gather(pieces, sent, rest.data());
+    return queueFrame(connection, std::move(rest));
 }
 
 bool Server::queueBytes(Connection& connection, const char* data, size_t size) {

@@ -8,11 +8,13 @@
 #include <chrono>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include <poll.h>
+#include <sys/uio.h>
 
 #include "core/rpc/dispatcher.h"
 #include "core/rpc/shared_memory.h"
@@ -105,6 +107,9 @@ class Server {
     bool queueReply(Connection& connection, const char* data, size_t size);
     // A reply built whole (with its arrays inline): what the socket does not take waits as it is, not copied.
     bool queueFrame(Connection& connection, std::string&& frame);
+    // A reply with arrays in its tail, as the pieces to send in order (its head, then each array from its
+    // own memory): sent as far as the socket takes it, the rest copied into the outbox.
+    bool queueGathered(Connection& connection, std::span<const iovec> pieces);
     // False (the client is to be dropped) when its unread replies are past the limits.
     bool withinOutboxLimits(Connection& connection);
     // queueReply's bytes as they are, without the WebSocket framing of a reply (HTTP, control frames).

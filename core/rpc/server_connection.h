@@ -41,8 +41,9 @@ struct Server::Connection {
     std::deque<std::string> outbox;
     size_t outboxOffset = 0;
     size_t outboxBytes = 0;
-    // The memory of the last large frame sent (a reply carrying arrays inline), reused for the next one so
-    // that a client reading a camera every frame over TCP does not cost fresh pages each time.
+    // The memory of the last large frame queued (what the socket did not take at once of a reply carrying
+    // arrays inline), reused for the next one so that a slow client reading a camera every frame over TCP
+    // does not cost fresh pages each time.
     std::string spareFrame;
     // The last reply ends the connection (a refused hello, a malformed first message): nothing more is
     // read, and the connection is dropped once the outbox is empty.

@@ -14,6 +14,7 @@ import shutil
 import subprocess
 import sys
 import textwrap
+import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -23,7 +24,8 @@ import pytest
 from numpy.typing import NDArray
 
 import spear
-from spear._rpc_client import RpcConnection, find_server_binary
+from spear._rpc_client import RpcConnection, _encode_fields, find_server_binary
+from spear._wire import pack_frame
 
 TOKEN = "remote-test-token"
 PYTHON_DIR = Path(spear.__file__).resolve().parent.parent
@@ -164,5 +166,34 @@ def test_inline_replies_carry_several_arrays_exactly_reply_after_reply(tcp_serve
             assert len(echoed) == len(arrays)
             for sent, got in zip(arrays, echoed):
                 assert got.dtype == sent.dtype and np.array_equal(got, sent)
+    finally:
+        connection.close()
+
+
+def test_inline_replies_the_socket_does_not_take_at_once_arrive_whole_and_in_order(
+        tcp_server: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Two large echoes sent before either reply is read: the socket takes only part of the first reply (the
+    server sends the arrays from their own memory), the rest waits in the server's outbox, copied, and the
+    second queues behind it; both arrive whole and in order once the client reads."""
+    monkeypatch.setattr(RpcConnection, "_prove_shared_memory", lambda self, name: False)
+    connection = RpcConnection(tcp_server, token=TOKEN)
+    try:
+        assert connection.shared_memory is False
+        rng = np.random.default_rng(11)
+        arrays = [rng.integers(0, 255, size=12_000_001, dtype=np.uint8), rng.standard_normal(1_500_000)]
+        ids = []
+        for array in arrays:
+            segments = connection._segments()
+            outgoing = {"id": next(connection._ids), "op": "echo",
+                        **_encode_fields("echo", {"value": array}, segments)}
+            connection._send(pack_frame(outgoing, segments))
+            ids.append(outgoing["id"])
+        time.sleep(0.5)  # the server has answered both meanwhile: more than the socket holds
+        for array, request_id in zip(arrays, ids):
+            reply = connection._read_reply(None)
+            assert reply["id"] == request_id
+            echoed = reply["ok"]
+            assert echoed.dtype == array.dtype and np.array_equal(echoed, array)
+        assert np.array_equal(connection.request("echo", value=arrays[1]), arrays[1])  # and it serves on
     finally:
         connection.close()
