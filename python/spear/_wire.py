@@ -207,8 +207,10 @@ def encode(value: Any, segments: OutgoingSegments, depth: int = 0) -> Any:
     if is_struct:
         names = _STRUCT_FIELDS.setdefault(kind, tuple(f.name for f in dataclasses.fields(value)))
         return _encode_struct(value, names, segments, depth)
-    if is_sequence:
-        return [encode(item, segments, depth + 1) for item in value]
+    if is_sequence:  # the connection's own proxies without a call each (a list of components, every frame)
+        owner = segments.owner
+        return [_object_ext(*item._sp_handle) if owner is not None and getattr(item, "_sp_client", None) is owner
+                else encode(item, segments, depth + 1) for item in value]
     if isinstance(value, dict):
         if not all(isinstance(key, str) for key in value):
             raise ValueRefused("dict keys must be str")
@@ -231,6 +233,10 @@ def _encode_struct(value: Any, names: tuple[str, ...], segments: OutgoingSegment
 
 
 def _encode_object(value: SpObject, segments: OutgoingSegments) -> msgpack.ExtType:
+    owner = segments.owner
+    if owner is not None and getattr(value, "_sp_client", None) is owner:  # the connection's own proxy (the usual)
+        handle = value._sp_handle  # type: ignore[attr-defined]
+        return _object_ext(handle[0], handle[1])
     handle = getattr(value, "_sp_handle", None)
     if handle is None:
         raise TypeError(f"{type(value).__name__} is not an engine object of this connection")
