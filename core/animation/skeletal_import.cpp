@@ -252,6 +252,9 @@ std::shared_ptr<const SkeletalMeshData> readSkeletalMesh(const std::string& path
     mesh.validate("importSkeletalMesh");
     out->skin.validate(mesh.positions.size(), out->skeleton.size(), "importSkeletalMesh");
     out->clips = readClips(*scene, out->skeleton, axes, false, userPath, "importSkeletalMesh");
+    Eigen::Vector3f min, max;
+    mesh.bounds(min, max);
+    out->bindBounds = {min.cast<double>(), max.cast<double>()};
     return out;
 }
 

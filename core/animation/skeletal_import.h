@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "core/animation/anim_clip.h"
 #include "core/animation/skeleton.h"
 #include "core/animation/skinning.h"
@@ -19,6 +21,9 @@ struct SkeletalMeshData {
     Skeleton skeleton;
     SkinWeights skin; // one entry per vertex of `mesh`
     std::vector<AnimClip> clips;
+    // The bind pose's bounds in the mesh's space, found once at import: a component's local bounds are read
+    // every frame (physics, world bounds), and a character has thousands of vertices.
+    Eigen::AlignedBox3d bindBounds;
 
     const AnimClip* findClip(const std::string& name) const;
 };

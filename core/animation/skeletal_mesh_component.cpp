@@ -413,11 +413,7 @@ void USkeletalMeshComponent::poseFromClip() {
 }
 
 Eigen::AlignedBox3d USkeletalMeshComponent::GetLocalBounds() const {
-    if (!asset_)
-        return {};
-    Eigen::Vector3f min, max;
-    asset_->mesh.mesh.bounds(min, max);
-    return {min.cast<double>(), max.cast<double>()};
+    return asset_ ? asset_->bindBounds : Eigen::AlignedBox3d{};
 }
 
 ECollisionPrimitive USkeletalMeshComponent::GetMeshCollisionPrimitive() const {

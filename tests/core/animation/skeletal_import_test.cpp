@@ -33,6 +33,13 @@ TEST(SkeletalImport, ReadsTheHumanoidsSkeletonSkinAndClips) {
     // unrotated here (a camera on the head looks forward, +Z up).
     EXPECT_TRUE(bind[std::size_t(head)].linear().isIdentity(1e-6));
     EXPECT_TRUE(s.rootTransform.matrix().isIdentity(1e-12));
+    // The bind pose's bounds, found once at import (read every frame by physics): every vertex, feet to head.
+    Eigen::Vector3f lowest, highest;
+    data->mesh.mesh.bounds(lowest, highest);
+    EXPECT_TRUE(data->bindBounds.min().isApprox(lowest.cast<double>()) &&
+                data->bindBounds.max().isApprox(highest.cast<double>()));
+    EXPECT_NEAR(data->bindBounds.min().z(), 0.0, 0.05);
+    EXPECT_GT(data->bindBounds.max().z(), 1.57);
     // Every vertex blends at most a bone and its parent (the script blends across joints only), so no weight
     // went to the wrong vertex (Debian's assimp misplaces the weights of a glTF mesh's later primitives when
     // they share vertex arrays: the script writes one set per primitive).
