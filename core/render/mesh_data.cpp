@@ -134,27 +134,32 @@ bool MeshData::convex() const {
 }
 
 float MeshData::windingSpread() const {
-    double largest = 0.0; // tan of the largest angle
+    // The smallest cosine between a vertex normal and its triangle's winding normal gives the largest
+    // tangent; compared squared (no square root or normalisation per vertex: a skinned mesh is described
+    // again every frame).
+    double smallestSquaredCosine = 1.0;
     for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
         const Eigen::Vector3d a = positions[indices[t]].cast<double>();
         const Eigen::Vector3d ab = positions[indices[t + 1]].cast<double>() - a;
         const Eigen::Vector3d ac = positions[indices[t + 2]].cast<double>() - a;
         const Eigen::Vector3d winding = ab.cross(ac);
+        const double windingSquared = winding.squaredNorm();
         // Degenerate within float precision (a sphere's pole, where sin(pi) is not 0 in float): its winding
         // is rounding, and it covers no pixel (nor would its screen derivatives say anything there).
-        if (winding.norm() <= 1e-7 * std::max(ab.squaredNorm(), ac.squaredNorm()))
+        const double edgeSquared = std::max(ab.squaredNorm(), ac.squaredNorm());
+        if (windingSquared <= 1e-14 * edgeSquared * edgeSquared)
             continue;
-        const Eigen::Vector3d unit = winding.normalized();
         for (std::size_t v = t; v < t + 3; ++v) {
             const Eigen::Vector3d normal = normals[indices[v]].cast<double>();
-            const double length = normal.norm();
-            const double cosine = length > 0.0 ? unit.dot(normal) / length : 0.0;
-            if (!(cosine > 1e-6))
+            const double dot = winding.dot(normal);
+            const double squaredCosine = dot * dot / (windingSquared * normal.squaredNorm());
+            if (!(dot > 0.0 && squaredCosine > 1e-12)) // a cosine of 1e-6 or less, or a zero normal
                 return std::numeric_limits<float>::infinity();
-            largest = std::max(largest, std::sqrt(std::max(0.0, 1.0 - cosine * cosine)) / cosine);
+            smallestSquaredCosine = std::min(smallestSquaredCosine, squaredCosine);
         }
     }
-    return float(largest);
+    const double cosine = std::sqrt(std::min(1.0, smallestSquaredCosine));
+    return float(std::sqrt(std::max(0.0, 1.0 - cosine * cosine)) / cosine);
 }
 
 bool windingTurnsNormals(float spread, const Eigen::Matrix3d& linear) {
@@ -186,13 +191,13 @@ bool MeshData::faceted() const {
 }
 
 float MeshData::longestEdge() const {
-    float longest = 0.0f;
+    float longest = 0.0f; // squared, until the end: one square root, not one an edge
     for (std::size_t t = 0; t + 2 < indices.size(); t += 3)
         for (int e = 0; e < 3; ++e)
             longest = std::max(longest, (positions[indices[t + std::size_t(e)]] -
                                          positions[indices[t + std::size_t((e + 1) % 3)]])
-                                            .norm());
-    return longest;
+                                            .squaredNorm());
+    return std::sqrt(longest);
 }
 
 MeshData MeshData::subdivided(int times) const {

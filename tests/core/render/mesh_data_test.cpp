@@ -96,6 +96,23 @@ TEST(MeshDataTest, WindingSpreadTellsHowFarNormalsLeanFromTheirTrianglesWinding)
     EXPECT_GT(sphere, std::tan(0.1f));
     EXPECT_LT(sphere, std::tan(0.5f));
     EXPECT_LT(primitives::sphere(0.45f, 64, 32).windingSpread(), sphere);
+    // The tangent of the largest angle, as the angles themselves give it.
+    const MeshData smooth = primitives::sphere(0.45f, 16, 8);
+    double largestAngle = 0.0;
+    for (std::size_t t = 0; t + 2 < smooth.indices.size(); t += 3) {
+        const Eigen::Vector3d a = smooth.positions[smooth.indices[t]].cast<double>();
+        const Eigen::Vector3d ab = smooth.positions[smooth.indices[t + 1]].cast<double>() - a;
+        const Eigen::Vector3d ac = smooth.positions[smooth.indices[t + 2]].cast<double>() - a;
+        const Eigen::Vector3d winding = ab.cross(ac);
+        if (winding.norm() <= 1e-7 * std::max(ab.squaredNorm(), ac.squaredNorm()))
+            continue; // the poles' triangles, degenerate within float precision
+        for (std::size_t v = t; v < t + 3; ++v) {
+            const Eigen::Vector3d normal = smooth.normals[smooth.indices[v]].cast<double>().normalized();
+            largestAngle =
+                std::max(largestAngle, std::acos(std::clamp(winding.normalized().dot(normal), -1.0, 1.0)));
+        }
+    }
+    EXPECT_NEAR(sphere, std::tan(largestAngle), 1e-4 * std::tan(largestAngle));
     // Wound inward, or one normal flipped: the facing says nothing.
     EXPECT_TRUE(std::isinf(test::rewound(primitives::box()).windingSpread()));
     MeshData flipped = primitives::sphere(0.45f, 16, 8);
