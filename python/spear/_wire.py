@@ -182,7 +182,7 @@ def encode(value: Any, segments: OutgoingSegments, depth: int = 0) -> Any:
     if isinstance(value, (bool, str, float)):
         return value
     if isinstance(value, enum.IntEnum):  # with its enum's name: the server refuses a bare int for an enum
-        return msgpack.ExtType(EXT_ENUM, struct.pack("<q", int(value)) + type(value).__name__.encode())
+        return _enum_ext(value)
     if isinstance(value, int):
         if not -(2**63) <= value < 2**63:  # as the in-process engine refuses it: 64 bits at most
             raise ValueRefused(f"integer {value} is too large")
@@ -245,6 +245,12 @@ def _encode_object(value: SpObject, segments: OutgoingSegments) -> msgpack.ExtTy
         # whatever object that engine has under the same number.
         raise ValueRefused(f"{type(value).__name__} belongs to another engine (a different spear.Instance)")
     return _object_ext(handle[0], handle[1])
+
+
+@functools.lru_cache(maxsize=1024, typed=True)  # typed: equal values of two enums are two entries
+def _enum_ext(value: enum.IntEnum) -> msgpack.ExtType:
+    """An enum value, made once for each (an argument many calls pass, such as a space or a mode)."""
+    return msgpack.ExtType(EXT_ENUM, struct.pack("<q", int(value)) + type(value).__name__.encode())
 
 
 @functools.lru_cache(maxsize=4096)

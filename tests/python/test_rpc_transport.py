@@ -530,3 +530,15 @@ def test_spear_server_help_and_bad_command_lines_name_what_is_wrong() -> None:
         result = subprocess.run([binary, *args], capture_output=True, text=True, timeout=60)
         assert result.returncode == 2, args
         assert result.stderr.startswith(f"spear-server: {words}\n") and "usage: spear-server" in result.stderr, args
+
+
+def test_an_enum_value_is_encoded_with_its_own_enums_name_after_an_equal_value_of_another() -> None:
+    # Enum values are encoded once each and remembered: two enums' values that are equal as ints stay two.
+    segments: Any = _InlineSegments()
+    world, movable = spear.ESplineCoordinateSpace.World, spear.EComponentMobility.Movable
+    others = [value for value in spear.EComponentMobility if int(value) == int(world)]
+    assert others, "the test needs two enums sharing a value"
+    for _ in range(2):
+        assert _wire.encode(world, segments).data.endswith(b"ESplineCoordinateSpace")
+        assert _wire.encode(others[0], segments).data.endswith(b"EComponentMobility")
+        assert _wire.encode(movable, segments).data[:8] == int(movable).to_bytes(8, "little")
