@@ -26,8 +26,8 @@ MeshId Scene::addMesh(MeshData mesh, std::string sharedKey) {
 void Scene::describe(MeshEntry& entry) {
     entry.data.bounds(entry.min, entry.max);
     entry.convexFaceted = entry.data.faceted() && entry.data.convex(); // faceted() first: it is cheap
-    entry.windingSpread = entry.data.windingSpread();
-    entry.longestEdge = entry.data.longestEdge();
+    entry.windingSpread.reset();
+    entry.longestEdge.reset();
 }
 
 void Scene::updateMesh(MeshId id, MeshData mesh) {
@@ -54,7 +54,7 @@ void Scene::deformMesh(MeshId id, std::span<const Eigen::Vector3f> positions,
     entry.data.normals.assign(normals.begin(), normals.end());
     entry.revision = nextRevision_++;
     entry.sharedKey.clear();
-    describe(entry); // smooth meshes skip the convexity test (faceted() first): bounds and two passes
+    describe(entry); // smooth meshes skip the convexity test (faceted() first): the bounds and one pass
 }
 
 void Scene::removeMesh(MeshId id) {
@@ -83,11 +83,17 @@ bool Scene::meshConvexFaceted(MeshId id) const {
     return meshes_.get(id, "Scene::meshConvexFaceted").convexFaceted;
 }
 float Scene::meshWindingSpread(MeshId id) const {
-    return meshes_.get(id, "Scene::meshWindingSpread").windingSpread;
+    const MeshEntry& entry = meshes_.get(id, "Scene::meshWindingSpread");
+    if (!entry.windingSpread)
+        entry.windingSpread = entry.data.windingSpread();
+    return *entry.windingSpread;
 }
 
 float Scene::meshLongestEdge(MeshId id) const {
-    return meshes_.get(id, "Scene::meshLongestEdge").longestEdge;
+    const MeshEntry& entry = meshes_.get(id, "Scene::meshLongestEdge");
+    if (!entry.longestEdge)
+        entry.longestEdge = entry.data.longestEdge();
+    return *entry.longestEdge;
 }
 
 TextureId Scene::addTexture(TextureImage image, TextureEncoding encoding, std::string sharedKey) {

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -96,9 +97,9 @@ class Scene {
     const std::string& meshSharedKey(MeshId id) const;
     // MeshData::convex() and faceted(), computed when the mesh was added or updated: it cannot shadow itself.
     bool meshConvexFaceted(MeshId id) const;
-    // MeshData::windingSpread(), computed when the mesh was added or updated.
+    // MeshData::windingSpread(), computed when first asked after the mesh was added, updated or deformed.
     float meshWindingSpread(MeshId id) const;
-    // MeshData::longestEdge(), computed when the mesh was added or updated.
+    // MeshData::longestEdge(), computed when first asked after the mesh was added, updated or deformed.
     float meshLongestEdge(MeshId id) const;
     // Levels of detail of a mesh, from finer to coarser (increasing relativeError); each has the mesh's
     // submesh count. A mesh that is some chain's level cannot be removed while that chain names it.
@@ -183,12 +184,14 @@ class Scene {
         std::uint64_t revision = 0;
         Eigen::Vector3f min, max;
         bool convexFaceted = false;
-        float windingSpread = 0.0f;
-        float longestEdge = 0.0f;
+        // Found when the renderer first asks (only of the level of detail it draws, only with the settings
+        // that use them): a skinned mesh's levels are deformed every frame, and most are not drawn.
+        mutable std::optional<float> windingSpread;
+        mutable std::optional<float> longestEdge;
         std::vector<MeshLod> lods;
         std::string sharedKey;
     };
-    // The entry's bounds and what its shape allows (convexFaceted, windingSpread), from its data.
+    // The entry's bounds and whether it is convex and faceted, from its data; forgets the rest.
     static void describe(MeshEntry& entry);
     struct TextureEntry {
         TextureImage image;

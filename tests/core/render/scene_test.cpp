@@ -25,6 +25,28 @@ TEST(SceneTest, RemovedHandlesAreStaleAndNamed) {
     EXPECT_EQ(scene.mesh(again).name, "sphere");
 }
 
+TEST(SceneTest, AMeshsShapeFiguresFollowItsDeformation) {
+    // A flat plane, wound as its normals face: no lean; then deformed, its figures are the new shape's (found
+    // when asked, after each deformation), read before and after the change.
+    Scene scene;
+    const MeshData plane = primitives::plane(4, 4);
+    const MeshId mesh = scene.addMesh(plane);
+    EXPECT_LT(scene.meshWindingSpread(mesh), 1e-5f);
+    const float edge = scene.meshLongestEdge(mesh);
+    EXPECT_NEAR(edge, plane.longestEdge(), 1e-6f);
+    std::vector<Eigen::Vector3f> positions = plane.positions, normals = plane.normals;
+    for (Eigen::Vector3f& p : positions)
+        p *= 3.0f; // stretched
+    for (Eigen::Vector3f& n : normals)
+        n = (n + Eigen::Vector3f(0.5f, 0.0f, 0.0f)).normalized(); // leaning by atan(0.5) from the plane's own
+    scene.deformMesh(mesh, positions, normals);
+    EXPECT_NEAR(scene.meshLongestEdge(mesh), 3.0f * edge, 1e-5f);
+    EXPECT_NEAR(scene.meshWindingSpread(mesh), 0.5f, 1e-4f);
+    scene.deformMesh(mesh, plane.positions, plane.normals); // and back
+    EXPECT_NEAR(scene.meshLongestEdge(mesh), edge, 1e-6f);
+    EXPECT_LT(scene.meshWindingSpread(mesh), 1e-5f);
+}
+
 TEST(SceneTest, InstancesNeedOneMaterialAndIdPerSlot) {
     Scene scene;
     MeshId mesh = scene.addMesh(primitives::box());
