@@ -11,6 +11,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <poll.h>
@@ -107,8 +108,12 @@ class Server {
     bool queueReply(Connection& connection, const char* data, size_t size);
     // A reply built whole (with its arrays inline): what the socket does not take waits as it is, not copied.
     bool queueFrame(Connection& connection, std::string&& frame);
-    // A reply with arrays in its tail, as the pieces to send in order (its head, then each array from its
-    // own memory): sent as far as the socket takes it, the rest copied into the outbox.
+    // A reply whose large arrays travel raw after its message (a client without shared memory): `tail`
+    // holds each array at its offset there (kTailAlignment), `tailSize` bytes in all.
+    bool queueWithTail(Connection& connection, std::string_view message,
+                       std::span<const std::pair<size_t, reflect::ArrayValue>> tail, size_t tailSize);
+    // The pieces of a reply to send in order (its head, then each array from its own memory): sent as far as
+    // the socket takes it, the rest copied into the outbox.
     bool queueGathered(Connection& connection, std::span<const iovec> pieces);
     // False (the client is to be dropped) when its unread replies are past the limits.
     bool withinOutboxLimits(Connection& connection);
