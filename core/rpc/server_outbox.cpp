@@ -34,22 +34,6 @@ void keepAsSpare(std::string& spare, std::string&& sent) {
         spare = std::move(sent);
 }
 
-// Sends what the socket takes now without waiting; false when the connection is broken.
-bool sendSome(int fd, const char*& data, size_t& size) {
-    while (size > 0) {
-        const ssize_t sent = ::send(fd, data, size, MSG_NOSIGNAL | MSG_DONTWAIT);
-        if (sent < 0 && errno == EINTR)
-            continue;
-        if (sent < 0 && (errno == EAGAIN || errno == EWOULDBLOCK))
-            return true; // the client has not read enough yet: the rest waits in its outbox
-        if (sent <= 0)
-            return false;
-        data += sent;
-        size -= size_t(sent);
-    }
-    return true;
-}
-
 // Zero bytes for the padding before a tail's array (less than kTailAlignment of it).
 constexpr char kZeros[kTailAlignment] = {};
 
@@ -84,6 +68,18 @@ bool sendSomeGathered(int fd, std::span<const iovec> pieces, size_t& sent) {
             return false;
         sent += size_t(n);
     }
+}
+
+// Sends what the socket takes now of `size` bytes at `data` without waiting, advancing both; false when the
+// connection is broken.
+bool sendSome(int fd, const char*& data, size_t& size) {
+    const iovec piece{const_cast<char*>(data), size};
+    size_t sent = 0;
+    if (!sendSomeGathered(fd, {&piece, 1}, sent))
+        return false;
+    data += sent;
+    size -= sent;
+    return true;
 }
 
 // Copies `pieces` from byte `from` of them on into `out`.
