@@ -12,6 +12,13 @@ PassTimers::~PassTimers() {
 }
 
 void PassTimers::begin(Pass pass) {
+    open_ = true;
+    openPass_ = pass;
+    openQuery_ = timedOnGpu(pass);
+    if (!openQuery_) {
+        start_ = std::chrono::steady_clock::now();
+        return;
+    }
     GLuint query = 0;
     if (free_.empty()) {
         glGenQueries(1, &query);
@@ -22,14 +29,13 @@ void PassTimers::begin(Pass pass) {
     glBeginQuery(GL_TIME_ELAPSED, query);
     start_ = std::chrono::steady_clock::now();
     pending_.push_back({query, pass, start_});
-    open_ = true;
-    openPass_ = pass;
 }
 
 void PassTimers::end() {
     if (!open_)
         return;
-    glEndQuery(GL_TIME_ELAPSED);
+    if (openQuery_)
+        glEndQuery(GL_TIME_ELAPSED);
     totals_[static_cast<std::size_t>(openPass_)].cpuMs +=
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
     open_ = false;
@@ -40,7 +46,7 @@ void PassTimers::collect() {
     const auto now = std::chrono::steady_clock::now();
     std::size_t done = 0;
     for (; done < pending_.size(); ++done) {
-        if (open_ && done + 1 == pending_.size())
+        if (open_ && openQuery_ && done + 1 == pending_.size())
             break;
         GLint available = 0;
         glGetQueryObjectiv(pending_[done].query, GL_QUERY_RESULT_AVAILABLE, &available);
