@@ -4,6 +4,7 @@
 // with the caller's context ("AActor.SetActorLocation(): parameter 'NewLocation'") and says what was
 // expected and what arrived.
 
+#include <charconv>
 #include <concepts>
 #include <limits>
 #include <map>
@@ -239,8 +240,18 @@ template <typename T> struct ValueCodec<std::vector<T>> {
             throwTypeMismatch(context, "a list", v);
         std::vector<T> result;
         result.reserve(items->size());
-        for (size_t i = 0; i < items->size(); ++i)
-            result.push_back(ValueCodec<T>::decode((*items)[i], detail::concat(context, "[", i, "]")));
+        // Each item's context ("Components[12]") in one reused string: formatted through a string stream per
+        // item, the names cost a list of 64 objects 20-30 us of a call whose work takes 50.
+        std::string itemContext(context);
+        itemContext += '[';
+        const size_t prefix = itemContext.size();
+        for (size_t i = 0; i < items->size(); ++i) {
+            char digits[24];
+            const char* end = std::to_chars(digits, digits + sizeof(digits), i).ptr;
+            itemContext.resize(prefix);
+            itemContext.append(digits, std::size_t(end - digits)).push_back(']');
+            result.push_back(ValueCodec<T>::decode((*items)[i], itemContext));
+        }
         return result;
     }
 };

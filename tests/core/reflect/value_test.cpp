@@ -86,6 +86,24 @@ TEST(Codec, ContainersReportTheBadElement) {
     } catch (const sp::InvalidArgument& e) {
         EXPECT_STREQ(e.what(), "tags[1] must be a str, got float 1");
     }
+    // Each element's name is built on the last one's (one reused string): a two-digit index after one-digit
+    // ones, and a nested list's element after a longer name, come out whole.
+    Value::List names(11, Value("a"));
+    names[10] = Value(int64_t(7));
+    try {
+        decode<std::vector<std::string>>(Value(names), "tags");
+        FAIL();
+    } catch (const sp::InvalidArgument& e) {
+        EXPECT_STREQ(e.what(), "tags[10] must be a str, got int 7");
+    }
+    Value::List rows(12, Value(Value::List{Value(1.0)}));
+    rows[11] = Value(Value::List{Value(1.0), Value("x")});
+    try {
+        decode<std::vector<std::vector<double>>>(Value(rows), "rows");
+        FAIL();
+    } catch (const sp::InvalidArgument& e) {
+        EXPECT_STREQ(e.what(), "rows[11][1] must be a float, got str 'x'");
+    }
 }
 
 TEST(SpArray, ShapesAndViews) {
