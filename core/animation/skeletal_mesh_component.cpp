@@ -347,7 +347,7 @@ double* USkeletalMeshComponent::writeBoneTransforms(EBoneSpaces Space, double* d
 
 sp::reflect::SpArray<double> USkeletalMeshComponent::GetBoneTransforms(EBoneSpaces Space) const {
     sp::reflect::SpArray<double> out("bone_transforms");
-    out.resize({int64_t(componentSpace_.size()), 4, 4});
+    out.resizeForOverwrite({int64_t(componentSpace_.size()), 4, 4}); // every element written next
     writeBoneTransforms(Space, out.data());
     return out;
 }
@@ -365,7 +365,7 @@ USkeletalMeshComponent::GetBoneTransformsOfComponents(const std::vector<USkeleta
                  Components[i]->componentSpace_.size(), " bones, Components[0] has ", bones);
     }
     sp::reflect::SpArray<double> out("bone_transforms");
-    out.resize({int64_t(Components.size()), int64_t(bones), 4, 4});
+    out.resizeForOverwrite({int64_t(Components.size()), int64_t(bones), 4, 4}); // every element written next
     double* data = out.data();
     for (const USkeletalMeshComponent* component : Components)
         data = component->writeBoneTransforms(Space, data);
