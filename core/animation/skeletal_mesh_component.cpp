@@ -338,10 +338,26 @@ void USkeletalMeshComponent::SetPlayRate(double Rate) {
 
 double* USkeletalMeshComponent::writeBoneTransforms(EBoneSpaces Space, double* data) const {
     // Row-major 4 x 4 matrices, bone after bone: numpy's layout of a (bones, 4, 4) float64 array.
-    const Eigen::Affine3d world =
-        Space == EBoneSpaces::WorldSpace ? worldMatrix() : Eigen::Affine3d::Identity();
-    for (const Eigen::Affine3d& bone : componentSpace_)
-        data = writeRowMajor((world * bone).matrix(), data);
+    if (Space == EBoneSpaces::ComponentSpace) {
+        for (const Eigen::Affine3d& bone : componentSpace_)
+            data = writeRowMajor(bone.matrix(), data);
+        return data;
+    }
+    // World space: each bone's transform after the component's, the three affine rows multiplied out here.
+    // As an Eigen Affine3d product and a copy of its 4 x 4 matrix they took ~30 ns a bone, half the work of
+    // reading 64 characters' poses (1152 bones).
+    const Eigen::Matrix4d world = worldMatrix().matrix();
+    for (const Eigen::Affine3d& bone : componentSpace_) {
+        const Eigen::Matrix4d& b = bone.matrix(); // bottom row (0, 0, 0, 1)
+        for (int row = 0; row < 3; ++row)
+            for (int column = 0; column < 4; ++column)
+                *data++ = world(row, 0) * b(0, column) + world(row, 1) * b(1, column) +
+                          world(row, 2) * b(2, column) + world(row, 3) * b(3, column);
+        *data++ = 0.0;
+        *data++ = 0.0;
+        *data++ = 0.0;
+        *data++ = 1.0;
+    }
     return data;
 }
 

@@ -165,6 +165,39 @@ def test_a_whole_pose_is_read_and_set_as_one_array(instance: spear.Instance) -> 
     assert np.allclose(restored, pose, atol=1e-9)
 
 
+def test_world_space_poses_follow_a_turned_and_scaled_component(instance: spear.Instance) -> None:
+    """Each bone's world matrix is the component's world matrix times the bone's component-space one, for a
+    component turned about two axes and scaled unevenly, as GetBoneTransform gives each bone."""
+    game = instance.get_game()
+    with instance.begin_frame():
+        mesh = _character(game, x=1.0)
+        mesh.SetRelativeRotation(NewRotation=spear.FRotator(Pitch=20.0, Yaw=35.0, Roll=-10.0))
+        mesh.SetRelativeScale3D(NewScale3D=spear.FVector(1.5, 0.5, 2.0))
+        pose = mesh.GetBoneTransforms(Space=COMPONENT)
+        world = mesh.GetBoneTransforms(Space=WORLD)
+        crowd = spear.USkeletalMeshComponent.GetBoneTransformsOfComponents(Components=[mesh], Space=WORLD)
+        singles = [mesh.GetBoneTransform(BoneName=mesh.GetBoneName(BoneIndex=i), Space=WORLD) for i in range(18)]
+        component = mesh.GetComponentTransform()
+    with instance.end_frame():
+        pass
+    # The component's world matrix: its rotation's columns scaled, its translation.
+    q = component.Rotation
+    x, y, z, w = q.X, q.Y, q.Z, q.W
+    rotation = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                         [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                         [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+    matrix = np.eye(4)
+    matrix[:3, :3] = rotation * [component.Scale3D.X, component.Scale3D.Y, component.Scale3D.Z]
+    matrix[:3, 3] = [component.Translation.X, component.Translation.Y, component.Translation.Z]
+    assert not np.allclose(rotation, np.eye(3))
+    assert np.allclose(world, matrix @ pose, atol=1e-12)
+    assert np.array_equal(world[:, 3], np.tile([0.0, 0.0, 0.0, 1.0], (18, 1)))
+    assert np.array_equal(crowd[0], world)
+    for i, single in enumerate(singles):  # the translations: FTransform composes scale, rotation, translation
+        assert (single.Translation.X, single.Translation.Y, single.Translation.Z) == pytest.approx(
+            tuple(world[i, :3, 3]), abs=1e-9)
+
+
 def test_a_crowds_poses_come_back_as_one_array(instance: spear.Instance) -> None:
     game = instance.get_game()
     with instance.begin_frame():
