@@ -133,8 +133,9 @@ Renderer::Renderer(const GlContext& context)
     anisotropySupported_ = epoxy_gl_version() >= 46 ||
                            epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic") ||
                            epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic");
-    setAnisotropicFiltering(switchFromEnvironment("SPEAR_TEXTURE_FILTER", "anisotropic", "trilinear",
-                                                  hardware && anisotropySupported_));
+    shaderAnisotropy_ =
+        switchFromEnvironment("SPEAR_ANISOTROPY", "shader", "sampler", !hardware || !anisotropySupported_);
+    setAnisotropicFiltering(switchFromEnvironment("SPEAR_TEXTURE_FILTER", "anisotropic", "trilinear", true));
     atlas_ = std::make_unique<FramebufferAtlas>(layered);
     // Readbacks of 3-channel and 16-bit images have rows that are not multiples of 4 bytes.
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -168,8 +169,24 @@ Renderer::~Renderer() {
     glDeleteSamplers(1, &textureSampler_);
 }
 
+void Renderer::setShaderAnisotropy(bool on) {
+    SP_CHECK(on || anisotropySupported_ || !anisotropicFiltering_, InvalidArgument,
+             "Renderer::setShaderAnisotropy(): this context's sampler has no anisotropic filtering "
+             "(GL 4.6 or GL_ARB_texture_filter_anisotropic) to take over from the shader");
+    shaderAnisotropy_ = on;
+    setAnisotropicFiltering(anisotropicFiltering_); // the sampler's default follows
+}
+
+int Renderer::shaderTextureTaps(const Camera& camera) const {
+    if (!shaderAnisotropy_)
+        return 1;
+    return camera.params.maxAnisotropy > 0 ? camera.params.maxAnisotropy
+           : anisotropicFiltering_         ? kShaderAnisotropy
+                                           : 1;
+}
+
 void Renderer::setAnisotropicFiltering(bool on) {
-    SP_CHECK(!on || anisotropySupported_, InvalidArgument,
+    SP_CHECK(!on || anisotropySupported_ || shaderAnisotropy_, InvalidArgument,
              "Renderer::setAnisotropicFiltering(): this context has no anisotropic filtering "
              "(GL 4.6 or GL_ARB_texture_filter_anisotropic)");
     context_.makeCurrent();
@@ -181,7 +198,8 @@ void Renderer::setAnisotropicFiltering(bool on) {
         glSamplerParameteri(textureSampler_, GL_TEXTURE_WRAP_T, GL_REPEAT);
     }
     if (anisotropySupported_)
-        glSamplerParameterf(textureSampler_, GL_TEXTURE_MAX_ANISOTROPY, on ? kMaxAnisotropy : 1.0f);
+        glSamplerParameterf(textureSampler_, GL_TEXTURE_MAX_ANISOTROPY,
+                            on && !shaderAnisotropy_ ? kMaxAnisotropy : 1.0f);
     anisotropicFiltering_ = on;
 }
 
@@ -412,11 +430,13 @@ void Renderer::renderView(const View& view) {
              " layers");
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
-    // The view's own texture filtering (CameraParams::maxAnisotropy), else the renderer's. A context without
-    // anisotropic filtering filters trilinearly whatever the view asks (said once).
-    const float anisotropy = camera.params.maxAnisotropy > 0 ? float(camera.params.maxAnisotropy)
-                             : anisotropicFiltering_         ? kMaxAnisotropy
-                                                             : 1.0f;
+    // The view's own texture filtering (CameraParams::maxAnisotropy), else the renderer's: in the sampler, or
+    // in the shader (shaderTextureTaps(), through the frame block), the sampler then trilinear. A context
+    // without the sampler's filters trilinearly whatever a view asks of it (said once).
+    const float anisotropy = shaderAnisotropy_                 ? 1.0f
+                             : camera.params.maxAnisotropy > 0 ? float(camera.params.maxAnisotropy)
+                             : anisotropicFiltering_           ? kMaxAnisotropy
+                                                               : 1.0f;
     if (anisotropySupported_)
         glSamplerParameterf(textureSampler_, GL_TEXTURE_MAX_ANISOTROPY, anisotropy);
     else if (anisotropy > 1.0f && !anisotropyRefusalLogged_) {
@@ -698,6 +718,7 @@ void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
     }
     block.counts[0] = count;
     block.counts[1] = std::max(viewLayer_, 0); // the layer a layered program draws into
+    block.counts[2] = shaderTextureTaps(camera);
     glNamedBufferData(frameBlock_, sizeof block, &block, GL_DYNAMIC_DRAW);
     glBindBufferBase(GL_UNIFORM_BUFFER, shaders::kFrameBlockBinding, frameBlock_);
 }

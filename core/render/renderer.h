@@ -163,15 +163,24 @@ class Renderer {
     // llvmpipe 86 ms, spear_render_bench --gi), or per pixel (a GPU). SPEAR_IRRADIANCE_BLEND=vertex|pixel
     // overrides the default.
     bool vertexIrradiance() const { return vertexIrradiance_; }
-    // Whether material textures are filtered anisotropically (kMaxAnisotropy samples along a pixel's
-    // footprint) or trilinearly: by default on hardware, where it is all but free. On llvmpipe it doubled
-    // a 1080p frame of the textured default scene (150 -> 400 ms) for a 12% lower mean aliasing error and the
-    // same 99th percentile (BENCHMARKS.md). SPEAR_TEXTURE_FILTER=anisotropic|trilinear overrides the
-    // default; throws sp::InvalidArgument turning it on where the context has none. A view's
+    // Whether material textures are filtered anisotropically (samples spread along a pixel's footprint) or
+    // trilinearly: on by default. SPEAR_TEXTURE_FILTER=anisotropic|trilinear overrides the default; throws
+    // sp::InvalidArgument turning it on where neither the sampler nor the shader can. A view's
     // CameraParams::maxAnisotropy, when not 0, takes the place of this default for that view.
     bool anisotropicFiltering() const { return anisotropicFiltering_; }
     void setAnisotropicFiltering(bool on);
-    static constexpr float kMaxAnisotropy = 8.0f; // UE's r.MaxAnisotropy default
+    static constexpr float kMaxAnisotropy = 8.0f; // UE's r.MaxAnisotropy default: the sampler's
+    // Where the anisotropic filtering happens: in the sampler (a GPU's, where it is all but free) or in the
+    // surface shader, kShaderAnisotropy trilinear reads of base colour and roughness / metallic along the
+    // footprint (a software rasteriser: llvmpipe's own anisotropic sampler more than doubled a 1080p frame of
+    // the textured default scene; the shader's costs it 1.4x, for the same SSIM against the path tracer,
+    // BENCHMARKS.md). Also the shader where the context's sampler has none. SPEAR_ANISOTROPY=shader|sampler
+    // overrides the default.
+    bool shaderAnisotropy() const { return shaderAnisotropy_; }
+    void setShaderAnisotropy(bool on);
+    static constexpr int kShaderAnisotropy = 4; // as 8 on the default scene (SSIM 0.922 both), for less
+    // The shader's reads a view's texture takes along the footprint: 1 where the sampler filters.
+    int shaderTextureTaps(const Camera& camera) const;
     void setVertexIrradiance(bool on) { vertexIrradiance_ = on; }
     // How many times a mesh whose longest edge is `edge` metres in the world (scale included), with
     // `triangles` triangles, is subdivided for per-vertex indirect light on probes `spacing` apart: until its
@@ -359,6 +368,7 @@ class Renderer {
     unsigned textureSampler_ = 0;
     bool anisotropySupported_ = false;
     bool anisotropicFiltering_ = false;
+    bool shaderAnisotropy_ = false;
     bool anisotropyRefusalLogged_ = false;
 };
 

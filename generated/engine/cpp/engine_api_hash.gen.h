@@ -4,5 +4,5 @@
 #pragma once
 
 namespace sp::generated::engine {
-inline constexpr char kApiHash[] = "ac8505819db9e6a0";
+inline constexpr char kApiHash[] = "3df13d2d9ec646f3";
 } // namespace sp::generated::engine

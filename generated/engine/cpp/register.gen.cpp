@@ -317,4 +317,4 @@ extern "C" void spear_unregister_engine_types() {
     registry.remove(gen::enumInfo_EAnimationMode());
 }
 
-extern "C" const char* spear_register_engine_types_api_hash() { return "ac8505819db9e6a0"; }
+extern "C" const char* spear_register_engine_types_api_hash() { return "3df13d2d9ec646f3"; }

@@ -2,4 +2,4 @@
 """Typed API of the 'engine' module: classes, structs and enums generated from its reflected headers."""
 
 MODULE = "engine"
-API_HASH = "ac8505819db9e6a0"
+API_HASH = "3df13d2d9ec646f3"

@@ -3803,10 +3803,11 @@ class UCameraSensorComponent(USceneComponent):
         """Anisotropic filtering of the material textures a rasterised view reads (Unreal's r.MaxAnisotropy): up
         to this many texture samples along a pixel's footprint where a surface is seen at a grazing angle (a
         floor or a wall far along the view), where trilinear filtering blurs its texture. 1 filters
-        trilinearly; 2 to 16 anisotropically; 0 (the default) takes the renderer's default: 8 on a GPU, where
-        it is all but free, 1 on a software rasteriser, where a textured frame costs about 2.4 times as much
-        with it (llvmpipe, BENCHMARKS.md). The default scene against the path tracer: SSIM about 0.02 higher
-        at every GlobalIlluminationQuality. The exact modalities are not filtered.
+        trilinearly; 2 to 16 anisotropically; 0 (the default) takes the renderer's default: 8 samples in a
+        GPU's sampler, where it is all but free, and on a software rasteriser 4 reads in the shader (base
+        colour and roughness / metallic; a textured 1080p frame's surface pass costs llvmpipe 1.35 times as
+        much with them, BENCHMARKS.md). The default scene against the path tracer: SSIM about 0.02 higher at
+        every GlobalIlluminationQuality. The exact modalities are not filtered.
         """
 
     @MaxAnisotropy.setter

@@ -5,6 +5,8 @@
 // with each step and keep the exact modalities exact. Anisotropic texture filtering keeps a floor's texture
 // where trilinear filtering blurs it away at a grazing angle.
 
+#include <epoxy/gl.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -418,8 +420,9 @@ TEST_F(RenderAntiAliasingGlTest,
 }
 
 TEST_F(RenderAntiAliasingGlTest, AViewsMaxAnisotropyTakesThePlaceOfTheRenderersDefault) {
-    // The grazing floor above: a view asking for 8 samples renders what the renderer's anisotropic default
-    // renders, one asking for 1 what its trilinear default renders, whatever the default; 0 follows it.
+    // The grazing floor above: a view asking for the renderer's default number of samples (8 in a sampler,
+    // 4 reads in the shader) renders what its anisotropic default renders, one asking for 1 what its
+    // trilinear default renders, whatever the default; 0 follows it.
     Scene scene;
     buildCheckeredFloor(scene, 4, 4.0f);
     Camera camera = cameraLookingAt({-19.0, 0.0, 1.5}, {-9.0, 0.0, 0.0}, 64, 48, 60.0);
@@ -429,9 +432,11 @@ TEST_F(RenderAntiAliasingGlTest, AViewsMaxAnisotropyTakesThePlaceOfTheRenderersD
         camera.params.maxAnisotropy = view;
         return renderFrame(scene, camera, {Modality::HdrColor}).get(Modality::HdrColor).bytes;
     };
+    const int samples =
+        renderer().shaderAnisotropy() ? Renderer::kShaderAnisotropy : int(Renderer::kMaxAnisotropy);
     const auto trilinear = render(false, 0), anisotropic = render(true, 0);
     EXPECT_NE(trilinear, anisotropic);
-    EXPECT_EQ(render(false, 8), anisotropic);
+    EXPECT_EQ(render(false, samples), anisotropic);
     EXPECT_EQ(render(true, 1), trilinear);
     EXPECT_EQ(render(true, 0), anisotropic); // the view's choice did not stay with the renderer
     EXPECT_EQ(render(false, 0), trilinear);
@@ -444,12 +449,15 @@ TEST_F(RenderAntiAliasingGlTest, AViewsMipBiasChoosesTheLevelItsTexturesAreReadA
     // The floor of black and white squares, 2 texels each, seen from 3 m up and 4 m away: near the middle a
     // square is a few pixels across and trilinear filtering (bias 0) greys it; a level finer (-1) keeps more
     // of its contrast, a level coarser (+1) less. Per view: 0 again renders as before; depth and ids are the
-    // same bit for bit; a bias outside [-2, 2] (or NaN) is refused.
+    // same bit for bit; a bias outside [-2, 2] (or NaN) is refused. Trilinear, so that each pixel reads one
+    // level: the shader's anisotropic reads average several along the footprint, which at a finer level
+    // take alternate squares (checked below only to follow the bias).
     Scene scene;
     buildCheckeredFloor(scene, 2, 1.0f);
     const int width = 96, height = 64;
     Camera camera = cameraLookingAt({-4.0, 0.0, 3.0}, {0.0, 0.0, 0.0}, width, height, 60.0);
     EXPECT_EQ(camera.params.mipBias, 0.0f);
+    camera.params.maxAnisotropy = 1;
     const auto render = [&](float bias) {
         camera.params.mipBias = bias;
         return renderFrame(scene, camera, {Modality::HdrColor, Modality::Depth, Modality::ObjectIds});
@@ -472,26 +480,58 @@ TEST_F(RenderAntiAliasingGlTest, AViewsMipBiasChoosesTheLevelItsTexturesAreReadA
     EXPECT_EQ(render(0.0f).get(Modality::HdrColor).bytes, plain.get(Modality::HdrColor).bytes);
     for (Modality m : {Modality::Depth, Modality::ObjectIds})
         EXPECT_EQ(sharper.get(m).bytes, plain.get(m).bytes) << modalityName(m);
+    // Anisotropic reads (in the sampler or the shader's textureLod) follow the bias too.
+    camera.params.maxAnisotropy = 8;
+    const auto colour = [&](float bias) { return render(bias).get(Modality::HdrColor).bytes; };
+    const auto anisotropicPlain = colour(0.0f);
+    EXPECT_NE(colour(-1.0f), anisotropicPlain);
+    EXPECT_NE(colour(1.0f), anisotropicPlain);
+    EXPECT_LT(contrast(render(1.0f)), 0.9 * contrast(render(0.0f)));
+    camera.params.maxAnisotropy = 0;
     for (float bad : {-2.5f, 2.5f, std::numeric_limits<float>::quiet_NaN()}) {
         camera.params.mipBias = bad;
         EXPECT_THROW(camera.params.validate("test"), InvalidArgument) << bad;
     }
 }
 
-TEST_F(RenderAntiAliasingGlTest, AnisotropicFilteringIsOnByDefaultOnHardwareAndSetFromTheEnvironment) {
+// Whether the current context's samplers filter anisotropically (as Renderer::Renderer() asks).
+bool samplerAnisotropy() {
+    return epoxy_gl_version() >= 46 || epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic") ||
+           epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic");
+}
+
+// A renderer made with `variable` set to `value` is refused with `message`; the variable is unset after.
+void expectRefusedSetting(GlContext& context, const char* variable, const char* value, const char* message) {
+    ::setenv(variable, value, 1);
+    try {
+        Renderer refused(context);
+        ADD_FAILURE() << variable << "=" << value << " was accepted";
+    } catch (const InvalidArgument& e) {
+        EXPECT_STREQ(e.what(), message);
+    }
+    ::unsetenv(variable);
+}
+
+TEST_F(RenderAntiAliasingGlTest,
+       AnisotropicFilteringIsOnByDefaultInTheSamplerOrTheShaderAndSetFromTheEnvironment) {
     GlContext& context = *context_;
     ::setenv("SPEAR_TEXTURE_FILTER", "anisotropic", 1);
     EXPECT_TRUE(Renderer(context).anisotropicFiltering());
-    ::setenv("SPEAR_TEXTURE_FILTER", "bilinear", 1);
-    try {
-        Renderer refused(context);
-        ADD_FAILURE() << "SPEAR_TEXTURE_FILTER=bilinear was accepted";
-    } catch (const InvalidArgument& e) {
-        EXPECT_STREQ(e.what(), "Renderer::Renderer(): SPEAR_TEXTURE_FILTER must be 'anisotropic' or "
-                               "'trilinear', got 'bilinear'");
-    }
-    ::unsetenv("SPEAR_TEXTURE_FILTER");
-    EXPECT_EQ(Renderer(context).anisotropicFiltering(), !context.report().software);
+    ::setenv("SPEAR_TEXTURE_FILTER", "trilinear", 1);
+    EXPECT_FALSE(Renderer(context).anisotropicFiltering());
+    expectRefusedSetting(
+        context, "SPEAR_TEXTURE_FILTER", "bilinear",
+        "Renderer::Renderer(): SPEAR_TEXTURE_FILTER must be 'anisotropic' or 'trilinear', got "
+        "'bilinear'");
+    // On by default everywhere: in the sampler on a GPU, in the shader on a software rasteriser (or where the
+    // sampler has none); SPEAR_ANISOTROPY chooses.
+    EXPECT_TRUE(Renderer(context).anisotropicFiltering());
+    EXPECT_EQ(Renderer(context).shaderAnisotropy(), context.report().software || !samplerAnisotropy());
+    ::setenv("SPEAR_ANISOTROPY", "shader", 1);
+    EXPECT_TRUE(Renderer(context).shaderAnisotropy());
+    expectRefusedSetting(
+        context, "SPEAR_ANISOTROPY", "texture",
+        "Renderer::Renderer(): SPEAR_ANISOTROPY must be 'shader' or 'sampler', got 'texture'");
     context.makeCurrent(); // the fixture's renderer goes on in the same context
 }
 
