@@ -16,8 +16,8 @@ points, as 4 x 4 holds MSAA's; --aliasing-grids).
         [--reference 1024] [--qualities Off,Medium] [--ambient-occlusion 0.5] [--scenes apartment,yard,closed_room,sky_yard,park_yard] [--out out/iq]
         [--aliasing-grids 4,17] [--aliasing-only] [--max-anisotropy 8] [--mip-bias -1] [--reference-cache DIR]
 
---max-anisotropy sets the raster cameras' MaxAnisotropy (0: the renderer's default, trilinear on llvmpipe; 8:
-anisotropic texture filtering, a GPU's default). --mip-bias sets their MipMapLODBias (0 by default; the
+--max-anisotropy sets the raster cameras' MaxAnisotropy (0: the renderer's default, anisotropic: 8 samples in a
+GPU's sampler, 4 reads in the shader on llvmpipe; 1: trilinear). --mip-bias sets their MipMapLODBias (0 by default; the
 supersampled views of the aliasing measure stay at 0). --reference-cache keeps each scene's path-traced
 reference in DIR (one .npy per scene, size and sample count) and reads it back in later runs: a 4,096-sample
 reference takes about 18 minutes on two cores. It is the caller's to clear when the scene or the path tracer
