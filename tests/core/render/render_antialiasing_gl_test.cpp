@@ -370,6 +370,12 @@ TEST(SpatialSamplePattern, OneSampleInEachRowAndColumnInsideThePixel) {
     EXPECT_THROW(spatialSamplePattern(3), InvalidArgument);
 }
 
+// Whether the current context's samplers filter anisotropically (as Renderer::Renderer() asks).
+bool samplerAnisotropy() {
+    return epoxy_gl_version() >= 46 || epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic") ||
+           epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic");
+}
+
 TEST_F(RenderAntiAliasingGlTest,
        AnisotropicFilteringBringsAGrazingFloorCloserToSupersamplingAndLeavesIdsAndDepth) {
     // A 40 m floor of 1 m black and white squares (a 16 x 16 texture, 4 texels a square, repeating every 4
@@ -416,7 +422,21 @@ TEST_F(RenderAntiAliasingGlTest,
                  anisotropic = error(frames[1].get(Modality::HdrColor));
     EXPECT_LT(anisotropic, 0.8 * trilinear) << "trilinear " << trilinear << ", anisotropic " << anisotropic;
     std::cout << "grazing floor, mean difference from 4 x 4 supersampling: trilinear " << trilinear
-              << ", anisotropic " << anisotropic << "\n";
+              << ", anisotropic " << anisotropic << " (in the "
+              << (renderer().shaderAnisotropy() ? "shader" : "sampler") << ")\n";
+    // The other place, where the context has it: the shader's reads, or the sampler's samples.
+    const bool inShader = renderer().shaderAnisotropy();
+    if (!inShader && !samplerAnisotropy())
+        return;
+    renderer().setShaderAnisotropy(!inShader);
+    renderer().setAnisotropicFiltering(true);
+    const Frame other = renderFrame(scene, camera, {Modality::HdrColor, Modality::Depth});
+    renderer().setShaderAnisotropy(inShader);
+    renderer().setAnisotropicFiltering(byDefault);
+    EXPECT_EQ(other.get(Modality::Depth).bytes, frames[0].get(Modality::Depth).bytes);
+    const double elsewhere = error(other.get(Modality::HdrColor));
+    EXPECT_LT(elsewhere, 0.8 * trilinear) << "trilinear " << trilinear << ", anisotropic " << elsewhere;
+    std::cout << "  in the " << (inShader ? "sampler" : "shader") << ": " << elsewhere << "\n";
 }
 
 TEST_F(RenderAntiAliasingGlTest, AViewsMaxAnisotropyTakesThePlaceOfTheRenderersDefault) {
@@ -492,12 +512,6 @@ TEST_F(RenderAntiAliasingGlTest, AViewsMipBiasChoosesTheLevelItsTexturesAreReadA
         camera.params.mipBias = bad;
         EXPECT_THROW(camera.params.validate("test"), InvalidArgument) << bad;
     }
-}
-
-// Whether the current context's samplers filter anisotropically (as Renderer::Renderer() asks).
-bool samplerAnisotropy() {
-    return epoxy_gl_version() >= 46 || epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic") ||
-           epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic");
 }
 
 // A renderer made with `variable` set to `value` is refused with `message`; the variable is unset after.
