@@ -421,6 +421,7 @@ void Renderer::renderView(const View& view) {
     GpuSceneCache& cache = *active_->cache;
     const std::uint64_t meshUploads = cache.meshUploads(), textureUploads = cache.textureUploads();
     viewLayer_ = view.layer;
+    viewSpatialSamples_ = passes.spatialSamples;
     viewCompact_ = passes.compactTargets;
     viewMaterials_ = view.materials;
     SP_CHECK(camera.params.width == fb.width && camera.params.height == fb.height &&
@@ -719,6 +720,7 @@ void Renderer::uploadFrameBlock(const Scene& scene, const Camera& camera,
     block.counts[0] = count;
     block.counts[1] = std::max(viewLayer_, 0); // the layer a layered program draws into
     block.counts[2] = shaderTextureTaps(camera);
+    block.counts[3] = std::max(viewSpatialSamples_, 1); // each sample's footprint: 1 / sqrt(N) of the pixel's
     glNamedBufferData(frameBlock_, sizeof block, &block, GL_DYNAMIC_DRAW);
     glBindBufferBase(GL_UNIFORM_BUFFER, shaders::kFrameBlockBinding, frameBlock_);
 }

@@ -353,8 +353,9 @@ class Renderer {
     std::unique_ptr<ShadowLayers> shadowLayers_;   // the scenes' shadow maps (before scenes_: they use it)
     std::map<std::uint64_t, std::unique_ptr<SceneState>> scenes_; // by Scene::uid()
     SceneState* active_ = nullptr;                                // the scene render() is drawing
-    int viewLayer_ = -1;       // the layer of the view render() is drawing (-1: framebuffers of its own)
-    bool viewCompact_ = false; // its targets are compact (PassSet::compactTargets)
+    int viewLayer_ = -1;         // the layer of the view render() is drawing (-1: framebuffers of its own)
+    int viewSpatialSamples_ = 1; // the view's spatial samples (PassSet::spatialSamples), for the frame block
+    bool viewCompact_ = false;   // its targets are compact (PassSet::compactTargets)
     std::vector<DrawMaterial>* viewMaterials_ = nullptr; // its View::materials
     bool pageCleared_ = false; // its surface targets were cleared with its page (clearPages())
     std::unique_ptr<FramebufferAtlas> atlas_;

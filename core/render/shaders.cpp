@@ -18,7 +18,7 @@ layout(std140, binding = 0) uniform FrameBlock {
     vec4 uCameraPosition;
     vec4 uAmbient;
     vec4 uBackground;
-    ivec4 uCounts; // x: lights, y: the view's layer, z: anisotropic taps in the shader (1: none)
+    ivec4 uCounts; // x: lights, y: the view's layer, z: anisotropic taps in the shader (1: none), w: spatial samples
     vec4 uLightRadiance[MAX_LIGHTS];
     vec4 uLightPosition[MAX_LIGHTS];
     vec4 uLightDirection[MAX_LIGHTS];
@@ -95,7 +95,10 @@ vec4 anisotropicTexture(sampler2D t, vec2 uv, vec2 dx, vec2 dy) {
     int taps = int(min(ceil(sqrt(longest / max(shortest, 1e-12)) - 0.01), float(uCounts.z)));
     taps = max(taps, 1);
     float lod = 0.5 * log2(max(max(longest / float(taps * taps), shortest), 1e-12));
-    vec2 step = (lx >= ly ? dx : dy) / float(taps);
+    // A spatial sample's footprint is 1 / sqrt(N) of the pixel's along each axis: its taps spread over that
+    // (the sampler's bias already reads its finer level), else the N samples' average blurs the texture over
+    // twice the pixel.
+    vec2 step = (lx >= ly ? dx : dy) / float(taps) * inversesqrt(float(max(uCounts.w, 1)));
     vec4 sum = vec4(0.0);
     for (int i = 0; i < taps; ++i)
         sum += textureLod(t, uv + step * (float(i) + 0.5 - 0.5 * float(taps)), lod);

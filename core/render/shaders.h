@@ -37,7 +37,8 @@ struct FrameBlock {
     float ambient[4];        // xyz: uniform sky radiance
     float background[4];     // xyz: hdr_color of background pixels
     int counts[4]; // x = light count (informative: the programs are specialised), y = the view's layer,
-                   // z = the shader's anisotropic taps (Renderer::shaderTextureTaps(); 1: the sampler's)
+                   // z = the shader's anisotropic taps (Renderer::shaderTextureTaps(); 1: the sampler's),
+                   // w = the view's spatial samples
     float lightRadiance[16][4]; // xyz = colour * intensity
     // Reciprocals rather than the values the shading would divide by (see accumulate() in shaders.cpp).
     float lightPosition[16][4];             // xyz, w = 1 / range (0 = unbounded)
