@@ -452,7 +452,8 @@ TEST_F(RenderAntiAliasingGlTest, SpatialSamplesWithAnisotropicTexturesComeCloser
     const int width = 128, height = 96;
     Camera camera = cameraLookingAt({-19.0, 0.0, 1.5}, {-9.0, 0.0, 0.0}, width, height, 60.0);
     constexpr int kScale = 8;
-    Camera large = cameraLookingAt({-19.0, 0.0, 1.5}, {-9.0, 0.0, 0.0}, kScale * width, kScale * height, 60.0);
+    Camera large =
+        cameraLookingAt({-19.0, 0.0, 1.5}, {-9.0, 0.0, 0.0}, kScale * width, kScale * height, 60.0);
     large.params.maxAnisotropy = 1;
     const Frame supersampled = renderFrame(scene, large, {Modality::HdrColor, Modality::ObjectIds});
     const ImageBuffer& reference = supersampled.get(Modality::HdrColor);
