@@ -177,12 +177,16 @@ void Renderer::setShaderAnisotropy(bool on) {
     setAnisotropicFiltering(anisotropicFiltering_); // the sampler's default follows
 }
 
-int Renderer::shaderTextureTaps(const Camera& camera) const {
-    if (!shaderAnisotropy_)
+int Renderer::viewAnisotropy(const Camera& camera) const {
+    if (camera.params.maxAnisotropy > 0)
+        return camera.params.maxAnisotropy;
+    if (!anisotropicFiltering_)
         return 1;
-    return camera.params.maxAnisotropy > 0 ? camera.params.maxAnisotropy
-           : anisotropicFiltering_         ? kShaderAnisotropy
-                                           : 1;
+    return shaderAnisotropy_ ? kShaderAnisotropy : int(kMaxAnisotropy);
+}
+
+int Renderer::shaderTextureTaps(const Camera& camera) const {
+    return shaderAnisotropy_ ? viewAnisotropy(camera) : 1;
 }
 
 void Renderer::setAnisotropicFiltering(bool on) {
@@ -434,10 +438,7 @@ void Renderer::renderView(const View& view) {
     // The view's own texture filtering (CameraParams::maxAnisotropy), else the renderer's: in the sampler, or
     // in the shader (shaderTextureTaps(), through the frame block), the sampler then trilinear. A context
     // without the sampler's filters trilinearly whatever a view asks of it (said once).
-    const float anisotropy = shaderAnisotropy_                 ? 1.0f
-                             : camera.params.maxAnisotropy > 0 ? float(camera.params.maxAnisotropy)
-                             : anisotropicFiltering_           ? kMaxAnisotropy
-                                                               : 1.0f;
+    const float anisotropy = shaderAnisotropy_ ? 1.0f : float(viewAnisotropy(camera));
     if (anisotropySupported_)
         glSamplerParameterf(textureSampler_, GL_TEXTURE_MAX_ANISOTROPY, anisotropy);
     else if (anisotropy > 1.0f && !anisotropyRefusalLogged_) {

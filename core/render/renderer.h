@@ -181,6 +181,9 @@ class Renderer {
     static constexpr int kShaderAnisotropy = 4; // as 8 on the default scene (SSIM 0.922 both), for less
     // The shader's reads a view's texture takes along the footprint: 1 where the sampler filters.
     int shaderTextureTaps(const Camera& camera) const;
+    // A view's anisotropic samples or reads: its CameraParams::maxAnisotropy, else the renderer's default
+    // (kMaxAnisotropy in the sampler, kShaderAnisotropy in the shader; 1 with anisotropic filtering off).
+    int viewAnisotropy(const Camera& camera) const;
     void setVertexIrradiance(bool on) { vertexIrradiance_ = on; }
     // How many times a mesh whose longest edge is `edge` metres in the world (scale included), with
     // `triangles` triangles, is subdivided for per-vertex indirect light on probes `spacing` apart: until its
